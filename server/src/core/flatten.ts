@@ -1,0 +1,634 @@
+import { OverridableAttribute, overridableAttributes, OverridePlan, planOverrides } from './keys';
+import {
+  buildModel,
+  findGroup,
+  ManeuverGroupInfo,
+  ManeuverGroupReferenceInfo,
+  PARAMETER_ATTRIBUTES,
+  parseParameterAttributeNames,
+  ScenarioModel,
+  ScenarioReferenceInfo,
+} from './model';
+import { Problem, ProblemCode, RelatedProblemLocation, Severity, uniqueProblems, ZERO_RANGE } from './problems';
+import { displayRef, refId, Resolution, ScenarioStore, SourceError, SourceRef } from './sources';
+import { closestMatch, detectEol } from './text';
+import { attribute, escapeAttributeValue, isWellFormed, parseXml, XmlAttribute, XmlDocument, XmlElement } from './xml';
+
+function selfAndDescendants(element: XmlElement): XmlElement[] {
+  const result: XmlElement[] = [];
+  const stack = [element];
+  while (stack.length > 0) {
+    const next = stack.pop() as XmlElement;
+    result.push(next);
+    for (let i = next.children.length - 1; i >= 0; i--) stack.push(next.children[i]);
+  }
+  return result;
+}
+
+/**
+ * Where an element of a flattened text was written: the file and element it was copied from,
+ * followed through every nested package. Elements outside imported groups map to the file itself.
+ */
+export function originOf(source: FlatSource, element: XmlElement): { source: FlatSource; element: XmlElement } {
+  if (!source.model || !source.original || source.model === source.original) return { source, element };
+  const insertion = source.insertions.find((candidate) => element.start >= candidate.start && element.end <= candidate.end);
+  if (!insertion) {
+    // Outside imported groups the flattened text is the original text, shifted by each replaced region.
+    const regions = new Map<number, { outStart: number; outEnd: number; inStart: number; inEnd: number }>();
+    for (const candidate of source.insertions) {
+      const region = regions.get(candidate.replacedStart);
+      if (region) region.outEnd = Math.max(region.outEnd, candidate.end);
+      else regions.set(candidate.replacedStart, { outStart: candidate.start, outEnd: candidate.end, inStart: candidate.replacedStart, inEnd: candidate.replacedEnd });
+    }
+    let shift = 0;
+    for (const region of regions.values()) {
+      if (region.outEnd <= element.start) shift += region.inEnd - region.inStart - (region.outEnd - region.outStart);
+    }
+    const original = elementStartingAt(source.original.document.root, element.start + shift);
+    return { source, element: original && original.name === element.name ? original : element };
+  }
+  const copyRoot = source.model.groups.find((group) => group.element.start === insertion.start)?.element;
+  const sourceOfCopy = insertion.link.source;
+  const targetGroup = insertion.group.target;
+  if (!copyRoot || !sourceOfCopy || !targetGroup) return { source, element };
+  const index = selfAndDescendants(copyRoot).indexOf(element);
+  const counterpart = selfAndDescendants(targetGroup.element)[index];
+  return counterpart ? originOf(sourceOfCopy, counterpart) : { source, element };
+}
+
+function elementStartingAt(root: XmlElement | undefined, offset: number): XmlElement | undefined {
+  let current = root;
+  while (current) {
+    if (current.start === offset) return current;
+    current = current.children.find((child) => offset >= child.start && offset < child.end);
+  }
+  return undefined;
+}
+
+/** Problems that the original tool ignored silently: `--force` writes the output despite them. */
+export const OVERRIDE_PROBLEM_CODES: ReadonlySet<ProblemCode> = new Set<ProblemCode>([
+  'unknown-key',
+  'no-default',
+  'unknown-parameter-attribute',
+]);
+
+export interface LinkedGroupReference {
+  info: ManeuverGroupReferenceInfo;
+  /** The group in the source (the flattened package for a `.mosc`) that the name selects. */
+  target: ManeuverGroupInfo | undefined;
+  overridable: OverridableAttribute[];
+  plan: OverridePlan | undefined;
+}
+
+export interface LinkedReference {
+  info: ScenarioReferenceInfo;
+  resolution: Resolution;
+  /** The referenced file, flattened when it is a package or itself holds references. */
+  source: FlatSource | undefined;
+  groups: LinkedGroupReference[];
+  /** The files from this reference back to itself, when it closes a cycle. */
+  cycle: SourceRef[] | undefined;
+}
+
+/** A group that flattening put into the output, and where it came from. */
+export interface Insertion {
+  reference: ManeuverGroupReferenceInfo;
+  outerGroup: ManeuverGroupInfo;
+  link: LinkedReference;
+  group: LinkedGroupReference;
+  /** Offsets of the copy in the flattened text. */
+  start: number;
+  end: number;
+  /** Offsets of the outer group it replaced (with its siblings) in the original text. */
+  replacedStart: number;
+  replacedEnd: number;
+}
+
+/** One file read and, when it holds references, flattened (with `parameterAttributes` kept). */
+export interface FlatSource {
+  ref: SourceRef;
+  /** The file as read; undefined when it could not be read. */
+  original: ScenarioModel | undefined;
+  links: LinkedReference[];
+  /** The flattened text; undefined when an error here or below prevents flattening. */
+  text: string | undefined;
+  model: ScenarioModel | undefined;
+  insertions: Insertion[];
+  /** Problems found in this file itself. */
+  problems: Problem[];
+  /** Problems of this file and of every file it depends on. */
+  allProblems: Problem[];
+  /** Every file this one depends on, itself included. */
+  dependencies: SourceRef[];
+}
+
+export interface FlattenOptions {
+  /** Write the output even when overrides could not be applied (the original's behaviour). */
+  force?: boolean;
+}
+
+export interface FlattenResult {
+  /** The flattened scenario; undefined when errors prevent it. */
+  text: string | undefined;
+  problems: Problem[];
+  source: FlatSource;
+}
+
+/** The location of a name inside the `parameterAttributes` of an element, in the file it was written in. */
+export function declarationLocation(origin: { source: FlatSource; element: XmlElement }, name: string, message: string): RelatedProblemLocation {
+  const model = origin.source.original ?? origin.source.model;
+  const declaration = attribute(origin.element, PARAMETER_ATTRIBUTES);
+  const listed = declaration ? parseParameterAttributeNames(origin.element, declaration).find((entry) => entry.name === name) : undefined;
+  const start = listed?.start ?? origin.element.start;
+  const end = listed?.end ?? origin.element.nameEnd;
+  return { source: origin.source.ref, range: model ? model.document.lines.range(start, end) : ZERO_RANGE, message };
+}
+
+function problemAt(
+  ref: SourceRef,
+  document: XmlDocument,
+  start: number,
+  end: number,
+  severity: Severity,
+  code: ProblemCode,
+  message: string,
+  hint?: string,
+): Problem {
+  return { source: ref, range: document.lines.range(start, end), severity, code, message, hint };
+}
+
+function valueRange(attributeNode: XmlAttribute | undefined, element: XmlElement): [number, number] {
+  return attributeNode ? [attributeNode.valueStart, attributeNode.valueEnd] : [element.start, element.nameEnd];
+}
+
+/** Leading white space of the line where `offset` stands, when only white space precedes it there. */
+function indentationAt(text: string, offset: number): string {
+  let lineStart = offset;
+  while (lineStart > 0 && text[lineStart - 1] !== '\n' && text[lineStart - 1] !== '\r') lineStart--;
+  const prefix = text.slice(lineStart, offset);
+  return /^[ \t]*$/.test(prefix) ? prefix : '';
+}
+
+/** Moves a copied block from one indentation depth to another, line by line. */
+export function reindent(block: string, fromIndent: string, toIndent: string, eol: string): string {
+  const lines = block.split(/\r\n|\r|\n/);
+  return lines
+    .map((line, index) => {
+      if (index === 0) return line;
+      if (line.trim() === '') return '';
+      if (line.startsWith(fromIndent)) return toIndent + line.slice(fromIndent.length);
+      return toIndent + line.trimStart();
+    })
+    .join(eol);
+}
+
+interface TextEdit {
+  start: number;
+  end: number;
+  text: string;
+}
+
+function applyEdits(text: string, edits: TextEdit[], from = 0, to = text.length): string {
+  const sorted = [...edits].sort((a, b) => a.start - b.start);
+  let out = '';
+  let position = from;
+  for (const edit of sorted) {
+    out += text.slice(position, edit.start) + edit.text;
+    position = edit.end;
+  }
+  return out + text.slice(position, to);
+}
+
+/** Removes every `parameterAttributes` attribute, with the white space before it. */
+export function stripParameterAttributes(text: string): string {
+  const document = parseXml(text);
+  const edits: TextEdit[] = [];
+  const visit = (element: XmlElement) => {
+    const declaration = attribute(element, PARAMETER_ATTRIBUTES);
+    if (declaration) {
+      let start = declaration.nameStart;
+      while (start > 0 && /\s/.test(text[start - 1])) start--;
+      edits.push({ start, end: declaration.valueEnd + 1, text: '' });
+    }
+    for (const child of element.children) visit(child);
+  };
+  if (document.root) visit(document.root);
+  return applyEdits(text, edits);
+}
+
+/**
+ * Flattens modular scenarios (SPEC 4 and 5). One instance caches every file it read and flattened,
+ * so a simple scenario used by many references is read and reported once.
+ */
+export class Flattener {
+  private readonly cache = new Map<string, Promise<FlatSource>>();
+
+  constructor(readonly store: ScenarioStore) {}
+
+  /** Flattens the scenario `main` (a `main.xosc` on disk or inside a package) into plain OpenSCENARIO. */
+  async flatten(main: SourceRef, options: FlattenOptions = {}): Promise<FlattenResult> {
+    const source = await this.source(main, []);
+    const problems = uniqueProblems([...source.allProblems, ...this.entityProblems(source)]);
+    const blocking = problems.filter(
+      (problem) => problem.severity === 'error' && !(options.force && OVERRIDE_PROBLEM_CODES.has(problem.code)),
+    );
+    const text = source.text !== undefined && blocking.length === 0 ? stripParameterAttributes(source.text) : undefined;
+    if (text !== undefined && !isWellFormed(parseXml(text))) {
+      throw new Error('internal error: the flattened output is not well-formed XML');
+    }
+    return { text, problems, source };
+  }
+
+  /** Reads (and, when it holds references, flattens) one file; cached per file. */
+  source(ref: SourceRef, stack: SourceRef[]): Promise<FlatSource> {
+    const id = refId(ref);
+    let pending = this.cache.get(id);
+    if (!pending) {
+      pending = this.build(ref, [...stack, ref]);
+      this.cache.set(id, pending);
+    }
+    return pending;
+  }
+
+  private async build(ref: SourceRef, stack: SourceRef[]): Promise<FlatSource> {
+    const result: FlatSource = {
+      ref,
+      original: undefined,
+      links: [],
+      text: undefined,
+      model: undefined,
+      insertions: [],
+      problems: [],
+      allProblems: [],
+      dependencies: [ref],
+    };
+    let text: string;
+    try {
+      text = await this.store.readText(ref);
+    } catch (error) {
+      const sourceError = error instanceof SourceError ? error : undefined;
+      result.problems.push({
+        source: ref,
+        range: ZERO_RANGE,
+        severity: 'error',
+        code: sourceError && /ZIP|package|unpacks|entry/.test(sourceError.message) ? 'bad-package' : 'io',
+        message: (error as Error).message,
+        hint: sourceError?.hint,
+      });
+      result.allProblems = [...result.problems];
+      return result;
+    }
+    const document = parseXml(text);
+    for (const problem of document.problems) {
+      result.problems.push(problemAt(ref, document, problem.start, problem.end, problem.severity, 'xml', problem.message));
+    }
+    const model = buildModel(document);
+    result.original = model;
+    this.checkDeclarations(result, model);
+    this.checkDuplicateGroups(result, model);
+    const wellFormed = isWellFormed(document);
+
+    const childProblems: Problem[] = [];
+    for (const reference of model.references) {
+      const link = await this.link(reference, ref, model, stack, result);
+      result.links.push(link);
+      if (link.source) {
+        childProblems.push(...link.source.allProblems);
+        for (const dependency of link.source.dependencies) {
+          if (!result.dependencies.some((known) => refId(known) === refId(dependency))) result.dependencies.push(dependency);
+        }
+      }
+    }
+    result.allProblems = uniqueProblems([...result.problems, ...childProblems]);
+
+    if (!wellFormed) return result;
+    if (model.references.length === 0) {
+      result.text = text;
+      result.model = model;
+      return result;
+    }
+    const blocked = result.allProblems.some((problem) => problem.severity === 'error' && !OVERRIDE_PROBLEM_CODES.has(problem.code));
+    if (blocked) return result;
+    this.render(result, text, model);
+    return result;
+  }
+
+  private checkDeclarations(result: FlatSource, model: ScenarioModel): void {
+    for (const declaration of model.declarations) {
+      for (const name of declaration.names) {
+        if (name.target) continue;
+        const attributes = declaration.element.attributes.map((a) => a.name).filter((n) => n !== PARAMETER_ATTRIBUTES);
+        const suggestion = closestMatch(name.name.split('.').pop() ?? name.name, attributes);
+        const problem = problemAt(
+          result.ref,
+          model.document,
+          name.start,
+          name.end,
+          'warning',
+          'unknown-parameter-attribute',
+          `'${name.name}' names no attribute of <${declaration.element.name}>, so no default value exists and no key can override it` +
+            (attributes.length ? ` (its attributes: ${attributes.join(', ')})` : ''),
+          suggestion ? `write '${suggestion}'` : `add ${name.name}="..." to <${declaration.element.name}> as its default`,
+        );
+        if (suggestion) problem.data = { suggestion };
+        result.problems.push(problem);
+      }
+    }
+  }
+
+  private checkDuplicateGroups(result: FlatSource, model: ScenarioModel): void {
+    const seen = new Map<string, ManeuverGroupInfo>();
+    for (const group of model.groups) {
+      const first = seen.get(group.name);
+      if (!first) {
+        seen.set(group.name, group);
+        continue;
+      }
+      const [start, end] = valueRange(group.nameAttribute, group.element);
+      const problem = problemAt(
+        result.ref,
+        model.document,
+        start,
+        end,
+        'warning',
+        'duplicate-group',
+        `another ManeuverGroup is already named '${group.name}'; a reference to that name takes the first one`,
+        'give each ManeuverGroup a unique name',
+      );
+      const [firstStart, firstEnd] = valueRange(first.nameAttribute, first.element);
+      problem.related = [{ source: result.ref, range: model.document.lines.range(firstStart, firstEnd), message: 'the first group of that name' }];
+      result.problems.push(problem);
+    }
+  }
+
+  private async link(
+    reference: ScenarioReferenceInfo,
+    from: SourceRef,
+    model: ScenarioModel,
+    stack: SourceRef[],
+    result: FlatSource,
+  ): Promise<LinkedReference> {
+    const document = model.document;
+    const report = (start: number, end: number, severity: Severity, code: ProblemCode, message: string, hint?: string) => {
+      const problem = problemAt(from, document, start, end, severity, code, message, hint);
+      result.problems.push(problem);
+      return problem;
+    };
+    const [fileStart, fileEnd] = valueRange(reference.fileAttribute, reference.element);
+    const link: LinkedReference = {
+      info: reference,
+      resolution: { kind: 'invalid', message: '' },
+      source: undefined,
+      groups: [],
+      cycle: undefined,
+    };
+    if (!reference.outerGroup) {
+      report(reference.element.start, reference.element.nameEnd, 'error', 'reference-outside-group', 'a ScenarioReference must stand directly inside a ManeuverGroup');
+    } else if (!reference.outerGroup.actor) {
+      const group = reference.outerGroup;
+      const [start, end] = valueRange(group.nameAttribute, group.element);
+      report(start, end, 'error', 'no-entity-ref', `ManeuverGroup '${group.name}' has no <Actors><EntityRef entityRef="..."/></Actors>, so the imported groups have no actor`, 'add an Actors element with the EntityRef of the entity that performs the imported groups');
+    } else if (!attribute(reference.outerGroup.actor, 'entityRef')) {
+      const actor = reference.outerGroup.actor;
+      report(actor.start, actor.nameEnd, 'error', 'no-entity-ref', 'this EntityRef has no entityRef attribute', 'write entityRef="NAME" with the name of a ScenarioObject');
+    }
+    if (!reference.fileAttribute) {
+      report(reference.element.start, reference.element.nameEnd, 'error', 'missing-attribute', 'ScenarioReference has no scenarioFileName attribute', 'add scenarioFileName="NAME.xosc" or "NAME.mosc"');
+      return link;
+    }
+    for (const groupReference of reference.groupReferences) {
+      if (!groupReference.nameAttribute) report(groupReference.element.start, groupReference.element.nameEnd, 'error', 'missing-attribute', 'ManeuverGroupReference has no maneuverGroupName attribute');
+      for (const parameter of groupReference.parameters) {
+        if (!parameter.keyAttribute || !parameter.valueAttribute) {
+          report(parameter.element.start, parameter.element.nameEnd, 'error', 'missing-attribute', `ParameterReference needs both key and value attributes`, 'write <ParameterReference key="Element.attribute" value="..."/>');
+        }
+      }
+    }
+    const resolution = await this.store.resolve(reference.fileName, from);
+    link.resolution = resolution;
+    if (resolution.kind === 'invalid') {
+      report(fileStart, fileEnd, 'error', 'invalid-reference', resolution.message);
+      return link;
+    }
+    if (resolution.kind === 'missing') {
+      report(fileStart, fileEnd, 'error', 'missing-file', `cannot find '${reference.fileName}'; searched ${resolution.searched.join(', ')}`, resolution.hint);
+      return link;
+    }
+    if (resolution.kind === 'package' && resolution.fallbackFrom) {
+      const packageName = `${resolution.fallbackFrom.slice(0, -'.xosc'.length)}.mosc`;
+      const problem = report(
+        fileStart,
+        fileEnd,
+        'warning',
+        'xosc-fallback',
+        `'${resolution.fallbackFrom}' does not exist; the flattened package '${packageName}' is used in its place`,
+        `write scenarioFileName="${packageName}"`,
+      );
+      problem.data = { replacement: packageName };
+    }
+    const target = resolution.kind === 'package' ? resolution.main : resolution.ref;
+    const cycleStart = stack.findIndex((entry) => refId(entry) === refId(target));
+    if (cycleStart >= 0) {
+      const cycle = [...stack.slice(cycleStart), target];
+      link.cycle = cycle;
+      report(fileStart, fileEnd, 'error', 'cycle', `reference cycle: ${cycle.map((entry) => displayRef(entry)).join(' -> ')}`, 'remove one reference of the cycle');
+      return link;
+    }
+    const source = await this.source(target, stack);
+    link.source = source;
+    const sourceErrors = source.allProblems.filter((problem) => problem.severity === 'error' && !OVERRIDE_PROBLEM_CODES.has(problem.code));
+    if (sourceErrors.length > 0) {
+      const problem = report(
+        fileStart,
+        fileEnd,
+        'error',
+        'source-errors',
+        `'${reference.fileName}' has ${sourceErrors.length} error${sourceErrors.length === 1 ? '' : 's'}: ${sourceErrors[0].message}`,
+      );
+      problem.related = sourceErrors.slice(0, 20).map((item) => ({ source: item.source, range: item.range, message: item.message }));
+    }
+    const sourceModel = source.model;
+    for (const groupReference of reference.groupReferences) {
+      const linked: LinkedGroupReference = { info: groupReference, target: undefined, overridable: [], plan: undefined };
+      link.groups.push(linked);
+      if (!sourceModel || !groupReference.nameAttribute) continue;
+      const [nameStart, nameEnd] = valueRange(groupReference.nameAttribute, groupReference.element);
+      const targetGroup = findGroup(sourceModel, groupReference.name);
+      if (!targetGroup) {
+        const names = [...new Set(sourceModel.groups.map((group) => group.name))];
+        const suggestion = closestMatch(groupReference.name, names);
+        const problem = report(
+          nameStart,
+          nameEnd,
+          'error',
+          'unknown-group',
+          `'${reference.fileName}' has no ManeuverGroup named '${groupReference.name}'` +
+            (names.length ? `; it has: ${names.join(', ')}` : '; it has no ManeuverGroup'),
+          suggestion ? `did you mean '${suggestion}'?` : undefined,
+        );
+        if (suggestion) problem.data = { suggestion };
+        continue;
+      }
+      linked.target = targetGroup;
+      if (sourceModel.groups.filter((group) => group.name === groupReference.name).length > 1) {
+        report(nameStart, nameEnd, 'warning', 'ambiguous-group', `'${reference.fileName}' has more than one ManeuverGroup named '${groupReference.name}'; the first one is used`);
+      }
+      linked.overridable = overridableAttributes(sourceModel, targetGroup);
+      const plan = planOverrides(linked.overridable, groupReference.parameters.filter((p) => p.keyAttribute));
+      linked.plan = plan;
+      for (const unknown of plan.unknown) {
+        const [start, end] = valueRange(unknown.parameter.keyAttribute, unknown.parameter.element);
+        const listedVerbatim = linked.overridable.find((candidate) => candidate.attributeName === unknown.parameter.key);
+        const verbatimOrigin = listedVerbatim ? originOf(source, listedVerbatim.element) : undefined;
+        const hint = listedVerbatim
+          ? `<${listedVerbatim.element.name}> in ${displayRef((verbatimOrigin as { source: FlatSource }).source.ref)} lists '${listedVerbatim.attributeName}', which names no attribute; list '${listedVerbatim.attributeName.split('.').pop()}' there instead`
+          : unknown.suggestion
+            ? `did you mean '${unknown.suggestion}'?`
+            : 'list the attribute in parameterAttributes of its element in the simple scenario';
+        const problem = report(
+          start,
+          end,
+          'error',
+          'unknown-key',
+          `key '${unknown.parameter.key}' matches no attribute listed in a parameterAttributes of group '${groupReference.name}'`,
+          hint,
+        );
+        if (listedVerbatim && verbatimOrigin) {
+          problem.related = [declarationLocation(verbatimOrigin, listedVerbatim.attributeName, 'listed here as a whole key instead of an attribute name')];
+        }
+        if (unknown.suggestion) problem.data = { suggestion: unknown.suggestion };
+      }
+      for (const { parameter, target: attributeTarget } of plan.withoutDefault) {
+        const [start, end] = valueRange(parameter.keyAttribute, parameter.element);
+        const problem = report(
+          start,
+          end,
+          'error',
+          'no-default',
+          `no default value: <${attributeTarget.element.name}> lists '${attributeTarget.attributeName}' in parameterAttributes but has no such attribute`,
+          `add ${attributeTarget.attributeName}="..." to <${attributeTarget.element.name}> in ${displayRef(originOf(source, attributeTarget.element).source.ref)}`,
+        );
+        problem.related = [declarationLocation(originOf(source, attributeTarget.element), attributeTarget.attributeName, 'listed here without a default value')];
+      }
+    }
+    return link;
+  }
+
+  /** Writes the flattened text: each outer group replaced in place by its imported copies. */
+  private render(result: FlatSource, text: string, model: ScenarioModel): void {
+    const eol = detectEol(text);
+    type Copy = { text: string; link: LinkedReference; linked: LinkedGroupReference };
+    const replacements: { group: ManeuverGroupInfo; start: number; end: number; copies: Copy[] }[] = [];
+    for (const group of model.groups) {
+      if (group.references.length === 0) continue;
+      const actorEntity = group.actor ? attribute(group.actor, 'entityRef')?.value : undefined;
+      const targetIndent = indentationAt(text, group.element.start);
+      const copies: Copy[] = [];
+      for (const reference of group.references) {
+        const link = result.links.find((candidate) => candidate.info === reference);
+        if (!link?.source?.model || link.source.text === undefined) return;
+        for (const linked of link.groups) {
+          if (!linked.target || !linked.plan) return;
+          copies.push({
+            text: this.copyGroup(link.source.text, link.source.model, linked, group.name, actorEntity, targetIndent, eol),
+            link,
+            linked,
+          });
+        }
+      }
+      replacements.push({ group, start: group.element.start, end: group.element.end, copies });
+    }
+    let out = '';
+    let position = 0;
+    for (const replacement of replacements) {
+      out += text.slice(position, replacement.start);
+      const indent = indentationAt(text, replacement.start);
+      replacement.copies.forEach((copy, index) => {
+        if (index > 0) out += eol + indent;
+        const start = out.length;
+        out += copy.text;
+        result.insertions.push({
+          reference: copy.linked.info,
+          outerGroup: replacement.group,
+          link: copy.link,
+          group: copy.linked,
+          start,
+          end: out.length,
+          replacedStart: replacement.start,
+          replacedEnd: replacement.end,
+        });
+      });
+      position = replacement.end;
+    }
+    out += text.slice(position);
+    result.text = out;
+    result.model = buildModel(parseXml(out));
+  }
+
+  private copyGroup(
+    sourceText: string,
+    sourceModel: ScenarioModel,
+    linked: LinkedGroupReference,
+    outerName: string,
+    actorEntity: string | undefined,
+    targetIndent: string,
+    eol: string,
+  ): string {
+    const target = linked.target as ManeuverGroupInfo;
+    const edits = new Map<number, TextEdit>();
+    const setAttribute = (element: XmlElement, name: string, value: string) => {
+      const existing = attribute(element, name);
+      if (existing) {
+        edits.set(existing.valueStart, { start: existing.valueStart, end: existing.valueEnd, text: escapeAttributeValue(value, existing.quote) });
+      } else {
+        edits.set(element.nameEnd, { start: element.nameEnd, end: element.nameEnd, text: ` ${name}="${escapeAttributeValue(value)}"` });
+      }
+    };
+    setAttribute(target.element, 'name', `${outerName}.${target.name}`);
+    if (target.actor && actorEntity !== undefined) setAttribute(target.actor, 'entityRef', actorEntity);
+    for (const [overridden, parameter] of (linked.plan as OverridePlan).applied) {
+      setAttribute(overridden.element, overridden.attributeName, parameter.value);
+    }
+    const copied = applyEdits(sourceText, [...edits.values()], target.element.start, target.element.end);
+    return reindent(copied, indentationAt(sourceModel.document.text, target.element.start), targetIndent, eol);
+  }
+
+  /** Warns where an imported group names an entity the outermost main file does not declare. */
+  private entityProblems(source: FlatSource): Problem[] {
+    if (!source.model || !source.original || source.insertions.length === 0) return [];
+    const declared = new Set(source.original.entities.map((entity) => entity.name));
+    const problems: Problem[] = [];
+    const document = source.original.document;
+    for (const insertion of source.insertions) {
+      const missing = new Set<string>();
+      for (const group of source.model.groups) {
+        if (group.element.start < insertion.start || group.element.end > insertion.end) continue;
+        const stack: XmlElement[] = [group.element];
+        while (stack.length > 0) {
+          const element = stack.pop() as XmlElement;
+          const entity = attribute(element, 'entityRef');
+          if (entity && !declared.has(entity.value)) missing.add(entity.value);
+          stack.push(...element.children);
+        }
+      }
+      for (const name of missing) {
+        const nameAttribute = insertion.reference.nameAttribute;
+        const [start, end] = valueRange(nameAttribute, insertion.reference.element);
+        problems.push({
+          ...problemAt(
+            source.ref,
+            document,
+            start,
+            end,
+            'warning',
+            'undeclared-entity',
+            `the imported group '${insertion.reference.name}' uses entity '${name}', which this file does not declare in <Entities>`,
+            `declare a ScenarioObject named '${name}', or override the key that sets it (for example 'entityRef')`,
+          ),
+          data: { entity: name },
+        });
+      }
+    }
+    return problems;
+  }
+}

@@ -1,0 +1,115 @@
+import { closestMatch } from './text';
+import { ManeuverGroupInfo, ParameterAttributeName, ParameterReferenceInfo, ScenarioModel } from './model';
+import { XmlElement } from './xml';
+
+/** An attribute of a group that a main file may override. */
+export interface OverridableAttribute {
+  element: XmlElement;
+  /** The attribute's name, last part of every key that reaches it. */
+  attributeName: string;
+  declaration: ParameterAttributeName;
+  /** Element names from the group element down to the element, both included. */
+  path: string[];
+  /** The default value, or undefined when the element lacks the attribute. */
+  defaultValue: string | undefined;
+}
+
+export interface KeyMatch {
+  parameter: ParameterReferenceInfo;
+  targets: OverridableAttribute[];
+}
+
+export interface OverridePlan {
+  /** For each overridable attribute, the parameter whose value applies (the most specific key). */
+  applied: Map<OverridableAttribute, ParameterReferenceInfo>;
+  /** For each parameter, the attributes its key matches. */
+  matches: KeyMatch[];
+  /** Parameters whose key matches no listed attribute, with the closest key that would. */
+  unknown: { parameter: ParameterReferenceInfo; suggestion: string | undefined }[];
+  /** Matched attributes that have no default value on their element. */
+  withoutDefault: { parameter: ParameterReferenceInfo; target: OverridableAttribute }[];
+}
+
+function isWithin(element: XmlElement, ancestor: XmlElement): boolean {
+  for (let current: XmlElement | undefined = element; current; current = current.parent) if (current === ancestor) return true;
+  return false;
+}
+
+/** Every attribute the group lists in a `parameterAttributes`, in document order. */
+export function overridableAttributes(model: ScenarioModel, group: ManeuverGroupInfo): OverridableAttribute[] {
+  const result: OverridableAttribute[] = [];
+  for (const declaration of model.declarations) {
+    if (!isWithin(declaration.element, group.element)) continue;
+    const path: string[] = [];
+    for (let current: XmlElement | undefined = declaration.element; current; current = current.parent) {
+      path.unshift(current.name);
+      if (current === group.element) break;
+    }
+    for (const name of declaration.names) {
+      result.push({
+        element: declaration.element,
+        attributeName: name.name,
+        declaration: name,
+        path,
+        defaultValue: name.target?.value,
+      });
+    }
+  }
+  return result;
+}
+
+/** Whether `key` (a dotted path ending in an attribute name) reaches `target` (SPEC 5). */
+export function keyMatches(key: string, target: OverridableAttribute): boolean {
+  const parts = key.split('.');
+  const attributeName = parts.pop();
+  if (attributeName !== target.attributeName || parts.some((part) => part.length === 0)) return false;
+  if (parts.length > target.path.length) return false;
+  const offset = target.path.length - parts.length;
+  for (let i = 0; i < parts.length; i++) if (parts[i] !== target.path[offset + i]) return false;
+  return true;
+}
+
+/** Every key that reaches the attribute, shortest first: `attr`, `Element.attr`, `Parent.Element.attr`, ... */
+export function keyForms(target: OverridableAttribute): string[] {
+  const forms: string[] = [];
+  for (let length = 0; length <= target.path.length; length++) {
+    forms.push([...target.path.slice(target.path.length - length), target.attributeName].join('.'));
+  }
+  return forms;
+}
+
+/** The shortest key that reaches this attribute and no other attribute of the group. */
+export function shortestUnambiguousKey(target: OverridableAttribute, all: OverridableAttribute[]): string {
+  const forms = keyForms(target);
+  for (const form of forms) {
+    if (all.every((other) => other === target || !keyMatches(form, other))) return form;
+  }
+  return forms[forms.length - 1];
+}
+
+/** Decides which parameter sets which attribute: the longest matching key wins, then the last one written. */
+export function planOverrides(targets: OverridableAttribute[], parameters: ParameterReferenceInfo[]): OverridePlan {
+  const applied = new Map<OverridableAttribute, ParameterReferenceInfo>();
+  const matches: KeyMatch[] = [];
+  const unknown: OverridePlan['unknown'] = [];
+  const withoutDefault: OverridePlan['withoutDefault'] = [];
+  for (const parameter of parameters) {
+    const reached = targets.filter((target) => keyMatches(parameter.key, target));
+    matches.push({ parameter, targets: reached });
+    if (reached.length === 0) {
+      const candidates = new Set<string>();
+      for (const target of targets) for (const form of keyForms(target)) if (keyMatches(form, target)) candidates.add(form);
+      unknown.push({ parameter, suggestion: closestMatch(parameter.key, candidates) });
+      continue;
+    }
+    for (const target of reached) {
+      if (target.defaultValue === undefined) {
+        withoutDefault.push({ parameter, target });
+        continue;
+      }
+      const previous = applied.get(target);
+      if (!previous || previous.key.split('.').length <= parameter.key.split('.').length) applied.set(target, parameter);
+    }
+  }
+  return { applied, matches, unknown, withoutDefault };
+}

@@ -1,0 +1,197 @@
+import { attribute, descendants, parseXml, XmlAttribute, XmlDocument, XmlElement } from './xml';
+
+export const PARAMETER_ATTRIBUTES = 'parameterAttributes';
+
+export interface ParameterReferenceInfo {
+  key: string;
+  value: string;
+  element: XmlElement;
+  keyAttribute: XmlAttribute | undefined;
+  valueAttribute: XmlAttribute | undefined;
+}
+
+export interface ManeuverGroupReferenceInfo {
+  /** The `maneuverGroupName`, possibly dotted for a group imported by a nested package. */
+  name: string;
+  element: XmlElement;
+  nameAttribute: XmlAttribute | undefined;
+  parameters: ParameterReferenceInfo[];
+}
+
+export interface ScenarioReferenceInfo {
+  fileName: string;
+  element: XmlElement;
+  fileAttribute: XmlAttribute | undefined;
+  groupReferences: ManeuverGroupReferenceInfo[];
+  /** The `ManeuverGroup` that holds the reference and that flattening replaces. */
+  outerGroup: ManeuverGroupInfo | undefined;
+}
+
+export interface ManeuverGroupInfo {
+  name: string;
+  element: XmlElement;
+  nameAttribute: XmlAttribute | undefined;
+  /** The first `EntityRef` of the group (its `Actors`), whose entity an imported group takes over. */
+  actor: XmlElement | undefined;
+  references: ScenarioReferenceInfo[];
+}
+
+/** One name listed in a `parameterAttributes` value. */
+export interface ParameterAttributeName {
+  name: string;
+  /** Offsets of the name inside the document. */
+  start: number;
+  end: number;
+  /** The attribute that carries the default value, when the element has it. */
+  target: XmlAttribute | undefined;
+}
+
+export interface ParameterAttributesDeclaration {
+  element: XmlElement;
+  attribute: XmlAttribute;
+  names: ParameterAttributeName[];
+}
+
+export interface EntityInfo {
+  name: string;
+  element: XmlElement;
+  nameAttribute: XmlAttribute | undefined;
+}
+
+export interface ScenarioModel {
+  document: XmlDocument;
+  groups: ManeuverGroupInfo[];
+  references: ScenarioReferenceInfo[];
+  entities: EntityInfo[];
+  declarations: ParameterAttributesDeclaration[];
+  /** Storyboard structure for outlines: Storyboard, Story, Act elements. */
+  structure: XmlElement[];
+}
+
+export function parseParameterAttributeNames(element: XmlElement, declaration: XmlAttribute): ParameterAttributeName[] {
+  const names: ParameterAttributeName[] = [];
+  const pattern = /[^,]+/g;
+  // Offsets are exact when the raw value holds no entity references, which is the case for names.
+  for (let match = pattern.exec(declaration.value); match; match = pattern.exec(declaration.value)) {
+    const leading = match[0].length - match[0].trimStart().length;
+    const name = match[0].trim();
+    if (!name) continue;
+    const start = declaration.valueStart + match.index + leading;
+    const target = name === PARAMETER_ATTRIBUTES ? undefined : attribute(element, name);
+    names.push({ name, start, end: start + name.length, target });
+  }
+  return names;
+}
+
+const STRUCTURE_ELEMENTS = new Set(['Storyboard', 'Story', 'Act', 'Init']);
+
+/** Reads the modular-scenario structure of a parsed document. */
+export function buildModel(document: XmlDocument): ScenarioModel {
+  const groups: ManeuverGroupInfo[] = [];
+  const references: ScenarioReferenceInfo[] = [];
+  const entities: EntityInfo[] = [];
+  const declarations: ParameterAttributesDeclaration[] = [];
+  const structure: XmlElement[] = [];
+  if (!document.root) return { document, groups, references, entities, declarations, structure };
+
+  const visit = (element: XmlElement) => {
+    const declaration = attribute(element, PARAMETER_ATTRIBUTES);
+    if (declaration) declarations.push({ element, attribute: declaration, names: parseParameterAttributeNames(element, declaration) });
+    switch (element.name) {
+      case 'ManeuverGroup':
+        groups.push(readGroup(element, references));
+        break;
+      case 'ScenarioObject': {
+        const nameAttribute = attribute(element, 'name');
+        entities.push({ name: nameAttribute?.value ?? '', element, nameAttribute });
+        break;
+      }
+      default:
+        if (STRUCTURE_ELEMENTS.has(element.name)) structure.push(element);
+    }
+  };
+  visit(document.root);
+  for (const element of descendants(document.root)) visit(element);
+  // References found outside any group still count, so that the editor can flag them.
+  for (const element of [document.root, ...descendants(document.root)]) {
+    if (element.name === 'ScenarioReference' && !references.some((r) => r.element === element)) {
+      references.push(readReference(element, undefined));
+    }
+  }
+  references.sort((a, b) => a.element.start - b.element.start);
+  return { document, groups, references, entities, declarations, structure };
+}
+
+function readGroup(element: XmlElement, allReferences: ScenarioReferenceInfo[]): ManeuverGroupInfo {
+  const nameAttribute = attribute(element, 'name');
+  const group: ManeuverGroupInfo = {
+    name: nameAttribute?.value ?? '',
+    element,
+    nameAttribute,
+    actor: undefined,
+    references: [],
+  };
+  const actors = element.children.find((child) => child.name === 'Actors');
+  group.actor = actors?.children.find((child) => child.name === 'EntityRef');
+  if (!group.actor) {
+    for (const candidate of descendants(element)) {
+      if (candidate.name === 'ScenarioReference') break;
+      if (candidate.name === 'EntityRef') {
+        group.actor = candidate;
+        break;
+      }
+    }
+  }
+  for (const child of element.children) {
+    if (child.name === 'ScenarioReference') {
+      const reference = readReference(child, group);
+      group.references.push(reference);
+      allReferences.push(reference);
+    }
+  }
+  return group;
+}
+
+function readReference(element: XmlElement, outerGroup: ManeuverGroupInfo | undefined): ScenarioReferenceInfo {
+  const fileAttribute = attribute(element, 'scenarioFileName');
+  const groupReferences: ManeuverGroupReferenceInfo[] = [];
+  for (const child of element.children) {
+    if (child.name !== 'ManeuverGroupReference') continue;
+    const nameAttribute = attribute(child, 'maneuverGroupName');
+    const parameters: ParameterReferenceInfo[] = [];
+    for (const parameter of child.children) {
+      if (parameter.name !== 'ParameterReference') continue;
+      const keyAttribute = attribute(parameter, 'key');
+      const valueAttribute = attribute(parameter, 'value');
+      parameters.push({
+        key: keyAttribute?.value.trim() ?? '',
+        value: valueAttribute?.value ?? '',
+        element: parameter,
+        keyAttribute,
+        valueAttribute,
+      });
+    }
+    groupReferences.push({ name: nameAttribute?.value.trim() ?? '', element: child, nameAttribute, parameters });
+  }
+  return {
+    fileName: fileAttribute?.value.trim() ?? '',
+    element,
+    fileAttribute,
+    groupReferences,
+    outerGroup,
+  };
+}
+
+export function parseScenario(text: string): ScenarioModel {
+  return buildModel(parseXml(text));
+}
+
+/** Groups of a source in document order, by name; the first of a name wins (SPEC 4.1). */
+export function findGroup(model: ScenarioModel, name: string): ManeuverGroupInfo | undefined {
+  return model.groups.find((group) => group.name === name);
+}
+
+/** Whether the scenario holds references and so must be flattened before its groups are used. */
+export function isModular(model: ScenarioModel): boolean {
+  return model.references.length > 0;
+}

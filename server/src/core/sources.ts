@@ -1,0 +1,397 @@
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import JSZip from 'jszip';
+import { decodeUtf8 } from './text';
+
+/**
+ * Where a scenario file lives: a path on disk, then zero or more entry names, each inside the
+ * package named before it. `{ disk: '/a/p.mosc', entries: ['inner.mosc', 'main.xosc'] }` is the
+ * `main.xosc` of the package `inner.mosc` stored in `/a/p.mosc`.
+ */
+export interface SourceRef {
+  disk: string;
+  entries: string[];
+}
+
+export function diskRef(filePath: string): SourceRef {
+  return { disk: path.resolve(filePath), entries: [] };
+}
+
+export function childRef(packageRef: SourceRef, entry: string): SourceRef {
+  return { disk: packageRef.disk, entries: [...packageRef.entries, entry] };
+}
+
+/** A package's `.mosc` file (or an entry holding one) is read as a folder: `/a/p.mosc/inner.mosc/main.xosc`. */
+export function refId(ref: SourceRef): string {
+  return ref.entries.length === 0 ? ref.disk : `${ref.disk}/${ref.entries.join('/')}`;
+}
+
+export function sameRef(a: SourceRef, b: SourceRef): boolean {
+  return refId(a) === refId(b);
+}
+
+/** A short form for messages: relative to `base` when the file lies below it. */
+export function displayRef(ref: SourceRef, base: string = process.cwd()): string {
+  const relative = path.relative(base, ref.disk);
+  const disk = relative && !relative.startsWith('..') && !path.isAbsolute(relative) ? relative : ref.disk;
+  return ref.entries.length === 0 ? disk : `${disk}/${ref.entries.join('/')}`;
+}
+
+export function baseName(ref: SourceRef): string {
+  const last = ref.entries.length > 0 ? ref.entries[ref.entries.length - 1] : ref.disk;
+  return last.split(/[\\/]/).pop() ?? last;
+}
+
+export class SourceError extends Error {
+  constructor(
+    message: string,
+    readonly ref: SourceRef,
+    readonly hint?: string,
+  ) {
+    super(message);
+  }
+}
+
+export interface FileSystemHost {
+  /** The file's bytes, or undefined when it does not exist or is not a file. */
+  readFile(filePath: string): Promise<Uint8Array | undefined>;
+  kind(filePath: string): Promise<'file' | 'directory' | undefined>;
+}
+
+export const nodeFileSystem: FileSystemHost = {
+  async readFile(filePath) {
+    try {
+      return await fs.promises.readFile(filePath);
+    } catch {
+      return undefined;
+    }
+  },
+  async kind(filePath) {
+    try {
+      const stat = await fs.promises.stat(filePath);
+      return stat.isFile() ? 'file' : stat.isDirectory() ? 'directory' : undefined;
+    } catch {
+      return undefined;
+    }
+  },
+};
+
+export interface PackageLimits {
+  maxEntries: number;
+  maxEntryBytes: number;
+  maxTotalBytes: number;
+}
+
+export const DEFAULT_PACKAGE_LIMITS: PackageLimits = {
+  maxEntries: 10_000,
+  maxEntryBytes: 64 * 1024 * 1024,
+  maxTotalBytes: 256 * 1024 * 1024,
+};
+
+export interface PackageContents {
+  /** Entry names (with `/` for sub-folders) to their bytes; folders are not listed. */
+  entries: Map<string, Uint8Array>;
+}
+
+/** Normalizes a ZIP entry or reference name; undefined when it would leave the package. */
+export function normalizeEntryName(name: string): string | undefined {
+  const parts: string[] = [];
+  for (const part of name.replace(/\\/g, '/').split('/')) {
+    if (part === '' || part === '.') continue;
+    if (part === '..') return undefined;
+    parts.push(part);
+  }
+  if (/^[A-Za-z]:/.test(name) || name.startsWith('/')) return undefined;
+  return parts.length > 0 ? parts.join('/') : undefined;
+}
+
+/** Reads a `.mosc` in memory. Nothing is extracted to disk; unsafe names and oversized entries are refused. */
+export async function readPackageBytes(
+  bytes: Uint8Array,
+  label: string,
+  limits: PackageLimits = DEFAULT_PACKAGE_LIMITS,
+): Promise<PackageContents> {
+  let zip: JSZip;
+  try {
+    zip = await JSZip.loadAsync(bytes, { checkCRC32: true });
+  } catch (error) {
+    throw new Error(`${label} is not a readable ZIP archive (${(error as Error).message}); a .mosc must be a ZIP file`);
+  }
+  const files = Object.values(zip.files).filter((file) => !file.dir);
+  if (files.length > limits.maxEntries) throw new Error(`${label} holds ${files.length} entries, more than the ${limits.maxEntries} allowed`);
+  const entries = new Map<string, Uint8Array>();
+  let total = 0;
+  for (const file of files) {
+    const name = normalizeEntryName(file.name);
+    if (name === undefined) throw new Error(`${label} holds an entry named '${file.name}' that points outside the package; it was refused`);
+    if (entries.has(name)) throw new Error(`${label} holds the entry '${name}' twice`);
+    const content = await readEntryBounded(file, limits.maxEntryBytes, `${label}/${name}`);
+    total += content.length;
+    if (total > limits.maxTotalBytes) throw new Error(`${label} unpacks to more than ${limits.maxTotalBytes} bytes; it was refused`);
+    entries.set(name, content);
+  }
+  return { entries };
+}
+
+/** JSZip's streaming reader; present at run time, missing from its type declarations. */
+interface StreamingZipObject {
+  internalStream(type: 'uint8array'): ZipStream;
+}
+interface ZipStream {
+  on(event: 'data', listener: (chunk: Uint8Array) => void): ZipStream;
+  on(event: 'error', listener: (error: Error) => void): ZipStream;
+  on(event: 'end', listener: () => void): ZipStream;
+  pause(): ZipStream;
+  resume(): ZipStream;
+}
+
+function readEntryBounded(file: JSZip.JSZipObject, maxBytes: number, label: string): Promise<Uint8Array> {
+  // Decompress as a stream so that a ZIP bomb is stopped at the bound, not after it filled memory.
+  return new Promise((resolve, reject) => {
+    const chunks: Uint8Array[] = [];
+    let size = 0;
+    let settled = false;
+    const stream = (file as unknown as StreamingZipObject).internalStream('uint8array');
+    stream
+      .on('data', (chunk: Uint8Array) => {
+        if (settled) return;
+        size += chunk.length;
+        if (size > maxBytes) {
+          settled = true;
+          stream.pause();
+          reject(new Error(`${label} unpacks to more than ${maxBytes} bytes; it was refused`));
+          return;
+        }
+        chunks.push(chunk);
+      })
+      .on('error', (error: Error) => {
+        if (settled) return;
+        settled = true;
+        reject(new Error(`${label} cannot be unpacked (${error.message})`));
+      })
+      .on('end', () => {
+        if (settled) return;
+        settled = true;
+        const out = new Uint8Array(size);
+        let offset = 0;
+        for (const chunk of chunks) {
+          out.set(chunk, offset);
+          offset += chunk.length;
+        }
+        resolve(out);
+      })
+      .resume();
+  });
+}
+
+export type Resolution =
+  | { kind: 'scenario'; ref: SourceRef; via: LookupPlace['via'] }
+  | {
+      kind: 'package';
+      /** The `.mosc` file (or entry), or the folder standing for it. */
+      packageRef: SourceRef;
+      main: SourceRef;
+      folder: boolean;
+      via: LookupPlace['via'];
+      /** Set when a `NAME.xosc` was found only as the package `NAME.mosc`. */
+      fallbackFrom?: string;
+    }
+  | { kind: 'missing'; searched: string[]; hint?: string }
+  | { kind: 'invalid'; message: string };
+
+interface LookupPlace {
+  /** A folder on disk, or a folder inside a package. */
+  packageRef: SourceRef | undefined;
+  directory: string;
+  via: 'package' | 'folder' | 'scenarioPath' | 'parent';
+}
+
+export interface StoreOptions {
+  /** Directories searched after the package itself: SCENARIO_PATH first, then the editor's setting. */
+  scenarioPath?: string[];
+  /** The folder where the upward search of unpacked folders stops (workspace folder or working directory). */
+  root?: string;
+  host?: FileSystemHost;
+  limits?: PackageLimits;
+}
+
+/** Splits SCENARIO_PATH on `;` and on the platform's delimiter (the original split on `;` only). */
+export function splitScenarioPath(value: string | undefined): string[] {
+  if (!value) return [];
+  return value
+    .split(new RegExp(`[;${path.delimiter === ';' ? '' : path.delimiter}]`))
+    .map((entry) => entry.trim())
+    .filter((entry) => entry.length > 0)
+    .map((entry) => path.resolve(entry));
+}
+
+/** Reads scenario files from disk and packages, and resolves `scenarioFileName`s (SPEC 3). */
+export class ScenarioStore {
+  readonly host: FileSystemHost;
+  readonly scenarioPath: string[];
+  readonly root: string | undefined;
+  private readonly limits: PackageLimits;
+  private readonly packages = new Map<string, Promise<PackageContents>>();
+  private readonly overlays = new Map<string, string>();
+
+  constructor(options: StoreOptions = {}) {
+    this.host = options.host ?? nodeFileSystem;
+    this.scenarioPath = options.scenarioPath ?? splitScenarioPath(process.env.SCENARIO_PATH);
+    this.root = options.root ? path.resolve(options.root) : undefined;
+    this.limits = options.limits ?? DEFAULT_PACKAGE_LIMITS;
+  }
+
+  /** Text that replaces a file's stored content, as an editor's unsaved buffer does. */
+  setOverlay(ref: SourceRef, text: string | undefined): void {
+    if (text === undefined) this.overlays.delete(refId(ref));
+    else this.overlays.set(refId(ref), text);
+  }
+
+  /** Forgets what was read of a file on disk (a package is read again on next use). */
+  invalidate(diskPath: string): void {
+    const resolved = path.resolve(diskPath);
+    for (const key of [...this.packages.keys()]) {
+      if (key === resolved || key.startsWith(resolved + '/')) this.packages.delete(key);
+    }
+  }
+
+  async readBytes(ref: SourceRef): Promise<Uint8Array> {
+    if (ref.entries.length === 0) {
+      const bytes = await this.host.readFile(ref.disk);
+      if (!bytes) throw new SourceError(`cannot read ${ref.disk}: no such file`, ref);
+      return bytes;
+    }
+    const parent: SourceRef = { disk: ref.disk, entries: ref.entries.slice(0, -1) };
+    const contents = await this.readPackage(parent);
+    const bytes = contents.entries.get(ref.entries[ref.entries.length - 1]);
+    if (!bytes) throw new SourceError(`${displayRef(parent)} holds no entry '${ref.entries[ref.entries.length - 1]}'`, ref);
+    return bytes;
+  }
+
+  async readText(ref: SourceRef): Promise<string> {
+    const overlay = this.overlays.get(refId(ref));
+    if (overlay !== undefined) return overlay;
+    return decodeUtf8(await this.readBytes(ref));
+  }
+
+  /** The entries of the package stored at `ref` (a `.mosc` on disk or inside another package). */
+  readPackage(ref: SourceRef): Promise<PackageContents> {
+    const id = refId(ref);
+    let pending = this.packages.get(id);
+    if (!pending) {
+      pending = (async () => {
+        const bytes = await this.readBytes(ref);
+        try {
+          return await readPackageBytes(bytes, displayRef(ref), this.limits);
+        } catch (error) {
+          throw new SourceError((error as Error).message, ref, 'rebuild the package with `modular2simple pack`');
+        }
+      })();
+      this.packages.set(id, pending);
+    }
+    return pending;
+  }
+
+  /** Places searched for a name referenced from `from`, in order (SPEC 3). */
+  private lookupPlaces(from: SourceRef): LookupPlace[] {
+    const places: LookupPlace[] = [];
+    if (from.entries.length === 0) {
+      const directory = path.dirname(from.disk);
+      places.push({ packageRef: undefined, directory, via: 'folder' });
+      for (const entry of this.scenarioPath) places.push({ packageRef: undefined, directory: entry, via: 'scenarioPath' });
+      const root = this.root ?? process.cwd();
+      if (directory === root || directory.startsWith(root.endsWith(path.sep) ? root : root + path.sep)) {
+        for (let parent = path.dirname(directory); ; parent = path.dirname(parent)) {
+          if (!(parent === root || parent.startsWith(root.endsWith(path.sep) ? root : root + path.sep))) break;
+          places.push({ packageRef: undefined, directory: parent, via: 'parent' });
+          if (parent === root || parent === path.dirname(parent)) break;
+        }
+      }
+    } else {
+      const packageRef: SourceRef = { disk: from.disk, entries: from.entries.slice(0, -1) };
+      const entry = from.entries[from.entries.length - 1];
+      const directory = entry.includes('/') ? entry.slice(0, entry.lastIndexOf('/')) : '';
+      places.push({ packageRef, directory, via: 'package' });
+      if (directory !== '') places.push({ packageRef, directory: '', via: 'package' });
+      for (const entryDirectory of this.scenarioPath) places.push({ packageRef: undefined, directory: entryDirectory, via: 'scenarioPath' });
+    }
+    return places;
+  }
+
+  private async findIn(place: LookupPlace, name: string, wantPackage: boolean): Promise<Resolution | undefined> {
+    if (place.packageRef) {
+      const joined = normalizeEntryName(place.directory ? `${place.directory}/${name}` : name);
+      if (!joined) return undefined;
+      let contents: PackageContents;
+      try {
+        contents = await this.readPackage(place.packageRef);
+      } catch {
+        return undefined;
+      }
+      if (contents.entries.has(joined)) {
+        const ref = childRef(place.packageRef, joined);
+        if (!wantPackage) return { kind: 'scenario', ref, via: place.via };
+        return { kind: 'package', packageRef: ref, main: childRef(ref, 'main.xosc'), folder: false, via: place.via };
+      }
+      if (wantPackage) {
+        const folderMain = `${joined.slice(0, -'.mosc'.length)}/main.xosc`;
+        if (contents.entries.has(folderMain)) {
+          const folderRef = childRef(place.packageRef, joined.slice(0, -'.mosc'.length));
+          return { kind: 'package', packageRef: folderRef, main: childRef(place.packageRef, folderMain), folder: true, via: place.via };
+        }
+      }
+      return undefined;
+    }
+    const candidate = path.resolve(place.directory, name);
+    if ((await this.host.kind(candidate)) === 'file') {
+      const ref = diskRef(candidate);
+      if (!wantPackage) return { kind: 'scenario', ref, via: place.via };
+      return { kind: 'package', packageRef: ref, main: childRef(ref, 'main.xosc'), folder: false, via: place.via };
+    }
+    if (wantPackage) {
+      const folder = candidate.slice(0, -'.mosc'.length);
+      if ((await this.host.kind(path.join(folder, 'main.xosc'))) === 'file') {
+        return { kind: 'package', packageRef: diskRef(folder), main: diskRef(path.join(folder, 'main.xosc')), folder: true, via: place.via };
+      }
+    }
+    return undefined;
+  }
+
+  private describePlace(place: LookupPlace): string {
+    if (place.packageRef) return place.directory ? `${displayRef(place.packageRef)}/${place.directory}` : displayRef(place.packageRef);
+    const label = place.via === 'scenarioPath' ? ' (SCENARIO_PATH)' : place.via === 'parent' ? ' (parent folder)' : '';
+    return `${path.relative(process.cwd(), place.directory) || '.'}${label}`;
+  }
+
+  /** Resolves a `scenarioFileName` written in the file `from` (SPEC 3). */
+  async resolve(name: string, from: SourceRef): Promise<Resolution> {
+    const trimmed = name.trim();
+    if (!trimmed) return { kind: 'invalid', message: 'scenarioFileName is empty' };
+    const lower = trimmed.toLowerCase();
+    const isPackage = lower.endsWith('.mosc');
+    if (!isPackage && !lower.endsWith('.xosc')) {
+      return { kind: 'invalid', message: `'${trimmed}' must name a .xosc scenario or a .mosc package` };
+    }
+    if (from.entries.length > 0 && normalizeEntryName(trimmed) === undefined) {
+      return { kind: 'invalid', message: `'${trimmed}' points outside its package` };
+    }
+    const places = this.lookupPlaces(from);
+    for (const place of places) {
+      const found = await this.findIn(place, trimmed, isPackage);
+      if (found) return found;
+    }
+    if (!isPackage) {
+      const packageName = `${trimmed.slice(0, -'.xosc'.length)}.mosc`;
+      for (const place of places) {
+        const found = await this.findIn(place, packageName, true);
+        if (found && found.kind === 'package') return { ...found, fallbackFrom: trimmed };
+      }
+    }
+    const searched = places.map((place) => this.describePlace(place));
+    return {
+      kind: 'missing',
+      searched,
+      hint: this.scenarioPath.length === 0 ? 'set SCENARIO_PATH (or the modular2simple.scenarioPath setting) to the folder that holds it' : undefined,
+    };
+  }
+}

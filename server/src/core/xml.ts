@@ -1,0 +1,447 @@
+import { LineIndex } from './text';
+
+/** An attribute with the offsets of its name and of its raw value (inside the quotes). */
+export interface XmlAttribute {
+  name: string;
+  /** The value with entity and character references decoded. */
+  value: string;
+  nameStart: number;
+  nameEnd: number;
+  valueStart: number;
+  valueEnd: number;
+  quote: '"' | "'";
+}
+
+export interface XmlElement {
+  name: string;
+  /** Offset of `<`. */
+  start: number;
+  nameEnd: number;
+  /** Offset just after the start tag's `>` (or where the broken tag ends). */
+  startTagEnd: number;
+  /** Offset just after the end tag's `>`, or after `/>`. */
+  end: number;
+  selfClosing: boolean;
+  /** False when the element was never closed (the document is not well-formed). */
+  closed: boolean;
+  attributes: XmlAttribute[];
+  children: XmlElement[];
+  parent: XmlElement | undefined;
+}
+
+export interface XmlProblem {
+  message: string;
+  start: number;
+  end: number;
+  severity: 'error' | 'warning';
+}
+
+export interface XmlDocument {
+  text: string;
+  root: XmlElement | undefined;
+  problems: XmlProblem[];
+  lines: LineIndex;
+}
+
+export interface XmlParseOptions {
+  /** Upper bound on characters produced by expanding internal entities, per document. */
+  maxEntityExpansion?: number;
+  /** Upper bound on element nesting; deeper content is reported and skipped. */
+  maxDepth?: number;
+}
+
+const PREDEFINED_ENTITIES: Record<string, string> = { lt: '<', gt: '>', amp: '&', quot: '"', apos: "'" };
+
+export function attribute(element: XmlElement, name: string): XmlAttribute | undefined {
+  for (const candidate of element.attributes) if (candidate.name === name) return candidate;
+  return undefined;
+}
+
+export function attributeValue(element: XmlElement, name: string): string | undefined {
+  return attribute(element, name)?.value;
+}
+
+export function* descendants(element: XmlElement): Generator<XmlElement> {
+  const stack: XmlElement[] = [...element.children].reverse();
+  while (stack.length > 0) {
+    const next = stack.pop() as XmlElement;
+    yield next;
+    for (let i = next.children.length - 1; i >= 0; i--) stack.push(next.children[i]);
+  }
+}
+
+export function firstDescendant(element: XmlElement, name: string): XmlElement | undefined {
+  for (const candidate of descendants(element)) if (candidate.name === name) return candidate;
+  return undefined;
+}
+
+/** The innermost element whose tag range contains the offset. */
+export function elementAt(document: XmlDocument, offset: number): XmlElement | undefined {
+  let current = document.root;
+  if (!current || offset < current.start || offset > current.end) return undefined;
+  for (;;) {
+    const child: XmlElement | undefined = current.children.find((c) => offset >= c.start && offset <= c.end);
+    if (!child) return current;
+    current = child;
+  }
+}
+
+/** Escapes text for use inside an attribute value delimited by `quote`. */
+export function escapeAttributeValue(value: string, quote: '"' | "'" = '"'): string {
+  let escaped = value.replace(/&/g, '&amp;').replace(/</g, '&lt;').replace(/>/g, '&gt;');
+  escaped = quote === '"' ? escaped.replace(/"/g, '&quot;') : escaped.replace(/'/g, '&apos;');
+  return escaped.replace(/\t/g, '&#9;').replace(/\n/g, '&#10;').replace(/\r/g, '&#13;');
+}
+
+function isNameStart(code: number): boolean {
+  return (
+    (code >= 65 && code <= 90) || (code >= 97 && code <= 122) || code === 95 || code === 58 || code >= 0xc0
+  );
+}
+
+function isNameChar(code: number): boolean {
+  return isNameStart(code) || (code >= 48 && code <= 57) || code === 45 || code === 46 || code === 0xb7;
+}
+
+function isSpace(code: number): boolean {
+  return code === 32 || code === 9 || code === 10 || code === 13;
+}
+
+/**
+ * A tolerant XML parser that records the offsets of every element and attribute. It never reads
+ * anything outside the text: external entities are reported, not resolved, and internal entity
+ * expansion is bounded. On malformed input it reports each problem and recovers, so that an editor
+ * can still work with a document that is being typed.
+ */
+export function parseXml(input: string, options: XmlParseOptions = {}): XmlDocument {
+  const text = input;
+  const maxExpansion = options.maxEntityExpansion ?? 1_000_000;
+  const maxDepth = options.maxDepth ?? 2000;
+  const problems: XmlProblem[] = [];
+  const entities = new Map<string, string>();
+  const externalEntities = new Set<string>();
+  let expanded = 0;
+  let root: XmlElement | undefined;
+  const stack: XmlElement[] = [];
+  let position = text.charCodeAt(0) === 0xfeff ? 1 : 0;
+  let seenDoctype = false;
+
+  const report = (message: string, start: number, end = start + 1, severity: 'error' | 'warning' = 'error') => {
+    if (problems.length < 1000) problems.push({ message, start, end: Math.max(end, start), severity });
+  };
+
+  const expandEntity = (name: string, start: number, end: number, depth: number): string => {
+    const predefined = PREDEFINED_ENTITIES[name];
+    if (predefined !== undefined) return predefined;
+    if (externalEntities.has(name)) {
+      report(`external entity '&${name};' is never resolved; its reference is left empty`, start, end);
+      return '';
+    }
+    const replacement = entities.get(name);
+    if (replacement === undefined) {
+      report(`undefined entity '&${name};' (escape a literal '&' as '&amp;')`, start, end);
+      return '';
+    }
+    if (depth > 8) {
+      report(`entity '&${name};' nests too deeply; expansion stopped`, start, end);
+      return '';
+    }
+    const value = decodeReferences(replacement, start, end, depth + 1);
+    expanded += value.length;
+    if (expanded > maxExpansion) {
+      report(`entity expansion exceeds ${maxExpansion} characters; expansion stopped`, start, end);
+      return '';
+    }
+    return value;
+  };
+
+  /** Decodes references in raw text; offsets are those of the raw text in the document, for messages. */
+  const decodeReferences = (raw: string, rawStart: number, rawEnd: number, depth: number): string => {
+    if (raw.indexOf('&') < 0) return raw;
+    let out = '';
+    let i = 0;
+    while (i < raw.length) {
+      const amp = raw.indexOf('&', i);
+      if (amp < 0) {
+        out += raw.slice(i);
+        break;
+      }
+      out += raw.slice(i, amp);
+      const semicolon = raw.indexOf(';', amp);
+      const at = depth === 0 ? rawStart + amp : rawStart;
+      const refEnd = depth === 0 && semicolon >= 0 ? rawStart + semicolon + 1 : rawEnd;
+      if (semicolon < 0 || semicolon - amp > 40) {
+        report(`'&' must start an entity reference; write '&amp;' for a literal '&'`, at, at + 1);
+        out += '&';
+        i = amp + 1;
+        continue;
+      }
+      const reference = raw.slice(amp + 1, semicolon);
+      if (reference.startsWith('#')) {
+        const code = reference.startsWith('#x') ? parseInt(reference.slice(2), 16) : parseInt(reference.slice(1), 10);
+        if (!Number.isFinite(code) || code <= 0 || code > 0x10ffff || !/^#(x[0-9a-fA-F]+|[0-9]+)$/.test(reference)) {
+          report(`invalid character reference '&${reference};'`, at, refEnd);
+        } else {
+          out += String.fromCodePoint(code);
+        }
+      } else if (/^[A-Za-z_:][\w.:-]*$/.test(reference)) {
+        out += expandEntity(reference, at, refEnd, depth);
+      } else {
+        report(`'&' must start an entity reference; write '&amp;' for a literal '&'`, at, at + 1);
+        out += '&' + reference + ';';
+      }
+      i = semicolon + 1;
+    }
+    return out;
+  };
+
+  const readName = (): string => {
+    const start = position;
+    if (position < text.length && isNameStart(text.charCodeAt(position))) {
+      position++;
+      while (position < text.length && isNameChar(text.charCodeAt(position))) position++;
+    }
+    return text.slice(start, position);
+  };
+
+  const skipSpace = () => {
+    while (position < text.length && isSpace(text.charCodeAt(position))) position++;
+  };
+
+  const parseDoctype = (start: number) => {
+    if (seenDoctype || root) report('misplaced DOCTYPE', start, start + 9);
+    seenDoctype = true;
+    position = start + 9;
+    let depth = 0;
+    let subsetStart = -1;
+    let subsetEnd = -1;
+    while (position < text.length) {
+      const code = text.charCodeAt(position);
+      if (code === 34 || code === 39) {
+        const close = text.indexOf(String.fromCharCode(code), position + 1);
+        position = close < 0 ? text.length : close + 1;
+        continue;
+      }
+      if (code === 91) {
+        if (depth === 0) subsetStart = position + 1;
+        depth++;
+      } else if (code === 93) {
+        depth--;
+        if (depth === 0) subsetEnd = position;
+      } else if (code === 62 && depth <= 0) {
+        position++;
+        break;
+      }
+      position++;
+    }
+    if (position >= text.length && text.charCodeAt(text.length - 1) !== 62) report('unterminated DOCTYPE', start, text.length);
+    if (subsetStart >= 0 && subsetEnd > subsetStart) {
+      const subset = text.slice(subsetStart, subsetEnd);
+      const declaration = /<!ENTITY\s+(%\s+)?([^\s"'>]+)\s+(?:(SYSTEM|PUBLIC)\b[^>]*|"([^"]*)"|'([^']*)')\s*>/g;
+      for (let match = declaration.exec(subset); match; match = declaration.exec(subset)) {
+        const offset = subsetStart + match.index;
+        if (match[1]) continue;
+        if (match[3]) {
+          externalEntities.add(match[2]);
+          report(`external entity '${match[2]}' is declared; it is never resolved`, offset, offset + match[0].length, 'warning');
+        } else {
+          entities.set(match[2], match[4] ?? match[5] ?? '');
+        }
+      }
+    }
+  };
+
+  const parseStartTag = (start: number) => {
+    position = start + 1;
+    const name = readName();
+    if (!name) {
+      report(`'<' must start a tag; write '&lt;' for a literal '<'`, start, start + 1);
+      position = start + 1;
+      return;
+    }
+    const element: XmlElement = {
+      name,
+      start,
+      nameEnd: position,
+      startTagEnd: position,
+      end: position,
+      selfClosing: false,
+      closed: false,
+      attributes: [],
+      children: [],
+      parent: stack[stack.length - 1],
+    };
+    let terminated = false;
+    for (;;) {
+      const beforeSpace = position;
+      skipSpace();
+      if (position >= text.length) break;
+      const code = text.charCodeAt(position);
+      if (code === 62) {
+        position++;
+        terminated = true;
+        break;
+      }
+      if (code === 47 && text.charCodeAt(position + 1) === 62) {
+        position += 2;
+        element.selfClosing = true;
+        terminated = true;
+        break;
+      }
+      if (code === 60) {
+        report(`tag <${name}> is not closed with '>'`, start, position);
+        break;
+      }
+      if (!isNameStart(code)) {
+        report(`unexpected '${text[position]}' in tag <${name}>`, position, position + 1);
+        position++;
+        continue;
+      }
+      if (beforeSpace === position && element.attributes.length > 0) {
+        report(`attributes must be separated by white space`, position, position + 1);
+      }
+      const nameStart = position;
+      const attributeName = readName();
+      const nameEnd = position;
+      skipSpace();
+      if (text.charCodeAt(position) !== 61) {
+        report(`attribute '${attributeName}' has no value (write ${attributeName}="...")`, nameStart, nameEnd);
+        continue;
+      }
+      position++;
+      skipSpace();
+      const quoteCode = text.charCodeAt(position);
+      if (quoteCode !== 34 && quoteCode !== 39) {
+        report(`the value of attribute '${attributeName}' must be quoted`, nameStart, position);
+        continue;
+      }
+      const quote = quoteCode === 34 ? '"' : "'";
+      const valueStart = position + 1;
+      let valueEnd = text.indexOf(quote, valueStart);
+      const nextTag = text.indexOf('<', valueStart);
+      if (valueEnd < 0 || (nextTag >= 0 && nextTag < valueEnd)) {
+        // Recover at the line end so a value being typed does not swallow the rest of the file.
+        const lineEnd = text.slice(valueStart).search(/[\r\n>]/);
+        valueEnd = lineEnd < 0 ? text.length : valueStart + lineEnd;
+        report(`the value of attribute '${attributeName}' is not closed with ${quote}`, nameStart, valueEnd);
+        position = valueEnd;
+      } else {
+        position = valueEnd + 1;
+      }
+      const raw = text.slice(valueStart, valueEnd);
+      const value = decodeReferences(raw.replace(/[\t\n\r]/g, ' '), valueStart, valueEnd, 0);
+      if (element.attributes.some((existing) => existing.name === attributeName)) {
+        report(`attribute '${attributeName}' appears twice`, nameStart, nameEnd);
+      }
+      element.attributes.push({ name: attributeName, value, nameStart, nameEnd, valueStart, valueEnd, quote });
+    }
+    if (!terminated && position >= text.length) report(`tag <${name}> is not closed with '>'`, start, text.length);
+    element.startTagEnd = position;
+    element.end = position;
+    if (stack.length === 0) {
+      if (root) report(`a document has one root element; <${name}> is a second one`, start, element.nameEnd);
+      else root = element;
+    } else {
+      stack[stack.length - 1].children.push(element);
+    }
+    if (element.selfClosing || !terminated) {
+      element.closed = element.selfClosing;
+      return;
+    }
+    if (stack.length >= maxDepth) {
+      report(`elements nest deeper than ${maxDepth} levels`, start, element.nameEnd);
+      element.closed = true;
+      return;
+    }
+    stack.push(element);
+  };
+
+  const parseEndTag = (start: number) => {
+    position = start + 2;
+    const name = readName();
+    skipSpace();
+    if (text.charCodeAt(position) === 62) position++;
+    else report(`end tag </${name}> is not closed with '>'`, start, position);
+    const matchIndex = stack.map((e) => e.name).lastIndexOf(name);
+    if (matchIndex < 0) {
+      report(`end tag </${name}> has no matching start tag`, start, position);
+      return;
+    }
+    while (stack.length - 1 > matchIndex) {
+      const unclosed = stack.pop() as XmlElement;
+      unclosed.end = start;
+      report(`element <${unclosed.name}> is not closed (expected </${unclosed.name}> before </${name}>)`, unclosed.start, unclosed.nameEnd);
+    }
+    const element = stack.pop() as XmlElement;
+    element.end = position;
+    element.closed = true;
+  };
+
+  const checkText = (from: number, to: number) => {
+    if (to <= from) return;
+    if (stack.length === 0) {
+      for (let i = from; i < to; i++) {
+        if (!isSpace(text.charCodeAt(i))) {
+          report('text is not allowed outside the root element', i, Math.min(to, i + 1));
+          return;
+        }
+      }
+      return;
+    }
+    const amp = text.indexOf('&', from);
+    if (amp >= 0 && amp < to) decodeReferences(text.slice(from, to), from, to, 0);
+    const closeCdata = text.indexOf(']]>', from);
+    if (closeCdata >= 0 && closeCdata < to) report(`']]>' is not allowed in text`, closeCdata, closeCdata + 3);
+  };
+
+  while (position < text.length) {
+    const open = text.indexOf('<', position);
+    const textEnd = open < 0 ? text.length : open;
+    checkText(position, textEnd);
+    if (open < 0) {
+      position = text.length;
+      break;
+    }
+    if (text.startsWith('<!--', open)) {
+      const close = text.indexOf('-->', open + 4);
+      if (close < 0) {
+        report('comment is not closed with -->', open, text.length);
+        position = text.length;
+      } else position = close + 3;
+    } else if (text.startsWith('<![CDATA[', open)) {
+      const close = text.indexOf(']]>', open + 9);
+      if (stack.length === 0) report('CDATA is not allowed outside the root element', open, open + 9);
+      if (close < 0) {
+        report('CDATA section is not closed with ]]>', open, text.length);
+        position = text.length;
+      } else position = close + 3;
+    } else if (text.startsWith('<?', open)) {
+      const close = text.indexOf('?>', open + 2);
+      const target = /^<\?([^\s?]*)/.exec(text.slice(open, open + 64))?.[1] ?? '';
+      if (target.toLowerCase() === 'xml' && open !== (text.charCodeAt(0) === 0xfeff ? 1 : 0)) {
+        report('the XML declaration must be at the very start of the file', open, open + 5);
+      }
+      if (close < 0) {
+        report('processing instruction is not closed with ?>', open, text.length);
+        position = text.length;
+      } else position = close + 2;
+    } else if (text.startsWith('<!DOCTYPE', open)) {
+      parseDoctype(open);
+    } else if (text.startsWith('</', open)) {
+      parseEndTag(open);
+    } else {
+      parseStartTag(open);
+    }
+  }
+  while (stack.length > 0) {
+    const unclosed = stack.pop() as XmlElement;
+    unclosed.end = text.length;
+    report(`element <${unclosed.name}> is not closed (expected </${unclosed.name}>)`, unclosed.start, unclosed.nameEnd);
+  }
+  if (!root) report('the file holds no XML element', 0, Math.min(text.length, 1));
+  return { text, root, problems, lines: new LineIndex(text) };
+}
+
+export function isWellFormed(document: XmlDocument): boolean {
+  return !document.problems.some((problem) => problem.severity === 'error');
+}
