@@ -292,6 +292,34 @@ export class ScenarioStore {
     return pending;
   }
 
+  /**
+   * Reads a path such as `/abs/pkg.mosc/inner.mosc/main.xosc` (the path of a `mosc:` URI): the
+   * longest prefix that is a file on disk is the package, the rest names entries, descending into
+   * nested packages at each entry that is itself a package.
+   */
+  async refFromPackagePath(packagePath: string): Promise<SourceRef | undefined> {
+    const segments = path.resolve(packagePath).split('/').filter((segment) => segment.length > 0);
+    for (let split = segments.length - 1; split >= 1; split--) {
+      const disk = '/' + segments.slice(0, split).join('/');
+      if (!disk.toLowerCase().endsWith('.mosc') || (await this.host.kind(disk)) !== 'file') continue;
+      let current: SourceRef = { disk, entries: [] };
+      let pending: string[] = [];
+      for (const segment of segments.slice(split)) {
+        pending.push(segment);
+        const entry = pending.join('/');
+        if (entry.toLowerCase().endsWith('.mosc') && pending.length > 0) {
+          const contents = await this.readPackage(current).catch(() => undefined);
+          if (contents?.entries.has(entry)) {
+            current = childRef(current, entry);
+            pending = [];
+          }
+        }
+      }
+      return pending.length > 0 ? childRef(current, pending.join('/')) : current;
+    }
+    return undefined;
+  }
+
   /** Places searched for a name referenced from `from`, in order (SPEC 3). */
   private lookupPlaces(from: SourceRef): LookupPlace[] {
     const places: LookupPlace[] = [];
@@ -394,4 +422,9 @@ export class ScenarioStore {
       hint: this.scenarioPath.length === 0 ? 'set SCENARIO_PATH (or the modular2simple.scenarioPath setting) to the folder that holds it' : undefined,
     };
   }
+}
+
+/** The path of a file as if every package were a folder: the path part of its `mosc:` URI. */
+export function packagePath(ref: SourceRef): string {
+  return refId(ref);
 }
