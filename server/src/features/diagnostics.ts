@@ -1,6 +1,9 @@
 import { Connection, Diagnostic, DiagnosticRelatedInformation, DiagnosticSeverity, DiagnosticTag } from 'vscode-languageserver/node';
-import { Problem } from '../core/problems';
-import { refId, SourceRef } from '../core/sources';
+import { FlatSource, LinkedReference } from '../core/flatten';
+import { Problem, ZERO_RANGE } from '../core/problems';
+import { Range } from '../core/text';
+import { resolvedTarget } from '../analysis';
+import { baseName, displayRef, refId, SourceRef } from '../core/sources';
 import { Workspace } from '../workspace';
 
 export const DIAGNOSTIC_SOURCE = 'modular2simple';
@@ -40,19 +43,76 @@ export function toDiagnostic(problem: Problem, workspace: Workspace): Diagnostic
   return diagnostic;
 }
 
-/** The diagnostics of one file analysed as a main file, with the cycle spelled out in related locations. */
+function referencePlace(source: FlatSource, link: LinkedReference): Range | undefined {
+  const attributeNode = link.info.fileAttribute;
+  const lines = source.original?.document.lines;
+  return lines && attributeNode ? lines.range(attributeNode.valueStart, attributeNode.valueEnd) : undefined;
+}
+
+/**
+ * The core reports a cycle in the file that closes it; the file that starts it gets a cycle
+ * diagnostic too, on its reference, with each step of the cycle as a related location.
+ */
+function cycleDiagnostics(workspace: Workspace, root: FlatSource): Diagnostic[] {
+  const sources = new Map<string, FlatSource>();
+  const pending = [root];
+  while (pending.length > 0) {
+    const source = pending.pop() as FlatSource;
+    if (sources.has(refId(source.ref))) continue;
+    sources.set(refId(source.ref), source);
+    for (const link of source.links) if (link.source) pending.push(link.source);
+  }
+  const rootId = refId(root.ref);
+  const diagnostics: Diagnostic[] = [];
+  for (const source of sources.values()) {
+    for (const link of source.links) {
+      const cycle = link.cycle;
+      if (!cycle || cycle.length < 2 || refId(cycle[0]) !== rootId || source === root) continue;
+      const related: DiagnosticRelatedInformation[] = [];
+      for (let step = 0; step + 1 < cycle.length; step++) {
+        const from = sources.get(refId(cycle[step]));
+        const next = refId(cycle[step + 1]);
+        const stepLink = from?.links.find((candidate) => {
+          const target = resolvedTarget(candidate.resolution);
+          return target !== undefined && refId(target) === next;
+        });
+        const range = from && stepLink ? referencePlace(from, stepLink) : undefined;
+        if (from && range) related.push({ location: { uri: workspace.uriOf(from.ref), range }, message: `${baseName(cycle[step])} references ${baseName(cycle[step + 1])}` });
+      }
+      const first = related[0];
+      if (!first) continue;
+      diagnostics.push({
+        range: first.location.range,
+        severity: DiagnosticSeverity.Error,
+        code: 'cycle',
+        source: DIAGNOSTIC_SOURCE,
+        message: `reference cycle: ${cycle.map((member) => displayRef(member, workspace.folders[0])).join(' -> ')}`,
+        relatedInformation: related,
+        data: { code: 'cycle' } satisfies DiagnosticData,
+      });
+    }
+  }
+  return diagnostics;
+}
+
+/** The diagnostics of one file analysed as a main file. */
 export async function diagnose(workspace: Workspace, ref: SourceRef): Promise<{ diagnostics: Diagnostic[]; dependencies: string[] }> {
   const result = await workspace.flatten(ref);
   const id = refId(ref);
-  const diagnostics: Diagnostic[] = [];
+  const cycles = cycleDiagnostics(workspace, result.source);
+  const diagnostics: Diagnostic[] = [...cycles];
   for (const problem of result.problems) {
     if (refId(problem.source) !== id) continue;
+    // A reference whose only error is a cycle already carries the cycle diagnostic.
+    const cycleOnly = problem.code === 'source-errors' && cycles.some((cycle) => cycle.range.start.line === problem.range.start.line && cycle.range.start.character === problem.range.start.character) && /has 1 error: reference cycle/.test(problem.message);
+    if (cycleOnly) continue;
     const diagnostic = toDiagnostic(problem, workspace);
     if (problem.code === 'cycle') {
-      const link = result.source.links.find((candidate) => candidate.cycle && candidate.info.fileAttribute && problem.range.start.line === result.source.original?.document.lines.positionAt(candidate.info.fileAttribute.valueStart).line);
-      diagnostic.relatedInformation = (link?.cycle ?? []).map((member, index) => ({
-        location: { uri: workspace.uriOf(member), range: { start: { line: 0, character: 0 }, end: { line: 0, character: 0 } } },
-        message: `cycle step ${index + 1}`,
+      const link = result.source.links.find((candidate) => candidate.cycle && referencePlace(result.source, candidate)?.start.line === problem.range.start.line);
+      const members = link?.cycle ?? [];
+      diagnostic.relatedInformation = members.slice(0, -1).map((member, index) => ({
+        location: { uri: workspace.uriOf(member), range: ZERO_RANGE },
+        message: `${baseName(member)} references ${baseName(members[index + 1])}`,
       }));
     }
     diagnostics.push(diagnostic);
