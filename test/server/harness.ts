@@ -53,7 +53,7 @@ export function positionAt(text: string, offset: number): { line: number; charac
 }
 
 /** The position just after the first occurrence of `needle` (after `nth` earlier ones). */
-export function after(text: string, needle: string, nth = 0): { line: number; character: number } {
+export function positionAfter(text: string, needle: string, nth = 0): { line: number; character: number } {
   let index = -1;
   for (let i = 0; i <= nth; i++) {
     index = text.indexOf(needle, index + 1);
