@@ -447,6 +447,22 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
       assert.equal(fs.readFileSync(path.join(root, 'simple.xosc'), 'utf8'), before);
     });
 
+    it('packs an unpacked folder into a .mosc that the server then reads', async function () {
+      const folder = path.join(root, 'unpacked');
+      fs.mkdirSync(folder, { recursive: true });
+      fs.writeFileSync(path.join(folder, 'main.xosc'), PACKAGE_MAIN);
+      const output = path.join(root, 'out', 'unpacked.mosc');
+      const result = await execute<WriteResult>(ServerCommands.pack, [fileUri(folder)], output);
+      assert.equal(result.written, output, JSON.stringify(result.problems));
+      const zip = await JSZip.loadAsync(fs.readFileSync(output));
+      assert.deepEqual(Object.keys(zip.files).sort(), ['main.xosc', 'simple.xosc']);
+      const flattened = await execute<FlattenTextResult>(ServerCommands.flattenToText, `mosc:${output}/main.xosc`);
+      assert.match(flattened.text ?? '', /<ManeuverGroup name="Inner\.Brake"/);
+      const refused = await execute<WriteResult>(ServerCommands.pack, [fileUri(path.join(root, 'simple.xosc')), fileUri(path.join(folder, 'main.xosc'))], path.join(root, 'simple.xosc'));
+      assert.equal(refused.written, null);
+      fs.rmSync(folder, { recursive: true });
+    });
+
     it('returns the reference graph', async function () {
       const tree = await execute<StructureNode>(ServerCommands.structure, mainUri);
       assert.equal(tree.kind, 'main');
