@@ -121,6 +121,7 @@ export function parseXml(input: string, options: XmlParseOptions = {}): XmlDocum
   const entities = new Map<string, string>();
   const externalEntities = new Set<string>();
   let expanded = 0;
+  let expansionReported = false;
   let root: XmlElement | undefined;
   const stack: XmlElement[] = [];
   let position = text.charCodeAt(0) === 0xfeff ? 1 : 0;
@@ -142,14 +143,22 @@ export function parseXml(input: string, options: XmlParseOptions = {}): XmlDocum
       report(`undefined entity '&${name};' (escape a literal '&' as '&amp;')`, start, end);
       return '';
     }
-    if (depth > 8) {
+    // Each expansion costs at least one unit, so that empty or failing entities cannot recurse without bound.
+    expanded++;
+    if (depth > 16) {
       report(`entity '&${name};' nests too deeply; expansion stopped`, start, end);
       return '';
     }
-    const value = decodeReferences(replacement, start, end, depth + 1);
-    expanded += value.length;
     if (expanded > maxExpansion) {
-      report(`entity expansion exceeds ${maxExpansion} characters; expansion stopped`, start, end);
+      if (!expansionReported) report(`entity expansion exceeds ${maxExpansion} characters; expansion stopped`, start, end);
+      expansionReported = true;
+      return '';
+    }
+    const value = decodeReferences(replacement, start, end, depth + 1);
+    if (depth === 0) expanded += value.length;
+    if (expanded > maxExpansion) {
+      if (!expansionReported) report(`entity expansion exceeds ${maxExpansion} characters; expansion stopped`, start, end);
+      expansionReported = true;
       return '';
     }
     return value;
@@ -164,9 +173,14 @@ export function parseXml(input: string, options: XmlParseOptions = {}): XmlDocum
       const amp = raw.indexOf('&', i);
       if (amp < 0) {
         out += raw.slice(i);
+        if (depth > 0) expanded += raw.length - i;
         break;
       }
       out += raw.slice(i, amp);
+      if (depth > 0) {
+        expanded += amp - i;
+        if (expanded > maxExpansion) return out;
+      }
       const semicolon = raw.indexOf(';', amp);
       const at = depth === 0 ? rawStart + amp : rawStart;
       const refEnd = depth === 0 && semicolon >= 0 ? rawStart + semicolon + 1 : rawEnd;
