@@ -122,8 +122,10 @@ export async function readPackageBytes(
   const entries = new Map<string, Uint8Array>();
   let total = 0;
   for (const file of files) {
-    const name = normalizeEntryName(file.name);
-    if (name === undefined) throw new Error(`${label} holds an entry named '${file.name}' that points outside the package; it was refused`);
+    // JSZip quietly strips '../' from names; the name as stored is what an unzip tool would use.
+    const stored = (file as JSZip.JSZipObject & { unsafeOriginalName?: string }).unsafeOriginalName ?? file.name;
+    const name = normalizeEntryName(stored);
+    if (name === undefined) throw new Error(`${label} holds an entry named '${stored}' that points outside the package; it was refused`);
     if (entries.has(name)) throw new Error(`${label} holds the entry '${name}' twice`);
     const content = await readEntryBounded(file, limits.maxEntryBytes, `${label}/${name}`);
     total += content.length;
