@@ -402,10 +402,14 @@ export function parseXml(input: string, options: XmlParseOptions = {}): XmlDocum
       }
       return;
     }
-    const amp = text.indexOf('&', from);
-    if (amp >= 0 && amp < to) decodeReferences(text.slice(from, to), from, to, 0);
-    const closeCdata = text.indexOf(']]>', from);
-    if (closeCdata >= 0 && closeCdata < to) report(`']]>' is not allowed in text`, closeCdata, closeCdata + 3);
+    // Scan only this text run: indexOf would search to the end of the document for every run.
+    let hasReference = false;
+    for (let i = from; i < to; i++) {
+      const code = text.charCodeAt(i);
+      if (code === 38) hasReference = true;
+      else if (code === 93 && text.startsWith(']]>', i) && i + 3 <= to) report(`']]>' is not allowed in text`, i, i + 3);
+    }
+    if (hasReference) decodeReferences(text.slice(from, to), from, to, 0);
   };
 
   while (position < text.length) {
@@ -453,7 +457,17 @@ export function parseXml(input: string, options: XmlParseOptions = {}): XmlDocum
     report(`element <${unclosed.name}> is not closed (expected </${unclosed.name}>)`, unclosed.start, unclosed.nameEnd);
   }
   if (!root) report('the file holds no XML element', 0, Math.min(text.length, 1));
-  return { text, root, problems, lines: new LineIndex(text) };
+  let lines: LineIndex | undefined;
+  return {
+    text,
+    root,
+    problems,
+    // Built on first use: most parses never need line numbers.
+    get lines() {
+      lines ??= new LineIndex(text);
+      return lines;
+    },
+  };
 }
 
 export function isWellFormed(document: XmlDocument): boolean {
