@@ -209,17 +209,21 @@ export function parseXml(input: string, options: XmlParseOptions = {}): XmlDocum
     return out;
   };
 
+  // Sticky regular expressions run as native code, which matters in a short-lived process.
+  const namePattern = /[A-Za-z_:\u00C0-\uFFFF][A-Za-z0-9_:.\-\u00B7\u00C0-\uFFFF]*/y;
+  const spacePattern = /[ \t\r\n]*/y;
   const readName = (): string => {
-    const start = position;
-    if (position < text.length && isNameStart(text.charCodeAt(position))) {
-      position++;
-      while (position < text.length && isNameChar(text.charCodeAt(position))) position++;
-    }
-    return text.slice(start, position);
+    namePattern.lastIndex = position;
+    const match = namePattern.exec(text);
+    if (!match) return '';
+    position += match[0].length;
+    return match[0];
   };
 
   const skipSpace = () => {
-    while (position < text.length && isSpace(text.charCodeAt(position))) position++;
+    spacePattern.lastIndex = position;
+    spacePattern.exec(text);
+    position = spacePattern.lastIndex;
   };
 
   const parseDoctype = (start: number) => {
@@ -402,15 +406,18 @@ export function parseXml(input: string, options: XmlParseOptions = {}): XmlDocum
       }
       return;
     }
-    // Scan only this text run: indexOf would search to the end of the document for every run.
-    let hasReference = false;
-    for (let i = from; i < to; i++) {
-      const code = text.charCodeAt(i);
-      if (code === 38) hasReference = true;
-      else if (code === 93 && text.startsWith(']]>', i) && i + 3 <= to) report(`']]>' is not allowed in text`, i, i + 3);
-    }
-    if (hasReference) decodeReferences(text.slice(from, to), from, to, 0);
+    // The next '&' and ']]>' are found once and reused, so each text run costs only its own length.
+    if (nextAmpersand < from) nextAmpersand = indexOrEnd('&', from);
+    if (nextAmpersand < to) decodeReferences(text.slice(from, to), from, to, 0);
+    if (nextCdataEnd < from) nextCdataEnd = indexOrEnd(']]>', from);
+    if (nextCdataEnd < to) report(`']]>' is not allowed in text`, nextCdataEnd, nextCdataEnd + 3);
   };
+  const indexOrEnd = (needle: string, from: number) => {
+    const found = text.indexOf(needle, from);
+    return found < 0 ? text.length : found;
+  };
+  let nextAmpersand = -1;
+  let nextCdataEnd = -1;
 
   while (position < text.length) {
     const open = text.indexOf('<', position);
