@@ -154,13 +154,13 @@ export class TestClient {
   }
 
   /** The diagnostics of `uri` once a publication for its current version arrived. */
-  async diagnosticsOf(uri: string, predicate: (diagnostics: Diagnostic[]) => boolean = () => true): Promise<Diagnostic[]> {
+  async diagnosticsOf(uri: string, predicate: (diagnostics: Diagnostic[]) => boolean = () => true, timeout = 10_000): Promise<Diagnostic[]> {
     return this.until(() => {
       const published = this.diagnostics.get(uri);
       const version = this.versions.get(uri);
       if (!published || (version !== undefined && published.version !== undefined && published.version !== version)) return undefined;
       return predicate(published.diagnostics) ? published.diagnostics : undefined;
-    }, `diagnostics of ${uri}`);
+    }, `diagnostics of ${uri}`, timeout);
   }
 
   async indexed(): Promise<void> {

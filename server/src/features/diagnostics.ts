@@ -8,6 +8,9 @@ import { Workspace } from '../workspace';
 
 export const DIAGNOSTIC_SOURCE = 'modular2simple';
 
+/** At most this many diagnostics are published per file. */
+export const MAX_DIAGNOSTICS = 1000;
+
 /** What a quick fix needs from a diagnostic: the problem code and the core's data. */
 export interface DiagnosticData {
   code: string;
@@ -116,6 +119,11 @@ export async function diagnose(workspace: Workspace, ref: SourceRef): Promise<{ 
       }));
     }
     diagnostics.push(diagnostic);
+  }
+  if (diagnostics.length > MAX_DIAGNOSTICS) {
+    // A pathological file (say 100,000 groups of one name) must not flood the editor: errors first.
+    diagnostics.sort((a, b) => (a.severity ?? 4) - (b.severity ?? 4));
+    diagnostics.length = MAX_DIAGNOSTICS;
   }
   return { diagnostics, dependencies: result.source.dependencies.map((dependency) => refId(dependency)) };
 }
