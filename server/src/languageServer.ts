@@ -134,7 +134,7 @@ export function startServer(connection: Connection): Workspace {
       for (const change of params.changes) {
         const filePath = filePathOf(change.uri);
         if (!filePath) continue;
-        workspace.fileChanged(filePath);
+        workspace.fileChanged(filePath, change.type !== FileChangeType.Changed);
         changed.push(filePath);
         if (change.type !== FileChangeType.Deleted && /\.(xosc|mosc)$/i.test(filePath)) await workspace.indexFile(filePath).catch(() => undefined);
       }

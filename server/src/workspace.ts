@@ -116,6 +116,35 @@ export async function listScenarioFiles(folders: string[], limit = 100_000): Pro
 }
 
 /**
+ * A Flattener that shares what it read with the Flatteners of later generations, so that an edit
+ * in one file analyses that file again and reuses every unchanged file it depends on.
+ */
+class ReusingFlattener extends Flattener {
+  constructor(
+    store: ScenarioStore,
+    private readonly shared: Map<string, Promise<FlatSource>>,
+    private readonly dependencies: Map<string, string[]>,
+  ) {
+    super(store);
+  }
+
+  override source(ref: SourceRef, stack: SourceRef[]): Promise<FlatSource> {
+    const id = refId(ref);
+    const known = this.shared.get(id);
+    if (known) return known;
+    const created = super.source(ref, stack);
+    this.shared.set(id, created);
+    created.then(
+      (source) => {
+        if (this.shared.get(id) === created) this.dependencies.set(id, source.dependencies.map((dependency) => refId(dependency)));
+      },
+      () => this.shared.delete(id),
+    );
+    return created;
+  }
+}
+
+/**
  * The server's view of the workspace: the store (with unsaved editor text as overlays), the open
  * documents, an index of scenario files and one Flattener per generation of changes.
  */
@@ -130,6 +159,9 @@ export class Workspace {
   private generation = 0;
   private flattenerGeneration = -1;
   private currentFlattener: Flattener | undefined;
+  /** Sources read so far, kept across generations until a file they depend on changes. */
+  private readonly sharedSources = new Map<string, Promise<FlatSource>>();
+  private readonly sourceDependencies = new Map<string, string[]>();
   private readonly flattenResults = new Map<string, { generation: number; result: Promise<FlattenResult> }>();
 
   constructor() {
@@ -156,14 +188,32 @@ export class Workspace {
     this.changed();
   }
 
-  /** Marks every analysis stale; the next request flattens again (reading unchanged files from memory). */
-  changed(): void {
+  /**
+   * Marks analyses stale: those depending on the given files (ids, or disk paths of files and
+   * folders), or every one when no file is named (settings, or a file appearing or vanishing,
+   * which can change how any name resolves).
+   */
+  changed(changedIds?: string[]): void {
     this.generation++;
+    if (!changedIds) {
+      this.sharedSources.clear();
+      this.sourceDependencies.clear();
+      return;
+    }
+    const touches = (id: string) => changedIds.some((changed) => id === changed || id.startsWith(changed + '/'));
+    for (const id of [...this.sharedSources.keys()]) {
+      const dependencies = this.sourceDependencies.get(id);
+      // A source still being read has unknown dependencies, so it goes too.
+      if (!dependencies || touches(id) || dependencies.some(touches)) {
+        this.sharedSources.delete(id);
+        this.sourceDependencies.delete(id);
+      }
+    }
   }
 
   flattener(): Flattener {
     if (!this.currentFlattener || this.flattenerGeneration !== this.generation) {
-      this.currentFlattener = new Flattener(this.storeInstance);
+      this.currentFlattener = new ReusingFlattener(this.storeInstance, this.sharedSources, this.sourceDependencies);
       this.flattenerGeneration = this.generation;
     }
     return this.currentFlattener;
@@ -189,14 +239,14 @@ export class Workspace {
     this.uris.remember(uri, ref);
     this.documents.set(refId(ref), { uri, ref, document });
     this.storeInstance.setOverlay(ref, document.getText());
-    this.changed();
+    this.changed([refId(ref)]);
   }
 
   update(ref: SourceRef, document: TextDocument): void {
     const open = this.documents.get(refId(ref));
     if (open) open.document = document;
     this.storeInstance.setOverlay(ref, document.getText());
-    this.changed();
+    this.changed([refId(ref)]);
   }
 
   close(ref: SourceRef): void {
@@ -204,7 +254,7 @@ export class Workspace {
     this.documents.delete(refId(ref));
     if (open) this.uris.forget(open.uri);
     this.storeInstance.setOverlay(ref, undefined);
-    this.changed();
+    this.changed([refId(ref)]);
   }
 
   /** The URI to send for a file: the client's own spelling when the file is open. */
@@ -217,13 +267,13 @@ export class Workspace {
     return this.storeInstance.readText(ref).catch(() => undefined);
   }
 
-  /** A file on disk changed, appeared or vanished. */
-  fileChanged(filePath: string): void {
+  /** A file on disk changed (`existence` false), or appeared or vanished (true: names may resolve differently). */
+  fileChanged(filePath: string, existence = true): void {
     const resolved = path.resolve(filePath);
     this.files.invalidate(resolved);
     this.storeInstance.invalidate(resolved);
     this.index.delete(resolved);
-    this.changed();
+    this.changed(existence ? undefined : [resolved]);
   }
 
   /** Reads one file into the index; files that vanish or cannot be parsed are indexed without groups. */

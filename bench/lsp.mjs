@@ -1,0 +1,276 @@
+// Language server benchmark (figures, not a timed test): drives the built dist/server.js over stdio
+// on the largest corpus scenario, on a generated workspace of 1,000 scenario files and on a
+// generated 15,000-line main file. Run `npm run build` first.
+import { spawn } from 'node:child_process';
+import { existsSync, mkdirSync, mkdtempSync, readFileSync, realpathSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import path from 'node:path';
+import { fileURLToPath, pathToFileURL } from 'node:url';
+import { createProtocolConnection, StreamMessageReader, StreamMessageWriter } from 'vscode-languageserver/node';
+
+const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
+const server = path.join(root, 'dist', 'server.js');
+const library = path.resolve(root, '..', 'shared', 'corpus', 'modular2simple', 'library');
+const samples = Number(process.env.BENCH_SAMPLES ?? 100);
+
+if (!existsSync(server)) {
+  console.error('dist/server.js is missing: run npm run build first');
+  process.exit(1);
+}
+
+const now = () => Number(process.hrtime.bigint()) / 1e6;
+const uriOf = (file) => pathToFileURL(file).href;
+
+function stats(times) {
+  const sorted = [...times].sort((a, b) => a - b);
+  return { median: sorted[Math.floor(sorted.length / 2)], p95: sorted[Math.min(sorted.length - 1, Math.ceil(sorted.length * 0.95) - 1)] };
+}
+
+function residentMb(pid) {
+  const status = readFileSync(`/proc/${pid}/status`, 'utf8');
+  const kb = (field) => Number(new RegExp(`${field}:\\s+(\\d+)`).exec(status)?.[1] ?? NaN);
+  return { rss: kb('VmRSS') / 1024, peak: kb('VmHWM') / 1024 };
+}
+
+/** Starts the server over stdio with a workspace folder; resolves once indexing reported its end. */
+async function start(folder, settings = {}) {
+  const child = spawn(process.execPath, [server, '--stdio'], { stdio: ['pipe', 'pipe', 'inherit'] });
+  const connection = createProtocolConnection(new StreamMessageReader(child.stdout), new StreamMessageWriter(child.stdin));
+  const diagnosticsWaiters = new Map();
+  let indexEnd;
+  const indexed = new Promise((resolve) => (indexEnd = resolve));
+  connection.onNotification('textDocument/publishDiagnostics', (params) => {
+    const waiter = diagnosticsWaiters.get(params.uri);
+    if (waiter && (params.version === undefined || params.version >= waiter.version)) {
+      diagnosticsWaiters.delete(params.uri);
+      waiter.resolve(params.diagnostics);
+    }
+  });
+  connection.onNotification('$/progress', (params) => {
+    if (params.value?.kind === 'end') indexEnd(now());
+  });
+  connection.onNotification('window/logMessage', () => {});
+  connection.onRequest('workspace/configuration', (params) => params.items.map(() => settings));
+  connection.onRequest('window/workDoneProgress/create', () => null);
+  connection.onRequest('client/registerCapability', () => null);
+  connection.listen();
+  await connection.sendRequest('initialize', {
+    processId: process.pid,
+    rootUri: uriOf(folder),
+    workspaceFolders: [{ uri: uriOf(folder), name: 'bench' }],
+    capabilities: { workspace: { configuration: true }, window: { workDoneProgress: true } },
+  });
+  const started = now();
+  await connection.sendNotification('initialized', {});
+  const indexMs = (await indexed) - started;
+  const diagnosticsFor = (uri, version) => new Promise((resolve) => diagnosticsWaiters.set(uri, { version, resolve }));
+  const stop = async () => {
+    await connection.sendRequest('shutdown');
+    await connection.sendNotification('exit');
+    connection.dispose();
+  };
+  return { child, connection, indexMs, diagnosticsFor, stop };
+}
+
+async function timeRequests(connection, method, paramsList) {
+  const times = [];
+  let last;
+  for (let i = 0; i < samples; i++) {
+    const params = paramsList[i % paramsList.length];
+    const started = now();
+    last = await connection.sendRequest(method, params);
+    times.push(now() - started);
+  }
+  return { ...stats(times), last };
+}
+
+function positionAfter(text, needle, nth = 0) {
+  let index = -1;
+  for (let i = 0; i <= nth; i++) index = text.indexOf(needle, index + 1);
+  if (index < 0) throw new Error(`${needle} not found`);
+  const before = text.slice(0, index + needle.length);
+  const line = before.split('\n').length - 1;
+  return { line, character: before.length - (before.lastIndexOf('\n') + 1) };
+}
+
+// ---- generated scenarios --------------------------------------------------------------------
+
+function simpleScenario(index) {
+  const groups = [0, 1, 2]
+    .map(
+      (group) => `        <ManeuverGroup name="G${group}" maximumExecutionCount="1">
+          <Actors selectTriggeringEntities="false">
+            <EntityRef parameterAttributes="entityRef" entityRef="ego"/>
+          </Actors>
+          <Maneuver name="M${group}">
+            <Event name="E${group}" priority="overwrite">
+              <Action name="Speed">
+                <PrivateAction><LongitudinalAction><SpeedAction>
+                  <SpeedActionDynamics parameterAttributes="value" dynamicsShape="step" value="${group}" dynamicsDimension="time"/>
+                  <SpeedActionTarget><AbsoluteTargetSpeed parameterAttributes="value" value="${index % 30}"/></SpeedActionTarget>
+                </SpeedAction></LongitudinalAction></PrivateAction>
+              </Action>
+              <StartTrigger><ConditionGroup>
+                <Condition parameterAttributes="delay" name="Start" delay="0" conditionEdge="rising">
+                  <ByValueCondition><SimulationTimeCondition parameterAttributes="value" value="${group + 1}" rule="greaterThan"/></ByValueCondition>
+                </Condition>
+              </ConditionGroup></StartTrigger>
+            </Event>
+          </Maneuver>
+        </ManeuverGroup>`,
+    )
+    .join('\n');
+  return `<?xml version="1.0" encoding="UTF-8"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="0" date="2024-01-01T00:00:00" description="simple ${index}" author="bench"/>
+  <Entities><ScenarioObject name="ego"/></Entities>
+  <Storyboard>
+    <Init><Actions/></Init>
+    <Story name="S">
+      <Act name="A">
+${groups}
+      </Act>
+    </Story>
+  </Storyboard>
+</OpenSCENARIO>
+`;
+}
+
+function referenceGroup(index, simpleCount) {
+  return `        <ManeuverGroup name="Car${index}" maximumExecutionCount="1">
+          <Actors selectTriggeringEntities="false">
+            <EntityRef entityRef="car${index % 50}"/>
+          </Actors>
+          <ScenarioReference scenarioFileName="simple_${index % simpleCount}.xosc">
+            <ManeuverGroupReference maneuverGroupName="G${index % 3}">
+              <ParameterReference key="AbsoluteTargetSpeed.value" value="${index % 40}"/>
+              <ParameterReference key="delay" value="${index % 7}"/>
+              <ParameterReference key="entityRef" value="car${index % 50}"/>
+            </ManeuverGroupReference>
+          </ScenarioReference>
+        </ManeuverGroup>`;
+}
+
+function mainScenario(references, simpleCount, padLines = 0) {
+  const entities = Array.from({ length: 50 }, (_, i) => `    <ScenarioObject name="car${i}"><Vehicle name="v" vehicleCategory="car"><Performance maxSpeed="69" maxAcceleration="10" maxDeceleration="10"/></Vehicle></ScenarioObject>`).join('\n');
+  // Plain OpenSCENARIO content (Init actions) pads a file to a realistic size without references.
+  const padding = Array.from({ length: Math.ceil(padLines / 3) }, (_, i) => `      <Private entityRef="car${i % 50}">\n        <PrivateAction><TeleportAction><Position><WorldPosition x="${i}" y="${i % 9}" z="0" h="0"/></Position></TeleportAction></PrivateAction>\n      </Private>`).join('\n');
+  const groups = Array.from({ length: references }, (_, i) => referenceGroup(i, simpleCount)).join('\n');
+  return `<?xml version="1.0" encoding="UTF-8"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="0" date="2024-01-01T00:00:00" description="main" author="bench"/>
+  <Entities>
+${entities}
+  </Entities>
+  <Storyboard>
+    <Init><Actions>
+${padding}
+    </Actions></Init>
+    <Story name="Main">
+      <Act name="Act">
+${groups}
+      </Act>
+    </Story>
+  </Storyboard>
+</OpenSCENARIO>
+`;
+}
+
+const fmt = (n) => n.toFixed(1).padStart(8);
+const line = (label, value) => console.log(`  ${label.padEnd(52)}${value}`);
+const row = (label, { median, p95 }, target) => line(label, `${fmt(median)} ${fmt(p95)}   ${p95 <= target ? 'within' : 'OVER'} ${target} ms p95`);
+
+console.log(`language server benchmark (${samples} samples per latency; node ${process.version}; dist/server.js over stdio)`);
+console.log(`  ${''.padEnd(52)}  median      p95`);
+
+// ---- 1. a generated workspace of 1,000 files with a 15,000-line main file -----------------------
+
+const workspace = realpathSync(mkdtempSync(path.join(tmpdir(), 'm2s-lsp-bench-')));
+const simpleCount = 400;
+for (let i = 0; i < simpleCount; i++) writeFileSync(path.join(workspace, `simple_${i}.xosc`), simpleScenario(i));
+mkdirSync(path.join(workspace, 'mains'));
+for (let i = 0; i < 1000 - simpleCount - 1; i++) writeFileSync(path.join(workspace, 'mains', `main_${i}.xosc`), mainScenario(4, simpleCount).replace(/simple_/g, '../simple_'));
+let bigMain = mainScenario(400, simpleCount);
+const padLines = 15_000 - bigMain.split('\n').length;
+bigMain = mainScenario(400, simpleCount, padLines);
+const bigPath = path.join(workspace, 'big_main.xosc');
+writeFileSync(bigPath, bigMain);
+const bigLines = bigMain.split('\n').length - 1;
+
+const session = await start(workspace);
+line('index 1,000 files (start to $/progress end)', `${fmt(session.indexMs)} ms   ${session.indexMs <= 2000 ? 'within' : 'OVER'} 2000 ms`);
+
+const bigUri = uriOf(bigPath);
+let version = 1;
+let started = now();
+let pending = session.diagnosticsFor(bigUri, version);
+await session.connection.sendNotification('textDocument/didOpen', { textDocument: { uri: bigUri, languageId: 'xml', version, text: bigMain } });
+const firstDiagnostics = await pending;
+line(`open ${bigLines}-line main (400 references) to diagnostics`, `${fmt(now() - started)} ms   (${firstDiagnostics.length} diagnostics)`);
+
+// Each edit changes one override value somewhere in the file, as typing does.
+const editTimes = [];
+const editSamples = Math.min(samples, 60);
+for (let i = 0; i < editSamples; i++) {
+  const position = positionAfter(bigMain, 'key="AbsoluteTargetSpeed.value" value="', (i * 37) % 400);
+  version++;
+  pending = session.diagnosticsFor(bigUri, version);
+  started = now();
+  await session.connection.sendNotification('textDocument/didChange', {
+    textDocument: { uri: bigUri, version },
+    contentChanges: [{ range: { start: position, end: { line: position.line, character: position.character + 1 } }, text: String(i % 10) }],
+  });
+  await pending;
+  editTimes.push(now() - started);
+}
+row(`edit -> diagnostics, ${bigLines} lines`, stats(editTimes), 50);
+
+const completionPositions = Array.from({ length: 20 }, (_, i) => ({ textDocument: { uri: bigUri }, position: positionAfter(bigMain, 'key="', (i * 61) % 1200) }));
+const completion = await timeRequests(session.connection, 'textDocument/completion', completionPositions);
+row(`completion of keys, ${bigLines} lines`, completion, 20);
+const definitionPositions = Array.from({ length: 20 }, (_, i) => ({ textDocument: { uri: bigUri }, position: positionAfter(bigMain, 'maneuverGroupName="G', (i * 19) % 400) }));
+const definition = await timeRequests(session.connection, 'textDocument/definition', definitionPositions);
+row(`definition of maneuverGroupName, ${bigLines} lines`, definition, 20);
+const hover = await timeRequests(session.connection, 'textDocument/hover', completionPositions.map((params) => ({ ...params, position: { ...params.position, character: params.position.character + 3 } })));
+row(`hover on keys, ${bigLines} lines`, hover, 20);
+const memory = residentMb(session.child.pid);
+line('server resident memory (now / peak)', `${fmt(memory.rss)} MB ${fmt(memory.peak)} MB   ${memory.peak <= 150 ? 'within' : 'OVER'} 150 MB`);
+await session.stop();
+rmSync(workspace, { recursive: true, force: true });
+
+// ---- 2. the largest corpus scenario --------------------------------------------------------------
+
+if (!existsSync(library)) {
+  console.log(`  (corpus part skipped: ${library} is absent)`);
+} else {
+  const largest = path.join(library, 'modular_hero_right_left_front_back_pedestrian', 'main.xosc');
+  const text = readFileSync(largest, 'utf8');
+  const corpus = await start(library, { scenarioPath: [library] });
+  line(`index the library (${path.basename(library)}/, 95 files)`, `${fmt(corpus.indexMs)} ms`);
+  const uri = uriOf(largest);
+  started = now();
+  pending = corpus.diagnosticsFor(uri, 1);
+  await corpus.connection.sendNotification('textDocument/didOpen', { textDocument: { uri, languageId: 'xml', version: 1, text } });
+  await pending;
+  line(`open largest corpus main (${text.split('\n').length} lines) to diagnostics`, `${fmt(now() - started)} ms`);
+  const edits = [];
+  for (let i = 0; i < Math.min(samples, 60); i++) {
+    const position = positionAfter(text, 'value="', i % 20);
+    pending = corpus.diagnosticsFor(uri, i + 2);
+    started = now();
+    await corpus.connection.sendNotification('textDocument/didChange', {
+      textDocument: { uri, version: i + 2 },
+      contentChanges: [{ range: { start: position, end: position }, text: '' }],
+    });
+    await pending;
+    edits.push(now() - started);
+  }
+  row('edit -> diagnostics, largest corpus main', stats(edits), 50);
+  const keys = Array.from({ length: 10 }, (_, i) => ({ textDocument: { uri }, position: positionAfter(text, 'key="', i) }));
+  row('completion of keys, largest corpus main', await timeRequests(corpus.connection, 'textDocument/completion', keys), 20);
+  const groups = Array.from({ length: 5 }, (_, i) => ({ textDocument: { uri }, position: positionAfter(text, 'maneuverGroupName="', i) }));
+  row('definition of maneuverGroupName, largest corpus main', await timeRequests(corpus.connection, 'textDocument/definition', groups), 20);
+  const corpusMemory = residentMb(corpus.child.pid);
+  line('server resident memory (now / peak)', `${fmt(corpusMemory.rss)} MB ${fmt(corpusMemory.peak)} MB`);
+  await corpus.stop();
+}
