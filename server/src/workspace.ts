@@ -196,11 +196,13 @@ export class Workspace {
   changed(changedIds?: string[]): void {
     this.generation++;
     if (!changedIds) {
+      this.flattenResults.clear();
       this.sharedSources.clear();
       this.sourceDependencies.clear();
       return;
     }
     const touches = (id: string) => changedIds.some((changed) => id === changed || id.startsWith(changed + '/'));
+    for (const id of [...this.flattenResults.keys()]) if (touches(id)) this.flattenResults.delete(id);
     for (const id of [...this.sharedSources.keys()]) {
       const dependencies = this.sourceDependencies.get(id);
       // A source still being read has unknown dependencies, so it goes too.
