@@ -1,5 +1,5 @@
 import { FlatSource, LinkedGroupReference, LinkedReference, originOf } from './core/flatten';
-import { OverridableAttribute } from './core/keys';
+import { keyForms, keyMatches, OverridableAttribute } from './core/keys';
 import { findGroup, ManeuverGroupInfo, PARAMETER_ATTRIBUTES, parseParameterAttributeNames } from './core/model';
 import { Resolution, SourceRef } from './core/sources';
 import { Range } from './core/text';
@@ -113,4 +113,32 @@ function* conditionNames(trigger: XmlElement): Generator<string> {
       if (condition.name === 'Condition') yield deepestKind(condition, 'Condition');
     }
   }
+}
+
+/** A key a main file can write: the attributes it sets together, and its forms from shortest to longest. */
+export interface KeyChoice {
+  targets: OverridableAttribute[];
+  /** Every form reaching exactly these attributes, shortest first; `forms[0]` is the one to write. */
+  forms: string[];
+}
+
+/**
+ * The keys of a group. Attributes whose full paths are equal (two conditions of one kind in one
+ * event) can only be set together, so they form one choice instead of none.
+ */
+export function keyChoices(targets: OverridableAttribute[]): KeyChoice[] {
+  const choices: KeyChoice[] = [];
+  const placed = new Set<OverridableAttribute>();
+  for (const target of targets) {
+    if (placed.has(target)) continue;
+    const forms = keyForms(target);
+    const together = targets.filter((other) => keyMatches(forms[forms.length - 1], other));
+    for (const member of together) placed.add(member);
+    const exact = forms.filter((form) => {
+      const reached = targets.filter((other) => keyMatches(form, other));
+      return reached.length === together.length && reached.every((member) => together.includes(member));
+    });
+    choices.push({ targets: together, forms: exact });
+  }
+  return choices;
 }

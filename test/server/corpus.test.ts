@@ -1,10 +1,10 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { CompletionItem, Diagnostic, DiagnosticSeverity, Hover, Location, MarkupContent } from 'vscode-languageserver/node';
+import { CompletionItem, Diagnostic, DiagnosticSeverity, Hover, Location, MarkupContent, WorkspaceEdit } from 'vscode-languageserver/node';
 import { firstDifference } from '../../server/src/core/equivalence';
 import { FlattenTextResult, ServerCommands } from '../../server/src/protocol';
-import { caseStudy, fileUri, library, positionAfter, requireCorpus, TestClient } from './harness';
+import { caseStudy, fileUri, library, positionAfter, positionAt, requireCorpus, TestClient } from './harness';
 
 function rangeText(text: string, location: Location): string {
   const lines = text.split('\n');
@@ -77,6 +77,41 @@ describe('language server on the case study (../shared/corpus)', function () {
   it('hovers a key with the value taking effect', async function () {
     const hover = await client.request<Hover>('textDocument/hover', client.at(mainUri, positionAfter(mainText, 'key="AbsoluteTargetSpeed.va', 2)));
     assert.match((hover.contents as MarkupContent).value, /default \*\*6\.8\*\* declared at simple_1\.xosc:130; takes effect: \*\*10\*\* \(this key\)/);
+  });
+
+  it('completes keys on a line being typed in the middle of the file (not well-formed)', async function () {
+    const anchor = mainText.indexOf('<ParameterReference key="StandStillCondition.duration"');
+    // The line giving StandStillCondition.duration is replaced by one being typed: an unclosed value.
+    const typed = `${mainText.slice(0, anchor)}<ParameterReference key="${mainText.slice(mainText.indexOf('\n', anchor))}`;
+    const uri = fileUri(path.join(caseStudy, 'typed-main.xosc'));
+    await client.open(uri, typed);
+    const items = await client.request<CompletionItem[]>('textDocument/completion', client.at(uri, positionAt(typed, anchor + '<ParameterReference key="'.length)));
+    const labels = items.sort((a, b) => (a.sortText ?? '').localeCompare(b.sortText ?? '')).map((item) => item.label);
+    assert.equal(labels[0], 'duration', 'the key no longer given is offered first, in its shortest form');
+    assert.ok(labels.every((label) => label.endsWith('duration')), `only that key: ${labels}`);
+    await client.close(uri);
+  });
+
+  it('renames a group of simple_1.xosc in the package main and in the dotted names of the outer main', async function () {
+    const simplePath = path.join(caseStudy, 'simple_1.xosc');
+    const uri = await client.openFile(simplePath);
+    const edit = await client.request<WorkspaceEdit>('textDocument/rename', { ...client.at(uri, positionAfter(fs.readFileSync(simplePath, 'utf8'), 'name="CollisionI')), newName: 'Crash' });
+    const changes = edit.changes ?? {};
+    const inner = changes[fileUri(path.join(caseStudy, 'modular_1', 'main.xosc'))] ?? [];
+    assert.deepEqual(inner.map((change) => change.newText), ['Crash']);
+    const outer = changes[mainUri] ?? [];
+    assert.equal(outer.length, 6);
+    assert.ok(outer.every((change) => change.newText === 'VehicleCollisionInit.Crash'));
+    assert.deepEqual(changes[uri].map((change) => change.newText), ['Crash']);
+    await client.close(uri);
+  });
+
+  it('updates references to an unpacked package when its folder is renamed', async function () {
+    const edit = await client.request<WorkspaceEdit | null>('workspace/willRenameFiles', { files: [{ oldUri: fileUri(path.join(caseStudy, 'modular_2')), newUri: fileUri(path.join(caseStudy, 'leaving')) }] });
+    const changes = edit?.changes?.[mainUri] ?? [];
+    assert.ok(changes.length > 0);
+    assert.ok(changes.every((change) => change.newText === 'leaving.mosc'));
+    assert.equal(changes.length, mainText.split('scenarioFileName="modular_2.mosc"').length - 1);
   });
 
   it('finds every reference to a group of simple_1.xosc, in the package and through it', async function () {

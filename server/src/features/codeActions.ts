@@ -1,10 +1,10 @@
 import { CodeAction, CodeActionKind, Diagnostic, Range as LspRange, TextEdit, WorkspaceEdit } from 'vscode-languageserver/node';
 import { TextDocument } from 'vscode-languageserver-textdocument';
-import { keyMatches, shortestUnambiguousKey } from '../core/keys';
+import { keyMatches } from '../core/keys';
 import { PARAMETER_ATTRIBUTES } from '../core/model';
 import { SourceRef } from '../core/sources';
 import { attribute, elementAt, escapeAttributeValue, parseXml, XmlElement } from '../core/xml';
-import { groupLinkOf, linkOf } from '../analysis';
+import { groupLinkOf, keyChoices, linkOf } from '../analysis';
 import { ancestor } from '../cursor';
 import { DiagnosticData } from './diagnostics';
 import { Workspace } from '../workspace';
@@ -86,7 +86,9 @@ async function missingKeysAction(workspace: Workspace, uri: string, ref: SourceR
   const linked = link && groupReference ? groupLinkOf(link, groupReference) : undefined;
   if (!groupReference || !linked?.target || groupReference.selfClosing || !groupReference.closed) return undefined;
   const given = linked.info.parameters.map((parameter) => parameter.key);
-  const missing = linked.overridable.filter((target) => target.defaultValue !== undefined && !given.some((key) => keyMatches(key, target)));
+  const missing = keyChoices(linked.overridable).filter(
+    (choice) => choice.forms.length > 0 && choice.targets[0].defaultValue !== undefined && !choice.targets.some((target) => given.some((key) => keyMatches(key, target))),
+  );
   if (missing.length === 0) return undefined;
   const text = document.getText();
   const closeTag = text.lastIndexOf('</', groupReference.end - 1);
@@ -95,9 +97,7 @@ async function missingKeysAction(workspace: Workspace, uri: string, ref: SourceR
   const unit = /^( +|\t)/m.exec(text.slice(0, 4000))?.[1] ?? '    ';
   const indent = lastParameter ? indentOfLine(text, lastParameter.element.start) : outerIndent + unit;
   const eol = text.includes('\r\n') ? '\r\n' : '\n';
-  const lines = missing.map(
-    (target) => `${indent}<ParameterReference key="${shortestUnambiguousKey(target, linked.overridable)}" value="${escapeAttributeValue(target.defaultValue ?? '')}"/>`,
-  );
+  const lines = missing.map((choice) => `${indent}<ParameterReference key="${choice.forms[0]}" value="${escapeAttributeValue(choice.targets[0].defaultValue ?? '')}"/>`);
   // Insert at the start of the closing tag's line, so that its indentation stays as written.
   const closeLineStart = text.lastIndexOf('\n', closeTag - 1) + 1;
   const onOwnLine = /^[ \t]*$/.test(text.slice(closeLineStart, closeTag));

@@ -3,10 +3,10 @@ import * as path from 'node:path';
 import { CompletionItem, CompletionItemKind, InsertTextFormat, Range as LspRange } from 'vscode-languageserver/node';
 import { TextDocument } from 'vscode-languageserver-textdocument';
 import { FlatSource } from '../core/flatten';
-import { keyForms, keyMatches, OverridableAttribute, overridableAttributes, shortestUnambiguousKey } from '../core/keys';
+import { keyMatches, OverridableAttribute, overridableAttributes } from '../core/keys';
 import { findGroup, PARAMETER_ATTRIBUTES } from '../core/model';
 import { displayRef, SourceRef } from '../core/sources';
-import { overridablePlace, sourceForFileName } from '../analysis';
+import { keyChoices, overridablePlace, sourceForFileName } from '../analysis';
 import { attributeValuesBetween, elementNameContextAt, lastAttributeValueBefore, valueContextAt, ValueContext } from '../cursor';
 import { Workspace } from '../workspace';
 
@@ -95,18 +95,19 @@ async function keyItems(workspace: Workspace, ref: SourceRef, document: TextDocu
     .map((entry) => entry.value.trim());
   const range = replaceRange(document, context.valueStart, context.valueEnd);
   const items: CompletionItem[] = [];
-  targets.forEach((target, index) => {
-    if (coveredBy(given, target)) return;
-    const shortest = shortestUnambiguousKey(target, targets);
-    const forms = keyForms(target).filter((form) => form.length >= shortest.length && targets.every((other) => other === target || !keyMatches(form, other)));
-    const declared = overridablePlace(source, target);
+  keyChoices(targets).forEach((choice, index) => {
+    if (choice.targets.some((target) => coveredBy(given, target))) return;
+    const [first] = choice.targets;
+    const declared = overridablePlace(source, first);
     const where = declared ? `${displayRef(declared.ref, workspace.folders[0])}:${declared.range.start.line + 1}` : '';
-    forms.forEach((form, formIndex) => {
+    const defaults = [...new Set(choice.targets.map((target) => target.defaultValue ?? '(none)'))].join(' / ');
+    const together = choice.targets.length > 1 ? ` (sets ${choice.targets.length} attributes)` : '';
+    choice.forms.forEach((form, formIndex) => {
       items.push({
         label: form,
         kind: CompletionItemKind.Property,
-        detail: `default ${target.defaultValue ?? '(none)'}${where ? ` — ${where}` : ''}`,
-        documentation: `Overrides \`${target.attributeName}\` of <${target.element.name}> (${target.path.join(' › ')}) in group ${group.name}.`,
+        detail: `default ${defaults}${where ? ` — ${where}` : ''}${together}`,
+        documentation: `Overrides \`${first.attributeName}\` of <${first.element.name}> (${first.path.join(' › ')}) in group ${group.name}.`,
         sortText: `${formIndex}_${String(index).padStart(5, '0')}`,
         filterText: form,
         textEdit: { range, newText: form },
@@ -149,9 +150,10 @@ function parameterAttributeItems(document: TextDocument, context: ValueContext):
 export function referenceSnippet(fileName: string, groupName: string, targets: OverridableAttribute[], indent: string): string {
   const escape = (value: string) => value.replace(/[$}\\]/g, (char) => `\\${char}`);
   const lines = [`<ScenarioReference scenarioFileName="${escape(fileName)}">`, `${indent}<ManeuverGroupReference maneuverGroupName="${escape(groupName)}">`];
-  targets.forEach((target, index) => {
-    if (target.defaultValue === undefined) return;
-    lines.push(`${indent}${indent}<ParameterReference key="${escape(shortestUnambiguousKey(target, targets))}" value="\${${index + 1}:${escape(target.defaultValue)}}"/>`);
+  keyChoices(targets).forEach((choice, index) => {
+    const defaultValue = choice.targets[0].defaultValue;
+    if (defaultValue === undefined || choice.forms.length === 0) return;
+    lines.push(`${indent}${indent}<ParameterReference key="${escape(choice.forms[0])}" value="\${${index + 1}:${escape(defaultValue)}}"/>`);
   });
   lines.push(`${indent}</ManeuverGroupReference>`, '</ScenarioReference>$0');
   return lines.join('\n');
