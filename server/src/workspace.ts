@@ -17,7 +17,7 @@ export interface ServerSettings {
   maxIndexedFileBytes: number;
 }
 
-export const DEFAULT_SETTINGS: ServerSettings = { scenarioPath: [], diagnosticsDelay: 15, maxIndexedFileBytes: 8 * 1024 * 1024 };
+export const DEFAULT_SETTINGS: ServerSettings = { scenarioPath: [], diagnosticsDelay: 5, maxIndexedFileBytes: 8 * 1024 * 1024 };
 
 /** Reads settings sent by a client, keeping defaults for anything missing or of the wrong type. */
 export function readSettings(value: unknown): ServerSettings {
@@ -248,6 +248,8 @@ export class Workspace {
     const open = this.documents.get(refId(ref));
     if (open) open.document = document;
     this.storeInstance.setOverlay(ref, document.getText());
+    // The index is read again on its next use, from the unsaved text.
+    if (ref.entries.length === 0) this.index.delete(ref.disk);
     this.changed([refId(ref)]);
   }
 

@@ -124,6 +124,22 @@ describe('language server on the case study (../shared/corpus)', function () {
   });
 });
 
+describe('language server settings (../shared/corpus)', function () {
+  it('resolves names through the scenarioPath setting, and again when it changes', async function () {
+    requireCorpus(this);
+    const client = await TestClient.start({ root: library });
+    await client.indexed();
+    const uri = `mosc:${path.join(library, 'modular_hero_back', 'result.mosc')}/main.xosc`;
+    await client.open(uri, fs.readFileSync(path.join(library, 'modular_hero_back', 'main.xosc'), 'utf8'));
+    // Inside a .mosc there is no search of parent folders, so simple_1.xosc needs the setting.
+    const before = await client.diagnosticsOf(uri);
+    assert.ok(before.some((diagnostic) => diagnostic.code === 'missing-file' && /simple_1\.xosc/.test(String(diagnostic.message))));
+    await client.settingsChanged({ scenarioPath: [library] });
+    await client.diagnosticsOf(uri, (diagnostics) => !diagnostics.some((diagnostic) => diagnostic.severity === DiagnosticSeverity.Error));
+    await client.stop();
+  });
+});
+
 describe('language server on the library (../shared/corpus)', function () {
   let client: TestClient;
 

@@ -86,6 +86,8 @@ export class TestClient {
   readonly progress: unknown[] = [];
   readonly logs: string[] = [];
   private readonly versions = new Map<string, number>();
+  /** What the client answers to workspace/configuration; change it, then call `settingsChanged`. */
+  settings: Record<string, unknown> = {};
   private readonly waiters: (() => void)[] = [];
 
   private constructor(
@@ -112,7 +114,8 @@ export class TestClient {
     connection.onNotification('window/logMessage', (params: { message: string }) => {
       client.logs.push(params.message);
     });
-    connection.onRequest('workspace/configuration', (params: { items: { section?: string }[] }) => params.items.map(() => options.settings ?? {}));
+    client.settings = options.settings ?? {};
+    connection.onRequest('workspace/configuration', (params: { items: { section?: string }[] }) => params.items.map(() => client.settings));
     connection.onRequest('window/workDoneProgress/create', () => null);
     connection.onRequest('client/registerCapability', () => null);
     connection.listen();
@@ -165,6 +168,11 @@ export class TestClient {
 
   async indexed(): Promise<void> {
     await this.until(() => this.progress.some((entry) => (entry as { value?: { kind?: string } }).value?.kind === 'end') || undefined, 'indexing to end');
+  }
+
+  async settingsChanged(settings: Record<string, unknown>): Promise<void> {
+    this.settings = settings;
+    await this.connection.sendNotification('workspace/didChangeConfiguration', { settings: null });
   }
 
   async open(uri: string, text: string): Promise<string> {
