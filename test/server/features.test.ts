@@ -224,6 +224,22 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
       await client.close(uri);
     });
 
+    it('offers the entries of its own package to a file inside a .mosc', async function () {
+      const uri = `mosc:${path.join(root, 'pkg.mosc')}/main.xosc`;
+      const typed = PACKAGE_MAIN.replace('scenarioFileName="simple.xosc"', 'scenarioFileName=""');
+      await client.open(uri, typed);
+      const position = positionAt(typed, typed.indexOf('scenarioFileName="') + 'scenarioFileName="'.length);
+      const items = await client.request<CompletionItem[]>('textDocument/completion', client.at(uri, position));
+      assert.deepEqual(items.map((item) => `${item.label} (${item.detail})`), ['simple.xosc (pkg.mosc)']);
+      await client.close(uri);
+    });
+
+    it('offers the entities of the file for entityRef', async function () {
+      const items = await client.request<CompletionItem[]>('textDocument/completion', client.at(mainUri, positionAt(main.text, main.offsets[8])));
+      assert.deepEqual(items.map((item) => item.label), ['hero', 'car']);
+      assert.equal(textAt(main.text, (items[0].textEdit as TextEdit).range), 'car');
+    });
+
     it('offers the groups of the referenced file while the document is not well-formed', async function () {
       const uri = fileUri(path.join(root, 'typing.xosc'));
       const typed = markers(`<OpenSCENARIO><Storyboard><Story name="S"><Act name="A"><ManeuverGroup name="G"><Actors><EntityRef entityRef="e"/></Actors>
@@ -292,6 +308,13 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
       assert.match(value, /default \*\*5\*\* declared at simple\.xosc:20/);
       assert.match(value, /takes effect: \*\*7\*\* \(this key\)/);
       assert.equal(textAt(main.text, hover.range as Location['range']), 'AbsoluteTargetSpeed.value');
+    });
+
+    it('shows where a scenarioFileName resolves and the groups it offers', async function () {
+      const hover = await client.request<Hover>('textDocument/hover', client.at(mainUri, positionAt(main.text, main.offsets[5])));
+      const value = (hover.contents as MarkupContent).value;
+      assert.match(value, /^\*\*pkg\.xosc\*\* → `pkg\.mosc\/main\.xosc`/);
+      assert.match(value, /ManeuverGroups:\n- Inner\.Brake$/);
     });
 
     it('shows what a referenced group does, one line per maneuver and event', async function () {
