@@ -502,6 +502,14 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
       assert.equal(second.children[1].uri, `mosc:${path.join(root, 'pkg.mosc')}/simple.xosc`);
     });
 
+    it('reads a package, or an unpacked folder, as its main.xosc', async function () {
+      const tree = await execute<StructureNode>(ServerCommands.structure, fileUri(path.join(root, 'pkg.mosc')));
+      assert.equal(tree.uri, `mosc:${path.join(root, 'pkg.mosc')}/main.xosc`);
+      assert.deepEqual(tree.children.map((child) => child.label), ['Inner → simple.xosc']);
+      const flattened = await execute<FlattenTextResult>(ServerCommands.flattenToText, fileUri(path.join(root, 'pkg.mosc')));
+      assert.match(flattened.text ?? '', /<ManeuverGroup name="Inner\.Brake"/);
+    });
+
     it('answers an unknown command with an error, not a crash', async function () {
       await assert.rejects(execute(ServerCommands.structure + '.nope'), /unknown command/);
       const tree = await execute<StructureNode>(ServerCommands.structure, mainUri);

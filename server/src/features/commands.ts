@@ -2,7 +2,7 @@ import * as path from 'node:path';
 import { Flattener, FlatSource } from '../core/flatten';
 import { isSameFile, writeFileAtomic } from '../core/atomic';
 import { Problem } from '../core/problems';
-import { baseName, displayRef, refId, SourceRef } from '../core/sources';
+import { baseName, childRef, diskRef, displayRef, refId, SourceRef } from '../core/sources';
 import { FlattenTextResult, ProblemSummary, StructureNode, WriteResult } from '../protocol';
 import { elementPlace, resolvedTarget } from '../analysis';
 import { filePathOf } from '../uris';
@@ -28,6 +28,10 @@ async function refOf(workspace: Workspace, uri: unknown): Promise<SourceRef> {
   if (typeof uri !== 'string') throw new Error('expected a document URI');
   const ref = await workspace.uris.toRef(uri);
   if (!ref) throw new Error(`not a scenario URI: ${uri}`);
+  // A package (a .mosc, or an unpacked folder) stands for its main.xosc.
+  const last = ref.entries.length > 0 ? ref.entries[ref.entries.length - 1] : ref.disk;
+  if (last.toLowerCase().endsWith('.mosc')) return childRef(ref, 'main.xosc');
+  if (ref.entries.length === 0 && (await workspace.store.host.kind(ref.disk)) === 'directory') return diskRef(path.join(ref.disk, 'main.xosc'));
   return ref;
 }
 
