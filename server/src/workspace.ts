@@ -2,10 +2,8 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { TextDocument } from 'vscode-languageserver-textdocument';
 import { Flattener, FlatSource, FlattenResult } from './core/flatten';
-import { buildModel, ManeuverGroupInfo } from './core/model';
 import { FileSystemHost, nodeFileSystem, refId, ScenarioStore, SourceRef, splitScenarioPath, diskRef, childRef } from './core/sources';
-import { decodeUtf8, Range } from './core/text';
-import { parseXml } from './core/xml';
+import { decodeUtf8, LineIndex, Range } from './core/text';
 import { UriResolver, refToUri } from './uris';
 
 export interface ServerSettings {
@@ -90,6 +88,22 @@ export interface OpenDocument {
 }
 
 const SKIPPED_FOLDERS = new Set(['node_modules', '.git', 'dist', 'out', '.vscode-test']);
+
+/**
+ * Group names (with ranges) and whether references occur, by a scan of the text: the index of a
+ * large workspace is built without keeping or even building parse trees. Comments are skipped.
+ */
+export function scanScenario(text: string): Pick<IndexedFile, 'groups' | 'modular'> {
+  const lines = new LineIndex(text);
+  const groups: IndexedGroup[] = [];
+  const pattern = /<!--[\s\S]*?(?:-->|$)|<ManeuverGroup\b[^>]*>/g;
+  for (let match = pattern.exec(text); match; match = pattern.exec(text)) {
+    if (match[0].startsWith('<!--')) continue;
+    const name = /\sname\s*=\s*(?:"([^"]*)"|'([^']*)')/.exec(match[0]);
+    groups.push({ name: name ? (name[1] ?? name[2]) : '', range: lines.range(match.index, match.index + match[0].length) });
+  }
+  return { groups, modular: /<ScenarioReference\b/.test(text) };
+}
 
 /** Every `.xosc` and `.mosc` below the folders, skipping build and dependency folders; never throws. */
 export async function listScenarioFiles(folders: string[], limit = 100_000): Promise<string[]> {
@@ -289,12 +303,7 @@ export class Workspace {
       if (bytes && bytes.length <= this.settings.maxIndexedFileBytes) {
         const open = this.documents.get(refId(diskRef(filePath)));
         const text = open ? open.document.getText() : decodeUtf8(bytes);
-        const model = buildModel(parseXml(text));
-        entry.groups = model.groups.map((group: ManeuverGroupInfo) => ({
-          name: group.name,
-          range: model.document.lines.range(group.element.start, group.element.startTagEnd),
-        }));
-        entry.modular = model.references.length > 0;
+        Object.assign(entry, scanScenario(text));
       }
     } else {
       entry.modular = true;
