@@ -168,6 +168,11 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
       assert.equal(location.uri, simpleUri);
     });
 
+    it('goes from scenarioFileName into a package, as the mosc: URI of its main.xosc', async function () {
+      const [location] = await definition(5);
+      assert.equal(location.uri, `mosc:${path.join(root, 'pkg.mosc')}/main.xosc`);
+    });
+
     it('goes from maneuverGroupName to the group', async function () {
       const locations = await definition(1);
       assert.equal(locations.length, 1);
@@ -340,6 +345,10 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
       const locations = await client.request<Location[]>('textDocument/references', { ...client.at(uri, position), context: { includeDeclaration: false } });
       const found = locations.map((location) => `${path.basename(location.uri)}:${textAt(fs.readFileSync(new URL(location.uri), 'utf8'), location.range)}`).sort();
       assert.deepEqual(found, ['clean.xosc:AbsoluteTargetSpeed.value', 'main.xosc:AbsoluteTargetSpeed.value']);
+      // The same from the attribute that holds the default.
+      const fromAttribute = await client.request<Location[]>('textDocument/references', { ...client.at(uri, positionAt(simple.text, simple.offsets[1] + 2)), context: { includeDeclaration: true } });
+      assert.equal(fromAttribute.length, 3);
+      assert.equal(textAt(simple.text, fromAttribute[0].range), 'value');
       await client.close(uri);
     });
 
