@@ -70,6 +70,8 @@ export class CachingFileSystem implements FileSystemHost {
 export interface IndexedGroup {
   name: string;
   range: Range;
+  /** The file the group is written in: the indexed file, or an entry of the indexed package. */
+  ref: SourceRef;
 }
 
 /** What the index knows of one scenario file on disk without keeping its parse tree. */
@@ -93,14 +95,14 @@ const SKIPPED_FOLDERS = new Set(['node_modules', '.git', 'dist', 'out', '.vscode
  * Group names (with ranges) and whether references occur, by a scan of the text: the index of a
  * large workspace is built without keeping or even building parse trees. Comments are skipped.
  */
-export function scanScenario(text: string): Pick<IndexedFile, 'groups' | 'modular'> {
+export function scanScenario(text: string, ref: SourceRef): Pick<IndexedFile, 'groups' | 'modular'> {
   const lines = new LineIndex(text);
   const groups: IndexedGroup[] = [];
   const pattern = /<!--[\s\S]*?(?:-->|$)|<ManeuverGroup\b[^>]*>/g;
   for (let match = pattern.exec(text); match; match = pattern.exec(text)) {
     if (match[0].startsWith('<!--')) continue;
     const name = /\sname\s*=\s*(?:"([^"]*)"|'([^']*)')/.exec(match[0]);
-    groups.push({ name: name ? (name[1] ?? name[2]) : '', range: lines.range(match.index, match.index + match[0].length) });
+    groups.push({ name: name ? (name[1] ?? name[2]) : '', range: lines.range(match.index, match.index + match[0].length), ref });
   }
   return { groups, modular: /<ScenarioReference\b/.test(text) };
 }
@@ -303,10 +305,16 @@ export class Workspace {
       if (bytes && bytes.length <= this.settings.maxIndexedFileBytes) {
         const open = this.documents.get(refId(diskRef(filePath)));
         const text = open ? open.document.getText() : decodeUtf8(bytes);
-        Object.assign(entry, scanScenario(text));
+        Object.assign(entry, scanScenario(text, diskRef(filePath)));
       }
     } else {
       entry.modular = true;
+      // The scenarios stored at the root of a package (nested packages are left to their own readers).
+      const packageRef = diskRef(filePath);
+      const contents = await this.storeInstance.readPackage(packageRef).catch(() => undefined);
+      for (const [name, bytes] of contents?.entries ?? []) {
+        if (name.toLowerCase().endsWith('.xosc') && bytes.length <= this.settings.maxIndexedFileBytes) entry.groups.push(...scanScenario(decodeUtf8(bytes), childRef(packageRef, name)).groups);
+      }
     }
     this.index.set(filePath, entry);
     return entry;

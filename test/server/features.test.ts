@@ -239,6 +239,13 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
       await client.close(uri);
     });
 
+    it('offers the default value of the attribute a key reaches', async function () {
+      const position = positionAt(main.text, main.text.indexOf('key="AbsoluteTargetSpeed.value" value="') + 'key="AbsoluteTargetSpeed.value" value="'.length);
+      const items = await client.request<CompletionItem[]>('textDocument/completion', client.at(mainUri, position));
+      assert.deepEqual(items.map((item) => `${item.label}: ${item.detail}`), ['5: default of AbsoluteTargetSpeed.value']);
+      assert.equal(textAt(main.text, (items[0].textEdit as TextEdit).range), '7');
+    });
+
     it('offers the entities of the file for entityRef', async function () {
       const items = await client.request<CompletionItem[]>('textDocument/completion', client.at(mainUri, positionAt(main.text, main.offsets[8])));
       assert.deepEqual(items.map((item) => item.label), ['hero', 'car']);
@@ -435,7 +442,10 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
     it('finds groups across the workspace', async function () {
       const symbols = await client.request<SymbolInformation[]>('workspace/symbol', { query: 'brk' });
       const found = symbols.map((symbol) => `${symbol.containerName}:${symbol.name}`).sort();
-      assert.deepEqual(found, ['simple.xosc:Brake']);
+      assert.deepEqual(found, ['pkg.mosc/simple.xosc:Brake', 'simple.xosc:Brake']);
+      const inPackage = symbols.find((symbol) => symbol.containerName === 'pkg.mosc/simple.xosc') as SymbolInformation;
+      assert.equal(inPackage.location.uri, `mosc:${path.join(root, 'pkg.mosc')}/simple.xosc`);
+      assert.equal(textAt(simple.text, inPackage.location.range).split('\n')[0], '<ManeuverGroup name="Brake" maximumExecutionCount="1">');
     });
 
     it('puts override counts and the flatten preview on each ScenarioReference', async function () {

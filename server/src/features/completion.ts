@@ -79,14 +79,34 @@ function coveredBy(keys: string[], target: OverridableAttribute): boolean {
   return keys.some((key) => keyMatches(key, target));
 }
 
-async function keyItems(workspace: Workspace, ref: SourceRef, document: TextDocument, context: ValueContext): Promise<CompletionItem[]> {
-  const text = document.getText();
-  const groupReference = lastAttributeValueBefore(text, 'ManeuverGroupReference', 'maneuverGroupName', 0, context.tagStart);
-  if (!groupReference) return [];
+/** The group a ParameterReference tag (starting at `tagStart`) overrides, read from the text before it. */
+async function groupBefore(workspace: Workspace, ref: SourceRef, text: string, tagStart: number) {
+  const groupReference = lastAttributeValueBefore(text, 'ManeuverGroupReference', 'maneuverGroupName', 0, tagStart);
+  if (!groupReference) return undefined;
   const { source } = await referencedSource(workspace, ref, text, groupReference.tagStart);
   const group = source?.model ? findGroup(source.model, groupReference.value) : undefined;
-  if (!source?.model || !group) return [];
-  const targets = overridableAttributes(source.model, group);
+  if (!source?.model || !group) return undefined;
+  return { source, group, groupReference, targets: overridableAttributes(source.model, group) };
+}
+
+/** The default values of the attributes that the key written in the same tag reaches. */
+async function valueItems(workspace: Workspace, ref: SourceRef, document: TextDocument, context: ValueContext): Promise<CompletionItem[]> {
+  const key = context.siblings.find((sibling) => sibling.name === 'key')?.value.trim();
+  const found = key ? await groupBefore(workspace, ref, document.getText(), context.tagStart) : undefined;
+  if (!found || !key) return [];
+  const range = replaceRange(document, context.valueStart, context.valueEnd);
+  const defaults = new Map<string, string>();
+  for (const target of found.targets) {
+    if (target.defaultValue !== undefined && keyMatches(key, target) && !defaults.has(target.defaultValue)) defaults.set(target.defaultValue, `default of ${target.element.name}.${target.attributeName}`);
+  }
+  return [...defaults].map(([value, detail]) => ({ label: value, kind: CompletionItemKind.Value, detail, textEdit: { range, newText: value } }));
+}
+
+async function keyItems(workspace: Workspace, ref: SourceRef, document: TextDocument, context: ValueContext): Promise<CompletionItem[]> {
+  const text = document.getText();
+  const found = await groupBefore(workspace, ref, text, context.tagStart);
+  if (!found) return [];
+  const { source, group, groupReference, targets } = found;
   const blockEnd = [text.indexOf('</ManeuverGroupReference', context.valueEnd), text.indexOf('<ManeuverGroupReference', context.valueEnd), text.length]
     .filter((index) => index >= 0)
     .reduce((a, b) => Math.min(a, b));
@@ -212,6 +232,7 @@ export async function complete(workspace: Workspace, ref: SourceRef, document: T
         }));
     }
     if (context.element === 'ParameterReference' && context.attribute === 'key') return keyItems(workspace, ref, document, context);
+    if (context.element === 'ParameterReference' && context.attribute === 'value') return valueItems(workspace, ref, document, context);
     if (context.attribute === PARAMETER_ATTRIBUTES) return parameterAttributeItems(document, context);
     if (context.attribute === 'entityRef') {
       const source = await workspace.source(ref);

@@ -57,7 +57,7 @@ export async function hover(workspace: Workspace, ref: SourceRef, offset: number
         applied === match.parameter
           ? `**${match.parameter.value}** (this key)`
           : applied
-            ? `**${applied.value}** (from the more specific key \`${applied.key}\`)`
+            ? `**${applied.value}** (from the more specific key \`${applied.key}\` on line ${model.document.lines.positionAt(applied.element.start).line + 1})`
             : `**${target.defaultValue ?? '(none)'}** (the default: this key does not apply)`;
       lines.push(
         `- \`${target.path.join('.')}.${target.attributeName}\`: default **${target.defaultValue ?? '(no default value)'}** declared at ${declared}; takes effect: ${effective}`,

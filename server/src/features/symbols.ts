@@ -1,8 +1,6 @@
-import * as path from 'node:path';
-import { pathToFileURL } from 'node:url';
 import { CodeLens, DocumentSymbol, SymbolInformation, SymbolKind } from 'vscode-languageserver/node';
 import { attribute, XmlDocument, XmlElement } from '../core/xml';
-import { SourceRef } from '../core/sources';
+import { displayRef, SourceRef } from '../core/sources';
 import { Workspace } from '../workspace';
 
 const OUTLINE: Record<string, { kind: SymbolKind; nameAttribute: string }> = {
@@ -65,7 +63,7 @@ export async function workspaceSymbols(workspace: Workspace, query: string, limi
   for (const file of await workspace.indexedFiles()) {
     for (const group of file.groups) {
       if (!group.name || !matches(group.name)) continue;
-      symbols.push({ name: group.name, kind: SymbolKind.Class, location: { uri: pathToFileURL(file.path).href, range: group.range }, containerName: path.basename(file.path) });
+      symbols.push({ name: group.name, kind: SymbolKind.Class, location: { uri: workspace.uriOf(group.ref), range: group.range }, containerName: displayRef(group.ref, workspace.folders[0]) });
       if (symbols.length >= limit) return symbols;
     }
   }
