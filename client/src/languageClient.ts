@@ -1,0 +1,54 @@
+import * as vscode from 'vscode';
+import { ExecuteCommandRequest } from 'vscode-languageclient';
+import { LanguageClient, TransportKind, type LanguageClientOptions, type ServerOptions } from 'vscode-languageclient/node';
+import { PACKAGE_SCHEME, ServerCommands, type FlattenTextResult, type StructureNode, type WriteResult } from '../../server/src/protocol';
+
+export const LANGUAGE_ID = 'xosc';
+export const CONFIGURATION_SECTION = 'modular2simple';
+
+/** Starts the bundled language server (dist/server.js) over node IPC for `.xosc` files, on disk and inside packages. */
+export function createLanguageClient(context: vscode.ExtensionContext): LanguageClient {
+  const module = context.asAbsolutePath('dist/server.js');
+  const serverOptions: ServerOptions = {
+    run: { module, transport: TransportKind.ipc },
+    debug: { module, transport: TransportKind.ipc, options: { execArgv: ['--nolazy', '--inspect=6019'] } },
+  };
+  const clientOptions: LanguageClientOptions = {
+    documentSelector: [
+      { scheme: 'file', language: LANGUAGE_ID },
+      { scheme: PACKAGE_SCHEME, language: LANGUAGE_ID },
+      { scheme: 'untitled', language: LANGUAGE_ID },
+    ],
+    synchronize: {
+      configurationSection: CONFIGURATION_SECTION,
+      fileEvents: vscode.workspace.createFileSystemWatcher('**/*.{xosc,mosc}'),
+    },
+  };
+  return new LanguageClient(CONFIGURATION_SECTION, 'Modular2Simple Language Server', serverOptions, clientOptions);
+}
+
+/** The server's custom commands (server/src/protocol.ts), typed. */
+export class ServerCommandClient {
+  constructor(private readonly client: LanguageClient) {}
+
+  private async execute<T>(command: string, args: unknown[]): Promise<T> {
+    if (!this.client.isRunning()) await this.client.start();
+    return (await this.client.sendRequest(ExecuteCommandRequest.type, { command, arguments: args })) as T;
+  }
+
+  flattenToText(uri: vscode.Uri): Promise<FlattenTextResult> {
+    return this.execute(ServerCommands.flattenToText, [uri.toString()]);
+  }
+
+  flattenToFile(input: vscode.Uri, outputPath: string, force: boolean): Promise<WriteResult> {
+    return this.execute(ServerCommands.flattenToFile, [input.toString(), outputPath, { force }]);
+  }
+
+  pack(inputs: vscode.Uri[], outputPath: string): Promise<WriteResult> {
+    return this.execute(ServerCommands.pack, [inputs.map((input) => input.toString()), outputPath]);
+  }
+
+  structure(uri: vscode.Uri): Promise<StructureNode | null> {
+    return this.execute(ServerCommands.structure, [uri.toString()]);
+  }
+}
