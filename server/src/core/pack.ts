@@ -1,0 +1,183 @@
+import * as path from 'node:path';
+import JSZip from 'jszip';
+import { buildModel } from './model';
+import { Problem, ProblemCode, ZERO_RANGE } from './problems';
+import { diskRef, displayRef, nodeFileSystem, normalizeEntryName, refId, ScenarioStore, SourceRef } from './sources';
+import { decodeUtf8 } from './text';
+import { isWellFormed, parseXml } from './xml';
+
+export interface PackResult {
+  /** The archive; undefined when an error prevents a complete package. */
+  bytes: Uint8Array | undefined;
+  /** Entry names in the order they were added; nested packages as `inner.mosc`. */
+  entries: string[];
+  problems: Problem[];
+}
+
+export interface PackFolderOptions {
+  /** Also store files found through SCENARIO_PATH (by default they stay outside, found there when flattening). */
+  includeScenarioPath?: boolean;
+}
+
+// A fixed entry time makes two packings of the same files byte-identical.
+const ENTRY_DATE = new Date(Date.UTC(2000, 0, 1, 0, 0, 0));
+
+function fileProblem(source: SourceRef, code: ProblemCode, message: string, hint?: string, severity: Problem['severity'] = 'error'): Problem {
+  return { source, range: ZERO_RANGE, severity, code, message, hint };
+}
+
+function checkXml(ref: SourceRef, bytes: Uint8Array, problems: Problem[]): void {
+  const document = parseXml(decodeUtf8(bytes));
+  for (const problem of document.problems) {
+    problems.push({ source: ref, range: document.lines.range(problem.start, problem.end), severity: problem.severity, code: 'xml', message: problem.message });
+  }
+}
+
+async function generate(zip: JSZip): Promise<Uint8Array> {
+  return zip.generateAsync({ type: 'uint8array', compression: 'DEFLATE', compressionOptions: { level: 9 } });
+}
+
+/** `-cxm IN... OUT.mosc`: each input at the root of a new package under its base name (SPEC 6). */
+export async function packFiles(inputs: string[]): Promise<PackResult> {
+  const problems: Problem[] = [];
+  const entries: string[] = [];
+  const zip = new JSZip();
+  const seen = new Map<string, string>();
+  for (const input of inputs) {
+    const ref = diskRef(input);
+    const name = path.basename(input);
+    const lower = name.toLowerCase();
+    if (!lower.endsWith('.xosc') && !lower.endsWith('.mosc')) {
+      problems.push(fileProblem(ref, 'invalid-reference', `'${name}' is neither a .xosc scenario nor a .mosc package`, 'pack only .xosc and .mosc files'));
+      continue;
+    }
+    const previous = seen.get(name);
+    if (previous) {
+      problems.push(fileProblem(ref, 'invalid-reference', `two inputs are named '${name}' (the other is ${previous}); names must be unique in a package`, 'rename one of them'));
+      continue;
+    }
+    seen.set(name, input);
+    const kind = await nodeFileSystem.kind(ref.disk);
+    const bytes = kind === 'file' ? await nodeFileSystem.readFile(ref.disk) : undefined;
+    if (!bytes) {
+      problems.push(fileProblem(ref, 'io', kind === 'directory' ? `${input} is a folder; pack a folder with 'modular2simple pack FOLDER -o OUT.mosc'` : `cannot read ${input}: no such file`));
+      continue;
+    }
+    if (lower.endsWith('.xosc')) checkXml(ref, bytes, problems);
+    zip.file(name, bytes, { date: ENTRY_DATE, createFolders: false });
+    entries.push(name);
+  }
+  const mains = inputs.filter((input) => path.basename(input) === 'main.xosc');
+  if (mains.length !== 1) {
+    problems.push(
+      fileProblem(
+        diskRef(inputs[0] ?? '.'),
+        'invalid-reference',
+        mains.length === 0 ? 'a package needs exactly one input named main.xosc; none was given' : `a package needs exactly one main.xosc; ${mains.length} were given`,
+        'name the modular main file main.xosc',
+      ),
+    );
+  }
+  const failed = problems.some((problem) => problem.severity === 'error');
+  return { bytes: failed ? undefined : await generate(zip), entries, problems };
+}
+
+/**
+ * Packs an unpacked package: `main.xosc` of the folder plus everything it references, found as
+ * flattening would find it; referenced folders become nested `.mosc` packages.
+ */
+export async function packFolder(folder: string, store: ScenarioStore, options: PackFolderOptions = {}): Promise<PackResult> {
+  const problems: Problem[] = [];
+  const result = await packFolderInto(path.resolve(folder), store, options, problems, []);
+  const failed = problems.some((problem) => problem.severity === 'error');
+  return { bytes: failed || !result ? undefined : await generate(result.zip), entries: result?.entries ?? [], problems };
+}
+
+async function packFolderInto(
+  folder: string,
+  store: ScenarioStore,
+  options: PackFolderOptions,
+  problems: Problem[],
+  stack: string[],
+): Promise<{ zip: JSZip; entries: string[] } | undefined> {
+  const main = diskRef(path.join(folder, 'main.xosc'));
+  if ((await store.host.kind(main.disk)) !== 'file') {
+    problems.push(fileProblem(diskRef(folder), 'io', `${displayRef(diskRef(folder))} holds no main.xosc, so it is not an unpacked package`, 'a package folder must hold main.xosc'));
+    return undefined;
+  }
+  const zip = new JSZip();
+  const entries: string[] = [];
+  const added = new Map<string, string>();
+  const add = (name: string, bytes: Uint8Array, origin: string) => {
+    const existing = added.get(name);
+    if (existing !== undefined) {
+      if (existing !== origin) problems.push(fileProblem(main, 'invalid-reference', `two different files would be stored as '${name}': ${existing} and ${origin}`));
+      return;
+    }
+    added.set(name, origin);
+    zip.file(name, bytes, { date: ENTRY_DATE, createFolders: false });
+    entries.push(name);
+  };
+  const visit = async (ref: SourceRef, entryName: string, chain: string[]) => {
+    let bytes: Uint8Array;
+    try {
+      bytes = await store.readBytes(ref);
+    } catch (error) {
+      problems.push(fileProblem(ref, 'io', (error as Error).message));
+      return;
+    }
+    add(entryName, bytes, refId(ref));
+    const text = decodeUtf8(bytes);
+    const document = parseXml(text);
+    if (!isWellFormed(document)) {
+      checkXml(ref, bytes, problems);
+      return;
+    }
+    const model = buildModel(document);
+    for (const reference of model.references) {
+      const range = reference.fileAttribute ? document.lines.range(reference.fileAttribute.valueStart, reference.fileAttribute.valueEnd) : ZERO_RANGE;
+      const report = (code: ProblemCode, message: string, hint?: string, severity: Problem['severity'] = 'error') =>
+        problems.push({ source: ref, range, severity, code, message, hint });
+      const resolution = await store.resolve(reference.fileName, ref);
+      const name = normalizeEntryName(reference.fileName);
+      if (resolution.kind === 'missing') {
+        report('missing-file', `cannot find '${reference.fileName}'; searched ${resolution.searched.join(', ')}`, resolution.hint);
+        continue;
+      }
+      if (resolution.kind === 'invalid' || name === undefined) {
+        report('invalid-reference', resolution.kind === 'invalid' ? resolution.message : `'${reference.fileName}' points outside the package`);
+        continue;
+      }
+      if (resolution.via === 'scenarioPath' && !options.includeScenarioPath) {
+        report('missing-file', `'${reference.fileName}' was found through SCENARIO_PATH and is left out of the package`, 'pass --include-scenario-path to store it too', 'information');
+        continue;
+      }
+      if (resolution.kind === 'scenario') {
+        if (chain.includes(refId(resolution.ref))) continue;
+        await visit(resolution.ref, name, [...chain, refId(resolution.ref)]);
+        continue;
+      }
+      const packageName = resolution.fallbackFrom ? `${name.slice(0, -'.xosc'.length)}.mosc` : name;
+      if (resolution.fallbackFrom) {
+        report('xosc-fallback', `'${resolution.fallbackFrom}' does not exist; the package '${packageName}' is stored for it`, `write scenarioFileName="${packageName}"`, 'warning');
+      }
+      if (resolution.folder && resolution.packageRef.entries.length === 0) {
+        const nestedFolder = resolution.packageRef.disk;
+        if (stack.includes(nestedFolder) || nestedFolder === folder) {
+          report('cycle', `package cycle: ${[...stack, folder, nestedFolder].map((entry) => path.relative(process.cwd(), entry) || '.').join(' -> ')}`);
+          continue;
+        }
+        const nested = await packFolderInto(nestedFolder, store, options, problems, [...stack, folder]);
+        if (nested) add(packageName, await generate(nested.zip), refId(resolution.packageRef));
+      } else {
+        try {
+          add(packageName, await store.readBytes(resolution.packageRef), refId(resolution.packageRef));
+        } catch (error) {
+          report('io', (error as Error).message);
+        }
+      }
+    }
+  };
+  await visit(main, 'main.xosc', [refId(main)]);
+  return { zip, entries };
+}
