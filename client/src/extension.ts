@@ -1,4 +1,5 @@
 import * as vscode from 'vscode';
+import type { ServerCapabilities } from 'vscode-languageclient';
 import type { LanguageClient } from 'vscode-languageclient/node';
 import { PACKAGE_SCHEME, type StructureNode } from '../../server/src/protocol';
 import { CommandReporter, commandTargets, flattenCommand, packCommand } from './commands';
@@ -13,6 +14,8 @@ export interface Modular2SimpleApi {
   /** Settles when the language server has started (or failed to). */
   readonly serverReady: Promise<void>;
   readonly structure: () => StructureNode | undefined;
+  /** What the running server offers (undefined before it started): lets callers and tests see which features exist. */
+  readonly serverCapabilities: () => ServerCapabilities | undefined;
 }
 
 let languageClient: LanguageClient | undefined;
@@ -81,7 +84,7 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
     }
   });
 
-  return { serverReady, structure: () => structure.current };
+  return { serverReady, structure: () => structure.current, serverCapabilities: () => client.initializeResult?.capabilities };
 }
 
 export async function deactivate(): Promise<void> {

@@ -246,6 +246,8 @@ export interface InsideResult {
  */
 export class HarnessEndpoint {
   readonly results: InsideResult[] = [];
+  /** Further routes, answered with what their handler returns (as JSON). */
+  readonly routes = new Map<string, (body: unknown) => Promise<unknown>>();
   page: Page | undefined;
   private server: http.Server | undefined;
   url = '';
@@ -269,6 +271,11 @@ export class HarnessEndpoint {
         fs.mkdirSync(ARTIFACTS, { recursive: true });
         await this.page?.screenshot({ path: file });
         response.end(JSON.stringify({ file }));
+        return;
+      } else {
+        const route = this.routes.get(request.url ?? '');
+        if (!route) throw new Error(`no route ${request.url}`);
+        response.end(JSON.stringify(await route(JSON.parse(body || '{}'))));
         return;
       }
       response.end('{}');
