@@ -2,13 +2,16 @@
 # Installs everything the real-VS-Code tests (test/e2e) need on a fresh Debian machine, without
 # touching package.json: Debian packages, the project's npm dependencies (playwright-core among
 # them) and code-server into .cache/code-server. Idempotent: a second run only checks and returns.
+# With --code-server, only what code-server needs (for `npm start` on a machine without VS Code).
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 CODE_SERVER_VERSION="4.100.3"
 CODE_SERVER_DIR="${M2S_CODE_SERVER_DIR:-$ROOT/.cache/code-server}"
 MARKER="$CODE_SERVER_DIR/.installed-$CODE_SERVER_VERSION"
-APT_PACKAGES=(chromium libkrb5-dev pkg-config build-essential python3 ripgrep)
+APT_PACKAGES=(libkrb5-dev pkg-config build-essential python3 ripgrep)
+only_code_server=false
+if [[ "${1:-}" == "--code-server" ]]; then only_code_server=true; else APT_PACKAGES+=(chromium); fi
 
 log() { printf 'e2e-setup: %s\n' "$*"; }
 
@@ -24,7 +27,7 @@ if ((${#missing[@]} > 0)); then
   $sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 
-if [[ ! -d "$ROOT/node_modules/playwright-core" ]]; then
+if [[ $only_code_server == false && ! -d "$ROOT/node_modules/playwright-core" ]]; then
   log "installing the project's npm dependencies (npm ci)"
   (cd "$ROOT" && npm ci --no-audit --no-fund)
 fi

@@ -121,6 +121,7 @@ export function createProfile(): Profile {
       'files.autoSave': 'off',
       'editor.minimap.enabled': false,
       'window.restoreWindows': 'none',
+      'git.openRepositoryInParentFolders': 'never',
     }),
   );
   const env: NodeJS.ProcessEnv = {
