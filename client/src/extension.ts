@@ -8,6 +8,7 @@ import { PackageFileSystem } from './packageFileSystem';
 import { PACKAGE_VIEW_TYPE, PackageViewProvider } from './packageView';
 import { FlattenedPreview, PREVIEW_SCHEME, previewSource } from './preview';
 import { STRUCTURE_VIEW_ID, StructureTree } from './structureView';
+import { registerTagClosing } from './tagClosingEditor';
 
 /** What the extension hands to other extensions and to its own tests. */
 export interface Modular2SimpleApi {
@@ -50,6 +51,7 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
     structure,
     vscode.workspace.registerTextDocumentContentProvider(PREVIEW_SCHEME, preview),
     vscode.window.createTreeView(STRUCTURE_VIEW_ID, { treeDataProvider: structure, showCollapseAll: true }),
+    registerTagClosing(),
   );
 
   const register = (name: string, run: (...args: unknown[]) => unknown): void => {

@@ -2,6 +2,7 @@
 export const INSIDE_TESTS = {
   activates: 'opening the example workspace activates the extension',
   grammar: 'the grammar gives the modular elements and parameterAttributes their own scopes',
+  typing: 'typing an opening tag closes it, and Ctrl+/ comments a line out',
   packageView: 'opening a .mosc shows the files inside it',
   packageEdit: 'a file inside a .mosc is edited and saved, and the archive holds the change',
   brokenPackage: 'a broken .mosc is reported and never overwritten',

@@ -41,10 +41,10 @@ async function prepareWorkspace(profile: Profile): Promise<string> {
   return workspace;
 }
 
-async function frameHasText(frame: Frame, text: string): Promise<boolean> {
+async function frameHasText(frame: Frame, text: string, selector = 'body'): Promise<boolean> {
   try {
     // Page code is a string: this project's types do not include the DOM.
-    return (await frame.evaluate(`document.body ? document.body.innerText.includes(${JSON.stringify(text)}) : false`)) as boolean;
+    return (await frame.evaluate(`[...document.querySelectorAll(${JSON.stringify(selector)})].some((element) => element.innerText.includes(${JSON.stringify(text)}))`)) as boolean;
   } catch {
     return false;
   }
@@ -54,8 +54,8 @@ async function frameHasText(frame: Frame, text: string): Promise<boolean> {
 function servePage(endpoint: HarnessEndpoint, page: Page): void {
   endpoint.page = page;
   endpoint.routes.set('/findText', async (body) => {
-    const { text } = body as { text: string };
-    for (const frame of page.frames()) if (await frameHasText(frame, text)) return { found: true };
+    const { text, selector } = body as { text: string; selector?: string };
+    for (const frame of page.frames()) if (await frameHasText(frame, text, selector)) return { found: true };
     return { found: false };
   });
   endpoint.routes.set('/tokenColors', async (body) => {
@@ -79,6 +79,11 @@ function servePage(endpoint: HarnessEndpoint, page: Page): void {
     await input.fill(`>${title}`);
     await page.locator('.quick-input-list .monaco-list-row').filter({ hasText: title.split(': ').pop() ?? title }).first().waitFor({ timeout: 10_000 });
     await page.keyboard.press('Enter');
+    return {};
+  });
+  endpoint.routes.set('/type', async (body) => {
+    const { text } = body as { text: string };
+    await page.keyboard.type(text, { delay: 20 });
     return {};
   });
   endpoint.routes.set('/keys', async (body) => {

@@ -9,7 +9,7 @@ import type { Modular2SimpleApi } from '../../../client/src/extension';
 import { firstDifference } from '../../../server/src/core/equivalence';
 import { ServerCommands, type StructureNode } from '../../../server/src/protocol';
 import { HARNESS_ENV, INSIDE_TESTS } from '../titles';
-import { post, pressKeys, runFromPalette, screenshot } from './harnessClient';
+import { post, pressKeys, runFromPalette, screenshot, typeText } from './harnessClient';
 
 const EXTENSION_ID = 'modular2simple.modular2simple';
 
@@ -152,6 +152,22 @@ export function defineExtensionTests(): void {
       assert.equal(tags.ParameterReference, tags.ScenarioReference);
     });
 
+    it(INSIDE_TESTS.typing, async () => {
+      const file = path.join(workspaceRoot(), 'typed.xosc');
+      fs.writeFileSync(file, '<OpenSCENARIO>\n  \n</OpenSCENARIO>\n');
+      const editor = await open('typed.xosc');
+      editor.selection = new vscode.Selection(1, 2, 1, 2);
+      await vscode.commands.executeCommand('workbench.action.focusActiveEditorGroup');
+      await typeText('<Actors selectTriggeringEntities="false">');
+      await waitFor('the closing tag', () => editor.document.lineAt(1).text === '  <Actors selectTriggeringEntities="false"></Actors>' || undefined, 5_000);
+      assert.equal(editor.selection.active.character, '  <Actors selectTriggeringEntities="false">'.length, 'the cursor is not between the tags');
+      await pressKeys(['Control+Slash']);
+      await waitFor('the line to be commented out', () => editor.document.lineAt(1).text === '  <!-- <Actors selectTriggeringEntities="false"></Actors> -->' || undefined, 5_000);
+      await screenshot('typing closes tags and comments lines');
+      await revertAndClose();
+      fs.rmSync(file);
+    });
+
     it(INSIDE_TESTS.packageView, async () => {
       await vscode.commands.executeCommand('vscode.open', vscode.Uri.file(path.join(workspaceRoot(), 'braking.mosc')));
       const shown = await waitFor('the package view to list the entries', async () => {
@@ -241,7 +257,11 @@ export function defineExtensionTests(): void {
       const editor = await open('main.xosc');
       const cursor = positionOf(editor.document, 'scenarioFileName="lane_change.xosc"', 'scenarioFileName="lane'.length);
       editor.selection = new vscode.Selection(cursor, cursor);
-      // The key press, as a person does it, in the page.
+      const locations = await vscode.commands.executeCommand<(vscode.Location | vscode.LocationLink)[]>('vscode.executeDefinitionProvider', editor.document.uri, cursor);
+      const targets = locations.map((location) => ('targetUri' in location ? location.targetUri : location.uri).fsPath);
+      assert.deepEqual(targets, [path.join(workspaceRoot(), 'lane_change.xosc')]);
+      // Then the key press, as a person does it, in the page, with the keyboard focus in the editor.
+      await vscode.commands.executeCommand('workbench.action.focusActiveEditorGroup');
       await pressKeys(['F12']);
       const target = await waitFor('the referenced file to open', () => {
         const active = vscode.window.activeTextEditor?.document.uri;
@@ -305,7 +325,10 @@ export function defineExtensionTests(): void {
       for (const name of ['lane_change.xosc', 'braking.mosc', 'pedestrian']) {
         assert.ok(nodes.some((node) => node.label.includes(name)), `${name} is not in the structure`);
       }
-      await waitFor('the tree view', async () => (await post<{ found: boolean }>('/findText', { text: 'lane_change.xosc' })).found || undefined, 10_000);
+      // What a person sees: the tree view itself lists the packages and scenarios.
+      for (const name of ['braking.mosc', 'lane_change.xosc']) {
+        await waitFor(`${name} in the tree view`, async () => (await post<{ found: boolean }>('/findText', { text: name, selector: '.customview-tree' })).found || undefined, 10_000);
+      }
     });
   });
 }

@@ -35,3 +35,8 @@ export async function runFromPalette(title: string): Promise<void> {
 export async function pressKeys(keys: string[]): Promise<void> {
   await post('/keys', { keys });
 }
+
+/** Types text in the page, key by key, as a person does. */
+export async function typeText(text: string): Promise<void> {
+  await post('/type', { text });
+}
