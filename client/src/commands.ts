@@ -3,6 +3,7 @@ import * as path from 'node:path';
 import * as vscode from 'vscode';
 import type { ProblemSummary, WriteResult } from '../../server/src/protocol';
 import type { ServerCommandClient } from './languageClient';
+import { packageEntryUri } from './packageFileSystem';
 
 /** Options a caller (a test, a keybinding) may pass instead of being asked. */
 export interface WriteCommandOptions {
@@ -57,6 +58,13 @@ function besideFolder(folder: string, extension: string): string {
   return isRoot ? path.join(folder, name) : path.join(path.dirname(folder), name);
 }
 
+/** What flattening starts from: a package's `main.xosc` (inside a `.mosc`, or in a folder), or the file itself. */
+export function mainFileOf(target: vscode.Uri): vscode.Uri {
+  if (target.scheme === 'file' && isDirectory(target.fsPath)) return vscode.Uri.file(path.join(target.fsPath, 'main.xosc'));
+  if (target.path.toLowerCase().endsWith('.mosc')) return packageEntryUri(target, 'main.xosc');
+  return target;
+}
+
 export function defaultPackOutput(inputs: string[]): string {
   const main = inputs.find((input) => path.basename(input).toLowerCase() === 'main.xosc');
   const folder = inputs.length === 1 ? packageFolder(inputs[0]) : undefined;
@@ -102,13 +110,27 @@ export class CommandReporter {
 
 async function confirmOverwrite(output: string, options: WriteCommandOptions): Promise<boolean> {
   if (options.overwrite || !fs.existsSync(output)) return true;
-  const answer = await vscode.window.showWarningMessage(`${path.basename(output)} already exists. Replace it?`, { modal: true, detail: output }, 'Replace');
-  return answer === 'Replace';
+  // A quick pick rather than a modal dialog: keyboard-first, and Cancel is what Enter picks.
+  const replace = `Replace ${path.basename(output)}`;
+  const answer = await vscode.window.showQuickPick(['Cancel', replace], {
+    title: `${path.basename(output)} already exists`,
+    placeHolder: `${output} already exists. Replace it?`,
+    ignoreFocusOut: true,
+  });
+  return answer === replace;
 }
 
-async function runWrite(reporter: CommandReporter, action: string, output: string, write: () => Promise<WriteResult>): Promise<string | undefined> {
+async function runWrite(
+  reporter: CommandReporter,
+  action: string,
+  output: string,
+  write: (token: vscode.CancellationToken) => Promise<WriteResult>,
+): Promise<string | undefined> {
   try {
-    const result = await vscode.window.withProgress({ location: vscode.ProgressLocation.Notification, title: `${action}: ${path.basename(output)}` }, write);
+    const result = await vscode.window.withProgress(
+      { location: vscode.ProgressLocation.Notification, title: `${action}: ${path.basename(output)}`, cancellable: true },
+      (_progress, token) => write(token),
+    );
     if (result.written === null) {
       await reporter.problems(action, result.problems);
       return undefined;
@@ -134,7 +156,7 @@ export async function packCommand(server: ServerCommandClient, reporter: Command
   const options = commandOptions(clicked, selected, ...rest);
   const output = options.output ?? defaultPackOutput(targets.map((uri) => uri.fsPath));
   if (!(await confirmOverwrite(output, options))) return undefined;
-  return runWrite(reporter, 'Pack into .mosc', output, () => server.pack(targets, output));
+  return runWrite(reporter, 'Pack into .mosc', output, (token) => server.pack(targets, output, token));
 }
 
 export async function flattenCommand(server: ServerCommandClient, reporter: CommandReporter, clicked: unknown, selected: unknown, ...rest: unknown[]): Promise<string | undefined> {
@@ -146,7 +168,5 @@ export async function flattenCommand(server: ServerCommandClient, reporter: Comm
   const options = commandOptions(clicked, selected, ...rest);
   const output = options.output ?? defaultFlattenOutput(target.fsPath);
   if (!(await confirmOverwrite(output, options))) return undefined;
-  // The user already agreed to replace the file, so the server may overwrite it.
-  const input = isDirectory(target.fsPath) ? vscode.Uri.file(path.join(target.fsPath, 'main.xosc')) : target;
-  return runWrite(reporter, 'Flatten to .xosc', output, () => server.flattenToFile(input, output, true));
+  return runWrite(reporter, 'Flatten to .xosc', output, (token) => server.flattenToFile(mainFileOf(target), output, token));
 }

@@ -2,7 +2,7 @@ import * as vscode from 'vscode';
 import type { ServerCapabilities } from 'vscode-languageclient';
 import type { LanguageClient } from 'vscode-languageclient/node';
 import { PACKAGE_SCHEME, type StructureNode } from '../../server/src/protocol';
-import { CommandReporter, commandTargets, flattenCommand, packCommand } from './commands';
+import { CommandReporter, commandTargets, flattenCommand, mainFileOf, packCommand } from './commands';
 import { ServerCommandClient, createLanguageClient } from './languageClient';
 import { PackageFileSystem } from './packageFileSystem';
 import { PACKAGE_VIEW_TYPE, PackageViewProvider } from './packageView';
@@ -66,7 +66,7 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
       void vscode.window.showErrorMessage('Open Flattened Preview: open a main.xosc (or a file inside a .mosc) first.');
       return undefined;
     }
-    return preview.open(source);
+    return preview.open(mainFileOf(source));
   });
   register('modular2simple.showStructure', async (clicked) => {
     const [source] = commandTargets(clicked, undefined);
@@ -75,7 +75,7 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
       return undefined;
     }
     try {
-      const root = await vscode.window.withProgress({ location: { viewId: STRUCTURE_VIEW_ID }, title: 'Reading the references' }, () => server.structure(source));
+      const root = await vscode.window.withProgress({ location: { viewId: STRUCTURE_VIEW_ID }, title: 'Reading the references' }, () => server.structure(mainFileOf(source)));
       structure.show(root ?? undefined);
       await vscode.commands.executeCommand(`${STRUCTURE_VIEW_ID}.focus`);
       if (!root) void vscode.window.showInformationMessage(`${source.path.split('/').pop()} holds no scenario references to show.`);

@@ -31,24 +31,25 @@ export function createLanguageClient(context: vscode.ExtensionContext): Language
 export class ServerCommandClient {
   constructor(private readonly client: LanguageClient) {}
 
-  private async execute<T>(command: string, args: unknown[]): Promise<T> {
+  private async execute<T>(command: string, args: unknown[], token?: vscode.CancellationToken): Promise<T> {
     if (!this.client.isRunning()) await this.client.start();
-    return (await this.client.sendRequest(ExecuteCommandRequest.type, { command, arguments: args })) as T;
+    return (await this.client.sendRequest(ExecuteCommandRequest.type, { command, arguments: args }, token)) as T;
   }
 
   flattenToText(uri: vscode.Uri): Promise<FlattenTextResult> {
     return this.execute(ServerCommands.flattenToText, [uri.toString()]);
   }
 
-  flattenToFile(input: vscode.Uri, outputPath: string, force: boolean): Promise<WriteResult> {
-    return this.execute(ServerCommands.flattenToFile, [input.toString(), outputPath, { force }]);
+  /** Writes the flattened scenario; an existing output is replaced (the caller asked the user first). */
+  flattenToFile(input: vscode.Uri, outputPath: string, token?: vscode.CancellationToken): Promise<WriteResult> {
+    return this.execute(ServerCommands.flattenToFile, [input.toString(), outputPath], token);
   }
 
-  pack(inputs: vscode.Uri[], outputPath: string): Promise<WriteResult> {
-    return this.execute(ServerCommands.pack, [inputs.map((input) => input.toString()), outputPath]);
+  pack(inputs: vscode.Uri[], outputPath: string, token?: vscode.CancellationToken): Promise<WriteResult> {
+    return this.execute(ServerCommands.pack, [inputs.map((input) => input.toString()), outputPath], token);
   }
 
-  structure(uri: vscode.Uri): Promise<StructureNode | null> {
-    return this.execute(ServerCommands.structure, [uri.toString()]);
+  structure(uri: vscode.Uri, token?: vscode.CancellationToken): Promise<StructureNode | null> {
+    return this.execute(ServerCommands.structure, [uri.toString()], token);
   }
 }

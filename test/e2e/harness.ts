@@ -249,6 +249,8 @@ export class HarnessEndpoint {
   readonly results: InsideResult[] = [];
   /** Further routes, answered with what their handler returns (as JSON). */
   readonly routes = new Map<string, (body: unknown) => Promise<unknown>>();
+  /** Every request with its time and duration, kept as an artifact for diagnosing a hung test. */
+  readonly log: string[] = [];
   page: Page | undefined;
   private server: http.Server | undefined;
   url = '';
@@ -263,6 +265,8 @@ export class HarnessEndpoint {
     const chunks: Buffer[] = [];
     for await (const chunk of request) chunks.push(chunk as Buffer);
     const body = Buffer.concat(chunks).toString('utf8');
+    const started = Date.now();
+    response.on('finish', () => this.log.push(`${new Date(started).toISOString()} ${request.url} ${body.slice(0, 200)} -> ${response.statusCode} in ${Date.now() - started} ms`));
     try {
       if (request.url === '/result') {
         this.results.push(JSON.parse(body) as InsideResult);

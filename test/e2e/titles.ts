@@ -10,6 +10,7 @@ export const INSIDE_TESTS = {
   completion: 'completion offers the overridable keys',
   definition: 'F12 on scenarioFileName opens the referenced file',
   preview: 'the preview shows the flattened scenario and changes after an edit',
+  insidePackage: 'language features work on a file inside a .mosc',
   pack: 'Pack from the command palette writes a package equivalent to the CLI\'s',
   flatten: 'Flatten from the command palette writes a file equivalent to the CLI\'s',
   structure: 'Show Structure lists the main file, packages, scenarios and groups',
@@ -22,4 +23,6 @@ export const HARNESS_ENV = {
   endpoint: 'M2S_E2E_ENDPOINT',
   workspace: 'M2S_E2E_WORKSPACE',
   cli: 'M2S_E2E_CLI',
+  /** Runs only the tests inside VS Code whose title matches (for debugging one test). */
+  grep: 'M2S_E2E_GREP',
 } as const;

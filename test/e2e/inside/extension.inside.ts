@@ -9,7 +9,7 @@ import type { Modular2SimpleApi } from '../../../client/src/extension';
 import { firstDifference } from '../../../server/src/core/equivalence';
 import { ServerCommands, type StructureNode } from '../../../server/src/protocol';
 import { HARNESS_ENV, INSIDE_TESTS } from '../titles';
-import { post, pressKeys, runFromPalette, screenshot, typeText } from './harnessClient';
+import { pageShows, post, pressKeys, runFromPalette, screenshot, typeText } from './harnessClient';
 
 const EXTENSION_ID = 'modular2simple.modular2simple';
 
@@ -273,7 +273,13 @@ export function defineExtensionTests(): void {
     it(INSIDE_TESTS.preview, async function () {
       requireServerFeature(this, 'flattenToText', offersCommand(ServerCommands.flattenToText));
       const editor = await open('main.xosc');
-      await vscode.commands.executeCommand('modular2simple.openPreview', editor.document.uri);
+      // The server's "flatten preview" CodeLens runs the client's command; without lenses, the command itself.
+      const lenses = api().serverCapabilities()?.codeLensProvider
+        ? await vscode.commands.executeCommand<vscode.CodeLens[]>('vscode.executeCodeLensProvider', editor.document.uri, 100)
+        : [];
+      const lens = lenses.find((candidate) => candidate.command?.command === 'modular2simple.openPreview')?.command;
+      if (lens) await vscode.commands.executeCommand(lens.command, ...(lens.arguments ?? []));
+      else await vscode.commands.executeCommand('modular2simple.openPreview', editor.document.uri);
       const preview = await waitFor('the preview', () => vscode.workspace.textDocuments.find((document) => document.uri.scheme === 'modular2simple-preview'));
       await waitFor('the flattened text', () => preview.getText().includes('name="CutInVehicle.CutIn"') || undefined);
       assert.ok(!preview.getText().includes('ScenarioReference'), 'the preview still holds a ScenarioReference');
@@ -298,9 +304,18 @@ export function defineExtensionTests(): void {
       const [ours, theirs] = [await zipEntries(written), await zipEntries(expected)];
       assert.deepEqual([...ours.keys()].sort(), [...theirs.keys()].sort());
       for (const [name, text] of theirs) assert.equal(firstDifference(ours.get(name) ?? '', text), undefined, `${name} differs`);
+
+      // From files selected in the explorer: each stored at the root of the package.
+      const selected = ['pedestrian/main.xosc', 'crossing.xosc'].map((file) => vscode.Uri.file(path.join(root, file)));
+      const output = path.join(root, 'selected.mosc');
+      assert.equal(await vscode.commands.executeCommand('modular2simple.pack', selected[0], selected, { output }), output);
+      const expectedFiles = path.join(os.tmpdir(), `m2s-cli-pack-files-${process.pid}.mosc`);
+      cli(['pack', ...selected.map((uri) => uri.fsPath), '-o', expectedFiles]);
+      assert.deepEqual(await zipEntries(output), await zipEntries(expectedFiles));
     });
 
     it(INSIDE_TESTS.flatten, async function () {
+      this.timeout(90_000);
       requireServerFeature(this, 'flattenToFile', offersCommand(ServerCommands.flattenToFile));
       const root = workspaceRoot();
       await open('main.xosc');
@@ -312,6 +327,51 @@ export function defineExtensionTests(): void {
       const difference = firstDifference(fs.readFileSync(written, 'utf8'), fs.readFileSync(expected, 'utf8'));
       assert.equal(difference, undefined, difference);
       assert.ok(fs.readFileSync(written, 'utf8').includes('Pedestrian.Walker.Crossing'));
+
+      // Flattening again asks before replacing the file: Cancel (the default) keeps it, Replace writes it.
+      fs.writeFileSync(written, '<!-- kept -->');
+      await runFromPalette('Modular2Simple: Flatten to .xosc');
+      await waitFor('the overwrite question', () => pageShows('already exists'));
+      await screenshot('flatten asks before overwriting');
+      await pressKeys(['Enter']);
+      await waitFor('the question to close', async () => !(await pageShows('already exists')));
+      await new Promise((resolve) => setTimeout(resolve, 500));
+      assert.equal(fs.readFileSync(written, 'utf8'), '<!-- kept -->');
+      await runFromPalette('Modular2Simple: Flatten to .xosc');
+      await waitFor('the overwrite question', () => pageShows('already exists'));
+      await typeText('Replace');
+      await pressKeys(['Enter']);
+      await waitFor('the file to be replaced', () => fs.readFileSync(written, 'utf8') !== '<!-- kept -->' || undefined);
+      assert.equal(firstDifference(fs.readFileSync(written, 'utf8'), fs.readFileSync(expected, 'utf8')), undefined);
+
+      // From the explorer's context menu on a .mosc: the package flattened beside it.
+      const braking = vscode.Uri.file(path.join(root, 'braking.mosc'));
+      const fromPackage = await vscode.commands.executeCommand<string | undefined>('modular2simple.flatten', braking, [braking]);
+      assert.equal(fromPackage, path.join(root, 'braking.xosc'));
+      const expectedPackage = path.join(os.tmpdir(), `m2s-cli-flatten-braking-${process.pid}.xosc`);
+      cli(['flatten', braking.fsPath, '-o', expectedPackage]);
+      assert.equal(firstDifference(fs.readFileSync(fromPackage, 'utf8'), fs.readFileSync(expectedPackage, 'utf8')), undefined);
+    });
+
+    it(INSIDE_TESTS.insidePackage, async function () {
+      requireServerFeature(this, 'go to definition', !!api().serverCapabilities()?.definitionProvider);
+      const main = packageUri('braking.mosc', 'main.xosc');
+      const editor = await vscode.window.showTextDocument(await vscode.workspace.openTextDocument(main));
+      const cursor = positionOf(editor.document, 'scenarioFileName="hard_brake.xosc"', 'scenarioFileName="hard'.length);
+      const locations = await waitFor('a definition inside the package', async () => {
+        const found = await vscode.commands.executeCommand<(vscode.Location | vscode.LocationLink)[]>('vscode.executeDefinitionProvider', main, cursor);
+        return found.length > 0 ? found : undefined;
+      });
+      const target = 'targetUri' in locations[0] ? locations[0].targetUri : locations[0].uri;
+      assert.equal(target.toString(), packageUri('braking.mosc', 'hard_brake.xosc').toString());
+      const opened = await vscode.window.showTextDocument(await vscode.workspace.openTextDocument(target));
+      assert.ok(opened.document.getText().includes('name="HardBrake"'));
+      // Diagnostics reach files inside packages too: a bad key shows up where it is.
+      await vscode.window.showTextDocument(editor.document);
+      await replaceText(editor.document, 'key="SimulationTimeCondition.value"', 'key="SimulationTimeCondition.valeu"');
+      const keyLine = positionOf(editor.document, 'SimulationTimeCondition.valeu').line;
+      await waitFor('a diagnostic inside the package', () => vscode.languages.getDiagnostics(main).find((d) => d.range.start.line === keyLine));
+      await revertAndClose();
     });
 
     it(INSIDE_TESTS.structure, async function () {

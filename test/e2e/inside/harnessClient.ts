@@ -40,3 +40,8 @@ export async function pressKeys(keys: string[]): Promise<void> {
 export async function typeText(text: string): Promise<void> {
   await post('/type', { text });
 }
+
+/** Whether the page (any frame, or the elements matching `selector`) shows this text now. */
+export async function pageShows(text: string, selector?: string): Promise<boolean> {
+  return (await post<{ found: boolean }>('/findText', { text, selector })).found;
+}

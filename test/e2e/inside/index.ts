@@ -1,10 +1,12 @@
 import Mocha from 'mocha';
+import { HARNESS_ENV } from '../titles';
 import { post } from './harnessClient';
 import { defineExtensionTests } from './extension.inside';
 
 /** Entry point that VS Code calls in the extension host (extensionTestsPath). */
 export async function run(): Promise<void> {
-  const mocha = new Mocha({ ui: 'bdd', timeout: 30_000, color: false, reporter: 'spec' });
+  const grep = process.env[HARNESS_ENV.grep];
+  const mocha = new Mocha({ ui: 'bdd', timeout: 30_000, color: false, reporter: 'spec', ...(grep ? { grep } : {}) });
   mocha.suite.emit('pre-require', globalThis, 'extension.inside', mocha);
   defineExtensionTests();
   const pending: Promise<unknown>[] = [];
