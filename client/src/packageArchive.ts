@@ -49,19 +49,45 @@ async function isFile(filePath: string): Promise<boolean> {
   }
 }
 
-async function loadEntries(bytes: Uint8Array, label: string): Promise<Map<string, Uint8Array>> {
+/**
+ * A package's entries with the date each carries in the ZIP: an entry's own date is its
+ * modification time, so saving one file of a package does not make the others look changed.
+ */
+class PackageEntries extends Map<string, Uint8Array> {
+  readonly dates = new Map<string, Date>();
+
+  /** Sets an entry's content, dated now. */
+  put(name: string, bytes: Uint8Array): void {
+    this.set(name, bytes);
+    this.dates.set(name, new Date());
+  }
+
+  remove(name: string): void {
+    this.delete(name);
+    this.dates.delete(name);
+  }
+}
+
+async function loadEntries(bytes: Uint8Array, label: string): Promise<PackageEntries> {
+  const entries = new PackageEntries();
   try {
-    return (await readPackageBytes(bytes, label)).entries;
+    // The core reader checks names, sizes and CRCs; the dates come from a second, cheap read of the directory.
+    for (const [name, content] of (await readPackageBytes(bytes, label)).entries) entries.set(name, content);
+    for (const file of Object.values((await JSZip.loadAsync(bytes)).files)) {
+      const name = normalizeEntryName(file.name);
+      if (name !== undefined && entries.has(name)) entries.dates.set(name, file.date);
+    }
   } catch (error) {
     throw new PackageError((error as Error).message, 'broken');
   }
+  return entries;
 }
 
 /** The chain of packages from the archive on disk to the innermost one, each with its entries. */
 interface OpenPackages {
   location: PackageLocation;
   /** levels[0] is the archive on disk; levels[i] is the package stored as entry nested[i - 1] of levels[i - 1]. */
-  levels: Map<string, Uint8Array>[];
+  levels: PackageEntries[];
   mtime: number;
 }
 
@@ -119,11 +145,11 @@ async function open(disk: string, nested: string[] = []): Promise<OpenPackages> 
   return { location: { disk, nested, inner: '' }, levels, mtime };
 }
 
-async function openLocation(location: PackageLocation): Promise<Map<string, Uint8Array>[]> {
+async function openLocation(location: PackageLocation): Promise<PackageEntries[]> {
   return (await open(location.disk, location.nested)).levels;
 }
 
-function innermost(levels: Map<string, Uint8Array>[]): Map<string, Uint8Array> {
+function innermost(levels: PackageEntries[]): PackageEntries {
   return levels[levels.length - 1];
 }
 
@@ -137,7 +163,7 @@ export async function stat(location: PackageLocation): Promise<EntryStat> {
   const packages = await open(location.disk, location.nested);
   const entries = innermost(packages.levels);
   const bytes = location.inner === '' ? undefined : entries.get(location.inner);
-  if (bytes) return { kind: 'file', size: bytes.length, mtime: packages.mtime };
+  if (bytes) return { kind: 'file', size: bytes.length, mtime: entries.dates.get(location.inner)?.getTime() ?? packages.mtime };
   if (hasFolder(entries, location.inner)) return { kind: 'directory', size: 0, mtime: packages.mtime };
   throw new PackageError(`${describe(location)} does not exist`, 'not-found');
 }
@@ -180,20 +206,20 @@ export async function listAll(location: PackageLocation): Promise<string[]> {
   return result;
 }
 
-async function zip(entries: Map<string, Uint8Array>): Promise<Uint8Array> {
+async function zip(entries: PackageEntries): Promise<Uint8Array> {
   const archive = new JSZip();
-  for (const [name, bytes] of entries) archive.file(name, bytes, { date: new Date(), createFolders: false });
+  for (const [name, bytes] of entries) archive.file(name, bytes, { date: entries.dates.get(name) ?? new Date(), createFolders: false });
   return archive.generateAsync({ type: 'uint8array', compression: 'DEFLATE', compressionOptions: { level: 6 } });
 }
 
 /** Applies `change` to the innermost package and writes the whole archive again, atomically. */
-async function rewrite(location: PackageLocation, change: (entries: Map<string, Uint8Array>) => void): Promise<void> {
+async function rewrite(location: PackageLocation, change: (entries: PackageEntries) => void): Promise<void> {
   // Read again at save time, so that what others changed in the archive meanwhile is kept.
   const levels = await openLocation(location);
   change(innermost(levels));
   let bytes = await zip(innermost(levels));
   for (let level = levels.length - 2; level >= 0; level--) {
-    levels[level].set(location.nested[level], bytes);
+    levels[level].put(location.nested[level], bytes);
     bytes = await zip(levels[level]);
   }
   await writeFileAtomic(location.disk, bytes);
@@ -206,7 +232,7 @@ export async function writeEntry(location: PackageLocation, content: Uint8Array,
     if (!exists && !options.create) throw new PackageError(`${describe(location)} does not exist`, 'not-found');
     if (exists && !options.overwrite) throw new PackageError(`${describe(location)} already exists`, 'exists');
     if (!exists && hasFolder(entries, location.inner)) throw new PackageError(`${describe(location)} is a folder`, 'exists');
-    entries.set(location.inner, content);
+    entries.put(location.inner, content);
   });
 }
 
@@ -215,7 +241,7 @@ export async function deleteEntry(location: PackageLocation): Promise<void> {
   await rewrite(location, (entries) => {
     const names = [...entries.keys()].filter((name) => name === location.inner || name.startsWith(location.inner + '/'));
     if (names.length === 0) throw new PackageError(`${describe(location)} does not exist`, 'not-found');
-    for (const name of names) entries.delete(name);
+    for (const name of names) entries.remove(name);
   });
 }
 
@@ -228,8 +254,8 @@ export async function renameEntry(from: PackageLocation, to: PackageLocation, ov
     const bytes = entries.get(from.inner);
     if (!bytes) throw new PackageError(`${describe(from)} does not exist`, 'not-found');
     if (entries.has(to.inner) && !overwrite) throw new PackageError(`${describe(to)} already exists`, 'exists');
-    entries.delete(from.inner);
-    entries.set(to.inner, bytes);
+    entries.remove(from.inner);
+    entries.put(to.inner, bytes);
   });
 }
 

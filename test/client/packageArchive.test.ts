@@ -61,6 +61,18 @@ describe('client: files inside .mosc packages (the mosc: file system)', () => {
     assert.deepEqual(fs.readdirSync(folder), ['outer.mosc'], 'a temporary file was left behind');
   });
 
+  it('dates each entry on its own, so saving one file leaves the others unchanged', async function () {
+    this.timeout(10_000);
+    // ZIP dates have a resolution of two seconds.
+    const simple = await archive.locate(`${outer}/inner.mosc/simple.xosc`);
+    const shared = await archive.locate(`${outer}/lib/shared.xosc`);
+    const [simpleBefore, sharedBefore] = [await archive.stat(simple), await archive.stat(shared)];
+    await new Promise((resolve) => setTimeout(resolve, 2100));
+    await archive.writeEntry(shared, Buffer.from('<shared changed="yes"/>'), { create: false, overwrite: true });
+    assert.equal((await archive.stat(simple)).mtime, simpleBefore.mtime);
+    assert.ok((await archive.stat(shared)).mtime > sharedBefore.mtime, 'the saved entry keeps its old date');
+  });
+
   it('creates, renames and deletes entries, and refuses what would lose data', async () => {
     const created = await archive.locate(`${outer}/new.xosc`);
     await assert.rejects(archive.writeEntry(created, Buffer.from('x'), { create: false, overwrite: true }), { code: 'not-found' });

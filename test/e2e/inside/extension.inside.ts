@@ -185,15 +185,24 @@ export function defineExtensionTests(): void {
       const archive = path.join(workspaceRoot(), 'nested.mosc');
       const before = await zipEntries(archive);
       // A file two packages deep: nested.mosc holds braking.mosc, which holds hard_brake.xosc.
+      // Two files of one archive edited at once: saving the second must keep what saving the first wrote.
+      const mainDocument = await vscode.workspace.openTextDocument(packageUri('nested.mosc', 'main.xosc'));
+      await vscode.window.showTextDocument(mainDocument);
+      await replaceText(mainDocument, '<OpenSCENARIO>', '<OpenSCENARIO>\n  <!-- edited main -->');
       const uri = packageUri('nested.mosc', 'braking.mosc', 'hard_brake.xosc');
       const document = await vscode.workspace.openTextDocument(uri);
       assert.equal(document.languageId, 'xosc');
       await vscode.window.showTextDocument(document);
       await replaceText(document, '<OpenSCENARIO>', '<OpenSCENARIO>\n  <!-- edited inside two packages -->');
       assert.ok(await document.save(), 'save failed');
+      assert.equal((await zipEntries(archive)).get('main.xosc'), before.get('main.xosc'), 'an unsaved file was written');
+      await vscode.window.showTextDocument(mainDocument);
+      assert.ok(await mainDocument.save(), 'saving the second file of the archive failed');
       const after = await zipEntries(archive);
       assert.deepEqual([...after.keys()].sort(), [...before.keys()].sort());
-      assert.equal(after.get('main.xosc'), before.get('main.xosc'));
+      assert.equal(after.get('main.xosc'), mainDocument.getText());
+      const innerAfter = await JSZip.loadAsync(await (await JSZip.loadAsync(fs.readFileSync(archive))).file('braking.mosc')!.async('uint8array'));
+      assert.equal(await innerAfter.file('hard_brake.xosc')!.async('string'), document.getText(), 'saving the second file lost the first change');
       const inner = await JSZip.loadAsync(await (await JSZip.loadAsync(fs.readFileSync(archive))).file('braking.mosc')!.async('uint8array'));
       const saved = await inner.file('hard_brake.xosc')!.async('string');
       assert.ok(saved.includes('<!-- edited inside two packages -->'), 'the change is not in the archive');
