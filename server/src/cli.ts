@@ -349,7 +349,10 @@ export async function main(argv: string[], io: Output): Promise<number> {
         if (options.outDir) {
           if (options.output) throw new UsageError('use either -o or --out-dir');
           if (!fs.existsSync(options.outDir) || !fs.statSync(options.outDir).isDirectory()) throw new InputError(`${options.outDir}: no such folder`);
-          const outputs = inputs.map((input) => path.join(options.outDir as string, outputNameFor(input)));
+          let names = inputs.map(outputNameFor);
+          // Inputs with a shared file name (lib/*/result.mosc) are told apart by their folders.
+          names = names.map((name, index) => (names.indexOf(name) !== names.lastIndexOf(name) ? `${path.basename(path.dirname(path.resolve(inputs[index])))}.xosc` : name));
+          const outputs = names.map((name) => path.join(options.outDir as string, name));
           const duplicates = outputs.filter((output, index) => outputs.indexOf(output) !== index);
           if (duplicates.length > 0) throw new UsageError(`two inputs would both be written to ${duplicates[0]}`);
           return await flattenCommand(inputs, outputs, options, io);

@@ -200,8 +200,7 @@ function applyEdits(text: string, edits: TextEdit[], from = 0, to = text.length)
 }
 
 /** Removes every `parameterAttributes` attribute, with the white space before it. */
-export function stripParameterAttributes(text: string): string {
-  const document = parseXml(text);
+export function stripParameterAttributes(text: string, document: XmlDocument = parseXml(text)): string {
   const edits: TextEdit[] = [];
   const visit = (element: XmlElement) => {
     const declaration = attribute(element, PARAMETER_ATTRIBUTES);
@@ -232,8 +231,9 @@ export class Flattener {
     const blocking = problems.filter(
       (problem) => problem.severity === 'error' && !(options.force && OVERRIDE_PROBLEM_CODES.has(problem.code)),
     );
-    const text = source.text !== undefined && blocking.length === 0 ? stripParameterAttributes(source.text) : undefined;
-    if (text !== undefined && !isWellFormed(parseXml(text))) {
+    const text = source.text !== undefined && blocking.length === 0 ? stripParameterAttributes(source.text, source.model?.document) : undefined;
+    // Removing whole attributes keeps a well-formed text well-formed, so the rendered model is the check.
+    if (text !== undefined && source.model && !isWellFormed(source.model.document)) {
       throw new Error('internal error: the flattened output is not well-formed XML');
     }
     return { text, problems, source };

@@ -1,6 +1,6 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import JSZip from 'jszip';
+import type JSZip from 'jszip';
 import { decodeUtf8 } from './text';
 
 /**
@@ -113,7 +113,9 @@ export async function readPackageBytes(
 ): Promise<PackageContents> {
   let zip: JSZip;
   try {
-    zip = await JSZip.loadAsync(bytes, { checkCRC32: true });
+    // Loaded on first use, so that commands that read no package start faster.
+    const { default: loader } = await import('jszip');
+    zip = await loader.loadAsync(bytes, { checkCRC32: true });
   } catch (error) {
     throw new Error(`${label} is not a readable ZIP archive (${(error as Error).message}); a .mosc must be a ZIP file`);
   }
@@ -122,8 +124,10 @@ export async function readPackageBytes(
   const entries = new Map<string, Uint8Array>();
   let total = 0;
   for (const file of files) {
-    const name = normalizeEntryName(file.name);
-    if (name === undefined) throw new Error(`${label} holds an entry named '${file.name}' that points outside the package; it was refused`);
+    // JSZip quietly strips '../' from names; the name as stored is what an unzip tool would use.
+    const stored = (file as JSZip.JSZipObject & { unsafeOriginalName?: string }).unsafeOriginalName ?? file.name;
+    const name = normalizeEntryName(stored);
+    if (name === undefined) throw new Error(`${label} holds an entry named '${stored}' that points outside the package; it was refused`);
     if (entries.has(name)) throw new Error(`${label} holds the entry '${name}' twice`);
     const content = await readEntryBounded(file, limits.maxEntryBytes, `${label}/${name}`);
     total += content.length;
@@ -233,6 +237,7 @@ export class ScenarioStore {
   private readonly limits: PackageLimits;
   private readonly packages = new Map<string, Promise<PackageContents>>();
   private readonly overlays = new Map<string, string>();
+  private readonly kinds = new Map<string, Promise<'file' | 'directory' | undefined>>();
 
   constructor(options: StoreOptions = {}) {
     this.host = options.host ?? nodeFileSystem;
@@ -250,9 +255,20 @@ export class ScenarioStore {
   /** Forgets what was read of a file on disk (a package is read again on next use). */
   invalidate(diskPath: string): void {
     const resolved = path.resolve(diskPath);
+    this.kinds.clear();
     for (const key of [...this.packages.keys()]) {
       if (key === resolved || key.startsWith(resolved + '/')) this.packages.delete(key);
     }
+  }
+
+  /** Whether a path is a file or a folder; remembered until the next invalidate. */
+  kindOf(filePath: string): Promise<'file' | 'directory' | undefined> {
+    let pending = this.kinds.get(filePath);
+    if (!pending) {
+      pending = this.host.kind(filePath);
+      this.kinds.set(filePath, pending);
+    }
+    return pending;
   }
 
   async readBytes(ref: SourceRef): Promise<Uint8Array> {
@@ -371,14 +387,14 @@ export class ScenarioStore {
       return undefined;
     }
     const candidate = path.resolve(place.directory, name);
-    if ((await this.host.kind(candidate)) === 'file') {
+    if ((await this.kindOf(candidate)) === 'file') {
       const ref = diskRef(candidate);
       if (!wantPackage) return { kind: 'scenario', ref, via: place.via };
       return { kind: 'package', packageRef: ref, main: childRef(ref, 'main.xosc'), folder: false, via: place.via };
     }
     if (wantPackage) {
       const folder = candidate.slice(0, -'.mosc'.length);
-      if ((await this.host.kind(path.join(folder, 'main.xosc'))) === 'file') {
+      if ((await this.kindOf(path.join(folder, 'main.xosc'))) === 'file') {
         return { kind: 'package', packageRef: diskRef(folder), main: diskRef(path.join(folder, 'main.xosc')), folder: true, via: place.via };
       }
     }

@@ -121,6 +121,7 @@ export function parseXml(input: string, options: XmlParseOptions = {}): XmlDocum
   const entities = new Map<string, string>();
   const externalEntities = new Set<string>();
   let expanded = 0;
+  let expansionReported = false;
   let root: XmlElement | undefined;
   const stack: XmlElement[] = [];
   let position = text.charCodeAt(0) === 0xfeff ? 1 : 0;
@@ -142,14 +143,22 @@ export function parseXml(input: string, options: XmlParseOptions = {}): XmlDocum
       report(`undefined entity '&${name};' (escape a literal '&' as '&amp;')`, start, end);
       return '';
     }
-    if (depth > 8) {
+    // Each expansion costs at least one unit, so that empty or failing entities cannot recurse without bound.
+    expanded++;
+    if (depth > 16) {
       report(`entity '&${name};' nests too deeply; expansion stopped`, start, end);
       return '';
     }
-    const value = decodeReferences(replacement, start, end, depth + 1);
-    expanded += value.length;
     if (expanded > maxExpansion) {
-      report(`entity expansion exceeds ${maxExpansion} characters; expansion stopped`, start, end);
+      if (!expansionReported) report(`entity expansion exceeds ${maxExpansion} characters; expansion stopped`, start, end);
+      expansionReported = true;
+      return '';
+    }
+    const value = decodeReferences(replacement, start, end, depth + 1);
+    if (depth === 0) expanded += value.length;
+    if (expanded > maxExpansion) {
+      if (!expansionReported) report(`entity expansion exceeds ${maxExpansion} characters; expansion stopped`, start, end);
+      expansionReported = true;
       return '';
     }
     return value;
@@ -164,9 +173,14 @@ export function parseXml(input: string, options: XmlParseOptions = {}): XmlDocum
       const amp = raw.indexOf('&', i);
       if (amp < 0) {
         out += raw.slice(i);
+        if (depth > 0) expanded += raw.length - i;
         break;
       }
       out += raw.slice(i, amp);
+      if (depth > 0) {
+        expanded += amp - i;
+        if (expanded > maxExpansion) return out;
+      }
       const semicolon = raw.indexOf(';', amp);
       const at = depth === 0 ? rawStart + amp : rawStart;
       const refEnd = depth === 0 && semicolon >= 0 ? rawStart + semicolon + 1 : rawEnd;
@@ -195,17 +209,21 @@ export function parseXml(input: string, options: XmlParseOptions = {}): XmlDocum
     return out;
   };
 
+  // Sticky regular expressions run as native code, which matters in a short-lived process.
+  const namePattern = /[A-Za-z_:\u00C0-\uFFFF][A-Za-z0-9_:.\-\u00B7\u00C0-\uFFFF]*/y;
+  const spacePattern = /[ \t\r\n]*/y;
   const readName = (): string => {
-    const start = position;
-    if (position < text.length && isNameStart(text.charCodeAt(position))) {
-      position++;
-      while (position < text.length && isNameChar(text.charCodeAt(position))) position++;
-    }
-    return text.slice(start, position);
+    namePattern.lastIndex = position;
+    const match = namePattern.exec(text);
+    if (!match) return '';
+    position += match[0].length;
+    return match[0];
   };
 
   const skipSpace = () => {
-    while (position < text.length && isSpace(text.charCodeAt(position))) position++;
+    spacePattern.lastIndex = position;
+    spacePattern.exec(text);
+    position = spacePattern.lastIndex;
   };
 
   const parseDoctype = (start: number) => {
@@ -388,11 +406,18 @@ export function parseXml(input: string, options: XmlParseOptions = {}): XmlDocum
       }
       return;
     }
-    const amp = text.indexOf('&', from);
-    if (amp >= 0 && amp < to) decodeReferences(text.slice(from, to), from, to, 0);
-    const closeCdata = text.indexOf(']]>', from);
-    if (closeCdata >= 0 && closeCdata < to) report(`']]>' is not allowed in text`, closeCdata, closeCdata + 3);
+    // The next '&' and ']]>' are found once and reused, so each text run costs only its own length.
+    if (nextAmpersand < from) nextAmpersand = indexOrEnd('&', from);
+    if (nextAmpersand < to) decodeReferences(text.slice(from, to), from, to, 0);
+    if (nextCdataEnd < from) nextCdataEnd = indexOrEnd(']]>', from);
+    if (nextCdataEnd < to) report(`']]>' is not allowed in text`, nextCdataEnd, nextCdataEnd + 3);
   };
+  const indexOrEnd = (needle: string, from: number) => {
+    const found = text.indexOf(needle, from);
+    return found < 0 ? text.length : found;
+  };
+  let nextAmpersand = -1;
+  let nextCdataEnd = -1;
 
   while (position < text.length) {
     const open = text.indexOf('<', position);
@@ -439,7 +464,17 @@ export function parseXml(input: string, options: XmlParseOptions = {}): XmlDocum
     report(`element <${unclosed.name}> is not closed (expected </${unclosed.name}>)`, unclosed.start, unclosed.nameEnd);
   }
   if (!root) report('the file holds no XML element', 0, Math.min(text.length, 1));
-  return { text, root, problems, lines: new LineIndex(text) };
+  let lines: LineIndex | undefined;
+  return {
+    text,
+    root,
+    problems,
+    // Built on first use: most parses never need line numbers.
+    get lines() {
+      lines ??= new LineIndex(text);
+      return lines;
+    },
+  };
 }
 
 export function isWellFormed(document: XmlDocument): boolean {

@@ -1,0 +1,68 @@
+// Benchmarks that print figures (not timed tests): the CLI against the original tool's cost (SPEC 10),
+// then the language server (bench/lsp.mjs) when present.
+import { spawnSync } from 'node:child_process';
+import { existsSync, mkdtempSync, readdirSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
+const library = path.resolve(root, '..', 'shared', 'corpus', 'modular2simple', 'library');
+const cli = path.join(root, 'dist', 'cli.js');
+const peak = path.join(root, 'bench', 'peak-rss.cjs');
+const runs = Number(process.env.BENCH_RUNS ?? 15);
+
+function measure(args, env = {}) {
+  const started = process.hrtime.bigint();
+  const result = spawnSync(process.execPath, ['--require', peak, ...args], { env: { ...process.env, ...env }, encoding: 'utf8' });
+  const ms = Number(process.hrtime.bigint() - started) / 1e6;
+  if (result.status !== 0) throw new Error(`${args.join(' ')} failed: ${result.stderr}`);
+  const kb = Number(/@@peak-rss-kb (\d+)/.exec(result.stderr)?.[1] ?? NaN);
+  return { ms, mb: kb / 1024 };
+}
+
+function summary(samples) {
+  const times = samples.map((s) => s.ms).sort((a, b) => a - b);
+  const median = times[Math.floor(times.length / 2)];
+  const p95 = times[Math.min(times.length - 1, Math.ceil(times.length * 0.95) - 1)];
+  return { median, p95, peakMb: Math.max(...samples.map((s) => s.mb)) };
+}
+
+const fmt = (n) => n.toFixed(1).padStart(7);
+
+if (!existsSync(cli)) {
+  console.error('dist/cli.js is missing: run npm run build first');
+  process.exit(1);
+}
+if (!existsSync(library)) {
+  console.log(`(core benchmark skipped: ${library} is absent)`);
+} else {
+  const out = mkdtempSync(path.join(tmpdir(), 'm2s-bench-'));
+  const largest = path.join(library, 'modular_hero_right_left_front_back_pedestrian', 'result.mosc');
+  const env = { SCENARIO_PATH: library };
+  const bare = summary(Array.from({ length: runs }, () => measure(['-e', '0'])));
+  const one = summary(Array.from({ length: runs }, () => measure([cli, '-cmx', largest, path.join(out, 'largest.xosc'), '-q'], env)));
+  const inputs = readdirSync(library).filter((n) => n.startsWith('modular_')).map((n) => path.join(library, n, 'result.mosc'));
+  const all = summary(
+    Array.from({ length: Math.max(5, Math.floor(runs / 3)) }, () => {
+      rmSync(out, { recursive: true, force: true });
+      spawnSync('mkdir', ['-p', out]);
+      return measure([cli, 'flatten', ...inputs, '--out-dir', out, '-q'], env);
+    }),
+  );
+  rmSync(out, { recursive: true, force: true });
+  console.log(`core/CLI benchmark (${runs} runs each; node ${process.version}; ${process.arch})`);
+  console.log('                                           median ms   p95 ms   peak MB');
+  console.log(`  node -e 0 (bare start)                    ${fmt(bare.median)}  ${fmt(bare.p95)}  ${fmt(bare.peakMb)}`);
+  console.log(`  flatten largest example (1,172 lines)     ${fmt(one.median)}  ${fmt(one.p95)}  ${fmt(one.peakMb)}`);
+  console.log(`  flatten all ${inputs.length} examples, one run         ${fmt(all.median)}  ${fmt(all.p95)}  ${fmt(all.peakMb)}`);
+  console.log(`  ratio largest / bare start: ${(one.median / bare.median).toFixed(2)}x (target <= 2x); original tool: 700 ms, 75 MB`);
+  console.log(`  all ${inputs.length}: ${all.median < 500 ? 'within' : 'OVER'} the 500 ms target; peak memory ${Math.max(one.peakMb, all.peakMb) < 100 ? 'within' : 'OVER'} 100 MB`);
+}
+
+const lspBench = path.join(root, 'bench', 'lsp.mjs');
+if (existsSync(lspBench)) {
+  console.log('');
+  const result = spawnSync(process.execPath, [lspBench], { stdio: 'inherit' });
+  process.exitCode = result.status ?? 1;
+}

@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Installs what the tests need (Debian packages when run as root, npm packages, the e2e harness),
+# then runs every test. This is the README's test command and what .ci/run runs.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+need_packages=()
+command -v nvim >/dev/null 2>&1 || need_packages+=(neovim)
+if [ ${#need_packages[@]} -gt 0 ]; then
+  if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
+    echo "== installing Debian packages: ${need_packages[*]}"
+    apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${need_packages[@]}" >/dev/null
+  else
+    echo "== not root: skipping Debian packages (${need_packages[*]}); the tests that need them will say so"
+  fi
+fi
+
+if [ ! -d node_modules ] || [ package-lock.json -nt node_modules/.package-lock.json ]; then
+  echo "== npm ci"
+  npm ci --no-audit --no-fund
+fi
+
+if [ -x scripts/e2e-setup.sh ]; then
+  echo "== e2e harness (code-server, chromium)"
+  bash scripts/e2e-setup.sh
+fi
+
+echo "== tests"
+npm test

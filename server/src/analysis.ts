@@ -1,0 +1,116 @@
+import { FlatSource, LinkedGroupReference, LinkedReference, originOf } from './core/flatten';
+import { OverridableAttribute } from './core/keys';
+import { findGroup, ManeuverGroupInfo, PARAMETER_ATTRIBUTES, parseParameterAttributeNames } from './core/model';
+import { Resolution, SourceRef } from './core/sources';
+import { Range } from './core/text';
+import { attribute, XmlElement } from './core/xml';
+import { Workspace } from './workspace';
+
+/** A place in a scenario file, before it becomes an LSP Location. */
+export interface Place {
+  ref: SourceRef;
+  range: Range;
+}
+
+/** The range of offsets in the file a FlatSource was read from (its original text). */
+export function placeIn(source: FlatSource, start: number, end: number): Place | undefined {
+  const model = source.original ?? source.model;
+  return model ? { ref: source.ref, range: model.document.lines.range(start, end) } : undefined;
+}
+
+/** Where an element of `source`'s flattened model was written: its name attribute value, or its tag. */
+export function elementPlace(source: FlatSource, element: XmlElement, attributeName = 'name'): Place | undefined {
+  const origin = originOf(source, element);
+  const named = attribute(origin.element, attributeName);
+  return named ? placeIn(origin.source, named.valueStart, named.valueEnd) : placeIn(origin.source, origin.element.start, origin.element.nameEnd);
+}
+
+/** Where `name` is listed in the parameterAttributes of an element (of the file the element was read from). */
+export function listedPlace(source: FlatSource, element: XmlElement, name: string): Place | undefined {
+  const declaration = attribute(element, PARAMETER_ATTRIBUTES);
+  const listed = declaration ? parseParameterAttributeNames(element, declaration).find((entry) => entry.name === name) : undefined;
+  return listed ? placeIn(source, listed.start, listed.end) : placeIn(source, element.start, element.nameEnd);
+}
+
+/** Where an overridable attribute's default is written (the attribute itself, or its name in parameterAttributes). */
+export function overridablePlace(source: FlatSource, target: OverridableAttribute): Place | undefined {
+  const origin = originOf(source, target.element);
+  const own = attribute(origin.element, target.attributeName);
+  if (own) return placeIn(origin.source, own.nameStart, own.valueEnd + 1);
+  return listedPlace(origin.source, origin.element, target.attributeName);
+}
+
+export function linkOf(source: FlatSource, referenceElement: XmlElement): LinkedReference | undefined {
+  return source.links.find((link) => link.info.element === referenceElement);
+}
+
+export function groupLinkOf(link: LinkedReference, groupReferenceElement: XmlElement): LinkedGroupReference | undefined {
+  return link.groups.find((group) => group.info.element === groupReferenceElement);
+}
+
+export function resolvedTarget(resolution: Resolution): SourceRef | undefined {
+  if (resolution.kind === 'scenario') return resolution.ref;
+  if (resolution.kind === 'package') return resolution.main;
+  return undefined;
+}
+
+/** The referenced file as flattening reads it, from a name written in `from` (used while typing). */
+export async function sourceForFileName(workspace: Workspace, from: SourceRef, fileName: string): Promise<FlatSource | undefined> {
+  if (!fileName.trim()) return undefined;
+  const resolution = await workspace.store.resolve(fileName, from).catch(() => undefined);
+  const target = resolution ? resolvedTarget(resolution) : undefined;
+  return target ? workspace.source(target) : undefined;
+}
+
+export function groupOf(source: FlatSource | undefined, name: string): ManeuverGroupInfo | undefined {
+  return source?.model ? findGroup(source.model, name) : undefined;
+}
+
+/** One line per maneuver and event of a group: what the group does. */
+export function describeGroup(group: ManeuverGroupInfo): string[] {
+  const lines: string[] = [];
+  const visit = (element: XmlElement, depth: number) => {
+    for (const child of element.children) {
+      if (child.name === 'Maneuver') {
+        lines.push(`${'  '.repeat(depth)}- Maneuver **${attribute(child, 'name')?.value ?? '?'}**`);
+        visit(child, depth + 1);
+      } else if (child.name === 'Event') {
+        const actions = child.children
+          .filter((action) => action.name === 'Action')
+          .map((action) => `${attribute(action, 'name')?.value ?? '?'} (${actionKind(action)})`);
+        const start = child.children.find((candidate) => candidate.name === 'StartTrigger');
+        const conditions = start ? [...conditionNames(start)] : [];
+        lines.push(
+          `${'  '.repeat(depth)}- Event **${attribute(child, 'name')?.value ?? '?'}**: ${actions.join(', ') || 'no action'}` +
+            (conditions.length ? ` when ${conditions.join(', ')}` : ''),
+        );
+      } else {
+        visit(child, depth);
+      }
+    }
+  };
+  visit(group.element, 0);
+  return lines;
+}
+
+/** Follows the first child whose name ends in `suffix` as deep as it goes: Action › PrivateAction › LongitudinalAction › SpeedAction. */
+function deepestKind(element: XmlElement, suffix: string): string {
+  let current = element;
+  for (;;) {
+    const next = current.children.find((child) => child.name.endsWith(suffix));
+    if (!next) return current.name;
+    current = next;
+  }
+}
+
+function actionKind(action: XmlElement): string {
+  return deepestKind(action, 'Action');
+}
+
+function* conditionNames(trigger: XmlElement): Generator<string> {
+  for (const group of trigger.children) {
+    for (const condition of group.children) {
+      if (condition.name === 'Condition') yield deepestKind(condition, 'Condition');
+    }
+  }
+}

@@ -1,0 +1,97 @@
+import * as path from 'node:path';
+import { Flattener, FlatSource } from '../core/flatten';
+import { isSameFile, writeFileAtomic } from '../core/atomic';
+import { Problem } from '../core/problems';
+import { baseName, displayRef, refId, SourceRef } from '../core/sources';
+import { FlattenTextResult, ProblemSummary, StructureNode, WriteResult } from '../protocol';
+import { elementPlace, resolvedTarget } from '../analysis';
+import { filePathOf } from '../uris';
+import { Workspace } from '../workspace';
+
+export function summarize(workspace: Workspace, problem: Problem): ProblemSummary {
+  const summary: ProblemSummary = {
+    uri: workspace.uriOf(problem.source),
+    line: problem.range.start.line,
+    character: problem.range.start.character,
+    severity: problem.severity,
+    message: problem.message,
+  };
+  if (problem.hint) summary.hint = problem.hint;
+  return summary;
+}
+
+function forceOf(options: unknown): boolean {
+  return Boolean(options && typeof options === 'object' && (options as { force?: unknown }).force === true);
+}
+
+async function refOf(workspace: Workspace, uri: unknown): Promise<SourceRef> {
+  if (typeof uri !== 'string') throw new Error('expected a document URI');
+  const ref = await workspace.uris.toRef(uri);
+  if (!ref) throw new Error(`not a scenario URI: ${uri}`);
+  return ref;
+}
+
+/** Flattens with the editor's unsaved text; a fresh Flattener, since `force` changes the outcome. */
+export async function flattenToText(workspace: Workspace, uri: unknown, options: unknown): Promise<FlattenTextResult> {
+  const ref = await refOf(workspace, uri);
+  const result = await new Flattener(workspace.store).flatten(ref, { force: forceOf(options) });
+  return { text: result.text ?? null, problems: result.problems.map((problem) => summarize(workspace, problem)) };
+}
+
+function outputProblem(workspace: Workspace, ref: SourceRef, message: string): ProblemSummary {
+  return { uri: workspace.uriOf(ref), line: 0, character: 0, severity: 'error', message };
+}
+
+/** Writes the flattened scenario atomically; refuses to write over any file it was made from. */
+export async function flattenToFile(workspace: Workspace, uri: unknown, outputPath: unknown, options: unknown): Promise<WriteResult> {
+  const ref = await refOf(workspace, uri);
+  if (typeof outputPath !== 'string' || !outputPath) throw new Error('expected an output path');
+  const output = path.resolve(filePathOf(outputPath) ?? outputPath);
+  const result = await new Flattener(workspace.store).flatten(ref, { force: forceOf(options) });
+  const problems = result.problems.map((problem) => summarize(workspace, problem));
+  const input = result.source.dependencies.find((dependency) => dependency.disk === output || isSameFile(dependency.disk, output));
+  if (input) return { written: null, problems: [...problems, outputProblem(workspace, ref, `refusing to overwrite ${displayRef(input, workspace.folders[0])}, an input of this flattening`)] };
+  if (result.text === undefined) return { written: null, problems };
+  await writeFileAtomic(output, result.text);
+  workspace.fileChanged(output);
+  return { written: output, problems };
+}
+
+/** The reference graph: each reference with the file it resolves to, its groups and, for packages, their own references. */
+export async function structure(workspace: Workspace, uri: unknown): Promise<StructureNode | null> {
+  const ref = await refOf(workspace, uri);
+  const source = await workspace.source(ref);
+  if (!source.original) return null;
+  const visiting = new Set<string>();
+  const build = (flat: FlatSource, kind: StructureNode['kind'], label: string): StructureNode => {
+    const node: StructureNode = { kind, label, detail: displayRef(flat.ref, workspace.folders[0]), uri: workspace.uriOf(flat.ref), line: 0, character: 0, children: [] };
+    if (visiting.has(refId(flat.ref))) return node;
+    visiting.add(refId(flat.ref));
+    for (const link of flat.links) {
+      const position = flat.original?.document.lines.positionAt(link.info.element.start);
+      const target = resolvedTarget(link.resolution);
+      if (!target || !link.source) {
+        node.children.push({ kind: 'missing', label: link.info.fileName || '(no scenarioFileName)', detail: link.resolution.kind === 'missing' ? 'not found' : link.resolution.kind === 'invalid' ? link.resolution.message : 'cycle', uri: workspace.uriOf(flat.ref), line: position?.line, character: position?.character, children: [] });
+        continue;
+      }
+      const child = build(link.source, link.resolution.kind === 'package' ? 'package' : 'scenario', link.info.fileName);
+      const reference: StructureNode = { kind: 'reference', label: `${link.info.outerGroup?.name ?? '?'} → ${link.info.fileName}`, uri: workspace.uriOf(flat.ref), line: position?.line, character: position?.character, children: [child] };
+      for (const group of link.groups) {
+        const place = group.target ? elementPlace(link.source, group.target.element) : undefined;
+        reference.children.push({
+          kind: group.target ? 'group' : 'missing',
+          label: group.info.name,
+          detail: group.target ? `${group.plan?.applied.size ?? 0} overrides` : 'no such group',
+          uri: place ? workspace.uriOf(place.ref) : undefined,
+          line: place?.range.start.line,
+          character: place?.range.start.character,
+          children: [],
+        });
+      }
+      node.children.push(reference);
+    }
+    visiting.delete(refId(flat.ref));
+    return node;
+  };
+  return build(source, 'main', baseName(ref));
+}

@@ -1,0 +1,225 @@
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import { CompletionItem, CompletionItemKind, InsertTextFormat, Range as LspRange } from 'vscode-languageserver/node';
+import { TextDocument } from 'vscode-languageserver-textdocument';
+import { FlatSource } from '../core/flatten';
+import { keyForms, keyMatches, OverridableAttribute, overridableAttributes, shortestUnambiguousKey } from '../core/keys';
+import { findGroup, PARAMETER_ATTRIBUTES } from '../core/model';
+import { displayRef, SourceRef } from '../core/sources';
+import { overridablePlace, sourceForFileName } from '../analysis';
+import { attributeValuesBetween, elementNameContextAt, lastAttributeValueBefore, valueContextAt, ValueContext } from '../cursor';
+import { Workspace } from '../workspace';
+
+const MAX_SNIPPETS = 200;
+
+/** A scenario name that a `scenarioFileName` written in `from` can use, and where it was found. */
+export interface FileNameCandidate {
+  name: string;
+  where: string;
+}
+
+function listFolder(directory: string, exclude: string | undefined): string[] {
+  let entries: fs.Dirent[];
+  try {
+    entries = fs.readdirSync(directory, { withFileTypes: true });
+  } catch {
+    return [];
+  }
+  const names: string[] = [];
+  for (const entry of entries) {
+    const full = path.join(directory, entry.name);
+    if (entry.isFile() && /\.(xosc|mosc)$/i.test(entry.name) && full !== exclude) names.push(entry.name);
+    else if (entry.isDirectory() && fs.existsSync(path.join(full, 'main.xosc')) && full !== (exclude && path.dirname(exclude))) names.push(`${entry.name}.mosc`);
+  }
+  return names.sort();
+}
+
+/** Names that resolve from `from`, in lookup order (SPEC 3): its package or folder, SCENARIO_PATH, parent folders. */
+export async function fileNameCandidates(workspace: Workspace, from: SourceRef): Promise<FileNameCandidate[]> {
+  const seen = new Map<string, FileNameCandidate>();
+  const add = (name: string, where: string) => {
+    if (!seen.has(name)) seen.set(name, { name, where });
+  };
+  if (from.entries.length > 0) {
+    const packageRef: SourceRef = { disk: from.disk, entries: from.entries.slice(0, -1) };
+    const self = from.entries[from.entries.length - 1];
+    const contents = await workspace.store.readPackage(packageRef).catch(() => undefined);
+    for (const entry of contents ? [...contents.entries.keys()].sort() : []) {
+      if (entry === self) continue;
+      if (/\.(xosc|mosc)$/i.test(entry) && !entry.endsWith('/main.xosc')) add(entry, displayRef(packageRef, workspace.folders[0]));
+      else if (entry.endsWith('/main.xosc')) add(`${entry.slice(0, -'/main.xosc'.length)}.mosc`, displayRef(packageRef, workspace.folders[0]));
+    }
+  } else {
+    const directory = path.dirname(from.disk);
+    for (const name of listFolder(directory, from.disk)) add(name, 'this folder');
+  }
+  for (const directory of workspace.store.scenarioPath) for (const name of listFolder(directory, from.disk)) add(name, `${directory} (scenario path)`);
+  const root = workspace.store.root;
+  if (from.entries.length === 0 && root) {
+    for (let parent = path.dirname(path.dirname(from.disk)); parent.startsWith(root); parent = path.dirname(parent)) {
+      for (const name of listFolder(parent, from.disk)) add(name, `${parent} (parent folder)`);
+      if (parent === root || parent === path.dirname(parent)) break;
+    }
+  }
+  return [...seen.values()];
+}
+
+function replaceRange(document: TextDocument, start: number, end: number): LspRange {
+  return { start: document.positionAt(start), end: document.positionAt(end) };
+}
+
+/** The enclosing ScenarioReference's source and, for keys, the group, read from the text before the cursor. */
+async function referencedSource(workspace: Workspace, ref: SourceRef, text: string, before: number): Promise<{ source: FlatSource | undefined; fileName: string }> {
+  const reference = lastAttributeValueBefore(text, 'ScenarioReference', 'scenarioFileName', 0, before);
+  if (!reference) return { source: undefined, fileName: '' };
+  return { source: await sourceForFileName(workspace, ref, reference.value), fileName: reference.value };
+}
+
+function coveredBy(keys: string[], target: OverridableAttribute): boolean {
+  return keys.some((key) => keyMatches(key, target));
+}
+
+async function keyItems(workspace: Workspace, ref: SourceRef, document: TextDocument, context: ValueContext): Promise<CompletionItem[]> {
+  const text = document.getText();
+  const groupReference = lastAttributeValueBefore(text, 'ManeuverGroupReference', 'maneuverGroupName', 0, context.tagStart);
+  if (!groupReference) return [];
+  const { source } = await referencedSource(workspace, ref, text, groupReference.tagStart);
+  const group = source?.model ? findGroup(source.model, groupReference.value) : undefined;
+  if (!source?.model || !group) return [];
+  const targets = overridableAttributes(source.model, group);
+  const blockEnd = [text.indexOf('</ManeuverGroupReference', context.valueEnd), text.indexOf('<ManeuverGroupReference', context.valueEnd), text.length]
+    .filter((index) => index >= 0)
+    .reduce((a, b) => Math.min(a, b));
+  const given = attributeValuesBetween(text, 'ParameterReference', 'key', groupReference.tagStart, blockEnd)
+    .filter((entry) => entry.valueStart !== context.valueStart)
+    .map((entry) => entry.value.trim());
+  const range = replaceRange(document, context.valueStart, context.valueEnd);
+  const items: CompletionItem[] = [];
+  targets.forEach((target, index) => {
+    if (coveredBy(given, target)) return;
+    const shortest = shortestUnambiguousKey(target, targets);
+    const forms = keyForms(target).filter((form) => form.length >= shortest.length && targets.every((other) => other === target || !keyMatches(form, other)));
+    const declared = overridablePlace(source, target);
+    const where = declared ? `${displayRef(declared.ref, workspace.folders[0])}:${declared.range.start.line + 1}` : '';
+    forms.forEach((form, formIndex) => {
+      items.push({
+        label: form,
+        kind: CompletionItemKind.Property,
+        detail: `default ${target.defaultValue ?? '(none)'}${where ? ` — ${where}` : ''}`,
+        documentation: `Overrides \`${target.attributeName}\` of <${target.element.name}> (${target.path.join(' › ')}) in group ${group.name}.`,
+        sortText: `${formIndex}_${String(index).padStart(5, '0')}`,
+        filterText: form,
+        textEdit: { range, newText: form },
+      });
+    });
+  });
+  return items;
+}
+
+function parameterAttributeItems(document: TextDocument, context: ValueContext): CompletionItem[] {
+  const value = document.getText().slice(context.valueStart, context.valueEnd);
+  const cursor = context.prefix.length;
+  // The comma-separated segment under the cursor is replaced; names in the other segments are left out.
+  const listed = new Set<string>();
+  let segmentStart = 0;
+  let current = { start: 0, end: value.length };
+  for (const segment of value.split(',')) {
+    const segmentEnd = segmentStart + segment.length;
+    if (cursor >= segmentStart && cursor <= segmentEnd) {
+      const leading = segment.length - segment.trimStart().length;
+      const trailing = segment.length - segment.trimEnd().length;
+      current = { start: segmentStart + leading, end: Math.max(segmentStart + leading, segmentEnd - trailing) };
+    } else if (segment.trim()) {
+      listed.add(segment.trim());
+    }
+    segmentStart = segmentEnd + 1;
+  }
+  const range = replaceRange(document, context.valueStart + current.start, context.valueStart + current.end);
+  return context.siblings
+    .filter((sibling) => sibling.name !== PARAMETER_ATTRIBUTES && !listed.has(sibling.name))
+    .map((sibling) => ({
+      label: sibling.name,
+      kind: CompletionItemKind.Field,
+      detail: `default ${sibling.value}`,
+      textEdit: { range, newText: sibling.name },
+    }));
+}
+
+/** A whole ScenarioReference block for one group of a file, every key set to its default (tab stops on values). */
+export function referenceSnippet(fileName: string, groupName: string, targets: OverridableAttribute[], indent: string): string {
+  const escape = (value: string) => value.replace(/[$}\\]/g, (char) => `\\${char}`);
+  const lines = [`<ScenarioReference scenarioFileName="${escape(fileName)}">`, `${indent}<ManeuverGroupReference maneuverGroupName="${escape(groupName)}">`];
+  targets.forEach((target, index) => {
+    if (target.defaultValue === undefined) return;
+    lines.push(`${indent}${indent}<ParameterReference key="${escape(shortestUnambiguousKey(target, targets))}" value="\${${index + 1}:${escape(target.defaultValue)}}"/>`);
+  });
+  lines.push(`${indent}</ManeuverGroupReference>`, '</ScenarioReference>$0');
+  return lines.join('\n');
+}
+
+async function snippetItems(workspace: Workspace, ref: SourceRef, document: TextDocument, start: number, offset: number): Promise<CompletionItem[]> {
+  const items: CompletionItem[] = [];
+  const range = replaceRange(document, start, offset);
+  const indent = /^( +|\t)/m.exec(document.getText().slice(0, 4000))?.[1] ?? '    ';
+  for (const candidate of await fileNameCandidates(workspace, ref)) {
+    const source = await sourceForFileName(workspace, ref, candidate.name);
+    if (!source?.model) continue;
+    for (const group of source.model.groups) {
+      if (items.length >= MAX_SNIPPETS) return items;
+      const targets = overridableAttributes(source.model, group);
+      items.push({
+        label: `ScenarioReference ${candidate.name} ${group.name}`,
+        kind: CompletionItemKind.Snippet,
+        detail: `${targets.length} keys with their defaults`,
+        filterText: `<ScenarioReference ${candidate.name} ${group.name}`,
+        sortText: `z${String(items.length).padStart(4, '0')}`,
+        insertTextFormat: InsertTextFormat.Snippet,
+        textEdit: { range, newText: referenceSnippet(candidate.name, group.name, targets, indent) },
+      });
+    }
+  }
+  return items;
+}
+
+/** Completion from the text around the cursor, so that it works while the document is not well-formed. */
+export async function complete(workspace: Workspace, ref: SourceRef, document: TextDocument, offset: number): Promise<CompletionItem[]> {
+  const text = document.getText();
+  const context = valueContextAt(text, offset);
+  if (context) {
+    const range = replaceRange(document, context.valueStart, context.valueEnd);
+    if (context.element === 'ScenarioReference' && context.attribute === 'scenarioFileName') {
+      return (await fileNameCandidates(workspace, ref)).map((candidate, index) => ({
+        label: candidate.name,
+        kind: candidate.name.endsWith('.mosc') ? CompletionItemKind.Module : CompletionItemKind.File,
+        detail: candidate.where,
+        sortText: String(index).padStart(5, '0'),
+        textEdit: { range, newText: candidate.name },
+      }));
+    }
+    if (context.element === 'ManeuverGroupReference' && context.attribute === 'maneuverGroupName') {
+      const { source, fileName } = await referencedSource(workspace, ref, text, context.tagStart);
+      const seen = new Set<string>();
+      return (source?.model?.groups ?? [])
+        .filter((group) => group.name && !seen.has(group.name) && seen.add(group.name))
+        .map((group, index) => ({
+          label: group.name,
+          kind: CompletionItemKind.Class,
+          detail: `ManeuverGroup of ${fileName} (${overridableAttributes(source?.model as NonNullable<FlatSource['model']>, group).length} overridable attributes)`,
+          sortText: String(index).padStart(5, '0'),
+          textEdit: { range, newText: group.name },
+        }));
+    }
+    if (context.element === 'ParameterReference' && context.attribute === 'key') return keyItems(workspace, ref, document, context);
+    if (context.attribute === PARAMETER_ATTRIBUTES) return parameterAttributeItems(document, context);
+    if (context.attribute === 'entityRef') {
+      const source = await workspace.source(ref);
+      return (source.original?.entities ?? []).map((entity) => ({ label: entity.name, kind: CompletionItemKind.Variable, textEdit: { range, newText: entity.name } }));
+    }
+    return [];
+  }
+  const elementContext = elementNameContextAt(text, offset);
+  if (elementContext && 'ScenarioReference'.toLowerCase().startsWith(elementContext.prefix.toLowerCase())) {
+    return snippetItems(workspace, ref, document, elementContext.start, offset);
+  }
+  return [];
+}

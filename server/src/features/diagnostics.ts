@@ -1,0 +1,196 @@
+import { Connection, Diagnostic, DiagnosticRelatedInformation, DiagnosticSeverity, DiagnosticTag } from 'vscode-languageserver/node';
+import { FlatSource, LinkedReference } from '../core/flatten';
+import { Problem, ZERO_RANGE } from '../core/problems';
+import { Range } from '../core/text';
+import { resolvedTarget } from '../analysis';
+import { baseName, displayRef, refId, SourceRef } from '../core/sources';
+import { Workspace } from '../workspace';
+
+export const DIAGNOSTIC_SOURCE = 'modular2simple';
+
+/** What a quick fix needs from a diagnostic: the problem code and the core's data. */
+export interface DiagnosticData {
+  code: string;
+  suggestion?: string;
+  replacement?: string;
+  entity?: string;
+}
+
+/** LSP severity: an unknown key is an error for the CLI but a warning while editing (SPEC 7). */
+function severityOf(problem: Problem): DiagnosticSeverity {
+  if (problem.code === 'unknown-key') return DiagnosticSeverity.Warning;
+  if (problem.severity === 'error') return DiagnosticSeverity.Error;
+  if (problem.severity === 'warning') return DiagnosticSeverity.Warning;
+  return DiagnosticSeverity.Information;
+}
+
+export function toDiagnostic(problem: Problem, workspace: Workspace): Diagnostic {
+  const related: DiagnosticRelatedInformation[] = (problem.related ?? []).map((item) => ({
+    location: { uri: workspace.uriOf(item.source), range: item.range },
+    message: item.message,
+  }));
+  const data: DiagnosticData = { code: problem.code, ...problem.data };
+  const diagnostic: Diagnostic = {
+    range: problem.range,
+    severity: severityOf(problem),
+    code: problem.code,
+    source: DIAGNOSTIC_SOURCE,
+    message: problem.hint ? `${problem.message}\n${problem.hint}` : problem.message,
+    data,
+  };
+  if (related.length > 0) diagnostic.relatedInformation = related;
+  if (problem.code === 'xosc-fallback') diagnostic.tags = [DiagnosticTag.Deprecated];
+  return diagnostic;
+}
+
+function referencePlace(source: FlatSource, link: LinkedReference): Range | undefined {
+  const attributeNode = link.info.fileAttribute;
+  const lines = source.original?.document.lines;
+  return lines && attributeNode ? lines.range(attributeNode.valueStart, attributeNode.valueEnd) : undefined;
+}
+
+/**
+ * The core reports a cycle in the file that closes it; the file that starts it gets a cycle
+ * diagnostic too, on its reference, with each step of the cycle as a related location.
+ */
+function cycleDiagnostics(workspace: Workspace, root: FlatSource): Diagnostic[] {
+  const sources = new Map<string, FlatSource>();
+  const pending = [root];
+  while (pending.length > 0) {
+    const source = pending.pop() as FlatSource;
+    if (sources.has(refId(source.ref))) continue;
+    sources.set(refId(source.ref), source);
+    for (const link of source.links) if (link.source) pending.push(link.source);
+  }
+  const rootId = refId(root.ref);
+  const diagnostics: Diagnostic[] = [];
+  for (const source of sources.values()) {
+    for (const link of source.links) {
+      const cycle = link.cycle;
+      if (!cycle || cycle.length < 2 || refId(cycle[0]) !== rootId || source === root) continue;
+      const related: DiagnosticRelatedInformation[] = [];
+      for (let step = 0; step + 1 < cycle.length; step++) {
+        const from = sources.get(refId(cycle[step]));
+        const next = refId(cycle[step + 1]);
+        const stepLink = from?.links.find((candidate) => {
+          const target = resolvedTarget(candidate.resolution);
+          return target !== undefined && refId(target) === next;
+        });
+        const range = from && stepLink ? referencePlace(from, stepLink) : undefined;
+        if (from && range) related.push({ location: { uri: workspace.uriOf(from.ref), range }, message: `${baseName(cycle[step])} references ${baseName(cycle[step + 1])}` });
+      }
+      const first = related[0];
+      if (!first) continue;
+      diagnostics.push({
+        range: first.location.range,
+        severity: DiagnosticSeverity.Error,
+        code: 'cycle',
+        source: DIAGNOSTIC_SOURCE,
+        message: `reference cycle: ${cycle.map((member) => displayRef(member, workspace.folders[0])).join(' -> ')}`,
+        relatedInformation: related,
+        data: { code: 'cycle' } satisfies DiagnosticData,
+      });
+    }
+  }
+  return diagnostics;
+}
+
+/** The diagnostics of one file analysed as a main file. */
+export async function diagnose(workspace: Workspace, ref: SourceRef): Promise<{ diagnostics: Diagnostic[]; dependencies: string[] }> {
+  const result = await workspace.flatten(ref);
+  const id = refId(ref);
+  const cycles = cycleDiagnostics(workspace, result.source);
+  const diagnostics: Diagnostic[] = [...cycles];
+  for (const problem of result.problems) {
+    if (refId(problem.source) !== id) continue;
+    // A reference whose only error is a cycle already carries the cycle diagnostic.
+    const cycleOnly = problem.code === 'source-errors' && cycles.some((cycle) => cycle.range.start.line === problem.range.start.line && cycle.range.start.character === problem.range.start.character) && /has 1 error: reference cycle/.test(problem.message);
+    if (cycleOnly) continue;
+    const diagnostic = toDiagnostic(problem, workspace);
+    if (problem.code === 'cycle') {
+      const link = result.source.links.find((candidate) => candidate.cycle && referencePlace(result.source, candidate)?.start.line === problem.range.start.line);
+      const members = link?.cycle ?? [];
+      diagnostic.relatedInformation = members.slice(0, -1).map((member, index) => ({
+        location: { uri: workspace.uriOf(member), range: ZERO_RANGE },
+        message: `${baseName(member)} references ${baseName(members[index + 1])}`,
+      }));
+    }
+    diagnostics.push(diagnostic);
+  }
+  return { diagnostics, dependencies: result.source.dependencies.map((dependency) => refId(dependency)) };
+}
+
+/**
+ * Publishes diagnostics for open documents: after an edit (briefly delayed, latest edit wins) for
+ * the edited file and every open file that depends on it.
+ */
+export class DiagnosticsScheduler {
+  private readonly dependencies = new Map<string, Set<string>>();
+  private readonly pending = new Set<string>();
+  private timer: NodeJS.Timeout | undefined;
+  private running: Promise<void> | undefined;
+
+  constructor(
+    private readonly connection: Connection,
+    private readonly workspace: Workspace,
+  ) {}
+
+  /** Schedules the open documents affected by a change of `changedIds` (file ids or disk paths). */
+  changed(changedIds: string[]): void {
+    for (const [id] of this.workspace.documents) {
+      const dependencies = this.dependencies.get(id);
+      const affected = changedIds.some(
+        (changed) => changed === id || (dependencies && [...dependencies].some((dependency) => dependency === changed || dependency.startsWith(changed + '/'))),
+      );
+      if (affected) this.pending.add(id);
+    }
+    this.arm();
+  }
+
+  all(): void {
+    for (const id of this.workspace.documents.keys()) this.pending.add(id);
+    this.arm();
+  }
+
+  closed(ref: SourceRef, uri: string): void {
+    this.dependencies.delete(refId(ref));
+    this.pending.delete(refId(ref));
+    void this.connection.sendDiagnostics({ uri, diagnostics: [] });
+  }
+
+  private arm(): void {
+    if (this.timer) clearTimeout(this.timer);
+    this.timer = setTimeout(() => void this.flush(), this.workspace.settings.diagnosticsDelay);
+  }
+
+  /** Runs one pass at a time; edits arriving meanwhile are taken by the next pass. */
+  private async flush(): Promise<void> {
+    this.timer = undefined;
+    if (this.running) {
+      await this.running;
+      if (this.pending.size > 0 && !this.timer) this.arm();
+      return;
+    }
+    const ids = [...this.pending];
+    this.pending.clear();
+    this.running = (async () => {
+      for (const id of ids) {
+        const open = this.workspace.documents.get(id);
+        if (!open) continue;
+        const version = open.document.version;
+        try {
+          const { diagnostics, dependencies } = await diagnose(this.workspace, open.ref);
+          this.dependencies.set(id, new Set(dependencies));
+          const current = this.workspace.documents.get(id);
+          if (!current || current.document.version !== version) continue;
+          await this.connection.sendDiagnostics({ uri: open.uri, version, diagnostics });
+        } catch (error) {
+          this.connection.console.error(`diagnostics of ${open.uri} failed: ${(error as Error).stack ?? error}`);
+        }
+      }
+    })();
+    await this.running;
+    this.running = undefined;
+    if (this.pending.size > 0 && !this.timer) this.arm();
+  }
+}

@@ -1,0 +1,73 @@
+import { Hover, MarkupKind } from 'vscode-languageserver/node';
+import { describeGroup, groupLinkOf, linkOf, overridablePlace, Place, resolvedTarget } from '../analysis';
+import { ancestor, attributeAt } from '../cursor';
+import { displayRef, SourceRef } from '../core/sources';
+import { ManeuverGroupInfo } from '../core/model';
+import { Workspace } from '../workspace';
+
+function where(workspace: Workspace, place: Place | undefined): string {
+  if (!place) return 'an unknown place';
+  return `${displayRef(place.ref, workspace.folders[0])}:${place.range.start.line + 1}`;
+}
+
+function groupSummary(title: string, group: ManeuverGroupInfo): string {
+  const lines = describeGroup(group);
+  return [title, '', ...(lines.length ? lines : ['(no maneuvers)'])].join('\n');
+}
+
+/** Hover for keys (default, effective value and where each comes from) and for references (what the group does). */
+export async function hover(workspace: Workspace, ref: SourceRef, offset: number): Promise<Hover | null> {
+  const source = await workspace.source(ref);
+  const model = source.original;
+  if (!model) return null;
+  const hit = attributeAt(model.document, offset);
+  if (!hit) return null;
+  const { element, attribute } = hit;
+  const range = model.document.lines.range(attribute.valueStart, attribute.valueEnd);
+  const reply = (value: string): Hover => ({ contents: { kind: MarkupKind.Markdown, value }, range });
+
+  if (element.name === 'ScenarioReference' && attribute.name === 'scenarioFileName') {
+    const link = linkOf(source, element);
+    if (!link) return null;
+    const target = resolvedTarget(link.resolution);
+    if (!target || !link.source?.model) return reply(`**${attribute.value}** does not resolve`);
+    const groups = link.source.model.groups.map((group) => `- ${group.name}`);
+    return reply([`**${attribute.value}** → \`${displayRef(target, workspace.folders[0])}\``, '', 'ManeuverGroups:', ...groups].join('\n'));
+  }
+  if (element.name === 'ManeuverGroupReference' && attribute.name === 'maneuverGroupName') {
+    const reference = ancestor(element.parent, 'ScenarioReference');
+    const link = reference ? linkOf(source, reference) : undefined;
+    const group = link ? groupLinkOf(link, element) : undefined;
+    if (!link?.source || !group?.target) return null;
+    return reply(groupSummary(`ManeuverGroup **${group.target.name}** of \`${link.info.fileName}\` (${group.overridable.length} overridable attributes)`, group.target));
+  }
+  if (element.name === 'ParameterReference' && attribute.name === 'key') {
+    const groupReference = ancestor(element.parent, 'ManeuverGroupReference');
+    const reference = ancestor(groupReference?.parent, 'ScenarioReference');
+    const link = reference ? linkOf(source, reference) : undefined;
+    const group = link && groupReference ? groupLinkOf(link, groupReference) : undefined;
+    const match = group?.plan?.matches.find((candidate) => candidate.parameter.element === element);
+    if (!link?.source || !group?.plan || !match) return null;
+    if (match.targets.length === 0) return reply(`key **${attribute.value}** overrides nothing in group \`${group.info.name}\``);
+    const lines = [`key **${attribute.value}** overrides ${match.targets.length} attribute${match.targets.length === 1 ? '' : 's'}:`, ''];
+    for (const target of match.targets) {
+      const applied = group.plan.applied.get(target);
+      const declared = where(workspace, overridablePlace(link.source, target));
+      const effective =
+        applied === match.parameter
+          ? `**${match.parameter.value}** (this key)`
+          : applied
+            ? `**${applied.value}** (from the more specific key \`${applied.key}\`)`
+            : `**${target.defaultValue ?? '(none)'}** (the default: this key does not apply)`;
+      lines.push(
+        `- \`${target.path.join('.')}.${target.attributeName}\`: default **${target.defaultValue ?? '(no default value)'}** declared at ${declared}; takes effect: ${effective}`,
+      );
+    }
+    return reply(lines.join('\n'));
+  }
+  if (attribute.name === 'entityRef') {
+    const entity = model.entities.find((candidate) => candidate.name === attribute.value);
+    return reply(entity ? `entity **${entity.name}** (${entity.element.children[0]?.name ?? 'ScenarioObject'})` : `entity **${attribute.value}** is not declared in this file`);
+  }
+  return null;
+}

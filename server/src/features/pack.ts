@@ -1,0 +1,37 @@
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import { isSameFile, writeFileAtomic } from '../core/atomic';
+import { packFiles, packFolder, PackResult } from '../core/pack';
+import { WriteResult } from '../protocol';
+import { filePathOf } from '../uris';
+import { Workspace } from '../workspace';
+import { summarize } from './commands';
+
+function isFolder(filePath: string): boolean {
+  try {
+    return fs.statSync(filePath).isDirectory();
+  } catch {
+    return false;
+  }
+}
+
+/**
+ * Packs a folder (or the folder of a lone main.xosc) with everything it references, or a list of
+ * files at the root of a new package; writes the archive atomically, never over an input.
+ */
+export async function packCommand(workspace: Workspace, inputs: unknown, outputPath: unknown): Promise<WriteResult> {
+  if (!Array.isArray(inputs) || inputs.length === 0 || !inputs.every((input) => typeof input === 'string')) throw new Error('expected a list of input URIs');
+  if (typeof outputPath !== 'string' || !outputPath) throw new Error('expected an output path');
+  const output = path.resolve(filePathOf(outputPath) ?? outputPath);
+  const refuse = (message: string): WriteResult => ({ written: null, problems: [{ uri: outputPath, line: 0, character: 0, severity: 'error', message }] });
+  if (!output.toLowerCase().endsWith('.mosc')) return refuse(`the output '${output}' must end in .mosc`);
+  const paths = (inputs as string[]).map((input) => path.resolve(filePathOf(input) ?? input));
+  const folder = paths.length === 1 ? (isFolder(paths[0]) ? paths[0] : path.basename(paths[0]) === 'main.xosc' ? path.dirname(paths[0]) : undefined) : undefined;
+  if (paths.some((input) => input === output || isSameFile(input, output))) return refuse(`refusing to overwrite ${output}, one of the inputs`);
+  const result: PackResult = folder ? await packFolder(folder, workspace.store) : await packFiles(paths);
+  const problems = result.problems.map((problem) => summarize(workspace, problem));
+  if (!result.bytes) return { written: null, problems };
+  await writeFileAtomic(output, result.bytes);
+  workspace.fileChanged(output);
+  return { written: output, problems };
+}

@@ -1,0 +1,242 @@
+import * as assert from 'node:assert/strict';
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import JSZip from 'jszip';
+import { firstDifference } from '../../server/src/core/equivalence';
+import { isWellFormed, parseXml } from '../../server/src/core/xml';
+import { libraryDir, listFiles, makeWorkspace, outerGroup, repoRoot, requireCorpus, runCli, scenario, simpleGroup } from '../support/fixtures';
+
+function simpleWorkspace(extra: Record<string, string | Uint8Array> = {}, parameters: [string, string][] = [['value', '12']]) {
+  return makeWorkspace({
+    'simple.xosc': scenario(simpleGroup('Go')),
+    'main.xosc': scenario(outerGroup('Car', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Go', parameters }] }])),
+    ...extra,
+  });
+}
+
+/** Runs a flatten that must fail, and asserts the message, exit code 1 and that nothing was written. */
+function expectFailure(root: string, args: string[], message: RegExp) {
+  const before = listFiles(root);
+  const run = runCli(args, { cwd: root });
+  assert.equal(run.status, 1, run.stderr);
+  assert.match(run.stderr, message);
+  assert.doesNotMatch(run.stderr, /\n\s+at .*\(.*:\d+:\d+\)/, 'no stack trace');
+  assert.deepEqual(listFiles(root), before, 'nothing was written');
+  return run;
+}
+
+describe('cli: usage and compatibility', () => {
+  it('prints help and exits 0; wrong usage exits 2', () => {
+    const help = runCli(['--help']);
+    assert.equal(help.status, 0);
+    assert.match(help.stdout, /-cxm\|--convert-xosc-into-mosc/);
+    assert.match(help.stdout, /Exit codes:/);
+    const wrong = runCli(['flatten']);
+    assert.equal(wrong.status, 2);
+    assert.match(wrong.stderr, /flatten needs an input/);
+    assert.equal(runCli(['--bogus']).status, 2);
+  });
+
+  it('-cxm packs files and -cmx flattens the package, like flatten does', () => {
+    const root = simpleWorkspace();
+    const pack = runCli(['-cxm', 'main.xosc', 'simple.xosc', 'out.mosc'], { cwd: root });
+    assert.equal(pack.status, 0, pack.stderr);
+    const flat = runCli(['--convert-mosc-to-xosc', 'out.mosc', 'out.xosc'], { cwd: root });
+    assert.equal(flat.status, 0, flat.stderr);
+    const direct = runCli(['flatten', 'main.xosc'], { cwd: root });
+    assert.equal(firstDifference(fs.readFileSync(path.join(root, 'out.xosc'), 'utf8'), direct.stdout), undefined);
+    assert.match(direct.stdout, /<AbsoluteTargetSpeed value="12"\/>/);
+  });
+
+  it('flatten --out-dir writes one file per input', () => {
+    const root = simpleWorkspace();
+    fs.mkdirSync(path.join(root, 'out'));
+    fs.mkdirSync(path.join(root, 'second'));
+    fs.copyFileSync(path.join(root, 'main.xosc'), path.join(root, 'second', 'main.xosc'));
+    fs.copyFileSync(path.join(root, 'simple.xosc'), path.join(root, 'second', 'simple.xosc'));
+    const run = runCli(['flatten', '.', 'second', '--out-dir', 'out'], { cwd: root });
+    assert.equal(run.status, 0, run.stderr);
+    assert.deepEqual(fs.readdirSync(path.join(root, 'out')).sort(), [`${path.basename(root)}.xosc`, 'second.xosc']);
+  });
+
+  it('check prints compiler-style lines and JSON for CI', () => {
+    const root = simpleWorkspace({}, [['AbsoluteTargetSped.value', '1']]);
+    const text = runCli(['check', '.'], { cwd: root });
+    assert.equal(text.status, 1);
+    assert.match(text.stderr, /^main\.xosc:\d+:\d+: error: key 'AbsoluteTargetSped\.value' matches no attribute/m);
+    assert.match(text.stderr, /did you mean 'AbsoluteTargetSpeed\.value'\?/);
+    const json = runCli(['check', '.', '--format', 'json'], { cwd: root });
+    const report = JSON.parse(json.stdout) as { errors: number; problems: { file: string; line: number; code: string }[] };
+    assert.equal(report.errors, 1);
+    assert.equal(report.problems[0].code, 'unknown-key');
+    assert.equal(report.problems[0].file, 'main.xosc');
+  });
+
+  it('the examples check clean and flatten', () => {
+    const run = runCli(['check', 'examples'], { cwd: repoRoot });
+    assert.equal(run.status, 0, run.stderr);
+    const flat = runCli(['flatten', 'examples'], { cwd: repoRoot });
+    assert.equal(flat.status, 0, flat.stderr);
+    assert.match(flat.stdout, /name="LeadVehicle\.Brake\.HardBrake"/);
+  });
+
+  it('stats prints the table and the totals', function () {
+    requireCorpus(this);
+    const run = runCli(['stats', libraryDir]);
+    assert.equal(run.status, 0, run.stderr);
+    assert.match(run.stdout, /total\s+10,810\s+21,243\s+49\.1 %/);
+    const json = JSON.parse(runCli(['stats', libraryDir, '--format', 'json']).stdout) as { rows: unknown[] };
+    assert.equal(json.rows.length, 31);
+  });
+});
+
+describe('cli: every row of SPEC 7', () => {
+  it('maneuverGroupName not in the source: error with file, line and the names that exist', () => {
+    const root = makeWorkspace({
+      'simple.xosc': scenario(simpleGroup('Go') + simpleGroup('Stop')),
+      'main.xosc': scenario(outerGroup('Car', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Gone' }] }])),
+    });
+    expectFailure(root, ['flatten', 'main.xosc', '-o', 'out.xosc'], /main\.xosc:\d+:\d+: error: 'simple\.xosc' has no ManeuverGroup named 'Gone'; it has: Go, Stop/);
+  });
+
+  it('key that matches no listed attribute: error with the closest key', () => {
+    const root = simpleWorkspace({}, [['WorldPositon.x', '3']]);
+    expectFailure(root, ['flatten', 'main.xosc', '-o', 'out.xosc'], /error: key 'WorldPositon\.x' matches no attribute[^\n]*\n\s+hint: did you mean 'WorldPosition\.x'\?/);
+  });
+
+  it('listed attribute missing on its element: error "no default value"', () => {
+    const root = makeWorkspace({
+      'simple.xosc': scenario(simpleGroup('Go').replace('parameterAttributes="x, y"', 'parameterAttributes="x, y, h"')),
+      'main.xosc': scenario(outerGroup('Car', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Go', parameters: [['h', '3.14']] }] }])),
+    });
+    expectFailure(root, ['flatten', 'main.xosc', '-o', 'out.xosc'], /error: no default value: <WorldPosition> lists 'h'/);
+  });
+
+  it('outer group without EntityRef: error, no crash', () => {
+    const root = makeWorkspace({
+      'simple.xosc': scenario(simpleGroup('Go')),
+      'main.xosc': scenario(outerGroup('Car', undefined, [{ file: 'simple.xosc', groups: [{ name: 'Go' }] }])),
+    });
+    expectFailure(root, ['flatten', 'main.xosc', '-o', 'out.xosc'], /error: ManeuverGroup 'Car' has no <Actors><EntityRef/);
+  });
+
+  it('two ScenarioReferences in one group: both imported, in document order', () => {
+    const root = makeWorkspace({
+      'a.xosc': scenario(simpleGroup('A')),
+      'b.xosc': scenario(simpleGroup('B')),
+      'main.xosc': scenario(outerGroup('Car', 'car', [{ file: 'a.xosc', groups: [{ name: 'A' }] }, { file: 'b.xosc', groups: [{ name: 'B' }] }])),
+    });
+    const run = runCli(['flatten', 'main.xosc'], { cwd: root });
+    assert.equal(run.status, 0, run.stderr);
+    assert.ok(run.stdout.indexOf('"Car.A"') > 0 && run.stdout.indexOf('"Car.A"') < run.stdout.indexOf('"Car.B"'));
+  });
+
+  it('a ParameterReference with a third attribute: read by name', () => {
+    const root = simpleWorkspace();
+    const main = path.join(root, 'main.xosc');
+    fs.writeFileSync(main, fs.readFileSync(main, 'utf8').replace('<ParameterReference key="value" value="12"/>', '<ParameterReference note="x" value="12" key="value"/>'));
+    const run = runCli(['flatten', 'main.xosc'], { cwd: root });
+    assert.equal(run.status, 0, run.stderr);
+    assert.match(run.stdout, /<AbsoluteTargetSpeed value="12"\/>/);
+  });
+
+  it('key without a dot that ends like a listed attribute (relay vs y): unknown key, no crash', () => {
+    const root = simpleWorkspace({}, [['relay', '5']]);
+    expectFailure(root, ['flatten', 'main.xosc', '-o', 'out.xosc'], /error: key 'relay' matches no attribute/);
+  });
+
+  it('DOCTYPE with an external entity: never resolved', () => {
+    const secret = 'TOP-SECRET-CONTENT';
+    const root = simpleWorkspace({ 'secret.txt': secret });
+    const main = path.join(root, 'main.xosc');
+    const text = fs.readFileSync(main, 'utf8').replace('<OpenSCENARIO>', `<!DOCTYPE OpenSCENARIO [ <!ENTITY leak SYSTEM "file://${root}/secret.txt"> ]>\n<OpenSCENARIO>`).replace('value="12"', 'value="&leak;"');
+    fs.writeFileSync(main, text);
+    const run = expectFailure(root, ['flatten', 'main.xosc', '-o', 'out.xosc'], /external entity '&leak;' is never resolved/);
+    assert.ok(!run.stdout.includes(secret) && !run.stderr.includes(secret));
+  });
+
+  it('non-ASCII text under a POSIX locale: kept as UTF-8 (with a BOM accepted)', () => {
+    const root = simpleWorkspace({}, [['value', 'Straße 東京 ✓']]);
+    const main = path.join(root, 'main.xosc');
+    fs.writeFileSync(main, '\uFEFF' + fs.readFileSync(main, 'utf8'));
+    const run = runCli(['flatten', 'main.xosc', '-o', 'out.xosc'], { cwd: root, env: { LANG: 'C', LC_ALL: 'C' } });
+    assert.equal(run.status, 0, run.stderr);
+    assert.match(fs.readFileSync(path.join(root, 'out.xosc'), 'utf8'), /value="Straße 東京 ✓"/);
+  });
+
+  it('an existing tmp/ folder in the working directory: untouched', () => {
+    const root = simpleWorkspace({ 'tmp/keep.txt': 'mine' });
+    const run = runCli(['flatten', 'main.xosc', '-o', 'out.xosc'], { cwd: root });
+    assert.equal(run.status, 0, run.stderr);
+    assert.equal(fs.readFileSync(path.join(root, 'tmp', 'keep.txt'), 'utf8'), 'mine');
+    assert.deepEqual(listFiles(root), ['main.xosc', 'out.xosc', 'simple.xosc', 'tmp/keep.txt']);
+  });
+
+  it('a missing input while packing: no output, clear error', () => {
+    const root = simpleWorkspace();
+    expectFailure(root, ['-cxm', 'main.xosc', 'simple.xosc', 'gone.xosc', 'out.mosc'], /gone\.xosc: no such file/);
+    fs.rmSync(path.join(root, 'simple.xosc'));
+    expectFailure(root, ['pack', '.', '-o', 'out.mosc'], /main\.xosc:\d+:\d+: error: cannot find 'simple\.xosc'/);
+  });
+
+  it('a cycle of packages (unpacked folders): error printing the whole cycle', () => {
+    const root = makeWorkspace({
+      'main.xosc': scenario(outerGroup('M', 'car', [{ file: 'a.mosc', groups: [{ name: 'A.X' }] }])),
+      'a/main.xosc': scenario(outerGroup('A', 'car', [{ file: 'b.mosc', groups: [{ name: 'B.X' }] }])),
+      'b/main.xosc': scenario(outerGroup('B', 'car', [{ file: 'a.mosc', groups: [{ name: 'A.X' }] }])),
+    });
+    expectFailure(root, ['flatten', 'main.xosc', '-o', 'out.xosc'], /reference cycle: a\/main\.xosc -> b\/main\.xosc -> a\/main\.xosc/);
+  });
+
+  it('a value holding <, & or ": escaped, output well-formed', () => {
+    const root = simpleWorkspace({}, [['value', 'a &lt; b &amp;&amp; c &quot;q&quot;']]);
+    const run = runCli(['flatten', 'main.xosc', '-o', 'out.xosc'], { cwd: root });
+    assert.equal(run.status, 0, run.stderr);
+    const out = fs.readFileSync(path.join(root, 'out.xosc'), 'utf8');
+    assert.ok(isWellFormed(parseXml(out)));
+    assert.match(out, /value="a &lt; b &amp;&amp; c &quot;q&quot;"/);
+  });
+
+  it('a ZIP entry named ../x: refused, nothing extracted', async () => {
+    const zip = new JSZip();
+    zip.file('main.xosc', scenario(''));
+    zip.file('../escape.xosc', scenario(''));
+    const root = makeWorkspace({ 'evil.mosc': await zip.generateAsync({ type: 'uint8array' }) });
+    expectFailure(root, ['flatten', 'evil.mosc', '-o', 'out.xosc'], /entry named '\.\.\/escape\.xosc' that points outside the package; it was refused/);
+    assert.ok(!fs.existsSync(path.join(path.dirname(root), 'escape.xosc')));
+  });
+
+  it('malformed XML: error with file, line and column', () => {
+    const root = simpleWorkspace();
+    const simple = path.join(root, 'simple.xosc');
+    fs.writeFileSync(simple, fs.readFileSync(simple, 'utf8').replace('</Maneuver>', '</Maneuvre>'));
+    expectFailure(root, ['flatten', 'main.xosc', '-o', 'out.xosc'], /simple\.xosc:\d+:\d+: error: end tag <\/Maneuvre> has no matching start tag/);
+  });
+
+  it('failure midway: an existing output is untouched and no temporary files are left', () => {
+    const root = simpleWorkspace({ 'out.xosc': 'previous output' }, [['nope', '1']]);
+    expectFailure(root, ['flatten', 'main.xosc', '-o', 'out.xosc'], /error: key 'nope'/);
+    assert.equal(fs.readFileSync(path.join(root, 'out.xosc'), 'utf8'), 'previous output');
+    const unwritable = runCli(['flatten', 'main.xosc', '-o', 'no/such/folder/out.xosc', '--force'], { cwd: root });
+    assert.equal(unwritable.status, 3);
+    assert.match(unwritable.stderr, /cannot write the output/);
+    assert.deepEqual(listFiles(root), ['main.xosc', 'out.xosc', 'simple.xosc']);
+  });
+
+  it('never writes over an input', () => {
+    const root = simpleWorkspace();
+    const before = fs.readFileSync(path.join(root, 'simple.xosc'), 'utf8');
+    const run = runCli(['flatten', 'main.xosc', '-o', 'simple.xosc'], { cwd: root });
+    assert.equal(run.status, 1);
+    assert.match(run.stderr, /refusing to write .*simple\.xosc: it is an input/);
+    assert.equal(fs.readFileSync(path.join(root, 'simple.xosc'), 'utf8'), before);
+  });
+
+  it('--force writes the output the original would have, reporting what was skipped', () => {
+    const root = simpleWorkspace({}, [['nope', '1'], ['value', '13']]);
+    const run = runCli(['flatten', 'main.xosc', '-o', 'out.xosc', '--force'], { cwd: root });
+    assert.equal(run.status, 0, run.stderr);
+    assert.match(run.stderr, /warning: key 'nope' matches no attribute.*\(skipped: --force\)/);
+    assert.match(fs.readFileSync(path.join(root, 'out.xosc'), 'utf8'), /<AbsoluteTargetSpeed value="13"\/>/);
+  });
+});

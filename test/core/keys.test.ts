@@ -1,0 +1,75 @@
+import * as assert from 'node:assert/strict';
+import { keyForms, keyMatches, overridableAttributes, planOverrides, shortestUnambiguousKey } from '../../server/src/core/keys';
+import { findGroup, parseScenario } from '../../server/src/core/model';
+import { scenario, simpleGroup } from '../support/fixtures';
+
+const model = parseScenario(scenario(simpleGroup('G', '              <Position><WorldPosition parameterAttributes="y" x="0" y="9"/></Position>\n')));
+const group = findGroup(model, 'G')!;
+const targets = overridableAttributes(model, group);
+
+function parameters(...entries: [string, string][]) {
+  const text = scenario(
+    `        <ManeuverGroup name="Outer"><ScenarioReference scenarioFileName="x.xosc"><ManeuverGroupReference maneuverGroupName="G">${entries
+      .map(([key, value]) => `<ParameterReference key="${key}" value="${value}"/>`)
+      .join('')}</ManeuverGroupReference></ScenarioReference></ManeuverGroup>\n`,
+  );
+  return parseScenario(text).references[0].groupReferences[0].parameters;
+}
+
+describe('core: override keys (SPEC 5)', () => {
+  it('lists every attribute named in parameterAttributes, with its path and default', () => {
+    const listed = targets.map((t) => `${t.path.join('.')}.${t.attributeName}=${t.defaultValue}`);
+    assert.ok(listed.includes('ManeuverGroup.Maneuver.Event.Action.SpeedActionTarget.AbsoluteTargetSpeed.value=10'));
+    assert.ok(listed.includes('ManeuverGroup.Maneuver.Event.Action.Position.WorldPosition.y=2'));
+    assert.ok(listed.includes('ManeuverGroup.Maneuver.Event.Condition.delay=0'));
+  });
+
+  it('matches a key on a suffix of the element path', () => {
+    const x = targets.find((t) => t.attributeName === 'x')!;
+    assert.ok(keyMatches('x', x));
+    assert.ok(keyMatches('WorldPosition.x', x));
+    assert.ok(keyMatches('Position.WorldPosition.x', x));
+    assert.ok(!keyMatches('Route.WorldPosition.x', x));
+    assert.ok(!keyMatches('Position.x', x), 'middle names must be the nearest ancestors');
+  });
+
+  it('does not take a key that merely ends like an attribute (relay vs y)', () => {
+    const y = targets.filter((t) => t.attributeName === 'y');
+    assert.ok(y.every((target) => !keyMatches('relay', target)));
+    const plan = planOverrides(targets, parameters(['relay', '5']));
+    assert.equal(plan.unknown.length, 1);
+  });
+
+  it('applies the most specific key, whatever the order', () => {
+    for (const order of [0, 1]) {
+      const entries: [string, string][] = [['y', 'bare'], ['Action.Position.WorldPosition.y', 'specific']];
+      if (order) entries.reverse();
+      const plan = planOverrides(targets, parameters(...entries));
+      const firstY = targets.find((t) => t.attributeName === 'y' && t.path.includes('Action'))!;
+      assert.equal(plan.applied.get(firstY)?.value, 'specific');
+      const secondY = targets.find((t) => t.attributeName === 'y' && !t.path.includes('Action'))!;
+      assert.equal(plan.applied.get(secondY)?.value, 'bare');
+    }
+  });
+
+  it('suggests the closest valid key for an unknown one', () => {
+    const plan = planOverrides(targets, parameters(['AbsoluteTargetSped.value', '1']));
+    assert.equal(plan.unknown[0].suggestion, 'AbsoluteTargetSpeed.value');
+  });
+
+  it('reports a key that reaches an attribute without default', () => {
+    const noDefault = parseScenario(scenario(`        <ManeuverGroup name="G"><Actors><EntityRef entityRef="car"/></Actors><Speed parameterAttributes="value,limit" value="1"/></ManeuverGroup>\n`));
+    const listed = overridableAttributes(noDefault, noDefault.groups[0]);
+    const plan = planOverrides(listed, parameters(['limit', '3']));
+    assert.equal(plan.withoutDefault.length, 1);
+    assert.equal(plan.withoutDefault[0].target.attributeName, 'limit');
+  });
+
+  it('offers the shortest unambiguous key form first', () => {
+    const value = targets.find((t) => t.attributeName === 'value')!;
+    assert.equal(shortestUnambiguousKey(value, targets), 'value');
+    const y = targets.find((t) => t.attributeName === 'y')!;
+    assert.equal(shortestUnambiguousKey(y, targets), 'Action.Position.WorldPosition.y');
+    assert.equal(keyForms(value)[0], 'value');
+  });
+});

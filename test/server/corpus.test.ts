@@ -1,0 +1,126 @@
+import * as assert from 'node:assert/strict';
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import { CompletionItem, Diagnostic, DiagnosticSeverity, Hover, Location, MarkupContent } from 'vscode-languageserver/node';
+import { firstDifference } from '../../server/src/core/equivalence';
+import { FlattenTextResult, ServerCommands } from '../../server/src/protocol';
+import { caseStudy, fileUri, library, positionAfter, requireCorpus, TestClient } from './harness';
+
+function rangeText(text: string, location: Location): string {
+  const lines = text.split('\n');
+  return lines[location.range.start.line].slice(location.range.start.character, location.range.end.character);
+}
+
+describe('language server on the case study (../shared/corpus)', function () {
+  let client: TestClient;
+  let mainUri: string;
+  let mainText: string;
+
+  before(async function () {
+    requireCorpus(this);
+    client = await TestClient.start({ root: caseStudy });
+    await client.indexed();
+    mainText = fs.readFileSync(path.join(caseStudy, 'main.xosc'), 'utf8');
+    mainUri = await client.openFile(path.join(caseStudy, 'main.xosc'));
+  });
+
+  after(async function () {
+    await client?.stop();
+  });
+
+  it('warns about the NAME.xosc fallback and the keys that simple_2.xosc lists as whole keys', async function () {
+    const diagnostics = await client.diagnosticsOf(mainUri);
+    assert.deepEqual(diagnostics.map((diagnostic) => `${diagnostic.range.start.line + 1}:${diagnostic.code}`), ['339:xosc-fallback', '492:unknown-key', '518:unknown-key']);
+    assert.ok(diagnostics.every((diagnostic) => diagnostic.severity === DiagnosticSeverity.Warning));
+    const related = diagnostics[1].relatedInformation?.[0];
+    assert.equal(related?.location.uri, fileUri(path.join(caseStudy, 'simple_2.xosc')));
+    assert.equal(rangeText(fs.readFileSync(path.join(caseStudy, 'simple_2.xosc'), 'utf8'), related.location), 'AbsoluteTargetSpeed.value');
+  });
+
+  it('shows the parameterAttributes entry of simple_2.xosc that names no attribute', async function () {
+    const uri = await client.openFile(path.join(caseStudy, 'simple_2.xosc'));
+    const diagnostics: Diagnostic[] = await client.diagnosticsOf(uri);
+    const entry = diagnostics.find((diagnostic) => diagnostic.code === 'unknown-parameter-attribute');
+    assert.ok(entry);
+    assert.equal(entry.range.start.line + 1, 129);
+    await client.close(uri);
+  });
+
+  it('goes to definition through the nested package for a dotted group name', async function () {
+    const locations = await client.request<Location[]>('textDocument/definition', client.at(mainUri, positionAfter(mainText, 'maneuverGroupName="VehicleCollisionInit.Coll')));
+    assert.equal(locations.length, 1);
+    assert.equal(locations[0].uri, fileUri(path.join(caseStudy, 'simple_1.xosc')));
+    assert.equal(locations[0].range.start.line + 1, 117);
+    assert.equal(rangeText(fs.readFileSync(path.join(caseStudy, 'simple_1.xosc'), 'utf8'), locations[0]), 'CollisionInit');
+  });
+
+  it('goes from a key to the attribute it overrides in simple_1.xosc', async function () {
+    const locations = await client.request<Location[]>('textDocument/definition', client.at(mainUri, positionAfter(mainText, 'key="AcquirePositionAction.Position.WorldPosition.x')));
+    assert.equal(locations.length, 1);
+    const simple = fs.readFileSync(path.join(caseStudy, 'simple_1.xosc'), 'utf8');
+    assert.match(rangeText(simple, locations[0]), /^x="-?[\d.]+"$/);
+    assert.match(simple.split('\n')[locations[0].range.start.line], /<WorldPosition parameterAttributes="x,y,z,h"/);
+  });
+
+  it('goes from scenarioFileName to the unpacked package', async function () {
+    const [location] = await client.request<Location[]>('textDocument/definition', client.at(mainUri, positionAfter(mainText, 'scenarioFileName="modular_1.m')));
+    assert.equal(location.uri, fileUri(path.join(caseStudy, 'modular_1', 'main.xosc')));
+  });
+
+  it('completes only the key not yet given in a group reference', async function () {
+    const items = await client.request<CompletionItem[]>('textDocument/completion', client.at(mainUri, positionAfter(mainText, 'key="', 1)));
+    const sorted = items.sort((a, b) => (a.sortText ?? '').localeCompare(b.sortText ?? '')).map((item) => item.label);
+    assert.equal(sorted[0], 'delay');
+    assert.ok(sorted.every((label) => label.endsWith('delay')));
+  });
+
+  it('hovers a key with the value taking effect', async function () {
+    const hover = await client.request<Hover>('textDocument/hover', client.at(mainUri, positionAfter(mainText, 'key="AbsoluteTargetSpeed.va', 2)));
+    assert.match((hover.contents as MarkupContent).value, /default \*\*6\.8\*\* declared at simple_1\.xosc:130; takes effect: \*\*10\*\* \(this key\)/);
+  });
+
+  it('finds every reference to a group of simple_1.xosc, in the package and through it', async function () {
+    const simplePath = path.join(caseStudy, 'simple_1.xosc');
+    const uri = await client.openFile(simplePath);
+    const locations = await client.request<Location[]>('textDocument/references', { ...client.at(uri, positionAfter(fs.readFileSync(simplePath, 'utf8'), 'name="CollisionI')), context: { includeDeclaration: false } });
+    const found = locations.map((location) => `${path.relative(caseStudy, new URL(location.uri).pathname)}:${location.range.start.line + 1}`).sort();
+    assert.deepEqual(found, ['main.xosc:310', 'main.xosc:340', 'main.xosc:370', 'main.xosc:400', 'main.xosc:430', 'main.xosc:460', 'modular_1/main.xosc:122']);
+    await client.close(uri);
+  });
+});
+
+describe('language server on the library (../shared/corpus)', function () {
+  let client: TestClient;
+
+  before(async function () {
+    requireCorpus(this);
+    client = await TestClient.start({ root: library, settings: { scenarioPath: [library] } });
+    await client.indexed();
+  });
+
+  after(async function () {
+    await client?.stop();
+  });
+
+  it('serves the main.xosc inside result.mosc by its mosc: URI, without errors', async function () {
+    const uri = `mosc:${path.join(library, 'modular_hero_back', 'result.mosc')}/main.xosc`;
+    const text = fs.readFileSync(path.join(library, 'modular_hero_back', 'main.xosc'), 'utf8');
+    await client.open(uri, text);
+    const diagnostics = await client.diagnosticsOf(uri);
+    assert.deepEqual(diagnostics.filter((diagnostic) => diagnostic.severity === DiagnosticSeverity.Error), []);
+    const [location] = await client.request<Location[]>('textDocument/definition', client.at(uri, positionAfter(text, 'maneuverGroupName="ManeuverGroupV')));
+    assert.equal(location.uri, fileUri(path.join(library, 'simple_1.xosc')));
+    await client.close(uri);
+  });
+
+  it('flattens every library scenario to the original tool\'s output', async function () {
+    for (const name of fs.readdirSync(library).filter((entry) => entry.startsWith('modular_hero'))) {
+      const result = await client.request<FlattenTextResult>('workspace/executeCommand', {
+        command: ServerCommands.flattenToText,
+        arguments: [`mosc:${path.join(library, name, 'result.mosc')}/main.xosc`],
+      });
+      assert.ok(result.text, `${name}: ${JSON.stringify(result.problems)}`);
+      assert.equal(firstDifference(result.text, fs.readFileSync(path.join(library, name, 'result.xosc'), 'utf8')), undefined, name);
+    }
+  });
+});

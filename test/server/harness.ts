@@ -1,0 +1,206 @@
+import * as fs from 'node:fs';
+import * as os from 'node:os';
+import * as path from 'node:path';
+import { PassThrough } from 'node:stream';
+import { pathToFileURL } from 'node:url';
+import {
+  createConnection,
+  createProtocolConnection,
+  Diagnostic,
+  InitializeParams,
+  ProposedFeatures,
+  ProtocolConnection,
+  PublishDiagnosticsParams,
+  StreamMessageReader,
+  StreamMessageWriter,
+  TextDocumentContentChangeEvent,
+} from 'vscode-languageserver/node';
+import { startServer } from '../../server/src/languageServer';
+
+export const repoRoot = path.resolve(__dirname, '..', '..');
+export const sharedRoot = path.resolve(repoRoot, '..', 'shared');
+export const corpusRoot = path.join(sharedRoot, 'corpus', 'modular2simple');
+export const caseStudy = path.join(corpusRoot, 'case-study');
+export const library = path.join(corpusRoot, 'library');
+
+/** Skips the calling suite with a message when the shared corpus is not next to the repository. */
+export function requireCorpus(context: Mocha.Context): void {
+  if (!fs.existsSync(corpusRoot)) {
+    console.log(`    (skipped: ${corpusRoot} is absent)`);
+    context.skip();
+  }
+}
+
+export function fileUri(filePath: string): string {
+  return pathToFileURL(filePath).href;
+}
+
+/** Text with `|` cursor markers removed, and the offsets where they stood. */
+export function markers(marked: string): { text: string; offsets: number[] } {
+  const offsets: number[] = [];
+  let text = '';
+  for (const char of marked) {
+    if (char === '|') offsets.push(text.length);
+    else text += char;
+  }
+  return { text, offsets };
+}
+
+export function positionAt(text: string, offset: number): { line: number; character: number } {
+  const before = text.slice(0, offset);
+  const line = before.split('\n').length - 1;
+  return { line, character: offset - (before.lastIndexOf('\n') + 1) };
+}
+
+/** The position just after the first occurrence of `needle` (after `nth` earlier ones). */
+export function positionAfter(text: string, needle: string, nth = 0): { line: number; character: number } {
+  let index = -1;
+  for (let i = 0; i <= nth; i++) {
+    index = text.indexOf(needle, index + 1);
+    if (index < 0) throw new Error(`'${needle}' not found`);
+  }
+  return positionAt(text, index + needle.length);
+}
+
+/** A temporary folder holding the given files (paths relative to it). */
+export function temporaryWorkspace(files: Record<string, string | Uint8Array>): string {
+  const root = fs.realpathSync(fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-server-')));
+  for (const [name, content] of Object.entries(files)) {
+    const full = path.join(root, name);
+    fs.mkdirSync(path.dirname(full), { recursive: true });
+    fs.writeFileSync(full, content);
+  }
+  return root;
+}
+
+export interface ClientOptions {
+  root: string;
+  settings?: Record<string, unknown>;
+  /** Answer window/workDoneProgress/create and record $/progress (true by default). */
+  progress?: boolean;
+}
+
+/** An LSP client over a real JSON-RPC connection to the server running in this process. */
+export class TestClient {
+  readonly diagnostics = new Map<string, PublishDiagnosticsParams>();
+  readonly progress: unknown[] = [];
+  readonly logs: string[] = [];
+  private readonly versions = new Map<string, number>();
+  private readonly waiters: (() => void)[] = [];
+
+  private constructor(
+    readonly connection: ProtocolConnection,
+    private readonly server: { dispose(): void },
+  ) {}
+
+  static async start(options: ClientOptions): Promise<TestClient> {
+    const toServer = new PassThrough();
+    const toClient = new PassThrough();
+    const serverConnection = createConnection(ProposedFeatures.all, new StreamMessageReader(toServer), new StreamMessageWriter(toClient));
+    startServer(serverConnection);
+    serverConnection.listen();
+    const connection = createProtocolConnection(new StreamMessageReader(toClient), new StreamMessageWriter(toServer));
+    const client = new TestClient(connection, serverConnection);
+    connection.onNotification('textDocument/publishDiagnostics', (params: PublishDiagnosticsParams) => {
+      client.diagnostics.set(params.uri, params);
+      client.notify();
+    });
+    connection.onNotification('$/progress', (params: unknown) => {
+      client.progress.push(params);
+      client.notify();
+    });
+    connection.onNotification('window/logMessage', (params: { message: string }) => {
+      client.logs.push(params.message);
+    });
+    connection.onRequest('workspace/configuration', (params: { items: { section?: string }[] }) => params.items.map(() => options.settings ?? {}));
+    connection.onRequest('window/workDoneProgress/create', () => null);
+    connection.onRequest('client/registerCapability', () => null);
+    connection.listen();
+    const params: InitializeParams = {
+      // No process id: the server would otherwise poll it and keep the test process alive.
+      processId: null,
+      rootUri: fileUri(options.root),
+      workspaceFolders: [{ uri: fileUri(options.root), name: path.basename(options.root) }],
+      capabilities: {
+        workspace: { configuration: options.progress !== false, didChangeWatchedFiles: { dynamicRegistration: true }, workspaceEdit: { documentChanges: false } },
+        window: { workDoneProgress: options.progress !== false },
+        textDocument: { publishDiagnostics: { relatedInformation: true, versionSupport: true } },
+      },
+    };
+    await connection.sendRequest('initialize', params);
+    await connection.sendNotification('initialized', {});
+    return client;
+  }
+
+  private notify(): void {
+    for (const waiter of this.waiters.splice(0)) waiter();
+  }
+
+  /** Resolves when `check` holds, re-checking on each notification; rejects after `timeout` ms. */
+  async until<T>(check: () => T | undefined, what: string, timeout = 10_000): Promise<T> {
+    const deadline = Date.now() + timeout;
+    for (;;) {
+      const value = check();
+      if (value !== undefined && value !== false) return value;
+      if (Date.now() > deadline) throw new Error(`timed out waiting for ${what}`);
+      await new Promise<void>((resolve) => {
+        const timer = setTimeout(resolve, 50);
+        this.waiters.push(() => {
+          clearTimeout(timer);
+          resolve();
+        });
+      });
+    }
+  }
+
+  /** The diagnostics of `uri` once a publication for its current version arrived. */
+  async diagnosticsOf(uri: string, predicate: (diagnostics: Diagnostic[]) => boolean = () => true): Promise<Diagnostic[]> {
+    return this.until(() => {
+      const published = this.diagnostics.get(uri);
+      const version = this.versions.get(uri);
+      if (!published || (version !== undefined && published.version !== undefined && published.version !== version)) return undefined;
+      return predicate(published.diagnostics) ? published.diagnostics : undefined;
+    }, `diagnostics of ${uri}`);
+  }
+
+  async indexed(): Promise<void> {
+    await this.until(() => this.progress.some((entry) => (entry as { value?: { kind?: string } }).value?.kind === 'end') || undefined, 'indexing to end');
+  }
+
+  async open(uri: string, text: string): Promise<string> {
+    this.versions.set(uri, 1);
+    this.diagnostics.delete(uri);
+    await this.connection.sendNotification('textDocument/didOpen', { textDocument: { uri, languageId: 'xml', version: 1, text } });
+    return uri;
+  }
+
+  async openFile(filePath: string): Promise<string> {
+    return this.open(fileUri(filePath), fs.readFileSync(filePath, 'utf8'));
+  }
+
+  async change(uri: string, changes: TextDocumentContentChangeEvent[]): Promise<void> {
+    const version = (this.versions.get(uri) ?? 1) + 1;
+    this.versions.set(uri, version);
+    await this.connection.sendNotification('textDocument/didChange', { textDocument: { uri, version }, contentChanges: changes });
+  }
+
+  async close(uri: string): Promise<void> {
+    this.versions.delete(uri);
+    await this.connection.sendNotification('textDocument/didClose', { textDocument: { uri } });
+  }
+
+  request<R>(method: string, params: unknown): Promise<R> {
+    return this.connection.sendRequest(method, params) as Promise<R>;
+  }
+
+  at(uri: string, position: { line: number; character: number }) {
+    return { textDocument: { uri }, position };
+  }
+
+  async stop(): Promise<void> {
+    await this.connection.sendRequest('shutdown').catch(() => undefined);
+    // Ending the streams would make vscode-languageserver exit the process, so only the connections go.
+    this.connection.dispose();
+    this.server.dispose();
+  }
+}

@@ -1,0 +1,131 @@
+import { spawnSync } from 'node:child_process';
+import * as fs from 'node:fs';
+import * as os from 'node:os';
+import * as path from 'node:path';
+
+export const repoRoot = path.resolve(__dirname, '..', '..');
+export const sharedDir = path.resolve(repoRoot, '..', 'shared');
+export const corpusDir = path.join(sharedDir, 'corpus', 'modular2simple');
+export const libraryDir = path.join(corpusDir, 'library');
+export const caseStudyDir = path.join(corpusDir, 'case-study');
+export const cliPath = path.join(repoRoot, 'dist', 'cli.js');
+
+/** Skips the calling suite, with a message, when ../shared/corpus is absent. */
+export function requireCorpus(context: Mocha.Context): void {
+  if (!fs.existsSync(corpusDir)) {
+    console.log(`    (skipped: ${corpusDir} is absent)`);
+    context.skip();
+  }
+}
+
+/** A fresh temporary folder holding the given files (paths relative to it). */
+export function makeWorkspace(files: Record<string, string | Uint8Array>): string {
+  const root = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-test-'));
+  for (const [name, content] of Object.entries(files)) {
+    const full = path.join(root, name);
+    fs.mkdirSync(path.dirname(full), { recursive: true });
+    fs.writeFileSync(full, content);
+  }
+  return root;
+}
+
+/** Every file below a folder, relative paths, sorted: to assert that nothing was written. */
+export function listFiles(root: string): string[] {
+  const found: string[] = [];
+  const walk = (directory: string) => {
+    for (const entry of fs.readdirSync(directory, { withFileTypes: true })) {
+      const full = path.join(directory, entry.name);
+      if (entry.isDirectory()) walk(full);
+      else found.push(path.relative(root, full));
+    }
+  };
+  walk(root);
+  return found.sort();
+}
+
+export interface CliRun {
+  status: number;
+  stdout: string;
+  stderr: string;
+}
+
+export function runCli(args: string[], options: { cwd?: string; env?: Record<string, string | undefined> } = {}): CliRun {
+  const env = { ...process.env, SCENARIO_PATH: '', ...options.env };
+  const result = spawnSync(process.execPath, [cliPath, ...args], { cwd: options.cwd, env, encoding: 'utf8' });
+  return { status: result.status ?? -1, stdout: result.stdout, stderr: result.stderr };
+}
+
+const HEADER = `<?xml version="1.0" encoding="UTF-8"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="0" date="2026-01-01T00:00:00" description="test" author="test"/>
+  <Entities>
+{ENTITIES}  </Entities>
+  <Storyboard>
+    <Story name="S">
+      <Act name="A">
+{GROUPS}      </Act>
+    </Story>
+  </Storyboard>
+</OpenSCENARIO>
+`;
+
+export function scenario(groups: string, entities: string[] = ['ego', 'car']): string {
+  const declared = entities.map((name) => `    <ScenarioObject name="${name}"/>\n`).join('');
+  return HEADER.replace('{ENTITIES}', declared).replace('{GROUPS}', groups);
+}
+
+/** A simple scenario's group with overridable attributes. */
+export function simpleGroup(name: string, body = ''): string {
+  return `        <ManeuverGroup name="${name}" maximumExecutionCount="1">
+          <Actors selectTriggeringEntities="false">
+            <EntityRef entityRef="car"/>
+          </Actors>
+          <Maneuver name="${name}Maneuver">
+            <Event name="Go" priority="overwrite">
+              <Action name="Go">
+                <SpeedActionTarget>
+                  <AbsoluteTargetSpeed parameterAttributes="value" value="10"/>
+                </SpeedActionTarget>
+                <Position>
+                  <WorldPosition parameterAttributes="x, y" x="1" y="2" z="0"/>
+                </Position>
+              </Action>
+              <Condition parameterAttributes="delay" name="Start" delay="0" conditionEdge="rising">
+                <EntityRef parameterAttributes="entityRef" entityRef="ego"/>
+              </Condition>
+${body}            </Event>
+          </Maneuver>
+        </ManeuverGroup>
+`;
+}
+
+export interface ReferenceSpec {
+  file: string;
+  groups: { name: string; parameters?: [string, string][] }[];
+}
+
+/** A main file's outer group holding references. */
+export function outerGroup(name: string, actor: string | undefined, references: ReferenceSpec[]): string {
+  const actors = actor === undefined ? '' : `          <Actors selectTriggeringEntities="false">\n            <EntityRef entityRef="${actor}"/>\n          </Actors>\n`;
+  const body = references
+    .map(
+      (reference) =>
+        `          <ScenarioReference scenarioFileName="${reference.file}">\n` +
+        reference.groups
+          .map(
+            (group) =>
+              `            <ManeuverGroupReference maneuverGroupName="${group.name}">\n` +
+              (group.parameters ?? []).map(([key, value]) => `              <ParameterReference key="${key}" value="${value}"/>\n`).join('') +
+              `            </ManeuverGroupReference>\n`,
+          )
+          .join('') +
+        `          </ScenarioReference>\n`,
+    )
+    .join('');
+  return `        <ManeuverGroup maximumExecutionCount="1" name="${name}">\n${actors}${body}        </ManeuverGroup>\n`;
+}
+
+/** Escapes a value for an attribute written by the fixtures above. */
+export function xmlAttribute(value: string): string {
+  return value.replace(/&/g, '&amp;').replace(/</g, '&lt;').replace(/>/g, '&gt;').replace(/"/g, '&quot;');
+}
