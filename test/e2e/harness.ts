@@ -46,9 +46,7 @@ function run(command: string, args: string[], options: { cwd?: string; env?: Nod
 /** Builds the bundles and the .vsix exactly as `npm run package` does, into `directory`. */
 export function packageExtension(directory: string): string {
   const vsix = path.join(directory, 'modular2simple.vsix');
-  run(process.execPath, [path.join(ROOT, 'scripts', 'build.mjs'), '--minify']);
-  const vsce = path.join(ROOT, 'node_modules', '@vscode', 'vsce', 'vsce');
-  run(process.execPath, [vsce, 'package', '--no-dependencies', '--allow-missing-repository', '--skip-license', '--out', vsix]);
+  run(process.execPath, [path.join(ROOT, 'scripts', 'package.mjs'), '--out', vsix]);
   return vsix;
 }
 
