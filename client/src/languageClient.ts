@@ -19,10 +19,7 @@ export function createLanguageClient(context: vscode.ExtensionContext): Language
       { scheme: PACKAGE_SCHEME, language: LANGUAGE_ID },
       { scheme: 'untitled', language: LANGUAGE_ID },
     ],
-    synchronize: {
-      configurationSection: CONFIGURATION_SECTION,
-      fileEvents: vscode.workspace.createFileSystemWatcher('**/*.{xosc,mosc}'),
-    },
+    // No `synchronize`: the server registers for configuration changes and file events itself.
   };
   return new LanguageClient(CONFIGURATION_SECTION, 'Modular2Simple Language Server', serverOptions, clientOptions);
 }

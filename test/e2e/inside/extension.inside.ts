@@ -301,6 +301,28 @@ export function defineExtensionTests(): void {
       await revertAndClose();
     });
 
+    it(INSIDE_TESTS.scenarioPath, async function () {
+      requireServerFeature(this, 'diagnostics', !!api().serverCapabilities()?.textDocumentSync);
+      // A library folder outside the workspace, found only through the setting.
+      const library = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-library-'));
+      fs.copyFileSync(path.join(workspaceRoot(), 'lane_change.xosc'), path.join(library, 'shared_lane_change.xosc'));
+      const editor = await open('main.xosc');
+      const uri = editor.document.uri;
+      await replaceText(editor.document, 'scenarioFileName="lane_change.xosc"', 'scenarioFileName="shared_lane_change.xosc"');
+      const line = positionOf(editor.document, 'shared_lane_change.xosc').line;
+      const onReference = (): vscode.Diagnostic | undefined => vscode.languages.getDiagnostics(uri).find((d) => d.range.start.line === line && d.severity === vscode.DiagnosticSeverity.Error);
+      await waitFor('the missing file to be reported', onReference);
+      const settings = vscode.workspace.getConfiguration('modular2simple');
+      await settings.update('scenarioPath', [library], vscode.ConfigurationTarget.Workspace);
+      try {
+        await waitFor('the reference to resolve through the setting', () => !onReference() || undefined);
+      } finally {
+        await settings.update('scenarioPath', undefined, vscode.ConfigurationTarget.Workspace);
+        await revertAndClose();
+        fs.rmSync(library, { recursive: true, force: true });
+      }
+    });
+
     it(INSIDE_TESTS.pack, async function () {
       requireServerFeature(this, 'pack', offersCommand(ServerCommands.pack));
       const root = workspaceRoot();
