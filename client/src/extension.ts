@@ -3,7 +3,7 @@ import type { ServerCapabilities } from 'vscode-languageclient';
 import type { LanguageClient } from 'vscode-languageclient/node';
 import { PACKAGE_SCHEME, type StructureNode } from '../../server/src/protocol';
 import { CommandReporter, commandTargets, flattenCommand, mainFileOf, packCommand } from './commands';
-import { ServerCommandClient, createLanguageClient } from './languageClient';
+import { LANGUAGE_ID, ServerCommandClient, createLanguageClient } from './languageClient';
 import { PackageFileSystem } from './packageFileSystem';
 import { PACKAGE_VIEW_TYPE, PackageViewProvider } from './packageView';
 import { FlattenedPreview, PREVIEW_SCHEME, previewSource } from './preview';
@@ -68,6 +68,21 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
     }
     return preview.open(mainFileOf(source));
   });
+  // The structure shown follows saves, as the Outline does.
+  let structureSource: vscode.Uri | undefined;
+  const loadStructure = async (source: vscode.Uri): Promise<StructureNode | undefined> => {
+    const root = await vscode.window.withProgress({ location: { viewId: STRUCTURE_VIEW_ID }, title: 'Reading the references' }, () => server.structure(source));
+    structureSource = source;
+    structure.show(root ?? undefined);
+    return root ?? undefined;
+  };
+  context.subscriptions.push(
+    vscode.workspace.onDidSaveTextDocument((document) => {
+      if (structureSource && document.languageId === LANGUAGE_ID) {
+        loadStructure(structureSource).catch((error: unknown) => log(`refreshing the structure: ${(error as Error).message}`));
+      }
+    }),
+  );
   register('modular2simple.showStructure', async (clicked) => {
     const [source] = commandTargets(clicked, undefined);
     if (!source) {
@@ -75,11 +90,19 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
       return undefined;
     }
     try {
-      const root = await vscode.window.withProgress({ location: { viewId: STRUCTURE_VIEW_ID }, title: 'Reading the references' }, () => server.structure(mainFileOf(source)));
-      structure.show(root ?? undefined);
+      const root = await loadStructure(mainFileOf(source));
       await vscode.commands.executeCommand(`${STRUCTURE_VIEW_ID}.focus`);
       if (!root) void vscode.window.showInformationMessage(`${source.path.split('/').pop()} holds no scenario references to show.`);
-      return root ?? undefined;
+      return root;
+    } catch (error) {
+      await reporter.failure('Show Structure', error);
+      return undefined;
+    }
+  });
+  register('modular2simple.refreshStructure', async () => {
+    if (!structureSource) return vscode.commands.executeCommand('modular2simple.showStructure');
+    try {
+      return await loadStructure(structureSource);
     } catch (error) {
       await reporter.failure('Show Structure', error);
       return undefined;

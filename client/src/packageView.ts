@@ -4,14 +4,24 @@ import { packageEntryUri } from './packageFileSystem';
 
 export const PACKAGE_VIEW_TYPE = 'modular2simple.packageView';
 
-interface OpenEntryMessage {
-  type: 'open';
-  entry: string;
-}
+/** What the package's page may ask for: open one of its files, or run one of the package commands on it. */
+type PackageViewMessage = { type: 'open'; entry: string } | { type: 'run'; command: PackageAction };
 
-function isOpenEntryMessage(value: unknown): value is OpenEntryMessage {
-  const candidate = value as Partial<OpenEntryMessage> | null;
-  return typeof candidate === 'object' && candidate !== null && candidate.type === 'open' && typeof candidate.entry === 'string';
+const PACKAGE_ACTIONS = {
+  'modular2simple.openPreview': 'Open Flattened Preview',
+  'modular2simple.showStructure': 'Show Structure',
+  'modular2simple.flatten': 'Flatten to .xosc',
+} as const;
+type PackageAction = keyof typeof PACKAGE_ACTIONS;
+
+function parseMessage(value: unknown): PackageViewMessage | undefined {
+  if (typeof value !== 'object' || value === null) return undefined;
+  const candidate = value as Record<string, unknown>;
+  if (candidate.type === 'open' && typeof candidate.entry === 'string') return { type: 'open', entry: candidate.entry };
+  if (candidate.type === 'run' && typeof candidate.command === 'string' && candidate.command in PACKAGE_ACTIONS) {
+    return { type: 'run', command: candidate.command as PackageAction };
+  }
+  return undefined;
 }
 
 function escapeHtml(text: string): string {
@@ -36,9 +46,10 @@ export class PackageViewProvider implements vscode.CustomReadonlyEditorProvider 
     const render = async (): Promise<void> => {
       panel.webview.html = await this.html(document.uri, script, panel.webview.cspSource);
     };
-    panel.webview.onDidReceiveMessage(async (message: unknown) => {
-      if (!isOpenEntryMessage(message)) return;
-      await vscode.commands.executeCommand('vscode.open', packageEntryUri(document.uri, message.entry));
+    panel.webview.onDidReceiveMessage(async (received: unknown) => {
+      const message = parseMessage(received);
+      if (message?.type === 'open') await vscode.commands.executeCommand('vscode.open', packageEntryUri(document.uri, message.entry));
+      if (message?.type === 'run') await vscode.commands.executeCommand(message.command, document.uri);
     });
     const watcher = vscode.workspace.createFileSystemWatcher(new vscode.RelativePattern(vscode.Uri.joinPath(document.uri, '..'), document.uri.path.split('/').pop() ?? ''));
     watcher.onDidChange(render);
@@ -61,7 +72,10 @@ export class PackageViewProvider implements vscode.CustomReadonlyEditorProvider 
           return `<li style="padding-left:${depth * 1.2}em">${link}</li>`;
         })
         .join('\n');
-      body = `<p>${entries.length} entries. Click a file to open, edit and save it inside the package.</p><ul>${items}</ul>`;
+      const actions = Object.entries(PACKAGE_ACTIONS)
+        .map(([command, title]) => `<button data-command="${command}">${escapeHtml(title)}</button>`)
+        .join(' ');
+      body = `<p>${actions}</p><p>${entries.length} entries. Click a file to open, edit and save it inside the package.</p><ul>${items}</ul>`;
     } catch (error) {
       this.log(`${uri.fsPath}: ${(error as Error).message}`);
       body = `<p class="error">${escapeHtml((error as Error).message)}</p><p>The package was left unchanged. Rebuild it with <b>Pack into .mosc</b> from its unpacked folder.</p>`;
@@ -69,10 +83,11 @@ export class PackageViewProvider implements vscode.CustomReadonlyEditorProvider 
     return `<!DOCTYPE html><html><head><meta charset="utf-8">
 <meta http-equiv="Content-Security-Policy" content="default-src 'none'; style-src ${cspSource} 'unsafe-inline'; script-src 'nonce-${script}';">
 <style>body{font-family:var(--vscode-font-family);color:var(--vscode-foreground)} ul{list-style:none;padding-left:0} li{margin:.2em 0}
-a{color:var(--vscode-textLink-foreground)} .main{font-weight:bold} .package::before{content:'📦 '} .error{color:var(--vscode-errorForeground)}</style>
+a{color:var(--vscode-textLink-foreground)} button{color:var(--vscode-button-foreground);background:var(--vscode-button-background);border:none;padding:4px 10px;margin-right:6px;cursor:pointer} .main{font-weight:bold} .package::before{content:'📦 '} .error{color:var(--vscode-errorForeground)}</style>
 </head><body><h2>${escapeHtml(uri.path.split('/').pop() ?? uri.path)}</h2>${body}
 <script nonce="${script}">const vscode = acquireVsCodeApi();
-document.querySelectorAll('a[data-entry]').forEach((link) => link.addEventListener('click', (event) => { event.preventDefault(); vscode.postMessage({ type: 'open', entry: link.dataset.entry }); }));</script>
+document.querySelectorAll('a[data-entry]').forEach((link) => link.addEventListener('click', (event) => { event.preventDefault(); vscode.postMessage({ type: 'open', entry: link.dataset.entry }); }));
+document.querySelectorAll('button[data-command]').forEach((button) => button.addEventListener('click', () => vscode.postMessage({ type: 'run', command: button.dataset.command })));</script>
 </body></html>`;
   }
 }

@@ -82,6 +82,18 @@ function servePage(endpoint: HarnessEndpoint, page: Page): void {
     await page.keyboard.press('Enter');
     return {};
   });
+  endpoint.routes.set('/clickText', async (body) => {
+    const { text } = body as { text: string };
+    // Links and buttons in any frame: the package view is a webview, an iframe of its own.
+    for (const frame of page.frames()) {
+      const target = frame.locator('a, button').filter({ hasText: text }).first();
+      if ((await target.count().catch(() => 0)) > 0) {
+        await target.click({ timeout: 10_000 });
+        return { clicked: true };
+      }
+    }
+    return { clicked: false };
+  });
   endpoint.routes.set('/type', async (body) => {
     const { text } = body as { text: string };
     await page.keyboard.type(text, { delay: 20 });

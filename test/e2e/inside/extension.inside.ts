@@ -9,7 +9,7 @@ import type { Modular2SimpleApi } from '../../../client/src/extension';
 import { firstDifference } from '../../../server/src/core/equivalence';
 import { ServerCommands, type StructureNode } from '../../../server/src/protocol';
 import { HARNESS_ENV, INSIDE_TESTS } from '../titles';
-import { pageShows, post, pressKeys, runFromPalette, screenshot, typeText } from './harnessClient';
+import { clickText, pageShows, post, pressKeys, runFromPalette, screenshot, typeText } from './harnessClient';
 
 const EXTENSION_ID = 'modular2simple.modular2simple';
 
@@ -175,6 +175,15 @@ export function defineExtensionTests(): void {
         return found.found || undefined;
       });
       assert.ok(shown);
+      // A click on an entry opens it in place, through the mosc: file system.
+      assert.ok(await clickText('hard_brake.xosc'), 'no link to hard_brake.xosc');
+      await waitFor('hard_brake.xosc to open', () => vscode.window.activeTextEditor?.document.uri.toString() === packageUri('braking.mosc', 'hard_brake.xosc').toString() || undefined);
+      if (offersCommand(ServerCommands.structure)) {
+        await vscode.commands.executeCommand('vscode.open', vscode.Uri.file(path.join(workspaceRoot(), 'braking.mosc')));
+        await waitFor('the package view', () => pageShows('Show Structure'));
+        assert.ok(await clickText('Show Structure'));
+        await waitFor('the structure of the package', () => pageShows('hard_brake.xosc', '.customview-tree'));
+      }
       const entries = await vscode.workspace.fs.readDirectory(packageUri('braking.mosc'));
       assert.deepEqual(entries.map(([name]) => name).sort(), ['hard_brake.xosc', 'main.xosc']);
       const nested = await vscode.workspace.fs.readDirectory(packageUri('nested.mosc'));
@@ -418,8 +427,13 @@ export function defineExtensionTests(): void {
       }
       // What a person sees: the tree view itself lists the packages and scenarios.
       for (const name of ['braking.mosc', 'lane_change.xosc']) {
-        await waitFor(`${name} in the tree view`, async () => (await post<{ found: boolean }>('/findText', { text: name, selector: '.customview-tree' })).found || undefined, 10_000);
+        await waitFor(`${name} in the tree view`, () => pageShows(name, '.customview-tree'), 10_000);
       }
+      // The tree follows a save.
+      await replaceText(editor.document, 'name="CutInVehicle"', 'name="CutInCar"');
+      assert.ok(await editor.document.save());
+      await waitFor('the renamed group in the tree view', () => pageShows('CutInCar', '.customview-tree'), 10_000);
+      assert.ok(flattenTree(api().structure() ?? root).some((node) => node.label.includes('CutInCar')));
     });
   });
 }

@@ -45,3 +45,8 @@ export async function typeText(text: string): Promise<void> {
 export async function pageShows(text: string, selector?: string): Promise<boolean> {
   return (await post<{ found: boolean }>('/findText', { text, selector })).found;
 }
+
+/** Clicks the link or button showing this text, in whichever frame shows it. */
+export async function clickText(text: string): Promise<boolean> {
+  return (await post<{ clicked: boolean }>('/clickText', { text })).clicked;
+}
