@@ -110,6 +110,7 @@ describe('the packaged extension in a real VS Code (code-server, headless Chromi
   this.timeout(RUN_TIMEOUT_MS + 60_000);
   const results = new Map<string, InsideResult>();
   let exitCode: number | undefined;
+  let vsixEntries: string[] = [];
 
   before(async function () {
     const missing = missingTools();
@@ -129,6 +130,7 @@ describe('the packaged extension in a real VS Code (code-server, headless Chromi
     try {
       const workspace = await prepareWorkspace(profile);
       const vsix = packageExtension(profile.root);
+      vsixEntries = Object.keys((await JSZip.loadAsync(fs.readFileSync(vsix))).files).filter((name) => !name.endsWith('/'));
       installExtension(profile, vsix);
       runner = await buildInsideSuite(profile.root);
       await endpoint.start();
@@ -182,6 +184,20 @@ describe('the packaged extension in a real VS Code (code-server, headless Chromi
       if (result.state === 'failed') assert.fail(result.error);
     });
   }
+
+  it('the .vsix holds the bundles and the manifest\'s assets, nothing else', () => {
+    const extensionFiles = vsixEntries.filter((name) => name.startsWith('extension/')).map((name) => name.slice('extension/'.length)).sort();
+    const manifest = JSON.parse(fs.readFileSync(path.join(ROOT, 'package.json'), 'utf8')) as { main: string; contributes: { grammars: { path: string }[]; languages: { configuration?: string; icon?: { light: string } }[] } };
+    const needed = [
+      manifest.main,
+      'dist/server.js',
+      ...manifest.contributes.grammars.map((grammar) => grammar.path),
+      ...manifest.contributes.languages.flatMap((language) => [language.configuration, language.icon?.light]),
+    ].filter((file): file is string => file !== undefined).map((file) => path.posix.normalize(file));
+    for (const file of needed) assert.ok(extensionFiles.includes(file), `${file} is missing from the .vsix`);
+    const unexpected = extensionFiles.filter((file) => !needed.includes(file) && !/^(package\.json|readme\.md|LICENSE(\.txt)?|client\/icons\/[\w-]+\.svg)$/i.test(file));
+    assert.deepEqual(unexpected, [], 'the .vsix holds files that do not run');
+  });
 
   it('nothing else failed inside VS Code', () => {
     const failed = [...results.values()].filter((result) => result.state === 'failed' && !Object.values(INSIDE_TESTS).includes(result.title as never));
