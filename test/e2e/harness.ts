@@ -132,6 +132,8 @@ export function createProfile(): Profile {
     TMPDIR: path.join(root, 'tmp'),
     // Headers from the system: without it node-gyp would try to download them under the new HOME.
     npm_config_nodedir: '/usr',
+    // No extension gallery: the tests touch nothing beyond 127.0.0.1.
+    EXTENSIONS_GALLERY: '{}',
   };
   for (const key of ['XDG_CONFIG_HOME', 'XDG_DATA_HOME', 'XDG_CACHE_HOME', 'XDG_RUNTIME_DIR', 'TMPDIR'] as const) fs.mkdirSync(env[key] as string, { recursive: true, mode: 0o700 });
   return { root, home, userData, extensions, env };
