@@ -17,7 +17,10 @@ function isUri(value: unknown): value is vscode.Uri {
 }
 
 function isWriteOptions(value: unknown): value is WriteCommandOptions {
-  return typeof value === 'object' && value !== null && !isUri(value) && !Array.isArray(value);
+  // The editor title passes its own context object too; only ours names an output or overwrite.
+  if (typeof value !== 'object' || value === null || isUri(value) || Array.isArray(value)) return false;
+  const candidate = value as Record<string, unknown>;
+  return typeof candidate.output === 'string' || typeof candidate.overwrite === 'boolean';
 }
 
 /**
