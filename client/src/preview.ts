@@ -1,6 +1,7 @@
 import * as vscode from 'vscode';
 import type { FlattenTextResult, ProblemSummary } from '../../server/src/protocol';
 import { LANGUAGE_ID } from './languageClient';
+import { previewLineFor } from './previewSync';
 
 export const PREVIEW_SCHEME = 'modular2simple-preview';
 const REFRESH_DELAY_MS = 250;
@@ -44,7 +45,20 @@ export class FlattenedPreview implements vscode.TextDocumentContentProvider, vsc
         if (event.document.languageId === LANGUAGE_ID && event.document.uri.scheme !== PREVIEW_SCHEME) this.scheduleRefresh();
       }),
       vscode.workspace.onDidSaveTextDocument(() => this.scheduleRefresh()),
+      vscode.window.onDidChangeTextEditorSelection((event) => this.follow(event.textEditor)),
     );
+  }
+
+  /** Scrolls the visible preview of this editor's document to the place that shows the cursor's line. */
+  private follow(editor: vscode.TextEditor): void {
+    if (editor.document.uri.scheme === PREVIEW_SCHEME) return;
+    const wanted = previewUri(editor.document.uri).toString();
+    const previewEditor = vscode.window.visibleTextEditors.find((visible) => visible.document.uri.toString() === wanted);
+    if (!previewEditor) return;
+    const line = previewLineFor(editor.document.getText(), previewEditor.document.getText(), editor.selection.active.line);
+    if (line === undefined) return;
+    const position = new vscode.Position(line, 0);
+    previewEditor.revealRange(new vscode.Range(position, position), vscode.TextEditorRevealType.InCenterIfOutsideViewport);
   }
 
   private openPreviews(): vscode.Uri[] {

@@ -305,10 +305,13 @@ export function defineExtensionTests(): void {
       await replaceText(editor.document, 'key="AbsoluteTargetSpeed.value" value="27.5"', 'key="AbsoluteTargetSpeed.value" value="31.25"');
       await waitFor('the preview to follow the edit', () => preview.getText().includes('value="31.25"') || undefined);
       assert.ok(!preview.getText().includes('value="27.5"'));
-      // What a person sees: the preview's own editor (the group without focus) shows the new value.
+      // What a person sees: the preview follows the cursor, and its own editor (the group without focus) shows the new value.
       const previewEditor = await waitFor('the preview editor', () => vscode.window.visibleTextEditors.find((visible) => visible.document === preview));
-      const changed = positionOf(preview, 'value="31.25"');
-      previewEditor.revealRange(new vscode.Range(changed, changed), vscode.TextEditorRevealType.InCenter);
+      const cursor = positionOf(editor.document, 'value="31.25"');
+      editor.selection = new vscode.Selection(cursor, cursor);
+      editor.revealRange(new vscode.Range(cursor, cursor), vscode.TextEditorRevealType.InCenter);
+      const imported = positionOf(preview, 'name="CutInVehicle.CutIn"').line;
+      await waitFor('the preview to scroll to the imported group', () => previewEditor.visibleRanges.some((range) => range.start.line <= imported && imported <= range.end.line) || undefined, 10_000);
       await waitFor('the preview to show the change', () => pageShows('31.25', '.editor-group-container:not(.active) .view-lines'), 10_000);
       await screenshot('preview after an edit');
       await revertAndClose();
