@@ -1,7 +1,7 @@
 import * as assert from 'node:assert/strict';
 import { previewLineFor } from '../../client/src/previewSync';
 
-const source = [
+const sourceLines = [
   '<OpenSCENARIO>', //                                   0
   '  <Entities><ScenarioObject name="ego"/></Entities>', // 1
   '  <Story name="S">', //                                2
@@ -16,24 +16,19 @@ const source = [
   '    </ManeuverGroup>', //                              11
   '  </Story>', //                                       12
   '</OpenSCENARIO>', //                                   13
-].join('\n');
+];
+const source = sourceLines.join('\n');
 
-const preview = [
-  '<OpenSCENARIO>', //                                   0
-  '  <Entities><ScenarioObject name="ego"/></Entities>', // 1
-  '  <Story name="S">', //                                2
-  '    <ManeuverGroup maximumExecutionCount="1" name="Cut.Lane">', // 3
-  '      <Actors><EntityRef entityRef="ego"/></Actors>', // 4
-  '      <Maneuver name="LaneManeuver">', //              5
-  '        <Event name="E"/>', //                         6
-  '      </Maneuver>', //                                 7
-  '    </ManeuverGroup>', //                              8
-  '    <ManeuverGroup name="Plain">', //                  9
-  '      <Maneuver name="Own"/>', //                      10
-  '    </ManeuverGroup>', //                              11
-  '  </Story>', //                                       12
-  '</OpenSCENARIO>', //                                   13
-].join('\n');
+// Flattened: lines 3 to 8 (the group Cut) replaced by the imported group Cut.Lane, six lines too.
+const imported = [
+  '    <ManeuverGroup maximumExecutionCount="1" name="Cut.Lane">',
+  '      <Actors><EntityRef entityRef="ego"/></Actors>',
+  '      <Maneuver name="LaneManeuver">',
+  '        <Event name="E"/>',
+  '      </Maneuver>',
+  '    </ManeuverGroup>',
+];
+const preview = [...sourceLines.slice(0, 3), ...imported, ...sourceLines.slice(9)].join('\n');
 
 describe('client: the flattened preview follows the cursor', () => {
   it('shows a referencing group as the group imported in its place', () => {
