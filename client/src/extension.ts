@@ -1,2 +1,117 @@
-export function activate(): void {}
-export function deactivate(): void {}
+import * as vscode from 'vscode';
+import type { ServerCapabilities } from 'vscode-languageclient';
+import type { LanguageClient } from 'vscode-languageclient/node';
+import { PACKAGE_SCHEME, type StructureNode } from '../../server/src/protocol';
+import { CommandReporter, commandTargets, flattenCommand, mainFileOf, packCommand } from './commands';
+import { LANGUAGE_ID, ServerCommandClient, createLanguageClient } from './languageClient';
+import { PackageFileSystem } from './packageFileSystem';
+import { PACKAGE_VIEW_TYPE, PackageViewProvider } from './packageView';
+import { FlattenedPreview, PREVIEW_SCHEME, previewSource } from './preview';
+import { STRUCTURE_VIEW_ID, StructureTree } from './structureView';
+import { registerTagClosing } from './tagClosingEditor';
+
+/** What the extension hands to other extensions and to its own tests. */
+export interface Modular2SimpleApi {
+  /** Settles when the language server has started (or failed to). */
+  readonly serverReady: Promise<void>;
+  readonly structure: () => StructureNode | undefined;
+  /** What the running server offers (undefined before it started): lets callers and tests see which features exist. */
+  readonly serverCapabilities: () => ServerCapabilities | undefined;
+}
+
+let languageClient: LanguageClient | undefined;
+
+export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
+  const output = vscode.window.createOutputChannel('Modular2Simple');
+  const reporter = new CommandReporter(output);
+  const log = (message: string): void => reporter.log(message);
+  context.subscriptions.push(output);
+
+  const packages = new PackageFileSystem(log);
+  context.subscriptions.push(
+    packages,
+    vscode.workspace.registerFileSystemProvider(PACKAGE_SCHEME, packages, { isCaseSensitive: true }),
+    vscode.window.registerCustomEditorProvider(PACKAGE_VIEW_TYPE, new PackageViewProvider(log)),
+  );
+
+  const client = createLanguageClient(context);
+  languageClient = client;
+  const server = new ServerCommandClient(client);
+  const serverReady = client.start().catch((error: unknown) => {
+    log(`the language server did not start: ${(error as Error).stack ?? String(error)}`);
+    void vscode.window.showErrorMessage('Modular2Simple: the language server did not start; editing works, but checks, completion and preview do not. See the output for details.', 'Show Details').then((choice) => {
+      if (choice) output.show(true);
+    });
+  });
+
+  const preview = new FlattenedPreview((source) => server.flattenToText(source), log);
+  const structure = new StructureTree();
+  context.subscriptions.push(
+    preview,
+    structure,
+    vscode.workspace.registerTextDocumentContentProvider(PREVIEW_SCHEME, preview),
+    vscode.window.createTreeView(STRUCTURE_VIEW_ID, { treeDataProvider: structure, showCollapseAll: true }),
+    registerTagClosing(),
+  );
+
+  const register = (name: string, run: (...args: unknown[]) => unknown): void => {
+    context.subscriptions.push(vscode.commands.registerCommand(name, run));
+  };
+  register('modular2simple.pack', (clicked, selected, ...rest) => packCommand(server, reporter, clicked, selected, ...rest));
+  register('modular2simple.flatten', (clicked, selected, ...rest) => flattenCommand(server, reporter, clicked, selected, ...rest));
+  register('modular2simple.openPreview', async (clicked) => {
+    let [source] = commandTargets(clicked, undefined);
+    if (source?.scheme === PREVIEW_SCHEME) source = previewSource(source);
+    if (!source) {
+      void vscode.window.showErrorMessage('Open Flattened Preview: open a main.xosc (or a file inside a .mosc) first.');
+      return undefined;
+    }
+    return preview.open(mainFileOf(source));
+  });
+  // The structure shown follows saves, as the Outline does.
+  let structureSource: vscode.Uri | undefined;
+  const loadStructure = async (source: vscode.Uri): Promise<StructureNode | undefined> => {
+    const root = await vscode.window.withProgress({ location: { viewId: STRUCTURE_VIEW_ID }, title: 'Reading the references' }, () => server.structure(source));
+    structureSource = source;
+    structure.show(root ?? undefined);
+    return root ?? undefined;
+  };
+  context.subscriptions.push(
+    vscode.workspace.onDidSaveTextDocument((document) => {
+      if (structureSource && document.languageId === LANGUAGE_ID) {
+        loadStructure(structureSource).catch((error: unknown) => log(`refreshing the structure: ${(error as Error).message}`));
+      }
+    }),
+  );
+  register('modular2simple.showStructure', async (clicked) => {
+    const [source] = commandTargets(clicked, undefined);
+    if (!source) {
+      void vscode.window.showErrorMessage('Show Structure: open a main.xosc, a .mosc or a scenario first.');
+      return undefined;
+    }
+    try {
+      const root = await loadStructure(mainFileOf(source));
+      await vscode.commands.executeCommand(`${STRUCTURE_VIEW_ID}.focus`);
+      if (!root) void vscode.window.showInformationMessage(`${source.path.split('/').pop()} holds no scenario references to show.`);
+      return root;
+    } catch (error) {
+      await reporter.failure('Show Structure', error);
+      return undefined;
+    }
+  });
+  register('modular2simple.refreshStructure', async () => {
+    if (!structureSource) return vscode.commands.executeCommand('modular2simple.showStructure');
+    try {
+      return await loadStructure(structureSource);
+    } catch (error) {
+      await reporter.failure('Show Structure', error);
+      return undefined;
+    }
+  });
+
+  return { serverReady, structure: () => structure.current, serverCapabilities: () => client.initializeResult?.capabilities };
+}
+
+export async function deactivate(): Promise<void> {
+  await languageClient?.stop();
+}

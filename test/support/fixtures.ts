@@ -71,7 +71,7 @@ const HEADER = `<?xml version="1.0" encoding="UTF-8"?>
 
 export function scenario(groups: string, entities: string[] = ['ego', 'car']): string {
   const declared = entities.map((name) => `    <ScenarioObject name="${name}"/>\n`).join('');
-  return HEADER.replace('{ENTITIES}', declared).replace('{GROUPS}', groups);
+  return HEADER.replace('{ENTITIES}', () => declared).replace('{GROUPS}', () => groups);
 }
 
 /** A simple scenario's group with overridable attributes. */

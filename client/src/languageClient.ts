@@ -1,0 +1,52 @@
+import * as vscode from 'vscode';
+import { ExecuteCommandRequest } from 'vscode-languageclient';
+import { LanguageClient, TransportKind, type LanguageClientOptions, type ServerOptions } from 'vscode-languageclient/node';
+import { PACKAGE_SCHEME, ServerCommands, type FlattenTextResult, type StructureNode, type WriteResult } from '../../server/src/protocol';
+
+export const LANGUAGE_ID = 'xosc';
+export const CONFIGURATION_SECTION = 'modular2simple';
+
+/** Starts the bundled language server (dist/server.js) over node IPC for `.xosc` files, on disk and inside packages. */
+export function createLanguageClient(context: vscode.ExtensionContext): LanguageClient {
+  const module = context.asAbsolutePath('dist/server.js');
+  const serverOptions: ServerOptions = {
+    run: { module, transport: TransportKind.ipc },
+    debug: { module, transport: TransportKind.ipc, options: { execArgv: ['--nolazy', '--inspect=6019'] } },
+  };
+  const clientOptions: LanguageClientOptions = {
+    documentSelector: [
+      { scheme: 'file', language: LANGUAGE_ID },
+      { scheme: PACKAGE_SCHEME, language: LANGUAGE_ID },
+      { scheme: 'untitled', language: LANGUAGE_ID },
+    ],
+    // No `synchronize`: the server registers for configuration changes and file events itself.
+  };
+  return new LanguageClient(CONFIGURATION_SECTION, 'Modular2Simple Language Server', serverOptions, clientOptions);
+}
+
+/** The server's custom commands (server/src/protocol.ts), typed. */
+export class ServerCommandClient {
+  constructor(private readonly client: LanguageClient) {}
+
+  private async execute<T>(command: string, args: unknown[], token?: vscode.CancellationToken): Promise<T> {
+    if (!this.client.isRunning()) await this.client.start();
+    return (await this.client.sendRequest(ExecuteCommandRequest.type, { command, arguments: args }, token)) as T;
+  }
+
+  flattenToText(uri: vscode.Uri): Promise<FlattenTextResult> {
+    return this.execute(ServerCommands.flattenToText, [uri.toString()]);
+  }
+
+  /** Writes the flattened scenario; an existing output is replaced (the caller asked the user first). */
+  flattenToFile(input: vscode.Uri, outputPath: string, token?: vscode.CancellationToken): Promise<WriteResult> {
+    return this.execute(ServerCommands.flattenToFile, [input.toString(), outputPath], token);
+  }
+
+  pack(inputs: vscode.Uri[], outputPath: string, token?: vscode.CancellationToken): Promise<WriteResult> {
+    return this.execute(ServerCommands.pack, [inputs.map((input) => input.toString()), outputPath], token);
+  }
+
+  structure(uri: vscode.Uri, token?: vscode.CancellationToken): Promise<StructureNode | null> {
+    return this.execute(ServerCommands.structure, [uri.toString()], token);
+  }
+}

@@ -1,0 +1,28 @@
+#!/usr/bin/env node
+// `npm run package [-- --out FILE.vsix]`: the minified bundles and the manifest's assets in a .vsix.
+// Everything runs from the bundles, so no node_modules go in (--no-dependencies); .vscodeignore lists what does.
+import { spawnSync } from 'node:child_process';
+import * as path from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
+const outIndex = process.argv.indexOf('--out');
+const out = path.resolve(outIndex > 0 ? process.argv[outIndex + 1] : path.join(root, 'modular2simple.vsix'));
+
+function run(args) {
+  const result = spawnSync(process.execPath, args, { cwd: root, stdio: 'inherit' });
+  if (result.status !== 0) process.exit(result.status ?? 1);
+}
+
+run([path.join(root, 'scripts', 'build.mjs'), '--minify']);
+run([
+  path.join(root, 'node_modules', '@vscode', 'vsce', 'vsce'),
+  'package',
+  '--no-dependencies',
+  '--allow-missing-repository',
+  '--skip-license',
+  // The README links to files of this repository, which has no public address to point them at.
+  '--no-rewrite-relative-links',
+  '--out',
+  out,
+]);

@@ -1,0 +1,115 @@
+#!/usr/bin/env node
+// `npm start`: opens the bundled examples/ in a real VS Code with this extension loaded. Installs
+// what is missing first (npm ci, the bundles, and code-server when desktop VS Code is not installed).
+import { spawn, spawnSync } from 'node:child_process';
+import * as fs from 'node:fs';
+import * as net from 'node:net';
+import * as path from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
+const workspace = path.resolve(process.argv[2] ?? path.join(root, 'examples'));
+const codeServer = path.join(root, '.cache', 'code-server', 'node_modules', '.bin', 'code-server');
+const profile = path.join(root, '.cache', 'code-server-profile');
+
+function step(message) {
+  console.log(`modular2simple: ${message}`);
+}
+
+function runOrExit(command, args, options = {}) {
+  const result = spawnSync(command, args, { cwd: root, stdio: 'inherit', ...options });
+  if (result.status !== 0) {
+    console.error(`modular2simple: '${command} ${args.join(' ')}' failed; fix the error above and run npm start again`);
+    process.exit(result.status ?? 1);
+  }
+}
+
+function onPath(command) {
+  return spawnSync('sh', ['-c', `command -v ${command}`], { encoding: 'utf8' }).status === 0;
+}
+
+function freePort(preferred) {
+  return new Promise((resolve) => {
+    const server = net.createServer();
+    server.once('error', () => {
+      const fallback = net.createServer();
+      fallback.listen(0, '127.0.0.1', () => {
+        const { port } = fallback.address();
+        fallback.close(() => resolve(port));
+      });
+    });
+    server.listen(preferred, '127.0.0.1', () => server.close(() => resolve(preferred)));
+  });
+}
+
+if (!fs.existsSync(path.join(root, 'node_modules', '.package-lock.json'))) {
+  step('installing dependencies (npm ci)');
+  runOrExit('npm', ['ci', '--no-audit', '--no-fund']);
+}
+step('building the extension, the language server and the CLI');
+runOrExit(process.execPath, [path.join(root, 'scripts', 'build.mjs')]);
+
+if (onPath('code') && !process.env.M2S_USE_CODE_SERVER) {
+  step(`opening ${path.relative(root, workspace) || '.'} in VS Code with the extension loaded`);
+  runOrExit('code', ['--new-window', `--extensionDevelopmentPath=${root}`, workspace]);
+  process.exit(0);
+}
+
+if (!fs.existsSync(codeServer)) {
+  step('VS Code is not installed: installing code-server 4.100.3 (VS Code in the browser) into .cache/');
+  runOrExit('bash', [path.join(root, 'scripts', 'e2e-setup.sh'), '--code-server']);
+}
+
+const userData = path.join(profile, 'user-data');
+const settings = path.join(userData, 'User', 'settings.json');
+if (!fs.existsSync(settings)) {
+  fs.mkdirSync(path.dirname(settings), { recursive: true });
+  fs.writeFileSync(settings, JSON.stringify({ 'workbench.startupEditor': 'none', 'telemetry.telemetryLevel': 'off', 'git.openRepositoryInParentFolders': 'never' }, null, 2));
+}
+const port = await freePort(Number(process.env.M2S_PORT ?? 8080));
+const config = path.join(profile, 'code-server.yaml');
+fs.writeFileSync(config, `bind-addr: 127.0.0.1:${port}\nauth: none\n`);
+const server = spawn(
+  codeServer,
+  [
+    '--bind-addr', `127.0.0.1:${port}`,
+    '--auth', 'none',
+    '--disable-telemetry',
+    '--disable-update-check',
+    '--disable-workspace-trust',
+    '--disable-getting-started-override',
+    '--user-data-dir', userData,
+    '--extensions-dir', path.join(profile, 'extensions'),
+    '--config', config,
+  ],
+  // Its own process group, so that stopping it ends its extension hosts and language servers too.
+  { stdio: ['ignore', 'ignore', 'inherit'], detached: true, env: { ...process.env, npm_config_nodedir: process.env.npm_config_nodedir ?? '/usr' } },
+);
+// The extension is loaded from this folder, as desktop VS Code's --extensionDevelopmentPath does.
+const payload = JSON.stringify([['extensionDevelopmentPath', `vscode-remote://127.0.0.1:${port}${root}`]]);
+const url = `http://127.0.0.1:${port}/?folder=${encodeURIComponent(workspace)}&payload=${encodeURIComponent(payload)}`;
+for (let attempt = 0; attempt < 150; attempt++) {
+  const ready = await fetch(`http://127.0.0.1:${port}/healthz`).then((response) => response.ok, () => false);
+  if (ready) break;
+  if (server.exitCode !== null) process.exit(server.exitCode);
+  await new Promise((resolve) => setTimeout(resolve, 200));
+}
+step(`VS Code (code-server) is running on 127.0.0.1 only. Open this address in a browser on this machine:\n\n  ${url}\n\nAfter a rebuild (npm run build), run "Developer: Reload Window". Stop with Ctrl+C.`);
+const stop = () => {
+  try {
+    process.kill(-server.pid, 'SIGTERM');
+  } catch {
+    process.exit(0);
+  }
+  setTimeout(() => {
+    try {
+      process.kill(-server.pid, 'SIGKILL');
+    } catch {
+      // already gone
+    }
+    process.exit(0);
+  }, 3000).unref();
+};
+process.on('SIGINT', stop);
+process.on('SIGTERM', stop);
+server.on('exit', (code) => process.exit(code ?? 0));

@@ -1,0 +1,446 @@
+import * as assert from 'node:assert/strict';
+import { execFileSync } from 'node:child_process';
+import * as fs from 'node:fs';
+import * as os from 'node:os';
+import * as path from 'node:path';
+import JSZip from 'jszip';
+import * as vscode from 'vscode';
+import type { Modular2SimpleApi } from '../../../client/src/extension';
+import { firstDifference } from '../../../server/src/core/equivalence';
+import { ServerCommands, type StructureNode } from '../../../server/src/protocol';
+import { HARNESS_ENV, INSIDE_TESTS } from '../titles';
+import { clickText, pageShows, post, pressKeys, runFromPalette, screenshot, typeText } from './harnessClient';
+
+const EXTENSION_ID = 'modular2simple.modular2simple';
+
+function workspaceRoot(): string {
+  const root = process.env[HARNESS_ENV.workspace];
+  assert.ok(root, `${HARNESS_ENV.workspace} is not set`);
+  return root;
+}
+
+async function waitFor<T>(what: string, probe: () => T | undefined | false | Promise<T | undefined | false>, timeoutMs = 20_000): Promise<T> {
+  const deadline = Date.now() + timeoutMs;
+  let last: unknown;
+  while (Date.now() < deadline) {
+    try {
+      const value = await probe();
+      if (value !== undefined && value !== false) return value;
+    } catch (error) {
+      last = error;
+    }
+    await new Promise((resolve) => setTimeout(resolve, 100));
+  }
+  throw new Error(`timed out after ${timeoutMs} ms waiting for ${what}${last ? ` (last error: ${(last as Error).message})` : ''}`);
+}
+
+function api(): Modular2SimpleApi {
+  const extension = vscode.extensions.getExtension<Modular2SimpleApi>(EXTENSION_ID);
+  assert.ok(extension?.isActive, 'the extension is not active');
+  return extension.exports;
+}
+
+/** Skips a test whose feature the language server does not offer yet (the server is built in parallel). */
+function requireServerFeature(context: Mocha.Context, feature: string, offered: boolean): void {
+  if (!offered) {
+    console.log(`skipped: the language server does not offer ${feature}`);
+    context.skip();
+  }
+}
+
+function offersCommand(command: string): boolean {
+  return api().serverCapabilities()?.executeCommandProvider?.commands.includes(command) ?? false;
+}
+
+async function open(relative: string): Promise<vscode.TextEditor> {
+  const document = await vscode.workspace.openTextDocument(vscode.Uri.file(path.join(workspaceRoot(), relative)));
+  return vscode.window.showTextDocument(document, { viewColumn: vscode.ViewColumn.One, preview: false });
+}
+
+function positionOf(document: vscode.TextDocument, text: string, offsetInText = 0): vscode.Position {
+  const index = document.getText().indexOf(text);
+  assert.ok(index >= 0, `${path.basename(document.uri.path)} does not contain ${text}`);
+  return document.positionAt(index + offsetInText);
+}
+
+async function replaceText(document: vscode.TextDocument, from: string, to: string): Promise<void> {
+  const start = positionOf(document, from);
+  const edit = new vscode.WorkspaceEdit();
+  edit.replace(document.uri, new vscode.Range(start, start.translate(0, from.length)), to);
+  assert.ok(await vscode.workspace.applyEdit(edit), `could not replace ${from}`);
+}
+
+async function revertAndClose(): Promise<void> {
+  await vscode.commands.executeCommand('workbench.action.files.revert');
+  await vscode.commands.executeCommand('workbench.action.closeAllEditors');
+}
+
+function packageUri(...parts: string[]): vscode.Uri {
+  return vscode.Uri.from({ scheme: 'mosc', path: path.posix.join(workspaceRoot(), ...parts) });
+}
+
+async function zipEntries(file: string): Promise<Map<string, string>> {
+  const zip = await JSZip.loadAsync(fs.readFileSync(file));
+  const entries = new Map<string, string>();
+  for (const entry of Object.values(zip.files)) if (!entry.dir) entries.set(entry.name, await entry.async('string'));
+  return entries;
+}
+
+function cli(args: string[]): void {
+  const cliPath = process.env[HARNESS_ENV.cli];
+  assert.ok(cliPath, `${HARNESS_ENV.cli} is not set`);
+  execFileSync(process.execPath, [cliPath, ...args], { cwd: workspaceRoot(), env: { ...process.env, ELECTRON_RUN_AS_NODE: '1' } });
+}
+
+function flattenTree(node: StructureNode): StructureNode[] {
+  return [node, ...node.children.flatMap(flattenTree)];
+}
+
+export function defineExtensionTests(): void {
+  describe('Modular2Simple in a real VS Code', function () {
+    this.timeout(45_000);
+
+    before(async function () {
+      this.timeout(60_000);
+      const extension = vscode.extensions.getExtension<Modular2SimpleApi>(EXTENSION_ID);
+      assert.ok(extension, `${EXTENSION_ID} is not installed`);
+      await waitFor('the extension to activate', () => extension.isActive, 30_000);
+      await extension.exports.serverReady;
+    });
+
+    beforeEach(async () => {
+      await vscode.commands.executeCommand('notifications.clearAll');
+    });
+
+    afterEach(async function () {
+      await screenshot(`${this.currentTest?.state === 'failed' ? 'FAILED ' : ''}${this.currentTest?.title ?? 'unnamed'}`).catch(() => undefined);
+      await vscode.commands.executeCommand('workbench.action.closeAllEditors');
+    });
+
+    it(INSIDE_TESTS.activates, async () => {
+      // The workspace holds .xosc files, so VS Code activated the extension without being asked.
+      const extension = vscode.extensions.getExtension<Modular2SimpleApi>(EXTENSION_ID);
+      assert.ok(extension?.isActive);
+      assert.equal(extension.extensionKind, vscode.ExtensionKind.Workspace);
+      const editor = await open('main.xosc');
+      assert.equal(editor.document.languageId, 'xosc');
+      const commands = await vscode.commands.getCommands(true);
+      for (const command of ['modular2simple.pack', 'modular2simple.flatten', 'modular2simple.openPreview', 'modular2simple.showStructure']) {
+        assert.ok(commands.includes(command), `${command} is not registered`);
+      }
+    });
+
+    it(INSIDE_TESTS.grammar, async () => {
+      const editor = await open('lane_change.xosc');
+      const line = positionOf(editor.document, '<Condition parameterAttributes="delay"').line;
+      editor.revealRange(new vscode.Range(line, 0, line, 0), vscode.TextEditorRevealType.AtTop);
+      // What a person sees: the colour each token is drawn in.
+      const colors = await waitFor('the tokens to be drawn', async () => {
+        const found = await post<Record<string, string | null>>('/tokenColors', { words: ['parameterAttributes', 'conditionEdge'] });
+        return Object.values(found).every((color) => color !== null) ? found : undefined;
+      });
+      assert.notEqual(colors.parameterAttributes, colors.conditionEdge, 'parameterAttributes is drawn like any other attribute');
+      const main = await open('main.xosc');
+      const referenceLine = positionOf(main.document, '<ScenarioReference').line;
+      main.revealRange(new vscode.Range(referenceLine - 4, 0, referenceLine - 4, 0), vscode.TextEditorRevealType.AtTop);
+      const tags = await waitFor('the tags to be drawn', async () => {
+        const found = await post<Record<string, string | null>>('/tokenColors', { words: ['ScenarioReference', 'ManeuverGroupReference', 'ParameterReference', 'Actors'] });
+        return Object.values(found).every((color) => color !== null) ? found : undefined;
+      });
+      assert.notEqual(tags.ScenarioReference, tags.Actors, 'ScenarioReference is drawn like any other element');
+      assert.equal(tags.ManeuverGroupReference, tags.ScenarioReference);
+      assert.equal(tags.ParameterReference, tags.ScenarioReference);
+    });
+
+    it(INSIDE_TESTS.typing, async () => {
+      const file = path.join(workspaceRoot(), 'typed.xosc');
+      fs.writeFileSync(file, '<OpenSCENARIO>\n  \n</OpenSCENARIO>\n');
+      const editor = await open('typed.xosc');
+      editor.selection = new vscode.Selection(1, 2, 1, 2);
+      await vscode.commands.executeCommand('workbench.action.focusActiveEditorGroup');
+      await typeText('<Actors selectTriggeringEntities="false">');
+      await waitFor('the closing tag', () => editor.document.lineAt(1).text === '  <Actors selectTriggeringEntities="false"></Actors>' || undefined, 5_000);
+      assert.equal(editor.selection.active.character, '  <Actors selectTriggeringEntities="false">'.length, 'the cursor is not between the tags');
+      await pressKeys(['Control+Slash']);
+      await waitFor('the line to be commented out', () => editor.document.lineAt(1).text === '  <!-- <Actors selectTriggeringEntities="false"></Actors> -->' || undefined, 5_000);
+      await screenshot('typing closes tags and comments lines');
+      await revertAndClose();
+      fs.rmSync(file);
+    });
+
+    it(INSIDE_TESTS.packageView, async () => {
+      await vscode.commands.executeCommand('vscode.open', vscode.Uri.file(path.join(workspaceRoot(), 'braking.mosc')));
+      const shown = await waitFor('the package view to list the entries', async () => {
+        const found = await post<{ found: boolean }>('/findText', { text: 'hard_brake.xosc' });
+        return found.found || undefined;
+      });
+      assert.ok(shown);
+      // A click on an entry opens it in place, through the mosc: file system.
+      assert.ok(await clickText('hard_brake.xosc'), 'no link to hard_brake.xosc');
+      await waitFor('hard_brake.xosc to open', () => vscode.window.activeTextEditor?.document.uri.toString() === packageUri('braking.mosc', 'hard_brake.xosc').toString() || undefined);
+      if (offersCommand(ServerCommands.structure)) {
+        await vscode.commands.executeCommand('vscode.open', vscode.Uri.file(path.join(workspaceRoot(), 'braking.mosc')));
+        await waitFor('the package view', () => pageShows('Show Structure'));
+        assert.ok(await clickText('Show Structure'));
+        await waitFor('the structure of the package', () => pageShows('hard_brake.xosc', '.customview-tree'));
+      }
+      const entries = await vscode.workspace.fs.readDirectory(packageUri('braking.mosc'));
+      assert.deepEqual(entries.map(([name]) => name).sort(), ['hard_brake.xosc', 'main.xosc']);
+      const nested = await vscode.workspace.fs.readDirectory(packageUri('nested.mosc'));
+      assert.deepEqual(nested, [['braking.mosc', vscode.FileType.Directory], ['main.xosc', vscode.FileType.File]]);
+    });
+
+    it(INSIDE_TESTS.packageEdit, async () => {
+      const archive = path.join(workspaceRoot(), 'nested.mosc');
+      const before = await zipEntries(archive);
+      // A file two packages deep: nested.mosc holds braking.mosc, which holds hard_brake.xosc.
+      // Two files of one archive edited at once: saving the second must keep what saving the first wrote.
+      const mainDocument = await vscode.workspace.openTextDocument(packageUri('nested.mosc', 'main.xosc'));
+      await vscode.window.showTextDocument(mainDocument);
+      await replaceText(mainDocument, '<OpenSCENARIO>', '<OpenSCENARIO>\n  <!-- edited main -->');
+      const uri = packageUri('nested.mosc', 'braking.mosc', 'hard_brake.xosc');
+      const document = await vscode.workspace.openTextDocument(uri);
+      assert.equal(document.languageId, 'xosc');
+      await vscode.window.showTextDocument(document);
+      await replaceText(document, '<OpenSCENARIO>', '<OpenSCENARIO>\n  <!-- edited inside two packages -->');
+      assert.ok(await document.save(), 'save failed');
+      assert.equal((await zipEntries(archive)).get('main.xosc'), before.get('main.xosc'), 'an unsaved file was written');
+      await vscode.window.showTextDocument(mainDocument);
+      assert.ok(await mainDocument.save(), 'saving the second file of the archive failed');
+      const after = await zipEntries(archive);
+      assert.deepEqual([...after.keys()].sort(), [...before.keys()].sort());
+      assert.equal(after.get('main.xosc'), mainDocument.getText());
+      const innerAfter = await JSZip.loadAsync(await (await JSZip.loadAsync(fs.readFileSync(archive))).file('braking.mosc')!.async('uint8array'));
+      assert.equal(await innerAfter.file('hard_brake.xosc')!.async('string'), document.getText(), 'saving the second file lost the first change');
+      const inner = await JSZip.loadAsync(await (await JSZip.loadAsync(fs.readFileSync(archive))).file('braking.mosc')!.async('uint8array'));
+      const saved = await inner.file('hard_brake.xosc')!.async('string');
+      assert.ok(saved.includes('<!-- edited inside two packages -->'), 'the change is not in the archive');
+      assert.equal(saved, document.getText());
+      assert.ok(fs.readdirSync(workspaceRoot()).every((name) => !name.endsWith('.tmp')), 'a temporary file was left behind');
+    });
+
+    it(INSIDE_TESTS.brokenPackage, async () => {
+      const archive = path.join(workspaceRoot(), 'broken.mosc');
+      const bytes = fs.readFileSync(archive);
+      await assert.rejects(() => Promise.resolve(vscode.workspace.openTextDocument(packageUri('broken.mosc', 'main.xosc'))), /ZIP|zip/);
+      await assert.rejects(() => Promise.resolve(vscode.workspace.fs.writeFile(packageUri('broken.mosc', 'main.xosc'), Buffer.from('<OpenSCENARIO/>'))), /ZIP|zip/);
+      assert.deepEqual(fs.readFileSync(archive), bytes, 'the broken archive was changed');
+      await vscode.commands.executeCommand('vscode.open', vscode.Uri.file(archive));
+      await waitFor('the package view to report the broken archive', async () => (await post<{ found: boolean }>('/findText', { text: 'not a readable ZIP' })).found || undefined);
+    });
+
+    it(INSIDE_TESTS.diagnostic, async function () {
+      requireServerFeature(this, 'diagnostics', !!api().serverCapabilities()?.textDocumentSync);
+      const editor = await open('main.xosc');
+      const uri = editor.document.uri;
+      await waitFor('the example to check clean', () => vscode.languages.getDiagnostics(uri).every((d) => d.severity !== vscode.DiagnosticSeverity.Error) || undefined);
+      await replaceText(editor.document, 'key="AbsoluteTargetSpeed.value"', 'key="AbsoluteTargetSped.value"');
+      const keyLine = positionOf(editor.document, 'AbsoluteTargetSped.value').line;
+      const diagnostic = await waitFor('a diagnostic on the bad key', () => vscode.languages.getDiagnostics(uri).find((d) => d.range.start.line === keyLine));
+      assert.match(diagnostic.message, /AbsoluteTargetSped\.value|AbsoluteTargetSpeed/);
+      editor.revealRange(diagnostic.range, vscode.TextEditorRevealType.InCenter);
+      editor.selection = new vscode.Selection(diagnostic.range.start, diagnostic.range.start);
+      await vscode.commands.executeCommand('editor.action.marker.next');
+      await screenshot('diagnostic on a bad key (marker)');
+      await revertAndClose();
+    });
+
+    it(INSIDE_TESTS.completion, async function () {
+      requireServerFeature(this, 'completion', !!api().serverCapabilities()?.completionProvider);
+      const editor = await open('main.xosc');
+      const anchor = '<ParameterReference key="RelativeDistanceCondition.value" value="12"/>';
+      const at = positionOf(editor.document, anchor);
+      const edit = new vscode.WorkspaceEdit();
+      edit.insert(editor.document.uri, at.translate(0, anchor.length), `\n${' '.repeat(at.character)}<ParameterReference key="" value="1"/>`);
+      await vscode.workspace.applyEdit(edit);
+      const cursor = new vscode.Position(at.line + 1, at.character + '<ParameterReference key="'.length);
+      editor.selection = new vscode.Selection(cursor, cursor);
+      const list = await waitFor('completion items', async () => {
+        const result = await vscode.commands.executeCommand<vscode.CompletionList>('vscode.executeCompletionItemProvider', editor.document.uri, cursor);
+        return result.items.length > 0 ? result : undefined;
+      });
+      const labels = list.items.map((item) => (typeof item.label === 'string' ? item.label : item.label.label));
+      for (const expected of ['dynamicsShape', 'delay', 'SimulationTimeCondition.value']) {
+        assert.ok(labels.some((label) => label === expected || label.endsWith(`.${expected}`)), `completion lacks ${expected}: ${labels.join(', ')}`);
+      }
+      assert.ok(!labels.includes('AbsoluteTargetSpeed.value'), `a key already given is offered again: ${labels.join(', ')}`);
+      await vscode.commands.executeCommand('editor.action.triggerSuggest');
+      await waitFor('the suggest widget', async () => (await post<{ found: boolean }>('/findText', { text: 'dynamicsShape' })).found || undefined, 10_000);
+      await screenshot('completion offers the overridable keys (widget)');
+      await revertAndClose();
+    });
+
+    it(INSIDE_TESTS.definition, async function () {
+      requireServerFeature(this, 'go to definition', !!api().serverCapabilities()?.definitionProvider);
+      const editor = await open('main.xosc');
+      const cursor = positionOf(editor.document, 'scenarioFileName="lane_change.xosc"', 'scenarioFileName="lane'.length);
+      editor.selection = new vscode.Selection(cursor, cursor);
+      const locations = await vscode.commands.executeCommand<(vscode.Location | vscode.LocationLink)[]>('vscode.executeDefinitionProvider', editor.document.uri, cursor);
+      const targets = locations.map((location) => ('targetUri' in location ? location.targetUri : location.uri).fsPath);
+      assert.deepEqual(targets, [path.join(workspaceRoot(), 'lane_change.xosc')]);
+      // Then the key press, as a person does it, in the page, with the keyboard focus in the editor.
+      await vscode.commands.executeCommand('workbench.action.focusActiveEditorGroup');
+      await pressKeys(['F12']);
+      const target = await waitFor('the referenced file to open', () => {
+        const active = vscode.window.activeTextEditor?.document.uri;
+        return active && path.basename(active.path) === 'lane_change.xosc' ? active : undefined;
+      });
+      assert.equal(target.fsPath, path.join(workspaceRoot(), 'lane_change.xosc'));
+    });
+
+    it(INSIDE_TESTS.preview, async function () {
+      requireServerFeature(this, 'flattenToText', offersCommand(ServerCommands.flattenToText));
+      const editor = await open('main.xosc');
+      // The server's "flatten preview" CodeLens runs the client's command; without lenses, the command itself.
+      const lenses = api().serverCapabilities()?.codeLensProvider
+        ? await vscode.commands.executeCommand<vscode.CodeLens[]>('vscode.executeCodeLensProvider', editor.document.uri, 100)
+        : [];
+      const lens = lenses.find((candidate) => candidate.command?.command === 'modular2simple.openPreview')?.command;
+      if (lens) await vscode.commands.executeCommand(lens.command, ...(lens.arguments ?? []));
+      else await vscode.commands.executeCommand('modular2simple.openPreview', editor.document.uri);
+      const preview = await waitFor('the preview', () => vscode.workspace.textDocuments.find((document) => document.uri.scheme === 'modular2simple-preview'));
+      await waitFor('the flattened text', () => preview.getText().includes('name="CutInVehicle.CutIn"') || undefined);
+      assert.ok(!preview.getText().includes('ScenarioReference'), 'the preview still holds a ScenarioReference');
+      assert.ok(preview.getText().includes('value="27.5"'));
+      await replaceText(editor.document, 'key="AbsoluteTargetSpeed.value" value="27.5"', 'key="AbsoluteTargetSpeed.value" value="31.25"');
+      await waitFor('the preview to follow the edit', () => preview.getText().includes('value="31.25"') || undefined);
+      assert.ok(!preview.getText().includes('value="27.5"'));
+      // What a person sees: the preview follows the cursor, and its own editor (the group without focus) shows the new value.
+      const previewEditor = await waitFor('the preview editor', () => vscode.window.visibleTextEditors.find((visible) => visible.document === preview));
+      const cursor = positionOf(editor.document, 'value="31.25"');
+      editor.selection = new vscode.Selection(cursor, cursor);
+      editor.revealRange(new vscode.Range(cursor, cursor), vscode.TextEditorRevealType.InCenter);
+      const imported = positionOf(preview, 'name="CutInVehicle.CutIn"').line;
+      await waitFor('the preview to scroll to the imported group', () => previewEditor.visibleRanges.some((range) => range.start.line <= imported && imported <= range.end.line) || undefined, 10_000);
+      await waitFor('the preview to show the change', () => pageShows('31.25', '.editor-group-container:not(.active) .view-lines'), 10_000);
+      await screenshot('preview after an edit');
+      await revertAndClose();
+    });
+
+    it(INSIDE_TESTS.scenarioPath, async function () {
+      requireServerFeature(this, 'diagnostics', !!api().serverCapabilities()?.textDocumentSync);
+      // A library folder outside the workspace, found only through the setting.
+      const library = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-library-'));
+      fs.copyFileSync(path.join(workspaceRoot(), 'lane_change.xosc'), path.join(library, 'shared_lane_change.xosc'));
+      const editor = await open('main.xosc');
+      const uri = editor.document.uri;
+      await replaceText(editor.document, 'scenarioFileName="lane_change.xosc"', 'scenarioFileName="shared_lane_change.xosc"');
+      const line = positionOf(editor.document, 'shared_lane_change.xosc').line;
+      const onReference = (): vscode.Diagnostic | undefined => vscode.languages.getDiagnostics(uri).find((d) => d.range.start.line === line && d.severity === vscode.DiagnosticSeverity.Error);
+      await waitFor('the missing file to be reported', onReference);
+      const settings = vscode.workspace.getConfiguration('modular2simple');
+      await settings.update('scenarioPath', [library], vscode.ConfigurationTarget.Workspace);
+      try {
+        await waitFor('the reference to resolve through the setting', () => !onReference() || undefined);
+      } finally {
+        await settings.update('scenarioPath', undefined, vscode.ConfigurationTarget.Workspace);
+        await revertAndClose();
+        fs.rmSync(library, { recursive: true, force: true });
+      }
+    });
+
+    it(INSIDE_TESTS.pack, async function () {
+      requireServerFeature(this, 'pack', offersCommand(ServerCommands.pack));
+      const root = workspaceRoot();
+      await open('pedestrian/main.xosc');
+      await runFromPalette('Modular2Simple: Pack into .mosc');
+      const written = path.join(root, 'pedestrian.mosc');
+      await waitFor('pedestrian.mosc', () => fs.existsSync(written) || undefined);
+      const expected = path.join(os.tmpdir(), `m2s-cli-pack-${process.pid}.mosc`);
+      cli(['pack', path.join(root, 'pedestrian'), '-o', expected]);
+      const [ours, theirs] = [await zipEntries(written), await zipEntries(expected)];
+      assert.deepEqual([...ours.keys()].sort(), [...theirs.keys()].sort());
+      for (const [name, text] of theirs) assert.equal(firstDifference(ours.get(name) ?? '', text), undefined, `${name} differs`);
+
+      // From files selected in the explorer: each stored at the root of the package.
+      const selected = ['pedestrian/main.xosc', 'crossing.xosc'].map((file) => vscode.Uri.file(path.join(root, file)));
+      const output = path.join(root, 'selected.mosc');
+      assert.equal(await vscode.commands.executeCommand('modular2simple.pack', selected[0], selected, { output }), output);
+      const expectedFiles = path.join(os.tmpdir(), `m2s-cli-pack-files-${process.pid}.mosc`);
+      cli(['pack', ...selected.map((uri) => uri.fsPath), '-o', expectedFiles]);
+      assert.deepEqual(await zipEntries(output), await zipEntries(expectedFiles));
+    });
+
+    it(INSIDE_TESTS.flatten, async function () {
+      this.timeout(90_000);
+      requireServerFeature(this, 'flattenToFile', offersCommand(ServerCommands.flattenToFile));
+      const root = workspaceRoot();
+      await open('main.xosc');
+      await runFromPalette('Modular2Simple: Flatten to .xosc');
+      const written = path.join(root, `${path.basename(root)}.xosc`);
+      await waitFor(path.basename(written), () => fs.existsSync(written) || undefined);
+      const expected = path.join(os.tmpdir(), `m2s-cli-flatten-${process.pid}.xosc`);
+      cli(['flatten', path.join(root, 'main.xosc'), '-o', expected]);
+      const difference = firstDifference(fs.readFileSync(written, 'utf8'), fs.readFileSync(expected, 'utf8'));
+      assert.equal(difference, undefined, difference);
+      assert.ok(fs.readFileSync(written, 'utf8').includes('Pedestrian.Walker.Crossing'));
+
+      // Flattening again asks before replacing the file: Cancel (the default) keeps it, Replace writes it.
+      fs.writeFileSync(written, '<!-- kept -->');
+      await runFromPalette('Modular2Simple: Flatten to .xosc');
+      await waitFor('the overwrite question', () => pageShows('already exists'));
+      await screenshot('flatten asks before overwriting');
+      await pressKeys(['Enter']);
+      await waitFor('the question to close', async () => !(await pageShows('already exists')));
+      await new Promise((resolve) => setTimeout(resolve, 500));
+      assert.equal(fs.readFileSync(written, 'utf8'), '<!-- kept -->');
+      await runFromPalette('Modular2Simple: Flatten to .xosc');
+      await waitFor('the overwrite question', () => pageShows('already exists'));
+      await typeText('Replace');
+      await pressKeys(['Enter']);
+      await waitFor('the file to be replaced', () => fs.readFileSync(written, 'utf8') !== '<!-- kept -->' || undefined);
+      assert.equal(firstDifference(fs.readFileSync(written, 'utf8'), fs.readFileSync(expected, 'utf8')), undefined);
+
+      // From the explorer's context menu on a .mosc: the package flattened beside it.
+      const braking = vscode.Uri.file(path.join(root, 'braking.mosc'));
+      const fromPackage = await vscode.commands.executeCommand<string | undefined>('modular2simple.flatten', braking, [braking]);
+      assert.equal(fromPackage, path.join(root, 'braking.xosc'));
+      const expectedPackage = path.join(os.tmpdir(), `m2s-cli-flatten-braking-${process.pid}.xosc`);
+      cli(['flatten', braking.fsPath, '-o', expectedPackage]);
+      assert.equal(firstDifference(fs.readFileSync(fromPackage, 'utf8'), fs.readFileSync(expectedPackage, 'utf8')), undefined);
+    });
+
+    it(INSIDE_TESTS.insidePackage, async function () {
+      requireServerFeature(this, 'go to definition', !!api().serverCapabilities()?.definitionProvider);
+      const main = packageUri('braking.mosc', 'main.xosc');
+      const editor = await vscode.window.showTextDocument(await vscode.workspace.openTextDocument(main));
+      const cursor = positionOf(editor.document, 'scenarioFileName="hard_brake.xosc"', 'scenarioFileName="hard'.length);
+      const locations = await waitFor('a definition inside the package', async () => {
+        const found = await vscode.commands.executeCommand<(vscode.Location | vscode.LocationLink)[]>('vscode.executeDefinitionProvider', main, cursor);
+        return found.length > 0 ? found : undefined;
+      });
+      const target = 'targetUri' in locations[0] ? locations[0].targetUri : locations[0].uri;
+      assert.equal(target.toString(), packageUri('braking.mosc', 'hard_brake.xosc').toString());
+      const opened = await vscode.window.showTextDocument(await vscode.workspace.openTextDocument(target));
+      assert.ok(opened.document.getText().includes('name="HardBrake"'));
+      // Diagnostics reach files inside packages too: a bad key shows up where it is.
+      await vscode.window.showTextDocument(editor.document);
+      await replaceText(editor.document, 'key="SimulationTimeCondition.value"', 'key="SimulationTimeCondition.valeu"');
+      const keyLine = positionOf(editor.document, 'SimulationTimeCondition.valeu').line;
+      await waitFor('a diagnostic inside the package', () => vscode.languages.getDiagnostics(main).find((d) => d.range.start.line === keyLine));
+      await revertAndClose();
+    });
+
+    it(INSIDE_TESTS.structure, async function () {
+      requireServerFeature(this, 'structure', offersCommand(ServerCommands.structure));
+      const editor = await open('main.xosc');
+      const root = await vscode.commands.executeCommand<StructureNode | undefined>('modular2simple.showStructure', editor.document.uri);
+      assert.ok(root, 'no structure');
+      const nodes = flattenTree(root);
+      assert.equal(root.kind, 'main');
+      for (const kind of ['package', 'scenario', 'group'] as const) assert.ok(nodes.some((node) => node.kind === kind), `no ${kind} in the structure`);
+      for (const name of ['lane_change.xosc', 'braking.mosc', 'pedestrian']) {
+        assert.ok(nodes.some((node) => node.label.includes(name)), `${name} is not in the structure`);
+      }
+      // What a person sees: the tree view itself lists the packages and scenarios.
+      for (const name of ['braking.mosc', 'lane_change.xosc']) {
+        await waitFor(`${name} in the tree view`, () => pageShows(name, '.customview-tree'), 10_000);
+      }
+      // The tree follows a save.
+      await replaceText(editor.document, 'name="CutInVehicle"', 'name="CutInCar"');
+      assert.ok(await editor.document.save());
+      await waitFor('the renamed group in the tree view', () => pageShows('CutInCar', '.customview-tree'), 10_000);
+      assert.ok(flattenTree(api().structure() ?? root).some((node) => node.label.includes('CutInCar')));
+    });
+  });
+}

@@ -1,0 +1,29 @@
+/** The tests that run inside VS Code; the outer mocha test asserts that each of them ran and passed. */
+export const INSIDE_TESTS = {
+  activates: 'opening the example workspace activates the extension',
+  grammar: 'the grammar gives the modular elements and parameterAttributes their own scopes',
+  typing: 'typing an opening tag closes it, and Ctrl+/ comments a line out',
+  packageView: 'opening a .mosc shows the files inside it',
+  packageEdit: 'a file inside a .mosc is edited and saved, and the archive holds the change',
+  brokenPackage: 'a broken .mosc is reported and never overwritten',
+  diagnostic: 'a diagnostic shows on a bad key',
+  completion: 'completion offers the overridable keys',
+  definition: 'F12 on scenarioFileName opens the referenced file',
+  preview: 'the preview shows the flattened scenario and changes after an edit',
+  insidePackage: 'language features work on a file inside a .mosc',
+  scenarioPath: 'the modular2simple.scenarioPath setting reaches the server',
+  pack: 'Pack from the command palette writes a package equivalent to the CLI\'s',
+  flatten: 'Flatten from the command palette writes a file equivalent to the CLI\'s',
+  structure: 'Show Structure lists the main file, packages, scenarios and groups',
+} as const;
+
+export type InsideTestKey = keyof typeof INSIDE_TESTS;
+
+/** Environment variables through which the harness tells the tests inside VS Code where things are. */
+export const HARNESS_ENV = {
+  endpoint: 'M2S_E2E_ENDPOINT',
+  workspace: 'M2S_E2E_WORKSPACE',
+  cli: 'M2S_E2E_CLI',
+  /** Runs only the tests inside VS Code whose title matches (for debugging one test). */
+  grep: 'M2S_E2E_GREP',
+} as const;

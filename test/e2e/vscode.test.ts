@@ -1,0 +1,207 @@
+import * as assert from 'node:assert/strict';
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import JSZip from 'jszip';
+import type { Browser, Frame, Page } from 'playwright-core';
+import {
+  ARTIFACTS,
+  HarnessEndpoint,
+  ROOT,
+  buildInsideSuite,
+  copyFolder,
+  createProfile,
+  installExtension,
+  launchBrowser,
+  missingTools,
+  packageExtension,
+  removeInsideSuite,
+  requireE2e,
+  startCodeServer,
+  type CodeServer,
+  type InsideResult,
+  type Profile,
+} from './harness';
+import { HARNESS_ENV, INSIDE_TESTS } from './titles';
+
+const RUN_TIMEOUT_MS = 180_000;
+
+/** The example workspace, plus two packages the tests need: one nested in another, one broken. */
+async function prepareWorkspace(profile: Profile): Promise<string> {
+  const workspace = path.join(profile.root, 'examples');
+  copyFolder(path.join(ROOT, 'examples'), workspace);
+  const braking = fs.readFileSync(path.join(workspace, 'braking.mosc'));
+  const brakingMain = await (await JSZip.loadAsync(braking)).file('main.xosc')?.async('string');
+  assert.ok(brakingMain, 'examples/braking.mosc holds no main.xosc');
+  const nested = new JSZip();
+  nested.file('main.xosc', brakingMain.replace('scenarioFileName="hard_brake.xosc"', 'scenarioFileName="braking.mosc"').replace('maneuverGroupName="HardBrake"', 'maneuverGroupName="Brake.HardBrake"'));
+  nested.file('braking.mosc', braking);
+  fs.writeFileSync(path.join(workspace, 'nested.mosc'), await nested.generateAsync({ type: 'uint8array', compression: 'DEFLATE' }));
+  // A ZIP header followed by garbage: what a truncated download looks like.
+  fs.writeFileSync(path.join(workspace, 'broken.mosc'), Buffer.concat([Buffer.from('PK\x03\x04'), Buffer.from('this is not the rest of a ZIP archive\n'.repeat(8))]));
+  return workspace;
+}
+
+async function frameHasText(frame: Frame, text: string, selector = 'body'): Promise<boolean> {
+  try {
+    // Page code is a string: this project's types do not include the DOM.
+    return (await frame.evaluate(`[...document.querySelectorAll(${JSON.stringify(selector)})].some((element) => element.innerText.includes(${JSON.stringify(text)}))`)) as boolean;
+  } catch {
+    return false;
+  }
+}
+
+/** What the page shows, for the tests inside VS Code that check what a person sees. */
+function servePage(endpoint: HarnessEndpoint, page: Page): void {
+  endpoint.page = page;
+  endpoint.routes.set('/findText', async (body) => {
+    const { text, selector } = body as { text: string; selector?: string };
+    for (const frame of page.frames()) if (await frameHasText(frame, text, selector)) return { found: true };
+    return { found: false };
+  });
+  endpoint.routes.set('/tokenColors', async (body) => {
+    const { words } = body as { words: string[] };
+    return (await page.evaluate(`(() => {
+      const spans = [...document.querySelectorAll('.monaco-editor .view-lines span span')];
+      const colors = {};
+      for (const word of ${JSON.stringify(words)}) {
+        // Neighbouring tokens of one colour share a span, so '<' may lead a tag name.
+        const span = spans.find((candidate) => (candidate.textContent || '').trim().replace(/^<\\/?/, '') === word);
+        colors[word] = span ? getComputedStyle(span).color : null;
+      }
+      return colors;
+    })()`)) as Record<string, string | null>;
+  });
+  endpoint.routes.set('/palette', async (body) => {
+    const { title } = body as { title: string };
+    await page.keyboard.press('F1');
+    const input = page.locator('.quick-input-widget input');
+    await input.waitFor({ state: 'visible', timeout: 10_000 });
+    await input.fill(`>${title}`);
+    // Enter runs the focused row: wait until the filter has put this command there.
+    await page.locator('.quick-input-list .monaco-list-row.focused').filter({ hasText: title.split(': ').pop() ?? title }).waitFor({ timeout: 10_000 });
+    await page.keyboard.press('Enter');
+    return {};
+  });
+  endpoint.routes.set('/clickText', async (body) => {
+    const { text } = body as { text: string };
+    // Links and buttons in any frame: the package view is a webview, an iframe of its own.
+    for (const frame of page.frames()) {
+      const target = frame.locator('a, button').filter({ hasText: text }).first();
+      if ((await target.count().catch(() => 0)) > 0) {
+        await target.click({ timeout: 10_000 });
+        return { clicked: true };
+      }
+    }
+    return { clicked: false };
+  });
+  endpoint.routes.set('/type', async (body) => {
+    const { text } = body as { text: string };
+    await page.keyboard.type(text, { delay: 20 });
+    return {};
+  });
+  endpoint.routes.set('/keys', async (body) => {
+    const { keys } = body as { keys: string[] };
+    for (const key of keys) await page.keyboard.press(key);
+    return {};
+  });
+}
+
+describe('the packaged extension in a real VS Code (code-server, headless Chromium)', function () {
+  this.timeout(RUN_TIMEOUT_MS + 60_000);
+  const results = new Map<string, InsideResult>();
+  let exitCode: number | undefined;
+  let vsixEntries: string[] = [];
+
+  before(async function () {
+    const missing = missingTools();
+    if (missing) {
+      if (requireE2e()) throw new Error(`M2S_REQUIRE_E2E=1 but the real-VS-Code tests cannot run: ${missing}`);
+      console.log(`    skipped: ${missing}`);
+      this.skip();
+    }
+    fs.rmSync(ARTIFACTS, { recursive: true, force: true });
+    fs.mkdirSync(ARTIFACTS, { recursive: true });
+    const profile = createProfile();
+    const endpoint = new HarnessEndpoint();
+    let server: CodeServer | undefined;
+    let browser: Browser | undefined;
+    let runner: { extensionPath: string; testsPath: string } | undefined;
+    const automationLog: string[] = [];
+    try {
+      const workspace = await prepareWorkspace(profile);
+      const vsix = packageExtension(profile.root);
+      vsixEntries = Object.keys((await JSZip.loadAsync(fs.readFileSync(vsix))).files).filter((name) => !name.endsWith('/'));
+      installExtension(profile, vsix);
+      runner = await buildInsideSuite(profile.root);
+      await endpoint.start();
+      server = await startCodeServer(profile, {
+        [HARNESS_ENV.endpoint]: endpoint.url,
+        [HARNESS_ENV.workspace]: workspace,
+        [HARNESS_ENV.cli]: path.join(ROOT, 'dist', 'cli.js'),
+        [HARNESS_ENV.grep]: process.env[HARNESS_ENV.grep] ?? '',
+      });
+      browser = await launchBrowser(profile);
+      const page = await browser.newPage({ viewport: { width: 1440, height: 900 } });
+      servePage(endpoint, page);
+      const exited = new Promise<number>((resolve) => {
+        void page.exposeFunction('codeAutomationExit', (code: number) => resolve(code));
+      });
+      await page.exposeFunction('codeAutomationLog', (type: string, args: unknown[]) => {
+        automationLog.push(`[${type}] ${args.map((arg) => (typeof arg === 'string' ? arg : JSON.stringify(arg))).join(' ')}`);
+      });
+      const remote = (file: string): string => `vscode-remote://127.0.0.1:${server?.port}${file}`;
+      const payload = JSON.stringify([
+        ['extensionDevelopmentPath', remote(runner.extensionPath)],
+        ['extensionTestsPath', remote(runner.testsPath)],
+      ]);
+      await page.goto(`${server.url}/?folder=${encodeURIComponent(workspace)}&payload=${encodeURIComponent(payload)}`);
+      let timer: NodeJS.Timeout | undefined;
+      const timedOut = new Promise<number>((resolve) => {
+        timer = setTimeout(() => resolve(-1), RUN_TIMEOUT_MS);
+      });
+      exitCode = await Promise.race([exited, timedOut]);
+      clearTimeout(timer);
+      if (exitCode === -1) await page.screenshot({ path: path.join(ARTIFACTS, 'TIMEOUT.png') }).catch(() => undefined);
+    } finally {
+      await browser?.close().catch(() => undefined);
+      await server?.stop();
+      await endpoint.stop();
+      if (runner) removeInsideSuite(runner.extensionPath);
+      fs.writeFileSync(path.join(ARTIFACTS, 'extension-host.log'), automationLog.join('\n'));
+      fs.writeFileSync(path.join(ARTIFACTS, 'harness.log'), endpoint.log.join('\n'));
+      fs.writeFileSync(path.join(ARTIFACTS, 'code-server.log'), server?.log.join('') ?? '');
+      fs.rmSync(profile.root, { recursive: true, force: true });
+    }
+    for (const result of endpoint.results) results.set(result.title, result);
+  });
+
+  for (const title of Object.values(INSIDE_TESTS)) {
+    it(title, function () {
+      const result = results.get(title);
+      if (!result && process.env[HARNESS_ENV.grep]) this.skip();
+      assert.ok(result, `did not run inside VS Code (exit code ${exitCode}); see ${path.relative(ROOT, ARTIFACTS)}/extension-host.log`);
+      if (result.state === 'pending') this.skip();
+      if (result.state === 'failed') assert.fail(result.error);
+    });
+  }
+
+  it('the .vsix holds the bundles and the manifest\'s assets, nothing else', () => {
+    const extensionFiles = vsixEntries.filter((name) => name.startsWith('extension/')).map((name) => name.slice('extension/'.length)).sort();
+    const manifest = JSON.parse(fs.readFileSync(path.join(ROOT, 'package.json'), 'utf8')) as { main: string; contributes: { grammars: { path: string }[]; languages: { configuration?: string; icon?: { light: string } }[] } };
+    const needed = [
+      manifest.main,
+      'dist/server.js',
+      ...manifest.contributes.grammars.map((grammar) => grammar.path),
+      ...manifest.contributes.languages.flatMap((language) => [language.configuration, language.icon?.light]),
+    ].filter((file): file is string => file !== undefined).map((file) => path.posix.normalize(file));
+    for (const file of needed) assert.ok(extensionFiles.includes(file), `${file} is missing from the .vsix`);
+    const unexpected = extensionFiles.filter((file) => !needed.includes(file) && !/^(package\.json|readme\.md|LICENSE(\.txt)?|client\/icons\/[\w-]+\.svg)$/i.test(file));
+    assert.deepEqual(unexpected, [], 'the .vsix holds files that do not run');
+  });
+
+  it('nothing else failed inside VS Code', () => {
+    const failed = [...results.values()].filter((result) => result.state === 'failed' && !Object.values(INSIDE_TESTS).includes(result.title as never));
+    assert.deepEqual(failed.map((result) => `${result.title}: ${result.error}`), []);
+    assert.ok(exitCode !== -1, `the tests inside VS Code did not finish within ${RUN_TIMEOUT_MS / 1000} s`);
+  });
+});
