@@ -23,6 +23,7 @@ import { hover } from './features/hover';
 import { fileRenameEdits, placesToLocations, renameGroup, targetAt, usagesOf } from './features/references';
 import { codeLenses, documentSymbols, workspaceSymbols } from './features/symbols';
 import { packCommand } from './features/pack';
+import { IdleCollector } from './idleCollector';
 import { filePathOf } from './uris';
 import { readSettings, Workspace } from './workspace';
 
@@ -38,6 +39,7 @@ export function startServer(connection: Connection): Workspace {
   let canWatch = false;
   let initialFolders: string[] = [];
   let indexed: Promise<void> = Promise.resolve();
+  const idle = new IdleCollector();
 
   /** Runs a handler; a failure is logged and answered with `fallback`, never left to crash the server. */
   const guard = async <T>(name: string, fallback: T, run: () => Promise<T>): Promise<T> => {
@@ -117,6 +119,7 @@ export function startServer(connection: Connection): Workspace {
       }
       await guard('index', undefined, index);
       diagnostics.all();
+      idle.touch();
     })();
   });
 
@@ -159,6 +162,7 @@ export function startServer(connection: Connection): Workspace {
   });
 
   documents.onDidChangeContent(({ document }) => {
+    idle.touch();
     void guard('change', undefined, async () => {
       const ref = await refs.get(document.uri);
       if (!ref || !workspace.documents.has(refId(ref))) return;
@@ -168,6 +172,7 @@ export function startServer(connection: Connection): Workspace {
   });
 
   documents.onDidClose(({ document }) => {
+    idle.touch();
     void guard('close', undefined, async () => {
       const ref = await refs.get(document.uri);
       refs.delete(document.uri);

@@ -1,7 +1,7 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { TextDocument } from 'vscode-languageserver-textdocument';
-import { Flattener, FlatSource, FlattenResult } from './core/flatten';
+import { AnalysisResult, Flattener, FlatSource } from './core/flatten';
 import { FileSystemHost, nodeFileSystem, refId, ScenarioStore, SourceRef, splitScenarioPath, diskRef, childRef } from './core/sources';
 import { decodeUtf8, LineIndex, Range } from './core/text';
 import { UriResolver, refToUri } from './uris';
@@ -178,7 +178,7 @@ export class Workspace {
   /** Sources read so far, kept across generations until a file they depend on changes. */
   private readonly sharedSources = new Map<string, Promise<FlatSource>>();
   private readonly sourceDependencies = new Map<string, string[]>();
-  private readonly flattenResults = new Map<string, { generation: number; result: Promise<FlattenResult> }>();
+  private readonly analysisResults = new Map<string, { generation: number; result: Promise<AnalysisResult> }>();
 
   constructor() {
     this.storeInstance = this.createStore();
@@ -212,13 +212,13 @@ export class Workspace {
   changed(changedIds?: string[]): void {
     this.generation++;
     if (!changedIds) {
-      this.flattenResults.clear();
+      this.analysisResults.clear();
       this.sharedSources.clear();
       this.sourceDependencies.clear();
       return;
     }
     const touches = (id: string) => changedIds.some((changed) => id === changed || id.startsWith(changed + '/'));
-    for (const id of [...this.flattenResults.keys()]) if (touches(id)) this.flattenResults.delete(id);
+    for (const id of [...this.analysisResults.keys()]) if (touches(id)) this.analysisResults.delete(id);
     for (const id of [...this.sharedSources.keys()]) {
       const dependencies = this.sourceDependencies.get(id);
       // A source still being read has unknown dependencies, so it goes too.
@@ -242,14 +242,14 @@ export class Workspace {
     return this.flattener().source(ref, []);
   }
 
-  /** The file flattened as a main file (with the checks only a main file gets), cached per generation. */
-  flatten(ref: SourceRef): Promise<FlattenResult> {
+  /** The file analysed as a main file (with the checks only a main file gets), cached per generation. */
+  analyze(ref: SourceRef): Promise<AnalysisResult> {
     const id = refId(ref);
-    const cached = this.flattenResults.get(id);
+    const cached = this.analysisResults.get(id);
     if (cached && cached.generation === this.generation) return cached.result;
-    const result = this.flattener().flatten(ref);
-    this.flattenResults.set(id, { generation: this.generation, result });
-    if (this.flattenResults.size > 200) for (const [key, entry] of this.flattenResults) if (entry.generation !== this.generation) this.flattenResults.delete(key);
+    const result = this.flattener().analyze(ref);
+    this.analysisResults.set(id, { generation: this.generation, result });
+    if (this.analysisResults.size > 200) for (const [key, entry] of this.analysisResults) if (entry.generation !== this.generation) this.analysisResults.delete(key);
     return result;
   }
 

@@ -81,7 +81,7 @@ describe('core: flatten (SPEC 4)', () => {
     });
     const store = new ScenarioStore({ root, scenarioPath: [] });
     const flattener = new Flattener(store);
-    const inner = await flattener.source(diskRef(path.join(root, 'inner/main.xosc')), []);
+    const inner = flattener.rendered(await flattener.source(diskRef(path.join(root, 'inner/main.xosc')), []));
     const copied = inner.model!.groups.find((g) => g.name === 'Inner.Go')!;
     const speed = [...copied.element.children[1].children[0].children[0].children[0].children].find((e) => e.name === 'AbsoluteTargetSpeed')!;
     const origin = originOf(inner, speed);

@@ -14,6 +14,18 @@ import { displayRef, refId, Resolution, ScenarioStore, SourceError, SourceRef } 
 import { closestMatch, detectEol } from './text';
 import { attribute, escapeAttributeValue, isWellFormed, parseXml, XmlAttribute, XmlDocument, XmlElement } from './xml';
 
+const entityRefCache = new WeakMap<XmlElement, XmlElement[]>();
+
+/** The elements of a group that carry an entityRef; computed once per parsed group. */
+function entityRefElements(group: XmlElement): XmlElement[] {
+  let found = entityRefCache.get(group);
+  if (!found) {
+    found = selfAndDescendants(group).filter((element) => element.name === 'EntityRef' || attribute(element, 'entityRef') !== undefined);
+    entityRefCache.set(group, found);
+  }
+  return found;
+}
+
 function selfAndDescendants(element: XmlElement): XmlElement[] {
   const result: XmlElement[] = [];
   const stack = [element];
@@ -120,11 +132,18 @@ export interface FlatSource {
   allProblems: Problem[];
   /** Every file this one depends on, itself included. */
   dependencies: SourceRef[];
+  /** True while the flattened text can be, but has not yet been, rendered (see Flattener.rendered). */
+  renderable: boolean;
 }
 
 export interface FlattenOptions {
   /** Write the output even when overrides could not be applied (the original's behaviour). */
   force?: boolean;
+}
+
+export interface AnalysisResult {
+  problems: Problem[];
+  source: FlatSource;
 }
 
 export interface FlattenResult {
@@ -224,10 +243,16 @@ export class Flattener {
 
   constructor(readonly store: ScenarioStore) {}
 
+  /** Every problem of `main` and of what it uses, without writing its flattened text (for an editor). */
+  async analyze(main: SourceRef): Promise<AnalysisResult> {
+    const source = await this.source(main, []);
+    return { problems: uniqueProblems([...source.allProblems, ...this.entityProblems(source)]), source };
+  }
+
   /** Flattens the scenario `main` (a `main.xosc` on disk or inside a package) into plain OpenSCENARIO. */
   async flatten(main: SourceRef, options: FlattenOptions = {}): Promise<FlattenResult> {
-    const source = await this.source(main, []);
-    const problems = uniqueProblems([...source.allProblems, ...this.entityProblems(source)]);
+    const { problems, source } = await this.analyze(main);
+    this.rendered(source);
     const blocking = problems.filter(
       (problem) => problem.severity === 'error' && !(options.force && OVERRIDE_PROBLEM_CODES.has(problem.code)),
     );
@@ -261,6 +286,7 @@ export class Flattener {
       problems: [],
       allProblems: [],
       dependencies: [ref],
+      renderable: false,
     };
     let text: string;
     try {
@@ -308,9 +334,20 @@ export class Flattener {
       return result;
     }
     const blocked = result.allProblems.some((problem) => problem.severity === 'error' && !OVERRIDE_PROBLEM_CODES.has(problem.code));
-    if (blocked) return result;
-    this.render(result, text, model);
+    result.renderable = !blocked;
     return result;
+  }
+
+  /**
+   * Renders the flattened text and model of a source on first use: only the sources whose groups
+   * are imported, and the outputs, need them, so an editor analysing one file never renders it.
+   */
+  rendered(source: FlatSource): FlatSource {
+    if (source.renderable && source.original) {
+      source.renderable = false;
+      this.render(source, source.original.document.text, source.original);
+    }
+    return source;
   }
 
   private checkDeclarations(result: FlatSource, model: ScenarioModel): void {
@@ -434,7 +471,7 @@ export class Flattener {
       report(fileStart, fileEnd, 'error', 'cycle', `reference cycle: ${cycle.map((entry) => displayRef(entry)).join(' -> ')}`, 'remove one reference of the cycle');
       return link;
     }
-    const source = await this.source(target, stack);
+    const source = this.rendered(await this.source(target, stack));
     link.source = source;
     const sourceErrors = source.allProblems.filter((problem) => problem.severity === 'error' && !OVERRIDE_PROBLEM_CODES.has(problem.code));
     if (sourceErrors.length > 0) {
@@ -595,38 +632,41 @@ export class Flattener {
 
   /** Warns where an imported group names an entity the outermost main file does not declare. */
   private entityProblems(source: FlatSource): Problem[] {
-    if (!source.model || !source.original || source.insertions.length === 0) return [];
-    const declared = new Set(source.original.entities.map((entity) => entity.name));
+    const original = source.original;
+    if (!original) return [];
+    const declared = new Set(original.entities.map((entity) => entity.name));
     const problems: Problem[] = [];
-    const document = source.original.document;
-    for (const insertion of source.insertions) {
-      const missing = new Set<string>();
-      for (const group of source.model.groups) {
-        if (group.element.start < insertion.start || group.element.end > insertion.end) continue;
-        const stack: XmlElement[] = [group.element];
-        while (stack.length > 0) {
-          const element = stack.pop() as XmlElement;
-          const entity = attribute(element, 'entityRef');
-          if (entity && !declared.has(entity.value)) missing.add(entity.value);
-          stack.push(...element.children);
+    for (const link of source.links) {
+      const actor = link.info.outerGroup?.actor;
+      const actorEntity = actor ? attribute(actor, 'entityRef')?.value : undefined;
+      for (const linked of link.groups) {
+        if (!linked.target || !linked.plan) continue;
+        // The entities the copy will name: overrides first, then the outer actor, then the source's own value.
+        const overridden = new Map<XmlElement, string>();
+        for (const [target, parameter] of linked.plan.applied) if (target.attributeName === 'entityRef') overridden.set(target.element, parameter.value);
+        const missing = new Set<string>();
+        for (const element of entityRefElements(linked.target.element)) {
+          const value =
+            overridden.get(element) ??
+            (element === linked.target.actor && actorEntity !== undefined ? actorEntity : attribute(element, 'entityRef')?.value);
+          if (value !== undefined && !declared.has(value)) missing.add(value);
         }
-      }
-      for (const name of missing) {
-        const nameAttribute = insertion.reference.nameAttribute;
-        const [start, end] = valueRange(nameAttribute, insertion.reference.element);
-        problems.push({
-          ...problemAt(
-            source.ref,
-            document,
-            start,
-            end,
-            'warning',
-            'undeclared-entity',
-            `the imported group '${insertion.reference.name}' uses entity '${name}', which this file does not declare in <Entities>`,
-            `declare a ScenarioObject named '${name}', or override the key that sets it (for example 'entityRef')`,
-          ),
-          data: { entity: name },
-        });
+        for (const name of missing) {
+          const [start, end] = valueRange(linked.info.nameAttribute, linked.info.element);
+          problems.push({
+            ...problemAt(
+              source.ref,
+              original.document,
+              start,
+              end,
+              'warning',
+              'undeclared-entity',
+              `the imported group '${linked.info.name}' uses entity '${name}', which this file does not declare in <Entities>`,
+              `declare a ScenarioObject named '${name}', or override the key that sets it (for example 'entityRef')`,
+            ),
+            data: { entity: name },
+          });
+        }
       }
     }
     return problems;

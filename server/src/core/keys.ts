@@ -35,9 +35,15 @@ function isWithin(element: XmlElement, ancestor: XmlElement): boolean {
   return false;
 }
 
+// Parse trees never change once built, so a group's list is computed once, however often it is imported.
+const overridableCache = new WeakMap<XmlElement, OverridableAttribute[]>();
+
 /** Every attribute the group lists in a `parameterAttributes`, in document order. */
 export function overridableAttributes(model: ScenarioModel, group: ManeuverGroupInfo): OverridableAttribute[] {
+  const cached = overridableCache.get(group.element);
+  if (cached) return cached;
   const result: OverridableAttribute[] = [];
+  overridableCache.set(group.element, result);
   for (const declaration of model.declarations) {
     if (!isWithin(declaration.element, group.element)) continue;
     const path: string[] = [];

@@ -110,13 +110,12 @@ export function buildModel(document: XmlDocument): ScenarioModel {
         if (STRUCTURE_ELEMENTS.has(element.name)) structure.push(element);
     }
   };
-  visit(document.root);
-  for (const element of descendants(document.root)) visit(element);
+  const all = [document.root, ...descendants(document.root)];
+  for (const element of all) visit(element);
   // References found outside any group still count, so that the editor can flag them.
-  for (const element of [document.root, ...descendants(document.root)]) {
-    if (element.name === 'ScenarioReference' && !references.some((r) => r.element === element)) {
-      references.push(readReference(element, undefined));
-    }
+  const known = new Set(references.map((reference) => reference.element));
+  for (const element of all) {
+    if (element.name === 'ScenarioReference' && !known.has(element)) references.push(readReference(element, undefined));
   }
   references.sort((a, b) => a.element.start - b.element.start);
   return { document, groups, references, entities, declarations, structure };

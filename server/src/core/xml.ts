@@ -61,13 +61,17 @@ export function attributeValue(element: XmlElement, name: string): string | unde
   return attribute(element, name)?.value;
 }
 
-export function* descendants(element: XmlElement): Generator<XmlElement> {
-  const stack: XmlElement[] = [...element.children].reverse();
+/** Every element below `element`, in document order (an array: generators are slow on hot paths). */
+export function descendants(element: XmlElement): XmlElement[] {
+  const result: XmlElement[] = [];
+  const stack: XmlElement[] = [];
+  for (let i = element.children.length - 1; i >= 0; i--) stack.push(element.children[i]);
   while (stack.length > 0) {
     const next = stack.pop() as XmlElement;
-    yield next;
+    result.push(next);
     for (let i = next.children.length - 1; i >= 0; i--) stack.push(next.children[i]);
   }
+  return result;
 }
 
 export function firstDescendant(element: XmlElement, name: string): XmlElement | undefined {
@@ -212,6 +216,7 @@ export function parseXml(input: string, options: XmlParseOptions = {}): XmlDocum
   // Sticky regular expressions run as native code, which matters in a short-lived process.
   const namePattern = /[A-Za-z_:\u00C0-\uFFFF][A-Za-z0-9_:.\-\u00B7\u00C0-\uFFFF]*/y;
   const spacePattern = /[ \t\r\n]*/y;
+  const plainValue = /^[^&\t\n\r]*$/;
   const readName = (): string => {
     namePattern.lastIndex = position;
     const match = namePattern.exec(text);
@@ -347,7 +352,8 @@ export function parseXml(input: string, options: XmlParseOptions = {}): XmlDocum
         position = valueEnd + 1;
       }
       const raw = text.slice(valueStart, valueEnd);
-      const value = decodeReferences(raw.replace(/[\t\n\r]/g, ' '), valueStart, valueEnd, 0);
+      // Most values hold neither references nor line breaks: no copy is made for them.
+      const value = plainValue.test(raw) ? raw : decodeReferences(raw.replace(/[\t\n\r]/g, ' '), valueStart, valueEnd, 0);
       if (element.attributes.some((existing) => existing.name === attributeName)) {
         report(`attribute '${attributeName}' appears twice`, nameStart, nameEnd);
       }

@@ -100,7 +100,7 @@ function cycleDiagnostics(workspace: Workspace, root: FlatSource): Diagnostic[] 
 
 /** The diagnostics of one file analysed as a main file. */
 export async function diagnose(workspace: Workspace, ref: SourceRef): Promise<{ diagnostics: Diagnostic[]; dependencies: string[] }> {
-  const result = await workspace.flatten(ref);
+  const result = await workspace.analyze(ref);
   const id = refId(ref);
   const cycles = cycleDiagnostics(workspace, result.source);
   const diagnostics: Diagnostic[] = [...cycles];
