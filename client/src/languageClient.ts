@@ -20,6 +20,8 @@ export function createLanguageClient(context: vscode.ExtensionContext): Language
       { scheme: 'untitled', language: LANGUAGE_ID },
     ],
     // No `synchronize`: the server registers for configuration changes and file events itself.
+    // Files inside packages open and save through the mosc: file system, so edits may reach them.
+    initializationOptions: { packageFileSystem: true },
   };
   return new LanguageClient(CONFIGURATION_SECTION, 'Modular2Simple Language Server', serverOptions, clientOptions);
 }

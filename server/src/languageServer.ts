@@ -46,6 +46,8 @@ export function startServer(connection: Connection): Workspace {
     try {
       return await run();
     } catch (error) {
+      // A deliberate answer (such as "cannot rename this") reaches the client as it is.
+      if (error instanceof ResponseError) throw error;
       connection.console.error(`${name} failed: ${(error as Error)?.stack ?? String(error)}`);
       return fallback;
     }
@@ -64,7 +66,9 @@ export function startServer(connection: Connection): Workspace {
     const folderUris = params.workspaceFolders?.map((folder) => folder.uri) ?? (params.rootUri ? [params.rootUri] : []);
     initialFolders = folderUris.map((uri) => filePathOf(uri)).filter((folder): folder is string => folder !== undefined);
     if (initialFolders.length === 0 && params.rootPath) initialFolders = [path.resolve(params.rootPath)];
-    workspace.configure(initialFolders, readSettings((params.initializationOptions as Record<string, unknown> | undefined)?.settings ?? params.initializationOptions));
+    const initializationOptions = params.initializationOptions as Record<string, unknown> | undefined;
+    workspace.configure(initialFolders, readSettings(initializationOptions?.settings ?? initializationOptions));
+    workspace.editablePackages = initializationOptions?.packageFileSystem === true;
     return {
       capabilities: {
         textDocumentSync: { openClose: true, change: TextDocumentSyncKind.Incremental, save: { includeText: false } },
@@ -243,7 +247,9 @@ export function startServer(connection: Connection): Workspace {
       const target = await open(params.textDocument.uri);
       const subject = target ? await targetAt(workspace, target.ref, target.document.offsetAt(params.position)) : undefined;
       if (!subject || subject.kind !== 'group') throw new ResponseError(-32803, 'only ManeuverGroup names can be renamed');
-      if (subject.ref.entries.length > 0) throw new ResponseError(-32803, 'the group is inside a .mosc package, which is read-only');
+      if (subject.ref.entries.length > 0 && !workspace.editablePackages) {
+        throw new ResponseError(-32803, 'the group is inside a .mosc package, and this editor cannot write into packages');
+      }
       const newName = params.newName.includes('.') ? params.newName.slice(params.newName.lastIndexOf('.') + 1) : params.newName;
       return renameGroup(workspace, subject, newName);
     }).then((result) => {

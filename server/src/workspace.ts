@@ -171,6 +171,8 @@ export class Workspace {
   readonly uris: UriResolver;
   folders: string[] = [];
   settings: ServerSettings = DEFAULT_SETTINGS;
+  /** Whether the client opens and saves files inside packages (`mosc:` URIs), so edits may reach them. */
+  editablePackages = false;
   private storeInstance: ScenarioStore;
   private generation = 0;
   private flattenerGeneration = -1;

@@ -536,3 +536,46 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
     });
   });
 });
+
+describe('language server: edits inside packages (JSON-RPC)', function () {
+  let root: string;
+
+  before(async function () {
+    root = temporaryWorkspace({ 'main.xosc': main.text, 'simple.xosc': simple.text, 'pkg.mosc': await packageBytes() });
+  });
+
+  after(function () {
+    if (root) fs.rmSync(root, { recursive: true, force: true });
+  });
+
+  async function renameInsidePackage(options: Record<string, unknown> | undefined) {
+    const client = await TestClient.start({ root, initializationOptions: options });
+    try {
+      await client.indexed();
+      const uri = `mosc:${path.join(root, 'pkg.mosc')}/simple.xosc`;
+      await client.open(uri, simple.text);
+      const position = positionAt(simple.text, simple.offsets[0] + 2);
+      return await client
+        .request<WorkspaceEdit>('textDocument/rename', { ...client.at(uri, position), newName: 'Halt' })
+        .then((edit) => ({ edit, uri }), (error: Error) => ({ error, uri }));
+    } finally {
+      await client.stop();
+    }
+  }
+
+  it('renames a group inside a .mosc, with its uses there, when the client writes into packages', async function () {
+    const result = await renameInsidePackage({ packageFileSystem: true });
+    assert.ok('edit' in result, 'error' in result ? result.error.message : '');
+    const changes = result.edit.changes ?? {};
+    assert.match(applyEdits(simple.text, changes[result.uri]), /<ManeuverGroup name="Halt"/);
+    const packageMain = `mosc:${path.join(root, 'pkg.mosc')}/main.xosc`;
+    assert.ok(changes[packageMain]?.length, `the package's own main.xosc is updated too: ${Object.keys(changes).join(', ')}`);
+    assert.match(applyEdits(PACKAGE_MAIN, changes[packageMain]), /maneuverGroupName="Halt"/);
+  });
+
+  it('refuses that rename for a client that cannot write into packages', async function () {
+    const result = await renameInsidePackage(undefined);
+    assert.ok('error' in result);
+    assert.match(result.error.message, /cannot write into packages/);
+  });
+});

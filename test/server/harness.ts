@@ -78,6 +78,7 @@ export interface ClientOptions {
   settings?: Record<string, unknown>;
   /** Answer window/workDoneProgress/create and record $/progress (true by default). */
   progress?: boolean;
+  initializationOptions?: Record<string, unknown>;
 }
 
 /** An LSP client over a real JSON-RPC connection to the server running in this process. */
@@ -123,6 +124,7 @@ export class TestClient {
       // No process id: the server would otherwise poll it and keep the test process alive.
       processId: null,
       rootUri: fileUri(options.root),
+      initializationOptions: options.initializationOptions,
       workspaceFolders: [{ uri: fileUri(options.root), name: path.basename(options.root) }],
       capabilities: {
         workspace: { configuration: options.progress !== false, didChangeWatchedFiles: { dynamicRegistration: true }, workspaceEdit: { documentChanges: false } },

@@ -58,7 +58,7 @@ async function fixesFor(workspace: Workspace, uri: string, ref: SourceRef, docum
       const related = diagnostic.relatedInformation?.[0];
       if (!related) return [];
       const targetRef = await workspace.uris.toRef(related.location.uri);
-      if (!targetRef || targetRef.entries.length > 0) return [];
+      if (!targetRef || (targetRef.entries.length > 0 && !workspace.editablePackages)) return [];
       const targetText = await workspace.text(targetRef);
       if (targetText === undefined) return [];
       const targetDocument = TextDocument.create(related.location.uri, 'xml', 0, targetText);

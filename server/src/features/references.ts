@@ -116,8 +116,8 @@ export function placesToLocations(workspace: Workspace, places: Place[]): Locati
 }
 
 function addEdit(edit: WorkspaceEdit, workspace: Workspace, ref: SourceRef, range: Range, newText: string): void {
-  // Files inside a .mosc are read-only: the archive is rebuilt with pack, never edited in place.
-  if (ref.entries.length > 0) return;
+  // Files inside a .mosc are written only by a client that opens packages as file systems (mosc: URIs).
+  if (ref.entries.length > 0 && !workspace.editablePackages) return;
   const uri = workspace.uriOf(ref);
   const changes = (edit.changes ??= {});
   (changes[uri] ??= []).push(TextEdit.replace(range, newText));
