@@ -212,8 +212,25 @@ async function zip(entries: PackageEntries): Promise<Uint8Array> {
   return archive.generateAsync({ type: 'uint8array', compression: 'DEFLATE', compressionOptions: { level: 6 } });
 }
 
-/** Applies `change` to the innermost package and writes the whole archive again, atomically. */
-async function rewrite(location: PackageLocation, change: (entries: PackageEntries) => void): Promise<void> {
+/** The last pending rewrite of each archive on disk: rewrites of one archive run one after another. */
+const pendingRewrites = new Map<string, Promise<void>>();
+
+/**
+ * Applies `change` to the innermost package and writes the whole archive again, atomically. Two
+ * saves of one archive (Save All) would otherwise both read it first and the later write would drop
+ * the earlier change, so each waits for the one before.
+ */
+function rewrite(location: PackageLocation, change: (entries: PackageEntries) => void): Promise<void> {
+  const previous = pendingRewrites.get(location.disk) ?? Promise.resolve();
+  const next = previous.catch(() => undefined).then(() => rewriteNow(location, change));
+  pendingRewrites.set(location.disk, next);
+  void next.finally(() => {
+    if (pendingRewrites.get(location.disk) === next) pendingRewrites.delete(location.disk);
+  }).catch(() => undefined);
+  return next;
+}
+
+async function rewriteNow(location: PackageLocation, change: (entries: PackageEntries) => void): Promise<void> {
   // Read again at save time, so that what others changed in the archive meanwhile is kept.
   const levels = await openLocation(location);
   change(innermost(levels));

@@ -61,6 +61,18 @@ describe('client: files inside .mosc packages (the mosc: file system)', () => {
     assert.deepEqual(fs.readdirSync(folder), ['outer.mosc'], 'a temporary file was left behind');
   });
 
+  it('keeps every change when several entries of one archive are saved at once (Save All)', async () => {
+    const saves = ['main.xosc', 'lib/shared.xosc', 'inner.mosc/main.xosc', 'inner.mosc/simple.xosc'].map(async (entry, index) =>
+      archive.writeEntry(await archive.locate(`${outer}/${entry}`), Buffer.from(`<saved-${index}/>`), { create: false, overwrite: true }),
+    );
+    await Promise.all(saves);
+    const top = await entriesOf(fs.readFileSync(outer));
+    assert.equal(top['main.xosc'], '<saved-0/>');
+    assert.equal(top['lib/shared.xosc'], '<saved-1/>');
+    const inner = await entriesOf(await (await JSZip.loadAsync(fs.readFileSync(outer))).file('inner.mosc')!.async('uint8array'));
+    assert.deepEqual(inner, { 'main.xosc': '<saved-2/>', 'simple.xosc': '<saved-3/>' });
+  });
+
   it('dates each entry on its own, so saving one file leaves the others unchanged', async function () {
     this.timeout(10_000);
     // ZIP dates have a resolution of two seconds.

@@ -15,6 +15,7 @@ export const INSIDE_TESTS = {
   pack: 'Pack from the command palette writes a package equivalent to the CLI\'s',
   flatten: 'Flatten from the command palette writes a file equivalent to the CLI\'s',
   structure: 'Show Structure lists the main file, packages, scenarios and groups',
+  renameInPackage: 'renaming a group inside a .mosc updates the package and the files that use it',
 } as const;
 
 export type InsideTestKey = keyof typeof INSIDE_TESTS;

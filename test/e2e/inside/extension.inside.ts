@@ -442,5 +442,28 @@ export function defineExtensionTests(): void {
       await waitFor('the renamed group in the tree view', () => pageShows('CutInCar', '.customview-tree'), 10_000);
       assert.ok(flattenTree(api().structure() ?? root).some((node) => node.label.includes('CutInCar')));
     });
+
+    it(INSIDE_TESTS.renameInPackage, async function () {
+      requireServerFeature(this, 'rename', !!api().serverCapabilities()?.renameProvider);
+      const uri = packageUri('braking.mosc', 'hard_brake.xosc');
+      const document = await vscode.workspace.openTextDocument(uri);
+      await vscode.window.showTextDocument(document);
+      const position = positionOf(document, 'name="HardBrake"', 'name="Hard'.length);
+      const edit = await waitFor('a rename edit', async () => {
+        const found = await vscode.commands.executeCommand<vscode.WorkspaceEdit | undefined>('vscode.executeDocumentRenameProvider', uri, position, 'SuddenBrake');
+        return found && found.size > 0 ? found : undefined;
+      });
+      const touched = edit.entries().map(([target]) => target.toString());
+      assert.ok(touched.includes(uri.toString()), `the group itself is not renamed: ${touched.join(', ')}`);
+      assert.ok(touched.includes(packageUri('braking.mosc', 'main.xosc').toString()), 'the package main is not updated');
+      assert.ok(await vscode.workspace.applyEdit(edit));
+      // Saved at once, as F2 with refactoring auto-save does: two of the files share one archive.
+      const saved = await Promise.all(edit.entries().map(async ([target]) => (await vscode.workspace.openTextDocument(target)).save()));
+      assert.ok(saved.every(Boolean), 'saving the renamed files failed');
+      const entries = await zipEntries(path.join(workspaceRoot(), 'braking.mosc'));
+      assert.match(entries.get('hard_brake.xosc') ?? '', /<ManeuverGroup name="SuddenBrake"/);
+      assert.match(entries.get('main.xosc') ?? '', /maneuverGroupName="SuddenBrake"/);
+      assert.match(fs.readFileSync(path.join(workspaceRoot(), 'main.xosc'), 'utf8'), /maneuverGroupName="Brake\.SuddenBrake"/);
+    });
   });
 }
