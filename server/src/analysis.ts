@@ -1,5 +1,6 @@
 import { FlatSource, LinkedGroupReference, LinkedReference, originOf } from './core/flatten';
-import { keyForms, keyMatches, OverridableAttribute } from './core/keys';
+import { KeyMatch, keyForms, keyMatches, OverridableAttribute } from './core/keys';
+import { ancestor } from './cursor';
 import { findGroup, ManeuverGroupInfo, PARAMETER_ATTRIBUTES, parseParameterAttributeNames } from './core/model';
 import { Resolution, SourceRef } from './core/sources';
 import { Range } from './core/text';
@@ -46,6 +47,16 @@ export function linkOf(source: FlatSource, referenceElement: XmlElement): Linked
 
 export function groupLinkOf(link: LinkedReference, groupReferenceElement: XmlElement): LinkedGroupReference | undefined {
   return link.groups.find((group) => group.info.element === groupReferenceElement);
+}
+
+/** For a `ParameterReference` element: its reference, its group reference and what its key matches. */
+export function keyMatchOf(source: FlatSource, parameter: XmlElement): { link: LinkedReference; group: LinkedGroupReference; match: KeyMatch } | undefined {
+  const groupReference = ancestor(parameter.parent, 'ManeuverGroupReference');
+  const reference = ancestor(groupReference?.parent, 'ScenarioReference');
+  const link = reference ? linkOf(source, reference) : undefined;
+  const group = link && groupReference ? groupLinkOf(link, groupReference) : undefined;
+  const match = group?.plan?.matches.find((candidate) => candidate.parameter.element === parameter);
+  return link && group && match ? { link, group, match } : undefined;
 }
 
 export function resolvedTarget(resolution: Resolution): SourceRef | undefined {

@@ -2,7 +2,7 @@ import { Location } from 'vscode-languageserver/node';
 import { FlatSource, originOf } from '../core/flatten';
 import { ScenarioModel } from '../core/model';
 import { SourceRef } from '../core/sources';
-import { elementPlace, groupLinkOf, linkOf, overridablePlace, Place, resolvedTarget } from '../analysis';
+import { elementPlace, groupLinkOf, keyMatchOf, linkOf, overridablePlace, Place, resolvedTarget } from '../analysis';
 import { ancestor, attributeAt } from '../cursor';
 import { Workspace } from '../workspace';
 
@@ -28,13 +28,10 @@ export async function definitionPlaces(workspace: Workspace, ref: SourceRef, off
     return place ? [place] : [];
   }
   if (element.name === 'ParameterReference' && attribute.name === 'key') {
-    const groupReference = ancestor(element.parent, 'ManeuverGroupReference');
-    const reference = ancestor(groupReference?.parent, 'ScenarioReference');
-    const link = reference ? linkOf(source, reference) : undefined;
-    const group = link && groupReference ? groupLinkOf(link, groupReference) : undefined;
-    const match = group?.plan?.matches.find((candidate) => candidate.parameter.element === element);
-    if (!link?.source || !match) return [];
-    const linkedSource = link.source;
+    const found = keyMatchOf(source, element);
+    if (!found?.link.source) return [];
+    const { match } = found;
+    const linkedSource = found.link.source;
     return match.targets.map((target) => overridablePlace(linkedSource, target)).filter((place): place is Place => place !== undefined);
   }
   if (attribute.name === 'entityRef') return entityPlaces(source, model, attribute.value);

@@ -1,5 +1,5 @@
 import { Hover, MarkupKind } from 'vscode-languageserver/node';
-import { describeGroup, groupLinkOf, linkOf, overridablePlace, Place, resolvedTarget } from '../analysis';
+import { describeGroup, groupLinkOf, keyMatchOf, linkOf, overridablePlace, Place, resolvedTarget } from '../analysis';
 import { ancestor, attributeAt } from '../cursor';
 import { displayRef, SourceRef } from '../core/sources';
 import { ManeuverGroupInfo } from '../core/model';
@@ -42,17 +42,16 @@ export async function hover(workspace: Workspace, ref: SourceRef, offset: number
     return reply(groupSummary(`ManeuverGroup **${group.target.name}** of \`${link.info.fileName}\` (${group.overridable.length} overridable attributes)`, group.target));
   }
   if (element.name === 'ParameterReference' && attribute.name === 'key') {
-    const groupReference = ancestor(element.parent, 'ManeuverGroupReference');
-    const reference = ancestor(groupReference?.parent, 'ScenarioReference');
-    const link = reference ? linkOf(source, reference) : undefined;
-    const group = link && groupReference ? groupLinkOf(link, groupReference) : undefined;
-    const match = group?.plan?.matches.find((candidate) => candidate.parameter.element === element);
-    if (!link?.source || !group?.plan || !match) return null;
+    const found = keyMatchOf(source, element);
+    const linkedSource = found?.link.source;
+    const plan = found?.group.plan;
+    if (!found || !linkedSource || !plan) return null;
+    const { group, match } = found;
     if (match.targets.length === 0) return reply(`key **${attribute.value}** overrides nothing in group \`${group.info.name}\``);
     const lines = [`key **${attribute.value}** overrides ${match.targets.length} attribute${match.targets.length === 1 ? '' : 's'}:`, ''];
     for (const target of match.targets) {
-      const applied = group.plan.applied.get(target);
-      const declared = where(workspace, overridablePlace(link.source, target));
+      const applied = plan.applied.get(target);
+      const declared = where(workspace, overridablePlace(linkedSource, target));
       const effective =
         applied === match.parameter
           ? `**${match.parameter.value}** (this key)`
