@@ -304,7 +304,7 @@ export class Flattener {
       result.allProblems = [...result.problems];
       return result;
     }
-    const document = parseXml(text);
+    const document = this.store.parse(ref, text);
     for (const problem of document.problems) {
       result.problems.push(problemAt(ref, document, problem.start, problem.end, problem.severity, 'xml', problem.message));
     }

@@ -2,6 +2,7 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import type JSZip from 'jszip';
 import { decodeUtf8 } from './text';
+import { parseXml, reparseXml, XmlDocument } from './xml';
 
 /**
  * Where a scenario file lives: a path on disk, then zero or more entry names, each inside the
@@ -237,6 +238,8 @@ export class ScenarioStore {
   private readonly limits: PackageLimits;
   private readonly packages = new Map<string, Promise<PackageContents>>();
   private readonly overlays = new Map<string, string>();
+  /** The last parse of each file being edited, from which the next edit is re-parsed. */
+  private readonly editedParses = new Map<string, XmlDocument>();
   private readonly kinds = new Map<string, Promise<'file' | 'directory' | undefined>>();
 
   constructor(options: StoreOptions = {}) {
@@ -248,8 +251,22 @@ export class ScenarioStore {
 
   /** Text that replaces a file's stored content, as an editor's unsaved buffer does. */
   setOverlay(ref: SourceRef, text: string | undefined): void {
-    if (text === undefined) this.overlays.delete(refId(ref));
-    else this.overlays.set(refId(ref), text);
+    if (text === undefined) {
+      this.overlays.delete(refId(ref));
+      this.editedParses.delete(refId(ref));
+    } else {
+      this.overlays.set(refId(ref), text);
+    }
+  }
+
+  /** Parses a file's text; a file being edited is re-parsed from its previous parse where it can be. */
+  parse(ref: SourceRef, text: string): XmlDocument {
+    const id = refId(ref);
+    if (!this.overlays.has(id)) return parseXml(text);
+    const previous = this.editedParses.get(id);
+    const document = previous ? reparseXml(previous, text) : parseXml(text);
+    this.editedParses.set(id, document);
+    return document;
   }
 
   /** Forgets what was read of a file on disk (a package is read again on next use). */

@@ -1,0 +1,75 @@
+import * as assert from 'node:assert/strict';
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import fc from 'fast-check';
+import { parseXml, reparseValueEdit, reparseXml, XmlDocument, XmlElement } from '../../server/src/core/xml';
+import { repoRoot } from '../support/fixtures';
+
+/** Everything a consumer reads from a parse, as plain data. */
+function shape(document: XmlDocument): unknown {
+  const element = (node: XmlElement): unknown => [
+    node.name,
+    node.start,
+    node.nameEnd,
+    node.startTagEnd,
+    node.end,
+    node.selfClosing,
+    node.closed,
+    node.parent?.start ?? -1,
+    node.attributes.map((a) => [a.name, a.value, a.nameStart, a.nameEnd, a.valueStart, a.valueEnd, a.quote]),
+    node.children.map(element),
+  ];
+  return { root: document.root ? element(document.root) : null, problems: document.problems.length, text: document.text };
+}
+
+const original = fs.readFileSync(path.join(repoRoot, 'examples', 'main.xosc'), 'utf8');
+const parsed = parseXml(original);
+const values: { start: number; end: number }[] = [];
+(function collect(node: XmlElement) {
+  for (const a of node.attributes) values.push({ start: a.valueStart, end: a.valueEnd });
+  node.children.forEach(collect);
+})(parsed.root!);
+
+describe('core: re-parsing after an edit', () => {
+  it('gives the same tree as a full parse for edits inside one attribute value', () => {
+    fc.assert(
+      fc.property(
+        fc.nat(values.length - 1),
+        fc.nat(),
+        fc.nat(),
+        fc.string({ unit: fc.constantFrom('1', '2', '.', '-', 'a', 'Z', ' ', 'é', '中'), maxLength: 4 }),
+        (which, from, length, inserted) => {
+          const value = values[which];
+          const start = value.start + (from % (value.end - value.start + 1));
+          const end = Math.min(value.end, start + (length % 3));
+          const edited = original.slice(0, start) + inserted + original.slice(end);
+          const fast = reparseValueEdit(parsed, edited);
+          assert.ok(fast, 'an edit inside a value takes the fast path');
+          assert.deepEqual(shape(fast), shape(parseXml(edited)));
+        },
+      ),
+      { numRuns: 300 },
+    );
+  });
+
+  it('falls back to a full parse for any other edit, markup included', () => {
+    fc.assert(
+      fc.property(fc.nat(original.length), fc.nat(6), fc.string({ unit: fc.constantFrom('<', '>', '"', "'", '&', '\n', 'x', ' ', '/', '='), maxLength: 4 }), (start, length, inserted) => {
+        const edited = original.slice(0, start) + inserted + original.slice(Math.min(original.length, start + length));
+        assert.deepEqual(shape(reparseXml(parsed, edited)), shape(parseXml(edited)));
+      }),
+      { numRuns: 300 },
+    );
+  });
+
+  it('copies the tree rather than scanning it again when a value changes', () => {
+    const at = original.indexOf('value="27.5"') + 'value="'.length;
+    const edited = original.slice(0, at) + '3' + original.slice(at + 2);
+    assert.equal(reparseValueEdit(parsed, edited.replace('<Entities>', '<Entities >')), undefined, 'a second edit, in markup, is not taken');
+    assert.equal(reparseValueEdit(parsed, original.slice(0, at) + '"' + original.slice(at)), undefined, 'a quote typed into a value is not taken');
+    const document = reparseXml(parsed, edited);
+    assert.notEqual(document.root, parsed.root, 'a new tree, so caches keyed by the old one never apply to it');
+    assert.equal(parsed.root!.children.length, document.root!.children.length);
+    assert.equal(reparseXml(parsed, original), parsed, 'unchanged text gives the same document');
+  });
+});
