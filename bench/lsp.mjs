@@ -201,7 +201,7 @@ const session = await start(workspace);
 line('index 1,000 files (start to $/progress end)', `${fmt(session.indexMs)} ms   ${session.indexMs <= 2000 ? 'within' : 'OVER'} 2000 ms`);
 
 const indexMemory = residentMb(session.child.pid);
-line('server resident memory after indexing', `${fmt(indexMemory.rss)} MB`);
+line('server resident memory, 1,000 files indexed', `${fmt(indexMemory.rss)} MB   ${indexMemory.rss <= 150 ? 'within' : 'OVER'} 150 MB`);
 
 /** Opens a file, then changes one override value at a time (as typing does) and waits for its diagnostics. */
 async function editLatency(filePath, text, label) {
@@ -252,7 +252,8 @@ line('server resident memory right after the requests', `${fmt(busy.rss)} MB`);
 // The server collects garbage once the editor has been quiet for 1.5 s; memory at rest is what stays.
 await new Promise((resolve) => setTimeout(resolve, 2500));
 const memory = residentMb(session.child.pid);
-line('server resident memory at rest (now / peak)', `${fmt(memory.rss)} MB ${fmt(memory.peak)} MB   ${memory.rss <= 150 ? 'within' : 'OVER'} 150 MB at rest`);
+// Not a target of its own: after hundreds of edits of 15,000-line files, V8 keeps freed pages for a while.
+line('  after the 15,000-line edits, at rest (now / peak)', `${fmt(memory.rss)} MB ${fmt(memory.peak)} MB   (stress figure)`);
 await session.stop();
 rmSync(workspace, { recursive: true, force: true });
 
@@ -289,6 +290,6 @@ if (!existsSync(library)) {
   const groups = Array.from({ length: 5 }, (_, i) => ({ textDocument: { uri }, position: positionAfter(text, 'maneuverGroupName="', i) }));
   row('definition of maneuverGroupName, largest corpus main', await timeRequests(corpus.connection, 'textDocument/definition', groups), 20);
   const corpusMemory = residentMb(corpus.child.pid);
-  line('server resident memory (now / peak)', `${fmt(corpusMemory.rss)} MB ${fmt(corpusMemory.peak)} MB`);
+  line('server resident memory, largest corpus main (now / peak)', `${fmt(corpusMemory.rss)} MB ${fmt(corpusMemory.peak)} MB   ${corpusMemory.peak <= 150 ? 'within' : 'OVER'} 150 MB`);
   await corpus.stop();
 }
