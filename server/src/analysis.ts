@@ -1,7 +1,7 @@
 import { FlatSource, LinkedGroupReference, LinkedReference, originOf } from './core/flatten';
 import { KeyMatch, keyForms, keyMatches, OverridableAttribute } from './core/keys';
 import { ancestor } from './cursor';
-import { findGroup, ManeuverGroupInfo, PARAMETER_ATTRIBUTES, parseParameterAttributeNames } from './core/model';
+import { findGroup, listedName, ManeuverGroupInfo } from './core/model';
 import { Resolution, SourceRef } from './core/sources';
 import { Range } from './core/text';
 import { attribute, XmlElement } from './core/xml';
@@ -28,8 +28,7 @@ export function elementPlace(source: FlatSource, element: XmlElement, attributeN
 
 /** Where `name` is listed in the parameterAttributes of an element (of the file the element was read from). */
 export function listedPlace(source: FlatSource, element: XmlElement, name: string): Place | undefined {
-  const declaration = attribute(element, PARAMETER_ATTRIBUTES);
-  const listed = declaration ? parseParameterAttributeNames(element, declaration).find((entry) => entry.name === name) : undefined;
+  const listed = listedName(element, name);
   return listed ? placeIn(source, listed.start, listed.end) : placeIn(source, element.start, element.nameEnd);
 }
 

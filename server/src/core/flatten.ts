@@ -5,14 +5,14 @@ import {
   ManeuverGroupInfo,
   ManeuverGroupReferenceInfo,
   PARAMETER_ATTRIBUTES,
-  parseParameterAttributeNames,
+  listedName,
   ScenarioModel,
   ScenarioReferenceInfo,
 } from './model';
 import { Problem, ProblemCode, RelatedProblemLocation, Severity, uniqueProblems, ZERO_RANGE } from './problems';
 import { displayRef, refId, Resolution, ScenarioStore, SourceError, SourceRef } from './sources';
 import { closestMatch, detectEol } from './text';
-import { attribute, escapeAttributeValue, isWellFormed, parseXml, XmlAttribute, XmlDocument, XmlElement } from './xml';
+import { attribute, descendants, escapeAttributeValue, isWellFormed, parseXml, XmlAttribute, XmlDocument, XmlElement } from './xml';
 
 const entityRefCache = new WeakMap<XmlElement, XmlElement[]>();
 
@@ -27,14 +27,7 @@ function entityRefElements(group: XmlElement): XmlElement[] {
 }
 
 function selfAndDescendants(element: XmlElement): XmlElement[] {
-  const result: XmlElement[] = [];
-  const stack = [element];
-  while (stack.length > 0) {
-    const next = stack.pop() as XmlElement;
-    result.push(next);
-    for (let i = next.children.length - 1; i >= 0; i--) stack.push(next.children[i]);
-  }
-  return result;
+  return [element, ...descendants(element)];
 }
 
 /**
@@ -156,8 +149,7 @@ export interface FlattenResult {
 /** The location of a name inside the `parameterAttributes` of an element, in the file it was written in. */
 export function declarationLocation(origin: { source: FlatSource; element: XmlElement }, name: string, message: string): RelatedProblemLocation {
   const model = origin.source.original ?? origin.source.model;
-  const declaration = attribute(origin.element, PARAMETER_ATTRIBUTES);
-  const listed = declaration ? parseParameterAttributeNames(origin.element, declaration).find((entry) => entry.name === name) : undefined;
+  const listed = listedName(origin.element, name);
   const start = listed?.start ?? origin.element.start;
   const end = listed?.end ?? origin.element.nameEnd;
   return { source: origin.source.ref, range: model ? model.document.lines.range(start, end) : ZERO_RANGE, message };
@@ -219,18 +211,13 @@ function applyEdits(text: string, edits: TextEdit[], from = 0, to = text.length)
 }
 
 /** Removes every `parameterAttributes` attribute, with the white space before it. */
-export function stripParameterAttributes(text: string, document: XmlDocument = parseXml(text)): string {
-  const edits: TextEdit[] = [];
-  const visit = (element: XmlElement) => {
-    const declaration = attribute(element, PARAMETER_ATTRIBUTES);
-    if (declaration) {
-      let start = declaration.nameStart;
-      while (start > 0 && /\s/.test(text[start - 1])) start--;
-      edits.push({ start, end: declaration.valueEnd + 1, text: '' });
-    }
-    for (const child of element.children) visit(child);
-  };
-  if (document.root) visit(document.root);
+export function stripParameterAttributes(model: ScenarioModel): string {
+  const text = model.document.text;
+  const edits = model.declarations.map(({ attribute: declaration }) => {
+    let start = declaration.nameStart;
+    while (start > 0 && /\s/.test(text[start - 1])) start--;
+    return { start, end: declaration.valueEnd + 1, text: '' };
+  });
   return applyEdits(text, edits);
 }
 
@@ -256,7 +243,7 @@ export class Flattener {
     const blocking = problems.filter(
       (problem) => problem.severity === 'error' && !(options.force && OVERRIDE_PROBLEM_CODES.has(problem.code)),
     );
-    const text = source.text !== undefined && blocking.length === 0 ? stripParameterAttributes(source.text, source.model?.document) : undefined;
+    const text = source.text !== undefined && blocking.length === 0 ? stripParameterAttributes(source.model ?? buildModel(parseXml(source.text))) : undefined;
     // Removing whole attributes keeps a well-formed text well-formed, so the rendered model is the check.
     if (text !== undefined && source.model && !isWellFormed(source.model.document)) {
       throw new Error('internal error: the flattened output is not well-formed XML');

@@ -83,6 +83,12 @@ export function parseParameterAttributeNames(element: XmlElement, declaration: X
   return names;
 }
 
+/** Where `name` is listed in the element's `parameterAttributes`, if it is. */
+export function listedName(element: XmlElement, name: string): ParameterAttributeName | undefined {
+  const declaration = attribute(element, PARAMETER_ATTRIBUTES);
+  return declaration ? parseParameterAttributeNames(element, declaration).find((entry) => entry.name === name) : undefined;
+}
+
 const STRUCTURE_ELEMENTS = new Set(['Storyboard', 'Story', 'Act', 'Init']);
 
 /** Reads the modular-scenario structure of a parsed document. */

@@ -101,7 +101,7 @@ async function packFolderInto(
   stack: string[],
 ): Promise<{ zip: JSZip; entries: string[] } | undefined> {
   const main = diskRef(path.join(folder, 'main.xosc'));
-  if ((await store.host.kind(main.disk)) !== 'file') {
+  if ((await store.kindOf(main.disk)) !== 'file') {
     problems.push(fileProblem(diskRef(folder), 'io', `${displayRef(diskRef(folder))} holds no main.xosc, so it is not an unpacked package`, 'a package folder must hold main.xosc'));
     return undefined;
   }

@@ -457,7 +457,3 @@ export class ScenarioStore {
   }
 }
 
-/** The path of a file as if every package were a folder: the path part of its `mosc:` URI. */
-export function packagePath(ref: SourceRef): string {
-  return refId(ref);
-}

@@ -50,6 +50,9 @@ export interface XmlParseOptions {
   maxDepth?: number;
 }
 
+/** A raw attribute value that decodes to itself: no references, no white space to normalize. */
+const PLAIN_VALUE = /^[^&\t\n\r]*$/;
+
 const PREDEFINED_ENTITIES: Record<string, string> = { lt: '<', gt: '>', amp: '&', quot: '"', apos: "'" };
 
 export function attribute(element: XmlElement, name: string): XmlAttribute | undefined {
@@ -101,10 +104,6 @@ function isNameStart(code: number): boolean {
   return (
     (code >= 65 && code <= 90) || (code >= 97 && code <= 122) || code === 95 || code === 58 || code >= 0xc0
   );
-}
-
-function isNameChar(code: number): boolean {
-  return isNameStart(code) || (code >= 48 && code <= 57) || code === 45 || code === 46 || code === 0xb7;
 }
 
 function isSpace(code: number): boolean {
@@ -216,7 +215,6 @@ export function parseXml(input: string, options: XmlParseOptions = {}): XmlDocum
   // Sticky regular expressions run as native code, which matters in a short-lived process.
   const namePattern = /[A-Za-z_:\u00C0-\uFFFF][A-Za-z0-9_:.\-\u00B7\u00C0-\uFFFF]*/y;
   const spacePattern = /[ \t\r\n]*/y;
-  const plainValue = /^[^&\t\n\r]*$/;
   const readName = (): string => {
     namePattern.lastIndex = position;
     const match = namePattern.exec(text);
@@ -353,7 +351,7 @@ export function parseXml(input: string, options: XmlParseOptions = {}): XmlDocum
       }
       const raw = text.slice(valueStart, valueEnd);
       // Most values hold neither references nor line breaks: no copy is made for them.
-      const value = plainValue.test(raw) ? raw : decodeReferences(raw.replace(/[\t\n\r]/g, ' '), valueStart, valueEnd, 0);
+      const value = PLAIN_VALUE.test(raw) ? raw : decodeReferences(raw.replace(/[\t\n\r]/g, ' '), valueStart, valueEnd, 0);
       if (element.attributes.some((existing) => existing.name === attributeName)) {
         report(`attribute '${attributeName}' appears twice`, nameStart, nameEnd);
       }
@@ -523,7 +521,7 @@ export function reparseValueEdit(previous: XmlDocument, text: string): XmlDocume
   if (!edited) return undefined;
   const delta = insertedEnd - removedEnd;
   const raw = text.slice(edited.valueStart, edited.valueEnd + delta);
-  if (!/^[^&\t\n\r]*$/.test(raw)) return undefined;
+  if (!PLAIN_VALUE.test(raw)) return undefined;
   const shift = (offset: number) => (offset >= removedEnd && offset > prefix ? offset + delta : offset);
   const target = edited;
   const copy = (source: XmlElement, parent: XmlElement | undefined): XmlElement => {
