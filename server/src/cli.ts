@@ -154,6 +154,8 @@ function report(problems: Problem[], io: Output, quiet: boolean): { errors: numb
   for (const problem of uniqueProblems(problems)) {
     if (problem.severity === 'error') errors++;
     else if (problem.severity === 'warning') warnings++;
+    // Hints (an unused parameter) are for the editor, where they show faded.
+    if (problem.severity === 'hint') continue;
     if (quiet && problem.severity !== 'error') continue;
     io.err(formatProblem(problem));
   }

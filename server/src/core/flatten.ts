@@ -11,6 +11,7 @@ import {
 } from './model';
 import { Problem, ProblemCode, RelatedProblemLocation, Severity, uniqueProblems, ZERO_RANGE } from './problems';
 import { displayRef, refId, Resolution, ScenarioStore, SourceError, SourceRef } from './sources';
+import { analyzeDocument, CatalogLoader, DocumentSemantics, semanticProblems } from './semantics';
 import { closestMatch, detectEol } from './text';
 import { attribute, descendants, escapeAttributeValue, isWellFormed, parseXml, XmlAttribute, XmlDocument, XmlElement } from './xml';
 
@@ -127,6 +128,8 @@ export interface FlatSource {
   dependencies: SourceRef[];
   /** True while the flattened text can be, but has not yet been, rendered (see Flattener.rendered). */
   renderable: boolean;
+  /** The OpenSCENARIO semantics of the file as read (parameters, expressions, catalogs, names). */
+  semantics: DocumentSemantics | undefined;
 }
 
 export interface FlattenOptions {
@@ -227,8 +230,12 @@ export function stripParameterAttributes(model: ScenarioModel): string {
  */
 export class Flattener {
   private readonly cache = new Map<string, Promise<FlatSource>>();
+  /** Catalog files read for this flattener's files (a new flattener reads them again). */
+  readonly catalogs: CatalogLoader;
 
-  constructor(readonly store: ScenarioStore) {}
+  constructor(readonly store: ScenarioStore) {
+    this.catalogs = new CatalogLoader(store);
+  }
 
   /** Every problem of `main` and of what it uses, without writing its flattened text (for an editor). */
   async analyze(main: SourceRef): Promise<AnalysisResult> {
@@ -274,6 +281,7 @@ export class Flattener {
       allProblems: [],
       dependencies: [ref],
       renderable: false,
+      semantics: undefined,
     };
     let text: string;
     try {
@@ -299,6 +307,12 @@ export class Flattener {
     result.original = model;
     this.checkDeclarations(result, model);
     this.checkDuplicateGroups(result, model);
+    if (document.root) {
+      const semantics = await analyzeDocument(ref, document, this.catalogs, model.references.length > 0);
+      result.semantics = semantics;
+      result.problems.push(...semanticProblems(semantics));
+      for (const file of semantics.catalogs.files) if (!result.dependencies.some((known) => refId(known) === refId(file))) result.dependencies.push(file);
+    }
     const wellFormed = isWellFormed(document);
 
     const childProblems: Problem[] = [];
