@@ -162,8 +162,10 @@ export const expressionErrors: SemanticCheck = ({ model, evaluator }) => {
 /** Unknown catalogs, entries and assigned parameters; directories that do not exist. */
 export const catalogReferences: SemanticCheck = (context) => {
   const findings: Finding[] = [];
+  // A directory no reference needs is harmless (CARLA and esmini load such files), so it is only reported when used.
+  const used = context.catalogs.references.length > 0;
   for (const location of context.catalogs.locations) {
-    if (location.path === undefined || location.directories.length > 0) continue;
+    if (!used || location.path === undefined || location.directories.length > 0) continue;
     findings.push({
       ...at(location.location.directory, location.location.pathAttribute),
       severity: 'warning',
@@ -268,7 +270,7 @@ export function storyboardTargets(model: SemanticModel, extra: { name: string; e
   const parts = written.split('::').map((part) => part.trim());
   const name = parts.pop() ?? '';
   const elementName = type ? STORYBOARD_ELEMENT_TYPES[type] : undefined;
-  const candidates = [...model.storyboardElements, ...extra].filter((candidate) => candidate.name === name && (!elementName || candidate.element.name === elementName));
+  const candidates = [...(model.storyboardByName.get(name) ?? []), ...extra.filter((candidate) => candidate.name === name)].filter((candidate) => !elementName || candidate.element.name === elementName);
   if (parts.length === 0) return candidates.map((candidate) => candidate.element);
   return candidates
     .filter((candidate) => {
@@ -307,7 +309,7 @@ export const storyboardReferences: SemanticCheck = (context) => {
     if (written === undefined || storyboardTargets(context.model, extra, written, type).length > 0) continue;
     const elementName = type ? STORYBOARD_ELEMENT_TYPES[type] : undefined;
     const known = context.model.storyboardElements.filter((candidate) => !elementName || candidate.element.name === elementName).map((candidate) => candidate.name);
-    const suggestion = closestMatch(written, known);
+    const suggestion = known.length <= 2000 ? closestMatch(written, known) : undefined;
     findings.push({
       ...at(reference.element, reference.refAttribute),
       severity: 'warning',

@@ -143,6 +143,8 @@ export interface SemanticModel {
   hasEntities: boolean;
   /** Story, Act, ManeuverGroup, Maneuver, Event and Action elements with their names. */
   storyboardElements: NamedElement[];
+  /** The same, by name. */
+  storyboardByName: Map<string, NamedElement[]>;
   storyboardReferences: StoryboardReferenceInfo[];
   variableReferences: { element: XmlElement; attribute: XmlAttribute; declaration: Declaration | undefined }[];
   /** The scope each element belongs to (its own for a scope holder). */
@@ -189,9 +191,12 @@ export function buildSemanticModel(document: XmlDocument): SemanticModel {
   const catalogReferences: CatalogReferenceInfo[] = [];
   const entities: NamedElement[] = [];
   const storyboardElements: NamedElement[] = [];
+  const storyboardByName = new Map<string, NamedElement[]>();
   const storyboardReferences: StoryboardReferenceInfo[] = [];
   const variableReferences: SemanticModel['variableReferences'] = [];
   const scopeByElement = new Map<XmlElement, Scope>();
+  /** The scope of every element, filled in one walk (climbing parents per element is quadratic in depth). */
+  const elementScope = new Map<XmlElement, Scope>();
   let catalog: XmlElement | undefined;
   let hasEntities = false;
   const rootElement = document.root;
@@ -212,9 +217,12 @@ export function buildSemanticModel(document: XmlDocument): SemanticModel {
     entities,
     hasEntities,
     storyboardElements,
+    storyboardByName,
     storyboardReferences,
     variableReferences,
     scopeOf(element) {
+      const known = elementScope.get(element);
+      if (known) return known;
       for (let current: XmlElement | undefined = element; current; current = current.parent) {
         const scope = scopeByElement.get(current);
         if (scope) return scope;
@@ -267,6 +275,7 @@ export function buildSemanticModel(document: XmlDocument): SemanticModel {
         }
       }
     }
+    if (scope) elementScope.set(element, scope);
     if (element.name === 'VariableDeclarations') {
       for (const declaration of element.children) if (declaration.name === 'VariableDeclaration') declare(scope as Scope, declaration, 'variable');
     }
@@ -347,7 +356,11 @@ export function buildSemanticModel(document: XmlDocument): SemanticModel {
       default:
         if (Object.values(STORYBOARD_ELEMENT_TYPES).includes(element.name)) {
           const nameAttribute = attribute(element, 'name');
-          storyboardElements.push({ name: nameAttribute?.value ?? '', element, nameAttribute });
+          const named = { name: nameAttribute?.value ?? '', element, nameAttribute };
+          storyboardElements.push(named);
+          const sameName = storyboardByName.get(named.name);
+          if (sameName) sameName.push(named);
+          else storyboardByName.set(named.name, [named]);
         }
     }
     if (PARAMETER_REF_ELEMENTS.has(element.name) && !isCarlaCriterion(element)) {
