@@ -207,8 +207,8 @@ async function flattenCommand(inputs: string[], outputs: string[] | undefined, o
   const flattener = new Flattener(store);
   const results = [];
   let problems: Problem[] = [];
-  for (const input of inputs) {
-    const result = await flattener.flatten(mainOf(input), { force: options.force });
+  for (const [index, input] of inputs.entries()) {
+    const result = await flattener.flatten(mainOf(input), { force: options.force, outputPath: outputs?.[index] });
     results.push(result);
     problems = problems.concat(result.problems);
   }

@@ -322,6 +322,53 @@ export const storyboardReferences: SemanticCheck = (context) => {
   return findings;
 };
 
+/**
+ * In a flattened output every storyboard reference names exactly one element. A name that only
+ * exists as `OUTER.NAME` names a group that flattening renamed: an error, since the output no longer
+ * has what the reference was written for.
+ */
+export const flattenedStoryboardReferences: SemanticCheck = (context) => {
+  const extra = catalogStoryboardNames(context);
+  const findings: Finding[] = [];
+  for (const reference of context.model.storyboardReferences) {
+    const written = context.evaluator.textOf(reference.element, reference.refAttribute);
+    const type = context.evaluator.textOf(reference.element, attribute(reference.element, 'storyboardElementType'));
+    if (written === undefined) continue;
+    const targets = storyboardTargets(context.model, extra, written, type);
+    if (targets.length === 1) continue;
+    const elementName = type ? STORYBOARD_ELEMENT_TYPES[type] : undefined;
+    if (targets.length > 1) {
+      findings.push({
+        ...at(reference.element, reference.refAttribute),
+        severity: 'warning',
+        code: 'ambiguous-reference',
+        message: `${targets.length} elements of the flattened scenario are named '${written}'${elementName ? ` (${elementName})` : ''}; a simulator takes one of them`,
+        hint: 'give the elements unique names, or qualify the reference with its ancestors (Story::Act::...)',
+      });
+      continue;
+    }
+    const renamed = context.model.storyboardElements.filter((candidate) => candidate.name.endsWith(`.${written}`) && (!elementName || candidate.element.name === elementName)).map((candidate) => candidate.name);
+    if (renamed.length > 0) {
+      findings.push({
+        ...at(reference.element, reference.refAttribute),
+        severity: 'error',
+        code: 'renamed-reference',
+        message: `flattening renamed '${written}' to ${renamed.map((name) => `'${name}'`).join(', ')}, so this reference names nothing in the flattened scenario`,
+        hint: `refer to the imported group by its flattened name${renamed.length === 1 ? ` '${renamed[0]}'` : ''}`,
+        data: renamed.length === 1 ? { suggestion: renamed[0] } : undefined,
+      });
+      continue;
+    }
+    findings.push({
+      ...at(reference.element, reference.refAttribute),
+      severity: 'warning',
+      code: 'unknown-storyboard-element',
+      message: `no ${elementName ?? 'storyboard element'} named '${written}'`,
+    });
+  }
+  return findings;
+};
+
 /** Every `variableRef` names a declared variable (1.2 and later). */
 export const undeclaredVariables: SemanticCheck = ({ model }) =>
   model.variableReferences
@@ -342,6 +389,15 @@ export const SEMANTIC_CHECKS: readonly { name: string; check: SemanticCheck }[] 
   { name: 'catalog references', check: catalogReferences },
   { name: 'undeclared entity', check: undeclaredEntities },
   { name: 'storyboard references', check: storyboardReferences },
+  { name: 'undeclared variable', check: undeclaredVariables },
+];
+
+/** The checks of a flattened output (SPEC 11.5); entities are checked by the flattener at the reference. */
+export const OUTPUT_CHECKS: readonly { name: string; check: SemanticCheck }[] = [
+  { name: 'undeclared parameter', check: undeclaredParameters },
+  { name: 'expression errors', check: expressionErrors },
+  { name: 'catalog references', check: catalogReferences },
+  { name: 'storyboard references', check: flattenedStoryboardReferences },
   { name: 'undeclared variable', check: undeclaredVariables },
 ];
 
