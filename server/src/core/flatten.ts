@@ -79,6 +79,8 @@ function elementStartingAt(root: XmlElement | undefined, offset: number): XmlEle
   return undefined;
 }
 
+const CATALOG_CODES: ReadonlySet<ProblemCode> = new Set<ProblemCode>(['catalog-directory', 'unknown-catalog', 'unknown-catalog-entry', 'unknown-assigned-parameter']);
+
 /** Problems that the original tool ignored silently: `--force` writes the output despite them. */
 export const OVERRIDE_PROBLEM_CODES: ReadonlySet<ProblemCode> = new Set<ProblemCode>([
   'unknown-key',
@@ -705,7 +707,10 @@ export class Flattener {
     const directory = this.outputDirectory ?? path.dirname(source.ref.disk);
     const catalogs = await this.catalogs.resolve({ disk: path.join(directory, 'flattened.xosc'), entries: [] }, model, evaluator);
     const findings = runChecks({ ref: source.ref, model, evaluator, catalogs, modular: false }, OUTPUT_CHECKS);
-    return findings.map((finding) => this.problemAtOrigin(source, finding));
+    // The main file's own catalog locations are written as they are, relative to it; its own check covers them.
+    const carried = (element: XmlElement) =>
+      [...source.insertions, ...source.additions].some((region) => element.start >= region.start && element.end <= region.end);
+    return findings.filter((finding) => !CATALOG_CODES.has(finding.code) || carried(finding.element)).map((finding) => this.problemAtOrigin(source, finding));
   }
 
   /** A finding on the flattened text, placed where its element was written. */

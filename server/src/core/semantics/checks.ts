@@ -347,7 +347,10 @@ export const flattenedStoryboardReferences: SemanticCheck = (context) => {
       });
       continue;
     }
-    const renamed = context.model.storyboardElements.filter((candidate) => candidate.name.endsWith(`.${written}`) && (!elementName || candidate.element.name === elementName)).map((candidate) => candidate.name);
+    // An outer group OUTER became OUTER.INNER, and an imported group INNER became OUTER.INNER.
+    const renamed = context.model.storyboardElements
+      .filter((candidate) => (candidate.name.endsWith(`.${written}`) || candidate.name.startsWith(`${written}.`)) && (!elementName || candidate.element.name === elementName))
+      .map((candidate) => candidate.name);
     if (renamed.length > 0) {
       findings.push({
         ...at(reference.element, reference.refAttribute),
