@@ -117,6 +117,8 @@ export const STORYBOARD_ELEMENT_TYPES: Record<string, string> = {
   action: 'Action',
 };
 
+const STORYBOARD_ELEMENT_NAMES: ReadonlySet<string> = new Set(Object.values(STORYBOARD_ELEMENT_TYPES));
+
 /** Attributes that name an entity (ASAM OpenSCENARIO 1.x: EntityRef and the actions/positions that take one). */
 export const ENTITY_REFERENCE_ATTRIBUTES: ReadonlySet<string> = new Set(['entityRef', 'masterEntityRef']);
 
@@ -354,7 +356,7 @@ export function buildSemanticModel(document: XmlDocument): SemanticModel {
         break;
       }
       default:
-        if (Object.values(STORYBOARD_ELEMENT_TYPES).includes(element.name)) {
+        if (STORYBOARD_ELEMENT_NAMES.has(element.name)) {
           const nameAttribute = attribute(element, 'name');
           const named = { name: nameAttribute?.value ?? '', element, nameAttribute };
           storyboardElements.push(named);
@@ -388,6 +390,9 @@ export function buildSemanticModel(document: XmlDocument): SemanticModel {
 export function resolveName(scope: Scope | undefined, name: string, within: Declaration | undefined): Declaration | undefined {
   for (let current = scope; current; current = current.parent) {
     if (within && current === within.scope) {
+      // The first declaration of the name is the one found, when it comes before the value being read.
+      const first = current.byName.get(name);
+      if (!first || first.index >= within.index) continue;
       for (const candidate of current.declarations) {
         if (candidate.index >= within.index) break;
         if (candidate.name === name) return candidate;
