@@ -69,7 +69,8 @@ function locationOf(workspace: Workspace, source: FlatSource, element: XmlElemen
 export async function buildScene(workspace: Workspace, params: SceneParams): Promise<SceneResult> {
   const ref = await workspace.uris.toRef(params.uri);
   if (!ref) throw new ResponseError(-32602, `not a scenario URI: ${params.uri}`);
-  const source = await workspace.source(ref);
+  // Rendered: a main file is shown as it runs, flattened.
+  const source = workspace.flattener().rendered(await workspace.source(ref));
   const model = source.model ?? source.original;
   if (!model?.document.root) throw new ResponseError(-32602, `${displayRef(ref, workspace.folders[0])} could not be read as a scenario`);
   const problems: string[] = [];
