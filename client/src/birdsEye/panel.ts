@@ -1,0 +1,210 @@
+import * as path from 'node:path';
+import * as vscode from 'vscode';
+import { RequestType } from 'vscode-languageclient';
+import type { LanguageClient } from 'vscode-languageclient/node';
+import { writeFileAtomic } from '../../../server/src/core/atomic';
+import { SCENE_REQUEST, type SceneParams, type SceneResult } from '../../../server/src/sceneProtocol';
+import { isFromView, type FromView, type RenderStats, type RunTracks, type ToView } from './messages';
+import { loadRun, type RunSource } from './runData';
+
+export const BIRDS_EYE_VIEW_TYPE = 'modular2simple.birdsEye';
+const SceneRequestType = new RequestType<SceneParams, SceneResult, void>(SCENE_REQUEST);
+const REFRESH_DELAY_MS = 300;
+function nonce(): string {
+  return Array.from({ length: 24 }, () => Math.floor(Math.random() * 36).toString(36)).join('');
+}
+
+/** The webview beside the editor: one at a time, following the scenario it was opened on. */
+export class BirdsEyeView implements vscode.Disposable {
+  private panel: vscode.WebviewPanel | undefined;
+  private source: vscode.Uri | undefined;
+  private runSource: RunSource | undefined;
+  private run: RunTracks | undefined;
+  private ready = false;
+  private refreshTimer: NodeJS.Timeout | undefined;
+  private runWatcher: vscode.FileSystemWatcher | undefined;
+  private readonly disposables: vscode.Disposable[] = [];
+  /** What the view last reported drawing; for tests and the status of a run. */
+  stats: RenderStats | undefined;
+  scene: SceneResult | undefined;
+  private readonly renderedListeners: ((stats: RenderStats) => void)[] = [];
+
+  constructor(
+    private readonly extensionUri: vscode.Uri,
+    private readonly client: LanguageClient,
+    private readonly log: (message: string) => void,
+  ) {
+    const refreshSoon = (document: vscode.TextDocument) => {
+      if (!this.panel || !/\.(xosc|mosc)$/i.test(document.uri.path)) return;
+      clearTimeout(this.refreshTimer);
+      this.refreshTimer = setTimeout(() => void this.refresh(), REFRESH_DELAY_MS);
+    };
+    this.disposables.push(
+      vscode.workspace.onDidChangeTextDocument((change) => refreshSoon(change.document)),
+      vscode.workspace.onDidSaveTextDocument(refreshSoon),
+      vscode.workspace.onDidChangeConfiguration((change) => {
+        if (change.affectsConfiguration('modular2simple.esmini.roadPath')) void this.refresh();
+      }),
+    );
+  }
+
+  /** Resolves with the next stats the view reports. */
+  nextRender(): Promise<RenderStats> {
+    return new Promise((resolve) => this.renderedListeners.push(resolve));
+  }
+
+  async show(source: vscode.Uri): Promise<void> {
+    if (this.source?.toString() !== source.toString()) {
+      this.source = source;
+      this.scene = undefined;
+    }
+    if (!this.panel) this.createPanel();
+    else this.panel.reveal(vscode.ViewColumn.Beside, true);
+    this.panel!.title = `Bird's-Eye: ${path.posix.basename(source.path)}`;
+    await this.refresh();
+  }
+
+  /** Shows a run's trajectories (e.g. handed over by the esmini run command); opens the view if needed. */
+  async showRun(run: RunSource, scenario?: vscode.Uri): Promise<void> {
+    const target = scenario ?? this.source ?? vscode.window.activeTextEditor?.document.uri;
+    if (target && (!this.panel || target.toString() !== this.source?.toString())) await this.show(target);
+    if (!this.panel) this.createPanel();
+    this.runSource = run;
+    this.runWatcher?.dispose();
+    this.runWatcher = vscode.workspace.createFileSystemWatcher(new vscode.RelativePattern(vscode.Uri.file(path.dirname(run.csvPath)), path.basename(run.csvPath)));
+    this.runWatcher.onDidChange(() => void this.reloadRun());
+    this.runWatcher.onDidCreate(() => void this.reloadRun());
+    await this.reloadRun();
+  }
+
+  private async reloadRun(): Promise<void> {
+    if (!this.runSource) return;
+    try {
+      this.run = await loadRun(this.runSource);
+    } catch (error) {
+      this.run = undefined;
+      this.post({ type: 'error', message: `the run ${this.runSource.csvPath} could not be read: ${(error as Error).message}` });
+      this.log(`bird's-eye view: ${(error as Error).stack ?? String(error)}`);
+      return;
+    }
+    this.post({ type: 'run', run: this.run });
+  }
+
+  private async refresh(): Promise<void> {
+    const source = this.source;
+    if (!source || !this.panel) return;
+    try {
+      if (!this.client.isRunning()) await this.client.start();
+      const roadPath = vscode.workspace.getConfiguration('modular2simple', source).get<string[]>('esmini.roadPath', []);
+      const folder = vscode.workspace.getWorkspaceFolder(source)?.uri.fsPath ?? vscode.workspace.workspaceFolders?.[0]?.uri.fsPath;
+      const resolvedRoadPath = roadPath.filter((entry) => typeof entry === 'string' && entry).map((entry) => (folder ? path.resolve(folder, entry) : entry));
+      const scene = await this.client.sendRequest(SceneRequestType, { uri: source.toString(), roadPath: resolvedRoadPath });
+      if (source !== this.source) return;
+      this.scene = scene;
+      this.post({ type: 'scene', scene });
+    } catch (error) {
+      this.log(`bird's-eye view of ${source.toString()}: ${(error as Error).stack ?? String(error)}`);
+      this.post({ type: 'error', message: (error as Error).message });
+    }
+  }
+
+  private post(message: ToView): void {
+    if (this.panel && this.ready) void this.panel.webview.postMessage(message);
+  }
+
+  private createPanel(): void {
+    const scriptRoot = vscode.Uri.joinPath(this.extensionUri, 'dist');
+    const panel = vscode.window.createWebviewPanel(BIRDS_EYE_VIEW_TYPE, "Bird's-Eye View", { viewColumn: vscode.ViewColumn.Beside, preserveFocus: true }, {
+      enableScripts: true,
+      retainContextWhenHidden: true,
+      localResourceRoots: [scriptRoot],
+    });
+    this.panel = panel;
+    this.ready = false;
+    panel.webview.html = this.html(panel.webview, panel.webview.asWebviewUri(vscode.Uri.joinPath(scriptRoot, 'birdsEye.js')));
+    panel.webview.onDidReceiveMessage((message: unknown) => {
+      if (isFromView(message)) void this.receive(message).catch((error: unknown) => this.log(`bird's-eye view: ${(error as Error).stack ?? String(error)}`));
+    });
+    panel.onDidDispose(() => {
+      this.panel = undefined;
+      this.ready = false;
+      this.runWatcher?.dispose();
+      this.runWatcher = undefined;
+    });
+  }
+
+  private async receive(message: FromView): Promise<void> {
+    switch (message.type) {
+      case 'ready':
+        this.ready = true;
+        if (this.scene) this.post({ type: 'scene', scene: this.scene });
+        else await this.refresh();
+        if (this.run) this.post({ type: 'run', run: this.run });
+        return;
+      case 'open': {
+        const position = new vscode.Position(message.source.line, message.source.character);
+        await vscode.window.showTextDocument(vscode.Uri.parse(message.source.uri), { viewColumn: vscode.ViewColumn.One, selection: new vscode.Range(position, position) });
+        return;
+      }
+      case 'loadRun': {
+        const picked = await vscode.window.showOpenDialog({ canSelectMany: false, filters: { 'esmini CSV log': ['csv'] }, title: 'Load an esmini run (--csv_logger output)' });
+        if (picked?.[0]) await this.showRun({ csvPath: picked[0].fsPath });
+        return;
+      }
+      case 'save':
+        await this.save(message.format, message.data);
+        return;
+      case 'rendered':
+        this.stats = message.stats;
+        for (const listener of this.renderedListeners.splice(0)) listener(message.stats);
+        return;
+    }
+  }
+
+  private async save(format: 'png' | 'svg', data: string): Promise<void> {
+    const base = this.source ? this.source.path.replace(/\.(xosc|mosc)$/i, '') : 'birds-eye';
+    const suggested = vscode.Uri.file(`${this.source?.scheme === 'file' ? base : path.join(vscode.workspace.workspaceFolders?.[0]?.uri.fsPath ?? '', path.posix.basename(base))}.birds-eye.${format}`);
+    const target = await vscode.window.showSaveDialog({ defaultUri: suggested, filters: format === 'png' ? { 'PNG image': ['png'] } : { 'SVG image': ['svg'] } });
+    if (!target) return;
+    const bytes = format === 'png' ? Buffer.from(data.replace(/^data:image\/png;base64,/, ''), 'base64') : Buffer.from(data, 'utf8');
+    if (target.scheme === 'file') await writeFileAtomic(target.fsPath, bytes);
+    else await vscode.workspace.fs.writeFile(target, bytes);
+    void vscode.window.showInformationMessage(`Saved the bird's-eye view as ${target.fsPath}`);
+  }
+
+  private html(webview: vscode.Webview, script: vscode.Uri): string {
+    const scriptNonce = nonce();
+    return `<!DOCTYPE html><html><head><meta charset="utf-8">
+<meta http-equiv="Content-Security-Policy" content="default-src 'none'; img-src ${webview.cspSource} data:; style-src 'unsafe-inline'; script-src 'nonce-${scriptNonce}';">
+<style>
+body{margin:0;padding:0;font-family:var(--vscode-font-family);font-size:var(--vscode-font-size);color:var(--vscode-foreground);display:flex;flex-direction:column;height:100vh;overflow:hidden}
+#toolbar{display:flex;gap:6px;align-items:center;padding:4px 8px;flex-wrap:wrap;border-bottom:1px solid var(--vscode-panel-border)}
+#title{font-weight:bold;margin-right:auto}
+button{color:var(--vscode-button-foreground);background:var(--vscode-button-background);border:none;padding:3px 8px;cursor:pointer}
+button:disabled{opacity:.5;cursor:default} #slider{width:180px}
+#stage{position:relative;flex:1;min-height:120px;overflow:hidden} #canvas{position:absolute;left:0;top:0}
+#tooltip{position:absolute;display:none;pointer-events:none;background:var(--vscode-editorHoverWidget-background);border:1px solid var(--vscode-editorHoverWidget-border);padding:2px 6px;white-space:nowrap}
+#panel{max-height:34%;overflow:auto;padding:4px 8px;border-top:1px solid var(--vscode-panel-border)}
+#entities{display:flex;gap:4px;flex-wrap:wrap;margin-bottom:4px} .entity,.event{background:var(--vscode-button-secondaryBackground);color:var(--vscode-button-secondaryForeground)}
+#markers{position:relative;height:14px;background:var(--vscode-editorWidget-background);margin:4px 0}
+.marker{position:absolute;top:1px;width:10px;height:10px;margin-left:-5px;border-radius:5px;cursor:pointer} .started{background:#ffca28} .planned{border:2px solid #ffca28;box-sizing:border-box}
+#cursor{position:absolute;top:0;bottom:0;width:2px;background:var(--vscode-focusBorder)}
+ul{margin:0;padding-left:16px} #problems{color:var(--vscode-editorWarning-foreground)} .error{color:var(--vscode-errorForeground)}
+</style></head><body>
+<div id="toolbar"><span id="title">loading…</span>
+<button id="fit" title="Show everything">Fit</button><button id="load" title="Load an esmini --csv_logger CSV">Load run…</button>
+<button id="play" disabled>▶ Play</button><input id="slider" type="range" min="0" max="1000" value="0" disabled><span id="time">no run loaded</span>
+<button id="png">Save PNG</button><button id="svg">Save SVG</button></div>
+<div id="stage"><canvas id="canvas"></canvas><div id="tooltip"></div></div>
+<div id="panel"><div id="entities"></div><div id="markers"></div><ul id="events"></ul><ul id="problems"></ul></div>
+<script nonce="${scriptNonce}" src="${script.toString()}"></script>
+</body></html>`;
+  }
+
+  dispose(): void {
+    clearTimeout(this.refreshTimer);
+    this.runWatcher?.dispose();
+    this.panel?.dispose();
+    for (const disposable of this.disposables) disposable.dispose();
+  }
+}
