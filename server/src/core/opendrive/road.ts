@@ -235,15 +235,34 @@ export function outerBorderT(section: LaneSection, laneId: number, s: number): n
   return sign * total;
 }
 
+/** The outer border offsets of all lanes of a section at s, in the section's lane order, in one pass outward from the center. */
+export function outerBorderTs(section: LaneSection, s: number, into: Float64Array): Float64Array {
+  const lanes = section.lanes;
+  const center = lanes.findIndex((lane) => lane.id === 0);
+  if (center < 0 || lanes.some((lane) => lane.borders.length > 0)) {
+    lanes.forEach((lane, index) => (into[index] = outerBorderT(section, lane.id, s)));
+    return into;
+  }
+  into[center] = 0;
+  let total = 0;
+  for (let index = center + 1; index < lanes.length; index++) into[index] = -(total += laneWidth(section, lanes[index], s));
+  total = 0;
+  for (let index = center - 1; index >= 0; index--) into[index] = total += laneWidth(section, lanes[index], s);
+  return into;
+}
+
+/** The point at lateral t beside a reference-line pose, with the road's roll at that s. */
+export function besidePose(pose: Pose, roll: number, t: number): Pose {
+  const lateral = roll === 0 ? t : t * Math.cos(roll);
+  return { x: pose.x - lateral * Math.sin(pose.hdg), y: pose.y + lateral * Math.cos(pose.hdg), hdg: pose.hdg };
+}
+
 /**
  * The point at road s and lateral t (from the reference line, positive to the left). Superelevation
  * tilts the road about the reference line, so t projects onto the ground plane as t·cos(roll).
  */
 export function roadPoint(road: Road, s: number, t: number): Pose {
-  const pose = referencePose(road, s);
-  const roll = road.superelevations.length > 0 ? roadCubicAt(road.superelevations, s) : 0;
-  const lateral = t * Math.cos(roll);
-  return { x: pose.x - lateral * Math.sin(pose.hdg), y: pose.y + lateral * Math.cos(pose.hdg), hdg: pose.hdg };
+  return besidePose(referencePose(road, s), roadCubicAt(road.superelevations, s), t);
 }
 
 /** The lateral position of a lane's center (or, with `offset`, beside it) at road s. */
