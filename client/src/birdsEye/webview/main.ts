@@ -190,7 +190,7 @@ function tick(now: number): void {
 
 function setPlaying(next: boolean): void {
   playing = next && run !== undefined;
-  playButton.textContent = playing ? '⏸ Pause' : '▶ Play';
+  playButton.textContent = playing ? '⏸ Pause run' : '▶ Play run';
   if (playing) {
     if (time >= duration()) setTime(0);
     frameTimes.length = 0;
@@ -216,8 +216,8 @@ function renderPanel(): void {
   const entities = element<HTMLDivElement>('entities');
   entities.replaceChildren();
   for (const entity of scene?.entities ?? []) {
-    const item = button(entity.name, `${entity.kind}: ${entity.described}${entity.problem ? ` — ${entity.problem}` : ''}`, () => open(entity.source), 'entity');
-    item.style.borderLeft = `8px solid ${colorOf(entity.name)}`;
+    const item = button(`■ ${entity.name}`, `${entity.kind}: ${entity.described}${entity.problem ? ` — ${entity.problem}` : ''}`, () => open(entity.source), 'entity');
+    item.style.color = colorOf(entity.name);
     entities.append(item);
   }
   const events = element<HTMLUListElement>('events');
