@@ -46,6 +46,8 @@ describe("client: the bird's-eye view's drawing", () => {
     assert.equal(view.scale, 2);
     const [x, y] = toScreen(view, 0, 3.5);
     assert.ok(Math.abs(x - 10) < 1e-9 && y < toScreen(view, 0, -5.5)[1]);
+    // Framing the entities: where they start, 40 m around, whatever the size of the network.
+    assert.deepEqual(sceneBounds(roadShapes(scene), scene, undefined, true), [50 - 3 - 40, -1.75 - 3 - 40, 50 + 3 + 40, -1.75 + 3 + 40]);
     const boxes = startBoxes(scene.entities);
     assert.equal(boxAt(boxes, view, 52, -1.75)?.name, 'ego');
     assert.equal(boxAt(boxes, view, 40, -1.75), undefined);

@@ -93,16 +93,20 @@ export function roadShapes(scene: SceneResult): RoadShapes {
   return { lanes, borders, bounds };
 }
 
-/** Everything the picture covers: roads, entities, trajectories. */
-export function sceneBounds(shapes: RoadShapes, scene: SceneResult | undefined, run: RunTracks | undefined): [number, number, number, number] {
-  let bounds = shapes.bounds ? ([...shapes.bounds] as [number, number, number, number]) : undefined;
+/**
+ * What the picture frames: with `focus`, where the entities start and drive (with `margin` metres
+ * around, the roads clipped to it), else everything including the whole road network.
+ */
+export function sceneBounds(shapes: RoadShapes, scene: SceneResult | undefined, run: RunTracks | undefined, focus = false, margin = 40): [number, number, number, number] {
+  let bounds = shapes.bounds && !focus ? ([...shapes.bounds] as [number, number, number, number]) : undefined;
   for (const entity of scene?.entities ?? []) if (entity.x !== undefined && entity.y !== undefined) bounds = extend(bounds, [entity.x - 3, entity.y - 3, entity.x + 3, entity.y + 3]);
   for (const track of run?.entities ?? []) {
     const xy: number[] = [];
     for (let i = 0; i < track.x.length; i += Math.max(1, Math.floor(track.x.length / 200))) xy.push(track.x[i], track.y[i]);
     bounds = extend(bounds, xy);
   }
-  return bounds ?? [-50, -50, 50, 50];
+  if (focus && bounds) return [bounds[0] - margin, bounds[1] - margin, bounds[2] + margin, bounds[3] + margin];
+  return bounds ?? shapes.bounds ?? [-50, -50, 50, 50];
 }
 
 /** A transform that shows `bounds` whole, centred, in a `width` × `height` screen with a margin. */

@@ -162,9 +162,10 @@ function report(): void {
   vscode.postMessage({ type: 'rendered', stats });
 }
 
-function fit(): void {
+/** Frames the entities and their trajectories (`focus`), or the whole road network. */
+function fit(focus = true): void {
   const { width, height } = size();
-  view = fitTransform(sceneBounds(shapes, scene, run), width, height);
+  view = fitTransform(sceneBounds(shapes, scene, run, focus), width, height);
   renderLayer();
 }
 
@@ -190,7 +191,7 @@ function tick(now: number): void {
 
 function setPlaying(next: boolean): void {
   playing = next && run !== undefined;
-  playButton.textContent = playing ? '⏸ Pause run' : '▶ Play run';
+  playButton.textContent = playing ? 'Pause run' : 'Play run';
   if (playing) {
     if (time >= duration()) setTime(0);
     frameTimes.length = 0;
@@ -331,7 +332,8 @@ slider.addEventListener('input', () => {
   setPlaying(false);
   setTime((Number(slider.value) / 1000) * duration());
 });
-element('fit').addEventListener('click', fit);
+element('fit').addEventListener('click', () => fit(true));
+element('network').addEventListener('click', () => fit(false));
 element('load').addEventListener('click', () => vscode.postMessage({ type: 'loadRun' }));
 element('png').addEventListener('click', () => {
   renderFrame();
