@@ -1,10 +1,9 @@
 /**
- * The bird's-eye view's request: `modular2simple/scene` (SceneParams → SceneResult). Plain data, so
- * that both bundles can import it; each side makes its typed RequestType from SCENE_REQUEST.
+ * The bird's-eye view's request `modular2simple/scene` (SceneParams → SceneResult), typed for both
+ * sides (both bundles import this file).
  */
+import { RequestType } from 'vscode-languageserver-protocol';
 import type { SectionPolylines } from './core/opendrive/sample';
-
-export const SCENE_REQUEST = 'modular2simple/scene';
 
 export interface SceneParams {
   /** A scenario: file: or mosc: URI (a main.xosc is shown flattened, unsaved edits included). */
@@ -68,3 +67,5 @@ export interface SceneResult {
   /** What could not be shown, in words (road file not found, a position not evaluated, ...). */
   problems: string[];
 }
+
+export const SceneRequest = new RequestType<SceneParams, SceneResult, void>('modular2simple/scene');

@@ -2,7 +2,7 @@ import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import JSZip from 'jszip';
-import { SCENE_REQUEST, SceneParams, SceneResult } from '../../server/src/sceneProtocol';
+import { SceneParams, SceneRequest } from '../../server/src/sceneProtocol';
 import { outerGroup } from '../support/fixtures';
 import { sceneScenario, STRAIGHT_ROAD, teleport } from '../support/roads';
 import { fileUri, positionAfter, temporaryWorkspace, TestClient } from './harness';
@@ -45,7 +45,7 @@ describe('language server: modular2simple/scene (JSON-RPC)', function () {
     if (root) fs.rmSync(root, { recursive: true, force: true });
   });
 
-  const scene = (params: SceneParams) => client.connection.sendRequest<SceneResult>(SCENE_REQUEST, params);
+  const scene = (params: SceneParams) => client.connection.sendRequest(SceneRequest, params);
 
   it('answers roads as lane-border polylines, entities at their start and events at their source', async () => {
     const mainUri = fileUri(path.join(root, 'main.xosc'));

@@ -1,15 +1,13 @@
 import * as path from 'node:path';
 import * as vscode from 'vscode';
-import { RequestType } from 'vscode-languageclient';
 import type { LanguageClient } from 'vscode-languageclient/node';
 import { writeFileAtomic } from '../../../server/src/core/atomic';
-import { SCENE_REQUEST, type SceneParams, type SceneResult } from '../../../server/src/sceneProtocol';
+import { SceneRequest, type SceneResult } from '../../../server/src/sceneProtocol';
 import { isFromView, type FromView, type RenderStats, type RunTracks, type ToView } from './messages';
 import { birdsEyeHtml } from './page';
 import { loadRun, type RunSource } from './runData';
 
 export const BIRDS_EYE_VIEW_TYPE = 'modular2simple.birdsEye';
-const SceneRequestType = new RequestType<SceneParams, SceneResult, void>(SCENE_REQUEST);
 const REFRESH_DELAY_MS = 300;
 function nonce(): string {
   return Array.from({ length: 24 }, () => Math.floor(Math.random() * 36).toString(36)).join('');
@@ -99,7 +97,7 @@ export class BirdsEyeView implements vscode.Disposable {
       const roadPath = vscode.workspace.getConfiguration('modular2simple', source).get<string[]>('esmini.roadPath', []);
       const folder = vscode.workspace.getWorkspaceFolder(source)?.uri.fsPath ?? vscode.workspace.workspaceFolders?.[0]?.uri.fsPath;
       const resolvedRoadPath = roadPath.filter((entry) => typeof entry === 'string' && entry).map((entry) => (folder ? path.resolve(folder, entry) : entry));
-      const scene = await this.client.sendRequest(SceneRequestType, { uri: source.toString(), roadPath: resolvedRoadPath });
+      const scene = await this.client.sendRequest(SceneRequest, { uri: source.toString(), roadPath: resolvedRoadPath });
       if (source !== this.source) return;
       this.scene = scene;
       this.post({ type: 'scene', scene });

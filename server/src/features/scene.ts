@@ -1,5 +1,5 @@
 import * as path from 'node:path';
-import { Connection, RequestType, ResponseError } from 'vscode-languageserver/node';
+import { ResponseError } from 'vscode-languageserver/node';
 import { elementPlace } from '../analysis';
 import { FlatSource } from '../core/flatten';
 import { parseOpenDrive, RoadNetwork } from '../core/opendrive/road';
@@ -8,10 +8,8 @@ import { scenarioScene } from '../core/scene';
 import { baseName, displayRef, FileSystemHost } from '../core/sources';
 import { decodeUtf8 } from '../core/text';
 import { XmlElement } from '../core/xml';
-import { SCENE_REQUEST, SceneParams, SceneResult, SourceLocation } from '../sceneProtocol';
+import { SceneParams, SceneResult, SourceLocation } from '../sceneProtocol';
 import { Workspace } from '../workspace';
-
-export const SceneRequestType = new RequestType<SceneParams, SceneResult, void>(SCENE_REQUEST);
 
 /** Road files are large and rarely change: the sampled network is kept per path, size and content. */
 interface CachedNetwork {
@@ -135,17 +133,4 @@ export async function buildScene(workspace: Workspace, params: SceneParams): Pro
     })),
     problems,
   };
-}
-
-/** Registers `modular2simple/scene` on the connection. */
-export function register(connection: Connection, workspace: Workspace): void {
-  connection.onRequest(SceneRequestType, async (params) => {
-    try {
-      return await buildScene(workspace, params);
-    } catch (error) {
-      if (error instanceof ResponseError) throw error;
-      connection.console.error(`scene failed: ${(error as Error)?.stack ?? String(error)}`);
-      throw new ResponseError(-32603, `the bird's-eye view could not be built: ${(error as Error)?.message ?? String(error)}`);
-    }
-  });
 }
