@@ -68,16 +68,72 @@ function path(element: XmlElement | undefined, ...names: string[]): XmlElement |
 }
 
 /**
- * The values of the root ParameterDeclarations, each `$name` in a value replaced by an earlier one.
- * Expressions (`${...}`) are left unresolved.
+ * The arithmetic of an OpenSCENARIO expression `${...}` (numbers, `$name`, + - * / %, unary minus,
+ * parentheses): enough to place entities; anything else throws. The project's full expression
+ * evaluator can take its place.
  */
+export function evaluateArithmetic(expression: string, parameters: Map<string, string>): number {
+  const tokens = expression.match(/\s*((?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?|\$[A-Za-z_][\w]*|[-+*\/%()])/gy);
+  if (!tokens || tokens.join('').replace(/\s/g, '') !== expression.replace(/\s/g, '')) throw new Error(`cannot evaluate \${${expression}}`);
+  const list = tokens.map((token) => token.trim());
+  let index = 0;
+  const primary = (): number => {
+    const token = list[index++];
+    if (token === '-') return -primary();
+    if (token === '+') return primary();
+    if (token === '(') {
+      const value = sum();
+      if (list[index++] !== ')') throw new Error(`unbalanced parentheses in \${${expression}}`);
+      return value;
+    }
+    if (token?.startsWith('$')) {
+      const value = Number(parameters.get(token.slice(1)));
+      if (!Number.isFinite(value)) throw new Error(`${token} has no numeric value`);
+      return value;
+    }
+    const value = Number(token);
+    if (token === undefined || !Number.isFinite(value)) throw new Error(`cannot evaluate \${${expression}}`);
+    return value;
+  };
+  const product = (): number => {
+    let value = primary();
+    while (list[index] === '*' || list[index] === '/' || list[index] === '%') {
+      const operator = list[index++];
+      const right = primary();
+      value = operator === '*' ? value * right : operator === '/' ? value / right : value % right;
+    }
+    return value;
+  };
+  const sum = (): number => {
+    let value = product();
+    while (list[index] === '+' || list[index] === '-') value = list[index++] === '+' ? value + product() : value - product();
+    return value;
+  };
+  const result = sum();
+  if (index !== list.length) throw new Error(`cannot evaluate \${${expression}}`);
+  return result;
+}
+
+/** A raw value with a `$name` or `${...}` resolved against `parameters` (unresolvable ones left as written). */
+function resolveValue(raw: string, parameters: Map<string, string>): string {
+  if (raw.startsWith('${') && raw.endsWith('}')) {
+    try {
+      return String(evaluateArithmetic(raw.slice(2, -1), parameters));
+    } catch {
+      return raw;
+    }
+  }
+  return raw.startsWith('$') ? parameters.get(raw.slice(1)) ?? raw : raw;
+}
+
+/** The values of the root ParameterDeclarations, each `$name` or `${...}` in a value resolved by earlier ones. */
 export function rootParameters(document: XmlDocument): Map<string, string> {
   const values = new Map<string, string>();
   for (const declaration of children(child(document.root, 'ParameterDeclarations'), 'ParameterDeclaration')) {
     const name = attributeValue(declaration, 'name');
     const value = attributeValue(declaration, 'value');
     if (!name || value === undefined) continue;
-    values.set(name, value.startsWith('$') && !value.startsWith('${') ? values.get(value.slice(1)) ?? value : value);
+    values.set(name, resolveValue(value, values));
   }
   return values;
 }
@@ -87,8 +143,7 @@ class Reader {
 
   text(element: XmlElement, name: string): string | undefined {
     const raw = attributeValue(element, name);
-    if (raw === undefined || !raw.startsWith('$') || raw.startsWith('${')) return raw;
-    return this.parameters.get(raw.slice(1)) ?? raw;
+    return raw === undefined ? undefined : resolveValue(raw, this.parameters);
   }
 
   /** A numeric attribute; throws a message naming the attribute when it is missing or unresolvable. */
