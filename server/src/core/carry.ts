@@ -1,9 +1,9 @@
 import * as path from 'node:path';
-import type { FlatSource, Insertion } from './flatten';
+import type { FlatSource, Insertion, LinkedGroupReference } from './flatten';
 import { Problem, RelatedProblemLocation } from './problems';
-import { buildSemanticModel, Declaration, ParameterUse, SemanticModel, semanticModelOf } from './semantics';
+import { buildSemanticModel, Declaration, Evaluator, ParameterUse, SemanticModel, semanticModelOf, ValueResult } from './semantics';
 import { displayRef } from './sources';
-import { descendants, escapeAttributeValue, parseXml, XmlElement } from './xml';
+import { attribute, descendants, escapeAttributeValue, parseXml, XmlElement } from './xml';
 
 /**
  * What flattening carries from imported groups' sources into the output (SPEC 11): the parameter
@@ -312,4 +312,50 @@ export function carryEdits(main: FlatSource, plan: CarryPlan, eol: string, outpu
     }
   }
   return edits;
+}
+
+/** The declaration carried into `main`'s flattened output under a name, with the source it came from. */
+export function carriedDeclaration(main: FlatSource, name: string): CarriedDeclaration | undefined {
+  return main.carried?.declarations.find((entry) => entry.name === name);
+}
+
+/**
+ * The value an attribute of an imported group takes in `main`'s flattened output, for each group
+ * reference of `main` that imports the element: a ParameterReference override (evaluated in the
+ * main file), or the attribute's own value read with the source's declarations, which is then either
+ * the main file's root declaration of that name (it wins) or carried from the source.
+ */
+export function composedValues(main: FlatSource, element: XmlElement, attributeName: string): { group: LinkedGroupReference; result: ValueResult }[] {
+  const results: { group: LinkedGroupReference; result: ValueResult }[] = [];
+  const mainEvaluator = main.semantics?.evaluator;
+  for (const link of main.links) {
+    const source = link.source;
+    if (!source?.model) continue;
+    for (const group of link.groups) {
+      if (!group.target || !isWithin(element, group.target.element)) continue;
+      const override = group.plan ? [...group.plan.applied].find(([target]) => target.element === element && target.attributeName === attributeName)?.[1] : undefined;
+      if (override?.valueAttribute && mainEvaluator) {
+        const value = mainEvaluator.attributeValue(override.element, override.valueAttribute);
+        const provenance = { kind: 'override' as const, parameterReference: override.element, key: override.key };
+        results.push({ group, result: { ...value, provenance } });
+        continue;
+      }
+      const own = attribute(element, attributeName);
+      if (!own) continue;
+      const model = semanticModelOf(source.model.document);
+      const value = new Evaluator(model).attributeValue(element, own);
+      const declaration = value.provenance.kind === 'declaration' ? value.provenance.declaration : undefined;
+      if (!declaration || isWithin(declaration.element, group.target.element)) {
+        results.push({ group, result: value });
+        continue;
+      }
+      const mainDeclaration = main.semantics?.model.root?.byName.get(declaration.name);
+      if (mainDeclaration && mainEvaluator) {
+        results.push({ group, result: mainEvaluator.declarationValue(mainDeclaration) });
+        continue;
+      }
+      results.push({ group, result: { ...value, provenance: { kind: 'carried', declaration, from: displayRef(source.ref) } } });
+    }
+  }
+  return results;
 }
