@@ -3,7 +3,8 @@ import type { FlatSource, Insertion, LinkedGroupReference } from './flatten';
 import { Problem, RelatedProblemLocation } from './problems';
 import { buildSemanticModel, Declaration, Evaluator, ParameterUse, SemanticModel, semanticModelOf, ValueResult } from './semantics';
 import { displayRef } from './sources';
-import { attribute, descendants, escapeAttributeValue, parseXml, XmlElement } from './xml';
+import { indentationAt } from './text';
+import { attribute, elementStartingAt, escapeAttributeValue, isWithin, parseXml, selfAndDescendants, XmlElement } from './xml';
 
 /**
  * What flattening carries from imported groups' sources into the output (SPEC 11): the parameter
@@ -42,24 +43,6 @@ export interface CarryEdit {
   text: string;
   /** Carried declarations: offsets inside `text`, and what they were copied from. */
   parts: { start: number; end: number; source: FlatSource; element: XmlElement }[];
-}
-
-function selfAndDescendants(element: XmlElement): XmlElement[] {
-  return [element, ...descendants(element)];
-}
-
-function elementStartingAt(root: XmlElement | undefined, offset: number): XmlElement | undefined {
-  let current = root;
-  while (current) {
-    if (current.start === offset) return current;
-    current = current.children.find((child) => offset >= child.start && offset < child.end);
-  }
-  return undefined;
-}
-
-function isWithin(element: XmlElement, ancestor: XmlElement): boolean {
-  for (let current: XmlElement | undefined = element; current; current = current.parent) if (current === ancestor) return true;
-  return false;
 }
 
 function sameValue(a: Declaration, b: Declaration): boolean {
@@ -223,13 +206,6 @@ function planLocations(plan: CarryPlan, main: FlatSource, source: FlatSource, ou
     }
     if (!plan.locations.some((known) => known.kind === need.kind)) plan.locations.push(need);
   }
-}
-
-function indentationAt(text: string, offset: number): string {
-  let lineStart = offset;
-  while (lineStart > 0 && text[lineStart - 1] !== '\n' && text[lineStart - 1] !== '\r') lineStart--;
-  const prefix = text.slice(lineStart, offset);
-  return /^[ \t]*$/.test(prefix) ? prefix : '';
 }
 
 /** Re-indents a copied element (its first line stands at `from`) to `to`. */
