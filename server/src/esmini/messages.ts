@@ -64,6 +64,11 @@ const RULES: MessageRule[] = [
     targets: (root) => elementsNamed(root, 'LogicFile').map((element) => ({ element, attribute: 'filepath' })),
   },
   {
+    // ScenarioReader.cpp and RoadManager: a position on a road the road file does not have.
+    pattern: /^(?:Error: )?(?:Failed to find road|No matching road with ID|Failed to resolve road id) (\S+)/,
+    targets: (root, match) => [root, ...descendants(root)].filter((element) => attribute(element, 'roadId')?.value === match[1]).map((element) => ({ element, attribute: 'roadId' })),
+  },
+  {
     // Storyboard.cpp: "Stopping object <entity> <action> on conflicting <domain> domain(s)".
     pattern: /^Stopping object \S+ (.+) on conflicting/,
     targets: (root, match) => elementsNamed(root, 'Action').filter((element) => attribute(element, 'name')?.value === match[1]).map((element) => ({ element, attribute: 'name' })),
