@@ -22,6 +22,7 @@ import { DiagnosticsScheduler } from './features/diagnostics';
 import { hover } from './features/hover';
 import { fileRenameEdits, placesToLocations, renameGroup, targetAt, usagesOf } from './features/references';
 import { codeLenses, documentSymbols, workspaceSymbols } from './features/symbols';
+import { register as registerEsminiRun } from './features/esminiRun';
 import { packCommand } from './features/pack';
 import { IdleCollector } from './idleCollector';
 import { filePathOf } from './uris';
@@ -316,6 +317,7 @@ export function startServer(connection: Connection): Workspace {
     }
   });
 
+  registerEsminiRun(connection, workspace);
   documents.listen(connection);
   return workspace;
 }
