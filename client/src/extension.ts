@@ -9,6 +9,7 @@ import { PACKAGE_VIEW_TYPE, PackageViewProvider } from './packageView';
 import { FlattenedPreview, PREVIEW_SCHEME, previewSource } from './preview';
 import { STRUCTURE_VIEW_ID, StructureTree } from './structureView';
 import { registerTagClosing } from './tagClosingEditor';
+import { EsminiRunner, type EsminiRunEvent } from './esminiRun';
 
 /** What the extension hands to other extensions and to its own tests. */
 export interface Modular2SimpleApi {
@@ -17,6 +18,9 @@ export interface Modular2SimpleApi {
   readonly structure: () => StructureNode | undefined;
   /** What the running server offers (undefined before it started): lets callers and tests see which features exist. */
   readonly serverCapabilities: () => ServerCapabilities | undefined;
+  /** The latest Run in esmini, and an event after each (for views of its trajectories). */
+  readonly lastEsminiRun: () => EsminiRunEvent | undefined;
+  readonly onDidRunEsmini: vscode.Event<EsminiRunEvent>;
 }
 
 let languageClient: LanguageClient | undefined;
@@ -43,6 +47,9 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
       if (choice) output.show(true);
     });
   });
+
+  const esmini = new EsminiRunner(client);
+  context.subscriptions.push(esmini);
 
   const preview = new FlattenedPreview((source) => server.flattenToText(source), log);
   const structure = new StructureTree();
@@ -109,7 +116,13 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
     }
   });
 
-  return { serverReady, structure: () => structure.current, serverCapabilities: () => client.initializeResult?.capabilities };
+  return {
+    serverReady,
+    structure: () => structure.current,
+    serverCapabilities: () => client.initializeResult?.capabilities,
+    lastEsminiRun: () => esmini.last,
+    onDidRunEsmini: esmini.onDidRun,
+  };
 }
 
 export async function deactivate(): Promise<void> {
