@@ -3,11 +3,11 @@ import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
 import { Flattener } from '../../server/src/core/flatten';
-import { diskRef, ScenarioStore } from '../../server/src/core/sources';
+import { childRef, diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { parseEsminiLog } from '../../server/src/esmini/log';
 import { locateEsmini } from '../../server/src/esmini/locate';
 import { mapEsminiMessages } from '../../server/src/esmini/messages';
-import { lastCsvTime } from '../../server/src/esmini/process';
+import { lastCsvTime, makeRunFolder, runEsminiProcess } from '../../server/src/esmini/process';
 import { EsminiRunOptions, EsminiRunResult, removeRunFolder, runScenario } from '../../server/src/esmini/run';
 import { TIME_LIMIT_CONDITION, withTimeLimit } from '../../server/src/esmini/timeLimit';
 import { parseXml } from '../../server/src/core/xml';
@@ -148,6 +148,51 @@ describe('esmini: runs (the simulator built by the test setup)', function () {
     assert.ok(speedBetween(5, 9) > 9 && speedBetween(17, 19) < 0.1, `lead: ${speedBetween(5, 9)} m/s, then ${speedBetween(17, 19)} m/s`);
   });
 
+  it('runs every bundled example on its own (simple scenarios and packages too) with no error, and something moves', async function () {
+    requireEsmini(this);
+    const store = new ScenarioStore({ root: examples });
+    for (const [file, main] of [
+      ['lane_change.xosc', diskRef(path.join(examples, 'lane_change.xosc'))],
+      ['crossing.xosc', diskRef(path.join(examples, 'crossing.xosc'))],
+      ['pedestrian/main.xosc', diskRef(path.join(examples, 'pedestrian', 'main.xosc'))],
+      ['braking.mosc', childRef(diskRef(path.join(examples, 'braking.mosc')), 'main.xosc')],
+    ] as const) {
+      const result = await runScenario(new Flattener(store), main, { esminiPath: esminiProgram, roadPath: [sharedRoads], duration: 10 });
+      results.push(result);
+      assert.equal(result.outcome, 'ok', `${file}: ${result.message}`);
+      assert.deepEqual(errorsOf(result), [], file);
+      const moved = [...readTracks(result.csvFile as string).values()].map((track) => Math.hypot(track[track.length - 1].x - track[0].x, track[track.length - 1].y - track[0].y));
+      assert.ok(Math.max(...moved) > 5, `${file}: moved ${moved.map((distance) => distance.toFixed(1)).join(', ')} m`);
+    }
+  });
+
+  it('follows the CSV and interrupts a scenario past the limit when nothing else stops it (SIGINT, a clean quit)', async function () {
+    requireEsmini(this);
+    const flat = await new Flattener(new ScenarioStore({ root: examples })).flatten(diskRef(path.join(examples, 'main.xosc')));
+    const folder = makeRunFolder(os.tmpdir(), 'm2s-sigint-');
+    const scenarioFile = path.join(folder, 'scenario.xosc');
+    fs.writeFileSync(scenarioFile, flat.text as string);
+    const csvFile = path.join(folder, 'run.csv');
+    const result = await runEsminiProcess({
+      program: esminiProgram,
+      scenarioFile,
+      workDir: folder,
+      csvFile,
+      searchPath: [examples, sharedRoads],
+      timeStep: 0.05,
+      seed: 1,
+      duration: 2,
+      wallTimeoutMs: 60_000,
+      maxCsvBytes: 200e6,
+      maxOutputChars: 1e6,
+    });
+    fs.rmSync(folder, { recursive: true, force: true });
+    assert.equal(result.end, 'interrupted', result.reason);
+    assert.equal(result.exitCode, 0);
+    assert.match(result.output, /Quit request from user/);
+    assert.match(result.reason ?? '', /passed the 2 s limit/);
+  });
+
   it('repeats exactly with the same step and seed', async function () {
     requireEsmini(this);
     const store = new ScenarioStore({ root: examples });
@@ -192,7 +237,7 @@ describe('esmini: runs (the simulator built by the test setup)', function () {
       .replace('<CatalogLocations/>', '<CatalogLocations><VehicleCatalog><Directory path="catalogs/vehicles"/></VehicleCatalog></CatalogLocations>')
       .replace('<LogicFile filepath="Town05"/>', '<LogicFile filepath="roads/straight.xodr"/>')
       .replace(/<Vehicle name="vehicle\.audi\.tt"[\s\S]*?<\/Vehicle>/, '<CatalogReference catalogName="VehicleCatalog" entryName="car_red"/>')
-      .replace('<Actions/>', '<Actions><Private entityRef="ego"><PrivateAction><TeleportAction><Position><LanePosition roadId="1" laneId="-1" s="50" offset="0"/></Position></TeleportAction></PrivateAction></Private><Private entityRef="adversary"><PrivateAction><TeleportAction><Position><LanePosition roadId="1" laneId="-1" s="20" offset="0"/></Position></TeleportAction></PrivateAction></Private></Actions>');
+      .replace(/<Init>[\s\S]*?<\/Init>/, '<Init><Actions><Private entityRef="ego"><PrivateAction><TeleportAction><Position><LanePosition roadId="1" laneId="-1" s="50" offset="0"/></Position></TeleportAction></PrivateAction></Private><Private entityRef="adversary"><PrivateAction><TeleportAction><Position><LanePosition roadId="1" laneId="-1" s="20" offset="0"/></Position></TeleportAction></PrivateAction></Private></Actions></Init>');
     fs.writeFileSync(path.join(root, 'plain.xosc'), text);
     const result = await run(new ScenarioStore({ root }), path.join(root, 'plain.xosc'), { duration: 3, roadPath: [] });
     assert.equal(result.outcome, 'ok', `${result.message}\n${JSON.stringify(result.problems)}\n${result.log.split('\n').filter((line) => /error|warn/.test(line)).join('\n')}`);

@@ -69,6 +69,11 @@ const RULES: MessageRule[] = [
     targets: (root, match) => [root, ...descendants(root)].filter((element) => attribute(element, 'roadId')?.value === match[1]).map((element) => ({ element, attribute: 'roadId' })),
   },
   {
+    // ScenarioReader.cpp, printed when Init places no entity (or its actions depend on each other).
+    pattern: /to reorder \d+ init actions/,
+    targets: (root) => elementsNamed(root, 'Init').map((element) => ({ element })),
+  },
+  {
     // Storyboard.cpp: "Stopping object <entity> <action> on conflicting <domain> domain(s)".
     pattern: /^Stopping object \S+ (.+) on conflicting/,
     targets: (root, match) => elementsNamed(root, 'Action').filter((element) => attribute(element, 'name')?.value === match[1]).map((element) => ({ element, attribute: 'name' })),

@@ -176,8 +176,9 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
   if (run.exitCode !== 0 && run.end === 'exited' && errors === 0) {
     return { ...common, outcome: 'failed', message: `esmini ended with exit code ${run.exitCode} without an error message; see its log` };
   }
-  const covered = common.simulatedTime === undefined ? 'no simulated time' : `${common.simulatedTime.toFixed(2)} s simulated`;
-  return { ...common, outcome: errors > 0 ? 'errors' : 'ok', message: `esmini: ${counts}; ${covered} in ${(run.wallMs / 1000).toFixed(2)} s` };
+  const covered =
+    common.simulatedTime === undefined ? 'no trajectory: esmini placed no entity (each needs a position in Init, such as a TeleportAction)' : `${common.simulatedTime.toFixed(2)} s simulated`;
+  return { ...common, outcome: errors > 0 ? 'errors' : 'ok', message: `esmini: ${counts}; ${covered} (${(run.wallMs / 1000).toFixed(2)} s)` };
 }
 
 /** Removes a run's private folder (its CSV and scenario copy). */
