@@ -15,9 +15,16 @@ function stringList(value: unknown): string[] {
  * "Run in esmini": flattens the file as the editor has it and runs it. The files of a file's
  * previous run are removed when it runs again, and all of them when the server exits.
  */
+/** Run folders still on disk, of every server in this process; removed at exit (one listener for all). */
+const liveRuns = new Set<EsminiRunResult>();
+let exitListener = false;
+
 export function register(connection: Connection, workspace: Workspace): void {
   const previous = new Map<string, EsminiRunResult>();
-  process.on('exit', () => previous.forEach(removeRunFolder));
+  if (!exitListener) {
+    exitListener = true;
+    process.on('exit', () => liveRuns.forEach(removeRunFolder));
+  }
 
   connection.onRequest(RunEsminiRequest, async (params: RunEsminiParams, token): Promise<RunEsminiResult> => {
     try {
@@ -34,8 +41,12 @@ export function register(connection: Connection, workspace: Workspace): void {
       });
       const id = refId(ref);
       const earlier = previous.get(id);
-      if (earlier) removeRunFolder(earlier);
+      if (earlier) {
+        removeRunFolder(earlier);
+        liveRuns.delete(earlier);
+      }
       previous.set(id, result);
+      liveRuns.add(result);
       return {
         outcome: result.outcome,
         message: result.message,
