@@ -103,6 +103,19 @@ describe('esmini: time limit and log (no simulator needed)', () => {
     assert.deepEqual([problems[3].located, problems[3].range.start.line, path.basename(problems[3].source.disk)], [false, 0, 'main.xosc']);
   });
 
+  it('maps a value that an override set to the ParameterReference that set it, through a package too', async () => {
+    const root = examplesCopy({ file: 'main.xosc', from: '<ParameterReference key="LaneChangeActionDynamics.value" value="1.5"/>', to: '<ParameterReference key="LaneChangeActionDynamics.value" value="1.5"/>\n              <ParameterReference key="LaneChangeActionDynamics.dynamicsShape" value="jerky"/>' });
+    const main = diskRef(path.join(root, 'main.xosc'));
+    const flat = await new Flattener(new ScenarioStore({ root })).flatten(main);
+    assert.ok(flat.text, JSON.stringify(flat.problems));
+    const [problem] = mapEsminiMessages(parseEsminiLog('[] [error] Exception: Dynamics shape jerky unexpected. Supported: linear'), flat.source, main);
+    assert.equal(problem.source.disk, main.disk);
+    assert.match(lineOf(main.disk, problem.range.start.line), /key="LaneChangeActionDynamics.dynamicsShape" value="jerky"/);
+    // A name, through two levels of packages: the event in the simple scenario inside braking.mosc.
+    const [inPackage] = mapEsminiMessages(parseEsminiLog('[1.000] [warn] Event Brake already running, trigger ignored'), flat.source, main);
+    assert.deepEqual([path.basename(inPackage.source.disk), ...inPackage.source.entries], ['braking.mosc', 'hard_brake.xosc']);
+  });
+
   it('tells how to get esmini when it is missing, and runs nothing', async () => {
     const location = locateEsmini(undefined, process.cwd(), '');
     assert.equal(location.found, false);

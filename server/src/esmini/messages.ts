@@ -130,13 +130,31 @@ function targetsByWords(root: XmlElement, text: string): Target[] {
   return [];
 }
 
+/**
+ * Where the value of a flattened element's attribute was written: the ParameterReference that
+ * overrode it on the way in, else the attribute in the file the element was copied from.
+ */
+function valueOrigin(source: FlatSource, element: XmlElement, name: string | undefined): { source: FlatSource; element: XmlElement; attribute: XmlAttribute | undefined } {
+  const insertion = source.model !== source.original ? source.insertions.find((candidate) => element.start >= candidate.start && element.end <= candidate.end) : undefined;
+  const copy = insertion ? source.model?.groups.find((group) => group.element.start === insertion.start)?.element : undefined;
+  const original = insertion?.group.target?.element;
+  const counterpart = copy && original ? [original, ...descendants(original)][[copy, ...descendants(copy)].indexOf(element)] : undefined;
+  if (!insertion?.link.source || !counterpart || name === undefined) {
+    const origin = originOf(source, element);
+    return { ...origin, attribute: name === undefined ? undefined : attribute(origin.element, name) };
+  }
+  for (const [target, parameter] of insertion.group.plan?.applied ?? []) {
+    if (target.element === counterpart && target.attributeName === name) return { source, element: parameter.element, attribute: parameter.valueAttribute };
+  }
+  return valueOrigin(insertion.link.source, counterpart, name);
+}
+
 function rangeOf(source: FlatSource, target: Target): { source: SourceRef; range: Range } | undefined {
-  const origin = originOf(source, target.element);
+  const origin = valueOrigin(source, target.element, target.attribute);
   const model = origin.source.original ?? origin.source.model;
   if (!model) return undefined;
-  // The element of the file it was written in; an attribute added by flattening falls back to the tag.
-  const own = target.attribute ? attribute(origin.element, target.attribute) : undefined;
-  const [start, end] = own ? [own.valueStart, own.valueEnd] : [origin.element.start + 1, origin.element.nameEnd];
+  // An attribute added by flattening (no such attribute in the source) falls back to the tag.
+  const [start, end] = origin.attribute ? [origin.attribute.valueStart, origin.attribute.valueEnd] : [origin.element.start + 1, origin.element.nameEnd];
   if (end > model.document.text.length) return undefined;
   return { source: origin.source.ref, range: model.document.lines.range(start, end) };
 }

@@ -43,7 +43,7 @@ export interface EsminiProcessResult {
   end: EsminiEnd;
   exitCode: number | null;
   signal: string | null;
-  /** esmini's stdout and stderr as they came, up to maxOutputChars. */
+  /** esmini's stdout and stderr as they came; beyond maxOutputChars, its head and tail. */
   output: string;
   droppedOutput: number;
   wallMs: number;
@@ -100,18 +100,33 @@ export function runEsminiProcess(options: EsminiProcessOptions): Promise<EsminiP
       for (const timer of timers) clearTimeout(timer);
       clearInterval(poll);
       options.cancel?.removeEventListener('abort', onCancel);
-      resolve({ args, output, droppedOutput, wallMs: Date.now() - started, ...result });
+      resolve({ args, output: fullOutput(), droppedOutput, wallMs: Date.now() - started, ...result });
     };
     const child = spawn(options.program, args, { cwd: options.workDir, stdio: ['ignore', 'pipe', 'pipe'] });
+    // Past the limit the middle goes: the head has the loading messages, the tail how it ended.
+    const half = Math.floor(options.maxOutputChars / 2);
+    let tail = '';
     const collect = (chunk: Buffer) => {
       const text = chunk.toString('utf8');
       options.onOutput?.(text);
-      const room = options.maxOutputChars - output.length;
-      if (room >= text.length) output += text;
-      else {
-        if (room > 0) output += text.slice(0, room);
-        droppedOutput += text.length - Math.max(0, room);
+      if (output.length + text.length <= half) {
+        output += text;
+        return;
       }
+      const room = Math.max(0, half - output.length);
+      output += text.slice(0, room);
+      tail += text.slice(room);
+      if (tail.length > 2 * half) {
+        droppedOutput += tail.length - half;
+        tail = tail.slice(tail.length - half);
+      }
+    };
+    const fullOutput = () => {
+      if (tail.length > half) {
+        droppedOutput += tail.length - half;
+        tail = tail.slice(tail.length - half);
+      }
+      return droppedOutput > 0 ? `${output}\n(${droppedOutput} characters of output left out here)\n${tail.slice(tail.indexOf('\n') + 1)}` : output + tail;
     };
     child.stdout.on('data', collect);
     child.stderr.on('data', collect);

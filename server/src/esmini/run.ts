@@ -162,7 +162,7 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
     runFolder,
     scenarioFile,
     csvFile: hasCsv ? csvFile : undefined,
-    log: run.output + (run.droppedOutput > 0 ? `\n(${run.droppedOutput} more characters of output were dropped)\n` : ''),
+    log: run.output,
     end: run.end,
     exitCode: run.exitCode,
     simulatedTime: lastTime === undefined ? undefined : Math.min(lastTime, duration),
