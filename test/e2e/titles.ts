@@ -16,6 +16,7 @@ export const INSIDE_TESTS = {
   flatten: 'Flatten from the command palette writes a file equivalent to the CLI\'s',
   structure: 'Show Structure lists the main file, packages, scenarios and groups',
   renameInPackage: 'renaming a group inside a .mosc updates the package and the files that use it',
+  runEsmini: "Run in esmini from the CodeLens puts esmini's error on the simple scenario's line, and a clean run clears it",
 } as const;
 
 export type InsideTestKey = keyof typeof INSIDE_TESTS;
