@@ -2,7 +2,7 @@ import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
-import { esminiProgram, requireEsmini, sharedRoads } from '../support/esmini';
+import { esminiBinary, requireEsmini, esminiRoads } from '../support/esmini';
 import { libraryDir, listFiles, repoRoot, requireCorpus, runCli } from '../support/fixtures';
 
 function examplesWith(from?: string, to?: string): string {
@@ -35,7 +35,7 @@ describe('cli: run in esmini', function () {
     const root = examplesWith();
     const out = path.join(fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-run-out-')), 'run.csv');
     const before = listFiles(root);
-    const run = runCli(['run', '.', '--check', '--duration', '4', '--road-path', sharedRoads, '--esmini', esminiProgram, '--csv', out], { cwd: root });
+    const run = runCli(['run', '.', '--check', '--duration', '4', '--road-path', esminiRoads, '--esmini', esminiBinary, '--csv', out], { cwd: root });
     assert.equal(run.status, 0, run.stderr);
     assert.match(run.stderr, /esmini: 0 errors, \d+ warnings?; 4\.00 s simulated/);
     assert.deepEqual(listFiles(root), before);
@@ -47,7 +47,7 @@ describe('cli: run in esmini', function () {
     requireEsmini(this);
     const root = examplesWith('dynamicsShape="linear" value="3"', 'dynamicsShape="wobbly" value="3"');
     const line = fs.readFileSync(path.join(root, 'lane_change.xosc'), 'utf8').split('\n').findIndex((text) => text.includes('wobbly')) + 1;
-    const args = ['run', 'main.xosc', '--duration', '2', '--road-path', sharedRoads, '--esmini', esminiProgram];
+    const args = ['run', 'main.xosc', '--duration', '2', '--road-path', esminiRoads, '--esmini', esminiBinary];
     const checked = runCli([...args, '--check'], { cwd: root });
     assert.equal(checked.status, 1, checked.stderr);
     assert.match(checked.stderr, new RegExp(`^lane_change\\.xosc:${line}:\\d+: error: Dynamics shape wobbly unexpected.* \\(esmini\\)$`, 'm'));
@@ -59,7 +59,7 @@ describe('cli: run in esmini', function () {
     const root = examplesWith();
     const main = path.join(root, 'main.xosc');
     fs.writeFileSync(main, fs.readFileSync(main, 'utf8').replace('maneuverGroupName="CutIn"', 'maneuverGroupName="CutOut"'));
-    const run = runCli(['run', 'main.xosc', '--esmini', esminiProgram], { cwd: root });
+    const run = runCli(['run', 'main.xosc', '--esmini', esminiBinary], { cwd: root });
     assert.equal(run.status, 1);
     assert.match(run.stderr, /has no ManeuverGroup named 'CutOut'/);
     assert.match(run.stderr, /cannot be flattened; nothing was run/);
@@ -69,7 +69,7 @@ describe('cli: run in esmini', function () {
     requireCorpus(this);
     requireEsmini(this);
     const mains = fs.readdirSync(libraryDir).filter((name) => name.startsWith('modular_')).map((name) => path.join(libraryDir, name, 'main.xosc'));
-    const run = runCli(['run', ...mains, '--check', '-q', '--duration', '1', '--road-path', sharedRoads, '--esmini', esminiProgram], { env: { SCENARIO_PATH: libraryDir } });
+    const run = runCli(['run', ...mains, '--check', '-q', '--duration', '1', '--road-path', esminiRoads, '--esmini', esminiBinary], { env: { SCENARIO_PATH: libraryDir } });
     assert.equal(run.status, 0, run.stderr);
     assert.equal(run.stderr, '', 'quiet: errors only');
   });

@@ -11,7 +11,7 @@ import { lastCsvTime, makeRunFolder, runEsminiProcess } from '../../server/src/e
 import { EsminiRunOptions, EsminiRunResult, removeRunFolder, runScenario } from '../../server/src/esmini/run';
 import { TIME_LIMIT_CONDITION, withTimeLimit } from '../../server/src/esmini/timeLimit';
 import { parseXml } from '../../server/src/core/xml';
-import { esminiProgram, readTracks, requireEsmini, sharedCatalogs, sharedRoads } from '../support/esmini';
+import { esminiBinary, tracksOf, readEsminiCsv, requireEsmini, esminiCatalogs, esminiRoads } from '../support/esmini';
 import { libraryDir, listFiles, repoRoot, requireCorpus } from '../support/fixtures';
 
 const examples = path.join(repoRoot, 'examples');
@@ -35,7 +35,7 @@ function lineOf(file: string, line: number): string {
 
 const results: EsminiRunResult[] = [];
 async function run(store: ScenarioStore, main: string, options: EsminiRunOptions = {}): Promise<EsminiRunResult> {
-  const result = await runScenario(new Flattener(store), diskRef(main), { esminiPath: esminiProgram, roadPath: [sharedRoads], ...options });
+  const result = await runScenario(new Flattener(store), diskRef(main), { esminiPath: esminiBinary, roadPath: [esminiRoads], ...options });
   results.push(result);
   return result;
 }
@@ -143,7 +143,7 @@ describe('esmini: runs (the simulator built by the test setup)', function () {
     assert.ok(result.csvFile && result.scenarioFile);
     assert.ok(!result.scenarioFile.startsWith(root), 'the flattened file is written in a private folder, not beside the sources');
     assert.deepEqual(listFiles(root), before, 'nothing written beside the sources');
-    const tracks = readTracks(result.csvFile);
+    const tracks = tracksOf(readEsminiCsv(result.csvFile));
     assert.deepEqual([...tracks.keys()].sort(), ['adversary', 'ego', 'lead', 'walker']);
     for (const name of ['ego', 'adversary', 'lead', 'walker']) {
       const track = tracks.get(name) ?? [];
@@ -170,11 +170,11 @@ describe('esmini: runs (the simulator built by the test setup)', function () {
       ['pedestrian/main.xosc', diskRef(path.join(examples, 'pedestrian', 'main.xosc'))],
       ['braking.mosc', childRef(diskRef(path.join(examples, 'braking.mosc')), 'main.xosc')],
     ] as const) {
-      const result = await runScenario(new Flattener(store), main, { esminiPath: esminiProgram, roadPath: [sharedRoads], duration: 10 });
+      const result = await runScenario(new Flattener(store), main, { esminiPath: esminiBinary, roadPath: [esminiRoads], duration: 10 });
       results.push(result);
       assert.equal(result.outcome, 'ok', `${file}: ${result.message}`);
       assert.deepEqual(errorsOf(result), [], file);
-      const moved = [...readTracks(result.csvFile as string).values()].map((track) => Math.hypot(track[track.length - 1].x - track[0].x, track[track.length - 1].y - track[0].y));
+      const moved = [...tracksOf(readEsminiCsv(result.csvFile as string)).values()].map((track) => Math.hypot(track[track.length - 1].x - track[0].x, track[track.length - 1].y - track[0].y));
       assert.ok(Math.max(...moved) > 5, `${file}: moved ${moved.map((distance) => distance.toFixed(1)).join(', ')} m`);
     }
   });
@@ -187,11 +187,11 @@ describe('esmini: runs (the simulator built by the test setup)', function () {
     fs.writeFileSync(scenarioFile, flat.text as string);
     const csvFile = path.join(folder, 'run.csv');
     const result = await runEsminiProcess({
-      program: esminiProgram,
+      program: esminiBinary,
       scenarioFile,
       workDir: folder,
       csvFile,
-      searchPath: [examples, sharedRoads],
+      searchPath: [examples, esminiRoads],
       timeStep: 0.05,
       seed: 1,
       duration: 2,
@@ -243,8 +243,8 @@ describe('esmini: runs (the simulator built by the test setup)', function () {
     requireEsmini(this);
     const root = examplesCopy();
     fs.mkdirSync(path.join(root, 'roads'));
-    fs.copyFileSync(path.join(sharedRoads, 'straight_500m.xodr'), path.join(root, 'roads', 'straight.xodr'));
-    fs.cpSync(path.join(sharedCatalogs, 'Vehicles'), path.join(root, 'catalogs', 'vehicles'), { recursive: true });
+    fs.copyFileSync(path.join(esminiRoads, 'straight_500m.xodr'), path.join(root, 'roads', 'straight.xodr'));
+    fs.cpSync(path.join(esminiCatalogs, 'Vehicles'), path.join(root, 'catalogs', 'vehicles'), { recursive: true });
     const text = fs
       .readFileSync(path.join(root, 'lane_change.xosc'), 'utf8')
       .replace('<CatalogLocations/>', '<CatalogLocations><VehicleCatalog><Directory path="catalogs/vehicles"/></VehicleCatalog></CatalogLocations>')

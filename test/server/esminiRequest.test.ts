@@ -3,7 +3,7 @@ import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
 import { RunEsminiRequest, RunEsminiResult } from '../../server/src/protocol';
-import { esminiProgram, requireEsmini, sharedRoads } from '../support/esmini';
+import { esminiBinary, requireEsmini, esminiRoads } from '../support/esmini';
 import { repoRoot } from '../support/fixtures';
 import { fileUri, TestClient } from './harness';
 
@@ -21,7 +21,7 @@ describe('language server: the Run in esmini request over JSON-RPC', function ()
   afterEach(async () => client.stop());
 
   const run = (uri: string, options: Record<string, unknown> = {}) =>
-    client.connection.sendRequest(RunEsminiRequest, { uri, esminiPath: esminiProgram, roadPath: [sharedRoads], duration: 3, ...options }) as Promise<RunEsminiResult>;
+    client.connection.sendRequest(RunEsminiRequest, { uri, esminiPath: esminiBinary, roadPath: [esminiRoads], duration: 3, ...options }) as Promise<RunEsminiResult>;
 
   it('a missing esmini is an answer that says how to get it, not a failure', async () => {
     const result = await run(fileUri(path.join(root, 'main.xosc')), { esminiPath: path.join(root, 'no-esmini') });
