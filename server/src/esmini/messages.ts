@@ -38,8 +38,12 @@ interface MessageRule {
   note?: string;
 }
 
+function allElements(root: XmlElement): XmlElement[] {
+  return [root, ...descendants(root)];
+}
+
 function elementsNamed(root: XmlElement, name: string): XmlElement[] {
-  return [root, ...descendants(root)].filter((element) => element.name === name);
+  return allElements(root).filter((element) => element.name === name);
 }
 
 function ancestorNamed(element: XmlElement, name: string): XmlElement | undefined {
@@ -66,7 +70,7 @@ const RULES: MessageRule[] = [
   {
     // ScenarioReader.cpp and RoadManager: a position on a road the road file does not have.
     pattern: /^(?:Error: )?(?:Failed to find road|No matching road with ID|Failed to resolve road id) (\S+)/,
-    targets: (root, match) => [root, ...descendants(root)].filter((element) => attribute(element, 'roadId')?.value === match[1]).map((element) => ({ element, attribute: 'roadId' })),
+    targets: (root, match) => allElements(root).filter((element) => attribute(element, 'roadId')?.value === match[1]).map((element) => ({ element, attribute: 'roadId' })),
   },
   {
     // ScenarioReader.cpp, printed when Init places no entity (or its actions depend on each other).
@@ -82,7 +86,7 @@ const RULES: MessageRule[] = [
     // "cloudState is deprecated in v1.2 ...", "In Precipitation, intensity is deprecated in v1.1 ...".
     pattern: /^(?:In (\w+), )?(\w+) is deprecated/,
     targets: (root, match) =>
-      [root, ...descendants(root)].filter((element) => (!match[1] || element.name === match[1]) && attribute(element, match[2])).map((element) => ({ element, attribute: match[2] })),
+      allElements(root).filter((element) => (!match[1] || element.name === match[1]) && attribute(element, match[2])).map((element) => ({ element, attribute: match[2] })),
   },
   {
     pattern: /^Property: color format invalid/,
@@ -96,7 +100,7 @@ const RULES: MessageRule[] = [
   },
   {
     pattern: /^(?:Invalid Dynamics shape: (\S+)|Dynamics shape (\S+) unexpected)/,
-    targets: (root, match) => [root, ...descendants(root)].filter((element) => attribute(element, 'dynamicsShape')?.value === (match[1] ?? match[2])).map((element) => ({ element, attribute: 'dynamicsShape' })),
+    targets: (root, match) => allElements(root).filter((element) => attribute(element, 'dynamicsShape')?.value === (match[1] ?? match[2])).map((element) => ({ element, attribute: 'dynamicsShape' })),
   },
   {
     pattern: /^(?:Unexpected XML element|Unsupported element type|Unexpected child element|Unsupported global action|Unsupported EnvironmentAction|Unexpected property element): (\w+)/,
@@ -113,7 +117,7 @@ function targetsByWords(root: XmlElement, text: string): Target[] {
   const wordSet = new Set(words);
   // Storyboard elements first: an entity's name also appears in messages about its actions.
   const storyboard = root.children.find((element) => element.name === 'Storyboard');
-  const elements = storyboard ? [...descendants(storyboard), root, ...descendants(root).filter((element) => element.start < storyboard.start || element.start >= storyboard.end)] : [root, ...descendants(root)];
+  const elements = storyboard ? [...descendants(storyboard), root, ...descendants(root).filter((element) => element.start < storyboard.start || element.start >= storyboard.end)] : allElements(root);
   for (const naming of NAMING_ATTRIBUTES) {
     const found = elements.filter((element) => wordSet.has(attribute(element, naming)?.value ?? '')).map((element) => ({ element, attribute: naming }));
     if (found.length > 0) return found;
