@@ -15,7 +15,8 @@ import {
   semanticProblems,
   valueAt,
 } from '../../server/src/core/semantics';
-import { diskRef, ScenarioStore } from '../../server/src/core/sources';
+import JSZip from 'jszip';
+import { childRef, diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { parseXml } from '../../server/src/core/xml';
 import { makeWorkspace } from '../support/fixtures';
 
@@ -233,5 +234,37 @@ describe('semantics: scopes, values and catalogs', () => {
       'unused-parameter:hint:Count',
       'unused-parameter:hint:Idle',
     ]);
+  });
+});
+
+describe('semantics: catalogs inside packages, through SCENARIO_PATH, and from unsaved text', () => {
+  it('finds the catalogs of a main.xosc inside a .mosc in the package', async () => {
+    const zip = new JSZip();
+    zip.file('main.xosc', SCENARIO);
+    zip.file('catalogs/VehicleCatalog.xosc', CATALOG);
+    const root = makeWorkspace({ 'scenario.mosc': await zip.generateAsync({ type: 'uint8array' }) });
+    const store = new ScenarioStore({ scenarioPath: [], root });
+    const main = childRef(diskRef(path.join(root, 'scenario.mosc')), 'main.xosc');
+    const semantics = await analyzeDocument(main, parseXml(SCENARIO), new CatalogLoader(store), false);
+    const car = semantics.catalogs.references.find((reference) => reference.entryName === 'car');
+    assert.equal(car?.entry?.file.ref.entries.join('/'), 'catalogs/VehicleCatalog.xosc');
+  });
+
+  it('finds a catalog directory that does not exist beside the file through SCENARIO_PATH, as esmini does with --path', async () => {
+    const root = makeWorkspace({ 'scenarios/scenario.xosc': SCENARIO, 'shared/catalogs/VehicleCatalog.xosc': CATALOG });
+    const store = new ScenarioStore({ scenarioPath: [path.join(root, 'shared')], root });
+    const semantics = await analyzeDocument(diskRef(path.join(root, 'scenarios', 'scenario.xosc')), parseXml(SCENARIO), new CatalogLoader(store), false);
+    assert.equal(semantics.catalogs.locations[0].directories[0].via, 'scenarioPath');
+    assert.ok(semantics.catalogs.references.find((reference) => reference.entryName === 'car')?.entry);
+  });
+
+  it('reads a catalog file from the editor\'s unsaved text', async () => {
+    const root = makeWorkspace({ 'scenario.xosc': SCENARIO, 'catalogs/VehicleCatalog.xosc': CATALOG });
+    const store = new ScenarioStore({ scenarioPath: [], root });
+    store.setOverlay(diskRef(path.join(root, 'catalogs', 'VehicleCatalog.xosc')), CATALOG.replace('<Vehicle name="car"', '<Vehicle name="truck"'));
+    const semantics = await analyzeDocument(diskRef(path.join(root, 'scenario.xosc')), parseXml(SCENARIO), new CatalogLoader(store), false);
+    const codes = semanticProblems(semantics).map((problem) => `${problem.code}:${problem.message}`);
+    assert.ok(codes.some((code) => code.startsWith("unknown-catalog-entry:catalog 'VehicleCatalog' has no entry named 'car'")), codes.join('\n'));
+    assert.ok(codes.some((code) => code.endsWith('it has: truck')), 'truck exists in the unsaved text');
   });
 });
