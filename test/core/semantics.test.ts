@@ -70,6 +70,14 @@ const SCENARIO = `<?xml version="1.0"?>
     <ScenarioObject name="Bike">
       <CatalogReference catalogName="BikeCatalog" entryName="bike"/>
     </ScenarioObject>
+    <ScenarioObject name="Truck">
+      <Vehicle name="truck" vehicleCategory="truck">
+        <ParameterDeclarations>
+          <ParameterDeclaration name="Speed" parameterType="double" value="25"/>
+        </ParameterDeclarations>
+        <Performance maxSpeed="$Speed" maxAcceleration="3" maxDeceleration="8"/>
+      </Vehicle>
+    </ScenarioObject>
   </Entities>
   <Storyboard>
     <Story name="S1">
@@ -142,8 +150,8 @@ describe('semantics: scopes, values and catalogs', () => {
     assert.ok(root);
     assert.equal(root.element.name, 'OpenSCENARIO');
     assert.deepEqual(root.declarations.map((declaration) => declaration.name), ['Speed', 'Twice', 'Count', 'Owner', 'Idle', 'Owner']);
-    assert.deepEqual(root.children.map((scope) => scope.element.name), ['Story']);
-    assert.deepEqual(root.children[0].children.map((scope) => scope.element.name), ['Maneuver']);
+    assert.deepEqual(root.children.map((scope) => scope.element.name), ['Vehicle', 'Story']);
+    assert.deepEqual(root.children[1].children.map((scope) => scope.element.name), ['Maneuver']);
     assert.equal(scopeAt(semantics, at('$Speed"/></Action>'))?.element.name, 'Maneuver');
     assert.equal(scopeAt(semantics, at('AtRoot'))?.element.name, 'OpenSCENARIO');
   });
@@ -158,6 +166,10 @@ describe('semantics: scopes, values and catalogs', () => {
     // The Story's own value `${$Speed + 1}` sees the root's Speed, not itself.
     const storyValue = parameterUseAt(semantics, at('value="${$Speed + 1}', 10));
     assert.equal(storyValue?.declaration?.scope.element.name, 'OpenSCENARIO');
+    // An entity declared inline shadows the root too.
+    const inVehicle = declarationAt(semantics, at('maxSpeed="$Speed"', 11));
+    assert.equal(inVehicle?.scope.element.name, 'Vehicle');
+    assert.equal(semantics.evaluator.declarationValue(inVehicle!).ok && (semantics.evaluator.declarationValue(inVehicle!) as { value: number }).value, 25);
   });
 
   it('lists the references of each declaration and never mixes scopes', () => {
@@ -167,7 +179,7 @@ describe('semantics: scopes, values and catalogs', () => {
       ['ParameterDeclaration', 'ParameterDeclaration', 'AbsoluteTargetSpeed'],
       'Twice, the Story Speed, and AtRoot',
     );
-    const story = semantics.model.root!.children[0].byName.get('Speed')!;
+    const story = semantics.model.root!.children[1].byName.get('Speed')!;
     assert.deepEqual(referencesOf(semantics, story).map((use) => use.attribute.value), ['${$Speed * 2}', '${$Speed / ($Speed - 21)}', '${$Speed / ($Speed - 21)}'], 'InStory and Broken, nothing of M1 or S2');
     assert.equal(declarationAt(semantics, at('name="Twice"', 7))?.name, 'Twice');
   });
@@ -206,6 +218,8 @@ describe('semantics: scopes, values and catalogs', () => {
     assert.equal(reference.entry.name, 'car');
     assert.equal(catalogEntryFor(semantics, reference.reference.element), reference);
     const entryModel = reference.entry.file.model;
+    // Inside the catalog entry, its own declarations are found (the file has no other scope to shadow).
+    assert.ok(entryModel.uses.length === 3 && entryModel.uses.every((use) => use.declaration?.scope.element === reference.entry?.element));
     const speed = entryModel.scopes[1].byName.get('Speed')!;
     const half = entryModel.scopes[1].byName.get('Half')!;
     const assigned = entryParameterValue(semantics, reference, speed);

@@ -505,7 +505,9 @@ export class Evaluator {
         return { ok: false, errors: [{ kind: 'unknown-parameter', message: `parameter '${site.form.name}' is not declared in this scope`, start: site.form.start, end: site.form.end }], provenance: { kind: 'literal' } };
       }
       const value = this.declarationValue(declaration);
-      return value.ok ? { ...value, provenance: value.provenance } : { ok: false, errors: [lookup(site.form.name, site.form.start, site.form.end) as { error: ExpressionError }].map((entry) => entry.error), provenance: value.provenance };
+      if (value.ok) return value;
+      const error = lookup(site.form.name, site.form.start, site.form.end) as { error: ExpressionError };
+      return { ok: false, errors: [error.error], provenance: value.provenance };
     }
     const expression = site.form.expression;
     if (!expression.tree) return { ok: false, errors: expression.errors, provenance: { kind: 'literal' } };
