@@ -264,7 +264,13 @@ export function buildSemanticModel(document: XmlDocument): SemanticModel {
   const declarationByElement = new Map<XmlElement, Declaration>();
   /** Opens the scope an element holds, declaring its parameters before anything below it is read. */
   const enter = (element: XmlElement, current: Scope | undefined): Scope | undefined => {
-    const holdsDeclarations = element.children.some((child) => child.name === 'ParameterDeclarations');
+    let holdsDeclarations = false;
+    for (const child of element.children) {
+      if (child.name === 'ParameterDeclarations') {
+        holdsDeclarations = true;
+        break;
+      }
+    }
     const isCatalogEntry = element.parent !== undefined && element.parent.name === 'Catalog';
     if (!holdsDeclarations && element !== rootElement && !isCatalogEntry) return current;
     const scope: Scope = { element, parent: current, children: [], declarations: [], byName: new Map(), catalogEntry: isCatalogEntry };
@@ -398,11 +404,7 @@ export function resolveName(scope: Scope | undefined, name: string, within: Decl
     if (within && current === within.scope) {
       // The first declaration of the name is the one found, when it comes before the value being read.
       const first = current.byName.get(name);
-      if (!first || first.index >= within.index) continue;
-      for (const candidate of current.declarations) {
-        if (candidate.index >= within.index) break;
-        if (candidate.name === name) return candidate;
-      }
+      if (first && first.index < within.index) return first;
       continue;
     }
     const found = current.byName.get(name);
