@@ -185,24 +185,17 @@ function usesIn(model: SemanticModel, element: XmlElement): ParameterUse[] {
 
 /** The catalog locations an imported group's CatalogReferences need and the main file lacks. */
 function planLocations(plan: CarryPlan, main: FlatSource, source: FlatSource, output: SemanticModel, insertion: Insertion, counterpart: Map<XmlElement, XmlElement>): void {
-  const semantics = source.semantics;
   const mainLocations = main.semantics?.catalogs.locations ?? [];
   const references = output.catalogReferences.filter((reference) => reference.element.start >= insertion.start && reference.element.end <= insertion.end);
-  if (references.length === 0 || !semantics) return;
+  if (references.length === 0 || !source.model) return;
+  const sourceEvaluator = new Evaluator(semanticModelOf(source.model.document));
   const needed: CarriedLocation[] = [];
-  // The source's semantics describe its file as written; for a flattened package only its own locations are known.
-  const plain = source.model?.document === semantics.model.document;
   for (const reference of references) {
+    // The catalog name as the source reads it (it may be one of its parameters).
     const original = counterpart.get(reference.element);
-    const resolution = plain ? semantics.catalogs.references.find((candidate) => candidate.reference.element === original) : undefined;
-    const file = resolution?.catalogs[0];
-    for (const location of semantics.catalogs.locations) {
-      for (const directory of location.directories) {
-        if (directory.packageRef) continue;
-        if (file && (file.ref.entries.length > 0 || path.dirname(file.ref.disk) !== directory.directory)) continue;
-        needed.push({ kind: location.location.kind, directory: directory.directory, source });
-      }
-    }
+    const name = original ? sourceEvaluator.textOf(original, attribute(original, 'catalogName'))?.trim() : undefined;
+    const place = name === undefined ? undefined : source.catalogIndex.get(name);
+    if (place) needed.push({ kind: place.kind, directory: place.directory, source });
   }
   for (const need of needed) {
     const own = mainLocations.find((location) => location.location.kind === need.kind);
