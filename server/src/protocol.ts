@@ -3,6 +3,7 @@
  * parameters and results, typed for both sides (both bundles import this file).
  */
 import { RequestType } from 'vscode-languageserver-protocol';
+import { SceneRequest } from './sceneProtocol';
 
 export interface FlattenOptions {
   /** Write (or show) the flattened scenario even when errors were found, skipping what cannot be resolved. */
@@ -39,7 +40,7 @@ export const PackRequest = new RequestType<PackParams, WriteResult, void>('modul
 /** The reference graph for the Show Structure view; null when the URI is no scenario. */
 export const StructureRequest = new RequestType<StructureParams, StructureNode | null, void>('modular2simple/structure');
 
-export const CUSTOM_REQUESTS = [FlattenToTextRequest.method, FlattenToFileRequest.method, PackRequest.method, StructureRequest.method];
+export const CUSTOM_REQUESTS = [FlattenToTextRequest.method, FlattenToFileRequest.method, PackRequest.method, StructureRequest.method, SceneRequest.method];
 
 /** URI scheme of files inside a `.mosc`: `mosc:/abs/path/pkg.mosc/inner.mosc/main.xosc`. */
 export const PACKAGE_SCHEME = 'mosc';

@@ -18,6 +18,7 @@ import * as pack from './pack';
 import * as prepareRename from './prepareRename';
 import * as references from './references';
 import * as rename from './rename';
+import * as scene from './scene';
 import * as structure from './structure';
 import * as willRenameFiles from './willRenameFiles';
 import * as workspaceSymbol from './workspaceSymbol';
@@ -46,6 +47,7 @@ const HANDLERS: { register(context: ServerContext): void }[] = [
   flattenToFile,
   pack,
   structure,
+  scene,
 ];
 
 export function registerHandlers(context: ServerContext): void {
