@@ -1,7 +1,7 @@
 import * as assert from 'node:assert/strict';
 import { parseOpenDrive } from '../../server/src/core/opendrive/road';
 import { sampleNetwork } from '../../server/src/core/opendrive/sample';
-import { evaluateArithmetic, scenarioScene } from '../../server/src/core/scene';
+import { scenarioScene } from '../../server/src/core/scene';
 import { parseXml } from '../../server/src/core/xml';
 import { sceneScenario, STRAIGHT_ROAD, teleport } from '../support/roads';
 
@@ -67,14 +67,13 @@ describe('core: scene of a scenario (entities at their start, events)', () => {
     close(left.hdg, Math.PI, 'left lane heading');
   });
 
-  it('evaluates the arithmetic of ${...} expressions', () => {
-    const parameters = new Map([['S', '30'], ['Half', '${$S / 2}']]);
-    assert.equal(evaluateArithmetic('$S - 15 * (2 + -1) % 7', parameters), 30 - ((15 * 1) % 7));
-    assert.equal(evaluateArithmetic('.5e1+1', parameters), 6);
-    assert.throws(() => evaluateArithmetic('$S +', parameters), /cannot evaluate/);
-    assert.throws(() => evaluateArithmetic('$Missing', parameters), /\$Missing has no numeric value/);
-    const text = sceneScenario('straight.xodr', teleport('ego', '<LanePosition roadId="1" laneId="-1" s="${$Half + 5}"/>'), '', '<ParameterDeclaration name="S" parameterType="double" value="30"/><ParameterDeclaration name="Half" parameterType="double" value="${$S / 2}"/>');
-    assert.equal(scenarioScene(parseXml(text), network).entities[0].x, 20);
+  it('evaluates $name and ${...} with the semantic model (scopes, functions), and says which value it cannot read', () => {
+    const declarations = '<ParameterDeclaration name="S" parameterType="double" value="30"/><ParameterDeclaration name="Half" parameterType="double" value="${$S / 2}"/>';
+    const at = (s: string) => scenarioScene(parseXml(sceneScenario('straight.xodr', teleport('ego', `<LanePosition roadId="1" laneId="-1" s="${s}"/>`), '', declarations)), network).entities[0];
+    assert.equal(at('${$Half + 5}').x, 20);
+    assert.equal(at('${$S - 15 * (2 + -1) % 7}').x, 30 - ((15 * 1) % 7));
+    assert.equal(at('${max(round(.5e1 + 1.4), sqrt(16))}').x, 6);
+    assert.match(at('$Missing').problem ?? '', /\$Missing/);
   });
 
   it('says why a position cannot be placed instead of guessing', () => {

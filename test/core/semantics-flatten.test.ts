@@ -81,6 +81,40 @@ describe('semantics across a flatten (SPEC 11)', function () {
     assert.equal(conflict.related?.[0].range.start.line, 4, 'and at the source declaration');
   });
 
+  it('never declares a name twice: a carried value using a parameter the main file declares reads the main file\'s', async () => {
+    const root = fixtureWorkspace({
+      'speed_up.xosc': (text) => text.replace('name="SlowFactor" parameterType="double" value="0.5"', 'name="SlowFactor" parameterType="double" value="${$TargetSpeed / 40}"'),
+      'main.xosc': (text) => text.replace('<ParameterDeclaration name="owner"', '<ParameterDeclaration name="TargetSpeed" parameterType="double" value="30"/>\n    <ParameterDeclaration name="owner"'),
+    });
+    const result = await flatten(root);
+    assert.ok(result.text, codes(result.problems).join('\n'));
+    const names = [...result.text.matchAll(/<ParameterDeclaration name="(\w+)"/g)].map((match) => match[1]);
+    assert.deepEqual(names, ['TargetSpeed', 'owner', 'SlowFactor']);
+    assert.deepEqual(codes(result.problems), ['main.xosc:5:parameter-conflict']);
+  });
+
+  it('carries through a nested package: what the package carried into its output is carried again', async () => {
+    const inner = fixtureWorkspace();
+    const files: Record<string, string> = {};
+    for (const name of ['main.xosc', 'speed_up.xosc', 'catalogs/Vehicles/VehicleCatalog.xosc', 'catalogs/Maneuvers/ManeuverCatalog.xosc']) {
+      files[`inner/${name}`] = fs.readFileSync(path.join(inner, name), 'utf8');
+    }
+    files['catalogs/Vehicles/VehicleCatalog.xosc'] = files['inner/catalogs/Vehicles/VehicleCatalog.xosc'];
+    files['main.xosc'] = files['inner/main.xosc']
+      .replace('scenarioFileName="speed_up.xosc"', 'scenarioFileName="inner.mosc"')
+      .replace('maneuverGroupName="Accelerate"', 'maneuverGroupName="Drive.Accelerate"')
+      .replace('<ParameterReference key="SimulationTimeCondition.value" value="6"/>', '');
+    const root = makeWorkspace(files);
+    const result = await flatten(root);
+    assert.ok(result.text, codes(result.problems).join('\n'));
+    const names = [...result.text.matchAll(/<ParameterDeclaration name="(\w+)"/g)].map((match) => match[1]);
+    assert.deepEqual(names, ['owner', 'TargetSpeed', 'SlowFactor']);
+    assert.match(result.text, /<Directory path="inner\/catalogs\/Maneuvers"\/>/);
+    assert.match(result.text, /name="Drive.Drive.Accelerate"/);
+    assert.match(result.text, /<SimulationTimeCondition value="6"/, 'the package main file\'s override is kept');
+    assert.deepEqual(codes(result.problems), []);
+  });
+
   it('reports a reference to a group that flattening renamed at its source position, as an error', async () => {
     const condition = (ref: string) =>
       `<Condition name="AfterAccelerate" delay="0" conditionEdge="none"><ByValueCondition><StoryboardElementStateCondition storyboardElementType="maneuverGroup" storyboardElementRef="${ref}" state="completeState"/></ByValueCondition></Condition>`;

@@ -15,7 +15,8 @@ import {
   semanticProblems,
   valueAt,
 } from '../../server/src/core/semantics';
-import { diskRef, ScenarioStore } from '../../server/src/core/sources';
+import JSZip from 'jszip';
+import { childRef, diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { parseXml } from '../../server/src/core/xml';
 import { makeWorkspace } from '../support/fixtures';
 
@@ -68,6 +69,14 @@ const SCENARIO = `<?xml version="1.0"?>
     </ScenarioObject>
     <ScenarioObject name="Bike">
       <CatalogReference catalogName="BikeCatalog" entryName="bike"/>
+    </ScenarioObject>
+    <ScenarioObject name="Truck">
+      <Vehicle name="truck" vehicleCategory="truck">
+        <ParameterDeclarations>
+          <ParameterDeclaration name="Speed" parameterType="double" value="25"/>
+        </ParameterDeclarations>
+        <Performance maxSpeed="$Speed" maxAcceleration="3" maxDeceleration="8"/>
+      </Vehicle>
     </ScenarioObject>
   </Entities>
   <Storyboard>
@@ -141,8 +150,8 @@ describe('semantics: scopes, values and catalogs', () => {
     assert.ok(root);
     assert.equal(root.element.name, 'OpenSCENARIO');
     assert.deepEqual(root.declarations.map((declaration) => declaration.name), ['Speed', 'Twice', 'Count', 'Owner', 'Idle', 'Owner']);
-    assert.deepEqual(root.children.map((scope) => scope.element.name), ['Story']);
-    assert.deepEqual(root.children[0].children.map((scope) => scope.element.name), ['Maneuver']);
+    assert.deepEqual(root.children.map((scope) => scope.element.name), ['Vehicle', 'Story']);
+    assert.deepEqual(root.children[1].children.map((scope) => scope.element.name), ['Maneuver']);
     assert.equal(scopeAt(semantics, at('$Speed"/></Action>'))?.element.name, 'Maneuver');
     assert.equal(scopeAt(semantics, at('AtRoot'))?.element.name, 'OpenSCENARIO');
   });
@@ -157,6 +166,10 @@ describe('semantics: scopes, values and catalogs', () => {
     // The Story's own value `${$Speed + 1}` sees the root's Speed, not itself.
     const storyValue = parameterUseAt(semantics, at('value="${$Speed + 1}', 10));
     assert.equal(storyValue?.declaration?.scope.element.name, 'OpenSCENARIO');
+    // An entity declared inline shadows the root too.
+    const inVehicle = declarationAt(semantics, at('maxSpeed="$Speed"', 11));
+    assert.equal(inVehicle?.scope.element.name, 'Vehicle');
+    assert.equal(semantics.evaluator.declarationValue(inVehicle!).ok && (semantics.evaluator.declarationValue(inVehicle!) as { value: number }).value, 25);
   });
 
   it('lists the references of each declaration and never mixes scopes', () => {
@@ -166,7 +179,7 @@ describe('semantics: scopes, values and catalogs', () => {
       ['ParameterDeclaration', 'ParameterDeclaration', 'AbsoluteTargetSpeed'],
       'Twice, the Story Speed, and AtRoot',
     );
-    const story = semantics.model.root!.children[0].byName.get('Speed')!;
+    const story = semantics.model.root!.children[1].byName.get('Speed')!;
     assert.deepEqual(referencesOf(semantics, story).map((use) => use.attribute.value), ['${$Speed * 2}', '${$Speed / ($Speed - 21)}', '${$Speed / ($Speed - 21)}'], 'InStory and Broken, nothing of M1 or S2');
     assert.equal(declarationAt(semantics, at('name="Twice"', 7))?.name, 'Twice');
   });
@@ -205,6 +218,8 @@ describe('semantics: scopes, values and catalogs', () => {
     assert.equal(reference.entry.name, 'car');
     assert.equal(catalogEntryFor(semantics, reference.reference.element), reference);
     const entryModel = reference.entry.file.model;
+    // Inside the catalog entry, its own declarations are found (the file has no other scope to shadow).
+    assert.ok(entryModel.uses.length === 3 && entryModel.uses.every((use) => use.declaration?.scope.element === reference.entry?.element));
     const speed = entryModel.scopes[1].byName.get('Speed')!;
     const half = entryModel.scopes[1].byName.get('Half')!;
     const assigned = entryParameterValue(semantics, reference, speed);
@@ -233,5 +248,37 @@ describe('semantics: scopes, values and catalogs', () => {
       'unused-parameter:hint:Count',
       'unused-parameter:hint:Idle',
     ]);
+  });
+});
+
+describe('semantics: catalogs inside packages, through SCENARIO_PATH, and from unsaved text', () => {
+  it('finds the catalogs of a main.xosc inside a .mosc in the package', async () => {
+    const zip = new JSZip();
+    zip.file('main.xosc', SCENARIO);
+    zip.file('catalogs/VehicleCatalog.xosc', CATALOG);
+    const root = makeWorkspace({ 'scenario.mosc': await zip.generateAsync({ type: 'uint8array' }) });
+    const store = new ScenarioStore({ scenarioPath: [], root });
+    const main = childRef(diskRef(path.join(root, 'scenario.mosc')), 'main.xosc');
+    const semantics = await analyzeDocument(main, parseXml(SCENARIO), new CatalogLoader(store), false);
+    const car = semantics.catalogs.references.find((reference) => reference.entryName === 'car');
+    assert.equal(car?.entry?.file.ref.entries.join('/'), 'catalogs/VehicleCatalog.xosc');
+  });
+
+  it('finds a catalog directory that does not exist beside the file through SCENARIO_PATH, as esmini does with --path', async () => {
+    const root = makeWorkspace({ 'scenarios/scenario.xosc': SCENARIO, 'shared/catalogs/VehicleCatalog.xosc': CATALOG });
+    const store = new ScenarioStore({ scenarioPath: [path.join(root, 'shared')], root });
+    const semantics = await analyzeDocument(diskRef(path.join(root, 'scenarios', 'scenario.xosc')), parseXml(SCENARIO), new CatalogLoader(store), false);
+    assert.equal(semantics.catalogs.locations[0].directories[0].via, 'scenarioPath');
+    assert.ok(semantics.catalogs.references.find((reference) => reference.entryName === 'car')?.entry);
+  });
+
+  it('reads a catalog file from the editor\'s unsaved text', async () => {
+    const root = makeWorkspace({ 'scenario.xosc': SCENARIO, 'catalogs/VehicleCatalog.xosc': CATALOG });
+    const store = new ScenarioStore({ scenarioPath: [], root });
+    store.setOverlay(diskRef(path.join(root, 'catalogs', 'VehicleCatalog.xosc')), CATALOG.replace('<Vehicle name="car"', '<Vehicle name="truck"'));
+    const semantics = await analyzeDocument(diskRef(path.join(root, 'scenario.xosc')), parseXml(SCENARIO), new CatalogLoader(store), false);
+    const codes = semanticProblems(semantics).map((problem) => `${problem.code}:${problem.message}`);
+    assert.ok(codes.some((code) => code.startsWith("unknown-catalog-entry:catalog 'VehicleCatalog' has no entry named 'car'")), codes.join('\n'));
+    assert.ok(codes.some((code) => code.endsWith('it has: truck')), 'truck exists in the unsaved text');
   });
 });

@@ -1,24 +1,17 @@
 import { spawn } from 'node:child_process';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { repoRoot, sharedDir } from './fixtures';
+import { esminiBinDir, esminiXodrDir, requireEsminiProgram } from './esminiBinaries';
 
 /** esmini as built by `bash ../shared/esmini/build.sh .cache/esmini`. */
-export const esminiBinary = path.join(repoRoot, '.cache', 'esmini', 'bin', 'esmini');
-export const esminiRoads = path.join(sharedDir, 'esmini', 'xodr');
+export const esminiBinary = path.join(esminiBinDir, 'esmini');
+export const esminiRoads = esminiXodrDir;
 /** The catalogs that esmini's own scenarios use, shipped with its source package. */
-export const esminiCatalogs = path.join(sharedDir, 'esmini', 'Catalogs');
+export const esminiCatalogs = path.join(esminiXodrDir, '..', 'Catalogs');
 
-/**
- * Skips the calling test with a message when esmini is not built; with M2S_REQUIRE_ESMINI set, a
- * missing esmini fails instead.
- */
+/** Skips the calling test with a message when esmini is not built; fails instead with M2S_REQUIRE_ESMINI set. */
 export function requireEsmini(context: Mocha.Context): void {
-  if (fs.existsSync(esminiBinary) && fs.existsSync(esminiRoads)) return;
-  const message = `esmini is not built (${path.relative(repoRoot, esminiBinary)}) or ${esminiRoads} is absent; build it with: bash ../shared/esmini/build.sh .cache/esmini`;
-  if (process.env.M2S_REQUIRE_ESMINI) throw new Error(message);
-  console.log(`    (skipped: ${message})`);
-  context.skip();
+  requireEsminiProgram(context, 'esmini');
 }
 
 /** One step of a run: simulated time and each entity's world position. */
@@ -36,7 +29,7 @@ export async function runEsmini(scenario: string, maxTime: number, wallLimitMs =
   const directory = path.dirname(scenario);
   const csv = path.join(directory, `${path.basename(scenario, '.xosc')}.esmini.csv`);
   fs.rmSync(csv, { force: true });
-  const args = ['--headless', '--osc', scenario, '--fixed_timestep', '0.05', '--seed', '1', '--csv_logger', csv, '--disable_log', '--path', esminiRoads];
+  const args = ['--headless', '--osc', scenario, '--fixed_timestep', '0.05', '--seed', '1', '--csv_logger', csv, '--disable_log', '--path', esminiXodrDir];
   const output: string[] = [];
   const code = await new Promise<number | null>((resolve, reject) => {
     const child = spawn(esminiBinary, args, { cwd: directory, stdio: ['ignore', 'pipe', 'pipe'] });

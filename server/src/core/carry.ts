@@ -80,7 +80,25 @@ export function planCarry(
     });
   };
 
-  const carry = (declaration: Declaration, source: FlatSource, model: SemanticModel) => {
+  const mainRoot = mainSemantics.model.root;
+  /** The main file's root declaration of a name wins over a source's, with a warning when the values differ. */
+  const keptByMain = (declaration: Declaration, source: FlatSource, group: string): boolean => {
+    const mainDeclaration = mainRoot?.byName.get(declaration.name);
+    if (!mainDeclaration) return false;
+    if (!sameValue(mainDeclaration, declaration) && mainDeclaration.nameAttribute) {
+      const dropped = origin(source, declaration.element);
+      conflict(
+        declaration.name,
+        { source: main.ref, range: mainModel.document.lines.range(mainDeclaration.nameAttribute.valueStart, mainDeclaration.nameAttribute.valueEnd), message: '' },
+        dropped && { ...dropped, message: `the source's declaration (value '${declaration.value}')` },
+        `parameter '${declaration.name}' is declared here with value '${mainDeclaration.value}', but the imported group '${group}' uses the declaration of ${displayRef(dropped?.source ?? source.ref)}${dropped ? `:${dropped.range.start.line + 1}` : ''} with value '${declaration.value}'; the output keeps this one`,
+      );
+    }
+    return true;
+  };
+
+  const carry = (declaration: Declaration, source: FlatSource, model: SemanticModel, group: string) => {
+    if (keptByMain(declaration, source, group)) return;
     const existing = carried.get(declaration.name);
     if (existing) {
       const dropped = origin(source, declaration.element);
@@ -99,11 +117,11 @@ export function planCarry(
     carried.set(declaration.name, { name: declaration.name, declaration, source, text });
     // The declarations its value uses come along (they precede it in the source).
     for (const use of usesIn(model, declaration.element)) {
-      if (use.declaration) carry(use.declaration, source, model);
+      if (use.declaration) carry(use.declaration, source, model, group);
     }
   };
 
-  const mainRoot = mainSemantics.model.root;
+  const firstCopy = Math.min(...insertions.map((insertion) => insertion.start));
   for (const insertion of insertions) {
     const source = insertion.link.source;
     const target = insertion.group.target;
@@ -121,21 +139,23 @@ export function planCarry(
       const sourceUse = original ? usesIn(sourceModel, original).find((candidate) => candidate.attribute.name === use.attribute.name && candidate.name === use.name) : undefined;
       const declaration = sourceUse?.declaration;
       if (!declaration || isWithin(declaration.element, target.element)) continue;
-      if (!use.declaration) {
-        carry(declaration, source, sourceModel);
+      if (!use.declaration || use.declaration.scope === output.root) {
+        carry(declaration, source, sourceModel, insertion.reference.name);
         continue;
       }
-      if (sameValue(use.declaration, declaration)) continue;
-      // The output declares the name already: the main file's declaration wins.
-      const mainDeclaration = mainRoot?.byName.get(use.name);
-      if (!mainDeclaration?.nameAttribute) continue;
-      const dropped = origin(source, declaration.element);
-      conflict(
-        use.name,
-        { source: main.ref, range: mainModel.document.lines.range(mainDeclaration.nameAttribute.valueStart, mainDeclaration.nameAttribute.valueEnd), message: '' },
-        dropped && { ...dropped, message: `the source's declaration (value '${declaration.value}')` },
-        `parameter '${use.name}' is declared here with value '${mainDeclaration.value}', but the imported group '${insertion.reference.name}' uses the declaration of ${displayRef(dropped?.source ?? source.ref)}${dropped ? `:${dropped.range.start.line + 1}` : ''} with value '${declaration.value}'; the output keeps this one`,
-      );
+      // Declared by the main file around the outer group (its Story, say): that declaration is the one used.
+      if (!sameValue(use.declaration, declaration) && use.declaration.nameAttribute) {
+        const dropped = origin(source, declaration.element);
+        // Before the first copy the first rendering is the main file's text; past it, the reference stands for the place.
+        const name = use.declaration.nameAttribute;
+        const here = name.valueEnd <= firstCopy ? { start: name.valueStart, end: name.valueEnd } : { start: insertion.reference.element.start, end: insertion.reference.element.nameEnd };
+        conflict(
+          use.name,
+          { source: main.ref, range: mainModel.document.lines.range(here.start, here.end), message: '' },
+          dropped && { ...dropped, message: `the source's declaration (value '${declaration.value}')` },
+          `the imported group '${insertion.reference.name}' uses parameter '${use.name}' declared with value '${declaration.value}' in its source, but in this file it takes the value '${use.declaration.value}' of a declaration around the group`,
+        );
+      }
     }
     planLocations(plan, main, source, output, insertion, counterpart);
   }
@@ -165,24 +185,17 @@ function usesIn(model: SemanticModel, element: XmlElement): ParameterUse[] {
 
 /** The catalog locations an imported group's CatalogReferences need and the main file lacks. */
 function planLocations(plan: CarryPlan, main: FlatSource, source: FlatSource, output: SemanticModel, insertion: Insertion, counterpart: Map<XmlElement, XmlElement>): void {
-  const semantics = source.semantics;
   const mainLocations = main.semantics?.catalogs.locations ?? [];
   const references = output.catalogReferences.filter((reference) => reference.element.start >= insertion.start && reference.element.end <= insertion.end);
-  if (references.length === 0 || !semantics) return;
+  if (references.length === 0 || !source.model) return;
+  const sourceEvaluator = new Evaluator(semanticModelOf(source.model.document));
   const needed: CarriedLocation[] = [];
-  // The source's semantics describe its file as written; for a flattened package only its own locations are known.
-  const plain = source.model?.document === semantics.model.document;
   for (const reference of references) {
+    // The catalog name as the source reads it (it may be one of its parameters).
     const original = counterpart.get(reference.element);
-    const resolution = plain ? semantics.catalogs.references.find((candidate) => candidate.reference.element === original) : undefined;
-    const file = resolution?.catalogs[0];
-    for (const location of semantics.catalogs.locations) {
-      for (const directory of location.directories) {
-        if (directory.packageRef) continue;
-        if (file && (file.ref.entries.length > 0 || path.dirname(file.ref.disk) !== directory.directory)) continue;
-        needed.push({ kind: location.location.kind, directory: directory.directory, source });
-      }
-    }
+    const name = original ? sourceEvaluator.textOf(original, attribute(original, 'catalogName'))?.trim() : undefined;
+    const place = name === undefined ? undefined : source.catalogIndex.get(name);
+    if (place) needed.push({ kind: place.kind, directory: place.directory, source });
   }
   for (const need of needed) {
     const own = mainLocations.find((location) => location.location.kind === need.kind);

@@ -66,6 +66,24 @@ export function originOf(source: FlatSource, element: XmlElement): { source: Fla
   return counterpart ? originOf(sourceOfCopy, counterpart) : { source, element };
 }
 
+/** The catalogs a file reaches (its own references first, then those of the files it imports from). */
+function catalogIndexOf(source: FlatSource): Map<string, { kind: string; directory: string }> {
+  const index = new Map<string, { kind: string; directory: string }>();
+  const catalogs = source.semantics?.catalogs;
+  for (const resolution of catalogs?.references ?? []) {
+    const file = resolution.catalogs[0];
+    const name = resolution.catalogName;
+    if (!file || !name || file.ref.entries.length > 0 || index.has(name)) continue;
+    const directory = path.dirname(file.ref.disk);
+    const location = catalogs?.locations.find((candidate) => candidate.directories.some((known) => !known.packageRef && known.directory === directory));
+    if (location) index.set(name, { kind: location.location.kind, directory });
+  }
+  for (const link of source.links) {
+    for (const [name, place] of link.source?.catalogIndex ?? []) if (!index.has(name)) index.set(name, place);
+  }
+  return index;
+}
+
 /** Catalog problems, which the output check reports only for what flattening carried. */
 const CATALOG_CODES: ReadonlySet<ProblemCode> = new Set<ProblemCode>(['catalog-directory', 'unknown-catalog', 'unknown-catalog-entry', 'unknown-assigned-parameter']);
 
@@ -128,6 +146,11 @@ export interface FlatSource {
   renderable: boolean;
   /** The OpenSCENARIO semantics of the file as read (parameters, expressions, catalogs, names). */
   semantics: DocumentSemantics | undefined;
+  /**
+   * Where each catalog this file or the files it imports from reach lives: catalog name to the
+   * catalog kind and the directory on disk (the first found wins), for carrying locations.
+   */
+  catalogIndex: Map<string, { kind: string; directory: string }>;
   /** What rendering carried from the sources into the root (SPEC 11), once rendered. */
   carried: CarryPlan | undefined;
   /** Text the carrying added to the main file's text, with the declarations it copied (offsets of the flattened text). */
@@ -292,6 +315,7 @@ export class Flattener {
       dependencies: [ref],
       renderable: false,
       semantics: undefined,
+      catalogIndex: new Map(),
       carried: undefined,
       additions: [],
     };
@@ -339,6 +363,7 @@ export class Flattener {
       }
     }
     result.allProblems = uniqueProblems([...result.problems, ...childProblems]);
+    result.catalogIndex = catalogIndexOf(result);
 
     if (!wellFormed) return result;
     if (model.references.length === 0) {

@@ -66,6 +66,13 @@ export interface CatalogResolution {
   files: SourceRef[];
 }
 
+/**
+ * Catalog files modelled so far, by file and text: an editor makes a loader per edit, and the catalogs
+ * it reaches rarely change between edits. Bounded; the oldest entry goes first.
+ */
+const modelled = new Map<string, { text: string; file: CatalogFile | undefined }>();
+const MODELLED_LIMIT = 200;
+
 /** Reads catalog files once per instance (one instance per analysis generation). */
 export class CatalogLoader {
   private readonly files = new Map<string, Promise<CatalogFile | undefined>>();
@@ -130,14 +137,21 @@ export class CatalogLoader {
       pending = (async () => {
         const text = await this.store.readText(ref).catch(() => undefined);
         if (text === undefined || !/<Catalog[\s>]/.test(text)) return undefined;
+        const known = modelled.get(id);
+        if (known && known.text === text) return known.file;
         const model = buildSemanticModel(this.store.parse(ref, text));
         const catalog = model.catalog;
-        if (!catalog) return undefined;
-        const file: CatalogFile = { ref, name: attribute(catalog, 'name')?.value.trim() ?? '', model, catalog, entries: [] };
-        for (const child of catalog.children) {
-          const name = attribute(child, 'name')?.value.trim();
-          if (name !== undefined) file.entries.push({ name, element: child, file });
+        let file: CatalogFile | undefined;
+        if (catalog) {
+          file = { ref, name: attribute(catalog, 'name')?.value.trim() ?? '', model, catalog, entries: [] };
+          for (const child of catalog.children) {
+            const name = attribute(child, 'name')?.value.trim();
+            if (name !== undefined) file.entries.push({ name, element: child, file });
+          }
         }
+        modelled.delete(id);
+        modelled.set(id, { text, file });
+        if (modelled.size > MODELLED_LIMIT) modelled.delete(modelled.keys().next().value as string);
         return file;
       })();
       this.files.set(id, pending);

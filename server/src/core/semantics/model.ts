@@ -264,7 +264,13 @@ export function buildSemanticModel(document: XmlDocument): SemanticModel {
   const declarationByElement = new Map<XmlElement, Declaration>();
   /** Opens the scope an element holds, declaring its parameters before anything below it is read. */
   const enter = (element: XmlElement, current: Scope | undefined): Scope | undefined => {
-    const holdsDeclarations = element.children.some((child) => child.name === 'ParameterDeclarations');
+    let holdsDeclarations = false;
+    for (const child of element.children) {
+      if (child.name === 'ParameterDeclarations') {
+        holdsDeclarations = true;
+        break;
+      }
+    }
     const isCatalogEntry = element.parent !== undefined && element.parent.name === 'Catalog';
     if (!holdsDeclarations && element !== rootElement && !isCatalogEntry) return current;
     const scope: Scope = { element, parent: current, children: [], declarations: [], byName: new Map(), catalogEntry: isCatalogEntry };
@@ -398,11 +404,7 @@ export function resolveName(scope: Scope | undefined, name: string, within: Decl
     if (within && current === within.scope) {
       // The first declaration of the name is the one found, when it comes before the value being read.
       const first = current.byName.get(name);
-      if (!first || first.index >= within.index) continue;
-      for (const candidate of current.declarations) {
-        if (candidate.index >= within.index) break;
-        if (candidate.name === name) return candidate;
-      }
+      if (first && first.index < within.index) return first;
       continue;
     }
     const found = current.byName.get(name);
@@ -505,7 +507,9 @@ export class Evaluator {
         return { ok: false, errors: [{ kind: 'unknown-parameter', message: `parameter '${site.form.name}' is not declared in this scope`, start: site.form.start, end: site.form.end }], provenance: { kind: 'literal' } };
       }
       const value = this.declarationValue(declaration);
-      return value.ok ? { ...value, provenance: value.provenance } : { ok: false, errors: [lookup(site.form.name, site.form.start, site.form.end) as { error: ExpressionError }].map((entry) => entry.error), provenance: value.provenance };
+      if (value.ok) return value;
+      const error = lookup(site.form.name, site.form.start, site.form.end) as { error: ExpressionError };
+      return { ok: false, errors: [error.error], provenance: value.provenance };
     }
     const expression = site.form.expression;
     if (!expression.tree) return { ok: false, errors: expression.errors, provenance: { kind: 'literal' } };
