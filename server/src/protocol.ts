@@ -50,7 +50,7 @@ export interface ProblemSummary {
   /** Zero-based, as LSP. */
   line: number;
   character: number;
-  severity: 'error' | 'warning' | 'information';
+  severity: 'error' | 'warning' | 'information' | 'hint';
   message: string;
   hint?: string;
 }
