@@ -4,7 +4,8 @@
  */
 import { laneById, laneCenterT, laneSectionIndexAt, Road, RoadNetwork, roadPoint } from './opendrive/road';
 import { normalizeAngle } from './opendrive/geometry';
-import { attributeValue, XmlDocument, XmlElement } from './xml';
+import { Evaluator, semanticModelOf } from './semantics';
+import { attribute, attributeValue, XmlDocument, XmlElement } from './xml';
 
 export interface EntityPlacement {
   name: string;
@@ -67,94 +68,32 @@ function path(element: XmlElement | undefined, ...names: string[]): XmlElement |
   return current;
 }
 
-/**
- * The arithmetic of an OpenSCENARIO expression `${...}` (numbers, `$name`, + - * / %, unary minus,
- * parentheses): enough to place entities; anything else throws. The project's full expression
- * evaluator can take its place.
- */
-export function evaluateArithmetic(expression: string, parameters: Map<string, string>): number {
-  const tokens = expression.match(/\s*((?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?|\$[A-Za-z_][\w]*|[-+*\/%()])/gy);
-  if (!tokens || tokens.join('').replace(/\s/g, '') !== expression.replace(/\s/g, '')) throw new Error(`cannot evaluate \${${expression}}`);
-  const list = tokens.map((token) => token.trim());
-  let index = 0;
-  const primary = (): number => {
-    const token = list[index++];
-    if (token === '-') return -primary();
-    if (token === '+') return primary();
-    if (token === '(') {
-      const value = sum();
-      if (list[index++] !== ')') throw new Error(`unbalanced parentheses in \${${expression}}`);
-      return value;
-    }
-    if (token?.startsWith('$')) {
-      const value = Number(parameters.get(token.slice(1)));
-      if (!Number.isFinite(value)) throw new Error(`${token} has no numeric value`);
-      return value;
-    }
-    const value = Number(token);
-    if (token === undefined || !Number.isFinite(value)) throw new Error(`cannot evaluate \${${expression}}`);
-    return value;
-  };
-  const product = (): number => {
-    let value = primary();
-    while (list[index] === '*' || list[index] === '/' || list[index] === '%') {
-      const operator = list[index++];
-      const right = primary();
-      value = operator === '*' ? value * right : operator === '/' ? value / right : value % right;
-    }
-    return value;
-  };
-  const sum = (): number => {
-    let value = product();
-    while (list[index] === '+' || list[index] === '-') value = list[index++] === '+' ? value + product() : value - product();
-    return value;
-  };
-  const result = sum();
-  if (index !== list.length) throw new Error(`cannot evaluate \${${expression}}`);
-  return result;
-}
-
-/** A raw value with a `$name` or `${...}` resolved against `parameters` (unresolvable ones left as written). */
-function resolveValue(raw: string, parameters: Map<string, string>): string {
-  if (raw.startsWith('${') && raw.endsWith('}')) {
-    try {
-      return String(evaluateArithmetic(raw.slice(2, -1), parameters));
-    } catch {
-      return raw;
-    }
-  }
-  return raw.startsWith('$') ? parameters.get(raw.slice(1)) ?? raw : raw;
-}
-
-/** The values of the root ParameterDeclarations, each `$name` or `${...}` in a value resolved by earlier ones. */
-export function rootParameters(document: XmlDocument): Map<string, string> {
-  const values = new Map<string, string>();
-  for (const declaration of children(child(document.root, 'ParameterDeclarations'), 'ParameterDeclaration')) {
-    const name = attributeValue(declaration, 'name');
-    const value = attributeValue(declaration, 'value');
-    if (!name || value === undefined) continue;
-    values.set(name, resolveValue(value, values));
-  }
-  return values;
-}
-
+/** Attribute values with `$parameters` and `${...}` expressions evaluated by the semantic model. */
 class Reader {
-  constructor(private readonly parameters: Map<string, string>) {}
+  private readonly evaluator: Evaluator;
+
+  constructor(document: XmlDocument) {
+    this.evaluator = new Evaluator(semanticModelOf(document));
+  }
 
   text(element: XmlElement, name: string): string | undefined {
-    const raw = attributeValue(element, name);
-    return raw === undefined ? undefined : resolveValue(raw, this.parameters);
+    const found = attribute(element, name);
+    if (!found) return undefined;
+    const result = this.evaluator.attributeValue(element, found);
+    return result.ok ? String(result.value) : found.value;
   }
 
-  /** A numeric attribute; throws a message naming the attribute when it is missing or unresolvable. */
+  /** A numeric attribute; throws a message naming the attribute when it is missing or cannot be evaluated. */
   number(element: XmlElement, name: string, fallback?: number): number {
-    const value = this.text(element, name);
-    if (value === undefined) {
+    const found = attribute(element, name);
+    if (!found) {
       if (fallback !== undefined) return fallback;
       throw new Error(`${element.name} has no ${name}`);
     }
-    const parsed = Number(value);
-    if (value.trim() === '' || !Number.isFinite(parsed)) throw new Error(`${element.name} ${name}="${attributeValue(element, name)}" is not a number this view can evaluate`);
+    const result = this.evaluator.attributeValue(element, found);
+    if (!result.ok) throw new Error(`${element.name} ${name}="${found.value}": ${result.errors[0]?.message ?? 'cannot be evaluated'}`);
+    const parsed = typeof result.value === 'number' ? result.value : Number(result.value);
+    if (String(result.value).trim() === '' || !Number.isFinite(parsed)) throw new Error(`${element.name} ${name}="${found.value}" is not a number`);
     return parsed;
   }
 }
@@ -311,7 +250,7 @@ function entityKind(object: XmlElement): { kind: string; body?: XmlElement } {
 /** Entities, where they start, and the storyboard's events. `network` is the loaded road file (if any). */
 export function scenarioScene(document: XmlDocument, network: RoadNetwork | undefined): ScenarioScene {
   const root = document.root;
-  const reader = new Reader(rootParameters(document));
+  const reader = new Reader(document);
   const logic = path(root, 'RoadNetwork', 'LogicFile');
   const filepath = logic ? reader.text(logic, 'filepath') : undefined;
   const scene: ScenarioScene = { logicFile: logic && filepath ? { filepath, element: logic } : undefined, entities: [], events: [] };
