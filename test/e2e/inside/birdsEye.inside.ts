@@ -77,6 +77,10 @@ export function defineBirdsEyeTests(): void {
       await waitFor('the trajectories', () => (view.stats?.trajectories === 2 && view.stats.lanes > 0 ? true : undefined));
       await waitFor('when CutInEvent started', () => pageShows('started 2.05 s'));
       assert.ok(await pageShows('started 6.05 s'), 'BrakeEvent start is shown');
+      // Clicking an event opens it in the source.
+      const eventLine = positionOf((await open(BIRDS_EYE_FILES.scenario)).document, '<Event name="BrakeEvent"').line;
+      assert.ok(await clickText('BrakeEvent'), 'no BrakeEvent button in the view');
+      await waitFor('BrakeEvent to open', () => (vscode.window.activeTextEditor?.selection.active.line === eventLine ? true : undefined));
       assert.ok(await clickText('Play run'), 'no Play button');
       await new Promise((resolve) => setTimeout(resolve, 2500));
       await screenshot("bird's-eye view playing a run");
@@ -84,6 +88,17 @@ export function defineBirdsEyeTests(): void {
       const played = await waitFor('the playback figures', () => (view.stats && !view.stats.playing && view.stats.frames > 0 ? view.stats : undefined));
       assert.ok(played.time > 1, `playback reached ${played.time} s`);
       console.log(`playback: ${played.frames} frames, ${played.frameMeanMs.toFixed(2)} ms mean, ${played.frameWorstMs.toFixed(2)} ms worst to draw a frame`);
+      // The picture saved as PNG and as SVG, as the view's buttons do (here to given files).
+      const png = path.join(workspaceRoot(), 'birdsEye', 'picture.png');
+      const svg = path.join(workspaceRoot(), 'birdsEye', 'picture.svg');
+      await vscode.commands.executeCommand('modular2simple.birdsEye.save', 'png', png);
+      await vscode.commands.executeCommand('modular2simple.birdsEye.save', 'svg', svg);
+      assert.deepEqual([...fs.readFileSync(png).subarray(0, 8)], [0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a]);
+      assert.ok(fs.statSync(png).size > 5000, `the PNG is only ${fs.statSync(png).size} bytes`);
+      const drawing = fs.readFileSync(svg, 'utf8');
+      assert.match(drawing, /^<\?xml[^]*<svg /);
+      assert.ok((drawing.match(/<polygon /g) ?? []).length > 10, 'the SVG holds the lanes');
+      assert.match(drawing, />Adversary<\/text>/);
       await vscode.commands.executeCommand('workbench.action.closeAllEditors');
     });
 
