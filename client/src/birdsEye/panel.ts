@@ -62,6 +62,14 @@ export class BirdsEyeView implements vscode.Disposable {
     if (this.source?.toString() !== source.toString()) {
       this.source = source;
       this.scene = undefined;
+      // A run belongs to the scenario it was made from.
+      if (this.run || this.runSource) {
+        this.run = undefined;
+        this.runSource = undefined;
+        this.runWatcher?.dispose();
+        this.runWatcher = undefined;
+        this.post({ type: 'run', run: undefined });
+      }
     }
     if (!this.panel) this.createPanel();
     else this.panel.reveal(vscode.ViewColumn.Beside, true);

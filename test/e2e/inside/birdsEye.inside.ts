@@ -37,9 +37,11 @@ export function defineBirdsEyeTests(): void {
       skipUnless(this, fs.existsSync(path.join(workspaceRoot(), BIRDS_EYE_FILES.roadFolder, 'e6mini.xodr')), "esmini's road files (../shared/esmini/xodr) are absent");
       const editor = await open(BIRDS_EYE_FILES.scenario);
       // As a person does: the command palette, with the scenario's editor active.
+      const started = Date.now();
       await runFromPalette("Modular2Simple: Show Bird's-Eye View");
       const view = api().birdsEye;
-      const stats = await waitFor('the view to draw the road and the entities', () => (view.stats && view.stats.lanes > 0 && view.stats.entities === 2 ? view.stats : undefined));
+      const stats = await waitFor('the view to draw the road and the entities', () => (view.stats && view.stats.lanes > 0 && view.stats.entities === 2 ? view.stats : undefined), 20_000);
+      console.log(`command to picture: ${Date.now() - started} ms (roads drawn in ${stats.staticDrawMs.toFixed(1)} ms)`);
       assert.deepEqual(view.scene?.problems, []);
       assert.equal(view.scene?.roadFile?.resolved, path.join(workspaceRoot(), BIRDS_EYE_FILES.roadFolder, 'e6mini.xodr'));
       const [ego, adversary] = view.scene?.entities ?? [];
@@ -73,8 +75,10 @@ export function defineBirdsEyeTests(): void {
       await open(BIRDS_EYE_FILES.scenario);
       const view = api().birdsEye;
       // What the esmini run command does when a run ends.
+      const started = Date.now();
       await vscode.commands.executeCommand('modular2simple.birdsEye.showRun', csv, { logPath: path.join(workspaceRoot(), BIRDS_EYE_FILES.log), scenario: vscode.Uri.file(path.join(workspaceRoot(), BIRDS_EYE_FILES.scenario)).toString() });
       await waitFor('the trajectories', () => (view.stats?.trajectories === 2 && view.stats.lanes > 0 ? true : undefined));
+      console.log(`run handed over to trajectories drawn: ${Date.now() - started} ms`);
       await waitFor('when CutInEvent started', () => pageShows('started 2.05 s'));
       assert.ok(await pageShows('started 6.05 s'), 'BrakeEvent start is shown');
       // Clicking an event opens it in the source.
