@@ -65,6 +65,19 @@ describe('language server: modular2simple/scene (JSON-RPC)', function () {
     assert.deepEqual(result.events[0].source, { uri: fileUri(path.join(root, 'simple.xosc')), ...positionAfter(SIMPLE, '<Event name="') });
   });
 
+  it('reads a road file again when it changed on disk', async () => {
+    const road = path.join(root, 'roads', 'straight.xodr');
+    const mainUri = fileUri(path.join(root, 'main.xosc'));
+    fs.writeFileSync(road, STRAIGHT_ROAD.replace('<width sOffset="0" a="2" b="0" c="0" d="0"/>', '<width sOffset="0" a="3" b="0" c="0" d="0"/>'));
+    try {
+      const widened = await scene({ uri: mainUri, roadPath: ['roads'] });
+      assert.equal(widened.sections[0].borders[3][1], -6.5);
+    } finally {
+      fs.writeFileSync(road, STRAIGHT_ROAD);
+    }
+    assert.equal((await scene({ uri: mainUri, roadPath: ['roads'] })).sections[0].borders[3][1], -5.5);
+  });
+
   it('uses unsaved edits and says where it looked for a missing road file', async () => {
     const mainUri = fileUri(path.join(root, 'main.xosc'));
     await client.open(mainUri, MAIN.replace('value="40"', 'value="70"'));

@@ -35,6 +35,16 @@ export function registerBirdsEye(context: vscode.ExtensionContext, client: Langu
       const scenario = typeof given.scenario === 'string' ? vscode.Uri.parse(given.scenario) : given.scenario instanceof vscode.Uri ? given.scenario : undefined;
       await view.showRun(run, scenario);
     }),
+    // Saves the picture shown (args: 'png' | 'svg', target path or URI; without a target, asks where).
+    vscode.commands.registerCommand('modular2simple.birdsEye.save', async (format?: unknown, target?: unknown) => {
+      const kind = format === 'svg' ? 'svg' : 'png';
+      const uri = typeof target === 'string' ? vscode.Uri.file(target) : target instanceof vscode.Uri ? target : undefined;
+      if (!view.isOpen) {
+        void vscode.window.showErrorMessage("Save the bird's-eye view: open it first (Show Bird's-Eye View).");
+        return undefined;
+      }
+      return view.saveTo(kind, uri);
+    }),
   );
   return view;
 }

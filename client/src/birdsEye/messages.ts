@@ -16,7 +16,9 @@ export interface RunTracks {
 export type ToView =
   | { type: 'scene'; scene: SceneResult }
   | { type: 'run'; run: RunTracks | undefined }
-  | { type: 'error'; message: string };
+  | { type: 'error'; message: string }
+  /** Asks for the picture as it is now; answered by a `save` with the same id. */
+  | { type: 'export'; format: 'png' | 'svg'; id: number };
 
 /** What the view reports after drawing: what it drew and how long it took. */
 export interface RenderStats {
@@ -39,7 +41,8 @@ export type FromView =
   | { type: 'ready' }
   | { type: 'open'; source: SourceLocation }
   | { type: 'loadRun' }
-  | { type: 'save'; format: 'png' | 'svg'; data: string }
+  /** The picture: a PNG data URL or an SVG document; `id` when it answers an `export`. */
+  | { type: 'save'; format: 'png' | 'svg'; data: string; id?: number }
   | { type: 'rendered'; stats: RenderStats };
 
 export const isFromView = (value: unknown): value is FromView =>

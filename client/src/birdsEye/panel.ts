@@ -27,6 +27,8 @@ export class BirdsEyeView implements vscode.Disposable {
   stats: RenderStats | undefined;
   scene: SceneResult | undefined;
   private readonly renderedListeners: ((stats: RenderStats) => void)[] = [];
+  private readonly exports = new Map<number, (data: string) => void>();
+  private exportCount = 0;
 
   constructor(
     private readonly extensionUri: vscode.Uri,
@@ -34,7 +36,7 @@ export class BirdsEyeView implements vscode.Disposable {
     private readonly log: (message: string) => void,
   ) {
     const refreshSoon = (document: vscode.TextDocument) => {
-      if (!this.panel || !/\.(xosc|mosc)$/i.test(document.uri.path)) return;
+      if (!this.panel || !/\.(xosc|mosc|xodr)$/i.test(document.uri.path)) return;
       clearTimeout(this.refreshTimer);
       this.refreshTimer = setTimeout(() => void this.refresh(), REFRESH_DELAY_MS);
     };
@@ -47,6 +49,10 @@ export class BirdsEyeView implements vscode.Disposable {
     );
   }
 
+  get isOpen(): boolean {
+    return this.panel !== undefined && this.ready;
+  }
+
   /** Resolves with the next stats the view reports. */
   nextRender(): Promise<RenderStats> {
     return new Promise((resolve) => this.renderedListeners.push(resolve));
@@ -56,8 +62,14 @@ export class BirdsEyeView implements vscode.Disposable {
     if (this.source?.toString() !== source.toString()) {
       this.source = source;
       this.scene = undefined;
-      // A run belongs to the scenario it was made from: another scenario starts without one.
-      this.forgetRun();
+      // A run belongs to the scenario it was made from.
+      if (this.run || this.runSource) {
+        this.run = undefined;
+        this.runSource = undefined;
+        this.runWatcher?.dispose();
+        this.runWatcher = undefined;
+        this.post({ type: 'run', run: undefined });
+      }
     }
     if (!this.panel) this.createPanel();
     else this.panel.reveal(vscode.ViewColumn.Beside, true);
@@ -76,15 +88,6 @@ export class BirdsEyeView implements vscode.Disposable {
     this.runWatcher.onDidChange(() => void this.reloadRun());
     this.runWatcher.onDidCreate(() => void this.reloadRun());
     await this.reloadRun();
-  }
-
-  private forgetRun(): void {
-    if (!this.runSource && !this.run) return;
-    this.runSource = undefined;
-    this.run = undefined;
-    this.runWatcher?.dispose();
-    this.runWatcher = undefined;
-    this.post({ type: 'run', run: undefined });
   }
 
   private async reloadRun(): Promise<void> {
@@ -161,9 +164,14 @@ export class BirdsEyeView implements vscode.Disposable {
         if (picked?.[0]) await this.showRun({ csvPath: picked[0].fsPath });
         return;
       }
-      case 'save':
-        await this.save(message.format, message.data);
+      case 'save': {
+        const exported = message.id === undefined ? undefined : this.exports.get(message.id);
+        if (exported) {
+          this.exports.delete(message.id!);
+          exported(message.data);
+        } else await this.save(message.format, message.data);
         return;
+      }
       case 'rendered':
         this.stats = message.stats;
         for (const listener of this.renderedListeners.splice(0)) listener(message.stats);
@@ -171,15 +179,30 @@ export class BirdsEyeView implements vscode.Disposable {
     }
   }
 
-  private async save(format: 'png' | 'svg', data: string): Promise<void> {
+  /**
+   * Saves the picture as shown to `target` (asking where when not given); for a command or a script.
+   * Resolves with the file written, or undefined when no view is open or nothing was chosen.
+   */
+  async saveTo(format: 'png' | 'svg', target?: vscode.Uri): Promise<vscode.Uri | undefined> {
+    if (!this.isOpen) return undefined;
+    const id = ++this.exportCount;
+    const data = await new Promise<string>((resolve) => {
+      this.exports.set(id, resolve);
+      this.post({ type: 'export', format, id });
+    });
+    return this.save(format, data, target);
+  }
+
+  private async save(format: 'png' | 'svg', data: string, given?: vscode.Uri): Promise<vscode.Uri | undefined> {
     const base = this.source ? this.source.path.replace(/\.(xosc|mosc)$/i, '') : 'birds-eye';
     const suggested = vscode.Uri.file(`${this.source?.scheme === 'file' ? base : path.join(vscode.workspace.workspaceFolders?.[0]?.uri.fsPath ?? '', path.posix.basename(base))}.birds-eye.${format}`);
-    const target = await vscode.window.showSaveDialog({ defaultUri: suggested, filters: format === 'png' ? { 'PNG image': ['png'] } : { 'SVG image': ['svg'] } });
-    if (!target) return;
+    const target = given ?? (await vscode.window.showSaveDialog({ defaultUri: suggested, filters: format === 'png' ? { 'PNG image': ['png'] } : { 'SVG image': ['svg'] } }));
+    if (!target) return undefined;
     const bytes = format === 'png' ? Buffer.from(data.replace(/^data:image\/png;base64,/, ''), 'base64') : Buffer.from(data, 'utf8');
     if (target.scheme === 'file') await writeFileAtomic(target.fsPath, bytes);
     else await vscode.workspace.fs.writeFile(target, bytes);
-    void vscode.window.showInformationMessage(`Saved the bird's-eye view as ${target.fsPath}`);
+    if (!given) void vscode.window.showInformationMessage(`Saved the bird's-eye view as ${target.fsPath}`);
+    return target;
   }
 
   dispose(): void {

@@ -68,24 +68,32 @@ function path(element: XmlElement | undefined, ...names: string[]): XmlElement |
   return current;
 }
 
-/** Attribute values with their `$name` and `${...}` evaluated by the semantic model (unresolvable ones left as written). */
+/** Attribute values with `$parameters` and `${...}` expressions evaluated by the semantic model. */
 class Reader {
-  constructor(private readonly evaluator: Evaluator) {}
+  private readonly evaluator: Evaluator;
 
-  text(element: XmlElement, name: string): string | undefined {
-    const raw = attribute(element, name);
-    return raw === undefined ? undefined : (this.evaluator.textOf(element, raw) ?? raw.value);
+  constructor(document: XmlDocument) {
+    this.evaluator = new Evaluator(semanticModelOf(document));
   }
 
-  /** A numeric attribute; throws a message naming the attribute when it is missing or unresolvable. */
+  text(element: XmlElement, name: string): string | undefined {
+    const found = attribute(element, name);
+    if (!found) return undefined;
+    const result = this.evaluator.attributeValue(element, found);
+    return result.ok ? String(result.value) : found.value;
+  }
+
+  /** A numeric attribute; throws a message naming the attribute when it is missing or cannot be evaluated. */
   number(element: XmlElement, name: string, fallback?: number): number {
-    const value = this.text(element, name);
-    if (value === undefined) {
+    const found = attribute(element, name);
+    if (!found) {
       if (fallback !== undefined) return fallback;
       throw new Error(`${element.name} has no ${name}`);
     }
-    const parsed = Number(value);
-    if (value.trim() === '' || !Number.isFinite(parsed)) throw new Error(`${element.name} ${name}="${attributeValue(element, name)}" is not a number this view can evaluate`);
+    const result = this.evaluator.attributeValue(element, found);
+    if (!result.ok) throw new Error(`${element.name} ${name}="${found.value}": ${result.errors[0]?.message ?? 'cannot be evaluated'}`);
+    const parsed = typeof result.value === 'number' ? result.value : Number(result.value);
+    if (String(result.value).trim() === '' || !Number.isFinite(parsed)) throw new Error(`${element.name} ${name}="${found.value}" is not a number`);
     return parsed;
   }
 }
@@ -242,7 +250,7 @@ function entityKind(object: XmlElement): { kind: string; body?: XmlElement } {
 /** Entities, where they start, and the storyboard's events. `network` is the loaded road file (if any). */
 export function scenarioScene(document: XmlDocument, network: RoadNetwork | undefined): ScenarioScene {
   const root = document.root;
-  const reader = new Reader(new Evaluator(semanticModelOf(document)));
+  const reader = new Reader(document);
   const logic = path(root, 'RoadNetwork', 'LogicFile');
   const filepath = logic ? reader.text(logic, 'filepath') : undefined;
   const scene: ScenarioScene = { logicFile: logic && filepath ? { filepath, element: logic } : undefined, entities: [], events: [] };

@@ -5,7 +5,7 @@ import { FlatSource } from '../core/flatten';
 import { parseOpenDrive, RoadNetwork } from '../core/opendrive/road';
 import { sampleNetwork, SectionPolylines } from '../core/opendrive/sample';
 import { scenarioScene } from '../core/scene';
-import { baseName, displayRef, FileSystemHost } from '../core/sources';
+import { baseName, displayRef, FileSystemHost, nodeFileSystem } from '../core/sources';
 import { decodeUtf8 } from '../core/text';
 import { XmlElement } from '../core/xml';
 import { SceneParams, SceneResult, SourceLocation } from '../sceneProtocol';
@@ -81,12 +81,13 @@ export async function buildScene(workspace: Workspace, params: SceneParams): Pro
   let roadFile: SceneResult['roadFile'];
   if (logic) {
     const candidates = roadFileCandidates(logic.filepath, path.dirname(ref.disk), params.roadPath ?? []);
-    const resolved = await findRoadFile(workspace.store.host, candidates);
+    // Read from disk each time: the workspace's file cache follows scenario files only, and parsed roads are cached by content.
+    const resolved = await findRoadFile(nodeFileSystem, candidates);
     roadFile = { filepath: logic.filepath, resolved, roadCount: 0, source: locationOf(workspace, source, logic.element, 'filepath') };
     if (!resolved) {
       problems.push(`road file "${logic.filepath}" not found; looked for ${candidates.join(', ')}. Add its folder to the setting modular2simple.esmini.roadPath.`);
     } else {
-      const bytes = await workspace.store.host.readFile(resolved);
+      const bytes = await nodeFileSystem.readFile(resolved);
       if (!bytes) problems.push(`road file ${resolved} could not be read`);
       else if (bytes.byteLength > MAX_ROAD_FILE_BYTES) problems.push(`road file ${resolved} is larger than ${MAX_ROAD_FILE_BYTES / 1024 / 1024} MB; not drawn`);
       else {

@@ -37,9 +37,11 @@ export function defineBirdsEyeTests(): void {
       skipUnless(this, fs.existsSync(path.join(workspaceRoot(), BIRDS_EYE_FILES.roadFolder, 'e6mini.xodr')), "esmini's road files (../shared/esmini/xodr) are absent");
       const editor = await open(BIRDS_EYE_FILES.scenario);
       // As a person does: the command palette, with the scenario's editor active.
+      const started = Date.now();
       await runFromPalette("Modular2Simple: Show Bird's-Eye View");
       const view = api().birdsEye;
-      const stats = await waitFor('the view to draw the road and the entities', () => (view.stats && view.stats.lanes > 0 && view.stats.entities === 2 ? view.stats : undefined));
+      const stats = await waitFor('the view to draw the road and the entities', () => (view.stats && view.stats.lanes > 0 && view.stats.entities === 2 ? view.stats : undefined), 20_000);
+      console.log(`command to picture: ${Date.now() - started} ms (roads drawn in ${stats.staticDrawMs.toFixed(1)} ms)`);
       assert.deepEqual(view.scene?.problems, []);
       assert.equal(view.scene?.roadFile?.resolved, path.join(workspaceRoot(), BIRDS_EYE_FILES.roadFolder, 'e6mini.xodr'));
       const [ego, adversary] = view.scene?.entities ?? [];
@@ -73,10 +75,16 @@ export function defineBirdsEyeTests(): void {
       await open(BIRDS_EYE_FILES.scenario);
       const view = api().birdsEye;
       // What the esmini run command does when a run ends.
+      const started = Date.now();
       await vscode.commands.executeCommand('modular2simple.birdsEye.showRun', csv, { logPath: path.join(workspaceRoot(), BIRDS_EYE_FILES.log), scenario: vscode.Uri.file(path.join(workspaceRoot(), BIRDS_EYE_FILES.scenario)).toString() });
       await waitFor('the trajectories', () => (view.stats?.trajectories === 2 && view.stats.lanes > 0 ? true : undefined));
+      console.log(`run handed over to trajectories drawn: ${Date.now() - started} ms`);
       await waitFor('when CutInEvent started', () => pageShows('started 2.05 s'));
       assert.ok(await pageShows('started 6.05 s'), 'BrakeEvent start is shown');
+      // Clicking an event opens it in the source.
+      const eventLine = positionOf((await open(BIRDS_EYE_FILES.scenario)).document, '<Event name="BrakeEvent"').line;
+      assert.ok(await clickText('BrakeEvent'), 'no BrakeEvent button in the view');
+      await waitFor('BrakeEvent to open', () => (vscode.window.activeTextEditor?.selection.active.line === eventLine ? true : undefined));
       assert.ok(await clickText('Play run'), 'no Play button');
       await new Promise((resolve) => setTimeout(resolve, 2500));
       await screenshot("bird's-eye view playing a run");
@@ -84,6 +92,17 @@ export function defineBirdsEyeTests(): void {
       const played = await waitFor('the playback figures', () => (view.stats && !view.stats.playing && view.stats.frames > 0 ? view.stats : undefined));
       assert.ok(played.time > 1, `playback reached ${played.time} s`);
       console.log(`playback: ${played.frames} frames, ${played.frameMeanMs.toFixed(2)} ms mean, ${played.frameWorstMs.toFixed(2)} ms worst to draw a frame`);
+      // The picture saved as PNG and as SVG, as the view's buttons do (here to given files).
+      const png = path.join(workspaceRoot(), 'birdsEye', 'picture.png');
+      const svg = path.join(workspaceRoot(), 'birdsEye', 'picture.svg');
+      await vscode.commands.executeCommand('modular2simple.birdsEye.save', 'png', png);
+      await vscode.commands.executeCommand('modular2simple.birdsEye.save', 'svg', svg);
+      assert.deepEqual([...fs.readFileSync(png).subarray(0, 8)], [0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a]);
+      assert.ok(fs.statSync(png).size > 5000, `the PNG is only ${fs.statSync(png).size} bytes`);
+      const drawing = fs.readFileSync(svg, 'utf8');
+      assert.match(drawing, /^<\?xml[^]*<svg /);
+      assert.ok((drawing.match(/<polygon /g) ?? []).length > 10, 'the SVG holds the lanes');
+      assert.match(drawing, />Adversary<\/text>/);
       await vscode.commands.executeCommand('workbench.action.closeAllEditors');
     });
 

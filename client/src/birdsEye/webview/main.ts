@@ -272,6 +272,8 @@ window.addEventListener('message', (event: MessageEvent<ToView>) => {
     renderPanel();
     fit();
     setTime(0);
+  } else if (message.type === 'export') {
+    vscode.postMessage({ type: 'save', format: message.format, data: picture(message.format), id: message.id });
   } else if (message.type === 'error') {
     element<HTMLUListElement>('problems').replaceChildren(Object.assign(document.createElement('li'), { textContent: message.message, className: 'error' }));
   }
@@ -335,16 +337,19 @@ slider.addEventListener('input', () => {
 element('fit').addEventListener('click', () => fit(true));
 element('network').addEventListener('click', () => fit(false));
 element('load').addEventListener('click', () => vscode.postMessage({ type: 'loadRun' }));
-element('png').addEventListener('click', () => {
-  renderFrame();
-  vscode.postMessage({ type: 'save', format: 'png', data: canvas.toDataURL('image/png') });
-});
-element('svg').addEventListener('click', () => {
+/** The picture as shown: the canvas as PNG, or the same drawing as an SVG document. */
+function picture(format: 'png' | 'svg'): string {
+  if (format === 'png') {
+    renderFrame();
+    return canvas.toDataURL('image/png');
+  }
   const { width, height } = size();
   const svg = new SvgPainter(width, height, COLORS.background);
   drawStatic(svg, width, height);
   if (view) drawEntities(svg, currentBoxes(), view, colorOf);
-  vscode.postMessage({ type: 'save', format: 'svg', data: svg.toString() });
-});
+  return svg.toString();
+}
+element('png').addEventListener('click', () => vscode.postMessage({ type: 'save', format: 'png', data: picture('png') }));
+element('svg').addEventListener('click', () => vscode.postMessage({ type: 'save', format: 'svg', data: picture('svg') }));
 new ResizeObserver(() => (view ? renderLayer() : undefined)).observe(stage);
 vscode.postMessage({ type: 'ready' });
