@@ -23,6 +23,7 @@ import { hover } from './features/hover';
 import { fileRenameEdits, placesToLocations, renameGroup, targetAt, usagesOf } from './features/references';
 import { codeLenses, documentSymbols, workspaceSymbols } from './features/symbols';
 import { packCommand } from './features/pack';
+import { register as registerPreview } from './features/preview';
 import { IdleCollector } from './idleCollector';
 import { filePathOf } from './uris';
 import { readSettings, Workspace } from './workspace';
@@ -316,6 +317,7 @@ export function startServer(connection: Connection): Workspace {
     }
   });
 
+  registerPreview(connection, workspace);
   documents.listen(connection);
   return workspace;
 }

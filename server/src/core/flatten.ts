@@ -210,15 +210,19 @@ function applyEdits(text: string, edits: TextEdit[], from = 0, to = text.length)
   return out + text.slice(position, to);
 }
 
-/** Removes every `parameterAttributes` attribute, with the white space before it. */
-export function stripParameterAttributes(model: ScenarioModel): string {
+/** The spans that stripping removes: every `parameterAttributes` attribute, with the white space before it. */
+export function parameterAttributeSpans(model: ScenarioModel): { start: number; end: number }[] {
   const text = model.document.text;
-  const edits = model.declarations.map(({ attribute: declaration }) => {
+  return model.declarations.map(({ attribute: declaration }) => {
     let start = declaration.nameStart;
     while (start > 0 && /\s/.test(text[start - 1])) start--;
-    return { start, end: declaration.valueEnd + 1, text: '' };
+    return { start, end: declaration.valueEnd + 1 };
   });
-  return applyEdits(text, edits);
+}
+
+/** Removes every `parameterAttributes` attribute, with the white space before it. */
+export function stripParameterAttributes(model: ScenarioModel): string {
+  return applyEdits(model.document.text, parameterAttributeSpans(model).map((span) => ({ ...span, text: '' })));
 }
 
 /**
@@ -586,7 +590,7 @@ export class Flattener {
     }
     out += text.slice(position);
     result.text = out;
-    result.model = buildModel(parseXml(out));
+    result.model = buildModel(this.store.parseFlattened(result.ref, out));
   }
 
   private copyGroup(
