@@ -1,13 +1,14 @@
 import * as vscode from 'vscode';
 import { ExecuteCommandRequest } from 'vscode-languageclient';
 import { LanguageClient, TransportKind, type LanguageClientOptions, type ServerOptions } from 'vscode-languageclient/node';
+import { PreviewRequest, type PreviewResult } from '../../server/src/previewProtocol';
 import { PACKAGE_SCHEME, ServerCommands, type FlattenTextResult, type StructureNode, type WriteResult } from '../../server/src/protocol';
 
 export const LANGUAGE_ID = 'xosc';
 export const CONFIGURATION_SECTION = 'modular2simple';
 
 /** Starts the bundled language server (dist/server.js) over node IPC for `.xosc` files, on disk and inside packages. */
-export function createLanguageClient(context: vscode.ExtensionContext): LanguageClient {
+export function createLanguageClient(context: vscode.ExtensionContext, afterChangeSent: () => void = () => undefined): LanguageClient {
   const module = context.asAbsolutePath('dist/server.js');
   const serverOptions: ServerOptions = {
     run: { module, transport: TransportKind.ipc },
@@ -22,6 +23,19 @@ export function createLanguageClient(context: vscode.ExtensionContext): Language
     // No `synchronize`: the server registers for configuration changes and file events itself.
     // Files inside packages open and save through the mosc: file system, so edits may reach them.
     initializationOptions: { packageFileSystem: true },
+    middleware: {
+      // Views that show the server's answers (the preview, the structure) ask again once the server has the edit.
+      didChange: async (event, next) => {
+        await next(event);
+        afterChangeSent();
+      },
+      workspace: {
+        didChangeWatchedFile: async (event, next) => {
+          await next(event);
+          afterChangeSent();
+        },
+      },
+    },
   };
   return new LanguageClient(CONFIGURATION_SECTION, 'Modular2Simple Language Server', serverOptions, clientOptions);
 }
@@ -35,13 +49,19 @@ export class ServerCommandClient {
     return (await this.client.sendRequest(ExecuteCommandRequest.type, { command, arguments: args }, token)) as T;
   }
 
-  flattenToText(uri: vscode.Uri): Promise<FlattenTextResult> {
-    return this.execute(ServerCommands.flattenToText, [uri.toString()]);
+  flattenToText(uri: vscode.Uri, options: { force?: boolean } = {}): Promise<FlattenTextResult> {
+    return this.execute(ServerCommands.flattenToText, [uri.toString(), options]);
   }
 
   /** Writes the flattened scenario; an existing output is replaced (the caller asked the user first). */
-  flattenToFile(input: vscode.Uri, outputPath: string, token?: vscode.CancellationToken): Promise<WriteResult> {
-    return this.execute(ServerCommands.flattenToFile, [input.toString(), outputPath], token);
+  flattenToFile(input: vscode.Uri, outputPath: string, options: { force?: boolean }, token?: vscode.CancellationToken): Promise<WriteResult> {
+    return this.execute(ServerCommands.flattenToFile, [input.toString(), outputPath, options], token);
+  }
+
+  /** The live preview's text and line map, from the server's flattener. */
+  async preview(uri: vscode.Uri): Promise<PreviewResult> {
+    if (!this.client.isRunning()) await this.client.start();
+    return this.client.sendRequest(PreviewRequest, { uri: uri.toString() });
   }
 
   pack(inputs: vscode.Uri[], outputPath: string, token?: vscode.CancellationToken): Promise<WriteResult> {
