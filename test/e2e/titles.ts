@@ -16,6 +16,9 @@ export const INSIDE_TESTS = {
   flatten: 'Flatten from the command palette writes a file equivalent to the CLI\'s',
   structure: 'Show Structure lists the main file, packages, scenarios and groups',
   renameInPackage: 'renaming a group inside a .mosc updates the package and the files that use it',
+  packUnsaved: 'Pack saves unsaved scenario files first, so the package holds what the editor shows, and says so',
+  flattenAnyway: 'a refused Flatten offers to write anyway, naming the overrides it skips, as --force does',
+  structureFollows: 'the structure follows a cross-file rename and file changes without a Refresh',
 } as const;
 
 export type InsideTestKey = keyof typeof INSIDE_TESTS;
