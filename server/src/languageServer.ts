@@ -23,6 +23,7 @@ import { hover } from './features/hover';
 import { fileRenameEdits, placesToLocations, renameGroup, targetAt, usagesOf } from './features/references';
 import { codeLenses, documentSymbols, workspaceSymbols } from './features/symbols';
 import { packCommand } from './features/pack';
+import { register as registerDocumentLinks } from './features/documentLinks';
 import { register as registerPreview } from './features/preview';
 import { IdleCollector } from './idleCollector';
 import { filePathOf } from './uris';
@@ -82,6 +83,7 @@ export function startServer(connection: Connection): Workspace {
         documentSymbolProvider: true,
         workspaceSymbolProvider: true,
         codeLensProvider: { resolveProvider: false },
+        documentLinkProvider: { resolveProvider: false },
         executeCommandProvider: { commands: Object.values(ServerCommands) },
         workspace: {
           workspaceFolders: { supported: true },
@@ -318,6 +320,7 @@ export function startServer(connection: Connection): Workspace {
   });
 
   registerPreview(connection, workspace);
+  registerDocumentLinks(connection, workspace);
   documents.listen(connection);
   return workspace;
 }
