@@ -1,3 +1,4 @@
+import * as path from 'node:path';
 import * as vscode from 'vscode';
 import type { ServerCapabilities } from 'vscode-languageclient';
 import { DidChangeWatchedFilesNotification, FileChangeType } from 'vscode-languageclient';
@@ -113,7 +114,7 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
     try {
       const root = await loadStructure(mainFileOf(source));
       await vscode.commands.executeCommand(`${STRUCTURE_VIEW_ID}.focus`);
-      if (!root) void vscode.window.showInformationMessage(`${source.path.split('/').pop()} holds no scenario references to show.`);
+      if (!root) void vscode.window.showInformationMessage(`${path.posix.basename(source.path)} holds no scenario references to show.`);
       return root;
     } catch (error) {
       await reporter.failure('Show Structure', error);

@@ -178,6 +178,14 @@ export function startServer(connection: Connection): Workspace {
     });
   });
 
+  // A save changes the file on disk: what was cached of its bytes goes, as Pack reads the disk right after saving.
+  documents.onDidSave(({ document }) => {
+    void guard('save', undefined, async () => {
+      const ref = await refs.get(document.uri);
+      if (ref) workspace.fileChanged(ref.disk, false);
+    });
+  });
+
   documents.onDidClose(({ document }) => {
     idle.touch();
     void guard('close', undefined, async () => {

@@ -339,10 +339,15 @@ export function defineExtensionTests(): void {
       const latencies: number[] = [];
       let previous = '27.5';
       for (const value of ['31.25', '32.5', '33.75', '35', '36.25']) {
-        const started = Date.now();
+        let arrived = 0;
+        const listener = vscode.workspace.onDidChangeTextDocument((event) => {
+          if (event.document === atCursor.document && !arrived && event.document.getText().includes(`value="${value}"`)) arrived = performance.now();
+        });
+        const started = performance.now();
         await replaceText(editor.document, `key="AbsoluteTargetSpeed.value" value="${previous}"`, `key="AbsoluteTargetSpeed.value" value="${value}"`);
-        await waitFor('the preview to follow the edit', () => atCursor.document.getText().includes(`value="${value}"`) || undefined);
-        latencies.push(Date.now() - started);
+        await waitFor('the preview to follow the edit', () => arrived > 0 || undefined);
+        listener.dispose();
+        latencies.push(Math.round(arrived - started));
         previous = value;
       }
       latencies.sort((a, b) => a - b);
@@ -374,6 +379,11 @@ export function defineExtensionTests(): void {
       await settings.update('scenarioPath', [library], vscode.ConfigurationTarget.Workspace);
       try {
         await waitFor('the reference to resolve through the setting', () => !onReference() || undefined);
+        // The library lies outside the workspace, and still its files are watched: a file removed there is reported.
+        fs.renameSync(path.join(library, 'shared_lane_change.xosc'), path.join(library, 'moved_away.xosc'));
+        await waitFor('the removed library file to be reported', onReference, 15_000);
+        fs.renameSync(path.join(library, 'moved_away.xosc'), path.join(library, 'shared_lane_change.xosc'));
+        await waitFor('the restored library file to resolve', () => !onReference() || undefined, 15_000);
       } finally {
         await settings.update('scenarioPath', undefined, vscode.ConfigurationTarget.Workspace);
         await revertAndClose();
