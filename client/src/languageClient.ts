@@ -1,6 +1,7 @@
 import * as vscode from 'vscode';
 import { ExecuteCommandRequest } from 'vscode-languageclient';
 import { LanguageClient, TransportKind, type LanguageClientOptions, type ServerOptions } from 'vscode-languageclient/node';
+import { resolveScenarioPaths } from './configuration';
 import { PreviewRequest, type PreviewResult } from '../../server/src/previewProtocol';
 import { PACKAGE_SCHEME, ServerCommands, type FlattenTextResult, type StructureNode, type WriteResult } from '../../server/src/protocol';
 
@@ -30,6 +31,16 @@ export function createLanguageClient(context: vscode.ExtensionContext, afterChan
         afterChangeSent();
       },
       workspace: {
+        // The setting is resource-scoped: relative entries are resolved against the folder asked about.
+        configuration: async (params, token, next) => {
+          const answers = await next(params, token);
+          if (!Array.isArray(answers)) return answers;
+          return answers.map((answer: unknown, index) => {
+            const scope = params.items[index]?.scopeUri;
+            const folder = scope ? vscode.workspace.getWorkspaceFolder(vscode.Uri.parse(scope)) : vscode.workspace.workspaceFolders?.[0];
+            return folder?.uri.scheme === 'file' ? resolveScenarioPaths(answer, folder.uri.fsPath) : answer;
+          });
+        },
         didChangeWatchedFile: async (event, next) => {
           await next(event);
           afterChangeSent();
