@@ -1,34 +1,20 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
-import * as os from 'node:os';
 import * as path from 'node:path';
 import { previewLineOf } from '../../server/src/core/lineSegments';
 import { PreviewRequest, type PreviewResult } from '../../server/src/previewProtocol';
-import { positionAfter, repoRoot, TestClient } from './harness';
+import { positionAfter, serveExamples } from './harness';
 
 describe('language server: the live preview request (JSON-RPC)', function () {
-  let root: string;
-  let client: TestClient;
-
-  before(async function () {
-    root = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-preview-'));
-    fs.cpSync(path.join(repoRoot, 'examples'), root, { recursive: true });
-    client = await TestClient.start({ root });
-    await client.indexed();
-  });
-
-  after(async function () {
-    await client?.stop();
-    if (root) fs.rmSync(root, { recursive: true, force: true });
-  });
+  const examples = serveExamples();
 
   it('answers the flattened text of the unsaved edit and where each source line shows, from the flattener', async function () {
-    const mainPath = path.join(root, 'main.xosc');
+    const mainPath = path.join(examples.root(), 'main.xosc');
     const text = fs.readFileSync(mainPath, 'utf8');
-    const uri = await client.openFile(mainPath);
+    const uri = await examples.client().openFile(mainPath);
     const at = positionAfter(text, 'key="AbsoluteTargetSpeed.value" value="');
-    await client.change(uri, [{ range: { start: at, end: { line: at.line, character: at.character + 4 } }, text: '31.25' }]);
-    const result = await client.request<PreviewResult>(PreviewRequest.method, { uri });
+    await examples.client().change(uri, [{ range: { start: at, end: { line: at.line, character: at.character + 4 } }, text: '31.25' }]);
+    const result = await examples.client().request<PreviewResult>(PreviewRequest.method, { uri });
     assert.ok(result.text, JSON.stringify(result.problems));
     assert.ok(result.text.includes('value="31.25"'), 'the preview does not hold the unsaved edit');
     const previewLines = result.text.split('\n');
@@ -43,9 +29,9 @@ describe('language server: the live preview request (JSON-RPC)', function () {
   });
 
   it('answers no text and no lines, with the problems, when the scenario cannot be flattened', async function () {
-    const mainPath = path.join(root, 'main.xosc');
-    const uri = await client.open(`${new URL(`file://${mainPath}`).href}`, fs.readFileSync(mainPath, 'utf8').replace('scenarioFileName="lane_change.xosc"', 'scenarioFileName="nowhere.xosc"'));
-    const result = await client.request<PreviewResult>(PreviewRequest.method, { uri });
+    const mainPath = path.join(examples.root(), 'main.xosc');
+    const uri = await examples.client().open(`${new URL(`file://${mainPath}`).href}`, fs.readFileSync(mainPath, 'utf8').replace('scenarioFileName="lane_change.xosc"', 'scenarioFileName="nowhere.xosc"'));
+    const result = await examples.client().request<PreviewResult>(PreviewRequest.method, { uri });
     assert.equal(result.text, null);
     assert.deepEqual(result.lines, []);
     assert.ok(result.problems.some((problem) => problem.severity === 'error' && /nowhere\.xosc/.test(problem.message)));

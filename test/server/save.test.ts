@@ -1,38 +1,24 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
-import * as os from 'node:os';
 import * as path from 'node:path';
 import JSZip from 'jszip';
 import { ServerCommands, type WriteResult } from '../../server/src/protocol';
-import { fileUri, positionAfter, repoRoot, TestClient } from './harness';
+import { fileUri, positionAfter, serveExamples } from './harness';
 
 describe('language server: a saved file is read again from disk (JSON-RPC)', function () {
-  let root: string;
-  let client: TestClient;
-
-  before(async function () {
-    root = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-save-'));
-    fs.cpSync(path.join(repoRoot, 'examples'), root, { recursive: true });
-    client = await TestClient.start({ root });
-    await client.indexed();
-  });
-
-  after(async function () {
-    await client?.stop();
-    if (root) fs.rmSync(root, { recursive: true, force: true });
-  });
+  const examples = serveExamples();
 
   it('packs what was saved right before, not the bytes read when indexing', async function () {
-    const mainPath = path.join(root, 'main.xosc');
+    const mainPath = path.join(examples.root(), 'main.xosc');
     const text = fs.readFileSync(mainPath, 'utf8');
-    const uri = await client.openFile(mainPath);
+    const uri = await examples.client().openFile(mainPath);
     const at = positionAfter(text, 'key="RelativeDistanceCondition.value" value="');
-    await client.change(uri, [{ range: { start: at, end: { line: at.line, character: at.character + 2 } }, text: '17.5' }]);
+    await examples.client().change(uri, [{ range: { start: at, end: { line: at.line, character: at.character + 2 } }, text: '17.5' }]);
     // The editor saves (the client's Pack does this first), then asks for the package at once.
     fs.writeFileSync(mainPath, text.replace('key="RelativeDistanceCondition.value" value="12"', 'key="RelativeDistanceCondition.value" value="17.5"'));
-    await client.connection.sendNotification('textDocument/didSave', { textDocument: { uri } });
-    const output = path.join(root, 'out.mosc');
-    const result = await client.request<WriteResult>('workspace/executeCommand', { command: ServerCommands.pack, arguments: [[fileUri(mainPath)], output] });
+    await examples.client().connection.sendNotification('textDocument/didSave', { textDocument: { uri } });
+    const output = path.join(examples.root(), 'out.mosc');
+    const result = await examples.client().request<WriteResult>('workspace/executeCommand', { command: ServerCommands.pack, arguments: [[fileUri(mainPath)], output] });
     assert.equal(result.written, output, JSON.stringify(result.problems));
     const packed = await (await JSZip.loadAsync(fs.readFileSync(output))).file('main.xosc')?.async('string');
     assert.ok(packed?.includes('key="RelativeDistanceCondition.value" value="17.5"'), 'the package holds the bytes read before the save');
