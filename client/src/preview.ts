@@ -65,13 +65,28 @@ export class FlattenedPreview implements vscode.TextDocumentContentProvider, vsc
         if (document.uri.scheme === PREVIEW_SCHEME) this.states.delete(document.uri.toString());
       }),
       vscode.window.onDidChangeTextEditorSelection((event) => this.follow(event.textEditor)),
+      // A preview shown again (say, a closed tab reopened) asks for the current text.
+      vscode.window.tabGroups.onDidChangeTabs((event) => {
+        for (const tab of event.opened) {
+          if (tab.input instanceof vscode.TabInputText && tab.input.uri.scheme === PREVIEW_SCHEME && !this.states.has(tab.input.uri.toString())) void this.refresh(tab.input.uri);
+        }
+      }),
     );
   }
 
-  /** Called once the language server has been sent an edit (or a file event), so the request sees it. */
+  /**
+   * Called once the language server has been sent an edit (or a file event), so the request sees
+   * it. Previews in no tab (closed, though VS Code keeps their documents a while) are not
+   * flattened on every keystroke: they forget their text and ask again when shown.
+   */
   refreshAll(): void {
+    const inTabs = new Set(
+      vscode.window.tabGroups.all.flatMap((group) => group.tabs.map((tab) => (tab.input instanceof vscode.TabInputText ? tab.input.uri.toString() : undefined))),
+    );
     for (const document of vscode.workspace.textDocuments) {
-      if (document.uri.scheme === PREVIEW_SCHEME && !document.isClosed) void this.refresh(document.uri);
+      if (document.uri.scheme !== PREVIEW_SCHEME || document.isClosed) continue;
+      if (inTabs.has(document.uri.toString())) void this.refresh(document.uri);
+      else this.states.delete(document.uri.toString());
     }
   }
 
