@@ -1,7 +1,6 @@
 import * as vscode from 'vscode';
 import { previewLineOf } from '../../server/src/core/lineSegments';
-import type { PreviewResult } from '../../server/src/previewProtocol';
-import type { ProblemSummary } from '../../server/src/protocol';
+import type { PreviewResult, ProblemSummary } from '../../server/src/protocol';
 import { LANGUAGE_ID } from './languageClient';
 import { flattenedName } from './naming';
 

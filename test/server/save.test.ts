@@ -2,7 +2,7 @@ import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import JSZip from 'jszip';
-import { ServerCommands, type WriteResult } from '../../server/src/protocol';
+import { PackRequest, type WriteResult } from '../../server/src/protocol';
 import { fileUri, positionAfter, serveExamples } from './harness';
 
 describe('language server: a saved file is read again from disk (JSON-RPC)', function () {
@@ -18,7 +18,7 @@ describe('language server: a saved file is read again from disk (JSON-RPC)', fun
     fs.writeFileSync(mainPath, text.replace('key="RelativeDistanceCondition.value" value="12"', 'key="RelativeDistanceCondition.value" value="17.5"'));
     await examples.client().connection.sendNotification('textDocument/didSave', { textDocument: { uri } });
     const output = path.join(examples.root(), 'out.mosc');
-    const result = await examples.client().request<WriteResult>('workspace/executeCommand', { command: ServerCommands.pack, arguments: [[fileUri(mainPath)], output] });
+    const result = await examples.client().request<WriteResult>(PackRequest.method, { inputs: [fileUri(mainPath)], outputPath: output });
     assert.equal(result.written, output, JSON.stringify(result.problems));
     const packed = await (await JSZip.loadAsync(fs.readFileSync(output))).file('main.xosc')?.async('string');
     assert.ok(packed?.includes('key="RelativeDistanceCondition.value" value="17.5"'), 'the package holds the bytes read before the save');

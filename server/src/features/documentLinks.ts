@@ -1,4 +1,4 @@
-import { Connection, DocumentLink, DocumentLinkRequest, ResponseError } from 'vscode-languageserver/node';
+import { DocumentLink } from 'vscode-languageserver/node';
 import { resolvedTarget } from '../analysis';
 import { displayRef, SourceRef } from '../core/sources';
 import { Workspace } from '../workspace';
@@ -19,16 +19,4 @@ export async function documentLinks(workspace: Workspace, ref: SourceRef): Promi
     links.push({ range: model.document.lines.range(value.valueStart, value.valueEnd), target: workspace.uriOf(target), tooltip: `Open ${displayRef(target, workspace.folders[0])}` });
   }
   return links;
-}
-
-export function register(connection: Connection, workspace: Workspace): void {
-  connection.onRequest(DocumentLinkRequest.type, async (params) => {
-    try {
-      const ref = await workspace.uris.toRef(params.textDocument.uri);
-      return ref ? await documentLinks(workspace, ref) : [];
-    } catch (error) {
-      connection.console.error(`${DocumentLinkRequest.method} failed: ${(error as Error)?.stack ?? String(error)}`);
-      throw new ResponseError(-32603, `${DocumentLinkRequest.method} failed: ${(error as Error)?.message ?? String(error)}`);
-    }
-  });
 }

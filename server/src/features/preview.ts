@@ -1,27 +1,15 @@
-import { Connection, ResponseError } from 'vscode-languageserver/node';
 import { previewLineMap } from '../core/previewLines';
-import { PreviewParams, PreviewRequest, PreviewResult } from '../previewProtocol';
+import { PreviewParams, PreviewResult } from '../protocol';
 import { Workspace } from '../workspace';
 import { refOf, summarize } from './commands';
 
 /** The flattened text as the editor has it, from the current generation's flattener (what did not change is not read again). */
 export async function preview(workspace: Workspace, params: PreviewParams): Promise<PreviewResult> {
-  const ref = await refOf(workspace, params.uri);
+  const ref = await refOf(workspace, params?.uri);
   const result = await workspace.flattener().flatten(ref);
   return {
     text: result.text ?? null,
     problems: result.problems.map((problem) => summarize(workspace, problem)),
     lines: result.text === undefined ? [] : previewLineMap(result.source),
   };
-}
-
-export function register(connection: Connection, workspace: Workspace): void {
-  connection.onRequest(PreviewRequest, async (params) => {
-    try {
-      return await preview(workspace, params);
-    } catch (error) {
-      connection.console.error(`${PreviewRequest.method} failed: ${(error as Error)?.stack ?? String(error)}`);
-      throw new ResponseError(-32603, `${PreviewRequest.method} failed: ${(error as Error)?.message ?? String(error)}`);
-    }
-  });
 }
