@@ -60,6 +60,9 @@ if (!existsSync(library)) {
   console.log(`  all ${inputs.length}: ${all.median < 500 ? 'within' : 'OVER'} the 500 ms target; peak memory ${Math.max(one.peakMb, all.peakMb) < 100 ? 'within' : 'OVER'} 100 MB`);
 }
 
+console.log('');
+spawnSync(process.execPath, [path.join(root, 'bench', 'semantics.mjs')], { stdio: 'inherit' });
+
 const lspBench = path.join(root, 'bench', 'lsp.mjs');
 if (existsSync(lspBench)) {
   console.log('');

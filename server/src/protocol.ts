@@ -66,7 +66,7 @@ export interface ProblemSummary {
   /** Zero-based, as LSP. */
   line: number;
   character: number;
-  severity: 'error' | 'warning' | 'information';
+  severity: 'error' | 'warning' | 'information' | 'hint';
   message: string;
   hint?: string;
 }

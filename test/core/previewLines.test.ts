@@ -56,6 +56,22 @@ describe('core: where the flattened preview shows each line of its source', () =
     }
   });
 
+  it('shifts the lines after text carried into the root (declarations, catalog directories) by what was carried', async () => {
+    const fixture = path.resolve(__dirname, '..', 'fixtures', 'semantics');
+    const { text, lines, source } = await previewOf(fixture);
+    assert.ok(text.split('\n').length > source.split('\n').length - 20, 'nothing was flattened');
+    const previewLines = text.split('\n');
+    const sourceLines = source.split('\n');
+    const unchanged = ['<Storyboard>', '</Storyboard>', '</OpenSCENARIO>', '<Entities>', '<RoadNetwork>'];
+    let checked = 0;
+    sourceLines.forEach((written, line) => {
+      if (!unchanged.includes(written.trim())) return;
+      checked++;
+      assert.equal(previewLines[previewLineOf(lines, line) ?? -1]?.trim(), written.trim(), `line ${line + 1}`);
+    });
+    assert.ok(checked >= 3, `only ${checked} lines checked`);
+  });
+
   it('answers no line outside the file', async () => {
     const { lines, source } = await previewOf(EXAMPLES);
     assert.equal(previewLineOf(lines, source.split('\n').length + 5), undefined);

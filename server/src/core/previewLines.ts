@@ -1,4 +1,4 @@
-import { FlatSource, Insertion, parameterAttributeSpans } from './flatten';
+import { Addition, FlatSource, Insertion, parameterAttributeSpans } from './flatten';
 import type { LineSegment } from './lineSegments';
 
 /** An outer group of the original text and the copies that replaced it in the flattened text. */
@@ -10,8 +10,10 @@ interface ReplacedRegion {
   insertions: Insertion[];
 }
 
-function replacedRegions(insertions: Insertion[]): ReplacedRegion[] {
+function replacedRegions(insertions: Insertion[], additions: Addition[]): ReplacedRegion[] {
   const regions = new Map<number, ReplacedRegion>();
+  // Text carried into the root (SPEC 11.5) replaces a region of its own; its lines show where it starts.
+  const carried: ReplacedRegion[] = additions.map((addition) => ({ inStart: addition.replacedStart, inEnd: addition.replacedEnd, outStart: addition.start, outEnd: addition.end, insertions: [] }));
   for (const insertion of insertions) {
     const region = regions.get(insertion.replacedStart);
     if (region) {
@@ -22,7 +24,7 @@ function replacedRegions(insertions: Insertion[]): ReplacedRegion[] {
       regions.set(insertion.replacedStart, { inStart: insertion.replacedStart, inEnd: insertion.replacedEnd, outStart: insertion.start, outEnd: insertion.end, insertions: [insertion] });
     }
   }
-  return [...regions.values()].sort((a, b) => a.inStart - b.inStart);
+  return [...carried, ...regions.values()].sort((a, b) => a.inStart - b.inStart);
 }
 
 function countNewlines(text: string, start: number, end: number): number {
@@ -37,8 +39,9 @@ function countNewlines(text: string, start: number, end: number): number {
 /**
  * Where the flattened text of `source` (as `Flattener.flatten` writes it, `parameterAttributes`
  * stripped) shows each line of the file itself, from the flattener's insertion records: lines
- * outside replaced groups are the file's own, shifted; a referencing group's lines show at the
- * group imported for the ManeuverGroupReference on that line, or else at the first one imported.
+ * outside replaced regions are the file's own, shifted; a referencing group's lines show at the
+ * group imported for the ManeuverGroupReference on that line, or else at the first one imported;
+ * lines that carried text replaced show where that text starts.
  */
 export function previewLineMap(source: FlatSource): LineSegment[] {
   const original = source.original;
@@ -61,7 +64,7 @@ export function previewLineMap(source: FlatSource): LineSegment[] {
     }
     return outLines.positionAt(offset).line - removedBefore[low];
   };
-  const regions = model === original ? [] : replacedRegions(source.insertions);
+  const regions = model === original ? [] : replacedRegions(source.insertions, source.additions);
   const lineOf = (offset: number): number => inLines.positionAt(offset).line;
 
   const lines: number[] = [];
@@ -75,7 +78,7 @@ export function previewLineMap(source: FlatSource): LineSegment[] {
     const region = regions[next];
     if (region && lineOf(region.inStart) <= line) {
       const insertion = region.insertions.find((candidate) => lineOf(candidate.reference.element.start) <= line && line <= lineOf(candidate.reference.element.end)) ?? region.insertions[0];
-      lines.push(previewLineAt(insertion.start));
+      lines.push(previewLineAt(insertion?.start ?? region.outStart));
     } else {
       lines.push(previewLineAt(inLines.lineStart(line) + shift));
     }
