@@ -687,7 +687,9 @@ export class Flattener {
       const named = attribute(found.element, 'name');
       return document ? { source: found.source.ref, range: document.lines.range(named?.valueStart ?? found.element.start, named?.valueEnd ?? found.element.nameEnd), message: '' } : undefined;
     };
-    const plan = planCarry(result, written.out, written.insertions, origin);
+    // One parse of the first rendering serves the carry plan and, when nothing is carried, the model.
+    const firstDocument = this.store.parseFlattened(result.ref, written.out);
+    const plan = planCarry(result, firstDocument, written.insertions, origin);
     const edits = carryEdits(result, plan, eol, this.outputDirectory ?? path.dirname(result.ref.disk));
     if (edits.length > 0) written = write(edits);
     result.carried = plan;
@@ -696,7 +698,8 @@ export class Flattener {
     result.insertions.push(...written.insertions);
     result.additions = written.additions;
     result.text = written.out;
-    result.model = buildModel(this.store.parseFlattened(result.ref, written.out));
+    // The first rendering is what re-parses incrementally from one edit to the next; a carrying one is parsed anew.
+    result.model = buildModel(edits.length > 0 ? parseXml(written.out) : firstDocument);
   }
 
   /**
