@@ -69,3 +69,10 @@ if (existsSync(lspBench)) {
   const result = spawnSync(process.execPath, [lspBench], { stdio: 'inherit' });
   process.exitCode = result.status ?? 1;
 }
+
+const birdsEyeBench = path.join(root, 'bench', 'birdsEye.ts');
+if (existsSync(birdsEyeBench)) {
+  console.log('');
+  const result = spawnSync(process.execPath, ['--import', 'tsx', birdsEyeBench], { stdio: 'inherit', cwd: root });
+  if (result.status !== 0) process.exitCode = result.status ?? 1;
+}

@@ -4,6 +4,8 @@ import type { ServerCapabilities } from 'vscode-languageclient';
 import { DidChangeWatchedFilesNotification, FileChangeType } from 'vscode-languageclient';
 import type { LanguageClient } from 'vscode-languageclient/node';
 import { PACKAGE_SCHEME, type StructureNode } from '../../server/src/protocol';
+import { registerBirdsEye } from './birdsEye/commands';
+import type { BirdsEyeView } from './birdsEye/panel';
 import { CommandReporter, commandTargets, flattenCommand, mainFileOf, packCommand } from './commands';
 import { ChangeFollower } from './followChanges';
 import { LANGUAGE_ID, ServerCommandClient, createLanguageClient } from './languageClient';
@@ -21,6 +23,8 @@ export interface Modular2SimpleApi {
   readonly structure: () => StructureNode | undefined;
   /** What the running server offers (undefined before it started): lets callers and tests see which features exist. */
   readonly serverCapabilities: () => ServerCapabilities | undefined;
+  /** The bird's-eye view: what it shows and last drew. */
+  readonly birdsEye: BirdsEyeView;
 }
 
 let languageClient: LanguageClient | undefined;
@@ -131,7 +135,9 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
     }
   });
 
-  return { serverReady, structure: () => structure.current, serverCapabilities: () => client.initializeResult?.capabilities };
+  const birdsEye = registerBirdsEye(context, client, log);
+
+  return { serverReady, structure: () => structure.current, serverCapabilities: () => client.initializeResult?.capabilities, birdsEye };
 }
 
 export async function deactivate(): Promise<void> {

@@ -4,6 +4,7 @@
  */
 import { RequestType } from 'vscode-languageserver-protocol';
 import type { LineSegment } from './core/lineSegments';
+import { SceneRequest } from './sceneProtocol';
 
 export interface FlattenOptions {
   /** Write (or show) the flattened scenario even when errors were found, skipping what cannot be resolved. */
@@ -56,7 +57,7 @@ export interface PreviewResult {
 
 export const PreviewRequest = new RequestType<PreviewParams, PreviewResult, void>('modular2simple/preview');
 
-export const CUSTOM_REQUESTS = [FlattenToTextRequest.method, FlattenToFileRequest.method, PackRequest.method, StructureRequest.method, PreviewRequest.method];
+export const CUSTOM_REQUESTS = [FlattenToTextRequest.method, FlattenToFileRequest.method, PackRequest.method, StructureRequest.method, SceneRequest.method, PreviewRequest.method];
 
 /** URI scheme of files inside a `.mosc`: `mosc:/abs/path/pkg.mosc/inner.mosc/main.xosc`. */
 export const PACKAGE_SCHEME = 'mosc';

@@ -19,6 +19,9 @@ export const INSIDE_TESTS = {
   packUnsaved: 'Pack saves unsaved scenario files first, so the package holds what the editor shows, and says so',
   flattenAnyway: 'a refused Flatten offers to write anyway, naming the overrides it skips, as --force does',
   structureFollows: 'the structure follows a cross-file rename and file changes without a Refresh',
+  birdsEye: "Show Bird's-Eye View draws the roads and the entities at their start, opens an entity's place, and follows edits",
+  birdsEyeRun: "after a run, the bird's-eye view plays the trajectories and shows when the events started",
+  birdsEyePackage: "the bird's-eye view shows a scenario inside a .mosc",
 } as const;
 
 export type InsideTestKey = keyof typeof INSIDE_TESTS;

@@ -21,6 +21,7 @@ import * as prepareRename from './prepareRename';
 import * as preview from './preview';
 import * as references from './references';
 import * as rename from './rename';
+import * as scene from './scene';
 import * as structure from './structure';
 import * as willRenameFiles from './willRenameFiles';
 import * as workspaceSymbol from './workspaceSymbol';
@@ -52,6 +53,7 @@ const HANDLERS: { register(context: ServerContext): void }[] = [
   pack,
   structure,
   preview,
+  scene,
 ];
 
 export function registerHandlers(context: ServerContext): void {
