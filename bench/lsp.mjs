@@ -2,11 +2,12 @@
 // on the largest corpus scenario, on a generated workspace of 1,000 scenario files and on a
 // generated 15,000-line main file. Run `npm run build` first.
 import { spawn } from 'node:child_process';
-import { existsSync, mkdirSync, mkdtempSync, readFileSync, realpathSync, rmSync, writeFileSync } from 'node:fs';
+import { cpSync, existsSync, mkdirSync, mkdtempSync, readFileSync, realpathSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
 import { createProtocolConnection, StreamMessageReader, StreamMessageWriter } from 'vscode-languageserver/node';
+import { previewLatency } from './previewLatency.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 const server = path.join(root, 'dist', 'server.js');
@@ -227,7 +228,7 @@ async function editLatency(filePath, text, label) {
     times.push(now() - started);
   }
   row(`edit -> diagnostics, ${label}`, stats(times), 50);
-  return uri;
+  return { uri, version };
 }
 
 // The same 15,000 lines with a tenth of the references: most of a large main file is plain OpenSCENARIO.
@@ -235,9 +236,11 @@ let fewReferences = mainScenario(40, simpleCount);
 fewReferences = mainScenario(40, simpleCount, 15_000 - fewReferences.split('\n').length);
 const fewPath = path.join(workspace, 'big_main_40.xosc');
 writeFileSync(fewPath, fewReferences);
-const fewUri = await editLatency(fewPath, fewReferences, `${fewReferences.split('\n').length - 1} lines, 40 references`);
+const { uri: fewUri } = await editLatency(fewPath, fewReferences, `${fewReferences.split('\n').length - 1} lines, 40 references`);
 await session.connection.sendNotification('textDocument/didClose', { textDocument: { uri: fewUri } });
-const bigUri = await editLatency(bigPath, bigMain, `${bigLines} lines, 400 references`);
+const { uri: bigUri, version: bigVersion } = await editLatency(bigPath, bigMain, `${bigLines} lines, 400 references`);
+const bigPreview = await previewLatency(session.connection, bigUri, bigMain, 'key="AbsoluteTargetSpeed.value" value="', { samples: Math.min(samples, 40), version: bigVersion });
+row(`edit -> preview text and line map, ${bigLines} lines`, stats(bigPreview.times), 300);
 
 const completionPositions = Array.from({ length: 20 }, (_, i) => ({ textDocument: { uri: bigUri }, position: positionAfter(bigMain, 'key="', (i * 61) % 1200) }));
 const completion = await timeRequests(session.connection, 'textDocument/completion', completionPositions);
@@ -257,7 +260,25 @@ line('  after the 15,000-line edits, at rest (now / peak)', `${fmt(memory.rss)} 
 await session.stop();
 rmSync(workspace, { recursive: true, force: true });
 
-// ---- 2. the largest corpus scenario --------------------------------------------------------------
+// ---- 2. the bundled examples: edit to preview ------------------------------------------------------
+
+{
+  const examples = realpathSync(mkdtempSync(path.join(tmpdir(), 'm2s-preview-bench-')));
+  cpSync(path.join(root, 'examples'), examples, { recursive: true });
+  const session = await start(examples);
+  const mainPath = path.join(examples, 'main.xosc');
+  const text = readFileSync(mainPath, 'utf8');
+  const uri = uriOf(mainPath);
+  const opened = session.diagnosticsFor(uri, 1);
+  await session.connection.sendNotification('textDocument/didOpen', { textDocument: { uri, languageId: 'xosc', version: 1, text } });
+  await opened;
+  const preview = await previewLatency(session.connection, uri, text, '.value" value="', { samples, version: 1 });
+  row('edit -> preview text and line map, examples/main.xosc', stats(preview.times), 100);
+  await session.stop();
+  rmSync(examples, { recursive: true, force: true });
+}
+
+// ---- 3. the largest corpus scenario --------------------------------------------------------------
 
 if (!existsSync(library)) {
   console.log(`  (corpus part skipped: ${library} is absent)`);

@@ -1,8 +1,9 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import * as vscode from 'vscode';
-import type { ProblemSummary, WriteResult } from '../../server/src/protocol';
-import type { ServerCommandClient } from './languageClient';
+import { PACKAGE_SCHEME, type ProblemSummary, type WriteResult } from '../../server/src/protocol';
+import { LANGUAGE_ID, type ServerCommandClient } from './languageClient';
+import { FLATTENED_SUFFIX, flattenedName } from './naming';
 import { packageEntryUri } from './packageFileSystem';
 
 /** Options a caller (a test, a keybinding) may pass instead of being asked. */
@@ -74,11 +75,20 @@ export function defaultPackOutput(inputs: string[]): string {
   return besideFolder(folder ?? path.dirname(main ?? inputs[0]), '.mosc');
 }
 
+/** Where Flatten proposes to write: `<package>.flattened.xosc` (see naming.ts) beside the package, or inside it when it is a workspace root. */
 export function defaultFlattenOutput(input: string): string {
-  if (input.toLowerCase().endsWith('.mosc')) return input.slice(0, -'.mosc'.length) + '.xosc';
   const folder = packageFolder(input);
-  if (folder) return besideFolder(folder, '.xosc');
-  return input.replace(/\.xosc$/i, '') + '.flattened.xosc';
+  if (folder) return besideFolder(folder, FLATTENED_SUFFIX);
+  return path.join(path.dirname(input), flattenedName(vscode.Uri.file(input)));
+}
+
+function fileName(uri: string): string {
+  return path.posix.basename(vscode.Uri.parse(uri).path);
+}
+
+/** A problem in a few words, with the file and line it is at. */
+export function problemPlace(problem: ProblemSummary): string {
+  return `${problem.message} (${fileName(problem.uri)}:${problem.line + 1})`;
 }
 
 /** Reports what went wrong and what to do; the details go to the output channel. */
@@ -123,31 +133,79 @@ async function confirmOverwrite(output: string, options: WriteCommandOptions): P
   return answer === replace;
 }
 
+/**
+ * Where to write: the output a caller named (asking before replacing a file), or the place the
+ * user picks in a save dialog that proposes the conventional name (the dialog asks about replacing).
+ */
+async function chooseOutput(action: string, proposed: string, options: WriteCommandOptions, filters: Record<string, string[]>): Promise<string | undefined> {
+  if (options.output) return (await confirmOverwrite(options.output, options)) ? options.output : undefined;
+  const picked = await vscode.window.showSaveDialog({ defaultUri: vscode.Uri.file(proposed), filters, saveLabel: action.split(' ')[0], title: action });
+  if (!picked) return undefined;
+  return picked.scheme === 'file' ? picked.fsPath : picked.path;
+}
+
+type WriteOutcome = { result: WriteResult } | { error: unknown };
+
+async function withWriteProgress(action: string, output: string, write: (token: vscode.CancellationToken) => Promise<WriteResult>): Promise<WriteOutcome> {
+  try {
+    return {
+      result: await vscode.window.withProgress(
+        { location: vscode.ProgressLocation.Notification, title: `${action}: ${path.basename(output)}`, cancellable: true },
+        (_progress, token) => write(token),
+      ),
+    };
+  } catch (error) {
+    return { error };
+  }
+}
+
+function reportWritten(reporter: CommandReporter, action: string, result: WriteResult & { written: string }, note = ''): string {
+  reporter.log(`${action}: wrote ${result.written}${note}`);
+  for (const problem of result.problems) reporter.log(`  ${problem.severity} ${problem.uri}:${problem.line + 1} ${problem.message}`);
+  void vscode.window.showInformationMessage(`${action}: wrote ${path.basename(result.written)}${note}`, 'Open').then((choice) => {
+    if (choice === 'Open') void vscode.commands.executeCommand('vscode.open', vscode.Uri.file(result.written));
+  });
+  return result.written;
+}
+
 async function runWrite(
   reporter: CommandReporter,
   action: string,
   output: string,
   write: (token: vscode.CancellationToken) => Promise<WriteResult>,
+  note = '',
 ): Promise<string | undefined> {
-  try {
-    const result = await vscode.window.withProgress(
-      { location: vscode.ProgressLocation.Notification, title: `${action}: ${path.basename(output)}`, cancellable: true },
-      (_progress, token) => write(token),
-    );
-    if (result.written === null) {
-      await reporter.problems(action, result.problems);
-      return undefined;
-    }
-    reporter.log(`${action}: wrote ${result.written}`);
-    for (const problem of result.problems) reporter.log(`  ${problem.severity} ${problem.uri}:${problem.line + 1} ${problem.message}`);
-    void vscode.window.showInformationMessage(`${action}: wrote ${path.basename(result.written)}`, 'Open').then((choice) => {
-      if (choice === 'Open' && result.written) void vscode.commands.executeCommand('vscode.open', vscode.Uri.file(result.written));
-    });
-    return result.written;
-  } catch (error) {
-    await reporter.failure(action, error);
+  const outcome = await withWriteProgress(action, output, write);
+  if ('error' in outcome) {
+    await reporter.failure(action, outcome.error);
     return undefined;
   }
+  const { result } = outcome;
+  if (result.written === null) {
+    await reporter.problems(action, result.problems);
+    return undefined;
+  }
+  return reportWritten(reporter, action, { ...result, written: result.written }, note);
+}
+
+/** Scenario files with unsaved changes, on disk or inside packages: Pack saves them first, so the package holds what the editor shows. */
+function unsavedScenarios(): vscode.TextDocument[] {
+  return vscode.workspace.textDocuments.filter((document) => document.isDirty && document.languageId === LANGUAGE_ID && (document.uri.scheme === 'file' || document.uri.scheme === PACKAGE_SCHEME));
+}
+
+/** Saves the unsaved scenario files; answers their names, or undefined when one could not be saved. */
+async function saveScenarios(reporter: CommandReporter, action: string): Promise<string[] | undefined> {
+  const saved: string[] = [];
+  for (const document of unsavedScenarios()) {
+    const name = path.posix.basename(document.uri.path);
+    if (!(await document.save())) {
+      reporter.log(`${action}: could not save ${document.uri.toString()}`);
+      void vscode.window.showErrorMessage(`${action}: ${name} has unsaved changes and could not be saved, so nothing was packed. Save it, then pack again.`);
+      return undefined;
+    }
+    saved.push(name);
+  }
+  return saved;
 }
 
 export async function packCommand(server: ServerCommandClient, reporter: CommandReporter, clicked: unknown, selected: unknown, ...rest: unknown[]): Promise<string | undefined> {
@@ -157,9 +215,20 @@ export async function packCommand(server: ServerCommandClient, reporter: Command
     return undefined;
   }
   const options = commandOptions(clicked, selected, ...rest);
-  const output = options.output ?? defaultPackOutput(targets.map((uri) => uri.fsPath));
-  if (!(await confirmOverwrite(output, options))) return undefined;
-  return runWrite(reporter, 'Pack into .mosc', output, (token) => server.pack(targets, output, token));
+  const output = await chooseOutput('Pack into .mosc', defaultPackOutput(targets.map((uri) => uri.fsPath)), options, { 'OpenSCENARIO package': ['mosc'] });
+  if (!output) return undefined;
+  // A package holds what the editor shows: unsaved scenario files are saved first, and the message says which.
+  const saved = await saveScenarios(reporter, 'Pack into .mosc');
+  if (!saved) return undefined;
+  const note = saved.length > 0 ? ` (saved ${saved.join(', ')} first)` : '';
+  return runWrite(reporter, 'Pack into .mosc', output, (token) => server.pack(targets, output, token), note);
+}
+
+/** The errors a forced flatten skips, named, for the question whether to write anyway. */
+function skippedByForce(problems: ProblemSummary[]): string {
+  const errors = problems.filter((problem) => problem.severity === 'error');
+  const shown = errors.slice(0, 3).map(problemPlace).join('; ');
+  return errors.length > 3 ? `${shown}; and ${errors.length - 3} more` : shown;
 }
 
 export async function flattenCommand(server: ServerCommandClient, reporter: CommandReporter, clicked: unknown, selected: unknown, ...rest: unknown[]): Promise<string | undefined> {
@@ -169,7 +238,37 @@ export async function flattenCommand(server: ServerCommandClient, reporter: Comm
     return undefined;
   }
   const options = commandOptions(clicked, selected, ...rest);
-  const output = options.output ?? defaultFlattenOutput(target.fsPath);
-  if (!(await confirmOverwrite(output, options))) return undefined;
-  return runWrite(reporter, 'Flatten to .xosc', output, (token) => server.flattenToFile(mainFileOf(target), output, token));
+  const action = 'Flatten to .xosc';
+  const output = await chooseOutput(action, defaultFlattenOutput(target.fsPath), options, { OpenSCENARIO: ['xosc'] });
+  if (!output) return undefined;
+  const main = mainFileOf(target);
+  const outcome = await withWriteProgress(action, output, (token) => server.flattenToFile(main, output, {}, token));
+  if ('error' in outcome) {
+    await reporter.failure(action, outcome.error);
+    return undefined;
+  }
+  if (outcome.result.written !== null) return reportWritten(reporter, action, { ...outcome.result, written: outcome.result.written });
+  // Refused: when only overrides that cannot apply stop it, offer what --force does, naming what it skips.
+  const problems = outcome.result.problems;
+  const forced = await server.flattenToText(main, { force: true }).catch(() => undefined);
+  if (!forced || forced.text === null) {
+    await reporter.problems(action, problems);
+    return undefined;
+  }
+  const errors = problems.filter((problem) => problem.severity === 'error').length;
+  reporter.log(`${action} refused; writing anyway would skip:`);
+  for (const problem of problems.filter((candidate) => candidate.severity === 'error')) reporter.log(`  ${problem.uri}:${problem.line + 1}:${problem.character + 1} ${problem.message}`);
+  const writeAnyway = 'Write Anyway';
+  const choice = await vscode.window.showWarningMessage(
+    `${action}: nothing was written, because ${errors === 1 ? 'an override cannot' : `${errors} overrides cannot`} apply: ${skippedByForce(problems)}. Write anyway, skipping ${errors === 1 ? 'it' : 'them'} (as --force does)?`,
+    writeAnyway,
+    'Go to Problem',
+  );
+  if (choice === 'Go to Problem') {
+    const first = problems.find((problem) => problem.severity === 'error');
+    if (first) await vscode.window.showTextDocument(vscode.Uri.parse(first.uri), { selection: new vscode.Range(first.line, first.character, first.line, first.character) });
+    return undefined;
+  }
+  if (choice !== writeAnyway) return undefined;
+  return runWrite(reporter, action, output, (token) => server.flattenToFile(main, output, { force: true }, token), ` (skipped ${errors === 1 ? 'an override' : `${errors} overrides`} that cannot apply)`);
 }

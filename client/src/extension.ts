@@ -1,14 +1,18 @@
+import * as path from 'node:path';
 import * as vscode from 'vscode';
 import type { ServerCapabilities } from 'vscode-languageclient';
+import { DidChangeWatchedFilesNotification, FileChangeType } from 'vscode-languageclient';
 import type { LanguageClient } from 'vscode-languageclient/node';
 import { PACKAGE_SCHEME, type StructureNode } from '../../server/src/protocol';
 import { registerBirdsEye } from './birdsEye/commands';
 import type { BirdsEyeView } from './birdsEye/panel';
 import { CommandReporter, commandTargets, flattenCommand, mainFileOf, packCommand } from './commands';
+import { ChangeFollower } from './followChanges';
 import { LANGUAGE_ID, ServerCommandClient, createLanguageClient } from './languageClient';
 import { PackageFileSystem } from './packageFileSystem';
 import { PACKAGE_VIEW_TYPE, PackageViewProvider } from './packageView';
-import { FlattenedPreview, PREVIEW_SCHEME, previewSource } from './preview';
+import { FlattenedPreview, isPreviewPlace, PREVIEW_SCHEME, previewSource } from './preview';
+import { ScenarioPathWatchers } from './scenarioPathWatchers';
 import { STRUCTURE_VIEW_ID, StructureTree } from './structureView';
 import { registerTagClosing } from './tagClosingEditor';
 import { EsminiRunner, type EsminiRunEvent } from './esminiRun';
@@ -42,7 +46,10 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
     vscode.window.registerCustomEditorProvider(PACKAGE_VIEW_TYPE, new PackageViewProvider(log)),
   );
 
-  const client = createLanguageClient(context);
+  // Fired once the server has been sent an edit or a file event: the views that show its answers ask again.
+  const serverHasChanges = new vscode.EventEmitter<void>();
+  context.subscriptions.push(serverHasChanges);
+  const client = createLanguageClient(context, () => serverHasChanges.fire());
   languageClient = client;
   const server = new ServerCommandClient(client);
   const serverReady = client.start().catch((error: unknown) => {
@@ -55,11 +62,22 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
   const esmini = new EsminiRunner(client);
   context.subscriptions.push(esmini);
 
-  const preview = new FlattenedPreview((source) => server.flattenToText(source), log);
+  const preview = new FlattenedPreview((source) => server.preview(source), log);
   const structure = new StructureTree();
+  // Scenario-path folders outside the workspace get watchers of their own; their events reach the server as the workspace's do.
+  const FILE_CHANGE: Record<'created' | 'changed' | 'deleted', FileChangeType> = { created: FileChangeType.Created, changed: FileChangeType.Changed, deleted: FileChangeType.Deleted };
+  const scenarioPathWatchers = new ScenarioPathWatchers((uri, kind) => {
+    if (!client.isRunning()) return;
+    client.sendNotification(DidChangeWatchedFilesNotification.type, { changes: [{ uri: uri.toString(), type: FILE_CHANGE[kind] }] }).then(
+      () => serverHasChanges.fire(),
+      (error: unknown) => log(`sending a file event: ${(error as Error).message}`),
+    );
+  });
   context.subscriptions.push(
     preview,
     structure,
+    scenarioPathWatchers,
+    serverHasChanges.event(() => preview.refreshAll()),
     vscode.workspace.registerTextDocumentContentProvider(PREVIEW_SCHEME, preview),
     vscode.window.createTreeView(STRUCTURE_VIEW_ID, { treeDataProvider: structure, showCollapseAll: true }),
     registerTagClosing(),
@@ -70,28 +88,32 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
   };
   register('modular2simple.pack', (clicked, selected, ...rest) => packCommand(server, reporter, clicked, selected, ...rest));
   register('modular2simple.flatten', (clicked, selected, ...rest) => flattenCommand(server, reporter, clicked, selected, ...rest));
-  register('modular2simple.openPreview', async (clicked) => {
+  register('modular2simple.openPreview', async (clicked, at) => {
     let [source] = commandTargets(clicked, undefined);
     if (source?.scheme === PREVIEW_SCHEME) source = previewSource(source);
     if (!source) {
       void vscode.window.showErrorMessage('Open Flattened Preview: open a main.xosc (or a file inside a .mosc) first.');
       return undefined;
     }
-    return preview.open(mainFileOf(source));
+    // A CodeLens names the reference's line; otherwise the preview opens at the cursor's group.
+    return preview.open(mainFileOf(source), isPreviewPlace(at) ? at : undefined);
   });
-  // The structure shown follows saves, as the Outline does.
+  // The structure shown follows every change the server is sent (edits, file events) and saves, as the Outline does.
   let structureSource: vscode.Uri | undefined;
-  const loadStructure = async (source: vscode.Uri): Promise<StructureNode | undefined> => {
-    const root = await vscode.window.withProgress({ location: { viewId: STRUCTURE_VIEW_ID }, title: 'Reading the references' }, () => server.structure(source));
+  const loadStructure = async (source: vscode.Uri, quietly = false): Promise<StructureNode | undefined> => {
+    const root = quietly ? await server.structure(source) : await vscode.window.withProgress({ location: { viewId: STRUCTURE_VIEW_ID }, title: 'Reading the references' }, () => server.structure(source));
     structureSource = source;
     structure.show(root ?? undefined);
     return root ?? undefined;
   };
+  const structureFollower = new ChangeFollower(async () => {
+    if (structureSource) await loadStructure(structureSource, true);
+  }, log);
   context.subscriptions.push(
+    structureFollower,
+    serverHasChanges.event(() => structureFollower.schedule()),
     vscode.workspace.onDidSaveTextDocument((document) => {
-      if (structureSource && document.languageId === LANGUAGE_ID) {
-        loadStructure(structureSource).catch((error: unknown) => log(`refreshing the structure: ${(error as Error).message}`));
-      }
+      if (document.languageId === LANGUAGE_ID) structureFollower.schedule();
     }),
   );
   register('modular2simple.showStructure', async (clicked) => {
@@ -103,7 +125,7 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
     try {
       const root = await loadStructure(mainFileOf(source));
       await vscode.commands.executeCommand(`${STRUCTURE_VIEW_ID}.focus`);
-      if (!root) void vscode.window.showInformationMessage(`${source.path.split('/').pop()} holds no scenario references to show.`);
+      if (!root) void vscode.window.showInformationMessage(`${path.posix.basename(source.path)} holds no scenario references to show.`);
       return root;
     } catch (error) {
       await reporter.failure('Show Structure', error);

@@ -5,17 +5,21 @@ import {
   FlattenToTextRequest,
   PACKAGE_SCHEME,
   PackRequest,
+  PreviewRequest,
   StructureRequest,
+  type FlattenOptions,
   type FlattenTextResult,
+  type PreviewResult,
   type StructureNode,
   type WriteResult,
 } from '../../server/src/protocol';
+import { resolveScenarioPaths } from './configuration';
 
 export const LANGUAGE_ID = 'xosc';
 export const CONFIGURATION_SECTION = 'modular2simple';
 
 /** Starts the bundled language server (dist/server.js) over node IPC for `.xosc` files, on disk and inside packages. */
-export function createLanguageClient(context: vscode.ExtensionContext): LanguageClient {
+export function createLanguageClient(context: vscode.ExtensionContext, afterChangeSent: () => void = () => undefined): LanguageClient {
   const module = context.asAbsolutePath('dist/server.js');
   const serverOptions: ServerOptions = {
     run: { module, transport: TransportKind.ipc },
@@ -30,6 +34,29 @@ export function createLanguageClient(context: vscode.ExtensionContext): Language
     // No `synchronize`: the server registers for configuration changes and file events itself.
     // Files inside packages open and save through the mosc: file system, so edits may reach them.
     initializationOptions: { packageFileSystem: true },
+    middleware: {
+      // Views that show the server's answers (the preview, the structure) ask again once the server has the edit.
+      didChange: async (event, next) => {
+        await next(event);
+        afterChangeSent();
+      },
+      workspace: {
+        // The setting is resource-scoped: relative entries are resolved against the folder asked about.
+        configuration: async (params, token, next) => {
+          const answers = await next(params, token);
+          if (!Array.isArray(answers)) return answers;
+          return answers.map((answer: unknown, index) => {
+            const scope = params.items[index]?.scopeUri;
+            const folder = scope ? vscode.workspace.getWorkspaceFolder(vscode.Uri.parse(scope)) : vscode.workspace.workspaceFolders?.[0];
+            return folder?.uri.scheme === 'file' ? resolveScenarioPaths(answer, folder.uri.fsPath) : answer;
+          });
+        },
+        didChangeWatchedFile: async (event, next) => {
+          await next(event);
+          afterChangeSent();
+        },
+      },
+    },
   };
   return new LanguageClient(CONFIGURATION_SECTION, 'Modular2Simple Language Server', serverOptions, clientOptions);
 }
@@ -43,13 +70,18 @@ export class ServerCommandClient {
     return this.client;
   }
 
-  async flattenToText(uri: vscode.Uri): Promise<FlattenTextResult> {
-    return (await this.started()).sendRequest(FlattenToTextRequest, { uri: uri.toString() });
+  async flattenToText(uri: vscode.Uri, options: FlattenOptions = {}): Promise<FlattenTextResult> {
+    return (await this.started()).sendRequest(FlattenToTextRequest, { uri: uri.toString(), options });
   }
 
   /** Writes the flattened scenario; an existing output is replaced (the caller asked the user first). */
-  async flattenToFile(input: vscode.Uri, outputPath: string, token?: vscode.CancellationToken): Promise<WriteResult> {
-    return (await this.started()).sendRequest(FlattenToFileRequest, { uri: input.toString(), outputPath }, token);
+  async flattenToFile(input: vscode.Uri, outputPath: string, options: FlattenOptions, token?: vscode.CancellationToken): Promise<WriteResult> {
+    return (await this.started()).sendRequest(FlattenToFileRequest, { uri: input.toString(), outputPath, options }, token);
+  }
+
+  /** The live preview's text and line map, from the server's flattener. */
+  async preview(uri: vscode.Uri): Promise<PreviewResult> {
+    return (await this.started()).sendRequest(PreviewRequest, { uri: uri.toString() });
   }
 
   async pack(inputs: vscode.Uri[], outputPath: string, token?: vscode.CancellationToken): Promise<WriteResult> {

@@ -3,6 +3,7 @@
  * parameters and results, typed for both sides (both bundles import this file).
  */
 import { RequestType } from 'vscode-languageserver-protocol';
+import type { LineSegment } from './core/lineSegments';
 import { SceneRequest } from './sceneProtocol';
 
 export interface FlattenOptions {
@@ -43,7 +44,20 @@ export const StructureRequest = new RequestType<StructureParams, StructureNode |
 /** Run in esmini: flattens the editor's text, runs it headless and answers with its messages on source lines and the CSV path. */
 export const RunEsminiRequest = new RequestType<RunEsminiParams, RunEsminiResult, void>('modular2simple/runEsmini');
 
-export const CUSTOM_REQUESTS = [FlattenToTextRequest.method, FlattenToFileRequest.method, PackRequest.method, StructureRequest.method, SceneRequest.method, RunEsminiRequest.method];
+/** The live preview: the flattened text of a scenario as the editor has it, and where it shows each line of that scenario. */
+export interface PreviewParams {
+  /** A `main.xosc`, a package (`.mosc` or unpacked folder) or any scenario file. */
+  uri: string;
+}
+export interface PreviewResult {
+  /** The flattened scenario; null when errors prevent it. */
+  text: string | null;
+  problems: ProblemSummary[];
+  /** Where the text shows each line of the file itself (empty when there is no text), from the flattener's insertion records. */
+  lines: LineSegment[];
+}
+export const PreviewRequest = new RequestType<PreviewParams, PreviewResult, void>('modular2simple/preview');
+export const CUSTOM_REQUESTS = [FlattenToTextRequest.method, FlattenToFileRequest.method, PackRequest.method, StructureRequest.method, SceneRequest.method, RunEsminiRequest.method, PreviewRequest.method];
 
 /** URI scheme of files inside a `.mosc`: `mosc:/abs/path/pkg.mosc/inner.mosc/main.xosc`. */
 export const PACKAGE_SCHEME = 'mosc';

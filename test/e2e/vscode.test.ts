@@ -84,6 +84,22 @@ function servePage(endpoint: HarnessEndpoint, page: Page): void {
     await page.keyboard.press('Enter');
     return {};
   });
+  endpoint.routes.set('/figure', async (body) => {
+    const { name, values } = body as { name: string; values: number[] };
+    console.log(`    figure: ${name}: ${values.join(', ')}`);
+    fs.appendFileSync(path.join(ARTIFACTS, 'figures.txt'), `${name}: ${values.join(', ')}\n`);
+    return {};
+  });
+  endpoint.routes.set('/quickInput', async () => {
+    // What the quick input (the command palette, a quick pick, the save dialog of a remote window) shows.
+    return (await page.evaluate(`(() => {
+      const widget = document.querySelector('.quick-input-widget');
+      const visible = !!widget && widget.style.display !== 'none' && widget.offsetParent !== null;
+      const input = widget ? widget.querySelector('input') : null;
+      const title = widget ? widget.querySelector('.quick-input-title') : null;
+      return { visible, value: input ? input.value : '', title: title ? title.textContent : '' };
+    })()`)) as { visible: boolean; value: string; title: string };
+  });
   endpoint.routes.set('/clickText', async (body) => {
     const { text } = body as { text: string };
     // Links and buttons in any frame: the package view is a webview, an iframe of its own.

@@ -325,7 +325,9 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
     it('shows where a scenarioFileName resolves and the groups it offers', async function () {
       const hover = await client.request<Hover>('textDocument/hover', client.at(mainUri, positionAt(main.text, main.offsets[5])));
       const value = (hover.contents as MarkupContent).value;
-      assert.match(value, /^\*\*pkg\.xosc\*\* → `pkg\.mosc\/main\.xosc`/);
+      // Where the name was found, without repeating the name the attribute already shows.
+      assert.match(value, /^found at `pkg\.mosc\/main\.xosc`/);
+      assert.ok(!value.includes('**pkg.xosc**'), value);
       assert.match(value, /ManeuverGroups:\n- Inner\.Brake$/);
     });
 
@@ -451,9 +453,11 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
     it('puts override counts and the flatten preview on each ScenarioReference', async function () {
       const lenses = await client.request<CodeLens[]>('textDocument/codeLens', { textDocument: { uri: mainUri } });
       assert.equal(lenses.length, 8);
-      assert.equal(lenses[0].command?.title, '1 override (3 keys written)');
+      assert.equal(lenses[0].command?.title, '3 keys override 1 attribute');
       assert.equal(lenses[1].command?.command, 'modular2simple.openPreview');
-      assert.deepEqual(lenses[1].command?.arguments, [mainUri]);
+      // The reference's line, so that the preview opens at the groups it imports.
+      assert.deepEqual(lenses[1].command?.arguments, [mainUri, { line: lenses[1].range.start.line }]);
+      assert.equal(lenses[1].range.start.line, main.text.slice(0, main.text.indexOf('<ScenarioReference')).split('\n').length - 1);
     });
   });
 
@@ -517,6 +521,7 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
       assert.equal(second.children[0].kind, 'package');
       assert.equal(second.children[0].children[0].label, 'Inner → simple.xosc');
       assert.equal(second.children[1].label, 'Inner.Brake');
+      assert.match(second.children[1].detail ?? '', /^\d+ attributes? overridden$/);
       assert.equal(second.children[1].uri, `mosc:${path.join(root, 'pkg.mosc')}/simple.xosc`);
     });
 

@@ -260,6 +260,27 @@ export class TestClient {
   }
 }
 
+/** A language server on a fresh copy of the bundled examples for the suite that calls this (in its body), stopped after it. */
+export function serveExamples(): { root: () => string; client: () => TestClient } {
+  let root: string | undefined;
+  let client: TestClient | undefined;
+  before(async function () {
+    root = fs.realpathSync(fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-examples-')));
+    fs.cpSync(path.join(repoRoot, 'examples'), root, { recursive: true });
+    client = await TestClient.start({ root });
+    await client.indexed();
+  });
+  after(async function () {
+    await client?.stop();
+    if (root) fs.rmSync(root, { recursive: true, force: true });
+  });
+  const started = <T>(value: T | undefined): T => {
+    if (value === undefined) throw new Error('the examples server has not started');
+    return value;
+  };
+  return { root: () => started(root), client: () => started(client) };
+}
+
 // Root hooks for every file that drives a server. A failing afterEach would abort the whole run, so
 // each test's errors are only filed here and fail the suite when its client stops (or, for a client
 // never stopped, at the end of the run).

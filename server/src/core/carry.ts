@@ -4,7 +4,7 @@ import { Problem, RelatedProblemLocation } from './problems';
 import { buildSemanticModel, Declaration, Evaluator, ParameterUse, SemanticModel, semanticModelOf, ValueResult } from './semantics';
 import { displayRef } from './sources';
 import { indentationAt } from './text';
-import { attribute, elementStartingAt, escapeAttributeValue, isWithin, parseXml, selfAndDescendants, XmlElement } from './xml';
+import { attribute, elementStartingAt, escapeAttributeValue, isWithin, selfAndDescendants, XmlDocument, XmlElement } from './xml';
 
 /**
  * What flattening carries from imported groups' sources into the output (SPEC 11): the parameter
@@ -50,12 +50,12 @@ function sameValue(a: Declaration, b: Declaration): boolean {
 }
 
 /**
- * Decides what to carry. `first` is the output rendered without carrying, `insertions` the copies in
+ * Decides what to carry. `first` is the output rendered without carrying (parsed), `insertions` the copies in
  * it; `origin` maps an element of a source's flattened model to where it was written.
  */
 export function planCarry(
   main: FlatSource,
-  first: string,
+  first: XmlDocument,
   insertions: Insertion[],
   origin: (source: FlatSource, element: XmlElement) => RelatedProblemLocation | undefined,
 ): CarryPlan {
@@ -63,7 +63,7 @@ export function planCarry(
   const mainSemantics = main.semantics;
   const mainModel = main.original;
   if (!mainSemantics || !mainModel || insertions.length === 0) return plan;
-  const output = buildSemanticModel(parseXml(first));
+  const output = buildSemanticModel(first);
   const carried = new Map<string, CarriedDeclaration>();
   const reported = new Set<string>();
 

@@ -241,15 +241,19 @@ function applyEdits(text: string, edits: TextEdit[], from = 0, to = text.length)
   return out + text.slice(position, to);
 }
 
-/** Removes every `parameterAttributes` attribute, with the white space before it. */
-export function stripParameterAttributes(model: ScenarioModel): string {
+/** The spans that stripping removes: every `parameterAttributes` attribute, with the white space before it. */
+export function parameterAttributeSpans(model: ScenarioModel): { start: number; end: number }[] {
   const text = model.document.text;
-  const edits = model.declarations.map(({ attribute: declaration }) => {
+  return model.declarations.map(({ attribute: declaration }) => {
     let start = declaration.nameStart;
     while (start > 0 && /\s/.test(text[start - 1])) start--;
-    return { start, end: declaration.valueEnd + 1, text: '' };
+    return { start, end: declaration.valueEnd + 1 };
   });
-  return applyEdits(text, edits);
+}
+
+/** Removes every `parameterAttributes` attribute, with the white space before it. */
+export function stripParameterAttributes(model: ScenarioModel): string {
+  return applyEdits(model.document.text, parameterAttributeSpans(model).map((span) => ({ ...span, text: '' })));
 }
 
 /**
@@ -688,7 +692,9 @@ export class Flattener {
       const named = attribute(found.element, 'name');
       return document ? { source: found.source.ref, range: document.lines.range(named?.valueStart ?? found.element.start, named?.valueEnd ?? found.element.nameEnd), message: '' } : undefined;
     };
-    const plan = planCarry(result, written.out, written.insertions, origin);
+    // One parse of the first rendering serves the carry plan and, when nothing is carried, the model.
+    const firstDocument = this.store.parseFlattened(result.ref, written.out);
+    const plan = planCarry(result, firstDocument, written.insertions, origin);
     const edits = carryEdits(result, plan, eol, this.outputDirectory ?? path.dirname(result.ref.disk));
     if (edits.length > 0) written = write(edits);
     result.carried = plan;
@@ -697,7 +703,8 @@ export class Flattener {
     result.insertions.push(...written.insertions);
     result.additions = written.additions;
     result.text = written.out;
-    result.model = buildModel(parseXml(written.out));
+    // The first rendering is what re-parses incrementally from one edit to the next; a carrying one is parsed anew.
+    result.model = buildModel(edits.length > 0 ? parseXml(written.out) : firstDocument);
   }
 
   /**

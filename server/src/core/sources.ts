@@ -249,6 +249,8 @@ export class ScenarioStore {
   private readonly overlays = new Map<string, string>();
   /** The last parse of each file being edited, from which the next edit is re-parsed. */
   private readonly editedParses = new Map<string, XmlDocument>();
+  /** The last parse of the flattened text of each file being edited (see parseFlattened). */
+  private readonly flattenedParses = new Map<string, XmlDocument>();
   private readonly kinds = new Map<string, Promise<'file' | 'directory' | undefined>>();
 
   constructor(options: StoreOptions = {}) {
@@ -263,6 +265,7 @@ export class ScenarioStore {
     if (text === undefined) {
       this.overlays.delete(refId(ref));
       this.editedParses.delete(refId(ref));
+      this.flattenedParses.delete(refId(ref));
     } else {
       this.overlays.set(refId(ref), text);
     }
@@ -270,11 +273,23 @@ export class ScenarioStore {
 
   /** Parses a file's text; a file being edited is re-parsed from its previous parse where it can be. */
   parse(ref: SourceRef, text: string): XmlDocument {
+    return this.parseEdited(this.editedParses, ref, text);
+  }
+
+  /**
+   * Parses the flattened text of a file being edited, from its previous flattened parse where it
+   * can be: an edit inside one value of the file changes one value of its flattened text too.
+   */
+  parseFlattened(ref: SourceRef, text: string): XmlDocument {
+    return this.parseEdited(this.flattenedParses, ref, text);
+  }
+
+  private parseEdited(previousParses: Map<string, XmlDocument>, ref: SourceRef, text: string): XmlDocument {
     const id = refId(ref);
     if (!this.overlays.has(id)) return parseXml(text);
-    const previous = this.editedParses.get(id);
+    const previous = previousParses.get(id);
     const document = previous ? reparseXml(previous, text) : parseXml(text);
-    this.editedParses.set(id, document);
+    previousParses.set(id, document);
     return document;
   }
 

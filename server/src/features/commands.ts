@@ -8,6 +8,7 @@ import { FlattenTextResult, ProblemSummary, StructureNode, WriteResult } from '.
 import { elementPlace, resolvedTarget } from '../analysis';
 import { filePathOf } from '../uris';
 import { Workspace } from '../workspace';
+import { attributesOverridden } from './symbols';
 
 export function summarize(workspace: Workspace, problem: Problem): ProblemSummary {
   const summary: ProblemSummary = {
@@ -91,7 +92,7 @@ export async function structure(workspace: Workspace, uri: unknown): Promise<Str
         reference.children.push({
           kind: group.target ? 'group' : 'missing',
           label: group.info.name,
-          detail: group.target ? `${group.plan?.applied.size ?? 0} overrides` : 'no such group',
+          detail: group.target ? attributesOverridden(group.plan?.applied.size ?? 0) : 'no such group',
           uri: place ? workspace.uriOf(place.ref) : undefined,
           line: place?.range.start.line,
           character: place?.range.start.character,

@@ -32,7 +32,9 @@ export async function hover(workspace: Workspace, ref: SourceRef, offset: number
     const target = resolvedTarget(link.resolution);
     if (!target || !link.source?.model) return reply(`**${attribute.value}** does not resolve`);
     const groups = link.source.model.groups.map((group) => `- ${group.name}`);
-    return reply([`**${attribute.value}** → \`${displayRef(target, workspace.folders[0])}\``, '', 'ManeuverGroups:', ...groups].join('\n'));
+    // The file name is what the attribute already shows: name only where it was found.
+    const found = displayRef(target, workspace.folders[0]);
+    return reply([`found at \`${found}\``, '', 'ManeuverGroups:', ...groups].join('\n'));
   }
   if (element.name === 'ManeuverGroupReference' && attribute.name === 'maneuverGroupName') {
     const reference = ancestor(element.parent, 'ScenarioReference');

@@ -72,6 +72,21 @@ export async function workspaceSymbols(workspace: Workspace, query: string, limi
 
 export const OPEN_PREVIEW_COMMAND = 'modular2simple.openPreview';
 
+function counted(count: number, noun: string): string {
+  return `${count} ${noun}${count === 1 ? '' : 's'}`;
+}
+
+/** "1 attribute overridden", "21 attributes overridden". */
+export function attributesOverridden(applied: number): string {
+  return `${counted(applied, 'attribute')} overridden`;
+}
+
+/** What a reference's keys do, in words: "15 keys override 21 attributes", "1 key overrides 1 attribute". */
+export function overrideSummary(keys: number, applied: number): string {
+  if (keys === 0) return 'no keys: defaults only';
+  return `${counted(keys, 'key')} override${keys === 1 ? 's' : ''} ${counted(applied, 'attribute')}`;
+}
+
 /** Lenses on each ScenarioReference: how many overrides take effect, and the flatten preview. */
 export async function codeLenses(workspace: Workspace, uri: string, ref: SourceRef): Promise<CodeLens[]> {
   const source = await workspace.source(ref);
@@ -82,9 +97,10 @@ export async function codeLenses(workspace: Workspace, uri: string, ref: SourceR
     const range = model.document.lines.range(link.info.element.start, link.info.element.nameEnd);
     const applied = link.groups.reduce((count, group) => count + (group.plan?.applied.size ?? 0), 0);
     const written = link.groups.reduce((count, group) => count + group.info.parameters.length, 0);
-    const title = link.source ? `${applied} override${applied === 1 ? '' : 's'} (${written} key${written === 1 ? '' : 's'} written)` : 'unresolved reference';
+    const title = link.source ? overrideSummary(written, applied) : 'unresolved reference';
     lenses.push({ range, command: { title, command: '' } });
-    lenses.push({ range, command: { title: 'flatten preview', command: OPEN_PREVIEW_COMMAND, arguments: [uri] } });
+    // The line lets the preview open at the groups this reference imports.
+    lenses.push({ range, command: { title: 'flatten preview', command: OPEN_PREVIEW_COMMAND, arguments: [uri, { line: range.start.line }] } });
   }
   return lenses;
 }

@@ -8,6 +8,8 @@ import * as didChangeConfiguration from './didChangeConfiguration';
 import * as didChangeWatchedFiles from './didChangeWatchedFiles';
 import * as didClose from './didClose';
 import * as didOpen from './didOpen';
+import * as didSave from './didSave';
+import * as documentLink from './documentLink';
 import * as documentSymbol from './documentSymbol';
 import * as flattenToFile from './flattenToFile';
 import * as flattenToText from './flattenToText';
@@ -16,6 +18,7 @@ import * as initialize from './initialize';
 import * as initialized from './initialized';
 import * as pack from './pack';
 import * as prepareRename from './prepareRename';
+import * as preview from './preview';
 import * as references from './references';
 import * as rename from './rename';
 import * as scene from './scene';
@@ -32,6 +35,7 @@ const HANDLERS: { register(context: ServerContext): void }[] = [
   didChangeWatchedFiles,
   didOpen,
   didChange,
+  didSave,
   didClose,
   definition,
   hover,
@@ -44,10 +48,12 @@ const HANDLERS: { register(context: ServerContext): void }[] = [
   documentSymbol,
   workspaceSymbol,
   codeLens,
+  documentLink,
   flattenToText,
   flattenToFile,
   pack,
   structure,
+  preview,
   scene,
   runEsmini,
 ];

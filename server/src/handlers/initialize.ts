@@ -30,6 +30,7 @@ export function register(context: ServerContext): void {
         documentSymbolProvider: true,
         workspaceSymbolProvider: true,
         codeLensProvider: { resolveProvider: false },
+        documentLinkProvider: { resolveProvider: false },
         workspace: {
           workspaceFolders: { supported: true },
           fileOperations: {

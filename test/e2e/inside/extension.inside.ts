@@ -9,7 +9,7 @@ import type { Modular2SimpleApi } from '../../../client/src/extension';
 import { firstDifference } from '../../../server/src/core/equivalence';
 import { FlattenToFileRequest, FlattenToTextRequest, PackRequest, RunEsminiRequest, StructureRequest, type RunEsminiResult, type StructureNode } from '../../../server/src/protocol';
 import { HARNESS_ENV, INSIDE_TESTS } from '../titles';
-import { clickText, pageShows, post, pressKeys, runFromPalette, screenshot, typeText } from './harnessClient';
+import { clickText, pageShows, post, pressKeys, quickInput, runFromPalette, screenshot, typeText } from './harnessClient';
 
 const EXTENSION_ID = 'modular2simple.modular2simple';
 
@@ -91,6 +91,15 @@ function cli(args: string[]): void {
   const cliPath = process.env[HARNESS_ENV.cli];
   assert.ok(cliPath, `${HARNESS_ENV.cli} is not set`);
   execFileSync(process.execPath, [cliPath, ...args], { cwd: workspaceRoot(), env: { ...process.env, ELECTRON_RUN_AS_NODE: '1' } });
+}
+
+/** Waits for the save dialog to propose `name`, then accepts it with Enter, as a person does. */
+async function acceptSaveDialog(name: string): Promise<void> {
+  await waitFor(`the save dialog proposing ${name}`, async () => {
+    const shown = await quickInput();
+    return (shown.visible && shown.value.endsWith(`/${name}`)) || undefined;
+  });
+  await pressKeys(['Enter']);
 }
 
 function flattenTree(node: StructureNode): StructureNode[] {
@@ -290,30 +299,68 @@ export function defineExtensionTests(): void {
     });
 
     it(INSIDE_TESTS.preview, async function () {
-      requireServerFeature(this, 'flattenToText', offersRequest(FlattenToTextRequest));
+      this.timeout(90_000);
+      requireServerFeature(this, 'codeLens', !!api().serverCapabilities()?.codeLensProvider);
       const editor = await open('main.xosc');
-      // The server's "flatten preview" CodeLens runs the client's command; without lenses, the command itself.
-      const lenses = api().serverCapabilities()?.codeLensProvider
-        ? await vscode.commands.executeCommand<vscode.CodeLens[]>('vscode.executeCodeLensProvider', editor.document.uri, 100)
-        : [];
-      const lens = lenses.find((candidate) => candidate.command?.command === 'modular2simple.openPreview')?.command;
-      if (lens) await vscode.commands.executeCommand(lens.command, ...(lens.arguments ?? []));
-      else await vscode.commands.executeCommand('modular2simple.openPreview', editor.document.uri);
-      const preview = await waitFor('the preview', () => vscode.workspace.textDocuments.find((document) => document.uri.scheme === 'modular2simple-preview'));
-      await waitFor('the flattened text', () => preview.getText().includes('name="CutInVehicle.CutIn"') || undefined);
+      const previewOpen = () => vscode.workspace.textDocuments.find((document) => document.uri.scheme === 'modular2simple-preview' && !document.isClosed);
+      const previewEditor = () => vscode.window.visibleTextEditors.find((visible) => visible.document.uri.scheme === 'modular2simple-preview');
+      const shows = (preview: vscode.TextEditor, line: number) => preview.visibleRanges.some((range) => range.start.line <= line && line <= range.end.line);
+      // The "flatten preview" CodeLens of the third reference opens the preview at the group that reference imports, not at line 1.
+      const referenceLine = positionOf(editor.document, 'scenarioFileName="pedestrian.mosc"').line;
+      const lenses = await waitFor('the CodeLenses', async () => {
+        const found = await vscode.commands.executeCommand<vscode.CodeLens[]>('vscode.executeCodeLensProvider', editor.document.uri, 100);
+        return found.some((candidate) => candidate.command?.command === 'modular2simple.openPreview') ? found : undefined;
+      });
+      const lens = lenses.find((candidate) => candidate.command?.command === 'modular2simple.openPreview' && candidate.range.start.line === referenceLine)?.command;
+      assert.ok(lens, `no flatten preview lens on line ${referenceLine + 1}`);
+      await vscode.commands.executeCommand(lens.command, ...(lens.arguments ?? []));
+      const preview = await waitFor('the preview', previewOpen);
+      assert.match(preview.uri.path, /\/examples\.flattened\.xosc$/, 'the preview is not named as Flatten names its output');
+      await waitFor('the flattened text', () => preview.getText().includes('name="Pedestrian.Walker.Crossing"') || undefined);
       assert.ok(!preview.getText().includes('ScenarioReference'), 'the preview still holds a ScenarioReference');
-      assert.ok(preview.getText().includes('value="27.5"'));
-      await replaceText(editor.document, 'key="AbsoluteTargetSpeed.value" value="27.5"', 'key="AbsoluteTargetSpeed.value" value="31.25"');
-      await waitFor('the preview to follow the edit', () => preview.getText().includes('value="31.25"') || undefined);
-      assert.ok(!preview.getText().includes('value="27.5"'));
+      const pedestrian = positionOf(preview, 'name="Pedestrian.Walker.Crossing"').line;
+      const atLens = await waitFor('the preview editor', previewEditor);
+      await waitFor('the preview to open at the pedestrian group', () => (shows(atLens, pedestrian) && !shows(atLens, 0)) || undefined, 10_000);
+      await screenshot('preview opens at the group of the CodeLens');
+      await vscode.commands.executeCommand('workbench.action.closeEditorsInOtherGroups');
+
+      // From the command palette: at the group around the cursor.
+      await vscode.window.showTextDocument(editor.document, vscode.ViewColumn.One);
+      const cursorAt = positionOf(editor.document, 'maneuverGroupName="CutIn"');
+      editor.selection = new vscode.Selection(cursorAt, cursorAt);
+      editor.revealRange(new vscode.Range(cursorAt, cursorAt), vscode.TextEditorRevealType.InCenter);
+      await vscode.commands.executeCommand('workbench.action.focusActiveEditorGroup');
+      await runFromPalette('Modular2Simple: Open Flattened Preview');
+      const atCursor = await waitFor('the preview editor', previewEditor);
+      const cutIn = positionOf(atCursor.document, 'name="CutInVehicle.CutIn"').line;
+      await waitFor('the preview to open at the group of the cursor', () => (shows(atCursor, cutIn) && !shows(atCursor, 0)) || undefined, 10_000);
+      await screenshot('preview opens at the group of the cursor');
+
+      // Each edit reaches the preview; the time from the edit to the new text is printed (a figure, not a limit).
+      const latencies: number[] = [];
+      let previous = '27.5';
+      for (const value of ['31.25', '32.5', '33.75', '35', '36.25']) {
+        let arrived = 0;
+        const listener = vscode.workspace.onDidChangeTextDocument((event) => {
+          if (event.document === atCursor.document && !arrived && event.document.getText().includes(`value="${value}"`)) arrived = performance.now();
+        });
+        const started = performance.now();
+        await replaceText(editor.document, `key="AbsoluteTargetSpeed.value" value="${previous}"`, `key="AbsoluteTargetSpeed.value" value="${value}"`);
+        await waitFor('the preview to follow the edit', () => arrived > 0 || undefined);
+        listener.dispose();
+        latencies.push(Math.round(arrived - started));
+        previous = value;
+      }
+      latencies.sort((a, b) => a - b);
+      console.log(`edit -> preview in VS Code, examples/main.xosc: median ${latencies[2]} ms, max ${latencies[4]} ms over 5 edits`);
+      await post('/figure', { name: 'edit -> preview in VS Code, examples/main.xosc (ms)', values: latencies }).catch(() => undefined);
+      assert.ok(!atCursor.document.getText().includes('value="27.5"'));
       // What a person sees: the preview follows the cursor, and its own editor (the group without focus) shows the new value.
-      const previewEditor = await waitFor('the preview editor', () => vscode.window.visibleTextEditors.find((visible) => visible.document === preview));
-      const cursor = positionOf(editor.document, 'value="31.25"');
+      const cursor = positionOf(editor.document, `value="${previous}"`);
       editor.selection = new vscode.Selection(cursor, cursor);
       editor.revealRange(new vscode.Range(cursor, cursor), vscode.TextEditorRevealType.InCenter);
-      const imported = positionOf(preview, 'name="CutInVehicle.CutIn"').line;
-      await waitFor('the preview to scroll to the imported group', () => previewEditor.visibleRanges.some((range) => range.start.line <= imported && imported <= range.end.line) || undefined, 10_000);
-      await waitFor('the preview to show the change', () => pageShows('31.25', '.editor-group-container:not(.active) .view-lines'), 10_000);
+      await waitFor('the preview to scroll to the imported group', () => shows(atCursor, cutIn) || undefined, 10_000);
+      await waitFor('the preview to show the change', () => pageShows(previous, '.editor-group-container:not(.active) .view-lines'), 10_000);
       await screenshot('preview after an edit');
       await revertAndClose();
     });
@@ -333,6 +380,17 @@ export function defineExtensionTests(): void {
       await settings.update('scenarioPath', [library], vscode.ConfigurationTarget.Workspace);
       try {
         await waitFor('the reference to resolve through the setting', () => !onReference() || undefined);
+        // The library lies outside the workspace, and still its files are watched: a file removed there is reported.
+        // A new watcher starts in its own time: the file goes away and comes back until the removal is seen.
+        const [present, away] = [path.join(library, 'shared_lane_change.xosc'), path.join(library, 'moved_away.xosc')];
+        await waitFor('the removed library file to be reported', async () => {
+          if (fs.existsSync(away)) fs.renameSync(away, present);
+          await new Promise((resolve) => setTimeout(resolve, 500));
+          fs.renameSync(present, away);
+          return await waitFor('the removal to be reported', onReference, 3_000).catch(() => undefined);
+        }, 20_000);
+        fs.renameSync(path.join(library, 'moved_away.xosc'), path.join(library, 'shared_lane_change.xosc'));
+        await waitFor('the restored library file to resolve', () => !onReference() || undefined, 15_000);
       } finally {
         await settings.update('scenarioPath', undefined, vscode.ConfigurationTarget.Workspace);
         await revertAndClose();
@@ -345,6 +403,7 @@ export function defineExtensionTests(): void {
       const root = workspaceRoot();
       await open('pedestrian/main.xosc');
       await runFromPalette('Modular2Simple: Pack into .mosc');
+      await acceptSaveDialog('pedestrian.mosc');
       const written = path.join(root, 'pedestrian.mosc');
       await waitFor('pedestrian.mosc', () => fs.existsSync(written) || undefined);
       const expected = path.join(os.tmpdir(), `m2s-cli-pack-${process.pid}.mosc`);
@@ -368,7 +427,9 @@ export function defineExtensionTests(): void {
       const root = workspaceRoot();
       await open('main.xosc');
       await runFromPalette('Modular2Simple: Flatten to .xosc');
-      const written = path.join(root, `${path.basename(root)}.xosc`);
+      // One naming convention (client/src/naming.ts): the package's name, .flattened.xosc, proposed in a save dialog.
+      const written = path.join(root, `${path.basename(root)}.flattened.xosc`);
+      await acceptSaveDialog(path.basename(written));
       await waitFor(path.basename(written), () => fs.existsSync(written) || undefined);
       const expected = path.join(os.tmpdir(), `m2s-cli-flatten-${process.pid}.xosc`);
       cli(['flatten', path.join(root, 'main.xosc'), '-o', expected]);
@@ -376,26 +437,32 @@ export function defineExtensionTests(): void {
       assert.equal(difference, undefined, difference);
       assert.ok(fs.readFileSync(written, 'utf8').includes('Pedestrian.Walker.Crossing'));
 
-      // Flattening again asks before replacing the file: Cancel (the default) keeps it, Replace writes it.
+      // Flattening again: the save dialog asks before replacing the file; Escape keeps it, Enter replaces it.
       fs.writeFileSync(written, '<!-- kept -->');
+      const overwriteQuestion = async () => /already exists/.test((await quickInput()).title) || undefined;
       await runFromPalette('Modular2Simple: Flatten to .xosc');
-      await waitFor('the overwrite question', () => pageShows('already exists'));
+      await acceptSaveDialog(path.basename(written));
+      await waitFor('the overwrite question', overwriteQuestion);
       await screenshot('flatten asks before overwriting');
-      await pressKeys(['Enter']);
-      await waitFor('the question to close', async () => !(await pageShows('already exists')));
+      await pressKeys(['Escape']);
+      await waitFor('the save dialog again', async () => ((await quickInput()).visible && !(await overwriteQuestion())) || undefined);
+      await pressKeys(['Escape']);
+      await waitFor('the dialog to close', async () => !(await quickInput()).visible || undefined);
       await new Promise((resolve) => setTimeout(resolve, 500));
       assert.equal(fs.readFileSync(written, 'utf8'), '<!-- kept -->');
       await runFromPalette('Modular2Simple: Flatten to .xosc');
-      await waitFor('the overwrite question', () => pageShows('already exists'));
-      await typeText('Replace');
+      await acceptSaveDialog(path.basename(written));
+      await waitFor('the overwrite question', overwriteQuestion);
       await pressKeys(['Enter']);
       await waitFor('the file to be replaced', () => fs.readFileSync(written, 'utf8') !== '<!-- kept -->' || undefined);
       assert.equal(firstDifference(fs.readFileSync(written, 'utf8'), fs.readFileSync(expected, 'utf8')), undefined);
 
-      // From the explorer's context menu on a .mosc: the package flattened beside it.
+      // From the explorer's context menu on a .mosc: the package flattened beside it, under the same convention.
       const braking = vscode.Uri.file(path.join(root, 'braking.mosc'));
-      const fromPackage = await vscode.commands.executeCommand<string | undefined>('modular2simple.flatten', braking, [braking]);
-      assert.equal(fromPackage, path.join(root, 'braking.xosc'));
+      const flattening = vscode.commands.executeCommand<string | undefined>('modular2simple.flatten', braking, [braking]);
+      await acceptSaveDialog('braking.flattened.xosc');
+      const fromPackage = await flattening;
+      assert.equal(fromPackage, path.join(root, 'braking.flattened.xosc'));
       const expectedPackage = path.join(os.tmpdir(), `m2s-cli-flatten-braking-${process.pid}.xosc`);
       cli(['flatten', braking.fsPath, '-o', expectedPackage]);
       assert.equal(firstDifference(fs.readFileSync(fromPackage, 'utf8'), fs.readFileSync(expectedPackage, 'utf8')), undefined);
@@ -514,5 +581,83 @@ export function defineExtensionTests(): void {
         await revertAndClose();
       }
     });
+    it(INSIDE_TESTS.packUnsaved, async function () {
+      this.timeout(60_000);
+      requireServerFeature(this, 'pack', offersRequest(PackRequest));
+      const root = workspaceRoot();
+      const editor = await open('main.xosc');
+      await replaceText(editor.document, 'key="RelativeDistanceCondition.value" value="12"', 'key="RelativeDistanceCondition.value" value="17.5"');
+      assert.ok(editor.document.isDirty);
+      await vscode.commands.executeCommand('workbench.action.focusActiveEditorGroup');
+      await runFromPalette('Modular2Simple: Pack into .mosc');
+      const written = path.join(root, `${path.basename(root)}.mosc`);
+      await acceptSaveDialog(path.basename(written));
+      await waitFor(path.basename(written), () => fs.existsSync(written) || undefined);
+      // The package holds what the editor shows, the file was saved to match, and the message says so.
+      const packed = await zipEntries(written);
+      assert.ok(packed.get('main.xosc')?.includes('key="RelativeDistanceCondition.value" value="17.5"'), 'the package holds the saved text, not the edited one');
+      assert.equal(packed.get('main.xosc'), editor.document.getText());
+      assert.ok(!editor.document.isDirty, 'main.xosc was not saved');
+      await waitFor('the message naming the saved file', () => pageShows('saved main.xosc first'), 10_000);
+      await screenshot('pack saves unsaved files first');
+      fs.rmSync(written);
+    it(INSIDE_TESTS.flattenAnyway, async function () {
+      this.timeout(60_000);
+      requireServerFeature(this, 'flattenToFile', offersRequest(FlattenToFileRequest));
+      const root = workspaceRoot();
+      const editor = await open('main.xosc');
+      await replaceText(editor.document, 'key="LaneChangeActionDynamics.value"', 'key="LaneChangeActionDynamic.value"');
+      assert.ok(await editor.document.save());
+      const written = path.join(root, `${path.basename(root)}.flattened.xosc`);
+      fs.rmSync(written, { force: true });
+        await vscode.commands.executeCommand('workbench.action.focusActiveEditorGroup');
+        await runFromPalette('Modular2Simple: Flatten to .xosc');
+        await acceptSaveDialog(path.basename(written));
+        // Refused, with the offer that names what writing anyway skips.
+        await waitFor('the offer to write anyway', () => pageShows('Write Anyway'), 20_000);
+        assert.ok(await pageShows('LaneChangeActionDynamic.value'), 'the offer does not name the skipped key');
+        assert.ok(!fs.existsSync(written), 'a refused flatten wrote its output');
+        await screenshot('flatten refused offers to write anyway');
+        assert.ok(await clickText('Write Anyway'), 'no Write Anyway button');
+        await waitFor(path.basename(written), () => fs.existsSync(written) || undefined);
+        const expected = path.join(os.tmpdir(), `m2s-cli-flatten-force-${process.pid}.xosc`);
+        cli(['flatten', path.join(root, 'main.xosc'), '-o', expected, '--force']);
+        assert.equal(firstDifference(fs.readFileSync(written, 'utf8'), fs.readFileSync(expected, 'utf8')), undefined);
+        await replaceText(editor.document, 'key="LaneChangeActionDynamic.value"', 'key="LaneChangeActionDynamics.value"');
+        await editor.document.save();
+    it(INSIDE_TESTS.structureFollows, async function () {
+      this.timeout(60_000);
+      requireServerFeature(this, 'rename', !!api().serverCapabilities()?.renameProvider);
+      const editor = await open('main.xosc');
+      const root = await vscode.commands.executeCommand<StructureNode | undefined>('modular2simple.showStructure', editor.document.uri);
+      assert.ok(root);
+      const groupLabels = () => flattenTree(api().structure() ?? root).filter((node) => node.kind === 'group' || node.kind === 'missing').map((node) => `${node.label}: ${node.detail ?? ''}`);
+      const original = /^CutIn: \d+ attributes? overridden$/;
+      assert.ok(groupLabels().some((label) => original.test(label)), groupLabels().join(', '));
+      // A cross-file rename, not saved: the group and its reference change in two files.
+      const laneChange = await vscode.workspace.openTextDocument(vscode.Uri.file(path.join(workspaceRoot(), 'lane_change.xosc')));
+      await vscode.window.showTextDocument(laneChange);
+      const edit = await waitFor('a rename edit', async () => {
+        const found = await vscode.commands.executeCommand<vscode.WorkspaceEdit | undefined>('vscode.executeDocumentRenameProvider', laneChange.uri, positionOf(laneChange, 'name="CutIn"', 'name="Cut'.length), 'CutInLeft');
+        return found && found.size > 1 ? found : undefined;
+      });
+      assert.ok(await vscode.workspace.applyEdit(edit));
+      await waitFor('the renamed group in the tree view', () => pageShows('CutInLeft', '.customview-tree'), 10_000);
+      assert.ok(!(await pageShows('no such group', '.customview-tree')), 'the tree shows "no such group" after the rename');
+      assert.ok(groupLabels().some((label) => label.startsWith('CutInLeft:')), groupLabels().join(', '));
+      await screenshot('structure follows a cross-file rename');
+      // Undone without saving: the tree follows back.
+      for (const document of [laneChange, editor.document]) {
+        await vscode.window.showTextDocument(document);
+      await waitFor('the original group in the tree view', () => groupLabels().some((label) => original.test(label)) || undefined, 10_000);
+      // A file changed on disk, not open in the editor: the reference now names a group that does not exist.
+      await vscode.commands.executeCommand('workbench.action.closeAllEditors');
+      const file = path.join(workspaceRoot(), 'lane_change.xosc');
+      const saved = fs.readFileSync(file, 'utf8');
+        fs.writeFileSync(file, saved.replace('name="CutIn"', 'name="CutInRight"'));
+        await waitFor('the tree to show the missing group', () => pageShows('no such group', '.customview-tree'), 15_000);
+        await screenshot('structure follows a file changed on disk');
+        fs.writeFileSync(file, saved);
+      await waitFor('the tree to follow the restored file', async () => !(await pageShows('no such group', '.customview-tree')) || undefined, 15_000);
   });
 }

@@ -50,3 +50,14 @@ export async function pageShows(text: string, selector?: string): Promise<boolea
 export async function clickText(text: string): Promise<boolean> {
   return (await post<{ clicked: boolean }>('/clickText', { text })).clicked;
 }
+
+export interface QuickInputState {
+  visible: boolean;
+  value: string;
+  title: string;
+}
+
+/** What the quick input shows now (the save dialog of a remote window is one). */
+export async function quickInput(): Promise<QuickInputState> {
+  return post<QuickInputState>('/quickInput', {});
+}
