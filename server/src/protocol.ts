@@ -49,6 +49,7 @@ export interface PreviewParams {
   /** A `main.xosc`, a package (`.mosc` or unpacked folder) or any scenario file. */
   uri: string;
 }
+
 export interface PreviewResult {
   /** The flattened scenario; null when errors prevent it. */
   text: string | null;
@@ -56,7 +57,9 @@ export interface PreviewResult {
   /** Where the text shows each line of the file itself (empty when there is no text), from the flattener's insertion records. */
   lines: LineSegment[];
 }
+
 export const PreviewRequest = new RequestType<PreviewParams, PreviewResult, void>('modular2simple/preview');
+
 export const CUSTOM_REQUESTS = [FlattenToTextRequest.method, FlattenToFileRequest.method, PackRequest.method, StructureRequest.method, SceneRequest.method, RunEsminiRequest.method, PreviewRequest.method];
 
 /** URI scheme of files inside a `.mosc`: `mosc:/abs/path/pkg.mosc/inner.mosc/main.xosc`. */

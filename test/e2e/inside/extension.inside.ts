@@ -533,6 +533,7 @@ export function defineExtensionTests(): void {
       assert.match(entries.get('main.xosc') ?? '', /maneuverGroupName="SuddenBrake"/);
       assert.match(fs.readFileSync(path.join(workspaceRoot(), 'main.xosc'), 'utf8'), /maneuverGroupName="Brake\.SuddenBrake"/);
     });
+
     it(INSIDE_TESTS.runEsmini, async function () {
       this.timeout(120_000);
       requireServerFeature(this, 'runEsmini', offersRequest(RunEsminiRequest));
@@ -581,6 +582,7 @@ export function defineExtensionTests(): void {
         await revertAndClose();
       }
     });
+
     it(INSIDE_TESTS.packUnsaved, async function () {
       this.timeout(60_000);
       requireServerFeature(this, 'pack', offersRequest(PackRequest));
@@ -601,6 +603,8 @@ export function defineExtensionTests(): void {
       await waitFor('the message naming the saved file', () => pageShows('saved main.xosc first'), 10_000);
       await screenshot('pack saves unsaved files first');
       fs.rmSync(written);
+    });
+
     it(INSIDE_TESTS.flattenAnyway, async function () {
       this.timeout(60_000);
       requireServerFeature(this, 'flattenToFile', offersRequest(FlattenToFileRequest));
@@ -610,6 +614,7 @@ export function defineExtensionTests(): void {
       assert.ok(await editor.document.save());
       const written = path.join(root, `${path.basename(root)}.flattened.xosc`);
       fs.rmSync(written, { force: true });
+      try {
         await vscode.commands.executeCommand('workbench.action.focusActiveEditorGroup');
         await runFromPalette('Modular2Simple: Flatten to .xosc');
         await acceptSaveDialog(path.basename(written));
@@ -623,8 +628,12 @@ export function defineExtensionTests(): void {
         const expected = path.join(os.tmpdir(), `m2s-cli-flatten-force-${process.pid}.xosc`);
         cli(['flatten', path.join(root, 'main.xosc'), '-o', expected, '--force']);
         assert.equal(firstDifference(fs.readFileSync(written, 'utf8'), fs.readFileSync(expected, 'utf8')), undefined);
+      } finally {
         await replaceText(editor.document, 'key="LaneChangeActionDynamic.value"', 'key="LaneChangeActionDynamics.value"');
         await editor.document.save();
+      }
+    });
+
     it(INSIDE_TESTS.structureFollows, async function () {
       this.timeout(60_000);
       requireServerFeature(this, 'rename', !!api().serverCapabilities()?.renameProvider);
@@ -649,15 +658,21 @@ export function defineExtensionTests(): void {
       // Undone without saving: the tree follows back.
       for (const document of [laneChange, editor.document]) {
         await vscode.window.showTextDocument(document);
+        await vscode.commands.executeCommand('workbench.action.files.revert');
+      }
       await waitFor('the original group in the tree view', () => groupLabels().some((label) => original.test(label)) || undefined, 10_000);
       // A file changed on disk, not open in the editor: the reference now names a group that does not exist.
       await vscode.commands.executeCommand('workbench.action.closeAllEditors');
       const file = path.join(workspaceRoot(), 'lane_change.xosc');
       const saved = fs.readFileSync(file, 'utf8');
+      try {
         fs.writeFileSync(file, saved.replace('name="CutIn"', 'name="CutInRight"'));
         await waitFor('the tree to show the missing group', () => pageShows('no such group', '.customview-tree'), 15_000);
         await screenshot('structure follows a file changed on disk');
+      } finally {
         fs.writeFileSync(file, saved);
+      }
       await waitFor('the tree to follow the restored file', async () => !(await pageShows('no such group', '.customview-tree')) || undefined, 15_000);
+    });
   });
 }
