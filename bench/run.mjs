@@ -70,3 +70,10 @@ for (const name of ['lsp.mjs', 'esmini.mjs']) {
   const result = spawnSync(process.execPath, [bench], { stdio: 'inherit' });
   if (result.status !== 0) process.exitCode = result.status ?? 1;
 }
+
+const birdsEyeBench = path.join(root, 'bench', 'birdsEye.ts');
+if (existsSync(birdsEyeBench)) {
+  console.log('');
+  const result = spawnSync(process.execPath, ['--import', 'tsx', birdsEyeBench], { stdio: 'inherit', cwd: root });
+  if (result.status !== 0) process.exitCode = result.status ?? 1;
+}

@@ -2,6 +2,8 @@ import * as vscode from 'vscode';
 import type { ServerCapabilities } from 'vscode-languageclient';
 import type { LanguageClient } from 'vscode-languageclient/node';
 import { PACKAGE_SCHEME, type StructureNode } from '../../server/src/protocol';
+import { registerBirdsEye } from './birdsEye/commands';
+import type { BirdsEyeView } from './birdsEye/panel';
 import { CommandReporter, commandTargets, flattenCommand, mainFileOf, packCommand } from './commands';
 import { LANGUAGE_ID, ServerCommandClient, createLanguageClient } from './languageClient';
 import { PackageFileSystem } from './packageFileSystem';
@@ -18,6 +20,8 @@ export interface Modular2SimpleApi {
   readonly structure: () => StructureNode | undefined;
   /** What the running server offers (undefined before it started): lets callers and tests see which features exist. */
   readonly serverCapabilities: () => ServerCapabilities | undefined;
+  /** The bird's-eye view: what it shows and last drew. */
+  readonly birdsEye: BirdsEyeView;
   /** The latest Run in esmini, and an event after each (for views of its trajectories). */
   readonly lastEsminiRun: () => EsminiRunEvent | undefined;
   readonly onDidRunEsmini: vscode.Event<EsminiRunEvent>;
@@ -116,10 +120,19 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
     }
   });
 
+  const birdsEye = registerBirdsEye(context, client, log);
+  // Run it and see it: each run that produced trajectories is shown in the bird's-eye view.
+  context.subscriptions.push(
+    esmini.onDidRun(({ source, result }) => {
+      if (result.csvFile) void birdsEye.showRun({ csvPath: result.csvFile, logText: result.log }, source).catch((error: unknown) => log(`bird's-eye view of the run: ${(error as Error).stack ?? String(error)}`));
+    }),
+  );
+
   return {
     serverReady,
     structure: () => structure.current,
     serverCapabilities: () => client.initializeResult?.capabilities,
+    birdsEye,
     lastEsminiRun: () => esmini.last,
     onDidRunEsmini: esmini.onDidRun,
   };

@@ -3,6 +3,7 @@
  * parameters and results, typed for both sides (both bundles import this file).
  */
 import { RequestType } from 'vscode-languageserver-protocol';
+import { SceneRequest } from './sceneProtocol';
 
 export interface FlattenOptions {
   /** Write (or show) the flattened scenario even when errors were found, skipping what cannot be resolved. */
@@ -42,7 +43,7 @@ export const StructureRequest = new RequestType<StructureParams, StructureNode |
 /** Run in esmini: flattens the editor's text, runs it headless and answers with its messages on source lines and the CSV path. */
 export const RunEsminiRequest = new RequestType<RunEsminiParams, RunEsminiResult, void>('modular2simple/runEsmini');
 
-export const CUSTOM_REQUESTS = [FlattenToTextRequest.method, FlattenToFileRequest.method, PackRequest.method, StructureRequest.method, RunEsminiRequest.method];
+export const CUSTOM_REQUESTS = [FlattenToTextRequest.method, FlattenToFileRequest.method, PackRequest.method, StructureRequest.method, SceneRequest.method, RunEsminiRequest.method];
 
 /** URI scheme of files inside a `.mosc`: `mosc:/abs/path/pkg.mosc/inner.mosc/main.xosc`. */
 export const PACKAGE_SCHEME = 'mosc';

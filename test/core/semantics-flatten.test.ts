@@ -2,11 +2,12 @@ import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { firstDifference } from '../../server/src/core/equivalence';
+import { carriedDeclaration, composedValues } from '../../server/src/core/carry';
 import { Flattener } from '../../server/src/core/flatten';
 import { Problem } from '../../server/src/core/problems';
 import { semanticModelOf } from '../../server/src/core/semantics';
 import { diskRef, ScenarioStore } from '../../server/src/core/sources';
-import { parseXml } from '../../server/src/core/xml';
+import { descendants as descendantsOf, parseXml } from '../../server/src/core/xml';
 import { requireEsmini, runEsmini } from '../support/esmini';
 import { makeWorkspace, repoRoot, runCli } from '../support/fixtures';
 
@@ -125,6 +126,25 @@ describe('semantics across a flatten (SPEC 11)', function () {
     assert.ok(mixed, codes(result.problems).join('\n'));
     assert.match(mixed.message, /'value' sets 2 attributes whose defaults differ: '2' \(1×\), '\$BrakeTime' \(1×\)/);
     assert.equal(mixed.related?.length, 2);
+  });
+
+  it('tells where a value of an imported group comes from: an override, or a declaration carried from its source', async () => {
+    const root = fixtureWorkspace();
+    const flattener = new Flattener(new ScenarioStore({ scenarioPath: [], root }));
+    const main = (await flattener.analyze(diskRef(path.join(root, 'main.xosc')))).source;
+    const source = main.links[0].source!;
+    const elements = source.original!.groups[0].element;
+    const find = (name: string) => [elements, ...descendantsOf(elements)].find((element) => element.name === name)!;
+    const [overridden] = composedValues(main, find('SimulationTimeCondition'), 'value');
+    assert.equal(overridden.result.provenance.kind, 'override');
+    assert.ok(overridden.result.ok && overridden.result.value === '6');
+    const [carried] = composedValues(main, find('ParameterAssignment'), 'value');
+    assert.ok(carried.result.ok && carried.result.value === 20);
+    assert.ok(carried.result.provenance.kind === 'carried' && carried.result.provenance.declaration.name === 'TargetSpeed');
+    assert.match(carried.result.provenance.from, /speed_up\.xosc$/);
+    await flattener.flatten(diskRef(path.join(root, 'main.xosc')));
+    assert.equal(path.basename(carriedDeclaration(main, 'SlowFactor')?.source.ref.disk ?? ''), 'speed_up.xosc');
+    assert.equal(carriedDeclaration(main, 'BrakeTime'), undefined);
   });
 
   it('runs in esmini exactly like the plain scenario it was composed from', async function () {

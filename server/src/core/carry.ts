@@ -1,9 +1,10 @@
 import * as path from 'node:path';
-import type { FlatSource, Insertion } from './flatten';
+import type { FlatSource, Insertion, LinkedGroupReference } from './flatten';
 import { Problem, RelatedProblemLocation } from './problems';
-import { buildSemanticModel, Declaration, ParameterUse, SemanticModel, semanticModelOf } from './semantics';
+import { buildSemanticModel, Declaration, Evaluator, ParameterUse, SemanticModel, semanticModelOf, ValueResult } from './semantics';
 import { displayRef } from './sources';
-import { descendants, escapeAttributeValue, parseXml, XmlElement } from './xml';
+import { indentationAt } from './text';
+import { attribute, elementStartingAt, escapeAttributeValue, isWithin, parseXml, selfAndDescendants, XmlElement } from './xml';
 
 /**
  * What flattening carries from imported groups' sources into the output (SPEC 11): the parameter
@@ -42,24 +43,6 @@ export interface CarryEdit {
   text: string;
   /** Carried declarations: offsets inside `text`, and what they were copied from. */
   parts: { start: number; end: number; source: FlatSource; element: XmlElement }[];
-}
-
-function selfAndDescendants(element: XmlElement): XmlElement[] {
-  return [element, ...descendants(element)];
-}
-
-function elementStartingAt(root: XmlElement | undefined, offset: number): XmlElement | undefined {
-  let current = root;
-  while (current) {
-    if (current.start === offset) return current;
-    current = current.children.find((child) => offset >= child.start && offset < child.end);
-  }
-  return undefined;
-}
-
-function isWithin(element: XmlElement, ancestor: XmlElement): boolean {
-  for (let current: XmlElement | undefined = element; current; current = current.parent) if (current === ancestor) return true;
-  return false;
 }
 
 function sameValue(a: Declaration, b: Declaration): boolean {
@@ -225,13 +208,6 @@ function planLocations(plan: CarryPlan, main: FlatSource, source: FlatSource, ou
   }
 }
 
-function indentationAt(text: string, offset: number): string {
-  let lineStart = offset;
-  while (lineStart > 0 && text[lineStart - 1] !== '\n' && text[lineStart - 1] !== '\r') lineStart--;
-  const prefix = text.slice(lineStart, offset);
-  return /^[ \t]*$/.test(prefix) ? prefix : '';
-}
-
 /** Re-indents a copied element (its first line stands at `from`) to `to`. */
 function reindentBlock(block: string, from: string, to: string, eol: string): string {
   return block
@@ -312,4 +288,50 @@ export function carryEdits(main: FlatSource, plan: CarryPlan, eol: string, outpu
     }
   }
   return edits;
+}
+
+/** The declaration carried into `main`'s flattened output under a name, with the source it came from. */
+export function carriedDeclaration(main: FlatSource, name: string): CarriedDeclaration | undefined {
+  return main.carried?.declarations.find((entry) => entry.name === name);
+}
+
+/**
+ * The value an attribute of an imported group takes in `main`'s flattened output, for each group
+ * reference of `main` that imports the element: a ParameterReference override (evaluated in the
+ * main file), or the attribute's own value read with the source's declarations, which is then either
+ * the main file's root declaration of that name (it wins) or carried from the source.
+ */
+export function composedValues(main: FlatSource, element: XmlElement, attributeName: string): { group: LinkedGroupReference; result: ValueResult }[] {
+  const results: { group: LinkedGroupReference; result: ValueResult }[] = [];
+  const mainEvaluator = main.semantics?.evaluator;
+  for (const link of main.links) {
+    const source = link.source;
+    if (!source?.model) continue;
+    for (const group of link.groups) {
+      if (!group.target || !isWithin(element, group.target.element)) continue;
+      const override = group.plan ? [...group.plan.applied].find(([target]) => target.element === element && target.attributeName === attributeName)?.[1] : undefined;
+      if (override?.valueAttribute && mainEvaluator) {
+        const value = mainEvaluator.attributeValue(override.element, override.valueAttribute);
+        const provenance = { kind: 'override' as const, parameterReference: override.element, key: override.key };
+        results.push({ group, result: { ...value, provenance } });
+        continue;
+      }
+      const own = attribute(element, attributeName);
+      if (!own) continue;
+      const model = semanticModelOf(source.model.document);
+      const value = new Evaluator(model).attributeValue(element, own);
+      const declaration = value.provenance.kind === 'declaration' ? value.provenance.declaration : undefined;
+      if (!declaration || isWithin(declaration.element, group.target.element)) {
+        results.push({ group, result: value });
+        continue;
+      }
+      const mainDeclaration = main.semantics?.model.root?.byName.get(declaration.name);
+      if (mainDeclaration && mainEvaluator) {
+        results.push({ group, result: mainEvaluator.declarationValue(mainDeclaration) });
+        continue;
+      }
+      results.push({ group, result: { ...value, provenance: { kind: 'carried', declaration, from: displayRef(source.ref) } } });
+    }
+  }
+  return results;
 }

@@ -14,8 +14,8 @@ import { displayRef, refId, Resolution, ScenarioStore, SourceError, SourceRef } 
 import * as path from 'node:path';
 import { CarryEdit, carryEdits, CarryPlan, planCarry } from './carry';
 import { analyzeDocument, CatalogLoader, DocumentSemantics, Evaluator, Finding, OUTPUT_CHECKS, runChecks, semanticModelOf, semanticProblems } from './semantics';
-import { closestMatch, detectEol } from './text';
-import { attribute, descendants, escapeAttributeValue, isWellFormed, parseXml, XmlAttribute, XmlDocument, XmlElement } from './xml';
+import { closestMatch, detectEol, indentationAt } from './text';
+import { attribute, elementStartingAt, escapeAttributeValue, isWellFormed, parseXml, selfAndDescendants, XmlAttribute, XmlDocument, XmlElement } from './xml';
 
 const entityRefCache = new WeakMap<XmlElement, XmlElement[]>();
 
@@ -27,10 +27,6 @@ function entityRefElements(group: XmlElement): XmlElement[] {
     entityRefCache.set(group, found);
   }
   return found;
-}
-
-function selfAndDescendants(element: XmlElement): XmlElement[] {
-  return [element, ...descendants(element)];
 }
 
 /**
@@ -70,15 +66,7 @@ export function originOf(source: FlatSource, element: XmlElement): { source: Fla
   return counterpart ? originOf(sourceOfCopy, counterpart) : { source, element };
 }
 
-function elementStartingAt(root: XmlElement | undefined, offset: number): XmlElement | undefined {
-  let current = root;
-  while (current) {
-    if (current.start === offset) return current;
-    current = current.children.find((child) => offset >= child.start && offset < child.end);
-  }
-  return undefined;
-}
-
+/** Catalog problems, which the output check reports only for what flattening carried. */
 const CATALOG_CODES: ReadonlySet<ProblemCode> = new Set<ProblemCode>(['catalog-directory', 'unknown-catalog', 'unknown-catalog-entry', 'unknown-assigned-parameter']);
 
 /** Problems that the original tool ignored silently: `--force` writes the output despite them. */
@@ -198,14 +186,6 @@ function problemAt(
 
 function valueRange(attributeNode: XmlAttribute | undefined, element: XmlElement): [number, number] {
   return attributeNode ? [attributeNode.valueStart, attributeNode.valueEnd] : [element.start, element.nameEnd];
-}
-
-/** Leading white space of the line where `offset` stands, when only white space precedes it there. */
-function indentationAt(text: string, offset: number): string {
-  let lineStart = offset;
-  while (lineStart > 0 && text[lineStart - 1] !== '\n' && text[lineStart - 1] !== '\r') lineStart--;
-  const prefix = text.slice(lineStart, offset);
-  return /^[ \t]*$/.test(prefix) ? prefix : '';
 }
 
 /** Moves a copied block from one indentation depth to another, line by line. */

@@ -13,13 +13,13 @@ import { clickText, pageShows, post, pressKeys, runFromPalette, screenshot, type
 
 const EXTENSION_ID = 'modular2simple.modular2simple';
 
-function workspaceRoot(): string {
+export function workspaceRoot(): string {
   const root = process.env[HARNESS_ENV.workspace];
   assert.ok(root, `${HARNESS_ENV.workspace} is not set`);
   return root;
 }
 
-async function waitFor<T>(what: string, probe: () => T | undefined | false | Promise<T | undefined | false>, timeoutMs = 20_000): Promise<T> {
+export async function waitFor<T>(what: string, probe: () => T | undefined | false | Promise<T | undefined | false>, timeoutMs = 20_000): Promise<T> {
   const deadline = Date.now() + timeoutMs;
   let last: unknown;
   while (Date.now() < deadline) {
@@ -34,7 +34,7 @@ async function waitFor<T>(what: string, probe: () => T | undefined | false | Pro
   throw new Error(`timed out after ${timeoutMs} ms waiting for ${what}${last ? ` (last error: ${(last as Error).message})` : ''}`);
 }
 
-function api(): Modular2SimpleApi {
+export function api(): Modular2SimpleApi {
   const extension = vscode.extensions.getExtension<Modular2SimpleApi>(EXTENSION_ID);
   assert.ok(extension?.isActive, 'the extension is not active');
   return extension.exports;
@@ -53,30 +53,30 @@ function offersRequest(request: { method: string }): boolean {
   return experimental?.requests?.includes(request.method) ?? false;
 }
 
-async function open(relative: string): Promise<vscode.TextEditor> {
+export async function open(relative: string): Promise<vscode.TextEditor> {
   const document = await vscode.workspace.openTextDocument(vscode.Uri.file(path.join(workspaceRoot(), relative)));
   return vscode.window.showTextDocument(document, { viewColumn: vscode.ViewColumn.One, preview: false });
 }
 
-function positionOf(document: vscode.TextDocument, text: string, offsetInText = 0): vscode.Position {
+export function positionOf(document: vscode.TextDocument, text: string, offsetInText = 0): vscode.Position {
   const index = document.getText().indexOf(text);
   assert.ok(index >= 0, `${path.basename(document.uri.path)} does not contain ${text}`);
   return document.positionAt(index + offsetInText);
 }
 
-async function replaceText(document: vscode.TextDocument, from: string, to: string): Promise<void> {
+export async function replaceText(document: vscode.TextDocument, from: string, to: string): Promise<void> {
   const start = positionOf(document, from);
   const edit = new vscode.WorkspaceEdit();
   edit.replace(document.uri, new vscode.Range(start, start.translate(0, from.length)), to);
   assert.ok(await vscode.workspace.applyEdit(edit), `could not replace ${from}`);
 }
 
-async function revertAndClose(): Promise<void> {
+export async function revertAndClose(): Promise<void> {
   await vscode.commands.executeCommand('workbench.action.files.revert');
   await vscode.commands.executeCommand('workbench.action.closeAllEditors');
 }
 
-function packageUri(...parts: string[]): vscode.Uri {
+export function packageUri(...parts: string[]): vscode.Uri {
   return vscode.Uri.from({ scheme: 'mosc', path: path.posix.join(workspaceRoot(), ...parts) });
 }
 

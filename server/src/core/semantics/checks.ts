@@ -4,7 +4,7 @@ import { closestMatch } from '../text';
 import { attribute, descendants, XmlAttribute, XmlElement } from '../xml';
 import { CatalogResolution } from './catalogs';
 import { ExpressionError } from './expressions';
-import { Declaration, ENTITY_REFERENCE_ATTRIBUTES, referencedName, resolveName, Evaluator, SemanticModel, STORYBOARD_ELEMENT_TYPES } from './model';
+import { Declaration, Evaluator, referencedName, resolveName, SemanticModel, STORYBOARD_ELEMENT_NAMES, STORYBOARD_ELEMENT_TYPES } from './model';
 
 /**
  * The semantic checks: each is one small function over a document's model, registered in
@@ -247,20 +247,18 @@ export const undeclaredEntities: SemanticCheck = ({ model, evaluator }) => {
   if (!model.hasEntities || model.catalog || !model.document.root) return [];
   const names = new Set(model.entities.map((entity) => evaluator.textOf(entity.element, entity.nameAttribute) ?? entity.name));
   const findings: Finding[] = [];
-  for (const element of descendants(model.document.root)) {
-    for (const attr of element.attributes) {
-      if (!ENTITY_REFERENCE_ATTRIBUTES.has(attr.name)) continue;
-      const value = evaluator.textOf(element, attr);
-      if (value === undefined || names.has(value)) continue;
-      findings.push({
-        ...at(element, attr),
-        severity: 'warning',
-        code: 'undeclared-entity',
-        message: `entity '${value}'${value !== attr.value ? ` (the value of ${attr.value})` : ''} is not declared in <Entities>`,
-        hint: closestMatch(value, names) ? `did you mean '${closestMatch(value, names)}'?` : `declare a ScenarioObject named '${value}'`,
-        data: { entity: value },
-      });
-    }
+  for (const { element, attribute: attr } of model.entityReferences) {
+    const value = evaluator.textOf(element, attr);
+    if (value === undefined || names.has(value)) continue;
+    const suggestion = names.size <= 2000 ? closestMatch(value, names) : undefined;
+    findings.push({
+      ...at(element, attr),
+      severity: 'warning',
+      code: 'undeclared-entity',
+      message: `entity '${value}'${value !== attr.value ? ` (the value of ${attr.value})` : ''} is not declared in <Entities>`,
+      hint: suggestion ? `did you mean '${suggestion}'?` : `declare a ScenarioObject named '${value}'`,
+      data: { entity: value },
+    });
   }
   return findings;
 };
@@ -290,7 +288,7 @@ function catalogStoryboardNames(context: SemanticContext): { name: string; eleme
     const entry = resolution.entry?.element;
     if (!entry || entry.name !== 'Maneuver') continue;
     for (const element of [entry, ...descendants(entry)]) {
-      if (Object.values(STORYBOARD_ELEMENT_TYPES).includes(element.name)) result.push({ name: attribute(element, 'name')?.value ?? '', element });
+      if (STORYBOARD_ELEMENT_NAMES.has(element.name)) result.push({ name: attribute(element, 'name')?.value ?? '', element });
     }
   }
   return result;

@@ -17,9 +17,13 @@
  * - parameters in scope at an offset (completion after `$`): `parametersInScopeAt` (innermost first,
  *   shadowed ones left out, each with its evaluated value and type).
  * - the value of an attribute or `${...}` at an offset: `valueAt` -> { attribute, result } where
- *   `result` is a ValueResult: value, type and Provenance (declaration, catalog ParameterAssignment;
- *   a ParameterReference override and "carried from a source" are given by core/flatten.ts:
- *   `overrideAt` and `FlattenResult.carried`).
+ *   `result` is a ValueResult: value, type and Provenance (`declaration`, or `assignment` for a catalog
+ *   entry's parameter set by a CatalogReference: see `entryParameterValue`). Across a composition,
+ *   core/carry.ts `composedValues(mainSource, element, attributeName)` gives the value an imported
+ *   group's attribute takes in the main file's output, with Provenance `override` (the
+ *   ParameterReference) or `carried` (the source declaration carried into the output), and
+ *   `carriedDeclaration(mainSource, name)` what flattening carried under a name (after rendering;
+ *   `FlatSource.carried` holds the whole plan).
  * - a CatalogReference's catalog and entry: `catalogReferenceAt` / `catalogEntryFor`
  *   (CatalogReferenceResolution: catalogs, entry with its file and element); the value an entry's
  *   parameter takes for one reference: `entryParameterValue`.

@@ -1,4 +1,4 @@
-import { attribute, descendants, XmlAttribute, XmlDocument, XmlElement } from '../xml';
+import { attribute, XmlAttribute, XmlDocument, XmlElement } from '../xml';
 import {
   convertValue,
   evaluateTree,
@@ -117,7 +117,7 @@ export const STORYBOARD_ELEMENT_TYPES: Record<string, string> = {
   action: 'Action',
 };
 
-const STORYBOARD_ELEMENT_NAMES: ReadonlySet<string> = new Set(Object.values(STORYBOARD_ELEMENT_TYPES));
+export const STORYBOARD_ELEMENT_NAMES: ReadonlySet<string> = new Set(Object.values(STORYBOARD_ELEMENT_TYPES));
 
 /** Attributes that name an entity (ASAM OpenSCENARIO 1.x: EntityRef and the actions/positions that take one). */
 export const ENTITY_REFERENCE_ATTRIBUTES: ReadonlySet<string> = new Set(['entityRef', 'masterEntityRef']);
@@ -149,6 +149,8 @@ export interface SemanticModel {
   storyboardByName: Map<string, NamedElement[]>;
   storyboardReferences: StoryboardReferenceInfo[];
   variableReferences: { element: XmlElement; attribute: XmlAttribute; declaration: Declaration | undefined }[];
+  /** Every attribute that names an entity (ENTITY_REFERENCE_ATTRIBUTES), in document order. */
+  entityReferences: { element: XmlElement; attribute: XmlAttribute }[];
   /** The scope each element belongs to (its own for a scope holder). */
   scopeOf(element: XmlElement): Scope | undefined;
 }
@@ -196,9 +198,8 @@ export function buildSemanticModel(document: XmlDocument): SemanticModel {
   const storyboardByName = new Map<string, NamedElement[]>();
   const storyboardReferences: StoryboardReferenceInfo[] = [];
   const variableReferences: SemanticModel['variableReferences'] = [];
+  const entityReferences: SemanticModel['entityReferences'] = [];
   const scopeByElement = new Map<XmlElement, Scope>();
-  /** The scope of every element, filled in one walk (climbing parents per element is quadratic in depth). */
-  const elementScope = new Map<XmlElement, Scope>();
   let catalog: XmlElement | undefined;
   let hasEntities = false;
   const rootElement = document.root;
@@ -222,9 +223,8 @@ export function buildSemanticModel(document: XmlDocument): SemanticModel {
     storyboardByName,
     storyboardReferences,
     variableReferences,
+    entityReferences,
     scopeOf(element) {
-      const known = elementScope.get(element);
-      if (known) return known;
       for (let current: XmlElement | undefined = element; current; current = current.parent) {
         const scope = scopeByElement.get(current);
         if (scope) return scope;
@@ -261,41 +261,44 @@ export function buildSemanticModel(document: XmlDocument): SemanticModel {
     return declaration;
   };
 
-  // Scopes first, so that every use resolves whatever the document order of declarations and uses.
-  const visitScopes = (element: XmlElement, current: Scope | undefined) => {
-    let scope = current;
+  const declarationByElement = new Map<XmlElement, Declaration>();
+  /** Opens the scope an element holds, declaring its parameters before anything below it is read. */
+  const enter = (element: XmlElement, current: Scope | undefined): Scope | undefined => {
     const holdsDeclarations = element.children.some((child) => child.name === 'ParameterDeclarations');
     const isCatalogEntry = element.parent !== undefined && element.parent.name === 'Catalog';
-    if (holdsDeclarations || element === rootElement || isCatalogEntry) {
-      scope = { element, parent: current, children: [], declarations: [], byName: new Map(), catalogEntry: isCatalogEntry };
-      current?.children.push(scope);
-      scopes.push(scope);
-      scopeByElement.set(element, scope);
-      for (const child of element.children) {
-        if (child.name === 'ParameterDeclarations') {
-          for (const declaration of child.children) if (declaration.name === 'ParameterDeclaration') declare(scope, declaration, 'parameter');
-        }
+    if (!holdsDeclarations && element !== rootElement && !isCatalogEntry) return current;
+    const scope: Scope = { element, parent: current, children: [], declarations: [], byName: new Map(), catalogEntry: isCatalogEntry };
+    current?.children.push(scope);
+    scopes.push(scope);
+    scopeByElement.set(element, scope);
+    for (const child of element.children) {
+      if (child.name !== 'ParameterDeclarations') continue;
+      for (const declaration of child.children) {
+        if (declaration.name === 'ParameterDeclaration') declarationByElement.set(declaration, declare(scope, declaration, 'parameter'));
       }
     }
-    if (scope) elementScope.set(element, scope);
-    if (element.name === 'VariableDeclarations') {
-      for (const declaration of element.children) if (declaration.name === 'VariableDeclaration') declare(scope as Scope, declaration, 'variable');
-    }
-    for (const child of element.children) visitScopes(child, scope);
+    return scope;
   };
-  visitScopes(rootElement, undefined);
-  model.root = scopes[0];
-
-  const declarationByElement = new Map<XmlElement, Declaration>();
-  for (const declaration of declarations) declarationByElement.set(declaration.element, declaration);
 
   const addUse = (use: ParameterUse) => {
     uses.push(use);
     if (use.declaration) usesOf.get(use.declaration)?.push(use);
   };
 
-  for (const element of [rootElement, ...descendants(rootElement)]) {
-    const scope = model.scopeOf(element) as Scope;
+  // One walk in document order with an explicit stack (files nest deeply); two parallel stacks allocate nothing per element.
+  const elementStack: XmlElement[] = [rootElement];
+  const scopeStack: (Scope | undefined)[] = [undefined];
+  while (elementStack.length > 0) {
+    const element = elementStack.pop() as XmlElement;
+    const scope = enter(element, scopeStack.pop()) as Scope;
+    if (element === rootElement) model.root = scope;
+    for (let i = element.children.length - 1; i >= 0; i--) {
+      elementStack.push(element.children[i]);
+      scopeStack.push(scope);
+    }
+    if (element.name === 'VariableDeclarations') {
+      for (const declaration of element.children) if (declaration.name === 'VariableDeclaration') declare(scope, declaration, 'variable');
+    }
     const ownDeclaration = declarationByElement.get(element);
     for (const attr of element.attributes) {
       if (attr.value.charCodeAt(0) !== 36 || NAME_REFERENCE_ATTRIBUTES.has(attr.name)) continue;
@@ -374,9 +377,12 @@ export function buildSemanticModel(document: XmlDocument): SemanticModel {
     }
     if (VARIABLE_REF_ELEMENTS.has(element.name)) {
       const ref = attribute(element, 'variableRef');
-      if (ref) variableReferences.push({ element, attribute: ref, declaration: variables.get(referencedName(ref).name) });
+      if (ref) variableReferences.push({ element, attribute: ref, declaration: undefined });
     }
+    for (const attr of element.attributes) if (ENTITY_REFERENCE_ATTRIBUTES.has(attr.name)) entityReferences.push({ element, attribute: attr });
   }
+  // Variables are global (declared at the root), so references are resolved once all are known.
+  for (const reference of variableReferences) reference.declaration = variables.get(referencedName(reference.attribute).name);
   model.catalog = catalog;
   model.hasEntities = hasEntities;
   return model;
