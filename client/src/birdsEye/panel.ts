@@ -56,6 +56,12 @@ export class BirdsEyeView implements vscode.Disposable {
     if (this.source?.toString() !== source.toString()) {
       this.source = source;
       this.scene = undefined;
+      // A run belongs to the scenario it ran: another scenario starts without one.
+      if (this.run) this.post({ type: 'run', run: undefined });
+      this.run = undefined;
+      this.runSource = undefined;
+      this.runWatcher?.dispose();
+      this.runWatcher = undefined;
     }
     if (!this.panel) this.createPanel();
     else this.panel.reveal(vscode.ViewColumn.Beside, true);
