@@ -121,10 +121,10 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
   });
 
   const birdsEye = registerBirdsEye(context, client, log);
-  // Run it and see it: each run that produced trajectories is shown in the bird's-eye view.
+  // A finished run goes straight into the picture: its trajectories beside the scenario.
   context.subscriptions.push(
-    esmini.onDidRun(({ source, result }) => {
-      if (result.csvFile) void birdsEye.showRun({ csvPath: result.csvFile, logText: result.log }, source).catch((error: unknown) => log(`bird's-eye view of the run: ${(error as Error).stack ?? String(error)}`));
+    esmini.onDidRun((event) => {
+      if (event.result.csvFile) void vscode.commands.executeCommand('modular2simple.birdsEye.showRun', event.result.csvFile, { logText: event.result.log, scenario: event.source });
     }),
   );
 
@@ -132,9 +132,9 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
     serverReady,
     structure: () => structure.current,
     serverCapabilities: () => client.initializeResult?.capabilities,
-    birdsEye,
     lastEsminiRun: () => esmini.last,
     onDidRunEsmini: esmini.onDidRun,
+    birdsEye,
   };
 }
 

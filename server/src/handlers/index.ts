@@ -18,8 +18,8 @@ import * as pack from './pack';
 import * as prepareRename from './prepareRename';
 import * as references from './references';
 import * as rename from './rename';
-import * as runEsmini from './runEsmini';
 import * as scene from './scene';
+import * as runEsmini from './runEsmini';
 import * as structure from './structure';
 import * as willRenameFiles from './willRenameFiles';
 import * as workspaceSymbol from './workspaceSymbol';
@@ -48,8 +48,8 @@ const HANDLERS: { register(context: ServerContext): void }[] = [
   flattenToFile,
   pack,
   structure,
-  runEsmini,
   scene,
+  runEsmini,
 ];
 
 export function registerHandlers(context: ServerContext): void {
