@@ -577,6 +577,9 @@ export function defineExtensionTests(): void {
         assert.deepEqual(esminiDiagnostics(), [], 'the next run replaces the esmini diagnostics');
         assert.ok(clean?.csvFile && fs.existsSync(clean.csvFile));
         assert.equal(api().lastEsminiRun()?.result.csvFile, clean.csvFile);
+        // Run it and see it: the trajectories of the four entities in the bird's-eye view.
+        await waitFor("the run in the bird's-eye view", () => (api().birdsEye.stats?.trajectories === 4 ? true : undefined));
+        await screenshot("bird's-eye view after Run in esmini");
       } finally {
         for (const key of ['path', 'roadPath', 'duration']) await settings.update(key, undefined, vscode.ConfigurationTarget.Workspace);
         await revertAndClose();
