@@ -6,6 +6,7 @@ import { packFiles, packFolder, PackResult } from './core/pack';
 import { formatProblem, Problem, uniqueProblems } from './core/problems';
 import { childRef, diskRef, displayRef, ScenarioStore, SourceRef, splitScenarioPath } from './core/sources';
 import { libraryStats } from './core/stats';
+import { FORMAT_HELP, formatCommand } from './cli/format';
 import { countEditorLines } from './core/text';
 
 /** Exit codes, as documented in the README. */
@@ -22,6 +23,7 @@ Usage:
   modular2simple pack FILE... -o OUT.mosc          pack files at the root of a package (one main.xosc)
   modular2simple check PATH... [--format json]     report every problem, as a compiler does
   modular2simple stats LIBRARY [--format json]     lines of code of a library (the paper's Table 1)
+${FORMAT_HELP}
 
 Compatible with the original tool:
   modular2simple -cxm|--convert-xosc-into-mosc IN... OUT.mosc
@@ -38,6 +40,9 @@ Options:
                             working directory, or the input's folder when it lies elsewhere)
   --include-scenario-path   pack: also store files found through SCENARIO_PATH
   --format text|json        output format of check and stats
+  --check                   format: list the files that would change and write nothing (exit 1 if any)
+  --width N                 format: past N columns a start tag puts each attribute on its own line (120)
+  --indent N|tab            format: the indentation (default: what the file uses, else 2 spaces)
   -q, --quiet               print errors only
   -h, --help                this help
   -v, --version             the version
@@ -331,6 +336,7 @@ export async function main(argv: string[], io: Output): Promise<number> {
       return ExitCode.ok;
     }
     const [command, ...rest] = argv;
+    if (command === 'format') return await formatCommand(rest, io);
     const options = parseOptions(rest);
     const inputs = options.positional;
     switch (command) {
