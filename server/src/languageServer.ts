@@ -23,6 +23,7 @@ import { hover } from './features/hover';
 import { fileRenameEdits, placesToLocations, renameGroup, targetAt, usagesOf } from './features/references';
 import { codeLenses, documentSymbols, workspaceSymbols } from './features/symbols';
 import { packCommand } from './features/pack';
+import { formattingCapabilities, register as registerFormatting } from './features/formatting';
 import { IdleCollector } from './idleCollector';
 import { filePathOf } from './uris';
 import { readSettings, Workspace } from './workspace';
@@ -81,6 +82,7 @@ export function startServer(connection: Connection): Workspace {
         documentSymbolProvider: true,
         workspaceSymbolProvider: true,
         codeLensProvider: { resolveProvider: false },
+        ...formattingCapabilities,
         executeCommandProvider: { commands: Object.values(ServerCommands) },
         workspace: {
           workspaceFolders: { supported: true },
@@ -315,6 +317,8 @@ export function startServer(connection: Connection): Workspace {
       throw new ResponseError(-32603, `${params.command} failed: ${(error as Error)?.message ?? String(error)}`);
     }
   });
+
+  registerFormatting(connection, { documents, workspace });
 
   documents.listen(connection);
   return workspace;

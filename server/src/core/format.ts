@@ -136,7 +136,8 @@ export function formatXml(text: string, options: FormatOptions, range?: { start:
   /** Replaces the white space between `start` and `end` by `wanted` when they differ. */
   const gap = (start: number, end: number, wanted: string) => {
     if (end - start === wanted.length && text.startsWith(wanted, start)) return;
-    if (range && !(end > lowest && start < highest) && !(start === end && start >= lowest && start <= highest)) return;
+    // A gap that ends where a selected line starts sets that line's indentation, so it belongs to the selection.
+    if (range && !(start === end ? start >= lowest && start <= highest : end >= lowest && start < highest)) return;
     // Only white space is ever replaced: this is what guarantees that content cannot change.
     if (!WHITESPACE.test(text.slice(start, end))) throw new Error(`formatter would replace content at offset ${start}`);
     edits.push({ start, end, newText: wanted });
@@ -168,7 +169,7 @@ export function formatXml(text: string, options: FormatOptions, range?: { start:
       const breaks = newlines(text, previousEnd, item.start);
       let wanted: string;
       if (atTop && index === 0) wanted = '';
-      else if ('kind' in item && item.kind === 'comment' && breaks === 0 && !(atTop && index === 0)) wanted = ' ';
+      else if ('kind' in item && item.kind === 'comment' && breaks === 0 && !atTop) wanted = ' ';
       else if (breaks >= 2 && index > 0) wanted = eol + eol + indent(depth);
       else wanted = eol + indent(depth);
       gap(previousEnd, item.start, wanted);

@@ -1,0 +1,50 @@
+import { Connection, FormattingOptions, ResponseError, TextDocuments, TextEdit } from 'vscode-languageserver/node';
+import { TextDocument } from 'vscode-languageserver-textdocument';
+import { formatXml } from '../core/format';
+import { LineIndex } from '../core/text';
+import { Workspace } from '../workspace';
+
+/** The edits that format a document (or the lines of `range`); a malformed document gets a message, no edits. */
+export function formattingEdits(
+  document: TextDocument,
+  options: FormattingOptions,
+  maxLineWidth: number,
+  range?: { start: number; end: number },
+): { edits: TextEdit[]; refusal?: string } {
+  const text = document.getText();
+  const result = formatXml(text, { tabSize: options.tabSize, insertSpaces: options.insertSpaces, maxLineWidth }, range);
+  if (!result.ok) return { edits: [], refusal: result.message };
+  const lines = new LineIndex(text);
+  return { edits: result.edits.map((edit) => TextEdit.replace(lines.range(edit.start, edit.end), edit.newText)) };
+}
+
+export interface FormattingContext {
+  documents: TextDocuments<TextDocument>;
+  workspace: Workspace;
+}
+
+/** Registers Format Document and Format Selection for `.xosc` documents. */
+export function register(connection: Connection, context: FormattingContext): void {
+  const run = (name: string, uri: string, options: FormattingOptions, range?: { start: number; end: number }): TextEdit[] => {
+    const document = context.documents.get(uri);
+    if (!document || !/\.xosc$/i.test(uri)) return [];
+    try {
+      const { edits, refusal } = formattingEdits(document, options, context.workspace.settings.formatMaxLineWidth, range);
+      if (refusal) void connection.window.showWarningMessage(refusal);
+      return edits;
+    } catch (error) {
+      connection.console.error(`${name} failed: ${(error as Error)?.stack ?? String(error)}`);
+      throw new ResponseError(-32603, `${name} failed: ${(error as Error)?.message ?? String(error)}`);
+    }
+  };
+  connection.onDocumentFormatting((params) => run('formatting', params.textDocument.uri, params.options));
+  connection.onDocumentRangeFormatting((params) => {
+    const document = context.documents.get(params.textDocument.uri);
+    if (!document) return [];
+    const range = { start: document.offsetAt(params.range.start), end: document.offsetAt(params.range.end) };
+    return run('rangeFormatting', params.textDocument.uri, params.options, range);
+  });
+}
+
+/** The capabilities this module serves, for the initialize result. */
+export const formattingCapabilities = { documentFormattingProvider: true, documentRangeFormattingProvider: true } as const;

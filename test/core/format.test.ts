@@ -1,0 +1,164 @@
+import * as assert from 'node:assert/strict';
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import { firstDifference } from '../../server/src/core/equivalence';
+import { applyEdits, detectIndentation, FormatOptions, formatXml } from '../../server/src/core/format';
+import { sharedDir } from '../support/fixtures';
+
+const TWO: FormatOptions = { tabSize: 2, insertSpaces: true, maxLineWidth: 120 };
+
+function format(text: string, options: FormatOptions = TWO): string {
+  const result = formatXml(text, options);
+  if (!result.ok) throw new Error(result.message);
+  return result.text;
+}
+
+describe('formatter (core)', () => {
+  it('indents nested elements by the given unit and normalizes white space inside tags', () => {
+    const input = '<A>\n<B   x = "1"  y=\'2\' />\n      <C></C >\n</A>';
+    assert.equal(format(input), '<A>\n  <B x="1" y=\'2\'/>\n  <C></C>\n</A>\n');
+    assert.equal(format(input, { tabSize: 4, insertSpaces: false, maxLineWidth: 120 }), '<A>\n\t<B x="1" y=\'2\'/>\n\t<C></C>\n</A>\n');
+    assert.equal(format(input, { tabSize: 4, insertSpaces: true, maxLineWidth: 120 }), '<A>\n    <B x="1" y=\'2\'/>\n    <C></C>\n</A>\n');
+  });
+
+  it('keeps the XML declaration, processing instructions, DOCTYPE and comments, each on its own line', () => {
+    const input = '<?xml version="1.0" encoding="UTF-8"?><!DOCTYPE A [ <!ENTITY e "v"> ]><!--  top  comment  --><A><?pi  some  data ?><!--inner--><B/></A><!--end-->';
+    assert.equal(
+      format(input),
+      '<?xml version="1.0" encoding="UTF-8"?>\n<!DOCTYPE A [ <!ENTITY e "v"> ]>\n<!--  top  comment  -->\n<A>\n  <?pi  some  data ?> <!--inner-->\n  <B/>\n</A>\n<!--end-->\n',
+    );
+  });
+
+  it('keeps a multi-line comment byte for byte and a comment that followed a tag on its line', () => {
+    const input = '<A>\n<B/>   <!-- about B -->\n      <!--\n   two\n        lines\n  -->\n<C/></A>';
+    assert.equal(format(input), '<A>\n  <B/> <!-- about B -->\n  <!--\n   two\n        lines\n  -->\n  <C/>\n</A>\n');
+  });
+
+  it('collapses several blank lines between siblings to one and drops them after a start tag or before an end tag', () => {
+    const input = '<A>\n\n\n<B/>\n<C/>\n\n\n\n<D/>\n\n</A>\n\n\n';
+    assert.equal(format(input), '<A>\n  <B/>\n  <C/>\n\n  <D/>\n</A>\n');
+  });
+
+  it('keeps the content of an element holding text or CDATA as written (mixed content)', () => {
+    const input = '<A>\n<Text   a="1">  two  spaces\n     kept <b>bold</b>  </Text>\n<Data><![CDATA[ <x>  ]]></Data>\n<Space xml:space="preserve">\n   <Kept/>\n</Space></A>';
+    assert.equal(
+      format(input),
+      '<A>\n  <Text a="1">  two  spaces\n     kept <b>bold</b>  </Text>\n  <Data><![CDATA[ <x>  ]]></Data>\n  <Space xml:space="preserve">\n   <Kept/>\n</Space>\n</A>\n',
+    );
+  });
+
+  it('puts attributes one per line past the width, counting the indentation, and never reorders or re-quotes them', () => {
+    const attributes = 'zeta="1" alpha=\'a &amp; b\' middle="$param" expr="${$x + 1}"';
+    const input = `<A><LongElementName ${attributes}/><Short a="1"/></A>`;
+    const narrow = format(input, { tabSize: 2, insertSpaces: true, maxLineWidth: 40 });
+    assert.equal(narrow, '<A>\n  <LongElementName\n    zeta="1"\n    alpha=\'a &amp; b\'\n    middle="$param"\n    expr="${$x + 1}"/>\n  <Short a="1"/>\n</A>\n');
+    const wide = format(input, { tabSize: 2, insertSpaces: true, maxLineWidth: 120 });
+    assert.ok(wide.includes(`  <LongElementName ${attributes}/>`));
+    // The line of the wide form is 2 + 86 columns: exactly at the width stays on one line, one less wraps.
+    const lineLength = `  <LongElementName ${attributes}/>`.length;
+    assert.ok(format(input, { tabSize: 2, insertSpaces: true, maxLineWidth: lineLength }).includes(`<LongElementName ${attributes}/>`));
+    assert.ok(!format(input, { tabSize: 2, insertSpaces: true, maxLineWidth: lineLength - 1 }).includes(`<LongElementName ${attributes}/>`));
+    // A tab counts as tabSize columns when the width is measured.
+    const tabbed = format(input, { tabSize: 8, insertSpaces: false, maxLineWidth: lineLength + 5 });
+    assert.ok(!tabbed.includes(`<LongElementName ${attributes}/>`));
+  });
+
+  it('keeps a single long attribute on the line of its element', () => {
+    const value = 'x'.repeat(200);
+    assert.equal(format(`<A><B v="${value}"/></A>`), `<A>\n  <B v="${value}"/>\n</A>\n`);
+  });
+
+  it('keeps attribute values with line breaks, tabs and references byte for byte', () => {
+    const input = '<A><B v="line one\n   line two" w="a\tb" e="&#10;&lt;"/></A>';
+    const output = format(input);
+    assert.ok(output.includes('v="line one\n   line two"'));
+    assert.ok(output.includes('w="a\tb"'));
+    assert.ok(output.includes('e="&#10;&lt;"'));
+    assert.equal(firstDifference(input, output), undefined);
+  });
+
+  it('keeps CRLF line ends and a byte-order mark', () => {
+    const input = '\uFEFF<?xml version="1.0"?>\r\n<A>\r\n<B/>\r\n</A>';
+    assert.equal(format(input), '\uFEFF<?xml version="1.0"?>\r\n<A>\r\n  <B/>\r\n</A>\r\n');
+  });
+
+  it('is idempotent and changes nothing in an already formatted document (no edits)', () => {
+    const input = '<?xml version="1.0"?>\n<!-- c -->\n<A>\n  <B x="1"/>\n\n  <C>\n    <D/>\n  </C>\n</A>\n';
+    const result = formatXml(input, TWO);
+    assert.ok(result.ok);
+    assert.deepEqual(result.edits, []);
+  });
+
+  it('refuses malformed XML with a message naming the line, and returns no edits', () => {
+    for (const input of ['<A><B></A>', '<A x="1></A>', '<A>', '', 'text only', '<A/><B/>', '<A><!-- open </A>']) {
+      const result = formatXml(input, TWO);
+      assert.equal(result.ok, false, JSON.stringify(input));
+      if (!result.ok) assert.match(result.message, /not formatted: .*line \d+/);
+    }
+  });
+
+  it('computes small edits (white space only) rather than one whole replacement', () => {
+    const input = '<A>\n<B/>\n  <C/>\n</A>\n';
+    const result = formatXml(input, TWO);
+    assert.ok(result.ok);
+    assert.deepEqual(result.edits, [{ start: 3, end: 4, newText: '\n  ' }]);
+    for (const edit of result.edits) assert.match(input.slice(edit.start, edit.end), /^\s*$/);
+  });
+
+  it('formats only the selected lines, with the indentation of their place in the document', () => {
+    const input = '<A>\n<B>\n<C/>\n<D/>\n</B>\n<E/>\n</A>\n';
+    const start = input.indexOf('<C/>');
+    const end = input.indexOf('<D/>') + 2;
+    const result = formatXml(input, TWO, { start, end });
+    assert.ok(result.ok);
+    assert.equal(result.text, '<A>\n<B>\n    <C/>\n    <D/>\n</B>\n<E/>\n</A>\n');
+    assert.equal(applyEdits(input, result.edits), result.text);
+  });
+
+  it('detects the indentation a file uses', () => {
+    assert.deepEqual(detectIndentation('<A>\n    <B/>\n</A>'), { tabSize: 4, insertSpaces: true });
+    assert.deepEqual(detectIndentation('<A>\n\t<B/>\n</A>'), { tabSize: 4, insertSpaces: false });
+    assert.deepEqual(detectIndentation('<A><B/></A>'), { tabSize: 2, insertSpaces: true });
+  });
+});
+
+describe('formatter on every corpus file', function () {
+  const corpus = path.join(sharedDir, 'corpus');
+  const files: string[] = [];
+  before(function () {
+    if (!fs.existsSync(corpus)) {
+      console.log(`    (skipped: ${corpus} is absent)`);
+      this.skip();
+    }
+    const walk = (folder: string) => {
+      for (const entry of fs.readdirSync(folder, { withFileTypes: true })) {
+        const full = path.join(folder, entry.name);
+        if (entry.isDirectory()) walk(full);
+        else if (/\.xosc$/i.test(entry.name)) files.push(full);
+      }
+    };
+    walk(corpus);
+  });
+
+  const settings: [string, (text: string) => FormatOptions][] = [
+    ['the indentation the file uses, width 120', (text) => ({ ...detectIndentation(text), maxLineWidth: 120 })],
+    ['tabs, width 40 (attributes wrapped)', () => ({ tabSize: 4, insertSpaces: false, maxLineWidth: 40 })],
+  ];
+  for (const [name, optionsFor] of settings) {
+    it(`formats twice as once and keeps each file equivalent (${name})`, () => {
+      assert.ok(files.length >= 150, `expected the whole corpus, found ${files.length} .xosc files`);
+      let changed = 0;
+      for (const file of files) {
+        const text = fs.readFileSync(file, 'utf8');
+        const options = optionsFor(text);
+        const once = formatXml(text, options);
+        assert.ok(once.ok, `${file}: ${!once.ok && once.message}`);
+        const twice = formatXml(once.text, options);
+        assert.ok(twice.ok && twice.text === once.text && twice.edits.length === 0, `${file}: a second pass changed the text`);
+        assert.equal(firstDifference(text, once.text), undefined, file);
+        if (once.text !== text) changed++;
+      }
+      assert.ok(changed > 0, 'no corpus file changed: the test would not show anything');
+    });
+  }
+});
