@@ -1,4 +1,4 @@
-import { Connection, FormattingOptions, ResponseError, TextDocuments, TextEdit } from 'vscode-languageserver/node';
+import { Connection, FormattingOptions, MessageType, ResponseError, ShowMessageNotification, TextDocuments, TextEdit } from 'vscode-languageserver/node';
 import { TextDocument } from 'vscode-languageserver-textdocument';
 import { formatXml } from '../core/format';
 import { LineIndex } from '../core/text';
@@ -30,7 +30,8 @@ export function register(connection: Connection, context: FormattingContext): vo
     if (!document || !/\.xosc$/i.test(uri)) return [];
     try {
       const { edits, refusal } = formattingEdits(document, options, context.workspace.settings.formatMaxLineWidth, range);
-      if (refusal) void connection.window.showWarningMessage(refusal);
+      // A notification, not a request: nothing waits for the user to dismiss it.
+      if (refusal) void connection.sendNotification(ShowMessageNotification.type, { type: MessageType.Warning, message: refusal });
       return edits;
     } catch (error) {
       connection.console.error(`${name} failed: ${(error as Error)?.stack ?? String(error)}`);
