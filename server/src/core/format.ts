@@ -31,7 +31,13 @@ interface Misc {
 
 type Item = { element: XmlElement; start: number; end: number } | Misc;
 
-const WHITESPACE = /^[ \t\r\n]*$/;
+function isBlank(text: string, start: number, end: number): boolean {
+  for (let i = start; i < end; i++) {
+    const code = text.charCodeAt(i);
+    if (code !== 32 && code !== 10 && code !== 13 && code !== 9) return false;
+  }
+  return true;
+}
 
 function newlines(text: string, start: number, end: number): number {
   let count = 0;
@@ -64,7 +70,7 @@ function miscNodes(text: string, start: number, limit: number, into: Item[]): vo
   while (position < limit) {
     const open = text.indexOf('<', position);
     const textEnd = open < 0 || open >= limit ? limit : open;
-    if (textEnd > position && !WHITESPACE.test(text.slice(position, textEnd))) into.push({ kind: 'text', start: position, end: textEnd });
+    if (textEnd > position && !isBlank(text, position, textEnd)) into.push({ kind: 'text', start: position, end: textEnd });
     if (textEnd >= limit) return;
     let end: number;
     let kind: Misc['kind'];
@@ -121,6 +127,11 @@ export function formatXml(text: string, options: FormatOptions, range?: { start:
     while (indents.length <= depth) indents.push(indents[indents.length - 1] + unit);
     return indents[depth];
   };
+  // The white space wanted before a line at each depth, built once per depth rather than once per gap.
+  const lineBreaks: string[] = [];
+  const blankLineBreaks: string[] = [];
+  const lineBreak = (depth: number): string => (lineBreaks[depth] ??= eol + indent(depth));
+  const blankLineBreak = (depth: number): string => (blankLineBreaks[depth] ??= eol + eol + indent(depth));
   const edits: FormatEdit[] = [];
   let lowest = 0;
   let highest = text.length;
@@ -139,7 +150,7 @@ export function formatXml(text: string, options: FormatOptions, range?: { start:
     // A gap that ends where a selected line starts sets that line's indentation, so it belongs to the selection.
     if (range && !(start === end ? start >= lowest && start <= highest : end >= lowest && start < highest)) return;
     // Only white space is ever replaced: this is what guarantees that content cannot change.
-    if (!WHITESPACE.test(text.slice(start, end))) throw new Error(`formatter would replace content at offset ${start}`);
+    if (!isBlank(text, start, end)) throw new Error(`formatter would replace content at offset ${start}`);
     edits.push({ start, end, newText: wanted });
   };
 
@@ -148,7 +159,7 @@ export function formatXml(text: string, options: FormatOptions, range?: { start:
     const attributes = element.attributes;
     let width = indent(depth).length + (options.insertSpaces ? 0 : depth * (unitWidth - 1)) + 1 + element.name.length + (element.selfClosing ? 2 : 1);
     for (const attribute of attributes) width += 1 + attribute.nameEnd - attribute.nameStart + 1 + attribute.valueEnd - attribute.valueStart + 2;
-    const separator = attributes.length >= 2 && width > options.maxLineWidth ? eol + indent(depth + 1) : ' ';
+    const separator = attributes.length >= 2 && width > options.maxLineWidth ? lineBreak(depth + 1) : ' ';
     let previous = element.nameEnd;
     for (const attribute of attributes) {
       gap(previous, attribute.nameStart, separator);
@@ -165,18 +176,19 @@ export function formatXml(text: string, options: FormatOptions, range?: { start:
   /** Formats a sequence of items at `depth`, between offsets `from` and `to` of the enclosing content. */
   const sequence = (items: Item[], depth: number, from: number, to: number, atTop: boolean) => {
     let previousEnd = from;
-    items.forEach((item, index) => {
+    for (let index = 0; index < items.length; index++) {
+      const item = items[index];
       const breaks = newlines(text, previousEnd, item.start);
       let wanted: string;
       if (atTop && index === 0) wanted = '';
       else if ('kind' in item && item.kind === 'comment' && breaks === 0 && !atTop) wanted = ' ';
-      else if (breaks >= 2 && index > 0) wanted = eol + eol + indent(depth);
-      else wanted = eol + indent(depth);
+      else if (breaks >= 2 && index > 0) wanted = blankLineBreak(depth);
+      else wanted = lineBreak(depth);
       gap(previousEnd, item.start, wanted);
       if ('element' in item) element(item.element, depth);
       previousEnd = item.end;
-    });
-    gap(previousEnd, to, atTop ? eol : eol + indent(Math.max(0, depth - 1)));
+    }
+    gap(previousEnd, to, lineBreak(atTop ? 0 : Math.max(0, depth - 1)));
   };
 
   const element = (node: XmlElement, depth: number) => {
@@ -215,14 +227,13 @@ export function formatXml(text: string, options: FormatOptions, range?: { start:
 }
 
 export function applyEdits(text: string, edits: FormatEdit[]): string {
-  const parts: string[] = [];
+  let result = '';
   let position = 0;
   for (const edit of edits) {
-    parts.push(text.slice(position, edit.start), edit.newText);
+    result += text.slice(position, edit.start) + edit.newText;
     position = edit.end;
   }
-  parts.push(text.slice(position));
-  return parts.join('');
+  return result + text.slice(position);
 }
 
 /**
