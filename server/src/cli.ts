@@ -7,6 +7,8 @@ import { formatProblem, Problem, uniqueProblems } from './core/problems';
 import { childRef, diskRef, displayRef, ScenarioStore, SourceRef, splitScenarioPath } from './core/sources';
 import { libraryStats } from './core/stats';
 import { FORMAT_HELP, formatCommand } from './cli/format';
+import { simulatorProblems } from './core/profiles/checks';
+import { isSimulator, Simulator, SIMULATORS } from './core/profiles/simulators';
 import { countEditorLines } from './core/text';
 
 /** Exit codes, as documented in the README. */
@@ -40,6 +42,9 @@ Options:
                             working directory, or the input's folder when it lies elsewhere)
   --include-scenario-path   pack: also store files found through SCENARIO_PATH
   --format text|json        output format of check and stats
+  --simulator asam|carla|esmini
+                            check, flatten: also warn about what this simulator does not run
+                            (default asam: the standard alone)
   --check                   format: list the files that would change and write nothing (exit 1 if any)
   --width N                 format: past N columns a start tag puts each attribute on its own line (120)
   --indent N|tab            format: the indentation (default: what the file uses, else 2 spaces)
@@ -68,10 +73,11 @@ interface Options {
   includeScenarioPath: boolean;
   format: 'text' | 'json';
   quiet: boolean;
+  simulator: Simulator;
 }
 
 function parseOptions(args: string[]): Options {
-  const options: Options = { positional: [], force: false, scenarioPath: [], includeScenarioPath: false, format: 'text', quiet: false };
+  const options: Options = { positional: [], force: false, scenarioPath: [], includeScenarioPath: false, format: 'text', quiet: false, simulator: 'asam' };
   const value = (index: number, flag: string): string => {
     const next = args[index + 1];
     if (next === undefined || (next.startsWith('-') && next.length > 1)) throw new UsageError(`${flag} needs a value`);
@@ -105,6 +111,12 @@ function parseOptions(args: string[]): Options {
         const format = take();
         if (format !== 'text' && format !== 'json') throw new UsageError(`--format takes text or json, not '${format}'`);
         options.format = format;
+        break;
+      }
+      case '--simulator': {
+        const simulator = take();
+        if (!isSimulator(simulator)) throw new UsageError(`--simulator takes ${SIMULATORS.join(', ')}, not '${simulator}'`);
+        options.simulator = simulator;
         break;
       }
       case '-q':
@@ -213,7 +225,7 @@ async function flattenCommand(inputs: string[], outputs: string[] | undefined, o
   for (const input of inputs) {
     const result = await flattener.flatten(mainOf(input), { force: options.force });
     results.push(result);
-    problems = problems.concat(result.problems);
+    problems = problems.concat(result.problems, simulatorProblems(options.simulator, result.source));
   }
   if (options.force) {
     // Forced past, these no longer stop the run: shown as warnings saying what was skipped.
@@ -292,7 +304,10 @@ async function checkCommand(inputs: string[], options: Options, io: Output): Pro
   }
   const flattener = new Flattener(makeStore(options, inputs));
   let problems: Problem[] = [];
-  for (const file of files) problems = problems.concat((await flattener.flatten(mainOf(file))).problems);
+  for (const file of files) {
+    const result = await flattener.flatten(mainOf(file));
+    problems = problems.concat(result.problems, simulatorProblems(options.simulator, result.source));
+  }
   problems = uniqueProblems(problems);
   const errors = problems.filter((problem) => problem.severity === 'error').length;
   const warnings = problems.filter((problem) => problem.severity === 'warning').length;

@@ -21,7 +21,8 @@ export type ProblemCode =
   | 'reference-outside-group'
   | 'cycle'
   | 'undeclared-entity'
-  | 'source-errors';
+  | 'source-errors'
+  | 'simulator';
 
 export interface RelatedProblemLocation {
   source: SourceRef;
