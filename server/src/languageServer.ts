@@ -318,7 +318,14 @@ export function startServer(connection: Connection): Workspace {
     }
   });
 
-  registerFormatting(connection, { documents, workspace });
+  registerFormatting(connection, {
+    documents,
+    workspace,
+    parsed: async (uri) => {
+      const target = await open(uri);
+      return target ? (await workspace.source(target.ref)).original?.document : undefined;
+    },
+  });
 
   documents.listen(connection);
   return workspace;

@@ -1,5 +1,5 @@
 import { detectEol, LineIndex } from './text';
-import { attributeValue, isWellFormed, parseXml, XmlElement } from './xml';
+import { attributeValue, isWellFormed, parseXml, XmlDocument, XmlElement } from './xml';
 
 export interface FormatOptions {
   /** Columns of one indentation level (and of a tab when measuring a line). */
@@ -104,10 +104,11 @@ function endTagStart(text: string, element: XmlElement): number {
  * options, one start tag per line, attributes wrapped one per line past the width, one blank line
  * kept where several stood. Comments, CDATA, processing instructions, attribute values and the
  * content of elements holding text are left byte for byte. A document that is not well-formed is
- * refused. With `range` (offsets), only white space overlapping those lines is changed.
+ * refused. With `range` (offsets), only white space overlapping those lines is changed. A parse of
+ * `text` that the caller already holds may be given, to save parsing it again.
  */
-export function formatXml(text: string, options: FormatOptions, range?: { start: number; end: number }): FormatResult {
-  const document = parseXml(text);
+export function formatXml(text: string, options: FormatOptions, range?: { start: number; end: number }, parsed?: XmlDocument): FormatResult {
+  const document = parsed && parsed.text === text ? parsed : parseXml(text);
   if (!isWellFormed(document) || !document.root) {
     const problem = document.problems.find((candidate) => candidate.severity === 'error');
     const where = document.lines.positionAt(problem?.start ?? 0);

@@ -2,6 +2,7 @@ import { Connection, FormattingOptions, MessageType, ResponseError, ShowMessageN
 import { TextDocument } from 'vscode-languageserver-textdocument';
 import { formatXml } from '../core/format';
 import { LineIndex } from '../core/text';
+import { XmlDocument } from '../core/xml';
 import { Workspace } from '../workspace';
 
 /** The edits that format a document (or the lines of `range`); a malformed document gets a message, no edits. */
@@ -10,9 +11,10 @@ export function formattingEdits(
   options: FormattingOptions,
   maxLineWidth: number,
   range?: { start: number; end: number },
+  parsed?: XmlDocument,
 ): { edits: TextEdit[]; refusal?: string } {
   const text = document.getText();
-  const result = formatXml(text, { tabSize: options.tabSize, insertSpaces: options.insertSpaces, maxLineWidth }, range);
+  const result = formatXml(text, { tabSize: options.tabSize, insertSpaces: options.insertSpaces, maxLineWidth }, range, parsed);
   if (!result.ok) return { edits: [], refusal: result.message };
   const lines = new LineIndex(text);
   return { edits: result.edits.map((edit) => TextEdit.replace(lines.range(edit.start, edit.end), edit.newText)) };
@@ -21,15 +23,18 @@ export function formattingEdits(
 export interface FormattingContext {
   documents: TextDocuments<TextDocument>;
   workspace: Workspace;
+  /** The server's parse of an open document, when it has one (formatting then need not parse again). */
+  parsed?: (uri: string) => Promise<XmlDocument | undefined>;
 }
 
 /** Registers Format Document and Format Selection for `.xosc` documents. */
 export function register(connection: Connection, context: FormattingContext): void {
-  const run = (name: string, uri: string, options: FormattingOptions, range?: { start: number; end: number }): TextEdit[] => {
+  const run = async (name: string, uri: string, options: FormattingOptions, range?: { start: number; end: number }): Promise<TextEdit[]> => {
     const document = context.documents.get(uri);
     if (!document || !/\.xosc$/i.test(uri)) return [];
     try {
-      const { edits, refusal } = formattingEdits(document, options, context.workspace.settings.formatMaxLineWidth, range);
+      const parsed = await context.parsed?.(uri);
+      const { edits, refusal } = formattingEdits(document, options, context.workspace.settings.formatMaxLineWidth, range, parsed);
       // A notification, not a request: nothing waits for the user to dismiss it.
       if (refusal) void connection.sendNotification(ShowMessageNotification.type, { type: MessageType.Warning, message: refusal });
       return edits;
