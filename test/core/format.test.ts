@@ -1,6 +1,7 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
+import JSZip from 'jszip';
 import { firstDifference } from '../../server/src/core/equivalence';
 import { applyEdits, detectIndentation, FormatOptions, formatXml } from '../../server/src/core/format';
 import { sharedDir } from '../support/fixtures';
@@ -124,8 +125,8 @@ describe('formatter (core)', () => {
 
 describe('formatter on every corpus file', function () {
   const corpus = path.join(sharedDir, 'corpus');
-  const files: string[] = [];
-  before(function () {
+  const files: { name: string; text: string }[] = [];
+  before(async function () {
     if (!fs.existsSync(corpus)) {
       console.log(`    (skipped: ${corpus} is absent)`);
       this.skip();
@@ -134,10 +135,19 @@ describe('formatter on every corpus file', function () {
       for (const entry of fs.readdirSync(folder, { withFileTypes: true })) {
         const full = path.join(folder, entry.name);
         if (entry.isDirectory()) walk(full);
-        else if (/\.xosc$/i.test(entry.name)) files.push(full);
+        else if (/\.xosc$/i.test(entry.name)) files.push({ name: full, text: fs.readFileSync(full, 'utf8') });
+        else if (/\.mosc$/i.test(entry.name)) packages.push(full);
       }
     };
+    const packages: string[] = [];
     walk(corpus);
+    // The scenarios inside packages are formatted as well: an editor opens them as mosc: documents.
+    for (const file of packages) {
+      const zip = await JSZip.loadAsync(fs.readFileSync(file));
+      for (const entry of Object.values(zip.files)) {
+        if (!entry.dir && /\.xosc$/i.test(entry.name)) files.push({ name: `${file}/${entry.name}`, text: await entry.async('string') });
+      }
+    }
   });
 
   const settings: [string, (text: string) => FormatOptions][] = [
@@ -146,10 +156,9 @@ describe('formatter on every corpus file', function () {
   ];
   for (const [name, optionsFor] of settings) {
     it(`formats twice as once and keeps each file equivalent (${name})`, () => {
-      assert.ok(files.length >= 150, `expected the whole corpus, found ${files.length} .xosc files`);
+      assert.ok(files.length >= 200, `expected the whole corpus, found ${files.length} .xosc files`);
       let changed = 0;
-      for (const file of files) {
-        const text = fs.readFileSync(file, 'utf8');
+      for (const { name: file, text } of files) {
         const options = optionsFor(text);
         const once = formatXml(text, options);
         assert.ok(once.ok, `${file}: ${!once.ok && once.message}`);

@@ -31,7 +31,8 @@ export interface FormattingContext {
 export function register(connection: Connection, context: FormattingContext): void {
   const run = async (name: string, uri: string, options: FormattingOptions, range?: { start: number; end: number }): Promise<TextEdit[]> => {
     const document = context.documents.get(uri);
-    if (!document || !/\.xosc$/i.test(uri)) return [];
+    // The client sends only documents of the xosc language (untitled ones too); a package is never text.
+    if (!document || /\.mosc$/i.test(uri)) return [];
     try {
       const parsed = await context.parsed?.(uri);
       const { edits, refusal } = formattingEdits(document, options, context.workspace.settings.formatMaxLineWidth, range, parsed);
