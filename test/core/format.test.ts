@@ -1,6 +1,7 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
+import fc from 'fast-check';
 import JSZip from 'jszip';
 import { firstDifference } from '../../server/src/core/equivalence';
 import { applyEdits, detectIndentation, FormatOptions, formatXml } from '../../server/src/core/format';
@@ -170,4 +171,57 @@ describe('formatter on every corpus file', function () {
       assert.ok(changed > 0, 'no corpus file changed: the test would not show anything');
     });
   }
+});
+
+describe('formatter on generated documents (property)', () => {
+  // Random well-formed documents: elements, attributes with any characters, comments, text, CDATA,
+  // processing instructions, and random white space between all of them.
+  const space = fc.constantFrom('', ' ', '\n', '\n\n\n', '\t', '  \r\n  ', '\n    ');
+  const name = fc.constantFrom('A', 'Event', 'x:y', 'Long_Name-1', 'ScenarioObject');
+  const escape = (raw: string) => raw.replace(/&/g, '&amp;').replace(/</g, '&lt;').replace(/"/g, '&quot;');
+  const attributes = fc.uniqueArray(fc.tuple(fc.constantFrom('a', 'name', 'value', 'xml:space', 'b-c'), fc.string({ maxLength: 12 }), space), { selector: ([key]) => key, maxLength: 5 });
+  const comment = fc.string({ maxLength: 10 }).filter((body) => !body.includes('--') && !body.endsWith('-')).map((body) => `<!--${body}-->`);
+  const text = fc.string({ minLength: 1, maxLength: 10 }).map((raw) => escape(raw).replace(/]]>/g, ']]&gt;'));
+  const cdata = fc.string({ maxLength: 10 }).filter((body) => !body.includes(']]>')).map((body) => `<![CDATA[${body}]]>`);
+  const pi = fc.constantFrom('<?target some data?>', '<?pi?>');
+  const { element } = fc.letrec<{ element: string; node: string }>((tie) => ({
+    element: fc.tuple(name, attributes, space, fc.boolean(), fc.array(fc.tuple(space, tie('node')), { maxLength: 4 }), space).map(([tag, attrs, inner, selfClosing, children, end]) => {
+      const open = `<${tag}${attrs.map(([key, value, gap]) => ` ${gap}${key}${gap}=${gap}"${escape(value)}"`).join('')}${inner}`;
+      if (selfClosing && children.length === 0) return `${open}/>`;
+      return `${open}>${children.map(([gap, child]) => gap + child).join('')}${end}</${tag}>`;
+    }),
+    // At the depth limit oneof takes its first choice, so a leaf comes first.
+    node: fc.oneof({ maxDepth: 4, withCrossShrink: true }, comment, text, cdata, pi, tie('element'), tie('element')),
+  }));
+  const documentText = fc.tuple(fc.boolean(), space, fc.option(comment), space, element, space).map(
+    ([declaration, a, before, b, root, c]) => `${declaration ? '<?xml version="1.0"?>' : ''}${a}${before ?? ''}${b}${root}${c}`,
+  );
+  const optionsArbitrary = fc.record({ tabSize: fc.integer({ min: 1, max: 8 }), insertSpaces: fc.boolean(), maxLineWidth: fc.integer({ min: 10, max: 120 }) });
+
+  it('changes only white space, keeps the document equivalent, and a second pass changes nothing', () => {
+    fc.assert(
+      fc.property(documentText, optionsArbitrary, (input, options) => {
+        const once = formatXml(input, options);
+        assert.ok(once.ok, `${input}\n${!once.ok && once.message}`);
+        assert.equal(once.text.replace(/\s+/g, ''), input.replace(/\s+/g, ''));
+        assert.equal(firstDifference(input, once.text), undefined);
+        const twice = formatXml(once.text, options);
+        assert.ok(twice.ok);
+        assert.equal(twice.text, once.text);
+      }),
+      { numRuns: 300 },
+    );
+  });
+
+  it('never formats a mutilated document into something else: it refuses or keeps the same non-blank text', () => {
+    fc.assert(
+      fc.property(documentText, fc.nat(), fc.nat({ max: 5 }), optionsArbitrary, (input, at, length, options) => {
+        const start = input.length === 0 ? 0 : at % input.length;
+        const broken = input.slice(0, start) + input.slice(start + length);
+        const result = formatXml(broken, options);
+        if (result.ok) assert.equal(result.text.replace(/\s+/g, ''), broken.replace(/\s+/g, ''));
+      }),
+      { numRuns: 300 },
+    );
+  });
 });

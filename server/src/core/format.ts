@@ -119,7 +119,10 @@ export function formatXml(text: string, options: FormatOptions, range?: { start:
       column: where.character,
     };
   }
-  const eol = detectEol(text);
+  // Gaps are built with '\n' and given the file's line end at the end: the first line break in a gap
+  // decides it, so a second pass (whose gaps all carry that line end) decides the same.
+  const eol = '\n';
+  let firstBreak: '\n' | '\r\n' | undefined;
   const tabSize = Math.max(1, Math.floor(options.tabSize) || 1);
   const unit = options.insertSpaces ? ' '.repeat(tabSize) : '\t';
   const unitWidth = tabSize;
@@ -133,7 +136,9 @@ export function formatXml(text: string, options: FormatOptions, range?: { start:
   const blankLineBreaks: string[] = [];
   const lineBreak = (depth: number): string => (lineBreaks[depth] ??= eol + indent(depth));
   const blankLineBreak = (depth: number): string => (blankLineBreaks[depth] ??= eol + eol + indent(depth));
-  const edits: FormatEdit[] = [];
+  const gapStarts: number[] = [];
+  const gapEnds: number[] = [];
+  const gapTexts: string[] = [];
   let lowest = 0;
   let highest = text.length;
   if (range) {
@@ -145,14 +150,15 @@ export function formatXml(text: string, options: FormatOptions, range?: { start:
     while (highest > lowest && (text.charCodeAt(highest - 1) === 10 || text.charCodeAt(highest - 1) === 13)) highest--;
   }
 
-  /** Replaces the white space between `start` and `end` by `wanted` when they differ. */
+  /** Records that the white space between `start` and `end` should read `wanted` (in document order). */
   const gap = (start: number, end: number, wanted: string) => {
-    if (end - start === wanted.length && text.startsWith(wanted, start)) return;
-    // A gap that ends where a selected line starts sets that line's indentation, so it belongs to the selection.
-    if (range && !(start === end ? start >= lowest && start <= highest : end >= lowest && start < highest)) return;
-    // Only white space is ever replaced: this is what guarantees that content cannot change.
-    if (!isBlank(text, start, end)) throw new Error(`formatter would replace content at offset ${start}`);
-    edits.push({ start, end, newText: wanted });
+    if (firstBreak === undefined) {
+      const newline = text.indexOf('\n', start);
+      if (newline >= 0 && newline < end) firstBreak = newline > start && text.charCodeAt(newline - 1) === 13 ? '\r\n' : '\n';
+    }
+    gapStarts.push(start);
+    gapEnds.push(end);
+    gapTexts.push(wanted);
   };
 
   const startTag = (element: XmlElement, depth: number) => {
@@ -197,7 +203,11 @@ export function formatXml(text: string, options: FormatOptions, range?: { start:
     if (node.selfClosing) return;
     const contentStart = node.startTagEnd;
     const contentEnd = endTagStart(text, node);
+    content(node, depth, contentStart, contentEnd);
     gap(contentEnd + 2 + node.name.length, node.end - 1, '');
+  };
+
+  const content = (node: XmlElement, depth: number, contentStart: number, contentEnd: number) => {
     const items: Item[] = [];
     let position = contentStart;
     for (const child of node.children) {
@@ -223,6 +233,19 @@ export function formatXml(text: string, options: FormatOptions, range?: { start:
   miscNodes(text, root.end, text.length, topItems);
   sequence(topItems, 0, bom, text.length, true);
 
+  const lineEnd = firstBreak ?? detectEol(text);
+  const edits: FormatEdit[] = [];
+  for (let i = 0; i < gapStarts.length; i++) {
+    const start = gapStarts[i];
+    const end = gapEnds[i];
+    const wanted = lineEnd === '\n' ? gapTexts[i] : gapTexts[i].replace(/\n/g, lineEnd);
+    if (end - start === wanted.length && text.startsWith(wanted, start)) continue;
+    // A gap that ends where a selected line starts sets that line's indentation, so it belongs to the selection.
+    if (range && !(start === end ? start >= lowest && start <= highest : end >= lowest && start < highest)) continue;
+    // Only white space is ever replaced: this is what guarantees that content cannot change.
+    if (!isBlank(text, start, end)) throw new Error(`formatter would replace content at offset ${start}`);
+    edits.push({ start, end, newText: wanted });
+  }
   edits.sort((a, b) => a.start - b.start);
   return { ok: true, edits, text: applyEdits(text, edits) };
 }
