@@ -121,7 +121,6 @@ export function formatXml(text: string, options: FormatOptions, range?: { start:
   }
   // Gaps are built with '\n' and given the file's line end at the end: the first line break in a gap
   // decides it, so a second pass (whose gaps all carry that line end) decides the same.
-  const eol = '\n';
   let firstBreak: '\n' | '\r\n' | undefined;
   const tabSize = Math.max(1, Math.floor(options.tabSize) || 1);
   const unit = options.insertSpaces ? ' '.repeat(tabSize) : '\t';
@@ -134,8 +133,8 @@ export function formatXml(text: string, options: FormatOptions, range?: { start:
   // The white space wanted before a line at each depth, built once per depth rather than once per gap.
   const lineBreaks: string[] = [];
   const blankLineBreaks: string[] = [];
-  const lineBreak = (depth: number): string => (lineBreaks[depth] ??= eol + indent(depth));
-  const blankLineBreak = (depth: number): string => (blankLineBreaks[depth] ??= eol + eol + indent(depth));
+  const lineBreak = (depth: number): string => (lineBreaks[depth] ??= '\n' + indent(depth));
+  const blankLineBreak = (depth: number): string => (blankLineBreaks[depth] ??= '\n\n' + indent(depth));
   const gapStarts: number[] = [];
   const gapEnds: number[] = [];
   const gapTexts: string[] = [];
@@ -152,9 +151,9 @@ export function formatXml(text: string, options: FormatOptions, range?: { start:
 
   /** Records that the white space between `start` and `end` should read `wanted` (in document order). */
   const gap = (start: number, end: number, wanted: string) => {
-    if (firstBreak === undefined) {
-      const newline = text.indexOf('\n', start);
-      if (newline >= 0 && newline < end) firstBreak = newline > start && text.charCodeAt(newline - 1) === 13 ? '\r\n' : '\n';
+    // Only the gap itself is searched: a file without line breaks between markup must stay linear.
+    for (let i = start; firstBreak === undefined && i < end; i++) {
+      if (text.charCodeAt(i) === 10) firstBreak = i > start && text.charCodeAt(i - 1) === 13 ? '\r\n' : '\n';
     }
     gapStarts.push(start);
     gapEnds.push(end);
