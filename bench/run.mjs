@@ -60,6 +60,9 @@ if (!existsSync(library)) {
   console.log(`  all ${inputs.length}: ${all.median < 500 ? 'within' : 'OVER'} the 500 ms target; peak memory ${Math.max(one.peakMb, all.peakMb) < 100 ? 'within' : 'OVER'} 100 MB`);
 }
 
+console.log('');
+spawnSync(process.execPath, [path.join(root, 'bench', 'semantics.mjs')], { stdio: 'inherit' });
+
 for (const name of ['lsp.mjs', 'format.mjs']) {
   const bench = path.join(root, 'bench', name);
   if (!existsSync(bench)) continue;
