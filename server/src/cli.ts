@@ -7,7 +7,6 @@ import { formatProblem, Problem, uniqueProblems } from './core/problems';
 import { childRef, diskRef, displayRef, ScenarioStore, SourceRef, splitScenarioPath } from './core/sources';
 import { libraryStats } from './core/stats';
 import { FORMAT_HELP, formatCommand } from './cli/format';
-import { simulatorProblems } from './core/profiles/checks';
 import { isSimulator, Simulator, SIMULATORS } from './core/profiles/simulators';
 import { countEditorLines } from './core/text';
 
@@ -221,13 +220,13 @@ async function write(output: string, data: string | Uint8Array, io: Output, quie
 async function flattenCommand(inputs: string[], outputs: string[] | undefined, options: Options, io: Output): Promise<number> {
   for (const input of inputs) checkInputExists(input);
   const store = makeStore(options, inputs);
-  const flattener = new Flattener(store);
+  const flattener = new Flattener(store, options.simulator);
   const results = [];
   let problems: Problem[] = [];
   for (const [index, input] of inputs.entries()) {
     const result = await flattener.flatten(mainOf(input), { force: options.force, outputPath: outputs?.[index] });
     results.push(result);
-    problems = problems.concat(result.problems, simulatorProblems(options.simulator, result.source));
+    problems = problems.concat(result.problems);
   }
   if (options.force) {
     // Forced past, these no longer stop the run: shown as warnings saying what was skipped.
@@ -304,11 +303,11 @@ async function checkCommand(inputs: string[], options: Options, io: Output): Pro
     if (fs.statSync(input).isDirectory()) files.push(...listScenarioFiles(input));
     else files.push(input);
   }
-  const flattener = new Flattener(makeStore(options, inputs));
+  const flattener = new Flattener(makeStore(options, inputs), options.simulator);
   let problems: Problem[] = [];
   for (const file of files) {
     const result = await flattener.flatten(mainOf(file));
-    problems = problems.concat(result.problems, simulatorProblems(options.simulator, result.source));
+    problems = problems.concat(result.problems);
   }
   problems = uniqueProblems(problems);
   const errors = problems.filter((problem) => problem.severity === 'error').length;

@@ -153,8 +153,9 @@ class ReusingFlattener extends Flattener {
     store: ScenarioStore,
     private readonly shared: Map<string, Promise<FlatSource>>,
     private readonly dependencies: Map<string, string[]>,
+    simulator: Simulator,
   ) {
-    super(store);
+    super(store, simulator);
   }
 
   override source(ref: SourceRef, stack: SourceRef[]): Promise<FlatSource> {
@@ -246,7 +247,7 @@ export class Workspace {
 
   flattener(): Flattener {
     if (!this.currentFlattener || this.flattenerGeneration !== this.generation) {
-      this.currentFlattener = new ReusingFlattener(this.storeInstance, this.sharedSources, this.sourceDependencies);
+      this.currentFlattener = new ReusingFlattener(this.storeInstance, this.sharedSources, this.sourceDependencies, this.settings.simulator);
       this.flattenerGeneration = this.generation;
     }
     return this.currentFlattener;

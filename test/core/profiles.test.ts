@@ -3,7 +3,7 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { Flattener } from '../../server/src/core/flatten';
 import { CARLA_PROFILE } from '../../server/src/core/profiles/carla';
-import { simulatorFindings, simulatorProblems } from '../../server/src/core/profiles/checks';
+import { simulatorFindings } from '../../server/src/core/profiles/checks';
 import { ESMINI_PROFILE } from '../../server/src/core/profiles/esmini';
 import { Simulator } from '../../server/src/core/profiles/simulators';
 import { diskRef, ScenarioStore } from '../../server/src/core/sources';
@@ -125,23 +125,25 @@ describe('simulator profiles', () => {
     }
   });
 
-  it('reports findings of an imported group in the file the group was written in', async () => {
+  it('reports findings of an imported group in the file the group was written in, and none without a simulator', async () => {
     const simple = scenarioText('0', '', VISIBILITY).replace('name="group"', 'name="Go"');
     const main = scenarioText('0', '', LANE_CHANGE).replace(
       /<ManeuverGroup name="group"[\s\S]*<\/ManeuverGroup>/,
       '<ManeuverGroup name="outer" maximumExecutionCount="1"><Actors selectTriggeringEntities="false"><EntityRef entityRef="ego"/></Actors><ScenarioReference scenarioFileName="simple.xosc"><ManeuverGroupReference maneuverGroupName="Go"/></ScenarioReference></ManeuverGroup>',
     );
     const root = makeWorkspace({ 'simple.xosc': simple, 'main.xosc': main });
-    const flattener = new Flattener(new ScenarioStore({ scenarioPath: [], root }));
+    const flattener = new Flattener(new ScenarioStore({ scenarioPath: [], root }), 'carla');
     const result = await flattener.flatten(diskRef(path.join(root, 'main.xosc')));
     assert.ok(result.text, JSON.stringify(result.problems.map((problem) => problem.message)));
-    const problems = simulatorProblems('carla', result.source);
+    const problems = result.problems.filter((problem) => problem.code === 'simulator');
     const visibility = problems.find((problem) => /VisibilityAction/.test(problem.message));
     assert.ok(visibility, problems.map((problem) => problem.message).join('\n'));
     assert.equal(path.basename(visibility.source.disk), 'simple.xosc');
     const line = simple.split('\n').findIndex((text) => text.includes('<VisibilityAction'));
     assert.equal(visibility.range.start.line, line);
     assert.equal(visibility.severity, 'warning');
+    const standard = await new Flattener(new ScenarioStore({ scenarioPath: [], root })).flatten(diskRef(path.join(root, 'main.xosc')));
+    assert.deepEqual(standard.problems.filter((problem) => problem.code === 'simulator'), []);
   });
 });
 
@@ -182,11 +184,11 @@ describe('simulator profiles on the corpus files each simulator runs', function 
     const library = path.join(sharedDir, 'corpus', 'modular2simple', 'library');
     const mains = fs.readdirSync(library).filter((name) => name.startsWith('modular_')).map((name) => path.join(library, name, 'main.xosc'));
     assert.ok(mains.length >= 30);
-    const flattener = new Flattener(new ScenarioStore({ scenarioPath: [library], root: library }));
+    const flattener = new Flattener(new ScenarioStore({ scenarioPath: [library], root: library }), 'carla');
     for (const main of mains) {
       const result = await flattener.flatten(diskRef(main));
       assert.ok(result.text, main);
-      assert.deepEqual(simulatorProblems('carla', result.source).map((problem) => problem.message), [], main);
+      assert.deepEqual(result.problems.filter((problem) => problem.code === 'simulator').map((problem) => problem.message), [], main);
     }
   });
 

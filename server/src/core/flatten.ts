@@ -14,6 +14,7 @@ import { displayRef, refId, Resolution, ScenarioStore, SourceError, SourceRef } 
 import * as path from 'node:path';
 import { CarryEdit, carryEdits, CarryPlan, planCarry } from './carry';
 import { analyzeDocument, CatalogLoader, DocumentSemantics, Evaluator, Finding, OUTPUT_CHECKS, runChecks, semanticModelOf, semanticProblems } from './semantics';
+import { Simulator } from './profiles/simulators';
 import { closestMatch, detectEol } from './text';
 import { attribute, descendants, escapeAttributeValue, isWellFormed, parseXml, XmlAttribute, XmlDocument, XmlElement } from './xml';
 
@@ -260,7 +261,11 @@ export class Flattener {
   /** The folder the output is written to, against which carried catalog directories are made relative. */
   private outputDirectory: string | undefined;
 
-  constructor(readonly store: ScenarioStore) {
+  constructor(
+    readonly store: ScenarioStore,
+    /** The simulator whose known gaps each file read is checked for (core/profiles); `asam`: none. */
+    readonly simulator: Simulator = 'asam',
+  ) {
     this.catalogs = new CatalogLoader(store);
   }
 
@@ -341,6 +346,7 @@ export class Flattener {
     this.checkDuplicateGroups(result, model);
     if (document.root) {
       const semantics = await analyzeDocument(ref, document, this.catalogs, model.references.length > 0);
+      semantics.simulator = this.simulator;
       result.semantics = semantics;
       result.problems.push(...semanticProblems(semantics));
       for (const file of semantics.catalogs.files) if (!result.dependencies.some((known) => refId(known) === refId(file))) result.dependencies.push(file);

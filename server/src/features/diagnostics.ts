@@ -5,7 +5,6 @@ import { Range } from '../core/text';
 import { resolvedTarget } from '../analysis';
 import { baseName, displayRef, refId, SourceRef } from '../core/sources';
 import { Workspace } from '../workspace';
-import { simulatorProblems } from '../core/profiles/checks';
 
 export const DIAGNOSTIC_SOURCE = 'modular2simple';
 
@@ -107,7 +106,7 @@ export async function diagnose(workspace: Workspace, ref: SourceRef): Promise<{ 
   const id = refId(ref);
   const cycles = cycleDiagnostics(workspace, result.source);
   const diagnostics: Diagnostic[] = [...cycles];
-  for (const problem of [...result.problems, ...simulatorProblems(workspace.settings.simulator, result.source)]) {
+  for (const problem of result.problems) {
     if (refId(problem.source) !== id) continue;
     // A reference whose only error is a cycle already carries the cycle diagnostic.
     const cycleOnly = problem.code === 'source-errors' && cycles.some((cycle) => cycle.range.start.line === problem.range.start.line && cycle.range.start.character === problem.range.start.character) && /has 1 error: reference cycle/.test(problem.message);

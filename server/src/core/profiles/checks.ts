@@ -1,6 +1,3 @@
-import { FlatSource, originOf } from '../flatten';
-import { Problem } from '../problems';
-import { baseName } from '../sources';
 import { attribute, descendants, XmlAttribute, XmlDocument, XmlElement } from '../xml';
 import { CARLA_PROFILE } from './carla';
 import { ESMINI_PROFILE } from './esmini';
@@ -144,23 +141,4 @@ export function simulatorFindings(simulator: Simulator, document: XmlDocument, f
   if (simulator === 'asam' || !document.root) return [];
   const context: ProfileCheckContext = { profile: PROFILES[simulator], document, fileName, elements: [document.root, ...descendants(document.root)] };
   return PROFILE_CHECKS.flatMap((check) => check(context));
-}
-
-/**
- * The findings of `simulator` as warnings at their source positions: the flattened scenario (what the
- * simulator gets) is checked, and each finding is reported in the file its element was written in.
- */
-export function simulatorProblems(simulator: Simulator, source: FlatSource): Problem[] {
-  const model = source.model ?? source.original;
-  if (simulator === 'asam' || !model) return [];
-  const problems: Problem[] = [];
-  for (const finding of simulatorFindings(simulator, model.document, baseName(source.ref))) {
-    const origin = originOf(source, finding.element);
-    const lines = (origin.source.original ?? origin.source.model)?.document.lines;
-    if (!lines) continue;
-    const written = finding.attribute ? attribute(origin.element, finding.attribute.name) : undefined;
-    const range = written ? lines.range(written.valueStart, written.valueEnd) : lines.range(origin.element.start + 1, origin.element.nameEnd);
-    problems.push({ source: origin.source.ref, range, severity: 'warning', code: 'simulator', message: finding.message });
-  }
-  return problems;
 }

@@ -1,5 +1,7 @@
 import { ProblemCode, RelatedProblemLocation, Severity } from '../problems';
-import { SourceRef } from '../sources';
+import { simulatorFindings } from '../profiles/checks';
+import { Simulator } from '../profiles/simulators';
+import { baseName, SourceRef } from '../sources';
 import { closestMatch } from '../text';
 import { attribute, descendants, XmlAttribute, XmlElement } from '../xml';
 import { CatalogResolution } from './catalogs';
@@ -22,6 +24,8 @@ export interface SemanticContext {
    * flattened output is checked for them instead.
    */
   modular: boolean;
+  /** The simulator whose known gaps are checked (core/profiles); absent or `asam`: none. */
+  simulator?: Simulator;
 }
 
 export interface Finding {
@@ -383,6 +387,15 @@ export const undeclaredVariables: SemanticCheck = ({ model }) =>
       message: `variable '${reference.attribute.value}' is not declared in the VariableDeclarations of this file`,
     }));
 
+/** What the chosen simulator does not run, from facts read in its own sources (core/profiles/). */
+export const simulatorProfile: SemanticCheck = ({ ref, model, simulator }) =>
+  simulatorFindings(simulator ?? 'asam', model.document, baseName(ref)).map((finding) => ({
+    ...at(finding.element, finding.attribute),
+    severity: 'warning',
+    code: 'simulator',
+    message: finding.message,
+  }));
+
 /** The checks of a document, in the order their problems are listed. */
 export const SEMANTIC_CHECKS: readonly { name: string; check: SemanticCheck }[] = [
   { name: 'undeclared parameter', check: undeclaredParameters },
@@ -393,6 +406,7 @@ export const SEMANTIC_CHECKS: readonly { name: string; check: SemanticCheck }[] 
   { name: 'undeclared entity', check: undeclaredEntities },
   { name: 'storyboard references', check: storyboardReferences },
   { name: 'undeclared variable', check: undeclaredVariables },
+  { name: 'simulator profile', check: simulatorProfile },
 ];
 
 /** The checks of a flattened output (SPEC 11.5); entities are checked by the flattener at the reference. */
