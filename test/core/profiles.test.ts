@@ -8,7 +8,7 @@ import { ESMINI_PROFILE } from '../../server/src/core/profiles/esmini';
 import { Simulator } from '../../server/src/core/profiles/simulators';
 import { diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { parseXml } from '../../server/src/core/xml';
-import { makeWorkspace, sharedDir } from '../support/fixtures';
+import { makeWorkspace, outerGroup, scenario, sharedDir, simpleGroup } from '../support/fixtures';
 
 function scenarioText(minor: string, init: string, story: string): string {
   return `<?xml version="1.0" encoding="UTF-8"?>
@@ -136,6 +136,7 @@ describe('simulator profiles', () => {
     const result = await flattener.flatten(diskRef(path.join(root, 'main.xosc')));
     assert.ok(result.text, JSON.stringify(result.problems.map((problem) => problem.message)));
     const problems = result.problems.filter((problem) => problem.code === 'simulator');
+    assert.equal(problems.filter((problem) => /VisibilityAction/.test(problem.message)).length, 1, 'reported once, though the source and the output are both checked');
     const visibility = problems.find((problem) => /VisibilityAction/.test(problem.message));
     assert.ok(visibility, problems.map((problem) => problem.message).join('\n'));
     assert.equal(path.basename(visibility.source.disk), 'simple.xosc');
@@ -144,6 +145,23 @@ describe('simulator profiles', () => {
     assert.equal(visibility.severity, 'warning');
     const standard = await new Flattener(new ScenarioStore({ scenarioPath: [], root })).flatten(diskRef(path.join(root, 'main.xosc')));
     assert.deepEqual(standard.problems.filter((problem) => problem.code === 'simulator'), []);
+  });
+
+  it('checks the flattened output too: a value set through a ParameterReference is reported where it is written', async () => {
+    const body = `              <Action name="Change">
+                <LaneChangeActionDynamics parameterAttributes="dynamicsShape" dynamicsShape="linear" value="2" dynamicsDimension="time"/>
+              </Action>
+`;
+    const root = makeWorkspace({
+      'simple.xosc': scenario(simpleGroup('Go', body)),
+      'main.xosc': scenario(outerGroup('Car', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Go', parameters: [['dynamicsShape', 'sinusoidal']] }] }])),
+    });
+    const result = await new Flattener(new ScenarioStore({ scenarioPath: [], root }), 'carla').flatten(diskRef(path.join(root, 'main.xosc')));
+    assert.ok(result.text, JSON.stringify(result.problems.map((problem) => problem.message)));
+    const shape = result.problems.filter((problem) => problem.code === 'simulator' && /dynamicsShape/.test(problem.message));
+    assert.equal(shape.length, 1, JSON.stringify(result.problems.map((problem) => problem.message)));
+    assert.match(shape[0].message, /dynamicsShape="sinusoidal" on LaneChangeActionDynamics/);
+    assert.equal(path.basename(shape[0].source.disk), 'simple.xosc');
   });
 });
 

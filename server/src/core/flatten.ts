@@ -712,7 +712,7 @@ export class Flattener {
     const evaluator = new Evaluator(model);
     const directory = this.outputDirectory ?? path.dirname(source.ref.disk);
     const catalogs = await this.catalogs.resolve({ disk: path.join(directory, 'flattened.xosc'), entries: [] }, model, evaluator);
-    const findings = runChecks({ ref: source.ref, model, evaluator, catalogs, modular: false }, OUTPUT_CHECKS);
+    const findings = runChecks({ ref: source.ref, model, evaluator, catalogs, modular: false, simulator: this.simulator }, OUTPUT_CHECKS);
     // The main file's own catalog locations are written as they are, relative to it; its own check covers them.
     const carried = (element: XmlElement) =>
       [...source.insertions, ...source.additions].some((region) => element.start >= region.start && element.end <= region.end);

@@ -416,6 +416,8 @@ export const OUTPUT_CHECKS: readonly { name: string; check: SemanticCheck }[] = 
   { name: 'catalog references', check: catalogReferences },
   { name: 'storyboard references', check: flattenedStoryboardReferences },
   { name: 'undeclared variable', check: undeclaredVariables },
+  // What the simulator gets is the output: a value set through a ParameterReference is checked here.
+  { name: 'simulator profile', check: simulatorProfile },
 ];
 
 export function runChecks(context: SemanticContext, checks: readonly { check: SemanticCheck }[] = SEMANTIC_CHECKS): Finding[] {
