@@ -6,6 +6,8 @@ import { packFiles, packFolder, PackResult } from './core/pack';
 import { formatProblem, Problem, uniqueProblems } from './core/problems';
 import { diskRef, displayRef, ScenarioStore, SourceRef, splitScenarioPath } from './core/sources';
 import { libraryStats } from './core/stats';
+import { FORMAT_HELP, formatCommand } from './cli/format';
+import { isSimulator, Simulator, SIMULATORS } from './core/profiles/simulators';
 import { countEditorLines } from './core/text';
 import { mainOf, storeForInputs } from './cli/inputs';
 import { RUN_HELP, runCommand } from './cli/run';
@@ -25,6 +27,7 @@ Usage:
   modular2simple check PATH... [--format json]     report every problem, as a compiler does
   modular2simple stats LIBRARY [--format json]     lines of code of a library (the paper's Table 1)
   modular2simple run INPUT... [--check]            flatten and run in esmini; its messages on the source lines
+${FORMAT_HELP}
 
 Compatible with the original tool:
   modular2simple -cxm|--convert-xosc-into-mosc IN... OUT.mosc
@@ -41,6 +44,12 @@ Options:
                             working directory, or the input's folder when it lies elsewhere)
   --include-scenario-path   pack: also store files found through SCENARIO_PATH
   --format text|json        output format of check and stats
+  --simulator asam|carla|esmini
+                            check, flatten: also warn about what this simulator does not run
+                            (default asam: the standard alone)
+  --check                   format: list the files that would change and write nothing (exit 1 if any)
+  --width N                 format: past N columns a start tag puts each attribute on its own line (120)
+  --indent N|tab            format: the indentation (default: what the file uses, else 2 spaces)
   -q, --quiet               print errors only
   -h, --help                this help
   -v, --version             the version
@@ -68,10 +77,11 @@ interface Options {
   includeScenarioPath: boolean;
   format: 'text' | 'json';
   quiet: boolean;
+  simulator: Simulator;
 }
 
 function parseOptions(args: string[]): Options {
-  const options: Options = { positional: [], force: false, scenarioPath: [], includeScenarioPath: false, format: 'text', quiet: false };
+  const options: Options = { positional: [], force: false, scenarioPath: [], includeScenarioPath: false, format: 'text', quiet: false, simulator: 'asam' };
   const value = (index: number, flag: string): string => {
     const next = args[index + 1];
     if (next === undefined || (next.startsWith('-') && next.length > 1)) throw new UsageError(`${flag} needs a value`);
@@ -105,6 +115,12 @@ function parseOptions(args: string[]): Options {
         const format = take();
         if (format !== 'text' && format !== 'json') throw new UsageError(`--format takes text or json, not '${format}'`);
         options.format = format;
+        break;
+      }
+      case '--simulator': {
+        const simulator = take();
+        if (!isSimulator(simulator)) throw new UsageError(`--simulator takes ${SIMULATORS.join(', ')}, not '${simulator}'`);
+        options.simulator = simulator;
         break;
       }
       case '-q':
@@ -195,7 +211,7 @@ async function write(output: string, data: string | Uint8Array, io: Output, quie
 async function flattenCommand(inputs: string[], outputs: string[] | undefined, options: Options, io: Output): Promise<number> {
   for (const input of inputs) checkInputExists(input);
   const store = makeStore(options, inputs);
-  const flattener = new Flattener(store);
+  const flattener = new Flattener(store, options.simulator);
   const results = [];
   let problems: Problem[] = [];
   for (const [index, input] of inputs.entries()) {
@@ -278,9 +294,12 @@ async function checkCommand(inputs: string[], options: Options, io: Output): Pro
     if (fs.statSync(input).isDirectory()) files.push(...listScenarioFiles(input));
     else files.push(input);
   }
-  const flattener = new Flattener(makeStore(options, inputs));
+  const flattener = new Flattener(makeStore(options, inputs), options.simulator);
   let problems: Problem[] = [];
-  for (const file of files) problems = problems.concat((await flattener.flatten(mainOf(file))).problems);
+  for (const file of files) {
+    const result = await flattener.flatten(mainOf(file));
+    problems = problems.concat(result.problems);
+  }
   problems = uniqueProblems(problems);
   const errors = problems.filter((problem) => problem.severity === 'error').length;
   const warnings = problems.filter((problem) => problem.severity === 'warning').length;
@@ -325,6 +344,7 @@ export async function main(argv: string[], io: Output): Promise<number> {
     }
     const [command, ...rest] = argv;
     if (command === 'run') return await runCommand(rest, io);
+    if (command === 'format') return await formatCommand(rest, io);
     const options = parseOptions(rest);
     const inputs = options.positional;
     switch (command) {

@@ -5,6 +5,8 @@ import { FileSystemHost, nodeFileSystem, refId, ScenarioStore, SourceRef, splitS
 import { decodeUtf8, LineIndex, Range } from './core/text';
 import { OpenDocument, OpenDocuments } from './documents';
 import { UriResolver, refToUri } from './uris';
+import { DEFAULT_FORMAT_OPTIONS } from './core/format';
+import { isSimulator, Simulator } from './core/profiles/simulators';
 
 export interface ServerSettings {
   /** Directories searched after SCENARIO_PATH. */
@@ -13,9 +15,19 @@ export interface ServerSettings {
   diagnosticsDelay: number;
   /** Files larger than this are indexed by name only, never parsed for workspace symbols. */
   maxIndexedFileBytes: number;
+  /** The simulator whose known gaps are reported as warnings (`asam`: none). */
+  simulator: Simulator;
+  /** Past this width a formatted start tag puts each attribute on its own line. */
+  formatMaxLineWidth: number;
 }
 
-export const DEFAULT_SETTINGS: ServerSettings = { scenarioPath: [], diagnosticsDelay: 5, maxIndexedFileBytes: 8 * 1024 * 1024 };
+export const DEFAULT_SETTINGS: ServerSettings = {
+  scenarioPath: [],
+  diagnosticsDelay: 5,
+  maxIndexedFileBytes: 8 * 1024 * 1024,
+  simulator: 'asam',
+  formatMaxLineWidth: DEFAULT_FORMAT_OPTIONS.maxLineWidth,
+};
 
 /** Reads settings sent by a client, keeping defaults for anything missing or of the wrong type. */
 export function readSettings(value: unknown): ServerSettings {
@@ -27,7 +39,10 @@ export function readSettings(value: unknown): ServerSettings {
       : [];
   const diagnostics = (record.diagnostics && typeof record.diagnostics === 'object' ? record.diagnostics : {}) as Record<string, unknown>;
   const delay = typeof diagnostics.delay === 'number' && diagnostics.delay >= 0 ? diagnostics.delay : DEFAULT_SETTINGS.diagnosticsDelay;
-  return { scenarioPath, diagnosticsDelay: delay, maxIndexedFileBytes: DEFAULT_SETTINGS.maxIndexedFileBytes };
+  const format = (record.format && typeof record.format === 'object' ? record.format : {}) as Record<string, unknown>;
+  const width = typeof format.maxLineWidth === 'number' && format.maxLineWidth >= 1 ? Math.floor(format.maxLineWidth) : DEFAULT_SETTINGS.formatMaxLineWidth;
+  const simulator = isSimulator(record.simulator) ? record.simulator : DEFAULT_SETTINGS.simulator;
+  return { scenarioPath, diagnosticsDelay: delay, maxIndexedFileBytes: DEFAULT_SETTINGS.maxIndexedFileBytes, simulator, formatMaxLineWidth: width };
 }
 
 /** Keeps file bytes and kinds in memory until a change notification says they are stale. */
@@ -138,8 +153,9 @@ class ReusingFlattener extends Flattener {
     store: ScenarioStore,
     private readonly shared: Map<string, Promise<FlatSource>>,
     private readonly dependencies: Map<string, string[]>,
+    simulator: Simulator,
   ) {
-    super(store);
+    super(store, simulator);
   }
 
   override source(ref: SourceRef, stack: SourceRef[]): Promise<FlatSource> {
@@ -231,7 +247,7 @@ export class Workspace {
 
   flattener(): Flattener {
     if (!this.currentFlattener || this.flattenerGeneration !== this.generation) {
-      this.currentFlattener = new ReusingFlattener(this.storeInstance, this.sharedSources, this.sourceDependencies);
+      this.currentFlattener = new ReusingFlattener(this.storeInstance, this.sharedSources, this.sourceDependencies, this.settings.simulator);
       this.flattenerGeneration = this.generation;
     }
     return this.currentFlattener;

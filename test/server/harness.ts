@@ -103,6 +103,8 @@ export class TestClient {
   private readonly versions = new Map<string, number>();
   /** What the client answers to workspace/configuration; change it, then call `settingsChanged`. */
   settings: Record<string, unknown> = {};
+  /** The server's capabilities, as its initialize result announced them. */
+  capabilities: Record<string, unknown> = {};
   private readonly waiters: (() => void)[] = [];
 
   private constructor(
@@ -150,7 +152,8 @@ export class TestClient {
         textDocument: { publishDiagnostics: { relatedInformation: true, versionSupport: true } },
       },
     };
-    await connection.sendRequest('initialize', params);
+    const initialized = (await connection.sendRequest('initialize', params)) as { capabilities: Record<string, unknown> };
+    client.capabilities = initialized.capabilities;
     await connection.sendNotification('initialized', {});
     return client;
   }

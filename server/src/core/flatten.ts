@@ -14,8 +14,9 @@ import { displayRef, refId, Resolution, ScenarioStore, SourceError, SourceRef } 
 import * as path from 'node:path';
 import { CarryEdit, carryEdits, CarryPlan, planCarry } from './carry';
 import { analyzeDocument, CatalogLoader, DocumentSemantics, Evaluator, Finding, OUTPUT_CHECKS, runChecks, semanticModelOf, semanticProblems } from './semantics';
+import { Simulator } from './profiles/simulators';
 import { closestMatch, detectEol, indentationAt } from './text';
-import { attribute, elementStartingAt, escapeAttributeValue, isWellFormed, parseXml, selfAndDescendants, XmlAttribute, XmlDocument, XmlElement } from './xml';
+import { attribute, descendants, elementStartingAt, escapeAttributeValue, isWellFormed, parseXml, selfAndDescendants, XmlAttribute, XmlDocument, XmlElement } from './xml';
 
 const entityRefCache = new WeakMap<XmlElement, XmlElement[]>();
 
@@ -267,7 +268,11 @@ export class Flattener {
   /** The folder the output is written to, against which carried catalog directories are made relative. */
   private outputDirectory: string | undefined;
 
-  constructor(readonly store: ScenarioStore) {
+  constructor(
+    readonly store: ScenarioStore,
+    /** The simulator whose known gaps each file read is checked for (core/profiles); `asam`: none. */
+    readonly simulator: Simulator = 'asam',
+  ) {
     this.catalogs = new CatalogLoader(store);
   }
 
@@ -349,6 +354,7 @@ export class Flattener {
     this.checkDuplicateGroups(result, model);
     if (document.root) {
       const semantics = await analyzeDocument(ref, document, this.catalogs, model.references.length > 0);
+      semantics.simulator = this.simulator;
       result.semantics = semantics;
       result.problems.push(...semanticProblems(semantics));
       for (const file of semantics.catalogs.files) if (!result.dependencies.some((known) => refId(known) === refId(file))) result.dependencies.push(file);
@@ -718,7 +724,7 @@ export class Flattener {
     const evaluator = new Evaluator(model);
     const directory = this.outputDirectory ?? path.dirname(source.ref.disk);
     const catalogs = await this.catalogs.resolve({ disk: path.join(directory, 'flattened.xosc'), entries: [] }, model, evaluator);
-    const findings = runChecks({ ref: source.ref, model, evaluator, catalogs, modular: false }, OUTPUT_CHECKS);
+    const findings = runChecks({ ref: source.ref, model, evaluator, catalogs, modular: false, simulator: this.simulator }, OUTPUT_CHECKS);
     // The main file's own catalog locations are written as they are, relative to it; its own check covers them.
     const carried = (element: XmlElement) =>
       [...source.insertions, ...source.additions].some((region) => element.start >= region.start && element.end <= region.end);

@@ -40,7 +40,8 @@ export type ProblemCode =
   | 'key-mixed-defaults'
   | 'parameter-conflict'
   | 'catalog-location-conflict'
-  | 'renamed-reference';
+  | 'renamed-reference'
+  | 'simulator';
 
 export interface RelatedProblemLocation {
   source: SourceRef;

@@ -13,12 +13,14 @@ import * as documentLink from './documentLink';
 import * as documentSymbol from './documentSymbol';
 import * as flattenToFile from './flattenToFile';
 import * as flattenToText from './flattenToText';
+import * as formatting from './formatting';
 import * as hover from './hover';
 import * as initialize from './initialize';
 import * as initialized from './initialized';
 import * as pack from './pack';
 import * as prepareRename from './prepareRename';
 import * as preview from './preview';
+import * as rangeFormatting from './rangeFormatting';
 import * as references from './references';
 import * as rename from './rename';
 import * as scene from './scene';
@@ -49,6 +51,8 @@ const HANDLERS: { register(context: ServerContext): void }[] = [
   workspaceSymbol,
   codeLens,
   documentLink,
+  formatting,
+  rangeFormatting,
   flattenToText,
   flattenToFile,
   pack,

@@ -31,6 +31,8 @@ export function register(context: ServerContext): void {
         workspaceSymbolProvider: true,
         codeLensProvider: { resolveProvider: false },
         documentLinkProvider: { resolveProvider: false },
+        documentFormattingProvider: true,
+        documentRangeFormattingProvider: true,
         workspace: {
           workspaceFolders: { supported: true },
           fileOperations: {

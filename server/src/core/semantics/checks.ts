@@ -1,5 +1,7 @@
 import { ProblemCode, RelatedProblemLocation, Severity } from '../problems';
-import { SourceRef } from '../sources';
+import { simulatorFindings } from '../profiles/checks';
+import { Simulator } from '../profiles/simulators';
+import { baseName, SourceRef } from '../sources';
 import { closestMatch } from '../text';
 import { attribute, descendants, XmlAttribute, XmlElement } from '../xml';
 import { CatalogResolution } from './catalogs';
@@ -22,6 +24,8 @@ export interface SemanticContext {
    * flattened output is checked for them instead.
    */
   modular: boolean;
+  /** The simulator whose known gaps are checked (core/profiles); absent or `asam`: none. */
+  simulator?: Simulator;
 }
 
 export interface Finding {
@@ -381,6 +385,15 @@ export const undeclaredVariables: SemanticCheck = ({ model }) =>
       message: `variable '${reference.attribute.value}' is not declared in the VariableDeclarations of this file`,
     }));
 
+/** What the chosen simulator does not run, from facts read in its own sources (core/profiles/). */
+export const simulatorProfile: SemanticCheck = ({ ref, model, simulator }) =>
+  simulatorFindings(simulator ?? 'asam', model.document, baseName(ref)).map((finding) => ({
+    ...at(finding.element, finding.attribute),
+    severity: 'warning',
+    code: 'simulator',
+    message: finding.message,
+  }));
+
 /** The checks of a document, in the order their problems are listed. */
 export const SEMANTIC_CHECKS: readonly { name: string; check: SemanticCheck }[] = [
   { name: 'undeclared parameter', check: undeclaredParameters },
@@ -391,6 +404,7 @@ export const SEMANTIC_CHECKS: readonly { name: string; check: SemanticCheck }[] 
   { name: 'undeclared entity', check: undeclaredEntities },
   { name: 'storyboard references', check: storyboardReferences },
   { name: 'undeclared variable', check: undeclaredVariables },
+  { name: 'simulator profile', check: simulatorProfile },
 ];
 
 /** The checks of a flattened output (SPEC 11.5); entities are checked by the flattener at the reference. */
@@ -400,6 +414,8 @@ export const OUTPUT_CHECKS: readonly { name: string; check: SemanticCheck }[] = 
   { name: 'catalog references', check: catalogReferences },
   { name: 'storyboard references', check: flattenedStoryboardReferences },
   { name: 'undeclared variable', check: undeclaredVariables },
+  // What the simulator gets is the output: a value set through a ParameterReference is checked here.
+  { name: 'simulator profile', check: simulatorProfile },
 ];
 
 export function runChecks(context: SemanticContext, checks: readonly { check: SemanticCheck }[] = SEMANTIC_CHECKS): Finding[] {

@@ -1,0 +1,141 @@
+// Formatter benchmark (prints figures, asserts nothing): Format Document and Format Selection on a
+// generated 15,000-line scenario through the built language server, and `format --check` as a process.
+import { spawn, spawnSync } from 'node:child_process';
+import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import path from 'node:path';
+import { fileURLToPath, pathToFileURL } from 'node:url';
+import { createProtocolConnection, StreamMessageReader, StreamMessageWriter } from 'vscode-languageserver/node';
+
+const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
+const server = path.join(root, 'dist', 'server.js');
+const cli = path.join(root, 'dist', 'cli.js');
+const samples = Number(process.env.BENCH_SAMPLES ?? 30);
+const now = () => Number(process.hrtime.bigint()) / 1e6;
+
+if (!existsSync(server) || !existsSync(cli)) {
+  console.error('dist/ is missing: run npm run build first');
+  process.exit(1);
+}
+
+/** CPU time (user + system) a process has used, in ms: on a loaded machine wall time says little. */
+function cpuMs(pid) {
+  const fields = readFileSync(`/proc/${pid}/stat`, 'utf8').split(') ')[1].split(' ');
+  return ((Number(fields[11]) + Number(fields[12])) * 1000) / 100;
+}
+
+function stats(times) {
+  const sorted = [...times].sort((a, b) => a - b);
+  return { median: sorted[Math.floor(sorted.length / 2)], p95: sorted[Math.min(sorted.length - 1, Math.ceil(sorted.length * 0.95) - 1)] };
+}
+
+/** A scenario of about `lines` lines, indented badly (every line at column 0) with long tags, comments and blank lines. */
+function messyScenario(lines) {
+  const parts = ['<?xml version="1.0" encoding="UTF-8"?>', '<OpenSCENARIO>', '<FileHeader revMajor="1" revMinor="0" date="2026-01-01T00:00:00" description="format benchmark" author="bench"/>', '<Storyboard>', '<Story name="S">', '<Act name="A">'];
+  for (let group = 0; parts.length < lines - 6; group++) {
+    parts.push(
+      `<ManeuverGroup name="G${group}" maximumExecutionCount="1">`,
+      '<Actors selectTriggeringEntities="false"><EntityRef entityRef="car"/></Actors>',
+      `<!-- maneuver ${group} -->`,
+      `<Maneuver name="M${group}">`,
+      `<Event name="E${group}" priority="overwrite" maximumExecutionCount="1">`,
+      `<Action name="Speed${group}">`,
+      '<PrivateAction><LongitudinalAction><SpeedAction>',
+      '<SpeedActionDynamics dynamicsShape="sinusoidal" value="${$duration * 2}" dynamicsDimension="time" followingMode="follow"/>',
+      '<SpeedActionTarget><AbsoluteTargetSpeed value="$speed"/></SpeedActionTarget>',
+      '</SpeedAction></LongitudinalAction></PrivateAction>',
+      '</Action>',
+      '',
+      '',
+      '<StartTrigger><ConditionGroup><Condition name="C" delay="0" conditionEdge="rising"><ByValueCondition><SimulationTimeCondition value="1" rule="greaterThan"/></ByValueCondition></Condition></ConditionGroup></StartTrigger>',
+      '</Event>',
+      '</Maneuver>',
+      '</ManeuverGroup>',
+    );
+  }
+  parts.push('</Act>', '</Story>', '</Storyboard>', '</OpenSCENARIO>', '');
+  return parts.join('\n');
+}
+
+const folder = mkdtempSync(path.join(tmpdir(), 'm2s-format-bench-'));
+const file = path.join(folder, 'big.xosc');
+const text = messyScenario(15_000);
+writeFileSync(file, text);
+const inputLines = text.split('\n').length;
+
+const child = spawn(process.execPath, [server, '--stdio'], { stdio: ['pipe', 'pipe', 'inherit'] });
+const connection = createProtocolConnection(new StreamMessageReader(child.stdout), new StreamMessageWriter(child.stdin));
+connection.onNotification(() => {});
+connection.onRequest('workspace/configuration', (params) => params.items.map(() => ({})));
+connection.onRequest('window/workDoneProgress/create', () => null);
+connection.onRequest('client/registerCapability', () => null);
+connection.listen();
+await connection.sendRequest('initialize', { processId: process.pid, rootUri: pathToFileURL(folder).href, capabilities: {} });
+await connection.sendNotification('initialized', {});
+const uri = pathToFileURL(file).href;
+await connection.sendNotification('textDocument/didOpen', { textDocument: { uri, languageId: 'xosc', version: 1, text } });
+
+const options = { tabSize: 2, insertSpaces: true };
+const documentTimes = [];
+let edits = [];
+const cpuBefore = cpuMs(child.pid);
+for (let i = 0; i < samples; i++) {
+  const started = now();
+  edits = await connection.sendRequest('textDocument/formatting', { textDocument: { uri }, options });
+  documentTimes.push(now() - started);
+}
+const serverCpu = (cpuMs(child.pid) - cpuBefore) / samples;
+// The common case, format on save of a file already formatted: the same scenario after one pass.
+const formattedUri = pathToFileURL(path.join(folder, 'formatted.xosc')).href;
+let formatted = text;
+{
+  const lines = formatted.split('\n');
+  const starts = [0];
+  for (const line of lines) starts.push(starts[starts.length - 1] + line.length + 1);
+  const offset = (position) => starts[position.line] + position.character;
+  for (const edit of [...edits].sort((a, b) => offset(b.range.start) - offset(a.range.start))) {
+    formatted = formatted.slice(0, offset(edit.range.start)) + edit.newText + formatted.slice(offset(edit.range.end));
+  }
+}
+await connection.sendNotification('textDocument/didOpen', { textDocument: { uri: formattedUri, languageId: 'xosc', version: 1, text: formatted } });
+const cleanTimes = [];
+for (let i = 0; i < samples; i++) {
+  const started = now();
+  const none = await connection.sendRequest('textDocument/formatting', { textDocument: { uri: formattedUri }, options });
+  cleanTimes.push(now() - started);
+  if (none.length !== 0) throw new Error(`a formatted document got ${none.length} edits`);
+}
+
+const rangeTimes = [];
+for (let i = 0; i < samples; i++) {
+  const line = 7000 + i;
+  const started = now();
+  await connection.sendRequest('textDocument/rangeFormatting', { textDocument: { uri }, options, range: { start: { line, character: 0 }, end: { line: line + 40, character: 0 } } });
+  rangeTimes.push(now() - started);
+}
+await connection.sendRequest('shutdown');
+await connection.sendNotification('exit');
+connection.dispose();
+
+const cliTimes = [];
+for (let i = 0; i < Math.max(5, Math.floor(samples / 3)); i++) {
+  const started = now();
+  const run = spawnSync(process.execPath, [cli, 'format', '--check', '--indent', '2', file], { encoding: 'utf8' });
+  cliTimes.push(now() - started);
+  if (run.status !== 1) throw new Error(`format --check should report the messy file: ${run.stderr}`);
+}
+rmSync(folder, { recursive: true, force: true });
+
+const fmt = (n) => n.toFixed(1).padStart(7);
+const documentStats = stats(documentTimes);
+console.log(`formatter benchmark (${samples} runs; a ${inputLines.toLocaleString('en-US')}-line scenario at column 0, ${edits.length.toLocaleString('en-US')} edits)`);
+console.log('                                              median ms   p95 ms');
+console.log(`  Format Document over LSP (request to reply)   ${fmt(documentStats.median)}  ${fmt(documentStats.p95)}`);
+const clean = stats(cleanTimes);
+console.log(`  Format Document, already formatted (no edits)  ${fmt(clean.median)}  ${fmt(clean.p95)}`);
+const range = stats(rangeTimes);
+console.log(`  Format Selection of 40 lines over LSP          ${fmt(range.median)}  ${fmt(range.p95)}`);
+const process_ = stats(cliTimes);
+console.log(`  modular2simple format --check (whole process)  ${fmt(process_.median)}  ${fmt(process_.p95)}`);
+console.log(`  server CPU time per Format Document: ${serverCpu.toFixed(1)} ms (mean; the wall times above include waiting for a CPU)`);
+console.log(`  Format Document: ${documentStats.p95 < 200 ? 'within' : 'OVER'} the 200 ms target (p95)`);

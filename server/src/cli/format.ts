@@ -1,0 +1,129 @@
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import { parseArgs } from 'node:util';
+import { writeFileAtomic } from '../core/atomic';
+import { DEFAULT_FORMAT_OPTIONS, detectIndentation, FormatOptions, formatXml } from '../core/format';
+
+export const FORMAT_HELP = `  modular2simple format [--check] [--width N] [--indent N|tab] PATH...
+                                                   format .xosc files in place (folders: every .xosc below)`;
+
+/** The exit codes of the CLI as the README documents them. */
+const Exit = { ok: 0, problems: 1, usage: 2, io: 3 } as const;
+
+interface Io {
+  out: (text: string) => void;
+  err: (text: string) => void;
+}
+
+class FormatUsageError extends Error {}
+
+interface Plan {
+  file: string;
+  /** The formatted text with its byte-order mark, when it differs from the file. */
+  output: string | undefined;
+}
+
+function listXosc(folder: string, into: string[]): void {
+  for (const entry of fs.readdirSync(folder, { withFileTypes: true })) {
+    if (entry.name.startsWith('.') || entry.name === 'node_modules') continue;
+    const full = path.join(folder, entry.name);
+    if (entry.isDirectory()) listXosc(full, into);
+    else if (entry.isFile() && /\.xosc$/i.test(entry.name)) into.push(full);
+  }
+}
+
+function indentOption(value: string | undefined): Pick<FormatOptions, 'tabSize' | 'insertSpaces'> | undefined {
+  if (value === undefined) return undefined;
+  if (value === 'tab') return { tabSize: 4, insertSpaces: false };
+  const spaces = Number(value);
+  if (!Number.isInteger(spaces) || spaces < 0 || spaces > 16) throw new FormatUsageError(`--indent takes a number of spaces (0-16) or 'tab', not '${value}'`);
+  return { tabSize: spaces, insertSpaces: true };
+}
+
+/** Reads and formats one file; a problem is returned as a message naming the file and place. */
+function planFile(file: string, indent: Pick<FormatOptions, 'tabSize' | 'insertSpaces'> | undefined, width: number): Plan | string {
+  if (/\.mosc$/i.test(file)) return `${file}: error: a .mosc package is an archive; format its files before packing`;
+  let bytes: Buffer;
+  try {
+    bytes = fs.readFileSync(file);
+  } catch (error) {
+    return `${file}: error: cannot read the file (${(error as Error).message})`;
+  }
+  let text: string;
+  try {
+    // Fatal decoding: a file in another encoding must be refused, not rewritten with replacement characters.
+    text = new TextDecoder('utf-8', { fatal: true, ignoreBOM: true }).decode(bytes);
+  } catch {
+    return `${file}: error: the file is not UTF-8 text; it was not formatted`;
+  }
+  const result = formatXml(text, { ...(indent ?? detectIndentation(text)), maxLineWidth: width });
+  if (!result.ok) return `${file}:${result.line + 1}:${result.column + 1}: error: ${result.message}`;
+  return { file, output: result.text === text ? undefined : result.text };
+}
+
+/** `modular2simple format`: formats in place, or with --check only lists the files that would change. */
+export async function formatCommand(args: string[], io: Io): Promise<number> {
+  let values: { check?: boolean; width?: string; indent?: string; quiet?: boolean };
+  let positionals: string[];
+  try {
+    ({ values, positionals } = parseArgs({
+      args,
+      allowPositionals: true,
+      options: { check: { type: 'boolean' }, width: { type: 'string' }, indent: { type: 'string' }, quiet: { type: 'boolean', short: 'q' } },
+    }));
+    if (positionals.length === 0) throw new FormatUsageError('format needs at least one .xosc file or folder');
+  } catch (error) {
+    io.err(`modular2simple: ${(error as Error).message}\nRun 'modular2simple --help' for usage.`);
+    return Exit.usage;
+  }
+  let indent: Pick<FormatOptions, 'tabSize' | 'insertSpaces'> | undefined;
+  let width = DEFAULT_FORMAT_OPTIONS.maxLineWidth;
+  try {
+    indent = indentOption(values.indent);
+    if (values.width !== undefined) {
+      width = Number(values.width);
+      if (!Number.isInteger(width) || width < 1) throw new FormatUsageError(`--width takes a positive number of columns, not '${values.width}'`);
+    }
+  } catch (error) {
+    io.err(`modular2simple: ${(error as Error).message}\nRun 'modular2simple --help' for usage.`);
+    return Exit.usage;
+  }
+
+  const files: string[] = [];
+  const problems: string[] = [];
+  for (const input of positionals) {
+    const stat = fs.statSync(input, { throwIfNoEntry: false });
+    if (!stat) problems.push(`${input}: error: no such file or folder`);
+    else if (stat.isDirectory()) listXosc(input, files);
+    else files.push(input);
+  }
+  const plans: Plan[] = [];
+  for (const file of files) {
+    const plan = planFile(file, indent, width);
+    if (typeof plan === 'string') problems.push(plan);
+    else plans.push(plan);
+  }
+  for (const problem of problems) io.err(problem);
+  const changed = plans.filter((plan) => plan.output !== undefined);
+
+  if (values.check) {
+    for (const plan of changed) io.out(plan.file);
+    if (!values.quiet) io.err(`${changed.length} of ${files.length} file${files.length === 1 ? '' : 's'} would be reformatted` + (problems.length ? `; ${problems.length} could not be read or parsed` : ''));
+    return changed.length > 0 || problems.length > 0 ? Exit.problems : Exit.ok;
+  }
+  if (problems.length > 0) {
+    io.err(`${problems.length} error${problems.length === 1 ? '' : 's'}; nothing was written`);
+    return Exit.problems;
+  }
+  for (const plan of changed) {
+    try {
+      // The decoded text kept any byte-order mark (ignoreBOM), so the output carries it too.
+      await writeFileAtomic(plan.file, plan.output as string);
+    } catch (error) {
+      io.err(`${plan.file}: error: cannot write the file (${(error as Error).message}); it is unchanged`);
+      return Exit.io;
+    }
+  }
+  if (!values.quiet) io.err(`formatted ${changed.length} of ${files.length} file${files.length === 1 ? '' : 's'}`);
+  return Exit.ok;
+}

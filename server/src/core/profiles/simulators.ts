@@ -1,0 +1,8 @@
+/** The simulators whose known gaps can be checked; `asam` is the standard alone (no extra checks). */
+export const SIMULATORS = ['asam', 'carla', 'esmini'] as const;
+
+export type Simulator = (typeof SIMULATORS)[number];
+
+export function isSimulator(value: unknown): value is Simulator {
+  return typeof value === 'string' && (SIMULATORS as readonly string[]).includes(value);
+}

@@ -1,0 +1,219 @@
+import * as assert from 'node:assert/strict';
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import { Flattener } from '../../server/src/core/flatten';
+import { CARLA_PROFILE } from '../../server/src/core/profiles/carla';
+import { simulatorFindings } from '../../server/src/core/profiles/checks';
+import { ESMINI_PROFILE } from '../../server/src/core/profiles/esmini';
+import { Simulator } from '../../server/src/core/profiles/simulators';
+import { diskRef, ScenarioStore } from '../../server/src/core/sources';
+import { parseXml } from '../../server/src/core/xml';
+import { makeWorkspace, outerGroup, scenario, sharedDir, simpleGroup } from '../support/fixtures';
+
+function scenarioText(minor: string, init: string, story: string): string {
+  return `<?xml version="1.0" encoding="UTF-8"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="${minor}" date="2026-01-01T00:00:00" description="profiles" author="test"/>
+  <ParameterDeclarations/>
+  <CatalogLocations/>
+  <RoadNetwork/>
+  <Entities>
+    <ScenarioObject name="ego"/>
+  </Entities>
+  <Storyboard>
+    <Init>
+      <Actions>
+${init}
+      </Actions>
+    </Init>
+    <Story name="story">
+      <Act name="act">
+        <ManeuverGroup name="group" maximumExecutionCount="1">
+          <Actors selectTriggeringEntities="false"><EntityRef entityRef="ego"/></Actors>
+          <Maneuver name="maneuver">
+            <Event name="event" priority="overwrite">
+              <Action name="action">
+${story}
+              </Action>
+            </Event>
+          </Maneuver>
+        </ManeuverGroup>
+      </Act>
+    </Story>
+  </Storyboard>
+</OpenSCENARIO>
+`;
+}
+
+const VISIBILITY = '<PrivateAction><VisibilityAction graphics="false" traffic="true" sensors="true"/></PrivateAction>';
+const LANE_CHANGE = `<PrivateAction><LateralAction><LaneChangeAction>
+  <LaneChangeActionDynamics dynamicsShape="linear" value="20" dynamicsDimension="distance"/>
+  <LaneChangeTarget><RelativeTargetLane entityRef="ego" value="1"/></LaneChangeTarget>
+</LaneChangeAction></LateralAction></PrivateAction>`;
+const TIME_OF_DAY = '<GlobalAction/><StartTrigger><ConditionGroup><Condition name="c" delay="0" conditionEdge="none"><ByValueCondition><TimeOfDayCondition dateTime="2026-01-01T08:00:00" rule="greaterThan"/></ByValueCondition></Condition></ConditionGroup></StartTrigger>';
+
+function messages(simulator: Simulator, text: string, fileName = 'scenario.xosc'): string[] {
+  return simulatorFindings(simulator, parseXml(text), fileName).map((finding) => finding.message);
+}
+
+describe('simulator profiles', () => {
+  it('carla flags a 1.1 header and an unsupported action; asam flags neither', () => {
+    const text = scenarioText('1', '', VISIBILITY);
+    const carla = messages('carla', text);
+    assert.ok(carla.some((message) => /^CARLA ScenarioRunner accepts only OpenSCENARIO 1\.0; this file states 1\.1 \(srunner\/scenarioconfigs\/openscenario_configuration\.py\)$/.test(message)), carla.join('\n'));
+    assert.ok(carla.some((message) => /^CARLA ScenarioRunner does not support VisibilityAction.*\(Docs\/openscenario_support\.md\)$/.test(message)), carla.join('\n'));
+    assert.deepEqual(messages('asam', text), []);
+    assert.deepEqual(messages('carla', scenarioText('0', '', LANE_CHANGE)), []);
+  });
+
+  it('carla reports the finding at the source position: the revMinor value and the action tag', () => {
+    const text = scenarioText('1', '', VISIBILITY);
+    const document = parseXml(text);
+    const findings = simulatorFindings('carla', document, 'scenario.xosc');
+    const version = findings.find((finding) => finding.attribute?.name === 'revMinor');
+    assert.ok(version?.attribute);
+    assert.equal(text.slice(version.attribute.valueStart, version.attribute.valueEnd), '1');
+    assert.ok(findings.some((finding) => finding.element.name === 'VisibilityAction'));
+  });
+
+  it('carla knows where an action may stand: a lane change runs in a Story, not in the Init', () => {
+    const init = `<Private entityRef="ego">${LANE_CHANGE}</Private>`;
+    const inInit = messages('carla', scenarioText('0', init, ''));
+    assert.deepEqual(inInit, ['CARLA ScenarioRunner does not support LaneChangeAction in the Init, only in a Story (Docs/openscenario_support.md)']);
+    assert.deepEqual(messages('carla', scenarioText('0', '', LANE_CHANGE)), []);
+  });
+
+  it('carla flags ${...} expressions and unsupported values, but not $parameters it resolves', () => {
+    const story = `<PrivateAction><LongitudinalAction><SpeedAction>
+      <SpeedActionDynamics dynamicsShape="step" value="\${$duration * 2}" dynamicsDimension="time"/>
+      <SpeedActionTarget><AbsoluteTargetSpeed value="$speed"/></SpeedActionTarget>
+    </SpeedAction></LongitudinalAction></PrivateAction>
+    <PrivateAction><LateralAction><LaneChangeAction>
+      <LaneChangeActionDynamics dynamicsShape="$shape" value="2" dynamicsDimension="time"/>
+      <LaneChangeTarget><RelativeTargetLane entityRef="ego" value="1"/></LaneChangeTarget>
+    </LaneChangeAction></LateralAction></PrivateAction>`;
+    const found = messages('carla', scenarioText('0', '', story));
+    assert.deepEqual(found, ['CARLA ScenarioRunner does not evaluate ${...} expressions: value="${$duration * 2}" is read as text (srunner/tools/openscenario_parser.py)']);
+    const sinusoidal = messages('carla', scenarioText('0', '', LANE_CHANGE.replace('"linear"', '"sinusoidal"')));
+    assert.equal(sinusoidal.length, 1);
+    assert.match(sinusoidal[0], /dynamicsShape="sinusoidal" on LaneChangeActionDynamics/);
+  });
+
+  it('carla reads catalogs only from files named <Type>Catalog.xosc; the version of a catalog is not checked', () => {
+    const catalog = '<OpenSCENARIO><FileHeader revMajor="0" revMinor="9" date="x" description="c" author=""/><Catalog name="cars"><Vehicle name="car"/></Catalog></OpenSCENARIO>';
+    assert.deepEqual(messages('carla', catalog, 'VehicleCatalog.xosc'), []);
+    const misnamed = messages('carla', catalog, 'Cars.xosc');
+    assert.deepEqual(misnamed, ['CARLA ScenarioRunner reads a catalog of Vehicle entries only from a file named VehicleCatalog.xosc in the catalog directory; this file is Cars.xosc (srunner/scenarioconfigs/openscenario_configuration.py)']);
+    assert.deepEqual(messages('esmini', catalog, 'Cars.xosc'), []);
+  });
+
+  it('esmini flags one of its unsupported elements; asam and carla-only facts do not apply', () => {
+    const text = scenarioText('2', '', TIME_OF_DAY);
+    const esmini = messages('esmini', text);
+    assert.deepEqual(esmini, ['esmini does not support TimeOfDayCondition: the condition is ignored (osc_coverage.txt)']);
+    assert.deepEqual(messages('asam', text), []);
+    const modify = '<GlobalAction><ParameterAction parameterRef="p"><ModifyAction><Rule><AddValue value="1"/></Rule></ModifyAction></ParameterAction></GlobalAction>';
+    assert.equal(messages('esmini', scenarioText('1', '', modify)).length, 1);
+    // The same element under a VariableAction is supported.
+    assert.deepEqual(messages('esmini', scenarioText('2', '', modify.replace(/ParameterAction parameterRef/, 'VariableAction variableRef').replace('</ParameterAction>', '</VariableAction>'))), []);
+  });
+
+  it('every fact names the file it was read from, and each profile names its revision', () => {
+    for (const profile of [CARLA_PROFILE, ESMINI_PROFILE]) {
+      assert.match(profile.revision, /^[0-9a-f]{40}$/);
+      for (const fact of [...profile.elements, ...profile.attributes]) assert.ok(fact.source.length > 0, `${profile.name}: ${JSON.stringify(fact)}`);
+    }
+  });
+
+  it('reports findings of an imported group in the file the group was written in, and none without a simulator', async () => {
+    const simple = scenarioText('0', '', VISIBILITY).replace('name="group"', 'name="Go"');
+    const main = scenarioText('0', '', LANE_CHANGE).replace(
+      /<ManeuverGroup name="group"[\s\S]*<\/ManeuverGroup>/,
+      '<ManeuverGroup name="outer" maximumExecutionCount="1"><Actors selectTriggeringEntities="false"><EntityRef entityRef="ego"/></Actors><ScenarioReference scenarioFileName="simple.xosc"><ManeuverGroupReference maneuverGroupName="Go"/></ScenarioReference></ManeuverGroup>',
+    );
+    const root = makeWorkspace({ 'simple.xosc': simple, 'main.xosc': main });
+    const flattener = new Flattener(new ScenarioStore({ scenarioPath: [], root }), 'carla');
+    const result = await flattener.flatten(diskRef(path.join(root, 'main.xosc')));
+    assert.ok(result.text, JSON.stringify(result.problems.map((problem) => problem.message)));
+    const problems = result.problems.filter((problem) => problem.code === 'simulator');
+    assert.equal(problems.filter((problem) => /VisibilityAction/.test(problem.message)).length, 1, 'reported once, though the source and the output are both checked');
+    const visibility = problems.find((problem) => /VisibilityAction/.test(problem.message));
+    assert.ok(visibility, problems.map((problem) => problem.message).join('\n'));
+    assert.equal(path.basename(visibility.source.disk), 'simple.xosc');
+    const line = simple.split('\n').findIndex((text) => text.includes('<VisibilityAction'));
+    assert.equal(visibility.range.start.line, line);
+    assert.equal(visibility.severity, 'warning');
+    const standard = await new Flattener(new ScenarioStore({ scenarioPath: [], root })).flatten(diskRef(path.join(root, 'main.xosc')));
+    assert.deepEqual(standard.problems.filter((problem) => problem.code === 'simulator'), []);
+  });
+
+  it('checks the flattened output too: a value set through a ParameterReference is reported where it is written', async () => {
+    const body = `              <Action name="Change">
+                <LaneChangeActionDynamics parameterAttributes="dynamicsShape" dynamicsShape="linear" value="2" dynamicsDimension="time"/>
+              </Action>
+`;
+    const root = makeWorkspace({
+      'simple.xosc': scenario(simpleGroup('Go', body)),
+      'main.xosc': scenario(outerGroup('Car', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Go', parameters: [['dynamicsShape', 'sinusoidal']] }] }])),
+    });
+    const result = await new Flattener(new ScenarioStore({ scenarioPath: [], root }), 'carla').flatten(diskRef(path.join(root, 'main.xosc')));
+    assert.ok(result.text, JSON.stringify(result.problems.map((problem) => problem.message)));
+    const shape = result.problems.filter((problem) => problem.code === 'simulator' && /dynamicsShape/.test(problem.message));
+    assert.equal(shape.length, 1, JSON.stringify(result.problems.map((problem) => problem.message)));
+    assert.match(shape[0].message, /dynamicsShape="sinusoidal" on LaneChangeActionDynamics/);
+    assert.equal(path.basename(shape[0].source.disk), 'simple.xosc');
+  });
+});
+
+describe('simulator profiles on the corpus files each simulator runs', function () {
+  const corpus = path.join(sharedDir, 'corpus', 'openscenario');
+  before(function () {
+    if (!fs.existsSync(corpus)) {
+      console.log(`    (skipped: ${corpus} is absent)`);
+      this.skip();
+    }
+  });
+
+  const walk = (folder: string): string[] =>
+    fs.readdirSync(folder, { withFileTypes: true }).flatMap((entry) => {
+      const full = path.join(folder, entry.name);
+      if (entry.isDirectory()) return walk(full);
+      return /\.xosc$/i.test(entry.name) ? [full] : [];
+    });
+
+  for (const [simulator, folder] of [['carla', 'scenario_runner'], ['esmini', 'esmini']] as const) {
+    it(`${simulator} warns about nothing that its own example scenarios (${folder}) use`, () => {
+      const files = walk(path.join(corpus, folder));
+      assert.ok(files.length >= 20, `found only ${files.length} files`);
+      const found: string[] = [];
+      for (const file of files) {
+        for (const finding of simulatorFindings(simulator, parseXml(fs.readFileSync(file, 'utf8')), path.basename(file))) {
+          found.push(`${path.relative(corpus, file)}: ${finding.message}`);
+        }
+      }
+      // No exceptions are needed: SceneGraphFile, which CARLA ignores but which changes nothing the scenario
+      // does, is not a fact of the profile, and the 0.9 headers of CARLA's own catalogs are not checked
+      // because CARLA checks the version of the scenario only (openscenario_configuration.py).
+      assert.deepEqual(found, []);
+    });
+  }
+
+  it('carla warns about nothing in the modular library written for CARLA, flattened as CARLA gets it', async function () {
+    const library = path.join(sharedDir, 'corpus', 'modular2simple', 'library');
+    const mains = fs.readdirSync(library).filter((name) => name.startsWith('modular_')).map((name) => path.join(library, name, 'main.xosc'));
+    assert.ok(mains.length >= 30);
+    const flattener = new Flattener(new ScenarioStore({ scenarioPath: [library], root: library }), 'carla');
+    for (const main of mains) {
+      const result = await flattener.flatten(diskRef(main));
+      assert.ok(result.text, main);
+      assert.deepEqual(result.problems.filter((problem) => problem.code === 'simulator').map((problem) => problem.message), [], main);
+    }
+  });
+
+  it('carla finds what CARLA does not run in esmini scenarios (the checks are not vacuous)', () => {
+    const files = walk(path.join(corpus, 'esmini'));
+    const messages = files.flatMap((file) => simulatorFindings('carla', parseXml(fs.readFileSync(file, 'utf8')), path.basename(file)).map((finding) => finding.message));
+    assert.ok(messages.some((message) => /accepts only OpenSCENARIO 1\.0; this file states 1\.[123]/.test(message)));
+    assert.ok(messages.some((message) => /does not evaluate \$\{\.\.\.\} expressions/.test(message)));
+  });
+});

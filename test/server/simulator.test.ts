@@ -1,0 +1,53 @@
+import * as assert from 'node:assert/strict';
+import * as path from 'node:path';
+import { DiagnosticSeverity } from 'vscode-languageserver/node';
+import { fileUri, temporaryWorkspace, TestClient } from './harness';
+
+const SCENARIO = `<?xml version="1.0" encoding="UTF-8"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="1" date="2026-01-01T00:00:00" description="simulator" author="test"/>
+  <Entities/>
+  <Storyboard>
+    <Init><Actions/></Init>
+    <Story name="s"><Act name="a"><ManeuverGroup name="g" maximumExecutionCount="1">
+      <Actors selectTriggeringEntities="false"/>
+      <Maneuver name="m"><Event name="e" priority="overwrite"><Action name="x">
+        <PrivateAction><VisibilityAction graphics="false" traffic="true" sensors="true"/></PrivateAction>
+      </Action></Event></Maneuver>
+    </ManeuverGroup></Act></Story>
+  </Storyboard>
+</OpenSCENARIO>
+`;
+
+describe('simulator profile in the language server', function () {
+  let client: TestClient;
+  let uri: string;
+
+  before(async () => {
+    const root = temporaryWorkspace({ 'scenario.xosc': SCENARIO });
+    client = await TestClient.start({ root, settings: { simulator: 'carla' } });
+    uri = await client.open(fileUri(path.join(root, 'scenario.xosc')), SCENARIO);
+  });
+
+  after(async () => {
+    await client.stop();
+  });
+
+  it('publishes the carla findings as warnings at their source positions', async () => {
+    const diagnostics = await client.diagnosticsOf(uri, (list) => list.some((diagnostic) => diagnostic.code === 'simulator'));
+    const simulator = diagnostics.filter((diagnostic) => diagnostic.code === 'simulator');
+    assert.ok(simulator.every((diagnostic) => diagnostic.severity === DiagnosticSeverity.Warning));
+    const version = simulator.find((diagnostic) => /accepts only OpenSCENARIO 1\.0; this file states 1\.1/.test(String(diagnostic.message)));
+    assert.ok(version);
+    assert.equal(version.range.start.line, 2);
+    assert.equal(SCENARIO.split('\n')[2].slice(version.range.start.character, version.range.end.character), '1');
+    const action = simulator.find((diagnostic) => /does not support VisibilityAction/.test(String(diagnostic.message)));
+    assert.equal(action?.range.start.line, 9);
+  });
+
+  it('drops them when the setting goes back to asam', async () => {
+    await client.settingsChanged({ simulator: 'asam' });
+    const diagnostics = await client.diagnosticsOf(uri, (list) => !list.some((diagnostic) => diagnostic.code === 'simulator'));
+    assert.deepEqual(diagnostics.filter((diagnostic) => diagnostic.code === 'simulator'), []);
+  });
+});
