@@ -1,6 +1,7 @@
 // One bundle per side, so that the extension, the server and the CLI each start from a single file.
 import * as esbuild from 'esbuild';
-import { chmodSync } from 'node:fs';
+import { chmodSync, mkdirSync, writeFileSync } from 'node:fs';
+import { compileSchemas } from './compile-schemas.mjs';
 
 const watch = process.argv.includes('--watch');
 const common = {
@@ -17,6 +18,9 @@ const entries = [
   { entryPoints: ['server/src/server.ts'], outfile: 'dist/server.js', banner: { js: '#!/usr/bin/env node' } },
   { entryPoints: ['server/src/cli.ts'], outfile: 'dist/cli.js', banner: { js: '#!/usr/bin/env node' } },
 ];
+// The OpenSCENARIO schemas are compiled once here, so that nothing interprets XSD at run time.
+mkdirSync('dist', { recursive: true });
+writeFileSync('dist/openscenario-schemas.json', JSON.stringify(compileSchemas()));
 const contexts = await Promise.all(entries.map((entry) => esbuild.context({ ...common, ...entry })));
 if (watch) {
   await Promise.all(contexts.map((context) => context.watch()));

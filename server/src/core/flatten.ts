@@ -12,6 +12,9 @@ import {
 import { Problem, ProblemCode, RelatedProblemLocation, Severity, uniqueProblems, ZERO_RANGE } from './problems';
 import { displayRef, refId, Resolution, ScenarioStore, SourceError, SourceRef } from './sources';
 import { closestMatch, detectEol } from './text';
+import { outputSchemaProblems, schemaProblems } from './schema/problems';
+import { SCHEMA_PROBLEM_CODES } from './schema/validate';
+import { SchemaVersionSetting } from './schema/version';
 import { attribute, descendants, escapeAttributeValue, isWellFormed, parseXml, XmlAttribute, XmlDocument, XmlElement } from './xml';
 
 const entityRefCache = new WeakMap<XmlElement, XmlElement[]>();
@@ -52,13 +55,19 @@ export function originOf(source: FlatSource, element: XmlElement): { source: Fla
     const original = elementStartingAt(source.original.document.root, element.start + shift);
     return { source, element: original && original.name === element.name ? original : element };
   }
-  const copyRoot = source.model.groups.find((group) => group.element.start === insertion.start)?.element;
+  const copied = copiedFrom(source, insertion, element);
+  return copied ? originOf(copied.source, copied.element) : { source, element };
+}
+
+/** The element of the imported group (in the referenced file's flattened model) that `element` of an insertion copies. */
+export function copiedFrom(source: FlatSource, insertion: Insertion, element: XmlElement): { source: FlatSource; element: XmlElement } | undefined {
+  const copyRoot = source.model?.groups.find((group) => group.element.start === insertion.start)?.element;
   const sourceOfCopy = insertion.link.source;
   const targetGroup = insertion.group.target;
-  if (!copyRoot || !sourceOfCopy || !targetGroup) return { source, element };
+  if (!copyRoot || !sourceOfCopy || !targetGroup) return undefined;
   const index = selfAndDescendants(copyRoot).indexOf(element);
   const counterpart = selfAndDescendants(targetGroup.element)[index];
-  return counterpart ? originOf(sourceOfCopy, counterpart) : { source, element };
+  return counterpart ? { source: sourceOfCopy, element: counterpart } : undefined;
 }
 
 function elementStartingAt(root: XmlElement | undefined, offset: number): XmlElement | undefined {
@@ -127,6 +136,11 @@ export interface FlatSource {
   dependencies: SourceRef[];
   /** True while the flattened text can be, but has not yet been, rendered (see Flattener.rendered). */
   renderable: boolean;
+}
+
+/** How files are checked against the OpenSCENARIO schemas: by their FileHeader, pinned, or not at all. */
+export interface SchemaOptions {
+  version?: SchemaVersionSetting | 'off';
 }
 
 export interface FlattenOptions {
@@ -228,7 +242,10 @@ export function stripParameterAttributes(model: ScenarioModel): string {
 export class Flattener {
   private readonly cache = new Map<string, Promise<FlatSource>>();
 
-  constructor(readonly store: ScenarioStore) {}
+  constructor(
+    readonly store: ScenarioStore,
+    readonly schema: SchemaOptions = {},
+  ) {}
 
   /** Every problem of `main` and of what it uses, without writing its flattened text (for an editor). */
   async analyze(main: SourceRef): Promise<AnalysisResult> {
@@ -240,15 +257,18 @@ export class Flattener {
   async flatten(main: SourceRef, options: FlattenOptions = {}): Promise<FlattenResult> {
     const { problems, source } = await this.analyze(main);
     this.rendered(source);
-    const blocking = problems.filter(
-      (problem) => problem.severity === 'error' && !(options.force && OVERRIDE_PROBLEM_CODES.has(problem.code)),
+    // The output is checked strictly; its problems are reported where the source wrote them.
+    const schemaVersion = this.schema.version;
+    if (schemaVersion !== 'off' && source.model && source.model !== source.original) problems.push(...outputSchemaProblems(source, { version: schemaVersion }));
+    const blocking = uniqueProblems(problems).filter(
+      (problem) => problem.severity === 'error' && !(options.force && (OVERRIDE_PROBLEM_CODES.has(problem.code) || SCHEMA_PROBLEM_CODES.has(problem.code))),
     );
     const text = source.text !== undefined && blocking.length === 0 ? stripParameterAttributes(source.model ?? buildModel(parseXml(source.text))) : undefined;
     // Removing whole attributes keeps a well-formed text well-formed, so the rendered model is the check.
     if (text !== undefined && source.model && !isWellFormed(source.model.document)) {
       throw new Error('internal error: the flattened output is not well-formed XML');
     }
-    return { text, problems, source };
+    return { text, problems: uniqueProblems(problems), source };
   }
 
   /** Reads (and, when it holds references, flattens) one file; cached per file. */
@@ -295,6 +315,8 @@ export class Flattener {
     for (const problem of document.problems) {
       result.problems.push(problemAt(ref, document, problem.start, problem.end, problem.severity, 'xml', problem.message));
     }
+    const schemaVersion = this.schema.version;
+    if (schemaVersion !== 'off') result.problems.push(...schemaProblems(ref, document, { version: schemaVersion }));
     const model = buildModel(document);
     result.original = model;
     this.checkDeclarations(result, model);
@@ -320,7 +342,7 @@ export class Flattener {
       result.model = model;
       return result;
     }
-    const blocked = result.allProblems.some((problem) => problem.severity === 'error' && !OVERRIDE_PROBLEM_CODES.has(problem.code));
+    const blocked = result.allProblems.some((problem) => problem.severity === 'error' && !OVERRIDE_PROBLEM_CODES.has(problem.code) && !SCHEMA_PROBLEM_CODES.has(problem.code));
     result.renderable = !blocked;
     return result;
   }

@@ -21,7 +21,16 @@ export type ProblemCode =
   | 'reference-outside-group'
   | 'cycle'
   | 'undeclared-entity'
-  | 'source-errors';
+  | 'source-errors'
+  | 'schema-unknown-element'
+  | 'schema-unknown-attribute'
+  | 'schema-missing-element'
+  | 'schema-missing-attribute'
+  | 'schema-order'
+  | 'schema-cardinality'
+  | 'schema-value'
+  | 'schema-deprecated'
+  | 'schema-version';
 
 export interface RelatedProblemLocation {
   source: SourceRef;
