@@ -2,6 +2,8 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { isSameFile, writeFileAtomic } from './core/atomic';
 import { Flattener, OVERRIDE_PROBLEM_CODES } from './core/flatten';
+import { isSchemaVersion, SCHEMA_VERSIONS } from './core/schema/model';
+import { SchemaVersionSetting } from './core/schema/version';
 import { packFiles, packFolder, PackResult } from './core/pack';
 import { formatProblem, Problem, uniqueProblems } from './core/problems';
 import { childRef, diskRef, displayRef, ScenarioStore, SourceRef, splitScenarioPath } from './core/sources';
@@ -38,6 +40,8 @@ Options:
                             working directory, or the input's folder when it lies elsewhere)
   --include-scenario-path   pack: also store files found through SCENARIO_PATH
   --format text|json        output format of check and stats
+  --schema-version V        the OpenSCENARIO schema files are checked against: auto (each file's
+                            FileHeader, the default), 1.0, 1.1, 1.2, 1.3, or off
   -q, --quiet               print errors only
   -h, --help                this help
   -v, --version             the version
@@ -63,10 +67,11 @@ interface Options {
   includeScenarioPath: boolean;
   format: 'text' | 'json';
   quiet: boolean;
+  schemaVersion: SchemaVersionSetting | 'off';
 }
 
 function parseOptions(args: string[]): Options {
-  const options: Options = { positional: [], force: false, scenarioPath: [], includeScenarioPath: false, format: 'text', quiet: false };
+  const options: Options = { positional: [], force: false, scenarioPath: [], includeScenarioPath: false, format: 'text', quiet: false, schemaVersion: 'auto' };
   const value = (index: number, flag: string): string => {
     const next = args[index + 1];
     if (next === undefined || (next.startsWith('-') && next.length > 1)) throw new UsageError(`${flag} needs a value`);
@@ -100,6 +105,12 @@ function parseOptions(args: string[]): Options {
         const format = take();
         if (format !== 'text' && format !== 'json') throw new UsageError(`--format takes text or json, not '${format}'`);
         options.format = format;
+        break;
+      }
+      case '--schema-version': {
+        const version = take();
+        if (version !== 'auto' && version !== 'off' && !isSchemaVersion(version)) throw new UsageError(`--schema-version takes auto, off, ${SCHEMA_VERSIONS.join(', ')}; not '${version}'`);
+        options.schemaVersion = version;
         break;
       }
       case '-q':
@@ -202,7 +213,7 @@ async function write(output: string, data: string | Uint8Array, io: Output, quie
 async function flattenCommand(inputs: string[], outputs: string[] | undefined, options: Options, io: Output): Promise<number> {
   for (const input of inputs) checkInputExists(input);
   const store = makeStore(options, inputs);
-  const flattener = new Flattener(store);
+  const flattener = new Flattener(store, { version: options.schemaVersion });
   const results = [];
   let problems: Problem[] = [];
   for (const input of inputs) {
@@ -285,7 +296,7 @@ async function checkCommand(inputs: string[], options: Options, io: Output): Pro
     if (fs.statSync(input).isDirectory()) files.push(...listScenarioFiles(input));
     else files.push(input);
   }
-  const flattener = new Flattener(makeStore(options, inputs));
+  const flattener = new Flattener(makeStore(options, inputs), { version: options.schemaVersion });
   let problems: Problem[] = [];
   for (const file of files) problems = problems.concat((await flattener.flatten(mainOf(file))).problems);
   problems = uniqueProblems(problems);

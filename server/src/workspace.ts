@@ -1,7 +1,9 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { TextDocument } from 'vscode-languageserver-textdocument';
-import { AnalysisResult, Flattener, FlatSource } from './core/flatten';
+import { AnalysisResult, Flattener, FlatSource, SchemaOptions } from './core/flatten';
+import { isSchemaVersion } from './core/schema/model';
+import { SchemaVersionSetting } from './core/schema/version';
 import { FileSystemHost, nodeFileSystem, refId, ScenarioStore, SourceRef, splitScenarioPath, diskRef, childRef } from './core/sources';
 import { decodeUtf8, LineIndex, Range } from './core/text';
 import { UriResolver, refToUri } from './uris';
@@ -13,9 +15,11 @@ export interface ServerSettings {
   diagnosticsDelay: number;
   /** Files larger than this are indexed by name only, never parsed for workspace symbols. */
   maxIndexedFileBytes: number;
+  /** The OpenSCENARIO schema files are checked against (`modular2simple.schema.version`). */
+  schemaVersion: SchemaVersionSetting | 'off';
 }
 
-export const DEFAULT_SETTINGS: ServerSettings = { scenarioPath: [], diagnosticsDelay: 5, maxIndexedFileBytes: 8 * 1024 * 1024 };
+export const DEFAULT_SETTINGS: ServerSettings = { scenarioPath: [], diagnosticsDelay: 5, maxIndexedFileBytes: 8 * 1024 * 1024, schemaVersion: 'auto' };
 
 /** Reads settings sent by a client, keeping defaults for anything missing or of the wrong type. */
 export function readSettings(value: unknown): ServerSettings {
@@ -27,7 +31,9 @@ export function readSettings(value: unknown): ServerSettings {
       : [];
   const diagnostics = (record.diagnostics && typeof record.diagnostics === 'object' ? record.diagnostics : {}) as Record<string, unknown>;
   const delay = typeof diagnostics.delay === 'number' && diagnostics.delay >= 0 ? diagnostics.delay : DEFAULT_SETTINGS.diagnosticsDelay;
-  return { scenarioPath, diagnosticsDelay: delay, maxIndexedFileBytes: DEFAULT_SETTINGS.maxIndexedFileBytes };
+  const schema = (record.schema && typeof record.schema === 'object' ? record.schema : {}) as Record<string, unknown>;
+  const schemaVersion = schema.version === 'off' || schema.version === 'auto' || isSchemaVersion(schema.version) ? schema.version : DEFAULT_SETTINGS.schemaVersion;
+  return { scenarioPath, diagnosticsDelay: delay, maxIndexedFileBytes: DEFAULT_SETTINGS.maxIndexedFileBytes, schemaVersion };
 }
 
 /** Keeps file bytes and kinds in memory until a change notification says they are stale. */
@@ -140,8 +146,9 @@ class ReusingFlattener extends Flattener {
     store: ScenarioStore,
     private readonly shared: Map<string, Promise<FlatSource>>,
     private readonly dependencies: Map<string, string[]>,
+    schema: SchemaOptions,
   ) {
-    super(store);
+    super(store, schema);
   }
 
   override source(ref: SourceRef, stack: SourceRef[]): Promise<FlatSource> {
@@ -233,7 +240,7 @@ export class Workspace {
 
   flattener(): Flattener {
     if (!this.currentFlattener || this.flattenerGeneration !== this.generation) {
-      this.currentFlattener = new ReusingFlattener(this.storeInstance, this.sharedSources, this.sourceDependencies);
+      this.currentFlattener = new ReusingFlattener(this.storeInstance, this.sharedSources, this.sourceDependencies, { version: this.settings.schemaVersion });
       this.flattenerGeneration = this.generation;
     }
     return this.currentFlattener;

@@ -79,6 +79,13 @@ export interface ClientOptions {
   /** Answer window/workDoneProgress/create and record $/progress (true by default). */
   progress?: boolean;
   initializationOptions?: Record<string, unknown>;
+  /** Check files against the OpenSCENARIO schemas (off unless asked: the shared fixtures are minimal, not schema-valid). */
+  schema?: boolean;
+}
+
+/** The settings that turn the schema check off, merged under a test's own. */
+function withoutSchema(settings: Record<string, unknown> | undefined, schema: boolean | undefined): Record<string, unknown> {
+  return schema ? { ...settings } : { schema: { version: 'off' }, ...settings };
 }
 
 /** An LSP client over a real JSON-RPC connection to the server running in this process. */
@@ -89,6 +96,7 @@ export class TestClient {
   private readonly versions = new Map<string, number>();
   /** What the client answers to workspace/configuration; change it, then call `settingsChanged`. */
   settings: Record<string, unknown> = {};
+  private schema: boolean | undefined;
   private readonly waiters: (() => void)[] = [];
 
   private constructor(
@@ -115,7 +123,8 @@ export class TestClient {
     connection.onNotification('window/logMessage', (params: { message: string }) => {
       client.logs.push(params.message);
     });
-    client.settings = options.settings ?? {};
+    client.schema = options.schema;
+    client.settings = withoutSchema(options.settings, options.schema);
     connection.onRequest('workspace/configuration', (params: { items: { section?: string }[] }) => params.items.map(() => client.settings));
     connection.onRequest('window/workDoneProgress/create', () => null);
     connection.onRequest('client/registerCapability', () => null);
@@ -124,7 +133,7 @@ export class TestClient {
       // No process id: the server would otherwise poll it and keep the test process alive.
       processId: null,
       rootUri: fileUri(options.root),
-      initializationOptions: options.initializationOptions,
+      initializationOptions: options.initializationOptions ?? withoutSchema(undefined, options.schema),
       workspaceFolders: [{ uri: fileUri(options.root), name: path.basename(options.root) }],
       capabilities: {
         workspace: { configuration: options.progress !== false, didChangeWatchedFiles: { dynamicRegistration: true }, workspaceEdit: { documentChanges: false } },
@@ -173,7 +182,7 @@ export class TestClient {
   }
 
   async settingsChanged(settings: Record<string, unknown>): Promise<void> {
-    this.settings = settings;
+    this.settings = withoutSchema(settings, this.schema);
     await this.connection.sendNotification('workspace/didChangeConfiguration', { settings: null });
   }
 

@@ -140,7 +140,7 @@ export interface FlatSource {
 
 /** How files are checked against the OpenSCENARIO schemas: by their FileHeader, pinned, or not at all. */
 export interface SchemaOptions {
-  version?: SchemaVersionSetting | 'off';
+  version: SchemaVersionSetting | 'off';
 }
 
 export interface FlattenOptions {
@@ -244,7 +244,8 @@ export class Flattener {
 
   constructor(
     readonly store: ScenarioStore,
-    readonly schema: SchemaOptions = {},
+    /** Off unless asked for: the CLI and the language server pass their setting (`auto` by default). */
+    readonly schema: SchemaOptions = { version: 'off' },
   ) {}
 
   /** Every problem of `main` and of what it uses, without writing its flattened text (for an editor). */
@@ -482,7 +483,8 @@ export class Flattener {
     }
     const source = this.rendered(await this.source(target, stack));
     link.source = source;
-    const sourceErrors = source.allProblems.filter((problem) => problem.severity === 'error' && !OVERRIDE_PROBLEM_CODES.has(problem.code));
+    // Schema problems do not stop flattening: they are reported in their own file and checked again in the output.
+    const sourceErrors = source.allProblems.filter((problem) => problem.severity === 'error' && !OVERRIDE_PROBLEM_CODES.has(problem.code) && !SCHEMA_PROBLEM_CODES.has(problem.code));
     if (sourceErrors.length > 0) {
       const problem = report(
         fileStart,
