@@ -56,7 +56,12 @@ export function allowedChildren(index: SchemaIndex, typeName: string, preceding:
   const followingName = following === undefined ? undefined : index.modelName(typeName, following, true);
   const path = followingName === undefined ? automaton.missingToEnd(states) : automaton.step(states, followingName) ? [] : (automaton.missingBefore(states, followingName) ?? []);
   const required = new Set(path.map((particle) => particle.name));
-  const allowed = automaton.allowed(states).map((particle) => ({ particle, required: required.has(particle.name) }));
+  // In the content model's order, whatever order the automaton's states hold them in.
+  const order = index.childParticles(typeName);
+  const allowed = automaton
+    .allowed(states)
+    .sort((a, b) => order.indexOf(a) - order.indexOf(b))
+    .map((particle) => ({ particle, required: required.has(particle.name) }));
   if (allowed.some((entry) => entry.particle.name === 'Maneuver') && typeName === 'ManeuverGroup') {
     const reference = index.childParticle(typeName, 'ScenarioReference', true);
     if (reference) allowed.push({ particle: reference, required: false });
