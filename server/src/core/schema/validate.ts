@@ -106,6 +106,8 @@ export function checkSchema(document: XmlDocument, options: SchemaCheckOptions):
     const accepted = checkChildren(index, chosen, element, typeName, options, report);
     for (let i = accepted.length - 1; i >= 0; i--) stack.push(accepted[i]);
   }
+  // In document order, as a reader goes through the file.
+  findings.sort((a, b) => findingOffsets(a)[0] - findingOffsets(b)[0]);
   return { chosen, findings };
 }
 
