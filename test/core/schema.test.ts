@@ -182,6 +182,34 @@ describe('core: the OpenSCENARIO schemas, compiled at build time', () => {
   });
 });
 
+describe('core: schema check after an edit inside one value', () => {
+  it('moves the other findings and checks the edited value again, as a full check would', () => {
+    const source = diskRef('/x/edited.xosc');
+    let text = SCENARIO('2', '    <Init><Actions><Private entityRef="ego"><PrivateAction><LongitudinalAction><SpeedAction><SpeedActionDynamics dynamicsShape="step" value="1" dynamicsDimension="time"/><SpeedActionTarget><AbsoluteTargetSpeed value="5"/></SpeedActionTarget></SpeedAction></LongitudinalAction></PrivateAction></Private></Actions></Init>\n    <Story name="s"><Act name="a" unknown="u"><ManeuverGroup maximumExecutionCount="1" name="g"><Actors selectTriggeringEntities="false"/></ManeuverGroup><StartTrigger/></Act></Story>\n    <StopTrigger/>\n');
+    const summary = (problems: Problem[]) => problems.map((problem) => `${problem.code}@${problem.range.start.line}:${problem.range.start.character}-${problem.range.end.character} ${problem.message}`);
+    schemaProblems(source, parseXml(text));
+    const edits: [string, string][] = [
+      ['value="5"', 'value="fast"'],
+      ['dynamicsShape="step"', 'dynamicsShape="stepwise"'],
+      ['value="fast"', 'value="$Speed"'],
+      ['value="1"', 'value="1.25e2"'],
+      ['dynamicsShape="stepwise"', 'dynamicsShape="linear"'],
+      ['name="s"', 'name="a much longer story name"'],
+    ];
+    edits.forEach(([from, to], step) => {
+      text = text.replace(from, to);
+      const document = parseXml(text);
+      // A file never checked before gets a full check: the reference.
+      const full = schemaProblems(diskRef(`/x/fresh_${step}.xosc`), document);
+      assert.deepEqual(summary(schemaProblems(source, document)), summary(full), `${from} -> ${to}`);
+    });
+    assert.deepEqual(
+      summary(schemaProblems(source, parseXml(text))).map((line) => line.split(' ')[0].split('@')[0]),
+      ['schema-unknown-attribute'],
+    );
+  });
+});
+
 describe('corpus: every file validates against its own version', function () {
   before(function () {
     requireCorpus(this);

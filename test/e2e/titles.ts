@@ -16,6 +16,8 @@ export const INSIDE_TESTS = {
   flatten: 'Flatten from the command palette writes a file equivalent to the CLI\'s',
   structure: 'Show Structure lists the main file, packages, scenarios and groups',
   renameInPackage: 'renaming a group inside a .mosc updates the package and the files that use it',
+  schemaCompletion: 'schema completion offers the child elements the OpenSCENARIO schema allows',
+  schemaDeprecated: 'a deprecated OpenSCENARIO element is struck through',
 } as const;
 
 export type InsideTestKey = keyof typeof INSIDE_TESTS;

@@ -17,13 +17,15 @@ export class ContentAutomaton {
   private readonly empty: number[][] = [];
   private readonly edges: Edge[][] = [];
   private readonly closures = new Map<number, number[]>();
+  private readonly interned = new Map<string, StateSet>();
+  private readonly transitions = new WeakMap<StateSet, Map<string, { states: StateSet; particle: ElementParticle } | null>>();
   readonly start: StateSet;
   private readonly accept: number;
 
   constructor(particle: Particle | undefined) {
     const first = this.state();
     this.accept = particle ? this.build(particle, first) : first;
-    this.start = this.closure([first]);
+    this.start = this.intern(this.closure([first]));
   }
 
   private state(): number {
@@ -92,8 +94,32 @@ export class ContentAutomaton {
     return result;
   }
 
+  /** One object per distinct state set, so that transitions can be remembered per set (a lazily built DFA). */
+  private intern(states: number[]): StateSet {
+    const key = states.join(',');
+    let known = this.interned.get(key);
+    if (!known) {
+      known = states;
+      this.interned.set(key, known);
+    }
+    return known;
+  }
+
   /** The states after a child named `name`, or undefined when no path allows it here. */
   step(states: StateSet, name: string): { states: StateSet; particle: ElementParticle } | undefined {
+    let table = this.transitions.get(states);
+    if (!table) {
+      table = new Map();
+      this.transitions.set(states, table);
+    }
+    const remembered = table.get(name);
+    if (remembered !== undefined) return remembered ?? undefined;
+    const computed = this.computeStep(states, name);
+    table.set(name, computed ?? null);
+    return computed;
+  }
+
+  private computeStep(states: StateSet, name: string): { states: StateSet; particle: ElementParticle } | undefined {
     const next = new Set<number>();
     let particle: ElementParticle | undefined;
     for (const state of states) {
@@ -103,7 +129,7 @@ export class ContentAutomaton {
         for (const reached of this.closureOf(edge.to)) next.add(reached);
       }
     }
-    return particle ? { states: [...next].sort((a, b) => a - b), particle } : undefined;
+    return particle ? { states: this.intern([...next].sort((a, b) => a - b)), particle } : undefined;
   }
 
   accepts(states: StateSet): boolean {

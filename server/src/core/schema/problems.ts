@@ -1,23 +1,96 @@
 import { copiedFrom, FlatSource, originOf } from '../flatten';
 import { ParameterReferenceInfo } from '../model';
 import { Problem } from '../problems';
-import { SourceRef } from '../sources';
-import { attribute, XmlDocument, XmlElement } from '../xml';
-import { checkSchema, findingOffsets, SchemaCheckOptions, SchemaFinding } from './validate';
+import { refId, SourceRef } from '../sources';
+import { schemaIndex } from './index';
+import { typeOfElement } from './query';
+import { ChosenVersion } from './version';
+import { attribute, markupFreeEdit, XmlAttribute, XmlDocument, XmlElement } from '../xml';
+import { checkAttribute, checkSchema, findingOffsets, SchemaCheckOptions, SchemaFinding } from './validate';
 
-function toProblem(source: SourceRef, document: XmlDocument, finding: SchemaFinding, start: number, end: number): Problem {
+function toProblem(source: SourceRef, document: XmlDocument, finding: FindingWords, start: number, end: number): Problem {
   const problem: Problem = { source, range: document.lines.range(start, end), severity: finding.severity, code: finding.code, message: finding.message };
   if (finding.hint) problem.hint = finding.hint;
   if (finding.data) problem.data = finding.data;
   return problem;
 }
 
+/** A finding by offsets only, so that a remembered check holds no parse tree. */
+interface PlacedFinding {
+  start: number;
+  end: number;
+  finding: FindingWords;
+}
+
+type FindingWords = Omit<SchemaFinding, 'element' | 'attribute'>;
+
+interface RememberedCheck {
+  text: string;
+  setting: string;
+  chosen: ChosenVersion;
+  placed: PlacedFinding[];
+}
+
+/** The last check of each file, for edits inside one attribute value (typing a value in a large file). */
+const remembered = new Map<string, RememberedCheck>();
+const REMEMBERED_FILES = 64;
+
+function placed(finding: SchemaFinding): PlacedFinding {
+  const [start, end] = findingOffsets(finding);
+  // The tree is dropped: only offsets and words are kept.
+  const { element: _element, attribute: _attribute, ...words } = finding;
+  return { start, end, finding: words };
+}
+
+/**
+ * The check of `document` from the remembered check of its previous text, when one edit inside one
+ * attribute value separates them: the other findings only move, and that attribute is checked again.
+ */
+function recheckValueEdit(previous: RememberedCheck, document: XmlDocument): PlacedFinding[] | undefined {
+  if (!document.root) return undefined;
+  const edit = markupFreeEdit(previous.text, document.text);
+  if (!edit) return undefined;
+  const delta = edit.insertedEnd - edit.removedEnd;
+  let element: XmlElement | undefined = document.root;
+  let edited: XmlAttribute | undefined;
+  while (element && !edited) {
+    edited = element.attributes.find((candidate) => candidate.valueStart <= edit.prefix && edit.insertedEnd <= candidate.valueEnd);
+    if (edited || edit.prefix < element.startTagEnd) break;
+    element = element.children.find((child) => child.start <= edit.prefix && edit.insertedEnd <= child.end);
+  }
+  // The FileHeader's revMajor/revMinor choose the schema: an edit there checks everything again.
+  if (!element || !edited || element.name === 'FileHeader') return undefined;
+  const index = schemaIndex(previous.chosen.version);
+  const typeName = typeOfElement(index, element);
+  const oldValueEnd = edited.valueEnd - delta;
+  const kept = previous.placed
+    .filter((entry) => entry.start < edited.nameStart || entry.start > oldValueEnd)
+    .map((entry) => (entry.start >= edit.removedEnd ? { ...entry, start: entry.start + delta, end: entry.end + delta } : entry));
+  const fresh: PlacedFinding[] = [];
+  if (typeName) checkAttribute(index, previous.chosen, element, typeName, edited, (finding) => fresh.push(placed(finding)));
+  for (const entry of kept) {
+    const insertAt = entry.finding.data?.insertAt;
+    if (insertAt !== undefined && Number(insertAt) >= edit.removedEnd) entry.finding = { ...entry.finding, data: { ...entry.finding.data, insertAt: String(Number(insertAt) + delta) } };
+  }
+  return [...kept, ...fresh].sort((a, b) => a.start - b.start);
+}
+
 /** The schema's problems of one file as it is written (the modular extension allowed). */
 export function schemaProblems(source: SourceRef, document: XmlDocument, options: Omit<SchemaCheckOptions, 'modular'> = {}): Problem[] {
-  return checkSchema(document, { ...options, modular: true }).findings.map((finding) => {
-    const [start, end] = findingOffsets(finding);
-    return toProblem(source, document, finding, start, end);
-  });
+  const key = refId(source);
+  const setting = options.version ?? 'auto';
+  const previous = remembered.get(key);
+  let check: RememberedCheck | undefined;
+  const moved = previous && previous.setting === setting ? recheckValueEdit(previous, document) : undefined;
+  if (previous && moved) check = { ...previous, text: document.text, placed: moved };
+  else {
+    const full = checkSchema(document, { ...options, modular: true });
+    check = { text: document.text, setting, chosen: full.chosen, placed: full.findings.map(placed) };
+  }
+  remembered.delete(key);
+  remembered.set(key, check);
+  if (remembered.size > REMEMBERED_FILES) remembered.delete(remembered.keys().next().value as string);
+  return check.placed.map((entry) => toProblem(source, document, entry.finding, entry.start, entry.end));
 }
 
 /**

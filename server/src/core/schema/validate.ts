@@ -111,66 +111,70 @@ export function checkSchema(document: XmlDocument, options: SchemaCheckOptions):
   return { chosen, findings };
 }
 
+/** The checks of one attribute: its name, its value, deprecation. */
+export function checkAttribute(index: SchemaIndex, chosen: ChosenVersion, element: XmlElement, typeName: string, attribute: XmlAttribute, report: (finding: SchemaFinding) => void): void {
+  const type = index.complexType(typeName);
+  if (!type) return;
+  if (attribute.name === MODULAR_ATTRIBUTE || attribute.name.startsWith('xmlns') || attribute.name.startsWith('xsi:')) return;
+  const declaration = index.attribute(typeName, attribute.name);
+  if (!declaration) {
+    const candidates = type.attributes.map((candidate) => candidate.name).filter((name) => !element.attributes.some((other) => other.name === name));
+    const suggestion = closestMatch(attribute.name, candidates);
+    report({
+      element,
+      attribute,
+      part: 'attribute',
+      severity: 'error',
+      code: 'schema-unknown-attribute',
+      message: `<${element.name}> has no attribute '${attribute.name}' in OpenSCENARIO ${chosen.version}`,
+      hint:
+        introducedHint(typeName, attribute.name, 'attribute', chosen, candidates) ??
+        (suggestion ? `did you mean '${suggestion}'?` : candidates.length > 0 ? `its attributes: ${candidates.join(', ')}` : undefined),
+      data: suggestion ? { suggestion } : undefined,
+    });
+    return;
+  }
+  const simple = index.simpleType(declaration.type);
+  if (!simple) return;
+  const check = checkValue(simple, attribute.value);
+  if (!check.valid) {
+    const values = enumerationValues(simple);
+    const suggestion = values.length > 0 ? closestMatch(attribute.value, values) : undefined;
+    report({
+      element,
+      attribute,
+      part: 'value',
+      severity: check.expressionNotInVersion ? 'warning' : 'error',
+      code: check.expressionNotInVersion ? 'schema-version' : 'schema-value',
+      message: check.expressionNotInVersion
+        ? `the expression '${attribute.value}' needs OpenSCENARIO 1.1 or later; this file is read as ${chosen.version}`
+        : `'${attribute.value}' is not a valid value of ${element.name}.${attribute.name} (${declaration.type}): expected ${describeType(simple)}`,
+      hint: suggestion ? `did you mean '${suggestion}'?` : undefined,
+      data: suggestion ? { suggestion } : undefined,
+    });
+  } else if (check.deprecated) {
+    report({ element, attribute, part: 'value', severity: 'information', code: 'schema-deprecated', message: `the value '${attribute.value}' of ${element.name}.${attribute.name} is deprecated in OpenSCENARIO ${chosen.version}` });
+  }
+  if (index.isAttributeDeprecated(declaration)) {
+    report({
+      element,
+      attribute,
+      part: 'attribute',
+      severity: 'information',
+      code: 'schema-deprecated',
+      message: `${element.name}.${attribute.name} is deprecated${declaration.deprecatedSince ? ` since OpenSCENARIO ${declaration.deprecatedSince}` : ''}`,
+    });
+  }
+}
+
 function checkAttributes(index: SchemaIndex, chosen: ChosenVersion, element: XmlElement, typeName: string, report: (finding: SchemaFinding) => void): void {
   const type = index.complexType(typeName);
   if (!type) return;
-  const written = new Set<string>();
-  for (const attribute of element.attributes) {
-    written.add(attribute.name);
-    if (attribute.name === MODULAR_ATTRIBUTE || attribute.name.startsWith('xmlns') || attribute.name.startsWith('xsi:')) continue;
-    const declaration = index.attribute(typeName, attribute.name);
-    if (!declaration) {
-      const candidates = type.attributes.map((candidate) => candidate.name).filter((name) => !element.attributes.some((other) => other.name === name));
-      const suggestion = closestMatch(attribute.name, candidates);
-      report({
-        element,
-        attribute,
-        part: 'attribute',
-        severity: 'error',
-        code: 'schema-unknown-attribute',
-        message: `<${element.name}> has no attribute '${attribute.name}' in OpenSCENARIO ${chosen.version}`,
-        hint:
-          introducedHint(typeName, attribute.name, 'attribute', chosen, candidates) ??
-          (suggestion ? `did you mean '${suggestion}'?` : candidates.length > 0 ? `its attributes: ${candidates.join(', ')}` : undefined),
-        data: suggestion ? { suggestion } : undefined,
-      });
-      continue;
-    }
-    const simple = index.simpleType(declaration.type);
-    if (!simple) continue;
-    const check = checkValue(simple, attribute.value);
-    if (!check.valid) {
-      const values = enumerationValues(simple);
-      const suggestion = values.length > 0 ? closestMatch(attribute.value, values) : undefined;
-      report({
-        element,
-        attribute,
-        part: 'value',
-        severity: check.expressionNotInVersion ? 'warning' : 'error',
-        code: check.expressionNotInVersion ? 'schema-version' : 'schema-value',
-        message: check.expressionNotInVersion
-          ? `the expression '${attribute.value}' needs OpenSCENARIO 1.1 or later; this file is read as ${chosen.version}`
-          : `'${attribute.value}' is not a valid value of ${element.name}.${attribute.name} (${declaration.type}): expected ${describeType(simple)}`,
-        hint: suggestion ? `did you mean '${suggestion}'?` : undefined,
-        data: suggestion ? { suggestion } : undefined,
-      });
-    } else if (check.deprecated) {
-      report({ element, attribute, part: 'value', severity: 'information', code: 'schema-deprecated', message: `the value '${attribute.value}' of ${element.name}.${attribute.name} is deprecated in OpenSCENARIO ${chosen.version}` });
-    }
-    if (index.isAttributeDeprecated(declaration)) {
-      report({
-        element,
-        attribute,
-        part: 'attribute',
-        severity: 'information',
-        code: 'schema-deprecated',
-        message: `${element.name}.${attribute.name} is deprecated${declaration.deprecatedSince ? ` since OpenSCENARIO ${declaration.deprecatedSince}` : ''}`,
-      });
-    }
-  }
+  for (const attribute of element.attributes) checkAttribute(index, chosen, element, typeName, attribute, report);
   // The extension's own attributes are checked where the flattener reads them.
   if (MODULAR_TYPES[typeName]) return;
-  const missing = type.attributes.filter((declaration) => declaration.required && !written.has(declaration.name)).map((declaration) => declaration.name);
+  const missing: string[] = [];
+  for (const declaration of type.attributes) if (declaration.required && !element.attributes.some((written) => written.name === declaration.name)) missing.push(declaration.name);
   if (missing.length > 0) {
     report({
       element,
