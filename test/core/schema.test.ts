@@ -173,6 +173,9 @@ describe('core: the OpenSCENARIO schemas, compiled at build time', () => {
     assert.deepEqual(errors, [
       `main.xosc:11:${line.indexOf('"far"') + 2}: error: 'far' is not a valid value of WorldPosition.x (Double): expected xsd:double, a $parameter (set by ParameterReference 'x')`,
     ]);
+    // The editor analyses without rendering the output, and finds the same problem at the same place.
+    const analysis = await new Flattener(store, { version: 'auto' }).analyze(diskRef(path.join(root, 'main.xosc')));
+    assert.deepEqual(errorsOf(analysis.problems).map((problem) => formatProblem(problem, root)), errors);
     const forced = await new Flattener(store, { version: 'auto' }).flatten(diskRef(path.join(root, 'main.xosc')), { force: true });
     assert.ok(forced.text?.includes('x="far"'));
     const fine = makeWorkspace({ 'main.xosc': main.replace('value="far"', 'value="-5"'), 'simple.xosc': simple });

@@ -12,7 +12,7 @@ import {
 import { Problem, ProblemCode, RelatedProblemLocation, Severity, uniqueProblems, ZERO_RANGE } from './problems';
 import { displayRef, refId, Resolution, ScenarioStore, SourceError, SourceRef } from './sources';
 import { closestMatch, detectEol } from './text';
-import { outputSchemaProblems, schemaProblems } from './schema/problems';
+import { outputSchemaProblems, overrideValueProblems, schemaProblems } from './schema/problems';
 import { SCHEMA_PROBLEM_CODES } from './schema/validate';
 import { SchemaVersionSetting } from './schema/version';
 import { attribute, descendants, escapeAttributeValue, isWellFormed, parseXml, XmlAttribute, XmlDocument, XmlElement } from './xml';
@@ -251,7 +251,9 @@ export class Flattener {
   /** Every problem of `main` and of what it uses, without writing its flattened text (for an editor). */
   async analyze(main: SourceRef): Promise<AnalysisResult> {
     const source = await this.source(main, []);
-    return { problems: uniqueProblems([...source.allProblems, ...this.entityProblems(source)]), source };
+    const schemaVersion = this.schema.version;
+    const overrides = schemaVersion === 'off' ? [] : overrideValueProblems(source, { version: schemaVersion });
+    return { problems: uniqueProblems([...source.allProblems, ...this.entityProblems(source), ...overrides]), source };
   }
 
   /** Flattens the scenario `main` (a `main.xosc` on disk or inside a package) into plain OpenSCENARIO. */

@@ -4,7 +4,7 @@ import { Problem } from '../problems';
 import { refId, SourceRef } from '../sources';
 import { schemaIndex } from './index';
 import { typeOfElement } from './query';
-import { ChosenVersion } from './version';
+import { chooseVersion, ChosenVersion } from './version';
 import { attribute, markupFreeEdit, XmlAttribute, XmlDocument, XmlElement } from '../xml';
 import { checkAttribute, checkSchema, findingOffsets, SchemaCheckOptions, SchemaFinding } from './validate';
 
@@ -133,4 +133,33 @@ function overrideOf(output: FlatSource, element: XmlElement, attributeName: stri
     if (target.element === copied.element && target.attributeName === attributeName) return parameter;
   }
   return undefined;
+}
+
+/**
+ * Override values against the type of the attribute they set, without rendering the output (for the
+ * editor): the same problems, at the same ParameterReference, as the strict check of the output.
+ */
+export function overrideValueProblems(main: FlatSource, options: Omit<SchemaCheckOptions, 'modular'> = {}): Problem[] {
+  const document = main.original?.document;
+  if (!document) return [];
+  const chosen = chooseVersion(document, options.version ?? 'auto');
+  const index = schemaIndex(chosen.version);
+  const problems: Problem[] = [];
+  for (const link of main.links) {
+    for (const group of link.groups) {
+      for (const [target, parameter] of group.plan?.applied ?? []) {
+        const valueAttribute = parameter.valueAttribute;
+        const typeName = valueAttribute ? typeOfElement(index, target.element) : undefined;
+        const written = attribute(target.element, target.attributeName);
+        if (!valueAttribute || !typeName || !written) continue;
+        // The attribute as the output will hold it: the override's value in place of the default.
+        const overridden: XmlAttribute = { ...written, value: parameter.value };
+        checkAttribute(index, chosen, target.element, typeName, overridden, (finding) => {
+          if (finding.part !== 'value' || finding.severity === 'information') return;
+          problems.push(toProblem(main.ref, document, { ...finding, message: `${finding.message} (set by ParameterReference '${parameter.key}')`, data: undefined }, valueAttribute.valueStart, valueAttribute.valueEnd));
+        });
+      }
+    }
+  }
+  return problems;
 }
