@@ -169,7 +169,7 @@ describe('server: OpenSCENARIO schema completion, hover and validation (over JSO
     const at = (needle: string, shift = 1) => positionAt(text, text.indexOf(needle) + shift);
     const element = await client.request<Hover>('textDocument/hover', client.at(uri, at('<ActivateControllerAction')));
     const elementText = (element.contents as MarkupContent).value;
-    assert.match(elementText, /\*\*<ActivateControllerAction>\*\*/);
+    assert.match(elementText, /\*\*`<ActivateControllerAction>`\*\* — type `ActivateControllerAction`, minOccurs 0, maxOccurs 1 in `<PrivateAction>`/);
     assert.match(elementText, /\*\*deprecated\*\* since 1\.1/);
     const attribute = await client.request<Hover>('textDocument/hover', client.at(uri, at('longitudinal=')));
     assert.match((attribute.contents as MarkupContent).value, /ActivateControllerAction\.longitudinal\*\* — `Boolean`, optional/);

@@ -7,10 +7,9 @@ import { SourceRef } from '../core/sources';
 import { elementAt, XmlDocument } from '../core/xml';
 import { Workspace } from '../workspace';
 
+/** The particle's occurrence in the schema's own terms: within a choice "required" would mislead. */
 function occurrence(particle: ElementParticle): string {
-  const max = particle.max === -1 ? 'any number' : String(particle.max);
-  if (particle.min === 0) return particle.max === 1 ? 'optional' : `optional, up to ${max}`;
-  return particle.min === particle.max ? 'required' : `required, ${particle.min} to ${max}`;
+  return `minOccurs ${particle.min}, maxOccurs ${particle.max === -1 ? 'unbounded' : particle.max}`;
 }
 
 function history(version: string, since: string | undefined, deprecated: boolean, deprecatedSince: string | undefined): string {
@@ -24,7 +23,8 @@ function elementHover(index: SchemaIndex, particle: ElementParticle, parentName:
   const required = (type?.attributes ?? []).filter((declaration) => declaration.required).map((declaration) => `\`${declaration.name}\``);
   const children = index.childParticles(particle.type).map((child) => child.name);
   const lines = [
-    `**<${particle.name}>** — type \`${particle.type.replace(/^#/, '')}\`${parentName ? `, ${occurrence(particle)} in <${parentName}>` : ''}`,
+    // Tag names as code: Markdown would read <Name> as HTML and drop it.
+    `**\`<${particle.name}>\`** — type \`${particle.type.replace(/^#/, '')}\`${parentName ? `, ${occurrence(particle)} in \`<${parentName}>\`` : ''}`,
     '',
     history(index.version, particle.since, index.isDeprecated(particle), particle.deprecatedSince),
   ];
