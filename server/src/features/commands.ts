@@ -38,7 +38,8 @@ async function refOf(workspace: Workspace, uri: unknown): Promise<SourceRef> {
 /** Flattens with the editor's unsaved text; a fresh Flattener, since `force` changes the outcome. */
 export async function flattenToText(workspace: Workspace, uri: unknown, options: unknown): Promise<FlattenTextResult> {
   const ref = await refOf(workspace, uri);
-  const result = await new Flattener(workspace.store, { version: workspace.settings.schemaVersion }).flatten(ref, { force: forceOf(options) });
+  // The preview shows the flattened text even when it breaks the schema: the editor's diagnostics say where.
+  const result = await new Flattener(workspace.store, { version: 'off' }).flatten(ref, { force: forceOf(options) });
   return { text: result.text ?? null, problems: result.problems.map((problem) => summarize(workspace, problem)) };
 }
 
