@@ -314,3 +314,109 @@ if (!existsSync(library)) {
   line('server resident memory, largest corpus main (now / peak)', `${fmt(corpusMemory.rss)} MB ${fmt(corpusMemory.peak)} MB   ${corpusMemory.peak <= 150 ? 'within' : 'OVER'} 150 MB`);
   await corpus.stop();
 }
+
+// ---- 3. OpenSCENARIO schema: validation after an edit, completion, four schemas in memory ----------
+
+/** A schema-valid scenario of about `lines` lines: Init actions of one entity, each a speed change. */
+function schemaScenario(minor, lines) {
+  const head = `<?xml version="1.0" encoding="UTF-8"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="${minor}" date="2024-01-01T00:00:00" description="schema benchmark" author="bench"/>
+  <ParameterDeclarations>
+    <ParameterDeclaration name="Speed" parameterType="double" value="10"/>
+  </ParameterDeclarations>
+  <CatalogLocations/>
+  <RoadNetwork/>
+  <Entities>
+    <ScenarioObject name="ego">
+      <CatalogReference catalogName="VehicleCatalog" entryName="car"/>
+    </ScenarioObject>
+  </Entities>
+  <Storyboard>
+    <Init>
+      <Actions>
+`;
+  const action = (i) => `        <Private entityRef="ego">
+          <PrivateAction>
+            <LongitudinalAction>
+              <SpeedAction>
+                <SpeedActionDynamics dynamicsShape="step" value="0" dynamicsDimension="time"/>
+                <SpeedActionTarget>
+                  <AbsoluteTargetSpeed value="${i % 50}"/>
+                </SpeedActionTarget>
+              </SpeedAction>
+            </LongitudinalAction>
+          </PrivateAction>
+        </Private>
+`;
+  const tail = `      </Actions>
+    </Init>
+    <Story name="story">
+      <Act name="act">
+        <ManeuverGroup maximumExecutionCount="1" name="group">
+          <Actors selectTriggeringEntities="false"/>
+        </ManeuverGroup>
+        <StartTrigger/>
+      </Act>
+    </Story>
+    <StopTrigger/>
+  </Storyboard>
+</OpenSCENARIO>
+`;
+  const count = Math.max(1, Math.floor((lines - 30) / 12));
+  return head + Array.from({ length: count }, (_, i) => action(i)).join('') + tail;
+}
+
+{
+  const folder = realpathSync(mkdtempSync(path.join(tmpdir(), 'm2s-schema-bench-')));
+  const schemaSession = await start(folder);
+  const memoryBefore = residentMb(schemaSession.child.pid);
+  // One small file per version, each asked for a completion: all four schemas are loaded.
+  for (const minor of ['0', '1', '2', '3']) {
+    const text = schemaScenario(minor, 40);
+    const file = path.join(folder, `v1_${minor}.xosc`);
+    writeFileSync(file, text);
+    const pending = schemaSession.diagnosticsFor(uriOf(file), 1);
+    await schemaSession.connection.sendNotification('textDocument/didOpen', { textDocument: { uri: uriOf(file), languageId: 'xosc', version: 1, text } });
+    const diagnostics = await pending;
+    if (diagnostics.length > 0) throw new Error(`the 1.${minor} scenario is not schema-valid: ${diagnostics[0].message}`);
+    await schemaSession.connection.sendRequest('textDocument/completion', { textDocument: { uri: uriOf(file) }, position: positionAfter(text, '<Actions>') });
+  }
+  const big = schemaScenario('2', 15_000);
+  const bigFile = path.join(folder, 'big_schema.xosc');
+  writeFileSync(bigFile, big);
+  const uri = uriOf(bigFile);
+  let version = 1;
+  let started = now();
+  let pending = schemaSession.diagnosticsFor(uri, version);
+  await schemaSession.connection.sendNotification('textDocument/didOpen', { textDocument: { uri, languageId: 'xosc', version, text: big } });
+  const opened = await pending;
+  const bigLineCount = big.split('\n').length - 1;
+  line(`open a schema-valid ${bigLineCount}-line 1.2 file to diagnostics`, `${fmt(now() - started)} ms   (${opened.length} diagnostics)`);
+  const actions = big.split('<AbsoluteTargetSpeed value="').length - 1;
+  const times = [];
+  for (let i = 0; i < Math.min(samples, 60); i++) {
+    const position = positionAfter(big, '<AbsoluteTargetSpeed value="', (i * 37) % actions);
+    version++;
+    pending = schemaSession.diagnosticsFor(uri, version);
+    started = now();
+    // Every other edit makes the value invalid, so the schema check both finds and clears a problem.
+    await schemaSession.connection.sendNotification('textDocument/didChange', {
+      textDocument: { uri, version },
+      contentChanges: [{ range: { start: position, end: { line: position.line, character: position.character + 1 } }, text: i % 2 ? 'x' : String(i % 10) }],
+    });
+    await pending;
+    times.push(now() - started);
+  }
+  row(`edit -> schema diagnostics, ${bigLineCount} lines`, stats(times), 50);
+  const childPositions = Array.from({ length: 20 }, (_, i) => ({ textDocument: { uri }, position: positionAfter(big, '<SpeedAction>', (i * 53) % actions) }));
+  row(`schema completion of child elements, ${bigLineCount} lines`, await timeRequests(schemaSession.connection, 'textDocument/completion', childPositions), 20);
+  const valuePositions = Array.from({ length: 20 }, (_, i) => ({ textDocument: { uri }, position: positionAfter(big, 'dynamicsShape="', (i * 53) % actions) }));
+  row(`schema completion of enumeration values, ${bigLineCount} lines`, await timeRequests(schemaSession.connection, 'textDocument/completion', valuePositions), 20);
+  await new Promise((resolve) => setTimeout(resolve, 2500));
+  const schemaMemory = residentMb(schemaSession.child.pid);
+  line('server memory before any file was opened', `${fmt(memoryBefore.rss)} MB`);
+  line('server memory, four schemas loaded, 15,000-line file (now / peak)', `${fmt(schemaMemory.rss)} MB ${fmt(schemaMemory.peak)} MB   ${schemaMemory.rss <= 150 ? 'within' : 'OVER'} 150 MB`);
+  await schemaSession.stop();
+  rmSync(folder, { recursive: true, force: true });
+}

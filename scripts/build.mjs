@@ -1,6 +1,7 @@
 // One bundle per side, so that the extension, the server and the CLI each start from a single file.
 import * as esbuild from 'esbuild';
-import { chmodSync } from 'node:fs';
+import { chmodSync, mkdirSync, writeFileSync } from 'node:fs';
+import { compileSchemas } from './compile-schemas.mjs';
 
 const watch = process.argv.includes('--watch');
 const common = {
@@ -19,6 +20,9 @@ const entries = [
   // The bird's-eye view's page: runs in the webview, everything bundled (no network, no CDN).
   { entryPoints: ['client/src/birdsEye/webview/main.ts'], outfile: 'dist/birdsEye.js', platform: 'browser', format: 'iife', target: 'es2022' },
 ];
+// The OpenSCENARIO schemas are compiled once here, so that nothing interprets XSD at run time.
+mkdirSync('dist', { recursive: true });
+writeFileSync('dist/openscenario-schemas.json', JSON.stringify(compileSchemas()));
 const contexts = await Promise.all(entries.map((entry) => esbuild.context({ ...common, ...entry })));
 if (watch) {
   await Promise.all(contexts.map((context) => context.watch()));

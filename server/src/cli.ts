@@ -2,6 +2,8 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { isSameFile, writeFileAtomic } from './core/atomic';
 import { Flattener, OVERRIDE_PROBLEM_CODES } from './core/flatten';
+import { isSchemaVersion, SCHEMA_VERSIONS } from './core/schema/model';
+import { SchemaVersionSetting } from './core/schema/version';
 import { packFiles, packFolder, PackResult } from './core/pack';
 import { formatProblem, Problem, uniqueProblems } from './core/problems';
 import { diskRef, displayRef, ScenarioStore, SourceRef, splitScenarioPath } from './core/sources';
@@ -50,6 +52,8 @@ Options:
   --check                   format: list the files that would change and write nothing (exit 1 if any)
   --width N                 format: past N columns a start tag puts each attribute on its own line (120)
   --indent N|tab            format: the indentation (default: what the file uses, else 2 spaces)
+  --schema-version V        the OpenSCENARIO schema files are checked against: auto (each file's
+                            FileHeader, the default), 1.0, 1.1, 1.2, 1.3, or off
   -q, --quiet               print errors only
   -h, --help                this help
   -v, --version             the version
@@ -78,10 +82,11 @@ interface Options {
   format: 'text' | 'json';
   quiet: boolean;
   simulator: Simulator;
+  schemaVersion: SchemaVersionSetting | 'off';
 }
 
 function parseOptions(args: string[]): Options {
-  const options: Options = { positional: [], force: false, scenarioPath: [], includeScenarioPath: false, format: 'text', quiet: false, simulator: 'asam' };
+  const options: Options = { positional: [], force: false, scenarioPath: [], includeScenarioPath: false, format: 'text', quiet: false, simulator: 'asam', schemaVersion: 'auto' };
   const value = (index: number, flag: string): string => {
     const next = args[index + 1];
     if (next === undefined || (next.startsWith('-') && next.length > 1)) throw new UsageError(`${flag} needs a value`);
@@ -121,6 +126,12 @@ function parseOptions(args: string[]): Options {
         const simulator = take();
         if (!isSimulator(simulator)) throw new UsageError(`--simulator takes ${SIMULATORS.join(', ')}, not '${simulator}'`);
         options.simulator = simulator;
+        break;
+      }
+      case '--schema-version': {
+        const version = take();
+        if (version !== 'auto' && version !== 'off' && !isSchemaVersion(version)) throw new UsageError(`--schema-version takes auto, off, ${SCHEMA_VERSIONS.join(', ')}; not '${version}'`);
+        options.schemaVersion = version;
         break;
       }
       case '-q':
@@ -211,7 +222,7 @@ async function write(output: string, data: string | Uint8Array, io: Output, quie
 async function flattenCommand(inputs: string[], outputs: string[] | undefined, options: Options, io: Output): Promise<number> {
   for (const input of inputs) checkInputExists(input);
   const store = makeStore(options, inputs);
-  const flattener = new Flattener(store, options.simulator);
+  const flattener = new Flattener(store, options.simulator, { version: options.schemaVersion });
   const results = [];
   let problems: Problem[] = [];
   for (const [index, input] of inputs.entries()) {
@@ -294,7 +305,7 @@ async function checkCommand(inputs: string[], options: Options, io: Output): Pro
     if (fs.statSync(input).isDirectory()) files.push(...listScenarioFiles(input));
     else files.push(input);
   }
-  const flattener = new Flattener(makeStore(options, inputs), options.simulator);
+  const flattener = new Flattener(makeStore(options, inputs), options.simulator, { version: options.schemaVersion });
   let problems: Problem[] = [];
   for (const file of files) {
     const result = await flattener.flatten(mainOf(file));

@@ -159,3 +159,16 @@ export function ancestor(element: XmlElement | undefined, name: string): XmlElem
 }
 
 export { attribute };
+
+/** The start tag the cursor stands in, outside any attribute value: for attribute-name completion. */
+export function attributeNameContextAt(text: string, offset: number): { tagStart: number; element: string; written: string[]; start: number; prefix: string } | undefined {
+  const tagStart = tagStartBefore(text, offset);
+  if (tagStart === undefined || valueContextAt(text, offset)) return undefined;
+  const scan = scanTag(text, tagStart, offset);
+  if (!scan || !scan.open || tagStart + 1 + scan.element.length >= offset) return undefined;
+  let start = offset;
+  while (start > 0 && /[-\w.:]/.test(text[start - 1])) start--;
+  if (!/\s/.test(text[start - 1] ?? '')) return undefined;
+  const whole = scanTag(text, tagStart, text.length) ?? scan;
+  return { tagStart, element: scan.element, written: whole.attributes.map((entry) => entry.name), start, prefix: text.slice(start, offset) };
+}

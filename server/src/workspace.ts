@@ -1,6 +1,8 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { AnalysisResult, Flattener, FlatSource } from './core/flatten';
+import { AnalysisResult, Flattener, FlatSource, SchemaOptions } from './core/flatten';
+import { isSchemaVersion } from './core/schema/model';
+import { SchemaVersionSetting } from './core/schema/version';
 import { FileSystemHost, nodeFileSystem, refId, ScenarioStore, SourceRef, splitScenarioPath, diskRef, childRef } from './core/sources';
 import { decodeUtf8, LineIndex, Range } from './core/text';
 import { OpenDocument, OpenDocuments } from './documents';
@@ -19,6 +21,8 @@ export interface ServerSettings {
   simulator: Simulator;
   /** Past this width a formatted start tag puts each attribute on its own line. */
   formatMaxLineWidth: number;
+  /** The OpenSCENARIO schema files are checked against (`modular2simple.schema.version`). */
+  schemaVersion: SchemaVersionSetting | 'off';
 }
 
 export const DEFAULT_SETTINGS: ServerSettings = {
@@ -27,6 +31,7 @@ export const DEFAULT_SETTINGS: ServerSettings = {
   maxIndexedFileBytes: 8 * 1024 * 1024,
   simulator: 'asam',
   formatMaxLineWidth: DEFAULT_FORMAT_OPTIONS.maxLineWidth,
+  schemaVersion: 'auto',
 };
 
 /** Reads settings sent by a client, keeping defaults for anything missing or of the wrong type. */
@@ -42,7 +47,9 @@ export function readSettings(value: unknown): ServerSettings {
   const format = (record.format && typeof record.format === 'object' ? record.format : {}) as Record<string, unknown>;
   const width = typeof format.maxLineWidth === 'number' && format.maxLineWidth >= 1 ? Math.floor(format.maxLineWidth) : DEFAULT_SETTINGS.formatMaxLineWidth;
   const simulator = isSimulator(record.simulator) ? record.simulator : DEFAULT_SETTINGS.simulator;
-  return { scenarioPath, diagnosticsDelay: delay, maxIndexedFileBytes: DEFAULT_SETTINGS.maxIndexedFileBytes, simulator, formatMaxLineWidth: width };
+  const schema = (record.schema && typeof record.schema === 'object' ? record.schema : {}) as Record<string, unknown>;
+  const schemaVersion = schema.version === 'off' || schema.version === 'auto' || isSchemaVersion(schema.version) ? schema.version : DEFAULT_SETTINGS.schemaVersion;
+  return { scenarioPath, diagnosticsDelay: delay, maxIndexedFileBytes: DEFAULT_SETTINGS.maxIndexedFileBytes, simulator, formatMaxLineWidth: width, schemaVersion };
 }
 
 /** Keeps file bytes and kinds in memory until a change notification says they are stale. */
@@ -154,8 +161,9 @@ class ReusingFlattener extends Flattener {
     private readonly shared: Map<string, Promise<FlatSource>>,
     private readonly dependencies: Map<string, string[]>,
     simulator: Simulator,
+    schema: SchemaOptions,
   ) {
-    super(store, simulator);
+    super(store, simulator, schema);
   }
 
   override source(ref: SourceRef, stack: SourceRef[]): Promise<FlatSource> {
@@ -247,7 +255,7 @@ export class Workspace {
 
   flattener(): Flattener {
     if (!this.currentFlattener || this.flattenerGeneration !== this.generation) {
-      this.currentFlattener = new ReusingFlattener(this.storeInstance, this.sharedSources, this.sourceDependencies, this.settings.simulator);
+      this.currentFlattener = new ReusingFlattener(this.storeInstance, this.sharedSources, this.sourceDependencies, this.settings.simulator, { version: this.settings.schemaVersion });
       this.flattenerGeneration = this.generation;
     }
     return this.currentFlattener;

@@ -210,6 +210,9 @@ describe('the packaged extension in a real VS Code (code-server, headless Chromi
       manifest.main,
       'dist/server.js',
       'dist/birdsEye.js',
+      // The compiled OpenSCENARIO schemas the server reads, and the ASAM schemas with their licence note.
+      'dist/openscenario-schemas.json',
+      ...fs.readdirSync(path.join(ROOT, 'schemas')).map((file) => `schemas/${file}`),
       ...manifest.contributes.grammars.map((grammar) => grammar.path),
       ...manifest.contributes.languages.flatMap((language) => [language.configuration, language.icon?.light]),
     ].filter((file): file is string => file !== undefined).map((file) => path.posix.normalize(file));

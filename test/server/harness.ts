@@ -83,6 +83,13 @@ export interface ClientOptions {
   /** Answer window/workDoneProgress/create and record $/progress (true by default). */
   progress?: boolean;
   initializationOptions?: Record<string, unknown>;
+  /** Check files against the OpenSCENARIO schemas (off unless asked: the shared fixtures are minimal, not schema-valid). */
+  schema?: boolean;
+}
+
+/** The settings that turn the schema check off, merged under a test's own. */
+function withoutSchema(settings: Record<string, unknown> | undefined, schema: boolean | undefined): Record<string, unknown> {
+  return schema ? { ...settings } : { schema: { version: 'off' }, ...settings };
 }
 
 /**
@@ -105,6 +112,7 @@ export class TestClient {
   settings: Record<string, unknown> = {};
   /** The server's capabilities, as its initialize result announced them. */
   capabilities: Record<string, unknown> = {};
+  private schema: boolean | undefined;
   private readonly waiters: (() => void)[] = [];
 
   private constructor(
@@ -134,7 +142,8 @@ export class TestClient {
       client.logs.push(params.message);
       if (params.type === MessageType.Error) client.errors.push(params.message);
     });
-    client.settings = options.settings ?? {};
+    client.schema = options.schema;
+    client.settings = withoutSchema(options.settings, options.schema);
     connection.onRequest('workspace/configuration', (params: { items: { section?: string }[] }) => params.items.map(() => client.settings));
     connection.onRequest('window/workDoneProgress/create', () => null);
     connection.onRequest('client/registerCapability', () => null);
@@ -144,7 +153,7 @@ export class TestClient {
       // No process id: the server would otherwise poll it and keep the test process alive.
       processId: null,
       rootUri: fileUri(options.root),
-      initializationOptions: options.initializationOptions,
+      initializationOptions: options.initializationOptions ?? withoutSchema(undefined, options.schema),
       workspaceFolders: [{ uri: fileUri(options.root), name: path.basename(options.root) }],
       capabilities: {
         workspace: { configuration: options.progress !== false, didChangeWatchedFiles: { dynamicRegistration: true }, workspaceEdit: { documentChanges: false } },
@@ -194,7 +203,7 @@ export class TestClient {
   }
 
   async settingsChanged(settings: Record<string, unknown>): Promise<void> {
-    this.settings = settings;
+    this.settings = withoutSchema(settings, this.schema);
     await this.connection.sendNotification('workspace/didChangeConfiguration', { settings: null });
   }
 

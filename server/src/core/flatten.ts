@@ -17,6 +17,9 @@ import { analyzeDocument, CatalogLoader, DocumentSemantics, Evaluator, Finding, 
 import { Simulator } from './profiles/simulators';
 import { closestMatch, detectEol, indentationAt } from './text';
 import { attribute, descendants, elementStartingAt, escapeAttributeValue, isWellFormed, parseXml, selfAndDescendants, XmlAttribute, XmlDocument, XmlElement } from './xml';
+import { outputSchemaProblems, overrideValueProblems, schemaProblems } from './schema/problems';
+import { SCHEMA_PROBLEM_CODES } from './schema/validate';
+import { SchemaVersionSetting } from './schema/version';
 
 const entityRefCache = new WeakMap<XmlElement, XmlElement[]>();
 
@@ -58,13 +61,19 @@ export function originOf(source: FlatSource, element: XmlElement): { source: Fla
     const original = elementStartingAt(source.original.document.root, element.start + shift);
     return { source, element: original && original.name === element.name ? original : element };
   }
-  const copyRoot = source.model.groups.find((group) => group.element.start === insertion.start)?.element;
+  const copied = copiedFrom(source, insertion, element);
+  return copied ? originOf(copied.source, copied.element) : { source, element };
+}
+
+/** The element of the imported group (in the referenced file's flattened model) that `element` of an insertion copies. */
+export function copiedFrom(source: FlatSource, insertion: Insertion, element: XmlElement): { source: FlatSource; element: XmlElement } | undefined {
+  const copyRoot = source.model?.groups.find((group) => group.element.start === insertion.start)?.element;
   const sourceOfCopy = insertion.link.source;
   const targetGroup = insertion.group.target;
-  if (!copyRoot || !sourceOfCopy || !targetGroup) return { source, element };
+  if (!copyRoot || !sourceOfCopy || !targetGroup) return undefined;
   const index = selfAndDescendants(copyRoot).indexOf(element);
   const counterpart = selfAndDescendants(targetGroup.element)[index];
-  return counterpart ? originOf(sourceOfCopy, counterpart) : { source, element };
+  return counterpart ? { source: sourceOfCopy, element: counterpart } : undefined;
 }
 
 /** The catalogs a file reaches (its own references first, then those of the files it imports from). */
@@ -165,6 +174,11 @@ export interface Addition {
   replacedStart: number;
   replacedEnd: number;
   parts: { start: number; end: number; source: FlatSource; element: XmlElement }[];
+}
+
+/** How files are checked against the OpenSCENARIO schemas: by their FileHeader, pinned, or not at all. */
+export interface SchemaOptions {
+  version: SchemaVersionSetting | 'off';
 }
 
 export interface FlattenOptions {
@@ -272,6 +286,8 @@ export class Flattener {
     readonly store: ScenarioStore,
     /** The simulator whose known gaps each file read is checked for (core/profiles); `asam`: none. */
     readonly simulator: Simulator = 'asam',
+    /** Off unless asked for: the CLI and the language server pass their setting (`auto` by default). */
+    readonly schema: SchemaOptions = { version: 'off' },
   ) {
     this.catalogs = new CatalogLoader(store);
   }
@@ -279,7 +295,9 @@ export class Flattener {
   /** Every problem of `main` and of what it uses, without writing its flattened text (for an editor). */
   async analyze(main: SourceRef): Promise<AnalysisResult> {
     const source = await this.source(main, []);
-    return { problems: uniqueProblems([...source.allProblems, ...this.entityProblems(source)]), source };
+    const schemaVersion = this.schema.version;
+    const overrides = schemaVersion === 'off' ? [] : overrideValueProblems(source, { version: schemaVersion });
+    return { problems: uniqueProblems([...source.allProblems, ...this.entityProblems(source), ...overrides]), source };
   }
 
   /** Flattens the scenario `main` (a `main.xosc` on disk or inside a package) into plain OpenSCENARIO. */
@@ -288,9 +306,12 @@ export class Flattener {
     const analysis = await this.analyze(main);
     const source = analysis.source;
     this.rendered(source);
-    const problems = uniqueProblems([...analysis.problems, ...(source.carried?.problems ?? []), ...(await this.checkOutput(source))]);
+    // The output is checked strictly against the schema too; its problems are reported where the source wrote them.
+    const schemaVersion = this.schema.version;
+    const schemaOutput = schemaVersion !== 'off' && source.model && source.model !== source.original ? outputSchemaProblems(source, { version: schemaVersion }) : [];
+    const problems = uniqueProblems([...analysis.problems, ...(source.carried?.problems ?? []), ...(await this.checkOutput(source)), ...schemaOutput]);
     const blocking = problems.filter(
-      (problem) => problem.severity === 'error' && !(options.force && OVERRIDE_PROBLEM_CODES.has(problem.code)),
+      (problem) => problem.severity === 'error' && !(options.force && (OVERRIDE_PROBLEM_CODES.has(problem.code) || SCHEMA_PROBLEM_CODES.has(problem.code))),
     );
     const text = source.text !== undefined && blocking.length === 0 ? stripParameterAttributes(source.model ?? buildModel(parseXml(source.text))) : undefined;
     // Removing whole attributes keeps a well-formed text well-formed, so the rendered model is the check.
@@ -348,6 +369,8 @@ export class Flattener {
     for (const problem of document.problems) {
       result.problems.push(problemAt(ref, document, problem.start, problem.end, problem.severity, 'xml', problem.message));
     }
+    const schemaVersion = this.schema.version;
+    if (schemaVersion !== 'off') result.problems.push(...schemaProblems(ref, document, { version: schemaVersion }));
     const model = buildModel(document);
     result.original = model;
     this.checkDeclarations(result, model);
@@ -381,7 +404,7 @@ export class Flattener {
       result.model = model;
       return result;
     }
-    const blocked = result.allProblems.some((problem) => problem.severity === 'error' && !OVERRIDE_PROBLEM_CODES.has(problem.code));
+    const blocked = result.allProblems.some((problem) => problem.severity === 'error' && !OVERRIDE_PROBLEM_CODES.has(problem.code) && !SCHEMA_PROBLEM_CODES.has(problem.code));
     result.renderable = !blocked;
     return result;
   }
@@ -521,7 +544,8 @@ export class Flattener {
     }
     const source = this.rendered(await this.source(target, stack));
     link.source = source;
-    const sourceErrors = source.allProblems.filter((problem) => problem.severity === 'error' && !OVERRIDE_PROBLEM_CODES.has(problem.code));
+    // Schema problems do not stop flattening: they are reported in their own file and checked again in the output.
+    const sourceErrors = source.allProblems.filter((problem) => problem.severity === 'error' && !OVERRIDE_PROBLEM_CODES.has(problem.code) && !SCHEMA_PROBLEM_CODES.has(problem.code));
     if (sourceErrors.length > 0) {
       const problem = report(
         fileStart,

@@ -496,19 +496,27 @@ export function reparseXml(previous: XmlDocument, text: string): XmlDocument {
 
 const MARKUP = /["'<>&\r\n]/;
 
-/** The fast path of reparseXml: undefined unless the edit lies inside one attribute value. */
-export function reparseValueEdit(previous: XmlDocument, text: string): XmlDocument | undefined {
-  const old = previous.text;
-  if (!previous.root || previous.problems.length > 0) return undefined;
+/** The one region in which two texts differ (`[prefix, removedEnd)` of the old, `[prefix, insertedEnd)` of the new), when it holds no markup. */
+export function markupFreeEdit(old: string, text: string): { prefix: number; removedEnd: number; insertedEnd: number } | undefined {
   let prefix = 0;
   const shorter = Math.min(old.length, text.length);
   while (prefix < shorter && old.charCodeAt(prefix) === text.charCodeAt(prefix)) prefix++;
-  if (prefix === old.length && prefix === text.length) return previous;
   let suffix = 0;
   while (suffix < shorter - prefix && old.charCodeAt(old.length - 1 - suffix) === text.charCodeAt(text.length - 1 - suffix)) suffix++;
   const removedEnd = old.length - suffix;
   const insertedEnd = text.length - suffix;
   if (MARKUP.test(old.slice(prefix, removedEnd)) || MARKUP.test(text.slice(prefix, insertedEnd))) return undefined;
+  return { prefix, removedEnd, insertedEnd };
+}
+
+/** The fast path of reparseXml: undefined unless the edit lies inside one attribute value. */
+export function reparseValueEdit(previous: XmlDocument, text: string): XmlDocument | undefined {
+  const old = previous.text;
+  if (!previous.root || previous.problems.length > 0) return undefined;
+  if (old === text) return previous;
+  const edit = markupFreeEdit(old, text);
+  if (!edit) return undefined;
+  const { prefix, removedEnd, insertedEnd } = edit;
   // The attribute whose value holds the whole edit (its ends may touch the quotes, not cross them).
   let element: XmlElement | undefined = previous.root;
   let edited: XmlAttribute | undefined;

@@ -8,6 +8,8 @@ import { groupLinkOf, keyChoices, linkOf } from '../analysis';
 import { ancestor } from '../cursor';
 import { DiagnosticData } from './diagnostics';
 import { Workspace } from '../workspace';
+import { schemaFixes } from './schemaCodeActions';
+import { currentDocument } from './schemaCompletion';
 
 function singleEdit(uri: string, range: LspRange, newText: string): WorkspaceEdit {
   return { changes: { [uri]: [TextEdit.replace(range, newText)] } };
@@ -113,6 +115,10 @@ async function missingKeysAction(workspace: Workspace, uri: string, ref: SourceR
 export async function codeActions(workspace: Workspace, uri: string, ref: SourceRef, document: TextDocument, range: LspRange, diagnostics: Diagnostic[]): Promise<CodeAction[]> {
   const actions: CodeAction[] = [];
   for (const diagnostic of diagnostics) actions.push(...(await fixesFor(workspace, uri, ref, document, diagnostic)));
+  if (diagnostics.some((diagnostic) => String(diagnostic.code).startsWith('schema-'))) {
+    const parsed = await currentDocument(workspace, ref, document);
+    for (const diagnostic of diagnostics) actions.push(...schemaFixes(uri, document, parsed, workspace.settings.schemaVersion, diagnostic));
+  }
   const missing = await missingKeysAction(workspace, uri, ref, document, range);
   if (missing) actions.push(missing);
   return actions;

@@ -45,7 +45,8 @@ export async function refOf(workspace: Workspace, uri: unknown): Promise<SourceR
 /** Flattens with the editor's unsaved text; a fresh Flattener, since `force` changes the outcome. */
 export async function flattenToText(workspace: Workspace, uri: unknown, options: unknown): Promise<FlattenTextResult> {
   const ref = await refOf(workspace, uri);
-  const result = await new Flattener(workspace.store).flatten(ref, { force: forceOf(options) });
+  // The preview shows the flattened text even when it breaks the schema: the editor's diagnostics say where.
+  const result = await new Flattener(workspace.store, workspace.settings.simulator, { version: 'off' }).flatten(ref, { force: forceOf(options) });
   return { text: result.text ?? null, problems: result.problems.map((problem) => summarize(workspace, problem)) };
 }
 
@@ -58,7 +59,7 @@ export async function flattenToFile(workspace: Workspace, uri: unknown, outputPa
   const ref = await refOf(workspace, uri);
   if (typeof outputPath !== 'string' || !outputPath) throw invalidParams('expected an output path');
   const output = path.resolve(filePathOf(outputPath) ?? outputPath);
-  const result = await new Flattener(workspace.store).flatten(ref, { force: forceOf(options), outputPath: output });
+  const result = await new Flattener(workspace.store, workspace.settings.simulator, { version: workspace.settings.schemaVersion }).flatten(ref, { force: forceOf(options), outputPath: output });
   const problems = result.problems.map((problem) => summarize(workspace, problem));
   const input = result.source.dependencies.find((dependency) => dependency.disk === output || isSameFile(dependency.disk, output));
   if (input) return { written: null, problems: [...problems, outputProblem(workspace, ref, `refusing to overwrite ${displayRef(input, workspace.folders[0])}, an input of this flattening`)] };

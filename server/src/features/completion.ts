@@ -9,6 +9,7 @@ import { displayRef, SourceRef } from '../core/sources';
 import { keyChoices, overridablePlace, sourceForFileName } from '../analysis';
 import { attributeValuesBetween, elementNameContextAt, lastAttributeValueBefore, valueContextAt, ValueContext } from '../cursor';
 import { Workspace } from '../workspace';
+import { schemaCompletion } from './schemaCompletion';
 
 const MAX_SNIPPETS = 200;
 
@@ -238,11 +239,12 @@ export async function complete(workspace: Workspace, ref: SourceRef, document: T
       const source = await workspace.source(ref);
       return (source.original?.entities ?? []).map((entity) => ({ label: entity.name, kind: CompletionItemKind.Variable, textEdit: { range, newText: entity.name } }));
     }
-    return [];
+    return schemaCompletion(workspace, ref, document, offset, context);
   }
+  const schemaItems = await schemaCompletion(workspace, ref, document, offset, undefined);
   const elementContext = elementNameContextAt(text, offset);
   if (elementContext && 'ScenarioReference'.toLowerCase().startsWith(elementContext.prefix.toLowerCase())) {
-    return snippetItems(workspace, ref, document, elementContext.start, offset);
+    return [...schemaItems, ...(await snippetItems(workspace, ref, document, elementContext.start, offset))];
   }
-  return [];
+  return schemaItems;
 }

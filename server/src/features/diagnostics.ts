@@ -17,6 +17,9 @@ export interface DiagnosticData {
   suggestion?: string;
   replacement?: string;
   entity?: string;
+  /** Schema fixes: the missing names (comma-separated) and where they go. */
+  missing?: string;
+  insertAt?: string;
 }
 
 /** LSP severity: an unknown key is an error for the CLI but a warning while editing (SPEC 7). */
@@ -43,7 +46,7 @@ export function toDiagnostic(problem: Problem, workspace: Workspace): Diagnostic
     data,
   };
   if (related.length > 0) diagnostic.relatedInformation = related;
-  if (problem.code === 'xosc-fallback') diagnostic.tags = [DiagnosticTag.Deprecated];
+  if (problem.code === 'xosc-fallback' || problem.code === 'schema-deprecated') diagnostic.tags = [DiagnosticTag.Deprecated];
   if (problem.code === 'unused-parameter') diagnostic.tags = [DiagnosticTag.Unnecessary];
   return diagnostic;
 }

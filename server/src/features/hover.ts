@@ -4,6 +4,7 @@ import { ancestor, attributeAt } from '../cursor';
 import { displayRef, SourceRef } from '../core/sources';
 import { ManeuverGroupInfo } from '../core/model';
 import { Workspace } from '../workspace';
+import { schemaHover } from './schemaHover';
 
 function where(workspace: Workspace, place: Place | undefined): string {
   if (!place) return 'an unknown place';
@@ -15,8 +16,13 @@ function groupSummary(title: string, group: ManeuverGroupInfo): string {
   return [title, '', ...(lines.length ? lines : ['(no maneuvers)'])].join('\n');
 }
 
-/** Hover for keys (default, effective value and where each comes from) and for references (what the group does). */
+/** Hover for the modular extension, else what the OpenSCENARIO schema says of the element or attribute name. */
 export async function hover(workspace: Workspace, ref: SourceRef, offset: number): Promise<Hover | null> {
+  return (await modularHover(workspace, ref, offset)) ?? schemaHover(workspace, ref, offset);
+}
+
+/** Hover for keys (default, effective value and where each comes from) and for references (what the group does). */
+async function modularHover(workspace: Workspace, ref: SourceRef, offset: number): Promise<Hover | null> {
   const source = await workspace.source(ref);
   const model = source.original;
   if (!model) return null;

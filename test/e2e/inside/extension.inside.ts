@@ -677,5 +677,47 @@ export function defineExtensionTests(): void {
       }
       await waitFor('the tree to follow the restored file', async () => !(await pageShows('no such group', '.customview-tree')) || undefined, 15_000);
     });
+    it(INSIDE_TESTS.schemaCompletion, async function () {
+      requireServerFeature(this, 'completion', !!api().serverCapabilities()?.completionProvider);
+      const editor = await open('crossing.xosc');
+      await replaceText(editor.document, '<Actions>\n        <Private entityRef="ego">', '<Actions>\n        <\n        <Private entityRef="ego">');
+      const line = positionOf(editor.document, '<Actions>').line + 1;
+      editor.selection = new vscode.Selection(new vscode.Position(line, 9), new vscode.Position(line, 9));
+      editor.revealRange(new vscode.Range(line, 0, line, 9), vscode.TextEditorRevealType.InCenter);
+      const list = await waitFor('schema completion items', async () => {
+        const result = await vscode.commands.executeCommand<vscode.CompletionList>('vscode.executeCompletionItemProvider', editor.document.uri, new vscode.Position(line, 9));
+        return result.items.length > 0 ? result : undefined;
+      });
+      const labels = list.items.map((item) => (typeof item.label === 'string' ? item.label : item.label.label));
+      assert.deepEqual(labels.filter((label) => ['GlobalAction', 'UserDefinedAction', 'Private'].includes(label)), ['GlobalAction', 'UserDefinedAction', 'Private']);
+      await vscode.commands.executeCommand('editor.action.triggerSuggest');
+      await waitFor('the suggest widget showing UserDefinedAction', async () => (await post<{ found: boolean }>('/findText', { text: 'UserDefinedAction', selector: '.suggest-widget' })).found || undefined, 10_000);
+      await screenshot('schema completion of a child element (widget)');
+      await vscode.commands.executeCommand('hideSuggestWidget');
+      await revertAndClose();
+    });
+
+    it(INSIDE_TESTS.schemaDeprecated, async function () {
+      requireServerFeature(this, 'diagnostics', !!api().serverCapabilities()?.textDocumentSync);
+      const crossing = fs.readFileSync(path.join(workspaceRoot(), 'crossing.xosc'), 'utf8');
+      // The example as an OpenSCENARIO 1.3 file whose Init activates a controller the way 1.0 did (deprecated since 1.1).
+      const deprecated = crossing
+        .replace('revMinor="0"', 'revMinor="3"')
+        .replace('<Actions>\n', '<Actions>\n        <Private entityRef="walker">\n          <PrivateAction>\n            <ActivateControllerAction longitudinal="true"/>\n          </PrivateAction>\n        </Private>\n');
+      const file = path.join(workspaceRoot(), 'deprecated_1_3.xosc');
+      fs.writeFileSync(file, deprecated);
+      const editor = await open('deprecated_1_3.xosc');
+      const diagnostic = await waitFor('the deprecated diagnostic', () =>
+        vscode.languages.getDiagnostics(editor.document.uri).find((candidate) => candidate.tags?.includes(vscode.DiagnosticTag.Deprecated) && /<ActivateControllerAction>/.test(candidate.message)),
+      );
+      assert.match(diagnostic.message, /<ActivateControllerAction> is deprecated since OpenSCENARIO 1\.1/);
+      editor.revealRange(diagnostic.range, vscode.TextEditorRevealType.InCenter);
+      await waitFor('the struck-through element name', async () => (await post<{ found: boolean }>('/findText', { text: 'ActivateControllerAction', selector: '.squiggly-inline-deprecated' })).found || undefined, 10_000);
+      editor.selection = new vscode.Selection(diagnostic.range.start, diagnostic.range.start);
+      await vscode.commands.executeCommand('editor.action.showHover');
+      await screenshot('a deprecated element struck through (hover)');
+      await vscode.commands.executeCommand('workbench.action.closeAllEditors');
+      fs.rmSync(file, { force: true });
+    });
   });
 }

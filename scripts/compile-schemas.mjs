@@ -1,0 +1,250 @@
+// Compiles the bundled ASAM OpenSCENARIO XSDs (schemas/) into one compact JSON model, at build time,
+// so that the language server and the CLI never interpret XSD: elements, attributes, simple types
+// (enumerations, patterns, built-in bases), cardinalities and sequence/choice/all structure, with the
+// version that introduced or deprecated each element, attribute and enumeration value.
+import { readFileSync, writeFileSync, mkdirSync } from 'node:fs';
+import * as path from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { XMLParser } from 'fast-xml-parser';
+
+const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
+
+/** The schema files, oldest first, with the version a FileHeader states for them. */
+export const SCHEMA_FILES = [
+  { version: '1.0', file: 'OpenSCENARIOv1.0.xsd' },
+  { version: '1.1', file: 'OpenSCENARIOv1.1.1.xsd' },
+  { version: '1.2', file: 'OpenSCENARIOv1.2.xsd' },
+  { version: '1.3', file: 'OpenSCENARIOv1.3.xsd' },
+];
+
+const parser = new XMLParser({ preserveOrder: true, ignoreAttributes: false, attributeNamePrefix: '', commentPropName: '#comment' });
+
+/** A node of fast-xml-parser's ordered output: its tag name, attributes and children. */
+function nodes(list) {
+  const result = [];
+  for (const item of list ?? []) {
+    const tag = Object.keys(item).find((key) => key !== ':@');
+    if (!tag || tag === '#text') continue;
+    result.push({ tag: tag.replace(/^xsd:/, ''), attributes: item[':@'] ?? {}, children: item[tag] });
+  }
+  return result;
+}
+
+function child(node, tag) {
+  return nodes(node.children).find((candidate) => candidate.tag === tag);
+}
+
+/** True when an annotation of the node says `deprecated` (how 1.1 and later mark deprecation). */
+function isDeprecated(node) {
+  const annotation = child(node, 'annotation');
+  if (!annotation) return false;
+  return nodes(annotation.children).some((info) => info.tag === 'appinfo' && JSON.stringify(info.children).includes('deprecated'));
+}
+
+function occurs(node) {
+  const min = node.attributes.minOccurs === undefined ? 1 : Number(node.attributes.minOccurs);
+  const maxText = node.attributes.maxOccurs;
+  const max = maxText === undefined ? 1 : maxText === 'unbounded' ? -1 : Number(maxText);
+  return { min, max };
+}
+
+function compileSchema(text, version) {
+  const header = (/<!--([\s\S]*?)-->/.exec(text)?.[1] ?? '').trim();
+  const document = nodes(parser.parse(text));
+  const schema = document.find((node) => node.tag === 'schema');
+  const top = nodes(schema.children);
+  const groups = new Map(top.filter((node) => node.tag === 'group').map((node) => [node.attributes.name, node]));
+  const simpleTypes = {};
+  const complexTypes = {};
+  let anonymous = 0;
+
+  /** A simple type as the alternatives a value may match: a built-in base, an enumeration or patterns. */
+  function compileSimple(node, name) {
+    const compiled = { alternatives: [], parameter: false, expression: false };
+    if (isDeprecated(node)) compiled.deprecated = true;
+    const addMember = (memberName) => {
+      if (memberName.startsWith('xsd:')) compiled.alternatives.push({ builtin: memberName.slice(4) });
+      else {
+        if (memberName === 'parameter') compiled.parameter = true;
+        else if (memberName === 'expression') compiled.expression = true;
+        else compiled.alternatives.push({ ref: memberName });
+      }
+    };
+    const restriction = child(node, 'restriction');
+    const union = child(node, 'union');
+    if (restriction) {
+      const facets = nodes(restriction.children);
+      const values = facets.filter((facet) => facet.tag === 'enumeration');
+      const patterns = facets.filter((facet) => facet.tag === 'pattern').map((facet) => facet.attributes.value);
+      if (values.length > 0) {
+        const enumeration = { enumeration: values.map((value) => value.attributes.value) };
+        const deprecatedValues = values.filter(isDeprecated).map((value) => value.attributes.value);
+        if (deprecatedValues.length > 0) enumeration.deprecatedValues = deprecatedValues;
+        compiled.alternatives.push(enumeration);
+      } else if (patterns.length > 0) {
+        compiled.alternatives.push({ patterns });
+      } else {
+        addMember(restriction.attributes.base);
+      }
+    } else if (union) {
+      for (const member of (union.attributes.memberTypes ?? '').split(/\s+/).filter(Boolean)) addMember(member);
+      for (const inner of nodes(union.children).filter((candidate) => candidate.tag === 'simpleType')) {
+        const innerCompiled = compileSimple(inner, undefined);
+        compiled.parameter ||= innerCompiled.parameter;
+        compiled.expression ||= innerCompiled.expression;
+        compiled.alternatives.push(...innerCompiled.alternatives);
+      }
+    }
+    if (name !== undefined) simpleTypes[name] = compiled;
+    return compiled;
+  }
+
+  function attributeType(node) {
+    if (node.attributes.type) return node.attributes.type;
+    const inline = child(node, 'simpleType');
+    const name = `#anonymous${++anonymous}`;
+    if (inline) compileSimple(inline, name);
+    else simpleTypes[name] = { alternatives: [{ builtin: 'string' }], parameter: false, expression: false };
+    return name;
+  }
+
+  function compileAttributes(list) {
+    return list
+      .filter((node) => node.tag === 'attribute')
+      .map((node) => {
+        const attribute = { name: node.attributes.name, type: attributeType(node), required: node.attributes.use === 'required' };
+        if (isDeprecated(node)) attribute.deprecated = true;
+        return attribute;
+      });
+  }
+
+  /** A particle: an element, or a sequence/choice/all of particles; groups are inlined where referenced. */
+  function compileParticle(node) {
+    const { min, max } = occurs(node);
+    if (node.tag === 'element') {
+      const element = { kind: 'element', name: node.attributes.name, type: node.attributes.type, min, max };
+      if (isDeprecated(node)) element.deprecated = true;
+      return element;
+    }
+    if (node.tag === 'group') {
+      const group = groups.get(node.attributes.ref);
+      const inner = nodes(group.children).find((candidate) => ['sequence', 'choice', 'all'].includes(candidate.tag));
+      const compiled = compileParticle(inner);
+      if (min === 1 && max === 1) return compiled;
+      // The reference's occurrence applies to the whole group: wrap it.
+      return { kind: 'sequence', min, max, items: [compiled] };
+    }
+    const items = nodes(node.children).filter((candidate) => ['element', 'group', 'sequence', 'choice', 'all', 'any'].includes(candidate.tag)).map(compileParticle);
+    return { kind: node.tag, min, max, items };
+  }
+
+  for (const node of top) {
+    if (node.tag === 'simpleType') compileSimple(node, node.attributes.name);
+  }
+  for (const node of top) {
+    if (node.tag !== 'complexType') continue;
+    const compiled = { attributes: [] };
+    if (isDeprecated(node)) compiled.deprecated = true;
+    const body = nodes(node.children);
+    const simpleContent = body.find((candidate) => candidate.tag === 'simpleContent');
+    if (simpleContent) {
+      const extension = child(simpleContent, 'extension');
+      compiled.text = true;
+      compiled.attributes = compileAttributes(nodes(extension.children));
+    } else {
+      compiled.attributes = compileAttributes(body);
+      const content = body.find((candidate) => ['sequence', 'choice', 'all', 'group'].includes(candidate.tag));
+      if (content) compiled.content = compileParticle(content);
+    }
+    complexTypes[node.attributes.name] = compiled;
+  }
+  const rootElement = top.find((node) => node.tag === 'element' && node.attributes.name === 'OpenSCENARIO');
+  return { version, header, rootElement: 'OpenSCENARIO', rootType: rootElement.attributes.type, complexTypes, simpleTypes };
+}
+
+function* elementParticles(particle) {
+  if (!particle) return;
+  if (particle.kind === 'element') yield particle;
+  else for (const item of particle.items) yield* elementParticles(item);
+}
+
+/**
+ * Marks each element, attribute and enumeration value with the first version that has it (`since`,
+ * left out for 1.0) and the first version that annotates it deprecated (`deprecatedSince`). An
+ * element or attribute is matched by its parent type's name; when that type is new, by its own name
+ * anywhere, so that a renamed parent does not make old children look new.
+ */
+function addHistory(schemas) {
+  const seen = { elementIn: new Map(), element: new Map(), attributeIn: new Map(), attribute: new Map(), value: new Map() };
+  const deprecatedFirst = new Map();
+  const note = (map, key, version) => {
+    if (!map.has(key)) map.set(key, version);
+  };
+  for (const schema of schemas) {
+    for (const [typeName, type] of Object.entries(schema.complexTypes)) {
+      for (const element of elementParticles(type.content)) {
+        note(seen.elementIn, `${typeName}/${element.name}`, schema.version);
+        note(seen.element, element.name, schema.version);
+        const elementType = schema.complexTypes[element.type];
+        if (element.deprecated || elementType?.deprecated) note(deprecatedFirst, `e:${typeName}/${element.name}`, schema.version);
+      }
+      for (const attribute of type.attributes) {
+        note(seen.attributeIn, `${typeName}@${attribute.name}`, schema.version);
+        note(seen.attribute, attribute.name, schema.version);
+        if (attribute.deprecated || schema.simpleTypes[attribute.type]?.deprecated) note(deprecatedFirst, `a:${typeName}@${attribute.name}`, schema.version);
+      }
+    }
+    for (const [typeName, type] of Object.entries(schema.simpleTypes)) {
+      for (const alternative of type.alternatives) {
+        for (const value of alternative.enumeration ?? []) note(seen.value, `${typeName}=${value}`, schema.version);
+        for (const value of alternative.deprecatedValues ?? []) note(deprecatedFirst, `v:${typeName}=${value}`, schema.version);
+      }
+    }
+  }
+  const firstVersion = schemas[0].version;
+  const since = (specific, general) => {
+    const version = specific ?? general;
+    return version && version !== firstVersion ? version : undefined;
+  };
+  for (const schema of schemas) {
+    const older = schemas.slice(0, schemas.indexOf(schema));
+    for (const [typeName, type] of Object.entries(schema.complexTypes)) {
+      const typeIsNew = !older.some((previous) => previous.complexTypes[typeName]);
+      for (const element of elementParticles(type.content)) {
+        const version = since(typeIsNew ? seen.element.get(element.name) : seen.elementIn.get(`${typeName}/${element.name}`));
+        if (version) element.since = version;
+        const deprecatedSince = deprecatedFirst.get(`e:${typeName}/${element.name}`);
+        if (deprecatedSince && schema.version >= deprecatedSince) element.deprecatedSince = deprecatedSince;
+      }
+      for (const attribute of type.attributes) {
+        const version = since(typeIsNew ? seen.attribute.get(attribute.name) : seen.attributeIn.get(`${typeName}@${attribute.name}`));
+        if (version) attribute.since = version;
+        const deprecatedSince = deprecatedFirst.get(`a:${typeName}@${attribute.name}`);
+        if (deprecatedSince && schema.version >= deprecatedSince) attribute.deprecatedSince = deprecatedSince;
+      }
+    }
+    for (const [typeName, type] of Object.entries(schema.simpleTypes)) {
+      for (const alternative of type.alternatives) {
+        if (!alternative.enumeration) continue;
+        const valuesSince = {};
+        for (const value of alternative.enumeration) {
+          const version = since(seen.value.get(`${typeName}=${value}`));
+          if (version) valuesSince[value] = version;
+        }
+        if (Object.keys(valuesSince).length > 0) alternative.valuesSince = valuesSince;
+      }
+    }
+  }
+}
+
+export function compileSchemas(directory = path.join(root, 'schemas')) {
+  const schemas = SCHEMA_FILES.map(({ version, file }) => ({ ...compileSchema(readFileSync(path.join(directory, file), 'utf8'), version), file }));
+  addHistory(schemas);
+  return { source: 'ASAM OpenSCENARIO XML schemas (schemas/*.xsd), distributable under the ASAM license terms', schemas };
+}
+
+if (process.argv[1] && path.resolve(process.argv[1]) === fileURLToPath(import.meta.url)) {
+  const out = process.argv[2] ?? path.join(root, 'dist', 'openscenario-schemas.json');
+  mkdirSync(path.dirname(out), { recursive: true });
+  writeFileSync(out, JSON.stringify(compileSchemas()));
+}

@@ -1,0 +1,333 @@
+import { ProblemCode, Severity } from '../problems';
+import { closestMatch } from '../text';
+import { XmlAttribute, XmlDocument, XmlElement } from '../xml';
+import { StateSet } from './automaton';
+import { SchemaIndex, schemaIndex, versionsWith } from './index';
+import { ElementParticle } from './model';
+import { MODULAR_ATTRIBUTE, MODULAR_PLACEMENT, MODULAR_TYPES } from './modular';
+import { checkValue, describeType, enumerationValues } from './values';
+import { chooseVersion, ChosenVersion, SchemaVersionSetting } from './version';
+
+export type SchemaProblemCode = Extract<
+  ProblemCode,
+  | 'schema-unknown-element'
+  | 'schema-unknown-attribute'
+  | 'schema-missing-element'
+  | 'schema-missing-attribute'
+  | 'schema-order'
+  | 'schema-cardinality'
+  | 'schema-value'
+  | 'schema-deprecated'
+  | 'schema-version'
+>;
+
+/** Problems the schema finds; `--force` writes a flattened output despite them. */
+export const SCHEMA_PROBLEM_CODES: ReadonlySet<ProblemCode> = new Set<SchemaProblemCode>([
+  'schema-unknown-element',
+  'schema-unknown-attribute',
+  'schema-missing-element',
+  'schema-missing-attribute',
+  'schema-order',
+  'schema-cardinality',
+  'schema-value',
+  'schema-deprecated',
+  'schema-version',
+]);
+
+/** A problem at an element's tag name, an attribute's name or an attribute's value (offsets of the document checked). */
+export interface SchemaFinding {
+  element: XmlElement;
+  attribute?: XmlAttribute;
+  part: 'tag' | 'attribute' | 'value';
+  severity: Severity;
+  code: SchemaProblemCode;
+  message: string;
+  hint?: string;
+  /** For quick fixes: `suggestion` (a name or value), `missing` (comma-separated names), `insertAt` (offset). */
+  data?: Record<string, string>;
+}
+
+export interface SchemaCheckOptions {
+  /** Accept the modular extension (SPEC 2): ScenarioReference in a ManeuverGroup. Off for flattened outputs. */
+  modular: boolean;
+  version?: SchemaVersionSetting;
+}
+
+export interface SchemaCheck {
+  chosen: ChosenVersion;
+  findings: SchemaFinding[];
+}
+
+/** At most this many findings per document: a broken file must not flood the editor. */
+const MAX_FINDINGS = 2000;
+
+function list(particles: ElementParticle[]): string {
+  return particles.map((particle) => `<${particle.name}>`).join(', ');
+}
+
+function introducedHint(typeName: string, name: string, kind: 'element' | 'attribute', chosen: ChosenVersion, others: string[]): string | undefined {
+  const versions = versionsWith(typeName, name, kind).filter((version) => version !== chosen.version);
+  if (versions.length === 0) return undefined;
+  const stated = chosen.stated ? `the FileHeader states ${chosen.stated}` : `the file is read as ${chosen.version}`;
+  const suggestion = closestMatch(name, others);
+  return `${kind === 'element' ? `<${name}>` : `'${name}'`} belongs to OpenSCENARIO ${versions.join(', ')}; ${stated} (revMinor)${suggestion ? `; or did you mean ${kind === 'element' ? `<${suggestion}>` : `'${suggestion}'`}?` : ''}`;
+}
+
+/**
+ * Checks a parsed document against the schema of its version: elements, their order and number,
+ * attributes and their values. Linear in the document; each content model is a small automaton.
+ */
+export function checkSchema(document: XmlDocument, options: SchemaCheckOptions): SchemaCheck {
+  const chosen = chooseVersion(document, options.version ?? 'auto');
+  const findings: SchemaFinding[] = [];
+  const root = document.root;
+  if (!root) return { chosen, findings };
+  const index = schemaIndex(chosen.version);
+  const report = (finding: SchemaFinding) => {
+    if (findings.length < MAX_FINDINGS) findings.push(finding);
+  };
+  if (chosen.fallback && chosen.header) {
+    report({
+      element: chosen.header,
+      part: 'tag',
+      severity: 'information',
+      code: 'schema-version',
+      message: `${chosen.fallback}: checked against the OpenSCENARIO ${chosen.version} schema`,
+    });
+  }
+  if (root.name !== index.schema.rootElement) {
+    report({ element: root, part: 'tag', severity: 'error', code: 'schema-unknown-element', message: `the root element must be <${index.schema.rootElement}>, not <${root.name}>`, data: { suggestion: index.schema.rootElement } });
+    return { chosen, findings };
+  }
+  const stack: { element: XmlElement; typeName: string }[] = [{ element: root, typeName: index.schema.rootType }];
+  while (stack.length > 0 && findings.length < MAX_FINDINGS) {
+    const { element, typeName } = stack.pop() as { element: XmlElement; typeName: string };
+    checkAttributes(index, chosen, element, typeName, report);
+    const accepted = checkChildren(index, chosen, element, typeName, options, report);
+    for (let i = accepted.length - 1; i >= 0; i--) stack.push(accepted[i]);
+  }
+  // In document order, as a reader goes through the file.
+  findings.sort((a, b) => findingOffsets(a)[0] - findingOffsets(b)[0]);
+  return { chosen, findings };
+}
+
+/** The checks of one attribute: its name, its value, deprecation. */
+export function checkAttribute(index: SchemaIndex, chosen: ChosenVersion, element: XmlElement, typeName: string, attribute: XmlAttribute, report: (finding: SchemaFinding) => void): void {
+  const type = index.complexType(typeName);
+  if (!type) return;
+  if (attribute.name === MODULAR_ATTRIBUTE || attribute.name.startsWith('xmlns') || attribute.name.startsWith('xsi:')) return;
+  const declaration = index.attribute(typeName, attribute.name);
+  if (!declaration) {
+    const candidates = type.attributes.map((candidate) => candidate.name).filter((name) => !element.attributes.some((other) => other.name === name));
+    const suggestion = closestMatch(attribute.name, candidates);
+    report({
+      element,
+      attribute,
+      part: 'attribute',
+      severity: 'error',
+      code: 'schema-unknown-attribute',
+      message: `<${element.name}> has no attribute '${attribute.name}' in OpenSCENARIO ${chosen.version}`,
+      hint:
+        introducedHint(typeName, attribute.name, 'attribute', chosen, candidates) ??
+        (suggestion ? `did you mean '${suggestion}'?` : candidates.length > 0 ? `its attributes: ${candidates.join(', ')}` : undefined),
+      data: suggestion ? { suggestion } : undefined,
+    });
+    return;
+  }
+  const simple = index.simpleType(declaration.type);
+  if (!simple) return;
+  const check = checkValue(simple, attribute.value);
+  if (!check.valid) {
+    const values = enumerationValues(simple);
+    const suggestion = values.length > 0 ? closestMatch(attribute.value, values) : undefined;
+    report({
+      element,
+      attribute,
+      part: 'value',
+      severity: check.expressionNotInVersion ? 'warning' : 'error',
+      code: check.expressionNotInVersion ? 'schema-version' : 'schema-value',
+      message: check.expressionNotInVersion
+        ? `the expression '${attribute.value}' needs OpenSCENARIO 1.1 or later; this file is read as ${chosen.version}`
+        : `'${attribute.value}' is not a valid value of ${element.name}.${attribute.name} (${declaration.type}): expected ${describeType(simple)}`,
+      hint: suggestion ? `did you mean '${suggestion}'?` : undefined,
+      data: suggestion ? { suggestion } : undefined,
+    });
+  } else if (check.deprecated) {
+    report({ element, attribute, part: 'value', severity: 'information', code: 'schema-deprecated', message: `the value '${attribute.value}' of ${element.name}.${attribute.name} is deprecated in OpenSCENARIO ${chosen.version}` });
+  }
+  if (index.isAttributeDeprecated(declaration)) {
+    report({
+      element,
+      attribute,
+      part: 'attribute',
+      severity: 'information',
+      code: 'schema-deprecated',
+      message: `${element.name}.${attribute.name} is deprecated${declaration.deprecatedSince ? ` since OpenSCENARIO ${declaration.deprecatedSince}` : ''}`,
+    });
+  }
+}
+
+function checkAttributes(index: SchemaIndex, chosen: ChosenVersion, element: XmlElement, typeName: string, report: (finding: SchemaFinding) => void): void {
+  const type = index.complexType(typeName);
+  if (!type) return;
+  for (const attribute of element.attributes) checkAttribute(index, chosen, element, typeName, attribute, report);
+  // The extension's own attributes are checked where the flattener reads them.
+  if (MODULAR_TYPES[typeName]) return;
+  const missing: string[] = [];
+  for (const declaration of type.attributes) if (declaration.required && !element.attributes.some((written) => written.name === declaration.name)) missing.push(declaration.name);
+  if (missing.length > 0) {
+    report({
+      element,
+      part: 'tag',
+      severity: 'error',
+      code: 'schema-missing-attribute',
+      message: `<${element.name}> lacks the required attribute${missing.length > 1 ? 's' : ''} ${missing.map((name) => `'${name}'`).join(', ')}`,
+      data: { missing: missing.join(',') },
+    });
+  }
+}
+
+/** Checks the children of an element against its content model; returns the children to descend into. */
+function checkChildren(
+  index: SchemaIndex,
+  chosen: ChosenVersion,
+  element: XmlElement,
+  typeName: string,
+  options: SchemaCheckOptions,
+  report: (finding: SchemaFinding) => void,
+): { element: XmlElement; typeName: string }[] {
+  const type = index.complexType(typeName);
+  const accepted: { element: XmlElement; typeName: string }[] = [];
+  if (!type) return accepted;
+  const known: { child: XmlElement; particle: ElementParticle }[] = [];
+  for (const child of element.children) {
+    // A ScenarioReference outside a ManeuverGroup is reported by the flattener.
+    if (options.modular && child.name === MODULAR_PLACEMENT.element && typeName !== MODULAR_PLACEMENT.parentType) continue;
+    const particle = index.childParticle(typeName, child.name, options.modular);
+    if (!particle) {
+      const others = index.childParticles(typeName).map((candidate) => candidate.name);
+      const suggestion = closestMatch(child.name, others);
+      report({
+        element: child,
+        part: 'tag',
+        severity: 'error',
+        code: 'schema-unknown-element',
+        message: type.text || others.length === 0 ? `<${element.name}> holds no elements in OpenSCENARIO ${chosen.version}, yet <${child.name}> stands in it` : `<${element.name}> has no child <${child.name}> in OpenSCENARIO ${chosen.version}`,
+        hint:
+          introducedHint(typeName, child.name, 'element', chosen, others) ??
+          (suggestion ? `did you mean <${suggestion}>?` : others.length > 0 ? `its children: ${others.map((other) => `<${other}>`).join(', ')}` : undefined),
+        data: suggestion ? { suggestion } : undefined,
+      });
+      continue;
+    }
+    known.push({ child, particle });
+    accepted.push({ element: child, typeName: particle.type });
+    if (index.isDeprecated(particle)) {
+      report({
+        element: child,
+        part: 'tag',
+        severity: 'information',
+        code: 'schema-deprecated',
+        message: `<${child.name}> is deprecated${particle.deprecatedSince ? ` since OpenSCENARIO ${particle.deprecatedSince}` : ` in OpenSCENARIO ${chosen.version}`}`,
+      });
+    }
+  }
+  if (type.content?.kind === 'all') checkAll(type.content.items as ElementParticle[], element, known, report);
+  else checkSequence(index, typeName, element, known, options, report);
+  return accepted;
+}
+
+function checkAll(items: ElementParticle[], element: XmlElement, known: { child: XmlElement; particle: ElementParticle }[], report: (finding: SchemaFinding) => void): void {
+  const counts = new Map<string, number>();
+  for (const { child, particle } of known) {
+    const count = (counts.get(child.name) ?? 0) + 1;
+    counts.set(child.name, count);
+    if (particle.max !== -1 && count > particle.max) {
+      report({ element: child, part: 'tag', severity: 'error', code: 'schema-cardinality', message: `too many <${child.name}> in <${element.name}>: at most ${particle.max}` });
+    }
+  }
+  const missing = items.filter((item) => item.kind === 'element' && item.min > (counts.get(item.name) ?? 0));
+  if (missing.length > 0) reportMissing(element, missing, undefined, report);
+}
+
+function checkSequence(
+  index: SchemaIndex,
+  typeName: string,
+  element: XmlElement,
+  known: { child: XmlElement; particle: ElementParticle }[],
+  options: SchemaCheckOptions,
+  report: (finding: SchemaFinding) => void,
+): void {
+  const automaton = index.automaton(typeName);
+  let states: StateSet = automaton.start;
+  const seen = new Map<string, number>();
+  let reportedOrder = false;
+  /** Children written later that an order problem already placed earlier in the content model. */
+  const placedEarly = new Set<XmlElement>();
+  for (let position = 0; position < known.length; position++) {
+    const { child, particle } = known[position];
+    if (placedEarly.has(child)) continue;
+    const name = index.modelName(typeName, child.name, options.modular);
+    seen.set(name, (seen.get(name) ?? 0) + 1);
+    const next = automaton.step(states, name);
+    if (next) {
+      states = next.states;
+      continue;
+    }
+    const missing = automaton.missingBefore(states, name);
+    if (missing && missing.length > 0 && missing.every((candidate) => !seen.has(candidate.name))) {
+      const later = missing.map((candidate) => known.slice(position + 1).find((other) => !placedEarly.has(other.child) && index.modelName(typeName, other.child.name, options.modular) === candidate.name)?.child);
+      if (later.every((other) => other !== undefined)) {
+        // The "missing" elements are written, only after this one: an order problem, reported once here.
+        for (const other of later) placedEarly.add(other as XmlElement);
+        report({ element: child, part: 'tag', severity: 'error', code: 'schema-order', message: `<${child.name}> is out of order in <${element.name}>: ${list(missing)} must come before it` });
+      } else {
+        reportMissing(element, missing, child, report);
+      }
+      const after = missing.reduce<StateSet | undefined>((current, candidate) => (current ? automaton.step(current, candidate.name)?.states : undefined), states);
+      const stepped = after ? automaton.step(after, name) : undefined;
+      if (stepped) {
+        states = stepped.states;
+        continue;
+      }
+    }
+    const count = seen.get(name) ?? 0;
+    if (particle.max !== -1 && count > particle.max) {
+      report({ element: child, part: 'tag', severity: 'error', code: 'schema-cardinality', message: `too many <${child.name}> in <${element.name}>: at most ${particle.max}` });
+    } else if (!reportedOrder) {
+      // One order problem per parent: after it, the position in the content model is a guess.
+      reportedOrder = true;
+      const allowed = automaton.allowed(states);
+      report({
+        element: child,
+        part: 'tag',
+        severity: 'error',
+        code: 'schema-order',
+        message: `<${child.name}> is out of order in <${element.name}>: ${allowed.length > 0 ? `expected ${list(allowed)} here` : 'nothing more may follow here'}`,
+      });
+    }
+  }
+  if (!automaton.accepts(states)) {
+    const missing = automaton.missingToEnd(states);
+    if (missing.length > 0) reportMissing(element, missing, undefined, report);
+  }
+}
+
+function reportMissing(element: XmlElement, missing: ElementParticle[], before: XmlElement | undefined, report: (finding: SchemaFinding) => void): void {
+  const names = missing.map((particle) => particle.name);
+  report({
+    element: before ?? element,
+    part: 'tag',
+    severity: 'error',
+    code: 'schema-missing-element',
+    message: `<${element.name}> lacks the required element${names.length > 1 ? 's' : ''} ${list(missing)}${before ? ` before <${before.name}>` : ''}`,
+    data: { missing: names.join(','), parent: element.name, ...(before ? { insertAt: String(before.start) } : {}) },
+  });
+}
+
+/** The offsets a finding points at in the document it was found in. */
+export function findingOffsets(finding: SchemaFinding): [number, number] {
+  if (finding.part === 'attribute' && finding.attribute) return [finding.attribute.nameStart, finding.attribute.nameEnd];
+  if (finding.part === 'value' && finding.attribute) return [finding.attribute.valueStart, finding.attribute.valueEnd];
+  return [finding.element.start + 1, finding.element.nameEnd];
+}

@@ -1,0 +1,177 @@
+import { CompletionItem, CompletionItemKind, CompletionItemTag, InsertTextFormat, MarkupKind } from 'vscode-languageserver/node';
+import { TextDocument } from 'vscode-languageserver-textdocument';
+import { SchemaIndex } from '../core/schema/index';
+import { AttributeDeclaration, ElementParticle } from '../core/schema/model';
+import { allowedChildren, indexFor, requiredAttributes, typeByElementName, typeOfElement } from '../core/schema/query';
+import { builtinOf, describeType, enumerationValues } from '../core/schema/values';
+import { SourceRef } from '../core/sources';
+import { attribute, descendants, elementAt, parseXml, XmlDocument, XmlElement } from '../core/xml';
+import { attributeNameContextAt, elementNameContextAt, ValueContext } from '../cursor';
+import { Workspace } from '../workspace';
+
+/** The parse of the document's current text: the workspace's when it is up to date, else a fresh one. */
+export async function currentDocument(workspace: Workspace, ref: SourceRef, document: TextDocument): Promise<XmlDocument> {
+  const text = document.getText();
+  const source = await workspace.source(ref);
+  const parsed = source.original?.document;
+  return parsed && parsed.text === text ? parsed : parseXml(text);
+}
+
+function escapeSnippet(value: string): string {
+  return value.replace(/[$}\\|,]/g, (char) => `\\${char}`);
+}
+
+/** `name="…"` as a snippet: a choice of the enumeration's values, or a tab stop. */
+function attributeSnippet(index: SchemaIndex, declaration: AttributeDeclaration, stop: number): string {
+  const type = index.simpleType(declaration.type);
+  const values = type ? enumerationValues(type) : [];
+  const choices = values.length > 0 ? values : type && builtinOf(type) === 'boolean' ? ['true', 'false'] : [];
+  return choices.length > 0 ? `${declaration.name}="\${${stop}|${choices.map(escapeSnippet).join(',')}|}"` : `${declaration.name}="\${${stop}}"`;
+}
+
+/** `<Name required="…">$0</Name>`, self-closing when the element holds nothing. */
+export function elementSnippet(index: SchemaIndex, particle: ElementParticle): string {
+  const attributes = requiredAttributes(index, particle.type).map((declaration, position) => ` ${attributeSnippet(index, declaration, position + 1)}`);
+  const type = index.complexType(particle.type);
+  const empty = !type?.content && !type?.text;
+  return empty ? `<${particle.name}${attributes.join('')}/>$0` : `<${particle.name}${attributes.join('')}>$0</${particle.name}>`;
+}
+
+function versionNote(since: string | undefined, deprecated: boolean, deprecatedSince: string | undefined): string {
+  const parts: string[] = [];
+  if (since) parts.push(`since OpenSCENARIO ${since}`);
+  if (deprecated) parts.push(`deprecated${deprecatedSince ? ` since ${deprecatedSince}` : ''}`);
+  return parts.join(', ');
+}
+
+/** Child elements allowed at the cursor, in content-model order with the required ones first. */
+function elementItems(index: SchemaIndex, document: XmlDocument, text: string, start: number, offset: number): CompletionItem[] {
+  let parent = elementAt(document, offset);
+  // A half-typed `<Nam` parses as an element of its own: its parent is where the child goes.
+  while (parent && parent.start >= start && parent.parent) parent = parent.parent;
+  if (!parent || offset < parent.startTagEnd) return [];
+  const typeName = typeOfElement(index, parent) ?? typeByElementName(index, parent.name);
+  if (!typeName) return [];
+  const preceding = parent.children.filter((child) => child.end <= start).map((child) => child.name);
+  const following = parent.children.find((child) => child.start >= offset)?.name;
+  const range = { start: positionOf(document, start), end: positionOf(document, offset) };
+  const typedOpen = text[start] === '<';
+  // The modular extension's elements come as whole-reference snippets from the completion of references.
+  const allowed = allowedChildren(index, typeName, preceding, following).filter(({ particle }) => !particle.type.startsWith('#'));
+  return allowed.map(({ particle, required }, position) => {
+    const deprecated = index.isDeprecated(particle);
+    const note = versionNote(particle.since, deprecated, particle.deprecatedSince);
+    const item: CompletionItem = {
+      label: particle.name,
+      kind: CompletionItemKind.Property,
+      detail: `${required ? 'required' : 'optional'}${particle.max === -1 ? ', any number' : ''} in <${parent.name}> (OpenSCENARIO ${index.version})${note ? `; ${note}` : ''}`,
+      sortText: `${required ? 0 : deprecated ? 2 : 1}_${String(position).padStart(3, '0')}`,
+      filterText: typedOpen ? `<${particle.name}` : particle.name,
+      insertTextFormat: InsertTextFormat.Snippet,
+      textEdit: { range, newText: elementSnippet(index, particle) },
+    };
+    if (deprecated) item.tags = [CompletionItemTag.Deprecated];
+    return item;
+  });
+}
+
+function positionOf(document: XmlDocument, offset: number) {
+  return document.lines.positionAt(offset);
+}
+
+/** The element whose start tag begins at `tagStart`, when the parse has one there. */
+function elementStartingAt(document: XmlDocument, tagStart: number): XmlElement | undefined {
+  const found = elementAt(document, tagStart);
+  return found && found.start === tagStart ? found : undefined;
+}
+
+function typeAtTag(index: SchemaIndex, document: XmlDocument, tagStart: number, elementName: string): string | undefined {
+  const element = elementStartingAt(document, tagStart);
+  return (element && element.name === elementName ? typeOfElement(index, element) : undefined) ?? typeByElementName(index, elementName);
+}
+
+/** Attribute names not yet written, required first. */
+function attributeItems(index: SchemaIndex, document: XmlDocument, context: { tagStart: number; element: string; written: string[]; start: number }, offset: number): CompletionItem[] {
+  const typeName = typeAtTag(index, document, context.tagStart, context.element);
+  const type = typeName ? index.complexType(typeName) : undefined;
+  if (!type) return [];
+  const range = { start: positionOf(document, context.start), end: positionOf(document, offset) };
+  return type.attributes
+    .filter((declaration) => !context.written.includes(declaration.name))
+    .map((declaration, position) => {
+      const simple = index.simpleType(declaration.type);
+      const deprecated = index.isAttributeDeprecated(declaration);
+      const note = versionNote(declaration.since, deprecated, declaration.deprecatedSince);
+      const item: CompletionItem = {
+        label: declaration.name,
+        kind: CompletionItemKind.Field,
+        detail: `${declaration.required ? 'required' : 'optional'} ${declaration.type}${note ? `; ${note}` : ''}`,
+        documentation: simple ? { kind: MarkupKind.Markdown, value: `Allowed: ${describeType(simple)}` } : undefined,
+        sortText: `${declaration.required ? 0 : deprecated ? 2 : 1}_${String(position).padStart(3, '0')}`,
+        insertTextFormat: InsertTextFormat.Snippet,
+        textEdit: { range, newText: attributeSnippet(index, declaration, 1) },
+      };
+      if (deprecated) item.tags = [CompletionItemTag.Deprecated];
+      return item;
+    });
+}
+
+/** The parameters declared in the document, for a value that may be `$name`. */
+function declaredParameters(document: XmlDocument): { name: string; value: string; type: string }[] {
+  if (!document.root) return [];
+  const seen = new Set<string>();
+  const result: { name: string; value: string; type: string }[] = [];
+  for (const element of descendants(document.root)) {
+    if (element.name !== 'ParameterDeclaration') continue;
+    const name = attribute(element, 'name')?.value;
+    if (!name || seen.has(name)) continue;
+    seen.add(name);
+    result.push({ name, value: attribute(element, 'value')?.value ?? '', type: attribute(element, 'parameterType')?.value ?? '' });
+  }
+  return result;
+}
+
+/** Enumeration values, true/false, and `$parameters` where the attribute's type admits one. */
+function valueItems(index: SchemaIndex, document: XmlDocument, context: ValueContext): CompletionItem[] {
+  const typeName = typeAtTag(index, document, context.tagStart, context.element);
+  const declaration = typeName ? index.attribute(typeName, context.attribute) : undefined;
+  const simple = declaration ? index.simpleType(declaration.type) : undefined;
+  if (!declaration || !simple) return [];
+  const range = { start: positionOf(document, context.valueStart), end: positionOf(document, context.valueEnd) };
+  const items: CompletionItem[] = [];
+  for (const alternative of simple.alternatives) {
+    for (const value of alternative.enumeration ?? []) {
+      const deprecated = alternative.deprecatedValues?.includes(value) ?? false;
+      const since = alternative.valuesSince?.[value];
+      const item: CompletionItem = { label: value, kind: CompletionItemKind.EnumMember, detail: `${declaration.type}${since ? `, since OpenSCENARIO ${since}` : ''}${deprecated ? ', deprecated' : ''}`, sortText: `${deprecated ? 1 : 0}_${value}`, textEdit: { range, newText: value } };
+      if (deprecated) item.tags = [CompletionItemTag.Deprecated];
+      items.push(item);
+    }
+    if (alternative.builtin === 'boolean') for (const value of ['true', 'false']) items.push({ label: value, kind: CompletionItemKind.Value, detail: declaration.type, sortText: `0_${value}`, textEdit: { range, newText: value } });
+  }
+  if (simple.parameter) {
+    for (const parameter of declaredParameters(document)) {
+      items.push({
+        label: `$${parameter.name}`,
+        kind: CompletionItemKind.Variable,
+        detail: `parameter${parameter.type ? ` (${parameter.type})` : ''} = ${parameter.value}`,
+        sortText: `5_${parameter.name}`,
+        textEdit: { range, newText: `$${parameter.name}` },
+      });
+    }
+  }
+  return items;
+}
+
+/** Schema completion at the cursor; empty when schema support is off or nothing in the schema applies. */
+export async function schemaCompletion(workspace: Workspace, ref: SourceRef, document: TextDocument, offset: number, valueContext: ValueContext | undefined): Promise<CompletionItem[]> {
+  const parsed = await currentDocument(workspace, ref, document);
+  const index = indexFor(parsed, workspace.settings.schemaVersion);
+  if (!index) return [];
+  const text = document.getText();
+  if (valueContext) return valueItems(index, parsed, valueContext);
+  const attributeContext = attributeNameContextAt(text, offset);
+  if (attributeContext) return attributeItems(index, parsed, attributeContext, offset);
+  const elementContext = elementNameContextAt(text, offset);
+  return elementContext ? elementItems(index, parsed, text, elementContext.start, offset) : [];
+}
