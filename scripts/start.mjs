@@ -60,12 +60,30 @@ if (!fs.existsSync(codeServer)) {
   runOrExit('bash', [path.join(root, 'scripts', 'e2e-setup.sh'), '--code-server']);
 }
 
+// Run in esmini and the bird's-eye view want esmini and road files: built from ../shared/esmini when it is there.
+const esminiSettings = {};
+const shared = path.resolve(root, '..', 'shared', 'esmini');
+if (fs.existsSync(path.join(shared, 'build.sh'))) {
+  const esmini = path.join(root, '.cache', 'esmini', 'bin', 'esmini');
+  if (!fs.existsSync(esmini)) step('building esmini from ../shared/esmini into .cache/esmini (about 3 minutes, once)');
+  const built = spawnSync('bash', [path.join(shared, 'build.sh'), path.join(root, '.cache', 'esmini')], { cwd: root, stdio: ['ignore', 'ignore', 'inherit'] });
+  if (built.status === 0 && fs.existsSync(esmini)) {
+    esminiSettings['modular2simple.esmini.path'] = esmini;
+    esminiSettings['modular2simple.esmini.roadPath'] = [path.join(shared, 'xodr')];
+  } else step('esmini did not build: Run in esmini will say how to get it');
+}
+
 const userData = path.join(profile, 'user-data');
 const settings = path.join(userData, 'User', 'settings.json');
-if (!fs.existsSync(settings)) {
-  fs.mkdirSync(path.dirname(settings), { recursive: true });
-  fs.writeFileSync(settings, JSON.stringify({ 'workbench.startupEditor': 'none', 'telemetry.telemetryLevel': 'off', 'git.openRepositoryInParentFolders': 'never' }, null, 2));
+const defaults = { 'workbench.startupEditor': 'none', 'telemetry.telemetryLevel': 'off', 'git.openRepositoryInParentFolders': 'never' };
+let current = {};
+try {
+  current = JSON.parse(fs.readFileSync(settings, 'utf8'));
+} catch {
+  // none yet, or not plain JSON: written anew
 }
+fs.mkdirSync(path.dirname(settings), { recursive: true });
+fs.writeFileSync(settings, JSON.stringify({ ...defaults, ...current, ...esminiSettings }, null, 2));
 const port = await freePort(Number(process.env.M2S_PORT ?? 8080));
 const config = path.join(profile, 'code-server.yaml');
 fs.writeFileSync(config, `bind-addr: 127.0.0.1:${port}\nauth: none\n`);
