@@ -5,12 +5,16 @@ import { SourceRef } from '../core/sources';
 import { elementPlace, groupLinkOf, keyMatchOf, linkOf, overridablePlace, Place, resolvedTarget } from '../analysis';
 import { ancestor, attributeAt } from '../cursor';
 import { Workspace } from '../workspace';
+import { catalogDefinition } from './catalogs';
+import { parameterDefinition } from './parameters';
 
 /** Where the name under the cursor is defined; empty when it resolves to nothing. */
 export async function definitionPlaces(workspace: Workspace, ref: SourceRef, offset: number): Promise<Place[]> {
   const source = await workspace.source(ref);
   const model = source.original;
   if (!model) return [];
+  const semantic = source.semantics && (parameterDefinition(source.semantics, offset) ?? catalogDefinition(source.semantics, offset));
+  if (semantic) return semantic;
   const hit = attributeAt(model.document, offset);
   if (!hit) return [];
   const { element, attribute } = hit;

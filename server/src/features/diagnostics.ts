@@ -17,6 +17,8 @@ export interface DiagnosticData {
   suggestion?: string;
   replacement?: string;
   entity?: string;
+  /** The parameter an undeclared-parameter diagnostic names. */
+  parameter?: string;
 }
 
 /** LSP severity: an unknown key is an error for the CLI but a warning while editing (SPEC 7). */

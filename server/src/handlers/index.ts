@@ -14,6 +14,8 @@ import * as flattenToText from './flattenToText';
 import * as hover from './hover';
 import * as initialize from './initialize';
 import * as initialized from './initialized';
+import * as inlayHint from './inlayHint';
+import * as semanticTokens from './semanticTokens';
 import * as pack from './pack';
 import * as prepareRename from './prepareRename';
 import * as references from './references';
@@ -43,6 +45,8 @@ const HANDLERS: { register(context: ServerContext): void }[] = [
   documentSymbol,
   workspaceSymbol,
   codeLens,
+  inlayHint,
+  semanticTokens,
   flattenToText,
   flattenToFile,
   pack,
