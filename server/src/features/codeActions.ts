@@ -73,7 +73,7 @@ async function fixesFor(workspace: Workspace, uri: string, ref: SourceRef, docum
     }
     case 'undeclared-parameter': {
       const source = await workspace.source(ref);
-      const fix = data.parameter && source.semantics ? declareParameterFix(uri, document, source, source.semantics, diagnostic, data.parameter) : undefined;
+      const fix = data.parameter && source.semantics ? declareParameterFix(uri, document, source, source.semantics, diagnostic, data.parameter, workspace.folders[0]) : undefined;
       return fix ? [fix] : [];
     }
     default:

@@ -23,10 +23,10 @@ function templateOf(declaration: Declaration, from: string): Template {
 }
 
 /** The source's declaration of a name: a simple scenario the file imports, else another scope of the file. */
-function sourceTemplate(source: FlatSource, semantics: DocumentSemantics, name: string): Template | undefined {
+function sourceTemplate(source: FlatSource, semantics: DocumentSemantics, name: string, folder: string | undefined): Template | undefined {
   for (const link of source.links) {
     const declaration = link.source?.semantics?.model.root?.byName.get(name);
-    if (declaration && link.source) return templateOf(declaration, displayRef(link.source.ref));
+    if (declaration && link.source) return templateOf(declaration, displayRef(link.source.ref, folder));
   }
   const elsewhere = semantics.model.declarations.find((declaration) => declaration.name === name && declaration.kind === 'parameter');
   return elsewhere ? templateOf(elsewhere, `line ${semantics.model.document.lines.positionAt(elsewhere.element.start).line + 1}`) : undefined;
@@ -40,10 +40,10 @@ function unitOf(text: string): string {
   return /^( +|\t)/m.exec(text.slice(0, 4000))?.[1] ?? '  ';
 }
 
-export function declareParameterFix(uri: string, document: TextDocument, source: FlatSource, semantics: DocumentSemantics, diagnostic: Diagnostic, name: string): CodeAction | undefined {
+export function declareParameterFix(uri: string, document: TextDocument, source: FlatSource, semantics: DocumentSemantics, diagnostic: Diagnostic, name: string, folder: string | undefined): CodeAction | undefined {
   const text = document.getText();
   const offset = document.offsetAt(diagnostic.range.start);
-  const template = sourceTemplate(source, semantics, name);
+  const template = sourceTemplate(source, semantics, name, folder);
   const line = `<ParameterDeclaration name="${name}" parameterType="${escapeAttributeValue(template?.type ?? 'string')}" value="${escapeAttributeValue(template?.value ?? '')}"/>`;
   const eol = text.includes('\r\n') ? '\r\n' : '\n';
   const unit = unitOf(text);

@@ -1,7 +1,7 @@
 import { CompletionItem, CompletionItemKind, LSPErrorCodes, ResponseError, TextEdit, WorkspaceEdit } from 'vscode-languageserver/node';
 import { TextDocument } from 'vscode-languageserver-textdocument';
 import { composedValues } from '../core/carry';
-import { FlatSource } from '../core/flatten';
+import { FlatSource, LinkedGroupReference } from '../core/flatten';
 import {
   Declaration,
   declarationAt,
@@ -141,6 +141,12 @@ function provenanceLine(semantics: DocumentSemantics, provenance: Provenance): s
   }
 }
 
+/** The source file (shown relative to the workspace) an imported group of `main` came from. */
+function carriedFrom(workspace: Workspace, main: FlatSource, group: LinkedGroupReference): string | undefined {
+  const source = main.links.find((link) => link.groups.includes(group))?.source;
+  return source ? displayRef(source.ref, workspace.folders[0]) : undefined;
+}
+
 /** What each open main file importing this file makes of the attribute (a ParameterReference override or a carried declaration). */
 async function composedLines(workspace: Workspace, semantics: DocumentSemantics, element: XmlElement, attr: XmlAttribute): Promise<string[]> {
   const lines: string[] = [];
@@ -154,7 +160,7 @@ async function composedLines(workspace: Workspace, semantics: DocumentSemantics,
         result.provenance.kind === 'override'
           ? `overridden by key \`${result.provenance.key}\``
           : result.provenance.kind === 'carried'
-            ? `carried from \`${result.provenance.from}\``
+            ? `carried from \`${carriedFrom(workspace, main, group) ?? result.provenance.from}\``
             : result.provenance.kind === 'declaration'
               ? `the main file's declaration of \`${result.provenance.declaration.name}\``
               : 'as written';
