@@ -181,6 +181,9 @@ describe('editor features on the semantic model: $name, ${...} and catalogs (JSO
     assert.match(shown, /declared in <Story S> on line/);
     const owner = hoverText(await client.request<Hover>('textDocument/hover', client.at(uri, inside(text, 'entityRef="$owner"', 13))));
     assert.match(owner, /\*\*\$owner\*\* = Ego \(string\)/);
+    const assignment = hoverText(await client.request<Hover>('textDocument/hover', client.at(uri, inside(text, 'parameterRef="MaxSpeed"', 16))));
+    assert.match(assignment, /parameter \*\*MaxSpeed\*\* of Vehicle \*\*Sedan\*\* \(catalog Cars\): double, default `50`/);
+    assert.match(assignment, /this reference sets it to \*\*30\*\*; declared in `catalogs\/Cars\.xosc` on line 7/);
   });
 
   it('shows the value of every ${...} as an inlay hint after the attribute', async function () {
@@ -327,6 +330,8 @@ describe('editor features across a composition: provenance and the source value 
     const carried = hoverText(await client.request<Hover>('textDocument/hover', client.at(sourceUri, inside(sourceText, 'parameterRef="Speed" value="$TargetSpeed"', 30))));
     assert.match(carried, /\*\*\$TargetSpeed\*\* = 20 \(double\)/);
     assert.match(carried, /in `main\.xosc` \(group Accelerate\): \*\*20\*\*, carried from `speed_up\.xosc`/);
+    const overridden = hoverText(await client.request<Hover>('textDocument/hover', client.at(sourceUri, inside(sourceText, 'value="$BrakeTime"', 8))));
+    assert.match(overridden, /in `main\.xosc` \(group Accelerate\): \*\*6\*\*, overridden by key `SimulationTimeCondition\.value`/);
     await client.close(sourceUri);
   });
 
@@ -347,5 +352,36 @@ describe('editor features across a composition: provenance and the source value 
     assert.match(declare.title, /value 20 from speed_up\.xosc/);
     const fixed = applyEdits(edited, declare.edit?.changes?.[mainUri] ?? []);
     assert.match(fixed, /<ParameterDeclaration name="owner" parameterType="string" value="Ego"\/>\n {4}<ParameterDeclaration name="TargetSpeed" parameterType="double" value="20"\/>\n {2}<\/ParameterDeclarations>/);
+  });
+
+  it('warns at a ParameterReference key that sets attributes with different defaults, listing them', async function () {
+    const root = temporaryWorkspace({});
+    fs.cpSync(fixtures, root, { recursive: true });
+    const sourcePath = path.join(root, 'speed_up.xosc');
+    fs.writeFileSync(sourcePath, fs.readFileSync(sourcePath, 'utf8').replace('<SpeedActionDynamics dynamicsShape="linear" value="2"', '<SpeedActionDynamics parameterAttributes="value" dynamicsShape="linear" value="2"'));
+    const mainPath = path.join(root, 'main.xosc');
+    const mainText = fs
+      .readFileSync(mainPath, 'utf8')
+      .replace('<ParameterReference key="SimulationTimeCondition.value" value="6"/>', '<ParameterReference key="SimulationTimeCondition.value" value="6"/>\n              <ParameterReference key="value" value="3"/>');
+    fs.writeFileSync(mainPath, mainText);
+    const other = await TestClient.start({ root });
+    try {
+      await other.indexed();
+      const mainUri = await other.openFile(mainPath);
+      const diagnostics = await other.diagnosticsOf(mainUri, (list) => list.some((diagnostic) => diagnostic.code === 'key-mixed-defaults'));
+      const mixed = diagnostics.find((diagnostic) => diagnostic.code === 'key-mixed-defaults') as Diagnostic;
+      assert.equal(mixed.severity, DiagnosticSeverity.Warning);
+      assert.equal(textAt(mainText, mixed.range), 'value');
+      assert.match(mixed.message, /sets 2 attributes whose defaults differ: '2' \(1×\), '\$BrakeTime' \(1×\)/);
+      assert.deepEqual(mixed.relatedInformation?.map((related) => related.location.uri), [fileUri(sourcePath), fileUri(sourcePath)]);
+      // The literal the key reaches shows the value the main file gives it.
+      const sourceText = fs.readFileSync(sourcePath, 'utf8');
+      const sourceUri = await other.openFile(sourcePath);
+      const hover = hoverText(await other.request<Hover>('textDocument/hover', other.at(sourceUri, inside(sourceText, 'dynamicsShape="linear" value="2"', 30))));
+      assert.match(hover, /in `main\.xosc` \(group Accelerate\): \*\*3\*\*, overridden by key `value`/);
+    } finally {
+      await other.stop();
+      fs.rmSync(root, { recursive: true, force: true });
+    }
   });
 });

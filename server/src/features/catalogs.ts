@@ -1,6 +1,6 @@
 import { CompletionItem, CompletionItemKind } from 'vscode-languageserver/node';
 import { TextDocument } from 'vscode-languageserver-textdocument';
-import { CatalogFile, CatalogLoader, catalogReferenceAt, Declaration, DocumentSemantics } from '../core/semantics';
+import { CatalogFile, CatalogLoader, catalogReferenceAt, Declaration, DocumentSemantics, entryParameterValue, formatValue } from '../core/semantics';
 import { displayRef, refId } from '../core/sources';
 import { XmlElement } from '../core/xml';
 import { Place } from '../analysis';
@@ -75,4 +75,26 @@ export async function catalogCompletion(workspace: Workspace, semantics: Documen
         textEdit: { range, newText: entry.name },
       })),
     );
+}
+
+/** Hover on a ParameterAssignment's `parameterRef`: the entry's parameter, its default and the value this reference gives it. */
+export function assignmentHover(workspace: Workspace, semantics: DocumentSemantics, offset: number): { markdown: string; start: number; end: number } | undefined {
+  const resolution = catalogReferenceAt(semantics, offset);
+  const assignment = resolution?.reference.assignments.find((candidate) => candidate.parameterRef && offset >= candidate.parameterRef.valueStart && offset <= candidate.parameterRef.valueEnd);
+  const entry = resolution?.entry;
+  if (!resolution || !assignment?.parameterRef || !entry) return undefined;
+  const name = assignment.parameterRef.value.trim().replace(/^\$/, '');
+  const declaration = entryDeclarations(entry.file, entry.element).find((candidate) => candidate.name === name);
+  if (!declaration) return undefined;
+  const value = entryParameterValue(semantics, resolution, declaration);
+  const line = entry.file.model.document.lines.positionAt(declaration.element.start).line + 1;
+  return {
+    markdown: [
+      `parameter **${name}** of ${entry.element.name} **${entry.name}** (catalog ${entry.file.name}): ${declaration.writtenType ?? 'untyped'}, default \`${declaration.value}\``,
+      '',
+      `this reference sets it to **${value.ok ? formatValue(value.value) : 'a value that cannot be evaluated'}**; declared in \`${displayRef(entry.file.ref, workspace.folders[0])}\` on line ${line}`,
+    ].join('\n'),
+    start: assignment.parameterRef.valueStart,
+    end: assignment.parameterRef.valueEnd,
+  };
 }

@@ -215,6 +215,13 @@ export async function parameterHover(workspace: Workspace, semantics: DocumentSe
       end: use.end,
     };
   }
+  if (found) {
+    // A literal of an imported group: shown only when a main file overrides it.
+    const composed = await composedLines(workspace, semantics, found.element, found.attribute);
+    if (composed.some((line) => line.includes('overridden by key'))) {
+      return { markdown: [`**${found.attribute.value}** as written`, '', 'in the files that import it:', ...composed].join('\n'), start: found.attribute.valueStart, end: found.attribute.valueEnd };
+    }
+  }
   const declaration = declarationAt(semantics, offset);
   if (declaration?.nameAttribute) {
     const value = semantics.evaluator.declarationValue(declaration);
