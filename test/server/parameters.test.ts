@@ -372,7 +372,7 @@ describe('editor features across a composition: provenance and the source value 
       const mixed = diagnostics.find((diagnostic) => diagnostic.code === 'key-mixed-defaults') as Diagnostic;
       assert.equal(mixed.severity, DiagnosticSeverity.Warning);
       assert.equal(textAt(mainText, mixed.range), 'value');
-      assert.match(mixed.message, /sets 2 attributes whose defaults differ: '2' \(1×\), '\$BrakeTime' \(1×\)/);
+      assert.match(String(mixed.message), /sets 2 attributes whose defaults differ: '2' \(1×\), '\$BrakeTime' \(1×\)/);
       assert.deepEqual(mixed.relatedInformation?.map((related) => related.location.uri), [fileUri(sourcePath), fileUri(sourcePath)]);
       // The literal the key reaches shows the value the main file gives it.
       const sourceText = fs.readFileSync(sourcePath, 'utf8');

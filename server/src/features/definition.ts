@@ -13,8 +13,10 @@ export async function definitionPlaces(workspace: Workspace, ref: SourceRef, off
   const source = await workspace.source(ref);
   const model = source.original;
   if (!model) return [];
-  const semantic = source.semantics && (parameterDefinition(source.semantics, offset) ?? catalogDefinition(source.semantics, offset));
-  if (semantic) return semantic;
+  // An entryName written `$name` goes both to the catalog entry and to the parameter.
+  const catalog = source.semantics && catalogDefinition(source.semantics, offset);
+  const parameter = source.semantics && parameterDefinition(source.semantics, offset);
+  if (catalog || parameter) return [...(catalog ?? []), ...(parameter ?? [])];
   const hit = attributeAt(model.document, offset);
   if (!hit) return [];
   const { element, attribute } = hit;
