@@ -52,8 +52,20 @@ function treeTokens(text: string, node: ExpressionNode, out: Token[]): void {
   }
 }
 
+// A model never changes once built: its tokens are listed once per analysis.
+const tokensOf = new WeakMap<DocumentSemantics, Token[]>();
+
 /** The tokens between two offsets, sorted and without overlaps. */
 export function semanticTokenList(semantics: DocumentSemantics, start = 0, end = Number.MAX_SAFE_INTEGER): Token[] {
+  let all = tokensOf.get(semantics);
+  if (!all) {
+    all = listTokens(semantics);
+    tokensOf.set(semantics, all);
+  }
+  return start === 0 && end === Number.MAX_SAFE_INTEGER ? all : all.filter((token) => token.end >= start && token.start <= end);
+}
+
+function listTokens(semantics: DocumentSemantics): Token[] {
   const model = semantics.model;
   const text = model.document.text;
   const tokens: Token[] = [];
@@ -77,14 +89,27 @@ export function semanticTokenList(semantics: DocumentSemantics, start = 0, end =
   const result: Token[] = [];
   let last = -1;
   for (const token of tokens) {
-    if (token.start < last || token.end <= token.start || token.end < start || token.start > end) continue;
+    if (token.start < last || token.end <= token.start) continue;
     result.push(token);
     last = token.end;
   }
   return result;
 }
 
+const encodedOf = new WeakMap<DocumentSemantics, SemanticTokens>();
+
 export function semanticTokens(semantics: DocumentSemantics, start?: number, end?: number): SemanticTokens {
+  if (start === undefined && end === undefined) {
+    const known = encodedOf.get(semantics);
+    if (known) return known;
+    const encoded = encode(semantics);
+    encodedOf.set(semantics, encoded);
+    return encoded;
+  }
+  return encode(semantics, start, end);
+}
+
+function encode(semantics: DocumentSemantics, start?: number, end?: number): SemanticTokens {
   const lines = semantics.model.document.lines;
   const builder = new SemanticTokensBuilder();
   for (const token of semanticTokenList(semantics, start, end)) {
