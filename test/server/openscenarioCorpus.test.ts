@@ -82,7 +82,7 @@ describe('language server on the real OpenSCENARIO corpus (../shared/corpus/open
     const hint = hints.find((candidate) => candidate.position.line === positionAt(text, expression).line);
     assert.equal(hint?.label, '= 30');
     const hover = await esmini.request<Hover>('textDocument/hover', esmini.at(uri, positionAt(text, expression + 4)));
-    assert.match((hover.contents as MarkupContent).value, /= \*\*30\*\* \(double\)[\s\S]*`\$EgoSpeed` = 108 \(double\), declared in <OpenSCENARIO>/);
+    assert.match((hover.contents as MarkupContent).value, /= \*\*30\*\* \(double\)[\s\S]*`\$EgoSpeed` = 108 \(double\), declared in `<OpenSCENARIO>`/);
     await esmini.close(uri);
   });
 });

@@ -171,14 +171,14 @@ describe('editor features on the semantic model: $name, ${...} and catalogs (JSO
     const hover = await client.request<Hover>('textDocument/hover', client.at(uri, inside(text, '${2*$a/$b}', 5)));
     const shown = hoverText(hover);
     assert.match(shown, /`\$\{2\*\$a\/\$b\}` = \*\*3\*\* \(double\)/);
-    assert.match(shown, new RegExp(`\`\\$a\` = 6 \\(double\\), declared in <OpenSCENARIO> on line ${lineOf(text, 'name="a"') + 1}`));
-    assert.match(shown, new RegExp(`\`\\$b\` = 4 \\(double\\), declared in <OpenSCENARIO> on line ${lineOf(text, 'name="b"') + 1}`));
+    assert.match(shown, new RegExp(`\`\\$a\` = 6 \\(double\\), declared in \`<OpenSCENARIO>\` on line ${lineOf(text, 'name="a"') + 1}`));
+    assert.match(shown, new RegExp(`\`\\$b\` = 4 \\(double\\), declared in \`<OpenSCENARIO>\` on line ${lineOf(text, 'name="b"') + 1}`));
   });
 
   it('hovers $name with its type, value and declaration, and a catalog entry parameter with its assignment', async function () {
     const shown = hoverText(await client.request<Hover>('textDocument/hover', client.at(uri, inside(text, 'value="$speed"', 9, 1))));
     assert.match(shown, /\*\*\$speed\*\* = 20 \(double\)/);
-    assert.match(shown, /declared in <Story S> on line/);
+    assert.match(shown, /declared in `<Story S>` on line/);
     const owner = hoverText(await client.request<Hover>('textDocument/hover', client.at(uri, inside(text, 'entityRef="$owner"', 13))));
     assert.match(owner, /\*\*\$owner\*\* = Ego \(string\)/);
     const assignment = hoverText(await client.request<Hover>('textDocument/hover', client.at(uri, inside(text, 'parameterRef="MaxSpeed"', 16))));

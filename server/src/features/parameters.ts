@@ -123,7 +123,8 @@ export function parameterCompletion(document: TextDocument, semantics: DocumentS
 
 function scopeName(declaration: Declaration): string {
   const named = declaration.scope.element.attributes.find((attr) => attr.name === 'name')?.value;
-  return `<${declaration.scope.element.name}${named ? ` ${named}` : ''}>`;
+  // A code span: markdown would otherwise read the tag as HTML.
+  return `\`<${declaration.scope.element.name}${named ? ` ${named}` : ''}>\``;
 }
 
 function provenanceLine(semantics: DocumentSemantics, provenance: Provenance): string | undefined {
