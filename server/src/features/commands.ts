@@ -30,7 +30,7 @@ function forceOf(options: unknown): boolean {
   return Boolean(options && typeof options === 'object' && (options as { force?: unknown }).force === true);
 }
 
-async function refOf(workspace: Workspace, uri: unknown): Promise<SourceRef> {
+export async function refOf(workspace: Workspace, uri: unknown): Promise<SourceRef> {
   if (typeof uri !== 'string') throw invalidParams('expected a document URI');
   const ref = await workspace.uris.toRef(uri);
   if (!ref) throw invalidParams(`not a scenario URI: ${uri}`);
