@@ -434,6 +434,16 @@ export function defineExtensionTests(): void {
       requireServerFeature(this, 'inlay hints', !!api().serverCapabilities()?.inlayHintProvider);
       const file = path.join(workspaceRoot(), 'expressions.xosc');
       fs.writeFileSync(file, EXPRESSIONS);
+      // The file is gone again after this test, so that the other tests see the example workspace as it is.
+      try {
+        await showExpression();
+      } finally {
+        await vscode.commands.executeCommand('workbench.action.closeAllEditors');
+        fs.rmSync(file, { force: true });
+      }
+    });
+
+    async function showExpression(): Promise<void> {
       const editor = await open('expressions.xosc');
       const hints = await waitFor('the inlay hints', async () => {
         const found = await vscode.commands.executeCommand<vscode.InlayHint[]>('vscode.executeInlayHintProvider', editor.document.uri, new vscode.Range(0, 0, editor.document.lineCount, 0));
@@ -449,7 +459,7 @@ export function defineExtensionTests(): void {
       await vscode.commands.executeCommand('editor.action.showHover');
       await waitFor('the hover with the value and the declarations', async () => (await pageShows('= 3 (double)', '.monaco-hover')) && (await pageShows('declared in <OpenSCENARIO> on line 6', '.monaco-hover')));
       await screenshot('expression value as inlay hint and hover');
-    });
+    }
 
     it(INSIDE_TESTS.insidePackage, async function () {
       requireServerFeature(this, 'go to definition', !!api().serverCapabilities()?.definitionProvider);
