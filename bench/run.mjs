@@ -71,6 +71,13 @@ for (const name of ['lsp.mjs', 'format.mjs', 'esmini.mjs']) {
   if (result.status !== 0) process.exitCode = result.status ?? 1;
 }
 
+const editorBench = path.join(root, 'bench', 'editorFeatures.mjs');
+if (existsSync(editorBench)) {
+  console.log('');
+  const result = spawnSync(process.execPath, [editorBench], { stdio: 'inherit' });
+  if (result.status !== 0) process.exitCode = result.status ?? 1;
+}
+
 const birdsEyeBench = path.join(root, 'bench', 'birdsEye.ts');
 if (existsSync(birdsEyeBench)) {
   console.log('');

@@ -6,6 +6,7 @@ import { createRequire } from 'node:module';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
+import { parameterScenario } from './parameterScenario.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 const runs = Number(process.env.BENCH_RUNS ?? 15) * 2;
@@ -26,35 +27,6 @@ await esbuild.build({
 const core = createRequire(import.meta.url)(bundle);
 rmSync(work, { recursive: true, force: true });
 
-/** 1,000 root parameters (half of them expressions over earlier ones) and 1,000 attributes with expressions. */
-function scenario() {
-  const declarations = [];
-  for (let i = 0; i < 1000; i++) {
-    const value = i % 2 === 0 ? String(i) : `\${$P${i - 1} * 2 + ${i}}`;
-    declarations.push(`    <ParameterDeclaration name="P${i}" parameterType="double" value="${value}"/>`);
-  }
-  const events = [];
-  for (let i = 0; i < 1000; i++) {
-    events.push(`          <Event name="E${i}" priority="overwrite"><Action name="A${i}"><AbsoluteTargetSpeed value="\${($P${i} + $P${(i * 7) % 1000}) / 3.6 + round($P${(i * 13) % 1000})}"/></Action></Event>`);
-  }
-  return `<?xml version="1.0"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="bench" author="bench"/>
-  <ParameterDeclarations>
-${declarations.join('\n')}
-  </ParameterDeclarations>
-  <Entities><ScenarioObject name="Ego"/></Entities>
-  <Storyboard>
-    <Story name="S"><Act name="A"><ManeuverGroup name="G" maximumExecutionCount="1"><Actors selectTriggeringEntities="false"><EntityRef entityRef="Ego"/></Actors>
-        <Maneuver name="M">
-${events.join('\n')}
-        </Maneuver>
-    </ManeuverGroup></Act></Story>
-  </Storyboard>
-</OpenSCENARIO>
-`;
-}
-
 function time(action) {
   const started = process.hrtime.bigint();
   const result = action();
@@ -66,7 +38,7 @@ function summary(samples) {
   return { median: sorted[Math.floor(sorted.length / 2)], p95: sorted[Math.min(sorted.length - 1, Math.ceil(sorted.length * 0.95) - 1)] };
 }
 
-const text = scenario();
+const text = parameterScenario();
 const emptyCatalogs = { locations: [], references: [], files: [] };
 const ref = { disk: path.join(root, 'bench.xosc'), entries: [] };
 const parse = [];

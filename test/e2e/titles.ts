@@ -11,6 +11,7 @@ export const INSIDE_TESTS = {
   definition: 'F12 on scenarioFileName opens the referenced file',
   preview: 'the preview shows the flattened scenario and changes after an edit',
   insidePackage: 'language features work on a file inside a .mosc',
+  expression: 'a ${...} shows its value as an inlay hint and in the hover, with the declarations it reads',
   scenarioPath: 'the modular2simple.scenarioPath setting reaches the server',
   pack: 'Pack from the command palette writes a package equivalent to the CLI\'s',
   flatten: 'Flatten from the command palette writes a file equivalent to the CLI\'s',

@@ -95,7 +95,7 @@ describe('language server: failures are loud (JSON-RPC)', function () {
     it('passes a deliberate error through unchanged, logging nothing', async function () {
       await assert.rejects(
         client.request('textDocument/rename', { ...client.at(mainUri, positionAfter(main.text, '<OpenSCENARIO')), newName: 'X' }),
-        rejectsWith(LSPErrorCodes.RequestFailed, /^only ManeuverGroup names can be renamed$/),
+        rejectsWith(LSPErrorCodes.RequestFailed, /^only ManeuverGroup and parameter names can be renamed$/),
       );
       assert.deepEqual(client.errors, []);
     });

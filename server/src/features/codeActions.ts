@@ -6,6 +6,7 @@ import { SourceRef } from '../core/sources';
 import { attribute, elementAt, escapeAttributeValue, parseXml, XmlElement } from '../core/xml';
 import { groupLinkOf, keyChoices, linkOf } from '../analysis';
 import { ancestor } from '../cursor';
+import { declareParameterFix } from './declareParameter';
 import { DiagnosticData } from './diagnostics';
 import { Workspace } from '../workspace';
 import { schemaFixes } from './schemaCodeActions';
@@ -71,6 +72,11 @@ async function fixesFor(workspace: Workspace, uri: string, ref: SourceRef, docum
       const value = (parameter && attribute(parameter, 'value')?.value) ?? '';
       const at = targetDocument.positionAt(attributeInsertOffset(element));
       return [quickFix(`Add default ${listedName}="${value}" to <${element.name}>`, diagnostic, { changes: { [workspace.uriOf(targetRef)]: [TextEdit.insert(at, ` ${listedName}="${escapeAttributeValue(value)}"`)] } }, true)];
+    }
+    case 'undeclared-parameter': {
+      const source = await workspace.source(ref);
+      const fix = data.parameter && source.semantics ? declareParameterFix(uri, document, source, source.semantics, diagnostic, data.parameter, workspace.folders[0]) : undefined;
+      return fix ? [fix] : [];
     }
     default:
       return [];

@@ -10,6 +10,8 @@ import { keyChoices, overridablePlace, sourceForFileName } from '../analysis';
 import { attributeValuesBetween, elementNameContextAt, lastAttributeValueBefore, valueContextAt, ValueContext } from '../cursor';
 import { Workspace } from '../workspace';
 import { schemaCompletion } from './schemaCompletion';
+import { catalogCompletion } from './catalogs';
+import { dollarPrefix, parameterCompletion } from './parameters';
 
 const MAX_SNIPPETS = 200;
 
@@ -204,12 +206,22 @@ async function snippetItems(workspace: Workspace, ref: SourceRef, document: Text
   return items;
 }
 
+/** Parameters after `$` and catalog or entry names in a CatalogReference, from the semantic model. */
+async function semanticCompletion(workspace: Workspace, ref: SourceRef, document: TextDocument, context: ValueContext, offset: number): Promise<CompletionItem[] | undefined> {
+  const semantics = (await workspace.source(ref)).semantics;
+  if (!semantics) return undefined;
+  if (dollarPrefix(context) !== undefined) return parameterCompletion(document, semantics, context, offset);
+  return catalogCompletion(workspace, semantics, document, context);
+}
+
 /** Completion from the text around the cursor, so that it works while the document is not well-formed. */
 export async function complete(workspace: Workspace, ref: SourceRef, document: TextDocument, offset: number): Promise<CompletionItem[]> {
   const text = document.getText();
   const context = valueContextAt(text, offset);
   if (context) {
     const range = replaceRange(document, context.valueStart, context.valueEnd);
+    const semantic = await semanticCompletion(workspace, ref, document, context, offset);
+    if (semantic) return semantic;
     if (context.element === 'ScenarioReference' && context.attribute === 'scenarioFileName') {
       return (await fileNameCandidates(workspace, ref)).map((candidate, index) => ({
         label: candidate.name,

@@ -5,12 +5,18 @@ import { SourceRef } from '../core/sources';
 import { elementPlace, groupLinkOf, keyMatchOf, linkOf, overridablePlace, Place, resolvedTarget } from '../analysis';
 import { ancestor, attributeAt } from '../cursor';
 import { Workspace } from '../workspace';
+import { catalogDefinition } from './catalogs';
+import { parameterDefinition } from './parameters';
 
 /** Where the name under the cursor is defined; empty when it resolves to nothing. */
 export async function definitionPlaces(workspace: Workspace, ref: SourceRef, offset: number): Promise<Place[]> {
   const source = await workspace.source(ref);
   const model = source.original;
   if (!model) return [];
+  // An entryName written `$name` goes both to the catalog entry and to the parameter.
+  const catalog = source.semantics && catalogDefinition(source.semantics, offset);
+  const parameter = source.semantics && parameterDefinition(source.semantics, offset);
+  if (catalog || parameter) return [...(catalog ?? []), ...(parameter ?? [])];
   const hit = attributeAt(model.document, offset);
   if (!hit) return [];
   const { element, attribute } = hit;

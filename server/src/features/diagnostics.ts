@@ -20,6 +20,8 @@ export interface DiagnosticData {
   /** Schema fixes: the missing names (comma-separated) and where they go. */
   missing?: string;
   insertAt?: string;
+  /** The parameter an undeclared-parameter diagnostic names. */
+  parameter?: string;
 }
 
 /** LSP severity: an unknown key is an error for the CLI but a warning while editing (SPEC 7). */

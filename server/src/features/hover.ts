@@ -5,6 +5,8 @@ import { displayRef, SourceRef } from '../core/sources';
 import { ManeuverGroupInfo } from '../core/model';
 import { Workspace } from '../workspace';
 import { schemaHover } from './schemaHover';
+import { assignmentHover } from './catalogs';
+import { parameterHover } from './parameters';
 
 function where(workspace: Workspace, place: Place | undefined): string {
   if (!place) return 'an unknown place';
@@ -26,6 +28,8 @@ async function modularHover(workspace: Workspace, ref: SourceRef, offset: number
   const source = await workspace.source(ref);
   const model = source.original;
   if (!model) return null;
+  const semantic = source.semantics ? (assignmentHover(workspace, source.semantics, offset) ?? (await parameterHover(workspace, source.semantics, offset))) : undefined;
+  if (semantic) return { contents: { kind: MarkupKind.Markdown, value: semantic.markdown }, range: model.document.lines.range(semantic.start, semantic.end) };
   const hit = attributeAt(model.document, offset);
   if (!hit) return null;
   const { element, attribute } = hit;

@@ -17,6 +17,8 @@ import * as formatting from './formatting';
 import * as hover from './hover';
 import * as initialize from './initialize';
 import * as initialized from './initialized';
+import * as inlayHint from './inlayHint';
+import * as semanticTokens from './semanticTokens';
 import * as pack from './pack';
 import * as prepareRename from './prepareRename';
 import * as preview from './preview';
@@ -53,6 +55,8 @@ const HANDLERS: { register(context: ServerContext): void }[] = [
   documentLink,
   formatting,
   rangeFormatting,
+  inlayHint,
+  semanticTokens,
   flattenToText,
   flattenToFile,
   pack,

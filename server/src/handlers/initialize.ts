@@ -1,5 +1,6 @@
 import * as path from 'node:path';
 import { CodeActionKind, InitializeParams, InitializeResult, TextDocumentSyncKind } from 'vscode-languageserver/node';
+import { SEMANTIC_TOKENS_LEGEND } from '../features/semanticTokens';
 import { CUSTOM_REQUESTS } from '../protocol';
 import { filePathOf } from '../uris';
 import { readSettings } from '../workspace';
@@ -21,7 +22,9 @@ export function register(context: ServerContext): void {
     return {
       capabilities: {
         textDocumentSync: { openClose: true, change: TextDocumentSyncKind.Incremental, save: { includeText: false } },
-        completionProvider: { triggerCharacters: ['"', "'", ',', '<', '.'], resolveProvider: false },
+        completionProvider: { triggerCharacters: ['"', "'", ',', '<', '.', '$'], resolveProvider: false },
+        inlayHintProvider: true,
+        semanticTokensProvider: { legend: SEMANTIC_TOKENS_LEGEND, full: true, range: true },
         hoverProvider: true,
         definitionProvider: true,
         referencesProvider: true,

@@ -1,8 +1,9 @@
 import { refId } from '../core/sources';
+import { parameterRenameRange } from '../features/parameters';
 import { targetAt } from '../features/references';
 import { openDocument, request, ServerContext } from './context';
 
-/** `textDocument/prepareRename`: only ManeuverGroup names (declarations or references) can be renamed. */
+/** `textDocument/prepareRename`: ManeuverGroup names (declarations or references) and parameters can be renamed. */
 export function register(context: ServerContext): void {
   const { workspace } = context;
   context.connection.onPrepareRename(
@@ -10,6 +11,9 @@ export function register(context: ServerContext): void {
       const open = await openDocument(context, params.textDocument.uri);
       if (!open) return null;
       const offset = open.document.offsetAt(params.position);
+      const semantics = (await workspace.source(open.ref)).semantics;
+      const parameter = semantics ? parameterRenameRange(semantics, offset) : undefined;
+      if (parameter) return { range: { start: open.document.positionAt(parameter.start), end: open.document.positionAt(parameter.end) }, placeholder: parameter.name };
       const subject = await targetAt(workspace, open.ref, offset);
       if (!subject || subject.kind !== 'group') return null;
       if (refId(subject.ref) === refId(open.ref)) return { range: subject.declaration.range, placeholder: subject.name };

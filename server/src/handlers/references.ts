@@ -1,4 +1,6 @@
 import { placesToLocations, targetAt, usagesOf } from '../features/references';
+import { parameterReferences } from '../features/parameters';
+import { toLocations } from '../features/definition';
 import { checkCancelled, openDocument, request, ServerContext } from './context';
 
 const METHOD = 'textDocument/references';
@@ -10,6 +12,9 @@ export function register(context: ServerContext): void {
       await context.indexed;
       checkCancelled(token, METHOD);
       const open = await openDocument(context, params.textDocument.uri);
+      const semantics = open ? (await context.workspace.source(open.ref)).semantics : undefined;
+      const parameterPlaces = open && semantics ? parameterReferences(semantics, open.document.offsetAt(params.position), params.context.includeDeclaration) : undefined;
+      if (parameterPlaces) return toLocations(context.workspace, parameterPlaces);
       const subject = open ? await targetAt(context.workspace, open.ref, open.document.offsetAt(params.position)) : undefined;
       if (!subject) return [];
       checkCancelled(token, METHOD);

@@ -1,5 +1,6 @@
 import { LSPErrorCodes, ResponseError } from 'vscode-languageserver/node';
 import { renameGroup, targetAt } from '../features/references';
+import { renameParameter } from '../features/parameters';
 import { checkCancelled, openDocument, request, ServerContext } from './context';
 
 const METHOD = 'textDocument/rename';
@@ -12,8 +13,11 @@ export function register(context: ServerContext): void {
       await context.indexed;
       checkCancelled(token, METHOD);
       const open = await openDocument(context, params.textDocument.uri);
+      const semantics = open ? (await workspace.source(open.ref)).semantics : undefined;
+      const parameterEdit = open && semantics ? renameParameter(workspace, semantics, open.document.offsetAt(params.position), params.newName) : undefined;
+      if (parameterEdit) return parameterEdit;
       const subject = open ? await targetAt(workspace, open.ref, open.document.offsetAt(params.position)) : undefined;
-      if (!subject || subject.kind !== 'group') throw new ResponseError(LSPErrorCodes.RequestFailed, 'only ManeuverGroup names can be renamed');
+      if (!subject || subject.kind !== 'group') throw new ResponseError(LSPErrorCodes.RequestFailed, 'only ManeuverGroup and parameter names can be renamed');
       if (subject.ref.entries.length > 0 && !workspace.editablePackages) {
         throw new ResponseError(LSPErrorCodes.RequestFailed, 'the group is inside a .mosc package, and this editor cannot write into packages');
       }

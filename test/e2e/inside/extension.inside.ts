@@ -106,6 +106,35 @@ function flattenTree(node: StructureNode): StructureNode[] {
   return [node, ...node.children.flatMap(flattenTree)];
 }
 
+/** A scenario whose stop condition is a ${...} over two root parameters (it evaluates to 3). */
+const EXPRESSIONS = `<?xml version="1.0" encoding="UTF-8"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="1" date="2024-01-01T00:00:00" description="expressions" author="tests"/>
+  <ParameterDeclarations>
+    <ParameterDeclaration name="a" parameterType="double" value="6"/>
+    <ParameterDeclaration name="b" parameterType="double" value="4"/>
+  </ParameterDeclarations>
+  <RoadNetwork/>
+  <Entities>
+    <ScenarioObject name="Ego"/>
+  </Entities>
+  <Storyboard>
+    <Init>
+      <Actions/>
+    </Init>
+    <StopTrigger>
+      <ConditionGroup>
+        <Condition name="End" delay="0" conditionEdge="rising">
+          <ByValueCondition>
+            <SimulationTimeCondition value="\${2*$a/$b}" rule="greaterThan"/>
+          </ByValueCondition>
+        </Condition>
+      </ConditionGroup>
+    </StopTrigger>
+  </Storyboard>
+</OpenSCENARIO>
+`;
+
 export function defineExtensionTests(): void {
   describe('Modular2Simple in a real VS Code', function () {
     this.timeout(45_000);
@@ -467,6 +496,37 @@ export function defineExtensionTests(): void {
       cli(['flatten', braking.fsPath, '-o', expectedPackage]);
       assert.equal(firstDifference(fs.readFileSync(fromPackage, 'utf8'), fs.readFileSync(expectedPackage, 'utf8')), undefined);
     });
+
+    it(INSIDE_TESTS.expression, async function () {
+      requireServerFeature(this, 'inlay hints', !!api().serverCapabilities()?.inlayHintProvider);
+      const file = path.join(workspaceRoot(), 'expressions.xosc');
+      fs.writeFileSync(file, EXPRESSIONS);
+      // The file is gone again after this test, so that the other tests see the example workspace as it is.
+      try {
+        await showExpression();
+      } finally {
+        await vscode.commands.executeCommand('workbench.action.closeAllEditors');
+        fs.rmSync(file, { force: true });
+      }
+    });
+
+    async function showExpression(): Promise<void> {
+      const editor = await open('expressions.xosc');
+      const hints = await waitFor('the inlay hints', async () => {
+        const found = await vscode.commands.executeCommand<vscode.InlayHint[]>('vscode.executeInlayHintProvider', editor.document.uri, new vscode.Range(0, 0, editor.document.lineCount, 0));
+        return found.length > 0 ? found : undefined;
+      });
+      assert.deepEqual(hints.map((hint) => hint.label), ['= 3']);
+      // What a person sees: the value drawn after the attribute, then the hover over the expression.
+      // The editor draws spaces as no-break spaces.
+      await waitFor('the hint drawn in the editor', async () => (await pageShows('= 3', '.monaco-editor .view-lines')) || (await pageShows('=\u00a03', '.monaco-editor .view-lines')));
+      const cursor = positionOf(editor.document, '${2*$a/$b}', 3);
+      editor.selection = new vscode.Selection(cursor, cursor);
+      await vscode.commands.executeCommand('workbench.action.focusActiveEditorGroup');
+      await vscode.commands.executeCommand('editor.action.showHover');
+      await waitFor('the hover with the value and the declarations', async () => (await pageShows('= 3 (double)', '.monaco-hover')) && (await pageShows('declared in <OpenSCENARIO> on line 6', '.monaco-hover')));
+      await screenshot('expression value as inlay hint and hover');
+    }
 
     it(INSIDE_TESTS.insidePackage, async function () {
       requireServerFeature(this, 'go to definition', !!api().serverCapabilities()?.definitionProvider);

@@ -1,0 +1,53 @@
+import { InlayHint, InlayHintKind } from 'vscode-languageserver/node';
+import { DocumentSemantics, formatValue } from '../core/semantics';
+
+interface ExpressionHint {
+  /** Offset of the attribute value's end (the hint goes after its closing quote). */
+  offset: number;
+  hint: InlayHint;
+}
+
+// A model never changes once built, so the hints of one analysis are computed once, for every range asked.
+const hintsOf = new WeakMap<DocumentSemantics, ExpressionHint[]>();
+
+function allHints(semantics: DocumentSemantics): ExpressionHint[] {
+  const known = hintsOf.get(semantics);
+  if (known) return known;
+  const lines = semantics.model.document.lines;
+  const hints: ExpressionHint[] = [];
+  for (const site of semantics.model.sites) {
+    if (site.form.kind !== 'expression') continue;
+    const result = semantics.evaluator.attributeValue(site.element, site.attribute);
+    // An expression that cannot be evaluated has a diagnostic instead.
+    if (!result.ok) continue;
+    hints.push({
+      offset: site.attribute.valueEnd,
+      hint: {
+        position: lines.positionAt(site.attribute.valueEnd + 1),
+        label: `= ${formatValue(result.value)}`,
+        kind: InlayHintKind.Parameter,
+        paddingLeft: true,
+        tooltip: `${site.attribute.value.trim()} evaluates to ${formatValue(result.value)} (${result.type})`,
+      },
+    });
+  }
+  hints.sort((a, b) => a.offset - b.offset);
+  hintsOf.set(semantics, hints);
+  return hints;
+}
+
+/** The value of every `${...}` attribute between two offsets, shown after its closing quote. */
+export function expressionHints(semantics: DocumentSemantics, start: number, end: number): InlayHint[] {
+  const hints = allHints(semantics);
+  // The first hint at or after `start`, by binary search: an editor asks for one screen at a time.
+  let low = 0;
+  let high = hints.length;
+  while (low < high) {
+    const middle = (low + high) >> 1;
+    if (hints[middle].offset < start) low = middle + 1;
+    else high = middle;
+  }
+  const result: InlayHint[] = [];
+  for (let index = low; index < hints.length && hints[index].offset <= end; index++) result.push(hints[index].hint);
+  return result;
+}

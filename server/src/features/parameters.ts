@@ -1,0 +1,237 @@
+import { CompletionItem, CompletionItemKind, LSPErrorCodes, ResponseError, TextEdit, WorkspaceEdit } from 'vscode-languageserver/node';
+import { TextDocument } from 'vscode-languageserver-textdocument';
+import { composedValues } from '../core/carry';
+import { FlatSource, LinkedGroupReference } from '../core/flatten';
+import {
+  Declaration,
+  declarationAt,
+  DocumentSemantics,
+  formatValue,
+  parametersInScopeAt,
+  parameterUseAt,
+  Provenance,
+  referencesOf,
+  valueAt,
+  ValueResult,
+} from '../core/semantics';
+import { displayRef, refId, SourceRef } from '../core/sources';
+import { XmlAttribute, XmlElement } from '../core/xml';
+import { Place } from '../analysis';
+import { ValueContext } from '../cursor';
+import { Workspace } from '../workspace';
+
+/**
+ * `$name` and `${...}` in the editor: definition, references, rename, completion after `$` and
+ * hover, all read from the core's semantic model (core/semantics), never re-derived here.
+ */
+
+/** The semantics of the file as the workspace read it (unsaved text and packages included). */
+export async function semanticsOf(workspace: Workspace, ref: SourceRef): Promise<{ source: FlatSource; semantics: DocumentSemantics } | undefined> {
+  const source = await workspace.source(ref);
+  return source.semantics ? { source, semantics: source.semantics } : undefined;
+}
+
+function lineOf(semantics: DocumentSemantics, offset: number): number {
+  return semantics.model.document.lines.positionAt(offset).line + 1;
+}
+
+function declarationPlace(semantics: DocumentSemantics, declaration: Declaration): Place {
+  const name = declaration.nameAttribute;
+  const range = name ? semantics.model.document.lines.range(name.valueStart, name.valueEnd) : semantics.model.document.lines.range(declaration.element.start, declaration.element.nameEnd);
+  return { ref: semantics.ref, range };
+}
+
+/** Where the `$name` (or parameterRef) at the offset is declared; undefined when the offset holds none. */
+export function parameterDefinition(semantics: DocumentSemantics, offset: number): Place[] | undefined {
+  const use = parameterUseAt(semantics, offset);
+  if (!use) return undefined;
+  return use.declaration ? [declarationPlace(semantics, use.declaration)] : [];
+}
+
+/** Every use of the declaration named at the offset (by a use or by its own name), optionally with the declaration. */
+export function parameterReferences(semantics: DocumentSemantics, offset: number, includeDeclaration: boolean): Place[] | undefined {
+  const declaration = declarationAt(semantics, offset);
+  if (!declaration) return undefined;
+  const lines = semantics.model.document.lines;
+  const uses = referencesOf(semantics, declaration).map((use) => ({ ref: semantics.ref, range: lines.range(use.start, use.end) }));
+  return includeDeclaration ? [declarationPlace(semantics, declaration), ...uses] : uses;
+}
+
+/** The name's own offsets (without the `$`) at the offset, for prepareRename. */
+export function parameterRenameRange(semantics: DocumentSemantics, offset: number): { start: number; end: number; name: string } | undefined {
+  const use = parameterUseAt(semantics, offset);
+  if (use) {
+    if (!use.declaration) return undefined;
+    const start = use.end - use.name.length;
+    return { start, end: use.end, name: use.name };
+  }
+  const declaration = declarationAt(semantics, offset);
+  const name = declaration?.nameAttribute;
+  return declaration && name ? { start: name.valueStart, end: name.valueEnd, name: declaration.name } : undefined;
+}
+
+const PARAMETER_NAME = /^[A-Za-z_][A-Za-z0-9_]*$/;
+
+/**
+ * Renames the parameter named at the offset: its declaration and exactly its uses. A same-named
+ * parameter of another scope is another Declaration of the model, so it is left alone.
+ */
+export function renameParameter(workspace: Workspace, semantics: DocumentSemantics, offset: number, newName: string): WorkspaceEdit | undefined {
+  const declaration = declarationAt(semantics, offset);
+  if (!declaration?.nameAttribute) return undefined;
+  const name = newName.startsWith('$') ? newName.slice(1) : newName;
+  if (!PARAMETER_NAME.test(name)) throw new ResponseError(LSPErrorCodes.RequestFailed, `'${newName}' is not a parameter name (letters, digits and _, not starting with a digit)`);
+  if (semantics.ref.entries.length > 0 && !workspace.editablePackages) {
+    throw new ResponseError(LSPErrorCodes.RequestFailed, 'the parameter is inside a .mosc package, and this editor cannot write into packages');
+  }
+  const lines = semantics.model.document.lines;
+  const edits: TextEdit[] = [TextEdit.replace(lines.range(declaration.nameAttribute.valueStart, declaration.nameAttribute.valueEnd), name)];
+  for (const use of referencesOf(semantics, declaration)) {
+    // A use's offsets cover `$name`, or only the name for a parameterRef; the name is its tail either way.
+    edits.push(TextEdit.replace(lines.range(use.end - use.name.length, use.end), name));
+  }
+  return { changes: { [workspace.uriOf(semantics.ref)]: edits } };
+}
+
+/** The `$` and name typed before the cursor in an attribute value, when the cursor is completing a parameter. */
+export function dollarPrefix(context: ValueContext): string | undefined {
+  return /\$[A-Za-z0-9_]*$/.exec(context.prefix)?.[0];
+}
+
+export function describeValue(result: ValueResult): string {
+  return result.ok ? `${formatValue(result.value)} (${result.type})` : `cannot be evaluated: ${result.errors[0]?.message ?? 'unknown error'}`;
+}
+
+/** Completion after `$`: the parameters in scope at the cursor, innermost first, with value and type. */
+export function parameterCompletion(document: TextDocument, semantics: DocumentSemantics, context: ValueContext, offset: number): CompletionItem[] {
+  const typed = dollarPrefix(context) ?? '$';
+  const start = offset - typed.length;
+  const text = document.getText();
+  let end = offset;
+  while (end < context.valueEnd && /[A-Za-z0-9_]/.test(text[end])) end++;
+  const range = { start: document.positionAt(start), end: document.positionAt(end) };
+  return parametersInScopeAt(semantics, offset).map(({ declaration, value }, index) => ({
+    label: `$${declaration.name}`,
+    kind: CompletionItemKind.Variable,
+    detail: `${declaration.writtenType ?? 'untyped'} = ${value.ok ? formatValue(value.value) : declaration.value}`,
+    documentation: `declared in <${declaration.scope.element.name}> on line ${lineOf(semantics, declaration.element.start)}`,
+    sortText: String(index).padStart(5, '0'),
+    filterText: `$${declaration.name}`,
+    textEdit: { range, newText: `$${declaration.name}` },
+  }));
+}
+
+function scopeName(declaration: Declaration): string {
+  const named = declaration.scope.element.attributes.find((attr) => attr.name === 'name')?.value;
+  // A code span: markdown would otherwise read the tag as HTML.
+  return `\`<${declaration.scope.element.name}${named ? ` ${named}` : ''}>\``;
+}
+
+function provenanceLine(semantics: DocumentSemantics, provenance: Provenance): string | undefined {
+  switch (provenance.kind) {
+    case 'declaration':
+      return `declared in ${scopeName(provenance.declaration)} on line ${lineOf(semantics, provenance.declaration.element.start)}: \`${provenance.declaration.value}\``;
+    case 'assignment':
+      return `set by the catalog ParameterAssignment on line ${lineOf(semantics, provenance.assignment.element.start)}`;
+    case 'override':
+      return `overridden by the ParameterReference key \`${provenance.key}\``;
+    case 'carried':
+      return `carried from \`${provenance.from}\`, where \`${provenance.declaration.name}\` is declared \`${provenance.declaration.value}\``;
+    default:
+      return undefined;
+  }
+}
+
+/** The source file (shown relative to the workspace) an imported group of `main` came from. */
+function carriedFrom(workspace: Workspace, main: FlatSource, group: LinkedGroupReference): string | undefined {
+  const source = main.links.find((link) => link.groups.includes(group))?.source;
+  return source ? displayRef(source.ref, workspace.folders[0]) : undefined;
+}
+
+/** What each open main file importing this file makes of the attribute (a ParameterReference override or a carried declaration). */
+async function composedLines(workspace: Workspace, semantics: DocumentSemantics, element: XmlElement, attr: XmlAttribute): Promise<string[]> {
+  const lines: string[] = [];
+  const id = refId(semantics.ref);
+  for (const open of workspace.documents.values()) {
+    if (refId(open.ref) === id) continue;
+    const main = await workspace.source(open.ref);
+    if ( !main.links.some((link) => link.source && refId(link.source.ref) === id)) continue;
+    for (const { group, result } of composedValues(main, element, attr.name)) {
+      const how =
+        result.provenance.kind === 'override'
+          ? `overridden by key \`${result.provenance.key}\``
+          : result.provenance.kind === 'carried'
+            ? `carried from \`${carriedFrom(workspace, main, group) ?? result.provenance.from}\``
+            : result.provenance.kind === 'declaration'
+              ? `the main file's declaration of \`${result.provenance.declaration.name}\``
+              : 'as written';
+      lines.push(`- in \`${displayRef(main.ref, workspace.folders[0])}\` (group ${group.info.name}): **${result.ok ? formatValue(result.value) : 'not evaluable'}**, ${how}`);
+    }
+  }
+  return lines;
+}
+
+/**
+ * Hover on a `$name` or an attribute written `${...}`: type, value and where the value comes from
+ * (the declarations of every parameter it reads).
+ */
+export async function parameterHover(workspace: Workspace, semantics: DocumentSemantics, offset: number): Promise<{ markdown: string; start: number; end: number } | undefined> {
+  const found = valueAt(semantics, offset);
+  const use = parameterUseAt(semantics, offset);
+  const site = found ? semantics.model.siteOf.get(found.attribute) : undefined;
+  if (found && site) {
+    const { element, attribute: attr, result } = found;
+    const lines: string[] = [];
+    const written = attr.value.trim();
+    lines.push(site.form.kind === 'expression' ? `\`${written}\` = **${result.ok ? formatValue(result.value) : '?'}**${result.ok ? ` (${result.type})` : ''}` : `**${written}** = ${describeValue(result)}`);
+    if (!result.ok) for (const error of result.errors) lines.push(`- error: ${error.message}`);
+    const provenance = provenanceLine(semantics, result.provenance);
+    if (provenance) lines.push('', provenance);
+    if (site.form.kind === 'expression') {
+      const seen = new Set<Declaration>();
+      const uses = semantics.model.uses.filter((candidate) => candidate.attribute === attr && candidate.element === element);
+      if (uses.length > 0) lines.push('', 'parameters:');
+      for (const candidate of uses) {
+        if (!candidate.declaration) {
+          lines.push(`- \`$${candidate.name}\`: not declared in this scope`);
+          continue;
+        }
+        if (seen.has(candidate.declaration)) continue;
+        seen.add(candidate.declaration);
+        const value = semantics.evaluator.declarationValue(candidate.declaration);
+        lines.push(`- \`$${candidate.name}\` = ${describeValue(value)}, declared in ${scopeName(candidate.declaration)} on line ${lineOf(semantics, candidate.declaration.element.start)}`);
+      }
+    }
+    const composed = await composedLines(workspace, semantics, element, attr);
+    if (composed.length > 0) lines.push('', 'in the files that import it:', ...composed);
+    return { markdown: lines.join('\n'), start: attr.valueStart, end: attr.valueEnd };
+  }
+  if (use) {
+    // A parameterRef names a parameter without using its value in an expression.
+    if (!use.declaration) return { markdown: `parameter **${use.name}** is not declared in this scope`, start: use.start, end: use.end };
+    const value = semantics.evaluator.declarationValue(use.declaration);
+    return {
+      markdown: [`parameter **${use.name}** = ${describeValue(value)}`, '', provenanceLine(semantics, value.provenance) ?? ''].join('\n'),
+      start: use.start,
+      end: use.end,
+    };
+  }
+  if (found) {
+    // A literal of an imported group: shown only when a main file overrides it.
+    const composed = await composedLines(workspace, semantics, found.element, found.attribute);
+    if (composed.some((line) => line.includes('overridden by key'))) {
+      return { markdown: [`**${found.attribute.value}** as written`, '', 'in the files that import it:', ...composed].join('\n'), start: found.attribute.valueStart, end: found.attribute.valueEnd };
+    }
+  }
+  const declaration = declarationAt(semantics, offset);
+  if (declaration?.nameAttribute) {
+    const value = semantics.evaluator.declarationValue(declaration);
+    const count = referencesOf(semantics, declaration).length;
+    return {
+      markdown: `parameter **${declaration.name}** = ${describeValue(value)}, declared in ${scopeName(declaration)}; ${count} use${count === 1 ? '' : 's'}`,
+      start: declaration.nameAttribute.valueStart,
+      end: declaration.nameAttribute.valueEnd,
+    };
+  }
+  return undefined;
+}
