@@ -317,16 +317,16 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
     it('shows a key\'s default, the value that takes effect and where each comes from', async function () {
       const hover = await client.request<Hover>('textDocument/hover', client.at(mainUri, positionAt(main.text, main.offsets[2])));
       const value = (hover.contents as MarkupContent).value;
-      assert.match(value, /default \*\*5\*\* declared at simple\.xosc:20/);
-      assert.match(value, /takes effect: \*\*7\*\* \(this key\)/);
+      assert.match(value, /default `5` declared at `simple\.xosc:20`/);
+      assert.match(value, /takes effect: `7` \(this key\)/);
       assert.equal(textAt(main.text, hover.range as Location['range']), 'AbsoluteTargetSpeed.value');
     });
 
     it('shows where a scenarioFileName resolves and the groups it offers', async function () {
       const hover = await client.request<Hover>('textDocument/hover', client.at(mainUri, positionAt(main.text, main.offsets[5])));
       const value = (hover.contents as MarkupContent).value;
-      assert.match(value, /^\*\*pkg\.xosc\*\* → `pkg\.mosc\/main\.xosc`/);
-      assert.match(value, /ManeuverGroups:\n- Inner\.Brake$/);
+      assert.match(value, /^`pkg\.xosc` → `pkg\.mosc\/main\.xosc`/);
+      assert.match(value, /ManeuverGroups:\n- Inner\\\.Brake$/);
     });
 
     it('shows what a referenced group does, one line per maneuver and event', async function () {
