@@ -260,6 +260,34 @@ export class TestClient {
   }
 }
 
+/** A server on a temporary workspace, set up by `useServer` for the tests of one suite. */
+export interface ServerFixture {
+  root: string;
+  client: TestClient;
+  /** The URI of the file opened before the tests. */
+  openUri: string;
+}
+
+/**
+ * Registers before/after hooks of the calling suite: a temporary workspace of `files`, a server on
+ * it, indexed, with `open` (relative) open and its diagnostics published; all gone after the suite.
+ */
+export function useServer(files: Record<string, string | Uint8Array>, open: string): ServerFixture {
+  const fixture = {} as ServerFixture;
+  before(async function () {
+    fixture.root = temporaryWorkspace(files);
+    fixture.client = await TestClient.start({ root: fixture.root });
+    await fixture.client.indexed();
+    fixture.openUri = await fixture.client.openFile(path.join(fixture.root, open));
+    await fixture.client.diagnosticsOf(fixture.openUri);
+  });
+  after(async function () {
+    await fixture.client?.stop();
+    if (fixture.root) fs.rmSync(fixture.root, { recursive: true, force: true });
+  });
+  return fixture;
+}
+
 // Root hooks for every file that drives a server. A failing afterEach would abort the whole run, so
 // each test's errors are only filed here and fail the suite when its client stops (or, for a client
 // never stopped, at the end of the run).

@@ -1,9 +1,8 @@
 import * as assert from 'node:assert/strict';
-import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { Hover, Location, MarkupContent } from 'vscode-languageserver/node';
-import { SIMPLE } from './fixtures/scenarios';
-import { fileUri, markers, positionAfter, temporaryWorkspace, TestClient } from './harness';
+import { mainWithKeys, SIMPLE } from './fixtures/scenarios';
+import { markers, positionAfter, useServer } from './harness';
 
 /** The fixtures' simple scenario with a speed default that is full of Markdown characters. */
 const SIMPLE_EXPRESSION = markers(SIMPLE)
@@ -11,57 +10,18 @@ const SIMPLE_EXPRESSION = markers(SIMPLE)
   .replace('<Event name="SlowDown"', '<Event name="Slow*Down*"');
 
 /** Overrides of group Brake: a bare `value` (both value attributes) and a more specific key for one of them. */
-const MAIN_OVERRIDES = `<?xml version="1.0" encoding="UTF-8"?>
-<OpenSCENARIO>
-  <Entities>
-    <ScenarioObject name="hero"/>
-  </Entities>
-  <Storyboard>
-    <Story name="Main">
-      <Act name="Act1">
-        <ManeuverGroup name="Outer" maximumExecutionCount="1">
-          <Actors selectTriggeringEntities="false">
-            <EntityRef entityRef="hero"/>
-          </Actors>
-          <ScenarioReference scenarioFileName="simple.xosc">
-            <ManeuverGroupReference maneuverGroupName="Brake">
-              <ParameterReference key="value" value="8"/>
-              <ParameterReference key="SimulationTimeCondition.value" value="*9*"/>
-            </ManeuverGroupReference>
-          </ScenarioReference>
-        </ManeuverGroup>
-      </Act>
-    </Story>
-  </Storyboard>
-</OpenSCENARIO>
-`;
+const MAIN_OVERRIDES = mainWithKeys(['<ParameterReference key="value" value="8"/>', '<ParameterReference key="SimulationTimeCondition.value" value="*9*"/>']);
 
 function lineOf(text: string, needle: string): number {
   return text.slice(0, text.indexOf(needle)).split('\n').length - 1;
 }
 
 describe('language server: issue 7 server items (JSON-RPC)', function () {
-  let root: string;
-  let client: TestClient;
-  let mainUri: string;
-
-  before(async function () {
-    assert.notEqual(SIMPLE_EXPRESSION, markers(SIMPLE).text);
-    root = temporaryWorkspace({ 'simple.xosc': SIMPLE_EXPRESSION, 'main.xosc': MAIN_OVERRIDES });
-    client = await TestClient.start({ root });
-    await client.indexed();
-    mainUri = await client.openFile(path.join(root, 'main.xosc'));
-    await client.diagnosticsOf(mainUri);
-  });
-
-  after(async function () {
-    await client?.stop();
-    if (root) fs.rmSync(root, { recursive: true, force: true });
-  });
+  const server = useServer({ 'simple.xosc': SIMPLE_EXPRESSION, 'main.xosc': MAIN_OVERRIDES }, 'main.xosc');
 
   describe('item 4: a key stands for exactly the attributes it sets', function () {
     it('goes from a bare key only to the attribute no more specific key takes', async function () {
-      const locations = await client.request<Location[]>('textDocument/definition', client.at(mainUri, positionAfter(MAIN_OVERRIDES, 'key="val')));
+      const locations = await server.client.request<Location[]>('textDocument/definition', server.client.at(server.openUri, positionAfter(MAIN_OVERRIDES, 'key="val')));
       assert.deepEqual(
         locations.map((location) => `${path.basename(location.uri)}:${location.range.start.line}`),
         [`simple.xosc:${lineOf(SIMPLE_EXPRESSION, '<AbsoluteTargetSpeed')}`],
@@ -69,7 +29,7 @@ describe('language server: issue 7 server items (JSON-RPC)', function () {
     });
 
     it('counts in the hover only the attributes the key sets, naming the one a more specific key takes', async function () {
-      const hover = await client.request<Hover>('textDocument/hover', client.at(mainUri, positionAfter(MAIN_OVERRIDES, 'key="val')));
+      const hover = await server.client.request<Hover>('textDocument/hover', server.client.at(server.openUri, positionAfter(MAIN_OVERRIDES, 'key="val')));
       const value = (hover.contents as MarkupContent).value;
       assert.match(value, /^key `value` sets 1 attribute:\n/);
       assert.match(value, /AbsoluteTargetSpeed\.value`: default `\$\{2\*\$a\*\$b\}` declared at `simple\.xosc:\d+`; takes effect: `8` \(this key\)/);
@@ -77,14 +37,14 @@ describe('language server: issue 7 server items (JSON-RPC)', function () {
     });
 
     it('still goes from the specific key to its attribute', async function () {
-      const locations = await client.request<Location[]>('textDocument/definition', client.at(mainUri, positionAfter(MAIN_OVERRIDES, 'key="SimulationTime')));
+      const locations = await server.client.request<Location[]>('textDocument/definition', server.client.at(server.openUri, positionAfter(MAIN_OVERRIDES, 'key="SimulationTime')));
       assert.deepEqual(locations.map((location) => location.range.start.line), [lineOf(SIMPLE_EXPRESSION, '<SimulationTimeCondition')]);
     });
   });
 
   describe('item 5: hovers show values literally', function () {
     it('shows a default of ${2*$a*$b} as code, not as emphasis', async function () {
-      const hover = await client.request<Hover>('textDocument/hover', client.at(mainUri, positionAfter(MAIN_OVERRIDES, 'key="val')));
+      const hover = await server.client.request<Hover>('textDocument/hover', server.client.at(server.openUri, positionAfter(MAIN_OVERRIDES, 'key="val')));
       const value = (hover.contents as MarkupContent).value;
       assert.ok(value.includes('default `${2*$a*$b}`'), value);
       // Outside code spans no Markdown character of a value is left to be read as emphasis.
@@ -93,8 +53,7 @@ describe('language server: issue 7 server items (JSON-RPC)', function () {
     });
 
     it('escapes names in the group hover', async function () {
-      const uri = fileUri(path.join(root, 'main.xosc'));
-      const hover = await client.request<Hover>('textDocument/hover', client.at(uri, positionAfter(MAIN_OVERRIDES, 'maneuverGroupName="Br')));
+      const hover = await server.client.request<Hover>('textDocument/hover', server.client.at(server.openUri, positionAfter(MAIN_OVERRIDES, 'maneuverGroupName="Br')));
       const value = (hover.contents as MarkupContent).value;
       assert.match(value, /^ManeuverGroup \*\*Brake\*\* of `simple\.xosc`/);
       assert.ok(value.includes('- Event **Slow\\*Down\\***: SetSpeed (SpeedAction)'), value);
