@@ -70,12 +70,15 @@ export function resolvedTarget(resolution: Resolution): SourceRef | undefined {
   return undefined;
 }
 
-/** The referenced file as flattening reads it, from a name written in `from` (used while typing). */
+/** The referenced file as flattening imports it (rendered), from a name written in `from` (used while typing). */
 export async function sourceForFileName(workspace: Workspace, from: SourceRef, fileName: string): Promise<FlatSource | undefined> {
   if (!fileName.trim()) return undefined;
   const resolution = await workspace.store.resolve(fileName, from).catch(() => undefined);
   const target = resolution ? resolvedTarget(resolution) : undefined;
-  return target ? workspace.source(target) : undefined;
+  if (!target) return undefined;
+  // Its groups are read from the flattened model, which is rendered on first use.
+  const flattener = workspace.flattener();
+  return flattener.rendered(await flattener.source(target, []));
 }
 
 export function groupOf(source: FlatSource | undefined, name: string): ManeuverGroupInfo | undefined {
