@@ -84,7 +84,7 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
       const diagnostics = await client.diagnosticsOf(mainUri);
       assert.deepEqual(codes(diagnostics), ['missing-file', 'no-default', 'unknown-group', 'unknown-key', 'xosc-fallback']);
       const unknownKey = diagnostics.find((diagnostic) => diagnostic.code === 'unknown-key') as Diagnostic;
-      assert.equal(unknownKey.severity, DiagnosticSeverity.Warning, 'an unknown key is a warning in the editor');
+      assert.equal(unknownKey.severity, DiagnosticSeverity.Error, 'an unknown key is an error, as for the CLI');
       assert.equal(textAt(main.text, unknownKey.range), 'dela');
       assert.match(messageOf(unknownKey), /did you mean 'delay'/);
       const unknownGroup = diagnostics.find((diagnostic) => diagnostic.code === 'unknown-group') as Diagnostic;

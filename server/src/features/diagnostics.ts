@@ -19,9 +19,8 @@ export interface DiagnosticData {
   entity?: string;
 }
 
-/** LSP severity: an unknown key is an error for the CLI but a warning while editing (SPEC 7). */
+/** LSP severity: the core's own, so the editor and the CLI agree (an unknown key blocks a flatten, so it is an error). */
 function severityOf(problem: Problem): DiagnosticSeverity {
-  if (problem.code === 'unknown-key') return DiagnosticSeverity.Warning;
   if (problem.severity === 'error') return DiagnosticSeverity.Error;
   if (problem.severity === 'warning') return DiagnosticSeverity.Warning;
   return DiagnosticSeverity.Information;
