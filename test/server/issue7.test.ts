@@ -105,3 +105,25 @@ describe('language server: completion right after opening, through an unpacked p
     assert.ok(items.some((item) => item.label === 'AbsoluteTargetSpeed.value'), items.map((item) => item.label).join(', '));
   });
 });
+
+describe('language server: duplicate group names (issue 7, item 8; JSON-RPC)', function () {
+  const simpleText = markers(SIMPLE).text;
+  const waitStart = simpleText.indexOf('        <ManeuverGroup name="Wait"');
+  const waitEnd = simpleText.indexOf('</ManeuverGroup>', waitStart) + '</ManeuverGroup>\n'.length;
+  const wait = simpleText.slice(waitStart, waitEnd);
+  // Wait twice (nothing refers to it) and Brake twice (main.xosc refers to it).
+  const duplicated = simpleText.slice(0, waitEnd) + wait + wait.replace('name="Wait"', 'name="Brake"') + simpleText.slice(waitEnd);
+  const server = useServer({ 'simple.xosc': duplicated, 'main.xosc': mainWithKeys([]) }, 'main.xosc');
+
+  it('warns on the reference that is ambiguous', async function () {
+    const diagnostics = await server.client.diagnosticsOf(server.openUri);
+    assert.deepEqual(diagnostics.map((diagnostic) => diagnostic.code), ['ambiguous-group']);
+  });
+
+  it('does not warn on duplicate names in a file of its own', async function () {
+    const uri = await server.client.openFile(path.join(server.root, 'simple.xosc'));
+    const diagnostics = await server.client.diagnosticsOf(uri);
+    assert.deepEqual(diagnostics.filter((diagnostic) => diagnostic.code === 'duplicate-group'), []);
+    await server.client.close(uri);
+  });
+});
