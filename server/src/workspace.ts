@@ -185,6 +185,11 @@ export class Workspace {
     return this.storeInstance;
   }
 
+  /** Grows with every change that can alter an analysis: equal versions give equal diagnostics. */
+  get version(): number {
+    return this.generation;
+  }
+
   private createStore(): ScenarioStore {
     const fromEnvironment = splitScenarioPath(process.env.SCENARIO_PATH);
     const fromSettings = this.settings.scenarioPath.map((entry) => path.resolve(this.folders[0] ?? process.cwd(), entry));

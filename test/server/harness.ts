@@ -83,6 +83,8 @@ export interface ClientOptions {
   /** Answer window/workDoneProgress/create and record $/progress (true by default). */
   progress?: boolean;
   initializationOptions?: Record<string, unknown>;
+  /** Declare pull diagnostics (textDocument/diagnostic, with refresh), as VS Code does. */
+  pullDiagnostics?: boolean;
 }
 
 /**
@@ -96,6 +98,8 @@ export class TestClient {
   readonly diagnostics = new Map<string, PublishDiagnosticsParams>();
   readonly progress: unknown[] = [];
   readonly logs: string[] = [];
+  /** How often the server asked this client to pull diagnostics again. */
+  refreshes = 0;
   /** Errors the server logged during the running test that it has not claimed (yet). */
   readonly errors: string[] = [];
   /** Errors of finished tests, reported by `stop`. */
@@ -136,6 +140,11 @@ export class TestClient {
     connection.onRequest('workspace/configuration', (params: { items: { section?: string }[] }) => params.items.map(() => client.settings));
     connection.onRequest('window/workDoneProgress/create', () => null);
     connection.onRequest('client/registerCapability', () => null);
+    connection.onRequest('workspace/diagnostic/refresh', () => {
+      client.refreshes++;
+      client.notify();
+      return null;
+    });
     connection.listen();
     TestClient.running.add(client);
     const params: InitializeParams = {
@@ -145,9 +154,17 @@ export class TestClient {
       initializationOptions: options.initializationOptions,
       workspaceFolders: [{ uri: fileUri(options.root), name: path.basename(options.root) }],
       capabilities: {
-        workspace: { configuration: options.progress !== false, didChangeWatchedFiles: { dynamicRegistration: true }, workspaceEdit: { documentChanges: false } },
+        workspace: {
+          configuration: options.progress !== false,
+          didChangeWatchedFiles: { dynamicRegistration: true },
+          workspaceEdit: { documentChanges: false },
+          ...(options.pullDiagnostics ? { diagnostics: { refreshSupport: true } } : {}),
+        },
         window: { workDoneProgress: options.progress !== false },
-        textDocument: { publishDiagnostics: { relatedInformation: true, versionSupport: true } },
+        textDocument: {
+          publishDiagnostics: { relatedInformation: true, versionSupport: true },
+          ...(options.pullDiagnostics ? { diagnostic: { relatedDocumentSupport: false } } : {}),
+        },
       },
     };
     await connection.sendRequest('initialize', params);
@@ -272,14 +289,15 @@ export interface ServerFixture {
  * Registers before/after hooks of the calling suite: a temporary workspace of `files`, a server on
  * it, indexed, with `open` (relative) open and its diagnostics published; all gone after the suite.
  */
-export function useServer(files: Record<string, string | Uint8Array>, open: string): ServerFixture {
+export function useServer(files: Record<string, string | Uint8Array>, open: string, options: Omit<ClientOptions, 'root'> = {}): ServerFixture {
   const fixture = {} as ServerFixture;
   before(async function () {
     fixture.root = temporaryWorkspace(files);
-    fixture.client = await TestClient.start({ root: fixture.root });
+    fixture.client = await TestClient.start({ ...options, root: fixture.root });
     await fixture.client.indexed();
     fixture.openUri = await fixture.client.openFile(path.join(fixture.root, open));
-    await fixture.client.diagnosticsOf(fixture.openUri);
+    // A pulling client gets no diagnostics pushed; its tests ask for them.
+    if (!options.pullDiagnostics) await fixture.client.diagnosticsOf(fixture.openUri);
   });
   after(async function () {
     await fixture.client?.stop();

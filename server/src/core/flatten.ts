@@ -10,7 +10,7 @@ import {
   ScenarioReferenceInfo,
 } from './model';
 import { Problem, ProblemCode, RelatedProblemLocation, Severity, uniqueProblems, ZERO_RANGE } from './problems';
-import { baseName, displayRef, refId, Resolution, ScenarioStore, SourceError, SourceRef } from './sources';
+import { displayRef, refId, Resolution, ScenarioStore, SourceError, SourceRef } from './sources';
 import { closestMatch, detectEol } from './text';
 import { attribute, descendants, escapeAttributeValue, isWellFormed, parseXml, XmlAttribute, XmlDocument, XmlElement } from './xml';
 
@@ -363,7 +363,7 @@ export class Flattener {
    * Warns on each later group of a name that a reference uses, where it is written: a duplicate
    * name nothing refers to (common in plain scenarios) harms nobody and is not reported.
    */
-  private duplicateGroupProblems(source: FlatSource, named: ManeuverGroupInfo[], reference: string): Problem[] {
+  private duplicateGroupProblems(source: FlatSource, named: ManeuverGroupInfo[]): Problem[] {
     const written = (group: ManeuverGroupInfo) => {
       const origin = originOf(source, group.element);
       const model = origin.source.original ?? origin.source.model;
@@ -382,7 +382,7 @@ export class Flattener {
         place.end,
         'warning',
         'duplicate-group',
-        `another ManeuverGroup is already named '${group.name}'; ${reference} takes the first one`,
+        `another ManeuverGroup is already named '${group.name}'; a reference to that name takes the first one`,
         'give each ManeuverGroup a unique name',
       );
       problem.related = [{ source: first.ref, range: first.document.lines.range(first.start, first.end), message: 'the first group of that name' }];
@@ -503,7 +503,7 @@ export class Flattener {
       const named = sourceModel.groups.filter((group) => group.name === groupReference.name);
       if (named.length > 1) {
         report(nameStart, nameEnd, 'warning', 'ambiguous-group', `'${reference.fileName}' has more than one ManeuverGroup named '${groupReference.name}'; the first one is used`);
-        result.problems.push(...this.duplicateGroupProblems(source, named, `the reference in ${baseName(from)} (line ${model.document.lines.positionAt(nameStart).line + 1})`));
+        result.problems.push(...this.duplicateGroupProblems(source, named));
       }
       linked.overridable = overridableAttributes(sourceModel, targetGroup);
       const plan = planOverrides(linked.overridable, groupReference.parameters.filter((p) => p.keyAttribute));

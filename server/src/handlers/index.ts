@@ -3,6 +3,7 @@ import * as codeAction from './codeAction';
 import * as codeLens from './codeLens';
 import * as completion from './completion';
 import * as definition from './definition';
+import * as diagnostic from './diagnostic';
 import * as didChange from './didChange';
 import * as didChangeConfiguration from './didChangeConfiguration';
 import * as didChangeWatchedFiles from './didChangeWatchedFiles';
@@ -20,6 +21,7 @@ import * as references from './references';
 import * as rename from './rename';
 import * as structure from './structure';
 import * as willRenameFiles from './willRenameFiles';
+import * as workspaceDiagnostic from './workspaceDiagnostic';
 import * as workspaceSymbol from './workspaceSymbol';
 
 /** One module per LSP method (or custom request); each registers its handler on the context's connection. */
@@ -42,6 +44,8 @@ const HANDLERS: { register(context: ServerContext): void }[] = [
   documentSymbol,
   workspaceSymbol,
   codeLens,
+  diagnostic,
+  workspaceDiagnostic,
   flattenToText,
   flattenToFile,
   pack,

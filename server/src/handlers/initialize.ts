@@ -12,6 +12,9 @@ export function register(context: ServerContext): void {
     const capabilities = params.capabilities;
     context.client.canConfigure = Boolean(capabilities.workspace?.configuration);
     context.client.canWatch = Boolean(capabilities.workspace?.didChangeWatchedFiles?.dynamicRegistration);
+    // A client that pulls diagnostics gets them for the whole workspace and none pushed, so nothing shows twice.
+    const pulls = Boolean(capabilities.textDocument?.diagnostic);
+    context.diagnostics.mode = !pulls ? 'push' : capabilities.workspace?.diagnostics?.refreshSupport ? 'refresh' : 'pull';
     const folderUris = params.workspaceFolders?.map((folder) => folder.uri) ?? (params.rootUri ? [params.rootUri] : []);
     let folders = folderUris.map((uri) => filePathOf(uri)).filter((folder): folder is string => folder !== undefined);
     if (folders.length === 0 && params.rootPath) folders = [path.resolve(params.rootPath)];
@@ -30,6 +33,7 @@ export function register(context: ServerContext): void {
         documentSymbolProvider: true,
         workspaceSymbolProvider: true,
         codeLensProvider: { resolveProvider: false },
+        ...(pulls ? { diagnosticProvider: { identifier: 'modular2simple', interFileDependencies: true, workspaceDiagnostics: true } } : {}),
         workspace: {
           workspaceFolders: { supported: true },
           fileOperations: {
