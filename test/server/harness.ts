@@ -2,7 +2,7 @@ import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
 import { PassThrough } from 'node:stream';
-import { pathToFileURL } from 'node:url';
+import { fileURLToPath, pathToFileURL } from 'node:url';
 import {
   CancellationToken,
   createConnection,
@@ -85,6 +85,10 @@ export interface ClientOptions {
   initializationOptions?: Record<string, unknown>;
   /** Declare pull diagnostics (textDocument/diagnostic, with refresh), as VS Code does. */
   pullDiagnostics?: boolean;
+  /** More workspace folders after `root`. */
+  folders?: string[];
+  /** What workspace/configuration answers for a folder (by path), instead of `settings`. */
+  folderSettings?: Record<string, Record<string, unknown>>;
 }
 
 /**
@@ -137,7 +141,9 @@ export class TestClient {
       if (params.type === MessageType.Error) client.errors.push(params.message);
     });
     client.settings = options.settings ?? {};
-    connection.onRequest('workspace/configuration', (params: { items: { section?: string }[] }) => params.items.map(() => client.settings));
+    connection.onRequest('workspace/configuration', (params: { items: { section?: string; scopeUri?: string }[] }) =>
+      params.items.map((item) => (item.scopeUri ? options.folderSettings?.[fileURLToPath(item.scopeUri)] : undefined) ?? client.settings),
+    );
     connection.onRequest('window/workDoneProgress/create', () => null);
     connection.onRequest('client/registerCapability', () => null);
     connection.onRequest('workspace/diagnostic/refresh', () => {
@@ -152,12 +158,13 @@ export class TestClient {
       processId: null,
       rootUri: fileUri(options.root),
       initializationOptions: options.initializationOptions,
-      workspaceFolders: [{ uri: fileUri(options.root), name: path.basename(options.root) }],
+      workspaceFolders: [options.root, ...(options.folders ?? [])].map((folder) => ({ uri: fileUri(folder), name: path.basename(folder) })),
       capabilities: {
         workspace: {
           configuration: options.progress !== false,
           didChangeWatchedFiles: { dynamicRegistration: true },
           workspaceEdit: { documentChanges: false },
+          workspaceFolders: true,
           ...(options.pullDiagnostics ? { diagnostics: { refreshSupport: true } } : {}),
         },
         window: { workDoneProgress: options.progress !== false },

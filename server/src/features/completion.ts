@@ -53,9 +53,9 @@ export async function fileNameCandidates(workspace: Workspace, from: SourceRef):
     const directory = path.dirname(from.disk);
     for (const name of listFolder(directory, from.disk)) add(name, 'this folder');
   }
-  for (const directory of workspace.store.scenarioPath) for (const name of listFolder(directory, from.disk)) add(name, `${directory} (scenario path)`);
-  const root = workspace.store.root;
-  if (from.entries.length === 0 && root) {
+  for (const directory of workspace.store.scenarioPathFor(from)) for (const name of listFolder(directory, from.disk)) add(name, `${directory} (scenario path)`);
+  const root = workspace.store.rootOf(path.dirname(from.disk));
+  if (from.entries.length === 0) {
     for (let parent = path.dirname(path.dirname(from.disk)); parent.startsWith(root); parent = path.dirname(parent)) {
       for (const name of listFolder(parent, from.disk)) add(name, `${parent} (parent folder)`);
       if (parent === root || parent === path.dirname(parent)) break;

@@ -12,6 +12,7 @@ export function register(context: ServerContext): void {
     const capabilities = params.capabilities;
     context.client.canConfigure = Boolean(capabilities.workspace?.configuration);
     context.client.canWatch = Boolean(capabilities.workspace?.didChangeWatchedFiles?.dynamicRegistration);
+    context.client.foldersChange = Boolean(capabilities.workspace?.workspaceFolders);
     // A client that pulls diagnostics gets them for the whole workspace and none pushed, so nothing shows twice.
     const pulls = Boolean(capabilities.textDocument?.diagnostic);
     context.diagnostics.mode = !pulls ? 'push' : capabilities.workspace?.diagnostics?.refreshSupport ? 'refresh' : 'pull';
@@ -35,7 +36,7 @@ export function register(context: ServerContext): void {
         codeLensProvider: { resolveProvider: false },
         ...(pulls ? { diagnosticProvider: { identifier: 'modular2simple', interFileDependencies: true, workspaceDiagnostics: true } } : {}),
         workspace: {
-          workspaceFolders: { supported: true },
+          workspaceFolders: { supported: true, changeNotifications: true },
           fileOperations: {
             willRename: {
               filters: [{ pattern: { glob: '**/*.{xosc,mosc}', matches: 'file' } }, { pattern: { glob: '**/*', matches: 'folder' } }],
