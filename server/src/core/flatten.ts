@@ -496,7 +496,7 @@ export class Flattener {
             (names.length ? `; it has: ${names.join(', ')}` : '; it has no ManeuverGroup'),
           suggestion ? `did you mean '${suggestion}'?` : undefined,
         );
-        if (suggestion) problem.data = { suggestion };
+        problem.data = { ...(suggestion ? { suggestion } : {}), groups: names.join('\n') };
         continue;
       }
       linked.target = targetGroup;
@@ -527,8 +527,11 @@ export class Flattener {
         );
         if (listedVerbatim && verbatimOrigin) {
           problem.related = [declarationLocation(verbatimOrigin, listedVerbatim.attributeName, 'listed here as a whole key instead of an attribute name')];
+          // The mistake lives in the simple scenario: a fix at this use site rewrites the listed name there.
+          problem.data = { relatedReplacement: listedVerbatim.attributeName.split('.').pop() ?? listedVerbatim.attributeName };
+        } else if (unknown.suggestion) {
+          problem.data = { suggestion: unknown.suggestion };
         }
-        if (unknown.suggestion) problem.data = { suggestion: unknown.suggestion };
       }
       for (const { parameter, target: attributeTarget } of plan.withoutDefault) {
         const [start, end] = valueRange(parameter.keyAttribute, parameter.element);

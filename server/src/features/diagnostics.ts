@@ -16,6 +16,10 @@ export interface DiagnosticData {
   code: string;
   suggestion?: string;
   replacement?: string;
+  /** Replaces the text at the first related location (a fix in the file where the mistake lives). */
+  relatedReplacement?: string;
+  /** Every group name of the referenced file, one per line. */
+  groups?: string;
   entity?: string;
 }
 
