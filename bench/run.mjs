@@ -60,9 +60,20 @@ if (!existsSync(library)) {
   console.log(`  all ${inputs.length}: ${all.median < 500 ? 'within' : 'OVER'} the 500 ms target; peak memory ${Math.max(one.peakMb, all.peakMb) < 100 ? 'within' : 'OVER'} 100 MB`);
 }
 
-const lspBench = path.join(root, 'bench', 'lsp.mjs');
-if (existsSync(lspBench)) {
+console.log('');
+spawnSync(process.execPath, [path.join(root, 'bench', 'semantics.mjs')], { stdio: 'inherit' });
+
+for (const name of ['lsp.mjs', 'esmini.mjs']) {
+  const bench = path.join(root, 'bench', name);
+  if (!existsSync(bench)) continue;
   console.log('');
-  const result = spawnSync(process.execPath, [lspBench], { stdio: 'inherit' });
-  process.exitCode = result.status ?? 1;
+  const result = spawnSync(process.execPath, [bench], { stdio: 'inherit' });
+  if (result.status !== 0) process.exitCode = result.status ?? 1;
+}
+
+const birdsEyeBench = path.join(root, 'bench', 'birdsEye.ts');
+if (existsSync(birdsEyeBench)) {
+  console.log('');
+  const result = spawnSync(process.execPath, ['--import', 'tsx', birdsEyeBench], { stdio: 'inherit', cwd: root });
+  if (result.status !== 0) process.exitCode = result.status ?? 1;
 }

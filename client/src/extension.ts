@@ -2,6 +2,8 @@ import * as vscode from 'vscode';
 import type { ServerCapabilities } from 'vscode-languageclient';
 import type { LanguageClient } from 'vscode-languageclient/node';
 import { PACKAGE_SCHEME, type StructureNode } from '../../server/src/protocol';
+import { registerBirdsEye } from './birdsEye/commands';
+import type { BirdsEyeView } from './birdsEye/panel';
 import { CommandReporter, commandTargets, flattenCommand, mainFileOf, packCommand } from './commands';
 import { LANGUAGE_ID, ServerCommandClient, createLanguageClient } from './languageClient';
 import { PackageFileSystem } from './packageFileSystem';
@@ -9,6 +11,7 @@ import { PACKAGE_VIEW_TYPE, PackageViewProvider } from './packageView';
 import { FlattenedPreview, PREVIEW_SCHEME, previewSource } from './preview';
 import { STRUCTURE_VIEW_ID, StructureTree } from './structureView';
 import { registerTagClosing } from './tagClosingEditor';
+import { EsminiRunner, type EsminiRunEvent } from './esminiRun';
 
 /** What the extension hands to other extensions and to its own tests. */
 export interface Modular2SimpleApi {
@@ -17,6 +20,11 @@ export interface Modular2SimpleApi {
   readonly structure: () => StructureNode | undefined;
   /** What the running server offers (undefined before it started): lets callers and tests see which features exist. */
   readonly serverCapabilities: () => ServerCapabilities | undefined;
+  /** The bird's-eye view: what it shows and last drew. */
+  readonly birdsEye: BirdsEyeView;
+  /** The latest Run in esmini, and an event after each (for views of its trajectories). */
+  readonly lastEsminiRun: () => EsminiRunEvent | undefined;
+  readonly onDidRunEsmini: vscode.Event<EsminiRunEvent>;
 }
 
 let languageClient: LanguageClient | undefined;
@@ -43,6 +51,9 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
       if (choice) output.show(true);
     });
   });
+
+  const esmini = new EsminiRunner(client);
+  context.subscriptions.push(esmini);
 
   const preview = new FlattenedPreview((source) => server.flattenToText(source), log);
   const structure = new StructureTree();
@@ -109,7 +120,22 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
     }
   });
 
-  return { serverReady, structure: () => structure.current, serverCapabilities: () => client.initializeResult?.capabilities };
+  const birdsEye = registerBirdsEye(context, client, log);
+  // A finished run goes straight into the picture: its trajectories beside the scenario.
+  context.subscriptions.push(
+    esmini.onDidRun((event) => {
+      if (event.result.csvFile) void vscode.commands.executeCommand('modular2simple.birdsEye.showRun', event.result.csvFile, { logText: event.result.log, scenario: event.source });
+    }),
+  );
+
+  return {
+    serverReady,
+    structure: () => structure.current,
+    serverCapabilities: () => client.initializeResult?.capabilities,
+    lastEsminiRun: () => esmini.last,
+    onDidRunEsmini: esmini.onDidRun,
+    birdsEye,
+  };
 }
 
 export async function deactivate(): Promise<void> {

@@ -55,6 +55,10 @@ export class CachingFileSystem implements FileSystemHost {
     return pending;
   }
 
+  listDirectory(directoryPath: string): Promise<string[] | undefined> {
+    return this.inner.listDirectory?.(directoryPath) ?? Promise.resolve(undefined);
+  }
+
   /** Forgets a path and everything below it; kinds are all forgotten since a creation changes folders too. */
   invalidate(filePath: string): void {
     for (const key of [...this.bytes.keys()]) if (key === filePath || key.startsWith(filePath + path.sep)) this.bytes.delete(key);

@@ -57,6 +57,8 @@ export interface FileSystemHost {
   /** The file's bytes, or undefined when it does not exist or is not a file. */
   readFile(filePath: string): Promise<Uint8Array | undefined>;
   kind(filePath: string): Promise<'file' | 'directory' | undefined>;
+  /** The names in a directory, or undefined when it cannot be listed (catalog directories need it). */
+  listDirectory?(directoryPath: string): Promise<string[] | undefined>;
 }
 
 export const nodeFileSystem: FileSystemHost = {
@@ -71,6 +73,13 @@ export const nodeFileSystem: FileSystemHost = {
     try {
       const stat = await fs.promises.stat(filePath);
       return stat.isFile() ? 'file' : stat.isDirectory() ? 'directory' : undefined;
+    } catch {
+      return undefined;
+    }
+  },
+  async listDirectory(directoryPath) {
+    try {
+      return await fs.promises.readdir(directoryPath);
     } catch {
       return undefined;
     }

@@ -30,7 +30,7 @@ function forceOf(options: unknown): boolean {
   return Boolean(options && typeof options === 'object' && (options as { force?: unknown }).force === true);
 }
 
-async function refOf(workspace: Workspace, uri: unknown): Promise<SourceRef> {
+export async function refOf(workspace: Workspace, uri: unknown): Promise<SourceRef> {
   if (typeof uri !== 'string') throw invalidParams('expected a document URI');
   const ref = await workspace.uris.toRef(uri);
   if (!ref) throw invalidParams(`not a scenario URI: ${uri}`);
@@ -57,7 +57,7 @@ export async function flattenToFile(workspace: Workspace, uri: unknown, outputPa
   const ref = await refOf(workspace, uri);
   if (typeof outputPath !== 'string' || !outputPath) throw invalidParams('expected an output path');
   const output = path.resolve(filePathOf(outputPath) ?? outputPath);
-  const result = await new Flattener(workspace.store).flatten(ref, { force: forceOf(options) });
+  const result = await new Flattener(workspace.store).flatten(ref, { force: forceOf(options), outputPath: output });
   const problems = result.problems.map((problem) => summarize(workspace, problem));
   const input = result.source.dependencies.find((dependency) => dependency.disk === output || isSameFile(dependency.disk, output));
   if (input) return { written: null, problems: [...problems, outputProblem(workspace, ref, `refusing to overwrite ${displayRef(input, workspace.folders[0])}, an input of this flattening`)] };

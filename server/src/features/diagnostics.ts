@@ -27,6 +27,7 @@ export interface DiagnosticData {
 function severityOf(problem: Problem): DiagnosticSeverity {
   if (problem.severity === 'error') return DiagnosticSeverity.Error;
   if (problem.severity === 'warning') return DiagnosticSeverity.Warning;
+  if (problem.severity === 'hint') return DiagnosticSeverity.Hint;
   return DiagnosticSeverity.Information;
 }
 
@@ -46,6 +47,7 @@ export function toDiagnostic(problem: Problem, workspace: Workspace): Diagnostic
   };
   if (related.length > 0) diagnostic.relatedInformation = related;
   if (problem.code === 'xosc-fallback') diagnostic.tags = [DiagnosticTag.Deprecated];
+  if (problem.code === 'unused-parameter') diagnostic.tags = [DiagnosticTag.Unnecessary];
   return diagnostic;
 }
 

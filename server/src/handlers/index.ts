@@ -19,6 +19,8 @@ import * as pack from './pack';
 import * as prepareRename from './prepareRename';
 import * as references from './references';
 import * as rename from './rename';
+import * as scene from './scene';
+import * as runEsmini from './runEsmini';
 import * as structure from './structure';
 import * as willRenameFiles from './willRenameFiles';
 import * as workspaceDiagnostic from './workspaceDiagnostic';
@@ -50,6 +52,8 @@ const HANDLERS: { register(context: ServerContext): void }[] = [
   flattenToFile,
   pack,
   structure,
+  scene,
+  runEsmini,
 ];
 
 export function registerHandlers(context: ServerContext): void {
