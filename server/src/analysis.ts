@@ -5,6 +5,7 @@ import { findGroup, listedName, ManeuverGroupInfo } from './core/model';
 import { Resolution, SourceRef } from './core/sources';
 import { Range } from './core/text';
 import { attribute, XmlElement } from './core/xml';
+import { escapeMarkdown } from './markdown';
 import { Workspace } from './workspace';
 
 /** A place in a scenario file, before it becomes an LSP Location. */
@@ -58,18 +59,26 @@ export function keyMatchOf(source: FlatSource, parameter: XmlElement): { link: L
   return link && group && match ? { link, group, match } : undefined;
 }
 
+/** The attributes a key sets: those it matches that no more specific key of the same group reference takes. */
+export function attributesSetBy(group: LinkedGroupReference, match: KeyMatch): OverridableAttribute[] {
+  return match.targets.filter((target) => group.plan?.applied.get(target) === match.parameter);
+}
+
 export function resolvedTarget(resolution: Resolution): SourceRef | undefined {
   if (resolution.kind === 'scenario') return resolution.ref;
   if (resolution.kind === 'package') return resolution.main;
   return undefined;
 }
 
-/** The referenced file as flattening reads it, from a name written in `from` (used while typing). */
+/** The referenced file as flattening imports it (rendered), from a name written in `from` (used while typing). */
 export async function sourceForFileName(workspace: Workspace, from: SourceRef, fileName: string): Promise<FlatSource | undefined> {
   if (!fileName.trim()) return undefined;
   const resolution = await workspace.store.resolve(fileName, from).catch(() => undefined);
   const target = resolution ? resolvedTarget(resolution) : undefined;
-  return target ? workspace.source(target) : undefined;
+  if (!target) return undefined;
+  // Its groups are read from the flattened model, which is rendered on first use.
+  const flattener = workspace.flattener();
+  return flattener.rendered(await flattener.source(target, []));
 }
 
 export function groupOf(source: FlatSource | undefined, name: string): ManeuverGroupInfo | undefined {
@@ -82,16 +91,16 @@ export function describeGroup(group: ManeuverGroupInfo): string[] {
   const visit = (element: XmlElement, depth: number) => {
     for (const child of element.children) {
       if (child.name === 'Maneuver') {
-        lines.push(`${'  '.repeat(depth)}- Maneuver **${attribute(child, 'name')?.value ?? '?'}**`);
+        lines.push(`${'  '.repeat(depth)}- Maneuver **${escapeMarkdown(attribute(child, 'name')?.value ?? '?')}**`);
         visit(child, depth + 1);
       } else if (child.name === 'Event') {
         const actions = child.children
           .filter((action) => action.name === 'Action')
-          .map((action) => `${attribute(action, 'name')?.value ?? '?'} (${actionKind(action)})`);
+          .map((action) => `${escapeMarkdown(attribute(action, 'name')?.value ?? '?')} (${actionKind(action)})`);
         const start = child.children.find((candidate) => candidate.name === 'StartTrigger');
         const conditions = start ? [...conditionNames(start)] : [];
         lines.push(
-          `${'  '.repeat(depth)}- Event **${attribute(child, 'name')?.value ?? '?'}**: ${actions.join(', ') || 'no action'}` +
+          `${'  '.repeat(depth)}- Event **${escapeMarkdown(attribute(child, 'name')?.value ?? '?')}**: ${actions.join(', ') || 'no action'}` +
             (conditions.length ? ` when ${conditions.join(', ')}` : ''),
         );
       } else {

@@ -421,7 +421,14 @@ if (require.main === module) {
   main(process.argv.slice(2), {
     out: (text) => process.stdout.write(text.endsWith('\n') ? text : text + '\n'),
     err: (text) => process.stderr.write(text + '\n'),
-  }).then((code) => {
-    process.exitCode = code;
-  });
+  }).then(
+    (code) => {
+      process.exitCode = code;
+    },
+    (error: unknown) => {
+      // main answers every failure itself; reaching this is a bug, reported with its stack.
+      process.stderr.write(`modular2simple: internal error: ${error instanceof Error ? error.stack : String(error)}\n`);
+      process.exitCode = ExitCode.io;
+    },
+  );
 }

@@ -141,6 +141,28 @@ export function attributeValuesBetween(text: string, elementName: string, attrib
   return values;
 }
 
+const MARKUP = /<!--[\s\S]*?(?:-->|$)|<!\[CDATA\[[\s\S]*?(?:\]\]>|$)|<[?!][^>]*>?|<\/([^\s>]*)[^>]*>?|<([A-Za-z_:][-\w.:]*)(?:"[^"]*"|'[^']*'|[^'">])*>?/g;
+
+/**
+ * The names of the elements open at `offset`, outermost first, read from the text so that it works
+ * while the document is not well-formed: a closing tag closes up to the nearest element of its name.
+ */
+export function openElementsAt(text: string, offset: number): string[] {
+  const open: string[] = [];
+  const before = text.slice(0, offset);
+  MARKUP.lastIndex = 0;
+  for (let match = MARKUP.exec(before); match; match = MARKUP.exec(before)) {
+    const [tag, closing, opening] = match;
+    if (closing !== undefined) {
+      const index = open.lastIndexOf(closing);
+      if (index >= 0) open.length = index;
+    } else if (opening !== undefined && tag.endsWith('>') && !tag.endsWith('/>')) {
+      open.push(opening);
+    }
+  }
+  return open;
+}
+
 /** The attribute of the parsed document whose name or value holds the offset. */
 export function attributeAt(document: XmlDocument, offset: number): { element: XmlElement; attribute: XmlAttribute } | undefined {
   const element = elementAt(document, offset);

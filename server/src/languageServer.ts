@@ -15,7 +15,7 @@ export function startServer(connection: Connection): Workspace {
     workspace,
     diagnostics: new DiagnosticsScheduler(connection, workspace),
     idle: new IdleCollector(),
-    client: { canConfigure: false, canWatch: false },
+    client: { canConfigure: false, canWatch: false, foldersChange: false },
     indexed: Promise.resolve(),
   };
   registerHandlers(context);

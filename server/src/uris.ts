@@ -38,6 +38,17 @@ export function filePathOf(uri: string): string | undefined {
   }
 }
 
+/**
+ * An unsaved new document (`untitled:Untitled-1`) stands for a file in `folder` that does not exist
+ * on disk: its text comes from the editor, and names it references resolve from that folder.
+ */
+export function untitledRef(uri: string, folder: string): SourceRef | undefined {
+  if (!uri.toLowerCase().startsWith('untitled:')) return undefined;
+  const name = decodeURIComponent(uri.slice('untitled:'.length)).replace(/[^\w.-]+/g, '_') || 'untitled';
+  // A hidden name: never the name of a real file beside it, never listed as one.
+  return diskRef(path.join(folder, `.untitled-${name}${/\.xosc$/i.test(name) ? '' : '.xosc'}`));
+}
+
 /** Reads URIs back into source references; `mosc:` URIs need the store to find where the disk file ends. */
 export class UriResolver {
   private readonly known = new Map<string, SourceRef>();
@@ -54,6 +65,8 @@ export class UriResolver {
     if (known) return known;
     const disk = filePathOf(uri);
     if (disk) return diskRef(disk);
+    const untitled = untitledRef(uri, this.store().root ?? process.cwd());
+    if (untitled) return untitled;
     const packagePath = packageUriPath(uri);
     if (!packagePath) return undefined;
     const ref = await this.store().refFromPackagePath(packagePath).catch(() => undefined);

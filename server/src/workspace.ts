@@ -193,6 +193,8 @@ export class Workspace {
   readonly uris: UriResolver;
   folders: string[] = [];
   settings: ServerSettings = DEFAULT_SETTINGS;
+  /** Each folder's own `scenarioPath` setting, by folder path. */
+  private folderScenarioPaths = new Map<string, string[]>();
   /** Whether the client opens and saves files inside packages (`mosc:` URIs), so edits may reach them. */
   editablePackages = false;
   private storeInstance: ScenarioStore;
@@ -213,17 +215,32 @@ export class Workspace {
     return this.storeInstance;
   }
 
+  /** Grows with every change that can alter an analysis: equal versions give equal diagnostics. */
+  get version(): number {
+    return this.generation;
+  }
+
   private createStore(): ScenarioStore {
     const fromEnvironment = splitScenarioPath(process.env.SCENARIO_PATH);
     const fromSettings = this.settings.scenarioPath.map((entry) => path.resolve(this.folders[0] ?? process.cwd(), entry));
-    const store = new ScenarioStore({ scenarioPath: [...fromEnvironment, ...fromSettings], root: this.folders[0], host: this.files });
+    // Each folder searches its own setting (resource-scoped), relative entries taken from that folder.
+    const folders = this.folders.map((folder) => ({
+      folder,
+      scenarioPath: [...fromEnvironment, ...(this.folderScenarioPaths.get(folder) ?? this.settings.scenarioPath).map((entry) => path.resolve(folder, entry))],
+    }));
+    const store = new ScenarioStore({ scenarioPath: [...fromEnvironment, ...fromSettings], root: this.folders[0], folders, host: this.files });
     for (const open of this.documents.values()) store.setOverlay(open.ref, open.document.getText());
     return store;
   }
 
-  configure(folders: string[], settings: ServerSettings): void {
+  /**
+   * Sets the workspace folders and the settings: those of the window, and each folder's own
+   * `scenarioPath` where the client gave one (folders not in the map use the window's).
+   */
+  configure(folders: string[], settings: ServerSettings, folderScenarioPaths = new Map<string, string[]>()): void {
     this.folders = folders.map((folder) => path.resolve(folder));
     this.settings = settings;
+    this.folderScenarioPaths = new Map([...folderScenarioPaths].map(([folder, entries]) => [path.resolve(folder), entries]));
     this.storeInstance = this.createStore();
     this.changed();
   }

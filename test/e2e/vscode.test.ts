@@ -129,6 +129,8 @@ describe('the packaged extension in a real VS Code (code-server, headless Chromi
   const results = new Map<string, InsideResult>();
   let exitCode: number | undefined;
   let vsixEntries: string[] = [];
+  /** What the language server inside VS Code logged as errors (it appends them to a file the harness names). */
+  let serverErrors = '';
 
   before(async function () {
     const missing = missingTools();
@@ -153,6 +155,7 @@ describe('the packaged extension in a real VS Code (code-server, headless Chromi
       runner = await buildInsideSuite(profile.root);
       await endpoint.start();
       server = await startCodeServer(profile, {
+        MODULAR2SIMPLE_SERVER_ERROR_LOG: path.join(profile.root, 'server-errors.log'),
         [HARNESS_ENV.endpoint]: endpoint.url,
         [HARNESS_ENV.workspace]: workspace,
         [HARNESS_ENV.cli]: path.join(ROOT, 'dist', 'cli.js'),
@@ -188,6 +191,8 @@ describe('the packaged extension in a real VS Code (code-server, headless Chromi
       fs.writeFileSync(path.join(ARTIFACTS, 'extension-host.log'), automationLog.join('\n'));
       fs.writeFileSync(path.join(ARTIFACTS, 'harness.log'), endpoint.log.join('\n'));
       fs.writeFileSync(path.join(ARTIFACTS, 'code-server.log'), server?.log.join('') ?? '');
+      const errorLog = path.join(profile.root, 'server-errors.log');
+      serverErrors = fs.existsSync(errorLog) ? fs.readFileSync(errorLog, 'utf8') : '';
       fs.rmSync(profile.root, { recursive: true, force: true });
     }
     for (const result of endpoint.results) results.set(result.title, result);
@@ -219,6 +224,10 @@ describe('the packaged extension in a real VS Code (code-server, headless Chromi
     for (const file of needed) assert.ok(extensionFiles.includes(file), `${file} is missing from the .vsix`);
     const unexpected = extensionFiles.filter((file) => !needed.includes(file) && !/^(package\.json|readme\.md|LICENSE(\.txt)?|client\/icons\/[\w-]+\.svg)$/i.test(file));
     assert.deepEqual(unexpected, [], 'the .vsix holds files that do not run');
+  });
+
+  it('the language server logged no error', () => {
+    assert.equal(serverErrors, '');
   });
 
   it('nothing else failed inside VS Code', () => {

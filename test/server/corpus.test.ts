@@ -3,6 +3,7 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { CompletionItem, Diagnostic, DiagnosticSeverity, Hover, Location, MarkupContent, WorkspaceEdit } from 'vscode-languageserver/node';
 import { firstDifference } from '../../server/src/core/equivalence';
+import { main } from '../../server/src/cli';
 import { FlattenToTextRequest } from '../../server/src/protocol';
 import { caseStudy, fileUri, library, positionAfter, positionAt, requireCorpus, TestClient } from './harness';
 
@@ -31,7 +32,7 @@ describe('language server on the case study (../shared/corpus)', function () {
   it('warns about the NAME.xosc fallback and the keys that simple_2.xosc lists as whole keys', async function () {
     const diagnostics = await client.diagnosticsOf(mainUri);
     assert.deepEqual(diagnostics.map((diagnostic) => `${diagnostic.range.start.line + 1}:${diagnostic.code}`), ['339:xosc-fallback', '492:unknown-key', '518:unknown-key']);
-    assert.ok(diagnostics.every((diagnostic) => diagnostic.severity === DiagnosticSeverity.Warning));
+    assert.deepEqual(diagnostics.map((diagnostic) => diagnostic.severity), [DiagnosticSeverity.Warning, DiagnosticSeverity.Error, DiagnosticSeverity.Error]);
     const related = diagnostics[1].relatedInformation?.[0];
     assert.equal(related?.location.uri, fileUri(path.join(caseStudy, 'simple_2.xosc')));
     assert.equal(rangeText(fs.readFileSync(path.join(caseStudy, 'simple_2.xosc'), 'utf8'), related.location), 'AbsoluteTargetSpeed.value');
@@ -46,6 +47,16 @@ describe('language server on the case study (../shared/corpus)', function () {
     // The key under the cursor is replaced, so it is offered again; the group's other keys are given already.
     assert.ok(labels.includes('entityRef'), labels.join(', '));
     assert.ok(!labels.some((label) => label.includes('AbsoluteTargetSpeed')), 'no key reaches the dotted name');
+  });
+
+  it('gives each problem of main.xosc the severity the CLI check gives it (issue 7, item 2)', async function () {
+    const printed: string[] = [];
+    await main(['check', caseStudy, '--format', 'json'], { out: (text) => printed.push(text), err: () => undefined });
+    const report = JSON.parse(printed.join('')) as { problems: { file: string; line: number; code: string; severity: string }[] };
+    const severityName = ['', 'error', 'warning', 'information'];
+    const fromCli = report.problems.filter((problem) => path.resolve(problem.file) === path.join(caseStudy, 'main.xosc')).map((problem) => `${problem.line}:${problem.code}:${problem.severity}`);
+    const diagnostics = await client.diagnosticsOf(mainUri);
+    assert.deepEqual(diagnostics.map((diagnostic) => `${diagnostic.range.start.line + 1}:${diagnostic.code}:${severityName[diagnostic.severity ?? 0]}`), fromCli);
   });
 
   it('shows the parameterAttributes entry of simple_2.xosc that names no attribute', async function () {
@@ -87,7 +98,7 @@ describe('language server on the case study (../shared/corpus)', function () {
 
   it('hovers a key with the value taking effect', async function () {
     const hover = await client.request<Hover>('textDocument/hover', client.at(mainUri, positionAfter(mainText, 'key="AbsoluteTargetSpeed.va', 2)));
-    assert.match((hover.contents as MarkupContent).value, /default \*\*6\.8\*\* declared at simple_1\.xosc:130; takes effect: \*\*10\*\* \(this key\)/);
+    assert.match((hover.contents as MarkupContent).value, /default `6\.8` declared at `simple_1\.xosc:130`; takes effect: `10` \(this key\)/);
   });
 
   it('completes keys on a line being typed in the middle of the file (not well-formed)', async function () {

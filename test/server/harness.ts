@@ -2,7 +2,7 @@ import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
 import { PassThrough } from 'node:stream';
-import { pathToFileURL } from 'node:url';
+import { fileURLToPath, pathToFileURL } from 'node:url';
 import {
   CancellationToken,
   createConnection,
@@ -85,6 +85,12 @@ export interface ClientOptions {
   initializationOptions?: Record<string, unknown>;
   /** Check files against the OpenSCENARIO schemas (off unless asked: the shared fixtures are minimal, not schema-valid). */
   schema?: boolean;
+  /** Declare pull diagnostics (textDocument/diagnostic, with refresh), as VS Code does. */
+  pullDiagnostics?: boolean;
+  /** More workspace folders after `root`. */
+  folders?: string[];
+  /** What workspace/configuration answers for a folder (by path), instead of `settings`. */
+  folderSettings?: Record<string, Record<string, unknown>>;
 }
 
 /** The settings that turn the schema check off, merged under a test's own. */
@@ -103,6 +109,8 @@ export class TestClient {
   readonly diagnostics = new Map<string, PublishDiagnosticsParams>();
   readonly progress: unknown[] = [];
   readonly logs: string[] = [];
+  /** How often the server asked this client to pull diagnostics again. */
+  refreshes = 0;
   /** Errors the server logged during the running test that it has not claimed (yet). */
   readonly errors: string[] = [];
   /** Errors of finished tests, reported by `stop`. */
@@ -144,9 +152,19 @@ export class TestClient {
     });
     client.schema = options.schema;
     client.settings = withoutSchema(options.settings, options.schema);
-    connection.onRequest('workspace/configuration', (params: { items: { section?: string }[] }) => params.items.map(() => client.settings));
+    connection.onRequest('workspace/configuration', (params: { items: { section?: string; scopeUri?: string }[] }) =>
+      params.items.map((item) => {
+        const folder = item.scopeUri ? options.folderSettings?.[fileURLToPath(item.scopeUri)] : undefined;
+        return folder ? withoutSchema(folder, options.schema) : client.settings;
+      }),
+    );
     connection.onRequest('window/workDoneProgress/create', () => null);
     connection.onRequest('client/registerCapability', () => null);
+    connection.onRequest('workspace/diagnostic/refresh', () => {
+      client.refreshes++;
+      client.notify();
+      return null;
+    });
     connection.listen();
     TestClient.running.add(client);
     const params: InitializeParams = {
@@ -154,11 +172,20 @@ export class TestClient {
       processId: null,
       rootUri: fileUri(options.root),
       initializationOptions: options.initializationOptions ?? withoutSchema(undefined, options.schema),
-      workspaceFolders: [{ uri: fileUri(options.root), name: path.basename(options.root) }],
+      workspaceFolders: [options.root, ...(options.folders ?? [])].map((folder) => ({ uri: fileUri(folder), name: path.basename(folder) })),
       capabilities: {
-        workspace: { configuration: options.progress !== false, didChangeWatchedFiles: { dynamicRegistration: true }, workspaceEdit: { documentChanges: false } },
+        workspace: {
+          configuration: options.progress !== false,
+          didChangeWatchedFiles: { dynamicRegistration: true },
+          workspaceEdit: { documentChanges: false },
+          workspaceFolders: true,
+          ...(options.pullDiagnostics ? { diagnostics: { refreshSupport: true } } : {}),
+        },
         window: { workDoneProgress: options.progress !== false },
-        textDocument: { publishDiagnostics: { relatedInformation: true, versionSupport: true } },
+        textDocument: {
+          publishDiagnostics: { relatedInformation: true, versionSupport: true },
+          ...(options.pullDiagnostics ? { diagnostic: { relatedDocumentSupport: false } } : {}),
+        },
       },
     };
     const initialized = (await connection.sendRequest('initialize', params)) as { capabilities: Record<string, unknown> };
@@ -291,6 +318,35 @@ export function serveExamples(): { root: () => string; client: () => TestClient 
     return value;
   };
   return { root: () => started(root), client: () => started(client) };
+}
+
+/** A server on a temporary workspace, set up by `useServer` for the tests of one suite. */
+export interface ServerFixture {
+  root: string;
+  client: TestClient;
+  /** The URI of the file opened before the tests. */
+  openUri: string;
+}
+
+/**
+ * Registers before/after hooks of the calling suite: a temporary workspace of `files`, a server on
+ * it, indexed, with `open` (relative) open and its diagnostics published; all gone after the suite.
+ */
+export function useServer(files: Record<string, string | Uint8Array>, open: string, options: Omit<ClientOptions, 'root'> = {}): ServerFixture {
+  const fixture = {} as ServerFixture;
+  before(async function () {
+    fixture.root = temporaryWorkspace(files);
+    fixture.client = await TestClient.start({ ...options, root: fixture.root });
+    await fixture.client.indexed();
+    fixture.openUri = await fixture.client.openFile(path.join(fixture.root, open));
+    // A pulling client gets no diagnostics pushed; its tests ask for them.
+    if (!options.pullDiagnostics) await fixture.client.diagnosticsOf(fixture.openUri);
+  });
+  after(async function () {
+    await fixture.client?.stop();
+    if (fixture.root) fs.rmSync(fixture.root, { recursive: true, force: true });
+  });
+  return fixture;
 }
 
 // Root hooks for every file that drives a server. A failing afterEach would abort the whole run, so

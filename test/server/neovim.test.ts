@@ -118,7 +118,7 @@ describe('the built server driven by Neovim (a second LSP client)', function () 
   });
 
   it('shows a hover', function () {
-    assert.match(report.hover?.contents.value ?? '', /takes effect: \*\*7\*\* \(this key\)/);
+    assert.match(report.hover?.contents.value ?? '', /takes effect: `7` \(this key\)/);
   });
 
   it('completes group names', function () {

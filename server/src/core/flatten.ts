@@ -374,7 +374,6 @@ export class Flattener {
     const model = buildModel(document);
     result.original = model;
     this.checkDeclarations(result, model);
-    this.checkDuplicateGroups(result, model);
     if (document.root) {
       const semantics = await analyzeDocument(ref, document, this.catalogs, model.references.length > 0);
       semantics.simulator = this.simulator;
@@ -444,29 +443,36 @@ export class Flattener {
     }
   }
 
-  private checkDuplicateGroups(result: FlatSource, model: ScenarioModel): void {
-    const seen = new Map<string, ManeuverGroupInfo>();
-    for (const group of model.groups) {
-      const first = seen.get(group.name);
-      if (!first) {
-        seen.set(group.name, group);
-        continue;
-      }
-      const [start, end] = valueRange(group.nameAttribute, group.element);
+  /**
+   * Warns on each later group of a name that a reference uses, where it is written: a duplicate
+   * name nothing refers to (common in plain scenarios) harms nobody and is not reported.
+   */
+  private duplicateGroupProblems(source: FlatSource, named: ManeuverGroupInfo[]): Problem[] {
+    const written = (group: ManeuverGroupInfo) => {
+      const origin = originOf(source, group.element);
+      const model = origin.source.original ?? origin.source.model;
+      const [start, end] = valueRange(attribute(origin.element, 'name'), origin.element);
+      return model ? { ref: origin.source.ref, document: model.document, start, end } : undefined;
+    };
+    const first = written(named[0]);
+    const problems: Problem[] = [];
+    for (const group of named.slice(1)) {
+      const place = written(group);
+      if (!place || !first) continue;
       const problem = problemAt(
-        result.ref,
-        model.document,
-        start,
-        end,
+        place.ref,
+        place.document,
+        place.start,
+        place.end,
         'warning',
         'duplicate-group',
         `another ManeuverGroup is already named '${group.name}'; a reference to that name takes the first one`,
         'give each ManeuverGroup a unique name',
       );
-      const [firstStart, firstEnd] = valueRange(first.nameAttribute, first.element);
-      problem.related = [{ source: result.ref, range: model.document.lines.range(firstStart, firstEnd), message: 'the first group of that name' }];
-      result.problems.push(problem);
+      problem.related = [{ source: first.ref, range: first.document.lines.range(first.start, first.end), message: 'the first group of that name' }];
+      problems.push(problem);
     }
+    return problems;
   }
 
   private async link(
@@ -575,12 +581,14 @@ export class Flattener {
             (names.length ? `; it has: ${names.join(', ')}` : '; it has no ManeuverGroup'),
           suggestion ? `did you mean '${suggestion}'?` : undefined,
         );
-        if (suggestion) problem.data = { suggestion };
+        problem.data = { ...(suggestion ? { suggestion } : {}), groups: names.join('\n') };
         continue;
       }
       linked.target = targetGroup;
-      if (sourceModel.groups.filter((group) => group.name === groupReference.name).length > 1) {
+      const named = sourceModel.groups.filter((group) => group.name === groupReference.name);
+      if (named.length > 1) {
         report(nameStart, nameEnd, 'warning', 'ambiguous-group', `'${reference.fileName}' has more than one ManeuverGroup named '${groupReference.name}'; the first one is used`);
+        result.problems.push(...this.duplicateGroupProblems(source, named));
       }
       linked.overridable = overridableAttributes(sourceModel, targetGroup);
       const plan = planOverrides(linked.overridable, groupReference.parameters.filter((p) => p.keyAttribute));
@@ -605,8 +613,11 @@ export class Flattener {
         );
         if (listedVerbatim && verbatimOrigin) {
           problem.related = [declarationLocation(verbatimOrigin, listedVerbatim.attributeName, 'listed here as a whole key instead of an attribute name')];
+          // The mistake lives in the simple scenario: a fix at this use site rewrites the listed name there.
+          problem.data = { relatedReplacement: listedVerbatim.attributeName.split('.').pop() ?? listedVerbatim.attributeName };
+        } else if (unknown.suggestion) {
+          problem.data = { suggestion: unknown.suggestion };
         }
-        if (unknown.suggestion) problem.data = { suggestion: unknown.suggestion };
       }
       for (const { parameter, target: attributeTarget } of plan.withoutDefault) {
         const [start, end] = valueRange(parameter.keyAttribute, parameter.element);

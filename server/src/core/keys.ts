@@ -1,4 +1,4 @@
-import { closestMatch } from './text';
+import { editDistance } from './text';
 import { ManeuverGroupInfo, ParameterAttributeName, ParameterReferenceInfo, ScenarioModel } from './model';
 import { XmlElement } from './xml';
 
@@ -93,6 +93,38 @@ export function shortestUnambiguousKey(target: OverridableAttribute, all: Overri
   return forms[forms.length - 1];
 }
 
+/** The edit distance of two names when it is no more than a typo (one edit per three characters, at least one). */
+function nearlyEqual(a: string, b: string): number | undefined {
+  const distance = editDistance(a.toLowerCase(), b.toLowerCase());
+  return distance <= Math.max(1, Math.round(Math.max(a.length, b.length) / 3)) ? distance : undefined;
+}
+
+/**
+ * The key a mistyped one most likely meant: an attribute of nearly the same name, on an element of
+ * nearly the same name when the key names one, qualified as the key was (or more, where needed). Nothing
+ * when no attribute is that close: a key of another element and attribute would mean something else.
+ */
+export function suggestKey(key: string, targets: OverridableAttribute[]): string | undefined {
+  const parts = key.split('.');
+  const attributeName = parts[parts.length - 1];
+  const elementName = parts.length > 1 ? parts[parts.length - 2] : undefined;
+  let best: { target: OverridableAttribute; distance: number } | undefined;
+  for (const target of targets) {
+    const forms = keyForms(target);
+    if (!keyMatches(forms[forms.length - 1], target)) continue;
+    const attributeDistance = nearlyEqual(attributeName, target.attributeName);
+    const elementDistance = elementName === undefined ? 0 : nearlyEqual(elementName, target.element.name);
+    if (attributeDistance === undefined || elementDistance === undefined) continue;
+    const distance = attributeDistance + elementDistance;
+    if (!best || distance < best.distance) best = { target, distance };
+  }
+  if (!best) return undefined;
+  const meant = best.target;
+  // As qualified as the key written (the writer chose that level), and never reaching another attribute.
+  const unambiguous = keyForms(meant).filter((form) => targets.every((other) => other === meant || !keyMatches(form, other)));
+  return unambiguous.find((form) => form.split('.').length >= parts.length) ?? unambiguous[unambiguous.length - 1] ?? shortestUnambiguousKey(meant, targets);
+}
+
 /** Decides which parameter sets which attribute: the longest matching key wins, then the last one written. */
 export function planOverrides(targets: OverridableAttribute[], parameters: ParameterReferenceInfo[]): OverridePlan {
   const applied = new Map<OverridableAttribute, ParameterReferenceInfo>();
@@ -103,9 +135,7 @@ export function planOverrides(targets: OverridableAttribute[], parameters: Param
     const reached = targets.filter((target) => keyMatches(parameter.key, target));
     matches.push({ parameter, targets: reached });
     if (reached.length === 0) {
-      const candidates = new Set<string>();
-      for (const target of targets) for (const form of keyForms(target)) if (keyMatches(form, target)) candidates.add(form);
-      unknown.push({ parameter, suggestion: closestMatch(parameter.key, candidates) });
+      unknown.push({ parameter, suggestion: suggestKey(parameter.key, targets) });
       continue;
     }
     for (const target of reached) {

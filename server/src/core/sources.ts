@@ -220,11 +220,26 @@ interface LookupPlace {
   via: 'package' | 'folder' | 'scenarioPath' | 'parent';
 }
 
+export interface FolderOptions {
+  folder: string;
+  scenarioPath: string[];
+}
+
+/** Whether `directory` is `folder` or lies below it. */
+function isWithinFolder(directory: string, folder: string): boolean {
+  return directory === folder || directory.startsWith(folder.endsWith(path.sep) ? folder : folder + path.sep);
+}
+
 export interface StoreOptions {
   /** Directories searched after the package itself: SCENARIO_PATH first, then the editor's setting. */
   scenarioPath?: string[];
   /** The folder where the upward search of unpacked folders stops (workspace folder or working directory). */
   root?: string;
+  /**
+   * Workspace folders: a file inside one searches upward to it (not to `root`) and uses its own
+   * scenario path instead of `scenarioPath` (an editor's per-folder setting).
+   */
+  folders?: FolderOptions[];
   host?: FileSystemHost;
   limits?: PackageLimits;
 }
@@ -244,6 +259,7 @@ export class ScenarioStore {
   readonly host: FileSystemHost;
   readonly scenarioPath: string[];
   readonly root: string | undefined;
+  readonly folders: FolderOptions[];
   private readonly limits: PackageLimits;
   private readonly packages = new Map<string, Promise<PackageContents>>();
   private readonly overlays = new Map<string, string>();
@@ -257,6 +273,8 @@ export class ScenarioStore {
     this.host = options.host ?? nodeFileSystem;
     this.scenarioPath = options.scenarioPath ?? splitScenarioPath(process.env.SCENARIO_PATH);
     this.root = options.root ? path.resolve(options.root) : undefined;
+    // Innermost first, so a folder nested in another is found before it.
+    this.folders = (options.folders ?? []).map((entry) => ({ ...entry, folder: path.resolve(entry.folder) })).sort((a, b) => b.folder.length - a.folder.length);
     this.limits = options.limits ?? DEFAULT_PACKAGE_LIMITS;
   }
 
@@ -377,17 +395,33 @@ export class ScenarioStore {
     return undefined;
   }
 
+  /** The workspace folder holding a path, if any. */
+  private folderOf(filePath: string): FolderOptions | undefined {
+    return this.folders.find((entry) => isWithinFolder(filePath, entry.folder));
+  }
+
+  /** Where the upward search from `directory` stops: its workspace folder, else the root (or working directory). */
+  rootOf(directory: string): string {
+    return this.folderOf(directory)?.folder ?? this.root ?? process.cwd();
+  }
+
+  /** The folders searched after the package for a name written in `from`. */
+  scenarioPathFor(from: SourceRef): string[] {
+    return this.folderOf(from.disk)?.scenarioPath ?? this.scenarioPath;
+  }
+
   /** Places searched for a name referenced from `from`, in order (SPEC 3). */
   private lookupPlaces(from: SourceRef): LookupPlace[] {
     const places: LookupPlace[] = [];
+    const scenarioPath = this.scenarioPathFor(from);
     if (from.entries.length === 0) {
       const directory = path.dirname(from.disk);
       places.push({ packageRef: undefined, directory, via: 'folder' });
-      for (const entry of this.scenarioPath) places.push({ packageRef: undefined, directory: entry, via: 'scenarioPath' });
-      const root = this.root ?? process.cwd();
-      if (directory === root || directory.startsWith(root.endsWith(path.sep) ? root : root + path.sep)) {
+      for (const entry of scenarioPath) places.push({ packageRef: undefined, directory: entry, via: 'scenarioPath' });
+      const root = this.rootOf(directory);
+      if (isWithinFolder(directory, root)) {
         for (let parent = path.dirname(directory); ; parent = path.dirname(parent)) {
-          if (!(parent === root || parent.startsWith(root.endsWith(path.sep) ? root : root + path.sep))) break;
+          if (!isWithinFolder(parent, root)) break;
           places.push({ packageRef: undefined, directory: parent, via: 'parent' });
           if (parent === root || parent === path.dirname(parent)) break;
         }
@@ -398,7 +432,7 @@ export class ScenarioStore {
       const directory = entry.includes('/') ? entry.slice(0, entry.lastIndexOf('/')) : '';
       places.push({ packageRef, directory, via: 'package' });
       if (directory !== '') places.push({ packageRef, directory: '', via: 'package' });
-      for (const entryDirectory of this.scenarioPath) places.push({ packageRef: undefined, directory: entryDirectory, via: 'scenarioPath' });
+      for (const entryDirectory of scenarioPath) places.push({ packageRef: undefined, directory: entryDirectory, via: 'scenarioPath' });
     }
     return places;
   }

@@ -12,6 +12,9 @@ import { Workspace } from '../workspace';
 import { schemaFixes } from './schemaCodeActions';
 import { currentDocument } from './schemaCompletion';
 
+/** A file with more groups than this offers only the first ones as fixes of an unknown group. */
+const MAX_GROUP_FIXES = 20;
+
 function singleEdit(uri: string, range: LspRange, newText: string): WorkspaceEdit {
   return { changes: { [uri]: [TextEdit.replace(range, newText)] } };
 }
@@ -39,12 +42,22 @@ async function fixesFor(workspace: Workspace, uri: string, ref: SourceRef, docum
   if (!data || typeof data.code !== 'string') return [];
   const text = document.getText();
   switch (data.code) {
-    case 'unknown-key':
-      return data.suggestion ? [quickFix(`Change key to '${data.suggestion}'`, diagnostic, singleEdit(uri, diagnostic.range, data.suggestion), true)] : [];
+    case 'unknown-key': {
+      if (data.suggestion) return [quickFix(`Change key to '${data.suggestion}'`, diagnostic, singleEdit(uri, diagnostic.range, data.suggestion), true)];
+      const related = diagnostic.relatedInformation?.[0];
+      if (!data.relatedReplacement || !related) return [];
+      const targetRef = await workspace.uris.toRef(related.location.uri);
+      if (!targetRef || (targetRef.entries.length > 0 && !workspace.editablePackages)) return [];
+      const fileName = related.location.uri.slice(related.location.uri.lastIndexOf('/') + 1);
+      return [quickFix(`List '${data.relatedReplacement}' in ${decodeURIComponent(fileName)} instead`, diagnostic, singleEdit(workspace.uriOf(targetRef), related.location.range, data.relatedReplacement), true)];
+    }
     case 'xosc-fallback':
       return data.replacement ? [quickFix(`Change to '${data.replacement}'`, diagnostic, singleEdit(uri, diagnostic.range, data.replacement), true)] : [];
-    case 'unknown-group':
-      return data.suggestion ? [quickFix(`Change to '${data.suggestion}'`, diagnostic, singleEdit(uri, diagnostic.range, data.suggestion), true)] : [];
+    case 'unknown-group': {
+      // The closest name first (preferred), then every other group of the file.
+      const names = [...new Set([...(data.suggestion ? [data.suggestion] : []), ...(data.groups ?? '').split('\n').filter((name) => name.length > 0)])];
+      return names.slice(0, MAX_GROUP_FIXES).map((name) => quickFix(`Change to '${name}'`, diagnostic, singleEdit(uri, diagnostic.range, name), name === data.suggestion));
+    }
     case 'unknown-parameter-attribute': {
       const actions: CodeAction[] = [];
       const listedName = text.slice(document.offsetAt(diagnostic.range.start), document.offsetAt(diagnostic.range.end));

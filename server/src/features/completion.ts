@@ -7,7 +7,7 @@ import { keyMatches, OverridableAttribute, overridableAttributes } from '../core
 import { findGroup, PARAMETER_ATTRIBUTES } from '../core/model';
 import { displayRef, SourceRef } from '../core/sources';
 import { keyChoices, overridablePlace, sourceForFileName } from '../analysis';
-import { attributeValuesBetween, elementNameContextAt, lastAttributeValueBefore, valueContextAt, ValueContext } from '../cursor';
+import { attributeValuesBetween, elementNameContextAt, lastAttributeValueBefore, openElementsAt, valueContextAt, ValueContext } from '../cursor';
 import { Workspace } from '../workspace';
 import { schemaCompletion } from './schemaCompletion';
 import { catalogCompletion } from './catalogs';
@@ -56,9 +56,9 @@ export async function fileNameCandidates(workspace: Workspace, from: SourceRef):
     const directory = path.dirname(from.disk);
     for (const name of listFolder(directory, from.disk)) add(name, 'this folder');
   }
-  for (const directory of workspace.store.scenarioPath) for (const name of listFolder(directory, from.disk)) add(name, `${directory} (scenario path)`);
-  const root = workspace.store.root;
-  if (from.entries.length === 0 && root) {
+  for (const directory of workspace.store.scenarioPathFor(from)) for (const name of listFolder(directory, from.disk)) add(name, `${directory} (scenario path)`);
+  const root = workspace.store.rootOf(path.dirname(from.disk));
+  if (from.entries.length === 0) {
     for (let parent = path.dirname(path.dirname(from.disk)); parent.startsWith(root); parent = path.dirname(parent)) {
       for (const name of listFolder(parent, from.disk)) add(name, `${parent} (parent folder)`);
       if (parent === root || parent === path.dirname(parent)) break;
@@ -118,23 +118,23 @@ async function keyItems(workspace: Workspace, ref: SourceRef, document: TextDocu
     .map((entry) => entry.value.trim());
   const range = replaceRange(document, context.valueStart, context.valueEnd);
   const items: CompletionItem[] = [];
+  // One row per attribute (or per set of attributes only settable together), in its shortest unambiguous key.
   keyChoices(targets).forEach((choice, index) => {
     if (choice.targets.some((target) => coveredBy(given, target))) return;
     const [first] = choice.targets;
+    const [form] = choice.forms;
     const declared = overridablePlace(source, first);
     const where = declared ? `${displayRef(declared.ref, workspace.folders[0])}:${declared.range.start.line + 1}` : '';
     const defaults = [...new Set(choice.targets.map((target) => target.defaultValue ?? '(none)'))].join(' / ');
     const together = choice.targets.length > 1 ? ` (sets ${choice.targets.length} attributes)` : '';
-    choice.forms.forEach((form, formIndex) => {
-      items.push({
-        label: form,
-        kind: CompletionItemKind.Property,
-        detail: `default ${defaults}${where ? ` — ${where}` : ''}${together}`,
-        documentation: `Overrides \`${first.attributeName}\` of <${first.element.name}> (${first.path.join(' › ')}) in group ${group.name}.`,
-        sortText: `${formIndex}_${String(index).padStart(5, '0')}`,
-        filterText: form,
-        textEdit: { range, newText: form },
-      });
+    items.push({
+      label: form,
+      kind: CompletionItemKind.Property,
+      detail: `default ${defaults}${where ? ` — ${where}` : ''}${together}`,
+      documentation: `Overrides \`${first.attributeName}\` of <${first.element.name}> (${first.path.join(' › ')}) in group ${group.name}.`,
+      sortText: String(index).padStart(5, '0'),
+      filterText: form,
+      textEdit: { range, newText: form },
     });
   });
   return items;
@@ -182,28 +182,38 @@ export function referenceSnippet(fileName: string, groupName: string, targets: O
   return lines.join('\n');
 }
 
+/**
+ * ScenarioReference snippets for each group of each file a name resolves to. Simple scenarios (files
+ * without references of their own, whose groups list attributes to override) come first, then the
+ * other files in lookup order.
+ */
 async function snippetItems(workspace: Workspace, ref: SourceRef, document: TextDocument, start: number, offset: number): Promise<CompletionItem[]> {
-  const items: CompletionItem[] = [];
   const range = replaceRange(document, start, offset);
   const indent = /^( +|\t)/m.exec(document.getText().slice(0, 4000))?.[1] ?? '    ';
-  for (const candidate of await fileNameCandidates(workspace, ref)) {
+  const ranked: { rank: number; item: CompletionItem }[] = [];
+  for (const [fileIndex, candidate] of (await fileNameCandidates(workspace, ref)).entries()) {
+    if (ranked.length >= MAX_SNIPPETS) break;
     const source = await sourceForFileName(workspace, ref, candidate.name);
     if (!source?.model) continue;
+    const simple = source.links.length === 0 && source.model.declarations.length > 0;
     for (const group of source.model.groups) {
-      if (items.length >= MAX_SNIPPETS) return items;
+      if (ranked.length >= MAX_SNIPPETS) break;
       const targets = overridableAttributes(source.model, group);
-      items.push({
-        label: `ScenarioReference ${candidate.name} ${group.name}`,
-        kind: CompletionItemKind.Snippet,
-        detail: `${targets.length} keys with their defaults`,
-        filterText: `<ScenarioReference ${candidate.name} ${group.name}`,
-        sortText: `z${String(items.length).padStart(4, '0')}`,
-        insertTextFormat: InsertTextFormat.Snippet,
-        textEdit: { range, newText: referenceSnippet(candidate.name, group.name, targets, indent) },
+      ranked.push({
+        rank: (simple ? 0 : 1) * 1_000_000 + fileIndex * 1000 + ranked.length,
+        item: {
+          label: `ScenarioReference ${candidate.name} ${group.name}`,
+          kind: CompletionItemKind.Snippet,
+          detail: `${targets.length} keys with their defaults`,
+          filterText: `<ScenarioReference ${candidate.name} ${group.name}`,
+          insertTextFormat: InsertTextFormat.Snippet,
+          textEdit: { range, newText: referenceSnippet(candidate.name, group.name, targets, indent) },
+        },
       });
     }
   }
-  return items;
+  ranked.sort((a, b) => a.rank - b.rank);
+  return ranked.map(({ item }, index) => ({ ...item, sortText: `z${String(index).padStart(4, '0')}` }));
 }
 
 /** Parameters after `$` and catalog or entry names in a CatalogReference, from the semantic model. */
@@ -255,7 +265,8 @@ export async function complete(workspace: Workspace, ref: SourceRef, document: T
   }
   const schemaItems = await schemaCompletion(workspace, ref, document, offset, undefined);
   const elementContext = elementNameContextAt(text, offset);
-  if (elementContext && 'ScenarioReference'.toLowerCase().startsWith(elementContext.prefix.toLowerCase())) {
+  // A ScenarioReference's parent is the ManeuverGroup it fills (SPEC), so it is offered nowhere else.
+  if (elementContext && 'ScenarioReference'.toLowerCase().startsWith(elementContext.prefix.toLowerCase()) && openElementsAt(text, elementContext.start).at(-1) === 'ManeuverGroup') {
     return [...schemaItems, ...(await snippetItems(workspace, ref, document, elementContext.start, offset))];
   }
   return schemaItems;

@@ -2,7 +2,7 @@ import { Location } from 'vscode-languageserver/node';
 import { FlatSource, originOf } from '../core/flatten';
 import { ScenarioModel } from '../core/model';
 import { SourceRef } from '../core/sources';
-import { elementPlace, groupLinkOf, keyMatchOf, linkOf, overridablePlace, Place, resolvedTarget } from '../analysis';
+import { attributesSetBy, elementPlace, groupLinkOf, keyMatchOf, linkOf, overridablePlace, Place, resolvedTarget } from '../analysis';
 import { ancestor, attributeAt } from '../cursor';
 import { Workspace } from '../workspace';
 import { catalogDefinition } from './catalogs';
@@ -36,9 +36,10 @@ export async function definitionPlaces(workspace: Workspace, ref: SourceRef, off
   if (element.name === 'ParameterReference' && attribute.name === 'key') {
     const found = keyMatchOf(source, element);
     if (!found?.link.source) return [];
-    const { match } = found;
     const linkedSource = found.link.source;
-    return match.targets.map((target) => overridablePlace(linkedSource, target)).filter((place): place is Place => place !== undefined);
+    return attributesSetBy(found.group, found.match)
+      .map((target) => overridablePlace(linkedSource, target))
+      .filter((place): place is Place => place !== undefined);
   }
   if (attribute.name === 'entityRef') return entityPlaces(source, model, attribute.value);
   return [];

@@ -16,6 +16,10 @@ export interface DiagnosticData {
   code: string;
   suggestion?: string;
   replacement?: string;
+  /** Replaces the text at the first related location (a fix in the file where the mistake lives). */
+  relatedReplacement?: string;
+  /** Every group name of the referenced file, one per line. */
+  groups?: string;
   entity?: string;
   /** Schema fixes: the missing names (comma-separated) and where they go. */
   missing?: string;
@@ -24,9 +28,8 @@ export interface DiagnosticData {
   parameter?: string;
 }
 
-/** LSP severity: an unknown key is an error for the CLI but a warning while editing (SPEC 7). */
+/** LSP severity: the core's own, so the editor and the CLI agree (an unknown key blocks a flatten, so it is an error). */
 function severityOf(problem: Problem): DiagnosticSeverity {
-  if (problem.code === 'unknown-key') return DiagnosticSeverity.Warning;
   if (problem.severity === 'error') return DiagnosticSeverity.Error;
   if (problem.severity === 'warning') return DiagnosticSeverity.Warning;
   if (problem.severity === 'hint') return DiagnosticSeverity.Hint;
@@ -137,13 +140,16 @@ export async function diagnose(workspace: Workspace, ref: SourceRef): Promise<{ 
 
 /**
  * Publishes diagnostics for open documents: after an edit (briefly delayed, latest edit wins) for
- * the edited file and every open file that depends on it.
+ * the edited file and every open file that depends on it. A client that pulls diagnostics
+ * (`textDocument/diagnostic`) gets none pushed; it is asked to pull again instead.
  */
 export class DiagnosticsScheduler {
   private readonly dependencies = new Map<string, Set<string>>();
   private readonly pending = new Set<string>();
   private timer: NodeJS.Timeout | undefined;
   private running: Promise<void> | undefined;
+  /** `push`: publish; `refresh`: ask the pulling client to pull again; `pull`: the pulling client cannot be asked. */
+  mode: 'push' | 'refresh' | 'pull' = 'push';
 
   constructor(
     private readonly connection: Connection,
@@ -170,12 +176,23 @@ export class DiagnosticsScheduler {
   closed(ref: SourceRef, uri: string): void {
     this.dependencies.delete(refId(ref));
     this.pending.delete(refId(ref));
-    void this.connection.sendDiagnostics({ uri, diagnostics: [] });
+    if (this.mode === 'push') void this.connection.sendDiagnostics({ uri, diagnostics: [] });
   }
 
   private arm(): void {
+    if (this.mode === 'pull') return this.pending.clear();
     if (this.timer) clearTimeout(this.timer);
-    this.timer = setTimeout(() => void this.flush(), this.workspace.settings.diagnosticsDelay);
+    this.timer = setTimeout(() => void (this.mode === 'refresh' ? this.refresh() : this.flush()), this.workspace.settings.diagnosticsDelay);
+  }
+
+  private async refresh(): Promise<void> {
+    this.timer = undefined;
+    this.pending.clear();
+    try {
+      await this.connection.languages.diagnostics.refresh();
+    } catch (error) {
+      this.connection.console.error(`workspace/diagnostic/refresh failed: ${(error as Error).stack ?? error}`);
+    }
   }
 
   /** Runs one pass at a time; edits arriving meanwhile are taken by the next pass. */

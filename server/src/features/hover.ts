@@ -1,8 +1,10 @@
 import { Hover, MarkupKind } from 'vscode-languageserver/node';
-import { describeGroup, groupLinkOf, keyMatchOf, linkOf, overridablePlace, Place, resolvedTarget } from '../analysis';
+import { attributesSetBy, describeGroup, groupLinkOf, keyMatchOf, linkOf, overridablePlace, Place, resolvedTarget } from '../analysis';
 import { ancestor, attributeAt } from '../cursor';
 import { displayRef, SourceRef } from '../core/sources';
+import { OverridableAttribute } from '../core/keys';
 import { ManeuverGroupInfo } from '../core/model';
+import { code, escapeMarkdown } from '../markdown';
 import { Workspace } from '../workspace';
 import { schemaHover } from './schemaHover';
 import { assignmentHover } from './catalogs';
@@ -10,7 +12,11 @@ import { parameterHover } from './parameters';
 
 function where(workspace: Workspace, place: Place | undefined): string {
   if (!place) return 'an unknown place';
-  return `${displayRef(place.ref, workspace.folders[0])}:${place.range.start.line + 1}`;
+  return code(`${displayRef(place.ref, workspace.folders[0])}:${place.range.start.line + 1}`);
+}
+
+function defaultOf(target: OverridableAttribute): string {
+  return target.defaultValue === undefined ? '(no default value)' : code(target.defaultValue);
 }
 
 function groupSummary(title: string, group: ManeuverGroupInfo): string {
@@ -40,18 +46,17 @@ async function modularHover(workspace: Workspace, ref: SourceRef, offset: number
     const link = linkOf(source, element);
     if (!link) return null;
     const target = resolvedTarget(link.resolution);
-    if (!target || !link.source?.model) return reply(`**${attribute.value}** does not resolve`);
-    const groups = link.source.model.groups.map((group) => `- ${group.name}`);
+    if (!target || !link.source?.model) return reply(`${code(attribute.value)} does not resolve`);
+    const groups = link.source.model.groups.map((group) => `- ${escapeMarkdown(group.name)}`);
     // The file name is what the attribute already shows: name only where it was found.
-    const found = displayRef(target, workspace.folders[0]);
-    return reply([`found at \`${found}\``, '', 'ManeuverGroups:', ...groups].join('\n'));
+    return reply([`found at ${code(displayRef(target, workspace.folders[0]))}`, '', 'ManeuverGroups:', ...groups].join('\n'));
   }
   if (element.name === 'ManeuverGroupReference' && attribute.name === 'maneuverGroupName') {
     const reference = ancestor(element.parent, 'ScenarioReference');
     const link = reference ? linkOf(source, reference) : undefined;
     const group = link ? groupLinkOf(link, element) : undefined;
     if (!link?.source || !group?.target) return null;
-    return reply(groupSummary(`ManeuverGroup **${group.target.name}** of \`${link.info.fileName}\` (${group.overridable.length} overridable attributes)`, group.target));
+    return reply(groupSummary(`ManeuverGroup **${escapeMarkdown(group.target.name)}** of ${code(link.info.fileName)} (${group.overridable.length} overridable attributes)`, group.target));
   }
   if (element.name === 'ParameterReference' && attribute.name === 'key') {
     const found = keyMatchOf(source, element);
@@ -59,26 +64,27 @@ async function modularHover(workspace: Workspace, ref: SourceRef, offset: number
     const plan = found?.group.plan;
     if (!found || !linkedSource || !plan) return null;
     const { group, match } = found;
-    if (match.targets.length === 0) return reply(`key **${attribute.value}** overrides nothing in group \`${group.info.name}\``);
-    const lines = [`key **${attribute.value}** overrides ${match.targets.length} attribute${match.targets.length === 1 ? '' : 's'}:`, ''];
-    for (const target of match.targets) {
-      const applied = plan.applied.get(target);
+    const key = code(attribute.value);
+    if (match.targets.length === 0) return reply(`key ${key} overrides nothing in group ${code(group.info.name)}`);
+    const sets = attributesSetBy(group, match);
+    const lines = [sets.length > 0 ? `key ${key} sets ${sets.length} attribute${sets.length === 1 ? '' : 's'}:` : `key ${key} sets nothing: a more specific key sets every attribute it matches`];
+    if (sets.length > 0) lines.push('');
+    for (const target of sets) {
       const declared = where(workspace, overridablePlace(linkedSource, target));
-      const effective =
-        applied === match.parameter
-          ? `**${match.parameter.value}** (this key)`
-          : applied
-            ? `**${applied.value}** (from the more specific key \`${applied.key}\` on line ${model.document.lines.positionAt(applied.element.start).line + 1})`
-            : `**${target.defaultValue ?? '(none)'}** (the default: this key does not apply)`;
-      lines.push(
-        `- \`${target.path.join('.')}.${target.attributeName}\`: default **${target.defaultValue ?? '(no default value)'}** declared at ${declared}; takes effect: ${effective}`,
-      );
+      lines.push(`- ${code(`${target.path.join('.')}.${target.attributeName}`)}: default ${defaultOf(target)} declared at ${declared}; takes effect: ${code(match.parameter.value)} (this key)`);
+    }
+    const taken = match.targets.filter((target) => !sets.includes(target));
+    if (taken.length > 0) lines.push('', `Matched, but set by a more specific key:`, '');
+    for (const target of taken) {
+      const applied = plan.applied.get(target);
+      const by = applied ? `${code(applied.value)} from ${code(applied.key)} on line ${model.document.lines.positionAt(applied.element.start).line + 1}` : 'its default';
+      lines.push(`- ${code(`${target.path.join('.')}.${target.attributeName}`)}: ${by}`);
     }
     return reply(lines.join('\n'));
   }
   if (attribute.name === 'entityRef') {
     const entity = model.entities.find((candidate) => candidate.name === attribute.value);
-    return reply(entity ? `entity **${entity.name}** (${entity.element.children[0]?.name ?? 'ScenarioObject'})` : `entity **${attribute.value}** is not declared in this file`);
+    return reply(entity ? `entity ${code(entity.name)} (${entity.element.children[0]?.name ?? 'ScenarioObject'})` : `entity ${code(attribute.value)} is not declared in this file`);
   }
   return null;
 }

@@ -11,7 +11,7 @@ export interface ServerContext {
   readonly diagnostics: DiagnosticsScheduler;
   readonly idle: IdleCollector;
   /** What the client said it can do, filled in by `initialize`. */
-  readonly client: { canConfigure: boolean; canWatch: boolean };
+  readonly client: { canConfigure: boolean; canWatch: boolean; foldersChange: boolean };
   /** Resolves once the first workspace index is built (immediately before `initialized`). */
   indexed: Promise<void>;
 }

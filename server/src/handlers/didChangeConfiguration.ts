@@ -1,13 +1,17 @@
+import { pathToFileURL } from 'node:url';
 import { readSettings } from '../workspace';
 import { notification, ServerContext } from './context';
 
 export const CONFIGURATION_SECTION = 'modular2simple';
 
-/** Asks the client for the settings (when it can answer) and applies them. */
+/** Asks the client for the settings of the window and of each folder (when it can answer) and applies them. */
 export async function loadSettings(context: ServerContext): Promise<void> {
   if (!context.client.canConfigure) return;
-  const value: unknown = await context.connection.workspace.getConfiguration(CONFIGURATION_SECTION);
-  context.workspace.configure(context.workspace.folders, readSettings(value));
+  const folders = context.workspace.folders;
+  const items = [{ section: CONFIGURATION_SECTION }, ...folders.map((folder) => ({ section: CONFIGURATION_SECTION, scopeUri: pathToFileURL(folder).href }))];
+  const values = (await context.connection.workspace.getConfiguration(items)) as unknown[];
+  const perFolder = new Map(folders.map((folder, index) => [folder, readSettings(values[index + 1]).scenarioPath]));
+  context.workspace.configure(folders, readSettings(values[0]), perFolder);
 }
 
 /** `workspace/didChangeConfiguration`: new settings can change how any name resolves, so every open file is checked again. */

@@ -3,6 +3,7 @@ import * as codeAction from './codeAction';
 import * as codeLens from './codeLens';
 import * as completion from './completion';
 import * as definition from './definition';
+import * as diagnostic from './diagnostic';
 import * as didChange from './didChange';
 import * as didChangeConfiguration from './didChangeConfiguration';
 import * as didChangeWatchedFiles from './didChangeWatchedFiles';
@@ -29,6 +30,7 @@ import * as scene from './scene';
 import * as runEsmini from './runEsmini';
 import * as structure from './structure';
 import * as willRenameFiles from './willRenameFiles';
+import * as workspaceDiagnostic from './workspaceDiagnostic';
 import * as workspaceSymbol from './workspaceSymbol';
 
 /** One module per LSP method (or custom request); each registers its handler on the context's connection. */
@@ -57,6 +59,8 @@ const HANDLERS: { register(context: ServerContext): void }[] = [
   rangeFormatting,
   inlayHint,
   semanticTokens,
+  diagnostic,
+  workspaceDiagnostic,
   flattenToText,
   flattenToFile,
   pack,

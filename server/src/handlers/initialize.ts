@@ -13,6 +13,10 @@ export function register(context: ServerContext): void {
     const capabilities = params.capabilities;
     context.client.canConfigure = Boolean(capabilities.workspace?.configuration);
     context.client.canWatch = Boolean(capabilities.workspace?.didChangeWatchedFiles?.dynamicRegistration);
+    context.client.foldersChange = Boolean(capabilities.workspace?.workspaceFolders);
+    // A client that pulls diagnostics gets them for the whole workspace and none pushed, so nothing shows twice.
+    const pulls = Boolean(capabilities.textDocument?.diagnostic);
+    context.diagnostics.mode = !pulls ? 'push' : capabilities.workspace?.diagnostics?.refreshSupport ? 'refresh' : 'pull';
     const folderUris = params.workspaceFolders?.map((folder) => folder.uri) ?? (params.rootUri ? [params.rootUri] : []);
     let folders = folderUris.map((uri) => filePathOf(uri)).filter((folder): folder is string => folder !== undefined);
     if (folders.length === 0 && params.rootPath) folders = [path.resolve(params.rootPath)];
@@ -36,8 +40,9 @@ export function register(context: ServerContext): void {
         documentLinkProvider: { resolveProvider: false },
         documentFormattingProvider: true,
         documentRangeFormattingProvider: true,
+        ...(pulls ? { diagnosticProvider: { identifier: 'modular2simple', interFileDependencies: true, workspaceDiagnostics: true } } : {}),
         workspace: {
-          workspaceFolders: { supported: true },
+          workspaceFolders: { supported: true, changeNotifications: true },
           fileOperations: {
             willRename: {
               filters: [{ pattern: { glob: '**/*.{xosc,mosc}', matches: 'file' } }, { pattern: { glob: '**/*', matches: 'folder' } }],

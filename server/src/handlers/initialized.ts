@@ -1,6 +1,7 @@
 import { DidChangeConfigurationNotification, DidChangeWatchedFilesNotification } from 'vscode-languageserver/node';
 import { notification, ServerContext } from './context';
 import { CONFIGURATION_SECTION, loadSettings } from './didChangeConfiguration';
+import * as didChangeWorkspaceFolders from './didChangeWorkspaceFolders';
 
 async function index(context: ServerContext): Promise<void> {
   const progress = await context.connection.window.createWorkDoneProgress();
@@ -15,6 +16,7 @@ async function index(context: ServerContext): Promise<void> {
 export function register(context: ServerContext): void {
   const { connection } = context;
   connection.onInitialized(() => {
+    didChangeWorkspaceFolders.listen(context);
     context.indexed = notification(context, 'initialized', async () => {
       await loadSettings(context);
       if (context.client.canConfigure) await connection.client.register(DidChangeConfigurationNotification.type, { section: CONFIGURATION_SECTION });
