@@ -82,7 +82,7 @@ describe('language server with bad input', function () {
 
   it('reports each broken input on its reference and goes on answering', async function () {
     const uri = await client.openFile(path.join(root, 'main.xosc'));
-    const diagnostics: Diagnostic[] = await client.diagnosticsOf(uri);
+    const diagnostics: Diagnostic[] = await client.diagnosticsOf(uri, () => true, 60_000);
     const onLine = (fileName: string) => diagnostics.filter((diagnostic) => diagnostic.range.start.line === fs.readFileSync(path.join(root, 'main.xosc'), 'utf8').split('\n').findIndex((line) => line.includes(`"${fileName}"`)));
     for (const fileName of ['garbage.xosc', 'truncated.mosc', 'bomb.mosc', 'deep.xosc', 'self.xosc', 'garbage.mosc', 'empty.xosc']) {
       assert.ok(onLine(fileName).some((diagnostic) => diagnostic.severity === 1), `an error on the reference to ${fileName}: ${JSON.stringify(diagnostics.map((d) => [d.range.start.line, d.message]))}`);

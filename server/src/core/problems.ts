@@ -21,7 +21,9 @@ export type ProblemCode =
   | 'reference-outside-group'
   | 'cycle'
   | 'undeclared-entity'
-  | 'source-errors';
+  | 'source-errors'
+  | 'too-large'
+  | 'too-deep';
 
 export interface RelatedProblemLocation {
   source: SourceRef;

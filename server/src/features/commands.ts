@@ -75,7 +75,7 @@ export async function structure(workspace: Workspace, uri: unknown): Promise<Str
       const position = flat.original?.document.lines.positionAt(link.info.element.start);
       const target = resolvedTarget(link.resolution);
       if (!target || !link.source) {
-        node.children.push({ kind: 'missing', label: link.info.fileName || '(no scenarioFileName)', detail: link.resolution.kind === 'missing' ? 'not found' : link.resolution.kind === 'invalid' ? link.resolution.message : 'cycle', uri: workspace.uriOf(flat.ref), line: position?.line, character: position?.character, children: [] });
+        node.children.push({ kind: 'missing', label: link.info.fileName || '(no scenarioFileName)', detail: link.resolution.kind === 'missing' ? 'not found' : link.resolution.kind === 'invalid' || link.resolution.kind === 'unreadable' ? link.resolution.message : 'cycle', uri: workspace.uriOf(flat.ref), line: position?.line, character: position?.character, children: [] });
         continue;
       }
       const child = build(link.source, link.resolution.kind === 'package' ? 'package' : 'scenario', link.info.fileName);
