@@ -55,6 +55,8 @@ export interface XmlParseOptions {
 /** A raw attribute value that decodes to itself: no references, no white space to normalize. */
 const PLAIN_VALUE = /^[^&\x00-\x1F\uD800-\uDFFF\uFFFE\uFFFF]*$/;
 
+const LINE_END = /[\r\n>]/g;
+
 const PREDEFINED_ENTITIES: Record<string, string> = { lt: '<', gt: '>', amp: '&', quot: '"', apos: "'" };
 
 export function attribute(element: XmlElement, name: string): XmlAttribute | undefined {
@@ -356,11 +358,13 @@ export function parseXml(input: string, options: XmlParseOptions = {}): XmlDocum
       const quote = quoteCode === 34 ? '"' : "'";
       const valueStart = position + 1;
       let valueEnd = text.indexOf(quote, valueStart);
-      const nextTag = text.indexOf('<', valueStart);
-      if (valueEnd < 0 || (nextTag >= 0 && nextTag < valueEnd)) {
+      // The next '<' is found once and reused by every attribute before it (a tag may hold thousands).
+      if (nextOpen < valueStart) nextOpen = indexOrEnd('<', valueStart);
+      if (valueEnd < 0 || nextOpen < valueEnd) {
         // Recover at the line end so a value being typed does not swallow the rest of the file.
-        const lineEnd = text.slice(valueStart).search(/[\r\n>]/);
-        valueEnd = lineEnd < 0 ? text.length : valueStart + lineEnd;
+        LINE_END.lastIndex = valueStart;
+        const lineEnd = LINE_END.exec(text);
+        valueEnd = lineEnd ? lineEnd.index : text.length;
         report(`the value of attribute '${attributeName}' is not closed with ${quote}`, nameStart, valueEnd);
         position = valueEnd;
       } else {
@@ -450,6 +454,7 @@ export function parseXml(input: string, options: XmlParseOptions = {}): XmlDocum
     return found < 0 ? text.length : found;
   };
   let nextAmpersand = -1;
+  let nextOpen = -1;
   let nextCdataEnd = -1;
 
   for (let match = NOT_XML_CHAR.exec(text); match; match = NOT_XML_CHAR.exec(text)) {
