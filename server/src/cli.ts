@@ -40,7 +40,7 @@ Options:
   --format text|json        output format of check and stats
   --max-file-size SIZE      largest scenario file or package entry read (default 16M)
   --max-unpacked-size SIZE  bytes one run may unpack from packages, all together (default 64M)
-  --max-output-size SIZE    characters of one flattened result (default 16M)
+  --max-output-size SIZE    characters of one flattened result (default 8M)
   --max-depth N             files in one chain of references, nested packages included (default 64)
   -q, --quiet               print errors only
   -h, --help                this help

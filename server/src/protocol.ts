@@ -5,7 +5,7 @@
 export const ServerCommands = {
   /** args: [uri: string, options?: { force?: boolean }] -> FlattenTextResult. For the live preview. */
   flattenToText: 'modular2simple.server.flattenToText',
-  /** args: [inputUri: string, outputPath: string, options?: { force?: boolean }] -> WriteResult. */
+  /** args: [inputUri: string, outputPath: string (a .xosc), options?: { force?: boolean; outsideWorkspace?: boolean }] -> WriteResult. */
   flattenToFile: 'modular2simple.server.flattenToFile',
   /** args: [inputs: string[] (file URIs of a folder, a main.xosc or files), outputPath: string] -> WriteResult. */
   pack: 'modular2simple.server.pack',
@@ -34,6 +34,11 @@ export interface FlattenTextResult {
 export interface WriteResult {
   written: string | null;
   problems: ProblemSummary[];
+  /**
+   * Set when nothing was written because the user must agree first: `outsideWorkspace` means the
+   * output lies outside the workspace folders; send the command again with `{ outsideWorkspace: true }`.
+   */
+  needsConfirmation?: 'outsideWorkspace';
 }
 
 export interface StructureNode {

@@ -2,8 +2,9 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { TextDocument } from 'vscode-languageserver-textdocument';
 import { AnalysisResult, Flattener, FlatSource } from './core/flatten';
-import { FileSystemHost, nodeFileSystem, refId, ScenarioStore, SourceRef, splitScenarioPath, diskRef, childRef } from './core/sources';
-import { decodeUtf8, LineIndex, Range } from './core/text';
+import { decodeScenario } from './core/encoding';
+import { FileSystemHost, nodeFileSystem, refId, ScenarioStore, SizedCache, SourceRef, splitScenarioPath, diskRef, childRef } from './core/sources';
+import { LineIndex, Range } from './core/text';
 import { UriResolver, refToUri } from './uris';
 
 export interface ServerSettings {
@@ -30,18 +31,45 @@ export function readSettings(value: unknown): ServerSettings {
   return { scenarioPath, diagnosticsDelay: delay, maxIndexedFileBytes: DEFAULT_SETTINGS.maxIndexedFileBytes };
 }
 
-/** Keeps file bytes and kinds in memory until a change notification says they are stale. */
+/** Bytes of files and of unpacked packages that the server keeps, each; the rest is read again on demand. */
+export const SERVER_CACHE_BYTES = 64 * 1024 * 1024;
+
+/**
+ * Keeps file bytes (up to a total size, least recently used first out) and kinds in memory until a
+ * change notification says they are stale.
+ */
 export class CachingFileSystem implements FileSystemHost {
-  private readonly bytes = new Map<string, Promise<Uint8Array | undefined>>();
+  private readonly bytes: SizedCache<Uint8Array | undefined>;
+  private readonly pending = new Map<string, Promise<Uint8Array | undefined>>();
   private readonly kinds = new Map<string, Promise<'file' | 'directory' | undefined>>();
 
-  constructor(private readonly inner: FileSystemHost = nodeFileSystem) {}
+  constructor(
+    private readonly inner: FileSystemHost = nodeFileSystem,
+    maxBytes = SERVER_CACHE_BYTES,
+  ) {
+    this.bytes = new SizedCache(maxBytes);
+  }
 
-  readFile(filePath: string): Promise<Uint8Array | undefined> {
-    let pending = this.bytes.get(filePath);
+  /** Bytes held. */
+  get size(): number {
+    return this.bytes.size;
+  }
+
+  readFile(filePath: string, maxBytes?: number): Promise<Uint8Array | undefined> {
+    const cached = this.bytes.get(filePath);
+    if (cached) return Promise.resolve(cached);
+    let pending = this.pending.get(filePath);
     if (!pending) {
-      pending = this.inner.readFile(filePath);
-      this.bytes.set(filePath, pending);
+      const reading = this.inner.readFile(filePath, maxBytes);
+      pending = reading;
+      this.pending.set(filePath, reading);
+      const settle = () => {
+        if (this.pending.get(filePath) === reading) this.pending.delete(filePath);
+      };
+      reading.then((bytes) => {
+        if (this.pending.get(filePath) === reading && bytes) this.bytes.set(filePath, bytes, bytes.length);
+        settle();
+      }, settle);
     }
     return pending;
   }
@@ -57,12 +85,15 @@ export class CachingFileSystem implements FileSystemHost {
 
   /** Forgets a path and everything below it; kinds are all forgotten since a creation changes folders too. */
   invalidate(filePath: string): void {
-    for (const key of [...this.bytes.keys()]) if (key === filePath || key.startsWith(filePath + path.sep)) this.bytes.delete(key);
+    const below = (key: string) => key === filePath || key.startsWith(filePath + path.sep);
+    this.bytes.deleteWhere(below);
+    for (const key of [...this.pending.keys()]) if (below(key)) this.pending.delete(key);
     this.kinds.clear();
   }
 
   clear(): void {
     this.bytes.clear();
+    this.pending.clear();
     this.kinds.clear();
   }
 }
@@ -87,6 +118,15 @@ export interface OpenDocument {
   uri: string;
   ref: SourceRef;
   document: TextDocument;
+}
+
+/** A file's text for the index; a file in an encoding that cannot be read is indexed without groups (its analysis reports why). */
+function decodeOrUndefined(bytes: Uint8Array): string | undefined {
+  try {
+    return decodeScenario(bytes);
+  } catch {
+    return undefined;
+  }
 }
 
 const SKIPPED_FOLDERS = new Set(['node_modules', '.git', 'dist', 'out', '.vscode-test']);
@@ -194,7 +234,7 @@ export class Workspace {
   private createStore(): ScenarioStore {
     const fromEnvironment = splitScenarioPath(process.env.SCENARIO_PATH);
     const fromSettings = this.settings.scenarioPath.map((entry) => path.resolve(this.folders[0] ?? process.cwd(), entry));
-    const store = new ScenarioStore({ scenarioPath: [...fromEnvironment, ...fromSettings], root: this.folders[0], host: this.files });
+    const store = new ScenarioStore({ scenarioPath: [...fromEnvironment, ...fromSettings], root: this.folders[0], host: this.files, packageCacheBytes: SERVER_CACHE_BYTES });
     for (const open of this.documents.values()) store.setOverlay(open.ref, open.document.getText());
     return store;
   }
@@ -213,6 +253,8 @@ export class Workspace {
    */
   changed(changedIds?: string[]): void {
     this.generation++;
+    // Each change starts a new run: what the next analyses may unpack is counted afresh.
+    this.storeInstance.resetBudget();
     if (!changedIds) {
       this.analysisResults.clear();
       this.sharedSources.clear();
@@ -306,8 +348,8 @@ export class Workspace {
       const bytes = await this.files.readFile(filePath);
       if (bytes && bytes.length <= this.settings.maxIndexedFileBytes) {
         const open = this.documents.get(refId(diskRef(filePath)));
-        const text = open ? open.document.getText() : decodeUtf8(bytes);
-        Object.assign(entry, scanScenario(text, diskRef(filePath)));
+        const text = open ? open.document.getText() : decodeOrUndefined(bytes);
+        if (text !== undefined) Object.assign(entry, scanScenario(text, diskRef(filePath)));
       }
     } else {
       entry.modular = true;
@@ -315,7 +357,8 @@ export class Workspace {
       const packageRef = diskRef(filePath);
       const contents = await this.storeInstance.readPackage(packageRef).catch(() => undefined);
       for (const [name, bytes] of contents?.entries ?? []) {
-        if (name.toLowerCase().endsWith('.xosc') && bytes.length <= this.settings.maxIndexedFileBytes) entry.groups.push(...scanScenario(decodeUtf8(bytes), childRef(packageRef, name)).groups);
+        const text = name.toLowerCase().endsWith('.xosc') && bytes.length <= this.settings.maxIndexedFileBytes ? decodeOrUndefined(bytes) : undefined;
+        if (text !== undefined) entry.groups.push(...scanScenario(text, childRef(packageRef, name)).groups);
       }
     }
     this.index.set(filePath, entry);
@@ -324,6 +367,7 @@ export class Workspace {
 
   /** Indexes every scenario file of the workspace folders, reporting progress as a fraction done. */
   async indexAll(progress?: (done: number, total: number) => void): Promise<number> {
+    this.storeInstance.resetBudget();
     const filePaths = await listScenarioFiles(this.folders);
     let done = 0;
     for (const filePath of filePaths) {

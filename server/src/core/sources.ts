@@ -144,7 +144,7 @@ export const DEFAULT_LIMITS: Limits = {
   maxEntries: 10_000,
   maxEntryBytes: 32 * 1024 * 1024,
   maxTotalBytes: 128 * 1024 * 1024,
-  maxFlattenedChars: 16 * 1024 * 1024,
+  maxFlattenedChars: 8 * 1024 * 1024,
   maxDepth: 64,
 };
 

@@ -1,0 +1,183 @@
+import * as assert from 'node:assert/strict';
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import fc from 'fast-check';
+import JSZip from 'jszip';
+import { Diagnostic } from 'vscode-languageserver/node';
+import { childRef, diskRef, ScenarioStore } from '../../server/src/core/sources';
+import { ServerCommands, WriteResult } from '../../server/src/protocol';
+import { CachingFileSystem } from '../../server/src/workspace';
+import { outerGroup, scenario, simpleGroup } from '../support/fixtures';
+import { rawZip } from '../support/hostile';
+import { fileUri, temporaryWorkspace, TestClient } from './harness';
+
+function mainOf(file: string, groupName = 'Go'): string {
+  return scenario(outerGroup('Car', 'car', [{ file, groups: [{ name: groupName }] }]));
+}
+
+async function packageOf(files: Record<string, string>): Promise<Uint8Array> {
+  const zip = new JSZip();
+  for (const [name, text] of Object.entries(files)) zip.file(name, text);
+  return zip.generateAsync({ type: 'uint8array', compression: 'DEFLATE' });
+}
+
+/** Exceptions the server logged: a failed handler logs "... failed:" with a stack. */
+function loggedExceptions(client: TestClient): string[] {
+  return client.logs.filter((line) => /failed:|\n\s+at .*:\d+:\d+/.test(line));
+}
+
+describe('core: the package cache is bounded by size', () => {
+  it('keeps unpacked packages up to its bound and reads evicted ones again when needed', async () => {
+    const padding = `<!-- ${'x'.repeat(1024 * 1024)} -->`;
+    const files: Record<string, Uint8Array> = {};
+    for (let index = 0; index < 12; index++) files[`p${index}.mosc`] = await packageOf({ 'main.xosc': scenario(simpleGroup(`Go${index}`)) + padding });
+    const root = temporaryWorkspace(files);
+    const store = new ScenarioStore({ root, scenarioPath: [], packageCacheBytes: 3 * 1024 * 1024 });
+    for (let index = 0; index < 12; index++) await store.readPackage(diskRef(path.join(root, `p${index}.mosc`)));
+    assert.ok(store.cachedPackageBytes <= 3 * 1024 * 1024, `${store.cachedPackageBytes} bytes held`);
+    assert.ok(store.cachedPackageBytes > 0);
+    // The first package was evicted long ago; it is read again, whole and correct.
+    const text = await store.readText(childRef(diskRef(path.join(root, 'p0.mosc')), 'main.xosc'));
+    assert.match(text, /name="Go0"/);
+  });
+
+  it('the server keeps file bytes up to its bound too', async () => {
+    const root = temporaryWorkspace({ 'a.xosc': 'a'.repeat(600), 'b.xosc': 'b'.repeat(600) });
+    const files = new CachingFileSystem(undefined, 1000);
+    await files.readFile(path.join(root, 'a.xosc'));
+    await files.readFile(path.join(root, 'b.xosc'));
+    assert.equal(files.size, 600);
+    assert.equal(Buffer.from((await files.readFile(path.join(root, 'a.xosc'))) as Uint8Array).toString(), 'a'.repeat(600));
+  });
+});
+
+describe('language server with hostile input (JSON-RPC)', function () {
+  this.timeout(180_000);
+
+  it('a group imported twice at each of 20 levels is reported with its chain; the server process stays alive in 256 MB', async function () {
+    const files: Record<string, string> = { 'l20.xosc': scenario(simpleGroup('G')) };
+    for (let level = 0; level < 20; level++) {
+      const half = (name: string) => outerGroup(name, 'car', [{ file: `l${level + 1}.xosc`, groups: [{ name: 'G' }] }]);
+      files[`l${level}.xosc`] = scenario(`        <ManeuverGroup name="G" maximumExecutionCount="1">\n          <Actors selectTriggeringEntities="false"><EntityRef entityRef="car"/></Actors>\n${half('X')}${half('Y')}        </ManeuverGroup>\n`);
+    }
+    const root = temporaryWorkspace(files);
+    const client = await TestClient.start({ root, process: { heapMb: 256, watchdogMs: 170_000 } });
+    try {
+      const uri = await client.openFile(path.join(root, 'l0.xosc'));
+      const diagnostics: Diagnostic[] = await client.diagnosticsOf(uri, (found) => found.length > 0, 150_000);
+      const text = JSON.stringify(diagnostics);
+      assert.match(text, /would exceed/);
+      assert.match(text, /l\d+\.xosc -> \S*l\d+\.xosc/);
+      const hover = await client.request('textDocument/hover', client.at(uri, { line: 8, character: 12 }));
+      assert.ok(hover === null || typeof hover === 'object', 'the server still answers');
+      assert.equal(client.exit, undefined, 'the server process is alive');
+    } finally {
+      await client.stop();
+    }
+  });
+
+  describe('in one workspace', () => {
+    let root: string;
+    let client: TestClient;
+    const execute = <T>(command: string, ...args: unknown[]) => client.request<T>('workspace/executeCommand', { command, arguments: args });
+
+    before(async function () {
+      root = temporaryWorkspace({
+        'main.xosc': mainOf('simple.xosc'),
+        'simple.xosc': scenario(simpleGroup('Go')),
+        'pkg/main.xosc': mainOf('inner.mosc'),
+        'pkg/inner.mosc': await packageOf({ 'main.xosc': scenario(simpleGroup('Go')) }),
+        'open.mosc': await packageOf({ 'main.xosc': mainOf('simple.xosc'), 'simple.xosc': scenario(simpleGroup('Go')) }),
+        'dup.mosc': rawZip([{ name: 'main.xosc', data: scenario(simpleGroup('Go')) }, { name: './main.xosc', data: scenario(simpleGroup('Other')) }]),
+        'uses-dup.xosc': mainOf('dup.mosc'),
+      });
+      client = await TestClient.start({ root });
+      await client.indexed();
+    });
+
+    after(async () => {
+      await client?.stop();
+    });
+
+    it('flattenToFile writes only .xosc files, asks before writing outside the workspace, never over an input', async () => {
+      const input = fileUri(path.join(root, 'main.xosc'));
+      const wrongKind = await execute<WriteResult>(ServerCommands.flattenToFile, input, path.join(root, 'notes.txt'));
+      assert.equal(wrongKind.written, null);
+      assert.match(wrongKind.problems[0].message, /must end in \.xosc/);
+      assert.ok(!fs.existsSync(path.join(root, 'notes.txt')));
+      const outside = path.join(path.dirname(root), `${path.basename(root)}-outside.xosc`);
+      const asked = await execute<WriteResult>(ServerCommands.flattenToFile, input, outside);
+      assert.equal(asked.written, null);
+      assert.equal(asked.needsConfirmation, 'outsideWorkspace');
+      assert.ok(!fs.existsSync(outside));
+      const confirmed = await execute<WriteResult>(ServerCommands.flattenToFile, input, outside, { outsideWorkspace: true });
+      assert.equal(confirmed.written, outside);
+      fs.rmSync(outside);
+      const before = fs.readFileSync(path.join(root, 'simple.xosc'), 'utf8');
+      const overInput = await execute<WriteResult>(ServerCommands.flattenToFile, input, path.join(root, 'simple.xosc'));
+      assert.equal(overInput.written, null);
+      assert.equal(fs.readFileSync(path.join(root, 'simple.xosc'), 'utf8'), before);
+    });
+
+    it('pack never writes over a package the folder references', async () => {
+      const inner = path.join(root, 'pkg', 'inner.mosc');
+      const before = fs.readFileSync(inner);
+      const result = await execute<WriteResult>(ServerCommands.pack, [fileUri(path.join(root, 'pkg'))], inner);
+      assert.equal(result.written, null);
+      assert.match(JSON.stringify(result.problems), /refusing to overwrite/);
+      assert.deepEqual(fs.readFileSync(inner), before);
+    });
+
+    it('a package holding main.xosc and ./main.xosc is refused on the reference', async () => {
+      const uri = await client.openFile(path.join(root, 'uses-dup.xosc'));
+      const diagnostics = await client.diagnosticsOf(uri, (found) => found.length > 0);
+      assert.match(JSON.stringify(diagnostics), /holds the entry 'main\.xosc' twice/);
+      await client.close(uri);
+    });
+
+    it('an open package overwritten with garbage is reported as a broken archive', async () => {
+      const packagePath = path.join(root, 'open.mosc');
+      const uri = `mosc:${packagePath}/main.xosc`;
+      await client.open(uri, mainOf('simple.xosc'));
+      const clean = await client.diagnosticsOf(uri);
+      assert.ok(!clean.some((diagnostic) => diagnostic.severity === 1), JSON.stringify(clean));
+      fs.writeFileSync(packagePath, 'this is no longer a ZIP archive');
+      await client.connection.sendNotification('workspace/didChangeWatchedFiles', { changes: [{ uri: fileUri(packagePath), type: 2 }] });
+      await client.change(uri, [{ text: mainOf('simple.xosc') + ' ' }]);
+      const broken = await client.diagnosticsOf(uri, (found) => found.some((diagnostic) => diagnostic.severity === 1));
+      const text = JSON.stringify(broken);
+      assert.match(text, /not a readable ZIP archive/);
+      assert.doesNotMatch(text, /cannot find 'simple\.xosc'/);
+      await client.close(uri);
+    });
+
+    it('random edits (seeded) never make the server log an exception', async () => {
+      const uri = fileUri(path.join(root, 'main.xosc'));
+      const original = fs.readFileSync(path.join(root, 'main.xosc'), 'utf8');
+      await client.open(uri, original);
+      let text = original;
+      const pieces = ['<', '>', '"', '</ManeuverGroup>', '<ScenarioReference scenarioFileName="', 'dup.mosc', 'pkg/inner.mosc', '&#1;', '&#xFFFE;', '\u0000', '<!DOCTYPE x [<!ENTITY a "&a;&a;">]>', '&a;', 'key="', 'parameterAttributes="', 'x="1" x="2"'];
+      const edit = fc.record({ at: fc.nat(), remove: fc.nat({ max: 60 }), insert: fc.oneof(fc.constantFrom(...pieces), fc.string({ maxLength: 12 })) });
+      const edits = fc.sample(fc.array(edit, { minLength: 150, maxLength: 150 }), { seed: 20260808, numRuns: 1 })[0];
+      for (const [index, { at, remove, insert }] of edits.entries()) {
+        const start = text.length === 0 ? 0 : at % text.length;
+        const end = Math.min(text.length, start + remove);
+        const lines = text.slice(0, start).split('\n');
+        const endLines = text.slice(0, end).split('\n');
+        await client.change(uri, [{ range: { start: { line: lines.length - 1, character: lines[lines.length - 1].length }, end: { line: endLines.length - 1, character: endLines[endLines.length - 1].length } }, text: insert }]);
+        text = text.slice(0, start) + insert + text.slice(end);
+        if (index % 10 === 9) {
+          await client.diagnosticsOf(uri, () => true, 30_000);
+          await Promise.all([
+            client.request('textDocument/hover', client.at(uri, { line: lines.length - 1, character: 0 })),
+            client.request('textDocument/completion', client.at(uri, { line: lines.length - 1, character: 0 })),
+            client.request('textDocument/documentSymbol', { textDocument: { uri } }),
+          ]);
+        }
+      }
+      await client.diagnosticsOf(uri, () => true, 30_000);
+      await client.close(uri);
+      assert.deepEqual(loggedExceptions(client), []);
+    });
+  });
+});
