@@ -1,4 +1,5 @@
 import * as assert from 'node:assert/strict';
+import { execFileSync } from 'node:child_process';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import fc from 'fast-check';
@@ -90,9 +91,32 @@ describe('language server with hostile input (JSON-RPC)', function () {
         'open.mosc': await packageOf({ 'main.xosc': mainOf('simple.xosc'), 'simple.xosc': scenario(simpleGroup('Go')) }),
         'dup.mosc': rawZip([{ name: 'main.xosc', data: scenario(simpleGroup('Go')) }, { name: './main.xosc', data: scenario(simpleGroup('Other')) }]),
         'uses-dup.xosc': mainOf('dup.mosc'),
+        'latin.xosc': Buffer.from(scenario(simpleGroup('Go')).replace('encoding="UTF-8"', 'encoding="ISO-8859-1"').replace('name="GoManeuver"', 'name="Gr\u00fc\u00dfe"'), 'latin1'),
+        'broken.xosc': Buffer.from(scenario(simpleGroup('Go')).replace('name="GoManeuver"', 'name="Gr\u00fc\u00dfe"'), 'latin1'),
+        'text.xosc': scenario(outerGroup('A', 'car', [{ file: 'latin.xosc', groups: [{ name: 'Go' }] }]) + outerGroup('B', 'car', [{ file: 'broken.xosc', groups: [{ name: 'Go' }] }])),
       });
+      // A FIFO in the workspace: reading it would wait for a writer forever.
+      execFileSync('mkfifo', [path.join(root, 'stuck.xosc')]);
       client = await TestClient.start({ root });
       await client.indexed();
+    });
+
+    it('indexes a workspace holding a FIFO named like a scenario, and reports the FIFO where it is referenced', async () => {
+      const uri = await client.open(fileUri(path.join(root, 'fifo-user.xosc')), mainOf('stuck.xosc'));
+      const diagnostics = await client.diagnosticsOf(uri, (found) => found.length > 0);
+      assert.ok(diagnostics.some((diagnostic) => diagnostic.severity === 1), JSON.stringify(diagnostics));
+      await client.close(uri);
+    });
+
+    it('reads a file as its XML declaration says and reports invalid UTF-8 naming the byte, never as U+FFFD', async () => {
+      const uri = await client.openFile(path.join(root, 'text.xosc'));
+      const diagnostics = await client.diagnosticsOf(uri, (found) => found.length > 0);
+      const text = JSON.stringify(diagnostics);
+      assert.match(text, /'broken\.xosc' has 1 error: .*byte 0xfc at offset \d+ is not valid UTF-8/);
+      assert.doesNotMatch(text, /latin\.xosc/);
+      const hover = await client.request<{ contents: unknown } | null>('textDocument/hover', client.at(uri, { line: 9, character: 50 }));
+      assert.doesNotMatch(JSON.stringify(hover), /\uFFFD/);
+      await client.close(uri);
     });
 
     after(async () => {
