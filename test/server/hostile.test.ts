@@ -6,7 +6,7 @@ import fc from 'fast-check';
 import JSZip from 'jszip';
 import { Diagnostic } from 'vscode-languageserver/node';
 import { childRef, diskRef, ScenarioStore } from '../../server/src/core/sources';
-import { ServerCommands, WriteResult } from '../../server/src/protocol';
+import { FlattenTextResult, ServerCommands, WriteResult } from '../../server/src/protocol';
 import { CachingFileSystem } from '../../server/src/workspace';
 import { outerGroup, scenario, simpleGroup } from '../support/fixtures';
 import { rawZip } from '../support/hostile';
@@ -95,6 +95,13 @@ describe('language server with hostile input (JSON-RPC)', function () {
         'broken.xosc': Buffer.from(scenario(simpleGroup('Go')).replace('name="GoManeuver"', 'name="Gr\u00fc\u00dfe"'), 'latin1'),
         'text.xosc': scenario(outerGroup('A', 'car', [{ file: 'latin.xosc', groups: [{ name: 'Go' }] }]) + outerGroup('B', 'car', [{ file: 'broken.xosc', groups: [{ name: 'Go' }] }])),
       });
+      const overlap = rawZip([{ name: 'main.xosc', data: scenario(simpleGroup('Go')) }, { name: 'pad.xosc', data: new Uint8Array(4 * 1024 * 1024), deflate: true }], Array.from({ length: 200 }, (_, index) => ({ name: `s${index}.xosc`, of: 1 })));
+      fs.writeFileSync(path.join(root, 'overlap.mosc'), overlap);
+      fs.writeFileSync(path.join(root, 'uses-overlap.xosc'), mainOf('overlap.mosc'));
+      fs.writeFileSync(path.join(root, 'control.xosc'), scenario(simpleGroup('Go')).replace('name="GoManeuver"', 'name="Go\u0001"').replace('<Event name="Go"', '<Event name="&#xFFFE;"'));
+      fs.writeFileSync(path.join(root, 'uses-control.xosc'), mainOf('control.xosc'));
+      fs.writeFileSync(path.join(root, 'dtd.xosc'), scenario(simpleGroup('Go')).replace('<OpenSCENARIO>', '<!DOCTYPE OpenSCENARIO [<!ENTITY height "0.5">]>\n<OpenSCENARIO>').replace('z="0"', 'z="&height;"'));
+      fs.writeFileSync(path.join(root, 'uses-dtd.xosc'), mainOf('dtd.xosc'));
       // A FIFO in the workspace: reading it would wait for a writer forever.
       execFileSync('mkfifo', [path.join(root, 'stuck.xosc')]);
       client = await TestClient.start({ root });
@@ -173,6 +180,35 @@ describe('language server with hostile input (JSON-RPC)', function () {
       assert.match(text, /not a readable ZIP archive/);
       assert.doesNotMatch(text, /cannot find 'simple\.xosc'/);
       await client.close(uri);
+    });
+
+    it('entries sharing one compressed stream are refused on the reference', async () => {
+      const uri = await client.openFile(path.join(root, 'uses-overlap.xosc'));
+      const diagnostics = await client.diagnosticsOf(uri, (found) => found.length > 0);
+      assert.match(JSON.stringify(diagnostics), /overlap in the archive/);
+      await client.close(uri);
+    });
+
+    it('control characters and references to non-characters are errors at their position in the file that holds them', async () => {
+      const uri = await client.openFile(path.join(root, 'control.xosc'));
+      const diagnostics = await client.diagnosticsOf(uri, (found) => found.length > 0);
+      const lines = fs.readFileSync(path.join(root, 'control.xosc'), 'utf8').split('\n');
+      const control = diagnostics.find((diagnostic) => /U\+0001 is not allowed/.test(String(diagnostic.message)));
+      assert.ok(control, JSON.stringify(diagnostics));
+      assert.equal(control.range.start.line, lines.findIndex((line) => line.includes('\u0001')));
+      assert.equal(control.range.start.character, lines[control.range.start.line].indexOf('\u0001'));
+      assert.ok(diagnostics.some((diagnostic) => /'&#xFFFE;' names U\+FFFE/.test(String(diagnostic.message))));
+      await client.close(uri);
+      const user = await client.openFile(path.join(root, 'uses-control.xosc'));
+      assert.match(JSON.stringify(await client.diagnosticsOf(user, (found) => found.length > 0)), /'control\.xosc' has 2 errors/);
+      await client.close(user);
+    });
+
+    it('an internal DTD entity of a simple scenario is expanded in the flattened text', async () => {
+      const result = await execute<FlattenTextResult>(ServerCommands.flattenToText, fileUri(path.join(root, 'uses-dtd.xosc')));
+      assert.deepEqual(result.problems.filter((problem) => problem.severity === 'error'), []);
+      assert.match(result.text ?? '', /z="0\.5"/);
+      assert.doesNotMatch(result.text ?? '', /&height;/);
     });
 
     it('random edits (seeded) never make the server log an exception', async () => {
