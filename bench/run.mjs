@@ -60,11 +60,21 @@ if (!existsSync(library)) {
   console.log(`  all ${inputs.length}: ${all.median < 500 ? 'within' : 'OVER'} the 500 ms target; peak memory ${Math.max(one.peakMb, all.peakMb) < 100 ? 'within' : 'OVER'} 100 MB`);
 }
 
+console.log('');
+spawnSync(process.execPath, [path.join(root, 'bench', 'semantics.mjs')], { stdio: 'inherit' });
+
 const lspBench = path.join(root, 'bench', 'lsp.mjs');
 if (existsSync(lspBench)) {
   console.log('');
   const result = spawnSync(process.execPath, [lspBench], { stdio: 'inherit' });
   process.exitCode = result.status ?? 1;
+}
+
+const birdsEyeBench = path.join(root, 'bench', 'birdsEye.ts');
+if (existsSync(birdsEyeBench)) {
+  console.log('');
+  const result = spawnSync(process.execPath, ['--import', 'tsx', birdsEyeBench], { stdio: 'inherit', cwd: root });
+  if (result.status !== 0) process.exitCode = result.status ?? 1;
 }
 
 // The largest input each bound lets through or stops; BENCH_HOSTILE=0 leaves it out (it takes minutes).

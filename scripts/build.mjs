@@ -16,6 +16,8 @@ const entries = [
   { entryPoints: ['client/src/extension.ts'], outfile: 'dist/client.js', external: ['vscode'] },
   { entryPoints: ['server/src/server.ts'], outfile: 'dist/server.js', banner: { js: '#!/usr/bin/env node' } },
   { entryPoints: ['server/src/cli.ts'], outfile: 'dist/cli.js', banner: { js: '#!/usr/bin/env node' } },
+  // The bird's-eye view's page: runs in the webview, everything bundled (no network, no CDN).
+  { entryPoints: ['client/src/birdsEye/webview/main.ts'], outfile: 'dist/birdsEye.js', platform: 'browser', format: 'iife', target: 'es2022' },
 ];
 const contexts = await Promise.all(entries.map((entry) => esbuild.context({ ...common, ...entry })));
 if (watch) {

@@ -2,6 +2,8 @@ import * as vscode from 'vscode';
 import type { ServerCapabilities } from 'vscode-languageclient';
 import type { LanguageClient } from 'vscode-languageclient/node';
 import { PACKAGE_SCHEME, type StructureNode } from '../../server/src/protocol';
+import { registerBirdsEye } from './birdsEye/commands';
+import type { BirdsEyeView } from './birdsEye/panel';
 import { CommandReporter, commandTargets, flattenCommand, mainFileOf, packCommand } from './commands';
 import { LANGUAGE_ID, ServerCommandClient, createLanguageClient } from './languageClient';
 import { PackageFileSystem } from './packageFileSystem';
@@ -17,6 +19,8 @@ export interface Modular2SimpleApi {
   readonly structure: () => StructureNode | undefined;
   /** What the running server offers (undefined before it started): lets callers and tests see which features exist. */
   readonly serverCapabilities: () => ServerCapabilities | undefined;
+  /** The bird's-eye view: what it shows and last drew. */
+  readonly birdsEye: BirdsEyeView;
 }
 
 let languageClient: LanguageClient | undefined;
@@ -109,7 +113,9 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
     }
   });
 
-  return { serverReady, structure: () => structure.current, serverCapabilities: () => client.initializeResult?.capabilities };
+  const birdsEye = registerBirdsEye(context, client, log);
+
+  return { serverReady, structure: () => structure.current, serverCapabilities: () => client.initializeResult?.capabilities, birdsEye };
 }
 
 export async function deactivate(): Promise<void> {

@@ -1,7 +1,15 @@
 import * as vscode from 'vscode';
-import { ExecuteCommandRequest } from 'vscode-languageclient';
 import { LanguageClient, TransportKind, type LanguageClientOptions, type ServerOptions } from 'vscode-languageclient/node';
-import { PACKAGE_SCHEME, ServerCommands, type FlattenTextResult, type StructureNode, type WriteResult } from '../../server/src/protocol';
+import {
+  FlattenToFileRequest,
+  FlattenToTextRequest,
+  PACKAGE_SCHEME,
+  PackRequest,
+  StructureRequest,
+  type FlattenTextResult,
+  type StructureNode,
+  type WriteResult,
+} from '../../server/src/protocol';
 
 export const LANGUAGE_ID = 'xosc';
 export const CONFIGURATION_SECTION = 'modular2simple';
@@ -26,29 +34,29 @@ export function createLanguageClient(context: vscode.ExtensionContext): Language
   return new LanguageClient(CONFIGURATION_SECTION, 'Modular2Simple Language Server', serverOptions, clientOptions);
 }
 
-/** The server's custom commands (server/src/protocol.ts), typed. */
+/** The server's custom requests (server/src/protocol.ts), starting the client first when needed. */
 export class ServerCommandClient {
   constructor(private readonly client: LanguageClient) {}
 
-  private async execute<T>(command: string, args: unknown[], token?: vscode.CancellationToken): Promise<T> {
+  private async started(): Promise<LanguageClient> {
     if (!this.client.isRunning()) await this.client.start();
-    return (await this.client.sendRequest(ExecuteCommandRequest.type, { command, arguments: args }, token)) as T;
+    return this.client;
   }
 
-  flattenToText(uri: vscode.Uri): Promise<FlattenTextResult> {
-    return this.execute(ServerCommands.flattenToText, [uri.toString()]);
+  async flattenToText(uri: vscode.Uri): Promise<FlattenTextResult> {
+    return (await this.started()).sendRequest(FlattenToTextRequest, { uri: uri.toString() });
   }
 
   /** Writes the flattened scenario; an existing output is replaced (the caller asked the user first). */
-  flattenToFile(input: vscode.Uri, outputPath: string, token?: vscode.CancellationToken): Promise<WriteResult> {
-    return this.execute(ServerCommands.flattenToFile, [input.toString(), outputPath], token);
+  async flattenToFile(input: vscode.Uri, outputPath: string, token?: vscode.CancellationToken): Promise<WriteResult> {
+    return (await this.started()).sendRequest(FlattenToFileRequest, { uri: input.toString(), outputPath }, token);
   }
 
-  pack(inputs: vscode.Uri[], outputPath: string, token?: vscode.CancellationToken): Promise<WriteResult> {
-    return this.execute(ServerCommands.pack, [inputs.map((input) => input.toString()), outputPath], token);
+  async pack(inputs: vscode.Uri[], outputPath: string, token?: vscode.CancellationToken): Promise<WriteResult> {
+    return (await this.started()).sendRequest(PackRequest, { inputs: inputs.map((input) => input.toString()), outputPath }, token);
   }
 
-  structure(uri: vscode.Uri, token?: vscode.CancellationToken): Promise<StructureNode | null> {
-    return this.execute(ServerCommands.structure, [uri.toString()], token);
+  async structure(uri: vscode.Uri, token?: vscode.CancellationToken): Promise<StructureNode | null> {
+    return (await this.started()).sendRequest(StructureRequest, { uri: uri.toString() }, token);
   }
 }

@@ -143,6 +143,8 @@ export function keyChoices(targets: OverridableAttribute[]): KeyChoice[] {
     if (placed.has(target)) continue;
     const forms = keyForms(target);
     const together = targets.filter((other) => keyMatches(forms[forms.length - 1], other));
+    // A listed name no key can reach (such as the dotted `AbsoluteTargetSpeed.value`) has no choice; its declaration is reported instead.
+    if (together.length === 0) continue;
     for (const member of together) placed.add(member);
     const exact = forms.filter((form) => {
       const reached = targets.filter((other) => keyMatches(form, other));

@@ -186,6 +186,8 @@ function report(problems: Problem[], io: Output, quiet: boolean): { errors: numb
   for (const problem of uniqueProblems(problems)) {
     if (problem.severity === 'error') errors++;
     else if (problem.severity === 'warning') warnings++;
+    // Hints (an unused parameter) are for the editor, where they show faded.
+    if (problem.severity === 'hint') continue;
     if (quiet && problem.severity !== 'error') continue;
     io.err(formatProblem(problem));
   }
@@ -248,8 +250,8 @@ async function flattenCommand(inputs: string[], outputs: string[] | undefined, o
   const flattener = new Flattener(store);
   const results = [];
   let problems: Problem[] = [];
-  for (const input of inputs) {
-    const result = await flattener.flatten(mainOf(input), { force: options.force });
+  for (const [index, input] of inputs.entries()) {
+    const result = await flattener.flatten(mainOf(input), { force: options.force, outputPath: outputs?.[index] });
     results.push(result);
     problems = problems.concat(result.problems);
   }

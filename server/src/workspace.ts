@@ -1,10 +1,10 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { TextDocument } from 'vscode-languageserver-textdocument';
 import { AnalysisResult, Flattener, FlatSource } from './core/flatten';
 import { decodeScenario } from './core/encoding';
 import { FileSystemHost, nodeFileSystem, refId, ScenarioStore, SizedCache, SourceRef, splitScenarioPath, diskRef, childRef } from './core/sources';
 import { LineIndex, Range } from './core/text';
+import { OpenDocument, OpenDocuments } from './documents';
 import { UriResolver, refToUri } from './uris';
 
 export interface ServerSettings {
@@ -83,6 +83,10 @@ export class CachingFileSystem implements FileSystemHost {
     return pending;
   }
 
+  listDirectory(directoryPath: string): Promise<string[] | undefined> {
+    return this.inner.listDirectory?.(directoryPath) ?? Promise.resolve(undefined);
+  }
+
   /** Forgets a path and everything below it; kinds are all forgotten since a creation changes folders too. */
   invalidate(filePath: string): void {
     const below = (key: string) => key === filePath || key.startsWith(filePath + path.sep);
@@ -112,12 +116,6 @@ export interface IndexedFile {
   groups: IndexedGroup[];
   /** Whether the file holds ScenarioReferences (and so can refer to other files). */
   modular: boolean;
-}
-
-export interface OpenDocument {
-  uri: string;
-  ref: SourceRef;
-  document: TextDocument;
 }
 
 /** A file's text for the index; a file in an encoding that cannot be read is indexed without groups (its analysis reports why). */
@@ -206,7 +204,7 @@ class ReusingFlattener extends Flattener {
  */
 export class Workspace {
   readonly files = new CachingFileSystem();
-  readonly documents = new Map<string, OpenDocument>();
+  readonly documents = new OpenDocuments();
   readonly index = new Map<string, IndexedFile>();
   readonly uris: UriResolver;
   folders: string[] = [];
@@ -297,28 +295,34 @@ export class Workspace {
     return result;
   }
 
-  open(uri: string, ref: SourceRef, document: TextDocument): void {
+  /** Attaches a document the client opened to its file: its text now overrides the disk. */
+  open(uri: string, ref: SourceRef): OpenDocument | undefined {
+    const open = this.documents.resolve(uri, ref);
+    if (!open) return undefined;
     this.uris.remember(uri, ref);
-    this.documents.set(refId(ref), { uri, ref, document });
-    this.storeInstance.setOverlay(ref, document.getText());
+    this.storeInstance.setOverlay(ref, open.document.getText());
     this.changed([refId(ref)]);
+    return open;
   }
 
-  update(ref: SourceRef, document: TextDocument): void {
+  /** The open document's text changed (the registry already holds the new text). */
+  update(ref: SourceRef): void {
     const open = this.documents.get(refId(ref));
-    if (open) open.document = document;
-    this.storeInstance.setOverlay(ref, document.getText());
+    if (!open) return;
+    this.storeInstance.setOverlay(ref, open.document.getText());
     // The index is read again on its next use, from the unsaved text.
     if (ref.entries.length === 0) this.index.delete(ref.disk);
     this.changed([refId(ref)]);
   }
 
-  close(ref: SourceRef): void {
-    const open = this.documents.get(refId(ref));
-    this.documents.delete(refId(ref));
-    if (open) this.uris.forget(open.uri);
-    this.storeInstance.setOverlay(ref, undefined);
-    this.changed([refId(ref)]);
+  /** The client closed a URI; returns the file it stood for, whose disk text counts again. */
+  close(uri: string): OpenDocument | undefined {
+    const open = this.documents.remove(uri)?.resolved;
+    if (!open) return undefined;
+    this.uris.forget(uri);
+    this.storeInstance.setOverlay(open.ref, undefined);
+    this.changed([refId(open.ref)]);
+    return open;
   }
 
   /** The URI to send for a file: the client's own spelling when the file is open. */

@@ -16,6 +16,9 @@ export const INSIDE_TESTS = {
   flatten: 'Flatten from the command palette writes a file equivalent to the CLI\'s',
   structure: 'Show Structure lists the main file, packages, scenarios and groups',
   renameInPackage: 'renaming a group inside a .mosc updates the package and the files that use it',
+  birdsEye: "Show Bird's-Eye View draws the roads and the entities at their start, opens an entity's place, and follows edits",
+  birdsEyeRun: "after a run, the bird's-eye view plays the trajectories and shows when the events started",
+  birdsEyePackage: "the bird's-eye view shows a scenario inside a .mosc",
 } as const;
 
 export type InsideTestKey = keyof typeof INSIDE_TESTS;

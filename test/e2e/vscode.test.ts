@@ -22,6 +22,7 @@ import {
   type Profile,
 } from './harness';
 import { HARNESS_ENV, INSIDE_TESTS } from './titles';
+import { prepareBirdsEye } from './birdsEyeSetup';
 
 const RUN_TIMEOUT_MS = 180_000;
 
@@ -38,6 +39,7 @@ async function prepareWorkspace(profile: Profile): Promise<string> {
   fs.writeFileSync(path.join(workspace, 'nested.mosc'), await nested.generateAsync({ type: 'uint8array', compression: 'DEFLATE' }));
   // A ZIP header followed by garbage: what a truncated download looks like.
   fs.writeFileSync(path.join(workspace, 'broken.mosc'), Buffer.concat([Buffer.from('PK\x03\x04'), Buffer.from('this is not the rest of a ZIP archive\n'.repeat(8))]));
+  prepareBirdsEye(workspace);
   return workspace;
 }
 
@@ -191,6 +193,7 @@ describe('the packaged extension in a real VS Code (code-server, headless Chromi
     const needed = [
       manifest.main,
       'dist/server.js',
+      'dist/birdsEye.js',
       ...manifest.contributes.grammars.map((grammar) => grammar.path),
       ...manifest.contributes.languages.flatMap((language) => [language.configuration, language.icon?.light]),
     ].filter((file): file is string => file !== undefined).map((file) => path.posix.normalize(file));

@@ -3,7 +3,7 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { CompletionItem, Diagnostic, DiagnosticSeverity, Hover, Location, MarkupContent, WorkspaceEdit } from 'vscode-languageserver/node';
 import { firstDifference } from '../../server/src/core/equivalence';
-import { FlattenTextResult, ServerCommands } from '../../server/src/protocol';
+import { FlattenToTextRequest } from '../../server/src/protocol';
 import { caseStudy, fileUri, library, positionAfter, positionAt, requireCorpus, TestClient } from './harness';
 
 function rangeText(text: string, location: Location): string {
@@ -35,6 +35,17 @@ describe('language server on the case study (../shared/corpus)', function () {
     const related = diagnostics[1].relatedInformation?.[0];
     assert.equal(related?.location.uri, fileUri(path.join(caseStudy, 'simple_2.xosc')));
     assert.equal(rangeText(fs.readFileSync(path.join(caseStudy, 'simple_2.xosc'), 'utf8'), related.location), 'AbsoluteTargetSpeed.value');
+  });
+
+  it('completes keys for a group of simple_2.xosc, which lists the dotted AbsoluteTargetSpeed.value (issue 7, item 3)', async function () {
+    await client.diagnosticsOf(mainUri);
+    const reference = mainText.indexOf('maneuverGroupName="VehicleArrivingToAccidentSite.ArrivingToAccidentSite"');
+    const keyStart = mainText.indexOf('key="entityRef"', reference) + 'key="'.length;
+    const items = await client.request<CompletionItem[]>('textDocument/completion', client.at(mainUri, positionAt(mainText, keyStart)));
+    const labels = items.map((item) => item.label);
+    // The key under the cursor is replaced, so it is offered again; the group's other keys are given already.
+    assert.ok(labels.includes('entityRef'), labels.join(', '));
+    assert.ok(!labels.some((label) => label.includes('AbsoluteTargetSpeed')), 'no key reaches the dotted name');
   });
 
   it('shows the parameterAttributes entry of simple_2.xosc that names no attribute', async function () {
@@ -166,10 +177,7 @@ describe('language server on the library (../shared/corpus)', function () {
 
   it('flattens every library scenario to the original tool\'s output', async function () {
     for (const name of fs.readdirSync(library).filter((entry) => entry.startsWith('modular_hero'))) {
-      const result = await client.request<FlattenTextResult>('workspace/executeCommand', {
-        command: ServerCommands.flattenToText,
-        arguments: [`mosc:${path.join(library, name, 'result.mosc')}/main.xosc`],
-      });
+      const result = await client.send(FlattenToTextRequest, { uri: `mosc:${path.join(library, name, 'result.mosc')}/main.xosc` });
       assert.ok(result.text, `${name}: ${JSON.stringify(result.problems)}`);
       assert.equal(firstDifference(result.text, fs.readFileSync(path.join(library, name, 'result.xosc'), 'utf8')), undefined, name);
     }

@@ -16,7 +16,7 @@ import {
   TextEdit,
   WorkspaceEdit,
 } from 'vscode-languageserver/node';
-import { FlattenTextResult, ServerCommands, StructureNode, WriteResult } from '../../server/src/protocol';
+import { FlattenToFileRequest, FlattenToTextRequest, PackRequest, StructureRequest } from '../../server/src/protocol';
 import { CLEAN, cycleFile, MAIN, PACKAGE_MAIN, SIMPLE } from './fixtures/scenarios';
 import { fileUri, markers, positionAt, temporaryWorkspace, TestClient } from './harness';
 
@@ -457,11 +457,9 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
     });
   });
 
-  describe('commands', function () {
-    const execute = <T>(command: string, ...args: unknown[]) => client.request<T>('workspace/executeCommand', { command, arguments: args });
-
+  describe('custom requests', function () {
     it('flattens to text for the preview', async function () {
-      const result = await execute<FlattenTextResult>(ServerCommands.flattenToText, fileUri(path.join(root, 'clean.xosc')));
+      const result = await client.send(FlattenToTextRequest, { uri: fileUri(path.join(root, 'clean.xosc')) });
       assert.deepEqual(result.problems.map((problem) => problem.severity), ['warning'], 'only the warning of simple.xosc');
       assert.ok(result.text);
       assert.match(result.text, /<ManeuverGroup name="Outer\.Brake"/);
@@ -470,7 +468,7 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
     });
 
     it('returns no text but the problems when flattening fails', async function () {
-      const result = await execute<FlattenTextResult>(ServerCommands.flattenToText, mainUri);
+      const result = await client.send(FlattenToTextRequest, { uri: mainUri });
       assert.equal(result.text, null);
       assert.ok(result.problems.some((problem) => problem.severity === 'error' && /nowhere\.xosc/.test(problem.message)));
     });
@@ -478,12 +476,12 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
     it('flattens to a file atomically and refuses to overwrite an input', async function () {
       const output = path.join(root, 'out', 'flat.xosc');
       fs.mkdirSync(path.dirname(output), { recursive: true });
-      const written = await execute<WriteResult>(ServerCommands.flattenToFile, fileUri(path.join(root, 'clean.xosc')), output);
+      const written = await client.send(FlattenToFileRequest, { uri: fileUri(path.join(root, 'clean.xosc')), outputPath: output });
       assert.equal(written.written, output);
       assert.match(fs.readFileSync(output, 'utf8'), /Outer\.Brake/);
       assert.deepEqual(fs.readdirSync(path.dirname(output)), ['flat.xosc']);
       const before = fs.readFileSync(path.join(root, 'simple.xosc'), 'utf8');
-      const refused = await execute<WriteResult>(ServerCommands.flattenToFile, fileUri(path.join(root, 'clean.xosc')), path.join(root, 'simple.xosc'));
+      const refused = await client.send(FlattenToFileRequest, { uri: fileUri(path.join(root, 'clean.xosc')), outputPath: path.join(root, 'simple.xosc') });
       assert.equal(refused.written, null);
       assert.ok(refused.problems.some((problem) => /refusing to overwrite simple\.xosc/.test(problem.message)));
       assert.equal(fs.readFileSync(path.join(root, 'simple.xosc'), 'utf8'), before);
@@ -494,19 +492,20 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
       fs.mkdirSync(folder, { recursive: true });
       fs.writeFileSync(path.join(folder, 'main.xosc'), PACKAGE_MAIN);
       const output = path.join(root, 'out', 'unpacked.mosc');
-      const result = await execute<WriteResult>(ServerCommands.pack, [fileUri(folder)], output);
+      const result = await client.send(PackRequest, { inputs: [fileUri(folder)], outputPath: output });
       assert.equal(result.written, output, JSON.stringify(result.problems));
       const zip = await JSZip.loadAsync(fs.readFileSync(output));
       assert.deepEqual(Object.keys(zip.files).sort(), ['main.xosc', 'simple.xosc']);
-      const flattened = await execute<FlattenTextResult>(ServerCommands.flattenToText, `mosc:${output}/main.xosc`);
+      const flattened = await client.send(FlattenToTextRequest, { uri: `mosc:${output}/main.xosc` });
       assert.match(flattened.text ?? '', /<ManeuverGroup name="Inner\.Brake"/);
-      const refused = await execute<WriteResult>(ServerCommands.pack, [fileUri(path.join(root, 'simple.xosc')), fileUri(path.join(folder, 'main.xosc'))], path.join(root, 'simple.xosc'));
+      const refused = await client.send(PackRequest, { inputs: [fileUri(path.join(root, 'simple.xosc')), fileUri(path.join(folder, 'main.xosc'))], outputPath: path.join(root, 'simple.xosc') });
       assert.equal(refused.written, null);
       fs.rmSync(folder, { recursive: true });
     });
 
     it('returns the reference graph', async function () {
-      const tree = await execute<StructureNode>(ServerCommands.structure, mainUri);
+      const tree = await client.send(StructureRequest, { uri: mainUri });
+      assert.ok(tree);
       assert.equal(tree.kind, 'main');
       assert.deepEqual(tree.children.map((child) => `${child.kind}:${child.label}`), [
         'reference:Outer → simple.xosc',
@@ -522,17 +521,18 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
     });
 
     it('reads a package, or an unpacked folder, as its main.xosc', async function () {
-      const tree = await execute<StructureNode>(ServerCommands.structure, fileUri(path.join(root, 'pkg.mosc')));
+      const tree = await client.send(StructureRequest, { uri: fileUri(path.join(root, 'pkg.mosc')) });
+      assert.ok(tree);
       assert.equal(tree.uri, `mosc:${path.join(root, 'pkg.mosc')}/main.xosc`);
       assert.deepEqual(tree.children.map((child) => child.label), ['Inner → simple.xosc']);
-      const flattened = await execute<FlattenTextResult>(ServerCommands.flattenToText, fileUri(path.join(root, 'pkg.mosc')));
+      const flattened = await client.send(FlattenToTextRequest, { uri: fileUri(path.join(root, 'pkg.mosc')) });
       assert.match(flattened.text ?? '', /<ManeuverGroup name="Inner\.Brake"/);
     });
 
-    it('answers an unknown command with an error, not a crash', async function () {
-      await assert.rejects(execute(ServerCommands.structure + '.nope'), /unknown command/);
-      const tree = await execute<StructureNode>(ServerCommands.structure, mainUri);
-      assert.equal(tree.kind, 'main');
+    it('answers an unknown request with an error, not a crash', async function () {
+      await assert.rejects(client.request(StructureRequest.method + '.nope', { uri: mainUri }), /Unhandled method/);
+      const tree = await client.send(StructureRequest, { uri: mainUri });
+      assert.equal(tree?.kind, 'main');
     });
   });
 });

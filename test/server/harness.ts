@@ -5,18 +5,22 @@ import * as path from 'node:path';
 import { PassThrough } from 'node:stream';
 import { pathToFileURL } from 'node:url';
 import {
+  CancellationToken,
   createConnection,
   createProtocolConnection,
   Diagnostic,
   InitializeParams,
+  MessageType,
   ProposedFeatures,
   ProtocolConnection,
   PublishDiagnosticsParams,
+  RequestType,
   StreamMessageReader,
   StreamMessageWriter,
   TextDocumentContentChangeEvent,
 } from 'vscode-languageserver/node';
 import { startServer } from '../../server/src/languageServer';
+import { Workspace } from '../../server/src/workspace';
 
 export const repoRoot = path.resolve(__dirname, '..', '..');
 export const sharedRoot = path.resolve(repoRoot, '..', 'shared');
@@ -84,11 +88,21 @@ export interface ClientOptions {
   process?: { heapMb: number; watchdogMs: number };
 }
 
-/** An LSP client over a real JSON-RPC connection to the server running in this process. */
+/**
+ * An LSP client over a real JSON-RPC connection to the server running in this process. Every error
+ * the server logs fails the suite (in `stop`, naming the test it happened in) unless the test
+ * claimed it with `expectError`.
+ */
 export class TestClient {
+  /** Clients not yet stopped, whose logged errors are checked after every test. */
+  static readonly running = new Set<TestClient>();
   readonly diagnostics = new Map<string, PublishDiagnosticsParams>();
   readonly progress: unknown[] = [];
   readonly logs: string[] = [];
+  /** Errors the server logged during the running test that it has not claimed (yet). */
+  readonly errors: string[] = [];
+  /** Errors of finished tests, reported by `stop`. */
+  private readonly unexpected: string[] = [];
   private readonly versions = new Map<string, number>();
   /** What the client answers to workspace/configuration; change it, then call `settingsChanged`. */
   settings: Record<string, unknown> = {};
@@ -97,7 +111,14 @@ export class TestClient {
   private constructor(
     readonly connection: ProtocolConnection,
     private readonly server: { dispose(): void },
+    private readonly serverWorkspace: Workspace | undefined,
   ) {}
+
+  /** The server's workspace (same process), for tests that inject a fault into it. */
+  get workspace(): Workspace {
+    if (!this.serverWorkspace) throw new Error('the server runs in a child process; its workspace is not reachable');
+    return this.serverWorkspace;
+  }
 
   /** Set for a server in a child process: how it ended (undefined while it runs). */
   exit: { code: number | null; signal: NodeJS.Signals | null; stderr: string } | undefined;
@@ -111,12 +132,16 @@ export class TestClient {
       let stderr = '';
       child.stderr.on('data', (chunk: Buffer) => (stderr = (stderr + chunk.toString()).slice(-20_000)));
       connection = createProtocolConnection(new StreamMessageReader(child.stdout), new StreamMessageWriter(child.stdin));
-      client = new TestClient(connection, {
-        dispose: () => {
-          clearTimeout(watchdog);
-          child.kill('SIGKILL');
+      client = new TestClient(
+        connection,
+        {
+          dispose: () => {
+            clearTimeout(watchdog);
+            child.kill('SIGKILL');
+          },
         },
-      });
+        undefined,
+      );
       child.on('exit', (code, signal) => {
         clearTimeout(watchdog);
         client.exit = { code, signal, stderr };
@@ -126,10 +151,10 @@ export class TestClient {
       const toServer = new PassThrough();
       const toClient = new PassThrough();
       const serverConnection = createConnection(ProposedFeatures.all, new StreamMessageReader(toServer), new StreamMessageWriter(toClient));
-      startServer(serverConnection);
+      const workspace = startServer(serverConnection);
       serverConnection.listen();
       connection = createProtocolConnection(new StreamMessageReader(toClient), new StreamMessageWriter(toServer));
-      client = new TestClient(connection, serverConnection);
+      client = new TestClient(connection, serverConnection, workspace);
     }
     connection.onNotification('textDocument/publishDiagnostics', (params: PublishDiagnosticsParams) => {
       client.diagnostics.set(params.uri, params);
@@ -139,14 +164,16 @@ export class TestClient {
       client.progress.push(params);
       client.notify();
     });
-    connection.onNotification('window/logMessage', (params: { message: string }) => {
+    connection.onNotification('window/logMessage', (params: { type: MessageType; message: string }) => {
       client.logs.push(params.message);
+      if (params.type === MessageType.Error) client.errors.push(params.message);
     });
     client.settings = options.settings ?? {};
     connection.onRequest('workspace/configuration', (params: { items: { section?: string }[] }) => params.items.map(() => client.settings));
     connection.onRequest('window/workDoneProgress/create', () => null);
     connection.onRequest('client/registerCapability', () => null);
     connection.listen();
+    TestClient.running.add(client);
     const params: InitializeParams = {
       // No process id: the server would otherwise poll it and keep the test process alive.
       processId: null,
@@ -231,14 +258,53 @@ export class TestClient {
     return this.connection.sendRequest(method, params) as Promise<R>;
   }
 
+  /** Sends one of the typed custom requests of server/src/protocol.ts. */
+  send<P, R>(type: RequestType<P, R, void>, params: P, token?: CancellationToken): Promise<R> {
+    return this.connection.sendRequest(type.method, params, token) as Promise<R>;
+  }
+
+  /** Claims a logged error the test provoked on purpose (waiting briefly for it); fails when none matches. */
+  async expectError(pattern: RegExp): Promise<string> {
+    const index = await this.until(() => {
+      const found = this.errors.findIndex((error) => pattern.test(error));
+      return found >= 0 ? found + 1 : undefined;
+    }, `a logged error matching ${pattern}`, 5_000);
+    return this.errors.splice(index - 1, 1)[0];
+  }
+
+  /** Files the errors logged so far under the test that just ran, so `stop` can say where each came from. */
+  attributeErrors(test: string): void {
+    for (const error of this.errors.splice(0)) this.unexpected.push(`after "${test}": ${error}`);
+  }
+
+  /** Throws when the server logged an error nobody expected, and forgets it so it is reported once. */
+  assertNoErrors(): void {
+    const errors = [...this.unexpected.splice(0), ...this.errors.splice(0)];
+    if (errors.length > 0) throw new Error(`the language server logged ${errors.length} error(s) no test expected:\n${errors.join('\n')}`);
+  }
+
   at(uri: string, position: { line: number; character: number }) {
     return { textDocument: { uri }, position };
   }
 
   async stop(): Promise<void> {
+    TestClient.running.delete(this);
     await this.connection.sendRequest('shutdown').catch(() => undefined);
     // Ending the streams would make vscode-languageserver exit the process, so only the connections go.
     this.connection.dispose();
     this.server.dispose();
+    this.assertNoErrors();
   }
+}
+
+// Root hooks for every file that drives a server. A failing afterEach would abort the whole run, so
+// each test's errors are only filed here and fail the suite when its client stops (or, for a client
+// never stopped, at the end of the run).
+if (typeof afterEach === 'function' && typeof after === 'function') {
+  afterEach(function () {
+    for (const client of TestClient.running) client.attributeErrors(this.currentTest?.fullTitle() ?? '(unknown test)');
+  });
+  after(function () {
+    for (const client of TestClient.running) client.assertNoErrors();
+  });
 }

@@ -6,7 +6,7 @@ import fc from 'fast-check';
 import JSZip from 'jszip';
 import { Diagnostic } from 'vscode-languageserver/node';
 import { childRef, diskRef, ScenarioStore } from '../../server/src/core/sources';
-import { FlattenTextResult, ServerCommands, WriteResult } from '../../server/src/protocol';
+import { FlattenToFileRequest, FlattenToTextRequest, PackRequest } from '../../server/src/protocol';
 import { CachingFileSystem } from '../../server/src/workspace';
 import { outerGroup, scenario, simpleGroup } from '../support/fixtures';
 import { rawZip } from '../support/hostile';
@@ -80,7 +80,6 @@ describe('language server with hostile input (JSON-RPC)', function () {
   describe('in one workspace', () => {
     let root: string;
     let client: TestClient;
-    const execute = <T>(command: string, ...args: unknown[]) => client.request<T>('workspace/executeCommand', { command, arguments: args });
 
     before(async function () {
       root = temporaryWorkspace({
@@ -132,20 +131,20 @@ describe('language server with hostile input (JSON-RPC)', function () {
 
     it('flattenToFile writes only .xosc files, asks before writing outside the workspace, never over an input', async () => {
       const input = fileUri(path.join(root, 'main.xosc'));
-      const wrongKind = await execute<WriteResult>(ServerCommands.flattenToFile, input, path.join(root, 'notes.txt'));
+      const wrongKind = await client.send(FlattenToFileRequest, { uri: input, outputPath: path.join(root, 'notes.txt') });
       assert.equal(wrongKind.written, null);
       assert.match(wrongKind.problems[0].message, /must end in \.xosc/);
       assert.ok(!fs.existsSync(path.join(root, 'notes.txt')));
       const outside = path.join(path.dirname(root), `${path.basename(root)}-outside.xosc`);
-      const asked = await execute<WriteResult>(ServerCommands.flattenToFile, input, outside);
+      const asked = await client.send(FlattenToFileRequest, { uri: input, outputPath: outside });
       assert.equal(asked.written, null);
       assert.equal(asked.needsConfirmation, 'outsideWorkspace');
       assert.ok(!fs.existsSync(outside));
-      const confirmed = await execute<WriteResult>(ServerCommands.flattenToFile, input, outside, { outsideWorkspace: true });
+      const confirmed = await client.send(FlattenToFileRequest, { uri: input, outputPath: outside, outsideWorkspace: true });
       assert.equal(confirmed.written, outside);
       fs.rmSync(outside);
       const before = fs.readFileSync(path.join(root, 'simple.xosc'), 'utf8');
-      const overInput = await execute<WriteResult>(ServerCommands.flattenToFile, input, path.join(root, 'simple.xosc'));
+      const overInput = await client.send(FlattenToFileRequest, { uri: input, outputPath: path.join(root, 'simple.xosc') });
       assert.equal(overInput.written, null);
       assert.equal(fs.readFileSync(path.join(root, 'simple.xosc'), 'utf8'), before);
     });
@@ -153,7 +152,7 @@ describe('language server with hostile input (JSON-RPC)', function () {
     it('pack never writes over a package the folder references', async () => {
       const inner = path.join(root, 'pkg', 'inner.mosc');
       const before = fs.readFileSync(inner);
-      const result = await execute<WriteResult>(ServerCommands.pack, [fileUri(path.join(root, 'pkg'))], inner);
+      const result = await client.send(PackRequest, { inputs: [fileUri(path.join(root, 'pkg'))], outputPath: inner });
       assert.equal(result.written, null);
       assert.match(JSON.stringify(result.problems), /refusing to overwrite/);
       assert.deepEqual(fs.readFileSync(inner), before);
@@ -205,7 +204,7 @@ describe('language server with hostile input (JSON-RPC)', function () {
     });
 
     it('an internal DTD entity of a simple scenario is expanded in the flattened text', async () => {
-      const result = await execute<FlattenTextResult>(ServerCommands.flattenToText, fileUri(path.join(root, 'uses-dtd.xosc')));
+      const result = await client.send(FlattenToTextRequest, { uri: fileUri(path.join(root, 'uses-dtd.xosc')) });
       assert.deepEqual(result.problems.filter((problem) => problem.severity === 'error'), []);
       assert.match(result.text ?? '', /z="0\.5"/);
       assert.doesNotMatch(result.text ?? '', /&height;/);

@@ -12,6 +12,7 @@ function hasNeovim(): boolean {
 }
 
 interface NeovimReport {
+  errors: string[];
   diagnostics: { lnum: number; col: number; message: string; severity: number; code: string | null }[];
   definition: { uri?: string; targetUri?: string; range?: { start: { line: number; character: number } } }[] | null;
   hover: { contents: { kind: string; value: string } } | null;
@@ -22,9 +23,15 @@ interface NeovimReport {
 function probe(root: string, file: string, output: string, positions: Record<'definition' | 'hover' | 'completion', { line: number; character: number }>): string {
   const lua = (value: unknown) => JSON.stringify(value).replace(/\[/g, '{').replace(/\]/g, '}');
   return `
-local out = {}
+local out = { errors = {} }
 local client_id = vim.lsp.start_client({
   name = 'modular2simple',
+  -- Errors the server logs (MessageType.Error = 1) fail the test, as in the JSON-RPC harness.
+  handlers = {
+    ['window/logMessage'] = function(_, result)
+      if result and result.type == 1 then table.insert(out.errors, result.message) end
+    end,
+  },
   cmd = { ${lua(process.execPath)}, ${lua(serverBundle)}, '--stdio' },
   root_dir = ${lua(root)},
   workspace_folders = { { uri = vim.uri_from_fname(${lua(root)}), name = 'fixtures' } },
@@ -87,6 +94,10 @@ describe('the built server driven by Neovim (a second LSP client)', function () 
 
   after(function () {
     if (root) fs.rmSync(root, { recursive: true, force: true });
+  });
+
+  it('the server logged no error', function () {
+    assert.deepEqual(report.errors, []);
   });
 
   it('receives the diagnostics', function () {

@@ -4,7 +4,7 @@ import * as path from 'node:path';
 import fc from 'fast-check';
 import JSZip from 'jszip';
 import { CompletionItem, Diagnostic, DocumentSymbol, Location } from 'vscode-languageserver/node';
-import { FlattenTextResult, ServerCommands } from '../../server/src/protocol';
+import { FlattenToTextRequest, StructureRequest } from '../../server/src/protocol';
 import { SIMPLE } from './fixtures/scenarios';
 import { caseStudy, fileUri, library, markers, positionAt, requireCorpus, temporaryWorkspace, TestClient } from './harness';
 
@@ -37,7 +37,7 @@ async function askEverything(client: TestClient, uri: string, position: { line: 
     client.request('textDocument/codeLens', { textDocument: { uri } }),
     client.request('textDocument/codeAction', { textDocument: { uri }, range: { start: position, end: position }, context: { diagnostics: [] } }),
     client.request('workspace/symbol', { query: 'a' }),
-    client.request('workspace/executeCommand', { command: ServerCommands.structure, arguments: [uri] }),
+    client.send(StructureRequest, { uri }),
   ]);
 }
 
@@ -82,6 +82,7 @@ describe('language server with bad input', function () {
 
   it('reports each broken input on its reference and goes on answering', async function () {
     const uri = await client.openFile(path.join(root, 'main.xosc'));
+    // It reads a 20 MB file and inflates a bomb: seconds on a busy machine.
     const diagnostics: Diagnostic[] = await client.diagnosticsOf(uri, () => true, 60_000);
     const onLine = (fileName: string) => diagnostics.filter((diagnostic) => diagnostic.range.start.line === fs.readFileSync(path.join(root, 'main.xosc'), 'utf8').split('\n').findIndex((line) => line.includes(`"${fileName}"`)));
     for (const fileName of ['garbage.xosc', 'truncated.mosc', 'bomb.mosc', 'deep.xosc', 'self.xosc', 'garbage.mosc', 'empty.xosc']) {
@@ -119,9 +120,9 @@ describe('language server with bad input', function () {
     fs.rmSync(folder, { recursive: true, force: true });
   });
 
-  it('rejects a command on a URI that is no scenario with an error, and keeps answering', async function () {
-    await assert.rejects(client.request('workspace/executeCommand', { command: ServerCommands.flattenToText, arguments: ['http://example.com/x'] }), /not a scenario URI/);
-    const result = await client.request<FlattenTextResult>('workspace/executeCommand', { command: ServerCommands.flattenToText, arguments: [fileUri(path.join(root, 'big.xosc'))] });
+  it('rejects a request on a URI that is no scenario with an error, and keeps answering', async function () {
+    await assert.rejects(client.send(FlattenToTextRequest, { uri: 'http://example.com/x' }), /not a scenario URI/);
+    const result = await client.send(FlattenToTextRequest, { uri: fileUri(path.join(root, 'big.xosc')) });
     assert.ok(result.text && result.text.length > 20 * 1024 * 1024 - 100_000);
   });
 });

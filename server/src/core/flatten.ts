@@ -11,9 +11,12 @@ import {
 } from './model';
 import { Problem, ProblemCode, RelatedProblemLocation, Severity, uniqueProblems, ZERO_RANGE } from './problems';
 import { displayRef, refId, Resolution, ScenarioStore, SourceError, SourceRef } from './sources';
+import * as path from 'node:path';
+import { CarryEdit, carryEdits, CarryPlan, planCarry } from './carry';
 import { declareUtf8 } from './encoding';
-import { closestMatch, detectEol } from './text';
-import { attribute, descendants, escapeAttributeValue, isWellFormed, parseXml, XmlAttribute, XmlDocument, XmlElement } from './xml';
+import { analyzeDocument, CatalogLoader, DocumentSemantics, Evaluator, Finding, OUTPUT_CHECKS, runChecks, semanticModelOf, semanticProblems } from './semantics';
+import { closestMatch, detectEol, indentationAt } from './text';
+import { attribute, elementStartingAt, escapeAttributeValue, isWellFormed, parseXml, selfAndDescendants, XmlAttribute, XmlDocument, XmlElement } from './xml';
 
 const entityRefCache = new WeakMap<XmlElement, XmlElement[]>();
 
@@ -27,10 +30,6 @@ function entityRefElements(group: XmlElement): XmlElement[] {
   return found;
 }
 
-function selfAndDescendants(element: XmlElement): XmlElement[] {
-  return [element, ...descendants(element)];
-}
-
 /**
  * Where an element of a flattened text was written: the file and element it was copied from,
  * followed through every nested package. Elements outside imported groups map to the file itself.
@@ -38,9 +37,15 @@ function selfAndDescendants(element: XmlElement): XmlElement[] {
 export function originOf(source: FlatSource, element: XmlElement): { source: FlatSource; element: XmlElement } {
   if (!source.model || !source.original || source.model === source.original) return { source, element };
   const insertion = source.insertions.find((candidate) => element.start >= candidate.start && element.end <= candidate.end);
+  const addition = insertion ? undefined : source.additions.find((candidate) => element.start >= candidate.start && element.end <= candidate.end);
+  const part = addition?.parts.find((candidate) => element.start === candidate.start && element.end === candidate.end);
+  if (part) return originOf(part.source, part.element);
   if (!insertion) {
     // Outside imported groups the flattened text is the original text, shifted by each replaced region.
     const regions = new Map<number, { outStart: number; outEnd: number; inStart: number; inEnd: number }>();
+    for (const candidate of source.additions) {
+      regions.set(-1 - candidate.replacedStart, { outStart: candidate.start, outEnd: candidate.end, inStart: candidate.replacedStart, inEnd: candidate.replacedEnd });
+    }
     for (const candidate of source.insertions) {
       const region = regions.get(candidate.replacedStart);
       if (region) region.outEnd = Math.max(region.outEnd, candidate.end);
@@ -62,14 +67,8 @@ export function originOf(source: FlatSource, element: XmlElement): { source: Fla
   return counterpart ? originOf(sourceOfCopy, counterpart) : { source, element };
 }
 
-function elementStartingAt(root: XmlElement | undefined, offset: number): XmlElement | undefined {
-  let current = root;
-  while (current) {
-    if (current.start === offset) return current;
-    current = current.children.find((child) => offset >= child.start && offset < child.end);
-  }
-  return undefined;
-}
+/** Catalog problems, which the output check reports only for what flattening carried. */
+const CATALOG_CODES: ReadonlySet<ProblemCode> = new Set<ProblemCode>(['catalog-directory', 'unknown-catalog', 'unknown-catalog-entry', 'unknown-assigned-parameter']);
 
 /** A chain of files for a message: all of a short one, the ends of a long one. */
 export function describeChain(chain: SourceRef[]): string {
@@ -134,11 +133,28 @@ export interface FlatSource {
   dependencies: SourceRef[];
   /** True while the flattened text can be, but has not yet been, rendered (see Flattener.rendered). */
   renderable: boolean;
+  /** The OpenSCENARIO semantics of the file as read (parameters, expressions, catalogs, names). */
+  semantics: DocumentSemantics | undefined;
+  /** What rendering carried from the sources into the root (SPEC 11), once rendered. */
+  carried: CarryPlan | undefined;
+  /** Text the carrying added to the main file's text, with the declarations it copied (offsets of the flattened text). */
+  additions: Addition[];
+}
+
+/** A region of the flattened text that carrying added or replaced outside the imported groups. */
+export interface Addition {
+  start: number;
+  end: number;
+  replacedStart: number;
+  replacedEnd: number;
+  parts: { start: number; end: number; source: FlatSource; element: XmlElement }[];
 }
 
 export interface FlattenOptions {
   /** Write the output even when overrides could not be applied (the original's behaviour). */
   force?: boolean;
+  /** Where the output will be written (carried catalog directories are made relative to its folder); beside the main file by default. */
+  outputPath?: string;
 }
 
 export interface AnalysisResult {
@@ -177,14 +193,6 @@ function problemAt(
 
 function valueRange(attributeNode: XmlAttribute | undefined, element: XmlElement): [number, number] {
   return attributeNode ? [attributeNode.valueStart, attributeNode.valueEnd] : [element.start, element.nameEnd];
-}
-
-/** Leading white space of the line where `offset` stands, when only white space precedes it there. */
-function indentationAt(text: string, offset: number): string {
-  let lineStart = offset;
-  while (lineStart > 0 && text[lineStart - 1] !== '\n' && text[lineStart - 1] !== '\r') lineStart--;
-  const prefix = text.slice(lineStart, offset);
-  return /^[ \t]*$/.test(prefix) ? prefix : '';
 }
 
 /** Moves a copied block from one indentation depth to another, line by line. */
@@ -268,8 +276,14 @@ function expandEntitiesInCopy(text: string, group: XmlElement, entities: Readonl
  */
 export class Flattener {
   private readonly cache = new Map<string, Promise<FlatSource>>();
+  /** Catalog files read for this flattener's files (a new flattener reads them again). */
+  readonly catalogs: CatalogLoader;
+  /** The folder the output is written to, against which carried catalog directories are made relative. */
+  private outputDirectory: string | undefined;
 
-  constructor(readonly store: ScenarioStore) {}
+  constructor(readonly store: ScenarioStore) {
+    this.catalogs = new CatalogLoader(store);
+  }
 
   /** Every problem of `main` and of what it uses, without writing its flattened text (for an editor). */
   async analyze(main: SourceRef): Promise<AnalysisResult> {
@@ -279,10 +293,11 @@ export class Flattener {
 
   /** Flattens the scenario `main` (a `main.xosc` on disk or inside a package) into plain OpenSCENARIO. */
   async flatten(main: SourceRef, options: FlattenOptions = {}): Promise<FlattenResult> {
+    this.outputDirectory = path.dirname(path.resolve(options.outputPath ?? main.disk));
     const analysis = await this.analyze(main);
     const source = this.rendered(analysis.source);
     // Rendering the main file itself may find it too large.
-    const problems = uniqueProblems([...analysis.problems, ...source.problems]);
+    const problems = uniqueProblems([...analysis.problems, ...source.problems, ...(source.carried?.problems ?? []), ...(await this.checkOutput(source))]);
     const blocking = problems.filter(
       (problem) => problem.severity === 'error' && !(options.force && OVERRIDE_PROBLEM_CODES.has(problem.code)),
     );
@@ -317,6 +332,9 @@ export class Flattener {
       allProblems: [],
       dependencies: [ref],
       renderable: false,
+      semantics: undefined,
+      carried: undefined,
+      additions: [],
     };
     let text: string;
     try {
@@ -343,6 +361,12 @@ export class Flattener {
     result.original = model;
     this.checkDeclarations(result, model);
     this.checkDuplicateGroups(result, model);
+    if (document.root) {
+      const semantics = await analyzeDocument(ref, document, this.catalogs, model.references.length > 0);
+      result.semantics = semantics;
+      result.problems.push(...semanticProblems(semantics));
+      for (const file of semantics.catalogs.files) if (!result.dependencies.some((known) => refId(known) === refId(file))) result.dependencies.push(file);
+    }
     const wellFormed = isWellFormed(document);
 
     const childProblems: Problem[] = [];
@@ -565,6 +589,7 @@ export class Flattener {
       linked.overridable = overridableAttributes(sourceModel, targetGroup);
       const plan = planOverrides(linked.overridable, groupReference.parameters.filter((p) => p.keyAttribute));
       linked.plan = plan;
+      this.checkMixedDefaults(plan, source, report);
       for (const unknown of plan.unknown) {
         const [start, end] = valueRange(unknown.parameter.keyAttribute, unknown.parameter.element);
         const listedVerbatim = linked.overridable.find((candidate) => candidate.attributeName === unknown.parameter.key);
@@ -603,6 +628,27 @@ export class Flattener {
     return link;
   }
 
+  /** A key that sets several attributes whose defaults differ probably sets one it was not written for. */
+  private checkMixedDefaults(plan: OverridePlan, source: FlatSource, report: (start: number, end: number, severity: Severity, code: ProblemCode, message: string, hint?: string) => Problem): void {
+    for (const match of plan.matches) {
+      const targets = match.targets.filter((target) => target.defaultValue !== undefined);
+      if (new Set(targets.map((target) => target.defaultValue)).size < 2) continue;
+      const [start, end] = valueRange(match.parameter.keyAttribute, match.parameter.element);
+      const counts = new Map<string, number>();
+      for (const target of targets) counts.set(target.defaultValue as string, (counts.get(target.defaultValue as string) ?? 0) + 1);
+      const listed = [...counts].map(([value, count]) => `'${value}' (${count}×)`);
+      const problem = report(
+        start,
+        end,
+        'warning',
+        'key-mixed-defaults',
+        `key '${match.parameter.key}' sets ${targets.length} attributes whose defaults differ: ${listed.join(', ')}; all of them get '${match.parameter.value}'`,
+        'write a longer key that reaches only the attributes you mean, or list the attribute in parameterAttributes only where it should be overridden',
+      );
+      problem.related = targets.map((target) => declarationLocation(originOf(source, target.element), target.attributeName, `'${target.attributeName}' with default '${target.defaultValue}'`));
+    }
+  }
+
   /** Writes the flattened text: each outer group replaced in place by its imported copies. */
   private render(result: FlatSource, text: string, model: ScenarioModel): void {
     const eol = detectEol(text);
@@ -632,31 +678,113 @@ export class Flattener {
       }
       replacements.push({ group, start: group.element.start, end: group.element.end, copies });
     }
-    let out = '';
-    let position = 0;
-    for (const replacement of replacements) {
-      out += text.slice(position, replacement.start);
-      const indent = indentationAt(text, replacement.start);
-      replacement.copies.forEach((copy, index) => {
-        if (index > 0) out += eol + indent;
-        const start = out.length;
-        out += copy.text;
-        result.insertions.push({
-          reference: copy.linked.info,
-          outerGroup: replacement.group,
-          link: copy.link,
-          group: copy.linked,
-          start,
-          end: out.length,
-          replacedStart: replacement.start,
-          replacedEnd: replacement.end,
+    const write = (edits: CarryEdit[]): { out: string; insertions: Insertion[]; additions: Addition[] } => {
+      const insertions: Insertion[] = [];
+      const additions: Addition[] = [];
+      // Carried text lands in the root before the Storyboard, so it never overlaps a replaced group.
+      const regions = [
+        ...edits.map((edit) => ({ start: edit.start, end: edit.end, edit, replacement: undefined })),
+        ...replacements.map((replacement) => ({ start: replacement.start, end: replacement.end, edit: undefined, replacement })),
+      ].sort((a, b) => a.start - b.start);
+      let out = '';
+      let position = 0;
+      for (const region of regions) {
+        out += text.slice(position, region.start);
+        if (region.edit) {
+          const start = out.length;
+          out += region.edit.text;
+          additions.push({
+            start,
+            end: out.length,
+            replacedStart: region.edit.start,
+            replacedEnd: region.edit.end,
+            parts: region.edit.parts.map((part) => ({ ...part, start: start + part.start, end: start + part.end })),
+          });
+          position = region.end;
+          continue;
+        }
+        const replacement = region.replacement as (typeof replacements)[number];
+        const indent = indentationAt(text, replacement.start);
+        replacement.copies.forEach((copy, index) => {
+          if (index > 0) out += eol + indent;
+          const start = out.length;
+          out += copy.text;
+          insertions.push({
+            reference: copy.linked.info,
+            outerGroup: replacement.group,
+            link: copy.link,
+            group: copy.linked,
+            start,
+            end: out.length,
+            replacedStart: replacement.start,
+            replacedEnd: replacement.end,
+          });
         });
-      });
-      position = replacement.end;
+        position = replacement.end;
+      }
+      return { out: out + text.slice(position), insertions, additions };
+    };
+    let written = write([]);
+    const origin = (source: FlatSource, element: XmlElement) => {
+      const found = originOf(source, element);
+      const document = (found.source.original ?? found.source.model)?.document;
+      const named = attribute(found.element, 'name');
+      return document ? { source: found.source.ref, range: document.lines.range(named?.valueStart ?? found.element.start, named?.valueEnd ?? found.element.nameEnd), message: '' } : undefined;
+    };
+    const plan = planCarry(result, written.out, written.insertions, origin);
+    const edits = carryEdits(result, plan, eol, this.outputDirectory ?? path.dirname(result.ref.disk));
+    if (edits.length > 0) written = write(edits);
+    result.carried = plan;
+    result.problems.push(...plan.problems);
+    result.allProblems = uniqueProblems([...result.allProblems, ...plan.problems]);
+    result.insertions.push(...written.insertions);
+    result.additions = written.additions;
+    result.text = written.out;
+    result.model = buildModel(parseXml(written.out));
+  }
+
+  /**
+   * Checks the flattened output (SPEC 11.5): every `$name` declared, every catalog entry and
+   * storyboard reference resolving to exactly one target. Problems are reported where the element
+   * was written, through originOf.
+   */
+  private async checkOutput(source: FlatSource): Promise<Problem[]> {
+    if (!source.model || !source.original || source.model === source.original) return [];
+    const model = semanticModelOf(source.model.document);
+    const evaluator = new Evaluator(model);
+    const directory = this.outputDirectory ?? path.dirname(source.ref.disk);
+    const catalogs = await this.catalogs.resolve({ disk: path.join(directory, 'flattened.xosc'), entries: [] }, model, evaluator);
+    const findings = runChecks({ ref: source.ref, model, evaluator, catalogs, modular: false }, OUTPUT_CHECKS);
+    // The main file's own catalog locations are written as they are, relative to it; its own check covers them.
+    const carried = (element: XmlElement) =>
+      [...source.insertions, ...source.additions].some((region) => element.start >= region.start && element.end <= region.end);
+    return findings.filter((finding) => !CATALOG_CODES.has(finding.code) || carried(finding.element)).map((finding) => this.problemAtOrigin(source, finding));
+  }
+
+  /** A finding on the flattened text, placed where its element was written. */
+  private problemAtOrigin(source: FlatSource, finding: Finding): Problem {
+    const origin = originOf(source, finding.element);
+    const document = (origin.source.original ?? origin.source.model)?.document;
+    const originAttribute = finding.attribute ? attribute(origin.element, finding.attribute.name) : undefined;
+    let start = origin.element.start;
+    let end = origin.element.nameEnd;
+    if (finding.attribute && originAttribute) {
+      const delta = finding.start - finding.attribute.valueStart;
+      start = Math.min(originAttribute.valueStart + delta, originAttribute.valueEnd);
+      end = Math.min(start + (finding.end - finding.start), originAttribute.valueEnd);
+      if (end <= start) [start, end] = [originAttribute.valueStart, originAttribute.valueEnd];
     }
-    out += text.slice(position);
-    result.text = out;
-    result.model = buildModel(parseXml(out));
+    const problem: Problem = {
+      source: origin.source.ref,
+      range: document ? document.lines.range(start, end) : ZERO_RANGE,
+      severity: finding.severity,
+      code: finding.code,
+      message: finding.message,
+    };
+    if (finding.hint) problem.hint = finding.hint;
+    if (finding.related) problem.related = finding.related;
+    if (finding.data) problem.data = finding.data;
+    return problem;
   }
 
   /** Reports a flattened result over the bound at the reference that crossed it, naming the chain of the largest imports. */
@@ -722,21 +850,28 @@ export class Flattener {
   private entityProblems(source: FlatSource): Problem[] {
     const original = source.original;
     if (!original) return [];
-    const declared = new Set(original.entities.map((entity) => entity.name));
+    // Names and references may be `$parameters`: each is read with the declarations of the file it is written in.
+    const main = source.semantics?.evaluator;
+    const valueIn = (evaluator: Evaluator | undefined, element: XmlElement, attributeNode: XmlAttribute | undefined) =>
+      attributeNode ? (evaluator?.textOf(element, attributeNode) ?? attributeNode.value) : undefined;
+    const declared = new Set(original.entities.map((entity) => valueIn(main, entity.element, entity.nameAttribute) ?? entity.name));
     const problems: Problem[] = [];
     for (const link of source.links) {
       const actor = link.info.outerGroup?.actor;
-      const actorEntity = actor ? attribute(actor, 'entityRef')?.value : undefined;
+      const actorEntity = actor ? valueIn(main, actor, attribute(actor, 'entityRef')) : undefined;
+      const sourceEvaluator = link.source?.model ? new Evaluator(semanticModelOf(link.source.model.document)) : undefined;
       for (const linked of link.groups) {
         if (!linked.target || !linked.plan) continue;
         // The entities the copy will name: overrides first, then the outer actor, then the source's own value.
         const overridden = new Map<XmlElement, string>();
-        for (const [target, parameter] of linked.plan.applied) if (target.attributeName === 'entityRef') overridden.set(target.element, parameter.value);
+        for (const [target, parameter] of linked.plan.applied) {
+          if (target.attributeName === 'entityRef') overridden.set(target.element, valueIn(main, parameter.element, parameter.valueAttribute) ?? parameter.value);
+        }
         const missing = new Set<string>();
         for (const element of entityRefElements(linked.target.element)) {
           const value =
             overridden.get(element) ??
-            (element === linked.target.actor && actorEntity !== undefined ? actorEntity : attribute(element, 'entityRef')?.value);
+            (element === linked.target.actor && actorEntity !== undefined ? actorEntity : valueIn(sourceEvaluator, element, attribute(element, 'entityRef')));
           if (value !== undefined && !declared.has(value)) missing.add(value);
         }
         for (const name of missing) {

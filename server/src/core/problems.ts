@@ -1,7 +1,8 @@
 import { Range } from './text';
 import { displayRef, SourceRef } from './sources';
 
-export type Severity = 'error' | 'warning' | 'information';
+/** `hint` is shown faded in the editor (an unused parameter) and left out of the CLI's text report. */
+export type Severity = 'error' | 'warning' | 'information' | 'hint';
 
 export type ProblemCode =
   | 'xml'
@@ -23,7 +24,25 @@ export type ProblemCode =
   | 'undeclared-entity'
   | 'source-errors'
   | 'too-large'
-  | 'too-deep';
+  | 'too-deep'
+  | 'undeclared-parameter'
+  | 'unused-parameter'
+  | 'duplicate-parameter'
+  | 'expression-syntax'
+  | 'type-mismatch'
+  | 'division-by-zero'
+  | 'nonstandard-expression'
+  | 'catalog-directory'
+  | 'unknown-catalog'
+  | 'unknown-catalog-entry'
+  | 'unknown-assigned-parameter'
+  | 'unknown-storyboard-element'
+  | 'ambiguous-reference'
+  | 'undeclared-variable'
+  | 'key-mixed-defaults'
+  | 'parameter-conflict'
+  | 'catalog-location-conflict'
+  | 'renamed-reference';
 
 export interface RelatedProblemLocation {
   source: SourceRef;
@@ -53,7 +72,7 @@ export function formatProblem(problem: Problem, base?: string): string {
   const related = (problem.related ?? [])
     .map((item) => `\n  ${displayRef(item.source, base)}:${item.range.start.line + 1}:${item.range.start.character + 1}: note: ${item.message}`)
     .join('');
-  return `${where}: ${problem.severity === 'information' ? 'note' : problem.severity}: ${problem.message}${hint}${related}`;
+  return `${where}: ${problem.severity === 'information' || problem.severity === 'hint' ? 'note' : problem.severity}: ${problem.message}${hint}${related}`;
 }
 
 export function hasErrors(problems: Problem[]): boolean {

@@ -71,6 +71,8 @@ export interface FileSystemHost {
    */
   readFile(filePath: string, maxBytes?: number): Promise<Uint8Array | undefined>;
   kind(filePath: string): Promise<'file' | 'directory' | undefined>;
+  /** The names in a directory, or undefined when it cannot be listed (catalog directories need it). */
+  listDirectory?(directoryPath: string): Promise<string[] | undefined>;
 }
 
 export class FileReadError extends Error {}
@@ -118,6 +120,13 @@ export const nodeFileSystem: FileSystemHost = {
     try {
       const stat = await fs.promises.stat(filePath);
       return stat.isFile() ? 'file' : stat.isDirectory() ? 'directory' : undefined;
+    } catch {
+      return undefined;
+    }
+  },
+  async listDirectory(directoryPath) {
+    try {
+      return await fs.promises.readdir(directoryPath);
     } catch {
       return undefined;
     }

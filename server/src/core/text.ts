@@ -112,3 +112,11 @@ export function closestMatch(wanted: string, candidates: Iterable<string>): stri
   const limit = Math.max(3, Math.ceil(Math.max(wanted.length, best.length) * 0.5));
   return bestDistance <= limit ? best : undefined;
 }
+
+/** Leading white space of the line where `offset` stands, when only white space precedes it there. */
+export function indentationAt(text: string, offset: number): string {
+  let lineStart = offset;
+  while (lineStart > 0 && text[lineStart - 1] !== '\n' && text[lineStart - 1] !== '\r') lineStart--;
+  const prefix = text.slice(lineStart, offset);
+  return /^[ \t]*$/.test(prefix) ? prefix : '';
+}

@@ -620,3 +620,24 @@ export function reparseValueEdit(previous: XmlDocument, text: string): XmlDocume
     },
   };
 }
+
+/** The element and every element below it, in document order. */
+export function selfAndDescendants(element: XmlElement): XmlElement[] {
+  return [element, ...descendants(element)];
+}
+
+/** The element of the tree that starts exactly at an offset. */
+export function elementStartingAt(root: XmlElement | undefined, offset: number): XmlElement | undefined {
+  let current = root;
+  while (current) {
+    if (current.start === offset) return current;
+    current = current.children.find((child) => offset >= child.start && offset < child.end);
+  }
+  return undefined;
+}
+
+/** Whether `element` is `ancestor` or lies below it. */
+export function isWithin(element: XmlElement, ancestor: XmlElement): boolean {
+  for (let current: XmlElement | undefined = element; current; current = current.parent) if (current === ancestor) return true;
+  return false;
+}

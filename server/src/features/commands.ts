@@ -1,4 +1,5 @@
 import * as path from 'node:path';
+import { ErrorCodes, ResponseError } from 'vscode-languageserver/node';
 import { Flattener, FlatSource } from '../core/flatten';
 import { isSameFile, OutputError, writeFileAtomic } from '../core/atomic';
 import { Problem } from '../core/problems';
@@ -20,6 +21,11 @@ export function summarize(workspace: Workspace, problem: Problem): ProblemSummar
   return summary;
 }
 
+/** A request the client got wrong: answered as such, not logged as a failure of the server. */
+export function invalidParams(message: string): ResponseError<void> {
+  return new ResponseError(ErrorCodes.InvalidParams, message);
+}
+
 function forceOf(options: unknown): boolean {
   return Boolean(options && typeof options === 'object' && (options as { force?: unknown }).force === true);
 }
@@ -34,9 +40,9 @@ function insideFolders(filePath: string, folders: string[]): boolean {
 }
 
 async function refOf(workspace: Workspace, uri: unknown): Promise<SourceRef> {
-  if (typeof uri !== 'string') throw new Error('expected a document URI');
+  if (typeof uri !== 'string') throw invalidParams('expected a document URI');
   const ref = await workspace.uris.toRef(uri);
-  if (!ref) throw new Error(`not a scenario URI: ${uri}`);
+  if (!ref) throw invalidParams(`not a scenario URI: ${uri}`);
   // A package (a .mosc, or an unpacked folder) stands for its main.xosc.
   const last = ref.entries.length > 0 ? ref.entries[ref.entries.length - 1] : ref.disk;
   if (last.toLowerCase().endsWith('.mosc')) return childRef(ref, 'main.xosc');
@@ -58,7 +64,7 @@ function outputProblem(workspace: Workspace, ref: SourceRef, message: string): P
 /** Writes the flattened scenario atomically; refuses to write over any file it was made from. */
 export async function flattenToFile(workspace: Workspace, uri: unknown, outputPath: unknown, options: unknown): Promise<WriteResult> {
   const ref = await refOf(workspace, uri);
-  if (typeof outputPath !== 'string' || !outputPath) throw new Error('expected an output path');
+  if (typeof outputPath !== 'string' || !outputPath) throw invalidParams('expected an output path');
   const output = path.resolve(filePathOf(outputPath) ?? outputPath);
   if (!output.toLowerCase().endsWith('.xosc')) return { written: null, problems: [outputProblem(workspace, ref, `the output '${output}' must end in .xosc`)] };
   if (workspace.folders.length > 0 && !insideFolders(output, workspace.folders) && !outsideConfirmed(options)) {
@@ -68,7 +74,7 @@ export async function flattenToFile(workspace: Workspace, uri: unknown, outputPa
       needsConfirmation: 'outsideWorkspace',
     };
   }
-  const result = await new Flattener(workspace.store).flatten(ref, { force: forceOf(options) });
+  const result = await new Flattener(workspace.store).flatten(ref, { force: forceOf(options), outputPath: output });
   const problems = result.problems.map((problem) => summarize(workspace, problem));
   const input = result.source.dependencies.find((dependency) => dependency.disk === output || isSameFile(dependency.disk, output));
   if (input) return { written: null, problems: [...problems, outputProblem(workspace, ref, `refusing to overwrite ${displayRef(input, workspace.folders[0])}, an input of this flattening`)] };

@@ -24,6 +24,7 @@ function severityOf(problem: Problem): DiagnosticSeverity {
   if (problem.code === 'unknown-key') return DiagnosticSeverity.Warning;
   if (problem.severity === 'error') return DiagnosticSeverity.Error;
   if (problem.severity === 'warning') return DiagnosticSeverity.Warning;
+  if (problem.severity === 'hint') return DiagnosticSeverity.Hint;
   return DiagnosticSeverity.Information;
 }
 
@@ -43,6 +44,7 @@ export function toDiagnostic(problem: Problem, workspace: Workspace): Diagnostic
   };
   if (related.length > 0) diagnostic.relatedInformation = related;
   if (problem.code === 'xosc-fallback') diagnostic.tags = [DiagnosticTag.Deprecated];
+  if (problem.code === 'unused-parameter') diagnostic.tags = [DiagnosticTag.Unnecessary];
   return diagnostic;
 }
 

@@ -6,7 +6,7 @@ import { packFiles, packFolder, PackResult } from '../core/pack';
 import { WriteResult } from '../protocol';
 import { filePathOf } from '../uris';
 import { Workspace } from '../workspace';
-import { summarize, writeOutput } from './commands';
+import { invalidParams, summarize, writeOutput } from './commands';
 
 function isFolder(filePath: string): boolean {
   try {
@@ -21,8 +21,8 @@ function isFolder(filePath: string): boolean {
  * files at the root of a new package; writes the archive atomically, never over an input.
  */
 export async function packCommand(workspace: Workspace, inputs: unknown, outputPath: unknown): Promise<WriteResult> {
-  if (!Array.isArray(inputs) || inputs.length === 0 || !inputs.every((input) => typeof input === 'string')) throw new Error('expected a list of input URIs');
-  if (typeof outputPath !== 'string' || !outputPath) throw new Error('expected an output path');
+  if (!Array.isArray(inputs) || inputs.length === 0 || !inputs.every((input) => typeof input === 'string')) throw invalidParams('expected a list of input URIs');
+  if (typeof outputPath !== 'string' || !outputPath) throw invalidParams('expected an output path');
   const output = path.resolve(filePathOf(outputPath) ?? outputPath);
   const refuse = (message: string): WriteResult => ({ written: null, problems: [{ uri: outputPath, line: 0, character: 0, severity: 'error', message }] });
   if (!output.toLowerCase().endsWith('.mosc')) return refuse(`the output '${output}' must end in .mosc`);

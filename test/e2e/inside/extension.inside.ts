@@ -7,19 +7,19 @@ import JSZip from 'jszip';
 import * as vscode from 'vscode';
 import type { Modular2SimpleApi } from '../../../client/src/extension';
 import { firstDifference } from '../../../server/src/core/equivalence';
-import { ServerCommands, type StructureNode } from '../../../server/src/protocol';
+import { FlattenToFileRequest, FlattenToTextRequest, PackRequest, StructureRequest, type StructureNode } from '../../../server/src/protocol';
 import { HARNESS_ENV, INSIDE_TESTS } from '../titles';
 import { clickText, pageShows, post, pressKeys, runFromPalette, screenshot, typeText } from './harnessClient';
 
 const EXTENSION_ID = 'modular2simple.modular2simple';
 
-function workspaceRoot(): string {
+export function workspaceRoot(): string {
   const root = process.env[HARNESS_ENV.workspace];
   assert.ok(root, `${HARNESS_ENV.workspace} is not set`);
   return root;
 }
 
-async function waitFor<T>(what: string, probe: () => T | undefined | false | Promise<T | undefined | false>, timeoutMs = 20_000): Promise<T> {
+export async function waitFor<T>(what: string, probe: () => T | undefined | false | Promise<T | undefined | false>, timeoutMs = 20_000): Promise<T> {
   const deadline = Date.now() + timeoutMs;
   let last: unknown;
   while (Date.now() < deadline) {
@@ -34,7 +34,7 @@ async function waitFor<T>(what: string, probe: () => T | undefined | false | Pro
   throw new Error(`timed out after ${timeoutMs} ms waiting for ${what}${last ? ` (last error: ${(last as Error).message})` : ''}`);
 }
 
-function api(): Modular2SimpleApi {
+export function api(): Modular2SimpleApi {
   const extension = vscode.extensions.getExtension<Modular2SimpleApi>(EXTENSION_ID);
   assert.ok(extension?.isActive, 'the extension is not active');
   return extension.exports;
@@ -48,34 +48,35 @@ function requireServerFeature(context: Mocha.Context, feature: string, offered: 
   }
 }
 
-function offersCommand(command: string): boolean {
-  return api().serverCapabilities()?.executeCommandProvider?.commands.includes(command) ?? false;
+function offersRequest(request: { method: string }): boolean {
+  const experimental = api().serverCapabilities()?.experimental as { requests?: string[] } | undefined;
+  return experimental?.requests?.includes(request.method) ?? false;
 }
 
-async function open(relative: string): Promise<vscode.TextEditor> {
+export async function open(relative: string): Promise<vscode.TextEditor> {
   const document = await vscode.workspace.openTextDocument(vscode.Uri.file(path.join(workspaceRoot(), relative)));
   return vscode.window.showTextDocument(document, { viewColumn: vscode.ViewColumn.One, preview: false });
 }
 
-function positionOf(document: vscode.TextDocument, text: string, offsetInText = 0): vscode.Position {
+export function positionOf(document: vscode.TextDocument, text: string, offsetInText = 0): vscode.Position {
   const index = document.getText().indexOf(text);
   assert.ok(index >= 0, `${path.basename(document.uri.path)} does not contain ${text}`);
   return document.positionAt(index + offsetInText);
 }
 
-async function replaceText(document: vscode.TextDocument, from: string, to: string): Promise<void> {
+export async function replaceText(document: vscode.TextDocument, from: string, to: string): Promise<void> {
   const start = positionOf(document, from);
   const edit = new vscode.WorkspaceEdit();
   edit.replace(document.uri, new vscode.Range(start, start.translate(0, from.length)), to);
   assert.ok(await vscode.workspace.applyEdit(edit), `could not replace ${from}`);
 }
 
-async function revertAndClose(): Promise<void> {
+export async function revertAndClose(): Promise<void> {
   await vscode.commands.executeCommand('workbench.action.files.revert');
   await vscode.commands.executeCommand('workbench.action.closeAllEditors');
 }
 
-function packageUri(...parts: string[]): vscode.Uri {
+export function packageUri(...parts: string[]): vscode.Uri {
   return vscode.Uri.from({ scheme: 'mosc', path: path.posix.join(workspaceRoot(), ...parts) });
 }
 
@@ -178,7 +179,7 @@ export function defineExtensionTests(): void {
       // A click on an entry opens it in place, through the mosc: file system.
       assert.ok(await clickText('hard_brake.xosc'), 'no link to hard_brake.xosc');
       await waitFor('hard_brake.xosc to open', () => vscode.window.activeTextEditor?.document.uri.toString() === packageUri('braking.mosc', 'hard_brake.xosc').toString() || undefined);
-      if (offersCommand(ServerCommands.structure)) {
+      if (offersRequest(StructureRequest)) {
         await vscode.commands.executeCommand('vscode.open', vscode.Uri.file(path.join(workspaceRoot(), 'braking.mosc')));
         await waitFor('the package view', () => pageShows('Show Structure'));
         assert.ok(await clickText('Show Structure'));
@@ -289,7 +290,7 @@ export function defineExtensionTests(): void {
     });
 
     it(INSIDE_TESTS.preview, async function () {
-      requireServerFeature(this, 'flattenToText', offersCommand(ServerCommands.flattenToText));
+      requireServerFeature(this, 'flattenToText', offersRequest(FlattenToTextRequest));
       const editor = await open('main.xosc');
       // The server's "flatten preview" CodeLens runs the client's command; without lenses, the command itself.
       const lenses = api().serverCapabilities()?.codeLensProvider
@@ -340,7 +341,7 @@ export function defineExtensionTests(): void {
     });
 
     it(INSIDE_TESTS.pack, async function () {
-      requireServerFeature(this, 'pack', offersCommand(ServerCommands.pack));
+      requireServerFeature(this, 'pack', offersRequest(PackRequest));
       const root = workspaceRoot();
       await open('pedestrian/main.xosc');
       await runFromPalette('Modular2Simple: Pack into .mosc');
@@ -363,7 +364,7 @@ export function defineExtensionTests(): void {
 
     it(INSIDE_TESTS.flatten, async function () {
       this.timeout(90_000);
-      requireServerFeature(this, 'flattenToFile', offersCommand(ServerCommands.flattenToFile));
+      requireServerFeature(this, 'flattenToFile', offersRequest(FlattenToFileRequest));
       const root = workspaceRoot();
       await open('main.xosc');
       await runFromPalette('Modular2Simple: Flatten to .xosc');
@@ -422,7 +423,7 @@ export function defineExtensionTests(): void {
     });
 
     it(INSIDE_TESTS.structure, async function () {
-      requireServerFeature(this, 'structure', offersCommand(ServerCommands.structure));
+      requireServerFeature(this, 'structure', offersRequest(StructureRequest));
       const editor = await open('main.xosc');
       const root = await vscode.commands.executeCommand<StructureNode | undefined>('modular2simple.showStructure', editor.document.uri);
       assert.ok(root, 'no structure');

@@ -1,6 +1,7 @@
 import Mocha from 'mocha';
 import { HARNESS_ENV } from '../titles';
 import { post } from './harnessClient';
+import { defineBirdsEyeTests } from './birdsEye.inside';
 import { defineExtensionTests } from './extension.inside';
 
 /** Entry point that VS Code calls in the extension host (extensionTestsPath). */
@@ -9,6 +10,7 @@ export async function run(): Promise<void> {
   const mocha = new Mocha({ ui: 'bdd', timeout: 30_000, color: false, reporter: 'spec', ...(grep ? { grep } : {}) });
   mocha.suite.emit('pre-require', globalThis, 'extension.inside', mocha);
   defineExtensionTests();
+  defineBirdsEyeTests();
   const pending: Promise<unknown>[] = [];
   const failures = await new Promise<number>((resolve) => {
     const runner = mocha.run((count) => resolve(count));

@@ -1,0 +1,109 @@
+// Semantic model benchmark (printed figures): a scenario with 1,000 parameters and 1,000 expressions;
+// building the model, running every check, and the per-offset queries the editor features make.
+import * as esbuild from 'esbuild';
+import { mkdtempSync, rmSync } from 'node:fs';
+import { createRequire } from 'node:module';
+import { tmpdir } from 'node:os';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
+const runs = Number(process.env.BENCH_RUNS ?? 15) * 2;
+const work = mkdtempSync(path.join(tmpdir(), 'm2s-bench-semantics-'));
+const bundle = path.join(work, 'semantics.cjs');
+await esbuild.build({
+  stdin: {
+    contents: `export * from './server/src/core/semantics'; export { parseXml } from './server/src/core/xml';`,
+    resolveDir: root,
+    loader: 'ts',
+  },
+  bundle: true,
+  platform: 'node',
+  format: 'cjs',
+  outfile: bundle,
+  logLevel: 'warning',
+});
+const core = createRequire(import.meta.url)(bundle);
+rmSync(work, { recursive: true, force: true });
+
+/** 1,000 root parameters (half of them expressions over earlier ones) and 1,000 attributes with expressions. */
+function scenario() {
+  const declarations = [];
+  for (let i = 0; i < 1000; i++) {
+    const value = i % 2 === 0 ? String(i) : `\${$P${i - 1} * 2 + ${i}}`;
+    declarations.push(`    <ParameterDeclaration name="P${i}" parameterType="double" value="${value}"/>`);
+  }
+  const events = [];
+  for (let i = 0; i < 1000; i++) {
+    events.push(`          <Event name="E${i}" priority="overwrite"><Action name="A${i}"><AbsoluteTargetSpeed value="\${($P${i} + $P${(i * 7) % 1000}) / 3.6 + round($P${(i * 13) % 1000})}"/></Action></Event>`);
+  }
+  return `<?xml version="1.0"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="bench" author="bench"/>
+  <ParameterDeclarations>
+${declarations.join('\n')}
+  </ParameterDeclarations>
+  <Entities><ScenarioObject name="Ego"/></Entities>
+  <Storyboard>
+    <Story name="S"><Act name="A"><ManeuverGroup name="G" maximumExecutionCount="1"><Actors selectTriggeringEntities="false"><EntityRef entityRef="Ego"/></Actors>
+        <Maneuver name="M">
+${events.join('\n')}
+        </Maneuver>
+    </ManeuverGroup></Act></Story>
+  </Storyboard>
+</OpenSCENARIO>
+`;
+}
+
+function time(action) {
+  const started = process.hrtime.bigint();
+  const result = action();
+  return { ms: Number(process.hrtime.bigint() - started) / 1e6, result };
+}
+
+function summary(samples) {
+  const sorted = [...samples].sort((a, b) => a - b);
+  return { median: sorted[Math.floor(sorted.length / 2)], p95: sorted[Math.min(sorted.length - 1, Math.ceil(sorted.length * 0.95) - 1)] };
+}
+
+const text = scenario();
+const emptyCatalogs = { locations: [], references: [], files: [] };
+const ref = { disk: path.join(root, 'bench.xosc'), entries: [] };
+const parse = [];
+const build = [];
+const check = [];
+let last;
+for (let run = 0; run < runs; run++) {
+  const parsed = time(() => core.parseXml(text));
+  parse.push(parsed.ms);
+  const built = time(() => core.buildSemanticModel(parsed.result));
+  build.push(built.ms);
+  const model = built.result;
+  const checked = time(() => core.runChecks({ ref, model, evaluator: new core.Evaluator(model), catalogs: emptyCatalogs, modular: false }));
+  check.push(checked.ms);
+  last = { model, findings: checked.result };
+}
+if (last.model.declarations.length !== 1000 || last.model.sites.filter((site) => site.form.kind === 'expression').length !== 1500) throw new Error('the generated scenario is not what the benchmark states');
+if (last.findings.some((finding) => finding.severity === 'error')) throw new Error(`unexpected errors: ${last.findings[0].message}`);
+
+// Queries at offsets spread over the file, on one model (as the editor asks them between edits).
+const semantics = { ref, model: last.model, evaluator: new core.Evaluator(last.model), catalogs: emptyCatalogs, modular: false };
+const offsets = last.model.uses.filter((_, index) => index % 10 === 0).map((use) => use.start + 1);
+const query = (fn) => summary(offsets.map((offset) => time(() => fn(semantics, offset)).ms));
+const definition = query(core.declarationAt);
+const value = query(core.valueAt);
+const inScope = query(core.parametersInScopeAt);
+const references = summary(last.model.declarations.slice(0, 100).map((declaration) => time(() => core.referencesOf(semantics, declaration)).ms));
+
+const fmt = (n) => n.toFixed(2).padStart(8);
+console.log(`semantic model benchmark: ${(text.length / 1024).toFixed(0)} KB, 1,000 parameters, 1,000 attributes with expressions (${runs} runs)`);
+console.log('                                           median ms    p95 ms');
+console.log(`  parse XML                                 ${fmt(summary(parse).median)}  ${fmt(summary(parse).p95)}`);
+console.log(`  build the semantic model                  ${fmt(summary(build).median)}  ${fmt(summary(build).p95)}`);
+console.log(`  run every check (evaluates all values)    ${fmt(summary(check).median)}  ${fmt(summary(check).p95)}`);
+console.log(`  declarationAt (${offsets.length} offsets)             ${fmt(definition.median)}  ${fmt(definition.p95)}`);
+console.log(`  valueAt, evaluated (${offsets.length} offsets)        ${fmt(value.median)}  ${fmt(value.p95)}`);
+console.log(`  parametersInScopeAt with values           ${fmt(inScope.median)}  ${fmt(inScope.p95)}`);
+console.log(`  referencesOf (100 declarations)           ${fmt(references.median)}  ${fmt(references.p95)}`);
+const total = summary(parse.map((ms, index) => ms + build[index] + check[index]));
+console.log(`  parse + model + checks: ${total.p95.toFixed(1)} ms p95 (the issue's budget for diagnostics after an edit: 50 ms p95)`);

@@ -1,0 +1,300 @@
+/**
+ * Drawing of the bird's-eye view, independent of where it goes: a canvas in the webview, or an
+ * SVG document when the picture is saved. No DOM here, so that it runs (and is tested) in Node too.
+ */
+import type { SceneEntity, SceneResult } from '../../../server/src/sceneProtocol';
+import type { RunTracks } from './messages';
+
+/** The few drawing operations the view needs, in screen coordinates. */
+export interface Painter {
+  polygon(xy: ArrayLike<number>, fill: string): void;
+  polyline(xy: ArrayLike<number>, stroke: string, width: number, dash?: number[]): void;
+  text(x: number, y: number, text: string, color: string, size: number): void;
+}
+
+/** World (metres, y up) to screen (pixels, y down). */
+export interface ViewTransform {
+  scale: number;
+  /** World point shown at the screen's origin. */
+  left: number;
+  top: number;
+}
+
+export const COLORS = {
+  background: '#2f3b2f',
+  driving: '#55595e',
+  other: '#8d8a7a',
+  junction: '#5f6368',
+  border: '#d8d8d8',
+  center: '#e8c547',
+  label: '#ffffff',
+};
+
+/** One color per entity, in order; distinguishable on the grey road. */
+export const ENTITY_COLORS = ['#4fc3f7', '#ff7043', '#ba68c8', '#9ccc65', '#ffca28', '#f06292', '#4db6ac', '#e0e0e0'];
+
+/** A lane's area in world coordinates: its inner border then its outer border reversed. */
+export interface LaneShape {
+  road: string;
+  section: number;
+  lane: number;
+  type: string;
+  driving: boolean;
+  junction: boolean;
+  polygon: Float64Array;
+  /** Bounding box: minX, minY, maxX, maxY. */
+  box: [number, number, number, number];
+}
+
+export interface RoadShapes {
+  lanes: LaneShape[];
+  borders: { xy: number[]; center: boolean }[];
+  bounds: [number, number, number, number] | undefined;
+}
+
+function extend(bounds: [number, number, number, number] | undefined, xy: ArrayLike<number>): [number, number, number, number] | undefined {
+  let result = bounds;
+  for (let i = 0; i + 1 < xy.length; i += 2) {
+    const x = xy[i];
+    const y = xy[i + 1];
+    if (!result) result = [x, y, x, y];
+    else {
+      if (x < result[0]) result[0] = x;
+      if (y < result[1]) result[1] = y;
+      if (x > result[2]) result[2] = x;
+      if (y > result[3]) result[3] = y;
+    }
+  }
+  return result;
+}
+
+/** Lane areas between neighbouring borders of each lane section. */
+export function roadShapes(scene: SceneResult): RoadShapes {
+  const lanes: LaneShape[] = [];
+  const borders: RoadShapes['borders'] = [];
+  let bounds: RoadShapes['bounds'];
+  for (const section of scene.sections) {
+    section.lanes.forEach((lane, index) => {
+      const outer = section.borders[index];
+      borders.push({ xy: outer, center: lane.id === 0 });
+      bounds = extend(bounds, outer);
+      if (lane.id === 0) return;
+      const inner = lane.id > 0 ? section.borders[index + 1] : section.borders[index - 1];
+      if (!inner || !outer) return;
+      const polygon = new Float64Array(inner.length + outer.length);
+      polygon.set(inner, 0);
+      for (let i = outer.length - 2, j = inner.length; i >= 0; i -= 2, j += 2) {
+        polygon[j] = outer[i];
+        polygon[j + 1] = outer[i + 1];
+      }
+      lanes.push({ road: section.road, section: section.section, lane: lane.id, type: lane.type, driving: lane.driving, junction: section.junction, polygon, box: extend(undefined, polygon)! });
+    });
+  }
+  return { lanes, borders, bounds };
+}
+
+/**
+ * What the picture frames: with `focus`, where the entities start and drive (with `margin` metres
+ * around, the roads clipped to it), else everything including the whole road network.
+ */
+export function sceneBounds(shapes: RoadShapes, scene: SceneResult | undefined, run: RunTracks | undefined, focus = false, margin = 40): [number, number, number, number] {
+  let bounds = shapes.bounds && !focus ? ([...shapes.bounds] as [number, number, number, number]) : undefined;
+  for (const entity of scene?.entities ?? []) if (entity.x !== undefined && entity.y !== undefined) bounds = extend(bounds, [entity.x - 3, entity.y - 3, entity.x + 3, entity.y + 3]);
+  for (const track of run?.entities ?? []) {
+    const xy: number[] = [];
+    for (let i = 0; i < track.x.length; i += Math.max(1, Math.floor(track.x.length / 200))) xy.push(track.x[i], track.y[i]);
+    bounds = extend(bounds, xy);
+  }
+  if (focus && bounds) return [bounds[0] - margin, bounds[1] - margin, bounds[2] + margin, bounds[3] + margin];
+  return bounds ?? shapes.bounds ?? [-50, -50, 50, 50];
+}
+
+/** A transform that shows `bounds` whole, centred, in a `width` × `height` screen with a margin. */
+export function fitTransform(bounds: [number, number, number, number], width: number, height: number, margin = 20): ViewTransform {
+  const spanX = Math.max(bounds[2] - bounds[0], 1);
+  const spanY = Math.max(bounds[3] - bounds[1], 1);
+  const scale = Math.min((width - 2 * margin) / spanX, (height - 2 * margin) / spanY);
+  const centerX = (bounds[0] + bounds[2]) / 2;
+  const centerY = (bounds[1] + bounds[3]) / 2;
+  return { scale, left: centerX - width / 2 / scale, top: centerY + height / 2 / scale };
+}
+
+export function toScreen(view: ViewTransform, x: number, y: number): [number, number] {
+  return [(x - view.left) * view.scale, (view.top - y) * view.scale];
+}
+
+export function toWorld(view: ViewTransform, sx: number, sy: number): [number, number] {
+  return [view.left + sx / view.scale, view.top - sy / view.scale];
+}
+
+function project(view: ViewTransform, xy: ArrayLike<number>): Float64Array {
+  const out = new Float64Array(xy.length);
+  for (let i = 0; i + 1 < xy.length; i += 2) {
+    out[i] = (xy[i] - view.left) * view.scale;
+    out[i + 1] = (view.top - xy[i + 1]) * view.scale;
+  }
+  return out;
+}
+
+function visible(view: ViewTransform, box: [number, number, number, number], width: number, height: number): boolean {
+  const [x0, y0] = toScreen(view, box[0], box[3]);
+  const [x1, y1] = toScreen(view, box[2], box[1]);
+  return x1 >= 0 && y1 >= 0 && x0 <= width && y0 <= height;
+}
+
+/** Roads: lane areas (driving and other lanes in their colors), lane borders, lane-offset lines. */
+export function drawRoads(painter: Painter, shapes: RoadShapes, view: ViewTransform, width: number, height: number): number {
+  let drawn = 0;
+  for (const lane of shapes.lanes) {
+    if (!visible(view, lane.box, width, height)) continue;
+    painter.polygon(project(view, lane.polygon), lane.driving ? (lane.junction ? COLORS.junction : COLORS.driving) : COLORS.other);
+    drawn++;
+  }
+  // Lines only where they are more than a few pixels apart: at network scale they would paint the roads white.
+  if (view.scale >= 1.5) {
+    for (const border of shapes.borders) painter.polyline(project(view, border.xy), border.center ? COLORS.center : COLORS.border, border.center ? 1.2 : 0.6, border.center && view.scale > 3 ? [6, 4] : undefined);
+  }
+  return drawn;
+}
+
+export function drawTrajectories(painter: Painter, run: RunTracks, view: ViewTransform, colorOf: (name: string) => string): void {
+  for (const track of run.entities) {
+    const xy = new Float64Array(track.x.length * 2);
+    for (let i = 0; i < track.x.length; i++) {
+      xy[2 * i] = (track.x[i] - view.left) * view.scale;
+      xy[2 * i + 1] = (view.top - track.y[i]) * view.scale;
+    }
+    painter.polyline(xy, colorOf(track.name), 2);
+  }
+}
+
+/** Where an entity is at `time` in a run: linear between frames. */
+export function poseAt(run: RunTracks, track: RunTracks['entities'][number], time: number): { x: number; y: number; hdg: number } {
+  const times = run.times;
+  if (times.length === 0) return { x: NaN, y: NaN, hdg: 0 };
+  let low = 0;
+  let high = times.length - 1;
+  if (time <= times[0]) high = 0;
+  else if (time >= times[high]) low = high;
+  else {
+    while (high - low > 1) {
+      const middle = (low + high) >> 1;
+      if (times[middle] <= time) low = middle;
+      else high = middle;
+    }
+  }
+  const span = times[high] - times[low];
+  const w = span > 0 ? (time - times[low]) / span : 0;
+  let dh = track.hdg[high] - track.hdg[low];
+  if (dh > Math.PI) dh -= 2 * Math.PI;
+  if (dh < -Math.PI) dh += 2 * Math.PI;
+  return { x: track.x[low] + w * (track.x[high] - track.x[low]), y: track.y[low] + w * (track.y[high] - track.y[low]), hdg: track.hdg[low] + w * dh };
+}
+
+export interface PlacedBox {
+  name: string;
+  x: number;
+  y: number;
+  hdg: number;
+  length: number;
+  width: number;
+  centerX: number;
+}
+
+/** The corners of an entity's bounding box in world coordinates. */
+export function boxCorners(box: PlacedBox): number[] {
+  const cos = Math.cos(box.hdg);
+  const sin = Math.sin(box.hdg);
+  const corners: number[] = [];
+  for (const [u, v] of [[1, 1], [1, -1], [-1, -1], [-1, 1]] as const) {
+    const du = box.centerX + (u * box.length) / 2;
+    const dv = (v * box.width) / 2;
+    corners.push(box.x + du * cos - dv * sin, box.y + du * sin + dv * cos);
+  }
+  return corners;
+}
+
+/** Entities: their box (at least a few pixels), a nose mark showing the heading, and their name. */
+export function drawEntities(painter: Painter, boxes: PlacedBox[], view: ViewTransform, colorOf: (name: string) => string): void {
+  for (const box of boxes) {
+    const minimum = 6 / view.scale;
+    const drawn = { ...box, length: Math.max(box.length, minimum * 1.6), width: Math.max(box.width, minimum) };
+    const corners = project(view, boxCorners(drawn));
+    painter.polygon(corners, colorOf(box.name));
+    painter.polyline([corners[0], corners[1], corners[2], corners[3]], '#000000', 2);
+    const [sx, sy] = toScreen(view, box.x, box.y);
+    painter.text(sx + 8, sy - 8, box.name, COLORS.label, 12);
+  }
+}
+
+/** Start boxes of the scene's entities that have a position. */
+export function startBoxes(entities: SceneEntity[]): PlacedBox[] {
+  return entities
+    .filter((entity) => entity.x !== undefined && entity.y !== undefined)
+    .map((entity) => ({ name: entity.name, x: entity.x!, y: entity.y!, hdg: entity.hdg ?? 0, length: entity.length, width: entity.width, centerX: entity.centerX }));
+}
+
+export function pointInPolygon(xy: ArrayLike<number>, x: number, y: number): boolean {
+  let inside = false;
+  for (let i = 0, j = xy.length - 2; i < xy.length; j = i, i += 2) {
+    const xi = xy[i];
+    const yi = xy[i + 1];
+    const xj = xy[j];
+    const yj = xy[j + 1];
+    if (yi > y !== yj > y && x < ((xj - xi) * (y - yi)) / (yj - yi) + xi) inside = !inside;
+  }
+  return inside;
+}
+
+/** The lane under a world point, if any. */
+export function laneAt(shapes: RoadShapes, x: number, y: number): LaneShape | undefined {
+  for (const lane of shapes.lanes) {
+    const box = lane.box;
+    if (x < box[0] || x > box[2] || y < box[1] || y > box[3]) continue;
+    if (pointInPolygon(lane.polygon, x, y)) return lane;
+  }
+  return undefined;
+}
+
+/** The entity box under a world point (with a few pixels of slack), if any. */
+export function boxAt(boxes: PlacedBox[], view: ViewTransform, x: number, y: number): PlacedBox | undefined {
+  const slack = 4 / view.scale;
+  return boxes.find((box) => pointInPolygon(boxCorners({ ...box, length: box.length + 2 * slack, width: box.width + 2 * slack }), x, y));
+}
+
+function escapeXml(text: string): string {
+  return text.replace(/[&<>"']/g, (character) => `&#${character.charCodeAt(0)};`);
+}
+
+const fixed = (value: number) => (Math.round(value * 10) / 10).toString();
+
+/** Collects the drawing as an SVG document. */
+export class SvgPainter implements Painter {
+  private readonly parts: string[] = [];
+
+  constructor(private readonly width: number, private readonly height: number, background: string) {
+    this.parts.push(`<rect width="${width}" height="${height}" fill="${background}"/>`);
+  }
+
+  private points(xy: ArrayLike<number>): string {
+    const pairs: string[] = [];
+    for (let i = 0; i + 1 < xy.length; i += 2) pairs.push(`${fixed(xy[i])},${fixed(xy[i + 1])}`);
+    return pairs.join(' ');
+  }
+
+  polygon(xy: ArrayLike<number>, fill: string): void {
+    this.parts.push(`<polygon points="${this.points(xy)}" fill="${fill}"/>`);
+  }
+
+  polyline(xy: ArrayLike<number>, stroke: string, width: number, dash?: number[]): void {
+    this.parts.push(`<polyline points="${this.points(xy)}" fill="none" stroke="${stroke}" stroke-width="${width}"${dash ? ` stroke-dasharray="${dash.join(' ')}"` : ''}/>`);
+  }
+
+  text(x: number, y: number, text: string, color: string, size: number): void {
+    this.parts.push(`<text x="${fixed(x)}" y="${fixed(y)}" fill="${color}" font-size="${size}" font-family="sans-serif">${escapeXml(text)}</text>`);
+  }
+
+  toString(): string {
+    return `<?xml version="1.0" encoding="UTF-8"?>\n<svg xmlns="http://www.w3.org/2000/svg" width="${this.width}" height="${this.height}" viewBox="0 0 ${this.width} ${this.height}">\n${this.parts.join('\n')}\n</svg>\n`;
+  }
+}

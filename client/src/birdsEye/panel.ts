@@ -1,0 +1,180 @@
+import * as path from 'node:path';
+import * as vscode from 'vscode';
+import type { LanguageClient } from 'vscode-languageclient/node';
+import { writeFileAtomic } from '../../../server/src/core/atomic';
+import { SceneRequest, type SceneResult } from '../../../server/src/sceneProtocol';
+import { isFromView, type FromView, type RenderStats, type RunTracks, type ToView } from './messages';
+import { birdsEyeHtml } from './page';
+import { loadRun, type RunSource } from './runData';
+
+export const BIRDS_EYE_VIEW_TYPE = 'modular2simple.birdsEye';
+const REFRESH_DELAY_MS = 300;
+function nonce(): string {
+  return Array.from({ length: 24 }, () => Math.floor(Math.random() * 36).toString(36)).join('');
+}
+
+/** The webview beside the editor: one at a time, following the scenario it was opened on. */
+export class BirdsEyeView implements vscode.Disposable {
+  private panel: vscode.WebviewPanel | undefined;
+  private source: vscode.Uri | undefined;
+  private runSource: RunSource | undefined;
+  private run: RunTracks | undefined;
+  private ready = false;
+  private refreshTimer: NodeJS.Timeout | undefined;
+  private runWatcher: vscode.FileSystemWatcher | undefined;
+  private readonly disposables: vscode.Disposable[] = [];
+  /** What the view last reported drawing; for tests and the status of a run. */
+  stats: RenderStats | undefined;
+  scene: SceneResult | undefined;
+  private readonly renderedListeners: ((stats: RenderStats) => void)[] = [];
+
+  constructor(
+    private readonly extensionUri: vscode.Uri,
+    private readonly client: LanguageClient,
+    private readonly log: (message: string) => void,
+  ) {
+    const refreshSoon = (document: vscode.TextDocument) => {
+      if (!this.panel || !/\.(xosc|mosc)$/i.test(document.uri.path)) return;
+      clearTimeout(this.refreshTimer);
+      this.refreshTimer = setTimeout(() => void this.refresh(), REFRESH_DELAY_MS);
+    };
+    this.disposables.push(
+      vscode.workspace.onDidChangeTextDocument((change) => refreshSoon(change.document)),
+      vscode.workspace.onDidSaveTextDocument(refreshSoon),
+      vscode.workspace.onDidChangeConfiguration((change) => {
+        if (change.affectsConfiguration('modular2simple.esmini.roadPath')) void this.refresh();
+      }),
+    );
+  }
+
+  /** Resolves with the next stats the view reports. */
+  nextRender(): Promise<RenderStats> {
+    return new Promise((resolve) => this.renderedListeners.push(resolve));
+  }
+
+  async show(source: vscode.Uri): Promise<void> {
+    if (this.source?.toString() !== source.toString()) {
+      this.source = source;
+      this.scene = undefined;
+    }
+    if (!this.panel) this.createPanel();
+    else this.panel.reveal(vscode.ViewColumn.Beside, true);
+    this.panel!.title = `Bird's-Eye: ${path.posix.basename(source.path)}`;
+    await this.refresh();
+  }
+
+  /** Shows a run's trajectories (e.g. handed over by the esmini run command); opens the view if needed. */
+  async showRun(run: RunSource, scenario?: vscode.Uri): Promise<void> {
+    const target = scenario ?? this.source ?? vscode.window.activeTextEditor?.document.uri;
+    if (target && (!this.panel || target.toString() !== this.source?.toString())) await this.show(target);
+    if (!this.panel) this.createPanel();
+    this.runSource = run;
+    this.runWatcher?.dispose();
+    this.runWatcher = vscode.workspace.createFileSystemWatcher(new vscode.RelativePattern(vscode.Uri.file(path.dirname(run.csvPath)), path.basename(run.csvPath)));
+    this.runWatcher.onDidChange(() => void this.reloadRun());
+    this.runWatcher.onDidCreate(() => void this.reloadRun());
+    await this.reloadRun();
+  }
+
+  private async reloadRun(): Promise<void> {
+    if (!this.runSource) return;
+    try {
+      this.run = await loadRun(this.runSource);
+    } catch (error) {
+      this.run = undefined;
+      this.post({ type: 'error', message: `the run ${this.runSource.csvPath} could not be read: ${(error as Error).message}` });
+      this.log(`bird's-eye view: ${(error as Error).stack ?? String(error)}`);
+      return;
+    }
+    this.post({ type: 'run', run: this.run });
+  }
+
+  private async refresh(): Promise<void> {
+    const source = this.source;
+    if (!source || !this.panel) return;
+    try {
+      if (!this.client.isRunning()) await this.client.start();
+      const roadPath = vscode.workspace.getConfiguration('modular2simple', source).get<string[]>('esmini.roadPath', []);
+      const folder = vscode.workspace.getWorkspaceFolder(source)?.uri.fsPath ?? vscode.workspace.workspaceFolders?.[0]?.uri.fsPath;
+      const resolvedRoadPath = roadPath.filter((entry) => typeof entry === 'string' && entry).map((entry) => (folder ? path.resolve(folder, entry) : entry));
+      const scene = await this.client.sendRequest(SceneRequest, { uri: source.toString(), roadPath: resolvedRoadPath });
+      if (source !== this.source) return;
+      this.scene = scene;
+      this.post({ type: 'scene', scene });
+    } catch (error) {
+      this.log(`bird's-eye view of ${source.toString()}: ${(error as Error).stack ?? String(error)}`);
+      this.post({ type: 'error', message: (error as Error).message });
+    }
+  }
+
+  private post(message: ToView): void {
+    if (this.panel && this.ready) void this.panel.webview.postMessage(message);
+  }
+
+  private createPanel(): void {
+    const scriptRoot = vscode.Uri.joinPath(this.extensionUri, 'dist');
+    const panel = vscode.window.createWebviewPanel(BIRDS_EYE_VIEW_TYPE, "Bird's-Eye View", { viewColumn: vscode.ViewColumn.Beside, preserveFocus: true }, {
+      enableScripts: true,
+      retainContextWhenHidden: true,
+      localResourceRoots: [scriptRoot],
+    });
+    this.panel = panel;
+    this.ready = false;
+    panel.webview.html = birdsEyeHtml(panel.webview.cspSource, panel.webview.asWebviewUri(vscode.Uri.joinPath(scriptRoot, 'birdsEye.js')).toString(), nonce());
+    panel.webview.onDidReceiveMessage((message: unknown) => {
+      if (isFromView(message)) void this.receive(message).catch((error: unknown) => this.log(`bird's-eye view: ${(error as Error).stack ?? String(error)}`));
+    });
+    panel.onDidDispose(() => {
+      this.panel = undefined;
+      this.ready = false;
+      this.runWatcher?.dispose();
+      this.runWatcher = undefined;
+    });
+  }
+
+  private async receive(message: FromView): Promise<void> {
+    switch (message.type) {
+      case 'ready':
+        this.ready = true;
+        if (this.scene) this.post({ type: 'scene', scene: this.scene });
+        else await this.refresh();
+        if (this.run) this.post({ type: 'run', run: this.run });
+        return;
+      case 'open': {
+        const position = new vscode.Position(message.source.line, message.source.character);
+        await vscode.window.showTextDocument(vscode.Uri.parse(message.source.uri), { viewColumn: vscode.ViewColumn.One, selection: new vscode.Range(position, position) });
+        return;
+      }
+      case 'loadRun': {
+        const picked = await vscode.window.showOpenDialog({ canSelectMany: false, filters: { 'esmini CSV log': ['csv'] }, title: 'Load an esmini run (--csv_logger output)' });
+        if (picked?.[0]) await this.showRun({ csvPath: picked[0].fsPath });
+        return;
+      }
+      case 'save':
+        await this.save(message.format, message.data);
+        return;
+      case 'rendered':
+        this.stats = message.stats;
+        for (const listener of this.renderedListeners.splice(0)) listener(message.stats);
+        return;
+    }
+  }
+
+  private async save(format: 'png' | 'svg', data: string): Promise<void> {
+    const base = this.source ? this.source.path.replace(/\.(xosc|mosc)$/i, '') : 'birds-eye';
+    const suggested = vscode.Uri.file(`${this.source?.scheme === 'file' ? base : path.join(vscode.workspace.workspaceFolders?.[0]?.uri.fsPath ?? '', path.posix.basename(base))}.birds-eye.${format}`);
+    const target = await vscode.window.showSaveDialog({ defaultUri: suggested, filters: format === 'png' ? { 'PNG image': ['png'] } : { 'SVG image': ['svg'] } });
+    if (!target) return;
+    const bytes = format === 'png' ? Buffer.from(data.replace(/^data:image\/png;base64,/, ''), 'base64') : Buffer.from(data, 'utf8');
+    if (target.scheme === 'file') await writeFileAtomic(target.fsPath, bytes);
+    else await vscode.workspace.fs.writeFile(target, bytes);
+    void vscode.window.showInformationMessage(`Saved the bird's-eye view as ${target.fsPath}`);
+  }
+
+  dispose(): void {
+    clearTimeout(this.refreshTimer);
+    this.runWatcher?.dispose();
+    this.panel?.dispose();
+    for (const disposable of this.disposables) disposable.dispose();
+  }
+}

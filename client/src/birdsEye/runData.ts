@@ -1,0 +1,61 @@
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import { EsminiRun, parseEsminiCsv, parseEsminiStarts } from '../../../server/src/core/esminiCsv';
+import type { RunTracks } from './messages';
+
+/** The view draws at most this many frames of a run; longer runs are evenly thinned. */
+const MAX_FRAMES = 6000;
+/** A CSV larger than this is not read whole (esmini writes some 70 MB per simulated second when unbounded). */
+const MAX_CSV_BYTES = 256 * 1024 * 1024;
+
+export interface RunSource {
+  csvPath: string;
+  /** esmini's log (its stdout or log.txt), for when storyboard events started. */
+  logPath?: string;
+  logText?: string;
+}
+
+const round = (value: number) => Math.round(value * 100) / 100;
+
+/** The run as the view needs it: thinned to MAX_FRAMES, rounded to centimetres. */
+export function runTracks(run: EsminiRun, label: string, starts: Map<string, number>): RunTracks {
+  const every = Math.max(1, Math.ceil(run.times.length / MAX_FRAMES));
+  const indices: number[] = [];
+  for (let i = 0; i < run.times.length; i += every) indices.push(i);
+  if (run.times.length > 0 && indices[indices.length - 1] !== run.times.length - 1) indices.push(run.times.length - 1);
+  const notes: string[] = [];
+  if (run.truncated) notes.push('the run is longer than the view reads; its end is left out');
+  if (every > 1) notes.push(`every ${every}th of ${run.times.length} steps is drawn`);
+  return {
+    label,
+    times: indices.map((i) => run.times[i]),
+    entities: run.entities.map((track) => ({
+      name: track.name,
+      length: track.length,
+      width: track.width,
+      centerX: track.centerX,
+      x: indices.map((i) => round(track.x[i])),
+      y: indices.map((i) => round(track.y[i])),
+      hdg: indices.map((i) => Math.round(track.hdg[i] * 1000) / 1000),
+    })),
+    starts: Object.fromEntries(starts),
+    notes,
+  };
+}
+
+/** Reads an esmini CSV (and its log, when given) into what the view draws. */
+export async function loadRun(source: RunSource): Promise<RunTracks> {
+  const stat = await fs.promises.stat(source.csvPath);
+  if (stat.size > MAX_CSV_BYTES) throw new Error(`${source.csvPath} is ${Math.round(stat.size / 1024 / 1024)} MB; the view reads runs up to ${MAX_CSV_BYTES / 1024 / 1024} MB`);
+  const run = parseEsminiCsv(await fs.promises.readFile(source.csvPath, 'utf8'));
+  let logText = source.logText;
+  if (logText === undefined) {
+    // esmini writes log.txt beside where it ran unless told otherwise; a CSV's sibling is the usual place.
+    const candidates = source.logPath ? [source.logPath] : [source.csvPath.replace(/\.csv$/i, '.log'), path.join(path.dirname(source.csvPath), 'log.txt')];
+    for (const candidate of candidates) {
+      logText = await fs.promises.readFile(candidate, 'utf8').catch(() => undefined);
+      if (logText !== undefined) break;
+    }
+  }
+  return runTracks(run, path.basename(source.csvPath), logText ? parseEsminiStarts(logText) : new Map());
+}

@@ -1,0 +1,337 @@
+import * as path from 'node:path';
+import type { FlatSource, Insertion, LinkedGroupReference } from './flatten';
+import { Problem, RelatedProblemLocation } from './problems';
+import { buildSemanticModel, Declaration, Evaluator, ParameterUse, SemanticModel, semanticModelOf, ValueResult } from './semantics';
+import { displayRef } from './sources';
+import { indentationAt } from './text';
+import { attribute, elementStartingAt, escapeAttributeValue, isWithin, parseXml, selfAndDescendants, XmlElement } from './xml';
+
+/**
+ * What flattening carries from imported groups' sources into the output (SPEC 11): the parameter
+ * declarations a copied group uses but that lie outside it, and the catalog locations its
+ * CatalogReferences need. Computed on a first rendering of the output, then applied as text edits
+ * to the main file's root (after its own declarations), so that the output keeps the main file's text.
+ */
+
+export interface CarriedDeclaration {
+  name: string;
+  /** The declaration in the source's (flattened) model. */
+  declaration: Declaration;
+  source: FlatSource;
+  /** The declaration's text as written in the source. */
+  text: string;
+}
+
+export interface CarriedLocation {
+  /** `VehicleCatalog`, ... */
+  kind: string;
+  /** The absolute directory on disk. */
+  directory: string;
+  source: FlatSource;
+}
+
+export interface CarryPlan {
+  declarations: CarriedDeclaration[];
+  locations: CarriedLocation[];
+  problems: Problem[];
+}
+
+/** A text edit of the main file with, for each carried declaration, where it lands inside the inserted text. */
+export interface CarryEdit {
+  start: number;
+  end: number;
+  text: string;
+  /** Carried declarations: offsets inside `text`, and what they were copied from. */
+  parts: { start: number; end: number; source: FlatSource; element: XmlElement }[];
+}
+
+function sameValue(a: Declaration, b: Declaration): boolean {
+  return a.value === b.value && (a.type ?? a.writtenType) === (b.type ?? b.writtenType);
+}
+
+/**
+ * Decides what to carry. `first` is the output rendered without carrying, `insertions` the copies in
+ * it; `origin` maps an element of a source's flattened model to where it was written.
+ */
+export function planCarry(
+  main: FlatSource,
+  first: string,
+  insertions: Insertion[],
+  origin: (source: FlatSource, element: XmlElement) => RelatedProblemLocation | undefined,
+): CarryPlan {
+  const plan: CarryPlan = { declarations: [], locations: [], problems: [] };
+  const mainSemantics = main.semantics;
+  const mainModel = main.original;
+  if (!mainSemantics || !mainModel || insertions.length === 0) return plan;
+  const output = buildSemanticModel(parseXml(first));
+  const carried = new Map<string, CarriedDeclaration>();
+  const reported = new Set<string>();
+
+  const conflict = (name: string, kept: RelatedProblemLocation, dropped: RelatedProblemLocation | undefined, message: string) => {
+    if (reported.has(name)) return;
+    reported.add(name);
+    plan.problems.push({
+      source: kept.source,
+      range: kept.range,
+      severity: 'warning',
+      code: 'parameter-conflict',
+      message,
+      related: dropped ? [dropped] : undefined,
+    });
+  };
+
+  const carry = (declaration: Declaration, source: FlatSource, model: SemanticModel) => {
+    const existing = carried.get(declaration.name);
+    if (existing) {
+      const dropped = origin(source, declaration.element);
+      if (existing.declaration !== declaration && !sameValue(existing.declaration, declaration) && dropped) {
+        const kept = origin(existing.source, existing.declaration.element);
+        conflict(
+          declaration.name,
+          dropped,
+          kept && { ...kept, message: `the declaration the output keeps (value '${existing.declaration.value}')` },
+          `imported groups use two declarations of parameter '${declaration.name}' with different values; the output keeps the first one carried (value '${existing.declaration.value}'), not this one (value '${declaration.value}')`,
+        );
+      }
+      return;
+    }
+    const text = model.document.text.slice(declaration.element.start, declaration.element.end);
+    carried.set(declaration.name, { name: declaration.name, declaration, source, text });
+    // The declarations its value uses come along (they precede it in the source).
+    for (const use of usesIn(model, declaration.element)) {
+      if (use.declaration) carry(use.declaration, source, model);
+    }
+  };
+
+  const mainRoot = mainSemantics.model.root;
+  for (const insertion of insertions) {
+    const source = insertion.link.source;
+    const target = insertion.group.target;
+    const copyRoot = elementStartingAt(output.document.root, insertion.start);
+    if (!source?.model || !target || !copyRoot) continue;
+    const sourceModel = semanticModelOf(source.model.document);
+    const copied = selfAndDescendants(copyRoot);
+    const originals = selfAndDescendants(target.element);
+    if (copied.length !== originals.length) continue;
+    const counterpart = new Map<XmlElement, XmlElement>();
+    copied.forEach((element, index) => counterpart.set(element, originals[index]));
+    for (const use of output.uses) {
+      if (use.start < insertion.start || use.end > insertion.end) continue;
+      const original = counterpart.get(use.element);
+      const sourceUse = original ? usesIn(sourceModel, original).find((candidate) => candidate.attribute.name === use.attribute.name && candidate.name === use.name) : undefined;
+      const declaration = sourceUse?.declaration;
+      if (!declaration || isWithin(declaration.element, target.element)) continue;
+      if (!use.declaration) {
+        carry(declaration, source, sourceModel);
+        continue;
+      }
+      if (sameValue(use.declaration, declaration)) continue;
+      // The output declares the name already: the main file's declaration wins.
+      const mainDeclaration = mainRoot?.byName.get(use.name);
+      if (!mainDeclaration?.nameAttribute) continue;
+      const dropped = origin(source, declaration.element);
+      conflict(
+        use.name,
+        { source: main.ref, range: mainModel.document.lines.range(mainDeclaration.nameAttribute.valueStart, mainDeclaration.nameAttribute.valueEnd), message: '' },
+        dropped && { ...dropped, message: `the source's declaration (value '${declaration.value}')` },
+        `parameter '${use.name}' is declared here with value '${mainDeclaration.value}', but the imported group '${insertion.reference.name}' uses the declaration of ${displayRef(dropped?.source ?? source.ref)}${dropped ? `:${dropped.range.start.line + 1}` : ''} with value '${declaration.value}'; the output keeps this one`,
+      );
+    }
+    planLocations(plan, main, source, output, insertion, counterpart);
+  }
+  // In each source's order, sources in the order they were first needed.
+  const sourceOrder: FlatSource[] = [];
+  for (const entry of carried.values()) if (!sourceOrder.includes(entry.source)) sourceOrder.push(entry.source);
+  plan.declarations = [...carried.values()].sort((a, b) => sourceOrder.indexOf(a.source) - sourceOrder.indexOf(b.source) || a.declaration.element.start - b.declaration.element.start);
+  return plan;
+}
+
+const usesByElement = new WeakMap<SemanticModel, Map<XmlElement, ParameterUse[]>>();
+
+/** The uses written in one element's attributes. */
+function usesIn(model: SemanticModel, element: XmlElement): ParameterUse[] {
+  let index = usesByElement.get(model);
+  if (!index) {
+    index = new Map();
+    for (const use of model.uses) {
+      const list = index.get(use.element);
+      if (list) list.push(use);
+      else index.set(use.element, [use]);
+    }
+    usesByElement.set(model, index);
+  }
+  return index.get(element) ?? [];
+}
+
+/** The catalog locations an imported group's CatalogReferences need and the main file lacks. */
+function planLocations(plan: CarryPlan, main: FlatSource, source: FlatSource, output: SemanticModel, insertion: Insertion, counterpart: Map<XmlElement, XmlElement>): void {
+  const semantics = source.semantics;
+  const mainLocations = main.semantics?.catalogs.locations ?? [];
+  const references = output.catalogReferences.filter((reference) => reference.element.start >= insertion.start && reference.element.end <= insertion.end);
+  if (references.length === 0 || !semantics) return;
+  const needed: CarriedLocation[] = [];
+  // The source's semantics describe its file as written; for a flattened package only its own locations are known.
+  const plain = source.model?.document === semantics.model.document;
+  for (const reference of references) {
+    const original = counterpart.get(reference.element);
+    const resolution = plain ? semantics.catalogs.references.find((candidate) => candidate.reference.element === original) : undefined;
+    const file = resolution?.catalogs[0];
+    for (const location of semantics.catalogs.locations) {
+      for (const directory of location.directories) {
+        if (directory.packageRef) continue;
+        if (file && (file.ref.entries.length > 0 || path.dirname(file.ref.disk) !== directory.directory)) continue;
+        needed.push({ kind: location.location.kind, directory: directory.directory, source });
+      }
+    }
+  }
+  for (const need of needed) {
+    const own = mainLocations.find((location) => location.location.kind === need.kind);
+    if (own) {
+      if (own.directories.some((directory) => directory.directory === need.directory)) continue;
+      const key = `location:${need.kind}`;
+      if (plan.problems.some((problem) => problem.data?.key === key)) continue;
+      const attr = own.location.pathAttribute;
+      const model = main.original;
+      if (!model) continue;
+      plan.problems.push({
+        source: main.ref,
+        range: attr ? model.document.lines.range(attr.valueStart, attr.valueEnd) : model.document.lines.range(own.location.directory.start, own.location.directory.nameEnd),
+        severity: 'warning',
+        code: 'catalog-location-conflict',
+        message: `an imported group needs the ${need.kind} directory ${need.directory}, but this file's ${need.kind} is ${own.path ?? '(none)'}; OpenSCENARIO allows one directory per catalog kind, so the output keeps this one`,
+        hint: `put the catalogs the imported group uses into ${own.path}, or point ${need.kind} at ${need.directory}`,
+        data: { key },
+      });
+      continue;
+    }
+    if (!plan.locations.some((known) => known.kind === need.kind)) plan.locations.push(need);
+  }
+}
+
+/** Re-indents a copied element (its first line stands at `from`) to `to`. */
+function reindentBlock(block: string, from: string, to: string, eol: string): string {
+  return block
+    .split(/\r\n|\r|\n/)
+    .map((line, index) => (index === 0 ? line : line.startsWith(from) ? to + line.slice(from.length) : to + line.trimStart()))
+    .join(eol);
+}
+
+/**
+ * The edits of the main file's text that add the carried declarations (after the root's own, in a
+ * new root ParameterDeclarations when it has none) and catalog locations (paths relative to
+ * `outputDirectory`).
+ */
+export function carryEdits(main: FlatSource, plan: CarryPlan, eol: string, outputDirectory: string): CarryEdit[] {
+  const model = main.original;
+  const root = model?.document.root;
+  if (!model || !root || (plan.declarations.length === 0 && plan.locations.length === 0)) return [];
+  const text = model.document.text;
+  const child = (name: string) => root.children.find((candidate) => candidate.name === name);
+  const rootIndent = indentationAt(text, root.start);
+  const firstChild = root.children[0];
+  const childIndent = firstChild ? indentationAt(text, firstChild.start) : rootIndent + '  ';
+  const unit = childIndent.length > rootIndent.length ? childIndent.slice(rootIndent.length) : '  ';
+  const edits: CarryEdit[] = [];
+  const after = child('FileHeader');
+  const anchor = after ? after.end : root.startTagEnd;
+
+  if (plan.declarations.length > 0) {
+    const declarations = child('ParameterDeclarations');
+    const inner = declarations?.children[0] ? indentationAt(text, declarations.children[0].start) : childIndent + unit;
+    const parts: CarryEdit['parts'] = [];
+    let body = '';
+    for (const entry of plan.declarations) {
+      body += eol + inner;
+      const start = body.length;
+      const sourceText = entry.source.model?.document.text ?? '';
+      body += reindentBlock(entry.text, indentationAt(sourceText, entry.declaration.element.start), inner, eol);
+      parts.push({ start, end: body.length, source: entry.source, element: entry.declaration.element });
+    }
+    if (declarations && !declarations.selfClosing) {
+      const at = declarations.children.length > 0 ? declarations.children[declarations.children.length - 1].end : declarations.startTagEnd;
+      const suffix = declarations.children.length > 0 ? '' : eol + childIndent;
+      edits.push({ start: at, end: at, text: body + suffix, parts });
+    } else {
+      const open = `<ParameterDeclarations>`;
+      const whole = open + body + eol + childIndent + '</ParameterDeclarations>';
+      const shifted = parts.map((part) => ({ ...part, start: part.start + open.length, end: part.end + open.length }));
+      if (declarations) edits.push({ start: declarations.start, end: declarations.end, text: whole, parts: shifted });
+      else {
+        const prefix = eol + childIndent;
+        edits.push({ start: anchor, end: anchor, text: prefix + whole, parts: shifted.map((part) => ({ ...part, start: part.start + prefix.length, end: part.end + prefix.length })) });
+      }
+    }
+  }
+
+  if (plan.locations.length > 0) {
+    const locations = child('CatalogLocations');
+    const inner = locations?.children[0] ? indentationAt(text, locations.children[0].start) : childIndent + unit;
+    let body = '';
+    for (const location of plan.locations) {
+      const relative = path.relative(outputDirectory, location.directory).split(path.sep).join('/') || '.';
+      body += `${eol}${inner}<${location.kind}>${eol}${inner}${unit}<Directory path="${escapeAttributeValue(relative)}"/>${eol}${inner}</${location.kind}>`;
+    }
+    if (locations && !locations.selfClosing) {
+      const at = locations.children.length > 0 ? locations.children[locations.children.length - 1].end : locations.startTagEnd;
+      edits.push({ start: at, end: at, text: body + (locations.children.length > 0 ? '' : eol + childIndent), parts: [] });
+    } else {
+      const whole = `<CatalogLocations>${body}${eol}${childIndent}</CatalogLocations>`;
+      if (locations) edits.push({ start: locations.start, end: locations.end, text: whole, parts: [] });
+      else {
+        // Schema order: FileHeader, ParameterDeclarations, (VariableDeclarations, MonitorDeclarations), CatalogLocations, RoadNetwork.
+        const before = child('RoadNetwork');
+        const preceding = ['MonitorDeclarations', 'VariableDeclarations', 'ParameterDeclarations'].map(child).find((candidate) => candidate !== undefined);
+        if (preceding) edits.push({ start: preceding.end, end: preceding.end, text: eol + childIndent + whole, parts: [] });
+        else if (before) edits.push({ start: before.start, end: before.start, text: whole + eol + childIndent, parts: [] });
+        else edits.push({ start: anchor, end: anchor, text: eol + childIndent + whole, parts: [] });
+      }
+    }
+  }
+  return edits;
+}
+
+/** The declaration carried into `main`'s flattened output under a name, with the source it came from. */
+export function carriedDeclaration(main: FlatSource, name: string): CarriedDeclaration | undefined {
+  return main.carried?.declarations.find((entry) => entry.name === name);
+}
+
+/**
+ * The value an attribute of an imported group takes in `main`'s flattened output, for each group
+ * reference of `main` that imports the element: a ParameterReference override (evaluated in the
+ * main file), or the attribute's own value read with the source's declarations, which is then either
+ * the main file's root declaration of that name (it wins) or carried from the source.
+ */
+export function composedValues(main: FlatSource, element: XmlElement, attributeName: string): { group: LinkedGroupReference; result: ValueResult }[] {
+  const results: { group: LinkedGroupReference; result: ValueResult }[] = [];
+  const mainEvaluator = main.semantics?.evaluator;
+  for (const link of main.links) {
+    const source = link.source;
+    if (!source?.model) continue;
+    for (const group of link.groups) {
+      if (!group.target || !isWithin(element, group.target.element)) continue;
+      const override = group.plan ? [...group.plan.applied].find(([target]) => target.element === element && target.attributeName === attributeName)?.[1] : undefined;
+      if (override?.valueAttribute && mainEvaluator) {
+        const value = mainEvaluator.attributeValue(override.element, override.valueAttribute);
+        const provenance = { kind: 'override' as const, parameterReference: override.element, key: override.key };
+        results.push({ group, result: { ...value, provenance } });
+        continue;
+      }
+      const own = attribute(element, attributeName);
+      if (!own) continue;
+      const model = semanticModelOf(source.model.document);
+      const value = new Evaluator(model).attributeValue(element, own);
+      const declaration = value.provenance.kind === 'declaration' ? value.provenance.declaration : undefined;
+      if (!declaration || isWithin(declaration.element, group.target.element)) {
+        results.push({ group, result: value });
+        continue;
+      }
+      const mainDeclaration = main.semantics?.model.root?.byName.get(declaration.name);
+      if (mainDeclaration && mainEvaluator) {
+        results.push({ group, result: mainEvaluator.declarationValue(mainDeclaration) });
+        continue;
+      }
+      results.push({ group, result: { ...value, provenance: { kind: 'carried', declaration, from: displayRef(source.ref) } } });
+    }
+  }
+  return results;
+}

@@ -1,0 +1,218 @@
+import * as path from 'node:path';
+import { childRef, diskRef, normalizeEntryName, refId, ScenarioStore, SourceRef } from '../sources';
+import { attribute, XmlElement } from '../xml';
+import { Assignments, buildSemanticModel, referencedName, CatalogLocationInfo, CatalogReferenceInfo, Evaluator, SemanticModel } from './model';
+
+/**
+ * Catalogs (ASAM OpenSCENARIO 1.x section 9.4): a `CatalogLocations` `Directory path` is relative to
+ * the file that names it; every `.xosc` in that directory whose root holds a `Catalog` of a name is
+ * that catalog. Where the directory does not exist beside the file, the SCENARIO_PATH directories are
+ * searched as esmini searches its `--path` folders (esmini 3.6 `ScenarioReader::LoadCatalog`):
+ * `D/path`, `D` itself, and `D/<last folder of path>`.
+ */
+
+export interface CatalogFile {
+  ref: SourceRef;
+  name: string;
+  model: SemanticModel;
+  catalog: XmlElement;
+  entries: CatalogEntry[];
+}
+
+export interface CatalogEntry {
+  name: string;
+  element: XmlElement;
+  file: CatalogFile;
+}
+
+/** A directory where catalogs are looked up: on disk, or a folder inside a package. */
+export interface CatalogDirectory {
+  /** The package holding it, or undefined on disk. */
+  packageRef: SourceRef | undefined;
+  /** A disk path, or the folder's entry prefix inside the package ('' for its root). */
+  directory: string;
+  /** How it was found: beside the file (`file`) or through SCENARIO_PATH. */
+  via: 'file' | 'scenarioPath';
+}
+
+export interface LocationResolution {
+  location: CatalogLocationInfo;
+  /** The path as evaluated (it may be a `$parameter`). */
+  path: string | undefined;
+  directories: CatalogDirectory[];
+}
+
+export interface CatalogReferenceResolution {
+  reference: CatalogReferenceInfo;
+  catalogName: string | undefined;
+  entryName: string | undefined;
+  /** Every catalog file of that name found through the file's locations (the first one is used). */
+  catalogs: CatalogFile[];
+  entry: CatalogEntry | undefined;
+  /** Whether any location of the file could be searched; without one, an unknown name is not an error. */
+  searched: boolean;
+  /**
+   * Set when no Catalog has the name but a file `NAME.xosc` holds a Catalog of another name: esmini
+   * takes that file (it looks catalogs up by file name), the standard does not.
+   */
+  foundByFileName: boolean;
+}
+
+/** The catalogs a document reaches, resolved. */
+export interface CatalogResolution {
+  locations: LocationResolution[];
+  references: CatalogReferenceResolution[];
+  /** Every catalog file read, for dependencies. */
+  files: SourceRef[];
+}
+
+/** Reads catalog files once per instance (one instance per analysis generation). */
+export class CatalogLoader {
+  private readonly files = new Map<string, Promise<CatalogFile | undefined>>();
+  private readonly listings = new Map<string, Promise<string[]>>();
+
+  constructor(readonly store: ScenarioStore) {}
+
+  /** The directories a `Directory path` written in `from` stands for, those that exist, in search order. */
+  async directories(from: SourceRef, written: string): Promise<CatalogDirectory[]> {
+    const found: CatalogDirectory[] = [];
+    const pathText = written.trim().replace(/\\/g, '/');
+    if (!pathText) return found;
+    if (from.entries.length > 0) {
+      const packageRef: SourceRef = { disk: from.disk, entries: from.entries.slice(0, -1) };
+      const entry = from.entries[from.entries.length - 1];
+      const folder = entry.includes('/') ? entry.slice(0, entry.lastIndexOf('/')) : '';
+      const joined = normalizeEntryName(folder ? `${folder}/${pathText}` : pathText);
+      if (joined && (await this.listing({ packageRef, directory: joined, via: 'file' })).length > 0) found.push({ packageRef, directory: joined, via: 'file' });
+    } else {
+      const candidate = path.resolve(path.dirname(from.disk), pathText);
+      if ((await this.store.kindOf(candidate)) === 'directory') found.push({ packageRef: undefined, directory: candidate, via: 'file' });
+    }
+    if (found.length > 0) return found;
+    for (const base of this.store.scenarioPath) {
+      for (const candidate of [path.resolve(base, pathText), base, path.join(base, path.basename(pathText))]) {
+        if (found.some((known) => known.directory === candidate)) continue;
+        if ((await this.store.kindOf(candidate)) === 'directory') found.push({ packageRef: undefined, directory: candidate, via: 'scenarioPath' });
+      }
+    }
+    return found;
+  }
+
+  /** The `.xosc` files of a directory (refs), sorted by name. */
+  private listing(directory: CatalogDirectory): Promise<string[]> {
+    const key = `${directory.packageRef ? refId(directory.packageRef) : ''}|${directory.directory}`;
+    let pending = this.listings.get(key);
+    if (!pending) {
+      pending = (async () => {
+        if (directory.packageRef) {
+          const contents = await this.store.readPackage(directory.packageRef).catch(() => undefined);
+          if (!contents) return [];
+          const prefix = directory.directory ? `${directory.directory}/` : '';
+          return [...contents.entries.keys()].filter((name) => name.startsWith(prefix) && !name.slice(prefix.length).includes('/') && name.toLowerCase().endsWith('.xosc')).sort();
+        }
+        const names = (await this.store.host.listDirectory?.(directory.directory)) ?? [];
+        return names.filter((name) => name.toLowerCase().endsWith('.xosc')).sort().map((name) => path.join(directory.directory, name));
+      })();
+      this.listings.set(key, pending);
+    }
+    return pending;
+  }
+
+  private refIn(directory: CatalogDirectory, name: string): SourceRef {
+    return directory.packageRef ? childRef(directory.packageRef, name) : diskRef(name);
+  }
+
+  /** A catalog file, read and modelled once; undefined when unreadable or not a catalog. */
+  file(ref: SourceRef): Promise<CatalogFile | undefined> {
+    const id = refId(ref);
+    let pending = this.files.get(id);
+    if (!pending) {
+      pending = (async () => {
+        const text = await this.store.readText(ref).catch(() => undefined);
+        if (text === undefined || !/<Catalog[\s>]/.test(text)) return undefined;
+        const model = buildSemanticModel(this.store.parse(ref, text));
+        const catalog = model.catalog;
+        if (!catalog) return undefined;
+        const file: CatalogFile = { ref, name: attribute(catalog, 'name')?.value.trim() ?? '', model, catalog, entries: [] };
+        for (const child of catalog.children) {
+          const name = attribute(child, 'name')?.value.trim();
+          if (name !== undefined) file.entries.push({ name, element: child, file });
+        }
+        return file;
+      })();
+      this.files.set(id, pending);
+    }
+    return pending;
+  }
+
+  /** The catalogs named `name` in a directory: `name.xosc` first (as esmini looks), then every other file. */
+  async catalogsIn(directory: CatalogDirectory, name: string): Promise<CatalogFile[]> {
+    const listing = await this.listing(directory);
+    const preferred = listing.filter((entry) => path.basename(entry) === `${name}.xosc`);
+    const ordered = [...preferred, ...listing.filter((entry) => !preferred.includes(entry))];
+    const result: CatalogFile[] = [];
+    for (const entry of ordered) {
+      const file = await this.file(this.refIn(directory, entry));
+      if (file && file.name === name) result.push(file);
+    }
+    return result;
+  }
+
+  /** Every catalog file in a directory (for completion of catalog names). */
+  async allCatalogsIn(directory: CatalogDirectory): Promise<CatalogFile[]> {
+    const files = await Promise.all((await this.listing(directory)).map((entry) => this.file(this.refIn(directory, entry))));
+    return files.filter((file): file is CatalogFile => file !== undefined);
+  }
+
+  /** Resolves every location and CatalogReference of a document. */
+  async resolve(ref: SourceRef, model: SemanticModel, evaluator = new Evaluator(model)): Promise<CatalogResolution> {
+    const locations: LocationResolution[] = [];
+    for (const location of model.catalogLocations) {
+      const written = evaluator.textOf(location.directory, location.pathAttribute);
+      locations.push({ location, path: written, directories: written === undefined ? [] : await this.directories(ref, written) });
+    }
+    const directories = locations.flatMap((location) => location.directories);
+    const references: CatalogReferenceResolution[] = [];
+    const files = new Map<string, SourceRef>();
+    for (const reference of model.catalogReferences) {
+      const catalogName = evaluator.textOf(reference.element, reference.catalogNameAttribute)?.trim();
+      const entryName = evaluator.textOf(reference.element, reference.entryNameAttribute)?.trim();
+      const catalogs: CatalogFile[] = [];
+      if (catalogName) {
+        for (const directory of directories) {
+          for (const file of await this.catalogsIn(directory, catalogName)) {
+            if (!catalogs.some((known) => refId(known.ref) === refId(file.ref))) catalogs.push(file);
+          }
+        }
+      }
+      let foundByFileName = false;
+      if (catalogName && catalogs.length === 0) {
+        for (const directory of directories) {
+          const named = (await this.listing(directory)).find((entry) => path.basename(entry) === `${catalogName}.xosc`);
+          const file = named ? await this.file(this.refIn(directory, named)) : undefined;
+          if (file) {
+            catalogs.push(file);
+            foundByFileName = true;
+            break;
+          }
+        }
+      }
+      for (const file of catalogs) files.set(refId(file.ref), file.ref);
+      const entry = entryName === undefined ? undefined : catalogs.flatMap((file) => file.entries).find((candidate) => candidate.name === entryName);
+      references.push({ reference, catalogName, entryName, catalogs, entry, searched: directories.length > 0, foundByFileName });
+    }
+    return { locations, references, files: [...files.values()] };
+  }
+}
+
+/** The values a CatalogReference's assignments give to its entry's parameters, evaluated in the referencing file. */
+export function assignmentsOf(reference: CatalogReferenceInfo, evaluator: Evaluator): Assignments {
+  const result: Assignments = new Map();
+  for (const assignment of reference.assignments) {
+    const name = assignment.parameterRef ? referencedName(assignment.parameterRef).name : undefined;
+    if (!name || !assignment.valueAttribute) continue;
+    const value = evaluator.attributeValue(assignment.element, assignment.valueAttribute);
+    result.set(name, { value: value.ok ? { value: value.value, type: value.type } : undefined, assignment });
+  }
+  return result;
+}

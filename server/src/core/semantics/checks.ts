@@ -1,0 +1,407 @@
+import { ProblemCode, RelatedProblemLocation, Severity } from '../problems';
+import { SourceRef } from '../sources';
+import { closestMatch } from '../text';
+import { attribute, descendants, XmlAttribute, XmlElement } from '../xml';
+import { CatalogResolution } from './catalogs';
+import { ExpressionError } from './expressions';
+import { Declaration, Evaluator, referencedName, resolveName, SemanticModel, STORYBOARD_ELEMENT_NAMES, STORYBOARD_ELEMENT_TYPES } from './model';
+
+/**
+ * The semantic checks: each is one small function over a document's model, registered in
+ * SEMANTIC_CHECKS. A check reports Findings at offsets of the document; the caller turns them into
+ * Problems (for a flattened output, at the source position each element came from).
+ */
+
+export interface SemanticContext {
+  ref: SourceRef;
+  model: SemanticModel;
+  evaluator: Evaluator;
+  catalogs: CatalogResolution;
+  /**
+   * True for a modular main file, whose storyboard names are only known once it is flattened; the
+   * flattened output is checked for them instead.
+   */
+  modular: boolean;
+}
+
+export interface Finding {
+  element: XmlElement;
+  /** The attribute the offsets lie in, when they do (for mapping an output position to its source). */
+  attribute: XmlAttribute | undefined;
+  start: number;
+  end: number;
+  severity: Severity;
+  code: ProblemCode;
+  message: string;
+  hint?: string;
+  related?: RelatedProblemLocation[];
+  data?: Record<string, string>;
+}
+
+export type SemanticCheck = (context: SemanticContext) => Finding[];
+
+function at(element: XmlElement, attr: XmlAttribute | undefined): Pick<Finding, 'element' | 'attribute' | 'start' | 'end'> {
+  return attr ? { element, attribute: attr, start: attr.valueStart, end: attr.valueEnd } : { element, attribute: undefined, start: element.start, end: element.nameEnd };
+}
+
+function relatedAt(context: SemanticContext, start: number, end: number, message: string): RelatedProblemLocation {
+  return { source: context.ref, range: context.model.document.lines.range(start, end), message };
+}
+
+/** The entry of a catalog file that holds an element (the child of its `Catalog`). */
+export function catalogEntryOf(model: SemanticModel, element: XmlElement): XmlElement | undefined {
+  for (let current: XmlElement | undefined = element; current; current = current.parent) {
+    if (current.parent && current.parent === model.catalog) return current;
+  }
+  return undefined;
+}
+
+/**
+ * Every `$name` and `parameterRef` resolves to a declaration in scope. In a catalog entry an
+ * undeclared name is only a note: esmini takes it from the scenario that references the entry, and
+ * catalogReferences checks it there.
+ */
+export const undeclaredParameters: SemanticCheck = ({ model }) =>
+  model.uses
+    .filter((use) => !use.declaration)
+    .map((use) => {
+      const inEntry = model.catalog !== undefined && catalogEntryOf(model, use.element) !== undefined;
+      return {
+        element: use.element,
+        attribute: use.attribute,
+        start: use.start,
+        end: use.end,
+        severity: inEntry ? 'information' : 'error',
+        code: 'undeclared-parameter',
+        message: inEntry
+          ? `parameter '${use.name}' is not declared in this catalog entry; it must be declared by every scenario that references the entry (esmini takes it from there; the standard expects the entry to declare it)`
+          : `parameter '${use.name}' is not declared in this scope`,
+        hint: `declare <ParameterDeclaration name="${use.name}" parameterType="..." value="..."/> in the ParameterDeclarations of ${inEntry ? 'the entry' : 'the file or of an enclosing element'}`,
+        data: { parameter: use.name },
+      };
+    });
+
+/** A declared parameter that nothing uses (a hint, shown faded). */
+export const unusedParameters: SemanticCheck = ({ model }) =>
+  model.declarations
+    .filter((declaration) => declaration.kind === 'parameter' && declaration.name && (model.usesOf.get(declaration)?.length ?? 0) === 0)
+    .filter((declaration) => declaration.scope.byName.get(declaration.name) === declaration)
+    .map((declaration) => ({
+      ...at(declaration.element, declaration.nameAttribute),
+      severity: 'hint',
+      code: 'unused-parameter',
+      message: `parameter '${declaration.name}' is never used`,
+    }));
+
+/** Two declarations of one name in one scope. */
+export const duplicateDeclarations: SemanticCheck = (context) => {
+  const findings: Finding[] = [];
+  for (const scope of context.model.scopes) {
+    for (const declaration of scope.declarations) {
+      const first = scope.byName.get(declaration.name) as Declaration;
+      if (first === declaration) continue;
+      findings.push({
+        ...at(declaration.element, declaration.nameAttribute),
+        severity: 'warning',
+        code: 'duplicate-parameter',
+        message: `parameter '${declaration.name}' is declared twice in <${scope.element.name}>; references use the first declaration`,
+        related: [relatedAt(context, first.element.start, first.element.nameEnd, 'the first declaration')],
+      });
+    }
+  }
+  return findings;
+};
+
+const EXPRESSION_CODES: Record<Exclude<ExpressionError['kind'], 'unknown-parameter'>, ProblemCode> = {
+  syntax: 'expression-syntax',
+  'type-mismatch': 'type-mismatch',
+  'division-by-zero': 'division-by-zero',
+  nonstandard: 'nonstandard-expression',
+};
+
+function expressionFinding(element: XmlElement, attr: XmlAttribute, error: ExpressionError): Finding | undefined {
+  // An unknown parameter is reported once by undeclaredParameters, or at the declaration that has no valid value.
+  if (error.kind === 'unknown-parameter') return undefined;
+  const exactOffsets = attr.value.length === attr.valueEnd - attr.valueStart;
+  return {
+    element,
+    attribute: attr,
+    start: exactOffsets ? error.start : attr.valueStart,
+    end: exactOffsets ? Math.max(error.end, error.start + 1) : attr.valueEnd,
+    severity: error.kind === 'nonstandard' ? 'warning' : 'error',
+    code: EXPRESSION_CODES[error.kind],
+    message: error.message,
+  };
+}
+
+/** Syntax, type and division errors of every `${...}`, and values that do not fit their declared type. */
+export const expressionErrors: SemanticCheck = ({ model, evaluator }) => {
+  const findings: Finding[] = [];
+  for (const site of model.sites) {
+    if (site.form.kind !== 'expression') continue;
+    const result = evaluator.evaluateSite(site);
+    for (const error of [...(result.ok ? [] : result.errors), ...(result.warnings ?? [])]) {
+      const finding = expressionFinding(site.element, site.attribute, error);
+      if (finding) findings.push(finding);
+    }
+  }
+  for (const declaration of model.declarations) {
+    const attr = declaration.valueAttribute;
+    if (!attr || declaration.type === undefined) continue;
+    const result = evaluator.declarationValue(declaration);
+    if (result.ok || result.provenance.kind !== 'declaration') continue;
+    for (const error of result.errors) {
+      // Errors inside the expression itself were reported above, with their column.
+      const own = error.start === attr.valueStart && error.end === attr.valueEnd && error.kind === 'type-mismatch';
+      if (own) findings.push(expressionFinding(declaration.element, attr, error) as Finding);
+    }
+  }
+  return findings;
+};
+
+/** Unknown catalogs, entries and assigned parameters; directories that do not exist. */
+export const catalogReferences: SemanticCheck = (context) => {
+  const findings: Finding[] = [];
+  // A directory no reference needs is harmless (CARLA and esmini load such files), so it is only reported when used.
+  const used = context.catalogs.references.length > 0;
+  for (const location of context.catalogs.locations) {
+    if (!used || location.path === undefined || location.directories.length > 0) continue;
+    findings.push({
+      ...at(location.location.directory, location.location.pathAttribute),
+      severity: 'warning',
+      code: 'catalog-directory',
+      message: `the ${location.location.kind} directory '${location.path}' does not exist (relative to this file, or in SCENARIO_PATH)`,
+      hint: 'correct the path, or add the folder that holds the catalogs to SCENARIO_PATH (the modular2simple.scenarioPath setting)',
+    });
+  }
+  for (const resolution of context.catalogs.references) {
+    const { reference } = resolution;
+    if (!resolution.searched || resolution.catalogName === undefined) continue;
+    if (resolution.catalogs.length === 0) {
+      findings.push({
+        ...at(reference.element, reference.catalogNameAttribute),
+        severity: 'error',
+        code: 'unknown-catalog',
+        message: `no catalog named '${resolution.catalogName}' in the catalog directories of this file`,
+        hint: `the directories searched: ${context.catalogs.locations.flatMap((location) => location.directories.map((directory) => directory.directory || '(package root)')).join(', ')}`,
+      });
+      continue;
+    }
+    if (!resolution.entry) {
+      const names = resolution.catalogs.flatMap((file) => file.entries.map((entry) => entry.name));
+      const suggestion = resolution.entryName ? closestMatch(resolution.entryName, names) : undefined;
+      findings.push({
+        ...at(reference.element, reference.entryNameAttribute),
+        severity: 'error',
+        code: 'unknown-catalog-entry',
+        message: `catalog '${resolution.catalogName}' has no entry named '${resolution.entryName ?? ''}'; it has: ${names.slice(0, 30).join(', ')}${names.length > 30 ? ', ...' : ''}`,
+        hint: suggestion ? `did you mean '${suggestion}'?` : undefined,
+        data: suggestion ? { suggestion } : undefined,
+      });
+      continue;
+    }
+    if (resolution.foundByFileName) {
+      findings.push({
+        ...at(reference.element, reference.catalogNameAttribute),
+        severity: 'warning',
+        code: 'unknown-catalog',
+        message: `no Catalog is named '${resolution.catalogName}'; esmini takes the file ${resolution.catalogName}.xosc, whose Catalog is named '${resolution.catalogs[0].name}', and other simulators do not`,
+        hint: `name the Catalog in ${resolution.catalogName}.xosc '${resolution.catalogName}'`,
+      });
+    }
+    const entryModel = resolution.entry.file.model;
+    const referenceScope = context.model.scopeOf(reference.element);
+    const free = new Set(entryModel.uses.filter((use) => !use.declaration && catalogEntryOf(entryModel, use.element) === resolution.entry?.element).map((use) => use.name));
+    for (const name of free) {
+      if (resolveName(referenceScope, name, undefined)) continue;
+      findings.push({
+        ...at(reference.element, reference.entryNameAttribute),
+        severity: 'error',
+        code: 'undeclared-parameter',
+        message: `catalog entry '${resolution.entry.name}' uses parameter '${name}', which neither the entry nor this file declares`,
+        hint: `declare '${name}' in this file, or in the entry's ParameterDeclarations`,
+        data: { parameter: name },
+      });
+    }
+    const entryScope = entryModel.scopeOf(resolution.entry.element);
+    const declared = entryScope && entryScope.element === resolution.entry.element ? entryScope.declarations.map((declaration) => declaration.name) : [];
+    for (const assignment of reference.assignments) {
+      const name = assignment.parameterRef ? referencedName(assignment.parameterRef).name : undefined;
+      if (name === undefined || declared.includes(name)) continue;
+      const suggestion = closestMatch(name, declared);
+      findings.push({
+        ...at(assignment.element, assignment.parameterRef),
+        severity: 'error',
+        code: 'unknown-assigned-parameter',
+        message: `catalog entry '${resolution.entry.name}' declares no parameter '${name}'` + (declared.length ? `; it declares: ${declared.join(', ')}` : '; it declares none'),
+        hint: suggestion ? `did you mean '${suggestion}'?` : undefined,
+        data: suggestion ? { suggestion } : undefined,
+      });
+    }
+  }
+  return findings;
+};
+
+/** Entity names, with `$parameters` evaluated; only in files that declare Entities (not in catalogs). */
+export const undeclaredEntities: SemanticCheck = ({ model, evaluator }) => {
+  if (!model.hasEntities || model.catalog || !model.document.root) return [];
+  const names = new Set(model.entities.map((entity) => evaluator.textOf(entity.element, entity.nameAttribute) ?? entity.name));
+  const findings: Finding[] = [];
+  for (const { element, attribute: attr } of model.entityReferences) {
+    const value = evaluator.textOf(element, attr);
+    if (value === undefined || names.has(value)) continue;
+    const suggestion = names.size <= 2000 ? closestMatch(value, names) : undefined;
+    findings.push({
+      ...at(element, attr),
+      severity: 'warning',
+      code: 'undeclared-entity',
+      message: `entity '${value}'${value !== attr.value ? ` (the value of ${attr.value})` : ''} is not declared in <Entities>`,
+      hint: suggestion ? `did you mean '${suggestion}'?` : `declare a ScenarioObject named '${value}'`,
+      data: { entity: value },
+    });
+  }
+  return findings;
+};
+
+/** The storyboard elements a reference may name (an optional `A::B::` prefix names ancestors). */
+export function storyboardTargets(model: SemanticModel, extra: { name: string; element: XmlElement }[], written: string, type: string | undefined): XmlElement[] {
+  const parts = written.split('::').map((part) => part.trim());
+  const name = parts.pop() ?? '';
+  const elementName = type ? STORYBOARD_ELEMENT_TYPES[type] : undefined;
+  const candidates = [...(model.storyboardByName.get(name) ?? []), ...extra.filter((candidate) => candidate.name === name)].filter((candidate) => !elementName || candidate.element.name === elementName);
+  if (parts.length === 0) return candidates.map((candidate) => candidate.element);
+  return candidates
+    .filter((candidate) => {
+      let index = parts.length - 1;
+      for (let current = candidate.element.parent; current && index >= 0; current = current.parent) {
+        if (attribute(current, 'name')?.value === parts[index]) index--;
+      }
+      return index < 0;
+    })
+    .map((candidate) => candidate.element);
+}
+
+/** Names a reference may reach in maneuvers taken from catalogs. */
+function catalogStoryboardNames(context: SemanticContext): { name: string; element: XmlElement }[] {
+  const result: { name: string; element: XmlElement }[] = [];
+  for (const resolution of context.catalogs.references) {
+    const entry = resolution.entry?.element;
+    if (!entry || entry.name !== 'Maneuver') continue;
+    for (const element of [entry, ...descendants(entry)]) {
+      if (STORYBOARD_ELEMENT_NAMES.has(element.name)) result.push({ name: attribute(element, 'name')?.value ?? '', element });
+    }
+  }
+  return result;
+}
+
+/** Every StoryboardElementStateCondition names an element of its type that exists. */
+export const storyboardReferences: SemanticCheck = (context) => {
+  if (context.modular || context.model.catalog) return [];
+  const unresolvedCatalogManeuvers = context.catalogs.references.some((resolution) => !resolution.entry && resolution.reference.element.parent?.name === 'ManeuverGroup');
+  if (unresolvedCatalogManeuvers) return [];
+  const extra = catalogStoryboardNames(context);
+  const findings: Finding[] = [];
+  for (const reference of context.model.storyboardReferences) {
+    const written = context.evaluator.textOf(reference.element, reference.refAttribute);
+    const type = context.evaluator.textOf(reference.element, attribute(reference.element, 'storyboardElementType'));
+    if (written === undefined || storyboardTargets(context.model, extra, written, type).length > 0) continue;
+    const elementName = type ? STORYBOARD_ELEMENT_TYPES[type] : undefined;
+    const known = context.model.storyboardElements.filter((candidate) => !elementName || candidate.element.name === elementName).map((candidate) => candidate.name);
+    const suggestion = known.length <= 2000 ? closestMatch(written, known) : undefined;
+    findings.push({
+      ...at(reference.element, reference.refAttribute),
+      severity: 'warning',
+      code: 'unknown-storyboard-element',
+      message: `no ${elementName ?? 'storyboard element'} named '${written}'`,
+      hint: suggestion ? `did you mean '${suggestion}'?` : undefined,
+      data: suggestion ? { suggestion } : undefined,
+    });
+  }
+  return findings;
+};
+
+/**
+ * In a flattened output every storyboard reference names exactly one element. A name that only
+ * exists as `OUTER.NAME` names a group that flattening renamed: an error, since the output no longer
+ * has what the reference was written for.
+ */
+export const flattenedStoryboardReferences: SemanticCheck = (context) => {
+  const extra = catalogStoryboardNames(context);
+  const findings: Finding[] = [];
+  for (const reference of context.model.storyboardReferences) {
+    const written = context.evaluator.textOf(reference.element, reference.refAttribute);
+    const type = context.evaluator.textOf(reference.element, attribute(reference.element, 'storyboardElementType'));
+    if (written === undefined) continue;
+    const targets = storyboardTargets(context.model, extra, written, type);
+    if (targets.length === 1) continue;
+    const elementName = type ? STORYBOARD_ELEMENT_TYPES[type] : undefined;
+    if (targets.length > 1) {
+      findings.push({
+        ...at(reference.element, reference.refAttribute),
+        severity: 'warning',
+        code: 'ambiguous-reference',
+        message: `${targets.length} elements of the flattened scenario are named '${written}'${elementName ? ` (${elementName})` : ''}; a simulator takes one of them`,
+        hint: 'give the elements unique names, or qualify the reference with its ancestors (Story::Act::...)',
+      });
+      continue;
+    }
+    // An outer group OUTER became OUTER.INNER, and an imported group INNER became OUTER.INNER.
+    const renamed = context.model.storyboardElements
+      .filter((candidate) => (candidate.name.endsWith(`.${written}`) || candidate.name.startsWith(`${written}.`)) && (!elementName || candidate.element.name === elementName))
+      .map((candidate) => candidate.name);
+    if (renamed.length > 0) {
+      findings.push({
+        ...at(reference.element, reference.refAttribute),
+        severity: 'error',
+        code: 'renamed-reference',
+        message: `flattening renamed '${written}' to ${renamed.map((name) => `'${name}'`).join(', ')}, so this reference names nothing in the flattened scenario`,
+        hint: `refer to the imported group by its flattened name${renamed.length === 1 ? ` '${renamed[0]}'` : ''}`,
+        data: renamed.length === 1 ? { suggestion: renamed[0] } : undefined,
+      });
+      continue;
+    }
+    findings.push({
+      ...at(reference.element, reference.refAttribute),
+      severity: 'warning',
+      code: 'unknown-storyboard-element',
+      message: `no ${elementName ?? 'storyboard element'} named '${written}'`,
+    });
+  }
+  return findings;
+};
+
+/** Every `variableRef` names a declared variable (1.2 and later). */
+export const undeclaredVariables: SemanticCheck = ({ model }) =>
+  model.variableReferences
+    .filter((reference) => !reference.declaration)
+    .map((reference) => ({
+      ...at(reference.element, reference.attribute),
+      severity: 'error',
+      code: 'undeclared-variable',
+      message: `variable '${reference.attribute.value}' is not declared in the VariableDeclarations of this file`,
+    }));
+
+/** The checks of a document, in the order their problems are listed. */
+export const SEMANTIC_CHECKS: readonly { name: string; check: SemanticCheck }[] = [
+  { name: 'undeclared parameter', check: undeclaredParameters },
+  { name: 'unused parameter', check: unusedParameters },
+  { name: 'parameter declared twice', check: duplicateDeclarations },
+  { name: 'expression errors', check: expressionErrors },
+  { name: 'catalog references', check: catalogReferences },
+  { name: 'undeclared entity', check: undeclaredEntities },
+  { name: 'storyboard references', check: storyboardReferences },
+  { name: 'undeclared variable', check: undeclaredVariables },
+];
+
+/** The checks of a flattened output (SPEC 11.5); entities are checked by the flattener at the reference. */
+export const OUTPUT_CHECKS: readonly { name: string; check: SemanticCheck }[] = [
+  { name: 'undeclared parameter', check: undeclaredParameters },
+  { name: 'expression errors', check: expressionErrors },
+  { name: 'catalog references', check: catalogReferences },
+  { name: 'storyboard references', check: flattenedStoryboardReferences },
+  { name: 'undeclared variable', check: undeclaredVariables },
+];
+
+export function runChecks(context: SemanticContext, checks: readonly { check: SemanticCheck }[] = SEMANTIC_CHECKS): Finding[] {
+  return checks.flatMap((entry) => entry.check(context));
+}

@@ -1,0 +1,142 @@
+import * as path from 'node:path';
+import { ResponseError } from 'vscode-languageserver/node';
+import { elementPlace } from '../analysis';
+import { FlatSource } from '../core/flatten';
+import { parseOpenDrive, RoadNetwork } from '../core/opendrive/road';
+import { sampleNetwork, SectionPolylines } from '../core/opendrive/sample';
+import { scenarioScene } from '../core/scene';
+import { baseName, displayRef, FileSystemHost } from '../core/sources';
+import { decodeUtf8 } from '../core/text';
+import { XmlElement } from '../core/xml';
+import { SceneParams, SceneResult, SourceLocation } from '../sceneProtocol';
+import { Workspace } from '../workspace';
+
+/** Road files are large and rarely change: the sampled network is kept per path, size and content. */
+interface CachedNetwork {
+  text: string;
+  network: RoadNetwork;
+  sections: SectionPolylines[];
+  roadCount: number;
+  problems: string[];
+}
+const networkCache = new Map<string, CachedNetwork>();
+const NETWORK_CACHE_SIZE = 4;
+/** A road file larger than this is refused rather than read (Town05 is 3 MB). */
+const MAX_ROAD_FILE_BYTES = 64 * 1024 * 1024;
+
+/**
+ * The folders a LogicFile's filepath is looked for in, in order: relative to the scenario's
+ * folder, in each extra road folder, then by its file name in the same folders.
+ */
+export function roadFileCandidates(filepath: string, scenarioFolder: string, roadPath: string[]): string[] {
+  const folders = [scenarioFolder, ...roadPath.map((folder) => path.resolve(scenarioFolder, folder))];
+  const candidates = folders.map((folder) => path.resolve(folder, filepath));
+  const name = path.basename(filepath.replace(/\\/g, '/'));
+  for (const folder of folders) candidates.push(path.resolve(folder, name));
+  return [...new Set(candidates)];
+}
+
+async function findRoadFile(host: FileSystemHost, candidates: string[]): Promise<string | undefined> {
+  for (const candidate of candidates) if ((await host.kind(candidate)) === 'file') return candidate;
+  return undefined;
+}
+
+function loadNetwork(filePath: string, text: string): CachedNetwork {
+  const cached = networkCache.get(filePath);
+  if (cached && cached.text === text) return cached;
+  const network = parseOpenDrive(text);
+  const entry: CachedNetwork = {
+    text,
+    network,
+    sections: sampleNetwork(network),
+    roadCount: network.roads.length,
+    problems: network.problems.slice(0, 10).map((problem) => `${filePath}: ${problem.message}`),
+  };
+  networkCache.delete(filePath);
+  networkCache.set(filePath, entry);
+  while (networkCache.size > NETWORK_CACHE_SIZE) networkCache.delete(networkCache.keys().next().value as string);
+  return entry;
+}
+
+function locationOf(workspace: Workspace, source: FlatSource, element: XmlElement | undefined, attributeName = 'name'): SourceLocation | undefined {
+  const place = element ? elementPlace(source, element, attributeName) : undefined;
+  return place ? { uri: workspace.uriOf(place.ref), line: place.range.start.line, character: place.range.start.character } : undefined;
+}
+
+/** The scene of a scenario: its road network sampled, entities at their start, its events. */
+export async function buildScene(workspace: Workspace, params: SceneParams): Promise<SceneResult> {
+  const ref = await workspace.uris.toRef(params.uri);
+  if (!ref) throw new ResponseError(-32602, `not a scenario URI: ${params.uri}`);
+  // Rendered: a main file is shown as it runs, flattened.
+  const source = workspace.flattener().rendered(await workspace.source(ref));
+  const model = source.model ?? source.original;
+  if (!model?.document.root) throw new ResponseError(-32602, `${displayRef(ref, workspace.folders[0])} could not be read as a scenario`);
+  const problems: string[] = [];
+  if (!source.model && source.original && source.links.length > 0) problems.push('the scenario could not be flattened; the view shows the file as written, without the groups it imports');
+
+  // The road file is needed before positions can be evaluated.
+  const logic = scenarioScene(model.document, undefined).logicFile;
+  let network: RoadNetwork | undefined;
+  let sections: SectionPolylines[] = [];
+  let roadFile: SceneResult['roadFile'];
+  if (logic) {
+    const candidates = roadFileCandidates(logic.filepath, path.dirname(ref.disk), params.roadPath ?? []);
+    const resolved = await findRoadFile(workspace.store.host, candidates);
+    roadFile = { filepath: logic.filepath, resolved, roadCount: 0, source: locationOf(workspace, source, logic.element, 'filepath') };
+    if (!resolved) {
+      problems.push(`road file "${logic.filepath}" not found; looked for ${candidates.join(', ')}. Add its folder to the setting modular2simple.esmini.roadPath.`);
+    } else {
+      // Bounded and refused when not a regular file (a FIFO, a device), so that a road file never hangs the server.
+      const read = await workspace.store.host.readFile(resolved, MAX_ROAD_FILE_BYTES + 1).then(
+        (bytes) => ({ bytes, error: undefined }),
+        (error: Error) => ({ bytes: undefined, error: error.message }),
+      );
+      const bytes = read.bytes;
+      if (read.error) problems.push(`road file ${resolved} could not be read: ${read.error}`);
+      else if (!bytes) problems.push(`road file ${resolved} could not be read`);
+      else if (bytes.byteLength > MAX_ROAD_FILE_BYTES) problems.push(`road file ${resolved} is larger than ${MAX_ROAD_FILE_BYTES / 1024 / 1024} MB; not drawn`);
+      else {
+        const text = decodeUtf8(bytes);
+        const loaded = loadNetwork(resolved, text);
+        network = loaded.network;
+        sections = loaded.sections;
+        roadFile.roadCount = loaded.roadCount;
+        problems.push(...loaded.problems);
+      }
+    }
+  } else {
+    problems.push('the scenario names no RoadNetwork/LogicFile; entities are drawn without roads');
+  }
+
+  const scene = scenarioScene(model.document, network);
+  for (const entity of scene.entities) if (entity.problem) problems.push(`${entity.name}: ${entity.problem}`);
+  return {
+    uri: params.uri,
+    title: baseName(ref),
+    roadFile,
+    sections,
+    entities: scene.entities.map((entity) => ({
+      name: entity.name,
+      kind: entity.kind,
+      length: entity.length,
+      width: entity.width,
+      centerX: entity.centerX,
+      x: entity.x,
+      y: entity.y,
+      hdg: entity.hdg,
+      described: entity.described,
+      problem: entity.problem,
+      source: locationOf(workspace, source, entity.position ?? entity.declaration, entity.position ? 'none' : 'name'),
+    })),
+    events: scene.events.map((event) => ({
+      name: event.name,
+      maneuver: event.maneuver,
+      group: event.group,
+      act: event.act,
+      trigger: event.trigger,
+      plannedTime: event.plannedTime,
+      source: locationOf(workspace, source, event.element),
+    })),
+    problems,
+  };
+}

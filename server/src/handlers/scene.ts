@@ -1,0 +1,8 @@
+import { buildScene } from '../features/scene';
+import { SceneRequest } from '../sceneProtocol';
+import { request, ServerContext } from './context';
+
+/** `modular2simple/scene`: what the bird's-eye view draws of a scenario. */
+export function register(context: ServerContext): void {
+  context.connection.onRequest(SceneRequest, request(context, SceneRequest.method, (params) => buildScene(context.workspace, params)));
+}

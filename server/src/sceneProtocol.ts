@@ -1,0 +1,71 @@
+/**
+ * The bird's-eye view's request `modular2simple/scene` (SceneParams → SceneResult), typed for both
+ * sides (both bundles import this file).
+ */
+import { RequestType } from 'vscode-languageserver-protocol';
+import type { SectionPolylines } from './core/opendrive/sample';
+
+export interface SceneParams {
+  /** A scenario: file: or mosc: URI (a main.xosc is shown flattened, unsaved edits included). */
+  uri: string;
+  /** Extra folders to find the road file in (the `modular2simple.esmini.roadPath` setting). */
+  roadPath?: string[];
+}
+
+/** A place in a source file, zero-based as LSP. */
+export interface SourceLocation {
+  uri: string;
+  line: number;
+  character: number;
+}
+
+export interface SceneEntity {
+  name: string;
+  kind: string;
+  length: number;
+  width: number;
+  /** How far the bounding box's center is ahead of the position (esmini positions the rear axle). */
+  centerX: number;
+  /** Absent when the start position could not be evaluated (see `problem`). */
+  x?: number;
+  y?: number;
+  hdg?: number;
+  described: string;
+  problem?: string;
+  /** The TeleportAction's Position in Init, or else the ScenarioObject. */
+  source?: SourceLocation;
+}
+
+export interface SceneEvent {
+  name: string;
+  maneuver: string;
+  group: string;
+  act: string;
+  trigger: string;
+  /** When a plain SimulationTimeCondition starts it. */
+  plannedTime?: number;
+  source?: SourceLocation;
+}
+
+export interface SceneRoadFile {
+  /** As written in RoadNetwork/LogicFile. */
+  filepath: string;
+  /** The file found, or undefined with the folders searched in `problems`. */
+  resolved?: string;
+  roadCount: number;
+  source?: SourceLocation;
+}
+
+export interface SceneResult {
+  uri: string;
+  title: string;
+  roadFile?: SceneRoadFile;
+  /** Lane borders per lane section, coordinates rounded to centimetres. */
+  sections: SectionPolylines[];
+  entities: SceneEntity[];
+  events: SceneEvent[];
+  /** What could not be shown, in words (road file not found, a position not evaluated, ...). */
+  problems: string[];
+}
+
+export const SceneRequest = new RequestType<SceneParams, SceneResult, void>('modular2simple/scene');

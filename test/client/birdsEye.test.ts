@@ -1,0 +1,98 @@
+import * as assert from 'node:assert/strict';
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import { boxAt, drawEntities, drawRoads, drawTrajectories, fitTransform, laneAt, poseAt, roadShapes, sceneBounds, startBoxes, SvgPainter, toScreen } from '../../client/src/birdsEye/draw';
+import type { RunTracks } from '../../client/src/birdsEye/messages';
+import { loadRun, runTracks } from '../../client/src/birdsEye/runData';
+import { parseOpenDrive } from '../../server/src/core/opendrive/road';
+import { sampleNetwork } from '../../server/src/core/opendrive/sample';
+import type { SceneResult } from '../../server/src/sceneProtocol';
+import { makeWorkspace } from '../support/fixtures';
+import { STRAIGHT_ROAD } from '../support/roads';
+
+function straightScene(): SceneResult {
+  return {
+    uri: 'file:///s.xosc',
+    title: 's.xosc',
+    sections: sampleNetwork(parseOpenDrive(STRAIGHT_ROAD)),
+    entities: [{ name: 'ego', kind: 'Vehicle', length: 4, width: 2, centerX: 1, x: 50, y: -1.75, hdg: 0, described: 'LanePosition', source: { uri: 'file:///s.xosc', line: 3, character: 4 } }],
+    events: [],
+    problems: [],
+  };
+}
+
+const RUN: RunTracks = {
+  label: 'out.csv',
+  times: [0, 1, 2],
+  entities: [{ name: 'ego', length: 4, width: 2, centerX: 1, x: [50, 60, 70], y: [-1.75, -1.75, 1.75], hdg: [0, 0, Math.PI / 2] }],
+  starts: {},
+  notes: [],
+};
+
+describe("client: the bird's-eye view's drawing", () => {
+  it('makes one polygon per lane between its borders, and finds the lane under a point', () => {
+    const shapes = roadShapes(straightScene());
+    assert.deepEqual(shapes.lanes.map((lane) => [lane.lane, lane.driving]), [[1, true], [-1, true], [-2, false]]);
+    assert.deepEqual(shapes.bounds, [0, -5.5, 200, 3.5]);
+    assert.equal(laneAt(shapes, 100, 2)?.lane, 1);
+    assert.equal(laneAt(shapes, 100, -2)?.lane, -1);
+    assert.equal(laneAt(shapes, 100, -4)?.type, 'sidewalk');
+    assert.equal(laneAt(shapes, 100, 10), undefined);
+  });
+
+  it('fits the picture in the screen with y up, and finds an entity under the pointer', () => {
+    const scene = straightScene();
+    const view = fitTransform(sceneBounds(roadShapes(scene), scene, undefined), 420, 120, 10);
+    assert.equal(view.scale, 2);
+    const [x, y] = toScreen(view, 0, 3.5);
+    assert.ok(Math.abs(x - 10) < 1e-9 && y < toScreen(view, 0, -5.5)[1]);
+    // Framing the entities: where they start, 40 m around, whatever the size of the network.
+    assert.deepEqual(sceneBounds(roadShapes(scene), scene, undefined, true), [50 - 3 - 40, -1.75 - 3 - 40, 50 + 3 + 40, -1.75 + 3 + 40]);
+    const boxes = startBoxes(scene.entities);
+    assert.equal(boxAt(boxes, view, 52, -1.75)?.name, 'ego');
+    assert.equal(boxAt(boxes, view, 40, -1.75), undefined);
+  });
+
+  it('interpolates a run between frames, heading the short way round', () => {
+    const middle = poseAt(RUN, RUN.entities[0], 1.5);
+    assert.deepEqual([middle.x, middle.y], [65, 0]);
+    assert.ok(Math.abs(middle.hdg - Math.PI / 4) < 1e-12);
+    assert.equal(poseAt(RUN, RUN.entities[0], 9).x, 70);
+    assert.equal(poseAt(RUN, RUN.entities[0], -1).x, 50);
+  });
+
+  it('draws roads, trajectories and entities into an SVG document', () => {
+    const scene = straightScene();
+    const shapes = roadShapes(scene);
+    const view = fitTransform(sceneBounds(shapes, scene, RUN), 800, 300);
+    const svg = new SvgPainter(800, 300, '#000');
+    assert.equal(drawRoads(svg, shapes, view, 800, 300), 3);
+    drawTrajectories(svg, RUN, view, () => '#4fc3f7');
+    drawEntities(svg, startBoxes(scene.entities), view, () => '#4fc3f7');
+    const text = svg.toString();
+    assert.match(text, /^<\?xml version="1.0" encoding="UTF-8"\?>\n<svg xmlns="http:\/\/www.w3.org\/2000\/svg" width="800" height="300"/);
+    assert.equal((text.match(/<polygon /g) ?? []).length, 3 + 1);
+    assert.match(text, /stroke="#4fc3f7" stroke-width="2"/);
+    assert.match(text, /<text [^>]*>ego<\/text>/);
+  });
+
+  it('thins a long run for the view and reads event starts from a log beside the CSV', async () => {
+    const rows = 20_000;
+    const header = 'esmini GIT REV: v3.6.0\nesmini GIT TAG: \nesmini GIT BRANCH: x\nesmini BUILD VERSION: x\nScenario File Name: s.xosc\nNumber of Vehicles: 1\nIndex [-], TimeStamp [s], #1 Entity_Name [-], #1 World_Position_X [m], #1 World_Position_Y [m], #1 World_Heading_Angle [rad], \n';
+    const body = Array.from({ length: rows }, (_, i) => `${i}, ${(i * 0.01).toFixed(2)}, car, ${i * 0.1}, 0.123456, 0.5, `).join('\n');
+    const folder = makeWorkspace({ 'out.csv': header + body + '\n', 'out.log': '[1.230] [info] Go standbyState -> startTransition -> runningState\n' });
+    try {
+      const run = await loadRun({ csvPath: path.join(folder, 'out.csv') });
+      assert.ok(run.times.length <= 6001 && run.times.length > 5000, `${run.times.length} frames`);
+      assert.equal(run.times[run.times.length - 1], 199.99);
+      assert.equal(run.entities[0].y[0], 0.12);
+      assert.deepEqual(run.starts, { Go: 1.23 });
+      assert.match(run.notes.join(), /every 4th of 20000 steps/);
+    } finally {
+      fs.rmSync(folder, { recursive: true, force: true });
+    }
+    const small = runTracks({ version: '', scenarioFile: '', times: Float64Array.from([0, 1]), entities: [], truncated: true }, 'x', new Map());
+    assert.deepEqual(small.times, [0, 1]);
+    assert.match(small.notes.join(), /end is left out/);
+  });
+});

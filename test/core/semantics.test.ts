@@ -1,0 +1,237 @@
+import * as assert from 'node:assert/strict';
+import * as path from 'node:path';
+import {
+  analyzeDocument,
+  CatalogLoader,
+  catalogEntryFor,
+  catalogReferenceAt,
+  declarationAt,
+  DocumentSemantics,
+  entryParameterValue,
+  parameterUseAt,
+  parametersInScopeAt,
+  referencesOf,
+  scopeAt,
+  semanticProblems,
+  valueAt,
+} from '../../server/src/core/semantics';
+import { diskRef, ScenarioStore } from '../../server/src/core/sources';
+import { parseXml } from '../../server/src/core/xml';
+import { makeWorkspace } from '../support/fixtures';
+
+const CATALOG = `<?xml version="1.0"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="c" author="t"/>
+  <Catalog name="VehicleCatalog">
+    <Vehicle name="car" vehicleCategory="car">
+      <ParameterDeclarations>
+        <ParameterDeclaration name="Speed" parameterType="double" value="10"/>
+        <ParameterDeclaration name="Half" parameterType="double" value="\${$Speed / 2}"/>
+      </ParameterDeclarations>
+      <Performance maxSpeed="$Half" maxAcceleration="$Speed" maxDeceleration="10"/>
+    </Vehicle>
+  </Catalog>
+</OpenSCENARIO>
+`;
+
+/** Speed is declared at the root, shadowed in Story S1 and again in its Maneuver M1; Story S2 sees the root's. */
+const SCENARIO = `<?xml version="1.0"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="s" author="t"/>
+  <ParameterDeclarations>
+    <ParameterDeclaration name="Speed" parameterType="double" value="20"/>
+    <ParameterDeclaration name="Twice" parameterType="double" value="\${2 * $Speed}"/>
+    <ParameterDeclaration name="Count" parameterType="int" value="\${7 / 2}"/>
+    <ParameterDeclaration name="Owner" parameterType="string" value="Ego"/>
+    <ParameterDeclaration name="Idle" parameterType="double" value="1"/>
+    <ParameterDeclaration name="Owner" parameterType="string" value="Other"/>
+  </ParameterDeclarations>
+  <VariableDeclarations>
+    <VariableDeclaration name="Counter" variableType="int" value="0"/>
+  </VariableDeclarations>
+  <CatalogLocations>
+    <VehicleCatalog>
+      <Directory path="catalogs"/>
+    </VehicleCatalog>
+  </CatalogLocations>
+  <Entities>
+    <ScenarioObject name="Ego">
+      <CatalogReference catalogName="VehicleCatalog" entryName="car">
+        <ParameterAssignments>
+          <ParameterAssignment parameterRef="Speed" value="$Twice"/>
+          <ParameterAssignment parameterRef="Sped" value="1"/>
+        </ParameterAssignments>
+      </CatalogReference>
+    </ScenarioObject>
+    <ScenarioObject name="Car">
+      <CatalogReference catalogName="VehicleCatalog" entryName="truck"/>
+    </ScenarioObject>
+    <ScenarioObject name="Bike">
+      <CatalogReference catalogName="BikeCatalog" entryName="bike"/>
+    </ScenarioObject>
+  </Entities>
+  <Storyboard>
+    <Story name="S1">
+      <ParameterDeclarations>
+        <ParameterDeclaration name="Speed" parameterType="double" value="\${$Speed + 1}"/>
+      </ParameterDeclarations>
+      <Act name="A1">
+        <ManeuverGroup name="G1" maximumExecutionCount="1">
+          <Actors selectTriggeringEntities="false"><EntityRef entityRef="$Owner"/></Actors>
+          <Maneuver name="M1">
+            <ParameterDeclarations>
+              <ParameterDeclaration name="Speed" parameterType="double" value="5"/>
+            </ParameterDeclarations>
+            <Event name="E1" priority="overwrite">
+              <Action name="InManeuver"><AbsoluteTargetSpeed value="$Speed"/></Action>
+            </Event>
+          </Maneuver>
+          <Maneuver name="M2">
+            <Event name="E2" priority="overwrite">
+              <Action name="InStory"><AbsoluteTargetSpeed value="\${$Speed * 2}"/></Action>
+              <Action name="Broken"><AbsoluteTargetSpeed value="\${$Speed / ($Speed - 21)}"/></Action>
+              <Action name="Unknown"><AbsoluteTargetSpeed value="$Missing"/></Action>
+              <Action name="Ghost"><EntityRef entityRef="Nobody"/><VariableAction variableRef="Countr"/></Action>
+              <StartTrigger><ConditionGroup><Condition name="c" delay="0" conditionEdge="none"><ByValueCondition>
+                <StoryboardElementStateCondition storyboardElementType="event" storyboardElementRef="E1" state="endTransition"/>
+                <StoryboardElementStateCondition storyboardElementType="event" storyboardElementRef="E9" state="endTransition"/>
+              </ByValueCondition></Condition></ConditionGroup></StartTrigger>
+            </Event>
+          </Maneuver>
+        </ManeuverGroup>
+      </Act>
+    </Story>
+    <Story name="S2">
+      <Act name="A2">
+        <ManeuverGroup name="G2" maximumExecutionCount="1">
+          <Maneuver name="M3">
+            <Event name="E3" priority="overwrite">
+              <Action name="AtRoot"><AbsoluteTargetSpeed value="$Speed"/></Action>
+            </Event>
+          </Maneuver>
+        </ManeuverGroup>
+      </Act>
+    </Story>
+  </Storyboard>
+</OpenSCENARIO>
+`;
+
+async function analyze(): Promise<DocumentSemantics> {
+  const root = makeWorkspace({ 'scenario.xosc': SCENARIO, 'catalogs/VehicleCatalog.xosc': CATALOG });
+  const ref = diskRef(path.join(root, 'scenario.xosc'));
+  return analyzeDocument(ref, parseXml(SCENARIO), new CatalogLoader(new ScenarioStore({ scenarioPath: [], root })), false);
+}
+
+/** The offset of the `occurrence`-th match of `needle` (inside it by `shift`). */
+function at(needle: string, shift = 0, occurrence = 0): number {
+  let index = -1;
+  for (let i = 0; i <= occurrence; i++) index = SCENARIO.indexOf(needle, index + 1);
+  assert.ok(index >= 0, needle);
+  return index + shift;
+}
+
+describe('semantics: scopes, values and catalogs', () => {
+  let semantics: DocumentSemantics;
+  before(async () => {
+    semantics = await analyze();
+  });
+
+  it('builds the scope tree: root, Story S1, its Maneuver M1 (and the Story and Maneuver without declarations share their parent scope)', () => {
+    const root = semantics.model.root;
+    assert.ok(root);
+    assert.equal(root.element.name, 'OpenSCENARIO');
+    assert.deepEqual(root.declarations.map((declaration) => declaration.name), ['Speed', 'Twice', 'Count', 'Owner', 'Idle', 'Owner']);
+    assert.deepEqual(root.children.map((scope) => scope.element.name), ['Story']);
+    assert.deepEqual(root.children[0].children.map((scope) => scope.element.name), ['Maneuver']);
+    assert.equal(scopeAt(semantics, at('$Speed"/></Action>'))?.element.name, 'Maneuver');
+    assert.equal(scopeAt(semantics, at('AtRoot'))?.element.name, 'OpenSCENARIO');
+  });
+
+  it('resolves $Speed to the innermost declaration: Maneuver, then Story, then root', () => {
+    const inManeuver = declarationAt(semantics, at('InManeuver"><AbsoluteTargetSpeed value="$Speed', 45));
+    assert.equal(inManeuver?.scope.element.name, 'Maneuver');
+    const inStory = declarationAt(semantics, at('InStory"><AbsoluteTargetSpeed value="${$Speed', 44));
+    assert.equal(inStory?.scope.element.name, 'Story');
+    const atRoot = declarationAt(semantics, at('AtRoot"><AbsoluteTargetSpeed value="$Speed', 41));
+    assert.equal(atRoot?.scope.element.name, 'OpenSCENARIO');
+    // The Story's own value `${$Speed + 1}` sees the root's Speed, not itself.
+    const storyValue = parameterUseAt(semantics, at('value="${$Speed + 1}', 10));
+    assert.equal(storyValue?.declaration?.scope.element.name, 'OpenSCENARIO');
+  });
+
+  it('lists the references of each declaration and never mixes scopes', () => {
+    const root = semantics.model.root!.byName.get('Speed')!;
+    assert.deepEqual(
+      referencesOf(semantics, root).map((use) => use.element.name),
+      ['ParameterDeclaration', 'ParameterDeclaration', 'AbsoluteTargetSpeed'],
+      'Twice, the Story Speed, and AtRoot',
+    );
+    const story = semantics.model.root!.children[0].byName.get('Speed')!;
+    assert.deepEqual(referencesOf(semantics, story).map((use) => use.attribute.value), ['${$Speed * 2}', '${$Speed / ($Speed - 21)}', '${$Speed / ($Speed - 21)}'], 'InStory and Broken, nothing of M1 or S2');
+    assert.equal(declarationAt(semantics, at('name="Twice"', 7))?.name, 'Twice');
+  });
+
+  it('evaluates values with their type and provenance', () => {
+    const twice = semantics.evaluator.declarationValue(semantics.model.root!.byName.get('Twice')!);
+    assert.deepEqual([twice.ok && twice.value, twice.ok && twice.type], [40, 'double']);
+    const count = semantics.evaluator.declarationValue(semantics.model.root!.byName.get('Count')!);
+    assert.equal(count.ok && count.value, 4, 'an int takes 3.5 rounded half away from zero');
+    const inStory = valueAt(semantics, at('${$Speed * 2}', 2));
+    assert.ok(inStory?.result.ok);
+    assert.equal(inStory.result.value, 42, '(20 + 1) * 2');
+    const inManeuver = valueAt(semantics, at('InManeuver"><AbsoluteTargetSpeed value="$Speed', 45));
+    assert.ok(inManeuver?.result.ok && inManeuver.result.provenance.kind === 'declaration');
+    assert.equal(inManeuver.result.value, 5);
+    assert.equal(inManeuver.result.provenance.declaration.scope.element.name, 'Maneuver');
+    assert.deepEqual(valueAt(semantics, at('name="S2"', 7))?.result, { ok: true, value: 'S2', type: 'string', provenance: { kind: 'literal' } });
+  });
+
+  it('offers the parameters in scope, innermost first, shadowed ones left out', () => {
+    const inManeuver = parametersInScopeAt(semantics, at('InManeuver'));
+    assert.deepEqual(inManeuver.map((entry) => `${entry.declaration.name}@${entry.declaration.scope.element.name}`), [
+      'Speed@Maneuver',
+      'Twice@OpenSCENARIO',
+      'Count@OpenSCENARIO',
+      'Owner@OpenSCENARIO',
+      'Idle@OpenSCENARIO',
+    ]);
+    const inTwice = parametersInScopeAt(semantics, at('name="Twice"'));
+    assert.deepEqual(inTwice.map((entry) => entry.declaration.name), ['Speed'], 'a value sees only the earlier declarations');
+  });
+
+  it('resolves catalog references and evaluates an entry with the reference assignments', () => {
+    const reference = catalogReferenceAt(semantics, at('entryName="car"'));
+    assert.ok(reference?.entry);
+    assert.equal(reference.entry.name, 'car');
+    assert.equal(catalogEntryFor(semantics, reference.reference.element), reference);
+    const entryModel = reference.entry.file.model;
+    const speed = entryModel.scopes[1].byName.get('Speed')!;
+    const half = entryModel.scopes[1].byName.get('Half')!;
+    const assigned = entryParameterValue(semantics, reference, speed);
+    assert.ok(assigned.ok && assigned.provenance.kind === 'assignment');
+    assert.equal(assigned.value, 40, '$Twice of the referencing file');
+    const derived = entryParameterValue(semantics, reference, half);
+    assert.equal(derived.ok && derived.value, 20, 'the default ${$Speed / 2} with the assigned Speed');
+  });
+
+  it('reports each problem of the checks list with its code and range', () => {
+    const found = semanticProblems(semantics).map((problem) => {
+      const lines = SCENARIO.split('\n');
+      const text = lines[problem.range.start.line].slice(problem.range.start.character, problem.range.end.character);
+      return `${problem.code}:${problem.severity}:${text}`;
+    });
+    assert.deepEqual(found.sort(), [
+      'division-by-zero:error:($Speed - 21)',
+      'duplicate-parameter:warning:Owner',
+      'undeclared-entity:warning:Nobody',
+      'undeclared-parameter:error:$Missing',
+      'undeclared-variable:error:Countr',
+      'unknown-assigned-parameter:error:Sped',
+      'unknown-catalog-entry:error:truck',
+      'unknown-catalog:error:BikeCatalog',
+      'unknown-storyboard-element:warning:E9',
+      'unused-parameter:hint:Count',
+      'unused-parameter:hint:Idle',
+    ]);
+  });
+});

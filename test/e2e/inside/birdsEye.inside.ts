@@ -1,0 +1,104 @@
+import * as assert from 'node:assert/strict';
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import * as vscode from 'vscode';
+import { BIRDS_EYE_FILES } from '../birdsEyeSetup';
+import { INSIDE_TESTS } from '../titles';
+import { api, open, packageUri, positionOf, replaceText, revertAndClose, waitFor, workspaceRoot } from './extension.inside';
+import { clickText, pageShows, runFromPalette, screenshot } from './harnessClient';
+
+function skipUnless(context: Mocha.Context, condition: boolean, why: string): void {
+  if (condition) return;
+  if (process.env.M2S_REQUIRE_ESMINI) throw new Error(`M2S_REQUIRE_ESMINI is set, but ${why}`);
+  console.log(`skipped: ${why}`);
+  context.skip();
+}
+
+/** The bird's-eye view tests; run after the main suite, in the same VS Code. */
+export function defineBirdsEyeTests(): void {
+  describe("the bird's-eye view in a real VS Code", function () {
+    this.timeout(60_000);
+    const settings = () => vscode.workspace.getConfiguration('modular2simple');
+
+    before(async function () {
+      await waitFor('the extension to activate', () => vscode.extensions.getExtension('modular2simple.modular2simple')?.isActive, 30_000);
+      await settings().update('esmini.roadPath', [BIRDS_EYE_FILES.roadFolder], vscode.ConfigurationTarget.Workspace);
+    });
+
+    after(async () => {
+      await settings().update('esmini.roadPath', undefined, vscode.ConfigurationTarget.Workspace);
+    });
+
+    afterEach(async function () {
+      await screenshot(`${this.currentTest?.state === 'failed' ? 'FAILED ' : ''}${this.currentTest?.title ?? 'unnamed'}`).catch(() => undefined);
+    });
+
+    it(INSIDE_TESTS.birdsEye, async function () {
+      skipUnless(this, fs.existsSync(path.join(workspaceRoot(), BIRDS_EYE_FILES.roadFolder, 'e6mini.xodr')), "esmini's road files (../shared/esmini/xodr) are absent");
+      const editor = await open(BIRDS_EYE_FILES.scenario);
+      // As a person does: the command palette, with the scenario's editor active.
+      await runFromPalette("Modular2Simple: Show Bird's-Eye View");
+      const view = api().birdsEye;
+      const stats = await waitFor('the view to draw the road and the entities', () => (view.stats && view.stats.lanes > 0 && view.stats.entities === 2 ? view.stats : undefined));
+      assert.deepEqual(view.scene?.problems, []);
+      assert.equal(view.scene?.roadFile?.resolved, path.join(workspaceRoot(), BIRDS_EYE_FILES.roadFolder, 'e6mini.xodr'));
+      const [ego, adversary] = view.scene?.entities ?? [];
+      assert.deepEqual([ego?.name, adversary?.name], ['Ego', 'Adversary']);
+      // esmini puts them there (its first CSV row): within 1 cm.
+      assert.ok(Math.abs((ego?.x ?? NaN) - 8.173369) < 0.01 && Math.abs((ego?.y ?? NaN) - 49.970175) < 0.01, `Ego at ${ego?.x}, ${ego?.y}`);
+      assert.ok(stats.staticDrawMs < 1000, `drawing took ${stats.staticDrawMs} ms`);
+      await waitFor('the events listed', () => pageShows('CutInEvent'));
+      assert.ok(await pageShows('planned 2 s'), 'the planned start of CutInEvent is shown');
+      await screenshot("bird's-eye view before a run");
+
+      // Clicking an entity opens its TeleportAction.
+      const expected = positionOf(editor.document, '<Position><LanePosition roadId="0" laneId="-3"').line;
+      await vscode.commands.executeCommand('workbench.action.focusFirstEditorGroup');
+      assert.ok(await clickText('■ Ego'), 'no Ego button in the view');
+      await waitFor('the Ego placement to open', () => {
+        const active = vscode.window.activeTextEditor;
+        return active?.document.uri.path.endsWith(BIRDS_EYE_FILES.scenario) && active.selection.active.line === expected ? true : undefined;
+      });
+
+      // An unsaved edit moves Ego: the view follows.
+      const before = view.scene;
+      await replaceText(editor.document, 'name="EgoS" parameterType="double" value="50"', 'name="EgoS" parameterType="double" value="150"');
+      await waitFor('the view to follow the edit', () => (view.scene !== before && (view.scene?.entities[0]?.y ?? 0) > 140 ? true : undefined));
+      await revertAndClose();
+    });
+
+    it(INSIDE_TESTS.birdsEyeRun, async function () {
+      const csv = path.join(workspaceRoot(), BIRDS_EYE_FILES.csv);
+      skipUnless(this, fs.existsSync(csv), 'esmini is not built (.cache/esmini/bin/esmini), so there is no run to show');
+      await open(BIRDS_EYE_FILES.scenario);
+      const view = api().birdsEye;
+      // What the esmini run command does when a run ends.
+      await vscode.commands.executeCommand('modular2simple.birdsEye.showRun', csv, { logPath: path.join(workspaceRoot(), BIRDS_EYE_FILES.log), scenario: vscode.Uri.file(path.join(workspaceRoot(), BIRDS_EYE_FILES.scenario)).toString() });
+      await waitFor('the trajectories', () => (view.stats?.trajectories === 2 && view.stats.lanes > 0 ? true : undefined));
+      await waitFor('when CutInEvent started', () => pageShows('started 2.05 s'));
+      assert.ok(await pageShows('started 6.05 s'), 'BrakeEvent start is shown');
+      assert.ok(await clickText('Play run'), 'no Play button');
+      await new Promise((resolve) => setTimeout(resolve, 2500));
+      await screenshot("bird's-eye view playing a run");
+      assert.ok(await clickText('Pause run'), 'no Pause button');
+      const played = await waitFor('the playback figures', () => (view.stats && !view.stats.playing && view.stats.frames > 0 ? view.stats : undefined));
+      assert.ok(played.time > 1, `playback reached ${played.time} s`);
+      console.log(`playback: ${played.frames} frames, ${played.frameMeanMs.toFixed(2)} ms mean, ${played.frameWorstMs.toFixed(2)} ms worst to draw a frame`);
+      await vscode.commands.executeCommand('workbench.action.closeAllEditors');
+    });
+
+    it(INSIDE_TESTS.birdsEyePackage, async function () {
+      // The example package names a road (Town04) that is not in the workspace: the view says so and still shows the scenario.
+      const inside = packageUri('braking.mosc', 'main.xosc');
+      await vscode.window.showTextDocument(inside, { preview: false });
+      await vscode.commands.executeCommand('modular2simple.showBirdsEye', inside);
+      const view = api().birdsEye;
+      const scene = await waitFor('the scene of the package', () => (view.scene?.uri === inside.toString() ? view.scene : undefined));
+      assert.equal(scene.title, 'main.xosc');
+      assert.match(scene.problems.join('\n'), /road file "Town04" not found/);
+      assert.ok(scene.events.length > 0, 'the events of the package are listed');
+      assert.equal(vscode.Uri.parse(scene.events[0].source?.uri ?? '').scheme, 'mosc');
+      await vscode.commands.executeCommand('workbench.action.closeAllEditors');
+    });
+  });
+}

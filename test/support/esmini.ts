@@ -1,0 +1,67 @@
+import { spawn } from 'node:child_process';
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import { repoRoot, sharedDir } from './fixtures';
+
+/** esmini as built by `bash ../shared/esmini/build.sh .cache/esmini`. */
+export const esminiBinary = path.join(repoRoot, '.cache', 'esmini', 'bin', 'esmini');
+export const esminiRoads = path.join(sharedDir, 'esmini', 'xodr');
+
+/**
+ * Skips the calling test with a message when esmini is not built; with M2S_REQUIRE_ESMINI set, a
+ * missing esmini fails instead.
+ */
+export function requireEsmini(context: Mocha.Context): void {
+  if (fs.existsSync(esminiBinary) && fs.existsSync(esminiRoads)) return;
+  const message = `esmini is not built (${path.relative(repoRoot, esminiBinary)}) or ${esminiRoads} is absent; build it with: bash ../shared/esmini/build.sh .cache/esmini`;
+  if (process.env.M2S_REQUIRE_ESMINI) throw new Error(message);
+  console.log(`    (skipped: ${message})`);
+  context.skip();
+}
+
+/** One step of a run: simulated time and each entity's world position. */
+export interface EsminiStep {
+  time: number;
+  positions: Record<string, [number, number, number]>;
+}
+
+/**
+ * Runs a scenario headless with a fixed step and seed (runs then repeat exactly) and returns the
+ * steps up to `maxTime` seconds of simulated time. The scenario's StopTrigger should end it; a
+ * wall-clock limit kills it otherwise.
+ */
+export async function runEsmini(scenario: string, maxTime: number, wallLimitMs = 60_000): Promise<EsminiStep[]> {
+  const directory = path.dirname(scenario);
+  const csv = path.join(directory, `${path.basename(scenario, '.xosc')}.esmini.csv`);
+  fs.rmSync(csv, { force: true });
+  const args = ['--headless', '--osc', scenario, '--fixed_timestep', '0.05', '--seed', '1', '--csv_logger', csv, '--disable_log', '--path', esminiRoads];
+  const output: string[] = [];
+  const code = await new Promise<number | null>((resolve, reject) => {
+    const child = spawn(esminiBinary, args, { cwd: directory, stdio: ['ignore', 'pipe', 'pipe'] });
+    const timer = setTimeout(() => child.kill('SIGKILL'), wallLimitMs);
+    child.stdout.on('data', (chunk: Buffer) => output.push(chunk.toString()));
+    child.stderr.on('data', (chunk: Buffer) => output.push(chunk.toString()));
+    child.on('error', reject);
+    child.on('close', (status) => {
+      clearTimeout(timer);
+      resolve(status);
+    });
+  });
+  if (code !== 0 || !fs.existsSync(csv)) throw new Error(`esmini failed on ${scenario} (exit ${code}):\n${output.join('').slice(-2000)}`);
+  const lines = fs.readFileSync(csv, 'utf8').split(/\r?\n/).slice(6).filter((line) => line.trim());
+  const header = lines[0].split(',').map((cell) => cell.trim());
+  const entityColumns = header.flatMap((cell, index) => (/^#\d+ Entity_Name/.test(cell) ? [index] : []));
+  const offsetOf = (name: string) => header.findIndex((cell) => cell === `#1 ${name}`) - header.findIndex((cell) => cell === '#1 Entity_Name [-]');
+  const [x, y, z] = ['World_Position_X [m]', 'World_Position_Y [m]', 'World_Position_Z [m]'].map(offsetOf);
+  const steps: EsminiStep[] = [];
+  for (const line of lines.slice(1)) {
+    const cells = line.split(',').map((cell) => cell.trim());
+    const time = Number(cells[1]);
+    if (time > maxTime) break;
+    const positions: EsminiStep['positions'] = {};
+    for (const column of entityColumns) positions[cells[column]] = [Number(cells[column + x]), Number(cells[column + y]), Number(cells[column + z])];
+    steps.push({ time, positions });
+  }
+  fs.rmSync(csv, { force: true });
+  return steps;
+}

@@ -1,0 +1,21 @@
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import { repoRoot, sharedDir } from './fixtures';
+
+export const esminiXodrDir = path.join(sharedDir, 'esmini', 'xodr');
+export const esminiBinDir = path.join(repoRoot, '.cache', 'esmini', 'bin');
+
+/**
+ * The path of an esmini program built into the project's cache, or undefined after skipping the
+ * suite with a message. With M2S_REQUIRE_ESMINI set, a missing program fails instead of skipping.
+ */
+export function requireEsminiProgram(context: Mocha.Context, program: 'esmini' | 'odrplot' | 'dat2csv'): string {
+  const file = path.join(esminiBinDir, program);
+  if (fs.existsSync(file) && fs.existsSync(esminiXodrDir)) return file;
+  const why = !fs.existsSync(esminiXodrDir)
+    ? `${esminiXodrDir} is absent`
+    : `${file} is absent (build it with: bash ../shared/esmini/build.sh .cache/esmini)`;
+  if (process.env.M2S_REQUIRE_ESMINI) throw new Error(`M2S_REQUIRE_ESMINI is set, but ${why}`);
+  console.log(`    (skipped: ${why})`);
+  context.skip();
+}
