@@ -171,5 +171,12 @@ export async function flattenCommand(server: ServerCommandClient, reporter: Comm
   const options = commandOptions(clicked, selected, ...rest);
   const output = options.output ?? defaultFlattenOutput(target.fsPath);
   if (!(await confirmOverwrite(output, options))) return undefined;
-  return runWrite(reporter, 'Flatten to .xosc', output, (token) => server.flattenToFile(mainFileOf(target), output, token));
+  return runWrite(reporter, 'Flatten to .xosc', output, async (token) => {
+    const result = await server.flattenToFile(mainFileOf(target), output, token);
+    if (result.needsConfirmation !== 'outsideWorkspace') return result;
+    // The server writes outside the workspace only when the user agrees.
+    const write = 'Write';
+    const answer = await vscode.window.showWarningMessage(`${output} lies outside the workspace. Write the flattened scenario there?`, { modal: true }, write);
+    return answer === write ? server.flattenToFile(mainFileOf(target), output, token, true) : result;
+  });
 }

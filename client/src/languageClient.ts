@@ -48,8 +48,9 @@ export class ServerCommandClient {
   }
 
   /** Writes the flattened scenario; an existing output is replaced (the caller asked the user first). */
-  async flattenToFile(input: vscode.Uri, outputPath: string, token?: vscode.CancellationToken): Promise<WriteResult> {
-    return (await this.started()).sendRequest(FlattenToFileRequest, { uri: input.toString(), outputPath }, token);
+  /** `outsideWorkspace`: the user agreed to write outside the workspace (the server asks for that first). */
+  async flattenToFile(input: vscode.Uri, outputPath: string, token?: vscode.CancellationToken, outsideWorkspace = false): Promise<WriteResult> {
+    return (await this.started()).sendRequest(FlattenToFileRequest, { uri: input.toString(), outputPath, ...(outsideWorkspace ? { outsideWorkspace } : {}) }, token);
   }
 
   async pack(inputs: vscode.Uri[], outputPath: string, token?: vscode.CancellationToken): Promise<WriteResult> {
