@@ -63,11 +63,12 @@ if (!existsSync(library)) {
 console.log('');
 spawnSync(process.execPath, [path.join(root, 'bench', 'semantics.mjs')], { stdio: 'inherit' });
 
-const lspBench = path.join(root, 'bench', 'lsp.mjs');
-if (existsSync(lspBench)) {
+for (const name of ['lsp.mjs', 'esmini.mjs']) {
+  const bench = path.join(root, 'bench', name);
+  if (!existsSync(bench)) continue;
   console.log('');
-  const result = spawnSync(process.execPath, [lspBench], { stdio: 'inherit' });
-  process.exitCode = result.status ?? 1;
+  const result = spawnSync(process.execPath, [bench], { stdio: 'inherit' });
+  if (result.status !== 0) process.exitCode = result.status ?? 1;
 }
 
 const birdsEyeBench = path.join(root, 'bench', 'birdsEye.ts');

@@ -26,5 +26,17 @@ if [ -x scripts/e2e-setup.sh ]; then
   bash scripts/e2e-setup.sh
 fi
 
+# The simulator tests run esmini built from ../shared/esmini into .cache/esmini (idempotent: a
+# second run returns at once; parallel runs wait for each other).
+if [ -f ../shared/esmini/build.sh ]; then
+  echo "== esmini (.cache/esmini)"
+  if ! bash ../shared/esmini/build.sh .cache/esmini >/dev/null; then
+    [ -z "${M2S_REQUIRE_ESMINI:-}" ] || exit 1
+    echo "== esmini did not build: the simulator tests will say so"
+  fi
+else
+  echo "== ../shared/esmini is absent: the simulator tests will say so"
+fi
+
 echo "== tests"
 npm test

@@ -11,6 +11,7 @@ import { PACKAGE_VIEW_TYPE, PackageViewProvider } from './packageView';
 import { FlattenedPreview, PREVIEW_SCHEME, previewSource } from './preview';
 import { STRUCTURE_VIEW_ID, StructureTree } from './structureView';
 import { registerTagClosing } from './tagClosingEditor';
+import { EsminiRunner, type EsminiRunEvent } from './esminiRun';
 
 /** What the extension hands to other extensions and to its own tests. */
 export interface Modular2SimpleApi {
@@ -21,6 +22,9 @@ export interface Modular2SimpleApi {
   readonly serverCapabilities: () => ServerCapabilities | undefined;
   /** The bird's-eye view: what it shows and last drew. */
   readonly birdsEye: BirdsEyeView;
+  /** The latest Run in esmini, and an event after each (for views of its trajectories). */
+  readonly lastEsminiRun: () => EsminiRunEvent | undefined;
+  readonly onDidRunEsmini: vscode.Event<EsminiRunEvent>;
 }
 
 let languageClient: LanguageClient | undefined;
@@ -47,6 +51,9 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
       if (choice) output.show(true);
     });
   });
+
+  const esmini = new EsminiRunner(client);
+  context.subscriptions.push(esmini);
 
   const preview = new FlattenedPreview((source) => server.flattenToText(source), log);
   const structure = new StructureTree();
@@ -114,8 +121,21 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
   });
 
   const birdsEye = registerBirdsEye(context, client, log);
+  // A finished run goes straight into the picture: its trajectories beside the scenario.
+  context.subscriptions.push(
+    esmini.onDidRun((event) => {
+      if (event.result.csvFile) void vscode.commands.executeCommand('modular2simple.birdsEye.showRun', event.result.csvFile, { logText: event.result.log, scenario: event.source });
+    }),
+  );
 
-  return { serverReady, structure: () => structure.current, serverCapabilities: () => client.initializeResult?.capabilities, birdsEye };
+  return {
+    serverReady,
+    structure: () => structure.current,
+    serverCapabilities: () => client.initializeResult?.capabilities,
+    lastEsminiRun: () => esmini.last,
+    onDidRunEsmini: esmini.onDidRun,
+    birdsEye,
+  };
 }
 
 export async function deactivate(): Promise<void> {

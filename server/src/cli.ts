@@ -4,9 +4,11 @@ import { isSameFile, writeFilesAtomic } from './core/atomic';
 import { Flattener, OVERRIDE_PROBLEM_CODES } from './core/flatten';
 import { packFiles, packFolder, PackResult } from './core/pack';
 import { formatProblem, Problem, uniqueProblems } from './core/problems';
-import { childRef, DEFAULT_LIMITS, diskRef, displayRef, Limits, ScenarioStore, SourceRef, splitScenarioPath } from './core/sources';
+import { diskRef, displayRef, Limits, ScenarioStore, SourceRef, splitScenarioPath } from './core/sources';
 import { libraryStats } from './core/stats';
 import { countEditorLines } from './core/text';
+import { mainOf, storeForInputs } from './cli/inputs';
+import { RUN_HELP, runCommand } from './cli/run';
 
 /** Exit codes, as documented in the README. */
 export const ExitCode = { ok: 0, problems: 1, usage: 2, io: 3, internal: 4 } as const;
@@ -22,6 +24,7 @@ Usage:
   modular2simple pack FILE... -o OUT.mosc          pack files at the root of a package (one main.xosc)
   modular2simple check PATH... [--format json]     report every problem, as a compiler does
   modular2simple stats LIBRARY [--format json]     lines of code of a library (the paper's Table 1)
+  modular2simple run INPUT... [--check]            flatten and run in esmini; its messages on the source lines
 
 Compatible with the original tool:
   modular2simple -cxm|--convert-xosc-into-mosc IN... OUT.mosc
@@ -45,6 +48,8 @@ Options:
   -q, --quiet               print errors only
   -h, --help                this help
   -v, --version             the version
+
+${RUN_HELP}
 
 Environment:
   SCENARIO_PATH             folders searched for referenced scenarios (separated by ';' or ':')
@@ -151,24 +156,9 @@ interface Output {
 }
 
 function makeStore(options: Options, inputs: string[]): ScenarioStore {
-  const cwd = process.cwd();
-  const firstInput = inputs[0] ? path.resolve(inputs[0]) : cwd;
-  const insideCwd = firstInput === cwd || firstInput.startsWith(cwd + path.sep);
-  const inputFolder = fs.existsSync(firstInput) && fs.statSync(firstInput).isDirectory() ? firstInput : path.dirname(firstInput);
-  return new ScenarioStore({
-    scenarioPath: [...options.scenarioPath, ...splitScenarioPath(process.env.SCENARIO_PATH)],
-    root: options.root ?? (insideCwd ? cwd : inputFolder),
-    limits: options.limits,
-  });
+  return storeForInputs(options.scenarioPath, options.root, inputs, options.limits);
 }
 
-/** The main file that an input names: a package's main.xosc, a folder's main.xosc, or the file itself. */
-function mainOf(input: string): SourceRef {
-  const resolved = path.resolve(input);
-  if (fs.existsSync(resolved) && fs.statSync(resolved).isDirectory()) return diskRef(path.join(resolved, 'main.xosc'));
-  if (resolved.toLowerCase().endsWith('.mosc')) return childRef(diskRef(resolved), 'main.xosc');
-  return diskRef(resolved);
-}
 
 function checkInputExists(input: string): void {
   if (!fs.existsSync(input)) throw new InputError(`${input}: no such file or folder`);
@@ -374,6 +364,7 @@ export async function main(argv: string[], io: Output): Promise<number> {
       return ExitCode.ok;
     }
     const [command, ...rest] = argv;
+    if (command === 'run') return await runCommand(rest, io);
     const options = parseOptions(rest);
     const inputs = options.positional;
     switch (command) {

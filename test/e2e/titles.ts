@@ -19,6 +19,7 @@ export const INSIDE_TESTS = {
   birdsEye: "Show Bird's-Eye View draws the roads and the entities at their start, opens an entity's place, and follows edits",
   birdsEyeRun: "after a run, the bird's-eye view plays the trajectories and shows when the events started",
   birdsEyePackage: "the bird's-eye view shows a scenario inside a .mosc",
+  runEsmini: "Run in esmini from the CodeLens puts esmini's error on the simple scenario's line, and a clean run clears it",
 } as const;
 
 export type InsideTestKey = keyof typeof INSIDE_TESTS;

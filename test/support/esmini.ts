@@ -6,6 +6,8 @@ import { repoRoot, sharedDir } from './fixtures';
 /** esmini as built by `bash ../shared/esmini/build.sh .cache/esmini`. */
 export const esminiBinary = path.join(repoRoot, '.cache', 'esmini', 'bin', 'esmini');
 export const esminiRoads = path.join(sharedDir, 'esmini', 'xodr');
+/** The catalogs that esmini's own scenarios use, shipped with its source package. */
+export const esminiCatalogs = path.join(sharedDir, 'esmini', 'Catalogs');
 
 /**
  * Skips the calling test with a message when esmini is not built; with M2S_REQUIRE_ESMINI set, a
@@ -48,6 +50,13 @@ export async function runEsmini(scenario: string, maxTime: number, wallLimitMs =
     });
   });
   if (code !== 0 || !fs.existsSync(csv)) throw new Error(`esmini failed on ${scenario} (exit ${code}):\n${output.join('').slice(-2000)}`);
+  const steps = readEsminiCsv(csv, maxTime);
+  fs.rmSync(csv, { force: true });
+  return steps;
+}
+
+/** The steps of esmini's CSV log (`--csv_logger`) up to `maxTime` seconds of simulated time. */
+export function readEsminiCsv(csv: string, maxTime = Infinity): EsminiStep[] {
   const lines = fs.readFileSync(csv, 'utf8').split(/\r?\n/).slice(6).filter((line) => line.trim());
   const header = lines[0].split(',').map((cell) => cell.trim());
   const entityColumns = header.flatMap((cell, index) => (/^#\d+ Entity_Name/.test(cell) ? [index] : []));
@@ -62,6 +71,17 @@ export async function runEsmini(scenario: string, maxTime: number, wallLimitMs =
     for (const column of entityColumns) positions[cells[column]] = [Number(cells[column + x]), Number(cells[column + y]), Number(cells[column + z])];
     steps.push({ time, positions });
   }
-  fs.rmSync(csv, { force: true });
   return steps;
+}
+
+/** Each entity's track (time and position) from the steps of a run. */
+export function tracksOf(steps: EsminiStep[]): Map<string, { time: number; x: number; y: number }[]> {
+  const tracks = new Map<string, { time: number; x: number; y: number }[]>();
+  for (const step of steps) {
+    for (const [name, [x, y]] of Object.entries(step.positions)) {
+      if (!tracks.has(name)) tracks.set(name, []);
+      tracks.get(name)?.push({ time: step.time, x, y });
+    }
+  }
+  return tracks;
 }

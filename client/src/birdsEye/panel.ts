@@ -56,6 +56,8 @@ export class BirdsEyeView implements vscode.Disposable {
     if (this.source?.toString() !== source.toString()) {
       this.source = source;
       this.scene = undefined;
+      // A run belongs to the scenario it was made from: another scenario starts without one.
+      this.forgetRun();
     }
     if (!this.panel) this.createPanel();
     else this.panel.reveal(vscode.ViewColumn.Beside, true);
@@ -74,6 +76,15 @@ export class BirdsEyeView implements vscode.Disposable {
     this.runWatcher.onDidChange(() => void this.reloadRun());
     this.runWatcher.onDidCreate(() => void this.reloadRun());
     await this.reloadRun();
+  }
+
+  private forgetRun(): void {
+    if (!this.runSource && !this.run) return;
+    this.runSource = undefined;
+    this.run = undefined;
+    this.runWatcher?.dispose();
+    this.runWatcher = undefined;
+    this.post({ type: 'run', run: undefined });
   }
 
   private async reloadRun(): Promise<void> {

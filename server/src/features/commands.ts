@@ -39,7 +39,7 @@ function insideFolders(filePath: string, folders: string[]): boolean {
   return folders.some((folder) => filePath === folder || filePath.startsWith(folder.endsWith(path.sep) ? folder : folder + path.sep));
 }
 
-async function refOf(workspace: Workspace, uri: unknown): Promise<SourceRef> {
+export async function refOf(workspace: Workspace, uri: unknown): Promise<SourceRef> {
   if (typeof uri !== 'string') throw invalidParams('expected a document URI');
   const ref = await workspace.uris.toRef(uri);
   if (!ref) throw invalidParams(`not a scenario URI: ${uri}`);

@@ -19,6 +19,7 @@ import * as prepareRename from './prepareRename';
 import * as references from './references';
 import * as rename from './rename';
 import * as scene from './scene';
+import * as runEsmini from './runEsmini';
 import * as structure from './structure';
 import * as willRenameFiles from './willRenameFiles';
 import * as workspaceSymbol from './workspaceSymbol';
@@ -48,6 +49,7 @@ const HANDLERS: { register(context: ServerContext): void }[] = [
   pack,
   structure,
   scene,
+  runEsmini,
 ];
 
 export function registerHandlers(context: ServerContext): void {

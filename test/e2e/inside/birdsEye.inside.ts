@@ -88,14 +88,14 @@ export function defineBirdsEyeTests(): void {
     });
 
     it(INSIDE_TESTS.birdsEyePackage, async function () {
-      // The example package names a road (Town04) that is not in the workspace: the view says so and still shows the scenario.
+      // The example package names a road (Town05) that is not in the workspace: the view says so and still shows the scenario.
       const inside = packageUri('braking.mosc', 'main.xosc');
       await vscode.window.showTextDocument(inside, { preview: false });
       await vscode.commands.executeCommand('modular2simple.showBirdsEye', inside);
       const view = api().birdsEye;
       const scene = await waitFor('the scene of the package', () => (view.scene?.uri === inside.toString() ? view.scene : undefined));
       assert.equal(scene.title, 'main.xosc');
-      assert.match(scene.problems.join('\n'), /road file "Town04" not found/);
+      assert.match(scene.problems.join('\n'), /road file "Town05" not found/);
       assert.ok(scene.events.length > 0, 'the events of the package are listed');
       assert.equal(vscode.Uri.parse(scene.events[0].source?.uri ?? '').scheme, 'mosc');
       await vscode.commands.executeCommand('workbench.action.closeAllEditors');

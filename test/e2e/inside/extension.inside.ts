@@ -7,7 +7,7 @@ import JSZip from 'jszip';
 import * as vscode from 'vscode';
 import type { Modular2SimpleApi } from '../../../client/src/extension';
 import { firstDifference } from '../../../server/src/core/equivalence';
-import { FlattenToFileRequest, FlattenToTextRequest, PackRequest, StructureRequest, type StructureNode } from '../../../server/src/protocol';
+import { FlattenToFileRequest, FlattenToTextRequest, PackRequest, RunEsminiRequest, StructureRequest, type RunEsminiResult, type StructureNode } from '../../../server/src/protocol';
 import { HARNESS_ENV, INSIDE_TESTS } from '../titles';
 import { clickText, pageShows, post, pressKeys, runFromPalette, screenshot, typeText } from './harnessClient';
 
@@ -465,6 +465,54 @@ export function defineExtensionTests(): void {
       assert.match(entries.get('hard_brake.xosc') ?? '', /<ManeuverGroup name="SuddenBrake"/);
       assert.match(entries.get('main.xosc') ?? '', /maneuverGroupName="SuddenBrake"/);
       assert.match(fs.readFileSync(path.join(workspaceRoot(), 'main.xosc'), 'utf8'), /maneuverGroupName="Brake\.SuddenBrake"/);
+    });
+    it(INSIDE_TESTS.runEsmini, async function () {
+      this.timeout(120_000);
+      requireServerFeature(this, 'runEsmini', offersRequest(RunEsminiRequest));
+      // esmini as the test setup builds it beside the CLI under test, and the shared road files.
+      const repository = path.resolve(path.dirname(process.env[HARNESS_ENV.cli] ?? '.'), '..');
+      const esmini = path.join(repository, '.cache', 'esmini', 'bin', 'esmini');
+      const roads = path.resolve(repository, '..', 'shared', 'esmini', 'xodr');
+      if (!fs.existsSync(esmini) || !fs.existsSync(roads)) {
+        assert.ok(!process.env.M2S_REQUIRE_ESMINI, `M2S_REQUIRE_ESMINI is set, but ${esmini} or ${roads} is absent`);
+        console.log(`skipped: ${esmini} or ${roads} is absent`);
+        this.skip();
+      }
+      const settings = vscode.workspace.getConfiguration('modular2simple.esmini');
+      await settings.update('path', esmini, vscode.ConfigurationTarget.Workspace);
+      await settings.update('roadPath', [roads], vscode.ConfigurationTarget.Workspace);
+      await settings.update('duration', 5, vscode.ConfigurationTarget.Workspace);
+      try {
+        const simple = await open('lane_change.xosc');
+        await replaceText(simple.document, 'dynamicsShape="linear" value="3"', 'dynamicsShape="wobbly" value="3"');
+        const line = positionOf(simple.document, 'dynamicsShape="wobbly"').line;
+        const main = await open('main.xosc');
+        const lenses = await waitFor('the Run in esmini lens', async () => {
+          const found = await vscode.commands.executeCommand<vscode.CodeLens[]>('vscode.executeCodeLensProvider', main.document.uri, 100);
+          return found.find((lens) => lens.command?.command === 'modular2simple.runEsmini');
+        });
+        assert.equal(lenses.command?.title, '▶ Run in esmini');
+        const esminiDiagnostics = () => vscode.languages.getDiagnostics(simple.document.uri).filter((diagnostic) => diagnostic.source === 'esmini');
+        const broken = await vscode.commands.executeCommand<RunEsminiResult>(lenses.command?.command ?? '', ...(lenses.command?.arguments ?? []));
+        assert.equal(broken?.outcome, 'errors', broken?.message);
+        const [error] = esminiDiagnostics();
+        assert.ok(error, 'no esmini diagnostic on the simple scenario');
+        assert.equal(error.range.start.line, line);
+        assert.equal(error.severity, vscode.DiagnosticSeverity.Error);
+        assert.match(error.message, /wobbly/);
+        await screenshot('run-esmini-error');
+
+        await vscode.window.showTextDocument(simple.document);
+        await vscode.commands.executeCommand('workbench.action.files.revert');
+        const clean = await vscode.commands.executeCommand<RunEsminiResult>('modular2simple.runEsmini', main.document.uri);
+        assert.equal(clean?.outcome, 'ok', clean?.message);
+        assert.deepEqual(esminiDiagnostics(), [], 'the next run replaces the esmini diagnostics');
+        assert.ok(clean?.csvFile && fs.existsSync(clean.csvFile));
+        assert.equal(api().lastEsminiRun()?.result.csvFile, clean.csvFile);
+      } finally {
+        for (const key of ['path', 'roadPath', 'duration']) await settings.update(key, undefined, vscode.ConfigurationTarget.Workspace);
+        await revertAndClose();
+      }
     });
   });
 }

@@ -1,0 +1,119 @@
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import { parseArgs } from 'node:util';
+import { writeFileAtomic } from '../core/atomic';
+import { Flattener } from '../core/flatten';
+import { formatProblem } from '../core/problems';
+import { displayRef, splitScenarioPath } from '../core/sources';
+import { EsminiProblem } from '../esmini/messages';
+import { removeRunFolder, RUN_DEFAULTS, runScenario } from '../esmini/run';
+import { mainOf, storeForInputs } from './inputs';
+
+export const RUN_HELP = `Run in esmini (modular2simple run INPUT... [options]):
+  --duration S              simulated seconds to run at most (default ${RUN_DEFAULTS.duration}); fixed step ${RUN_DEFAULTS.timeStep} s
+  --seed N                  esmini's random seed (default ${RUN_DEFAULTS.seed})
+  --road-path DIRS          extra folders for road files and catalogs (separated by ';' or ':')
+  --esmini PATH             the esmini program, or its folder (default: esmini on PATH)
+  --check                   exit 1 when esmini reports an error (for CI over a library)
+  --csv OUT                 keep esmini's CSV log of the run (one input only)
+  --scenario-path DIRS      as for flatten
+  esmini's problems print as FILE:LINE:COL: error|warning: MESSAGE (esmini), on the source line they
+  come from. Exit codes: 0 ran (with --check: and no error), 1 errors (or not flattened), 2 usage, 3 no esmini or it failed.`;
+
+interface Output {
+  out: (text: string) => void;
+  err: (text: string) => void;
+}
+
+/** `file:line:col: severity: message (esmini)`, 1-based, as compilers print. */
+export function formatEsminiProblem(problem: EsminiProblem, base?: string): string {
+  const where = `${displayRef(problem.source, base)}:${problem.range.start.line + 1}:${problem.range.start.character + 1}`;
+  const repeats = problem.count > 1 ? ` (${problem.count} times)` : '';
+  const note = problem.note ? `\n  note: ${problem.note}` : '';
+  return `${where}: ${problem.severity}: ${problem.message} (esmini)${repeats}${note}`;
+}
+
+function usage(io: Output, message: string): number {
+  io.err(`modular2simple: ${message}\nRun 'modular2simple --help' for usage.`);
+  return 2;
+}
+
+/** Rows of esmini's CSV up to `duration`: header lines kept, later rows dropped. */
+function csvUpTo(text: string, duration: number): string {
+  const lines = text.split('\n');
+  const kept = lines.filter((line) => {
+    const time = Number(line.split(',')[1]);
+    return !/^\s*\d/.test(line) || !Number.isFinite(time) || time <= duration + 1e-9;
+  });
+  return kept.join('\n');
+}
+
+/** `modular2simple run`: flattens each input, runs it in esmini and prints esmini's problems on their source lines. */
+export async function runCommand(args: string[], io: Output): Promise<number> {
+  let parsed;
+  try {
+    parsed = parseArgs({
+      args,
+      allowPositionals: true,
+      options: {
+        duration: { type: 'string' },
+        seed: { type: 'string' },
+        'road-path': { type: 'string', multiple: true },
+        esmini: { type: 'string' },
+        check: { type: 'boolean', default: false },
+        csv: { type: 'string' },
+        'scenario-path': { type: 'string', multiple: true },
+        quiet: { type: 'boolean', short: 'q', default: false },
+      },
+    });
+  } catch (error) {
+    return usage(io, (error as Error).message);
+  }
+  const { values, positionals: inputs } = parsed;
+  if (inputs.length === 0) return usage(io, 'run needs a scenario: a .xosc, a .mosc or an unpacked folder');
+  const duration = values.duration === undefined ? RUN_DEFAULTS.duration : Number(values.duration);
+  if (!(duration > 0) || !Number.isFinite(duration)) return usage(io, `--duration takes a positive number of seconds, not '${values.duration}'`);
+  const seed = values.seed === undefined ? RUN_DEFAULTS.seed : Number(values.seed);
+  if (!Number.isInteger(seed) || seed < 0) return usage(io, `--seed takes a whole number, not '${values.seed}'`);
+  if (values.csv !== undefined && inputs.length > 1) return usage(io, '--csv takes one input');
+  for (const input of inputs) {
+    if (!fs.existsSync(input)) {
+      io.err(`modular2simple: error: ${input}: no such file or folder`);
+      return 1;
+    }
+  }
+  const roadPath = (values['road-path'] ?? []).flatMap(splitScenarioPath);
+  const flattener = new Flattener(storeForInputs((values['scenario-path'] ?? []).flatMap(splitScenarioPath), undefined, inputs));
+  let failed = false;
+  let notRun = false;
+  let errors = 0;
+  for (const input of inputs) {
+    const result = await runScenario(flattener, mainOf(input), { esminiPath: values.esmini, roadPath, duration, seed });
+    try {
+      for (const problem of result.flattenProblems) if (problem.severity === 'error' || !values.quiet) io.err(formatProblem(problem));
+      for (const problem of result.problems) if (problem.severity === 'error' || !values.quiet) io.err(formatEsminiProblem(problem));
+      if (result.outcome === 'no-esmini') {
+        io.err(`modular2simple: error: ${result.message}`);
+        return 3;
+      }
+      if (result.outcome === 'failed' || result.outcome === 'cancelled') {
+        io.err(`${input}: error: ${result.message}`);
+        if (result.log) io.err(result.log.split('\n').slice(-15).join('\n'));
+        failed = true;
+        continue;
+      }
+      if (result.outcome === 'not-flattened') notRun = true;
+      if (result.outcome === 'errors') errors++;
+      if (!values.quiet || result.outcome !== 'ok') io.err(`${input}: ${result.message}`);
+      if (values.csv !== undefined && result.csvFile) {
+        const output = path.resolve(values.csv);
+        await writeFileAtomic(output, csvUpTo(fs.readFileSync(result.csvFile, 'utf8'), duration));
+        if (!values.quiet) io.err(`wrote ${values.csv}`);
+      }
+    } finally {
+      removeRunFolder(result);
+    }
+  }
+  if (failed) return 3;
+  return notRun || (values.check && errors > 0) ? 1 : 0;
+}

@@ -1,0 +1,211 @@
+import { FlatSource, originOf } from '../core/flatten';
+import { PARAMETER_ATTRIBUTES } from '../core/model';
+import { SourceRef } from '../core/sources';
+import { Range } from '../core/text';
+import { attribute, descendants, XmlAttribute, XmlElement } from '../core/xml';
+import { EsminiLogMessage } from './log';
+
+/** An esmini message placed on the line of the source file it is about. */
+export interface EsminiProblem {
+  source: SourceRef;
+  range: Range;
+  severity: 'error' | 'warning';
+  /** esmini's own words. */
+  message: string;
+  /** Simulated time printed with it; undefined while loading. */
+  time: number | undefined;
+  /** Zero-based line of its first occurrence in the log. */
+  logLine: number;
+  /** How often esmini printed it. */
+  count: number;
+  /** False when nothing in the scenario could be matched, so it sits on the main file's first line. */
+  located: boolean;
+  /** Why it was given a different severity than esmini's, when it was. */
+  note?: string;
+}
+
+/** Where a message points in the flattened scenario: an element, and one of its attributes when known. */
+interface Target {
+  element: XmlElement;
+  attribute?: string;
+}
+
+interface MessageRule {
+  pattern: RegExp;
+  /** Every element the message can be about, in document order; the n-th message takes the n-th one. */
+  targets: (root: XmlElement, match: RegExpExecArray) => Target[];
+  severity?: 'error' | 'warning';
+  note?: string;
+}
+
+function allElements(root: XmlElement): XmlElement[] {
+  return [root, ...descendants(root)];
+}
+
+function elementsNamed(root: XmlElement, name: string): XmlElement[] {
+  return allElements(root).filter((element) => element.name === name);
+}
+
+function ancestorNamed(element: XmlElement, name: string): XmlElement | undefined {
+  for (let current = element.parent; current; current = current.parent) if (current.name === name) return current;
+  return undefined;
+}
+
+/** Messages of esmini 3.6 that name no element, with what they are about (from its ScenarioReader.cpp and OSCPrivateAction.cpp). */
+const RULES: MessageRule[] = [
+  {
+    // Printed for each Event whose StartTrigger has such a condition, in document order.
+    pattern: /simulationTime = 0 condition used with edge "(\w+)"/,
+    targets: (root, match) =>
+      elementsNamed(root, 'SimulationTimeCondition')
+        .filter((element) => Math.abs(Number(attribute(element, 'value')?.value)) < 1e-9)
+        .map((element) => ancestorNamed(element, 'Condition'))
+        .filter((condition): condition is XmlElement => Boolean(condition && attribute(condition, 'conditionEdge')?.value === match[1] && ancestorNamed(condition, 'Event')))
+        .map((condition) => ({ element: condition, attribute: 'conditionEdge' })),
+  },
+  {
+    pattern: /OpenDRIVE file (\S+)/,
+    targets: (root) => elementsNamed(root, 'LogicFile').map((element) => ({ element, attribute: 'filepath' })),
+  },
+  {
+    // ScenarioReader.cpp and RoadManager: a position on a road the road file does not have.
+    pattern: /^(?:Error: )?(?:Failed to find road|No matching road with ID|Failed to resolve road id) (\S+)/,
+    targets: (root, match) => allElements(root).filter((element) => attribute(element, 'roadId')?.value === match[1]).map((element) => ({ element, attribute: 'roadId' })),
+  },
+  {
+    // ScenarioReader.cpp, printed when Init places no entity (or its actions depend on each other).
+    pattern: /to reorder \d+ init actions/,
+    targets: (root) => elementsNamed(root, 'Init').map((element) => ({ element })),
+  },
+  {
+    // Storyboard.cpp: "Stopping object <entity> <action> on conflicting <domain> domain(s)".
+    pattern: /^Stopping object \S+ (.+) on conflicting/,
+    targets: (root, match) => elementsNamed(root, 'Action').filter((element) => attribute(element, 'name')?.value === match[1]).map((element) => ({ element, attribute: 'name' })),
+  },
+  {
+    // "cloudState is deprecated in v1.2 ...", "In Precipitation, intensity is deprecated in v1.1 ...".
+    pattern: /^(?:In (\w+), )?(\w+) is deprecated/,
+    targets: (root, match) =>
+      allElements(root).filter((element) => (!match[1] || element.name === match[1]) && attribute(element, match[2])).map((element) => ({ element, attribute: match[2] })),
+  },
+  {
+    pattern: /^Property: color format invalid/,
+    targets: (root) =>
+      elementsNamed(root, 'Property')
+        .filter((element) => attribute(element, 'name')?.value === 'color' && !/^#[0-9a-fA-F]{6}$/.test(attribute(element, 'value')?.value ?? ''))
+        .map((element) => ({ element, attribute: 'value' })),
+    // esmini skips the property and runs on; CARLA reads this "R,G,B" form, so it is no error of the scenario.
+    severity: 'warning',
+    note: 'esmini ignores the colour; CARLA accepts the "R,G,B" form',
+  },
+  {
+    pattern: /^(?:Invalid Dynamics shape: (\S+)|Dynamics shape (\S+) unexpected)/,
+    targets: (root, match) => allElements(root).filter((element) => attribute(element, 'dynamicsShape')?.value === (match[1] ?? match[2])).map((element) => ({ element, attribute: 'dynamicsShape' })),
+  },
+  {
+    pattern: /^(?:Unexpected XML element|Unsupported element type|Unexpected child element|Unsupported global action|Unsupported EnvironmentAction|Unexpected property element): (\w+)/,
+    targets: (root, match) => elementsNamed(root, match[1]).map((element) => ({ element })),
+  },
+];
+
+/** Attributes whose values name things: a message quoting such a value is about that element. */
+const NAMING_ATTRIBUTES = ['name', 'entityRef', 'storyboardElementRef', 'masterEntityRef', 'catalogName', 'entryName'];
+
+/** Targets for a message that quotes a name or a value: elements whose naming attribute, then any attribute, equals a word of it. */
+function targetsByWords(root: XmlElement, text: string): Target[] {
+  const words = [...new Set(text.split(/[\s,;:()'"{}[\]]+|\.(?=\s|$)/).filter((word) => word.length > 1 && !/^[-+]?\d+(\.\d+)?$/.test(word)))];
+  const wordSet = new Set(words);
+  // Storyboard elements first: an entity's name also appears in messages about its actions.
+  const storyboard = root.children.find((element) => element.name === 'Storyboard');
+  const elements = storyboard ? [...descendants(storyboard), root, ...descendants(root).filter((element) => element.start < storyboard.start || element.start >= storyboard.end)] : allElements(root);
+  for (const naming of NAMING_ATTRIBUTES) {
+    const found = elements.filter((element) => wordSet.has(attribute(element, naming)?.value ?? '')).map((element) => ({ element, attribute: naming }));
+    if (found.length > 0) return found;
+  }
+  // Else the first word of the message that is some attribute's value ("Invalid priority: sometimes").
+  for (const word of words) {
+    const found: Target[] = [];
+    for (const element of elements) {
+      const match = element.attributes.find((candidate: XmlAttribute) => candidate.value === word && candidate.name !== PARAMETER_ATTRIBUTES);
+      if (match) found.push({ element, attribute: match.name });
+    }
+    if (found.length > 0) return found;
+  }
+  return [];
+}
+
+/**
+ * Where the value of a flattened element's attribute was written: the ParameterReference that
+ * overrode it on the way in, else the attribute in the file the element was copied from.
+ */
+function valueOrigin(source: FlatSource, element: XmlElement, name: string | undefined): { source: FlatSource; element: XmlElement; attribute: XmlAttribute | undefined } {
+  const insertion = source.model !== source.original ? source.insertions.find((candidate) => element.start >= candidate.start && element.end <= candidate.end) : undefined;
+  const copy = insertion ? source.model?.groups.find((group) => group.element.start === insertion.start)?.element : undefined;
+  const original = insertion?.group.target?.element;
+  const counterpart = copy && original ? [original, ...descendants(original)][[copy, ...descendants(copy)].indexOf(element)] : undefined;
+  if (!insertion?.link.source || !counterpart || name === undefined) {
+    const origin = originOf(source, element);
+    return { ...origin, attribute: name === undefined ? undefined : attribute(origin.element, name) };
+  }
+  for (const [target, parameter] of insertion.group.plan?.applied ?? []) {
+    if (target.element === counterpart && target.attributeName === name) return { source, element: parameter.element, attribute: parameter.valueAttribute };
+  }
+  return valueOrigin(insertion.link.source, counterpart, name);
+}
+
+function rangeOf(source: FlatSource, target: Target): { source: SourceRef; range: Range } | undefined {
+  const origin = valueOrigin(source, target.element, target.attribute);
+  const model = origin.source.original ?? origin.source.model;
+  if (!model) return undefined;
+  // An attribute added by flattening (no such attribute in the source) falls back to the tag.
+  const [start, end] = origin.attribute ? [origin.attribute.valueStart, origin.attribute.valueEnd] : [origin.element.start + 1, origin.element.nameEnd];
+  if (end > model.document.text.length) return undefined;
+  return { source: origin.source.ref, range: model.document.lines.range(start, end) };
+}
+
+/**
+ * Places esmini's messages on the source lines they come from: the flattened element they are
+ * about (by a rule for messages that name nothing, else by a name or value they quote), followed
+ * back through the flattener's provenance. Repeats of one message are counted once per place.
+ */
+export function mapEsminiMessages(messages: EsminiLogMessage[], source: FlatSource, main: SourceRef): EsminiProblem[] {
+  const root = (source.model ?? source.original)?.document.root;
+  const seenText = new Map<string, number>();
+  const problems = new Map<string, EsminiProblem>();
+  for (const message of messages) {
+    const occurrence = seenText.get(message.text) ?? 0;
+    seenText.set(message.text, occurrence + 1);
+    let targets: Target[] = [];
+    let rule: MessageRule | undefined;
+    if (root) {
+      for (const candidate of RULES) {
+        const match = candidate.pattern.exec(message.text);
+        if (match) {
+          rule = candidate;
+          targets = candidate.targets(root, match);
+          break;
+        }
+      }
+      if (targets.length === 0) targets = targetsByWords(root, message.text);
+    }
+    const target = targets.length > 0 ? targets[Math.min(occurrence, targets.length - 1)] : undefined;
+    const place = target ? rangeOf(source, target) : undefined;
+    const severity = rule?.severity ?? (message.level === 'error' ? 'error' : 'warning');
+    const problem: EsminiProblem = {
+      source: place?.source ?? main,
+      range: place?.range ?? { start: { line: 0, character: 0 }, end: { line: 0, character: 0 } },
+      severity,
+      message: message.text,
+      time: message.time,
+      logLine: message.logLine,
+      count: 1,
+      located: place !== undefined,
+      ...(rule?.note ? { note: rule.note } : {}),
+    };
+    const key = `${problem.source.disk}|${problem.source.entries.join('/')}|${problem.range.start.line}|${problem.range.start.character}|${problem.message}`;
+    const known = problems.get(key);
+    if (known) known.count++;
+    else problems.set(key, problem);
+  }
+  return [...problems.values()];
+}

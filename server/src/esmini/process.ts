@@ -1,0 +1,183 @@
+import { spawn } from 'node:child_process';
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+
+/** How a run of esmini ended. */
+export type EsminiEnd =
+  /** It ended by itself: a StopTrigger (the scenario's or the added time limit) fired, or it quit on an error. */
+  | 'exited'
+  /** SIGINT after its CSV passed the time limit or the size limit (a clean quit in esmini). */
+  | 'interrupted'
+  /** SIGKILL after the wall-clock limit, or when it ignored SIGINT. */
+  | 'killed'
+  /** It could not be started. */
+  | 'not-started'
+  /** The caller cancelled the run. */
+  | 'cancelled';
+
+export interface EsminiProcessOptions {
+  program: string;
+  /** The scenario handed to esmini (absolute). */
+  scenarioFile: string;
+  /** Where esmini runs and writes; its files are relative to nothing else. */
+  workDir: string;
+  csvFile: string;
+  /** `--path` folders, searched in order for roads and catalogs. */
+  searchPath: string[];
+  timeStep: number;
+  seed: number;
+  /** Simulated seconds after which the run is stopped by SIGINT if it has not stopped itself. */
+  duration: number;
+  /** Wall-clock backstop in milliseconds, then SIGKILL. */
+  wallTimeoutMs: number;
+  /** SIGINT when the CSV grows beyond this many bytes. */
+  maxCsvBytes: number;
+  /** Output kept in memory beyond this many characters is dropped (counted in `droppedOutput`). */
+  maxOutputChars: number;
+  onOutput?: (text: string) => void;
+  cancel?: AbortSignal;
+}
+
+export interface EsminiProcessResult {
+  args: string[];
+  end: EsminiEnd;
+  exitCode: number | null;
+  signal: string | null;
+  /** esmini's stdout and stderr as they came; beyond maxOutputChars, its head and tail. */
+  output: string;
+  droppedOutput: number;
+  wallMs: number;
+  /** Why the process was stopped from outside, or why it did not start. */
+  reason?: string;
+}
+
+export function esminiArguments(options: Pick<EsminiProcessOptions, 'scenarioFile' | 'csvFile' | 'searchPath' | 'timeStep' | 'seed'>): string[] {
+  const args = ['--headless', '--osc', options.scenarioFile, '--fixed_timestep', String(options.timeStep), '--seed', String(options.seed), '--csv_logger', options.csvFile, '--disable_log'];
+  for (const folder of options.searchPath) args.push('--path', folder);
+  return args;
+}
+
+/** The TimeStamp of the last complete row of esmini's CSV (its second column), read from the file's tail. */
+export function lastCsvTime(csvFile: string): number | undefined {
+  let handle: number | undefined;
+  try {
+    handle = fs.openSync(csvFile, 'r');
+    const size = fs.fstatSync(handle).size;
+    const length = Math.min(size, 16384);
+    const buffer = Buffer.alloc(length);
+    fs.readSync(handle, buffer, 0, length, size - length);
+    const lines = buffer.toString('latin1').split('\n');
+    lines.pop(); // an incomplete last line, or the empty string after the final newline
+    for (let i = lines.length - 1; i >= 0; i--) {
+      const time = Number(lines[i].split(',')[1]);
+      if (Number.isFinite(time) && /^\s*\d/.test(lines[i])) return time;
+    }
+    return undefined;
+  } catch {
+    return undefined;
+  } finally {
+    if (handle !== undefined) fs.closeSync(handle);
+  }
+}
+
+const POLL_MS = 25;
+const GRACE_AFTER_SIGINT_MS = 5000;
+
+/** Runs esmini once, following its CSV so that it never runs past the limits. Never throws. */
+export function runEsminiProcess(options: EsminiProcessOptions): Promise<EsminiProcessResult> {
+  const args = esminiArguments(options);
+  const started = Date.now();
+  return new Promise((resolve) => {
+    let output = '';
+    let droppedOutput = 0;
+    let reason: string | undefined;
+    let end: EsminiEnd = 'exited';
+    let settled = false;
+    const timers: NodeJS.Timeout[] = [];
+    const finish = (result: Omit<EsminiProcessResult, 'args' | 'output' | 'droppedOutput' | 'wallMs'>) => {
+      if (settled) return;
+      settled = true;
+      for (const timer of timers) clearTimeout(timer);
+      clearInterval(poll);
+      options.cancel?.removeEventListener('abort', onCancel);
+      resolve({ args, output: fullOutput(), droppedOutput, wallMs: Date.now() - started, ...result });
+    };
+    const child = spawn(options.program, args, { cwd: options.workDir, stdio: ['ignore', 'pipe', 'pipe'] });
+    // Past the limit the middle goes: the head has the loading messages, the tail how it ended.
+    const half = Math.floor(options.maxOutputChars / 2);
+    let tail = '';
+    const collect = (chunk: Buffer) => {
+      const text = chunk.toString('utf8');
+      options.onOutput?.(text);
+      if (output.length + text.length <= half) {
+        output += text;
+        return;
+      }
+      const room = Math.max(0, half - output.length);
+      output += text.slice(0, room);
+      tail += text.slice(room);
+      if (tail.length > 2 * half) {
+        droppedOutput += tail.length - half;
+        tail = tail.slice(tail.length - half);
+      }
+    };
+    const fullOutput = () => {
+      if (tail.length > half) {
+        droppedOutput += tail.length - half;
+        tail = tail.slice(tail.length - half);
+      }
+      return droppedOutput > 0 ? `${output}\n(${droppedOutput} characters of output left out here)\n${tail.slice(tail.indexOf('\n') + 1)}` : output + tail;
+    };
+    child.stdout.on('data', collect);
+    child.stderr.on('data', collect);
+    const interrupt = (why: string) => {
+      if (end !== 'exited') return;
+      end = 'interrupted';
+      reason = why;
+      child.kill('SIGINT');
+      timers.push(
+        setTimeout(() => {
+          end = 'killed';
+          reason = `${why}; it did not quit within ${GRACE_AFTER_SIGINT_MS / 1000} s of SIGINT`;
+          child.kill('SIGKILL');
+        }, GRACE_AFTER_SIGINT_MS),
+      );
+    };
+    const onCancel = () => {
+      end = 'cancelled';
+      reason = 'cancelled';
+      child.kill('SIGKILL');
+    };
+    options.cancel?.addEventListener('abort', onCancel);
+    if (options.cancel?.aborted) onCancel();
+    timers.push(
+      setTimeout(() => {
+        if (end === 'exited' || end === 'interrupted') {
+          end = 'killed';
+          reason = `still running after ${options.wallTimeoutMs / 1000} s of wall-clock time`;
+          child.kill('SIGKILL');
+        }
+      }, options.wallTimeoutMs),
+    );
+    const poll = setInterval(() => {
+      let size = 0;
+      try {
+        size = fs.statSync(options.csvFile).size;
+      } catch {
+        return;
+      }
+      if (size > options.maxCsvBytes) interrupt(`its CSV passed ${Math.round(options.maxCsvBytes / 1e6)} MB`);
+      const time = lastCsvTime(options.csvFile);
+      // One step of slack: the added StopTrigger ends it at the first step past the limit by itself.
+      if (time !== undefined && time > options.duration + 2 * options.timeStep) interrupt(`its simulated time passed the ${options.duration} s limit`);
+    }, POLL_MS);
+    child.on('error', (error) => finish({ end: 'not-started', exitCode: null, signal: null, reason: `cannot start ${options.program}: ${error.message}` }));
+    child.on('close', (exitCode, signal) => finish({ end, exitCode, signal, reason }));
+  });
+}
+
+/** A private folder for one run, outside every user folder. */
+export function makeRunFolder(parent: string, prefix = 'esmini-run-'): string {
+  fs.mkdirSync(parent, { recursive: true });
+  return fs.mkdtempSync(path.join(parent, prefix));
+}

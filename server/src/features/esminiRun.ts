@@ -1,0 +1,79 @@
+import type { CancellationToken } from 'vscode-languageserver/node';
+import { Flattener } from '../core/flatten';
+import { refId } from '../core/sources';
+import { EsminiRunResult, removeRunFolder, runScenario } from '../esmini/run';
+import { RunEsminiParams, RunEsminiResult } from '../protocol';
+import { Workspace } from '../workspace';
+import { refOf, summarize } from './commands';
+
+function stringList(value: unknown): string[] {
+  return Array.isArray(value) ? value.filter((item): item is string => typeof item === 'string' && item.trim().length > 0) : [];
+}
+
+/** Run folders still on disk, of every server in this process; removed at exit (one listener for all). */
+const liveRuns = new Set<EsminiRunResult>();
+let exitListener = false;
+
+/**
+ * Run in esmini for one server: flattens the file as the editor has it and runs it. The files of a
+ * file's previous run are removed when it runs again, and all of them when the process exits.
+ */
+export class EsminiRuns {
+  private readonly previous = new Map<string, EsminiRunResult>();
+
+  constructor(private readonly workspace: Workspace) {
+    if (!exitListener) {
+      exitListener = true;
+      process.on('exit', () => liveRuns.forEach(removeRunFolder));
+    }
+  }
+
+  async run(params: RunEsminiParams, token?: CancellationToken): Promise<RunEsminiResult> {
+    const workspace = this.workspace;
+    const ref = await refOf(workspace, params?.uri);
+    const duration = typeof params.duration === 'number' && params.duration > 0 && Number.isFinite(params.duration) ? params.duration : undefined;
+    const cancel = new AbortController();
+    token?.onCancellationRequested(() => cancel.abort());
+    const result = await runScenario(new Flattener(workspace.store), ref, {
+      esminiPath: typeof params.esminiPath === 'string' ? params.esminiPath : undefined,
+      roadPath: stringList(params.roadPath),
+      base: workspace.folders[0],
+      duration,
+      cancel: cancel.signal,
+    });
+    const id = refId(ref);
+    const earlier = this.previous.get(id);
+    if (earlier) {
+      removeRunFolder(earlier);
+      liveRuns.delete(earlier);
+    }
+    this.previous.set(id, result);
+    liveRuns.add(result);
+    return {
+      outcome: result.outcome,
+      message: result.message,
+      uri: workspace.uriOf(ref),
+      problems: result.problems.map((problem) => ({
+        uri: workspace.uriOf(problem.source),
+        range: problem.range,
+        severity: problem.severity,
+        message: problem.message,
+        count: problem.count,
+        ...(problem.time !== undefined ? { time: problem.time } : {}),
+        located: problem.located,
+        ...(problem.note ? { note: problem.note } : {}),
+      })),
+      flattenProblems: result.flattenProblems.map((problem) => summarize(workspace, problem)),
+      log: result.log,
+      csvFile: result.csvFile,
+      scenarioFile: result.scenarioFile,
+      duration: result.duration,
+      timeStep: result.timeStep,
+      seed: result.seed,
+      simulatedTime: result.simulatedTime,
+      wallMs: result.wallMs,
+      esmini: result.esmini,
+      args: result.args,
+    };
+  }
+}

@@ -1,0 +1,76 @@
+import * as assert from 'node:assert/strict';
+import * as fs from 'node:fs';
+import * as os from 'node:os';
+import * as path from 'node:path';
+import { esminiBinary, requireEsmini, esminiRoads } from '../support/esmini';
+import { libraryDir, listFiles, repoRoot, requireCorpus, runCli } from '../support/fixtures';
+
+function examplesWith(from?: string, to?: string): string {
+  const root = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-run-'));
+  fs.cpSync(path.join(repoRoot, 'examples'), root, { recursive: true });
+  if (from !== undefined && to !== undefined) {
+    const file = path.join(root, 'lane_change.xosc');
+    fs.writeFileSync(file, fs.readFileSync(file, 'utf8').replace(from, to));
+  }
+  return root;
+}
+
+describe('cli: run in esmini', function () {
+  this.timeout(120_000);
+
+  it('wrong usage exits 2; a missing esmini exits 3 and says how to get it', () => {
+    assert.equal(runCli(['run']).status, 2);
+    assert.match(runCli(['run', 'examples', '--duration', 'soon']).stderr, /--duration takes a positive number/);
+    assert.equal(runCli(['run', 'examples', '--bogus']).status, 2);
+    const missing = runCli(['run', 'examples', '--esmini', path.join(os.tmpdir(), 'no-such-esmini')], { cwd: repoRoot });
+    assert.equal(missing.status, 3);
+    assert.match(missing.stderr, /esmini is not at .*build\.sh \.cache\/esmini/s);
+    const noPath = runCli(['run', 'examples'], { cwd: repoRoot, env: { PATH: '' } });
+    assert.equal(noPath.status, 3);
+    assert.match(noPath.stderr, /esmini was not found/);
+  });
+
+  it('run --check: 0 for the examples, with the CSV kept where asked; nothing written beside the sources', function () {
+    requireEsmini(this);
+    const root = examplesWith();
+    const out = path.join(fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-run-out-')), 'run.csv');
+    const before = listFiles(root);
+    const run = runCli(['run', '.', '--check', '--duration', '4', '--road-path', esminiRoads, '--esmini', esminiBinary, '--csv', out], { cwd: root });
+    assert.equal(run.status, 0, run.stderr);
+    assert.match(run.stderr, /esmini: 0 errors, \d+ warnings?; 4\.00 s simulated/);
+    assert.deepEqual(listFiles(root), before);
+    const rows = fs.readFileSync(out, 'utf8').trim().split('\n').slice(7);
+    assert.equal(Number(rows[rows.length - 1].split(',')[1]), 4);
+  });
+
+  it("run --check: 1 for esmini's error, printed on the simple scenario's line", function () {
+    requireEsmini(this);
+    const root = examplesWith('dynamicsShape="linear" value="3"', 'dynamicsShape="wobbly" value="3"');
+    const line = fs.readFileSync(path.join(root, 'lane_change.xosc'), 'utf8').split('\n').findIndex((text) => text.includes('wobbly')) + 1;
+    const args = ['run', 'main.xosc', '--duration', '2', '--road-path', esminiRoads, '--esmini', esminiBinary];
+    const checked = runCli([...args, '--check'], { cwd: root });
+    assert.equal(checked.status, 1, checked.stderr);
+    assert.match(checked.stderr, new RegExp(`^lane_change\\.xosc:${line}:\\d+: error: Dynamics shape wobbly unexpected.* \\(esmini\\)$`, 'm'));
+    assert.equal(runCli(args, { cwd: root }).status, 0, 'without --check a run with esmini errors still exits 0');
+  });
+
+  it('a scenario that cannot be flattened is not run and exits 1', function () {
+    requireEsmini(this);
+    const root = examplesWith();
+    const main = path.join(root, 'main.xosc');
+    fs.writeFileSync(main, fs.readFileSync(main, 'utf8').replace('maneuverGroupName="CutIn"', 'maneuverGroupName="CutOut"'));
+    const run = runCli(['run', 'main.xosc', '--esmini', esminiBinary], { cwd: root });
+    assert.equal(run.status, 1);
+    assert.match(run.stderr, /has no ManeuverGroup named 'CutOut'/);
+    assert.match(run.stderr, /cannot be flattened; nothing was run/);
+  });
+
+  it('run --check over the whole library (every main.xosc) exits 0', function () {
+    requireCorpus(this);
+    requireEsmini(this);
+    const mains = fs.readdirSync(libraryDir).filter((name) => name.startsWith('modular_')).map((name) => path.join(libraryDir, name, 'main.xosc'));
+    const run = runCli(['run', ...mains, '--check', '-q', '--duration', '1', '--road-path', esminiRoads, '--esmini', esminiBinary], { env: { SCENARIO_PATH: libraryDir } });
+    assert.equal(run.status, 0, run.stderr);
+    assert.equal(run.stderr, '', 'quiet: errors only');
+  });
+});

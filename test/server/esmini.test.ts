@@ -1,0 +1,309 @@
+import * as assert from 'node:assert/strict';
+import * as fs from 'node:fs';
+import * as os from 'node:os';
+import * as path from 'node:path';
+import { Flattener } from '../../server/src/core/flatten';
+import { childRef, diskRef, ScenarioStore } from '../../server/src/core/sources';
+import { parseEsminiLog } from '../../server/src/esmini/log';
+import { locateEsmini } from '../../server/src/esmini/locate';
+import { mapEsminiMessages } from '../../server/src/esmini/messages';
+import { lastCsvTime, makeRunFolder, runEsminiProcess } from '../../server/src/esmini/process';
+import { EsminiRunOptions, EsminiRunResult, removeRunFolder, runScenario } from '../../server/src/esmini/run';
+import { TIME_LIMIT_CONDITION, withTimeLimit } from '../../server/src/esmini/timeLimit';
+import { parseXml } from '../../server/src/core/xml';
+import { esminiBinary, tracksOf, readEsminiCsv, requireEsmini, esminiCatalogs, esminiRoads } from '../support/esmini';
+import { libraryDir, listFiles, repoRoot, requireCorpus } from '../support/fixtures';
+
+const examples = path.join(repoRoot, 'examples');
+
+/** A copy of the bundled examples in a fresh folder, with `edit` applied to one file's text. */
+function examplesCopy(edit?: { file: string; from: string; to: string }): string {
+  const root = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-esmini-'));
+  fs.cpSync(examples, root, { recursive: true });
+  if (edit) {
+    const file = path.join(root, edit.file);
+    const text = fs.readFileSync(file, 'utf8');
+    assert.ok(text.includes(edit.from), `${edit.file} holds ${edit.from}`);
+    fs.writeFileSync(file, text.replace(edit.from, edit.to));
+  }
+  return root;
+}
+
+function lineOf(file: string, line: number): string {
+  return fs.readFileSync(file, 'utf8').split(/\r?\n/)[line];
+}
+
+const results: EsminiRunResult[] = [];
+async function run(store: ScenarioStore, main: string, options: EsminiRunOptions = {}): Promise<EsminiRunResult> {
+  const result = await runScenario(new Flattener(store), diskRef(main), { esminiPath: esminiBinary, roadPath: [esminiRoads], ...options });
+  results.push(result);
+  return result;
+}
+
+const errorsOf = (result: EsminiRunResult) => result.problems.filter((problem) => problem.severity === 'error');
+
+describe('esmini: time limit and log (no simulator needed)', () => {
+  it('adds the time limit to the StopTrigger as an OR, keeping every element before it in place', () => {
+    const text = fs.readFileSync(path.join(examples, 'lane_change.xosc'), 'utf8');
+    const limited = withTimeLimit(text, 12.5) as string;
+    const stop = parseXml(limited).root?.children.find((child) => child.name === 'Storyboard')?.children.find((child) => child.name === 'StopTrigger');
+    assert.ok(stop);
+    assert.match(limited.slice(stop.start, stop.end), new RegExp(`name="${TIME_LIMIT_CONDITION}".*<SimulationTimeCondition value="12.5" rule="greaterThan"/>`));
+    assert.equal(limited.slice(0, stop.start), text.slice(0, stop.start));
+    const withOwnStop = text.replace('<StopTrigger/>', '<StopTrigger><ConditionGroup><Condition name="own"/></ConditionGroup></StopTrigger>');
+    assert.match(withTimeLimit(withOwnStop, 3) as string, /<Condition name="own"\/><\/ConditionGroup><ConditionGroup><Condition name="modular2simple_time_limit"/);
+    assert.match(withTimeLimit(text.replace('<StopTrigger/>', ''), 3) as string, /<StopTrigger><ConditionGroup>.*<\/StopTrigger>\s*<\/Storyboard>/s);
+    assert.equal(withTimeLimit('<OpenSCENARIO/>', 3), undefined);
+  });
+
+  it('reads the last complete CSV row, ignoring a row being written', () => {
+    const folder = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-csv-'));
+    const csv = path.join(folder, 'a.csv');
+    fs.writeFileSync(csv, 'esmini GIT REV: x\nIndex [-], TimeStamp [s], #1 Entity_Name [-]\n0, 0.000000, ego\n1, 0.050000, ego\n2, 0.1');
+    assert.equal(lastCsvTime(csv), 0.05);
+    assert.equal(lastCsvTime(path.join(folder, 'missing.csv')), undefined);
+  });
+
+  it('keeps [error] and [warn] lines, drops the harmless ones, and joins a fatal error with its exception', () => {
+    const messages = parseEsminiLog(
+      [
+        '[] [info] Loaded x.xosc',
+        '[] [warn] 3D model car_white.osgb not located, using specified file path',
+        '[] [warn] Unsupported geo reference attr: +no_defs',
+        '[] [error] Property: color format invalid, shall be #RRGGBB, skipping',
+        '[2.600] [warn] Stopping object walker Walk on conflicting Longitudinal domain(s)',
+        '[] [error] Exception: [] [error] Failed to locate OpenDRIVE file Town04',
+      ].join('\n'),
+    );
+    assert.deepEqual(
+      messages.map((message) => [message.level, message.time, message.text]),
+      [
+        ['error', undefined, 'Property: color format invalid, shall be #RRGGBB, skipping'],
+        ['warn', 2.6, 'Stopping object walker Walk on conflicting Longitudinal domain(s)'],
+        ['error', undefined, 'Failed to locate OpenDRIVE file Town04'],
+      ],
+    );
+  });
+
+  it('maps messages that name nothing, a name or a value to the source line they come from', async () => {
+    const store = new ScenarioStore({ root: examples });
+    const main = diskRef(path.join(examples, 'main.xosc'));
+    const flat = await new Flattener(store).flatten(main);
+    const log = [
+      '[] [error] Exception: Dynamics shape sinusoidal unexpected. Supported: linear',
+      '[2.600] [warn] Stopping object walker Walk on conflicting Longitudinal domain(s)',
+      '[] [error] Failed to locate OpenDRIVE file Town05',
+      '[] [warn] Something esmini says about nothing here',
+    ].join('\n');
+    const problems = mapEsminiMessages(parseEsminiLog(log), flat.source, main);
+    const at = (index: number) => [path.basename(problems[index].source.disk), lineOf(problems[index].source.disk, problems[index].range.start.line).trim()];
+    assert.deepEqual(at(0), ['lane_change.xosc', '<LaneChangeActionDynamics parameterAttributes="value, dynamicsShape" dynamicsShape="sinusoidal" value="2" dynamicsDimension="time"/>']);
+    assert.deepEqual(at(1), ['crossing.xosc', '<Action name="Walk">']);
+    assert.deepEqual(at(2), ['main.xosc', '<LogicFile filepath="Town05"/>']);
+    assert.deepEqual([problems[3].located, problems[3].range.start.line, path.basename(problems[3].source.disk)], [false, 0, 'main.xosc']);
+  });
+
+  it('maps a value that an override set to the ParameterReference that set it, through a package too', async () => {
+    const root = examplesCopy({ file: 'main.xosc', from: '<ParameterReference key="LaneChangeActionDynamics.value" value="1.5"/>', to: '<ParameterReference key="LaneChangeActionDynamics.value" value="1.5"/>\n              <ParameterReference key="LaneChangeActionDynamics.dynamicsShape" value="jerky"/>' });
+    const main = diskRef(path.join(root, 'main.xosc'));
+    const flat = await new Flattener(new ScenarioStore({ root })).flatten(main);
+    assert.ok(flat.text, JSON.stringify(flat.problems));
+    const [problem] = mapEsminiMessages(parseEsminiLog('[] [error] Exception: Dynamics shape jerky unexpected. Supported: linear'), flat.source, main);
+    assert.equal(problem.source.disk, main.disk);
+    assert.match(lineOf(main.disk, problem.range.start.line), /key="LaneChangeActionDynamics.dynamicsShape" value="jerky"/);
+    // A name, through two levels of packages: the event in the simple scenario inside braking.mosc.
+    const [inPackage] = mapEsminiMessages(parseEsminiLog('[1.000] [warn] Event Brake already running, trigger ignored'), flat.source, main);
+    assert.deepEqual([path.basename(inPackage.source.disk), ...inPackage.source.entries], ['braking.mosc', 'hard_brake.xosc']);
+  });
+
+  it('tells how to get esmini when it is missing, and runs nothing', async () => {
+    const location = locateEsmini(undefined, process.cwd(), '');
+    assert.equal(location.found, false);
+    assert.match((location as { message: string }).message, /modular2simple\.esmini\.path.*build\.sh \.cache\/esmini/s);
+    const configured = locateEsmini('no/such/esmini', os.tmpdir());
+    assert.match((configured as { message: string }).message, /esmini is not at .*no\/such\/esmini/);
+    const result = await runScenario(new Flattener(new ScenarioStore({ root: examples })), diskRef(path.join(examples, 'main.xosc')), { esminiPath: path.join(os.tmpdir(), 'no-such-esmini') });
+    assert.equal(result.outcome, 'no-esmini');
+    assert.equal(result.runFolder, undefined);
+  });
+});
+
+describe('esmini: runs (the simulator built by the test setup)', function () {
+  this.timeout(180_000);
+  after(() => results.forEach(removeRunFolder));
+
+  it('runs the bundled examples with no error, and their vehicles move', async function () {
+    requireEsmini(this);
+    const root = examplesCopy();
+    const before = listFiles(root);
+    const result = await run(new ScenarioStore({ root }), path.join(root, 'main.xosc'), { duration: 20 });
+    assert.equal(result.outcome, 'ok', `${result.message}\n${result.log.slice(-3000)}`);
+    assert.deepEqual(errorsOf(result), []);
+    assert.equal(result.simulatedTime, 20);
+    assert.ok(result.csvFile && result.scenarioFile);
+    assert.ok(!result.scenarioFile.startsWith(root), 'the flattened file is written in a private folder, not beside the sources');
+    assert.deepEqual(listFiles(root), before, 'nothing written beside the sources');
+    const tracks = tracksOf(readEsminiCsv(result.csvFile));
+    assert.deepEqual([...tracks.keys()].sort(), ['adversary', 'ego', 'lead', 'walker']);
+    for (const name of ['ego', 'adversary', 'lead', 'walker']) {
+      const track = tracks.get(name) ?? [];
+      const first = track[0];
+      const moved = Math.max(...track.map((point) => Math.hypot(point.x - first.x, point.y - first.y)));
+      assert.ok(moved > 5, `${name} moved ${moved.toFixed(1)} m`);
+    }
+    assert.ok(Math.max(...(tracks.get('ego') ?? []).map((point) => point.time)) <= 20 + 0.05 + 1e-9, 'stopped at the limit');
+    // The lead brakes at 10 s, as main.xosc overrides.
+    const lead = tracks.get('lead') ?? [];
+    const speedBetween = (from: number, to: number) => {
+      const [a, b] = [lead.find((point) => point.time >= from), lead.find((point) => point.time >= to)];
+      return a && b ? Math.hypot(b.x - a.x, b.y - a.y) / (b.time - a.time) : NaN;
+    };
+    assert.ok(speedBetween(5, 9) > 9 && speedBetween(17, 19) < 0.1, `lead: ${speedBetween(5, 9)} m/s, then ${speedBetween(17, 19)} m/s`);
+  });
+
+  it('runs every bundled example on its own (simple scenarios and packages too) with no error, and something moves', async function () {
+    requireEsmini(this);
+    const store = new ScenarioStore({ root: examples });
+    for (const [file, main] of [
+      ['lane_change.xosc', diskRef(path.join(examples, 'lane_change.xosc'))],
+      ['crossing.xosc', diskRef(path.join(examples, 'crossing.xosc'))],
+      ['pedestrian/main.xosc', diskRef(path.join(examples, 'pedestrian', 'main.xosc'))],
+      ['braking.mosc', childRef(diskRef(path.join(examples, 'braking.mosc')), 'main.xosc')],
+    ] as const) {
+      const result = await runScenario(new Flattener(store), main, { esminiPath: esminiBinary, roadPath: [esminiRoads], duration: 10 });
+      results.push(result);
+      assert.equal(result.outcome, 'ok', `${file}: ${result.message}`);
+      assert.deepEqual(errorsOf(result), [], file);
+      const moved = [...tracksOf(readEsminiCsv(result.csvFile as string)).values()].map((track) => Math.hypot(track[track.length - 1].x - track[0].x, track[track.length - 1].y - track[0].y));
+      assert.ok(Math.max(...moved) > 5, `${file}: moved ${moved.map((distance) => distance.toFixed(1)).join(', ')} m`);
+    }
+  });
+
+  it('follows the CSV and interrupts a scenario past the limit when nothing else stops it (SIGINT, a clean quit)', async function () {
+    requireEsmini(this);
+    const flat = await new Flattener(new ScenarioStore({ root: examples })).flatten(diskRef(path.join(examples, 'main.xosc')));
+    const folder = makeRunFolder(os.tmpdir(), 'm2s-sigint-');
+    const scenarioFile = path.join(folder, 'scenario.xosc');
+    fs.writeFileSync(scenarioFile, flat.text as string);
+    const csvFile = path.join(folder, 'run.csv');
+    const result = await runEsminiProcess({
+      program: esminiBinary,
+      scenarioFile,
+      workDir: folder,
+      csvFile,
+      searchPath: [examples, esminiRoads],
+      timeStep: 0.05,
+      seed: 1,
+      duration: 2,
+      wallTimeoutMs: 60_000,
+      maxCsvBytes: 200e6,
+      maxOutputChars: 1e6,
+    });
+    const last = lastCsvTime(csvFile) as number;
+    fs.rmSync(folder, { recursive: true, force: true });
+    assert.equal(result.end, 'interrupted', result.reason);
+    assert.equal(result.exitCode, 0, 'SIGINT is a clean quit for esmini');
+    assert.match(result.reason ?? '', /passed the 2 s limit/);
+    assert.ok(last > 2 && last < 3600, `stopped at ${last} s, past the limit and long before esmini's own hour`);
+  });
+
+  it('repeats exactly with the same step and seed', async function () {
+    requireEsmini(this);
+    const store = new ScenarioStore({ root: examples });
+    const [a, b] = [await run(store, path.join(examples, 'main.xosc'), { duration: 5 }), await run(store, path.join(examples, 'main.xosc'), { duration: 5 })];
+    const rows = (result: EsminiRunResult) => fs.readFileSync(result.csvFile as string, 'utf8').split('\n').slice(6).join('\n');
+    assert.equal(rows(a), rows(b));
+  });
+
+  it("shows esmini's message on the line of the simple scenario that has the mistake", async function () {
+    requireEsmini(this);
+    const root = examplesCopy({ file: 'lane_change.xosc', from: 'dynamicsShape="linear" value="3"', to: 'dynamicsShape="wobbly" value="3"' });
+    const result = await run(new ScenarioStore({ root }), path.join(root, 'main.xosc'), { duration: 5 });
+    assert.equal(result.outcome, 'errors');
+    const [error] = errorsOf(result);
+    assert.ok(error, result.log);
+    assert.equal(error.source.disk, path.join(root, 'lane_change.xosc'));
+    assert.match(lineOf(error.source.disk, error.range.start.line), /<SpeedActionDynamics dynamicsShape="wobbly"/);
+    assert.match(error.message, /wobbly/);
+  });
+
+  it('runs the unsaved text: an editor overlay with a mistake is what esmini gets', async function () {
+    requireEsmini(this);
+    const root = examplesCopy();
+    const store = new ScenarioStore({ root });
+    const simple = diskRef(path.join(root, 'lane_change.xosc'));
+    store.setOverlay(simple, fs.readFileSync(simple.disk, 'utf8').replace('dynamicsShape="sinusoidal"', 'dynamicsShape="bumpy"'));
+    const result = await run(store, path.join(root, 'main.xosc'), { duration: 5 });
+    const [error] = errorsOf(result);
+    assert.ok(error, result.log);
+    assert.equal(error.source.disk, simple.disk);
+    assert.match(lineOf(simple.disk, error.range.start.line), /<LaneChangeActionDynamics /);
+  });
+
+  it('finds roads and catalogs as the scenario names them, relative to its own folder', async function () {
+    requireEsmini(this);
+    const root = examplesCopy();
+    fs.mkdirSync(path.join(root, 'roads'));
+    fs.copyFileSync(path.join(esminiRoads, 'straight_500m.xodr'), path.join(root, 'roads', 'straight.xodr'));
+    fs.cpSync(path.join(esminiCatalogs, 'Vehicles'), path.join(root, 'catalogs', 'vehicles'), { recursive: true });
+    const text = fs
+      .readFileSync(path.join(root, 'lane_change.xosc'), 'utf8')
+      .replace('<CatalogLocations/>', '<CatalogLocations><VehicleCatalog><Directory path="catalogs/vehicles"/></VehicleCatalog></CatalogLocations>')
+      .replace('<LogicFile filepath="Town05"/>', '<LogicFile filepath="roads/straight.xodr"/>')
+      .replace(/<Vehicle name="vehicle\.audi\.tt"[\s\S]*?<\/Vehicle>/, '<CatalogReference catalogName="VehicleCatalog" entryName="car_red"/>')
+      .replace(/<Init>[\s\S]*?<\/Init>/, '<Init><Actions><Private entityRef="ego"><PrivateAction><TeleportAction><Position><LanePosition roadId="1" laneId="-1" s="50" offset="0"/></Position></TeleportAction></PrivateAction></Private><Private entityRef="adversary"><PrivateAction><TeleportAction><Position><LanePosition roadId="1" laneId="-1" s="20" offset="0"/></Position></TeleportAction></PrivateAction></Private></Actions></Init>');
+    fs.writeFileSync(path.join(root, 'plain.xosc'), text);
+    const result = await run(new ScenarioStore({ root }), path.join(root, 'plain.xosc'), { duration: 3, roadPath: [] });
+    assert.equal(result.outcome, 'ok', `${result.message}\n${JSON.stringify(result.problems)}\n${result.log.split('\n').filter((line) => /error|warn/.test(line)).join('\n')}`);
+    assert.match(result.log, /Loaded OpenDRIVE: .*roads\/straight\.xodr/);
+    assert.deepEqual(errorsOf(result), []);
+    // A road the file does not have: the message lands on the position that names it.
+    fs.writeFileSync(path.join(root, 'plain.xosc'), text.replace('roadId="1" laneId="-1" s="20"', 'roadId="7" laneId="-1" s="20"'));
+    const wrong = await run(new ScenarioStore({ root }), path.join(root, 'plain.xosc'), { duration: 3, roadPath: [] });
+    const [error] = errorsOf(wrong);
+    assert.ok(error?.located, wrong.log);
+    assert.match(lineOf(error.source.disk, error.range.start.line), /roadId="7"/);
+  });
+
+  it('stops a scenario whose own StopTrigger never fires at the time limit', async function () {
+    requireEsmini(this);
+    const started = Date.now();
+    const result = await run(new ScenarioStore({ root: examples }), path.join(examples, 'main.xosc'), { duration: 2.5 });
+    assert.equal(result.end, 'exited');
+    assert.equal(result.exitCode, 0);
+    const last = lastCsvTime(result.csvFile as string) as number;
+    assert.ok(last > 2.5 && last <= 2.5 + 0.05 + 1e-9, `last row at ${last} s`);
+    assert.ok(Date.now() - started < 30_000);
+  });
+});
+
+describe('esmini: the 31 library examples (SPEC 8) run with no error', function () {
+  this.timeout(600_000);
+  after(() => results.forEach(removeRunFolder));
+
+  it('each flattens and runs; the never-rising simulationTime = 0 warning shows on its source line', async function () {
+    requireCorpus(this);
+    requireEsmini(this);
+    const mains = fs
+      .readdirSync(libraryDir)
+      .filter((name) => fs.existsSync(path.join(libraryDir, name, 'main.xosc')))
+      .map((name) => path.join(libraryDir, name, 'main.xosc'));
+    assert.equal(mains.length, 31);
+    const store = new ScenarioStore({ scenarioPath: [libraryDir], root: libraryDir });
+    for (const main of mains) {
+      const result = await run(store, main, { duration: 1 });
+      assert.equal(result.outcome, 'ok', `${main}: ${result.message}\n${result.log.slice(-2000)}`);
+      assert.deepEqual(errorsOf(result), [], main);
+      const rising = result.problems.filter((problem) => /simulationTime = 0 condition used with edge "rising"/.test(problem.message));
+      assert.ok(rising.length > 0, `${main}: the warning is shown`);
+      for (const problem of rising) {
+        assert.ok(problem.located, main);
+        assert.match(path.basename(problem.source.disk), /^simple_\d\.xosc$/, 'on the simple scenario it comes from');
+        const line = lineOf(problem.source.disk, problem.range.start.line);
+        assert.match(line, /<Condition .*conditionEdge="rising"/);
+        assert.match(lineOf(problem.source.disk, problem.range.start.line + 2), /<SimulationTimeCondition value="0"/);
+      }
+      removeRunFolder(result);
+    }
+  });
+});

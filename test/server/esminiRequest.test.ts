@@ -1,0 +1,56 @@
+import * as assert from 'node:assert/strict';
+import * as fs from 'node:fs';
+import * as os from 'node:os';
+import * as path from 'node:path';
+import { RunEsminiRequest, RunEsminiResult } from '../../server/src/protocol';
+import { esminiBinary, requireEsmini, esminiRoads } from '../support/esmini';
+import { repoRoot } from '../support/fixtures';
+import { fileUri, TestClient } from './harness';
+
+describe('language server: the Run in esmini request over JSON-RPC', function () {
+  this.timeout(120_000);
+  let root: string;
+  let client: TestClient;
+
+  beforeEach(async () => {
+    root = fs.realpathSync(fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-server-run-')));
+    fs.cpSync(path.join(repoRoot, 'examples'), root, { recursive: true });
+    client = await TestClient.start({ root });
+    await client.indexed();
+  });
+  afterEach(async () => client.stop());
+
+  const run = (uri: string, options: Record<string, unknown> = {}) =>
+    client.connection.sendRequest(RunEsminiRequest, { uri, esminiPath: esminiBinary, roadPath: [esminiRoads], duration: 3, ...options }) as Promise<RunEsminiResult>;
+
+  it('a missing esmini is an answer that says how to get it, not a failure', async () => {
+    const result = await run(fileUri(path.join(root, 'main.xosc')), { esminiPath: path.join(root, 'no-esmini') });
+    assert.equal(result.outcome, 'no-esmini');
+    assert.match(result.message, /modular2simple\.esmini\.path/);
+    assert.deepEqual(result.problems, []);
+  });
+
+  it('runs the unsaved text of an open simple scenario and answers with its message on that line, and the CSV', async function () {
+    requireEsmini(this);
+    const clean = await run(fileUri(path.join(root, 'main.xosc')));
+    assert.equal(clean.outcome, 'ok', clean.message);
+    assert.ok(clean.csvFile && fs.existsSync(clean.csvFile));
+    assert.match(fs.readFileSync(clean.csvFile, 'utf8').split('\n')[6], /^Index \[-\], TimeStamp \[s\], #1 Entity_Name/);
+
+    const simple = path.join(root, 'lane_change.xosc');
+    const uri = await client.openFile(simple);
+    const text = fs.readFileSync(simple, 'utf8');
+    const offset = text.indexOf('dynamicsShape="linear"') + 'dynamicsShape="'.length;
+    const line = text.slice(0, offset).split('\n').length - 1;
+    const character = offset - text.lastIndexOf('\n', offset - 1) - 1;
+    await client.change(uri, [{ range: { start: { line, character }, end: { line, character: character + 'linear'.length } }, text: 'wobbly' }]);
+    const broken = await run(fileUri(path.join(root, 'main.xosc')));
+    assert.equal(broken.outcome, 'errors', broken.message);
+    const [error] = broken.problems.filter((problem) => problem.severity === 'error');
+    assert.equal(error.uri, uri);
+    assert.equal(error.range.start.line, line);
+    assert.match(error.message, /wobbly/);
+    assert.equal(fs.readFileSync(simple, 'utf8'), text, 'the file on disk is untouched');
+    assert.ok(!fs.existsSync(clean.csvFile), "the previous run's files are removed by the next run of the same file");
+  });
+});
