@@ -84,3 +84,10 @@ if (existsSync(birdsEyeBench)) {
   const result = spawnSync(process.execPath, ['--import', 'tsx', birdsEyeBench], { stdio: 'inherit', cwd: root });
   if (result.status !== 0) process.exitCode = result.status ?? 1;
 }
+
+// The largest input each bound lets through or stops; BENCH_HOSTILE=0 leaves it out (it takes minutes).
+if (process.env.BENCH_HOSTILE !== '0') {
+  console.log('');
+  const result = spawnSync(process.execPath, [path.join(root, 'bench', 'hostile.mjs')], { stdio: 'inherit' });
+  if (result.status !== 0) process.exitCode = result.status ?? 1;
+}

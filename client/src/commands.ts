@@ -1,7 +1,7 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import * as vscode from 'vscode';
-import { PACKAGE_SCHEME, type ProblemSummary, type WriteResult } from '../../server/src/protocol';
+import { PACKAGE_SCHEME, type FlattenOptions, type ProblemSummary, type WriteResult } from '../../server/src/protocol';
 import { LANGUAGE_ID, type ServerCommandClient } from './languageClient';
 import { FLATTENED_SUFFIX, flattenedName } from './naming';
 import { packageEntryUri } from './packageFileSystem';
@@ -242,7 +242,15 @@ export async function flattenCommand(server: ServerCommandClient, reporter: Comm
   const output = await chooseOutput(action, defaultFlattenOutput(target.fsPath), options, { OpenSCENARIO: ['xosc'] });
   if (!output) return undefined;
   const main = mainFileOf(target);
-  const outcome = await withWriteProgress(action, output, (token) => server.flattenToFile(main, output, {}, token));
+  // The server writes outside the workspace only when the user agrees.
+  const flattenTo = async (options: FlattenOptions, token: vscode.CancellationToken): Promise<WriteResult> => {
+    const result = await server.flattenToFile(main, output, options, token);
+    if (result.needsConfirmation !== 'outsideWorkspace') return result;
+    const write = 'Write';
+    const answer = await vscode.window.showWarningMessage(`${output} lies outside the workspace. Write the flattened scenario there?`, { modal: true }, write);
+    return answer === write ? server.flattenToFile(main, output, options, token, true) : result;
+  };
+  const outcome = await withWriteProgress(action, output, (token) => flattenTo({}, token));
   if ('error' in outcome) {
     await reporter.failure(action, outcome.error);
     return undefined;
@@ -270,5 +278,5 @@ export async function flattenCommand(server: ServerCommandClient, reporter: Comm
     return undefined;
   }
   if (choice !== writeAnyway) return undefined;
-  return runWrite(reporter, action, output, (token) => server.flattenToFile(main, output, { force: true }, token), ` (skipped ${errors === 1 ? 'an override' : `${errors} overrides`} that cannot apply)`);
+  return runWrite(reporter, action, output, (token) => flattenTo({ force: true }, token), ` (skipped ${errors === 1 ? 'an override' : `${errors} overrides`} that cannot apply)`);
 }

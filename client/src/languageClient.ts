@@ -75,8 +75,9 @@ export class ServerCommandClient {
   }
 
   /** Writes the flattened scenario; an existing output is replaced (the caller asked the user first). */
-  async flattenToFile(input: vscode.Uri, outputPath: string, options: FlattenOptions, token?: vscode.CancellationToken): Promise<WriteResult> {
-    return (await this.started()).sendRequest(FlattenToFileRequest, { uri: input.toString(), outputPath, options }, token);
+  /** `outsideWorkspace`: the user agreed to write outside the workspace (the server asks for that first). */
+  async flattenToFile(input: vscode.Uri, outputPath: string, options: FlattenOptions, token?: vscode.CancellationToken, outsideWorkspace = false): Promise<WriteResult> {
+    return (await this.started()).sendRequest(FlattenToFileRequest, { uri: input.toString(), outputPath, options, ...(outsideWorkspace ? { outsideWorkspace } : {}) }, token);
   }
 
   /** The live preview's text and line map, from the server's flattener. */

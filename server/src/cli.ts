@@ -1,12 +1,12 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { isSameFile, writeFileAtomic } from './core/atomic';
+import { isSameFile, writeFilesAtomic } from './core/atomic';
 import { Flattener, OVERRIDE_PROBLEM_CODES } from './core/flatten';
 import { isSchemaVersion, SCHEMA_VERSIONS } from './core/schema/model';
 import { SchemaVersionSetting } from './core/schema/version';
 import { packFiles, packFolder, PackResult } from './core/pack';
 import { formatProblem, Problem, uniqueProblems } from './core/problems';
-import { diskRef, displayRef, ScenarioStore, SourceRef, splitScenarioPath } from './core/sources';
+import { diskRef, displayRef, Limits, ScenarioStore, SourceRef, splitScenarioPath } from './core/sources';
 import { libraryStats } from './core/stats';
 import { FORMAT_HELP, formatCommand } from './cli/format';
 import { isSimulator, Simulator, SIMULATORS } from './core/profiles/simulators';
@@ -15,7 +15,7 @@ import { mainOf, storeForInputs } from './cli/inputs';
 import { RUN_HELP, runCommand } from './cli/run';
 
 /** Exit codes, as documented in the README. */
-export const ExitCode = { ok: 0, problems: 1, usage: 2, io: 3 } as const;
+export const ExitCode = { ok: 0, problems: 1, usage: 2, io: 3, internal: 4 } as const;
 
 const VERSION = '0.1.0';
 
@@ -36,7 +36,7 @@ Compatible with the original tool:
   modular2simple -cmx|--convert-mosc-to-xosc IN.mosc OUT.xosc
 
 Options:
-  -o, --output FILE         where to write (flatten without -o prints to standard output)
+  -o, --output FILE         where to write (flatten: '-' or no -o prints to standard output)
   --out-dir DIR             output folder for several inputs
   --force                   write the output despite overrides that cannot apply (unknown keys,
                             attributes without default): they are skipped, as the original did
@@ -54,6 +54,10 @@ Options:
   --indent N|tab            format: the indentation (default: what the file uses, else 2 spaces)
   --schema-version V        the OpenSCENARIO schema files are checked against: auto (each file's
                             FileHeader, the default), 1.0, 1.1, 1.2, 1.3, or off
+  --max-file-size SIZE      largest scenario file or package entry read (default 32M)
+  --max-unpacked-size SIZE  bytes one run may unpack from packages, all together (default 128M)
+  --max-output-size SIZE    characters of one flattened result (default 8M)
+  --max-depth N             files in one chain of references, nested packages included (default 64)
   -q, --quiet               print errors only
   -h, --help                this help
   -v, --version             the version
@@ -67,7 +71,8 @@ Exit codes:
   0 success (warnings may have been printed)
   1 the input has errors; nothing was written
   2 wrong usage
-  3 the output could not be written; nothing was changed`;
+  3 the output could not be written; nothing was changed
+  4 internal error (a bug: please report it with the input)`;
 
 class UsageError extends Error {}
 
@@ -83,10 +88,21 @@ interface Options {
   quiet: boolean;
   simulator: Simulator;
   schemaVersion: SchemaVersionSetting | 'off';
+  limits: Partial<Limits>;
+}
+
+/** A size such as 1048576, 512K, 64M or 2G. */
+function parseSize(text: string, flag: string): number {
+  const match = /^(\d+)([KMG]?)B?$/i.exec(text.trim());
+  if (!match) throw new UsageError(`${flag} takes a size such as 64M, not '${text}'`);
+  const factor = { '': 1, K: 1024, M: 1024 ** 2, G: 1024 ** 3 }[match[2].toUpperCase() as '' | 'K' | 'M' | 'G'];
+  const size = Number(match[1]) * factor;
+  if (!Number.isSafeInteger(size) || size <= 0) throw new UsageError(`${flag} takes a positive size, not '${text}'`);
+  return size;
 }
 
 function parseOptions(args: string[]): Options {
-  const options: Options = { positional: [], force: false, scenarioPath: [], includeScenarioPath: false, format: 'text', quiet: false, simulator: 'asam', schemaVersion: 'auto' };
+  const options: Options = { positional: [], force: false, scenarioPath: [], includeScenarioPath: false, format: 'text', quiet: false, simulator: 'asam', schemaVersion: 'auto', limits: {} };
   const value = (index: number, flag: string): string => {
     const next = args[index + 1];
     if (next === undefined || (next.startsWith('-') && next.length > 1)) throw new UsageError(`${flag} needs a value`);
@@ -138,6 +154,21 @@ function parseOptions(args: string[]): Options {
       case '--quiet':
         options.quiet = true;
         break;
+      case '--max-file-size':
+        options.limits.maxEntryBytes = parseSize(take(), flag);
+        break;
+      case '--max-unpacked-size':
+        options.limits.maxTotalBytes = parseSize(take(), flag);
+        break;
+      case '--max-output-size':
+        options.limits.maxFlattenedChars = parseSize(take(), flag);
+        break;
+      case '--max-depth': {
+        const depth = Number(take());
+        if (!Number.isSafeInteger(depth) || depth < 1) throw new UsageError('--max-depth takes a positive whole number');
+        options.limits.maxDepth = depth;
+        break;
+      }
       default:
         if (arg.startsWith('-') && arg !== '-') throw new UsageError(`unknown option '${arg}'`);
         options.positional.push(arg);
@@ -152,7 +183,7 @@ interface Output {
 }
 
 function makeStore(options: Options, inputs: string[]): ScenarioStore {
-  return storeForInputs(options.scenarioPath, options.root, inputs);
+  return storeForInputs(options.scenarioPath, options.root, inputs, options.limits);
 }
 
 
@@ -206,16 +237,27 @@ function checkNotAnInput(output: string, inputs: SourceRef[]): void {
   }
 }
 
-async function write(output: string, data: string | Uint8Array, io: Output, quiet: boolean, summary: string): Promise<number> {
-  try {
-    const directory = path.dirname(path.resolve(output));
-    if (!fs.existsSync(directory)) throw new Error(`the folder ${directory} does not exist`);
-    await writeFileAtomic(output, data);
-  } catch (error) {
-    io.err(`${output}: error: cannot write the output (${(error as Error).message}); nothing was changed`);
+/** Writes every output or none; `-` is standard output. */
+async function write(outputs: { target: string; data: string | Uint8Array; summary: string }[], io: Output, quiet: boolean): Promise<number> {
+  const files = outputs.filter((output) => output.target !== '-');
+  for (const output of files) {
+    const directory = path.dirname(path.resolve(output.target));
+    if (!fs.existsSync(directory)) {
+      io.err(`${output.target}: error: cannot write the output (the folder ${directory} does not exist); nothing was changed`);
+      return ExitCode.io;
+    }
+  }
+  const result = await writeFilesAtomic(files.map((output) => ({ target: output.target, data: output.data })));
+  if (result.failed) {
+    const { target, error } = result.failed;
+    const changed = result.written.length === 0 ? 'nothing was changed' : `only ${result.written.join(', ')} ${result.written.length === 1 ? 'was' : 'were'} written`;
+    io.err(`${target}: error: cannot write the output (${error.message}); ${changed}`);
     return ExitCode.io;
   }
-  if (!quiet) io.err(summary);
+  for (const output of outputs) {
+    if (output.target === '-') io.out(output.data as string);
+    else if (!quiet) io.err(output.summary);
+  }
   return ExitCode.ok;
 }
 
@@ -247,14 +289,12 @@ async function flattenCommand(inputs: string[], outputs: string[] | undefined, o
     for (const result of results) io.out(result.text as string);
     return ExitCode.ok;
   }
-  for (let i = 0; i < results.length; i++) checkNotAnInput(outputs[i], results[i].source.dependencies);
-  for (let i = 0; i < results.length; i++) {
-    const text = results[i].text as string;
-    const lines = countEditorLines(text);
-    const code = await write(outputs[i], text, io, options.quiet, `wrote ${outputs[i]} (${lines} lines)`);
-    if (code !== ExitCode.ok) return code;
-  }
-  return ExitCode.ok;
+  for (let i = 0; i < results.length; i++) if (outputs[i] !== '-') checkNotAnInput(outputs[i], results[i].source.dependencies);
+  return write(
+    results.map((result, i) => ({ target: outputs[i], data: result.text as string, summary: `wrote ${outputs[i]} (${countEditorLines(result.text as string)} lines)` })),
+    io,
+    options.quiet,
+  );
 }
 
 function outputNameFor(input: string): string {
@@ -273,15 +313,15 @@ async function packCommand(inputs: string[], output: string, options: Options, i
     checkInputExists(inputs[0]);
     result = await packFolder(inputs[0], makeStore(options, inputs), { includeScenarioPath: options.includeScenarioPath });
   } else {
-    result = await packFiles(inputs);
+    result = await packFiles(inputs, options.limits);
   }
   const { errors } = report(result.problems, io, options.quiet);
   if (!result.bytes) {
     io.err(`${errors} error${errors === 1 ? '' : 's'}; nothing was written`);
     return ExitCode.problems;
   }
-  checkNotAnInput(output, inputs.map((input) => diskRef(input)));
-  return write(output, result.bytes, io, options.quiet, `wrote ${output} (${result.entries.join(', ')})`);
+  checkNotAnInput(output, [...inputs.map((input) => diskRef(input)), ...result.inputs]);
+  return write([{ target: output, data: result.bytes, summary: `wrote ${output} (${result.entries.join(', ')})` }], io, options.quiet);
 }
 
 function listScenarioFiles(folder: string): string[] {
@@ -325,7 +365,7 @@ async function checkCommand(inputs: string[], options: Options, io: Output): Pro
 
 async function statsCommand(library: string, options: Options, io: Output): Promise<number> {
   if (!fs.existsSync(library) || !fs.statSync(library).isDirectory()) throw new InputError(`${library}: no such folder`);
-  const stats = await libraryStats(library);
+  const stats = await libraryStats(library, options.limits);
   for (const problem of stats.problems) io.err(`${library}: error: ${problem}`);
   if (options.format === 'json') {
     io.out(JSON.stringify(stats, null, 2));
@@ -408,8 +448,8 @@ export async function main(argv: string[], io: Output): Promise<number> {
       io.err(`modular2simple: error: ${error.message}`);
       return ExitCode.problems;
     }
-    io.err(`modular2simple: internal error: ${(error as Error).message}\nPlease report this with the input that caused it.`);
-    return ExitCode.io;
+    io.err(`modular2simple: internal error: ${(error as Error).stack ?? (error as Error).message}\nPlease report this with the input that caused it.`);
+    return ExitCode.internal;
   }
 }
 

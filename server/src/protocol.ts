@@ -19,9 +19,11 @@ export interface FlattenToTextParams {
 
 export interface FlattenToFileParams {
   uri: string;
-  /** A file system path or a `file:` URI. */
+  /** A file system path or a `file:` URI, ending in .xosc. */
   outputPath: string;
   options?: FlattenOptions;
+  /** The user agreed to write outside the workspace folders (see WriteResult.needsConfirmation). */
+  outsideWorkspace?: boolean;
 }
 
 export interface PackParams {
@@ -83,6 +85,11 @@ export interface FlattenTextResult {
 export interface WriteResult {
   written: string | null;
   problems: ProblemSummary[];
+  /**
+   * Set when nothing was written because the user must agree first: `outsideWorkspace` means the
+   * output lies outside the workspace folders; send the request again with `outsideWorkspace: true`.
+   */
+  needsConfirmation?: 'outsideWorkspace';
 }
 
 export interface StructureNode {

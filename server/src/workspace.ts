@@ -1,10 +1,11 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { AnalysisResult, Flattener, FlatSource, SchemaOptions } from './core/flatten';
+import { decodeScenario } from './core/encoding';
 import { isSchemaVersion } from './core/schema/model';
 import { SchemaVersionSetting } from './core/schema/version';
-import { FileSystemHost, nodeFileSystem, refId, ScenarioStore, SourceRef, splitScenarioPath, diskRef, childRef } from './core/sources';
-import { decodeUtf8, LineIndex, Range } from './core/text';
+import { FileSystemHost, nodeFileSystem, refId, ScenarioStore, SizedCache, SourceRef, splitScenarioPath, diskRef, childRef } from './core/sources';
+import { LineIndex, Range } from './core/text';
 import { OpenDocument, OpenDocuments } from './documents';
 import { UriResolver, refToUri } from './uris';
 import { DEFAULT_FORMAT_OPTIONS } from './core/format';
@@ -52,18 +53,45 @@ export function readSettings(value: unknown): ServerSettings {
   return { scenarioPath, diagnosticsDelay: delay, maxIndexedFileBytes: DEFAULT_SETTINGS.maxIndexedFileBytes, simulator, formatMaxLineWidth: width, schemaVersion };
 }
 
-/** Keeps file bytes and kinds in memory until a change notification says they are stale. */
+/** Bytes of files and of unpacked packages that the server keeps, each; the rest is read again on demand. */
+export const SERVER_CACHE_BYTES = 64 * 1024 * 1024;
+
+/**
+ * Keeps file bytes (up to a total size, least recently used first out) and kinds in memory until a
+ * change notification says they are stale.
+ */
 export class CachingFileSystem implements FileSystemHost {
-  private readonly bytes = new Map<string, Promise<Uint8Array | undefined>>();
+  private readonly bytes: SizedCache<Uint8Array | undefined>;
+  private readonly pending = new Map<string, Promise<Uint8Array | undefined>>();
   private readonly kinds = new Map<string, Promise<'file' | 'directory' | undefined>>();
 
-  constructor(private readonly inner: FileSystemHost = nodeFileSystem) {}
+  constructor(
+    private readonly inner: FileSystemHost = nodeFileSystem,
+    maxBytes = SERVER_CACHE_BYTES,
+  ) {
+    this.bytes = new SizedCache(maxBytes);
+  }
 
-  readFile(filePath: string): Promise<Uint8Array | undefined> {
-    let pending = this.bytes.get(filePath);
+  /** Bytes held. */
+  get size(): number {
+    return this.bytes.size;
+  }
+
+  readFile(filePath: string, maxBytes?: number): Promise<Uint8Array | undefined> {
+    const cached = this.bytes.get(filePath);
+    if (cached) return Promise.resolve(cached);
+    let pending = this.pending.get(filePath);
     if (!pending) {
-      pending = this.inner.readFile(filePath);
-      this.bytes.set(filePath, pending);
+      const reading = this.inner.readFile(filePath, maxBytes);
+      pending = reading;
+      this.pending.set(filePath, reading);
+      const settle = () => {
+        if (this.pending.get(filePath) === reading) this.pending.delete(filePath);
+      };
+      reading.then((bytes) => {
+        if (this.pending.get(filePath) === reading && bytes) this.bytes.set(filePath, bytes, bytes.length);
+        settle();
+      }, settle);
     }
     return pending;
   }
@@ -83,12 +111,15 @@ export class CachingFileSystem implements FileSystemHost {
 
   /** Forgets a path and everything below it; kinds are all forgotten since a creation changes folders too. */
   invalidate(filePath: string): void {
-    for (const key of [...this.bytes.keys()]) if (key === filePath || key.startsWith(filePath + path.sep)) this.bytes.delete(key);
+    const below = (key: string) => key === filePath || key.startsWith(filePath + path.sep);
+    this.bytes.deleteWhere(below);
+    for (const key of [...this.pending.keys()]) if (below(key)) this.pending.delete(key);
     this.kinds.clear();
   }
 
   clear(): void {
     this.bytes.clear();
+    this.pending.clear();
     this.kinds.clear();
   }
 }
@@ -107,6 +138,15 @@ export interface IndexedFile {
   groups: IndexedGroup[];
   /** Whether the file holds ScenarioReferences (and so can refer to other files). */
   modular: boolean;
+}
+
+/** A file's text for the index; a file in an encoding that cannot be read is indexed without groups (its analysis reports why). */
+function decodeOrUndefined(bytes: Uint8Array): string | undefined {
+  try {
+    return decodeScenario(bytes);
+  } catch {
+    return undefined;
+  }
 }
 
 const SKIPPED_FOLDERS = new Set(['node_modules', '.git', 'dist', 'out', '.vscode-test']);
@@ -228,7 +268,7 @@ export class Workspace {
       folder,
       scenarioPath: [...fromEnvironment, ...(this.folderScenarioPaths.get(folder) ?? this.settings.scenarioPath).map((entry) => path.resolve(folder, entry))],
     }));
-    const store = new ScenarioStore({ scenarioPath: [...fromEnvironment, ...fromSettings], root: this.folders[0], folders, host: this.files });
+    const store = new ScenarioStore({ scenarioPath: [...fromEnvironment, ...fromSettings], root: this.folders[0], folders, host: this.files, packageCacheBytes: SERVER_CACHE_BYTES });
     for (const open of this.documents.values()) store.setOverlay(open.ref, open.document.getText());
     return store;
   }
@@ -252,6 +292,8 @@ export class Workspace {
    */
   changed(changedIds?: string[]): void {
     this.generation++;
+    // Each change starts a new run: what the next analyses may unpack is counted afresh.
+    this.storeInstance.resetBudget();
     if (!changedIds) {
       this.analysisResults.clear();
       this.sharedSources.clear();
@@ -351,8 +393,8 @@ export class Workspace {
       const bytes = await this.files.readFile(filePath);
       if (bytes && bytes.length <= this.settings.maxIndexedFileBytes) {
         const open = this.documents.get(refId(diskRef(filePath)));
-        const text = open ? open.document.getText() : decodeUtf8(bytes);
-        Object.assign(entry, scanScenario(text, diskRef(filePath)));
+        const text = open ? open.document.getText() : decodeOrUndefined(bytes);
+        if (text !== undefined) Object.assign(entry, scanScenario(text, diskRef(filePath)));
       }
     } else {
       entry.modular = true;
@@ -360,7 +402,8 @@ export class Workspace {
       const packageRef = diskRef(filePath);
       const contents = await this.storeInstance.readPackage(packageRef).catch(() => undefined);
       for (const [name, bytes] of contents?.entries ?? []) {
-        if (name.toLowerCase().endsWith('.xosc') && bytes.length <= this.settings.maxIndexedFileBytes) entry.groups.push(...scanScenario(decodeUtf8(bytes), childRef(packageRef, name)).groups);
+        const text = name.toLowerCase().endsWith('.xosc') && bytes.length <= this.settings.maxIndexedFileBytes ? decodeOrUndefined(bytes) : undefined;
+        if (text !== undefined) entry.groups.push(...scanScenario(text, childRef(packageRef, name)).groups);
       }
     }
     this.index.set(filePath, entry);
@@ -369,6 +412,7 @@ export class Workspace {
 
   /** Indexes every scenario file of the workspace folders, reporting progress as a fraction done. */
   async indexAll(progress?: (done: number, total: number) => void): Promise<number> {
+    this.storeInstance.resetBudget();
     const filePaths = await listScenarioFiles(this.folders);
     let done = 0;
     for (const filePath of filePaths) {

@@ -1,3 +1,4 @@
+import { spawn } from 'node:child_process';
 import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
@@ -91,6 +92,8 @@ export interface ClientOptions {
   folders?: string[];
   /** What workspace/configuration answers for a folder (by path), instead of `settings`. */
   folderSettings?: Record<string, Record<string, unknown>>;
+  /** Run the built server (dist/server.js) in a child process with this V8 heap, killed after `watchdogMs`. */
+  process?: { heapMb: number; watchdogMs: number };
 }
 
 /** The settings that turn the schema check off, merged under a test's own. */
@@ -126,18 +129,51 @@ export class TestClient {
   private constructor(
     readonly connection: ProtocolConnection,
     private readonly server: { dispose(): void },
-    /** The server's workspace (same process), for tests that inject a fault into it. */
-    readonly workspace: Workspace,
+    private readonly serverWorkspace: Workspace | undefined,
   ) {}
 
+  /** The server's workspace (same process), for tests that inject a fault into it. */
+  get workspace(): Workspace {
+    if (!this.serverWorkspace) throw new Error('the server runs in a child process; its workspace is not reachable');
+    return this.serverWorkspace;
+  }
+
+  /** Set for a server in a child process: how it ended (undefined while it runs). */
+  exit: { code: number | null; signal: NodeJS.Signals | null; stderr: string } | undefined;
+
   static async start(options: ClientOptions): Promise<TestClient> {
-    const toServer = new PassThrough();
-    const toClient = new PassThrough();
-    const serverConnection = createConnection(ProposedFeatures.all, new StreamMessageReader(toServer), new StreamMessageWriter(toClient));
-    const workspace = startServer(serverConnection);
-    serverConnection.listen();
-    const connection = createProtocolConnection(new StreamMessageReader(toClient), new StreamMessageWriter(toServer));
-    const client = new TestClient(connection, serverConnection, workspace);
+    let connection: ProtocolConnection;
+    let client: TestClient;
+    if (options.process) {
+      const child = spawn(process.execPath, [`--max-old-space-size=${options.process.heapMb}`, path.join(repoRoot, 'dist', 'server.js'), '--stdio'], { stdio: ['pipe', 'pipe', 'pipe'] });
+      const watchdog = setTimeout(() => child.kill('SIGKILL'), options.process.watchdogMs);
+      let stderr = '';
+      child.stderr.on('data', (chunk: Buffer) => (stderr = (stderr + chunk.toString()).slice(-20_000)));
+      connection = createProtocolConnection(new StreamMessageReader(child.stdout), new StreamMessageWriter(child.stdin));
+      client = new TestClient(
+        connection,
+        {
+          dispose: () => {
+            clearTimeout(watchdog);
+            child.kill('SIGKILL');
+          },
+        },
+        undefined,
+      );
+      child.on('exit', (code, signal) => {
+        clearTimeout(watchdog);
+        client.exit = { code, signal, stderr };
+        client.notify();
+      });
+    } else {
+      const toServer = new PassThrough();
+      const toClient = new PassThrough();
+      const serverConnection = createConnection(ProposedFeatures.all, new StreamMessageReader(toServer), new StreamMessageWriter(toClient));
+      const workspace = startServer(serverConnection);
+      serverConnection.listen();
+      connection = createProtocolConnection(new StreamMessageReader(toClient), new StreamMessageWriter(toServer));
+      client = new TestClient(connection, serverConnection, workspace);
+    }
     connection.onNotification('textDocument/publishDiagnostics', (params: PublishDiagnosticsParams) => {
       client.diagnostics.set(params.uri, params);
       client.notify();
@@ -204,6 +240,7 @@ export class TestClient {
     for (;;) {
       const value = check();
       if (value !== undefined && value !== false) return value;
+      if (this.exit) throw new Error(`the server process ended (code ${this.exit.code}, signal ${this.exit.signal}) while waiting for ${what}: ${this.exit.stderr.slice(-2000)}`);
       if (Date.now() > deadline) throw new Error(`timed out waiting for ${what}`);
       await new Promise<void>((resolve) => {
         const timer = setTimeout(resolve, 50);

@@ -1,6 +1,6 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { childRef, diskRef, ScenarioStore, SourceRef, splitScenarioPath } from '../core/sources';
+import { childRef, diskRef, Limits, ScenarioStore, SourceRef, splitScenarioPath } from '../core/sources';
 
 /** The main file that an input names: a package's main.xosc, a folder's main.xosc, or the file itself. */
 export function mainOf(input: string): SourceRef {
@@ -15,7 +15,7 @@ export function mainOf(input: string): SourceRef {
  * folder where the search upward from an unpacked folder stops (`root`, else the working directory,
  * or the first input's folder when it lies elsewhere).
  */
-export function storeForInputs(scenarioPath: string[], root: string | undefined, inputs: string[]): ScenarioStore {
+export function storeForInputs(scenarioPath: string[], root: string | undefined, inputs: string[], limits: Partial<Limits> = {}): ScenarioStore {
   const cwd = process.cwd();
   const firstInput = inputs[0] ? path.resolve(inputs[0]) : cwd;
   const insideCwd = firstInput === cwd || firstInput.startsWith(cwd + path.sep);
@@ -23,5 +23,6 @@ export function storeForInputs(scenarioPath: string[], root: string | undefined,
   return new ScenarioStore({
     scenarioPath: [...scenarioPath, ...splitScenarioPath(process.env.SCENARIO_PATH)],
     root: root ?? (insideCwd ? cwd : inputFolder),
+    limits,
   });
 }

@@ -13,6 +13,7 @@ import { Problem, ProblemCode, RelatedProblemLocation, Severity, uniqueProblems,
 import { displayRef, refId, Resolution, ScenarioStore, SourceError, SourceRef } from './sources';
 import * as path from 'node:path';
 import { CarryEdit, carryEdits, CarryPlan, planCarry } from './carry';
+import { declareUtf8 } from './encoding';
 import { analyzeDocument, CatalogLoader, DocumentSemantics, Evaluator, Finding, OUTPUT_CHECKS, runChecks, semanticModelOf, semanticProblems } from './semantics';
 import { Simulator } from './profiles/simulators';
 import { closestMatch, detectEol, indentationAt } from './text';
@@ -96,6 +97,12 @@ function catalogIndexOf(source: FlatSource): Map<string, { kind: string; directo
 
 /** Catalog problems, which the output check reports only for what flattening carried. */
 const CATALOG_CODES: ReadonlySet<ProblemCode> = new Set<ProblemCode>(['catalog-directory', 'unknown-catalog', 'unknown-catalog-entry', 'unknown-assigned-parameter']);
+
+/** A chain of files for a message: all of a short one, the ends of a long one. */
+export function describeChain(chain: SourceRef[]): string {
+  const names = chain.map((entry) => displayRef(entry));
+  return (names.length <= 12 ? names : [...names.slice(0, 5), `... (${names.length - 10} more)`, ...names.slice(-5)]).join(' -> ');
+}
 
 /** Problems that the original tool ignored silently: `--force` writes the output despite them. */
 export const OVERRIDE_PROBLEM_CODES: ReadonlySet<ProblemCode> = new Set<ProblemCode>([
@@ -271,6 +278,40 @@ export function stripParameterAttributes(model: ScenarioModel): string {
   return applyEdits(model.document.text, parameterAttributeSpans(model).map((span) => ({ ...span, text: '' })));
 }
 
+const ENTITY_REFERENCE = /<!--[\s\S]*?-->|<!\[CDATA\[[\s\S]*?\]\]>|&([A-Za-z_:][\w.:-]*);/g;
+const PREDEFINED = new Set(['lt', 'gt', 'amp', 'quot', 'apos']);
+
+/**
+ * The DOCTYPE of a simple scenario stays behind when a group is copied, so references to its
+ * internal entities are replaced by their escaped values in the copy (attribute values and text).
+ */
+function expandEntitiesInCopy(text: string, group: XmlElement, entities: ReadonlyMap<string, string>, edits: Map<number, TextEdit>): void {
+  for (const element of selfAndDescendants(group)) {
+    for (const attributeNode of element.attributes) {
+      if (edits.has(attributeNode.valueStart) || !/&(?!(?:lt|gt|amp|quot|apos);|#)/.test(text.slice(attributeNode.valueStart, attributeNode.valueEnd))) continue;
+      edits.set(attributeNode.valueStart, { start: attributeNode.valueStart, end: attributeNode.valueEnd, text: escapeAttributeValue(attributeNode.value, attributeNode.quote) });
+    }
+    if (element.selfClosing) continue;
+    // Text runs: between the start tag, the children and the end tag.
+    const endTagStart = element.closed ? text.lastIndexOf('</', element.end) : element.end;
+    let from = element.startTagEnd;
+    for (const child of [...element.children, undefined]) {
+      const to = child ? child.start : Math.max(from, endTagStart);
+      ENTITY_REFERENCE.lastIndex = 0;
+      const run = text.slice(from, to);
+      for (let match = ENTITY_REFERENCE.exec(run); match; match = ENTITY_REFERENCE.exec(run)) {
+        const name = match[1];
+        if (name === undefined || PREDEFINED.has(name)) continue;
+        const value = entities.get(name);
+        if (value === undefined) continue;
+        const start = from + match.index;
+        edits.set(start, { start, end: start + match[0].length, text: value.replace(/&/g, '&amp;').replace(/</g, '&lt;').replace(/>/g, '&gt;') });
+      }
+      if (child) from = child.end;
+    }
+  }
+}
+
 /**
  * Flattens modular scenarios (SPEC 4 and 5). One instance caches every file it read and flattened,
  * so a simple scenario used by many references is read and reported once.
@@ -304,16 +345,16 @@ export class Flattener {
   async flatten(main: SourceRef, options: FlattenOptions = {}): Promise<FlattenResult> {
     this.outputDirectory = path.dirname(path.resolve(options.outputPath ?? main.disk));
     const analysis = await this.analyze(main);
-    const source = analysis.source;
-    this.rendered(source);
+    const source = this.rendered(analysis.source);
     // The output is checked strictly against the schema too; its problems are reported where the source wrote them.
     const schemaVersion = this.schema.version;
     const schemaOutput = schemaVersion !== 'off' && source.model && source.model !== source.original ? outputSchemaProblems(source, { version: schemaVersion }) : [];
-    const problems = uniqueProblems([...analysis.problems, ...(source.carried?.problems ?? []), ...(await this.checkOutput(source)), ...schemaOutput]);
+    // Rendering the main file itself may find it too large.
+    const problems = uniqueProblems([...analysis.problems, ...source.problems, ...(source.carried?.problems ?? []), ...(await this.checkOutput(source)), ...schemaOutput]);
     const blocking = problems.filter(
       (problem) => problem.severity === 'error' && !(options.force && (OVERRIDE_PROBLEM_CODES.has(problem.code) || SCHEMA_PROBLEM_CODES.has(problem.code))),
     );
-    const text = source.text !== undefined && blocking.length === 0 ? stripParameterAttributes(source.model ?? buildModel(parseXml(source.text))) : undefined;
+    const text = source.text !== undefined && blocking.length === 0 ? declareUtf8(stripParameterAttributes(source.model ?? buildModel(parseXml(source.text)))) : undefined;
     // Removing whole attributes keeps a well-formed text well-formed, so the rendered model is the check.
     if (text !== undefined && source.model && !isWellFormed(source.model.document)) {
       throw new Error('internal error: the flattened output is not well-formed XML');
@@ -354,9 +395,10 @@ export class Flattener {
       text = await this.store.readText(ref);
     } catch (error) {
       const sourceError = error instanceof SourceError ? error : undefined;
+      const line = sourceError?.line ?? 0;
       result.problems.push({
         source: ref,
-        range: ZERO_RANGE,
+        range: { start: { line, character: 0 }, end: { line, character: 0 } },
         severity: 'error',
         code: sourceError && /ZIP|package|unpacks|entry/.test(sourceError.message) ? 'bad-package' : 'io',
         message: (error as Error).message,
@@ -384,13 +426,18 @@ export class Flattener {
     const wellFormed = isWellFormed(document);
 
     const childProblems: Problem[] = [];
+    const dependencyIds = new Set([refId(ref)]);
     for (const reference of model.references) {
       const link = await this.link(reference, ref, model, stack, result);
       result.links.push(link);
       if (link.source) {
         childProblems.push(...link.source.allProblems);
         for (const dependency of link.source.dependencies) {
-          if (!result.dependencies.some((known) => refId(known) === refId(dependency))) result.dependencies.push(dependency);
+          const id = refId(dependency);
+          if (!dependencyIds.has(id)) {
+            dependencyIds.add(id);
+            result.dependencies.push(dependency);
+          }
         }
       }
     }
@@ -524,6 +571,10 @@ export class Flattener {
       report(fileStart, fileEnd, 'error', 'invalid-reference', resolution.message);
       return link;
     }
+    if (resolution.kind === 'unreadable') {
+      report(fileStart, fileEnd, 'error', 'bad-package', `cannot look up '${reference.fileName}': ${resolution.message}`, resolution.hint);
+      return link;
+    }
     if (resolution.kind === 'missing') {
       report(fileStart, fileEnd, 'error', 'missing-file', `cannot find '${reference.fileName}'; searched ${resolution.searched.join(', ')}`, resolution.hint);
       return link;
@@ -541,11 +592,23 @@ export class Flattener {
       problem.data = { replacement: packageName };
     }
     const target = resolution.kind === 'package' ? resolution.main : resolution.ref;
-    const cycleStart = stack.findIndex((entry) => refId(entry) === refId(target));
+    const targetId = refId(target);
+    const cycleStart = stack.findIndex((entry) => refId(entry) === targetId);
     if (cycleStart >= 0) {
       const cycle = [...stack.slice(cycleStart), target];
       link.cycle = cycle;
       report(fileStart, fileEnd, 'error', 'cycle', `reference cycle: ${cycle.map((entry) => displayRef(entry)).join(' -> ')}`, 'remove one reference of the cycle');
+      return link;
+    }
+    if (stack.length >= this.store.limits.maxDepth) {
+      report(
+        fileStart,
+        fileEnd,
+        'error',
+        'too-deep',
+        `references nest deeper than ${this.store.limits.maxDepth} files: ${describeChain([...stack, target])}`,
+        'flatten the inner packages first, or raise the bound with --max-depth',
+      );
       return link;
     }
     const source = this.rendered(await this.source(target, stack));
@@ -661,8 +724,11 @@ export class Flattener {
     const eol = detectEol(text);
     type Copy = { text: string; link: LinkedReference; linked: LinkedGroupReference };
     const replacements: { group: ManeuverGroupInfo; start: number; end: number; copies: Copy[] }[] = [];
+    // Counted copy by copy, before the text is joined: a group imported twice at each of 20 levels must not fill memory.
+    let projected = text.length;
     for (const group of model.groups) {
       if (group.references.length === 0) continue;
+      projected -= group.element.end - group.element.start;
       const actorEntity = group.actor ? attribute(group.actor, 'entityRef')?.value : undefined;
       const targetIndent = indentationAt(text, group.element.start);
       const copies: Copy[] = [];
@@ -671,11 +737,13 @@ export class Flattener {
         if (!link?.source?.model || link.source.text === undefined) return;
         for (const linked of link.groups) {
           if (!linked.target || !linked.plan) return;
-          copies.push({
-            text: this.copyGroup(link.source.text, link.source.model, linked, group.name, actorEntity, targetIndent, eol),
-            link,
-            linked,
-          });
+          const copy = this.copyGroup(link.source.text, link.source.model, linked, group.name, actorEntity, targetIndent, eol);
+          projected += copy.length + eol.length + targetIndent.length;
+          if (projected > this.store.limits.maxFlattenedChars) {
+            this.reportTooLarge(result, model, link, projected);
+            return;
+          }
+          copies.push({ text: copy, link, linked });
         }
       }
       replacements.push({ group, start: group.element.start, end: group.element.end, copies });
@@ -792,6 +860,35 @@ export class Flattener {
     return problem;
   }
 
+  /** Reports a flattened result over the bound at the reference that crossed it, naming the chain of the largest imports. */
+  private reportTooLarge(result: FlatSource, model: ScenarioModel, link: LinkedReference, projected: number): void {
+    const chain: SourceRef[] = [result.ref];
+    for (let current: LinkedReference | undefined = link; current?.source; ) {
+      chain.push(current.source.ref);
+      let largest: LinkedReference | undefined;
+      for (const candidate of current.source.links) {
+        if (candidate.source?.text !== undefined && (!largest || candidate.source.text.length > (largest.source?.text?.length ?? 0))) largest = candidate;
+      }
+      current = largest;
+    }
+    const [start, end] = valueRange(link.info.fileAttribute, link.info.element);
+    const limit = this.store.limits.maxFlattenedChars;
+    const problem = problemAt(
+      result.ref,
+      model.document,
+      start,
+      end,
+      'error',
+      'too-large',
+      `the flattened ${displayRef(result.ref)} would exceed ${limit.toLocaleString('en-US')} characters (${projected.toLocaleString('en-US')} so far): groups imported through ${describeChain(chain)} multiply at each level`,
+      'import fewer copies, or raise the bound with --max-output-size',
+    );
+    result.problems.push(problem);
+    result.allProblems = uniqueProblems([...result.allProblems, problem]);
+    result.text = undefined;
+    result.model = undefined;
+  }
+
   private copyGroup(
     sourceText: string,
     sourceModel: ScenarioModel,
@@ -816,6 +913,8 @@ export class Flattener {
     for (const [overridden, parameter] of (linked.plan as OverridePlan).applied) {
       setAttribute(overridden.element, overridden.attributeName, parameter.value);
     }
+    const entities = sourceModel.document.entities;
+    if (entities) expandEntitiesInCopy(sourceText, target.element, entities, edits);
     const copied = applyEdits(sourceText, [...edits.values()], target.element.start, target.element.end);
     return reindent(copied, indentationAt(sourceModel.document.text, target.element.start), targetIndent, eol);
   }

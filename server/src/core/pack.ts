@@ -2,8 +2,8 @@ import * as path from 'node:path';
 import JSZip from 'jszip';
 import { buildModel } from './model';
 import { Problem, ProblemCode, ZERO_RANGE } from './problems';
-import { diskRef, displayRef, nodeFileSystem, normalizeEntryName, refId, ScenarioStore, SourceRef } from './sources';
-import { decodeUtf8 } from './text';
+import { decodeScenario } from './encoding';
+import { DEFAULT_LIMITS, diskRef, displayRef, Limits, nodeFileSystem, normalizeEntryName, refId, ScenarioStore, SourceRef } from './sources';
 import { isWellFormed, parseXml } from './xml';
 
 export interface PackResult {
@@ -12,6 +12,8 @@ export interface PackResult {
   /** Entry names in the order they were added; nested packages as `inner.mosc`. */
   entries: string[];
   problems: Problem[];
+  /** Every file read or resolved to while packing: an output may be none of them. */
+  inputs: SourceRef[];
 }
 
 export interface PackFolderOptions {
@@ -26,8 +28,20 @@ function fileProblem(source: SourceRef, code: ProblemCode, message: string, hint
   return { source, range: ZERO_RANGE, severity, code, message, hint };
 }
 
+/** The file's text, or undefined with a problem when its encoding cannot be read. */
+function decodeOrReport(ref: SourceRef, bytes: Uint8Array, problems: Problem[]): string | undefined {
+  try {
+    return decodeScenario(bytes);
+  } catch (error) {
+    problems.push(fileProblem(ref, 'io', `${displayRef(ref)}: ${(error as Error).message}`));
+    return undefined;
+  }
+}
+
 function checkXml(ref: SourceRef, bytes: Uint8Array, problems: Problem[]): void {
-  const document = parseXml(decodeUtf8(bytes));
+  const text = decodeOrReport(ref, bytes, problems);
+  if (text === undefined) return;
+  const document = parseXml(text);
   for (const problem of document.problems) {
     problems.push({ source: ref, range: document.lines.range(problem.start, problem.end), severity: problem.severity, code: 'xml', message: problem.message });
   }
@@ -38,7 +52,7 @@ async function generate(zip: JSZip): Promise<Uint8Array> {
 }
 
 /** `-cxm IN... OUT.mosc`: each input at the root of a new package under its base name (SPEC 6). */
-export async function packFiles(inputs: string[]): Promise<PackResult> {
+export async function packFiles(inputs: string[], limits: Partial<Limits> = {}): Promise<PackResult> {
   const problems: Problem[] = [];
   const entries: string[] = [];
   const zip = new JSZip();
@@ -58,9 +72,19 @@ export async function packFiles(inputs: string[]): Promise<PackResult> {
     }
     seen.set(name, input);
     const kind = await nodeFileSystem.kind(ref.disk);
-    const bytes = kind === 'file' ? await nodeFileSystem.readFile(ref.disk) : undefined;
+    if (kind === 'directory') {
+      problems.push(fileProblem(ref, 'io', `${input} is a folder; pack a folder with 'modular2simple pack FOLDER -o OUT.mosc'`));
+      continue;
+    }
+    let bytes: Uint8Array | undefined;
+    try {
+      bytes = await nodeFileSystem.readFile(ref.disk, limits.maxEntryBytes ?? DEFAULT_LIMITS.maxEntryBytes);
+    } catch (error) {
+      problems.push(fileProblem(ref, 'io', (error as Error).message));
+      continue;
+    }
     if (!bytes) {
-      problems.push(fileProblem(ref, 'io', kind === 'directory' ? `${input} is a folder; pack a folder with 'modular2simple pack FOLDER -o OUT.mosc'` : `cannot read ${input}: no such file`));
+      problems.push(fileProblem(ref, 'io', `cannot read ${input}: no such file`));
       continue;
     }
     if (lower.endsWith('.xosc')) checkXml(ref, bytes, problems);
@@ -79,7 +103,7 @@ export async function packFiles(inputs: string[]): Promise<PackResult> {
     );
   }
   const failed = problems.some((problem) => problem.severity === 'error');
-  return { bytes: failed ? undefined : await generate(zip), entries, problems };
+  return { bytes: failed ? undefined : await generate(zip), entries, problems, inputs: inputs.map((input) => diskRef(input)) };
 }
 
 /**
@@ -88,9 +112,10 @@ export async function packFiles(inputs: string[]): Promise<PackResult> {
  */
 export async function packFolder(folder: string, store: ScenarioStore, options: PackFolderOptions = {}): Promise<PackResult> {
   const problems: Problem[] = [];
-  const result = await packFolderInto(path.resolve(folder), store, options, problems, []);
+  const inputs: SourceRef[] = [];
+  const result = await packFolderInto(path.resolve(folder), store, options, problems, [], inputs);
   const failed = problems.some((problem) => problem.severity === 'error');
-  return { bytes: failed || !result ? undefined : await generate(result.zip), entries: result?.entries ?? [], problems };
+  return { bytes: failed || !result ? undefined : await generate(result.zip), entries: result?.entries ?? [], problems, inputs };
 }
 
 async function packFolderInto(
@@ -99,6 +124,7 @@ async function packFolderInto(
   options: PackFolderOptions,
   problems: Problem[],
   stack: string[],
+  inputs: SourceRef[],
 ): Promise<{ zip: JSZip; entries: string[] } | undefined> {
   const main = diskRef(path.join(folder, 'main.xosc'));
   if ((await store.kindOf(main.disk)) !== 'file') {
@@ -126,8 +152,10 @@ async function packFolderInto(
       problems.push(fileProblem(ref, 'io', (error as Error).message));
       return;
     }
+    inputs.push(ref);
     add(entryName, bytes, refId(ref));
-    const text = decodeUtf8(bytes);
+    const text = decodeOrReport(ref, bytes, problems);
+    if (text === undefined) return;
     const document = parseXml(text);
     if (!isWellFormed(document)) {
       checkXml(ref, bytes, problems);
@@ -139,13 +167,15 @@ async function packFolderInto(
       const report = (code: ProblemCode, message: string, hint?: string, severity: Problem['severity'] = 'error') =>
         problems.push({ source: ref, range, severity, code, message, hint });
       const resolution = await store.resolve(reference.fileName, ref);
+      if (resolution.kind === 'scenario') inputs.push(resolution.ref);
+      if (resolution.kind === 'package') inputs.push(resolution.packageRef, resolution.main);
       const name = normalizeEntryName(reference.fileName);
       if (resolution.kind === 'missing') {
         report('missing-file', `cannot find '${reference.fileName}'; searched ${resolution.searched.join(', ')}`, resolution.hint);
         continue;
       }
-      if (resolution.kind === 'invalid' || name === undefined) {
-        report('invalid-reference', resolution.kind === 'invalid' ? resolution.message : `'${reference.fileName}' points outside the package`);
+      if (resolution.kind === 'invalid' || resolution.kind === 'unreadable' || name === undefined) {
+        report(resolution.kind === 'unreadable' ? 'bad-package' : 'invalid-reference', resolution.kind === 'invalid' || resolution.kind === 'unreadable' ? resolution.message : `'${reference.fileName}' points outside the package`);
         continue;
       }
       if (resolution.via === 'scenarioPath' && !options.includeScenarioPath) {
@@ -167,7 +197,7 @@ async function packFolderInto(
           report('cycle', `package cycle: ${[...stack, folder, nestedFolder].map((entry) => path.relative(process.cwd(), entry) || '.').join(' -> ')}`);
           continue;
         }
-        const nested = await packFolderInto(nestedFolder, store, options, problems, [...stack, folder]);
+        const nested = await packFolderInto(nestedFolder, store, options, problems, [...stack, folder], inputs);
         if (nested) add(packageName, await generate(nested.zip), refId(resolution.packageRef));
       } else {
         try {

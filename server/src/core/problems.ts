@@ -32,6 +32,8 @@ export type ProblemCode =
   | 'schema-value'
   | 'schema-deprecated'
   | 'schema-version'
+  | 'too-large'
+  | 'too-deep'
   | 'undeclared-parameter'
   | 'unused-parameter'
   | 'duplicate-parameter'

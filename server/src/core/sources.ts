@@ -1,7 +1,7 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import type JSZip from 'jszip';
-import { decodeUtf8 } from './text';
+import { decodeScenario, DecodeError } from './encoding';
+import { extractEntry, InflateBudget, readCentralDirectory, ZipEntryRecord } from './zip';
 import { parseXml, reparseXml, XmlDocument } from './xml';
 
 /**
@@ -24,8 +24,17 @@ export function childRef(packageRef: SourceRef, entry: string): SourceRef {
 
 /** A package's `.mosc` file (or an entry holding one) is read as a folder: `/a/p.mosc/inner.mosc/main.xosc`. */
 export function refId(ref: SourceRef): string {
-  return ref.entries.length === 0 ? ref.disk : `${ref.disk}/${ref.entries.join('/')}`;
+  if (ref.entries.length === 0) return ref.disk;
+  // Remembered per ref: deep chains of nested packages compare ids often, and each is as long as the chain.
+  let id = refIds.get(ref);
+  if (id === undefined) {
+    id = `${ref.disk}/${ref.entries.join('/')}`;
+    refIds.set(ref, id);
+  }
+  return id;
 }
+
+const refIds = new WeakMap<SourceRef, string>();
 
 export function sameRef(a: SourceRef, b: SourceRef): boolean {
   return refId(a) === refId(b);
@@ -48,25 +57,63 @@ export class SourceError extends Error {
     message: string,
     readonly ref: SourceRef,
     readonly hint?: string,
+    /** Zero-based line of the problem in the file, when known. */
+    readonly line?: number,
   ) {
     super(message);
   }
 }
 
 export interface FileSystemHost {
-  /** The file's bytes, or undefined when it does not exist or is not a file. */
-  readFile(filePath: string): Promise<Uint8Array | undefined>;
+  /**
+   * The file's bytes, or undefined when it does not exist. Throws FileReadError for what is not a
+   * regular file (a folder, a FIFO, a device) or holds more than `maxBytes`.
+   */
+  readFile(filePath: string, maxBytes?: number): Promise<Uint8Array | undefined>;
   kind(filePath: string): Promise<'file' | 'directory' | undefined>;
   /** The names in a directory, or undefined when it cannot be listed (catalog directories need it). */
   listDirectory?(directoryPath: string): Promise<string[] | undefined>;
 }
 
+export class FileReadError extends Error {}
+
+function describeKind(stat: fs.Stats): string {
+  if (stat.isDirectory()) return 'a folder';
+  if (stat.isFIFO()) return 'a FIFO';
+  if (stat.isCharacterDevice()) return 'a character device';
+  if (stat.isBlockDevice()) return 'a block device';
+  if (stat.isSocket()) return 'a socket';
+  return 'not a regular file';
+}
+
 export const nodeFileSystem: FileSystemHost = {
-  async readFile(filePath) {
+  async readFile(filePath, maxBytes = DEFAULT_LIMITS.maxEntryBytes) {
+    let handle: fs.promises.FileHandle;
     try {
-      return await fs.promises.readFile(filePath);
-    } catch {
-      return undefined;
+      // Non-blocking, so that opening a FIFO returns at once instead of waiting for a writer.
+      handle = await fs.promises.open(filePath, fs.constants.O_RDONLY | fs.constants.O_NONBLOCK);
+    } catch (error) {
+      const code = (error as NodeJS.ErrnoException).code;
+      if (code === 'ENOENT' || code === 'ENOTDIR') return undefined;
+      throw new FileReadError(`cannot read ${filePath} (${code ?? (error as Error).message})`);
+    }
+    try {
+      const stat = await handle.stat();
+      if (!stat.isFile()) throw new FileReadError(`${filePath} is ${describeKind(stat)}, not a file; only regular files are read`);
+      if (stat.size > maxBytes) throw new FileReadError(`${filePath} is too large to read (${stat.size} bytes; the limit is ${maxBytes}, raised with --max-file-size)`);
+      // Read at most one byte past the bound, in case the file grows while it is read.
+      const buffer = Buffer.alloc(Math.min(stat.size, maxBytes) + 1);
+      let length = 0;
+      for (;;) {
+        const { bytesRead } = await handle.read(buffer, length, buffer.length - length, null);
+        if (bytesRead === 0) break;
+        length += bytesRead;
+        if (length === buffer.length) break;
+      }
+      if (length > maxBytes) throw new FileReadError(`${filePath} is too large to read (more than ${maxBytes} bytes, raised with --max-file-size)`);
+      return buffer.subarray(0, length);
+    } finally {
+      await handle.close();
     }
   },
   async kind(filePath) {
@@ -86,17 +133,31 @@ export const nodeFileSystem: FileSystemHost = {
   },
 };
 
-export interface PackageLimits {
+/** Bounds on what one run (a flatten, a check, an index) may read, unpack and produce. */
+export interface Limits {
   maxEntries: number;
+  /** Any one scenario file, on disk or unpacked from a package. */
   maxEntryBytes: number;
+  /** Bytes unpacked from packages in one run, all packages together. */
   maxTotalBytes: number;
+  /** Characters of one flattened result. */
+  maxFlattenedChars: number;
+  /** Files in one chain of references (nested packages included). */
+  maxDepth: number;
 }
 
-export const DEFAULT_PACKAGE_LIMITS: PackageLimits = {
+/** @deprecated the package bounds are part of Limits. */
+export type PackageLimits = Pick<Limits, 'maxEntries' | 'maxEntryBytes' | 'maxTotalBytes'>;
+
+export const DEFAULT_LIMITS: Limits = {
   maxEntries: 10_000,
-  maxEntryBytes: 64 * 1024 * 1024,
-  maxTotalBytes: 256 * 1024 * 1024,
+  maxEntryBytes: 32 * 1024 * 1024,
+  maxTotalBytes: 128 * 1024 * 1024,
+  maxFlattenedChars: 8 * 1024 * 1024,
+  maxDepth: 64,
 };
+
+export const DEFAULT_PACKAGE_LIMITS: PackageLimits = DEFAULT_LIMITS;
 
 export interface PackageContents {
   /** Entry names (with `/` for sub-folders) to their bytes; folders are not listed. */
@@ -115,87 +176,99 @@ export function normalizeEntryName(name: string): string | undefined {
   return parts.length > 0 ? parts.join('/') : undefined;
 }
 
-/** Reads a `.mosc` in memory. Nothing is extracted to disk; unsafe names and oversized entries are refused. */
+/**
+ * Reads a `.mosc` in memory. Nothing is extracted to disk; unsafe or duplicate names, overlapping
+ * entries and oversized entries are refused; what is unpacked is charged to `budget`.
+ */
 export async function readPackageBytes(
   bytes: Uint8Array,
   label: string,
-  limits: PackageLimits = DEFAULT_PACKAGE_LIMITS,
+  limits: PackageLimits = DEFAULT_LIMITS,
+  budget: InflateBudget = { remaining: limits.maxTotalBytes, limit: limits.maxTotalBytes },
 ): Promise<PackageContents> {
-  let zip: JSZip;
+  let records: ZipEntryRecord[];
   try {
-    // Loaded on first use, so that commands that read no package start faster.
-    const { default: loader } = await import('jszip');
-    zip = await loader.loadAsync(bytes, { checkCRC32: true });
+    records = readCentralDirectory(bytes, limits.maxEntries);
   } catch (error) {
     throw new Error(`${label} is not a readable ZIP archive (${(error as Error).message}); a .mosc must be a ZIP file`);
   }
-  const files = Object.values(zip.files).filter((file) => !file.dir);
-  if (files.length > limits.maxEntries) throw new Error(`${label} holds ${files.length} entries, more than the ${limits.maxEntries} allowed`);
   const entries = new Map<string, Uint8Array>();
-  let total = 0;
-  for (const file of files) {
-    // JSZip quietly strips '../' from names; the name as stored is what an unzip tool would use.
-    const stored = (file as JSZip.JSZipObject & { unsafeOriginalName?: string }).unsafeOriginalName ?? file.name;
-    const name = normalizeEntryName(stored);
-    if (name === undefined) throw new Error(`${label} holds an entry named '${stored}' that points outside the package; it was refused`);
-    if (entries.has(name)) throw new Error(`${label} holds the entry '${name}' twice`);
-    const content = await readEntryBounded(file, limits.maxEntryBytes, `${label}/${name}`);
-    total += content.length;
-    if (total > limits.maxTotalBytes) throw new Error(`${label} unpacks to more than ${limits.maxTotalBytes} bytes; it was refused`);
-    entries.set(name, content);
+  const stored = new Map<string, string>();
+  for (const record of records) {
+    if (record.name.endsWith('/') || record.name.endsWith('\\')) continue;
+    const name = normalizeEntryName(record.name);
+    if (name === undefined) throw new Error(`${label} holds an entry named '${record.name}' that points outside the package; it was refused`);
+    const first = stored.get(name);
+    if (first !== undefined) {
+      throw new Error(`${label} holds the entry '${name}' twice` + (first === record.name ? '' : ` (as '${first}' and '${record.name}')`) + '; it was refused');
+    }
+    stored.set(name, record.name);
+  }
+  for (const record of records) {
+    const name = normalizeEntryName(record.name);
+    if (name === undefined || record.name.endsWith('/') || record.name.endsWith('\\')) continue;
+    try {
+      entries.set(name, extractEntry(bytes, record, limits.maxEntryBytes, budget, `${label}/${name}`));
+    } catch (error) {
+      throw new Error((error as Error).message);
+    }
   }
   return { entries };
 }
 
-/** JSZip's streaming reader; present at run time, missing from its type declarations. */
-interface StreamingZipObject {
-  internalStream(type: 'uint8array'): ZipStream;
-}
-interface ZipStream {
-  on(event: 'data', listener: (chunk: Uint8Array) => void): ZipStream;
-  on(event: 'error', listener: (error: Error) => void): ZipStream;
-  on(event: 'end', listener: () => void): ZipStream;
-  pause(): ZipStream;
-  resume(): ZipStream;
+/** Keeps values up to a total size, forgetting the least recently used first. */
+export class SizedCache<T> {
+  private readonly entries = new Map<string, { value: T; size: number }>();
+  private total = 0;
+
+  constructor(readonly maxBytes: number) {}
+
+  get size(): number {
+    return this.total;
+  }
+
+  get(key: string): T | undefined {
+    const entry = this.entries.get(key);
+    if (!entry) return undefined;
+    this.entries.delete(key);
+    this.entries.set(key, entry);
+    return entry.value;
+  }
+
+  set(key: string, value: T, size: number): void {
+    this.delete(key);
+    if (size > this.maxBytes) return;
+    this.entries.set(key, { value, size });
+    this.total += size;
+    for (const [oldest, entry] of this.entries) {
+      if (this.total <= this.maxBytes) break;
+      this.entries.delete(oldest);
+      this.total -= entry.size;
+    }
+  }
+
+  delete(key: string): void {
+    const entry = this.entries.get(key);
+    if (!entry) return;
+    this.entries.delete(key);
+    this.total -= entry.size;
+  }
+
+  /** Forgets every key for which `test` holds. */
+  deleteWhere(test: (key: string) => boolean): void {
+    for (const key of [...this.entries.keys()]) if (test(key)) this.delete(key);
+  }
+
+  clear(): void {
+    this.entries.clear();
+    this.total = 0;
+  }
 }
 
-function readEntryBounded(file: JSZip.JSZipObject, maxBytes: number, label: string): Promise<Uint8Array> {
-  // Decompress as a stream so that a ZIP bomb is stopped at the bound, not after it filled memory.
-  return new Promise((resolve, reject) => {
-    const chunks: Uint8Array[] = [];
-    let size = 0;
-    let settled = false;
-    const stream = (file as unknown as StreamingZipObject).internalStream('uint8array');
-    stream
-      .on('data', (chunk: Uint8Array) => {
-        if (settled) return;
-        size += chunk.length;
-        if (size > maxBytes) {
-          settled = true;
-          stream.pause();
-          reject(new Error(`${label} unpacks to more than ${maxBytes} bytes; it was refused`));
-          return;
-        }
-        chunks.push(chunk);
-      })
-      .on('error', (error: Error) => {
-        if (settled) return;
-        settled = true;
-        reject(new Error(`${label} cannot be unpacked (${error.message})`));
-      })
-      .on('end', () => {
-        if (settled) return;
-        settled = true;
-        const out = new Uint8Array(size);
-        let offset = 0;
-        for (const chunk of chunks) {
-          out.set(chunk, offset);
-          offset += chunk.length;
-        }
-        resolve(out);
-      })
-      .resume();
-  });
+function contentsSize(contents: PackageContents): number {
+  let size = 0;
+  for (const bytes of contents.entries.values()) size += bytes.length;
+  return size;
 }
 
 export type Resolution =
@@ -211,7 +284,9 @@ export type Resolution =
       fallbackFrom?: string;
     }
   | { kind: 'missing'; searched: string[]; hint?: string }
-  | { kind: 'invalid'; message: string };
+  | { kind: 'invalid'; message: string }
+  /** The package that should hold the name cannot be read (a broken archive, a bound exceeded). */
+  | { kind: 'unreadable'; message: string; hint?: string };
 
 interface LookupPlace {
   /** A folder on disk, or a folder inside a package. */
@@ -241,7 +316,9 @@ export interface StoreOptions {
    */
   folders?: FolderOptions[];
   host?: FileSystemHost;
-  limits?: PackageLimits;
+  limits?: Partial<Limits>;
+  /** Bytes of unpacked packages kept for reuse; the least recently used are read again when needed. */
+  packageCacheBytes?: number;
 }
 
 /** Splits SCENARIO_PATH on `;` and on the platform's delimiter (the original split on `;` only). */
@@ -260,8 +337,12 @@ export class ScenarioStore {
   readonly scenarioPath: string[];
   readonly root: string | undefined;
   readonly folders: FolderOptions[];
-  private readonly limits: PackageLimits;
-  private readonly packages = new Map<string, Promise<PackageContents>>();
+  readonly limits: Limits;
+  /** What one run may still unpack; see resetBudget. */
+  private budget: InflateBudget;
+  private readonly packages: SizedCache<PackageContents>;
+  private readonly pendingPackages = new Map<string, Promise<PackageContents>>();
+  private readonly failedPackages = new Map<string, Promise<PackageContents>>();
   private readonly overlays = new Map<string, string>();
   /** The last parse of each file being edited, from which the next edit is re-parsed. */
   private readonly editedParses = new Map<string, XmlDocument>();
@@ -275,7 +356,20 @@ export class ScenarioStore {
     this.root = options.root ? path.resolve(options.root) : undefined;
     // Innermost first, so a folder nested in another is found before it.
     this.folders = (options.folders ?? []).map((entry) => ({ ...entry, folder: path.resolve(entry.folder) })).sort((a, b) => b.folder.length - a.folder.length);
-    this.limits = options.limits ?? DEFAULT_PACKAGE_LIMITS;
+    this.limits = { ...DEFAULT_LIMITS, ...options.limits };
+    this.budget = { remaining: this.limits.maxTotalBytes, limit: this.limits.maxTotalBytes };
+    this.packages = new SizedCache(options.packageCacheBytes ?? Infinity);
+  }
+
+  /** Starts a new run: what it may unpack is counted from zero (packages still cached cost nothing). */
+  resetBudget(): void {
+    this.budget = { remaining: this.limits.maxTotalBytes, limit: this.limits.maxTotalBytes };
+    this.failedPackages.clear();
+  }
+
+  /** Bytes of unpacked packages held for reuse. */
+  get cachedPackageBytes(): number {
+    return this.packages.size;
   }
 
   /** Text that replaces a file's stored content, as an editor's unsaved buffer does. */
@@ -315,9 +409,10 @@ export class ScenarioStore {
   invalidate(diskPath: string): void {
     const resolved = path.resolve(diskPath);
     this.kinds.clear();
-    for (const key of [...this.packages.keys()]) {
-      if (key === resolved || key.startsWith(resolved + '/')) this.packages.delete(key);
-    }
+    const below = (key: string) => key === resolved || key.startsWith(resolved + '/');
+    this.packages.deleteWhere(below);
+    for (const key of [...this.pendingPackages.keys()]) if (below(key)) this.pendingPackages.delete(key);
+    for (const key of [...this.failedPackages.keys()]) if (below(key)) this.failedPackages.delete(key);
   }
 
   /** Whether a path is a file or a folder; remembered until the next invalidate. */
@@ -332,7 +427,12 @@ export class ScenarioStore {
 
   async readBytes(ref: SourceRef): Promise<Uint8Array> {
     if (ref.entries.length === 0) {
-      const bytes = await this.host.readFile(ref.disk);
+      let bytes: Uint8Array | undefined;
+      try {
+        bytes = await this.host.readFile(ref.disk, this.limits.maxEntryBytes);
+      } catch (error) {
+        throw new SourceError((error as Error).message, ref);
+      }
       if (!bytes) throw new SourceError(`cannot read ${ref.disk}: no such file`, ref);
       return bytes;
     }
@@ -346,23 +446,44 @@ export class ScenarioStore {
   async readText(ref: SourceRef): Promise<string> {
     const overlay = this.overlays.get(refId(ref));
     if (overlay !== undefined) return overlay;
-    return decodeUtf8(await this.readBytes(ref));
+    const bytes = await this.readBytes(ref);
+    try {
+      return decodeScenario(bytes);
+    } catch (error) {
+      if (!(error instanceof DecodeError)) throw error;
+      throw new SourceError(`${displayRef(ref)}: ${error.message}`, ref, undefined, error.line);
+    }
   }
 
   /** The entries of the package stored at `ref` (a `.mosc` on disk or inside another package). */
   readPackage(ref: SourceRef): Promise<PackageContents> {
     const id = refId(ref);
-    let pending = this.packages.get(id);
+    const cached = this.packages.get(id);
+    if (cached) return Promise.resolve(cached);
+    let pending = this.pendingPackages.get(id) ?? this.failedPackages.get(id);
     if (!pending) {
-      pending = (async () => {
+      const reading = (async () => {
         const bytes = await this.readBytes(ref);
         try {
-          return await readPackageBytes(bytes, displayRef(ref), this.limits);
+          return await readPackageBytes(bytes, displayRef(ref), this.limits, this.budget);
         } catch (error) {
           throw new SourceError((error as Error).message, ref, 'rebuild the package with `modular2simple pack`');
         }
       })();
-      this.packages.set(id, pending);
+      pending = reading;
+      this.pendingPackages.set(id, reading);
+      reading.then(
+        (contents) => {
+          if (this.pendingPackages.get(id) !== reading) return;
+          this.pendingPackages.delete(id);
+          this.packages.set(id, contents, contentsSize(contents));
+        },
+        () => {
+          if (this.pendingPackages.get(id) !== reading) return;
+          this.pendingPackages.delete(id);
+          this.failedPackages.set(id, reading);
+        },
+      );
     }
     return pending;
   }
@@ -444,8 +565,8 @@ export class ScenarioStore {
       let contents: PackageContents;
       try {
         contents = await this.readPackage(place.packageRef);
-      } catch {
-        return undefined;
+      } catch (error) {
+        return { kind: 'unreadable', message: (error as Error).message, hint: error instanceof SourceError ? error.hint : undefined };
       }
       if (contents.entries.has(joined)) {
         const ref = childRef(place.packageRef, joined);

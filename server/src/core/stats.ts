@@ -1,7 +1,7 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { Flattener } from './flatten';
-import { ScenarioStore, diskRef, refId } from './sources';
+import { Limits, ScenarioStore, diskRef, refId } from './sources';
 import { countEditorLines } from './text';
 
 export interface StatsRow {
@@ -27,33 +27,45 @@ function reduction(modular: number, flattened: number): number {
 }
 
 /** The paper's Table 1 for a library of modular scenarios (SPEC 9). */
-export async function libraryStats(library: string): Promise<LibraryStats> {
+export async function libraryStats(library: string, limits: Partial<Limits> = {}): Promise<LibraryStats> {
   const root = path.resolve(library);
   const folders = fs
     .readdirSync(root, { withFileTypes: true })
     .filter((entry) => entry.isDirectory() && fs.existsSync(path.join(root, entry.name, 'main.xosc')))
     .map((entry) => entry.name)
     .sort();
-  const store = new ScenarioStore({ root, scenarioPath: [root] });
+  const store = new ScenarioStore({ root, scenarioPath: [root], limits });
   const flattener = new Flattener(store);
   const rows: StatsRow[] = [];
   const shared = new Map<string, number>();
   const problems: string[] = [];
+  // Read through the store, which refuses folders, FIFOs, devices and files over the size bound.
+  const readLines = async (filePath: string): Promise<number | undefined> => {
+    try {
+      return countEditorLines(await store.readText(diskRef(filePath)));
+    } catch (error) {
+      problems.push((error as Error).message);
+      return undefined;
+    }
+  };
   for (const folder of folders) {
     const mainPath = path.join(root, folder, 'main.xosc');
     const resultPath = path.join(root, folder, 'result.xosc');
-    const modularLines = countEditorLines(fs.readFileSync(mainPath, 'utf8'));
+    const modularLines = await readLines(mainPath);
+    if (modularLines === undefined) continue;
     const flattened = await flattener.flatten(diskRef(mainPath));
     for (const dependency of flattened.source.dependencies) {
       const id = refId(dependency);
       if (dependency.entries.length === 0 && !id.startsWith(path.join(root, folder) + path.sep) && id !== mainPath) {
-        shared.set(id, countEditorLines(await store.readText(dependency)));
+        const lines = await readLines(id);
+        if (lines !== undefined) shared.set(id, lines);
       }
     }
     let flattenedLines: number;
     let flattenedFrom: StatsRow['flattenedFrom'];
-    if (fs.existsSync(resultPath)) {
-      flattenedLines = countEditorLines(fs.readFileSync(resultPath, 'utf8'));
+    const resultLines = fs.existsSync(resultPath) ? await readLines(resultPath) : undefined;
+    if (resultLines !== undefined) {
+      flattenedLines = resultLines;
       flattenedFrom = 'result.xosc';
     } else if (flattened.text !== undefined) {
       flattenedLines = countEditorLines(flattened.text);

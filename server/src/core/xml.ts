@@ -41,6 +41,8 @@ export interface XmlDocument {
   root: XmlElement | undefined;
   problems: XmlProblem[];
   lines: LineIndex;
+  /** The internal general entities of the DOCTYPE, expanded; absent when none is declared. */
+  entities?: ReadonlyMap<string, string>;
 }
 
 export interface XmlParseOptions {
@@ -51,7 +53,9 @@ export interface XmlParseOptions {
 }
 
 /** A raw attribute value that decodes to itself: no references, no white space to normalize. */
-const PLAIN_VALUE = /^[^&\t\n\r]*$/;
+const PLAIN_VALUE = /^[^&\x00-\x1F\uD800-\uDFFF\uFFFE\uFFFF]*$/;
+
+const LINE_END = /[\r\n>]/g;
 
 const PREDEFINED_ENTITIES: Record<string, string> = { lt: '<', gt: '>', amp: '&', quot: '"', apos: "'" };
 
@@ -104,6 +108,18 @@ function isNameStart(code: number): boolean {
   return (
     (code >= 65 && code <= 90) || (code >= 97 && code <= 122) || code === 95 || code === 58 || code >= 0xc0
   );
+}
+
+/** Whether a code point is a Char of XML 1.0: no NUL, no other C0 control but tab and line ends, no U+FFFE/U+FFFF. */
+export function isXmlChar(code: number): boolean {
+  return code === 9 || code === 10 || code === 13 || (code >= 0x20 && code <= 0xd7ff) || (code >= 0xe000 && code <= 0xfffd) || (code >= 0x10000 && code <= 0x10ffff);
+}
+
+/** Characters that may not occur in an XML document, lone surrogates included. */
+const NOT_XML_CHAR = /[\x00-\x08\x0B\x0C\x0E-\x1F\uFFFE\uFFFF\uD800-\uDFFF]/g;
+
+function codePointName(code: number): string {
+  return `U+${code.toString(16).toUpperCase().padStart(4, '0')}`;
 }
 
 function isSpace(code: number): boolean {
@@ -196,8 +212,10 @@ export function parseXml(input: string, options: XmlParseOptions = {}): XmlDocum
       const reference = raw.slice(amp + 1, semicolon);
       if (reference.startsWith('#')) {
         const code = reference.startsWith('#x') ? parseInt(reference.slice(2), 16) : parseInt(reference.slice(1), 10);
-        if (!Number.isFinite(code) || code <= 0 || code > 0x10ffff || !/^#(x[0-9a-fA-F]+|[0-9]+)$/.test(reference)) {
+        if (!Number.isFinite(code) || !/^#(x[0-9a-fA-F]+|[0-9]+)$/.test(reference)) {
           report(`invalid character reference '&${reference};'`, at, refEnd);
+        } else if (!isXmlChar(code)) {
+          report(`the character reference '&${reference};' names ${code > 0x10ffff ? 'no character' : codePointName(code)}, which XML does not allow`, at, refEnd);
         } else {
           out += String.fromCodePoint(code);
         }
@@ -293,6 +311,7 @@ export function parseXml(input: string, options: XmlParseOptions = {}): XmlDocum
       parent: stack[stack.length - 1],
     };
     let terminated = false;
+    let attributeNames: Set<string> | undefined;
     for (;;) {
       const beforeSpace = position;
       skipSpace();
@@ -339,11 +358,13 @@ export function parseXml(input: string, options: XmlParseOptions = {}): XmlDocum
       const quote = quoteCode === 34 ? '"' : "'";
       const valueStart = position + 1;
       let valueEnd = text.indexOf(quote, valueStart);
-      const nextTag = text.indexOf('<', valueStart);
-      if (valueEnd < 0 || (nextTag >= 0 && nextTag < valueEnd)) {
+      // The next '<' is found once and reused by every attribute before it (a tag may hold thousands).
+      if (nextOpen < valueStart) nextOpen = indexOrEnd('<', valueStart);
+      if (valueEnd < 0 || nextOpen < valueEnd) {
         // Recover at the line end so a value being typed does not swallow the rest of the file.
-        const lineEnd = text.slice(valueStart).search(/[\r\n>]/);
-        valueEnd = lineEnd < 0 ? text.length : valueStart + lineEnd;
+        LINE_END.lastIndex = valueStart;
+        const lineEnd = LINE_END.exec(text);
+        valueEnd = lineEnd ? lineEnd.index : text.length;
         report(`the value of attribute '${attributeName}' is not closed with ${quote}`, nameStart, valueEnd);
         position = valueEnd;
       } else {
@@ -352,9 +373,11 @@ export function parseXml(input: string, options: XmlParseOptions = {}): XmlDocum
       const raw = text.slice(valueStart, valueEnd);
       // Most values hold neither references nor line breaks: no copy is made for them.
       const value = PLAIN_VALUE.test(raw) ? raw : decodeReferences(raw.replace(/[\t\n\r]/g, ' '), valueStart, valueEnd, 0);
-      if (element.attributes.some((existing) => existing.name === attributeName)) {
+      // A linear scan for the usual handful of attributes, a set beyond: a tag with 40,000 attributes stays linear.
+      if (element.attributes.length < 16 ? element.attributes.some((existing) => existing.name === attributeName) : (attributeNames ??= new Set(element.attributes.map((a) => a.name))).has(attributeName)) {
         report(`attribute '${attributeName}' appears twice`, nameStart, nameEnd);
       }
+      attributeNames?.add(attributeName);
       element.attributes.push({ name: attributeName, value, nameStart, nameEnd, valueStart, valueEnd, quote });
     }
     if (!terminated && position >= text.length) report(`tag <${name}> is not closed with '>'`, start, text.length);
@@ -376,6 +399,14 @@ export function parseXml(input: string, options: XmlParseOptions = {}): XmlDocum
       return;
     }
     stack.push(element);
+    openByName.set(name, (openByName.get(name) ?? 0) + 1);
+  };
+  /** How many elements of each name are open: an end tag that matches none is known at once. */
+  const openByName = new Map<string, number>();
+  const popElement = (): XmlElement => {
+    const element = stack.pop() as XmlElement;
+    openByName.set(element.name, (openByName.get(element.name) ?? 1) - 1);
+    return element;
   };
 
   const parseEndTag = (start: number) => {
@@ -384,17 +415,19 @@ export function parseXml(input: string, options: XmlParseOptions = {}): XmlDocum
     skipSpace();
     if (text.charCodeAt(position) === 62) position++;
     else report(`end tag </${name}> is not closed with '>'`, start, position);
-    const matchIndex = stack.map((e) => e.name).lastIndexOf(name);
-    if (matchIndex < 0) {
+    if (!openByName.get(name)) {
       report(`end tag </${name}> has no matching start tag`, start, position);
       return;
     }
+    // The search costs as many steps as elements it closes, so each element is passed once.
+    let matchIndex = stack.length - 1;
+    while (stack[matchIndex].name !== name) matchIndex--;
     while (stack.length - 1 > matchIndex) {
-      const unclosed = stack.pop() as XmlElement;
+      const unclosed = popElement();
       unclosed.end = start;
       report(`element <${unclosed.name}> is not closed (expected </${unclosed.name}> before </${name}>)`, unclosed.start, unclosed.nameEnd);
     }
-    const element = stack.pop() as XmlElement;
+    const element = popElement();
     element.end = position;
     element.closed = true;
   };
@@ -421,7 +454,20 @@ export function parseXml(input: string, options: XmlParseOptions = {}): XmlDocum
     return found < 0 ? text.length : found;
   };
   let nextAmpersand = -1;
+  let nextOpen = -1;
   let nextCdataEnd = -1;
+
+  for (let match = NOT_XML_CHAR.exec(text); match; match = NOT_XML_CHAR.exec(text)) {
+    if (problems.length >= 1000) break;
+    const code = match[0].charCodeAt(0);
+    // A surrogate pair is one character beyond U+FFFF; only a lone half is an error.
+    if (code >= 0xd800 && code <= 0xdbff && (text.charCodeAt(match.index + 1) & 0xfc00) === 0xdc00) {
+      NOT_XML_CHAR.lastIndex = match.index + 2;
+      continue;
+    }
+    report(`the character ${codePointName(match[0].charCodeAt(0))} is not allowed in XML; remove it or write it another way`, match.index, match.index + 1);
+  }
+  NOT_XML_CHAR.lastIndex = 0;
 
   while (position < text.length) {
     const open = text.indexOf('<', position);
@@ -468,11 +514,20 @@ export function parseXml(input: string, options: XmlParseOptions = {}): XmlDocum
     report(`element <${unclosed.name}> is not closed (expected </${unclosed.name}>)`, unclosed.start, unclosed.nameEnd);
   }
   if (!root) report('the file holds no XML element', 0, Math.min(text.length, 1));
+  let expandedEntities: Map<string, string> | undefined;
+  if (entities.size > 0) {
+    expandedEntities = new Map();
+    // Expanded for flattening, which copies groups out of this document; problems were reported where used.
+    const reported = problems.length;
+    for (const name of entities.keys()) expandedEntities.set(name, expandEntity(name, 0, 0, 0));
+    problems.length = reported;
+  }
   let lines: LineIndex | undefined;
   return {
     text,
     root,
     problems,
+    entities: expandedEntities,
     // Built on first use: most parses never need line numbers.
     get lines() {
       lines ??= new LineIndex(text);
@@ -566,6 +621,7 @@ export function reparseValueEdit(previous: XmlDocument, text: string): XmlDocume
     text,
     root,
     problems: [],
+    entities: previous.entities,
     get lines() {
       lines ??= new LineIndex(text);
       return lines;

@@ -1,7 +1,7 @@
 import * as path from 'node:path';
 import { ErrorCodes, ResponseError } from 'vscode-languageserver/node';
 import { Flattener, FlatSource } from '../core/flatten';
-import { isSameFile, writeFileAtomic } from '../core/atomic';
+import { isSameFile, OutputError, writeFileAtomic } from '../core/atomic';
 import { Problem } from '../core/problems';
 import { baseName, childRef, diskRef, displayRef, refId, SourceRef } from '../core/sources';
 import { FlattenTextResult, ProblemSummary, StructureNode, WriteResult } from '../protocol';
@@ -29,6 +29,15 @@ export function invalidParams(message: string): ResponseError<void> {
 
 function forceOf(options: unknown): boolean {
   return Boolean(options && typeof options === 'object' && (options as { force?: unknown }).force === true);
+}
+
+/** Whether the client asked the user and was told to write outside the workspace. */
+function outsideConfirmed(options: unknown): boolean {
+  return Boolean(options && typeof options === 'object' && (options as { outsideWorkspace?: unknown }).outsideWorkspace === true);
+}
+
+function insideFolders(filePath: string, folders: string[]): boolean {
+  return folders.some((folder) => filePath === folder || filePath.startsWith(folder.endsWith(path.sep) ? folder : folder + path.sep));
 }
 
 export async function refOf(workspace: Workspace, uri: unknown): Promise<SourceRef> {
@@ -59,12 +68,30 @@ export async function flattenToFile(workspace: Workspace, uri: unknown, outputPa
   const ref = await refOf(workspace, uri);
   if (typeof outputPath !== 'string' || !outputPath) throw invalidParams('expected an output path');
   const output = path.resolve(filePathOf(outputPath) ?? outputPath);
+  if (!output.toLowerCase().endsWith('.xosc')) return { written: null, problems: [outputProblem(workspace, ref, `the output '${output}' must end in .xosc`)] };
+  if (workspace.folders.length > 0 && !insideFolders(output, workspace.folders) && !outsideConfirmed(options)) {
+    return {
+      written: null,
+      problems: [outputProblem(workspace, ref, `${output} lies outside the workspace; confirm to write it there`)],
+      needsConfirmation: 'outsideWorkspace',
+    };
+  }
   const result = await new Flattener(workspace.store, workspace.settings.simulator, { version: workspace.settings.schemaVersion }).flatten(ref, { force: forceOf(options), outputPath: output });
   const problems = result.problems.map((problem) => summarize(workspace, problem));
   const input = result.source.dependencies.find((dependency) => dependency.disk === output || isSameFile(dependency.disk, output));
   if (input) return { written: null, problems: [...problems, outputProblem(workspace, ref, `refusing to overwrite ${displayRef(input, workspace.folders[0])}, an input of this flattening`)] };
   if (result.text === undefined) return { written: null, problems };
-  await writeFileAtomic(output, result.text);
+  return writeOutput(workspace, output, result.text, problems, ref);
+}
+
+/** Writes an output atomically; a refusal of the writer (read-only, a folder) is a problem, not an exception. */
+export async function writeOutput(workspace: Workspace, output: string, data: string | Uint8Array, problems: ProblemSummary[], ref: SourceRef): Promise<WriteResult> {
+  try {
+    await writeFileAtomic(output, data);
+  } catch (error) {
+    if (!(error instanceof OutputError)) throw error;
+    return { written: null, problems: [...problems, outputProblem(workspace, ref, error.message)] };
+  }
   workspace.fileChanged(output);
   return { written: output, problems };
 }
@@ -83,7 +110,7 @@ export async function structure(workspace: Workspace, uri: unknown): Promise<Str
       const position = flat.original?.document.lines.positionAt(link.info.element.start);
       const target = resolvedTarget(link.resolution);
       if (!target || !link.source) {
-        node.children.push({ kind: 'missing', label: link.info.fileName || '(no scenarioFileName)', detail: link.resolution.kind === 'missing' ? 'not found' : link.resolution.kind === 'invalid' ? link.resolution.message : 'cycle', uri: workspace.uriOf(flat.ref), line: position?.line, character: position?.character, children: [] });
+        node.children.push({ kind: 'missing', label: link.info.fileName || '(no scenarioFileName)', detail: link.resolution.kind === 'missing' ? 'not found' : link.resolution.kind === 'invalid' || link.resolution.kind === 'unreadable' ? link.resolution.message : 'cycle', uri: workspace.uriOf(flat.ref), line: position?.line, character: position?.character, children: [] });
         continue;
       }
       const child = build(link.source, link.resolution.kind === 'package' ? 'package' : 'scenario', link.info.fileName);

@@ -1,11 +1,12 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { isSameFile, writeFileAtomic } from '../core/atomic';
+import { isSameFile } from '../core/atomic';
+import { diskRef } from '../core/sources';
 import { packFiles, packFolder, PackResult } from '../core/pack';
 import { WriteResult } from '../protocol';
 import { filePathOf } from '../uris';
 import { Workspace } from '../workspace';
-import { invalidParams, summarize } from './commands';
+import { invalidParams, summarize, writeOutput } from './commands';
 
 function isFolder(filePath: string): boolean {
   try {
@@ -30,8 +31,9 @@ export async function packCommand(workspace: Workspace, inputs: unknown, outputP
   if (paths.some((input) => input === output || isSameFile(input, output))) return refuse(`refusing to overwrite ${output}, one of the inputs`);
   const result: PackResult = folder ? await packFolder(folder, workspace.store) : await packFiles(paths);
   const problems = result.problems.map((problem) => summarize(workspace, problem));
+  // Every file read or resolved to while packing counts: a referenced package must never be overwritten.
+  const input = result.inputs.find((candidate) => candidate.disk === output || isSameFile(candidate.disk, output));
+  if (input) return refuse(`refusing to overwrite ${output}: the package references it`);
   if (!result.bytes) return { written: null, problems };
-  await writeFileAtomic(output, result.bytes);
-  workspace.fileChanged(output);
-  return { written: output, problems };
+  return writeOutput(workspace, output, result.bytes, problems, diskRef(paths[0]));
 }

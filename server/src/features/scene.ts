@@ -87,8 +87,14 @@ export async function buildScene(workspace: Workspace, params: SceneParams): Pro
     if (!resolved) {
       problems.push(`road file "${logic.filepath}" not found; looked for ${candidates.join(', ')}. Add its folder to the setting modular2simple.esmini.roadPath.`);
     } else {
-      const bytes = await nodeFileSystem.readFile(resolved);
-      if (!bytes) problems.push(`road file ${resolved} could not be read`);
+      // Read fresh from disk (a road file may change), bounded, and refused when not a regular file (a FIFO, a device), so that a road file never hangs the server.
+      const read = await nodeFileSystem.readFile(resolved, MAX_ROAD_FILE_BYTES + 1).then(
+        (bytes) => ({ bytes, error: undefined }),
+        (error: Error) => ({ bytes: undefined, error: error.message }),
+      );
+      const bytes = read.bytes;
+      if (read.error) problems.push(`road file ${resolved} could not be read: ${read.error}`);
+      else if (!bytes) problems.push(`road file ${resolved} could not be read`);
       else if (bytes.byteLength > MAX_ROAD_FILE_BYTES) problems.push(`road file ${resolved} is larger than ${MAX_ROAD_FILE_BYTES / 1024 / 1024} MB; not drawn`);
       else {
         const text = decodeUtf8(bytes);
