@@ -115,7 +115,7 @@ describe('cli: inputs that are not regular files', function () {
     fs.symlinkSync('/dev/zero', path.join(root, 'zero.xosc'));
     fs.mkdirSync(path.join(root, 'pkg'));
     fs.symlinkSync('/dev/zero', path.join(root, 'pkg', 'main.xosc'));
-    const script = `mount -t tmpfs none /dev && mknod /dev/zero c 1 5 && cd "${root}" && for command in "flatten pkg" "check ." "flatten zero.xosc"; do timeout -s KILL 10 "${process.execPath}" --max-old-space-size=128 "${cliPath}" $command; echo "exit $?"; done`;
+    const script = `mount -t tmpfs none /dev && mknod /dev/zero c 1 5 && cd "${root}" && for command in "flatten --schema-version=off pkg" "check --schema-version=off ." "flatten --schema-version=off zero.xosc"; do timeout -s KILL 10 "${process.execPath}" --max-old-space-size=128 "${cliPath}" $command; echo "exit $?"; done`;
     const run = spawnSync('unshare', ['-m', '--propagation', 'private', 'sh', '-c', script], { encoding: 'utf8', timeout: 60_000 });
     assert.deepEqual(run.stdout.match(/exit \d+/g), ['exit 1', 'exit 1', 'exit 1'], run.stderr);
     assert.match(run.stderr, /is a character device, not a file/);
@@ -276,7 +276,7 @@ describe('cli: outputs', function () {
       this.skip();
     }
     const root = flatWorkspace();
-    const script = `mount -t tmpfs none /dev && mknod /dev/null c 1 3 && ln -s /proc/self/fd/1 /dev/stdout && cd "${root}" && "${process.execPath}" "${cliPath}" flatten main.xosc -o /dev/null && "${process.execPath}" "${cliPath}" flatten main.xosc -o /dev/stdout > captured.xosc && stat -c %F /dev/null && ls -a /dev`;
+    const script = `mount -t tmpfs none /dev && mknod /dev/null c 1 3 && ln -s /proc/self/fd/1 /dev/stdout && cd "${root}" && "${process.execPath}" "${cliPath}" flatten --schema-version=off main.xosc -o /dev/null && "${process.execPath}" "${cliPath}" flatten --schema-version=off main.xosc -o /dev/stdout > captured.xosc && stat -c %F /dev/null && ls -a /dev`;
     const run = spawnSync('unshare', ['-m', '--propagation', 'private', 'sh', '-c', script], { encoding: 'utf8', timeout: 30_000 });
     assert.equal(run.status, 0, run.stderr);
     assert.match(run.stdout, /character special file/);

@@ -6,6 +6,7 @@ import { CodeAction, CompletionItem, Diagnostic, Hover, Location, MarkupContent 
 import { main } from '../../server/src/cli';
 import { MAIN, mainWithKeys, PACKAGE_MAIN, SIMPLE } from './fixtures/scenarios';
 import { fileUri, markers, positionAfter, positionAt, temporaryWorkspace, TestClient, useServer } from './harness';
+import { withoutSchema } from '../support/fixtures';
 
 /** The fixtures' simple scenario with a speed default that is full of Markdown characters (its parameters declared). */
 const SIMPLE_EXPRESSION = markers(SIMPLE)
@@ -146,7 +147,8 @@ interface WorkspaceReport {
 /** `file:line:code:severity` of every problem, from `check --format json` or from workspace/diagnostic. */
 async function checkLines(root: string): Promise<string[]> {
   const printed: string[] = [];
-  await main(['check', root, '--format', 'json', '--root', root], { out: (text) => printed.push(text), err: () => undefined });
+  // The harness turns the server's schema check off (minimal fixtures), so check runs the same way.
+  await main(withoutSchema(['check', root, '--format', 'json', '--root', root]), { out: (text) => printed.push(text), err: () => undefined });
   const report = JSON.parse(printed.join('')) as { problems: { file: string; line: number; code: string; severity: string }[] };
   return report.problems.map((problem) => `${path.resolve(problem.file)}:${problem.line}:${problem.code}:${problem.severity}`).sort();
 }

@@ -53,11 +53,15 @@ export interface CliRun {
 const SCHEMA_CHECKING = new Set(['flatten', 'check', '-cmx', '--convert-mosc-to-xosc']);
 
 /** Runs the CLI; the schema check is off unless `schema` is set, since the fixtures below are minimal, not schema-valid. */
+/** The arguments with the schema check turned off unless asked for: the fixtures here are minimal, not schema-valid. */
+export function withoutSchema(args: string[], schema = false): string[] {
+  const schemaOff = !schema && SCHEMA_CHECKING.has(args[0]) && !args.some((arg) => arg.startsWith('--schema-version'));
+  return schemaOff ? [args[0], '--schema-version=off', ...args.slice(1)] : args;
+}
+
 export function runCli(args: string[], options: { cwd?: string; env?: Record<string, string | undefined>; schema?: boolean } = {}): CliRun {
   const env = { ...process.env, SCENARIO_PATH: '', ...options.env };
-  const schemaOff = !options.schema && SCHEMA_CHECKING.has(args[0]) && !args.some((arg) => arg.startsWith('--schema-version'));
-  const withOptions = schemaOff ? [args[0], '--schema-version=off', ...args.slice(1)] : args;
-  const result = spawnSync(process.execPath, [cliPath, ...withOptions], { cwd: options.cwd, env, encoding: 'utf8' });
+  const result = spawnSync(process.execPath, [cliPath, ...withoutSchema(args, options.schema)], { cwd: options.cwd, env, encoding: 'utf8' });
   return { status: result.status ?? -1, stdout: result.stdout, stderr: result.stderr };
 }
 

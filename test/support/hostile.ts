@@ -2,7 +2,7 @@ import { spawn, spawnSync } from 'node:child_process';
 import * as path from 'node:path';
 import * as zlib from 'node:zlib';
 import { crc32 } from '../../server/src/core/zip';
-import { cliPath, CliRun, repoRoot } from './fixtures';
+import { cliPath, CliRun, repoRoot, withoutSchema } from './fixtures';
 
 /**
  * Runs the CLI in a child process bounded by the test itself: killed after `timeoutMs` (a watchdog)
@@ -10,7 +10,7 @@ import { cliPath, CliRun, repoRoot } from './fixtures';
  */
 export function runBounded(args: string[], options: { cwd?: string; env?: Record<string, string | undefined>; timeoutMs?: number; heapMb?: number } = {}): CliRun & { timedOut: boolean; ms: number } {
   const started = Date.now();
-  const result = spawnSync(process.execPath, [`--max-old-space-size=${options.heapMb ?? 256}`, cliPath, ...args], {
+  const result = spawnSync(process.execPath, [`--max-old-space-size=${options.heapMb ?? 256}`, cliPath, ...withoutSchema(args)], {
     cwd: options.cwd,
     env: { ...process.env, SCENARIO_PATH: '', ...options.env },
     encoding: 'utf8',
