@@ -82,7 +82,9 @@ function rememberedCheck(key: string, document: XmlDocument, options: SchemaChec
   const setting = `${options.version ?? 'auto'} ${options.modular ? 'modular' : 'strict'}`;
   const previous = remembered.get(key);
   let check: RememberedCheck | undefined;
-  const moved = previous && previous.setting === setting ? recheckValueEdit(previous, document) : undefined;
+  // The same text checks the same (a file read again by a new generation's flattener).
+  const same = previous && previous.setting === setting && previous.text === document.text;
+  const moved = same ? previous.placed : previous && previous.setting === setting ? recheckValueEdit(previous, document) : undefined;
   if (previous && moved) check = { ...previous, text: document.text, placed: moved };
   else {
     const full = checkSchema(document, options);
