@@ -96,6 +96,13 @@ function positionAfter(text, needle, nth = 0) {
 
 // ---- generated scenarios --------------------------------------------------------------------
 
+// Schema-valid (OpenSCENARIO 1.0), as the schema check runs by default and blocks a preview on errors.
+const vehicle =
+  '<Vehicle name="v" vehicleCategory="car"><BoundingBox><Center x="1.4" y="0" z="0.9"/><Dimensions width="2" length="5" height="1.8"/></BoundingBox>' +
+  '<Performance maxSpeed="69" maxAcceleration="10" maxDeceleration="10"/><Axles>' +
+  '<FrontAxle maxSteering="0.5" wheelDiameter="0.8" trackWidth="1.7" positionX="2.9" positionZ="0.4"/>' +
+  '<RearAxle maxSteering="0" wheelDiameter="0.8" trackWidth="1.7" positionX="0" positionZ="0.4"/></Axles><Properties/></Vehicle>';
+
 function simpleScenario(index) {
   const groups = [0, 1, 2]
     .map(
@@ -124,14 +131,18 @@ function simpleScenario(index) {
   return `<?xml version="1.0" encoding="UTF-8"?>
 <OpenSCENARIO>
   <FileHeader revMajor="1" revMinor="0" date="2024-01-01T00:00:00" description="simple ${index}" author="bench"/>
-  <Entities><ScenarioObject name="ego"/></Entities>
+  <CatalogLocations/>
+  <RoadNetwork/>
+  <Entities><ScenarioObject name="ego">${vehicle}</ScenarioObject></Entities>
   <Storyboard>
     <Init><Actions/></Init>
     <Story name="S">
       <Act name="A">
 ${groups}
+        <StartTrigger/>
       </Act>
     </Story>
+    <StopTrigger/>
   </Storyboard>
 </OpenSCENARIO>
 `;
@@ -153,13 +164,15 @@ function referenceGroup(index, simpleCount) {
 }
 
 function mainScenario(references, simpleCount, padLines = 0) {
-  const entities = Array.from({ length: 50 }, (_, i) => `    <ScenarioObject name="car${i}"><Vehicle name="v" vehicleCategory="car"><Performance maxSpeed="69" maxAcceleration="10" maxDeceleration="10"/></Vehicle></ScenarioObject>`).join('\n');
+  const entities = Array.from({ length: 50 }, (_, i) => `    <ScenarioObject name="car${i}">${vehicle}</ScenarioObject>`).join('\n');
   // Plain OpenSCENARIO content (Init actions) pads a file to a realistic size without references.
   const padding = Array.from({ length: Math.ceil(padLines / 3) }, (_, i) => `      <Private entityRef="car${i % 50}">\n        <PrivateAction><TeleportAction><Position><WorldPosition x="${i}" y="${i % 9}" z="0" h="0"/></Position></TeleportAction></PrivateAction>\n      </Private>`).join('\n');
   const groups = Array.from({ length: references }, (_, i) => referenceGroup(i, simpleCount)).join('\n');
   return `<?xml version="1.0" encoding="UTF-8"?>
 <OpenSCENARIO>
   <FileHeader revMajor="1" revMinor="0" date="2024-01-01T00:00:00" description="main" author="bench"/>
+  <CatalogLocations/>
+  <RoadNetwork/>
   <Entities>
 ${entities}
   </Entities>
@@ -170,8 +183,10 @@ ${padding}
     <Story name="Main">
       <Act name="Act">
 ${groups}
+        <StartTrigger/>
       </Act>
     </Story>
+    <StopTrigger/>
   </Storyboard>
 </OpenSCENARIO>
 `;
@@ -340,7 +355,7 @@ function schemaScenario(minor, lines) {
           <PrivateAction>
             <LongitudinalAction>
               <SpeedAction>
-                <SpeedActionDynamics dynamicsShape="step" value="0" dynamicsDimension="time"/>
+                <SpeedActionDynamics dynamicsShape="step" value="$Speed" dynamicsDimension="time"/>
                 <SpeedActionTarget>
                   <AbsoluteTargetSpeed value="${i % 50}"/>
                 </SpeedActionTarget>

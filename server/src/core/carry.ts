@@ -1,7 +1,7 @@
 import * as path from 'node:path';
 import type { FlatSource, Insertion, LinkedGroupReference } from './flatten';
 import { Problem, RelatedProblemLocation } from './problems';
-import { buildSemanticModel, Declaration, Evaluator, ParameterUse, SemanticModel, semanticModelOf, ValueResult } from './semantics';
+import { Declaration, Evaluator, ParameterUse, SemanticModel, semanticModelOf, ValueResult } from './semantics';
 import { displayRef } from './sources';
 import { indentationAt } from './text';
 import { attribute, elementStartingAt, escapeAttributeValue, isWithin, selfAndDescendants, XmlDocument, XmlElement } from './xml';
@@ -59,11 +59,27 @@ export function planCarry(
   insertions: Insertion[],
   origin: (source: FlatSource, element: XmlElement) => RelatedProblemLocation | undefined,
 ): CarryPlan {
+  // Nothing reaches outside the copied groups: nothing to carry, and no model of the whole output to build.
+  if (carryShortcut.enabled && !insertions.some(mayCarry)) return { declarations: [], locations: [], problems: [] };
+  return planCarryOnOutput(main, first, insertions, origin);
+}
+
+/** Whether planCarry skips outputs whose copies reach nothing outside them (off only in the test that compares both ways). */
+export const carryShortcut = { enabled: true };
+
+/** Reads every copy in a model of the whole output. */
+function planCarryOnOutput(
+  main: FlatSource,
+  first: XmlDocument,
+  insertions: Insertion[],
+  origin: (source: FlatSource, element: XmlElement) => RelatedProblemLocation | undefined,
+): CarryPlan {
   const plan: CarryPlan = { declarations: [], locations: [], problems: [] };
   const mainSemantics = main.semantics;
   const mainModel = main.original;
   if (!mainSemantics || !mainModel || insertions.length === 0) return plan;
-  const output = buildSemanticModel(first);
+  // The output's model is cached with its parse: the output check reads the same one.
+  const output = semanticModelOf(first);
   const carried = new Map<string, CarriedDeclaration>();
   const reported = new Set<string>();
 
@@ -164,6 +180,27 @@ export function planCarry(
   for (const entry of carried.values()) if (!sourceOrder.includes(entry.source)) sourceOrder.push(entry.source);
   plan.declarations = [...carried.values()].sort((a, b) => sourceOrder.indexOf(a.source) - sourceOrder.indexOf(b.source) || a.declaration.element.start - b.declaration.element.start);
   return plan;
+}
+
+const reachesOutside = new WeakMap<XmlElement, boolean>();
+
+/**
+ * Whether a copied group can need anything carried: a use in the source's group of a declaration
+ * outside it, or a CatalogReference. Neither means the plan has nothing to do for that copy.
+ */
+function mayCarry(insertion: Insertion): boolean {
+  const source = insertion.link.source;
+  const target = insertion.group.target;
+  if (!source?.model || !target) return false;
+  const known = reachesOutside.get(target.element);
+  if (known !== undefined) return known;
+  const model = semanticModelOf(source.model.document);
+  const inside = (element: XmlElement) => isWithin(element, target.element);
+  const reaches =
+    model.uses.some((use) => inside(use.element) && use.declaration !== undefined && !isWithin(use.declaration.element, target.element)) ||
+    model.catalogReferences.some((reference) => inside(reference.element));
+  reachesOutside.set(target.element, reaches);
+  return reaches;
 }
 
 const usesByElement = new WeakMap<SemanticModel, Map<XmlElement, ParameterUse[]>>();

@@ -550,13 +550,18 @@ export function reparseXml(previous: XmlDocument, text: string): XmlDocument {
 }
 
 const MARKUP = /["'<>&\r\n]/;
+const COMPARED_CHUNK = 1024;
 
 /** The one region in which two texts differ (`[prefix, removedEnd)` of the old, `[prefix, insertedEnd)` of the new), when it holds no markup. */
 export function markupFreeEdit(old: string, text: string): { prefix: number; removedEnd: number; insertedEnd: number } | undefined {
-  let prefix = 0;
   const shorter = Math.min(old.length, text.length);
+  // Equal chunks are skipped by the engine's string comparison, far faster than a loop over characters.
+  let prefix = 0;
+  while (prefix + COMPARED_CHUNK <= shorter && old.slice(prefix, prefix + COMPARED_CHUNK) === text.slice(prefix, prefix + COMPARED_CHUNK)) prefix += COMPARED_CHUNK;
   while (prefix < shorter && old.charCodeAt(prefix) === text.charCodeAt(prefix)) prefix++;
   let suffix = 0;
+  const sameChunkBefore = (end: number) => old.slice(old.length - end - COMPARED_CHUNK, old.length - end) === text.slice(text.length - end - COMPARED_CHUNK, text.length - end);
+  while (suffix + COMPARED_CHUNK <= shorter - prefix && sameChunkBefore(suffix)) suffix += COMPARED_CHUNK;
   while (suffix < shorter - prefix && old.charCodeAt(old.length - 1 - suffix) === text.charCodeAt(text.length - 1 - suffix)) suffix++;
   const removedEnd = old.length - suffix;
   const insertedEnd = text.length - suffix;

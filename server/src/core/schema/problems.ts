@@ -5,7 +5,7 @@ import { refId, SourceRef } from '../sources';
 import { schemaIndex } from './index';
 import { typeOfElement } from './query';
 import { chooseVersion, ChosenVersion } from './version';
-import { attribute, markupFreeEdit, XmlAttribute, XmlDocument, XmlElement } from '../xml';
+import { attribute, elementAt, markupFreeEdit, XmlAttribute, XmlDocument, XmlElement } from '../xml';
 import { checkAttribute, checkSchema, findingOffsets, SchemaCheckOptions, SchemaFinding } from './validate';
 
 function toProblem(source: SourceRef, document: XmlDocument, finding: FindingWords, start: number, end: number): Problem {
@@ -19,6 +19,8 @@ function toProblem(source: SourceRef, document: XmlDocument, finding: FindingWor
 interface PlacedFinding {
   start: number;
   end: number;
+  /** The name of the finding's attribute, to find it again in a later parse. */
+  attributeName?: string;
   finding: FindingWords;
 }
 
@@ -39,7 +41,7 @@ function placed(finding: SchemaFinding): PlacedFinding {
   const [start, end] = findingOffsets(finding);
   // The tree is dropped: only offsets and words are kept.
   const { element: _element, attribute: _attribute, ...words } = finding;
-  return { start, end, finding: words };
+  return { start, end, attributeName: finding.attribute?.name, finding: words };
 }
 
 /**
@@ -75,22 +77,48 @@ function recheckValueEdit(previous: RememberedCheck, document: XmlDocument): Pla
   return [...kept, ...fresh].sort((a, b) => a.start - b.start);
 }
 
-/** The schema's problems of one file as it is written (the modular extension allowed). */
-export function schemaProblems(source: SourceRef, document: XmlDocument, options: Omit<SchemaCheckOptions, 'modular'> = {}): Problem[] {
-  const key = refId(source);
-  const setting = options.version ?? 'auto';
+/** The schema check of a document, from the remembered check of its previous text where one value edit separates them. */
+function rememberedCheck(key: string, document: XmlDocument, options: SchemaCheckOptions): PlacedFinding[] {
+  const setting = `${options.version ?? 'auto'} ${options.modular ? 'modular' : 'strict'}`;
   const previous = remembered.get(key);
   let check: RememberedCheck | undefined;
-  const moved = previous && previous.setting === setting ? recheckValueEdit(previous, document) : undefined;
+  // The same text checks the same (a file read again by a new generation's flattener).
+  const same = previous && previous.setting === setting && previous.text === document.text;
+  const moved = same ? previous.placed : previous && previous.setting === setting ? recheckValueEdit(previous, document) : undefined;
   if (previous && moved) check = { ...previous, text: document.text, placed: moved };
   else {
-    const full = checkSchema(document, { ...options, modular: true });
+    const full = checkSchema(document, options);
     check = { text: document.text, setting, chosen: full.chosen, placed: full.findings.map(placed) };
   }
   remembered.delete(key);
   remembered.set(key, check);
   if (remembered.size > REMEMBERED_FILES) remembered.delete(remembered.keys().next().value as string);
-  return check.placed.map((entry) => toProblem(source, document, entry.finding, entry.start, entry.end));
+  return check.placed;
+}
+
+/** The schema's problems of one file as it is written (the modular extension allowed). */
+export function schemaProblems(source: SourceRef, document: XmlDocument, options: Omit<SchemaCheckOptions, 'modular'> = {}): Problem[] {
+  return rememberedCheck(refId(source), document, { ...options, modular: true }).map((entry) => toProblem(source, document, entry.finding, entry.start, entry.end));
+}
+
+/** A remembered finding on the tree of `document` again: undefined when its element or attribute is not where its offsets say. */
+function locatedFinding(document: XmlDocument, entry: PlacedFinding): SchemaFinding | undefined {
+  const element = elementAt(document, entry.start);
+  if (!element) return undefined;
+  const found = entry.attributeName === undefined ? undefined : attribute(element, entry.attributeName);
+  const finding: SchemaFinding = { ...entry.finding, element };
+  if (found) finding.attribute = found;
+  if (entry.attributeName !== undefined && !found) return undefined;
+  const [start, end] = findingOffsets(finding);
+  return start === entry.start && end === entry.end ? finding : undefined;
+}
+
+/** The strict check of an output, reusing the check of its previous rendering after an edit inside one value (the live preview). */
+function outputFindings(output: FlatSource, document: XmlDocument, options: Omit<SchemaCheckOptions, 'modular'>): SchemaFinding[] {
+  const strict = { ...options, modular: false };
+  const located = rememberedCheck(`output:${refId(output.ref)}`, document, strict).map((entry) => locatedFinding(document, entry));
+  if (located.every((finding) => finding !== undefined)) return located as SchemaFinding[];
+  return checkSchema(document, strict).findings;
 }
 
 /**
@@ -101,7 +129,7 @@ export function outputSchemaProblems(output: FlatSource, options: Omit<SchemaChe
   const document = output.model?.document;
   if (!document) return [];
   const problems: Problem[] = [];
-  for (const finding of checkSchema(document, { ...options, modular: false }).findings) {
+  for (const finding of outputFindings(output, document, options)) {
     const origin = originOf(output, finding.element);
     const originDocument = (origin.source.original ?? origin.source.model)?.document;
     if (!originDocument) continue;

@@ -10,6 +10,18 @@ export function indexFor(document: XmlDocument, setting: SchemaVersionSetting | 
 
 /** The complex type of an element, found by following its ancestors' content models from the root. */
 export function typeOfElement(index: SchemaIndex, element: XmlElement): string | undefined {
+  // A parse never changes, so an element's type is computed once per schema (override checks ask on every edit).
+  let known = typesByIndex.get(index);
+  if (!known) typesByIndex.set(index, (known = new WeakMap()));
+  if (known.has(element)) return known.get(element);
+  const typeName = typeAlongChain(index, element);
+  known.set(element, typeName);
+  return typeName;
+}
+
+const typesByIndex = new WeakMap<SchemaIndex, WeakMap<XmlElement, string | undefined>>();
+
+function typeAlongChain(index: SchemaIndex, element: XmlElement): string | undefined {
   const chain: XmlElement[] = [];
   for (let current: XmlElement | undefined = element; current; current = current.parent) chain.unshift(current);
   if (chain[0].name !== index.schema.rootElement) return undefined;
