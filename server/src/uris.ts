@@ -1,38 +1,53 @@
-import * as path from 'node:path';
-import { fileURLToPath, pathToFileURL } from 'node:url';
+import { URI } from 'vscode-uri';
 import { PACKAGE_SCHEME } from './protocol';
-import { diskRef, refId, ScenarioStore, SourceRef } from './core/sources';
+import { isWindowsPath, pathsFor } from './core/paths';
+import { diskRef, ScenarioStore, SourceRef } from './core/sources';
+
+/**
+ * The `file:` URI of a disk path, spelled as VS Code spells it (`file:///c%3A/scenarios/a.mosc`,
+ * `file://server/share/a.mosc`). Windows forms get their separators turned on any platform.
+ */
+export function fileUri(diskPath: string): URI {
+  return URI.file(isWindowsPath(diskPath) ? diskPath.replace(/\\/g, '/') : diskPath);
+}
+
+/**
+ * The disk path a `file:`-like URI names: Windows forms (a drive letter, a UNC host) with backslashes
+ * and an upper-case drive letter, as node writes them (`process.cwd()`, `path.resolve`), else POSIX.
+ */
+export function diskPathOf(uri: URI): string {
+  const fsPath = uri.fsPath;
+  const windows = uri.authority.length > 0 || isWindowsPath(fsPath);
+  const diskPath = windows ? fsPath.replace(/\//g, '\\').replace(/^[a-z](?=:)/, (drive) => drive.toUpperCase()) : fsPath;
+  return pathsFor(diskPath).resolve(diskPath);
+}
 
 /** The URI of a scenario file: `file:` on disk, `mosc:/abs/pkg.mosc/inner.mosc/main.xosc` inside packages. */
 export function refToUri(ref: SourceRef): string {
-  if (ref.entries.length === 0) return pathToFileURL(ref.disk).href;
-  const encoded = refId(ref)
-    .split('/')
-    .map((segment) => encodeURIComponent(segment))
-    .join('/');
-  return `${PACKAGE_SCHEME}:${encoded}`;
+  const file = fileUri(ref.disk);
+  if (ref.entries.length === 0) return file.toString();
+  // Entries of a package are POSIX names whatever the platform: they continue the URI's path as they are.
+  return file.with({ scheme: PACKAGE_SCHEME, path: `${file.path}/${ref.entries.join('/')}` }).toString();
 }
 
-/** The path part of a `mosc:` URI, whatever authority form the client wrote (`mosc:/a`, `mosc:///a`). */
+/**
+ * The path a `mosc:` URI names, package file and entries in one (`/abs/pkg.mosc/main.xosc`,
+ * `C:\abs\pkg.mosc\main.xosc`), whatever authority form the client wrote (`mosc:/a`, `mosc:///a`).
+ */
 export function packageUriPath(uri: string): string | undefined {
-  const prefix = `${PACKAGE_SCHEME}:`;
-  if (!uri.toLowerCase().startsWith(prefix)) return undefined;
-  let rest = uri.slice(prefix.length);
-  const query = rest.search(/[?#]/);
-  if (query >= 0) rest = rest.slice(0, query);
-  if (rest.startsWith('//')) rest = rest.slice(rest.indexOf('/', 2));
+  if (!uri.toLowerCase().startsWith(`${PACKAGE_SCHEME}:`)) return undefined;
   try {
-    return path.posix.normalize(decodeURIComponent(rest));
+    return diskPathOf(URI.parse(uri).with({ scheme: 'file' }));
   } catch {
     return undefined;
   }
 }
 
-/** The disk path of a `file:` URI, or undefined for any other URI. */
+/** The disk path of a `file:` URI, or undefined for any other URI (and for plain paths, which callers use as they are). */
 export function filePathOf(uri: string): string | undefined {
   if (!uri.toLowerCase().startsWith('file:')) return undefined;
   try {
-    return path.resolve(fileURLToPath(uri));
+    return diskPathOf(URI.parse(uri));
   } catch {
     return undefined;
   }
@@ -46,7 +61,7 @@ export function untitledRef(uri: string, folder: string): SourceRef | undefined 
   if (!uri.toLowerCase().startsWith('untitled:')) return undefined;
   const name = decodeURIComponent(uri.slice('untitled:'.length)).replace(/[^\w.-]+/g, '_') || 'untitled';
   // A hidden name: never the name of a real file beside it, never listed as one.
-  return diskRef(path.join(folder, `.untitled-${name}${/\.xosc$/i.test(name) ? '' : '.xosc'}`));
+  return diskRef(pathsFor(folder).join(folder, `.untitled-${name}${/\.xosc$/i.test(name) ? '' : '.xosc'}`));
 }
 
 /** Reads URIs back into source references; `mosc:` URIs need the store to find where the disk file ends. */

@@ -1,6 +1,7 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { decodeScenario, DecodeError } from './encoding';
+import { pathsFor, splitDiskPath } from './paths';
 import { extractEntry, InflateBudget, readCentralDirectory, ZipEntryRecord } from './zip';
 import { parseXml, reparseXml, XmlDocument } from './xml';
 
@@ -15,7 +16,7 @@ export interface SourceRef {
 }
 
 export function diskRef(filePath: string): SourceRef {
-  return { disk: path.resolve(filePath), entries: [] };
+  return { disk: pathsFor(filePath).resolve(filePath), entries: [] };
 }
 
 export function childRef(packageRef: SourceRef, entry: string): SourceRef {
@@ -42,8 +43,10 @@ export function sameRef(a: SourceRef, b: SourceRef): boolean {
 
 /** A short form for messages: relative to `base` when the file lies below it. */
 export function displayRef(ref: SourceRef, base: string = process.cwd()): string {
-  const relative = path.relative(base, ref.disk);
-  const disk = relative && !relative.startsWith('..') && !path.isAbsolute(relative) ? relative : ref.disk;
+  const paths = pathsFor(ref.disk);
+  // A base of the other platform's form (a POSIX working directory, a Windows file) never contains it.
+  const relative = pathsFor(base) === paths ? paths.relative(base, ref.disk) : '';
+  const disk = relative && !relative.startsWith('..') && !paths.isAbsolute(relative) ? relative : ref.disk;
   return ref.entries.length === 0 ? disk : `${disk}/${ref.entries.join('/')}`;
 }
 
@@ -302,7 +305,8 @@ export interface FolderOptions {
 
 /** Whether `directory` is `folder` or lies below it. */
 function isWithinFolder(directory: string, folder: string): boolean {
-  return directory === folder || directory.startsWith(folder.endsWith(path.sep) ? folder : folder + path.sep);
+  const separator = pathsFor(folder).sep;
+  return directory === folder || directory.startsWith(folder.endsWith(separator) ? folder : folder + separator);
 }
 
 export interface StoreOptions {
@@ -328,7 +332,7 @@ export function splitScenarioPath(value: string | undefined): string[] {
     .split(new RegExp(`[;${path.delimiter === ';' ? '' : path.delimiter}]`))
     .map((entry) => entry.trim())
     .filter((entry) => entry.length > 0)
-    .map((entry) => path.resolve(entry));
+    .map((entry) => pathsFor(entry).resolve(entry));
 }
 
 /** Reads scenario files from disk and packages, and resolves `scenarioFileName`s (SPEC 3). */
@@ -353,9 +357,9 @@ export class ScenarioStore {
   constructor(options: StoreOptions = {}) {
     this.host = options.host ?? nodeFileSystem;
     this.scenarioPath = options.scenarioPath ?? splitScenarioPath(process.env.SCENARIO_PATH);
-    this.root = options.root ? path.resolve(options.root) : undefined;
+    this.root = options.root ? pathsFor(options.root).resolve(options.root) : undefined;
     // Innermost first, so a folder nested in another is found before it.
-    this.folders = (options.folders ?? []).map((entry) => ({ ...entry, folder: path.resolve(entry.folder) })).sort((a, b) => b.folder.length - a.folder.length);
+    this.folders = (options.folders ?? []).map((entry) => ({ ...entry, folder: pathsFor(entry.folder).resolve(entry.folder) })).sort((a, b) => b.folder.length - a.folder.length);
     this.limits = { ...DEFAULT_LIMITS, ...options.limits };
     this.budget = { remaining: this.limits.maxTotalBytes, limit: this.limits.maxTotalBytes };
     this.packages = new SizedCache(options.packageCacheBytes ?? Infinity);
@@ -407,9 +411,11 @@ export class ScenarioStore {
 
   /** Forgets what was read of a file on disk (a package is read again on next use). */
   invalidate(diskPath: string): void {
-    const resolved = path.resolve(diskPath);
+    const paths = pathsFor(diskPath);
+    const resolved = paths.resolve(diskPath);
     this.kinds.clear();
-    const below = (key: string) => key === resolved || key.startsWith(resolved + '/');
+    // Entries of a package follow its path after `/`; files of a folder after the platform's separator.
+    const below = (key: string) => key === resolved || key.startsWith(resolved + '/') || key.startsWith(resolved + paths.sep);
     this.packages.deleteWhere(below);
     for (const key of [...this.pendingPackages.keys()]) if (below(key)) this.pendingPackages.delete(key);
     for (const key of [...this.failedPackages.keys()]) if (below(key)) this.failedPackages.delete(key);
@@ -489,14 +495,15 @@ export class ScenarioStore {
   }
 
   /**
-   * Reads a path such as `/abs/pkg.mosc/inner.mosc/main.xosc` (the path of a `mosc:` URI): the
+   * Reads a path such as `/abs/pkg.mosc/inner.mosc/main.xosc` or `C:\abs\pkg.mosc\main.xosc` (the path of a `mosc:` URI): the
    * longest prefix that is a file on disk is the package, the rest names entries, descending into
    * nested packages at each entry that is itself a package.
    */
   async refFromPackagePath(packagePath: string): Promise<SourceRef | undefined> {
-    const segments = path.resolve(packagePath).split('/').filter((segment) => segment.length > 0);
+    const { root, names: segments } = splitDiskPath(packagePath);
+    const paths = pathsFor(root);
     for (let split = segments.length - 1; split >= 1; split--) {
-      const disk = '/' + segments.slice(0, split).join('/');
+      const disk = paths.join(root, ...segments.slice(0, split));
       if (!disk.toLowerCase().endsWith('.mosc') || (await this.host.kind(disk)) !== 'file') continue;
       let current: SourceRef = { disk, entries: [] };
       let pending: string[] = [];
@@ -536,15 +543,16 @@ export class ScenarioStore {
     const places: LookupPlace[] = [];
     const scenarioPath = this.scenarioPathFor(from);
     if (from.entries.length === 0) {
-      const directory = path.dirname(from.disk);
+      const paths = pathsFor(from.disk);
+      const directory = paths.dirname(from.disk);
       places.push({ packageRef: undefined, directory, via: 'folder' });
       for (const entry of scenarioPath) places.push({ packageRef: undefined, directory: entry, via: 'scenarioPath' });
       const root = this.rootOf(directory);
       if (isWithinFolder(directory, root)) {
-        for (let parent = path.dirname(directory); ; parent = path.dirname(parent)) {
+        for (let parent = paths.dirname(directory); ; parent = paths.dirname(parent)) {
           if (!isWithinFolder(parent, root)) break;
           places.push({ packageRef: undefined, directory: parent, via: 'parent' });
-          if (parent === root || parent === path.dirname(parent)) break;
+          if (parent === root || parent === paths.dirname(parent)) break;
         }
       }
     } else {
@@ -582,7 +590,8 @@ export class ScenarioStore {
       }
       return undefined;
     }
-    const candidate = path.resolve(place.directory, name);
+    const paths = pathsFor(place.directory);
+    const candidate = paths.resolve(place.directory, name);
     if ((await this.kindOf(candidate)) === 'file') {
       const ref = diskRef(candidate);
       if (!wantPackage) return { kind: 'scenario', ref, via: place.via };
@@ -590,8 +599,8 @@ export class ScenarioStore {
     }
     if (wantPackage) {
       const folder = candidate.slice(0, -'.mosc'.length);
-      if ((await this.kindOf(path.join(folder, 'main.xosc'))) === 'file') {
-        return { kind: 'package', packageRef: diskRef(folder), main: diskRef(path.join(folder, 'main.xosc')), folder: true, via: place.via };
+      if ((await this.kindOf(paths.join(folder, 'main.xosc'))) === 'file') {
+        return { kind: 'package', packageRef: diskRef(folder), main: diskRef(paths.join(folder, 'main.xosc')), folder: true, via: place.via };
       }
     }
     return undefined;
@@ -600,7 +609,9 @@ export class ScenarioStore {
   private describePlace(place: LookupPlace): string {
     if (place.packageRef) return place.directory ? `${displayRef(place.packageRef)}/${place.directory}` : displayRef(place.packageRef);
     const label = place.via === 'scenarioPath' ? ' (SCENARIO_PATH)' : place.via === 'parent' ? ' (parent folder)' : '';
-    return `${path.relative(process.cwd(), place.directory) || '.'}${label}`;
+    const paths = pathsFor(place.directory);
+    const shown = pathsFor(process.cwd()) === paths ? paths.relative(process.cwd(), place.directory) || '.' : place.directory;
+    return `${shown}${label}`;
   }
 
   /** Resolves a `scenarioFileName` written in the file `from` (SPEC 3). */

@@ -1,4 +1,4 @@
-import { pathToFileURL } from 'node:url';
+import { fileUri } from '../uris';
 import { readSettings } from '../workspace';
 import { notification, ServerContext } from './context';
 
@@ -8,7 +8,7 @@ export const CONFIGURATION_SECTION = 'modular2simple';
 export async function loadSettings(context: ServerContext): Promise<void> {
   if (!context.client.canConfigure) return;
   const folders = context.workspace.folders;
-  const items = [{ section: CONFIGURATION_SECTION }, ...folders.map((folder) => ({ section: CONFIGURATION_SECTION, scopeUri: pathToFileURL(folder).href }))];
+  const items = [{ section: CONFIGURATION_SECTION }, ...folders.map((folder) => ({ section: CONFIGURATION_SECTION, scopeUri: fileUri(folder).toString() }))];
   const values = (await context.connection.workspace.getConfiguration(items)) as unknown[];
   const perFolder = new Map(folders.map((folder, index) => [folder, readSettings(values[index + 1]).scenarioPath]));
   context.workspace.configure(folders, readSettings(values[0]), perFolder);
