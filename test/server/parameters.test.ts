@@ -18,35 +18,13 @@ import {
 } from 'vscode-languageserver/node';
 import { SEMANTIC_TOKENS_LEGEND } from '../../server/src/features/semanticTokens';
 import { BARE, CARS, FAULTY, PARAMETERS } from './fixtures/parameters';
-import { fileUri, positionAfter, positionAt, repoRoot, temporaryWorkspace, TestClient } from './harness';
+import { fileUri, positionAfter, repoRoot, temporaryWorkspace, TestClient } from './harness';
+import { applyEdits, inside, offsetOf, Position } from './textEdits';
 
-type Position = { line: number; character: number };
 type Range = { start: Position; end: Position };
-
-function offsetOf(text: string, position: Position): number {
-  const lines = text.split('\n');
-  return lines.slice(0, position.line).reduce((sum, line) => sum + line.length + 1, 0) + position.character;
-}
 
 function textAt(text: string, range: Range): string {
   return text.slice(offsetOf(text, range.start), offsetOf(text, range.end));
-}
-
-function applyEdits(text: string, edits: TextEdit[]): string {
-  const sorted = [...edits].sort((a, b) => offsetOf(text, b.range.start) - offsetOf(text, a.range.start));
-  let result = text;
-  for (const edit of sorted) result = result.slice(0, offsetOf(text, edit.range.start)) + edit.newText + result.slice(offsetOf(text, edit.range.end));
-  return result;
-}
-
-/** The position inside the nth occurrence of `needle`, `into` characters after its start. */
-function inside(text: string, needle: string, into: number, nth = 0): Position {
-  let index = -1;
-  for (let i = 0; i <= nth; i++) {
-    index = text.indexOf(needle, index + 1);
-    if (index < 0) throw new Error(`'${needle}' not found`);
-  }
-  return positionAt(text, index + into);
 }
 
 function lineOf(text: string, needle: string, nth = 0): number {

@@ -70,7 +70,7 @@ export function parameterRenameRange(semantics: DocumentSemantics, offset: numbe
   return declaration && name ? { start: name.valueStart, end: name.valueEnd, name: declaration.name } : undefined;
 }
 
-const PARAMETER_NAME = /^[A-Za-z_][A-Za-z0-9_]*$/;
+export const PARAMETER_NAME = /^[A-Za-z_][A-Za-z0-9_]*$/;
 
 /**
  * Renames the parameter named at the offset: its declaration and exactly its uses. A same-named

@@ -1,5 +1,6 @@
 import { refId } from '../core/sources';
 import { parameterRenameRange } from '../features/parameters';
+import { entryParameterRenameRange } from '../features/catalogParameters';
 import { targetAt } from '../features/references';
 import { openDocument, request, ServerContext } from './context';
 
@@ -12,7 +13,7 @@ export function register(context: ServerContext): void {
       if (!open) return null;
       const offset = open.document.offsetAt(params.position);
       const semantics = (await workspace.source(open.ref)).semantics;
-      const parameter = semantics ? parameterRenameRange(semantics, offset) : undefined;
+      const parameter = semantics ? (parameterRenameRange(semantics, offset) ?? (await entryParameterRenameRange(workspace, semantics, offset))) : undefined;
       if (parameter) return { range: { start: open.document.positionAt(parameter.start), end: open.document.positionAt(parameter.end) }, placeholder: parameter.name };
       const subject = await targetAt(workspace, open.ref, offset);
       if (!subject || subject.kind !== 'group') return null;

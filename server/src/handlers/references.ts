@@ -1,5 +1,6 @@
 import { placesToLocations, targetAt, usagesOf } from '../features/references';
 import { parameterReferences } from '../features/parameters';
+import { entryParameterReferences } from '../features/catalogParameters';
 import { toLocations } from '../features/definition';
 import { checkCancelled, openDocument, request, ServerContext } from './context';
 
@@ -13,6 +14,10 @@ export function register(context: ServerContext): void {
       checkCancelled(token, METHOD);
       const open = await openDocument(context, params.textDocument.uri);
       const semantics = open ? (await context.workspace.source(open.ref)).semantics : undefined;
+      const offset = open?.document.offsetAt(params.position) ?? 0;
+      // A catalog entry's parameter is also set from other files (CatalogReference ParameterAssignments).
+      const entryPlaces = open && semantics ? await entryParameterReferences(context.workspace, semantics, offset, params.context.includeDeclaration) : undefined;
+      if (entryPlaces) return toLocations(context.workspace, entryPlaces);
       const parameterPlaces = open && semantics ? parameterReferences(semantics, open.document.offsetAt(params.position), params.context.includeDeclaration) : undefined;
       if (parameterPlaces) return toLocations(context.workspace, parameterPlaces);
       const subject = open ? await targetAt(context.workspace, open.ref, open.document.offsetAt(params.position)) : undefined;

@@ -1,6 +1,7 @@
 import { LSPErrorCodes, ResponseError } from 'vscode-languageserver/node';
 import { renameGroup, targetAt } from '../features/references';
 import { renameParameter } from '../features/parameters';
+import { renameEntryParameter } from '../features/catalogParameters';
 import { checkCancelled, openDocument, request, ServerContext } from './context';
 
 const METHOD = 'textDocument/rename';
@@ -14,6 +15,8 @@ export function register(context: ServerContext): void {
       checkCancelled(token, METHOD);
       const open = await openDocument(context, params.textDocument.uri);
       const semantics = open ? (await workspace.source(open.ref)).semantics : undefined;
+      const entryEdit = open && semantics ? await renameEntryParameter(workspace, semantics, open.document.offsetAt(params.position), params.newName) : undefined;
+      if (entryEdit) return entryEdit;
       const parameterEdit = open && semantics ? renameParameter(workspace, semantics, open.document.offsetAt(params.position), params.newName) : undefined;
       if (parameterEdit) return parameterEdit;
       const subject = open ? await targetAt(workspace, open.ref, open.document.offsetAt(params.position)) : undefined;

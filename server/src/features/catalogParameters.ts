@@ -1,0 +1,126 @@
+import { LSPErrorCodes, ResponseError, TextEdit, WorkspaceEdit } from 'vscode-languageserver/node';
+import { catalogReferenceAt, Declaration, declarationAt, DocumentSemantics, referencedName, referencesOf } from '../core/semantics';
+import { childRef, diskRef, displayRef, refId, SourceRef } from '../core/sources';
+import { Place } from '../analysis';
+import { Workspace } from '../workspace';
+import { PARAMETER_NAME } from './parameters';
+
+/**
+ * A catalog entry's parameter across files (ASAM OpenSCENARIO 1.x section 9.4): declared in the
+ * entry, set from scenario files by `CatalogReference` -> `ParameterAssignment parameterRef="NAME"`.
+ * References and rename cover the declaration, its uses inside the entry and every such assignment.
+ */
+
+/** A parameter declared directly by a catalog entry, with the semantics of the catalog file. */
+interface EntryParameter {
+  catalog: DocumentSemantics;
+  declaration: Declaration;
+}
+
+/** One place to change: offsets of the name in a file. */
+interface NamePlace {
+  semantics: DocumentSemantics;
+  start: number;
+  end: number;
+}
+
+function isEntryParameter(declaration: Declaration | undefined): declaration is Declaration {
+  return declaration !== undefined && declaration.scope.catalogEntry && declaration.nameAttribute !== undefined;
+}
+
+/** The entry parameter named at the offset: by its declaration or a use inside the entry, or by an assignment's parameterRef. */
+async function entryParameterAt(workspace: Workspace, semantics: DocumentSemantics, offset: number): Promise<EntryParameter | undefined> {
+  const declaration = declarationAt(semantics, offset);
+  if (isEntryParameter(declaration)) return { catalog: semantics, declaration };
+  const resolution = catalogReferenceAt(semantics, offset);
+  const assignment = resolution?.reference.assignments.find(({ parameterRef }) => parameterRef && offset >= parameterRef.valueStart && offset <= parameterRef.valueEnd);
+  if (!resolution?.entry || !assignment?.parameterRef) return undefined;
+  const catalog = (await workspace.source(resolution.entry.file.ref)).semantics;
+  const entryStart = resolution.entry.element.start;
+  const scope = catalog?.model.scopes.find((candidate) => candidate.catalogEntry && candidate.element.start === entryStart);
+  const named = scope?.byName.get(referencedName(assignment.parameterRef).name);
+  return catalog && isEntryParameter(named) ? { catalog, declaration: named } : undefined;
+}
+
+/** The scenario files of the workspace (every `.xosc` entry of a package too) and the open documents. */
+async function scenarioRefs(workspace: Workspace): Promise<SourceRef[]> {
+  const refs = new Map<string, SourceRef>();
+  for (const entry of await workspace.indexedFiles()) {
+    if (entry.kind === 'xosc') {
+      refs.set(refId(diskRef(entry.path)), diskRef(entry.path));
+      continue;
+    }
+    const packageRef = diskRef(entry.path);
+    const contents = await workspace.store.readPackage(packageRef).catch(() => undefined);
+    for (const name of contents?.entries.keys() ?? []) {
+      if (name.toLowerCase().endsWith('.xosc')) refs.set(refId(childRef(packageRef, name)), childRef(packageRef, name));
+    }
+  }
+  for (const open of workspace.documents.values()) refs.set(refId(open.ref), open.ref);
+  return [...refs.values()];
+}
+
+/** The declaration, its uses inside the entry, then every ParameterAssignment naming it through a CatalogReference to that entry. */
+async function placesOf(workspace: Workspace, parameter: EntryParameter): Promise<NamePlace[]> {
+  const { catalog, declaration } = parameter;
+  const name = declaration.nameAttribute;
+  const places: NamePlace[] = name ? [{ semantics: catalog, start: name.valueStart, end: name.valueEnd }] : [];
+  // A use's offsets cover `$name`, or only the name for a parameterRef; the name is its tail either way.
+  for (const use of referencesOf(catalog, declaration)) places.push({ semantics: catalog, start: use.end - use.name.length, end: use.end });
+  const catalogId = refId(catalog.ref);
+  const entryStart = declaration.scope.element.start;
+  for (const ref of await scenarioRefs(workspace)) {
+    const text = await workspace.text(ref);
+    if (text === undefined || !/<CatalogReference\b/.test(text)) continue;
+    const semantics = (await workspace.source(ref)).semantics;
+    for (const resolution of semantics?.catalogs.references ?? []) {
+      const entry = resolution.entry;
+      if (!semantics || !entry || refId(entry.file.ref) !== catalogId || entry.element.start !== entryStart) continue;
+      for (const assignment of resolution.reference.assignments) {
+        if (!assignment.parameterRef) continue;
+        const named = referencedName(assignment.parameterRef);
+        if (named.name === declaration.name) places.push({ semantics, start: named.start, end: named.end });
+      }
+    }
+  }
+  return places;
+}
+
+function toPlace(place: NamePlace): Place {
+  return { ref: place.semantics.ref, range: place.semantics.model.document.lines.range(place.start, place.end) };
+}
+
+/** References of a catalog entry's parameter across the workspace; undefined when the offset names none. */
+export async function entryParameterReferences(workspace: Workspace, semantics: DocumentSemantics, offset: number, includeDeclaration: boolean): Promise<Place[] | undefined> {
+  const parameter = await entryParameterAt(workspace, semantics, offset);
+  if (!parameter) return undefined;
+  const places = (await placesOf(workspace, parameter)).map(toPlace);
+  return includeDeclaration ? places : places.slice(1);
+}
+
+/** The assignment's parameterRef name at the offset, for prepareRename (the declaration side is the one-file case). */
+export async function entryParameterRenameRange(workspace: Workspace, semantics: DocumentSemantics, offset: number): Promise<{ start: number; end: number; name: string } | undefined> {
+  const resolution = catalogReferenceAt(semantics, offset);
+  const assignment = resolution?.reference.assignments.find(({ parameterRef }) => parameterRef && offset >= parameterRef.valueStart && offset <= parameterRef.valueEnd);
+  if (!assignment?.parameterRef || !(await entryParameterAt(workspace, semantics, offset))) return undefined;
+  return referencedName(assignment.parameterRef);
+}
+
+/** Renames a catalog entry's parameter in the entry and in every assignment that sets it; undefined when the offset names none. */
+export async function renameEntryParameter(workspace: Workspace, semantics: DocumentSemantics, offset: number, newName: string): Promise<WorkspaceEdit | undefined> {
+  const parameter = await entryParameterAt(workspace, semantics, offset);
+  if (!parameter) return undefined;
+  const name = newName.startsWith('$') ? newName.slice(1) : newName;
+  if (!PARAMETER_NAME.test(name)) throw new ResponseError(LSPErrorCodes.RequestFailed, `'${newName}' is not a parameter name (letters, digits and _, not starting with a digit)`);
+  const places = await placesOf(workspace, parameter);
+  const inPackage = places.find((place) => place.semantics.ref.entries.length > 0);
+  if (inPackage && !workspace.editablePackages) {
+    throw new ResponseError(LSPErrorCodes.RequestFailed, `the parameter is set in ${displayRef(inPackage.semantics.ref, workspace.folders[0])}, inside a .mosc package, and this editor cannot write into packages`);
+  }
+  const changes: Record<string, TextEdit[]> = {};
+  for (const place of places) {
+    const uri = workspace.uriOf(place.semantics.ref);
+    (changes[uri] ??= []).push(TextEdit.replace(toPlace(place).range, name));
+  }
+  return { changes };
+}
