@@ -1,6 +1,8 @@
 import * as assert from 'node:assert/strict';
 import * as path from 'node:path';
 import { CodeAction, CompletionItem, CompletionItemTag, Diagnostic, DiagnosticTag, Hover, MarkupContent, TextEdit } from 'vscode-languageserver/node';
+import { checkSchema } from '../../server/src/core/schema/validate';
+import { parseXml } from '../../server/src/core/xml';
 import { fileUri, markers, positionAt, temporaryWorkspace, TestClient } from './harness';
 
 /** A small scenario valid against every schema version; `{MINOR}` is its revMinor, `{ROOT}` goes after ParameterDeclarations. */
@@ -130,7 +132,9 @@ describe('server: OpenSCENARIO schema completion, hover and validation (over JSO
     const items = itemsOf(await client.request('textDocument/completion', client.at(uri, positionAt(text, offsets[0]))));
     assert.deepEqual(labels(items), ['GlobalAction', 'UserDefinedAction', 'Private']);
     const privateItem = items.find((item) => item.label === 'Private');
-    assert.equal((privateItem?.textEdit as TextEdit).newText, '<Private entityRef="${1}">$0</Private>');
+    // With its required child, so that the inserted element is valid (the editor indents the tab).
+    assert.equal((privateItem?.textEdit as TextEdit).newText, '<Private entityRef="${1}">\n\t<PrivateAction/>$0\n</Private>');
+    assert.equal((items.find((item) => item.label === 'GlobalAction')?.textEdit as TextEdit).newText, '<GlobalAction>$0</GlobalAction>');
   });
 
   it('completion in a half-typed file: the required child first, in content-model order', async () => {
@@ -233,6 +237,43 @@ describe('server: OpenSCENARIO schema completion, hover and validation (over JSO
     const actions = await client.request<CodeAction[]>('textDocument/codeAction', { textDocument: { uri }, range: diagnostics[0].range, context: { diagnostics } });
     const fixed = applyEdits(text, actions[0].edit?.changes?.[uri] ?? []);
     assert.equal(fixed, scenario('0'));
+  });
+
+  it('the quick fix for a missing element inserts a minimal valid skeleton: required attributes and children, indented', async () => {
+    const full = scenario('0');
+    const storyStart = full.indexOf('    <Story name="story">');
+    const storyEnd = full.indexOf('    <StopTrigger/>');
+    const cases = [
+      { name: 'Init', text: full.replace('    <Init>\n      <Actions>\n      </Actions>\n    </Init>\n', ''), inserted: '    <Init>\n      <Actions/>\n    </Init>\n' },
+      {
+        name: 'Story',
+        text: full.slice(0, storyStart) + full.slice(storyEnd),
+        inserted: '    <Story name="">\n      <Act name="">\n        <ManeuverGroup maximumExecutionCount="0" name="">\n          <Actors selectTriggeringEntities="false"/>\n        </ManeuverGroup>\n        <StartTrigger/>\n      </Act>\n    </Story>\n',
+      },
+    ];
+    for (const { name, text, inserted } of cases) {
+      const uri = await client.open(fileUri(path.join(root, `skeleton_${name}.xosc`)), text);
+      const diagnostics = await schemaDiagnostics(uri, (list) => list.length > 0);
+      assert.equal(diagnostics.length, 1, name);
+      assert.match(messageOf(diagnostics[0]), new RegExp(`^<Storyboard> lacks the required element <${name}>`));
+      const actions = await client.request<CodeAction[]>('textDocument/codeAction', { textDocument: { uri }, range: diagnostics[0].range, context: { diagnostics } });
+      assert.equal(actions[0].title, `Insert <${name}>`);
+      const fixed = applyEdits(text, actions[0].edit?.changes?.[uri] ?? []);
+      assert.ok(fixed.includes(inserted), fixed);
+      // Re-validated with the core validator: nothing is missing in what was inserted (the empty names are values to fill in).
+      const findings = checkSchema(parseXml(fixed), { modular: true }).findings.map((finding) => `${finding.code} <${finding.element.name}>`);
+      assert.deepEqual(findings, [], name);
+      const after = await client.open(fileUri(path.join(root, `skeleton_${name}_fixed.xosc`)), fixed);
+      assert.deepEqual(await schemaDiagnostics(after), [], name);
+    }
+    // A self-closing parent is opened, its skeleton child indented one level below it.
+    const selfClosing = full.replace('    <Init>\n      <Actions>\n      </Actions>\n    </Init>\n', '    <Init/>\n');
+    const uri = await client.open(fileUri(path.join(root, 'skeleton_self_closing.xosc')), selfClosing);
+    const diagnostics = await schemaDiagnostics(uri, (list) => list.length > 0);
+    assert.deepEqual(diagnostics.map(messageOf), ['<Init> lacks the required element <Actions>']);
+    const actions = await client.request<CodeAction[]>('textDocument/codeAction', { textDocument: { uri }, range: diagnostics[0].range, context: { diagnostics } });
+    const fixed = applyEdits(selfClosing, actions[0].edit?.changes?.[uri] ?? []);
+    assert.ok(fixed.includes('    <Init>\n      <Actions/>\n    </Init>\n    <Story'), fixed);
   });
 
   it('the setting pins the version: a 1.0 file read as 1.2 accepts VariableDeclarations', async () => {

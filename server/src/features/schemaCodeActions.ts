@@ -1,33 +1,12 @@
 import { CodeAction, CodeActionKind, Diagnostic, TextEdit } from 'vscode-languageserver/node';
 import { TextDocument } from 'vscode-languageserver-textdocument';
-import { SchemaIndex } from '../core/schema/index';
 import { indexFor, typeByElementName, typeOfElement } from '../core/schema/query';
-import { builtinOf, enumerationValues } from '../core/schema/values';
+import { elementSkeleton, placeholderValue, skeletonText } from '../core/schema/skeleton';
 import { elementAt, XmlDocument, XmlElement } from '../core/xml';
 import { DiagnosticData } from './diagnostics';
 
 function fix(title: string, diagnostic: Diagnostic, uri: string, edits: TextEdit[], preferred: boolean): CodeAction {
   return { title, kind: CodeActionKind.QuickFix, diagnostics: [diagnostic], edit: { changes: { [uri]: edits } }, isPreferred: preferred };
-}
-
-/** A placeholder value that the type accepts: its first enumeration value, false, 0, or empty. */
-function placeholder(index: SchemaIndex, typeName: string): string {
-  const simple = index.simpleType(typeName);
-  if (!simple) return '';
-  const values = enumerationValues(simple);
-  if (values.length > 0) return values[0];
-  const builtin = builtinOf(simple);
-  if (builtin === 'boolean') return 'false';
-  if (builtin === 'double' || builtin === 'int' || builtin === 'unsignedInt' || builtin === 'unsignedShort') return '0';
-  if (builtin === 'dateTime') return '2020-01-01T00:00:00';
-  return '';
-}
-
-function requiredAttributesText(index: SchemaIndex, typeName: string): string {
-  return (index.complexType(typeName)?.attributes ?? [])
-    .filter((declaration) => declaration.required)
-    .map((declaration) => ` ${declaration.name}="${placeholder(index, declaration.type)}"`)
-    .join('');
 }
 
 function indentOf(text: string, offset: number): string {
@@ -64,7 +43,7 @@ export function schemaFixes(uri: string, textDocument: TextDocument, parsed: Xml
       const typeName = index && element ? typeOfElement(index, element) : undefined;
       if (!index || !element || !typeName || !data.missing) return [];
       const names = data.missing.split(',');
-      const inserted = names.map((name) => ` ${name}="${placeholder(index, index.attribute(typeName, name)?.type ?? '')}"`).join('');
+      const inserted = names.map((name) => ` ${name}="${placeholderValue(index, index.attribute(typeName, name)?.type ?? '')}"`).join('');
       const last = element.attributes[element.attributes.length - 1];
       const at = last ? last.valueEnd + 1 : element.nameEnd;
       return [fix(`Add ${names.map((name) => `'${name}'`).join(', ')}`, diagnostic, uri, [TextEdit.insert(textDocument.positionAt(at), inserted)], true)];
@@ -80,20 +59,23 @@ export function schemaFixes(uri: string, textDocument: TextDocument, parsed: Xml
       const eol = text.includes('\r\n') ? '\r\n' : '\n';
       const unit = /^( +|\t)/m.exec(text.slice(0, 4000))?.[1] ?? '  ';
       const childIndent = indentOf(text, parent.start) + unit;
-      const blocks = names.map((name) => {
-        const typeName = parentType ? index.childParticle(parentType, name, true)?.type : undefined;
-        return `<${name}${typeName ? requiredAttributesText(index, typeName) : ''}/>`;
-      });
+      // Each missing element as a minimal valid skeleton: its required attributes and children, recursively.
+      const blocksAt = (indent: string, lineBreak: string) =>
+        names.map((name) => {
+          const particle = parentType ? index.childParticle(parentType, name, true) : undefined;
+          const skeleton = particle ? elementSkeleton(index, particle) : { name, type: '', attributes: [], children: [] };
+          return skeletonText(skeleton, { indent, unit, eol: lineBreak }, (declaration) => placeholderValue(index, declaration.type));
+        });
       let edit: TextEdit;
       if (data.insertAt !== undefined) {
         const at = Number(data.insertAt);
-        edit = TextEdit.insert(textDocument.positionAt(at), blocks.map((block) => `${block}${eol}${indentOf(text, at)}`).join(''));
+        edit = TextEdit.insert(textDocument.positionAt(at), blocksAt(indentOf(text, at), eol).map((block) => `${block}${eol}${indentOf(text, at)}`).join(''));
       } else if (parent.selfClosing) {
         // `<Parent/>` becomes `<Parent>…</Parent>`.
         const slash = text.lastIndexOf('/', parent.end - 1);
         edit = TextEdit.replace(
           { start: textDocument.positionAt(slash), end: textDocument.positionAt(parent.end) },
-          `>${blocks.map((block) => `${eol}${childIndent}${block}`).join('')}${eol}${indentOf(text, parent.start)}</${parent.name}>`,
+          `>${blocksAt(childIndent, eol).map((block) => `${eol}${childIndent}${block}`).join('')}${eol}${indentOf(text, parent.start)}</${parent.name}>`,
         );
       } else {
         const closing = text.lastIndexOf(`</${parent.name}`, parent.end);
@@ -101,8 +83,8 @@ export function schemaFixes(uri: string, textDocument: TextDocument, parsed: Xml
         const lineStart = text.lastIndexOf('\n', closing - 1) + 1;
         const onOwnLine = /^[ \t]*$/.test(text.slice(lineStart, closing));
         edit = onOwnLine
-          ? TextEdit.insert(textDocument.positionAt(lineStart), blocks.map((block) => `${childIndent}${block}${eol}`).join(''))
-          : TextEdit.insert(textDocument.positionAt(closing), blocks.join(''));
+          ? TextEdit.insert(textDocument.positionAt(lineStart), blocksAt(childIndent, eol).map((block) => `${childIndent}${block}${eol}`).join(''))
+          : TextEdit.insert(textDocument.positionAt(closing), blocksAt('', '').join(''));
       }
       return [fix(`Insert ${names.map((name) => `<${name}>`).join(', ')}`, diagnostic, uri, [edit], true)];
     }

@@ -2,7 +2,8 @@ import { CompletionItem, CompletionItemKind, CompletionItemTag, InsertTextFormat
 import { TextDocument } from 'vscode-languageserver-textdocument';
 import { SchemaIndex } from '../core/schema/index';
 import { AttributeDeclaration, ElementParticle } from '../core/schema/model';
-import { allowedChildren, indexFor, requiredAttributes, typeByElementName, typeOfElement } from '../core/schema/query';
+import { allowedChildren, indexFor, typeByElementName, typeOfElement } from '../core/schema/query';
+import { elementSkeleton, skeletonText } from '../core/schema/skeleton';
 import { builtinOf, describeType, enumerationValues } from '../core/schema/values';
 import { SourceRef } from '../core/sources';
 import { attribute, descendants, elementAt, parseXml, XmlDocument, XmlElement } from '../core/xml';
@@ -21,17 +22,33 @@ function escapeSnippet(value: string): string {
   return value.replace(/[$}\\|,]/g, (char) => `\\${char}`);
 }
 
-/** `name="…"` as a snippet: a choice of the enumeration's values, or a tab stop. */
-function attributeSnippet(index: SchemaIndex, declaration: AttributeDeclaration, stop: number): string {
+/** An attribute's value as a snippet: a choice of the enumeration's values, or a tab stop. */
+function attributeValueSnippet(index: SchemaIndex, declaration: AttributeDeclaration, stop: number): string {
   const type = index.simpleType(declaration.type);
   const values = type ? enumerationValues(type) : [];
   const choices = values.length > 0 ? values : type && builtinOf(type) === 'boolean' ? ['true', 'false'] : [];
-  return choices.length > 0 ? `${declaration.name}="\${${stop}|${choices.map(escapeSnippet).join(',')}|}"` : `${declaration.name}="\${${stop}}"`;
+  return choices.length > 0 ? `\${${stop}|${choices.map(escapeSnippet).join(',')}|}` : `\${${stop}}`;
 }
 
-/** `<Name required="…">$0</Name>`, self-closing when the element holds nothing. */
+/** `name="…"` as a snippet. */
+function attributeSnippet(index: SchemaIndex, declaration: AttributeDeclaration, stop: number): string {
+  return `${declaration.name}="${attributeValueSnippet(index, declaration, stop)}"`;
+}
+
+/**
+ * `<Name required="…">$0</Name>`, self-closing when the element holds nothing; with its required
+ * children (recursively, the same skeleton as the quick fix inserts) when it has any, one tab stop per attribute.
+ */
 export function elementSnippet(index: SchemaIndex, particle: ElementParticle): string {
-  const attributes = requiredAttributes(index, particle.type).map((declaration, position) => ` ${attributeSnippet(index, declaration, position + 1)}`);
+  const skeleton = elementSkeleton(index, particle);
+  if (skeleton.children.length > 0) {
+    let stop = 0;
+    // The editor turns the snippet's tabs into the document's indentation and indents it where it is inserted.
+    const text = skeletonText(skeleton, { indent: '', unit: '\t', eol: '\n' }, (declaration) => attributeValueSnippet(index, declaration, ++stop));
+    const closing = `\n</${particle.name}>`;
+    return `${text.slice(0, text.length - closing.length)}$0${closing}`;
+  }
+  const attributes = skeleton.attributes.map((declaration, position) => ` ${attributeSnippet(index, declaration, position + 1)}`);
   const type = index.complexType(particle.type);
   const empty = !type?.content && !type?.text;
   return empty ? `<${particle.name}${attributes.join('')}/>$0` : `<${particle.name}${attributes.join('')}>$0</${particle.name}>`;
