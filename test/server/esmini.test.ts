@@ -116,6 +116,43 @@ describe('esmini: time limit and log (no simulator needed)', () => {
     assert.deepEqual([path.basename(inPackage.source.disk), ...inPackage.source.entries], ['braking.mosc', 'hard_brake.xosc']);
   });
 
+  it('maps a message about a road or lane to the position naming them: the override that set the lane, a ${...} lane, else the road', async () => {
+    const teleport = '<Event name="Jump" priority="overwrite"><Action name="Jump"><PrivateAction><TeleportAction><Position><LanePosition parameterAttributes="laneId" roadId="550" laneId="-1" s="10" offset="0"/></Position></TeleportAction></PrivateAction></Action></Event>';
+    const root = examplesCopy({ file: 'lane_change.xosc', from: '<Event name="ChangeLane" priority="overwrite">', to: `${teleport}\n            <Event name="ChangeLane" priority="overwrite">` });
+    const mainFile = path.join(root, 'main.xosc');
+    const mainText = fs.readFileSync(mainFile, 'utf8');
+    assert.ok(mainText.includes('<WorldPosition x="-50" y="0.8" z="0" h="3.14159"/>') && mainText.includes('<ParameterReference key="RelativeDistanceCondition.value" value="12"/>'));
+    fs.writeFileSync(
+      mainFile,
+      mainText
+        .replace('<WorldPosition x="-50" y="0.8" z="0" h="3.14159"/>', '<LanePosition roadId="550" laneId="${-2 + 1}" s="5"/>')
+        .replace('<ParameterReference key="RelativeDistanceCondition.value" value="12"/>', '<ParameterReference key="RelativeDistanceCondition.value" value="12"/>\n              <ParameterReference key="LanePosition.laneId" value="-2"/>'),
+    );
+    const main = diskRef(mainFile);
+    const flat = await new Flattener(new ScenarioStore({ root })).flatten(main);
+    assert.ok(flat.text, JSON.stringify(flat.problems));
+    const log = [
+      '[] [error] Lane id -2 does not exist on road 550 on laneSection 0',
+      '[] [error] Lane id -1 does not exist on road 550 on laneSection 0',
+      '[] [error] Position::Set Error: track 550 not available',
+      '[] [error] Lane id -3 does not exist on road 550 on laneSection 0',
+    ].join('\n');
+    const problems = mapEsminiMessages(parseEsminiLog(log), flat.source, main);
+    const at = (index: number) => {
+      const { source, range, located } = problems[index];
+      const line = lineOf(source.disk, range.start.line);
+      return [located, path.basename(source.disk), line.trim(), line.slice(range.start.character, range.end.character)];
+    };
+    // Lane -2 on road 550 is the imported LanePosition whose laneId the main file's override set.
+    assert.deepEqual(at(0), [true, 'main.xosc', '<ParameterReference key="LanePosition.laneId" value="-2"/>', '-2']);
+    // Lane -1 is the main file's own LanePosition, whose laneId is an expression.
+    assert.deepEqual(at(1), [true, 'main.xosc', '<LanePosition roadId="550" laneId="${-2 + 1}" s="5"/>', '${-2 + 1}']);
+    // Road only, or a lane no position names: the first position on that road.
+    assert.deepEqual(at(2), [true, 'main.xosc', '<LanePosition roadId="550" laneId="${-2 + 1}" s="5"/>', '550']);
+    assert.deepEqual(at(3), [true, 'main.xosc', '<LanePosition roadId="550" laneId="${-2 + 1}" s="5"/>', '550']);
+    fs.rmSync(root, { recursive: true, force: true });
+  });
+
   it('tells how to get esmini when it is missing, and runs nothing', async () => {
     const location = locateEsmini(undefined, process.cwd(), '');
     assert.equal(location.found, false);

@@ -21,6 +21,28 @@ const MAIN = sceneScenario(
   '<ParameterDeclaration name="EgoS" parameterType="double" value="40"/>',
 );
 
+const ROUTES = `<?xml version="1.0" encoding="UTF-8"?>
+<OpenSCENARIO><FileHeader revMajor="1" revMinor="1" date="2026-01-01T00:00:00" description="routes" author="test"/>
+  <Catalog name="StraightRoutes"><Route name="Along" closed="false">
+    <ParameterDeclarations><ParameterDeclaration name="From" parameterType="double" value="10"/></ParameterDeclarations>
+    <Waypoint routeStrategy="shortest"><Position><LanePosition roadId="1" laneId="-1" s="$From"/></Position></Waypoint>
+    <Waypoint routeStrategy="shortest"><Position><LanePosition roadId="1" laneId="-1" s="190"/></Position></Waypoint>
+  </Route></Catalog>
+</OpenSCENARIO>
+`;
+const ON_ROUTE = teleport('third', '<RoutePosition><RouteRef><CatalogReference catalogName="StraightRoutes" entryName="Along"><ParameterAssignments><ParameterAssignment parameterRef="From" value="20"/></ParameterAssignments></CatalogReference></RouteRef><InRoutePosition><FromLaneCoordinates pathS="30" laneId="-1"/></InRoutePosition></RoutePosition>');
+const VEHICLES = `<?xml version="1.0" encoding="UTF-8"?>
+<OpenSCENARIO><FileHeader revMajor="1" revMinor="1" date="2026-01-01T00:00:00" description="vehicles" author="test"/>
+  <Catalog name="VehicleCatalog"><Vehicle name="car_red" vehicleCategory="car"/></Catalog>
+</OpenSCENARIO>
+`;
+// With catalog locations given, the fixture's car_red must be found too (else the scenario does not flatten).
+const withRoutes = (scenario: string) =>
+  scenario.replace('<RoadNetwork>', '<CatalogLocations><VehicleCatalog><Directory path="Vehicles"/></VehicleCatalog><RouteCatalog><Directory path="Routes"/></RouteCatalog></CatalogLocations><RoadNetwork>');
+/** A scenario read as written, and one flattened (it imports simple.xosc), each placing an entity on a catalog route. */
+const PLAIN_ROUTE = withRoutes(sceneScenario('straight.xodr', ON_ROUTE));
+const MODULAR_ROUTE = withRoutes(MAIN.replace('</Actions></Init>', `${ON_ROUTE}</Actions></Init>`));
+
 describe('language server: modular2simple/scene (JSON-RPC)', function () {
   let root: string;
   let client: TestClient;
@@ -33,6 +55,10 @@ describe('language server: modular2simple/scene (JSON-RPC)', function () {
       'roads/straight.xodr': STRAIGHT_ROAD,
       'main.xosc': MAIN,
       'simple.xosc': SIMPLE,
+      'Routes/StraightRoutes.xosc': ROUTES,
+      'Vehicles/VehicleCatalog.xosc': VEHICLES,
+      'plainRoute.xosc': PLAIN_ROUTE,
+      'modularRoute.xosc': MODULAR_ROUTE,
       'packed/pkg.mosc': await zip.generateAsync({ type: 'uint8array' }),
       'packed/straight.xodr': STRAIGHT_ROAD,
     });
@@ -100,6 +126,16 @@ describe('language server: modular2simple/scene (JSON-RPC)', function () {
     assert.equal(result.roadFile?.resolved, path.join(root, 'packed', 'straight.xodr'));
     assert.equal(result.entities[0].x, 40);
     assert.equal(result.events[0].source?.uri, `mosc:${path.join(root, 'packed', 'pkg.mosc')}/simple.xosc`);
+  });
+
+  it('places an entity on a Route from a catalog, in a scenario as written and in a flattened one', async () => {
+    for (const file of ['plainRoute.xosc', 'modularRoute.xosc']) {
+      const result = await scene({ uri: fileUri(path.join(root, file)), roadPath: ['roads'] });
+      const third = result.entities.find((entity) => entity.name === 'third');
+      assert.deepEqual(result.problems, [], file);
+      // 30 m along the route from s 20 (the reference's assignment) on lane -1.
+      assert.deepEqual([third?.x, third?.y, third?.problem], [50, -1.75, undefined], file);
+    }
   });
 
   it('answers an error for what is not a scenario', async () => {

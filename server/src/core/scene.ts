@@ -4,7 +4,7 @@
  */
 import { laneById, laneCenterT, laneSectionIndexAt, Road, RoadNetwork, roadPoint } from './opendrive/road';
 import { normalizeAngle } from './opendrive/geometry';
-import { Evaluator, semanticModelOf } from './semantics';
+import { assignmentsOf, catalogEntryFor, DocumentSemantics, Evaluator, semanticModelOf } from './semantics';
 import { attribute, attributeValue, XmlDocument, XmlElement } from './xml';
 
 export interface EntityPlacement {
@@ -70,11 +70,7 @@ function path(element: XmlElement | undefined, ...names: string[]): XmlElement |
 
 /** Attribute values with `$parameters` and `${...}` expressions evaluated by the semantic model. */
 class Reader {
-  private readonly evaluator: Evaluator;
-
-  constructor(document: XmlDocument) {
-    this.evaluator = new Evaluator(semanticModelOf(document));
-  }
+  constructor(private readonly evaluator: Evaluator) {}
 
   text(element: XmlElement, name: string): string | undefined {
     const found = attribute(element, name);
@@ -138,7 +134,80 @@ function relativeLaneId(laneId: number, delta: number): number {
   return result === 0 || Math.sign(result) !== Math.sign(laneId) ? result + Math.sign(delta) : result;
 }
 
-function evaluatePosition(reader: Reader, position: XmlElement, network: RoadNetwork | undefined, placed: Map<string, Placed>): Placed {
+/** The Route a RouteRef holds or names through a catalog, with a reader for its values (the entry's parameters as the reference assigns them). */
+function routeOf(reader: Reader, routeRef: XmlElement, semantics: DocumentSemantics | undefined): { route: XmlElement; reader: Reader } {
+  const inline = child(routeRef, 'Route');
+  if (inline) return { route: inline, reader };
+  const reference = child(routeRef, 'CatalogReference');
+  if (!reference) throw new Error('the RouteRef holds no Route or CatalogReference');
+  const resolution = semantics ? catalogEntryFor(semantics, reference) : undefined;
+  const named = `${attributeValue(reference, 'catalogName') ?? '?'}/${attributeValue(reference, 'entryName') ?? '?'}`;
+  if (!semantics || !resolution?.entry) throw new Error(`the route ${named} is not found in the catalogs`);
+  if (resolution.entry.element.name !== 'Route') throw new Error(`the catalog entry ${named} is a ${resolution.entry.element.name}, not a Route`);
+  return { route: resolution.entry.element, reader: new Reader(new Evaluator(resolution.entry.file.model, assignmentsOf(resolution.reference, semantics.evaluator))) };
+}
+
+/** A waypoint on a road and the direction the route leaves it in (+1 along the reference line). */
+interface RouteStop {
+  road: Road;
+  s: number;
+  direction: 1 | -1;
+}
+
+function routeStops(reader: Reader, route: XmlElement, network: RoadNetwork | undefined): RouteStop[] {
+  const stops = children(route, 'Waypoint').map((waypoint): RouteStop => {
+    const where = path(waypoint, 'Position')?.children[0];
+    if (where?.name !== 'LanePosition' && where?.name !== 'RoadPosition') throw new Error(`a waypoint of route ${attributeValue(route, 'name') ?? ''} is a ${where?.name ?? 'empty Position'}; only LanePosition and RoadPosition waypoints are followed`);
+    const road = roadOf(network, reader.text(where, 'roadId'));
+    // As esmini's first waypoint (RoadManager.cpp, Route::AddWaypoint, 3.6.0): the route leaves it in the lane's driving direction (right-hand traffic).
+    const side = reader.number(where, where.name === 'LanePosition' ? 'laneId' : 't');
+    return { road, s: reader.number(where, 's'), direction: side > 0 ? -1 : 1 };
+  });
+  if (stops.length === 0) throw new Error(`route ${attributeValue(route, 'name') ?? ''} has no waypoints`);
+  return stops;
+}
+
+/**
+ * Road and s at `pathS` along a route. Without routing, only the stretch of the first road(s) is read:
+ * from each waypoint along its road to the next waypoint on the same road, or to the road's end; a
+ * pathS past a road whose next waypoint is on another road is refused (the roads in between need routing).
+ */
+function alongRoute(stops: RouteStop[], pathS: number): { road: Road; s: number } {
+  if (pathS < 0) throw new Error(`pathS ${pathS} is before the route's start`);
+  let start = 0;
+  for (let index = 0; index < stops.length; index++) {
+    const stop = stops[index];
+    const next = stops[index + 1];
+    const end = next?.road === stop.road ? next.s : stop.direction > 0 ? stop.road.length : 0;
+    const length = Math.abs(end - stop.s);
+    if (pathS <= start + length + 1e-9) return { road: stop.road, s: stop.s + stop.direction * (pathS - start) };
+    if (next && next.road !== stop.road) throw new Error(`pathS ${pathS} lies past road ${stop.road.id}, ${start + length} m along the route; the roads between its waypoints need routing, which this view does not do`);
+    start += length;
+  }
+  throw new Error(`pathS ${pathS} is past the route's end (${start} m)`);
+}
+
+function onRoute(reader: Reader, kind: XmlElement, network: RoadNetwork | undefined, semantics: DocumentSemantics | undefined): Placed {
+  const routeRef = child(kind, 'RouteRef');
+  const inRoute = child(kind, 'InRoutePosition')?.children[0];
+  if (!routeRef || !inRoute) throw new Error('the RoutePosition needs a RouteRef and an InRoutePosition');
+  if (inRoute.name !== 'FromLaneCoordinates' && inRoute.name !== 'FromRoadCoordinates') throw new Error(`${inRoute.name} is not evaluated by this view`);
+  const route = routeOf(reader, routeRef, semantics);
+  const routeName = attributeValue(route.route, 'name') ?? 'route';
+  const pathS = reader.number(inRoute, 'pathS');
+  const { road, s } = alongRoute(routeStops(route.reader, route.route, network), pathS);
+  if (inRoute.name === 'FromLaneCoordinates') {
+    const laneId = Math.trunc(reader.number(inRoute, 'laneId'));
+    const offset = reader.number(inRoute, 'laneOffset', 0);
+    return onLane(reader, kind, road, laneId, s, offset, `RoutePosition ${routeName}, pathS ${pathS}, lane ${laneId} (road ${road.id}, s ${s})`);
+  }
+  // esmini 3.6 reads this t as an integer (ScenarioReader.cpp, strtoi); the standard's double is used here.
+  const t = reader.number(inRoute, 't');
+  const point = roadPoint(road, s, t);
+  return { x: point.x, y: point.y, hdg: orientedHeading(reader, kind, point.hdg), described: `RoutePosition ${routeName}, pathS ${pathS}, t ${t} (road ${road.id}, s ${s})` };
+}
+
+function evaluatePosition(reader: Reader, position: XmlElement, network: RoadNetwork | undefined, placed: Map<string, Placed>, semantics: DocumentSemantics | undefined): Placed {
   const kind = position.children[0];
   if (!kind) throw new Error('the Position is empty');
   const reference = (): Placed => {
@@ -204,6 +273,8 @@ function evaluatePosition(reader: Reader, position: XmlElement, network: RoadNet
       const point = roadPoint(road, s + ds, t);
       return { x: point.x, y: point.y, hdg: orientedHeading(reader, kind, point.hdg), described: `RelativeRoadPosition ${reader.text(kind, 'entityRef')}, ds ${ds}, dt ${dt}` };
     }
+    case 'RoutePosition':
+      return onRoute(reader, kind, network, semantics);
     default:
       throw new Error(`${kind.name} is not evaluated by this view`);
   }
@@ -247,10 +318,13 @@ function entityKind(object: XmlElement): { kind: string; body?: XmlElement } {
   return { kind: body?.name ?? 'Entity', body };
 }
 
-/** Entities, where they start, and the storyboard's events. `network` is the loaded road file (if any). */
-export function scenarioScene(document: XmlDocument, network: RoadNetwork | undefined): ScenarioScene {
+/**
+ * Entities, where they start, and the storyboard's events. `network` is the loaded road file (if any);
+ * `semantics`, the document's analysis with its catalogs resolved, finds routes named through catalogs.
+ */
+export function scenarioScene(document: XmlDocument, network: RoadNetwork | undefined, semantics?: DocumentSemantics): ScenarioScene {
   const root = document.root;
-  const reader = new Reader(document);
+  const reader = new Reader(semantics?.model.document === document ? semantics.evaluator : new Evaluator(semanticModelOf(document)));
   const logic = path(root, 'RoadNetwork', 'LogicFile');
   const filepath = logic ? reader.text(logic, 'filepath') : undefined;
   const scene: ScenarioScene = { logicFile: logic && filepath ? { filepath, element: logic } : undefined, entities: [], events: [] };
@@ -292,7 +366,7 @@ export function scenarioScene(document: XmlDocument, network: RoadNetwork | unde
       if (!position) continue;
       entity.position = position;
       try {
-        const where = evaluatePosition(reader, position, network, placed);
+        const where = evaluatePosition(reader, position, network, placed, semantics);
         placed.set(entity.name, where);
         Object.assign(entity, { x: where.x, y: where.y, hdg: where.hdg, described: where.described, problem: undefined });
       } catch (error) {

@@ -1,5 +1,6 @@
 import { FlatSource, originOf } from '../core/flatten';
 import { PARAMETER_ATTRIBUTES } from '../core/model';
+import { Evaluator, semanticModelOf } from '../core/semantics';
 import { SourceRef } from '../core/sources';
 import { Range } from '../core/text';
 import { attribute, descendants, XmlAttribute, XmlElement } from '../core/xml';
@@ -30,10 +31,13 @@ interface Target {
   attribute?: string;
 }
 
+/** An attribute's value as esmini reads it: `$parameters` and `${...}` evaluated, else as written. */
+type ValueOf = (element: XmlElement, name: string) => string | undefined;
+
 interface MessageRule {
   pattern: RegExp;
   /** Every element the message can be about, in document order; the n-th message takes the n-th one. */
-  targets: (root: XmlElement, match: RegExpExecArray) => Target[];
+  targets: (root: XmlElement, match: RegExpExecArray, valueOf: ValueOf) => Target[];
   severity?: 'error' | 'warning';
   note?: string;
 }
@@ -44,6 +48,13 @@ function allElements(root: XmlElement): XmlElement[] {
 
 function elementsNamed(root: XmlElement, name: string): XmlElement[] {
   return allElements(root).filter((element) => element.name === name);
+}
+
+/** Positions on road `roadId` (LanePosition, RoadPosition, waypoints...): on lane `laneId` when given and any is, else any on that road. */
+function positionsOnRoad(root: XmlElement, valueOf: ValueOf, roadId: string, laneId?: string): Target[] {
+  const onRoad = allElements(root).filter((element) => valueOf(element, 'roadId') === roadId);
+  const onLane = laneId === undefined ? [] : onRoad.filter((element) => Number(valueOf(element, 'laneId')) === Number(laneId));
+  return onLane.length > 0 ? onLane.map((element) => ({ element, attribute: 'laneId' })) : onRoad.map((element) => ({ element, attribute: 'roadId' }));
 }
 
 function ancestorNamed(element: XmlElement, name: string): XmlElement | undefined {
@@ -68,9 +79,15 @@ const RULES: MessageRule[] = [
     targets: (root) => elementsNamed(root, 'LogicFile').map((element) => ({ element, attribute: 'filepath' })),
   },
   {
-    // ScenarioReader.cpp and RoadManager: a position on a road the road file does not have.
-    pattern: /^(?:Error: )?(?:Failed to find road|No matching road with ID|Failed to resolve road id) (\S+)/,
-    targets: (root, match) => allElements(root).filter((element) => attribute(element, 'roadId')?.value === match[1]).map((element) => ({ element, attribute: 'roadId' })),
+    // ScenarioReader.cpp and RoadManager.cpp: a position on a road the road file does not have.
+    pattern:
+      /^(?:Error: )?(?:Failed to find road|No matching road with ID|Failed to resolve road id|Position::Set Error: track|OpenDrive::GetTrackIdxById Error: Road id|Failed to lookup road id|Invalid waypoint roadId|Invalid (?:startpos|targetpos) road ID:) (\S+)/,
+    targets: (root, match, valueOf) => positionsOnRoad(root, valueOf, match[1]),
+  },
+  {
+    // RoadManager.cpp (Position::SetLanePos and kin): a lane the road does not have where the position is.
+    pattern: /^(?:Lane id (-?\d+) does not exist on road (\S+)|GetLaneMaterialByS: No valid lane (-?\d+) at road (\S+)|Lane section idx \d+ does not exist on road (\S+))/,
+    targets: (root, match, valueOf) => (match[5] !== undefined ? positionsOnRoad(root, valueOf, match[5]) : positionsOnRoad(root, valueOf, match[2] ?? match[4], match[1] ?? match[3])),
   },
   {
     // ScenarioReader.cpp, printed when Init places no entity (or its actions depend on each other).
@@ -169,7 +186,13 @@ function rangeOf(source: FlatSource, target: Target): { source: SourceRef; range
  * back through the flattener's provenance. Repeats of one message are counted once per place.
  */
 export function mapEsminiMessages(messages: EsminiLogMessage[], source: FlatSource, main: SourceRef): EsminiProblem[] {
-  const root = (source.model ?? source.original)?.document.root;
+  const document = (source.model ?? source.original)?.document;
+  const root = document?.root;
+  const evaluator = document ? new Evaluator(semanticModelOf(document)) : undefined;
+  const valueOf: ValueOf = (element, name) => {
+    const found = attribute(element, name);
+    return found ? (evaluator?.textOf(element, found) ?? found.value) : undefined;
+  };
   const seenText = new Map<string, number>();
   const problems = new Map<string, EsminiProblem>();
   for (const message of messages) {
@@ -182,7 +205,7 @@ export function mapEsminiMessages(messages: EsminiLogMessage[], source: FlatSour
         const match = candidate.pattern.exec(message.text);
         if (match) {
           rule = candidate;
-          targets = candidate.targets(root, match);
+          targets = candidate.targets(root, match, valueOf);
           break;
         }
       }

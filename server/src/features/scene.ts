@@ -5,6 +5,7 @@ import { FlatSource } from '../core/flatten';
 import { parseOpenDrive, RoadNetwork } from '../core/opendrive/road';
 import { sampleNetwork, SectionPolylines } from '../core/opendrive/sample';
 import { scenarioScene } from '../core/scene';
+import { analyzeDocument } from '../core/semantics';
 import { baseName, displayRef, FileSystemHost, nodeFileSystem } from '../core/sources';
 import { decodeUtf8 } from '../core/text';
 import { XmlElement } from '../core/xml';
@@ -109,7 +110,9 @@ export async function buildScene(workspace: Workspace, params: SceneParams): Pro
     problems.push('the scenario names no RoadNetwork/LogicFile; entities are drawn without roads');
   }
 
-  const scene = scenarioScene(model.document, network);
+  // Routes named through catalogs are found by the semantics of the document shown (a flattened text is analysed afresh).
+  const semantics = source.semantics?.model.document === model.document ? source.semantics : await analyzeDocument(ref, model.document, workspace.flattener().catalogs, false);
+  const scene = scenarioScene(model.document, network, semantics);
   for (const entity of scene.entities) if (entity.problem) problems.push(`${entity.name}: ${entity.problem}`);
   return {
     uri: params.uri,
