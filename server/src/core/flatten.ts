@@ -14,7 +14,7 @@ import { displayRef, refId, Resolution, ScenarioStore, SourceError, SourceRef } 
 import * as path from 'node:path';
 import { CarryEdit, carryEdits, CarryPlan, planCarry } from './carry';
 import { declareUtf8 } from './encoding';
-import { analyzeDocument, CatalogLoader, DocumentSemantics, Evaluator, Finding, OUTPUT_CHECKS, runChecks, semanticModelOf, semanticProblems } from './semantics';
+import { analyzeDocument, CatalogLoader, DocumentSemantics, Evaluator, Finding, OUTPUT_CHECKS, problemOfFinding, runChecks, semanticModelOf, semanticProblems } from './semantics';
 import { Simulator } from './profiles/simulators';
 import { closestMatch, detectEol, indentationAt } from './text';
 import { attribute, descendants, elementStartingAt, escapeAttributeValue, isWellFormed, parseXml, selfAndDescendants, XmlAttribute, XmlDocument, XmlElement } from './xml';
@@ -847,17 +847,7 @@ export class Flattener {
       end = Math.min(start + (finding.end - finding.start), originAttribute.valueEnd);
       if (end <= start) [start, end] = [originAttribute.valueStart, originAttribute.valueEnd];
     }
-    const problem: Problem = {
-      source: origin.source.ref,
-      range: document ? document.lines.range(start, end) : ZERO_RANGE,
-      severity: finding.severity,
-      code: finding.code,
-      message: finding.message,
-    };
-    if (finding.hint) problem.hint = finding.hint;
-    if (finding.related) problem.related = finding.related;
-    if (finding.data) problem.data = finding.data;
-    return problem;
+    return problemOfFinding(finding, origin.source.ref, document ? document.lines.range(start, end) : ZERO_RANGE);
   }
 
   /** Reports a flattened result over the bound at the reference that crossed it, naming the chain of the largest imports. */

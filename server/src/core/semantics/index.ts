@@ -31,6 +31,7 @@
  */
 import { Problem } from '../problems';
 import { SourceRef } from '../sources';
+import { Range } from '../text';
 import { XmlAttribute, XmlDocument, XmlElement, elementAt } from '../xml';
 import { assignmentsOf, CatalogLoader, CatalogReferenceResolution, CatalogResolution } from './catalogs';
 import { Finding, runChecks, SemanticContext } from './checks';
@@ -64,21 +65,18 @@ export async function analyzeDocument(ref: SourceRef, document: XmlDocument, loa
   return { ref, model, evaluator, catalogs, modular };
 }
 
+/** A finding as a problem of `ref` at `range` (its own position, or where a flattened element came from). */
+export function problemOfFinding(finding: Finding, ref: SourceRef, range: Range): Problem {
+  const problem: Problem = { source: ref, range, severity: finding.severity, code: finding.code, message: finding.message };
+  if (finding.hint) problem.hint = finding.hint;
+  if (finding.related) problem.related = finding.related;
+  if (finding.data) problem.data = finding.data;
+  return problem;
+}
+
 /** Problems at the findings' own positions in the document. */
 export function findingsToProblems(ref: SourceRef, document: XmlDocument, findings: Finding[]): Problem[] {
-  return findings.map((finding) => {
-    const problem: Problem = {
-      source: ref,
-      range: document.lines.range(finding.start, finding.end),
-      severity: finding.severity,
-      code: finding.code,
-      message: finding.message,
-    };
-    if (finding.hint) problem.hint = finding.hint;
-    if (finding.related) problem.related = finding.related;
-    if (finding.data) problem.data = finding.data;
-    return problem;
-  });
+  return findings.map((finding) => problemOfFinding(finding, ref, document.lines.range(finding.start, finding.end)));
 }
 
 export function semanticProblems(semantics: DocumentSemantics): Problem[] {
