@@ -4,6 +4,21 @@ import { displayRef, SourceRef } from './sources';
 /** `hint` is shown faded in the editor (an unused parameter) and left out of the CLI's text report. */
 export type Severity = 'error' | 'warning' | 'information' | 'hint';
 
+/** What the ASAM schema check reports (core/schema/validate.ts). */
+export const SCHEMA_PROBLEM_CODE_LIST = [
+  'schema-unknown-element',
+  'schema-unknown-attribute',
+  'schema-missing-element',
+  'schema-missing-attribute',
+  'schema-order',
+  'schema-cardinality',
+  'schema-value',
+  'schema-deprecated',
+  'schema-version',
+] as const;
+
+export type SchemaProblemCode = (typeof SCHEMA_PROBLEM_CODE_LIST)[number];
+
 export type ProblemCode =
   | 'xml'
   | 'io'
@@ -23,15 +38,7 @@ export type ProblemCode =
   | 'cycle'
   | 'undeclared-entity'
   | 'source-errors'
-  | 'schema-unknown-element'
-  | 'schema-unknown-attribute'
-  | 'schema-missing-element'
-  | 'schema-missing-attribute'
-  | 'schema-order'
-  | 'schema-cardinality'
-  | 'schema-value'
-  | 'schema-deprecated'
-  | 'schema-version'
+  | SchemaProblemCode
   | 'too-large'
   | 'too-deep'
   | 'undeclared-parameter'

@@ -1,4 +1,4 @@
-import { ProblemCode, Severity } from '../problems';
+import { ProblemCode, SCHEMA_PROBLEM_CODE_LIST, SchemaProblemCode, Severity } from '../problems';
 import { closestMatch } from '../text';
 import { XmlAttribute, XmlDocument, XmlElement } from '../xml';
 import { StateSet } from './automaton';
@@ -8,31 +8,8 @@ import { MODULAR_ATTRIBUTE, MODULAR_PLACEMENT, MODULAR_TYPES } from './modular';
 import { checkValue, describeType, enumerationValues } from './values';
 import { chooseVersion, ChosenVersion, SchemaVersionSetting } from './version';
 
-export type SchemaProblemCode = Extract<
-  ProblemCode,
-  | 'schema-unknown-element'
-  | 'schema-unknown-attribute'
-  | 'schema-missing-element'
-  | 'schema-missing-attribute'
-  | 'schema-order'
-  | 'schema-cardinality'
-  | 'schema-value'
-  | 'schema-deprecated'
-  | 'schema-version'
->;
-
 /** Problems the schema finds; `--force` writes a flattened output despite them. */
-export const SCHEMA_PROBLEM_CODES: ReadonlySet<ProblemCode> = new Set<SchemaProblemCode>([
-  'schema-unknown-element',
-  'schema-unknown-attribute',
-  'schema-missing-element',
-  'schema-missing-attribute',
-  'schema-order',
-  'schema-cardinality',
-  'schema-value',
-  'schema-deprecated',
-  'schema-version',
-]);
+export const SCHEMA_PROBLEM_CODES: ReadonlySet<ProblemCode> = new Set<ProblemCode>(SCHEMA_PROBLEM_CODE_LIST);
 
 /** A problem at an element's tag name, an attribute's name or an attribute's value (offsets of the document checked). */
 export interface SchemaFinding {

@@ -1,4 +1,4 @@
-import { ProblemCode, RelatedProblemLocation, Severity } from '../problems';
+import { Problem, ProblemCode, RelatedProblemLocation } from '../problems';
 import { simulatorFindings } from '../profiles/checks';
 import { Simulator } from '../profiles/simulators';
 import { baseName, SourceRef } from '../sources';
@@ -28,18 +28,13 @@ export interface SemanticContext {
   simulator?: Simulator;
 }
 
-export interface Finding {
+/** A problem at document offsets, before it is given a file and a range (`problemOfFinding`). */
+export interface Finding extends Omit<Problem, 'source' | 'range'> {
   element: XmlElement;
   /** The attribute the offsets lie in, when they do (for mapping an output position to its source). */
   attribute: XmlAttribute | undefined;
   start: number;
   end: number;
-  severity: Severity;
-  code: ProblemCode;
-  message: string;
-  hint?: string;
-  related?: RelatedProblemLocation[];
-  data?: Record<string, string>;
 }
 
 export type SemanticCheck = (context: SemanticContext) => Finding[];
