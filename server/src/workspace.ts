@@ -3,6 +3,7 @@ import * as path from 'node:path';
 import { AnalysisResult, Flattener, FlatSource, SchemaOptions } from './core/flatten';
 import { decodeScenario } from './core/encoding';
 import { isSchemaVersion } from './core/schema/model';
+import { SchemaCheckMemory } from './core/schema/problems';
 import { SchemaVersionSetting } from './core/schema/version';
 import { FileSystemHost, nodeFileSystem, refId, ScenarioStore, SizedCache, SourceRef, splitScenarioPath, diskRef, childRef } from './core/sources';
 import { LineIndex, Range } from './core/text';
@@ -202,8 +203,9 @@ class ReusingFlattener extends Flattener {
     private readonly dependencies: Map<string, string[]>,
     simulator: Simulator,
     schema: SchemaOptions,
+    schemaChecks: SchemaCheckMemory,
   ) {
-    super(store, simulator, schema);
+    super(store, simulator, schema, schemaChecks);
   }
 
   override source(ref: SourceRef, stack: SourceRef[]): Promise<FlatSource> {
@@ -244,6 +246,8 @@ export class Workspace {
   /** Sources read so far, kept across generations until a file they depend on changes. */
   private readonly sharedSources = new Map<string, Promise<FlatSource>>();
   private readonly sourceDependencies = new Map<string, string[]>();
+  /** The last schema check of each file, shared by every generation's flattener. */
+  private readonly schemaChecks = new SchemaCheckMemory();
   private readonly analysisResults = new Map<string, { generation: number; result: Promise<AnalysisResult> }>();
 
   constructor() {
@@ -314,7 +318,7 @@ export class Workspace {
 
   flattener(): Flattener {
     if (!this.currentFlattener || this.flattenerGeneration !== this.generation) {
-      this.currentFlattener = new ReusingFlattener(this.storeInstance, this.sharedSources, this.sourceDependencies, this.settings.simulator, { version: this.settings.schemaVersion });
+      this.currentFlattener = new ReusingFlattener(this.storeInstance, this.sharedSources, this.sourceDependencies, this.settings.simulator, { version: this.settings.schemaVersion }, this.schemaChecks);
       this.flattenerGeneration = this.generation;
     }
     return this.currentFlattener;

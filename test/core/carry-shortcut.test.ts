@@ -1,7 +1,7 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { carryShortcut } from '../../server/src/core/carry';
+import { carryShortcut } from '../../server/src/core/flatten/carry';
 import { Flattener } from '../../server/src/core/flatten';
 import { diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { caseStudyDir, libraryDir, makeWorkspace, repoRoot, requireCorpus } from '../support/fixtures';

@@ -2,7 +2,8 @@ import * as assert from 'node:assert/strict';
 import * as path from 'node:path';
 import { Flattener } from '../../server/src/core/flatten';
 import { Problem } from '../../server/src/core/problems';
-import { outputSchemaProblems } from '../../server/src/core/schema/problems';
+import { outputSchemaProblems } from '../../server/src/core/flatten';
+import { SchemaCheckMemory } from '../../server/src/core/schema/problems';
 import { diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { makeWorkspace } from '../support/fixtures';
 
@@ -53,12 +54,15 @@ ${speeds
 </OpenSCENARIO>
 `;
 
+/** One memory of schema checks for every flattener here, as the checks of one process shared before. */
+const schemaChecks = new SchemaCheckMemory();
+
 /** The output's schema problems, with paths relative to the workspace and in a stable order. */
 async function outputProblems(store: ScenarioStore, root: string): Promise<string[]> {
-  const result = await new Flattener(store, 'asam', { version: 'auto' }).flatten(diskRef(path.join(root, 'main.xosc')), { force: true });
+  const result = await new Flattener(store, 'asam', { version: 'auto' }, schemaChecks).flatten(diskRef(path.join(root, 'main.xosc')), { force: true });
   const describe = (problem: Problem) =>
     `${path.relative(root, problem.source.disk)}:${problem.range.start.line}:${problem.range.start.character}-${problem.range.end.line}:${problem.range.end.character} ${problem.severity} ${problem.code} ${problem.message} ${problem.hint ?? ''} ${JSON.stringify(problem.data ?? {})}`;
-  return outputSchemaProblems(result.source, { version: 'auto' }).map(describe).sort();
+  return outputSchemaProblems(result.source, schemaChecks, { version: 'auto' }).map(describe).sort();
 }
 
 describe('strict schema check of an output after an edit inside one value', function () {

@@ -6,13 +6,16 @@ import { formatProblem, Problem } from '../../server/src/core/problems';
 import { ContentAutomaton } from '../../server/src/core/schema/automaton';
 import { schemaIndex } from '../../server/src/core/schema/index';
 import { schemaFor, SCHEMA_VERSIONS } from '../../server/src/core/schema/model';
-import { schemaProblems } from '../../server/src/core/schema/problems';
+import { SchemaCheckMemory, schemaProblems } from '../../server/src/core/schema/problems';
 import { allowedChildren } from '../../server/src/core/schema/query';
 import { checkValue } from '../../server/src/core/schema/values';
 import { chooseVersion } from '../../server/src/core/schema/version';
 import { childRef, diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { parseXml } from '../../server/src/core/xml';
 import { caseStudyDir, libraryDir, makeWorkspace, repoRoot, requireCorpus, sharedDir } from '../support/fixtures';
+
+/** One memory of schema checks for the whole file, as the checks of one process shared before. */
+const schemaChecks = new SchemaCheckMemory();
 
 const openscenarioDir = path.join(sharedDir, 'corpus', 'openscenario');
 
@@ -130,7 +133,7 @@ describe('core: the OpenSCENARIO schemas, compiled at build time', () => {
 
   it('reports each kind of violation at its name or value', () => {
     const text = SCENARIO('0', '    <Init><Actions/></Init>\n    <StopTrigger/>\n    <Story name="s"/>\n', '  <ParameterDeclarations><ParameterDeclaration name="p" parameterType="real" value="1" unit="m"/></ParameterDeclarations>\n');
-    const problems = schemaProblems(diskRef('/x/a.xosc'), parseXml(text));
+    const problems = schemaProblems(diskRef('/x/a.xosc'), parseXml(text), schemaChecks);
     const summary = problems.map((problem) => `${problem.code}@${problem.range.start.line + 1}:${problem.range.start.character + 1} ${problem.message}`);
     assert.deepEqual(summary, [
       "schema-value@4:72 'real' is not a valid value of ParameterDeclaration.parameterType (ParameterType): expected one of boolean, dateTime, double, integer, string, unsignedInt, unsignedShort, a $parameter",
@@ -143,13 +146,13 @@ describe('core: the OpenSCENARIO schemas, compiled at build time', () => {
 
   it('validates Catalog and ParameterValueDistribution files (other roots of OpenSCENARIO)', () => {
     const catalog = `<OpenSCENARIO><FileHeader revMajor="1" revMinor="1" date="2024-01-01T00:00:00" description="d" author="a"/><Catalog name="C"><Vehicle name="v" vehicleCategory="car"/></Catalog></OpenSCENARIO>`;
-    const codes = schemaProblems(diskRef('/x/c.xosc'), parseXml(catalog)).map((problem) => `${problem.code} ${problem.message}`);
+    const codes = schemaProblems(diskRef('/x/c.xosc'), parseXml(catalog), schemaChecks).map((problem) => `${problem.code} ${problem.message}`);
     assert.deepEqual(codes, ['schema-missing-element <Vehicle> lacks the required elements <BoundingBox>, <Performance>, <Axles>, <Properties>']);
     const distribution = `<OpenSCENARIO><FileHeader revMajor="1" revMinor="1" date="2024-01-01T00:00:00" description="d" author="a"/><ParameterValueDistribution><ScenarioFile filepath="a.xosc"/><Deterministic/></ParameterValueDistribution></OpenSCENARIO>`;
-    assert.deepEqual(schemaProblems(diskRef('/x/d.xosc'), parseXml(distribution)), []);
+    assert.deepEqual(schemaProblems(diskRef('/x/d.xosc'), parseXml(distribution), schemaChecks), []);
     const distribution10 = distribution.replace('revMinor="1"', 'revMinor="0"');
     assert.deepEqual(
-      schemaProblems(diskRef('/x/d.xosc'), parseXml(distribution10)).map((problem) => problem.code).sort(),
+      schemaProblems(diskRef('/x/d.xosc'), parseXml(distribution10), schemaChecks).map((problem) => problem.code).sort(),
       ['schema-missing-element', 'schema-unknown-element'],
     );
   });
@@ -190,7 +193,7 @@ describe('core: schema check after an edit inside one value', () => {
     const source = diskRef('/x/edited.xosc');
     let text = SCENARIO('2', '    <Init><Actions><Private entityRef="ego"><PrivateAction><LongitudinalAction><SpeedAction><SpeedActionDynamics dynamicsShape="step" value="1" dynamicsDimension="time"/><SpeedActionTarget><AbsoluteTargetSpeed value="5"/></SpeedActionTarget></SpeedAction></LongitudinalAction></PrivateAction></Private></Actions></Init>\n    <Story name="s"><Act name="a" unknown="u"><ManeuverGroup maximumExecutionCount="1" name="g"><Actors selectTriggeringEntities="false"/></ManeuverGroup><StartTrigger/></Act></Story>\n    <StopTrigger/>\n');
     const summary = (problems: Problem[]) => problems.map((problem) => `${problem.code}@${problem.range.start.line}:${problem.range.start.character}-${problem.range.end.character} ${problem.message}`);
-    schemaProblems(source, parseXml(text));
+    schemaProblems(source, parseXml(text), schemaChecks);
     const edits: [string, string][] = [
       ['value="5"', 'value="fast"'],
       ['dynamicsShape="step"', 'dynamicsShape="stepwise"'],
@@ -203,11 +206,11 @@ describe('core: schema check after an edit inside one value', () => {
       text = text.replace(from, to);
       const document = parseXml(text);
       // A file never checked before gets a full check: the reference.
-      const full = schemaProblems(diskRef(`/x/fresh_${step}.xosc`), document);
-      assert.deepEqual(summary(schemaProblems(source, document)), summary(full), `${from} -> ${to}`);
+      const full = schemaProblems(diskRef(`/x/fresh_${step}.xosc`), document, schemaChecks);
+      assert.deepEqual(summary(schemaProblems(source, document, schemaChecks)), summary(full), `${from} -> ${to}`);
     });
     assert.deepEqual(
-      summary(schemaProblems(source, parseXml(text))).map((line) => line.split(' ')[0].split('@')[0]),
+      summary(schemaProblems(source, parseXml(text), schemaChecks)).map((line) => line.split(' ')[0].split('@')[0]),
       ['schema-unknown-attribute'],
     );
   });
@@ -221,7 +224,7 @@ describe('corpus: every file validates against its own version', function () {
   for (const file of xoscFiles(path.join(sharedDir, 'corpus'))) {
     const name = path.relative(path.join(sharedDir, 'corpus'), file);
     it(name, () => {
-      const problems = errorsOf(schemaProblems(diskRef(file), parseXml(fs.readFileSync(file, 'utf8'))));
+      const problems = errorsOf(schemaProblems(diskRef(file), parseXml(fs.readFileSync(file, 'utf8')), schemaChecks));
       const found = problems.map((problem) => `${problem.code} ${/of ([\w.]+ \(\w+\))/.exec(problem.message)?.[1] ?? problem.message}`);
       assert.deepEqual(found, GENUINE_VIOLATIONS[name] ?? [], problems.map((problem) => formatProblem(problem)).join('\n'));
     });

@@ -2,7 +2,7 @@ import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { firstDifference } from '../../server/src/core/equivalence';
-import { carriedDeclaration, composedValues } from '../../server/src/core/carry';
+import { carriedDeclaration, composedValues } from '../../server/src/core/flatten/carry';
 import { Flattener } from '../../server/src/core/flatten';
 import { Problem } from '../../server/src/core/problems';
 import { semanticModelOf } from '../../server/src/core/semantics';

@@ -1,6 +1,6 @@
 import { CompletionItem, CompletionItemKind, LSPErrorCodes, ResponseError, TextEdit, WorkspaceEdit } from 'vscode-languageserver/node';
 import { TextDocument } from 'vscode-languageserver-textdocument';
-import { composedValues } from '../core/carry';
+import { composedValues } from '../core/flatten/carry';
 import { FlatSource, LinkedGroupReference } from '../core/flatten';
 import {
   Declaration,

@@ -1,10 +1,10 @@
 import * as path from 'node:path';
-import type { FlatSource, Insertion, LinkedGroupReference } from './flatten';
-import { Problem, RelatedProblemLocation } from './problems';
-import { Declaration, Evaluator, ParameterUse, SemanticModel, semanticModelOf, ValueResult } from './semantics';
-import { displayRef } from './sources';
-import { indentationAt } from './text';
-import { attribute, elementStartingAt, escapeAttributeValue, isWithin, selfAndDescendants, XmlDocument, XmlElement } from './xml';
+import type { CarriedDeclaration, CarriedLocation, CarryEdit, CarryPlan, FlatSource, Insertion, LinkedGroupReference } from './types';
+import { RelatedProblemLocation } from '../problems';
+import { Declaration, Evaluator, ParameterUse, SemanticModel, semanticModelOf, ValueResult } from '../semantics';
+import { displayRef } from '../sources';
+import { indentationAt } from '../text';
+import { attribute, elementStartingAt, escapeAttributeValue, isWithin, selfAndDescendants, XmlDocument, XmlElement } from '../xml';
 
 /**
  * What flattening carries from imported groups' sources into the output (SPEC 11): the parameter
@@ -13,37 +13,7 @@ import { attribute, elementStartingAt, escapeAttributeValue, isWithin, selfAndDe
  * to the main file's root (after its own declarations), so that the output keeps the main file's text.
  */
 
-export interface CarriedDeclaration {
-  name: string;
-  /** The declaration in the source's (flattened) model. */
-  declaration: Declaration;
-  source: FlatSource;
-  /** The declaration's text as written in the source. */
-  text: string;
-}
-
-export interface CarriedLocation {
-  /** `VehicleCatalog`, ... */
-  kind: string;
-  /** The absolute directory on disk. */
-  directory: string;
-  source: FlatSource;
-}
-
-export interface CarryPlan {
-  declarations: CarriedDeclaration[];
-  locations: CarriedLocation[];
-  problems: Problem[];
-}
-
-/** A text edit of the main file with, for each carried declaration, where it lands inside the inserted text. */
-export interface CarryEdit {
-  start: number;
-  end: number;
-  text: string;
-  /** Carried declarations: offsets inside `text`, and what they were copied from. */
-  parts: { start: number; end: number; source: FlatSource; element: XmlElement }[];
-}
+export type { CarriedDeclaration, CarriedLocation, CarryEdit, CarryPlan } from './types';
 
 function sameValue(a: Declaration, b: Declaration): boolean {
   return a.value === b.value && (a.type ?? a.writtenType) === (b.type ?? b.writtenType);

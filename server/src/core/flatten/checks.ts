@@ -1,0 +1,139 @@
+import * as path from 'node:path';
+import { PARAMETER_ATTRIBUTES, ScenarioModel } from '../model';
+import { Problem, ProblemCode, ZERO_RANGE } from '../problems';
+import { Simulator } from '../profiles/simulators';
+import { CatalogLoader, Evaluator, Finding, OUTPUT_CHECKS, problemOfFinding, runChecks, semanticModelOf } from '../semantics';
+import { closestMatch } from '../text';
+import { attribute, selfAndDescendants, XmlAttribute, XmlElement } from '../xml';
+import { originOf } from './origin';
+import { problemAt, valueRange } from './report';
+import { FlatSource } from './types';
+
+const entityRefCache = new WeakMap<XmlElement, XmlElement[]>();
+
+/** The elements of a group that carry an entityRef; computed once per parsed group. */
+function entityRefElements(group: XmlElement): XmlElement[] {
+  let found = entityRefCache.get(group);
+  if (!found) {
+    found = selfAndDescendants(group).filter((element) => element.name === 'EntityRef' || attribute(element, 'entityRef') !== undefined);
+    entityRefCache.set(group, found);
+  }
+  return found;
+}
+
+/** Catalog problems, which the output check reports only for what flattening carried. */
+const CATALOG_CODES: ReadonlySet<ProblemCode> = new Set<ProblemCode>(['catalog-directory', 'unknown-catalog', 'unknown-catalog-entry', 'unknown-assigned-parameter']);
+
+/** Warns on each name in `parameterAttributes` that names no attribute of its element. */
+export function checkDeclarations(result: FlatSource, model: ScenarioModel): void {
+  for (const declaration of model.declarations) {
+    for (const name of declaration.names) {
+      if (name.target) continue;
+      const attributes = declaration.element.attributes.map((a) => a.name).filter((n) => n !== PARAMETER_ATTRIBUTES);
+      const suggestion = closestMatch(name.name.split('.').pop() ?? name.name, attributes);
+      const problem = problemAt({
+        source: result.ref,
+        document: model.document,
+        start: name.start,
+        end: name.end,
+        severity: 'warning',
+        code: 'unknown-parameter-attribute',
+        message:
+          `'${name.name}' names no attribute of <${declaration.element.name}>, so no default value exists and no key can override it` +
+          (attributes.length ? ` (its attributes: ${attributes.join(', ')})` : ''),
+        hint: suggestion ? `write '${suggestion}'` : `add ${name.name}="..." to <${declaration.element.name}> as its default`,
+      });
+      if (suggestion) problem.data = { suggestion };
+      result.problems.push(problem);
+    }
+  }
+}
+
+/** Warns where an imported group names an entity the outermost main file does not declare. */
+export function entityProblems(source: FlatSource): Problem[] {
+  const original = source.original;
+  if (!original) return [];
+  // Names and references may be `$parameters`: each is read with the declarations of the file it is written in.
+  const main = source.semantics?.evaluator;
+  const valueIn = (evaluator: Evaluator | undefined, element: XmlElement, attributeNode: XmlAttribute | undefined) =>
+    attributeNode ? (evaluator?.textOf(element, attributeNode) ?? attributeNode.value) : undefined;
+  const declared = new Set(original.entities.map((entity) => valueIn(main, entity.element, entity.nameAttribute) ?? entity.name));
+  const problems: Problem[] = [];
+  for (const link of source.links) {
+    const actor = link.info.outerGroup?.actor;
+    const actorEntity = actor ? valueIn(main, actor, attribute(actor, 'entityRef')) : undefined;
+    const sourceEvaluator = link.source?.model ? new Evaluator(semanticModelOf(link.source.model.document)) : undefined;
+    for (const linked of link.groups) {
+      if (!linked.target || !linked.plan) continue;
+      // The entities the copy will name: overrides first, then the outer actor, then the source's own value.
+      const overridden = new Map<XmlElement, string>();
+      for (const [target, parameter] of linked.plan.applied) {
+        if (target.attributeName === 'entityRef') overridden.set(target.element, valueIn(main, parameter.element, parameter.valueAttribute) ?? parameter.value);
+      }
+      const missing = new Set<string>();
+      for (const element of entityRefElements(linked.target.element)) {
+        const value =
+          overridden.get(element) ??
+          (element === linked.target.actor && actorEntity !== undefined ? actorEntity : valueIn(sourceEvaluator, element, attribute(element, 'entityRef')));
+        if (value !== undefined && !declared.has(value)) missing.add(value);
+      }
+      for (const name of missing) {
+        const [start, end] = valueRange(linked.info.nameAttribute, linked.info.element);
+        problems.push({
+          ...problemAt({
+            source: source.ref,
+            document: original.document,
+            start,
+            end,
+            severity: 'warning',
+            code: 'undeclared-entity',
+            message: `the imported group '${linked.info.name}' uses entity '${name}', which this file does not declare in <Entities>`,
+            hint: `declare a ScenarioObject named '${name}', or override the key that sets it (for example 'entityRef')`,
+          }),
+          data: { entity: name },
+        });
+      }
+    }
+  }
+  return problems;
+}
+
+/** What the output check needs of the flattener: its catalogs and the simulator it checks for. */
+export interface OutputCheckContext {
+  readonly catalogs: CatalogLoader;
+  readonly simulator: Simulator;
+}
+
+/**
+ * Checks the flattened output (SPEC 11.5): every `$name` declared, every catalog entry and
+ * storyboard reference resolving to exactly one target. Problems are reported where the element
+ * was written, through originOf.
+ */
+export async function checkOutput(context: OutputCheckContext, source: FlatSource, outputDirectory: string): Promise<Problem[]> {
+  if (!source.model || !source.original || source.model === source.original) return [];
+  const model = semanticModelOf(source.model.document);
+  const evaluator = new Evaluator(model);
+  const catalogs = await context.catalogs.resolve({ disk: path.join(outputDirectory, 'flattened.xosc'), entries: [] }, model, evaluator);
+  const findings = runChecks({ ref: source.ref, model, evaluator, catalogs, modular: false, simulator: context.simulator }, OUTPUT_CHECKS);
+  // The main file's own catalog locations are written as they are, relative to it; its own check covers them.
+  const carried = (element: XmlElement) =>
+    [...source.insertions, ...source.additions].some((region) => element.start >= region.start && element.end <= region.end);
+  return findings.filter((finding) => !CATALOG_CODES.has(finding.code) || carried(finding.element)).map((finding) => problemAtOrigin(source, finding));
+}
+
+/** A finding on the flattened text, placed where its element was written. */
+function problemAtOrigin(source: FlatSource, finding: Finding): Problem {
+  const origin = originOf(source, finding.element);
+  const document = (origin.source.original ?? origin.source.model)?.document;
+  const originAttribute = finding.attribute ? attribute(origin.element, finding.attribute.name) : undefined;
+  let start = origin.element.start;
+  let end = origin.element.nameEnd;
+  if (finding.attribute && originAttribute) {
+    const delta = finding.start - finding.attribute.valueStart;
+    start = Math.min(originAttribute.valueStart + delta, originAttribute.valueEnd);
+    end = Math.min(start + (finding.end - finding.start), originAttribute.valueEnd);
+    if (end <= start) [start, end] = [originAttribute.valueStart, originAttribute.valueEnd];
+  }
+  return problemOfFinding(finding, origin.source.ref, document ? document.lines.range(start, end) : ZERO_RANGE);
+}
+

@@ -1,0 +1,30 @@
+/*
+ * Flattening modular scenarios (SPEC 4, 5 and 11), one job per file:
+ *   types.ts        the flattened-source data types
+ *   origin.ts       where an element of a flattened text was written
+ *   report.ts       problems at offsets
+ *   edits.ts        text edits: copying a group, stripping parameterAttributes
+ *   link.ts         following one ScenarioReference to the groups it imports
+ *   render.ts       writing the flattened text
+ *   carry.ts        what the output needs carried from the sources
+ *   checks.ts       checks of a file read and of the output
+ *   outputSchema.ts the schema check of the output
+ *   flattener.ts    the Flattener, which reads, links and renders files and caches them
+ */
+export { Flattener } from './flattener';
+export { copiedFrom, declarationLocation, originOf } from './origin';
+export { describeChain } from './report';
+export { parameterAttributeSpans, reindent, stripParameterAttributes } from './edits';
+export { outputSchemaProblems, overrideValueProblems } from './outputSchema';
+export { OVERRIDE_PROBLEM_CODES } from './types';
+export type {
+  Addition,
+  AnalysisResult,
+  FlatSource,
+  FlattenOptions,
+  FlattenResult,
+  Insertion,
+  LinkedGroupReference,
+  LinkedReference,
+  SchemaOptions,
+} from './types';

@@ -1,0 +1,313 @@
+import { overridableAttributes, OverridePlan, planOverrides } from '../keys';
+import { findGroup, ManeuverGroupInfo, ManeuverGroupReferenceInfo, ScenarioModel, ScenarioReferenceInfo } from '../model';
+import { Problem } from '../problems';
+import { displayRef, refId, ScenarioStore, SourceRef } from '../sources';
+import { closestMatch } from '../text';
+import { attribute } from '../xml';
+import { SCHEMA_PROBLEM_CODES } from '../schema/validate';
+import { declarationLocation, originOf } from './origin';
+import { describeChain, problemAt, ProblemWords, valueRange } from './report';
+import { FlatSource, LinkedGroupReference, LinkedReference, OVERRIDE_PROBLEM_CODES } from './types';
+
+/** What linking needs of the flattener: the store, and the (cached) reading and rendering of referenced files. */
+export interface LinkContext {
+  readonly store: ScenarioStore;
+  source(ref: SourceRef, stack: SourceRef[]): Promise<FlatSource>;
+  rendered(source: FlatSource): FlatSource;
+}
+
+/** Reports a problem at offsets of the referencing file, as one of its own problems. */
+type Report = (words: ProblemWords) => Problem;
+
+/**
+ * Follows one ScenarioReference of `result` (the file `from`, read as `model`): resolves and reads the
+ * referenced file, selects its groups and plans their overrides, reporting every problem on the way.
+ */
+export async function link(
+  context: LinkContext,
+  reference: ScenarioReferenceInfo,
+  from: SourceRef,
+  model: ScenarioModel,
+  stack: SourceRef[],
+  result: FlatSource,
+): Promise<LinkedReference> {
+  const document = model.document;
+  const report: Report = (words) => {
+    const problem = problemAt({ source: from, document, ...words });
+    result.problems.push(problem);
+    return problem;
+  };
+  const link: LinkedReference = {
+    info: reference,
+    resolution: { kind: 'invalid', message: '' },
+    source: undefined,
+    groups: [],
+    cycle: undefined,
+  };
+  checkReferenceShape(reference, report);
+  if (!reference.fileAttribute) {
+    report({ start: reference.element.start, end: reference.element.nameEnd, severity: 'error', code: 'missing-attribute', message: 'ScenarioReference has no scenarioFileName attribute', hint: 'add scenarioFileName="NAME.xosc" or "NAME.mosc"' });
+    return link;
+  }
+  checkReferenceChildren(reference, report);
+  const target = await resolveTarget(context, reference, from, stack, link, report);
+  if (!target) return link;
+  const source = context.rendered(await context.source(target, stack));
+  link.source = source;
+  reportSourceErrors(reference, source, report);
+  for (const groupReference of reference.groupReferences) {
+    link.groups.push(linkGroup(reference, groupReference, source, result, report));
+  }
+  return link;
+}
+
+/** A reference must stand in a ManeuverGroup whose actor the imported groups take. */
+function checkReferenceShape(reference: ScenarioReferenceInfo, report: Report): void {
+  if (!reference.outerGroup) {
+    report({ start: reference.element.start, end: reference.element.nameEnd, severity: 'error', code: 'reference-outside-group', message: 'a ScenarioReference must stand directly inside a ManeuverGroup' });
+  } else if (!reference.outerGroup.actor) {
+    const group = reference.outerGroup;
+    const [start, end] = valueRange(group.nameAttribute, group.element);
+    report({
+      start,
+      end,
+      severity: 'error',
+      code: 'no-entity-ref',
+      message: `ManeuverGroup '${group.name}' has no <Actors><EntityRef entityRef="..."/></Actors>, so the imported groups have no actor`,
+      hint: 'add an Actors element with the EntityRef of the entity that performs the imported groups',
+    });
+  } else if (!attribute(reference.outerGroup.actor, 'entityRef')) {
+    const actor = reference.outerGroup.actor;
+    report({ start: actor.start, end: actor.nameEnd, severity: 'error', code: 'no-entity-ref', message: 'this EntityRef has no entityRef attribute', hint: 'write entityRef="NAME" with the name of a ScenarioObject' });
+  }
+}
+
+/** Group and parameter references need their attributes. */
+function checkReferenceChildren(reference: ScenarioReferenceInfo, report: Report): void {
+  for (const groupReference of reference.groupReferences) {
+    if (!groupReference.nameAttribute) {
+      report({ start: groupReference.element.start, end: groupReference.element.nameEnd, severity: 'error', code: 'missing-attribute', message: 'ManeuverGroupReference has no maneuverGroupName attribute' });
+    }
+    for (const parameter of groupReference.parameters) {
+      if (!parameter.keyAttribute || !parameter.valueAttribute) {
+        report({
+          start: parameter.element.start,
+          end: parameter.element.nameEnd,
+          severity: 'error',
+          code: 'missing-attribute',
+          message: `ParameterReference needs both key and value attributes`,
+          hint: 'write <ParameterReference key="Element.attribute" value="..."/>',
+        });
+      }
+    }
+  }
+}
+
+/** The file a reference reads (a package's main file for a `.mosc`); undefined, reported, when it cannot be read here. */
+async function resolveTarget(
+  context: LinkContext,
+  reference: ScenarioReferenceInfo,
+  from: SourceRef,
+  stack: SourceRef[],
+  link: LinkedReference,
+  report: Report,
+): Promise<SourceRef | undefined> {
+  const [start, end] = valueRange(reference.fileAttribute, reference.element);
+  const resolution = await context.store.resolve(reference.fileName, from);
+  link.resolution = resolution;
+  if (resolution.kind === 'invalid') {
+    report({ start, end, severity: 'error', code: 'invalid-reference', message: resolution.message });
+    return undefined;
+  }
+  if (resolution.kind === 'unreadable') {
+    report({ start, end, severity: 'error', code: 'bad-package', message: `cannot look up '${reference.fileName}': ${resolution.message}`, hint: resolution.hint });
+    return undefined;
+  }
+  if (resolution.kind === 'missing') {
+    report({ start, end, severity: 'error', code: 'missing-file', message: `cannot find '${reference.fileName}'; searched ${resolution.searched.join(', ')}`, hint: resolution.hint });
+    return undefined;
+  }
+  if (resolution.kind === 'package' && resolution.fallbackFrom) {
+    const packageName = `${resolution.fallbackFrom.slice(0, -'.xosc'.length)}.mosc`;
+    const problem = report({
+      start,
+      end,
+      severity: 'warning',
+      code: 'xosc-fallback',
+      message: `'${resolution.fallbackFrom}' does not exist; the flattened package '${packageName}' is used in its place`,
+      hint: `write scenarioFileName="${packageName}"`,
+    });
+    problem.data = { replacement: packageName };
+  }
+  const target = resolution.kind === 'package' ? resolution.main : resolution.ref;
+  const targetId = refId(target);
+  const cycleStart = stack.findIndex((entry) => refId(entry) === targetId);
+  if (cycleStart >= 0) {
+    const cycle = [...stack.slice(cycleStart), target];
+    link.cycle = cycle;
+    report({ start, end, severity: 'error', code: 'cycle', message: `reference cycle: ${cycle.map((entry) => displayRef(entry)).join(' -> ')}`, hint: 'remove one reference of the cycle' });
+    return undefined;
+  }
+  const maxDepth = context.store.limits.maxDepth;
+  if (stack.length >= maxDepth) {
+    report({
+      start,
+      end,
+      severity: 'error',
+      code: 'too-deep',
+      message: `references nest deeper than ${maxDepth} files: ${describeChain([...stack, target])}`,
+      hint: 'flatten the inner packages first, or raise the bound with --max-depth',
+    });
+    return undefined;
+  }
+  return target;
+}
+
+/** Errors in the referenced file stop flattening; schema problems do not (they are reported in their own file and checked again in the output). */
+function reportSourceErrors(reference: ScenarioReferenceInfo, source: FlatSource, report: Report): void {
+  const sourceErrors = source.allProblems.filter((problem) => problem.severity === 'error' && !OVERRIDE_PROBLEM_CODES.has(problem.code) && !SCHEMA_PROBLEM_CODES.has(problem.code));
+  if (sourceErrors.length === 0) return;
+  const [start, end] = valueRange(reference.fileAttribute, reference.element);
+  const problem = report({
+    start,
+    end,
+    severity: 'error',
+    code: 'source-errors',
+    message: `'${reference.fileName}' has ${sourceErrors.length} error${sourceErrors.length === 1 ? '' : 's'}: ${sourceErrors[0].message}`,
+  });
+  problem.related = sourceErrors.slice(0, 20).map((item) => ({ source: item.source, range: item.range, message: item.message }));
+}
+
+/** Selects the group a ManeuverGroupReference names in the referenced file and plans its overrides. */
+function linkGroup(reference: ScenarioReferenceInfo, groupReference: ManeuverGroupReferenceInfo, source: FlatSource, result: FlatSource, report: Report): LinkedGroupReference {
+  const linked: LinkedGroupReference = { info: groupReference, target: undefined, overridable: [], plan: undefined };
+  const sourceModel = source.model;
+  if (!sourceModel || !groupReference.nameAttribute) return linked;
+  const [start, end] = valueRange(groupReference.nameAttribute, groupReference.element);
+  const targetGroup = findGroup(sourceModel, groupReference.name);
+  if (!targetGroup) {
+    const names = [...new Set(sourceModel.groups.map((group) => group.name))];
+    const suggestion = closestMatch(groupReference.name, names);
+    const problem = report({
+      start,
+      end,
+      severity: 'error',
+      code: 'unknown-group',
+      message: `'${reference.fileName}' has no ManeuverGroup named '${groupReference.name}'` + (names.length ? `; it has: ${names.join(', ')}` : '; it has no ManeuverGroup'),
+      hint: suggestion ? `did you mean '${suggestion}'?` : undefined,
+    });
+    problem.data = { ...(suggestion ? { suggestion } : {}), groups: names.join('\n') };
+    return linked;
+  }
+  linked.target = targetGroup;
+  const named = sourceModel.groups.filter((group) => group.name === groupReference.name);
+  if (named.length > 1) {
+    report({ start, end, severity: 'warning', code: 'ambiguous-group', message: `'${reference.fileName}' has more than one ManeuverGroup named '${groupReference.name}'; the first one is used` });
+    result.problems.push(...duplicateGroupProblems(source, named));
+  }
+  linked.overridable = overridableAttributes(sourceModel, targetGroup);
+  const plan = planOverrides(linked.overridable, groupReference.parameters.filter((p) => p.keyAttribute));
+  linked.plan = plan;
+  checkMixedDefaults(plan, source, report);
+  reportUnknownKeys(linked, plan, source, report);
+  reportMissingDefaults(plan, source, report);
+  return linked;
+}
+
+/**
+ * Warns on each later group of a name that a reference uses, where it is written: a duplicate
+ * name nothing refers to (common in plain scenarios) harms nobody and is not reported.
+ */
+function duplicateGroupProblems(source: FlatSource, named: ManeuverGroupInfo[]): Problem[] {
+  const written = (group: ManeuverGroupInfo) => {
+    const origin = originOf(source, group.element);
+    const model = origin.source.original ?? origin.source.model;
+    const [start, end] = valueRange(attribute(origin.element, 'name'), origin.element);
+    return model ? { ref: origin.source.ref, document: model.document, start, end } : undefined;
+  };
+  const first = written(named[0]);
+  const problems: Problem[] = [];
+  for (const group of named.slice(1)) {
+    const place = written(group);
+    if (!place || !first) continue;
+    const problem = problemAt({
+      source: place.ref,
+      document: place.document,
+      start: place.start,
+      end: place.end,
+      severity: 'warning',
+      code: 'duplicate-group',
+      message: `another ManeuverGroup is already named '${group.name}'; a reference to that name takes the first one`,
+      hint: 'give each ManeuverGroup a unique name',
+    });
+    problem.related = [{ source: first.ref, range: first.document.lines.range(first.start, first.end), message: 'the first group of that name' }];
+    problems.push(problem);
+  }
+  return problems;
+}
+
+/** A key that sets several attributes whose defaults differ probably sets one it was not written for. */
+function checkMixedDefaults(plan: OverridePlan, source: FlatSource, report: Report): void {
+  for (const match of plan.matches) {
+    const targets = match.targets.filter((target) => target.defaultValue !== undefined);
+    if (new Set(targets.map((target) => target.defaultValue)).size < 2) continue;
+    const [start, end] = valueRange(match.parameter.keyAttribute, match.parameter.element);
+    const counts = new Map<string, number>();
+    for (const target of targets) counts.set(target.defaultValue as string, (counts.get(target.defaultValue as string) ?? 0) + 1);
+    const listed = [...counts].map(([value, count]) => `'${value}' (${count}×)`);
+    const problem = report({
+      start,
+      end,
+      severity: 'warning',
+      code: 'key-mixed-defaults',
+      message: `key '${match.parameter.key}' sets ${targets.length} attributes whose defaults differ: ${listed.join(', ')}; all of them get '${match.parameter.value}'`,
+      hint: 'write a longer key that reaches only the attributes you mean, or list the attribute in parameterAttributes only where it should be overridden',
+    });
+    problem.related = targets.map((target) => declarationLocation(originOf(source, target.element), target.attributeName, `'${target.attributeName}' with default '${target.defaultValue}'`));
+  }
+}
+
+/** Keys that match no listed attribute, with the likely fix (a whole key listed in the simple scenario, or a near name). */
+function reportUnknownKeys(linked: LinkedGroupReference, plan: OverridePlan, source: FlatSource, report: Report): void {
+  for (const unknown of plan.unknown) {
+    const [start, end] = valueRange(unknown.parameter.keyAttribute, unknown.parameter.element);
+    const listedVerbatim = linked.overridable.find((candidate) => candidate.attributeName === unknown.parameter.key);
+    const verbatimOrigin = listedVerbatim ? originOf(source, listedVerbatim.element) : undefined;
+    const hint = listedVerbatim
+      ? `<${listedVerbatim.element.name}> in ${displayRef((verbatimOrigin as { source: FlatSource }).source.ref)} lists '${listedVerbatim.attributeName}', which names no attribute; list '${listedVerbatim.attributeName.split('.').pop()}' there instead`
+      : unknown.suggestion
+        ? `did you mean '${unknown.suggestion}'?`
+        : 'list the attribute in parameterAttributes of its element in the simple scenario';
+    const problem = report({
+      start,
+      end,
+      severity: 'error',
+      code: 'unknown-key',
+      message: `key '${unknown.parameter.key}' matches no attribute listed in a parameterAttributes of group '${linked.info.name}'`,
+      hint,
+    });
+    if (listedVerbatim && verbatimOrigin) {
+      problem.related = [declarationLocation(verbatimOrigin, listedVerbatim.attributeName, 'listed here as a whole key instead of an attribute name')];
+      // The mistake lives in the simple scenario: a fix at this use site rewrites the listed name there.
+      problem.data = { relatedReplacement: listedVerbatim.attributeName.split('.').pop() ?? listedVerbatim.attributeName };
+    } else if (unknown.suggestion) {
+      problem.data = { suggestion: unknown.suggestion };
+    }
+  }
+}
+
+/** Keys that set an attribute listed in parameterAttributes but not written, so with no default. */
+function reportMissingDefaults(plan: OverridePlan, source: FlatSource, report: Report): void {
+  for (const { parameter, target: attributeTarget } of plan.withoutDefault) {
+    const [start, end] = valueRange(parameter.keyAttribute, parameter.element);
+    const problem = report({
+      start,
+      end,
+      severity: 'error',
+      code: 'no-default',
+      message: `no default value: <${attributeTarget.element.name}> lists '${attributeTarget.attributeName}' in parameterAttributes but has no such attribute`,
+      hint: `add ${attributeTarget.attributeName}="..." to <${attributeTarget.element.name}> in ${displayRef(originOf(source, attributeTarget.element).source.ref)}`,
+    });
+    problem.related = [declarationLocation(originOf(source, attributeTarget.element), attributeTarget.attributeName, 'listed here without a default value')];
+  }
+}

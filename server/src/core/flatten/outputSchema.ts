@@ -1,0 +1,107 @@
+import { ParameterReferenceInfo } from '../model';
+import { Problem } from '../problems';
+import { refId } from '../sources';
+import { schemaIndex } from '../schema/index';
+import { PlacedFinding, SchemaCheckMemory, toProblem } from '../schema/problems';
+import { typeOfElement } from '../schema/query';
+import { checkAttribute, checkSchema, findingOffsets, SchemaCheckOptions, SchemaFinding } from '../schema/validate';
+import { chooseVersion } from '../schema/version';
+import { attribute, elementAt, XmlAttribute, XmlDocument, XmlElement } from '../xml';
+import { copiedFrom, originOf } from './origin';
+import { FlatSource } from './types';
+
+/*
+ * The schema check of a flattened output: its findings placed where the source files wrote the
+ * offending element or attribute, and override values checked before anything is rendered.
+ */
+
+/** A remembered finding on the tree of `document` again: undefined when its element or attribute is not where its offsets say. */
+function locatedFinding(document: XmlDocument, entry: PlacedFinding): SchemaFinding | undefined {
+  const element = elementAt(document, entry.start);
+  if (!element) return undefined;
+  const found = entry.attributeName === undefined ? undefined : attribute(element, entry.attributeName);
+  const finding: SchemaFinding = { ...entry.finding, element };
+  if (found) finding.attribute = found;
+  if (entry.attributeName !== undefined && !found) return undefined;
+  const [start, end] = findingOffsets(finding);
+  return start === entry.start && end === entry.end ? finding : undefined;
+}
+
+/** The strict check of an output, reusing the check of its previous rendering after an edit inside one value (the live preview). */
+function outputFindings(output: FlatSource, document: XmlDocument, memory: SchemaCheckMemory, options: Omit<SchemaCheckOptions, 'modular'>): SchemaFinding[] {
+  const strict = { ...options, modular: false };
+  const located = memory.check(`output:${refId(output.ref)}`, document, strict).map((entry) => locatedFinding(document, entry));
+  if (located.every((finding) => finding !== undefined)) return located as SchemaFinding[];
+  return checkSchema(document, strict).findings;
+}
+
+/**
+ * The schema's problems of a flattened output, strictly (no extension), each at the place in the
+ * source files that the offending element or attribute was copied from.
+ */
+export function outputSchemaProblems(output: FlatSource, memory: SchemaCheckMemory, options: Omit<SchemaCheckOptions, 'modular'> = {}): Problem[] {
+  const document = output.model?.document;
+  if (!document) return [];
+  const problems: Problem[] = [];
+  for (const finding of outputFindings(output, document, memory, options)) {
+    const origin = originOf(output, finding.element);
+    const originDocument = (origin.source.original ?? origin.source.model)?.document;
+    if (!originDocument) continue;
+    // Data offsets (insertAt) belong to the output; they are dropped rather than pointing into the wrong file.
+    const data = finding.data ? { ...finding.data } : undefined;
+    if (data) delete data.insertAt;
+    const override = finding.part === 'value' && finding.attribute ? overrideOf(output, finding.element, finding.attribute.name) : undefined;
+    if (override?.valueAttribute && output.original) {
+      // The value came from a ParameterReference of this file: that is where it must be fixed.
+      const [start, end] = [override.valueAttribute.valueStart, override.valueAttribute.valueEnd];
+      problems.push(toProblem(output.ref, output.original.document, { ...finding, message: `${finding.message} (set by ParameterReference '${override.key}')`, data }, start, end));
+      continue;
+    }
+    const mapped: SchemaFinding = { ...finding, element: origin.element, data };
+    if (finding.attribute) mapped.attribute = attribute(origin.element, finding.attribute.name);
+    if (finding.part !== 'tag' && !mapped.attribute) mapped.part = 'tag';
+    const [start, end] = findingOffsets(mapped);
+    problems.push(toProblem(origin.source.ref, originDocument, mapped, start, end));
+  }
+  return problems;
+}
+
+/** The ParameterReference of the output's own file that set an attribute of an imported element, if one did. */
+function overrideOf(output: FlatSource, element: XmlElement, attributeName: string): ParameterReferenceInfo | undefined {
+  const insertion = output.insertions.find((candidate) => element.start >= candidate.start && element.end <= candidate.end);
+  const copied = insertion ? copiedFrom(output, insertion, element) : undefined;
+  if (!insertion || !copied) return undefined;
+  for (const [target, parameter] of insertion.group.plan?.applied ?? []) {
+    if (target.element === copied.element && target.attributeName === attributeName) return parameter;
+  }
+  return undefined;
+}
+
+/**
+ * Override values against the type of the attribute they set, without rendering the output (for the
+ * editor): the same problems, at the same ParameterReference, as the strict check of the output.
+ */
+export function overrideValueProblems(main: FlatSource, options: Omit<SchemaCheckOptions, 'modular'> = {}): Problem[] {
+  const document = main.original?.document;
+  if (!document) return [];
+  const chosen = chooseVersion(document, options.version ?? 'auto');
+  const index = schemaIndex(chosen.version);
+  const problems: Problem[] = [];
+  for (const link of main.links) {
+    for (const group of link.groups) {
+      for (const [target, parameter] of group.plan?.applied ?? []) {
+        const valueAttribute = parameter.valueAttribute;
+        const typeName = valueAttribute ? typeOfElement(index, target.element) : undefined;
+        const written = attribute(target.element, target.attributeName);
+        if (!valueAttribute || !typeName || !written) continue;
+        // The attribute as the output will hold it: the override's value in place of the default.
+        const overridden: XmlAttribute = { ...written, value: parameter.value };
+        checkAttribute(index, chosen, target.element, typeName, overridden, (finding) => {
+          if (finding.part !== 'value' || finding.severity === 'information') return;
+          problems.push(toProblem(main.ref, document, { ...finding, message: `${finding.message} (set by ParameterReference '${parameter.key}')`, data: undefined }, valueAttribute.valueStart, valueAttribute.valueEnd));
+        });
+      }
+    }
+  }
+  return problems;
+}

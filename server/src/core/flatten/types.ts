@@ -1,0 +1,147 @@
+import { OverridableAttribute, OverridePlan } from '../keys';
+import { ManeuverGroupInfo, ManeuverGroupReferenceInfo, ScenarioModel, ScenarioReferenceInfo } from '../model';
+import { Problem, ProblemCode } from '../problems';
+import { SchemaVersionSetting } from '../schema/version';
+import { Declaration, DocumentSemantics } from '../semantics';
+import { Resolution, SourceRef } from '../sources';
+import { XmlElement } from '../xml';
+
+/** Problems that the original tool ignored silently: `--force` writes the output despite them. */
+export const OVERRIDE_PROBLEM_CODES: ReadonlySet<ProblemCode> = new Set<ProblemCode>([
+  'unknown-key',
+  'no-default',
+  'unknown-parameter-attribute',
+]);
+
+export interface LinkedGroupReference {
+  info: ManeuverGroupReferenceInfo;
+  /** The group in the source (the flattened package for a `.mosc`) that the name selects. */
+  target: ManeuverGroupInfo | undefined;
+  overridable: OverridableAttribute[];
+  plan: OverridePlan | undefined;
+}
+
+export interface LinkedReference {
+  info: ScenarioReferenceInfo;
+  resolution: Resolution;
+  /** The referenced file, flattened when it is a package or itself holds references. */
+  source: FlatSource | undefined;
+  groups: LinkedGroupReference[];
+  /** The files from this reference back to itself, when it closes a cycle. */
+  cycle: SourceRef[] | undefined;
+}
+
+/** A group that flattening put into the output, and where it came from. */
+export interface Insertion {
+  reference: ManeuverGroupReferenceInfo;
+  outerGroup: ManeuverGroupInfo;
+  link: LinkedReference;
+  group: LinkedGroupReference;
+  /** Offsets of the copy in the flattened text. */
+  start: number;
+  end: number;
+  /** Offsets of the outer group it replaced (with its siblings) in the original text. */
+  replacedStart: number;
+  replacedEnd: number;
+}
+
+/** One file read and, when it holds references, flattened (with `parameterAttributes` kept). */
+export interface FlatSource {
+  ref: SourceRef;
+  /** The file as read; undefined when it could not be read. */
+  original: ScenarioModel | undefined;
+  links: LinkedReference[];
+  /** The flattened text; undefined when an error here or below prevents flattening. */
+  text: string | undefined;
+  model: ScenarioModel | undefined;
+  insertions: Insertion[];
+  /** Problems found in this file itself. */
+  problems: Problem[];
+  /** Problems of this file and of every file it depends on. */
+  allProblems: Problem[];
+  /** Every file this one depends on, itself included. */
+  dependencies: SourceRef[];
+  /** True while the flattened text can be, but has not yet been, rendered (see Flattener.rendered). */
+  renderable: boolean;
+  /**
+   * The output folder that the catalog locations carried into `text` are written relative to; undefined
+   * when the rendering carried none (then the text is the same for every output folder).
+   */
+  locationsRelativeTo: string | undefined;
+  /** The OpenSCENARIO semantics of the file as read (parameters, expressions, catalogs, names). */
+  semantics: DocumentSemantics | undefined;
+  /**
+   * Where each catalog this file or the files it imports from reach lives: catalog name to the
+   * catalog kind and the directory on disk (the first found wins), for carrying locations.
+   */
+  catalogIndex: Map<string, { kind: string; directory: string }>;
+  /** What rendering carried from the sources into the root (SPEC 11), once rendered. */
+  carried: CarryPlan | undefined;
+  /** Text the carrying added to the main file's text, with the declarations it copied (offsets of the flattened text). */
+  additions: Addition[];
+}
+
+/** A region of the flattened text that carrying added or replaced outside the imported groups. */
+export interface Addition {
+  start: number;
+  end: number;
+  replacedStart: number;
+  replacedEnd: number;
+  parts: { start: number; end: number; source: FlatSource; element: XmlElement }[];
+}
+
+export interface CarriedDeclaration {
+  name: string;
+  /** The declaration in the source's (flattened) model. */
+  declaration: Declaration;
+  source: FlatSource;
+  /** The declaration's text as written in the source. */
+  text: string;
+}
+
+export interface CarriedLocation {
+  /** `VehicleCatalog`, ... */
+  kind: string;
+  /** The absolute directory on disk. */
+  directory: string;
+  source: FlatSource;
+}
+
+export interface CarryPlan {
+  declarations: CarriedDeclaration[];
+  locations: CarriedLocation[];
+  problems: Problem[];
+}
+
+/** A text edit of the main file with, for each carried declaration, where it lands inside the inserted text. */
+export interface CarryEdit {
+  start: number;
+  end: number;
+  text: string;
+  /** Carried declarations: offsets inside `text`, and what they were copied from. */
+  parts: { start: number; end: number; source: FlatSource; element: XmlElement }[];
+}
+
+/** How files are checked against the OpenSCENARIO schemas: by their FileHeader, pinned, or not at all. */
+export interface SchemaOptions {
+  version: SchemaVersionSetting | 'off';
+}
+
+export interface FlattenOptions {
+  /** Write the output even when overrides could not be applied (the original's behaviour). */
+  force?: boolean;
+  /** Where the output will be written (carried catalog directories are made relative to its folder); beside the main file by default. */
+  outputPath?: string;
+}
+
+export interface AnalysisResult {
+  problems: Problem[];
+  source: FlatSource;
+}
+
+export interface FlattenResult {
+  /** The flattened scenario; undefined when errors prevent it. */
+  text: string | undefined;
+  problems: Problem[];
+  source: FlatSource;
+}
