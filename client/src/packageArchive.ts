@@ -2,7 +2,7 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import JSZip from 'jszip';
 import { writeFileAtomic } from '../../server/src/core/atomic';
-import { normalizeEntryName, readPackageBytes } from '../../server/src/core/sources';
+import { normalizeEntryName, readPackageBytes } from '../../common/src/packageEntries';
 
 /**
  * The files inside `.mosc` packages, addressed by paths that read every package as a folder:

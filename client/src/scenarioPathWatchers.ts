@@ -1,6 +1,6 @@
 import * as path from 'node:path';
 import * as vscode from 'vscode';
-import { splitScenarioPath } from '../../server/src/core/sources';
+import { splitScenarioPath } from '../../common/src/scenarioPath';
 
 const SCENARIO_GLOB = '**/*.{xosc,mosc}';
 

@@ -365,7 +365,7 @@ async function checkCommand(inputs: string[], options: Options, io: Output): Pro
 
 async function statsCommand(library: string, options: Options, io: Output): Promise<number> {
   if (!fs.existsSync(library) || !fs.statSync(library).isDirectory()) throw new InputError(`${library}: no such folder`);
-  const stats = await libraryStats(library, options.limits);
+  const stats = await libraryStats(library, options.limits, process.cwd());
   for (const problem of stats.problems) io.err(`${library}: error: ${problem}`);
   if (options.format === 'json') {
     io.out(JSON.stringify(stats, null, 2));

@@ -5,7 +5,7 @@ import { decodeScenario } from './core/encoding';
 import { isSchemaVersion } from './core/schema/model';
 import { SchemaCheckMemory } from './core/schema/problems';
 import { SchemaVersionSetting } from './core/schema/version';
-import { FileSystemHost, nodeFileSystem, refId, ScenarioStore, SizedCache, SourceRef, splitScenarioPath, diskRef, childRef } from './core/sources';
+import { FileSystemHost, KindCache, nodeFileSystem, refId, ScenarioStore, SizedCache, SourceRef, splitScenarioPath, diskRef, childRef } from './core/sources';
 import { LineIndex, Range } from './core/text';
 import { OpenDocument, OpenDocuments } from './documents';
 import { UriResolver, refToUri } from './uris';
@@ -64,13 +64,15 @@ export const SERVER_CACHE_BYTES = 64 * 1024 * 1024;
 export class CachingFileSystem implements FileSystemHost {
   private readonly bytes: SizedCache<Uint8Array | undefined>;
   private readonly pending = new Map<string, Promise<Uint8Array | undefined>>();
-  private readonly kinds = new Map<string, Promise<'file' | 'directory' | undefined>>();
+  /** The one cache of kinds: the store built on this host shares it. */
+  readonly kinds: KindCache;
 
   constructor(
     private readonly inner: FileSystemHost = nodeFileSystem,
     maxBytes = SERVER_CACHE_BYTES,
   ) {
     this.bytes = new SizedCache(maxBytes);
+    this.kinds = new KindCache(inner);
   }
 
   /** Bytes held. */
@@ -98,12 +100,7 @@ export class CachingFileSystem implements FileSystemHost {
   }
 
   kind(filePath: string): Promise<'file' | 'directory' | undefined> {
-    let pending = this.kinds.get(filePath);
-    if (!pending) {
-      pending = this.inner.kind(filePath);
-      this.kinds.set(filePath, pending);
-    }
-    return pending;
+    return this.kinds.kind(filePath);
   }
 
   listDirectory(directoryPath: string): Promise<string[] | undefined> {
@@ -272,7 +269,7 @@ export class Workspace {
       folder,
       scenarioPath: [...fromEnvironment, ...(this.folderScenarioPaths.get(folder) ?? this.settings.scenarioPath).map((entry) => path.resolve(folder, entry))],
     }));
-    const store = new ScenarioStore({ scenarioPath: [...fromEnvironment, ...fromSettings], root: this.folders[0], folders, host: this.files, packageCacheBytes: SERVER_CACHE_BYTES });
+    const store = new ScenarioStore({ scenarioPath: [...fromEnvironment, ...fromSettings], root: this.folders[0], folders, host: this.files, packageCacheBytes: SERVER_CACHE_BYTES, workingDirectory: process.cwd() });
     for (const open of this.documents.values()) store.setOverlay(open.ref, open.document.getText());
     return store;
   }

@@ -23,6 +23,7 @@ export function storeForInputs(scenarioPath: string[], root: string | undefined,
   return new ScenarioStore({
     scenarioPath: [...scenarioPath, ...splitScenarioPath(process.env.SCENARIO_PATH)],
     root: root ?? (insideCwd ? cwd : inputFolder),
+    workingDirectory: cwd,
     limits,
   });
 }

@@ -194,7 +194,7 @@ async function packFolderInto(
       if (resolution.folder && resolution.packageRef.entries.length === 0) {
         const nestedFolder = resolution.packageRef.disk;
         if (stack.includes(nestedFolder) || nestedFolder === folder) {
-          report('cycle', `package cycle: ${[...stack, folder, nestedFolder].map((entry) => path.relative(process.cwd(), entry) || '.').join(' -> ')}`);
+          report('cycle', `package cycle: ${[...stack, folder, nestedFolder].map((entry) => (store.workingDirectory === undefined ? entry : path.relative(store.workingDirectory, entry) || '.')).join(' -> ')}`);
           continue;
         }
         const nested = await packFolderInto(nestedFolder, store, options, problems, [...stack, folder], inputs);

@@ -26,15 +26,15 @@ function reduction(modular: number, flattened: number): number {
   return flattened === 0 ? 0 : Math.round((1 - modular / flattened) * 1000) / 10;
 }
 
-/** The paper's Table 1 for a library of modular scenarios (SPEC 9). */
-export async function libraryStats(library: string, limits: Partial<Limits> = {}): Promise<LibraryStats> {
+/** The paper's Table 1 for a library of modular scenarios (SPEC 9); messages show paths relative to `workingDirectory`. */
+export async function libraryStats(library: string, limits: Partial<Limits> = {}, workingDirectory?: string): Promise<LibraryStats> {
   const root = path.resolve(library);
   const folders = fs
     .readdirSync(root, { withFileTypes: true })
     .filter((entry) => entry.isDirectory() && fs.existsSync(path.join(root, entry.name, 'main.xosc')))
     .map((entry) => entry.name)
     .sort();
-  const store = new ScenarioStore({ root, scenarioPath: [root], limits });
+  const store = new ScenarioStore({ root, scenarioPath: [root], limits, workingDirectory });
   const flattener = new Flattener(store);
   const rows: StatsRow[] = [];
   const shared = new Map<string, number>();

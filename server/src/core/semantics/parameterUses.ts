@@ -1,0 +1,73 @@
+import { attribute, XmlAttribute, XmlElement } from '../xml';
+import { valueForm } from './expressions';
+import { resolveName } from './scopes';
+import { Declaration, ParameterUse, Scope, SemanticModel, ValueSite } from './types';
+
+/** Elements whose `parameterRef` names a parameter of the enclosing scopes (1.0-1.1 parameter actions and conditions). */
+const PARAMETER_REF_ELEMENTS = new Set(['ParameterCondition', 'ParameterAction', 'ParameterSetAction', 'ParameterModifyAction']);
+/** Attributes that name a parameter or variable rather than use its value; esmini accepts them with a leading `$`. */
+const NAME_REFERENCE_ATTRIBUTES = new Set(['parameterRef', 'variableRef']);
+
+/**
+ * CARLA scenario_runner reads a StopTrigger condition named `criteria_NAME` as its evaluation
+ * criterion NAME, whose ParameterCondition `parameterRef` is an argument name, not a parameter
+ * (scenario_runner srunner/tools/openscenario_parser.py, `convert_condition_to_atomic`).
+ */
+function isCarlaCriterion(element: XmlElement): boolean {
+  for (let current = element.parent; current; current = current.parent) {
+    if (current.name === 'Condition') return attribute(current, 'name')?.value.startsWith('criteria_') ?? false;
+  }
+  return false;
+}
+
+/** The name a `parameterRef`/`variableRef` gives, without the `$` some files write, and its offsets. */
+export function referencedName(attr: XmlAttribute): { name: string; start: number; end: number } {
+  const leading = attr.value.length - attr.value.trimStart().length;
+  const dollar = attr.value.trimStart().startsWith('$') ? 1 : 0;
+  const name = attr.value.trim().slice(dollar);
+  const start = attr.valueStart + leading + dollar;
+  return { name, start, end: start + name.length };
+}
+
+/** Collects the `$name` and `${...}` values of every attribute and the `parameterRef`s that name a parameter. */
+export class ParameterUseCollector {
+  constructor(private readonly model: SemanticModel) {}
+
+  /** `ownDeclaration`: the declaration `element` makes, whose value sees only the earlier ones of its scope. */
+  visit(element: XmlElement, scope: Scope, ownDeclaration: Declaration | undefined): void {
+    for (const attr of element.attributes) {
+      if (attr.value.charCodeAt(0) !== 36 || NAME_REFERENCE_ATTRIBUTES.has(attr.name)) continue;
+      // The offsets of a decoded value are exact only when it was written without references.
+      const form = valueForm(attr.value, attr.valueStart);
+      if (form.kind === 'literal') continue;
+      const declaration = ownDeclaration && attr.name === 'value' ? ownDeclaration : undefined;
+      const site: ValueSite = { element, attribute: attr, form, scope, declaration };
+      this.model.sites.push(site);
+      this.model.siteOf.set(attr, site);
+      const names = form.kind === 'parameter' ? [{ name: form.name, start: form.start, end: form.end }] : form.expression.parameters;
+      for (const name of names) {
+        this.addUse({
+          name: name.name,
+          start: name.start,
+          end: name.end,
+          element,
+          attribute: attr,
+          declaration: resolveName(scope, name.name, declaration),
+          via: form.kind === 'parameter' ? 'value' : 'expression',
+        });
+      }
+    }
+    if (PARAMETER_REF_ELEMENTS.has(element.name) && !isCarlaCriterion(element)) {
+      const ref = attribute(element, 'parameterRef');
+      if (ref && ref.value.trim()) {
+        const { name, start, end } = referencedName(ref);
+        this.addUse({ name, start, end, element, attribute: ref, declaration: resolveName(scope, name, undefined), via: 'parameterRef' });
+      }
+    }
+  }
+
+  private addUse(use: ParameterUse): void {
+    this.model.uses.push(use);
+    if (use.declaration) this.model.usesOf.get(use.declaration)?.push(use);
+  }
+}

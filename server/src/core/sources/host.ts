@@ -1,0 +1,96 @@
+import * as fs from 'node:fs';
+import { DEFAULT_LIMITS } from './limits';
+
+export type FileKind = 'file' | 'directory' | undefined;
+
+export interface FileSystemHost {
+  /**
+   * The file's bytes, or undefined when it does not exist. Throws FileReadError for what is not a
+   * regular file (a folder, a FIFO, a device) or holds more than `maxBytes`.
+   */
+  readFile(filePath: string, maxBytes?: number): Promise<Uint8Array | undefined>;
+  kind(filePath: string): Promise<FileKind>;
+  /** The names in a directory, or undefined when it cannot be listed (catalog directories need it). */
+  listDirectory?(directoryPath: string): Promise<string[] | undefined>;
+  /** Set by a host that remembers kinds itself: a store then shares that cache instead of keeping a second one. */
+  readonly kinds?: KindCache;
+}
+
+/** Whether paths are files or folders, each asked once of a host and remembered until cleared. */
+export class KindCache {
+  private readonly known = new Map<string, Promise<FileKind>>();
+
+  constructor(private readonly host: Pick<FileSystemHost, 'kind'>) {}
+
+  kind(filePath: string): Promise<FileKind> {
+    let pending = this.known.get(filePath);
+    if (!pending) {
+      pending = this.host.kind(filePath);
+      this.known.set(filePath, pending);
+    }
+    return pending;
+  }
+
+  /** Forgets every kind: a creation or deletion changes the kinds of folders too. */
+  clear(): void {
+    this.known.clear();
+  }
+}
+
+export class FileReadError extends Error {}
+
+function describeKind(stat: fs.Stats): string {
+  if (stat.isDirectory()) return 'a folder';
+  if (stat.isFIFO()) return 'a FIFO';
+  if (stat.isCharacterDevice()) return 'a character device';
+  if (stat.isBlockDevice()) return 'a block device';
+  if (stat.isSocket()) return 'a socket';
+  return 'not a regular file';
+}
+
+export const nodeFileSystem: FileSystemHost = {
+  async readFile(filePath, maxBytes = DEFAULT_LIMITS.maxEntryBytes) {
+    let handle: fs.promises.FileHandle;
+    try {
+      // Non-blocking, so that opening a FIFO returns at once instead of waiting for a writer.
+      handle = await fs.promises.open(filePath, fs.constants.O_RDONLY | fs.constants.O_NONBLOCK);
+    } catch (error) {
+      const code = (error as NodeJS.ErrnoException).code;
+      if (code === 'ENOENT' || code === 'ENOTDIR') return undefined;
+      throw new FileReadError(`cannot read ${filePath} (${code ?? (error as Error).message})`);
+    }
+    try {
+      const stat = await handle.stat();
+      if (!stat.isFile()) throw new FileReadError(`${filePath} is ${describeKind(stat)}, not a file; only regular files are read`);
+      if (stat.size > maxBytes) throw new FileReadError(`${filePath} is too large to read (${stat.size} bytes; the limit is ${maxBytes}, raised with --max-file-size)`);
+      // Read at most one byte past the bound, in case the file grows while it is read.
+      const buffer = Buffer.alloc(Math.min(stat.size, maxBytes) + 1);
+      let length = 0;
+      for (;;) {
+        const { bytesRead } = await handle.read(buffer, length, buffer.length - length, null);
+        if (bytesRead === 0) break;
+        length += bytesRead;
+        if (length === buffer.length) break;
+      }
+      if (length > maxBytes) throw new FileReadError(`${filePath} is too large to read (more than ${maxBytes} bytes, raised with --max-file-size)`);
+      return buffer.subarray(0, length);
+    } finally {
+      await handle.close();
+    }
+  },
+  async kind(filePath) {
+    try {
+      const stat = await fs.promises.stat(filePath);
+      return stat.isFile() ? 'file' : stat.isDirectory() ? 'directory' : undefined;
+    } catch {
+      return undefined;
+    }
+  },
+  async listDirectory(directoryPath) {
+    try {
+      return await fs.promises.readdir(directoryPath);
+    } catch {
+      return undefined;
+    }
+  },
+};

@@ -1,0 +1,71 @@
+import { XmlAttribute, XmlDocument, XmlElement } from './types';
+
+export function attribute(element: XmlElement, name: string): XmlAttribute | undefined {
+  for (const candidate of element.attributes) if (candidate.name === name) return candidate;
+  return undefined;
+}
+
+export function attributeValue(element: XmlElement, name: string): string | undefined {
+  return attribute(element, name)?.value;
+}
+
+/** Every element below `element`, in document order (an array: generators are slow on hot paths). */
+export function descendants(element: XmlElement): XmlElement[] {
+  const result: XmlElement[] = [];
+  const stack: XmlElement[] = [];
+  for (let i = element.children.length - 1; i >= 0; i--) stack.push(element.children[i]);
+  while (stack.length > 0) {
+    const next = stack.pop() as XmlElement;
+    result.push(next);
+    for (let i = next.children.length - 1; i >= 0; i--) stack.push(next.children[i]);
+  }
+  return result;
+}
+
+export function firstDescendant(element: XmlElement, name: string): XmlElement | undefined {
+  for (const candidate of descendants(element)) if (candidate.name === name) return candidate;
+  return undefined;
+}
+
+/** The innermost element whose tag range contains the offset. */
+export function elementAt(document: XmlDocument, offset: number): XmlElement | undefined {
+  let current = document.root;
+  if (!current || offset < current.start || offset > current.end) return undefined;
+  for (;;) {
+    const child: XmlElement | undefined = current.children.find((c) => offset >= c.start && offset <= c.end);
+    if (!child) return current;
+    current = child;
+  }
+}
+
+/** Escapes text for use inside an attribute value delimited by `quote`. */
+export function escapeAttributeValue(value: string, quote: '"' | "'" = '"'): string {
+  let escaped = value.replace(/&/g, '&amp;').replace(/</g, '&lt;').replace(/>/g, '&gt;');
+  escaped = quote === '"' ? escaped.replace(/"/g, '&quot;') : escaped.replace(/'/g, '&apos;');
+  return escaped.replace(/\t/g, '&#9;').replace(/\n/g, '&#10;').replace(/\r/g, '&#13;');
+}
+
+export function isWellFormed(document: XmlDocument): boolean {
+  return !document.problems.some((problem) => problem.severity === 'error');
+}
+
+/** The element and every element below it, in document order. */
+export function selfAndDescendants(element: XmlElement): XmlElement[] {
+  return [element, ...descendants(element)];
+}
+
+/** The element of the tree that starts exactly at an offset. */
+export function elementStartingAt(root: XmlElement | undefined, offset: number): XmlElement | undefined {
+  let current = root;
+  while (current) {
+    if (current.start === offset) return current;
+    current = current.children.find((child) => offset >= child.start && offset < child.end);
+  }
+  return undefined;
+}
+
+/** Whether `element` is `ancestor` or lies below it. */
+export function isWithin(element: XmlElement, ancestor: XmlElement): boolean {
+  for (let current: XmlElement | undefined = element; current; current = current.parent) if (current === ancestor) return true;
+  return false;
+}
