@@ -12,7 +12,7 @@ import {
   type PreviewResult,
   type StructureNode,
   type WriteResult,
-} from '../../server/src/protocol';
+} from '../../common/src/protocol';
 import { resolveScenarioPaths } from './configuration';
 
 export const LANGUAGE_ID = 'xosc';
