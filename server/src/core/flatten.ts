@@ -17,7 +17,7 @@ import { declareUtf8 } from './encoding';
 import { analyzeDocument, CatalogLoader, DocumentSemantics, Evaluator, Finding, OUTPUT_CHECKS, problemOfFinding, runChecks, semanticModelOf, semanticProblems } from './semantics';
 import { Simulator } from './profiles/simulators';
 import { closestMatch, detectEol, indentationAt } from './text';
-import { attribute, descendants, elementStartingAt, escapeAttributeValue, isWellFormed, parseXml, selfAndDescendants, XmlAttribute, XmlDocument, XmlElement } from './xml';
+import { attribute, elementStartingAt, escapeAttributeValue, isWellFormed, parseXml, selfAndDescendants, XmlAttribute, XmlDocument, XmlElement } from './xml';
 import { outputSchemaProblems, overrideValueProblems, schemaProblems } from './schema/problems';
 import { SCHEMA_PROBLEM_CODES } from './schema/validate';
 import { SchemaVersionSetting } from './schema/version';

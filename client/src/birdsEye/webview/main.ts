@@ -1,4 +1,3 @@
-/// <reference lib="dom" />
 /**
  * The bird's-eye view's page: draws the scene on a canvas (roads cached in a layer of their own,
  * entities per frame), plays a run, lists events on a timeline, and sends clicks and saves back.
