@@ -7,7 +7,7 @@ import { birdsEyeHtml } from '../client/src/birdsEye/page';
 import type { RenderStats, RunTracks } from '../client/src/birdsEye/messages';
 import { parseOpenDrive } from '../server/src/core/opendrive/road';
 import { sampleNetwork } from '../server/src/core/opendrive/sample';
-import type { SceneResult } from '../server/src/sceneProtocol';
+import type { SceneResult } from '../common/src/sceneProtocol';
 
 const root = path.resolve(__dirname, '..');
 const chromium = process.env.M2S_CHROMIUM ?? '/usr/bin/chromium';

@@ -1,7 +1,7 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import * as vscode from 'vscode';
-import { PACKAGE_SCHEME, type FlattenOptions, type ProblemSummary, type WriteResult } from '../../server/src/protocol';
+import { PACKAGE_SCHEME, type FlattenOptions, type ProblemSummary, type WriteResult } from '../../common/src/protocol';
 import { LANGUAGE_ID, type ServerCommandClient } from './languageClient';
 import { FLATTENED_SUFFIX, flattenedName } from './naming';
 import { packageEntryUri } from './packageFileSystem';

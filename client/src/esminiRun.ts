@@ -1,6 +1,6 @@
 import * as vscode from 'vscode';
 import type { LanguageClient } from 'vscode-languageclient/node';
-import { RunEsminiRequest, type RunEsminiResult } from '../../server/src/protocol';
+import { RunEsminiRequest, type RunEsminiResult } from '../../common/src/protocol';
 import { commandTargets } from './commands';
 
 export const RUN_ESMINI_COMMAND = 'modular2simple.runEsmini';

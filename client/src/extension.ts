@@ -3,7 +3,7 @@ import * as vscode from 'vscode';
 import type { ServerCapabilities } from 'vscode-languageclient';
 import { DidChangeWatchedFilesNotification, FileChangeType } from 'vscode-languageclient';
 import type { LanguageClient } from 'vscode-languageclient/node';
-import { PACKAGE_SCHEME, type StructureNode } from '../../server/src/protocol';
+import { PACKAGE_SCHEME, type StructureNode } from '../../common/src/protocol';
 import { registerBirdsEye } from './birdsEye/commands';
 import type { BirdsEyeView } from './birdsEye/panel';
 import { CommandReporter, commandTargets, flattenCommand, mainFileOf, packCommand } from './commands';

@@ -12,7 +12,7 @@ import {
   type PreviewResult,
   type StructureNode,
   type WriteResult,
-} from '../../server/src/protocol';
+} from '../../common/src/protocol';
 import { resolveScenarioPaths } from './configuration';
 
 export const LANGUAGE_ID = 'xosc';
@@ -61,7 +61,7 @@ export function createLanguageClient(context: vscode.ExtensionContext, afterChan
   return new LanguageClient(CONFIGURATION_SECTION, 'Modular2Simple Language Server', serverOptions, clientOptions);
 }
 
-/** The server's custom requests (server/src/protocol.ts), starting the client first when needed. */
+/** The server's custom requests (common/src/protocol.ts), starting the client first when needed. */
 export class ServerCommandClient {
   constructor(private readonly client: LanguageClient) {}
 

@@ -1,7 +1,7 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import JSZip from 'jszip';
-import { writeFileAtomic } from '../../server/src/core/atomic';
+import { writeFileAtomic } from '../../common/src/atomic';
 import { normalizeEntryName, readPackageBytes } from '../../common/src/packageEntries';
 
 /**

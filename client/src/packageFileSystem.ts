@@ -1,6 +1,6 @@
 import * as path from 'node:path';
 import * as vscode from 'vscode';
-import { PACKAGE_SCHEME } from '../../server/src/protocol';
+import { PACKAGE_SCHEME } from '../../common/src/protocol';
 import * as archive from './packageArchive';
 
 /** `mosc:/abs/pkg.mosc/main.xosc` for an entry of the package stored at `/abs/pkg.mosc`. */

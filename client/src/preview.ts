@@ -1,6 +1,6 @@
 import * as vscode from 'vscode';
-import { previewLineOf } from '../../server/src/core/lineSegments';
-import type { PreviewResult, ProblemSummary } from '../../server/src/protocol';
+import { previewLineOf } from '../../common/src/lineSegments';
+import type { PreviewResult, ProblemSummary } from '../../common/src/protocol';
 import { LANGUAGE_ID } from './languageClient';
 import { flattenedName } from './naming';
 

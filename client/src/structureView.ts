@@ -1,5 +1,5 @@
 import * as vscode from 'vscode';
-import type { StructureNode } from '../../server/src/protocol';
+import type { StructureNode } from '../../common/src/protocol';
 
 export const STRUCTURE_VIEW_ID = 'modular2simple.structure';
 

@@ -1,6 +1,6 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { isSameFile, writeFilesAtomic } from './core/atomic';
+import { isSameFile, writeFilesAtomic } from '../../common/src/atomic';
 import { Flattener, OVERRIDE_PROBLEM_CODES } from './core/flatten';
 import { isSchemaVersion, SCHEMA_VERSIONS } from './core/schema/model';
 import { SchemaVersionSetting } from './core/schema/version';

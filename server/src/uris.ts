@@ -1,5 +1,5 @@
 import { URI } from 'vscode-uri';
-import { PACKAGE_SCHEME } from './protocol';
+import { PACKAGE_SCHEME } from '../../common/src/protocol';
 import { isWindowsPath, pathsFor } from './core/paths';
 import { diskRef, ScenarioStore, SourceRef } from './core/sources';
 

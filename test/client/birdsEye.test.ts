@@ -6,7 +6,7 @@ import type { RunTracks } from '../../client/src/birdsEye/messages';
 import { loadRun, runTracks } from '../../client/src/birdsEye/runData';
 import { parseOpenDrive } from '../../server/src/core/opendrive/road';
 import { sampleNetwork } from '../../server/src/core/opendrive/sample';
-import type { SceneResult } from '../../server/src/sceneProtocol';
+import type { SceneResult } from '../../common/src/sceneProtocol';
 import { makeWorkspace } from '../support/fixtures';
 import { STRAIGHT_ROAD } from '../support/roads';
 

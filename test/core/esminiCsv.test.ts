@@ -3,7 +3,7 @@ import { spawnSync } from 'node:child_process';
 import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
-import { parseEsminiCsv, parseEsminiStarts } from '../../server/src/core/esminiCsv';
+import { parseEsminiCsv, parseEsminiStarts } from '../../common/src/esminiCsv';
 import { parseOpenDrive } from '../../server/src/core/opendrive/road';
 import { scenarioScene } from '../../server/src/core/scene';
 import { parseXml } from '../../server/src/core/xml';

@@ -2,7 +2,7 @@ import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { Flattener } from '../../server/src/core/flatten';
-import { previewLineOf } from '../../server/src/core/lineSegments';
+import { previewLineOf } from '../../common/src/lineSegments';
 import { previewLineMap } from '../../server/src/core/previewLines';
 import { diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { makeWorkspace, outerGroup, scenario, simpleGroup } from '../support/fixtures';

@@ -4,7 +4,7 @@ import * as path from 'node:path';
 import { CompletionItem, Diagnostic, DiagnosticSeverity, Hover, Location, MarkupContent, WorkspaceEdit } from 'vscode-languageserver/node';
 import { firstDifference } from '../../server/src/core/equivalence';
 import { main } from '../../server/src/cli';
-import { FlattenToTextRequest } from '../../server/src/protocol';
+import { FlattenToTextRequest } from '../../common/src/protocol';
 import { caseStudy, fileUri, library, positionAfter, positionAt, requireCorpus, TestClient } from './harness';
 
 function rangeText(text: string, location: Location): string {

@@ -2,7 +2,7 @@ import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
-import { RunEsminiRequest, RunEsminiResult } from '../../server/src/protocol';
+import { RunEsminiRequest, RunEsminiResult } from '../../common/src/protocol';
 import { esminiBinary, requireEsmini, esminiRoads } from '../support/esmini';
 import { repoRoot } from '../support/fixtures';
 import { fileUri, TestClient } from './harness';

@@ -16,7 +16,7 @@ import {
   TextEdit,
   WorkspaceEdit,
 } from 'vscode-languageserver/node';
-import { FlattenToFileRequest, FlattenToTextRequest, PackRequest, StructureRequest } from '../../server/src/protocol';
+import { FlattenToFileRequest, FlattenToTextRequest, PackRequest, StructureRequest } from '../../common/src/protocol';
 import { CLEAN, cycleFile, MAIN, PACKAGE_MAIN, SIMPLE } from './fixtures/scenarios';
 import { fileUri, markers, positionAt, temporaryWorkspace, TestClient } from './harness';
 

@@ -6,7 +6,7 @@ import fc from 'fast-check';
 import JSZip from 'jszip';
 import { Diagnostic } from 'vscode-languageserver/node';
 import { childRef, diskRef, ScenarioStore } from '../../server/src/core/sources';
-import { FlattenToFileRequest, FlattenToTextRequest, PackRequest } from '../../server/src/protocol';
+import { FlattenToFileRequest, FlattenToTextRequest, PackRequest } from '../../common/src/protocol';
 import { CachingFileSystem } from '../../server/src/workspace';
 import { outerGroup, scenario, simpleGroup } from '../support/fixtures';
 import { rawZip } from '../support/hostile';

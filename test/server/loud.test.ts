@@ -1,7 +1,7 @@
 import * as assert from 'node:assert/strict';
 import * as path from 'node:path';
 import { CancellationTokenSource, CodeAction, CompletionItem, Diagnostic, ErrorCodes, LSPErrorCodes, ResponseError, TextEdit } from 'vscode-languageserver/node';
-import { StructureRequest } from '../../server/src/protocol';
+import { StructureRequest } from '../../common/src/protocol';
 import { MAIN, SIMPLE } from './fixtures/scenarios';
 import { fileUri, markers, positionAfter, useServer } from './harness';
 

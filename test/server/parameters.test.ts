@@ -18,7 +18,7 @@ import {
 } from 'vscode-languageserver/node';
 import { SEMANTIC_TOKENS_LEGEND } from '../../server/src/features/semanticTokens';
 import { BARE, CARS, FAULTY, PARAMETERS } from './fixtures/parameters';
-import { fileUri, positionAfter, repoRoot, temporaryWorkspace, TestClient } from './harness';
+import { fileUri, repoRoot, temporaryWorkspace, TestClient } from './harness';
 import { applyEdits, inside, offsetOf, Position } from './textEdits';
 
 type Range = { start: Position; end: Position };

@@ -1,8 +1,8 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { previewLineOf } from '../../server/src/core/lineSegments';
-import { PreviewRequest, type PreviewResult } from '../../server/src/protocol';
+import { previewLineOf } from '../../common/src/lineSegments';
+import { PreviewRequest, type PreviewResult } from '../../common/src/protocol';
 import { positionAfter, serveExamples } from './harness';
 
 describe('language server: the live preview request (JSON-RPC)', function () {

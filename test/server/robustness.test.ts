@@ -4,7 +4,7 @@ import * as path from 'node:path';
 import fc from 'fast-check';
 import JSZip from 'jszip';
 import { CompletionItem, Diagnostic, DocumentSymbol, Location } from 'vscode-languageserver/node';
-import { FlattenToTextRequest, StructureRequest } from '../../server/src/protocol';
+import { FlattenToTextRequest, StructureRequest } from '../../common/src/protocol';
 import { SIMPLE } from './fixtures/scenarios';
 import { caseStudy, fileUri, library, markers, positionAt, requireCorpus, temporaryWorkspace, TestClient } from './harness';
 

@@ -2,7 +2,7 @@ import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import JSZip from 'jszip';
-import { PackRequest, type WriteResult } from '../../server/src/protocol';
+import { PackRequest, type WriteResult } from '../../common/src/protocol';
 import { fileUri, positionAfter, serveExamples } from './harness';
 
 describe('language server: a saved file is read again from disk (JSON-RPC)', function () {

@@ -2,7 +2,7 @@ import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import JSZip from 'jszip';
-import { SceneParams, SceneRequest } from '../../server/src/sceneProtocol';
+import { SceneParams, SceneRequest } from '../../common/src/sceneProtocol';
 import { outerGroup } from '../support/fixtures';
 import { sceneScenario, STRAIGHT_ROAD, teleport } from '../support/roads';
 import { fileUri, positionAfter, temporaryWorkspace, TestClient } from './harness';

@@ -2,7 +2,7 @@
  * Run by the signal tests: starts an atomic write whose data never ends, says so on standard
  * output, and waits to be interrupted.
  */
-import { writeFileAtomic } from '../../server/src/core/atomic';
+import { writeFileAtomic } from '../../common/src/atomic';
 
 async function* endless(): AsyncGenerator<Uint8Array> {
   yield new TextEncoder().encode('<OpenSCENARIO>');

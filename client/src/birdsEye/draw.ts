@@ -2,7 +2,7 @@
  * Drawing of the bird's-eye view, independent of where it goes: a canvas in the webview, or an
  * SVG document when the picture is saved. No DOM here, so that it runs (and is tested) in Node too.
  */
-import type { SceneEntity, SceneResult } from '../../../server/src/sceneProtocol';
+import type { SceneEntity, SceneResult } from '../../../common/src/sceneProtocol';
 import type { RunTracks } from './messages';
 
 /** The few drawing operations the view needs, in screen coordinates. */

@@ -1,5 +1,5 @@
 /** Messages between the extension and the bird's-eye webview. Plain data: both bundles import it. */
-import type { SceneResult, SourceLocation } from '../../../server/src/sceneProtocol';
+import type { SceneResult, SourceLocation } from '../../../common/src/sceneProtocol';
 
 /** A run as the view draws it: frames downsampled from the esmini CSV, coordinates in centimetres' precision. */
 export interface RunTracks {

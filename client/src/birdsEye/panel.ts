@@ -1,8 +1,8 @@
 import * as path from 'node:path';
 import * as vscode from 'vscode';
 import type { LanguageClient } from 'vscode-languageclient/node';
-import { writeFileAtomic } from '../../../server/src/core/atomic';
-import { SceneRequest, type SceneResult } from '../../../server/src/sceneProtocol';
+import { writeFileAtomic } from '../../../common/src/atomic';
+import { SceneRequest, type SceneResult } from '../../../common/src/sceneProtocol';
 import { isFromView, type FromView, type RenderStats, type RunTracks, type ToView } from './messages';
 import { birdsEyeHtml } from './page';
 import { loadRun, type RunSource } from './runData';

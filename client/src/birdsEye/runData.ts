@@ -1,6 +1,6 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { EsminiRun, parseEsminiCsv, parseEsminiStarts } from '../../../server/src/core/esminiCsv';
+import { EsminiRun, parseEsminiCsv, parseEsminiStarts } from '../../../common/src/esminiCsv';
 import type { RunTracks } from './messages';
 
 /** The view draws at most this many frames of a run; longer runs are evenly thinned. */

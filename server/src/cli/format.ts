@@ -1,7 +1,7 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { parseArgs } from 'node:util';
-import { writeFileAtomic } from '../core/atomic';
+import { writeFileAtomic } from '../../../common/src/atomic';
 import { DEFAULT_FORMAT_OPTIONS, detectIndentation, FormatOptions, formatXml } from '../core/format';
 
 export const FORMAT_HELP = `  modular2simple format [--check] [--width N] [--indent N|tab] PATH...

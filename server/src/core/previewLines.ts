@@ -1,5 +1,5 @@
 import { Addition, FlatSource, Insertion, parameterAttributeSpans } from './flatten';
-import type { LineSegment } from './lineSegments';
+import type { LineSegment } from '../../../common/src/lineSegments';
 
 /** An outer group of the original text and the copies that replaced it in the flattened text. */
 interface ReplacedRegion {

@@ -1,10 +1,10 @@
 import * as path from 'node:path';
 import { ErrorCodes, ResponseError } from 'vscode-languageserver/node';
 import { Flattener, FlatSource } from '../core/flatten';
-import { isSameFile, OutputError, writeFileAtomic } from '../core/atomic';
+import { isSameFile, OutputError, writeFileAtomic } from '../../../common/src/atomic';
 import { Problem } from '../core/problems';
 import { baseName, childRef, diskRef, displayRef, refId, SourceRef } from '../core/sources';
-import { FlattenTextResult, ProblemSummary, StructureNode, WriteResult } from '../protocol';
+import { FlattenTextResult, ProblemSummary, StructureNode, WriteResult } from '../../../common/src/protocol';
 import { elementPlace, resolvedTarget } from '../analysis';
 import { filePathOf } from '../uris';
 import { Workspace } from '../workspace';

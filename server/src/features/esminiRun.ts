@@ -2,7 +2,7 @@ import type { CancellationToken } from 'vscode-languageserver/node';
 import { Flattener } from '../core/flatten';
 import { refId } from '../core/sources';
 import { EsminiRunResult, removeRunFolder, runScenario } from '../esmini/run';
-import { RunEsminiParams, RunEsminiResult } from '../protocol';
+import { RunEsminiParams, RunEsminiResult } from '../../../common/src/protocol';
 import { Workspace } from '../workspace';
 import { refOf, summarize } from './commands';
 

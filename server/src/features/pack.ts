@@ -1,9 +1,9 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { isSameFile } from '../core/atomic';
+import { isSameFile } from '../../../common/src/atomic';
 import { diskRef } from '../core/sources';
 import { packFiles, packFolder, PackResult } from '../core/pack';
-import { WriteResult } from '../protocol';
+import { WriteResult } from '../../../common/src/protocol';
 import { filePathOf } from '../uris';
 import { Workspace } from '../workspace';
 import { invalidParams, summarize, writeOutput } from './commands';

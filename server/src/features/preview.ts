@@ -1,5 +1,5 @@
 import { previewLineMap } from '../core/previewLines';
-import { PreviewParams, PreviewResult } from '../protocol';
+import { PreviewParams, PreviewResult } from '../../../common/src/protocol';
 import { Workspace } from '../workspace';
 import { refOf, summarize } from './commands';
 

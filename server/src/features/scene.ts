@@ -3,13 +3,14 @@ import { ResponseError } from 'vscode-languageserver/node';
 import { elementPlace } from '../analysis';
 import { FlatSource } from '../core/flatten';
 import { parseOpenDrive, RoadNetwork } from '../core/opendrive/road';
-import { sampleNetwork, SectionPolylines } from '../core/opendrive/sample';
+import { sampleNetwork } from '../core/opendrive/sample';
 import { scenarioScene } from '../core/scene';
 import { analyzeDocument } from '../core/semantics';
 import { baseName, displayRef, FileSystemHost, nodeFileSystem } from '../core/sources';
 import { decodeUtf8 } from '../core/text';
 import { XmlElement } from '../core/xml';
-import { SceneParams, SceneResult, SourceLocation } from '../sceneProtocol';
+import { SceneParams, SceneResult, SourceLocation } from '../../../common/src/sceneProtocol';
+import type { SectionPolylines } from '../../../common/src/sectionPolylines';
 import { Workspace } from '../workspace';
 
 /** Road files are large and rarely change: the sampled network is kept per path, size and content. */

@@ -1,5 +1,5 @@
 import { flattenToFile } from '../features/commands';
-import { FlattenToFileRequest } from '../protocol';
+import { FlattenToFileRequest } from '../../../common/src/protocol';
 import { request, ServerContext } from './context';
 
 /** `modular2simple/flattenToFile`: writes the flattened scenario atomically, never over one of its inputs. */

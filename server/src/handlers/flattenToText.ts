@@ -1,5 +1,5 @@
 import { flattenToText } from '../features/commands';
-import { FlattenToTextRequest } from '../protocol';
+import { FlattenToTextRequest } from '../../../common/src/protocol';
 import { request, ServerContext } from './context';
 
 /** `modular2simple/flattenToText`: the flattened scenario from the editor's text, for the live preview. */

@@ -1,7 +1,7 @@
 import * as path from 'node:path';
 import { CodeActionKind, InitializeParams, InitializeResult, TextDocumentSyncKind } from 'vscode-languageserver/node';
 import { SEMANTIC_TOKENS_LEGEND } from '../features/semanticTokens';
-import { CUSTOM_REQUESTS } from '../protocol';
+import { CUSTOM_REQUESTS } from '../../../common/src/protocol';
 import { filePathOf } from '../uris';
 import { readSettings } from '../workspace';
 import { ServerContext } from './context';

@@ -1,5 +1,5 @@
 import { packCommand } from '../features/pack';
-import { PackRequest } from '../protocol';
+import { PackRequest } from '../../../common/src/protocol';
 import { request, ServerContext } from './context';
 
 /** `modular2simple/pack`: writes a .mosc of a folder (or main.xosc) with what it references, or of chosen files. */

@@ -1,5 +1,5 @@
 import { preview } from '../features/preview';
-import { PreviewRequest } from '../protocol';
+import { PreviewRequest } from '../../../common/src/protocol';
 import { request, ServerContext } from './context';
 
 /** `modular2simple/preview`: the live preview's flattened text and the map from source lines to its lines. */

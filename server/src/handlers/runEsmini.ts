@@ -1,5 +1,5 @@
 import { EsminiRuns } from '../features/esminiRun';
-import { RunEsminiRequest } from '../protocol';
+import { RunEsminiRequest } from '../../../common/src/protocol';
 import { request, ServerContext } from './context';
 
 /** `modular2simple/runEsmini`: runs the editor's text of a scenario in esmini. */

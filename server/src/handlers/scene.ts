@@ -1,5 +1,5 @@
 import { buildScene } from '../features/scene';
-import { SceneRequest } from '../sceneProtocol';
+import { SceneRequest } from '../../../common/src/sceneProtocol';
 import { request, ServerContext } from './context';
 
 /** `modular2simple/scene`: what the bird's-eye view draws of a scenario. */

@@ -1,5 +1,5 @@
 import { structure } from '../features/commands';
-import { StructureRequest } from '../protocol';
+import { StructureRequest } from '../../../common/src/protocol';
 import { request, ServerContext } from './context';
 
 /** `modular2simple/structure`: the reference graph for the Show Structure view. */

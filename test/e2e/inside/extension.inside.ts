@@ -7,7 +7,7 @@ import JSZip from 'jszip';
 import * as vscode from 'vscode';
 import type { Modular2SimpleApi } from '../../../client/src/extension';
 import { firstDifference } from '../../../server/src/core/equivalence';
-import { FlattenToFileRequest, FlattenToTextRequest, PackRequest, RunEsminiRequest, StructureRequest, type RunEsminiResult, type StructureNode } from '../../../server/src/protocol';
+import { FlattenToFileRequest, PackRequest, RunEsminiRequest, StructureRequest, type RunEsminiResult, type StructureNode } from '../../../common/src/protocol';
 import { HARNESS_ENV, INSIDE_TESTS } from '../titles';
 import { clickText, pageShows, post, pressKeys, quickInput, runFromPalette, screenshot, typeText } from './harnessClient';
 

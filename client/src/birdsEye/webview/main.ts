@@ -1,9 +1,8 @@
-/// <reference lib="dom" />
 /**
  * The bird's-eye view's page: draws the scene on a canvas (roads cached in a layer of their own,
  * entities per frame), plays a run, lists events on a timeline, and sends clicks and saves back.
  */
-import type { SceneResult, SourceLocation } from '../../../../server/src/sceneProtocol';
+import type { SceneResult, SourceLocation } from '../../../../common/src/sceneProtocol';
 import {
   boxAt,
   COLORS,

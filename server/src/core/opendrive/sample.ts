@@ -1,17 +1,6 @@
 import { curvatureBound } from './geometry';
 import { besidePose, Cubic, isDrivingLane, LaneSection, outerBorderTs, referencePose, Road, RoadNetwork, roadCubicAt } from './road';
-
-/** One lane section drawn as its lane borders: polylines of x, y pairs (centimetres), left to right. */
-export interface SectionPolylines {
-  road: string;
-  /** Index of the lane section in its road. */
-  section: number;
-  junction: boolean;
-  /** Lanes left to right, the center lane (0) included. */
-  lanes: { id: number; type: string; driving: boolean }[];
-  /** Outer border of each lane in `lanes` (lane 0: the lane-offset line); flat [x0, y0, x1, y1, ...]. */
-  borders: number[][];
-}
+import type { SectionPolylines } from '../../../../common/src/sectionPolylines';
 
 export interface SamplingOptions {
   /** Largest distance between a drawn chord and the curve, in metres. */

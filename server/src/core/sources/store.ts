@@ -7,7 +7,7 @@ import { FileKind, FileSystemHost, KindCache, nodeFileSystem } from './host';
 import { DEFAULT_LIMITS, Limits } from './limits';
 import { Overlays } from './overlays';
 import { PackageCache } from './packages';
-import { childRef, diskRef, displayRef, refId, SourceError, SourceRef } from './ref';
+import { childRef, diskRef, displayRef, SourceError, SourceRef } from './ref';
 import { FolderOptions, isWithinFolder, LookupPlace, Resolution } from './resolution';
 
 export interface StoreOptions {

@@ -3,7 +3,7 @@
  * sides (both bundles import this file).
  */
 import { RequestType } from 'vscode-languageserver-protocol';
-import type { SectionPolylines } from './core/opendrive/sample';
+import type { SectionPolylines } from './sectionPolylines';
 
 export interface SceneParams {
   /** A scenario: file: or mosc: URI (a main.xosc is shown flattened, unsaved edits included). */

@@ -3,7 +3,7 @@
  * parameters and results, typed for both sides (both bundles import this file).
  */
 import { RequestType } from 'vscode-languageserver-protocol';
-import type { LineSegment } from './core/lineSegments';
+import type { LineSegment } from './lineSegments';
 import { SceneRequest } from './sceneProtocol';
 
 export interface FlattenOptions {
