@@ -644,7 +644,7 @@ export class Flattener {
             (names.length ? `; it has: ${names.join(', ')}` : '; it has no ManeuverGroup'),
           suggestion ? `did you mean '${suggestion}'?` : undefined,
         );
-        problem.data = { ...(suggestion ? { suggestion } : {}), groups: names.join('\n') };
+        problem.data = { ...(suggestion ? { suggestion } : {}), groups: names };
         continue;
       }
       linked.target = targetGroup;
