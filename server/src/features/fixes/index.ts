@@ -10,8 +10,9 @@ import { unknownKeyFix } from './unknownKey';
 import { unknownParameterAttributeFix } from './unknownParameterAttribute';
 import { xoscFallbackFix } from './xoscFallback';
 
-export { DiagnosticData, diagnosticDataOf, isDiagnosticData } from './data';
-export { FixDocument, ProblemFix } from './fix';
+export type { DiagnosticData } from './data';
+export { diagnosticDataOf, isDiagnosticData } from './data';
+export type { FixDocument, ProblemFix } from './fix';
 export { missingKeysAction } from './missingKeys';
 
 /** Every fix module; a code is handled by at most one of them. */
