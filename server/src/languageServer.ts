@@ -1,5 +1,7 @@
 import { Connection } from 'vscode-languageserver/node';
 import { DiagnosticsScheduler } from './features/diagnostics';
+import { EsminiRuns } from './features/esminiRun';
+import { RoadNetworkCache } from './features/scene';
 import { ServerContext } from './handlers/context';
 import { registerHandlers } from './handlers';
 import { IdleCollector } from './idleCollector';
@@ -15,6 +17,8 @@ export function startServer(connection: Connection): Workspace {
     workspace,
     diagnostics: new DiagnosticsScheduler(connection, workspace),
     idle: new IdleCollector(),
+    roads: new RoadNetworkCache(),
+    esminiRuns: new EsminiRuns(workspace),
     client: { canConfigure: false, canWatch: false, foldersChange: false },
     indexed: Promise.resolve(),
   };

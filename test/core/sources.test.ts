@@ -3,6 +3,7 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import JSZip from 'jszip';
 import { Flattener } from '../../server/src/core/flatten';
+import { problemData } from '../../server/src/core/problems';
 import { childRef, diskRef, readPackageBytes, ScenarioStore, splitScenarioPath } from '../../server/src/core/sources';
 import { makeWorkspace, outerGroup, scenario, simpleGroup } from '../support/fixtures';
 
@@ -75,7 +76,7 @@ describe('core: resolving scenarioFileName (SPEC 3)', () => {
     assert.match(result.text!, /name="M\.P\.Go"/);
     const warning = result.problems.find((p) => p.code === 'xosc-fallback');
     assert.equal(warning?.severity, 'warning');
-    assert.equal(warning?.data?.replacement, 'pkg.mosc');
+    assert.equal(warning && problemData(warning, 'xosc-fallback')?.replacement, 'pkg.mosc');
   });
 });
 

@@ -19,47 +19,51 @@ export const SCHEMA_PROBLEM_CODE_LIST = [
 
 export type SchemaProblemCode = (typeof SCHEMA_PROBLEM_CODE_LIST)[number];
 
-export type ProblemCode =
-  | 'xml'
-  | 'io'
-  | 'bad-package'
-  | 'missing-file'
-  | 'invalid-reference'
-  | 'xosc-fallback'
-  | 'unknown-group'
-  | 'ambiguous-group'
-  | 'duplicate-group'
-  | 'unknown-key'
-  | 'no-default'
-  | 'unknown-parameter-attribute'
-  | 'missing-attribute'
-  | 'no-entity-ref'
-  | 'reference-outside-group'
-  | 'cycle'
-  | 'undeclared-entity'
-  | 'source-errors'
-  | SchemaProblemCode
-  | 'too-large'
-  | 'too-deep'
-  | 'undeclared-parameter'
-  | 'unused-parameter'
-  | 'duplicate-parameter'
-  | 'expression-syntax'
-  | 'type-mismatch'
-  | 'division-by-zero'
-  | 'nonstandard-expression'
-  | 'catalog-directory'
-  | 'unknown-catalog'
-  | 'unknown-catalog-entry'
-  | 'unknown-assigned-parameter'
-  | 'unknown-storyboard-element'
-  | 'ambiguous-reference'
-  | 'undeclared-variable'
-  | 'key-mixed-defaults'
-  | 'parameter-conflict'
-  | 'catalog-location-conflict'
-  | 'renamed-reference'
-  | 'simulator';
+/** Every problem code; the type guard of a fix's data checks a code a client sends back against it. */
+export const PROBLEM_CODE_LIST = [
+  'xml',
+  'io',
+  'bad-package',
+  'missing-file',
+  'invalid-reference',
+  'xosc-fallback',
+  'unknown-group',
+  'ambiguous-group',
+  'duplicate-group',
+  'unknown-key',
+  'no-default',
+  'unknown-parameter-attribute',
+  'missing-attribute',
+  'no-entity-ref',
+  'reference-outside-group',
+  'cycle',
+  'undeclared-entity',
+  'source-errors',
+  ...SCHEMA_PROBLEM_CODE_LIST,
+  'too-large',
+  'too-deep',
+  'undeclared-parameter',
+  'unused-parameter',
+  'duplicate-parameter',
+  'expression-syntax',
+  'type-mismatch',
+  'division-by-zero',
+  'nonstandard-expression',
+  'catalog-directory',
+  'unknown-catalog',
+  'unknown-catalog-entry',
+  'unknown-assigned-parameter',
+  'unknown-storyboard-element',
+  'ambiguous-reference',
+  'undeclared-variable',
+  'key-mixed-defaults',
+  'parameter-conflict',
+  'catalog-location-conflict',
+  'renamed-reference',
+  'simulator',
+] as const;
+
+export type ProblemCode = (typeof PROBLEM_CODE_LIST)[number];
 
 export interface RelatedProblemLocation {
   source: SourceRef;
@@ -76,8 +80,89 @@ export interface Problem {
   message: string;
   hint?: string;
   related?: RelatedProblemLocation[];
-  /** Data a quick fix needs (for example the suggested key), never shown. */
-  data?: Record<string, string>;
+  /** Data a quick fix needs (for example the suggested key), never shown; its shape is the one `ProblemDataByCode` names for the code. */
+  data?: ProblemData;
+}
+
+/** The name or value to write instead of the one written. */
+export interface SuggestionData {
+  suggestion: string;
+}
+
+/** Replaces the text at the problem's first related location: the mistake lives in the file it points to. */
+export interface RelatedReplacementData {
+  relatedReplacement: string;
+}
+
+/** The flattened package to name instead of the `.xosc` that does not exist. */
+export interface FallbackData {
+  replacement: string;
+}
+
+/** The closest group name, and every group name of the referenced file. */
+export interface UnknownGroupData {
+  suggestion?: string;
+  groups: string[];
+}
+
+export interface UndeclaredParameterData {
+  parameter: string;
+}
+
+export interface UndeclaredEntityData {
+  entity: string;
+}
+
+/** One conflict is reported per catalog kind: the key says which. */
+export interface LocationConflictData {
+  key: string;
+}
+
+export interface MissingAttributesData {
+  missing: string[];
+}
+
+/** The missing children of `parent`, inserted before the offset `insertAt` (decimal, in the checked text) where one is given. */
+export interface MissingElementsData {
+  missing: string[];
+  parent: string;
+  insertAt?: string;
+}
+
+/** The data each problem code carries (where it carries any). */
+export interface ProblemDataByCode {
+  'unknown-key': SuggestionData | RelatedReplacementData;
+  'xosc-fallback': FallbackData;
+  'unknown-group': UnknownGroupData;
+  'unknown-parameter-attribute': SuggestionData;
+  'undeclared-parameter': UndeclaredParameterData;
+  'undeclared-entity': UndeclaredEntityData;
+  'unknown-catalog-entry': SuggestionData;
+  'unknown-assigned-parameter': SuggestionData;
+  'unknown-storyboard-element': SuggestionData;
+  'renamed-reference': SuggestionData;
+  'catalog-location-conflict': LocationConflictData;
+  'schema-unknown-element': SuggestionData;
+  'schema-unknown-attribute': SuggestionData;
+  'schema-value': SuggestionData;
+  'schema-version': SuggestionData;
+  'schema-missing-attribute': MissingAttributesData;
+  'schema-missing-element': MissingElementsData;
+}
+
+export type ProblemCodeWithData = keyof ProblemDataByCode;
+
+/**
+ * The data of a schema finding as the schema check holds it: any schema code's shape, with `insertAt`
+ * readable on all of them, since a re-check shifts or drops it without looking at the code.
+ */
+export type SchemaFindingData = Partial<SuggestionData & MissingElementsData>;
+
+export type ProblemData = ProblemDataByCode[ProblemCodeWithData] | SchemaFindingData;
+
+/** The problem's data when it has `code` (the producers attach the shape its code names). */
+export function problemData<C extends ProblemCodeWithData>(problem: Problem, code: C): ProblemDataByCode[C] | undefined {
+  return problem.code === code ? (problem.data as ProblemDataByCode[C] | undefined) : undefined;
 }
 
 export const ZERO_RANGE: Range = { start: { line: 0, character: 0 }, end: { line: 0, character: 0 } };

@@ -5,28 +5,12 @@ import { Range } from '../core/text';
 import { resolvedTarget } from '../analysis';
 import { baseName, displayRef, refId, SourceRef } from '../core/sources';
 import { Workspace } from '../workspace';
+import { DiagnosticData, diagnosticDataOf } from './fixes/data';
 
 export const DIAGNOSTIC_SOURCE = 'modular2simple';
 
 /** At most this many diagnostics are published per file. */
 export const MAX_DIAGNOSTICS = 1000;
-
-/** What a quick fix needs from a diagnostic: the problem code and the core's data. */
-export interface DiagnosticData {
-  code: string;
-  suggestion?: string;
-  replacement?: string;
-  /** Replaces the text at the first related location (a fix in the file where the mistake lives). */
-  relatedReplacement?: string;
-  /** Every group name of the referenced file, one per line. */
-  groups?: string;
-  entity?: string;
-  /** Schema fixes: the missing names (comma-separated) and where they go. */
-  missing?: string;
-  insertAt?: string;
-  /** The parameter an undeclared-parameter diagnostic names. */
-  parameter?: string;
-}
 
 /** LSP severity: the core's own, so the editor and the CLI agree (an unknown key blocks a flatten, so it is an error). */
 function severityOf(problem: Problem): DiagnosticSeverity {
@@ -41,14 +25,13 @@ export function toDiagnostic(problem: Problem, workspace: Workspace): Diagnostic
     location: { uri: workspace.uriOf(item.source), range: item.range },
     message: item.message,
   }));
-  const data: DiagnosticData = { code: problem.code, ...problem.data };
   const diagnostic: Diagnostic = {
     range: problem.range,
     severity: severityOf(problem),
     code: problem.code,
     source: DIAGNOSTIC_SOURCE,
     message: problem.hint ? `${problem.message}\n${problem.hint}` : problem.message,
-    data,
+    data: diagnosticDataOf(problem),
   };
   if (related.length > 0) diagnostic.relatedInformation = related;
   if (problem.code === 'xosc-fallback' || problem.code === 'schema-deprecated') diagnostic.tags = [DiagnosticTag.Deprecated];

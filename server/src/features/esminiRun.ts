@@ -10,23 +10,17 @@ function stringList(value: unknown): string[] {
   return Array.isArray(value) ? value.filter((item): item is string => typeof item === 'string' && item.trim().length > 0) : [];
 }
 
-/** Run folders still on disk, of every server in this process; removed at exit (one listener for all). */
-const liveRuns = new Set<EsminiRunResult>();
-let exitListener = false;
-
 /**
  * Run in esmini for one server: flattens the file as the editor has it and runs it. The files of a
- * file's previous run are removed when it runs again, and all of them when the process exits.
+ * file's previous run are removed when it runs again, and all of this server's when the process exits.
  */
 export class EsminiRuns {
+  /** The run folders still on disk, the latest run of each file. */
   private readonly previous = new Map<string, EsminiRunResult>();
+  /** Added with the first run, so that a server that never runs esmini adds no exit listener. */
+  private exitListener = false;
 
-  constructor(private readonly workspace: Workspace) {
-    if (!exitListener) {
-      exitListener = true;
-      process.on('exit', () => liveRuns.forEach(removeRunFolder));
-    }
-  }
+  constructor(private readonly workspace: Workspace) {}
 
   async run(params: RunEsminiParams, token?: CancellationToken): Promise<RunEsminiResult> {
     const workspace = this.workspace;
@@ -43,12 +37,12 @@ export class EsminiRuns {
     });
     const id = refId(ref);
     const earlier = this.previous.get(id);
-    if (earlier) {
-      removeRunFolder(earlier);
-      liveRuns.delete(earlier);
-    }
+    if (earlier) removeRunFolder(earlier);
     this.previous.set(id, result);
-    liveRuns.add(result);
+    if (!this.exitListener) {
+      this.exitListener = true;
+      process.on('exit', () => this.previous.forEach((run) => removeRunFolder(run)));
+    }
     return {
       outcome: result.outcome,
       message: result.message,

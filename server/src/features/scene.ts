@@ -21,7 +21,6 @@ interface CachedNetwork {
   roadCount: number;
   problems: string[];
 }
-const networkCache = new Map<string, CachedNetwork>();
 const NETWORK_CACHE_SIZE = 4;
 /** A road file larger than this is refused rather than read (Town05 is 3 MB). */
 const MAX_ROAD_FILE_BYTES = 64 * 1024 * 1024;
@@ -43,21 +42,26 @@ async function findRoadFile(host: FileSystemHost, candidates: string[]): Promise
   return undefined;
 }
 
-function loadNetwork(filePath: string, text: string): CachedNetwork {
-  const cached = networkCache.get(filePath);
-  if (cached && cached.text === text) return cached;
-  const network = parseOpenDrive(text);
-  const entry: CachedNetwork = {
-    text,
-    network,
-    sections: sampleNetwork(network),
-    roadCount: network.roads.length,
-    problems: network.problems.slice(0, 10).map((problem) => `${filePath}: ${problem.message}`),
-  };
-  networkCache.delete(filePath);
-  networkCache.set(filePath, entry);
-  while (networkCache.size > NETWORK_CACHE_SIZE) networkCache.delete(networkCache.keys().next().value as string);
-  return entry;
+/** The sampled road networks of one server, the most recently used few, each kept while its text is unchanged. */
+export class RoadNetworkCache {
+  private readonly networks = new Map<string, CachedNetwork>();
+
+  load(filePath: string, text: string): CachedNetwork {
+    const cached = this.networks.get(filePath);
+    if (cached && cached.text === text) return cached;
+    const network = parseOpenDrive(text);
+    const entry: CachedNetwork = {
+      text,
+      network,
+      sections: sampleNetwork(network),
+      roadCount: network.roads.length,
+      problems: network.problems.slice(0, 10).map((problem) => `${filePath}: ${problem.message}`),
+    };
+    this.networks.delete(filePath);
+    this.networks.set(filePath, entry);
+    while (this.networks.size > NETWORK_CACHE_SIZE) this.networks.delete(this.networks.keys().next().value as string);
+    return entry;
+  }
 }
 
 function locationOf(workspace: Workspace, source: FlatSource, element: XmlElement | undefined, attributeName = 'name'): SourceLocation | undefined {
@@ -66,7 +70,7 @@ function locationOf(workspace: Workspace, source: FlatSource, element: XmlElemen
 }
 
 /** The scene of a scenario: its road network sampled, entities at their start, its events. */
-export async function buildScene(workspace: Workspace, params: SceneParams): Promise<SceneResult> {
+export async function buildScene(workspace: Workspace, roads: RoadNetworkCache, params: SceneParams): Promise<SceneResult> {
   const ref = await workspace.uris.toRef(params.uri);
   if (!ref) throw new ResponseError(-32602, `not a scenario URI: ${params.uri}`);
   // Rendered: a main file is shown as it runs, flattened.
@@ -100,7 +104,7 @@ export async function buildScene(workspace: Workspace, params: SceneParams): Pro
       else if (bytes.byteLength > MAX_ROAD_FILE_BYTES) problems.push(`road file ${resolved} is larger than ${MAX_ROAD_FILE_BYTES / 1024 / 1024} MB; not drawn`);
       else {
         const text = decodeUtf8(bytes);
-        const loaded = loadNetwork(resolved, text);
+        const loaded = roads.load(resolved, text);
         network = loaded.network;
         sections = loaded.sections;
         roadFile.roadCount = loaded.roadCount;

@@ -1,6 +1,8 @@
 import { CancellationToken, Connection, ErrorCodes, LSPErrorCodes, ResponseError } from 'vscode-languageserver/node';
 import { OpenDocument } from '../documents';
 import { DiagnosticsScheduler } from '../features/diagnostics';
+import { EsminiRuns } from '../features/esminiRun';
+import { RoadNetworkCache } from '../features/scene';
 import { IdleCollector } from '../idleCollector';
 import { Workspace } from '../workspace';
 
@@ -10,6 +12,10 @@ export interface ServerContext {
   readonly workspace: Workspace;
   readonly diagnostics: DiagnosticsScheduler;
   readonly idle: IdleCollector;
+  /** The sampled road networks the bird's-eye view drew last. */
+  readonly roads: RoadNetworkCache;
+  /** This server's esmini runs, whose folders it removes. */
+  readonly esminiRuns: EsminiRuns;
   /** What the client said it can do, filled in by `initialize`. */
   readonly client: { canConfigure: boolean; canWatch: boolean; foldersChange: boolean };
   /** Resolves once the first workspace index is built (immediately before `initialized`). */

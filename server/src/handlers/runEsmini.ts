@@ -1,12 +1,10 @@
-import { EsminiRuns } from '../features/esminiRun';
 import { RunEsminiRequest } from '../../../common/src/protocol';
 import { request, ServerContext } from './context';
 
 /** `modular2simple/runEsmini`: runs the editor's text of a scenario in esmini. */
 export function register(context: ServerContext): void {
-  const runs = new EsminiRuns(context.workspace);
   context.connection.onRequest(
     RunEsminiRequest,
-    request(context, RunEsminiRequest.method, (params, token) => runs.run(params, token)),
+    request(context, RunEsminiRequest.method, (params, token) => context.esminiRuns.run(params, token)),
   );
 }

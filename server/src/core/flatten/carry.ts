@@ -1,6 +1,6 @@
 import * as path from 'node:path';
 import type { CarriedDeclaration, CarriedLocation, CarryEdit, CarryPlan, FlatSource, Insertion, LinkedGroupReference } from './types';
-import { RelatedProblemLocation } from '../problems';
+import { problemData, RelatedProblemLocation } from '../problems';
 import { Declaration, Evaluator, ParameterUse, SemanticModel, semanticModelOf, ValueResult } from '../semantics';
 import { displayRef } from '../sources';
 import { indentationAt } from '../text';
@@ -209,7 +209,7 @@ function planLocations(plan: CarryPlan, main: FlatSource, source: FlatSource, ou
     if (own) {
       if (own.directories.some((directory) => directory.directory === need.directory)) continue;
       const key = `location:${need.kind}`;
-      if (plan.problems.some((problem) => problem.data?.key === key)) continue;
+      if (plan.problems.some((problem) => problemData(problem, 'catalog-location-conflict')?.key === key)) continue;
       const attr = own.location.pathAttribute;
       const model = main.original;
       if (!model) continue;

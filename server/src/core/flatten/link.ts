@@ -196,7 +196,7 @@ function linkGroup(reference: ScenarioReferenceInfo, groupReference: ManeuverGro
       message: `'${reference.fileName}' has no ManeuverGroup named '${groupReference.name}'` + (names.length ? `; it has: ${names.join(', ')}` : '; it has no ManeuverGroup'),
       hint: suggestion ? `did you mean '${suggestion}'?` : undefined,
     });
-    problem.data = { ...(suggestion ? { suggestion } : {}), groups: names.join('\n') };
+    problem.data = { ...(suggestion ? { suggestion } : {}), groups: names };
     return linked;
   }
   linked.target = targetGroup;

@@ -1,4 +1,4 @@
-import { ProblemCode, SCHEMA_PROBLEM_CODE_LIST, SchemaProblemCode, Severity } from '../problems';
+import { ProblemCode, SCHEMA_PROBLEM_CODE_LIST, SchemaFindingData, SchemaProblemCode, Severity } from '../problems';
 import { closestMatch } from '../text';
 import { XmlAttribute, XmlDocument, XmlElement } from '../xml';
 import { StateSet } from './automaton';
@@ -20,8 +20,8 @@ export interface SchemaFinding {
   code: SchemaProblemCode;
   message: string;
   hint?: string;
-  /** For quick fixes: `suggestion` (a name or value), `missing` (comma-separated names), `insertAt` (offset). */
-  data?: Record<string, string>;
+  /** For quick fixes: the shape `ProblemDataByCode` names for the code. */
+  data?: SchemaFindingData;
 }
 
 export interface SchemaCheckOptions {
@@ -159,7 +159,7 @@ function checkAttributes(index: SchemaIndex, chosen: ChosenVersion, element: Xml
       severity: 'error',
       code: 'schema-missing-attribute',
       message: `<${element.name}> lacks the required attribute${missing.length > 1 ? 's' : ''} ${missing.map((name) => `'${name}'`).join(', ')}`,
-      data: { missing: missing.join(',') },
+      data: { missing },
     });
   }
 }
@@ -298,7 +298,7 @@ function reportMissing(element: XmlElement, missing: ElementParticle[], before: 
     severity: 'error',
     code: 'schema-missing-element',
     message: `<${element.name}> lacks the required element${names.length > 1 ? 's' : ''} ${list(missing)}${before ? ` before <${before.name}>` : ''}`,
-    data: { missing: names.join(','), parent: element.name, ...(before ? { insertAt: String(before.start) } : {}) },
+    data: { missing: names, parent: element.name, ...(before ? { insertAt: String(before.start) } : {}) },
   });
 }
 

@@ -1,10 +1,11 @@
 import { CodeAction, CodeActionKind, Diagnostic, TextEdit } from 'vscode-languageserver/node';
 import { TextDocument } from 'vscode-languageserver-textdocument';
-import { FlatSource } from '../core/flatten';
-import { Declaration, DocumentSemantics, scopeAt } from '../core/semantics';
-import { displayRef } from '../core/sources';
-import { indentationAt } from '../core/text';
-import { escapeAttributeValue, XmlElement } from '../core/xml';
+import { FlatSource } from '../../core/flatten';
+import { Declaration, DocumentSemantics, scopeAt } from '../../core/semantics';
+import { displayRef } from '../../core/sources';
+import { indentationAt } from '../../core/text';
+import { escapeAttributeValue, XmlElement } from '../../core/xml';
+import { problemFix } from './fix';
 
 /**
  * Quick fix for an undeclared parameter: declare it in the nearest enclosing ParameterDeclarations
@@ -40,7 +41,7 @@ function unitOf(text: string): string {
   return /^( +|\t)/m.exec(text.slice(0, 4000))?.[1] ?? '  ';
 }
 
-export function declareParameterFix(uri: string, document: TextDocument, source: FlatSource, semantics: DocumentSemantics, diagnostic: Diagnostic, name: string, folder: string | undefined): CodeAction | undefined {
+function declareParameterFix(uri: string, document: TextDocument, source: FlatSource, semantics: DocumentSemantics, diagnostic: Diagnostic, name: string, folder: string | undefined): CodeAction | undefined {
   const text = document.getText();
   const offset = document.offsetAt(diagnostic.range.start);
   const template = sourceTemplate(source, semantics, name, folder);
@@ -72,3 +73,9 @@ export function declareParameterFix(uri: string, document: TextDocument, source:
   const title = template?.from ? `Declare parameter '${name}' (value ${template.value} from ${template.from})` : `Declare parameter '${name}'`;
   return { title, kind: CodeActionKind.QuickFix, diagnostics: [diagnostic], isPreferred: true, edit: { changes: { [uri]: [edit] } } };
 }
+
+export const undeclaredParameterFix = problemFix(['undeclared-parameter'], async (data, { uri, ref, document, diagnostic }, workspace) => {
+  const source = await workspace.source(ref);
+  const fix = data?.parameter && source.semantics ? declareParameterFix(uri, document, source, source.semantics, diagnostic, data.parameter, workspace.folders[0]) : undefined;
+  return fix ? [fix] : [];
+});
