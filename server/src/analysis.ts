@@ -1,6 +1,6 @@
 import { FlatSource, LinkedGroupReference, LinkedReference, originOf } from './core/flatten';
 import { KeyMatch, keyForms, keyMatches, OverridableAttribute } from './core/keys';
-import { ancestor } from './cursor';
+import { ancestor } from './core/cursor';
 import { findGroup, listedName, ManeuverGroupInfo } from './core/model';
 import { Resolution, SourceRef } from './core/sources';
 import { Range } from './core/text';

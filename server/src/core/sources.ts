@@ -539,7 +539,7 @@ export class ScenarioStore {
   }
 
   /** Places searched for a name referenced from `from`, in order (SPEC 3). */
-  private lookupPlaces(from: SourceRef): LookupPlace[] {
+  lookupPlaces(from: SourceRef): LookupPlace[] {
     const places: LookupPlace[] = [];
     const scenarioPath = this.scenarioPathFor(from);
     if (from.entries.length === 0) {

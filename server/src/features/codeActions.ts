@@ -5,7 +5,7 @@ import { PARAMETER_ATTRIBUTES } from '../core/model';
 import { SourceRef } from '../core/sources';
 import { attribute, elementAt, escapeAttributeValue, parseXml, XmlElement } from '../core/xml';
 import { groupLinkOf, keyChoices, linkOf } from '../analysis';
-import { ancestor } from '../cursor';
+import { ancestor } from '../core/cursor';
 import { declareParameterFix } from './declareParameter';
 import { DiagnosticData } from './diagnostics';
 import { Workspace } from '../workspace';
