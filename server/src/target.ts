@@ -2,7 +2,7 @@ import { FlatSource, LinkedGroupReference, LinkedReference } from './core/flatte
 import { KeyMatch } from './core/keys';
 import { PARAMETER_ATTRIBUTES, parseParameterAttributeNames } from './core/model';
 import { CatalogReferenceResolution, catalogReferenceAt, Declaration, declarationAt, ParameterUse, parameterUseAt, ValueSite } from './core/semantics';
-import { ancestor, attributeAt, attributeNameContextAt, elementNameContextAt, parentAt, valueContextAt, ValueContext } from './core/cursor';
+import { ancestor, attributeAt, attributeNameContextAt, elementNameContextAt, openElementAt, valueContextAt, ValueContext } from './core/cursor';
 import { SourceRef } from './core/sources';
 import { elementAt, parseXml, XmlAttribute, XmlDocument, XmlElement } from './core/xml';
 import { TextDocument } from 'vscode-languageserver-textdocument';
@@ -167,8 +167,8 @@ export type CompletionTarget =
   | { kind: 'entityReference'; context: ValueContext }
   | { kind: 'attributeValue'; context: ValueContext }
   | { kind: 'attributeName'; tagStart: number; element: string; written: string[]; start: number; prefix: string }
-  /** A tag name being typed (or an empty one in element content); `parent` is where it goes. */
-  | { kind: 'elementName'; start: number; prefix: string; parent: XmlElement | undefined };
+  /** A tag name being typed (or an empty one in element content); `open` is the element it goes into. */
+  | { kind: 'elementName'; start: number; prefix: string; open: XmlElement | undefined };
 
 /** The `$` and name typed before the cursor in an attribute value, when the cursor is completing a parameter. */
 export function dollarPrefix(context: ValueContext): string | undefined {
@@ -193,5 +193,5 @@ export function completionTargetAt(document: XmlDocument, offset: number, semant
   const attributeName = attributeNameContextAt(document, offset);
   if (attributeName) return { kind: 'attributeName', ...attributeName };
   const elementName = elementNameContextAt(document, offset);
-  return elementName ? { kind: 'elementName', ...elementName, parent: parentAt(document, elementName.start, offset) } : { kind: 'nothing' };
+  return elementName ? { kind: 'elementName', ...elementName, open: openElementAt(document, elementName.start, offset) } : { kind: 'nothing' };
 }

@@ -35,7 +35,7 @@ function startTagAt(document: XmlDocument, offset: number): XmlElement | undefin
 
 /** Whether the cursor stands in markup the tree holds no element for: an end tag, a comment, a declaration being typed. */
 function inOtherMarkup(document: XmlDocument, offset: number): boolean {
-  return document.text.lastIndexOf('<', offset - 1) > document.text.lastIndexOf('>', offset - 1);
+  return offset > 0 && document.text.lastIndexOf('<', offset - 1) > document.text.lastIndexOf('>', offset - 1);
 }
 
 /** The attribute of the document whose name or value holds the offset. */
@@ -50,6 +50,16 @@ export function attributeAt(document: XmlDocument, offset: number): { element: X
   return undefined;
 }
 
+/**
+ * Where a value being typed (its closing quote missing, so the parse ran it to the line end) ends: at a
+ * quote after the cursor on the same line, else at the cursor, so that completion replaces only what is typed.
+ */
+function typedValueEnd(text: string, quote: string, offset: number): number {
+  const close = text.indexOf(quote, offset);
+  const rest = text.slice(offset, close < 0 ? undefined : close);
+  return close >= 0 && !/[<>\n]/.test(rest) ? close : offset;
+}
+
 /** The attribute value the cursor stands in, if any (also while the value is still being typed). */
 export function valueContextAt(document: XmlDocument, offset: number): ValueContext | undefined {
   const element = startTagAt(document, offset);
@@ -59,7 +69,7 @@ export function valueContextAt(document: XmlDocument, offset: number): ValueCont
     element: element.name,
     attribute: value.name,
     valueStart: value.valueStart,
-    valueEnd: value.valueEnd,
+    valueEnd: document.text[value.valueEnd] === value.quote ? value.valueEnd : typedValueEnd(document.text, value.quote, offset),
     prefix: document.text.slice(value.valueStart, offset),
     tagStart: element.start,
     siblings: element.attributes.map((entry) => ({ name: entry.name, value: entry.value })),
@@ -87,11 +97,11 @@ export function attributeNameContextAt(document: XmlDocument, offset: number): {
   return { tagStart: element.start, element: element.name, written: element.attributes.map((entry) => entry.name), start, prefix: text.slice(start, offset) };
 }
 
-/** The element a child typed at `start` goes into (a half-typed `<Nam` parses as an element of its own). */
-export function parentAt(document: XmlDocument, start: number, offset: number): XmlElement | undefined {
+/** The innermost element still open at `start`, where a child typed there goes (a half-typed `<Nam` parses as an element of its own). */
+export function openElementAt(document: XmlDocument, start: number, offset: number): XmlElement | undefined {
   let parent = elementAt(document, offset);
-  while (parent && parent.start >= start && parent.parent) parent = parent.parent;
-  return parent && offset >= parent.startTagEnd ? parent : undefined;
+  while (parent && (parent.start >= start || (parent.closed && parent.end <= start))) parent = parent.parent;
+  return parent && start >= parent.startTagEnd ? parent : undefined;
 }
 
 /** The last `<elementName` element that starts before `before`, in document order. */

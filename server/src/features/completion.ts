@@ -262,7 +262,7 @@ export async function complete(workspace: Workspace, ref: SourceRef, document: T
     case 'elementName': {
       const schemaItems = schemaCompletion(workspace, parsed, target, offset);
       // A ScenarioReference's parent is the ManeuverGroup it fills (SPEC), so it is offered nowhere else.
-      if ('ScenarioReference'.toLowerCase().startsWith(target.prefix.toLowerCase()) && target.parent?.name === 'ManeuverGroup') {
+      if ('ScenarioReference'.toLowerCase().startsWith(target.prefix.toLowerCase()) && target.open?.name === 'ManeuverGroup') {
         return [...schemaItems, ...(await snippetItems(workspace, ref, document, target.start, offset))];
       }
       return schemaItems;

@@ -56,8 +56,11 @@ function versionNote(since: string | undefined, deprecated: boolean, deprecatedS
 }
 
 /** Child elements allowed at the cursor, in content-model order with the required ones first. */
-function elementItems(index: SchemaIndex, document: XmlDocument, parent: XmlElement | undefined, start: number, offset: number): CompletionItem[] {
-  if (!parent) return [];
+function elementItems(index: SchemaIndex, document: XmlDocument, start: number, offset: number): CompletionItem[] {
+  let parent = elementAt(document, offset);
+  // A half-typed `<Nam` parses as an element of its own: its parent is where the child goes.
+  while (parent && parent.start >= start && parent.parent) parent = parent.parent;
+  if (!parent || offset < parent.startTagEnd) return [];
   const typeName = typeOfElement(index, parent) ?? typeByElementName(index, parent.name);
   if (!typeName) return [];
   const preceding = parent.children.filter((child) => child.end <= start).map((child) => child.name);
@@ -181,7 +184,7 @@ export function schemaCompletion(workspace: Workspace, parsed: XmlDocument, targ
     case 'attributeName':
       return attributeItems(index, parsed, target, offset);
     case 'elementName':
-      return elementItems(index, parsed, target.parent, target.start, offset);
+      return elementItems(index, parsed, target.start, offset);
     default:
       return valueItems(index, parsed, target.context);
   }
