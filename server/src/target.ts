@@ -1,3 +1,4 @@
+import { TextDocument } from 'vscode-languageserver-textdocument';
 import { FlatSource, LinkedGroupReference, LinkedReference } from './core/flatten';
 import { KeyMatch } from './core/keys';
 import { PARAMETER_ATTRIBUTES, parseParameterAttributeNames } from './core/model';
@@ -5,7 +6,6 @@ import { CatalogReferenceResolution, catalogReferenceAt, Declaration, declaratio
 import { ancestor, attributeAt, attributeNameContextAt, elementNameContextAt, openElementAt, valueContextAt, ValueContext } from './core/cursor';
 import { SourceRef } from './core/sources';
 import { elementAt, parseXml, XmlAttribute, XmlDocument, XmlElement } from './core/xml';
-import { TextDocument } from 'vscode-languageserver-textdocument';
 import { groupLinkOf, linkOf } from './analysis';
 import { Workspace } from './workspace';
 
