@@ -1,6 +1,5 @@
 import { FlatSource, LinkedGroupReference, LinkedReference, originOf } from './core/flatten';
 import { KeyMatch, keyForms, keyMatches, OverridableAttribute } from './core/keys';
-import { ancestor } from './cursor';
 import { findGroup, listedName, ManeuverGroupInfo } from './core/model';
 import { Resolution, SourceRef } from './core/sources';
 import { Range } from './core/text';
@@ -47,16 +46,6 @@ export function linkOf(source: FlatSource, referenceElement: XmlElement): Linked
 
 export function groupLinkOf(link: LinkedReference, groupReferenceElement: XmlElement): LinkedGroupReference | undefined {
   return link.groups.find((group) => group.info.element === groupReferenceElement);
-}
-
-/** For a `ParameterReference` element: its reference, its group reference and what its key matches. */
-export function keyMatchOf(source: FlatSource, parameter: XmlElement): { link: LinkedReference; group: LinkedGroupReference; match: KeyMatch } | undefined {
-  const groupReference = ancestor(parameter.parent, 'ManeuverGroupReference');
-  const reference = ancestor(groupReference?.parent, 'ScenarioReference');
-  const link = reference ? linkOf(source, reference) : undefined;
-  const group = link && groupReference ? groupLinkOf(link, groupReference) : undefined;
-  const match = group?.plan?.matches.find((candidate) => candidate.parameter.element === parameter);
-  return link && group && match ? { link, group, match } : undefined;
 }
 
 /** The attributes a key sets: those it matches that no more specific key of the same group reference takes. */

@@ -1,7 +1,8 @@
 import { LSPErrorCodes, ResponseError, TextEdit, WorkspaceEdit } from 'vscode-languageserver/node';
-import { catalogReferenceAt, Declaration, declarationAt, DocumentSemantics, referencedName, referencesOf } from '../core/semantics';
+import { Declaration, DocumentSemantics, referencedName, referencesOf } from '../core/semantics';
 import { childRef, diskRef, displayRef, refId, SourceRef } from '../core/sources';
 import { Place } from '../analysis';
+import { declarationOf, Target } from '../target';
 import { Workspace } from '../workspace';
 import { PARAMETER_NAME } from './parameters';
 
@@ -12,7 +13,7 @@ import { PARAMETER_NAME } from './parameters';
  */
 
 /** A parameter declared directly by a catalog entry, with the semantics of the catalog file. */
-interface EntryParameter {
+export interface EntryParameter {
   catalog: DocumentSemantics;
   declaration: Declaration;
 }
@@ -28,17 +29,16 @@ function isEntryParameter(declaration: Declaration | undefined): declaration is 
   return declaration !== undefined && declaration.scope.catalogEntry && declaration.nameAttribute !== undefined;
 }
 
-/** The entry parameter named at the offset: by its declaration or a use inside the entry, or by an assignment's parameterRef. */
-async function entryParameterAt(workspace: Workspace, semantics: DocumentSemantics, offset: number): Promise<EntryParameter | undefined> {
-  const declaration = declarationAt(semantics, offset);
+/** The entry parameter the target names: by its declaration or a use inside the entry, or by an assignment's parameterRef. */
+export async function entryParameterOf(workspace: Workspace, semantics: DocumentSemantics, target: Target): Promise<EntryParameter | undefined> {
+  const declaration = declarationOf(target);
   if (isEntryParameter(declaration)) return { catalog: semantics, declaration };
-  const resolution = catalogReferenceAt(semantics, offset);
-  const assignment = resolution?.reference.assignments.find(({ parameterRef }) => parameterRef && offset >= parameterRef.valueStart && offset <= parameterRef.valueEnd);
-  if (!resolution?.entry || !assignment?.parameterRef) return undefined;
-  const catalog = (await workspace.source(resolution.entry.file.ref)).semantics;
-  const entryStart = resolution.entry.element.start;
+  if (target.kind !== 'catalogReference' || target.part !== 'parameterRef' || !target.resolution.entry) return undefined;
+  const { entry } = target.resolution;
+  const catalog = (await workspace.source(entry.file.ref)).semantics;
+  const entryStart = entry.element.start;
   const scope = catalog?.model.scopes.find((candidate) => candidate.catalogEntry && candidate.element.start === entryStart);
-  const named = scope?.byName.get(referencedName(assignment.parameterRef).name);
+  const named = scope?.byName.get(referencedName(target.attribute).name);
   return catalog && isEntryParameter(named) ? { catalog, declaration: named } : undefined;
 }
 
@@ -90,26 +90,19 @@ function toPlace(place: NamePlace): Place {
   return { ref: place.semantics.ref, range: place.semantics.model.document.lines.range(place.start, place.end) };
 }
 
-/** References of a catalog entry's parameter across the workspace; undefined when the offset names none. */
-export async function entryParameterReferences(workspace: Workspace, semantics: DocumentSemantics, offset: number, includeDeclaration: boolean): Promise<Place[] | undefined> {
-  const parameter = await entryParameterAt(workspace, semantics, offset);
-  if (!parameter) return undefined;
+/** References of a catalog entry's parameter across the workspace. */
+export async function entryParameterReferences(workspace: Workspace, parameter: EntryParameter, includeDeclaration: boolean): Promise<Place[]> {
   const places = (await placesOf(workspace, parameter)).map(toPlace);
   return includeDeclaration ? places : places.slice(1);
 }
 
-/** The assignment's parameterRef name at the offset, for prepareRename (the declaration side is the one-file case). */
-export async function entryParameterRenameRange(workspace: Workspace, semantics: DocumentSemantics, offset: number): Promise<{ start: number; end: number; name: string } | undefined> {
-  const resolution = catalogReferenceAt(semantics, offset);
-  const assignment = resolution?.reference.assignments.find(({ parameterRef }) => parameterRef && offset >= parameterRef.valueStart && offset <= parameterRef.valueEnd);
-  if (!assignment?.parameterRef || !(await entryParameterAt(workspace, semantics, offset))) return undefined;
-  return referencedName(assignment.parameterRef);
+/** The assignment's parameterRef name the target stands on, for prepareRename (the declaration side is the one-file case). */
+export function entryParameterRenameRange(target: Target): { start: number; end: number; name: string } | undefined {
+  return target.kind === 'catalogReference' && target.part === 'parameterRef' ? referencedName(target.attribute) : undefined;
 }
 
-/** Renames a catalog entry's parameter in the entry and in every assignment that sets it; undefined when the offset names none. */
-export async function renameEntryParameter(workspace: Workspace, semantics: DocumentSemantics, offset: number, newName: string): Promise<WorkspaceEdit | undefined> {
-  const parameter = await entryParameterAt(workspace, semantics, offset);
-  if (!parameter) return undefined;
+/** Renames a catalog entry's parameter in the entry and in every assignment that sets it. */
+export async function renameEntryParameter(workspace: Workspace, parameter: EntryParameter, newName: string): Promise<WorkspaceEdit> {
   const name = newName.startsWith('$') ? newName.slice(1) : newName;
   if (!PARAMETER_NAME.test(name)) throw new ResponseError(LSPErrorCodes.RequestFailed, `'${newName}' is not a parameter name (letters, digits and _, not starting with a digit)`);
   const places = await placesOf(workspace, parameter);

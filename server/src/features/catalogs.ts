@@ -1,10 +1,11 @@
 import { CompletionItem, CompletionItemKind } from 'vscode-languageserver/node';
 import { TextDocument } from 'vscode-languageserver-textdocument';
-import { CatalogFile, CatalogLoader, catalogReferenceAt, Declaration, DocumentSemantics, entryParameterValue, formatValue } from '../core/semantics';
+import { CatalogEntry, CatalogFile, CatalogLoader, Declaration, DocumentSemantics, entryParameterValue, formatValue } from '../core/semantics';
 import { displayRef, refId } from '../core/sources';
-import { XmlElement } from '../core/xml';
+import { XmlAttribute, XmlElement } from '../core/xml';
 import { Place } from '../analysis';
-import { ValueContext } from '../cursor';
+import { ValueContext } from '../core/cursor';
+import { Target } from '../target';
 import { Workspace } from '../workspace';
 
 /** Catalogs in the editor: definition from a CatalogReference and completion of catalog and entry names, from the core's resolution. */
@@ -20,25 +21,27 @@ export function entryDeclarations(file: CatalogFile, entry: XmlElement): Declara
   return file.model.declarations.filter((declaration) => declaration.scope.element === entry && declaration.kind === 'parameter');
 }
 
+/** The entry's declaration an assignment's `parameterRef` names. */
+function assignedDeclaration(entry: CatalogEntry, parameterRef: XmlAttribute): Declaration | undefined {
+  const name = parameterRef.value.trim().replace(/^\$/, '');
+  return entryDeclarations(entry.file, entry.element).find((candidate) => candidate.name === name);
+}
+
+type CatalogReferenceTarget = Extract<Target, { kind: 'catalogReference' }>;
+
 /**
  * Definition in a CatalogReference: `entryName` goes to the entry, `catalogName` to each catalog file
- * of that name, a ParameterAssignment's `parameterRef` to the entry's declaration. Undefined when the
- * offset is in none of them.
+ * of that name, a ParameterAssignment's `parameterRef` to the entry's declaration. Undefined for an
+ * assignment whose entry does not resolve.
  */
-export function catalogDefinition(semantics: DocumentSemantics, offset: number): Place[] | undefined {
-  const resolution = catalogReferenceAt(semantics, offset);
-  if (!resolution) return undefined;
-  const within = (attr: { valueStart: number; valueEnd: number } | undefined) => attr !== undefined && offset >= attr.valueStart && offset <= attr.valueEnd;
-  const { reference, entry } = resolution;
-  if (within(reference.entryNameAttribute)) return entry ? [namePlace(entry.file, entry.element)] : [];
-  if (within(reference.catalogNameAttribute)) return resolution.catalogs.map((file) => namePlace(file, file.catalog));
-  const assignment = reference.assignments.find((candidate) => within(candidate.parameterRef));
-  if (assignment?.parameterRef && entry) {
-    const name = assignment.parameterRef.value.trim().replace(/^\$/, '');
-    const declaration = entryDeclarations(entry.file, entry.element).find((candidate) => candidate.name === name);
-    return declaration ? [namePlace(entry.file, declaration.element)] : [];
-  }
-  return undefined;
+export function catalogDefinition(target: CatalogReferenceTarget): Place[] | undefined {
+  const { resolution } = target;
+  const { entry } = resolution;
+  if (target.part === 'entryName') return entry ? [namePlace(entry.file, entry.element)] : [];
+  if (target.part === 'catalogName') return resolution.catalogs.map((file) => namePlace(file, file.catalog));
+  if (!entry) return undefined;
+  const declaration = assignedDeclaration(entry, target.attribute);
+  return declaration ? [namePlace(entry.file, declaration.element)] : [];
 }
 
 /** Every catalog file the document's CatalogLocations reach, each once. */
@@ -51,13 +54,12 @@ async function reachableCatalogs(workspace: Workspace, semantics: DocumentSemant
   return [...files.values()];
 }
 
-/** Completion of `catalogName` and `entryName` in a CatalogReference; undefined when the cursor is in neither. */
-export async function catalogCompletion(workspace: Workspace, semantics: DocumentSemantics, document: TextDocument, context: ValueContext): Promise<CompletionItem[] | undefined> {
-  if (context.element !== 'CatalogReference' || (context.attribute !== 'catalogName' && context.attribute !== 'entryName')) return undefined;
+/** Completion of `catalogName` or `entryName` in a CatalogReference. */
+export async function catalogCompletion(workspace: Workspace, semantics: DocumentSemantics, document: TextDocument, context: ValueContext, part: 'catalogName' | 'entryName'): Promise<CompletionItem[]> {
   const range = { start: document.positionAt(context.valueStart), end: document.positionAt(context.valueEnd) };
   const catalogs = await reachableCatalogs(workspace, semantics);
   const where = (file: CatalogFile) => displayRef(file.ref, workspace.folders[0]);
-  if (context.attribute === 'catalogName') {
+  if (part === 'catalogName') {
     const seen = new Set<string>();
     return catalogs
       .filter((file) => file.name && !seen.has(file.name) && seen.add(file.name))
@@ -78,13 +80,12 @@ export async function catalogCompletion(workspace: Workspace, semantics: Documen
 }
 
 /** Hover on a ParameterAssignment's `parameterRef`: the entry's parameter, its default and the value this reference gives it. */
-export function assignmentHover(workspace: Workspace, semantics: DocumentSemantics, offset: number): { markdown: string; start: number; end: number } | undefined {
-  const resolution = catalogReferenceAt(semantics, offset);
-  const assignment = resolution?.reference.assignments.find((candidate) => candidate.parameterRef && offset >= candidate.parameterRef.valueStart && offset <= candidate.parameterRef.valueEnd);
-  const entry = resolution?.entry;
-  if (!resolution || !assignment?.parameterRef || !entry) return undefined;
-  const name = assignment.parameterRef.value.trim().replace(/^\$/, '');
-  const declaration = entryDeclarations(entry.file, entry.element).find((candidate) => candidate.name === name);
+export function assignmentHover(workspace: Workspace, semantics: DocumentSemantics, target: CatalogReferenceTarget): { markdown: string; start: number; end: number } | undefined {
+  const { resolution, attribute: parameterRef } = target;
+  const entry = resolution.entry;
+  if (target.part !== 'parameterRef' || !entry) return undefined;
+  const name = parameterRef.value.trim().replace(/^\$/, '');
+  const declaration = assignedDeclaration(entry, parameterRef);
   if (!declaration) return undefined;
   const value = entryParameterValue(semantics, resolution, declaration);
   const line = entry.file.model.document.lines.positionAt(declaration.element.start).line + 1;
@@ -94,7 +95,7 @@ export function assignmentHover(workspace: Workspace, semantics: DocumentSemanti
       '',
       `this reference sets it to **${value.ok ? formatValue(value.value) : 'a value that cannot be evaluated'}**; declared in \`${displayRef(entry.file.ref, workspace.folders[0])}\` on line ${line}`,
     ].join('\n'),
-    start: assignment.parameterRef.valueStart,
-    end: assignment.parameterRef.valueEnd,
+    start: parameterRef.valueStart,
+    end: parameterRef.valueEnd,
   };
 }

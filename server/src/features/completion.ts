@@ -7,11 +7,13 @@ import { keyMatches, OverridableAttribute, overridableAttributes } from '../core
 import { findGroup, PARAMETER_ATTRIBUTES } from '../core/model';
 import { displayRef, SourceRef } from '../core/sources';
 import { keyChoices, overridablePlace, sourceForFileName } from '../analysis';
-import { attributeValuesBetween, elementNameContextAt, lastAttributeValueBefore, openElementsAt, valueContextAt, ValueContext } from '../cursor';
+import { elementsBetween, lastElementBefore, ValueContext } from '../core/cursor';
+import { attribute, XmlAttribute, XmlDocument } from '../core/xml';
+import { completionTargetAt, currentDocument } from '../target';
 import { Workspace } from '../workspace';
 import { schemaCompletion } from './schemaCompletion';
 import { catalogCompletion } from './catalogs';
-import { dollarPrefix, parameterCompletion } from './parameters';
+import { parameterCompletion } from './parameters';
 
 const MAX_SNIPPETS = 200;
 
@@ -37,32 +39,30 @@ function listFolder(directory: string, exclude: string | undefined): string[] {
   return names.sort();
 }
 
-/** Names that resolve from `from`, in lookup order (SPEC 3): its package or folder, SCENARIO_PATH, parent folders. */
+/** Names that resolve from `from`, in the store's lookup order (SPEC 3): its package or folder, SCENARIO_PATH, parent folders. */
 export async function fileNameCandidates(workspace: Workspace, from: SourceRef): Promise<FileNameCandidate[]> {
   const seen = new Map<string, FileNameCandidate>();
   const add = (name: string, where: string) => {
     if (!seen.has(name)) seen.set(name, { name, where });
   };
-  if (from.entries.length > 0) {
-    const packageRef: SourceRef = { disk: from.disk, entries: from.entries.slice(0, -1) };
-    const self = from.entries[from.entries.length - 1];
-    const contents = await workspace.store.readPackage(packageRef).catch(() => undefined);
-    for (const entry of contents ? [...contents.entries.keys()].sort() : []) {
-      if (entry === self) continue;
-      if (/\.(xosc|mosc)$/i.test(entry) && !entry.endsWith('/main.xosc')) add(entry, displayRef(packageRef, workspace.folders[0]));
-      else if (entry.endsWith('/main.xosc')) add(`${entry.slice(0, -'/main.xosc'.length)}.mosc`, displayRef(packageRef, workspace.folders[0]));
+  let packageListed = false;
+  for (const place of workspace.store.lookupPlaces(from)) {
+    if (place.packageRef) {
+      // The whole package is offered once, under its entry names, for its first place.
+      if (packageListed) continue;
+      packageListed = true;
+      const packageRef = place.packageRef;
+      const self = from.entries[from.entries.length - 1];
+      const contents = await workspace.store.readPackage(packageRef).catch(() => undefined);
+      for (const entry of contents ? [...contents.entries.keys()].sort() : []) {
+        if (entry === self) continue;
+        if (/\.(xosc|mosc)$/i.test(entry) && !entry.endsWith('/main.xosc')) add(entry, displayRef(packageRef, workspace.folders[0]));
+        else if (entry.endsWith('/main.xosc')) add(`${entry.slice(0, -'/main.xosc'.length)}.mosc`, displayRef(packageRef, workspace.folders[0]));
+      }
+      continue;
     }
-  } else {
-    const directory = path.dirname(from.disk);
-    for (const name of listFolder(directory, from.disk)) add(name, 'this folder');
-  }
-  for (const directory of workspace.store.scenarioPathFor(from)) for (const name of listFolder(directory, from.disk)) add(name, `${directory} (scenario path)`);
-  const root = workspace.store.rootOf(path.dirname(from.disk));
-  if (from.entries.length === 0) {
-    for (let parent = path.dirname(path.dirname(from.disk)); parent.startsWith(root); parent = path.dirname(parent)) {
-      for (const name of listFolder(parent, from.disk)) add(name, `${parent} (parent folder)`);
-      if (parent === root || parent === path.dirname(parent)) break;
-    }
+    const where = place.via === 'folder' ? 'this folder' : place.via === 'scenarioPath' ? `${place.directory} (scenario path)` : `${place.directory} (parent folder)`;
+    for (const name of listFolder(place.directory, from.disk)) add(name, where);
   }
   return [...seen.values()];
 }
@@ -71,11 +71,12 @@ function replaceRange(document: TextDocument, start: number, end: number): LspRa
   return { start: document.positionAt(start), end: document.positionAt(end) };
 }
 
-/** The enclosing ScenarioReference's source and, for keys, the group, read from the text before the cursor. */
-async function referencedSource(workspace: Workspace, ref: SourceRef, text: string, before: number): Promise<{ source: FlatSource | undefined; fileName: string }> {
-  const reference = lastAttributeValueBefore(text, 'ScenarioReference', 'scenarioFileName', 0, before);
+/** The enclosing ScenarioReference's source: the last one that starts before `before`. */
+async function referencedSource(workspace: Workspace, ref: SourceRef, document: XmlDocument, before: number): Promise<{ source: FlatSource | undefined; fileName: string }> {
+  const reference = lastElementBefore(document, 'ScenarioReference', before);
   if (!reference) return { source: undefined, fileName: '' };
-  return { source: await sourceForFileName(workspace, ref, reference.value), fileName: reference.value };
+  const fileName = attribute(reference, 'scenarioFileName')?.value ?? '';
+  return { source: await sourceForFileName(workspace, ref, fileName), fileName };
 }
 
 function coveredBy(keys: string[], target: OverridableAttribute): boolean {
@@ -83,19 +84,19 @@ function coveredBy(keys: string[], target: OverridableAttribute): boolean {
 }
 
 /** The group a ParameterReference tag (starting at `tagStart`) overrides, read from the text before it. */
-async function groupBefore(workspace: Workspace, ref: SourceRef, text: string, tagStart: number) {
-  const groupReference = lastAttributeValueBefore(text, 'ManeuverGroupReference', 'maneuverGroupName', 0, tagStart);
+async function groupBefore(workspace: Workspace, ref: SourceRef, document: XmlDocument, tagStart: number) {
+  const groupReference = lastElementBefore(document, 'ManeuverGroupReference', tagStart);
   if (!groupReference) return undefined;
-  const { source } = await referencedSource(workspace, ref, text, groupReference.tagStart);
-  const group = source?.model ? findGroup(source.model, groupReference.value) : undefined;
+  const { source } = await referencedSource(workspace, ref, document, groupReference.start);
+  const group = source?.model ? findGroup(source.model, attribute(groupReference, 'maneuverGroupName')?.value ?? '') : undefined;
   if (!source?.model || !group) return undefined;
   return { source, group, groupReference, targets: overridableAttributes(source.model, group) };
 }
 
 /** The default values of the attributes that the key written in the same tag reaches. */
-async function valueItems(workspace: Workspace, ref: SourceRef, document: TextDocument, context: ValueContext): Promise<CompletionItem[]> {
+async function valueItems(workspace: Workspace, ref: SourceRef, document: TextDocument, parsed: XmlDocument, context: ValueContext): Promise<CompletionItem[]> {
   const key = context.siblings.find((sibling) => sibling.name === 'key')?.value.trim();
-  const found = key ? await groupBefore(workspace, ref, document.getText(), context.tagStart) : undefined;
+  const found = key ? await groupBefore(workspace, ref, parsed, context.tagStart) : undefined;
   if (!found || !key) return [];
   const range = replaceRange(document, context.valueStart, context.valueEnd);
   const defaults = new Map<string, string>();
@@ -105,17 +106,18 @@ async function valueItems(workspace: Workspace, ref: SourceRef, document: TextDo
   return [...defaults].map(([value, detail]) => ({ label: value, kind: CompletionItemKind.Value, detail, textEdit: { range, newText: value } }));
 }
 
-async function keyItems(workspace: Workspace, ref: SourceRef, document: TextDocument, context: ValueContext): Promise<CompletionItem[]> {
+async function keyItems(workspace: Workspace, ref: SourceRef, document: TextDocument, parsed: XmlDocument, context: ValueContext): Promise<CompletionItem[]> {
   const text = document.getText();
-  const found = await groupBefore(workspace, ref, text, context.tagStart);
+  const found = await groupBefore(workspace, ref, parsed, context.tagStart);
   if (!found) return [];
   const { source, group, groupReference, targets } = found;
   const blockEnd = [text.indexOf('</ManeuverGroupReference', context.valueEnd), text.indexOf('<ManeuverGroupReference', context.valueEnd), text.length]
     .filter((index) => index >= 0)
     .reduce((a, b) => Math.min(a, b));
-  const given = attributeValuesBetween(text, 'ParameterReference', 'key', groupReference.tagStart, blockEnd)
-    .filter((entry) => entry.valueStart !== context.valueStart)
-    .map((entry) => entry.value.trim());
+  const given = elementsBetween(parsed, 'ParameterReference', groupReference.start, blockEnd)
+    .map((element) => attribute(element, 'key'))
+    .filter((key): key is XmlAttribute => key !== undefined && key.valueStart !== context.valueStart)
+    .map((key) => key.value.trim());
   const range = replaceRange(document, context.valueStart, context.valueEnd);
   const items: CompletionItem[] = [];
   // One row per attribute (or per set of attributes only settable together), in its shortest unambiguous key.
@@ -216,58 +218,56 @@ async function snippetItems(workspace: Workspace, ref: SourceRef, document: Text
   return ranked.map(({ item }, index) => ({ ...item, sortText: `z${String(index).padStart(4, '0')}` }));
 }
 
-/** Parameters after `$` and catalog or entry names in a CatalogReference, from the semantic model. */
-async function semanticCompletion(workspace: Workspace, ref: SourceRef, document: TextDocument, context: ValueContext, offset: number): Promise<CompletionItem[] | undefined> {
-  const semantics = (await workspace.source(ref)).semantics;
-  if (!semantics) return undefined;
-  if (dollarPrefix(context) !== undefined) return parameterCompletion(document, semantics, context, offset);
-  return catalogCompletion(workspace, semantics, document, context);
-}
-
-/** Completion from the text around the cursor, so that it works while the document is not well-formed. */
+/** Completion from the tolerant parse of the current text, so that it works while the document is not well-formed. */
 export async function complete(workspace: Workspace, ref: SourceRef, document: TextDocument, offset: number): Promise<CompletionItem[]> {
-  const text = document.getText();
-  const context = valueContextAt(text, offset);
-  if (context) {
-    const range = replaceRange(document, context.valueStart, context.valueEnd);
-    const semantic = await semanticCompletion(workspace, ref, document, context, offset);
-    if (semantic) return semantic;
-    if (context.element === 'ScenarioReference' && context.attribute === 'scenarioFileName') {
+  const source = await workspace.source(ref);
+  const parsed = await currentDocument(workspace, ref, document);
+  const semantics = source.semantics;
+  const target = completionTargetAt(parsed, offset, semantics !== undefined);
+  const range = 'context' in target ? replaceRange(document, target.context.valueStart, target.context.valueEnd) : undefined;
+  switch (target.kind) {
+    case 'parameter':
+      return semantics ? parameterCompletion(document, semantics, target.context, offset) : [];
+    case 'catalogReference':
+      return semantics ? catalogCompletion(workspace, semantics, document, target.context, target.part) : [];
+    case 'fileReference':
       return (await fileNameCandidates(workspace, ref)).map((candidate, index) => ({
         label: candidate.name,
         kind: candidate.name.endsWith('.mosc') ? CompletionItemKind.Module : CompletionItemKind.File,
         detail: candidate.where,
         sortText: String(index).padStart(5, '0'),
-        textEdit: { range, newText: candidate.name },
+        textEdit: { range: range as LspRange, newText: candidate.name },
       }));
-    }
-    if (context.element === 'ManeuverGroupReference' && context.attribute === 'maneuverGroupName') {
-      const { source, fileName } = await referencedSource(workspace, ref, text, context.tagStart);
+    case 'groupReference': {
+      const { source: referenced, fileName } = await referencedSource(workspace, ref, parsed, target.context.tagStart);
       const seen = new Set<string>();
-      return (source?.model?.groups ?? [])
+      return (referenced?.model?.groups ?? [])
         .filter((group) => group.name && !seen.has(group.name) && seen.add(group.name))
         .map((group, index) => ({
           label: group.name,
           kind: CompletionItemKind.Class,
-          detail: `ManeuverGroup of ${fileName} (${overridableAttributes(source?.model as NonNullable<FlatSource['model']>, group).length} overridable attributes)`,
+          detail: `ManeuverGroup of ${fileName} (${overridableAttributes(referenced?.model as NonNullable<FlatSource['model']>, group).length} overridable attributes)`,
           sortText: String(index).padStart(5, '0'),
-          textEdit: { range, newText: group.name },
+          textEdit: { range: range as LspRange, newText: group.name },
         }));
     }
-    if (context.element === 'ParameterReference' && context.attribute === 'key') return keyItems(workspace, ref, document, context);
-    if (context.element === 'ParameterReference' && context.attribute === 'value') return valueItems(workspace, ref, document, context);
-    if (context.attribute === PARAMETER_ATTRIBUTES) return parameterAttributeItems(document, context);
-    if (context.attribute === 'entityRef') {
-      const source = await workspace.source(ref);
-      return (source.original?.entities ?? []).map((entity) => ({ label: entity.name, kind: CompletionItemKind.Variable, textEdit: { range, newText: entity.name } }));
+    case 'key':
+      return keyItems(workspace, ref, document, parsed, target.context);
+    case 'keyValue':
+      return valueItems(workspace, ref, document, parsed, target.context);
+    case 'listedAttribute':
+      return parameterAttributeItems(document, target.context);
+    case 'entityReference':
+      return (source.original?.entities ?? []).map((entity) => ({ label: entity.name, kind: CompletionItemKind.Variable, textEdit: { range: range as LspRange, newText: entity.name } }));
+    case 'elementName': {
+      const schemaItems = schemaCompletion(workspace, parsed, target, offset);
+      // A ScenarioReference's parent is the ManeuverGroup it fills (SPEC), so it is offered nowhere else.
+      if ('ScenarioReference'.toLowerCase().startsWith(target.prefix.toLowerCase()) && target.open?.name === 'ManeuverGroup') {
+        return [...schemaItems, ...(await snippetItems(workspace, ref, document, target.start, offset))];
+      }
+      return schemaItems;
     }
-    return schemaCompletion(workspace, ref, document, offset, context);
+    default:
+      return schemaCompletion(workspace, parsed, target, offset);
   }
-  const schemaItems = await schemaCompletion(workspace, ref, document, offset, undefined);
-  const elementContext = elementNameContextAt(text, offset);
-  // A ScenarioReference's parent is the ManeuverGroup it fills (SPEC), so it is offered nowhere else.
-  if (elementContext && 'ScenarioReference'.toLowerCase().startsWith(elementContext.prefix.toLowerCase()) && openElementsAt(text, elementContext.start).at(-1) === 'ManeuverGroup') {
-    return [...schemaItems, ...(await snippetItems(workspace, ref, document, elementContext.start, offset))];
-  }
-  return schemaItems;
 }

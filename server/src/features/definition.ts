@@ -2,8 +2,8 @@ import { Location } from 'vscode-languageserver/node';
 import { FlatSource, originOf } from '../core/flatten';
 import { ScenarioModel } from '../core/model';
 import { SourceRef } from '../core/sources';
-import { attributesSetBy, elementPlace, groupLinkOf, keyMatchOf, linkOf, overridablePlace, Place, resolvedTarget } from '../analysis';
-import { ancestor, attributeAt } from '../cursor';
+import { attributesSetBy, elementPlace, overridablePlace, Place, resolvedTarget } from '../analysis';
+import { syntacticTarget, Target, targetAt } from '../target';
 import { Workspace } from '../workspace';
 import { catalogDefinition } from './catalogs';
 import { parameterDefinition } from './parameters';
@@ -13,36 +13,49 @@ export async function definitionPlaces(workspace: Workspace, ref: SourceRef, off
   const source = await workspace.source(ref);
   const model = source.original;
   if (!model) return [];
-  // An entryName written `$name` goes both to the catalog entry and to the parameter.
-  const catalog = source.semantics && catalogDefinition(source.semantics, offset);
-  const parameter = source.semantics && parameterDefinition(source.semantics, offset);
-  if (catalog || parameter) return [...(catalog ?? []), ...(parameter ?? [])];
-  const hit = attributeAt(model.document, offset);
-  if (!hit) return [];
-  const { element, attribute } = hit;
-  if (element.name === 'ScenarioReference' && attribute.name === 'scenarioFileName') {
-    const link = linkOf(source, element);
-    const target = link ? resolvedTarget(link.resolution) : undefined;
-    return target ? [{ ref: target, range: { start: { line: 0, character: 0 }, end: { line: 0, character: 0 } } }] : [];
+  const target = targetAt(source, offset);
+  switch (target.kind) {
+    case 'catalogReference': {
+      // An entryName written `$name` goes both to the catalog entry and to the parameter.
+      const catalog = catalogDefinition(target);
+      const parameter = target.use && source.semantics && parameterDefinition(source.semantics, target.use);
+      if (catalog || parameter) return [...(catalog ?? []), ...(parameter ?? [])];
+      break;
+    }
+    case 'parameter':
+      return source.semantics ? parameterDefinition(source.semantics, target.use) : [];
+    case 'expression':
+      if (target.use && source.semantics) return parameterDefinition(source.semantics, target.use);
+      break;
   }
-  if (element.name === 'ManeuverGroupReference' && attribute.name === 'maneuverGroupName') {
-    const reference = ancestor(element.parent, 'ScenarioReference');
-    const link = reference ? linkOf(source, reference) : undefined;
-    const group = link ? groupLinkOf(link, element) : undefined;
-    if (!link?.source || !group?.target) return [];
-    const place = elementPlace(link.source, group.target.element);
-    return place ? [place] : [];
+  return syntacticDefinition(source, model, syntacticTarget(source, target, offset));
+}
+
+function syntacticDefinition(source: FlatSource, model: ScenarioModel, target: Target): Place[] {
+  switch (target.kind) {
+    case 'fileReference': {
+      const resolved = target.link ? resolvedTarget(target.link.resolution) : undefined;
+      return resolved ? [{ ref: resolved, range: { start: { line: 0, character: 0 }, end: { line: 0, character: 0 } } }] : [];
+    }
+    case 'groupReference': {
+      const { link, group } = target.linked ?? {};
+      if (!link?.source || !group?.target) return [];
+      const place = elementPlace(link.source, group.target.element);
+      return place ? [place] : [];
+    }
+    case 'key': {
+      const linkedSource = target.linked?.link.source;
+      const group = target.linked?.group;
+      if (!linkedSource || !group || !target.match) return [];
+      return attributesSetBy(group, target.match)
+        .map((attribute) => overridablePlace(linkedSource, attribute))
+        .filter((place): place is Place => place !== undefined);
+    }
+    case 'entityReference':
+      return entityPlaces(source, model, target.hit.attribute.value);
+    default:
+      return [];
   }
-  if (element.name === 'ParameterReference' && attribute.name === 'key') {
-    const found = keyMatchOf(source, element);
-    if (!found?.link.source) return [];
-    const linkedSource = found.link.source;
-    return attributesSetBy(found.group, found.match)
-      .map((target) => overridablePlace(linkedSource, target))
-      .filter((place): place is Place => place !== undefined);
-  }
-  if (attribute.name === 'entityRef') return entityPlaces(source, model, attribute.value);
-  return [];
 }
 
 function entityPlaces(source: FlatSource, model: ScenarioModel, name: string): Place[] {

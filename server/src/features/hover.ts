@@ -1,12 +1,13 @@
 import { Hover, MarkupKind } from 'vscode-languageserver/node';
-import { attributesSetBy, describeGroup, groupLinkOf, keyMatchOf, linkOf, overridablePlace, Place, resolvedTarget } from '../analysis';
-import { ancestor, attributeAt } from '../cursor';
+import { attributesSetBy, describeGroup, overridablePlace, Place, resolvedTarget } from '../analysis';
+import { FlatSource } from '../core/flatten';
 import { displayRef, SourceRef } from '../core/sources';
 import { OverridableAttribute } from '../core/keys';
-import { ManeuverGroupInfo } from '../core/model';
+import { ManeuverGroupInfo, ScenarioModel } from '../core/model';
+import { syntacticTarget, Target, targetAt } from '../target';
 import { code, escapeMarkdown } from '../markdown';
 import { Workspace } from '../workspace';
-import { schemaHover } from './schemaHover';
+import { schemaHoverAt } from './schemaHover';
 import { assignmentHover } from './catalogs';
 import { parameterHover } from './parameters';
 
@@ -24,67 +25,71 @@ function groupSummary(title: string, group: ManeuverGroupInfo): string {
   return [title, '', ...(lines.length ? lines : ['(no maneuvers)'])].join('\n');
 }
 
-/** Hover for the modular extension, else what the OpenSCENARIO schema says of the element or attribute name. */
+/** Hover for parameters and the modular extension, else what the OpenSCENARIO schema says of the element or attribute name. */
 export async function hover(workspace: Workspace, ref: SourceRef, offset: number): Promise<Hover | null> {
-  return (await modularHover(workspace, ref, offset)) ?? schemaHover(workspace, ref, offset);
-}
-
-/** Hover for keys (default, effective value and where each comes from) and for references (what the group does). */
-async function modularHover(workspace: Workspace, ref: SourceRef, offset: number): Promise<Hover | null> {
   const source = await workspace.source(ref);
   const model = source.original;
   if (!model) return null;
-  const semantic = source.semantics ? (assignmentHover(workspace, source.semantics, offset) ?? (await parameterHover(workspace, source.semantics, offset))) : undefined;
+  const target = targetAt(source, offset);
+  return (await modularHover(workspace, source, model, target, offset)) ?? schemaHoverAt(model.document, workspace.settings.schemaVersion, target);
+}
+
+/** Hover for parameters, keys (default, effective value and where each comes from) and references (what the group does). */
+async function modularHover(workspace: Workspace, source: FlatSource, model: ScenarioModel, target: Target, offset: number): Promise<Hover | null> {
+  const semantics = source.semantics;
+  const assignment = semantics && target.kind === 'catalogReference' ? assignmentHover(workspace, semantics, target) : undefined;
+  const semantic = assignment ?? (semantics ? await parameterHover(workspace, semantics, target) : undefined);
   if (semantic) return { contents: { kind: MarkupKind.Markdown, value: semantic.markdown }, range: model.document.lines.range(semantic.start, semantic.end) };
-  const hit = attributeAt(model.document, offset);
-  if (!hit) return null;
-  const { element, attribute } = hit;
+  const syntactic = syntacticTarget(source, target, offset);
+  if (syntactic.kind === 'nothing' || syntactic.kind === 'elementName') return null;
+  const { attribute } = syntactic.hit;
   const range = model.document.lines.range(attribute.valueStart, attribute.valueEnd);
   const reply = (value: string): Hover => ({ contents: { kind: MarkupKind.Markdown, value }, range });
 
-  if (element.name === 'ScenarioReference' && attribute.name === 'scenarioFileName') {
-    const link = linkOf(source, element);
-    if (!link) return null;
-    const target = resolvedTarget(link.resolution);
-    if (!target || !link.source?.model) return reply(`${code(attribute.value)} does not resolve`);
-    const groups = link.source.model.groups.map((group) => `- ${escapeMarkdown(group.name)}`);
-    // The file name is what the attribute already shows: name only where it was found.
-    return reply([`found at ${code(displayRef(target, workspace.folders[0]))}`, '', 'ManeuverGroups:', ...groups].join('\n'));
-  }
-  if (element.name === 'ManeuverGroupReference' && attribute.name === 'maneuverGroupName') {
-    const reference = ancestor(element.parent, 'ScenarioReference');
-    const link = reference ? linkOf(source, reference) : undefined;
-    const group = link ? groupLinkOf(link, element) : undefined;
-    if (!link?.source || !group?.target) return null;
-    return reply(groupSummary(`ManeuverGroup **${escapeMarkdown(group.target.name)}** of ${code(link.info.fileName)} (${group.overridable.length} overridable attributes)`, group.target));
-  }
-  if (element.name === 'ParameterReference' && attribute.name === 'key') {
-    const found = keyMatchOf(source, element);
-    const linkedSource = found?.link.source;
-    const plan = found?.group.plan;
-    if (!found || !linkedSource || !plan) return null;
-    const { group, match } = found;
-    const key = code(attribute.value);
-    if (match.targets.length === 0) return reply(`key ${key} overrides nothing in group ${code(group.info.name)}`);
-    const sets = attributesSetBy(group, match);
-    const lines = [sets.length > 0 ? `key ${key} sets ${sets.length} attribute${sets.length === 1 ? '' : 's'}:` : `key ${key} sets nothing: a more specific key sets every attribute it matches`];
-    if (sets.length > 0) lines.push('');
-    for (const target of sets) {
-      const declared = where(workspace, overridablePlace(linkedSource, target));
-      lines.push(`- ${code(`${target.path.join('.')}.${target.attributeName}`)}: default ${defaultOf(target)} declared at ${declared}; takes effect: ${code(match.parameter.value)} (this key)`);
+  switch (syntactic.kind) {
+    case 'fileReference': {
+      const link = syntactic.link;
+      if (!link) return null;
+      const resolved = resolvedTarget(link.resolution);
+      if (!resolved || !link.source?.model) return reply(`${code(attribute.value)} does not resolve`);
+      const groups = link.source.model.groups.map((group) => `- ${escapeMarkdown(group.name)}`);
+      // The file name is what the attribute already shows: name only where it was found.
+      return reply([`found at ${code(displayRef(resolved, workspace.folders[0]))}`, '', 'ManeuverGroups:', ...groups].join('\n'));
     }
-    const taken = match.targets.filter((target) => !sets.includes(target));
-    if (taken.length > 0) lines.push('', `Matched, but set by a more specific key:`, '');
-    for (const target of taken) {
-      const applied = plan.applied.get(target);
-      const by = applied ? `${code(applied.value)} from ${code(applied.key)} on line ${model.document.lines.positionAt(applied.element.start).line + 1}` : 'its default';
-      lines.push(`- ${code(`${target.path.join('.')}.${target.attributeName}`)}: ${by}`);
+    case 'groupReference': {
+      const { link, group } = syntactic.linked ?? {};
+      if (!link?.source || !group?.target) return null;
+      return reply(groupSummary(`ManeuverGroup **${escapeMarkdown(group.target.name)}** of ${code(link.info.fileName)} (${group.overridable.length} overridable attributes)`, group.target));
     }
-    return reply(lines.join('\n'));
+    case 'key': {
+      const linkedSource = syntactic.linked?.link.source;
+      const group = syntactic.linked?.group;
+      const match = syntactic.match;
+      const plan = group?.plan;
+      if (!group || !match || !linkedSource || !plan) return null;
+      const key = code(attribute.value);
+      if (match.targets.length === 0) return reply(`key ${key} overrides nothing in group ${code(group.info.name)}`);
+      const sets = attributesSetBy(group, match);
+      const lines = [sets.length > 0 ? `key ${key} sets ${sets.length} attribute${sets.length === 1 ? '' : 's'}:` : `key ${key} sets nothing: a more specific key sets every attribute it matches`];
+      if (sets.length > 0) lines.push('');
+      for (const set of sets) {
+        const declared = where(workspace, overridablePlace(linkedSource, set));
+        lines.push(`- ${code(`${set.path.join('.')}.${set.attributeName}`)}: default ${defaultOf(set)} declared at ${declared}; takes effect: ${code(match.parameter.value)} (this key)`);
+      }
+      const taken = match.targets.filter((candidate) => !sets.includes(candidate));
+      if (taken.length > 0) lines.push('', `Matched, but set by a more specific key:`, '');
+      for (const overridden of taken) {
+        const applied = plan.applied.get(overridden);
+        const by = applied ? `${code(applied.value)} from ${code(applied.key)} on line ${model.document.lines.positionAt(applied.element.start).line + 1}` : 'its default';
+        lines.push(`- ${code(`${overridden.path.join('.')}.${overridden.attributeName}`)}: ${by}`);
+      }
+      return reply(lines.join('\n'));
+    }
+    case 'entityReference': {
+      const entity = model.entities.find((candidate) => candidate.name === attribute.value);
+      return reply(entity ? `entity ${code(entity.name)} (${entity.element.children[0]?.name ?? 'ScenarioObject'})` : `entity ${code(attribute.value)} is not declared in this file`);
+    }
+    default:
+      return null;
   }
-  if (attribute.name === 'entityRef') {
-    const entity = model.entities.find((candidate) => candidate.name === attribute.value);
-    return reply(entity ? `entity ${code(entity.name)} (${entity.element.children[0]?.name ?? 'ScenarioObject'})` : `entity ${code(attribute.value)} is not declared in this file`);
-  }
-  return null;
 }

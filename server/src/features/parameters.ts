@@ -2,22 +2,12 @@ import { CompletionItem, CompletionItemKind, LSPErrorCodes, ResponseError, TextE
 import { TextDocument } from 'vscode-languageserver-textdocument';
 import { composedValues } from '../core/flatten/carry';
 import { FlatSource, LinkedGroupReference } from '../core/flatten';
-import {
-  Declaration,
-  declarationAt,
-  DocumentSemantics,
-  formatValue,
-  parametersInScopeAt,
-  parameterUseAt,
-  Provenance,
-  referencesOf,
-  valueAt,
-  ValueResult,
-} from '../core/semantics';
+import { Declaration, DocumentSemantics, formatValue, ParameterUse, parametersInScopeAt, Provenance, referencesOf, ValueResult } from '../core/semantics';
 import { displayRef, refId, SourceRef } from '../core/sources';
 import { XmlAttribute, XmlElement } from '../core/xml';
 import { Place } from '../analysis';
-import { ValueContext } from '../cursor';
+import { ValueContext } from '../core/cursor';
+import { dollarPrefix, Target } from '../target';
 import { Workspace } from '../workspace';
 
 /**
@@ -41,31 +31,27 @@ function declarationPlace(semantics: DocumentSemantics, declaration: Declaration
   return { ref: semantics.ref, range };
 }
 
-/** Where the `$name` (or parameterRef) at the offset is declared; undefined when the offset holds none. */
-export function parameterDefinition(semantics: DocumentSemantics, offset: number): Place[] | undefined {
-  const use = parameterUseAt(semantics, offset);
-  if (!use) return undefined;
+/** Where a `$name` (or parameterRef) is declared; empty when it is declared nowhere in scope. */
+export function parameterDefinition(semantics: DocumentSemantics, use: ParameterUse): Place[] {
   return use.declaration ? [declarationPlace(semantics, use.declaration)] : [];
 }
 
-/** Every use of the declaration named at the offset (by a use or by its own name), optionally with the declaration. */
-export function parameterReferences(semantics: DocumentSemantics, offset: number, includeDeclaration: boolean): Place[] | undefined {
-  const declaration = declarationAt(semantics, offset);
-  if (!declaration) return undefined;
+/** Every use of the declaration, optionally with the declaration. */
+export function parameterReferences(semantics: DocumentSemantics, declaration: Declaration, includeDeclaration: boolean): Place[] {
   const lines = semantics.model.document.lines;
   const uses = referencesOf(semantics, declaration).map((use) => ({ ref: semantics.ref, range: lines.range(use.start, use.end) }));
   return includeDeclaration ? [declarationPlace(semantics, declaration), ...uses] : uses;
 }
 
-/** The name's own offsets (without the `$`) at the offset, for prepareRename. */
-export function parameterRenameRange(semantics: DocumentSemantics, offset: number): { start: number; end: number; name: string } | undefined {
-  const use = parameterUseAt(semantics, offset);
+/** The name's own offsets (without the `$`) the target names, for prepareRename. */
+export function parameterRenameRange(target: Target): { start: number; end: number; name: string } | undefined {
+  const use = target.kind === 'parameter' || target.kind === 'expression' || target.kind === 'catalogReference' ? target.use : undefined;
   if (use) {
     if (!use.declaration) return undefined;
     const start = use.end - use.name.length;
     return { start, end: use.end, name: use.name };
   }
-  const declaration = declarationAt(semantics, offset);
+  const declaration = target.kind === 'declaration' ? target.declaration : undefined;
   const name = declaration?.nameAttribute;
   return declaration && name ? { start: name.valueStart, end: name.valueEnd, name: declaration.name } : undefined;
 }
@@ -73,11 +59,10 @@ export function parameterRenameRange(semantics: DocumentSemantics, offset: numbe
 export const PARAMETER_NAME = /^[A-Za-z_][A-Za-z0-9_]*$/;
 
 /**
- * Renames the parameter named at the offset: its declaration and exactly its uses. A same-named
+ * Renames a parameter: its declaration and exactly its uses. A same-named
  * parameter of another scope is another Declaration of the model, so it is left alone.
  */
-export function renameParameter(workspace: Workspace, semantics: DocumentSemantics, offset: number, newName: string): WorkspaceEdit | undefined {
-  const declaration = declarationAt(semantics, offset);
+export function renameParameter(workspace: Workspace, semantics: DocumentSemantics, declaration: Declaration | undefined, newName: string): WorkspaceEdit | undefined {
   if (!declaration?.nameAttribute) return undefined;
   const name = newName.startsWith('$') ? newName.slice(1) : newName;
   if (!PARAMETER_NAME.test(name)) throw new ResponseError(LSPErrorCodes.RequestFailed, `'${newName}' is not a parameter name (letters, digits and _, not starting with a digit)`);
@@ -91,11 +76,6 @@ export function renameParameter(workspace: Workspace, semantics: DocumentSemanti
     edits.push(TextEdit.replace(lines.range(use.end - use.name.length, use.end), name));
   }
   return { changes: { [workspace.uriOf(semantics.ref)]: edits } };
-}
-
-/** The `$` and name typed before the cursor in an attribute value, when the cursor is completing a parameter. */
-export function dollarPrefix(context: ValueContext): string | undefined {
-  return /\$[A-Za-z0-9_]*$/.exec(context.prefix)?.[0];
 }
 
 export function describeValue(result: ValueResult): string {
@@ -175,12 +155,14 @@ async function composedLines(workspace: Workspace, semantics: DocumentSemantics,
  * Hover on a `$name` or an attribute written `${...}`: type, value and where the value comes from
  * (the declarations of every parameter it reads).
  */
-export async function parameterHover(workspace: Workspace, semantics: DocumentSemantics, offset: number): Promise<{ markdown: string; start: number; end: number } | undefined> {
-  const found = valueAt(semantics, offset);
-  const use = parameterUseAt(semantics, offset);
+export async function parameterHover(workspace: Workspace, semantics: DocumentSemantics, target: Target): Promise<{ markdown: string; start: number; end: number } | undefined> {
+  const hit = target.kind === 'nothing' || target.kind === 'elementName' ? undefined : target.hit;
+  const found = hit?.inValue ? { element: hit.element, attribute: hit.attribute } : undefined;
+  const use = target.kind === 'parameter' || target.kind === 'expression' || target.kind === 'catalogReference' ? target.use : undefined;
   const site = found ? semantics.model.siteOf.get(found.attribute) : undefined;
   if (found && site) {
-    const { element, attribute: attr, result } = found;
+    const { element, attribute: attr } = found;
+    const result = semantics.evaluator.attributeValue(element, attr);
     const lines: string[] = [];
     const written = attr.value.trim();
     lines.push(site.form.kind === 'expression' ? `\`${written}\` = **${result.ok ? formatValue(result.value) : '?'}**${result.ok ? ` (${result.type})` : ''}` : `**${written}** = ${describeValue(result)}`);
@@ -223,7 +205,7 @@ export async function parameterHover(workspace: Workspace, semantics: DocumentSe
       return { markdown: [`**${found.attribute.value}** as written`, '', 'in the files that import it:', ...composed].join('\n'), start: found.attribute.valueStart, end: found.attribute.valueEnd };
     }
   }
-  const declaration = declarationAt(semantics, offset);
+  const declaration = target.kind === 'declaration' ? target.declaration : undefined;
   if (declaration?.nameAttribute) {
     const value = semantics.evaluator.declarationValue(declaration);
     const count = referencesOf(semantics, declaration).length;

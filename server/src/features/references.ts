@@ -1,17 +1,18 @@
 import * as path from 'node:path';
-import { Location, TextEdit, WorkspaceEdit } from 'vscode-languageserver/node';
+import { Location, LSPErrorCodes, ResponseError, TextEdit, WorkspaceEdit } from 'vscode-languageserver/node';
 import { FlatSource, originOf } from '../core/flatten';
-import { PARAMETER_ATTRIBUTES, parseParameterAttributeNames } from '../core/model';
 import { refId, SourceRef } from '../core/sources';
 import { Range } from '../core/text';
 import { XmlElement } from '../core/xml';
-import { groupLinkOf, linkOf, listedPlace, placeIn, Place, resolvedTarget } from '../analysis';
-import { ancestor, attributeAt } from '../cursor';
+import { listedPlace, placeIn, Place, resolvedTarget } from '../analysis';
+import { declarationOf, SyntacticTarget, syntacticTarget, targetAt } from '../target';
 import { filePathOf } from '../uris';
 import { Workspace } from '../workspace';
+import { entryParameterOf, entryParameterReferences, entryParameterRenameRange, renameEntryParameter } from './catalogParameters';
+import { parameterReferences, parameterRenameRange, renameParameter } from './parameters';
 
 /** A group or an overridable attribute, identified by the file and element it is written in. */
-export type Target =
+export type NameTarget =
   | { kind: 'group'; ref: SourceRef; elementStart: number; name: string; declaration: Place }
   | { kind: 'attribute'; ref: SourceRef; elementStart: number; name: string; declaration: Place };
 
@@ -20,48 +21,95 @@ function sameElement(source: FlatSource, element: XmlElement, ref: SourceRef, el
   return refId(origin.source.ref) === refId(ref) && origin.element.start === elementStart;
 }
 
-/** The group or attribute under the cursor: at its declaration, or at a reference or key that reaches it. */
-export async function targetAt(workspace: Workspace, ref: SourceRef, offset: number): Promise<Target | undefined> {
-  const source = await workspace.source(ref);
-  const model = source.original;
-  if (!model) return undefined;
-  const hit = attributeAt(model.document, offset);
-  if (!hit) return undefined;
-  const { element, attribute } = hit;
+/** The group or attribute a target names: at its declaration, or at a reference or key that reaches it. */
+export function nameTargetOf(source: FlatSource, target: SyntacticTarget): NameTarget | undefined {
+  const ref = source.ref;
   const place = (start: number, end: number) => placeIn(source, start, end) as Place;
-  if (element.name === 'ManeuverGroup' && attribute.name === 'name') {
-    return { kind: 'group', ref, elementStart: element.start, name: attribute.value, declaration: place(attribute.valueStart, attribute.valueEnd) };
+  switch (target.kind) {
+    case 'groupDeclaration': {
+      const { element, attribute } = target.hit;
+      return { kind: 'group', ref, elementStart: element.start, name: attribute.value, declaration: place(attribute.valueStart, attribute.valueEnd) };
+    }
+    case 'listedAttribute':
+      return { kind: 'attribute', ref, elementStart: target.hit.element.start, name: target.name, declaration: place(target.start, target.end) };
+    case 'groupReference': {
+      const { link, group } = target.linked ?? {};
+      if (!link?.source || !group?.target) return undefined;
+      const origin = originOf(link.source, group.target.element);
+      const name = origin.element.attributes.find((candidate) => candidate.name === 'name');
+      const declaration = name ? placeIn(origin.source, name.valueStart, name.valueEnd) : placeIn(origin.source, origin.element.start, origin.element.nameEnd);
+      return declaration ? { kind: 'group', ref: origin.source.ref, elementStart: origin.element.start, name: name?.value ?? '', declaration } : undefined;
+    }
+    case 'key': {
+      const { link, group } = target.linked ?? {};
+      if (!link?.source || !group?.target) return undefined;
+      const first = target.match?.targets[0];
+      if (!first) return undefined;
+      const origin = originOf(link.source, first.element);
+      const declaration = listedPlace(origin.source, origin.element, first.attributeName);
+      return declaration ? { kind: 'attribute', ref: origin.source.ref, elementStart: origin.element.start, name: first.attributeName, declaration } : undefined;
+    }
+    default:
+      return undefined;
   }
-  if (attribute.name === PARAMETER_ATTRIBUTES) {
-    const listed = parseParameterAttributeNames(element, attribute).find((name) => offset >= name.start && offset <= name.end);
-    if (listed) return { kind: 'attribute', ref, elementStart: element.start, name: listed.name, declaration: place(listed.start, listed.end) };
-    return undefined;
+}
+
+/** References of what the cursor names: a catalog entry's parameter, a parameter, a group or an overridable attribute. */
+export async function referencesAt(workspace: Workspace, ref: SourceRef, offset: number, includeDeclaration: boolean, checkCancelled: () => void): Promise<Place[]> {
+  const source = await workspace.source(ref);
+  const target = targetAt(source, offset);
+  const semantics = source.semantics;
+  // A catalog entry's parameter is also set from other files (CatalogReference ParameterAssignments).
+  const entryParameter = semantics ? await entryParameterOf(workspace, semantics, target) : undefined;
+  if (entryParameter) return entryParameterReferences(workspace, entryParameter, includeDeclaration);
+  const declaration = declarationOf(target);
+  if (semantics && declaration) return parameterReferences(semantics, declaration, includeDeclaration);
+  const subject = nameTargetOf(source, syntacticTarget(source, target, offset));
+  if (!subject) return [];
+  checkCancelled();
+  const places = (await usagesOf(workspace, subject)).map((usage) => usage.place);
+  checkCancelled();
+  if (includeDeclaration) places.unshift(subject.declaration);
+  return places;
+}
+
+/** The range a rename at the cursor replaces, and its current text; null where nothing renameable stands. */
+export async function prepareRenameAt(workspace: Workspace, ref: SourceRef, offset: number): Promise<{ range: Range; placeholder: string } | null> {
+  const source = await workspace.source(ref);
+  const target = targetAt(source, offset);
+  const lines = source.original?.document.lines;
+  const semantics = source.semantics;
+  const assigned = entryParameterRenameRange(target);
+  const parameter = semantics ? (parameterRenameRange(target) ?? (assigned && (await entryParameterOf(workspace, semantics, target)) ? assigned : undefined)) : undefined;
+  if (parameter && lines) return { range: lines.range(parameter.start, parameter.end), placeholder: parameter.name };
+  const subject = nameTargetOf(source, syntacticTarget(source, target, offset));
+  if (!subject || subject.kind !== 'group') return null;
+  if (refId(subject.ref) === refId(ref)) return { range: subject.declaration.range, placeholder: subject.name };
+  const text = source.original?.document.text ?? '';
+  // The reference under the cursor: the whole maneuverGroupName value.
+  let start = offset;
+  let end = offset;
+  while (start > 0 && !/["']/.test(text[start - 1])) start--;
+  while (end < text.length && !/["']/.test(text[end])) end++;
+  return lines ? { range: lines.range(start, end), placeholder: text.slice(start, end) } : null;
+}
+
+/** Renames what the cursor names: a catalog entry's parameter, a parameter, or a ManeuverGroup with every reference to it. */
+export async function renameAt(workspace: Workspace, ref: SourceRef, offset: number, newName: string, checkCancelled: () => void): Promise<WorkspaceEdit> {
+  const source = await workspace.source(ref);
+  const target = targetAt(source, offset);
+  const semantics = source.semantics;
+  const entryParameter = semantics ? await entryParameterOf(workspace, semantics, target) : undefined;
+  if (entryParameter) return renameEntryParameter(workspace, entryParameter, newName);
+  const parameterEdit = semantics ? renameParameter(workspace, semantics, declarationOf(target), newName) : undefined;
+  if (parameterEdit) return parameterEdit;
+  const subject = nameTargetOf(source, syntacticTarget(source, target, offset));
+  if (!subject || subject.kind !== 'group') throw new ResponseError(LSPErrorCodes.RequestFailed, 'only ManeuverGroup and parameter names can be renamed');
+  if (subject.ref.entries.length > 0 && !workspace.editablePackages) {
+    throw new ResponseError(LSPErrorCodes.RequestFailed, 'the group is inside a .mosc package, and this editor cannot write into packages');
   }
-  const declarationAttribute = element.attributes.find((candidate) => candidate.name === PARAMETER_ATTRIBUTES);
-  const declaredHere = declarationAttribute && parseParameterAttributeNames(element, declarationAttribute).some((name) => name.name === attribute.name);
-  if (declaredHere && offset <= attribute.nameEnd) {
-    return { kind: 'attribute', ref, elementStart: element.start, name: attribute.name, declaration: place(attribute.nameStart, attribute.nameEnd) };
-  }
-  const groupReference = element.name === 'ManeuverGroupReference' ? element : ancestor(element.parent, 'ManeuverGroupReference');
-  const reference = ancestor(groupReference?.parent, 'ScenarioReference');
-  const link = reference ? linkOf(source, reference) : undefined;
-  const linked = link && groupReference ? groupLinkOf(link, groupReference) : undefined;
-  if (!link?.source || !linked?.target) return undefined;
-  if (element.name === 'ManeuverGroupReference' && attribute.name === 'maneuverGroupName') {
-    const origin = originOf(link.source, linked.target.element);
-    const name = origin.element.attributes.find((candidate) => candidate.name === 'name');
-    const declaration = name ? placeIn(origin.source, name.valueStart, name.valueEnd) : placeIn(origin.source, origin.element.start, origin.element.nameEnd);
-    return declaration ? { kind: 'group', ref: origin.source.ref, elementStart: origin.element.start, name: name?.value ?? '', declaration } : undefined;
-  }
-  if (element.name === 'ParameterReference' && attribute.name === 'key') {
-    const match = linked.plan?.matches.find((candidate) => candidate.parameter.element === element);
-    const first = match?.targets[0];
-    if (!first) return undefined;
-    const origin = originOf(link.source, first.element);
-    const declaration = listedPlace(origin.source, origin.element, first.attributeName);
-    return declaration ? { kind: 'attribute', ref: origin.source.ref, elementStart: origin.element.start, name: first.attributeName, declaration } : undefined;
-  }
-  return undefined;
+  checkCancelled();
+  return renameGroup(workspace, subject, newName.includes('.') ? newName.slice(newName.lastIndexOf('.') + 1) : newName);
 }
 
 export interface Usage {
@@ -71,7 +119,7 @@ export interface Usage {
 }
 
 /** Every maneuverGroupName or key in the workspace that reaches the target, through packages too. */
-export async function usagesOf(workspace: Workspace, target: Target): Promise<Usage[]> {
+export async function usagesOf(workspace: Workspace, target: NameTarget): Promise<Usage[]> {
   const found = new Map<string, Usage>();
   const visited = new Set<string>();
   const visit = (source: FlatSource) => {
@@ -124,7 +172,7 @@ function addEdit(edit: WorkspaceEdit, workspace: Workspace, ref: SourceRef, rang
 }
 
 /** Renames a group and every maneuverGroupName reaching it, dotted names keeping their prefix. */
-export async function renameGroup(workspace: Workspace, target: Target, newName: string): Promise<WorkspaceEdit> {
+export async function renameGroup(workspace: Workspace, target: NameTarget, newName: string): Promise<WorkspaceEdit> {
   const edit: WorkspaceEdit = { changes: {} };
   addEdit(edit, workspace, target.ref, target.declaration.range, newName);
   for (const usage of await usagesOf(workspace, target)) {

@@ -1,22 +1,16 @@
 import { CompletionItem, CompletionItemKind, CompletionItemTag, InsertTextFormat, MarkupKind } from 'vscode-languageserver/node';
-import { TextDocument } from 'vscode-languageserver-textdocument';
 import { SchemaIndex } from '../core/schema/index';
 import { AttributeDeclaration, ElementParticle } from '../core/schema/model';
 import { allowedChildren, indexFor, typeByElementName, typeOfElement } from '../core/schema/query';
 import { elementSkeleton, skeletonText } from '../core/schema/skeleton';
 import { builtinOf, describeType, enumerationValues } from '../core/schema/values';
-import { SourceRef } from '../core/sources';
-import { attribute, descendants, elementAt, parseXml, XmlDocument, XmlElement } from '../core/xml';
-import { attributeNameContextAt, elementNameContextAt, ValueContext } from '../cursor';
+import { attribute, descendants, elementAt, XmlDocument, XmlElement } from '../core/xml';
+import { ValueContext } from '../core/cursor';
+import { CompletionTarget } from '../target';
 import { Workspace } from '../workspace';
 
-/** The parse of the document's current text: the workspace's when it is up to date, else a fresh one. */
-export async function currentDocument(workspace: Workspace, ref: SourceRef, document: TextDocument): Promise<XmlDocument> {
-  const text = document.getText();
-  const source = await workspace.source(ref);
-  const parsed = source.original?.document;
-  return parsed && parsed.text === text ? parsed : parseXml(text);
-}
+// Code actions read the current parse from here.
+export { currentDocument } from '../target';
 
 function escapeSnippet(value: string): string {
   return value.replace(/[$}\\|,]/g, (char) => `\\${char}`);
@@ -62,7 +56,7 @@ function versionNote(since: string | undefined, deprecated: boolean, deprecatedS
 }
 
 /** Child elements allowed at the cursor, in content-model order with the required ones first. */
-function elementItems(index: SchemaIndex, document: XmlDocument, text: string, start: number, offset: number): CompletionItem[] {
+function elementItems(index: SchemaIndex, document: XmlDocument, start: number, offset: number): CompletionItem[] {
   let parent = elementAt(document, offset);
   // A half-typed `<Nam` parses as an element of its own: its parent is where the child goes.
   while (parent && parent.start >= start && parent.parent) parent = parent.parent;
@@ -72,7 +66,7 @@ function elementItems(index: SchemaIndex, document: XmlDocument, text: string, s
   const preceding = parent.children.filter((child) => child.end <= start).map((child) => child.name);
   const following = parent.children.find((child) => child.start >= offset)?.name;
   const range = { start: positionOf(document, start), end: positionOf(document, offset) };
-  const typedOpen = text[start] === '<';
+  const typedOpen = document.text[start] === '<';
   // The modular extension's elements come as whole-reference snippets from the completion of references.
   const allowed = allowedChildren(index, typeName, preceding, following).filter(({ particle }) => !particle.type.startsWith('#'));
   return allowed.map(({ particle, required }, position) => {
@@ -181,14 +175,17 @@ function valueItems(index: SchemaIndex, document: XmlDocument, context: ValueCon
 }
 
 /** Schema completion at the cursor; empty when schema support is off or nothing in the schema applies. */
-export async function schemaCompletion(workspace: Workspace, ref: SourceRef, document: TextDocument, offset: number, valueContext: ValueContext | undefined): Promise<CompletionItem[]> {
-  const parsed = await currentDocument(workspace, ref, document);
+export function schemaCompletion(workspace: Workspace, parsed: XmlDocument, target: CompletionTarget, offset: number): CompletionItem[] {
   const index = indexFor(parsed, workspace.settings.schemaVersion);
   if (!index) return [];
-  const text = document.getText();
-  if (valueContext) return valueItems(index, parsed, valueContext);
-  const attributeContext = attributeNameContextAt(text, offset);
-  if (attributeContext) return attributeItems(index, parsed, attributeContext, offset);
-  const elementContext = elementNameContextAt(text, offset);
-  return elementContext ? elementItems(index, parsed, text, elementContext.start, offset) : [];
+  switch (target.kind) {
+    case 'nothing':
+      return [];
+    case 'attributeName':
+      return attributeItems(index, parsed, target, offset);
+    case 'elementName':
+      return elementItems(index, parsed, target.start, offset);
+    default:
+      return valueItems(index, parsed, target.context);
+  }
 }

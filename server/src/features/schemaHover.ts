@@ -3,9 +3,8 @@ import { SchemaIndex } from '../core/schema/index';
 import { AttributeDeclaration, ElementParticle } from '../core/schema/model';
 import { indexFor, particleOfElement, typeOfElement } from '../core/schema/query';
 import { describeType } from '../core/schema/values';
-import { SourceRef } from '../core/sources';
-import { elementAt, XmlDocument } from '../core/xml';
-import { Workspace } from '../workspace';
+import { XmlDocument } from '../core/xml';
+import { Target } from '../target';
 
 /** The particle's occurrence in the schema's own terms: within a choice "required" would mislead. */
 function occurrence(particle: ElementParticle): string {
@@ -45,22 +44,17 @@ function attributeHover(index: SchemaIndex, elementName: string, declaration: At
 }
 
 /** Hover on an element's tag name or an attribute's name: what the schema of the file's version says. */
-export function schemaHoverAt(document: XmlDocument, setting: Parameters<typeof indexFor>[1], offset: number): Hover | null {
+export function schemaHoverAt(document: XmlDocument, setting: Parameters<typeof indexFor>[1], target: Target): Hover | null {
   const index = indexFor(document, setting);
-  const element = elementAt(document, offset);
-  if (!index || !element || offset > element.startTagEnd) return null;
+  if (!index) return null;
   const reply = (value: string, start: number, end: number): Hover => ({ contents: { kind: MarkupKind.Markdown, value }, range: document.lines.range(start, end) });
-  if (offset >= element.start && offset <= element.nameEnd) {
+  if (target.kind === 'elementName') {
+    const { element } = target;
     const particle = particleOfElement(index, element);
     return particle ? reply(elementHover(index, particle, element.parent?.name), element.start + 1, element.nameEnd) : null;
   }
-  const hit = element.attributes.find((candidate) => offset >= candidate.nameStart && offset <= candidate.nameEnd);
-  const typeName = hit ? typeOfElement(index, element) : undefined;
-  const declaration = hit && typeName ? index.attribute(typeName, hit.name) : undefined;
-  return hit && declaration ? reply(attributeHover(index, element.name, declaration), hit.nameStart, hit.nameEnd) : null;
-}
-
-export async function schemaHover(workspace: Workspace, ref: SourceRef, offset: number): Promise<Hover | null> {
-  const document = (await workspace.source(ref)).original?.document;
-  return document ? schemaHoverAt(document, workspace.settings.schemaVersion, offset) : null;
+  const hit = target.kind === 'nothing' || target.hit === undefined || target.hit.inValue ? undefined : target.hit;
+  const typeName = hit ? typeOfElement(index, hit.element) : undefined;
+  const declaration = hit && typeName ? index.attribute(typeName, hit.attribute.name) : undefined;
+  return hit && declaration ? reply(attributeHover(index, hit.element.name, declaration), hit.attribute.nameStart, hit.attribute.nameEnd) : null;
 }

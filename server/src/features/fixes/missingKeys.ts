@@ -4,7 +4,7 @@ import { keyMatches } from '../../core/keys';
 import { SourceRef } from '../../core/sources';
 import { elementAt, escapeAttributeValue } from '../../core/xml';
 import { groupLinkOf, keyChoices, linkOf } from '../../analysis';
-import { ancestor } from '../../cursor';
+import { ancestor } from '../../core/cursor';
 import { Workspace } from '../../workspace';
 import { indentOfLine } from './fix';
 
