@@ -55,13 +55,22 @@ export async function main(argv: string[], io: CliOutput): Promise<number> {
   }
 }
 
+/** Standard output, set up on first use: a run that writes only files never pays for opening it. */
+function standardOutput(): NodeJS.WriteStream {
+  if (!stdoutReady) {
+    stdoutReady = true;
+    // A closed pipe (`| head`) ends the output quietly instead of with a stack trace.
+    process.stdout.on('error', (error: NodeJS.ErrnoException) => {
+      if (error.code === 'EPIPE') process.exit(process.exitCode ?? 0);
+    });
+  }
+  return process.stdout;
+}
+let stdoutReady = false;
+
 if (require.main === module) {
-  // A closed pipe (`| head`) ends the output quietly instead of with a stack trace.
-  process.stdout.on('error', (error: NodeJS.ErrnoException) => {
-    if (error.code === 'EPIPE') process.exit(process.exitCode ?? 0);
-  });
   main(process.argv.slice(2), {
-    out: (text) => process.stdout.write(text.endsWith('\n') ? text : text + '\n'),
+    out: (text) => standardOutput().write(text.endsWith('\n') ? text : text + '\n'),
     err: (text) => process.stderr.write(text + '\n'),
   }).then(
     (code) => {
