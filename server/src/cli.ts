@@ -68,7 +68,8 @@ function standardOutput(): NodeJS.WriteStream {
 }
 let stdoutReady = false;
 
-if (require.main === module) {
+/** Runs the process's command line and sets its exit code. */
+export function runFromCommandLine(): void {
   main(process.argv.slice(2), {
     out: (text) => standardOutput().write(text.endsWith('\n') ? text : text + '\n'),
     err: (text) => process.stderr.write(text + '\n'),
@@ -83,3 +84,6 @@ if (require.main === module) {
     },
   );
 }
+
+// Bundled, the program starts in cli/start.ts (dist/cli.js); from source it may start here.
+if (require.main === module) runFromCommandLine();
