@@ -2,6 +2,7 @@ import * as fs from 'node:fs';
 import Module from 'node:module';
 import * as path from 'node:path';
 import * as vm from 'node:vm';
+import type * as Cli from '../cli';
 
 /**
  * The program's entry (dist/cli.js): it runs the CLI's bundle (dist/cli-main.js) from V8's code cache,
@@ -16,7 +17,7 @@ export const CLI_BUNDLE = 'cli-main.js';
 export const CLI_CODE_CACHE = 'cli-main.js.cache';
 
 export interface LoadedBundle {
-  exports: { runFromCommandLine: () => void; main: (argv: string[], io: { out: (text: string) => void; err: (text: string) => void }) => Promise<number> };
+  exports: Pick<typeof Cli, 'main' | 'runFromCommandLine'>;
   script: vm.Script;
 }
 
