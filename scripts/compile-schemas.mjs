@@ -243,8 +243,13 @@ export function compileSchemas(directory = path.join(root, 'schemas')) {
   return { source: 'ASAM OpenSCENARIO XML schemas (schemas/*.xsd), distributable under the ASAM license terms', schemas };
 }
 
+/** dist/openscenario-schemas.json: each version's model as JSON text of its own, parsed only when that version is checked (server/src/core/schema/model.ts). */
+export function schemaModelFile(compiled = compileSchemas()) {
+  return JSON.stringify({ source: compiled.source, schemas: Object.fromEntries(compiled.schemas.map((schema) => [schema.version, JSON.stringify(schema)])) });
+}
+
 if (process.argv[1] && path.resolve(process.argv[1]) === fileURLToPath(import.meta.url)) {
   const out = process.argv[2] ?? path.join(root, 'dist', 'openscenario-schemas.json');
   mkdirSync(path.dirname(out), { recursive: true });
-  writeFileSync(out, JSON.stringify(compileSchemas()));
+  writeFileSync(out, schemaModelFile());
 }

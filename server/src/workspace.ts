@@ -1,4 +1,3 @@
-import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { AnalysisResult, Flattener, FlatSource, SchemaOptions } from './core/flatten';
 import { decodeScenario } from './core/encoding';
@@ -11,6 +10,7 @@ import { OpenDocument, OpenDocuments } from './documents';
 import { UriResolver, refToUri } from './uris';
 import { DEFAULT_FORMAT_OPTIONS } from './core/format';
 import { isSimulator, Simulator } from './core/profiles/simulators';
+import { SCENARIO_FILE, walkFiles } from './core/walk';
 
 export interface ServerSettings {
   /** Directories searched after SCENARIO_PATH. */
@@ -147,8 +147,6 @@ function decodeOrUndefined(bytes: Uint8Array): string | undefined {
   }
 }
 
-const SKIPPED_FOLDERS = new Set(['node_modules', '.git', 'dist', 'out', '.vscode-test']);
-
 /**
  * Group names (with ranges) and whether references occur, by a scan of the text: the index of a
  * large workspace is built without keeping or even building parse trees. Comments are skipped.
@@ -165,28 +163,12 @@ export function scanScenario(text: string, ref: SourceRef): Pick<IndexedFile, 'g
   return { groups, modular: /<ScenarioReference\b/.test(text) };
 }
 
+/** Build output and test runner caches of an editor workspace are not scenarios of its own. */
+const INDEX_SKIPPED_FOLDERS = new Set(['node_modules', '.git', 'dist', 'out', '.vscode-test']);
+
 /** Every `.xosc` and `.mosc` below the folders, skipping build and dependency folders; never throws. */
-export async function listScenarioFiles(folders: string[], limit = 100_000): Promise<string[]> {
-  const found: string[] = [];
-  const pending = [...folders];
-  while (pending.length > 0 && found.length < limit) {
-    const folder = pending.pop() as string;
-    let entries: fs.Dirent[];
-    try {
-      entries = await fs.promises.readdir(folder, { withFileTypes: true });
-    } catch {
-      continue;
-    }
-    for (const entry of entries) {
-      const full = path.join(folder, entry.name);
-      if (entry.isDirectory()) {
-        if (!SKIPPED_FOLDERS.has(entry.name) && !entry.name.startsWith('.')) pending.push(full);
-      } else if (entry.isFile() && /\.(xosc|mosc)$/i.test(entry.name)) {
-        found.push(full);
-      }
-    }
-  }
-  return found.sort();
+export function listScenarioFiles(folders: string[], limit = 100_000): Promise<string[]> {
+  return walkFiles(folders, { files: SCENARIO_FILE, skipFolders: INDEX_SKIPPED_FOLDERS, skipDotFiles: false, regularFilesOnly: true, unreadable: 'skip', sorted: true, limit });
 }
 
 /**

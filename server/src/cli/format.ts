@@ -1,19 +1,12 @@
 import * as fs from 'node:fs';
-import * as path from 'node:path';
 import { parseArgs } from 'node:util';
 import { writeFileAtomic } from '../../../common/src/atomic';
 import { DEFAULT_FORMAT_OPTIONS, detectIndentation, FormatOptions, formatXml } from '../core/format';
+import { walkFiles } from '../core/walk';
+import { CliOutput, ExitCode } from './common';
 
 export const FORMAT_HELP = `  modular2simple format [--check] [--width N] [--indent N|tab] PATH...
                                                    format .xosc files in place (folders: every .xosc below)`;
-
-/** The exit codes of the CLI as the README documents them. */
-const Exit = { ok: 0, problems: 1, usage: 2, io: 3 } as const;
-
-interface Io {
-  out: (text: string) => void;
-  err: (text: string) => void;
-}
 
 class FormatUsageError extends Error {}
 
@@ -23,14 +16,8 @@ interface Plan {
   output: string | undefined;
 }
 
-function listXosc(folder: string, into: string[]): void {
-  for (const entry of fs.readdirSync(folder, { withFileTypes: true })) {
-    if (entry.name.startsWith('.') || entry.name === 'node_modules') continue;
-    const full = path.join(folder, entry.name);
-    if (entry.isDirectory()) listXosc(full, into);
-    else if (entry.isFile() && /\.xosc$/i.test(entry.name)) into.push(full);
-  }
-}
+/** Only .xosc files are formatted (a .mosc is an archive); a folder the user names is walked whole, in the order it lists. */
+const FORMATTED_FILES = { files: /\.xosc$/i, skipFolders: new Set(['node_modules']), skipDotFiles: true, regularFilesOnly: true, unreadable: 'throw', sorted: false } as const;
 
 function indentOption(value: string | undefined): Pick<FormatOptions, 'tabSize' | 'insertSpaces'> | undefined {
   if (value === undefined) return undefined;
@@ -62,7 +49,7 @@ function planFile(file: string, indent: Pick<FormatOptions, 'tabSize' | 'insertS
 }
 
 /** `modular2simple format`: formats in place, or with --check only lists the files that would change. */
-export async function formatCommand(args: string[], io: Io): Promise<number> {
+export async function formatCommand(args: string[], io: CliOutput): Promise<number> {
   let values: { check?: boolean; width?: string; indent?: string; quiet?: boolean };
   let positionals: string[];
   try {
@@ -74,7 +61,7 @@ export async function formatCommand(args: string[], io: Io): Promise<number> {
     if (positionals.length === 0) throw new FormatUsageError('format needs at least one .xosc file or folder');
   } catch (error) {
     io.err(`modular2simple: ${(error as Error).message}\nRun 'modular2simple --help' for usage.`);
-    return Exit.usage;
+    return ExitCode.usage;
   }
   let indent: Pick<FormatOptions, 'tabSize' | 'insertSpaces'> | undefined;
   let width = DEFAULT_FORMAT_OPTIONS.maxLineWidth;
@@ -86,7 +73,7 @@ export async function formatCommand(args: string[], io: Io): Promise<number> {
     }
   } catch (error) {
     io.err(`modular2simple: ${(error as Error).message}\nRun 'modular2simple --help' for usage.`);
-    return Exit.usage;
+    return ExitCode.usage;
   }
 
   const files: string[] = [];
@@ -94,7 +81,7 @@ export async function formatCommand(args: string[], io: Io): Promise<number> {
   for (const input of positionals) {
     const stat = fs.statSync(input, { throwIfNoEntry: false });
     if (!stat) problems.push(`${input}: error: no such file or folder`);
-    else if (stat.isDirectory()) listXosc(input, files);
+    else if (stat.isDirectory()) files.push(...(await walkFiles([input], FORMATTED_FILES)));
     else files.push(input);
   }
   const plans: Plan[] = [];
@@ -109,11 +96,11 @@ export async function formatCommand(args: string[], io: Io): Promise<number> {
   if (values.check) {
     for (const plan of changed) io.out(plan.file);
     if (!values.quiet) io.err(`${changed.length} of ${files.length} file${files.length === 1 ? '' : 's'} would be reformatted` + (problems.length ? `; ${problems.length} could not be read or parsed` : ''));
-    return changed.length > 0 || problems.length > 0 ? Exit.problems : Exit.ok;
+    return changed.length > 0 || problems.length > 0 ? ExitCode.problems : ExitCode.ok;
   }
   if (problems.length > 0) {
     io.err(`${problems.length} error${problems.length === 1 ? '' : 's'}; nothing was written`);
-    return Exit.problems;
+    return ExitCode.problems;
   }
   for (const plan of changed) {
     try {
@@ -121,9 +108,9 @@ export async function formatCommand(args: string[], io: Io): Promise<number> {
       await writeFileAtomic(plan.file, plan.output as string);
     } catch (error) {
       io.err(`${plan.file}: error: cannot write the file (${(error as Error).message}); it is unchanged`);
-      return Exit.io;
+      return ExitCode.io;
     }
   }
   if (!values.quiet) io.err(`formatted ${changed.length} of ${files.length} file${files.length === 1 ? '' : 's'}`);
-  return Exit.ok;
+  return ExitCode.ok;
 }

@@ -7,6 +7,7 @@ import { formatProblem } from '../core/problems';
 import { displayRef, splitScenarioPath } from '../core/sources';
 import { EsminiProblem } from '../esmini/messages';
 import { removeRunFolder, RUN_DEFAULTS, runScenario } from '../esmini/run';
+import { CliOutput } from './common';
 import { mainOf, storeForInputs } from './inputs';
 
 export const RUN_HELP = `Run in esmini (modular2simple run INPUT... [options]):
@@ -20,11 +21,6 @@ export const RUN_HELP = `Run in esmini (modular2simple run INPUT... [options]):
   esmini's problems print as FILE:LINE:COL: error|warning: MESSAGE (esmini), on the source line they
   come from. Exit codes: 0 ran (with --check: and no error), 1 errors (or not flattened), 2 usage, 3 no esmini or it failed.`;
 
-interface Output {
-  out: (text: string) => void;
-  err: (text: string) => void;
-}
-
 /** `file:line:col: severity: message (esmini)`, 1-based, as compilers print. */
 export function formatEsminiProblem(problem: EsminiProblem, base?: string): string {
   const where = `${displayRef(problem.source, base)}:${problem.range.start.line + 1}:${problem.range.start.character + 1}`;
@@ -33,7 +29,7 @@ export function formatEsminiProblem(problem: EsminiProblem, base?: string): stri
   return `${where}: ${problem.severity}: ${problem.message} (esmini)${repeats}${note}`;
 }
 
-function usage(io: Output, message: string): number {
+function usage(io: CliOutput, message: string): number {
   io.err(`modular2simple: ${message}\nRun 'modular2simple --help' for usage.`);
   return 2;
 }
@@ -49,7 +45,7 @@ function csvUpTo(text: string, duration: number): string {
 }
 
 /** `modular2simple run`: flattens each input, runs it in esmini and prints esmini's problems on their source lines. */
-export async function runCommand(args: string[], io: Output): Promise<number> {
+export async function runCommand(args: string[], io: CliOutput): Promise<number> {
   let parsed;
   try {
     parsed = parseArgs({

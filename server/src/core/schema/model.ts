@@ -76,15 +76,20 @@ export interface CompiledSchema {
   simpleTypes: Record<string, SimpleType>;
 }
 
-interface CompiledSchemas {
+/**
+ * The file `npm run build` writes: each version's model as JSON text of its own, so that a run parses
+ * only the versions it checks against (a CLI flatten one of four; parsing is most of loading).
+ */
+interface CompiledSchemaFile {
   source: string;
-  schemas: CompiledSchema[];
+  schemas: Partial<Record<SchemaVersion, string>>;
 }
 
 /** The compiled model's file name; `npm run build` writes it next to the bundles in dist/. */
 export const SCHEMA_MODEL_FILE = 'openscenario-schemas.json';
 
-let loaded: Map<SchemaVersion, CompiledSchema> | undefined;
+let file: CompiledSchemaFile | undefined;
+const loaded = new Map<SchemaVersion, CompiledSchema>();
 
 function modelPath(): string {
   // Bundled: beside dist/server.js and dist/cli.js. From source (tests): the repository's dist/.
@@ -94,18 +99,17 @@ function modelPath(): string {
   return found;
 }
 
-/** The compiled schemas, read once. */
-export function schemas(): Map<SchemaVersion, CompiledSchema> {
-  if (!loaded) {
-    const compiled = JSON.parse(fs.readFileSync(modelPath(), 'utf8')) as CompiledSchemas;
-    loaded = new Map(compiled.schemas.map((schema) => [schema.version, schema]));
-  }
-  return loaded;
-}
-
+/** The compiled schema of a version, read once when first asked for. */
 export function schemaFor(version: SchemaVersion): CompiledSchema {
-  const schema = schemas().get(version);
-  if (!schema) throw new Error(`no compiled schema for OpenSCENARIO ${version}`);
+  let schema = loaded.get(version);
+  if (!schema) {
+    file ??= JSON.parse(fs.readFileSync(modelPath(), 'utf8')) as CompiledSchemaFile;
+    const text = file.schemas[version];
+    if (text === undefined) throw new Error(`no compiled schema for OpenSCENARIO ${version}`);
+    schema = JSON.parse(text) as CompiledSchema;
+    loaded.set(version, schema);
+    delete file.schemas[version];
+  }
   return schema;
 }
 

@@ -1,0 +1,57 @@
+import * as fs from 'node:fs';
+import { Flattener } from '../core/flatten';
+import { Problem, uniqueProblems } from '../core/problems';
+import { displayRef } from '../core/sources';
+import { SCENARIO_FILE, walkFiles } from '../core/walk';
+import { CliOutput, ExitCode, InputError, report, UsageError } from './common';
+import { mainOf } from './inputs';
+import { makeStore, parseOptions } from './options';
+
+function problemJson(problem: Problem): Record<string, unknown> {
+  return {
+    file: displayRef(problem.source),
+    line: problem.range.start.line + 1,
+    column: problem.range.start.character + 1,
+    endLine: problem.range.end.line + 1,
+    endColumn: problem.range.end.character + 1,
+    severity: problem.severity,
+    code: problem.code,
+    message: problem.message,
+    ...(problem.hint ? { hint: problem.hint } : {}),
+    ...(problem.related?.length
+      ? { related: problem.related.map((item) => ({ file: displayRef(item.source), line: item.range.start.line + 1, column: item.range.start.character + 1, message: item.message })) }
+      : {}),
+  };
+}
+
+/** A folder the user names is checked whole: only dot-entries and dependencies are left out, and an unreadable folder is reported. */
+const CHECKED_SKIPPED_FOLDERS = new Set(['node_modules']);
+
+/** `modular2simple check PATH... [--format json]`: every problem of every scenario file, as a compiler reports them. */
+export async function checkCommand(args: string[], io: CliOutput): Promise<number> {
+  const options = parseOptions(args);
+  const inputs = options.positional;
+  if (inputs.length === 0) throw new UsageError('check needs at least one file or folder');
+  const files: string[] = [];
+  for (const input of inputs) {
+    if (!fs.existsSync(input)) throw new InputError(`${input}: no such file or folder`);
+    if (fs.statSync(input).isDirectory()) files.push(...(await walkFiles([input], { files: SCENARIO_FILE, skipFolders: CHECKED_SKIPPED_FOLDERS, skipDotFiles: true, regularFilesOnly: false, unreadable: 'throw', sorted: true })));
+    else files.push(input);
+  }
+  const flattener = new Flattener(makeStore(options, inputs), options.simulator, { version: options.schemaVersion });
+  let problems: Problem[] = [];
+  for (const file of files) {
+    const result = await flattener.flatten(mainOf(file));
+    problems = problems.concat(result.problems);
+  }
+  problems = uniqueProblems(problems);
+  const errors = problems.filter((problem) => problem.severity === 'error').length;
+  const warnings = problems.filter((problem) => problem.severity === 'warning').length;
+  if (options.format === 'json') {
+    io.out(JSON.stringify({ files: files.length, errors, warnings, problems: problems.map(problemJson) }, null, 2));
+  } else {
+    report(problems, io, options.quiet);
+    if (!options.quiet) io.err(`checked ${files.length} file${files.length === 1 ? '' : 's'}: ${errors} error${errors === 1 ? '' : 's'}, ${warnings} warning${warnings === 1 ? '' : 's'}`);
+  }
+  return errors > 0 ? ExitCode.problems : ExitCode.ok;
+}

@@ -1,0 +1,81 @@
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import { isSameFile, writeFilesAtomic } from '../../../common/src/atomic';
+import { formatProblem, Problem, uniqueProblems } from '../core/problems';
+import { displayRef, SourceRef } from '../core/sources';
+
+export const VERSION = '0.1.0';
+
+/** Exit codes, as documented in the README. */
+export const ExitCode = { ok: 0, problems: 1, usage: 2, io: 3, internal: 4 } as const;
+
+/** Where a command prints: its result on `out`, problems and summaries on `err`. */
+export interface CliOutput {
+  out: (text: string) => void;
+  err: (text: string) => void;
+}
+
+/** Wrong usage: printed with a pointer to --help, exit 2. */
+export class UsageError extends Error {}
+
+/** An input that cannot be used: printed as an error, exit 1. */
+export class InputError extends Error {}
+
+/** A command of the table in cli.ts: its arguments after the command name, its exit code. */
+export type Command = (args: string[], io: CliOutput) => Promise<number>;
+
+export function checkInputExists(input: string): void {
+  if (!fs.existsSync(input)) throw new InputError(`${input}: no such file or folder`);
+  const resolved = path.resolve(input);
+  if (fs.statSync(resolved).isDirectory() && !fs.existsSync(path.join(resolved, 'main.xosc'))) {
+    throw new InputError(`${input}: the folder holds no main.xosc, so it is not an unpacked package`);
+  }
+}
+
+/** Prints the problems (hints never, warnings unless quiet) and counts errors and warnings. */
+export function report(problems: Problem[], io: CliOutput, quiet: boolean): { errors: number; warnings: number } {
+  let errors = 0;
+  let warnings = 0;
+  for (const problem of uniqueProblems(problems)) {
+    if (problem.severity === 'error') errors++;
+    else if (problem.severity === 'warning') warnings++;
+    // Hints (an unused parameter) are for the editor, where they show faded.
+    if (problem.severity === 'hint') continue;
+    if (quiet && problem.severity !== 'error') continue;
+    io.err(formatProblem(problem));
+  }
+  return { errors, warnings };
+}
+
+/** Refuses to write over any file the run read. */
+export function checkNotAnInput(output: string, inputs: SourceRef[]): void {
+  for (const input of inputs) {
+    if (fs.existsSync(output) && isSameFile(output, input.disk)) {
+      throw new InputError(`refusing to write ${output}: it is an input (${displayRef(input)}); choose another output file`);
+    }
+  }
+}
+
+/** Writes every output or none; `-` is standard output. */
+export async function write(outputs: { target: string; data: string | Uint8Array; summary: string }[], io: CliOutput, quiet: boolean): Promise<number> {
+  const files = outputs.filter((output) => output.target !== '-');
+  for (const output of files) {
+    const directory = path.dirname(path.resolve(output.target));
+    if (!fs.existsSync(directory)) {
+      io.err(`${output.target}: error: cannot write the output (the folder ${directory} does not exist); nothing was changed`);
+      return ExitCode.io;
+    }
+  }
+  const result = await writeFilesAtomic(files.map((output) => ({ target: output.target, data: output.data })));
+  if (result.failed) {
+    const { target, error } = result.failed;
+    const changed = result.written.length === 0 ? 'nothing was changed' : `only ${result.written.join(', ')} ${result.written.length === 1 ? 'was' : 'were'} written`;
+    io.err(`${target}: error: cannot write the output (${error.message}); ${changed}`);
+    return ExitCode.io;
+  }
+  for (const output of outputs) {
+    if (output.target === '-') io.out(output.data as string);
+    else if (!quiet) io.err(output.summary);
+  }
+  return ExitCode.ok;
+}

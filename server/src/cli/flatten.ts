@@ -1,0 +1,81 @@
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import { Flattener, OVERRIDE_PROBLEM_CODES } from '../core/flatten';
+import { Problem } from '../core/problems';
+import { countEditorLines } from '../core/text';
+import { checkInputExists, checkNotAnInput, CliOutput, ExitCode, InputError, report, UsageError, write } from './common';
+import { mainOf } from './inputs';
+import { makeStore, Options, parseOptions } from './options';
+
+/** Flattens each input; without `outputs` the results go to standard output. */
+async function flattenInputs(inputs: string[], outputs: string[] | undefined, options: Options, io: CliOutput): Promise<number> {
+  for (const input of inputs) checkInputExists(input);
+  const store = makeStore(options, inputs);
+  const flattener = new Flattener(store, options.simulator, { version: options.schemaVersion });
+  const results = [];
+  let problems: Problem[] = [];
+  for (const [index, input] of inputs.entries()) {
+    const result = await flattener.flatten(mainOf(input), { force: options.force, outputPath: outputs?.[index] });
+    results.push(result);
+    problems = problems.concat(result.problems);
+  }
+  if (options.force) {
+    // Forced past, these no longer stop the run: shown as warnings saying what was skipped.
+    problems = problems.map((problem) =>
+      problem.severity === 'error' && OVERRIDE_PROBLEM_CODES.has(problem.code)
+        ? { ...problem, severity: 'warning', message: `${problem.message} (skipped: --force)` }
+        : problem,
+    );
+  }
+  const { errors } = report(problems, io, options.quiet);
+  if (results.some((result) => result.text === undefined)) {
+    io.err(`${errors} error${errors === 1 ? '' : 's'}; nothing was written` + (problems.some((p) => p.code === 'unknown-key' || p.code === 'no-default') && !options.force ? ' (--force writes the output without the overrides that cannot apply)' : ''));
+    return ExitCode.problems;
+  }
+  if (!outputs) {
+    for (const result of results) io.out(result.text as string);
+    return ExitCode.ok;
+  }
+  for (let i = 0; i < results.length; i++) if (outputs[i] !== '-') checkNotAnInput(outputs[i], results[i].source.dependencies);
+  return write(
+    results.map((result, i) => ({ target: outputs[i], data: result.text as string, summary: `wrote ${outputs[i]} (${countEditorLines(result.text as string)} lines)` })),
+    io,
+    options.quiet,
+  );
+}
+
+function outputNameFor(input: string): string {
+  const resolved = path.resolve(input);
+  const base = path.basename(resolved);
+  if (fs.existsSync(resolved) && fs.statSync(resolved).isDirectory()) return `${base}.xosc`;
+  if (base === 'main.xosc') return `${path.basename(path.dirname(resolved))}.xosc`;
+  return `${base.replace(/\.(mosc|xosc)$/i, '')}.xosc`;
+}
+
+/** `modular2simple flatten INPUT [-o OUT.xosc]` or `flatten INPUT... --out-dir DIR`. */
+export async function flattenCommand(args: string[], io: CliOutput): Promise<number> {
+  const options = parseOptions(args);
+  const inputs = options.positional;
+  if (inputs.length === 0) throw new UsageError('flatten needs an input: a .mosc, a main.xosc or an unpacked folder');
+  if (options.outDir) {
+    if (options.output) throw new UsageError('use either -o or --out-dir');
+    if (!fs.existsSync(options.outDir) || !fs.statSync(options.outDir).isDirectory()) throw new InputError(`${options.outDir}: no such folder`);
+    let names = inputs.map(outputNameFor);
+    // Inputs with a shared file name (lib/*/result.mosc) are told apart by their folders.
+    names = names.map((name, index) => (names.indexOf(name) !== names.lastIndexOf(name) ? `${path.basename(path.dirname(path.resolve(inputs[index])))}.xosc` : name));
+    const outputs = names.map((name) => path.join(options.outDir as string, name));
+    const duplicates = outputs.filter((output, index) => outputs.indexOf(output) !== index);
+    if (duplicates.length > 0) throw new UsageError(`two inputs would both be written to ${duplicates[0]}`);
+    return flattenInputs(inputs, outputs, options, io);
+  }
+  if (inputs.length > 1) throw new UsageError('several inputs need --out-dir DIR');
+  return flattenInputs(inputs, options.output ? [options.output] : undefined, options, io);
+}
+
+/** The original tool's `-cmx|--convert-mosc-to-xosc IN.mosc OUT.xosc`: a flatten to OUT. */
+export async function convertMoscToXoscCommand(args: string[], io: CliOutput): Promise<number> {
+  const options = parseOptions(args);
+  const inputs = options.positional;
+  if (inputs.length !== 2) throw new UsageError('-cmx takes one input .mosc and one output .xosc');
+  return flattenInputs([inputs[0]], [inputs[1]], options, io);
+}

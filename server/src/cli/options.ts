@@ -1,0 +1,146 @@
+import { parseArgs } from 'node:util';
+import { isSchemaVersion, SCHEMA_VERSIONS } from '../core/schema/model';
+import { SchemaVersionSetting } from '../core/schema/version';
+import { isSimulator, Simulator, SIMULATORS } from '../core/profiles/simulators';
+import { Limits, ScenarioStore, splitScenarioPath } from '../core/sources';
+import { UsageError } from './common';
+import { storeForInputs } from './inputs';
+
+/** The options of flatten, pack, check, stats and -cxm/-cmx. */
+export interface Options {
+  positional: string[];
+  output?: string;
+  outDir?: string;
+  force: boolean;
+  scenarioPath: string[];
+  root?: string;
+  includeScenarioPath: boolean;
+  format: 'text' | 'json';
+  quiet: boolean;
+  simulator: Simulator;
+  schemaVersion: SchemaVersionSetting | 'off';
+  limits: Partial<Limits>;
+}
+
+/**
+ * Every command of the original set accepts the whole set (an option another command uses is accepted
+ * and has no effect), so they share this table; a command with options of its own gives its own table.
+ */
+const SHARED_OPTIONS = {
+  output: { type: 'string', short: 'o' },
+  'out-dir': { type: 'string' },
+  force: { type: 'boolean' },
+  'scenario-path': { type: 'string' },
+  root: { type: 'string' },
+  'include-scenario-path': { type: 'boolean' },
+  format: { type: 'string' },
+  simulator: { type: 'string' },
+  'schema-version': { type: 'string' },
+  quiet: { type: 'boolean', short: 'q' },
+  'max-file-size': { type: 'string' },
+  'max-unpacked-size': { type: 'string' },
+  'max-output-size': { type: 'string' },
+  'max-depth': { type: 'string' },
+} as const;
+
+type OptionName = keyof typeof SHARED_OPTIONS;
+
+const isOptionName = (name: string): name is OptionName => Object.hasOwn(SHARED_OPTIONS, name);
+
+/** A size such as 1048576, 512K, 64M or 2G. */
+export function parseSize(text: string, flag: string): number {
+  const match = /^(\d+)([KMG]?)B?$/i.exec(text.trim());
+  if (!match) throw new UsageError(`${flag} takes a size such as 64M, not '${text}'`);
+  const factor = { '': 1, K: 1024, M: 1024 ** 2, G: 1024 ** 3 }[match[2].toUpperCase() as '' | 'K' | 'M' | 'G'];
+  const size = Number(match[1]) * factor;
+  if (!Number.isSafeInteger(size) || size <= 0) throw new UsageError(`${flag} takes a positive size, not '${text}'`);
+  return size;
+}
+
+/**
+ * The options in the order given, the first wrong one reported. The tokens of `parseArgs` are checked
+ * against the forms the CLI has always taken: `-o VALUE`, `--name VALUE`, `--name=VALUE`; a value that
+ * looks like an option is missing, not taken; grouped or glued short options and `--` are unknown options.
+ */
+export function parseOptions(args: string[]): Options {
+  const options: Options = { positional: [], force: false, scenarioPath: [], includeScenarioPath: false, format: 'text', quiet: false, simulator: 'asam', schemaVersion: 'auto', limits: {} };
+  const { tokens } = parseArgs({ args, options: SHARED_OPTIONS, strict: false, allowPositionals: true, tokens: true });
+  for (const token of tokens) {
+    if (token.kind === 'positional') {
+      options.positional.push(token.value);
+      continue;
+    }
+    const arg = args[token.index];
+    if (token.kind === 'option-terminator') throw new UsageError(`unknown option '${arg}'`);
+    const name = token.name;
+    const asTyped = arg === token.rawName || (token.rawName.startsWith('--') && token.inlineValue === true && arg === `${token.rawName}=${token.value}`);
+    if (!isOptionName(name) || !asTyped) throw new UsageError(`unknown option '${arg}'`);
+    const flag = token.rawName;
+    const take = (): string => {
+      const value = token.value;
+      if (!token.inlineValue && (value === undefined || (value.startsWith('-') && value.length > 1))) throw new UsageError(`${flag} needs a value`);
+      return value as string;
+    };
+    switch (name) {
+      case 'output':
+        options.output = take();
+        break;
+      case 'out-dir':
+        options.outDir = take();
+        break;
+      case 'force':
+        options.force = true;
+        break;
+      case 'scenario-path':
+        options.scenarioPath.push(...splitScenarioPath(take()));
+        break;
+      case 'root':
+        options.root = take();
+        break;
+      case 'include-scenario-path':
+        options.includeScenarioPath = true;
+        break;
+      case 'format': {
+        const format = take();
+        if (format !== 'text' && format !== 'json') throw new UsageError(`--format takes text or json, not '${format}'`);
+        options.format = format;
+        break;
+      }
+      case 'simulator': {
+        const simulator = take();
+        if (!isSimulator(simulator)) throw new UsageError(`--simulator takes ${SIMULATORS.join(', ')}, not '${simulator}'`);
+        options.simulator = simulator;
+        break;
+      }
+      case 'schema-version': {
+        const version = take();
+        if (version !== 'auto' && version !== 'off' && !isSchemaVersion(version)) throw new UsageError(`--schema-version takes auto, off, ${SCHEMA_VERSIONS.join(', ')}; not '${version}'`);
+        options.schemaVersion = version;
+        break;
+      }
+      case 'quiet':
+        options.quiet = true;
+        break;
+      case 'max-file-size':
+        options.limits.maxEntryBytes = parseSize(take(), flag);
+        break;
+      case 'max-unpacked-size':
+        options.limits.maxTotalBytes = parseSize(take(), flag);
+        break;
+      case 'max-output-size':
+        options.limits.maxFlattenedChars = parseSize(take(), flag);
+        break;
+      case 'max-depth': {
+        const depth = Number(take());
+        if (!Number.isSafeInteger(depth) || depth < 1) throw new UsageError('--max-depth takes a positive whole number');
+        options.limits.maxDepth = depth;
+        break;
+      }
+    }
+  }
+  return options;
+}
+
+export function makeStore(options: Options, inputs: string[]): ScenarioStore {
+  return storeForInputs(options.scenarioPath, options.root, inputs, options.limits);
+}

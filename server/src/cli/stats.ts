@@ -1,0 +1,28 @@
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import { libraryStats } from '../core/stats';
+import { CliOutput, ExitCode, InputError, UsageError } from './common';
+import { parseOptions } from './options';
+
+/** `modular2simple stats LIBRARY [--format json]`: lines of code of a library (the paper's Table 1). */
+export async function statsCommand(args: string[], io: CliOutput): Promise<number> {
+  const options = parseOptions(args);
+  if (options.positional.length !== 1) throw new UsageError('stats takes one library folder');
+  const library = options.positional[0];
+  if (!fs.existsSync(library) || !fs.statSync(library).isDirectory()) throw new InputError(`${library}: no such folder`);
+  const stats = await libraryStats(library, options.limits, process.cwd());
+  for (const problem of stats.problems) io.err(`${library}: error: ${problem}`);
+  if (options.format === 'json') {
+    io.out(JSON.stringify(stats, null, 2));
+  } else {
+    const width = Math.max(8, ...stats.rows.map((row) => row.scenario.length));
+    io.out(`${'#'.padStart(3)}  ${'scenario'.padEnd(width)}  ${'modular'.padStart(8)}  ${'flattened'.padStart(9)}  reduction`);
+    stats.rows.forEach((row, index) => {
+      io.out(`${String(index + 1).padStart(3)}  ${row.scenario.padEnd(width)}  ${String(row.modularLines).padStart(8)}  ${String(row.flattenedLines).padStart(9)}  ${row.reduction.toFixed(1).padStart(8)} %`);
+    });
+    for (const item of stats.shared) io.out(`     ${('+ ' + path.relative(path.resolve(library), item.file)).padEnd(width)}  ${String(item.lines).padStart(8)}`);
+    const { totals } = stats;
+    io.out(`     ${'total'.padEnd(width)}  ${totals.modularLines.toLocaleString('en-US').padStart(8)}  ${totals.flattenedLines.toLocaleString('en-US').padStart(9)}  ${totals.reduction.toFixed(1).padStart(8)} %`);
+  }
+  return stats.problems.length > 0 ? ExitCode.problems : ExitCode.ok;
+}
