@@ -5,8 +5,10 @@ import * as path from 'node:path';
 import JSZip from 'jszip';
 import { main } from '../../server/src/cli';
 import { isWellFormed, parseXml } from '../../server/src/core/xml';
-import { cliPath, listFiles, makeWorkspace, outerGroup, repoRoot, scenario, simpleGroup } from '../support/fixtures';
+import { outerGroup, scenario, simpleGroup } from '../support/fixtures';
 import { canUnshareMounts, rawZip, runBounded, scalingRatio, startScript } from '../support/hostile';
+import { cliPath, repoRoot } from '../support/paths';
+import { listFiles, temporaryWorkspace } from '../support/workspace';
 
 /** A main file importing group Go of `file` for the outer group Car. */
 function mainOf(file: string, groupName = 'Go'): string {
@@ -24,7 +26,7 @@ describe('cli: hostile archives', function () {
   it('refuses entries that share one compressed stream, without inflating each of them', () => {
     const zeros = new Uint8Array(8 * 1024 * 1024);
     const aliases = Array.from({ length: 300 }, (_, index) => ({ name: `s${index}.xosc`, of: 1 }));
-    const root = makeWorkspace({ 'bomb.mosc': rawZip([{ name: 'main.xosc', data: mainOf('s0.xosc') }, { name: 'pad.xosc', data: zeros, deflate: true }], aliases) });
+    const root = temporaryWorkspace({ 'bomb.mosc': rawZip([{ name: 'main.xosc', data: mainOf('s0.xosc') }, { name: 'pad.xosc', data: zeros, deflate: true }], aliases) });
     const run = runBounded(['check', 'bomb.mosc'], { cwd: root, timeoutMs: 15_000, heapMb: 128 });
     assert.ok(!run.timedOut, `finished in ${run.ms} ms`);
     assert.equal(run.status, 1, run.stderr);
@@ -44,7 +46,7 @@ describe('cli: hostile archives', function () {
       groups.push(outerGroup(`Car${index}`, 'car', [{ file: `p${index}.mosc`, groups: [{ name: 'Go' }] }]));
     }
     files['main.xosc'] = scenario(groups.join(''));
-    const root = makeWorkspace(files);
+    const root = temporaryWorkspace(files);
     const within = runBounded(['check', 'main.xosc', '--max-unpacked-size', '16M'], { cwd: root });
     assert.equal(within.status, 0, within.stderr);
     const over = runBounded(['check', 'main.xosc', '--max-unpacked-size', '8M'], { cwd: root });
@@ -59,7 +61,7 @@ describe('cli: hostile archives', function () {
   ]) {
     it(`refuses a package holding ${label}`, () => {
       const evil = mainOf('missing.xosc');
-      const root = makeWorkspace({ 'dup.mosc': rawZip([{ name: 'main.xosc', data: scenario(simpleGroup('Go')) }, { name: second, data: evil }]) });
+      const root = temporaryWorkspace({ 'dup.mosc': rawZip([{ name: 'main.xosc', data: scenario(simpleGroup('Go')) }, { name: second, data: evil }]) });
       const run = runBounded(['flatten', 'dup.mosc'], { cwd: root });
       assert.equal(run.status, 1, run.stderr);
       assert.match(run.stderr, /holds the entry 'main\.xosc' twice/);
@@ -72,7 +74,7 @@ describe('cli: inputs that are not regular files', function () {
   this.timeout(60_000);
 
   function withFifo(files: Record<string, string>, fifo: string): string {
-    const root = makeWorkspace(files);
+    const root = temporaryWorkspace(files);
     fs.mkdirSync(path.dirname(path.join(root, fifo)), { recursive: true });
     execFileSync('mkfifo', [path.join(root, fifo)]);
     return root;
@@ -111,7 +113,7 @@ describe('cli: inputs that are not regular files', function () {
       console.log('    (skipped: no private mount namespace here, and the test must not touch the real /dev)');
       this.skip();
     }
-    const root = makeWorkspace({});
+    const root = temporaryWorkspace({});
     fs.symlinkSync('/dev/zero', path.join(root, 'zero.xosc'));
     fs.mkdirSync(path.join(root, 'pkg'));
     fs.symlinkSync('/dev/zero', path.join(root, 'pkg', 'main.xosc'));
@@ -122,7 +124,7 @@ describe('cli: inputs that are not regular files', function () {
   });
 
   it('a file over the size bound is reported as too large, not as missing', () => {
-    const root = makeWorkspace({ 'main.xosc': mainOf('big.xosc'), 'big.xosc': scenario(simpleGroup('Go')) + `<!-- ${'x'.repeat(4096)} -->` });
+    const root = temporaryWorkspace({ 'main.xosc': mainOf('big.xosc'), 'big.xosc': scenario(simpleGroup('Go')) + `<!-- ${'x'.repeat(4096)} -->` });
     const run = runBounded(['check', 'main.xosc', '--max-file-size', '2K'], { cwd: root });
     assert.equal(run.status, 1, run.stderr);
     assert.match(run.stderr, /big\.xosc is too large to read \(\d+ bytes; the limit is 2048/);
@@ -141,7 +143,7 @@ describe('cli: reuse blow-up', function () {
       const group = `        <ManeuverGroup name="G" maximumExecutionCount="1">\n          <Actors selectTriggeringEntities="false"><EntityRef entityRef="car"/></Actors>\n${half('X')}${half('Y')}        </ManeuverGroup>\n`;
       files[`l${level}.xosc`] = scenario(group);
     }
-    const root = makeWorkspace(files);
+    const root = temporaryWorkspace(files);
     const run = runBounded(['flatten', 'l0.xosc', '-o', 'out.xosc', '--max-output-size', '4M'], { cwd: root, timeoutMs: 60_000, heapMb: 256 });
     assert.ok(!run.timedOut, 'finished');
     assert.equal(run.status, 1, run.stderr);
@@ -157,7 +159,7 @@ describe('cli: reuse blow-up', function () {
   it('references nested deeper than the bound are an error naming the chain', () => {
     const files: Record<string, string> = { 'd30.xosc': scenario(simpleGroup('Go')) };
     for (let level = 0; level < 30; level++) files[`d${level}.xosc`] = scenario(simpleGroup('Go').replace('</ManeuverGroup>', '</ManeuverGroup>\n' + outerGroup('Car', 'car', [{ file: `d${level + 1}.xosc`, groups: [{ name: 'Go' }] }])));
-    const root = makeWorkspace(files);
+    const root = temporaryWorkspace(files);
     const run = runBounded(['check', 'd0.xosc', '--max-depth', '10'], { cwd: root });
     assert.equal(run.status, 1, run.stderr);
     assert.match(run.stderr, /references nest deeper than 10 files: d0\.xosc -> d1\.xosc/);
@@ -194,7 +196,7 @@ describe('cli: text that is not what it claims', function () {
       .replace('name="GoManeuver"', 'name="Go\u0001Maneuver"')
       .replace('<Event name="Go"', '<Event name="a&#1;b"')
       .replace('<Action name="Go"', '<Action name="&#xFFFE;"');
-    const root = makeWorkspace({ 'main.xosc': mainOf('simple.xosc'), 'simple.xosc': simple });
+    const root = temporaryWorkspace({ 'main.xosc': mainOf('simple.xosc'), 'simple.xosc': simple });
     const run = runBounded(['flatten', 'main.xosc'], { cwd: root });
     assert.equal(run.status, 1, run.stderr);
     const line = (needle: string) => simple.split('\n').findIndex((text) => text.includes(needle)) + 1;
@@ -207,7 +209,7 @@ describe('cli: text that is not what it claims', function () {
   it('decodes ISO-8859-1 as declared and UTF-16 with a byte-order mark; the output is UTF-8 and says so', () => {
     const latin = scenario(simpleGroup('Go')).replace('encoding="UTF-8"', 'encoding="ISO-8859-1"').replace('name="GoManeuver"', 'name="Gr\u00fc\u00dfe"');
     const utf16 = Buffer.concat([Buffer.from([0xff, 0xfe]), Buffer.from(mainOf('latin.xosc').replace('encoding="UTF-8"', 'encoding="UTF-16"'), 'utf16le')]);
-    const root = makeWorkspace({ 'main.xosc': utf16, 'latin.xosc': Buffer.from(latin, 'latin1') });
+    const root = temporaryWorkspace({ 'main.xosc': utf16, 'latin.xosc': Buffer.from(latin, 'latin1') });
     const run = runBounded(['flatten', 'main.xosc'], { cwd: root });
     assert.equal(run.status, 0, run.stderr);
     assert.match(run.stdout, /^<\?xml version="1.0" encoding="UTF-8"\?>/);
@@ -218,7 +220,7 @@ describe('cli: text that is not what it claims', function () {
   it('refuses invalid UTF-8 and an encoding it cannot read, naming them', () => {
     const broken = Buffer.from(scenario(simpleGroup('Go')).replace('name="GoManeuver"', 'name="Gr\u00fc"'), 'latin1');
     const ebcdic = scenario(simpleGroup('Go')).replace('encoding="UTF-8"', 'encoding="EBCDIC-US"');
-    const root = makeWorkspace({ 'a.xosc': broken, 'b.xosc': ebcdic, 'main.xosc': scenario(outerGroup('A', 'car', [{ file: 'a.xosc', groups: [{ name: 'Go' }] }]) + outerGroup('B', 'car', [{ file: 'b.xosc', groups: [{ name: 'Go' }] }])) });
+    const root = temporaryWorkspace({ 'a.xosc': broken, 'b.xosc': ebcdic, 'main.xosc': scenario(outerGroup('A', 'car', [{ file: 'a.xosc', groups: [{ name: 'Go' }] }]) + outerGroup('B', 'car', [{ file: 'b.xosc', groups: [{ name: 'Go' }] }])) });
     const run = runBounded(['check', 'main.xosc'], { cwd: root });
     assert.equal(run.status, 1, run.stderr);
     assert.match(run.stderr, /a\.xosc:\d+:1: error: .*byte 0xfc at offset \d+ is not valid UTF-8/);
@@ -231,7 +233,7 @@ describe('cli: text that is not what it claims', function () {
       .replace('<OpenSCENARIO>', '<!DOCTYPE OpenSCENARIO [\n  <!ENTITY speed "12.5">\n  <!ENTITY who "car &amp; co">\n]>\n<OpenSCENARIO>')
       .replace('z="0"', 'z="&speed;"')
       .replace('<Event name="Go" priority="overwrite">', '<Event name="Go" priority="overwrite">\n              <!-- &who; -->\n              <Note>&who; at &speed;</Note>');
-    const root = makeWorkspace({ 'main.xosc': mainOf('simple.xosc'), 'simple.xosc': simple });
+    const root = temporaryWorkspace({ 'main.xosc': mainOf('simple.xosc'), 'simple.xosc': simple });
     const run = runBounded(['flatten', 'main.xosc'], { cwd: root });
     assert.equal(run.status, 0, run.stderr);
     assert.ok(isWellFormed(parseXml(run.stdout)), 'the output is well-formed');
@@ -247,7 +249,7 @@ describe('cli: outputs', function () {
     const inner = new JSZip();
     inner.file('main.xosc', scenario(simpleGroup('Go')));
     const innerBytes = await inner.generateAsync({ type: 'uint8array' });
-    const root = makeWorkspace({ 'pkg/main.xosc': mainOf('inner.mosc'), 'pkg/inner.mosc': innerBytes, 'other/main.xosc': mainOf('lib.mosc'), 'lib/lib.mosc': innerBytes });
+    const root = temporaryWorkspace({ 'pkg/main.xosc': mainOf('inner.mosc'), 'pkg/inner.mosc': innerBytes, 'other/main.xosc': mainOf('lib.mosc'), 'lib/lib.mosc': innerBytes });
     const direct = runBounded(['pack', 'pkg', '-o', 'pkg/inner.mosc'], { cwd: root });
     assert.equal(direct.status, 1, direct.stderr);
     assert.match(direct.stderr, /refusing to write pkg\/inner\.mosc: it is an input/);
@@ -259,7 +261,7 @@ describe('cli: outputs', function () {
   });
 
   function flatWorkspace(): string {
-    return makeWorkspace({ 'main.xosc': mainOf('simple.xosc'), 'simple.xosc': scenario(simpleGroup('Go')) });
+    return temporaryWorkspace({ 'main.xosc': mainOf('simple.xosc'), 'simple.xosc': scenario(simpleGroup('Go')) });
   }
 
   it('-o - writes to standard output', () => {
@@ -310,7 +312,7 @@ describe('cli: outputs', function () {
 
   for (const signal of ['SIGINT', 'SIGTERM'] as const) {
     it(`${signal} while an output is written removes the temporary file and leaves the target`, async () => {
-      const root = makeWorkspace({ 'out.xosc': 'before' });
+      const root = temporaryWorkspace({ 'out.xosc': 'before' });
       const child = startScript(path.join(repoRoot, 'test', 'support', 'slowWrite.ts'), [path.join(root, 'out.xosc')]);
       const ready = await new Promise<boolean>((resolve) => {
         const timer = setTimeout(() => resolve(false), 20_000);

@@ -18,7 +18,9 @@ import {
 } from 'vscode-languageserver/node';
 import { FlattenToFileRequest, FlattenToTextRequest, PackRequest, StructureRequest } from '../../server/src/protocol';
 import { CLEAN, cycleFile, MAIN, PACKAGE_MAIN, SIMPLE } from './fixtures/scenarios';
-import { fileUri, markers, positionAt, temporaryWorkspace, TestClient } from './harness';
+import { fileUri, TestClient } from './harness';
+import { markers, positionAt } from '../support/cursor';
+import { temporaryWorkspace } from '../support/workspace';
 
 const simple = markers(SIMPLE);
 const main = markers(MAIN);

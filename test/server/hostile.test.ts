@@ -10,7 +10,8 @@ import { FlattenToFileRequest, FlattenToTextRequest, PackRequest } from '../../s
 import { CachingFileSystem } from '../../server/src/workspace';
 import { outerGroup, scenario, simpleGroup } from '../support/fixtures';
 import { rawZip } from '../support/hostile';
-import { fileUri, temporaryWorkspace, TestClient } from './harness';
+import { fileUri, TestClient } from './harness';
+import { temporaryWorkspace } from '../support/workspace';
 
 function mainOf(file: string, groupName = 'Go'): string {
   return scenario(outerGroup('Car', 'car', [{ file, groups: [{ name: groupName }] }]));

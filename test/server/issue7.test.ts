@@ -5,8 +5,10 @@ import { fileURLToPath } from 'node:url';
 import { CodeAction, CompletionItem, Diagnostic, Hover, Location, MarkupContent } from 'vscode-languageserver/node';
 import { main } from '../../server/src/cli';
 import { MAIN, mainWithKeys, PACKAGE_MAIN, SIMPLE } from './fixtures/scenarios';
-import { fileUri, markers, positionAfter, positionAt, temporaryWorkspace, TestClient, useServer } from './harness';
+import { fileUri, TestClient, useServer } from './harness';
 import { withoutSchema } from '../support/fixtures';
+import { markers, positionAfter, positionAt } from '../support/cursor';
+import { temporaryWorkspace } from '../support/workspace';
 
 /** The fixtures' simple scenario with a speed default that is full of Markdown characters (its parameters declared). */
 const SIMPLE_EXPRESSION = markers(SIMPLE)

@@ -3,7 +3,8 @@ import * as path from 'node:path';
 import { CancellationTokenSource, CodeAction, CompletionItem, Diagnostic, ErrorCodes, LSPErrorCodes, ResponseError, TextEdit } from 'vscode-languageserver/node';
 import { StructureRequest } from '../../server/src/protocol';
 import { MAIN, SIMPLE } from './fixtures/scenarios';
-import { fileUri, markers, positionAfter, useServer } from './harness';
+import { fileUri, useServer } from './harness';
+import { markers, positionAfter } from '../support/cursor';
 
 const simple = markers(SIMPLE);
 const main = markers(MAIN);

@@ -3,7 +3,9 @@ import { execFileSync, spawnSync } from 'node:child_process';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { MAIN, SIMPLE } from './fixtures/scenarios';
-import { markers, positionAt, repoRoot, temporaryWorkspace } from './harness';
+import { markers, positionAt } from '../support/cursor';
+import { repoRoot } from '../support/paths';
+import { temporaryWorkspace } from '../support/workspace';
 
 const serverBundle = path.join(repoRoot, 'dist', 'server.js');
 

@@ -3,7 +3,9 @@ import * as path from 'node:path';
 import { CodeAction, CompletionItem, CompletionItemTag, Diagnostic, DiagnosticTag, Hover, MarkupContent, TextEdit } from 'vscode-languageserver/node';
 import { checkSchema } from '../../server/src/core/schema/validate';
 import { parseXml } from '../../server/src/core/xml';
-import { fileUri, markers, positionAt, temporaryWorkspace, TestClient } from './harness';
+import { fileUri, TestClient } from './harness';
+import { markers, positionAt } from '../support/cursor';
+import { temporaryWorkspace } from '../support/workspace';
 
 /** A small scenario valid against every schema version; `{MINOR}` is its revMinor, `{ROOT}` goes after ParameterDeclarations. */
 const TEMPLATE = `<?xml version="1.0" encoding="UTF-8"?>
