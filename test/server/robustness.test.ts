@@ -7,11 +7,11 @@ import { CompletionItem, Diagnostic, DocumentSymbol, Location } from 'vscode-lan
 import { FlattenToTextRequest, StructureRequest } from '../../server/src/protocol';
 import { SIMPLE } from './fixtures/scenarios';
 import { fileUri, TestClient } from './harness';
-import { markers, positionAt } from '../support/cursor';
+import { positionAt } from '../support/cursor';
 import { caseStudyDir, libraryDir, requireCorpus } from '../support/paths';
 import { temporaryWorkspace } from '../support/workspace';
 
-const simple = markers(SIMPLE).text;
+const simple = SIMPLE;
 
 function referenceTo(fileName: string, group = 'Brake'): string {
   return `<ManeuverGroup name="G_${fileName.replace(/\W/g, '_')}"><Actors><EntityRef entityRef="hero"/></Actors>

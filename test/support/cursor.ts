@@ -23,20 +23,28 @@ export function cursor(marked: string): { text: string; offset: number; position
   return { text, offset: offsets[0], position: positionAt(text, offsets[0]) };
 }
 
-/** The offset of the `|` in `markedSnippet` once the snippet (without its marker) is found in `text`; it must occur once. */
-export function offsetAt(text: string, markedSnippet: string): number {
+/**
+ * The offset of the `|` in `markedSnippet` once the snippet (without its marker) is found in `text`: its one
+ * occurrence, or with `after` its first occurrence after the first `after` (`'name="Fourth"'`: in group Fourth).
+ */
+export function offsetAt(text: string, markedSnippet: string, after?: string): number {
   const marker = markedSnippet.indexOf('|');
   if (marker < 0 || markedSnippet.indexOf('|', marker + 1) >= 0) throw new Error(`'${markedSnippet}' needs exactly one '|' cursor marker`);
   const snippet = markedSnippet.slice(0, marker) + markedSnippet.slice(marker + 1);
-  const index = text.indexOf(snippet);
-  if (index < 0) throw new Error(`'${snippet}' not found`);
-  if (text.indexOf(snippet, index + 1) >= 0) throw new Error(`'${snippet}' occurs more than once`);
+  let from = 0;
+  if (after !== undefined) {
+    from = text.indexOf(after);
+    if (from < 0) throw new Error(`'${after}' not found`);
+  }
+  const index = text.indexOf(snippet, from);
+  if (index < 0) throw new Error(`'${snippet}' not found${after === undefined ? '' : ` after '${after}'`}`);
+  if (after === undefined && text.indexOf(snippet, index + 1) >= 0) throw new Error(`'${snippet}' occurs more than once: say after what`);
   return index + marker;
 }
 
-/** The position of the `|` in `markedSnippet`, found in a text shared by many tests: `at(MAIN, 'maneuverGroupName="Br|ake"')`. */
-export function at(text: string, markedSnippet: string): Position {
-  return positionAt(text, offsetAt(text, markedSnippet));
+/** The position of the `|` in `markedSnippet` in a text shared by many tests: `at(MAIN, 'maneuverGroupName="Br|ake"')` (see `offsetAt`). */
+export function at(text: string, markedSnippet: string, after?: string): Position {
+  return positionAt(text, offsetAt(text, markedSnippet, after));
 }
 
 export function positionAt(text: string, offset: number): Position {
