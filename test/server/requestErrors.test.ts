@@ -62,8 +62,8 @@ describe('language server: errors of the handlers are loud (JSON-RPC)', function
       const answer = server.client.connection.sendRequest('textDocument/references', { ...server.client.at(server.openUri, position), context: { includeDeclaration: true } }, source.token);
       await reached;
       source.cancel();
-      // The cancellation travels to the server before the work goes on.
-      await new Promise((resolve) => setTimeout(resolve, 100));
+      // The cancellation travels to the server before the work goes on: the answer to a later request shows it was read.
+      await server.client.request('textDocument/documentSymbol', { textDocument: { uri: server.openUri } });
       release();
       await assert.rejects(answer, rejectsWith(LSPErrorCodes.RequestCancelled, /textDocument\/references was cancelled/));
     } finally {
