@@ -8,14 +8,10 @@ import { Diagnostic } from 'vscode-languageserver/node';
 import { childRef, diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { FlattenToFileRequest, FlattenToTextRequest, PackRequest } from '../../server/src/protocol';
 import { CachingFileSystem } from '../../server/src/workspace';
-import { outerGroup, scenario, simpleGroup } from '../support/fixtures';
+import { mainOf, outerGroup, scenario, simpleGroup } from '../support/fixtures';
 import { rawZip } from '../support/hostile';
 import { fileUri, TestClient } from './harness';
 import { temporaryWorkspace } from '../support/workspace';
-
-function mainOf(file: string, groupName = 'Go'): string {
-  return scenario(outerGroup('Car', 'car', [{ file, groups: [{ name: groupName }] }]));
-}
 
 async function packageOf(files: Record<string, string>): Promise<Uint8Array> {
   const zip = new JSZip();

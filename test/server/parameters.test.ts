@@ -20,7 +20,6 @@ import { SEMANTIC_TOKENS_LEGEND } from '../../server/src/features/semanticTokens
 import { BARE, CARS, FAULTY, PARAMETERS } from './fixtures/parameters';
 import { fileUri, TestClient } from './harness';
 import { applyEdits, inside, offsetOf, Position } from './textEdits';
-import { positionAfter } from '../support/cursor';
 import { repoRoot } from '../support/paths';
 import { temporaryWorkspace } from '../support/workspace';
 

@@ -1,4 +1,5 @@
 import { spawnSync } from 'node:child_process';
+import * as assert from 'node:assert/strict';
 import { cliPath } from './paths';
 
 export interface CliRun {
@@ -96,4 +97,15 @@ export function outerGroup(name: string, actor: string | undefined, references: 
 /** Escapes a value for an attribute written by the fixtures above. */
 export function xmlAttribute(value: string): string {
   return value.replace(/&/g, '&amp;').replace(/</g, '&lt;').replace(/>/g, '&gt;').replace(/"/g, '&quot;');
+}
+
+/** A main file importing group Go of `file` for the outer group Car. */
+export function mainOf(file: string, groupName = 'Go'): string {
+  return scenario(outerGroup('Car', 'car', [{ file, groups: [{ name: groupName }] }]));
+}
+
+/** Fails when a CLI's standard error holds a stack trace or an internal error. */
+export function assertNoTrace(stderr: string): void {
+  assert.doesNotMatch(stderr, /\n\s+at .*:\d+:\d+\)?/, 'no stack trace');
+  assert.doesNotMatch(stderr, /internal error/);
 }
