@@ -1,5 +1,6 @@
-import { spawnSync } from 'node:child_process';
 import * as assert from 'node:assert/strict';
+import { spawnSync } from 'node:child_process';
+import JSZip from 'jszip';
 import { cliPath } from './paths';
 
 export interface CliRun {
@@ -108,4 +109,11 @@ export function mainOf(file: string, groupName = 'Go'): string {
 export function assertNoTrace(stderr: string): void {
   assert.doesNotMatch(stderr, /\n\s+at .*:\d+:\d+\)?/, 'no stack trace');
   assert.doesNotMatch(stderr, /internal error/);
+}
+
+/** A .mosc package holding the given files (names relative to its root). */
+export async function packageOf(files: Record<string, string>): Promise<Uint8Array> {
+  const zip = new JSZip();
+  for (const [name, text] of Object.entries(files)) zip.file(name, text);
+  return zip.generateAsync({ type: 'uint8array', compression: 'DEFLATE' });
 }
