@@ -4,10 +4,12 @@ import * as path from 'node:path';
 import JSZip from 'jszip';
 import { firstDifference } from '../../server/src/core/equivalence';
 import { isWellFormed, parseXml } from '../../server/src/core/xml';
-import { libraryDir, listFiles, makeWorkspace, outerGroup, repoRoot, requireCorpus, runCli, scenario, simpleGroup } from '../support/fixtures';
+import { outerGroup, runCli, scenario, simpleGroup } from '../support/fixtures';
+import { libraryDir, repoRoot, requireCorpus } from '../support/paths';
+import { listFiles, temporaryWorkspace } from '../support/workspace';
 
 function simpleWorkspace(extra: Record<string, string | Uint8Array> = {}, parameters: [string, string][] = [['value', '12']]) {
-  return makeWorkspace({
+  return temporaryWorkspace({
     'simple.xosc': scenario(simpleGroup('Go')),
     'main.xosc': scenario(outerGroup('Car', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Go', parameters }] }])),
     ...extra,
@@ -92,7 +94,7 @@ describe('cli: usage and compatibility', () => {
 
 describe('cli: every row of SPEC 7', () => {
   it('maneuverGroupName not in the source: error with file, line and the names that exist', () => {
-    const root = makeWorkspace({
+    const root = temporaryWorkspace({
       'simple.xosc': scenario(simpleGroup('Go') + simpleGroup('Stop')),
       'main.xosc': scenario(outerGroup('Car', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Gone' }] }])),
     });
@@ -105,7 +107,7 @@ describe('cli: every row of SPEC 7', () => {
   });
 
   it('listed attribute missing on its element: error "no default value"', () => {
-    const root = makeWorkspace({
+    const root = temporaryWorkspace({
       'simple.xosc': scenario(simpleGroup('Go').replace('parameterAttributes="x, y"', 'parameterAttributes="x, y, h"')),
       'main.xosc': scenario(outerGroup('Car', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Go', parameters: [['h', '3.14']] }] }])),
     });
@@ -113,7 +115,7 @@ describe('cli: every row of SPEC 7', () => {
   });
 
   it('outer group without EntityRef: error, no crash', () => {
-    const root = makeWorkspace({
+    const root = temporaryWorkspace({
       'simple.xosc': scenario(simpleGroup('Go')),
       'main.xosc': scenario(outerGroup('Car', undefined, [{ file: 'simple.xosc', groups: [{ name: 'Go' }] }])),
     });
@@ -121,7 +123,7 @@ describe('cli: every row of SPEC 7', () => {
   });
 
   it('two ScenarioReferences in one group: both imported, in document order', () => {
-    const root = makeWorkspace({
+    const root = temporaryWorkspace({
       'a.xosc': scenario(simpleGroup('A')),
       'b.xosc': scenario(simpleGroup('B')),
       'main.xosc': scenario(outerGroup('Car', 'car', [{ file: 'a.xosc', groups: [{ name: 'A' }] }, { file: 'b.xosc', groups: [{ name: 'B' }] }])),
@@ -180,7 +182,7 @@ describe('cli: every row of SPEC 7', () => {
   });
 
   it('a cycle of packages (unpacked folders): error printing the whole cycle', () => {
-    const root = makeWorkspace({
+    const root = temporaryWorkspace({
       'main.xosc': scenario(outerGroup('M', 'car', [{ file: 'a.mosc', groups: [{ name: 'A.X' }] }])),
       'a/main.xosc': scenario(outerGroup('A', 'car', [{ file: 'b.mosc', groups: [{ name: 'B.X' }] }])),
       'b/main.xosc': scenario(outerGroup('B', 'car', [{ file: 'a.mosc', groups: [{ name: 'A.X' }] }])),
@@ -201,7 +203,7 @@ describe('cli: every row of SPEC 7', () => {
     const zip = new JSZip();
     zip.file('main.xosc', scenario(''));
     zip.file('../escape.xosc', scenario(''));
-    const root = makeWorkspace({ 'evil.mosc': await zip.generateAsync({ type: 'uint8array' }) });
+    const root = temporaryWorkspace({ 'evil.mosc': await zip.generateAsync({ type: 'uint8array' }) });
     expectFailure(root, ['flatten', 'evil.mosc', '-o', 'out.xosc'], /entry named '\.\.\/escape\.xosc' that points outside the package; it was refused/);
     assert.ok(!fs.existsSync(path.join(path.dirname(root), 'escape.xosc')));
   });

@@ -2,7 +2,8 @@ import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { firstDifference } from '../../server/src/core/equivalence';
-import { listFiles, makeWorkspace, runCli, scenario, simpleGroup } from '../support/fixtures';
+import { runCli, scenario, simpleGroup } from '../support/fixtures';
+import { listFiles, temporaryWorkspace } from '../support/workspace';
 
 const FORMATTED = '<A>\n  <B x="1"/>\n</A>\n';
 const MESSY = '<A>\n<B   x="1" />\n</A>';
@@ -15,7 +16,7 @@ function snapshot(root: string): Record<string, string> {
 
 describe('cli: format', () => {
   it('--check lists the files that would change, exits 1, and writes nothing', () => {
-    const root = makeWorkspace({ 'messy.xosc': MESSY, 'sub/clean.xosc': FORMATTED, 'sub/other.txt': MESSY });
+    const root = temporaryWorkspace({ 'messy.xosc': MESSY, 'sub/clean.xosc': FORMATTED, 'sub/other.txt': MESSY });
     const before = snapshot(root);
     const run = runCli(['format', '--check', '--indent', '2', root]);
     assert.equal(run.status, 1, run.stderr);
@@ -25,7 +26,7 @@ describe('cli: format', () => {
   });
 
   it('--check exits 0 on formatted files', () => {
-    const root = makeWorkspace({ 'clean.xosc': FORMATTED });
+    const root = temporaryWorkspace({ 'clean.xosc': FORMATTED });
     const run = runCli(['format', '--check', path.join(root, 'clean.xosc')]);
     assert.equal(run.status, 0, run.stderr);
     assert.equal(run.stdout, '');
@@ -33,7 +34,7 @@ describe('cli: format', () => {
 
   it('formats in place, keeps the file equivalent, and a second run changes nothing', () => {
     const text = scenario(simpleGroup('Go')).replace(/\n\s*/g, '\n');
-    const root = makeWorkspace({ 'main.xosc': text, 'clean.xosc': FORMATTED.replace('  ', '    ') });
+    const root = temporaryWorkspace({ 'main.xosc': text, 'clean.xosc': FORMATTED.replace('  ', '    ') });
     const cleanTime = fs.statSync(path.join(root, 'clean.xosc')).mtimeMs;
     const run = runCli(['format', '--indent', '4', root]);
     assert.equal(run.status, 0, run.stderr);
@@ -48,13 +49,13 @@ describe('cli: format', () => {
   });
 
   it('--width and --indent tab are applied', () => {
-    const root = makeWorkspace({ 'a.xosc': '<A><B first="1" second="2"/></A>' });
+    const root = temporaryWorkspace({ 'a.xosc': '<A><B first="1" second="2"/></A>' });
     assert.equal(runCli(['format', '--indent', 'tab', '--width', '10', path.join(root, 'a.xosc')]).status, 0);
     assert.equal(fs.readFileSync(path.join(root, 'a.xosc'), 'utf8'), '<A>\n\t<B\n\t\tfirst="1"\n\t\tsecond="2"/>\n</A>\n');
   });
 
   it('writes nothing at all when one file is malformed, and names the file and line', () => {
-    const root = makeWorkspace({ 'good.xosc': MESSY, 'bad.xosc': '<A>\n  <B>\n</A>\n' });
+    const root = temporaryWorkspace({ 'good.xosc': MESSY, 'bad.xosc': '<A>\n  <B>\n</A>\n' });
     const before = snapshot(root);
     const run = runCli(['format', root]);
     assert.equal(run.status, 1);
@@ -65,7 +66,7 @@ describe('cli: format', () => {
 
   it('refuses a file that is not UTF-8 rather than rewriting its bytes', () => {
     const latin1 = Buffer.concat([Buffer.from('<A>\n<B v="'), Buffer.from([0xe9]), Buffer.from('"/>\n</A>')]);
-    const root = makeWorkspace({ 'latin.xosc': latin1 });
+    const root = temporaryWorkspace({ 'latin.xosc': latin1 });
     const run = runCli(['format', root]);
     assert.equal(run.status, 1);
     assert.match(run.stderr, /not UTF-8/);
@@ -73,7 +74,7 @@ describe('cli: format', () => {
   });
 
   it('keeps a byte-order mark', () => {
-    const root = makeWorkspace({ 'bom.xosc': '\uFEFF' + MESSY });
+    const root = temporaryWorkspace({ 'bom.xosc': '\uFEFF' + MESSY });
     assert.equal(runCli(['format', '--indent', '2', root]).status, 0);
     const bytes = fs.readFileSync(path.join(root, 'bom.xosc'));
     assert.deepEqual([...bytes.subarray(0, 3)], [0xef, 0xbb, 0xbf]);

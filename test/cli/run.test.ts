@@ -3,7 +3,9 @@ import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
 import { esminiBinary, requireEsmini, esminiRoads } from '../support/esmini';
-import { libraryDir, listFiles, repoRoot, requireCorpus, runCli } from '../support/fixtures';
+import { runCli } from '../support/fixtures';
+import { libraryDir, repoRoot, requireCorpus } from '../support/paths';
+import { listFiles } from '../support/workspace';
 
 function examplesWith(from?: string, to?: string): string {
   const root = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-run-'));

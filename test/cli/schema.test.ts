@@ -1,7 +1,8 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { makeWorkspace, runCli } from '../support/fixtures';
+import { runCli } from '../support/fixtures';
+import { temporaryWorkspace } from '../support/workspace';
 
 const SCENARIO = (minor: string, group: string, root = '') => `<?xml version="1.0"?>
 <OpenSCENARIO>
@@ -33,7 +34,7 @@ const main = (value: string) =>
 
 describe('cli: OpenSCENARIO schema validation', () => {
   it('check reports schema problems of plain files against their own version, as the editor does', () => {
-    const root = makeWorkspace({
+    const root = temporaryWorkspace({
       'old.xosc': SCENARIO('0', GROUP, '  <VariableDeclarations/>\n'),
       'new.xosc': SCENARIO('2', GROUP, '  <VariableDeclarations/>\n'),
     });
@@ -51,7 +52,7 @@ describe('cli: OpenSCENARIO schema validation', () => {
   });
 
   it('flatten refuses an output that is not valid OpenSCENARIO, naming the source position, unless --force', () => {
-    const root = makeWorkspace({ 'main.xosc': main('far'), 'simple.xosc': SIMPLE });
+    const root = temporaryWorkspace({ 'main.xosc': main('far'), 'simple.xosc': SIMPLE });
     const out = path.join(root, 'out.xosc');
     const refused = runCli(['flatten', 'main.xosc', '-o', out], { cwd: root, schema: true });
     assert.equal(refused.status, 1);
@@ -60,7 +61,7 @@ describe('cli: OpenSCENARIO schema validation', () => {
     const forced = runCli(['flatten', 'main.xosc', '-o', out, '--force'], { cwd: root, schema: true });
     assert.equal(forced.status, 0, forced.stderr);
     assert.match(fs.readFileSync(out, 'utf8'), /<WorldPosition x="far" y="2"\/>/);
-    const fine = makeWorkspace({ 'main.xosc': main('-3'), 'simple.xosc': SIMPLE });
+    const fine = temporaryWorkspace({ 'main.xosc': main('-3'), 'simple.xosc': SIMPLE });
     const written = runCli(['flatten', 'main.xosc', '-o', path.join(fine, 'out.xosc')], { cwd: fine, schema: true });
     assert.equal(written.status, 0, written.stdout + written.stderr);
   });

@@ -1,6 +1,7 @@
 import * as assert from 'node:assert/strict';
 import * as path from 'node:path';
-import { listFiles, makeWorkspace, runCli } from '../support/fixtures';
+import { runCli } from '../support/fixtures';
+import { listFiles, temporaryWorkspace } from '../support/workspace';
 
 const SCENARIO = `<?xml version="1.0" encoding="UTF-8"?>
 <OpenSCENARIO>
@@ -24,7 +25,7 @@ const SCENARIO = `<?xml version="1.0" encoding="UTF-8"?>
 
 describe('cli: --simulator', () => {
   it('check warns about what the chosen simulator does not run, at the source line, and still exits 0', () => {
-    const root = makeWorkspace({ 'scenario.xosc': SCENARIO });
+    const root = temporaryWorkspace({ 'scenario.xosc': SCENARIO });
     const file = path.join(root, 'scenario.xosc');
     const carla = runCli(['check', '--simulator', 'carla', file]);
     assert.equal(carla.status, 0, carla.stderr);
@@ -40,7 +41,7 @@ describe('cli: --simulator', () => {
   });
 
   it('flatten prints the warnings and still writes its output', () => {
-    const root = makeWorkspace({ 'scenario.xosc': SCENARIO });
+    const root = temporaryWorkspace({ 'scenario.xosc': SCENARIO });
     const run = runCli(['flatten', '--simulator', 'carla', 'scenario.xosc', '-o', 'out.xosc'], { cwd: root });
     assert.equal(run.status, 0, run.stderr);
     assert.match(run.stderr, /warning: CARLA ScenarioRunner/);

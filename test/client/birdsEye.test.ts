@@ -7,7 +7,7 @@ import { loadRun, runTracks } from '../../client/src/birdsEye/runData';
 import { parseOpenDrive } from '../../server/src/core/opendrive/road';
 import { sampleNetwork } from '../../server/src/core/opendrive/sample';
 import type { SceneResult } from '../../common/src/sceneProtocol';
-import { makeWorkspace } from '../support/fixtures';
+import { temporaryWorkspace } from '../support/workspace';
 import { STRAIGHT_ROAD } from '../support/roads';
 
 function straightScene(): SceneResult {
@@ -80,7 +80,7 @@ describe("client: the bird's-eye view's drawing", () => {
     const rows = 20_000;
     const header = 'esmini GIT REV: v3.6.0\nesmini GIT TAG: \nesmini GIT BRANCH: x\nesmini BUILD VERSION: x\nScenario File Name: s.xosc\nNumber of Vehicles: 1\nIndex [-], TimeStamp [s], #1 Entity_Name [-], #1 World_Position_X [m], #1 World_Position_Y [m], #1 World_Heading_Angle [rad], \n';
     const body = Array.from({ length: rows }, (_, i) => `${i}, ${(i * 0.01).toFixed(2)}, car, ${i * 0.1}, 0.123456, 0.5, `).join('\n');
-    const folder = makeWorkspace({ 'out.csv': header + body + '\n', 'out.log': '[1.230] [info] Go standbyState -> startTransition -> runningState\n' });
+    const folder = temporaryWorkspace({ 'out.csv': header + body + '\n', 'out.log': '[1.230] [info] Go standbyState -> startTransition -> runningState\n' });
     try {
       const run = await loadRun({ csvPath: path.join(folder, 'out.csv') });
       assert.ok(run.times.length <= 6001 && run.times.length > 5000, `${run.times.length} frames`);

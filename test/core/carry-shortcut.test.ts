@@ -4,7 +4,8 @@ import * as path from 'node:path';
 import { carryShortcut } from '../../server/src/core/flatten/carry';
 import { Flattener } from '../../server/src/core/flatten';
 import { diskRef, ScenarioStore } from '../../server/src/core/sources';
-import { caseStudyDir, libraryDir, makeWorkspace, repoRoot, requireCorpus } from '../support/fixtures';
+import { caseStudyDir, libraryDir, repoRoot, requireCorpus } from '../support/paths';
+import { temporaryWorkspace } from '../support/workspace';
 
 /** Flattens with and without planCarry's shortcut: text, problems and plan must be the same. */
 async function flattenBothWays(root: string, main: string) {
@@ -76,7 +77,7 @@ describe('planCarry shortcut (nothing reaches outside the copies: no model of th
   this.timeout(120_000);
 
   it('gives the same output, problems and plan as reading every copy, with and without carried declarations', async () => {
-    const root = makeWorkspace({
+    const root = temporaryWorkspace({
       'main.xosc': main,
       'plain.xosc': simple(group('G', '3')),
       // Uses a root declaration of its source: it is carried.

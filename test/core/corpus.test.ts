@@ -8,7 +8,7 @@ import { packFolder } from '../../server/src/core/pack';
 import { formatProblem } from '../../server/src/core/problems';
 import { childRef, diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { libraryStats } from '../../server/src/core/stats';
-import { caseStudyDir, corpusDir, libraryDir, requireCorpus, sharedDir } from '../support/fixtures';
+import { caseStudyDir, corpusDir, libraryDir, requireCorpus, sharedDir } from '../support/paths';
 
 const scenarios = fs.existsSync(libraryDir) ? fs.readdirSync(libraryDir).filter((name) => name.startsWith('modular_')).sort() : [];
 

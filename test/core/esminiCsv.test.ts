@@ -7,7 +7,7 @@ import { parseEsminiCsv, parseEsminiStarts } from '../../common/src/esminiCsv';
 import { parseOpenDrive } from '../../server/src/core/opendrive/road';
 import { scenarioScene } from '../../server/src/core/scene';
 import { parseXml } from '../../server/src/core/xml';
-import { repoRoot } from '../support/fixtures';
+import { repoRoot } from '../support/paths';
 import { esminiXodrDir, requireEsminiProgram } from '../support/esminiBinaries';
 
 const fixture = path.join(repoRoot, 'test', 'fixtures', 'birdsEye', 'cut_in.xosc');

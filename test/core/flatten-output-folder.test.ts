@@ -3,7 +3,8 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { Flattener } from '../../server/src/core/flatten';
 import { diskRef, ScenarioStore } from '../../server/src/core/sources';
-import { makeWorkspace, repoRoot } from '../support/fixtures';
+import { repoRoot } from '../support/paths';
+import { temporaryWorkspace } from '../support/workspace';
 
 /** The composed fixture of semantics-flatten: its imported group needs a catalog location carried into the output. */
 const fixtureDir = path.join(repoRoot, 'test', 'fixtures', 'semantics');
@@ -18,7 +19,7 @@ function fixtureWorkspace(): string {
     }
   };
   walk(fixtureDir);
-  return makeWorkspace(files);
+  return temporaryWorkspace(files);
 }
 
 describe('core: one Flattener flattening a main file into several output folders', () => {

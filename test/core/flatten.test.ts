@@ -6,8 +6,9 @@ import { Flattener, originOf } from '../../server/src/core/flatten';
 import { formatProblem } from '../../server/src/core/problems';
 import { childRef, diskRef, readPackageBytes, ScenarioStore } from '../../server/src/core/sources';
 import { parseXml, isWellFormed } from '../../server/src/core/xml';
-import { makeWorkspace, outerGroup, scenario, simpleGroup } from '../support/fixtures';
+import { outerGroup, scenario, simpleGroup } from '../support/fixtures';
 import { packFolder } from '../../server/src/core/pack';
+import { temporaryWorkspace } from '../support/workspace';
 
 async function flattenIn(root: string, main = 'main.xosc', force = false) {
   const store = new ScenarioStore({ root, scenarioPath: [] });
@@ -16,7 +17,7 @@ async function flattenIn(root: string, main = 'main.xosc', force = false) {
 
 describe('core: flatten (SPEC 4)', () => {
   it('replaces the outer group by the renamed, overridden copy, at its indentation', async () => {
-    const root = makeWorkspace({
+    const root = temporaryWorkspace({
       'simple.xosc': scenario(simpleGroup('Go')),
       'main.xosc': scenario(outerGroup('Car1', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Go', parameters: [['AbsoluteTargetSpeed.value', '33'], ['entityRef', 'car']] }] }])),
     });
@@ -32,7 +33,7 @@ describe('core: flatten (SPEC 4)', () => {
   });
 
   it('gives the copy the actor of the outer group', async () => {
-    const root = makeWorkspace({
+    const root = temporaryWorkspace({
       'simple.xosc': scenario(simpleGroup('Go')),
       'main.xosc': scenario(outerGroup('Car1', 'ego', [{ file: 'simple.xosc', groups: [{ name: 'Go' }] }])),
     });
@@ -42,7 +43,7 @@ describe('core: flatten (SPEC 4)', () => {
   });
 
   it('imports both ScenarioReferences of one group, in document order', async () => {
-    const root = makeWorkspace({
+    const root = temporaryWorkspace({
       'a.xosc': scenario(simpleGroup('A')),
       'b.xosc': scenario(simpleGroup('B')),
       'main.xosc': scenario(outerGroup('Car', 'car', [{ file: 'a.xosc', groups: [{ name: 'A' }] }, { file: 'b.xosc', groups: [{ name: 'B' }] }])),
@@ -52,7 +53,7 @@ describe('core: flatten (SPEC 4)', () => {
   });
 
   it('flattens nested packages: dotted names, and the outermost value wins', async () => {
-    const root = makeWorkspace({
+    const root = temporaryWorkspace({
       'simple.xosc': scenario(simpleGroup('Go')),
       'inner/main.xosc': scenario(outerGroup('Inner', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Go', parameters: [['AbsoluteTargetSpeed.value', '20'], ['WorldPosition.x', '5']] }] }])),
       'main.xosc': scenario(outerGroup('Outer', 'ego', [{ file: 'inner.mosc', groups: [{ name: 'Inner.Go', parameters: [['AbsoluteTargetSpeed.value', '30']] }] }])),
@@ -74,7 +75,7 @@ describe('core: flatten (SPEC 4)', () => {
   });
 
   it('maps an element of a flattened package back to the file that wrote it', async () => {
-    const root = makeWorkspace({
+    const root = temporaryWorkspace({
       'simple.xosc': scenario(simpleGroup('Go')),
       'inner/main.xosc': scenario(outerGroup('Inner', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Go' }] }])),
       'main.xosc': scenario(outerGroup('Outer', 'ego', [{ file: 'inner.mosc', groups: [{ name: 'Inner.Go' }] }])),
@@ -93,7 +94,7 @@ describe('core: flatten (SPEC 4)', () => {
 
   it('escapes override values so that the output stays well-formed', async () => {
     const value = `a<b & "c" 'd' > é 中`;
-    const root = makeWorkspace({
+    const root = temporaryWorkspace({
       'simple.xosc': scenario(simpleGroup('Go')),
       'main.xosc': scenario(outerGroup('Car', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Go', parameters: [['value', value.replace(/&/g, '&amp;').replace(/</g, '&lt;').replace(/>/g, '&gt;').replace(/"/g, '&quot;')]] }] }])),
     });
@@ -103,7 +104,7 @@ describe('core: flatten (SPEC 4)', () => {
   });
 
   it('keeps CRLF line ends of the main file and the inserted group', async () => {
-    const root = makeWorkspace({
+    const root = temporaryWorkspace({
       'simple.xosc': scenario(simpleGroup('Go')),
       'main.xosc': scenario(outerGroup('Car', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Go' }] }])).replace(/\n/g, '\r\n'),
     });
@@ -116,14 +117,14 @@ describe('core: flatten (SPEC 4)', () => {
       'simple.xosc': scenario(simpleGroup('Go')),
       'main.xosc': scenario(outerGroup('Car', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Go', parameters: [['WorldPosition.x', value]] }] }])),
     });
-    const before = (await flattenIn(makeWorkspace(files('7')))).text!.split('\n');
-    const after = (await flattenIn(makeWorkspace(files('8')))).text!.split('\n');
+    const before = (await flattenIn(temporaryWorkspace(files('7')))).text!.split('\n');
+    const after = (await flattenIn(temporaryWorkspace(files('8')))).text!.split('\n');
     assert.equal(before.length, after.length);
     assert.deepEqual(before.map((line, i) => (line === after[i] ? 0 : 1)).reduce((a: number, b: number) => a + b, 0), 1);
   });
 
   it('finds every problem in one run', async () => {
-    const root = makeWorkspace({
+    const root = temporaryWorkspace({
       'simple.xosc': scenario(simpleGroup('Go')),
       'main.xosc': scenario(
         outerGroup('A', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Gone' }] }]) +
@@ -139,7 +140,7 @@ describe('core: flatten (SPEC 4)', () => {
   });
 
   it('reports a cycle between plain scenario files with the whole cycle', async () => {
-    const root = makeWorkspace({
+    const root = temporaryWorkspace({
       'main.xosc': scenario(outerGroup('M', 'car', [{ file: 'a.xosc', groups: [{ name: 'X' }] }])),
       'a.xosc': scenario(outerGroup('X', 'car', [{ file: 'b.xosc', groups: [{ name: 'Y' }] }])),
       'b.xosc': scenario(outerGroup('Y', 'car', [{ file: 'a.xosc', groups: [{ name: 'X' }] }])),
@@ -151,7 +152,7 @@ describe('core: flatten (SPEC 4)', () => {
   });
 
   it('warns where an imported group uses an entity that the main file does not declare', async () => {
-    const root = makeWorkspace({
+    const root = temporaryWorkspace({
       'simple.xosc': scenario(simpleGroup('Go')),
       'main.xosc': scenario(outerGroup('Car', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Go' }] }]), ['car']),
     });

@@ -5,7 +5,7 @@ import fc from 'fast-check';
 import JSZip from 'jszip';
 import { firstDifference } from '../../server/src/core/equivalence';
 import { applyEdits, detectIndentation, FormatOptions, formatXml } from '../../server/src/core/format';
-import { sharedDir } from '../support/fixtures';
+import { sharedDir } from '../support/paths';
 
 const TWO: FormatOptions = { tabSize: 2, insertSpaces: true, maxLineWidth: 120 };
 

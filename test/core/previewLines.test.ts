@@ -5,7 +5,8 @@ import { Flattener } from '../../server/src/core/flatten';
 import { previewLineOf } from '../../common/src/lineSegments';
 import { previewLineMap } from '../../server/src/core/previewLines';
 import { diskRef, ScenarioStore } from '../../server/src/core/sources';
-import { makeWorkspace, outerGroup, scenario, simpleGroup } from '../support/fixtures';
+import { outerGroup, scenario, simpleGroup } from '../support/fixtures';
+import { temporaryWorkspace } from '../support/workspace';
 
 const EXAMPLES = path.resolve(__dirname, '..', '..', 'examples');
 
@@ -42,7 +43,7 @@ describe('core: where the flattened preview shows each line of its source', () =
 
   it('keeps lines apart where a stripped parameterAttributes stood on a line of its own', async () => {
     const simple = scenario(simpleGroup('Go')).replace(/ parameterAttributes=/, '\n            parameterAttributes=');
-    const root = makeWorkspace({ 'simple.xosc': simple, 'main.xosc': scenario(outerGroup('Car1', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Go' }] }])) });
+    const root = temporaryWorkspace({ 'simple.xosc': simple, 'main.xosc': scenario(outerGroup('Car1', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Go' }] }])) });
     const { text, lines } = await previewOf(root, 'simple.xosc');
     const sourceLines = simple.split('\n');
     const previewLines = text.split('\n');

@@ -8,7 +8,9 @@ import { ESMINI_PROFILE } from '../../server/src/core/profiles/esmini';
 import { Simulator } from '../../server/src/core/profiles/simulators';
 import { diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { parseXml } from '../../server/src/core/xml';
-import { makeWorkspace, outerGroup, scenario, sharedDir, simpleGroup } from '../support/fixtures';
+import { outerGroup, scenario, simpleGroup } from '../support/fixtures';
+import { sharedDir } from '../support/paths';
+import { temporaryWorkspace } from '../support/workspace';
 
 function scenarioText(minor: string, init: string, story: string): string {
   return `<?xml version="1.0" encoding="UTF-8"?>
@@ -131,7 +133,7 @@ describe('simulator profiles', () => {
       /<ManeuverGroup name="group"[\s\S]*<\/ManeuverGroup>/,
       '<ManeuverGroup name="outer" maximumExecutionCount="1"><Actors selectTriggeringEntities="false"><EntityRef entityRef="ego"/></Actors><ScenarioReference scenarioFileName="simple.xosc"><ManeuverGroupReference maneuverGroupName="Go"/></ScenarioReference></ManeuverGroup>',
     );
-    const root = makeWorkspace({ 'simple.xosc': simple, 'main.xosc': main });
+    const root = temporaryWorkspace({ 'simple.xosc': simple, 'main.xosc': main });
     const flattener = new Flattener(new ScenarioStore({ scenarioPath: [], root }), 'carla');
     const result = await flattener.flatten(diskRef(path.join(root, 'main.xosc')));
     assert.ok(result.text, JSON.stringify(result.problems.map((problem) => problem.message)));
@@ -152,7 +154,7 @@ describe('simulator profiles', () => {
                 <LaneChangeActionDynamics parameterAttributes="dynamicsShape" dynamicsShape="linear" value="2" dynamicsDimension="time"/>
               </Action>
 `;
-    const root = makeWorkspace({
+    const root = temporaryWorkspace({
       'simple.xosc': scenario(simpleGroup('Go', body)),
       'main.xosc': scenario(outerGroup('Car', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Go', parameters: [['dynamicsShape', 'sinusoidal']] }] }])),
     });

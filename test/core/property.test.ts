@@ -5,7 +5,8 @@ import { canonicalTree, CanonicalElement } from '../../server/src/core/equivalen
 import { Flattener } from '../../server/src/core/flatten';
 import { diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { escapeAttributeValue, isWellFormed, parseXml } from '../../server/src/core/xml';
-import { makeWorkspace, outerGroup, scenario, simpleGroup } from '../support/fixtures';
+import { outerGroup, scenario, simpleGroup } from '../support/fixtures';
+import { temporaryWorkspace } from '../support/workspace';
 
 /** Characters XML 1.0 allows in content: random text must survive, not be "fixed". */
 const xmlChar = fc.oneof(
@@ -35,7 +36,7 @@ describe('property: random override values survive flattening', () => {
           ['WorldPosition.x', escapeAttributeValue(x)],
           ['entityRef', escapeAttributeValue(entity)],
         ];
-        const root = makeWorkspace({
+        const root = temporaryWorkspace({
           'simple.xosc': scenario(simpleGroup('Go')),
           'main.xosc': scenario(outerGroup('Car', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Go', parameters }] }])),
         });

@@ -3,7 +3,7 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import fc from 'fast-check';
 import { parseXml, reparseValueEdit, reparseXml, XmlDocument, XmlElement } from '../../server/src/core/xml';
-import { repoRoot } from '../support/fixtures';
+import { repoRoot } from '../support/paths';
 
 /** Everything a consumer reads from a parse, as plain data. */
 function shape(document: XmlDocument): unknown {

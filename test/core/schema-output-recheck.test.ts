@@ -5,7 +5,7 @@ import { Problem } from '../../server/src/core/problems';
 import { outputSchemaProblems } from '../../server/src/core/flatten';
 import { SchemaCheckMemory } from '../../server/src/core/schema/problems';
 import { diskRef, ScenarioStore } from '../../server/src/core/sources';
-import { makeWorkspace } from '../support/fixtures';
+import { temporaryWorkspace } from '../support/workspace';
 
 const simple = `<?xml version="1.0" encoding="UTF-8"?>
 <OpenSCENARIO>
@@ -69,7 +69,7 @@ describe('strict schema check of an output after an edit inside one value', func
   this.timeout(60_000);
 
   it('equals the full check of the same output, edit after edit (and when the text did not change)', async () => {
-    const edited = makeWorkspace({ 'main.xosc': main(['3', '4', '5'], 'step'), 'simple.xosc': simple });
+    const edited = temporaryWorkspace({ 'main.xosc': main(['3', '4', '5'], 'step'), 'simple.xosc': simple });
     const store = new ScenarioStore({ scenarioPath: [], root: edited });
     const ref = diskRef(path.join(edited, 'main.xosc'));
     // Typing in override values (valid, invalid, empty) and in a value of the main file's own.
@@ -91,7 +91,7 @@ describe('strict schema check of an output after an edit inside one value', func
       store.setOverlay(ref, text);
       const incremental = await outputProblems(store, edited);
       // A new workspace each time: nothing remembered, the whole output is checked.
-      const fresh = makeWorkspace({ 'main.xosc': text, 'simple.xosc': simple });
+      const fresh = temporaryWorkspace({ 'main.xosc': text, 'simple.xosc': simple });
       assert.deepEqual(incremental, await outputProblems(new ScenarioStore({ scenarioPath: [], root: fresh }), fresh), `${speeds.join(',')} ${dynamics}`);
       findings += incremental.length;
     }

@@ -12,7 +12,8 @@ import { checkValue } from '../../server/src/core/schema/values';
 import { chooseVersion } from '../../server/src/core/schema/version';
 import { childRef, diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { parseXml } from '../../server/src/core/xml';
-import { caseStudyDir, libraryDir, makeWorkspace, repoRoot, requireCorpus, sharedDir } from '../support/fixtures';
+import { caseStudyDir, libraryDir, repoRoot, requireCorpus, sharedDir } from '../support/paths';
+import { temporaryWorkspace } from '../support/workspace';
 
 /** One memory of schema checks for the whole file, as the checks of one process shared before. */
 const schemaChecks = new SchemaCheckMemory();
@@ -167,7 +168,7 @@ describe('core: the OpenSCENARIO schemas, compiled at build time', () => {
       '{GROUP}',
       `        <ManeuverGroup maximumExecutionCount="1" name="Outer"><Actors selectTriggeringEntities="false"><EntityRef entityRef="ego"/></Actors>\n          <ScenarioReference scenarioFileName="simple.xosc"><ManeuverGroupReference maneuverGroupName="G"><ParameterReference key="x" value="far"/></ManeuverGroupReference></ScenarioReference>\n        </ManeuverGroup>\n`,
     );
-    const root = makeWorkspace({ 'main.xosc': main, 'simple.xosc': simple });
+    const root = temporaryWorkspace({ 'main.xosc': main, 'simple.xosc': simple });
     const store = new ScenarioStore({ scenarioPath: [], root });
     const result = await new Flattener(store, 'asam', { version: 'auto' }).flatten(diskRef(path.join(root, 'main.xosc')));
     assert.equal(result.text, undefined);
@@ -181,7 +182,7 @@ describe('core: the OpenSCENARIO schemas, compiled at build time', () => {
     assert.deepEqual(errorsOf(analysis.problems).map((problem) => formatProblem(problem, root)), errors);
     const forced = await new Flattener(store, 'asam', { version: 'auto' }).flatten(diskRef(path.join(root, 'main.xosc')), { force: true });
     assert.ok(forced.text?.includes('x="far"'));
-    const fine = makeWorkspace({ 'main.xosc': main.replace('value="far"', 'value="-5"'), 'simple.xosc': simple });
+    const fine = temporaryWorkspace({ 'main.xosc': main.replace('value="far"', 'value="-5"'), 'simple.xosc': simple });
     const ok = await new Flattener(new ScenarioStore({ scenarioPath: [], root: fine }), 'asam', { version: 'auto' }).flatten(diskRef(path.join(fine, 'main.xosc')));
     assert.deepEqual(errorsOf(ok.problems).map((problem) => formatProblem(problem)), []);
     assert.ok(ok.text?.includes('x="-5"'));

@@ -9,7 +9,9 @@ import { semanticModelOf } from '../../server/src/core/semantics';
 import { diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { descendants as descendantsOf, parseXml } from '../../server/src/core/xml';
 import { requireEsmini, runEsmini } from '../support/esmini';
-import { makeWorkspace, repoRoot, runCli } from '../support/fixtures';
+import { runCli } from '../support/fixtures';
+import { repoRoot } from '../support/paths';
+import { temporaryWorkspace } from '../support/workspace';
 
 /** The composed fixture: main.xosc imports Accelerate from speed_up.xosc; plain.xosc is what it means, written by hand. */
 const fixtureDir = path.join(repoRoot, 'test', 'fixtures', 'semantics');
@@ -25,7 +27,7 @@ function fixtureWorkspace(changes: Record<string, (text: string) => string> = {}
   };
   walk(fixtureDir);
   for (const [name, change] of Object.entries(changes)) files[name] = change(files[name]);
-  return makeWorkspace(files);
+  return temporaryWorkspace(files);
 }
 
 async function flatten(root: string, outputPath?: string) {
@@ -104,7 +106,7 @@ describe('semantics across a flatten (SPEC 11)', function () {
       .replace('scenarioFileName="speed_up.xosc"', 'scenarioFileName="inner.mosc"')
       .replace('maneuverGroupName="Accelerate"', 'maneuverGroupName="Drive.Accelerate"')
       .replace('<ParameterReference key="SimulationTimeCondition.value" value="6"/>', '');
-    const root = makeWorkspace(files);
+    const root = temporaryWorkspace(files);
     const result = await flatten(root);
     assert.ok(result.text, codes(result.problems).join('\n'));
     const names = [...result.text.matchAll(/<ParameterDeclaration name="(\w+)"/g)].map((match) => match[1]);

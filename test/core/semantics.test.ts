@@ -18,7 +18,7 @@ import {
 import JSZip from 'jszip';
 import { childRef, diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { parseXml } from '../../server/src/core/xml';
-import { makeWorkspace } from '../support/fixtures';
+import { temporaryWorkspace } from '../support/workspace';
 
 const CATALOG = `<?xml version="1.0"?>
 <OpenSCENARIO>
@@ -126,7 +126,7 @@ const SCENARIO = `<?xml version="1.0"?>
 `;
 
 async function analyze(): Promise<DocumentSemantics> {
-  const root = makeWorkspace({ 'scenario.xosc': SCENARIO, 'catalogs/VehicleCatalog.xosc': CATALOG });
+  const root = temporaryWorkspace({ 'scenario.xosc': SCENARIO, 'catalogs/VehicleCatalog.xosc': CATALOG });
   const ref = diskRef(path.join(root, 'scenario.xosc'));
   return analyzeDocument(ref, parseXml(SCENARIO), new CatalogLoader(new ScenarioStore({ scenarioPath: [], root })), false);
 }
@@ -256,7 +256,7 @@ describe('semantics: catalogs inside packages, through SCENARIO_PATH, and from u
     const zip = new JSZip();
     zip.file('main.xosc', SCENARIO);
     zip.file('catalogs/VehicleCatalog.xosc', CATALOG);
-    const root = makeWorkspace({ 'scenario.mosc': await zip.generateAsync({ type: 'uint8array' }) });
+    const root = temporaryWorkspace({ 'scenario.mosc': await zip.generateAsync({ type: 'uint8array' }) });
     const store = new ScenarioStore({ scenarioPath: [], root });
     const main = childRef(diskRef(path.join(root, 'scenario.mosc')), 'main.xosc');
     const semantics = await analyzeDocument(main, parseXml(SCENARIO), new CatalogLoader(store), false);
@@ -265,7 +265,7 @@ describe('semantics: catalogs inside packages, through SCENARIO_PATH, and from u
   });
 
   it('finds a catalog directory that does not exist beside the file through SCENARIO_PATH, as esmini does with --path', async () => {
-    const root = makeWorkspace({ 'scenarios/scenario.xosc': SCENARIO, 'shared/catalogs/VehicleCatalog.xosc': CATALOG });
+    const root = temporaryWorkspace({ 'scenarios/scenario.xosc': SCENARIO, 'shared/catalogs/VehicleCatalog.xosc': CATALOG });
     const store = new ScenarioStore({ scenarioPath: [path.join(root, 'shared')], root });
     const semantics = await analyzeDocument(diskRef(path.join(root, 'scenarios', 'scenario.xosc')), parseXml(SCENARIO), new CatalogLoader(store), false);
     assert.equal(semantics.catalogs.locations[0].directories[0].via, 'scenarioPath');
@@ -273,7 +273,7 @@ describe('semantics: catalogs inside packages, through SCENARIO_PATH, and from u
   });
 
   it('reads a catalog file from the editor\'s unsaved text', async () => {
-    const root = makeWorkspace({ 'scenario.xosc': SCENARIO, 'catalogs/VehicleCatalog.xosc': CATALOG });
+    const root = temporaryWorkspace({ 'scenario.xosc': SCENARIO, 'catalogs/VehicleCatalog.xosc': CATALOG });
     const store = new ScenarioStore({ scenarioPath: [], root });
     store.setOverlay(diskRef(path.join(root, 'catalogs', 'VehicleCatalog.xosc')), CATALOG.replace('<Vehicle name="car"', '<Vehicle name="truck"'));
     const semantics = await analyzeDocument(diskRef(path.join(root, 'scenario.xosc')), parseXml(SCENARIO), new CatalogLoader(store), false);

@@ -5,7 +5,8 @@ import JSZip from 'jszip';
 import { Flattener } from '../../server/src/core/flatten';
 import { problemData } from '../../server/src/core/problems';
 import { childRef, diskRef, readPackageBytes, ScenarioStore, splitScenarioPath } from '../../server/src/core/sources';
-import { makeWorkspace, outerGroup, scenario, simpleGroup } from '../support/fixtures';
+import { outerGroup, scenario, simpleGroup } from '../support/fixtures';
+import { temporaryWorkspace } from '../support/workspace';
 
 describe('core: resolving scenarioFileName (SPEC 3)', () => {
   it('splits SCENARIO_PATH on ; and on the platform delimiter', () => {
@@ -14,7 +15,7 @@ describe('core: resolving scenarioFileName (SPEC 3)', () => {
   });
 
   it('looks in the package, then SCENARIO_PATH, then parent folders of an unpacked folder', async () => {
-    const root = makeWorkspace({
+    const root = temporaryWorkspace({
       'shared/only-path.xosc': scenario(''),
       'shared/both.xosc': scenario(''),
       'project/both.xosc': scenario(''),
@@ -40,7 +41,7 @@ describe('core: resolving scenarioFileName (SPEC 3)', () => {
   it('never searches parent folders from inside a .mosc, and a file NAME.mosc wins over a folder NAME/', async () => {
     const zip = new JSZip();
     zip.file('main.xosc', scenario(''));
-    const root = makeWorkspace({ 'beside.xosc': scenario(''), 'p.mosc': await zip.generateAsync({ type: 'uint8array' }), 'p/main.xosc': scenario('') });
+    const root = temporaryWorkspace({ 'beside.xosc': scenario(''), 'p.mosc': await zip.generateAsync({ type: 'uint8array' }), 'p/main.xosc': scenario('') });
     const store = new ScenarioStore({ root, scenarioPath: [] });
     const inside = childRef(diskRef(path.join(root, 'p.mosc')), 'main.xosc');
     assert.equal((await store.resolve('beside.xosc', inside)).kind, 'missing');
@@ -52,7 +53,7 @@ describe('core: resolving scenarioFileName (SPEC 3)', () => {
     const inner = new JSZip();
     inner.file('main.xosc', scenario(outerGroup('Inner', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Go' }] }])));
     inner.file('simple.xosc', scenario(simpleGroup('Go').replace('value="10"', 'value="99"')));
-    const root = makeWorkspace({
+    const root = temporaryWorkspace({
       'simple.xosc': scenario(simpleGroup('Go')),
       'inner.mosc': await inner.generateAsync({ type: 'uint8array' }),
       'main.xosc': scenario(
@@ -67,7 +68,7 @@ describe('core: resolving scenarioFileName (SPEC 3)', () => {
   });
 
   it('resolves NAME.xosc to the flattened package NAME.mosc, with a warning', async () => {
-    const root = makeWorkspace({
+    const root = temporaryWorkspace({
       'simple.xosc': scenario(simpleGroup('Go')),
       'pkg/main.xosc': scenario(outerGroup('P', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Go' }] }])),
       'main.xosc': scenario(outerGroup('M', 'car', [{ file: 'pkg.xosc', groups: [{ name: 'P.Go' }] }])),
@@ -96,7 +97,7 @@ describe('core: reading packages safely', () => {
     const zip = new JSZip();
     zip.file('main.xosc', scenario(simpleGroup('Go')));
     const bytes = await zip.generateAsync({ type: 'uint8array', compression: 'DEFLATE' });
-    const root = makeWorkspace({ 'cut.mosc': bytes.slice(0, Math.floor(bytes.length / 2)) });
+    const root = temporaryWorkspace({ 'cut.mosc': bytes.slice(0, Math.floor(bytes.length / 2)) });
     const result = await new Flattener(new ScenarioStore({ root, scenarioPath: [] })).flatten(childRef(diskRef(path.join(root, 'cut.mosc')), 'main.xosc'));
     assert.equal(result.text, undefined);
     assert.equal(result.problems[0].code, 'bad-package');

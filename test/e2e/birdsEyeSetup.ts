@@ -1,7 +1,7 @@
 import { spawnSync } from 'node:child_process';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { ROOT } from './harness';
+import { repoRoot } from '../support/paths';
 
 /** Where the bird's-eye tests find their scenario, road and run inside the e2e workspace. */
 export const BIRDS_EYE_FILES = {
@@ -18,12 +18,12 @@ export const BIRDS_EYE_FILES = {
 export function prepareBirdsEye(workspace: string): void {
   const scenario = path.join(workspace, BIRDS_EYE_FILES.scenario);
   fs.mkdirSync(path.dirname(scenario), { recursive: true });
-  fs.copyFileSync(path.join(ROOT, 'test', 'fixtures', 'birdsEye', 'cut_in.xosc'), scenario);
-  const xodrFolder = path.resolve(ROOT, '..', 'shared', 'esmini', 'xodr');
+  fs.copyFileSync(path.join(repoRoot, 'test', 'fixtures', 'birdsEye', 'cut_in.xosc'), scenario);
+  const xodrFolder = path.resolve(repoRoot, '..', 'shared', 'esmini', 'xodr');
   if (!fs.existsSync(path.join(xodrFolder, 'e6mini.xodr'))) return;
   fs.mkdirSync(path.join(workspace, BIRDS_EYE_FILES.roadFolder), { recursive: true });
   fs.copyFileSync(path.join(xodrFolder, 'e6mini.xodr'), path.join(workspace, BIRDS_EYE_FILES.roadFolder, 'e6mini.xodr'));
-  const esmini = path.join(ROOT, '.cache', 'esmini', 'bin', 'esmini');
+  const esmini = path.join(repoRoot, '.cache', 'esmini', 'bin', 'esmini');
   if (!fs.existsSync(esmini)) return;
   const run = spawnSync(esmini, ['--headless', '--osc', scenario, '--fixed_timestep', '0.05', '--seed', '1', '--csv_logger', path.join(workspace, BIRDS_EYE_FILES.csv), '--disable_log', '--path', xodrFolder], {
     cwd: path.dirname(scenario),

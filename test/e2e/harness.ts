@@ -5,6 +5,7 @@ import * as net from 'node:net';
 import * as os from 'node:os';
 import * as path from 'node:path';
 import type { Browser, Page } from 'playwright-core';
+import { repoRoot } from '../support/paths';
 
 /**
  * Runs the packaged extension inside a real VS Code: code-server 4.100.3 (installed by
@@ -12,10 +13,9 @@ import type { Browser, Page } from 'playwright-core';
  * playwright-core. Nothing is downloaded here.
  */
 
-export const ROOT = path.resolve(__dirname, '..', '..');
-export const CODE_SERVER = process.env.M2S_CODE_SERVER ?? path.join(ROOT, '.cache', 'code-server', 'node_modules', '.bin', 'code-server');
+export const CODE_SERVER = process.env.M2S_CODE_SERVER ?? path.join(repoRoot, '.cache', 'code-server', 'node_modules', '.bin', 'code-server');
 export const CHROMIUM = process.env.M2S_CHROMIUM ?? '/usr/bin/chromium';
-export const ARTIFACTS = path.join(ROOT, 'test-results', 'e2e');
+export const ARTIFACTS = path.join(repoRoot, 'test-results', 'e2e');
 const SETUP = 'scripts/e2e-setup.sh';
 
 /** Why the real-VS-Code tests cannot run here, or undefined when everything is installed. */
@@ -36,7 +36,7 @@ export function requireE2e(): boolean {
 }
 
 function run(command: string, args: string[], options: { cwd?: string; env?: NodeJS.ProcessEnv } = {}): string {
-  const result = spawnSync(command, args, { cwd: options.cwd ?? ROOT, env: options.env ?? process.env, encoding: 'utf8', maxBuffer: 64 * 1024 * 1024 });
+  const result = spawnSync(command, args, { cwd: options.cwd ?? repoRoot, env: options.env ?? process.env, encoding: 'utf8', maxBuffer: 64 * 1024 * 1024 });
   if (result.status !== 0) {
     throw new Error(`${command} ${args.join(' ')} failed (${result.status ?? result.signal}):\n${result.stdout}\n${result.stderr}`);
   }
@@ -46,7 +46,7 @@ function run(command: string, args: string[], options: { cwd?: string; env?: Nod
 /** Builds the bundles and the .vsix exactly as `npm run package` does, into `directory`. */
 export function packageExtension(directory: string): string {
   const vsix = path.join(directory, 'modular2simple.vsix');
-  run(process.execPath, [path.join(ROOT, 'scripts', 'package.mjs'), '--out', vsix]);
+  run(process.execPath, [path.join(repoRoot, 'scripts', 'package.mjs'), '--out', vsix]);
   return vsix;
 }
 
@@ -54,7 +54,7 @@ export function packageExtension(directory: string): string {
 export async function buildInsideSuite(directory: string): Promise<{ extensionPath: string; testsPath: string }> {
   const esbuild = await import('esbuild');
   // Placed under the project so that `require('mocha')` finds the project's node_modules.
-  const extensionPath = path.join(ROOT, 'out', `e2e-runner-${process.pid}`);
+  const extensionPath = path.join(repoRoot, 'out', `e2e-runner-${process.pid}`);
   fs.rmSync(extensionPath, { recursive: true, force: true });
   fs.mkdirSync(extensionPath, { recursive: true });
   fs.writeFileSync(
@@ -63,7 +63,7 @@ export async function buildInsideSuite(directory: string): Promise<{ extensionPa
   );
   const testsPath = path.join(extensionPath, 'suite.js');
   await esbuild.build({
-    entryPoints: [path.join(ROOT, 'test', 'e2e', 'inside', 'index.ts')],
+    entryPoints: [path.join(repoRoot, 'test', 'e2e', 'inside', 'index.ts')],
     outfile: testsPath,
     bundle: true,
     platform: 'node',

@@ -6,7 +6,6 @@ import type { Browser, Frame, Page } from 'playwright-core';
 import {
   ARTIFACTS,
   HarnessEndpoint,
-  ROOT,
   buildInsideSuite,
   copyFolder,
   createProfile,
@@ -21,6 +20,7 @@ import {
   type InsideResult,
   type Profile,
 } from './harness';
+import { repoRoot } from '../support/paths';
 import { HARNESS_ENV, INSIDE_TESTS } from './titles';
 import { prepareBirdsEye } from './birdsEyeSetup';
 
@@ -29,7 +29,7 @@ const RUN_TIMEOUT_MS = 180_000;
 /** The example workspace, plus two packages the tests need: one nested in another, one broken. */
 async function prepareWorkspace(profile: Profile): Promise<string> {
   const workspace = path.join(profile.root, 'examples');
-  copyFolder(path.join(ROOT, 'examples'), workspace);
+  copyFolder(path.join(repoRoot, 'examples'), workspace);
   const braking = fs.readFileSync(path.join(workspace, 'braking.mosc'));
   const brakingMain = await (await JSZip.loadAsync(braking)).file('main.xosc')?.async('string');
   assert.ok(brakingMain, 'examples/braking.mosc holds no main.xosc');
@@ -158,7 +158,7 @@ describe('the packaged extension in a real VS Code (code-server, headless Chromi
         MODULAR2SIMPLE_SERVER_ERROR_LOG: path.join(profile.root, 'server-errors.log'),
         [HARNESS_ENV.endpoint]: endpoint.url,
         [HARNESS_ENV.workspace]: workspace,
-        [HARNESS_ENV.cli]: path.join(ROOT, 'dist', 'cli.js'),
+        [HARNESS_ENV.cli]: path.join(repoRoot, 'dist', 'cli.js'),
         [HARNESS_ENV.grep]: process.env[HARNESS_ENV.grep] ?? '',
       });
       browser = await launchBrowser(profile);
@@ -202,7 +202,7 @@ describe('the packaged extension in a real VS Code (code-server, headless Chromi
     it(title, function () {
       const result = results.get(title);
       if (!result && process.env[HARNESS_ENV.grep]) this.skip();
-      assert.ok(result, `did not run inside VS Code (exit code ${exitCode}); see ${path.relative(ROOT, ARTIFACTS)}/extension-host.log`);
+      assert.ok(result, `did not run inside VS Code (exit code ${exitCode}); see ${path.relative(repoRoot, ARTIFACTS)}/extension-host.log`);
       if (result.state === 'pending') this.skip();
       if (result.state === 'failed') assert.fail(result.error);
     });
@@ -210,14 +210,14 @@ describe('the packaged extension in a real VS Code (code-server, headless Chromi
 
   it('the .vsix holds the bundles and the manifest\'s assets, nothing else', () => {
     const extensionFiles = vsixEntries.filter((name) => name.startsWith('extension/')).map((name) => name.slice('extension/'.length)).sort();
-    const manifest = JSON.parse(fs.readFileSync(path.join(ROOT, 'package.json'), 'utf8')) as { main: string; contributes: { grammars: { path: string }[]; languages: { configuration?: string; icon?: { light: string } }[] } };
+    const manifest = JSON.parse(fs.readFileSync(path.join(repoRoot, 'package.json'), 'utf8')) as { main: string; contributes: { grammars: { path: string }[]; languages: { configuration?: string; icon?: { light: string } }[] } };
     const needed = [
       manifest.main,
       'dist/server.js',
       'dist/birdsEye.js',
       // The compiled OpenSCENARIO schemas the server reads, and the ASAM schemas with their licence note.
       'dist/openscenario-schemas.json',
-      ...fs.readdirSync(path.join(ROOT, 'schemas')).map((file) => `schemas/${file}`),
+      ...fs.readdirSync(path.join(repoRoot, 'schemas')).map((file) => `schemas/${file}`),
       ...manifest.contributes.grammars.map((grammar) => grammar.path),
       ...manifest.contributes.languages.flatMap((language) => [language.configuration, language.icon?.light]),
     ].filter((file): file is string => file !== undefined).map((file) => path.posix.normalize(file));

@@ -3,8 +3,9 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import JSZip from 'jszip';
 import { Location, WorkspaceEdit } from 'vscode-languageserver/node';
-import { fileUri, temporaryWorkspace, TestClient } from './harness';
+import { fileUri, TestClient } from './harness';
 import { applyEdits, inside, offsetOf } from './textEdits';
+import { temporaryWorkspace } from '../support/workspace';
 
 /** A vehicle catalog entry that declares MaxSpeed and uses it. */
 function vehicle(name: string, maxSpeed: number): string {

@@ -12,7 +12,8 @@ import { EsminiRunOptions, EsminiRunResult, removeRunFolder, runScenario } from 
 import { TIME_LIMIT_CONDITION, withTimeLimit } from '../../server/src/esmini/timeLimit';
 import { parseXml } from '../../server/src/core/xml';
 import { esminiBinary, tracksOf, readEsminiCsv, requireEsmini, esminiCatalogs, esminiRoads } from '../support/esmini';
-import { libraryDir, listFiles, repoRoot, requireCorpus } from '../support/fixtures';
+import { libraryDir, repoRoot, requireCorpus } from '../support/paths';
+import { listFiles } from '../support/workspace';
 
 const examples = path.join(repoRoot, 'examples');
 

@@ -4,7 +4,7 @@ import * as os from 'node:os';
 import * as path from 'node:path';
 import { RunEsminiRequest, RunEsminiResult } from '../../common/src/protocol';
 import { esminiBinary, requireEsmini, esminiRoads } from '../support/esmini';
-import { repoRoot } from '../support/fixtures';
+import { repoRoot } from '../support/paths';
 import { fileUri, TestClient } from './harness';
 
 describe('language server: the Run in esmini request over JSON-RPC', function () {

@@ -18,15 +18,15 @@ import {
 } from 'vscode-languageserver/node';
 import { FlattenToFileRequest, FlattenToTextRequest, PackRequest, StructureRequest } from '../../common/src/protocol';
 import { CLEAN, cycleFile, MAIN, PACKAGE_MAIN, SIMPLE } from './fixtures/scenarios';
-import { fileUri, markers, positionAt, temporaryWorkspace, TestClient } from './harness';
+import { fileUri, TestClient } from './harness';
+import { at, cursor } from '../support/cursor';
+import { temporaryWorkspace } from '../support/workspace';
 
-const simple = markers(SIMPLE);
-const main = markers(MAIN);
 
 async function packageBytes(): Promise<Uint8Array> {
   const zip = new JSZip();
   zip.file('main.xosc', PACKAGE_MAIN);
-  zip.file('simple.xosc', simple.text);
+  zip.file('simple.xosc', SIMPLE);
   return zip.generateAsync({ type: 'uint8array' });
 }
 
@@ -61,8 +61,8 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
 
   before(async function () {
     root = temporaryWorkspace({
-      'simple.xosc': simple.text,
-      'main.xosc': main.text,
+      'simple.xosc': SIMPLE,
+      'main.xosc': MAIN,
       'clean.xosc': CLEAN,
       'cycleA.xosc': cycleFile('A', 'cycleB.xosc'),
       'cycleB.xosc': cycleFile('B', 'cycleA.xosc'),
@@ -85,35 +85,35 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
       assert.deepEqual(codes(diagnostics), ['missing-file', 'no-default', 'unknown-group', 'unknown-key', 'xosc-fallback']);
       const unknownKey = diagnostics.find((diagnostic) => diagnostic.code === 'unknown-key') as Diagnostic;
       assert.equal(unknownKey.severity, DiagnosticSeverity.Error, 'an unknown key is an error, as for the CLI');
-      assert.equal(textAt(main.text, unknownKey.range), 'dela');
+      assert.equal(textAt(MAIN, unknownKey.range), 'dela');
       assert.match(messageOf(unknownKey), /did you mean 'delay'/);
       const unknownGroup = diagnostics.find((diagnostic) => diagnostic.code === 'unknown-group') as Diagnostic;
-      assert.equal(textAt(main.text, unknownGroup.range), 'Brak');
+      assert.equal(textAt(MAIN, unknownGroup.range), 'Brak');
       assert.match(messageOf(unknownGroup), /it has: Brake, Wait/);
       const missing = diagnostics.find((diagnostic) => diagnostic.code === 'missing-file') as Diagnostic;
       assert.equal(missing.severity, DiagnosticSeverity.Error);
-      assert.equal(textAt(main.text, missing.range), 'nowhere.xosc');
+      assert.equal(textAt(MAIN, missing.range), 'nowhere.xosc');
       const fallback = diagnostics.find((diagnostic) => diagnostic.code === 'xosc-fallback') as Diagnostic;
       assert.equal(fallback.severity, DiagnosticSeverity.Warning);
-      assert.equal(textAt(main.text, fallback.range), 'pkg.xosc');
+      assert.equal(textAt(MAIN, fallback.range), 'pkg.xosc');
     });
 
     it('relates a key without default to the listed name in the simple scenario', async function () {
       const diagnostics = await client.diagnosticsOf(mainUri);
       const noDefault = diagnostics.find((diagnostic) => diagnostic.code === 'no-default') as Diagnostic;
       assert.equal(noDefault.severity, DiagnosticSeverity.Error);
-      assert.equal(textAt(main.text, noDefault.range), 'missing');
+      assert.equal(textAt(MAIN, noDefault.range), 'missing');
       const related = noDefault.relatedInformation?.[0];
       assert.ok(related, 'has a related location');
       assert.equal(related.location.uri, simpleUri);
-      assert.equal(textAt(simple.text, related.location.range), 'missing');
+      assert.equal(textAt(SIMPLE, related.location.range), 'missing');
     });
 
     it('reports a parameterAttributes entry that names no attribute in the simple scenario', async function () {
       await client.openFile(path.join(root, 'simple.xosc'));
       const diagnostics = await client.diagnosticsOf(simpleUri);
       assert.deepEqual(codes(diagnostics), ['unknown-parameter-attribute']);
-      assert.deepEqual(diagnostics[0].range.start, positionAt(simple.text, simple.offsets[2]));
+      assert.deepEqual(diagnostics[0].range.start, at(SIMPLE, 'parameterAttributes="delay, |missing"'));
       await client.close(simpleUri);
     });
 
@@ -140,8 +140,8 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
     });
 
     it('re-diagnoses an open main file when a simple scenario it uses is edited (unsaved)', async function () {
-      await client.open(simpleUri, simple.text);
-      const start = positionAt(simple.text, simple.offsets[0]);
+      await client.open(simpleUri, SIMPLE);
+      const start = at(SIMPLE, '<ManeuverGroup name="|Brake"');
       await client.change(simpleUri, [{ range: { start, end: { line: start.line, character: start.character + 'Brake'.length } }, text: 'Braking' }]);
       const diagnostics = await client.diagnosticsOf(mainUri, (list) => list.filter((diagnostic) => diagnostic.code === 'unknown-group').length === 2);
       assert.ok(diagnostics.some((diagnostic) => /has no ManeuverGroup named 'Brake'; it has: Braking, Wait/.test(messageOf(diagnostic))));
@@ -151,7 +151,7 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
 
     it('follows file changes on disk (didChangeWatchedFiles)', async function () {
       const nowhere = path.join(root, 'nowhere.xosc');
-      fs.writeFileSync(nowhere, simple.text.replace('name="Brake"', 'name="Any"'));
+      fs.writeFileSync(nowhere, SIMPLE.replace('name="Brake"', 'name="Any"'));
       await client.connection.sendNotification('workspace/didChangeWatchedFiles', { changes: [{ uri: fileUri(nowhere), type: 1 }] });
       await client.diagnosticsOf(mainUri, (list) => !list.some((diagnostic) => diagnostic.code === 'missing-file'));
       fs.rmSync(nowhere);
@@ -161,44 +161,44 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
   });
 
   describe('definition', function () {
-    const definition = (offset: number) => client.request<Location[]>('textDocument/definition', client.at(mainUri, positionAt(main.text, main.offsets[offset])));
+    const definition = (markedSnippet: string, after?: string) => client.request<Location[]>('textDocument/definition', client.at(mainUri, at(MAIN, markedSnippet, after)));
 
     it('goes from scenarioFileName to the file', async function () {
-      const [location] = await definition(0);
+      const [location] = await definition('scenarioFileName="sim|ple.xosc"', 'name="Outer"');
       assert.equal(location.uri, simpleUri);
     });
 
     it('goes from scenarioFileName into a package, as the mosc: URI of its main.xosc', async function () {
-      const [location] = await definition(5);
+      const [location] = await definition('scenarioFileName="|pkg.xosc"');
       assert.equal(location.uri, `mosc:${path.join(root, 'pkg.mosc')}/main.xosc`);
     });
 
     it('goes from maneuverGroupName to the group', async function () {
-      const locations = await definition(1);
+      const locations = await definition('maneuverGroupName="Br|ake"');
       assert.equal(locations.length, 1);
       assert.equal(locations[0].uri, simpleUri);
-      assert.equal(textAt(simple.text, locations[0].range), 'Brake');
-      assert.deepEqual(locations[0].range.start, positionAt(simple.text, simple.offsets[0]));
+      assert.equal(textAt(SIMPLE, locations[0].range), 'Brake');
+      assert.deepEqual(locations[0].range.start, at(SIMPLE, '<ManeuverGroup name="|Brake"'));
     });
 
     it('goes from a key to the attribute it overrides', async function () {
-      const locations = await definition(2);
+      const locations = await definition('key="AbsoluteTargetSpeed.val|ue"');
       assert.equal(locations.length, 1);
       assert.equal(locations[0].uri, simpleUri);
-      assert.equal(textAt(simple.text, locations[0].range), 'value="5"');
+      assert.equal(textAt(SIMPLE, locations[0].range), 'value="5"');
     });
 
     it('goes from a dotted group name into the package, as a mosc: URI', async function () {
-      const locations = await definition(6);
+      const locations = await definition('maneuverGroupName="Inner.Br|ake"');
       assert.equal(locations.length, 1);
       assert.equal(locations[0].uri, `mosc:${path.join(root, 'pkg.mosc')}/simple.xosc`);
-      assert.equal(textAt(simple.text, locations[0].range), 'Brake');
+      assert.equal(textAt(SIMPLE, locations[0].range), 'Brake');
     });
 
     it('goes from entityRef to its ScenarioObject', async function () {
-      const [location] = await definition(8);
+      const [location] = await definition('entityRef="ca|r"', 'name="Fourth"');
       assert.equal(location.uri, mainUri);
-      assert.equal(textAt(main.text, location.range), 'car');
+      assert.equal(textAt(MAIN, location.range), 'car');
       assert.equal(location.range.start.line, 4);
     });
 
@@ -207,7 +207,7 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
       await client.open(uri, PACKAGE_MAIN);
       assert.deepEqual(await client.diagnosticsOf(uri), []);
       const text = PACKAGE_MAIN;
-      const position = positionAt(text, text.indexOf('maneuverGroupName="Br') + 'maneuverGroupName="Br'.length);
+      const position = at(text, 'maneuverGroupName="Br|ake"');
       const [location] = await client.request<Location[]>('textDocument/definition', client.at(uri, position));
       assert.equal(location.uri, `mosc:${path.join(root, 'pkg.mosc')}/simple.xosc`);
       const symbols = await client.request<DocumentSymbol[]>('textDocument/documentSymbol', { textDocument: { uri } });
@@ -221,10 +221,10 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
 
     it('offers the file names that resolve, packages and siblings', async function () {
       const uri = fileUri(path.join(root, 'typing.xosc'));
-      const typed = markers(`<OpenSCENARIO><Storyboard><Story name="S"><Act name="A"><ManeuverGroup name="G"><Actors><EntityRef entityRef="e"/></Actors>
+      const typed = cursor(`<OpenSCENARIO><Storyboard><Story name="S"><Act name="A"><ManeuverGroup name="G"><Actors><EntityRef entityRef="e"/></Actors>
   <ScenarioReference scenarioFileName="|`);
       await client.open(uri, typed.text);
-      const items = await client.request<CompletionItem[]>('textDocument/completion', client.at(uri, positionAt(typed.text, typed.offsets[0])));
+      const items = await client.request<CompletionItem[]>('textDocument/completion', client.at(uri, typed.position));
       assert.deepEqual(labels(items), ['clean.xosc', 'cycleA.xosc', 'cycleB.xosc', 'main.xosc', 'pkg.mosc', 'simple.xosc']);
       await client.close(uri);
     });
@@ -233,45 +233,45 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
       const uri = `mosc:${path.join(root, 'pkg.mosc')}/main.xosc`;
       const typed = PACKAGE_MAIN.replace('scenarioFileName="simple.xosc"', 'scenarioFileName=""');
       await client.open(uri, typed);
-      const position = positionAt(typed, typed.indexOf('scenarioFileName="') + 'scenarioFileName="'.length);
+      const position = at(typed, 'scenarioFileName="|"');
       const items = await client.request<CompletionItem[]>('textDocument/completion', client.at(uri, position));
       assert.deepEqual(items.map((item) => `${item.label} (${item.detail})`), ['simple.xosc (pkg.mosc)']);
       await client.close(uri);
     });
 
     it('offers the default value of the attribute a key reaches', async function () {
-      const position = positionAt(main.text, main.text.indexOf('key="AbsoluteTargetSpeed.value" value="') + 'key="AbsoluteTargetSpeed.value" value="'.length);
+      const position = at(MAIN, 'key="AbsoluteTargetSpeed.value" value="|7"');
       const items = await client.request<CompletionItem[]>('textDocument/completion', client.at(mainUri, position));
       assert.deepEqual(items.map((item) => `${item.label}: ${item.detail}`), ['5: default of AbsoluteTargetSpeed.value']);
-      assert.equal(textAt(main.text, (items[0].textEdit as TextEdit).range), '7');
+      assert.equal(textAt(MAIN, (items[0].textEdit as TextEdit).range), '7');
     });
 
     it('offers the entities of the file for entityRef', async function () {
-      const items = await client.request<CompletionItem[]>('textDocument/completion', client.at(mainUri, positionAt(main.text, main.offsets[8])));
+      const items = await client.request<CompletionItem[]>('textDocument/completion', client.at(mainUri, at(MAIN, 'entityRef="ca|r"', 'name="Fourth"')));
       assert.deepEqual(items.map((item) => item.label), ['hero', 'car']);
-      assert.equal(textAt(main.text, (items[0].textEdit as TextEdit).range), 'car');
+      assert.equal(textAt(MAIN, (items[0].textEdit as TextEdit).range), 'car');
     });
 
     it('offers the groups of the referenced file while the document is not well-formed', async function () {
       const uri = fileUri(path.join(root, 'typing.xosc'));
-      const typed = markers(`<OpenSCENARIO><Storyboard><Story name="S"><Act name="A"><ManeuverGroup name="G"><Actors><EntityRef entityRef="e"/></Actors>
+      const typed = cursor(`<OpenSCENARIO><Storyboard><Story name="S"><Act name="A"><ManeuverGroup name="G"><Actors><EntityRef entityRef="e"/></Actors>
   <ScenarioReference scenarioFileName="pkg.mosc">
     <ManeuverGroupReference maneuverGroupName="|`);
       await client.open(uri, typed.text);
-      const items = await client.request<CompletionItem[]>('textDocument/completion', client.at(uri, positionAt(typed.text, typed.offsets[0])));
+      const items = await client.request<CompletionItem[]>('textDocument/completion', client.at(uri, typed.position));
       assert.deepEqual(labels(items), ['Inner.Brake']);
       await client.close(uri);
     });
 
     it('offers the keys not yet given, shortest unambiguous form first, with default and origin', async function () {
       const uri = fileUri(path.join(root, 'typing.xosc'));
-      const typed = markers(`<OpenSCENARIO><Storyboard><Story name="S"><Act name="A"><ManeuverGroup name="G"><Actors><EntityRef entityRef="e"/></Actors>
+      const typed = cursor(`<OpenSCENARIO><Storyboard><Story name="S"><Act name="A"><ManeuverGroup name="G"><Actors><EntityRef entityRef="e"/></Actors>
   <ScenarioReference scenarioFileName="simple.xosc">
     <ManeuverGroupReference maneuverGroupName="Brake">
       <ParameterReference key="delay" value="1"/>
       <ParameterReference key="|"`);
       await client.open(uri, typed.text);
-      const items = await client.request<CompletionItem[]>('textDocument/completion', client.at(uri, positionAt(typed.text, typed.offsets[0])));
+      const items = await client.request<CompletionItem[]>('textDocument/completion', client.at(uri, typed.position));
       const sorted = [...items].sort((a, b) => (a.sortText ?? '').localeCompare(b.sortText ?? ''));
       assert.deepEqual(labels(sorted).slice(0, 3), ['AbsoluteTargetSpeed.value', 'missing', 'SimulationTimeCondition.value']);
       assert.ok(!labels(items).includes('delay'), 'a key already given is left out');
@@ -284,11 +284,11 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
 
     it('offers the element\'s own attributes inside parameterAttributes, aware of the comma list', async function () {
       const uri = fileUri(path.join(root, 'simple2.xosc'));
-      const typed = markers(`<OpenSCENARIO><Storyboard>
+      const typed = cursor(`<OpenSCENARIO><Storyboard>
   <WorldPosition parameterAttributes="x, |" x="1" y="2" z="0" h="3.14"/>
 </Storyboard></OpenSCENARIO>`);
       await client.open(uri, typed.text);
-      const items = await client.request<CompletionItem[]>('textDocument/completion', client.at(uri, positionAt(typed.text, typed.offsets[0])));
+      const items = await client.request<CompletionItem[]>('textDocument/completion', client.at(uri, typed.position));
       assert.deepEqual(labels(items), ['y', 'z', 'h']);
       assert.equal(items[0].detail, 'default 2');
       await client.close(uri);
@@ -296,10 +296,10 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
 
     it('offers a snippet writing a whole ScenarioReference with every key at its default', async function () {
       const uri = fileUri(path.join(root, 'typing.xosc'));
-      const typed = markers(`<OpenSCENARIO><Storyboard><Story name="S"><Act name="A"><ManeuverGroup name="G"><Actors><EntityRef entityRef="e"/></Actors>
+      const typed = cursor(`<OpenSCENARIO><Storyboard><Story name="S"><Act name="A"><ManeuverGroup name="G"><Actors><EntityRef entityRef="e"/></Actors>
   <Sce|`);
       await client.open(uri, typed.text);
-      const items = await client.request<CompletionItem[]>('textDocument/completion', client.at(uri, positionAt(typed.text, typed.offsets[0])));
+      const items = await client.request<CompletionItem[]>('textDocument/completion', client.at(uri, typed.position));
       const snippet = items.find((item) => item.label === 'ScenarioReference simple.xosc Brake');
       assert.ok(snippet, `snippet among ${labels(items).join(', ')}`);
       const newText = (snippet.textEdit as TextEdit).newText;
@@ -315,15 +315,15 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
 
   describe('hover', function () {
     it('shows a key\'s default, the value that takes effect and where each comes from', async function () {
-      const hover = await client.request<Hover>('textDocument/hover', client.at(mainUri, positionAt(main.text, main.offsets[2])));
+      const hover = await client.request<Hover>('textDocument/hover', client.at(mainUri, at(MAIN, 'key="AbsoluteTargetSpeed.val|ue"')));
       const value = (hover.contents as MarkupContent).value;
       assert.match(value, /default `5` declared at `simple\.xosc:20`/);
       assert.match(value, /takes effect: `7` \(this key\)/);
-      assert.equal(textAt(main.text, hover.range as Location['range']), 'AbsoluteTargetSpeed.value');
+      assert.equal(textAt(MAIN, hover.range as Location['range']), 'AbsoluteTargetSpeed.value');
     });
 
     it('shows where a scenarioFileName resolves and the groups it offers', async function () {
-      const hover = await client.request<Hover>('textDocument/hover', client.at(mainUri, positionAt(main.text, main.offsets[5])));
+      const hover = await client.request<Hover>('textDocument/hover', client.at(mainUri, at(MAIN, 'scenarioFileName="|pkg.xosc"')));
       const value = (hover.contents as MarkupContent).value;
       // Where the name was found, without repeating the name the attribute already shows.
       assert.match(value, /^found at `pkg\.mosc\/main\.xosc`/);
@@ -332,7 +332,7 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
     });
 
     it('shows what a referenced group does, one line per maneuver and event', async function () {
-      const hover = await client.request<Hover>('textDocument/hover', client.at(mainUri, positionAt(main.text, main.offsets[1])));
+      const hover = await client.request<Hover>('textDocument/hover', client.at(mainUri, at(MAIN, 'maneuverGroupName="Br|ake"')));
       const value = (hover.contents as MarkupContent).value;
       assert.match(value, /- Maneuver \*\*BrakeManeuver\*\*/);
       assert.match(value, /- Event \*\*SlowDown\*\*: SetSpeed \(SpeedAction\) when SimulationTimeCondition/);
@@ -342,7 +342,7 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
   describe('references and rename', function () {
     it('finds every reference to a group from its declaration', async function () {
       const uri = await client.openFile(path.join(root, 'simple.xosc'));
-      const locations = await client.request<Location[]>('textDocument/references', { ...client.at(uri, positionAt(simple.text, simple.offsets[0])), context: { includeDeclaration: false } });
+      const locations = await client.request<Location[]>('textDocument/references', { ...client.at(uri, at(SIMPLE, '<ManeuverGroup name="|Brake"')), context: { includeDeclaration: false } });
       const found = locations.map((location) => `${path.basename(location.uri)}:${location.range.start.line}`).sort();
       assert.deepEqual(found, ['clean.xosc:13', 'main.xosc:14']);
       await client.close(uri);
@@ -350,27 +350,27 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
 
     it('finds every key that overrides an attribute listed in parameterAttributes', async function () {
       const uri = await client.openFile(path.join(root, 'simple.xosc'));
-      const position = positionAt(simple.text, simple.text.indexOf('parameterAttributes="value"') + 'parameterAttributes="v'.length);
+      const position = at(SIMPLE, 'parameterAttributes="v|alue" value="5"');
       const locations = await client.request<Location[]>('textDocument/references', { ...client.at(uri, position), context: { includeDeclaration: false } });
       const found = locations.map((location) => `${path.basename(location.uri)}:${textAt(fs.readFileSync(new URL(location.uri), 'utf8'), location.range)}`).sort();
       assert.deepEqual(found, ['clean.xosc:AbsoluteTargetSpeed.value', 'main.xosc:AbsoluteTargetSpeed.value']);
       // The same from the attribute that holds the default.
-      const fromAttribute = await client.request<Location[]>('textDocument/references', { ...client.at(uri, positionAt(simple.text, simple.offsets[1] + 2)), context: { includeDeclaration: true } });
+      const fromAttribute = await client.request<Location[]>('textDocument/references', { ...client.at(uri, at(SIMPLE, 'parameterAttributes="value" va|lue="5"')), context: { includeDeclaration: true } });
       assert.equal(fromAttribute.length, 3);
-      assert.equal(textAt(simple.text, fromAttribute[0].range), 'value');
+      assert.equal(textAt(SIMPLE, fromAttribute[0].range), 'value');
       await client.close(uri);
     });
 
     it('renames a group and every maneuverGroupName that uses it', async function () {
       const uri = await client.openFile(path.join(root, 'simple.xosc'));
-      const position = positionAt(simple.text, simple.offsets[0] + 2);
+      const position = at(SIMPLE, '<ManeuverGroup name="Br|ake"');
       const prepared = await client.request<{ range: Location['range']; placeholder: string }>('textDocument/prepareRename', client.at(uri, position));
       assert.equal(prepared.placeholder, 'Brake');
       const edit = await client.request<WorkspaceEdit>('textDocument/rename', { ...client.at(uri, position), newName: 'Stop' });
       const changes = edit.changes ?? {};
       assert.deepEqual(Object.keys(changes).map((key) => path.basename(key)).sort(), ['clean.xosc', 'main.xosc', 'simple.xosc']);
-      assert.match(applyEdits(simple.text, changes[uri]), /<ManeuverGroup name="Stop"/);
-      assert.match(applyEdits(main.text, changes[mainUri]), /maneuverGroupName="Stop">/);
+      assert.match(applyEdits(SIMPLE, changes[uri]), /<ManeuverGroup name="Stop"/);
+      assert.match(applyEdits(MAIN, changes[mainUri]), /maneuverGroupName="Stop">/);
       await client.close(uri);
     });
 
@@ -378,7 +378,7 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
       const edit = await client.request<WorkspaceEdit>('workspace/willRenameFiles', { files: [{ oldUri: simpleUri, newUri: fileUri(path.join(root, 'braking.xosc')) }] });
       const changes = edit.changes ?? {};
       assert.deepEqual(Object.keys(changes).map((key) => path.basename(key)).sort(), ['clean.xosc', 'main.xosc']);
-      const renamed = applyEdits(main.text, changes[mainUri]);
+      const renamed = applyEdits(MAIN, changes[mainUri]);
       assert.equal((renamed.match(/scenarioFileName="braking\.xosc"/g) ?? []).length, 2);
       assert.ok(!renamed.includes('"simple.xosc"'));
     });
@@ -394,17 +394,17 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
     it('replaces an unknown key by the closest valid one', async function () {
       const [action] = (await actionsFor('unknown-key')).filter((candidate) => candidate.diagnostics);
       assert.equal(action.title, "Change key to 'delay'");
-      assert.match(applyEdits(main.text, action.edit?.changes?.[mainUri] ?? []), /<ParameterReference key="delay" value="1"\/>/);
+      assert.match(applyEdits(MAIN, action.edit?.changes?.[mainUri] ?? []), /<ParameterReference key="delay" value="1"\/>/);
     });
 
     it('changes NAME.xosc to NAME.mosc', async function () {
       const [action] = (await actionsFor('xosc-fallback')).filter((candidate) => candidate.diagnostics);
-      assert.match(applyEdits(main.text, action.edit?.changes?.[mainUri] ?? []), /scenarioFileName="pkg\.mosc"/);
+      assert.match(applyEdits(MAIN, action.edit?.changes?.[mainUri] ?? []), /scenarioFileName="pkg\.mosc"/);
     });
 
     it('adds a default attribute in the simple scenario for a key without default', async function () {
       const [action] = (await actionsFor('no-default')).filter((candidate) => candidate.diagnostics);
-      const edited = applyEdits(simple.text, action.edit?.changes?.[simpleUri] ?? []);
+      const edited = applyEdits(SIMPLE, action.edit?.changes?.[simpleUri] ?? []);
       assert.match(edited, /<Condition parameterAttributes="delay, missing" missing="3" name="Go"/);
     });
 
@@ -413,7 +413,7 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
       const add = actions.find((candidate) => /missing key/.test(candidate.title));
       assert.ok(add, `among ${actions.map((candidate) => candidate.title)}`);
       assert.equal(add.title, 'Add 2 missing keys with their defaults');
-      const edited = applyEdits(main.text, add.edit?.changes?.[mainUri] ?? []);
+      const edited = applyEdits(MAIN, add.edit?.changes?.[mainUri] ?? []);
       assert.match(edited, /<ParameterReference key="missing" value="3"\/>\n {14}<ParameterReference key="delay" value="0"\/>\n {14}<ParameterReference key="SimulationTimeCondition\.value" value="2"\/>\n {12}<\/ManeuverGroupReference>/);
     });
 
@@ -423,7 +423,7 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
       const actions = await client.request<CodeAction[]>('textDocument/codeAction', { textDocument: { uri }, range: diagnostic.range, context: { diagnostics: [diagnostic] } });
       const add = actions.find((candidate) => candidate.title === "Add a default value for 'missing'");
       assert.ok(add);
-      assert.match(applyEdits(simple.text, add.edit?.changes?.[uri] ?? []), /parameterAttributes="delay, missing" missing=""/);
+      assert.match(applyEdits(SIMPLE, add.edit?.changes?.[uri] ?? []), /parameterAttributes="delay, missing" missing=""/);
       await client.close(uri);
     });
   });
@@ -447,7 +447,7 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
       assert.deepEqual(found, ['pkg.mosc/simple.xosc:Brake', 'simple.xosc:Brake']);
       const inPackage = symbols.find((symbol) => symbol.containerName === 'pkg.mosc/simple.xosc') as SymbolInformation;
       assert.equal(inPackage.location.uri, `mosc:${path.join(root, 'pkg.mosc')}/simple.xosc`);
-      assert.equal(textAt(simple.text, inPackage.location.range).split('\n')[0], '<ManeuverGroup name="Brake" maximumExecutionCount="1">');
+      assert.equal(textAt(SIMPLE, inPackage.location.range).split('\n')[0], '<ManeuverGroup name="Brake" maximumExecutionCount="1">');
     });
 
     it('puts override counts and the flatten preview on each ScenarioReference', async function () {
@@ -457,7 +457,7 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
       assert.equal(lenses[1].command?.command, 'modular2simple.openPreview');
       // The reference's line, so that the preview opens at the groups it imports.
       assert.deepEqual(lenses[1].command?.arguments, [mainUri, { line: lenses[1].range.start.line }]);
-      assert.equal(lenses[1].range.start.line, main.text.slice(0, main.text.indexOf('<ScenarioReference')).split('\n').length - 1);
+      assert.equal(lenses[1].range.start.line, MAIN.slice(0, MAIN.indexOf('<ScenarioReference')).split('\n').length - 1);
     });
   });
 
@@ -546,7 +546,7 @@ describe('language server: edits inside packages (JSON-RPC)', function () {
   let root: string;
 
   before(async function () {
-    root = temporaryWorkspace({ 'main.xosc': main.text, 'simple.xosc': simple.text, 'pkg.mosc': await packageBytes() });
+    root = temporaryWorkspace({ 'main.xosc': MAIN, 'simple.xosc': SIMPLE, 'pkg.mosc': await packageBytes() });
   });
 
   after(function () {
@@ -558,8 +558,8 @@ describe('language server: edits inside packages (JSON-RPC)', function () {
     try {
       await client.indexed();
       const uri = `mosc:${path.join(root, 'pkg.mosc')}/simple.xosc`;
-      await client.open(uri, simple.text);
-      const position = positionAt(simple.text, simple.offsets[0] + 2);
+      await client.open(uri, SIMPLE);
+      const position = at(SIMPLE, '<ManeuverGroup name="Br|ake"');
       return await client
         .request<WorkspaceEdit>('textDocument/rename', { ...client.at(uri, position), newName: 'Halt' })
         .then((edit) => ({ edit, uri }), (error: Error) => ({ error, uri }));
@@ -572,7 +572,7 @@ describe('language server: edits inside packages (JSON-RPC)', function () {
     const result = await renameInsidePackage({ packageFileSystem: true });
     assert.ok('edit' in result, 'error' in result ? result.error.message : '');
     const changes = result.edit.changes ?? {};
-    assert.match(applyEdits(simple.text, changes[result.uri]), /<ManeuverGroup name="Halt"/);
+    assert.match(applyEdits(SIMPLE, changes[result.uri]), /<ManeuverGroup name="Halt"/);
     const packageMain = `mosc:${path.join(root, 'pkg.mosc')}/main.xosc`;
     assert.ok(changes[packageMain]?.length, `the package's own main.xosc is updated too: ${Object.keys(changes).join(', ')}`);
     assert.match(applyEdits(PACKAGE_MAIN, changes[packageMain]), /maneuverGroupName="Halt"/);

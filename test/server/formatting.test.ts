@@ -1,7 +1,8 @@
 import * as assert from 'node:assert/strict';
 import * as path from 'node:path';
 import { TextEdit } from 'vscode-languageserver/node';
-import { fileUri, temporaryWorkspace, TestClient } from './harness';
+import { fileUri, TestClient } from './harness';
+import { temporaryWorkspace } from '../support/workspace';
 
 const MESSY = '<?xml version="1.0"?>\n<OpenSCENARIO>\n<FileHeader revMajor="1" revMinor="0" date="2026-01-01T00:00:00" description="formatting" author="test"/>\n<Entities>\n\n\n<ScenarioObject name="Ego"/>\n</Entities>\n</OpenSCENARIO>\n';
 

@@ -1,6 +1,5 @@
 import { spawn } from 'node:child_process';
 import * as fs from 'node:fs';
-import * as os from 'node:os';
 import * as path from 'node:path';
 import { PassThrough } from 'node:stream';
 import { fileURLToPath, pathToFileURL } from 'node:url';
@@ -21,61 +20,11 @@ import {
 } from 'vscode-languageserver/node';
 import { startServer } from '../../server/src/languageServer';
 import { Workspace } from '../../server/src/workspace';
-
-export const repoRoot = path.resolve(__dirname, '..', '..');
-export const sharedRoot = path.resolve(repoRoot, '..', 'shared');
-export const corpusRoot = path.join(sharedRoot, 'corpus', 'modular2simple');
-export const caseStudy = path.join(corpusRoot, 'case-study');
-export const library = path.join(corpusRoot, 'library');
-
-/** Skips the calling suite with a message when the shared corpus is not next to the repository. */
-export function requireCorpus(context: Mocha.Context): void {
-  if (!fs.existsSync(corpusRoot)) {
-    console.log(`    (skipped: ${corpusRoot} is absent)`);
-    context.skip();
-  }
-}
+import { repoRoot, serverBundle } from '../support/paths';
+import { temporaryWorkspace } from '../support/workspace';
 
 export function fileUri(filePath: string): string {
   return pathToFileURL(filePath).href;
-}
-
-/** Text with `|` cursor markers removed, and the offsets where they stood. */
-export function markers(marked: string): { text: string; offsets: number[] } {
-  const offsets: number[] = [];
-  let text = '';
-  for (const char of marked) {
-    if (char === '|') offsets.push(text.length);
-    else text += char;
-  }
-  return { text, offsets };
-}
-
-export function positionAt(text: string, offset: number): { line: number; character: number } {
-  const before = text.slice(0, offset);
-  const line = before.split('\n').length - 1;
-  return { line, character: offset - (before.lastIndexOf('\n') + 1) };
-}
-
-/** The position just after the first occurrence of `needle` (after `nth` earlier ones). */
-export function positionAfter(text: string, needle: string, nth = 0): { line: number; character: number } {
-  let index = -1;
-  for (let i = 0; i <= nth; i++) {
-    index = text.indexOf(needle, index + 1);
-    if (index < 0) throw new Error(`'${needle}' not found`);
-  }
-  return positionAt(text, index + needle.length);
-}
-
-/** A temporary folder holding the given files (paths relative to it). */
-export function temporaryWorkspace(files: Record<string, string | Uint8Array>): string {
-  const root = fs.realpathSync(fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-server-')));
-  for (const [name, content] of Object.entries(files)) {
-    const full = path.join(root, name);
-    fs.mkdirSync(path.dirname(full), { recursive: true });
-    fs.writeFileSync(full, content);
-  }
-  return root;
 }
 
 export interface ClientOptions {
@@ -145,7 +94,7 @@ export class TestClient {
     let connection: ProtocolConnection;
     let client: TestClient;
     if (options.process) {
-      const child = spawn(process.execPath, [`--max-old-space-size=${options.process.heapMb}`, path.join(repoRoot, 'dist', 'server.js'), '--stdio'], { stdio: ['pipe', 'pipe', 'pipe'] });
+      const child = spawn(process.execPath, [`--max-old-space-size=${options.process.heapMb}`, serverBundle, '--stdio'], { stdio: ['pipe', 'pipe', 'pipe'] });
       const watchdog = setTimeout(() => child.kill('SIGKILL'), options.process.watchdogMs);
       let stderr = '';
       child.stderr.on('data', (chunk: Buffer) => (stderr = (stderr + chunk.toString()).slice(-20_000)));
@@ -341,7 +290,7 @@ export function serveExamples(): { root: () => string; client: () => TestClient 
   let root: string | undefined;
   let client: TestClient | undefined;
   before(async function () {
-    root = fs.realpathSync(fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-examples-')));
+    root = temporaryWorkspace({}, 'm2s-examples-');
     fs.cpSync(path.join(repoRoot, 'examples'), root, { recursive: true });
     client = await TestClient.start({ root });
     await client.indexed();
@@ -372,7 +321,7 @@ export interface ServerFixture {
 export function useServer(files: Record<string, string | Uint8Array>, open: string, options: Omit<ClientOptions, 'root'> = {}): ServerFixture {
   const fixture = {} as ServerFixture;
   before(async function () {
-    fixture.root = temporaryWorkspace(files);
+    fixture.root = temporaryWorkspace(files, 'm2s-server-');
     fixture.client = await TestClient.start({ ...options, root: fixture.root });
     await fixture.client.indexed();
     fixture.openUri = await fixture.client.openFile(path.join(fixture.root, open));

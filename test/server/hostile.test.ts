@@ -3,54 +3,17 @@ import { execFileSync } from 'node:child_process';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import fc from 'fast-check';
-import JSZip from 'jszip';
 import { Diagnostic } from 'vscode-languageserver/node';
-import { childRef, diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { FlattenToFileRequest, FlattenToTextRequest, PackRequest } from '../../common/src/protocol';
-import { CachingFileSystem } from '../../server/src/workspace';
-import { outerGroup, scenario, simpleGroup } from '../support/fixtures';
+import { mainOf, outerGroup, packageOf, scenario, simpleGroup } from '../support/fixtures';
 import { rawZip } from '../support/hostile';
-import { fileUri, temporaryWorkspace, TestClient } from './harness';
-
-function mainOf(file: string, groupName = 'Go'): string {
-  return scenario(outerGroup('Car', 'car', [{ file, groups: [{ name: groupName }] }]));
-}
-
-async function packageOf(files: Record<string, string>): Promise<Uint8Array> {
-  const zip = new JSZip();
-  for (const [name, text] of Object.entries(files)) zip.file(name, text);
-  return zip.generateAsync({ type: 'uint8array', compression: 'DEFLATE' });
-}
+import { fileUri, TestClient } from './harness';
+import { temporaryWorkspace } from '../support/workspace';
 
 /** Exceptions the server logged: a failed handler logs "... failed:" with a stack. */
 function loggedExceptions(client: TestClient): string[] {
   return client.logs.filter((line) => /failed:|\n\s+at .*:\d+:\d+/.test(line));
 }
-
-describe('core: the package cache is bounded by size', () => {
-  it('keeps unpacked packages up to its bound and reads evicted ones again when needed', async () => {
-    const padding = `<!-- ${'x'.repeat(1024 * 1024)} -->`;
-    const files: Record<string, Uint8Array> = {};
-    for (let index = 0; index < 12; index++) files[`p${index}.mosc`] = await packageOf({ 'main.xosc': scenario(simpleGroup(`Go${index}`)) + padding });
-    const root = temporaryWorkspace(files);
-    const store = new ScenarioStore({ root, scenarioPath: [], packageCacheBytes: 3 * 1024 * 1024 });
-    for (let index = 0; index < 12; index++) await store.readPackage(diskRef(path.join(root, `p${index}.mosc`)));
-    assert.ok(store.cachedPackageBytes <= 3 * 1024 * 1024, `${store.cachedPackageBytes} bytes held`);
-    assert.ok(store.cachedPackageBytes > 0);
-    // The first package was evicted long ago; it is read again, whole and correct.
-    const text = await store.readText(childRef(diskRef(path.join(root, 'p0.mosc')), 'main.xosc'));
-    assert.match(text, /name="Go0"/);
-  });
-
-  it('the server keeps file bytes up to its bound too', async () => {
-    const root = temporaryWorkspace({ 'a.xosc': 'a'.repeat(600), 'b.xosc': 'b'.repeat(600) });
-    const files = new CachingFileSystem(undefined, 1000);
-    await files.readFile(path.join(root, 'a.xosc'));
-    await files.readFile(path.join(root, 'b.xosc'));
-    assert.equal(files.size, 600);
-    assert.equal(Buffer.from((await files.readFile(path.join(root, 'a.xosc'))) as Uint8Array).toString(), 'a'.repeat(600));
-  });
-});
 
 describe('language server with hostile input (JSON-RPC)', function () {
   this.timeout(180_000);

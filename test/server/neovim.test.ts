@@ -3,7 +3,9 @@ import { execFileSync, spawnSync } from 'node:child_process';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { MAIN, SIMPLE } from './fixtures/scenarios';
-import { markers, positionAt, repoRoot, temporaryWorkspace } from './harness';
+import { at } from '../support/cursor';
+import { repoRoot } from '../support/paths';
+import { temporaryWorkspace } from '../support/workspace';
 
 const serverBundle = path.join(repoRoot, 'dist', 'server.js');
 
@@ -68,8 +70,6 @@ describe('the built server driven by Neovim (a second LSP client)', function () 
   this.timeout(60_000);
   let report: NeovimReport;
   let root: string;
-  const main = markers(MAIN);
-  const simple = markers(SIMPLE);
 
   before(function () {
     if (!hasNeovim()) {
@@ -78,15 +78,15 @@ describe('the built server driven by Neovim (a second LSP client)', function () 
       this.skip();
     }
     execFileSync(process.execPath, [path.join(repoRoot, 'scripts', 'build.mjs')], { cwd: repoRoot, stdio: 'inherit' });
-    root = temporaryWorkspace({ 'simple.xosc': simple.text, 'main.xosc': main.text });
+    root = temporaryWorkspace({ 'simple.xosc': SIMPLE, 'main.xosc': MAIN });
     const output = path.join(root, 'report.json');
     const script = path.join(root, 'probe.lua');
     fs.writeFileSync(
       script,
       probe(root, path.join(root, 'main.xosc'), output, {
-        definition: positionAt(main.text, main.offsets[1]),
-        hover: positionAt(main.text, main.offsets[2]),
-        completion: positionAt(main.text, main.offsets[1] - 2),
+        definition: at(MAIN, 'maneuverGroupName="Br|ake"'),
+        hover: at(MAIN, 'key="AbsoluteTargetSpeed.val|ue"'),
+        completion: at(MAIN, 'maneuverGroupName="|Brake"'),
       }),
     );
     const run = spawnSync('nvim', ['--headless', '--clean', '-u', 'NONE', '-c', `luafile ${script}`], { cwd: root, encoding: 'utf8', timeout: 45_000, env: { ...process.env, HOME: root, XDG_STATE_HOME: root, XDG_DATA_HOME: root } });
@@ -107,14 +107,14 @@ describe('the built server driven by Neovim (a second LSP client)', function () 
     // Without pkg.mosc beside it, pkg.xosc is a second missing file.
     assert.deepEqual(codes, ['missing-file', 'missing-file', 'no-default', 'unknown-group', 'unknown-key']);
     const unknownKey = report.diagnostics.find((diagnostic) => diagnostic.code === 'unknown-key');
-    assert.deepEqual(unknownKey && { line: unknownKey.lnum, character: unknownKey.col }, positionAt(main.text, main.offsets[3]));
+    assert.deepEqual(unknownKey && { line: unknownKey.lnum, character: unknownKey.col }, at(MAIN, 'key="|dela"'));
   });
 
   it('goes to a definition in another file', function () {
     const [location] = report.definition ?? [];
     assert.ok(location, JSON.stringify(report.definition));
     assert.equal(location.uri ?? location.targetUri, `file://${path.join(root, 'simple.xosc')}`);
-    assert.deepEqual(location.range?.start, positionAt(simple.text, simple.offsets[0]));
+    assert.deepEqual(location.range?.start, at(SIMPLE, '<ManeuverGroup name="|Brake"'));
   });
 
   it('shows a hover', function () {

@@ -3,7 +3,8 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { DiagnosticSeverity, Hover, InlayHint, Location, MarkupContent } from 'vscode-languageserver/node';
 import { corpusFiles, GENUINELY_WRONG, openscenarioDir, SEMANTIC_CODES } from '../support/openscenarioCorpus';
-import { fileUri, positionAt, TestClient } from './harness';
+import { fileUri, TestClient } from './harness';
+import { positionAt } from '../support/cursor';
 
 describe('language server on the real OpenSCENARIO corpus (../shared/corpus/openscenario)', function () {
   this.timeout(180_000);

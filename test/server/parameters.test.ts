@@ -18,8 +18,10 @@ import {
 } from 'vscode-languageserver/node';
 import { SEMANTIC_TOKENS_LEGEND } from '../../server/src/features/semanticTokens';
 import { BARE, CARS, FAULTY, PARAMETERS } from './fixtures/parameters';
-import { fileUri, repoRoot, temporaryWorkspace, TestClient } from './harness';
+import { fileUri, TestClient } from './harness';
 import { applyEdits, inside, offsetOf, Position } from './textEdits';
+import { repoRoot } from '../support/paths';
+import { temporaryWorkspace } from '../support/workspace';
 
 type Range = { start: Position; end: Position };
 

@@ -3,7 +3,8 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { previewLineOf } from '../../common/src/lineSegments';
 import { PreviewRequest, type PreviewResult } from '../../common/src/protocol';
-import { positionAfter, serveExamples } from './harness';
+import { serveExamples } from './harness';
+import { positionAfter } from '../support/cursor';
 
 describe('language server: the live preview request (JSON-RPC)', function () {
   const examples = serveExamples();

@@ -4,7 +4,9 @@ import * as path from 'node:path';
 import { CodeAction, Diagnostic } from 'vscode-languageserver/node';
 import { isDiagnosticData } from '../../server/src/features/fixes';
 import { mainWithKeys, SIMPLE } from './fixtures/scenarios';
-import { markers, temporaryWorkspace, TestClient } from './harness';
+import { markers } from '../support/cursor';
+import { temporaryWorkspace } from '../support/workspace';
+import { TestClient } from './harness';
 
 describe('quick-fix data as a client sends it back', function () {
   it('accepts a known code with the data its code names, or none, and nothing else', function () {

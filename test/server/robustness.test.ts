@@ -6,9 +6,12 @@ import JSZip from 'jszip';
 import { CompletionItem, Diagnostic, DocumentSymbol, Location } from 'vscode-languageserver/node';
 import { FlattenToTextRequest, StructureRequest } from '../../common/src/protocol';
 import { SIMPLE } from './fixtures/scenarios';
-import { caseStudy, fileUri, library, markers, positionAt, requireCorpus, temporaryWorkspace, TestClient } from './harness';
+import { fileUri, TestClient } from './harness';
+import { positionAt } from '../support/cursor';
+import { caseStudyDir, libraryDir, requireCorpus } from '../support/paths';
+import { temporaryWorkspace } from '../support/workspace';
 
-const simple = markers(SIMPLE).text;
+const simple = SIMPLE;
 
 function referenceTo(fileName: string, group = 'Brake'): string {
   return `<ManeuverGroup name="G_${fileName.replace(/\W/g, '_')}"><Actors><EntityRef entityRef="hero"/></Actors>
@@ -154,7 +157,7 @@ describe('language server under random mutations of corpus files (property)', fu
 
   before(async function () {
     requireCorpus(this);
-    client = await TestClient.start({ root: caseStudy });
+    client = await TestClient.start({ root: caseStudyDir });
     await client.indexed();
   });
 
@@ -163,8 +166,8 @@ describe('language server under random mutations of corpus files (property)', fu
   });
 
   it('answers every request on every mutated file', async function () {
-    const sources = ['main.xosc', 'simple_1.xosc', 'simple_2.xosc', 'modular_1/main.xosc'].map((name) => path.join(caseStudy, name));
-    sources.push(path.join(library, 'modular_hero_right_left_front_back_pedestrian', 'main.xosc'));
+    const sources = ['main.xosc', 'simple_1.xosc', 'simple_2.xosc', 'modular_1/main.xosc'].map((name) => path.join(caseStudyDir, name));
+    sources.push(path.join(libraryDir, 'modular_hero_right_left_front_back_pedestrian', 'main.xosc'));
     let run = 0;
     await fc.assert(
       fc.asyncProperty(fc.constantFrom(...sources), fc.array(mutation, { minLength: 1, maxLength: 6 }), fc.array(fc.nat(), { minLength: 3, maxLength: 3 }), async (source, mutations, cursorSeeds) => {
@@ -180,7 +183,7 @@ describe('language server under random mutations of corpus files (property)', fu
       { numRuns: 60 },
     );
     assert.equal(run >= 60, true);
-    const uri = await client.openFile(path.join(caseStudy, 'main.xosc'));
+    const uri = await client.openFile(path.join(caseStudyDir, 'main.xosc'));
     const completion = await client.request<CompletionItem[]>('textDocument/completion', client.at(uri, { line: 308, character: 57 }));
     assert.ok(completion.length > 0, 'the server still completes after the mutations');
     const definition = await client.request<Location[]>('textDocument/definition', client.at(uri, { line: 309, character: 80 }));

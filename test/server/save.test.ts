@@ -3,7 +3,8 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import JSZip from 'jszip';
 import { PackRequest, type WriteResult } from '../../common/src/protocol';
-import { fileUri, positionAfter, serveExamples } from './harness';
+import { fileUri, serveExamples } from './harness';
+import { positionAfter } from '../support/cursor';
 
 describe('language server: a saved file is read again from disk (JSON-RPC)', function () {
   const examples = serveExamples();

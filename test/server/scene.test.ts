@@ -5,7 +5,9 @@ import JSZip from 'jszip';
 import { SceneParams, SceneRequest } from '../../common/src/sceneProtocol';
 import { outerGroup } from '../support/fixtures';
 import { sceneScenario, STRAIGHT_ROAD, teleport } from '../support/roads';
-import { fileUri, positionAfter, temporaryWorkspace, TestClient } from './harness';
+import { fileUri, TestClient } from './harness';
+import { positionAfter } from '../support/cursor';
+import { temporaryWorkspace } from '../support/workspace';
 
 const SIMPLE = sceneScenario(
   'straight.xodr',
@@ -61,7 +63,7 @@ describe('language server: modular2simple/scene (JSON-RPC)', function () {
       'modularRoute.xosc': MODULAR_ROUTE,
       'packed/pkg.mosc': await zip.generateAsync({ type: 'uint8array' }),
       'packed/straight.xodr': STRAIGHT_ROAD,
-    });
+    }, 'm2s-server-');
     client = await TestClient.start({ root });
     await client.indexed();
   });

@@ -3,7 +3,9 @@ import * as path from 'node:path';
 import { CodeAction, CompletionItem, CompletionItemTag, Diagnostic, DiagnosticTag, Hover, MarkupContent, TextEdit } from 'vscode-languageserver/node';
 import { checkSchema } from '../../server/src/core/schema/validate';
 import { parseXml } from '../../server/src/core/xml';
-import { fileUri, markers, positionAt, temporaryWorkspace, TestClient } from './harness';
+import { fileUri, TestClient } from './harness';
+import { at, cursor, positionAt } from '../support/cursor';
+import { temporaryWorkspace } from '../support/workspace';
 
 /** A small scenario valid against every schema version; `{MINOR}` is its revMinor, `{ROOT}` goes after ParameterDeclarations. */
 const TEMPLATE = `<?xml version="1.0" encoding="UTF-8"?>
@@ -116,20 +118,20 @@ describe('server: OpenSCENARIO schema completion, hover and validation (over JSO
   });
 
   it('completion of child elements differs between a 1.0 and a 1.2 file, with snippets filling required attributes', async () => {
-    const marked = (minor: string) => markers(scenario(minor, { root: '  <|\n' }));
+    const marked = (minor: string) => cursor(scenario(minor, { root: '  <|\n' }));
     const results: Record<string, CompletionItem[]> = {};
     for (const minor of ['0', '2']) {
-      const { text, offsets } = marked(minor);
+      const { text, position } = marked(minor);
       const uri = await client.open(fileUri(path.join(root, `complete_${minor}.xosc`)), text);
-      results[minor] = itemsOf(await client.request('textDocument/completion', client.at(uri, positionAt(text, offsets[0]))));
+      results[minor] = itemsOf(await client.request('textDocument/completion', client.at(uri, position)));
     }
     assert.ok(labels(results['2']).includes('VariableDeclarations'), labels(results['2']).join(', '));
     assert.ok(!labels(results['0']).includes('VariableDeclarations'), labels(results['0']).join(', '));
     assert.ok(labels(results['0']).includes('CatalogLocations'));
     // Actions of Init: a child snippet that fills the required attributes.
-    const { text, offsets } = markers(scenario('0', { actions: '        <|\n' }));
+    const { text, position } = cursor(scenario('0', { actions: '        <|\n' }));
     const uri = await client.open(fileUri(path.join(root, 'complete_actions.xosc')), text);
-    const items = itemsOf(await client.request('textDocument/completion', client.at(uri, positionAt(text, offsets[0]))));
+    const items = itemsOf(await client.request('textDocument/completion', client.at(uri, position)));
     assert.deepEqual(labels(items), ['GlobalAction', 'UserDefinedAction', 'Private']);
     const privateItem = items.find((item) => item.label === 'Private');
     // With its required child, so that the inserted element is valid (the editor indents the tab).
@@ -148,24 +150,22 @@ describe('server: OpenSCENARIO schema completion, hover and validation (over JSO
   });
 
   it('completes attribute names (required first, written ones left out), enumeration values and $parameters', async () => {
-    const attributes = markers(scenario('0').replace('<ParameterDeclaration name="TargetSpeed"', '<ParameterDeclaration name="TargetSpeed" |'));
+    const attributes = cursor(scenario('0').replace('<ParameterDeclaration name="TargetSpeed"', '<ParameterDeclaration name="TargetSpeed" |'));
     const uri = await client.open(fileUri(path.join(root, 'attributes.xosc')), attributes.text);
-    const names = itemsOf(await client.request('textDocument/completion', client.at(uri, positionAt(attributes.text, attributes.offsets[0]))));
+    const names = itemsOf(await client.request('textDocument/completion', client.at(uri, attributes.position)));
     assert.deepEqual(labels(names), []);
-    const open = markers(scenario('0', { actions: '        <Private entityRef="ego"><PrivateAction><LongitudinalAction><SpeedAction |/></LongitudinalAction></PrivateAction></Private>\n' }));
+    const open = cursor(scenario('0', { actions: '        <Private entityRef="ego"><PrivateAction><LongitudinalAction><SpeedAction |/></LongitudinalAction></PrivateAction></Private>\n' }));
     const uri2 = await client.open(fileUri(path.join(root, 'attributes2.xosc')), open.text);
-    assert.deepEqual(labels(await client.request('textDocument/completion', client.at(uri2, positionAt(open.text, open.offsets[0])))), []);
-    const dynamics = markers(
-      scenario('0', {
-        actions: '        <Private entityRef="ego"><PrivateAction><LongitudinalAction><SpeedAction><SpeedActionDynamics dynamicsShape="|" value="$|" |/></SpeedAction></LongitudinalAction></PrivateAction></Private>\n',
-      }),
-    );
-    const uri3 = await client.open(fileUri(path.join(root, 'values.xosc')), dynamics.text);
-    const shapes = labels(await client.request('textDocument/completion', client.at(uri3, positionAt(dynamics.text, dynamics.offsets[0]))));
+    assert.deepEqual(labels(await client.request('textDocument/completion', client.at(uri2, open.position))), []);
+    const dynamics = scenario('0', {
+      actions: '        <Private entityRef="ego"><PrivateAction><LongitudinalAction><SpeedAction><SpeedActionDynamics dynamicsShape="" value="$" /></SpeedAction></LongitudinalAction></PrivateAction></Private>\n',
+    });
+    const uri3 = await client.open(fileUri(path.join(root, 'values.xosc')), dynamics);
+    const shapes = labels(await client.request('textDocument/completion', client.at(uri3, at(dynamics, 'dynamicsShape="|"'))));
     assert.deepEqual(shapes.sort(), ['cubic', 'linear', 'sinusoidal', 'step', '$TargetSpeed'].sort());
-    const value = labels(await client.request('textDocument/completion', client.at(uri3, positionAt(dynamics.text, dynamics.offsets[1]))));
+    const value = labels(await client.request('textDocument/completion', client.at(uri3, at(dynamics, 'value="$|"'))));
     assert.deepEqual(value, ['$TargetSpeed']);
-    const names3 = itemsOf(await client.request('textDocument/completion', client.at(uri3, positionAt(dynamics.text, dynamics.offsets[2]))));
+    const names3 = itemsOf(await client.request('textDocument/completion', client.at(uri3, at(dynamics, 'value="$" |/>'))));
     const sorted = [...names3].sort((a, b) => (a.sortText ?? '').localeCompare(b.sortText ?? ''));
     assert.deepEqual(labels(sorted), ['dynamicsDimension']);
     assert.equal((sorted[0].textEdit as TextEdit).newText, 'dynamicsDimension="${1|distance,rate,time|}"');
@@ -302,9 +302,9 @@ describe('server: OpenSCENARIO schema completion, hover and validation (over JSO
   });
 
   it('deprecated completion items carry the deprecated tag', async () => {
-    const { text, offsets } = markers(scenario('3', { actions: '        <Private entityRef="ego"><PrivateAction><|</PrivateAction></Private>\n' }));
+    const { text, position } = cursor(scenario('3', { actions: '        <Private entityRef="ego"><PrivateAction><|</PrivateAction></Private>\n' }));
     const uri = await client.open(fileUri(path.join(root, 'deprecated.xosc')), text);
-    const items = itemsOf(await client.request('textDocument/completion', client.at(uri, positionAt(text, offsets[0]))));
+    const items = itemsOf(await client.request('textDocument/completion', client.at(uri, position)));
     const activate = items.find((item) => item.label === 'ActivateControllerAction');
     assert.deepEqual(activate?.tags, [CompletionItemTag.Deprecated]);
   });

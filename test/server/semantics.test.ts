@@ -2,8 +2,9 @@ import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { Diagnostic, DiagnosticSeverity, DiagnosticTag } from 'vscode-languageserver/node';
-import { repoRoot } from '../support/fixtures';
-import { temporaryWorkspace, TestClient } from './harness';
+import { repoRoot } from '../support/paths';
+import { temporaryWorkspace } from '../support/workspace';
+import { TestClient } from './harness';
 
 const fixtureDir = path.join(repoRoot, 'test', 'fixtures', 'semantics');
 const read = (name: string) => fs.readFileSync(path.join(fixtureDir, name), 'utf8');

@@ -1,7 +1,8 @@
 import * as assert from 'node:assert/strict';
 import * as path from 'node:path';
 import { DiagnosticSeverity } from 'vscode-languageserver/node';
-import { fileUri, temporaryWorkspace, TestClient } from './harness';
+import { fileUri, TestClient } from './harness';
+import { temporaryWorkspace } from '../support/workspace';
 
 const SCENARIO = `<?xml version="1.0" encoding="UTF-8"?>
 <OpenSCENARIO>

@@ -1,5 +1,5 @@
 import { TextEdit } from 'vscode-languageserver/node';
-import { positionAt } from './harness';
+import { positionAt } from '../support/cursor';
 
 export type Position = { line: number; character: number };
 

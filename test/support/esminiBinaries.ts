@@ -1,6 +1,6 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { repoRoot, sharedDir } from './fixtures';
+import { repoRoot, sharedDir } from './paths';
 
 export const esminiXodrDir = path.join(sharedDir, 'esmini', 'xodr');
 export const esminiBinDir = path.join(repoRoot, '.cache', 'esmini', 'bin');

@@ -1,47 +1,7 @@
+import * as assert from 'node:assert/strict';
 import { spawnSync } from 'node:child_process';
-import * as fs from 'node:fs';
-import * as os from 'node:os';
-import * as path from 'node:path';
-
-export const repoRoot = path.resolve(__dirname, '..', '..');
-export const sharedDir = path.resolve(repoRoot, '..', 'shared');
-export const corpusDir = path.join(sharedDir, 'corpus', 'modular2simple');
-export const libraryDir = path.join(corpusDir, 'library');
-export const caseStudyDir = path.join(corpusDir, 'case-study');
-export const cliPath = path.join(repoRoot, 'dist', 'cli.js');
-
-/** Skips the calling suite, with a message, when ../shared/corpus is absent. */
-export function requireCorpus(context: Mocha.Context): void {
-  if (!fs.existsSync(corpusDir)) {
-    console.log(`    (skipped: ${corpusDir} is absent)`);
-    context.skip();
-  }
-}
-
-/** A fresh temporary folder holding the given files (paths relative to it). */
-export function makeWorkspace(files: Record<string, string | Uint8Array>): string {
-  const root = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-test-'));
-  for (const [name, content] of Object.entries(files)) {
-    const full = path.join(root, name);
-    fs.mkdirSync(path.dirname(full), { recursive: true });
-    fs.writeFileSync(full, content);
-  }
-  return root;
-}
-
-/** Every file below a folder, relative paths, sorted: to assert that nothing was written. */
-export function listFiles(root: string): string[] {
-  const found: string[] = [];
-  const walk = (directory: string) => {
-    for (const entry of fs.readdirSync(directory, { withFileTypes: true })) {
-      const full = path.join(directory, entry.name);
-      if (entry.isDirectory()) walk(full);
-      else found.push(path.relative(root, full));
-    }
-  };
-  walk(root);
-  return found.sort();
-}
+import JSZip from 'jszip';
+import { cliPath } from './paths';
 
 export interface CliRun {
   status: number;
@@ -138,4 +98,22 @@ export function outerGroup(name: string, actor: string | undefined, references: 
 /** Escapes a value for an attribute written by the fixtures above. */
 export function xmlAttribute(value: string): string {
   return value.replace(/&/g, '&amp;').replace(/</g, '&lt;').replace(/>/g, '&gt;').replace(/"/g, '&quot;');
+}
+
+/** A main file importing group Go of `file` for the outer group Car. */
+export function mainOf(file: string, groupName = 'Go'): string {
+  return scenario(outerGroup('Car', 'car', [{ file, groups: [{ name: groupName }] }]));
+}
+
+/** Fails when a CLI's standard error holds a stack trace or an internal error. */
+export function assertNoTrace(stderr: string): void {
+  assert.doesNotMatch(stderr, /\n\s+at .*:\d+:\d+\)?/, 'no stack trace');
+  assert.doesNotMatch(stderr, /internal error/);
+}
+
+/** A .mosc package holding the given files (names relative to its root). */
+export async function packageOf(files: Record<string, string>): Promise<Uint8Array> {
+  const zip = new JSZip();
+  for (const [name, text] of Object.entries(files)) zip.file(name, text);
+  return zip.generateAsync({ type: 'uint8array', compression: 'DEFLATE' });
 }

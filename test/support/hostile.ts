@@ -2,7 +2,8 @@ import { spawn, spawnSync } from 'node:child_process';
 import * as path from 'node:path';
 import * as zlib from 'node:zlib';
 import { crc32 } from '../../server/src/core/zip';
-import { cliPath, CliRun, repoRoot, withoutSchema } from './fixtures';
+import { CliRun, withoutSchema } from './fixtures';
+import { cliPath, repoRoot } from './paths';
 
 /**
  * Runs the CLI in a child process bounded by the test itself: killed after `timeoutMs` (a watchdog)

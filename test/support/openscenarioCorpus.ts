@@ -1,7 +1,7 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { ProblemCode } from '../../server/src/core/problems';
-import { sharedDir } from './fixtures';
+import { sharedDir } from './paths';
 
 /** The real OpenSCENARIO files (they run in esmini or CARLA), shared by the core and the server tests. */
 export const openscenarioDir = path.join(sharedDir, 'corpus', 'openscenario');

@@ -4,7 +4,7 @@ import * as path from 'node:path';
 import * as vscode from 'vscode';
 import { BIRDS_EYE_FILES } from '../birdsEyeSetup';
 import { INSIDE_TESTS } from '../titles';
-import { api, open, packageUri, positionOf, replaceText, revertAndClose, waitFor, workspaceRoot } from './extension.inside';
+import { api, open, packageUri, positionOf, replaceText, revertAndClose, waitFor, workspaceRoot } from './helpers';
 import { clickText, pageShows, runFromPalette, screenshot } from './harnessClient';
 
 function skipUnless(context: Mocha.Context, condition: boolean, why: string): void {
