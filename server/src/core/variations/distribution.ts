@@ -185,7 +185,7 @@ export function parseDistribution(text: string, file: string): { distribution: D
           const values: ParameterValue[] = [];
           for (const element of definition.children.filter((c) => c.name === 'Element')) {
             const value = required(element, 'value');
-            if (value) values.push({ parameter: parameter.value, value: value.value, offset: value.offset });
+            if (value) values.push({ parameter: parameter.value, value: value.value, offset: parameter.offset });
           }
           if (values.length === 0) problem(definition.start, 'the DistributionSet has no Element');
           deterministic.push({ kind: 'set', parameter: parameter.value, offset: parameter.offset, values });
@@ -198,7 +198,7 @@ export function parseDistribution(text: string, file: string): { distribution: D
         } else if (definition.name === 'UserDefinedDistribution') {
           const listed = userDefinedValues(definition);
           if (listed) {
-            const values = listed.values.map((value) => ({ parameter: parameter.value, value, offset: definition.start }));
+            const values = listed.values.map((value) => ({ parameter: parameter.value, value, offset: parameter.offset }));
             deterministic.push({ kind: 'userDefined', parameter: parameter.value, offset: parameter.offset, type: listed.type, values });
           }
         } else problem(definition.start, `unexpected <${definition.name}> in a DeterministicSingleParameterDistribution`);
