@@ -135,6 +135,15 @@ describe('core: variations, files and problems', () => {
     assert.deepEqual(await problemsOf(RANGE_AND_SET.replace('stepWidth="0.2"', 'stepWidth="fast"')), ['d.xosc:8:39: error: stepWidth="fast" is not a number']);
   });
 
+  it('warns of values that do not fit the parameter type (esmini takes them as they are)', async () => {
+    const body = RANGE_AND_SET.replace('parameterName="Car"', 'parameterName="Gap"').replace('<Element value="a"/>', '<Element value="0.5"/>');
+    assert.deepEqual(await problemsOf(body), ["d.xosc:10:64: warning: the value 'b' for double parameter 'Gap' is not a number"]);
+    const stochastic = `    <Stochastic numberOfTestRuns="3">
+      <StochasticDistribution parameterName="Speed"><PoissonDistribution expectedValue="2"/></StochasticDistribution>
+    </Stochastic>`;
+    assert.deepEqual(await problemsOf(stochastic), []);
+  });
+
   it('discards combinations that break the scenario\'s ValueConstraintGroups, and counts them', async () => {
     fs.writeFileSync(
       path.join(dir, 'scenario.xosc'),

@@ -118,6 +118,7 @@ async function vary(argv: string[], io: Output, loadScenarioText: ScenarioTextLo
   const seed = values.seed === undefined ? 0 : Number(wholeNumber(values.seed, '--seed'));
   const maxCombinations = wholeNumber(values['max-combinations'], '--max-combinations') ?? DEFAULT_MAX_COMBINATIONS;
   if (sample === 0n) return usage(io, '--sample takes at least 1');
+  if (sample !== undefined && sample > maxCombinations) return usage(io, `--sample ${sample} is more than --max-combinations ${maxCombinations}`);
 
   const distributionPath = path.resolve(positionals[0]);
   let distributionText: string;

@@ -149,3 +149,18 @@ function meets(value: string, constraint: ValueConstraint, numeric: boolean): bo
       return order <= 0;
   }
 }
+
+const INTEGER_TYPES = new Set(['int', 'integer', 'unsignedInt', 'unsignedShort']);
+
+/** Why a value does not fit a parameter type, or undefined when it does (strings and dateTime take any text here). */
+export function typeMismatch(value: string, type: string): string | undefined {
+  const trimmed = value.trim();
+  const number = trimmed === '' ? NaN : Number(trimmed);
+  if (type === 'boolean') return /^(true|false)$/.test(trimmed) ? undefined : 'is not true or false';
+  if (!NUMERIC_TYPES.has(type)) return undefined;
+  if (!Number.isFinite(number)) return 'is not a number';
+  if (INTEGER_TYPES.has(type) && !Number.isInteger(number)) return 'is not a whole number';
+  if ((type === 'unsignedInt' || type === 'unsignedShort') && number < 0) return 'is negative';
+  if (type === 'unsignedShort' && number > 65535) return 'is above 65535';
+  return undefined;
+}

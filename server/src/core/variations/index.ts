@@ -1,6 +1,6 @@
 import * as path from 'node:path';
 import { LineIndex } from '../text';
-import { brokenConstraint, concreteScenarioText, hasConstraints, readScenarioParameters, ScenarioParameters, undeclaredParameters } from './concrete';
+import { brokenConstraint, concreteScenarioText, hasConstraints, readScenarioParameters, ScenarioParameters, typeMismatch, undeclaredParameters } from './concrete';
 import { assignmentAt, DeterministicExpansion, expandDeterministic } from './deterministic';
 import { DistributionFile, formatVariationProblem, ParameterValue, parseDistribution, VariationProblem } from './distribution';
 import { SamplingError, stochasticAssignment } from './stochastic';
@@ -83,6 +83,7 @@ export async function loadVariations(distributionText: string, distributionPath:
     problems.push({ file: distributionPath, offset: missing.offset, severity: 'error', message: `parameter '${missing.parameter}' is not declared in the root ParameterDeclarations of ${distribution.scenarioFile.path}` });
   }
   if (problems.some((p) => p.severity === 'error')) return { variations: undefined, problems, lines };
+  problems.push(...typeWarnings(scenario, expansion ? named : [], distribution, distributionPath));
 
   const stochastic = distribution.stochastic;
   const assignments = expansion
@@ -110,6 +111,31 @@ export async function loadVariations(distributionText: string, distributionPath:
     },
   };
   return { variations, problems, lines };
+}
+
+const CONTINUOUS_SAMPLERS = new Set(['normal', 'logNormal', 'uniform', 'histogram']);
+
+/** Values that do not fit the type of the parameter they go to: warned, since esmini takes them as they are. */
+function typeWarnings(scenario: ScenarioParameters, deterministicValues: ParameterValue[], distribution: DistributionFile, file: string): VariationProblem[] {
+  const types = new Map<string, string>();
+  for (const declaration of scenario.declarations) if (!types.has(declaration.name)) types.set(declaration.name, declaration.type);
+  const warnings: VariationProblem[] = [];
+  const reported = new Set<string>();
+  for (const assignment of deterministicValues) {
+    const type = types.get(assignment.parameter) ?? 'string';
+    const mismatch = typeMismatch(assignment.value, type);
+    if (!mismatch || reported.has(assignment.parameter)) continue;
+    reported.add(assignment.parameter);
+    warnings.push({ file, offset: assignment.offset, severity: 'warning', message: `the value '${assignment.value}' for ${type} parameter '${assignment.parameter}' ${mismatch}` });
+  }
+  for (const stochastic of distribution.stochastic?.distributions ?? []) {
+    const type = types.get(stochastic.parameter) ?? 'string';
+    const kind = stochastic.sampler.kind;
+    if ((type === 'boolean' && kind !== 'probabilitySet' && kind !== 'userDefined') || (['int', 'integer', 'unsignedInt', 'unsignedShort'].includes(type) && CONTINUOUS_SAMPLERS.has(kind))) {
+      warnings.push({ file, offset: stochastic.offset, severity: 'warning', message: `${type} parameter '${stochastic.parameter}' gets values drawn from a ${kind} distribution, which are not ${type === 'boolean' ? 'true or false' : 'whole numbers'}` });
+    }
+  }
+  return warnings;
 }
 
 /** A sampling failure as a problem at the distribution's Range. */
