@@ -78,7 +78,7 @@ const CASES: { name: string; body: string }[] = [
     name: 'several distributions combined',
     body: [range('Speed', '5', '10', '30'), set('Car', ['car_red', 'car_yellow']), multi([[['Weather', 'fog'], ['Lane', '-2']], [['Lane', '-3']]]), range('Gap', '0.25', '0.5', '1.25')].join('\n'),
   },
-  { name: 'the same parameter in two distributions (the later wins)', body: [set('Speed', ['1', '2']), multi([[['Speed', '7']], [['Gap', '9']]])].join('\n') },
+  { name: 'the same parameter in two distributions (the later wins)', body: [set('Speed', ['1', '2']), multi([[['Speed', '7']], [['Gap', '9']], [['Gap', '3'], ['Gap', '4']]])].join('\n') },
   { name: 'a larger product, sampled', body: [range('Speed', '0.5', '0', '20'), range('Gap', '0.1', '0.5', '3.5'), set('Car', ['a', 'b', 'c']), set('Weather', ['dry', 'wet'])].join('\n') },
 ];
 

@@ -135,6 +135,25 @@ describe('core: variations, files and problems', () => {
     assert.deepEqual(await problemsOf(RANGE_AND_SET.replace('stepWidth="0.2"', 'stepWidth="fast"')), ['d.xosc:8:39: error: stepWidth="fast" is not a number']);
   });
 
+  it('reports bad input instead of failing: not XML, not a distribution, no distribution, not UTF-8', async () => {
+    const file = path.join(dir, 'd.xosc');
+    const cases: [string | Buffer, RegExp][] = [
+      ['<OpenSCENARIO><ParameterValueDistribution>', /^d\.xosc:1:\d+: error: /],
+      [SCENARIO, /^d\.xosc:2:1: error: no <ParameterValueDistribution>: this is not a distribution file$/],
+      [distribution(''), /^d\.xosc:4:3: error: no <Deterministic> or <Stochastic> distribution$/],
+      [distribution('    <Deterministic/>'), /^d\.xosc:5:29: error: the <Deterministic> element has no distribution/],
+      [Buffer.from([0x3c, 0x61, 0xff, 0x3e]), /^modular2simple: error: .*d\.xosc: not UTF-8 text$/],
+      ['', /^d\.xosc:1:1: error: /],
+    ];
+    for (const [content, expected] of cases) {
+      fs.writeFileSync(file, content);
+      const result = await run([file, '--count'], dir);
+      assert.equal(result.code, 1, String(content));
+      assert.deepEqual(result.out, []);
+      assert.match(result.err[0], expected);
+    }
+  });
+
   it('warns of values that do not fit the parameter type (esmini takes them as they are)', async () => {
     const body = RANGE_AND_SET.replace('parameterName="Car"', 'parameterName="Gap"').replace('<Element value="a"/>', '<Element value="0.5"/>');
     assert.deepEqual(await problemsOf(body), ["d.xosc:10:64: warning: the value 'b' for double parameter 'Gap' is not a number"]);
