@@ -12,6 +12,8 @@ export const VARY_HELP = `Concrete scenarios of a ParameterValueDistribution (mo
   --sample N --seed S       with --out-dir: N indices drawn at random (seed S, default 0)
   --max-combinations N      refuse more combinations than N before writing anything (default 1000000)
   -q, --quiet               print errors only
+  A concrete scenario is the ScenarioFile with its root parameter values replaced, every other byte kept:
+  relative paths in it (roads, catalogs) resolve from where it is written.
   Exit codes: 0 done, 1 the input has errors (nothing written), 2 usage, 3 an output could not be written, 4 internal error.`;
 
 const EXIT = { ok: 0, problems: 1, usage: 2, io: 3, internal: 4 } as const;
