@@ -1,0 +1,244 @@
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import { parseArgs } from 'node:util';
+import { isSameFile, writeFileAtomic } from '../core/atomic';
+import { loadVariations, formatVariationProblems, samplingProblem, SamplingError, ScenarioTextLoader, Variations } from '../core/variations';
+import { seedBits, Xoshiro128StarStar } from '../core/variations/random';
+
+export const VARY_HELP = `Concrete scenarios of a ParameterValueDistribution (modular2simple vary FILE ...):
+  --count                   print the number of concrete scenarios alone (after ValueConstraintGroups)
+  --index I [-o OUT.xosc]   write concrete scenario I (esmini's --param_permutation I); standard output without -o
+  --out-dir DIR             write every concrete scenario as DIR/SCENARIO_I.xosc
+  --sample N --seed S       with --out-dir: N indices drawn at random (seed S, default 0)
+  --max-combinations N      refuse more combinations than N before writing anything (default 1000000)
+  -q, --quiet               print errors only
+  A concrete scenario is the ScenarioFile with its root parameter values replaced, every other byte kept:
+  relative paths in it (roads, catalogs) resolve from where it is written.
+  Exit codes: 0 done, 1 the input has errors (nothing written), 2 usage, 3 an output could not be written, 4 internal error.`;
+
+const EXIT = { ok: 0, problems: 1, usage: 2, io: 3, internal: 4 } as const;
+const DEFAULT_MAX_COMBINATIONS = 1_000_000n;
+
+interface Output {
+  out: (text: string) => void;
+  err: (text: string) => void;
+}
+
+class InputProblem extends Error {}
+
+/** Reads a file as UTF-8 with its byte order mark kept, so that a concrete scenario is byte for byte the original but for its values. */
+export async function readUtf8Exactly(file: string): Promise<string> {
+  const bytes = await fs.promises.readFile(file);
+  try {
+    return new TextDecoder('utf-8', { fatal: true, ignoreBOM: true }).decode(bytes);
+  } catch {
+    throw new Error('not UTF-8 text');
+  }
+}
+
+function usage(io: Output, message: string): number {
+  io.err(`modular2simple: ${message}\nRun 'modular2simple --help' for usage.`);
+  return EXIT.usage;
+}
+
+function wholeNumber(text: string | undefined, option: string): bigint | undefined {
+  if (text === undefined) return undefined;
+  if (!/^\d+$/.test(text.trim())) throw new UsageError(`${option} takes a whole number, not '${text}'`);
+  return BigInt(text.trim());
+}
+
+class UsageError extends Error {}
+
+/** N distinct indices below `count`, ascending, by Floyd's algorithm with the project's generator. */
+export function sampleIndices(count: bigint, wanted: bigint, seed: number): bigint[] {
+  if (wanted >= count) {
+    const all: bigint[] = [];
+    for (let i = 0n; i < count; i++) all.push(i);
+    return all;
+  }
+  const random = new Xoshiro128StarStar(seedBits(seed));
+  const chosen = new Set<bigint>();
+  for (let j = count - wanted; j < count; j++) {
+    const candidate = random.nextBigBelow(j + 1n);
+    chosen.add(chosen.has(candidate) ? j : candidate);
+  }
+  return [...chosen].sort((a, b) => (a < b ? -1 : a > b ? 1 : 0));
+}
+
+/**
+ * `modular2simple vary`: counts or writes the concrete scenarios of a distribution file. `loadScenarioText`
+ * turns the ScenarioFile's path into plain scenario text (the flattener's hook; by default the file as it is).
+ */
+export async function varyCommand(argv: string[], io: Output, loadScenarioText: ScenarioTextLoader = readUtf8Exactly): Promise<number> {
+  try {
+    return await vary(argv, io, loadScenarioText);
+  } catch (error) {
+    if (error instanceof UsageError) return usage(io, error.message);
+    if (error instanceof InputProblem) {
+      io.err(`modular2simple: error: ${error.message}`);
+      return EXIT.problems;
+    }
+    io.err(`modular2simple: internal error: ${(error as Error).stack ?? String(error)}\nPlease report this with the input that caused it.`);
+    return EXIT.internal;
+  }
+}
+
+async function vary(argv: string[], io: Output, loadScenarioText: ScenarioTextLoader): Promise<number> {
+  let parsed;
+  try {
+    parsed = parseArgs({
+      args: argv,
+      allowPositionals: true,
+      options: {
+        count: { type: 'boolean', default: false },
+        index: { type: 'string' },
+        output: { type: 'string', short: 'o' },
+        'out-dir': { type: 'string' },
+        sample: { type: 'string' },
+        seed: { type: 'string' },
+        'max-combinations': { type: 'string' },
+        quiet: { type: 'boolean', short: 'q', default: false },
+        help: { type: 'boolean', short: 'h', default: false },
+      },
+    });
+  } catch (error) {
+    return usage(io, (error as Error).message);
+  }
+  const { values, positionals } = parsed;
+  if (values.help) {
+    io.out(VARY_HELP);
+    return EXIT.ok;
+  }
+  if (positionals.length !== 1) return usage(io, 'vary takes one distribution file');
+  const modes = [values.count, values.index !== undefined, values['out-dir'] !== undefined].filter(Boolean).length;
+  if (modes !== 1) return usage(io, 'vary needs exactly one of --count, --index I or --out-dir DIR');
+  if (values.output !== undefined && values.index === undefined) return usage(io, '-o goes with --index I (use --out-dir DIR for many)');
+  if ((values.sample !== undefined || values.seed !== undefined) && values['out-dir'] === undefined) return usage(io, '--sample and --seed go with --out-dir DIR');
+  if (values.seed !== undefined && values.sample === undefined) return usage(io, '--seed goes with --sample N');
+  const index = wholeNumber(values.index, '--index');
+  const sample = wholeNumber(values.sample, '--sample');
+  const seed = values.seed === undefined ? 0 : Number(wholeNumber(values.seed, '--seed'));
+  const maxCombinations = wholeNumber(values['max-combinations'], '--max-combinations') ?? DEFAULT_MAX_COMBINATIONS;
+  if (sample === 0n) return usage(io, '--sample takes at least 1');
+  if (sample !== undefined && sample > maxCombinations) return usage(io, `--sample ${sample} is more than --max-combinations ${maxCombinations}`);
+
+  const distributionPath = path.resolve(positionals[0]);
+  let distributionText: string;
+  try {
+    distributionText = await readUtf8Exactly(distributionPath);
+  } catch (error) {
+    const reason = (error as NodeJS.ErrnoException).code === 'ENOENT' ? 'no such file' : (error as Error).message;
+    throw new InputProblem(`${positionals[0]}: ${reason}`);
+  }
+  const base = process.cwd();
+  const loaded = await loadVariations(distributionText, distributionPath, loadScenarioText);
+  const printProblems = (problems = loaded.problems): void => {
+    for (const line of formatVariationProblems(problems, loaded.lines, base)) if (!values.quiet || line.includes(': error: ')) io.err(line);
+  };
+  printProblems();
+  const variations = loaded.variations;
+  if (!variations) return EXIT.problems;
+  const where = (offset: number): string => formatVariationProblems([{ file: distributionPath, offset, severity: 'error', message: '' }], loaded.lines, base)[0].replace(/: error: $/, '');
+
+  if (values.count) {
+    if (!variations.constrained) {
+      io.out(variations.count.toString());
+      return EXIT.ok;
+    }
+    if (variations.count > maxCombinations) throw new InputProblem(`${where(0)}: ${variations.count} combinations are more than --max-combinations ${maxCombinations}; the scenario's ValueConstraintGroups can only be counted by checking each`);
+    let discarded = 0n;
+    try {
+      for (const each of enumerate(variations.count)) if (variations.brokenAt(each)) discarded++;
+    } catch (error) {
+      if (!(error instanceof SamplingError)) throw error;
+      printProblems([samplingProblem(error, distributionPath)]);
+      return EXIT.problems;
+    }
+    const tally = { discarded };
+    if (!values.quiet && tally.discarded > 0n) io.err(`${tally.discarded} of ${variations.count} combinations break the scenario's ValueConstraintGroups and are discarded`);
+    io.out((variations.count - tally.discarded).toString());
+    return EXIT.ok;
+  }
+
+  const inputs = [distributionPath, variations.scenarioPath];
+  if (index !== undefined) {
+    if (index >= variations.count) throw new InputProblem(`${where(0)}: index ${index} is out of range: the distribution has ${variations.count} combinations (0..${variations.count - 1n})`);
+    const concrete = concreteOrProblem(variations, index, distributionPath, printProblems);
+    if (!concrete) return EXIT.problems;
+    if ('broken' in concrete) throw new InputProblem(`concrete scenario ${index} is discarded: parameter '${concrete.broken.parameter}' = '${concrete.broken.value}' breaks its ValueConstraintGroups`);
+    if (values.output === undefined) {
+      io.out(concrete.text);
+      return EXIT.ok;
+    }
+    if (inputs.some((input) => isSameFile(input, values.output as string))) throw new UsageError(`-o ${values.output} is an input; it is never overwritten`);
+    try {
+      await writeFileAtomic(values.output, concrete.text);
+    } catch (error) {
+      io.err(`modular2simple: cannot write ${values.output}: ${(error as Error).message}`);
+      return EXIT.io;
+    }
+    return EXIT.ok;
+  }
+
+  const outDir = values['out-dir'] as string;
+  if (sample === undefined && variations.count > maxCombinations) {
+    throw new InputProblem(`${where(0)}: ${variations.count} combinations are more than --max-combinations ${maxCombinations}; nothing was written (use --sample N, or raise --max-combinations)`);
+  }
+  const chosen = sample === undefined ? enumerate(variations.count) : sampleIndices(variations.count, sample, seed);
+  // Every draw is made before anything is written, so a Range that cannot be met leaves no output behind.
+  if (variations.kind === 'stochastic') {
+    for (const chosenIndex of chosen) {
+      try {
+        variations.assignmentAt(chosenIndex);
+      } catch (error) {
+        if (!(error instanceof SamplingError)) throw error;
+        printProblems([samplingProblem(error, distributionPath)]);
+        return EXIT.problems;
+      }
+    }
+  }
+  try {
+    await fs.promises.mkdir(outDir, { recursive: true });
+  } catch (error) {
+    io.err(`modular2simple: cannot create ${outDir}: ${(error as Error).message}`);
+    return EXIT.io;
+  }
+  const stem = path.basename(variations.scenarioPath).replace(/\.[^.]*$/, '');
+  const width = (variations.count - 1n).toString().length;
+  let written = 0;
+  let discarded = 0;
+  for (const chosenIndex of chosen) {
+    const concrete = variations.concreteAt(chosenIndex);
+    if ('broken' in concrete) {
+      discarded++;
+      continue;
+    }
+    const target = path.join(outDir, `${stem}_${chosenIndex.toString().padStart(width, '0')}.xosc`);
+    if (inputs.some((input) => isSameFile(input, target))) throw new UsageError(`${target} is an input; it is never overwritten`);
+    try {
+      await writeFileAtomic(target, concrete.text);
+    } catch (error) {
+      io.err(`modular2simple: cannot write ${target}: ${(error as Error).message} (${written} concrete scenarios were written before it)`);
+      return EXIT.io;
+    }
+    written++;
+  }
+  if (!values.quiet) io.err(`wrote ${written} concrete scenario${written === 1 ? '' : 's'} to ${outDir}` + (discarded > 0 ? `; ${discarded} discarded by the scenario's ValueConstraintGroups` : '') + (sample !== undefined ? ` (a sample of ${chosen.length} of ${variations.count}, seed ${seed})` : ''));
+  return EXIT.ok;
+}
+
+function enumerate(count: bigint): bigint[] {
+  const all: bigint[] = [];
+  for (let i = 0n; i < count; i++) all.push(i);
+  return all;
+}
+
+function concreteOrProblem(variations: Variations, index: bigint, distributionPath: string, printProblems: (problems: ReturnType<typeof samplingProblem>[]) => void): ReturnType<Variations['concreteAt']> | undefined {
+  try {
+    return variations.concreteAt(index);
+  } catch (error) {
+    if (!(error instanceof SamplingError)) throw error;
+    printProblems([samplingProblem(error, distributionPath)]);
+    return undefined;
+  }
+}

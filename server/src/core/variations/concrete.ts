@@ -1,0 +1,166 @@
+import { attribute, escapeAttributeValue, parseXml, XmlAttribute } from '../xml';
+import { LineIndex } from '../text';
+import { ParameterValue, VariationProblem } from './distribution';
+
+export type ConstraintRule = 'equalTo' | 'greaterThan' | 'lessThan' | 'greaterOrEqual' | 'lessOrEqual' | 'notEqualTo';
+
+export interface ValueConstraint {
+  rule: ConstraintRule;
+  value: string;
+}
+
+/** A root ParameterDeclaration of the scenario, with where its value is written. */
+export interface DeclaredParameter {
+  name: string;
+  type: string;
+  value: string;
+  valueAttribute: XmlAttribute;
+  offset: number;
+  /** The value must meet every constraint of at least one group (none: any value). */
+  constraintGroups: ValueConstraint[][];
+}
+
+export interface ScenarioParameters {
+  text: string;
+  lines: LineIndex;
+  /** In document order; esmini assigns to the first declaration of a name. */
+  declarations: DeclaredParameter[];
+}
+
+const RULES = new Set<string>(['equalTo', 'greaterThan', 'lessThan', 'greaterOrEqual', 'lessOrEqual', 'notEqualTo']);
+const NUMERIC_TYPES = new Set(['double', 'int', 'integer', 'unsignedInt', 'unsignedShort']);
+
+/** The scenario's root parameter declarations (`OpenSCENARIO/ParameterDeclarations`, where esmini assigns). */
+export function readScenarioParameters(text: string, file: string): { scenario: ScenarioParameters | undefined; problems: VariationProblem[] } {
+  const problems: VariationProblem[] = [];
+  const document = parseXml(text);
+  for (const xmlProblem of document.problems) if (xmlProblem.severity === 'error') problems.push({ file, offset: xmlProblem.start, message: xmlProblem.message, severity: 'error' });
+  const root = document.root;
+  if (!root || problems.length > 0) {
+    if (!root && problems.length === 0) problems.push({ file, offset: 0, message: 'no root element', severity: 'error' });
+    return { scenario: undefined, problems };
+  }
+  if (root.children.some((c) => c.name === 'ParameterValueDistribution')) problems.push({ file, offset: root.start, message: 'the ScenarioFile is itself a distribution file, not a scenario', severity: 'error' });
+  const declarations: DeclaredParameter[] = [];
+  const list = root.name === 'OpenSCENARIO' ? root.children.find((c) => c.name === 'ParameterDeclarations') : undefined;
+  for (const declaration of list?.children.filter((c) => c.name === 'ParameterDeclaration') ?? []) {
+    const name = attribute(declaration, 'name');
+    const valueAttribute = attribute(declaration, 'value');
+    if (!name || !valueAttribute) continue;
+    const constraintGroups: ValueConstraint[][] = [];
+    for (const group of declaration.children.filter((c) => c.name === 'ConstraintGroup')) {
+      const constraints: ValueConstraint[] = [];
+      for (const constraint of group.children.filter((c) => c.name === 'ValueConstraint')) {
+        const rule = attribute(constraint, 'rule');
+        const value = attribute(constraint, 'value');
+        if (!rule || !value || !RULES.has(rule.value)) {
+          problems.push({ file, offset: constraint.start, message: `a ValueConstraint needs rule (${[...RULES].join(', ')}) and value`, severity: 'error' });
+          continue;
+        }
+        constraints.push({ rule: rule.value as ConstraintRule, value: value.value });
+      }
+      constraintGroups.push(constraints);
+    }
+    declarations.push({ name: name.value, type: attribute(declaration, 'parameterType')?.value ?? 'string', value: valueAttribute.value, valueAttribute, offset: declaration.start, constraintGroups });
+  }
+  return { scenario: { text, lines: document.lines, declarations }, problems };
+}
+
+/** Assignments naming a parameter the scenario does not declare at its root (esmini stops on them). */
+export function undeclaredParameters(scenario: ScenarioParameters, assignments: ParameterValue[]): ParameterValue[] {
+  const names = new Set(scenario.declarations.map((d) => d.name));
+  return assignments.filter((assignment) => !names.has(assignment.parameter));
+}
+
+/** The final value of each declared parameter after the assignments (a later assignment of a name wins). */
+export function valuesAfter(scenario: ScenarioParameters, assignments: ParameterValue[]): Map<string, string> {
+  const values = new Map<string, string>();
+  for (const declaration of scenario.declarations) if (!values.has(declaration.name)) values.set(declaration.name, declaration.value);
+  for (const assignment of assignments) if (values.has(assignment.parameter)) values.set(assignment.parameter, assignment.value);
+  return values;
+}
+
+/** The concrete scenario's text: the assigned declarations' value attributes replaced, every other byte kept. */
+export function concreteScenarioText(scenario: ScenarioParameters, assignments: ParameterValue[]): string {
+  const finalValues = valuesAfter(scenario, assignments);
+  const assigned = new Set(assignments.map((a) => a.parameter));
+  const seen = new Set<string>();
+  const edits: { start: number; end: number; text: string }[] = [];
+  for (const declaration of scenario.declarations) {
+    if (seen.has(declaration.name)) continue;
+    seen.add(declaration.name);
+    if (!assigned.has(declaration.name)) continue;
+    const value = finalValues.get(declaration.name) as string;
+    const { valueStart, valueEnd, quote } = declaration.valueAttribute;
+    edits.push({ start: valueStart, end: valueEnd, text: escapeAttributeValue(value, quote) });
+  }
+  edits.sort((a, b) => a.start - b.start);
+  let result = '';
+  let at = 0;
+  for (const edit of edits) {
+    result += scenario.text.slice(at, edit.start) + edit.text;
+    at = edit.end;
+  }
+  return result + scenario.text.slice(at);
+}
+
+/** Whether the scenario declares any ValueConstraintGroup at its root. */
+export function hasConstraints(scenario: ScenarioParameters): boolean {
+  return scenario.declarations.some((d) => d.constraintGroups.length > 0);
+}
+
+/** The first declared parameter whose final value breaks its constraint groups, or undefined when all hold. */
+export function brokenConstraint(scenario: ScenarioParameters, assignments: ParameterValue[]): { parameter: string; value: string } | undefined {
+  const values = valuesAfter(scenario, assignments);
+  const seen = new Set<string>();
+  for (const declaration of scenario.declarations) {
+    if (seen.has(declaration.name)) continue;
+    seen.add(declaration.name);
+    if (declaration.constraintGroups.length === 0) continue;
+    const value = values.get(declaration.name) as string;
+    const numeric = NUMERIC_TYPES.has(declaration.type);
+    const holds = declaration.constraintGroups.some((group) => group.every((constraint) => meets(value, constraint, numeric)));
+    if (!holds) return { parameter: declaration.name, value };
+  }
+  return undefined;
+}
+
+/** Numbers compare as numbers for numeric parameter types; everything else compares as text (dateTime in ISO form orders correctly). */
+function meets(value: string, constraint: ValueConstraint, numeric: boolean): boolean {
+  let order: number;
+  if (numeric) {
+    const left = Number(value.trim());
+    const right = Number(constraint.value.trim());
+    if (!Number.isFinite(left) || !Number.isFinite(right)) return false;
+    order = left === right ? 0 : left < right ? -1 : 1;
+  } else order = value === constraint.value ? 0 : value < constraint.value ? -1 : 1;
+  switch (constraint.rule) {
+    case 'equalTo':
+      return order === 0;
+    case 'notEqualTo':
+      return order !== 0;
+    case 'greaterThan':
+      return order > 0;
+    case 'lessThan':
+      return order < 0;
+    case 'greaterOrEqual':
+      return order >= 0;
+    case 'lessOrEqual':
+      return order <= 0;
+  }
+}
+
+const INTEGER_TYPES = new Set(['int', 'integer', 'unsignedInt', 'unsignedShort']);
+
+/** Why a value does not fit a parameter type, or undefined when it does (strings and dateTime take any text here). */
+export function typeMismatch(value: string, type: string): string | undefined {
+  const trimmed = value.trim();
+  const number = trimmed === '' ? NaN : Number(trimmed);
+  if (type === 'boolean') return /^(true|false)$/.test(trimmed) ? undefined : 'is not true or false';
+  if (!NUMERIC_TYPES.has(type)) return undefined;
+  if (!Number.isFinite(number)) return 'is not a number';
+  if (INTEGER_TYPES.has(type) && !Number.isInteger(number)) return 'is not a whole number';
+  if ((type === 'unsignedInt' || type === 'unsignedShort') && number < 0) return 'is negative';
+  if (type === 'unsignedShort' && number > 65535) return 'is above 65535';
+  return undefined;
+}
