@@ -13,6 +13,7 @@ const COMMANDS: Record<string, () => Promise<Command>> = {
   stats: async () => (await import('./cli/stats')).statsCommand,
   format: async () => (await import('./cli/format')).formatCommand,
   run: async () => (await import('./cli/run')).runCommand,
+  vary: async () => (await import('./cli/vary')).varyCommand,
   // The original tool's forms.
   '-cxm': async () => (await import('./cli/pack')).convertXoscIntoMoscCommand,
   '--convert-xosc-into-mosc': async () => (await import('./cli/pack')).convertXoscIntoMoscCommand,

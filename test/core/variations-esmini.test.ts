@@ -6,7 +6,7 @@ import * as path from 'node:path';
 import { readScenarioParameters, valuesAfter } from '../../server/src/core/variations/concrete';
 import { loadVariations, Variations } from '../../server/src/core/variations';
 import { esminiXodrDir, requireEsminiProgram } from '../support/esminiBinaries';
-import { sharedDir } from '../support/fixtures';
+import { sharedDir } from '../support/paths';
 
 /**
  * The expansion against esmini itself: `--return_nr_permutations` for the count (read from its log line,

@@ -1,5 +1,6 @@
 import { FORMAT_HELP } from './format';
 import { RUN_HELP } from './run';
+import { VARY_HELP } from './vary';
 import { VERSION } from './common';
 
 export const HELP = `modular2simple ${VERSION}: pack, flatten and check modular OpenSCENARIO scenarios
@@ -12,6 +13,8 @@ Usage:
   modular2simple check PATH... [--format json]     report every problem, as a compiler does
   modular2simple stats LIBRARY [--format json]     lines of code of a library (the paper's Table 1)
   modular2simple run INPUT... [--check]            flatten and run in esmini; its messages on the source lines
+  modular2simple vary FILE [--count|--index I|--out-dir DIR]
+                                                   concrete scenarios of a parameter distribution
 ${FORMAT_HELP}
 
 Compatible with the original tool:
@@ -46,6 +49,8 @@ Options:
   -v, --version             the version
 
 ${RUN_HELP}
+
+${VARY_HELP}
 
 Environment:
   SCENARIO_PATH             folders searched for referenced scenarios (separated by ';' or ':')

@@ -1,7 +1,8 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { parseArgs } from 'node:util';
-import { isSameFile, writeFileAtomic } from '../core/atomic';
+import type { CliOutput } from './common';
+import { isSameFile, writeFileAtomic } from '../../../common/src/atomic';
 import { loadVariations, formatVariationProblems, samplingProblem, SamplingError, ScenarioTextLoader, Variations } from '../core/variations';
 import { seedBits, Xoshiro128StarStar } from '../core/variations/random';
 
@@ -19,10 +20,7 @@ export const VARY_HELP = `Concrete scenarios of a ParameterValueDistribution (mo
 const EXIT = { ok: 0, problems: 1, usage: 2, io: 3, internal: 4 } as const;
 const DEFAULT_MAX_COMBINATIONS = 1_000_000n;
 
-interface Output {
-  out: (text: string) => void;
-  err: (text: string) => void;
-}
+type Output = CliOutput;
 
 class InputProblem extends Error {}
 
