@@ -1,6 +1,7 @@
 import * as fs from 'node:fs';
 import { Flattener } from '../core/flatten';
 import { Problem, uniqueProblems } from '../core/problems';
+import { ruleIdOf } from '../core/rules';
 import { displayRef } from '../core/sources';
 import { SCENARIO_FILE, walkFiles } from '../core/walk';
 import { CliOutput, ExitCode, InputError, report, UsageError } from './common';
@@ -16,6 +17,7 @@ function problemJson(problem: Problem): Record<string, unknown> {
     endColumn: problem.range.end.character + 1,
     severity: problem.severity,
     code: problem.code,
+    rule: ruleIdOf(problem.code),
     message: problem.message,
     ...(problem.hint ? { hint: problem.hint } : {}),
     ...(problem.related?.length
@@ -27,7 +29,7 @@ function problemJson(problem: Problem): Record<string, unknown> {
 /** A folder the user names is checked whole: only dot-entries and dependencies are left out, and an unreadable folder is reported. */
 const CHECKED_SKIPPED_FOLDERS = new Set(['node_modules']);
 
-/** `modular2simple check PATH... [--format json]`: every problem of every scenario file, as a compiler reports them. */
+/** `modular2simple check PATH... [--format json|sarif]`: every problem of every scenario file, as a compiler reports them. */
 export async function checkCommand(args: string[], io: CliOutput): Promise<number> {
   const options = parseOptions(args);
   const inputs = options.positional;
@@ -49,6 +51,9 @@ export async function checkCommand(args: string[], io: CliOutput): Promise<numbe
   const warnings = problems.filter((problem) => problem.severity === 'warning').length;
   if (options.format === 'json') {
     io.out(JSON.stringify({ files: files.length, errors, warnings, problems: problems.map(problemJson) }, null, 2));
+  } else if (options.format === 'sarif') {
+    const { sarifLog } = await import('./sarif');
+    io.out(JSON.stringify(sarifLog(problems, process.cwd()), null, 2));
   } else {
     report(problems, io, options.quiet);
     if (!options.quiet) io.err(`checked ${files.length} file${files.length === 1 ? '' : 's'}: ${errors} error${errors === 1 ? '' : 's'}, ${warnings} warning${warnings === 1 ? '' : 's'}`);

@@ -10,7 +10,8 @@ Usage:
   modular2simple flatten INPUT... --out-dir DIR    flatten several inputs into DIR/NAME.xosc
   modular2simple pack FOLDER -o OUT.mosc           pack an unpacked folder and all it references
   modular2simple pack FILE... -o OUT.mosc          pack files at the root of a package (one main.xosc)
-  modular2simple check PATH... [--format json]     report every problem, as a compiler does
+  modular2simple check PATH... [--format json|sarif]
+                                                   report every problem, as a compiler does
   modular2simple stats LIBRARY [--format json]     lines of code of a library (the paper's Table 1)
   modular2simple run INPUT... [--check]            flatten and run in esmini; its messages on the source lines
   modular2simple vary FILE [--count|--index I|--out-dir DIR]
@@ -31,7 +32,8 @@ Options:
   --root DIR                where the search upward from an unpacked folder stops (default: the
                             working directory, or the input's folder when it lies elsewhere)
   --include-scenario-path   pack: also store files found through SCENARIO_PATH
-  --format text|json        output format of check and stats
+  --format text|json|sarif  output format of check (sarif: SARIF 2.1.0 for CI dashboards) and
+                            stats (text or json)
   --simulator asam|carla|esmini
                             check, flatten: also warn about what this simulator does not run
                             (default asam: the standard alone)

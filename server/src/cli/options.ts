@@ -15,7 +15,7 @@ export interface Options {
   scenarioPath: string[];
   root?: string;
   includeScenarioPath: boolean;
-  format: 'text' | 'json';
+  format: 'text' | 'json' | 'sarif';
   quiet: boolean;
   simulator: Simulator;
   schemaVersion: SchemaVersionSetting | 'off';
@@ -102,7 +102,7 @@ export function parseOptions(args: string[]): Options {
         break;
       case 'format': {
         const format = take();
-        if (format !== 'text' && format !== 'json') throw new UsageError(`--format takes text or json, not '${format}'`);
+        if (format !== 'text' && format !== 'json' && format !== 'sarif') throw new UsageError(`--format takes text, json or sarif, not '${format}'`);
         options.format = format;
         break;
       }

@@ -9,6 +9,7 @@ export async function statsCommand(args: string[], io: CliOutput): Promise<numbe
   const options = parseOptions(args);
   if (options.positional.length !== 1) throw new UsageError('stats takes one library folder');
   const library = options.positional[0];
+  if (options.format === 'sarif') throw new UsageError('stats writes text or json, not sarif');
   if (!fs.existsSync(library) || !fs.statSync(library).isDirectory()) throw new InputError(`${library}: no such folder`);
   const stats = await libraryStats(library, options.limits, process.cwd());
   for (const problem of stats.problems) io.err(`${library}: error: ${problem}`);
