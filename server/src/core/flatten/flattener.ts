@@ -3,6 +3,7 @@ import { declareUtf8 } from '../encoding';
 import { buildModel, ScenarioModel } from '../model';
 import { Problem, uniqueProblems } from '../problems';
 import { Simulator } from '../profiles/simulators';
+import { parameterValueProblems } from '../schema/parameterValues';
 import { SchemaCheckMemory, schemaProblems } from '../schema/problems';
 import { analyzeDocument, CatalogLoader, semanticProblems } from '../semantics';
 import { refId, ScenarioStore, SourceError, SourceRef } from '../sources';
@@ -172,6 +173,8 @@ export class Flattener {
       semantics.simulator = this.simulator;
       result.semantics = semantics;
       result.problems.push(...semanticProblems(semantics));
+      // The schema's attribute types, for the values parameters give them.
+      if (schemaVersion !== 'off') result.problems.push(...parameterValueProblems(semantics, schemaVersion));
       for (const file of semantics.catalogs.files) if (!result.dependencies.some((known) => refId(known) === refId(file))) result.dependencies.push(file);
     }
     const wellFormed = isWellFormed(document);
