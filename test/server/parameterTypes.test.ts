@@ -57,7 +57,7 @@ describe("language server: a parameter's value against the type of each attribut
     assert.deepEqual(others, []);
     assert.equal(problem.severity, DiagnosticSeverity.Error);
     assert.deepEqual(problem.range.start, at(text, 's="|$HostVehicle"'));
-    assert.match(problem.message, /^'car_white', the value of parameter 'HostVehicle' \(declared string\), cannot be converted to the attribute's type double \(LanePosition\.s\)/);
+    assert.match(String(problem.message), /^'car_white', the value of parameter 'HostVehicle' \(declared string\), cannot be converted to the attribute's type double \(LanePosition\.s\)/);
     const [declaration] = problem.relatedInformation ?? [];
     assert.equal(declaration.location.uri, uri);
     assert.deepEqual(declaration.location.range.start, at(text, 'name="HostVehicle" parameterType="string" value="|car_white"'));
