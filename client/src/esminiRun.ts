@@ -31,7 +31,9 @@ function scenarioErrors(uri: vscode.Uri): number {
 class RunLensProvider implements vscode.CodeLensProvider, vscode.Disposable {
   private readonly changes = new vscode.EventEmitter<void>();
   readonly onDidChangeCodeLenses = this.changes.event;
-  private readonly subscription = vscode.languages.onDidChangeDiagnostics(() => this.changes.fire());
+  private readonly subscription = vscode.languages.onDidChangeDiagnostics((event) => {
+    if (event.uris.some((uri) => /\.xosc$/i.test(uri.path))) this.changes.fire();
+  });
 
   provideCodeLenses(document: vscode.TextDocument): vscode.CodeLens[] {
     const text = document.getText();
