@@ -32,7 +32,8 @@ async function flattenInputs(inputs: string[], outputs: string[] | undefined, op
   if (results.some((result) => result.text === undefined)) {
     // The refused output could be rendered: only the errors stopped it, and --force writes it anyway.
     const forcible = !options.force && results.every((result) => result.text !== undefined || result.source.text !== undefined);
-    io.err(`${counted}; nothing was written` + (forcible ? ' (--force writes it anyway, skipping the overrides that cannot apply)' : ''));
+    const skipping = problems.some((problem) => OVERRIDE_PROBLEM_CODES.has(problem.code) && problem.severity === 'error') ? ', skipping the overrides that cannot apply' : '';
+    io.err(`${counted}; nothing was written` + (forcible ? ` (--force writes it anyway${skipping})` : ''));
     return ExitCode.problems;
   }
   if (options.force && errors > 0) io.err(`${counted}; written anyway (--force)`);
