@@ -6,6 +6,8 @@ import { parameterValueProblems } from '../../server/src/core/schema/parameterVa
 import { analyzeDocument, CatalogLoader } from '../../server/src/core/semantics';
 import { diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { parseXml } from '../../server/src/core/xml';
+import { Flattener } from '../../server/src/core/flatten';
+import { temporaryWorkspace } from '../support/workspace';
 import { corpusFiles, openscenarioDir } from '../support/openscenarioCorpus';
 import { corpusDir } from '../support/paths';
 
@@ -110,6 +112,26 @@ describe("core: a parameter's value against the schema type of the attribute it 
     assert.match(described(await problemsOf('$Fast')).join('\n'), /^error: 'true', the value of parameter 'Fast' \(declared boolean\), cannot be converted to the attribute's type double/);
     assert.match(described(await problemsOf('1', '$Host')).join('\n'), /^error: 'car_white'.*cannot be converted to the attribute's type unsignedInt/);
     assert.match(described(await problemsOf('1', '1', '$Host')).join('\n'), /^error: 'car_white'.*cannot be converted to the attribute's type Rule \(one of .*greaterThan/);
+  });
+
+  it('checks a ParameterReference value `$name` against the imported attribute it sets, at the reference', async () => {
+    const simple = scenarioWith('1').replace('<SimulationTimeCondition value="1"', '<SimulationTimeCondition parameterAttributes="value" value="1"');
+    const main = simple
+      .replace(/<ManeuverGroup maximumExecutionCount="1" name="G">[\s\S]*?<\/ManeuverGroup>/, '')
+      .replace('<ParameterDeclarations>', '<ParameterDeclarations>\n    <ParameterDeclaration name="Late" parameterType="string" value="soon"/>')
+      .replace(
+        '<Act name="A">',
+        '<Act name="A">\n        <ManeuverGroup maximumExecutionCount="1" name="Outer">\n          <Actors selectTriggeringEntities="false"><EntityRef entityRef="Ego"/></Actors>\n          <ScenarioReference scenarioFileName="simple.xosc"><ManeuverGroupReference maneuverGroupName="G"><ParameterReference key="value" value="$Late"/></ManeuverGroupReference></ScenarioReference>\n        </ManeuverGroup>',
+      );
+    const root = temporaryWorkspace({ 'simple.xosc': simple.replace('<Actors selectTriggeringEntities="false"/>', '<Actors selectTriggeringEntities="false"/>\n          <Maneuver name="M"><Event name="E" priority="override"><Action name="X"><UserDefinedAction><CustomCommandAction type="t"/></UserDefinedAction></Action><StartTrigger><ConditionGroup><Condition name="C2" delay="0" conditionEdge="none"><ByValueCondition><SimulationTimeCondition parameterAttributes="value" value="1" rule="greaterThan"/></ByValueCondition></Condition></ConditionGroup></StartTrigger></Event></Maneuver>'), 'main.xosc': main });
+    try {
+      const analysis = await new Flattener(new ScenarioStore(), 'asam', { version: 'auto' }).analyze(diskRef(path.join(root, 'main.xosc')));
+      const found = analysis.problems.filter((problem) => problem.code === 'type-mismatch').map((problem) => `${path.basename(problem.source.disk)}:${problem.range.start.line}: ${problem.message}`);
+      const line = main.split('\n').findIndex((text) => text.includes('value="$Late"'));
+      assert.deepEqual(found, [`main.xosc:${line}: 'soon', the value of parameter 'Late' (declared string), cannot be converted to the attribute's type double (SimulationTimeCondition.value) (set by ParameterReference 'value')`]);
+    } finally {
+      fs.rmSync(root, { recursive: true, force: true });
+    }
   });
 
   it('finds nothing in the real corpus: every esmini and CARLA scenario, catalog and library file', async function () {

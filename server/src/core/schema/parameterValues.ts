@@ -1,6 +1,6 @@
 import { Problem, Severity } from '../problems';
 import { convertValue, DocumentSemantics, formatValue, ParameterType, resolveName, ValueSite } from '../semantics';
-import { XmlAttribute, XmlElement } from '../xml';
+import { XmlElement } from '../xml';
 import { SchemaIndex, schemaIndex } from './index';
 import { SimpleType } from './model';
 import { typeOfElement } from './query';
@@ -70,15 +70,42 @@ export function valueFits(value: { value: string | number | boolean; type: Param
   return mismatchOf(value, attribute.name, attribute.type) === undefined;
 }
 
-/** The attribute a `$name` stands in, when it is the whole value and not a declaration's own value. */
-function wholeValueUse(site: ValueSite): { element: XmlElement; attribute: XmlAttribute; name: string } | undefined {
-  if (site.form.kind !== 'parameter' || site.declaration || site.element.name === 'ParameterDeclaration') return undefined;
-  return { element: site.element, attribute: site.attribute, name: site.form.name };
+/**
+ * The problem of a `$name` site whose value does not fit an attribute's type, at the site, naming the
+ * declaration; `attributeName` is how the message names the attribute (`LanePosition.s`).
+ */
+export function siteTypeProblem(semantics: DocumentSemantics, site: ValueSite, target: { name: string; type: SimpleType }, attributeName: string): Problem | undefined {
+  if (site.form.kind !== 'parameter') return undefined;
+  const declaration = resolveName(site.scope, site.form.name, site.declaration);
+  if (!declaration) return undefined;
+  // A value that cannot be evaluated is reported at its declaration already.
+  const result = semantics.evaluator.evaluateSite(site);
+  if (!result.ok) return undefined;
+  const mismatch = mismatchOf({ value: result.value, type: result.type }, target.name, target.type);
+  if (!mismatch) return undefined;
+  const document = semantics.model.document;
+  const declared = declaration.writtenType ? `declared ${declaration.writtenType}` : 'declared without a type';
+  const place = declaration.valueAttribute ?? declaration.nameAttribute;
+  return {
+    source: semantics.ref,
+    range: document.lines.range(site.attribute.valueStart, site.attribute.valueEnd),
+    severity: mismatch.severity,
+    code: 'type-mismatch',
+    message: `'${formatValue(result.value)}', the value of parameter '${declaration.name}' (${declared}), ${mismatch.reason} (${attributeName})`,
+    hint: mismatch.hint ?? `use a parameter whose value is a ${targetOf(target.type) ?? target.name}, or write the value here`,
+    related: [
+      {
+        source: semantics.ref,
+        range: place ? document.lines.range(place.valueStart, place.valueEnd) : document.lines.range(declaration.element.start, declaration.element.nameEnd),
+        message: `'${declaration.name}' is declared here with the value '${declaration.value}'`,
+      },
+    ],
+  };
 }
 
 /**
  * Every `$name` that is an attribute's whole value, checked against that attribute's type in the schema
- * of the file's version: an error (or, for `-5.0` in an integer, a warning) at the use, naming the declaration.
+ * of the file's version: an error (or, for `5.0` in an integer, a warning) at the use, naming the declaration.
  */
 export function parameterValueProblems(semantics: DocumentSemantics, setting: SchemaVersionSetting): Problem[] {
   const document = semantics.model.document;
@@ -86,35 +113,11 @@ export function parameterValueProblems(semantics: DocumentSemantics, setting: Sc
   const index = schemaIndex(chooseVersion(document, setting).version);
   const problems: Problem[] = [];
   for (const site of semantics.model.sites) {
-    const use = wholeValueUse(site);
-    if (!use) continue;
-    const declaration = resolveName(site.scope, use.name, undefined);
-    const target = declaration ? attributeType(index, use.element, use.attribute.name) : undefined;
-    if (!declaration || !target) continue;
-    // A value that cannot be evaluated is reported at its declaration already.
-    const result = semantics.evaluator.evaluateSite(site);
-    if (!result.ok) continue;
-    const mismatch = mismatchOf({ value: result.value, type: result.type }, target.name, target.type);
-    if (!mismatch) continue;
-    const shown = formatValue(result.value);
-    const declared = declaration.writtenType ? `declared ${declaration.writtenType}` : 'declared without a type';
-    const problem: Problem = {
-      source: semantics.ref,
-      range: document.lines.range(use.attribute.valueStart, use.attribute.valueEnd),
-      severity: mismatch.severity,
-      code: 'type-mismatch',
-      message: `'${shown}', the value of parameter '${declaration.name}' (${declared}), ${mismatch.reason} (${use.element.name}.${use.attribute.name})`,
-      hint: mismatch.hint ?? `use a parameter whose value is a ${targetOf(target.type) ?? target.name}, or write the value here`,
-    };
-    const place = declaration.valueAttribute ?? declaration.nameAttribute;
-    problem.related = [
-      {
-        source: semantics.ref,
-        range: place ? document.lines.range(place.valueStart, place.valueEnd) : document.lines.range(declaration.element.start, declaration.element.nameEnd),
-        message: `'${declaration.name}' is declared here with the value '${declaration.value}'`,
-      },
-    ];
-    problems.push(problem);
+    // A declaration's own value is text to the schema; its type is checked against its parameterType.
+    if (site.form.kind !== 'parameter' || site.declaration || site.element.name === 'ParameterDeclaration') continue;
+    const target = attributeType(index, site.element, site.attribute.name);
+    const problem = target ? siteTypeProblem(semantics, site, target, `${site.element.name}.${site.attribute.name}`) : undefined;
+    if (problem) problems.push(problem);
   }
   return problems;
 }
