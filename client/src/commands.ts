@@ -2,6 +2,7 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import * as vscode from 'vscode';
 import { PACKAGE_SCHEME, type FlattenOptions, type ProblemSummary, type WriteResult } from '../../common/src/protocol';
+import { writeAnywayQuestion, writtenAnywayNote } from './anyway';
 import { LANGUAGE_ID, type ServerCommandClient } from './languageClient';
 import { FLATTENED_SUFFIX, flattenedName } from './naming';
 import { packageEntryUri } from './packageFileSystem';
@@ -80,15 +81,6 @@ export function defaultFlattenOutput(input: string): string {
   const folder = packageFolder(input);
   if (folder) return besideFolder(folder, FLATTENED_SUFFIX);
   return path.join(path.dirname(input), flattenedName(vscode.Uri.file(input)));
-}
-
-function fileName(uri: string): string {
-  return path.posix.basename(vscode.Uri.parse(uri).path);
-}
-
-/** A problem in a few words, with the file and line it is at. */
-export function problemPlace(problem: ProblemSummary): string {
-  return `${problem.message} (${fileName(problem.uri)}:${problem.line + 1})`;
 }
 
 /** Reports what went wrong and what to do; the details go to the output channel. */
@@ -224,13 +216,6 @@ export async function packCommand(server: ServerCommandClient, reporter: Command
   return runWrite(reporter, 'Pack into .mosc', output, (token) => server.pack(targets, output, token), note);
 }
 
-/** The errors a forced flatten skips, named, for the question whether to write anyway. */
-function skippedByForce(problems: ProblemSummary[]): string {
-  const errors = problems.filter((problem) => problem.severity === 'error');
-  const shown = errors.slice(0, 3).map(problemPlace).join('; ');
-  return errors.length > 3 ? `${shown}; and ${errors.length - 3} more` : shown;
-}
-
 export async function flattenCommand(server: ServerCommandClient, reporter: CommandReporter, clicked: unknown, selected: unknown, ...rest: unknown[]): Promise<string | undefined> {
   const [target] = commandTargets(clicked, selected);
   if (!target || target.scheme !== 'file') {
@@ -256,27 +241,22 @@ export async function flattenCommand(server: ServerCommandClient, reporter: Comm
     return undefined;
   }
   if (outcome.result.written !== null) return reportWritten(reporter, action, { ...outcome.result, written: outcome.result.written });
-  // Refused: when only overrides that cannot apply stop it, offer what --force does, naming what it skips.
+  // Refused for its errors: when a forced flatten produces an output, offer what --force does, naming the errors.
   const problems = outcome.result.problems;
   const forced = await server.flattenToText(main, { force: true }).catch(() => undefined);
   if (!forced || forced.text === null) {
     await reporter.problems(action, problems);
     return undefined;
   }
-  const errors = problems.filter((problem) => problem.severity === 'error').length;
-  reporter.log(`${action} refused; writing anyway would skip:`);
+  reporter.log(`${action} refused; writing anyway would keep these errors:`);
   for (const problem of problems.filter((candidate) => candidate.severity === 'error')) reporter.log(`  ${problem.uri}:${problem.line + 1}:${problem.character + 1} ${problem.message}`);
   const writeAnyway = 'Write Anyway';
-  const choice = await vscode.window.showWarningMessage(
-    `${action}: nothing was written, because ${errors === 1 ? 'an override cannot' : `${errors} overrides cannot`} apply: ${skippedByForce(problems)}. Write anyway, skipping ${errors === 1 ? 'it' : 'them'} (as --force does)?`,
-    writeAnyway,
-    'Go to Problem',
-  );
+  const choice = await vscode.window.showWarningMessage(writeAnywayQuestion(action, problems), writeAnyway, 'Go to Problem');
   if (choice === 'Go to Problem') {
     const first = problems.find((problem) => problem.severity === 'error');
     if (first) await vscode.window.showTextDocument(vscode.Uri.parse(first.uri), { selection: new vscode.Range(first.line, first.character, first.line, first.character) });
     return undefined;
   }
   if (choice !== writeAnyway) return undefined;
-  return runWrite(reporter, action, output, (token) => flattenTo({ force: true }, token), ` (skipped ${errors === 1 ? 'an override' : `${errors} overrides`} that cannot apply)`);
+  return runWrite(reporter, action, output, (token) => flattenTo({ force: true }, token), writtenAnywayNote(problems));
 }

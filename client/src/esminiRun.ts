@@ -1,9 +1,12 @@
 import * as vscode from 'vscode';
 import type { LanguageClient } from 'vscode-languageclient/node';
 import { RunEsminiRequest, type RunEsminiResult } from '../../common/src/protocol';
+import { runAnywayQuestion, runLensTitles } from './anyway';
 import { commandTargets } from './commands';
 
 export const RUN_ESMINI_COMMAND = 'modular2simple.runEsmini';
+/** *Run Anyway*: the run that `run --force` makes, for a scenario with errors. */
+export const RUN_ESMINI_ANYWAY_COMMAND = 'modular2simple.runEsminiAnyway';
 const SETTINGS = 'modular2simple.esmini';
 
 /** A finished run, for views that show its trajectories (the CSV path is in `result.csvFile`). */
@@ -16,14 +19,36 @@ function toRange(range: RunEsminiResult['problems'][number]['range']): vscode.Ra
   return new vscode.Range(range.start.line, range.start.character, range.end.line, range.end.character);
 }
 
-/** "▶ Run in esmini" above the root element of every scenario (a main file runs flattened, a plain one as it is). */
-class RunLensProvider implements vscode.CodeLensProvider {
+/** The file's own errors as the language server reports them (esmini's messages from a run are not the scenario's). */
+function scenarioErrors(uri: vscode.Uri): number {
+  return vscode.languages.getDiagnostics(uri).filter((diagnostic) => diagnostic.severity === vscode.DiagnosticSeverity.Error && diagnostic.source !== 'esmini').length;
+}
+
+/**
+ * "▶ Run in esmini" above the root element of every scenario (a main file runs flattened, a plain one as
+ * it is), and "▶ Run Anyway" beside it while the file has errors.
+ */
+class RunLensProvider implements vscode.CodeLensProvider, vscode.Disposable {
+  private readonly changes = new vscode.EventEmitter<void>();
+  readonly onDidChangeCodeLenses = this.changes.event;
+  private readonly subscription = vscode.languages.onDidChangeDiagnostics((event) => {
+    if (event.uris.some((uri) => /\.xosc$/i.test(uri.path))) this.changes.fire();
+  });
+
   provideCodeLenses(document: vscode.TextDocument): vscode.CodeLens[] {
     const text = document.getText();
     const root = text.search(/<OpenSCENARIO[\s>]/);
     if (root < 0) return [];
     const position = document.positionAt(root);
-    return [new vscode.CodeLens(new vscode.Range(position, position), { title: '▶ Run in esmini', command: RUN_ESMINI_COMMAND, arguments: [document.uri] })];
+    const range = new vscode.Range(position, position);
+    return runLensTitles(scenarioErrors(document.uri)).map(
+      ({ title, force }) => new vscode.CodeLens(range, { title, command: force ? RUN_ESMINI_ANYWAY_COMMAND : RUN_ESMINI_COMMAND, arguments: [document.uri] }),
+    );
+  }
+
+  dispose(): void {
+    this.subscription.dispose();
+    this.changes.dispose();
   }
 }
 
@@ -41,16 +66,20 @@ export class EsminiRunner implements vscode.Disposable {
   last: EsminiRunEvent | undefined;
 
   constructor(private readonly client: LanguageClient) {
+    const lenses = new RunLensProvider();
     this.disposables.push(
       this.diagnostics,
       this.output,
       this.emitter,
+      lenses,
       vscode.commands.registerCommand(RUN_ESMINI_COMMAND, (clicked: unknown) => this.run(clicked)),
-      vscode.languages.registerCodeLensProvider([{ language: 'xosc', scheme: 'file' }, { language: 'xosc', scheme: 'mosc' }, { language: 'xosc', scheme: 'untitled' }], new RunLensProvider()),
+      vscode.commands.registerCommand(RUN_ESMINI_ANYWAY_COMMAND, (clicked: unknown) => this.run(clicked, true)),
+      vscode.languages.registerCodeLensProvider([{ language: 'xosc', scheme: 'file' }, { language: 'xosc', scheme: 'mosc' }, { language: 'xosc', scheme: 'untitled' }], lenses),
     );
   }
 
-  async run(clicked: unknown): Promise<RunEsminiResult | undefined> {
+  /** Runs the scenario; `force` (*Run Anyway*) runs whatever can be flattened despite its errors. */
+  async run(clicked: unknown, force = false): Promise<RunEsminiResult | undefined> {
     const [source] = commandTargets(clicked, undefined);
     if (!source) {
       void vscode.window.showErrorMessage('Run in esmini: open a scenario (.xosc or .mosc) first.');
@@ -62,6 +91,7 @@ export class EsminiRunner implements vscode.Disposable {
       esminiPath: settings.get<string>('path') || undefined,
       roadPath: settings.get<string[]>('roadPath') ?? [],
       duration: settings.get<number>('duration'),
+      ...(force ? { force: true } : {}),
     };
     try {
       if (!this.client.isRunning()) await this.client.start();
@@ -71,12 +101,29 @@ export class EsminiRunner implements vscode.Disposable {
         (_progress, token) => this.client.sendRequest(RunEsminiRequest, params, token),
       );
       this.show(source, result);
+      const question = runAnywayQuestion(result);
+      // Not awaited: the command answers with this run's result, and the answer to the question starts another.
+      if (question) void this.offerRunAnyway(source, question, result);
       return result;
     } catch (error) {
       this.output.appendLine(`Run in esmini failed: ${(error as Error).stack ?? String(error)}`);
       const choice = await vscode.window.showErrorMessage(`Run in esmini failed: ${(error as Error).message}`, 'Show Log');
       if (choice) this.output.show(true);
       return undefined;
+    }
+  }
+
+  /** Asks whether to run a refused scenario anyway, naming its errors. */
+  private async offerRunAnyway(source: vscode.Uri, question: string, result: RunEsminiResult): Promise<void> {
+    const runAnyway = 'Run Anyway';
+    const choice = await vscode.window.showWarningMessage(question, runAnyway, 'Go to Problem');
+    if (choice === runAnyway) {
+      await this.run(source, true);
+      return;
+    }
+    const first = result.flattenProblems.find((problem) => problem.severity === 'error');
+    if (choice === 'Go to Problem' && first) {
+      await vscode.window.showTextDocument(vscode.Uri.parse(first.uri), { selection: new vscode.Range(first.line, first.character, first.line, first.character) });
     }
   }
 
@@ -108,7 +155,8 @@ export class EsminiRunner implements vscode.Disposable {
       void vscode.window.showWarningMessage(result.message, 'Open Settings').then((choice) => {
         if (choice) void vscode.commands.executeCommand('workbench.action.openSettings', `${SETTINGS}.path`);
       });
-    } else {
+    } else if (!runAnywayQuestion(result)) {
+      // A refusal that Run Anyway would start is asked about by run(), not reported here as well.
       const detail = result.outcome === 'errors' ? `${errors} error${errors === 1 ? '' : 's'} in the Problems view` : result.message;
       void vscode.window.showErrorMessage(`Run in esmini: ${detail}`, 'Show Log').then((choice) => {
         if (choice) this.output.show(true);

@@ -111,6 +111,8 @@ export interface RunEsminiParams {
   roadPath?: string[];
   /** Simulated seconds (default 30). */
   duration?: number;
+  /** *Run Anyway*: run whatever can be flattened despite the scenario's errors (listed in `flattenProblems`), as `run --force` does. */
+  force?: boolean;
 }
 
 /** One esmini message on the source line it comes from (zero-based, as LSP). */
@@ -137,6 +139,8 @@ export interface RunEsminiResult {
   uri: string;
   problems: EsminiProblemSummary[];
   flattenProblems: ProblemSummary[];
+  /** With outcome not-flattened: only the scenario's errors stopped it, so the same request with `force` runs it. */
+  forcible?: boolean;
   /** esmini's whole output. */
   log: string;
   /**

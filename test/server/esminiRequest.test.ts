@@ -53,4 +53,45 @@ describe('language server: the Run in esmini request over JSON-RPC', function ()
     assert.equal(fs.readFileSync(simple, 'utf8'), text, 'the file on disk is untouched');
     assert.ok(!fs.existsSync(clean.csvFile), "the previous run's files are removed by the next run of the same file");
   });
+
+  it('refuses a scenario with errors as forcible; with force (Run Anyway) runs it, listing the errors', async function () {
+    requireEsmini(this);
+    const main = path.join(root, 'main.xosc');
+    const uri = await client.openFile(main);
+    const text = fs.readFileSync(main, 'utf8');
+    // A double parameter whose value is no number: an error by any policy, which esmini never reads.
+    const at = text.indexOf('<ParameterDeclarations/>');
+    const line = text.slice(0, at).split('\n').length - 1;
+    const character = at - text.lastIndexOf('\n', at - 1) - 1;
+    const declaration = '<ParameterDeclarations><ParameterDeclaration name="Pace" parameterType="double" value="fast"/></ParameterDeclarations>';
+    await client.change(uri, [{ range: { start: { line, character }, end: { line, character: character + '<ParameterDeclarations/>'.length } }, text: declaration }]);
+    const refused = await run(uri);
+    assert.equal(refused.outcome, 'not-flattened', refused.message);
+    assert.equal(refused.forcible, true);
+    assert.match(refused.message, /^the scenario has 1 error; nothing was run$/);
+    assert.equal(refused.csvFile, undefined);
+    const [error] = refused.flattenProblems.filter((problem) => problem.severity === 'error');
+    assert.equal(error.uri, uri);
+    assert.equal(error.line, line);
+    assert.match(error.message, /'fast' is not a double/);
+
+    const forced = await run(uri, { force: true });
+    assert.equal(forced.outcome, 'ok', forced.message);
+    assert.equal(forced.forcible, undefined);
+    assert.match(forced.message, /3\.00 s simulated .*\(run anyway despite 1 error in the scenario\)$/);
+    assert.deepEqual(forced.flattenProblems.filter((problem) => problem.severity === 'error'), [error]);
+    assert.ok(forced.csvFile && fs.existsSync(forced.csvFile));
+
+    // A group that does not exist leaves nothing to run, forced or not: no offer to run anyway.
+    const group = text.indexOf('maneuverGroupName="') + 'maneuverGroupName="'.length;
+    const groupLine = text.slice(0, group).split('\n').length - 1;
+    const groupCharacter = group - text.lastIndexOf('\n', group - 1) - 1;
+    await client.change(uri, [{ range: { start: { line: groupLine, character: groupCharacter }, end: { line: groupLine, character: groupCharacter } }, text: 'NoSuch' }]);
+    for (const force of [false, true]) {
+      const missing = await run(uri, { force });
+      assert.equal(missing.outcome, 'not-flattened', missing.message);
+      assert.equal(missing.forcible, undefined);
+      assert.match(missing.message, /cannot be flattened; nothing was run/);
+    }
+  });
 });

@@ -28,10 +28,15 @@ async function flattenInputs(inputs: string[], outputs: string[] | undefined, op
     );
   }
   const { errors } = report(problems, io, options.quiet);
+  const counted = `${errors} error${errors === 1 ? '' : 's'}`;
   if (results.some((result) => result.text === undefined)) {
-    io.err(`${errors} error${errors === 1 ? '' : 's'}; nothing was written` + (problems.some((p) => p.code === 'unknown-key' || p.code === 'no-default') && !options.force ? ' (--force writes the output without the overrides that cannot apply)' : ''));
+    // The refused output could be rendered: only the errors stopped it, and --force writes it anyway.
+    const forcible = !options.force && results.every((result) => result.text !== undefined || result.source.text !== undefined);
+    const skipping = problems.some((problem) => OVERRIDE_PROBLEM_CODES.has(problem.code) && problem.severity === 'error') ? ', skipping the overrides that cannot apply' : '';
+    io.err(`${counted}; nothing was written` + (forcible ? ` (--force writes it anyway${skipping})` : ''));
     return ExitCode.problems;
   }
+  if (options.force && errors > 0) io.err(`${counted}; written anyway (--force)`);
   if (!outputs) {
     for (const result of results) io.out(result.text as string);
     return ExitCode.ok;

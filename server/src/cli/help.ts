@@ -25,8 +25,9 @@ Compatible with the original tool:
 Options:
   -o, --output FILE         where to write (flatten: '-' or no -o prints to standard output)
   --out-dir DIR             output folder for several inputs
-  --force                   write the output despite overrides that cannot apply (unknown keys,
-                            attributes without default): they are skipped, as the original did
+  --force                   flatten, run: write (or run) whatever can be produced despite errors,
+                            listing them; overrides that cannot apply (unknown keys, attributes
+                            without default) are skipped, as the original did
   --scenario-path DIRS      folders searched after the package, before SCENARIO_PATH's own
                             (separated by ';' or ':')
   --root DIR                where the search upward from an unpacked folder stops (default: the
@@ -59,7 +60,7 @@ Environment:
 
 Exit codes:
   0 success (warnings may have been printed)
-  1 the input has errors; nothing was written
+  1 the input has errors; nothing was written (with --force: only what cannot be produced at all)
   2 wrong usage
   3 the output could not be written; nothing was changed
   4 internal error (a bug: please report it with the input)`;

@@ -16,6 +16,7 @@ export const RUN_HELP = `Run in esmini (modular2simple run INPUT... [options]):
   --road-path DIRS          extra folders for road files and catalogs (separated by ';' or ':')
   --esmini PATH             the esmini program, or its folder (default: esmini on PATH)
   --check                   exit 1 when esmini reports an error (for CI over a library)
+  --force                   run whatever can be flattened despite the scenario's errors, listing them
   --csv OUT                 keep esmini's CSV log of the run (one input only)
   --scenario-path DIRS      as for flatten
   esmini's problems print as FILE:LINE:COL: error|warning: MESSAGE (esmini), on the source line they
@@ -57,6 +58,7 @@ export async function runCommand(args: string[], io: CliOutput): Promise<number>
         'road-path': { type: 'string', multiple: true },
         esmini: { type: 'string' },
         check: { type: 'boolean', default: false },
+        force: { type: 'boolean', default: false },
         csv: { type: 'string' },
         'scenario-path': { type: 'string', multiple: true },
         quiet: { type: 'boolean', short: 'q', default: false },
@@ -84,7 +86,7 @@ export async function runCommand(args: string[], io: CliOutput): Promise<number>
   let notRun = false;
   let errors = 0;
   for (const input of inputs) {
-    const result = await runScenario(flattener, mainOf(input), { esminiPath: values.esmini, roadPath, duration, seed });
+    const result = await runScenario(flattener, mainOf(input), { esminiPath: values.esmini, roadPath, duration, seed, force: values.force });
     try {
       for (const problem of result.flattenProblems) if (problem.severity === 'error' || !values.quiet) io.err(formatProblem(problem));
       for (const problem of result.problems) if (problem.severity === 'error' || !values.quiet) io.err(formatEsminiProblem(problem));
@@ -100,7 +102,7 @@ export async function runCommand(args: string[], io: CliOutput): Promise<number>
       }
       if (result.outcome === 'not-flattened') notRun = true;
       if (result.outcome === 'errors') errors++;
-      if (!values.quiet || result.outcome !== 'ok') io.err(`${input}: ${result.message}`);
+      if (!values.quiet || result.outcome !== 'ok') io.err(`${input}: ${result.message}${result.forcible ? ' (--force runs it anyway)' : ''}`);
       if (values.csv !== undefined && result.csvFile) {
         const output = path.resolve(values.csv);
         await writeFileAtomic(output, csvUpTo(fs.readFileSync(result.csvFile, 'utf8'), duration));

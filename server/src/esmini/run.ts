@@ -37,6 +37,8 @@ export interface EsminiRunOptions {
   runsFolder?: string;
   onOutput?: (text: string) => void;
   cancel?: AbortSignal;
+  /** Run whatever can be flattened despite the scenario's errors (*Run Anyway*, `run --force`); they are listed in `flattenProblems`. */
+  force?: boolean;
 }
 
 /**
@@ -76,6 +78,8 @@ export interface EsminiRunResult {
   wallMs: number;
   problems: EsminiProblem[];
   flattenProblems: Problem[];
+  /** Not flattened only because of errors: forced (`force`), the same scenario would run. */
+  forcible?: boolean;
 }
 
 /** The folder a scenario's relative file names start from: the main file's folder, or the package's. */
@@ -118,11 +122,16 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
   const location = locateEsmini(options.esminiPath, options.base);
   if (!location.found) return { ...base, outcome: 'no-esmini', message: location.message, wallMs: elapsed() };
 
-  const flat = await flattener.flatten(main);
+  const flat = await flattener.flatten(main, { force: options.force });
   const flattenProblems = flat.problems;
   if (flat.text === undefined) {
     const errors = flattenProblems.filter((problem) => problem.severity === 'error').length;
-    return { ...base, flattenProblems, outcome: 'not-flattened', esmini: location.program, message: `the scenario has ${errors} error${errors === 1 ? '' : 's'} and cannot be flattened; nothing was run`, wallMs: elapsed() };
+    const counted = `the scenario has ${errors} error${errors === 1 ? '' : 's'}`;
+    // Rendered but refused for its errors: forcing runs it.
+    if (!options.force && flat.source.text !== undefined) {
+      return { ...base, flattenProblems, outcome: 'not-flattened', forcible: true, esmini: location.program, message: `${counted}; nothing was run`, wallMs: elapsed() };
+    }
+    return { ...base, flattenProblems, outcome: 'not-flattened', esmini: location.program, message: `${counted} and cannot be flattened; nothing was run`, wallMs: elapsed() };
   }
   const limited = withTimeLimit(flat.text, duration);
   if (limited === undefined) {
@@ -178,7 +187,9 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
   }
   const covered =
     common.simulatedTime === undefined ? 'no trajectory: esmini placed no entity (each needs a position in Init, such as a TeleportAction)' : `${common.simulatedTime.toFixed(2)} s simulated`;
-  return { ...common, outcome: errors > 0 ? 'errors' : 'ok', message: `esmini: ${counts}; ${covered} (${(run.wallMs / 1000).toFixed(2)} s)` };
+  const scenarioErrors = flattenProblems.filter((problem) => problem.severity === 'error').length;
+  const forced = scenarioErrors > 0 ? ` (run anyway despite ${scenarioErrors} error${scenarioErrors === 1 ? '' : 's'} in the scenario)` : '';
+  return { ...common, outcome: errors > 0 ? 'errors' : 'ok', message: `esmini: ${counts}; ${covered} (${(run.wallMs / 1000).toFixed(2)} s)${forced}` };
 }
 
 /** Removes a run's private folder (its CSV and scenario copy). */

@@ -8,12 +8,13 @@ import { findGroup, PARAMETER_ATTRIBUTES } from '../core/model';
 import { displayRef, SourceRef } from '../core/sources';
 import { keyChoices, overridablePlace, sourceForFileName } from '../analysis';
 import { elementsBetween, lastElementBefore, ValueContext } from '../core/cursor';
+import { indexFor } from '../core/schema/query';
 import { attribute, XmlAttribute, XmlDocument } from '../core/xml';
 import { completionTargetAt, currentDocument } from '../target';
 import { Workspace } from '../workspace';
 import { schemaCompletion } from './schemaCompletion';
 import { catalogCompletion } from './catalogs';
-import { parameterCompletion } from './parameters';
+import { attributeTypeAt, parameterCompletion } from './parameters';
 
 const MAX_SNIPPETS = 200;
 
@@ -227,7 +228,7 @@ export async function complete(workspace: Workspace, ref: SourceRef, document: T
   const range = 'context' in target ? replaceRange(document, target.context.valueStart, target.context.valueEnd) : undefined;
   switch (target.kind) {
     case 'parameter':
-      return semantics ? parameterCompletion(document, semantics, target.context, offset) : [];
+      return semantics ? parameterCompletion(document, semantics, target.context, offset, attributeTypeAt(indexFor(parsed, workspace.settings.schemaVersion), parsed, target.context)) : [];
     case 'catalogReference':
       return semantics ? catalogCompletion(workspace, semantics, document, target.context, target.part) : [];
     case 'fileReference':

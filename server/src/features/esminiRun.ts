@@ -34,6 +34,7 @@ export class EsminiRuns {
       base: workspace.folders[0],
       duration,
       cancel: cancel.signal,
+      force: params.force === true,
     });
     const id = refId(ref);
     const earlier = this.previous.get(id);
@@ -58,6 +59,7 @@ export class EsminiRuns {
         ...(problem.note ? { note: problem.note } : {}),
       })),
       flattenProblems: result.flattenProblems.map((problem) => summarize(workspace, problem)),
+      ...(result.forcible ? { forcible: true } : {}),
       log: result.log,
       csvFile: result.csvFile,
       scenarioFile: result.scenarioFile,

@@ -4,7 +4,11 @@ import { composedValues } from '../core/flatten/carry';
 import { FlatSource, LinkedGroupReference } from '../core/flatten';
 import { Declaration, DocumentSemantics, formatValue, ParameterUse, parametersInScopeAt, Provenance, referencesOf, ValueResult } from '../core/semantics';
 import { displayRef, refId, SourceRef } from '../core/sources';
-import { XmlAttribute, XmlElement } from '../core/xml';
+import { SchemaIndex } from '../core/schema/index';
+import { SimpleType } from '../core/schema/model';
+import { attributeType, valueFits } from '../core/schema/parameterValues';
+import { typeByElementName } from '../core/schema/query';
+import { elementAt, XmlAttribute, XmlDocument, XmlElement } from '../core/xml';
 import { Place } from '../analysis';
 import { ValueContext } from '../core/cursor';
 import { dollarPrefix, Target } from '../target';
@@ -82,8 +86,32 @@ export function describeValue(result: ValueResult): string {
   return result.ok ? `${formatValue(result.value)} (${result.type})` : `cannot be evaluated: ${result.errors[0]?.message ?? 'unknown error'}`;
 }
 
-/** Completion after `$`: the parameters in scope at the cursor, innermost first, with value and type. */
-export function parameterCompletion(document: TextDocument, semantics: DocumentSemantics, context: ValueContext, offset: number): CompletionItem[] {
+/**
+ * The schema type of the attribute a value is typed in (the tolerant parse's element at the tag, else the
+ * first type with an element of that name); undefined with schema support off or an unknown attribute.
+ */
+export function attributeTypeAt(index: SchemaIndex | undefined, parsed: XmlDocument, context: ValueContext): { name: string; type: SimpleType } | undefined {
+  if (!index) return undefined;
+  const found = elementAt(parsed, context.tagStart);
+  const placed = found && found.start === context.tagStart && found.name === context.element ? attributeType(index, found, context.attribute) : undefined;
+  if (placed) return placed;
+  const typeName = typeByElementName(index, context.element);
+  const declaration = typeName ? index.attribute(typeName, context.attribute) : undefined;
+  const type = declaration ? index.simpleType(declaration.type) : undefined;
+  return declaration && type ? { name: declaration.type, type } : undefined;
+}
+
+/**
+ * Completion after `$`: the parameters in scope at the cursor, innermost first, with value and type;
+ * with the attribute's type known, those whose value fits it come first.
+ */
+export function parameterCompletion(
+  document: TextDocument,
+  semantics: DocumentSemantics,
+  context: ValueContext,
+  offset: number,
+  attribute?: { name: string; type: SimpleType },
+): CompletionItem[] {
   const typed = dollarPrefix(context) ?? '$';
   const start = offset - typed.length;
   const text = document.getText();
@@ -95,7 +123,7 @@ export function parameterCompletion(document: TextDocument, semantics: DocumentS
     kind: CompletionItemKind.Variable,
     detail: `${declaration.writtenType ?? 'untyped'} = ${value.ok ? formatValue(value.value) : declaration.value}`,
     documentation: `declared in <${declaration.scope.element.name}> on line ${lineOf(semantics, declaration.element.start)}`,
-    sortText: String(index).padStart(5, '0'),
+    sortText: (attribute ? (value.ok && valueFits(value, attribute) ? '0' : '1') : '') + String(index).padStart(5, '0'),
     filterText: `$${declaration.name}`,
     textEdit: { range, newText: `$${declaration.name}` },
   }));

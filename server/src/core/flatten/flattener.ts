@@ -3,8 +3,8 @@ import { declareUtf8 } from '../encoding';
 import { buildModel, ScenarioModel } from '../model';
 import { Problem, uniqueProblems } from '../problems';
 import { Simulator } from '../profiles/simulators';
+import { parameterValueProblems } from '../schema/parameterValues';
 import { SchemaCheckMemory, schemaProblems } from '../schema/problems';
-import { SCHEMA_PROBLEM_CODES } from '../schema/validate';
 import { analyzeDocument, CatalogLoader, semanticProblems } from '../semantics';
 import { refId, ScenarioStore, SourceError, SourceRef } from '../sources';
 import { isWellFormed, parseXml } from '../xml';
@@ -14,7 +14,7 @@ import { link } from './link';
 import { outputSchemaProblems, overrideValueProblems } from './outputSchema';
 import { problemAt } from './report';
 import { render } from './render';
-import { AnalysisResult, FlatSource, FlattenOptions, FlattenResult, OVERRIDE_PROBLEM_CODES, SchemaOptions } from './types';
+import { AnalysisResult, FlatSource, FlattenOptions, FlattenResult, SchemaOptions } from './types';
 
 /** The catalogs a file reaches (its own references first, then those of the files it imports from). */
 function catalogIndexOf(source: FlatSource): Map<string, { kind: string; directory: string }> {
@@ -32,11 +32,6 @@ function catalogIndexOf(source: FlatSource): Map<string, { kind: string; directo
     for (const [name, place] of link.source?.catalogIndex ?? []) if (!index.has(name)) index.set(name, place);
   }
   return index;
-}
-
-/** Whether an error stops flattening (overrides and schema problems do not: `--force` writes the output despite them). */
-function blocksRendering(problem: Problem): boolean {
-  return problem.severity === 'error' && !OVERRIDE_PROBLEM_CODES.has(problem.code) && !SCHEMA_PROBLEM_CODES.has(problem.code);
 }
 
 /**
@@ -85,9 +80,8 @@ export class Flattener {
       ...(await checkOutput(this, source, outputDirectory)),
       ...schemaOutput,
     ]);
-    const blocking = problems.filter(
-      (problem) => problem.severity === 'error' && !(options.force && (OVERRIDE_PROBLEM_CODES.has(problem.code) || SCHEMA_PROBLEM_CODES.has(problem.code))),
-    );
+    // Forced, every error is listed and whatever could be rendered is written (SPEC 12); else any error refuses.
+    const blocking = options.force ? [] : problems.filter((problem) => problem.severity === 'error');
     const text = source.text !== undefined && blocking.length === 0 ? declareUtf8(stripParameterAttributes(source.model ?? buildModel(parseXml(source.text)))) : undefined;
     // Removing whole attributes keeps a well-formed text well-formed, so the rendered model is the check.
     if (text !== undefined && source.model && !isWellFormed(source.model.document)) {
@@ -179,6 +173,8 @@ export class Flattener {
       semantics.simulator = this.simulator;
       result.semantics = semantics;
       result.problems.push(...semanticProblems(semantics));
+      // The schema's attribute types, for the values parameters give them.
+      if (schemaVersion !== 'off') result.problems.push(...parameterValueProblems(semantics, schemaVersion));
       for (const file of semantics.catalogs.files) if (!result.dependencies.some((known) => refId(known) === refId(file))) result.dependencies.push(file);
     }
     const wellFormed = isWellFormed(document);
@@ -191,7 +187,8 @@ export class Flattener {
       result.model = model;
       return result;
     }
-    result.renderable = !result.allProblems.some(blocksRendering);
+    // Rendered whatever its errors: whether they stop the output is the caller's choice (`force`), made in flatten.
+    result.renderable = true;
     return result;
   }
 

@@ -2,6 +2,7 @@ import { ParameterReferenceInfo } from '../model';
 import { Problem } from '../problems';
 import { refId } from '../sources';
 import { schemaIndex } from '../schema/index';
+import { attributeType, siteTypeProblem } from '../schema/parameterValues';
 import { PlacedFinding, SchemaCheckMemory, toProblem } from '../schema/problems';
 import { typeOfElement } from '../schema/query';
 import { checkAttribute, checkSchema, findingOffsets, SchemaCheckOptions, SchemaFinding } from '../schema/validate';
@@ -100,6 +101,11 @@ export function overrideValueProblems(main: FlatSource, options: Omit<SchemaChec
           if (finding.part !== 'value' || finding.severity === 'information') return;
           problems.push(toProblem(main.ref, document, { ...finding, message: `${finding.message} (set by ParameterReference '${parameter.key}')`, data: undefined }, valueAttribute.valueStart, valueAttribute.valueEnd));
         });
+        // An override `$name`: the main file's parameter must fit the attribute it sets.
+        const site = main.semantics?.model.siteOf.get(valueAttribute);
+        const attributeTypeOf = site ? attributeType(index, target.element, target.attributeName) : undefined;
+        const mismatch = site && attributeTypeOf && main.semantics ? siteTypeProblem(main.semantics, site, attributeTypeOf, `${target.element.name}.${target.attributeName}`) : undefined;
+        if (mismatch) problems.push({ ...mismatch, message: `${mismatch.message} (set by ParameterReference '${parameter.key}')` });
       }
     }
   }

@@ -6,7 +6,7 @@ import { Declaration, DocumentSemantics } from '../semantics';
 import { Resolution, SourceRef } from '../sources';
 import { XmlElement } from '../xml';
 
-/** Problems that the original tool ignored silently: `--force` writes the output despite them. */
+/** Problems that the original tool ignored silently: what `--force` skips (reported as skipped, not as errors). */
 export const OVERRIDE_PROBLEM_CODES: ReadonlySet<ProblemCode> = new Set<ProblemCode>([
   'unknown-key',
   'no-default',
@@ -128,7 +128,11 @@ export interface SchemaOptions {
 }
 
 export interface FlattenOptions {
-  /** Write the output even when overrides could not be applied (the original's behaviour). */
+  /**
+   * Produce the output whatever errors were found (`--force`, *Write Anyway*, *Run Anyway*): overrides
+   * that cannot apply are skipped, as the original did; only what cannot be rendered at all (a missing file
+   * or group, malformed XML, a cycle, a too large output) leaves no text.
+   */
   force?: boolean;
   /** Where the output will be written (carried catalog directories are made relative to its folder); beside the main file by default. */
   outputPath?: string;

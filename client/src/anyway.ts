@@ -1,0 +1,53 @@
+import type { ProblemSummary, RunEsminiResult } from '../../common/src/protocol';
+
+/*
+ * The words of *Write Anyway* and *Run Anyway* (SPEC 12: forced, whatever can be produced is written or
+ * run, and what was wrong is listed). No VS Code here, so that the wording is tested without an editor.
+ */
+
+function fileName(uri: string): string {
+  const last = uri.slice(uri.lastIndexOf('/') + 1);
+  try {
+    return decodeURIComponent(last);
+  } catch {
+    return last;
+  }
+}
+
+function plural(count: number, word: string): string {
+  return `${count} ${word}${count === 1 ? '' : 's'}`;
+}
+
+/** The first errors in a few words each, with the file and line they are at. */
+export function namedErrors(problems: ProblemSummary[], shown = 3): string {
+  const errors = problems.filter((problem) => problem.severity === 'error');
+  const named = errors.slice(0, shown).map((problem) => `${problem.message} (${fileName(problem.uri)}:${problem.line + 1})`).join('; ');
+  return errors.length > shown ? `${named}; and ${errors.length - shown} more` : named;
+}
+
+export function errorCount(problems: ProblemSummary[]): number {
+  return problems.filter((problem) => problem.severity === 'error').length;
+}
+
+/** The question after a refused Flatten whose output a forced flatten can write. */
+export function writeAnywayQuestion(action: string, problems: ProblemSummary[]): string {
+  return `${action}: nothing was written, because of ${plural(errorCount(problems), 'error')}: ${namedErrors(problems)}. Write anyway, skipping the overrides that cannot apply (as --force does)?`;
+}
+
+/** What Flatten says once it wrote anyway. */
+export function writtenAnywayNote(problems: ProblemSummary[]): string {
+  return ` (written anyway despite ${plural(errorCount(problems), 'error')})`;
+}
+
+/** The question after a refused run that *Run Anyway* would start; undefined when forcing cannot help. */
+export function runAnywayQuestion(result: RunEsminiResult): string | undefined {
+  if (result.outcome !== 'not-flattened' || !result.forcible) return undefined;
+  return `Run in esmini: ${result.message}: ${namedErrors(result.flattenProblems)}. Run anyway, as run --force does?`;
+}
+
+/** The titles of the Run CodeLenses of a file with `errors` errors of its own: *Run Anyway* joins *Run in esmini* when there are some. */
+export function runLensTitles(errors: number): { title: string; force: boolean }[] {
+  const lenses = [{ title: '▶ Run in esmini', force: false }];
+  if (errors > 0) lenses.push({ title: `▶ Run Anyway (${plural(errors, 'error')})`, force: true });
+  return lenses;
+}
