@@ -76,7 +76,7 @@ export const previewTests: InsideTests = {
     await replaceText(simple, 'ManeuverGroup name="CutIn"', 'ManeuverGroup name="CutInRenamed"');
     await waitFor('the preview to say why it cannot flatten', () => atCursor.document.getText().includes('cannot be flattened') || undefined);
     await waitFor('the preview to show its first line', () => shows(atCursor, 0) || undefined, 10_000);
-    await waitFor('the explanation to be on screen', () => pageShows('cannot be flattened', '.editor-group-container:not(.active) .view-lines'), 10_000);
+    await waitFor('the explanation to be on screen', () => pageShows('error:', '.editor-group-container:not(.active) .view-lines'), 10_000);
     await screenshot('preview of a main whose simple scenario broke');
     await vscode.window.showTextDocument(simple, { viewColumn: vscode.ViewColumn.One, preview: false });
     await vscode.commands.executeCommand('workbench.action.files.revert');
