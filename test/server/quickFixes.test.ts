@@ -47,9 +47,10 @@ describe('language server: quick fixes (JSON-RPC)', function () {
 
   it('names the absolute folders a misspelt scenarioFileName was looked up in, and the closest file there, with a quick fix', async function () {
     const [{ diagnostic, actions }] = await fixes('typo.xosc', 'missing-file');
-    assert.ok(diagnostic.message.includes(`searched ${server.root}`), diagnostic.message);
-    assert.doesNotMatch(diagnostic.message, /searched \.(,|$)/m);
-    assert.match(diagnostic.message, /did you mean 'simple\.xosc'\?/);
+    const message = typeof diagnostic.message === 'string' ? diagnostic.message : diagnostic.message.value;
+    assert.ok(message.includes(`searched ${server.root}`), message);
+    assert.doesNotMatch(message, /searched \.(,|$)/m);
+    assert.match(message, /did you mean 'simple\.xosc'\?/);
     assert.deepEqual(actions.map((action) => action.title), ["Change to 'simple.xosc'"]);
     assert.equal(actions[0].isPreferred, true);
     const [edit] = actions[0].edit?.changes?.[fileUri(path.join(server.root, 'typo.xosc'))] ?? [];

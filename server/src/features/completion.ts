@@ -222,9 +222,6 @@ async function snippetItems(workspace: Workspace, ref: SourceRef, document: Text
 /** Elements of the modular syntax in a main file: `parameterAttributes` means nothing on them. */
 const REFERENCE_ELEMENTS = new Set(['ScenarioReference', 'ManeuverGroupReference', 'ParameterReference']);
 
-/** Asks the editor to complete again once the item is in, so that the value's own completion follows. */
-const SUGGEST_AGAIN = { title: 'Suggest', command: 'editor.action.triggerSuggest' };
-
 /** `parameterAttributes` on an element of a ManeuverGroup (a simple scenario's groups), unless it is written already. */
 function parameterAttributesItem(parsed: XmlDocument, target: { tagStart: number; written: string[]; start: number }, document: TextDocument, offset: number): CompletionItem[] {
   if (target.written.includes(PARAMETER_ATTRIBUTES)) return [];
@@ -240,7 +237,6 @@ function parameterAttributesItem(parsed: XmlDocument, target: { tagStart: number
       sortText: '0_999',
       insertTextFormat: InsertTextFormat.Snippet,
       textEdit: { range: replaceRange(document, target.start, offset), newText: `${PARAMETER_ATTRIBUTES}="$1"` },
-      command: SUGGEST_AGAIN,
     },
   ];
 }
@@ -259,7 +255,6 @@ async function parameterReferenceItems(workspace: Workspace, ref: SourceRef, doc
       filterText: filter('ParameterReference'),
       insertTextFormat: InsertTextFormat.Snippet,
       textEdit: { range, newText: '<ParameterReference key="$1" value="$2"/>$0' },
-      command: SUGGEST_AGAIN,
     },
   ];
   const found = await groupBefore(workspace, ref, parsed, start);
