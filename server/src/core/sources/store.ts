@@ -268,6 +268,7 @@ export class ScenarioStore {
     const isScenarioName = (entry: string) => /\.(xosc|mosc)$/i.test(entry);
     for (const place of places) {
       if (place.packageRef) {
+        // normalizeEntryName takes a file's entry name: that of a placeholder file gives the folder's, with its '/'.
         const folder = normalizeEntryName(place.directory ? `${place.directory}/${folderPart}x` : `${folderPart}x`)?.slice(0, -1);
         if (folder === undefined) continue;
         const contents = await this.readPackage(place.packageRef).catch(() => undefined);
