@@ -6,6 +6,7 @@ import * as fs from 'node:fs';
 import * as net from 'node:net';
 import * as path from 'node:path';
 import { fileURLToPath } from 'node:url';
+import { writeStartSettings } from './startSettings.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 const workspace = path.resolve(process.argv[2] ?? path.join(root, 'examples'));
@@ -74,16 +75,7 @@ if (fs.existsSync(path.join(shared, 'build.sh'))) {
 }
 
 const userData = path.join(profile, 'user-data');
-const settings = path.join(userData, 'User', 'settings.json');
-const defaults = { 'workbench.startupEditor': 'none', 'telemetry.telemetryLevel': 'off', 'git.openRepositoryInParentFolders': 'never' };
-let current = {};
-try {
-  current = JSON.parse(fs.readFileSync(settings, 'utf8'));
-} catch {
-  // none yet, or not plain JSON: written anew
-}
-fs.mkdirSync(path.dirname(settings), { recursive: true });
-fs.writeFileSync(settings, JSON.stringify({ ...defaults, ...current, ...esminiSettings }, null, 2));
+writeStartSettings(path.join(userData, 'User', 'settings.json'), esminiSettings);
 const port = await freePort(Number(process.env.M2S_PORT ?? 8080));
 const config = path.join(profile, 'code-server.yaml');
 fs.writeFileSync(config, `bind-addr: 127.0.0.1:${port}\nauth: none\n`);

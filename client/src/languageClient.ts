@@ -14,6 +14,7 @@ import {
   type WriteResult,
 } from '../../common/src/protocol';
 import { resolveScenarioPaths } from './configuration';
+import { whileRunning } from './requestGate';
 
 export const LANGUAGE_ID = 'xosc';
 export const CONFIGURATION_SECTION = 'modular2simple';
@@ -35,6 +36,7 @@ export function createLanguageClient(context: vscode.ExtensionContext, afterChan
     // Files inside packages open and save through the mosc: file system, so edits may reach them.
     initializationOptions: { packageFileSystem: true },
     middleware: {
+      ...whileRunning(() => client.isRunning()),
       // Views that show the server's answers (the preview, the structure) ask again once the server has the edit.
       didChange: async (event, next) => {
         await next(event);
@@ -58,7 +60,8 @@ export function createLanguageClient(context: vscode.ExtensionContext, afterChan
       },
     },
   };
-  return new LanguageClient(CONFIGURATION_SECTION, 'Modular2Simple Language Server', serverOptions, clientOptions);
+  const client = new LanguageClient(CONFIGURATION_SECTION, 'Modular2Simple Language Server', serverOptions, clientOptions);
+  return client;
 }
 
 /** The server's custom requests (common/src/protocol.ts), starting the client first when needed. */

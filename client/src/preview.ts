@@ -26,6 +26,11 @@ export function failureText(source: vscode.Uri, problems: ProblemSummary[]): str
   return `<!-- ${source.toString()} cannot be flattened yet:\n${body.replace(/--/g, '- -')}\n-->\n`;
 }
 
+/** True when the preview shows why flattening failed (failureText) instead of a flattened scenario. */
+function showsFailure(result: PreviewResult | undefined): boolean {
+  return result !== undefined && result.text === null;
+}
+
 /** Where a preview was asked to open: a line of its source (the CodeLens's reference, or the cursor's line). */
 export interface PreviewPlace {
   line: number;
@@ -64,6 +69,9 @@ export class FlattenedPreview implements vscode.TextDocumentContentProvider, vsc
         if (document.uri.scheme === PREVIEW_SCHEME) this.states.delete(document.uri.toString());
       }),
       vscode.window.onDidChangeTextEditorSelection((event) => this.follow(event.textEditor)),
+      vscode.workspace.onDidChangeTextDocument((event) => {
+        if (event.document.uri.scheme === PREVIEW_SCHEME) this.showFailureFromTop(event.document.uri);
+      }),
       // A preview shown again (say, a closed tab reopened) asks for the current text.
       vscode.window.tabGroups.onDidChangeTabs((event) => {
         for (const tab of event.opened) {
@@ -152,6 +160,19 @@ export class FlattenedPreview implements vscode.TextDocumentContentProvider, vsc
     return true;
   }
 
+  /**
+   * A preview that turned into the few lines saying why it cannot be flattened would keep its scroll
+   * position below them and look blank: its editors go to the first line.
+   */
+  private showFailureFromTop(preview: vscode.Uri): void {
+    if (!showsFailure(this.states.get(preview.toString())?.result)) return;
+    for (const editor of vscode.window.visibleTextEditors) {
+      if (editor.document.uri.toString() !== preview.toString()) continue;
+      editor.selection = new vscode.Selection(0, 0, 0, 0);
+      editor.revealRange(new vscode.Range(0, 0, 0, 0), vscode.TextEditorRevealType.AtTop);
+    }
+  }
+
   /** Scrolls the visible preview of this editor's document to the place that shows the cursor's line. */
   private follow(editor: vscode.TextEditor): void {
     if (editor.document.uri.scheme === PREVIEW_SCHEME) return;
@@ -169,7 +190,8 @@ export class FlattenedPreview implements vscode.TextDocumentContentProvider, vsc
     const editor = await vscode.window.showTextDocument(document, { viewColumn: vscode.ViewColumn.Beside, preserveFocus: true, preview: true });
     const sourceEditor = vscode.window.visibleTextEditors.find((visible) => visible.document.uri.toString() === source.toString());
     const line = place?.line ?? sourceEditor?.selection.active.line;
-    if (line !== undefined) this.reveal(editor, line, vscode.TextEditorRevealType.AtTop);
+    if (showsFailure(this.states.get(uri.toString())?.result)) this.showFailureFromTop(uri);
+    else if (line !== undefined) this.reveal(editor, line, vscode.TextEditorRevealType.AtTop);
     return editor;
   }
 

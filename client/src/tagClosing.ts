@@ -7,15 +7,17 @@ const NAME = /[A-Za-z_][\w.:-]*/.source;
 const OPEN_TAG_BEFORE_CURSOR = new RegExp(`<(${NAME})(?:\\s+[^<>]*?)?>$`);
 
 /**
- * The closing tag to insert when the text before the cursor ends with the `>` just typed, or
- * undefined when that `>` does not end an opening tag (an empty element, a closing tag, a comment,
- * a `>` inside an attribute value) or the tag is already closed right after the cursor.
+ * The closing tag to insert when the text before the cursor (the document up to it, or at least its
+ * line) ends with the `>` just typed, or undefined when that `>` does not end an opening tag (an empty
+ * element, a closing tag, the end of a comment, a `>` inside an attribute value or inside a comment)
+ * or the tag is already closed right after the cursor.
  */
-export function closingTagFor(lineBeforeCursor: string, lineAfterCursor: string): string | undefined {
-  if (!lineBeforeCursor.endsWith('>') || lineBeforeCursor.endsWith('/>') || lineBeforeCursor.endsWith('->')) return undefined;
-  const start = lineBeforeCursor.lastIndexOf('<');
+export function closingTagFor(textBeforeCursor: string, lineAfterCursor: string): string | undefined {
+  if (!textBeforeCursor.endsWith('>') || textBeforeCursor.endsWith('/>') || textBeforeCursor.endsWith('->')) return undefined;
+  if (textBeforeCursor.lastIndexOf('<!--') > textBeforeCursor.lastIndexOf('-->')) return undefined;
+  const start = textBeforeCursor.lastIndexOf('<');
   if (start === -1) return undefined;
-  const tag = lineBeforeCursor.slice(start);
+  const tag = textBeforeCursor.slice(start);
   if (!isOutsideQuotes(tag)) return undefined;
   const match = OPEN_TAG_BEFORE_CURSOR.exec(tag);
   if (!match) return undefined;

@@ -11,11 +11,12 @@ export function registerTagClosing(): vscode.Disposable {
     const [change] = event.contentChanges;
     if (change.text !== '>' || change.rangeLength !== 0) return;
     if (!vscode.workspace.getConfiguration('modular2simple', event.document).get<boolean>('autoCloseTags', true)) return;
-    const line = event.document.lineAt(change.range.start.line).text;
-    const cursor = change.range.start.character + 1;
-    const closing = closingTagFor(line.slice(0, cursor), line.slice(cursor));
-    if (!closing) return;
     const position = change.range.start.translate(0, 1);
+    const line = event.document.lineAt(position.line).text;
+    // The whole text before the cursor: a tag's attributes and a comment may span lines.
+    const before = event.document.getText(new vscode.Range(new vscode.Position(0, 0), position));
+    const closing = closingTagFor(before, line.slice(position.character));
+    if (!closing) return;
     void editor.insertSnippet(new vscode.SnippetString(`$0${closing}`), position, { undoStopBefore: false, undoStopAfter: false });
   });
 }

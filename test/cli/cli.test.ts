@@ -74,6 +74,27 @@ describe('cli: usage and compatibility', () => {
     assert.equal(report.problems[0].file, 'main.xosc');
   });
 
+  it('check lists problems by file, then line and column, whatever order the files were named in', () => {
+    const root = temporaryWorkspace({
+      'simple.xosc': scenario(simpleGroup('Go')),
+      'a.xosc': scenario(outerGroup('Car', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Go', parameters: [['AbsoluteTargetSped.value', '1'], ['RelativeDistanceConditon.value', '2']] }] }])),
+      'b.xosc': scenario(outerGroup('Car', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Go', parameters: [['AbsoluteTargetSped.value', '1']] }] }])),
+    });
+    const text = runCli(['check', 'b.xosc', 'a.xosc'], { cwd: root });
+    assert.equal(text.status, 1);
+    const places = text.stderr
+      .split('\n')
+      .map((line) => /^([^:]+):(\d+):(\d+): /.exec(line))
+      .filter((match): match is RegExpExecArray => match !== null)
+      .map((match) => ({ file: match[1], line: Number(match[2]), column: Number(match[3]) }));
+    const json = JSON.parse(runCli(['check', 'b.xosc', 'a.xosc', '--format', 'json'], { cwd: root }).stdout) as { problems: { file: string; line: number; column: number }[] };
+    for (const listed of [places, json.problems.map(({ file, line, column }) => ({ file, line, column }))]) {
+      assert.deepEqual(new Set(listed.map((place) => place.file)), new Set(['a.xosc', 'b.xosc']));
+      const sorted = [...listed].sort((x, y) => (x.file < y.file ? -1 : x.file > y.file ? 1 : 0) || x.line - y.line || x.column - y.column);
+      assert.deepEqual(listed, sorted);
+    }
+  });
+
   it('the examples check clean and flatten', () => {
     const run = runCli(['check', 'examples'], { cwd: repoRoot });
     assert.equal(run.status, 0, run.stderr);

@@ -7,6 +7,7 @@ export const INSIDE_TESTS = {
   packageEdit: 'a file inside a .mosc is edited and saved, and the archive holds the change',
   brokenPackage: 'a broken .mosc is reported and never overwritten',
   diagnostic: 'a diagnostic shows on a bad key',
+  windowSwitch: 'switching windows and editors logs no failed request',
   completion: 'completion offers the overridable keys',
   definition: 'F12 on scenarioFileName opens the referenced file',
   preview: 'the preview shows the flattened scenario and changes after an edit',

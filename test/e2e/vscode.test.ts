@@ -117,6 +117,18 @@ function servePage(endpoint: HarnessEndpoint, page: Page): void {
     await page.keyboard.type(text, { delay: 20 });
     return {};
   });
+  // Another window in front, then VS Code's again: what switching windows does to the page.
+  endpoint.routes.set('/switchWindow', async () => {
+    const browser = page.context().browser();
+    const other = await browser?.newPage();
+    await other?.bringToFront();
+    await page.evaluate('window.dispatchEvent(new Event("blur"))');
+    await new Promise((resolve) => setTimeout(resolve, 300));
+    await page.bringToFront();
+    await page.evaluate('window.dispatchEvent(new Event("focus"))');
+    await other?.close();
+    return {};
+  });
   endpoint.routes.set('/keys', async (body) => {
     const { keys } = body as { keys: string[] };
     for (const key of keys) await page.keyboard.press(key);

@@ -1,6 +1,6 @@
 import * as assert from 'node:assert/strict';
 import * as path from 'node:path';
-import { CompletionItem } from 'vscode-languageserver/node';
+import { CompletionItem, TextEdit } from 'vscode-languageserver/node';
 import { cursor } from '../support/cursor';
 import { MAIN_OVERRIDES, PACKAGE_MAIN, SIMPLE, SIMPLE_EXPRESSION } from './fixtures/scenarios';
 import { fileUri, useServer } from './harness';
@@ -35,6 +35,35 @@ ${content}`;
     assert.deepEqual(await labelsAt(inGroup('<Maneuver name="M">\n  <|')), []);
     assert.deepEqual(await labelsAt(inGroup('<Maneuver name="M"></Maneuver>\n  <|')).then((labels) => labels.length), 3);
   });
+
+  it('offers ParameterReference inside a ManeuverGroupReference: an empty one, then each key not given yet with its default', async function () {
+    const typed = cursor(inGroup(`<ScenarioReference scenarioFileName="simple.xosc">
+  <ManeuverGroupReference maneuverGroupName="Brake">
+    <ParameterReference key="delay" value="1"/>
+    <|`));
+    const uri = await server.client.open(fileUri(path.join(server.root, 'typing.xosc')), typed.text);
+    const items = await server.client.request<CompletionItem[]>('textDocument/completion', server.client.at(uri, typed.position));
+    await server.client.close(uri);
+    const sorted = [...items].sort((a, b) => (a.sortText ?? '').localeCompare(b.sortText ?? ''));
+    assert.deepEqual(
+      sorted.map((item) => item.label),
+      ['ParameterReference', 'ParameterReference AbsoluteTargetSpeed.value', 'ParameterReference missing', 'ParameterReference SimulationTimeCondition.value'],
+    );
+    assert.equal((sorted[0].textEdit as TextEdit).newText, '<ParameterReference key="$1" value="$2"/>$0');
+    assert.equal(sorted[0].filterText, '<ParameterReference');
+    assert.equal((sorted[1].textEdit as TextEdit).newText, '<ParameterReference key="AbsoluteTargetSpeed.value" value="${1:\\${2*\\$a*\\$b\\}}"/>$0');
+  });
+
+  it('offers parameterAttributes as an attribute name on the elements of a ManeuverGroup, once', async function () {
+    const inside = await labelsAt(inGroup('<Maneuver name="M"><Event name="E" priority="overwrite"><Action name="A"><PrivateAction><LongitudinalAction><SpeedAction><SpeedActionTarget><AbsoluteTargetSpeed value="5" |/>'));
+    assert.ok(inside.includes('parameterAttributes'), inside.join(', '));
+    const written = await labelsAt(inGroup('<Maneuver name="M"><Event parameterAttributes="priority" name="E" |'));
+    assert.ok(!written.includes('parameterAttributes'), written.join(', '));
+    const outside = await labelsAt('<OpenSCENARIO><Storyboard><Init><Actions><Private entityRef="ego" |');
+    assert.ok(!outside.includes('parameterAttributes'), outside.join(', '));
+    const onReference = await labelsAt(inGroup('<ScenarioReference |'));
+    assert.ok(!onReference.includes('parameterAttributes'), onReference.join(', '));
+  });
 });
 
 describe('language server: completion right after opening, through an unpacked package (JSON-RPC)', function () {
@@ -49,5 +78,41 @@ describe('language server: completion right after opening, through an unpacked p
     const uri = await server.client.open(fileUri(path.join(server.root, 'typing.xosc')), typed.text);
     const items = await server.client.request<CompletionItem[]>('textDocument/completion', server.client.at(uri, typed.position));
     assert.ok(items.some((item) => item.label === 'AbsoluteTargetSpeed.value'), items.map((item) => item.label).join(', '));
+  });
+});
+
+describe('language server: completion in an empty file, with schema support on (JSON-RPC)', function () {
+  const server = useServer({ 'simple.xosc': SIMPLE }, 'simple.xosc', { schema: true });
+
+  it('offers a whole scenario skeleton in an empty file, of the version the setting chooses (latest when auto)', async function () {
+    const skeletonAt = async (marked: string) => {
+      const typed = cursor(marked);
+      const uri = await server.client.open(fileUri(path.join(server.root, 'empty.xosc')), typed.text);
+      const items = await server.client.request<CompletionItem[]>('textDocument/completion', server.client.at(uri, typed.position));
+      await server.client.close(uri);
+      return items.find((item) => /^OpenSCENARIO \d\.\d scenario$/.test(item.label));
+    };
+    for (const marked of ['|', '<|', '<?xml version="1.0" encoding="UTF-8"?>\n|', '<!-- a new scenario -->\n<Open|']) {
+      const skeleton = await skeletonAt(marked);
+      assert.ok(skeleton, JSON.stringify(marked));
+      assert.equal(skeleton.label, 'OpenSCENARIO 1.3 scenario');
+      const inserted = (skeleton.textEdit as TextEdit).newText;
+      assert.equal(inserted.startsWith('<?xml'), !marked.includes('<?xml'), marked);
+      assert.match(inserted, /<FileHeader [^>]*revMajor="1" revMinor="3"/);
+      assert.match(inserted, /date="\d{4}-\d\d-\d\dT\d\d:\d\d:\d\d"/);
+      for (const element of ['<OpenSCENARIO>', '<CatalogLocations/>', '<RoadNetwork/>', '<Entities/>', '<Storyboard>', '<Init>', '</OpenSCENARIO>']) assert.ok(inserted.includes(element), `${element} in ${inserted}`);
+    }
+    const started = cursor('<OpenSCENARIO>\n  <|');
+    const uri = await server.client.open(fileUri(path.join(server.root, 'started.xosc')), started.text);
+    const items = await server.client.request<CompletionItem[]>('textDocument/completion', server.client.at(uri, started.position));
+    await server.client.close(uri);
+    assert.ok(!items.some((item) => item.label.endsWith(' scenario')), 'no skeleton inside a scenario');
+    await server.client.settingsChanged({ schema: { version: '1.0' } });
+    let pinned: CompletionItem | undefined;
+    const deadline = Date.now() + 10_000;
+    while ((pinned = await skeletonAt('|'))?.label !== 'OpenSCENARIO 1.0 scenario' && Date.now() < deadline) await new Promise((resolve) => setTimeout(resolve, 50));
+    assert.equal(pinned?.label, 'OpenSCENARIO 1.0 scenario');
+    assert.match((pinned.textEdit as TextEdit).newText, /revMajor="1" revMinor="0"/);
+    await server.client.settingsChanged({});
   });
 });

@@ -417,6 +417,23 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
       assert.match(edited, /<ParameterReference key="missing" value="3"\/>\n {14}<ParameterReference key="delay" value="0"\/>\n {14}<ParameterReference key="SimulationTimeCondition\.value" value="2"\/>\n {12}<\/ManeuverGroupReference>/);
     });
 
+    it('offers the missing keys on a valid key line only where a diagnostic asks, else as a rewrite on the group reference tag', async function () {
+      const actionsAt = (markedSnippet: string, only?: string[]) => {
+        const position = at(MAIN, markedSnippet);
+        return client.request<CodeAction[]>('textDocument/codeAction', { textDocument: { uri: mainUri }, range: { start: position, end: position }, context: { diagnostics: [], ...(only ? { only } : {}) } });
+      };
+      const missingKeys = (actions: CodeAction[]) => actions.filter((candidate) => /missing key/.test(candidate.title));
+      assert.deepEqual(missingKeys(await actionsAt('key="AbsoluteTargetSpeed.value" value="|7"')), [], 'no lightbulb on a valid ParameterReference');
+      const [rewrite] = missingKeys(await actionsAt('maneuverGroupName="Br|ake"'));
+      assert.ok(rewrite, 'the rewrite on the ManeuverGroupReference tag');
+      assert.equal(rewrite.kind, 'refactor.rewrite');
+      assert.equal(rewrite.diagnostics, undefined);
+      assert.equal(missingKeys(await actionsAt('maneuverGroupName="Br|ake"', ['quickfix'])).length, 0, 'not among quick fixes');
+      assert.equal(missingKeys(await actionsAt('maneuverGroupName="Br|ake"', ['refactor'])).length, 1);
+      const [fix] = missingKeys(await actionsFor('unknown-key'));
+      assert.equal(fix.kind, 'quickfix');
+    });
+
     it('offers to list the closest attribute or to add a default in the simple scenario', async function () {
       const uri = await client.openFile(path.join(root, 'simple.xosc'));
       const [diagnostic] = await client.diagnosticsOf(uri);

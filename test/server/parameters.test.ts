@@ -133,6 +133,28 @@ describe('editor features on the semantic model: $name, ${...} and catalogs (JSO
     await assert.rejects(client.request('textDocument/rename', { ...at, newName: '1bad' }), /not a parameter name/);
   });
 
+  it('renames every $name, also the one inside an expression with errors (esmini\'s text gluing in its cut-in.xosc)', async function () {
+    const glued = BARE.replace('<RoadNetwork/>', '<ParameterDeclarations>\n    <ParameterDeclaration name="HeadwayTime_Brake" parameterType="double" value="0.7"/>\n  </ParameterDeclarations>\n  <RoadNetwork/>')
+      .replace('<Condition name="End"', '<Condition name="${BrakeCondition_HWT + _ + $HeadwayTime_Brake}"')
+      .replace('value="$stopTime"', 'value="$HeadwayTime_Brake"');
+    const scratch = fileUri(path.join(root, 'glued.xosc'));
+    await client.open(scratch, glued);
+    for (const at of [inside(glued, 'value="$HeadwayTime_Brake"', 9), inside(glued, '+ $HeadwayTime_Brake}', 4)]) {
+      const prepared = await client.request<{ range: Range; placeholder: string }>('textDocument/prepareRename', client.at(scratch, at));
+      assert.equal(prepared.placeholder, 'HeadwayTime_Brake');
+      const edit = await client.request<WorkspaceEdit>('textDocument/rename', { ...client.at(scratch, at), newName: 'BrakeHeadway' });
+      const renamed = applyEdits(glued, edit.changes?.[scratch] ?? []);
+      assert.equal(edit.changes?.[scratch]?.length, 3, 'the declaration and both uses');
+      assert.match(renamed, /name="BrakeHeadway" parameterType="double"/);
+      assert.match(renamed, /name="\$\{BrakeCondition_HWT \+ _ \+ \$BrakeHeadway\}"/);
+      assert.match(renamed, /value="\$BrakeHeadway"/);
+      assert.doesNotMatch(renamed, /HeadwayTime_Brake/);
+    }
+    const references = await client.request<Location[]>('textDocument/references', { ...client.at(scratch, inside(glued, 'value="$HeadwayTime_Brake"', 9)), context: { includeDeclaration: false } });
+    assert.equal(references.length, 2);
+    await client.close(scratch);
+  });
+
   it('completes $ inside a Maneuver with the parameters in scope, the inner declarations first, with value and type', async function () {
     const edited = text.replace('<AbsoluteTargetSpeed value="$speed"/>', '<AbsoluteTargetSpeed value="$"/>');
     const scratch = fileUri(path.join(root, 'scratch.xosc'));

@@ -14,6 +14,7 @@ describe('language server: quick fixes (JSON-RPC)', function () {
       'keys.xosc': mainWithKeys(['<ParameterReference key="SimulationTimeCondition.valeu" value="1"/>', '<ParameterReference key="TimeHeadwayCondition.value" value="1"/>']),
       'usesite.xosc': mainWithKeys(['<ParameterReference key="AbsoluteTargetSpeed.value" value="7"/>']).replace('scenarioFileName="simple.xosc"', 'scenarioFileName="dotted.xosc"'),
       'group.xosc': mainWithKeys([]).replace('maneuverGroupName="Brake"', 'maneuverGroupName="Nothing"'),
+      'typo.xosc': mainWithKeys([]).replace('scenarioFileName="simple.xosc"', 'scenarioFileName="simpel.xosc"'),
     },
     'keys.xosc',
   );
@@ -42,6 +43,18 @@ describe('language server: quick fixes (JSON-RPC)', function () {
     assert.equal(edit?.newText, 'value');
     const dotted = fs.readFileSync(path.join(server.root, 'dotted.xosc'), 'utf8');
     assert.equal(dotted.split('\n')[edit.range.start.line].slice(edit.range.start.character, edit.range.end.character), 'AbsoluteTargetSpeed.value');
+  });
+
+  it('names the absolute folders a misspelt scenarioFileName was looked up in, and the closest file there, with a quick fix', async function () {
+    const [{ diagnostic, actions }] = await fixes('typo.xosc', 'missing-file');
+    const message = typeof diagnostic.message === 'string' ? diagnostic.message : diagnostic.message.value;
+    assert.ok(message.includes(`searched ${server.root}`), message);
+    assert.doesNotMatch(message, /searched \.(,|$)/m);
+    assert.match(message, /did you mean 'simple\.xosc'\?/);
+    assert.deepEqual(actions.map((action) => action.title), ["Change to 'simple.xosc'"]);
+    assert.equal(actions[0].isPreferred, true);
+    const [edit] = actions[0].edit?.changes?.[fileUri(path.join(server.root, 'typo.xosc'))] ?? [];
+    assert.equal(edit?.newText, 'simple.xosc');
   });
 
   it('offers the groups that exist for an unknown group', async function () {

@@ -26,6 +26,18 @@ function problemJson(problem: Problem): Record<string, unknown> {
   };
 }
 
+/** Problems in file order, then line and column, as a compiler lists them; ties keep the order they were found in. */
+function sortedByPlace(problems: Problem[]): Problem[] {
+  const keyed = problems.map((problem) => ({ problem, file: displayRef(problem.source) }));
+  keyed.sort(
+    (a, b) =>
+      (a.file < b.file ? -1 : a.file > b.file ? 1 : 0) ||
+      a.problem.range.start.line - b.problem.range.start.line ||
+      a.problem.range.start.character - b.problem.range.start.character,
+  );
+  return keyed.map((item) => item.problem);
+}
+
 /** A folder the user names is checked whole: only dot-entries and dependencies are left out, and an unreadable folder is reported. */
 const CHECKED_SKIPPED_FOLDERS = new Set(['node_modules']);
 
@@ -46,7 +58,7 @@ export async function checkCommand(args: string[], io: CliOutput): Promise<numbe
     const result = await flattener.flatten(mainOf(file));
     problems = problems.concat(result.problems);
   }
-  problems = uniqueProblems(problems);
+  problems = sortedByPlace(uniqueProblems(problems));
   const errors = problems.filter((problem) => problem.severity === 'error').length;
   const warnings = problems.filter((problem) => problem.severity === 'warning').length;
   if (options.format === 'json') {

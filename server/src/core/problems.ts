@@ -133,6 +133,7 @@ export interface MissingElementsData {
 export interface ProblemDataByCode {
   'unknown-key': SuggestionData | RelatedReplacementData;
   'xosc-fallback': FallbackData;
+  'missing-file': SuggestionData;
   'unknown-group': UnknownGroupData;
   'unknown-parameter-attribute': SuggestionData;
   'undeclared-parameter': UndeclaredParameterData;

@@ -16,8 +16,19 @@ for (const fix of PROBLEM_FIXES) {
   }
 }
 
-/** Quick fixes of the diagnostics the client sends (those of a known code with valid data), then the missing keys of the group at the range. */
-export async function codeActions(workspace: Workspace, uri: string, ref: SourceRef, document: TextDocument, range: LspRange, diagnostics: Diagnostic[]): Promise<CodeAction[]> {
+/**
+ * Quick fixes of the diagnostics the client sends (those of a known code with valid data), then the
+ * missing keys of the group at the range; `only`: the kinds the client asks for, as LSP's context.only.
+ */
+export async function codeActions(
+  workspace: Workspace,
+  uri: string,
+  ref: SourceRef,
+  document: TextDocument,
+  range: LspRange,
+  diagnostics: Diagnostic[],
+  only?: readonly string[],
+): Promise<CodeAction[]> {
   const fixable: { diagnostic: Diagnostic; data: DiagnosticData }[] = [];
   for (const diagnostic of diagnostics) if (isDiagnosticData(diagnostic.data)) fixable.push({ diagnostic, data: diagnostic.data });
   // The schema's fixes come after the others', in the order of their diagnostics.
@@ -31,7 +42,7 @@ export async function codeActions(workspace: Workspace, uri: string, ref: Source
     const target: FixDocument = { uri, ref, document, diagnostic, parsed: () => (parsed ??= currentDocument(workspace, ref, document)) };
     actions.push(...(await fix.fixes(data, target, workspace)));
   }
-  const missing = await missingKeysAction(workspace, uri, ref, document, range);
+  const missing = await missingKeysAction(workspace, uri, ref, document, range, diagnostics, only);
   if (missing) actions.push(missing);
   return actions;
 }

@@ -7,12 +7,12 @@ import { keyMatches, OverridableAttribute, overridableAttributes } from '../core
 import { findGroup, PARAMETER_ATTRIBUTES } from '../core/model';
 import { displayRef, SourceRef } from '../core/sources';
 import { keyChoices, overridablePlace, sourceForFileName } from '../analysis';
-import { elementsBetween, lastElementBefore, ValueContext } from '../core/cursor';
+import { ancestor, elementsBetween, lastElementBefore, ValueContext } from '../core/cursor';
 import { indexFor } from '../core/schema/query';
-import { attribute, XmlAttribute, XmlDocument } from '../core/xml';
+import { attribute, elementAt, XmlAttribute, XmlDocument } from '../core/xml';
 import { completionTargetAt, currentDocument } from '../target';
 import { Workspace } from '../workspace';
-import { schemaCompletion } from './schemaCompletion';
+import { scenarioSkeletonSnippet, schemaCompletion } from './schemaCompletion';
 import { catalogCompletion } from './catalogs';
 import { attributeTypeAt, parameterCompletion } from './parameters';
 
@@ -219,6 +219,86 @@ async function snippetItems(workspace: Workspace, ref: SourceRef, document: Text
   return ranked.map(({ item }, index) => ({ ...item, sortText: `z${String(index).padStart(4, '0')}` }));
 }
 
+/** Elements of the modular syntax in a main file: `parameterAttributes` means nothing on them. */
+const REFERENCE_ELEMENTS = new Set(['ScenarioReference', 'ManeuverGroupReference', 'ParameterReference']);
+
+/** `parameterAttributes` on an element of a ManeuverGroup (a simple scenario's groups), unless it is written already. */
+function parameterAttributesItem(parsed: XmlDocument, target: { tagStart: number; written: string[]; start: number }, document: TextDocument, offset: number): CompletionItem[] {
+  if (target.written.includes(PARAMETER_ATTRIBUTES)) return [];
+  const found = elementAt(parsed, target.tagStart);
+  const element = found && found.start === target.tagStart ? found : undefined;
+  if (!ancestor(found, 'ManeuverGroup') || (element && REFERENCE_ELEMENTS.has(element.name))) return [];
+  return [
+    {
+      label: PARAMETER_ATTRIBUTES,
+      kind: CompletionItemKind.Field,
+      detail: 'the attributes a main file may override (modular scenarios)',
+      documentation: 'A comma-separated list of attributes of this element; each one\'s own value is its default, and a ParameterReference key of a main file sets it.',
+      sortText: '0_999',
+      insertTextFormat: InsertTextFormat.Snippet,
+      textEdit: { range: replaceRange(document, target.start, offset), newText: `${PARAMETER_ATTRIBUTES}="$1"` },
+    },
+  ];
+}
+
+/** `<ParameterReference .../>` inside a ManeuverGroupReference: an empty one, then one per key not given yet with its default. */
+async function parameterReferenceItems(workspace: Workspace, ref: SourceRef, document: TextDocument, parsed: XmlDocument, start: number, offset: number): Promise<CompletionItem[]> {
+  const range = replaceRange(document, start, offset);
+  const typedOpen = document.getText()[start] === '<';
+  const filter = (label: string) => (typedOpen ? `<${label}` : label);
+  const items: CompletionItem[] = [
+    {
+      label: 'ParameterReference',
+      kind: CompletionItemKind.Property,
+      detail: 'sets an overridable attribute of the referenced group',
+      sortText: '0_000',
+      filterText: filter('ParameterReference'),
+      insertTextFormat: InsertTextFormat.Snippet,
+      textEdit: { range, newText: '<ParameterReference key="$1" value="$2"/>$0' },
+    },
+  ];
+  const found = await groupBefore(workspace, ref, parsed, start);
+  if (!found) return items;
+  const given = found.groupReference.children.filter((child) => child.name === 'ParameterReference').map((child) => attribute(child, 'key')?.value.trim() ?? '');
+  const escape = (value: string) => value.replace(/[$}\\]/g, (char) => `\\${char}`);
+  keyChoices(found.targets).forEach((choice, index) => {
+    const [form] = choice.forms;
+    const defaultValue = choice.targets[0].defaultValue;
+    if (form === undefined || choice.targets.some((target) => coveredBy(given, target))) return;
+    items.push({
+      label: `ParameterReference ${form}`,
+      kind: CompletionItemKind.Property,
+      detail: `default ${defaultValue ?? '(none)'}`,
+      sortText: `0_${String(index + 1).padStart(3, '0')}`,
+      filterText: filter(`ParameterReference ${form}`),
+      insertTextFormat: InsertTextFormat.Snippet,
+      textEdit: { range, newText: `<ParameterReference key="${escape(form)}" value="\${1:${escape(defaultValue ?? '')}}"/>$0` },
+    });
+  });
+  return items;
+}
+
+/** A whole scenario for a file that holds no element yet (an XML declaration and comments at most before the cursor). */
+function skeletonItems(workspace: Workspace, parsed: XmlDocument, document: TextDocument, start: number, offset: number): CompletionItem[] {
+  if (parsed.root && parsed.root.start < start) return [];
+  const before = document.getText().slice(0, start);
+  if (!/^\s*(?:<\?xml[^>]*\?>\s*)?(?:<!--[\s\S]*?-->\s*)*$/.test(before)) return [];
+  const index = indexFor(parsed, workspace.settings.schemaVersion);
+  if (!index) return [];
+  const typedOpen = document.getText()[start] === '<';
+  return [
+    {
+      label: `OpenSCENARIO ${index.version} scenario`,
+      kind: CompletionItemKind.Snippet,
+      detail: 'a whole scenario: FileHeader, CatalogLocations, RoadNetwork, Entities, Storyboard',
+      sortText: '0_000',
+      filterText: typedOpen ? '<OpenSCENARIO' : 'OpenSCENARIO',
+      insertTextFormat: InsertTextFormat.Snippet,
+      textEdit: { range: replaceRange(document, start, offset), newText: scenarioSkeletonSnippet(index, !before.includes('<?xml')) },
+    },
+  ];
+}
+
 /** Completion from the tolerant parse of the current text, so that it works while the document is not well-formed. */
 export async function complete(workspace: Workspace, ref: SourceRef, document: TextDocument, offset: number): Promise<CompletionItem[]> {
   const source = await workspace.source(ref);
@@ -260,8 +340,13 @@ export async function complete(workspace: Workspace, ref: SourceRef, document: T
       return parameterAttributeItems(document, target.context);
     case 'entityReference':
       return (source.original?.entities ?? []).map((entity) => ({ label: entity.name, kind: CompletionItemKind.Variable, textEdit: { range: range as LspRange, newText: entity.name } }));
+    case 'attributeName':
+      return [...schemaCompletion(workspace, parsed, target, offset), ...parameterAttributesItem(parsed, target, document, offset)];
     case 'elementName': {
       const schemaItems = schemaCompletion(workspace, parsed, target, offset);
+      const skeleton = skeletonItems(workspace, parsed, document, target.start, offset);
+      if (skeleton.length > 0) return [...skeleton, ...schemaItems];
+      if (target.open?.name === 'ManeuverGroupReference') return [...schemaItems, ...(await parameterReferenceItems(workspace, ref, document, parsed, target.start, offset))];
       // A ScenarioReference's parent is the ManeuverGroup it fills (SPEC), so it is offered nowhere else.
       if ('ScenarioReference'.toLowerCase().startsWith(target.prefix.toLowerCase()) && target.open?.name === 'ManeuverGroup') {
         return [...schemaItems, ...(await snippetItems(workspace, ref, document, target.start, offset))];

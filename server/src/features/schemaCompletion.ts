@@ -2,7 +2,7 @@ import { CompletionItem, CompletionItemKind, CompletionItemTag, InsertTextFormat
 import { SchemaIndex } from '../core/schema/index';
 import { AttributeDeclaration, ElementParticle } from '../core/schema/model';
 import { allowedChildren, indexFor, typeByElementName, typeOfElement } from '../core/schema/query';
-import { elementSkeleton, skeletonText } from '../core/schema/skeleton';
+import { elementSkeleton, placeholderValue, skeletonText } from '../core/schema/skeleton';
 import { builtinOf, describeType, enumerationValues } from '../core/schema/values';
 import { attribute, descendants, elementAt, XmlDocument, XmlElement } from '../core/xml';
 import { ValueContext } from '../core/cursor';
@@ -172,6 +172,34 @@ function valueItems(index: SchemaIndex, document: XmlDocument, context: ValueCon
     }
   }
   return items;
+}
+
+/** A tab stop holding a value the type accepts (so that the skeleton validates as inserted), or a choice of the allowed values. */
+function placeholderSnippet(index: SchemaIndex, declaration: AttributeDeclaration, stop: number): string {
+  const snippet = attributeValueSnippet(index, declaration, stop);
+  const placeholder = placeholderValue(index, declaration.type);
+  return snippet === `\${${stop}}` && placeholder ? `\${${stop}:${escapeSnippet(placeholder)}}` : snippet;
+}
+
+/** `1.3` → revMajor 1, revMinor 3. */
+function versionParts(version: string): { revMajor: string; revMinor: string } {
+  const [revMajor, revMinor] = version.split('.');
+  return { revMajor, revMinor };
+}
+
+/**
+ * A whole scenario of the schema's version as a snippet: the XML declaration (unless written), the root
+ * with its required content, the FileHeader's version and today's date filled in, a tab stop for each
+ * other required attribute.
+ */
+export function scenarioSkeletonSnippet(index: SchemaIndex, withDeclaration: boolean, now = new Date()): string {
+  const root: ElementParticle = { kind: 'element', name: index.schema.rootElement, type: index.schema.rootType, min: 1, max: 1 };
+  const filled: Record<string, string> = { ...versionParts(index.version), date: now.toISOString().replace(/\.\d{3}Z$/, '') };
+  let stop = 0;
+  const text = skeletonText(elementSkeleton(index, root), { indent: '', unit: '\t', eol: '\n' }, (declaration) =>
+    declaration.name in filled ? escapeSnippet(filled[declaration.name]) : placeholderSnippet(index, declaration, ++stop),
+  );
+  return `${withDeclaration ? '<?xml version="1.0" encoding="UTF-8"?>\n' : ''}${text}\n$0`;
 }
 
 /** Schema completion at the cursor; empty when schema support is off or nothing in the schema applies. */

@@ -21,6 +21,43 @@ export const editingTests: InsideTests = {
     }
   },
 
+  // A healthy server: switching windows, tabs and the preview asks for code actions, lenses and hints, and none fails.
+  windowSwitch: async function () {
+    this.timeout(60_000);
+    // The language client's log, which VS Code keeps in the profile beside the workspace.
+    const logs = path.join(workspaceRoot(), '..', 'user-data', 'logs');
+    const clientLogs = (): string[] => {
+      const found: string[] = [];
+      const walk = (folder: string) => {
+        for (const entry of fs.readdirSync(folder, { withFileTypes: true })) {
+          const full = path.join(folder, entry.name);
+          if (entry.isDirectory()) walk(full);
+          else if (entry.name === 'Modular2Simple Language Server.log') found.push(full);
+        }
+      };
+      if (fs.existsSync(logs)) walk(logs);
+      return found;
+    };
+    const logged = () => clientLogs().map((file) => fs.readFileSync(file, 'utf8')).join('\n');
+    const before = logged().length;
+    const main = await open('main.xosc');
+    const cursorAt = positionOf(main.document, 'key="AbsoluteTargetSpeed.value"');
+    main.selection = new vscode.Selection(cursorAt, cursorAt);
+    await open('lane_change.xosc');
+    for (let round = 0; round < 3; round++) {
+      await post('/switchWindow', {});
+      await open(round % 2 === 0 ? 'main.xosc' : 'lane_change.xosc');
+      await vscode.commands.executeCommand('modular2simple.openPreview');
+      await new Promise((resolve) => setTimeout(resolve, 700));
+      await post('/switchWindow', {});
+    }
+    await new Promise((resolve) => setTimeout(resolve, 1500));
+    assert.ok(clientLogs().length > 0, `no language client log under ${logs}`);
+    const added = logged().slice(before);
+    assert.doesNotMatch(added, /failed/i, added);
+    await vscode.commands.executeCommand('workbench.action.closeAllEditors');
+  },
+
   grammar: async function () {
     const editor = await open('lane_change.xosc');
     const line = positionOf(editor.document, '<Condition parameterAttributes="delay"').line;

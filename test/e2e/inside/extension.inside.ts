@@ -27,6 +27,7 @@ const ORDER: InsideTestKey[] = [
   'packageEdit',
   'brokenPackage',
   'diagnostic',
+  'windowSwitch',
   'completion',
   'definition',
   'preview',

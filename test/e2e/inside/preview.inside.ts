@@ -1,6 +1,7 @@
 import * as assert from 'node:assert/strict';
+import * as path from 'node:path';
 import * as vscode from 'vscode';
-import { api, type InsideTests, open, positionOf, replaceText, requireServerFeature, revertAndClose, waitFor } from './helpers';
+import { api, type InsideTests, open, positionOf, replaceText, requireServerFeature, revertAndClose, waitFor, workspaceRoot } from './helpers';
 import { pageShows, post, runFromPalette, screenshot } from './harnessClient';
 
 /** The flattened preview: opened from a CodeLens and from the palette, following edits. */
@@ -69,6 +70,17 @@ export const previewTests: InsideTests = {
     await waitFor('the preview to scroll to the imported group', () => shows(atCursor, cutIn) || undefined, 10_000);
     await waitFor('the preview to show the change', () => pageShows(previous, '.editor-group-container:not(.active) .view-lines'), 10_000);
     await screenshot('preview after an edit');
+
+    // A simple scenario that breaks turns the preview into the few lines saying why: shown from its first line, not scrolled below them.
+    const simple = await vscode.workspace.openTextDocument(vscode.Uri.file(path.join(workspaceRoot(), 'lane_change.xosc')));
+    await replaceText(simple, 'ManeuverGroup name="CutIn"', 'ManeuverGroup name="CutInRenamed"');
+    await waitFor('the preview to say why it cannot flatten', () => atCursor.document.getText().includes('cannot be flattened') || undefined);
+    await waitFor('the preview to show its first line', () => shows(atCursor, 0) || undefined, 10_000);
+    await waitFor('the explanation to be on screen', () => pageShows('error:', '.editor-group-container:not(.active) .view-lines'), 10_000);
+    await screenshot('preview of a main whose simple scenario broke');
+    await vscode.window.showTextDocument(simple, { viewColumn: vscode.ViewColumn.One, preview: false });
+    await vscode.commands.executeCommand('workbench.action.files.revert');
+    await vscode.window.showTextDocument(editor.document, vscode.ViewColumn.One);
     await revertAndClose();
   },
 };

@@ -124,7 +124,10 @@ async function resolveTarget(
     return undefined;
   }
   if (resolution.kind === 'missing') {
-    report({ start, end, severity: 'error', code: 'missing-file', message: `cannot find '${reference.fileName}'; searched ${resolution.searched.join(', ')}`, hint: resolution.hint });
+    const { suggestion } = resolution;
+    const hint = suggestion ? `did you mean '${suggestion}'?` : resolution.hint;
+    const problem = report({ start, end, severity: 'error', code: 'missing-file', message: `cannot find '${reference.fileName}'; searched ${resolution.searched.join(', ')}`, hint });
+    if (suggestion) problem.data = { suggestion };
     return undefined;
   }
   if (resolution.kind === 'package' && resolution.fallbackFrom) {

@@ -298,6 +298,11 @@ export function parametersOf(tree: ExpressionNode | undefined): { name: string; 
   return found;
 }
 
+/** Every `$name` token of a body that did not parse: rename, references and the unused check still reach each one. */
+function parameterTokens(body: string, base: number): { name: string; start: number; end: number }[] {
+  return tokenize(body, base, []).flatMap((token) => (token.kind === 'parameter' ? [{ name: token.name, start: token.start, end: token.end }] : []));
+}
+
 /** A `$name` written as a whole attribute value (XSD `parameter`: `[$][A-Za-z_][A-Za-z0-9_]*`). */
 export const PARAMETER_VALUE = /^\$([A-Za-z_][A-Za-z0-9_]*)$/;
 
@@ -328,7 +333,7 @@ export function valueForm(value: string, base = 0): ValueForm {
       bodyEnd: base + bodyEnd,
       tree: closed ? parsed.tree : undefined,
       errors: parsed.errors,
-      parameters: parametersOf(parsed.tree),
+      parameters: parsed.tree && parsed.errors.length === 0 ? parametersOf(parsed.tree) : parameterTokens(trimmed.slice(2, bodyEnd), base + 2),
     };
     return { kind: 'expression', expression };
   }

@@ -13,7 +13,8 @@ export type Resolution =
       /** Set when a `NAME.xosc` was found only as the package `NAME.mosc`. */
       fallbackFrom?: string;
     }
-  | { kind: 'missing'; searched: string[]; hint?: string }
+  /** `searched`: the places looked in, absolute and in order; `suggestion`: the closest name that exists there. */
+  | { kind: 'missing'; searched: string[]; hint?: string; suggestion?: string }
   | { kind: 'invalid'; message: string }
   /** The package that should hold the name cannot be read (a broken archive, a bound exceeded). */
   | { kind: 'unreadable'; message: string; hint?: string };

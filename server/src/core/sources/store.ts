@@ -2,6 +2,7 @@ import { normalizeEntryName, PackageContents } from '../../../../common/src/pack
 import { splitScenarioPath } from '../../../../common/src/scenarioPath';
 import { decodeScenario, DecodeError } from '../encoding';
 import { pathsFor, splitDiskPath } from '../paths';
+import { closestMatch } from '../text';
 import { XmlDocument } from '../xml';
 import { FileKind, FileSystemHost, KindCache, nodeFileSystem } from './host';
 import { DEFAULT_LIMITS, Limits } from './limits';
@@ -253,13 +254,34 @@ export class ScenarioStore {
     return undefined;
   }
 
+  /** A place as a message names it: an absolute folder (a relative one, say '.', leaves the reader guessing which). */
   private describePlace(place: LookupPlace): string {
-    if (place.packageRef) return place.directory ? `${this.display(place.packageRef)}/${place.directory}` : this.display(place.packageRef);
+    if (place.packageRef) return [place.packageRef.disk, ...place.packageRef.entries, ...(place.directory ? [place.directory] : [])].join('/');
     const label = place.via === 'scenarioPath' ? ' (SCENARIO_PATH)' : place.via === 'parent' ? ' (parent folder)' : '';
-    const paths = pathsFor(place.directory);
-    const base = this.workingDirectory;
-    const shown = base !== undefined && pathsFor(base) === paths ? paths.relative(base, place.directory) || '.' : place.directory;
-    return `${shown}${label}`;
+    return `${place.directory}${label}`;
+  }
+
+  /** The scenario and package names that exist in the places searched, written as `name` would be (its folder part kept). */
+  private async namesIn(places: LookupPlace[], name: string): Promise<string[]> {
+    const folderPart = name.slice(0, Math.max(name.lastIndexOf('/'), name.lastIndexOf('\\')) + 1);
+    const names = new Set<string>();
+    const isScenarioName = (entry: string) => /\.(xosc|mosc)$/i.test(entry);
+    for (const place of places) {
+      if (place.packageRef) {
+        // normalizeEntryName takes a file's entry name: that of a placeholder file gives the folder's, with its '/'.
+        const folder = normalizeEntryName(place.directory ? `${place.directory}/${folderPart}x` : `${folderPart}x`)?.slice(0, -1);
+        if (folder === undefined) continue;
+        const contents = await this.readPackage(place.packageRef).catch(() => undefined);
+        for (const entry of contents?.entries.keys() ?? []) {
+          const rest = entry.startsWith(folder) ? entry.slice(folder.length) : undefined;
+          if (rest && !rest.includes('/') && isScenarioName(rest)) names.add(`${folderPart}${rest}`);
+        }
+        continue;
+      }
+      const listed = (await this.host.listDirectory?.(pathsFor(place.directory).resolve(place.directory, folderPart || '.'))) ?? [];
+      for (const entry of listed) if (isScenarioName(entry)) names.add(`${folderPart}${entry}`);
+    }
+    return [...names];
   }
 
   /** Resolves a `scenarioFileName` written in the file `from` (SPEC 3). */
@@ -287,10 +309,12 @@ export class ScenarioStore {
       }
     }
     const searched = places.map((place) => this.describePlace(place));
+    const suggestion = closestMatch(trimmed, (await this.namesIn(places, trimmed)).filter((candidate) => candidate !== trimmed));
     return {
       kind: 'missing',
       searched,
       hint: this.scenarioPath.length === 0 ? 'set SCENARIO_PATH (or the modular2simple.scenarioPath setting) to the folder that holds it' : undefined,
+      ...(suggestion ? { suggestion } : {}),
     };
   }
 }

@@ -42,6 +42,7 @@ function isMissingAttributes(value: unknown): value is ProblemDataByCode['schema
 const DATA_GUARDS: { [C in ProblemCodeWithData]: (value: unknown) => value is ProblemDataByCode[C] } = {
   'unknown-key': (value): value is ProblemDataByCode['unknown-key'] => isSuggestion(value) || (isRecord(value) && isString(value.relatedReplacement)),
   'xosc-fallback': (value): value is ProblemDataByCode['xosc-fallback'] => isRecord(value) && isString(value.replacement),
+  'missing-file': isSuggestion,
   'unknown-group': (value): value is ProblemDataByCode['unknown-group'] => isRecord(value) && isOptionalString(value.suggestion) && isStringList(value.groups),
   'unknown-parameter-attribute': isSuggestion,
   'undeclared-parameter': (value): value is ProblemDataByCode['undeclared-parameter'] => isRecord(value) && isString(value.parameter),

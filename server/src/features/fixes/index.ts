@@ -8,7 +8,7 @@ import { undeclaredParameterFix } from './undeclaredParameter';
 import { unknownGroupFix } from './unknownGroup';
 import { unknownKeyFix } from './unknownKey';
 import { unknownParameterAttributeFix } from './unknownParameterAttribute';
-import { xoscFallbackFix } from './xoscFallback';
+import { missingFileFix, xoscFallbackFix } from './xoscFallback';
 
 export type { DiagnosticData } from './data';
 export { diagnosticDataOf, isDiagnosticData } from './data';
@@ -19,6 +19,7 @@ export { missingKeysAction } from './missingKeys';
 export const PROBLEM_FIXES: readonly ProblemFix[] = [
   unknownKeyFix,
   xoscFallbackFix,
+  missingFileFix,
   unknownGroupFix,
   unknownParameterAttributeFix,
   noDefaultFix,
