@@ -1,0 +1,146 @@
+/*
+ * Modularize (issue 19): turns a library of plain scenarios into simple scenarios and mains.
+ *   shape.ts          what makes two ManeuverGroups one behaviour: their structure; their values
+ *   naming.ts         a file name that says what a group does
+ *   behaviour.ts      one recurring group: defaults, overridable attributes, keys, each use's overrides
+ *   simpleScenario.ts the valid scenario around an extracted group
+ *   mainText.ts       a main: the input with its recurring groups replaced by references
+ *   memoryHost.ts     the outputs as files, for flattening them before anything is written
+ */
+import * as path from 'node:path';
+import { firstDifference } from '../equivalence';
+import { Flattener } from '../flatten';
+import { buildModel } from '../model';
+import { diskRef, Limits, ScenarioStore } from '../sources';
+import { countEditorLines } from '../text';
+import { parseXml } from '../xml';
+import { planBehaviour } from './behaviour';
+import { mainText } from './mainText';
+import { memoryHost } from './memoryHost';
+import { behaviourName, uniqueName } from './naming';
+import { GroupOccurrence, GroupShape, readOccurrence } from './shape';
+import { Behaviour, MainResult, ModularizeInput, ModularizeOptions, ModularizeResult, ParsedInput } from './types';
+
+export type { Behaviour, MainResult, ModularizeInput, ModularizeOptions, ModularizeResult, RebasePaths } from './types';
+export { memoryHost } from './memoryHost';
+
+/** Why an input is not a scenario to modularize (a catalog, a parameter distribution, a modular main), or undefined for a plain scenario. */
+export function notAPlainScenario(text: string): string | undefined {
+  const document = parseXml(text);
+  const root = document.root;
+  if (!root || root.name !== 'OpenSCENARIO') return 'not an OpenSCENARIO file';
+  const kinds = root.children.map((child) => child.name);
+  if (kinds.includes('Catalog')) return 'a catalog';
+  if (kinds.includes('ParameterValueDistribution')) return 'a parameter value distribution';
+  if (!kinds.includes('Storyboard')) return 'not a scenario (no Storyboard)';
+  if (buildModel(document).references.length > 0) return 'already modular (it holds ScenarioReferences)';
+  return undefined;
+}
+
+/** Groups of the inputs by shape, in the order first met; only shapes that recur and are not excluded. */
+function recurringGroups(inputs: ParsedInput[], excluded: Set<string>): Map<string, { shape: GroupShape; occurrences: GroupOccurrence[] }> {
+  const byShape = new Map<string, { shape: GroupShape; occurrences: GroupOccurrence[] }>();
+  inputs.forEach((input, index) => {
+    for (const group of buildModel(input.document).groups) {
+      const read = readOccurrence(index, input.document, group);
+      if (!read || excluded.has(read.shape.key)) continue;
+      const known = byShape.get(read.shape.key);
+      if (known) known.occurrences.push(read.occurrence);
+      else byShape.set(read.shape.key, { shape: read.shape, occurrences: [read.occurrence] });
+    }
+  });
+  for (const [key, entry] of byShape) if (entry.occurrences.length < 2) byShape.delete(key);
+  return byShape;
+}
+
+interface Plan {
+  behaviours: Behaviour[];
+  mains: MainResult[];
+  keptInline: ModularizeResult['keptInline'];
+}
+
+function plan(inputs: ParsedInput[], options: ModularizeOptions, excluded: Map<string, string>): Plan {
+  const behaviours: Behaviour[] = [];
+  const keptInline: ModularizeResult['keptInline'] = [];
+  const taken = new Set<string>();
+  for (const [key, { shape, occurrences }] of recurringGroups(inputs, new Set(excluded.keys()))) {
+    const stem = uniqueName(behaviourName(occurrences[0].elements), taken);
+    const file = path.join(options.simpleFolder, `${stem}.xosc`);
+    const planned = planBehaviour(key, shape.slots, occurrences, inputs, file, options.rebase);
+    if (planned.behaviour) behaviours.push(planned.behaviour);
+    else {
+      taken.delete(stem.toLowerCase());
+      for (const occurrence of occurrences) keptInline.push({ input: inputs[occurrence.input].path, group: occurrence.group.name, reason: planned.reason ?? 'cannot be imported exactly' });
+    }
+  }
+  const mains = inputs.map((input, index): MainResult => {
+    const uses = behaviours.flatMap((behaviour) => behaviour.uses.filter((use) => use.occurrence.input === index).map((use) => ({ behaviour, use })));
+    const text = mainText(input, uses, options.rebase);
+    return { input: input.path, output: input.output, text, linesBefore: countEditorLines(input.text), linesAfter: countEditorLines(text), imports: uses.map(({ behaviour }) => behaviour.file) };
+  });
+  return { behaviours, mains, keptInline };
+}
+
+/**
+ * Flattens every main that imports something, with the simple scenarios read from memory, and compares
+ * it with its input rebased onto the main's folder (SPEC 8): the first difference of each that differs.
+ */
+async function verify(inputs: ParsedInput[], planned: Plan, options: ModularizeOptions, limits: Partial<Limits>): Promise<ModularizeResult['failures']> {
+  const files = new Map<string, string>();
+  for (const behaviour of planned.behaviours) files.set(path.resolve(behaviour.file), behaviour.text);
+  for (const main of planned.mains) if (main.imports.length > 0) files.set(path.resolve(main.output), main.text);
+  const store = new ScenarioStore({ host: memoryHost(files), scenarioPath: [], limits });
+  const flattener = new Flattener(store);
+  const failures: ModularizeResult['failures'] = [];
+  for (const [index, main] of planned.mains.entries()) {
+    if (main.imports.length === 0) continue;
+    const result = await flattener.flatten(diskRef(path.resolve(main.output)), { outputPath: main.output });
+    if (result.text === undefined) {
+      const error = result.problems.find((problem) => problem.severity === 'error');
+      failures.push({ input: main.input, difference: `the main does not flatten: ${error?.message ?? 'no output'}` });
+      continue;
+    }
+    const input = inputs[index];
+    const expected = options.rebase(input.text, path.dirname(input.path), path.dirname(main.output));
+    const difference = firstDifference(result.text, expected);
+    if (difference) failures.push({ input: main.input, difference });
+  }
+  return failures;
+}
+
+/**
+ * Extracts the ManeuverGroups that recur across `inputs` (same elements and attribute names in the
+ * same order) into simple scenarios and writes a main per input that imports them; nothing is
+ * written here. A behaviour whose mains do not flatten back to their inputs is kept inline and the
+ * rest tried again, so `failures` names only inputs that still differ with every behaviour inline.
+ */
+export async function modularize(inputs: ModularizeInput[], options: ModularizeOptions, limits: Partial<Limits> = {}): Promise<ModularizeResult> {
+  const parsed: ParsedInput[] = inputs.map((input) => ({ ...input, document: parseXml(input.text) }));
+  const excluded = new Map<string, string>();
+  let planned = plan(parsed, options, excluded);
+  let failures = await verify(parsed, planned, options, limits);
+  const keptInline: ModularizeResult['keptInline'] = [];
+  for (let round = 0; failures.length > 0 && round < 8; round++) {
+    const failing = new Set(failures.map((failure) => failure.input));
+    let dropped = 0;
+    for (const behaviour of planned.behaviours) {
+      const failure = failures.find((candidate) => behaviour.uses.some((use) => parsed[use.occurrence.input].path === candidate.input));
+      if (!failure || !behaviour.uses.some((use) => failing.has(parsed[use.occurrence.input].path))) continue;
+      excluded.set(behaviour.shapeKey, failure.difference);
+      dropped++;
+      for (const use of behaviour.uses) keptInline.push({ input: parsed[use.occurrence.input].path, group: use.occurrence.group.name, reason: `its main would not flatten back exactly (${failure.difference})` });
+    }
+    if (dropped === 0) break;
+    planned = plan(parsed, options, excluded);
+    failures = await verify(parsed, planned, options, limits);
+  }
+  const linesBefore = planned.mains.reduce((sum, main) => sum + main.linesBefore, 0);
+  const linesAfter = planned.mains.reduce((sum, main) => sum + main.linesAfter, 0) + planned.behaviours.reduce((sum, behaviour) => sum + countEditorLines(behaviour.text), 0);
+  return {
+    mains: planned.mains,
+    behaviours: planned.behaviours,
+    failures,
+    keptInline: [...planned.keptInline, ...keptInline],
+    totals: { linesBefore, linesAfter, reduction: linesBefore === 0 ? 0 : Math.round((1 - linesAfter / linesBefore) * 1000) / 10 },
+  };
+}
