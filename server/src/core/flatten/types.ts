@@ -63,11 +63,6 @@ export interface FlatSource {
   dependencies: SourceRef[];
   /** True while the flattened text can be, but has not yet been, rendered (see Flattener.rendered). */
   renderable: boolean;
-  /**
-   * The output folder that the catalog locations carried into `text` are written relative to; undefined
-   * when the rendering carried none (then the text is the same for every output folder).
-   */
-  locationsRelativeTo: string | undefined;
   /** The OpenSCENARIO semantics of the file as read (parameters, expressions, catalogs, names). */
   semantics: DocumentSemantics | undefined;
   /**
@@ -130,8 +125,10 @@ export interface SchemaOptions {
 export interface FlattenOptions {
   /** Write the output even when overrides could not be applied (the original's behaviour). */
   force?: boolean;
-  /** Where the output will be written (carried catalog directories are made relative to its folder); beside the main file by default. */
+  /** Where the output will be written (its file paths are rebased onto its folder, SPEC 11.6); beside the main file by default. */
   outputPath?: string;
+  /** The output goes to standard output: its file paths are written absolute. */
+  standardOutput?: boolean;
 }
 
 export interface AnalysisResult {
