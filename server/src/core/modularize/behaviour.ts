@@ -58,14 +58,14 @@ function simpleGroupText(representative: GroupOccurrence, slots: Slot[], targets
  * a main must be able to set (those whose values differ between uses), the simple scenario that holds
  * it, and each use's overrides under the shortest unambiguous key (SPEC 5).
  */
-export function planBehaviour(
+export async function planBehaviour(
   shapeKey: string,
   slots: Slot[],
   occurrences: GroupOccurrence[],
   inputs: ParsedInput[],
   file: string,
   rebase: RebasePaths,
-): BehaviourPlan {
+): Promise<BehaviourPlan> {
   const representative = occurrences[0];
   const nameSlot = slots.findIndex((slot) => slot.element === 0 && slot.name === 'name');
   const actorSlot = slots.findIndex((slot) => slot.element === representative.actorElement && slot.name === 'entityRef');
@@ -90,7 +90,7 @@ export function planBehaviour(
   const eol = representativeInput.text.includes('\r\n') ? '\r\n' : '\n';
   const unit = indentUnit(representativeInput.text, representativeInput.document.root?.children[0]?.start);
   const groupText = simpleGroupText(representative, slots, defaults, listed, unit.repeat(4), eol);
-  const text = simpleScenarioText({ groupText, groupName, file, occurrences, inputs, defaults, unit, eol, rebase });
+  const text = await simpleScenarioText({ groupText, groupName, file, occurrences, inputs, defaults, unit, eol, rebase });
 
   // Keys are computed on the simple scenario as written, so they are what the flattener will match.
   const model = parseScenario(text);

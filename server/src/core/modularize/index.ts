@@ -19,7 +19,8 @@ import { mainText } from './mainText';
 import { memoryHost } from './memoryHost';
 import { behaviourName, uniqueName } from './naming';
 import { GroupOccurrence, GroupShape, readOccurrence } from './shape';
-import { Behaviour, MainResult, ModularizeInput, ModularizeOptions, ModularizeResult, ParsedInput } from './types';
+import { rebasedText } from './rebase';
+import { Behaviour, MainResult, ModularizeInput, ModularizeOptions, ModularizeResult, ParsedInput, RebasePaths } from './types';
 
 export type { Behaviour, MainResult, ModularizeInput, ModularizeOptions, ModularizeResult, RebasePaths } from './types';
 export { memoryHost } from './memoryHost';
@@ -59,25 +60,26 @@ interface Plan {
   keptInline: ModularizeResult['keptInline'];
 }
 
-function plan(inputs: ParsedInput[], options: ModularizeOptions, excluded: Map<string, string>): Plan {
+async function plan(inputs: ParsedInput[], rebase: RebasePaths, simpleFolder: string, excluded: Map<string, string>): Promise<Plan> {
   const behaviours: Behaviour[] = [];
   const keptInline: ModularizeResult['keptInline'] = [];
   const taken = new Set<string>();
   for (const [key, { shape, occurrences }] of recurringGroups(inputs, new Set(excluded.keys()))) {
     const stem = uniqueName(behaviourName(occurrences[0].elements), taken);
-    const file = path.join(options.simpleFolder, `${stem}.xosc`);
-    const planned = planBehaviour(key, shape.slots, occurrences, inputs, file, options.rebase);
+    const file = path.join(simpleFolder, `${stem}.xosc`);
+    const planned = await planBehaviour(key, shape.slots, occurrences, inputs, file, rebase);
     if (planned.behaviour) behaviours.push(planned.behaviour);
     else {
       taken.delete(stem.toLowerCase());
       for (const occurrence of occurrences) keptInline.push({ input: inputs[occurrence.input].path, group: occurrence.group.name, reason: planned.reason ?? 'cannot be imported exactly' });
     }
   }
-  const mains = inputs.map((input, index): MainResult => {
+  const mains: MainResult[] = [];
+  for (const [index, input] of inputs.entries()) {
     const uses = behaviours.flatMap((behaviour) => behaviour.uses.filter((use) => use.occurrence.input === index).map((use) => ({ behaviour, use })));
-    const text = mainText(input, uses, options.rebase);
-    return { input: input.path, output: input.output, text, linesBefore: countEditorLines(input.text), linesAfter: countEditorLines(text), imports: uses.map(({ behaviour }) => behaviour.file) };
-  });
+    const text = await mainText(input, uses, rebase);
+    mains.push( { input: input.path, output: input.output, text, linesBefore: countEditorLines(input.text), linesAfter: countEditorLines(text), imports: uses.map(({ behaviour }) => behaviour.file) });
+  }
   return { behaviours, mains, keptInline };
 }
 
@@ -85,7 +87,7 @@ function plan(inputs: ParsedInput[], options: ModularizeOptions, excluded: Map<s
  * Flattens every main that imports something, with the simple scenarios read from memory, and compares
  * it with its input rebased onto the main's folder (SPEC 8): the first difference of each that differs.
  */
-async function verify(inputs: ParsedInput[], planned: Plan, options: ModularizeOptions, limits: Partial<Limits>): Promise<ModularizeResult['failures']> {
+async function verify(inputs: ParsedInput[], planned: Plan, rebase: RebasePaths, limits: Partial<Limits>): Promise<ModularizeResult['failures']> {
   const files = new Map<string, string>();
   for (const behaviour of planned.behaviours) files.set(path.resolve(behaviour.file), behaviour.text);
   for (const main of planned.mains) if (main.imports.length > 0) files.set(path.resolve(main.output), main.text);
@@ -101,7 +103,7 @@ async function verify(inputs: ParsedInput[], planned: Plan, options: ModularizeO
       continue;
     }
     const input = inputs[index];
-    const expected = options.rebase(input.text, path.dirname(input.path), path.dirname(main.output));
+    const expected = await rebase(input.text, path.dirname(input.path), path.dirname(main.output));
     const difference = firstDifference(result.text, expected);
     if (difference) failures.push({ input: main.input, difference });
   }
@@ -116,9 +118,10 @@ async function verify(inputs: ParsedInput[], planned: Plan, options: ModularizeO
  */
 export async function modularize(inputs: ModularizeInput[], options: ModularizeOptions, limits: Partial<Limits> = {}): Promise<ModularizeResult> {
   const parsed: ParsedInput[] = inputs.map((input) => ({ ...input, document: parseXml(input.text) }));
+  const rebase = options.rebase ?? rebasedText;
   const excluded = new Map<string, string>();
-  let planned = plan(parsed, options, excluded);
-  let failures = await verify(parsed, planned, options, limits);
+  let planned = await plan(parsed, rebase, options.simpleFolder, excluded);
+  let failures = await verify(parsed, planned, rebase, limits);
   const keptInline: ModularizeResult['keptInline'] = [];
   for (let round = 0; failures.length > 0 && round < 8; round++) {
     const failing = new Set(failures.map((failure) => failure.input));
@@ -131,8 +134,8 @@ export async function modularize(inputs: ModularizeInput[], options: ModularizeO
       for (const use of behaviour.uses) keptInline.push({ input: parsed[use.occurrence.input].path, group: use.occurrence.group.name, reason: `its main would not flatten back exactly (${failure.difference})` });
     }
     if (dropped === 0) break;
-    planned = plan(parsed, options, excluded);
-    failures = await verify(parsed, planned, options, limits);
+    planned = await plan(parsed, rebase, options.simpleFolder, excluded);
+    failures = await verify(parsed, planned, rebase, limits);
   }
   const linesBefore = planned.mains.reduce((sum, main) => sum + main.linesBefore, 0);
   const linesAfter = planned.mains.reduce((sum, main) => sum + main.linesAfter, 0) + planned.behaviours.reduce((sum, behaviour) => sum + countEditorLines(behaviour.text), 0);

@@ -36,7 +36,7 @@ function referenceGroup(input: ParsedInput, behaviour: Behaviour, use: Use, inde
  * The main of one input: its text as written, each extracted group replaced in place (at its
  * indentation) by a group that imports it, its file paths rebased onto the main's folder.
  */
-export function mainText(input: ParsedInput, uses: { behaviour: Behaviour; use: Use }[], rebase: RebasePaths): string {
+export async function mainText(input: ParsedInput, uses: { behaviour: Behaviour; use: Use }[], rebase: RebasePaths): Promise<string> {
   const text = input.text;
   const eol = text.includes('\r\n') ? '\r\n' : '\n';
   const edits: TextEdit[] = uses.map(({ behaviour, use }) => {

@@ -46,7 +46,7 @@ function findNamed(documents: XmlDocument[], elementNames: Set<string>, wanted: 
  * entities the group names (taken from the inputs it came from), the representative input's road
  * network and catalog locations (rebased onto the simple scenario's folder), and a story that plays it.
  */
-export function simpleScenarioText(parts: SimpleScenarioParts): string {
+export async function simpleScenarioText(parts: SimpleScenarioParts): Promise<string> {
   const { groupText, groupName, file, occurrences, inputs, defaults, unit, eol, rebase } = parts;
   const representative = inputs[occurrences[0].input];
   const documents = [...new Set(occurrences.map((occurrence) => inputs[occurrence.input]))].map((input) => input.document);

@@ -11,12 +11,13 @@ export interface ModularizeInput {
 }
 
 /** Rewrites the file paths of a scenario written in `fromDirectory` so that it reaches the same files from `toDirectory`. */
-export type RebasePaths = (text: string, fromDirectory: string, toDirectory: string) => string;
+export type RebasePaths = (text: string, fromDirectory: string, toDirectory: string) => Promise<string>;
 
 export interface ModularizeOptions {
   /** The folder the simple scenarios are written to (absolute). */
   simpleFolder: string;
-  rebase: RebasePaths;
+  /** How file paths are rebased onto the outputs' folders: flatten's rebasing unless a test gives another. */
+  rebase?: RebasePaths;
 }
 
 /** One override a main sets on an imported group. */
