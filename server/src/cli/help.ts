@@ -1,4 +1,5 @@
 import { FORMAT_HELP } from './format';
+import { MODULARIZE_HELP } from './modularize';
 import { RUN_HELP } from './run';
 import { VARY_HELP } from './vary';
 import { VERSION } from './common';
@@ -15,6 +16,8 @@ Usage:
   modular2simple run INPUT... [--check]            flatten and run in esmini; its messages on the source lines
   modular2simple vary FILE [--count|--index I|--out-dir DIR]
                                                    concrete scenarios of a parameter distribution
+  modular2simple modularize INPUT... -o OUT [--dry-run]
+                                                   extract the groups that recur into simple scenarios
 ${FORMAT_HELP}
 
 Compatible with the original tool:
@@ -51,6 +54,8 @@ Options:
 ${RUN_HELP}
 
 ${VARY_HELP}
+
+${MODULARIZE_HELP}
 
 Environment:
   SCENARIO_PATH             folders searched for referenced scenarios (separated by ';' or ':')
