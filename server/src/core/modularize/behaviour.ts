@@ -29,6 +29,8 @@ export interface BehaviourPlan {
   behaviour?: Behaviour;
   /** Why the group stays inline, when it does. */
   reason?: string;
+  /** Attributes (slot indices) that one key reaches together although their values differ: uses that agree on them may still share a behaviour. */
+  conflict?: number[];
 }
 
 /** The text of the group as the simple scenario holds it: defaults written, overridable attributes listed. */
@@ -107,7 +109,7 @@ export async function planBehaviour(
     const reached = targets.filter((other) => keyMatches(key, other)).map(slotOf);
     // A key that still reaches several attributes sets them all: only right where they always agree.
     if (reached.length > 1 && !occurrences.every((occurrence) => reached.every((other) => occurrence.values[other] === occurrence.values[index]))) {
-      return { reason: `no key tells its attributes '${key}' apart` };
+      return { reason: `no key tells its attributes '${key}' apart`, conflict: reached };
     }
     keys.set(index, key);
   }

@@ -64,15 +64,30 @@ async function plan(inputs: ParsedInput[], rebase: RebasePaths, simpleFolder: st
   const behaviours: Behaviour[] = [];
   const keptInline: ModularizeResult['keptInline'] = [];
   const taken = new Set<string>();
-  for (const [key, { shape, occurrences }] of recurringGroups(inputs, new Set(excluded.keys()))) {
+  const pending = [...recurringGroups(inputs, new Set(excluded.keys())).values()].map(({ shape, occurrences }) => ({ shape, occurrences, key: shape.key, depth: 0 }));
+  while (pending.length > 0) {
+    const { shape, occurrences, key, depth } = pending.shift() as (typeof pending)[number];
+    if (excluded.has(key)) continue;
     const stem = uniqueName(behaviourName(occurrences[0].elements), taken);
     const file = path.join(simpleFolder, `${stem}.xosc`);
     const planned = await planBehaviour(key, shape.slots, occurrences, inputs, file, rebase);
-    if (planned.behaviour) behaviours.push(planned.behaviour);
-    else {
-      taken.delete(stem.toLowerCase());
-      for (const occurrence of occurrences) keptInline.push({ input: inputs[occurrence.input].path, group: occurrence.group.name, reason: planned.reason ?? 'cannot be imported exactly' });
+    if (planned.behaviour) {
+      behaviours.push(planned.behaviour);
+      continue;
     }
+    taken.delete(stem.toLowerCase());
+    // Uses that agree on the attributes no key tells apart can still share one behaviour.
+    const parts = new Map<string, GroupOccurrence[]>();
+    if (planned.conflict && depth < 4) {
+      const conflict = planned.conflict;
+      for (const occurrence of occurrences) {
+        const values = JSON.stringify(conflict.map((index) => occurrence.values[index]));
+        parts.set(values, [...(parts.get(values) ?? []), occurrence]);
+      }
+    }
+    for (const [values, part] of parts) if (part.length > 1 && part.length < occurrences.length) pending.push({ shape, occurrences: part, key: `${key}\n${values}`, depth: depth + 1 });
+    const alone = planned.conflict && depth < 4 ? [...parts.values()].filter((part) => part.length === 1).flat() : occurrences;
+    for (const occurrence of alone) keptInline.push({ input: inputs[occurrence.input].path, group: occurrence.group.name, reason: planned.reason ?? 'cannot be imported exactly' });
   }
   const mains: MainResult[] = [];
   for (const [index, input] of inputs.entries()) {

@@ -62,26 +62,6 @@ export async function simpleScenarioText(parts: SimpleScenarioParts): Promise<st
   ];
   lines.push(`${unit}<FileHeader ${headerAttributes.map(([name, value]) => `${name}="${escapeAttributeValue(value)}"`).join(' ')}/>`);
 
-  // Parameters the group uses, with those their values use in turn, in the order first needed.
-  const needed: string[] = [];
-  const want = (text: string) => {
-    for (const match of text.matchAll(PARAMETER_USE)) if (!needed.includes(match[1])) needed.push(match[1]);
-  };
-  want(groupText);
-  const declarations: string[] = [];
-  for (let i = 0; i < needed.length; i++) {
-    const found = findNamed(documents, new Set(['ParameterDeclaration']), needed[i]);
-    if (!found) continue;
-    declarations.push(copied(found.document, found.element, unit, 2, eol));
-    want(found.document.text.slice(found.element.start, found.element.end));
-  }
-  lines.push(declarations.length > 0 ? [`${unit}<ParameterDeclarations>`, ...declarations, `${unit}</ParameterDeclarations>`].join(eol) : `${unit}<ParameterDeclarations/>`);
-
-  const catalogs = child(root, 'CatalogLocations');
-  lines.push(catalogs ? copied(representative.document, catalogs, unit, 1, eol) : `${unit}<CatalogLocations/>`);
-  const roads = child(root, 'RoadNetwork');
-  lines.push(roads ? copied(representative.document, roads, unit, 1, eol) : `${unit}<RoadNetwork/>`);
-
   // Every value of the group that names an entity of its inputs: the entity is declared here too.
   const entities: string[] = [];
   const seen = new Set<string>();
@@ -91,6 +71,27 @@ export async function simpleScenarioText(parts: SimpleScenarioParts): Promise<st
     const found = findNamed(documents, new Set(['ScenarioObject', 'EntitySelection']), value);
     if (found && found.element.parent?.name === 'Entities') entities.push(copied(found.document, found.element, unit, 2, eol));
   }
+
+  const catalogs = child(root, 'CatalogLocations');
+  const catalogText = catalogs ? copied(representative.document, catalogs, unit, 1, eol) : `${unit}<CatalogLocations/>`;
+  const roads = child(root, 'RoadNetwork');
+  const roadText = roads ? copied(representative.document, roads, unit, 1, eol) : `${unit}<RoadNetwork/>`;
+  // Parameters the group uses, with those their values use in turn, in the order first needed.
+  const needed: string[] = [];
+  const want = (text: string) => {
+    for (const match of text.matchAll(PARAMETER_USE)) if (!needed.includes(match[1])) needed.push(match[1]);
+  };
+  for (const text of [groupText, ...entities, catalogText, roadText]) want(text);
+  const declarations: string[] = [];
+  for (let i = 0; i < needed.length; i++) {
+    const found = findNamed(documents, new Set(['ParameterDeclaration']), needed[i]);
+    if (!found) continue;
+    declarations.push(copied(found.document, found.element, unit, 2, eol));
+    want(found.document.text.slice(found.element.start, found.element.end));
+  }
+  lines.push(declarations.length > 0 ? [`${unit}<ParameterDeclarations>`, ...declarations, `${unit}</ParameterDeclarations>`].join(eol) : `${unit}<ParameterDeclarations/>`);
+
+  lines.push(catalogText, roadText);
   lines.push(entities.length > 0 ? [`${unit}<Entities>`, ...entities, `${unit}</Entities>`].join(eol) : `${unit}<Entities/>`);
 
   const u = (depth: number) => unit.repeat(depth);
