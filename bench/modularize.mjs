@@ -2,7 +2,7 @@
 // (target < 2 s) and of 500 generated scenarios sharing a few behaviours (target < 30 s), as processes.
 import { spawnSync } from 'node:child_process';
 import { existsSync, mkdirSync, mkdtempSync, readdirSync, rmSync, writeFileSync } from 'node:fs';
-import { tmpdir } from 'node:os';
+import { loadavg, tmpdir } from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 
@@ -91,7 +91,7 @@ function generatedScenario(random, index) {
 
 const work = mkdtempSync(path.join(tmpdir(), 'm2s-modularize-bench-'));
 try {
-  console.log(`modularize benchmark (median of ${runs} runs, wall time of the whole process; node ${process.version})`);
+  console.log(`modularize benchmark (median of ${runs} runs, wall time of the whole process; node ${process.version}; load average ${loadavg()[0].toFixed(1)})`);
   if (existsSync(library)) {
     const inputs = readdirSync(library)
       .filter((folder) => existsSync(path.join(library, folder, 'result.xosc')))

@@ -4,7 +4,7 @@ import { parseArgs } from 'node:util';
 import { isSameFile, writeFilesAtomic } from '../../../common/src/atomic';
 import { modularize, ModularizeInput, ModularizeResult, notAPlainScenario } from '../core/modularize';
 import { countEditorLines } from '../core/text';
-import { parseXml } from '../core/xml';
+import { parseXml, XmlDocument } from '../core/xml';
 import { CliOutput, ExitCode, InputError, UsageError } from './common';
 
 export const MODULARIZE_HELP = `Modularize a library (modular2simple modularize INPUT... -o OUT):
@@ -172,7 +172,7 @@ export async function modularizeCommand(args: string[], io: CliOutput): Promise<
   if (!fs.existsSync(path.dirname(out))) throw new InputError(`${shown(out)}: the folder ${shown(path.dirname(out))} does not exist; nothing was written`);
 
   const scenarios: string[] = [];
-  const texts = new Map<string, string>();
+  const texts = new Map<string, { text: string; document: XmlDocument }>();
   let unreadable = 0;
   for (const file of files) {
     const text = readUtf8(file);
@@ -184,13 +184,13 @@ export async function modularizeCommand(args: string[], io: CliOutput): Promise<
       unreadable++;
       continue;
     }
-    const leftAlone = notAPlainScenario(text);
+    const leftAlone = notAPlainScenario(document);
     if (leftAlone) {
       if (!options.quiet) io.err(`${shown(file)}: left alone: ${leftAlone}`);
       continue;
     }
     scenarios.push(file);
-    texts.set(file, text);
+    texts.set(file, { text, document });
   }
   if (unreadable > 0) {
     io.err(`${unreadable} input${unreadable === 1 ? '' : 's'} cannot be parsed; nothing was written`);
@@ -206,7 +206,7 @@ export async function modularizeCommand(args: string[], io: CliOutput): Promise<
   let simpleName = 'simple';
   for (let n = 2; relative.some((rel) => rel.split(path.sep)[0].toLowerCase() === simpleName.toLowerCase()); n++) simpleName = `simple_${n}`;
   const simpleFolder = path.join(out, simpleName);
-  const inputs: ModularizeInput[] = scenarios.map((file, index) => ({ path: file, output: path.join(out, relative[index]), text: texts.get(file) as string }));
+  const inputs: ModularizeInput[] = scenarios.map((file, index) => ({ path: file, output: path.join(out, relative[index]), ...(texts.get(file) as { text: string; document: XmlDocument }) }));
   for (const input of inputs) {
     if (files.some((file) => isSameFile(file, input.output))) throw new InputError(`refusing to write ${shown(input.output)}: it is an input; choose another OUT`);
   }

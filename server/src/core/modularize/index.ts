@@ -13,21 +13,21 @@ import { Flattener } from '../flatten';
 import { buildModel } from '../model';
 import { diskRef, Limits, ScenarioStore } from '../sources';
 import { countEditorLines } from '../text';
-import { parseXml } from '../xml';
+import { parseXml, XmlDocument } from '../xml';
 import { planBehaviour } from './behaviour';
 import { mainText } from './mainText';
 import { memoryHost } from './memoryHost';
 import { behaviourName, uniqueName } from './naming';
 import { GroupOccurrence, GroupShape, readOccurrence } from './shape';
-import { rebasedText } from './rebase';
+import { pathRebaser } from './rebase';
 import { Behaviour, MainResult, ModularizeInput, ModularizeOptions, ModularizeResult, ParsedInput, RebasePaths } from './types';
 
 export type { Behaviour, MainResult, ModularizeInput, ModularizeOptions, ModularizeResult, RebasePaths } from './types';
 export { memoryHost } from './memoryHost';
 
 /** Why an input is not a scenario to modularize (a catalog, a parameter distribution, a modular main), or undefined for a plain scenario. */
-export function notAPlainScenario(text: string): string | undefined {
-  const document = parseXml(text);
+export function notAPlainScenario(textOrDocument: string | XmlDocument): string | undefined {
+  const document = typeof textOrDocument === 'string' ? parseXml(textOrDocument) : textOrDocument;
   const root = document.root;
   if (!root || root.name !== 'OpenSCENARIO') return 'not an OpenSCENARIO file';
   const kinds = root.children.map((child) => child.name);
@@ -132,8 +132,8 @@ async function verify(inputs: ParsedInput[], planned: Plan, rebase: RebasePaths,
  * rest tried again, so `failures` names only inputs that still differ with every behaviour inline.
  */
 export async function modularize(inputs: ModularizeInput[], options: ModularizeOptions, limits: Partial<Limits> = {}): Promise<ModularizeResult> {
-  const parsed: ParsedInput[] = inputs.map((input) => ({ ...input, document: parseXml(input.text) }));
-  const rebase = options.rebase ?? rebasedText;
+  const parsed: ParsedInput[] = inputs.map((input) => ({ ...input, document: input.document ?? parseXml(input.text) }));
+  const rebase = options.rebase ?? pathRebaser();
   const excluded = new Map<string, string>();
   let planned = await plan(parsed, rebase, options.simpleFolder, excluded);
   let failures = await verify(parsed, planned, rebase, limits);

@@ -1,15 +1,28 @@
 import { applyEdits } from '../flatten/edits';
 import { rebasePaths } from '../flatten/rebase';
-import { nodeFileSystem } from '../sources';
+import { FileKind, nodeFileSystem } from '../sources';
 import { parseXml } from '../xml';
+import { RebasePaths } from './types';
 
 /**
- * A scenario written in `fromDirectory` with its file paths rebased (flatten's own rebasing, SPEC 11.6)
- * so that, written in `toDirectory`, it reaches the same roads and catalogs.
+ * Rebases a scenario written in `fromDirectory` (flatten's own rebasing, SPEC 11.6) so that, written in
+ * `toDirectory`, it reaches the same roads and catalogs. One rebaser serves one run: it looks at each
+ * path on disk once, as every scenario of a library names the same roads and catalog folders.
  */
-export async function rebasedText(text: string, fromDirectory: string, toDirectory: string): Promise<string> {
-  if (fromDirectory === toDirectory) return text;
-  const document = parseXml(text);
-  const rebase = await rebasePaths({ document, baseOf: () => fromDirectory, outputDirectory: toDirectory, kindOf: (diskPath) => nodeFileSystem.kind(diskPath) });
-  return rebase.edits.length === 0 ? text : applyEdits(text, rebase.edits);
+export function pathRebaser(): RebasePaths {
+  const kinds = new Map<string, Promise<FileKind>>();
+  const kindOf = (diskPath: string): Promise<FileKind> => {
+    let known = kinds.get(diskPath);
+    if (!known) {
+      known = nodeFileSystem.kind(diskPath);
+      kinds.set(diskPath, known);
+    }
+    return known;
+  };
+  return async (text, fromDirectory, toDirectory) => {
+    if (fromDirectory === toDirectory) return text;
+    const document = parseXml(text);
+    const rebase = await rebasePaths({ document, baseOf: () => fromDirectory, outputDirectory: toDirectory, kindOf });
+    return rebase.edits.length === 0 ? text : applyEdits(text, rebase.edits);
+  };
 }

@@ -30,12 +30,26 @@ function child(element: XmlElement | undefined, name: string): XmlElement | unde
   return element?.children.find((candidate) => candidate.name === name);
 }
 
-/** The first element of a name whose `name` attribute is `wanted`, looked for in each document in turn. */
-function findNamed(documents: XmlDocument[], elementNames: Set<string>, wanted: string): { document: XmlDocument; element: XmlElement } | undefined {
+// Each document's elements by kind and `name`, built once however many behaviours look into it.
+const namedIndex = new WeakMap<XmlDocument, Map<string, XmlElement>>();
+
+/** The first element of one of `elementNames` whose `name` attribute is `wanted`, looked for in each document in turn. */
+function findNamed(documents: XmlDocument[], elementNames: string[], wanted: string): { document: XmlDocument; element: XmlElement } | undefined {
   for (const document of documents) {
     if (!document.root) continue;
-    for (const element of descendants(document.root)) {
-      if (elementNames.has(element.name) && attributeValue(element, 'name') === wanted) return { document, element };
+    let index = namedIndex.get(document);
+    if (!index) {
+      index = new Map();
+      for (const element of descendants(document.root)) {
+        const name = attributeValue(element, 'name');
+        const key = `${element.name}\n${name}`;
+        if (name !== undefined && !index.has(key)) index.set(key, element);
+      }
+      namedIndex.set(document, index);
+    }
+    for (const elementName of elementNames) {
+      const element = index.get(`${elementName}\n${wanted}`);
+      if (element) return { document, element };
     }
   }
   return undefined;
@@ -68,7 +82,7 @@ export async function simpleScenarioText(parts: SimpleScenarioParts): Promise<st
   for (const value of defaults) {
     if (seen.has(value)) continue;
     seen.add(value);
-    const found = findNamed(documents, new Set(['ScenarioObject', 'EntitySelection']), value);
+    const found = findNamed(documents, ['ScenarioObject', 'EntitySelection'], value);
     if (found && found.element.parent?.name === 'Entities') entities.push(copied(found.document, found.element, unit, 2, eol));
   }
 
@@ -84,7 +98,7 @@ export async function simpleScenarioText(parts: SimpleScenarioParts): Promise<st
   for (const text of [groupText, ...entities, catalogText, roadText]) want(text);
   const declarations: string[] = [];
   for (let i = 0; i < needed.length; i++) {
-    const found = findNamed(documents, new Set(['ParameterDeclaration']), needed[i]);
+    const found = findNamed(documents, ['ParameterDeclaration'], needed[i]);
     if (!found) continue;
     declarations.push(copied(found.document, found.element, unit, 2, eol));
     want(found.document.text.slice(found.element.start, found.element.end));

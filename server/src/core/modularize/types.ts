@@ -8,6 +8,8 @@ export interface ModularizeInput {
   /** Absolute path of its main in the output folder. */
   output: string;
   text: string;
+  /** The text's parse, when the caller has it already. */
+  document?: XmlDocument;
 }
 
 /** Rewrites the file paths of a scenario written in `fromDirectory` so that it reaches the same files from `toDirectory`. */
