@@ -77,9 +77,16 @@ export async function simpleScenarioText(parts: SimpleScenarioParts): Promise<st
   lines.push(`${unit}<FileHeader ${headerAttributes.map(([name, value]) => `${name}="${escapeAttributeValue(value)}"`).join(' ')}/>`);
 
   // Every value of the group that names an entity of its inputs: the entity is declared here too.
+  // A parameter's value may name an entity too (an `entityRef="$owner"`).
+  const parameterValues: string[] = [];
+  for (const match of groupText.matchAll(PARAMETER_USE)) {
+    const declared = findNamed(documents, ['ParameterDeclaration'], match[1]);
+    const value = declared && attributeValue(declared.element, 'value');
+    if (value !== undefined) parameterValues.push(value);
+  }
   const entities: string[] = [];
   const seen = new Set<string>();
-  for (const value of defaults) {
+  for (const value of [...defaults, ...parameterValues]) {
     if (seen.has(value)) continue;
     seen.add(value);
     const found = findNamed(documents, ['ScenarioObject', 'EntitySelection'], value);
@@ -108,6 +115,11 @@ export async function simpleScenarioText(parts: SimpleScenarioParts): Promise<st
   lines.push(catalogText, roadText);
   lines.push(entities.length > 0 ? [`${unit}<Entities>`, ...entities, `${unit}</Entities>`].join(eol) : `${unit}<Entities/>`);
 
+  // The Act and Story keep the names they had around the group, which its conditions may name.
+  const act = occurrences[0].group.element.parent;
+  const actName = (act?.name === 'Act' && attributeValue(act, 'name')) || `${groupName}Act`;
+  const story = act?.parent;
+  const storyName = (story?.name === 'Story' && attributeValue(story, 'name')) || `${groupName}Story`;
   const u = (depth: number) => unit.repeat(depth);
   lines.push(
     [
@@ -115,8 +127,8 @@ export async function simpleScenarioText(parts: SimpleScenarioParts): Promise<st
       `${u(2)}<Init>`,
       `${u(3)}<Actions/>`,
       `${u(2)}</Init>`,
-      `${u(2)}<Story name="${escapeAttributeValue(groupName)}Story">`,
-      `${u(3)}<Act name="${escapeAttributeValue(groupName)}Act">`,
+      `${u(2)}<Story name="${escapeAttributeValue(storyName)}">`,
+      `${u(3)}<Act name="${escapeAttributeValue(actName)}">`,
       `${u(4)}${groupText}`,
       `${u(4)}<StartTrigger>`,
       `${u(5)}<ConditionGroup>`,
