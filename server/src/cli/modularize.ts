@@ -1,7 +1,7 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { parseArgs } from 'node:util';
-import { isSameFile, writeFilesAtomic } from '../../../common/src/atomic';
+import { writeFilesAtomic } from '../../../common/src/atomic';
 import { modularize, ModularizeInput, ModularizeResult, notAPlainScenario } from '../core/modularize';
 import { countEditorLines } from '../core/text';
 import { parseXml, XmlDocument } from '../core/xml';
@@ -207,8 +207,14 @@ export async function modularizeCommand(args: string[], io: CliOutput): Promise<
   for (let n = 2; relative.some((rel) => rel.split(path.sep)[0].toLowerCase() === simpleName.toLowerCase()); n++) simpleName = `simple_${n}`;
   const simpleFolder = path.join(out, simpleName);
   const inputs: ModularizeInput[] = scenarios.map((file, index) => ({ path: file, output: path.join(out, relative[index]), ...(texts.get(file) as { text: string; document: XmlDocument }) }));
+  // An output that exists is compared with the inputs by identity (links too), each file looked at once.
+  const identity = (file: string) => {
+    const stat = fs.statSync(file);
+    return `${stat.dev}:${stat.ino}`;
+  };
+  const inputIdentities = fs.existsSync(out) ? new Set(files.map(identity)) : new Set<string>();
   for (const input of inputs) {
-    if (files.some((file) => isSameFile(file, input.output))) throw new InputError(`refusing to write ${shown(input.output)}: it is an input; choose another OUT`);
+    if (fs.existsSync(input.output) && inputIdentities.has(identity(input.output))) throw new InputError(`refusing to write ${shown(input.output)}: it is an input; choose another OUT`);
   }
 
   const result = await modularize(inputs, { simpleFolder });
