@@ -23,13 +23,13 @@ function innermost(elements: XmlElement[], suffix: string): string[] {
 
 /**
  * A file stem that says what a group does: its actions in order (`speed_lane_change`), and what
- * starts it when that tells groups apart (`speed_after_simulation_time`); `behaviour` when it has none.
+ * starts it (`speed_after_simulation_time`); `no_action` for a group without actions.
  */
 export function behaviourName(elements: XmlElement[]): string {
   const actions = innermost(elements, 'Action').filter((name) => name !== 'private' && name !== 'global' && name !== 'user_defined');
   const conditions = innermost(elements, 'Condition');
   const parts = actions.slice(0, 3);
-  if (parts.length === 0) parts.push('behaviour');
+  if (parts.length === 0) parts.push('no_action');
   if (conditions.length > 0) parts.push('after', conditions[0]);
   return parts.join('_').replace(/[^a-z0-9_]/g, '_');
 }
