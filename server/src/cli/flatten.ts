@@ -15,7 +15,9 @@ async function flattenInputs(inputs: string[], outputs: string[] | undefined, op
   const results = [];
   let problems: Problem[] = [];
   for (const [index, input] of inputs.entries()) {
-    const result = await flattener.flatten(mainOf(input), { force: options.force, outputPath: outputs?.[index] });
+    const output = outputs?.[index];
+    const standardOutput = output === undefined || output === '-';
+    const result = await flattener.flatten(mainOf(input), { force: options.force, outputPath: standardOutput ? undefined : output, standardOutput });
     results.push(result);
     problems = problems.concat(result.problems);
   }

@@ -118,7 +118,8 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
   const location = locateEsmini(options.esminiPath, options.base);
   if (!location.found) return { ...base, outcome: 'no-esmini', message: location.message, wallMs: elapsed() };
 
-  const flat = await flattener.flatten(main);
+  // Absolute file paths: the flattened file is run from a private folder (SPEC 11.6).
+  const flat = await flattener.flatten(main, { standardOutput: true });
   const flattenProblems = flat.problems;
   if (flat.text === undefined) {
     const errors = flattenProblems.filter((problem) => problem.severity === 'error').length;
