@@ -156,6 +156,10 @@ describe('cli: outputs reach their files wherever they are written (SPEC 11.6), 
     assert.equal(flatten.status, 0, flatten.stderr);
     for (const named of namedPaths(path.join(fresh, 'cut-in.xosc'))) assert.ok(named.startsWith(fresh + path.sep), `${named} lies in the fresh folder`);
     assertSameRun((await runAlone(path.join(fresh, 'cut-in.xosc'))).steps, original, 'self-contained package');
+    // Run in esmini (the CLI's run) from a private folder, with no road path: the same steps.
+    const ran = runCli(['run', 'cut-in.mosc', '--esmini', esminiBinary, '--csv', 'run.csv'], { cwd: fresh });
+    assert.equal(ran.status, 0, ran.stderr);
+    assertSameRun(readEsminiCsv(path.join(fresh, 'run.csv')), original, 'self-contained package run by the run command');
   });
 });
 
