@@ -5,7 +5,9 @@ import * as os from 'node:os';
 import * as path from 'node:path';
 import { esminiBinary, EsminiStep, readEsminiCsv, requireEsmini } from '../support/esmini';
 import { esminiXodrDir } from '../support/esminiBinaries';
-import { runCli } from '../support/fixtures';
+import JSZip from 'jszip';
+import { runCli, scenario, simpleGroup } from '../support/fixtures';
+import { temporaryWorkspace } from '../support/workspace';
 import { sharedDir } from '../support/paths';
 
 /**
@@ -165,4 +167,43 @@ describe('cli: outputs reach their files wherever they are written (SPEC 11.6), 
 
 function escapeRegExp(text: string): string {
   return text.replace(/[.*+?^${}()|[\]\\]/g, '\\$&');
+}
+
+describe('cli: the warnings pack prints about files a package reaches outside itself', () => {
+  const withRoad = (logicFile: string) =>
+    scenario(simpleGroup('Go')).replace('<Entities>', `<ParameterDeclarations>\n    <ParameterDeclaration name="Road" parameterType="string" value="../xodr/road.xodr"/>\n  </ParameterDeclarations>\n  <RoadNetwork>\n    <LogicFile filepath="${logicFile}"/>\n  </RoadNetwork>\n  <Entities>`);
+
+  it('-cxm files: each road named, at its line, with what it is written as in the package', async () => {
+    const root = temporaryWorkspace({ 'xodr/road.xodr': '<OpenDRIVE/>', 'xosc/main.xosc': withRoad('../xodr/road.xodr') });
+    fs.mkdirSync(path.join(root, 'out', 'deeper'), { recursive: true });
+    const run = runCli(['-cxm', 'xosc/main.xosc', 'out/deeper/pkg.mosc'], { cwd: root });
+    assert.equal(run.status, 0, run.stderr);
+    assert.match(run.stderr, new RegExp(`^xosc/main\\.xosc:\\d+:\\d+: warning: the package reaches the file ${escapeRegExp(path.join(root, 'xodr', 'road.xodr'))} outside itself \\(written '\\.\\./\\.\\./xodr/road\\.xodr', relative to the package's folder\\)`, 'm'));
+    const entries = await unzipped(path.join(root, 'out', 'deeper', 'pkg.mosc'));
+    assert.match(entries.get('main.xosc') ?? '', /<LogicFile filepath="\.\.\/\.\.\/xodr\/road\.xodr"\/>/);
+  });
+
+  it('a path naming a parameter is left as written and said so', () => {
+    const root = temporaryWorkspace({ 'xodr/road.xodr': '<OpenDRIVE/>', 'xosc/main.xosc': withRoad('$Road') });
+    const run = runCli(['pack', 'xosc', '-o', 'pkg.mosc', '--self-contained'], { cwd: root });
+    assert.equal(run.status, 0, run.stderr);
+    assert.match(run.stderr, /warning: the package reaches the file .*road\.xodr outside itself; the package does not run without it\n\s*hint: '\$Road' names a parameter, so it is left as written/);
+  });
+
+  it('--self-contained stores the road at a package-relative path and warns about nothing', async () => {
+    const root = temporaryWorkspace({ 'xodr/road.xodr': '<OpenDRIVE/>', 'xosc/main.xosc': withRoad('../xodr/road.xodr') });
+    const run = runCli(['pack', 'xosc', '-o', 'pkg.mosc', '--self-contained'], { cwd: root });
+    assert.equal(run.status, 0, run.stderr);
+    assert.doesNotMatch(run.stderr, /warning/);
+    const entries = await unzipped(path.join(root, 'pkg.mosc'));
+    assert.deepEqual([...entries.keys()].sort(), ['files/road.xodr', 'main.xosc']);
+    assert.match(entries.get('main.xosc') ?? '', /<LogicFile filepath="files\/road\.xodr"\/>/);
+  });
+});
+
+async function unzipped(file: string): Promise<Map<string, string>> {
+  const zip = await JSZip.loadAsync(fs.readFileSync(file));
+  const entries = new Map<string, string>();
+  for (const [name, entry] of Object.entries(zip.files)) if (!entry.dir) entries.set(name, await entry.async('string'));
+  return entries;
 }

@@ -124,11 +124,9 @@ async function rebasedForPackage(place: PackPlace, ref: SourceRef, bytes: Uint8A
       severity: 'warning',
       code: 'file-path',
       message: `the package reaches ${resolved.kind === 'directory' ? 'the folder' : 'the file'} ${resolved.disk} outside itself${resolved.rewritten !== undefined ? ` (written '${resolved.rewritten}', relative to the package's folder)` : ''}; the package does not run without it`,
-      hint: resolved.viaParameter ? 'write the path without a parameter, or store the file beside the package' : 'pack with --self-contained to store it inside the package',
+      // A path naming a parameter is never rewritten (SPEC 11.6), so not carried either.
+      hint: resolved.viaParameter ? `'${attribute.value}' names a parameter, so it is left as written; write the path itself to have it rebased or carried` : 'pack with --self-contained to store it inside the package',
     });
-  }
-  for (const finding of rebase.findings) {
-    place.problems.push({ source: ref, range: document.lines.range(finding.site.attribute.valueStart, finding.site.attribute.valueEnd), severity: finding.severity, code: 'file-path', message: finding.message });
   }
   if (rebase.edits.length === 0) return bytes;
   return new TextEncoder().encode(declareUtf8(applyEdits(text, rebase.edits)));
