@@ -34,6 +34,8 @@ Options:
   --root DIR                where the search upward from an unpacked folder stops (default: the
                             working directory, or the input's folder when it lies elsewhere)
   --include-scenario-path   pack: also store files found through SCENARIO_PATH
+  --self-contained          pack: store the road networks, catalogs and other files the scenarios
+                            name inside the package (else pack warns about each one left outside)
   --format text|json        output format of check and stats
   --simulator asam|carla|esmini
                             check, flatten: also warn about what this simulator does not run

@@ -13,7 +13,7 @@ import { applyEdits, parameterAttributeSpans } from './edits';
 import { link } from './link';
 import { outputSchemaProblems, overrideValueProblems } from './outputSchema';
 import { problemAt } from './report';
-import { pathBaseOf, rebaseFlattened } from './rebase';
+import { PackagedFile, pathBaseOf, rebaseFlattened } from './rebase';
 import { render } from './render';
 import { AnalysisResult, FlatSource, FlattenOptions, FlattenResult, OVERRIDE_PROBLEM_CODES, SchemaOptions } from './types';
 
@@ -72,7 +72,7 @@ export class Flattener {
   /** Flattens the scenario `main` (a `main.xosc` on disk or inside a package) into plain OpenSCENARIO. */
   async flatten(main: SourceRef, options: FlattenOptions = {}): Promise<FlattenResult> {
     // Standard output names files absolutely (SPEC 11.6); a file names them from its own folder.
-    const outputDirectory = options.standardOutput ? undefined : path.dirname(path.resolve(options.outputPath ?? main.disk));
+    const outputPath = options.standardOutput ? undefined : path.resolve(options.outputPath ?? path.join(pathBaseOf(main), 'flattened.xosc'));
     const analysis = await this.analyze(main);
     const source = this.rendered(analysis.source);
     // The output is checked strictly against the schema too; its problems are reported where the source wrote them.
@@ -91,10 +91,12 @@ export class Flattener {
       (problem) => problem.severity === 'error' && !(options.force && (OVERRIDE_PROBLEM_CODES.has(problem.code) || SCHEMA_PROBLEM_CODES.has(problem.code))),
     );
     let text: string | undefined;
+    let files: PackagedFile[] = [];
     if (source.text !== undefined && blocking.length === 0) {
       const model = source.model ?? buildModel(parseXml(source.text));
-      const rebase = await rebaseFlattened(source, model, outputDirectory, (diskPath) => this.store.kindOf(diskPath));
+      const rebase = await rebaseFlattened(source, model, outputPath, this.store);
       found.push(...rebase.problems);
+      files = rebase.files;
       // Removing whole attributes and replacing path values keeps a well-formed text well-formed, so the rendered model is the check.
       const stripped = parameterAttributeSpans(model).map((span) => ({ ...span, text: '' }));
       text = declareUtf8(applyEdits(model.document.text, [...stripped, ...rebase.edits]));
@@ -102,7 +104,7 @@ export class Flattener {
     if (text !== undefined && source.model && !isWellFormed(source.model.document)) {
       throw new Error('internal error: the flattened output is not well-formed XML');
     }
-    return { text, problems: uniqueProblems(found), source };
+    return { text, problems: uniqueProblems(found), source, files };
   }
 
   /** Reads (and, when it holds references, flattens) one file; cached per file. */

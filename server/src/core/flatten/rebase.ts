@@ -3,7 +3,7 @@ import { Evaluator, semanticModelOf } from '../semantics';
 import { ScenarioModel } from '../model';
 import { Problem, ZERO_RANGE } from '../problems';
 import type { FileKind } from '../sources/host';
-import { SourceRef } from '../sources';
+import { normalizeEntryName, ScenarioStore, SourceRef } from '../sources';
 import { escapeAttributeValue, selfAndDescendants, XmlAttribute, XmlDocument, XmlElement } from '../xml';
 import type { TextEdit } from './edits';
 import { originOf } from './origin';
@@ -173,33 +173,86 @@ export function pathBaseOf(ref: SourceRef): string {
   return path.dirname(ref.disk);
 }
 
+/** A file stored in a package that an output names: written beside the output (in `<name>.files/`) so that the output runs. */
+export interface PackagedFile {
+  /** Where it is written, absolute. */
+  path: string;
+  bytes: Uint8Array;
+}
+
+/** The package files a path written in a packaged file names: the entry itself, or a folder's direct files. */
+async function packagedEntries(store: ScenarioStore, ref: SourceRef, value: string): Promise<{ name: string; files: [string, Uint8Array][] } | undefined> {
+  if (ref.entries.length === 0 || path.isAbsolute(value) || namesParameter(value)) return undefined;
+  const packageRef: SourceRef = { disk: ref.disk, entries: ref.entries.slice(0, -1) };
+  const entry = ref.entries[ref.entries.length - 1];
+  const folder = entry.includes('/') ? entry.slice(0, entry.lastIndexOf('/')) : '';
+  const name = normalizeEntryName(folder ? `${folder}/${value}` : value);
+  if (!name) return undefined;
+  const contents = await store.readPackage(packageRef).catch(() => undefined);
+  if (!contents) return undefined;
+  const own = contents.entries.get(name);
+  if (own) return { name, files: [[name, own]] };
+  const files = [...contents.entries].filter(([candidate]) => candidate.startsWith(`${name}/`) && !candidate.slice(name.length + 1).includes('/'));
+  return files.length > 0 ? { name, files } : undefined;
+}
+
 /**
  * The rebasing of a flattened output (`model`: the rendered text of `source`): each element's paths
  * resolve from the folder of the file it was written in (carried catalog locations are written
- * relative to the main file's folder), and are rewritten for `outputDirectory` (absolute when undefined).
- * Findings come back as problems at the place each path was written.
+ * relative to the main file's folder), and are rewritten for the output at `outputPath` (absolute when
+ * undefined: standard output). A path of a packaged file that names a file of its package (a
+ * self-contained package's road or catalog) names its copy in `<output name>.files/`, returned in
+ * `files` for the writer. Findings come back as problems at the place each path was written.
  */
 export async function rebaseFlattened(
   source: FlatSource,
   model: ScenarioModel,
-  outputDirectory: string | undefined,
-  kindOf: (diskPath: string) => Promise<FileKind>,
-): Promise<{ edits: TextEdit[]; resolved: ResolvedPath[]; problems: Problem[] }> {
+  outputPath: string | undefined,
+  store: ScenarioStore,
+): Promise<{ edits: TextEdit[]; resolved: ResolvedPath[]; problems: Problem[]; files: PackagedFile[] }> {
   const flattenedHere = model === source.model;
   const originFor = (element: XmlElement) => (flattenedHere ? originOf(source, element) : { source, element });
-  const rebase = await rebasePaths({ document: model.document, baseOf: (element) => pathBaseOf(originFor(element).source.ref), outputDirectory, kindOf });
-  const problems = rebase.findings.map((finding): Problem => {
-    const origin = originFor(finding.site.element);
+  const problemAtOrigin = (element: XmlElement, attributeName: string, message: string, hint: string): Problem => {
+    const origin = originFor(element);
     const document = (origin.source.original ?? origin.source.model)?.document;
-    const written = origin.element.attributes.find((candidate) => candidate.name === finding.site.attribute.name);
+    const written = origin.element.attributes.find((candidate) => candidate.name === attributeName);
     return {
       source: origin.source.ref,
       range: document && written ? document.lines.range(written.valueStart, written.valueEnd) : ZERO_RANGE,
-      severity: finding.severity,
+      severity: 'warning',
       code: 'file-path',
-      message: finding.message,
-      hint: 'declare the parameter with an absolute path, or write the output beside this file',
+      message,
+      hint,
     };
+  };
+  const outputDirectory = outputPath === undefined ? undefined : path.dirname(path.resolve(outputPath));
+  const problems: Problem[] = [];
+  const edits: TextEdit[] = [];
+  const files = new Map<string, Uint8Array>();
+  // Paths into the package a file was read from: its copies beside the output.
+  const inPackage = new Set<XmlElement>();
+  for (const site of filePathSites(model.document.root)) {
+    const ref = originFor(site.element).source.ref;
+    const packaged = await packagedEntries(store, ref, site.attribute.value);
+    if (!packaged) continue;
+    inPackage.add(site.element);
+    if (outputPath === undefined || outputDirectory === undefined) {
+      problems.push(problemAtOrigin(site.element, site.attribute.name, `'${site.attribute.value}' names ${packaged.name} inside the package, which standard output cannot carry; it is left as written`, 'flatten to a file: the package\'s files are then written beside it'));
+      continue;
+    }
+    const folder = `${path.basename(outputPath).replace(/\.xosc$/i, '')}.files`;
+    for (const [entry, bytes] of packaged.files) files.set(path.join(outputDirectory, folder, ...entry.split('/')), bytes);
+    const text = written(`${folder}/${packaged.name}`, site.attribute.value);
+    if (text !== site.attribute.value) edits.push({ start: site.attribute.valueStart, end: site.attribute.valueEnd, text: escapeAttributeValue(text, site.attribute.quote) });
+  }
+  const rebase = await rebasePaths({
+    document: model.document,
+    baseOf: (element) => (inPackage.has(element) ? undefined : pathBaseOf(originFor(element).source.ref)),
+    outputDirectory,
+    kindOf: (diskPath) => store.kindOf(diskPath),
   });
-  return { edits: rebase.edits, resolved: rebase.resolved, problems };
+  for (const finding of rebase.findings) {
+    problems.push(problemAtOrigin(finding.site.element, finding.site.attribute.name, finding.message, 'declare the parameter with an absolute path, or write the output beside this file'));
+  }
+  return { edits: [...edits, ...rebase.edits], resolved: rebase.resolved, problems, files: [...files].map(([filePath, bytes]) => ({ path: filePath, bytes })) };
 }

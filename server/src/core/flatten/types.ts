@@ -5,6 +5,7 @@ import { SchemaVersionSetting } from '../schema/version';
 import { Declaration, DocumentSemantics } from '../semantics';
 import { Resolution, SourceRef } from '../sources';
 import { XmlElement } from '../xml';
+import type { PackagedFile } from './rebase';
 
 /** Problems that the original tool ignored silently: `--force` writes the output despite them. */
 export const OVERRIDE_PROBLEM_CODES: ReadonlySet<ProblemCode> = new Set<ProblemCode>([
@@ -141,4 +142,6 @@ export interface FlattenResult {
   text: string | undefined;
   problems: Problem[];
   source: FlatSource;
+  /** Files of a package the output names (a self-contained package's roads and catalogs): written beside it, in `<name>.files/`. */
+  files: PackagedFile[];
 }
