@@ -103,6 +103,23 @@ describe('cli: modularize', function () {
     }
   });
 
+  it('file paths of the mains and simple scenarios are rebased onto their folders: they reach the same road', () => {
+    const withRoad = (groups: string) => scenario(groups).replace('  <Entities>', '  <RoadNetwork>\n    <LogicFile filepath="roads/r.xodr"/>\n  </RoadNetwork>\n  <Entities>');
+    const root = temporaryWorkspace({ 'lib/a.xosc': withRoad(speedGroup('A.Go', '10')), 'lib/b.xosc': withRoad(speedGroup('B.Go', '20')), 'lib/roads/r.xodr': '<OpenDRIVE/>', 'elsewhere/deep/.keep': '' });
+    const run = runCli(['modularize', 'lib', '-o', 'elsewhere/deep/out'], { cwd: root });
+    assert.equal(run.status, 0, run.stderr);
+    const road = path.join(root, 'lib/roads/r.xodr');
+    for (const file of ['elsewhere/deep/out/a.xosc', 'elsewhere/deep/out/simple/speed.xosc']) {
+      const written = /<LogicFile filepath="([^"]+)"\/>/.exec(fs.readFileSync(path.join(root, file), 'utf8'));
+      assert.ok(written, file);
+      assert.equal(path.resolve(path.dirname(path.join(root, file)), written[1]), road, file);
+    }
+    // Flattened beside its input, the main's output names the road as the input does.
+    const flattened = runCli(['flatten', 'elsewhere/deep/out/b.xosc', '-o', 'lib/b.flat.xosc'], { cwd: root });
+    assert.equal(flattened.status, 0, flattened.stderr);
+    assert.equal(firstDifference(fs.readFileSync(path.join(root, 'lib/b.flat.xosc'), 'utf8'), fs.readFileSync(path.join(root, 'lib/b.xosc'), 'utf8')), undefined);
+  });
+
   it('no recurring group: nothing extracted, said so, nothing written', () => {
     const root = temporaryWorkspace({ 'lib/a.xosc': scenario(speedGroup('A', '10')), 'lib/b.xosc': scenario('') });
     const run = runCli(['modularize', 'lib', '-o', 'out'], { cwd: root });
