@@ -44,18 +44,37 @@ function generator(seed) {
 }
 
 const BEHAVIOURS = [
-  (v) => `<LongitudinalAction><SpeedAction><SpeedActionDynamics dynamicsShape="step" value="0" dynamicsDimension="time"/><SpeedActionTarget><AbsoluteTargetSpeed value="${v}"/></SpeedActionTarget></SpeedAction></LongitudinalAction>`,
-  (v) => `<LateralAction><LaneChangeAction><LaneChangeActionDynamics dynamicsShape="sinusoidal" value="${v}" dynamicsDimension="time"/><LaneChangeTarget><RelativeTargetLane entityRef="ego" value="1"/></LaneChangeTarget></LaneChangeAction></LateralAction>`,
+  (v) =>
+    `<LongitudinalAction><SpeedAction><SpeedActionDynamics dynamicsShape="step" value="0" dynamicsDimension="time"/><SpeedActionTarget><AbsoluteTargetSpeed value="${v}"/></SpeedActionTarget></SpeedAction></LongitudinalAction>`,
+  (v) =>
+    `<LateralAction><LaneChangeAction><LaneChangeActionDynamics dynamicsShape="sinusoidal" value="${v}" dynamicsDimension="time"/><LaneChangeTarget><RelativeTargetLane entityRef="ego" value="1"/></LaneChangeTarget></LaneChangeAction></LateralAction>`,
   (v) => `<TeleportAction><Position><WorldPosition x="${v}" y="0" z="0" h="0"/></Position></TeleportAction>`,
-  (v) => `<LongitudinalAction><SpeedAction><SpeedActionDynamics dynamicsShape="linear" value="${v}" dynamicsDimension="rate"/><SpeedActionTarget><RelativeTargetSpeed entityRef="ego" value="0" speedTargetValueType="delta" continuous="false"/></SpeedActionTarget></SpeedAction></LongitudinalAction>`,
+  (v) =>
+    `<LongitudinalAction><SpeedAction><SpeedActionDynamics dynamicsShape="linear" value="${v}" dynamicsDimension="rate"/><SpeedActionTarget><RelativeTargetSpeed entityRef="ego" value="0" speedTargetValueType="delta" continuous="false"/></SpeedActionTarget></SpeedAction></LongitudinalAction>`,
 ];
 
 /** A scenario of `groups` maneuver groups, each one of the behaviours above with its own values. */
 function generatedScenario(random, index) {
-  const lines = ['<?xml version="1.0" encoding="UTF-8"?>', '<OpenSCENARIO>', `  <FileHeader revMajor="1" revMinor="0" date="2026-01-01T00:00:00" description="generated ${index}" author="bench"/>`, '  <ParameterDeclarations/>', '  <CatalogLocations/>', '  <RoadNetwork/>', '  <Entities>'];
+  const lines = [
+    '<?xml version="1.0" encoding="UTF-8"?>',
+    '<OpenSCENARIO>',
+    `  <FileHeader revMajor="1" revMinor="0" date="2026-01-01T00:00:00" description="generated ${index}" author="bench"/>`,
+    '  <ParameterDeclarations/>',
+    '  <CatalogLocations/>',
+    '  <RoadNetwork/>',
+    '  <Entities>',
+  ];
   const cars = ['ego', 'car1', 'car2', 'car3'];
   for (const car of cars) lines.push(`    <ScenarioObject name="${car}"/>`);
-  lines.push('  </Entities>', '  <Storyboard>', '    <Init>', '      <Actions/>', '    </Init>', '    <Story name="S">', '      <Act name="A">');
+  lines.push(
+    '  </Entities>',
+    '  <Storyboard>',
+    '    <Init>',
+    '      <Actions/>',
+    '    </Init>',
+    '    <Story name="S">',
+    '      <Act name="A">',
+  );
   for (let group = 0; group < 6; group++) {
     const kind = Math.floor(random() * BEHAVIOURS.length);
     const actor = cars[1 + Math.floor(random() * 3)];
@@ -91,24 +110,31 @@ function generatedScenario(random, index) {
 
 const work = mkdtempSync(path.join(tmpdir(), 'm2s-modularize-bench-'));
 try {
-  console.log(`modularize benchmark (median of ${runs} runs, wall time of the whole process; node ${process.version}; load average ${loadavg()[0].toFixed(1)})`);
+  console.log(
+    `modularize benchmark (median of ${runs} runs, wall time of the whole process; node ${process.version}; load average ${loadavg()[0].toFixed(1)})`,
+  );
   if (existsSync(library)) {
     const inputs = readdirSync(library)
       .filter((folder) => existsSync(path.join(library, folder, 'result.xosc')))
       .map((folder) => path.join(library, folder, 'result.xosc'));
     const samples = Array.from({ length: runs }, () => measure(inputs, path.join(work, 'library-out')));
     const ms = median(samples);
-    console.log(`  the paper's library (${inputs.length} files)       ${ms.toFixed(0).padStart(7)} ms  ${ms < 2000 ? 'within' : 'OVER'} the 2 s target; ${samples[0].total}`);
+    console.log(
+      `  the paper's library (${inputs.length} files)       ${ms.toFixed(0).padStart(7)} ms  ${ms < 2000 ? 'within' : 'OVER'} the 2 s target; ${samples[0].total}`,
+    );
   } else {
     console.log(`  (library skipped: ${library} is absent)`);
   }
   const generated = path.join(work, 'generated');
   mkdirSync(generated);
   const random = generator(19);
-  for (let i = 0; i < 500; i++) writeFileSync(path.join(generated, `scenario_${String(i).padStart(3, '0')}.xosc`), generatedScenario(random, i));
+  for (let i = 0; i < 500; i++)
+    writeFileSync(path.join(generated, `scenario_${String(i).padStart(3, '0')}.xosc`), generatedScenario(random, i));
   const samples = Array.from({ length: Math.max(1, Math.min(runs, 2)) }, () => measure([generated], path.join(work, 'generated-out')));
   const ms = median(samples);
-  console.log(`  500 generated scenarios                 ${ms.toFixed(0).padStart(7)} ms  ${ms < 30000 ? 'within' : 'OVER'} the 30 s target; ${samples[0].total}`);
+  console.log(
+    `  500 generated scenarios                 ${ms.toFixed(0).padStart(7)} ms  ${ms < 30000 ? 'within' : 'OVER'} the 30 s target; ${samples[0].total}`,
+  );
 } finally {
   rmSync(work, { recursive: true, force: true });
 }

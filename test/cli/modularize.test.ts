@@ -45,7 +45,10 @@ describe('cli: modularize', function () {
   it("the paper's library: writes the mains and simple scenarios, each main flattens back equivalent, the reduction printed", function () {
     requireCorpus(this);
     const root = temporaryWorkspace();
-    const folders = fs.readdirSync(libraryDir).filter((folder) => fs.existsSync(path.join(libraryDir, folder, 'result.xosc'))).sort();
+    const folders = fs
+      .readdirSync(libraryDir)
+      .filter((folder) => fs.existsSync(path.join(libraryDir, folder, 'result.xosc')))
+      .sort();
     const inputs = folders.map((folder) => path.join(libraryDir, folder, 'result.xosc'));
     const before = snapshot(libraryDir);
     const run = runCli(['modularize', ...inputs, '-o', 'out'], { cwd: root });
@@ -63,24 +66,42 @@ describe('cli: modularize', function () {
     for (const folder of folders) {
       const flattened = runCli(['flatten', path.join(root, 'out', folder, 'result.xosc')], { cwd: sharedDir });
       assert.equal(flattened.status, 0, flattened.stderr);
-      assert.equal(firstDifference(flattened.stdout, fs.readFileSync(path.join(libraryDir, folder, 'result.xosc'), 'utf8')), undefined, folder);
+      assert.equal(
+        firstDifference(flattened.stdout, fs.readFileSync(path.join(libraryDir, folder, 'result.xosc'), 'utf8')),
+        undefined,
+        folder,
+      );
       equivalent++;
     }
     assert.equal(equivalent, 31);
     assert.deepEqual(snapshot(libraryDir), before, 'inputs never change');
-    assert.deepEqual(listFiles(root).filter((file) => !file.startsWith('out/')), [], 'no temporary folder left');
+    assert.deepEqual(
+      listFiles(root).filter((file) => !file.startsWith('out/')),
+      [],
+      'no temporary folder left',
+    );
   });
 
   it('--format json and --dry-run: the same report, nothing written', () => {
-    const root = temporaryWorkspace({ 'lib/a.xosc': scenario(speedGroup('A.Go', '10')), 'lib/b.xosc': scenario(speedGroup('B.Go', '20') + speedGroup('C.Go', '10')) });
+    const root = temporaryWorkspace({
+      'lib/a.xosc': scenario(speedGroup('A.Go', '10')),
+      'lib/b.xosc': scenario(speedGroup('B.Go', '20') + speedGroup('C.Go', '10')),
+    });
     const run = runCli(['modularize', 'lib', '-o', 'out', '--dry-run', '--format', 'json'], { cwd: root });
     assert.equal(run.status, 0, run.stderr);
-    const report = JSON.parse(run.stdout) as { written: boolean; simpleScenarios: { file: string; parameterAttributes: string[]; uses: { main: string; overrides: unknown[] }[] }[]; totals: { linesBefore: number; linesAfter: number } };
+    const report = JSON.parse(run.stdout) as {
+      written: boolean;
+      simpleScenarios: { file: string; parameterAttributes: string[]; uses: { main: string; overrides: unknown[] }[] }[];
+      totals: { linesBefore: number; linesAfter: number };
+    };
     assert.equal(report.written, false);
     assert.equal(report.simpleScenarios.length, 1);
     assert.equal(path.relative(root, report.simpleScenarios[0].file), path.join('out', 'simple', 'speed.xosc'));
     assert.deepEqual(report.simpleScenarios[0].parameterAttributes, ['AbsoluteTargetSpeed.value']);
-    assert.deepEqual(report.simpleScenarios[0].uses.map((use) => path.relative(root, use.main)), ['out/a.xosc', 'out/b.xosc', 'out/b.xosc']);
+    assert.deepEqual(
+      report.simpleScenarios[0].uses.map((use) => path.relative(root, use.main)),
+      ['out/a.xosc', 'out/b.xosc', 'out/b.xosc'],
+    );
     assert.ok(report.totals.linesBefore > 0);
     assert.ok(!fs.existsSync(path.join(root, 'out')));
   });
@@ -89,7 +110,8 @@ describe('cli: modularize', function () {
     const root = temporaryWorkspace({
       'lib/a.xosc': scenario(speedGroup('A.Go', '10')),
       'lib/deep/b.xosc': scenario(speedGroup('B.Go', '20')),
-      'lib/Catalogs/cars.xosc': '<?xml version="1.0"?>\n<OpenSCENARIO><FileHeader revMajor="1" revMinor="0" date="2020-01-01T00:00:00" description="" author=""/><Catalog name="cars"/></OpenSCENARIO>\n',
+      'lib/Catalogs/cars.xosc':
+        '<?xml version="1.0"?>\n<OpenSCENARIO><FileHeader revMajor="1" revMinor="0" date="2020-01-01T00:00:00" description="" author=""/><Catalog name="cars"/></OpenSCENARIO>\n',
     });
     const run = runCli(['modularize', 'lib', '-o', 'out'], { cwd: root });
     assert.equal(run.status, 0, run.stderr);
@@ -104,8 +126,14 @@ describe('cli: modularize', function () {
   });
 
   it('file paths of the mains and simple scenarios are rebased onto their folders: they reach the same road', () => {
-    const withRoad = (groups: string) => scenario(groups).replace('  <Entities>', '  <RoadNetwork>\n    <LogicFile filepath="roads/r.xodr"/>\n  </RoadNetwork>\n  <Entities>');
-    const root = temporaryWorkspace({ 'lib/a.xosc': withRoad(speedGroup('A.Go', '10')), 'lib/b.xosc': withRoad(speedGroup('B.Go', '20')), 'lib/roads/r.xodr': '<OpenDRIVE/>', 'elsewhere/deep/.keep': '' });
+    const withRoad = (groups: string) =>
+      scenario(groups).replace('  <Entities>', '  <RoadNetwork>\n    <LogicFile filepath="roads/r.xodr"/>\n  </RoadNetwork>\n  <Entities>');
+    const root = temporaryWorkspace({
+      'lib/a.xosc': withRoad(speedGroup('A.Go', '10')),
+      'lib/b.xosc': withRoad(speedGroup('B.Go', '20')),
+      'lib/roads/r.xodr': '<OpenDRIVE/>',
+      'elsewhere/deep/.keep': '',
+    });
     const run = runCli(['modularize', 'lib', '-o', 'elsewhere/deep/out'], { cwd: root });
     assert.equal(run.status, 0, run.stderr);
     const road = path.join(root, 'lib/roads/r.xodr');
@@ -117,7 +145,10 @@ describe('cli: modularize', function () {
     // Flattened beside its input, the main's output names the road as the input does.
     const flattened = runCli(['flatten', 'elsewhere/deep/out/b.xosc', '-o', 'lib/b.flat.xosc'], { cwd: root });
     assert.equal(flattened.status, 0, flattened.stderr);
-    assert.equal(firstDifference(fs.readFileSync(path.join(root, 'lib/b.flat.xosc'), 'utf8'), fs.readFileSync(path.join(root, 'lib/b.xosc'), 'utf8')), undefined);
+    assert.equal(
+      firstDifference(fs.readFileSync(path.join(root, 'lib/b.flat.xosc'), 'utf8'), fs.readFileSync(path.join(root, 'lib/b.xosc'), 'utf8')),
+      undefined,
+    );
   });
 
   it('no recurring group: nothing extracted, said so, nothing written', () => {
@@ -129,7 +160,11 @@ describe('cli: modularize', function () {
   });
 
   it('an input that does not parse: named with its line, nothing written', () => {
-    const root = temporaryWorkspace({ 'lib/a.xosc': scenario(speedGroup('A.Go', '10')), 'lib/b.xosc': scenario(speedGroup('B.Go', '10')), 'lib/broken.xosc': '<OpenSCENARIO>\n  <Storyboard>\n</OpenSCENARIO>\n' });
+    const root = temporaryWorkspace({
+      'lib/a.xosc': scenario(speedGroup('A.Go', '10')),
+      'lib/b.xosc': scenario(speedGroup('B.Go', '10')),
+      'lib/broken.xosc': '<OpenSCENARIO>\n  <Storyboard>\n</OpenSCENARIO>\n',
+    });
     const run = runCli(['modularize', 'lib', '-o', 'out'], { cwd: root });
     assert.equal(run.status, 1, run.stderr);
     assertNoTrace(run.stderr);
@@ -177,7 +212,14 @@ describe('cli: modularize', function () {
     const report = JSON.parse(run.stdout) as { simpleScenarios: unknown[]; files: { input: string; main: string; imports: number }[] };
     assert.ok(report.simpleScenarios.length >= 3, `${report.simpleScenarios.length} simple scenarios`);
     const sharing = new Set(report.files.filter((file) => file.imports > 0).map((file) => path.basename(file.input)));
-    const chosen = ['acc-test.xosc', 'alks-test.xosc', 'left-hand-traffic_by_heading.xosc', 'left-hand-traffic_using_road_rule.xosc', 'highway_merge.xosc', 'speed-profile.xosc'];
+    const chosen = [
+      'acc-test.xosc',
+      'alks-test.xosc',
+      'left-hand-traffic_by_heading.xosc',
+      'left-hand-traffic_using_road_rule.xosc',
+      'highway_merge.xosc',
+      'speed-profile.xosc',
+    ];
     for (const name of chosen) assert.ok(sharing.has(name), `${name} imports a shared group (${[...sharing].join(', ')})`);
     fs.mkdirSync(path.join(root, 'flat'));
     for (const name of chosen) {

@@ -96,7 +96,9 @@ describe('core: modularize', function () {
     }
     assert.equal(equivalent, 31);
     assert.equal(result.totals.linesBefore, 21_243);
-    console.log(`      library: ${result.totals.linesBefore.toLocaleString('en-US')} -> ${result.totals.linesAfter.toLocaleString('en-US')} lines (${result.totals.reduction} %; the authors by hand: 10,810, 49.1 %)`);
+    console.log(
+      `      library: ${result.totals.linesBefore.toLocaleString('en-US')} -> ${result.totals.linesAfter.toLocaleString('en-US')} lines (${result.totals.reduction} %; the authors by hand: 10,810, 49.1 %)`,
+    );
     assert.ok(result.totals.linesAfter < 10_810, `${result.totals.linesAfter} lines`);
     assert.ok(!fs.existsSync(out), 'modularize itself writes nothing');
   });
@@ -120,9 +122,20 @@ describe('core: modularize', function () {
     assert.deepEqual(listed, ['AbsoluteTargetSpeed:value']);
     assert.match(behaviour.text, /<AbsoluteTargetSpeed parameterAttributes="value" value="10"\/>/);
     // The simple scenario declares the entities its group names.
-    assert.deepEqual(buildModel(simple).entities.map((entity) => entity.name).sort(), ['car', 'ego']);
-    assert.deepEqual(behaviour.uses.map((use) => use.overrides), [[], [], [{ key: 'value', value: '20' }]]);
-    assert.deepEqual(behaviour.uses.map((use) => use.outerName), ['Lead', 'Other', 'Follow']);
+    assert.deepEqual(
+      buildModel(simple)
+        .entities.map((entity) => entity.name)
+        .sort(),
+      ['car', 'ego'],
+    );
+    assert.deepEqual(
+      behaviour.uses.map((use) => use.overrides),
+      [[], [], [{ key: 'value', value: '20' }]],
+    );
+    assert.deepEqual(
+      behaviour.uses.map((use) => use.outerName),
+      ['Lead', 'Other', 'Follow'],
+    );
     assert.match(result.mains[1].text, /<ScenarioReference scenarioFileName="simple\/speed_after_traveled_distance\.xosc">/);
     const flattened = await flattenAll(result);
     for (const input of inputs) assert.equal(firstDifference(flattened.get(input.path) as string, input.text), undefined);
@@ -142,24 +155,44 @@ describe('core: modularize', function () {
   it('no recurring group: nothing extracted, the mains are the inputs', async () => {
     const inputs = [
       { path: '/virtual/in/a.xosc', output: '/virtual/out/a.xosc', text: scenario(speedGroup('A', 'car', '10')) },
-      { path: '/virtual/in/b.xosc', output: '/virtual/out/b.xosc', text: scenario(speedGroup('B', 'car', '10').replace('<TraveledDistanceCondition value="5"/>', '<StandStillCondition duration="1"/>')) },
+      {
+        path: '/virtual/in/b.xosc',
+        output: '/virtual/out/b.xosc',
+        text: scenario(
+          speedGroup('B', 'car', '10').replace('<TraveledDistanceCondition value="5"/>', '<StandStillCondition duration="1"/>'),
+        ),
+      },
     ];
     const result = await modularize(inputs, { simpleFolder: '/virtual/out/simple' });
     assert.equal(result.behaviours.length, 0);
-    assert.deepEqual(result.mains.map((main) => main.text), inputs.map((input) => input.text));
+    assert.deepEqual(
+      result.mains.map((main) => main.text),
+      inputs.map((input) => input.text),
+    );
     assert.equal(result.totals.reduction, 0);
   });
 
   it('two attributes that no key tells apart keep their groups inline unless the uses agree on them', async () => {
     // Two Events whose AbsoluteTargetSpeed paths are identical: one key would set both.
     const twice = (name: string, first: string, second: string) =>
-      speedGroup(name, 'car', first).replace(/(<Maneuver name="M">\n)([\s\S]*?<\/Event>\n)/, (_all, open: string, event: string) => open + event + event.replace('name="E"', 'name="E2"').replace(`value="${first}"`, `value="${second}"`));
-    const inputs = [twice('X.G', '1', '2'), twice('Y.G', '3', '4'), twice('Z.G', '3', '4')].map((groups, index) => ({ path: `/virtual/in/s${index}.xosc`, output: `/virtual/out/s${index}.xosc`, text: scenario(groups) }));
+      speedGroup(name, 'car', first).replace(
+        /(<Maneuver name="M">\n)([\s\S]*?<\/Event>\n)/,
+        (_all, open: string, event: string) =>
+          open + event + event.replace('name="E"', 'name="E2"').replace(`value="${first}"`, `value="${second}"`),
+      );
+    const inputs = [twice('X.G', '1', '2'), twice('Y.G', '3', '4'), twice('Z.G', '3', '4')].map((groups, index) => ({
+      path: `/virtual/in/s${index}.xosc`,
+      output: `/virtual/out/s${index}.xosc`,
+      text: scenario(groups),
+    }));
     const result = await modularize(inputs, { simpleFolder: '/virtual/out/simple' });
     assert.deepEqual(result.failures, []);
     assert.equal(result.behaviours.length, 1);
     assert.equal(result.behaviours[0].uses.length, 2);
-    assert.deepEqual(result.keptInline.map((kept) => kept.group), ['X.G']);
+    assert.deepEqual(
+      result.keptInline.map((kept) => kept.group),
+      ['X.G'],
+    );
     assert.match(result.keptInline[0].reason, /no key tells its attributes/);
     const flattened = await flattenAll(result);
     for (const input of inputs) assert.equal(firstDifference(flattened.get(input.path) as string, input.text), undefined);
@@ -168,13 +201,26 @@ describe('core: modularize', function () {
   it('names a behaviour after its actions and what starts it', () => {
     const group = parseXml(speedGroup('G', 'car', '1')).root;
     assert.ok(group);
-    assert.equal(behaviourName([group, ...group.children.flatMap(function all(element): typeof group[] { return [element, ...element.children.flatMap(all)]; })]), 'speed_after_traveled_distance');
+    assert.equal(
+      behaviourName([
+        group,
+        ...group.children.flatMap(function all(element): (typeof group)[] {
+          return [element, ...element.children.flatMap(all)];
+        }),
+      ]),
+      'speed_after_traveled_distance',
+    );
   });
 
   it('tells scenarios from catalogs, distributions and modular mains', () => {
     assert.equal(notAPlainScenario(scenario(speedGroup('G', 'car', '1'))), undefined);
     assert.match(notAPlainScenario('<OpenSCENARIO><FileHeader/><Catalog name="x"/></OpenSCENARIO>') ?? '', /catalog/);
     assert.match(notAPlainScenario('<OpenSCENARIO><FileHeader/><ParameterValueDistribution/></OpenSCENARIO>') ?? '', /distribution/);
-    assert.match(notAPlainScenario('<OpenSCENARIO><Storyboard><ManeuverGroup name="A"><ScenarioReference scenarioFileName="x.xosc"/></ManeuverGroup></Storyboard></OpenSCENARIO>') ?? '', /modular/);
+    assert.match(
+      notAPlainScenario(
+        '<OpenSCENARIO><Storyboard><ManeuverGroup name="A"><ScenarioReference scenarioFileName="x.xosc"/></ManeuverGroup></Storyboard></OpenSCENARIO>',
+      ) ?? '',
+      /modular/,
+    );
   });
 });

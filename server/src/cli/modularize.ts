@@ -46,10 +46,18 @@ function parseModularizeArguments(args: string[]): ModularizeArguments {
   }
   const { values, positionals } = parsed;
   if (positionals.length === 0) throw new UsageError('modularize needs input scenarios or folders');
-  if (values.output === undefined || values.output === '') throw new UsageError('modularize needs -o OUT, the folder to write the mains and simple scenarios to');
+  if (values.output === undefined || values.output === '')
+    throw new UsageError('modularize needs -o OUT, the folder to write the mains and simple scenarios to');
   const format = values.format ?? 'text';
   if (format !== 'text' && format !== 'json') throw new UsageError(`--format takes text or json, not '${format}'`);
-  return { inputs: positionals, out: path.resolve(values.output), force: values.force === true, dryRun: values['dry-run'] === true, format, quiet: values.quiet === true };
+  return {
+    inputs: positionals,
+    out: path.resolve(values.output),
+    force: values.force === true,
+    dryRun: values['dry-run'] === true,
+    format,
+    quiet: values.quiet === true,
+  };
 }
 
 /** Every .xosc file an input names: the file itself, or those below a folder (hidden folders skipped), sorted. */
@@ -98,7 +106,13 @@ async function writeAll(out: string, files: Map<string, string>): Promise<void> 
   if (fs.existsSync(out)) {
     for (const file of files.keys()) fs.mkdirSync(path.dirname(file), { recursive: true });
     const result = await writeFilesAtomic([...files].map(([target, data]) => ({ target, data })));
-    if (result.failed) throw Object.assign(new Error(`${shown(result.failed.target)}: ${result.failed.error.message}; ${result.written.length === 0 ? 'nothing was changed' : `only ${result.written.length} files were written`}`), { written: result.written.length });
+    if (result.failed)
+      throw Object.assign(
+        new Error(
+          `${shown(result.failed.target)}: ${result.failed.error.message}; ${result.written.length === 0 ? 'nothing was changed' : `only ${result.written.length} files were written`}`,
+        ),
+        { written: result.written.length },
+      );
     return;
   }
   const temporary = path.join(path.dirname(out), `.${path.basename(out)}.modularize-${process.pid}-${Date.now()}`);
@@ -115,7 +129,14 @@ async function writeAll(out: string, files: Map<string, string>): Promise<void> 
   }
 }
 
-function report(result: ModularizeResult, out: string, simpleFolder: string, written: boolean, io: CliOutput, format: 'text' | 'json'): void {
+function report(
+  result: ModularizeResult,
+  out: string,
+  simpleFolder: string,
+  written: boolean,
+  io: CliOutput,
+  format: 'text' | 'json',
+): void {
   const simpleLines = result.behaviours.map((behaviour) => countEditorLines(behaviour.text));
   if (format === 'json') {
     io.out(
@@ -128,9 +149,20 @@ function report(result: ModularizeResult, out: string, simpleFolder: string, wri
             group: behaviour.groupName,
             lines: simpleLines[index],
             parameterAttributes: behaviour.parameters,
-            uses: behaviour.uses.map((use) => ({ input: result.mains[use.occurrence.input].input, main: result.mains[use.occurrence.input].output, group: use.occurrence.group.name, overrides: use.overrides })),
+            uses: behaviour.uses.map((use) => ({
+              input: result.mains[use.occurrence.input].input,
+              main: result.mains[use.occurrence.input].output,
+              group: use.occurrence.group.name,
+              overrides: use.overrides,
+            })),
           })),
-          files: result.mains.map((main) => ({ input: main.input, main: main.output, linesBefore: main.linesBefore, linesAfter: main.linesAfter, imports: main.imports.length })),
+          files: result.mains.map((main) => ({
+            input: main.input,
+            main: main.output,
+            linesBefore: main.linesBefore,
+            linesAfter: main.linesAfter,
+            imports: main.imports.length,
+          })),
           keptInline: result.keptInline,
           totals: result.totals,
         },
@@ -141,26 +173,40 @@ function report(result: ModularizeResult, out: string, simpleFolder: string, wri
     return;
   }
   if (result.behaviours.length === 0) {
-    io.out(`no ManeuverGroup recurs across the ${result.mains.length} scenario${result.mains.length === 1 ? '' : 's'}: nothing extracted, nothing written`);
+    io.out(
+      `no ManeuverGroup recurs across the ${result.mains.length} scenario${result.mains.length === 1 ? '' : 's'}: nothing extracted, nothing written`,
+    );
   } else {
     io.out(`${result.behaviours.length} simple scenario${result.behaviours.length === 1 ? '' : 's'} in ${shown(simpleFolder)}:`);
     result.behaviours.forEach((behaviour, index) => {
       const mains = [...new Set(behaviour.uses.map((use) => shown(result.mains[use.occurrence.input].output)))];
-      io.out(`  ${path.basename(behaviour.file)} (group ${behaviour.groupName}, ${simpleLines[index]} lines): ${behaviour.uses.length} uses in ${mains.length} file${mains.length === 1 ? '' : 's'}`);
+      io.out(
+        `  ${path.basename(behaviour.file)} (group ${behaviour.groupName}, ${simpleLines[index]} lines): ${behaviour.uses.length} uses in ${mains.length} file${mains.length === 1 ? '' : 's'}`,
+      );
       io.out(`    overridable: ${behaviour.parameters.length > 0 ? behaviour.parameters.join(', ') : 'nothing (every use is the same)'}`);
       io.out(`    used in: ${mains.join(', ')}`);
     });
   }
   for (const kept of result.keptInline) io.out(`  kept inline: ${kept.group} in ${shown(kept.input)}: ${kept.reason}`);
-  const width = Math.max(8, ...result.mains.map((main) => shown(main.output).length), ...result.behaviours.map((behaviour) => shown(behaviour.file).length + 2));
+  const width = Math.max(
+    8,
+    ...result.mains.map((main) => shown(main.output).length),
+    ...result.behaviours.map((behaviour) => shown(behaviour.file).length + 2),
+  );
   io.out(`${'file'.padEnd(width)}  ${'before'.padStart(7)}  ${'after'.padStart(7)}  reduction`);
   for (const main of result.mains) {
     const reduction = main.linesBefore === 0 ? 0 : (1 - main.linesAfter / main.linesBefore) * 100;
-    io.out(`${shown(main.output).padEnd(width)}  ${String(main.linesBefore).padStart(7)}  ${String(main.linesAfter).padStart(7)}  ${reduction.toFixed(1).padStart(7)} %`);
+    io.out(
+      `${shown(main.output).padEnd(width)}  ${String(main.linesBefore).padStart(7)}  ${String(main.linesAfter).padStart(7)}  ${reduction.toFixed(1).padStart(7)} %`,
+    );
   }
-  result.behaviours.forEach((behaviour, index) => io.out(`${('+ ' + shown(behaviour.file)).padEnd(width)}  ${''.padStart(7)}  ${String(simpleLines[index]).padStart(7)}`));
+  result.behaviours.forEach((behaviour, index) =>
+    io.out(`${('+ ' + shown(behaviour.file)).padEnd(width)}  ${''.padStart(7)}  ${String(simpleLines[index]).padStart(7)}`),
+  );
   const { totals } = result;
-  io.out(`${'total (SPEC 9)'.padEnd(width)}  ${totals.linesBefore.toLocaleString('en-US').padStart(7)}  ${totals.linesAfter.toLocaleString('en-US').padStart(7)}  ${totals.reduction.toFixed(1).padStart(7)} %`);
+  io.out(
+    `${'total (SPEC 9)'.padEnd(width)}  ${totals.linesBefore.toLocaleString('en-US').padStart(7)}  ${totals.linesAfter.toLocaleString('en-US').padStart(7)}  ${totals.reduction.toFixed(1).padStart(7)} %`,
+  );
 }
 
 /** `modular2simple modularize INPUT... -o OUT [--force] [--dry-run] [--format json]`. */
@@ -168,8 +214,10 @@ export async function modularizeCommand(args: string[], io: CliOutput): Promise<
   const options = parseModularizeArguments(args);
   const { out } = options;
   const files = [...new Set(options.inputs.flatMap(scenarioFiles))];
-  if (!options.dryRun && fs.existsSync(out) && !options.force) throw new InputError(`${shown(out)} exists; nothing was written (--force writes into it)`);
-  if (!fs.existsSync(path.dirname(out))) throw new InputError(`${shown(out)}: the folder ${shown(path.dirname(out))} does not exist; nothing was written`);
+  if (!options.dryRun && fs.existsSync(out) && !options.force)
+    throw new InputError(`${shown(out)} exists; nothing was written (--force writes into it)`);
+  if (!fs.existsSync(path.dirname(out)))
+    throw new InputError(`${shown(out)}: the folder ${shown(path.dirname(out))} does not exist; nothing was written`);
 
   const scenarios: string[] = [];
   const texts = new Map<string, { text: string; document: XmlDocument }>();
@@ -198,15 +246,22 @@ export async function modularizeCommand(args: string[], io: CliOutput): Promise<
   }
   if (scenarios.length === 0) throw new InputError('no scenario among the inputs; nothing was written');
 
-  const base = commonFolder(options.inputs.map((input) => {
-    const resolved = path.resolve(input);
-    return fs.statSync(resolved).isDirectory() ? resolved : path.dirname(resolved);
-  }));
+  const base = commonFolder(
+    options.inputs.map((input) => {
+      const resolved = path.resolve(input);
+      return fs.statSync(resolved).isDirectory() ? resolved : path.dirname(resolved);
+    }),
+  );
   const relative = scenarios.map((file) => path.relative(base, file));
   let simpleName = 'simple';
-  for (let n = 2; relative.some((rel) => rel.split(path.sep)[0].toLowerCase() === simpleName.toLowerCase()); n++) simpleName = `simple_${n}`;
+  for (let n = 2; relative.some((rel) => rel.split(path.sep)[0].toLowerCase() === simpleName.toLowerCase()); n++)
+    simpleName = `simple_${n}`;
   const simpleFolder = path.join(out, simpleName);
-  const inputs: ModularizeInput[] = scenarios.map((file, index) => ({ path: file, output: path.join(out, relative[index]), ...(texts.get(file) as { text: string; document: XmlDocument }) }));
+  const inputs: ModularizeInput[] = scenarios.map((file, index) => ({
+    path: file,
+    output: path.join(out, relative[index]),
+    ...(texts.get(file) as { text: string; document: XmlDocument }),
+  }));
   // An output that exists is compared with the inputs by identity (links too), each file looked at once.
   const identity = (file: string) => {
     const stat = fs.statSync(file);
@@ -214,13 +269,17 @@ export async function modularizeCommand(args: string[], io: CliOutput): Promise<
   };
   const inputIdentities = fs.existsSync(out) ? new Set(files.map(identity)) : new Set<string>();
   for (const input of inputs) {
-    if (fs.existsSync(input.output) && inputIdentities.has(identity(input.output))) throw new InputError(`refusing to write ${shown(input.output)}: it is an input; choose another OUT`);
+    if (fs.existsSync(input.output) && inputIdentities.has(identity(input.output)))
+      throw new InputError(`refusing to write ${shown(input.output)}: it is an input; choose another OUT`);
   }
 
   const result = await modularize(inputs, { simpleFolder });
   if (result.failures.length > 0) {
-    for (const failure of result.failures) io.err(`${shown(failure.input)}: error: its main would not flatten back to an equivalent scenario: ${failure.difference}`);
-    io.err(`${result.failures.length} main${result.failures.length === 1 ? '' : 's'} would differ from ${result.failures.length === 1 ? 'its input' : 'their inputs'}; nothing was written`);
+    for (const failure of result.failures)
+      io.err(`${shown(failure.input)}: error: its main would not flatten back to an equivalent scenario: ${failure.difference}`);
+    io.err(
+      `${result.failures.length} main${result.failures.length === 1 ? '' : 's'} would differ from ${result.failures.length === 1 ? 'its input' : 'their inputs'}; nothing was written`,
+    );
     return ExitCode.problems;
   }
   const nothing = result.behaviours.length === 0;

@@ -34,7 +34,14 @@ export interface BehaviourPlan {
 }
 
 /** The text of the group as the simple scenario holds it: defaults written, overridable attributes listed. */
-function simpleGroupText(representative: GroupOccurrence, slots: Slot[], targets: string[], listed: Set<number>, indent: string, eol: string): string {
+function simpleGroupText(
+  representative: GroupOccurrence,
+  slots: Slot[],
+  targets: string[],
+  listed: Set<number>,
+  indent: string,
+  eol: string,
+): string {
   const text = representative.document.text;
   const edits: TextEdit[] = [];
   const listedByElement = new Map<number, string[]>();
@@ -42,7 +49,8 @@ function simpleGroupText(representative: GroupOccurrence, slots: Slot[], targets
     const element = representative.elements[slot.element];
     if (representative.values[index] !== targets[index]) {
       const written = attribute(element, slot.name);
-      if (written) edits.push({ start: written.valueStart, end: written.valueEnd, text: escapeAttributeValue(targets[index], written.quote) });
+      if (written)
+        edits.push({ start: written.valueStart, end: written.valueEnd, text: escapeAttributeValue(targets[index], written.quote) });
     }
     if (listed.has(index)) listedByElement.set(slot.element, [...(listedByElement.get(slot.element) ?? []), slot.name]);
   });
@@ -100,7 +108,8 @@ export async function planBehaviour(
   if (!group || group.name !== groupName) return { reason: 'the simple scenario would not hold the group' };
   const targets = overridableAttributes(model, group);
   const elements = selfAndDescendants(group.element);
-  const slotOf = (target: OverridableAttribute): number => slots.findIndex((slot) => elements[slot.element] === target.element && slot.name === target.attributeName);
+  const slotOf = (target: OverridableAttribute): number =>
+    slots.findIndex((slot) => elements[slot.element] === target.element && slot.name === target.attributeName);
   const keys = new Map<number, string>();
   for (const target of targets) {
     const index = slotOf(target);
@@ -108,7 +117,10 @@ export async function planBehaviour(
     const key = shortestUnambiguousKey(target, targets);
     const reached = targets.filter((other) => keyMatches(key, other)).map(slotOf);
     // A key that still reaches several attributes sets them all: only right where they always agree.
-    if (reached.length > 1 && !occurrences.every((occurrence) => reached.every((other) => occurrence.values[other] === occurrence.values[index]))) {
+    if (
+      reached.length > 1 &&
+      !occurrences.every((occurrence) => reached.every((other) => occurrence.values[other] === occurrence.values[index]))
+    ) {
       return { reason: `no key tells its attributes '${key}' apart`, conflict: reached };
     }
     keys.set(index, key);

@@ -64,7 +64,12 @@ async function plan(inputs: ParsedInput[], rebase: RebasePaths, simpleFolder: st
   const behaviours: Behaviour[] = [];
   const keptInline: ModularizeResult['keptInline'] = [];
   const taken = new Set<string>();
-  const pending = [...recurringGroups(inputs, new Set(excluded.keys())).values()].map(({ shape, occurrences }) => ({ shape, occurrences, key: shape.key, depth: 0 }));
+  const pending = [...recurringGroups(inputs, new Set(excluded.keys())).values()].map(({ shape, occurrences }) => ({
+    shape,
+    occurrences,
+    key: shape.key,
+    depth: 0,
+  }));
   while (pending.length > 0) {
     const { shape, occurrences, key, depth } = pending.shift() as (typeof pending)[number];
     if (excluded.has(key)) continue;
@@ -85,15 +90,31 @@ async function plan(inputs: ParsedInput[], rebase: RebasePaths, simpleFolder: st
         parts.set(values, [...(parts.get(values) ?? []), occurrence]);
       }
     }
-    for (const [values, part] of parts) if (part.length > 1 && part.length < occurrences.length) pending.push({ shape, occurrences: part, key: `${key}\n${values}`, depth: depth + 1 });
+    for (const [values, part] of parts)
+      if (part.length > 1 && part.length < occurrences.length)
+        pending.push({ shape, occurrences: part, key: `${key}\n${values}`, depth: depth + 1 });
     const alone = planned.conflict && depth < 4 ? [...parts.values()].filter((part) => part.length === 1).flat() : occurrences;
-    for (const occurrence of alone) keptInline.push({ input: inputs[occurrence.input].path, group: occurrence.group.name, reason: planned.reason ?? 'cannot be imported exactly' });
+    for (const occurrence of alone)
+      keptInline.push({
+        input: inputs[occurrence.input].path,
+        group: occurrence.group.name,
+        reason: planned.reason ?? 'cannot be imported exactly',
+      });
   }
   const mains: MainResult[] = [];
   for (const [index, input] of inputs.entries()) {
-    const uses = behaviours.flatMap((behaviour) => behaviour.uses.filter((use) => use.occurrence.input === index).map((use) => ({ behaviour, use })));
+    const uses = behaviours.flatMap((behaviour) =>
+      behaviour.uses.filter((use) => use.occurrence.input === index).map((use) => ({ behaviour, use })),
+    );
     const text = await mainText(input, uses, rebase);
-    mains.push( { input: input.path, output: input.output, text, linesBefore: countEditorLines(input.text), linesAfter: countEditorLines(text), imports: uses.map(({ behaviour }) => behaviour.file) });
+    mains.push({
+      input: input.path,
+      output: input.output,
+      text,
+      linesBefore: countEditorLines(input.text),
+      linesAfter: countEditorLines(text),
+      imports: uses.map(({ behaviour }) => behaviour.file),
+    });
   }
   return { behaviours, mains, keptInline };
 }
@@ -102,7 +123,12 @@ async function plan(inputs: ParsedInput[], rebase: RebasePaths, simpleFolder: st
  * Flattens every main that imports something, with the simple scenarios read from memory, and compares
  * it with its input rebased onto the main's folder (SPEC 8): the first difference of each that differs.
  */
-async function verify(inputs: ParsedInput[], planned: Plan, rebase: RebasePaths, limits: Partial<Limits>): Promise<ModularizeResult['failures']> {
+async function verify(
+  inputs: ParsedInput[],
+  planned: Plan,
+  rebase: RebasePaths,
+  limits: Partial<Limits>,
+): Promise<ModularizeResult['failures']> {
   const files = new Map<string, string>();
   for (const behaviour of planned.behaviours) files.set(path.resolve(behaviour.file), behaviour.text);
   for (const main of planned.mains) if (main.imports.length > 0) files.set(path.resolve(main.output), main.text);
@@ -131,7 +157,11 @@ async function verify(inputs: ParsedInput[], planned: Plan, rebase: RebasePaths,
  * written here. A behaviour whose mains do not flatten back to their inputs is kept inline and the
  * rest tried again, so `failures` names only inputs that still differ with every behaviour inline.
  */
-export async function modularize(inputs: ModularizeInput[], options: ModularizeOptions, limits: Partial<Limits> = {}): Promise<ModularizeResult> {
+export async function modularize(
+  inputs: ModularizeInput[],
+  options: ModularizeOptions,
+  limits: Partial<Limits> = {},
+): Promise<ModularizeResult> {
   const parsed: ParsedInput[] = inputs.map((input) => ({ ...input, document: input.document ?? parseXml(input.text) }));
   const rebase = options.rebase ?? pathRebaser();
   const excluded = new Map<string, string>();
@@ -146,14 +176,21 @@ export async function modularize(inputs: ModularizeInput[], options: ModularizeO
       if (!failure || !behaviour.uses.some((use) => failing.has(parsed[use.occurrence.input].path))) continue;
       excluded.set(behaviour.shapeKey, failure.difference);
       dropped++;
-      for (const use of behaviour.uses) keptInline.push({ input: parsed[use.occurrence.input].path, group: use.occurrence.group.name, reason: `its main would not flatten back exactly (${failure.difference})` });
+      for (const use of behaviour.uses)
+        keptInline.push({
+          input: parsed[use.occurrence.input].path,
+          group: use.occurrence.group.name,
+          reason: `its main would not flatten back exactly (${failure.difference})`,
+        });
     }
     if (dropped === 0) break;
     planned = await plan(parsed, rebase, options.simpleFolder, excluded);
     failures = await verify(parsed, planned, rebase, limits);
   }
   const linesBefore = planned.mains.reduce((sum, main) => sum + main.linesBefore, 0);
-  const linesAfter = planned.mains.reduce((sum, main) => sum + main.linesAfter, 0) + planned.behaviours.reduce((sum, behaviour) => sum + countEditorLines(behaviour.text), 0);
+  const linesAfter =
+    planned.mains.reduce((sum, main) => sum + main.linesAfter, 0) +
+    planned.behaviours.reduce((sum, behaviour) => sum + countEditorLines(behaviour.text), 0);
   return {
     mains: planned.mains,
     behaviours: planned.behaviours,

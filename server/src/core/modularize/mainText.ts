@@ -25,7 +25,8 @@ function referenceGroup(input: ParsedInput, behaviour: Behaviour, use: Use, inde
   if (use.overrides.length === 0) lines.push(`${unit}${unit}<ManeuverGroupReference maneuverGroupName=${q(behaviour.groupName)}/>`);
   else {
     lines.push(`${unit}${unit}<ManeuverGroupReference maneuverGroupName=${q(behaviour.groupName)}>`);
-    for (const override of use.overrides) lines.push(`${unit.repeat(3)}<ParameterReference key=${q(override.key)} value=${q(override.value)}/>`);
+    for (const override of use.overrides)
+      lines.push(`${unit.repeat(3)}<ParameterReference key=${q(override.key)} value=${q(override.value)}/>`);
     lines.push(`${unit}${unit}</ManeuverGroupReference>`);
   }
   lines.push(`${unit}</ScenarioReference>`, '</ManeuverGroup>');

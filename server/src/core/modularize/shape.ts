@@ -49,7 +49,11 @@ function ownText(text: string, element: XmlElement): string {
  * one without a name, without an actor in its Actors (the outer group gives the actor), or already
  * holding a ScenarioReference.
  */
-export function readOccurrence(input: number, document: XmlDocument, group: ManeuverGroupInfo): { shape: GroupShape; occurrence: GroupOccurrence } | undefined {
+export function readOccurrence(
+  input: number,
+  document: XmlDocument,
+  group: ManeuverGroupInfo,
+): { shape: GroupShape; occurrence: GroupOccurrence } | undefined {
   if (!group.nameAttribute || group.references.length > 0) return undefined;
   if (!group.actor || group.actor.parent?.name !== 'Actors' || group.actor.parent.parent !== group.element) return undefined;
   const elements = [group.element, ...descendants(group.element)];

@@ -23,7 +23,10 @@ const PARAMETER_USE = /\$\{?([A-Za-z_][\w]*)/g;
 
 /** An element's text moved to `depth` levels of `unit`. */
 function copied(document: XmlDocument, element: XmlElement, unit: string, depth: number, eol: string): string {
-  return unit.repeat(depth) + reindent(document.text.slice(element.start, element.end), indentationAt(document.text, element.start), unit.repeat(depth), eol);
+  return (
+    unit.repeat(depth) +
+    reindent(document.text.slice(element.start, element.end), indentationAt(document.text, element.start), unit.repeat(depth), eol)
+  );
 }
 
 function child(element: XmlElement | undefined, name: string): XmlElement | undefined {
@@ -34,7 +37,11 @@ function child(element: XmlElement | undefined, name: string): XmlElement | unde
 const namedIndex = new WeakMap<XmlDocument, Map<string, XmlElement>>();
 
 /** The first element of one of `elementNames` whose `name` attribute is `wanted`, looked for in each document in turn. */
-function findNamed(documents: XmlDocument[], elementNames: string[], wanted: string): { document: XmlDocument; element: XmlElement } | undefined {
+function findNamed(
+  documents: XmlDocument[],
+  elementNames: string[],
+  wanted: string,
+): { document: XmlDocument; element: XmlElement } | undefined {
   for (const document of documents) {
     if (!document.root) continue;
     let index = namedIndex.get(document);
@@ -110,7 +117,11 @@ export async function simpleScenarioText(parts: SimpleScenarioParts): Promise<st
     declarations.push(copied(found.document, found.element, unit, 2, eol));
     want(found.document.text.slice(found.element.start, found.element.end));
   }
-  lines.push(declarations.length > 0 ? [`${unit}<ParameterDeclarations>`, ...declarations, `${unit}</ParameterDeclarations>`].join(eol) : `${unit}<ParameterDeclarations/>`);
+  lines.push(
+    declarations.length > 0
+      ? [`${unit}<ParameterDeclarations>`, ...declarations, `${unit}</ParameterDeclarations>`].join(eol)
+      : `${unit}<ParameterDeclarations/>`,
+  );
 
   lines.push(catalogText, roadText);
   lines.push(entities.length > 0 ? [`${unit}<Entities>`, ...entities, `${unit}</Entities>`].join(eol) : `${unit}<Entities/>`);
