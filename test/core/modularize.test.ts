@@ -1,6 +1,7 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
+import fc from 'fast-check';
 import { firstDifference } from '../../server/src/core/equivalence';
 import { Flattener } from '../../server/src/core/flatten';
 import { modularize, memoryHost, ModularizeInput, ModularizeResult, notAPlainScenario } from '../../server/src/core/modularize';
@@ -9,7 +10,7 @@ import { buildModel } from '../../server/src/core/model';
 import { diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { parseXml } from '../../server/src/core/xml';
 import { libraryDir, requireCorpus } from '../support/paths';
-import { scenario } from '../support/fixtures';
+import { scenario, xmlAttribute as xmlAttributeValue } from '../support/fixtures';
 
 /** The paper's 31 flattened scenarios, each as `OUT/<folder>/result.xosc`. */
 function libraryInputs(out: string): ModularizeInput[] {
@@ -196,6 +197,44 @@ describe('core: modularize', function () {
     assert.match(result.keptInline[0].reason, /no key tells its attributes/);
     const flattened = await flattenAll(result);
     for (const input of inputs) assert.equal(firstDifference(flattened.get(input.path) as string, input.text), undefined);
+  });
+
+  it('any library of such groups: every main flattens back equivalent (property)', async () => {
+    const groupSpec = fc.record({
+      name: fc.constantFrom('Go', 'A.Go', 'B.Go', 'Lead.Brake', 'x.y.Go', 'Go.'),
+      actor: fc.constantFrom('ego', 'car'),
+      trigger: fc.constantFrom('ego', 'car'),
+      speed: fc.constantFrom('10', '20', '5.5', '$speed', 'a<b&"c"'),
+      distance: fc.boolean(),
+    });
+    const library = fc.array(fc.array(groupSpec, { minLength: 1, maxLength: 4 }), { minLength: 1, maxLength: 4 });
+    let extracted = 0;
+    await fc.assert(
+      fc.asyncProperty(library, async (scenarios) => {
+        const inputs = scenarios.map((groups, index) => {
+          const body = groups.map((group) => {
+            const text = speedGroup(group.name, group.actor, xmlAttributeValue(group.speed), group.trigger);
+            return group.distance ? text : text.replace('<TraveledDistanceCondition value="5"/>', '<StandStillCondition duration="1"/>');
+          });
+          const text = scenario(body.join('')).replace(
+            '<Entities>',
+            '<ParameterDeclarations>\n    <ParameterDeclaration name="speed" parameterType="double" value="3"/>\n  </ParameterDeclarations>\n  <Entities>',
+          );
+          return {
+            path: `/virtual/in/${index % 2 ? 'deep/' : ''}s${index}.xosc`,
+            output: `/virtual/out/${index % 2 ? 'deep/' : ''}s${index}.xosc`,
+            text,
+          };
+        });
+        const result = await modularize(inputs, { simpleFolder: '/virtual/out/simple' });
+        assert.deepEqual(result.failures, []);
+        extracted += result.behaviours.length;
+        const flattened = await flattenAll(result);
+        for (const input of inputs) assert.equal(firstDifference(flattened.get(input.path) as string, input.text), undefined, input.path);
+      }),
+      { numRuns: 40, seed: 19 },
+    );
+    assert.ok(extracted >= 20, `${extracted} behaviours extracted in 40 libraries`);
   });
 
   it('names a behaviour after its actions and what starts it', () => {
