@@ -196,7 +196,10 @@ describe('cli: modularize', function () {
     assert.equal(runCli(['modularize', 'lib']).status, 2);
     const unknown = runCli(['modularize', 'lib', '-o', 'out', '--frobnicate']);
     assert.equal(unknown.status, 2);
-    assert.match(unknown.stderr, /frobnicate/);
+    assert.match(unknown.stderr, /unknown option '--frobnicate'/);
+    const noValue = runCli(['modularize', 'lib', '-o']);
+    assert.equal(noValue.status, 2);
+    assert.match(noValue.stderr, /--output needs a value/);
   });
 
   it("esmini's scenarios: files that share groups run in esmini exactly as the originals once modularized and flattened", async function () {

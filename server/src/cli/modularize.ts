@@ -42,7 +42,17 @@ function parseModularizeArguments(args: string[]): ModularizeArguments {
   try {
     parsed = parseArgs({ args, options: OPTIONS, strict: true, allowPositionals: true });
   } catch (error) {
-    throw new UsageError((error as Error).message.split('\n')[0]);
+    // Worded as the other commands word it.
+    const message = (error as Error).message;
+    const unknown = /Unknown option '([^']+)'/.exec(message);
+    const missing = /Option '(?:-\w, )?(--[\w-]+)/.exec(message);
+    throw new UsageError(
+      unknown
+        ? `unknown option '${unknown[1]}'`
+        : missing && /argument missing/.test(message)
+          ? `${missing[1]} needs a value`
+          : message.split('\n')[0],
+    );
   }
   const { values, positionals } = parsed;
   if (positionals.length === 0) throw new UsageError('modularize needs input scenarios or folders');
