@@ -10,6 +10,7 @@
 import * as path from 'node:path';
 import { firstDifference } from '../equivalence';
 import { Flattener } from '../flatten';
+import { applyEdits } from '../flatten/edits';
 import { buildModel } from '../model';
 import { diskRef, Limits, ScenarioStore } from '../sources';
 import { countEditorLines } from '../text';
@@ -106,7 +107,7 @@ async function plan(inputs: ParsedInput[], rebase: RebasePaths, simpleFolder: st
     const uses = behaviours.flatMap((behaviour) =>
       behaviour.uses.filter((use) => use.occurrence.input === index).map((use) => ({ behaviour, use })),
     );
-    const text = await mainText(input, uses, rebase);
+    const text = mainText(input, uses);
     mains.push({
       input: input.path,
       output: input.output,
@@ -123,12 +124,7 @@ async function plan(inputs: ParsedInput[], rebase: RebasePaths, simpleFolder: st
  * Flattens every main that imports something, with the simple scenarios read from memory, and compares
  * it with its input rebased onto the main's folder (SPEC 8): the first difference of each that differs.
  */
-async function verify(
-  inputs: ParsedInput[],
-  planned: Plan,
-  rebase: RebasePaths,
-  limits: Partial<Limits>,
-): Promise<ModularizeResult['failures']> {
+async function verify(inputs: ParsedInput[], planned: Plan, limits: Partial<Limits>): Promise<ModularizeResult['failures']> {
   const files = new Map<string, string>();
   for (const behaviour of planned.behaviours) files.set(path.resolve(behaviour.file), behaviour.text);
   for (const main of planned.mains) if (main.imports.length > 0) files.set(path.resolve(main.output), main.text);
@@ -144,7 +140,7 @@ async function verify(
       continue;
     }
     const input = inputs[index];
-    const expected = await rebase(input.text, path.dirname(input.path), path.dirname(main.output));
+    const expected = applyEdits(input.text, input.pathEdits);
     const difference = firstDifference(result.text, expected);
     if (difference) failures.push({ input: main.input, difference });
   }
@@ -162,11 +158,15 @@ export async function modularize(
   options: ModularizeOptions,
   limits: Partial<Limits> = {},
 ): Promise<ModularizeResult> {
-  const parsed: ParsedInput[] = inputs.map((input) => ({ ...input, document: input.document ?? parseXml(input.text) }));
   const rebase = options.rebase ?? pathRebaser();
+  const parsed: ParsedInput[] = [];
+  for (const input of inputs) {
+    const document = input.document ?? parseXml(input.text);
+    parsed.push({ ...input, document, pathEdits: await rebase(document, path.dirname(input.path), path.dirname(input.output)) });
+  }
   const excluded = new Map<string, string>();
   let planned = await plan(parsed, rebase, options.simpleFolder, excluded);
-  let failures = await verify(parsed, planned, rebase, limits);
+  let failures = await verify(parsed, planned, limits);
   const keptInline: ModularizeResult['keptInline'] = [];
   for (let round = 0; failures.length > 0 && round < 8; round++) {
     const failing = new Set(failures.map((failure) => failure.input));
@@ -185,7 +185,7 @@ export async function modularize(
     }
     if (dropped === 0) break;
     planned = await plan(parsed, rebase, options.simpleFolder, excluded);
-    failures = await verify(parsed, planned, rebase, limits);
+    failures = await verify(parsed, planned, limits);
   }
   const linesBefore = planned.mains.reduce((sum, main) => sum + main.linesBefore, 0);
   const linesAfter =

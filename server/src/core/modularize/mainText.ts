@@ -2,7 +2,7 @@ import * as path from 'node:path';
 import { applyEdits, TextEdit } from '../flatten/edits';
 import { indentationAt } from '../text';
 import { attributeValue, escapeAttributeValue } from '../xml';
-import { Behaviour, ParsedInput, RebasePaths, Use } from './types';
+import { Behaviour, ParsedInput, Use } from './types';
 
 /** A `scenarioFileName` from the main's folder to the simple scenario, with `/` on every platform. */
 function referenceName(main: string, file: string): string {
@@ -37,7 +37,7 @@ function referenceGroup(input: ParsedInput, behaviour: Behaviour, use: Use, inde
  * The main of one input: its text as written, each extracted group replaced in place (at its
  * indentation) by a group that imports it, its file paths rebased onto the main's folder.
  */
-export async function mainText(input: ParsedInput, uses: { behaviour: Behaviour; use: Use }[], rebase: RebasePaths): Promise<string> {
+export function mainText(input: ParsedInput, uses: { behaviour: Behaviour; use: Use }[]): string {
   const text = input.text;
   const eol = text.includes('\r\n') ? '\r\n' : '\n';
   const edits: TextEdit[] = uses.map(({ behaviour, use }) => {
@@ -48,5 +48,7 @@ export async function mainText(input: ParsedInput, uses: { behaviour: Behaviour;
     const unit = childIndent.startsWith(indent) && childIndent.length > indent.length ? childIndent.slice(indent.length) : '  ';
     return { start: element.start, end: element.end, text: referenceGroup(input, behaviour, use, indent, unit, eol) };
   });
-  return rebase(applyEdits(text, edits), path.dirname(input.path), path.dirname(input.output));
+  // The input's rebased paths, but for those inside the groups replaced (their simple scenarios rebase them).
+  const outside = input.pathEdits.filter((edit) => !edits.some((group) => edit.start >= group.start && edit.end <= group.end));
+  return applyEdits(text, [...edits, ...outside]);
 }

@@ -1,12 +1,10 @@
-import { applyEdits } from '../flatten/edits';
 import { rebasePaths } from '../flatten/rebase';
 import { FileKind, nodeFileSystem } from '../sources';
-import { parseXml } from '../xml';
 import { RebasePaths } from './types';
 
 /**
  * Rebases a scenario written in `fromDirectory` (flatten's own rebasing, SPEC 11.6) so that, written in
- * `toDirectory`, it reaches the same roads and catalogs. One rebaser serves one run: it looks at each
+ * `toDirectory`, it reaches the same roads and catalogs: the edits of its attribute values. One rebaser serves one run: it looks at each
  * path on disk once, as every scenario of a library names the same roads and catalog folders.
  */
 export function pathRebaser(): RebasePaths {
@@ -19,10 +17,8 @@ export function pathRebaser(): RebasePaths {
     }
     return known;
   };
-  return async (text, fromDirectory, toDirectory) => {
-    if (fromDirectory === toDirectory) return text;
-    const document = parseXml(text);
-    const rebase = await rebasePaths({ document, baseOf: () => fromDirectory, outputDirectory: toDirectory, kindOf });
-    return rebase.edits.length === 0 ? text : applyEdits(text, rebase.edits);
+  return async (document, fromDirectory, toDirectory) => {
+    if (fromDirectory === toDirectory) return [];
+    return (await rebasePaths({ document, baseOf: () => fromDirectory, outputDirectory: toDirectory, kindOf })).edits;
   };
 }

@@ -1,7 +1,7 @@
 import * as path from 'node:path';
-import { reindent } from '../flatten/edits';
+import { applyEdits, reindent } from '../flatten/edits';
 import { indentationAt } from '../text';
-import { attributeValue, descendants, escapeAttributeValue, XmlDocument, XmlElement } from '../xml';
+import { attributeValue, descendants, escapeAttributeValue, parseXml, XmlDocument, XmlElement } from '../xml';
 import { GroupOccurrence } from './shape';
 import { ParsedInput, RebasePaths } from './types';
 
@@ -157,5 +157,6 @@ export async function simpleScenarioText(parts: SimpleScenarioParts): Promise<st
       `</${root.name}>`,
     ].join(eol),
   );
-  return rebase(lines.join(eol) + eol, path.dirname(representative.path), path.dirname(file));
+  const text = lines.join(eol) + eol;
+  return applyEdits(text, await rebase(parseXml(text), path.dirname(representative.path), path.dirname(file)));
 }

@@ -1,3 +1,4 @@
+import { TextEdit } from '../flatten/edits';
 import { XmlDocument } from '../xml';
 import { GroupOccurrence, Slot } from './shape';
 
@@ -12,8 +13,8 @@ export interface ModularizeInput {
   document?: XmlDocument;
 }
 
-/** Rewrites the file paths of a scenario written in `fromDirectory` so that it reaches the same files from `toDirectory`. */
-export type RebasePaths = (text: string, fromDirectory: string, toDirectory: string) => Promise<string>;
+/** The edits that make the file paths of a scenario written in `fromDirectory` reach the same files from `toDirectory`. */
+export type RebasePaths = (document: XmlDocument, fromDirectory: string, toDirectory: string) => Promise<TextEdit[]>;
 
 export interface ModularizeOptions {
   /** The folder the simple scenarios are written to (absolute). */
@@ -74,4 +75,6 @@ export interface ModularizeResult {
 /** An input read and parsed. */
 export interface ParsedInput extends ModularizeInput {
   document: XmlDocument;
+  /** The edits that rebase the input's file paths onto its main's folder. */
+  pathEdits: TextEdit[];
 }
