@@ -12,6 +12,8 @@ export interface WriteCommandOptions {
   output?: string;
   /** Replace an existing output without asking. */
   overwrite?: boolean;
+  /** Pack: store the roads and catalogs inside the package (asked when no output is named). */
+  selfContained?: boolean;
 }
 
 function isUri(value: unknown): value is vscode.Uri {
@@ -22,7 +24,7 @@ function isWriteOptions(value: unknown): value is WriteCommandOptions {
   // The editor title passes its own context object too; only ours names an output or overwrite.
   if (typeof value !== 'object' || value === null || isUri(value) || Array.isArray(value)) return false;
   const candidate = value as Record<string, unknown>;
-  return typeof candidate.output === 'string' || typeof candidate.overwrite === 'boolean';
+  return typeof candidate.output === 'string' || typeof candidate.overwrite === 'boolean' || typeof candidate.selfContained === 'boolean';
 }
 
 /**
@@ -200,6 +202,14 @@ async function saveScenarios(reporter: CommandReporter, action: string): Promise
   return saved;
 }
 
+/** Whether a package carries the road networks and catalogs its scenarios name; undefined when the user cancels. */
+async function chooseSelfContained(): Promise<boolean | undefined> {
+  const outside = { label: 'Reference roads and catalogs where they are', detail: 'the package names them relative to its folder; it runs only beside them', selfContained: false };
+  const inside = { label: 'Store roads and catalogs inside the package', detail: 'self-contained: the package runs wherever it is copied', selfContained: true };
+  const picked = await vscode.window.showQuickPick([outside, inside], { title: 'Pack into .mosc', placeHolder: 'Files the scenarios name outside the package', ignoreFocusOut: true });
+  return picked?.selfContained;
+}
+
 export async function packCommand(server: ServerCommandClient, reporter: CommandReporter, clicked: unknown, selected: unknown, ...rest: unknown[]): Promise<string | undefined> {
   const targets = commandTargets(clicked, selected).filter((uri) => uri.scheme === 'file');
   if (targets.length === 0) {
@@ -207,13 +217,15 @@ export async function packCommand(server: ServerCommandClient, reporter: Command
     return undefined;
   }
   const options = commandOptions(clicked, selected, ...rest);
+  const selfContained = options.selfContained ?? (options.output !== undefined ? false : await chooseSelfContained());
+  if (selfContained === undefined) return undefined;
   const output = await chooseOutput('Pack into .mosc', defaultPackOutput(targets.map((uri) => uri.fsPath)), options, { 'OpenSCENARIO package': ['mosc'] });
   if (!output) return undefined;
   // A package holds what the editor shows: unsaved scenario files are saved first, and the message says which.
   const saved = await saveScenarios(reporter, 'Pack into .mosc');
   if (!saved) return undefined;
   const note = saved.length > 0 ? ` (saved ${saved.join(', ')} first)` : '';
-  return runWrite(reporter, 'Pack into .mosc', output, (token) => server.pack(targets, output, token), note);
+  return runWrite(reporter, 'Pack into .mosc', output, (token) => server.pack(targets, output, token, selfContained), note);
 }
 
 export async function flattenCommand(server: ServerCommandClient, reporter: CommandReporter, clicked: unknown, selected: unknown, ...rest: unknown[]): Promise<string | undefined> {

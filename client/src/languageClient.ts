@@ -88,8 +88,8 @@ export class ServerCommandClient {
     return (await this.started()).sendRequest(PreviewRequest, { uri: uri.toString() });
   }
 
-  async pack(inputs: vscode.Uri[], outputPath: string, token?: vscode.CancellationToken): Promise<WriteResult> {
-    return (await this.started()).sendRequest(PackRequest, { inputs: inputs.map((input) => input.toString()), outputPath }, token);
+  async pack(inputs: vscode.Uri[], outputPath: string, token?: vscode.CancellationToken, selfContained = false): Promise<WriteResult> {
+    return (await this.started()).sendRequest(PackRequest, { inputs: inputs.map((input) => input.toString()), outputPath, ...(selfContained ? { selfContained } : {}) }, token);
   }
 
   async structure(uri: vscode.Uri, token?: vscode.CancellationToken): Promise<StructureNode | null> {

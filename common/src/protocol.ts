@@ -30,6 +30,8 @@ export interface PackParams {
   /** File URIs of a folder, of a main.xosc, or of files to put at the root of a new package. */
   inputs: string[];
   outputPath: string;
+  /** Store the road networks, catalogs and other files the scenarios name inside the package. */
+  selfContained?: boolean;
 }
 
 export interface StructureParams {

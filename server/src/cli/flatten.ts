@@ -15,7 +15,9 @@ async function flattenInputs(inputs: string[], outputs: string[] | undefined, op
   const results = [];
   let problems: Problem[] = [];
   for (const [index, input] of inputs.entries()) {
-    const result = await flattener.flatten(mainOf(input), { force: options.force, outputPath: outputs?.[index] });
+    const output = outputs?.[index];
+    const standardOutput = output === undefined || output === '-';
+    const result = await flattener.flatten(mainOf(input), { force: options.force, outputPath: standardOutput ? undefined : output, standardOutput });
     results.push(result);
     problems = problems.concat(result.problems);
   }
@@ -42,8 +44,13 @@ async function flattenInputs(inputs: string[], outputs: string[] | undefined, op
     return ExitCode.ok;
   }
   for (let i = 0; i < results.length; i++) if (outputs[i] !== '-') checkNotAnInput(outputs[i], results[i].source.dependencies);
+  // A self-contained package's roads and catalogs go beside the output that names them.
+  for (const file of results.flatMap((result) => result.files)) fs.mkdirSync(path.dirname(file.path), { recursive: true });
   return write(
-    results.map((result, i) => ({ target: outputs[i], data: result.text as string, summary: `wrote ${outputs[i]} (${countEditorLines(result.text as string)} lines)` })),
+    results.flatMap((result, i) => [
+      { target: outputs[i], data: result.text as string, summary: `wrote ${outputs[i]} (${countEditorLines(result.text as string)} lines)` },
+      ...result.files.map((file) => ({ target: file.path, data: file.bytes, summary: `wrote ${path.relative(path.dirname(path.resolve(outputs[i])), file.path)} (a file of the package the output names)` })),
+    ]),
     io,
     options.quiet,
   );

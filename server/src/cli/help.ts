@@ -1,4 +1,5 @@
 import { FORMAT_HELP } from './format';
+import { MODULARIZE_HELP } from './modularize';
 import { RUN_HELP } from './run';
 import { VARY_HELP } from './vary';
 import { VERSION } from './common';
@@ -16,6 +17,8 @@ Usage:
   modular2simple run INPUT... [--check]            flatten and run in esmini; its messages on the source lines
   modular2simple vary FILE [--count|--index I|--out-dir DIR]
                                                    concrete scenarios of a parameter distribution
+  modular2simple modularize INPUT... -o OUT [--dry-run]
+                                                   extract the groups that recur into simple scenarios
 ${FORMAT_HELP}
 
 Compatible with the original tool:
@@ -33,6 +36,8 @@ Options:
   --root DIR                where the search upward from an unpacked folder stops (default: the
                             working directory, or the input's folder when it lies elsewhere)
   --include-scenario-path   pack: also store files found through SCENARIO_PATH
+  --self-contained          pack: store the road networks, catalogs and other files the scenarios
+                            name inside the package (else pack warns about each one left outside)
   --format text|json|sarif  output format of check (sarif: SARIF 2.1.0 for CI dashboards) and
                             stats (text or json)
   --simulator asam|carla|esmini
@@ -54,6 +59,8 @@ Options:
 ${RUN_HELP}
 
 ${VARY_HELP}
+
+${MODULARIZE_HELP}
 
 Environment:
   SCENARIO_PATH             folders searched for referenced scenarios (separated by ';' or ':')

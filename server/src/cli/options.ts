@@ -15,6 +15,7 @@ export interface Options {
   scenarioPath: string[];
   root?: string;
   includeScenarioPath: boolean;
+  selfContained: boolean;
   format: 'text' | 'json' | 'sarif';
   quiet: boolean;
   simulator: Simulator;
@@ -33,6 +34,7 @@ const SHARED_OPTIONS = {
   'scenario-path': { type: 'string' },
   root: { type: 'string' },
   'include-scenario-path': { type: 'boolean' },
+  'self-contained': { type: 'boolean' },
   format: { type: 'string' },
   simulator: { type: 'string' },
   'schema-version': { type: 'string' },
@@ -63,7 +65,7 @@ export function parseSize(text: string, flag: string): number {
  * looks like an option is missing, not taken; grouped or glued short options and `--` are unknown options.
  */
 export function parseOptions(args: string[]): Options {
-  const options: Options = { positional: [], force: false, scenarioPath: [], includeScenarioPath: false, format: 'text', quiet: false, simulator: 'asam', schemaVersion: 'auto', limits: {} };
+  const options: Options = { positional: [], force: false, scenarioPath: [], includeScenarioPath: false, selfContained: false, format: 'text', quiet: false, simulator: 'asam', schemaVersion: 'auto', limits: {} };
   const { tokens } = parseArgs({ args, options: SHARED_OPTIONS, strict: false, allowPositionals: true, tokens: true });
   for (const token of tokens) {
     if (token.kind === 'positional') {
@@ -99,6 +101,9 @@ export function parseOptions(args: string[]): Options {
         break;
       case 'include-scenario-path':
         options.includeScenarioPath = true;
+        break;
+      case 'self-contained':
+        options.selfContained = true;
         break;
       case 'format': {
         const format = take();

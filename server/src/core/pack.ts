@@ -1,5 +1,8 @@
 import * as path from 'node:path';
 import JSZip from 'jszip';
+import { rebasePaths, ResolvedPath } from './flatten/rebase';
+import { applyEdits } from './flatten/edits';
+import { declareUtf8 } from './encoding';
 import { buildModel } from './model';
 import { Problem, ProblemCode, ZERO_RANGE } from './problems';
 import { decodeScenario } from './encoding';
@@ -16,9 +19,117 @@ export interface PackResult {
   inputs: SourceRef[];
 }
 
-export interface PackFolderOptions {
+export interface PackOptions {
+  /** Where the package will be written: the file paths of its scenarios are rebased onto its folder (SPEC 11.6); the current folder by default. */
+  outputPath?: string;
+  /** Store the road networks, catalogs and other files the scenarios name inside the package, with package-relative paths. */
+  selfContained?: boolean;
+}
+
+export interface PackFolderOptions extends PackOptions {
   /** Also store files found through SCENARIO_PATH (by default they stay outside, found there when flattening). */
   includeScenarioPath?: boolean;
+}
+
+/** What one package (an outer one or a nested one) is being built with. */
+interface PackPlace {
+  zip: JSZip;
+  entries: string[];
+  /** Folder of the package's files on disk (an unpacked folder), when there is one: files below it keep their layout. */
+  folder: string | undefined;
+  /** Files carried into the package (self-contained): disk path to entry name. */
+  carried: Map<string, string>;
+  options: PackOptions;
+  problems: Problem[];
+}
+
+function posixRelative(from: string, to: string): string {
+  return path.posix.relative(from, to) || '.';
+}
+
+/** The entry name a carried file gets: its place below the package's folder, else `files/` and its name (told apart when taken). */
+function carriedEntryName(place: PackPlace, disk: string): string {
+  const below = place.folder ? path.relative(place.folder, disk) : '..';
+  const taken = new Set([...place.entries, ...place.carried.values()]);
+  if (!below.startsWith('..') && !path.isAbsolute(below)) return below.split(path.sep).join('/');
+  const base = path.basename(disk);
+  let name = `files/${base}`;
+  for (let index = 2; taken.has(name) || [...taken].some((known) => known.startsWith(`${name}/`)); index++) name = `files/${index}/${base}`;
+  return name;
+}
+
+/** Stores a file or a folder's files (not its subfolders) in the package once; the entry name it has there. */
+async function carryIntoPackage(place: PackPlace, resolved: ResolvedPath): Promise<string | undefined> {
+  const known = place.carried.get(resolved.disk);
+  if (known !== undefined) return known;
+  const name = carriedEntryName(place, resolved.disk);
+  const files: { entry: string; disk: string }[] = [];
+  if (resolved.kind === 'file') files.push({ entry: name, disk: resolved.disk });
+  else {
+    const listed = (await nodeFileSystem.listDirectory?.(resolved.disk)) ?? [];
+    for (const child of [...listed].sort()) {
+      const disk = path.join(resolved.disk, child);
+      if ((await nodeFileSystem.kind(disk)) === 'file') files.push({ entry: `${name}/${child}`, disk });
+    }
+  }
+  place.carried.set(resolved.disk, name);
+  for (const file of files) {
+    if (place.entries.includes(file.entry)) continue;
+    try {
+      const bytes = await nodeFileSystem.readFile(file.disk, DEFAULT_LIMITS.maxEntryBytes);
+      if (!bytes) continue;
+      place.zip.file(file.entry, bytes, { date: ENTRY_DATE, createFolders: false });
+      place.entries.push(file.entry);
+    } catch (error) {
+      place.problems.push(fileProblem(diskRef(file.disk), 'io', (error as Error).message));
+    }
+  }
+  return name;
+}
+
+/**
+ * The bytes a scenario is stored with: its file paths rebased onto the package's folder, or (self-contained)
+ * onto the files carried into the package; unchanged when no path needs it. Warns at each path that
+ * reaches outside the package.
+ */
+async function rebasedForPackage(place: PackPlace, ref: SourceRef, bytes: Uint8Array, text: string, document: ReturnType<typeof parseXml>, entryName: string): Promise<Uint8Array> {
+  if (ref.entries.length > 0) return bytes;
+  const outputDirectory = path.dirname(path.resolve(place.options.outputPath ?? 'package.mosc'));
+  const entryFolder = path.posix.dirname(entryName);
+  const carried = new Map<ResolvedPath, string>();
+  if (place.options.selfContained) {
+    const probe = await rebasePaths({ document, baseOf: () => path.dirname(ref.disk), outputDirectory, kindOf: (diskPath) => nodeFileSystem.kind(diskPath) });
+    for (const resolved of probe.resolved) {
+      if (resolved.viaParameter) continue;
+      const name = await carryIntoPackage(place, resolved);
+      if (name !== undefined) carried.set(resolved, posixRelative(entryFolder, name));
+    }
+  }
+  const byPlace = new Map([...carried].map(([resolved, name]) => [resolved.site.attribute.valueStart, name]));
+  const rebase = await rebasePaths({
+    document,
+    baseOf: () => path.dirname(ref.disk),
+    outputDirectory,
+    kindOf: (diskPath) => nodeFileSystem.kind(diskPath),
+    place: (resolved) => byPlace.get(resolved.site.attribute.valueStart),
+  });
+  const warned = new Set<string>();
+  for (const resolved of rebase.resolved) {
+    if (byPlace.has(resolved.site.attribute.valueStart) || warned.has(resolved.disk)) continue;
+    warned.add(resolved.disk);
+    const attribute = resolved.site.attribute;
+    place.problems.push({
+      source: ref,
+      range: document.lines.range(attribute.valueStart, attribute.valueEnd),
+      severity: 'warning',
+      code: 'file-path',
+      message: `the package reaches ${resolved.kind === 'directory' ? 'the folder' : 'the file'} ${resolved.disk} outside itself${resolved.rewritten !== undefined ? ` (written '${resolved.rewritten}', relative to the package's folder)` : ''}; the package does not run without it`,
+      // A path naming a parameter is never rewritten (SPEC 11.6), so not carried either.
+      hint: resolved.viaParameter ? `'${attribute.value}' names a parameter, so it is left as written; write the path itself to have it rebased or carried` : 'pack with --self-contained to store it inside the package',
+    });
+  }
+  if (rebase.edits.length === 0) return bytes;
+  return new TextEncoder().encode(declareUtf8(applyEdits(text, rebase.edits)));
 }
 
 // A fixed entry time makes two packings of the same files byte-identical.
@@ -52,10 +163,11 @@ async function generate(zip: JSZip): Promise<Uint8Array> {
 }
 
 /** `-cxm IN... OUT.mosc`: each input at the root of a new package under its base name (SPEC 6). */
-export async function packFiles(inputs: string[], limits: Partial<Limits> = {}): Promise<PackResult> {
+export async function packFiles(inputs: string[], limits: Partial<Limits> = {}, options: PackOptions = {}): Promise<PackResult> {
   const problems: Problem[] = [];
   const entries: string[] = [];
   const zip = new JSZip();
+  const place: PackPlace = { zip, entries, folder: undefined, carried: new Map(), options, problems };
   const seen = new Map<string, string>();
   for (const input of inputs) {
     const ref = diskRef(input);
@@ -87,7 +199,12 @@ export async function packFiles(inputs: string[], limits: Partial<Limits> = {}):
       problems.push(fileProblem(ref, 'io', `cannot read ${input}: no such file`));
       continue;
     }
-    if (lower.endsWith('.xosc')) checkXml(ref, bytes, problems);
+    if (lower.endsWith('.xosc')) {
+      checkXml(ref, bytes, problems);
+      const text = decodeOrReport(ref, bytes, []);
+      const document = text === undefined ? undefined : parseXml(text);
+      if (text !== undefined && document && isWellFormed(document)) bytes = await rebasedForPackage(place, ref, bytes, text, document, name);
+    }
     zip.file(name, bytes, { date: ENTRY_DATE, createFolders: false });
     entries.push(name);
   }
@@ -133,6 +250,7 @@ async function packFolderInto(
   }
   const zip = new JSZip();
   const entries: string[] = [];
+  const place: PackPlace = { zip, entries, folder, carried: new Map(), options, problems };
   const added = new Map<string, string>();
   const add = (name: string, bytes: Uint8Array, origin: string) => {
     const existing = added.get(name);
@@ -153,14 +271,14 @@ async function packFolderInto(
       return;
     }
     inputs.push(ref);
-    add(entryName, bytes, refId(ref));
     const text = decodeOrReport(ref, bytes, problems);
-    if (text === undefined) return;
-    const document = parseXml(text);
-    if (!isWellFormed(document)) {
-      checkXml(ref, bytes, problems);
+    const document = text === undefined ? undefined : parseXml(text);
+    if (text === undefined || !document || !isWellFormed(document)) {
+      add(entryName, bytes, refId(ref));
+      if (text !== undefined) checkXml(ref, bytes, problems);
       return;
     }
+    add(entryName, await rebasedForPackage(place, ref, bytes, text, document, entryName), refId(ref));
     const model = buildModel(document);
     for (const reference of model.references) {
       const range = reference.fileAttribute ? document.lines.range(reference.fileAttribute.valueStart, reference.fileAttribute.valueEnd) : ZERO_RANGE;

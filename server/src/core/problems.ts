@@ -61,6 +61,7 @@ export const PROBLEM_CODE_LIST = [
   'catalog-location-conflict',
   'renamed-reference',
   'simulator',
+  'file-path',
 ] as const;
 
 export type ProblemCode = (typeof PROBLEM_CODE_LIST)[number];

@@ -80,6 +80,7 @@ export const RULES: Record<ProblemCode, Rule> = {
   'catalog-location-conflict': { description: "A carried catalog location agrees with the main file's (SPEC 11)." },
   'renamed-reference': { description: 'A reference to a group that flattening renames is updated.' },
   simulator: { description: 'The selected simulator runs what the file uses.' },
+  'file-path': { description: 'A file path of a written scenario names, from where it is written, the file its source named (SPEC 11.6).' },
 };
 
 /** The id a report gives a problem's rule: the ASAM Quality Checker uid where one exists, the project's code otherwise. */

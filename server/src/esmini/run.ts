@@ -122,8 +122,12 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
   const location = locateEsmini(options.esminiPath, options.base);
   if (!location.found) return { ...base, outcome: 'no-esmini', message: location.message, wallMs: elapsed() };
 
-  const flat = await flattener.flatten(main, { force: options.force });
+  // Flattened for the private run folder, so its file paths name the files the sources name (SPEC 11.6).
+  const runFolder = makeRunFolder(options.runsFolder ?? path.join(os.tmpdir(), 'modular2simple-esmini'));
+  const scenarioFile = path.join(runFolder, 'scenario.xosc');
+  const flat = await flattener.flatten(main, { outputPath: scenarioFile, force: options.force });
   const flattenProblems = flat.problems;
+  if (flat.text === undefined || withTimeLimit(flat.text, duration) === undefined) fs.rmSync(runFolder, { recursive: true, force: true });
   if (flat.text === undefined) {
     const errors = flattenProblems.filter((problem) => problem.severity === 'error').length;
     const counted = `the scenario has ${errors} error${errors === 1 ? '' : 's'}`;
@@ -138,10 +142,12 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
     return { ...base, flattenProblems, outcome: 'not-flattened', esmini: location.program, message: 'the scenario has no <Storyboard>, so esmini has nothing to run', wallMs: elapsed() };
   }
 
-  const runFolder = makeRunFolder(options.runsFolder ?? path.join(os.tmpdir(), 'modular2simple-esmini'));
-  const scenarioFile = path.join(runFolder, 'scenario.xosc');
   const csvFile = path.join(runFolder, 'trajectories.csv');
   fs.writeFileSync(scenarioFile, limited);
+  for (const file of flat.files) {
+    fs.mkdirSync(path.dirname(file.path), { recursive: true });
+    fs.writeFileSync(file.path, file.bytes);
+  }
   const sourceFolder = sourceFolderOf(main);
   const searchPath = unique([sourceFolder, ...catalogFolders(flat.source, sourceFolder), ...(options.roadPath ?? []).map((folder) => path.resolve(options.base ?? process.cwd(), folder))]);
   const run = await runEsminiProcess({

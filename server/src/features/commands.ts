@@ -1,3 +1,4 @@
+import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { ErrorCodes, ResponseError } from 'vscode-languageserver/node';
 import { Flattener, FlatSource } from '../core/flatten';
@@ -81,6 +82,12 @@ export async function flattenToFile(workspace: Workspace, uri: unknown, outputPa
   const input = result.source.dependencies.find((dependency) => dependency.disk === output || isSameFile(dependency.disk, output));
   if (input) return { written: null, problems: [...problems, outputProblem(workspace, ref, `refusing to overwrite ${displayRef(input, workspace.folders[0])}, an input of this flattening`)] };
   if (result.text === undefined) return { written: null, problems };
+  // A self-contained package's roads and catalogs go beside the output that names them.
+  for (const file of result.files) {
+    await fs.promises.mkdir(path.dirname(file.path), { recursive: true });
+    const written = await writeOutput(workspace, file.path, file.bytes, problems, ref);
+    if (written.written === null) return written;
+  }
   return writeOutput(workspace, output, result.text, problems, ref);
 }
 

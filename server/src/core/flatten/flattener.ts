@@ -9,10 +9,11 @@ import { analyzeDocument, CatalogLoader, semanticProblems } from '../semantics';
 import { refId, ScenarioStore, SourceError, SourceRef } from '../sources';
 import { isWellFormed, parseXml } from '../xml';
 import { checkDeclarations, checkOutput, entityProblems } from './checks';
-import { stripParameterAttributes } from './edits';
+import { applyEdits, parameterAttributeSpans } from './edits';
 import { link } from './link';
 import { outputSchemaProblems, overrideValueProblems } from './outputSchema';
 import { problemAt } from './report';
+import { PackagedFile, pathBaseOf, rebaseFlattened } from './rebase';
 import { render } from './render';
 import { AnalysisResult, FlatSource, FlattenOptions, FlattenResult, SchemaOptions } from './types';
 
@@ -65,29 +66,39 @@ export class Flattener {
 
   /** Flattens the scenario `main` (a `main.xosc` on disk or inside a package) into plain OpenSCENARIO. */
   async flatten(main: SourceRef, options: FlattenOptions = {}): Promise<FlattenResult> {
-    const outputDirectory = path.dirname(path.resolve(options.outputPath ?? main.disk));
+    // Standard output names files absolutely (SPEC 11.6); a file names them from its own folder.
+    const outputPath = options.standardOutput ? undefined : path.resolve(options.outputPath ?? path.join(pathBaseOf(main), 'flattened.xosc'));
     const analysis = await this.analyze(main);
-    const source = await this.renderedFor(analysis.source, outputDirectory);
+    const source = this.rendered(analysis.source);
     // The output is checked strictly against the schema too; its problems are reported where the source wrote them.
     const schemaVersion = this.schema.version;
     const schemaOutput =
       schemaVersion !== 'off' && source.model && source.model !== source.original ? outputSchemaProblems(source, this.schemaChecks, { version: schemaVersion }) : [];
     // Rendering the main file itself may find it too large.
-    const problems = uniqueProblems([
+    const found = [
       ...analysis.problems,
       ...source.problems,
       ...(source.carried?.problems ?? []),
-      ...(await checkOutput(this, source, outputDirectory)),
+      ...(await checkOutput(this, source, pathBaseOf(main))),
       ...schemaOutput,
-    ]);
+    ];
     // Forced, every error is listed and whatever could be rendered is written (SPEC 12); else any error refuses.
-    const blocking = options.force ? [] : problems.filter((problem) => problem.severity === 'error');
-    const text = source.text !== undefined && blocking.length === 0 ? declareUtf8(stripParameterAttributes(source.model ?? buildModel(parseXml(source.text)))) : undefined;
-    // Removing whole attributes keeps a well-formed text well-formed, so the rendered model is the check.
+    const blocking = options.force ? [] : found.filter((problem) => problem.severity === 'error');
+    let text: string | undefined;
+    let files: PackagedFile[] = [];
+    if (source.text !== undefined && blocking.length === 0) {
+      const model = source.model ?? buildModel(parseXml(source.text));
+      const rebase = await rebaseFlattened(source, model, outputPath, this.store);
+      found.push(...rebase.problems);
+      files = rebase.files;
+      // Removing whole attributes and replacing path values keeps a well-formed text well-formed, so the rendered model is the check.
+      const stripped = parameterAttributeSpans(model).map((span) => ({ ...span, text: '' }));
+      text = declareUtf8(applyEdits(model.document.text, [...stripped, ...rebase.edits]));
+    }
     if (text !== undefined && source.model && !isWellFormed(source.model.document)) {
       throw new Error('internal error: the flattened output is not well-formed XML');
     }
-    return { text, problems, source };
+    return { text, problems: uniqueProblems(found), source, files };
   }
 
   /** Reads (and, when it holds references, flattens) one file; cached per file. */
@@ -104,24 +115,14 @@ export class Flattener {
   /**
    * Renders the flattened text and model of a source on first use: only the sources whose groups
    * are imported, and the outputs, need them, so an editor analysing one file never renders it.
-   * Carried catalog locations are written relative to `outputDirectory` (the source's own folder by default).
+   * Carried catalog locations are written relative to the source's own folder; flatten rebases them with every other path.
    */
-  rendered(source: FlatSource, outputDirectory: string = path.dirname(source.ref.disk)): FlatSource {
+  rendered(source: FlatSource): FlatSource {
     if (source.renderable && source.original) {
       source.renderable = false;
-      render(this.store, source, source.original, outputDirectory);
+      render(this.store, source, source.original, pathBaseOf(source.ref));
     }
     return source;
-  }
-
-  /**
-   * The source rendered for an output in `outputDirectory`: the cached rendering when its text does not
-   * depend on the folder or was made for this one, else a new reading of the file rendered for it.
-   */
-  private async renderedFor(source: FlatSource, outputDirectory: string): Promise<FlatSource> {
-    const rendered = this.rendered(source, outputDirectory);
-    if (rendered.locationsRelativeTo === undefined || rendered.locationsRelativeTo === outputDirectory) return rendered;
-    return this.rendered(await this.build(source.ref, [source.ref]), outputDirectory);
   }
 
   private async build(ref: SourceRef, stack: SourceRef[]): Promise<FlatSource> {
@@ -136,7 +137,6 @@ export class Flattener {
       allProblems: [],
       dependencies: [ref],
       renderable: false,
-      locationsRelativeTo: undefined,
       semantics: undefined,
       catalogIndex: new Map(),
       carried: undefined,

@@ -33,7 +33,7 @@ interface Written {
 /**
  * Writes the flattened text of `result` (read as `model`): each outer group replaced in place by its
  * imported copies, then what they need carried into the root, with catalog locations relative to
- * `outputDirectory`. Leaves the text undefined when a copy is missing or the output grows too large.
+ * `outputDirectory` (the source's own folder: flatten rebases them onto the output's with every other path). Leaves the text undefined when a copy is missing or the output grows too large.
  */
 export function render(store: ScenarioStore, result: FlatSource, model: ScenarioModel, outputDirectory: string): void {
   const text = model.document.text;
@@ -47,7 +47,6 @@ export function render(store: ScenarioStore, result: FlatSource, model: Scenario
   const edits = carryEdits(result, plan, eol, outputDirectory);
   if (edits.length > 0) written = write(text, eol, replacements, edits);
   result.carried = plan;
-  result.locationsRelativeTo = plan.locations.length > 0 ? outputDirectory : undefined;
   result.problems.push(...plan.problems);
   result.allProblems = uniqueProblems([...result.allProblems, ...plan.problems]);
   result.insertions.push(...written.insertions);

@@ -5,6 +5,7 @@ import { SchemaVersionSetting } from '../schema/version';
 import { Declaration, DocumentSemantics } from '../semantics';
 import { Resolution, SourceRef } from '../sources';
 import { XmlElement } from '../xml';
+import type { PackagedFile } from './rebase';
 
 /** Problems that the original tool ignored silently: what `--force` skips (reported as skipped, not as errors). */
 export const OVERRIDE_PROBLEM_CODES: ReadonlySet<ProblemCode> = new Set<ProblemCode>([
@@ -63,11 +64,6 @@ export interface FlatSource {
   dependencies: SourceRef[];
   /** True while the flattened text can be, but has not yet been, rendered (see Flattener.rendered). */
   renderable: boolean;
-  /**
-   * The output folder that the catalog locations carried into `text` are written relative to; undefined
-   * when the rendering carried none (then the text is the same for every output folder).
-   */
-  locationsRelativeTo: string | undefined;
   /** The OpenSCENARIO semantics of the file as read (parameters, expressions, catalogs, names). */
   semantics: DocumentSemantics | undefined;
   /**
@@ -134,8 +130,10 @@ export interface FlattenOptions {
    * or group, malformed XML, a cycle, a too large output) leaves no text.
    */
   force?: boolean;
-  /** Where the output will be written (carried catalog directories are made relative to its folder); beside the main file by default. */
+  /** Where the output will be written (its file paths are rebased onto its folder, SPEC 11.6); beside the main file by default. */
   outputPath?: string;
+  /** The output goes to standard output: its file paths are written absolute. */
+  standardOutput?: boolean;
 }
 
 export interface AnalysisResult {
@@ -148,4 +146,6 @@ export interface FlattenResult {
   text: string | undefined;
   problems: Problem[];
   source: FlatSource;
+  /** Files of a package the output names (a self-contained package's roads and catalogs): written beside it, in `<name>.files/`. */
+  files: PackagedFile[];
 }

@@ -91,6 +91,9 @@ export class CatalogLoader {
       const folder = entry.includes('/') ? entry.slice(0, entry.lastIndexOf('/')) : '';
       const joined = normalizeEntryName(folder ? `${folder}/${pathText}` : pathText);
       if (joined && (await this.listing({ packageRef, directory: joined, via: 'file' })).length > 0) found.push({ packageRef, directory: joined, via: 'file' });
+      // A package's paths to files outside it are written relative to the package's folder (SPEC 11.6).
+      const beside = path.resolve(path.dirname(from.disk), pathText);
+      if (found.length === 0 && (await this.store.kindOf(beside)) === 'directory') found.push({ packageRef: undefined, directory: beside, via: 'file' });
     } else {
       const candidate = path.resolve(path.dirname(from.disk), pathText);
       if ((await this.store.kindOf(candidate)) === 'directory') found.push({ packageRef: undefined, directory: candidate, via: 'file' });

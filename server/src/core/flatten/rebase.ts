@@ -1,0 +1,258 @@
+import * as path from 'node:path';
+import { Evaluator, semanticModelOf } from '../semantics';
+import { ScenarioModel } from '../model';
+import { Problem, ZERO_RANGE } from '../problems';
+import type { FileKind } from '../sources/host';
+import { normalizeEntryName, ScenarioStore, SourceRef } from '../sources';
+import { escapeAttributeValue, selfAndDescendants, XmlAttribute, XmlDocument, XmlElement } from '../xml';
+import type { TextEdit } from './edits';
+import { originOf } from './origin';
+import type { FlatSource } from './types';
+
+/**
+ * Rebasing the file paths of a written scenario (SPEC 11.6): each path the schema types as a file or a
+ * directory is written relative to the folder of the file it came from; an output written elsewhere
+ * must name the same file relative to its own folder (or absolutely, on standard output).
+ */
+
+/**
+ * The elements whose attribute the ASAM schemas (1.0 to 1.3) type as a file path: every element of
+ * type `File` (attribute `filepath`) or `Directory` (attribute `path`), by the name of their parent element.
+ * test/core/rebase.test.ts checks this table against the compiled schema model.
+ */
+export const FILE_PATH_ELEMENTS: readonly { parent: string; element: string; attribute: string; kind: 'file' | 'directory' }[] = [
+  { parent: 'RoadNetwork', element: 'LogicFile', attribute: 'filepath', kind: 'file' },
+  { parent: 'RoadNetwork', element: 'SceneGraphFile', attribute: 'filepath', kind: 'file' },
+  { parent: 'ParameterValueDistribution', element: 'ScenarioFile', attribute: 'filepath', kind: 'file' },
+  { parent: 'Properties', element: 'File', attribute: 'filepath', kind: 'file' },
+  { parent: 'AnimationFile', element: 'File', attribute: 'filepath', kind: 'file' },
+  { parent: 'DomeImage', element: 'DomeFile', attribute: 'filepath', kind: 'file' },
+  ...['Controller', 'Environment', 'Maneuver', 'MiscObject', 'Pedestrian', 'Route', 'Sensor', 'Trajectory', 'Vehicle'].map((kind) => ({
+    parent: `${kind}Catalog`,
+    element: 'Directory',
+    attribute: 'path',
+    kind: 'directory' as const,
+  })),
+];
+
+const SITE_BY_ELEMENT = new Map(FILE_PATH_ELEMENTS.map((entry) => [`${entry.parent}/${entry.element}`, entry]));
+
+/** One attribute of a document that holds a file path. */
+export interface FilePathSite {
+  element: XmlElement;
+  attribute: XmlAttribute;
+  kind: 'file' | 'directory';
+}
+
+/** Every file path written in a document, in document order. */
+export function filePathSites(root: XmlElement | undefined): FilePathSite[] {
+  if (!root) return [];
+  const sites: FilePathSite[] = [];
+  for (const element of selfAndDescendants(root)) {
+    const entry = element.parent ? SITE_BY_ELEMENT.get(`${element.parent.name}/${element.name}`) : undefined;
+    const attribute = entry ? element.attributes.find((candidate) => candidate.name === entry.attribute) : undefined;
+    if (entry && attribute) sites.push({ element, attribute, kind: entry.kind });
+  }
+  return sites;
+}
+
+/** A path of the document that names a file or folder on disk. */
+export interface ResolvedPath {
+  site: FilePathSite;
+  /** The path as the attribute's value resolves (the parameter's value for a `$parameter`). */
+  written: string;
+  /** The folder it was resolved from. */
+  base: string;
+  /** The absolute file or folder it names. */
+  disk: string;
+  kind: 'file' | 'directory';
+  /** True when the attribute names a parameter or expression (such a path is never rewritten). */
+  viaParameter: boolean;
+  /** The text the attribute gets, when it changes. */
+  rewritten: string | undefined;
+}
+
+/** A path left as written that reaches another file once the output lies elsewhere. */
+export interface RebaseFinding {
+  site: FilePathSite;
+  severity: 'warning';
+  message: string;
+}
+
+export interface RebaseRequest {
+  document: XmlDocument;
+  /** The folder an element's paths resolve from (that of the file it was written in); undefined leaves them as written. */
+  baseOf: (element: XmlElement) => string | undefined;
+  /** The folder the output is written to; undefined writes absolute paths (standard output). */
+  outputDirectory: string | undefined;
+  kindOf: (diskPath: string) => Promise<FileKind>;
+  /** How a resolved path is written instead of relative to the output's folder (a self-contained package's own entries); undefined: the default. */
+  place?: (resolved: ResolvedPath) => string | undefined;
+}
+
+export interface PathRebase {
+  /** Edits of `document.text` (attribute values only): none when nothing needs to change. */
+  edits: TextEdit[];
+  /** Every path that names a file or folder on disk, rewritten or not. */
+  resolved: ResolvedPath[];
+  /** Paths that do not resolve from their file's folder (a CARLA town, a file on the simulator's search path): left as written. */
+  unresolved: FilePathSite[];
+  findings: RebaseFinding[];
+}
+
+/** A path as written in an output: forward slashes, a trailing slash kept when the original had one. */
+function written(relativeOrAbsolute: string, like: string): string {
+  let text = relativeOrAbsolute.split(path.sep).join('/') || '.';
+  if (/[\\/]$/.test(like) && !text.endsWith('/')) text += '/';
+  return text;
+}
+
+function namesParameter(value: string): boolean {
+  return value.trimStart().startsWith('$');
+}
+
+/**
+ * The edits that make every file path of `request.document` name, from the output's folder, the same
+ * file it names from its own file's folder. A path that does not resolve from there is left as written;
+ * so is one naming a `$parameter`, which is reported when its value is a relative path that resolves and
+ * the output lies elsewhere. Nothing changes for an output written beside the files it came from.
+ */
+export async function rebasePaths(request: RebaseRequest): Promise<PathRebase> {
+  const result: PathRebase = { edits: [], resolved: [], unresolved: [], findings: [] };
+  const output = request.outputDirectory === undefined ? undefined : path.resolve(request.outputDirectory);
+  let evaluator: Evaluator | undefined;
+  for (const site of filePathSites(request.document.root)) {
+    const base = request.baseOf(site.element);
+    if (base === undefined) continue;
+    const viaParameter = namesParameter(site.attribute.value);
+    let value = site.attribute.value;
+    if (viaParameter) {
+      evaluator ??= new Evaluator(semanticModelOf(request.document));
+      const evaluated = evaluator.textOf(site.element, site.attribute);
+      if (evaluated === undefined) continue;
+      value = evaluated;
+    }
+    if (value.trim() === '') {
+      result.unresolved.push(site);
+      continue;
+    }
+    const disk = path.resolve(base, value);
+    const kind = await request.kindOf(disk);
+    if (kind === undefined) {
+      result.unresolved.push(site);
+      continue;
+    }
+    const resolved: ResolvedPath = { site, written: value, base: path.resolve(base), disk, kind, viaParameter, rewritten: undefined };
+    result.resolved.push(resolved);
+    if (viaParameter) {
+      if (!path.isAbsolute(value) && (output === undefined || output !== resolved.base)) {
+        result.findings.push({
+          site,
+          severity: 'warning',
+          message:
+            `'${site.attribute.value}' gives the relative path '${value}', which names ${disk} from ${resolved.base}; ` +
+            `a path that names a parameter is left as written, so ${output === undefined ? 'the output on standard output' : `the output in ${output}`} may reach another file or none`,
+        });
+      }
+      continue;
+    }
+    const placed = request.place?.(resolved);
+    let text: string | undefined;
+    if (placed !== undefined) text = placed;
+    else if (output === undefined) text = path.isAbsolute(value) ? undefined : written(disk, value);
+    else if (!path.isAbsolute(value) && output !== resolved.base) text = written(path.relative(output, disk), value);
+    if (text === undefined || text === value) continue;
+    resolved.rewritten = text;
+    result.edits.push({ start: site.attribute.valueStart, end: site.attribute.valueEnd, text: escapeAttributeValue(text, site.attribute.quote) });
+  }
+  return result;
+}
+
+/** The folder the relative paths of a file resolve from: its own folder, or for a packaged file the package's folder on disk. */
+export function pathBaseOf(ref: SourceRef): string {
+  return path.dirname(ref.disk);
+}
+
+/** A file stored in a package that an output names: written beside the output (in `<name>.files/`) so that the output runs. */
+export interface PackagedFile {
+  /** Where it is written, absolute. */
+  path: string;
+  bytes: Uint8Array;
+}
+
+/** The package files a path written in a packaged file names: the entry itself, or a folder's direct files. */
+async function packagedEntries(store: ScenarioStore, ref: SourceRef, value: string): Promise<{ name: string; files: [string, Uint8Array][] } | undefined> {
+  if (ref.entries.length === 0 || path.isAbsolute(value) || namesParameter(value)) return undefined;
+  const packageRef: SourceRef = { disk: ref.disk, entries: ref.entries.slice(0, -1) };
+  const entry = ref.entries[ref.entries.length - 1];
+  const folder = entry.includes('/') ? entry.slice(0, entry.lastIndexOf('/')) : '';
+  const name = normalizeEntryName(folder ? `${folder}/${value}` : value);
+  if (!name) return undefined;
+  const contents = await store.readPackage(packageRef).catch(() => undefined);
+  if (!contents) return undefined;
+  const own = contents.entries.get(name);
+  if (own) return { name, files: [[name, own]] };
+  const files = [...contents.entries].filter(([candidate]) => candidate.startsWith(`${name}/`) && !candidate.slice(name.length + 1).includes('/'));
+  return files.length > 0 ? { name, files } : undefined;
+}
+
+/**
+ * The rebasing of a flattened output (`model`: the rendered text of `source`): each element's paths
+ * resolve from the folder of the file it was written in (carried catalog locations are written
+ * relative to the main file's folder), and are rewritten for the output at `outputPath` (absolute when
+ * undefined: standard output). A path of a packaged file that names a file of its package (a
+ * self-contained package's road or catalog) names its copy in `<output name>.files/`, returned in
+ * `files` for the writer. Findings come back as problems at the place each path was written.
+ */
+export async function rebaseFlattened(
+  source: FlatSource,
+  model: ScenarioModel,
+  outputPath: string | undefined,
+  store: ScenarioStore,
+): Promise<{ edits: TextEdit[]; resolved: ResolvedPath[]; problems: Problem[]; files: PackagedFile[] }> {
+  const flattenedHere = model === source.model;
+  const originFor = (element: XmlElement) => (flattenedHere ? originOf(source, element) : { source, element });
+  const problemAtOrigin = (element: XmlElement, attributeName: string, message: string, hint: string): Problem => {
+    const origin = originFor(element);
+    const document = (origin.source.original ?? origin.source.model)?.document;
+    const written = origin.element.attributes.find((candidate) => candidate.name === attributeName);
+    return {
+      source: origin.source.ref,
+      range: document && written ? document.lines.range(written.valueStart, written.valueEnd) : ZERO_RANGE,
+      severity: 'warning',
+      code: 'file-path',
+      message,
+      hint,
+    };
+  };
+  const outputDirectory = outputPath === undefined ? undefined : path.dirname(path.resolve(outputPath));
+  const problems: Problem[] = [];
+  const edits: TextEdit[] = [];
+  const files = new Map<string, Uint8Array>();
+  // Paths into the package a file was read from: its copies beside the output.
+  const inPackage = new Set<XmlElement>();
+  for (const site of filePathSites(model.document.root)) {
+    const ref = originFor(site.element).source.ref;
+    const packaged = await packagedEntries(store, ref, site.attribute.value);
+    if (!packaged) continue;
+    inPackage.add(site.element);
+    if (outputPath === undefined || outputDirectory === undefined) {
+      problems.push(problemAtOrigin(site.element, site.attribute.name, `'${site.attribute.value}' names ${packaged.name} inside the package, which standard output cannot carry; it is left as written`, 'flatten to a file: the package\'s files are then written beside it'));
+      continue;
+    }
+    const folder = `${path.basename(outputPath).replace(/\.xosc$/i, '')}.files`;
+    for (const [entry, bytes] of packaged.files) files.set(path.join(outputDirectory, folder, ...entry.split('/')), bytes);
+    const text = written(`${folder}/${packaged.name}`, site.attribute.value);
+    if (text !== site.attribute.value) edits.push({ start: site.attribute.valueStart, end: site.attribute.valueEnd, text: escapeAttributeValue(text, site.attribute.quote) });
+  }
+  const rebase = await rebasePaths({
+    document: model.document,
+    baseOf: (element) => (inPackage.has(element) ? undefined : pathBaseOf(originFor(element).source.ref)),
+    outputDirectory,
+    kindOf: (diskPath) => store.kindOf(diskPath),
+  });
+  for (const finding of rebase.findings) {
+    problems.push(problemAtOrigin(finding.site.element, finding.site.attribute.name, finding.message, 'declare the parameter with an absolute path, or write the output beside this file'));
+  }
+  return { edits: [...edits, ...rebase.edits], resolved: rebase.resolved, problems, files: [...files].map(([filePath, bytes]) => ({ path: filePath, bytes })) };
+}

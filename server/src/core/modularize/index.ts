@@ -1,0 +1,201 @@
+/*
+ * Modularize (issue 19): turns a library of plain scenarios into simple scenarios and mains.
+ *   shape.ts          what makes two ManeuverGroups one behaviour: their structure; their values
+ *   naming.ts         a file name that says what a group does
+ *   behaviour.ts      one recurring group: defaults, overridable attributes, keys, each use's overrides
+ *   simpleScenario.ts the valid scenario around an extracted group
+ *   mainText.ts       a main: the input with its recurring groups replaced by references
+ *   memoryHost.ts     the outputs as files, for flattening them before anything is written
+ */
+import * as path from 'node:path';
+import { firstDifference } from '../equivalence';
+import { Flattener } from '../flatten';
+import { applyEdits } from '../flatten/edits';
+import { buildModel } from '../model';
+import { diskRef, Limits, ScenarioStore } from '../sources';
+import { countEditorLines } from '../text';
+import { parseXml, XmlDocument } from '../xml';
+import { planBehaviour } from './behaviour';
+import { mainText } from './mainText';
+import { memoryHost } from './memoryHost';
+import { behaviourName, uniqueName } from './naming';
+import { GroupOccurrence, GroupShape, readOccurrence } from './shape';
+import { pathRebaser } from './rebase';
+import { Behaviour, MainResult, ModularizeInput, ModularizeOptions, ModularizeResult, ParsedInput, RebasePaths } from './types';
+
+export type { Behaviour, MainResult, ModularizeInput, ModularizeOptions, ModularizeResult, RebasePaths } from './types';
+export { memoryHost } from './memoryHost';
+
+/** Why an input is not a scenario to modularize (a catalog, a parameter distribution, a modular main), or undefined for a plain scenario. */
+export function notAPlainScenario(textOrDocument: string | XmlDocument): string | undefined {
+  const document = typeof textOrDocument === 'string' ? parseXml(textOrDocument) : textOrDocument;
+  const root = document.root;
+  if (!root || root.name !== 'OpenSCENARIO') return 'not an OpenSCENARIO file';
+  const kinds = root.children.map((child) => child.name);
+  if (kinds.includes('Catalog')) return 'a catalog';
+  if (kinds.includes('ParameterValueDistribution')) return 'a parameter value distribution';
+  if (!kinds.includes('Storyboard')) return 'not a scenario (no Storyboard)';
+  if (buildModel(document).references.length > 0) return 'already modular (it holds ScenarioReferences)';
+  return undefined;
+}
+
+/** Groups of the inputs by shape, in the order first met; only shapes that recur and are not excluded. */
+function recurringGroups(inputs: ParsedInput[], excluded: Set<string>): Map<string, { shape: GroupShape; occurrences: GroupOccurrence[] }> {
+  const byShape = new Map<string, { shape: GroupShape; occurrences: GroupOccurrence[] }>();
+  inputs.forEach((input, index) => {
+    for (const group of buildModel(input.document).groups) {
+      const read = readOccurrence(index, input.document, group);
+      if (!read || excluded.has(read.shape.key)) continue;
+      const known = byShape.get(read.shape.key);
+      if (known) known.occurrences.push(read.occurrence);
+      else byShape.set(read.shape.key, { shape: read.shape, occurrences: [read.occurrence] });
+    }
+  });
+  for (const [key, entry] of byShape) if (entry.occurrences.length < 2) byShape.delete(key);
+  return byShape;
+}
+
+interface Plan {
+  behaviours: Behaviour[];
+  mains: MainResult[];
+  keptInline: ModularizeResult['keptInline'];
+}
+
+async function plan(inputs: ParsedInput[], rebase: RebasePaths, simpleFolder: string, excluded: Map<string, string>): Promise<Plan> {
+  const behaviours: Behaviour[] = [];
+  const keptInline: ModularizeResult['keptInline'] = [];
+  const taken = new Set<string>();
+  const pending = [...recurringGroups(inputs, new Set(excluded.keys())).values()].map(({ shape, occurrences }) => ({
+    shape,
+    occurrences,
+    key: shape.key,
+    depth: 0,
+  }));
+  while (pending.length > 0) {
+    const { shape, occurrences, key, depth } = pending.shift() as (typeof pending)[number];
+    if (excluded.has(key)) continue;
+    const stem = uniqueName(behaviourName(occurrences[0].elements), taken);
+    const file = path.join(simpleFolder, `${stem}.xosc`);
+    const planned = await planBehaviour(key, shape.slots, occurrences, inputs, file, rebase);
+    if (planned.behaviour) {
+      behaviours.push(planned.behaviour);
+      continue;
+    }
+    taken.delete(stem.toLowerCase());
+    // Uses that agree on the attributes no key tells apart can still share one behaviour.
+    const parts = new Map<string, GroupOccurrence[]>();
+    if (planned.conflict && depth < 4) {
+      const conflict = planned.conflict;
+      for (const occurrence of occurrences) {
+        const values = JSON.stringify(conflict.map((index) => occurrence.values[index]));
+        parts.set(values, [...(parts.get(values) ?? []), occurrence]);
+      }
+    }
+    for (const [values, part] of parts)
+      if (part.length > 1 && part.length < occurrences.length)
+        pending.push({ shape, occurrences: part, key: `${key}\n${values}`, depth: depth + 1 });
+    const alone = planned.conflict && depth < 4 ? [...parts.values()].filter((part) => part.length === 1).flat() : occurrences;
+    for (const occurrence of alone)
+      keptInline.push({
+        input: inputs[occurrence.input].path,
+        group: occurrence.group.name,
+        reason: planned.reason ?? 'cannot be imported exactly',
+      });
+  }
+  const mains: MainResult[] = [];
+  for (const [index, input] of inputs.entries()) {
+    const uses = behaviours.flatMap((behaviour) =>
+      behaviour.uses.filter((use) => use.occurrence.input === index).map((use) => ({ behaviour, use })),
+    );
+    const text = mainText(input, uses);
+    mains.push({
+      input: input.path,
+      output: input.output,
+      text,
+      linesBefore: countEditorLines(input.text),
+      linesAfter: countEditorLines(text),
+      imports: uses.map(({ behaviour }) => behaviour.file),
+    });
+  }
+  return { behaviours, mains, keptInline };
+}
+
+/**
+ * Flattens every main that imports something, with the simple scenarios read from memory, and compares
+ * it with its input rebased onto the main's folder (SPEC 8): the first difference of each that differs.
+ */
+async function verify(inputs: ParsedInput[], planned: Plan, limits: Partial<Limits>): Promise<ModularizeResult['failures']> {
+  const files = new Map<string, string>();
+  for (const behaviour of planned.behaviours) files.set(path.resolve(behaviour.file), behaviour.text);
+  for (const main of planned.mains) if (main.imports.length > 0) files.set(path.resolve(main.output), main.text);
+  const store = new ScenarioStore({ host: memoryHost(files), scenarioPath: [], limits });
+  const flattener = new Flattener(store);
+  const failures: ModularizeResult['failures'] = [];
+  for (const [index, main] of planned.mains.entries()) {
+    if (main.imports.length === 0) continue;
+    const result = await flattener.flatten(diskRef(path.resolve(main.output)), { outputPath: main.output });
+    if (result.text === undefined) {
+      const error = result.problems.find((problem) => problem.severity === 'error');
+      failures.push({ input: main.input, difference: `the main does not flatten: ${error?.message ?? 'no output'}` });
+      continue;
+    }
+    const input = inputs[index];
+    const expected = applyEdits(input.text, input.pathEdits);
+    const difference = firstDifference(result.text, expected);
+    if (difference) failures.push({ input: main.input, difference });
+  }
+  return failures;
+}
+
+/**
+ * Extracts the ManeuverGroups that recur across `inputs` (same elements and attribute names in the
+ * same order) into simple scenarios and writes a main per input that imports them; nothing is
+ * written here. A behaviour whose mains do not flatten back to their inputs is kept inline and the
+ * rest tried again, so `failures` names only inputs that still differ with every behaviour inline.
+ */
+export async function modularize(
+  inputs: ModularizeInput[],
+  options: ModularizeOptions,
+  limits: Partial<Limits> = {},
+): Promise<ModularizeResult> {
+  const rebase = options.rebase ?? pathRebaser();
+  const parsed: ParsedInput[] = [];
+  for (const input of inputs) {
+    const document = input.document ?? parseXml(input.text);
+    parsed.push({ ...input, document, pathEdits: await rebase(document, path.dirname(input.path), path.dirname(input.output)) });
+  }
+  const excluded = new Map<string, string>();
+  let planned = await plan(parsed, rebase, options.simpleFolder, excluded);
+  let failures = await verify(parsed, planned, limits);
+  const keptInline: ModularizeResult['keptInline'] = [];
+  for (let round = 0; failures.length > 0 && round < 8; round++) {
+    const failing = new Set(failures.map((failure) => failure.input));
+    let dropped = 0;
+    for (const behaviour of planned.behaviours) {
+      const failure = failures.find((candidate) => behaviour.uses.some((use) => parsed[use.occurrence.input].path === candidate.input));
+      if (!failure || !behaviour.uses.some((use) => failing.has(parsed[use.occurrence.input].path))) continue;
+      excluded.set(behaviour.shapeKey, failure.difference);
+      dropped++;
+      for (const use of behaviour.uses)
+        keptInline.push({
+          input: parsed[use.occurrence.input].path,
+          group: use.occurrence.group.name,
+          reason: `its main would not flatten back exactly (${failure.difference})`,
+        });
+    }
+    if (dropped === 0) break;
+    planned = await plan(parsed, rebase, options.simpleFolder, excluded);
+    failures = await verify(parsed, planned, limits);
+  }
+  const linesBefore = planned.mains.reduce((sum, main) => sum + main.linesBefore, 0);
+  const linesAfter =
+    planned.mains.reduce((sum, main) => sum + main.linesAfter, 0) +
+    planned.behaviours.reduce((sum, behaviour) => sum + countEditorLines(behaviour.text), 0);
+  return {
+    mains: planned.mains,
+    behaviours: planned.behaviours,
+    failures,
+    keptInline: [...planned.keptInline, ...keptInline],
+    totals: { linesBefore, linesAfter, reduction: linesBefore === 0 ? 0 : Math.round((1 - linesAfter / linesBefore) * 1000) / 10 },
+  };
+}

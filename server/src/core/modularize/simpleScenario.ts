@@ -1,0 +1,162 @@
+import * as path from 'node:path';
+import { applyEdits, reindent } from '../flatten/edits';
+import { indentationAt } from '../text';
+import { attributeValue, descendants, escapeAttributeValue, parseXml, XmlDocument, XmlElement } from '../xml';
+import { GroupOccurrence } from './shape';
+import { ParsedInput, RebasePaths } from './types';
+
+export interface SimpleScenarioParts {
+  groupText: string;
+  groupName: string;
+  /** Where the simple scenario is written (absolute). */
+  file: string;
+  occurrences: GroupOccurrence[];
+  inputs: ParsedInput[];
+  /** The group's attribute values as the simple scenario holds them. */
+  defaults: string[];
+  unit: string;
+  eol: string;
+  rebase: RebasePaths;
+}
+
+const PARAMETER_USE = /\$\{?([A-Za-z_][\w]*)/g;
+
+/** An element's text moved to `depth` levels of `unit`. */
+function copied(document: XmlDocument, element: XmlElement, unit: string, depth: number, eol: string): string {
+  return (
+    unit.repeat(depth) +
+    reindent(document.text.slice(element.start, element.end), indentationAt(document.text, element.start), unit.repeat(depth), eol)
+  );
+}
+
+function child(element: XmlElement | undefined, name: string): XmlElement | undefined {
+  return element?.children.find((candidate) => candidate.name === name);
+}
+
+// Each document's elements by kind and `name`, built once however many behaviours look into it.
+const namedIndex = new WeakMap<XmlDocument, Map<string, XmlElement>>();
+
+/** The first element of one of `elementNames` whose `name` attribute is `wanted`, looked for in each document in turn. */
+function findNamed(
+  documents: XmlDocument[],
+  elementNames: string[],
+  wanted: string,
+): { document: XmlDocument; element: XmlElement } | undefined {
+  for (const document of documents) {
+    if (!document.root) continue;
+    let index = namedIndex.get(document);
+    if (!index) {
+      index = new Map();
+      for (const element of descendants(document.root)) {
+        const name = attributeValue(element, 'name');
+        const key = `${element.name}\n${name}`;
+        if (name !== undefined && !index.has(key)) index.set(key, element);
+      }
+      namedIndex.set(document, index);
+    }
+    for (const elementName of elementNames) {
+      const element = index.get(`${elementName}\n${wanted}`);
+      if (element) return { document, element };
+    }
+  }
+  return undefined;
+}
+
+/**
+ * A valid scenario around one group, as the paper's simple_1 and simple_2 are: the declarations and
+ * entities the group names (taken from the inputs it came from), the representative input's road
+ * network and catalog locations (rebased onto the simple scenario's folder), and a story that plays it.
+ */
+export async function simpleScenarioText(parts: SimpleScenarioParts): Promise<string> {
+  const { groupText, groupName, file, occurrences, inputs, defaults, unit, eol, rebase } = parts;
+  const representative = inputs[occurrences[0].input];
+  const documents = [...new Set(occurrences.map((occurrence) => inputs[occurrence.input]))].map((input) => input.document);
+  const root = representative.document.root as XmlElement;
+  const header = child(root, 'FileHeader');
+  const lines: string[] = ['<?xml version="1.0" encoding="UTF-8"?>', representative.text.slice(root.start, root.startTagEnd)];
+  const headerAttributes = [
+    ['revMajor', attributeValue(header ?? root, 'revMajor') ?? '1'],
+    ['revMinor', attributeValue(header ?? root, 'revMinor') ?? '0'],
+    ['date', attributeValue(header ?? root, 'date') ?? '2020-01-01T00:00:00'],
+    ['description', `${groupName}: a behaviour shared by ${occurrences.length} groups, extracted by modular2simple modularize`],
+    ['author', attributeValue(header ?? root, 'author') ?? 'modular2simple'],
+  ];
+  lines.push(`${unit}<FileHeader ${headerAttributes.map(([name, value]) => `${name}="${escapeAttributeValue(value)}"`).join(' ')}/>`);
+
+  // Every value of the group that names an entity of its inputs: the entity is declared here too.
+  // A parameter's value may name an entity too (an `entityRef="$owner"`).
+  const parameterValues: string[] = [];
+  for (const match of groupText.matchAll(PARAMETER_USE)) {
+    const declared = findNamed(documents, ['ParameterDeclaration'], match[1]);
+    const value = declared && attributeValue(declared.element, 'value');
+    if (value !== undefined) parameterValues.push(value);
+  }
+  const entities: string[] = [];
+  const seen = new Set<string>();
+  for (const value of [...defaults, ...parameterValues]) {
+    if (seen.has(value)) continue;
+    seen.add(value);
+    const found = findNamed(documents, ['ScenarioObject', 'EntitySelection'], value);
+    if (found && found.element.parent?.name === 'Entities') entities.push(copied(found.document, found.element, unit, 2, eol));
+  }
+
+  const catalogs = child(root, 'CatalogLocations');
+  const catalogText = catalogs ? copied(representative.document, catalogs, unit, 1, eol) : `${unit}<CatalogLocations/>`;
+  const roads = child(root, 'RoadNetwork');
+  const roadText = roads ? copied(representative.document, roads, unit, 1, eol) : `${unit}<RoadNetwork/>`;
+  // Parameters the group uses, with those their values use in turn, in the order first needed.
+  const needed: string[] = [];
+  const want = (text: string) => {
+    for (const match of text.matchAll(PARAMETER_USE)) if (!needed.includes(match[1])) needed.push(match[1]);
+  };
+  for (const text of [groupText, ...entities, catalogText, roadText]) want(text);
+  const declarations: string[] = [];
+  for (let i = 0; i < needed.length; i++) {
+    const found = findNamed(documents, ['ParameterDeclaration'], needed[i]);
+    if (!found) continue;
+    declarations.push(copied(found.document, found.element, unit, 2, eol));
+    want(found.document.text.slice(found.element.start, found.element.end));
+  }
+  lines.push(
+    declarations.length > 0
+      ? [`${unit}<ParameterDeclarations>`, ...declarations, `${unit}</ParameterDeclarations>`].join(eol)
+      : `${unit}<ParameterDeclarations/>`,
+  );
+
+  lines.push(catalogText, roadText);
+  lines.push(entities.length > 0 ? [`${unit}<Entities>`, ...entities, `${unit}</Entities>`].join(eol) : `${unit}<Entities/>`);
+
+  // The Act and Story keep the names they had around the group, which its conditions may name.
+  const act = occurrences[0].group.element.parent;
+  const actName = (act?.name === 'Act' && attributeValue(act, 'name')) || `${groupName}Act`;
+  const story = act?.parent;
+  const storyName = (story?.name === 'Story' && attributeValue(story, 'name')) || `${groupName}Story`;
+  const u = (depth: number) => unit.repeat(depth);
+  lines.push(
+    [
+      `${u(1)}<Storyboard>`,
+      `${u(2)}<Init>`,
+      `${u(3)}<Actions/>`,
+      `${u(2)}</Init>`,
+      `${u(2)}<Story name="${escapeAttributeValue(storyName)}">`,
+      `${u(3)}<Act name="${escapeAttributeValue(actName)}">`,
+      `${u(4)}${groupText}`,
+      `${u(4)}<StartTrigger>`,
+      `${u(5)}<ConditionGroup>`,
+      `${u(6)}<Condition name="${escapeAttributeValue(groupName)}Start" delay="0" conditionEdge="none">`,
+      `${u(7)}<ByValueCondition>`,
+      `${u(8)}<SimulationTimeCondition value="0" rule="greaterThan"/>`,
+      `${u(7)}</ByValueCondition>`,
+      `${u(6)}</Condition>`,
+      `${u(5)}</ConditionGroup>`,
+      `${u(4)}</StartTrigger>`,
+      `${u(3)}</Act>`,
+      `${u(2)}</Story>`,
+      `${u(2)}<StopTrigger/>`,
+      `${u(1)}</Storyboard>`,
+      `</${root.name}>`,
+    ].join(eol),
+  );
+  const text = lines.join(eol) + eol;
+  return applyEdits(text, await rebase(parseXml(text), path.dirname(representative.path), path.dirname(file)));
+}

@@ -1,0 +1,80 @@
+import { TextEdit } from '../flatten/edits';
+import { XmlDocument } from '../xml';
+import { GroupOccurrence, Slot } from './shape';
+
+/** One scenario to modularize: where it is, where its main goes, its text. */
+export interface ModularizeInput {
+  /** Absolute path of the input. */
+  path: string;
+  /** Absolute path of its main in the output folder. */
+  output: string;
+  text: string;
+  /** The text's parse, when the caller has it already. */
+  document?: XmlDocument;
+}
+
+/** The edits that make the file paths of a scenario written in `fromDirectory` reach the same files from `toDirectory`. */
+export type RebasePaths = (document: XmlDocument, fromDirectory: string, toDirectory: string) => Promise<TextEdit[]>;
+
+export interface ModularizeOptions {
+  /** The folder the simple scenarios are written to (absolute). */
+  simpleFolder: string;
+  /** How file paths are rebased onto the outputs' folders: flatten's rebasing unless a test gives another. */
+  rebase?: RebasePaths;
+}
+
+/** One override a main sets on an imported group. */
+export interface Override {
+  key: string;
+  value: string;
+}
+
+/** How one occurrence of a behaviour is imported. */
+export interface Use {
+  occurrence: GroupOccurrence;
+  outerName: string;
+  overrides: Override[];
+}
+
+/** A recurring group, extracted into a simple scenario of its own. */
+export interface Behaviour {
+  shapeKey: string;
+  /** The simple scenario's absolute path. */
+  file: string;
+  /** The group's name in the simple scenario (what `maneuverGroupName` names). */
+  groupName: string;
+  slots: Slot[];
+  defaults: string[];
+  /** Attributes listed in `parameterAttributes`, as `Element.attr` keys in document order. */
+  parameters: string[];
+  uses: Use[];
+  text: string;
+}
+
+/** What modularize made of one input. */
+export interface MainResult {
+  input: string;
+  output: string;
+  text: string;
+  linesBefore: number;
+  linesAfter: number;
+  /** Behaviours this main imports (their simple scenarios' paths), one per reference. */
+  imports: string[];
+}
+
+export interface ModularizeResult {
+  mains: MainResult[];
+  behaviours: Behaviour[];
+  /** Inputs whose main does not flatten back to an equivalent scenario, with the first difference: nothing may be written. */
+  failures: { input: string; difference: string }[];
+  /** Groups that recur but were left inline, and why (they could not be imported exactly). */
+  keptInline: { input: string; group: string; reason: string }[];
+  totals: { linesBefore: number; linesAfter: number; reduction: number };
+}
+
+/** An input read and parsed. */
+export interface ParsedInput extends ModularizeInput {
+  document: XmlDocument;
+  /** The edits that rebase the input's file paths onto its main's folder. */
+  pathEdits: TextEdit[];
+}

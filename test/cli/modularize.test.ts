@@ -1,0 +1,237 @@
+import * as assert from 'node:assert/strict';
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import { firstDifference } from '../../server/src/core/equivalence';
+import { esminiXodrDir } from '../support/esminiBinaries';
+import { requireEsmini, runEsmini } from '../support/esmini';
+import { assertNoTrace, runCli, scenario } from '../support/fixtures';
+import { libraryDir, requireCorpus, sharedDir } from '../support/paths';
+import { listFiles, temporaryWorkspace } from '../support/workspace';
+
+/** A group that sets one speed: the same structure whatever its values. */
+function speedGroup(name: string, speed: string): string {
+  return `        <ManeuverGroup maximumExecutionCount="1" name="${name}">
+          <Actors selectTriggeringEntities="false">
+            <EntityRef entityRef="car"/>
+          </Actors>
+          <Maneuver name="M">
+            <Event name="E" priority="overwrite">
+              <Action name="A">
+                <PrivateAction>
+                  <LongitudinalAction>
+                    <SpeedAction>
+                      <SpeedActionDynamics dynamicsShape="step" value="0" dynamicsDimension="time"/>
+                      <SpeedActionTarget>
+                        <AbsoluteTargetSpeed value="${speed}"/>
+                      </SpeedActionTarget>
+                    </SpeedAction>
+                  </LongitudinalAction>
+                </PrivateAction>
+              </Action>
+            </Event>
+          </Maneuver>
+        </ManeuverGroup>
+`;
+}
+
+/** Every file below a folder with its bytes, to show that nothing changed. */
+function snapshot(root: string): Map<string, string> {
+  return new Map(listFiles(root).map((file) => [file, fs.readFileSync(path.join(root, file), 'latin1')]));
+}
+
+describe('cli: modularize', function () {
+  this.timeout(180_000);
+
+  it("the paper's library: writes the mains and simple scenarios, each main flattens back equivalent, the reduction printed", function () {
+    requireCorpus(this);
+    const root = temporaryWorkspace();
+    const folders = fs
+      .readdirSync(libraryDir)
+      .filter((folder) => fs.existsSync(path.join(libraryDir, folder, 'result.xosc')))
+      .sort();
+    const inputs = folders.map((folder) => path.join(libraryDir, folder, 'result.xosc'));
+    const before = snapshot(libraryDir);
+    const run = runCli(['modularize', ...inputs, '-o', 'out'], { cwd: root });
+    assert.equal(run.status, 0, run.stderr);
+    assertNoTrace(run.stderr);
+    const total = /^total \(SPEC 9\)\s+21,243\s+([\d,]+)\s+([\d.]+) %$/m.exec(run.stdout);
+    assert.ok(total, run.stdout);
+    const after = Number(total[1].replace(/,/g, ''));
+    console.log(`      ${total[0].replace(/\s+/g, ' ')} (the authors by hand: 10,810)`);
+    assert.ok(after < 10_810, `${after} lines`);
+    assert.match(run.stdout, /simple scenarios? in out\/simple:/);
+    assert.match(run.stdout, /used in: out\/modular_hero_back\/result\.xosc/);
+    // Every main flattens, from another working directory and without SCENARIO_PATH, to its input.
+    let equivalent = 0;
+    for (const folder of folders) {
+      const flattened = runCli(['flatten', path.join(root, 'out', folder, 'result.xosc')], { cwd: sharedDir });
+      assert.equal(flattened.status, 0, flattened.stderr);
+      assert.equal(
+        firstDifference(flattened.stdout, fs.readFileSync(path.join(libraryDir, folder, 'result.xosc'), 'utf8')),
+        undefined,
+        folder,
+      );
+      equivalent++;
+    }
+    assert.equal(equivalent, 31);
+    assert.deepEqual(snapshot(libraryDir), before, 'inputs never change');
+    assert.deepEqual(
+      listFiles(root).filter((file) => !file.startsWith('out/')),
+      [],
+      'no temporary folder left',
+    );
+  });
+
+  it('--format json and --dry-run: the same report, nothing written', () => {
+    const root = temporaryWorkspace({
+      'lib/a.xosc': scenario(speedGroup('A.Go', '10')),
+      'lib/b.xosc': scenario(speedGroup('B.Go', '20') + speedGroup('C.Go', '10')),
+    });
+    const run = runCli(['modularize', 'lib', '-o', 'out', '--dry-run', '--format', 'json'], { cwd: root });
+    assert.equal(run.status, 0, run.stderr);
+    const report = JSON.parse(run.stdout) as {
+      written: boolean;
+      simpleScenarios: { file: string; parameterAttributes: string[]; uses: { main: string; overrides: unknown[] }[] }[];
+      totals: { linesBefore: number; linesAfter: number };
+    };
+    assert.equal(report.written, false);
+    assert.equal(report.simpleScenarios.length, 1);
+    assert.equal(path.relative(root, report.simpleScenarios[0].file), path.join('out', 'simple', 'speed.xosc'));
+    assert.deepEqual(report.simpleScenarios[0].parameterAttributes, ['AbsoluteTargetSpeed.value']);
+    assert.deepEqual(
+      report.simpleScenarios[0].uses.map((use) => path.relative(root, use.main)),
+      ['out/a.xosc', 'out/b.xosc', 'out/b.xosc'],
+    );
+    assert.ok(report.totals.linesBefore > 0);
+    assert.ok(!fs.existsSync(path.join(root, 'out')));
+  });
+
+  it('folders: catalogs and distributions are left alone, sub-folders keep their place, the mains resolve the simple scenarios', () => {
+    const root = temporaryWorkspace({
+      'lib/a.xosc': scenario(speedGroup('A.Go', '10')),
+      'lib/deep/b.xosc': scenario(speedGroup('B.Go', '20')),
+      'lib/Catalogs/cars.xosc':
+        '<?xml version="1.0"?>\n<OpenSCENARIO><FileHeader revMajor="1" revMinor="0" date="2020-01-01T00:00:00" description="" author=""/><Catalog name="cars"/></OpenSCENARIO>\n',
+    });
+    const run = runCli(['modularize', 'lib', '-o', 'out'], { cwd: root });
+    assert.equal(run.status, 0, run.stderr);
+    assert.match(run.stderr, /lib\/Catalogs\/cars\.xosc: left alone: a catalog/);
+    assert.deepEqual(listFiles(path.join(root, 'out')), ['a.xosc', 'deep/b.xosc', 'simple/speed.xosc']);
+    assert.match(fs.readFileSync(path.join(root, 'out/deep/b.xosc'), 'utf8'), /scenarioFileName="\.\.\/simple\/speed\.xosc"/);
+    for (const name of ['a.xosc', 'deep/b.xosc']) {
+      const flattened = runCli(['flatten', path.join(root, 'out', name)], { cwd: '/' });
+      assert.equal(flattened.status, 0, flattened.stderr);
+      assert.equal(firstDifference(flattened.stdout, fs.readFileSync(path.join(root, 'lib', name), 'utf8')), undefined);
+    }
+  });
+
+  it('file paths of the mains and simple scenarios are rebased onto their folders: they reach the same road', () => {
+    const withRoad = (groups: string) =>
+      scenario(groups).replace('  <Entities>', '  <RoadNetwork>\n    <LogicFile filepath="roads/r.xodr"/>\n  </RoadNetwork>\n  <Entities>');
+    const root = temporaryWorkspace({
+      'lib/a.xosc': withRoad(speedGroup('A.Go', '10')),
+      'lib/b.xosc': withRoad(speedGroup('B.Go', '20')),
+      'lib/roads/r.xodr': '<OpenDRIVE/>',
+      'elsewhere/deep/.keep': '',
+    });
+    const run = runCli(['modularize', 'lib', '-o', 'elsewhere/deep/out'], { cwd: root });
+    assert.equal(run.status, 0, run.stderr);
+    const road = path.join(root, 'lib/roads/r.xodr');
+    for (const file of ['elsewhere/deep/out/a.xosc', 'elsewhere/deep/out/simple/speed.xosc']) {
+      const written = /<LogicFile filepath="([^"]+)"\/>/.exec(fs.readFileSync(path.join(root, file), 'utf8'));
+      assert.ok(written, file);
+      assert.equal(path.resolve(path.dirname(path.join(root, file)), written[1]), road, file);
+    }
+    // Flattened beside its input, the main's output names the road as the input does.
+    const flattened = runCli(['flatten', 'elsewhere/deep/out/b.xosc', '-o', 'lib/b.flat.xosc'], { cwd: root });
+    assert.equal(flattened.status, 0, flattened.stderr);
+    assert.equal(
+      firstDifference(fs.readFileSync(path.join(root, 'lib/b.flat.xosc'), 'utf8'), fs.readFileSync(path.join(root, 'lib/b.xosc'), 'utf8')),
+      undefined,
+    );
+  });
+
+  it('no recurring group: nothing extracted, said so, nothing written', () => {
+    const root = temporaryWorkspace({ 'lib/a.xosc': scenario(speedGroup('A', '10')), 'lib/b.xosc': scenario('') });
+    const run = runCli(['modularize', 'lib', '-o', 'out'], { cwd: root });
+    assert.equal(run.status, 0, run.stderr);
+    assert.match(run.stdout, /no ManeuverGroup recurs across the 2 scenarios: nothing extracted, nothing written/);
+    assert.ok(!fs.existsSync(path.join(root, 'out')));
+  });
+
+  it('an input that does not parse: named with its line, nothing written', () => {
+    const root = temporaryWorkspace({
+      'lib/a.xosc': scenario(speedGroup('A.Go', '10')),
+      'lib/b.xosc': scenario(speedGroup('B.Go', '10')),
+      'lib/broken.xosc': '<OpenSCENARIO>\n  <Storyboard>\n</OpenSCENARIO>\n',
+    });
+    const run = runCli(['modularize', 'lib', '-o', 'out'], { cwd: root });
+    assert.equal(run.status, 1, run.stderr);
+    assertNoTrace(run.stderr);
+    assert.match(run.stderr, /lib\/broken\.xosc:2:3: error: element <Storyboard> is not closed/);
+    assert.match(run.stderr, /nothing was written/);
+    assert.ok(!fs.existsSync(path.join(root, 'out')));
+  });
+
+  it('an OUT that exists is refused unless --force; inputs are never overwritten', () => {
+    const files = { 'lib/a.xosc': scenario(speedGroup('A.Go', '10')), 'lib/b.xosc': scenario(speedGroup('B.Go', '20')) };
+    const root = temporaryWorkspace({ ...files, 'out/keep.txt': 'mine' });
+    const refused = runCli(['modularize', 'lib', '-o', 'out'], { cwd: root });
+    assert.equal(refused.status, 1, refused.stderr);
+    assert.match(refused.stderr, /out exists; nothing was written \(--force writes into it\)/);
+    assert.deepEqual(listFiles(path.join(root, 'out')), ['keep.txt']);
+    const forced = runCli(['modularize', 'lib', '-o', 'out', '--force'], { cwd: root });
+    assert.equal(forced.status, 0, forced.stderr);
+    assert.deepEqual(listFiles(path.join(root, 'out')), ['a.xosc', 'b.xosc', 'keep.txt', 'simple/speed.xosc']);
+    // OUT the input folder itself: every main would replace its input.
+    const over = runCli(['modularize', 'lib', '-o', 'lib', '--force'], { cwd: root });
+    assert.equal(over.status, 1, over.stderr);
+    assert.match(over.stderr, /refusing to write lib\/a\.xosc: it is an input/);
+    for (const [name, text] of Object.entries(files)) assert.equal(fs.readFileSync(path.join(root, name), 'utf8'), text);
+    assert.ok(!fs.existsSync(path.join(root, 'lib', 'simple')));
+  });
+
+  it('usage: no input, no -o, an unknown option', () => {
+    assert.equal(runCli(['modularize', '-o', 'out']).status, 2);
+    assert.equal(runCli(['modularize', 'lib']).status, 2);
+    const unknown = runCli(['modularize', 'lib', '-o', 'out', '--frobnicate']);
+    assert.equal(unknown.status, 2);
+    assert.match(unknown.stderr, /unknown option '--frobnicate'/);
+    const noValue = runCli(['modularize', 'lib', '-o']);
+    assert.equal(noValue.status, 2);
+    assert.match(noValue.stderr, /--output needs a value/);
+  });
+
+  it("esmini's scenarios: files that share groups run in esmini exactly as the originals once modularized and flattened", async function () {
+    requireEsmini(this);
+    const source = path.join(sharedDir, 'corpus', 'openscenario', 'esmini');
+    if (!fs.existsSync(source)) this.skip();
+    // The scenarios name ../xodr and ../xosc/Catalogs: the corpus goes in as xosc/ beside xodr/, OUT beside them.
+    const root = temporaryWorkspace();
+    fs.cpSync(source, path.join(root, 'xosc'), { recursive: true });
+    fs.symlinkSync(esminiXodrDir, path.join(root, 'xodr'));
+    const run = runCli(['modularize', 'xosc', '-o', 'out', '--format', 'json'], { cwd: root });
+    assert.equal(run.status, 0, run.stderr);
+    const report = JSON.parse(run.stdout) as { simpleScenarios: unknown[]; files: { input: string; main: string; imports: number }[] };
+    assert.ok(report.simpleScenarios.length >= 3, `${report.simpleScenarios.length} simple scenarios`);
+    const sharing = new Set(report.files.filter((file) => file.imports > 0).map((file) => path.basename(file.input)));
+    const chosen = [
+      'acc-test.xosc',
+      'alks-test.xosc',
+      'left-hand-traffic_by_heading.xosc',
+      'left-hand-traffic_using_road_rule.xosc',
+      'highway_merge.xosc',
+      'speed-profile.xosc',
+    ];
+    for (const name of chosen) assert.ok(sharing.has(name), `${name} imports a shared group (${[...sharing].join(', ')})`);
+    fs.mkdirSync(path.join(root, 'flat'));
+    for (const name of chosen) {
+      const flattened = runCli(['flatten', path.join('out', name), '-o', path.join('flat', name)], { cwd: root });
+      assert.equal(flattened.status, 0, flattened.stderr);
+      const original = await runEsmini(path.join(root, 'xosc', name), 30);
+      const modular = await runEsmini(path.join(root, 'flat', name), 30);
+      assert.ok(original.length > 10, `${name}: ${original.length} steps`);
+      assert.deepEqual(modular, original, name);
+    }
+  });
+});

@@ -1,0 +1,209 @@
+import * as assert from 'node:assert/strict';
+import { spawn } from 'node:child_process';
+import * as fs from 'node:fs';
+import * as os from 'node:os';
+import * as path from 'node:path';
+import { esminiBinary, EsminiStep, readEsminiCsv, requireEsmini } from '../support/esmini';
+import { esminiXodrDir } from '../support/esminiBinaries';
+import JSZip from 'jszip';
+import { runCli, scenario, simpleGroup } from '../support/fixtures';
+import { temporaryWorkspace } from '../support/workspace';
+import { sharedDir } from '../support/paths';
+
+/**
+ * SPEC 11.6: an output reaches the files its sources reached wherever it is written. A composition of
+ * esmini's cut-in (ws/xosc/main.xosc importing the group of ws/xosc/cut-in.xosc, the road in ws/xodr,
+ * the catalogs in ws/xosc/Catalogs) is flattened and packed to folders of other depths, and each output
+ * is run by esmini with no --path and from an unrelated working folder: it moves exactly as the original.
+ */
+const esminiCorpus = path.join(sharedDir, 'corpus', 'openscenario', 'esmini');
+
+/** esmini evaluates this expression to the literal below; the project's own reading of it is another task's. */
+const GLUED_NAME = '${BrakeCondition_HWT + _ + $HeadwayTime_Brake}';
+
+function temporaryFolder(prefix: string): string {
+  return fs.mkdtempSync(path.join(os.tmpdir(), prefix));
+}
+
+/** ws/xosc/{cut-in.xosc, main.xosc, Catalogs/Vehicles}, ws/xodr/e6mini.xodr; returns ws. */
+function cutInWorkspace(): string {
+  const ws = path.join(temporaryFolder('m2s-paths-'), 'ws');
+  fs.mkdirSync(path.join(ws, 'xosc', 'Catalogs', 'Vehicles'), { recursive: true });
+  fs.mkdirSync(path.join(ws, 'xodr'));
+  fs.copyFileSync(path.join(esminiXodrDir, 'e6mini.xodr'), path.join(ws, 'xodr', 'e6mini.xodr'));
+  fs.copyFileSync(path.join(esminiCorpus, 'Catalogs', 'Vehicles', 'VehicleCatalog.xosc'), path.join(ws, 'xosc', 'Catalogs', 'Vehicles', 'VehicleCatalog.xosc'));
+  const original = fs.readFileSync(path.join(esminiCorpus, 'cut-in.xosc'), 'utf8').replace(GLUED_NAME, 'BrakeCondition_HWT_0.7');
+  fs.writeFileSync(path.join(ws, 'xosc', 'cut-in.xosc'), original);
+  // The main file is the same scenario with its one group imported from cut-in.xosc.
+  const groupStart = original.indexOf('<ManeuverGroup maximumExecutionCount="1" name="CutInAndBrakeSequence">');
+  const groupEnd = original.indexOf('</ManeuverGroup>', groupStart) + '</ManeuverGroup>'.length;
+  assert.ok(groupStart > 0 && groupEnd > groupStart, 'cut-in.xosc has its group');
+  const outer = `<ManeuverGroup maximumExecutionCount="1" name="CutIn">
+               <Actors selectTriggeringEntities="false">
+                  <EntityRef entityRef="OverTaker"/>
+               </Actors>
+               <ScenarioReference scenarioFileName="cut-in.xosc">
+                  <ManeuverGroupReference maneuverGroupName="CutInAndBrakeSequence"/>
+               </ScenarioReference>
+            </ManeuverGroup>`;
+  fs.writeFileSync(path.join(ws, 'xosc', 'main.xosc'), original.slice(0, groupStart) + outer + original.slice(groupEnd));
+  return ws;
+}
+
+/** Runs esmini on a scenario headless, fixed step 0.05, seed 1, from an unrelated working folder and with no --path. */
+async function runAlone(scenario: string): Promise<{ steps: EsminiStep[]; log: string }> {
+  const cwd = temporaryFolder('m2s-paths-cwd-');
+  const csv = path.join(cwd, 'run.csv');
+  const args = ['--headless', '--osc', scenario, '--fixed_timestep', '0.05', '--seed', '1', '--csv_logger', csv, '--disable_log'];
+  const output: string[] = [];
+  const code = await new Promise<number | null>((resolve, reject) => {
+    const child = spawn(esminiBinary, args, { cwd, stdio: ['ignore', 'pipe', 'pipe'] });
+    const timer = setTimeout(() => child.kill('SIGKILL'), 120_000);
+    child.stdout.on('data', (chunk: Buffer) => output.push(chunk.toString()));
+    child.stderr.on('data', (chunk: Buffer) => output.push(chunk.toString()));
+    child.on('error', reject);
+    child.on('close', (status) => {
+      clearTimeout(timer);
+      resolve(status);
+    });
+  });
+  const log = output.join('');
+  assert.ok(code === 0 && fs.existsSync(csv), `esmini failed on ${scenario} (exit ${code}):\n${log.slice(-2000)}`);
+  return { steps: readEsminiCsv(csv), log };
+}
+
+function assertSameRun(actual: EsminiStep[], expected: EsminiStep[], what: string): void {
+  assert.ok(expected.length > 100, `the original runs (${expected.length} steps)`);
+  assert.equal(actual.length, expected.length, `${what}: number of steps`);
+  for (let index = 0; index < expected.length; index++) assert.deepEqual(actual[index], expected[index], `${what}: step ${index} (t=${expected[index].time})`);
+}
+
+/** The file or folder a path attribute of a written scenario names, resolved from the scenario's folder. */
+function namedPaths(scenario: string): string[] {
+  const text = fs.readFileSync(scenario, 'utf8');
+  return [...text.matchAll(/<(?:LogicFile|Directory) (?:filepath|path)="([^"]*)"/g)].map((match) => path.resolve(path.dirname(scenario), match[1]));
+}
+
+describe('cli: outputs reach their files wherever they are written (SPEC 11.6), run in esmini', function () {
+  let ws: string;
+  let original: EsminiStep[];
+  let expectedPaths: string[];
+
+  before(async function () {
+    requireEsmini(this);
+    ws = cutInWorkspace();
+    original = (await runAlone(path.join(ws, 'xosc', 'cut-in.xosc'))).steps;
+    expectedPaths = [path.join(ws, 'xosc', 'Catalogs', 'Vehicles'), path.join(ws, 'xodr', 'e6mini.xodr')];
+  });
+
+  const places: [string, () => string][] = [
+    ['beside the main', () => path.join(ws, 'xosc', 'flat.xosc')],
+    ['one folder deeper', () => path.join(ws, 'xosc', 'deeper', 'flat.xosc')],
+    ['two folders up', () => path.join(ws, '..', '..', `flat-${path.basename(path.dirname(ws))}.xosc`)],
+    ['an unrelated temporary folder', () => path.join(temporaryFolder('m2s-paths-out-'), 'flat.xosc')],
+  ];
+  for (const [where, output] of places) {
+    it(`flatten -o ${where}: loads the same road and catalogs and moves as the original`, async () => {
+      const target = output();
+      fs.mkdirSync(path.dirname(target), { recursive: true });
+      const run = runCli(['flatten', path.join(ws, 'xosc', 'main.xosc'), '-o', target], { cwd: temporaryFolder('m2s-paths-cli-') });
+      assert.equal(run.status, 0, run.stderr);
+      assert.deepEqual(namedPaths(target), expectedPaths);
+      assertSameRun((await runAlone(target)).steps, original, where);
+    });
+  }
+
+  it('flatten beside the main changes no path: the output is the main file with the group copied in', () => {
+    const target = path.join(ws, 'xosc', 'beside.xosc');
+    assert.equal(runCli(['flatten', 'xosc/main.xosc', '-o', target], { cwd: ws }).status, 0);
+    assert.match(fs.readFileSync(target, 'utf8'), /<Directory path="\.\.\/xosc\/Catalogs\/Vehicles"\/>[\s\S]*<LogicFile filepath="\.\.\/xodr\/e6mini\.xodr"\/>\s*<SceneGraphFile filepath="\.\.\/models\/e6mini\.osgb"\/>/);
+  });
+
+  it('flatten to standard output writes absolute paths; a path that does not resolve stays as written', async () => {
+    const run = runCli(['flatten', path.join(ws, 'xosc', 'main.xosc')], { cwd: temporaryFolder('m2s-paths-cli-') });
+    assert.equal(run.status, 0, run.stderr);
+    const target = path.join(temporaryFolder('m2s-paths-stdout-'), 'flat.xosc');
+    fs.writeFileSync(target, run.stdout);
+    assert.deepEqual(namedPaths(target), expectedPaths);
+    assert.ok(run.stdout.includes(`filepath="${path.join(ws, 'xodr', 'e6mini.xodr')}"`));
+    assert.ok(run.stdout.includes('<SceneGraphFile filepath="../models/e6mini.osgb"/>'));
+    assertSameRun((await runAlone(target)).steps, original, 'standard output');
+  });
+
+  it('pack to another depth rebases onto the package, warns naming each file outside it, and its flattening runs', async () => {
+    const target = path.join(ws, 'packages', 'deep', 'cut-in.mosc');
+    fs.mkdirSync(path.dirname(target), { recursive: true });
+    const run = runCli(['pack', path.join(ws, 'xosc'), '-o', target], { cwd: temporaryFolder('m2s-paths-cli-') });
+    assert.equal(run.status, 0, run.stderr);
+    assert.match(run.stderr, new RegExp(`warning: the package reaches the file ${escapeRegExp(path.join(ws, 'xodr', 'e6mini.xodr'))} outside itself`));
+    assert.match(run.stderr, new RegExp(`warning: the package reaches the folder ${escapeRegExp(path.join(ws, 'xosc', 'Catalogs', 'Vehicles'))} outside itself`));
+    assert.match(run.stderr, /--self-contained/);
+    const flat = path.join(ws, 'packages', 'flat', 'cut-in.xosc');
+    fs.mkdirSync(path.dirname(flat), { recursive: true });
+    const flatten = runCli(['flatten', target, '-o', flat], { cwd: temporaryFolder('m2s-paths-cli-') });
+    assert.equal(flatten.status, 0, flatten.stderr);
+    assert.deepEqual(namedPaths(flat), expectedPaths);
+    assertSameRun((await runAlone(flat)).steps, original, 'flattened package');
+  });
+
+  it('pack --self-contained stores the road and catalogs; the package copied alone to a fresh folder flattens and runs the same', async () => {
+    const target = path.join(ws, 'packages', 'self', 'cut-in.mosc');
+    fs.mkdirSync(path.dirname(target), { recursive: true });
+    const run = runCli(['pack', path.join(ws, 'xosc'), '-o', target, '--self-contained'], { cwd: temporaryFolder('m2s-paths-cli-') });
+    assert.equal(run.status, 0, run.stderr);
+    assert.doesNotMatch(run.stderr, /outside itself/);
+    const fresh = temporaryFolder('m2s-paths-fresh-');
+    fs.copyFileSync(target, path.join(fresh, 'cut-in.mosc'));
+    const flatten = runCli(['flatten', 'cut-in.mosc', '-o', 'cut-in.xosc'], { cwd: fresh });
+    assert.equal(flatten.status, 0, flatten.stderr);
+    for (const named of namedPaths(path.join(fresh, 'cut-in.xosc'))) assert.ok(named.startsWith(fresh + path.sep), `${named} lies in the fresh folder`);
+    assertSameRun((await runAlone(path.join(fresh, 'cut-in.xosc'))).steps, original, 'self-contained package');
+    // Run in esmini (the CLI's run) from a private folder, with no road path: the same steps.
+    const ran = runCli(['run', 'cut-in.mosc', '--esmini', esminiBinary, '--csv', 'run.csv'], { cwd: fresh });
+    assert.equal(ran.status, 0, ran.stderr);
+    assertSameRun(readEsminiCsv(path.join(fresh, 'run.csv')), original, 'self-contained package run by the run command');
+  });
+});
+
+function escapeRegExp(text: string): string {
+  return text.replace(/[.*+?^${}()|[\]\\]/g, '\\$&');
+}
+
+describe('cli: the warnings pack prints about files a package reaches outside itself', () => {
+  const withRoad = (logicFile: string) =>
+    scenario(simpleGroup('Go')).replace('<Entities>', `<ParameterDeclarations>\n    <ParameterDeclaration name="Road" parameterType="string" value="../xodr/road.xodr"/>\n  </ParameterDeclarations>\n  <RoadNetwork>\n    <LogicFile filepath="${logicFile}"/>\n  </RoadNetwork>\n  <Entities>`);
+
+  it('-cxm files: each road named, at its line, with what it is written as in the package', async () => {
+    const root = temporaryWorkspace({ 'xodr/road.xodr': '<OpenDRIVE/>', 'xosc/main.xosc': withRoad('../xodr/road.xodr') });
+    fs.mkdirSync(path.join(root, 'out', 'deeper'), { recursive: true });
+    const run = runCli(['-cxm', 'xosc/main.xosc', 'out/deeper/pkg.mosc'], { cwd: root });
+    assert.equal(run.status, 0, run.stderr);
+    assert.match(run.stderr, new RegExp(`^xosc/main\\.xosc:\\d+:\\d+: warning: the package reaches the file ${escapeRegExp(path.join(root, 'xodr', 'road.xodr'))} outside itself \\(written '\\.\\./\\.\\./xodr/road\\.xodr', relative to the package's folder\\)`, 'm'));
+    const entries = await unzipped(path.join(root, 'out', 'deeper', 'pkg.mosc'));
+    assert.match(entries.get('main.xosc') ?? '', /<LogicFile filepath="\.\.\/\.\.\/xodr\/road\.xodr"\/>/);
+  });
+
+  it('a path naming a parameter is left as written and said so', () => {
+    const root = temporaryWorkspace({ 'xodr/road.xodr': '<OpenDRIVE/>', 'xosc/main.xosc': withRoad('$Road') });
+    const run = runCli(['pack', 'xosc', '-o', 'pkg.mosc', '--self-contained'], { cwd: root });
+    assert.equal(run.status, 0, run.stderr);
+    assert.match(run.stderr, /warning: the package reaches the file .*road\.xodr outside itself; the package does not run without it\n\s*hint: '\$Road' names a parameter, so it is left as written/);
+  });
+
+  it('--self-contained stores the road at a package-relative path and warns about nothing', async () => {
+    const root = temporaryWorkspace({ 'xodr/road.xodr': '<OpenDRIVE/>', 'xosc/main.xosc': withRoad('../xodr/road.xodr') });
+    const run = runCli(['pack', 'xosc', '-o', 'pkg.mosc', '--self-contained'], { cwd: root });
+    assert.equal(run.status, 0, run.stderr);
+    assert.doesNotMatch(run.stderr, /warning/);
+    const entries = await unzipped(path.join(root, 'pkg.mosc'));
+    assert.deepEqual([...entries.keys()].sort(), ['files/road.xodr', 'main.xosc']);
+    assert.match(entries.get('main.xosc') ?? '', /<LogicFile filepath="files\/road\.xodr"\/>/);
+  });
+});
+
+async function unzipped(file: string): Promise<Map<string, string>> {
+  const zip = await JSZip.loadAsync(fs.readFileSync(file));
+  const entries = new Map<string, string>();
+  for (const [name, entry] of Object.entries(zip.files)) if (!entry.dir) entries.set(name, await entry.async('string'));
+  return entries;
+}
