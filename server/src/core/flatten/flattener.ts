@@ -175,8 +175,7 @@ export class Flattener {
     result.original = model;
     checkDeclarations(result, model);
     if (document.root) {
-      const semantics = await analyzeDocument(ref, document, this.catalogs, model.references.length > 0);
-      semantics.simulator = this.simulator;
+      const semantics = await analyzeDocument(ref, document, this.catalogs, model.references.length > 0, this.simulator);
       result.semantics = semantics;
       result.problems.push(...semanticProblems(semantics));
       for (const file of semantics.catalogs.files) if (!result.dependencies.some((known) => refId(known) === refId(file))) result.dependencies.push(file);
