@@ -95,6 +95,7 @@ export class Evaluator {
       const type = declaration.type ?? 'string';
       if (esmini.ok) {
         const typed = esminiTyped(esmini.text, declaration.type);
+        if (this.reading === 'esmini') result = { ok: true, value: typed.value, type, provenance: standard.provenance };
         if (!sameValue(standard.value, typed.value)) {
           const differs = { standard: formatValue(standard.value), esmini: formatValue(typed.value), reasons: reasonsOf(esmini.rules, typed.rule) };
           result = this.reading === 'esmini' ? { ok: true, value: typed.value, type, provenance: standard.provenance, differs } : { ...standard, differs };
@@ -280,10 +281,10 @@ export class Evaluator {
       return { ...standard, warnings };
     }
     const esminiValue = readAs(esmini.text, standard.type);
-    if (sameValue(standard.value, esminiValue)) return { ...standard, warnings };
+    const chosen = this.reading === 'esmini' ? { value: esminiValue } : {};
+    if (sameValue(standard.value, esminiValue)) return { ...standard, ...chosen, warnings };
     const differs: ValueDifference = { standard: formatValue(standard.value), esmini: formatValue(esminiValue), reasons: reasonsOf(esmini.rules) };
     if (!site.declaration) warnings.push({ kind: 'simulator', message: differenceMessage(differs), ...whole });
-    const chosen = this.reading === 'esmini' ? { value: esminiValue } : {};
     return { ...standard, ...chosen, differs, warnings };
   }
 
