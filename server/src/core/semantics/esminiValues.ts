@@ -1,6 +1,6 @@
 import { ESMINI_PROFILE } from '../profiles/esmini';
 import { ValueRule } from '../profiles/facts';
-import { ParameterType, ParameterValue } from './expressions';
+import { ExpressionNode, ParameterType, ParameterValue } from './expressions';
 
 /**
  * Values as esmini (release 3.6.0) computes them. esmini keeps every parameter value as text; a
@@ -11,7 +11,7 @@ import { ParameterType, ParameterValue } from './expressions';
  */
 
 /** What esmini makes of a value: the text it keeps, or why it stops the scenario. */
-export type EsminiText = { ok: true; text: string; rules: ValueRule[] } | { ok: false; message: string; rules: ValueRule[] };
+export type EsminiText = { ok: true; text: string; rules: ValueRule[]; /** The number the text reads as when esmini's tokenizer reads it as one number (kept to compute on trees). */ number?: number } | { ok: false; message: string; rules: ValueRule[] };
 
 /** The text of a parameter as esmini holds it; undefined when esmini cannot find it (it stops). */
 export type EsminiParameterText = (name: string) => EsminiText | undefined;
@@ -24,8 +24,12 @@ export function esminiRule(rule: ValueRule): string {
 
 const DELIMITERS = ' ({)}-+*/%^!|&<>=,';
 
+function addRule(rules: ValueRule[], rule: ValueRule): void {
+  if (!rules.includes(rule)) rules.push(rule);
+}
+
 /** Replaces each `$name` by its text, as Parameters::ResolveParametersInString does. */
-function substitute(body: string, lookup: EsminiParameterText, rules: Set<ValueRule>): { text: string } | { message: string } {
+function substitute(body: string, lookup: EsminiParameterText, rules: ValueRule[]): { text: string } | { message: string } {
   let text = body;
   // A value that holds a `$` is substituted again; esmini would loop for ever on a value naming itself.
   for (let round = 0; round < 1000; round++) {
@@ -37,15 +41,15 @@ function substitute(body: string, lookup: EsminiParameterText, rules: Set<ValueR
     const value = lookup(name);
     if (!value) return { message: `esmini stops: "Failed to resolve parameter $${name}"` };
     if (!value.ok) return { message: value.message };
-    value.rules.forEach((rule) => rules.add(rule));
-    rules.add('substitution');
+    for (const rule of value.rules) addRule(rules, rule);
+    addRule(rules, 'substitution');
     text = text.slice(0, found) + value.text + text.slice(end);
   }
   return { message: 'esmini stops: a parameter value names itself' };
 }
 
 function replaceAll(text: string, search: string, replacement: string): string {
-  return text.split(search).join(replacement);
+  return text.includes(search) ? text.split(search).join(replacement) : text;
 }
 
 const isSpace = (c: string) => c === ' ' || c === '\t' || c === '\n' || c === '\v' || c === '\f' || c === '\r';
@@ -196,8 +200,9 @@ export function glueText(source: string): string {
 
 /** expr_parse_number: digits with at most one dot, NaN otherwise. */
 function parseNumber(text: string): number {
-  if ((text.match(/\./g) ?? []).length > 1 || !/[0-9]/.test(text)) return NaN;
-  return Number(text.endsWith('.') ? text.slice(0, -1) : text);
+  const dot = text.indexOf('.');
+  if (dot >= 0 && text.indexOf('.', dot + 1) >= 0) return NaN;
+  return Number(dot === text.length - 1 ? text.slice(0, -1) : text);
 }
 
 const toInt = (x: number) => (Number.isNaN(x) ? 0 : !Number.isFinite(x) ? (x > 0 ? 2147483647 : -2147483647) : Math.trunc(x) | 0);
@@ -222,11 +227,11 @@ export function roundHalfToEven(x: number): number {
   return floor % 2 === 0 ? floor : floor + 1;
 }
 
-function applyEsminiFunction(name: string, args: number[], rules: Set<ValueRule>): number {
+function applyEsminiFunction(name: string, args: number[], rules: ValueRule[]): number {
   const [a, b] = args;
   switch (name) {
     case 'round':
-      if (roundHalfToEven(a) !== (a < 0 ? -Math.round(-a) : Math.round(a))) rules.add('round');
+      if (roundHalfToEven(a) !== (a < 0 ? -Math.round(-a) : Math.round(a))) addRule(rules, 'round');
       return roundHalfToEven(a);
     case 'floor':
       return Math.floor(a);
@@ -249,7 +254,7 @@ function applyEsminiFunction(name: string, args: number[], rules: Set<ValueRule>
     case 'atan':
       return Math.atan(a);
     case 'sign':
-      if (a === 0) rules.add('sign');
+      if (a === 0) addRule(rules, 'sign');
       return a < 0 ? -1 : 1;
     case 'abs':
       return Math.abs(a);
@@ -263,7 +268,7 @@ function applyEsminiFunction(name: string, args: number[], rules: Set<ValueRule>
 class ParseFailure extends Error {}
 
 /** Evaluates the tokens with expr's precedence (a lower number binds tighter; unary operators tightest). */
-function evaluateTokens(tokens: Token[], rules: Set<ValueRule>): number {
+function evaluateTokens(tokens: Token[], rules: ValueRule[]): number {
   let index = 0;
   const fail = (message: string): never => {
     throw new ParseFailure(message);
@@ -279,7 +284,7 @@ function evaluateTokens(tokens: Token[], rules: Set<ValueRule>): number {
     if (token.kind === 'operator' && token.unary) {
       const value = operand();
       if (token.text === '-') return -value;
-      rules.add('comparisons');
+      addRule(rules, 'comparisons');
       return token.text === '!' ? (value ? 0 : 1) : ~toInt(value);
     }
     if (token.kind === 'open') {
@@ -321,18 +326,18 @@ function evaluateTokens(tokens: Token[], rules: Set<ValueRule>): number {
   return value;
 }
 
-function binary(operator: string, a: number, b: number, rules: Set<ValueRule>): number {
+function binary(operator: string, a: number, b: number, rules: ValueRule[]): number {
   switch (operator) {
     case '**':
       return Math.pow(a, b);
     case '*':
       return a * b;
     case '/':
-      if (b === 0) rules.add('divisionByZero');
+      if (b === 0) addRule(rules, 'divisionByZero');
       return a / b;
     case '%':
-      if (b === 0) rules.add('divisionByZero');
-      else if (ieeeRemainder(a, b) !== a % b) rules.add('remainder');
+      if (b === 0) addRule(rules, 'divisionByZero');
+      else if (ieeeRemainder(a, b) !== a % b) addRule(rules, 'remainder');
       return ieeeRemainder(a, b);
     case '+':
       return a + b;
@@ -343,7 +348,7 @@ function binary(operator: string, a: number, b: number, rules: Set<ValueRule>): 
     case '=':
       throw new ParseFailure('an assignment');
   }
-  rules.add('comparisons');
+  addRule(rules, 'comparisons');
   switch (operator) {
     case '<<':
       return toInt(a) << toInt(b);
@@ -386,10 +391,10 @@ export function sixDecimals(value: number): string {
 
 /** The value of a `${...}` body as esmini computes it (Parameters::ReadAttribute). */
 export function esminiExpression(body: string, lookup: EsminiParameterText): EsminiText {
-  const rules = new Set<ValueRule>();
+  const rules: ValueRule[] = [];
   const closing = body.indexOf('}');
   const substituted = substitute(closing >= 0 ? body.slice(0, closing) : body, lookup, rules);
-  if ('message' in substituted) return { ok: false, message: substituted.message, rules: [...rules] };
+  if ('message' in substituted) return { ok: false, message: substituted.message, rules };
   let text = substituted.text;
   for (const [search, replacement] of [
     ['not ', '!'],
@@ -400,17 +405,17 @@ export function esminiExpression(body: string, lookup: EsminiParameterText): Esm
     ['false ', '0 '],
   ]) {
     const replaced = replaceAll(text, search, replacement);
-    if (replaced !== text) rules.add('keywords');
+    if (replaced !== text) addRule(rules, 'keywords');
     text = replaced;
   }
   const scanned = scan(text);
   if ('text' in scanned) {
-    rules.add('textGluing');
-    return { ok: true, text: glueText(text), rules: [...rules] };
+    addRule(rules, 'textGluing');
+    return { ok: true, text: glueText(text), rules };
   }
   const failed = (why: string): EsminiText => ({ ok: false, message: `esmini stops: "Failed to evaluate the expression" (${why}: '${text}')`, rules: [...rules, 'failure'] });
   if ('failure' in scanned) return failed(scanned.failure);
-  if (scanned.tokens.length === 0) return { ok: true, text: sixDecimals(0), rules: [...rules] };
+  if (scanned.tokens.length === 0) return { ok: true, text: sixDecimals(0), rules };
   try {
     const value = evaluateTokens(scanned.tokens, rules);
     if (Number.isNaN(value)) return failed('the result is not a number');
@@ -421,8 +426,75 @@ export function esminiExpression(body: string, lookup: EsminiParameterText): Esm
   }
 }
 
+/** A parameter text esmini's tokenizer reads as one number (an optional unary minus, digits, one dot). */
+const PLAIN_NUMBER = /^-?[0-9]+(?:\.[0-9]*)?$/;
+/** What esminiFromTree leaves to the text: an exponent, and the words esmini rewrites. */
+const NEEDS_TEXT = /[0-9.][eE][+-]?[0-9]|not|and|or|true|false/;
+
+/** The number a plain numeric text reads as (see PLAIN_NUMBER); undefined for any other text. */
+export function plainNumber(text: string): number | undefined {
+  return PLAIN_NUMBER.test(text) ? (text.startsWith('-') ? -parseNumber(text.slice(1)) : parseNumber(text)) : undefined;
+}
+
+class NotPlain extends Error {}
+const NOT_PLAIN = new NotPlain();
+
+function treeValue(node: ExpressionNode, lookup: EsminiParameterText, rules: ValueRule[]): number {
+  switch (node.kind) {
+    case 'number':
+      return node.value;
+    case 'parameter': {
+      const text = lookup(node.name);
+      const value = text?.ok ? (text.number ?? plainNumber(text.text)) : undefined;
+      if (value === undefined || !text?.ok) throw NOT_PLAIN;
+      for (const rule of text.rules) if (!rules.includes(rule)) rules.push(rule);
+      return value;
+    }
+    case 'unary':
+      if (node.operator !== '-') throw NOT_PLAIN;
+      return -treeValue(node.operand, lookup, rules);
+    case 'binary':
+      if (node.operator === 'and' || node.operator === 'or') throw NOT_PLAIN;
+      return binary(node.operator, treeValue(node.left, lookup, rules), treeValue(node.right, lookup, rules), rules);
+    case 'call':
+      return applyEsminiFunction(
+        node.name,
+        node.args.map((arg) => treeValue(arg, lookup, rules)),
+        rules,
+      );
+    default:
+      throw NOT_PLAIN;
+  }
+}
+
+/**
+ * esmini's value of an expression computed on its parsed tree instead of its text, when that gives
+ * the same: only numbers without an exponent, `$parameters` whose text is a plain number, unary
+ * minus, + - * / % and functions (what substituting the texts and tokenizing would read the same
+ * way). Undefined when the expression needs the text (words, booleans, exponents, other texts) or
+ * esmini fails on it; `esminiExpression` then reads it as esmini does.
+ */
+export function esminiFromTree(tree: ExpressionNode, body: string, lookup: EsminiParameterText): EsminiText | undefined {
+  if (NEEDS_TEXT.test(body)) return undefined;
+  const rules: ValueRule[] = [];
+  let value: number;
+  try {
+    value = treeValue(tree, lookup, rules);
+  } catch (error) {
+    if (error === NOT_PLAIN) return undefined;
+    throw error;
+  }
+  if (Number.isNaN(value)) return undefined;
+  rules.push('resultText');
+  const text = sixDecimals(value);
+  return { ok: true, text, rules, number: Number.isFinite(value) ? Number(text) : undefined };
+}
+
 /** atof(): the longest prefix that reads as a number (glibc strtod), 0 when there is none. */
 export function atof(text: string): number {
+  // Number() reads a whole numeric text as strtod does (the texts esmini writes are such); only a prefix needs the scan.
+  const whole = Number(text);
+  if (!Number.isNaN(whole) && text.trim() !== '' && !/^\s*[+-]?0[xXbBoO]/.test(text)) return whole;
   const match = /^[ \t\n\v\f\r]*([+-]?)(inf(?:inity)?|nan|(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?)/i.exec(text);
   if (!match) return 0;
   const sign = match[1] === '-' ? -1 : 1;

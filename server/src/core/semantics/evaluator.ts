@@ -1,6 +1,6 @@
 import { ValueRule } from '../profiles/facts';
 import { XmlAttribute, XmlElement } from '../xml';
-import { atof, EsminiText, esminiExpression, esminiRule, esminiTyped } from './esminiValues';
+import { atof, esminiFromTree, EsminiText, esminiExpression, esminiRule, esminiTyped, plainNumber } from './esminiValues';
 import { convertValue, evaluateTree, ExpressionError, formatValue, integralConversionError, LookupResult, ParameterType, ParameterValue, parseLiteral, TypedValue } from './expressions';
 import { resolveName } from './scopes';
 import { Declaration, ParameterAssignmentInfo, Scope, SemanticModel, ValueSite } from './types';
@@ -57,10 +57,10 @@ function sameValue(a: ParameterValue, b: ParameterValue): boolean {
 }
 
 /** How an attribute of the standard's type reads esmini's text (a double with atof, a boolean when the text is `true`). */
-function readAs(text: string, type: ParameterType): ParameterValue {
-  if (type === 'double' || type === 'int' || type === 'unsignedInt' || type === 'unsignedShort') return atof(text);
-  if (type === 'boolean') return text === 'true';
-  return text;
+function readAs(esmini: EsminiText & { ok: true }, type: ParameterType): ParameterValue {
+  if (type === 'double' || type === 'int' || type === 'unsignedInt' || type === 'unsignedShort') return esmini.number ?? atof(esmini.text);
+  if (type === 'boolean') return esmini.text === 'true';
+  return esmini.text;
 }
 
 function differenceMessage(difference: ValueDifference): string {
@@ -77,6 +77,10 @@ export class Evaluator {
   private readonly standardValues = new Map<Declaration, ValueResult>();
   private readonly esminiTexts = new Map<Declaration, EsminiText>();
   private readonly warnings = new Map<Declaration, ExpressionError[]>();
+  // A site's value depends only on the model and the assignments, both fixed: each is computed once.
+  private readonly siteValues = new Map<ValueSite, ValueResult & { warnings?: ExpressionError[] }>();
+  private readonly esminiSiteTexts = new Map<ValueSite, EsminiText>();
+  private readonly lenientValues = new Map<ValueSite, { standard: ValueResult & { warnings?: ExpressionError[] }; esmini: EsminiText }>();
 
   constructor(
     readonly model: SemanticModel,
@@ -94,7 +98,7 @@ export class Evaluator {
       const esmini = this.esminiDeclarationText(declaration);
       const type = declaration.type ?? 'string';
       if (esmini.ok) {
-        const typed = esminiTyped(esmini.text, declaration.type);
+        const typed = declaration.type === 'double' && esmini.number !== undefined ? { value: esmini.number, rule: 'doubleConversion' as const } : esminiTyped(esmini.text, declaration.type);
         if (this.reading === 'esmini') result = { ok: true, value: typed.value, type, provenance: standard.provenance };
         if (!sameValue(standard.value, typed.value)) {
           const differs = { standard: formatValue(standard.value), esmini: formatValue(typed.value), reasons: reasonsOf(esmini.rules, typed.rule) };
@@ -187,7 +191,7 @@ export class Evaluator {
     const attr = declaration.valueAttribute;
     if (!attr) return { ok: true, text: '', rules: [] };
     const site = this.model.siteOf.get(attr);
-    if (!site) return { ok: true, text: attr.value, rules: [] };
+    if (!site) return { ok: true, text: attr.value, rules: [], number: plainNumber(attr.value) };
     return this.esminiSiteText(site);
   }
 
@@ -198,12 +202,22 @@ export class Evaluator {
 
   /** The text esmini makes of a `$name` or `${...}` attribute value. */
   esminiSiteText(site: ValueSite): EsminiText {
+    const known = this.esminiSiteTexts.get(site);
+    if (known) return known;
+    const result = this.computeEsminiSiteText(site);
+    this.esminiSiteTexts.set(site, result);
+    return result;
+  }
+
+  private computeEsminiSiteText(site: ValueSite): EsminiText {
     if (site.form.kind === 'parameter') {
       return this.esminiName(site.scope, site.form.name, site.declaration) ?? { ok: false, message: `esmini stops: "Failed to resolve parameter $${site.form.name}"`, rules: ['failure'] };
     }
     const body = site.attribute.value.trimEnd().slice(2);
-    const text = esminiExpression(body, (name) => this.esminiName(site.scope, name, site.declaration));
-    return text;
+    const lookup = (name: string) => this.esminiName(site.scope, name, site.declaration);
+    const tree = site.form.expression.tree;
+    // Most expressions read the same on the tree as in esmini's text, without building any text.
+    return (tree && body.endsWith('}') && body.indexOf('}') === body.length - 1 ? esminiFromTree(tree, body.slice(0, -1), lookup) : undefined) ?? esminiExpression(body, lookup);
   }
 
   /** The value of a `$name` or `${...}` by the standard's rules, with the lenient forms it accepts (as warnings). */
@@ -214,8 +228,8 @@ export class Evaluator {
       const value = this.standardDeclaration(declaration);
       if (!value.ok) return { error: { kind: 'unknown-parameter' as const, message: `'${name}' has no valid value (${value.errors[0]?.message ?? 'see its declaration'})`, start, end } };
       const typeAttribute = declaration.typeAttribute;
-      const retype = typeAttribute && typeAttribute.value.length === typeAttribute.valueEnd - typeAttribute.valueStart ? { start: typeAttribute.valueStart, end: typeAttribute.valueEnd } : undefined;
-      return { value: value.value, type: value.type, retype };
+      if (value.type !== 'string' || !typeAttribute || typeAttribute.value.length !== typeAttribute.valueEnd - typeAttribute.valueStart) return { value: value.value, type: value.type };
+      return { value: value.value, type: value.type, retype: { start: typeAttribute.valueStart, end: typeAttribute.valueEnd } };
     };
     if (site.form.kind === 'parameter') {
       const declaration = resolveName(site.scope, site.form.name, site.declaration);
@@ -244,6 +258,14 @@ export class Evaluator {
    * text that esmini glues, the glued text, with a warning whose fix writes it as a literal.
    */
   private lenientSite(site: ValueSite & { form: { kind: 'expression' } }): { standard: ValueResult & { warnings?: ExpressionError[] }; esmini: EsminiText } {
+    const known = this.lenientValues.get(site);
+    if (known) return known;
+    const result = this.computeLenientSite(site);
+    this.lenientValues.set(site, result);
+    return result;
+  }
+
+  private computeLenientSite(site: ValueSite & { form: { kind: 'expression' } }): { standard: ValueResult & { warnings?: ExpressionError[] }; esmini: EsminiText } {
     const standard = this.standardSite(site);
     const esmini = this.esminiSiteText(site);
     const [first] = standard.ok ? [] : standard.errors;
@@ -259,6 +281,14 @@ export class Evaluator {
   }
 
   evaluateSite(site: ValueSite): ValueResult & { warnings?: ExpressionError[] } {
+    const known = this.siteValues.get(site);
+    if (known) return known;
+    const result = this.computeSite(site);
+    this.siteValues.set(site, result);
+    return result;
+  }
+
+  private computeSite(site: ValueSite): ValueResult & { warnings?: ExpressionError[] } {
     if (site.form.kind === 'parameter') {
       const declaration = resolveName(site.scope, site.form.name, site.declaration);
       if (declaration) return this.declarationValue(declaration);
@@ -280,9 +310,9 @@ export class Evaluator {
       if (!site.declaration) warnings.push({ kind: 'simulator', message: `${esmini.message}; the standard gives ${formatValue(standard.value)}`, ...whole });
       return { ...standard, warnings };
     }
-    const esminiValue = readAs(esmini.text, standard.type);
+    const esminiValue = readAs(esmini, standard.type);
+    if (sameValue(standard.value, esminiValue)) return this.reading === 'esmini' ? { ...standard, value: esminiValue, warnings } : standard;
     const chosen = this.reading === 'esmini' ? { value: esminiValue } : {};
-    if (sameValue(standard.value, esminiValue)) return { ...standard, ...chosen, warnings };
     const differs: ValueDifference = { standard: formatValue(standard.value), esmini: formatValue(esminiValue), reasons: reasonsOf(esmini.rules) };
     if (!site.declaration) warnings.push({ kind: 'simulator', message: differenceMessage(differs), ...whole });
     return { ...standard, ...chosen, differs, warnings };

@@ -427,15 +427,15 @@ export function evaluateTree(tree: ExpressionNode, lookup: ParameterLookup, warn
     return result.value as boolean;
   };
   const number = (value: number): TypedValue => ({ value, type: 'double' });
-  const finite = (node: ExpressionNode, value: number, operands: number[]): TypedValue => {
-    if (!Number.isFinite(value) && !Number.isNaN(value) && operands.every(Number.isFinite)) {
+  const finite = (node: ExpressionNode, value: number, left: number, right = 0): TypedValue => {
+    if (!Number.isFinite(value) && !Number.isNaN(value) && Number.isFinite(left) && Number.isFinite(right)) {
       throw new EvaluationFailure({ kind: 'overflow', message: `the result is beyond the range of a double (at most 1.7976931348623157E308)`, start: node.start, end: node.end });
     }
     return number(value);
   };
   const parameterValue = (node: ExpressionNode & { name: string }, found: LookupResult): TypedValue => {
     if (found.type === 'dateTime') mismatch(node, `the dateTime parameter '${node.name}' cannot be used in an expression`);
-    if (found.type !== 'string') return { value: found.value, type: found.type };
+    if (found.type !== 'string') return found;
     const read = readStringAsValue(String(found.value));
     if (!read) throw new EvaluationFailure({ kind: 'type-mismatch', message: `the string parameter '${node.name}' (${JSON.stringify(found.value)}) cannot be used in an expression`, start: node.start, end: node.end, text: true });
     warnings.push({
@@ -499,22 +499,22 @@ export function evaluateTree(tree: ExpressionNode, lookup: ParameterLookup, warn
         const right = numberOf(node.right, `'${node.operator}'`);
         switch (node.operator) {
           case '+':
-            return finite(node, left + right, [left, right]);
+            return finite(node, left + right, left, right);
           case '-':
-            return finite(node, left - right, [left, right]);
+            return finite(node, left - right, left, right);
           case '*':
-            return finite(node, left * right, [left, right]);
+            return finite(node, left * right, left, right);
           case '/':
           case '%':
             if (right === 0) throw new EvaluationFailure({ kind: 'division-by-zero', message: `division by zero: the right side of '${node.operator}' is 0`, start: node.right.start, end: node.right.end });
-            return finite(node, node.operator === '/' ? left / right : left % right, [left, right]);
+            return finite(node, node.operator === '/' ? left / right : left % right, left, right);
         }
         break;
       }
       case 'call': {
         const args = node.args.map((arg) => numberOf(arg, `${node.name}()`));
         const value = applyFunction(node.name, args);
-        if (!Number.isNaN(value)) return finite(node, value, args);
+        if (!Number.isNaN(value)) return finite(node, value, args.every(Number.isFinite) ? 0 : Infinity);
         if (!Number.isFinite(value)) {
           throw new EvaluationFailure({ kind: 'type-mismatch', message: `${node.name}(${args.join(', ')}) has no real value`, start: node.start, end: node.end });
         }
