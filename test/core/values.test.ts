@@ -73,6 +73,10 @@ const SCENARIO = `<?xml version="1.0" encoding="UTF-8"?>
     <ParameterDeclaration name="Fraction" parameterType="int" value="\${7 / 2}"/>
     <ParameterDeclaration name="Short" parameterType="unsignedShort" value="\${60000 + 6000}"/>
     <ParameterDeclaration name="Zero" parameterType="double" value="\${1 / 0}"/>
+    <ParameterDeclaration name="speed" parameterType="string" value="4.333"/>
+    <ParameterDeclaration name="Speed" parameterType="double" value="\${$speed}"/>
+    <ParameterDeclaration name="HostVehicle" parameterType="string" value="car_white"/>
+    <ParameterDeclaration name="Host" parameterType="string" value="\${$HostVehicle}"/>
   </ParameterDeclarations>
   <Storyboard>
     <Init><Actions/></Init>
@@ -180,6 +184,13 @@ describe('values by the standard and by esmini (SPEC 12)', () => {
     assert.equal(okValue(valueOf(standard, 'Bare')), 1.4);
     assert.equal(okValue(valueOf(standard, 'Brake')), 31, '$TargetBrakeDistance resolves to the declaration name="$TargetBrakeDistance"');
     assert.equal(okValue(valueOf(standard, 'Minus')), -5);
+    // A string parameter whose text is a number, alone in an expression: read as that number (esmini and the ASAM API do).
+    assert.equal(okValue(valueOf(standard, 'Speed')), 4.333);
+    assert.equal(okValue(valueOf(esmini, 'Speed')), 4.333);
+    assert.deepEqual(problemAt(problems, 'Speed', 'lenient-value').data, { relatedReplacement: 'double' });
+    // A text string parameter alone in an expression: esmini keeps the text, the standard has none.
+    assert.equal(okValue(valueOf(standard, 'Host')), 'car_white');
+    assert.deepEqual(problemAt(problems, 'Host', 'lenient-value').data, { suggestion: '$HostVehicle' });
     const lenient = problems.filter((problem) => problem.code === 'lenient-value');
     assert.ok(lenient.every((problem) => problem.severity === 'warning'));
     const glued = problemAt(problems, 'Glued', 'lenient-value');
@@ -200,7 +211,7 @@ describe('values by the standard and by esmini (SPEC 12)', () => {
     assert.deepEqual(minus.data, { suggestion: '-5' });
     // Nothing of these is an undeclared parameter or an error.
     assert.ok(!problems.some((problem) => problem.code === 'undeclared-parameter'));
-    for (const name of ['Glued', 'Stop', 'Bare', 'Brake', 'Minus', '$TargetBrakeDistance']) {
+    for (const name of ['Glued', 'Stop', 'Bare', 'Brake', 'Minus', '$TargetBrakeDistance', 'Speed', 'Host']) {
       const line = SCENARIO.split('\n').findIndex((text) => text.includes(`name="${name}"`));
       assert.ok(!problems.some((problem) => problem.range.start.line === line && problem.severity === 'error'), name);
     }

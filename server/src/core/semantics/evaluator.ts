@@ -275,7 +275,8 @@ export class Evaluator {
       kind: 'lenient',
       message: `the standard has no text in expressions (${first.message.split(':')[0]}); ${esminiRule('textGluing')}, which gives '${esmini.text}'`,
       ...whole,
-      fix: { ...whole, text: esmini.text },
+      // A lone `${$name}` is the plain reference `$name`; anything else becomes the glued literal.
+      fix: { ...whole, text: site.form.expression.tree?.kind === 'parameter' ? `$${site.form.expression.tree.name}` : esmini.text },
     };
     return { standard: { ok: true, value: esmini.text, type: 'string', provenance: { kind: 'literal' }, warnings: [...(standard.warnings ?? []), warning] }, esmini };
   }
