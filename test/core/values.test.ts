@@ -144,6 +144,9 @@ describe('values by the standard and by esmini (SPEC 12)', () => {
     assert.equal(glueText('a + _ + 0.7'), 'a_0.7');
     assert.equal(glueText('a+b'), 'a+b');
     assert.equal(glueText('a +b'), 'ab');
+    // A number that starts with its dot is no number to esmini's tokenizer: it stops.
+    const dot = esminiExpression('.5 + 1', lookup);
+    assert.ok(!dot.ok && /Failed to evaluate/.test(dot.message));
   });
 
   it('gives the standard value and, where esmini computes another, both with the rule and its source', () => {

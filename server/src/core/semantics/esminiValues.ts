@@ -428,8 +428,8 @@ export function esminiExpression(body: string, lookup: EsminiParameterText): Esm
 
 /** A parameter text esmini's tokenizer reads as one number (an optional unary minus, digits, one dot). */
 const PLAIN_NUMBER = /^-?[0-9]+(?:\.[0-9]*)?$/;
-/** What esminiFromTree leaves to the text: an exponent, and the words esmini rewrites. */
-const NEEDS_TEXT = /[0-9.][eE][+-]?[0-9]|not|and|or|true|false/;
+/** What esminiFromTree leaves to the text: an exponent, a number starting with its dot (esmini fails on it), the words esmini rewrites. */
+const NEEDS_TEXT = /[0-9.][eE][+-]?[0-9]|(?:^|[^0-9])\.[0-9]|not|and|or|true|false/;
 
 /** The number a plain numeric text reads as (see PLAIN_NUMBER); undefined for any other text. */
 export function plainNumber(text: string): number | undefined {
