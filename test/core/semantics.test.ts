@@ -188,7 +188,8 @@ describe('semantics: scopes, values and catalogs', () => {
     const twice = semantics.evaluator.declarationValue(semantics.model.root!.byName.get('Twice')!);
     assert.deepEqual([twice.ok && twice.value, twice.ok && twice.type], [40, 'double']);
     const count = semantics.evaluator.declarationValue(semantics.model.root!.byName.get('Count')!);
-    assert.equal(count.ok && count.value, 4, 'an int takes 3.5 rounded half away from zero');
+    // SPEC 12 (issue 17): the standard converts a double to an int only when it has no fraction, so 3.5 is an error.
+    assert.ok(!count.ok && /3\.5 is not integral/.test(count.errors[0].message), 'an int does not take 3.5');
     const inStory = valueAt(semantics, at('${$Speed * 2}', 2));
     assert.ok(inStory?.result.ok);
     assert.equal(inStory.result.value, 42, '(20 + 1) * 2');
@@ -238,6 +239,7 @@ describe('semantics: scopes, values and catalogs', () => {
     assert.deepEqual(found.sort(), [
       'division-by-zero:error:($Speed - 21)',
       'duplicate-parameter:warning:Owner',
+      'type-mismatch:error:${7 / 2}',
       'undeclared-entity:warning:Nobody',
       'undeclared-parameter:error:$Missing',
       'undeclared-variable:error:Countr',

@@ -49,6 +49,9 @@ export const PROBLEM_CODE_LIST = [
   'type-mismatch',
   'division-by-zero',
   'nonstandard-expression',
+  'lenient-value',
+  'simulator-value',
+  'overflow',
   'catalog-directory',
   'unknown-catalog',
   'unknown-catalog-entry',
@@ -142,6 +145,7 @@ export interface ProblemDataByCode {
   'unknown-catalog-entry': SuggestionData;
   'unknown-assigned-parameter': SuggestionData;
   'unknown-storyboard-element': SuggestionData;
+  'lenient-value': SuggestionData | RelatedReplacementData;
   'renamed-reference': SuggestionData;
   'catalog-location-conflict': LocationConflictData;
   'schema-unknown-element': SuggestionData;

@@ -20,14 +20,18 @@ function allHints(semantics: DocumentSemantics): ExpressionHint[] {
     const result = semantics.evaluator.attributeValue(site.element, site.attribute);
     // An expression that cannot be evaluated has a diagnostic instead.
     if (!result.ok) continue;
+    // Where esmini computes another value, the hint gives both: the selected reading's first (SPEC 12).
+    const differs = result.differs;
+    const other = differs ? (semantics.evaluator.reading === 'esmini' ? ` (standard ${differs.standard})` : ` (esmini ${differs.esmini})`) : '';
+    const why = differs ? `; by the standard ${differs.standard}, by esmini ${differs.esmini}${differs.reasons.length ? `: ${differs.reasons.join('; ')}` : ''}` : '';
     hints.push({
       offset: site.attribute.valueEnd,
       hint: {
         position: lines.positionAt(site.attribute.valueEnd + 1),
-        label: `= ${formatValue(result.value)}`,
+        label: `= ${formatValue(result.value)}${other}`,
         kind: InlayHintKind.Parameter,
         paddingLeft: true,
-        tooltip: `${site.attribute.value.trim()} evaluates to ${formatValue(result.value)} (${result.type})`,
+        tooltip: `${site.attribute.value.trim()} evaluates to ${formatValue(result.value)} (${result.type})${why}`,
       },
     });
   }

@@ -83,7 +83,14 @@ export function renameParameter(workspace: Workspace, semantics: DocumentSemanti
 }
 
 export function describeValue(result: ValueResult): string {
-  return result.ok ? `${formatValue(result.value)} (${result.type})` : `cannot be evaluated: ${result.errors[0]?.message ?? 'unknown error'}`;
+  return result.ok ? `${formatValue(result.value)} (${result.type})${differenceNote(result)}` : `cannot be evaluated: ${result.errors[0]?.message ?? 'unknown error'}`;
+}
+
+/** Where esmini computes another value than the standard: both, and esmini's rules that make the difference (SPEC 12). */
+export function differenceNote(result: ValueResult): string {
+  if (!result.ok || !result.differs) return '';
+  const { standard, esmini, reasons } = result.differs;
+  return `; by the standard ${standard}, by esmini ${esmini}${reasons.length ? ` (${reasons.join('; ')})` : ''}`;
 }
 
 /**
@@ -193,7 +200,7 @@ export async function parameterHover(workspace: Workspace, semantics: DocumentSe
     const result = semantics.evaluator.attributeValue(element, attr);
     const lines: string[] = [];
     const written = attr.value.trim();
-    lines.push(site.form.kind === 'expression' ? `\`${written}\` = **${result.ok ? formatValue(result.value) : '?'}**${result.ok ? ` (${result.type})` : ''}` : `**${written}** = ${describeValue(result)}`);
+    lines.push(site.form.kind === 'expression' ? `\`${written}\` = **${result.ok ? formatValue(result.value) : '?'}**${result.ok ? ` (${result.type})${differenceNote(result)}` : ''}` : `**${written}** = ${describeValue(result)}`);
     if (!result.ok) for (const error of result.errors) lines.push(`- error: ${error.message}`);
     const provenance = provenanceLine(semantics, result.provenance);
     if (provenance) lines.push('', provenance);

@@ -2,7 +2,7 @@ import * as path from 'node:path';
 import { PARAMETER_ATTRIBUTES, ScenarioModel } from '../model';
 import { Problem, ProblemCode, ZERO_RANGE } from '../problems';
 import { Simulator } from '../profiles/simulators';
-import { CatalogLoader, Evaluator, Finding, OUTPUT_CHECKS, problemOfFinding, runChecks, semanticModelOf } from '../semantics';
+import { CatalogLoader, Evaluator, Finding, OUTPUT_CHECKS, problemOfFinding, readingOf, runChecks, semanticModelOf } from '../semantics';
 import { closestMatch } from '../text';
 import { attribute, selfAndDescendants, XmlAttribute, XmlElement } from '../xml';
 import { originOf } from './origin';
@@ -112,7 +112,7 @@ export interface OutputCheckContext {
 export async function checkOutput(context: OutputCheckContext, source: FlatSource, outputDirectory: string): Promise<Problem[]> {
   if (!source.model || !source.original || source.model === source.original) return [];
   const model = semanticModelOf(source.model.document);
-  const evaluator = new Evaluator(model);
+  const evaluator = new Evaluator(model, undefined, readingOf(context.simulator));
   const catalogs = await context.catalogs.resolve({ disk: path.join(outputDirectory, 'flattened.xosc'), entries: [] }, model, evaluator);
   const findings = runChecks({ ref: source.ref, model, evaluator, catalogs, modular: false, simulator: context.simulator }, OUTPUT_CHECKS);
   // The main file's own catalog locations are written as they are, relative to it; its own check covers them.

@@ -169,8 +169,7 @@ export class Flattener {
     result.original = model;
     checkDeclarations(result, model);
     if (document.root) {
-      const semantics = await analyzeDocument(ref, document, this.catalogs, model.references.length > 0);
-      semantics.simulator = this.simulator;
+      const semantics = await analyzeDocument(ref, document, this.catalogs, model.references.length > 0, this.simulator);
       result.semantics = semantics;
       result.problems.push(...semanticProblems(semantics));
       // The schema's attribute types, for the values parameters give them.

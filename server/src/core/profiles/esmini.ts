@@ -7,6 +7,12 @@ import { SimulatorProfile } from './facts';
 // TrafficSignalStateAction, which osc_coverage.txt still lists as missing).
 const COVERAGE = 'osc_coverage.txt';
 const READER = 'EnvironmentSimulator/Modules/ScenarioEngine/SourceFiles/ScenarioReader.cpp';
+// How esmini computes values, read in the same revision (release 3.6.0): every parameter value is kept
+// as text, `${...}` is the text with each `$name` replaced by that text, evaluated by zserge/expr.
+const PARAMETERS = 'EnvironmentSimulator/Modules/ScenarioEngine/SourceFiles/Parameters.cpp';
+const SIMPLE_EXPR = 'EnvironmentSimulator/Modules/ScenarioEngine/SourceFiles/simple_expr.c';
+const EXPR = 'externals/expr/expr.h';
+const COMMON = 'EnvironmentSimulator/Modules/CommonMini/CommonMini.cpp';
 
 export const ESMINI_PROFILE: SimulatorProfile = {
   simulator: 'esmini',
@@ -37,4 +43,21 @@ export const ESMINI_PROFILE: SimulatorProfile = {
     { element: 'Route', attribute: 'closed', supportedValues: ['false'], source: COVERAGE, note: 'closed routes are not implemented' },
     { element: '*', attribute: 'coordinateSystem', unsupportedValues: ['lane'], source: COVERAGE, note: 'it falls back to road coordinates' },
   ],
+  valueRules: {
+    substitution: { does: 'replaces each $name inside ${...} by the parameter\'s value as text before evaluating', source: `${PARAMETERS}:381-398` },
+    keywords: { does: "rewrites 'not ', 'and ', 'or ', 'true ', 'false ' (with the blank) to !, &&, ||, 1, 0 and leaves them as words otherwise", source: `${PARAMETERS}:441-447` },
+    numbers: { does: 'reads a number as digits and dots only: an exponent (1E3) is a word', source: `${EXPR}:497-505` },
+    textGluing: { does: "reads an expression with an unknown word as text and glues it, dropping each run of blanks that holds a '+'", source: `${EXPR}:340-347, 910-935` },
+    remainder: { does: 'computes % as C remainder(), to the nearest multiple: 7 % 4 is -1', source: `${EXPR}:378-380` },
+    divisionByZero: { does: 'divides by zero to inf (and 0/0 or x % 0 to nan, which stops it)', source: `${EXPR}:375-377` },
+    round: { does: 'rounds with rint(), half to even: round(2.5) is 2', source: `${SIMPLE_EXPR}:19-25` },
+    sign: { does: 'gives sign(0) = 1', source: `${SIMPLE_EXPR}:113-119` },
+    comparisons: { does: 'evaluates comparisons and booleans as the numbers 1 and 0', source: `${EXPR}:393-439` },
+    resultText: { does: 'writes a number result with six decimals (std::to_string), so a value used later is rounded to 1e-6', source: `${PARAMETERS}:455-459` },
+    declarationName: { does: "finds a parameter declared as name=\"$X\" under $X (it compares with and without the '$')", source: `${PARAMETERS}:90-100` },
+    intConversion: { does: 'reads an int with atoi(): the fraction is cut off and a value outside the int range wraps', source: `${PARAMETERS}:535-539, ${COMMON}:1031-1034` },
+    booleanConversion: { does: "reads a boolean as true only when its text is exactly 'true'", source: `${PARAMETERS}:545-554` },
+    doubleConversion: { does: 'reads a double with atof(): the longest prefix that is a number, 0 when none', source: `${PARAMETERS}:540-544, ${COMMON}:1036-1039` },
+    failure: { does: 'stops the scenario with "Failed to evaluate the expression"', source: `${PARAMETERS}:449-453` },
+  },
 };

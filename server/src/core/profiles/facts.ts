@@ -45,4 +45,31 @@ export interface SimulatorProfile {
   catalogFileNames?: { types: string[]; source: string };
   /** `${...}` expressions are passed on as text, never evaluated. */
   expressionsNotEvaluated?: { source: string };
+  /** Where the simulator computes a value otherwise than the standard, each rule with the lines that show it. */
+  valueRules?: Record<ValueRule, ValueRuleFact>;
+}
+
+/** A way a simulator computes parameter and expression values that differs from the standard's. */
+export type ValueRule =
+  | 'substitution'
+  | 'keywords'
+  | 'numbers'
+  | 'textGluing'
+  | 'remainder'
+  | 'divisionByZero'
+  | 'round'
+  | 'sign'
+  | 'comparisons'
+  | 'resultText'
+  | 'declarationName'
+  | 'intConversion'
+  | 'booleanConversion'
+  | 'doubleConversion'
+  | 'failure';
+
+export interface ValueRuleFact {
+  /** What the simulator does, in one clause that completes "esmini ...". */
+  does: string;
+  /** File and lines of the simulator's repository. */
+  source: string;
 }

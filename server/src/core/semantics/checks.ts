@@ -5,6 +5,7 @@ import { baseName, SourceRef } from '../sources';
 import { closestMatch } from '../text';
 import { attribute, descendants, XmlAttribute, XmlElement } from '../xml';
 import { CatalogResolution } from './catalogs';
+import { esminiRule } from './esminiValues';
 import { ExpressionError } from './expressions';
 import { Declaration, Evaluator, referencedName, resolveName, SemanticModel, STORYBOARD_ELEMENT_NAMES, STORYBOARD_ELEMENT_TYPES } from './model';
 
@@ -80,6 +81,32 @@ export const undeclaredParameters: SemanticCheck = ({ model }) =>
       };
     });
 
+/**
+ * `name="$X"` (the 0.9 style esmini and the ASAM OpenSCENARIO API accept) declares X: a warning with
+ * the name without `$` as its fix (SPEC 12).
+ */
+export const dollarDeclarations: SemanticCheck = ({ model }) =>
+  model.declarations
+    .filter((declaration) => declaration.kind === 'parameter' && declaration.nameAttribute?.value.trim().startsWith('$') && declaration.name)
+    .map((declaration) => {
+      const attr = declaration.nameAttribute as XmlAttribute;
+      const exact = attr.value.length === attr.valueEnd - attr.valueStart;
+      const leading = attr.value.length - attr.value.trimStart().length;
+      const start = exact ? attr.valueStart + leading : attr.valueStart;
+      const end = exact ? start + attr.value.trim().length : attr.valueEnd;
+      return {
+        element: declaration.element,
+        attribute: attr,
+        start,
+        end,
+        severity: 'warning',
+        code: 'lenient-value',
+        message: `the standard declares a parameter by its name without '$' ('${declaration.name}'); ${esminiRule('declarationName')}, so this declares '${declaration.name}'`,
+        hint: `write name="${declaration.name}"`,
+        data: { suggestion: declaration.name },
+      };
+    });
+
 /** A declared parameter that nothing uses (a hint, shown faded). */
 export const unusedParameters: SemanticCheck = ({ model }) =>
   model.declarations
@@ -116,43 +143,59 @@ const EXPRESSION_CODES: Record<Exclude<ExpressionError['kind'], 'unknown-paramet
   'type-mismatch': 'type-mismatch',
   'division-by-zero': 'division-by-zero',
   nonstandard: 'nonstandard-expression',
+  lenient: 'lenient-value',
+  simulator: 'simulator-value',
+  overflow: 'overflow',
 };
 
-function expressionFinding(element: XmlElement, attr: XmlAttribute, error: ExpressionError): Finding | undefined {
+/** What SPEC 12 makes a warning: a form esmini accepts with one clear meaning, a value esmini computes otherwise. */
+const WARNING_KINDS: ReadonlySet<ExpressionError['kind']> = new Set(['nonstandard', 'lenient', 'simulator']);
+
+function expressionFinding(context: SemanticContext, element: XmlElement, attr: XmlAttribute, error: ExpressionError): Finding | undefined {
   // An unknown parameter is reported once by undeclaredParameters, or at the declaration that has no valid value.
   if (error.kind === 'unknown-parameter') return undefined;
   const exactOffsets = attr.value.length === attr.valueEnd - attr.valueStart;
-  return {
-    element,
-    attribute: attr,
-    start: exactOffsets ? error.start : attr.valueStart,
-    end: exactOffsets ? Math.max(error.end, error.start + 1) : attr.valueEnd,
-    severity: error.kind === 'nonstandard' ? 'warning' : 'error',
-    code: EXPRESSION_CODES[error.kind],
-    message: error.message,
-  };
+  const start = exactOffsets ? error.start : attr.valueStart;
+  const end = exactOffsets ? Math.max(error.end, error.start + 1) : attr.valueEnd;
+  const finding: Finding = { element, attribute: attr, start, end, severity: WARNING_KINDS.has(error.kind) ? 'warning' : 'error', code: EXPRESSION_CODES[error.kind], message: error.message };
+  const fix = error.fix;
+  if (fix && fix.start === start && fix.end === end) {
+    finding.data = { suggestion: fix.text };
+    finding.hint = `write '${fix.text}'`;
+  } else if (fix) {
+    // The standard's form is written elsewhere (a string parameter's parameterType).
+    finding.related = [relatedAt(context, fix.start, fix.end, `write '${fix.text}' here`)];
+    finding.data = { relatedReplacement: fix.text };
+    finding.hint = `declare it parameterType="${fix.text}"`;
+  }
+  return finding;
 }
 
 /** Syntax, type and division errors of every `${...}`, and values that do not fit their declared type. */
-export const expressionErrors: SemanticCheck = ({ model, evaluator }) => {
+export const expressionErrors: SemanticCheck = (context) => {
+  const { model, evaluator } = context;
   const findings: Finding[] = [];
   for (const site of model.sites) {
     if (site.form.kind !== 'expression') continue;
     const result = evaluator.evaluateSite(site);
     for (const error of [...(result.ok ? [] : result.errors), ...(result.warnings ?? [])]) {
-      const finding = expressionFinding(site.element, site.attribute, error);
+      const finding = expressionFinding(context, site.element, site.attribute, error);
       if (finding) findings.push(finding);
     }
   }
   for (const declaration of model.declarations) {
     const attr = declaration.valueAttribute;
     if (!attr || declaration.type === undefined) continue;
+    for (const warning of evaluator.declarationWarnings(declaration)) {
+      const finding = expressionFinding(context, declaration.element, attr, warning);
+      if (finding) findings.push(finding);
+    }
     const result = evaluator.declarationValue(declaration);
     if (result.ok || result.provenance.kind !== 'declaration') continue;
     for (const error of result.errors) {
       // Errors inside the expression itself were reported above, with their column.
       const own = error.start === attr.valueStart && error.end === attr.valueEnd && error.kind === 'type-mismatch';
-      if (own) findings.push(expressionFinding(declaration.element, attr, error) as Finding);
+      if (own) findings.push(expressionFinding(context, declaration.element, attr, error) as Finding);
     }
   }
   return findings;
@@ -393,6 +436,7 @@ export const simulatorProfile: SemanticCheck = ({ ref, model, simulator }) =>
 export const SEMANTIC_CHECKS: readonly { name: string; check: SemanticCheck }[] = [
   { name: 'undeclared parameter', check: undeclaredParameters },
   { name: 'unused parameter', check: unusedParameters },
+  { name: 'parameter declared with $', check: dollarDeclarations },
   { name: 'parameter declared twice', check: duplicateDeclarations },
   { name: 'expression errors', check: expressionErrors },
   { name: 'catalog references', check: catalogReferences },

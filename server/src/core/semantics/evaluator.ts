@@ -1,7 +1,9 @@
+import { ValueRule } from '../profiles/facts';
 import { XmlAttribute, XmlElement } from '../xml';
-import { convertValue, evaluateTree, ExpressionError, ParameterType, ParameterValue, parseLiteral, TypedValue } from './expressions';
+import { atof, esminiFromTree, EsminiText, esminiExpression, esminiRule, esminiTyped, plainNumber } from './esminiValues';
+import { convertValue, evaluateTree, ExpressionError, formatValue, integralConversionError, LookupResult, ParameterType, ParameterValue, parseLiteral, TypedValue } from './expressions';
 import { resolveName } from './scopes';
-import { Declaration, ParameterAssignmentInfo, SemanticModel, ValueSite } from './types';
+import { Declaration, ParameterAssignmentInfo, Scope, SemanticModel, ValueSite } from './types';
 
 /** Where a value comes from, for a hover. */
 export type Provenance =
@@ -11,8 +13,21 @@ export type Provenance =
   | { kind: 'override'; parameterReference: XmlElement; key: string }
   | { kind: 'carried'; declaration: Declaration; from: string };
 
+/**
+ * Whose rules compute a value (SPEC 12): the standard's, or esmini's (`modular2simple.simulator` =
+ * esmini), which then is the value shown and used while the standard's is named in a warning.
+ */
+export type Reading = 'standard' | 'esmini';
+
+/** A value the standard and esmini compute differently: both as text, and esmini's rules that make the difference. */
+export interface ValueDifference {
+  standard: string;
+  esmini: string;
+  reasons: string[];
+}
+
 export type ValueResult =
-  | { ok: true; value: ParameterValue; type: ParameterType; provenance: Provenance }
+  | { ok: true; value: ParameterValue; type: ParameterType; provenance: Provenance; differs?: ValueDifference }
   | { ok: false; errors: ExpressionError[]; provenance: Provenance };
 
 /**
@@ -21,24 +36,104 @@ export type ValueResult =
  */
 export type Assignments = Map<string, { value: TypedValue | undefined; assignment: ParameterAssignmentInfo }>;
 
+/** esmini's rules worth naming in a message (substituting text and writing six decimals explain nothing alone). */
+const NAMED_RULES: readonly ValueRule[] = ['numbers', 'textGluing', 'keywords', 'remainder', 'divisionByZero', 'round', 'sign', 'comparisons', 'failure'];
+
+function reasonsOf(rules: readonly ValueRule[], conversion?: ValueRule): string[] {
+  const named = NAMED_RULES.filter((rule) => rules.includes(rule));
+  if (named.length === 0 && conversion) named.push(conversion);
+  if (named.length === 0 && rules.includes('resultText')) named.push('resultText');
+  return named.map(esminiRule);
+}
+
+/** Whether two values differ beyond the six decimals esmini writes a number with. */
+function sameValue(a: ParameterValue, b: ParameterValue): boolean {
+  if (typeof a === 'number' && typeof b === 'number') {
+    if (Number.isNaN(a) || Number.isNaN(b)) return Number.isNaN(a) && Number.isNaN(b);
+    if (!Number.isFinite(a) || !Number.isFinite(b)) return a === b;
+    return Math.abs(a - b) <= 5.1e-7 + Math.abs(b) * 1e-15;
+  }
+  return a === b;
+}
+
+/** How an attribute of the standard's type reads esmini's text (a double with atof, a boolean when the text is `true`). */
+function readAs(esmini: EsminiText & { ok: true }, type: ParameterType): ParameterValue {
+  if (type === 'double' || type === 'int' || type === 'unsignedInt' || type === 'unsignedShort') return esmini.number ?? atof(esmini.text);
+  if (type === 'boolean') return esmini.text === 'true';
+  return esmini.text;
+}
+
+function differenceMessage(difference: ValueDifference): string {
+  return `esmini computes ${difference.esmini} where the standard gives ${difference.standard}${difference.reasons.length ? `: ${difference.reasons.join('; ')}` : ''}`;
+}
+
 /**
  * Evaluates declarations and value sites of one model, memoized. A declaration whose entry is
- * instantiated with assignments gets its own evaluator (one per CatalogReference).
+ * instantiated with assignments gets its own evaluator (one per CatalogReference). Every value is
+ * computed by the standard's rules and by esmini's; `reading` chooses the one given as the value.
  */
 export class Evaluator {
   private readonly declarationValues = new Map<Declaration, ValueResult>();
+  private readonly standardValues = new Map<Declaration, ValueResult>();
+  private readonly esminiTexts = new Map<Declaration, EsminiText>();
+  private readonly warnings = new Map<Declaration, ExpressionError[]>();
+  // A site's value depends only on the model and the assignments, both fixed: each is computed once.
+  private readonly siteValues = new Map<ValueSite, ValueResult & { warnings?: ExpressionError[] }>();
+  private readonly esminiSiteTexts = new Map<ValueSite, EsminiText>();
+  private readonly lenientValues = new Map<ValueSite, { standard: ValueResult & { warnings?: ExpressionError[] }; esmini: EsminiText }>();
 
   constructor(
     readonly model: SemanticModel,
     readonly assignments?: Assignments,
+    readonly reading: Reading = 'standard',
   ) {}
 
   /** The value of a declaration, converted to its declared type (a string when no type is given). */
   declarationValue(declaration: Declaration): ValueResult {
     const known = this.declarationValues.get(declaration);
     if (known) return known;
-    const result = this.computeDeclaration(declaration);
+    const standard = this.standardDeclaration(declaration);
+    let result = standard;
+    if (standard.ok) {
+      const esmini = this.esminiDeclarationText(declaration);
+      const type = declaration.type ?? 'string';
+      if (esmini.ok) {
+        const typed = declaration.type === 'double' && esmini.number !== undefined ? { value: esmini.number, rule: 'doubleConversion' as const } : esminiTyped(esmini.text, declaration.type);
+        if (this.reading === 'esmini') result = { ok: true, value: typed.value, type, provenance: standard.provenance };
+        if (!sameValue(standard.value, typed.value)) {
+          const differs = { standard: formatValue(standard.value), esmini: formatValue(typed.value), reasons: reasonsOf(esmini.rules, typed.rule) };
+          result = this.reading === 'esmini' ? { ok: true, value: typed.value, type, provenance: standard.provenance, differs } : { ...standard, differs };
+          const attr = declaration.valueAttribute;
+          if (attr && standard.provenance.kind === 'declaration') {
+            this.warn(declaration, { kind: 'simulator', message: `'${declaration.name}': ${differenceMessage(differs)}`, start: attr.valueStart, end: attr.valueEnd });
+          }
+        }
+      } else if (declaration.valueAttribute && standard.provenance.kind === 'declaration' && this.model.siteOf.get(declaration.valueAttribute)?.form.kind !== 'expression') {
+        this.warn(declaration, { kind: 'simulator', message: esmini.message, start: declaration.valueAttribute.valueStart, end: declaration.valueAttribute.valueEnd });
+      }
+    }
     this.declarationValues.set(declaration, result);
+    return result;
+  }
+
+  /** Warnings about a declaration's own value: a lenient literal, or a value esmini computes otherwise (after declarationValue). */
+  declarationWarnings(declaration: Declaration): ExpressionError[] {
+    this.declarationValue(declaration);
+    return this.warnings.get(declaration) ?? [];
+  }
+
+  private warn(declaration: Declaration, warning: ExpressionError): void {
+    const list = this.warnings.get(declaration) ?? [];
+    list.push(warning);
+    this.warnings.set(declaration, list);
+  }
+
+  /** The value by the standard's rules alone. */
+  private standardDeclaration(declaration: Declaration): ValueResult {
+    const known = this.standardValues.get(declaration);
+    if (known) return known;
+    const result = this.computeDeclaration(declaration);
+    this.standardValues.set(declaration, result);
     return result;
   }
 
@@ -58,30 +153,90 @@ export class Evaluator {
     if (!site) {
       const literal = parseLiteral(attr.value, type);
       if ('message' in literal) return { ok: false, errors: [this.errorAt(attr, 'type-mismatch', `${literal.message}, but '${declaration.name}' is declared ${declaration.writtenType ?? 'without a type'}`)], provenance };
+      if (literal.lenient) {
+        const leading = attr.value.length - attr.value.trimStart().length;
+        const exact = attr.value.length === attr.valueEnd - attr.valueStart;
+        const start = exact ? attr.valueStart + leading : attr.valueStart;
+        const end = exact ? attr.valueStart + attr.value.trimEnd().length : attr.valueEnd;
+        this.warn(declaration, { kind: 'lenient', message: literal.lenient.message, start, end, fix: { start, end, text: literal.lenient.standard } });
+      }
       return { ok: true, value: literal.value, type, provenance };
     }
-    const evaluated = this.evaluateSite(site);
+    const evaluated = site.form.kind === 'expression' ? this.lenientSite(site as ValueSite & { form: { kind: 'expression' } }).standard : this.standardSite(site);
     if (!evaluated.ok) return { ok: false, errors: evaluated.errors, provenance };
+    const integral = site.form.kind === 'expression' ? integralConversionError({ value: evaluated.value, type: evaluated.type }, type) : undefined;
+    if (integral) return { ok: false, errors: [this.errorAt(attr, 'type-mismatch', `${integral}, but '${declaration.name}' is declared ${declaration.writtenType}`)], provenance };
     const converted = convertValue({ value: evaluated.value, type: evaluated.type }, type);
     if ('message' in converted) return { ok: false, errors: [this.errorAt(attr, 'type-mismatch', `${converted.message}, but '${declaration.name}' is declared ${declaration.writtenType}`)], provenance };
     return { ok: true, value: converted.value, type, provenance };
   }
 
-  /** The value of a `$name` or `${...}` attribute, with the type the expression yields. */
-  evaluateSite(site: ValueSite): ValueResult & { warnings?: ExpressionError[] } {
-    const lookup = (name: string, start: number, end: number) => {
+  /** The text esmini holds for a declaration (Parameters::parseParameterDeclarations keeps every value as text). */
+  esminiDeclarationText(declaration: Declaration): EsminiText {
+    const known = this.esminiTexts.get(declaration);
+    if (known) return known;
+    // A declaration met again while its own text is computed names itself: esmini cannot resolve it.
+    this.esminiTexts.set(declaration, { ok: false, message: `esmini stops: '${declaration.name}' depends on itself`, rules: ['failure'] });
+    const result = this.computeEsminiText(declaration);
+    this.esminiTexts.set(declaration, result);
+    return result;
+  }
+
+  private computeEsminiText(declaration: Declaration): EsminiText {
+    const assigned = declaration.scope.catalogEntry ? this.assignments?.get(declaration.name) : undefined;
+    if (assigned?.value) {
+      const written = assigned.assignment.valueAttribute?.value;
+      return { ok: true, text: written !== undefined && !written.startsWith('$') ? written : String(assigned.value.value), rules: [] };
+    }
+    const attr = declaration.valueAttribute;
+    if (!attr) return { ok: true, text: '', rules: [] };
+    const site = this.model.siteOf.get(attr);
+    if (!site) return { ok: true, text: attr.value, rules: [], number: plainNumber(attr.value) };
+    return this.esminiSiteText(site);
+  }
+
+  private esminiName(scope: Scope, name: string, within: Declaration | undefined): EsminiText | undefined {
+    const declaration = resolveName(scope, name.startsWith('$') ? name.slice(1) : name, within);
+    return declaration ? this.esminiDeclarationText(declaration) : undefined;
+  }
+
+  /** The text esmini makes of a `$name` or `${...}` attribute value. */
+  esminiSiteText(site: ValueSite): EsminiText {
+    const known = this.esminiSiteTexts.get(site);
+    if (known) return known;
+    const result = this.computeEsminiSiteText(site);
+    this.esminiSiteTexts.set(site, result);
+    return result;
+  }
+
+  private computeEsminiSiteText(site: ValueSite): EsminiText {
+    if (site.form.kind === 'parameter') {
+      return this.esminiName(site.scope, site.form.name, site.declaration) ?? { ok: false, message: `esmini stops: "Failed to resolve parameter $${site.form.name}"`, rules: ['failure'] };
+    }
+    const body = site.attribute.value.trimEnd().slice(2);
+    const lookup = (name: string) => this.esminiName(site.scope, name, site.declaration);
+    const tree = site.form.expression.tree;
+    // Most expressions read the same on the tree as in esmini's text, without building any text.
+    return (tree && body.endsWith('}') && body.indexOf('}') === body.length - 1 ? esminiFromTree(tree, body.slice(0, -1), lookup) : undefined) ?? esminiExpression(body, lookup);
+  }
+
+  /** The value of a `$name` or `${...}` by the standard's rules, with the lenient forms it accepts (as warnings). */
+  private standardSite(site: ValueSite): ValueResult & { warnings?: ExpressionError[] } {
+    const lookup = (name: string, start: number, end: number): LookupResult | { error: ExpressionError } | undefined => {
       const declaration = resolveName(site.scope, name, site.declaration);
       if (!declaration) return undefined;
-      const value = this.declarationValue(declaration);
+      const value = this.standardDeclaration(declaration);
       if (!value.ok) return { error: { kind: 'unknown-parameter' as const, message: `'${name}' has no valid value (${value.errors[0]?.message ?? 'see its declaration'})`, start, end } };
-      return { value: value.value, type: value.type };
+      const typeAttribute = declaration.typeAttribute;
+      if (value.type !== 'string' || !typeAttribute || typeAttribute.value.length !== typeAttribute.valueEnd - typeAttribute.valueStart) return { value: value.value, type: value.type };
+      return { value: value.value, type: value.type, retype: { start: typeAttribute.valueStart, end: typeAttribute.valueEnd } };
     };
     if (site.form.kind === 'parameter') {
       const declaration = resolveName(site.scope, site.form.name, site.declaration);
       if (!declaration) {
         return { ok: false, errors: [{ kind: 'unknown-parameter', message: `parameter '${site.form.name}' is not declared in this scope`, start: site.form.start, end: site.form.end }], provenance: { kind: 'literal' } };
       }
-      const value = this.declarationValue(declaration);
+      const value = this.standardDeclaration(declaration);
       if (value.ok) return value;
       const error = lookup(site.form.name, site.form.start, site.form.end) as { error: ExpressionError };
       return { ok: false, errors: [error.error], provenance: value.provenance };
@@ -91,6 +246,77 @@ export class Evaluator {
     const warnings: ExpressionError[] = [];
     const evaluated = evaluateTree(expression.tree, lookup, warnings);
     return evaluated.ok ? { ok: true, value: evaluated.value, type: evaluated.type, provenance: { kind: 'literal' }, warnings } : { ok: false, errors: evaluated.errors, provenance: { kind: 'literal' }, warnings };
+  }
+
+  /**
+   * The value of a `$name` or `${...}` attribute, with the type the expression yields, in this
+   * evaluator's reading. Its warnings: the lenient forms, and where esmini computes another value (for
+   * the value of a declaration that is reported at the declaration, converted to its type).
+   */
+  /**
+   * The standard's value of a `${...}` with the lenient forms (SPEC 12): where the standard fails on
+   * text that esmini glues, the glued text, with a warning whose fix writes it as a literal.
+   */
+  private lenientSite(site: ValueSite & { form: { kind: 'expression' } }): { standard: ValueResult & { warnings?: ExpressionError[] }; esmini: EsminiText } {
+    const known = this.lenientValues.get(site);
+    if (known) return known;
+    const result = this.computeLenientSite(site);
+    this.lenientValues.set(site, result);
+    return result;
+  }
+
+  private computeLenientSite(site: ValueSite & { form: { kind: 'expression' } }): { standard: ValueResult & { warnings?: ExpressionError[] }; esmini: EsminiText } {
+    const standard = this.standardSite(site);
+    const esmini = this.esminiSiteText(site);
+    const [first] = standard.ok ? [] : standard.errors;
+    if (!esmini.ok || !first?.text || !esmini.rules.includes('textGluing')) return { standard, esmini };
+    const whole = { start: site.form.expression.start, end: site.form.expression.end };
+    const warning: ExpressionError = {
+      kind: 'lenient',
+      message: `the standard has no text in expressions (${first.message.split(':')[0]}); ${esminiRule('textGluing')}, which gives '${esmini.text}'`,
+      ...whole,
+      // A lone `${$name}` is the plain reference `$name`; anything else becomes the glued literal.
+      fix: { ...whole, text: site.form.expression.tree?.kind === 'parameter' ? `$${site.form.expression.tree.name}` : esmini.text },
+    };
+    return { standard: { ok: true, value: esmini.text, type: 'string', provenance: { kind: 'literal' }, warnings: [...(standard.warnings ?? []), warning] }, esmini };
+  }
+
+  evaluateSite(site: ValueSite): ValueResult & { warnings?: ExpressionError[] } {
+    const known = this.siteValues.get(site);
+    if (known) return known;
+    const result = this.computeSite(site);
+    this.siteValues.set(site, result);
+    return result;
+  }
+
+  private computeSite(site: ValueSite): ValueResult & { warnings?: ExpressionError[] } {
+    if (site.form.kind === 'parameter') {
+      const declaration = resolveName(site.scope, site.form.name, site.declaration);
+      if (declaration) return this.declarationValue(declaration);
+      return this.standardSite(site);
+    }
+    const expression = site.form.expression;
+    if (!expression.tree) return this.standardSite(site);
+    const { standard, esmini } = this.lenientSite(site as ValueSite & { form: { kind: 'expression' } });
+    const warnings = [...(standard.warnings ?? [])];
+    const whole = { start: expression.start, end: expression.end };
+    if (!standard.ok) {
+      if (esmini.ok) {
+        const errors = standard.errors.map((error, index) => (index === 0 ? { ...error, message: `${error.message} (esmini computes ${esmini.text}: ${reasonsOf(esmini.rules).join('; ') || 'it reads the expression otherwise'})` } : error));
+        return { ...standard, errors, warnings };
+      }
+      return standard;
+    }
+    if (!esmini.ok) {
+      if (!site.declaration) warnings.push({ kind: 'simulator', message: `${esmini.message}; the standard gives ${formatValue(standard.value)}`, ...whole });
+      return { ...standard, warnings };
+    }
+    const esminiValue = readAs(esmini, standard.type);
+    if (sameValue(standard.value, esminiValue)) return this.reading === 'esmini' ? { ...standard, value: esminiValue, warnings } : standard;
+    const chosen = this.reading === 'esmini' ? { value: esminiValue } : {};
+    const differs: ValueDifference = { standard: formatValue(standard.value), esmini: formatValue(esminiValue), reasons: reasonsOf(esmini.rules) };
+    if (!site.declaration) warnings.push({ kind: 'simulator', message: differenceMessage(differs), ...whole });
+    return { ...standard, ...chosen, differs, warnings };
   }
 
   /** The value an attribute takes: itself when literal, else its parameter's or expression's value. */

@@ -47,7 +47,19 @@ export function normalizeParameterType(written: string | undefined): ParameterTy
   }
 }
 
-export type ExpressionErrorKind = 'syntax' | 'unknown-parameter' | 'type-mismatch' | 'division-by-zero' | 'nonstandard';
+/**
+ * `lenient`: a form the standard does not allow with one clear meaning that esmini accepts (a warning,
+ * SPEC 12); `simulator`: esmini computes another value than the standard (a warning); `overflow`: a
+ * double beyond its range, an error by the standard's rules.
+ */
+export type ExpressionErrorKind = 'syntax' | 'unknown-parameter' | 'type-mismatch' | 'division-by-zero' | 'nonstandard' | 'lenient' | 'overflow' | 'simulator';
+
+/** Text to write instead, at document offsets, to reach the standard's form. */
+export interface ExpressionFix {
+  start: number;
+  end: number;
+  text: string;
+}
 
 /** An error at offsets of the document (or of the string given to the parser when its base is 0). */
 export interface ExpressionError {
@@ -55,6 +67,9 @@ export interface ExpressionError {
   message: string;
   start: number;
   end: number;
+  fix?: ExpressionFix;
+  /** Set on an error caused by text where a value was expected (a bare unknown word, a string parameter): esmini glues such an expression as text. */
+  text?: boolean;
 }
 
 export type ExpressionNode =
@@ -62,6 +77,8 @@ export type ExpressionNode =
   | { kind: 'boolean'; value: boolean; start: number; end: number }
   | { kind: 'constant'; name: 'pi' | 'e'; start: number; end: number }
   | { kind: 'parameter'; name: string; start: number; end: number }
+  /** A word without `$` that is no function or constant: a parameter written bare, or text esmini glues. */
+  | { kind: 'name'; name: string; start: number; end: number }
   | { kind: 'unary'; operator: '-' | 'not'; operand: ExpressionNode; start: number; end: number }
   | { kind: 'binary'; operator: BinaryOperator; left: ExpressionNode; right: ExpressionNode; start: number; end: number }
   | { kind: 'call'; name: FunctionName; args: ExpressionNode[]; start: number; end: number };
@@ -100,6 +117,8 @@ export interface ParsedExpression {
   errors: ExpressionError[];
   /** Every `$name` inside, in order. */
   parameters: { name: string; start: number; end: number }[];
+  /** Every bare word inside (a parameter written without `$`, or text esmini glues), in order. */
+  names: { name: string; start: number; end: number }[];
 }
 
 type Token =
@@ -235,7 +254,7 @@ export function parseExpressionBody(body: string, base = 0): { tree: ExpressionN
         return { kind: 'call', name, args, start: token.start, end: close.end };
       }
       if (token.word === 'pi' || token.word === 'e') return { kind: 'constant', name: token.word, start: token.start, end: token.end };
-      fail(token, `unknown name '${token.word}': a parameter is written $${token.word}; the functions are ${Object.keys(FUNCTIONS).join(', ')}`);
+      return { kind: 'name', name: token.word, start: token.start, end: token.end };
     }
     return fail(token, `expected a number, a $parameter, a function or '(', found ${describe(token)}`);
   };
@@ -270,6 +289,21 @@ export function parseExpressionBody(body: string, base = 0): { tree: ExpressionN
     if (error instanceof SyntaxFailure) return { tree: undefined, errors: [error.error] };
     throw error;
   }
+}
+
+/** Every bare word of a tree (a parameter written without `$`, or text), in order. */
+export function namesOf(tree: ExpressionNode | undefined): { name: string; start: number; end: number }[] {
+  const found: { name: string; start: number; end: number }[] = [];
+  const visit = (node: ExpressionNode) => {
+    if (node.kind === 'name') found.push({ name: node.name, start: node.start, end: node.end });
+    else if (node.kind === 'unary') visit(node.operand);
+    else if (node.kind === 'binary') {
+      visit(node.left);
+      visit(node.right);
+    } else if (node.kind === 'call') node.args.forEach(visit);
+  };
+  if (tree) visit(tree);
+  return found;
 }
 
 /** Every `$name` of a tree, in order. */
@@ -334,6 +368,7 @@ export function valueForm(value: string, base = 0): ValueForm {
       tree: closed ? parsed.tree : undefined,
       errors: parsed.errors,
       parameters: parsed.tree && parsed.errors.length === 0 ? parametersOf(parsed.tree) : parameterTokens(trimmed.slice(2, bodyEnd), base + 2),
+      names: namesOf(parsed.tree),
     };
     return { kind: 'expression', expression };
   }
@@ -346,8 +381,11 @@ export interface TypedValue {
   type: ParameterType;
 }
 
+/** A parameter's value, with where its `parameterType` value is written (a string parameter read as a number is fixed there). */
+export type LookupResult = TypedValue & { retype?: { start: number; end: number } };
+
 /** Looks up `$name` (its offsets for messages); undefined when no declaration is in scope. */
-export type ParameterLookup = (name: string, start: number, end: number) => TypedValue | { error: ExpressionError } | undefined;
+export type ParameterLookup = (name: string, start: number, end: number) => LookupResult | { error: ExpressionError } | undefined;
 
 export type Evaluation = { ok: true; value: ParameterValue; type: ParameterType } | { ok: false; errors: ExpressionError[] };
 
@@ -355,6 +393,16 @@ class EvaluationFailure extends Error {
   constructor(readonly error: ExpressionError) {
     super(error.message);
   }
+}
+
+const DOUBLE_TEXT = /^[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?$/;
+
+/** The number or boolean a string parameter's text reads as, as esmini and the ASAM OpenSCENARIO API read it. */
+export function readStringAsValue(text: string): TypedValue | undefined {
+  const trimmed = text.trim();
+  if (DOUBLE_TEXT.test(trimmed)) return { value: Number(trimmed), type: 'double' };
+  if (trimmed === 'true' || trimmed === 'false') return { value: trimmed === 'true', type: 'boolean' };
+  return undefined;
 }
 
 const isNumeric = (type: ParameterType) => type === 'double' || type === 'int' || type === 'unsignedInt' || type === 'unsignedShort';
@@ -384,23 +432,64 @@ export function evaluateTree(tree: ExpressionNode, lookup: ParameterLookup, warn
     return result.value as boolean;
   };
   const number = (value: number): TypedValue => ({ value, type: 'double' });
+  const finite = (node: ExpressionNode, value: number, left: number, right = 0): TypedValue => {
+    if (!Number.isFinite(value) && !Number.isNaN(value) && Number.isFinite(left) && Number.isFinite(right)) {
+      throw new EvaluationFailure({ kind: 'overflow', message: `the result is beyond the range of a double (at most 1.7976931348623157E308)`, start: node.start, end: node.end });
+    }
+    return number(value);
+  };
+  const parameterValue = (node: ExpressionNode & { name: string }, found: LookupResult): TypedValue => {
+    if (found.type === 'dateTime') mismatch(node, `the dateTime parameter '${node.name}' cannot be used in an expression`);
+    if (found.type !== 'string') return found;
+    const read = readStringAsValue(String(found.value));
+    if (!read) throw new EvaluationFailure({ kind: 'type-mismatch', message: `the string parameter '${node.name}' (${JSON.stringify(found.value)}) cannot be used in an expression`, start: node.start, end: node.end, text: true });
+    warnings.push({
+      kind: 'lenient',
+      message: `'${node.name}' is a string parameter: the standard allows no string in an expression; esmini and the ASAM OpenSCENARIO API read its text ${JSON.stringify(found.value)} as the ${read.type} ${String(read.value)}`,
+      start: node.start,
+      end: node.end,
+      fix: found.retype ? { ...found.retype, text: read.type } : undefined,
+    });
+    return read;
+  };
   const visit = (node: ExpressionNode): TypedValue => {
     switch (node.kind) {
       case 'number':
+        if (!Number.isFinite(node.value)) {
+          throw new EvaluationFailure({ kind: 'overflow', message: `this number is beyond the range of a double (at most 1.7976931348623157E308)`, start: node.start, end: node.end });
+        }
         return number(node.value);
       case 'boolean':
         return { value: node.value, type: 'boolean' };
       case 'constant':
         warnings.push({ kind: 'nonstandard', message: `'${node.name}' is an esmini constant, not part of the OpenSCENARIO standard; other simulators reject it`, start: node.start, end: node.end });
         return number(node.name === 'pi' ? Math.PI : Math.E);
+      case 'name': {
+        const found = lookup(node.name, node.start, node.end);
+        if (!found) {
+          throw new EvaluationFailure({
+            kind: 'syntax',
+            message: `unknown name '${node.name}': a parameter is written $${node.name}; the functions are ${Object.keys(FUNCTIONS).join(', ')}`,
+            start: node.start,
+            end: node.end,
+            text: true,
+          });
+        }
+        if ('error' in found) throw new EvaluationFailure(found.error);
+        warnings.push({
+          kind: 'lenient',
+          message: `'${node.name}' is the parameter $${node.name} written without '$': the standard names parameters in expressions only as $${node.name}; esmini reads the bare word as text`,
+          start: node.start,
+          end: node.end,
+          fix: { start: node.start, end: node.end, text: `$${node.name}` },
+        });
+        return parameterValue(node, found);
+      }
       case 'parameter': {
         const found = lookup(node.name, node.start, node.end);
         if (!found) throw new EvaluationFailure({ kind: 'unknown-parameter', message: `parameter '${node.name}' is not declared in this scope`, start: node.start, end: node.end });
         if ('error' in found) throw new EvaluationFailure(found.error);
-        if (found.type === 'string' || found.type === 'dateTime') {
-          mismatch(node, `the ${found.type} parameter '${node.name}' cannot be used in an expression`);
-        }
-        return found;
+        return parameterValue(node, found);
       }
       case 'unary':
         if (node.operator === '-') return number(-numberOf(node.operand, `unary '-'`));
@@ -415,21 +504,22 @@ export function evaluateTree(tree: ExpressionNode, lookup: ParameterLookup, warn
         const right = numberOf(node.right, `'${node.operator}'`);
         switch (node.operator) {
           case '+':
-            return number(left + right);
+            return finite(node, left + right, left, right);
           case '-':
-            return number(left - right);
+            return finite(node, left - right, left, right);
           case '*':
-            return number(left * right);
+            return finite(node, left * right, left, right);
           case '/':
           case '%':
             if (right === 0) throw new EvaluationFailure({ kind: 'division-by-zero', message: `division by zero: the right side of '${node.operator}' is 0`, start: node.right.start, end: node.right.end });
-            return number(node.operator === '/' ? left / right : left % right);
+            return finite(node, node.operator === '/' ? left / right : left % right, left, right);
         }
         break;
       }
       case 'call': {
         const args = node.args.map((arg) => numberOf(arg, `${node.name}()`));
         const value = applyFunction(node.name, args);
+        if (!Number.isNaN(value)) return finite(node, value, args.every(Number.isFinite) ? 0 : Infinity);
         if (!Number.isFinite(value)) {
           throw new EvaluationFailure({ kind: 'type-mismatch', message: `${node.name}(${args.join(', ')}) has no real value`, start: node.start, end: node.end });
         }
@@ -487,8 +577,13 @@ const INTEGER = /^[+-]?[0-9]+$/;
 const DOUBLE = /^[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?$|^[+-]?INF$|^NaN$/;
 const DATE_TIME = /^-?[0-9]{4,}-[0-9]{2}-[0-9]{2}T[0-9]{2}:[0-9]{2}:[0-9]{2}(?:\.[0-9]+)?(?:Z|[+-][0-9]{2}:[0-9]{2})?$/;
 
-/** Reads a literal written for a parameter of `type` (XSD lexical forms); a message when it does not fit. */
-export function parseLiteral(text: string, type: ParameterType): { value: ParameterValue } | { message: string } {
+const INTEGRAL_WITH_FRACTION = /^([+-]?[0-9]+)\.0*$/;
+
+/**
+ * Reads a literal written for a parameter of `type` (XSD lexical forms); a message when it does not fit.
+ * `lenient` names a form the standard refuses that has one clear meaning (`-5.0` for an int).
+ */
+export function parseLiteral(text: string, type: ParameterType): { value: ParameterValue; lenient?: { message: string; standard: string } } | { message: string } {
   const trimmed = text.trim();
   switch (type) {
     case 'double':
@@ -497,6 +592,14 @@ export function parseLiteral(text: string, type: ParameterType): { value: Parame
     case 'int':
     case 'unsignedInt':
     case 'unsignedShort': {
+      const integral = INTEGRAL_WITH_FRACTION.exec(trimmed);
+      if (integral) {
+        const value = Number(integral[1]);
+        const standard = String(value);
+        const range = checkRange(value, type);
+        if (range) return range;
+        return { value, lenient: { standard, message: `'${trimmed}' is not ${type === 'int' ? 'an int' : `an ${type}`} by the standard (no fraction is allowed, not even .0); esmini reads it as ${standard}` } };
+      }
       if (!INTEGER.test(trimmed)) return { message: `'${text}' is not ${type === 'int' ? 'an int' : `an ${type}`}` };
       return checkRange(Number(trimmed), type) ?? { value: Number(trimmed) };
     }
@@ -532,6 +635,13 @@ export function convertValue(value: TypedValue, target: ParameterType): { value:
   }
   if (typeof value.value === 'string') return parseLiteral(value.value, target);
   return { message: `a ${value.type} value cannot be a ${target}` };
+}
+
+/** The standard's error for an expression value given to an integer type that is not integral (convertValue would round it). */
+export function integralConversionError(value: TypedValue, target: ParameterType): string | undefined {
+  if (typeof value.value !== 'number' || (target !== 'int' && target !== 'unsignedInt' && target !== 'unsignedShort')) return undefined;
+  if (Number.isInteger(value.value)) return undefined;
+  return `${formatValue(value.value)} is not integral: the standard converts a double to ${target === 'int' ? 'an int' : `an ${target}`} only when it has no fraction`;
 }
 
 /** A value as the simulator would write it back into the attribute (for hovers and inlay hints). */

@@ -30,11 +30,13 @@
  * - problems: `semanticProblems(semantics)` runs every check of SEMANTIC_CHECKS (./checks.ts).
  */
 import { Problem } from '../problems';
+import { Simulator } from '../profiles/simulators';
 import { SourceRef } from '../sources';
 import { Range } from '../text';
 import { XmlAttribute, XmlDocument, XmlElement, elementAt } from '../xml';
 import { assignmentsOf, CatalogLoader, CatalogReferenceResolution, CatalogResolution } from './catalogs';
 import { Finding, runChecks, SemanticContext } from './checks';
+import { Reading } from './evaluator';
 import { buildSemanticModel, Declaration, Evaluator, ParameterUse, Scope, SemanticModel, ValueResult, visibleDeclarations } from './model';
 
 export * from './expressions';
@@ -58,11 +60,16 @@ export function semanticModelOf(document: XmlDocument): SemanticModel {
 }
 
 /** Builds the semantics of a parsed document and resolves its catalogs. */
-export async function analyzeDocument(ref: SourceRef, document: XmlDocument, loader: CatalogLoader, modular: boolean): Promise<DocumentSemantics> {
+export async function analyzeDocument(ref: SourceRef, document: XmlDocument, loader: CatalogLoader, modular: boolean, simulator?: Simulator): Promise<DocumentSemantics> {
   const model = semanticModelOf(document);
-  const evaluator = new Evaluator(model);
+  const evaluator = new Evaluator(model, undefined, readingOf(simulator));
   const catalogs: CatalogResolution = await loader.resolve(ref, model, evaluator);
-  return { ref, model, evaluator, catalogs, modular };
+  return { ref, model, evaluator, catalogs, modular, simulator };
+}
+
+/** The reading values are computed in for a simulator (SPEC 12): esmini's own for esmini, else the standard's. */
+export function readingOf(simulator: Simulator | undefined): Reading {
+  return simulator === 'esmini' ? 'esmini' : 'standard';
 }
 
 /** A finding as a problem of `ref` at `range` (its own position, or where a flattened element came from). */
@@ -143,5 +150,5 @@ export function catalogReferenceAt(semantics: DocumentSemantics, offset: number)
 /** The value a catalog entry's parameter takes when the entry is used by this reference (its assignment, else its default). */
 export function entryParameterValue(semantics: DocumentSemantics, resolution: CatalogReferenceResolution, declaration: Declaration): ValueResult {
   const entryModel = resolution.entry?.file.model ?? semantics.model;
-  return new Evaluator(entryModel, assignmentsOf(resolution.reference, semantics.evaluator)).declarationValue(declaration);
+  return new Evaluator(entryModel, assignmentsOf(resolution.reference, semantics.evaluator), semantics.evaluator.reading).declarationValue(declaration);
 }

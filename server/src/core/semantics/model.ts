@@ -13,7 +13,7 @@ export { referencedName } from './parameterUses';
 export { ENTITY_REFERENCE_ATTRIBUTES } from './entities';
 export { STORYBOARD_ELEMENT_NAMES, STORYBOARD_ELEMENT_TYPES } from './storyboard';
 export { Evaluator } from './evaluator';
-export type { Assignments, Provenance, ValueResult } from './evaluator';
+export type { Assignments, Provenance, Reading, ValueDifference, ValueResult } from './evaluator';
 
 /** Builds the model of a document in one walk, each element shown to the collector of each kind; linear in its size. */
 export function buildSemanticModel(document: XmlDocument): SemanticModel {

@@ -45,17 +45,17 @@ export class ParameterUseCollector {
       this.model.sites.push(site);
       this.model.siteOf.set(attr, site);
       const names = form.kind === 'parameter' ? [{ name: form.name, start: form.start, end: form.end }] : form.expression.parameters;
-      for (const name of names) {
-        this.addUse({
-          name: name.name,
-          start: name.start,
-          end: name.end,
-          element,
-          attribute: attr,
-          declaration: resolveName(scope, name.name, declaration),
-          via: form.kind === 'parameter' ? 'value' : 'expression',
-        });
+      const via = form.kind === 'parameter' ? 'value' : 'expression';
+      const found = names.map((name) => ({ ...name, declaration: resolveName(scope, name.name, declaration) }));
+      // A bare word naming a declared parameter is a use (written without `$`, a warning); any other word is text.
+      if (form.kind === 'expression') {
+        for (const name of form.expression.names) {
+          const resolved = resolveName(scope, name.name, declaration);
+          if (resolved) found.push({ ...name, declaration: resolved });
+        }
+        found.sort((a, b) => a.start - b.start);
       }
+      for (const name of found) this.addUse({ name: name.name, start: name.start, end: name.end, element, attribute: attr, declaration: name.declaration, via });
     }
     if (PARAMETER_REF_ELEMENTS.has(element.name) && !isCarlaCriterion(element)) {
       const ref = attribute(element, 'parameterRef');

@@ -31,7 +31,8 @@ export class ScopeCollector {
     const typeAttribute = attribute(element, kind === 'parameter' ? 'parameterType' : 'variableType');
     const declaration: Declaration = {
       kind,
-      name: nameAttribute?.value.trim() ?? '',
+      // esmini and the ASAM OpenSCENARIO API take name="$X" as X (the 0.9 style); dollarDeclarations warns.
+      name: (nameAttribute?.value.trim() ?? '').replace(/^\$/, ''),
       type: normalizeParameterType(typeAttribute?.value),
       writtenType: typeAttribute?.value,
       value: attribute(element, 'value')?.value ?? '',

@@ -1,4 +1,5 @@
 import { ProblemFix } from './fix';
+import { lenientValueFix } from './lenientValue';
 import { noDefaultFix } from './noDefault';
 import { schemaMissingAttributeFix } from './schemaMissingAttribute';
 import { schemaMissingElementFix } from './schemaMissingElement';
@@ -24,6 +25,7 @@ export const PROBLEM_FIXES: readonly ProblemFix[] = [
   unknownParameterAttributeFix,
   noDefaultFix,
   undeclaredParameterFix,
+  lenientValueFix,
   schemaSuggestionFix,
   schemaUnknownElementFix,
   schemaMissingAttributeFix,
