@@ -248,8 +248,14 @@ function renderPanel(): void {
   cursor.id = 'cursor';
   markers.append(cursor);
   const problems = element<HTMLUListElement>('problems');
-  problems.replaceChildren(...[...(scene?.problems ?? []), ...(run?.notes ?? [])].map((problem) => Object.assign(document.createElement('li'), { textContent: problem })));
-  element<HTMLSpanElement>('title').textContent = scene ? `${scene.title}${scene.roadFile ? ` · ${scene.roadFile.filepath} (${scene.roadFile.roadCount} roads)` : ''}${run ? ` · run: ${run.label}` : ''}` : 'loading…';
+  const drawn = scene?.roadFile?.resolved;
+  // The run and the picture resolve the road alike (core/roadFiles.ts); a run loaded elsewhere (an older CSV, another tool) is said so.
+  const otherRoad = run?.roadFile && drawn && run.roadFile !== drawn ? [`the run loaded the road file ${run.roadFile}; the picture draws ${drawn}`] : [];
+  problems.replaceChildren(...[...(scene?.problems ?? []), ...(run?.notes ?? []), ...otherRoad].map((problem) => Object.assign(document.createElement('li'), { textContent: problem })));
+  const road = scene?.roadFile ? ` · road ${drawn ?? `${scene.roadFile.filepath} (not found)`}${drawn ? ` (${scene.roadFile.roadCount} roads)` : ''}` : '';
+  const title = element<HTMLSpanElement>('title');
+  title.textContent = scene ? `${scene.title}${road}${run ? ` · run: ${run.label}` : ''}` : 'loading…';
+  title.title = drawn ? `The road file drawn: ${drawn} (${scene?.roadFile?.filepath} as the scenario says)` : '';
   const hasRun = run !== undefined;
   playButton.disabled = !hasRun;
   slider.disabled = !hasRun;
