@@ -1,0 +1,82 @@
+import * as assert from 'node:assert/strict';
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import { RunEsminiRequest, RunEsminiResult } from '../../common/src/protocol';
+import { SceneRequest, SceneResult } from '../../common/src/sceneProtocol';
+import { esminiBinary, esminiRoads, requireEsmini } from '../support/esmini';
+import { decoyRoad, MODULAR_RUN, modularRunWorkspace } from '../support/modularRun';
+import { temporaryWorkspace } from '../support/workspace';
+import { fileUri, TestClient } from './harness';
+
+/** Run in esmini and the bird's-eye view over JSON-RPC: one road file for both, and esmini's remarks about its own files kept apart. */
+describe('language server: Run in esmini uses the road the picture draws, and reports a clean run as clean', function () {
+  this.timeout(120_000);
+  let root: string;
+  let client: TestClient;
+
+  beforeEach(async () => {
+    root = modularRunWorkspace(temporaryWorkspace({}, 'm2s-server-roads-'));
+    client = await TestClient.start({ root });
+    await client.indexed();
+  });
+  afterEach(async () => {
+    await client.stop();
+    fs.rmSync(root, { recursive: true, force: true });
+  });
+
+  const mainUri = () => fileUri(path.join(root, MODULAR_RUN.main));
+  const run = (roadPath: string[]) =>
+    client.connection.sendRequest(RunEsminiRequest, { uri: mainUri(), esminiPath: esminiBinary, roadPath, duration: 4 }) as Promise<RunEsminiResult>;
+  const scene = (roadPath: string[]) => client.connection.sendRequest(SceneRequest, { uri: mainUri(), roadPath: roadPath.map((folder) => path.resolve(root, folder)) }) as Promise<SceneResult>;
+
+  /** Runs and draws with one roadPath; both must name `expected`, and esmini's log must say it loaded it. */
+  async function sameRoad(roadPath: string[], expected: string): Promise<RunEsminiResult> {
+    const [picture, result] = [await scene(roadPath), await run(roadPath)];
+    assert.equal(picture.roadFile?.resolved, expected, picture.problems.join('\n'));
+    assert.deepEqual(picture.problems, [], 'the picture places every entity on the road it draws');
+    assert.equal(result.roadFile?.resolved, expected);
+    assert.equal(result.roadFile?.loaded, expected, `esmini's log: ${result.log.split('\n').filter((line) => /OpenDRIVE/.test(line)).join('\n')}`);
+    assert.equal(result.outcome, 'ok', `${result.message}\n${JSON.stringify(result.problems, null, 1)}`);
+    return result;
+  }
+
+  it("a clean modular run on e6mini has 0 errors and 0 warnings; esmini's remarks on its road and 3D models are information with their source", async function () {
+    requireEsmini(this);
+    const result = await sameRoad([esminiRoads], path.join(root, MODULAR_RUN.road));
+    assert.deepEqual(result.problems, [], 'nothing for a toast or the Problems view');
+    assert.match(result.message, /^esmini: 0 errors, 0 warnings; 4\.00 s simulated/);
+    assert.deepEqual(result.flattenProblems.filter((problem) => problem.severity === 'error'), []);
+    const remarks = new Map((result.remarks ?? []).map((remark) => [remark.message, remark]));
+    const railPole = remarks.get('Unsupported object type: rail-pole - interpret as NONE');
+    assert.ok(railPole, JSON.stringify(result.remarks));
+    assert.equal(railPole.count, 2);
+    assert.match(railPole.origin, /RoadManager\.cpp:\d+ RMObject::Str2Type/);
+    const sceneGraph = remarks.get('scene graph file ../models/e6mini.osgb not located, using specified file path');
+    assert.ok(sceneGraph, JSON.stringify(result.remarks));
+    assert.match(sceneGraph.origin, /CommonMini\.cpp:\d+ LocateFile.*ScenarioEngine\.cpp/);
+    assert.match(remarks.get('3D model car_white.osgb not located, using specified file path')?.origin ?? '', /Entities\.cpp:\d+ Object::SetModel3DFullPath/);
+    assert.match(remarks.get('Unsupported geo reference attr: +no_defs')?.origin ?? '', /RoadManager\.cpp:\d+ OpenDrive::ParseGeoLocalization/);
+    for (const remark of result.remarks ?? []) assert.ok(remark.why.length > 0, remark.message);
+  });
+
+  it('beside the scenario wins over a same-named road file in roadPath, for the run and the picture alike', async function () {
+    requireEsmini(this);
+    decoyRoad(path.join(root, 'roads'));
+    await sameRoad(['roads'], path.join(root, MODULAR_RUN.road));
+  });
+
+  it("the file name beside the scenario comes before roadPath, also when roadPath holds the path as written", async function () {
+    requireEsmini(this);
+    // ../xodr/e6mini.xodr is missing beside xosc/main.xosc; xosc/e6mini.xodr is there, and so is decoy/sub/../xodr/e6mini.xodr.
+    fs.renameSync(path.join(root, MODULAR_RUN.road), path.join(root, 'xosc', 'e6mini.xodr'));
+    fs.mkdirSync(path.join(root, 'decoy', 'sub'), { recursive: true });
+    decoyRoad(path.join(root, 'decoy', 'xodr'));
+    await sameRoad(['decoy/sub'], path.join(root, 'xosc', 'e6mini.xodr'));
+  });
+
+  it('with nothing beside the scenario, both take the road from roadPath', async function () {
+    requireEsmini(this);
+    fs.rmSync(path.join(root, MODULAR_RUN.road));
+    await sameRoad([esminiRoads], path.join(esminiRoads, 'e6mini.xodr'));
+  });
+});
