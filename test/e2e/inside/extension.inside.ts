@@ -38,6 +38,7 @@ const ORDER: InsideTestKey[] = [
   'structure',
   'renameInPackage',
   'runEsmini',
+  'runEsminiClean',
   'packUnsaved',
   'flattenAnyway',
   'structureFollows',

@@ -110,6 +110,8 @@ function drawStatic(painter: Painter, width: number, height: number): void {
   if (!view) return;
   drawnLanes = drawRoads(painter, shapes, view, width, height);
   if (run) drawTrajectories(painter, run, view, colorOf);
+  // The legend names the road file drawn, so that a saved picture says which road it shows.
+  if (scene?.roadFile) painter.text(8, height - 8, `road: ${scene.roadFile.resolved ?? `${scene.roadFile.filepath} (not found)`}`, COLORS.label, 11);
 }
 
 /** Roads and trajectories change only with the view or the data: drawn once into their layer. */
