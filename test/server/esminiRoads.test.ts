@@ -3,8 +3,12 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { RunEsminiRequest, RunEsminiResult } from '../../common/src/protocol';
 import { SceneRequest, SceneResult } from '../../common/src/sceneProtocol';
+import { Flattener } from '../../server/src/core/flatten';
+import { childRef, diskRef, ScenarioStore } from '../../server/src/core/sources';
+import { removeRunFolder, runScenario } from '../../server/src/esmini/run';
 import { esminiBinary, esminiRoads, requireEsmini } from '../support/esmini';
 import { decoyRoad, MODULAR_RUN, modularRunWorkspace } from '../support/modularRun';
+import { repoRoot } from '../support/paths';
 import { temporaryWorkspace } from '../support/workspace';
 import { fileUri, TestClient } from './harness';
 
@@ -78,5 +82,31 @@ describe('language server: Run in esmini uses the road the picture draws, and re
     requireEsmini(this);
     fs.rmSync(path.join(root, MODULAR_RUN.road));
     await sameRoad([esminiRoads], path.join(esminiRoads, 'e6mini.xodr'));
+  });
+});
+
+describe('esmini: the bundled examples run without a warning', function () {
+  this.timeout(180_000);
+
+  it('each example (a main, simple scenarios, an unpacked and a packed package) runs with no problem at all', async function () {
+    requireEsmini(this);
+    const examples = path.join(repoRoot, 'examples');
+    const store = new ScenarioStore({ root: examples });
+    for (const [file, main] of [
+      ['main.xosc', diskRef(path.join(examples, 'main.xosc'))],
+      ['lane_change.xosc', diskRef(path.join(examples, 'lane_change.xosc'))],
+      ['crossing.xosc', diskRef(path.join(examples, 'crossing.xosc'))],
+      ['pedestrian/main.xosc', diskRef(path.join(examples, 'pedestrian', 'main.xosc'))],
+      ['braking.mosc', childRef(diskRef(path.join(examples, 'braking.mosc')), 'main.xosc')],
+    ] as const) {
+      const result = await runScenario(new Flattener(store), main, { esminiPath: esminiBinary, roadPath: [esminiRoads], duration: 20 });
+      try {
+        assert.equal(result.outcome, 'ok', `${file}: ${result.message}`);
+        assert.deepEqual(result.problems.map((problem) => `${problem.severity}: ${problem.message}`), [], file);
+        assert.equal(result.roadFile?.loaded, path.join(esminiRoads, 'Town05'), file);
+      } finally {
+        removeRunFolder(result);
+      }
+    }
   });
 });
