@@ -254,7 +254,7 @@ function renderPanel(): void {
   // The run and the picture resolve the road alike (core/roadFiles.ts); a run loaded elsewhere (an older CSV, another tool) is said so.
   const otherRoad = run?.roadFile && drawn && run.roadFile !== drawn ? [`the run loaded the road file ${run.roadFile}; the picture draws ${drawn}`] : [];
   problems.replaceChildren(...[...(scene?.problems ?? []), ...(run?.notes ?? []), ...otherRoad].map((problem) => Object.assign(document.createElement('li'), { textContent: problem })));
-  const road = scene?.roadFile ? ` · road ${drawn ?? `${scene.roadFile.filepath} (not found)`}${drawn ? ` (${scene.roadFile.roadCount} roads)` : ''}` : '';
+  const road = scene?.roadFile ? ` · road ${drawn ?? `${scene.roadFile.filepath} (not found)`}${drawn ? ` (${scene.roadFile.roadCount} road${scene.roadFile.roadCount === 1 ? '' : 's'})` : ''}` : '';
   const title = element<HTMLSpanElement>('title');
   title.textContent = scene ? `${scene.title}${road}${run ? ` · run: ${run.label}` : ''}` : 'loading…';
   title.title = drawn ? `The road file drawn: ${drawn} (${scene?.roadFile?.filepath} as the scenario says)` : '';
