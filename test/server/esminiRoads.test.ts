@@ -85,6 +85,39 @@ describe('language server: Run in esmini uses the road the picture draws, and re
   });
 });
 
+describe('esmini: a road esmini finds where the picture does not look', function () {
+  this.timeout(120_000);
+
+  it('is a warning on the LogicFile naming both, never a silent difference', async function () {
+    requireEsmini(this);
+    // esmini also searches catalog folders (its --path); the bird's-eye view does not.
+    const root = modularRunWorkspace(temporaryWorkspace({}, 'm2s-road-elsewhere-'));
+    const catalogs = path.join(root, 'xosc', 'cats');
+    fs.mkdirSync(catalogs);
+    fs.renameSync(path.join(root, MODULAR_RUN.road), path.join(catalogs, 'e6mini.xodr'));
+    const file = path.join(root, MODULAR_RUN.simple);
+    fs.writeFileSync(
+      file,
+      fs
+        .readFileSync(file, 'utf8')
+        .replace('<LogicFile filepath="../xodr/e6mini.xodr"/>', '<LogicFile filepath="e6mini.xodr"/>')
+        .replace('<CatalogLocations/>', '<CatalogLocations><VehicleCatalog><Directory path="cats"/></VehicleCatalog></CatalogLocations>'),
+    );
+    const result = await runScenario(new Flattener(new ScenarioStore({ root })), diskRef(file), { esminiPath: esminiBinary, duration: 2 });
+    try {
+      assert.equal(result.roadFile?.resolved, undefined);
+      assert.equal(result.roadFile?.loaded, path.join(catalogs, 'e6mini.xodr'));
+      const [warning] = result.problems;
+      assert.equal(warning?.severity, 'warning', JSON.stringify(result.problems));
+      assert.match(warning.message, /is the road esmini loaded; the bird's-eye view found none \(looked for .*xosc\/e6mini\.xodr\)/);
+      assert.match(fs.readFileSync(file, 'utf8').split('\n')[warning.range.start.line], /<LogicFile filepath="e6mini\.xodr"\/>/);
+    } finally {
+      removeRunFolder(result);
+      fs.rmSync(root, { recursive: true, force: true });
+    }
+  });
+});
+
 describe('esmini: the bundled examples run without a warning', function () {
   this.timeout(180_000);
 

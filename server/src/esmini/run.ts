@@ -184,8 +184,13 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
     cancel: options.cancel,
   });
   const log = readEsminiLog(run.output);
-  const problems = mapEsminiMessages(log.messages, flat.source, main);
   if (roadFile) roadFile.loaded = parseEsminiLoadedRoad(run.output);
+  // Handed an absolute path, esmini loads that file; should it load another (none was found here), the run and the picture differ: said on the LogicFile.
+  if (roadFile?.loaded && path.resolve(runFolder, roadFile.loaded) !== roadFile.resolved) {
+    const drawn = roadFile.resolved ? `the bird's-eye view draws ${roadFile.resolved}` : `the bird's-eye view found none (looked for ${roadFile.candidates.join(', ')})`;
+    log.messages.unshift({ level: 'warn', time: undefined, text: `OpenDRIVE file ${roadFile.loaded} is the road esmini loaded; ${drawn}`, logLine: 0 });
+  }
+  const problems = mapEsminiMessages(log.messages, flat.source, main);
   const hasCsv = fs.existsSync(csvFile);
   const lastTime = hasCsv ? lastCsvTime(csvFile) : undefined;
   const common = {
