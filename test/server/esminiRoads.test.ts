@@ -37,6 +37,9 @@ describe('language server: Run in esmini uses the road the picture draws, and re
   async function sameRoad(roadPath: string[], expected: string): Promise<RunEsminiResult> {
     const [picture, result] = [await scene(roadPath), await run(roadPath)];
     assert.equal(picture.roadFile?.resolved, expected, picture.problems.join('\n'));
+    const mainLines = fs.readFileSync(path.join(root, MODULAR_RUN.main), 'utf8').split('\n');
+    const logicLine = mainLines.findIndex((line) => line.includes('<LogicFile '));
+    assert.deepEqual(picture.roadFile?.source, { uri: mainUri(), line: logicLine, character: mainLines[logicLine].indexOf('../xodr/e6mini.xodr') });
     assert.deepEqual(picture.problems, [], 'the picture places every entity on the road it draws');
     assert.equal(result.roadFile?.resolved, expected);
     assert.equal(result.roadFile?.loaded, expected, `esmini's log: ${result.log.split('\n').filter((line) => /OpenDRIVE/.test(line)).join('\n')}`);

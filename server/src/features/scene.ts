@@ -65,6 +65,8 @@ export async function buildScene(workspace: Workspace, roads: RoadNetworkCache, 
 
   // The road file is needed before positions can be evaluated. It is resolved as Run in esmini resolves it (core/roadFiles.ts), from the file as written.
   const logic = logicFileOf((source.original ?? model).document);
+  // Places are found from the document shown (the flattened one for a main file).
+  const shownLogic = logicFileOf(model.document);
   let network: RoadNetwork | undefined;
   let sections: SectionPolylines[] = [];
   let roadFile: SceneResult['roadFile'];
@@ -73,7 +75,7 @@ export async function buildScene(workspace: Workspace, roads: RoadNetworkCache, 
     const folders = roadFolders(params.roadPath, workspace.folders[0] ?? scenarioFolder);
     // Read from disk each time: the workspace's file cache follows scenario files only, and parsed roads are cached by content.
     const { resolved, candidates } = await resolveRoadFile(nodeFileSystem, logic.filepath, scenarioFolder, folders);
-    roadFile = { filepath: logic.filepath, resolved, roadCount: 0, source: locationOf(workspace, source, logic.element, 'filepath') };
+    roadFile = { filepath: logic.filepath, resolved, roadCount: 0, source: locationOf(workspace, source, shownLogic?.element, 'filepath') };
     if (!resolved) {
       problems.push(`road file "${logic.filepath}" not found; looked for ${candidates.join(', ')}. Add its folder to the setting modular2simple.esmini.roadPath.`);
     } else {
