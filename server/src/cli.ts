@@ -14,6 +14,8 @@ const COMMANDS: Record<string, () => Promise<Command>> = {
   format: async () => (await import('./cli/format')).formatCommand,
   run: async () => (await import('./cli/run')).runCommand,
   vary: async () => (await import('./cli/vary')).varyCommand,
+  batch: async () => (await import('./cli/batch')).batchCommand,
+  worker: async () => (await import('./cli/worker')).workerCommand,
   // The original tool's forms.
   '-cxm': async () => (await import('./cli/pack')).convertXoscIntoMoscCommand,
   '--convert-xosc-into-mosc': async () => (await import('./cli/pack')).convertXoscIntoMoscCommand,

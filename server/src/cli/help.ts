@@ -1,6 +1,7 @@
 import { FORMAT_HELP } from './format';
 import { RUN_HELP } from './run';
 import { VARY_HELP } from './vary';
+import { BATCH_HELP, WORKER_HELP } from './batch';
 import { VERSION } from './common';
 
 export const HELP = `modular2simple ${VERSION}: pack, flatten and check modular OpenSCENARIO scenarios
@@ -15,6 +16,8 @@ Usage:
   modular2simple run INPUT... [--check]            flatten and run in esmini; its messages on the source lines
   modular2simple vary FILE [--count|--index I|--out-dir DIR]
                                                    concrete scenarios of a parameter distribution
+  modular2simple batch FILE --results DIR [--jobs N] run them all in esmini; results.csv and results.json
+  modular2simple worker --queue redis://HOST:PORT    run a batch's runs from a Redis queue
 ${FORMAT_HELP}
 
 Compatible with the original tool:
@@ -51,6 +54,10 @@ Options:
 ${RUN_HELP}
 
 ${VARY_HELP}
+
+${BATCH_HELP}
+
+${WORKER_HELP}
 
 Environment:
   SCENARIO_PATH             folders searched for referenced scenarios (separated by ';' or ':')

@@ -13,9 +13,9 @@ const LOG_LINE = /^\[([^\]]*)\] \[(error|warn)\] (.*)$/;
 
 /**
  * Messages that say nothing about the scenario in a headless run (esmini 3.6): no 3D models without
- * a viewer, and two notes about esmini's own sample roads.
+ * a viewer, and notes about esmini's own sample roads.
  */
-export const HARMLESS_MESSAGES: readonly RegExp[] = [/^3D model .* not located/, /Unsupported geo reference attr: \+no_defs/, /Unsupported object type: guide-post/];
+export const HARMLESS_MESSAGES: readonly RegExp[] = [/^3D model .* not located/, /Unsupported geo reference attr: \+no_defs/, /Unsupported object type: (guide-post|rail-pole)/];
 
 export function parseEsminiLog(output: string): EsminiLogMessage[] {
   const messages: EsminiLogMessage[] = [];
