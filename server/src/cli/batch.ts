@@ -190,8 +190,13 @@ async function batch(argv: string[], io: CliOutput): Promise<number> {
   const plan: BatchPlanView = { variations, chosen, parameterNames, searchPath, scenarioFolder };
 
   if (queue) {
-    const { queueBatch } = await import('../batch/queue');
-    return queueBatch(queue, plan, identity, values.results, { quiet: values.quiet, io, settings });
+    const { queueBatch, RedisUnreachableError } = await import('../batch/queue');
+    try {
+      return await queueBatch(queue, plan, identity, values.results, { quiet: values.quiet, io, settings });
+    } catch (error) {
+      if (error instanceof RedisUnreachableError) throw new ResultsError(`${error.message}; nothing was written`);
+      throw error;
+    }
   }
   const results = await ResultsFolder.open(path.resolve(values.results), parameterNames, identity);
   return runLocally(plan, results, settings, jobs, io, values.quiet);
