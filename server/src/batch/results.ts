@@ -25,6 +25,9 @@ export interface BatchRow {
   messages: { level: 'error' | 'warn'; time: number | null; text: string }[];
 }
 
+/** results.json is written again at most this often while a batch runs (it reads every row back), and at its end. */
+const JSON_INTERVAL_MS = 30_000;
+
 export const FIXED_COLUMNS = ['index', 'status', 'collision', 'min_distance_m', 'min_ttc_s', 'end_time_s'] as const;
 
 /** What identifies a batch: resuming into a folder written by another one is refused rather than mixed. */
@@ -147,7 +150,7 @@ export class ResultsFolder {
       await this.csv!.appendFile(csvLine(row, this.parameterNames));
       await this.csv!.datasync();
       this.done.add(row.index);
-      if (Date.now() - this.lastJson > 2000) await this.writeJson();
+      if (Date.now() - this.lastJson > JSON_INTERVAL_MS) await this.writeJson();
     };
     this.queue = this.queue.then(write);
     return this.queue;

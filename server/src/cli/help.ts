@@ -16,7 +16,8 @@ Usage:
   modular2simple run INPUT... [--check]            flatten and run in esmini; its messages on the source lines
   modular2simple vary FILE [--count|--index I|--out-dir DIR]
                                                    concrete scenarios of a parameter distribution
-  modular2simple batch FILE --results DIR [--jobs N] run them all in esmini; results.csv and results.json
+  modular2simple batch FILE --results DIR [--jobs N] [--queue redis://HOST:PORT]
+                                                   run them all in esmini; results.csv and results.json
   modular2simple worker --queue redis://HOST:PORT    run a batch's runs from a Redis queue
 ${FORMAT_HELP}
 
