@@ -52,6 +52,7 @@ export async function runWorker(url: URL, options: WorkerOptions): Promise<numbe
     }
     return pending;
   };
+  const stopping = new AbortController();
   let active = 0;
   let lastActivity = Date.now();
   const runJob = async (job: Job<RunJob>): Promise<string> => {
@@ -73,8 +74,10 @@ export async function runWorker(url: URL, options: WorkerOptions): Promise<numbe
       const row = await runConcrete(
         { index: data.index, text: data.text, parameters: data.parameters, searchPath },
         { duration: data.duration, seed: data.seed, esminiPath: options.esminiPath, runsFolder: layout },
+        stopping.signal,
       );
-      if (!row) throw new Error('the run was cancelled');
+      // Ctrl-C on a terminal reaches esmini too, which then ends early as if by itself: the job runs again elsewhere.
+      if (!row || stopping.signal.aborted) throw new Error('the worker was stopped during the run');
       // Reported before the job completes: a worker that dies between the two has its job run again, and the batch keeps the first row.
       await client.rpush(resultsKey(data.batchId), JSON.stringify(row));
       if (!options.quiet) options.io.err(`${data.batchId.slice(0, 8)} ${data.index}: ${row.status}${row.collision ? ', collision' : ''}`);
@@ -98,7 +101,10 @@ export async function runWorker(url: URL, options: WorkerOptions): Promise<numbe
   });
   if (!options.quiet) options.io.err(`worker: running up to ${options.jobs} at a time from ${QUEUE_NAME} at ${url.host}`);
   await new Promise<void>((resolve) => {
-    const stop = () => resolve();
+    const stop = () => {
+      stopping.abort();
+      resolve();
+    };
     process.once('SIGINT', stop);
     process.once('SIGTERM', stop);
     if (options.idleExit !== undefined) {

@@ -216,7 +216,8 @@ async function runLocally(plan: BatchPlanView, results: ResultsFolder, settings:
   const already = plan.chosen.filter((index) => results.done.has(index.toString())).length;
   const todo = plan.chosen.filter((index) => !results.done.has(index.toString()));
   const stop = new AbortController();
-  const onSignal = () => stop.abort();
+  // A second signal does not wait for the runs in flight to be stopped.
+  const onSignal = () => (stop.signal.aborted ? process.exit(EXIT.interrupted) : stop.abort());
   process.on('SIGINT', onSignal);
   process.on('SIGTERM', onSignal);
   const progress = new Progress(todo.length, quiet ? undefined : process.stderr.isTTY ? process.stderr : undefined, quiet ? () => undefined : io.err);
@@ -232,7 +233,8 @@ async function runLocally(plan: BatchPlanView, results: ResultsFolder, settings:
         continue;
       }
       const row = await runConcrete(run, settings, stop.signal);
-      if (!row) continue;
+      // Ctrl-C on a terminal reaches esmini too, which then ends early as if by itself: such a run is not a result.
+      if (!row || stop.signal.aborted) continue;
       await results.append(row);
       tally[row.status]++;
       if (row.collision) tally.collisions++;
