@@ -188,6 +188,29 @@ describe('cli: batch', function () {
     for (const row of rows) assert.ok(Number(row.split(',')[0]) < 1e9);
   });
 
+  it('a stochastic distribution: each row holds the values vary draws for its index', function () {
+    requireEsmini(this);
+    const stochastic = fs.readFileSync(path.join(FIXTURES, 'follow_distribution.xosc'), 'utf8').replace(
+      /<Deterministic>[\s\S]*<\/Deterministic>/,
+      `<Stochastic numberOfTestRuns="6" randomSeed="5">
+      <StochasticDistribution parameterName="EgoSpeed"><NormalDistribution expectedValue="20" variance="9"/></StochasticDistribution>
+      <StochasticDistribution parameterName="LeadSpeed"><UniformDistribution><Range lowerLimit="5" upperLimit="15"/></UniformDistribution></StochasticDistribution>
+    </Stochastic>`,
+    );
+    const root = folder(3, stochastic);
+    const run = runCli(BATCH_ARGS, { cwd: root });
+    assert.equal(run.status, 0, run.stderr);
+    const lines = fs.readFileSync(path.join(root, 'results', 'results.csv'), 'utf8').trim().split('\n');
+    assert.equal(lines[0], 'index,status,collision,min_distance_m,min_ttc_s,end_time_s,EgoSpeed,LeadSpeed');
+    assert.equal(lines.length, 7);
+    for (const line of lines.slice(1)) {
+      const cells = line.split(',');
+      const concrete = runCli(['vary', 'd.xosc', '--index', cells[0]], { cwd: root }).stdout;
+      assert.ok(concrete.includes(`name="EgoSpeed" parameterType="double" value="${cells[6]}"`), line);
+      assert.ok(concrete.includes(`name="LeadSpeed" parameterType="double" value="${cells[7]}"`), line);
+    }
+  });
+
   it('refuses a results folder that holds another batch, changing nothing in it', function () {
     requireEsmini(this);
     const root = folder();
