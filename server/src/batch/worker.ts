@@ -68,7 +68,9 @@ export async function runWorker(url: URL, options: WorkerOptions): Promise<numbe
         const target = path.resolve(scenarioFolder, file.relative);
         if (!target.startsWith(layout + path.sep)) throw new Error(`the file ${file.relative} lies outside the job's folder`);
         await fs.promises.mkdir(path.dirname(target), { recursive: true });
-        await fs.promises.copyFile(await fetchFile(file.sha256), target);
+        const cached = await fetchFile(file.sha256);
+        // A hard link costs nothing per run; a copy where links are not possible.
+        await fs.promises.link(cached, target).catch(() => fs.promises.copyFile(cached, target));
       }
       const searchPath = [...new Set([scenarioFolder, ...data.searchPath.map((folder) => path.resolve(scenarioFolder, folder)), ...data.files.map((file) => path.dirname(path.resolve(scenarioFolder, file.relative)))])];
       const row = await runConcrete(
