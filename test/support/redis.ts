@@ -23,12 +23,16 @@ export interface RedisServer {
   stop(): Promise<void>;
 }
 
-/** Skips the calling test when Debian's redis-server is not installed (scripts/test-all.sh installs it as root). */
+/**
+ * Skips the calling test when Debian's redis-server is not installed (scripts/test-all.sh installs it as root).
+ * With M2S_REQUIRE_REDIS set (CI), a missing redis-server fails instead.
+ */
 export function requireRedis(context: Mocha.Context): void {
-  if (spawnSync('redis-server', ['--version']).status !== 0) {
-    console.log('    (skipped: redis-server is not installed; apt-get install redis-server)');
-    context.skip();
-  }
+  if (spawnSync('redis-server', ['--version']).status === 0) return;
+  const why = 'redis-server is not installed (apt-get install redis-server)';
+  if (process.env.M2S_REQUIRE_REDIS) throw new Error(`M2S_REQUIRE_REDIS is set, but ${why}`);
+  console.log(`    (skipped: ${why})`);
+  context.skip();
 }
 
 /** A redis-server of the test's own on 127.0.0.1 and a free port, with no persistence, in a temporary folder. */
