@@ -116,6 +116,8 @@ export async function queueBatch(url: URL, plan: BatchPlanView, identity: BatchI
 
     queue = new Queue(QUEUE_NAME, { connection: connectionOf(url) });
     queue.on('error', () => undefined);
+    // Jobs of this batch that failed on every try in an earlier attempt at it are tried again.
+    for (const job of await queue.getFailed(0, -1)) if ((job.data as RunJob).batchId === batchId && job.id) await queue.remove(job.id);
     const pending = new Set<string>();
     let discarded = 0;
     const jobs: { name: string; data: RunJob; opts: { jobId: string; attempts: number; removeOnComplete: boolean; removeOnFail: boolean } }[] = [];
@@ -126,8 +128,6 @@ export async function queueBatch(url: URL, plan: BatchPlanView, identity: BatchI
         continue;
       }
       const jobId = `${batchId}-${run.index}`;
-      // A job that failed on every try in an earlier attempt at this batch is tried again.
-      if ((await queue.getJobState(jobId)) === 'failed') await queue.remove(jobId);
       pending.add(run.index);
       jobs.push({ name: 'run', data: { batchId, index: run.index, text: run.text, parameters: run.parameters, files, searchPath, duration: settings.duration, seed: settings.seed }, opts: { jobId, attempts: ATTEMPTS, removeOnComplete: true, removeOnFail: false } });
       if (jobs.length >= 200) await queue.addBulk(jobs.splice(0));
