@@ -7,6 +7,9 @@ import { makeRunFolder } from '../esmini/process';
 import { connect, connectionOf, fileKey, LOCK_DURATION_MS, QUEUE_NAME, resultsKey, RunJob, STALLED_INTERVAL_MS } from './queue';
 import { runConcrete } from './runConcrete';
 
+/** How long a stopping worker waits for its runs in flight and for Redis. */
+const CLOSE_WAIT_MS = 10_000;
+
 export interface WorkerOptions {
   jobs: number;
   esminiPath?: string;
@@ -119,9 +122,17 @@ export async function runWorker(url: URL, options: WorkerOptions): Promise<numbe
       }, 100);
     }
   });
-  await worker.close();
+  // Waits for the runs in flight; with Redis gone that could last for ever, so after a while it stops waiting.
+  const closed = await Promise.race([worker.close().then(() => true), new Promise<boolean>((resolve) => setTimeout(() => resolve(false), CLOSE_WAIT_MS).unref())]);
+  if (!closed) {
+    options.io.err(`worker: Redis did not answer within ${CLOSE_WAIT_MS / 1000} s of stopping; the jobs in flight go back to the queue when their locks lapse`);
+    await Promise.race([worker.disconnect(), new Promise((resolve) => setTimeout(resolve, 1000).unref())]);
+  }
   client.disconnect();
   fs.rmSync(home, { recursive: true, force: true });
   if (connectionError && !options.quiet) options.io.err(`worker: the last Redis error was: ${connectionError.message}`);
-  return 0;
+  if (closed) return 0;
+  // The Redis client's reconnection timers would keep the process alive: it ends once its output is written.
+  setTimeout(() => process.exit(3), 1000).unref();
+  return 3;
 }
