@@ -181,11 +181,17 @@ export async function queueBatch(url: URL, plan: BatchPlanView, identity: BatchI
     await client.del(resultsKey(batchId));
     if (!quiet) io.err(`${summary}; results in ${results.csvFile} and ${results.jsonFile}`);
     return 0;
+  } catch (error) {
+    // Redis went away after the batch reached it: what arrived is written; the rest waits in Redis for a run again.
+    if (client.status === 'ready' || error instanceof RedisUnreachableError) throw error;
+    throw new RedisUnreachableError(`lost Redis at ${url.protocol}//${url.host}: ${(error as Error).message}; the rows that arrived are in ${results?.csvFile ?? resultsFolder}: run the same command again to collect the rest`);
   } finally {
     process.off('SIGINT', onSignal);
     process.off('SIGTERM', onSignal);
     await results?.finish();
-    await queue?.close();
+    const closed = await Promise.race([(queue?.close() ?? Promise.resolve()).then(() => true), new Promise<boolean>((resolve) => setTimeout(() => resolve(false), 5000).unref())]);
     client.disconnect();
+    // BullMQ's connection would try to reach a Redis that is gone for ever: the process ends once its output is written.
+    if (!closed) setTimeout(() => process.exit(3), 1000).unref();
   }
 }

@@ -194,7 +194,7 @@ async function batch(argv: string[], io: CliOutput): Promise<number> {
     try {
       return await queueBatch(queue, plan, identity, values.results, { quiet: values.quiet, io, settings });
     } catch (error) {
-      if (error instanceof RedisUnreachableError) throw new ResultsError(`${error.message}; nothing was written`);
+      if (error instanceof RedisUnreachableError) throw new ResultsError(error.message.startsWith('lost ') ? error.message : `${error.message}; nothing was written`);
       throw error;
     }
   }
