@@ -19,7 +19,8 @@ const entries = [
   { entryPoints: ['server/src/server.ts'], outfile: 'dist/server.js', banner: { js: '#!/usr/bin/env node' } },
   // The CLI: a small entry that runs the bundle from V8's code cache (server/src/cli/start.ts).
   { entryPoints: ['server/src/cli/start.ts'], outfile: 'dist/cli.js', banner: { js: '#!/usr/bin/env node' } },
-  { entryPoints: ['server/src/cli.ts'], outfile: 'dist/cli-main.js' },
+  // The Redis queue's client (batch --queue, worker) is loaded from node_modules only when used: start-up stays small.
+  { entryPoints: ['server/src/cli.ts'], outfile: 'dist/cli-main.js', external: ['bullmq', 'ioredis'] },
   // The bird's-eye view's page: runs in the webview, everything bundled (no network, no CDN).
   { entryPoints: ['client/src/birdsEye/webview/main.ts'], outfile: 'dist/birdsEye.js', platform: 'browser', format: 'iife', target: 'es2022' },
 ];

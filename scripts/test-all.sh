@@ -6,6 +6,8 @@ cd "$(dirname "$0")/.."
 
 need_packages=()
 command -v nvim >/dev/null 2>&1 || need_packages+=(neovim)
+# The queue tests (test/cli/batchQueue.test.ts) start their own redis-server on 127.0.0.1.
+command -v redis-server >/dev/null 2>&1 || need_packages+=(redis-server)
 if [ ${#need_packages[@]} -gt 0 ]; then
   if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
     echo "== installing Debian packages: ${need_packages[*]}"

@@ -2,6 +2,7 @@ import { FORMAT_HELP } from './format';
 import { MODULARIZE_HELP } from './modularize';
 import { RUN_HELP } from './run';
 import { VARY_HELP } from './vary';
+import { BATCH_HELP, WORKER_HELP } from './batch';
 import { VERSION } from './common';
 
 export const HELP = `modular2simple ${VERSION}: pack, flatten and check modular OpenSCENARIO scenarios
@@ -19,6 +20,9 @@ Usage:
                                                    concrete scenarios of a parameter distribution
   modular2simple modularize INPUT... -o OUT [--dry-run]
                                                    extract the groups that recur into simple scenarios
+  modular2simple batch FILE --results DIR [--jobs N] [--queue redis://HOST:PORT]
+                                                   run them all in esmini; results.csv and results.json
+  modular2simple worker --queue redis://HOST:PORT    run a batch's runs from a Redis queue
 ${FORMAT_HELP}
 
 Compatible with the original tool:
@@ -61,6 +65,10 @@ ${RUN_HELP}
 ${VARY_HELP}
 
 ${MODULARIZE_HELP}
+
+${BATCH_HELP}
+
+${WORKER_HELP}
 
 Environment:
   SCENARIO_PATH             folders searched for referenced scenarios (separated by ';' or ':')

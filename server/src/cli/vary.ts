@@ -5,6 +5,8 @@ import type { CliOutput } from './common';
 import { isSameFile, writeFileAtomic } from '../../../common/src/atomic';
 import { loadVariations, formatVariationProblems, samplingProblem, SamplingError, ScenarioTextLoader, Variations } from '../core/variations';
 import { seedBits, Xoshiro128StarStar } from '../core/variations/random';
+import { flatteningScenarioLoader, readUtf8Exactly } from './scenarioText';
+import { splitScenarioPath } from '../core/sources';
 
 export const VARY_HELP = `Concrete scenarios of a ParameterValueDistribution (modular2simple vary FILE ...):
   --count                   print the number of concrete scenarios alone (after ValueConstraintGroups)
@@ -12,9 +14,11 @@ export const VARY_HELP = `Concrete scenarios of a ParameterValueDistribution (mo
   --out-dir DIR             write every concrete scenario as DIR/SCENARIO_I.xosc
   --sample N --seed S       with --out-dir: N indices drawn at random (seed S, default 0)
   --max-combinations N      refuse more combinations than N before writing anything (default 1000000)
+  --scenario-path DIRS      as for flatten: where a modular ScenarioFile's references are looked for
   -q, --quiet               print errors only
   A concrete scenario is the ScenarioFile with its root parameter values replaced, every other byte kept:
-  relative paths in it (roads, catalogs) resolve from where it is written.
+  relative paths in it (roads, catalogs) resolve from where it is written. A ScenarioFile that is a modular
+  main.xosc, an unpacked folder or a .mosc is flattened first (as flatten does), then its values replaced.
   Exit codes: 0 done, 1 the input has errors (nothing written), 2 usage, 3 an output could not be written, 4 internal error.`;
 
 const EXIT = { ok: 0, problems: 1, usage: 2, io: 3, internal: 4 } as const;
@@ -24,15 +28,7 @@ type Output = CliOutput;
 
 class InputProblem extends Error {}
 
-/** Reads a file as UTF-8 with its byte order mark kept, so that a concrete scenario is byte for byte the original but for its values. */
-export async function readUtf8Exactly(file: string): Promise<string> {
-  const bytes = await fs.promises.readFile(file);
-  try {
-    return new TextDecoder('utf-8', { fatal: true, ignoreBOM: true }).decode(bytes);
-  } catch {
-    throw new Error('not UTF-8 text');
-  }
-}
+export { readUtf8Exactly } from './scenarioText';
 
 function usage(io: Output, message: string): number {
   io.err(`modular2simple: ${message}\nRun 'modular2simple --help' for usage.`);
@@ -65,9 +61,10 @@ export function sampleIndices(count: bigint, wanted: bigint, seed: number): bigi
 
 /**
  * `modular2simple vary`: counts or writes the concrete scenarios of a distribution file. `loadScenarioText`
- * turns the ScenarioFile's path into plain scenario text (the flattener's hook; by default the file as it is).
+ * turns the ScenarioFile's path into plain scenario text (by default the flattener's hook: a plain file as it
+ * is, a modular main or a package flattened).
  */
-export async function varyCommand(argv: string[], io: Output, loadScenarioText: ScenarioTextLoader = readUtf8Exactly): Promise<number> {
+export async function varyCommand(argv: string[], io: Output, loadScenarioText?: ScenarioTextLoader): Promise<number> {
   try {
     return await vary(argv, io, loadScenarioText);
   } catch (error) {
@@ -81,7 +78,7 @@ export async function varyCommand(argv: string[], io: Output, loadScenarioText: 
   }
 }
 
-async function vary(argv: string[], io: Output, loadScenarioText: ScenarioTextLoader): Promise<number> {
+async function vary(argv: string[], io: Output, givenLoader: ScenarioTextLoader | undefined): Promise<number> {
   let parsed;
   try {
     parsed = parseArgs({
@@ -95,6 +92,7 @@ async function vary(argv: string[], io: Output, loadScenarioText: ScenarioTextLo
         sample: { type: 'string' },
         seed: { type: 'string' },
         'max-combinations': { type: 'string' },
+        'scenario-path': { type: 'string', multiple: true },
         quiet: { type: 'boolean', short: 'q', default: false },
         help: { type: 'boolean', short: 'h', default: false },
       },
@@ -129,6 +127,7 @@ async function vary(argv: string[], io: Output, loadScenarioText: ScenarioTextLo
     throw new InputProblem(`${positionals[0]}: ${reason}`);
   }
   const base = process.cwd();
+  const loadScenarioText = givenLoader ?? flatteningScenarioLoader((values['scenario-path'] ?? []).flatMap(splitScenarioPath));
   const loaded = await loadVariations(distributionText, distributionPath, loadScenarioText);
   const printProblems = (problems = loaded.problems): void => {
     for (const line of formatVariationProblems(problems, loaded.lines, base)) if (!values.quiet || line.includes(': error: ')) io.err(line);

@@ -26,6 +26,8 @@ export interface EsminiProcessOptions {
   searchPath: string[];
   timeStep: number;
   seed: number;
+  /** Adds `--collision`: esmini's global collision detection. */
+  collision?: boolean;
   /** Simulated seconds after which the run is stopped by SIGINT if it has not stopped itself. */
   duration: number;
   /** Wall-clock backstop in milliseconds, then SIGKILL. */
@@ -51,8 +53,9 @@ export interface EsminiProcessResult {
   reason?: string;
 }
 
-export function esminiArguments(options: Pick<EsminiProcessOptions, 'scenarioFile' | 'csvFile' | 'searchPath' | 'timeStep' | 'seed'>): string[] {
+export function esminiArguments(options: Pick<EsminiProcessOptions, 'scenarioFile' | 'csvFile' | 'searchPath' | 'timeStep' | 'seed' | 'collision'>): string[] {
   const args = ['--headless', '--osc', options.scenarioFile, '--fixed_timestep', String(options.timeStep), '--seed', String(options.seed), '--csv_logger', options.csvFile, '--disable_log'];
+  if (options.collision) args.push('--collision');
   for (const folder of options.searchPath) args.push('--path', folder);
   return args;
 }

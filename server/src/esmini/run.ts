@@ -8,9 +8,9 @@ import { nodeFileSystem, SourceRef } from '../core/sources';
 import { attribute, descendants, escapeAttributeValue, parseXml } from '../core/xml';
 import { parseEsminiLoadedRoad } from '../../../common/src/esminiCsv';
 import { locateEsmini } from './locate';
-import { EsminiRemark, readEsminiLog } from './log';
+import { EsminiLogMessage, EsminiRemark, readEsminiLog } from './log';
 import { EsminiProblem, mapEsminiMessages } from './messages';
-import { EsminiEnd, lastCsvTime, makeRunFolder, runEsminiProcess } from './process';
+import { EsminiEnd, EsminiProcessResult, lastCsvTime, makeRunFolder, runEsminiProcess } from './process';
 import { withTimeLimit } from './timeLimit';
 
 export const RUN_DEFAULTS = {
@@ -37,6 +37,8 @@ export interface EsminiRunOptions {
   wallTimeoutMs?: number;
   /** Parent of the private run folder; the system's temporary folder by default. */
   runsFolder?: string;
+  /** esmini's global collision detection (`--collision`): each collision is logged as a warning. */
+  collision?: boolean;
   onOutput?: (text: string) => void;
   cancel?: AbortSignal;
   /** Run whatever can be flattened despite the scenario's errors (*Run Anyway*, `run --force`); they are listed in `flattenProblems`. */
@@ -176,15 +178,76 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
     return { ...base, flattenProblems, outcome: 'not-flattened', esmini: location.program, message: 'the scenario has no <Storyboard>, so esmini has nothing to run', wallMs: elapsed() };
   }
 
+  const searchPath = unique([sourceFolder, ...catalogFolders(flat.source, sourceFolder), ...folders]);
+  const ran = await runLimitedText(location.program, limited, searchPath, options, timeStep, seed, duration, { runFolder, files: flat.files });
+  const log = readEsminiLog(ran.run.output);
+  if (roadFile) roadFile.loaded = parseEsminiLoadedRoad(ran.run.output);
+  // Handed an absolute path, esmini loads that file; should it load another (none was found here), the run and the picture differ: said on the LogicFile.
+  if (roadFile?.loaded && path.resolve(runFolder, roadFile.loaded) !== roadFile.resolved) {
+    const drawn = roadFile.resolved ? `the bird's-eye view draws ${roadFile.resolved}` : `the bird's-eye view found none (looked for ${roadFile.candidates.join(', ')})`;
+    log.messages.unshift({ level: 'warn', time: undefined, text: `OpenDRIVE file ${roadFile.loaded} is the road esmini loaded; ${drawn}`, logLine: 0 });
+  }
+  const problems = mapEsminiMessages(log.messages, flat.source, main);
+  const errors = problems.filter((problem) => problem.severity === 'error').length;
+  const outcome = outcomeOf(ran, errors, problems.length - errors);
+  const scenarioErrors = flattenProblems.filter((problem) => problem.severity === 'error').length;
+  const forced = scenarioErrors > 0 && (outcome.outcome === 'ok' || outcome.outcome === 'errors') ? ` (run anyway despite ${scenarioErrors} error${scenarioErrors === 1 ? '' : 's'} in the scenario)` : '';
+  return { ...base, flattenProblems, problems, remarks: log.remarks, roadFile, ...ran.common, esmini: location.program, wallMs: elapsed(), ...outcome, message: outcome.message + forced };
+}
+
+/** A plain scenario's run (`runScenarioText`): esmini's messages as it printed them, placed on no source line. */
+export type EsminiTextRunResult = Omit<EsminiRunResult, 'problems' | 'flattenProblems'> & { messages: EsminiLogMessage[] };
+
+/**
+ * Runs plain OpenSCENARIO text (already flat, such as a concrete scenario of a distribution) as `runScenario`
+ * runs a flattened file: the same time limit, step, seed and bounds. `searchPath`: absolute folders for roads
+ * and catalogs, in order. Never throws for a bad scenario or a missing esmini.
+ */
+export async function runScenarioText(text: string, searchPath: string[], options: EsminiRunOptions = {}): Promise<EsminiTextRunResult> {
+  const started = Date.now();
+  const duration = options.duration ?? RUN_DEFAULTS.duration;
+  const timeStep = options.timeStep ?? RUN_DEFAULTS.timeStep;
+  const seed = options.seed ?? RUN_DEFAULTS.seed;
+  const base = { log: '', duration, timeStep, seed, messages: [] as EsminiLogMessage[], remarks: [] as EsminiRemark[] };
+  const elapsed = () => Date.now() - started;
+  if (!(duration > 0) || !Number.isFinite(duration)) throw new Error(`the duration must be a positive number of seconds, not ${duration}`);
+  const location = locateEsmini(options.esminiPath, options.base);
+  if (!location.found) return { ...base, outcome: 'no-esmini', message: location.message, wallMs: elapsed() };
+  const limited = withTimeLimit(text, duration);
+  if (limited === undefined) return { ...base, outcome: 'not-flattened', esmini: location.program, message: 'the scenario has no <Storyboard>, so esmini has nothing to run', wallMs: elapsed() };
+  const roadPath = (options.roadPath ?? []).map((folder) => path.resolve(options.base ?? process.cwd(), folder));
+  const ran = await runLimitedText(location.program, limited, unique([...searchPath, ...roadPath]), options, timeStep, seed, duration);
+  const { messages, remarks } = readEsminiLog(ran.run.output);
+  const errors = messages.filter((message) => message.level === 'error').length;
+  return { ...base, messages, remarks, ...ran.common, esmini: location.program, wallMs: elapsed(), ...outcomeOf(ran, errors, messages.length - errors) };
+}
+
+interface LimitedRun {
+  run: EsminiProcessResult;
+  common: Pick<EsminiRunResult, 'args' | 'runFolder' | 'scenarioFile' | 'csvFile' | 'log' | 'end' | 'exitCode' | 'simulatedTime'>;
+}
+
+/** Writes the time-limited text (and the files a self-contained package carries) to a private folder and runs esmini on it. */
+async function runLimitedText(
+  program: string,
+  limited: string,
+  searchPath: string[],
+  options: EsminiRunOptions,
+  timeStep: number,
+  seed: number,
+  duration: number,
+  prepared: { runFolder?: string; files?: readonly { path: string; bytes: Uint8Array }[] } = {},
+): Promise<LimitedRun> {
+  const runFolder = prepared.runFolder ?? makeRunFolder(options.runsFolder ?? path.join(os.tmpdir(), 'modular2simple-esmini'));
+  const scenarioFile = path.join(runFolder, 'scenario.xosc');
   const csvFile = path.join(runFolder, 'trajectories.csv');
   fs.writeFileSync(scenarioFile, limited);
-  for (const file of flat.files) {
+  for (const file of prepared.files ?? []) {
     fs.mkdirSync(path.dirname(file.path), { recursive: true });
     fs.writeFileSync(file.path, file.bytes);
   }
-  const searchPath = unique([sourceFolder, ...catalogFolders(flat.source, sourceFolder), ...folders]);
   const run = await runEsminiProcess({
-    program: location.program,
+    program,
     scenarioFile,
     workDir: runFolder,
     csvFile,
@@ -192,52 +255,42 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
     timeStep,
     seed,
     duration,
+    collision: options.collision,
     wallTimeoutMs: options.wallTimeoutMs ?? RUN_DEFAULTS.wallTimeoutMs,
     maxCsvBytes: RUN_DEFAULTS.maxCsvBytes,
     maxOutputChars: RUN_DEFAULTS.maxOutputChars,
     onOutput: options.onOutput,
     cancel: options.cancel,
   });
-  const log = readEsminiLog(run.output);
-  if (roadFile) roadFile.loaded = parseEsminiLoadedRoad(run.output);
-  // Handed an absolute path, esmini loads that file; should it load another (none was found here), the run and the picture differ: said on the LogicFile.
-  if (roadFile?.loaded && path.resolve(runFolder, roadFile.loaded) !== roadFile.resolved) {
-    const drawn = roadFile.resolved ? `the bird's-eye view draws ${roadFile.resolved}` : `the bird's-eye view found none (looked for ${roadFile.candidates.join(', ')})`;
-    log.messages.unshift({ level: 'warn', time: undefined, text: `OpenDRIVE file ${roadFile.loaded} is the road esmini loaded; ${drawn}`, logLine: 0 });
-  }
-  const problems = mapEsminiMessages(log.messages, flat.source, main);
   const hasCsv = fs.existsSync(csvFile);
   const lastTime = hasCsv ? lastCsvTime(csvFile) : undefined;
-  const common = {
-    ...base,
-    flattenProblems,
-    problems,
-    remarks: log.remarks,
-    roadFile,
-    esmini: location.program,
-    args: run.args,
-    runFolder,
-    scenarioFile,
-    csvFile: hasCsv ? csvFile : undefined,
-    log: run.output,
-    end: run.end,
-    exitCode: run.exitCode,
-    simulatedTime: lastTime === undefined ? undefined : Math.min(lastTime, duration),
-    wallMs: elapsed(),
+  return {
+    run,
+    common: {
+      args: run.args,
+      runFolder,
+      scenarioFile,
+      csvFile: hasCsv ? csvFile : undefined,
+      log: run.output,
+      end: run.end,
+      exitCode: run.exitCode,
+      simulatedTime: lastTime === undefined ? undefined : Math.min(lastTime, duration),
+    },
   };
-  const errors = problems.filter((problem) => problem.severity === 'error').length;
-  const warnings = problems.length - errors;
+}
+
+/** How a run ended, in a word and a sentence, from how the process ended and how many errors esmini reported. */
+function outcomeOf(ran: LimitedRun, errors: number, warnings: number): Pick<EsminiRunResult, 'outcome' | 'message'> {
+  const { run, common } = ran;
   const counts = `${errors} error${errors === 1 ? '' : 's'}, ${warnings} warning${warnings === 1 ? '' : 's'}`;
-  if (run.end === 'cancelled') return { ...common, outcome: 'cancelled', message: 'the run was cancelled' };
-  if (run.end === 'not-started' || run.end === 'killed') return { ...common, outcome: 'failed', message: `esmini ${run.reason ?? 'failed'}` };
+  if (run.end === 'cancelled') return { outcome: 'cancelled', message: 'the run was cancelled' };
+  if (run.end === 'not-started' || run.end === 'killed') return { outcome: 'failed', message: `esmini ${run.reason ?? 'failed'}` };
   if (run.exitCode !== 0 && run.end === 'exited' && errors === 0) {
-    return { ...common, outcome: 'failed', message: `esmini ended with exit code ${run.exitCode} without an error message; see its log` };
+    return { outcome: 'failed', message: `esmini ended with exit code ${run.exitCode} without an error message; see its log` };
   }
   const covered =
     common.simulatedTime === undefined ? 'no trajectory: esmini placed no entity (each needs a position in Init, such as a TeleportAction)' : `${common.simulatedTime.toFixed(2)} s simulated`;
-  const scenarioErrors = flattenProblems.filter((problem) => problem.severity === 'error').length;
-  const forced = scenarioErrors > 0 ? ` (run anyway despite ${scenarioErrors} error${scenarioErrors === 1 ? '' : 's'} in the scenario)` : '';
-  return { ...common, outcome: errors > 0 ? 'errors' : 'ok', message: `esmini: ${counts}; ${covered} (${(run.wallMs / 1000).toFixed(2)} s)${forced}` };
+  return { outcome: errors > 0 ? 'errors' : 'ok', message: `esmini: ${counts}; ${covered} (${(run.wallMs / 1000).toFixed(2)} s)` };
 }
 
 /** Removes a run's private folder (its CSV and scenario copy). */

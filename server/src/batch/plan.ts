@@ -1,0 +1,83 @@
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import type { Variations } from '../core/variations';
+import { valuesAfter } from '../core/variations/concrete';
+import { attribute, descendants, parseXml } from '../core/xml';
+import type { ConcreteRun } from './runConcrete';
+
+/** The varied parameters, in the order the distribution names them first: the columns after the fixed ones. */
+export function variedParameters(variations: Variations): string[] {
+  const names: string[] = [];
+  const add = (name: string) => {
+    if (!names.includes(name)) names.push(name);
+  };
+  for (const distribution of variations.distribution.deterministic ?? []) {
+    if (distribution.kind === 'multi') distribution.sets.flat().forEach((value) => add(value.parameter));
+    else add(distribution.parameter);
+  }
+  for (const distribution of variations.distribution.stochastic?.distributions ?? []) add(distribution.parameter);
+  return names;
+}
+
+/** Literal paths a scenario names outside itself: its road network's LogicFile and its catalog directories. */
+export function namedPaths(text: string): { roads: string[]; catalogFolders: string[] } {
+  const root = parseXml(text).root;
+  const roads: string[] = [];
+  const catalogFolders: string[] = [];
+  const literal = (value: string | undefined) => (value && !value.includes('$') ? value : undefined);
+  for (const child of root?.children ?? []) {
+    if (child.name === 'RoadNetwork') {
+      const logicFile = child.children.find((each) => each.name === 'LogicFile');
+      const logic = logicFile ? literal(attribute(logicFile, 'filepath')?.value) : undefined;
+      if (logic) roads.push(logic);
+    }
+    if (child.name === 'CatalogLocations') {
+      for (const directory of descendants(child)) {
+        const value = directory.name === 'Directory' ? literal(attribute(directory, 'path')?.value) : undefined;
+        if (value) catalogFolders.push(value);
+      }
+    }
+  }
+  return { roads, catalogFolders };
+}
+
+/** Where a run of the scenario looks for roads and catalogs: its own folder, its catalog folders, then the road path. */
+export function searchPathOf(text: string, scenarioFolder: string, roadPath: string[]): string[] {
+  const folders = [scenarioFolder, ...namedPaths(text).catalogFolders.map((folder) => path.resolve(scenarioFolder, folder)), ...roadPath.map((folder) => path.resolve(folder))];
+  return [...new Set(folders)];
+}
+
+/**
+ * The files a run needs besides the scenario, found as esmini finds them (the path as written from the scenario's
+ * folder, then each search folder with the path and with its file name): the road file and every catalog file.
+ */
+export function filesNeeded(text: string, scenarioFolder: string, searchPath: string[]): string[] {
+  const { roads, catalogFolders } = namedPaths(text);
+  const files = new Set<string>();
+  for (const road of roads) {
+    const candidates = [path.resolve(scenarioFolder, road), ...searchPath.flatMap((folder) => [path.resolve(folder, road), path.join(folder, path.basename(road))])];
+    const found = candidates.find((candidate) => fs.existsSync(candidate) && fs.statSync(candidate).isFile());
+    if (found) files.add(found);
+  }
+  for (const folder of catalogFolders) {
+    const resolved = path.resolve(scenarioFolder, folder);
+    let names: string[] = [];
+    try {
+      names = fs.readdirSync(resolved);
+    } catch {
+      continue;
+    }
+    for (const name of names) if (name.toLowerCase().endsWith('.xosc') && fs.statSync(path.join(resolved, name)).isFile()) files.add(path.join(resolved, name));
+  }
+  return [...files];
+}
+
+/** Concrete scenario `index` as a run, or why the scenario's ValueConstraintGroups discard it. */
+export function concreteRun(variations: Variations, index: bigint, parameterNames: string[], searchPath: string[]): ConcreteRun | { broken: { parameter: string; value: string } } {
+  const concrete = variations.concreteAt(index);
+  if ('broken' in concrete) return { broken: concrete.broken };
+  const values = valuesAfter(variations.scenario, concrete.assignments);
+  const parameters: Record<string, string> = {};
+  for (const name of parameterNames) parameters[name] = values.get(name) ?? '';
+  return { index: index.toString(), text: concrete.text, parameters, searchPath };
+}

@@ -1,0 +1,46 @@
+import type { BatchRow } from './results';
+
+function clock(seconds: number): string {
+  if (!Number.isFinite(seconds)) return '--:--';
+  const whole = Math.round(seconds);
+  const hours = Math.floor(whole / 3600);
+  const minutes = Math.floor((whole % 3600) / 60);
+  const rest = String(whole % 60).padStart(2, '0');
+  return hours > 0 ? `${hours}:${String(minutes).padStart(2, '0')}:${rest}` : `${minutes}:${rest}`;
+}
+
+/** A progress bar with the rate and the time left on a terminal; a plain line per run otherwise. */
+export class Progress {
+  private done = 0;
+  private readonly started = Date.now();
+  private lastDraw = 0;
+
+  constructor(
+    private readonly total: number,
+    private readonly tty: { write(text: string): void; columns?: number } | undefined,
+    private readonly line: (text: string) => void,
+  ) {}
+
+  /** One run ended. */
+  tick(row: BatchRow): void {
+    this.done++;
+    if (!this.tty) {
+      this.line(`[${this.done}/${this.total}] ${row.index}: ${row.status}${row.collision ? ', collision' : ''}`);
+      return;
+    }
+    if (this.done < this.total && Date.now() - this.lastDraw < 100) return;
+    this.lastDraw = Date.now();
+    const elapsed = (Date.now() - this.started) / 1000;
+    const rate = this.done / Math.max(elapsed, 1e-3);
+    const left = (this.total - this.done) / rate;
+    const text = ` ${this.done}/${this.total} ${Math.floor((100 * this.done) / Math.max(this.total, 1))}%  ${rate.toFixed(1)} runs/s  ETA ${clock(left)}`;
+    const width = Math.max(10, Math.min(40, (this.tty.columns ?? 80) - text.length - 3));
+    const filled = Math.round((width * this.done) / Math.max(this.total, 1));
+    this.tty.write(`\r\x1b[K[${'#'.repeat(filled)}${'-'.repeat(width - filled)}]${text}`);
+  }
+
+  /** Ends the bar's line on a terminal. */
+  end(): void {
+    if (this.tty && this.done > 0) this.tty.write('\n');
+  }
+}

@@ -1,0 +1,197 @@
+import { createHash } from 'node:crypto';
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import { Queue } from 'bullmq';
+import { Redis } from 'ioredis';
+import type { BatchPlanView } from '../cli/batch';
+import type { CliOutput } from '../cli/common';
+import { concreteRun, filesNeeded } from './plan';
+import { Progress } from './progress';
+import { BatchIdentity, BatchRow, ResultsFolder } from './results';
+import type { RunSettings } from './runConcrete';
+
+/** The BullMQ queue every batch and worker use; a job's id names its batch, so batches can share it. */
+export const QUEUE_NAME = 'modular2simple-runs';
+/** A key prefix of our own beside BullMQ's. */
+const PREFIX = 'modular2simple';
+/** Files a run needs, content-addressed: each sent once, kept a week. */
+export const fileKey = (sha256: string): string => `${PREFIX}:file:${sha256}`;
+/** The rows of one batch, in the order workers finished them; read from the start on every resume. */
+export const resultsKey = (batchId: string): string => `${PREFIX}:results:${batchId}`;
+const FILE_TTL_SECONDS = 7 * 24 * 3600;
+/** A job's lock: a worker renews it every half; a worker that dies lets it lapse and the job runs elsewhere. */
+export const LOCK_DURATION_MS = 6000;
+export const STALLED_INTERVAL_MS = 3000;
+/** Tries of a job whose worker failed (not of a run that failed: that is a row with status error). */
+const ATTEMPTS = 3;
+
+/** A file a job needs: where it lies relative to the scenario's folder, and its content's hash. */
+export interface JobFile {
+  relative: string;
+  sha256: string;
+}
+
+/** Everything a worker needs for one run, on a machine that shares no file system with the batch. */
+export interface RunJob {
+  batchId: string;
+  index: string;
+  text: string;
+  parameters: Record<string, string>;
+  files: JobFile[];
+  /** The search folders, relative to the scenario's folder. */
+  searchPath: string[];
+  duration: number;
+  seed: number;
+}
+
+export class RedisUnreachableError extends Error {}
+
+/** Connection options for BullMQ from redis://HOST:PORT[/DB]. */
+export function connectionOf(url: URL): { host: string; port: number; db: number; username?: string; password?: string; maxRetriesPerRequest: null } {
+  const db = Number(url.pathname.replace(/^\//, '') || 0);
+  return {
+    host: url.hostname,
+    port: Number(url.port || 6379),
+    db: Number.isInteger(db) ? db : 0,
+    ...(url.username ? { username: decodeURIComponent(url.username) } : {}),
+    ...(url.password ? { password: decodeURIComponent(url.password) } : {}),
+    maxRetriesPerRequest: null,
+  };
+}
+
+/** A client that fails at once when Redis cannot be reached, instead of retrying for ever: RedisUnreachableError. */
+export async function connect(url: URL): Promise<Redis> {
+  const client = new Redis({ ...connectionOf(url), lazyConnect: true, connectTimeout: 3000, maxRetriesPerRequest: 1, retryStrategy: () => null, enableOfflineQueue: false });
+  // The socket's own error (ECONNREFUSED, ENOTFOUND) says more than the closed connection the command then meets.
+  let socketError: Error | undefined;
+  client.on('error', (error: Error) => (socketError ??= error));
+  try {
+    await client.connect();
+    await client.ping();
+    return client;
+  } catch (error) {
+    client.disconnect();
+    throw new RedisUnreachableError(`cannot reach Redis at ${url.protocol}//${url.host}: ${(socketError ?? (error as Error)).message || 'connection refused'}`);
+  }
+}
+
+function sha256(data: Buffer | string): string {
+  return createHash('sha256').update(data).digest('hex');
+}
+
+/** A path relative to the scenario's folder, with '/' on every system. */
+function relativeTo(folder: string, file: string): string {
+  return path.relative(folder, file).split(path.sep).join('/');
+}
+
+/**
+ * `batch --queue`: sends the files and the runs that results.csv lacks, then writes the rows the workers
+ * report as they come. Jobs are named by batch and index, so a run again adds nothing twice; rows are
+ * read back from the start, so none reported while the batch was away is lost.
+ */
+export async function queueBatch(url: URL, plan: BatchPlanView, identity: BatchIdentity, resultsFolder: string, options: { quiet: boolean; io: CliOutput; settings: RunSettings }): Promise<number> {
+  const { io, quiet, settings } = options;
+  const client = await connect(url);
+  let queue: Queue | undefined;
+  const stop = new AbortController();
+  const onSignal = () => stop.abort();
+  process.on('SIGINT', onSignal);
+  process.on('SIGTERM', onSignal);
+  let results: ResultsFolder | undefined;
+  try {
+    results = await ResultsFolder.open(path.resolve(resultsFolder), plan.parameterNames, identity);
+    const batchId = sha256(JSON.stringify(identity)).slice(0, 24);
+    const already = plan.chosen.filter((index) => results!.done.has(index.toString())).length;
+    const todo = plan.chosen.filter((index) => !results!.done.has(index.toString()));
+
+    // Each file once, by its content.
+    const files: JobFile[] = [];
+    for (const file of filesNeeded(plan.variations.scenario.text, plan.scenarioFolder, plan.searchPath)) {
+      const bytes = await fs.promises.readFile(file);
+      const hash = sha256(bytes);
+      await client.set(fileKey(hash), bytes, 'EX', FILE_TTL_SECONDS, 'NX');
+      files.push({ relative: relativeTo(plan.scenarioFolder, file), sha256: hash });
+    }
+    const searchPath = plan.searchPath.map((folder) => relativeTo(plan.scenarioFolder, folder) || '.');
+
+    queue = new Queue(QUEUE_NAME, { connection: connectionOf(url) });
+    queue.on('error', () => undefined);
+    // Jobs of this batch that failed on every try in an earlier attempt at it are tried again.
+    for (const job of await queue.getFailed(0, -1)) if ((job.data as RunJob).batchId === batchId && job.id) await queue.remove(job.id);
+    const pending = new Set<string>();
+    let discarded = 0;
+    const jobs: { name: string; data: RunJob; opts: { jobId: string; attempts: number; removeOnComplete: boolean; removeOnFail: boolean } }[] = [];
+    for (const index of todo) {
+      const run = concreteRun(plan.variations, index, plan.parameterNames, []);
+      if ('broken' in run) {
+        discarded++;
+        continue;
+      }
+      const jobId = `${batchId}-${run.index}`;
+      pending.add(run.index);
+      jobs.push({ name: 'run', data: { batchId, index: run.index, text: run.text, parameters: run.parameters, files, searchPath, duration: settings.duration, seed: settings.seed }, opts: { jobId, attempts: ATTEMPTS, removeOnComplete: true, removeOnFail: false } });
+      if (jobs.length >= 200) await queue.addBulk(jobs.splice(0));
+    }
+    if (jobs.length > 0) await queue.addBulk(jobs.splice(0));
+    if (!quiet) io.err(`${pending.size} run${pending.size === 1 ? '' : 's'} on the queue ${QUEUE_NAME} at ${url.host}` + (already > 0 ? `; ${already} already in ${results.csvFile}` : ''));
+
+    const progress = new Progress(pending.size, quiet ? undefined : process.stderr.isTTY ? process.stderr : undefined, quiet ? () => undefined : io.err);
+    const tally = { ok: 0, error: 0, timeout: 0, collisions: 0 };
+    let cursor = 0;
+    let lastFailedCheck = 0;
+    const failed = new Map<string, string>();
+    while (!stop.signal.aborted && pending.size > failed.size) {
+      const rows = await client.lrange(resultsKey(batchId), cursor, cursor + 999);
+      cursor += rows.length;
+      for (const text of rows) {
+        const row = JSON.parse(text) as BatchRow;
+        if (!pending.has(row.index)) continue;
+        pending.delete(row.index);
+        failed.delete(row.index);
+        await results.append(row);
+        tally[row.status]++;
+        if (row.collision) tally.collisions++;
+        progress.tick(row);
+      }
+      if (rows.length > 0) continue;
+      if (Date.now() - lastFailedCheck > 1000) {
+        lastFailedCheck = Date.now();
+        for (const job of await queue.getFailed(0, 999)) {
+          const data = job.data as RunJob;
+          if (data.batchId === batchId && pending.has(data.index)) failed.set(data.index, job.failedReason ?? 'failed');
+        }
+      }
+      await new Promise((resolve) => setTimeout(resolve, 50));
+    }
+    progress.end();
+    const ran = tally.ok + tally.error + tally.timeout;
+    const summary =
+      `${ran} run${ran === 1 ? '' : 's'} (${tally.ok} ok, ${tally.error} error, ${tally.timeout} timeout; ${tally.collisions} with a collision)` +
+      (already > 0 ? `, ${already} already in ${results.csvFile}` : '') +
+      (discarded > 0 ? `, ${discarded} discarded by the scenario's ValueConstraintGroups` : '');
+    if (stop.signal.aborted) {
+      io.err(`interrupted after ${summary}; the rest stay on the queue: run the same command again to collect them`);
+      return 130;
+    }
+    if (failed.size > 0) {
+      const [index, reason] = [...failed][0];
+      io.err(`modular2simple: error: ${failed.size} run${failed.size === 1 ? '' : 's'} failed on the workers ${ATTEMPTS} times (index ${index}: ${reason}); ${summary}; run the same command again to try them again`);
+      return 3;
+    }
+    await client.del(resultsKey(batchId));
+    if (!quiet) io.err(`${summary}; results in ${results.csvFile} and ${results.jsonFile}`);
+    return 0;
+  } catch (error) {
+    // Redis went away after the batch reached it: what arrived is written; the rest waits in Redis for a run again.
+    if (client.status === 'ready' || error instanceof RedisUnreachableError) throw error;
+    throw new RedisUnreachableError(`lost Redis at ${url.protocol}//${url.host}: ${(error as Error).message}; the rows that arrived are in ${results?.csvFile ?? resultsFolder}: run the same command again to collect the rest`);
+  } finally {
+    process.off('SIGINT', onSignal);
+    process.off('SIGTERM', onSignal);
+    await results?.finish();
+    const closed = await Promise.race([(queue?.close() ?? Promise.resolve()).then(() => true), new Promise<boolean>((resolve) => setTimeout(() => resolve(false), 5000).unref())]);
+    client.disconnect();
+    // BullMQ's connection would try to reach a Redis that is gone for ever: the process ends once its output is written.
+    if (!closed) setTimeout(() => process.exit(3), 1000).unref();
+  }
+}

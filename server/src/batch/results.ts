@@ -1,0 +1,191 @@
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import { writeFileAtomic } from '../../../common/src/atomic';
+import type { Collision } from './metrics';
+
+/** `ok`: esmini ran it and reported no error; `error`: it reported one or could not run it; `timeout`: stopped by --duration or the wall-clock limit. */
+export type RunStatus = 'ok' | 'error' | 'timeout';
+
+/** One concrete scenario's result: a line of results.csv, and with its messages an entry of results.json. */
+export interface BatchRow {
+  index: string;
+  status: RunStatus;
+  collision: boolean;
+  min_distance_m: number | null;
+  min_ttc_s: number | null;
+  end_time_s: number | null;
+  /** The varied parameters' values, by name, in the columns' order. */
+  parameters: Record<string, string>;
+  /** The entity the distances are measured from. */
+  ego: string | null;
+  collisions: Collision[];
+  /** How the run ended, in one sentence. */
+  message: string;
+  /** esmini's errors and warnings. */
+  messages: { level: 'error' | 'warn'; time: number | null; text: string }[];
+}
+
+/** results.json is written again at most this often while a batch runs (it reads every row back), and at its end. */
+const JSON_INTERVAL_MS = 30_000;
+
+export const FIXED_COLUMNS = ['index', 'status', 'collision', 'min_distance_m', 'min_ttc_s', 'end_time_s'] as const;
+
+/** What identifies a batch: resuming into a folder written by another one is refused rather than mixed. */
+export interface BatchIdentity {
+  distribution: string;
+  scenarioSha256: string;
+  distributionSha256: string;
+  sample: string | null;
+  seed: number;
+  duration: number;
+  esminiSeed: number;
+}
+
+export class ResultsError extends Error {}
+
+/** A CSV field as RFC 4180 quotes it when it must. */
+export function csvField(value: string): string {
+  return /[",\r\n]/.test(value) || value !== value.trim() ? `"${value.replace(/"/g, '""')}"` : value;
+}
+
+function number(value: number | null, digits: number): string {
+  return value === null ? '' : value.toFixed(digits);
+}
+
+export function csvLine(row: BatchRow, parameterNames: string[]): string {
+  const fixed = [row.index, row.status, String(row.collision), number(row.min_distance_m, 3), number(row.min_ttc_s, 3), number(row.end_time_s, 3)];
+  return [...fixed, ...parameterNames.map((name) => row.parameters[name] ?? '')].map(csvField).join(',') + '\n';
+}
+
+/** The first field of each complete line after the header: the indices already in results.csv. */
+function indicesIn(csv: string): string[] {
+  const lines = csv.split('\n');
+  lines.pop();
+  return lines.slice(1).map((line) => (line.startsWith('"') ? line.slice(1, line.indexOf('"', 1)) : line.slice(0, line.indexOf(','))));
+}
+
+/**
+ * DIR/results.csv, DIR/results.json and what lets a batch resume. Every row is appended and synced to disk as
+ * its run ends, first to DIR/.rows.jsonl (the rows with esmini's messages), then to results.csv, which says
+ * what is done: a row cut short by a kill is dropped on the next start, so the CSV is always whole rows.
+ * results.json is written from the rows, atomically, now and then and at the end.
+ */
+export class ResultsFolder {
+  readonly csvFile: string;
+  readonly jsonFile: string;
+  private readonly rowsFile: string;
+  private readonly identityFile: string;
+  private csv: fs.promises.FileHandle | undefined;
+  private rows: fs.promises.FileHandle | undefined;
+  private queue: Promise<void> = Promise.resolve();
+  private lastJson = 0;
+
+  private constructor(
+    readonly folder: string,
+    readonly parameterNames: string[],
+    /** Indices whose rows are in results.csv. */
+    readonly done: Set<string>,
+    private readonly identity: BatchIdentity,
+  ) {
+    this.csvFile = path.join(folder, 'results.csv');
+    this.jsonFile = path.join(folder, 'results.json');
+    this.rowsFile = path.join(folder, '.rows.jsonl');
+    this.identityFile = path.join(folder, '.batch.json');
+  }
+
+  /** The header line of results.csv. */
+  static header(parameterNames: string[]): string {
+    return [...FIXED_COLUMNS, ...parameterNames].map(csvField).join(',') + '\n';
+  }
+
+  /**
+   * Opens (creating) the results folder. A folder holding another batch's results (other columns, another
+   * distribution or sampling) is refused with ResultsError; nothing in it is changed then.
+   */
+  static async open(folder: string, parameterNames: string[], identity: BatchIdentity): Promise<ResultsFolder> {
+    const results = new ResultsFolder(folder, parameterNames, new Set(), identity);
+    const header = ResultsFolder.header(parameterNames);
+    let existing: string | undefined;
+    try {
+      existing = await fs.promises.readFile(results.csvFile, 'utf8');
+    } catch (error) {
+      if ((error as NodeJS.ErrnoException).code !== 'ENOENT') throw new ResultsError(`cannot read ${results.csvFile}: ${(error as Error).message}`);
+    }
+    if (existing !== undefined && existing.length > 0) {
+      if (!existing.startsWith(header)) throw new ResultsError(`${results.csvFile} holds another batch's results (its columns are not ${header.trim()}); use another --results folder`);
+      let stored: BatchIdentity | undefined;
+      try {
+        stored = JSON.parse(await fs.promises.readFile(results.identityFile, 'utf8')) as BatchIdentity;
+      } catch {
+        stored = undefined;
+      }
+      const differs = stored ? (Object.keys(identity) as (keyof BatchIdentity)[]).filter((key) => stored[key] !== identity[key]) : [];
+      if (differs.length > 0) throw new ResultsError(`${results.csvFile} holds another batch's results (it differs in ${differs.join(', ')}); use another --results folder`);
+      const whole = existing.slice(0, existing.lastIndexOf('\n') + 1);
+      for (const index of indicesIn(whole)) results.done.add(index);
+      if (whole.length < existing.length) await fs.promises.truncate(results.csvFile, Buffer.byteLength(whole));
+    }
+    try {
+      await fs.promises.mkdir(folder, { recursive: true });
+      await writeFileAtomic(results.identityFile, JSON.stringify(identity, null, 2) + '\n');
+      if (existing === undefined || existing.length === 0) {
+        await fs.promises.writeFile(results.rowsFile, '');
+        await writeFileAtomic(results.csvFile, header);
+      }
+      results.rows = await fs.promises.open(results.rowsFile, 'a');
+      results.csv = await fs.promises.open(results.csvFile, 'a');
+    } catch (error) {
+      await results.close();
+      throw new ResultsError(`cannot write in ${folder}: ${(error as Error).message}`);
+    }
+    return results;
+  }
+
+  /** Appends a row and syncs it to disk; rows are written one at a time in the order they come. */
+  append(row: BatchRow): Promise<void> {
+    const write = async () => {
+      if (this.done.has(row.index)) return;
+      await this.rows!.appendFile(JSON.stringify(row) + '\n');
+      await this.rows!.datasync();
+      await this.csv!.appendFile(csvLine(row, this.parameterNames));
+      await this.csv!.datasync();
+      this.done.add(row.index);
+      if (Date.now() - this.lastJson > JSON_INTERVAL_MS) await this.writeJson();
+    };
+    this.queue = this.queue.then(write);
+    return this.queue;
+  }
+
+  /** results.json from every row in results.csv, in index order, written atomically. */
+  async writeJson(): Promise<void> {
+    this.lastJson = Date.now();
+    const text = await fs.promises.readFile(this.rowsFile, 'utf8').catch(() => '');
+    const byIndex = new Map<string, BatchRow>();
+    for (const line of text.split('\n')) {
+      if (!line.trim()) continue;
+      try {
+        const row = JSON.parse(line) as BatchRow;
+        if (this.done.has(row.index)) byIndex.set(row.index, row);
+      } catch {
+        // A line cut short by a kill: its run is not in results.csv either and runs again.
+      }
+    }
+    const rows = [...byIndex.values()].sort((a, b) => (BigInt(a.index) < BigInt(b.index) ? -1 : 1));
+    const document = { ...this.identity, columns: [...FIXED_COLUMNS, ...this.parameterNames], rows };
+    await writeFileAtomic(this.jsonFile, JSON.stringify(document, null, 1) + '\n');
+  }
+
+  /** Waits for the rows in flight, writes results.json and closes the files. */
+  async finish(): Promise<void> {
+    await this.queue;
+    await this.writeJson();
+    await this.close();
+  }
+
+  async close(): Promise<void> {
+    await this.csv?.close();
+    await this.rows?.close();
+    this.csv = undefined;
+    this.rows = undefined;
+  }
+}

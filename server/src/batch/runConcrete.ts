@@ -1,0 +1,82 @@
+import * as fs from 'node:fs';
+import { EsminiCsvError, parseEsminiCsv } from '../../../common/src/esminiCsv';
+import { removeRunFolder, RUN_DEFAULTS, runScenarioText } from '../esmini/run';
+import { collisionsIn, trajectoryMetrics } from './metrics';
+import type { BatchRow, RunStatus } from './results';
+
+/** One concrete scenario, as a batch runs it: everything a run needs, on this machine. */
+export interface ConcreteRun {
+  index: string;
+  /** Plain OpenSCENARIO text. */
+  text: string;
+  /** The varied parameters' values, by name. */
+  parameters: Record<string, string>;
+  /** Absolute folders for road files and catalogs, in order. */
+  searchPath: string[];
+}
+
+export interface RunSettings {
+  /** Simulated seconds at most. */
+  duration: number;
+  /** esmini's seed. */
+  seed: number;
+  esminiPath?: string;
+  wallTimeoutMs?: number;
+  runsFolder?: string;
+}
+
+export class NoEsminiError extends Error {}
+
+/**
+ * Runs one concrete scenario in esmini headless, as `run` does (fixed step and seed, bounded by `duration`),
+ * with esmini's collision detection on, and makes its result row. Undefined when it was cancelled.
+ * Throws NoEsminiError when there is no esmini to run it with.
+ */
+export async function runConcrete(job: ConcreteRun, settings: RunSettings, cancel?: AbortSignal): Promise<BatchRow | undefined> {
+  const result = await runScenarioText(job.text, job.searchPath, {
+    esminiPath: settings.esminiPath,
+    duration: settings.duration,
+    seed: settings.seed,
+    collision: true,
+    wallTimeoutMs: settings.wallTimeoutMs,
+    runsFolder: settings.runsFolder,
+    cancel,
+  });
+  try {
+    if (result.outcome === 'no-esmini') throw new NoEsminiError(result.message);
+    if (result.outcome === 'cancelled') return undefined;
+    let status: RunStatus;
+    if (result.outcome === 'ok') {
+      // The added time limit fired: the scenario did not end by itself within the duration.
+      const limited = result.simulatedTime !== undefined && result.simulatedTime >= settings.duration - (RUN_DEFAULTS.timeStep / 2);
+      status = limited || result.end === 'interrupted' ? 'timeout' : 'ok';
+    } else if (result.outcome === 'failed' && result.end === 'killed') status = 'timeout';
+    else status = 'error';
+    let message = result.message;
+    let metrics = { ego: undefined as string | undefined, minDistance: undefined as number | undefined, minTtc: undefined as number | undefined };
+    if (result.csvFile) {
+      try {
+        metrics = trajectoryMetrics(parseEsminiCsv(await fs.promises.readFile(result.csvFile, 'latin1')), settings.duration);
+      } catch (error) {
+        if (!(error instanceof EsminiCsvError)) throw error;
+        message += `; its CSV log cannot be read: ${error.message}`;
+      }
+    }
+    const collisions = collisionsIn(result.messages);
+    return {
+      index: job.index,
+      status,
+      collision: collisions.length > 0,
+      min_distance_m: metrics.minDistance ?? null,
+      min_ttc_s: metrics.minTtc ?? null,
+      end_time_s: result.simulatedTime ?? null,
+      parameters: job.parameters,
+      ego: metrics.ego ?? null,
+      collisions,
+      message,
+      messages: result.messages.map((each) => ({ level: each.level, time: each.time ?? null, text: each.text })),
+    };
+  } finally {
+    removeRunFolder(result);
+  }
+}

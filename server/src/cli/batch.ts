@@ -1,0 +1,271 @@
+import { createHash } from 'node:crypto';
+import * as os from 'node:os';
+import * as path from 'node:path';
+import { parseArgs } from 'node:util';
+import { concreteRun, searchPathOf, variedParameters } from '../batch/plan';
+import { Progress } from '../batch/progress';
+import { BatchIdentity, ResultsError, ResultsFolder } from '../batch/results';
+import { NoEsminiError, runConcrete, RunSettings } from '../batch/runConcrete';
+import { splitScenarioPath } from '../core/sources';
+import { formatVariationProblems, loadVariations, samplingProblem, SamplingError, Variations } from '../core/variations';
+import { locateEsmini } from '../esmini/locate';
+import { RUN_DEFAULTS } from '../esmini/run';
+import type { CliOutput } from './common';
+import { flatteningScenarioLoader, readUtf8Exactly, scenarioFolderOf } from './scenarioText';
+import { sampleIndices } from './vary';
+
+export const BATCH_HELP = `Run every concrete scenario of a distribution in esmini (modular2simple batch FILE --results DIR ...):
+  --results DIR             where results.csv and results.json go; run again into the same DIR, only what is
+                            missing runs (an interrupted batch loses nothing and repeats nothing)
+  --jobs N                  runs at a time (default: the number of cores)
+  --sample N --seed S       N concrete scenarios drawn at random (seed S, default 0) instead of all
+  --duration S              simulated seconds per run at most (default ${RUN_DEFAULTS.duration}); fixed step ${RUN_DEFAULTS.timeStep} s, seed ${RUN_DEFAULTS.seed}
+  --max-combinations N      refuse more combinations than N before running anything, unless --sample (default 1000000)
+  --queue redis://HOST:PORT put the runs on a BullMQ queue in Redis for 'modular2simple worker' and collect the results
+  --esmini PATH, --road-path DIRS, --scenario-path DIRS   as for run
+  results.csv: index, status (ok; error: esmini reported one; timeout: stopped at --duration or the wall-clock
+  limit), collision (esmini's collision detection), min_distance_m and min_ttc_s (the ego, or the first entity,
+  against every other: bounding-box gap, and gap over closing speed), end_time_s, then one column per varied
+  parameter. results.json: the same rows with esmini's messages.
+  Exit codes: 0 every run done, 1 the input has errors (nothing run), 2 usage, 3 no esmini, Redis unreachable
+  or the results cannot be written, 4 internal error, 130 interrupted (run it again to finish).`;
+
+export const WORKER_HELP = `Run a batch's concrete scenarios from a queue (modular2simple worker --queue redis://HOST:PORT ...):
+  --jobs N                  runs at a time (default: the number of cores)
+  --esmini PATH             the esmini program, or its folder (default: esmini on PATH)
+  --idle-exit S             stop after S seconds with nothing to do (default: run until interrupted)`;
+
+const EXIT = { ok: 0, problems: 1, usage: 2, io: 3, internal: 4, interrupted: 130 } as const;
+const DEFAULT_MAX_COMBINATIONS = 1_000_000n;
+
+export class BatchUsageError extends Error {}
+class BatchInputError extends Error {}
+
+export function wholeNumber(text: string | undefined, option: string): bigint | undefined {
+  if (text === undefined) return undefined;
+  if (!/^\d+$/.test(text.trim())) throw new BatchUsageError(`${option} takes a whole number, not '${text}'`);
+  return BigInt(text.trim());
+}
+
+export function jobsOption(text: string | undefined): number {
+  const jobs = wholeNumber(text, '--jobs');
+  if (jobs === 0n) throw new BatchUsageError('--jobs takes at least 1');
+  return jobs === undefined ? Math.max(1, os.availableParallelism?.() ?? os.cpus().length) : Number(jobs);
+}
+
+export function queueOption(text: string | undefined): URL | undefined {
+  if (text === undefined) return undefined;
+  let url: URL;
+  try {
+    url = new URL(text);
+  } catch {
+    throw new BatchUsageError(`--queue takes redis://HOST:PORT, not '${text}'`);
+  }
+  if (url.protocol !== 'redis:' || !url.hostname) throw new BatchUsageError(`--queue takes redis://HOST:PORT, not '${text}'`);
+  return url;
+}
+
+function sha256(text: string): string {
+  return createHash('sha256').update(text).digest('hex');
+}
+
+function enumerate(count: bigint): bigint[] {
+  const all: bigint[] = [];
+  for (let i = 0n; i < count; i++) all.push(i);
+  return all;
+}
+
+/** `modular2simple batch`: runs the concrete scenarios of a distribution file and writes their results. */
+export async function batchCommand(argv: string[], io: CliOutput): Promise<number> {
+  try {
+    return await batch(argv, io);
+  } catch (error) {
+    if (error instanceof BatchUsageError) {
+      io.err(`modular2simple: ${error.message}\nRun 'modular2simple --help' for usage.`);
+      return EXIT.usage;
+    }
+    if (error instanceof BatchInputError) {
+      io.err(`modular2simple: error: ${error.message}`);
+      return EXIT.problems;
+    }
+    if (error instanceof ResultsError || error instanceof NoEsminiError) {
+      io.err(`modular2simple: error: ${error.message}`);
+      return EXIT.io;
+    }
+    throw error;
+  }
+}
+
+async function batch(argv: string[], io: CliOutput): Promise<number> {
+  let parsed;
+  try {
+    parsed = parseArgs({
+      args: argv,
+      allowPositionals: true,
+      options: {
+        results: { type: 'string' },
+        jobs: { type: 'string' },
+        sample: { type: 'string' },
+        seed: { type: 'string' },
+        duration: { type: 'string' },
+        'max-combinations': { type: 'string' },
+        queue: { type: 'string' },
+        esmini: { type: 'string' },
+        'road-path': { type: 'string', multiple: true },
+        'scenario-path': { type: 'string', multiple: true },
+        quiet: { type: 'boolean', short: 'q', default: false },
+        help: { type: 'boolean', short: 'h', default: false },
+      },
+    });
+  } catch (error) {
+    throw new BatchUsageError((error as Error).message);
+  }
+  const { values, positionals } = parsed;
+  if (values.help) {
+    io.out(BATCH_HELP);
+    return EXIT.ok;
+  }
+  if (positionals.length !== 1) throw new BatchUsageError('batch takes one distribution file');
+  if (values.results === undefined) throw new BatchUsageError('batch needs --results DIR');
+  if (values.seed !== undefined && values.sample === undefined) throw new BatchUsageError('--seed goes with --sample N');
+  const jobs = jobsOption(values.jobs);
+  const sample = wholeNumber(values.sample, '--sample');
+  const seed = values.seed === undefined ? 0 : Number(wholeNumber(values.seed, '--seed'));
+  const maxCombinations = wholeNumber(values['max-combinations'], '--max-combinations') ?? DEFAULT_MAX_COMBINATIONS;
+  if (sample === 0n) throw new BatchUsageError('--sample takes at least 1');
+  if (sample !== undefined && sample > maxCombinations) throw new BatchUsageError(`--sample ${sample} is more than --max-combinations ${maxCombinations}`);
+  const duration = values.duration === undefined ? RUN_DEFAULTS.duration : Number(values.duration);
+  if (!(duration > 0) || !Number.isFinite(duration)) throw new BatchUsageError(`--duration takes a positive number of seconds, not '${values.duration}'`);
+  const queue = queueOption(values.queue);
+
+  const distributionPath = path.resolve(positionals[0]);
+  let distributionText: string;
+  try {
+    distributionText = await readUtf8Exactly(distributionPath);
+  } catch (error) {
+    const reason = (error as NodeJS.ErrnoException).code === 'ENOENT' ? 'no such file' : (error as Error).message;
+    throw new BatchInputError(`${positionals[0]}: ${reason}`);
+  }
+  const base = process.cwd();
+  const loaded = await loadVariations(distributionText, distributionPath, flatteningScenarioLoader((values['scenario-path'] ?? []).flatMap(splitScenarioPath)));
+  const printProblems = (problems = loaded.problems): void => {
+    for (const line of formatVariationProblems(problems, loaded.lines, base)) if (!values.quiet || line.includes(': error: ')) io.err(line);
+  };
+  printProblems();
+  const variations = loaded.variations;
+  if (!variations) return EXIT.problems;
+  if (sample === undefined && variations.count > maxCombinations) {
+    throw new BatchInputError(`${positionals[0]}: ${variations.count} combinations are more than --max-combinations ${maxCombinations}; nothing was run (use --sample N, or raise --max-combinations)`);
+  }
+  const chosen = sample === undefined ? enumerate(variations.count) : sampleIndices(variations.count, sample, seed);
+  // Every draw is made before anything runs, so a Range that cannot be met leaves nothing behind.
+  if (variations.kind === 'stochastic') {
+    for (const index of chosen) {
+      try {
+        variations.assignmentAt(index);
+      } catch (error) {
+        if (!(error instanceof SamplingError)) throw error;
+        printProblems([samplingProblem(error, distributionPath)]);
+        return EXIT.problems;
+      }
+    }
+  }
+  const settings: RunSettings = { duration, seed: RUN_DEFAULTS.seed, esminiPath: values.esmini };
+  if (!queue) {
+    const location = locateEsmini(values.esmini);
+    if (!location.found) throw new NoEsminiError(location.message);
+  }
+  const identity: BatchIdentity = {
+    distribution: distributionPath,
+    distributionSha256: sha256(distributionText),
+    scenarioSha256: sha256(variations.scenario.text),
+    sample: sample === undefined ? null : sample.toString(),
+    seed,
+    duration,
+    esminiSeed: settings.seed,
+  };
+  const parameterNames = variedParameters(variations);
+  const scenarioFolder = scenarioFolderOf(variations.scenarioPath);
+  const searchPath = searchPathOf(variations.scenario.text, scenarioFolder, (values['road-path'] ?? []).flatMap(splitScenarioPath));
+  const plan: BatchPlanView = { variations, chosen, parameterNames, searchPath, scenarioFolder };
+
+  if (queue) {
+    const { queueBatch, RedisUnreachableError } = await import('../batch/queue');
+    try {
+      return await queueBatch(queue, plan, identity, values.results, { quiet: values.quiet, io, settings });
+    } catch (error) {
+      if (error instanceof RedisUnreachableError) throw new ResultsError(error.message.startsWith('lost ') ? error.message : `${error.message}; nothing was written`);
+      throw error;
+    }
+  }
+  const results = await ResultsFolder.open(path.resolve(values.results), parameterNames, identity);
+  return runLocally(plan, results, settings, jobs, io, values.quiet);
+}
+
+/** What a batch runs: the chosen indices of a distribution, with where their runs look for files. */
+export interface BatchPlanView {
+  variations: Variations;
+  chosen: bigint[];
+  parameterNames: string[];
+  searchPath: string[];
+  scenarioFolder: string;
+}
+
+/** Runs what results.csv lacks on this machine, `jobs` at a time; SIGINT or SIGTERM stop it cleanly. */
+async function runLocally(plan: BatchPlanView, results: ResultsFolder, settings: RunSettings, jobs: number, io: CliOutput, quiet: boolean): Promise<number> {
+  const already = plan.chosen.filter((index) => results.done.has(index.toString())).length;
+  const todo = plan.chosen.filter((index) => !results.done.has(index.toString()));
+  const stop = new AbortController();
+  // A second signal does not wait for the runs in flight to be stopped.
+  const onSignal = () => (stop.signal.aborted ? process.exit(EXIT.interrupted) : stop.abort());
+  process.on('SIGINT', onSignal);
+  process.on('SIGTERM', onSignal);
+  const progress = new Progress(todo.length, quiet ? undefined : process.stderr.isTTY ? process.stderr : undefined, quiet ? () => undefined : io.err);
+  const tally = { ok: 0, error: 0, timeout: 0, collisions: 0, discarded: 0 };
+  let failure: unknown;
+  let next = 0;
+  const work = async (): Promise<void> => {
+    while (!stop.signal.aborted && next < todo.length) {
+      const index = todo[next++];
+      const run = concreteRun(plan.variations, index, plan.parameterNames, plan.searchPath);
+      if ('broken' in run) {
+        tally.discarded++;
+        continue;
+      }
+      const row = await runConcrete(run, settings, stop.signal);
+      // Ctrl-C on a terminal reaches esmini too, which then ends early as if by itself: such a run is not a result.
+      if (!row || stop.signal.aborted) continue;
+      await results.append(row);
+      tally[row.status]++;
+      if (row.collision) tally.collisions++;
+      progress.tick(row);
+    }
+  };
+  try {
+    await Promise.all(
+      Array.from({ length: Math.min(jobs, Math.max(todo.length, 1)) }, () =>
+        work().catch((error: unknown) => {
+          failure ??= error;
+          stop.abort();
+        }),
+      ),
+    );
+  } finally {
+    process.off('SIGINT', onSignal);
+    process.off('SIGTERM', onSignal);
+    progress.end();
+    await results.finish();
+  }
+  if (failure) throw failure;
+  const ran = tally.ok + tally.error + tally.timeout;
+  const summary =
+    `${ran} run${ran === 1 ? '' : 's'} (${tally.ok} ok, ${tally.error} error, ${tally.timeout} timeout; ${tally.collisions} with a collision)` +
+    (already > 0 ? `, ${already} already in ${results.csvFile}` : '') +
+    (tally.discarded > 0 ? `, ${tally.discarded} discarded by the scenario's ValueConstraintGroups` : '');
+  if (stop.signal.aborted) {
+    io.err(`interrupted after ${summary}; ${results.done.size} rows are in ${results.csvFile}: run the same command again to run the rest`);
+    return EXIT.interrupted;
+  }
+  if (!quiet) io.err(`${summary}; results in ${results.csvFile} and ${results.jsonFile}`);
+  return EXIT.ok;
+}

@@ -1,0 +1,49 @@
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import { Flattener } from '../core/flatten';
+import { formatProblem } from '../core/problems';
+import type { ScenarioTextLoader } from '../core/variations';
+import { mainOf, storeForInputs } from './inputs';
+
+/** Reads a file as UTF-8 with its byte order mark kept, so that a concrete scenario is byte for byte the original but for its values. */
+export async function readUtf8Exactly(file: string): Promise<string> {
+  const bytes = await fs.promises.readFile(file);
+  try {
+    return new TextDecoder('utf-8', { fatal: true, ignoreBOM: true }).decode(bytes);
+  } catch {
+    throw new Error('not UTF-8 text');
+  }
+}
+
+// A main file is a scenario with a ScenarioReference in some ManeuverGroup; a plain one has none at all.
+const REFERENCE = /<ScenarioReference\b/;
+
+/**
+ * The hook of the variations engine for modular scenarios: a ParameterValueDistribution's ScenarioFile as
+ * plain OpenSCENARIO. A plain `.xosc` is read as it is (byte for byte, as esmini reads it); a modular main,
+ * an unpacked folder or a `.mosc` is flattened once, as `modular2simple flatten` does, and its values are
+ * then spliced into the flattened text. A scenario that cannot be flattened is refused with its problems.
+ */
+export function flatteningScenarioLoader(scenarioPath: string[] = []): ScenarioTextLoader {
+  return async (file: string): Promise<string> => {
+    const isFolder = fs.existsSync(file) && fs.statSync(file).isDirectory();
+    if (!isFolder && !file.toLowerCase().endsWith('.mosc')) {
+      const text = await readUtf8Exactly(file);
+      if (!REFERENCE.test(text)) return text;
+    } else if (!fs.existsSync(file)) {
+      throw Object.assign(new Error('no such file'), { code: 'ENOENT' });
+    }
+    const flattener = new Flattener(storeForInputs(scenarioPath, undefined, [file]));
+    const result = await flattener.flatten(mainOf(file));
+    if (result.text !== undefined) return result.text;
+    const errors = result.problems.filter((problem) => problem.severity === 'error');
+    const shown = errors.slice(0, 10).map((problem) => '\n  ' + formatProblem(problem, process.cwd()).replace(/\n/g, '\n  '));
+    const more = errors.length > shown.length ? `\n  (${errors.length - shown.length} more)` : '';
+    throw new Error(`cannot be flattened (${errors.length} error${errors.length === 1 ? '' : 's'}):${shown.join('')}${more}`);
+  };
+}
+
+/** The folder the ScenarioFile's relative paths (roads, catalogs) start from: its own folder, a package's, or the unpacked folder itself. */
+export function scenarioFolderOf(file: string): string {
+  return fs.existsSync(file) && fs.statSync(file).isDirectory() ? file : path.dirname(file);
+}

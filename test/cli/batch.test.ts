@@ -1,0 +1,224 @@
+import * as assert from 'node:assert/strict';
+import { spawn } from 'node:child_process';
+import * as fs from 'node:fs';
+import * as os from 'node:os';
+import * as path from 'node:path';
+import { esminiBinary, esminiRoads, requireEsmini } from '../support/esmini';
+import { runCli } from '../support/fixtures';
+import { cliPath, repoRoot } from '../support/paths';
+import { waitUntil } from '../support/wait';
+
+const FIXTURES = path.join(repoRoot, 'test', 'fixtures', 'variations');
+const COLUMNS = 'index,status,collision,min_distance_m,min_ttc_s,end_time_s,EgoSpeed,LeadSpeed,LeadStartS';
+
+/** A folder with follow.xosc (its runs lasting `stopTime` simulated seconds) and its 36-scenario distribution. */
+function batchFolder(stopTime = 3, distribution?: string): string {
+  const folder = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-batch-'));
+  const scenario = fs.readFileSync(path.join(FIXTURES, 'follow.xosc'), 'utf8').replace('name="StopTime" parameterType="double" value="3"', `name="StopTime" parameterType="double" value="${stopTime}"`);
+  fs.writeFileSync(path.join(folder, 'follow.xosc'), scenario);
+  fs.writeFileSync(path.join(folder, 'd.xosc'), distribution ?? fs.readFileSync(path.join(FIXTURES, 'follow_distribution.xosc'), 'utf8'));
+  return folder;
+}
+
+/** The data lines of results.csv, after its header. */
+function csvRows(folder: string): string[] {
+  const text = fs.readFileSync(path.join(folder, 'results', 'results.csv'), 'utf8');
+  const lines = text.split('\n');
+  assert.equal(lines[0], COLUMNS);
+  assert.equal(lines.pop(), '', 'results.csv ends with a whole line');
+  return lines.slice(1);
+}
+
+function indicesOf(rows: string[]): number[] {
+  return rows.map((row) => Number(row.split(',')[0]));
+}
+
+function assertEveryIndexOnce(rows: string[], count: number): void {
+  const indices = indicesOf(rows);
+  assert.equal(indices.length, count, `${count} rows`);
+  assert.deepEqual([...indices].sort((a, b) => a - b), Array.from({ length: count }, (_, i) => i));
+}
+
+const BATCH_ARGS = ['batch', 'd.xosc', '--results', 'results', '--jobs', '2', '--road-path', esminiRoads, '--esmini', esminiBinary];
+
+/** Starts a batch in the background; resolves with its exit code and standard error when it ends. */
+function startBatch(folder: string, args: string[] = BATCH_ARGS) {
+  const child = spawn(process.execPath, [cliPath, ...args], { cwd: folder, stdio: ['ignore', 'pipe', 'pipe'] });
+  let stderr = '';
+  child.stderr.on('data', (chunk: Buffer) => (stderr += chunk.toString()));
+  const ended = new Promise<{ code: number | null; signal: string | null; stderr: string }>((resolve) => child.on('close', (code, signal) => resolve({ code, signal, stderr })));
+  return { child, ended };
+}
+
+function rowsSoFar(folder: string): number {
+  try {
+    return fs.readFileSync(path.join(folder, 'results', 'results.csv'), 'utf8').split('\n').length - 2;
+  } catch {
+    return 0;
+  }
+}
+
+describe('cli: batch', function () {
+  this.timeout(180_000);
+  const folders: string[] = [];
+  afterEach(() => {
+    for (const folder of folders.splice(0)) fs.rmSync(folder, { recursive: true, force: true });
+  });
+  const folder = (stopTime?: number, distribution?: string) => {
+    const made = batchFolder(stopTime, distribution);
+    folders.push(made);
+    return made;
+  };
+
+  it('runs 36 concrete scenarios with --jobs 2: one row each, collisions where the gap closes, results.json with esmini messages', function () {
+    requireEsmini(this);
+    const root = folder();
+    const run = runCli(BATCH_ARGS, { cwd: root });
+    assert.equal(run.status, 0, run.stderr);
+    assert.match(run.stderr, /^36 runs \(36 ok, 0 error, 0 timeout; \d+ with a collision\); results in /m);
+    const rows = csvRows(root);
+    assertEveryIndexOnce(rows, 36);
+    const byIndex = new Map(rows.map((row) => [Number(row.split(',')[0]), row.split(',')]));
+    // Index 0: ego 10 m/s, lead 5 m/s, 15 m apart: they touch at 3 s. Index 8: lead faster and 65 m ahead.
+    assert.deepEqual(byIndex.get(0)?.slice(1, 5), ['ok', 'true', '0.000', '0.000']);
+    assert.deepEqual(byIndex.get(0)?.slice(6), ['10', '5.000000', '70']);
+    assert.equal(byIndex.get(8)?.[2], 'false');
+    assert.ok(Number(byIndex.get(8)?.[3]) > 60);
+    assert.equal(byIndex.get(8)?.[4], '', 'no time to collision when the gap never closes');
+    for (const cells of byIndex.values()) {
+      if (cells[2] === 'true') assert.equal(cells[3], '0.000', `a collision has no gap: ${cells.join(',')}`);
+      assert.equal(cells[5], '3.050');
+    }
+    const json = JSON.parse(fs.readFileSync(path.join(root, 'results', 'results.json'), 'utf8')) as { columns: string[]; rows: { index: string; collision: boolean; messages: { text: string }[] }[] };
+    assert.deepEqual(json.columns, COLUMNS.split(','));
+    assert.deepEqual(json.rows.map((row) => Number(row.index)), Array.from({ length: 36 }, (_, i) => i));
+    assert.ok(json.rows[0].collision);
+    assert.ok(json.rows[0].messages.some((message) => message.text === 'Collision between Ego and Lead'));
+    const again = runCli(BATCH_ARGS, { cwd: root });
+    assert.equal(again.status, 0, again.stderr);
+    assert.match(again.stderr, /^0 runs .*, 36 already in /m);
+    assert.deepEqual(csvRows(root), rows, 'a finished batch run again changes nothing');
+  });
+
+  for (const signal of ['SIGINT', 'SIGKILL'] as const) {
+    it(`a batch stopped by ${signal} mid-way and run again: every index exactly once, the first rows kept`, async function () {
+      requireEsmini(this);
+      const root = folder(8);
+      const first = startBatch(root);
+      await waitUntil(() => rowsSoFar(root) >= 4, 'four rows in results.csv', 60_000, 5);
+      first.child.kill(signal);
+      const ended = await first.ended;
+      if (signal === 'SIGINT') {
+        assert.equal(ended.code, 130, ended.stderr);
+        assert.match(ended.stderr, /interrupted after .*run the same command again/);
+      } else assert.equal(ended.signal, 'SIGKILL');
+      const before = csvRows(root);
+      assert.ok(before.length >= 4 && before.length < 36, `stopped mid-way (${before.length} rows)`);
+      assert.equal(new Set(indicesOf(before)).size, before.length, 'no index twice');
+      const resumed = runCli(BATCH_ARGS, { cwd: root });
+      assert.equal(resumed.status, 0, resumed.stderr);
+      const progressLines = resumed.stderr.split('\n').filter((line) => /^\[\d+\/\d+\] /.test(line));
+      assert.equal(progressLines.length, 36 - before.length, 'only the missing runs ran');
+      const after = csvRows(root);
+      assertEveryIndexOnce(after, 36);
+      assert.deepEqual(after.slice(0, before.length), before);
+      const json = JSON.parse(fs.readFileSync(path.join(root, 'results', 'results.json'), 'utf8')) as { rows: { index: string }[] };
+      assert.deepEqual(json.rows.map((row) => Number(row.index)), Array.from({ length: 36 }, (_, i) => i));
+    });
+  }
+
+  it('a row cut short by a kill is dropped and its run made again', function () {
+    requireEsmini(this);
+    const root = folder();
+    assert.equal(runCli([...BATCH_ARGS, '--sample', '5', '--seed', '3'], { cwd: root }).status, 0);
+    const csv = path.join(root, 'results', 'results.csv');
+    const whole = fs.readFileSync(csv, 'utf8');
+    const lines = whole.split('\n');
+    // The last row half written, as a kill during its write would leave it.
+    fs.writeFileSync(csv, lines.slice(0, -2).join('\n') + '\n' + lines[lines.length - 2].slice(0, 7));
+    const resumed = runCli([...BATCH_ARGS, '--sample', '5', '--seed', '3'], { cwd: root });
+    assert.equal(resumed.status, 0, resumed.stderr);
+    assert.match(resumed.stderr, /^1 run .*, 4 already in /m);
+    assert.equal(csvRows(root).length, 5);
+    assert.deepEqual(new Set(csvRows(root)), new Set(whole.split('\n').slice(1, -1)));
+  });
+
+  it('refuses bad input before running anything, leaving no results folder', () => {
+    const root = folder();
+    const results = path.join(root, 'results');
+    const refused = (args: string[], code: number, message: RegExp) => {
+      const run = runCli(args, { cwd: root });
+      assert.equal(run.status, code, run.stderr);
+      assert.match(run.stderr, message);
+      assert.ok(!fs.existsSync(results), `nothing written for ${args.join(' ')}`);
+    };
+    refused(['batch', 'd.xosc'], 2, /batch needs --results DIR/);
+    refused(['batch', 'd.xosc', '--results', 'results', '--jobs', '0'], 2, /--jobs takes at least 1/);
+    refused(['batch', 'd.xosc', '--results', 'results', '--duration', '0'], 2, /--duration takes a positive number/);
+    refused(['batch', 'missing.xosc', '--results', 'results'], 1, /missing\.xosc: no such file/);
+    const distribution = fs.readFileSync(path.join(root, 'd.xosc'), 'utf8');
+    fs.writeFileSync(path.join(root, 'd.xosc'), distribution.replace('filepath="follow.xosc"', 'filepath="gone.xosc"'));
+    refused(['batch', 'd.xosc', '--results', 'results'], 1, /^d\.xosc:\d+:\d+: error: ScenarioFile gone\.xosc .*no such file/m);
+    fs.writeFileSync(path.join(root, 'd.xosc'), distribution.replace('parameterName="LeadSpeed"', 'parameterName="LeadMass"'));
+    refused(['batch', 'd.xosc', '--results', 'results'], 1, /^d\.xosc:\d+:\d+: error: parameter 'LeadMass' is not declared/m);
+    fs.writeFileSync(path.join(root, 'd.xosc'), distribution.replace('stepWidth="5"', 'stepWidth="0"'));
+    refused(['batch', 'd.xosc', '--results', 'results'], 1, /^d\.xosc:\d+:\d+: error: .*step/m);
+    refused(['batch', 'd.xosc', '--results', 'results', '--queue', 'http://localhost:1'], 2, /--queue takes redis:\/\/HOST:PORT/);
+    fs.writeFileSync(path.join(root, 'd.xosc'), distribution);
+    refused(['batch', 'd.xosc', '--results', 'results', '--esmini', path.join(root, 'no-esmini')], 3, /esmini is not at /);
+  });
+
+  it('refuses 10^9 combinations before running anything unless --sample; --sample N runs N', function () {
+    const ranges = ['EgoSpeed', 'LeadSpeed', 'LeadStartS']
+      .map((name) => `      <DeterministicSingleParameterDistribution parameterName="${name}">
+        <DistributionRange stepWidth="1"><Range lowerLimit="1" upperLimit="1000"/></DistributionRange>
+      </DeterministicSingleParameterDistribution>`)
+      .join('\n');
+    const distribution = fs.readFileSync(path.join(FIXTURES, 'follow_distribution.xosc'), 'utf8').replace(/<Deterministic>[\s\S]*<\/Deterministic>/, `<Deterministic>\n${ranges}\n    </Deterministic>`);
+    const root = folder(1, distribution);
+    const refused = runCli(BATCH_ARGS, { cwd: root });
+    assert.equal(refused.status, 1, refused.stderr);
+    assert.match(refused.stderr, /1000000000 combinations are more than --max-combinations 1000000; nothing was run/);
+    assert.ok(!fs.existsSync(path.join(root, 'results')));
+    requireEsmini(this);
+    const sampled = runCli([...BATCH_ARGS, '--sample', '4', '--seed', '7', '--duration', '1'], { cwd: root });
+    assert.equal(sampled.status, 0, sampled.stderr);
+    const rows = csvRows(root);
+    assert.equal(rows.length, 4);
+    for (const row of rows) assert.ok(Number(row.split(',')[0]) < 1e9);
+  });
+
+  it('a stochastic distribution: each row holds the values vary draws for its index', function () {
+    requireEsmini(this);
+    const stochastic = fs.readFileSync(path.join(FIXTURES, 'follow_distribution.xosc'), 'utf8').replace(
+      /<Deterministic>[\s\S]*<\/Deterministic>/,
+      `<Stochastic numberOfTestRuns="6" randomSeed="5">
+      <StochasticDistribution parameterName="EgoSpeed"><NormalDistribution expectedValue="20" variance="9"/></StochasticDistribution>
+      <StochasticDistribution parameterName="LeadSpeed"><UniformDistribution><Range lowerLimit="5" upperLimit="15"/></UniformDistribution></StochasticDistribution>
+    </Stochastic>`,
+    );
+    const root = folder(3, stochastic);
+    const run = runCli(BATCH_ARGS, { cwd: root });
+    assert.equal(run.status, 0, run.stderr);
+    const lines = fs.readFileSync(path.join(root, 'results', 'results.csv'), 'utf8').trim().split('\n');
+    assert.equal(lines[0], 'index,status,collision,min_distance_m,min_ttc_s,end_time_s,EgoSpeed,LeadSpeed');
+    assert.equal(lines.length, 7);
+    for (const line of lines.slice(1)) {
+      const cells = line.split(',');
+      const concrete = runCli(['vary', 'd.xosc', '--index', cells[0]], { cwd: root }).stdout;
+      assert.ok(concrete.includes(`name="EgoSpeed" parameterType="double" value="${cells[6]}"`), line);
+      assert.ok(concrete.includes(`name="LeadSpeed" parameterType="double" value="${cells[7]}"`), line);
+    }
+  });
+
+  it('refuses a results folder that holds another batch, changing nothing in it', function () {
+    requireEsmini(this);
+    const root = folder();
+    assert.equal(runCli([...BATCH_ARGS, '--sample', '2'], { cwd: root }).status, 0);
+    const before = fs.readFileSync(path.join(root, 'results', 'results.csv'), 'utf8');
+    const other = runCli([...BATCH_ARGS, '--sample', '3', '--seed', '1'], { cwd: root });
+    assert.equal(other.status, 3, other.stderr);
+    assert.match(other.stderr, /holds another batch's results \(it differs in sample, seed\)/);
+    assert.equal(fs.readFileSync(path.join(root, 'results', 'results.csv'), 'utf8'), before);
+  });
+});

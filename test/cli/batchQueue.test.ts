@@ -1,0 +1,124 @@
+import * as assert from 'node:assert/strict';
+import { spawn } from 'node:child_process';
+import * as fs from 'node:fs';
+import * as os from 'node:os';
+import * as path from 'node:path';
+import { esminiBinary, esminiRoads, requireEsmini } from '../support/esmini';
+import { runCli } from '../support/fixtures';
+import { cliPath, repoRoot } from '../support/paths';
+import { freePort, RedisServer, requireRedis, startRedis } from '../support/redis';
+import { waitUntil } from '../support/wait';
+
+const FIXTURES = path.join(repoRoot, 'test', 'fixtures', 'variations');
+
+/** follow.xosc (runs of `stopTime` simulated seconds) and its 36-scenario distribution in a folder of their own. */
+function batchFolder(stopTime: number): string {
+  const folder = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-queue-'));
+  const scenario = fs.readFileSync(path.join(FIXTURES, 'follow.xosc'), 'utf8').replace('name="StopTime" parameterType="double" value="3"', `name="StopTime" parameterType="double" value="${stopTime}"`);
+  fs.writeFileSync(path.join(folder, 'follow.xosc'), scenario);
+  fs.copyFileSync(path.join(FIXTURES, 'follow_distribution.xosc'), path.join(folder, 'd.xosc'));
+  return folder;
+}
+
+interface Background {
+  kill(signal: NodeJS.Signals): void;
+  output(): string;
+  ended: Promise<{ code: number | null; signal: string | null; output: string }>;
+}
+
+function background(args: string[], cwd: string): Background {
+  const child = spawn(process.execPath, [cliPath, ...args], { cwd, stdio: ['ignore', 'pipe', 'pipe'] });
+  let output = '';
+  child.stdout.on('data', (chunk: Buffer) => (output += chunk.toString()));
+  child.stderr.on('data', (chunk: Buffer) => (output += chunk.toString()));
+  const ended = new Promise<{ code: number | null; signal: string | null; output: string }>((resolve) => child.on('close', (code, signal) => resolve({ code, signal, output })));
+  return { kill: (signal) => child.kill(signal), output: () => output, ended };
+}
+
+/** results.csv's data lines, checked to hold each of the 36 indices exactly once. */
+function everyRowOnce(folder: string): string[] {
+  const lines = fs.readFileSync(path.join(folder, 'results.csv'), 'utf8').split('\n');
+  assert.equal(lines.pop(), '');
+  const rows = lines.slice(1);
+  assert.deepEqual(rows.map((row) => Number(row.split(',')[0])).sort((a, b) => a - b), Array.from({ length: 36 }, (_, i) => i));
+  return rows;
+}
+
+describe('cli: batch through a Redis queue', function () {
+  this.timeout(240_000);
+  let redis: RedisServer | undefined;
+  const folders: string[] = [];
+  const workers: Background[] = [];
+  afterEach(async () => {
+    for (const worker of workers.splice(0)) {
+      worker.kill('SIGKILL');
+      await worker.ended;
+    }
+    await redis?.stop();
+    redis = undefined;
+    for (const folder of folders.splice(0)) fs.rmSync(folder, { recursive: true, force: true });
+  });
+
+  it('three workers, one killed with SIGKILL mid-batch: every row exactly once, the same rows as a local batch', async function () {
+    requireEsmini(this);
+    requireRedis(this);
+    redis = await startRedis();
+    const root = batchFolder(8);
+    folders.push(root);
+    // The workers run in a folder of their own: what they run comes through Redis.
+    const elsewhere = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-worker-'));
+    folders.push(elsewhere);
+    for (let i = 0; i < 3; i++) workers.push(background(['worker', '--queue', redis.url, '--jobs', '1', '--esmini', esminiBinary], elsewhere));
+    const batch = background(['batch', 'd.xosc', '--results', 'queued', '--queue', redis.url, '--road-path', esminiRoads], root);
+    const victim = workers[2];
+    await waitUntil(() => /: (ok|error|timeout)/.test(victim.output()), 'the third worker to finish a run', 120_000, 10);
+    victim.kill('SIGKILL');
+    assert.equal((await victim.ended).signal, 'SIGKILL');
+    const ended = await batch.ended;
+    assert.equal(ended.code, 0, ended.output);
+    assert.match(ended.output, /^36 runs \(36 ok, 0 error, 0 timeout; \d+ with a collision\); results in /m);
+    const queued = everyRowOnce(path.join(root, 'queued'));
+    const json = JSON.parse(fs.readFileSync(path.join(root, 'queued', 'results.json'), 'utf8')) as { rows: { index: string }[] };
+    assert.deepEqual(json.rows.map((row) => Number(row.index)), Array.from({ length: 36 }, (_, i) => i));
+    // Runs repeat exactly (fixed step and seed), so the queue's rows are the local pool's, in another order.
+    const local = runCli(['batch', 'd.xosc', '--results', 'local', '--jobs', '2', '--road-path', esminiRoads, '--esmini', esminiBinary], { cwd: root });
+    assert.equal(local.status, 0, local.stderr);
+    assert.deepEqual([...queued].sort(), [...everyRowOnce(path.join(root, 'local'))].sort());
+    for (const worker of workers.slice(0, 2)) worker.kill('SIGTERM');
+    for (const worker of workers.slice(0, 2)) assert.equal((await worker.ended).code, 0);
+  });
+
+  it('a batch interrupted while the workers run collects the rest when run again, nothing twice', async function () {
+    requireEsmini(this);
+    requireRedis(this);
+    redis = await startRedis();
+    const root = batchFolder(8);
+    folders.push(root);
+    const args = ['batch', 'd.xosc', '--results', 'queued', '--queue', redis.url, '--road-path', esminiRoads];
+    const first = background(args, root);
+    workers.push(background(['worker', '--queue', redis.url, '--jobs', '2', '--esmini', esminiBinary], root));
+    await waitUntil(() => /\[3\/36\]/.test(first.output()), 'three rows', 120_000, 10);
+    first.kill('SIGINT');
+    const stopped = await first.ended;
+    assert.equal(stopped.code, 130, stopped.output);
+    assert.match(stopped.output, /the rest stay on the queue: run the same command again/);
+    const again = runCli(args, { cwd: root });
+    assert.equal(again.status, 0, again.stderr);
+    everyRowOnce(path.join(root, 'queued'));
+  });
+
+  it('Redis unreachable: a clear message, exit 3, nothing written; a worker likewise', async () => {
+    const root = batchFolder(3);
+    folders.push(root);
+    const port = await freePort();
+    const batch = runCli(['batch', 'd.xosc', '--results', 'queued', '--queue', `redis://127.0.0.1:${port}`], { cwd: root });
+    assert.equal(batch.status, 3, batch.stderr);
+    assert.match(batch.stderr, new RegExp(`^modular2simple: error: cannot reach Redis at redis://127\\.0\\.0\\.1:${port}: connect ECONNREFUSED .*; nothing was written$`, 'm'));
+    assert.ok(!fs.existsSync(path.join(root, 'queued')));
+    const worker = runCli(['worker', '--queue', `redis://127.0.0.1:${port}`, '--esmini', process.execPath]);
+    assert.equal(worker.status, 3, worker.stderr);
+    assert.match(worker.stderr, /cannot reach Redis at/);
+    assert.equal(runCli(['worker']).status, 2);
+    assert.equal(runCli(['worker', '--queue', 'localhost:6379']).status, 2);
+  });
+});
