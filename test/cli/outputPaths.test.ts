@@ -113,6 +113,14 @@ describe('cli: outputs reach their files wherever they are written (SPEC 11.6), 
     });
   }
 
+  it('flatten --out-dir at another depth: the same road and catalogs', () => {
+    const outDir = path.join(ws, 'out', 'dir', 'deeper');
+    fs.mkdirSync(outDir, { recursive: true });
+    const run = runCli(['flatten', path.join(ws, 'xosc', 'main.xosc'), '--out-dir', outDir], { cwd: temporaryFolder('m2s-paths-cli-') });
+    assert.equal(run.status, 0, run.stderr);
+    assert.deepEqual(namedPaths(path.join(outDir, 'xosc.xosc')), expectedPaths);
+  });
+
   it('flatten beside the main changes no path: the output is the main file with the group copied in', () => {
     const target = path.join(ws, 'xosc', 'beside.xosc');
     assert.equal(runCli(['flatten', 'xosc/main.xosc', '-o', target], { cwd: ws }).status, 0);
