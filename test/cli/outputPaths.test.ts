@@ -146,6 +146,10 @@ describe('cli: outputs reach their files wherever they are written (SPEC 11.6), 
     assert.match(run.stderr, new RegExp(`warning: the package reaches the file ${escapeRegExp(path.join(ws, 'xodr', 'e6mini.xodr'))} outside itself`));
     assert.match(run.stderr, new RegExp(`warning: the package reaches the folder ${escapeRegExp(path.join(ws, 'xosc', 'Catalogs', 'Vehicles'))} outside itself`));
     assert.match(run.stderr, /--self-contained/);
+    // The package's catalog directory, now relative to the package's folder, resolves when the package is read.
+    const check = runCli(['check', target], { cwd: temporaryFolder('m2s-paths-cli-') });
+    assert.equal(check.status, 0, check.stderr);
+    assert.match(check.stderr, /checked 1 file: 0 errors, 0 warnings/);
     const flat = path.join(ws, 'packages', 'flat', 'cut-in.xosc');
     fs.mkdirSync(path.dirname(flat), { recursive: true });
     const flatten = runCli(['flatten', target, '-o', flat], { cwd: temporaryFolder('m2s-paths-cli-') });
