@@ -213,6 +213,28 @@ describe('cli: the warnings pack prints about files a package reaches outside it
   });
 });
 
+describe('cli: a self-contained package whose catalogs lie in its own folder (Directory path=".")', () => {
+  it('stores them at the package root, and its flattening copied alone writes them beside the output, where it names them', () => {
+    const withCatalogHere = scenario('')
+      .replace('<Entities>', '<CatalogLocations>\n    <VehicleCatalog>\n      <Directory path="."/>\n    </VehicleCatalog>\n  </CatalogLocations>\n  <Entities>')
+      .replace('<ScenarioObject name="ego"/>', '<ScenarioObject name="ego"><CatalogReference catalogName="VehicleCatalog" entryName="car_white"/></ScenarioObject>');
+    const root = temporaryWorkspace({ 'pkg/main.xosc': withCatalogHere, 'pkg/VehicleCatalog.xosc': fs.readFileSync(path.join(esminiCorpus, 'Catalogs', 'Vehicles', 'VehicleCatalog.xosc'), 'utf8') });
+    assert.match(withCatalogHere, /entryName="car_white"/);
+    const run = runCli(['pack', 'pkg', '-o', 'out.mosc', '--self-contained'], { cwd: root });
+    assert.equal(run.status, 0, run.stderr);
+    assert.match(run.stderr, /wrote out\.mosc \(VehicleCatalog\.xosc, main\.xosc\)/);
+    const fresh = temporaryFolder('m2s-paths-fresh-');
+    fs.copyFileSync(path.join(root, 'out.mosc'), path.join(fresh, 'out.mosc'));
+    const flatten = runCli(['flatten', 'out.mosc', '-o', 'flat.xosc'], { cwd: fresh });
+    assert.equal(flatten.status, 0, flatten.stderr);
+    assert.match(fs.readFileSync(path.join(fresh, 'flat.xosc'), 'utf8'), /<Directory path="flat\.files"\/>/);
+    assert.ok(fs.existsSync(path.join(fresh, 'flat.files', 'VehicleCatalog.xosc')));
+    const check = runCli(['check', 'flat.xosc'], { cwd: fresh });
+    assert.equal(check.status, 0, check.stderr);
+    assert.match(check.stderr, /0 errors, 0 warnings/);
+  });
+});
+
 async function unzipped(file: string): Promise<Map<string, string>> {
   const zip = await JSZip.loadAsync(fs.readFileSync(file));
   const entries = new Map<string, string>();
