@@ -18,10 +18,15 @@ function plural(count: number, word: string): string {
   return `${count} ${word}${count === 1 ? '' : 's'}`;
 }
 
+/** A problem in a few words, with the file and line it is at. */
+export function problemPlace(problem: ProblemSummary): string {
+  return `${problem.message} (${fileName(problem.uri)}:${problem.line + 1})`;
+}
+
 /** The first errors in a few words each, with the file and line they are at. */
 export function namedErrors(problems: ProblemSummary[], shown = 3): string {
   const errors = problems.filter((problem) => problem.severity === 'error');
-  const named = errors.slice(0, shown).map((problem) => `${problem.message} (${fileName(problem.uri)}:${problem.line + 1})`).join('; ');
+  const named = errors.slice(0, shown).map(problemPlace).join('; ');
   return errors.length > shown ? `${named}; and ${errors.length - shown} more` : named;
 }
 

@@ -2,7 +2,7 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import * as vscode from 'vscode';
 import { PACKAGE_SCHEME, type FlattenOptions, type ProblemSummary, type WriteResult } from '../../common/src/protocol';
-import { writeAnywayQuestion, writtenAnywayNote } from './anyway';
+import { problemPlace, writeAnywayQuestion, writtenAnywayNote } from './anyway';
 import { LANGUAGE_ID, type ServerCommandClient } from './languageClient';
 import { FLATTENED_SUFFIX, flattenedName } from './naming';
 import { packageEntryUri } from './packageFileSystem';
@@ -225,7 +225,17 @@ export async function packCommand(server: ServerCommandClient, reporter: Command
   const saved = await saveScenarios(reporter, 'Pack into .mosc');
   if (!saved) return undefined;
   const note = saved.length > 0 ? ` (saved ${saved.join(', ')} first)` : '';
-  return runWrite(reporter, 'Pack into .mosc', output, (token) => server.pack(targets, output, token, selfContained), note);
+  return runWrite(reporter, 'Pack into .mosc', output, async (token) => {
+    const result = await server.pack(targets, output, token, selfContained);
+    // Said when written, not only later in Problems: a package that reaches outside itself runs only beside those files.
+    const outside = result.written === null ? [] : result.problems.filter((problem) => problem.severity === 'warning' && problem.message.includes(' outside itself'));
+    if (outside.length > 0) {
+      void vscode.window.showWarningMessage(
+        `Pack into .mosc: ${problemPlace(outside[0])}${outside.length > 1 ? `; and ${outside.length - 1} more` : ''}. Pack again storing roads and catalogs inside the package to carry them.`,
+      );
+    }
+    return result;
+  }, note);
 }
 
 export async function flattenCommand(server: ServerCommandClient, reporter: CommandReporter, clicked: unknown, selected: unknown, ...rest: unknown[]): Promise<string | undefined> {

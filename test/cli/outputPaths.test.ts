@@ -113,6 +113,14 @@ describe('cli: outputs reach their files wherever they are written (SPEC 11.6), 
     });
   }
 
+  it('flatten --out-dir at another depth: the same road and catalogs', () => {
+    const outDir = path.join(ws, 'out', 'dir', 'deeper');
+    fs.mkdirSync(outDir, { recursive: true });
+    const run = runCli(['flatten', path.join(ws, 'xosc', 'main.xosc'), '--out-dir', outDir], { cwd: temporaryFolder('m2s-paths-cli-') });
+    assert.equal(run.status, 0, run.stderr);
+    assert.deepEqual(namedPaths(path.join(outDir, 'xosc.xosc')), expectedPaths);
+  });
+
   it('flatten beside the main changes no path: the output is the main file with the group copied in', () => {
     const target = path.join(ws, 'xosc', 'beside.xosc');
     assert.equal(runCli(['flatten', 'xosc/main.xosc', '-o', target], { cwd: ws }).status, 0);
@@ -138,6 +146,10 @@ describe('cli: outputs reach their files wherever they are written (SPEC 11.6), 
     assert.match(run.stderr, new RegExp(`warning: the package reaches the file ${escapeRegExp(path.join(ws, 'xodr', 'e6mini.xodr'))} outside itself`));
     assert.match(run.stderr, new RegExp(`warning: the package reaches the folder ${escapeRegExp(path.join(ws, 'xosc', 'Catalogs', 'Vehicles'))} outside itself`));
     assert.match(run.stderr, /--self-contained/);
+    // The package's catalog directory, now relative to the package's folder, resolves when the package is read.
+    const check = runCli(['check', target], { cwd: temporaryFolder('m2s-paths-cli-') });
+    assert.equal(check.status, 0, check.stderr);
+    assert.match(check.stderr, /checked 1 file: 0 errors, 0 warnings/);
     const flat = path.join(ws, 'packages', 'flat', 'cut-in.xosc');
     fs.mkdirSync(path.dirname(flat), { recursive: true });
     const flatten = runCli(['flatten', target, '-o', flat], { cwd: temporaryFolder('m2s-paths-cli-') });
@@ -198,6 +210,28 @@ describe('cli: the warnings pack prints about files a package reaches outside it
     const entries = await unzipped(path.join(root, 'pkg.mosc'));
     assert.deepEqual([...entries.keys()].sort(), ['files/road.xodr', 'main.xosc']);
     assert.match(entries.get('main.xosc') ?? '', /<LogicFile filepath="files\/road\.xodr"\/>/);
+  });
+});
+
+describe('cli: a self-contained package whose catalogs lie in its own folder (Directory path=".")', () => {
+  it('stores them at the package root, and its flattening copied alone writes them beside the output, where it names them', () => {
+    const withCatalogHere = scenario('')
+      .replace('<Entities>', '<CatalogLocations>\n    <VehicleCatalog>\n      <Directory path="."/>\n    </VehicleCatalog>\n  </CatalogLocations>\n  <Entities>')
+      .replace('<ScenarioObject name="ego"/>', '<ScenarioObject name="ego"><CatalogReference catalogName="VehicleCatalog" entryName="car_white"/></ScenarioObject>');
+    const root = temporaryWorkspace({ 'pkg/main.xosc': withCatalogHere, 'pkg/VehicleCatalog.xosc': fs.readFileSync(path.join(esminiCorpus, 'Catalogs', 'Vehicles', 'VehicleCatalog.xosc'), 'utf8') });
+    assert.match(withCatalogHere, /entryName="car_white"/);
+    const run = runCli(['pack', 'pkg', '-o', 'out.mosc', '--self-contained'], { cwd: root });
+    assert.equal(run.status, 0, run.stderr);
+    assert.match(run.stderr, /wrote out\.mosc \(VehicleCatalog\.xosc, main\.xosc\)/);
+    const fresh = temporaryFolder('m2s-paths-fresh-');
+    fs.copyFileSync(path.join(root, 'out.mosc'), path.join(fresh, 'out.mosc'));
+    const flatten = runCli(['flatten', 'out.mosc', '-o', 'flat.xosc'], { cwd: fresh });
+    assert.equal(flatten.status, 0, flatten.stderr);
+    assert.match(fs.readFileSync(path.join(fresh, 'flat.xosc'), 'utf8'), /<Directory path="flat\.files"\/>/);
+    assert.ok(fs.existsSync(path.join(fresh, 'flat.files', 'VehicleCatalog.xosc')));
+    const check = runCli(['check', 'flat.xosc'], { cwd: fresh });
+    assert.equal(check.status, 0, check.stderr);
+    assert.match(check.stderr, /0 errors, 0 warnings/);
   });
 });
 

@@ -1,9 +1,10 @@
 import * as assert from 'node:assert/strict';
+import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { FILE_PATH_ELEMENTS, filePathSites, rebasePaths } from '../../server/src/core/flatten';
+import { FILE_PATH_ELEMENTS, filePathSites, Flattener, rebasePaths } from '../../server/src/core/flatten';
 import { applyEdits } from '../../server/src/core/flatten/edits';
 import { elementParticles, schemaFor, SCHEMA_VERSIONS } from '../../server/src/core/schema/model';
-import { nodeFileSystem } from '../../server/src/core/sources';
+import { diskRef, nodeFileSystem, ScenarioStore } from '../../server/src/core/sources';
 import { parseXml } from '../../server/src/core/xml';
 import { temporaryWorkspace } from '../support/workspace';
 
@@ -123,5 +124,31 @@ describe('core: rebasing the file paths of an output (SPEC 11.6)', () => {
     assert.match(moved.findings[0].message, /'\$Road' gives the relative path '\.\.\/xodr\/road\.xodr'.*left as written/);
     const beside = await rebased(SCENARIO(declarations, body), path.join(root, 'xosc'), path.join(root, 'xosc'));
     assert.deepEqual(beside.findings, []);
+  });
+});
+
+describe('core: Flattener.flatten rebases for its output (SPEC 11.6)', () => {
+  const main = (road: string) =>
+    SCENARIO(
+      '<ParameterDeclaration name="Road" parameterType="string" value="../xodr/road.xodr"/>',
+      `  <RoadNetwork>\n    <LogicFile filepath="${road}"/>\n  </RoadNetwork>\n  <Storyboard/>`,
+    );
+
+  it('rewrites the main file\'s own paths for another folder, and warns at the main file\'s line about a path naming a parameter', async () => {
+    const root = workspace();
+    fs.writeFileSync(path.join(root, 'xosc', 'plain.xosc'), main('../xodr/road.xodr'));
+    fs.writeFileSync(path.join(root, 'xosc', 'parameter.xosc'), main('$Road'));
+    const flattener = new Flattener(new ScenarioStore({ scenarioPath: [], root }));
+    const plain = await flattener.flatten(diskRef(path.join(root, 'xosc', 'plain.xosc')), { outputPath: path.join(root, 'out', 'deeper', 'plain.xosc') });
+    assert.match(plain.text ?? '', /<LogicFile filepath="\.\.\/\.\.\/xodr\/road\.xodr"\/>/);
+    const parameter = await flattener.flatten(diskRef(path.join(root, 'xosc', 'parameter.xosc')), { outputPath: path.join(root, 'out', 'deeper', 'parameter.xosc') });
+    assert.match(parameter.text ?? '', /<LogicFile filepath="\$Road"\/>/);
+    const warning = parameter.problems.find((problem) => problem.code === 'file-path');
+    assert.ok(warning, JSON.stringify(parameter.problems));
+    assert.equal(warning.severity, 'warning');
+    assert.equal(warning.source.disk, path.join(root, 'xosc', 'parameter.xosc'));
+    assert.equal(warning.range.start.line, 5, "the LogicFile line of parameter.xosc");
+    const beside = await flattener.flatten(diskRef(path.join(root, 'xosc', 'parameter.xosc')));
+    assert.equal(beside.problems.filter((problem) => problem.code === 'file-path').length, 0);
   });
 });

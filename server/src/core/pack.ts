@@ -47,7 +47,7 @@ function posixRelative(from: string, to: string): string {
   return path.posix.relative(from, to) || '.';
 }
 
-/** The entry name a carried file gets: its place below the package's folder, else `files/` and its name (told apart when taken). */
+/** The entry name a carried file gets: its place below the package's folder ('' for that folder itself), else `files/` and its name (told apart when taken). */
 function carriedEntryName(place: PackPlace, disk: string): string {
   const below = place.folder ? path.relative(place.folder, disk) : '..';
   const taken = new Set([...place.entries, ...place.carried.values()]);
@@ -69,7 +69,7 @@ async function carryIntoPackage(place: PackPlace, resolved: ResolvedPath): Promi
     const listed = (await nodeFileSystem.listDirectory?.(resolved.disk)) ?? [];
     for (const child of [...listed].sort()) {
       const disk = path.join(resolved.disk, child);
-      if ((await nodeFileSystem.kind(disk)) === 'file') files.push({ entry: `${name}/${child}`, disk });
+      if ((await nodeFileSystem.kind(disk)) === 'file') files.push({ entry: name ? `${name}/${child}` : child, disk });
     }
   }
   place.carried.set(resolved.disk, name);
@@ -260,7 +260,8 @@ async function packFolderInto(
     }
     added.set(name, origin);
     zip.file(name, bytes, { date: ENTRY_DATE, createFolders: false });
-    entries.push(name);
+    // A scenario a self-contained package already carries as a file of a catalog folder keeps one entry: its own, rebased.
+    if (!entries.includes(name)) entries.push(name);
   };
   const visit = async (ref: SourceRef, entryName: string, chain: string[]) => {
     let bytes: Uint8Array;

@@ -8,6 +8,15 @@ import { FlattenToFileRequest, PackRequest } from '../../../common/src/protocol'
 import { acceptSaveDialog, cli, type InsideTests, offersRequest, open, replaceText, requireServerFeature, waitFor, workspaceRoot, zipEntries } from './helpers';
 import { clickText, pageShows, pressKeys, quickInput, runFromPalette, screenshot } from './harnessClient';
 
+/** Answers the Pack command's first question (where roads and catalogs go) with its first choice: they stay where they are, as the CLI's pack without --self-contained. */
+async function keepFilesOutsidePackage(): Promise<void> {
+  await waitFor('the question where roads and catalogs go', async () => {
+    const shown = await quickInput();
+    return (shown.visible && shown.title === 'Pack into .mosc' && shown.value === '') || undefined;
+  });
+  await pressKeys(['Enter']);
+}
+
 /** Pack and Flatten from the palette and the explorer, compared with the CLI's output. */
 export const packAndFlattenTests: InsideTests = {
   pack: async function () {
@@ -15,6 +24,7 @@ export const packAndFlattenTests: InsideTests = {
     const root = workspaceRoot();
     await open('pedestrian/main.xosc');
     await runFromPalette('Modular2Simple: Pack into .mosc');
+    await keepFilesOutsidePackage();
     await acceptSaveDialog('pedestrian.mosc');
     const written = path.join(root, 'pedestrian.mosc');
     await waitFor('pedestrian.mosc', () => fs.existsSync(written) || undefined);
@@ -89,6 +99,7 @@ export const packAndFlattenTests: InsideTests = {
     assert.ok(editor.document.isDirty);
     await vscode.commands.executeCommand('workbench.action.focusActiveEditorGroup');
     await runFromPalette('Modular2Simple: Pack into .mosc');
+    await keepFilesOutsidePackage();
     const written = path.join(root, `${path.basename(root)}.mosc`);
     await acceptSaveDialog(path.basename(written));
     await waitFor(path.basename(written), () => fs.existsSync(written) || undefined);

@@ -239,9 +239,9 @@ function reindentBlock(block: string, from: string, to: string, eol: string): st
 /**
  * The edits of the main file's text that add the carried declarations (after the root's own, in a
  * new root ParameterDeclarations when it has none) and catalog locations (paths relative to
- * `outputDirectory`).
+ * `mainFolder`, as the main file's own are: rebase.ts moves them all onto the output's folder).
  */
-export function carryEdits(main: FlatSource, plan: CarryPlan, eol: string, outputDirectory: string): CarryEdit[] {
+export function carryEdits(main: FlatSource, plan: CarryPlan, eol: string, mainFolder: string): CarryEdit[] {
   const model = main.original;
   const root = model?.document.root;
   if (!model || !root || (plan.declarations.length === 0 && plan.locations.length === 0)) return [];
@@ -288,7 +288,7 @@ export function carryEdits(main: FlatSource, plan: CarryPlan, eol: string, outpu
     const inner = locations?.children[0] ? indentationAt(text, locations.children[0].start) : childIndent + unit;
     let body = '';
     for (const location of plan.locations) {
-      const relative = path.relative(outputDirectory, location.directory).split(path.sep).join('/') || '.';
+      const relative = path.relative(mainFolder, location.directory).split(path.sep).join('/') || '.';
       body += `${eol}${inner}<${location.kind}>${eol}${inner}${unit}<Directory path="${escapeAttributeValue(relative)}"/>${eol}${inner}</${location.kind}>`;
     }
     if (locations && !locations.selfClosing) {

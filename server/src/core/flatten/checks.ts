@@ -107,13 +107,13 @@ export interface OutputCheckContext {
 /**
  * Checks the flattened output (SPEC 11.5): every `$name` declared, every catalog entry and
  * storyboard reference resolving to exactly one target. Problems are reported where the element
- * was written, through originOf.
+ * was written, through originOf. `mainFolder`: the folder the rendered text's paths are relative to (before rebasing).
  */
-export async function checkOutput(context: OutputCheckContext, source: FlatSource, outputDirectory: string): Promise<Problem[]> {
+export async function checkOutput(context: OutputCheckContext, source: FlatSource, mainFolder: string): Promise<Problem[]> {
   if (!source.model || !source.original || source.model === source.original) return [];
   const model = semanticModelOf(source.model.document);
   const evaluator = new Evaluator(model, undefined, readingOf(context.simulator));
-  const catalogs = await context.catalogs.resolve({ disk: path.join(outputDirectory, 'flattened.xosc'), entries: [] }, model, evaluator);
+  const catalogs = await context.catalogs.resolve({ disk: path.join(mainFolder, 'flattened.xosc'), entries: [] }, model, evaluator);
   const findings = runChecks({ ref: source.ref, model, evaluator, catalogs, modular: false, simulator: context.simulator }, OUTPUT_CHECKS);
   // The main file's own catalog locations are written as they are, relative to it; its own check covers them.
   const carried = (element: XmlElement) =>

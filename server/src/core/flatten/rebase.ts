@@ -186,13 +186,16 @@ async function packagedEntries(store: ScenarioStore, ref: SourceRef, value: stri
   const packageRef: SourceRef = { disk: ref.disk, entries: ref.entries.slice(0, -1) };
   const entry = ref.entries[ref.entries.length - 1];
   const folder = entry.includes('/') ? entry.slice(0, entry.lastIndexOf('/')) : '';
-  const name = normalizeEntryName(folder ? `${folder}/${value}` : value);
-  if (!name) return undefined;
+  const joined = folder ? `${folder}/${value}` : value;
+  // `.` at the package's root names the root itself (''), which normalizes to no name at all.
+  const name = normalizeEntryName(joined) ?? (/^[./]+$/.test(joined) && !joined.includes('..') ? '' : undefined);
+  if (name === undefined) return undefined;
   const contents = await store.readPackage(packageRef).catch(() => undefined);
   if (!contents) return undefined;
-  const own = contents.entries.get(name);
+  const own = name ? contents.entries.get(name) : undefined;
   if (own) return { name, files: [[name, own]] };
-  const files = [...contents.entries].filter(([candidate]) => candidate.startsWith(`${name}/`) && !candidate.slice(name.length + 1).includes('/'));
+  const prefix = name ? `${name}/` : '';
+  const files = [...contents.entries].filter(([candidate]) => candidate.startsWith(prefix) && !candidate.slice(prefix.length).includes('/'));
   return files.length > 0 ? { name, files } : undefined;
 }
 
@@ -242,7 +245,7 @@ export async function rebaseFlattened(
     }
     const folder = `${path.basename(outputPath).replace(/\.xosc$/i, '')}.files`;
     for (const [entry, bytes] of packaged.files) files.set(path.join(outputDirectory, folder, ...entry.split('/')), bytes);
-    const text = written(`${folder}/${packaged.name}`, site.attribute.value);
+    const text = written(packaged.name ? `${folder}/${packaged.name}` : folder, site.attribute.value);
     if (text !== site.attribute.value) edits.push({ start: site.attribute.valueStart, end: site.attribute.valueEnd, text: escapeAttributeValue(text, site.attribute.quote) });
   }
   const rebase = await rebasePaths({

@@ -33,9 +33,10 @@ interface Written {
 /**
  * Writes the flattened text of `result` (read as `model`): each outer group replaced in place by its
  * imported copies, then what they need carried into the root, with catalog locations relative to
- * `outputDirectory` (the source's own folder: flatten rebases them onto the output's with every other path). Leaves the text undefined when a copy is missing or the output grows too large.
+ * `sourceFolder` as the source's own paths are (flatten rebases them all onto the output's folder).
+ * Leaves the text undefined when a copy is missing or the output grows too large.
  */
-export function render(store: ScenarioStore, result: FlatSource, model: ScenarioModel, outputDirectory: string): void {
+export function render(store: ScenarioStore, result: FlatSource, model: ScenarioModel, sourceFolder: string): void {
   const text = model.document.text;
   const eol = detectEol(text);
   const replacements = plannedReplacements(store, result, model, eol);
@@ -44,7 +45,7 @@ export function render(store: ScenarioStore, result: FlatSource, model: Scenario
   // One parse of the first rendering serves the carry plan and, when nothing is carried, the model.
   const firstDocument = store.parseFlattened(result.ref, written.out);
   const plan = planCarry(result, firstDocument, written.insertions, carryOrigin);
-  const edits = carryEdits(result, plan, eol, outputDirectory);
+  const edits = carryEdits(result, plan, eol, sourceFolder);
   if (edits.length > 0) written = write(text, eol, replacements, edits);
   result.carried = plan;
   result.problems.push(...plan.problems);

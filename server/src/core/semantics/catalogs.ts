@@ -89,8 +89,10 @@ export class CatalogLoader {
       const packageRef: SourceRef = { disk: from.disk, entries: from.entries.slice(0, -1) };
       const entry = from.entries[from.entries.length - 1];
       const folder = entry.includes('/') ? entry.slice(0, entry.lastIndexOf('/')) : '';
-      const joined = normalizeEntryName(folder ? `${folder}/${pathText}` : pathText);
-      if (joined && (await this.listing({ packageRef, directory: joined, via: 'file' })).length > 0) found.push({ packageRef, directory: joined, via: 'file' });
+      const written = folder ? `${folder}/${pathText}` : pathText;
+      // `.` (or `./`) at the package's root names the root itself, which normalizes to no name at all.
+      const joined = normalizeEntryName(written) ?? (/^[./]+$/.test(written) && !written.includes('..') ? '' : undefined);
+      if (joined !== undefined && (await this.listing({ packageRef, directory: joined, via: 'file' })).length > 0) found.push({ packageRef, directory: joined, via: 'file' });
       // A package's paths to files outside it are written relative to the package's folder (SPEC 11.6).
       const beside = path.resolve(path.dirname(from.disk), pathText);
       if (found.length === 0 && (await this.store.kindOf(beside)) === 'directory') found.push({ packageRef: undefined, directory: beside, via: 'file' });
