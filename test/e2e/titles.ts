@@ -27,6 +27,7 @@ export const INSIDE_TESTS = {
   runEsmini: "Run in esmini from the CodeLens puts esmini's error on the simple scenario's line; a clean run clears it and shows its trajectories",
   schemaCompletion: 'schema completion offers the child elements the OpenSCENARIO schema allows',
   schemaDeprecated: 'a deprecated OpenSCENARIO element is struck through',
+  newScenario: 'New Modular Scenario… on a folder writes a main with an ego on the chosen road, opens it clean, and never overwrites',
 } as const;
 
 export type InsideTestKey = keyof typeof INSIDE_TESTS;
