@@ -3,6 +3,7 @@ import * as path from 'node:path';
 import * as vscode from 'vscode';
 import type { CommandReporter } from './commands';
 import type { ServerCommandClient } from './languageClient';
+import { fileNameProblem, freeScenarioName } from './naming';
 
 /** What a caller (a test, a keybinding) may pass instead of being asked. */
 export interface NewScenarioOptions {
@@ -94,23 +95,6 @@ async function askRoadNetwork(folder: string): Promise<string | undefined> {
   if (picked.file) return picked.file;
   const browsed = await vscode.window.showOpenDialog({ canSelectFiles: true, canSelectMany: false, filters: { OpenDRIVE: ['xodr'] }, title: `${TITLE}: the road network`, defaultUri: vscode.Uri.file(folder) });
   return browsed?.[0]?.fsPath;
-}
-
-/** `main.xosc`, or `main-2.xosc`… when taken: a name that is free in the folder. */
-export function freeScenarioName(folder: string, exists: (file: string) => boolean = fs.existsSync): string {
-  for (let number = 1; ; number++) {
-    const name = number === 1 ? 'main.xosc' : `main-${number}.xosc`;
-    if (!exists(path.join(folder, name))) return name;
-  }
-}
-
-/** Why a file name will not do in the folder, or undefined when it will. */
-export function fileNameProblem(folder: string, name: string, exists: (file: string) => boolean = fs.existsSync): string | undefined {
-  const trimmed = name.trim();
-  if (!trimmed.toLowerCase().endsWith('.xosc') || trimmed.length <= '.xosc'.length) return 'The name must end in .xosc';
-  if (/[\\/]/.test(trimmed) || trimmed === '.' || trimmed === '..') return 'A file name, without folders';
-  if (exists(path.join(folder, trimmed))) return `${trimmed} exists already; choose another name`;
-  return undefined;
 }
 
 async function askFileName(folder: string): Promise<string | undefined> {
