@@ -1,7 +1,7 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { ErrorCodes, ResponseError } from 'vscode-languageserver/node';
+import { CompletionItem, ErrorCodes, ResponseError } from 'vscode-languageserver/node';
 import { NewScenarioRequest, RunEsminiRequest } from '../../common/src/protocol';
 import { newMainScenario } from '../../server/src/core/newScenario';
 import { laneCenterT, laneSectionIndexAt, parseOpenDrive, roadPoint } from '../../server/src/core/opendrive/road';
@@ -9,6 +9,7 @@ import { SCHEMA_VERSIONS } from '../../server/src/core/schema/model';
 import { checkSchema } from '../../server/src/core/schema/validate';
 import { parseXml } from '../../server/src/core/xml';
 import { esminiBinary, esminiRoads, readEsminiCsv, requireEsmini } from '../support/esmini';
+import { SIMPLE } from './fixtures/scenarios';
 import { fileUri, useServer } from './harness';
 
 const ROAD = 'fabriksgatan.xodr';
@@ -16,7 +17,7 @@ const ROAD = 'fabriksgatan.xodr';
 describe('language server: New Modular Scenario builds a main with an ego on a road network (JSON-RPC)', function () {
   this.timeout(120_000);
   // The road two folders up and across from the new scenario: the path written must reach it from there.
-  const server = useServer({ [`roads/town/${ROAD}`]: fs.readFileSync(path.join(esminiRoads, ROAD)), 'scenarios/README.txt': 'new scenarios go here\n', 'other.xosc': '<OpenSCENARIO/>' }, 'other.xosc', {
+  const server = useServer({ [`roads/town/${ROAD}`]: fs.readFileSync(path.join(esminiRoads, ROAD)), 'scenarios/README.txt': 'new scenarios go here\n', 'other.xosc': '<OpenSCENARIO/>', 'brake.xosc': SIMPLE }, 'other.xosc', {
     schema: true,
   });
 
@@ -38,6 +39,16 @@ describe('language server: New Modular Scenario builds a main with an ego on a r
     fs.mkdirSync(path.dirname(scenario), { recursive: true });
     fs.writeFileSync(scenario, result.text);
     const uri = await server.client.openFile(scenario);
+    assert.deepEqual(await server.client.diagnosticsOf(uri), []);
+
+    // Ready to import groups: where the comment invites it, `<` offers the ScenarioReference snippets of the workspace's simple scenarios.
+    const comment = result.text.indexOf('<!-- Import behaviours');
+    const line = result.text.slice(0, comment).split('\n').length - 1;
+    const character = comment - result.text.lastIndexOf('\n', comment - 1) - 1;
+    await server.client.change(uri, [{ range: { start: { line, character }, end: { line, character } }, text: '<' }]);
+    const offered = await server.client.request<CompletionItem[]>('textDocument/completion', { textDocument: { uri }, position: { line, character: character + 1 } });
+    assert.ok(offered.some((item) => /^ScenarioReference brake\.xosc Brake$/.test(item.label)), offered.map((item) => item.label).join(', '));
+    await server.client.change(uri, [{ range: { start: { line, character }, end: { line, character: character + 1 } }, text: '' }]);
     assert.deepEqual(await server.client.diagnosticsOf(uri), []);
 
     requireEsmini(this);

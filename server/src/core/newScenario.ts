@@ -116,7 +116,7 @@ export function newMainScenario(options: NewScenarioOptions): string {
 \t\t\t\t\t<Actors selectTriggeringEntities="false">
 \t\t\t\t\t\t<EntityRef entityRef="Ego"/>
 \t\t\t\t\t</Actors>
-\t\t\t\t\t<!-- Import a behaviour here: type < for a ScenarioReference to a simple scenario's ManeuverGroup. -->
+\t\t\t\t\t<!-- Import behaviours here: type < for a ScenarioReference. -->
 \t\t\t\t</ManeuverGroup>
 \t\t\t\t<StartTrigger>
 \t\t\t\t\t<ConditionGroup>

@@ -31,6 +31,7 @@ export const newScenarioTests: InsideTests = {
     const running = vscode.commands.executeCommand<vscode.Uri | undefined>('modular2simple.newScenario', vscode.Uri.file(folder));
     await waitForQuickInput('the road network question', (shown) => /road network/.test(shown.title));
     await typeText('e6mini');
+    await screenshot('New Modular Scenario asks for the road network');
     await pressKeys(['Enter']);
     await waitForQuickInput('the file name question, proposing main.xosc', (shown) => /file name/.test(shown.title) && shown.value === 'main.xosc');
     await pressKeys(['Enter']);
@@ -45,7 +46,7 @@ export const newScenarioTests: InsideTests = {
     await waitFor('the outline of the new scenario', async () => ((await vscode.commands.executeCommand<unknown[]>('vscode.executeDocumentSymbolProvider', editor.document.uri))?.length ?? 0) > 0 || undefined);
     await new Promise((resolve) => setTimeout(resolve, 2_000));
     assert.deepEqual(vscode.languages.getDiagnostics(editor.document.uri).map((diagnostic) => diagnostic.message), []);
-    const importHere = text.indexOf('<!-- Import');
+    const importHere = text.indexOf('<!-- Import behaviours');
     editor.revealRange(new vscode.Range(editor.document.positionAt(importHere), editor.document.positionAt(importHere)), vscode.TextEditorRevealType.InCenter);
     await screenshot('New Modular Scenario wrote a main with an ego on e6mini');
 
