@@ -1,5 +1,6 @@
 import { isDrivingLane, Lane, laneWidth, Road, RoadNetwork } from './opendrive/road';
 import { SchemaVersion } from './schema/model';
+import { escapeAttributeValue } from './xml';
 
 /** Where the new scenario places its ego: a lane position that exists on the road network. */
 export interface EgoPlacement {
@@ -47,10 +48,6 @@ export interface NewScenarioOptions {
   now?: Date;
 }
 
-function escapeAttribute(value: string): string {
-  return value.replace(/&/g, '&amp;').replace(/"/g, '&quot;').replace(/</g, '&lt;');
-}
-
 /**
  * A main scenario to build on: the road network, an ego (a Vehicle written out, no catalog needed)
  * on a lane that exists, driving at a steady speed, and one Story/Act whose ManeuverGroup is where
@@ -68,7 +65,7 @@ export function newMainScenario(options: NewScenarioOptions): string {
 \t</ParameterDeclarations>
 \t<CatalogLocations/>
 \t<RoadNetwork>
-\t\t<LogicFile filepath="${escapeAttribute(options.roadFile)}"/>
+\t\t<LogicFile filepath="${escapeAttributeValue(options.roadFile)}"/>
 \t</RoadNetwork>
 \t<Entities>
 \t\t<ScenarioObject name="Ego">
@@ -93,7 +90,7 @@ export function newMainScenario(options: NewScenarioOptions): string {
 \t\t\t\t\t<PrivateAction>
 \t\t\t\t\t\t<TeleportAction>
 \t\t\t\t\t\t\t<Position>
-\t\t\t\t\t\t\t\t<LanePosition roadId="${escapeAttribute(roadId)}" laneId="${laneId}" s="${s}" offset="0"/>
+\t\t\t\t\t\t\t\t<LanePosition roadId="${escapeAttributeValue(roadId)}" laneId="${laneId}" s="${s}" offset="0"/>
 \t\t\t\t\t\t\t</Position>
 \t\t\t\t\t\t</TeleportAction>
 \t\t\t\t\t</PrivateAction>
