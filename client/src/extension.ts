@@ -9,6 +9,7 @@ import type { BirdsEyeView } from './birdsEye/panel';
 import { CommandReporter, commandTargets, flattenCommand, mainFileOf, packCommand } from './commands';
 import { ChangeFollower } from './followChanges';
 import { LANGUAGE_ID, ServerCommandClient, createLanguageClient } from './languageClient';
+import { newScenarioCommand } from './newScenario';
 import { PackageFileSystem } from './packageFileSystem';
 import { PACKAGE_VIEW_TYPE, PackageViewProvider } from './packageView';
 import { FlattenedPreview, isPreviewPlace, PREVIEW_SCHEME, previewSource } from './preview';
@@ -88,6 +89,7 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
   };
   register('modular2simple.pack', (clicked, selected, ...rest) => packCommand(server, reporter, clicked, selected, ...rest));
   register('modular2simple.flatten', (clicked, selected, ...rest) => flattenCommand(server, reporter, clicked, selected, ...rest));
+  register('modular2simple.newScenario', (clicked, ...rest) => newScenarioCommand(server, reporter, clicked, ...rest));
   register('modular2simple.openPreview', async (clicked, at) => {
     let [source] = commandTargets(clicked, undefined);
     if (source?.scheme === PREVIEW_SCHEME) source = previewSource(source);

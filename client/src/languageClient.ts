@@ -3,12 +3,14 @@ import { LanguageClient, TransportKind, type LanguageClientOptions, type ServerO
 import {
   FlattenToFileRequest,
   FlattenToTextRequest,
+  NewScenarioRequest,
   PACKAGE_SCHEME,
   PackRequest,
   PreviewRequest,
   StructureRequest,
   type FlattenOptions,
   type FlattenTextResult,
+  type NewScenarioResult,
   type PreviewResult,
   type StructureNode,
   type WriteResult,
@@ -94,5 +96,10 @@ export class ServerCommandClient {
 
   async structure(uri: vscode.Uri, token?: vscode.CancellationToken): Promise<StructureNode | null> {
     return (await this.started()).sendRequest(StructureRequest, { uri: uri.toString() }, token);
+  }
+
+  /** The text of a new main scenario at `scenario` with an ego on `roadNetwork`; the caller writes it. */
+  async newScenario(scenario: vscode.Uri, roadNetwork: vscode.Uri): Promise<NewScenarioResult> {
+    return (await this.started()).sendRequest(NewScenarioRequest, { scenario: scenario.toString(), roadNetwork: roadNetwork.toString() });
   }
 }

@@ -1,3 +1,4 @@
+import * as fs from 'node:fs';
 import * as path from 'node:path';
 import type * as vscode from 'vscode';
 
@@ -23,4 +24,21 @@ export function packageNameOf(target: vscode.Uri, isFolder = false): string {
 
 export function flattenedName(target: vscode.Uri, isFolder = false): string {
   return `${packageNameOf(target, isFolder)}${FLATTENED_SUFFIX}`;
+}
+
+/** `main.xosc`, or `main-2.xosc`… when taken: a name that is free in the folder. */
+export function freeScenarioName(folder: string, exists: (file: string) => boolean = fs.existsSync): string {
+  for (let number = 1; ; number++) {
+    const name = number === 1 ? 'main.xosc' : `main-${number}.xosc`;
+    if (!exists(path.join(folder, name))) return name;
+  }
+}
+
+/** Why a file name will not do in the folder, or undefined when it will. */
+export function fileNameProblem(folder: string, name: string, exists: (file: string) => boolean = fs.existsSync): string | undefined {
+  const trimmed = name.trim();
+  if (!trimmed.toLowerCase().endsWith('.xosc') || trimmed.length <= '.xosc'.length) return 'The name must end in .xosc';
+  if (/[\\/]/.test(trimmed) || trimmed === '.' || trimmed === '..') return 'A file name, without folders';
+  if (exists(path.join(folder, trimmed))) return `${trimmed} exists already; choose another name`;
+  return undefined;
 }

@@ -64,7 +64,34 @@ export interface PreviewResult {
 
 export const PreviewRequest = new RequestType<PreviewParams, PreviewResult, void>('modular2simple/preview');
 
-export const CUSTOM_REQUESTS = [FlattenToTextRequest.method, FlattenToFileRequest.method, PackRequest.method, StructureRequest.method, SceneRequest.method, RunEsminiRequest.method, PreviewRequest.method];
+/** *New Modular Scenario…*: the text of a main scenario with an ego on a road network (the client asks the questions and writes the file). */
+export interface NewScenarioParams {
+  /** Where the new scenario will be written: a `file:` URI or a path, ending in .xosc. */
+  scenario: string;
+  /** The OpenDRIVE road network: a `file:` URI or a path. */
+  roadNetwork: string;
+}
+
+export interface NewScenarioResult {
+  text: string;
+  /** The road network's path as the scenario names it, relative to the scenario's folder. */
+  roadFile: string;
+  /** Where the ego stands: a lane that exists on the road network. */
+  ego: { roadId: string; laneId: number; s: number };
+}
+
+export const NewScenarioRequest = new RequestType<NewScenarioParams, NewScenarioResult, void>('modular2simple/newScenario');
+
+export const CUSTOM_REQUESTS = [
+  FlattenToTextRequest.method,
+  FlattenToFileRequest.method,
+  PackRequest.method,
+  StructureRequest.method,
+  SceneRequest.method,
+  RunEsminiRequest.method,
+  PreviewRequest.method,
+  NewScenarioRequest.method,
+];
 
 /** URI scheme of files inside a `.mosc`: `mosc:/abs/path/pkg.mosc/inner.mosc/main.xosc`. */
 export const PACKAGE_SCHEME = 'mosc';

@@ -1,6 +1,9 @@
 import * as assert from 'node:assert/strict';
 import * as path from 'node:path';
 import { CompletionItem, TextEdit } from 'vscode-languageserver/node';
+import { SCHEMA_VERSIONS } from '../../server/src/core/schema/model';
+import { checkSchema } from '../../server/src/core/schema/validate';
+import { parseXml } from '../../server/src/core/xml';
 import { cursor } from '../support/cursor';
 import { MAIN_OVERRIDES, PACKAGE_MAIN, SIMPLE, SIMPLE_EXPRESSION } from './fixtures/scenarios';
 import { fileUri, useServer } from './harness';
@@ -81,6 +84,15 @@ describe('language server: completion right after opening, through an unpacked p
   });
 });
 
+/** The text a snippet inserts when each tab stop keeps its default (a choice its first value). */
+function expandSnippet(snippet: string): string {
+  return snippet
+    .replace(/\$\{\d+\|([^,|]*)[^}]*\}/g, '$1')
+    .replace(/\$\{\d+:((?:\\.|[^}\\])*)\}/g, '$1')
+    .replace(/\$\{\d+\}|\$\d+/g, '')
+    .replace(/\\([$}\\])/g, '$1');
+}
+
 describe('language server: completion in an empty file, with schema support on (JSON-RPC)', function () {
   const server = useServer({ 'simple.xosc': SIMPLE }, 'simple.xosc', { schema: true });
 
@@ -113,6 +125,30 @@ describe('language server: completion in an empty file, with schema support on (
     while ((pinned = await skeletonAt('|'))?.label !== 'OpenSCENARIO 1.0 scenario' && Date.now() < deadline) await new Promise((resolve) => setTimeout(resolve, 50));
     assert.equal(pinned?.label, 'OpenSCENARIO 1.0 scenario');
     assert.match((pinned.textEdit as TextEdit).newText, /revMajor="1" revMinor="0"/);
+    await server.client.settingsChanged({});
+  });
+
+  it('the skeleton of each version, inserted as the editor expands it, has no schema problem and is complete (1.0 to 1.3)', async function () {
+    for (const version of SCHEMA_VERSIONS) {
+      await server.client.settingsChanged({ schema: { version } });
+      const skeletonOffered = async () => {
+        const typed = cursor('|');
+        const uri = await server.client.open(fileUri(path.join(server.root, 'empty.xosc')), typed.text);
+        const items = await server.client.request<CompletionItem[]>('textDocument/completion', server.client.at(uri, typed.position));
+        await server.client.close(uri);
+        return items.find((item) => item.label === `OpenSCENARIO ${version} scenario`);
+      };
+      // The setting reaches the server asynchronously.
+      let skeleton = await skeletonOffered();
+      for (const deadline = Date.now() + 10_000; !skeleton && Date.now() < deadline; skeleton = await skeletonOffered()) await new Promise((resolve) => setTimeout(resolve, 50));
+      assert.ok(skeleton, version);
+      const inserted = expandSnippet((skeleton.textEdit as TextEdit).newText);
+      for (const element of ['<FileHeader ', '<ParameterDeclarations/>', '<CatalogLocations/>', '<RoadNetwork/>', '<Entities/>', '<Init>', '<StopTrigger/>']) assert.ok(inserted.includes(element), `${version}: ${element} in\n${inserted}`);
+      const date = /date="([^"]+)"/.exec(inserted)?.[1] ?? '';
+      assert.ok(Math.abs(Date.parse(`${date}Z`) - Date.now()) < 60_000, `${version}: today's date, not ${date}`);
+      const findings = checkSchema(parseXml(inserted), { modular: true }).findings;
+      assert.deepEqual(findings.map((finding) => `${finding.code} ${finding.message}`), [], `${version}:\n${inserted}`);
+    }
     await server.client.settingsChanged({});
   });
 });

@@ -2,7 +2,7 @@ import { CompletionItem, CompletionItemKind, CompletionItemTag, InsertTextFormat
 import { SchemaIndex } from '../core/schema/index';
 import { AttributeDeclaration, ElementParticle } from '../core/schema/model';
 import { allowedChildren, indexFor, typeByElementName, typeOfElement } from '../core/schema/query';
-import { elementSkeleton, placeholderValue, skeletonText } from '../core/schema/skeleton';
+import { elementSkeleton, placeholderValue, skeletonText, withOptionalChild } from '../core/schema/skeleton';
 import { builtinOf, describeType, enumerationValues } from '../core/schema/values';
 import { attribute, descendants, elementAt, XmlDocument, XmlElement } from '../core/xml';
 import { ValueContext } from '../core/cursor';
@@ -189,15 +189,23 @@ function versionParts(version: string): { revMajor: string; revMinor: string } {
 
 /**
  * A whole scenario of the schema's version as a snippet: the XML declaration (unless written), the root
- * with its required content, the FileHeader's version and today's date filled in, a tab stop for each
- * other required attribute.
+ * with its required content plus ParameterDeclarations and the Storyboard's StopTrigger, the FileHeader's
+ * version and today's date filled in, a tab stop for each other required attribute.
  */
 export function scenarioSkeletonSnippet(index: SchemaIndex, withDeclaration: boolean, now = new Date()): string {
   const root: ElementParticle = { kind: 'element', name: index.schema.rootElement, type: index.schema.rootType, min: 1, max: 1 };
   const filled: Record<string, string> = { ...versionParts(index.version), date: now.toISOString().replace(/\.\d{3}Z$/, '') };
   let stop = 0;
-  const text = skeletonText(elementSkeleton(index, root), { indent: '', unit: '\t', eol: '\n' }, (declaration) =>
-    declaration.name in filled ? escapeSnippet(filled[declaration.name]) : placeholderSnippet(index, declaration, ++stop),
+  // What the schema leaves optional but a new scenario wants: its parameters and an end.
+  const scenario = withOptionalChild(index, elementSkeleton(index, root), 'ParameterDeclarations');
+  const complete = { ...scenario, children: scenario.children.map((child) => (child.name === 'Storyboard' ? withOptionalChild(index, child, 'StopTrigger') : child)) };
+  const text = skeletonText(complete, { indent: '', unit: '\t', eol: '\n' }, (declaration) =>
+    declaration.name in filled
+      ? escapeSnippet(filled[declaration.name])
+      : // A ManeuverGroup that runs once, not never (0 is the type's placeholder).
+        declaration.name === 'maximumExecutionCount'
+        ? `\${${++stop}:1}`
+        : placeholderSnippet(index, declaration, ++stop),
   );
   return `${withDeclaration ? '<?xml version="1.0" encoding="UTF-8"?>\n' : ''}${text}\n$0`;
 }

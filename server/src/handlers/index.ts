@@ -19,6 +19,7 @@ import * as hover from './hover';
 import * as initialize from './initialize';
 import * as initialized from './initialized';
 import * as inlayHint from './inlayHint';
+import * as newScenario from './newScenario';
 import * as semanticTokens from './semanticTokens';
 import * as pack from './pack';
 import * as prepareRename from './prepareRename';
@@ -68,6 +69,7 @@ const HANDLERS: { register(context: ServerContext): void }[] = [
   preview,
   scene,
   runEsmini,
+  newScenario,
 ];
 
 export function registerHandlers(context: ServerContext): void {

@@ -7,12 +7,13 @@ import { esminiTests } from './esmini.inside';
 import { screenshot } from './harnessClient';
 import { EXTENSION_ID, type InsideTests, waitFor } from './helpers';
 import { languageFeatureTests } from './languageFeatures.inside';
+import { newScenarioTests } from './newScenario.inside';
 import { packAndFlattenTests } from './packAndFlatten.inside';
 import { packageTests } from './packages.inside';
 import { previewTests } from './preview.inside';
 import { structureTests } from './structure.inside';
 
-const TESTS: InsideTests = { ...editingTests, ...packageTests, ...languageFeatureTests, ...previewTests, ...packAndFlattenTests, ...structureTests, ...esminiTests };
+const TESTS: InsideTests = { ...editingTests, ...packageTests, ...languageFeatureTests, ...previewTests, ...packAndFlattenTests, ...structureTests, ...esminiTests, ...newScenarioTests };
 
 /**
  * The order the tests run in, one VS Code and one workspace for all: a test sees what earlier ones left
@@ -45,6 +46,7 @@ const ORDER: InsideTestKey[] = [
   'structureFollows',
   'schemaCompletion',
   'schemaDeprecated',
+  'newScenario',
 ];
 
 /** The extension's tests inside VS Code, each feature's in its own file; the bird's-eye view's follow (birdsEye.inside.ts). */

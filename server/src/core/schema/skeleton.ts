@@ -94,3 +94,32 @@ export function skeletonText(skeleton: SkeletonElement, layout: SkeletonLayout, 
   };
   return write(skeleton, layout.eol ? layout.indent : '');
 }
+
+/**
+ * The skeleton with an optional child added (as its own skeleton) where the content model accepts it, for
+ * an element the schema does not require but a new file wants (ParameterDeclarations, a StopTrigger);
+ * unchanged when the child is there already or fits nowhere.
+ */
+export function withOptionalChild(index: SchemaIndex, element: SkeletonElement, childName: string): SkeletonElement {
+  if (element.children.some((child) => child.name === childName)) return element;
+  const particle = index.childParticle(element.type, childName, false);
+  if (!particle) return element;
+  const automaton = index.automaton(element.type);
+  const accepts = (names: string[]): boolean => {
+    let states = automaton.start;
+    for (const name of names) {
+      const next = automaton.step(states, name);
+      if (!next) return false;
+      states = next.states;
+    }
+    return automaton.accepts(states);
+  };
+  const names = element.children.map((child) => child.name);
+  for (let at = 0; at <= names.length; at++) {
+    if (!accepts([...names.slice(0, at), childName, ...names.slice(at)])) continue;
+    const children = [...element.children];
+    children.splice(at, 0, elementSkeleton(index, particle));
+    return { ...element, children };
+  }
+  return element;
+}

@@ -1,0 +1,142 @@
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import * as vscode from 'vscode';
+import type { CommandReporter } from './commands';
+import type { ServerCommandClient } from './languageClient';
+import { fileNameProblem, freeScenarioName } from './naming';
+
+/** What a caller (a test, a keybinding) may pass instead of being asked. */
+export interface NewScenarioOptions {
+  /** The road network's path. */
+  roadNetwork?: string;
+  /** The new file's name, in the folder. */
+  fileName?: string;
+}
+
+const TITLE = 'New Modular Scenario';
+const BROWSE = 'Browse…';
+/** Road files listed from each roadPath folder, and how deep it is searched: a picker, not an index. */
+const MAX_LISTED = 200;
+const ROAD_PATH_DEPTH = 3;
+
+function isNewScenarioOptions(value: unknown): value is NewScenarioOptions {
+  if (typeof value !== 'object' || value === null || value instanceof vscode.Uri || Array.isArray(value)) return false;
+  const candidate = value as Record<string, unknown>;
+  return typeof candidate.roadNetwork === 'string' || typeof candidate.fileName === 'string';
+}
+
+function isDirectory(filePath: string): boolean {
+  try {
+    return fs.statSync(filePath).isDirectory();
+  } catch {
+    return false;
+  }
+}
+
+/** The folder the command was run on: the explorer's folder (or a file's folder), else the workspace's first. */
+async function targetFolder(clicked: unknown): Promise<string | undefined> {
+  if (clicked instanceof vscode.Uri && clicked.scheme === 'file') return isDirectory(clicked.fsPath) ? clicked.fsPath : path.dirname(clicked.fsPath);
+  const folders = vscode.workspace.workspaceFolders?.filter((folder) => folder.uri.scheme === 'file') ?? [];
+  if (folders.length === 1) return folders[0].uri.fsPath;
+  const chosen = await vscode.window.showOpenDialog({ canSelectFolders: true, canSelectFiles: false, openLabel: 'Create the scenario here', title: `${TITLE}: the folder`, defaultUri: folders[0]?.uri });
+  return chosen?.[0]?.fsPath;
+}
+
+/** `.xodr` files below a folder, a few levels deep, at most `MAX_LISTED`. */
+function roadFilesBelow(folder: string, depth = ROAD_PATH_DEPTH, found: string[] = []): string[] {
+  let entries: fs.Dirent[];
+  try {
+    entries = fs.readdirSync(folder, { withFileTypes: true });
+  } catch {
+    return found;
+  }
+  for (const entry of entries) {
+    if (found.length >= MAX_LISTED) break;
+    const full = path.join(folder, entry.name);
+    if (entry.isFile() && entry.name.toLowerCase().endsWith('.xodr')) found.push(full);
+    else if (entry.isDirectory() && depth > 1 && !entry.name.startsWith('.')) roadFilesBelow(full, depth - 1, found);
+  }
+  return found;
+}
+
+/** The road networks to offer: those in the workspace, then those in the `modular2simple.esmini.roadPath` folders. */
+async function roadCandidates(folder: string): Promise<{ file: string; where: string }[]> {
+  const inWorkspace = (await vscode.workspace.findFiles('**/*.xodr', '**/node_modules/**', MAX_LISTED)).filter((uri) => uri.scheme === 'file').map((uri) => uri.fsPath);
+  const scope = vscode.Uri.file(folder);
+  const base = (vscode.workspace.getWorkspaceFolder(scope) ?? vscode.workspace.workspaceFolders?.[0])?.uri.fsPath ?? folder;
+  const roadPath = vscode.workspace.getConfiguration('modular2simple.esmini', scope).get<string[]>('roadPath') ?? [];
+  const seen = new Set<string>();
+  const candidates: { file: string; where: string }[] = [];
+  const add = (file: string, where: string) => {
+    if (seen.has(file)) return;
+    seen.add(file);
+    candidates.push({ file, where });
+  };
+  for (const file of inWorkspace.sort()) add(file, path.relative(folder, file).split(path.sep).join('/'));
+  for (const entry of roadPath) {
+    const directory = path.resolve(base, entry);
+    for (const file of roadFilesBelow(directory).sort()) add(file, `roadPath ${entry}`);
+  }
+  return candidates;
+}
+
+async function askRoadNetwork(folder: string): Promise<string | undefined> {
+  const candidates = await roadCandidates(folder);
+  const items: (vscode.QuickPickItem & { file?: string })[] = [
+    ...candidates.map((candidate) => ({ label: path.basename(candidate.file), description: candidate.where, file: candidate.file })),
+    { label: BROWSE, description: 'an OpenDRIVE file anywhere' },
+  ];
+  const picked = await vscode.window.showQuickPick(items, {
+    title: `${TITLE}: the road network`,
+    placeHolder: candidates.length > 0 ? 'The OpenDRIVE road network the scenario drives on' : 'No .xodr file in the workspace or in modular2simple.esmini.roadPath: browse for one',
+    matchOnDescription: true,
+  });
+  if (!picked) return undefined;
+  if (picked.file) return picked.file;
+  const browsed = await vscode.window.showOpenDialog({ canSelectFiles: true, canSelectMany: false, filters: { OpenDRIVE: ['xodr'] }, title: `${TITLE}: the road network`, defaultUri: vscode.Uri.file(folder) });
+  return browsed?.[0]?.fsPath;
+}
+
+async function askFileName(folder: string): Promise<string | undefined> {
+  const name = await vscode.window.showInputBox({
+    title: `${TITLE}: the file name`,
+    prompt: `The new main scenario, in ${folder}`,
+    value: freeScenarioName(folder),
+    valueSelection: [0, 'main'.length],
+    validateInput: (value) => fileNameProblem(folder, value),
+  });
+  return name?.trim();
+}
+
+/**
+ * *New Modular Scenario…*: asks for a road network and a file name, has the server write the main
+ * (an ego on the road, a Story/Act ready to import groups), writes it without overwriting anything and opens it.
+ */
+export async function newScenarioCommand(server: ServerCommandClient, reporter: CommandReporter, clicked: unknown, ...rest: unknown[]): Promise<vscode.Uri | undefined> {
+  const options = [clicked, ...rest].find(isNewScenarioOptions) ?? {};
+  try {
+    const folder = await targetFolder(clicked);
+    if (!folder) return undefined;
+    const roadNetwork = options.roadNetwork ?? (await askRoadNetwork(folder));
+    if (!roadNetwork) return undefined;
+    const fileName = options.fileName ?? (await askFileName(folder));
+    if (!fileName) return undefined;
+    const problem = fileNameProblem(folder, fileName);
+    if (problem) {
+      void vscode.window.showErrorMessage(`${TITLE}: ${problem}.`);
+      return undefined;
+    }
+    const target = path.join(folder, fileName);
+    const result = await server.newScenario(vscode.Uri.file(target), vscode.Uri.file(path.resolve(folder, roadNetwork)));
+    await fs.promises.mkdir(folder, { recursive: true });
+    // 'wx': never over a file that appeared since the name was checked.
+    await fs.promises.writeFile(target, result.text, { encoding: 'utf8', flag: 'wx' });
+    reporter.log(`${TITLE}: wrote ${target} (ego on road ${result.ego.roadId}, lane ${result.ego.laneId}, s ${result.ego.s} of ${result.roadFile})`);
+    const uri = vscode.Uri.file(target);
+    await vscode.window.showTextDocument(uri, { preview: false });
+    return uri;
+  } catch (error) {
+    await reporter.failure(TITLE, error);
+    return undefined;
+  }
+}
