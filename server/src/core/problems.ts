@@ -59,6 +59,10 @@ export const PROBLEM_CODE_LIST = [
   'unknown-storyboard-element',
   'ambiguous-reference',
   'undeclared-variable',
+  'undeclared-catalog-parameter',
+  'duplicate-name',
+  'duplicate-catalog-entry',
+  'value-constraint',
   'key-mixed-defaults',
   'parameter-conflict',
   'catalog-location-conflict',
@@ -141,6 +145,7 @@ export interface ProblemDataByCode {
   'unknown-group': UnknownGroupData;
   'unknown-parameter-attribute': SuggestionData;
   'undeclared-parameter': UndeclaredParameterData;
+  'undeclared-catalog-parameter': UndeclaredParameterData;
   'undeclared-entity': UndeclaredEntityData;
   'unknown-catalog-entry': SuggestionData;
   'unknown-assigned-parameter': SuggestionData;

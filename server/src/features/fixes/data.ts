@@ -46,6 +46,7 @@ const DATA_GUARDS: { [C in ProblemCodeWithData]: (value: unknown) => value is Pr
   'unknown-group': (value): value is ProblemDataByCode['unknown-group'] => isRecord(value) && isOptionalString(value.suggestion) && isStringList(value.groups),
   'unknown-parameter-attribute': isSuggestion,
   'undeclared-parameter': (value): value is ProblemDataByCode['undeclared-parameter'] => isRecord(value) && isString(value.parameter),
+  'undeclared-catalog-parameter': (value): value is ProblemDataByCode['undeclared-catalog-parameter'] => isRecord(value) && isString(value.parameter),
   'undeclared-entity': (value): value is ProblemDataByCode['undeclared-entity'] => isRecord(value) && isString(value.entity),
   'unknown-catalog-entry': isSuggestion,
   'unknown-assigned-parameter': isSuggestion,
