@@ -231,3 +231,12 @@ ${variableAction('<SetAction value="true"/>')}
     assert.deepEqual(await problemsOf(referencing(VARIABLES), files), []);
   });
 });
+
+describe('rules: a parameter value against the type that uses it', () => {
+  const head = '<ParameterDeclarations><ParameterDeclaration name="testDouble" parameterType="string" value="RRR1.1"/><ParameterDeclaration name="Speed" parameterType="double" value="1"/></ParameterDeclarations>';
+  it('a ParameterAction SetAction value that the parameter\'s type cannot take, at the value', async () => {
+    const set = (value: string) => scenario(event('E', `<GlobalAction><ParameterAction parameterRef="Speed"><SetAction value="${value}"/></ParameterAction></GlobalAction>`), head);
+    assert.deepEqual(await problemsOf(set('$testDouble')), ['type-mismatch:error:$testDouble']);
+    assert.deepEqual(await problemsOf(set('2.5')), []);
+  });
+});

@@ -5,6 +5,11 @@ import { at, relatedAt } from './support';
 /** Declarations have their own check (duplicateDeclarations) and the first one wins there. */
 const NAMES_CHECKED_ELSEWHERE: ReadonlySet<string> = new Set(['ParameterDeclaration', 'VariableDeclaration']);
 
+/** A modular file's group that imports groups: flattening names what it holds `OUTER.INNER`, so its own name may repeat (SPEC 2). */
+function holdsScenarioReference(element: XmlElement): boolean {
+  return element.children.some((child) => child.name === 'ScenarioReference');
+}
+
 /**
  * Element names are unique among the children of one element (ASAM QC
  * `reference_control.unique_element_names_on_same_level`): two Events of one Maneuver, two Acts of one
@@ -21,7 +26,7 @@ export const duplicateNames: SemanticCheck = (context) => {
     if (parent.children.length < 2) continue;
     const first = new Map<string, XmlElement>();
     for (const child of parent.children) {
-      if (NAMES_CHECKED_ELSEWHERE.has(child.name)) continue;
+      if (NAMES_CHECKED_ELSEWHERE.has(child.name) || holdsScenarioReference(child)) continue;
       const nameAttribute = attribute(child, 'name');
       const name = evaluator.textOf(child, nameAttribute);
       if (!nameAttribute || name === undefined || name === '') continue;

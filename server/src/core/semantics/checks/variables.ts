@@ -1,5 +1,5 @@
 import { attribute, XmlElement } from '../../xml';
-import type { Finding, SemanticCheck, SemanticContext } from '../checks';
+import type { Finding, SemanticCheck } from '../checks';
 import { convertValue } from '../expressions';
 import { Declaration, referencedName, resolveName, SemanticModel } from '../model';
 import { at } from './support';
@@ -45,20 +45,40 @@ function variableOf(model: SemanticModel, element: XmlElement, name: string): De
 
 const NUMERIC = new Set(['double', 'int', 'unsignedInt', 'unsignedShort']);
 
-/**
- * The values given to a variable fit its type: a `SetAction` value converts to it (`wrongBoolean` is
- * no boolean), a `ModifyAction` (add, multiply) only changes a number, a `VariableCondition` compares
- * with a value of the type.
- */
-export const variableValues: SemanticCheck = ({ model, evaluator }) => {
-  const findings: Finding[] = [];
+/** Where a value is given to a variable or parameter: its action or condition and what it names. */
+interface ValueTarget {
+  element: XmlElement;
+  declaration: Declaration;
+  name: string;
+}
+
+function valueTargets(model: SemanticModel): ValueTarget[] {
+  const targets: ValueTarget[] = [];
   for (const reference of model.variableReferences) {
     const name = referencedName(reference.attribute).name;
     const declaration = reference.declaration ?? variableOf(model, reference.element, name);
-    const type = declaration?.type;
-    if (!declaration || !type) continue;
+    if (declaration) targets.push({ element: reference.element, declaration, name });
+  }
+  for (const use of model.uses) {
+    if (use.via !== 'parameterRef' || !use.declaration || (use.element.name !== 'ParameterAction' && use.element.name !== 'ParameterCondition')) continue;
+    targets.push({ element: use.element, declaration: use.declaration, name: use.name });
+  }
+  return targets;
+}
+
+/**
+ * The values given to a variable (or, in the deprecated ParameterAction, a parameter) fit its type: a
+ * `SetAction` value converts to it (`wrongBoolean` is no boolean), a `ModifyAction` (add, multiply)
+ * only changes a number, a condition compares with a value of the type.
+ */
+export const variableValues: SemanticCheck = ({ model, evaluator }) => {
+  const findings: Finding[] = [];
+  for (const { element: target, declaration, name } of valueTargets(model)) {
+    const type = declaration.type;
+    if (!type) continue;
     const what = `${declaration.kind} '${name}' (${declaration.writtenType})`;
-    const valued: XmlElement[] = reference.element.name === 'VariableCondition' ? [reference.element] : reference.element.children.filter((child) => child.name === 'SetAction');
+    const condition = target.name === 'VariableCondition' || target.name === 'ParameterCondition';
+    const valued: XmlElement[] = condition ? [target] : target.children.filter((child) => child.name === 'SetAction');
     for (const element of valued) {
       const valueAttribute = attribute(element, 'value');
       const text = evaluator.textOf(element, valueAttribute);
@@ -72,14 +92,14 @@ export const variableValues: SemanticCheck = ({ model, evaluator }) => {
         message: `'${text}' is not a value of ${what}: ${converted.message}`,
       });
     }
-    const modify = reference.element.children.find((child) => child.name === 'ModifyAction');
+    const modify = target.children.find((child) => child.name === 'ModifyAction');
     if (modify && !NUMERIC.has(type)) {
       findings.push({
         ...at(modify, undefined),
         severity: 'error',
         code: 'type-mismatch',
         message: `a ModifyAction adds to or multiplies a number; ${what} is not a number`,
-        hint: 'set the variable with a SetAction',
+        hint: 'set it with a SetAction',
       });
     }
   }
@@ -90,7 +110,7 @@ export const variableValues: SemanticCheck = ({ model, evaluator }) => {
  * A variable a catalog entry uses that the entry's catalog cannot declare: every scenario that
  * references the entry declares it, or gets an error at its CatalogReference.
  */
-export function catalogVariableFindings(context: SemanticContext): Finding[] {
+export const catalogVariables: SemanticCheck = (context) => {
   const findings: Finding[] = [];
   if (context.model.catalog) return findings;
   for (const resolution of context.catalogs.references) {
@@ -115,6 +135,4 @@ export function catalogVariableFindings(context: SemanticContext): Finding[] {
     }
   }
   return findings;
-}
-
-export const catalogVariables: SemanticCheck = catalogVariableFindings;
+};
