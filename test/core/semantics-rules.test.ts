@@ -1,6 +1,7 @@
 import * as assert from 'node:assert/strict';
 import * as path from 'node:path';
 import { analyzeDocument, CatalogLoader, semanticProblems } from '../../server/src/core/semantics';
+import { SchemaCheckMemory, schemaProblems } from '../../server/src/core/schema/problems';
 import { diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { parseXml } from '../../server/src/core/xml';
 import { temporaryWorkspace } from '../support/workspace';
@@ -238,5 +239,38 @@ describe('rules: a parameter value against the type that uses it', () => {
     const set = (value: string) => scenario(event('E', `<GlobalAction><ParameterAction parameterRef="Speed"><SetAction value="${value}"/></ParameterAction></GlobalAction>`), head);
     assert.deepEqual(await problemsOf(set('$testDouble')), ['type-mismatch:error:$testDouble']);
     assert.deepEqual(await problemsOf(set('2.5')), []);
+  });
+});
+
+describe('rules: deprecated elements, attributes and values are warnings naming the replacement (both official checkers)', () => {
+  const deprecatedOf = (text: string) =>
+    schemaProblems(diskRef('/virtual/deprecated.xosc'), parseXml(text), new SchemaCheckMemory())
+      .filter((problem) => problem.code === 'schema-deprecated')
+      .map((problem) => `${problem.severity}: ${problem.message}`);
+  const weather = (attributes: string) =>
+    scenario(event('E', `<GlobalAction><EnvironmentAction><Environment name="env"><TimeOfDay animation="false" dateTime="2026-01-01T12:00:00"/><Weather ${attributes}/><RoadCondition frictionScaleFactor="1"/></Environment></EnvironmentAction></GlobalAction>`));
+
+  it('a deprecated attribute: a warning that names what to write instead', () => {
+    assert.deepEqual(deprecatedOf(weather('cloudState="free"')), ['warning: Weather.cloudState is deprecated since OpenSCENARIO 1.2; write fractionalCloudCover instead']);
+  });
+
+  it('a deprecated attribute written together with its replacement: a warning naming both', () => {
+    assert.deepEqual(deprecatedOf(weather('cloudState="free" fractionalCloudCover="zeroOktas"')), [
+      'warning: Weather.cloudState is deprecated since OpenSCENARIO 1.2 and written together with its replacement fractionalCloudCover: leave out cloudState',
+    ]);
+  });
+
+  it('a deprecated value and a deprecated element', () => {
+    const text = scenario(event('E')).replace('priority="override"', 'priority="overwrite"');
+    assert.deepEqual(deprecatedOf(text), ["warning: the value 'overwrite' of Event.priority is deprecated in OpenSCENARIO 1.2; write 'override'"]);
+    const parameterAction = scenario(event('E', '<GlobalAction><ParameterAction parameterRef="P"><SetAction value="1"/></ParameterAction></GlobalAction>'), '<ParameterDeclarations><ParameterDeclaration name="P" parameterType="int" value="0"/></ParameterDeclarations>');
+    assert.deepEqual(deprecatedOf(parameterAction), [
+      'warning: <ParameterAction> is deprecated since OpenSCENARIO 1.2; write <VariableAction> on a variable instead',
+      'warning: <SetAction> is deprecated since OpenSCENARIO 1.2; write the <SetAction> of a <VariableAction> instead',
+    ]);
+  });
+
+  it('nothing in the standard\'s current forms', () => {
+    assert.deepEqual(deprecatedOf(weather('fractionalCloudCover="zeroOktas"')), []);
   });
 });
