@@ -74,6 +74,15 @@ describe('rules: names unique on each level (ASAM QC reference_control.unique_el
     assert.deepEqual(await problemsOf(text), ['duplicate-name:error:$Other']);
   });
 
+  it('is a warning with simulator esmini, which runs both', async () => {
+    const text = scenario(`${event('Event1')}\n${event('Event1')}`);
+    const semantics = await analyzeDocument(diskRef('/virtual/names.xosc'), parseXml(text), new CatalogLoader(new ScenarioStore()), false, 'esmini');
+    assert.deepEqual(
+      semanticProblems(semantics).filter((problem) => problem.code === 'duplicate-name').map((problem) => problem.severity),
+      ['warning'],
+    );
+  });
+
   it('accepts the same name on different levels and in different parents', async () => {
     assert.deepEqual(await problemsOf(scenario(`${event('M')}\n${event('Event2')}`)), []);
   });

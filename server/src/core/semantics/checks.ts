@@ -57,7 +57,7 @@ export function catalogEntryOf(model: SemanticModel, element: XmlElement): XmlEl
  * parameter it uses (ASAM QC `parameters.valid_parameter_declaration_in_catalogs`): an error, although
  * esmini takes the name from the scenario that references the entry (catalogReferences checks it there).
  */
-export const undeclaredParameters: SemanticCheck = ({ model }) =>
+export const undeclaredParameters: SemanticCheck = ({ model, simulator }) =>
   model.uses
     .filter((use) => !use.declaration)
     .map((use) => {
@@ -67,7 +67,8 @@ export const undeclaredParameters: SemanticCheck = ({ model }) =>
         attribute: use.attribute,
         start: use.start,
         end: use.end,
-        severity: 'error',
+        // esmini takes the value from the referencing scenario, where catalogReferences checks it (SPEC 12: a warning with esmini).
+        severity: inEntry && simulator === 'esmini' ? 'warning' : 'error',
         code: inEntry ? 'undeclared-catalog-parameter' : 'undeclared-parameter',
         message: inEntry
           ? `parameter '${use.name}' is not declared in this catalog entry: the standard wants an entry to declare every parameter it uses (esmini takes an undeclared one from the scenario that references the entry)`

@@ -2,8 +2,11 @@ import { attribute, descendants, XmlElement } from '../../xml';
 import type { Finding, SemanticCheck } from '../checks';
 import { at, relatedAt } from './support';
 
-/** Declarations have their own check (duplicateDeclarations) and the first one wins there. */
-const NAMES_CHECKED_ELSEWHERE: ReadonlySet<string> = new Set(['ParameterDeclaration', 'VariableDeclaration']);
+/**
+ * Declarations have their own check (duplicateDeclarations) and the first one wins there; a Property is
+ * a key-value pair that nothing references by name (esmini's catalogs repeat `source_reference`).
+ */
+const NAMES_CHECKED_ELSEWHERE: ReadonlySet<string> = new Set(['ParameterDeclaration', 'VariableDeclaration', 'Property']);
 
 /** A modular file's group that imports groups: flattening names what it holds `OUTER.INNER`, so its own name may repeat (SPEC 2). */
 function holdsScenarioReference(element: XmlElement): boolean {
@@ -15,10 +18,12 @@ function holdsScenarioReference(element: XmlElement): boolean {
  * `reference_control.unique_element_names_on_same_level`): two Events of one Maneuver, two Acts of one
  * Story, two ScenarioObjects of the Entities. The entries of a catalog are unique too
  * (`uniquely_resolvable_entity_references`: a CatalogReference names exactly one). Names are compared
- * as they evaluate (`$Name` included); an error at the second and each later one.
+ * as they evaluate (`$Name` included); an error at the second and each later one. esmini runs each
+ * element and resolves a reference to the name to the first one: with simulator esmini a warning (SPEC 12).
  */
 export const duplicateNames: SemanticCheck = (context) => {
   const { model, evaluator } = context;
+  const esmini = context.simulator === 'esmini';
   const root = model.document.root;
   if (!root) return [];
   const findings: Finding[] = [];
@@ -40,11 +45,11 @@ export const duplicateNames: SemanticCheck = (context) => {
       const earlierName = attribute(earlier, 'name');
       findings.push({
         ...at(child, nameAttribute),
-        severity: 'error',
+        severity: esmini ? 'warning' : 'error',
         code: inCatalog ? 'duplicate-catalog-entry' : 'duplicate-name',
         message: inCatalog
           ? `catalog '${attribute(parent, 'name')?.value ?? ''}' has two entries named '${name}'${written}; a CatalogReference to '${name}' does not name one entry`
-          : `<${parent.name}> has two children named '${name}'${written} (<${earlier.name}> and <${child.name}>); names are unique on each level, so that a reference names one element`,
+          : `<${parent.name}> has two children named '${name}'${written} (<${earlier.name}> and <${child.name}>); the standard wants the names on each level unique, so that a reference names one element${esmini ? " (esmini runs both and resolves a reference to the name to the first)" : ''}`,
         hint: `rename one of them`,
         related: [relatedAt(context, earlierName?.valueStart ?? earlier.start, earlierName?.valueEnd ?? earlier.nameEnd, `the first '${name}'`)],
       });
