@@ -283,3 +283,12 @@ describe('rules: deprecated elements, attributes and values are warnings naming 
     assert.deepEqual(deprecatedOf(weather('fractionalCloudCover="zeroOktas"')), []);
   });
 });
+
+describe('rules: the constant pi', () => {
+  it('is named a constant from OpenSCENARIO 1.4 on in a 1.3 file', async () => {
+    const text = scenario(event('E'), '<ParameterDeclarations><ParameterDeclaration name="Half" parameterType="double" value="${pi / 2}"/></ParameterDeclarations>').replace('revMinor="2"', 'revMinor="3"');
+    const messages = await messagesOf(text, 'nonstandard-expression');
+    assert.equal(messages.length, 1);
+    assert.match(messages[0], /^'pi' is a constant from OpenSCENARIO 1\.4 on, not of 1\.3/);
+  });
+});
