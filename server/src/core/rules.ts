@@ -99,6 +99,17 @@ export function ruleIdOf(code: ProblemCode): string {
   return RULES[code].qcRule ?? `modular2simple:${code}`;
 }
 
+/** Where ASAM describes its Quality Checker rules: one section per checker, `check_asam_xosc_<group>_<rule>`. */
+const QC_CHECKER_DOC = 'https://github.com/asam-ev/qc-openscenarioxml/blob/main/checker_bundle_doc.md';
+
+/** The address of the description of a code's ASAM Quality Checker rule; undefined for the project's own rules. */
+export function ruleHelpUri(code: ProblemCode): string | undefined {
+  const uid = RULES[code].qcRule;
+  if (!uid) return undefined;
+  const rule = uid.slice(uid.lastIndexOf(':') + 1).replace('.', '_');
+  return `${QC_CHECKER_DOC}#check_asam_xosc_${rule}`;
+}
+
 /** The description of a rule id as `ruleIdOf` gives it. */
 export function ruleDescription(ruleId: string, code: ProblemCode): string {
   return Object.hasOwn(QC_RULE_DESCRIPTIONS, ruleId) ? QC_RULE_DESCRIPTIONS[ruleId as keyof typeof QC_RULE_DESCRIPTIONS] : RULES[code].description;

@@ -1,6 +1,7 @@
 import { Connection, Diagnostic, DiagnosticRelatedInformation, DiagnosticSeverity, DiagnosticTag } from 'vscode-languageserver/node';
 import { FlatSource, LinkedReference } from '../core/flatten';
 import { Problem, ZERO_RANGE } from '../core/problems';
+import { ruleHelpUri } from '../core/rules';
 import { Range } from '../core/text';
 import { resolvedTarget } from '../analysis';
 import { baseName, displayRef, refId, SourceRef } from '../core/sources';
@@ -33,6 +34,9 @@ export function toDiagnostic(problem: Problem, workspace: Workspace): Diagnostic
     message: problem.hint ? `${problem.message}\n${problem.hint}` : problem.message,
     data: diagnosticDataOf(problem),
   };
+  // The code stays the project's (quick fixes, clients and tests read it); the link names the ASAM Quality Checker rule.
+  const help = ruleHelpUri(problem.code);
+  if (help) diagnostic.codeDescription = { href: help };
   if (related.length > 0) diagnostic.relatedInformation = related;
   if (problem.code === 'xosc-fallback' || problem.code === 'schema-deprecated') diagnostic.tags = [DiagnosticTag.Deprecated];
   if (problem.code === 'unused-parameter') diagnostic.tags = [DiagnosticTag.Unnecessary];
