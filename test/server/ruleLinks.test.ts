@@ -52,3 +52,52 @@ describe('language server: diagnostics link their ASAM Quality Checker rule', fu
     assert.equal(undeclared?.codeDescription, undefined);
   });
 });
+
+const MANEUVER_CATALOG = `<?xml version="1.0"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="maneuvers" author="t"/>
+  <Catalog name="ManeuverCatalog">
+    <Maneuver name="Flip">
+      <Event name="E" priority="override"><Action name="A"><GlobalAction><VariableAction variableRef="Flag"><SetAction value="true"/></VariableAction></GlobalAction></Action></Event>
+    </Maneuver>
+  </Catalog>
+</OpenSCENARIO>
+`;
+
+function referencing(variables: string): string {
+  return SCENARIO.replace('<Entities>', `${variables}<CatalogLocations><ManeuverCatalog><Directory path="catalogs"/></ManeuverCatalog></CatalogLocations>\n  <Entities>`).replace(
+    /<Maneuver name="M">[\s\S]*<\/Maneuver>/,
+    '<CatalogReference catalogName="ManeuverCatalog" entryName="Flip"/>',
+  );
+}
+
+describe('language server: a variable of a catalog entry names the scenarios that reference the entry', function () {
+  this.timeout(60_000);
+  let client: TestClient;
+  let root: string;
+
+  before(async function () {
+    root = temporaryWorkspace({
+      'catalogs/ManeuverCatalog.xosc': MANEUVER_CATALOG,
+      'declares.xosc': referencing('<VariableDeclarations><VariableDeclaration name="Flag" variableType="boolean" value="false"/></VariableDeclarations>\n  '),
+      'lacks.xosc': referencing(''),
+    });
+    client = await TestClient.start({ root });
+  });
+
+  after(async function () {
+    await client?.stop();
+    if (root) fs.rmSync(root, { recursive: true, force: true });
+  });
+
+  it('notes in the catalog which referencing scenario declares it and which does not; the one that does not has an error', async () => {
+    const catalogUri = await client.openFile(path.join(root, 'catalogs', 'ManeuverCatalog.xosc'));
+    const [note] = (await client.diagnosticsOf(catalogUri, (list) => list.some((diagnostic) => diagnostic.code === 'undeclared-variable'))).filter((diagnostic) => diagnostic.code === 'undeclared-variable');
+    assert.equal(note.severity, 3, 'information');
+    const related = (note.relatedInformation ?? []).map((item) => `${path.basename(item.location.uri)}: ${item.message}`).sort();
+    assert.deepEqual(related, ["declares.xosc: declares variable 'Flag'", "lacks.xosc: does not declare variable 'Flag' (an error there)"]);
+    const lacksUri = await client.openFile(path.join(root, 'lacks.xosc'));
+    const errors = (await client.diagnosticsOf(lacksUri, (list) => list.some((diagnostic) => diagnostic.code === 'undeclared-variable'))).filter((diagnostic) => diagnostic.code === 'undeclared-variable');
+    assert.deepEqual(errors.map((diagnostic) => diagnostic.severity), [1]);
+  });
+});

@@ -117,6 +117,12 @@ export interface UndeclaredParameterData {
   parameter: string;
 }
 
+/** A variable a catalog entry uses: the scenarios that reference the entry declare it. */
+export interface UndeclaredVariableData {
+  variable: string;
+  entry?: string;
+}
+
 export interface UndeclaredEntityData {
   entity: string;
 }
@@ -147,6 +153,7 @@ export interface ProblemDataByCode {
   'undeclared-parameter': UndeclaredParameterData;
   'undeclared-catalog-parameter': UndeclaredParameterData;
   'undeclared-entity': UndeclaredEntityData;
+  'undeclared-variable': UndeclaredVariableData;
   'unknown-catalog-entry': SuggestionData;
   'unknown-assigned-parameter': SuggestionData;
   'unknown-storyboard-element': SuggestionData;

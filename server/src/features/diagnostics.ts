@@ -6,6 +6,7 @@ import { Range } from '../core/text';
 import { resolvedTarget } from '../analysis';
 import { baseName, displayRef, refId, SourceRef } from '../core/sources';
 import { Workspace } from '../workspace';
+import { addReferencingScenarios } from './catalogVariables';
 import { DiagnosticData, diagnosticDataOf } from './fixes/data';
 
 export const DIAGNOSTIC_SOURCE = 'modular2simple';
@@ -115,6 +116,7 @@ export async function diagnose(workspace: Workspace, ref: SourceRef): Promise<{ 
         message: `${baseName(member)} references ${baseName(members[index + 1])}`,
       }));
     }
+    if (problem.code === 'undeclared-variable') await addReferencingScenarios(workspace, ref, problem, diagnostic);
     diagnostics.push(diagnostic);
   }
   if (diagnostics.length > MAX_DIAGNOSTICS) {

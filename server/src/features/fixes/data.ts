@@ -48,6 +48,7 @@ const DATA_GUARDS: { [C in ProblemCodeWithData]: (value: unknown) => value is Pr
   'undeclared-parameter': (value): value is ProblemDataByCode['undeclared-parameter'] => isRecord(value) && isString(value.parameter),
   'undeclared-catalog-parameter': (value): value is ProblemDataByCode['undeclared-catalog-parameter'] => isRecord(value) && isString(value.parameter),
   'undeclared-entity': (value): value is ProblemDataByCode['undeclared-entity'] => isRecord(value) && isString(value.entity),
+  'undeclared-variable': (value): value is ProblemDataByCode['undeclared-variable'] => isRecord(value) && isString(value.variable) && isOptionalString(value.entry),
   'unknown-catalog-entry': isSuggestion,
   'unknown-assigned-parameter': isSuggestion,
   'unknown-storyboard-element': isSuggestion,

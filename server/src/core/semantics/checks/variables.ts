@@ -26,13 +26,15 @@ export const undeclaredVariables: SemanticCheck = ({ model }) => {
     const name = referencedName(reference.attribute).name;
     if (resolveName(model.scopeOf(reference.element), name, undefined)) continue;
     const entry = model.catalog ? entryOf(model, reference.element) : undefined;
+    const entryName = entry ? attribute(entry, 'name')?.value : undefined;
     findings.push({
       ...at(reference.element, reference.attribute),
       severity: entry ? 'information' : 'error',
       code: 'undeclared-variable',
       message: entry
-        ? `variable '${name}' is declared by the scenarios that reference catalog entry '${attribute(entry, 'name')?.value ?? ''}' (a catalog declares no variables); each of them must declare it, and one that does not gets an error at its CatalogReference`
+        ? `variable '${name}' is declared by the scenarios that reference catalog entry '${entryName ?? ''}' (a catalog declares no variables); each of them must declare it, and one that does not gets an error at its CatalogReference`
         : `variable '${reference.attribute.value}' is not declared in the VariableDeclarations of this file`,
+      data: entryName !== undefined ? { variable: name, entry: entryName } : { variable: name },
     });
   }
   return findings;
