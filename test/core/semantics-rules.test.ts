@@ -83,6 +83,15 @@ describe('rules: names unique on each level (ASAM QC reference_control.unique_el
     );
   });
 
+  it('finds two ManeuverGroups of one name where a condition names them, and leaves them alone otherwise (SPEC: a duplicate nothing refers to harms nobody)', async () => {
+    const group = (name: string) => `<ManeuverGroup name="${name}" maximumExecutionCount="1"><Actors selectTriggeringEntities="false"/></ManeuverGroup>`;
+    const twice = scenario(event('E')).replace('</Act>', `${group('Twin')}\n${group('Twin')}</Act>`);
+    assert.deepEqual(await problemsOf(twice), []);
+    const condition = '<StartTrigger><ConditionGroup><Condition name="C" delay="0" conditionEdge="none"><ByValueCondition><StoryboardElementStateCondition storyboardElementType="maneuverGroup" storyboardElementRef="Twin" state="endTransition"/></ByValueCondition></Condition></ConditionGroup></StartTrigger>';
+    const referenced = twice.replace('<Event name="E" priority="override"><Action name="EAction"><UserDefinedAction><CustomCommandAction type="t"/></UserDefinedAction></Action>', `<Event name="E" priority="override"><Action name="EAction"><UserDefinedAction><CustomCommandAction type="t"/></UserDefinedAction></Action>${condition}`);
+    assert.deepEqual(await problemsOf(referenced), ['duplicate-name:error:Twin']);
+  });
+
   it('accepts the same name on different levels and in different parents', async () => {
     assert.deepEqual(await problemsOf(scenario(`${event('M')}\n${event('Event2')}`)), []);
   });

@@ -97,18 +97,6 @@ export const ESMINI_ACCEPTS: Record<string, { problems: string[]; reason: string
     problems: ['262:duplicate-name'],
     reason: 'one Maneuver holds two Events named EgoSpeedEvent (ASAM QC reference_control.unique_element_names_on_same_level); esmini runs both',
   },
-  'esmini/car_walk.xosc': {
-    problems: [325, 364, 403, 442, 481, 520, 559, 598, 637, 676, 715].map((line) => `${line}:duplicate-name`),
-    reason: 'one Act holds twelve ManeuverGroups named maneuver_group (ASAM QC unique_element_names_on_same_level); esmini runs each',
-  },
-  'esmini/light_state.xosc': {
-    problems: ['523:duplicate-name'],
-    reason: 'one Act holds two ManeuverGroups named Car1LightStateActionManeuverGroup; esmini runs both',
-  },
-  'esmini/traffic_lights.xosc': {
-    problems: ['399:duplicate-name'],
-    reason: 'one Act holds two ManeuverGroups named WalkOnGreenManueverGroup; esmini runs both',
-  },
 };
 
 /** What the semantic checks report on the corpus: the genuinely wrong files' problems, what esmini accepts, and the esmini forms' warnings, by file. */

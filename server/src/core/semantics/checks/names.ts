@@ -14,6 +14,12 @@ function holdsScenarioReference(element: XmlElement): boolean {
 }
 
 /**
+ * ManeuverGroups of one name are common in plain scenarios, and SPEC's policy reports them only where a
+ * reference names them: a StoryboardElementStateCondition of this file here, a ScenarioReference of
+ * another file through `duplicate-group` (core/flatten/link.ts).
+ */
+
+/**
  * Element names are unique among the children of one element (ASAM QC
  * `reference_control.unique_element_names_on_same_level`): two Events of one Maneuver, two Acts of one
  * Story, two ScenarioObjects of the Entities. The entries of a catalog are unique too
@@ -27,6 +33,7 @@ export const duplicateNames: SemanticCheck = (context) => {
   const root = model.document.root;
   if (!root) return [];
   const findings: Finding[] = [];
+  const referenced = new Set(model.storyboardReferences.map((reference) => reference.refAttribute.value.split('::').pop()?.trim() ?? ''));
   for (const parent of [root, ...descendants(root)]) {
     if (parent.children.length < 2) continue;
     const first = new Map<string, XmlElement>();
@@ -40,6 +47,7 @@ export const duplicateNames: SemanticCheck = (context) => {
         first.set(name, child);
         continue;
       }
+      if (child.name === 'ManeuverGroup' && !referenced.has(name)) continue;
       const inCatalog = parent === model.catalog;
       const written = name !== nameAttribute.value ? ` (the value of ${nameAttribute.value})` : '';
       const earlierName = attribute(earlier, 'name');
