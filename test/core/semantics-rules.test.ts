@@ -288,6 +288,18 @@ describe('rules: deprecated elements, attributes and values are warnings naming 
     ]);
   });
 
+  it('carries the standard\'s form for the quick fix where only a name or a value changes', () => {
+    const suggestions = (text: string) =>
+      schemaProblems(diskRef('/virtual/deprecated.xosc'), parseXml(text), new SchemaCheckMemory())
+        .filter((problem) => problem.code === 'schema-deprecated')
+        .map((problem) => problem.data);
+    assert.deepEqual(suggestions(scenario(event('E')).replace('priority="override"', 'priority="overwrite"')), [{ suggestion: 'override' }]);
+    assert.deepEqual(suggestions(weather('cloudState="free"')), [undefined], 'cloudState and fractionalCloudCover take other values');
+    // Sun.intensity is deprecated from 1.3 on (illuminance).
+    const sun = weather('fractionalCloudCover="zeroOktas"').replace('<Weather fractionalCloudCover="zeroOktas"/>', '<Weather fractionalCloudCover="zeroOktas"><Sun azimuth="0" elevation="1" intensity="1000"/></Weather>').replace('revMinor="2"', 'revMinor="3"');
+    assert.deepEqual(suggestions(sun), [{ suggestion: 'illuminance' }]);
+  });
+
   it('nothing in the standard\'s current forms', () => {
     assert.deepEqual(deprecatedOf(weather('fractionalCloudCover="zeroOktas"')), []);
   });

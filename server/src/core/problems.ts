@@ -163,6 +163,7 @@ export interface ProblemDataByCode {
   'schema-unknown-element': SuggestionData;
   'schema-unknown-attribute': SuggestionData;
   'schema-value': SuggestionData;
+  'schema-deprecated': SuggestionData;
   'schema-version': SuggestionData;
   'schema-missing-attribute': MissingAttributesData;
   'schema-missing-element': MissingElementsData;

@@ -139,6 +139,7 @@ export function checkAttribute(index: SchemaIndex, chosen: ChosenVersion, elemen
       severity: 'warning',
       code: 'schema-deprecated',
       message: `the value '${attribute.value}' of ${element.name}.${attribute.name} is deprecated in OpenSCENARIO ${chosen.version}${instead ? `; write '${instead}'` : ''}`,
+      data: instead ? { suggestion: instead } : undefined,
     });
   }
   if (index.isAttributeDeprecated(declaration)) {
@@ -155,6 +156,7 @@ export function checkAttribute(index: SchemaIndex, chosen: ChosenVersion, elemen
         together.length > 0
           ? `${element.name}.${attribute.name} is deprecated${since} and written together with its replacement ${together.join(' and ')}: leave out ${attribute.name}`
           : `${element.name}.${attribute.name} is deprecated${since}${replacement ? `; write ${replacement.instead} instead` : ''}`,
+      data: replacement?.rename && together.length === 0 ? { suggestion: replacement.rename } : undefined,
     });
   }
 }

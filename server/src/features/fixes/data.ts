@@ -58,6 +58,7 @@ const DATA_GUARDS: { [C in ProblemCodeWithData]: (value: unknown) => value is Pr
   'schema-unknown-element': isSuggestion,
   'schema-unknown-attribute': isSuggestion,
   'schema-value': isSuggestion,
+  'schema-deprecated': isSuggestion,
   'schema-version': isSuggestion,
   'schema-missing-attribute': isMissingAttributes,
   'schema-missing-element': (value): value is ProblemDataByCode['schema-missing-element'] =>
