@@ -24,6 +24,10 @@ export const SEMANTIC_CODES = new Set<ProblemCode>([
   'unknown-storyboard-element',
   'undeclared-variable',
   'undeclared-entity',
+  'undeclared-catalog-parameter',
+  'duplicate-name',
+  'duplicate-catalog-entry',
+  'value-constraint',
 ]);
 
 /**
@@ -80,10 +84,25 @@ export const ESMINI_FORMS: Record<string, { problems: string[]; reason: string }
   },
 };
 
-/** What the semantic checks report on the corpus: the genuinely wrong files' problems and the esmini forms' warnings, by file. */
+/**
+ * Files of the corpus that break a rule of the standard (an error in its reading, as ASAM's Quality
+ * Checker reports it) where esmini runs them with one meaning: a warning with simulator esmini (SPEC 12).
+ */
+export const ESMINI_ACCEPTS: Record<string, { problems: string[]; reason: string }> = {
+  'esmini/Catalogs/Maneuvers/HWManeuvers.xosc': {
+    problems: ['84:undeclared-catalog-parameter'],
+    reason: 'a maneuver uses $AccRate without declaring it (ASAM QC parameters.valid_parameter_declaration_in_catalogs); esmini takes it from the referencing scenario',
+  },
+  'esmini/acc-test.xosc': {
+    problems: ['262:duplicate-name'],
+    reason: 'one Maneuver holds two Events named EgoSpeedEvent (ASAM QC reference_control.unique_element_names_on_same_level); esmini runs both',
+  },
+};
+
+/** What the semantic checks report on the corpus: the genuinely wrong files' problems, what esmini accepts, and the esmini forms' warnings, by file. */
 export function expectedCorpusFindings(): Record<string, string[]> {
   const expected: Record<string, string[]> = {};
-  for (const list of [GENUINELY_WRONG, ESMINI_FORMS]) for (const [file, entry] of Object.entries(list)) (expected[file] ??= []).push(...entry.problems);
+  for (const list of [GENUINELY_WRONG, ESMINI_ACCEPTS, ESMINI_FORMS]) for (const [file, entry] of Object.entries(list)) (expected[file] ??= []).push(...entry.problems);
   return expected;
 }
 

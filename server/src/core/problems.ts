@@ -59,6 +59,10 @@ export const PROBLEM_CODE_LIST = [
   'unknown-storyboard-element',
   'ambiguous-reference',
   'undeclared-variable',
+  'undeclared-catalog-parameter',
+  'duplicate-name',
+  'duplicate-catalog-entry',
+  'value-constraint',
   'key-mixed-defaults',
   'parameter-conflict',
   'catalog-location-conflict',
@@ -113,6 +117,12 @@ export interface UndeclaredParameterData {
   parameter: string;
 }
 
+/** A variable a catalog entry uses: the scenarios that reference the entry declare it. */
+export interface UndeclaredVariableData {
+  variable: string;
+  entry?: string;
+}
+
 export interface UndeclaredEntityData {
   entity: string;
 }
@@ -141,7 +151,9 @@ export interface ProblemDataByCode {
   'unknown-group': UnknownGroupData;
   'unknown-parameter-attribute': SuggestionData;
   'undeclared-parameter': UndeclaredParameterData;
+  'undeclared-catalog-parameter': UndeclaredParameterData;
   'undeclared-entity': UndeclaredEntityData;
+  'undeclared-variable': UndeclaredVariableData;
   'unknown-catalog-entry': SuggestionData;
   'unknown-assigned-parameter': SuggestionData;
   'unknown-storyboard-element': SuggestionData;
@@ -151,6 +163,7 @@ export interface ProblemDataByCode {
   'schema-unknown-element': SuggestionData;
   'schema-unknown-attribute': SuggestionData;
   'schema-value': SuggestionData;
+  'schema-deprecated': SuggestionData;
   'schema-version': SuggestionData;
   'schema-missing-attribute': MissingAttributesData;
   'schema-missing-element': MissingElementsData;

@@ -18,6 +18,8 @@ const QC = {
   uniqueEntityReferences: 'asam.net:xosc:1.2.0:reference_control.uniquely_resolvable_entity_references',
   variableReference: 'asam.net:xosc:1.2.0:reference_control.resolvable_variable_reference',
   storyboardReference: 'asam.net:xosc:1.2.0:reference_control.resolvable_storyboard_element_reference',
+  uniqueNames: 'asam.net:xosc:1.2.0:reference_control.unique_element_names_on_same_level',
+  catalogParameters: 'asam.net:xosc:1.2.0:parameters.valid_parameter_declaration_in_catalogs',
 } as const;
 
 /** What each ASAM Quality Checker rule requires, in our words (one rule may stand for several codes). */
@@ -28,6 +30,8 @@ export const QC_RULE_DESCRIPTIONS: Record<(typeof QC)[keyof typeof QC], string> 
   [QC.uniqueEntityReferences]: 'Every entity reference resolves to exactly one element.',
   [QC.variableReference]: 'Every variable reference resolves to a declared variable.',
   [QC.storyboardReference]: 'Every storyboard element reference resolves to a storyboard element.',
+  [QC.uniqueNames]: 'The names of the elements on one level (the children of one element) are unique.',
+  [QC.catalogParameters]: 'A catalog entry declares every parameter it uses.',
 };
 
 /** Every code has an entry: a new code does not compile until it says what rule it is. */
@@ -57,7 +61,7 @@ export const RULES: Record<ProblemCode, Rule> = {
   'schema-order': { description: 'Child elements stand in the order the ASAM schema gives.', qcRule: QC.validSchema },
   'schema-cardinality': { description: 'Child elements occur as often as the ASAM schema allows.', qcRule: QC.validSchema },
   'schema-value': { description: "An attribute's value fits its ASAM schema type.", qcRule: QC.validSchema },
-  'schema-deprecated': { description: 'No deprecated element, attribute or value is used.' },
+  'schema-deprecated': { description: 'No deprecated element, attribute or value is used (a warning, as in both official checkers); the replacement is named.' },
   'schema-version': { description: "The FileHeader names an OpenSCENARIO version the project knows." },
   'too-large': { description: 'A file or a flattened result stays within the size bounds.' },
   'too-deep': { description: 'A chain of references stays within the depth bound.' },
@@ -74,7 +78,11 @@ export const RULES: Record<ProblemCode, Rule> = {
   'unknown-assigned-parameter': { description: 'A ParameterAssignment names a parameter the catalog entry declares.' },
   'unknown-storyboard-element': { description: 'A storyboardElementRef names a storyboard element.', qcRule: QC.storyboardReference },
   'ambiguous-reference': { description: 'A reference resolves to exactly one element.', qcRule: QC.uniqueEntityReferences },
-  'undeclared-variable': { description: 'A variableRef names a declared variable.', qcRule: QC.variableReference },
+  'undeclared-variable': { description: 'A variableRef names a declared variable (or a parameter, as ASAM QC accepts); a variable of a catalog entry is declared by each scenario that references the entry.', qcRule: QC.variableReference },
+  'undeclared-catalog-parameter': { description: 'A catalog entry declares every parameter it uses.', qcRule: QC.catalogParameters },
+  'duplicate-name': { description: 'The children of one element have unique names (Events of a Maneuver, Acts of a Story, entities, ...).', qcRule: QC.uniqueNames },
+  'duplicate-catalog-entry': { description: 'The entries of a catalog have unique names, so that a CatalogReference names exactly one.', qcRule: QC.uniqueEntityReferences },
+  'value-constraint': { description: "A parameter's value satisfies one of its declaration's ConstraintGroups (all the ValueConstraints of the group)." },
   'key-mixed-defaults': { description: 'The attributes one key sets share one default.' },
   'parameter-conflict': { description: "A carried declaration agrees with the main file's declaration of the same name (SPEC 11)." },
   'catalog-location-conflict': { description: "A carried catalog location agrees with the main file's (SPEC 11)." },
@@ -89,6 +97,17 @@ export const RULES: Record<ProblemCode, Rule> = {
 /** The id a report gives a problem's rule: the ASAM Quality Checker uid where one exists, the project's code otherwise. */
 export function ruleIdOf(code: ProblemCode): string {
   return RULES[code].qcRule ?? `modular2simple:${code}`;
+}
+
+/** Where ASAM describes its Quality Checker rules: one section per checker, `check_asam_xosc_<group>_<rule>`. */
+const QC_CHECKER_DOC = 'https://github.com/asam-ev/qc-openscenarioxml/blob/main/checker_bundle_doc.md';
+
+/** The address of the description of a code's ASAM Quality Checker rule; undefined for the project's own rules. */
+export function ruleHelpUri(code: ProblemCode): string | undefined {
+  const uid = RULES[code].qcRule;
+  if (!uid) return undefined;
+  const rule = uid.slice(uid.lastIndexOf(':') + 1).replace('.', '_');
+  return `${QC_CHECKER_DOC}#check_asam_xosc_${rule}`;
 }
 
 /** The description of a rule id as `ruleIdOf` gives it. */

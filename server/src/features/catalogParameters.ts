@@ -43,7 +43,7 @@ export async function entryParameterOf(workspace: Workspace, semantics: Document
 }
 
 /** The scenario files of the workspace (every `.xosc` entry of a package too) and the open documents. */
-async function scenarioRefs(workspace: Workspace): Promise<SourceRef[]> {
+export async function scenarioRefs(workspace: Workspace): Promise<SourceRef[]> {
   const refs = new Map<string, SourceRef>();
   for (const entry of await workspace.indexedFiles()) {
     if (entry.kind === 'xosc') {

@@ -1,10 +1,12 @@
 import { Connection, Diagnostic, DiagnosticRelatedInformation, DiagnosticSeverity, DiagnosticTag } from 'vscode-languageserver/node';
 import { FlatSource, LinkedReference } from '../core/flatten';
 import { Problem, ZERO_RANGE } from '../core/problems';
+import { ruleHelpUri } from '../core/rules';
 import { Range } from '../core/text';
 import { resolvedTarget } from '../analysis';
 import { baseName, displayRef, refId, SourceRef } from '../core/sources';
 import { Workspace } from '../workspace';
+import { addReferencingScenarios } from './catalogVariables';
 import { DiagnosticData, diagnosticDataOf } from './fixes/data';
 
 export const DIAGNOSTIC_SOURCE = 'modular2simple';
@@ -33,6 +35,9 @@ export function toDiagnostic(problem: Problem, workspace: Workspace): Diagnostic
     message: problem.hint ? `${problem.message}\n${problem.hint}` : problem.message,
     data: diagnosticDataOf(problem),
   };
+  // The code stays the project's (quick fixes, clients and tests read it); the link names the ASAM Quality Checker rule.
+  const help = ruleHelpUri(problem.code);
+  if (help) diagnostic.codeDescription = { href: help };
   if (related.length > 0) diagnostic.relatedInformation = related;
   if (problem.code === 'xosc-fallback' || problem.code === 'schema-deprecated') diagnostic.tags = [DiagnosticTag.Deprecated];
   if (problem.code === 'unused-parameter') diagnostic.tags = [DiagnosticTag.Unnecessary];
@@ -111,6 +116,7 @@ export async function diagnose(workspace: Workspace, ref: SourceRef): Promise<{ 
         message: `${baseName(member)} references ${baseName(members[index + 1])}`,
       }));
     }
+    if (problem.code === 'undeclared-variable') await addReferencingScenarios(workspace, ref, problem, diagnostic);
     diagnostics.push(diagnostic);
   }
   if (diagnostics.length > MAX_DIAGNOSTICS) {

@@ -2,6 +2,7 @@ import { ProblemCode, SCHEMA_PROBLEM_CODE_LIST, SchemaFindingData, SchemaProblem
 import { closestMatch } from '../text';
 import { XmlAttribute, XmlDocument, XmlElement } from '../xml';
 import { StateSet } from './automaton';
+import { replacementOf, valueReplacementOf } from './deprecations';
 import { SchemaIndex, schemaIndex, versionsWith } from './index';
 import { ElementParticle } from './model';
 import { MODULAR_ATTRIBUTE, MODULAR_PLACEMENT, MODULAR_TYPES } from './modular';
@@ -130,16 +131,32 @@ export function checkAttribute(index: SchemaIndex, chosen: ChosenVersion, elemen
       data: suggestion ? { suggestion } : undefined,
     });
   } else if (check.deprecated) {
-    report({ element, attribute, part: 'value', severity: 'information', code: 'schema-deprecated', message: `the value '${attribute.value}' of ${element.name}.${attribute.name} is deprecated in OpenSCENARIO ${chosen.version}` });
+    const instead = valueReplacementOf(attribute.value.trim());
+    report({
+      element,
+      attribute,
+      part: 'value',
+      severity: 'warning',
+      code: 'schema-deprecated',
+      message: `the value '${attribute.value}' of ${element.name}.${attribute.name} is deprecated in OpenSCENARIO ${chosen.version}${instead ? `; write '${instead}'` : ''}`,
+      data: instead ? { suggestion: instead } : undefined,
+    });
   }
   if (index.isAttributeDeprecated(declaration)) {
+    const replacement = replacementOf(typeName, attribute.name);
+    const together = replacement?.attributes?.filter((name) => element.attributes.some((other) => other.name === name)) ?? [];
+    const since = declaration.deprecatedSince ? ` since OpenSCENARIO ${declaration.deprecatedSince}` : '';
     report({
       element,
       attribute,
       part: 'attribute',
-      severity: 'information',
+      severity: 'warning',
       code: 'schema-deprecated',
-      message: `${element.name}.${attribute.name} is deprecated${declaration.deprecatedSince ? ` since OpenSCENARIO ${declaration.deprecatedSince}` : ''}`,
+      message:
+        together.length > 0
+          ? `${element.name}.${attribute.name} is deprecated${since} and written together with its replacement ${together.join(' and ')}: leave out ${attribute.name}`
+          : `${element.name}.${attribute.name} is deprecated${since}${replacement ? `; write ${replacement.instead} instead` : ''}`,
+      data: replacement?.rename && together.length === 0 ? { suggestion: replacement.rename } : undefined,
     });
   }
 }
@@ -162,6 +179,11 @@ function checkAttributes(index: SchemaIndex, chosen: ChosenVersion, element: Xml
       data: { missing },
     });
   }
+}
+
+function deprecatedInstead(typeName: string, name: string): string {
+  const replacement = replacementOf(typeName, name);
+  return replacement ? `; write ${replacement.instead} instead` : '';
 }
 
 /** Checks the children of an element against its content model; returns the children to descend into. */
@@ -203,9 +225,9 @@ function checkChildren(
       report({
         element: child,
         part: 'tag',
-        severity: 'information',
+        severity: 'warning',
         code: 'schema-deprecated',
-        message: `<${child.name}> is deprecated${particle.deprecatedSince ? ` since OpenSCENARIO ${particle.deprecatedSince}` : ` in OpenSCENARIO ${chosen.version}`}`,
+        message: `<${child.name}> is deprecated${particle.deprecatedSince ? ` since OpenSCENARIO ${particle.deprecatedSince}` : ` in OpenSCENARIO ${chosen.version}`}${deprecatedInstead(typeName, child.name)}`,
       });
     }
   }

@@ -1,4 +1,4 @@
-import { Problem, ProblemCode, RelatedProblemLocation } from '../problems';
+import { Problem, ProblemCode } from '../problems';
 import { simulatorFindings } from '../profiles/checks';
 import { Simulator } from '../profiles/simulators';
 import { baseName, SourceRef } from '../sources';
@@ -7,6 +7,10 @@ import { attribute, descendants, XmlAttribute, XmlElement } from '../xml';
 import { CatalogResolution } from './catalogs';
 import { esminiRule } from './esminiValues';
 import { ExpressionError } from './expressions';
+import { valueConstraints } from './checks/constraints';
+import { duplicateNames } from './checks/names';
+import { at, relatedAt } from './checks/support';
+import { catalogVariables, undeclaredVariables, variableValues } from './checks/variables';
 import { Declaration, Evaluator, referencedName, resolveName, SemanticModel, STORYBOARD_ELEMENT_NAMES, STORYBOARD_ELEMENT_TYPES } from './model';
 
 /**
@@ -40,14 +44,6 @@ export interface Finding extends Omit<Problem, 'source' | 'range'> {
 
 export type SemanticCheck = (context: SemanticContext) => Finding[];
 
-function at(element: XmlElement, attr: XmlAttribute | undefined): Pick<Finding, 'element' | 'attribute' | 'start' | 'end'> {
-  return attr ? { element, attribute: attr, start: attr.valueStart, end: attr.valueEnd } : { element, attribute: undefined, start: element.start, end: element.nameEnd };
-}
-
-function relatedAt(context: SemanticContext, start: number, end: number, message: string): RelatedProblemLocation {
-  return { source: context.ref, range: context.model.document.lines.range(start, end), message };
-}
-
 /** The entry of a catalog file that holds an element (the child of its `Catalog`). */
 export function catalogEntryOf(model: SemanticModel, element: XmlElement): XmlElement | undefined {
   for (let current: XmlElement | undefined = element; current; current = current.parent) {
@@ -57,11 +53,11 @@ export function catalogEntryOf(model: SemanticModel, element: XmlElement): XmlEl
 }
 
 /**
- * Every `$name` and `parameterRef` resolves to a declaration in scope. In a catalog entry an
- * undeclared name is only a note: esmini takes it from the scenario that references the entry, and
- * catalogReferences checks it there.
+ * Every `$name` and `parameterRef` resolves to a declaration in scope. A catalog entry declares every
+ * parameter it uses (ASAM QC `parameters.valid_parameter_declaration_in_catalogs`): an error, although
+ * esmini takes the name from the scenario that references the entry (catalogReferences checks it there).
  */
-export const undeclaredParameters: SemanticCheck = ({ model }) =>
+export const undeclaredParameters: SemanticCheck = ({ model, simulator }) =>
   model.uses
     .filter((use) => !use.declaration)
     .map((use) => {
@@ -71,10 +67,11 @@ export const undeclaredParameters: SemanticCheck = ({ model }) =>
         attribute: use.attribute,
         start: use.start,
         end: use.end,
-        severity: inEntry ? 'information' : 'error',
-        code: 'undeclared-parameter',
+        // esmini takes the value from the referencing scenario, where catalogReferences checks it (SPEC 12: a warning with esmini).
+        severity: inEntry && simulator === 'esmini' ? 'warning' : 'error',
+        code: inEntry ? 'undeclared-catalog-parameter' : 'undeclared-parameter',
         message: inEntry
-          ? `parameter '${use.name}' is not declared in this catalog entry; it must be declared by every scenario that references the entry (esmini takes it from there; the standard expects the entry to declare it)`
+          ? `parameter '${use.name}' is not declared in this catalog entry: the standard wants an entry to declare every parameter it uses (esmini takes an undeclared one from the scenario that references the entry)`
           : `parameter '${use.name}' is not declared in this scope`,
         hint: `declare <ParameterDeclaration name="${use.name}" parameterType="..." value="..."/> in the ParameterDeclarations of ${inEntry ? 'the entry' : 'the file or of an enclosing element'}`,
         data: { parameter: use.name },
@@ -412,17 +409,6 @@ export const flattenedStoryboardReferences: SemanticCheck = (context) => {
   return findings;
 };
 
-/** Every `variableRef` names a declared variable (1.2 and later). */
-export const undeclaredVariables: SemanticCheck = ({ model }) =>
-  model.variableReferences
-    .filter((reference) => !reference.declaration)
-    .map((reference) => ({
-      ...at(reference.element, reference.attribute),
-      severity: 'error',
-      code: 'undeclared-variable',
-      message: `variable '${reference.attribute.value}' is not declared in the VariableDeclarations of this file`,
-    }));
-
 /** What the chosen simulator does not run, from facts read in its own sources (core/profiles/). */
 export const simulatorProfile: SemanticCheck = ({ ref, model, simulator }) =>
   simulatorFindings(simulator ?? 'asam', model.document, baseName(ref)).map((finding) => ({
@@ -443,6 +429,10 @@ export const SEMANTIC_CHECKS: readonly { name: string; check: SemanticCheck }[] 
   { name: 'undeclared entity', check: undeclaredEntities },
   { name: 'storyboard references', check: storyboardReferences },
   { name: 'undeclared variable', check: undeclaredVariables },
+  { name: 'variable values', check: variableValues },
+  { name: 'variables of catalog entries', check: catalogVariables },
+  { name: 'names unique on each level', check: duplicateNames },
+  { name: 'value constraints', check: valueConstraints },
   { name: 'simulator profile', check: simulatorProfile },
 ];
 
@@ -456,6 +446,8 @@ export const OUTPUT_CHECKS: readonly { name: string; check: SemanticCheck }[] = 
   // What the simulator gets is the output: a value set through a ParameterReference is checked here.
   { name: 'simulator profile', check: simulatorProfile },
 ];
+
+export { undeclaredVariables };
 
 export function runChecks(context: SemanticContext, checks: readonly { check: SemanticCheck }[] = SEMANTIC_CHECKS): Finding[] {
   return checks.flatMap((entry) => entry.check(context));

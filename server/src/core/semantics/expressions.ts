@@ -417,6 +417,12 @@ export function roundHalfAwayFromZero(value: number): number {
  * target's type afterwards, see convertValue); `and`, `or` and `not` take booleans.
  * Non-standard constants are reported through `warnings` and still evaluated.
  */
+/** Why a constant is not standard here: `pi` came with OpenSCENARIO 1.4, after every version the project reads (1.0-1.3). */
+const CONSTANT_MESSAGES: Record<'pi' | 'e', string> = {
+  pi: "'pi' is a constant from OpenSCENARIO 1.4 on, not of 1.3 and the versions before it (esmini knows it); a simulator of an earlier version rejects it",
+  e: "'e' is an esmini constant, not part of the OpenSCENARIO standard; other simulators reject it",
+};
+
 export function evaluateTree(tree: ExpressionNode, lookup: ParameterLookup, warnings: ExpressionError[] = []): Evaluation {
   const mismatch = (node: ExpressionNode, message: string): never => {
     throw new EvaluationFailure({ kind: 'type-mismatch', message, start: node.start, end: node.end });
@@ -462,7 +468,7 @@ export function evaluateTree(tree: ExpressionNode, lookup: ParameterLookup, warn
       case 'boolean':
         return { value: node.value, type: 'boolean' };
       case 'constant':
-        warnings.push({ kind: 'nonstandard', message: `'${node.name}' is an esmini constant, not part of the OpenSCENARIO standard; other simulators reject it`, start: node.start, end: node.end });
+        warnings.push({ kind: 'nonstandard', message: CONSTANT_MESSAGES[node.name], start: node.start, end: node.end });
         return number(node.name === 'pi' ? Math.PI : Math.E);
       case 'name': {
         const found = lookup(node.name, node.start, node.end);

@@ -46,7 +46,9 @@ const DATA_GUARDS: { [C in ProblemCodeWithData]: (value: unknown) => value is Pr
   'unknown-group': (value): value is ProblemDataByCode['unknown-group'] => isRecord(value) && isOptionalString(value.suggestion) && isStringList(value.groups),
   'unknown-parameter-attribute': isSuggestion,
   'undeclared-parameter': (value): value is ProblemDataByCode['undeclared-parameter'] => isRecord(value) && isString(value.parameter),
+  'undeclared-catalog-parameter': (value): value is ProblemDataByCode['undeclared-catalog-parameter'] => isRecord(value) && isString(value.parameter),
   'undeclared-entity': (value): value is ProblemDataByCode['undeclared-entity'] => isRecord(value) && isString(value.entity),
+  'undeclared-variable': (value): value is ProblemDataByCode['undeclared-variable'] => isRecord(value) && isString(value.variable) && isOptionalString(value.entry),
   'unknown-catalog-entry': isSuggestion,
   'unknown-assigned-parameter': isSuggestion,
   'unknown-storyboard-element': isSuggestion,
@@ -56,6 +58,7 @@ const DATA_GUARDS: { [C in ProblemCodeWithData]: (value: unknown) => value is Pr
   'schema-unknown-element': isSuggestion,
   'schema-unknown-attribute': isSuggestion,
   'schema-value': isSuggestion,
+  'schema-deprecated': isSuggestion,
   'schema-version': isSuggestion,
   'schema-missing-attribute': isMissingAttributes,
   'schema-missing-element': (value): value is ProblemDataByCode['schema-missing-element'] =>

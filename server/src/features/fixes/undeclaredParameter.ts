@@ -74,7 +74,7 @@ function declareParameterFix(uri: string, document: TextDocument, source: FlatSo
   return { title, kind: CodeActionKind.QuickFix, diagnostics: [diagnostic], isPreferred: true, edit: { changes: { [uri]: [edit] } } };
 }
 
-export const undeclaredParameterFix = problemFix(['undeclared-parameter'], async (data, { uri, ref, document, diagnostic }, workspace) => {
+export const undeclaredParameterFix = problemFix(['undeclared-parameter', 'undeclared-catalog-parameter'], async (data, { uri, ref, document, diagnostic }, workspace) => {
   const source = await workspace.source(ref);
   const fix = data?.parameter && source.semantics ? declareParameterFix(uri, document, source, source.semantics, diagnostic, data.parameter, workspace.folders[0]) : undefined;
   return fix ? [fix] : [];

@@ -1,0 +1,67 @@
+import { attribute, descendants, XmlElement } from '../../xml';
+import type { Finding, SemanticCheck } from '../checks';
+import { at, relatedAt } from './support';
+
+/**
+ * Declarations have their own check (duplicateDeclarations) and the first one wins there; a Property is
+ * a key-value pair that nothing references by name (esmini's catalogs repeat `source_reference`).
+ */
+const NAMES_CHECKED_ELSEWHERE: ReadonlySet<string> = new Set(['ParameterDeclaration', 'VariableDeclaration', 'Property']);
+
+/** A modular file's group that imports groups: flattening names what it holds `OUTER.INNER`, so its own name may repeat (SPEC 2). */
+function holdsScenarioReference(element: XmlElement): boolean {
+  return element.children.some((child) => child.name === 'ScenarioReference');
+}
+
+/**
+ * ManeuverGroups of one name are common in plain scenarios, and SPEC's policy reports them only where a
+ * reference names them: a StoryboardElementStateCondition of this file here, a ScenarioReference of
+ * another file through `duplicate-group` (core/flatten/link.ts).
+ */
+
+/**
+ * Element names are unique among the children of one element (ASAM QC
+ * `reference_control.unique_element_names_on_same_level`): two Events of one Maneuver, two Acts of one
+ * Story, two ScenarioObjects of the Entities. The entries of a catalog are unique too
+ * (`uniquely_resolvable_entity_references`: a CatalogReference names exactly one). Names are compared
+ * as they evaluate (`$Name` included); an error at the second and each later one. esmini runs each
+ * element and resolves a reference to the name to the first one: with simulator esmini a warning (SPEC 12).
+ */
+export const duplicateNames: SemanticCheck = (context) => {
+  const { model, evaluator } = context;
+  const esmini = context.simulator === 'esmini';
+  const root = model.document.root;
+  if (!root) return [];
+  const findings: Finding[] = [];
+  const referenced = new Set(model.storyboardReferences.map((reference) => reference.refAttribute.value.split('::').pop()?.trim() ?? ''));
+  for (const parent of [root, ...descendants(root)]) {
+    if (parent.children.length < 2) continue;
+    const first = new Map<string, XmlElement>();
+    for (const child of parent.children) {
+      if (NAMES_CHECKED_ELSEWHERE.has(child.name) || holdsScenarioReference(child)) continue;
+      const nameAttribute = attribute(child, 'name');
+      const name = evaluator.textOf(child, nameAttribute);
+      if (!nameAttribute || name === undefined || name === '') continue;
+      const earlier = first.get(name);
+      if (!earlier) {
+        first.set(name, child);
+        continue;
+      }
+      if (child.name === 'ManeuverGroup' && !referenced.has(name)) continue;
+      const inCatalog = parent === model.catalog;
+      const written = name !== nameAttribute.value ? ` (the value of ${nameAttribute.value})` : '';
+      const earlierName = attribute(earlier, 'name');
+      findings.push({
+        ...at(child, nameAttribute),
+        severity: esmini ? 'warning' : 'error',
+        code: inCatalog ? 'duplicate-catalog-entry' : 'duplicate-name',
+        message: inCatalog
+          ? `catalog '${attribute(parent, 'name')?.value ?? ''}' has two entries named '${name}'${written}; a CatalogReference to '${name}' does not name one entry`
+          : `<${parent.name}> has two children named '${name}'${written} (<${earlier.name}> and <${child.name}>); the standard wants the names on each level unique, so that a reference names one element${esmini ? " (esmini runs both and resolves a reference to the name to the first)" : ''}`,
+        hint: `rename one of them`,
+        related: [relatedAt(context, earlierName?.valueStart ?? earlier.start, earlierName?.valueEnd ?? earlier.nameEnd, `the first '${name}'`)],
+      });
+    }
+  }
+  return findings;
+};
