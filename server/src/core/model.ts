@@ -116,12 +116,19 @@ export function buildModel(document: XmlDocument): ScenarioModel {
         if (STRUCTURE_ELEMENTS.has(element.name)) structure.push(element);
     }
   };
-  const all = [document.root, ...descendants(document.root)];
-  for (const element of all) visit(element);
+  // One walk in document order with an explicit stack; no list of every element is made.
+  const scenarioReferences: XmlElement[] = [];
+  const stack: XmlElement[] = [document.root];
+  while (stack.length > 0) {
+    const element = stack.pop() as XmlElement;
+    visit(element);
+    if (element.name === 'ScenarioReference') scenarioReferences.push(element);
+    for (let i = element.children.length - 1; i >= 0; i--) stack.push(element.children[i]);
+  }
   // References found outside any group still count, so that the editor can flag them.
-  const known = new Set(references.map((reference) => reference.element));
-  for (const element of all) {
-    if (element.name === 'ScenarioReference' && !known.has(element)) references.push(readReference(element, undefined));
+  if (scenarioReferences.length > references.length) {
+    const known = new Set(references.map((reference) => reference.element));
+    for (const element of scenarioReferences) if (!known.has(element)) references.push(readReference(element, undefined));
   }
   references.sort((a, b) => a.element.start - b.element.start);
   return { document, groups, references, entities, declarations, structure };
