@@ -4,7 +4,8 @@ import * as path from 'node:path';
 import fc from 'fast-check';
 import { buildSemanticModel, Declaration, Scope, SemanticModel, semanticModelOf } from '../../server/src/core/semantics';
 import { parseXml, reparseXml, valueEditOf, XmlAttribute, XmlDocument, XmlElement } from '../../server/src/core/xml';
-import { sharedDir } from '../support/paths';
+import { buildModel, readModel, ScenarioModel } from '../../server/src/core/model';
+import { repoRoot, sharedDir } from '../support/paths';
 
 /** Everything the model holds, as plain data: elements by offset, attributes by name and offset, declarations and scopes by index. */
 function shape(model: SemanticModel): unknown {
@@ -178,5 +179,55 @@ describe('core: the semantic model after an edit inside one value', () => {
     const model = semanticModelOf(next);
     assert.equal(valueEditOf(next), undefined, 'the previous parse is let go once the model is built');
     assert.equal(model.declarations.find((declaration) => declaration.name === 'Local')?.value, '7');
+  });
+});
+
+/** The modular structure as plain data. */
+function scenarioShape(model: ScenarioModel): unknown {
+  const element = (node: XmlElement | undefined) => (node ? [node.name, node.start, node.end] : null);
+  const attr = (node: XmlAttribute | undefined) => (node ? [node.name, node.value, node.valueStart, node.valueEnd] : null);
+  const reference = (info: ScenarioModel['references'][number]) => [
+    info.fileName,
+    element(info.element),
+    attr(info.fileAttribute),
+    info.groupReferences.map((group) => [group.name, element(group.element), attr(group.nameAttribute), group.parameters.map((p) => [p.key, p.value, element(p.element), attr(p.keyAttribute), attr(p.valueAttribute)])]),
+    info.outerGroup ? model.groups.indexOf(info.outerGroup) : -1,
+  ];
+  return {
+    groups: model.groups.map((group) => [group.name, element(group.element), attr(group.nameAttribute), element(group.actor), group.references.map((r) => model.references.indexOf(r))]),
+    references: model.references.map(reference),
+    entities: model.entities.map((entity) => [entity.name, element(entity.element), attr(entity.nameAttribute)]),
+    declarations: model.declarations.map((d) => [element(d.element), attr(d.attribute), d.names.map((n) => [n.name, n.start, n.end, attr(n.target)])]),
+    structure: model.structure.map(element),
+  };
+}
+
+describe('core: the modular structure after an edit inside one value', () => {
+  const files = [path.join(repoRoot, 'examples', 'main.xosc'), path.join(repoRoot, 'examples', 'lane_change.xosc')];
+
+  it('carried over from the previous parse, equals the structure read from scratch', () => {
+    for (const file of files) {
+      const text = fs.readFileSync(file, 'utf8');
+      let carried = 0;
+      fc.assert(
+        fc.property(fc.array(edit, { minLength: 1, maxLength: 6 }), (edits) => {
+          let document = parseXml(text);
+          readModel(document);
+          for (const { which, from, length, inserted } of edits) {
+            const ranges = valueRanges(document);
+            const range = ranges[which % ranges.length];
+            const start = range.start + (from % (range.end - range.start + 1));
+            const end = Math.min(range.end, start + length);
+            const editedText = document.text.slice(0, start) + inserted + document.text.slice(end);
+            const next = reparseXml(document, editedText);
+            if (valueEditOf(next)) carried++;
+            assert.deepEqual(scenarioShape(readModel(next)), scenarioShape(buildModel(parseXml(editedText))), `${path.basename(file)}: after replacing [${start}, ${end}) of ${range.name} by '${inserted}'`);
+            document = next;
+          }
+        }),
+        { numRuns: 200 },
+      );
+      assert.ok(carried > 300, `most edits take the incremental path (${carried})`);
+    }
   });
 });
