@@ -181,16 +181,30 @@ function documentOf(text: string, root: XmlElement, entities: ReadonlyMap<string
   };
 }
 
-/** The trees have the same shape: an element's counterpart is found by the same child indices. */
+/**
+ * The trees have the same shape: an element's counterpart is found by the same child indices. The path
+ * of the last lookup is kept, as models ask in document order and the next element is usually near.
+ */
 function counterparts(previousRoot: XmlElement, root: XmlElement): (source: XmlElement) => XmlElement {
+  const fromPath: XmlElement[] = [previousRoot];
+  const toPath: XmlElement[] = [root];
   return (source) => {
-    let from = previousRoot;
-    let to = root;
+    // Climb to the deepest element of the last path that holds the source.
+    while (fromPath.length > 1) {
+      const top = fromPath[fromPath.length - 1];
+      if (top.start <= source.start && (source.start < top.end || top === source)) break;
+      fromPath.pop();
+      toPath.pop();
+    }
+    let from = fromPath[fromPath.length - 1];
+    let to = toPath[toPath.length - 1];
     while (from !== source) {
       const index = childIndexAt(from, source.start);
       if (index < 0) throw new Error(`no element at ${source.start} in the previous parse`);
       from = from.children[index];
       to = to.children[index];
+      fromPath.push(from);
+      toPath.push(to);
     }
     return to;
   };
