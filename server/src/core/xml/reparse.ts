@@ -139,10 +139,10 @@ export function reparseValueEdit(previous: XmlDocument, text: string): XmlDocume
       selfClosing: source.selfClosing,
       closed: source.closed,
       attributes: copyAttributes(source.attributes),
-      children: new Array<XmlElement>(source.children.length),
+      children: [],
       parent,
     };
-    for (let i = 0; i < source.children.length; i++) result.children[i] = copy(source.children[i], result);
+    for (const child of source.children) result.children.push(copy(child, result));
     return result;
   };
   const root = copy(previous.root, undefined);
