@@ -4,7 +4,10 @@ import * as path from 'node:path';
 import fc from 'fast-check';
 import { buildSemanticModel, Declaration, Scope, SemanticModel, semanticModelOf } from '../../server/src/core/semantics';
 import { parseXml, reparseXml, valueEditOf, XmlAttribute, XmlDocument, XmlElement } from '../../server/src/core/xml';
+import { Flattener } from '../../server/src/core/flatten';
 import { buildModel, readModel, ScenarioModel } from '../../server/src/core/model';
+import { SchemaCheckMemory } from '../../server/src/core/schema/problems';
+import { diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { repoRoot, sharedDir } from '../support/paths';
 
 /** Everything the model holds, as plain data: elements by offset, attributes by name and offset, declarations and scopes by index. */
@@ -230,4 +233,46 @@ describe('core: the modular structure after an edit inside one value', () => {
       assert.ok(carried > 300, `most edits take the incremental path (${carried})`);
     }
   });
+});
+
+describe('core: the analysis of a file being edited, value edit after value edit', () => {
+  const examples = path.join(repoRoot, 'examples');
+  // A main file with references (modular checks, links, overrides) and the scenario above (parameters, expressions).
+  const cases = [
+    { name: 'examples/main.xosc', file: path.join(examples, 'main.xosc'), text: fs.readFileSync(path.join(examples, 'main.xosc'), 'utf8') },
+    { name: 'the semantic scenario', file: path.join(examples, 'semantic.xosc'), text: scenario },
+  ];
+
+  for (const { name, file, text } of cases) {
+    it(`equals the analysis of the same text read afresh: ${name}`, async () => {
+      await fc.assert(
+        fc.asyncProperty(fc.array(edit, { minLength: 1, maxLength: 5 }), async (edits) => {
+          const ref = diskRef(file);
+          const store = new ScenarioStore({ scenarioPath: [], root: examples });
+          const memory = new SchemaCheckMemory();
+          const analyze = async (current: string) => {
+            store.setOverlay(ref, current);
+            return (await new Flattener(store, 'asam', { version: 'auto' }, memory).analyze(ref)).problems;
+          };
+          let current = text;
+          let document = parseXml(current);
+          await analyze(current);
+          for (const { which, from, length, inserted } of edits) {
+            const ranges = valueRanges(document);
+            const range = ranges[which % ranges.length];
+            const start = range.start + (from % (range.end - range.start + 1));
+            const end = Math.min(range.end, start + length);
+            current = current.slice(0, start) + inserted + current.slice(end);
+            document = parseXml(current);
+            const incremental = await analyze(current);
+            const freshStore = new ScenarioStore({ scenarioPath: [], root: examples });
+            freshStore.setOverlay(ref, current);
+            const fresh = (await new Flattener(freshStore, 'asam', { version: 'auto' }).analyze(ref)).problems;
+            assert.deepEqual(JSON.parse(JSON.stringify(incremental)), JSON.parse(JSON.stringify(fresh)), `after replacing [${start}, ${end}) of ${range.name} by '${inserted}'`);
+          }
+        }),
+        { numRuns: 40 },
+      );
+    });
+  }
 });
