@@ -66,12 +66,17 @@ export function overridableAttributes(model: ScenarioModel, group: ManeuverGroup
 
 /** Whether `key` (a dotted path ending in an attribute name) reaches `target` (SPEC 5). */
 export function keyMatches(key: string, target: OverridableAttribute): boolean {
-  const parts = key.split('.');
-  const attributeName = parts.pop();
-  if (attributeName !== target.attributeName || parts.some((part) => part.length === 0)) return false;
-  if (parts.length > target.path.length) return false;
-  const offset = target.path.length - parts.length;
-  for (let i = 0; i < parts.length; i++) if (parts[i] !== target.path[offset + i]) return false;
+  return partsMatch(key.split('.'), target);
+}
+
+/** keyMatches for a key already split at its dots (a key is matched against every attribute of a group). */
+function partsMatch(parts: string[], target: OverridableAttribute): boolean {
+  const last = parts.length - 1;
+  if (parts[last] !== target.attributeName) return false;
+  for (let i = 0; i < last; i++) if (parts[i].length === 0) return false;
+  if (last > target.path.length) return false;
+  const offset = target.path.length - last;
+  for (let i = 0; i < last; i++) if (parts[i] !== target.path[offset + i]) return false;
   return true;
 }
 
@@ -132,7 +137,8 @@ export function planOverrides(targets: OverridableAttribute[], parameters: Param
   const unknown: OverridePlan['unknown'] = [];
   const withoutDefault: OverridePlan['withoutDefault'] = [];
   for (const parameter of parameters) {
-    const reached = targets.filter((target) => keyMatches(parameter.key, target));
+    const parts = parameter.key.split('.');
+    const reached = targets.filter((target) => partsMatch(parts, target));
     matches.push({ parameter, targets: reached });
     if (reached.length === 0) {
       unknown.push({ parameter, suggestion: suggestKey(parameter.key, targets) });

@@ -1,4 +1,4 @@
-import { attribute, descendants, parseXml, XmlAttribute, XmlDocument, XmlElement } from './xml';
+import { attribute, descendants, parseXml, ValueEdit, valueEditOf, XmlAttribute, XmlDocument, XmlElement } from './xml';
 
 export const PARAMETER_ATTRIBUTES = 'parameterAttributes';
 
@@ -116,15 +116,100 @@ export function buildModel(document: XmlDocument): ScenarioModel {
         if (STRUCTURE_ELEMENTS.has(element.name)) structure.push(element);
     }
   };
-  const all = [document.root, ...descendants(document.root)];
-  for (const element of all) visit(element);
+  // One walk in document order with an explicit stack; no list of every element is made.
+  const scenarioReferences: XmlElement[] = [];
+  const stack: XmlElement[] = [document.root];
+  while (stack.length > 0) {
+    const element = stack.pop() as XmlElement;
+    visit(element);
+    if (element.name === 'ScenarioReference') scenarioReferences.push(element);
+    for (let i = element.children.length - 1; i >= 0; i--) stack.push(element.children[i]);
+  }
   // References found outside any group still count, so that the editor can flag them.
-  const known = new Set(references.map((reference) => reference.element));
-  for (const element of all) {
-    if (element.name === 'ScenarioReference' && !known.has(element)) references.push(readReference(element, undefined));
+  if (scenarioReferences.length > references.length) {
+    const known = new Set(references.map((reference) => reference.element));
+    for (const element of scenarioReferences) if (!known.has(element)) references.push(readReference(element, undefined));
   }
   references.sort((a, b) => a.element.start - b.element.start);
   return { document, groups, references, entities, declarations, structure };
+}
+
+// The last model read from each parse, from which the model of the next parse after a value edit is carried.
+const lastModels = new WeakMap<XmlDocument, ScenarioModel>();
+
+/**
+ * `buildModel`, carried over from the previous parse's model when `document` was re-parsed from it after an
+ * edit inside one attribute value (the elements mapped, offsets moved, the edited element's entries read again).
+ */
+export function readModel(document: XmlDocument): ScenarioModel {
+  const edit = valueEditOf(document);
+  const previous = edit && lastModels.get(edit.previous);
+  const model = edit && previous ? carryModel(previous, edit, document) : buildModel(document);
+  lastModels.set(document, model);
+  return model;
+}
+
+function carryModel(previous: ScenarioModel, edit: ValueEdit, document: XmlDocument): ScenarioModel {
+  const elementOf = edit.elementOf;
+  const attributeOf = (element: XmlElement, attr: XmlAttribute | undefined) => (attr ? edit.attributeOf(element, attr) : undefined);
+  const edited = edit.previousElement;
+  const carryReference = (reference: ScenarioReferenceInfo, outerGroup: ManeuverGroupInfo | undefined): ScenarioReferenceInfo => {
+    const touched = reference.element === edited || reference.groupReferences.some((group) => group.element === edited || group.parameters.some((parameter) => parameter.element === edited));
+    if (touched) return readReference(elementOf(reference.element), outerGroup);
+    return {
+      fileName: reference.fileName,
+      element: elementOf(reference.element),
+      fileAttribute: attributeOf(reference.element, reference.fileAttribute),
+      groupReferences: reference.groupReferences.map((group) => ({
+        name: group.name,
+        element: elementOf(group.element),
+        nameAttribute: attributeOf(group.element, group.nameAttribute),
+        parameters: group.parameters.map((parameter) => ({
+          key: parameter.key,
+          value: parameter.value,
+          element: elementOf(parameter.element),
+          keyAttribute: attributeOf(parameter.element, parameter.keyAttribute),
+          valueAttribute: attributeOf(parameter.element, parameter.valueAttribute),
+        })),
+      })),
+      outerGroup,
+    };
+  };
+  const groups = new Map<ManeuverGroupInfo, ManeuverGroupInfo>();
+  const references = new Map<ScenarioReferenceInfo, ScenarioReferenceInfo>();
+  for (const group of previous.groups) {
+    const nameAttribute = attributeOf(group.element, group.nameAttribute);
+    const copy: ManeuverGroupInfo = {
+      name: group.element === edited ? (nameAttribute?.value ?? '') : group.name,
+      element: elementOf(group.element),
+      nameAttribute,
+      actor: group.actor && elementOf(group.actor),
+      references: [],
+    };
+    groups.set(group, copy);
+    for (const reference of group.references) {
+      const carried = carryReference(reference, copy);
+      references.set(reference, carried);
+      copy.references.push(carried);
+    }
+  }
+  return {
+    document,
+    groups: [...groups.values()],
+    references: previous.references.map((reference) => references.get(reference) ?? carryReference(reference, reference.outerGroup && groups.get(reference.outerGroup))),
+    entities: previous.entities.map((entity) => {
+      const nameAttribute = attributeOf(entity.element, entity.nameAttribute);
+      return { name: entity.element === edited ? (nameAttribute?.value ?? '') : entity.name, element: elementOf(entity.element), nameAttribute };
+    }),
+    declarations: previous.declarations.map((declaration) => {
+      const element = elementOf(declaration.element);
+      const declared = attributeOf(declaration.element, declaration.attribute) as XmlAttribute;
+      if (declaration.element === edited) return { element, attribute: declared, names: parseParameterAttributeNames(element, declared) };
+      const names = declaration.names.map((name) => ({ name: name.name, start: edit.shift(name.start), end: edit.shift(name.end), target: attributeOf(declaration.element, name.target) }));
+      return { element, attribute: declared, names };
+    }),
+    structure: previous.structure.map(elementOf),
+  };
 }
 
 function readGroup(element: XmlElement, allReferences: ScenarioReferenceInfo[]): ManeuverGroupInfo {

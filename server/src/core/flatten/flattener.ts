@@ -1,6 +1,6 @@
 import * as path from 'node:path';
 import { declareUtf8 } from '../encoding';
-import { buildModel, ScenarioModel } from '../model';
+import { buildModel, readModel, ScenarioModel } from '../model';
 import { Problem, uniqueProblems } from '../problems';
 import { Simulator } from '../profiles/simulators';
 import { parameterValueProblems } from '../schema/parameterValues';
@@ -165,7 +165,7 @@ export class Flattener {
     }
     const schemaVersion = this.schema.version;
     if (schemaVersion !== 'off') result.problems.push(...schemaProblems(ref, document, this.schemaChecks, { version: schemaVersion }));
-    const model = buildModel(document);
+    const model = readModel(document);
     result.original = model;
     checkDeclarations(result, model);
     if (document.root) {

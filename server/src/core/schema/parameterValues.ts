@@ -47,8 +47,7 @@ interface Mismatch {
 function mismatchOf(value: { value: string | number | boolean; type: ParameterType }, attributeTypeName: string, type: SimpleType): Mismatch | undefined {
   const target = targetOf(type);
   if (target) {
-    const converted = convertValue(value, target);
-    if (!('message' in converted)) return undefined;
+    // Checked first: the lenient reading converts `5.0` to an integer, which is still a warning here.
     const whole = typeof value.value === 'string' && INTEGER_TYPES.has(target) ? wholeNumberText(value.value) : undefined;
     if (whole !== undefined && !('message' in convertValue({ value: String(whole), type: 'string' }, target))) {
       return {
@@ -57,6 +56,7 @@ function mismatchOf(value: { value: string | number | boolean; type: ParameterTy
         hint: `declare the parameter with the value ${whole}`,
       };
     }
+    if (!('message' in convertValue(value, target))) return undefined;
     return { severity: 'error', reason: `cannot be converted to the attribute's type ${target}` };
   }
   // Text, an enumeration or a pattern: the value's text must be one the type admits itself.

@@ -33,7 +33,8 @@ import { Problem } from '../problems';
 import { Simulator } from '../profiles/simulators';
 import { SourceRef } from '../sources';
 import { Range } from '../text';
-import { XmlAttribute, XmlDocument, XmlElement, elementAt } from '../xml';
+import { elementAt, forgetValueEdit, valueEditOf, XmlAttribute, XmlDocument, XmlElement } from '../xml';
+import { carrySemanticModel } from './incremental';
 import { assignmentsOf, CatalogLoader, CatalogReferenceResolution, CatalogResolution } from './catalogs';
 import { Finding, runChecks, SemanticContext } from './checks';
 import { Reading } from './evaluator';
@@ -50,11 +51,16 @@ export type DocumentSemantics = SemanticContext;
 // Models are pure functions of a parse, which never changes once built.
 const models = new WeakMap<XmlDocument, SemanticModel>();
 
+/** The model of a parse: carried over from the previous parse's after an edit inside one value, else built. */
 export function semanticModelOf(document: XmlDocument): SemanticModel {
   let model = models.get(document);
   if (!model) {
-    model = buildSemanticModel(document);
+    const edit = valueEditOf(document);
+    const previous = edit && models.get(edit.previous);
+    model = (edit && previous && carrySemanticModel(previous, edit, document)) ?? buildSemanticModel(document);
     models.set(document, model);
+    // The previous parse is no longer needed for this one.
+    if (edit) forgetValueEdit(document);
   }
   return model;
 }

@@ -31,32 +31,12 @@ export function referencedName(attr: XmlAttribute): { name: string; start: numbe
 
 /** Collects the `$name` and `${...}` values of every attribute and the `parameterRef`s that name a parameter. */
 export class ParameterUseCollector {
-  constructor(private readonly model: SemanticModel) {}
+  /** `model`: where sites and uses go (a whole model, or the few lists an incremental update fills). */
+  constructor(private readonly model: Pick<SemanticModel, 'sites' | 'siteOf' | 'uses' | 'usesOf'>) {}
 
   /** `ownDeclaration`: the declaration `element` makes, whose value sees only the earlier ones of its scope. */
   visit(element: XmlElement, scope: Scope, ownDeclaration: Declaration | undefined): void {
-    for (const attr of element.attributes) {
-      if (attr.value.charCodeAt(0) !== 36 || NAME_REFERENCE_ATTRIBUTES.has(attr.name)) continue;
-      // The offsets of a decoded value are exact only when it was written without references.
-      const form = valueForm(attr.value, attr.valueStart);
-      if (form.kind === 'literal') continue;
-      const declaration = ownDeclaration && attr.name === 'value' ? ownDeclaration : undefined;
-      const site: ValueSite = { element, attribute: attr, form, scope, declaration };
-      this.model.sites.push(site);
-      this.model.siteOf.set(attr, site);
-      const names = form.kind === 'parameter' ? [{ name: form.name, start: form.start, end: form.end }] : form.expression.parameters;
-      const via = form.kind === 'parameter' ? 'value' : 'expression';
-      const found = names.map((name) => ({ ...name, declaration: resolveName(scope, name.name, declaration) }));
-      // A bare word naming a declared parameter is a use (written without `$`, a warning); any other word is text.
-      if (form.kind === 'expression') {
-        for (const name of form.expression.names) {
-          const resolved = resolveName(scope, name.name, declaration);
-          if (resolved) found.push({ ...name, declaration: resolved });
-        }
-        found.sort((a, b) => a.start - b.start);
-      }
-      for (const name of found) this.addUse({ name: name.name, start: name.start, end: name.end, element, attribute: attr, declaration: name.declaration, via });
-    }
+    for (const attr of element.attributes) this.visitValue(element, attr, scope, ownDeclaration);
     if (PARAMETER_REF_ELEMENTS.has(element.name) && !isCarlaCriterion(element)) {
       const ref = attribute(element, 'parameterRef');
       if (ref && ref.value.trim()) {
@@ -64,6 +44,30 @@ export class ParameterUseCollector {
         this.addUse({ name, start, end, element, attribute: ref, declaration: resolveName(scope, name, undefined), via: 'parameterRef' });
       }
     }
+  }
+
+  /** The site and uses of one attribute's value, when it is a `$name` or a `${...}`. */
+  visitValue(element: XmlElement, attr: XmlAttribute, scope: Scope, ownDeclaration: Declaration | undefined): void {
+    if (attr.value.charCodeAt(0) !== 36 || NAME_REFERENCE_ATTRIBUTES.has(attr.name)) return;
+    // The offsets of a decoded value are exact only when it was written without references.
+    const form = valueForm(attr.value, attr.valueStart);
+    if (form.kind === 'literal') return;
+    const declaration = ownDeclaration && attr.name === 'value' ? ownDeclaration : undefined;
+    const site: ValueSite = { element, attribute: attr, form, scope, declaration };
+    this.model.sites.push(site);
+    this.model.siteOf.set(attr, site);
+    const names = form.kind === 'parameter' ? [{ name: form.name, start: form.start, end: form.end }] : form.expression.parameters;
+    const via = form.kind === 'parameter' ? 'value' : 'expression';
+    const found = names.map((name) => ({ ...name, declaration: resolveName(scope, name.name, declaration) }));
+    // A bare word naming a declared parameter is a use (written without `$`, a warning); any other word is text.
+    if (form.kind === 'expression') {
+      for (const name of form.expression.names) {
+        const resolved = resolveName(scope, name.name, declaration);
+        if (resolved) found.push({ ...name, declaration: resolved });
+      }
+      found.sort((a, b) => a.start - b.start);
+    }
+    for (const name of found) this.addUse({ name: name.name, start: name.start, end: name.end, element, attribute: attr, declaration: name.declaration, via });
   }
 
   private addUse(use: ParameterUse): void {

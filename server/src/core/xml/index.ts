@@ -2,5 +2,6 @@
 export type { XmlAttribute, XmlDocument, XmlElement, XmlParseOptions, XmlProblem } from './types';
 export { isXmlChar } from './characters';
 export { parseXml } from './scanner';
-export { markupFreeEdit, reparseValueEdit, reparseXml } from './reparse';
+export { forgetValueEdit, markupFreeEdit, reparseValueEdit, reparseXml, valueEditOf } from './reparse';
+export type { ValueEdit } from './reparse';
 export { attribute, attributeValue, descendants, elementAt, elementStartingAt, escapeAttributeValue, firstDescendant, isWellFormed, isWithin, selfAndDescendants } from './tree';

@@ -32,6 +32,59 @@ export function markupFreeEdit(old: string, text: string): { prefix: number; rem
   return { prefix, removedEnd, insertedEnd };
 }
 
+/**
+ * How a parse came from the previous one by an edit inside one attribute value: the same elements and
+ * attributes in the same places, offsets from `removedEnd` on moved by `delta`, one value changed.
+ * Models of the previous parse can be carried over instead of being built again (`valueEditOf`).
+ */
+export interface ValueEdit {
+  previous: XmlDocument;
+  /** Offsets in the previous text: the edit replaced `[prefix, removedEnd)`. */
+  prefix: number;
+  removedEnd: number;
+  /** How far offsets at or after `removedEnd` moved. */
+  delta: number;
+  /** The element holding the edited attribute, in the previous tree and in the new one. */
+  previousElement: XmlElement;
+  element: XmlElement;
+  previousAttribute: XmlAttribute;
+  attribute: XmlAttribute;
+  /** The new tree's counterpart of an element of the previous tree. */
+  elementOf(previous: XmlElement): XmlElement;
+  /** The new tree's counterpart of an attribute of an element of the previous tree. */
+  attributeOf(previousElement: XmlElement, previous: XmlAttribute): XmlAttribute;
+  /** An offset of the previous text in the new text. */
+  shift(offset: number): number;
+}
+
+// Only the latest parse of a chain keeps its edit (and so the previous tree): older ones are forgotten.
+const valueEdits = new WeakMap<XmlDocument, ValueEdit>();
+
+/** The value edit that made `document` from its previous parse, until `forgetValueEdit`. */
+export function valueEditOf(document: XmlDocument): ValueEdit | undefined {
+  return valueEdits.get(document);
+}
+
+/** Lets the previous parse go once the models that could reuse it are built. */
+export function forgetValueEdit(document: XmlDocument): void {
+  valueEdits.delete(document);
+}
+
+/** The child whose range holds `offset`, by its index (children are ordered by offset and do not overlap). */
+function childIndexAt(element: XmlElement, offset: number): number {
+  const children = element.children;
+  let low = 0;
+  let high = children.length - 1;
+  while (low <= high) {
+    const middle = (low + high) >> 1;
+    const child = children[middle];
+    if (offset < child.start) high = middle - 1;
+    else if (offset >= child.end) low = middle + 1;
+    else return middle;
+  }
+  return -1;
+}
+
 /** The fast path of reparseXml: undefined unless the edit lies inside one attribute value. */
 export function reparseValueEdit(previous: XmlDocument, text: string): XmlDocument | undefined {
   const old = previous.text;
@@ -49,12 +102,33 @@ export function reparseValueEdit(previous: XmlDocument, text: string): XmlDocume
     if (prefix < element.startTagEnd) return undefined;
     element = element.children.find((child) => child.start <= prefix && removedEnd <= child.end);
   }
-  if (!edited) return undefined;
+  if (!edited || !element) return undefined;
   const delta = insertedEnd - removedEnd;
   const raw = text.slice(edited.valueStart, edited.valueEnd + delta);
   if (!PLAIN_VALUE.test(raw)) return undefined;
   const shift = (offset: number) => (offset >= removedEnd && offset > prefix ? offset + delta : offset);
   const target = edited;
+  const editedElement = element;
+  let editedCopy: XmlAttribute | undefined;
+  // Attributes hold no parent, so those the edit does not move are shared with the previous tree.
+  const copyAttributes = (attributes: XmlAttribute[]): XmlAttribute[] => {
+    let moved = false;
+    for (const attribute of attributes) if (attribute === target || attribute.nameStart >= removedEnd) moved = true;
+    if (!moved) return attributes;
+    return attributes.map((attribute) => {
+      if (attribute === target) return (editedCopy = { ...attribute, value: raw, valueEnd: attribute.valueEnd + delta });
+      if (attribute.nameStart < removedEnd) return attribute;
+      return {
+        name: attribute.name,
+        value: attribute.value,
+        nameStart: attribute.nameStart + delta,
+        nameEnd: attribute.nameEnd + delta,
+        valueStart: attribute.valueStart + delta,
+        valueEnd: attribute.valueEnd + delta,
+        quote: attribute.quote,
+      };
+    });
+  };
   const copy = (source: XmlElement, parent: XmlElement | undefined): XmlElement => {
     const result: XmlElement = {
       name: source.name,
@@ -64,19 +138,7 @@ export function reparseValueEdit(previous: XmlDocument, text: string): XmlDocume
       end: shift(source.end),
       selfClosing: source.selfClosing,
       closed: source.closed,
-      attributes: source.attributes.map((attribute) =>
-        attribute === target
-          ? { ...attribute, value: raw, valueEnd: attribute.valueEnd + delta }
-          : {
-              name: attribute.name,
-              value: attribute.value,
-              nameStart: shift(attribute.nameStart),
-              nameEnd: shift(attribute.nameEnd),
-              valueStart: shift(attribute.valueStart),
-              valueEnd: shift(attribute.valueEnd),
-              quote: attribute.quote,
-            },
-      ),
+      attributes: copyAttributes(source.attributes),
       children: [],
       parent,
     };
@@ -84,15 +146,66 @@ export function reparseValueEdit(previous: XmlDocument, text: string): XmlDocume
     return result;
   };
   const root = copy(previous.root, undefined);
+  const document = documentOf(text, root, previous.entities);
+  const elementOf = counterparts(previous.root, root);
+  const newElement = elementOf(editedElement);
+  valueEdits.delete(previous);
+  valueEdits.set(document, {
+    previous,
+    prefix,
+    removedEnd,
+    delta,
+    previousElement: editedElement,
+    element: newElement,
+    previousAttribute: target,
+    attribute: editedCopy as XmlAttribute,
+    elementOf,
+    attributeOf: (sourceElement, source) => (source.nameStart < removedEnd && source !== target ? source : elementOf(sourceElement).attributes[sourceElement.attributes.indexOf(source)]),
+    shift,
+  });
+  return document;
+}
+
+// Built outside reparseValueEdit: a closure there would keep the previous tree alive through the new document.
+function documentOf(text: string, root: XmlElement, entities: ReadonlyMap<string, string> | undefined): XmlDocument {
   let lines: LineIndex | undefined;
   return {
     text,
     root,
     problems: [],
-    entities: previous.entities,
+    entities,
     get lines() {
       lines ??= new LineIndex(text);
       return lines;
     },
+  };
+}
+
+/**
+ * The trees have the same shape: an element's counterpart is found by the same child indices. The path
+ * of the last lookup is kept, as models ask in document order and the next element is usually near.
+ */
+function counterparts(previousRoot: XmlElement, root: XmlElement): (source: XmlElement) => XmlElement {
+  const fromPath: XmlElement[] = [previousRoot];
+  const toPath: XmlElement[] = [root];
+  return (source) => {
+    // Climb to the deepest element of the last path that holds the source.
+    while (fromPath.length > 1) {
+      const top = fromPath[fromPath.length - 1];
+      if (top.start <= source.start && (source.start < top.end || top === source)) break;
+      fromPath.pop();
+      toPath.pop();
+    }
+    let from = fromPath[fromPath.length - 1];
+    let to = toPath[toPath.length - 1];
+    while (from !== source) {
+      const index = childIndexAt(from, source.start);
+      if (index < 0) throw new Error(`no element at ${source.start} in the previous parse`);
+      from = from.children[index];
+      to = to.children[index];
+      fromPath.push(from);
+      toPath.push(to);
+    }
+    return to;
   };
 }

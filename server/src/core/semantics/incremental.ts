@@ -1,0 +1,224 @@
+import { attribute, ValueEdit, XmlAttribute, XmlDocument, XmlElement } from '../xml';
+import { ExpressionNode } from './expressions';
+import { ParameterUseCollector } from './parameterUses';
+import { Declaration, NamedElement, ParameterUse, Scope, SemanticModel, ValueSite } from './types';
+
+/**
+ * Attributes whose value the model reads beyond a `$name` or `${...}` (names resolve, types and
+ * `parameterRef`s decide what a use is): an edit of one of them builds the model again.
+ */
+const STRUCTURAL_ATTRIBUTES: ReadonlySet<string> = new Set(['name', 'parameterType', 'variableType', 'parameterRef', 'variableRef', 'storyboardElementType']);
+
+/** An expression tree with every offset moved by `delta`. */
+function shiftedNode(node: ExpressionNode, delta: number): ExpressionNode {
+  // Literals in the parser's field order keep one object shape per kind (a spread would not).
+  const start = node.start + delta;
+  const end = node.end + delta;
+  switch (node.kind) {
+    case 'number':
+      return { kind: 'number', value: node.value, start, end };
+    case 'boolean':
+      return { kind: 'boolean', value: node.value, start, end };
+    case 'constant':
+      return { kind: 'constant', name: node.name, start, end };
+    case 'parameter':
+      return { kind: 'parameter', name: node.name, start, end };
+    case 'name':
+      return { kind: 'name', name: node.name, start, end };
+    case 'unary':
+      return { kind: 'unary', operator: node.operator, operand: shiftedNode(node.operand, delta), start, end };
+    case 'binary':
+      return { kind: 'binary', operator: node.operator, left: shiftedNode(node.left, delta), right: shiftedNode(node.right, delta), start, end };
+    case 'call':
+      return { kind: 'call', name: node.name, args: node.args.map((arg) => shiftedNode(arg, delta)), start, end };
+    default:
+      return unknownNode(node);
+  }
+}
+
+function unknownNode(node: never): never {
+  throw new Error(`an expression node of an unknown kind: ${JSON.stringify(node)}`);
+}
+
+/** A value form with every offset moved by `delta` (the form of a value after the edit). */
+function shiftedForm(form: ValueSite['form'], delta: number): ValueSite['form'] {
+  if (form.kind === 'parameter') return { kind: 'parameter', name: form.name, start: form.start + delta, end: form.end + delta };
+  const expression = form.expression;
+  return {
+    kind: 'expression',
+    expression: {
+      start: expression.start + delta,
+      end: expression.end + delta,
+      bodyStart: expression.bodyStart + delta,
+      bodyEnd: expression.bodyEnd + delta,
+      tree: expression.tree && shiftedNode(expression.tree, delta),
+      errors: expression.errors.map((error) => ({
+        kind: error.kind,
+        message: error.message,
+        start: error.start + delta,
+        end: error.end + delta,
+        ...(error.fix ? { fix: { start: error.fix.start + delta, end: error.fix.end + delta, text: error.fix.text } } : {}),
+        ...(error.text ? { text: error.text } : {}),
+      })),
+      parameters: expression.parameters.map((parameter) => ({ name: parameter.name, start: parameter.start + delta, end: parameter.end + delta })),
+      names: expression.names.map((name) => ({ name: name.name, start: name.start + delta, end: name.end + delta })),
+    },
+  };
+}
+
+/** Whether a use or site of `element` comes after those of `attr` of `edited` in the model's walk (document order, then attribute order). */
+function comesAfter(element: XmlElement, attr: XmlAttribute | undefined, edited: XmlElement, editedIndex: number): boolean {
+  if (element !== edited) return element.start > edited.start;
+  return attr === undefined || edited.attributes.indexOf(attr) > editedIndex;
+}
+
+/**
+ * The model of `document` carried over from `previous`, the model of the parse it was re-parsed from
+ * after an edit inside one attribute value: every element and attribute replaced by its counterpart,
+ * offsets moved, and the edited value read again. Undefined when the edit can change more than that
+ * value's own site and declaration (a name, a type, a reference): then the model is built anew.
+ */
+export function carrySemanticModel(previous: SemanticModel, edit: ValueEdit, document: XmlDocument): SemanticModel | undefined {
+  if (previous.document !== edit.previous || STRUCTURAL_ATTRIBUTES.has(edit.attribute.name)) return undefined;
+  const elementOf = edit.elementOf;
+  const attributeOf = (element: XmlElement, attr: XmlAttribute | undefined) => (attr ? edit.attributeOf(element, attr) : undefined);
+  const { previousElement, previousAttribute, delta } = edit;
+  const editedIndex = previousElement.attributes.indexOf(previousAttribute);
+
+  const scopes = new Map<Scope, Scope>();
+  const scopeByElement = new Map<XmlElement, Scope>();
+  for (const scope of previous.scopes) {
+    const copy: Scope = { element: elementOf(scope.element), parent: scope.parent && scopes.get(scope.parent), children: [], declarations: [], byName: new Map(), catalogEntry: scope.catalogEntry };
+    copy.parent?.children.push(copy);
+    scopes.set(scope, copy);
+    scopeByElement.set(copy.element, copy);
+  }
+  const scopeOf = scopeLookup(scopeByElement);
+  const model: SemanticModel = {
+    document,
+    root: previous.root && scopes.get(previous.root),
+    scopes: [...scopes.values()],
+    declarations: [],
+    variables: new Map(),
+    uses: [],
+    sites: [],
+    siteOf: new Map(),
+    usesOf: new Map(),
+    catalogLocations: previous.catalogLocations.map((location) => ({ kind: location.kind, directory: elementOf(location.directory), pathAttribute: attributeOf(location.directory, location.pathAttribute) })),
+    catalogReferences: previous.catalogReferences.map((reference) => ({
+      element: elementOf(reference.element),
+      catalogNameAttribute: attributeOf(reference.element, reference.catalogNameAttribute),
+      entryNameAttribute: attributeOf(reference.element, reference.entryNameAttribute),
+      assignments: reference.assignments.map((assignment) => ({
+        element: elementOf(assignment.element),
+        parameterRef: attributeOf(assignment.element, assignment.parameterRef),
+        valueAttribute: attributeOf(assignment.element, assignment.valueAttribute),
+      })),
+    })),
+    catalog: previous.catalog && elementOf(previous.catalog),
+    entities: [],
+    hasEntities: previous.hasEntities,
+    storyboardElements: [],
+    storyboardByName: new Map(),
+    storyboardReferences: previous.storyboardReferences.map((reference) => ({ element: elementOf(reference.element), refAttribute: attributeOf(reference.element, reference.refAttribute) as XmlAttribute, type: reference.type })),
+    variableReferences: [],
+    entityReferences: previous.entityReferences.map((reference) => ({ element: elementOf(reference.element), attribute: attributeOf(reference.element, reference.attribute) as XmlAttribute })),
+    scopeOf,
+  };
+  const named = (entry: NamedElement): NamedElement => ({ name: entry.name, element: elementOf(entry.element), nameAttribute: attributeOf(entry.element, entry.nameAttribute) });
+  model.entities = previous.entities.map(named);
+  const storyboard = new Map<NamedElement, NamedElement>();
+  for (const entry of previous.storyboardElements) {
+    const copy = named(entry);
+    storyboard.set(entry, copy);
+    model.storyboardElements.push(copy);
+  }
+  for (const [name, entries] of previous.storyboardByName) model.storyboardByName.set(name, entries.map((entry) => storyboard.get(entry) as NamedElement));
+
+  // Declarations, in the order they were made; the edited one (its value) is read again.
+  const declarations = new Map<Declaration, Declaration>();
+  let ownDeclaration: Declaration | undefined;
+  for (const declaration of previous.declarations) {
+    const element = elementOf(declaration.element);
+    const valueAttribute = attributeOf(declaration.element, declaration.valueAttribute);
+    const copy: Declaration = {
+      ...declaration,
+      value: declaration.element === previousElement ? (attribute(element, 'value')?.value ?? '') : declaration.value,
+      element,
+      nameAttribute: attributeOf(declaration.element, declaration.nameAttribute),
+      valueAttribute,
+      typeAttribute: attributeOf(declaration.element, declaration.typeAttribute),
+      scope: scopes.get(declaration.scope) as Scope,
+    };
+    declarations.set(declaration, copy);
+    if (copy.kind === 'parameter') {
+      copy.scope.declarations.push(copy);
+      if (!copy.scope.byName.has(copy.name)) copy.scope.byName.set(copy.name, copy);
+      if (declaration.element === previousElement) ownDeclaration = copy;
+    } else if (!model.variables.has(copy.name)) {
+      model.variables.set(copy.name, copy);
+    }
+    model.declarations.push(copy);
+    model.usesOf.set(copy, []);
+  }
+  const declarationOf = (declaration: Declaration | undefined) => declaration && declarations.get(declaration);
+  model.variableReferences = previous.variableReferences.map((reference) => ({ element: elementOf(reference.element), attribute: attributeOf(reference.element, reference.attribute) as XmlAttribute, declaration: declarationOf(reference.declaration) }));
+
+  // The edited value's own site and uses, read as the walk reads them, go where the walk put them.
+  const fresh: Pick<SemanticModel, 'sites' | 'siteOf' | 'uses' | 'usesOf'> = { sites: [], siteOf: new Map(), uses: [], usesOf: new Map() };
+  const scope = scopeOf(edit.element);
+  if (scope) new ParameterUseCollector(fresh).visitValue(edit.element, edit.attribute, scope, ownDeclaration);
+
+  let sitesPlaced = false;
+  for (const site of previous.sites) {
+    if (site.attribute === previousAttribute) continue;
+    if (!sitesPlaced && comesAfter(site.element, site.attribute, previousElement, editedIndex)) {
+      model.sites.push(...fresh.sites);
+      sitesPlaced = true;
+    }
+    const copy: ValueSite = {
+      element: elementOf(site.element),
+      attribute: attributeOf(site.element, site.attribute) as XmlAttribute,
+      // A value before the edit keeps its offsets, so its parsed form is shared.
+      form: site.attribute.valueStart >= edit.removedEnd ? shiftedForm(site.form, delta) : site.form,
+      scope: scopes.get(site.scope) as Scope,
+      declaration: declarationOf(site.declaration),
+    };
+    model.sites.push(copy);
+  }
+  if (!sitesPlaced) model.sites.push(...fresh.sites);
+  for (const site of model.sites) model.siteOf.set(site.attribute, site);
+
+  let usesPlaced = false;
+  for (const use of previous.uses) {
+    if (use.attribute === previousAttribute) continue;
+    if (!usesPlaced && comesAfter(use.element, use.via === 'parameterRef' ? undefined : use.attribute, previousElement, editedIndex)) {
+      model.uses.push(...fresh.uses);
+      usesPlaced = true;
+    }
+    const copy: ParameterUse = {
+      name: use.name,
+      start: use.start >= edit.removedEnd ? use.start + delta : use.start,
+      end: use.start >= edit.removedEnd ? use.end + delta : use.end,
+      element: elementOf(use.element),
+      attribute: attributeOf(use.element, use.attribute) as XmlAttribute,
+      declaration: declarationOf(use.declaration),
+      via: use.via,
+    };
+    model.uses.push(copy);
+  }
+  if (!usesPlaced) model.uses.push(...fresh.uses);
+  for (const use of model.uses) if (use.declaration) model.usesOf.get(use.declaration)?.push(use);
+  return model;
+}
+
+// Made outside carrySemanticModel: a closure there would keep the previous model alive through the new one.
+function scopeLookup(scopeByElement: Map<XmlElement, Scope>): (element: XmlElement) => Scope | undefined {
+  return (element) => {
+    for (let current: XmlElement | undefined = element; current; current = current.parent) {
+      const scope = scopeByElement.get(current);
+      if (scope) return scope;
+    }
+    return undefined;
+  };
+}
