@@ -20,7 +20,7 @@ interface Location {
 }
 interface Log {
   runs: {
-    tool: { driver: { rules: { id: string; shortDescription: { text: string }; properties: { codes: string[] } }[] } };
+    tool: { driver: { rules: { id: string; shortDescription: { text: string }; helpUri?: string; properties: { codes: string[] } }[] } };
     artifacts: { location: { uri: string }; parentIndex?: number }[];
     results: { ruleId: string; ruleIndex: number; level: string; message: { text: string }; locations: { physicalLocation: Location }[]; relatedLocations?: unknown[] }[];
   }[];
@@ -70,6 +70,7 @@ describe('cli: check --format sarif', () => {
 
     const xml = only.results.find((result) => result.ruleId === 'asam.net:xosc:1.0.0:xml.valid_xml_document');
     assert.ok(xml, 'malformed XML names the ASAM Quality Checker rule');
+    assert.match(String(rules[xml.ruleIndex].helpUri), /checker_bundle_doc\.md#check_asam_xosc_xml_valid_xml_document$/, 'and links to its description');
     assert.equal(xml.locations[0].physicalLocation.artifactLocation.uri, 'not%20xml.xosc');
 
     const inPackage = only.results.find((result) => only.artifacts[result.locations[0].physicalLocation.artifactLocation.index].parentIndex !== undefined);

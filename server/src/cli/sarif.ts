@@ -1,7 +1,7 @@
 import * as path from 'node:path';
 import { pathToFileURL } from 'node:url';
 import { Problem, Severity } from '../core/problems';
-import { ruleDescription, ruleIdOf, RULES } from '../core/rules';
+import { ruleDescription, ruleHelpUri, ruleIdOf, RULES } from '../core/rules';
 import { SourceRef } from '../core/sources';
 import { VERSION } from './common';
 
@@ -27,6 +27,7 @@ interface SarifRule {
   id: string;
   name: string;
   shortDescription: { text: string };
+  helpUri?: string;
   defaultConfiguration: { level: SarifLevel };
   properties: { codes: string[]; asamQualityCheckerRule?: string };
 }
@@ -116,10 +117,12 @@ export function sarifLog(problems: readonly Problem[], workingDirectory: string)
     if (index === undefined) {
       index = rules.length;
       const qcRule = RULES[problem.code].qcRule;
+      const helpUri = ruleHelpUri(problem.code);
       rules.push({
         id: ruleId,
         name: qcRule ? (ruleId.split(':').pop() ?? ruleId) : problem.code,
         shortDescription: { text: ruleDescription(ruleId, problem.code) },
+        ...(helpUri ? { helpUri } : {}),
         defaultConfiguration: { level: levelOf(problem.severity) },
         properties: { codes: [problem.code], ...(qcRule ? { asamQualityCheckerRule: qcRule } : {}) },
       });
