@@ -3,10 +3,12 @@
  * entities per frame), plays a run, lists events on a timeline, and sends clicks and saves back.
  */
 import type { SceneResult, SourceLocation } from '../../../../common/src/sceneProtocol';
+import { centredOn, entitiesBounds, exportLayout, runSeries, tooltipPlace, wheelNotches, zoomAbout } from '../analysis';
 import {
   boxAt,
   COLORS,
   drawEntities,
+  drawExportOverlay,
   drawRoads,
   drawTrajectories,
   ENTITY_COLORS,
@@ -24,6 +26,7 @@ import {
   ViewTransform,
 } from '../draw';
 import type { FromView, RenderStats, RunTracks, ToView } from '../messages';
+import { drawPlotCursor, drawPlots, type PlotArea, plotSpecs } from '../plots';
 
 declare function acquireVsCodeApi(): { postMessage(message: FromView): void };
 const vscode = acquireVsCodeApi();
@@ -35,12 +38,28 @@ const tooltip = element<HTMLDivElement>('tooltip');
 const slider = element<HTMLInputElement>('slider');
 const playButton = element<HTMLButtonElement>('play');
 const timeLabel = element<HTMLSpanElement>('time');
+const followList = element<HTMLSelectElement>('follow');
+const plotsCanvas = element<HTMLCanvasElement>('plots');
+const plotsContext = plotsCanvas.getContext('2d')!;
 const context = canvas.getContext('2d')!;
+/** Roads and trajectories, drawn LAYER_MARGIN px beyond each side of the screen so that following and panning move it without redrawing. */
 const layer = document.createElement('canvas');
 const layerContext = layer.getContext('2d')!;
+const LAYER_MARGIN = 256;
+const plotsLayer = document.createElement('canvas');
+const plotsLayerContext = plotsLayer.getContext('2d')!;
 
 let scene: SceneResult | undefined;
 let run: RunTracks | undefined;
+/** A second run (another concrete scenario), overlaid in a dashed style. */
+let compare: RunTracks | undefined;
+/** The entity plotted and outlined; followed while `following`. */
+let chosen: string | undefined;
+let following = false;
+/** The view the layer was drawn for. */
+let layerView: ViewTransform | undefined;
+let plotAreas: PlotArea[] = [];
+let drawnLabels: string[] = [];
 let shapes: RoadShapes = { lanes: [], borders: [], bounds: undefined };
 let view: ViewTransform | undefined;
 let time = 0;
@@ -93,56 +112,125 @@ function canvasPainter(target: CanvasRenderingContext2D): Painter {
 }
 
 const size = () => ({ width: stage.clientWidth, height: stage.clientHeight });
-const duration = () => (run && run.times.length > 0 ? run.times[run.times.length - 1] : 0);
+const lastTime = (tracks: RunTracks | undefined) => (tracks && tracks.times.length > 0 ? tracks.times[tracks.times.length - 1] : 0);
+const duration = () => Math.max(lastTime(run), lastTime(compare));
 
-/** Where each entity is now: on its trajectory after a run, at its start position before. */
-function currentBoxes(): PlacedBox[] {
-  if (!run) return startBoxes(scene?.entities ?? []);
+function boxesAt(tracks: RunTracks): PlacedBox[] {
   const boxes: PlacedBox[] = [];
-  for (const track of run.entities) {
-    const pose = poseAt(run, track, time);
+  for (const track of tracks.entities) {
+    const pose = poseAt(tracks, track, time);
     if (Number.isFinite(pose.x)) boxes.push({ name: track.name, ...pose, length: track.length, width: track.width, centerX: track.centerX });
   }
   return boxes;
 }
 
+/** Where each entity is now: on its trajectory after a run, at its start position before. */
+function currentBoxes(): PlacedBox[] {
+  return run ? boxesAt(run) : startBoxes(scene?.entities ?? []);
+}
+
+const comparedBoxes = () => (compare ? boxesAt(compare) : []);
+
 function drawStatic(painter: Painter, width: number, height: number): void {
   if (!view) return;
   drawnLanes = drawRoads(painter, shapes, view, width, height);
   if (run) drawTrajectories(painter, run, view, colorOf);
-  // The legend names the road file drawn, so that a saved picture says which road it shows.
+  if (compare) drawTrajectories(painter, compare, view, colorOf, true);
+}
+
+/** The legend names the road file drawn, so that a saved picture says which road it shows. */
+function drawRoadLegend(painter: Painter, height: number): void {
   if (scene?.roadFile) painter.text(8, height - 8, `road: ${scene.roadFile.resolved ?? `${scene.roadFile.filepath} (not found)`}`, COLORS.label, 11);
 }
 
-/** Roads and trajectories change only with the view or the data: drawn once into their layer. */
+/** Roads and trajectories change only with the view or the data: drawn once into their layer, a margin around the screen. */
 function renderLayer(): void {
   const { width, height } = size();
   const ratio = window.devicePixelRatio || 1;
-  for (const target of [canvas, layer]) {
-    target.width = Math.max(1, Math.round(width * ratio));
-    target.height = Math.max(1, Math.round(height * ratio));
-  }
+  canvas.width = Math.max(1, Math.round(width * ratio));
+  canvas.height = Math.max(1, Math.round(height * ratio));
+  layer.width = Math.max(1, Math.round((width + 2 * LAYER_MARGIN) * ratio));
+  layer.height = Math.max(1, Math.round((height + 2 * LAYER_MARGIN) * ratio));
   canvas.style.width = `${width}px`;
   canvas.style.height = `${height}px`;
+  if (!view) return;
   const started = performance.now();
+  layerView = { scale: view.scale, left: view.left - LAYER_MARGIN / view.scale, top: view.top + LAYER_MARGIN / view.scale };
   layerContext.setTransform(ratio, 0, 0, ratio, 0, 0);
   layerContext.fillStyle = COLORS.background;
-  layerContext.fillRect(0, 0, width, height);
-  drawStatic(canvasPainter(layerContext), width, height);
+  layerContext.fillRect(0, 0, width + 2 * LAYER_MARGIN, height + 2 * LAYER_MARGIN);
+  const shown = view;
+  view = layerView;
+  try {
+    drawStatic(canvasPainter(layerContext), width + 2 * LAYER_MARGIN, height + 2 * LAYER_MARGIN);
+  } finally {
+    view = shown;
+  }
   staticDrawMs = performance.now() - started;
+  renderPlots();
   renderFrame();
   report();
 }
 
+/** Where the layer is, px, relative to the screen; undefined when it no longer covers the screen at this view. */
+function layerOffset(): [number, number] | undefined {
+  if (!view || !layerView || layerView.scale !== view.scale) return undefined;
+  const dx = (layerView.left - view.left) * view.scale;
+  const dy = (view.top - layerView.top) * view.scale;
+  return dx <= 0 && dy <= 0 && dx >= -2 * LAYER_MARGIN && dy >= -2 * LAYER_MARGIN ? [dx, dy] : undefined;
+}
+
 function renderFrame(): void {
   if (!view) return;
+  if (following && run && chosen) {
+    const track = run.entities.find((entity) => entity.name === chosen);
+    const pose = track && poseAt(run, track, time);
+    if (pose && Number.isFinite(pose.x)) view = centredOn(view, pose.x, pose.y, size().width, size().height);
+  }
+  let offset = layerOffset();
+  if (!offset) {
+    renderLayer();
+    offset = layerOffset();
+    if (!offset) return;
+  }
   const started = performance.now();
   const ratio = window.devicePixelRatio || 1;
+  const { width, height } = size();
   context.setTransform(1, 0, 0, 1, 0, 0);
-  context.drawImage(layer, 0, 0);
+  context.fillStyle = COLORS.background;
+  context.fillRect(0, 0, canvas.width, canvas.height);
+  context.drawImage(layer, Math.round(offset[0] * ratio), Math.round(offset[1] * ratio));
   context.setTransform(ratio, 0, 0, ratio, 0, 0);
-  drawEntities(canvasPainter(context), currentBoxes(), view, colorOf);
+  const labels = drawEntities(canvasPainter(context), currentBoxes(), view, colorOf, { width, height, chosen, compare: comparedBoxes() });
+  drawnLabels = labels.map((label) => label.text);
+  drawRoadLegend(canvasPainter(context), height);
+  if (plotAreas.length > 0) {
+    plotsContext.setTransform(1, 0, 0, 1, 0, 0);
+    plotsContext.drawImage(plotsLayer, 0, 0);
+    plotsContext.setTransform(ratio, 0, 0, ratio, 0, 0);
+    drawPlotCursor(canvasPainter(plotsContext), plotAreas, time);
+  }
   if (playing) frameTimes.push(performance.now() - started);
+}
+
+const PLOTS_HEIGHT = 150;
+
+/** The plots of the chosen entity's speed, gap and TTC: drawn into their layer when the run, the choice or the size changes. */
+function renderPlots(): void {
+  const series = run && chosen ? runSeries(run, chosen) : undefined;
+  plotsCanvas.style.display = series ? 'block' : 'none';
+  plotAreas = [];
+  if (!series || !run) return;
+  const width = stage.clientWidth;
+  const ratio = window.devicePixelRatio || 1;
+  for (const target of [plotsCanvas, plotsLayer]) {
+    target.width = Math.max(1, Math.round(width * ratio));
+    target.height = Math.round(PLOTS_HEIGHT * ratio);
+  }
+  plotsCanvas.style.width = `${width}px`;
+  plotsCanvas.style.height = `${PLOTS_HEIGHT}px`;
+  plotsLayerContext.setTransform(ratio, 0, 0, ratio, 0, 0);
+  plotAreas = drawPlots(canvasPainter(plotsLayerContext), plotSpecs(series), series.times, undefined, 0, 0, width, PLOTS_HEIGHT, colorOf);
 }
 
 function report(): void {
@@ -158,16 +246,36 @@ function report(): void {
     frames,
     time,
     playing,
+    ...(chosen ? { chosen } : {}),
+    compared: compare?.entities.length ?? 0,
+    labels: drawnLabels,
+    spanMetres: view ? size().width / view.scale : 0,
   };
   document.body.dataset.stats = JSON.stringify(stats);
   vscode.postMessage({ type: 'rendered', stats });
 }
 
-/** Frames the entities and their trajectories (`focus`), or the whole road network. */
+/** Frames the entities where they are now (`focus`), or the whole road network. */
 function fit(focus = true): void {
   const { width, height } = size();
-  view = fitTransform(sceneBounds(shapes, scene, run, focus), width, height);
+  const now = focus ? entitiesBounds([...currentBoxes(), ...comparedBoxes()]) : undefined;
+  view = fitTransform(now ?? sceneBounds(shapes, scene, run, focus), width, height);
+  if (!focus) setFollowing(false);
   renderLayer();
+}
+
+/** Chooses the entity plotted and outlined, and whether the camera follows it. */
+function choose(name: string | undefined, follow: boolean): void {
+  chosen = name;
+  setFollowing(follow && name !== undefined);
+  renderPlots();
+  renderFrame();
+  report();
+}
+
+function setFollowing(next: boolean): void {
+  following = next;
+  followList.value = following && chosen ? chosen : '';
 }
 
 function setTime(next: number): void {
@@ -258,6 +366,11 @@ function renderPanel(): void {
   const title = element<HTMLSpanElement>('title');
   title.textContent = scene ? `${scene.title}${road}${run ? ` · run: ${run.label}` : ''}` : 'loading…';
   title.title = drawn ? `The road file drawn: ${drawn} (${scene?.roadFile?.filepath} as the scenario says)` : '';
+  const names = [...new Set([...(run?.entities.map((track) => track.name) ?? []), ...(scene?.entities.map((entity) => entity.name) ?? [])])];
+  if (chosen && !names.includes(chosen)) chosen = undefined;
+  followList.replaceChildren(Object.assign(document.createElement('option'), { value: '', textContent: 'Follow: none' }), ...names.map((name) => Object.assign(document.createElement('option'), { value: name, textContent: `Follow ${name}` })));
+  followList.value = following && chosen ? chosen : '';
+  if (compare) title.textContent += ` · compared with: ${compare.label} (dashed)`;
   const hasRun = run !== undefined;
   playButton.disabled = !hasRun;
   slider.disabled = !hasRun;
@@ -275,12 +388,21 @@ window.addEventListener('message', (event: MessageEvent<ToView>) => {
     else renderLayer();
   } else if (message.type === 'run') {
     run = message.run;
+    compare = undefined;
     setPlaying(false);
     renderPanel();
-    fit();
     setTime(0);
+    fit();
+  } else if (message.type === 'compare') {
+    compare = message.run;
+    setPlaying(false);
+    renderPanel();
+    setTime(time);
+    renderLayer();
+  } else if (message.type === 'choose') {
+    choose(message.entity, message.entity !== undefined);
   } else if (message.type === 'export') {
-    vscode.postMessage({ type: 'save', format: message.format, data: picture(message.format), id: message.id });
+    vscode.postMessage({ type: 'save', format: message.format, data: picture(message.format, message.width, message.height), id: message.id });
   } else if (message.type === 'error') {
     element<HTMLUListElement>('problems').replaceChildren(Object.assign(document.createElement('li'), { textContent: message.message, className: 'error' }));
   }
@@ -293,7 +415,10 @@ window.addEventListener('mouseup', (event) => {
   if (drag && !drag.moved && view && event.target === canvas) {
     const [x, y] = toWorld(view, event.offsetX, event.offsetY);
     const box = boxAt(currentBoxes(), view, x, y);
-    if (box) open(scene?.entities.find((entity) => entity.name === box.name)?.source);
+    if (box) {
+      choose(box.name, true);
+      open(scene?.entities.find((entity) => entity.name === box.name)?.source);
+    }
   }
   drag = undefined;
 });
@@ -304,21 +429,23 @@ canvas.addEventListener('mousemove', (event) => {
     const dy = event.offsetY - drag.y;
     if (Math.abs(dx) + Math.abs(dy) > 2 || drag.moved) {
       drag.moved = true;
+      setFollowing(false);
       view = { ...view, left: view.left - dx / view.scale, top: view.top + dy / view.scale };
       drag.x = event.offsetX;
       drag.y = event.offsetY;
-      renderLayer();
+      renderFrame();
     }
     return;
   }
   const [x, y] = toWorld(view, event.offsetX, event.offsetY);
   const box = boxAt(currentBoxes(), view, x, y);
   const lane = box ? undefined : laneAt(shapes, x, y);
-  const text = box ? `${box.name} (click to open its position in the source)` : lane ? `road ${lane.road} · lane ${lane.lane} · ${lane.type}${lane.junction ? ' · junction' : ''}` : '';
+  const text = box ? `${box.name} (click to follow it and open its position in the source)` : lane ? `road ${lane.road} · lane ${lane.lane} · ${lane.type}${lane.junction ? ' · junction' : ''}` : '';
   tooltip.textContent = text;
   tooltip.style.display = text ? 'block' : 'none';
-  tooltip.style.left = `${event.offsetX + 14}px`;
-  tooltip.style.top = `${event.offsetY + 14}px`;
+  const [left, top] = tooltipPlace(event.offsetX, event.offsetY, tooltip.offsetWidth, tooltip.offsetHeight, stage.clientWidth, stage.clientHeight);
+  tooltip.style.left = `${left}px`;
+  tooltip.style.top = `${top}px`;
   canvas.style.cursor = box ? 'pointer' : 'default';
 });
 canvas.addEventListener('mouseleave', () => (tooltip.style.display = 'none'));
@@ -327,11 +454,8 @@ canvas.addEventListener(
   (event) => {
     if (!view) return;
     event.preventDefault();
-    const factor = Math.exp(-event.deltaY / 500);
-    const [x, y] = toWorld(view, event.offsetX, event.offsetY);
-    const scale = Math.min(Math.max(view.scale * factor, 0.01), 500);
-    view = { scale, left: x - event.offsetX / scale, top: y + event.offsetY / scale };
-    renderLayer();
+    view = zoomAbout(view, wheelNotches(event.deltaY, event.deltaMode), event.offsetX, event.offsetY);
+    renderFrame();
   },
   { passive: false },
 );
@@ -344,19 +468,46 @@ slider.addEventListener('input', () => {
 element('fit').addEventListener('click', () => fit(true));
 element('network').addEventListener('click', () => fit(false));
 element('load').addEventListener('click', () => vscode.postMessage({ type: 'loadRun' }));
-/** The picture as shown: the canvas as PNG, or the same drawing as an SVG document. */
-function picture(format: 'png' | 'svg'): string {
-  if (format === 'png') {
-    renderFrame();
-    return canvas.toDataURL('image/png');
+element('compare').addEventListener('click', () => vscode.postMessage({ type: 'loadRun', compare: true }));
+followList.addEventListener('change', () => choose(followList.value || chosen, followList.value !== ''));
+/**
+ * The picture at `width` × `height` (the panel's size when not given): the map around what is shown,
+ * and a band with the time, a legend and a scale bar; a PNG data URL or an SVG document.
+ */
+function picture(format: 'png' | 'svg', width = size().width, height = size().height): string {
+  const shownSize = size();
+  const shown = view ?? fitTransform(sceneBounds(shapes, scene, run), shownSize.width, shownSize.height);
+  const compared = new Set((compare?.entities ?? []).map((track) => `${track.name} (2)`));
+  const names = [...currentBoxes().map((box) => box.name), ...compared];
+  const timeText = run ? `t = ${time.toFixed(2)} s of ${duration().toFixed(2)} s` : 'start positions';
+  const layout = exportLayout(width, height, shown, shownSize.width, shownSize.height, names, timeText);
+  const draw = (painter: Painter) => {
+    const kept = view;
+    view = layout.view;
+    try {
+      drawStatic(painter, layout.map.width, layout.map.height);
+      drawRoadLegend(painter, layout.map.height);
+      drawEntities(painter, currentBoxes(), layout.view, colorOf, { width: layout.map.width, height: layout.map.height, chosen, compare: comparedBoxes() });
+    } finally {
+      view = kept;
+    }
+    drawExportOverlay(painter, layout, colorOf, compared);
+  };
+  if (format === 'svg') {
+    const svg = new SvgPainter(width, height, COLORS.background);
+    draw(svg);
+    return svg.toString();
   }
-  const { width, height } = size();
-  const svg = new SvgPainter(width, height, COLORS.background);
-  drawStatic(svg, width, height);
-  if (view) drawEntities(svg, currentBoxes(), view, colorOf);
-  return svg.toString();
+  const target = document.createElement('canvas');
+  target.width = width;
+  target.height = height;
+  const targetContext = target.getContext('2d')!;
+  targetContext.fillStyle = COLORS.background;
+  targetContext.fillRect(0, 0, width, height);
+  draw(canvasPainter(targetContext));
+  return target.toDataURL('image/png');
 }
-element('png').addEventListener('click', () => vscode.postMessage({ type: 'save', format: 'png', data: picture('png') }));
-element('svg').addEventListener('click', () => vscode.postMessage({ type: 'save', format: 'svg', data: picture('svg') }));
+element('png').addEventListener('click', () => vscode.postMessage({ type: 'saveAs', format: 'png' }));
+element('svg').addEventListener('click', () => vscode.postMessage({ type: 'saveAs', format: 'svg' }));
 new ResizeObserver(() => (view ? renderLayer() : undefined)).observe(stage);
 vscode.postMessage({ type: 'ready' });
