@@ -179,7 +179,7 @@ export interface ExportLayout {
   height: number;
   /** The map's area on the picture; the band below it holds legend, time and scale bar. */
   map: { x: number; y: number; width: number; height: number };
-  /** The view for the map: the same centre as shown, scaled so that it shows at least what was shown. */
+  /** The view for the map (for each pane of it): the same centre as shown, scaled so that it shows at least what was shown. */
   view: ViewTransform;
   legend: { x: number; y: number; text: string }[];
   time: { x: number; y: number; text: string };
@@ -192,13 +192,15 @@ export interface ExportLayout {
  * `shown` of `shownWidth` × `shownHeight` px, refitted), a band below with a legend of the entities,
  * the time and a scale bar. Sizes grow with the picture.
  */
-export function exportLayout(width: number, height: number, shown: ViewTransform, shownWidth: number, shownHeight: number, entities: string[], timeText: string): ExportLayout {
+export function exportLayout(width: number, height: number, shown: ViewTransform, shownWidth: number, shownHeight: number, entities: string[], timeText: string, panes = 1): ExportLayout {
   const fontSize = Math.max(11, Math.round(Math.min(width, height) / 60));
   const band = Math.round(fontSize * 2.6);
   const map = { x: 0, y: 0, width, height: Math.max(1, height - band) };
+  // With runs side by side, each pane is a `panes`th of the map's width and shows what its pane showed.
+  const paneWidth = map.width / panes;
   const [cx, cy] = toWorld(shown, shownWidth / 2, shownHeight / 2);
-  const scale = Math.min(map.width / (shownWidth / shown.scale), map.height / (shownHeight / shown.scale));
-  const view: ViewTransform = { scale, left: cx - map.width / 2 / scale, top: cy + map.height / 2 / scale };
+  const scale = Math.min(paneWidth / (shownWidth / shown.scale), map.height / (shownHeight / shown.scale));
+  const view: ViewTransform = { scale, left: cx - paneWidth / 2 / scale, top: cy + map.height / 2 / scale };
   const baseline = map.height + Math.round(band * 0.62);
   const bar = scaleBar(scale, Math.min(width / 5, 240 * (fontSize / 12)));
   const barX = width - fontSize - bar.pixels;

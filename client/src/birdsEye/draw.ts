@@ -12,6 +12,25 @@ export interface Painter {
   polygon(xy: ArrayLike<number>, fill: string): void;
   polyline(xy: ArrayLike<number>, stroke: string, width: number, dash?: number[]): void;
   text(x: number, y: number, text: string, color: string, size: number): void;
+  /** Limits what follows to a rectangle until `unclip` (the panes of runs side by side). */
+  clip?(x: number, y: number, width: number, height: number): void;
+  unclip?(): void;
+}
+
+/** A painter that draws `dx` pixels to the right: a pane's drawing in its place on a picture. */
+export function shiftedPainter(painter: Painter, dx: number): Painter {
+  const shift = (xy: ArrayLike<number>) => {
+    const out = Array.from(xy);
+    for (let i = 0; i < out.length; i += 2) out[i] += dx;
+    return out;
+  };
+  return {
+    polygon: (xy, fill) => painter.polygon(shift(xy), fill),
+    polyline: (xy, stroke, width, dash) => painter.polyline(shift(xy), stroke, width, dash),
+    text: (x, y, text, color, size) => painter.text(x + dx, y, text, color, size),
+    clip: (x, y, width, height) => painter.clip?.(x + dx, y, width, height),
+    unclip: () => painter.unclip?.(),
+  };
 }
 
 /** World (metres, y up) to screen (pixels, y down). */
@@ -249,6 +268,8 @@ export interface EntityDrawing {
   compare?: PlacedBox[];
   /** Appended to the compared entities' names. */
   compareSuffix?: string;
+  /** The labels' font size, px (larger on a large exported picture). */
+  labelSize?: number;
 }
 
 const LABEL_SIZE = 12;
@@ -280,7 +301,8 @@ export function drawEntities(painter: Painter, boxes: PlacedBox[], view: ViewTra
   };
   for (const box of compare) drawOne(box, true);
   for (const box of boxes) drawOne(box, false);
-  const request = (box: PlacedBox, text: string, priority: number): LabelRequest => ({ text, anchor: screenBox(view, drawnBox(box, view)), width: text.length * LABEL_SIZE * 0.62 + 4, height: LABEL_SIZE + 3, priority });
+  const labelSize = options.labelSize ?? LABEL_SIZE;
+  const request = (box: PlacedBox, text: string, priority: number): LabelRequest => ({ text, anchor: screenBox(view, drawnBox(box, view)), width: text.length * labelSize * 0.62 + 4, height: labelSize + 3, priority });
   const requests = [
     ...boxes.map((box, index) => request(box, box.name, box.name === options.chosen ? -1 : index)),
     ...compare.map((box, index) => request(box, `${box.name}${options.compareSuffix ?? ' (2)'}`, boxes.length + index)),
@@ -288,7 +310,7 @@ export function drawEntities(painter: Painter, boxes: PlacedBox[], view: ViewTra
   const labels = placeLabels(requests, obstacles, options.width ?? Infinity, options.height ?? Infinity);
   for (const label of labels) {
     if (label.leader) painter.polyline(label.leader, COLORS.label, 1);
-    painter.text(label.x + 2, label.y, label.text, COLORS.label, LABEL_SIZE);
+    painter.text(label.x + 2, label.y, label.text, COLORS.label, labelSize);
   }
   return labels;
 }
@@ -354,6 +376,17 @@ export class SvgPainter implements Painter {
 
   polyline(xy: ArrayLike<number>, stroke: string, width: number, dash?: number[]): void {
     this.parts.push(`<polyline points="${this.points(xy)}" fill="none" stroke="${stroke}" stroke-width="${width}"${dash ? ` stroke-dasharray="${dash.join(' ')}"` : ''}/>`);
+  }
+
+  private clips = 0;
+
+  clip(x: number, y: number, width: number, height: number): void {
+    const id = `pane${++this.clips}`;
+    this.parts.push(`<clipPath id="${id}"><rect x="${fixed(x)}" y="${fixed(y)}" width="${fixed(width)}" height="${fixed(height)}"/></clipPath><g clip-path="url(#${id})">`);
+  }
+
+  unclip(): void {
+    this.parts.push('</g>');
   }
 
   text(x: number, y: number, text: string, color: string, size: number): void {

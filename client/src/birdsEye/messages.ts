@@ -48,8 +48,10 @@ export interface RenderStats {
   compared: number;
   /** Names labelled on the map now (labels that found no free place are left out). */
   labels: string[];
-  /** Metres across the map now. */
+  /** Metres across the map (its first pane) now. */
   spanMetres: number;
+  /** The compared run is in a pane of its own beside the first. */
+  sideBySide?: boolean;
 }
 
 export type FromView =

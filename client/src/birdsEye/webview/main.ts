@@ -21,6 +21,7 @@ import {
   roadShapes,
   sceneBounds,
   startBoxes,
+  shiftedPainter,
   SvgPainter,
   toWorld,
   ViewTransform,
@@ -42,17 +43,21 @@ const followList = element<HTMLSelectElement>('follow');
 const plotsCanvas = element<HTMLCanvasElement>('plots');
 const plotsContext = plotsCanvas.getContext('2d')!;
 const context = canvas.getContext('2d')!;
-/** Roads and trajectories, drawn LAYER_MARGIN px beyond each side of the screen so that following and panning move it without redrawing. */
-const layer = document.createElement('canvas');
-const layerContext = layer.getContext('2d')!;
+/**
+ * Roads and trajectories, one layer per pane, drawn LAYER_MARGIN px beyond each side of the pane so that
+ * following and panning move it without redrawing.
+ */
+const layers = [document.createElement('canvas'), document.createElement('canvas')];
 const LAYER_MARGIN = 256;
+const compareMode = element<HTMLSelectElement>('compareMode');
 const plotsLayer = document.createElement('canvas');
 const plotsLayerContext = plotsLayer.getContext('2d')!;
 
 let scene: SceneResult | undefined;
 let run: RunTracks | undefined;
-/** A second run (another concrete scenario), overlaid in a dashed style. */
+/** A second run (another concrete scenario): overlaid in a dashed style, or in a pane of its own beside the first. */
 let compare: RunTracks | undefined;
+let sideBySide = false;
 /** The entity plotted and outlined; followed while `following`. */
 let chosen: string | undefined;
 let following = false;
@@ -99,6 +104,15 @@ function canvasPainter(target: CanvasRenderingContext2D): Painter {
       target.setLineDash(dash ?? []);
       target.stroke();
     },
+    clip(x, y, width, height) {
+      target.save();
+      target.beginPath();
+      target.rect(x, y, width, height);
+      target.clip();
+    },
+    unclip() {
+      target.restore();
+    },
     text(x, y, text, color, size) {
       target.font = `${size}px sans-serif`;
       target.lineWidth = 3;
@@ -131,11 +145,43 @@ function currentBoxes(): PlacedBox[] {
 
 const comparedBoxes = () => (compare ? boxesAt(compare) : []);
 
-function drawStatic(painter: Painter, width: number, height: number): void {
+/** A part of the map: the whole of it, or one of two runs side by side. */
+interface Pane {
+  x: number;
+  width: number;
+  /** The run drawn solid (none before a run: the start positions). */
+  tracks: RunTracks | undefined;
+  /** The run drawn dashed over it. */
+  overlay: RunTracks | undefined;
+}
+
+function panesOf(width: number): Pane[] {
+  if (compare && sideBySide) {
+    const half = Math.floor(width / 2);
+    return [
+      { x: 0, width: half, tracks: run, overlay: undefined },
+      { x: half, width: width - half, tracks: compare, overlay: undefined },
+    ];
+  }
+  return [{ x: 0, width, tracks: run, overlay: compare }];
+}
+
+const panes = () => panesOf(size().width);
+const paneBoxes = (pane: Pane) => (pane.tracks ? boxesAt(pane.tracks) : startBoxes(scene?.entities ?? []));
+const paneAt = (x: number) => panes().find((pane) => x >= pane.x && x < pane.x + pane.width) ?? panes()[0];
+
+function drawStatic(painter: Painter, width: number, height: number, pane: Pane = panes()[0]): void {
   if (!view) return;
   drawnLanes = drawRoads(painter, shapes, view, width, height);
-  if (run) drawTrajectories(painter, run, view, colorOf);
-  if (compare) drawTrajectories(painter, compare, view, colorOf, true);
+  if (pane.tracks) drawTrajectories(painter, pane.tracks, view, colorOf);
+  if (pane.overlay) drawTrajectories(painter, pane.overlay, view, colorOf, true);
+}
+
+/** The pane's entities, its overlay's dashed, labels kept inside the pane. */
+function drawPane(painter: Painter, pane: Pane, paneView: ViewTransform, height: number, labelSize = 12): string[] {
+  const labels = drawEntities(painter, paneBoxes(pane), paneView, colorOf, { width: pane.width, height, chosen, compare: pane.overlay ? boxesAt(pane.overlay) : [], labelSize });
+  if (sideBySide && compare && pane.tracks) painter.text(8, 8 + labelSize, `run: ${pane.tracks.label}`, COLORS.label, labelSize + 1);
+  return labels.map((label) => label.text);
 }
 
 /** The legend names the road file drawn, so that a saved picture says which road it shows. */
@@ -143,36 +189,42 @@ function drawRoadLegend(painter: Painter, height: number): void {
   if (scene?.roadFile) painter.text(8, height - 8, `road: ${scene.roadFile.resolved ?? `${scene.roadFile.filepath} (not found)`}`, COLORS.label, 11);
 }
 
-/** Roads and trajectories change only with the view or the data: drawn once into their layer, a margin around the screen. */
+/** Roads and trajectories change only with the view or the data: drawn once into their layers, a margin around each pane. */
 function renderLayer(): void {
   const { width, height } = size();
   const ratio = window.devicePixelRatio || 1;
   canvas.width = Math.max(1, Math.round(width * ratio));
   canvas.height = Math.max(1, Math.round(height * ratio));
-  layer.width = Math.max(1, Math.round((width + 2 * LAYER_MARGIN) * ratio));
-  layer.height = Math.max(1, Math.round((height + 2 * LAYER_MARGIN) * ratio));
   canvas.style.width = `${width}px`;
   canvas.style.height = `${height}px`;
   if (!view) return;
   const started = performance.now();
-  layerView = { scale: view.scale, left: view.left - LAYER_MARGIN / view.scale, top: view.top + LAYER_MARGIN / view.scale };
-  layerContext.setTransform(ratio, 0, 0, ratio, 0, 0);
-  layerContext.fillStyle = COLORS.background;
-  layerContext.fillRect(0, 0, width + 2 * LAYER_MARGIN, height + 2 * LAYER_MARGIN);
   const shown = view;
-  view = layerView;
-  try {
-    drawStatic(canvasPainter(layerContext), width + 2 * LAYER_MARGIN, height + 2 * LAYER_MARGIN);
-  } finally {
-    view = shown;
-  }
+  layerView = { scale: view.scale, left: view.left - LAYER_MARGIN / view.scale, top: view.top + LAYER_MARGIN / view.scale };
+  const paneList = panes();
+  // The first pane's lanes are the ones counted: it is drawn last.
+  [...paneList.entries()].reverse().forEach(([index, pane]) => {
+    const layer = layers[index];
+    layer.width = Math.max(1, Math.round((pane.width + 2 * LAYER_MARGIN) * ratio));
+    layer.height = Math.max(1, Math.round((height + 2 * LAYER_MARGIN) * ratio));
+    const layerContext = layer.getContext('2d')!;
+    layerContext.setTransform(ratio, 0, 0, ratio, 0, 0);
+    layerContext.fillStyle = COLORS.background;
+    layerContext.fillRect(0, 0, pane.width + 2 * LAYER_MARGIN, height + 2 * LAYER_MARGIN);
+    view = layerView;
+    try {
+      drawStatic(canvasPainter(layerContext), pane.width + 2 * LAYER_MARGIN, height + 2 * LAYER_MARGIN, pane);
+    } finally {
+      view = shown;
+    }
+  });
   staticDrawMs = performance.now() - started;
   renderPlots();
   renderFrame();
   report();
 }
 
-/** Where the layer is, px, relative to the screen; undefined when it no longer covers the screen at this view. */
+/** Where the layers are, px, relative to their panes; undefined when they no longer cover the panes at this view. */
 function layerOffset(): [number, number] | undefined {
   if (!view || !layerView || layerView.scale !== view.scale) return undefined;
   const dx = (layerView.left - view.left) * view.scale;
@@ -182,10 +234,11 @@ function layerOffset(): [number, number] | undefined {
 
 function renderFrame(): void {
   if (!view) return;
+  const paneList = panes();
   if (following && run && chosen) {
     const track = run.entities.find((entity) => entity.name === chosen);
     const pose = track && poseAt(run, track, time);
-    if (pose && Number.isFinite(pose.x)) view = centredOn(view, pose.x, pose.y, size().width, size().height);
+    if (pose && Number.isFinite(pose.x)) view = centredOn(view, pose.x, pose.y, paneList[0].width, size().height);
   }
   let offset = layerOffset();
   if (!offset) {
@@ -195,15 +248,26 @@ function renderFrame(): void {
   }
   const started = performance.now();
   const ratio = window.devicePixelRatio || 1;
-  const { width, height } = size();
+  const { height } = size();
   context.setTransform(1, 0, 0, 1, 0, 0);
   context.fillStyle = COLORS.background;
   context.fillRect(0, 0, canvas.width, canvas.height);
-  context.drawImage(layer, Math.round(offset[0] * ratio), Math.round(offset[1] * ratio));
+  drawnLabels = [];
+  paneList.forEach((pane, index) => {
+    context.save();
+    context.setTransform(1, 0, 0, 1, 0, 0);
+    context.beginPath();
+    context.rect(Math.round(pane.x * ratio), 0, Math.round(pane.width * ratio), canvas.height);
+    context.clip();
+    context.drawImage(layers[index], Math.round((pane.x + offset[0]) * ratio), Math.round(offset[1] * ratio));
+    context.setTransform(ratio, 0, 0, ratio, pane.x * ratio, 0);
+    drawnLabels.push(...drawPane(canvasPainter(context), pane, view!, height));
+    context.restore();
+  });
   context.setTransform(ratio, 0, 0, ratio, 0, 0);
-  const labels = drawEntities(canvasPainter(context), currentBoxes(), view, colorOf, { width, height, chosen, compare: comparedBoxes() });
-  drawnLabels = labels.map((label) => label.text);
-  drawRoadLegend(canvasPainter(context), height);
+  const painter = canvasPainter(context);
+  if (paneList.length > 1) painter.polyline([paneList[1].x, 0, paneList[1].x, height], '#000000', 2);
+  drawRoadLegend(painter, height);
   if (plotAreas.length > 0) {
     plotsContext.setTransform(1, 0, 0, 1, 0, 0);
     plotsContext.drawImage(plotsLayer, 0, 0);
@@ -249,7 +313,8 @@ function report(): void {
     ...(chosen ? { chosen } : {}),
     compared: compare?.entities.length ?? 0,
     labels: drawnLabels,
-    spanMetres: view ? size().width / view.scale : 0,
+    spanMetres: view ? panes()[0].width / view.scale : 0,
+    sideBySide: sideBySide && compare !== undefined,
   };
   document.body.dataset.stats = JSON.stringify(stats);
   vscode.postMessage({ type: 'rendered', stats });
@@ -257,7 +322,8 @@ function report(): void {
 
 /** Frames the entities where they are now (`focus`), or the whole road network. */
 function fit(focus = true): void {
-  const { width, height } = size();
+  const { height } = size();
+  const width = panes()[0].width;
   const now = focus ? entitiesBounds([...currentBoxes(), ...comparedBoxes()]) : undefined;
   view = fitTransform(now ?? sceneBounds(shapes, scene, run, focus), width, height);
   if (!focus) setFollowing(false);
@@ -370,7 +436,9 @@ function renderPanel(): void {
   if (chosen && !names.includes(chosen)) chosen = undefined;
   followList.replaceChildren(Object.assign(document.createElement('option'), { value: '', textContent: 'Follow: none' }), ...names.map((name) => Object.assign(document.createElement('option'), { value: name, textContent: `Follow ${name}` })));
   followList.value = following && chosen ? chosen : '';
-  if (compare) title.textContent += ` · compared with: ${compare.label} (dashed)`;
+  if (compare) title.textContent += ` · compared with: ${compare.label}${sideBySide ? ' (right)' : ' (dashed)'}`;
+  compareMode.style.display = compare ? '' : 'none';
+  compareMode.value = sideBySide ? 'side' : 'overlay';
   const hasRun = run !== undefined;
   playButton.disabled = !hasRun;
   slider.disabled = !hasRun;
@@ -413,8 +481,9 @@ let drag: { x: number; y: number; moved: boolean } | undefined;
 canvas.addEventListener('mousedown', (event) => (drag = { x: event.offsetX, y: event.offsetY, moved: false }));
 window.addEventListener('mouseup', (event) => {
   if (drag && !drag.moved && view && event.target === canvas) {
-    const [x, y] = toWorld(view, event.offsetX, event.offsetY);
-    const box = boxAt(currentBoxes(), view, x, y);
+    const pane = paneAt(event.offsetX);
+    const [x, y] = toWorld(view, event.offsetX - pane.x, event.offsetY);
+    const box = boxAt(paneBoxes(pane), view, x, y);
     if (box) {
       choose(box.name, true);
       open(scene?.entities.find((entity) => entity.name === box.name)?.source);
@@ -437,8 +506,9 @@ canvas.addEventListener('mousemove', (event) => {
     }
     return;
   }
-  const [x, y] = toWorld(view, event.offsetX, event.offsetY);
-  const box = boxAt(currentBoxes(), view, x, y);
+  const pane = paneAt(event.offsetX);
+  const [x, y] = toWorld(view, event.offsetX - pane.x, event.offsetY);
+  const box = boxAt(paneBoxes(pane), view, x, y);
   const lane = box ? undefined : laneAt(shapes, x, y);
   const text = box ? `${box.name} (click to follow it and open its position in the source)` : lane ? `road ${lane.road} · lane ${lane.lane} · ${lane.type}${lane.junction ? ' · junction' : ''}` : '';
   tooltip.textContent = text;
@@ -454,7 +524,7 @@ canvas.addEventListener(
   (event) => {
     if (!view) return;
     event.preventDefault();
-    view = zoomAbout(view, wheelNotches(event.deltaY, event.deltaMode), event.offsetX, event.offsetY);
+    view = zoomAbout(view, wheelNotches(event.deltaY, event.deltaMode), event.offsetX - paneAt(event.offsetX).x, event.offsetY);
     renderFrame();
   },
   { passive: false },
@@ -469,6 +539,11 @@ element('fit').addEventListener('click', () => fit(true));
 element('network').addEventListener('click', () => fit(false));
 element('load').addEventListener('click', () => vscode.postMessage({ type: 'loadRun' }));
 element('compare').addEventListener('click', () => vscode.postMessage({ type: 'loadRun', compare: true }));
+compareMode.addEventListener('change', () => {
+  sideBySide = compareMode.value === 'side';
+  renderPanel();
+  fit(true);
+});
 followList.addEventListener('change', () => choose(followList.value || chosen, followList.value !== ''));
 /**
  * The picture at `width` × `height` (the panel's size when not given): the map around what is shown,
@@ -476,18 +551,27 @@ followList.addEventListener('change', () => choose(followList.value || chosen, f
  */
 function picture(format: 'png' | 'svg', width = size().width, height = size().height): string {
   const shownSize = size();
-  const shown = view ?? fitTransform(sceneBounds(shapes, scene, run), shownSize.width, shownSize.height);
-  const compared = new Set((compare?.entities ?? []).map((track) => `${track.name} (2)`));
-  const names = [...currentBoxes().map((box) => box.name), ...compared];
-  const timeText = run ? `t = ${time.toFixed(2)} s of ${duration().toFixed(2)} s` : 'start positions';
-  const layout = exportLayout(width, height, shown, shownSize.width, shownSize.height, names, timeText);
+  const shownPanes = panes();
+  const shown = view ?? fitTransform(sceneBounds(shapes, scene, run), shownPanes[0].width, shownSize.height);
+  const overlaid = compare !== undefined && !sideBySide;
+  const compared = new Set(overlaid && compare ? compare.entities.map((track) => `${track.name} (2)`) : []);
+  const names = [...new Set([...currentBoxes().map((box) => box.name), ...(sideBySide ? comparedBoxes().map((box) => box.name) : [])]), ...compared];
+  const timeText = `${run ? `t = ${time.toFixed(2)} s of ${duration().toFixed(2)} s` : 'start positions'}${compare ? ` · ${run?.label} vs ${compare.label}${overlaid ? ' (dashed)' : ''}` : ''}`;
+  const layout = exportLayout(width, height, shown, shownPanes[0].width, shownSize.height, names, timeText, shownPanes.length);
   const draw = (painter: Painter) => {
     const kept = view;
     view = layout.view;
     try {
-      drawStatic(painter, layout.map.width, layout.map.height);
+      for (const pane of panesOf(width)) {
+        const paneView = layout.view;
+        const target = shiftedPainter(painter, pane.x);
+        target.clip?.(0, 0, pane.width, layout.map.height);
+        drawStatic(target, pane.width, layout.map.height, pane);
+        drawPane(target, pane, paneView, layout.map.height, layout.fontSize);
+        target.unclip?.();
+        if (pane.x > 0) painter.polyline([pane.x, 0, pane.x, layout.map.height], '#000000', 2);
+      }
       drawRoadLegend(painter, layout.map.height);
-      drawEntities(painter, currentBoxes(), layout.view, colorOf, { width: layout.map.width, height: layout.map.height, chosen, compare: comparedBoxes() });
     } finally {
       view = kept;
     }
