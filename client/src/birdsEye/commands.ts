@@ -20,7 +20,8 @@ export function registerBirdsEye(context: vscode.ExtensionContext, client: Langu
       if (source.scheme === 'file' && source.path.toLowerCase().endsWith('.mosc')) source = packageEntryUri(source, 'main.xosc');
       await view.show(source);
     }),
-    // For the run command (args: csvPath, { logPath?, logText?, scenario?, compare? }) and for a person (picks a CSV); `compare: true` draws it over the run shown.
+    // For the run command (args: csvPath, { logPath?, logText?, scenario?, compare? }) and for a person (picks a CSV);
+    // `compare: true` or 'overlay' draws it over the run shown (dashed), 'side' beside it.
     vscode.commands.registerCommand('modular2simple.birdsEye.showRun', async (csvPath?: unknown, options?: unknown) => {
       let path = typeof csvPath === 'string' ? csvPath : csvPath instanceof vscode.Uri ? csvPath.fsPath : undefined;
       if (!path) {
@@ -33,7 +34,7 @@ export function registerBirdsEye(context: vscode.ExtensionContext, client: Langu
       if (typeof given.logPath === 'string') run.logPath = given.logPath;
       if (typeof given.logText === 'string') run.logText = given.logText;
       const scenario = typeof given.scenario === 'string' ? vscode.Uri.parse(given.scenario) : given.scenario instanceof vscode.Uri ? given.scenario : undefined;
-      await view.showRun(run, scenario, given.compare === true);
+      await view.showRun(run, scenario, given.compare === true || given.compare === 'overlay' ? 'overlay' : given.compare === 'side' ? 'side' : undefined);
     }),
     // Saves the picture shown (args: 'png' | 'svg', target path or URI, { width, height }; without a target, asks where; without a size, the panel's).
     vscode.commands.registerCommand('modular2simple.birdsEye.save', async (format?: unknown, target?: unknown, resolution?: unknown) => {

@@ -19,8 +19,8 @@ export interface RunTracks {
 export type ToView =
   | { type: 'scene'; scene: SceneResult }
   | { type: 'run'; run: RunTracks | undefined }
-  /** A second run (another concrete scenario) to compare with the first; undefined ends the comparison. */
-  | { type: 'compare'; run: RunTracks | undefined }
+  /** A second run (another concrete scenario) to compare with the first, overlaid or side by side; undefined ends the comparison. */
+  | { type: 'compare'; run: RunTracks | undefined; sideBySide?: boolean }
   | { type: 'error'; message: string }
   /** Asks for the picture as it is now; answered by a `save` with the same id. */
   | { type: 'export'; format: 'png' | 'svg'; id: number; width?: number; height?: number }

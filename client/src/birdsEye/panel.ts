@@ -24,6 +24,7 @@ export class BirdsEyeView implements vscode.Disposable {
   private compareSource: RunSource | undefined;
   private compareRun: RunTracks | undefined;
   private compareWatcher: vscode.FileSystemWatcher | undefined;
+  private compareSideBySide = false;
   /** The resolution last chosen for a saved picture. */
   private exportSize = '1920x1080';
   private ready = false;
@@ -89,10 +90,14 @@ export class BirdsEyeView implements vscode.Disposable {
 
   /**
    * Shows a run's trajectories (e.g. handed over by the esmini run command); opens the view if needed.
-   * With `compare`, the run is a second one drawn over the first (dashed), on the scenario shown.
+   * With `compare`, the run is a second one, drawn over the first (dashed, 'overlay') or beside it
+   * ('side'), on the scenario shown.
    */
-  async showRun(run: RunSource, scenario?: vscode.Uri, compare = false): Promise<void> {
-    if (compare && this.run) return this.showComparison(run);
+  async showRun(run: RunSource, scenario?: vscode.Uri, compare?: 'overlay' | 'side'): Promise<void> {
+    if (compare && this.run) {
+      this.compareSideBySide = compare === 'side';
+      return this.showComparison(run);
+    }
     const target = scenario ?? this.source ?? vscode.window.activeTextEditor?.document.uri;
     if (target && (!this.panel || target.toString() !== this.source?.toString())) await this.show(target);
     if (!this.panel) this.createPanel();
@@ -124,7 +129,7 @@ export class BirdsEyeView implements vscode.Disposable {
       this.log(`bird's-eye view: ${(error as Error).stack ?? String(error)}`);
       return;
     }
-    this.post({ type: 'compare', run: this.compareRun });
+    this.post({ type: 'compare', run: this.compareRun, sideBySide: this.compareSideBySide });
   }
 
   private endComparison(): void {
@@ -203,7 +208,7 @@ export class BirdsEyeView implements vscode.Disposable {
         if (this.scene) this.post({ type: 'scene', scene: this.scene });
         else await this.refresh();
         if (this.run) this.post({ type: 'run', run: this.run });
-        if (this.compareRun) this.post({ type: 'compare', run: this.compareRun });
+        if (this.compareRun) this.post({ type: 'compare', run: this.compareRun, sideBySide: this.compareSideBySide });
         return;
       case 'open': {
         const position = new vscode.Position(message.source.line, message.source.character);
@@ -212,7 +217,7 @@ export class BirdsEyeView implements vscode.Disposable {
       }
       case 'loadRun': {
         const picked = await vscode.window.showOpenDialog({ canSelectMany: false, filters: { 'esmini CSV log': ['csv'] }, title: 'Load an esmini run (--csv_logger output)' });
-        if (picked?.[0]) await this.showRun({ csvPath: picked[0].fsPath }, undefined, message.compare === true);
+        if (picked?.[0]) await this.showRun({ csvPath: picked[0].fsPath }, undefined, message.compare ? 'overlay' : undefined);
         return;
       }
       case 'saveAs': {

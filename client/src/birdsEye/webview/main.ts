@@ -463,10 +463,13 @@ window.addEventListener('message', (event: MessageEvent<ToView>) => {
     fit();
   } else if (message.type === 'compare') {
     compare = message.run;
+    sideBySide = message.sideBySide === true;
     setPlaying(false);
     renderPanel();
     setTime(time);
-    renderLayer();
+    // Half as wide a pane: framed anew.
+    if (sideBySide) fit(true);
+    else renderLayer();
   } else if (message.type === 'choose') {
     choose(message.entity, message.entity !== undefined);
   } else if (message.type === 'export') {
