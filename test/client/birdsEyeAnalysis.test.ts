@@ -1,6 +1,6 @@
 import * as assert from 'node:assert/strict';
 import { boxGap, centredOn, entitiesBounds, exportLayout, parseResolution, runSeries, scaleBar, tooltipPlace, wheelNotches, zoomAbout, ZOOM_STEP } from '../../client/src/birdsEye/analysis';
-import { drawEntities, drawExportOverlay, fitTransform, type PlacedBox, roadShapes, sceneBounds, SvgPainter, toScreen, toWorld } from '../../client/src/birdsEye/draw';
+import { drawEntities, drawExportOverlay, fitTransform, type PlacedBox, roadShapes, sceneBounds, shiftedPainter, SvgPainter, toScreen, toWorld } from '../../client/src/birdsEye/draw';
 import { type Bounds, overlaps, placeLabels } from '../../client/src/birdsEye/labels';
 import type { RunTracks } from '../../client/src/birdsEye/messages';
 import { drawPlots, plotSpecs, TTC_CEILING_S } from '../../client/src/birdsEye/plots';
@@ -188,6 +188,17 @@ describe("client: the bird's-eye view as a tool for analysing a run", () => {
     const narrow = exportLayout(300, 200, shown, 626, 688, ['Ego', 'A1', 'A2', 'A3', 'A4', 'A5'], 't = 3.00 s');
     assert.ok(narrow.legend.length < 6);
     for (const item of narrow.legend) assert.ok(item.x + 3 * narrow.fontSize < narrow.scale.x);
+    // Two runs side by side: each pane half the width, showing what its pane showed (313 px of the panel).
+    const split = exportLayout(1920, 1080, shown, 313, 688, ['Ego'], 't', 2);
+    assert.ok(Math.abs(split.view.scale - Math.min(960 / (313 / 3), split.map.height / (688 / 3))) < 1e-9);
+    assert.deepEqual(toScreen(split.view, ...toWorld(shown, 156.5, 344)).map((value) => Math.round(value * 1e6) / 1e6), [480, split.map.height / 2]);
+    const panes = new SvgPainter(200, 100, '#000');
+    const right = shiftedPainter(panes, 100);
+    right.clip?.(0, 0, 100, 100);
+    right.text(5, 10, 'B', '#fff', 12);
+    right.polygon([0, 0, 10, 0, 10, 10], '#fff');
+    right.unclip?.();
+    assert.match(panes.toString(), /<clipPath id="pane1"><rect x="100" y="0" width="100" height="100"\/><\/clipPath><g clip-path="url\(#pane1\)">\n<text x="105" y="10"[^>]*>B<\/text>\n<polygon points="100,0 110,0 110,10" fill="#fff"\/>\n<\/g>/);
     assert.deepEqual(parseResolution('1920x1080'), [1920, 1080]);
     assert.deepEqual(parseResolution(' 800 × 600 '), [800, 600]);
     assert.equal(parseResolution('8x8'), undefined);
