@@ -122,7 +122,7 @@ export class BirdsEyeView implements vscode.Disposable {
   private async reloadComparison(): Promise<void> {
     if (!this.compareSource) return;
     try {
-      this.compareRun = await loadRun(this.compareSource);
+      this.compareRun = this.withAbsoluteRoad(await loadRun(this.compareSource));
     } catch (error) {
       this.compareRun = undefined;
       this.post({ type: 'error', message: `the run ${this.compareSource.csvPath} could not be read: ${(error as Error).message}` });
@@ -130,6 +130,12 @@ export class BirdsEyeView implements vscode.Disposable {
       return;
     }
     this.post({ type: 'compare', run: this.compareRun, sideBySide: this.compareSideBySide });
+  }
+
+  /** esmini logs the road file as the scenario wrote it (`../xodr/x.xodr`): relative to the scenario's folder, as esmini reads it. */
+  private withAbsoluteRoad(run: RunTracks): RunTracks {
+    if (!run.roadFile || path.isAbsolute(run.roadFile) || this.source?.scheme !== 'file') return run;
+    return { ...run, roadFile: path.resolve(path.dirname(this.source.fsPath), run.roadFile) };
   }
 
   private endComparison(): void {
@@ -147,7 +153,7 @@ export class BirdsEyeView implements vscode.Disposable {
   private async reloadRun(): Promise<void> {
     if (!this.runSource) return;
     try {
-      this.run = await loadRun(this.runSource);
+      this.run = this.withAbsoluteRoad(await loadRun(this.runSource));
     } catch (error) {
       this.run = undefined;
       this.post({ type: 'error', message: `the run ${this.runSource.csvPath} could not be read: ${(error as Error).message}` });
