@@ -198,6 +198,17 @@ function renderLayer(): void {
   canvas.style.width = `${width}px`;
   canvas.style.height = `${height}px`;
   if (!view) return;
+  drawLayers();
+  renderPlots();
+  renderFrame();
+  report();
+}
+
+/** Draws each pane's layer for the view now. */
+function drawLayers(): void {
+  if (!view) return;
+  const { height } = size();
+  const ratio = window.devicePixelRatio || 1;
   const started = performance.now();
   const shown = view;
   layerView = { scale: view.scale, left: view.left - LAYER_MARGIN / view.scale, top: view.top + LAYER_MARGIN / view.scale };
@@ -219,9 +230,6 @@ function renderLayer(): void {
     }
   });
   staticDrawMs = performance.now() - started;
-  renderPlots();
-  renderFrame();
-  report();
 }
 
 /** Where the layers are, px, relative to their panes; undefined when they no longer cover the panes at this view. */
@@ -234,19 +242,17 @@ function layerOffset(): [number, number] | undefined {
 
 function renderFrame(): void {
   if (!view) return;
+  // A frame that has to redraw the layers (following or panning past their margin) counts that too.
+  const started = performance.now();
   const paneList = panes();
   if (following && run && chosen) {
     const track = run.entities.find((entity) => entity.name === chosen);
     const pose = track && poseAt(run, track, time);
     if (pose && Number.isFinite(pose.x)) view = centredOn(view, pose.x, pose.y, paneList[0].width, size().height);
   }
-  let offset = layerOffset();
-  if (!offset) {
-    renderLayer();
-    offset = layerOffset();
-    if (!offset) return;
-  }
-  const started = performance.now();
+  if (!layerOffset()) drawLayers();
+  const offset = layerOffset();
+  if (!offset) return;
   const ratio = window.devicePixelRatio || 1;
   const { height } = size();
   context.setTransform(1, 0, 0, 1, 0, 0);
