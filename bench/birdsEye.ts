@@ -124,6 +124,16 @@ async function main(): Promise<void> {
     await page.click('#play');
     const playing = await nextStats(beforePause);
     console.log(`    playing 10 vehicles with trajectories: ${playing.frames} frames in 3 s, draw ${playing.frameMeanMs.toFixed(2)} ms mean, ${playing.frameWorstMs.toFixed(2)} ms worst per frame (60 fps budget: 16.7 ms)`);
+    // Following one car, its speed, gap and TTC plotted under the map: the layer moves with it and is redrawn when it runs out.
+    const beforeChoose = await rendered();
+    await page.evaluate(`window.postMessage(${JSON.stringify({ type: 'choose', entity: 'car9' })}, '*')`);
+    await nextStats(beforeChoose);
+    await page.click('#play');
+    await page.waitForTimeout(3000);
+    const beforeFollowPause = await rendered();
+    await page.click('#play');
+    const following = await nextStats(beforeFollowPause);
+    console.log(`    following car9 (46 m/s) with its plots: ${following.frames} frames in 3 s, draw ${following.frameMeanMs.toFixed(2)} ms mean, ${following.frameWorstMs.toFixed(2)} ms worst per frame`);
     await page.close();
   }
   await browser?.close();

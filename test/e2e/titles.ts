@@ -24,6 +24,7 @@ export const INSIDE_TESTS = {
   birdsEye: "Show Bird's-Eye View draws the roads and the entities at their start, opens an entity's place, and follows edits",
   birdsEyeRun: "after a run, the bird's-eye view plays the trajectories and shows when the events started",
   birdsEyePackage: "the bird's-eye view shows a scenario inside a .mosc",
+  birdsEyeAnalysis: "after a run of esmini's highway_merge, the bird's-eye view frames the cars now, follows one with its speed, gap and TTC plots, compares a second run and exports at 1600x900 with legend, time and scale",
   runEsmini: "Run in esmini from the CodeLens puts esmini's error on the simple scenario's line; a clean run clears it and shows its trajectories",
   runEsminiClean: "Run in esmini on a clean modular scenario on e6mini shows no error, and the bird's-eye view draws the road the run loaded",
   schemaCompletion: 'schema completion offers the child elements the OpenSCENARIO schema allows',

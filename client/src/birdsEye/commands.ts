@@ -20,7 +20,8 @@ export function registerBirdsEye(context: vscode.ExtensionContext, client: Langu
       if (source.scheme === 'file' && source.path.toLowerCase().endsWith('.mosc')) source = packageEntryUri(source, 'main.xosc');
       await view.show(source);
     }),
-    // For the run command (args: csvPath, { logPath?, logText?, scenario? }) and for a person (picks a CSV).
+    // For the run command (args: csvPath, { logPath?, logText?, scenario?, compare? }) and for a person (picks a CSV);
+    // `compare: true` or 'overlay' draws it over the run shown (dashed), 'side' beside it.
     vscode.commands.registerCommand('modular2simple.birdsEye.showRun', async (csvPath?: unknown, options?: unknown) => {
       let path = typeof csvPath === 'string' ? csvPath : csvPath instanceof vscode.Uri ? csvPath.fsPath : undefined;
       if (!path) {
@@ -28,22 +29,24 @@ export function registerBirdsEye(context: vscode.ExtensionContext, client: Langu
         path = picked?.[0]?.fsPath;
         if (!path) return;
       }
-      const given = (options && typeof options === 'object' ? options : {}) as { logPath?: unknown; logText?: unknown; scenario?: unknown };
+      const given = (options && typeof options === 'object' ? options : {}) as { logPath?: unknown; logText?: unknown; scenario?: unknown; compare?: unknown };
       const run: RunSource = { csvPath: path };
       if (typeof given.logPath === 'string') run.logPath = given.logPath;
       if (typeof given.logText === 'string') run.logText = given.logText;
       const scenario = typeof given.scenario === 'string' ? vscode.Uri.parse(given.scenario) : given.scenario instanceof vscode.Uri ? given.scenario : undefined;
-      await view.showRun(run, scenario);
+      await view.showRun(run, scenario, given.compare === true || given.compare === 'overlay' ? 'overlay' : given.compare === 'side' ? 'side' : undefined);
     }),
-    // Saves the picture shown (args: 'png' | 'svg', target path or URI; without a target, asks where).
-    vscode.commands.registerCommand('modular2simple.birdsEye.save', async (format?: unknown, target?: unknown) => {
+    // Saves the picture shown (args: 'png' | 'svg', target path or URI, { width, height }; without a target, asks where; without a size, the panel's).
+    vscode.commands.registerCommand('modular2simple.birdsEye.save', async (format?: unknown, target?: unknown, resolution?: unknown) => {
       const kind = format === 'svg' ? 'svg' : 'png';
       const uri = typeof target === 'string' ? vscode.Uri.file(target) : target instanceof vscode.Uri ? target : undefined;
       if (!view.isOpen) {
         void vscode.window.showErrorMessage("Save the bird's-eye view: open it first (Show Bird's-Eye View).");
         return undefined;
       }
-      return view.saveTo(kind, uri);
+      const given = (resolution && typeof resolution === 'object' ? resolution : {}) as { width?: unknown; height?: unknown };
+      const size = typeof given.width === 'number' && typeof given.height === 'number' && given.width >= 16 && given.height >= 16 && given.width <= 16384 && given.height <= 16384 ? { width: Math.round(given.width), height: Math.round(given.height) } : undefined;
+      return view.saveTo(kind, uri, size);
     }),
   );
   return view;

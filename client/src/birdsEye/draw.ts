@@ -3,6 +3,8 @@
  * SVG document when the picture is saved. No DOM here, so that it runs (and is tested) in Node too.
  */
 import type { SceneEntity, SceneResult } from '../../../common/src/sceneProtocol';
+import type { ExportLayout } from './analysis';
+import { type Bounds, type LabelRequest, type PlacedLabel, placeLabels } from './labels';
 import type { RunTracks } from './messages';
 
 /** The few drawing operations the view needs, in screen coordinates. */
@@ -10,6 +12,25 @@ export interface Painter {
   polygon(xy: ArrayLike<number>, fill: string): void;
   polyline(xy: ArrayLike<number>, stroke: string, width: number, dash?: number[]): void;
   text(x: number, y: number, text: string, color: string, size: number): void;
+  /** Limits what follows to a rectangle until `unclip` (the panes of runs side by side). */
+  clip?(x: number, y: number, width: number, height: number): void;
+  unclip?(): void;
+}
+
+/** A painter that draws `dx` pixels to the right: a pane's drawing in its place on a picture. */
+export function shiftedPainter(painter: Painter, dx: number): Painter {
+  const shift = (xy: ArrayLike<number>) => {
+    const out = Array.from(xy);
+    for (let i = 0; i < out.length; i += 2) out[i] += dx;
+    return out;
+  };
+  return {
+    polygon: (xy, fill) => painter.polygon(shift(xy), fill),
+    polyline: (xy, stroke, width, dash) => painter.polyline(shift(xy), stroke, width, dash),
+    text: (x, y, text, color, size) => painter.text(x + dx, y, text, color, size),
+    clip: (x, y, width, height) => painter.clip?.(x + dx, y, width, height),
+    unclip: () => painter.unclip?.(),
+  };
 }
 
 /** World (metres, y up) to screen (pixels, y down). */
@@ -157,14 +178,15 @@ export function drawRoads(painter: Painter, shapes: RoadShapes, view: ViewTransf
   return drawn;
 }
 
-export function drawTrajectories(painter: Painter, run: RunTracks, view: ViewTransform, colorOf: (name: string) => string): void {
+/** Each entity's path over the run; a compared run's dashed. */
+export function drawTrajectories(painter: Painter, run: RunTracks, view: ViewTransform, colorOf: (name: string) => string, dashed = false): void {
   for (const track of run.entities) {
     const xy = new Float64Array(track.x.length * 2);
     for (let i = 0; i < track.x.length; i++) {
       xy[2 * i] = (track.x[i] - view.left) * view.scale;
       xy[2 * i + 1] = (view.top - track.y[i]) * view.scale;
     }
-    painter.polyline(xy, colorOf(track.name), 2);
+    painter.polyline(xy, colorOf(track.name), 2, dashed ? [8, 5] : undefined);
   }
 }
 
@@ -214,17 +236,83 @@ export function boxCorners(box: PlacedBox): number[] {
   return corners;
 }
 
-/** Entities: their box (at least a few pixels), a nose mark showing the heading, and their name. */
-export function drawEntities(painter: Painter, boxes: PlacedBox[], view: ViewTransform, colorOf: (name: string) => string): void {
-  for (const box of boxes) {
-    const minimum = 6 / view.scale;
-    const drawn = { ...box, length: Math.max(box.length, minimum * 1.6), width: Math.max(box.width, minimum) };
-    const corners = project(view, boxCorners(drawn));
-    painter.polygon(corners, colorOf(box.name));
-    painter.polyline([corners[0], corners[1], corners[2], corners[3]], '#000000', 2);
-    const [sx, sy] = toScreen(view, box.x, box.y);
-    painter.text(sx + 8, sy - 8, box.name, COLORS.label, 12);
+/** An entity's box on screen as an axis-aligned rectangle. */
+export function screenBox(view: ViewTransform, box: PlacedBox): Bounds {
+  const corners = boxCorners(box);
+  let bounds: Bounds = [Infinity, Infinity, -Infinity, -Infinity];
+  for (let i = 0; i < corners.length; i += 2) {
+    const [sx, sy] = toScreen(view, corners[i], corners[i + 1]);
+    bounds = [Math.min(bounds[0], sx), Math.min(bounds[1], sy), Math.max(bounds[2], sx), Math.max(bounds[3], sy)];
   }
+  return bounds;
+}
+
+/** Smallest on-screen size of an entity's box, px (its width; the length keeps the car's proportions). */
+export const MIN_ENTITY_PIXELS = 7;
+
+/** The box as drawn: true size, but never smaller than MIN_ENTITY_PIXELS wide on screen. */
+export function drawnBox(box: PlacedBox, view: ViewTransform): PlacedBox {
+  const minimum = MIN_ENTITY_PIXELS / view.scale;
+  if (box.width >= minimum) return box;
+  const grow = minimum / Math.max(box.width, 0.1);
+  return { ...box, width: minimum, length: Math.max(box.length, box.length * Math.min(grow, 2), minimum * 1.6) };
+}
+
+export interface EntityDrawing {
+  /** Screen size, so that labels stay on it. */
+  width?: number;
+  height?: number;
+  /** The entity followed and plotted: outlined in white, labelled first. */
+  chosen?: string;
+  /** A second run's entities (compared, overlaid): outlined and dashed, labelled after the first run's. */
+  compare?: PlacedBox[];
+  /** Appended to the compared entities' names. */
+  compareSuffix?: string;
+  /** The labels' font size, px (larger on a large exported picture). */
+  labelSize?: number;
+}
+
+const LABEL_SIZE = 12;
+
+/**
+ * Entities: their box at true size (at least a few pixels), a chevron at the front showing the heading,
+ * and their names placed so that no two overlap (with a leader line when moved away).
+ */
+export function drawEntities(painter: Painter, boxes: PlacedBox[], view: ViewTransform, colorOf: (name: string) => string, options: EntityDrawing = {}): PlacedLabel[] {
+  const compare = options.compare ?? [];
+  const obstacles: Bounds[] = [];
+  const drawOne = (box: PlacedBox, ghost: boolean) => {
+    const drawn = drawnBox(box, view);
+    const corners = project(view, boxCorners(drawn));
+    const outline = [corners[0], corners[1], corners[2], corners[3], corners[4], corners[5], corners[6], corners[7], corners[0], corners[1]];
+    if (ghost) painter.polyline(outline, colorOf(box.name), 2, [4, 3]);
+    else {
+      painter.polygon(corners, colorOf(box.name));
+      painter.polyline(outline, box.name === options.chosen ? '#ffffff' : '#000000', box.name === options.chosen ? 2.5 : 1.5);
+    }
+    // The heading: a chevron from the front's middle back a third of the length, across most of the width.
+    const cos = Math.cos(drawn.hdg);
+    const sin = Math.sin(drawn.hdg);
+    const at = (u: number, v: number) => [drawn.x + u * cos - v * sin, drawn.y + u * sin + v * cos];
+    const front = drawn.centerX + drawn.length / 2;
+    const back = front - Math.min(drawn.length / 3, drawn.width);
+    painter.polyline(project(view, [...at(back, drawn.width * 0.35), ...at(front, 0), ...at(back, -drawn.width * 0.35)]), ghost ? colorOf(box.name) : '#1b1b1b', 2);
+    obstacles.push(screenBox(view, drawn));
+  };
+  for (const box of compare) drawOne(box, true);
+  for (const box of boxes) drawOne(box, false);
+  const labelSize = options.labelSize ?? LABEL_SIZE;
+  const request = (box: PlacedBox, text: string, priority: number): LabelRequest => ({ text, anchor: screenBox(view, drawnBox(box, view)), width: text.length * labelSize * 0.62 + 4, height: labelSize + 3, priority });
+  const requests = [
+    ...boxes.map((box, index) => request(box, box.name, box.name === options.chosen ? -1 : index)),
+    ...compare.map((box, index) => request(box, `${box.name}${options.compareSuffix ?? ' (2)'}`, boxes.length + index)),
+  ];
+  const labels = placeLabels(requests, obstacles, options.width ?? Infinity, options.height ?? Infinity);
+  for (const label of labels) {
+    if (label.leader) painter.polyline(label.leader, COLORS.label, 1);
+    painter.text(label.x + 2, label.y, label.text, COLORS.label, labelSize);
+  }
+  return labels;
 }
 
 /** Start boxes of the scene's entities that have a position. */
@@ -290,6 +378,17 @@ export class SvgPainter implements Painter {
     this.parts.push(`<polyline points="${this.points(xy)}" fill="none" stroke="${stroke}" stroke-width="${width}"${dash ? ` stroke-dasharray="${dash.join(' ')}"` : ''}/>`);
   }
 
+  private clips = 0;
+
+  clip(x: number, y: number, width: number, height: number): void {
+    const id = `pane${++this.clips}`;
+    this.parts.push(`<clipPath id="${id}"><rect x="${fixed(x)}" y="${fixed(y)}" width="${fixed(width)}" height="${fixed(height)}"/></clipPath><g clip-path="url(#${id})">`);
+  }
+
+  unclip(): void {
+    this.parts.push('</g>');
+  }
+
   text(x: number, y: number, text: string, color: string, size: number): void {
     this.parts.push(`<text x="${fixed(x)}" y="${fixed(y)}" fill="${color}" font-size="${size}" font-family="sans-serif">${escapeXml(text)}</text>`);
   }
@@ -297,4 +396,21 @@ export class SvgPainter implements Painter {
   toString(): string {
     return `<?xml version="1.0" encoding="UTF-8"?>\n<svg xmlns="http://www.w3.org/2000/svg" width="${this.width}" height="${this.height}" viewBox="0 0 ${this.width} ${this.height}">\n${this.parts.join('\n')}\n</svg>\n`;
   }
+}
+
+/** The band of an exported picture: the time, a legend of the entities (a compared run's dashed) and a scale bar. */
+export function drawExportOverlay(painter: Painter, layout: ExportLayout, colorOf: (name: string) => string, compared: Set<string> = new Set()): void {
+  const { width, height, map, fontSize } = layout;
+  painter.polygon([0, map.height, width, map.height, width, height, 0, height], '#1e1e1e');
+  painter.text(layout.time.x, layout.time.y, layout.time.text, COLORS.label, fontSize);
+  for (const item of layout.legend) {
+    const top = item.y - fontSize * 0.8;
+    if (compared.has(item.text)) painter.polyline([item.x, top, item.x + fontSize, top, item.x + fontSize, top + fontSize, item.x, top + fontSize, item.x, top], colorOf(item.text.replace(/ \(2\)$/, '')), 2, [3, 2]);
+    else painter.polygon([item.x, top, item.x + fontSize, top, item.x + fontSize, top + fontSize, item.x, top + fontSize], colorOf(item.text));
+    painter.text(item.x + fontSize * 1.4, item.y, item.text, COLORS.label, fontSize);
+  }
+  const { x, y, pixels, text } = layout.scale;
+  const tick = fontSize * 0.4;
+  painter.polyline([x, y - tick, x, y, x + pixels, y, x + pixels, y - tick], COLORS.label, 2);
+  painter.text(x + pixels / 2 - text.length * fontSize * 0.3, y - tick - 2, text, COLORS.label, fontSize * 0.9);
 }

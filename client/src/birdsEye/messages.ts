@@ -6,7 +6,8 @@ export interface RunTracks {
   /** Where it came from, for the title. */
   label: string;
   times: number[];
-  entities: { name: string; length: number; width: number; centerX: number; x: number[]; y: number[]; hdg: number[] }[];
+  /** `speed`: esmini's Current_Speed, m/s, when the CSV has it (the plots otherwise derive it from the positions). */
+  entities: { name: string; length: number; width: number; centerX: number; x: number[]; y: number[]; hdg: number[]; speed?: number[] }[];
   /** Storyboard element name → simulation time it started (from esmini's log), when known. */
   starts: Record<string, number>;
   /** What was left out or could not be read. */
@@ -18,9 +19,13 @@ export interface RunTracks {
 export type ToView =
   | { type: 'scene'; scene: SceneResult }
   | { type: 'run'; run: RunTracks | undefined }
+  /** A second run (another concrete scenario) to compare with the first, overlaid or side by side; undefined ends the comparison. */
+  | { type: 'compare'; run: RunTracks | undefined; sideBySide?: boolean }
   | { type: 'error'; message: string }
   /** Asks for the picture as it is now; answered by a `save` with the same id. */
-  | { type: 'export'; format: 'png' | 'svg'; id: number };
+  | { type: 'export'; format: 'png' | 'svg'; id: number; width?: number; height?: number }
+  /** Follows and plots an entity (undefined: none); for a command or a test. */
+  | { type: 'choose'; entity: string | undefined };
 
 /** What the view reports after drawing: what it drew and how long it took. */
 export interface RenderStats {
@@ -37,14 +42,27 @@ export interface RenderStats {
   /** Playback time shown now, s. */
   time: number;
   playing: boolean;
+  /** The entity followed and plotted, if any. */
+  chosen?: string;
+  /** Entities of the compared run drawn, 0 without one. */
+  compared: number;
+  /** Names labelled on the map now (labels that found no free place are left out). */
+  labels: string[];
+  /** Metres across the map (its first pane) now. */
+  spanMetres: number;
+  /** The compared run is in a pane of its own beside the first. */
+  sideBySide?: boolean;
 }
 
 export type FromView =
   | { type: 'ready' }
   | { type: 'open'; source: SourceLocation }
-  | { type: 'loadRun' }
+  /** `compare`: the run is a second one, compared with the first. */
+  | { type: 'loadRun'; compare?: boolean }
   /** The picture: a PNG data URL or an SVG document; `id` when it answers an `export`. */
   | { type: 'save'; format: 'png' | 'svg'; data: string; id?: number }
+  /** The Save buttons: the extension asks for the resolution, then sends an `export`. */
+  | { type: 'saveAs'; format: 'png' | 'svg' }
   | { type: 'rendered'; stats: RenderStats };
 
 export const isFromView = (value: unknown): value is FromView =>

@@ -18,10 +18,12 @@ button:disabled{opacity:.5;cursor:default} #slider{width:180px}
 ul{margin:0;padding-left:16px} #problems{color:var(--vscode-editorWarning-foreground)} .error{color:var(--vscode-errorForeground)}
 </style></head><body>
 <div id="toolbar"><span id="title">loading…</span>
-<button id="fit" title="Frame the entities and their trajectories">Entities</button><button id="network" title="Show the whole road network">Whole network</button><button id="load" title="Load an esmini --csv_logger CSV">Load run…</button>
+<button id="fit" title="Frame the entities where they are now">Entities</button><button id="network" title="Show the whole road network">Whole network</button><button id="load" title="Load an esmini --csv_logger CSV">Load run…</button><button id="compare" title="Load a second run (another concrete scenario), drawn dashed over the first">Compare run…</button><select id="compareMode" style="display:none" title="How the compared run is shown"><option value="overlay">overlaid (dashed)</option><option value="side">side by side</option></select>
+<select id="follow" title="Follow an entity: keep it centred and plot its speed, gap and time to collision"></select>
 <button id="play" disabled>Play run</button><input id="slider" type="range" min="0" max="1000" value="0" disabled><span id="time">no run loaded</span>
 <button id="png">Save PNG</button><button id="svg">Save SVG</button></div>
 <div id="stage"><canvas id="canvas"></canvas><div id="tooltip"></div></div>
+<canvas id="plots" style="display:none;flex:none"></canvas>
 <div id="panel"><div id="entities"></div><div id="markers"></div><ul id="events"></ul><ul id="problems"></ul></div>
 <script nonce="${scriptNonce}" src="${scriptUri}"></script>
 </body></html>`;

@@ -3,6 +3,7 @@ import * as vscode from 'vscode';
 import type { LanguageClient } from 'vscode-languageclient/node';
 import { writeFileAtomic } from '../../../common/src/atomic';
 import { SceneRequest, type SceneResult } from '../../../common/src/sceneProtocol';
+import { parseResolution } from './analysis';
 import { isFromView, type FromView, type RenderStats, type RunTracks, type ToView } from './messages';
 import { birdsEyeHtml } from './page';
 import { loadRun, type RunSource } from './runData';
@@ -19,6 +20,13 @@ export class BirdsEyeView implements vscode.Disposable {
   private source: vscode.Uri | undefined;
   private runSource: RunSource | undefined;
   private run: RunTracks | undefined;
+  /** A second run compared with the first (another concrete scenario of the same logical one). */
+  private compareSource: RunSource | undefined;
+  private compareRun: RunTracks | undefined;
+  private compareWatcher: vscode.FileSystemWatcher | undefined;
+  private compareSideBySide = false;
+  /** The resolution last chosen for a saved picture. */
+  private exportSize = '1920x1080';
   private ready = false;
   private refreshTimer: NodeJS.Timeout | undefined;
   private runWatcher: vscode.FileSystemWatcher | undefined;
@@ -70,6 +78,7 @@ export class BirdsEyeView implements vscode.Disposable {
         this.runSource = undefined;
         this.runWatcher?.dispose();
         this.runWatcher = undefined;
+        this.endComparison();
         this.post({ type: 'run', run: undefined });
       }
     }
@@ -79,11 +88,20 @@ export class BirdsEyeView implements vscode.Disposable {
     await this.refresh();
   }
 
-  /** Shows a run's trajectories (e.g. handed over by the esmini run command); opens the view if needed. */
-  async showRun(run: RunSource, scenario?: vscode.Uri): Promise<void> {
+  /**
+   * Shows a run's trajectories (e.g. handed over by the esmini run command); opens the view if needed.
+   * With `compare`, the run is a second one, drawn over the first (dashed, 'overlay') or beside it
+   * ('side'), on the scenario shown.
+   */
+  async showRun(run: RunSource, scenario?: vscode.Uri, compare?: 'overlay' | 'side'): Promise<void> {
+    if (compare && this.run) {
+      this.compareSideBySide = compare === 'side';
+      return this.showComparison(run);
+    }
     const target = scenario ?? this.source ?? vscode.window.activeTextEditor?.document.uri;
     if (target && (!this.panel || target.toString() !== this.source?.toString())) await this.show(target);
     if (!this.panel) this.createPanel();
+    this.endComparison();
     this.runSource = run;
     this.runWatcher?.dispose();
     this.runWatcher = vscode.workspace.createFileSystemWatcher(new vscode.RelativePattern(vscode.Uri.file(path.dirname(run.csvPath)), path.basename(run.csvPath)));
@@ -92,10 +110,50 @@ export class BirdsEyeView implements vscode.Disposable {
     await this.reloadRun();
   }
 
+  private async showComparison(run: RunSource): Promise<void> {
+    this.compareSource = run;
+    this.compareWatcher?.dispose();
+    this.compareWatcher = vscode.workspace.createFileSystemWatcher(new vscode.RelativePattern(vscode.Uri.file(path.dirname(run.csvPath)), path.basename(run.csvPath)));
+    this.compareWatcher.onDidChange(() => void this.reloadComparison());
+    this.compareWatcher.onDidCreate(() => void this.reloadComparison());
+    await this.reloadComparison();
+  }
+
+  private async reloadComparison(): Promise<void> {
+    if (!this.compareSource) return;
+    try {
+      this.compareRun = this.withAbsoluteRoad(await loadRun(this.compareSource));
+    } catch (error) {
+      this.compareRun = undefined;
+      this.post({ type: 'error', message: `the run ${this.compareSource.csvPath} could not be read: ${(error as Error).message}` });
+      this.log(`bird's-eye view: ${(error as Error).stack ?? String(error)}`);
+      return;
+    }
+    this.post({ type: 'compare', run: this.compareRun, sideBySide: this.compareSideBySide });
+  }
+
+  /** esmini logs the road file as the scenario wrote it (`../xodr/x.xodr`): relative to the scenario's folder, as esmini reads it. */
+  private withAbsoluteRoad(run: RunTracks): RunTracks {
+    if (!run.roadFile || path.isAbsolute(run.roadFile) || this.source?.scheme !== 'file') return run;
+    return { ...run, roadFile: path.resolve(path.dirname(this.source.fsPath), run.roadFile) };
+  }
+
+  private endComparison(): void {
+    this.compareSource = undefined;
+    this.compareRun = undefined;
+    this.compareWatcher?.dispose();
+    this.compareWatcher = undefined;
+  }
+
+  /** Follows and plots an entity of the run (undefined: none). */
+  choose(entity: string | undefined): void {
+    this.post({ type: 'choose', entity });
+  }
+
   private async reloadRun(): Promise<void> {
     if (!this.runSource) return;
     try {
-      this.run = await loadRun(this.runSource);
+      this.run = this.withAbsoluteRoad(await loadRun(this.runSource));
     } catch (error) {
       this.run = undefined;
       this.post({ type: 'error', message: `the run ${this.runSource.csvPath} could not be read: ${(error as Error).message}` });
@@ -156,6 +214,7 @@ export class BirdsEyeView implements vscode.Disposable {
         if (this.scene) this.post({ type: 'scene', scene: this.scene });
         else await this.refresh();
         if (this.run) this.post({ type: 'run', run: this.run });
+        if (this.compareRun) this.post({ type: 'compare', run: this.compareRun, sideBySide: this.compareSideBySide });
         return;
       case 'open': {
         const position = new vscode.Position(message.source.line, message.source.character);
@@ -164,7 +223,12 @@ export class BirdsEyeView implements vscode.Disposable {
       }
       case 'loadRun': {
         const picked = await vscode.window.showOpenDialog({ canSelectMany: false, filters: { 'esmini CSV log': ['csv'] }, title: 'Load an esmini run (--csv_logger output)' });
-        if (picked?.[0]) await this.showRun({ csvPath: picked[0].fsPath });
+        if (picked?.[0]) await this.showRun({ csvPath: picked[0].fsPath }, undefined, message.compare ? 'overlay' : undefined);
+        return;
+      }
+      case 'saveAs': {
+        const size = await this.askResolution();
+        if (size) await this.saveTo(message.format, undefined, size);
         return;
       }
       case 'save': {
@@ -186,14 +250,28 @@ export class BirdsEyeView implements vscode.Disposable {
    * Saves the picture as shown to `target` (asking where when not given); for a command or a script.
    * Resolves with the file written, or undefined when no view is open or nothing was chosen.
    */
-  async saveTo(format: 'png' | 'svg', target?: vscode.Uri): Promise<vscode.Uri | undefined> {
+  async saveTo(format: 'png' | 'svg', target?: vscode.Uri, size?: { width: number; height: number }): Promise<vscode.Uri | undefined> {
     if (!this.isOpen) return undefined;
     const id = ++this.exportCount;
     const data = await new Promise<string>((resolve) => {
       this.exports.set(id, resolve);
-      this.post({ type: 'export', format, id });
+      this.post({ type: 'export', format, id, ...size });
     });
     return this.save(format, data, target);
+  }
+
+  /** Asks for the picture's width x height; remembers the answer for the next save. */
+  private async askResolution(): Promise<{ width: number; height: number } | undefined> {
+    const answer = await vscode.window.showInputBox({
+      title: "Save the bird's-eye view",
+      prompt: 'Resolution of the picture, width x height in pixels (the map, then a band with the time, a legend and a scale bar)',
+      value: this.exportSize,
+      validateInput: (text) => (parseResolution(text) ? undefined : 'write it as WIDTHxHEIGHT, e.g. 1920x1080 (16 to 16384 pixels each)'),
+    });
+    const size = answer === undefined ? undefined : parseResolution(answer);
+    if (!size) return undefined;
+    this.exportSize = `${size[0]}x${size[1]}`;
+    return { width: size[0], height: size[1] };
   }
 
   private async save(format: 'png' | 'svg', data: string, given?: vscode.Uri): Promise<vscode.Uri | undefined> {
@@ -211,6 +289,7 @@ export class BirdsEyeView implements vscode.Disposable {
   dispose(): void {
     clearTimeout(this.refreshTimer);
     this.runWatcher?.dispose();
+    this.compareWatcher?.dispose();
     this.panel?.dispose();
     for (const disposable of this.disposables) disposable.dispose();
   }

@@ -37,6 +37,7 @@ export function runTracks(run: EsminiRun, label: string, starts: Map<string, num
       x: indices.map((i) => round(track.x[i])),
       y: indices.map((i) => round(track.y[i])),
       hdg: indices.map((i) => Math.round(track.hdg[i] * 1000) / 1000),
+      ...(track.speed.some(Number.isFinite) ? { speed: indices.map((i) => round(track.speed[i])) } : {}),
     })),
     starts: Object.fromEntries(starts),
     notes,

@@ -2,7 +2,7 @@ import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import * as vscode from 'vscode';
-import { BIRDS_EYE_FILES } from '../birdsEyeSetup';
+import { BIRDS_EYE_FILES, HIGHWAY_MERGE_FILES } from '../birdsEyeSetup';
 import { INSIDE_TESTS } from '../titles';
 import { api, open, packageUri, positionOf, replaceText, revertAndClose, waitFor, workspaceRoot } from './helpers';
 import { clickText, pageShows, runFromPalette, screenshot } from './harnessClient';
@@ -103,6 +103,58 @@ export function defineBirdsEyeTests(): void {
       assert.match(drawing, /^<\?xml[^]*<svg /);
       assert.ok((drawing.match(/<polygon /g) ?? []).length > 10, 'the SVG holds the lanes');
       assert.match(drawing, />Adversary<\/text>/);
+      await vscode.commands.executeCommand('workbench.action.closeAllEditors');
+    });
+
+    it(INSIDE_TESTS.birdsEyeAnalysis, async function () {
+      const csv = path.join(workspaceRoot(), HIGHWAY_MERGE_FILES.csv);
+      skipUnless(this, fs.existsSync(csv), 'esmini is not built, or its highway_merge.xosc or soderleden.xodr is absent, so there is no run of it to analyse');
+      const scenario = vscode.Uri.file(path.join(workspaceRoot(), HIGHWAY_MERGE_FILES.scenario));
+      await vscode.window.showTextDocument(scenario, { preview: false });
+      const view = api().birdsEye;
+      await vscode.commands.executeCommand('modular2simple.birdsEye.showRun', csv, { logPath: path.join(workspaceRoot(), HIGHWAY_MERGE_FILES.log), scenario: scenario.toString() });
+      const first = await waitFor('the six trajectories', () => (view.stats?.trajectories === 6 && view.stats.lanes > 0 && view.stats.time === 0 ? view.stats : undefined));
+      assert.equal(view.scene?.roadFile?.resolved, path.join(workspaceRoot(), 'birdsEye', 'xodr', 'soderleden.xodr'));
+      // *Entities* frames the cars where they are now (some 170 m across at the start), not their trajectories (over 500 m).
+      assert.ok(first.spanMetres < 300, `the view spans ${first.spanMetres} m`);
+      // Every car labelled, no two labels overlapping (the placement leaves out a label rather than overlap it).
+      assert.deepEqual([...first.labels].sort(), ['A1', 'A2', 'A3', 'A4', 'A5', 'Ego']);
+      await screenshot("bird's-eye view of highway_merge after a run, the cars framed");
+
+      // Following Ego: the plots of its speed, gap and time to collision appear under the map.
+      view.choose('Ego');
+      await waitFor('Ego chosen', () => (view.stats?.chosen === 'Ego' ? true : undefined));
+      assert.ok(await clickText('Play run'), 'no Play button');
+      await new Promise((resolve) => setTimeout(resolve, 3000));
+      assert.ok(await clickText('Pause run'), 'no Pause button');
+      const played = await waitFor('the playback figures', () => (view.stats && !view.stats.playing && view.stats.frames > 0 ? view.stats : undefined));
+      assert.ok(played.time > 1, `playback reached ${played.time} s`);
+      assert.ok(played.spanMetres < 300, 'following keeps the scale');
+      console.log(`following Ego: ${played.frames} frames, ${played.frameMeanMs.toFixed(2)} ms mean, ${played.frameWorstMs.toFixed(2)} ms worst to draw a frame`);
+      await screenshot("bird's-eye view following Ego on highway_merge, with its speed, gap and TTC plots");
+
+      // A second concrete scenario (A1 faster, a shorter gap): overlaid, then side by side.
+      await vscode.commands.executeCommand('modular2simple.birdsEye.showRun', path.join(workspaceRoot(), HIGHWAY_MERGE_FILES.variantCsv), { logPath: path.join(workspaceRoot(), HIGHWAY_MERGE_FILES.variantLog), compare: true });
+      const overlaid = await waitFor('the compared run overlaid', () => (view.stats?.compared === 6 && !view.stats.sideBySide ? view.stats : undefined));
+      assert.equal(overlaid.trajectories, 6, 'the first run stays');
+      assert.ok(await pageShows('compared with: highway_merge_fast.csv'), 'the title names the compared run');
+      await screenshot("bird's-eye view comparing two runs of highway_merge, the second dashed");
+      await vscode.commands.executeCommand('modular2simple.birdsEye.showRun', path.join(workspaceRoot(), HIGHWAY_MERGE_FILES.variantCsv), { logPath: path.join(workspaceRoot(), HIGHWAY_MERGE_FILES.variantLog), compare: 'side' });
+      await waitFor('the runs side by side', () => (view.stats?.compared === 6 && view.stats.sideBySide ? true : undefined));
+      await screenshot("bird's-eye view comparing two runs of highway_merge side by side");
+
+      // Exported at a chosen resolution, with the time, a legend and a scale bar.
+      const png = path.join(workspaceRoot(), 'birdsEye', 'highway_merge.png');
+      const svg = path.join(workspaceRoot(), 'birdsEye', 'highway_merge.svg');
+      await vscode.commands.executeCommand('modular2simple.birdsEye.save', 'png', png, { width: 1600, height: 900 });
+      await vscode.commands.executeCommand('modular2simple.birdsEye.save', 'svg', svg, { width: 1600, height: 900 });
+      const header = fs.readFileSync(png);
+      assert.deepEqual([header.readUInt32BE(16), header.readUInt32BE(20)], [1600, 900], 'the PNG is 1600 x 900');
+      const drawing = fs.readFileSync(svg, 'utf8');
+      assert.match(drawing, /<svg [^>]*width="1600" height="900"/);
+      assert.match(drawing, />t = \d+\.\d\d s of 14\.\d\d s · highway_merge\.csv vs highway_merge_fast\.csv</);
+      assert.match(drawing, />\d+ (k?m)<\/text>/, 'a scale bar');
+      for (const name of ['Ego', 'A1', 'A5']) assert.match(drawing, new RegExp(`>${name}</text>`));
       await vscode.commands.executeCommand('workbench.action.closeAllEditors');
     });
 
