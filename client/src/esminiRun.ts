@@ -143,6 +143,8 @@ export class EsminiRunner implements vscode.Disposable {
     this.output.appendLine(`[${new Date().toISOString()}] ${source.toString(true)}: ${result.message}`);
     if (result.esmini) this.output.appendLine(`${result.esmini} ${(result.args ?? []).join(' ')}`);
     if (result.csvFile) this.output.appendLine(`CSV: ${result.csvFile}`);
+    if (result.roadFile) this.output.appendLine(`Road: ${result.roadFile.filepath} -> ${result.roadFile.loaded ?? result.roadFile.resolved ?? 'not found'}`);
+    for (const remark of result.remarks ?? []) this.output.appendLine(`info: ${remark.message}${remark.count > 1 ? ` (${remark.count} times)` : ''}: esmini's remark about its own files, not the scenario (${remark.why}; ${remark.origin})`);
     for (const problem of result.flattenProblems) this.output.appendLine(`${problem.uri}:${problem.line + 1}:${problem.character + 1}: ${problem.severity}: ${problem.message}`);
     this.output.append(result.log);
     this.last = { source, result };

@@ -130,3 +130,8 @@ export function parseEsminiStarts(log: string): Map<string, number> {
   }
   return starts;
 }
+
+/** The road file esmini loaded, as its log says (`[] [info] Loaded OpenDRIVE: <path>`, ScenarioEngine.cpp); undefined when it loaded none. */
+export function parseEsminiLoadedRoad(log: string): string | undefined {
+  return /^\[[^\]]*\]\s*\[info\]\s*Loaded OpenDRIVE: (.+?)\s*$/m.exec(log)?.[1];
+}

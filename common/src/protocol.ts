@@ -160,5 +160,17 @@ export interface RunEsminiResult {
   wallMs: number;
   esmini?: string;
   args?: string[];
+  /** What esmini said about its own road files and 3D models (the esmini source that prints it, and why it is harmless): information only. */
+  remarks?: EsminiRemarkSummary[];
+  /** The road file: as written, the file given to esmini (the one the bird's-eye view draws), and the one esmini's log says it loaded. */
+  roadFile?: { filepath: string; resolved?: string; loaded?: string };
+}
+
+/** A message esmini prints about its own files, never about the scenario (server/src/esmini/log.ts). */
+export interface EsminiRemarkSummary {
+  message: string;
+  count: number;
+  origin: string;
+  why: string;
 }
 

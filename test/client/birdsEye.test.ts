@@ -95,4 +95,16 @@ describe("client: the bird's-eye view's drawing", () => {
     assert.deepEqual(small.times, [0, 1]);
     assert.match(small.notes.join(), /end is left out/);
   });
+
+  it("names the road file the run loaded, from esmini's log, so that the view can tell a run on another road", async () => {
+    const csv = 'esmini GIT REV: v3.6.0\nesmini GIT TAG: \nesmini GIT BRANCH: x\nesmini BUILD VERSION: x\nScenario File Name: s.xosc\nNumber of Vehicles: 1\nIndex [-], TimeStamp [s], #1 Entity_Name [-], #1 World_Position_X [m], #1 World_Position_Y [m], #1 World_Heading_Angle [rad], \n0, 0.00, car, 0, 0, 0, \n';
+    const folder = temporaryWorkspace({ 'out.csv': csv });
+    try {
+      const run = await loadRun({ csvPath: path.join(folder, 'out.csv'), logText: '[] [info] Loaded OpenDRIVE: /roads/e6mini.xodr\n' });
+      assert.equal(run.roadFile, '/roads/e6mini.xodr');
+      assert.equal((await loadRun({ csvPath: path.join(folder, 'out.csv'), logText: '' })).roadFile, undefined);
+    } finally {
+      fs.rmSync(folder, { recursive: true, force: true });
+    }
+  });
 });

@@ -25,7 +25,8 @@ export function prepareBirdsEye(workspace: string): void {
   fs.copyFileSync(path.join(xodrFolder, 'e6mini.xodr'), path.join(workspace, BIRDS_EYE_FILES.roadFolder, 'e6mini.xodr'));
   const esmini = path.join(repoRoot, '.cache', 'esmini', 'bin', 'esmini');
   if (!fs.existsSync(esmini)) return;
-  const run = spawnSync(esmini, ['--headless', '--osc', scenario, '--fixed_timestep', '0.05', '--seed', '1', '--csv_logger', path.join(workspace, BIRDS_EYE_FILES.csv), '--disable_log', '--path', xodrFolder], {
+  // The road folder of the workspace, as the view's roadPath: the run's log then names the file the view draws.
+  const run = spawnSync(esmini, ['--headless', '--osc', scenario, '--fixed_timestep', '0.05', '--seed', '1', '--csv_logger', path.join(workspace, BIRDS_EYE_FILES.csv), '--disable_log', '--path', path.join(workspace, BIRDS_EYE_FILES.roadFolder)], {
     cwd: path.dirname(scenario),
     encoding: 'utf8',
     timeout: 60_000,

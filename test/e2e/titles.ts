@@ -25,6 +25,7 @@ export const INSIDE_TESTS = {
   birdsEyeRun: "after a run, the bird's-eye view plays the trajectories and shows when the events started",
   birdsEyePackage: "the bird's-eye view shows a scenario inside a .mosc",
   runEsmini: "Run in esmini from the CodeLens puts esmini's error on the simple scenario's line; a clean run clears it and shows its trajectories",
+  runEsminiClean: "Run in esmini on a clean modular scenario on e6mini shows no error, and the bird's-eye view draws the road the run loaded",
   schemaCompletion: 'schema completion offers the child elements the OpenSCENARIO schema allows',
   schemaDeprecated: 'a deprecated OpenSCENARIO element is struck through',
 } as const;

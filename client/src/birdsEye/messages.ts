@@ -11,6 +11,8 @@ export interface RunTracks {
   starts: Record<string, number>;
   /** What was left out or could not be read. */
   notes: string[];
+  /** The road file esmini's log says it loaded, when the log is known. */
+  roadFile?: string;
 }
 
 export type ToView =

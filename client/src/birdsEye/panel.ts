@@ -62,6 +62,8 @@ export class BirdsEyeView implements vscode.Disposable {
     if (this.source?.toString() !== source.toString()) {
       this.source = source;
       this.scene = undefined;
+      // What the view drew of another scenario says nothing about this one.
+      this.stats = undefined;
       // A run belongs to the scenario it was made from.
       if (this.run || this.runSource) {
         this.run = undefined;
@@ -141,6 +143,7 @@ export class BirdsEyeView implements vscode.Disposable {
     panel.onDidDispose(() => {
       this.panel = undefined;
       this.ready = false;
+      this.stats = undefined;
       this.runWatcher?.dispose();
       this.runWatcher = undefined;
     });

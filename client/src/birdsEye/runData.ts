@@ -1,6 +1,6 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { EsminiRun, parseEsminiCsv, parseEsminiStarts } from '../../../common/src/esminiCsv';
+import { EsminiRun, parseEsminiCsv, parseEsminiLoadedRoad, parseEsminiStarts } from '../../../common/src/esminiCsv';
 import type { RunTracks } from './messages';
 
 /** The view draws at most this many frames of a run; longer runs are evenly thinned. */
@@ -57,5 +57,7 @@ export async function loadRun(source: RunSource): Promise<RunTracks> {
       if (logText !== undefined) break;
     }
   }
-  return runTracks(run, path.basename(source.csvPath), logText ? parseEsminiStarts(logText) : new Map());
+  const tracks = runTracks(run, path.basename(source.csvPath), logText ? parseEsminiStarts(logText) : new Map());
+  const roadFile = logText ? parseEsminiLoadedRoad(logText) : undefined;
+  return roadFile ? { ...tracks, roadFile } : tracks;
 }

@@ -4,6 +4,7 @@
  */
 import { laneById, laneCenterT, laneSectionIndexAt, Road, RoadNetwork, roadPoint } from './opendrive/road';
 import { normalizeAngle } from './opendrive/geometry';
+import { logicFileOf } from './roadFiles';
 import { assignmentsOf, catalogEntryFor, DocumentSemantics, Evaluator, semanticModelOf } from './semantics';
 import { attribute, attributeValue, XmlDocument, XmlElement } from './xml';
 
@@ -324,10 +325,9 @@ function entityKind(object: XmlElement): { kind: string; body?: XmlElement } {
  */
 export function scenarioScene(document: XmlDocument, network: RoadNetwork | undefined, semantics?: DocumentSemantics): ScenarioScene {
   const root = document.root;
-  const reader = new Reader(semantics?.model.document === document ? semantics.evaluator : new Evaluator(semanticModelOf(document)));
-  const logic = path(root, 'RoadNetwork', 'LogicFile');
-  const filepath = logic ? reader.text(logic, 'filepath') : undefined;
-  const scene: ScenarioScene = { logicFile: logic && filepath ? { filepath, element: logic } : undefined, entities: [], events: [] };
+  const evaluator = semantics?.model.document === document ? semantics.evaluator : new Evaluator(semanticModelOf(document));
+  const reader = new Reader(evaluator);
+  const scene: ScenarioScene = { logicFile: logicFileOf(document, evaluator), entities: [], events: [] };
 
   const byName = new Map<string, EntityPlacement>();
   for (const object of children(child(root, 'Entities'), 'ScenarioObject')) {

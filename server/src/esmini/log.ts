@@ -11,22 +11,87 @@ export interface EsminiLogMessage {
 // esmini 3.6 CommonMini/logger.cpp prints `[<time>] [<level>] <message>`, the time empty while loading.
 const LOG_LINE = /^\[([^\]]*)\] \[(error|warn)\] (.*)$/;
 
-/**
- * Messages that say nothing about the scenario in a headless run (esmini 3.6): no 3D models without
- * a viewer, and two notes about esmini's own sample roads.
- */
-export const HARMLESS_MESSAGES: readonly RegExp[] = [/^3D model .* not located/, /Unsupported geo reference attr: \+no_defs/, /Unsupported object type: guide-post/];
+/** A kind of message esmini prints about its own road files or 3D models, never about the scenario run. */
+export interface EsminiRemarkKind {
+  pattern: RegExp;
+  /** The esmini 3.6 source that prints it. */
+  origin: string;
+  /** Why it says nothing about the scenario. */
+  why: string;
+}
 
-export function parseEsminiLog(output: string): EsminiLogMessage[] {
+/**
+ * What esmini 3.6 says in a headless run that is no problem of the scenario: no 3D models without a
+ * viewer, and notes on what its road reader skips in a road file (esmini's sample roads have both).
+ */
+export const HARMLESS_REMARKS: readonly EsminiRemarkKind[] = [
+  {
+    pattern: /^3D model .* not located/,
+    origin: 'CommonMini.cpp:330 LocateFile, for Entities.cpp:1936 Object::SetModel3DFullPath',
+    why: 'a headless run draws no 3D models',
+  },
+  {
+    pattern: /^scene graph file .* not located/,
+    origin: 'CommonMini.cpp:330 LocateFile, for ScenarioEngine.cpp:523 (RoadNetwork/SceneGraphFile)',
+    why: "a headless run draws no scene graph (the road's 3D model)",
+  },
+  {
+    pattern: /^Unsupported geo reference attr: /,
+    origin: 'RoadManager.cpp:7242 OpenDrive::ParseGeoLocalization',
+    why: "a note on the road file's map projection, which a run does not use",
+  },
+  {
+    pattern: /^Unsupported object type: /,
+    origin: 'RoadManager.cpp:2992 RMObject::Str2Type (2974 RMObject::Type2Str)',
+    why: 'a roadside object type of the road file that esmini reads as none; it does not take part in the run',
+  },
+];
+
+/** Kept for callers that only filter: the patterns of HARMLESS_REMARKS. */
+export const HARMLESS_MESSAGES: readonly RegExp[] = HARMLESS_REMARKS.map((remark) => remark.pattern);
+
+/** A harmless remark as esmini printed it, counted once per text. */
+export interface EsminiRemark {
+  level: 'error' | 'warn';
+  text: string;
+  /** Zero-based line of its first occurrence in the log. */
+  logLine: number;
+  count: number;
+  origin: string;
+  why: string;
+}
+
+export interface EsminiLog {
+  /** What may be about the scenario: to be placed on its source lines. */
+  messages: EsminiLogMessage[];
+  /** What is about esmini's own files (HARMLESS_REMARKS): information, never a problem of the scenario. */
+  remarks: EsminiRemark[];
+}
+
+/** esmini's `[error]` and `[warn]` lines, the harmless remarks apart. */
+export function readEsminiLog(output: string): EsminiLog {
   const messages: EsminiLogMessage[] = [];
+  const remarks = new Map<string, EsminiRemark>();
   const lines = output.split(/\r?\n/);
   for (let index = 0; index < lines.length; index++) {
     const match = LOG_LINE.exec(lines[index]);
     if (!match) continue;
     // A fatal error comes as "Exception: <message>", after its own line when it had one ("Exception: [] [error] <message>").
     const text = match[3].replace(/^Exception: (\[[^\]]*\] \[\w+\] )?/, '').trim();
-    if (HARMLESS_MESSAGES.some((pattern) => pattern.test(text))) continue;
-    messages.push({ level: match[2] as 'error' | 'warn', time: match[1] === '' ? undefined : Number(match[1]), text, logLine: index });
+    const level = match[2] as 'error' | 'warn';
+    const remark = HARMLESS_REMARKS.find((kind) => kind.pattern.test(text));
+    if (remark) {
+      const known = remarks.get(text);
+      if (known) known.count++;
+      else remarks.set(text, { level, text, logLine: index, count: 1, origin: remark.origin, why: remark.why });
+      continue;
+    }
+    messages.push({ level, time: match[1] === '' ? undefined : Number(match[1]), text, logLine: index });
   }
-  return messages;
+  return { messages, remarks: [...remarks.values()] };
+}
+
+/** esmini's `[error]` and `[warn]` lines that may be about the scenario (the harmless remarks left out). */
+export function parseEsminiLog(output: string): EsminiLogMessage[] {
+  return readEsminiLog(output).messages;
 }

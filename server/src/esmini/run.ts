@@ -3,10 +3,12 @@ import * as os from 'node:os';
 import * as path from 'node:path';
 import { Flattener, FlatSource } from '../core/flatten';
 import { Problem } from '../core/problems';
-import { SourceRef } from '../core/sources';
-import { attribute, descendants } from '../core/xml';
+import { logicFileOf, resolveRoadFile, roadFolders, scenarioFolderOf } from '../core/roadFiles';
+import { nodeFileSystem, SourceRef } from '../core/sources';
+import { attribute, descendants, escapeAttributeValue, parseXml } from '../core/xml';
+import { parseEsminiLoadedRoad } from '../../../common/src/esminiCsv';
 import { locateEsmini } from './locate';
-import { parseEsminiLog } from './log';
+import { EsminiRemark, readEsminiLog } from './log';
 import { EsminiProblem, mapEsminiMessages } from './messages';
 import { EsminiEnd, lastCsvTime, makeRunFolder, runEsminiProcess } from './process';
 import { withTimeLimit } from './timeLimit';
@@ -27,7 +29,7 @@ export interface EsminiRunOptions {
   esminiPath?: string;
   /** Base of a relative esminiPath (the workspace folder, or the working directory). */
   base?: string;
-  /** Extra folders for road files (and catalogs), after the scenario's own folders. */
+  /** Extra folders for road files (and catalogs), after the scenario's own folders; relative ones start at `base`. */
   roadPath?: string[];
   duration?: number;
   timeStep?: number;
@@ -77,14 +79,40 @@ export interface EsminiRunResult {
   seed: number;
   wallMs: number;
   problems: EsminiProblem[];
+  /** What esmini said about its own road files and 3D models: information, never a problem of the scenario. */
+  remarks: EsminiRemark[];
+  /** The road file: as written, where it was found (what esmini is given), and what esmini's log says it loaded. */
+  roadFile?: RunRoadFile;
   flattenProblems: Problem[];
   /** Not flattened only because of errors: forced (`force`), the same scenario would run. */
   forcible?: boolean;
 }
 
+export interface RunRoadFile {
+  /** As the scenario's LogicFile says, evaluated. */
+  filepath: string;
+  /** Absolute: the file the bird's-eye view draws too (core/roadFiles.ts); undefined when not found. */
+  resolved?: string;
+  /** Every path looked at, in order. */
+  candidates: string[];
+  /** From esmini's log (`Loaded OpenDRIVE:`): the file it read. */
+  loaded?: string;
+}
+
 /** The folder a scenario's relative file names start from: the main file's folder, or the package's. */
 export function sourceFolderOf(ref: SourceRef): string {
-  return path.dirname(ref.disk);
+  return scenarioFolderOf(ref);
+}
+
+/**
+ * The scenario text with its LogicFile's filepath replaced by `absolutePath`, so that esmini loads
+ * exactly that file: an absolute path is the first place its LocateFile looks. Unchanged when it names none.
+ */
+export function withRoadFile(text: string, absolutePath: string): string {
+  const network = parseXml(text).root?.children.find((child) => child.name === 'RoadNetwork');
+  const filepath = network?.children.find((child) => child.name === 'LogicFile')?.attributes.find((candidate) => candidate.name === 'filepath');
+  if (!filepath) return text;
+  return `${text.slice(0, filepath.valueStart)}${escapeAttributeValue(absolutePath, filepath.quote)}${text.slice(filepath.valueEnd)}`;
 }
 
 /** Catalog folders that the scenario names, resolved against its source folder (esmini would use the temporary file's). */
@@ -115,7 +143,7 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
   const duration = options.duration ?? RUN_DEFAULTS.duration;
   const timeStep = options.timeStep ?? RUN_DEFAULTS.timeStep;
   const seed = options.seed ?? RUN_DEFAULTS.seed;
-  const base = { log: '', duration, timeStep, seed, problems: [] as EsminiProblem[], flattenProblems: [] as Problem[] };
+  const base = { log: '', duration, timeStep, seed, problems: [] as EsminiProblem[], remarks: [] as EsminiRemark[], flattenProblems: [] as Problem[] };
   const elapsed = () => Date.now() - started;
   if (!(duration > 0) || !Number.isFinite(duration)) throw new Error(`the duration must be a positive number of seconds, not ${duration}`);
 
@@ -137,7 +165,13 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
     }
     return { ...base, flattenProblems, outcome: 'not-flattened', esmini: location.program, message: `${counted} and cannot be flattened; nothing was run`, wallMs: elapsed() };
   }
-  const limited = withTimeLimit(flat.text, duration);
+  const sourceFolder = sourceFolderOf(main);
+  const folders = roadFolders(options.roadPath, options.base ?? process.cwd());
+  // The LogicFile as the main file writes it, resolved as the bird's-eye view resolves it, whatever the flattened text says.
+  const logic = logicFileOf((flat.source.original ?? flat.source.model)?.document ?? parseXml(flat.text));
+  const road = logic ? await resolveRoadFile(nodeFileSystem, logic.filepath, sourceFolder, folders) : undefined;
+  const roadFile: RunRoadFile | undefined = road ? { filepath: road.filepath, resolved: road.resolved, candidates: road.candidates } : undefined;
+  const limited = withTimeLimit(road?.resolved ? withRoadFile(flat.text, road.resolved) : flat.text, duration);
   if (limited === undefined) {
     return { ...base, flattenProblems, outcome: 'not-flattened', esmini: location.program, message: 'the scenario has no <Storyboard>, so esmini has nothing to run', wallMs: elapsed() };
   }
@@ -148,8 +182,7 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
     fs.mkdirSync(path.dirname(file.path), { recursive: true });
     fs.writeFileSync(file.path, file.bytes);
   }
-  const sourceFolder = sourceFolderOf(main);
-  const searchPath = unique([sourceFolder, ...catalogFolders(flat.source, sourceFolder), ...(options.roadPath ?? []).map((folder) => path.resolve(options.base ?? process.cwd(), folder))]);
+  const searchPath = unique([sourceFolder, ...catalogFolders(flat.source, sourceFolder), ...folders]);
   const run = await runEsminiProcess({
     program: location.program,
     scenarioFile,
@@ -165,13 +198,22 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
     onOutput: options.onOutput,
     cancel: options.cancel,
   });
-  const problems = mapEsminiMessages(parseEsminiLog(run.output), flat.source, main);
+  const log = readEsminiLog(run.output);
+  if (roadFile) roadFile.loaded = parseEsminiLoadedRoad(run.output);
+  // Handed an absolute path, esmini loads that file; should it load another (none was found here), the run and the picture differ: said on the LogicFile.
+  if (roadFile?.loaded && path.resolve(runFolder, roadFile.loaded) !== roadFile.resolved) {
+    const drawn = roadFile.resolved ? `the bird's-eye view draws ${roadFile.resolved}` : `the bird's-eye view found none (looked for ${roadFile.candidates.join(', ')})`;
+    log.messages.unshift({ level: 'warn', time: undefined, text: `OpenDRIVE file ${roadFile.loaded} is the road esmini loaded; ${drawn}`, logLine: 0 });
+  }
+  const problems = mapEsminiMessages(log.messages, flat.source, main);
   const hasCsv = fs.existsSync(csvFile);
   const lastTime = hasCsv ? lastCsvTime(csvFile) : undefined;
   const common = {
     ...base,
     flattenProblems,
     problems,
+    remarks: log.remarks,
+    roadFile,
     esmini: location.program,
     args: run.args,
     runFolder,

@@ -70,6 +70,8 @@ export class EsminiRuns {
       wallMs: result.wallMs,
       esmini: result.esmini,
       args: result.args,
+      remarks: result.remarks.map((remark) => ({ message: remark.text, count: remark.count, origin: remark.origin, why: remark.why })),
+      ...(result.roadFile ? { roadFile: { filepath: result.roadFile.filepath, resolved: result.roadFile.resolved, loaded: result.roadFile.loaded } } : {}),
     };
   }
 }

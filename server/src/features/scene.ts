@@ -1,12 +1,12 @@
-import * as path from 'node:path';
 import { ResponseError } from 'vscode-languageserver/node';
 import { elementPlace } from '../analysis';
 import { FlatSource } from '../core/flatten';
 import { parseOpenDrive, RoadNetwork } from '../core/opendrive/road';
 import { sampleNetwork } from '../core/opendrive/sample';
+import { logicFileOf, resolveRoadFile, roadFolders, scenarioFolderOf } from '../core/roadFiles';
 import { scenarioScene } from '../core/scene';
 import { analyzeDocument } from '../core/semantics';
-import { baseName, displayRef, FileSystemHost, nodeFileSystem } from '../core/sources';
+import { baseName, displayRef, nodeFileSystem } from '../core/sources';
 import { decodeUtf8 } from '../core/text';
 import { XmlElement } from '../core/xml';
 import { SceneParams, SceneResult, SourceLocation } from '../../../common/src/sceneProtocol';
@@ -24,23 +24,6 @@ interface CachedNetwork {
 const NETWORK_CACHE_SIZE = 4;
 /** A road file larger than this is refused rather than read (Town05 is 3 MB). */
 const MAX_ROAD_FILE_BYTES = 64 * 1024 * 1024;
-
-/**
- * The folders a LogicFile's filepath is looked for in, in order: relative to the scenario's
- * folder, in each extra road folder, then by its file name in the same folders.
- */
-export function roadFileCandidates(filepath: string, scenarioFolder: string, roadPath: string[]): string[] {
-  const folders = [scenarioFolder, ...roadPath.map((folder) => path.resolve(scenarioFolder, folder))];
-  const candidates = folders.map((folder) => path.resolve(folder, filepath));
-  const name = path.basename(filepath.replace(/\\/g, '/'));
-  for (const folder of folders) candidates.push(path.resolve(folder, name));
-  return [...new Set(candidates)];
-}
-
-async function findRoadFile(host: FileSystemHost, candidates: string[]): Promise<string | undefined> {
-  for (const candidate of candidates) if ((await host.kind(candidate)) === 'file') return candidate;
-  return undefined;
-}
 
 /** The sampled road networks of one server, the most recently used few, each kept while its text is unchanged. */
 export class RoadNetworkCache {
@@ -80,16 +63,19 @@ export async function buildScene(workspace: Workspace, roads: RoadNetworkCache, 
   const problems: string[] = [];
   if (!source.model && source.original && source.links.length > 0) problems.push('the scenario could not be flattened; the view shows the file as written, without the groups it imports');
 
-  // The road file is needed before positions can be evaluated.
-  const logic = scenarioScene(model.document, undefined).logicFile;
+  // The road file is needed before positions can be evaluated. It is resolved as Run in esmini resolves it (core/roadFiles.ts), from the file as written.
+  const logic = logicFileOf((source.original ?? model).document);
+  // Places are found from the document shown (the flattened one for a main file).
+  const shownLogic = logicFileOf(model.document);
   let network: RoadNetwork | undefined;
   let sections: SectionPolylines[] = [];
   let roadFile: SceneResult['roadFile'];
   if (logic) {
-    const candidates = roadFileCandidates(logic.filepath, path.dirname(ref.disk), params.roadPath ?? []);
+    const scenarioFolder = scenarioFolderOf(ref);
+    const folders = roadFolders(params.roadPath, workspace.folders[0] ?? scenarioFolder);
     // Read from disk each time: the workspace's file cache follows scenario files only, and parsed roads are cached by content.
-    const resolved = await findRoadFile(nodeFileSystem, candidates);
-    roadFile = { filepath: logic.filepath, resolved, roadCount: 0, source: locationOf(workspace, source, logic.element, 'filepath') };
+    const { resolved, candidates } = await resolveRoadFile(nodeFileSystem, logic.filepath, scenarioFolder, folders);
+    roadFile = { filepath: logic.filepath, resolved, roadCount: 0, source: locationOf(workspace, source, shownLogic?.element, 'filepath') };
     if (!resolved) {
       problems.push(`road file "${logic.filepath}" not found; looked for ${candidates.join(', ')}. Add its folder to the setting modular2simple.esmini.roadPath.`);
     } else {

@@ -39,6 +39,7 @@ const ORDER: InsideTestKey[] = [
   'structure',
   'renameInPackage',
   'runEsmini',
+  'runEsminiClean',
   'packUnsaved',
   'flattenAnyway',
   'structureFollows',

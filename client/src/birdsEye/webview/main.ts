@@ -110,6 +110,8 @@ function drawStatic(painter: Painter, width: number, height: number): void {
   if (!view) return;
   drawnLanes = drawRoads(painter, shapes, view, width, height);
   if (run) drawTrajectories(painter, run, view, colorOf);
+  // The legend names the road file drawn, so that a saved picture says which road it shows.
+  if (scene?.roadFile) painter.text(8, height - 8, `road: ${scene.roadFile.resolved ?? `${scene.roadFile.filepath} (not found)`}`, COLORS.label, 11);
 }
 
 /** Roads and trajectories change only with the view or the data: drawn once into their layer. */
@@ -248,8 +250,14 @@ function renderPanel(): void {
   cursor.id = 'cursor';
   markers.append(cursor);
   const problems = element<HTMLUListElement>('problems');
-  problems.replaceChildren(...[...(scene?.problems ?? []), ...(run?.notes ?? [])].map((problem) => Object.assign(document.createElement('li'), { textContent: problem })));
-  element<HTMLSpanElement>('title').textContent = scene ? `${scene.title}${scene.roadFile ? ` · ${scene.roadFile.filepath} (${scene.roadFile.roadCount} roads)` : ''}${run ? ` · run: ${run.label}` : ''}` : 'loading…';
+  const drawn = scene?.roadFile?.resolved;
+  // The run and the picture resolve the road alike (core/roadFiles.ts); a run loaded elsewhere (an older CSV, another tool) is said so.
+  const otherRoad = run?.roadFile && drawn && run.roadFile !== drawn ? [`the run loaded the road file ${run.roadFile}; the picture draws ${drawn}`] : [];
+  problems.replaceChildren(...[...(scene?.problems ?? []), ...(run?.notes ?? []), ...otherRoad].map((problem) => Object.assign(document.createElement('li'), { textContent: problem })));
+  const road = scene?.roadFile ? ` · road ${drawn ?? `${scene.roadFile.filepath} (not found)`}${drawn ? ` (${scene.roadFile.roadCount} road${scene.roadFile.roadCount === 1 ? '' : 's'})` : ''}` : '';
+  const title = element<HTMLSpanElement>('title');
+  title.textContent = scene ? `${scene.title}${road}${run ? ` · run: ${run.label}` : ''}` : 'loading…';
+  title.title = drawn ? `The road file drawn: ${drawn} (${scene?.roadFile?.filepath} as the scenario says)` : '';
   const hasRun = run !== undefined;
   playButton.disabled = !hasRun;
   slider.disabled = !hasRun;

@@ -1,0 +1,148 @@
+import * as assert from 'node:assert/strict';
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import { RunEsminiRequest, RunEsminiResult } from '../../common/src/protocol';
+import { SceneRequest, SceneResult } from '../../common/src/sceneProtocol';
+import { Flattener } from '../../server/src/core/flatten';
+import { childRef, diskRef, ScenarioStore } from '../../server/src/core/sources';
+import { removeRunFolder, runScenario } from '../../server/src/esmini/run';
+import { esminiBinary, esminiRoads, requireEsmini } from '../support/esmini';
+import { decoyRoad, MODULAR_RUN, modularRunWorkspace } from '../support/modularRun';
+import { repoRoot } from '../support/paths';
+import { temporaryWorkspace } from '../support/workspace';
+import { fileUri, TestClient } from './harness';
+
+/** Run in esmini and the bird's-eye view over JSON-RPC: one road file for both, and esmini's remarks about its own files kept apart. */
+describe('language server: Run in esmini uses the road the picture draws, and reports a clean run as clean', function () {
+  this.timeout(120_000);
+  let root: string;
+  let client: TestClient;
+
+  beforeEach(async () => {
+    root = modularRunWorkspace(temporaryWorkspace({}, 'm2s-server-roads-'));
+    client = await TestClient.start({ root });
+    await client.indexed();
+  });
+  afterEach(async () => {
+    await client.stop();
+    fs.rmSync(root, { recursive: true, force: true });
+  });
+
+  const mainUri = () => fileUri(path.join(root, MODULAR_RUN.main));
+  const run = (roadPath: string[]) =>
+    client.connection.sendRequest(RunEsminiRequest, { uri: mainUri(), esminiPath: esminiBinary, roadPath, duration: 4 }) as Promise<RunEsminiResult>;
+  const scene = (roadPath: string[]) => client.connection.sendRequest(SceneRequest, { uri: mainUri(), roadPath: roadPath.map((folder) => path.resolve(root, folder)) }) as Promise<SceneResult>;
+
+  /** Runs and draws with one roadPath; both must name `expected`, and esmini's log must say it loaded it. */
+  async function sameRoad(roadPath: string[], expected: string): Promise<RunEsminiResult> {
+    const [picture, result] = [await scene(roadPath), await run(roadPath)];
+    assert.equal(picture.roadFile?.resolved, expected, picture.problems.join('\n'));
+    const mainLines = fs.readFileSync(path.join(root, MODULAR_RUN.main), 'utf8').split('\n');
+    const logicLine = mainLines.findIndex((line) => line.includes('<LogicFile '));
+    assert.deepEqual(picture.roadFile?.source, { uri: mainUri(), line: logicLine, character: mainLines[logicLine].indexOf('../xodr/e6mini.xodr') });
+    assert.deepEqual(picture.problems, [], 'the picture places every entity on the road it draws');
+    assert.equal(result.roadFile?.resolved, expected);
+    assert.equal(result.roadFile?.loaded, expected, `esmini's log: ${result.log.split('\n').filter((line) => /OpenDRIVE/.test(line)).join('\n')}`);
+    assert.equal(result.outcome, 'ok', `${result.message}\n${JSON.stringify(result.problems, null, 1)}`);
+    return result;
+  }
+
+  it("a clean modular run on e6mini has 0 errors and 0 warnings; esmini's remarks on its road and 3D models are information with their source", async function () {
+    requireEsmini(this);
+    const result = await sameRoad([esminiRoads], path.join(root, MODULAR_RUN.road));
+    assert.deepEqual(result.problems, [], 'nothing for a toast or the Problems view');
+    assert.match(result.message, /^esmini: 0 errors, 0 warnings; 4\.00 s simulated/);
+    assert.deepEqual(result.flattenProblems.filter((problem) => problem.severity === 'error'), []);
+    const remarks = new Map((result.remarks ?? []).map((remark) => [remark.message, remark]));
+    const railPole = remarks.get('Unsupported object type: rail-pole - interpret as NONE');
+    assert.ok(railPole, JSON.stringify(result.remarks));
+    assert.equal(railPole.count, 2);
+    assert.match(railPole.origin, /RoadManager\.cpp:\d+ RMObject::Str2Type/);
+    const sceneGraph = remarks.get('scene graph file ../models/e6mini.osgb not located, using specified file path');
+    assert.ok(sceneGraph, JSON.stringify(result.remarks));
+    assert.match(sceneGraph.origin, /CommonMini\.cpp:\d+ LocateFile.*ScenarioEngine\.cpp/);
+    assert.match(remarks.get('3D model car_white.osgb not located, using specified file path')?.origin ?? '', /Entities\.cpp:\d+ Object::SetModel3DFullPath/);
+    assert.match(remarks.get('Unsupported geo reference attr: +no_defs')?.origin ?? '', /RoadManager\.cpp:\d+ OpenDrive::ParseGeoLocalization/);
+    for (const remark of result.remarks ?? []) assert.ok(remark.why.length > 0, remark.message);
+  });
+
+  it('beside the scenario wins over a same-named road file in roadPath, for the run and the picture alike', async function () {
+    requireEsmini(this);
+    decoyRoad(path.join(root, 'roads'));
+    await sameRoad(['roads'], path.join(root, MODULAR_RUN.road));
+  });
+
+  it("the file name beside the scenario comes before roadPath, also when roadPath holds the path as written", async function () {
+    requireEsmini(this);
+    // ../xodr/e6mini.xodr is missing beside xosc/main.xosc; xosc/e6mini.xodr is there, and so is decoy/sub/../xodr/e6mini.xodr.
+    fs.renameSync(path.join(root, MODULAR_RUN.road), path.join(root, 'xosc', 'e6mini.xodr'));
+    fs.mkdirSync(path.join(root, 'decoy', 'sub'), { recursive: true });
+    decoyRoad(path.join(root, 'decoy', 'xodr'));
+    await sameRoad(['decoy/sub'], path.join(root, 'xosc', 'e6mini.xodr'));
+  });
+
+  it('with nothing beside the scenario, both take the road from roadPath', async function () {
+    requireEsmini(this);
+    fs.rmSync(path.join(root, MODULAR_RUN.road));
+    await sameRoad([esminiRoads], path.join(esminiRoads, 'e6mini.xodr'));
+  });
+});
+
+describe('esmini: a road esmini finds where the picture does not look', function () {
+  this.timeout(120_000);
+
+  it('is a warning on the LogicFile naming both, never a silent difference', async function () {
+    requireEsmini(this);
+    // esmini also searches catalog folders (its --path); the bird's-eye view does not.
+    const root = modularRunWorkspace(temporaryWorkspace({}, 'm2s-road-elsewhere-'));
+    const catalogs = path.join(root, 'xosc', 'cats');
+    fs.mkdirSync(catalogs);
+    fs.renameSync(path.join(root, MODULAR_RUN.road), path.join(catalogs, 'e6mini.xodr'));
+    const file = path.join(root, MODULAR_RUN.simple);
+    fs.writeFileSync(
+      file,
+      fs
+        .readFileSync(file, 'utf8')
+        .replace('<LogicFile filepath="../xodr/e6mini.xodr"/>', '<LogicFile filepath="e6mini.xodr"/>')
+        .replace('<CatalogLocations/>', '<CatalogLocations><VehicleCatalog><Directory path="cats"/></VehicleCatalog></CatalogLocations>'),
+    );
+    const result = await runScenario(new Flattener(new ScenarioStore({ root })), diskRef(file), { esminiPath: esminiBinary, duration: 2 });
+    try {
+      assert.equal(result.roadFile?.resolved, undefined);
+      assert.equal(result.roadFile?.loaded, path.join(catalogs, 'e6mini.xodr'));
+      const [warning] = result.problems;
+      assert.equal(warning?.severity, 'warning', JSON.stringify(result.problems));
+      assert.match(warning.message, /is the road esmini loaded; the bird's-eye view found none \(looked for .*xosc\/e6mini\.xodr\)/);
+      assert.match(fs.readFileSync(file, 'utf8').split('\n')[warning.range.start.line], /<LogicFile filepath="e6mini\.xodr"\/>/);
+    } finally {
+      removeRunFolder(result);
+      fs.rmSync(root, { recursive: true, force: true });
+    }
+  });
+});
+
+describe('esmini: the bundled examples run without a warning', function () {
+  this.timeout(180_000);
+
+  it('each example (a main, simple scenarios, an unpacked and a packed package) runs with no problem at all', async function () {
+    requireEsmini(this);
+    const examples = path.join(repoRoot, 'examples');
+    const store = new ScenarioStore({ root: examples });
+    for (const [file, main] of [
+      ['main.xosc', diskRef(path.join(examples, 'main.xosc'))],
+      ['lane_change.xosc', diskRef(path.join(examples, 'lane_change.xosc'))],
+      ['crossing.xosc', diskRef(path.join(examples, 'crossing.xosc'))],
+      ['pedestrian/main.xosc', diskRef(path.join(examples, 'pedestrian', 'main.xosc'))],
+      ['braking.mosc', childRef(diskRef(path.join(examples, 'braking.mosc')), 'main.xosc')],
+    ] as const) {
+      const result = await runScenario(new Flattener(store), main, { esminiPath: esminiBinary, roadPath: [esminiRoads], duration: 20 });
+      try {
+        assert.equal(result.outcome, 'ok', `${file}: ${result.message}`);
+        assert.deepEqual(result.problems.map((problem) => `${problem.severity}: ${problem.message}`), [], file);
+        assert.equal(result.roadFile?.loaded, path.join(esminiRoads, 'Town05'), file);
+      } finally {
+        removeRunFolder(result);
+      }
+    }
+  });
+});
