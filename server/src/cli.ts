@@ -15,6 +15,7 @@ const COMMANDS: Record<string, () => Promise<Command>> = {
   run: async () => (await import('./cli/run')).runCommand,
   vary: async () => (await import('./cli/vary')).varyCommand,
   modularize: async () => (await import('./cli/modularize')).modularizeCommand,
+  'qc-bundle': async () => (await import('./cli/qcBundle')).qcBundleCommand,
   // The original tool's forms.
   '-cxm': async () => (await import('./cli/pack')).convertXoscIntoMoscCommand,
   '--convert-xosc-into-mosc': async () => (await import('./cli/pack')).convertXoscIntoMoscCommand,

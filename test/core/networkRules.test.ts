@@ -156,17 +156,17 @@ describe('road-network and value-range rules', () => {
   });
 
   it('a value outside its range is an error at the attribute, evaluated through parameters and expressions', async () => {
-    const environment = (friction: string, red: string) =>
+    const environment = (friction: string) =>
       `<GlobalAction><EnvironmentAction><Environment name="env"><TimeOfDay animation="false" dateTime="2026-01-01T12:00:00"/><Weather><Sun azimuth="0" elevation="1" illuminance="1000"/><Fog visualRange="1000"/><Precipitation precipitationType="dry" precipitationIntensity="0"/></Weather><RoadCondition frictionScaleFactor="${friction}"/></Environment></EnvironmentAction></GlobalAction>`;
     const parameters = '<ParameterDeclaration name="Friction" parameterType="double" value="-0.2"/>';
-    const { problems, text } = await check(scenario({ init: environment('$Friction', '0'), parameters }));
+    const { problems, text } = await check(scenario({ init: environment('$Friction'), parameters }));
     assert.equal(problems.length, 1, JSON.stringify(problems));
     assert.equal(problems[0].code, 'out-of-range');
     assert.equal(textAt(text, problems[0]), '$Friction');
     assert.match(problems[0].message, /frictionScaleFactor -0\.2 \(from \$Friction\) is outside the standard's range \[0\.\.inf\[/);
-    const expression = await check(scenario({ init: environment('${1 - 2}', '0') }));
+    const expression = await check(scenario({ init: environment('${1 - 2}') }));
     assert.equal(expression.problems.length, 1);
-    assert.deepEqual((await check(scenario({ init: environment('0.8', '0') }))).problems, []);
+    assert.deepEqual((await check(scenario({ init: environment('0.8') }))).problems, []);
     const throttle = await check(scenario({ actions: '<PrivateAction><ControllerAction><OverrideControllerValueAction><Throttle active="true" value="0.5"/><Brake active="false" value="0"/><Clutch active="false" value="0"/><ParkingBrake active="false" value="0"/><SteeringWheel active="false" value="0"/><Gear active="false" number="0"/></OverrideControllerValueAction></ControllerAction></PrivateAction>' }));
     assert.deepEqual(throttle.problems, []);
   });
