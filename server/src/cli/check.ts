@@ -52,9 +52,11 @@ export async function checkCommand(args: string[], io: CliOutput): Promise<numbe
     if (fs.statSync(input).isDirectory()) files.push(...(await walkFiles([input], { files: SCENARIO_FILE, skipFolders: CHECKED_SKIPPED_FOLDERS, skipDotFiles: true, regularFilesOnly: false, unreadable: 'throw', sorted: true })));
     else files.push(input);
   }
-  const flattener = new Flattener(makeStore(options, inputs), options.simulator, { version: options.schemaVersion });
+  const store = makeStore(options, inputs);
   let problems: Problem[] = [];
   for (const file of files) {
+    // A flattener per file holds one file's trees at a time (issue 18): a folder check's memory stays that of its largest file; catalogs are still modelled once (core/semantics/catalogs.ts).
+    const flattener = new Flattener(store, options.simulator, { version: options.schemaVersion });
     const result = await flattener.flatten(mainOf(file));
     problems = problems.concat(result.problems);
   }
