@@ -17,8 +17,13 @@ export interface RoadSignals {
 const summaries = new Map<string, { hash: string; signals: RoadSignals }>();
 const SUMMARY_LIMIT = 8;
 
-/** Within one store (one check run, one editor generation), each road file is read once. */
-const perStore = new WeakMap<ScenarioStore, Map<string, Promise<RoadSignals | undefined>>>();
+/**
+ * Within one store, a road file read in the last moments is not read again: a folder check reads
+ * each road file about once, while an editor (one store for the session) sees a changed road file on
+ * its next analysis after that.
+ */
+const perStore = new WeakMap<ScenarioStore, Map<string, { readAt: number; pending: Promise<RoadSignals | undefined> }>>();
+const FRESH_MS = 2000;
 
 /**
  * The signals of the road file a scenario names, resolved as Run in esmini and the bird's-eye view
@@ -32,12 +37,13 @@ export async function roadSignalsOf(store: ScenarioStore, ref: SourceRef, docume
   if (!resolved) return undefined;
   let known = perStore.get(store);
   if (!known) perStore.set(store, (known = new Map()));
-  let pending = known.get(resolved);
-  if (!pending) {
-    pending = readRoadSignals(store, resolved);
-    known.set(resolved, pending);
+  const now = Date.now();
+  let entry = known.get(resolved);
+  if (!entry || now - entry.readAt > FRESH_MS) {
+    entry = { readAt: now, pending: readRoadSignals(store, resolved) };
+    known.set(resolved, entry);
   }
-  return pending;
+  return entry.pending;
 }
 
 async function readRoadSignals(store: ScenarioStore, file: string): Promise<RoadSignals | undefined> {
