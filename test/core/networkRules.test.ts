@@ -92,6 +92,20 @@ const CONTROLLERS = `<TrafficSignals>
     </TrafficSignals>`;
 
 describe('road-network and value-range rules', () => {
+  it("each code names ASAM's Quality Checker rule it stands for; an operator or constant the standard lacks is data_type.allowed_operators", () => {
+    const uids = {
+      'unknown-traffic-signal': 'reference_control.resolvable_signal_id_in_traffic_signal_state_action',
+      'unknown-traffic-signal-controller': 'reference_control.resolvable_traffic_signal_controller_by_traffic_signal_controller_ref',
+      'no-actor': 'reference_control.valid_actor_reference_in_private_actions',
+      'negative-transition-time': 'data_type.non_negative_transition_time_in_light_state_action',
+      'non-positive-phase-duration': 'data_type.positive_duration_in_phase',
+      'nonstandard-expression': 'data_type.allowed_operators',
+    } as const;
+    for (const [code, rule] of Object.entries(uids)) assert.equal(ruleIdOf(code as keyof typeof uids), `asam.net:xosc:1.2.0:${rule}`);
+    assert.equal(ruleIdOf('out-of-range'), 'modular2simple:out-of-range');
+  });
+
+
   it('a TrafficSignalStateAction naming no signal of the road file is an error at its name, with the QC rule', async () => {
     const { problems, text } = await check(scenario({ actions: signalAction('999') }));
     assert.equal(problems.length, 1, JSON.stringify(problems));
