@@ -17,6 +17,7 @@ const COMMANDS: Record<string, () => Promise<Command>> = {
   modularize: async () => (await import('./cli/modularize')).modularizeCommand,
   batch: async () => (await import('./cli/batch')).batchCommand,
   worker: async () => (await import('./cli/worker')).workerCommand,
+  'qc-bundle': async () => (await import('./cli/qcBundle')).qcBundleCommand,
   // The original tool's forms.
   '-cxm': async () => (await import('./cli/pack')).convertXoscIntoMoscCommand,
   '--convert-xosc-into-mosc': async () => (await import('./cli/pack')).convertXoscIntoMoscCommand,

@@ -52,13 +52,15 @@ export async function checkCommand(args: string[], io: CliOutput): Promise<numbe
     if (fs.statSync(input).isDirectory()) files.push(...(await walkFiles([input], { files: SCENARIO_FILE, skipFolders: CHECKED_SKIPPED_FOLDERS, skipDotFiles: true, regularFilesOnly: false, unreadable: 'throw', sorted: true })));
     else files.push(input);
   }
-  const flattener = new Flattener(makeStore(options, inputs), options.simulator, { version: options.schemaVersion });
-  let problems: Problem[] = [];
+  const store = makeStore(options, inputs);
+  const found: Problem[] = [];
   for (const file of files) {
+    // A flattener per file holds one file's trees at a time (issue 18): a folder check's memory stays that of its largest file; catalogs are still modelled once (core/semantics/catalogs.ts).
+    const flattener = new Flattener(store, options.simulator, { version: options.schemaVersion });
     const result = await flattener.flatten(mainOf(file));
-    problems = problems.concat(result.problems);
+    for (const problem of result.problems) found.push(problem);
   }
-  problems = sortedByPlace(uniqueProblems(problems));
+  const problems = sortedByPlace(uniqueProblems(found));
   const errors = problems.filter((problem) => problem.severity === 'error').length;
   const warnings = problems.filter((problem) => problem.severity === 'warning').length;
   if (options.format === 'json') {

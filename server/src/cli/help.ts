@@ -14,6 +14,9 @@ Usage:
   modular2simple pack FILE... -o OUT.mosc          pack files at the root of a package (one main.xosc)
   modular2simple check PATH... [--format json|sarif]
                                                    report every problem, as a compiler does
+  modular2simple qc-bundle -c CONFIG.xml [-o DIR]   check as a checker bundle of ASAM's Quality Checker
+                                                   Framework (its .xqar into DIR); --manifest prints
+                                                   the module manifest that registers it
   modular2simple stats LIBRARY [--format json]     lines of code of a library (the paper's Table 1)
   modular2simple run INPUT... [--check]            flatten and run in esmini; its messages on the source lines
   modular2simple vary FILE [--count|--index I|--out-dir DIR]

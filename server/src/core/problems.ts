@@ -69,6 +69,12 @@ export const PROBLEM_CODE_LIST = [
   'renamed-reference',
   'simulator',
   'file-path',
+  'unknown-traffic-signal',
+  'unknown-traffic-signal-controller',
+  'no-actor',
+  'negative-transition-time',
+  'non-positive-phase-duration',
+  'out-of-range',
 ] as const;
 
 export type ProblemCode = (typeof PROBLEM_CODE_LIST)[number];

@@ -20,6 +20,12 @@ const QC = {
   storyboardReference: 'asam.net:xosc:1.2.0:reference_control.resolvable_storyboard_element_reference',
   uniqueNames: 'asam.net:xosc:1.2.0:reference_control.unique_element_names_on_same_level',
   catalogParameters: 'asam.net:xosc:1.2.0:parameters.valid_parameter_declaration_in_catalogs',
+  signalId: 'asam.net:xosc:1.2.0:reference_control.resolvable_signal_id_in_traffic_signal_state_action',
+  signalController: 'asam.net:xosc:1.2.0:reference_control.resolvable_traffic_signal_controller_by_traffic_signal_controller_ref',
+  privateActionActor: 'asam.net:xosc:1.2.0:reference_control.valid_actor_reference_in_private_actions',
+  allowedOperators: 'asam.net:xosc:1.2.0:data_type.allowed_operators',
+  transitionTime: 'asam.net:xosc:1.2.0:data_type.non_negative_transition_time_in_light_state_action',
+  phaseDuration: 'asam.net:xosc:1.2.0:data_type.positive_duration_in_phase',
 } as const;
 
 /** What each ASAM Quality Checker rule requires, in our words (one rule may stand for several codes). */
@@ -32,6 +38,12 @@ export const QC_RULE_DESCRIPTIONS: Record<(typeof QC)[keyof typeof QC], string> 
   [QC.storyboardReference]: 'Every storyboard element reference resolves to a storyboard element.',
   [QC.uniqueNames]: 'The names of the elements on one level (the children of one element) are unique.',
   [QC.catalogParameters]: 'A catalog entry declares every parameter it uses.',
+  [QC.signalId]: 'The signal a TrafficSignalStateAction names exists in the road network (or a TrafficSignalController of the scenario sets it).',
+  [QC.signalController]: 'A trafficSignalControllerRef names a TrafficSignalController of the scenario.',
+  [QC.privateActionActor]: 'A ManeuverGroup whose maneuvers hold private actions names actors for them.',
+  [QC.allowedOperators]: 'Expressions use only the operators and functions the standard defines.',
+  [QC.transitionTime]: 'The transitionTime of a LightStateAction is not negative.',
+  [QC.phaseDuration]: 'The duration of a traffic-signal Phase is positive.',
 };
 
 /** Every code has an entry: a new code does not compile until it says what rule it is. */
@@ -71,7 +83,7 @@ export const RULES: Record<ProblemCode, Rule> = {
   'expression-syntax': { description: 'A ${...} expression follows the standard\'s grammar.' },
   'type-mismatch': { description: "A value converts to the type that uses it." },
   'division-by-zero': { description: 'An expression does not divide by zero.' },
-  'nonstandard-expression': { description: 'An expression uses only what the standard defines.' },
+  'nonstandard-expression': { description: 'An expression uses only what the standard defines.', qcRule: QC.allowedOperators },
   'catalog-directory': { description: 'A CatalogLocations directory exists.' },
   'unknown-catalog': { description: 'A catalogName names a catalog found in the CatalogLocations.' },
   'unknown-catalog-entry': { description: 'An entryName names an entry of its catalog.' },
@@ -92,6 +104,12 @@ export const RULES: Record<ProblemCode, Rule> = {
   'simulator-value': { description: 'A value is the same in the standard and in the selected simulator.' },
   overflow: { description: "A number stays within its type's range (IEEE double, int, unsignedInt, unsignedShort)." },
   'file-path': { description: 'A file path of a written scenario names, from where it is written, the file its source named (SPEC 11.6).' },
+  'unknown-traffic-signal': { description: 'A TrafficSignalStateAction names a signal of the road network or of the scenario\'s signal controllers.', qcRule: QC.signalId },
+  'unknown-traffic-signal-controller': { description: 'A trafficSignalControllerRef names a TrafficSignalController of the scenario.', qcRule: QC.signalController },
+  'no-actor': { description: 'A ManeuverGroup with private actions names an actor (an EntityRef, or selectTriggeringEntities).', qcRule: QC.privateActionActor },
+  'negative-transition-time': { description: 'A LightStateAction transitionTime is not negative.', qcRule: QC.transitionTime },
+  'non-positive-phase-duration': { description: 'A Phase duration is positive (zero: a warning, within the standard\'s range).', qcRule: QC.phaseDuration },
+  'out-of-range': { description: 'A value lies within the range the standard gives for its attribute (core/semantics/ranges.ts).' },
 };
 
 /** The id a report gives a problem's rule: the ASAM Quality Checker uid where one exists, the project's code otherwise. */

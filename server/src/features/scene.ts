@@ -1,7 +1,7 @@
 import { ResponseError } from 'vscode-languageserver/node';
 import { elementPlace } from '../analysis';
 import { FlatSource } from '../core/flatten';
-import { parseOpenDrive, RoadNetwork } from '../core/opendrive/road';
+import { MAX_ROAD_FILE_BYTES, parseOpenDrive, RoadNetwork } from '../core/opendrive/road';
 import { sampleNetwork } from '../core/opendrive/sample';
 import { logicFileOf, resolveRoadFile, roadFolders, scenarioFolderOf } from '../core/roadFiles';
 import { scenarioScene } from '../core/scene';
@@ -22,8 +22,6 @@ interface CachedNetwork {
   problems: string[];
 }
 const NETWORK_CACHE_SIZE = 4;
-/** A road file larger than this is refused rather than read (Town05 is 3 MB). */
-const MAX_ROAD_FILE_BYTES = 64 * 1024 * 1024;
 
 /** The sampled road networks of one server, the most recently used few, each kept while its text is unchanged. */
 export class RoadNetworkCache {

@@ -45,7 +45,12 @@ export interface RoadNetwork {
   byId: Map<string, Road>;
   /** What could not be read, with the offset of the element. */
   problems: { message: string; offset: number }[];
+  /** Every signal id the file declares (a road's `<signal id>`, a `<controller>`'s `<control signalId>`): what a TrafficSignalStateAction names. */
+  signalIds: Set<string>;
 }
+
+/** A road file larger than this is refused rather than read (Town05 is 3 MB): by the bird's-eye view and the road-network rules alike. */
+export const MAX_ROAD_FILE_BYTES = 64 * 1024 * 1024;
 
 /** Lane types that vehicles drive on: esmini's LANE_TYPE_ANY_DRIVING (RoadManager.hpp, esmini 3.6.0). */
 const DRIVING_TYPES = new Set(['driving', 'entry', 'exit', 'offRamp', 'onRamp', 'bidirectional', 'slipLane', 'connectingRamp']);
@@ -148,7 +153,11 @@ export function parseOpenDrive(text: string): RoadNetwork {
   const roads: Road[] = [];
   if (document.root?.name !== 'OpenDRIVE') problems.push({ message: 'not an OpenDRIVE file: the root element is not <OpenDRIVE>', offset: document.root?.start ?? 0 });
   else for (const element of childrenNamed(document.root, 'road')) roads.push(roadOf(element, problems));
-  return { roads, byId: new Map(roads.map((road) => [road.id, road])), problems };
+  const signalIds = new Set<string>();
+  for (const road of childrenNamed(document.root, 'road')) for (const signal of childrenNamed(childrenNamed(road, 'signals')[0], 'signal')) signalIds.add(attributeValue(signal, 'id') ?? '');
+  for (const controller of childrenNamed(document.root, 'controller')) for (const control of childrenNamed(controller, 'control')) signalIds.add(attributeValue(control, 'signalId') ?? '');
+  signalIds.delete('');
+  return { roads, byId: new Map(roads.map((road) => [road.id, road])), problems, signalIds };
 }
 
 /** The entry of a sorted list that applies at `s`: the last one starting at or before it (the first before all). */

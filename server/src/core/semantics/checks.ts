@@ -11,6 +11,8 @@ import { valueConstraints } from './checks/constraints';
 import { duplicateNames } from './checks/names';
 import { at, relatedAt } from './checks/support';
 import { catalogVariables, undeclaredVariables, variableValues } from './checks/variables';
+import { lightTransitionTimes, phaseDurations, privateActionActors, trafficSignalControllerRefs, trafficSignalIds, valueRanges } from './networkChecks';
+import { RoadSignals } from './roadNetwork';
 import { Declaration, Evaluator, referencedName, resolveName, SemanticModel, STORYBOARD_ELEMENT_NAMES, STORYBOARD_ELEMENT_TYPES } from './model';
 
 /**
@@ -31,6 +33,8 @@ export interface SemanticContext {
   modular: boolean;
   /** The simulator whose known gaps are checked (core/profiles); absent or `asam`: none. */
   simulator?: Simulator;
+  /** The signals of the road file the document names; absent when it names none or it cannot be read (the road rules are then skipped). */
+  road?: RoadSignals;
 }
 
 /** A problem at document offsets, before it is given a file and a range (`problemOfFinding`). */
@@ -434,6 +438,13 @@ export const SEMANTIC_CHECKS: readonly { name: string; check: SemanticCheck }[] 
   { name: 'names unique on each level', check: duplicateNames },
   { name: 'value constraints', check: valueConstraints },
   { name: 'simulator profile', check: simulatorProfile },
+  // Traffic signals, actors and value ranges (./networkChecks.ts).
+  { name: 'traffic signal id', check: trafficSignalIds },
+  { name: 'traffic signal controller', check: trafficSignalControllerRefs },
+  { name: 'private action actors', check: privateActionActors },
+  { name: 'light transition time', check: lightTransitionTimes },
+  { name: 'phase duration', check: phaseDurations },
+  { name: 'value ranges', check: valueRanges },
 ];
 
 /** The checks of a flattened output (SPEC 11.5); entities are checked by the flattener at the reference. */

@@ -38,6 +38,7 @@ import { carrySemanticModel } from './incremental';
 import { assignmentsOf, CatalogLoader, CatalogReferenceResolution, CatalogResolution } from './catalogs';
 import { Finding, runChecks, SemanticContext } from './checks';
 import { Reading } from './evaluator';
+import { roadSignalsOf } from './roadNetwork';
 import { buildSemanticModel, Declaration, Evaluator, ParameterUse, Scope, SemanticModel, ValueResult, visibleDeclarations } from './model';
 
 export * from './expressions';
@@ -70,7 +71,8 @@ export async function analyzeDocument(ref: SourceRef, document: XmlDocument, loa
   const model = semanticModelOf(document);
   const evaluator = new Evaluator(model, undefined, readingOf(simulator));
   const catalogs: CatalogResolution = await loader.resolve(ref, model, evaluator);
-  return { ref, model, evaluator, catalogs, modular, simulator };
+  const road = await roadSignalsOf(loader.store, ref, document, evaluator);
+  return { ref, model, evaluator, catalogs, modular, simulator, ...(road ? { road } : {}) };
 }
 
 /** The reading values are computed in for a simulator (SPEC 12): esmini's own for esmini, else the standard's. */

@@ -1,0 +1,179 @@
+import { attribute, descendants, XmlAttribute, XmlElement } from '../xml';
+import type { Finding, SemanticCheck, SemanticContext } from './checks';
+import { VALUE_RANGES, ValueRange, rangeText } from './ranges';
+import { SemanticModel } from './types';
+
+/**
+ * The rules about traffic signals, actors and value ranges (ASAM Quality Checker rules
+ * `reference_control.resolvable_signal_id_in_traffic_signal_state_action`,
+ * `..._traffic_signal_controller_by_traffic_signal_controller_ref`, `valid_actor_reference_in_private_actions`,
+ * `data_type.non_negative_transition_time_in_light_state_action`, `data_type.positive_duration_in_phase`,
+ * and the ranges the standard gives). Each is one SemanticCheck registered in SEMANTIC_CHECKS.
+ */
+
+/** The document's elements by name, gathered once per model (the checks below each ask for a few names). */
+const elementIndex = new WeakMap<SemanticModel, Map<string, XmlElement[]>>();
+
+function elementsNamed(model: SemanticModel, name: string): XmlElement[] {
+  let index = elementIndex.get(model);
+  if (!index) {
+    index = new Map();
+    const root = model.document.root;
+    for (const element of root ? [root, ...descendants(root)] : []) {
+      const list = index.get(element.name);
+      if (list) list.push(element);
+      else index.set(element.name, [element]);
+    }
+    elementIndex.set(model, index);
+  }
+  return index.get(name) ?? [];
+}
+
+function at(element: XmlElement, attr: XmlAttribute | undefined): Pick<Finding, 'element' | 'attribute' | 'start' | 'end'> {
+  return attr ? { element, attribute: attr, start: attr.valueStart, end: attr.valueEnd } : { element, attribute: undefined, start: element.start, end: element.nameEnd };
+}
+
+/** An attribute's value as a number after `$parameter`/`${...}` evaluation; undefined when it is absent or no number (other rules report that). */
+function numberOf(context: SemanticContext, element: XmlElement, name: string): { attr: XmlAttribute; value: number } | undefined {
+  const attr = attribute(element, name);
+  const text = context.evaluator.textOf(element, attr);
+  if (!attr || text === undefined || text.trim() === '') return undefined;
+  const value = Number(text);
+  return Number.isNaN(value) ? undefined : { attr, value };
+}
+
+function textOf(context: SemanticContext, element: XmlElement, name: string): { attr: XmlAttribute; text: string } | undefined {
+  const attr = attribute(element, name);
+  const text = context.evaluator.textOf(element, attr);
+  return attr && text !== undefined ? { attr, text } : undefined;
+}
+
+/** The scenario's own `RoadNetwork/TrafficSignals/TrafficSignalController`s; undefined when the file has no RoadNetwork (a catalog, a group's source). */
+function signalControllers(model: SemanticModel): XmlElement[] | undefined {
+  const network = model.document.root?.children.find((child) => child.name === 'RoadNetwork');
+  if (!network) return undefined;
+  const signals = network.children.find((child) => child.name === 'TrafficSignals');
+  return signals ? signals.children.filter((child) => child.name === 'TrafficSignalController') : [];
+}
+
+/** A `TrafficSignalStateAction name` is a signal of the road file or of one of the scenario's controller phases. Skipped when the road file cannot be read. */
+export const trafficSignalIds: SemanticCheck = (context) => {
+  const { road, model } = context;
+  if (!road) return [];
+  const known = new Set(road.signalIds);
+  for (const state of elementsNamed(model, 'TrafficSignalState')) {
+    const id = textOf(context, state, 'trafficSignalId');
+    if (id) known.add(id.text);
+  }
+  const findings: Finding[] = [];
+  for (const action of elementsNamed(model, 'TrafficSignalStateAction')) {
+    const id = textOf(context, action, 'name');
+    if (!id || known.has(id.text)) continue;
+    findings.push({
+      ...at(action, id.attr),
+      severity: 'error',
+      code: 'unknown-traffic-signal',
+      message: `traffic signal '${id.text}' is neither a signal of the road network ${road.file} nor one a TrafficSignalController of the scenario sets`,
+      hint: 'name the id of a <signal> of the OpenDRIVE file',
+    });
+  }
+  return findings;
+};
+
+/** A `trafficSignalControllerRef` names a TrafficSignalController of the scenario's RoadNetwork. */
+export const trafficSignalControllerRefs: SemanticCheck = (context) => {
+  const controllers = signalControllers(context.model);
+  if (!controllers) return [];
+  const names = new Set(controllers.map((controller) => textOf(context, controller, 'name')?.text).filter((name): name is string => name !== undefined));
+  const findings: Finding[] = [];
+  for (const elementName of ['TrafficSignalControllerAction', 'TrafficSignalControllerCondition']) {
+    for (const element of elementsNamed(context.model, elementName)) {
+      const ref = textOf(context, element, 'trafficSignalControllerRef');
+      if (!ref || names.has(ref.text)) continue;
+      findings.push({
+        ...at(element, ref.attr),
+        severity: 'error',
+        code: 'unknown-traffic-signal-controller',
+        message: `'${ref.text}' is not a TrafficSignalController of this scenario's RoadNetwork${names.size > 0 ? ` (it has ${[...names].map((name) => `'${name}'`).join(', ')})` : ' (it declares none)'}`,
+      });
+    }
+  }
+  return findings;
+};
+
+/**
+ * A ManeuverGroup whose maneuvers hold private actions has actors to act on: an EntityRef, or
+ * `selectTriggeringEntities="true"` (the standard then takes the triggering entities; ASAM's
+ * Quality Checker counts only EntityRefs, so it reports that case too: here it is left alone).
+ */
+export const privateActionActors: SemanticCheck = (context) => {
+  const findings: Finding[] = [];
+  for (const group of elementsNamed(context.model, 'ManeuverGroup')) {
+    const privateAction = descendants(group).find((element) => element.name === 'PrivateAction');
+    if (!privateAction) continue;
+    const actors = group.children.find((child) => child.name === 'Actors');
+    if (actors?.children.some((child) => child.name === 'EntityRef')) continue;
+    if (actors && textOf(context, actors, 'selectTriggeringEntities')?.text.trim() === 'true') continue;
+    findings.push({
+      ...at(actors ?? group, actors ? undefined : attribute(group, 'name')),
+      severity: 'error',
+      code: 'no-actor',
+      message: `ManeuverGroup '${attribute(group, 'name')?.value ?? ''}' holds private actions but names no actor for them to act on`,
+      hint: 'add <EntityRef entityRef="..."/> to its <Actors>',
+      related: [{ source: context.ref, range: context.model.document.lines.range(privateAction.start, privateAction.nameEnd), message: 'a private action of the group' }],
+    });
+  }
+  return findings;
+};
+
+/** `LightStateAction transitionTime` is not negative. */
+export const lightTransitionTimes: SemanticCheck = (context) =>
+  elementsNamed(context.model, 'LightStateAction').flatMap((action): Finding[] => {
+    const time = numberOf(context, action, 'transitionTime');
+    if (!time || time.value >= 0) return [];
+    return [{ ...at(action, time.attr), severity: 'error', code: 'negative-transition-time', message: `the transition time of a LightStateAction must not be negative; it is ${time.value} s` }];
+  });
+
+/**
+ * A traffic-signal `Phase duration` is positive. A negative one is an error by both the standard and
+ * ASAM's checker; zero is within the standard's range [0..inf[, but ASAM's checker reports it: a warning.
+ */
+export const phaseDurations: SemanticCheck = (context) =>
+  elementsNamed(context.model, 'Phase').flatMap((phase): Finding[] => {
+    const duration = numberOf(context, phase, 'duration');
+    if (!duration || duration.value > 0) return [];
+    const zero = duration.value === 0;
+    return [{
+      ...at(phase, duration.attr),
+      severity: zero ? 'warning' : 'error',
+      code: 'non-positive-phase-duration',
+      message: zero
+        ? "a Phase of duration 0 is within the standard's range [0..inf[, but ASAM's Quality Checker requires a positive duration"
+        : `the duration of a Phase must be positive; it is ${duration.value} s`,
+    }];
+  });
+
+function inRange(value: number, range: ValueRange): boolean {
+  if (range.min !== undefined && (range.minOpen ? value <= range.min : value < range.min)) return false;
+  if (range.max !== undefined && (range.maxOpen ? value >= range.max : value > range.max)) return false;
+  return true;
+}
+
+/** Values within the ranges the standard gives (core/semantics/ranges.ts), evaluated after `$parameter`/`${...}` resolution. */
+export const valueRanges: SemanticCheck = (context) => {
+  const findings: Finding[] = [];
+  for (const range of VALUE_RANGES) {
+    for (const element of elementsNamed(context.model, range.element)) {
+      const value = numberOf(context, element, range.attribute);
+      if (!value || inRange(value.value, range)) continue;
+      const written = value.attr.value.trim() === String(value.value) ? '' : ` (from ${value.attr.value.trim()})`;
+      findings.push({
+        ...at(element, value.attr),
+        severity: 'error',
+        code: 'out-of-range',
+        message: `${range.element} ${range.attribute} ${value.value}${written} is outside the standard's range ${rangeText(range)}`,
+      });
+    }
+  }
+  return findings;
+};

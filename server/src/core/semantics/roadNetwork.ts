@@ -1,0 +1,63 @@
+import { createHash } from 'node:crypto';
+import { MAX_ROAD_FILE_BYTES, parseOpenDrive } from '../opendrive/road';
+import { logicFileOf, resolveRoadFile, scenarioFolderOf } from '../roadFiles';
+import { ScenarioStore, SourceRef } from '../sources';
+import { decodeUtf8 } from '../text';
+import { XmlDocument } from '../xml';
+import { Evaluator } from './model';
+
+/** What the road-network rules need of the OpenDRIVE file a scenario names (its `RoadNetwork/LogicFile`). */
+export interface RoadSignals {
+  /** The road file, absolute. */
+  file: string;
+  signalIds: ReadonlySet<string>;
+}
+
+/** Signals of road files read so far, by path and content hash: a road file is large and rarely changes. Bounded; the oldest goes first. */
+const summaries = new Map<string, { hash: string; signals: RoadSignals }>();
+const SUMMARY_LIMIT = 8;
+
+/**
+ * Within one store, a road file read in the last moments is not read again: a folder check reads
+ * each road file about once, while an editor (one store for the session) sees a changed road file on
+ * its next analysis after that.
+ */
+const perStore = new WeakMap<ScenarioStore, Map<string, { readAt: number; pending: Promise<RoadSignals | undefined> }>>();
+const FRESH_MS = 2000;
+
+/**
+ * The signals of the road file a scenario names, resolved as Run in esmini and the bird's-eye view
+ * resolve it (core/roadFiles.ts; the road folders are the store's scenario path, esmini's `--path`).
+ * Undefined when the document names none or it cannot be found or read: the road rules then say nothing.
+ */
+export async function roadSignalsOf(store: ScenarioStore, ref: SourceRef, document: XmlDocument, evaluator: Evaluator): Promise<RoadSignals | undefined> {
+  const logic = logicFileOf(document, evaluator);
+  if (!logic) return undefined;
+  const { resolved } = await resolveRoadFile(store.host, logic.filepath, scenarioFolderOf(ref), store.scenarioPathFor(ref));
+  if (!resolved) return undefined;
+  let known = perStore.get(store);
+  if (!known) perStore.set(store, (known = new Map()));
+  const now = Date.now();
+  let entry = known.get(resolved);
+  if (!entry || now - entry.readAt > FRESH_MS) {
+    entry = { readAt: now, pending: readRoadSignals(store, resolved) };
+    known.set(resolved, entry);
+  }
+  return entry.pending;
+}
+
+async function readRoadSignals(store: ScenarioStore, file: string): Promise<RoadSignals | undefined> {
+  // Unreadable (too large, not a regular file, gone): not a problem of these rules.
+  const bytes = await store.host.readFile(file, MAX_ROAD_FILE_BYTES + 1).catch(() => undefined);
+  if (!bytes || bytes.byteLength > MAX_ROAD_FILE_BYTES) return undefined;
+  const hash = createHash('sha1').update(bytes).digest('hex');
+  const cached = summaries.get(file);
+  if (cached?.hash === hash) return cached.signals;
+  const network = parseOpenDrive(decodeUtf8(bytes));
+  // Not an OpenDRIVE file, or one with no roads: nothing to resolve a signal against.
+  const signals = network.roads.length > 0 ? { file, signalIds: network.signalIds } : undefined;
+  summaries.delete(file);
+  if (signals) summaries.set(file, { hash, signals });
+  while (summaries.size > SUMMARY_LIMIT) summaries.delete(summaries.keys().next().value as string);
+  return signals;
+}

@@ -1,0 +1,187 @@
+import * as assert from 'node:assert/strict';
+import * as path from 'node:path';
+import { Problem } from '../../server/src/core/problems';
+import { ruleIdOf } from '../../server/src/core/rules';
+import { analyzeDocument, CatalogLoader, semanticProblems } from '../../server/src/core/semantics';
+import { diskRef, ScenarioStore } from '../../server/src/core/sources';
+import { parseXml } from '../../server/src/core/xml';
+import { temporaryWorkspace } from '../support/workspace';
+
+/** A road file with one road, signal 101 on it, and a controller that controls signal 102. */
+const ROAD = `<?xml version="1.0"?>
+<OpenDRIVE>
+  <header revMajor="1" revMinor="6"/>
+  <road id="1" length="100" junction="-1">
+    <planView><geometry s="0" x="0" y="0" hdg="0" length="100"><line/></geometry></planView>
+    <lanes><laneSection s="0"><center><lane id="0" type="none"/></center></laneSection></lanes>
+    <signals><signal id="101" s="50" t="-3"/></signals>
+  </road>
+  <controller id="7" name="c"><control signalId="102"/></controller>
+</OpenDRIVE>
+`;
+
+interface Parts {
+  logicFile?: string;
+  trafficSignals?: string;
+  parameters?: string;
+  actors?: string;
+  actions?: string;
+  init?: string;
+}
+
+/** A 1.2 scenario with a road network, one ManeuverGroup, and whatever each case puts in. */
+function scenario(parts: Parts): string {
+  return `<?xml version="1.0"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="s" author="t"/>
+  <ParameterDeclarations>${parts.parameters ?? ''}</ParameterDeclarations>
+  <CatalogLocations/>
+  <RoadNetwork>
+    <LogicFile filepath="${parts.logicFile ?? 'road.xodr'}"/>
+    ${parts.trafficSignals ?? ''}
+  </RoadNetwork>
+  <Entities>
+    <ScenarioObject name="Ego"><Vehicle name="car" vehicleCategory="car"><BoundingBox><Center x="0" y="0" z="0"/><Dimensions width="2" length="4" height="1.5"/></BoundingBox><Performance maxSpeed="50" maxAcceleration="5" maxDeceleration="5"/><Axles><FrontAxle maxSteering="0.5" wheelDiameter="0.6" trackWidth="1.8" positionX="3" positionZ="0.3"/><RearAxle maxSteering="0" wheelDiameter="0.6" trackWidth="1.8" positionX="0" positionZ="0.3"/></Axles><Properties/></Vehicle></ScenarioObject>
+  </Entities>
+  <Storyboard>
+    <Init><Actions>${parts.init ?? ''}</Actions></Init>
+    <Story name="S">
+      <Act name="A">
+        <ManeuverGroup name="G" maximumExecutionCount="1">
+          <Actors selectTriggeringEntities="false">${parts.actors ?? '<EntityRef entityRef="Ego"/>'}</Actors>
+          <Maneuver name="M">
+            <Event name="E" priority="override">
+              <Action name="Act">${parts.actions ?? '<PrivateAction><ActivateControllerAction longitudinal="false"/></PrivateAction>'}</Action>
+              <StartTrigger/>
+            </Event>
+          </Maneuver>
+        </ManeuverGroup>
+        <StartTrigger/>
+      </Act>
+    </Story>
+    <StopTrigger/>
+  </Storyboard>
+</OpenSCENARIO>
+`;
+}
+
+const RULE_CODES = new Set(['unknown-traffic-signal', 'unknown-traffic-signal-controller', 'no-actor', 'negative-transition-time', 'non-positive-phase-duration', 'out-of-range']);
+
+/** The problems of these rules for a scenario written beside `files`. */
+async function check(text: string, files: Record<string, string> = { 'road.xodr': ROAD }): Promise<{ problems: Problem[]; text: string }> {
+  const root = temporaryWorkspace({ 'scenario.xosc': text, ...files });
+  const semantics = await analyzeDocument(diskRef(path.join(root, 'scenario.xosc')), parseXml(text), new CatalogLoader(new ScenarioStore({ scenarioPath: [], root })), false);
+  return { problems: semanticProblems(semantics).filter((problem) => RULE_CODES.has(problem.code)), text };
+}
+
+/** The text a problem's range covers. */
+function textAt(text: string, problem: Problem): string {
+  const lines = text.split('\n');
+  const { start, end } = problem.range;
+  return start.line === end.line ? lines[start.line].slice(start.character, end.character) : lines[start.line].slice(start.character);
+}
+
+function signalAction(name: string): string {
+  return `<GlobalAction><InfrastructureAction><TrafficSignalAction><TrafficSignalStateAction name="${name}" state="off;off;on"/></TrafficSignalAction></InfrastructureAction></GlobalAction>`;
+}
+
+const CONTROLLERS = `<TrafficSignals>
+      <TrafficSignalController name="Ctrl">
+        <Phase name="go" duration="10"><TrafficSignalState trafficSignalId="201" state="on"/></Phase>
+      </TrafficSignalController>
+    </TrafficSignals>`;
+
+describe('road-network and value-range rules', () => {
+  it("each code names ASAM's Quality Checker rule it stands for; an operator or constant the standard lacks is data_type.allowed_operators", () => {
+    const uids = {
+      'unknown-traffic-signal': 'reference_control.resolvable_signal_id_in_traffic_signal_state_action',
+      'unknown-traffic-signal-controller': 'reference_control.resolvable_traffic_signal_controller_by_traffic_signal_controller_ref',
+      'no-actor': 'reference_control.valid_actor_reference_in_private_actions',
+      'negative-transition-time': 'data_type.non_negative_transition_time_in_light_state_action',
+      'non-positive-phase-duration': 'data_type.positive_duration_in_phase',
+      'nonstandard-expression': 'data_type.allowed_operators',
+    } as const;
+    for (const [code, rule] of Object.entries(uids)) assert.equal(ruleIdOf(code as keyof typeof uids), `asam.net:xosc:1.2.0:${rule}`);
+    assert.equal(ruleIdOf('out-of-range'), 'modular2simple:out-of-range');
+  });
+
+
+  it('a TrafficSignalStateAction naming no signal of the road file is an error at its name, with the QC rule', async () => {
+    const { problems, text } = await check(scenario({ actions: signalAction('999') }));
+    assert.equal(problems.length, 1, JSON.stringify(problems));
+    assert.equal(problems[0].code, 'unknown-traffic-signal');
+    assert.equal(problems[0].severity, 'error');
+    assert.equal(textAt(text, problems[0]), '999');
+    assert.equal(ruleIdOf(problems[0].code), 'asam.net:xosc:1.2.0:reference_control.resolvable_signal_id_in_traffic_signal_state_action');
+  });
+
+  it("a signal of a road, of the road file's controller, of the scenario's controller, or given by a parameter, resolves", async () => {
+    for (const name of ['101', '102', '201', '$Signal']) {
+      const { problems } = await check(scenario({ actions: signalAction(name), trafficSignals: CONTROLLERS, parameters: '<ParameterDeclaration name="Signal" parameterType="string" value="101"/>' }));
+      assert.deepEqual(problems, [], name);
+    }
+  });
+
+  it('no road file to read (missing, not OpenDRIVE): the signal rule says nothing', async () => {
+    assert.deepEqual((await check(scenario({ actions: signalAction('999'), logicFile: 'gone.xodr' }))).problems, []);
+    assert.deepEqual((await check(scenario({ actions: signalAction('999') }), { 'road.xodr': '<NotOpenDrive/>' })).problems, []);
+  });
+
+  it('a trafficSignalControllerRef naming no controller of the scenario is an error at the reference', async () => {
+    const action = '<GlobalAction><InfrastructureAction><TrafficSignalAction><TrafficSignalControllerAction trafficSignalControllerRef="Nope" phase="go"/></TrafficSignalAction></InfrastructureAction></GlobalAction>';
+    const { problems, text } = await check(scenario({ actions: action, trafficSignals: CONTROLLERS }));
+    assert.equal(problems.length, 1, JSON.stringify(problems));
+    assert.equal(problems[0].code, 'unknown-traffic-signal-controller');
+    assert.equal(textAt(text, problems[0]), 'Nope');
+    assert.match(problems[0].message, /'Ctrl'/);
+    const clean = await check(scenario({ actions: action.replace('Nope', 'Ctrl'), trafficSignals: CONTROLLERS }));
+    assert.deepEqual(clean.problems, []);
+  });
+
+  it('a ManeuverGroup with private actions and no actor is an error at its Actors; selectTriggeringEntities names actors', async () => {
+    const bare = scenario({ actors: '' });
+    const { problems, text } = await check(bare);
+    assert.equal(problems.length, 1, JSON.stringify(problems));
+    assert.equal(problems[0].code, 'no-actor');
+    assert.equal(textAt(text, problems[0]), '<Actors');
+    assert.deepEqual((await check(bare.replace('selectTriggeringEntities="false"', 'selectTriggeringEntities="true"'))).problems, []);
+    assert.deepEqual((await check(scenario({}))).problems, []);
+  });
+
+  it('a negative LightStateAction transitionTime is an error at the attribute; zero is fine', async () => {
+    const light = (time: string) => `<PrivateAction><AppearanceAction><LightStateAction transitionTime="${time}"><LightType><VehicleLight vehicleLightType="headLights"/></LightType><LightState mode="on"/></LightStateAction></AppearanceAction></PrivateAction>`;
+    const { problems, text } = await check(scenario({ actions: light('-0.5') }));
+    assert.equal(problems.length, 1, JSON.stringify(problems));
+    assert.equal(problems[0].code, 'negative-transition-time');
+    assert.equal(textAt(text, problems[0]), '-0.5');
+    assert.deepEqual((await check(scenario({ actions: light('0') }))).problems, []);
+  });
+
+  it('a Phase duration below zero is an error, zero a warning naming both readings, a positive one fine', async () => {
+    const withDuration = (duration: string) => scenario({ trafficSignals: CONTROLLERS.replace('duration="10"', `duration="${duration}"`) });
+    const negative = await check(withDuration('-1'));
+    assert.equal(negative.problems.length, 1);
+    assert.equal(negative.problems[0].severity, 'error');
+    assert.equal(textAt(negative.text, negative.problems[0]), '-1');
+    const zero = await check(withDuration('0'));
+    assert.equal(zero.problems[0].severity, 'warning');
+    assert.match(zero.problems[0].message, /standard.*ASAM/);
+    assert.deepEqual((await check(withDuration('10'))).problems, []);
+  });
+
+  it('a value outside its range is an error at the attribute, evaluated through parameters and expressions', async () => {
+    const environment = (friction: string) =>
+      `<GlobalAction><EnvironmentAction><Environment name="env"><TimeOfDay animation="false" dateTime="2026-01-01T12:00:00"/><Weather><Sun azimuth="0" elevation="1" illuminance="1000"/><Fog visualRange="1000"/><Precipitation precipitationType="dry" precipitationIntensity="0"/></Weather><RoadCondition frictionScaleFactor="${friction}"/></Environment></EnvironmentAction></GlobalAction>`;
+    const parameters = '<ParameterDeclaration name="Friction" parameterType="double" value="-0.2"/>';
+    const { problems, text } = await check(scenario({ init: environment('$Friction'), parameters }));
+    assert.equal(problems.length, 1, JSON.stringify(problems));
+    assert.equal(problems[0].code, 'out-of-range');
+    assert.equal(textAt(text, problems[0]), '$Friction');
+    assert.match(problems[0].message, /frictionScaleFactor -0\.2 \(from \$Friction\) is outside the standard's range \[0\.\.inf\[/);
+    const expression = await check(scenario({ init: environment('${1 - 2}') }));
+    assert.equal(expression.problems.length, 1);
+    assert.deepEqual((await check(scenario({ init: environment('0.8') }))).problems, []);
+    const throttle = await check(scenario({ actions: '<PrivateAction><ControllerAction><OverrideControllerValueAction><Throttle active="true" value="0.5"/><Brake active="false" value="0"/><Clutch active="false" value="0"/><ParkingBrake active="false" value="0"/><SteeringWheel active="false" value="0"/><Gear active="false" number="0"/></OverrideControllerValueAction></ControllerAction></PrivateAction>' }));
+    assert.deepEqual(throttle.problems, []);
+  });
+});
