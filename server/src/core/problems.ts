@@ -65,6 +65,8 @@ export const PROBLEM_CODE_LIST = [
   'renamed-reference',
   'simulator',
   'file-path',
+  'distribution',
+  'unknown-distribution-parameter',
 ] as const;
 
 export type ProblemCode = (typeof PROBLEM_CODE_LIST)[number];
@@ -145,6 +147,7 @@ export interface ProblemDataByCode {
   'unknown-catalog-entry': SuggestionData;
   'unknown-assigned-parameter': SuggestionData;
   'unknown-storyboard-element': SuggestionData;
+  'unknown-distribution-parameter': SuggestionData;
   'lenient-value': SuggestionData | RelatedReplacementData;
   'renamed-reference': SuggestionData;
   'catalog-location-conflict': LocationConflictData;

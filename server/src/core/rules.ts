@@ -84,6 +84,8 @@ export const RULES: Record<ProblemCode, Rule> = {
   'simulator-value': { description: 'A value is the same in the standard and in the selected simulator.' },
   overflow: { description: "A number stays within its type's range (IEEE double, int, unsignedInt, unsignedShort)." },
   'file-path': { description: 'A file path of a written scenario names, from where it is written, the file its source named (SPEC 11.6).' },
+  distribution: { description: 'A ParameterValueDistribution expands: its ScenarioFile resolves, its values fit their parameters, its ranges and steps make sense.' },
+  'unknown-distribution-parameter': { description: "A distribution's parameterName is a parameter its ScenarioFile declares at its root." },
 };
 
 /** The id a report gives a problem's rule: the ASAM Quality Checker uid where one exists, the project's code otherwise. */

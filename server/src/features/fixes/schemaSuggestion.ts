@@ -1,7 +1,7 @@
 import { TextEdit } from 'vscode-languageserver/node';
 import { problemFix, quickFix } from './fix';
 
-/** An attribute name or a value the schema does not know: the closest one it does. */
-export const schemaSuggestionFix = problemFix(['schema-unknown-attribute', 'schema-value'], (data, { uri, diagnostic }) =>
+/** An attribute name or a value the schema does not know, or a distribution's parameter the scenario lacks: the closest one it does. */
+export const schemaSuggestionFix = problemFix(['schema-unknown-attribute', 'schema-value', 'unknown-distribution-parameter'], (data, { uri, diagnostic }) =>
   data?.suggestion ? [quickFix(`Change to '${data.suggestion}'`, diagnostic, { changes: { [uri]: [TextEdit.replace(diagnostic.range, data.suggestion)] } }, true)] : [],
 );
