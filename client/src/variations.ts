@@ -66,7 +66,8 @@ export class VariationsRunner implements vscode.Disposable {
       { location: vscode.ProgressLocation.Notification, title: `Running the variations of ${name}`, cancellable: true },
       (progress, token) =>
         new Promise<VariationsRun>((resolve) => {
-          const child = fork(this.cliPath, args, { cwd: path.dirname(file), stdio: ['ignore', 'pipe', 'pipe', 'ipc'] });
+          // In VS Code's desktop extension host, process.execPath is Electron: it runs the CLI as Node only when told to.
+          const child = fork(this.cliPath, args, { cwd: path.dirname(file), stdio: ['ignore', 'pipe', 'pipe', 'ipc'], env: { ...process.env, ELECTRON_RUN_AS_NODE: '1' } });
           this.running.add(child);
           let cancelled = false;
           let reported = 0;

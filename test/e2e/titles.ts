@@ -28,6 +28,7 @@ export const INSIDE_TESTS = {
   runEsminiClean: "Run in esmini on a clean modular scenario on e6mini shows no error, and the bird's-eye view draws the road the run loaded",
   schemaCompletion: 'schema completion offers the child elements the OpenSCENARIO schema allows',
   schemaDeprecated: 'a deprecated OpenSCENARIO element is struck through',
+  distributionLens: "a distribution file shows its number of concrete scenarios (as vary --count) and Run Variations in a CodeLens",
 } as const;
 
 export type InsideTestKey = keyof typeof INSIDE_TESTS;
