@@ -213,3 +213,32 @@ describe('distribution files in the editor: checks, counts and fixes', function 
     await fixture.client.close(scenarioUri);
   });
 });
+
+describe('distribution files in the editor: a modular main as the ScenarioFile', function () {
+  const modularRun = path.join(__dirname, '..', 'fixtures', 'modularRun', 'xosc');
+  const fixture = useServer(
+    {
+      'xosc/main.xosc': fs.readFileSync(path.join(modularRun, 'main.xosc')),
+      'xosc/cut_in_group.xosc': fs.readFileSync(path.join(modularRun, 'cut_in_group.xosc')),
+      'xosc/speeds.xosc': distribution(
+        `      <DeterministicSingleParameterDistribution parameterName="EgoSpeed">
+        <DistributionSet><Element value="20"/><Element value="25"/><Element value="30"/></DistributionSet>
+      </DeterministicSingleParameterDistribution>`,
+        'main.xosc',
+      ),
+    },
+    'xosc/speeds.xosc',
+  );
+
+  it('is flattened: no problem, the count as vary --count, definition in the main file', async () => {
+    const diagnostics = await fixture.client.diagnosticsOf(fixture.openUri);
+    assert.deepEqual(diagnostics.filter((d) => d.severity === 1).map(messageOf), []);
+    const lenses = (await fixture.client.connection.sendRequest('textDocument/codeLens', { textDocument: { uri: fixture.openUri } })) as CodeLens[];
+    const count = varyCount(path.join(fixture.root, 'xosc', 'speeds.xosc'));
+    assert.equal(count, '3');
+    assert.deepEqual(lensTitles(lenses), [`${count} concrete scenarios`, 'Run Variations']);
+    const text = fs.readFileSync(path.join(fixture.root, 'xosc', 'speeds.xosc'), 'utf8');
+    const locations = (await fixture.client.connection.sendRequest('textDocument/definition', { textDocument: { uri: fixture.openUri }, position: at(text, 'parameterName="Ego|Speed"') })) as Location[];
+    assert.deepEqual(locations.map((location) => [location.uri, location.range.start.line]), [[fileUri(path.join(fixture.root, 'xosc', 'main.xosc')), 5]]);
+  });
+});
