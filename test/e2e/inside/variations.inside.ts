@@ -26,8 +26,9 @@ function copyCutInDistribution(context: Mocha.Context): { repository: string; fo
 /** A distribution file (issue 20): the number of concrete scenarios above it, as `vary --count` gives it. */
 export const variationsTests: InsideTests = {
   distributionLens: async function () {
-    this.timeout(60_000);
-    const { folder } = copyCutInDistribution(this);
+    this.timeout(120_000);
+    const copied = copyCutInDistribution(this);
+    const { folder } = copied;
     try {
       const distribution = await open('variations/xosc/cut-in_parameter_set.xosc');
       const cliPath = process.env[HARNESS_ENV.cli] ?? '';
@@ -39,11 +40,33 @@ export const variationsTests: InsideTests = {
       });
       assert.deepEqual(
         lenses.map((lens) => lens.command?.title),
-        [`${count} concrete scenarios`, 'Run Variations'],
+        ['▶ Run in esmini', `${count} concrete scenarios`, 'Run Variations'],
       );
       const errors = vscode.languages.getDiagnostics(distribution.document.uri).filter((diagnostic) => diagnostic.severity === vscode.DiagnosticSeverity.Error);
       assert.deepEqual(errors.map((diagnostic) => diagnostic.message), []);
       await screenshot('the count of concrete scenarios above a distribution');
+
+      // Run Variations from its lens: a batch of the 12 beside the file, results.csv opened (no Variations view here).
+      const { repository } = copied;
+      const esmini = path.join(repository, '.cache', 'esmini', 'bin', 'esmini');
+      const roads = path.resolve(repository, '..', 'shared', 'esmini', 'xodr');
+      if (!fs.existsSync(esmini) || !fs.existsSync(roads)) return;
+      const settings = vscode.workspace.getConfiguration('modular2simple.esmini');
+      await settings.update('path', esmini, vscode.ConfigurationTarget.Workspace);
+      await settings.update('roadPath', [roads], vscode.ConfigurationTarget.Workspace);
+      await settings.update('duration', 2, vscode.ConfigurationTarget.Workspace);
+      try {
+        const run = lenses.find((lens) => lens.command?.command === 'modular2simple.runVariations');
+        const outcome = await vscode.commands.executeCommand<{ exitCode: number | null; resultsFolder: string }>(run?.command?.command ?? '', ...(run?.command?.arguments ?? []));
+        assert.equal(outcome?.exitCode, 0);
+        assert.equal(outcome.resultsFolder, path.join(folder, 'cut-in_parameter_set.results'));
+        const rows = fs.readFileSync(path.join(outcome.resultsFolder, 'results.csv'), 'utf8').trim().split('\n');
+        assert.equal(rows.length, 13, rows.join('\n'));
+        await waitFor('results.csv in an editor', () => vscode.window.activeTextEditor?.document.uri.fsPath.endsWith('results.csv'));
+        await screenshot('Run Variations opened results.csv');
+      } finally {
+        for (const key of ['path', 'roadPath', 'duration']) await settings.update(key, undefined, vscode.ConfigurationTarget.Workspace);
+      }
     } finally {
       await vscode.commands.executeCommand('workbench.action.closeAllEditors');
       fs.rmSync(path.dirname(folder), { recursive: true, force: true });
