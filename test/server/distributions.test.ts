@@ -242,3 +242,36 @@ describe('distribution files in the editor: a modular main as the ScenarioFile',
     assert.deepEqual(locations.map((location) => [location.uri, location.range.start.line]), [[fileUri(path.join(fixture.root, 'xosc', 'main.xosc')), 5]]);
   });
 });
+
+describe('distribution files in the editor: stochastic', function () {
+  const stochastic = `<?xml version="1.0" encoding="UTF-8"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="2" date="2024-01-01T00:00:00" description="draws" author="test"/>
+  <ParameterValueDistribution>
+    <ScenarioFile filepath="plain.xosc"/>
+    <Stochastic numberOfTestRuns="40" randomSeed="7">
+      <StochasticDistribution parameterName="Speed">
+        <UniformDistribution><Range lowerLimit="20" upperLimit="30"/></UniformDistribution>
+      </StochasticDistribution>
+    </Stochastic>
+  </ParameterValueDistribution>
+</OpenSCENARIO>
+`;
+  const fixture = useServer({ 'plain.xosc': scenario, 'draws.xosc': stochastic }, 'draws.xosc');
+
+  it('counts the runs as vary --count and hovers the first draws', async () => {
+    const lenses = (await fixture.client.connection.sendRequest('textDocument/codeLens', { textDocument: { uri: fixture.openUri } })) as CodeLens[];
+    const count = varyCount(path.join(fixture.root, 'draws.xosc'));
+    assert.equal(count, '40');
+    assert.deepEqual(lensTitles(lenses), ['40 concrete scenarios', 'Run Variations']);
+    const hover = (await fixture.client.connection.sendRequest('textDocument/hover', { textDocument: { uri: fixture.openUri }, position: at(stochastic, '<Stochastic|Distribution') })) as Hover | null;
+    const lines = hoverText(hover).split('\n');
+    assert.equal(lines[0], '**40 draws** from a uniform distribution (seed 7)');
+    assert.equal(lines.length, 2 + 5 + 1);
+    for (const line of lines.slice(2, 7)) {
+      const value = Number(/^- run \d: (.*)$/.exec(line)?.[1]);
+      assert.ok(value >= 20 && value <= 30, line);
+    }
+    assert.equal(lines[7], '- … (35 more)');
+  });
+});

@@ -164,8 +164,18 @@ function rangeWarnings(analysis: DistributionAnalysis): VariationProblem[] {
   return warnings;
 }
 
-/** How many concrete scenarios the distribution gives, discarding those its scenario's ValueConstraintGroups refuse. */
+const counts = new WeakMap<Variations, DistributionCount>();
+
+/** How many concrete scenarios the distribution gives, discarding those its scenario's ValueConstraintGroups refuse; once per analysis. */
 export function countConcrete(variations: Variations): DistributionCount {
+  const known = counts.get(variations);
+  if (known) return known;
+  const count = countEach(variations);
+  counts.set(variations, count);
+  return count;
+}
+
+function countEach(variations: Variations): DistributionCount {
   if (!variations.constrained) return { concrete: variations.count, discarded: 0n, total: variations.count };
   if (variations.count > MAX_COUNTED_COMBINATIONS) return { total: variations.count, uncounted: `more than ${MAX_COUNTED_COMBINATIONS} combinations are not checked against the ValueConstraintGroups one by one` };
   let discarded = 0n;
