@@ -17,6 +17,7 @@ import { ScenarioPathWatchers } from './scenarioPathWatchers';
 import { STRUCTURE_VIEW_ID, StructureTree } from './structureView';
 import { registerTagClosing } from './tagClosingEditor';
 import { EsminiRunner, type EsminiRunEvent } from './esminiRun';
+import { RUN_VARIATIONS_COMMAND, VariationsRunner } from './variations';
 
 /** What the extension hands to other extensions and to its own tests. */
 export interface Modular2SimpleApi {
@@ -87,6 +88,9 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
   const register = (name: string, run: (...args: unknown[]) => unknown): void => {
     context.subscriptions.push(vscode.commands.registerCommand(name, run));
   };
+  const variations = new VariationsRunner(context.asAbsolutePath('dist/cli.js'));
+  context.subscriptions.push(variations);
+  register(RUN_VARIATIONS_COMMAND, (clicked) => variations.run(clicked));
   register('modular2simple.pack', (clicked, selected, ...rest) => packCommand(server, reporter, clicked, selected, ...rest));
   register('modular2simple.flatten', (clicked, selected, ...rest) => flattenCommand(server, reporter, clicked, selected, ...rest));
   register('modular2simple.newScenario', (clicked, ...rest) => newScenarioCommand(server, reporter, clicked, ...rest));

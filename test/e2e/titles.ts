@@ -30,6 +30,7 @@ export const INSIDE_TESTS = {
   schemaCompletion: 'schema completion offers the child elements the OpenSCENARIO schema allows',
   schemaDeprecated: 'a deprecated OpenSCENARIO element is struck through',
   newScenario: 'New Modular Scenario… on a folder writes a main with an ego on the chosen road, opens it clean, and never overwrites',
+  distributionLens: "a distribution file shows its number of concrete scenarios (as vary --count) and Run Variations in a CodeLens",
 } as const;
 
 export type InsideTestKey = keyof typeof INSIDE_TESTS;

@@ -227,6 +227,9 @@ describe('the packaged extension in a real VS Code (code-server, headless Chromi
       manifest.main,
       'dist/server.js',
       'dist/birdsEye.js',
+      // The CLI, which Run Variations runs (batch).
+      'dist/cli.js',
+      'dist/cli-main.js',
       // The compiled OpenSCENARIO schemas the server reads, and the ASAM schemas with their licence note.
       'dist/openscenario-schemas.json',
       ...fs.readdirSync(path.join(repoRoot, 'schemas')).map((file) => `schemas/${file}`),
@@ -234,7 +237,7 @@ describe('the packaged extension in a real VS Code (code-server, headless Chromi
       ...manifest.contributes.languages.flatMap((language) => [language.configuration, language.icon?.light]),
     ].filter((file): file is string => file !== undefined).map((file) => path.posix.normalize(file));
     for (const file of needed) assert.ok(extensionFiles.includes(file), `${file} is missing from the .vsix`);
-    const unexpected = extensionFiles.filter((file) => !needed.includes(file) && !/^(package\.json|readme\.md|LICENSE(\.txt)?|client\/icons\/[\w-]+\.svg)$/i.test(file));
+    const unexpected = extensionFiles.filter((file) => !needed.includes(file) && !/^(package\.json|readme\.md|LICENSE(\.txt)?|client\/icons\/[\w-]+\.svg|dist\/cli-main\.js\.cache)$/i.test(file));
     assert.deepEqual(unexpected, [], 'the .vsix holds files that do not run');
   });
 

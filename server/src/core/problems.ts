@@ -75,6 +75,8 @@ export const PROBLEM_CODE_LIST = [
   'negative-transition-time',
   'non-positive-phase-duration',
   'out-of-range',
+  'distribution',
+  'unknown-distribution-parameter',
 ] as const;
 
 export type ProblemCode = (typeof PROBLEM_CODE_LIST)[number];
@@ -163,6 +165,7 @@ export interface ProblemDataByCode {
   'unknown-catalog-entry': SuggestionData;
   'unknown-assigned-parameter': SuggestionData;
   'unknown-storyboard-element': SuggestionData;
+  'unknown-distribution-parameter': SuggestionData;
   'lenient-value': SuggestionData | RelatedReplacementData;
   'renamed-reference': SuggestionData;
   'catalog-location-conflict': LocationConflictData;

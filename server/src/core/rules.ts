@@ -110,6 +110,8 @@ export const RULES: Record<ProblemCode, Rule> = {
   'negative-transition-time': { description: 'A LightStateAction transitionTime is not negative.', qcRule: QC.transitionTime },
   'non-positive-phase-duration': { description: 'A Phase duration is positive (zero: a warning, within the standard\'s range).', qcRule: QC.phaseDuration },
   'out-of-range': { description: 'A value lies within the range the standard gives for its attribute (core/semantics/ranges.ts).' },
+  distribution: { description: 'A ParameterValueDistribution expands: its ScenarioFile resolves, its values fit their parameters, its ranges and steps make sense.' },
+  'unknown-distribution-parameter': { description: "A distribution's parameterName is a parameter its ScenarioFile declares at its root." },
 };
 
 /** The id a report gives a problem's rule: the ASAM Quality Checker uid where one exists, the project's code otherwise. */

@@ -15,6 +15,7 @@ import { Workspace } from '../workspace';
 import { scenarioSkeletonSnippet, schemaCompletion } from './schemaCompletion';
 import { catalogCompletion } from './catalogs';
 import { attributeTypeAt, parameterCompletion } from './parameters';
+import { distributionCompletion } from './distributions';
 
 const MAX_SNIPPETS = 200;
 
@@ -301,6 +302,8 @@ function skeletonItems(workspace: Workspace, parsed: XmlDocument, document: Text
 
 /** Completion from the tolerant parse of the current text, so that it works while the document is not well-formed. */
 export async function complete(workspace: Workspace, ref: SourceRef, document: TextDocument, offset: number): Promise<CompletionItem[]> {
+  const distribution = await distributionCompletion(workspace, ref, document.getText(), offset);
+  if (distribution) return distribution;
   const source = await workspace.source(ref);
   const parsed = await currentDocument(workspace, ref, document);
   const semantics = source.semantics;

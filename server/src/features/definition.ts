@@ -7,12 +7,15 @@ import { syntacticTarget, Target, targetAt } from '../target';
 import { Workspace } from '../workspace';
 import { catalogDefinition } from './catalogs';
 import { parameterDefinition } from './parameters';
+import { distributionDefinition } from './distributions';
 
 /** Where the name under the cursor is defined; empty when it resolves to nothing. */
 export async function definitionPlaces(workspace: Workspace, ref: SourceRef, offset: number): Promise<Place[]> {
   const source = await workspace.source(ref);
   const model = source.original;
   if (!model) return [];
+  const distribution = await distributionDefinition(workspace, ref, offset);
+  if (distribution) return distribution;
   const target = targetAt(source, offset);
   switch (target.kind) {
     case 'catalogReference': {

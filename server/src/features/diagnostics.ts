@@ -8,6 +8,7 @@ import { baseName, displayRef, refId, SourceRef } from '../core/sources';
 import { Workspace } from '../workspace';
 import { addReferencingScenarios } from './catalogVariables';
 import { DiagnosticData, diagnosticDataOf } from './fixes/data';
+import { distributionAnalysis, distributionProblems } from './distributions';
 
 export const DIAGNOSTIC_SOURCE = 'modular2simple';
 
@@ -119,12 +120,19 @@ export async function diagnose(workspace: Workspace, ref: SourceRef): Promise<{ 
     if (problem.code === 'undeclared-variable') await addReferencingScenarios(workspace, ref, problem, diagnostic);
     diagnostics.push(diagnostic);
   }
+  const dependencies = result.source.dependencies.map((dependency) => refId(dependency));
+  const distribution = await distributionAnalysis(workspace, ref);
+  if (distribution) {
+    for (const problem of distributionProblems(distribution)) diagnostics.push(toDiagnostic(problem, workspace));
+    // An edit of the ScenarioFile changes what the distribution's names and values mean.
+    if (distribution.scenarioPath) dependencies.push(distribution.scenarioPath);
+  }
   if (diagnostics.length > MAX_DIAGNOSTICS) {
     // A pathological file (say 100,000 groups of one name) must not flood the editor: errors first.
     diagnostics.sort((a, b) => (a.severity ?? 4) - (b.severity ?? 4));
     diagnostics.length = MAX_DIAGNOSTICS;
   }
-  return { diagnostics, dependencies: result.source.dependencies.map((dependency) => refId(dependency)) };
+  return { diagnostics, dependencies };
 }
 
 /**

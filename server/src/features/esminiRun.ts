@@ -1,7 +1,12 @@
 import type { CancellationToken } from 'vscode-languageserver/node';
+import * as path from 'node:path';
 import { Flattener } from '../core/flatten';
+import { Problem } from '../core/problems';
 import { refId } from '../core/sources';
-import { EsminiRunResult, removeRunFolder, runScenario } from '../esmini/run';
+import { SamplingError } from '../core/variations';
+import { EsminiRunOptions, EsminiRunResult, removeRunFolder, runScenario, runScenarioText } from '../esmini/run';
+import { searchPathOf } from '../batch/plan';
+import { DistributionAnalysis, distributionAnalysis, distributionProblems } from './distributions';
 import { RunEsminiParams, RunEsminiResult } from '../../../common/src/protocol';
 import { Workspace } from '../workspace';
 import { refOf, summarize } from './commands';
@@ -28,14 +33,16 @@ export class EsminiRuns {
     const duration = typeof params.duration === 'number' && params.duration > 0 && Number.isFinite(params.duration) ? params.duration : undefined;
     const cancel = new AbortController();
     token?.onCancellationRequested(() => cancel.abort());
-    const result = await runScenario(new Flattener(workspace.store), ref, {
+    const options: EsminiRunOptions = {
       esminiPath: typeof params.esminiPath === 'string' ? params.esminiPath : undefined,
       roadPath: stringList(params.roadPath),
       base: workspace.folders[0],
       duration,
       cancel: cancel.signal,
       force: params.force === true,
-    });
+    };
+    const distribution = await distributionAnalysis(workspace, ref);
+    const result = distribution ? await runFirstConcrete(distribution, options) : await runScenario(new Flattener(workspace.store), ref, options);
     const id = refId(ref);
     const earlier = this.previous.get(id);
     if (earlier) removeRunFolder(earlier);
@@ -74,4 +81,32 @@ export class EsminiRuns {
       ...(result.roadFile ? { roadFile: { filepath: result.roadFile.filepath, resolved: result.roadFile.resolved, loaded: result.roadFile.loaded } } : {}),
     };
   }
+}
+
+/**
+ * Run in esmini on a distribution file: its first concrete scenario that the ValueConstraintGroups keep,
+ * run as `batch` runs it (from the ScenarioFile's folder), the message saying which index it was.
+ */
+async function runFirstConcrete(analysis: DistributionAnalysis, options: EsminiRunOptions): Promise<EsminiRunResult> {
+  const variations = analysis.loaded.variations;
+  const notRun = (message: string, flattenProblems: Problem[] = []): EsminiRunResult => ({ outcome: 'not-flattened', message, log: '', duration: options.duration ?? 0, timeStep: 0, seed: 0, wallMs: 0, problems: [], remarks: [], flattenProblems });
+  if (!variations) {
+    const problems = distributionProblems(analysis).filter((problem) => problem.severity === 'error');
+    return notRun(`the distribution has ${problems.length} error${problems.length === 1 ? '' : 's'}, so it has no concrete scenario to run`, problems);
+  }
+  let chosen: { index: bigint; text: string; values: string } | undefined;
+  try {
+    for (let index = 0n; index < variations.count && !chosen; index++) {
+      const concrete = variations.concreteAt(index);
+      if ('text' in concrete) chosen = { index, text: concrete.text, values: concrete.assignments.map((assignment) => `${assignment.parameter} = ${assignment.value}`).join(', ') };
+    }
+  } catch (error) {
+    if (!(error instanceof SamplingError)) throw error;
+    return notRun(`the distribution cannot be drawn from: ${error.message}`);
+  }
+  if (!chosen) return notRun(`every one of the distribution's ${variations.count} combinations breaks the scenario's ValueConstraintGroups: nothing to run`);
+  const scenarioFolder = path.dirname(variations.scenarioPath);
+  const ran = await runScenarioText(chosen.text, searchPathOf(chosen.text, scenarioFolder, []), options);
+  const which = `concrete scenario ${chosen.index} of ${variations.count} (${chosen.values})`;
+  return { ...ran, message: `ran ${which}: ${ran.message}`, problems: [], flattenProblems: [] };
 }

@@ -10,6 +10,7 @@ import { Workspace } from '../workspace';
 import { schemaHoverAt } from './schemaHover';
 import { assignmentHover } from './catalogs';
 import { parameterHover } from './parameters';
+import { distributionHover } from './distributions';
 
 function where(workspace: Workspace, place: Place | undefined): string {
   if (!place) return 'an unknown place';
@@ -31,6 +32,8 @@ export async function hover(workspace: Workspace, ref: SourceRef, offset: number
   const model = source.original;
   if (!model) return null;
   const target = targetAt(source, offset);
+  const distribution = await distributionHover(workspace, ref, offset);
+  if (distribution) return distribution;
   return (await modularHover(workspace, source, model, target, offset)) ?? schemaHoverAt(model.document, workspace.settings.schemaVersion, target);
 }
 

@@ -12,8 +12,9 @@ import { packAndFlattenTests } from './packAndFlatten.inside';
 import { packageTests } from './packages.inside';
 import { previewTests } from './preview.inside';
 import { structureTests } from './structure.inside';
+import { variationsTests } from './variations.inside';
 
-const TESTS: InsideTests = { ...editingTests, ...packageTests, ...languageFeatureTests, ...previewTests, ...packAndFlattenTests, ...structureTests, ...esminiTests, ...newScenarioTests };
+const TESTS: InsideTests = { ...editingTests, ...packageTests, ...languageFeatureTests, ...previewTests, ...packAndFlattenTests, ...structureTests, ...esminiTests, ...newScenarioTests, ...variationsTests };
 
 /**
  * The order the tests run in, one VS Code and one workspace for all: a test sees what earlier ones left
@@ -47,6 +48,7 @@ const ORDER: InsideTestKey[] = [
   'schemaCompletion',
   'schemaDeprecated',
   'newScenario',
+  'distributionLens',
 ];
 
 /** The extension's tests inside VS Code, each feature's in its own file; the bird's-eye view's follow (birdsEye.inside.ts). */

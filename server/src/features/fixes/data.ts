@@ -52,6 +52,7 @@ const DATA_GUARDS: { [C in ProblemCodeWithData]: (value: unknown) => value is Pr
   'unknown-catalog-entry': isSuggestion,
   'unknown-assigned-parameter': isSuggestion,
   'unknown-storyboard-element': isSuggestion,
+  'unknown-distribution-parameter': isSuggestion,
   'lenient-value': (value): value is ProblemDataByCode['lenient-value'] => isSuggestion(value) || (isRecord(value) && isString(value.relatedReplacement)),
   'renamed-reference': isSuggestion,
   'catalog-location-conflict': (value): value is ProblemDataByCode['catalog-location-conflict'] => isRecord(value) && isString(value.key),

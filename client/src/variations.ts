@@ -1,0 +1,124 @@
+import { ChildProcess, fork } from 'node:child_process';
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import * as vscode from 'vscode';
+import { commandTargets } from './commands';
+
+export const RUN_VARIATIONS_COMMAND = 'modular2simple.runVariations';
+/** The Variations view's command (another part of the extension); results.csv opens instead when it is not there. */
+export const SHOW_VARIATIONS_COMMAND = 'modular2simple.showVariations';
+const SETTINGS = 'modular2simple.esmini';
+
+/** Where a distribution's batch writes: `<name>.results/` beside it. */
+export function resultsFolderOf(distribution: string): string {
+  return path.join(path.dirname(distribution), `${path.basename(distribution).replace(/\.[^.]*$/, '')}.results`);
+}
+
+/** How a batch ended, for a caller (a test) that runs the command. */
+export interface VariationsRun {
+  exitCode: number | null;
+  resultsFolder: string;
+  cancelled: boolean;
+}
+
+// The CLI prints one line per finished run when its standard error is not a terminal: "[3/12] 2: ok".
+const PROGRESS_LINE = /^\[(\d+)\/(\d+)\]/;
+
+/**
+ * *Run Variations*: runs `modular2simple batch FILE --results <name>.results` (the bundled CLI) with a
+ * cancellable progress notification, then opens the results: the Variations view when there is one,
+ * else results.csv. Running it again completes an interrupted batch (the CLI resumes).
+ */
+export class VariationsRunner implements vscode.Disposable {
+  private readonly output = vscode.window.createOutputChannel('Modular2Simple Variations');
+  private readonly running = new Set<ChildProcess>();
+
+  constructor(private readonly cliPath: string) {}
+
+  dispose(): void {
+    for (const child of this.running) child.kill('SIGTERM');
+    this.output.dispose();
+  }
+
+  async run(clicked: unknown): Promise<VariationsRun | undefined> {
+    const [source] = commandTargets(clicked, undefined);
+    if (!source || source.scheme !== 'file') {
+      void vscode.window.showErrorMessage('Run Variations: open a distribution file (a .xosc with a ParameterValueDistribution) on disk first.');
+      return undefined;
+    }
+    const document = vscode.workspace.textDocuments.find((candidate) => candidate.uri.toString() === source.toString());
+    // The CLI reads the disk: unsaved edits would not be what runs.
+    if (document?.isDirty) await document.save();
+    const file = source.fsPath;
+    const resultsFolder = resultsFolderOf(file);
+    const settings = vscode.workspace.getConfiguration(SETTINGS, source);
+    const args = ['batch', file, '--results', resultsFolder];
+    const esminiPath = settings.get<string>('path');
+    if (esminiPath) args.push('--esmini', path.resolve(vscode.workspace.getWorkspaceFolder(source)?.uri.fsPath ?? path.dirname(file), esminiPath));
+    const roadPath = settings.get<string[]>('roadPath') ?? [];
+    if (roadPath.length > 0) args.push('--road-path', roadPath.join(path.delimiter));
+    const duration = settings.get<number>('duration');
+    if (typeof duration === 'number' && duration > 0) args.push('--duration', String(duration));
+
+    this.output.appendLine(`modular2simple ${args.join(' ')}`);
+    const name = path.basename(file);
+    const outcome = await vscode.window.withProgress(
+      { location: vscode.ProgressLocation.Notification, title: `Running the variations of ${name}`, cancellable: true },
+      (progress, token) =>
+        new Promise<VariationsRun>((resolve) => {
+          // In VS Code's desktop extension host, process.execPath is Electron: it runs the CLI as Node only when told to.
+          const child = fork(this.cliPath, args, { cwd: path.dirname(file), stdio: ['ignore', 'pipe', 'pipe', 'ipc'], env: { ...process.env, ELECTRON_RUN_AS_NODE: '1' } });
+          this.running.add(child);
+          let cancelled = false;
+          let reported = 0;
+          let pending = '';
+          const subscription = token.onCancellationRequested(() => {
+            cancelled = true;
+            // SIGTERM stops the batch cleanly: the rows written so far stay, a later run does the rest.
+            child.kill('SIGTERM');
+          });
+          const onText = (chunk: Buffer): void => {
+            const text = pending + chunk.toString();
+            const lines = text.split('\n');
+            pending = lines.pop() ?? '';
+            for (const line of lines) {
+              this.output.appendLine(line);
+              const counted = PROGRESS_LINE.exec(line);
+              if (!counted) continue;
+              const done = Number(counted[1]);
+              const total = Number(counted[2]);
+              const percent = (100 * done) / Math.max(total, 1);
+              progress.report({ message: `${done} of ${total}`, increment: percent - reported });
+              reported = percent;
+            }
+          };
+          child.stdout?.on('data', onText);
+          child.stderr?.on('data', onText);
+          const finish = (exitCode: number | null): void => {
+            subscription.dispose();
+            this.running.delete(child);
+            if (pending) this.output.appendLine(pending);
+            resolve({ exitCode, resultsFolder, cancelled });
+          };
+          child.on('error', (error) => {
+            this.output.appendLine(`cannot start the CLI: ${error.stack ?? error.message}`);
+            finish(null);
+          });
+          child.on('exit', (code) => finish(code));
+        }),
+    );
+    const csv = path.join(resultsFolder, 'results.csv');
+    if (outcome.cancelled) {
+      void vscode.window.showInformationMessage(`Run Variations stopped: the rows so far are in ${path.basename(resultsFolder)}/results.csv; run it again to run the rest.`);
+    } else if (outcome.exitCode !== 0) {
+      const choice = await vscode.window.showErrorMessage(`Run Variations of ${name} failed (exit code ${outcome.exitCode}): see the output for why.`, 'Show Output');
+      if (choice === 'Show Output') this.output.show();
+      if (!fs.existsSync(csv)) return outcome;
+    }
+    if (!fs.existsSync(csv)) return outcome;
+    const commands = await vscode.commands.getCommands(true);
+    if (commands.includes(SHOW_VARIATIONS_COMMAND)) await vscode.commands.executeCommand(SHOW_VARIATIONS_COMMAND, vscode.Uri.file(resultsFolder));
+    else await vscode.window.showTextDocument(vscode.Uri.file(csv));
+    return outcome;
+  }
+}

@@ -1,0 +1,317 @@
+import * as path from 'node:path';
+import { CodeLens, CompletionItem, CompletionItemKind, Hover, MarkupKind } from 'vscode-languageserver/node';
+import { Problem } from '../core/problems';
+import { childRef, diskRef, refId, SourceRef } from '../core/sources';
+import { closestMatch, LineIndex, Range } from '../core/text';
+import { loadVariations, LoadResult, SamplingError, Variations, VariationProblem } from '../core/variations';
+import { DeclaredParameter, readScenarioParameters } from '../core/variations/concrete';
+import { expandDeterministic } from '../core/variations/deterministic';
+import { ParameterValue } from '../core/variations/distribution';
+import { parseXml, XmlElement } from '../core/xml';
+import { Place } from '../analysis';
+import { Workspace } from '../workspace';
+
+/** The client command that runs `batch` for a distribution file (CodeLens and palette). */
+export const RUN_VARIATIONS_COMMAND = 'modular2simple.runVariations';
+
+/** Constrained distributions with more combinations than this are not counted one by one in the editor. */
+export const MAX_COUNTED_COMBINATIONS = 200_000n;
+
+/** Values a hover lists before it says how many there are. */
+const HOVER_VALUES = 5;
+
+const DISTRIBUTION = /<ParameterValueDistribution\b/;
+const REFERENCE = /<ScenarioReference\b/;
+const UNDECLARED = /^parameter '(.*)' is not declared in the root ParameterDeclarations of /;
+
+/** The number of concrete scenarios, as `vary --count` gives it. */
+export type DistributionCount = { concrete: bigint; discarded: bigint; total: bigint } | { total: bigint; uncounted: string };
+
+/** A distribution file read with its scenario, once per workspace generation. */
+export interface DistributionAnalysis {
+  ref: SourceRef;
+  file: string;
+  text: string;
+  loaded: LoadResult;
+  /** The ScenarioFile's absolute path, where the file names one. */
+  scenarioPath: string | undefined;
+  /** The file that declares the scenario's root parameters as written (a modular main inside a `.mosc`). */
+  scenarioRef: SourceRef | undefined;
+  /** The root parameters of the scenario as esmini sees it (flattened for a modular main). */
+  parameters: DeclaredParameter[];
+}
+
+const analyses = new WeakMap<Workspace, Map<string, { version: number; analysis: Promise<DistributionAnalysis | undefined> }>>();
+
+/** Whether a text is a ParameterValueDistribution file (a quick scan, before any parse). */
+export function isDistributionText(text: string): boolean {
+  return DISTRIBUTION.test(text);
+}
+
+/** The file's distribution read with its scenario; undefined when it is not a distribution file on disk. */
+export function distributionAnalysis(workspace: Workspace, ref: SourceRef): Promise<DistributionAnalysis | undefined> {
+  let perWorkspace = analyses.get(workspace);
+  if (!perWorkspace) analyses.set(workspace, (perWorkspace = new Map()));
+  const id = refId(ref);
+  const cached = perWorkspace.get(id);
+  if (cached && cached.version === workspace.version) return cached.analysis;
+  const analysis = analyze(workspace, ref);
+  perWorkspace.set(id, { version: workspace.version, analysis });
+  if (perWorkspace.size > 50) for (const [key, entry] of perWorkspace) if (entry.version !== workspace.version) perWorkspace.delete(key);
+  return analysis;
+}
+
+async function analyze(workspace: Workspace, ref: SourceRef): Promise<DistributionAnalysis | undefined> {
+  // A distribution inside a package has no folder of its own for the ScenarioFile to resolve from.
+  if (ref.entries.length > 0) return undefined;
+  const text = await workspace.text(ref);
+  if (text === undefined || !isDistributionText(text)) return undefined;
+  const file = ref.disk;
+  let scenarioText: string | undefined;
+  let scenarioRef: SourceRef | undefined;
+  let scenarioPath: string | undefined;
+  const loaded = await loadVariations(text, file, async (absolute) => {
+    scenarioPath = absolute;
+    const read = await scenarioTextOf(workspace, absolute);
+    scenarioText = read.text;
+    scenarioRef = read.declaredIn;
+    return read.text;
+  });
+  const parameters = scenarioText === undefined ? [] : (readScenarioParameters(scenarioText, scenarioPath ?? '').scenario?.declarations ?? []);
+  return { ref, file, text, loaded, scenarioPath, scenarioRef, parameters };
+}
+
+/** The ScenarioFile as plain OpenSCENARIO, as the editor has it: a plain file as it is, a modular main, folder or `.mosc` flattened. */
+async function scenarioTextOf(workspace: Workspace, absolute: string): Promise<{ text: string; declaredIn: SourceRef }> {
+  const kind = await workspace.store.kindOf(absolute);
+  if (kind === undefined) throw Object.assign(new Error('no such file'), { code: 'ENOENT' });
+  let main: SourceRef;
+  if (kind === 'directory') main = diskRef(path.join(absolute, 'main.xosc'));
+  else if (absolute.toLowerCase().endsWith('.mosc')) main = childRef(diskRef(absolute), 'main.xosc');
+  else {
+    main = diskRef(absolute);
+    const text = await workspace.store.readText(main);
+    if (!REFERENCE.test(text)) return { text, declaredIn: main };
+  }
+  const result = await workspace.flattener().flatten(main);
+  if (result.text !== undefined) return { text: result.text, declaredIn: main };
+  const errors = result.problems.filter((problem) => problem.severity === 'error');
+  const first = errors[0];
+  throw new Error(`cannot be flattened (${errors.length} error${errors.length === 1 ? '' : 's'})` + (first ? `: ${first.message}` : ''));
+}
+
+/** The extent of what a problem's offset points at: an attribute value, or an element's name. */
+function extentAt(text: string, offset: number): { start: number; end: number } {
+  const quote = text[offset - 1];
+  if (quote === '"' || quote === "'") {
+    const end = text.indexOf(quote, offset);
+    return { start: offset, end: end < 0 ? offset : end };
+  }
+  if (text[offset] === '<') {
+    const name = /^<[\w:.-]*/.exec(text.slice(offset, offset + 200));
+    return { start: offset + 1, end: offset + (name ? name[0].length : 1) };
+  }
+  return { start: offset, end: Math.min(text.length, offset + 1) };
+}
+
+/** The engine's problems as the file's problems: those in the scenario are shown at the ScenarioFile. */
+export function distributionProblems(analysis: DistributionAnalysis): Problem[] {
+  const lines = new LineIndex(analysis.text);
+  const scenarioFileOffset = analysis.loaded.variations?.distribution.scenarioFile.offset ?? scenarioFileAttributeOffset(analysis.text);
+  const names = analysis.parameters.map((declaration) => declaration.name);
+  return [...analysis.loaded.problems, ...rangeWarnings(analysis)].map((problem): Problem => {
+    const own = problem.file === analysis.file;
+    const extent = extentAt(analysis.text, own ? problem.offset : scenarioFileOffset);
+    const range: Range = lines.range(extent.start, extent.end);
+    const severity = problem.severity;
+    const undeclared = own ? UNDECLARED.exec(problem.message) : null;
+    if (undeclared) {
+      const suggestion = closestMatch(undeclared[1], names);
+      return {
+        source: analysis.ref,
+        range,
+        severity,
+        code: 'unknown-distribution-parameter',
+        message: problem.message + (suggestion ? `; did you mean '${suggestion}'?` : ''),
+        ...(suggestion ? { data: { suggestion } } : {}),
+      };
+    }
+    const message = own ? problem.message : `in the ScenarioFile (${path.basename(problem.file)}:${scenarioLine(analysis, problem)}): ${problem.message}`;
+    return { source: analysis.ref, range, severity, code: 'distribution', message };
+  });
+}
+
+function scenarioLine(analysis: DistributionAnalysis, problem: VariationProblem): number {
+  const lines = analysis.loaded.lines.get(problem.file);
+  return lines ? lines.positionAt(problem.offset).line + 1 : 1;
+}
+
+function scenarioFileAttributeOffset(text: string): number {
+  const found = /<ScenarioFile\b[^>]*?\bfilepath\s*=\s*["']/.exec(text);
+  return found ? found.index + found[0].length : Math.max(0, text.search(DISTRIBUTION));
+}
+
+/** A range whose step is wider than the range itself gives its lower limit alone: likely not what was meant. */
+function rangeWarnings(analysis: DistributionAnalysis): VariationProblem[] {
+  const warnings: VariationProblem[] = [];
+  for (const factor of analysis.loaded.variations?.distribution.deterministic ?? []) {
+    if (factor.kind !== 'range') continue;
+    const { lower, upper, offset } = factor.range;
+    if (upper > lower && factor.step > upper - lower) {
+      warnings.push({ file: analysis.file, offset, severity: 'warning', message: `stepWidth ${factor.step} is wider than the range ${lower}..${upper}: only ${lower} is used` });
+    }
+  }
+  return warnings;
+}
+
+const counts = new WeakMap<Variations, DistributionCount>();
+
+/** How many concrete scenarios the distribution gives, discarding those its scenario's ValueConstraintGroups refuse; once per analysis. */
+export function countConcrete(variations: Variations): DistributionCount {
+  const known = counts.get(variations);
+  if (known) return known;
+  const count = countEach(variations);
+  counts.set(variations, count);
+  return count;
+}
+
+function countEach(variations: Variations): DistributionCount {
+  if (!variations.constrained) return { concrete: variations.count, discarded: 0n, total: variations.count };
+  if (variations.count > MAX_COUNTED_COMBINATIONS) return { total: variations.count, uncounted: `more than ${MAX_COUNTED_COMBINATIONS} combinations are not checked against the ValueConstraintGroups one by one` };
+  let discarded = 0n;
+  try {
+    for (let index = 0n; index < variations.count; index++) if (variations.brokenAt(index)) discarded++;
+  } catch (error) {
+    if (!(error instanceof SamplingError)) throw error;
+    return { total: variations.count, uncounted: error.message };
+  }
+  return { concrete: variations.count - discarded, discarded, total: variations.count };
+}
+
+function plural(count: bigint, word: string): string {
+  return `${count} ${word}${count === 1n ? '' : 's'}`;
+}
+
+/** The count above the distribution, and Run Variations. */
+export async function distributionLenses(workspace: Workspace, uri: string, ref: SourceRef): Promise<CodeLens[]> {
+  const analysis = await distributionAnalysis(workspace, ref);
+  if (!analysis) return [];
+  const document = parseXml(analysis.text);
+  const element = document.root?.children.find((candidate) => candidate.name === 'ParameterValueDistribution');
+  if (!element) return [];
+  const lines = new LineIndex(analysis.text);
+  const range = lines.range(element.start, element.start + 1 + element.name.length);
+  const variations = analysis.loaded.variations;
+  if (!variations) return [{ range, command: { title: 'no concrete scenarios: the distribution has errors', command: '' } }];
+  const count = countConcrete(variations);
+  const title =
+    'uncounted' in count
+      ? `${plural(count.total, 'combination')} (${count.uncounted})`
+      : `${plural(count.concrete, 'concrete scenario')}` + (count.discarded > 0n ? ` (${count.discarded} of ${count.total} discarded by ValueConstraintGroups)` : '');
+  return [
+    { range, command: { title, command: '' } },
+    { range, command: { title: 'Run Variations', command: RUN_VARIATIONS_COMMAND, arguments: [uri] } },
+  ];
+}
+
+const DISTRIBUTION_ELEMENTS = new Set(['DeterministicSingleParameterDistribution', 'DeterministicMultiParameterDistribution', 'StochasticDistribution']);
+
+function elementsAt(root: XmlElement | undefined, offset: number): XmlElement[] {
+  const found: XmlElement[] = [];
+  let current = root;
+  while (current) {
+    found.push(current);
+    current = current.children.find((child) => child.start <= offset && offset < child.end);
+  }
+  return found;
+}
+
+function assignmentText(alternative: ParameterValue[]): string {
+  return alternative.map((assignment) => `${assignment.parameter} = ${assignment.value}`).join(', ');
+}
+
+/** On a distribution element's start tag: the values it gives (the first few and how many). */
+export async function distributionHover(workspace: Workspace, ref: SourceRef, offset: number): Promise<Hover | null> {
+  const analysis = await distributionAnalysis(workspace, ref);
+  const variations = analysis?.loaded.variations;
+  if (!analysis || !variations) return null;
+  const element = elementsAt(parseXml(analysis.text).root, offset).find((candidate) => DISTRIBUTION_ELEMENTS.has(candidate.name));
+  if (!element || offset > element.startTagEnd) return null;
+  const inElement = (at: number) => element.start <= at && at < element.end;
+  const lines = new LineIndex(analysis.text);
+  const range = lines.range(element.start, element.startTagEnd);
+  const deterministic = variations.distribution.deterministic;
+  if (deterministic) {
+    const factor = deterministic.findIndex((candidate) => inElement(candidate.offset));
+    if (factor < 0) return null;
+    const alternatives = expandDeterministic([deterministic[factor]], analysis.file).expansion.factors[0] ?? [];
+    const listed = alternatives.slice(0, HOVER_VALUES).map((alternative) => `- ${assignmentText(alternative)}`);
+    const more = alternatives.length > HOVER_VALUES ? [`- … (${alternatives.length - HOVER_VALUES} more)`] : [];
+    const value = [`**${plural(BigInt(alternatives.length), 'value')}**`, '', ...listed, ...more].join('\n');
+    return { contents: { kind: MarkupKind.Markdown, value }, range };
+  }
+  const stochastic = variations.distribution.stochastic;
+  const drawn = stochastic?.distributions.find((candidate) => inElement(candidate.offset));
+  if (!stochastic || !drawn) return null;
+  const draws: string[] = [];
+  try {
+    for (let index = 0; index < Math.min(HOVER_VALUES, stochastic.runs); index++) {
+      const value = variations.assignmentAt(BigInt(index)).find((assignment) => assignment.parameter === drawn.parameter);
+      if (value) draws.push(`- run ${index}: ${value.value}`);
+    }
+  } catch (error) {
+    if (!(error instanceof SamplingError)) throw error;
+    draws.push(`- ${error.message}`);
+  }
+  const more = stochastic.runs > HOVER_VALUES ? [`- … (${stochastic.runs - HOVER_VALUES} more)`] : [];
+  const value = [`**${plural(BigInt(stochastic.runs), 'draw')}** from a ${drawn.sampler.kind} distribution (seed ${stochastic.seed})`, '', ...draws, ...more].join('\n');
+  return { contents: { kind: MarkupKind.Markdown, value }, range };
+}
+
+/** The `parameterName` or `parameterRef` value the offset stands in, from the text as it is typed. */
+function parameterNameAt(text: string, offset: number): { start: number; end: number; name: string } | undefined {
+  const before = text.slice(Math.max(0, offset - 400), offset);
+  const opened = /\bparameter(?:Name|Ref)\s*=\s*(["'])([^"'<>]*)$/.exec(before);
+  if (!opened) return undefined;
+  const start = offset - opened[2].length;
+  let end = offset;
+  while (end < text.length && text[end] !== opened[1] && text[end] !== '<' && text[end] !== '\n') end++;
+  return { start, end, name: text.slice(start, end) };
+}
+
+/** In a `parameterName` or `parameterRef`: the scenario's root parameters, with type and default. */
+export async function distributionCompletion(workspace: Workspace, ref: SourceRef, text: string, offset: number): Promise<CompletionItem[] | undefined> {
+  if (!isDistributionText(text)) return undefined;
+  const at = parameterNameAt(text, offset);
+  if (!at) return undefined;
+  const analysis = await distributionAnalysis(workspace, ref);
+  if (!analysis) return undefined;
+  const lines = new LineIndex(text);
+  const range = lines.range(at.start, at.end);
+  const seen = new Set<string>();
+  return analysis.parameters
+    .filter((declaration) => !seen.has(declaration.name) && seen.add(declaration.name))
+    .map((declaration, index) => ({
+      label: declaration.name,
+      kind: CompletionItemKind.Variable,
+      detail: `${declaration.type} = ${declaration.value}`,
+      sortText: String(index).padStart(5, '0'),
+      textEdit: { range, newText: declaration.name },
+    }));
+}
+
+/** From a `parameterName` or `parameterRef` to its declaration in the scenario file. */
+export async function distributionDefinition(workspace: Workspace, ref: SourceRef, offset: number): Promise<Place[] | undefined> {
+  const analysis = await distributionAnalysis(workspace, ref);
+  if (!analysis) return undefined;
+  const at = parameterNameAt(analysis.text, offset);
+  if (!at || !analysis.scenarioRef) return undefined;
+  const declaredText = await workspace.text(analysis.scenarioRef);
+  if (declaredText === undefined) return [];
+  const declaration = readScenarioParameters(declaredText, '').scenario?.declarations.find((candidate) => candidate.name === at.name);
+  if (!declaration) return [];
+  const nameValue = new RegExp(`\\bname\\s*=\\s*["']`).exec(declaredText.slice(declaration.offset));
+  const start = nameValue ? declaration.offset + nameValue.index + nameValue[0].length : declaration.offset;
+  const lines = new LineIndex(declaredText);
+  return [{ ref: analysis.scenarioRef, range: lines.range(start, start + (nameValue ? declaration.name.length : 0)) }];
+}

@@ -1,0 +1,277 @@
+import * as assert from 'node:assert/strict';
+import { execFileSync } from 'node:child_process';
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import { CodeLens, CompletionItem, Diagnostic, Hover, Location, MarkupContent } from 'vscode-languageserver/node';
+import { RunEsminiRequest, RunEsminiResult } from '../../common/src/protocol';
+import { fileUri, useServer } from './harness';
+import { cliPath, sharedDir } from '../support/paths';
+import { esminiBinary, esminiRoads, requireEsmini } from '../support/esmini';
+import { at } from '../support/cursor';
+
+const esminiCorpus = path.join(sharedDir, 'corpus', 'openscenario', 'esmini');
+const distributionName = 'cut-in_parameter_set.xosc';
+
+function corpusFiles(): Record<string, string | Uint8Array> {
+  const files: Record<string, string | Uint8Array> = {};
+  if (!fs.existsSync(esminiCorpus)) return files;
+  files[`xosc/${distributionName}`] = fs.readFileSync(path.join(esminiCorpus, distributionName));
+  files['xosc/cut-in.xosc'] = fs.readFileSync(path.join(esminiCorpus, 'cut-in.xosc'));
+  const vehicles = path.join(esminiCorpus, 'Catalogs', 'Vehicles');
+  for (const name of fs.readdirSync(vehicles)) files[`xosc/Catalogs/Vehicles/${name}`] = fs.readFileSync(path.join(vehicles, name));
+  return files;
+}
+
+const scenario = `<?xml version="1.0" encoding="UTF-8"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="2" date="2024-01-01T00:00:00" description="plain" author="test"/>
+  <ParameterDeclarations>
+    <ParameterDeclaration name="Speed" parameterType="double" value="30"/>
+    <ParameterDeclaration name="Gap" parameterType="double" value="20">
+      <ConstraintGroup>
+        <ValueConstraint rule="greaterOrEqual" value="15"/>
+      </ConstraintGroup>
+    </ParameterDeclaration>
+    <ParameterDeclaration name="Lanes" parameterType="int" value="2"/>
+  </ParameterDeclarations>
+</OpenSCENARIO>
+`;
+
+function distribution(body: string, scenarioFile = 'plain.xosc'): string {
+  return `<?xml version="1.0" encoding="UTF-8"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="2" date="2024-01-01T00:00:00" description="values" author="test"/>
+  <ParameterValueDistribution>
+    <ScenarioFile filepath="${scenarioFile}"/>
+    <Deterministic>
+${body}
+    </Deterministic>
+  </ParameterValueDistribution>
+</OpenSCENARIO>
+`;
+}
+
+const ranges = distribution(`      <DeterministicSingleParameterDistribution parameterName="Speed">
+        <DistributionSet><Element value="20"/><Element value="25"/><Element value="30"/><Element value="35"/><Element value="40"/><Element value="45"/><Element value="50"/></DistributionSet>
+      </DeterministicSingleParameterDistribution>
+      <DeterministicSingleParameterDistribution parameterName="Gap">
+        <DistributionRange stepWidth="5"><Range lowerLimit="10" upperLimit="30"/></DistributionRange>
+      </DeterministicSingleParameterDistribution>`);
+
+const messageOf = (diagnostic: Diagnostic) => (typeof diagnostic.message === 'string' ? diagnostic.message : diagnostic.message.value);
+const lensTitles = (lenses: CodeLens[]) => lenses.map((lens) => lens.command?.title ?? '');
+const hoverText = (hover: Hover | null) => (hover?.contents as MarkupContent | undefined)?.value ?? '';
+
+function varyCount(file: string): string {
+  return execFileSync(process.execPath, [cliPath, 'vary', file, '--count'], { encoding: 'utf8', stdio: ['ignore', 'pipe', 'pipe'] }).trim();
+}
+
+describe('distribution files in the editor: esmini\'s cut-in_parameter_set.xosc', function () {
+  before(function () {
+    if (!fs.existsSync(esminiCorpus)) this.skip();
+  });
+  const fixture = useServer(fs.existsSync(esminiCorpus) ? corpusFiles() : {}, `xosc/${distributionName}`);
+  const file = () => path.join(fixture.root, 'xosc', distributionName);
+
+  it('has no problem of its own', async () => {
+    const diagnostics = await fixture.client.diagnosticsOf(fixture.openUri);
+    assert.deepEqual(diagnostics.filter((d: Diagnostic) => d.source === 'modular2simple' && d.severity === 1), []);
+  });
+
+  it('shows the number of concrete scenarios, the same as vary --count, and Run Variations', async () => {
+    const lenses = (await fixture.client.connection.sendRequest('textDocument/codeLens', { textDocument: { uri: fixture.openUri } })) as CodeLens[];
+    const count = varyCount(file());
+    assert.equal(count, '12');
+    assert.deepEqual(lensTitles(lenses), [`${count} concrete scenarios`, 'Run Variations']);
+    assert.equal(lenses[1].command?.command, 'modular2simple.runVariations');
+  });
+
+  it('hovers a distribution with its values', async () => {
+    const text = fs.readFileSync(file(), 'utf8').replace(/^\uFEFF/, '');
+    const hover = (await fixture.client.connection.sendRequest('textDocument/hover', { textDocument: { uri: fixture.openUri }, position: at(text, 'parameterName="TargetSpeed|Factor"') })) as Hover | null;
+    assert.equal(hoverText(hover), '**3 values**\n\n- TargetSpeedFactor = 1.100000\n- TargetSpeedFactor = 1.300000\n- TargetSpeedFactor = 1.500000');
+    const multi = (await fixture.client.connection.sendRequest('textDocument/hover', { textDocument: { uri: fixture.openUri }, position: at(text, '<DeterministicMulti|ParameterDistribution') })) as Hover | null;
+    assert.equal(hoverText(multi), '**2 values**\n\n- HostVehicle = car_blue, TargetVehicle = car_yellow\n- TargetVehicle = van_red');
+  });
+
+  it('completes a parameterName with the root parameters of the scenario, with type and default', async () => {
+    const text = fs.readFileSync(file(), 'utf8').replace(/^\uFEFF/, '');
+    const items = (await fixture.client.connection.sendRequest('textDocument/completion', { textDocument: { uri: fixture.openUri }, position: at(text, 'parameterName="|EgoSpeed"') })) as CompletionItem[];
+    assert.deepEqual(
+      items.map((item) => `${item.label}: ${item.detail}`),
+      ['HostVehicle: string = car_white', 'TargetVehicle: string = car_red', 'EgoStartS: double = 50', 'HeadwayTime_LaneChange: double = 0.4', 'HeadwayTime_Brake: double = 0.7', 'EgoSpeed: double = 108', 'TargetSpeedFactor: double = 1.2'],
+    );
+  });
+
+  it('goes from a parameterName to its declaration in the scenario', async () => {
+    const text = fs.readFileSync(file(), 'utf8').replace(/^\uFEFF/, '');
+    const locations = (await fixture.client.connection.sendRequest('textDocument/definition', { textDocument: { uri: fixture.openUri }, position: at(text, 'parameterRef="Target|Vehicle"', 'car_blue') })) as Location[];
+    assert.equal(locations.length, 1);
+    assert.equal(locations[0].uri, fileUri(path.join(fixture.root, 'xosc', 'cut-in.xosc')));
+    const declared = fs.readFileSync(path.join(fixture.root, 'xosc', 'cut-in.xosc'), 'utf8').replace(/^\uFEFF/, '');
+    const start = at(declared, 'ParameterDeclaration name="|TargetVehicle"');
+    assert.deepEqual(locations[0].range, { start, end: { line: start.line, character: start.character + 'TargetVehicle'.length } });
+  });
+
+  it('runs the first concrete scenario in esmini, saying which', async function () {
+    requireEsmini(this);
+    this.timeout(120_000);
+    const result = (await fixture.client.connection.sendRequest(RunEsminiRequest, { uri: fixture.openUri, esminiPath: esminiBinary, roadPath: [esminiRoads], duration: 2 })) as RunEsminiResult;
+    assert.match(result.message, /^ran concrete scenario 0 of 12 \(HostVehicle = car_blue, TargetVehicle = car_yellow, EgoSpeed = 70\.0, TargetSpeedFactor = 1\.100000\)/);
+    assert.equal(result.outcome, 'ok', result.log);
+    assert.ok(result.csvFile && fs.existsSync(result.csvFile));
+  });
+});
+
+describe('distribution files in the editor: checks, counts and fixes', function () {
+  const fixture = useServer(
+    {
+      'plain.xosc': scenario,
+      'ranges.xosc': ranges,
+      'unknown.xosc': distribution(`      <DeterministicSingleParameterDistribution parameterName="Sped">
+        <DistributionSet><Element value="20"/></DistributionSet>
+      </DeterministicSingleParameterDistribution>`),
+      'missing.xosc': distribution(`      <DeterministicSingleParameterDistribution parameterName="Speed">
+        <DistributionSet><Element value="20"/></DistributionSet>
+      </DeterministicSingleParameterDistribution>`, 'nowhere.xosc'),
+      'steps.xosc': distribution(`      <DeterministicSingleParameterDistribution parameterName="Speed">
+        <DistributionRange stepWidth="0"><Range lowerLimit="10" upperLimit="30"/></DistributionRange>
+      </DeterministicSingleParameterDistribution>
+      <DeterministicSingleParameterDistribution parameterName="Gap">
+        <DistributionRange stepWidth="50"><Range lowerLimit="15" upperLimit="30"/></DistributionRange>
+      </DeterministicSingleParameterDistribution>`),
+      'types.xosc': distribution(`      <DeterministicSingleParameterDistribution parameterName="Lanes">
+        <DistributionSet><Element value="two"/></DistributionSet>
+      </DeterministicSingleParameterDistribution>`),
+    },
+    'ranges.xosc',
+  );
+  const own = (diagnostics: Diagnostic[]) => diagnostics.filter((d) => d.source === 'modular2simple' && (d.code === 'distribution' || d.code === 'unknown-distribution-parameter'));
+
+  it('counts what the ValueConstraintGroups keep, as vary --count', async () => {
+    const lenses = (await fixture.client.connection.sendRequest('textDocument/codeLens', { textDocument: { uri: fixture.openUri } })) as CodeLens[];
+    const count = varyCount(path.join(fixture.root, 'ranges.xosc'));
+    assert.equal(count, '28');
+    assert.deepEqual(lensTitles(lenses), ['28 concrete scenarios (7 of 35 discarded by ValueConstraintGroups)', 'Run Variations']);
+  });
+
+  it('reports a parameter the scenario lacks at its name, with the closest name as a quick fix', async () => {
+    const uri = await fixture.client.openFile(path.join(fixture.root, 'unknown.xosc'));
+    const diagnostics = own(await fixture.client.diagnosticsOf(uri));
+    assert.equal(diagnostics.length, 1);
+    assert.equal(diagnostics[0].code, 'unknown-distribution-parameter');
+    assert.equal(diagnostics[0].severity, 1);
+    const text = fs.readFileSync(path.join(fixture.root, 'unknown.xosc'), 'utf8');
+    const start = at(text, 'parameterName="|Sped"');
+    assert.deepEqual(diagnostics[0].range, { start, end: { line: start.line, character: start.character + 4 } });
+    const actions = (await fixture.client.connection.sendRequest('textDocument/codeAction', { textDocument: { uri }, range: diagnostics[0].range, context: { diagnostics } })) as { title: string }[];
+    assert.deepEqual(actions.map((action) => action.title), ["Change to 'Speed'"]);
+    const lenses = (await fixture.client.connection.sendRequest('textDocument/codeLens', { textDocument: { uri } })) as CodeLens[];
+    assert.deepEqual(lensTitles(lenses), ['no concrete scenarios: the distribution has errors']);
+  });
+
+  it('reports a ScenarioFile that does not resolve at its filepath', async () => {
+    const uri = await fixture.client.openFile(path.join(fixture.root, 'missing.xosc'));
+    const diagnostics = own(await fixture.client.diagnosticsOf(uri));
+    assert.equal(diagnostics.length, 1);
+    assert.match(messageOf(diagnostics[0]), /^ScenarioFile nowhere\.xosc \(.*nowhere\.xosc\): no such file$/);
+    const text = fs.readFileSync(path.join(fixture.root, 'missing.xosc'), 'utf8');
+    assert.deepEqual(diagnostics[0].range.start, at(text, 'filepath="|nowhere.xosc"'));
+  });
+
+  it('reports a step of 0, and warns of a step wider than its range', async () => {
+    const uri = await fixture.client.openFile(path.join(fixture.root, 'steps.xosc'));
+    const text = fs.readFileSync(path.join(fixture.root, 'steps.xosc'), 'utf8');
+    const diagnostics = own(await fixture.client.diagnosticsOf(uri));
+    assert.deepEqual(
+      diagnostics.map((d) => [d.severity, messageOf(d), d.range.start]),
+      [[1, 'stepWidth 0 must be greater than 0', at(text, 'stepWidth="|0"')]],
+    );
+    // The step is checked once the distribution has no error left.
+    fs.writeFileSync(path.join(fixture.root, 'steps2.xosc'), text.replace('stepWidth="0"', 'stepWidth="1"'));
+    const second = await fixture.client.openFile(path.join(fixture.root, 'steps2.xosc'));
+    const warnings = own(await fixture.client.diagnosticsOf(second));
+    assert.deepEqual(
+      warnings.map((d) => [d.severity, messageOf(d)]),
+      [[2, 'stepWidth 50 is wider than the range 15..30: only 15 is used']],
+    );
+  });
+
+  it('warns of a value that does not fit its parameter\'s type', async () => {
+    const uri = await fixture.client.openFile(path.join(fixture.root, 'types.xosc'));
+    const diagnostics = own(await fixture.client.diagnosticsOf(uri));
+    assert.equal(diagnostics.length, 1);
+    assert.equal(diagnostics[0].severity, 2);
+    assert.match(messageOf(diagnostics[0]), /^the value 'two' for int parameter 'Lanes' /);
+  });
+
+  it('checks again when the scenario changes', async () => {
+    const uri = await fixture.client.openFile(path.join(fixture.root, 'unknown.xosc'));
+    const scenarioUri = await fixture.client.openFile(path.join(fixture.root, 'plain.xosc'));
+    await fixture.client.change(scenarioUri, [{ text: scenario.replace('name="Speed"', 'name="Sped"') }]);
+    await fixture.client.diagnosticsOf(uri, (diagnostics) => own(diagnostics).length === 0);
+    await fixture.client.close(scenarioUri);
+  });
+});
+
+describe('distribution files in the editor: a modular main as the ScenarioFile', function () {
+  const modularRun = path.join(__dirname, '..', 'fixtures', 'modularRun', 'xosc');
+  const fixture = useServer(
+    {
+      'xosc/main.xosc': fs.readFileSync(path.join(modularRun, 'main.xosc')),
+      'xosc/cut_in_group.xosc': fs.readFileSync(path.join(modularRun, 'cut_in_group.xosc')),
+      'xosc/speeds.xosc': distribution(
+        `      <DeterministicSingleParameterDistribution parameterName="EgoSpeed">
+        <DistributionSet><Element value="20"/><Element value="25"/><Element value="30"/></DistributionSet>
+      </DeterministicSingleParameterDistribution>`,
+        'main.xosc',
+      ),
+    },
+    'xosc/speeds.xosc',
+  );
+
+  it('is flattened: no problem, the count as vary --count, definition in the main file', async () => {
+    const diagnostics = await fixture.client.diagnosticsOf(fixture.openUri);
+    assert.deepEqual(diagnostics.filter((d) => d.severity === 1).map(messageOf), []);
+    const lenses = (await fixture.client.connection.sendRequest('textDocument/codeLens', { textDocument: { uri: fixture.openUri } })) as CodeLens[];
+    const count = varyCount(path.join(fixture.root, 'xosc', 'speeds.xosc'));
+    assert.equal(count, '3');
+    assert.deepEqual(lensTitles(lenses), [`${count} concrete scenarios`, 'Run Variations']);
+    const text = fs.readFileSync(path.join(fixture.root, 'xosc', 'speeds.xosc'), 'utf8');
+    const locations = (await fixture.client.connection.sendRequest('textDocument/definition', { textDocument: { uri: fixture.openUri }, position: at(text, 'parameterName="Ego|Speed"') })) as Location[];
+    assert.deepEqual(locations.map((location) => [location.uri, location.range.start.line]), [[fileUri(path.join(fixture.root, 'xosc', 'main.xosc')), 5]]);
+  });
+});
+
+describe('distribution files in the editor: stochastic', function () {
+  const stochastic = `<?xml version="1.0" encoding="UTF-8"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="2" date="2024-01-01T00:00:00" description="draws" author="test"/>
+  <ParameterValueDistribution>
+    <ScenarioFile filepath="plain.xosc"/>
+    <Stochastic numberOfTestRuns="40" randomSeed="7">
+      <StochasticDistribution parameterName="Speed">
+        <UniformDistribution><Range lowerLimit="20" upperLimit="30"/></UniformDistribution>
+      </StochasticDistribution>
+    </Stochastic>
+  </ParameterValueDistribution>
+</OpenSCENARIO>
+`;
+  const fixture = useServer({ 'plain.xosc': scenario, 'draws.xosc': stochastic }, 'draws.xosc');
+
+  it('counts the runs as vary --count and hovers the first draws', async () => {
+    const lenses = (await fixture.client.connection.sendRequest('textDocument/codeLens', { textDocument: { uri: fixture.openUri } })) as CodeLens[];
+    const count = varyCount(path.join(fixture.root, 'draws.xosc'));
+    assert.equal(count, '40');
+    assert.deepEqual(lensTitles(lenses), ['40 concrete scenarios', 'Run Variations']);
+    const hover = (await fixture.client.connection.sendRequest('textDocument/hover', { textDocument: { uri: fixture.openUri }, position: at(stochastic, '<Stochastic|Distribution') })) as Hover | null;
+    const lines = hoverText(hover).split('\n');
+    assert.equal(lines[0], '**40 draws** from a uniform distribution (seed 7)');
+    assert.equal(lines.length, 2 + 5 + 1);
+    for (const line of lines.slice(2, 7)) {
+      const value = Number(/^- run \d: (.*)$/.exec(line)?.[1]);
+      assert.ok(value >= 20 && value <= 30, line);
+    }
+    assert.equal(lines[7], '- … (35 more)');
+  });
+});
