@@ -61,9 +61,13 @@ async function messagesOf(text: string, code: string, files: Record<string, stri
 }
 
 describe('rules: names unique on each level (ASAM QC reference_control.unique_element_names_on_same_level)', () => {
-  it('finds the second of two Events named alike in one Maneuver, at its name', async () => {
+  it('finds the second of two Events named alike in one Maneuver, at its name: a warning while nothing refers to the name (esmini runs both), an error once a reference does (SPEC 12)', async () => {
     const found = await problemsOf(scenario(`${event('Event1')}\n${event('Event1')}`));
-    assert.deepEqual(found, ['duplicate-name:error:Event1']);
+    assert.deepEqual(found, ['duplicate-name:warning:Event1']);
+    const condition =
+      '<StartTrigger><ConditionGroup><Condition name="C" delay="0" conditionEdge="none"><ByValueCondition><StoryboardElementStateCondition storyboardElementType="event" storyboardElementRef="Event1" state="endTransition"/></ByValueCondition></Condition></ConditionGroup></StartTrigger>';
+    const referenced = scenario(`${event('Event1')}\n${event('Event1')}\n${event('Later').replace('</Action>', `</Action>${condition}`)}`);
+    assert.deepEqual(await problemsOf(referenced), ['duplicate-name:error:Event1']);
   });
 
   it('compares names as their parameters evaluate, and finds two entities of one name', async () => {

@@ -24,8 +24,10 @@ function holdsScenarioReference(element: XmlElement): boolean {
  * `reference_control.unique_element_names_on_same_level`): two Events of one Maneuver, two Acts of one
  * Story, two ScenarioObjects of the Entities. The entries of a catalog are unique too
  * (`uniquely_resolvable_entity_references`: a CatalogReference names exactly one). Names are compared
- * as they evaluate (`$Name` included); an error at the second and each later one. esmini runs each
- * element and resolves a reference to the name to the first one: with simulator esmini a warning (SPEC 12).
+ * as they evaluate (`$Name` included); reported at the second and each later one. esmini runs each
+ * element and resolves a reference to the name to the first one, so by SPEC 12 a repeated name is an error
+ * only where a storyboard reference of this file names it (or a catalog entry, which a CatalogReference
+ * names), and a warning that says what ASAM's checker says otherwise; with simulator esmini always a warning.
  */
 export const duplicateNames: SemanticCheck = (context) => {
   const { model, evaluator } = context;
@@ -34,6 +36,7 @@ export const duplicateNames: SemanticCheck = (context) => {
   if (!root) return [];
   const findings: Finding[] = [];
   const referenced = new Set(model.storyboardReferences.map((reference) => reference.refAttribute.value.split('::').pop()?.trim() ?? ''));
+  const referencedEntities = new Set(model.entityReferences.map((reference) => evaluator.textOf(reference.element, reference.attribute) ?? reference.attribute.value));
   for (const parent of [root, ...descendants(root)]) {
     if (parent.children.length < 2) continue;
     const first = new Map<string, XmlElement>();
@@ -49,15 +52,18 @@ export const duplicateNames: SemanticCheck = (context) => {
       }
       if (child.name === 'ManeuverGroup' && !referenced.has(name)) continue;
       const inCatalog = parent === model.catalog;
+      const ambiguous = inCatalog || (child.name === 'ScenarioObject' ? referencedEntities.has(name) : referenced.has(name));
       const written = name !== nameAttribute.value ? ` (the value of ${nameAttribute.value})` : '';
       const earlierName = attribute(earlier, 'name');
       findings.push({
         ...at(child, nameAttribute),
-        severity: esmini ? 'warning' : 'error',
+        severity: esmini || !ambiguous ? 'warning' : 'error',
         code: inCatalog ? 'duplicate-catalog-entry' : 'duplicate-name',
         message: inCatalog
           ? `catalog '${attribute(parent, 'name')?.value ?? ''}' has two entries named '${name}'${written}; a CatalogReference to '${name}' does not name one entry`
-          : `<${parent.name}> has two children named '${name}'${written} (<${earlier.name}> and <${child.name}>); the standard wants the names on each level unique, so that a reference names one element${esmini ? " (esmini runs both and resolves a reference to the name to the first)" : ''}`,
+          : `<${parent.name}> has two children named '${name}'${written} (<${earlier.name}> and <${child.name}>); the standard wants the names on each level unique, so that a reference names one element${
+              ambiguous ? '' : " (ASAM's Quality Checker reports it as an error; no reference of this file names it, and esmini runs both)"
+            }${esmini && ambiguous ? ' (esmini runs both and resolves a reference to the name to the first)' : ''}`,
         hint: `rename one of them`,
         related: [relatedAt(context, earlierName?.valueStart ?? earlier.start, earlierName?.valueEnd ?? earlier.nameEnd, `the first '${name}'`)],
       });
