@@ -16,6 +16,8 @@ import { ScenarioPathWatchers } from './scenarioPathWatchers';
 import { STRUCTURE_VIEW_ID, StructureTree } from './structureView';
 import { registerTagClosing } from './tagClosingEditor';
 import { EsminiRunner, type EsminiRunEvent } from './esminiRun';
+import { registerVariations } from './variations/commands';
+import type { VariationsView } from './variations/panel';
 
 /** What the extension hands to other extensions and to its own tests. */
 export interface Modular2SimpleApi {
@@ -26,6 +28,8 @@ export interface Modular2SimpleApi {
   readonly serverCapabilities: () => ServerCapabilities | undefined;
   /** The bird's-eye view: what it shows and last drew. */
   readonly birdsEye: BirdsEyeView;
+  /** The Variations view (a batch's results): what it shows and last drew. */
+  readonly variations: VariationsView;
   /** The latest Run in esmini, and an event after each (for views of its trajectories). */
   readonly lastEsminiRun: () => EsminiRunEvent | undefined;
   readonly onDidRunEsmini: vscode.Event<EsminiRunEvent>;
@@ -143,6 +147,7 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
   });
 
   const birdsEye = registerBirdsEye(context, client, log);
+  const variations = registerVariations(context, log);
   // A finished run goes straight into the picture: its trajectories beside the scenario.
   context.subscriptions.push(
     esmini.onDidRun((event) => {
@@ -157,6 +162,7 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
     lastEsminiRun: () => esmini.last,
     onDidRunEsmini: esmini.onDidRun,
     birdsEye,
+    variations,
   };
 }
 

@@ -285,8 +285,11 @@ export function scatterSvg(model: ScatterModel, style: ScatterStyle): string {
   return parts.join('');
 }
 
-/** The table as HTML: a header cell per column (with `data-column`, and the sort shown), a row per result with `data-index`. */
-export function tableHtml(columns: readonly string[], rows: readonly ResultRow[], order?: SortOrder): string {
+/**
+ * The table as HTML: a header cell per column (with `data-column`, and the sort shown), a row per result with
+ * `data-index`; `openable` makes each index a link (the view opens that run).
+ */
+export function tableHtml(columns: readonly string[], rows: readonly ResultRow[], order?: SortOrder, openable = false): string {
   const head = columns
     .map((column) => {
       const sorted = order?.column === column ? order.direction : undefined;
@@ -295,7 +298,13 @@ export function tableHtml(columns: readonly string[], rows: readonly ResultRow[]
     })
     .join('');
   const body = rows
-    .map((row) => `<tr class="${row.outcome}" data-index="${escapeHtml(row.index)}">${columns.map((column) => `<td>${escapeHtml(row.cells[column] ?? '')}</td>`).join('')}</tr>`)
+    .map((row) => {
+      const cells = columns.map((column) => {
+        const text = escapeHtml(row.cells[column] ?? '');
+        return `<td>${openable && column === 'index' ? `<a href="#" class="open" title="Open run ${text} in the bird's-eye view">#${text}</a>` : text}</td>`;
+      });
+      return `<tr class="${row.outcome}" data-index="${escapeHtml(row.index)}">${cells.join('')}</tr>`;
+    })
     .join('\n');
   return `<table class="results"><thead><tr>${head}</tr></thead><tbody>\n${body}\n</tbody></table>`;
 }
