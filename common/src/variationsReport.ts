@@ -287,21 +287,23 @@ export function scatterSvg(model: ScatterModel, style: ScatterStyle): string {
 
 /**
  * The table as HTML: a header cell per column (with `data-column`, and the sort shown), a row per result with
- * `data-index`; `openable` makes each index a link (the view opens that run).
+ * `data-index`; `interactive` (the view) makes each header a sort button and each index a link that opens its run.
  */
-export function tableHtml(columns: readonly string[], rows: readonly ResultRow[], order?: SortOrder, openable = false): string {
+export function tableHtml(columns: readonly string[], rows: readonly ResultRow[], order?: SortOrder, interactive = false): string {
   const head = columns
     .map((column) => {
       const sorted = order?.column === column ? order.direction : undefined;
       const arrow = sorted === 'ascending' ? ' ▲' : sorted === 'descending' ? ' ▼' : '';
-      return `<th data-column="${escapeHtml(column)}"${sorted ? ` aria-sort="${sorted}"` : ''}>${escapeHtml(column)}${arrow}</th>`;
+      const label = `${escapeHtml(column)}${arrow}`;
+      const content = interactive ? `<button class="sort" title="Sort by ${escapeHtml(column)}">${label}</button>` : label;
+      return `<th data-column="${escapeHtml(column)}"${sorted ? ` aria-sort="${sorted}"` : ''}>${content}</th>`;
     })
     .join('');
   const body = rows
     .map((row) => {
       const cells = columns.map((column) => {
         const text = escapeHtml(row.cells[column] ?? '');
-        return `<td>${openable && column === 'index' ? `<a href="#" class="open" title="Open run ${text} in the bird's-eye view">#${text}</a>` : text}</td>`;
+        return `<td>${interactive && column === 'index' ? `<a href="#" class="open" title="Open run ${text} in the bird's-eye view">#${text}</a>` : text}</td>`;
       });
       return `<tr class="${row.outcome}" data-index="${escapeHtml(row.index)}">${cells.join('')}</tr>`;
     })

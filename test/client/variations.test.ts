@@ -88,14 +88,15 @@ describe('variations: the results table, its sorting, filtering and scatter', ()
     assert.match(svg, />snow, heavy<\/text>/);
   });
 
-  it('the table as HTML: the sort marked on its header, a row per result, escaped; the index a link when runs can be opened', () => {
+  it('the table as HTML: the sort marked on its header, a row per result, escaped; in the view the headers sort buttons and the index a link', () => {
     const rows = sortRows(table.rows, { column: 'EgoSpeed', direction: 'descending' });
     const html = tableHtml(table.columns, rows, { column: 'EgoSpeed', direction: 'descending' }, true);
     assert.equal(XMLValidator.validate(html), true);
-    assert.match(html, /<th data-column="EgoSpeed" aria-sort="descending">EgoSpeed ▼<\/th>/);
+    assert.match(html, /<th data-column="EgoSpeed" aria-sort="descending"><button class="sort"[^>]*>EgoSpeed ▼<\/button><\/th>/);
+    assert.match(tableHtml(table.columns, rows, { column: 'EgoSpeed', direction: 'descending' }), /<th data-column="EgoSpeed" aria-sort="descending">EgoSpeed ▼<\/th>/, 'the report: no buttons');
     assert.deepEqual([...html.matchAll(/<tr class="\w+" data-index="(\d+)">/g)].map((match) => match[1]), ['2', '1', '10', '0', '3']);
     assert.match(html, /<a href="#" class="open"[^>]*>#3<\/a>/);
-    assert.doesNotMatch(tableHtml(table.columns, rows), /<a /);
+    assert.doesNotMatch(tableHtml(table.columns, rows), /<a |<button/);
     assert.match(tableHtml(['index', 'x'], [{ index: '0', outcome: 'ok', cells: { index: '0', x: '<b>&' } }]), /<td>&lt;b&gt;&amp;<\/td>/);
   });
 

@@ -7,7 +7,10 @@ body{margin:0;padding:0;font-family:var(--vscode-font-family);font-size:var(--vs
 #toolbar{display:flex;gap:8px;align-items:center;padding:4px 8px;flex-wrap:wrap;border-bottom:1px solid var(--vscode-panel-border)}
 #title{font-weight:bold;margin-right:auto}
 select{color:var(--vscode-dropdown-foreground);background:var(--vscode-dropdown-background);border:1px solid var(--vscode-dropdown-border)}
-label.outcome{display:inline-flex;align-items:center;gap:3px} .swatch{display:inline-block;width:10px;height:10px;border-radius:5px}
+button{font:inherit;color:var(--vscode-button-secondaryForeground);background:var(--vscode-button-secondaryBackground);border:none;padding:2px 8px;cursor:pointer}
+button.outcome{display:inline-flex;align-items:center;gap:4px} button.outcome[aria-pressed=false]{opacity:.45;text-decoration:line-through}
+.swatch{display:inline-block;width:10px;height:10px;border-radius:5px}
+th button.sort{background:none;color:inherit;font-weight:bold;padding:0;width:100%;text-align:right}
 #main{flex:1;display:flex;flex-direction:column;overflow:hidden}
 #plot{flex:0 0 auto;padding:4px 8px} #plot circle.point{cursor:pointer} #plot circle.selected{stroke-width:3;stroke-opacity:1}
 #tableArea{flex:1;overflow:auto;padding:0 8px 8px}

@@ -62,7 +62,7 @@ function renderFilters(current: ResultsTable): void {
   const counts = outcomeCounts(current.rows);
   filtersElement.innerHTML = OUTCOMES.map(
     (outcome) =>
-      `<label class="outcome" title="Show the runs whose outcome is ${outcome}"><input type="checkbox" data-outcome="${outcome}"${shown.has(outcome) ? ' checked' : ''}><span class="swatch" style="background:${OUTCOME_COLORS[outcome]}"></span>${outcome} (${counts[outcome]})</label>`,
+      `<button class="outcome" data-outcome="${outcome}" aria-pressed="${shown.has(outcome)}" title="Show or hide the runs whose outcome is ${outcome}"><span class="swatch" style="background:${OUTCOME_COLORS[outcome]}"></span>${outcome} (${counts[outcome]})</button>`,
   ).join(' ');
 }
 
@@ -117,12 +117,13 @@ plotElement.addEventListener('click', (event) => {
   if (index !== null && index !== undefined) open(index);
 });
 
-filtersElement.addEventListener('change', (event) => {
-  const box = event.target as HTMLInputElement;
-  const outcome = box.dataset.outcome as Outcome | undefined;
-  if (!outcome) return;
-  if (box.checked) shown.add(outcome);
-  else shown.delete(outcome);
+filtersElement.addEventListener('click', (event) => {
+  const button = (event.target as HTMLElement).closest('button');
+  const outcome = button?.dataset.outcome as Outcome | undefined;
+  if (!button || !outcome) return;
+  if (shown.has(outcome)) shown.delete(outcome);
+  else shown.add(outcome);
+  button.setAttribute('aria-pressed', String(shown.has(outcome)));
   render();
 });
 
