@@ -28,6 +28,7 @@ export const INSIDE_TESTS = {
   runEsminiClean: "Run in esmini on a clean modular scenario on e6mini shows no error, and the bird's-eye view draws the road the run loaded",
   schemaCompletion: 'schema completion offers the child elements the OpenSCENARIO schema allows',
   schemaDeprecated: 'a deprecated OpenSCENARIO element is struck through',
+  variations: 'the Variations view shows a batch as a sortable, filterable table and scatter, and opens a run in the bird\'s-eye view',
 } as const;
 
 export type InsideTestKey = keyof typeof INSIDE_TESTS;
