@@ -263,12 +263,27 @@ export function scatterSvg(model: ScatterModel, style: ScatterStyle): string {
   }
   parts.push(`<text class="axis-x" x="${margin.left + plotWidth / 2}" y="${style.height - 10}" text-anchor="middle" font-weight="bold" fill="${style.foreground}">${escapeHtml(model.x.column)}</text>`);
   parts.push(`<text class="axis-y" transform="translate(14 ${margin.top + plotHeight / 2}) rotate(-90)" text-anchor="middle" font-weight="bold" fill="${style.foreground}">${escapeHtml(model.y.column)}</text>`);
+  // Runs with the same two values (they differ in another parameter) are set around their place, so each shows and can be clicked.
+  const offsets = new Map<ScatterPoint, { dx: number; dy: number }>();
+  const byPlace = new Map<string, ScatterPoint[]>();
+  for (const point of model.points) {
+    const place = `${point.x},${point.y}`;
+    byPlace.set(place, [...(byPlace.get(place) ?? []), point]);
+  }
+  for (const group of byPlace.values()) {
+    group.forEach((point, k) => {
+      const angle = (2 * Math.PI * k) / group.length - Math.PI / 2;
+      const radius = group.length === 1 ? 0 : Math.min(14, 4 + group.length);
+      offsets.set(point, { dx: radius * Math.cos(angle), dy: radius * Math.sin(angle) });
+    });
+  }
   // Collisions and errors are drawn last, so that what failed is on top.
   const drawOrder: Outcome[] = ['ok', 'timeout', 'error', 'collision'];
   for (const outcome of drawOrder) {
     for (const point of model.points.filter((each) => each.outcome === outcome)) {
+      const { dx, dy } = offsets.get(point)!;
       parts.push(
-        `<circle class="point" data-index="${escapeHtml(point.index)}" cx="${round(sx(point.x))}" cy="${round(sy(point.y))}" r="5" fill="${OUTCOME_COLORS[outcome]}" fill-opacity="0.85" stroke="${style.foreground}" stroke-opacity="0.4"><title>${escapeHtml(point.label)}</title></circle>`,
+        `<circle class="point" data-index="${escapeHtml(point.index)}" cx="${round(sx(point.x) + dx)}" cy="${round(sy(point.y) + dy)}" r="4.5" fill="${OUTCOME_COLORS[outcome]}" fill-opacity="0.85" stroke="${style.foreground}" stroke-opacity="0.4"><title>${escapeHtml(point.label)}</title></circle>`,
       );
     }
   }
@@ -278,9 +293,10 @@ export function scatterSvg(model: ScatterModel, style: ScatterStyle): string {
     const count = model.points.filter((point) => point.outcome === outcome).length;
     parts.push(`<circle cx="${legendX + 5}" cy="${y}" r="5" fill="${OUTCOME_COLORS[outcome]}"/><text class="legend" x="${legendX + 16}" y="${y + 4}" fill="${style.foreground}">${outcome} (${count})</text>`);
   });
-  if (model.omitted > 0) {
-    parts.push(`<text x="${legendX}" y="${margin.top + 10 + OUTCOMES.length * 18 + 4}" fill="${style.foreground}" fill-opacity="0.7">${model.omitted} without values</text>`);
-  }
+  const notes: string[] = [];
+  if ([...byPlace.values()].some((group) => group.length > 1)) notes.push('same values: set', 'around their place');
+  if (model.omitted > 0) notes.push(`${model.omitted} without values`);
+  notes.forEach((note, i) => parts.push(`<text x="${legendX}" y="${margin.top + 14 + (OUTCOMES.length + i) * 18}" fill="${style.foreground}" fill-opacity="0.7">${escapeHtml(note)}</text>`));
   parts.push('</svg>');
   return parts.join('');
 }

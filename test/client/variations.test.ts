@@ -86,6 +86,11 @@ describe('variations: the results table, its sorting, filtering and scatter', ()
     assert.match(svg, />EgoSpeed<\/text>/);
     assert.match(svg, />collision \(1\)<\/text>/);
     assert.match(svg, />snow, heavy<\/text>/);
+    // Runs 0 and 1 differ only in C: at the same A and B, they are set apart.
+    const twins = parseResultsCsv(`${HEADER},A,B,C\n0,ok,false,1,1,1,1,1,1\n1,ok,true,1,1,1,1,1,2\n2,ok,false,1,1,1,2,2,1\n`);
+    const places = [...scatterSvg(scatterModel(twins.rows, 'A', 'B'), STYLE).matchAll(/<circle class="point" data-index="(\d)" cx="([\d.]+)" cy="([\d.]+)"/g)].map((match) => `${match[2]},${match[3]}`);
+    assert.equal(places.length, 3);
+    assert.equal(new Set(places).size, 3, `each run has a place of its own: ${places.join(' ')}`);
   });
 
   it('the table as HTML: the sort marked on its header, a row per result, escaped; in the view the headers sort buttons and the index a link', () => {
