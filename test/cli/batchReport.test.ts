@@ -66,6 +66,7 @@ describe('cli: batch writes results.html and keeps runs', function () {
     for (const index of ['0', '1', '2', '3']) {
       for (const file of ['scenario.xosc', 'trajectories.csv', 'esmini.log']) assert.ok(fs.existsSync(path.join(root, 'results', 'runs', index, file)), `runs/${index}/${file}`);
     }
+    assert.deepEqual(fs.readdirSync(path.join(root, 'results', 'runs')).sort(), ['0', '1', '2', '3'], 'nothing else in runs/');
     // Resumed with nothing to run: the report is written again, the same.
     fs.rmSync(path.join(root, 'results', 'results.html'));
     const again = runCli(args, { cwd: root });

@@ -1,4 +1,5 @@
 import { createHash } from 'node:crypto';
+import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
 import { parseArgs } from 'node:util';
@@ -209,7 +210,12 @@ async function batch(argv: string[], io: CliOutput): Promise<number> {
     // Runs are made beside where they are kept: keeping one is then a rename, never a copy across file systems.
     settings.runsFolder = path.join(settings.keepRunsIn, '.running');
   }
-  return runLocally(plan, results, settings, jobs, io, values.quiet);
+  try {
+    return await runLocally(plan, results, settings, jobs, io, values.quiet);
+  } finally {
+    // Left only when empty: a run cut short by a kill leaves its folder there, to be looked at.
+    if (settings.runsFolder) await fs.promises.rmdir(settings.runsFolder).catch(() => undefined);
+  }
 }
 
 /** What a batch runs: the chosen indices of a distribution, with where their runs look for files. */
