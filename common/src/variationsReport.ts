@@ -133,7 +133,7 @@ export function filterRows(rows: readonly ResultRow[], shown: ReadonlySet<Outcom
 }
 
 /** How many rows have each outcome. */
-export function outcomeCounts(rows: readonly ResultRow[]): Record<Outcome, number> {
+export function outcomeCounts(rows: readonly { outcome: Outcome }[]): Record<Outcome, number> {
   const counts: Record<Outcome, number> = { ok: 0, collision: 0, timeout: 0, error: 0 };
   for (const row of rows) counts[row.outcome]++;
   return counts;
@@ -181,9 +181,14 @@ function formatTick(value: number, step: number): string {
 export function scatterAxis(column: string, rows: readonly ResultRow[]): ScatterAxis {
   const cells = rows.map((row) => row.cells[column]).filter((cell): cell is string => cell !== undefined && cell !== '');
   if (cells.length > 0 && cells.every((cell) => numeric(cell) !== undefined)) {
-    const values = cells.map(Number);
-    let low = Math.min(...values);
-    let high = Math.max(...values);
+    // A loop, not Math.min(...values): a batch may have a million rows, more than a call takes arguments.
+    let low = Infinity;
+    let high = -Infinity;
+    for (const cell of cells) {
+      const value = Number(cell);
+      if (value < low) low = value;
+      if (value > high) high = value;
+    }
     if (low === high) {
       low -= low === 0 ? 1 : Math.abs(low) * 0.1;
       high += high === 0 ? 1 : Math.abs(high) * 0.1;
@@ -268,7 +273,9 @@ export function scatterSvg(model: ScatterModel, style: ScatterStyle): string {
   const byPlace = new Map<string, ScatterPoint[]>();
   for (const point of model.points) {
     const place = `${point.x},${point.y}`;
-    byPlace.set(place, [...(byPlace.get(place) ?? []), point]);
+    const group = byPlace.get(place);
+    if (group) group.push(point);
+    else byPlace.set(place, [point]);
   }
   for (const group of byPlace.values()) {
     group.forEach((point, k) => {
@@ -280,7 +287,8 @@ export function scatterSvg(model: ScatterModel, style: ScatterStyle): string {
   // Collisions and errors are drawn last, so that what failed is on top.
   const drawOrder: Outcome[] = ['ok', 'timeout', 'error', 'collision'];
   for (const outcome of drawOrder) {
-    for (const point of model.points.filter((each) => each.outcome === outcome)) {
+    for (const point of model.points) {
+      if (point.outcome !== outcome) continue;
       const { dx, dy } = offsets.get(point)!;
       parts.push(
         `<circle class="point" data-index="${escapeHtml(point.index)}" cx="${round(sx(point.x) + dx)}" cy="${round(sy(point.y) + dy)}" r="4.5" fill="${OUTCOME_COLORS[outcome]}" fill-opacity="0.85" stroke="${style.foreground}" stroke-opacity="0.4"><title>${escapeHtml(point.label)}</title></circle>`,
@@ -288,9 +296,10 @@ export function scatterSvg(model: ScatterModel, style: ScatterStyle): string {
     }
   }
   const legendX = margin.left + plotWidth + 16;
+  const counts = outcomeCounts(model.points);
   OUTCOMES.forEach((outcome, i) => {
     const y = margin.top + 10 + i * 18;
-    const count = model.points.filter((point) => point.outcome === outcome).length;
+    const count = counts[outcome];
     parts.push(`<circle cx="${legendX + 5}" cy="${y}" r="5" fill="${OUTCOME_COLORS[outcome]}"/><text class="legend" x="${legendX + 16}" y="${y + 4}" fill="${style.foreground}">${outcome} (${count})</text>`);
   });
   const notes: string[] = [];

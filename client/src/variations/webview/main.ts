@@ -45,6 +45,8 @@ let order: SortOrder = { column: 'index', direction: 'ascending' };
 const shown = new Set<Outcome>(OUTCOMES);
 let axes = { x: 'index', y: 'min_distance_m' };
 let selected: string | undefined;
+/** What the scatter shown was drawn from. */
+let drawnPlot: string | undefined;
 
 function themeColor(name: string, fallback: string): string {
   return getComputedStyle(document.body).getPropertyValue(name).trim() || fallback;
@@ -73,8 +75,13 @@ function render(): void {
   const model = scatterModel(filtered, axes.x, axes.y);
   const width = Math.max(320, plotElement.clientWidth - 16);
   const height = Math.max(220, Math.min(420, Math.round(window.innerHeight * 0.42)));
-  const foreground = themeColor('--vscode-foreground', '#cccccc');
-  plotElement.innerHTML = scatterSvg(model, { width, height, foreground, grid: themeColor('--vscode-panel-border', '#80808040'), fontFamily: themeColor('--vscode-font-family', 'sans-serif') });
+  // Sorting changes only the table: the scatter of a large batch is drawn again only when what it shows changes.
+  const plotKey = JSON.stringify([table.rows.length, [...shown], axes, width, height]);
+  if (plotKey !== drawnPlot) {
+    const foreground = themeColor('--vscode-foreground', '#cccccc');
+    plotElement.innerHTML = scatterSvg(model, { width, height, foreground, grid: themeColor('--vscode-panel-border', '#80808040'), fontFamily: themeColor('--vscode-font-family', 'sans-serif') });
+    drawnPlot = plotKey;
+  }
   const visible = sorted.slice(0, MAX_TABLE_ROWS);
   tableElement.innerHTML = tableHtml(table.columns, visible, order, runsKept);
   summaryElement.textContent = `${summaryText(table.rows)}; ${filtered.length} shown${runsKept ? '; click a row or a point to open its run' : '; the runs were not kept (batch --keep-runs), so they cannot be opened'}`;
@@ -155,6 +162,7 @@ window.addEventListener('message', (event: MessageEvent<ToView>) => {
   const first = table === undefined || table.columns.join(',') !== message.table.columns.join(',');
   table = message.table;
   runsKept = message.runs;
+  drawnPlot = undefined;
   titleElement.textContent = `Variations of ${message.title}`;
   const choices = axisChoices(table);
   if (first || !choices.includes(axes.x) || !choices.includes(axes.y)) axes = defaultAxes(table);
