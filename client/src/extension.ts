@@ -17,7 +17,9 @@ import { ScenarioPathWatchers } from './scenarioPathWatchers';
 import { STRUCTURE_VIEW_ID, StructureTree } from './structureView';
 import { registerTagClosing } from './tagClosingEditor';
 import { EsminiRunner, type EsminiRunEvent } from './esminiRun';
-import { RUN_VARIATIONS_COMMAND, VariationsRunner } from './variations';
+import { RUN_VARIATIONS_COMMAND, VariationsRunner } from './runVariations';
+import { registerVariations } from './variations/commands';
+import type { VariationsView } from './variations/panel';
 
 /** What the extension hands to other extensions and to its own tests. */
 export interface Modular2SimpleApi {
@@ -28,6 +30,8 @@ export interface Modular2SimpleApi {
   readonly serverCapabilities: () => ServerCapabilities | undefined;
   /** The bird's-eye view: what it shows and last drew. */
   readonly birdsEye: BirdsEyeView;
+  /** The Variations view (a batch's results): what it shows and last drew. */
+  readonly variations: VariationsView;
   /** The latest Run in esmini, and an event after each (for views of its trajectories). */
   readonly lastEsminiRun: () => EsminiRunEvent | undefined;
   readonly onDidRunEsmini: vscode.Event<EsminiRunEvent>;
@@ -88,9 +92,9 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
   const register = (name: string, run: (...args: unknown[]) => unknown): void => {
     context.subscriptions.push(vscode.commands.registerCommand(name, run));
   };
-  const variations = new VariationsRunner(context.asAbsolutePath('dist/cli.js'));
-  context.subscriptions.push(variations);
-  register(RUN_VARIATIONS_COMMAND, (clicked) => variations.run(clicked));
+  const variationsRunner = new VariationsRunner(context.asAbsolutePath('dist/cli.js'));
+  context.subscriptions.push(variationsRunner);
+  register(RUN_VARIATIONS_COMMAND, (clicked) => variationsRunner.run(clicked));
   register('modular2simple.pack', (clicked, selected, ...rest) => packCommand(server, reporter, clicked, selected, ...rest));
   register('modular2simple.flatten', (clicked, selected, ...rest) => flattenCommand(server, reporter, clicked, selected, ...rest));
   register('modular2simple.newScenario', (clicked, ...rest) => newScenarioCommand(server, reporter, clicked, ...rest));
@@ -149,6 +153,7 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
   });
 
   const birdsEye = registerBirdsEye(context, client, log);
+  const variations = registerVariations(context, log);
   // A finished run goes straight into the picture: its trajectories beside the scenario.
   context.subscriptions.push(
     esmini.onDidRun((event) => {
@@ -163,6 +168,7 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
     lastEsminiRun: () => esmini.last,
     onDidRunEsmini: esmini.onDidRun,
     birdsEye,
+    variations,
   };
 }
 

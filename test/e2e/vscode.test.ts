@@ -22,7 +22,8 @@ import {
 } from './harness';
 import { repoRoot } from '../support/paths';
 import { HARNESS_ENV, INSIDE_TESTS } from './titles';
-import { prepareBirdsEye } from './birdsEyeSetup';
+import { BIRDS_EYE_FILES, prepareBirdsEye } from './birdsEyeSetup';
+import { prepareVariations } from './variationsSetup';
 
 const RUN_TIMEOUT_MS = 180_000;
 
@@ -40,6 +41,7 @@ async function prepareWorkspace(profile: Profile): Promise<string> {
   // A ZIP header followed by garbage: what a truncated download looks like.
   fs.writeFileSync(path.join(workspace, 'broken.mosc'), Buffer.concat([Buffer.from('PK\x03\x04'), Buffer.from('this is not the rest of a ZIP archive\n'.repeat(8))]));
   prepareBirdsEye(workspace);
+  prepareVariations(workspace, BIRDS_EYE_FILES.roadFolder);
   return workspace;
 }
 
@@ -230,6 +232,7 @@ describe('the packaged extension in a real VS Code (code-server, headless Chromi
       // The CLI, which Run Variations runs (batch).
       'dist/cli.js',
       'dist/cli-main.js',
+      'dist/variations.js',
       // The compiled OpenSCENARIO schemas the server reads, and the ASAM schemas with their licence note.
       'dist/openscenario-schemas.json',
       ...fs.readdirSync(path.join(repoRoot, 'schemas')).map((file) => `schemas/${file}`),

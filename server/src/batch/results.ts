@@ -1,6 +1,7 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { writeFileAtomic } from '../../../common/src/atomic';
+import { parseResultsCsv, resultsReportHtml } from '../../../common/src/variationsReport';
 import type { Collision } from './metrics';
 
 /** `ok`: esmini ran it and reported no error; `error`: it reported one or could not run it; `timeout`: stopped by --duration or the wall-clock limit. */
@@ -73,6 +74,8 @@ function indicesIn(csv: string): string[] {
 export class ResultsFolder {
   readonly csvFile: string;
   readonly jsonFile: string;
+  /** The self-contained report (table and scatter) written beside results.csv at the end. */
+  readonly htmlFile: string;
   private readonly rowsFile: string;
   private readonly identityFile: string;
   private csv: fs.promises.FileHandle | undefined;
@@ -89,6 +92,7 @@ export class ResultsFolder {
   ) {
     this.csvFile = path.join(folder, 'results.csv');
     this.jsonFile = path.join(folder, 'results.json');
+    this.htmlFile = path.join(folder, 'results.html');
     this.rowsFile = path.join(folder, '.rows.jsonl');
     this.identityFile = path.join(folder, '.batch.json');
   }
@@ -175,10 +179,18 @@ export class ResultsFolder {
     await writeFileAtomic(this.jsonFile, JSON.stringify(document, null, 1) + '\n');
   }
 
-  /** Waits for the rows in flight, writes results.json and closes the files. */
+  /** results.html from results.csv as it is, written atomically. */
+  async writeReport(): Promise<void> {
+    const csv = await fs.promises.readFile(this.csvFile, 'utf8');
+    const title = `Variations of ${path.basename(this.identity.distribution)}`;
+    await writeFileAtomic(this.htmlFile, resultsReportHtml(parseResultsCsv(csv), title));
+  }
+
+  /** Waits for the rows in flight, writes results.json and results.html and closes the files. */
   async finish(): Promise<void> {
     await this.queue;
     await this.writeJson();
+    await this.writeReport();
     await this.close();
   }
 

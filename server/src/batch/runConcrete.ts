@@ -1,4 +1,5 @@
 import * as fs from 'node:fs';
+import * as path from 'node:path';
 import { EsminiCsvError, parseEsminiCsv } from '../../../common/src/esminiCsv';
 import { removeRunFolder, RUN_DEFAULTS, runScenarioText } from '../esmini/run';
 import { collisionsIn, trajectoryMetrics } from './metrics';
@@ -23,6 +24,11 @@ export interface RunSettings {
   esminiPath?: string;
   wallTimeoutMs?: number;
   runsFolder?: string;
+  /**
+   * Where each run's folder is kept, as `<index>/` (scenario.xosc, trajectories.csv, esmini.log), instead of
+   * removed; on the same file system as `runsFolder`, so that keeping it is a rename.
+   */
+  keepRunsIn?: string;
 }
 
 export class NoEsminiError extends Error {}
@@ -77,6 +83,14 @@ export async function runConcrete(job: ConcreteRun, settings: RunSettings, cance
       messages: result.messages.map((each) => ({ level: each.level, time: each.time ?? null, text: each.text })),
     };
   } finally {
-    removeRunFolder(result);
+    if (settings.keepRunsIn && result.runFolder && result.outcome !== 'cancelled') keepRunFolder(result.runFolder, result.log, path.join(settings.keepRunsIn, job.index));
+    else removeRunFolder(result);
   }
+}
+
+/** Moves a run's folder to `target` (replacing a run kept there before), with esmini's log beside its CSV. */
+function keepRunFolder(runFolder: string, log: string, target: string): void {
+  fs.writeFileSync(path.join(runFolder, 'esmini.log'), log);
+  fs.rmSync(target, { recursive: true, force: true });
+  fs.renameSync(runFolder, target);
 }

@@ -1,4 +1,5 @@
 import { createHash } from 'node:crypto';
+import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
 import { parseArgs } from 'node:util';
@@ -21,12 +22,15 @@ export const BATCH_HELP = `Run every concrete scenario of a distribution in esmi
   --sample N --seed S       N concrete scenarios drawn at random (seed S, default 0) instead of all
   --duration S              simulated seconds per run at most (default ${RUN_DEFAULTS.duration}); fixed step ${RUN_DEFAULTS.timeStep} s, seed ${RUN_DEFAULTS.seed}
   --max-combinations N      refuse more combinations than N before running anything, unless --sample (default 1000000)
+  --keep-runs               keep each run's files in DIR/runs/INDEX/ (scenario.xosc, trajectories.csv, esmini.log),
+                            so that the Variations view and results.html can open a run; local runs only
   --queue redis://HOST:PORT put the runs on a BullMQ queue in Redis for 'modular2simple worker' and collect the results
   --esmini PATH, --road-path DIRS, --scenario-path DIRS   as for run
   results.csv: index, status (ok; error: esmini reported one; timeout: stopped at --duration or the wall-clock
   limit), collision (esmini's collision detection), min_distance_m and min_ttc_s (the ego, or the first entity,
   against every other: bounding-box gap, and gap over closing speed), end_time_s, then one column per varied
-  parameter. results.json: the same rows with esmini's messages.
+  parameter. results.json: the same rows with esmini's messages. results.html: the table and a scatter of the
+  first two parameters coloured by outcome, self-contained (written at the end, and on every resume).
   Exit codes: 0 every run done, 1 the input has errors (nothing run), 2 usage, 3 no esmini, Redis unreachable
   or the results cannot be written, 4 internal error, 130 interrupted (run it again to finish).`;
 
@@ -110,6 +114,7 @@ async function batch(argv: string[], io: CliOutput): Promise<number> {
         duration: { type: 'string' },
         'max-combinations': { type: 'string' },
         queue: { type: 'string' },
+        'keep-runs': { type: 'boolean', default: false },
         esmini: { type: 'string' },
         'road-path': { type: 'string', multiple: true },
         'scenario-path': { type: 'string', multiple: true },
@@ -137,6 +142,7 @@ async function batch(argv: string[], io: CliOutput): Promise<number> {
   const duration = values.duration === undefined ? RUN_DEFAULTS.duration : Number(values.duration);
   if (!(duration > 0) || !Number.isFinite(duration)) throw new BatchUsageError(`--duration takes a positive number of seconds, not '${values.duration}'`);
   const queue = queueOption(values.queue);
+  if (queue && values['keep-runs']) throw new BatchUsageError('--keep-runs keeps the runs of this machine: it does not go with --queue');
 
   const distributionPath = path.resolve(positionals[0]);
   let distributionText: string;
@@ -199,7 +205,17 @@ async function batch(argv: string[], io: CliOutput): Promise<number> {
     }
   }
   const results = await ResultsFolder.open(path.resolve(values.results), parameterNames, identity);
-  return runLocally(plan, results, settings, jobs, io, values.quiet);
+  if (values['keep-runs']) {
+    settings.keepRunsIn = path.join(results.folder, 'runs');
+    // Runs are made beside where they are kept: keeping one is then a rename, never a copy across file systems.
+    settings.runsFolder = path.join(settings.keepRunsIn, '.running');
+  }
+  try {
+    return await runLocally(plan, results, settings, jobs, io, values.quiet);
+  } finally {
+    // Left only when empty: a run cut short by a kill leaves its folder there, to be looked at.
+    if (settings.runsFolder) await fs.promises.rmdir(settings.runsFolder).catch(() => undefined);
+  }
 }
 
 /** What a batch runs: the chosen indices of a distribution, with where their runs look for files. */
@@ -266,6 +282,6 @@ async function runLocally(plan: BatchPlanView, results: ResultsFolder, settings:
     io.err(`interrupted after ${summary}; ${results.done.size} rows are in ${results.csvFile}: run the same command again to run the rest`);
     return EXIT.interrupted;
   }
-  if (!quiet) io.err(`${summary}; results in ${results.csvFile} and ${results.jsonFile}`);
+  if (!quiet) io.err(`${summary}; results in ${results.csvFile}, ${results.jsonFile} and ${results.htmlFile}`);
   return EXIT.ok;
 }

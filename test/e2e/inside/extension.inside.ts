@@ -12,9 +12,9 @@ import { packAndFlattenTests } from './packAndFlatten.inside';
 import { packageTests } from './packages.inside';
 import { previewTests } from './preview.inside';
 import { structureTests } from './structure.inside';
-import { variationsTests } from './variations.inside';
+import { distributionTests } from './distributions.inside';
 
-const TESTS: InsideTests = { ...editingTests, ...packageTests, ...languageFeatureTests, ...previewTests, ...packAndFlattenTests, ...structureTests, ...esminiTests, ...newScenarioTests, ...variationsTests };
+const TESTS: InsideTests = { ...editingTests, ...packageTests, ...languageFeatureTests, ...previewTests, ...packAndFlattenTests, ...structureTests, ...esminiTests, ...newScenarioTests, ...distributionTests };
 
 /**
  * The order the tests run in, one VS Code and one workspace for all: a test sees what earlier ones left

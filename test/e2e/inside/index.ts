@@ -3,6 +3,7 @@ import { HARNESS_ENV } from '../titles';
 import { post } from './harnessClient';
 import { defineBirdsEyeTests } from './birdsEye.inside';
 import { defineExtensionTests } from './extension.inside';
+import { defineVariationsTests } from './variations.inside';
 
 /** Entry point that VS Code calls in the extension host (extensionTestsPath). */
 export async function run(): Promise<void> {
@@ -11,6 +12,7 @@ export async function run(): Promise<void> {
   mocha.suite.emit('pre-require', globalThis, 'extension.inside', mocha);
   defineExtensionTests();
   defineBirdsEyeTests();
+  defineVariationsTests();
   const pending: Promise<unknown>[] = [];
   const failures = await new Promise<number>((resolve) => {
     const runner = mocha.run((count) => resolve(count));

@@ -1,75 +1,69 @@
 import * as assert from 'node:assert/strict';
-import { execFileSync } from 'node:child_process';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import * as vscode from 'vscode';
-import { HARNESS_ENV } from '../titles';
-import { screenshot } from './harnessClient';
-import { open, waitFor, workspaceRoot } from './helpers';
-import type { InsideTests } from './helpers';
+import { BIRDS_EYE_FILES } from '../birdsEyeSetup';
+import { INSIDE_TESTS } from '../titles';
+import { VARIATIONS_FILES } from '../variationsSetup';
+import { api, waitFor, workspaceRoot } from './helpers';
+import { clickText, pageShows, screenshot } from './harnessClient';
 
-/** esmini's cut-in_parameter_set.xosc and what it needs, copied into the workspace; skips the test without the shared corpus. */
-function copyCutInDistribution(context: Mocha.Context): { repository: string; folder: string } {
-  const repository = path.resolve(path.dirname(process.env[HARNESS_ENV.cli] ?? '.'), '..');
-  const corpus = path.resolve(repository, '..', 'shared', 'corpus', 'openscenario', 'esmini');
-  if (!fs.existsSync(path.join(corpus, 'cut-in_parameter_set.xosc'))) {
-    console.log(`skipped: ${corpus} is absent`);
-    context.skip();
-  }
-  const folder = path.join(workspaceRoot(), 'variations', 'xosc');
-  fs.mkdirSync(path.join(folder, 'Catalogs'), { recursive: true });
-  for (const file of ['cut-in_parameter_set.xosc', 'cut-in.xosc']) fs.copyFileSync(path.join(corpus, file), path.join(folder, file));
-  fs.cpSync(path.join(corpus, 'Catalogs', 'Vehicles'), path.join(folder, 'Catalogs', 'Vehicles'), { recursive: true });
-  return { repository, folder };
-}
+/** The Variations view tests; run after the bird's-eye tests, in the same VS Code. */
+export function defineVariationsTests(): void {
+  describe('the Variations view in a real VS Code', function () {
+    this.timeout(60_000);
+    const settings = () => vscode.workspace.getConfiguration('modular2simple');
 
-/** A distribution file (issue 20): the number of concrete scenarios above it, as `vary --count` gives it. */
-export const variationsTests: InsideTests = {
-  distributionLens: async function () {
-    this.timeout(120_000);
-    const copied = copyCutInDistribution(this);
-    const { folder } = copied;
-    try {
-      const distribution = await open('variations/xosc/cut-in_parameter_set.xosc');
-      const cliPath = process.env[HARNESS_ENV.cli] ?? '';
-      const count = execFileSync(process.execPath, [cliPath, 'vary', path.join(folder, 'cut-in_parameter_set.xosc'), '--count'], { encoding: 'utf8', env: { ...process.env, ELECTRON_RUN_AS_NODE: '1' } }).trim();
-      assert.equal(count, '12');
-      const lenses = await waitFor('the count lens', async () => {
-        const found = await vscode.commands.executeCommand<vscode.CodeLens[]>('vscode.executeCodeLensProvider', distribution.document.uri, 100);
-        return found.some((lens) => lens.command?.command === 'modular2simple.runVariations') ? found : undefined;
-      });
-      assert.deepEqual(
-        lenses.map((lens) => lens.command?.title),
-        ['▶ Run in esmini', `${count} concrete scenarios`, 'Run Variations'],
-      );
-      const errors = vscode.languages.getDiagnostics(distribution.document.uri).filter((diagnostic) => diagnostic.severity === vscode.DiagnosticSeverity.Error);
-      assert.deepEqual(errors.map((diagnostic) => diagnostic.message), []);
-      await screenshot('the count of concrete scenarios above a distribution');
+    before(async function () {
+      await waitFor('the extension to activate', () => vscode.extensions.getExtension('modular2simple.modular2simple')?.isActive, 30_000);
+      await settings().update('esmini.roadPath', [BIRDS_EYE_FILES.roadFolder], vscode.ConfigurationTarget.Workspace);
+    });
 
-      // Run Variations from its lens: a batch of the 12 beside the file, results.csv opened (no Variations view here).
-      const { repository } = copied;
-      const esmini = path.join(repository, '.cache', 'esmini', 'bin', 'esmini');
-      const roads = path.resolve(repository, '..', 'shared', 'esmini', 'xodr');
-      if (!fs.existsSync(esmini) || !fs.existsSync(roads)) return;
-      const settings = vscode.workspace.getConfiguration('modular2simple.esmini');
-      await settings.update('path', esmini, vscode.ConfigurationTarget.Workspace);
-      await settings.update('roadPath', [roads], vscode.ConfigurationTarget.Workspace);
-      await settings.update('duration', 2, vscode.ConfigurationTarget.Workspace);
-      try {
-        const run = lenses.find((lens) => lens.command?.command === 'modular2simple.runVariations');
-        const outcome = await vscode.commands.executeCommand<{ exitCode: number | null; resultsFolder: string }>(run?.command?.command ?? '', ...(run?.command?.arguments ?? []));
-        assert.equal(outcome?.exitCode, 0);
-        assert.equal(outcome.resultsFolder, path.join(folder, 'cut-in_parameter_set.results'));
-        const rows = fs.readFileSync(path.join(outcome.resultsFolder, 'results.csv'), 'utf8').trim().split('\n');
-        assert.equal(rows.length, 13, rows.join('\n'));
-        await waitFor('results.csv in an editor', () => vscode.window.activeTextEditor?.document.uri.fsPath.endsWith('results.csv'));
-        await screenshot('Run Variations opened results.csv');
-      } finally {
-        for (const key of ['path', 'roadPath', 'duration']) await settings.update(key, undefined, vscode.ConfigurationTarget.Workspace);
+    after(async () => {
+      await settings().update('esmini.roadPath', undefined, vscode.ConfigurationTarget.Workspace);
+    });
+
+    afterEach(async function () {
+      await screenshot(`${this.currentTest?.state === 'failed' ? 'FAILED ' : ''}${this.currentTest?.title ?? 'unnamed'}`).catch(() => undefined);
+    });
+
+    it(INSIDE_TESTS.variations, async function () {
+      const csv = path.join(workspaceRoot(), VARIATIONS_FILES.results, 'results.csv');
+      if (!fs.existsSync(csv)) {
+        if (process.env.M2S_REQUIRE_ESMINI) throw new Error('M2S_REQUIRE_ESMINI is set, but there are no batch results (esmini or its roads are absent)');
+        console.log('skipped: esmini is not built, so there is no batch to show');
+        this.skip();
       }
-    } finally {
       await vscode.commands.executeCommand('workbench.action.closeAllEditors');
-      fs.rmSync(path.dirname(folder), { recursive: true, force: true });
-    }
-  },
-};
+      const view = api().variations;
+      // As the explorer's context menu on results.csv does: the command with the file's URI.
+      await vscode.commands.executeCommand('modular2simple.showVariations', vscode.Uri.file(csv));
+      const first = await waitFor('the table and the scatter', () => (view.stats?.rows === 36 ? view.stats : undefined));
+      assert.equal(first.shown, 36);
+      assert.equal(first.points, 36, 'a point per run');
+      assert.deepEqual([first.x, first.y], ['EgoSpeed', 'LeadSpeed']);
+      assert.ok(await pageShows('36 runs:'), 'the summary is shown');
+      const collisions = fs.readFileSync(csv, 'utf8').split('\n').filter((line) => line.split(',')[2] === 'true').length;
+      assert.ok(collisions > 0 && collisions < 36, `${collisions} collisions: the fixture has some`);
+      assert.ok(await pageShows(`collision (${collisions})`), 'the legend and the filter count the collisions');
+      await screenshot('Variations view of 36 runs');
+
+      // Sorted by a header, filtered by outcome: what the view draws follows.
+      assert.ok(await clickText('min_distance_m'), 'no min_distance_m header');
+      await waitFor('sorted by min_distance_m', () => (view.stats?.sort.column === 'min_distance_m' && view.stats.sort.direction === 'ascending' ? true : undefined));
+      assert.ok(await clickText(`ok (${36 - collisions})`), 'no ok filter');
+      const filtered = await waitFor('only the collisions left', () => (view.stats?.shown === collisions ? view.stats : undefined));
+      assert.equal(filtered.points, collisions);
+      assert.deepEqual(filtered.outcomes.sort(), ['collision', 'error', 'timeout']);
+      await screenshot('Variations view: collisions only, by smallest distance');
+
+      // A click on a row's index opens that run in the bird's-eye view.
+      const firstCollision = fs.readFileSync(csv, 'utf8').split('\n').find((line) => line.split(',')[2] === 'true')!.split(',')[0];
+      assert.ok(await clickText(`#${firstCollision}`), `no link to run ${firstCollision}`);
+      const birdsEye = api().birdsEye;
+      await waitFor('the run in the bird\'s-eye view', () => (view.openedRun === firstCollision && birdsEye.stats?.trajectories === 2 ? true : undefined), 30_000);
+      await screenshot(`Variations view: run ${firstCollision} opened in the bird's-eye view`);
+      await vscode.commands.executeCommand('workbench.action.closeAllEditors');
+    });
+  });
+}
