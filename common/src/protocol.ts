@@ -2,7 +2,7 @@
  * The contract between the VS Code client and the language server: the custom requests with their
  * parameters and results, typed for both sides (both bundles import this file).
  */
-import { RequestType } from 'vscode-languageserver-protocol';
+import { RequestType, WorkspaceEdit } from 'vscode-languageserver-protocol';
 import type { LineSegment } from './lineSegments';
 import { SceneRequest } from './sceneProtocol';
 
@@ -64,7 +64,45 @@ export interface PreviewResult {
 
 export const PreviewRequest = new RequestType<PreviewParams, PreviewResult, void>('modular2simple/preview');
 
-export const CUSTOM_REQUESTS = [FlattenToTextRequest.method, FlattenToFileRequest.method, PackRequest.method, StructureRequest.method, SceneRequest.method, RunEsminiRequest.method, PreviewRequest.method];
+/** One attribute of a group that *Extract to a simple scenario* may list in `parameterAttributes`. */
+export interface ExtractGroupChoice {
+  /** Stable for one text of the document: the element's place in the group and the attribute's name. */
+  id: string;
+  /** `Element.attribute`. */
+  label: string;
+  value: string;
+  /** Proposed by default (a number, an entity reference or an enumeration value). */
+  suggested: boolean;
+}
+
+/** *Extract to a simple scenario*: the group at `position` of `uri`, with `attributes` (choice ids) listed; the suggested ones when absent. */
+export interface ExtractGroupParams {
+  uri: string;
+  position: { line: number; character: number };
+  attributes?: string[];
+}
+
+export interface ExtractGroupResult {
+  /** Creates the simple scenario and replaces the group by a ScenarioReference (documentChanges). */
+  edit: WorkspaceEdit;
+  /** The simple scenario's URI. */
+  uri: string;
+  /** The attributes listed, as `Element.attribute`. */
+  parameters: string[];
+}
+
+export const ExtractGroupRequest = new RequestType<ExtractGroupParams, ExtractGroupResult, void>('modular2simple/extractGroup');
+
+/** The client command a code action invokes so the user can choose the attributes first (VS Code). */
+export const EXTRACT_GROUP_COMMAND = 'modular2simple.extractToSimpleScenario';
+
+export interface ExtractGroupCommandArguments {
+  uri: string;
+  position: { line: number; character: number };
+  choices: ExtractGroupChoice[];
+}
+
+export const CUSTOM_REQUESTS = [FlattenToTextRequest.method, FlattenToFileRequest.method, PackRequest.method, StructureRequest.method, SceneRequest.method, RunEsminiRequest.method, PreviewRequest.method, ExtractGroupRequest.method];
 
 /** URI scheme of files inside a `.mosc`: `mosc:/abs/path/pkg.mosc/inner.mosc/main.xosc`. */
 export const PACKAGE_SCHEME = 'mosc';
