@@ -110,13 +110,16 @@ export async function simpleScenarioText(parts: SimpleScenarioParts): Promise<st
     for (const match of text.matchAll(PARAMETER_USE)) if (!needed.includes(match[1])) needed.push(match[1]);
   };
   for (const text of [groupText, ...entities, catalogText, roadText]) want(text);
-  const declarations: string[] = [];
+  const foundDeclarations: { document: XmlDocument; element: XmlElement }[] = [];
   for (let i = 0; i < needed.length; i++) {
     const found = findNamed(documents, ['ParameterDeclaration'], needed[i]);
     if (!found) continue;
-    declarations.push(copied(found.document, found.element, unit, 2, eol));
+    foundDeclarations.push(found);
     want(found.document.text.slice(found.element.start, found.element.end));
   }
+  // In the order the inputs declare them: a value may only use parameters declared before it.
+  foundDeclarations.sort((a, b) => documents.indexOf(a.document) - documents.indexOf(b.document) || a.element.start - b.element.start);
+  const declarations = foundDeclarations.map((found) => copied(found.document, found.element, unit, 2, eol));
   lines.push(
     declarations.length > 0
       ? [`${unit}<ParameterDeclarations>`, ...declarations, `${unit}</ParameterDeclarations>`].join(eol)

@@ -115,7 +115,7 @@ export async function extractGroup(request: ExtractGroupRequest): Promise<Extrac
   const rebase = pathRebaser();
   let planned = await planBehaviour(shape.key, shape.slots, [occurrence], [input], simpleFile, rebase, chosen);
   // Attributes that no key tells apart with different values cannot all be listed: those are left out.
-  for (let round = 0; !planned.behaviour && planned.conflict && round < 8; round++) {
+  while (!planned.behaviour && planned.conflict?.some((index) => chosen.has(index))) {
     for (const index of planned.conflict) chosen.delete(index);
     planned = await planBehaviour(shape.key, shape.slots, [occurrence], [input], simpleFile, rebase, chosen);
   }

@@ -63,7 +63,14 @@ export const extractToSimpleRefactoring: Refactoring = {
       const args: ExtractGroupCommandArguments = { uri: target.uri, position, choices };
       return [{ title, kind: EXTRACT_TO_SIMPLE_KIND, command: { title, command: EXTRACT_GROUP_COMMAND, arguments: [args] } }];
     }
-    const { edit, uri } = await extractGroupEdit(target, undefined);
+    let extracted: ExtractGroupResult;
+    try {
+      extracted = await extractGroupEdit(target, undefined);
+    } catch (error) {
+      if (error instanceof ResponseError) return [{ title, kind: EXTRACT_TO_SIMPLE_KIND, disabled: { reason: error.message } }];
+      throw error;
+    }
+    const { edit, uri } = extracted;
     const action: CodeAction = { title: `${title.slice(0, -1)} (${decodeURIComponent(path.posix.basename(uri))})`, kind: EXTRACT_TO_SIMPLE_KIND, edit };
     return [action];
   },
