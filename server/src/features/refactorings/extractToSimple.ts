@@ -41,7 +41,7 @@ export async function extractGroupEdit(target: RefactoringTarget, attributes: re
     throw new ResponseError(ErrorCodes.InvalidRequest, `Extract to a simple scenario: ${error instanceof Error ? error.message : String(error)}`);
   }
   const uri = fileUri(extracted.file).toString();
-  return { edit: createAndEdit(target, [{ uri, text: extracted.text }], [extracted.replacement]), uri, parameters: extracted.parameters };
+  return { edit: createAndEdit(target, [{ uri, create: true, text: extracted.text, edits: [] }], [extracted.replacement]), uri, parameters: extracted.parameters };
 }
 
 /**

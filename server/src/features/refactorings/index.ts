@@ -1,3 +1,4 @@
+import { extractToCatalogRefactoring } from './extractToCatalog';
 import { extractToSimpleRefactoring } from './extractToSimple';
 import { inlineRefactoring } from './inline';
 import { makeOverridableRefactoring } from './makeOverridable';
@@ -8,4 +9,4 @@ export { NO_CLIENT_EDITS, refactoringTarget } from './refactoring';
 export { extractGroupEdit } from './extractToSimple';
 
 /** Every refactoring, in the order their actions are listed. */
-export const REFACTORINGS: readonly Refactoring[] = [extractToSimpleRefactoring, makeOverridableRefactoring, inlineRefactoring];
+export const REFACTORINGS: readonly Refactoring[] = [extractToSimpleRefactoring, extractToCatalogRefactoring, makeOverridableRefactoring, inlineRefactoring];

@@ -56,12 +56,27 @@ export function cannotCreateFiles(client: ClientEdits): string | undefined {
   return undefined;
 }
 
-/** An edit that creates `newUri` holding `newText` and edits the target's document. */
-export function createAndEdit(target: RefactoringTarget, files: readonly { uri: string; text: string; exists?: boolean }[], edits: readonly CoreTextEdit[]): WorkspaceEdit {
+/** Another file a refactoring writes: created with `text`, or edited (`edits`, offsets of `text`, its current content). */
+export interface FileChange {
+  uri: string;
+  create: boolean;
+  text: string;
+  edits: readonly CoreTextEdit[];
+  /** The version of the open document, when the client has it open. */
+  version?: number;
+}
+
+/** An edit that creates or edits `files`, then edits the target's document. */
+export function createAndEdit(target: RefactoringTarget, files: readonly FileChange[], edits: readonly CoreTextEdit[]): WorkspaceEdit {
   const changes: (CreateFile | TextDocumentEdit)[] = [];
   for (const file of files) {
-    if (!file.exists) changes.push(CreateFile.create(file.uri, { overwrite: false, ignoreIfExists: false }));
-    changes.push(TextDocumentEdit.create(OptionalVersionedTextDocumentIdentifier.create(file.uri, null), [TextEdit.insert({ line: 0, character: 0 }, file.text)]));
+    const identifier = OptionalVersionedTextDocumentIdentifier.create(file.uri, file.version ?? null);
+    if (file.create) {
+      changes.push(CreateFile.create(file.uri, { overwrite: false, ignoreIfExists: false }));
+      changes.push(TextDocumentEdit.create(identifier, [TextEdit.insert({ line: 0, character: 0 }, file.text)]));
+    } else if (file.edits.length > 0) {
+      changes.push(TextDocumentEdit.create(identifier, lspEdits(TextDocument.create(file.uri, 'xml', 0, file.text), file.edits)));
+    }
   }
   changes.push(TextDocumentEdit.create(OptionalVersionedTextDocumentIdentifier.create(target.uri, target.document.version), lspEdits(target.document, edits)));
   return { documentChanges: changes };
