@@ -9,6 +9,8 @@ import { buildModel } from '../../server/src/core/model';
 import { parseXml } from '../../server/src/core/xml';
 import { libraryDir, requireCorpus, sharedDir } from '../support/paths';
 import { positionAt } from '../support/cursor';
+import { requireEsmini, runEsmini } from '../support/esmini';
+import { esminiXodrDir } from '../support/esminiBinaries';
 import { temporaryWorkspace } from '../support/workspace';
 import { fileUri, TestClient } from './harness';
 import { applyEdits } from './textEdits';
@@ -194,4 +196,71 @@ describe('refactorings over JSON-RPC on the corpus (issue 19)', function () {
     await client.close(uri);
     await client.close(mainUri);
   });
+});
+
+describe('Extract to catalog over JSON-RPC: esmini runs the scenario identically (issue 19)', function () {
+  this.timeout(300_000);
+  let root: string;
+  let client: TestClient;
+  before(async function () {
+    requireCorpus(this);
+    requireEsmini(this);
+    // The scenarios name ../xodr and ../xosc/Catalogs: the corpus goes in as xosc/ beside xodr/.
+    root = temporaryWorkspace({}, 'm2s-catalog-');
+    fs.cpSync(esminiCorpus, path.join(root, 'xosc'), { recursive: true });
+    fs.symlinkSync(esminiXodrDir, path.join(root, 'xodr'));
+    client = await TestClient.start({ root, workspaceEdit: CAN_CREATE });
+    await client.indexed();
+  });
+  after(async function () {
+    await client?.stop();
+    if (root) fs.rmSync(root, { recursive: true, force: true });
+  });
+
+  const cases: { file: string; element: string; title: RegExp; edit?: [string, string]; expect: RegExp[] }[] = [
+    // The catalog there has a different car_white: a new catalog file beside it (the name stays).
+    { file: 'straight_500m.xosc', element: '<Vehicle name="car_white"', title: /VehicleCatalog_2\/car_white in VehicleCatalog_2\.xosc/, expect: [/<CatalogReference catalogName="VehicleCatalog_2" entryName="car_white"\/>/] },
+    // No ManeuverCatalog location: a new Catalogs/ManeuverCatalog.xosc and its location.
+    { file: 'cut-in.xosc', element: '<Maneuver ', title: /ManeuverCatalog\/\w+ in ManeuverCatalog\.xosc/, expect: [/<ManeuverCatalog>\s*<Directory path="Catalogs"\/>\s*<\/ManeuverCatalog>/, /<CatalogReference catalogName="ManeuverCatalog" entryName="CutInManeuver">/] },
+    // Both catalog files there are the catalog ControllerCatalog, which has an ACCController of its own: a new catalog, under
+    // its name (esmini's controller type). A scenario parameter the controller uses is declared in the entry and passed in.
+    { file: 'acc-test.xosc', element: '<Controller name="ACCController"', title: /ControllerCatalog_2\/ACCController in ControllerCatalog_2\.xosc/, expect: [/<ParameterAssignment parameterRef="EgoSpeed" value="\$EgoSpeed"\/>/] },
+    // The catalog's sloppyDriver, with its own Sloppiness parameter: reused, the value that differs assigned.
+    {
+      file: 'cut-in_sloppy.xosc',
+      element: '<Controller name="sloppyDriver"',
+      edit: ['<Property name="mode" value="additive"/>\n                    <Property name="sloppiness" value="0.6" />', '<Property name="sloppiness" value="0.6" />\n                    <Property name="mode" value="additive"/>'],
+      title: /ControllerCatalog\/sloppyDriver in ControllerCatalog\.xosc, an entry there already/,
+      expect: [/<CatalogReference catalogName="ControllerCatalog" entryName="sloppyDriver">\s*<ParameterAssignments>\s*<ParameterAssignment parameterRef="Sloppiness" value="0.6"\/>\s*<\/ParameterAssignments>\s*<\/CatalogReference>/],
+    },
+  ];
+  for (const { file: name, element, title, edit, expect } of cases) {
+    it(`${name}: ${element.slice(1)}…`, async function () {
+      const file = path.join(root, 'xosc', name);
+      if (edit) {
+        const original = fs.readFileSync(file, 'utf8');
+        assert.ok(original.includes(edit[0]));
+        fs.writeFileSync(file, original.replace(edit[0], edit[1]));
+      }
+      const text = fs.readFileSync(file, 'utf8');
+      const before = await runEsmini(file, 20);
+      assert.ok(before.length > 10, `${name}: ${before.length} steps`);
+      const uri = await client.openFile(file);
+      const open = new Map([[uri, text]]);
+      const actions = await refactorings(client, uri, text, text.indexOf(element) + 2, ['refactor.extract']);
+      const action = actions.find((candidate) => candidate.kind === 'refactor.extract.catalog');
+      assert.ok(action?.edit, `${name}: ${JSON.stringify(actions)}`);
+      assert.match(action.title, title);
+      await applyWorkspaceEdit(client, action.edit, open);
+      const after = open.get(uri) as string;
+      for (const pattern of expect) assert.match(after, pattern);
+      assert.ok(!after.includes(element), `${name}: the element moved out`);
+      fs.writeFileSync(file, after);
+      await client.close(uri);
+      // The scenario checks clean (the catalog entry resolves) and esmini runs it exactly as before.
+      const check = await client.send(FlattenToTextRequest, { uri });
+      assert.ok(check.text !== null, check.problems.map((problem) => problem.message).join('; '));
+      assert.deepEqual(await runEsmini(file, 20), before, `${name}: esmini runs it differently`);
+    });
+  }
 });

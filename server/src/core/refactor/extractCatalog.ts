@@ -45,7 +45,8 @@ export interface ExtractedCatalog {
   reused: boolean;
 }
 
-const PARAMETER_USE = /\$\{?([A-Za-z_]\w*)/g;
+// Inside ${...} only $name is a parameter: a bare word there is not.
+const PARAMETER_USE = /\$([A-Za-z_]\w*)/g;
 
 function child(element: XmlElement | undefined, name: string): XmlElement | undefined {
   return element?.children.find((candidate) => candidate.name === name);
@@ -125,7 +126,9 @@ function childIndent(text: string, element: XmlElement, unit: string): string {
 /**
  * *Extract to catalog*: moves an entity's Vehicle, Pedestrian, MiscObject or Controller, or a
  * Maneuver, into a catalog (the directory `CatalogLocations` names for its kind, else `Catalogs/`
- * beside the file; an existing catalog file there, else `<Kind>.xosc`), and leaves a CatalogReference.
+ * beside the file; an existing catalog file there where its name is free, else a new `<Kind>.xosc`;
+ * the name never changes, as esmini reads a controller's name as its type and conditions name maneuvers),
+ * and leaves a CatalogReference.
  * An entry already there that equals it (up to its own parameters) is reused, with ParameterAssignments
  * for the values that differ from its defaults; a scenario parameter the element uses is passed in.
  * Throws with the reason when it cannot.
@@ -162,37 +165,38 @@ export async function extractToCatalog(request: ExtractCatalogRequest): Promise<
   const catalogs = (await request.catalogsIn(directory))
     .map((candidate) => ({ ...candidate, read: catalogOf(candidate.text) }))
     .filter((candidate): candidate is CatalogFileText & { read: { document: XmlDocument; catalog: XmlElement } } => candidate.read !== undefined);
-  const chosen = catalogs.find((candidate) => candidate.read.catalog.children.some((entry) => entry.name === element.name)) ?? catalogs[0];
   const name = attributeValue(element, 'name') as string;
-  let entryName = name;
+  const entryName = name;
+  const holdsKind = (candidate: (typeof catalogs)[number]) => candidate.read.catalog.children.some((entry) => entry.name === element.name);
+  const ordered = [...catalogs.filter(holdsKind), ...catalogs.filter((candidate) => !holdsKind(candidate))];
+  let chosen: (typeof catalogs)[number] | undefined;
   let assignments = new Map<string, string>();
   let reused = false;
-  if (chosen && passed.length === 0) {
-    const entries = chosen.read.catalog.children.filter((entry) => entry.name === element.name);
-    for (const entry of entries) {
-      const entryName_ = attributeValue(entry, 'name') ?? '';
-      if (entryName_ !== name && !new RegExp(`^${name.replace(/[.*+?^${}()|[\]\\]/g, '\\$&')}_\\d+$`).test(entryName_)) continue;
-      const matched = matchEntry(entry, element, entryName_);
+  if (passed.length === 0) {
+    for (const candidate of ordered) {
+      const entry = candidate.read.catalog.children.find((item) => item.name === element.name && attributeValue(item, 'name') === name);
+      const matched = entry && matchEntry(entry, element, name);
       if (matched) {
-        entryName = entryName_;
-        assignments = matched;
-        reused = true;
+        [chosen, assignments, reused] = [candidate, matched, true];
         break;
       }
     }
   }
-  const taken = new Set(chosen?.read.catalog.children.map((entry) => attributeValue(entry, 'name')) ?? []);
-  if (!reused) for (let n = 2; taken.has(entryName); n++) entryName = `${name}_${n}`;
+  // The name stays (esmini takes a controller's name for its type, conditions name maneuvers): a catalog where it is free, else a new one.
+  // Files of one catalog name are one catalog: the name must be free in all of them.
+  const holdsName = (catalogName: string | undefined) =>
+    catalogs.some((other) => attributeValue(other.read.catalog, 'name') === catalogName && other.read.catalog.children.some((entry) => attributeValue(entry, 'name') === name));
+  if (!reused) chosen = ordered.find((candidate) => !holdsName(attributeValue(candidate.read.catalog, 'name')));
   for (const { name: parameter } of passed) assignments.set(parameter, `$${parameter}`);
-
-  const catalogName = chosen ? (attributeValue(chosen.read.catalog, 'name') ?? kind) : kind;
+  const catalogNames = new Set(catalogs.map((candidate) => attributeValue(candidate.read.catalog, 'name')));
+  let newCatalogName = kind;
+  for (let n = 2; catalogNames.has(newCatalogName); n++) newCatalogName = `${kind}_${n}`;
+  const catalogName = chosen ? (attributeValue(chosen.read.catalog, 'name') ?? kind) : newCatalogName;
   let catalog: ExtractedCatalog['catalog'];
   if (reused && chosen) catalog = { path: chosen.path, create: false, edits: [] };
   else {
     const entryText = (entryIndent: string, catalogEol: string) => {
       const edits: TextEdit[] = [];
-      const nameAttribute = element.attributes.find((item) => item.name === 'name');
-      if (entryName !== name && nameAttribute) edits.push({ start: nameAttribute.valueStart, end: nameAttribute.valueEnd, text: escapeAttributeValue(entryName, nameAttribute.quote) });
       if (passed.length > 0) {
         const declarations = child(element, 'ParameterDeclarations');
         const inner = childIndent(text, element, unit);
@@ -232,8 +236,8 @@ export async function extractToCatalog(request: ExtractCatalogRequest): Promise<
       const entry = `${entryIndent}${entryText(entryIndent, catalogEol)}${catalogEol}`;
       catalog = { path: chosen.path, create: false, edits: [{ start: insertAt, end: insertAt, text: onOwnLine ? entry : catalogEol + entry }] };
     } else {
-      let target = path.join(directory, `${kind}.xosc`);
-      for (let n = 2; await request.exists(target); n++) target = path.join(directory, `${kind}_${n}.xosc`);
+      let target = path.join(directory, `${catalogName}.xosc`);
+      for (let n = 2; await request.exists(target); n++) target = path.join(directory, `${catalogName}_${n}.xosc`);
       const header = child(root, 'FileHeader');
       const attributes = [
         ['revMajor', (header && attributeValue(header, 'revMajor')) ?? '1'],
@@ -246,7 +250,7 @@ export async function extractToCatalog(request: ExtractCatalogRequest): Promise<
         '<?xml version="1.0" encoding="UTF-8"?>',
         '<OpenSCENARIO>',
         `${unit}<FileHeader ${attributes.map(([key, value]) => `${key}="${escapeAttributeValue(value)}"`).join(' ')}/>`,
-        `${unit}<Catalog name="${kind}">`,
+        `${unit}<Catalog name="${escapeAttributeValue(catalogName)}">`,
         `${unit}${unit}${entryText(unit + unit, eol)}`,
         `${unit}</Catalog>`,
         '</OpenSCENARIO>',
