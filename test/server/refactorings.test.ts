@@ -225,6 +225,9 @@ describe('Extract to catalog over JSON-RPC: esmini runs the scenario identically
     // Both catalog files there are the catalog ControllerCatalog, which has an ACCController of its own: a new catalog, under
     // its name (esmini's controller type). A scenario parameter the controller uses is declared in the entry and passed in.
     { file: 'acc-test.xosc', element: '<Controller name="ACCController"', title: /ControllerCatalog_2\/ACCController in ControllerCatalog_2\.xosc/, expect: [/<ParameterAssignment parameterRef="EgoSpeed" value="\$EgoSpeed"\/>/] },
+    // A pedestrian and a misc object, each into its kind's catalog.
+    { file: 'straight_500m_pedestrian.xosc', element: '<Pedestrian name="Pedestrian1"', title: /Pedestrian1 in \w+\.xosc/, expect: [/<CatalogReference catalogName="\w+" entryName="Pedestrian1"\/>/] },
+    { file: 'drop-bike.xosc', element: '<MiscObject name="box"', title: /box in \w+\.xosc/, expect: [/<CatalogReference catalogName="\w+" entryName="box"\/>/] },
     // The catalog's sloppyDriver, with its own Sloppiness parameter: reused, the value that differs assigned.
     {
       file: 'cut-in_sloppy.xosc',
