@@ -27,6 +27,7 @@ export const INSIDE_TESTS = {
   runEsmini: "Run in esmini from the CodeLens puts esmini's error on the simple scenario's line; a clean run clears it and shows its trajectories",
   schemaCompletion: 'schema completion offers the child elements the OpenSCENARIO schema allows',
   schemaDeprecated: 'a deprecated OpenSCENARIO element is struck through',
+  extractToSimple: 'Extract to a simple scenario from the light bulb, with the pick list of attributes, replaces a group by a reference that flattens as before',
 } as const;
 
 export type InsideTestKey = keyof typeof INSIDE_TESTS;

@@ -10,9 +10,10 @@ import { languageFeatureTests } from './languageFeatures.inside';
 import { packAndFlattenTests } from './packAndFlatten.inside';
 import { packageTests } from './packages.inside';
 import { previewTests } from './preview.inside';
+import { refactoringTests } from './refactorings.inside';
 import { structureTests } from './structure.inside';
 
-const TESTS: InsideTests = { ...editingTests, ...packageTests, ...languageFeatureTests, ...previewTests, ...packAndFlattenTests, ...structureTests, ...esminiTests };
+const TESTS: InsideTests = { ...editingTests, ...packageTests, ...languageFeatureTests, ...previewTests, ...packAndFlattenTests, ...structureTests, ...esminiTests, ...refactoringTests };
 
 /**
  * The order the tests run in, one VS Code and one workspace for all: a test sees what earlier ones left
@@ -44,6 +45,7 @@ const ORDER: InsideTestKey[] = [
   'structureFollows',
   'schemaCompletion',
   'schemaDeprecated',
+  'extractToSimple',
 ];
 
 /** The extension's tests inside VS Code, each feature's in its own file; the bird's-eye view's follow (birdsEye.inside.ts). */
