@@ -144,6 +144,22 @@ describe('refactorings over JSON-RPC on the corpus (issue 19)', function () {
     }
   });
 
+  it('answers bad extractGroup requests with an error that says why, and offers nothing on a broken document', async function () {
+    const file = path.join(root, 'esmini', 'cut-in.xosc');
+    const text = fs.readFileSync(file, 'utf8');
+    const uri = await client.openFile(file);
+    await assert.rejects(client.send(ExtractGroupRequest, { uri, position: { line: 0, character: 0 } }), /no ManeuverGroup start tag at the position/);
+    await assert.rejects(client.send(ExtractGroupRequest, { uri, position: { line: 0, character: 0 }, attributes: [3] as unknown as string[] }), /attributes must be a list of choice ids/);
+    await assert.rejects(client.send(ExtractGroupRequest, { uri: 'file:///nowhere/x.xosc', position: { line: 0, character: 0 } }), /is not an open scenario/);
+    // Cut off in the middle of a group: nothing to move, and no failure.
+    const broken = text.slice(0, text.indexOf('<Maneuver ') + 10);
+    await client.change(uri, [{ text: broken }]);
+    const groupAt = broken.indexOf('<ManeuverGroup') + 3;
+    assert.deepEqual(await refactorings(client, uri, broken, groupAt, ['refactor']), []);
+    await assert.rejects(client.send(ExtractGroupRequest, { uri, position: positionAt(broken, groupAt) }), /not well-formed/);
+    await client.close(uri);
+  });
+
   it('inlines each ScenarioReference group of the library mains, and the mains flatten as before', async function () {
     const mains = fs.readdirSync(path.join(root, 'library')).filter((name) => name.startsWith('modular_hero_'));
     assert.equal(mains.length, 31);

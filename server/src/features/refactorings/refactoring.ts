@@ -4,6 +4,7 @@ import { TextEdit as CoreTextEdit } from '../../core/flatten/edits';
 import { FlatSource } from '../../core/flatten';
 import { ScenarioModel } from '../../core/model';
 import { SourceRef } from '../../core/sources';
+import { isWellFormed } from '../../core/xml';
 import { Workspace } from '../../workspace';
 
 /** What the client said it can apply, filled in by `initialize`. */
@@ -82,7 +83,7 @@ export function createAndEdit(target: RefactoringTarget, files: readonly FileCha
   return { documentChanges: changes };
 }
 
-/** The target of a refactoring at `start`..`end` of an open document; undefined while the analysis lags behind the text. */
+/** The target of a refactoring at `start`..`end` of an open document; undefined while the analysis lags behind the text or it is not well-formed. */
 export async function refactoringTarget(
   workspace: Workspace,
   uri: string,
@@ -94,7 +95,8 @@ export async function refactoringTarget(
 ): Promise<RefactoringTarget | undefined> {
   const source = await workspace.source(ref);
   const model = source.original;
-  // A source of an older text than the document's would put the edits in the wrong places.
-  if (!model || model.document.text !== document.getText()) return undefined;
+  // A source of an older text than the document's would put the edits in the wrong places; a text
+  // that is not well-formed XML has no trustworthy element boundaries to move.
+  if (!model || model.document.text !== document.getText() || !isWellFormed(model.document)) return undefined;
   return { workspace, uri, ref, document, start, end, source, model, client };
 }
