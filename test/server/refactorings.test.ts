@@ -7,7 +7,7 @@ import { ExtractGroupRequest, FlattenToTextRequest } from '../../common/src/prot
 import { firstDifference } from '../../server/src/core/equivalence';
 import { buildModel } from '../../server/src/core/model';
 import { parseXml } from '../../server/src/core/xml';
-import { libraryDir, requireCorpus, sharedDir } from '../support/paths';
+import { caseStudyDir, libraryDir, requireCorpus, sharedDir } from '../support/paths';
 import { positionAt } from '../support/cursor';
 import { requireEsmini, runEsmini } from '../support/esmini';
 import { esminiXodrDir } from '../support/esminiBinaries';
@@ -48,8 +48,8 @@ async function applyWorkspaceEdit(client: TestClient, edit: WorkspaceEdit, open:
   return created;
 }
 
-async function flattened(client: TestClient, uri: string): Promise<string> {
-  const result = await client.send(FlattenToTextRequest, { uri });
+async function flattened(client: TestClient, uri: string, force = false): Promise<string> {
+  const result = await client.send(FlattenToTextRequest, { uri, options: { force } });
   assert.ok(result.text !== null, `${uri} does not flatten: ${result.problems.map((problem) => problem.message).join('; ')}`);
   return result.text;
 }
@@ -68,6 +68,7 @@ describe('refactorings over JSON-RPC on the corpus (issue 19)', function () {
     root = temporaryWorkspace({}, 'm2s-refactor-');
     fs.cpSync(esminiCorpus, path.join(root, 'esmini'), { recursive: true });
     fs.cpSync(libraryDir, path.join(root, 'library'), { recursive: true });
+    fs.cpSync(caseStudyDir, path.join(root, 'case-study'), { recursive: true });
     client = await TestClient.start({ root, workspaceEdit: CAN_CREATE });
     await client.indexed();
   });
@@ -182,6 +183,26 @@ describe('refactorings over JSON-RPC on the corpus (issue 19)', function () {
       assert.equal(firstDifference(open.get(uri) as string, fs.readFileSync(path.join(root, 'library', folder, 'result.xosc'), 'utf8')), undefined);
       await client.close(uri);
     }
+  });
+
+  it("inlines the case study's groups, which import nested packages, and the main flattens (forced: its keys have errors) as before", async function () {
+    const file = path.join(root, 'case-study', 'main.xosc');
+    const uri = await client.openFile(file);
+    const open = new Map([[uri, fs.readFileSync(file, 'utf8')]]);
+    const before = await flattened(client, uri, true);
+    let inlined = 0;
+    for (;;) {
+      const text = open.get(uri) as string;
+      const group = buildModel(parseXml(text)).groups.find((candidate) => candidate.references.length > 0);
+      if (!group) break;
+      const actions = await refactorings(client, uri, text, group.element.start + 1, ['refactor.inline']);
+      assert.ok(actions[0]?.edit, `'${group.name}': ${JSON.stringify(actions)}`);
+      await applyWorkspaceEdit(client, actions[0].edit, open);
+      assert.equal(firstDifference(await flattened(client, uri, true), before), undefined, `inlining '${group.name}' changed the flattened scenario`);
+      inlined++;
+    }
+    assert.ok(inlined >= 2, `${inlined} groups inlined`);
+    await client.close(uri);
   });
 
   it('makes attributes of a simple scenario overridable, and the mains that use it flatten as before', async function () {
