@@ -130,3 +130,14 @@ describe('refactorings in the core (issue 19)', function () {
     assert.match(after, /<CatalogReference catalogName="Moves" entryName="Second">\s*<ParameterAssignments>\s*<ParameterAssignment parameterRef="Dx" value="1"\/>/);
   });
 });
+
+describe('refactorings in the core: CatalogLocations written on one line (issue 19)', function () {
+  it('adds the location on lines of its own', async function () {
+    const text = SCENARIO.replace('<CatalogLocations/>', '<CatalogLocations><RouteCatalog><Directory path="r"/></RouteCatalog></CatalogLocations>');
+    const document = parseXml(text);
+    const extracted = await extractToCatalog({ file: '/work/main.xosc', document, element: named(document.root, 'Vehicle', 'car'), catalogsIn: async () => [], exists: async () => false });
+    const after = applyEdits(text, extracted.edits);
+    assert.deepEqual(parseXml(after).problems, []);
+    assert.match(after, /<\/RouteCatalog>\n\s*<VehicleCatalog>\n\s*<Directory path="Catalogs"\/>\n\s*<\/VehicleCatalog>\n\s*<\/CatalogLocations>/);
+  });
+});

@@ -297,7 +297,10 @@ export async function extractToCatalog(request: ExtractCatalogRequest): Promise<
       const inner = childIndent(text, locations, unit);
       const close = text.lastIndexOf('</', locations.end - 1);
       const at = lineStart(text, close);
-      edits.push({ start: at, end: at, text: [`${inner}<${kind}>`, `${inner}${unit}<Directory path=${q(relative)}/>`, `${inner}</${kind}>`, ''].join(eol) });
+      const lines = [`${inner}<${kind}>`, `${inner}${unit}<Directory path=${q(relative)}/>`, `${inner}</${kind}>`];
+      // A closing tag that shares its line with other text gets the location before it, on lines of their own.
+      if (/^[ \t]*$/.test(text.slice(at, close))) edits.push({ start: at, end: at, text: [...lines, ''].join(eol) });
+      else edits.push({ start: close, end: close, text: [eol + lines.join(eol), indentationAt(text, locations.start)].join(eol) });
     }
   }
   return { catalogName, entryName, catalog, edits, reused };
