@@ -141,3 +141,14 @@ describe('refactorings in the core: CatalogLocations written on one line (issue 
     assert.match(after, /<\/RouteCatalog>\n\s*<VehicleCatalog>\n\s*<Directory path="Catalogs"\/>\n\s*<\/VehicleCatalog>\n\s*<\/CatalogLocations>/);
   });
 });
+
+describe('refactorings in the core: what cannot move into a catalog (issue 19)', function () {
+  it('refuses a maneuver that tests a scenario parameter by name', async function () {
+    const text = SCENARIO.replace('<Event name="E1" priority="overwrite">', '<Event name="E1" priority="overwrite">\n              <StartTrigger><ConditionGroup><Condition name="C" delay="0" conditionEdge="none"><ByValueCondition><ParameterCondition parameterRef="Speed" value="1" rule="greaterThan"/></ByValueCondition></Condition></ConditionGroup></StartTrigger>');
+    const document = parseXml(text);
+    await assert.rejects(
+      extractToCatalog({ file: '/work/main.xosc', document, element: named(document.root, 'Maneuver', 'First'), catalogsIn: async () => [], exists: async () => false }),
+      /ParameterCondition names the scenario parameter 'Speed'/,
+    );
+  });
+});

@@ -162,6 +162,12 @@ export async function extractToCatalog(request: ExtractCatalogRequest): Promise<
     passed.push({ name, declaration });
   }
 
+  // A ParameterCondition or ParameterSetAction names a scenario parameter to test or set: inside an entry it would name the entry's own.
+  for (const item of selfAndDescendants(element)) {
+    const named = item.name === 'ParameterAssignment' ? undefined : attributeValue(item, 'parameterRef')?.replace(/^\$/, '');
+    if (named !== undefined && !own.has(named)) throw new Error(`its ${item.name} names the scenario parameter '${named}', which a catalog entry cannot reach`);
+  }
+
   const catalogs = (await request.catalogsIn(directory))
     .map((candidate) => ({ ...candidate, read: catalogOf(candidate.text) }))
     .filter((candidate): candidate is CatalogFileText & { read: { document: XmlDocument; catalog: XmlElement } } => candidate.read !== undefined);
