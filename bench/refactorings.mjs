@@ -1,5 +1,6 @@
 // The refactorings' code action lists (issue 19) on 15,000-line files, over stdio against dist/server.js:
-// Extract to a simple scenario on a group's start tag of a plain scenario, Make overridable on an
+// Extract to a simple scenario on a group's start tag of a plain scenario, Extract to catalog on a
+// Maneuver of it, Make overridable on an
 // attribute of a simple scenario, Inline on a referencing group of a main. Figures, not a timed test.
 import { spawn } from 'node:child_process';
 import { existsSync, mkdtempSync, realpathSync, rmSync, writeFileSync } from 'node:fs';
@@ -170,6 +171,7 @@ console.log(`refactoring code action lists (${samples} samples each; dist/server
 console.log(`  ${''.padEnd(52)}  median      p95`);
 try {
   await actionLatency('plain.xosc', '<ManeuverGroup name="G', 3, ['refactor.extract'], 'refactor.extract.simpleScenario');
+  await actionLatency('plain.xosc', '<Maneuver name="M', 3, ['refactor.extract'], 'refactor.extract.catalog');
   await actionLatency('simple.xosc', 'dynamicsShape="step"', 2, ['refactor.rewrite'], 'refactor.rewrite.makeOverridable');
   await actionLatency('main.xosc', '<ManeuverGroup name="Car', 3, ['refactor.inline'], 'refactor.inline.scenarioReference');
   // Every kind at once, as an editor asks when the light bulb shows.
