@@ -206,17 +206,20 @@ export async function extractToCatalog(request: ExtractCatalogRequest): Promise<
       if (passed.length > 0) {
         const declarations = child(element, 'ParameterDeclarations');
         const inner = childIndent(text, element, unit);
+        // One level as the element itself indents its children, so the entry reads as written.
+        const outer = indentationAt(text, element.start);
+        const step = inner.startsWith(outer) && inner.length > outer.length ? inner.slice(outer.length) : unit;
         const lines = passed.map(({ declaration }) => text.slice(declaration.start, declaration.end));
         if (declarations && !declarations.selfClosing) {
           const at = lineStart(text, text.lastIndexOf('</', declarations.end - 1));
-          edits.push({ start: at, end: at, text: lines.map((line) => `${inner}${unit}${line}${eol}`).join('') });
+          edits.push({ start: at, end: at, text: lines.map((line) => `${inner}${step}${line}${eol}`).join('') });
         } else if (declarations) {
-          edits.push({ start: declarations.start, end: declarations.end, text: [`<ParameterDeclarations>`, ...lines.map((line) => `${inner}${unit}${line}`), `${inner}</ParameterDeclarations>`].join(eol) });
+          edits.push({ start: declarations.start, end: declarations.end, text: [`<ParameterDeclarations>`, ...lines.map((line) => `${inner}${step}${line}`), `${inner}</ParameterDeclarations>`].join(eol) });
         } else if (element.selfClosing) {
           throw new Error(`the ${element.name} is empty`);
         } else {
           const at = element.children[0] ? lineStart(text, element.children[0].start) : element.startTagEnd;
-          edits.push({ start: at, end: at, text: [`${inner}<ParameterDeclarations>`, ...lines.map((line) => `${inner}${unit}${line}`), `${inner}</ParameterDeclarations>`, ''].join(eol) });
+          edits.push({ start: at, end: at, text: [`${inner}<ParameterDeclarations>`, ...lines.map((line) => `${inner}${step}${line}`), `${inner}</ParameterDeclarations>`, ''].join(eol) });
         }
       }
       edits.sort((a, b) => a.start - b.start);
