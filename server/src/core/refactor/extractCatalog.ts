@@ -1,6 +1,7 @@
 import * as path from 'node:path';
 import { reindent, TextEdit } from '../flatten/edits';
 import { detectEol, indentationAt } from '../text';
+import { RefactoringRefusal } from './refusal';
 import { attributeValue, escapeAttributeValue, parseXml, selfAndDescendants, XmlDocument, XmlElement } from '../xml';
 
 /** The catalog kind (its `CatalogLocations` child) of each element that can move into a catalog, and the parent it must stand in. */
@@ -138,16 +139,16 @@ export async function extractToCatalog(request: ExtractCatalogRequest): Promise<
   const text = document.text;
   const eol = detectEol(text);
   const root = document.root;
-  if (!catalogCandidate(element) || !root) throw new Error('only an entity\'s Vehicle, Pedestrian, MiscObject or Controller, or a Maneuver, can move into a catalog');
+  if (!catalogCandidate(element) || !root) throw new RefactoringRefusal('only an entity\'s Vehicle, Pedestrian, MiscObject or Controller, or a Maneuver, can move into a catalog');
   const kind = CATALOG_KINDS[element.name].kind;
   const locations = child(root, 'CatalogLocations');
-  if (!locations) throw new Error('the scenario has no CatalogLocations');
+  if (!locations) throw new RefactoringRefusal('the scenario has no CatalogLocations');
   const unitMatch = /^([ \t]+)</m.exec(text);
   const unit = unitMatch ? unitMatch[1] : '  ';
   const location = child(locations, kind);
   const directoryPath = location ? attributeValue(child(location, 'Directory') ?? location, 'path') : undefined;
-  if (location && directoryPath === undefined) throw new Error(`the ${kind} location names no directory`);
-  if (directoryPath && /[$]/.test(directoryPath)) throw new Error(`the ${kind} directory is given by a parameter`);
+  if (location && directoryPath === undefined) throw new RefactoringRefusal(`the ${kind} location names no directory`);
+  if (directoryPath && /[$]/.test(directoryPath)) throw new RefactoringRefusal(`the ${kind} directory is given by a parameter`);
   const directory = path.resolve(path.dirname(file), directoryPath ?? 'Catalogs');
 
   // Scenario parameters the element uses are declared in the entry and passed in by the reference.
@@ -157,15 +158,15 @@ export async function extractToCatalog(request: ExtractCatalogRequest): Promise<
     const name = match[1];
     if (own.has(name) || passed.some((entry) => entry.name === name)) continue;
     const declaration = declarationInScope(element, name);
-    if (!declaration) throw new Error(`parameter '${name}' is not declared`);
-    if ((attributeValue(declaration, 'value') ?? '').includes('$')) throw new Error(`parameter '${name}' has a value computed from others, which a catalog's default cannot hold`);
+    if (!declaration) throw new RefactoringRefusal(`parameter '${name}' is not declared`);
+    if ((attributeValue(declaration, 'value') ?? '').includes('$')) throw new RefactoringRefusal(`parameter '${name}' has a value computed from others, which a catalog's default cannot hold`);
     passed.push({ name, declaration });
   }
 
   // A ParameterCondition or ParameterSetAction names a scenario parameter to test or set: inside an entry it would name the entry's own.
   for (const item of selfAndDescendants(element)) {
     const named = item.name === 'ParameterAssignment' ? undefined : attributeValue(item, 'parameterRef')?.replace(/^\$/, '');
-    if (named !== undefined && !own.has(named)) throw new Error(`its ${item.name} names the scenario parameter '${named}', which a catalog entry cannot reach`);
+    if (named !== undefined && !own.has(named)) throw new RefactoringRefusal(`its ${item.name} names the scenario parameter '${named}', which a catalog entry cannot reach`);
   }
 
   const catalogs = (await request.catalogsIn(directory))
@@ -216,7 +217,7 @@ export async function extractToCatalog(request: ExtractCatalogRequest): Promise<
         } else if (declarations) {
           edits.push({ start: declarations.start, end: declarations.end, text: [`<ParameterDeclarations>`, ...lines.map((line) => `${inner}${step}${line}`), `${inner}</ParameterDeclarations>`].join(eol) });
         } else if (element.selfClosing) {
-          throw new Error(`the ${element.name} is empty`);
+          throw new RefactoringRefusal(`the ${element.name} is empty`);
         } else {
           const at = element.children[0] ? lineStart(text, element.children[0].start) : element.startTagEnd;
           edits.push({ start: at, end: at, text: [`${inner}<ParameterDeclarations>`, ...lines.map((line) => `${inner}${step}${line}`), `${inner}</ParameterDeclarations>`, ''].join(eol) });
@@ -237,7 +238,7 @@ export async function extractToCatalog(request: ExtractCatalogRequest): Promise<
       const catalogEol = detectEol(catalogText);
       const close = catalogText.lastIndexOf('</', chosen.read.catalog.end - 1);
       const catalogUnit = /^([ \t]+)</m.exec(catalogText)?.[1] ?? unit;
-      if (chosen.read.catalog.selfClosing) throw new Error(`the catalog ${chosen.path} is written as an empty element`);
+      if (chosen.read.catalog.selfClosing) throw new RefactoringRefusal(`the catalog ${chosen.path} is written as an empty element`);
       const entryIndent = childIndent(catalogText, chosen.read.catalog, catalogUnit);
       const at = lineStart(catalogText, close);
       const onOwnLine = /^[ \t]*$/.test(catalogText.slice(at, close));

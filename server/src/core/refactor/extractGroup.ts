@@ -9,6 +9,7 @@ import { ParsedInput } from '../modularize/types';
 import { enumerationValues } from '../schema/values';
 import { indexFor, typeOfElement } from '../schema/query';
 import { XmlDocument } from '../xml';
+import { RefactoringRefusal } from './refusal';
 
 /** One attribute of a group that the simple scenario may list in `parameterAttributes`. */
 export interface TunableAttribute {
@@ -102,7 +103,7 @@ async function freeFile(directory: string, stem: string, exists: (file: string) 
 export async function extractGroup(request: ExtractGroupRequest): Promise<ExtractedGroup> {
   const { file, text, document, group } = request;
   const read = readOccurrence(0, document, group);
-  if (!read) throw new Error('only a named ManeuverGroup with an actor, no ScenarioReference and no parameterAttributes can be extracted');
+  if (!read) throw new RefactoringRefusal('only a named ManeuverGroup with an actor, no ScenarioReference and no parameterAttributes can be extracted');
   const { shape, occurrence } = read;
   const tunable = tunableAttributes(document, group, request.entityNames) ?? [];
   const wanted = new Set(request.chosen ?? tunable.filter((candidate) => candidate.suggested).map((candidate) => candidate.id));
@@ -120,7 +121,7 @@ export async function extractGroup(request: ExtractGroupRequest): Promise<Extrac
     planned = await planBehaviour(shape.key, shape.slots, [occurrence], [input], simpleFile, rebase, chosen);
   }
   const behaviour = planned.behaviour;
-  if (!behaviour) throw new Error(`the group cannot be extracted: ${planned.reason ?? 'no simple scenario holds it'}`);
+  if (!behaviour) throw new RefactoringRefusal(`the group cannot be extracted: ${planned.reason ?? 'no simple scenario holds it'}`);
   const main = mainText(input, [{ behaviour, use: behaviour.uses[0] }]);
   // mainText rewrites the whole input; only the group's span differs.
   const start = group.element.start;

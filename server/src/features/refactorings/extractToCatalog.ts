@@ -2,6 +2,7 @@ import * as fs from 'node:fs/promises';
 import * as path from 'node:path';
 import { CodeActionKind } from 'vscode-languageserver/node';
 import { CatalogFileText, catalogCandidate, extractToCatalog } from '../../core/refactor/extractCatalog';
+import { RefactoringRefusal } from '../../core/refactor/refusal';
 import { diskRef, nodeFileSystem, refId } from '../../core/sources';
 import { elementAt, XmlElement } from '../../core/xml';
 import { fileUri } from '../../uris';
@@ -61,7 +62,8 @@ export const extractToCatalogRefactoring: Refactoring = {
         exists: async (file) => (await nodeFileSystem.kind(file)) !== undefined || target.workspace.documents.has(refId(diskRef(file))),
       });
     } catch (error) {
-      return [{ title, kind: EXTRACT_TO_CATALOG_KIND, disabled: { reason: error instanceof Error ? error.message : String(error) } }];
+      if (error instanceof RefactoringRefusal) return [{ title, kind: EXTRACT_TO_CATALOG_KIND, disabled: { reason: error.message } }];
+      throw error;
     }
     const known = found.get(extracted.catalog.path);
     const catalogFile: FileChange = {

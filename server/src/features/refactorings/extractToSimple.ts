@@ -3,6 +3,7 @@ import { CodeAction, CodeActionKind, ResponseError, ErrorCodes } from 'vscode-la
 import { EXTRACT_GROUP_COMMAND, ExtractGroupCommandArguments, ExtractGroupResult } from '../../../../common/src/protocol';
 import { ManeuverGroupInfo } from '../../core/model';
 import { extractGroup, tunableAttributes } from '../../core/refactor/extractGroup';
+import { RefactoringRefusal } from '../../core/refactor/refusal';
 import { diskRef, nodeFileSystem, refId } from '../../core/sources';
 import { fileUri } from '../../uris';
 import { cannotCreateFiles, createAndEdit, Refactoring, RefactoringTarget } from './refactoring';
@@ -38,7 +39,8 @@ export async function extractGroupEdit(target: RefactoringTarget, attributes: re
       exists: async (file) => (await nodeFileSystem.kind(file)) !== undefined || target.workspace.documents.has(refId(diskRef(file))),
     });
   } catch (error) {
-    throw new ResponseError(ErrorCodes.InvalidRequest, `Extract to a simple scenario: ${error instanceof Error ? error.message : String(error)}`);
+    if (error instanceof RefactoringRefusal) throw new ResponseError(ErrorCodes.InvalidRequest, `Extract to a simple scenario: ${error.message}`);
+    throw error;
   }
   const uri = fileUri(extracted.file).toString();
   return { edit: createAndEdit(target, [{ uri, create: true, text: extracted.text, edits: [] }], [extracted.replacement]), uri, parameters: extracted.parameters };
