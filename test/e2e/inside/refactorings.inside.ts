@@ -4,6 +4,7 @@ import * as path from 'node:path';
 import * as vscode from 'vscode';
 import { EXTRACT_GROUP_COMMAND, ExtractGroupRequest } from '../../../common/src/protocol';
 import { firstDifference } from '../../../server/src/core/equivalence';
+import { fileStem } from '../../../server/src/core/refactor/extractGroup';
 import { api, cli, type InsideTests, offersRequest, open, positionOf, requireServerFeature, waitFor, workspaceRoot } from './helpers';
 import { pressKeys, quickInput, screenshot } from './harnessClient';
 
@@ -16,12 +17,16 @@ export const refactoringTests: InsideTests = {
     const plainFile = path.join(workspaceRoot(), 'extract_e2e.xosc');
     const before = fs.readFileSync(plainFile, 'utf8');
     const editor = await open('extract_e2e.xosc');
-    const at = positionOf(editor.document, '<ManeuverGroup name="CutInVehicle.CutIn" maximumExecutionCount="1">', 3);
+    // Earlier tests rename groups of the example: the first group of the flattened main, whatever its name now.
+    const tag = /<ManeuverGroup [^>]*>/.exec(before)?.[0];
+    const groupName = tag && /\bname="([^"]+)"/.exec(tag)?.[1];
+    assert.ok(tag && groupName, 'the flattened main has a named group');
+    const at = positionOf(editor.document, tag, 3);
     editor.selection = new vscode.Selection(at, at);
     editor.revealRange(new vscode.Range(at, at), vscode.TextEditorRevealType.AtTop);
     const actions = await waitFor('the Extract to a simple scenario action', async () => {
       const found = await vscode.commands.executeCommand<vscode.CodeAction[]>('vscode.executeCodeActionProvider', editor.document.uri, new vscode.Range(at, at), 'refactor.extract');
-      return found.find((action) => action.title.startsWith("Extract 'CutInVehicle.CutIn' to a simple scenario"));
+      return found.find((action) => action.title.startsWith(`Extract '${groupName}' to a simple scenario`));
     });
     assert.equal(actions.command?.command, EXTRACT_GROUP_COMMAND);
     // As a person: the refactoring from the light bulb's menu, then the pick list of attributes, accepted as proposed.
@@ -33,8 +38,9 @@ export const refactoringTests: InsideTests = {
     await screenshot('Extract to a simple scenario: the pick list of attributes');
     await pressKeys(['Enter']);
     await applied;
-    const simpleFile = path.join(workspaceRoot(), 'CutInVehicle_CutIn.xosc');
-    await waitFor('the group replaced by a ScenarioReference', () => editor.document.getText().includes('<ScenarioReference scenarioFileName="CutInVehicle_CutIn.xosc">') || undefined);
+    const simpleName = `${fileStem(groupName)}.xosc`;
+    const simpleFile = path.join(workspaceRoot(), simpleName);
+    await waitFor('the group replaced by a ScenarioReference', () => editor.document.getText().includes(`<ScenarioReference scenarioFileName="${simpleName}">`) || undefined);
     const simple = await waitFor('the simple scenario open beside', () => vscode.workspace.textDocuments.find((document) => document.uri.fsPath === simpleFile));
     assert.match(simple.getText(), /parameterAttributes="/);
     await screenshot('Extract to a simple scenario: the main and its new simple scenario');
