@@ -63,7 +63,7 @@ if (!existsSync(library)) {
 console.log('');
 spawnSync(process.execPath, [path.join(root, 'bench', 'semantics.mjs')], { stdio: 'inherit' });
 
-for (const name of ['lsp.mjs', 'format.mjs', 'esmini.mjs', 'modularize.mjs', 'variations.mjs', 'check.mjs']) {
+for (const name of ['lsp.mjs', 'format.mjs', 'esmini.mjs', 'modularize.mjs', 'variations.mjs', 'check.mjs', 'refactorings.mjs']) {
   const bench = path.join(root, 'bench', name);
   if (!existsSync(bench)) continue;
   console.log('');

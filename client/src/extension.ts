@@ -3,7 +3,7 @@ import * as vscode from 'vscode';
 import type { ServerCapabilities } from 'vscode-languageclient';
 import { DidChangeWatchedFilesNotification, FileChangeType } from 'vscode-languageclient';
 import type { LanguageClient } from 'vscode-languageclient/node';
-import { PACKAGE_SCHEME, type StructureNode } from '../../common/src/protocol';
+import { EXTRACT_GROUP_COMMAND, PACKAGE_SCHEME, type StructureNode } from '../../common/src/protocol';
 import { registerBirdsEye } from './birdsEye/commands';
 import type { BirdsEyeView } from './birdsEye/panel';
 import { CommandReporter, commandTargets, flattenCommand, mainFileOf, packCommand } from './commands';
@@ -20,6 +20,7 @@ import { EsminiRunner, type EsminiRunEvent } from './esminiRun';
 import { RUN_VARIATIONS_COMMAND, VariationsRunner } from './runVariations';
 import { registerVariations } from './variations/commands';
 import type { VariationsView } from './variations/panel';
+import { extractGroupCommand } from './extractGroup';
 
 /** What the extension hands to other extensions and to its own tests. */
 export interface Modular2SimpleApi {
@@ -98,6 +99,7 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
   register('modular2simple.pack', (clicked, selected, ...rest) => packCommand(server, reporter, clicked, selected, ...rest));
   register('modular2simple.flatten', (clicked, selected, ...rest) => flattenCommand(server, reporter, clicked, selected, ...rest));
   register('modular2simple.newScenario', (clicked, ...rest) => newScenarioCommand(server, reporter, clicked, ...rest));
+  register(EXTRACT_GROUP_COMMAND, (args) => extractGroupCommand(server, reporter, args));
   register('modular2simple.openPreview', async (clicked, at) => {
     let [source] = commandTargets(clicked, undefined);
     if (source?.scheme === PREVIEW_SCHEME) source = previewSource(source);

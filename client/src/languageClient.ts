@@ -1,6 +1,8 @@
 import * as vscode from 'vscode';
 import { LanguageClient, TransportKind, type LanguageClientOptions, type ServerOptions } from 'vscode-languageclient/node';
+import type { WorkspaceEdit as LspWorkspaceEdit } from 'vscode-languageserver-protocol';
 import {
+  ExtractGroupRequest,
   FlattenToFileRequest,
   FlattenToTextRequest,
   NewScenarioRequest,
@@ -8,6 +10,8 @@ import {
   PackRequest,
   PreviewRequest,
   StructureRequest,
+  type ExtractGroupParams,
+  type ExtractGroupResult,
   type FlattenOptions,
   type FlattenTextResult,
   type NewScenarioResult,
@@ -36,7 +40,8 @@ export function createLanguageClient(context: vscode.ExtensionContext, afterChan
     ],
     // No `synchronize`: the server registers for configuration changes and file events itself.
     // Files inside packages open and save through the mosc: file system, so edits may reach them.
-    initializationOptions: { packageFileSystem: true },
+    // Extract to a simple scenario runs our command, which shows a pick list of attributes first.
+    initializationOptions: { packageFileSystem: true, extractPicker: true },
     middleware: {
       ...whileRunning(() => client.isRunning()),
       // Views that show the server's answers (the preview, the structure) ask again once the server has the edit.
@@ -92,6 +97,16 @@ export class ServerCommandClient {
 
   async pack(inputs: vscode.Uri[], outputPath: string, token?: vscode.CancellationToken, selfContained = false): Promise<WriteResult> {
     return (await this.started()).sendRequest(PackRequest, { inputs: inputs.map((input) => input.toString()), outputPath, ...(selfContained ? { selfContained } : {}) }, token);
+  }
+
+  /** Extract to a simple scenario with the attributes chosen: the edit to apply. */
+  async extractGroup(params: ExtractGroupParams): Promise<ExtractGroupResult> {
+    return (await this.started()).sendRequest(ExtractGroupRequest, params);
+  }
+
+  /** A server's WorkspaceEdit as the editor's. */
+  async workspaceEdit(edit: LspWorkspaceEdit): Promise<vscode.WorkspaceEdit> {
+    return (await this.started()).protocol2CodeConverter.asWorkspaceEdit(edit);
   }
 
   async structure(uri: vscode.Uri, token?: vscode.CancellationToken): Promise<StructureNode | null> {

@@ -2,7 +2,7 @@
  * The contract between the VS Code client and the language server: the custom requests with their
  * parameters and results, typed for both sides (both bundles import this file).
  */
-import { RequestType } from 'vscode-languageserver-protocol';
+import { RequestType, WorkspaceEdit } from 'vscode-languageserver-protocol';
 import type { LineSegment } from './lineSegments';
 import { SceneRequest } from './sceneProtocol';
 
@@ -82,6 +82,44 @@ export interface NewScenarioResult {
 
 export const NewScenarioRequest = new RequestType<NewScenarioParams, NewScenarioResult, void>('modular2simple/newScenario');
 
+/** One attribute of a group that *Extract to a simple scenario* may list in `parameterAttributes`. */
+export interface ExtractGroupChoice {
+  /** Stable for one text of the document: the element's place in the group and the attribute's name. */
+  id: string;
+  /** `Element.attribute`. */
+  label: string;
+  value: string;
+  /** Proposed by default (a number, an entity reference or an enumeration value). */
+  suggested: boolean;
+}
+
+/** *Extract to a simple scenario*: the group at `position` of `uri`, with `attributes` (choice ids) listed; the suggested ones when absent. */
+export interface ExtractGroupParams {
+  uri: string;
+  position: { line: number; character: number };
+  attributes?: string[];
+}
+
+export interface ExtractGroupResult {
+  /** Creates the simple scenario and replaces the group by a ScenarioReference (documentChanges). */
+  edit: WorkspaceEdit;
+  /** The simple scenario's URI. */
+  uri: string;
+  /** The attributes listed, as `Element.attribute`. */
+  parameters: string[];
+}
+
+export const ExtractGroupRequest = new RequestType<ExtractGroupParams, ExtractGroupResult, void>('modular2simple/extractGroup');
+
+/** The client command a code action invokes so the user can choose the attributes first (VS Code). */
+export const EXTRACT_GROUP_COMMAND = 'modular2simple.extractToSimpleScenario';
+
+export interface ExtractGroupCommandArguments {
+  uri: string;
+  position: { line: number; character: number };
+  choices: ExtractGroupChoice[];
+}
+
 export const CUSTOM_REQUESTS = [
   FlattenToTextRequest.method,
   FlattenToFileRequest.method,
@@ -91,6 +129,7 @@ export const CUSTOM_REQUESTS = [
   RunEsminiRequest.method,
   PreviewRequest.method,
   NewScenarioRequest.method,
+  ExtractGroupRequest.method,
 ];
 
 /** URI scheme of files inside a `.mosc`: `mosc:/abs/path/pkg.mosc/inner.mosc/main.xosc`. */

@@ -2,6 +2,7 @@ import { Connection } from 'vscode-languageserver/node';
 import { DiagnosticsScheduler } from './features/diagnostics';
 import { EsminiRuns } from './features/esminiRun';
 import { RoadNetworkCache } from './features/scene';
+import { NO_CLIENT_EDITS } from './features/refactorings';
 import { ServerContext } from './handlers/context';
 import { registerHandlers } from './handlers';
 import { IdleCollector } from './idleCollector';
@@ -19,7 +20,7 @@ export function startServer(connection: Connection): Workspace {
     idle: new IdleCollector(),
     roads: new RoadNetworkCache(),
     esminiRuns: new EsminiRuns(workspace),
-    client: { canConfigure: false, canWatch: false, foldersChange: false },
+    client: { canConfigure: false, canWatch: false, foldersChange: false, edits: NO_CLIENT_EDITS },
     indexed: Promise.resolve(),
   };
   registerHandlers(context);

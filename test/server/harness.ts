@@ -43,6 +43,8 @@ export interface ClientOptions {
   folderSettings?: Record<string, Record<string, unknown>>;
   /** Run the built server (dist/server.js) in a child process with this V8 heap, killed after `watchdogMs`. */
   process?: { heapMb: number; watchdogMs: number };
+  /** The client's `workspace.workspaceEdit` capability (no documentChanges unless given). */
+  workspaceEdit?: { documentChanges?: boolean; resourceOperations?: ('create' | 'rename' | 'delete')[] };
 }
 
 /** The settings that turn the schema check off, merged under a test's own. */
@@ -162,7 +164,7 @@ export class TestClient {
         workspace: {
           configuration: options.progress !== false,
           didChangeWatchedFiles: { dynamicRegistration: true },
-          workspaceEdit: { documentChanges: false },
+          workspaceEdit: options.workspaceEdit ?? { documentChanges: false },
           workspaceFolders: true,
           ...(options.pullDiagnostics ? { diagnostics: { refreshSupport: true } } : {}),
         },

@@ -5,6 +5,7 @@ import { SourceRef } from '../core/sources';
 import { XmlDocument } from '../core/xml';
 import { Workspace } from '../workspace';
 import { DiagnosticData, FixDocument, isDiagnosticData, missingKeysAction, PROBLEM_FIXES, ProblemFix } from './fixes';
+import { ClientEdits, NO_CLIENT_EDITS, REFACTORINGS, refactoringTarget } from './refactorings';
 import { currentDocument } from './schemaCompletion';
 
 /** The fix module of each code (server/src/features/fixes/). */
@@ -16,9 +17,34 @@ for (const fix of PROBLEM_FIXES) {
   }
 }
 
+/** Whether a client that asks only for actions of the `only` kinds wants one of `kind` (kinds are dotted hierarchies). */
+function wanted(kind: string, only: readonly string[] | undefined): boolean {
+  return !only || only.some((asked) => kind === asked || kind.startsWith(`${asked}.`));
+}
+
+/** The actions of every refactoring (server/src/features/refactorings/) at the range, of the kinds asked for. */
+async function refactoringActions(
+  workspace: Workspace,
+  uri: string,
+  ref: SourceRef,
+  document: TextDocument,
+  range: LspRange,
+  only: readonly string[] | undefined,
+  client: ClientEdits,
+): Promise<CodeAction[]> {
+  const asked = REFACTORINGS.filter((refactoring) => wanted(refactoring.kind, only));
+  if (asked.length === 0) return [];
+  const target = await refactoringTarget(workspace, uri, ref, document, document.offsetAt(range.start), document.offsetAt(range.end), client);
+  if (!target) return [];
+  const actions: CodeAction[] = [];
+  for (const refactoring of asked) actions.push(...(await refactoring.actions(target)));
+  return actions;
+}
+
 /**
  * Quick fixes of the diagnostics the client sends (those of a known code with valid data), then the
- * missing keys of the group at the range; `only`: the kinds the client asks for, as LSP's context.only.
+ * missing keys of the group at the range, then the refactorings; `only`: the kinds the client asks
+ * for, as LSP's context.only; `client`: the edits it can apply.
  */
 export async function codeActions(
   workspace: Workspace,
@@ -28,6 +54,7 @@ export async function codeActions(
   range: LspRange,
   diagnostics: Diagnostic[],
   only?: readonly string[],
+  client: ClientEdits = NO_CLIENT_EDITS,
 ): Promise<CodeAction[]> {
   const fixable: { diagnostic: Diagnostic; data: DiagnosticData }[] = [];
   for (const diagnostic of diagnostics) if (isDiagnosticData(diagnostic.data)) fixable.push({ diagnostic, data: diagnostic.data });
@@ -44,5 +71,6 @@ export async function codeActions(
   }
   const missing = await missingKeysAction(workspace, uri, ref, document, range, diagnostics, only);
   if (missing) actions.push(missing);
+  actions.push(...(await refactoringActions(workspace, uri, ref, document, range, only, client)));
   return actions;
 }

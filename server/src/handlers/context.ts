@@ -2,6 +2,7 @@ import { CancellationToken, Connection, ErrorCodes, LSPErrorCodes, ResponseError
 import { OpenDocument } from '../documents';
 import { DiagnosticsScheduler } from '../features/diagnostics';
 import { EsminiRuns } from '../features/esminiRun';
+import { ClientEdits } from '../features/refactorings';
 import { RoadNetworkCache } from '../features/scene';
 import { IdleCollector } from '../idleCollector';
 import { Workspace } from '../workspace';
@@ -17,7 +18,7 @@ export interface ServerContext {
   /** This server's esmini runs, whose folders it removes. */
   readonly esminiRuns: EsminiRuns;
   /** What the client said it can do, filled in by `initialize`. */
-  readonly client: { canConfigure: boolean; canWatch: boolean; foldersChange: boolean };
+  readonly client: { canConfigure: boolean; canWatch: boolean; foldersChange: boolean; edits: ClientEdits };
   /** Resolves once the first workspace index is built (immediately before `initialized`). */
   indexed: Promise<void>;
 }

@@ -12,6 +12,7 @@ import * as didOpen from './didOpen';
 import * as didSave from './didSave';
 import * as documentLink from './documentLink';
 import * as documentSymbol from './documentSymbol';
+import * as extractGroup from './extractGroup';
 import * as flattenToFile from './flattenToFile';
 import * as flattenToText from './flattenToText';
 import * as formatting from './formatting';
@@ -52,6 +53,7 @@ const HANDLERS: { register(context: ServerContext): void }[] = [
   rename,
   willRenameFiles,
   codeAction,
+  extractGroup,
   documentSymbol,
   workspaceSymbol,
   codeLens,

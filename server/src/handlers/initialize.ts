@@ -1,5 +1,5 @@
 import * as path from 'node:path';
-import { CodeActionKind, InitializeParams, InitializeResult, TextDocumentSyncKind } from 'vscode-languageserver/node';
+import { CodeActionKind, InitializeParams, InitializeResult, ResourceOperationKind, TextDocumentSyncKind } from 'vscode-languageserver/node';
 import { SEMANTIC_TOKENS_LEGEND } from '../features/semanticTokens';
 import { CUSTOM_REQUESTS } from '../../../common/src/protocol';
 import { filePathOf } from '../uris';
@@ -17,10 +17,16 @@ export function register(context: ServerContext): void {
     // A client that pulls diagnostics gets them for the whole workspace and none pushed, so nothing shows twice.
     const pulls = Boolean(capabilities.textDocument?.diagnostic);
     context.diagnostics.mode = !pulls ? 'push' : capabilities.workspace?.diagnostics?.refreshSupport ? 'refresh' : 'pull';
+    const workspaceEdit = capabilities.workspace?.workspaceEdit;
+    const initializationOptions = params.initializationOptions as Record<string, unknown> | undefined;
+    context.client.edits = {
+      documentChanges: Boolean(workspaceEdit?.documentChanges),
+      createFiles: Boolean(workspaceEdit?.resourceOperations?.includes(ResourceOperationKind.Create)),
+      extractPicker: initializationOptions?.extractPicker === true,
+    };
     const folderUris = params.workspaceFolders?.map((folder) => folder.uri) ?? (params.rootUri ? [params.rootUri] : []);
     let folders = folderUris.map((uri) => filePathOf(uri)).filter((folder): folder is string => folder !== undefined);
     if (folders.length === 0 && params.rootPath) folders = [path.resolve(params.rootPath)];
-    const initializationOptions = params.initializationOptions as Record<string, unknown> | undefined;
     workspace.configure(folders, readSettings(initializationOptions?.settings ?? initializationOptions));
     workspace.editablePackages = initializationOptions?.packageFileSystem === true;
     return {
@@ -33,7 +39,7 @@ export function register(context: ServerContext): void {
         definitionProvider: true,
         referencesProvider: true,
         renameProvider: { prepareProvider: true },
-        codeActionProvider: { codeActionKinds: [CodeActionKind.QuickFix, CodeActionKind.RefactorRewrite] },
+        codeActionProvider: { codeActionKinds: [CodeActionKind.QuickFix, CodeActionKind.RefactorRewrite, CodeActionKind.RefactorExtract, CodeActionKind.RefactorInline] },
         documentSymbolProvider: true,
         workspaceSymbolProvider: true,
         codeLensProvider: { resolveProvider: false },

@@ -11,10 +11,11 @@ import { newScenarioTests } from './newScenario.inside';
 import { packAndFlattenTests } from './packAndFlatten.inside';
 import { packageTests } from './packages.inside';
 import { previewTests } from './preview.inside';
+import { refactoringTests } from './refactorings.inside';
 import { structureTests } from './structure.inside';
 import { distributionTests } from './distributions.inside';
 
-const TESTS: InsideTests = { ...editingTests, ...packageTests, ...languageFeatureTests, ...previewTests, ...packAndFlattenTests, ...structureTests, ...esminiTests, ...newScenarioTests, ...distributionTests };
+const TESTS: InsideTests = { ...editingTests, ...packageTests, ...languageFeatureTests, ...previewTests, ...packAndFlattenTests, ...structureTests, ...esminiTests, ...newScenarioTests, ...distributionTests, ...refactoringTests };
 
 /**
  * The order the tests run in, one VS Code and one workspace for all: a test sees what earlier ones left
@@ -49,6 +50,7 @@ const ORDER: InsideTestKey[] = [
   'schemaDeprecated',
   'newScenario',
   'distributionLens',
+  'extractToSimple',
 ];
 
 /** The extension's tests inside VS Code, each feature's in its own file; the bird's-eye view's follow (birdsEye.inside.ts). */

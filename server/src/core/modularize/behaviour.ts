@@ -75,6 +75,8 @@ export async function planBehaviour(
   inputs: ParsedInput[],
   file: string,
   rebase: RebasePaths,
+  /** Attributes (slot indices) listed whatever their values: an editor's *Extract to a simple scenario* lets the user choose. */
+  chosen: ReadonlySet<number> = new Set(),
 ): Promise<BehaviourPlan> {
   const representative = occurrences[0];
   const nameSlot = slots.findIndex((slot) => slot.element === 0 && slot.name === 'name');
@@ -93,7 +95,7 @@ export async function planBehaviour(
       if (outerNames.some((outer) => outer === undefined)) listed.add(index);
       return;
     }
-    if (occurrences.some((occurrence) => occurrence.values[index] !== defaults[index])) listed.add(index);
+    if (chosen.has(index) || occurrences.some((occurrence) => occurrence.values[index] !== defaults[index])) listed.add(index);
   });
 
   const representativeInput = inputs[representative.input];

@@ -20,6 +20,8 @@ export interface SimpleScenarioParts {
 }
 
 const PARAMETER_USE = /\$\{?([A-Za-z_][\w]*)/g;
+/** A ParameterCondition or ParameterAction names its parameter without a `$`. */
+const PARAMETER_REF = /\bparameterRef\s*=\s*["']\$?([A-Za-z_]\w*)["']/g;
 
 /** An element's text moved to `depth` levels of `unit`. */
 function copied(document: XmlDocument, element: XmlElement, unit: string, depth: number, eol: string): string {
@@ -107,16 +109,19 @@ export async function simpleScenarioText(parts: SimpleScenarioParts): Promise<st
   // Parameters the group uses, with those their values use in turn, in the order first needed.
   const needed: string[] = [];
   const want = (text: string) => {
-    for (const match of text.matchAll(PARAMETER_USE)) if (!needed.includes(match[1])) needed.push(match[1]);
+    for (const match of [...text.matchAll(PARAMETER_USE), ...text.matchAll(PARAMETER_REF)]) if (!needed.includes(match[1])) needed.push(match[1]);
   };
   for (const text of [groupText, ...entities, catalogText, roadText]) want(text);
-  const declarations: string[] = [];
+  const foundDeclarations: { document: XmlDocument; element: XmlElement }[] = [];
   for (let i = 0; i < needed.length; i++) {
     const found = findNamed(documents, ['ParameterDeclaration'], needed[i]);
     if (!found) continue;
-    declarations.push(copied(found.document, found.element, unit, 2, eol));
+    foundDeclarations.push(found);
     want(found.document.text.slice(found.element.start, found.element.end));
   }
+  // In the order the inputs declare them: a value may only use parameters declared before it.
+  foundDeclarations.sort((a, b) => documents.indexOf(a.document) - documents.indexOf(b.document) || a.element.start - b.element.start);
+  const declarations = foundDeclarations.map((found) => copied(found.document, found.element, unit, 2, eol));
   lines.push(
     declarations.length > 0
       ? [`${unit}<ParameterDeclarations>`, ...declarations, `${unit}</ParameterDeclarations>`].join(eol)

@@ -1,0 +1,184 @@
+// The refactorings' code action lists (issue 19) on 15,000-line files, over stdio against dist/server.js:
+// Extract to a simple scenario on a group's start tag of a plain scenario, Extract to catalog on a
+// Maneuver of it, Make overridable on an
+// attribute of a simple scenario, Inline on a referencing group of a main. Figures, not a timed test.
+import { spawn } from 'node:child_process';
+import { existsSync, mkdtempSync, realpathSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import path from 'node:path';
+import { fileURLToPath, pathToFileURL } from 'node:url';
+import { createProtocolConnection, StreamMessageReader, StreamMessageWriter } from 'vscode-languageserver/node';
+
+const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
+const server = path.join(root, 'dist', 'server.js');
+const samples = Number(process.env.BENCH_SAMPLES ?? 100);
+const target = 50;
+if (!existsSync(server)) {
+  console.error('dist/server.js is missing: run npm run build first');
+  process.exit(1);
+}
+
+const now = () => Number(process.hrtime.bigint()) / 1e6;
+const uriOf = (file) => pathToFileURL(file).href;
+
+function group(index, listed) {
+  const list = (names) => (listed ? ` parameterAttributes="${names}"` : '');
+  return `        <ManeuverGroup name="G${index}" maximumExecutionCount="1">
+          <Actors selectTriggeringEntities="false">
+            <EntityRef entityRef="car${index % 20}"/>
+          </Actors>
+          <Maneuver name="M${index}">
+            <Event name="E${index}" priority="overwrite">
+              <Action name="Speed${index}">
+                <PrivateAction>
+                  <LongitudinalAction>
+                    <SpeedAction>
+                      <SpeedActionDynamics dynamicsShape="step" value="${index % 5}" dynamicsDimension="time"/>
+                      <SpeedActionTarget>
+                        <AbsoluteTargetSpeed${list('value')} value="${index % 30}"/>
+                      </SpeedActionTarget>
+                    </SpeedAction>
+                  </LongitudinalAction>
+                </PrivateAction>
+              </Action>
+              <StartTrigger>
+                <ConditionGroup>
+                  <Condition name="Start${index}" delay="0" conditionEdge="rising">
+                    <ByValueCondition>
+                      <SimulationTimeCondition${list('value')} value="${index % 9}" rule="greaterThan"/>
+                    </ByValueCondition>
+                  </Condition>
+                </ConditionGroup>
+              </StartTrigger>
+            </Event>
+          </Maneuver>
+        </ManeuverGroup>`;
+}
+
+function referenceGroup(index) {
+  return `        <ManeuverGroup name="Car${index}" maximumExecutionCount="1">
+          <Actors selectTriggeringEntities="false">
+            <EntityRef entityRef="car${index % 20}"/>
+          </Actors>
+          <ScenarioReference scenarioFileName="simple.xosc">
+            <ManeuverGroupReference maneuverGroupName="G${index % 10}">
+              <ParameterReference key="AbsoluteTargetSpeed.value" value="${index % 40}"/>
+            </ManeuverGroupReference>
+          </ScenarioReference>
+        </ManeuverGroup>`;
+}
+
+function scenario(groups, lines) {
+  const entities = Array.from({ length: 20 }, (_, i) => `    <ScenarioObject name="car${i}"/>`).join('\n');
+  const head = `<?xml version="1.0" encoding="UTF-8"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="0" date="2024-01-01T00:00:00" description="bench" author="bench"/>
+  <CatalogLocations/>
+  <RoadNetwork/>
+  <Entities>
+${entities}
+  </Entities>
+  <Storyboard>
+    <Init><Actions/></Init>
+    <Story name="S">
+      <Act name="A">
+`;
+  const tail = `
+        <StartTrigger/>
+      </Act>
+    </Story>
+    <StopTrigger/>
+  </Storyboard>
+</OpenSCENARIO>
+`;
+  const body = [];
+  let count = head.split('\n').length + tail.split('\n').length;
+  for (let i = 0; count < lines; i++) {
+    const text = groups(i);
+    body.push(text);
+    count += text.split('\n').length;
+  }
+  return head + body.join('\n') + tail;
+}
+
+function positionOf(text, offset) {
+  const before = text.slice(0, offset);
+  return { line: before.split('\n').length - 1, character: offset - (before.lastIndexOf('\n') + 1) };
+}
+
+/** Offsets of every occurrence of `needle`, `into` characters in. */
+function offsets(text, needle, into) {
+  const found = [];
+  for (let index = text.indexOf(needle); index >= 0; index = text.indexOf(needle, index + 1)) found.push(index + into);
+  return found;
+}
+
+const folder = realpathSync(mkdtempSync(path.join(tmpdir(), 'm2s-refactor-bench-')));
+const files = {
+  'plain.xosc': scenario((i) => group(i, false), 15_000),
+  'simple.xosc': scenario((i) => group(i, true), 15_000),
+  'main.xosc': scenario(referenceGroup, 15_000),
+};
+for (const [name, text] of Object.entries(files)) writeFileSync(path.join(folder, name), text);
+
+const child = spawn(process.execPath, [server, '--stdio'], { stdio: ['pipe', 'pipe', 'inherit'] });
+const connection = createProtocolConnection(new StreamMessageReader(child.stdout), new StreamMessageWriter(child.stdin));
+const published = new Map();
+connection.onNotification('textDocument/publishDiagnostics', (params) => published.get(params.uri)?.());
+connection.onNotification('window/logMessage', () => {});
+connection.onRequest('workspace/configuration', (params) => params.items.map(() => ({})));
+connection.onRequest('window/workDoneProgress/create', () => null);
+connection.onRequest('client/registerCapability', () => null);
+connection.listen();
+await connection.sendRequest('initialize', {
+  processId: process.pid,
+  rootUri: uriOf(folder),
+  workspaceFolders: [{ uri: uriOf(folder), name: 'bench' }],
+  capabilities: { workspace: { configuration: true, workspaceEdit: { documentChanges: true, resourceOperations: ['create'] } } },
+});
+await connection.sendNotification('initialized', {});
+
+async function open(name) {
+  const uri = uriOf(path.join(folder, name));
+  const diagnosed = new Promise((resolve) => published.set(uri, resolve));
+  await connection.sendNotification('textDocument/didOpen', { textDocument: { uri, languageId: 'xml', version: 1, text: files[name] } });
+  await diagnosed;
+  return uri;
+}
+
+async function actionLatency(name, needle, into, only, kind) {
+  const uri = await open(name);
+  const text = files[name];
+  const places = offsets(text, needle, into);
+  const times = [];
+  let offered = 0;
+  for (let i = 0; i < samples; i++) {
+    const position = positionOf(text, places[(i * 37) % places.length]);
+    const started = now();
+    const actions = await connection.sendRequest('textDocument/codeAction', { textDocument: { uri }, range: { start: position, end: position }, context: { diagnostics: [], only } });
+    times.push(now() - started);
+    if (actions.some((action) => action.kind === kind && !action.disabled)) offered++;
+  }
+  times.sort((a, b) => a - b);
+  const median = times[Math.floor(times.length / 2)];
+  const p95 = times[Math.min(times.length - 1, Math.ceil(times.length * 0.95) - 1)];
+  const lines = text.split('\n').length - 1;
+  const label = `${kind} (${lines} lines)`;
+  console.log(`  ${label.padEnd(52)}${median.toFixed(1).padStart(8)} ${p95.toFixed(1).padStart(8)}   ${p95 <= target ? 'within' : 'OVER'} ${target} ms p95  (offered ${offered}/${samples})`);
+}
+
+console.log(`refactoring code action lists (${samples} samples each; dist/server.js over stdio)`);
+console.log(`  ${''.padEnd(52)}  median      p95`);
+try {
+  await actionLatency('plain.xosc', '<ManeuverGroup name="G', 3, ['refactor.extract'], 'refactor.extract.simpleScenario');
+  await actionLatency('plain.xosc', '<Maneuver name="M', 3, ['refactor.extract'], 'refactor.extract.catalog');
+  await actionLatency('simple.xosc', 'dynamicsShape="step"', 2, ['refactor.rewrite'], 'refactor.rewrite.makeOverridable');
+  await actionLatency('main.xosc', '<ManeuverGroup name="Car', 3, ['refactor.inline'], 'refactor.inline.scenarioReference');
+  // Every kind at once, as an editor asks when the light bulb shows.
+  await actionLatency('plain.xosc', '<ManeuverGroup name="G', 3, undefined, 'refactor.extract.simpleScenario');
+} finally {
+  await connection.sendRequest('shutdown');
+  await connection.sendNotification('exit');
+  connection.dispose();
+  rmSync(folder, { recursive: true, force: true });
+}
