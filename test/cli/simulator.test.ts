@@ -10,7 +10,7 @@ const SCENARIO = `<?xml version="1.0" encoding="UTF-8"?>
   <Storyboard>
     <Init><Actions/></Init>
     <Story name="s"><Act name="a"><ManeuverGroup name="g" maximumExecutionCount="1">
-      <Actors selectTriggeringEntities="false"/>
+      <Actors selectTriggeringEntities="true"/>
       <Maneuver name="m"><Event name="e" priority="overwrite"><Action name="x">
         <PrivateAction><VisibilityAction graphics="false" traffic="true" sensors="true"/></PrivateAction>
       </Action>
