@@ -41,6 +41,8 @@ const ORDER: InsideTestKey[] = [
   'renameInPackage',
   'runEsmini',
   'runEsminiClean',
+  'runEsminiCutIn',
+  'runEsminiAnyway',
   'packUnsaved',
   'flattenAnyway',
   'structureFollows',
