@@ -177,6 +177,8 @@ export const esminiTests: InsideTests = {
     } finally {
       for (const key of ['path', 'duration']) await settings.update(key, undefined, vscode.ConfigurationTarget.Workspace);
       await vscode.commands.executeCommand('workbench.action.closeAllEditors');
+      // Later tests look for roads in the workspace (New Modular Scenario offers each e6mini.xodr it finds).
+      fs.rmSync(folder, { recursive: true, force: true });
     }
   },
 
@@ -222,6 +224,8 @@ export const esminiTests: InsideTests = {
     } finally {
       for (const key of ['path', 'duration']) await settings.update(key, undefined, vscode.ConfigurationTarget.Workspace);
       await vscode.commands.executeCommand('workbench.action.closeAllEditors');
+      // Later tests look for roads in the workspace (New Modular Scenario offers each e6mini.xodr it finds).
+      fs.rmSync(folder, { recursive: true, force: true });
     }
   },
 };
