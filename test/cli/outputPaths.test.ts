@@ -177,6 +177,84 @@ describe('cli: outputs reach their files wherever they are written (SPEC 11.6), 
   });
 });
 
+/** A distribution over EgoSpeed of `scenarioFile` (index 0: the scenario's own 108), written as ws/xosc/speeds.xosc. */
+function speedDistribution(ws: string, scenarioFile: string): string {
+  const file = path.join(ws, 'xosc', `speeds-${path.basename(scenarioFile, '.xosc')}.xosc`);
+  fs.writeFileSync(
+    file,
+    `<?xml version="1.0" encoding="UTF-8"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="2" date="2026-11-24T00:00:00" description="speeds" author="m2s"/>
+  <ParameterValueDistribution>
+    <ScenarioFile filepath="${scenarioFile}"/>
+    <Deterministic>
+      <DeterministicSingleParameterDistribution parameterName="EgoSpeed">
+        <DistributionSet><Element value="108"/><Element value="100"/></DistributionSet>
+      </DeterministicSingleParameterDistribution>
+    </Deterministic>
+  </ParameterValueDistribution>
+</OpenSCENARIO>
+`,
+  );
+  return file;
+}
+
+describe('cli: concrete scenarios of vary and batch reach their files wherever they are written (SPEC 11.6), run in esmini', function () {
+  let ws: string;
+  let original: EsminiStep[];
+  let expectedPaths: string[];
+
+  before(async function () {
+    requireEsmini(this);
+    ws = cutInWorkspace();
+    original = (await runAlone(path.join(ws, 'xosc', 'cut-in.xosc'))).steps;
+    expectedPaths = [path.join(ws, 'xosc', 'Catalogs', 'Vehicles'), path.join(ws, 'xodr', 'e6mini.xodr')];
+  });
+
+  for (const scenarioFile of ['cut-in.xosc', 'main.xosc']) {
+    it(`vary --index 0 -o other/depth/OUT.xosc of ${scenarioFile}: the same road and catalogs, and moves as the original`, async () => {
+      const distribution = speedDistribution(ws, scenarioFile);
+      const target = path.join(ws, 'other', 'depth', `${scenarioFile}-0.xosc`);
+      fs.mkdirSync(path.dirname(target), { recursive: true });
+      const run = runCli(['vary', distribution, '--index', '0', '-o', target], { cwd: temporaryFolder('m2s-paths-cli-') });
+      assert.equal(run.status, 0, run.stderr);
+      assert.deepEqual(namedPaths(target), expectedPaths);
+      assertSameRun((await runAlone(target)).steps, original, `vary ${scenarioFile}`);
+    });
+  }
+
+  it('vary --out-dir at another depth: every concrete scenario names the same road and catalogs; index 0 moves as the original', async () => {
+    const distribution = speedDistribution(ws, 'cut-in.xosc');
+    const outDir = path.join(temporaryFolder('m2s-paths-out-'), 'a', 'b');
+    const run = runCli(['vary', distribution, '--out-dir', outDir], { cwd: temporaryFolder('m2s-paths-cli-') });
+    assert.equal(run.status, 0, run.stderr);
+    assert.deepEqual(fs.readdirSync(outDir).sort(), ['cut-in_0.xosc', 'cut-in_1.xosc']);
+    for (const file of fs.readdirSync(outDir)) assert.deepEqual(namedPaths(path.join(outDir, file)), expectedPaths, file);
+    assert.match(fs.readFileSync(path.join(outDir, 'cut-in_1.xosc'), 'utf8'), /name="EgoSpeed" parameterType="double" value="100"/);
+    assertSameRun((await runAlone(path.join(outDir, 'cut-in_0.xosc'))).steps, original, 'vary --out-dir');
+  });
+
+  it('vary beside the ScenarioFile changes no path; on standard output the paths are absolute', () => {
+    const distribution = speedDistribution(ws, 'cut-in.xosc');
+    const target = path.join(ws, 'xosc', 'beside-0.xosc');
+    assert.equal(runCli(['vary', distribution, '--index', '0', '-o', target], { cwd: ws }).status, 0);
+    assert.equal(fs.readFileSync(target, 'utf8'), fs.readFileSync(path.join(ws, 'xosc', 'cut-in.xosc'), 'utf8'));
+    const printed = runCli(['vary', distribution, '--index', '0'], { cwd: temporaryFolder('m2s-paths-cli-') });
+    assert.equal(printed.status, 0, printed.stderr);
+    assert.ok(printed.stdout.includes(`<LogicFile filepath="${path.join(ws, 'xodr', 'e6mini.xodr')}"/>`), printed.stdout);
+    assert.ok(printed.stdout.includes(`<Directory path="${path.join(ws, 'xosc', 'Catalogs', 'Vehicles')}"/>`), printed.stdout);
+  });
+
+  it('batch with no road path runs each concrete scenario on the ScenarioFile\'s road and catalogs', () => {
+    const distribution = speedDistribution(ws, 'cut-in.xosc');
+    const results = path.join(temporaryFolder('m2s-paths-batch-'), 'results');
+    const run = runCli(['batch', distribution, '--results', results, '--duration', '2', '--jobs', '1', '--esmini', esminiBinary], { cwd: temporaryFolder('m2s-paths-cli-') });
+    assert.equal(run.status, 0, run.stderr);
+    const rows = fs.readFileSync(path.join(results, 'results.csv'), 'utf8').trim().split('\n').slice(1);
+    assert.deepEqual(rows.map((row) => row.split(',').slice(0, 2).join(',')).sort(), ['0,timeout', '1,timeout']);
+  });
+});
+
 function escapeRegExp(text: string): string {
   return text.replace(/[.*+?^${}()|[\]\\]/g, '\\$&');
 }

@@ -6,8 +6,8 @@ import { concreteRun, searchPathOf, variedParameters } from '../batch/plan';
 import { Progress } from '../batch/progress';
 import { BatchIdentity, ResultsError, ResultsFolder } from '../batch/results';
 import { NoEsminiError, runConcrete, RunSettings } from '../batch/runConcrete';
-import { splitScenarioPath } from '../core/sources';
-import { formatVariationProblems, loadVariations, samplingProblem, SamplingError, Variations } from '../core/variations';
+import { FileKind, nodeFileSystem, splitScenarioPath } from '../core/sources';
+import { formatVariationProblems, loadVariations, rebasedConcreteText, samplingProblem, SamplingError, Variations } from '../core/variations';
 import { locateEsmini } from '../esmini/locate';
 import { RUN_DEFAULTS } from '../esmini/run';
 import type { CliOutput } from './common';
@@ -224,6 +224,13 @@ async function runLocally(plan: BatchPlanView, results: ResultsFolder, settings:
   const tally = { ok: 0, error: 0, timeout: 0, collisions: 0, discarded: 0 };
   let failure: unknown;
   let next = 0;
+  // A run's scenario is written to a private folder: its paths name the ScenarioFile's roads and catalogs absolutely (SPEC 11.6).
+  const kinds = new Map<string, Promise<FileKind>>();
+  const kindOf = (diskPath: string): Promise<FileKind> => {
+    let known = kinds.get(diskPath);
+    if (!known) kinds.set(diskPath, (known = nodeFileSystem.kind(diskPath)));
+    return known;
+  };
   const work = async (): Promise<void> => {
     while (!stop.signal.aborted && next < todo.length) {
       const index = todo[next++];
@@ -232,7 +239,7 @@ async function runLocally(plan: BatchPlanView, results: ResultsFolder, settings:
         tally.discarded++;
         continue;
       }
-      const row = await runConcrete(run, settings, stop.signal);
+      const row = await runConcrete({ ...run, text: (await rebasedConcreteText(run.text, plan.scenarioFolder, undefined, kindOf)).text }, settings, stop.signal);
       // Ctrl-C on a terminal reaches esmini too, which then ends early as if by itself: such a run is not a result.
       if (!row || stop.signal.aborted) continue;
       await results.append(row);
