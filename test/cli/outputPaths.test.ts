@@ -199,7 +199,7 @@ function speedDistribution(ws: string, scenarioFile: string): string {
   return file;
 }
 
-describe('cli: concrete scenarios of vary and batch reach their files wherever they are written (SPEC 11.6), run in esmini', function () {
+describe('cli: concrete scenarios of vary and batch, and the outputs of modularize, reach their files wherever they are written (SPEC 11.6), run in esmini', function () {
   let ws: string;
   let original: EsminiStep[];
   let expectedPaths: string[];
@@ -243,6 +243,24 @@ describe('cli: concrete scenarios of vary and batch reach their files wherever t
     assert.equal(printed.status, 0, printed.stderr);
     assert.ok(printed.stdout.includes(`<LogicFile filepath="${path.join(ws, 'xodr', 'e6mini.xodr')}"/>`), printed.stdout);
     assert.ok(printed.stdout.includes(`<Directory path="${path.join(ws, 'xosc', 'Catalogs', 'Vehicles')}"/>`), printed.stdout);
+  });
+
+  it('modularize to another depth, then flatten to a third: the same road and catalogs, and moves as the original', async () => {
+    // Two copies of cut-in.xosc in ws/lib share their group; they name ../xodr and ../xosc/Catalogs as the original does.
+    fs.mkdirSync(path.join(ws, 'lib'), { recursive: true });
+    for (const name of ['a.xosc', 'b.xosc']) fs.copyFileSync(path.join(ws, 'xosc', 'cut-in.xosc'), path.join(ws, 'lib', name));
+    fs.mkdirSync(path.join(ws, 'modular', 'deep'), { recursive: true });
+    const modularize = runCli(['modularize', path.join(ws, 'lib'), '-o', path.join(ws, 'modular', 'deep', 'out')], { cwd: temporaryFolder('m2s-paths-cli-') });
+    assert.equal(modularize.status, 0, modularize.stderr);
+    const main = path.join(ws, 'modular', 'deep', 'out', 'a.xosc');
+    assert.match(fs.readFileSync(main, 'utf8'), /<ScenarioReference /);
+    assert.deepEqual(namedPaths(main), expectedPaths);
+    const flat = path.join(temporaryFolder('m2s-paths-out-'), 'x', 'flat.xosc');
+    fs.mkdirSync(path.dirname(flat), { recursive: true });
+    const flatten = runCli(['flatten', main, '-o', flat], { cwd: temporaryFolder('m2s-paths-cli-') });
+    assert.equal(flatten.status, 0, flatten.stderr);
+    assert.deepEqual(namedPaths(flat), expectedPaths);
+    assertSameRun((await runAlone(flat)).steps, original, 'modularized and flattened');
   });
 
   it('batch with no road path runs each concrete scenario on the ScenarioFile\'s road and catalogs', () => {
