@@ -109,7 +109,7 @@ describe('cli: outputs reach their files wherever they are written (SPEC 11.6), 
 
 /** A distribution over EgoSpeed of `scenarioFile` (index 0: the scenario's own 108), written as ws/xosc/speeds.xosc. */
 function speedDistribution(ws: string, scenarioFile: string): string {
-  const file = path.join(ws, 'xosc', `speeds-${path.basename(scenarioFile, '.xosc')}.xosc`);
+  const file = path.join(ws, 'xosc', `speeds-${path.basename(scenarioFile).replace(/\.[^.]*$/, '')}.xosc`);
   fs.writeFileSync(
     file,
     `<?xml version="1.0" encoding="UTF-8"?>
@@ -173,6 +173,24 @@ describe('cli: concrete scenarios of vary and batch, and the outputs of modulari
     assert.equal(printed.status, 0, printed.stderr);
     assert.ok(printed.stdout.includes(`<LogicFile filepath="${path.join(ws, 'xodr', 'e6mini.xodr')}"/>`), printed.stdout);
     assert.ok(printed.stdout.includes(`<Directory path="${path.join(ws, 'xosc', 'Catalogs', 'Vehicles')}"/>`), printed.stdout);
+  });
+
+  it('vary of a self-contained .mosc copied alone to a fresh folder: the road and catalogs it holds are written beside each output, which runs as the original', async () => {
+    const packed = path.join(temporaryFolder('m2s-paths-pack-'), 'cut-in.mosc');
+    const pack = runCli(['pack', path.join(ws, 'xosc'), '-o', packed, '--self-contained'], { cwd: temporaryFolder('m2s-paths-cli-') });
+    assert.equal(pack.status, 0, pack.stderr);
+    const fresh = temporaryFolder('m2s-paths-fresh-');
+    fs.copyFileSync(packed, path.join(fresh, 'cut-in.mosc'));
+    fs.mkdirSync(path.join(fresh, 'xosc'));
+    const distribution = speedDistribution(fresh, '../cut-in.mosc');
+    fs.mkdirSync(path.join(fresh, 'out', 'deep'), { recursive: true });
+    const run = runCli(['vary', distribution, '--index', '0', '-o', 'out/deep/v0.xosc'], { cwd: fresh });
+    assert.equal(run.status, 0, run.stderr);
+    for (const named of namedPaths(path.join(fresh, 'out', 'deep', 'v0.xosc'))) assert.ok(named.startsWith(path.join(fresh, 'out', 'deep') + path.sep) && fs.existsSync(named), `${named} is written beside the output`);
+    assertSameRun((await runAlone(path.join(fresh, 'out', 'deep', 'v0.xosc'))).steps, original, 'vary of a self-contained package');
+    const all = runCli(['vary', distribution, '--out-dir', 'all'], { cwd: fresh });
+    assert.equal(all.status, 0, all.stderr);
+    assertSameRun((await runAlone(path.join(fresh, 'all', 'cut-in_0.xosc'))).steps, original, 'vary --out-dir of a self-contained package');
   });
 
   it('modularize to another depth, then flatten to a third: the same road and catalogs, and moves as the original', async () => {

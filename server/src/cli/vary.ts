@@ -7,6 +7,7 @@ import { loadVariations, formatVariationProblems, rebasedConcreteText, samplingP
 import { seedBits, Xoshiro128StarStar } from '../core/variations/random';
 import { flatteningScenarioLoader, readUtf8Exactly, scenarioFolderOf } from './scenarioText';
 import { FileKind, nodeFileSystem, splitScenarioPath } from '../core/sources';
+import type { PackagedFile } from '../core/flatten/rebase';
 
 export const VARY_HELP = `Concrete scenarios of a ParameterValueDistribution (modular2simple vary FILE ...):
   --count                   print the number of concrete scenarios alone (after ValueConstraintGroups)
@@ -128,7 +129,9 @@ async function vary(argv: string[], io: Output, givenLoader: ScenarioTextLoader 
     throw new InputProblem(`${positionals[0]}: ${reason}`);
   }
   const base = process.cwd();
-  const loadScenarioText = givenLoader ?? flatteningScenarioLoader((values['scenario-path'] ?? []).flatMap(splitScenarioPath));
+  // The roads and catalogs a self-contained package ScenarioFile holds: written beside each concrete scenario, where it names them.
+  const packagedFiles: PackagedFile[] = [];
+  const loadScenarioText = givenLoader ?? flatteningScenarioLoader((values['scenario-path'] ?? []).flatMap(splitScenarioPath), packagedFiles);
   const loaded = await loadVariations(distributionText, distributionPath, loadScenarioText);
   const printProblems = (problems = loaded.problems): void => {
     for (const line of formatVariationProblems(problems, loaded.lines, base)) if (!values.quiet || line.includes(': error: ')) io.err(line);
@@ -176,6 +179,16 @@ async function vary(argv: string[], io: Output, givenLoader: ScenarioTextLoader 
     }
     return result.text;
   };
+  const writtenPackaged = new Set<string>();
+  const writePackagedBeside = async (outputDirectory: string): Promise<void> => {
+    for (const file of packagedFiles) {
+      const target = path.join(path.resolve(outputDirectory), path.relative(scenarioFolder, file.path));
+      if (writtenPackaged.has(target)) continue;
+      await fs.promises.mkdir(path.dirname(target), { recursive: true });
+      await writeFileAtomic(target, file.bytes);
+      writtenPackaged.add(target);
+    }
+  };
   if (index !== undefined) {
     if (index >= variations.count) throw new InputProblem(`${where(0)}: index ${index} is out of range: the distribution has ${variations.count} combinations (0..${variations.count - 1n})`);
     const concrete = concreteOrProblem(variations, index, distributionPath, printProblems);
@@ -183,11 +196,13 @@ async function vary(argv: string[], io: Output, givenLoader: ScenarioTextLoader 
     if ('broken' in concrete) throw new InputProblem(`concrete scenario ${index} is discarded: parameter '${concrete.broken.parameter}' = '${concrete.broken.value}' breaks its ValueConstraintGroups`);
     if (values.output === undefined) {
       io.out(await rebased(concrete.text, undefined));
+      if (packagedFiles.length > 0 && !values.quiet) io.err(`${path.relative(base, variations.scenarioPath) || variations.scenarioPath}: warning: the scenario names ${packagedFiles.length} file${packagedFiles.length === 1 ? '' : 's'} stored in the package, which standard output cannot carry; write it with -o`);
       return EXIT.ok;
     }
     if (inputs.some((input) => isSameFile(input, values.output as string))) throw new UsageError(`-o ${values.output} is an input; it is never overwritten`);
     const text = await rebased(concrete.text, path.dirname(values.output));
     try {
+      await writePackagedBeside(path.dirname(values.output));
       await writeFileAtomic(values.output, text);
     } catch (error) {
       io.err(`modular2simple: cannot write ${values.output}: ${(error as Error).message}`);
@@ -233,6 +248,7 @@ async function vary(argv: string[], io: Output, givenLoader: ScenarioTextLoader 
     if (inputs.some((input) => isSameFile(input, target))) throw new UsageError(`${target} is an input; it is never overwritten`);
     const text = await rebased(concrete.text, outDir);
     try {
+      await writePackagedBeside(outDir);
       await writeFileAtomic(target, text);
     } catch (error) {
       io.err(`modular2simple: cannot write ${target}: ${(error as Error).message} (${written} concrete scenarios were written before it)`);
