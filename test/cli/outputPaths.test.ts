@@ -175,7 +175,7 @@ describe('cli: concrete scenarios of vary and batch, and the outputs of modulari
     assert.ok(printed.stdout.includes(`<Directory path="${path.join(ws, 'xosc', 'Catalogs', 'Vehicles')}"/>`), printed.stdout);
   });
 
-  it('vary of a self-contained .mosc copied alone to a fresh folder: the road and catalogs it holds are written beside each output, which runs as the original', async () => {
+  it('vary and batch of a self-contained .mosc copied alone to a fresh folder: the road and catalogs it holds are written beside each output, which runs as the original', async () => {
     const packed = path.join(temporaryFolder('m2s-paths-pack-'), 'cut-in.mosc');
     const pack = runCli(['pack', path.join(ws, 'xosc'), '-o', packed, '--self-contained'], { cwd: temporaryFolder('m2s-paths-cli-') });
     assert.equal(pack.status, 0, pack.stderr);
@@ -191,6 +191,12 @@ describe('cli: concrete scenarios of vary and batch, and the outputs of modulari
     const all = runCli(['vary', distribution, '--out-dir', 'all'], { cwd: fresh });
     assert.equal(all.status, 0, all.stderr);
     assertSameRun((await runAlone(path.join(fresh, 'all', 'cut-in_0.xosc'))).steps, original, 'vary --out-dir of a self-contained package');
+    // batch runs each in a private folder: the package's files are laid out for the runs, and no --road-path is needed.
+    const batch = runCli(['batch', distribution, '--results', 'results', '--duration', '2', '--jobs', '1', '--esmini', esminiBinary], { cwd: fresh });
+    assert.equal(batch.status, 0, batch.stderr);
+    const rows = fs.readFileSync(path.join(fresh, 'results', 'results.json'), 'utf8');
+    const csv = fs.readFileSync(path.join(fresh, 'results', 'results.csv'), 'utf8').trim().split('\n').slice(1);
+    assert.deepEqual(csv.map((row) => row.split(',').slice(0, 2).join(',')).sort(), ['0,timeout', '1,timeout'], rows);
   });
 
   it('modularize to another depth, then flatten to a third: the same road and catalogs, and moves as the original', async () => {

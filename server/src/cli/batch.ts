@@ -1,4 +1,5 @@
 import { createHash } from 'node:crypto';
+import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
 import { parseArgs } from 'node:util';
@@ -6,6 +7,7 @@ import { concreteRun, searchPathOf, variedParameters } from '../batch/plan';
 import { Progress } from '../batch/progress';
 import { BatchIdentity, ResultsError, ResultsFolder } from '../batch/results';
 import { NoEsminiError, runConcrete, RunSettings } from '../batch/runConcrete';
+import type { PackagedFile } from '../core/flatten/rebase';
 import { FileKind, nodeFileSystem, splitScenarioPath } from '../core/sources';
 import { formatVariationProblems, loadVariations, rebasedConcreteText, samplingProblem, SamplingError, Variations } from '../core/variations';
 import { locateEsmini } from '../esmini/locate';
@@ -147,7 +149,8 @@ async function batch(argv: string[], io: CliOutput): Promise<number> {
     throw new BatchInputError(`${positionals[0]}: ${reason}`);
   }
   const base = process.cwd();
-  const loaded = await loadVariations(distributionText, distributionPath, flatteningScenarioLoader((values['scenario-path'] ?? []).flatMap(splitScenarioPath)));
+  const packagedFiles: PackagedFile[] = [];
+  const loaded = await loadVariations(distributionText, distributionPath, flatteningScenarioLoader((values['scenario-path'] ?? []).flatMap(splitScenarioPath), packagedFiles));
   const printProblems = (problems = loaded.problems): void => {
     for (const line of formatVariationProblems(problems, loaded.lines, base)) if (!values.quiet || line.includes(': error: ')) io.err(line);
   };
@@ -187,7 +190,7 @@ async function batch(argv: string[], io: CliOutput): Promise<number> {
   const parameterNames = variedParameters(variations);
   const scenarioFolder = scenarioFolderOf(variations.scenarioPath);
   const searchPath = searchPathOf(variations.scenario.text, scenarioFolder, (values['road-path'] ?? []).flatMap(splitScenarioPath));
-  const plan: BatchPlanView = { variations, chosen, parameterNames, searchPath, scenarioFolder };
+  const plan: BatchPlanView = { variations, chosen, parameterNames, searchPath, scenarioFolder, packagedFiles };
 
   if (queue) {
     const { queueBatch, RedisUnreachableError } = await import('../batch/queue');
@@ -199,7 +202,18 @@ async function batch(argv: string[], io: CliOutput): Promise<number> {
     }
   }
   const results = await ResultsFolder.open(path.resolve(values.results), parameterNames, identity);
-  return runLocally(plan, results, settings, jobs, io, values.quiet);
+  // The roads and catalogs a self-contained package ScenarioFile holds, laid out as its flattened text names them from its folder.
+  const packagedFolder = packagedFiles.length > 0 ? await fs.promises.mkdtemp(path.join(os.tmpdir(), 'modular2simple-batch-')) : undefined;
+  try {
+    for (const file of packagedFiles) {
+      const target = path.join(packagedFolder as string, path.relative(scenarioFolder, file.path));
+      await fs.promises.mkdir(path.dirname(target), { recursive: true });
+      await fs.promises.writeFile(target, file.bytes);
+    }
+    return await runLocally({ ...plan, packagedFolder }, results, settings, jobs, io, values.quiet);
+  } finally {
+    if (packagedFolder) await fs.promises.rm(packagedFolder, { recursive: true, force: true });
+  }
 }
 
 /** What a batch runs: the chosen indices of a distribution, with where their runs look for files. */
@@ -209,6 +223,10 @@ export interface BatchPlanView {
   parameterNames: string[];
   searchPath: string[];
   scenarioFolder: string;
+  /** Files of a self-contained package ScenarioFile that its flattened text names (`flattened.files/`), relative to `scenarioFolder`. */
+  packagedFiles: PackagedFile[];
+  /** Where a local batch wrote `packagedFiles`, in the same layout. */
+  packagedFolder?: string;
 }
 
 /** Runs what results.csv lacks on this machine, `jobs` at a time; SIGINT or SIGTERM stop it cleanly. */
@@ -239,7 +257,9 @@ async function runLocally(plan: BatchPlanView, results: ResultsFolder, settings:
         tally.discarded++;
         continue;
       }
-      const row = await runConcrete({ ...run, text: (await rebasedConcreteText(run.text, plan.scenarioFolder, undefined, kindOf)).text }, settings, stop.signal);
+      let text = (await rebasedConcreteText(run.text, plan.scenarioFolder, undefined, kindOf)).text;
+      if (plan.packagedFolder) text = (await rebasedConcreteText(text, plan.packagedFolder, undefined, kindOf)).text;
+      const row = await runConcrete({ ...run, text }, settings, stop.signal);
       // Ctrl-C on a terminal reaches esmini too, which then ends early as if by itself: such a run is not a result.
       if (!row || stop.signal.aborted) continue;
       await results.append(row);
