@@ -1,14 +1,11 @@
 import * as assert from 'node:assert/strict';
-import { spawn } from 'node:child_process';
 import * as fs from 'node:fs';
-import * as os from 'node:os';
 import * as path from 'node:path';
 import { esminiBinary, EsminiStep, readEsminiCsv, requireEsmini } from '../support/esmini';
-import { esminiXodrDir } from '../support/esminiBinaries';
 import JSZip from 'jszip';
 import { runCli, scenario, simpleGroup } from '../support/fixtures';
+import { assertSameRun, cutInWorkspace, esminiCorpus, namedPaths, runAlone, temporaryFolder } from '../support/outputPaths';
 import { temporaryWorkspace } from '../support/workspace';
-import { sharedDir } from '../support/paths';
 
 /**
  * SPEC 11.6: an output reaches the files its sources reached wherever it is written. A composition of
@@ -16,73 +13,6 @@ import { sharedDir } from '../support/paths';
  * the catalogs in ws/xosc/Catalogs) is flattened and packed to folders of other depths, and each output
  * is run by esmini with no --path and from an unrelated working folder: it moves exactly as the original.
  */
-const esminiCorpus = path.join(sharedDir, 'corpus', 'openscenario', 'esmini');
-
-/** esmini evaluates this expression to the literal below; the project's own reading of it is another task's. */
-const GLUED_NAME = '${BrakeCondition_HWT + _ + $HeadwayTime_Brake}';
-
-function temporaryFolder(prefix: string): string {
-  return fs.mkdtempSync(path.join(os.tmpdir(), prefix));
-}
-
-/** ws/xosc/{cut-in.xosc, main.xosc, Catalogs/Vehicles}, ws/xodr/e6mini.xodr; returns ws. */
-function cutInWorkspace(): string {
-  const ws = path.join(temporaryFolder('m2s-paths-'), 'ws');
-  fs.mkdirSync(path.join(ws, 'xosc', 'Catalogs', 'Vehicles'), { recursive: true });
-  fs.mkdirSync(path.join(ws, 'xodr'));
-  fs.copyFileSync(path.join(esminiXodrDir, 'e6mini.xodr'), path.join(ws, 'xodr', 'e6mini.xodr'));
-  fs.copyFileSync(path.join(esminiCorpus, 'Catalogs', 'Vehicles', 'VehicleCatalog.xosc'), path.join(ws, 'xosc', 'Catalogs', 'Vehicles', 'VehicleCatalog.xosc'));
-  const original = fs.readFileSync(path.join(esminiCorpus, 'cut-in.xosc'), 'utf8').replace(GLUED_NAME, 'BrakeCondition_HWT_0.7');
-  fs.writeFileSync(path.join(ws, 'xosc', 'cut-in.xosc'), original);
-  // The main file is the same scenario with its one group imported from cut-in.xosc.
-  const groupStart = original.indexOf('<ManeuverGroup maximumExecutionCount="1" name="CutInAndBrakeSequence">');
-  const groupEnd = original.indexOf('</ManeuverGroup>', groupStart) + '</ManeuverGroup>'.length;
-  assert.ok(groupStart > 0 && groupEnd > groupStart, 'cut-in.xosc has its group');
-  const outer = `<ManeuverGroup maximumExecutionCount="1" name="CutIn">
-               <Actors selectTriggeringEntities="false">
-                  <EntityRef entityRef="OverTaker"/>
-               </Actors>
-               <ScenarioReference scenarioFileName="cut-in.xosc">
-                  <ManeuverGroupReference maneuverGroupName="CutInAndBrakeSequence"/>
-               </ScenarioReference>
-            </ManeuverGroup>`;
-  fs.writeFileSync(path.join(ws, 'xosc', 'main.xosc'), original.slice(0, groupStart) + outer + original.slice(groupEnd));
-  return ws;
-}
-
-/** Runs esmini on a scenario headless, fixed step 0.05, seed 1, from an unrelated working folder and with no --path. */
-async function runAlone(scenario: string): Promise<{ steps: EsminiStep[]; log: string }> {
-  const cwd = temporaryFolder('m2s-paths-cwd-');
-  const csv = path.join(cwd, 'run.csv');
-  const args = ['--headless', '--osc', scenario, '--fixed_timestep', '0.05', '--seed', '1', '--csv_logger', csv, '--disable_log'];
-  const output: string[] = [];
-  const code = await new Promise<number | null>((resolve, reject) => {
-    const child = spawn(esminiBinary, args, { cwd, stdio: ['ignore', 'pipe', 'pipe'] });
-    const timer = setTimeout(() => child.kill('SIGKILL'), 120_000);
-    child.stdout.on('data', (chunk: Buffer) => output.push(chunk.toString()));
-    child.stderr.on('data', (chunk: Buffer) => output.push(chunk.toString()));
-    child.on('error', reject);
-    child.on('close', (status) => {
-      clearTimeout(timer);
-      resolve(status);
-    });
-  });
-  const log = output.join('');
-  assert.ok(code === 0 && fs.existsSync(csv), `esmini failed on ${scenario} (exit ${code}):\n${log.slice(-2000)}`);
-  return { steps: readEsminiCsv(csv), log };
-}
-
-function assertSameRun(actual: EsminiStep[], expected: EsminiStep[], what: string): void {
-  assert.ok(expected.length > 100, `the original runs (${expected.length} steps)`);
-  assert.equal(actual.length, expected.length, `${what}: number of steps`);
-  for (let index = 0; index < expected.length; index++) assert.deepEqual(actual[index], expected[index], `${what}: step ${index} (t=${expected[index].time})`);
-}
-
-/** The file or folder a path attribute of a written scenario names, resolved from the scenario's folder. */
-function namedPaths(scenario: string): string[] {
-  const text = fs.readFileSync(scenario, 'utf8');
-  return [...text.matchAll(/<(?:LogicFile|Directory) (?:filepath|path)="([^"]*)"/g)].map((match) => path.resolve(path.dirname(scenario), match[1]));
-}
 
 describe('cli: outputs reach their files wherever they are written (SPEC 11.6), run in esmini', function () {
   let ws: string;
@@ -174,6 +104,126 @@ describe('cli: outputs reach their files wherever they are written (SPEC 11.6), 
     const ran = runCli(['run', 'cut-in.mosc', '--esmini', esminiBinary, '--csv', 'run.csv'], { cwd: fresh });
     assert.equal(ran.status, 0, ran.stderr);
     assertSameRun(readEsminiCsv(path.join(fresh, 'run.csv')), original, 'self-contained package run by the run command');
+  });
+});
+
+/** A distribution over EgoSpeed of `scenarioFile` (index 0: the scenario's own 108), written as ws/xosc/speeds.xosc. */
+function speedDistribution(ws: string, scenarioFile: string): string {
+  const file = path.join(ws, 'xosc', `speeds-${path.basename(scenarioFile).replace(/\.[^.]*$/, '')}.xosc`);
+  fs.writeFileSync(
+    file,
+    `<?xml version="1.0" encoding="UTF-8"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="2" date="2026-11-24T00:00:00" description="speeds" author="m2s"/>
+  <ParameterValueDistribution>
+    <ScenarioFile filepath="${scenarioFile}"/>
+    <Deterministic>
+      <DeterministicSingleParameterDistribution parameterName="EgoSpeed">
+        <DistributionSet><Element value="108"/><Element value="100"/></DistributionSet>
+      </DeterministicSingleParameterDistribution>
+    </Deterministic>
+  </ParameterValueDistribution>
+</OpenSCENARIO>
+`,
+  );
+  return file;
+}
+
+describe('cli: concrete scenarios of vary and batch, and the outputs of modularize, reach their files wherever they are written (SPEC 11.6), run in esmini', function () {
+  let ws: string;
+  let original: EsminiStep[];
+  let expectedPaths: string[];
+
+  before(async function () {
+    requireEsmini(this);
+    ws = cutInWorkspace();
+    original = (await runAlone(path.join(ws, 'xosc', 'cut-in.xosc'))).steps;
+    expectedPaths = [path.join(ws, 'xosc', 'Catalogs', 'Vehicles'), path.join(ws, 'xodr', 'e6mini.xodr')];
+  });
+
+  for (const scenarioFile of ['cut-in.xosc', 'main.xosc']) {
+    it(`vary --index 0 -o other/depth/OUT.xosc of ${scenarioFile}: the same road and catalogs, and moves as the original`, async () => {
+      const distribution = speedDistribution(ws, scenarioFile);
+      const target = path.join(ws, 'other', 'depth', `${scenarioFile}-0.xosc`);
+      fs.mkdirSync(path.dirname(target), { recursive: true });
+      const run = runCli(['vary', distribution, '--index', '0', '-o', target], { cwd: temporaryFolder('m2s-paths-cli-') });
+      assert.equal(run.status, 0, run.stderr);
+      assert.deepEqual(namedPaths(target), expectedPaths);
+      assertSameRun((await runAlone(target)).steps, original, `vary ${scenarioFile}`);
+    });
+  }
+
+  it('vary --out-dir at another depth: every concrete scenario names the same road and catalogs; index 0 moves as the original', async () => {
+    const distribution = speedDistribution(ws, 'cut-in.xosc');
+    const outDir = path.join(temporaryFolder('m2s-paths-out-'), 'a', 'b');
+    const run = runCli(['vary', distribution, '--out-dir', outDir], { cwd: temporaryFolder('m2s-paths-cli-') });
+    assert.equal(run.status, 0, run.stderr);
+    assert.deepEqual(fs.readdirSync(outDir).sort(), ['cut-in_0.xosc', 'cut-in_1.xosc']);
+    for (const file of fs.readdirSync(outDir)) assert.deepEqual(namedPaths(path.join(outDir, file)), expectedPaths, file);
+    assert.match(fs.readFileSync(path.join(outDir, 'cut-in_1.xosc'), 'utf8'), /name="EgoSpeed" parameterType="double" value="100"/);
+    assertSameRun((await runAlone(path.join(outDir, 'cut-in_0.xosc'))).steps, original, 'vary --out-dir');
+  });
+
+  it('vary beside the ScenarioFile changes no path; on standard output the paths are absolute', () => {
+    const distribution = speedDistribution(ws, 'cut-in.xosc');
+    const target = path.join(ws, 'xosc', 'beside-0.xosc');
+    assert.equal(runCli(['vary', distribution, '--index', '0', '-o', target], { cwd: ws }).status, 0);
+    assert.equal(fs.readFileSync(target, 'utf8'), fs.readFileSync(path.join(ws, 'xosc', 'cut-in.xosc'), 'utf8'));
+    const printed = runCli(['vary', distribution, '--index', '0'], { cwd: temporaryFolder('m2s-paths-cli-') });
+    assert.equal(printed.status, 0, printed.stderr);
+    assert.ok(printed.stdout.includes(`<LogicFile filepath="${path.join(ws, 'xodr', 'e6mini.xodr')}"/>`), printed.stdout);
+    assert.ok(printed.stdout.includes(`<Directory path="${path.join(ws, 'xosc', 'Catalogs', 'Vehicles')}"/>`), printed.stdout);
+  });
+
+  it('vary and batch of a self-contained .mosc copied alone to a fresh folder: the road and catalogs it holds are written beside each output, which runs as the original', async () => {
+    const packed = path.join(temporaryFolder('m2s-paths-pack-'), 'cut-in.mosc');
+    const pack = runCli(['pack', path.join(ws, 'xosc'), '-o', packed, '--self-contained'], { cwd: temporaryFolder('m2s-paths-cli-') });
+    assert.equal(pack.status, 0, pack.stderr);
+    const fresh = temporaryFolder('m2s-paths-fresh-');
+    fs.copyFileSync(packed, path.join(fresh, 'cut-in.mosc'));
+    fs.mkdirSync(path.join(fresh, 'xosc'));
+    const distribution = speedDistribution(fresh, '../cut-in.mosc');
+    fs.mkdirSync(path.join(fresh, 'out', 'deep'), { recursive: true });
+    const run = runCli(['vary', distribution, '--index', '0', '-o', 'out/deep/v0.xosc'], { cwd: fresh });
+    assert.equal(run.status, 0, run.stderr);
+    for (const named of namedPaths(path.join(fresh, 'out', 'deep', 'v0.xosc'))) assert.ok(named.startsWith(path.join(fresh, 'out', 'deep') + path.sep) && fs.existsSync(named), `${named} is written beside the output`);
+    assertSameRun((await runAlone(path.join(fresh, 'out', 'deep', 'v0.xosc'))).steps, original, 'vary of a self-contained package');
+    const all = runCli(['vary', distribution, '--out-dir', 'all'], { cwd: fresh });
+    assert.equal(all.status, 0, all.stderr);
+    assertSameRun((await runAlone(path.join(fresh, 'all', 'cut-in_0.xosc'))).steps, original, 'vary --out-dir of a self-contained package');
+    // batch runs each in a private folder: the package's files are laid out for the runs, and no --road-path is needed.
+    const batch = runCli(['batch', distribution, '--results', 'results', '--duration', '2', '--jobs', '1', '--esmini', esminiBinary], { cwd: fresh });
+    assert.equal(batch.status, 0, batch.stderr);
+    const rows = fs.readFileSync(path.join(fresh, 'results', 'results.json'), 'utf8');
+    const csv = fs.readFileSync(path.join(fresh, 'results', 'results.csv'), 'utf8').trim().split('\n').slice(1);
+    assert.deepEqual(csv.map((row) => row.split(',').slice(0, 2).join(',')).sort(), ['0,timeout', '1,timeout'], rows);
+  });
+
+  it('modularize to another depth, then flatten to a third: the same road and catalogs, and moves as the original', async () => {
+    // Two copies of cut-in.xosc in ws/lib share their group; they name ../xodr and ../xosc/Catalogs as the original does.
+    fs.mkdirSync(path.join(ws, 'lib'), { recursive: true });
+    for (const name of ['a.xosc', 'b.xosc']) fs.copyFileSync(path.join(ws, 'xosc', 'cut-in.xosc'), path.join(ws, 'lib', name));
+    fs.mkdirSync(path.join(ws, 'modular', 'deep'), { recursive: true });
+    const modularize = runCli(['modularize', path.join(ws, 'lib'), '-o', path.join(ws, 'modular', 'deep', 'out')], { cwd: temporaryFolder('m2s-paths-cli-') });
+    assert.equal(modularize.status, 0, modularize.stderr);
+    const main = path.join(ws, 'modular', 'deep', 'out', 'a.xosc');
+    assert.match(fs.readFileSync(main, 'utf8'), /<ScenarioReference /);
+    assert.deepEqual(namedPaths(main), expectedPaths);
+    const flat = path.join(temporaryFolder('m2s-paths-out-'), 'x', 'flat.xosc');
+    fs.mkdirSync(path.dirname(flat), { recursive: true });
+    const flatten = runCli(['flatten', main, '-o', flat], { cwd: temporaryFolder('m2s-paths-cli-') });
+    assert.equal(flatten.status, 0, flatten.stderr);
+    assert.deepEqual(namedPaths(flat), expectedPaths);
+    assertSameRun((await runAlone(flat)).steps, original, 'modularized and flattened');
+  });
+
+  it('batch with no road path runs each concrete scenario on the ScenarioFile\'s road and catalogs', () => {
+    const distribution = speedDistribution(ws, 'cut-in.xosc');
+    const results = path.join(temporaryFolder('m2s-paths-batch-'), 'results');
+    const run = runCli(['batch', distribution, '--results', results, '--duration', '2', '--jobs', '1', '--esmini', esminiBinary], { cwd: temporaryFolder('m2s-paths-cli-') });
+    assert.equal(run.status, 0, run.stderr);
+    const rows = fs.readFileSync(path.join(results, 'results.csv'), 'utf8').trim().split('\n').slice(1);
+    assert.deepEqual(rows.map((row) => row.split(',').slice(0, 2).join(',')).sort(), ['0,timeout', '1,timeout']);
   });
 });
 

@@ -27,6 +27,8 @@ export const INSIDE_TESTS = {
   birdsEyeAnalysis: "after a run of esmini's highway_merge, the bird's-eye view frames the cars now, follows one with its speed, gap and TTC plots, compares a second run and exports at 1600x900 with legend, time and scale",
   runEsmini: "Run in esmini from the CodeLens puts esmini's error on the simple scenario's line; a clean run clears it and shows its trajectories",
   runEsminiClean: "Run in esmini on a clean modular scenario on e6mini shows no error, and the bird's-eye view draws the road the run loaded",
+  runEsminiCutIn: "Run in esmini on esmini's cut-in.xosc runs it: no refusal, no error toast, its lenient forms shown as warnings",
+  runEsminiAnyway: 'Run Anyway on a scenario with an error runs it in esmini and says it ran despite the error',
   schemaCompletion: 'schema completion offers the child elements the OpenSCENARIO schema allows',
   schemaDeprecated: 'a deprecated OpenSCENARIO element is struck through',
   newScenario: 'New Modular Scenario… on a folder writes a main with an ego on the chosen road, opens it clean, and never overwrites',

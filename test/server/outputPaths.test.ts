@@ -3,7 +3,9 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import JSZip from 'jszip';
 import { FlattenToFileRequest, PackRequest } from '../../common/src/protocol';
+import { EsminiStep, requireEsmini } from '../support/esmini';
 import { scenario, simpleGroup } from '../support/fixtures';
+import { assertSameRun, cutInWorkspace, namedPaths, runAlone, temporaryFolder } from '../support/outputPaths';
 import { temporaryWorkspace } from '../support/workspace';
 import { fileUri, TestClient } from './harness';
 
@@ -58,5 +60,69 @@ describe('language server: written outputs rebase their file paths (SPEC 11.6)',
     assert.equal(flattened.written, flat, JSON.stringify(flattened.problems));
     assert.match(fs.readFileSync(flat, 'utf8'), /<LogicFile filepath="main\.files\/files\/road\.xodr"\/>/);
     assert.equal(fs.readFileSync(path.join(root, 'flat', 'main.files', 'files', 'road.xodr'), 'utf8'), '<OpenDRIVE/>');
+  });
+});
+
+describe('language server: Flatten and Pack to folders of other depths write outputs that esmini runs as the original (SPEC 11.6)', function () {
+  let ws: string;
+  let client: TestClient;
+  let original: EsminiStep[];
+  let expectedPaths: string[];
+  const main = () => fileUri(path.join(ws, 'xosc', 'main.xosc'));
+
+  before(async function () {
+    requireEsmini(this);
+    ws = cutInWorkspace();
+    original = (await runAlone(path.join(ws, 'xosc', 'cut-in.xosc'))).steps;
+    expectedPaths = [path.join(ws, 'xosc', 'Catalogs', 'Vehicles'), path.join(ws, 'xodr', 'e6mini.xodr')];
+    client = await TestClient.start({ root: ws });
+    await client.indexed();
+  });
+
+  after(async () => client?.stop());
+
+  // outsideWorkspace: the user's confirmation, which a folder outside the workspace (a temporary one) needs.
+  const places: [string, () => string][] = [
+    ['one folder up', () => path.join(ws, 'xosc.flattened.xosc')],
+    ['two folders deeper', () => path.join(ws, 'xosc', 'out', 'deep', 'flat.xosc')],
+    ['an unrelated temporary folder', () => path.join(temporaryFolder('m2s-paths-server-'), 'a', 'flat.xosc')],
+  ];
+  for (const [where, output] of places) {
+    it(`Flatten to .xosc ${where}: loads the same road and catalogs and moves as the original`, async () => {
+      const target = output();
+      fs.mkdirSync(path.dirname(target), { recursive: true });
+      const result = await client.send(FlattenToFileRequest, { uri: main(), outputPath: target, outsideWorkspace: true });
+      assert.equal(result.written, target, JSON.stringify(result.problems));
+      assert.deepEqual(namedPaths(target), expectedPaths);
+      assertSameRun((await runAlone(target)).steps, original, `Flatten ${where}`);
+    });
+  }
+
+  it('Pack into .mosc at another depth, then Flatten the package to a third: moves as the original', async () => {
+    const packed = path.join(ws, 'packages', 'deep', 'cut-in.mosc');
+    fs.mkdirSync(path.dirname(packed), { recursive: true });
+    const pack = await client.send(PackRequest, { inputs: [fileUri(path.join(ws, 'xosc'))], outputPath: packed });
+    assert.equal(pack.written, packed, JSON.stringify(pack.problems));
+    const flat = path.join(temporaryFolder('m2s-paths-server-'), 'x', 'y', 'cut-in.xosc');
+    fs.mkdirSync(path.dirname(flat), { recursive: true });
+    const flattened = await client.send(FlattenToFileRequest, { uri: `mosc:${packed}/main.xosc`, outputPath: flat, outsideWorkspace: true });
+    assert.equal(flattened.written, flat, JSON.stringify(flattened.problems));
+    assert.deepEqual(namedPaths(flat), expectedPaths);
+    assertSameRun((await runAlone(flat)).steps, original, 'flattened package');
+  });
+
+  it('Pack self-contained, copied alone to a fresh folder: its Flatten runs as the original', async () => {
+    const packed = path.join(ws, 'packages', 'self', 'cut-in.mosc');
+    fs.mkdirSync(path.dirname(packed), { recursive: true });
+    const pack = await client.send(PackRequest, { inputs: [fileUri(path.join(ws, 'xosc'))], outputPath: packed, selfContained: true });
+    assert.equal(pack.written, packed, JSON.stringify(pack.problems));
+    const fresh = temporaryFolder('m2s-paths-fresh-');
+    fs.copyFileSync(packed, path.join(fresh, 'cut-in.mosc'));
+    const flat = path.join(fresh, 'out', 'cut-in.xosc');
+    fs.mkdirSync(path.dirname(flat), { recursive: true });
+    const flattened = await client.send(FlattenToFileRequest, { uri: `mosc:${path.join(fresh, 'cut-in.mosc')}/main.xosc`, outputPath: flat, outsideWorkspace: true });
+    assert.equal(flattened.written, flat, JSON.stringify(flattened.problems));
+    for (const named of namedPaths(flat)) assert.ok(named.startsWith(fresh + path.sep), `${named} lies in the fresh folder`);
+    assertSameRun((await runAlone(flat)).steps, original, 'self-contained package');
   });
 });

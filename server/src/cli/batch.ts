@@ -7,8 +7,9 @@ import { concreteRun, searchPathOf, variedParameters } from '../batch/plan';
 import { Progress } from '../batch/progress';
 import { BatchIdentity, ResultsError, ResultsFolder } from '../batch/results';
 import { NoEsminiError, runConcrete, RunSettings } from '../batch/runConcrete';
-import { splitScenarioPath } from '../core/sources';
-import { formatVariationProblems, loadVariations, samplingProblem, SamplingError, Variations } from '../core/variations';
+import type { PackagedFile } from '../core/flatten/rebase';
+import { FileKind, nodeFileSystem, splitScenarioPath } from '../core/sources';
+import { formatVariationProblems, loadVariations, rebasedConcreteText, samplingProblem, SamplingError, Variations } from '../core/variations';
 import { locateEsmini } from '../esmini/locate';
 import { RUN_DEFAULTS } from '../esmini/run';
 import type { CliOutput } from './common';
@@ -153,7 +154,8 @@ async function batch(argv: string[], io: CliOutput): Promise<number> {
     throw new BatchInputError(`${positionals[0]}: ${reason}`);
   }
   const base = process.cwd();
-  const loaded = await loadVariations(distributionText, distributionPath, flatteningScenarioLoader((values['scenario-path'] ?? []).flatMap(splitScenarioPath)));
+  const packagedFiles: PackagedFile[] = [];
+  const loaded = await loadVariations(distributionText, distributionPath, flatteningScenarioLoader((values['scenario-path'] ?? []).flatMap(splitScenarioPath), packagedFiles));
   const printProblems = (problems = loaded.problems): void => {
     for (const line of formatVariationProblems(problems, loaded.lines, base)) if (!values.quiet || line.includes(': error: ')) io.err(line);
   };
@@ -193,7 +195,7 @@ async function batch(argv: string[], io: CliOutput): Promise<number> {
   const parameterNames = variedParameters(variations);
   const scenarioFolder = scenarioFolderOf(variations.scenarioPath);
   const searchPath = searchPathOf(variations.scenario.text, scenarioFolder, (values['road-path'] ?? []).flatMap(splitScenarioPath));
-  const plan: BatchPlanView = { variations, chosen, parameterNames, searchPath, scenarioFolder };
+  const plan: BatchPlanView = { variations, chosen, parameterNames, searchPath, scenarioFolder, packagedFiles };
 
   if (queue) {
     const { queueBatch, RedisUnreachableError } = await import('../batch/queue');
@@ -210,9 +212,17 @@ async function batch(argv: string[], io: CliOutput): Promise<number> {
     // Runs are made beside where they are kept: keeping one is then a rename, never a copy across file systems.
     settings.runsFolder = path.join(settings.keepRunsIn, '.running');
   }
+  // The roads and catalogs a self-contained package ScenarioFile holds, laid out as its flattened text names them from its folder.
+  const packagedFolder = packagedFiles.length > 0 ? await fs.promises.mkdtemp(path.join(os.tmpdir(), 'modular2simple-batch-')) : undefined;
   try {
-    return await runLocally(plan, results, settings, jobs, io, values.quiet);
+    for (const file of packagedFiles) {
+      const target = path.join(packagedFolder as string, path.relative(scenarioFolder, file.path));
+      await fs.promises.mkdir(path.dirname(target), { recursive: true });
+      await fs.promises.writeFile(target, file.bytes);
+    }
+    return await runLocally({ ...plan, packagedFolder }, results, settings, jobs, io, values.quiet);
   } finally {
+    if (packagedFolder) await fs.promises.rm(packagedFolder, { recursive: true, force: true });
     // Left only when empty: a run cut short by a kill leaves its folder there, to be looked at.
     if (settings.runsFolder) await fs.promises.rmdir(settings.runsFolder).catch(() => undefined);
   }
@@ -225,6 +235,10 @@ export interface BatchPlanView {
   parameterNames: string[];
   searchPath: string[];
   scenarioFolder: string;
+  /** Files of a self-contained package ScenarioFile that its flattened text names (`flattened.files/`), relative to `scenarioFolder`. */
+  packagedFiles: PackagedFile[];
+  /** Where a local batch wrote `packagedFiles`, in the same layout. */
+  packagedFolder?: string;
 }
 
 /** Runs what results.csv lacks on this machine, `jobs` at a time; SIGINT or SIGTERM stop it cleanly. */
@@ -240,6 +254,13 @@ async function runLocally(plan: BatchPlanView, results: ResultsFolder, settings:
   const tally = { ok: 0, error: 0, timeout: 0, collisions: 0, discarded: 0 };
   let failure: unknown;
   let next = 0;
+  // A run's scenario is written to a private folder: its paths name the ScenarioFile's roads and catalogs absolutely (SPEC 11.6).
+  const kinds = new Map<string, Promise<FileKind>>();
+  const kindOf = (diskPath: string): Promise<FileKind> => {
+    let known = kinds.get(diskPath);
+    if (!known) kinds.set(diskPath, (known = nodeFileSystem.kind(diskPath)));
+    return known;
+  };
   const work = async (): Promise<void> => {
     while (!stop.signal.aborted && next < todo.length) {
       const index = todo[next++];
@@ -248,7 +269,9 @@ async function runLocally(plan: BatchPlanView, results: ResultsFolder, settings:
         tally.discarded++;
         continue;
       }
-      const row = await runConcrete(run, settings, stop.signal);
+      let text = (await rebasedConcreteText(run.text, plan.scenarioFolder, undefined, kindOf)).text;
+      if (plan.packagedFolder) text = (await rebasedConcreteText(text, plan.packagedFolder, undefined, kindOf)).text;
+      const row = await runConcrete({ ...run, text }, settings, stop.signal);
       // Ctrl-C on a terminal reaches esmini too, which then ends early as if by itself: such a run is not a result.
       if (!row || stop.signal.aborted) continue;
       await results.append(row);

@@ -1,6 +1,7 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { Flattener } from '../core/flatten';
+import type { PackagedFile } from '../core/flatten/rebase';
 import { formatProblem } from '../core/problems';
 import type { ScenarioTextLoader } from '../core/variations';
 import { mainOf, storeForInputs } from './inputs';
@@ -23,8 +24,9 @@ const REFERENCE = /<ScenarioReference\b/;
  * plain OpenSCENARIO. A plain `.xosc` is read as it is (byte for byte, as esmini reads it); a modular main,
  * an unpacked folder or a `.mosc` is flattened once, as `modular2simple flatten` does, and its values are
  * then spliced into the flattened text. A scenario that cannot be flattened is refused with its problems.
+ * `packagedFiles` receives the files of a self-contained package the text names beside its folder (`flattened.files/`).
  */
-export function flatteningScenarioLoader(scenarioPath: string[] = []): ScenarioTextLoader {
+export function flatteningScenarioLoader(scenarioPath: string[] = [], packagedFiles?: PackagedFile[]): ScenarioTextLoader {
   return async (file: string): Promise<string> => {
     const isFolder = fs.existsSync(file) && fs.statSync(file).isDirectory();
     if (!isFolder && !file.toLowerCase().endsWith('.mosc')) {
@@ -35,7 +37,10 @@ export function flatteningScenarioLoader(scenarioPath: string[] = []): ScenarioT
     }
     const flattener = new Flattener(storeForInputs(scenarioPath, undefined, [file]));
     const result = await flattener.flatten(mainOf(file));
-    if (result.text !== undefined) return result.text;
+    if (result.text !== undefined) {
+      packagedFiles?.push(...result.files);
+      return result.text;
+    }
     const errors = result.problems.filter((problem) => problem.severity === 'error');
     const shown = errors.slice(0, 10).map((problem) => '\n  ' + formatProblem(problem, process.cwd()).replace(/\n/g, '\n  '));
     const more = errors.length > shown.length ? `\n  (${errors.length - shown.length} more)` : '';

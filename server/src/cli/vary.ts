@@ -3,10 +3,11 @@ import * as path from 'node:path';
 import { parseArgs } from 'node:util';
 import type { CliOutput } from './common';
 import { isSameFile, writeFileAtomic } from '../../../common/src/atomic';
-import { loadVariations, formatVariationProblems, samplingProblem, SamplingError, ScenarioTextLoader, Variations } from '../core/variations';
+import { loadVariations, formatVariationProblems, rebasedConcreteText, samplingProblem, SamplingError, ScenarioTextLoader, Variations } from '../core/variations';
 import { seedBits, Xoshiro128StarStar } from '../core/variations/random';
-import { flatteningScenarioLoader, readUtf8Exactly } from './scenarioText';
-import { splitScenarioPath } from '../core/sources';
+import { flatteningScenarioLoader, readUtf8Exactly, scenarioFolderOf } from './scenarioText';
+import { FileKind, nodeFileSystem, splitScenarioPath } from '../core/sources';
+import type { PackagedFile } from '../core/flatten/rebase';
 
 export const VARY_HELP = `Concrete scenarios of a ParameterValueDistribution (modular2simple vary FILE ...):
   --count                   print the number of concrete scenarios alone (after ValueConstraintGroups)
@@ -16,8 +17,9 @@ export const VARY_HELP = `Concrete scenarios of a ParameterValueDistribution (mo
   --max-combinations N      refuse more combinations than N before writing anything (default 1000000)
   --scenario-path DIRS      as for flatten: where a modular ScenarioFile's references are looked for
   -q, --quiet               print errors only
-  A concrete scenario is the ScenarioFile with its root parameter values replaced, every other byte kept:
-  relative paths in it (roads, catalogs) resolve from where it is written. A ScenarioFile that is a modular
+  A concrete scenario is the ScenarioFile with its root parameter values replaced and its file paths (roads,
+  catalogs) rebased onto the folder it is written to (absolute on standard output), every other byte kept,
+  so that it runs from wherever it is written. A ScenarioFile that is a modular
   main.xosc, an unpacked folder or a .mosc is flattened first (as flatten does), then its values replaced.
   Exit codes: 0 done, 1 the input has errors (nothing written), 2 usage, 3 an output could not be written, 4 internal error.`;
 
@@ -127,7 +129,9 @@ async function vary(argv: string[], io: Output, givenLoader: ScenarioTextLoader 
     throw new InputProblem(`${positionals[0]}: ${reason}`);
   }
   const base = process.cwd();
-  const loadScenarioText = givenLoader ?? flatteningScenarioLoader((values['scenario-path'] ?? []).flatMap(splitScenarioPath));
+  // The roads and catalogs a self-contained package ScenarioFile holds: written beside each concrete scenario, where it names them.
+  const packagedFiles: PackagedFile[] = [];
+  const loadScenarioText = givenLoader ?? flatteningScenarioLoader((values['scenario-path'] ?? []).flatMap(splitScenarioPath), packagedFiles);
   const loaded = await loadVariations(distributionText, distributionPath, loadScenarioText);
   const printProblems = (problems = loaded.problems): void => {
     for (const line of formatVariationProblems(problems, loaded.lines, base)) if (!values.quiet || line.includes(': error: ')) io.err(line);
@@ -158,18 +162,48 @@ async function vary(argv: string[], io: Output, givenLoader: ScenarioTextLoader 
   }
 
   const inputs = [distributionPath, variations.scenarioPath];
+  // What is written reaches the files the ScenarioFile reached, from wherever it is written (SPEC 11.6).
+  const scenarioFolder = scenarioFolderOf(variations.scenarioPath);
+  const kinds = new Map<string, Promise<FileKind>>();
+  const kindOf = (diskPath: string): Promise<FileKind> => {
+    let known = kinds.get(diskPath);
+    if (!known) kinds.set(diskPath, (known = nodeFileSystem.kind(diskPath)));
+    return known;
+  };
+  const warned = new Set<string>();
+  const rebased = async (text: string, outputDirectory: string | undefined): Promise<string> => {
+    const result = await rebasedConcreteText(text, scenarioFolder, outputDirectory === undefined ? undefined : path.resolve(outputDirectory), kindOf);
+    for (const warning of result.warnings) {
+      if (!values.quiet && !warned.has(warning)) io.err(`${path.relative(base, variations.scenarioPath) || variations.scenarioPath}: warning: ${warning}`);
+      warned.add(warning);
+    }
+    return result.text;
+  };
+  const writtenPackaged = new Set<string>();
+  const writePackagedBeside = async (outputDirectory: string): Promise<void> => {
+    for (const file of packagedFiles) {
+      const target = path.join(path.resolve(outputDirectory), path.relative(scenarioFolder, file.path));
+      if (writtenPackaged.has(target)) continue;
+      await fs.promises.mkdir(path.dirname(target), { recursive: true });
+      await writeFileAtomic(target, file.bytes);
+      writtenPackaged.add(target);
+    }
+  };
   if (index !== undefined) {
     if (index >= variations.count) throw new InputProblem(`${where(0)}: index ${index} is out of range: the distribution has ${variations.count} combinations (0..${variations.count - 1n})`);
     const concrete = concreteOrProblem(variations, index, distributionPath, printProblems);
     if (!concrete) return EXIT.problems;
     if ('broken' in concrete) throw new InputProblem(`concrete scenario ${index} is discarded: parameter '${concrete.broken.parameter}' = '${concrete.broken.value}' breaks its ValueConstraintGroups`);
     if (values.output === undefined) {
-      io.out(concrete.text);
+      io.out(await rebased(concrete.text, undefined));
+      if (packagedFiles.length > 0 && !values.quiet) io.err(`${path.relative(base, variations.scenarioPath) || variations.scenarioPath}: warning: the scenario names ${packagedFiles.length} file${packagedFiles.length === 1 ? '' : 's'} stored in the package, which standard output cannot carry; write it with -o`);
       return EXIT.ok;
     }
     if (inputs.some((input) => isSameFile(input, values.output as string))) throw new UsageError(`-o ${values.output} is an input; it is never overwritten`);
+    const text = await rebased(concrete.text, path.dirname(values.output));
     try {
-      await writeFileAtomic(values.output, concrete.text);
+      await writePackagedBeside(path.dirname(values.output));
+      await writeFileAtomic(values.output, text);
     } catch (error) {
       io.err(`modular2simple: cannot write ${values.output}: ${(error as Error).message}`);
       return EXIT.io;
@@ -212,8 +246,10 @@ async function vary(argv: string[], io: Output, givenLoader: ScenarioTextLoader 
     }
     const target = path.join(outDir, `${stem}_${chosenIndex.toString().padStart(width, '0')}.xosc`);
     if (inputs.some((input) => isSameFile(input, target))) throw new UsageError(`${target} is an input; it is never overwritten`);
+    const text = await rebased(concrete.text, outDir);
     try {
-      await writeFileAtomic(target, concrete.text);
+      await writePackagedBeside(outDir);
+      await writeFileAtomic(target, text);
     } catch (error) {
       io.err(`modular2simple: cannot write ${target}: ${(error as Error).message} (${written} concrete scenarios were written before it)`);
       return EXIT.io;

@@ -20,6 +20,31 @@ function esminiOrSkip(context: Mocha.Context): { repository: string; esmini: str
   return { repository, esmini, roads };
 }
 
+/** esmini's cut-in.xosc laid out as esmini's own corpus is (xosc/ with its Catalogs beside xodr/), in the workspace's `folder`. */
+function esminiCutInFolder(repository: string, roads: string, folder: string): string {
+  const corpus = path.resolve(repository, '..', 'shared', 'corpus', 'openscenario', 'esmini');
+  fs.mkdirSync(path.join(folder, 'xosc', 'Catalogs', 'Vehicles'), { recursive: true });
+  fs.mkdirSync(path.join(folder, 'xodr'), { recursive: true });
+  fs.copyFileSync(path.join(corpus, 'cut-in.xosc'), path.join(folder, 'xosc', 'cut-in.xosc'));
+  fs.copyFileSync(path.join(corpus, 'Catalogs', 'Vehicles', 'VehicleCatalog.xosc'), path.join(folder, 'xosc', 'Catalogs', 'Vehicles', 'VehicleCatalog.xosc'));
+  fs.copyFileSync(path.join(roads, 'e6mini.xodr'), path.join(folder, 'xodr', 'e6mini.xodr'));
+  return path.join(folder, 'xosc', 'cut-in.xosc');
+}
+
+/** The Run lenses of a document, once the server's diagnostics have set how many there are. */
+async function runLenses(uri: vscode.Uri, wanted: number): Promise<vscode.CodeLens[]> {
+  return waitFor(`${wanted} Run lens(es)`, async () => {
+    const found = await vscode.commands.executeCommand<vscode.CodeLens[]>('vscode.executeCodeLensProvider', uri, 100);
+    const runs = found.filter((lens) => lens.command?.command.startsWith('modular2simple.runEsmini'));
+    return runs.length === wanted ? runs : undefined;
+  });
+}
+
+/** The language server's own diagnostics of a file (not esmini's from a run). */
+function ownDiagnostics(uri: vscode.Uri): vscode.Diagnostic[] {
+  return vscode.languages.getDiagnostics(uri).filter((diagnostic) => diagnostic.source !== 'esmini');
+}
+
 /** Run in esmini from the CodeLens: esmini's errors on the scenario's lines, the run in the bird's-eye view. */
 export const esminiTests: InsideTests = {
   runEsmini: async function () {
@@ -114,6 +139,92 @@ export const esminiTests: InsideTests = {
     } finally {
       for (const key of ['path', 'roadPath', 'duration']) await settings.update(key, undefined, vscode.ConfigurationTarget.Workspace);
       await vscode.commands.executeCommand('workbench.action.closeAllEditors');
+      fs.rmSync(folder, { recursive: true, force: true });
+    }
+  },
+  runEsminiCutIn: async function () {
+    this.timeout(120_000);
+    requireServerFeature(this, 'runEsmini', offersRequest(RunEsminiRequest));
+    const { repository, esmini, roads } = esminiOrSkip(this);
+    const folder = path.join(workspaceRoot(), 'esminiCutIn');
+    esminiCutInFolder(repository, roads, folder);
+    const settings = vscode.workspace.getConfiguration('modular2simple.esmini');
+    // No roadPath: the road and catalogs resolve from the scenario's folder, as esmini's corpus lays them out.
+    await settings.update('path', esmini, vscode.ConfigurationTarget.Workspace);
+    await settings.update('duration', 5, vscode.ConfigurationTarget.Workspace);
+    try {
+      const scenario = await open('esminiCutIn/xosc/cut-in.xosc');
+      const uri = scenario.document.uri;
+      // esmini's text gluing in ${BrakeCondition_HWT + _ + $HeadwayTime_Brake}: a warning by the severity policy, never an error.
+      const glued = await waitFor('the warning on the glued expression', () => ownDiagnostics(uri).find((diagnostic) => /glues it/.test(diagnostic.message)));
+      assert.equal(glued.severity, vscode.DiagnosticSeverity.Warning, glued.message);
+      assert.deepEqual(ownDiagnostics(uri).filter((diagnostic) => diagnostic.severity === vscode.DiagnosticSeverity.Error).map((diagnostic) => diagnostic.message), []);
+      const [lens] = await runLenses(uri, 1);
+      assert.equal(lens.command?.title, '▶ Run in esmini', 'no Run Anyway on a scenario without errors');
+      const result = await vscode.commands.executeCommand<RunEsminiResult>(lens.command?.command ?? '', ...(lens.command?.arguments ?? []));
+      assert.equal(result?.outcome, 'ok', result?.message);
+      assert.match(result.message, /^esmini: 0 errors, 0 warnings; 5\.00 s simulated/);
+      assert.deepEqual(result.problems, []);
+      assert.equal(result.forcible, undefined);
+      assert.deepEqual(result.flattenProblems.filter((problem) => problem.severity === 'error'), []);
+      assert.ok(result.flattenProblems.some((problem) => problem.severity === 'warning' && /glues it/.test(problem.message)), JSON.stringify(result.flattenProblems));
+      assert.equal(result.roadFile?.loaded, path.join(folder, 'xodr', 'e6mini.xodr'), `esmini loaded ${result.roadFile?.loaded}`);
+      assert.ok(result.csvFile && fs.existsSync(result.csvFile));
+      await waitFor('the information toast', () => pageShows('esmini: 0 errors, 0 warnings', '.notifications-toasts'), 10_000);
+      assert.ok(!(await pageShows('Run in esmini:', '.notifications-toasts')), 'an error toast is shown');
+      assert.ok(!(await pageShows('nothing was run', '.notifications-toasts')), 'a refusal is shown');
+      await screenshot("esmini's cut-in.xosc run in esmini");
+    } finally {
+      for (const key of ['path', 'duration']) await settings.update(key, undefined, vscode.ConfigurationTarget.Workspace);
+      await vscode.commands.executeCommand('workbench.action.closeAllEditors');
+      // Later tests look for roads in the workspace (New Modular Scenario offers each e6mini.xodr it finds).
+      fs.rmSync(folder, { recursive: true, force: true });
+    }
+  },
+
+  runEsminiAnyway: async function () {
+    this.timeout(120_000);
+    requireServerFeature(this, 'runEsmini', offersRequest(RunEsminiRequest));
+    const { repository, esmini, roads } = esminiOrSkip(this);
+    const folder = path.join(workspaceRoot(), 'esminiAnyway');
+    const cutIn = esminiCutInFolder(repository, roads, folder);
+    // A double parameter whose value is no number: an error by any policy, which esmini never reads.
+    const text = fs.readFileSync(cutIn, 'utf8');
+    const broken = text.replace('<ParameterDeclarations>', '<ParameterDeclarations>\n      <ParameterDeclaration name="Pace" parameterType="double" value="fast"/>');
+    assert.notEqual(broken, text, 'cut-in.xosc has root ParameterDeclarations');
+    const file = path.join(folder, 'xosc', 'anyway.xosc');
+    fs.writeFileSync(file, broken);
+    const settings = vscode.workspace.getConfiguration('modular2simple.esmini');
+    await settings.update('path', esmini, vscode.ConfigurationTarget.Workspace);
+    await settings.update('duration', 3, vscode.ConfigurationTarget.Workspace);
+    try {
+      const scenario = await open('esminiAnyway/xosc/anyway.xosc');
+      const uri = scenario.document.uri;
+      const error = await waitFor('the error on the parameter', () => ownDiagnostics(uri).find((diagnostic) => diagnostic.severity === vscode.DiagnosticSeverity.Error));
+      assert.match(error.message, /'fast' is not a double/);
+      const lenses = await runLenses(uri, 2);
+      assert.deepEqual(lenses.map((lens) => lens.command?.title), ['▶ Run in esmini', '▶ Run Anyway (1 error)']);
+      assert.equal(lenses[1].command?.command, 'modular2simple.runEsminiAnyway');
+      // The plain run is refused, and says Run Anyway would run it.
+      const refused = await vscode.commands.executeCommand<RunEsminiResult>(lenses[0].command?.command ?? '', ...(lenses[0].command?.arguments ?? []));
+      assert.equal(refused?.outcome, 'not-flattened', refused?.message);
+      assert.equal(refused.forcible, true);
+      await waitFor('the Run Anyway question', () => pageShows('Run Anyway', '.notifications-toasts'), 10_000);
+      await screenshot('Run in esmini refused, offering Run Anyway');
+      await vscode.commands.executeCommand('notifications.clearAll');
+
+      const forced = await vscode.commands.executeCommand<RunEsminiResult>(lenses[1].command?.command ?? '', ...(lenses[1].command?.arguments ?? []));
+      assert.equal(forced?.outcome, 'ok', forced?.message);
+      assert.match(forced.message, /3\.00 s simulated .*\(run anyway despite 1 error in the scenario\)$/);
+      assert.ok(forced.flattenProblems.some((problem) => problem.severity === 'error' && /'fast' is not a double/.test(problem.message)), JSON.stringify(forced.flattenProblems));
+      assert.ok(forced.csvFile && fs.existsSync(forced.csvFile));
+      await waitFor('the toast saying it ran anyway', () => pageShows('run anyway despite 1 error', '.notifications-toasts'), 10_000);
+      assert.ok(!(await pageShows('Run in esmini:', '.notifications-toasts')), 'an error toast is shown');
+      await screenshot('Run Anyway ran the scenario despite its error');
+    } finally {
+      for (const key of ['path', 'duration']) await settings.update(key, undefined, vscode.ConfigurationTarget.Workspace);
+      await vscode.commands.executeCommand('workbench.action.closeAllEditors');
+      // Later tests look for roads in the workspace (New Modular Scenario offers each e6mini.xodr it finds).
       fs.rmSync(folder, { recursive: true, force: true });
     }
   },

@@ -43,6 +43,8 @@ const ORDER: InsideTestKey[] = [
   'renameInPackage',
   'runEsmini',
   'runEsminiClean',
+  'runEsminiCutIn',
+  'runEsminiAnyway',
   'packUnsaved',
   'flattenAnyway',
   'structureFollows',

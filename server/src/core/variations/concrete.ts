@@ -1,4 +1,7 @@
 import { attribute, escapeAttributeValue, parseXml, XmlAttribute } from '../xml';
+import { applyEdits } from '../flatten/edits';
+import { rebasePaths } from '../flatten/rebase';
+import type { FileKind } from '../sources/host';
 import { LineIndex } from '../text';
 import { ParameterValue, VariationProblem } from './distribution';
 
@@ -102,6 +105,22 @@ export function concreteScenarioText(scenario: ScenarioParameters, assignments: 
     at = edit.end;
   }
   return result + scenario.text.slice(at);
+}
+
+/**
+ * A concrete scenario as written to `toDirectory` (SPEC 11.6): each file path it names (roads, catalogs),
+ * which resolves from `fromDirectory` (the ScenarioFile's folder), rewritten to name the same file from
+ * there; absolute when `toDirectory` is undefined (standard output, a run's private folder). Unchanged
+ * when written beside the ScenarioFile. `warnings`: paths naming a parameter, which stay as written.
+ */
+export async function rebasedConcreteText(
+  text: string,
+  fromDirectory: string,
+  toDirectory: string | undefined,
+  kindOf: (diskPath: string) => Promise<FileKind>,
+): Promise<{ text: string; warnings: string[] }> {
+  const rebase = await rebasePaths({ document: parseXml(text), baseOf: () => fromDirectory, outputDirectory: toDirectory, kindOf });
+  return { text: rebase.edits.length === 0 ? text : applyEdits(text, rebase.edits), warnings: rebase.findings.map((finding) => finding.message) };
 }
 
 /** Whether the scenario declares any ValueConstraintGroup at its root. */

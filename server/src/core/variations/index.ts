@@ -149,3 +149,4 @@ export function formatVariationProblems(problems: VariationProblem[], lines: Map
 }
 
 export { SamplingError } from './stochastic';
+export { rebasedConcreteText } from './concrete';
