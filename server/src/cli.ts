@@ -78,6 +78,7 @@ export function runFromCommandLine(): void {
   main(process.argv.slice(2), {
     out: (text) => standardOutput().write(text.endsWith('\n') ? text : text + '\n'),
     err: (text) => process.stderr.write(text + '\n'),
+    ownsProcess: true,
   }).then(
     (code) => {
       process.exitCode = code;

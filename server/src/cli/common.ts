@@ -13,6 +13,8 @@ export const ExitCode = { ok: 0, problems: 1, usage: 2, io: 3, internal: 4 } as 
 export interface CliOutput {
   out: (text: string) => void;
   err: (text: string) => void;
+  /** Set when the command runs as the program itself (dist/cli.js), not called inside another process: it may then tune process-wide V8 settings. */
+  ownsProcess?: boolean;
 }
 
 /** Wrong usage: printed with a pointer to --help, exit 2. */
