@@ -8,7 +8,7 @@ import { screenshot } from './harnessClient';
 import { open, waitFor, workspaceRoot } from './helpers';
 import type { InsideTests } from './helpers';
 
-/** esmini's cut-in_parameter_set.xosc and what it needs, copied into the workspace; skips the test without the shared corpus. */
+/** esmini's cut-in_parameter_set.xosc and what it needs, copied into the workspace's distributions/ (variations/ holds the Variations view's batch); skips the test without the shared corpus. */
 function copyCutInDistribution(context: Mocha.Context): { repository: string; folder: string } {
   const repository = path.resolve(path.dirname(process.env[HARNESS_ENV.cli] ?? '.'), '..');
   const corpus = path.resolve(repository, '..', 'shared', 'corpus', 'openscenario', 'esmini');
@@ -16,7 +16,7 @@ function copyCutInDistribution(context: Mocha.Context): { repository: string; fo
     console.log(`skipped: ${corpus} is absent`);
     context.skip();
   }
-  const folder = path.join(workspaceRoot(), 'variations', 'xosc');
+  const folder = path.join(workspaceRoot(), 'distributions', 'xosc');
   fs.mkdirSync(path.join(folder, 'Catalogs'), { recursive: true });
   for (const file of ['cut-in_parameter_set.xosc', 'cut-in.xosc']) fs.copyFileSync(path.join(corpus, file), path.join(folder, file));
   fs.cpSync(path.join(corpus, 'Catalogs', 'Vehicles'), path.join(folder, 'Catalogs', 'Vehicles'), { recursive: true });
@@ -30,7 +30,7 @@ export const distributionTests: InsideTests = {
     const copied = copyCutInDistribution(this);
     const { folder } = copied;
     try {
-      const distribution = await open('variations/xosc/cut-in_parameter_set.xosc');
+      const distribution = await open('distributions/xosc/cut-in_parameter_set.xosc');
       const cliPath = process.env[HARNESS_ENV.cli] ?? '';
       const count = execFileSync(process.execPath, [cliPath, 'vary', path.join(folder, 'cut-in_parameter_set.xosc'), '--count'], { encoding: 'utf8', env: { ...process.env, ELECTRON_RUN_AS_NODE: '1' } }).trim();
       assert.equal(count, '12');
