@@ -200,9 +200,21 @@ export function hasErrors(problems: Problem[]): boolean {
   return problems.some((problem) => problem.severity === 'error');
 }
 
+// Remembered per ref, as refIds are: the problems of one file share its ref, and a file can have thousands.
+const refKeys = new WeakMap<SourceRef, string>();
+
+function refKey(ref: SourceRef): string {
+  let key = refKeys.get(ref);
+  if (key === undefined) {
+    key = displayRef(ref, '/');
+    refKeys.set(ref, key);
+  }
+  return key;
+}
+
 export function problemKey(problem: Problem): string {
   const { start } = problem.range;
-  return `${displayRef(problem.source, '/')}:${start.line}:${start.character}:${problem.code}:${problem.message}`;
+  return `${refKey(problem.source)}:${start.line}:${start.character}:${problem.code}:${problem.message}`;
 }
 
 /** Sorts problems by file and position and drops repeats (a source used twice reports once). */
