@@ -186,7 +186,7 @@ export function problemData<C extends ProblemCodeWithData>(problem: Problem, cod
 
 export const ZERO_RANGE: Range = { start: { line: 0, character: 0 }, end: { line: 0, character: 0 } };
 
-/** `file:line:col: error: message (hint)`, as compilers print, with 1-based line and column. */
+/** `file:line:col: error: message (hint)`, as compilers print, with 1-based line and column; files relative to `base` when given. */
 export function formatProblem(problem: Problem, base?: string): string {
   const where = `${displayRef(problem.source, base)}:${problem.range.start.line + 1}:${problem.range.start.character + 1}`;
   const hint = problem.hint ? `\n  hint: ${problem.hint}` : '';
