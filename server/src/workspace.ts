@@ -171,6 +171,83 @@ export function listScenarioFiles(folders: string[], limit = 100_000): Promise<s
   return walkFiles(folders, { files: SCENARIO_FILE, skipFolders: INDEX_SKIPPED_FOLDERS, skipDotFiles: false, regularFilesOnly: true, unreadable: 'skip', sorted: true, limit });
 }
 
+/** Heap bytes a read source takes per character of its text, about (its parse tree, models and evaluated values). */
+const SOURCE_BYTES_PER_CHARACTER = 30;
+
+/** The read sources kept across generations beyond those open documents read, about this many heap bytes in all. */
+export const SHARED_SOURCE_BYTES = 64 * 1024 * 1024;
+
+/**
+ * The sources shared across generations, least recently used first out once the approximate size of
+ * the others passes a bound (a source is sized when it is read). Those `kept` names (open documents and
+ * the files they read) stay and do not count: a large open main file must not push out the files it
+ * imports, which every edit of it reads again. A source let go is read again on demand.
+ */
+export class SharedSources {
+  private readonly entries = new Map<string, { source: Promise<FlatSource>; size: number }>();
+  private total = 0;
+
+  constructor(
+    private readonly maxBytes: number,
+    private readonly kept: () => ReadonlySet<string>,
+  ) {}
+
+  /** Approximate heap bytes of the sources not kept (as it was when each was read). */
+  get size(): number {
+    return this.total;
+  }
+
+  get(id: string): Promise<FlatSource> | undefined {
+    const entry = this.entries.get(id);
+    if (!entry) return undefined;
+    this.entries.delete(id);
+    this.entries.set(id, entry);
+    return entry.source;
+  }
+
+  set(id: string, source: Promise<FlatSource>): void {
+    this.delete(id);
+    const entry = { source, size: 0 };
+    this.entries.set(id, entry);
+    source.then(
+      (flat) => {
+        if (this.entries.get(id) !== entry) return;
+        if (this.kept().has(id)) return;
+        entry.size = SOURCE_BYTES_PER_CHARACTER * ((flat.original?.document.text.length ?? 0) + (flat.text?.length ?? 0));
+        this.total += entry.size;
+        this.trim();
+      },
+      // The flattener forgets a source that failed; nothing is counted for it.
+      () => undefined,
+    );
+  }
+
+  delete(id: string): void {
+    const entry = this.entries.get(id);
+    if (!entry) return;
+    this.entries.delete(id);
+    this.total -= entry.size;
+  }
+
+  clear(): void {
+    this.entries.clear();
+    this.total = 0;
+  }
+
+  keys(): string[] {
+    return [...this.entries.keys()];
+  }
+
+  private trim(): void {
+    if (this.total <= this.maxBytes) return;
+    const kept = this.kept();
+    for (const [id, entry] of this.entries) {
+      if (this.total <= this.maxBytes) break;
+      if (entry.size > 0 && !kept.has(id)) this.delete(id);
+    }
+  }
+}
+
 /**
  * A Flattener that shares what it read with the Flatteners of later generations, so that an edit
  * in one file analyses that file again and reuses every unchanged file it depends on.
@@ -178,7 +255,7 @@ export function listScenarioFiles(folders: string[], limit = 100_000): Promise<s
 class ReusingFlattener extends Flattener {
   constructor(
     store: ScenarioStore,
-    private readonly shared: Map<string, Promise<FlatSource>>,
+    private readonly shared: SharedSources,
     private readonly dependencies: Map<string, string[]>,
     simulator: Simulator,
     schema: SchemaOptions,
@@ -223,8 +300,10 @@ export class Workspace {
   private flattenerGeneration = -1;
   private currentFlattener: Flattener | undefined;
   /** Sources read so far, kept across generations until a file they depend on changes. */
-  private readonly sharedSources = new Map<string, Promise<FlatSource>>();
+  private readonly sharedSources = new SharedSources(SHARED_SOURCE_BYTES, () => this.keptSources());
   private readonly sourceDependencies = new Map<string, string[]>();
+  /** The files each open document's source read, as last known (kept in memory while it is open). */
+  private readonly openDocumentReads = new Map<string, string[]>();
   /** The last schema check of each file, shared by every generation's flattener. */
   private readonly schemaChecks = new SchemaCheckMemory();
   private readonly analysisResults = new Map<string, { generation: number; result: Promise<AnalysisResult> }>();
@@ -277,6 +356,8 @@ export class Workspace {
     this.generation++;
     // Each change starts a new run: what the next analyses may unpack is counted afresh.
     this.storeInstance.resetBudget();
+    // Remembers what open documents read before their dependencies are forgotten below.
+    this.keptSources();
     if (!changedIds) {
       this.analysisResults.clear();
       this.sharedSources.clear();
@@ -285,7 +366,7 @@ export class Workspace {
     }
     const touches = (id: string) => changedIds.some((changed) => id === changed || id.startsWith(changed + '/'));
     for (const id of [...this.analysisResults.keys()]) if (touches(id)) this.analysisResults.delete(id);
-    for (const id of [...this.sharedSources.keys()]) {
+    for (const id of this.sharedSources.keys()) {
       const dependencies = this.sourceDependencies.get(id);
       // A source still being read has unknown dependencies, so it goes too.
       if (!dependencies || touches(id) || dependencies.some(touches)) {
@@ -293,6 +374,23 @@ export class Workspace {
         this.sourceDependencies.delete(id);
       }
     }
+  }
+
+  /** Open documents and every file their sources read: what each edit of an open file reads again. */
+  private keptSources(): Set<string> {
+    const kept = new Set<string>();
+    const open = new Set<string>();
+    for (const document of this.documents.values()) {
+      const id = refId(document.ref);
+      open.add(id);
+      kept.add(id);
+      // An edit forgets the file's dependencies until it is read again: what it read last time stays meanwhile.
+      const dependencies = this.sourceDependencies.get(id) ?? this.openDocumentReads.get(id) ?? [];
+      this.openDocumentReads.set(id, dependencies);
+      for (const dependency of dependencies) kept.add(dependency);
+    }
+    for (const id of [...this.openDocumentReads.keys()]) if (!open.has(id)) this.openDocumentReads.delete(id);
+    return kept;
   }
 
   flattener(): Flattener {

@@ -2,7 +2,8 @@ import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import fc from 'fast-check';
-import { buildSemanticModel, Declaration, Scope, SemanticModel, semanticModelOf } from '../../server/src/core/semantics';
+import { buildSemanticModel, Declaration, Evaluator, findingsToProblems, runChecks, Scope, SemanticContext, SemanticModel, semanticModelOf } from '../../server/src/core/semantics';
+import { Reading } from '../../server/src/core/semantics/evaluator';
 import { parseXml, reparseXml, valueEditOf, XmlAttribute, XmlDocument, XmlElement } from '../../server/src/core/xml';
 import { Flattener } from '../../server/src/core/flatten';
 import { buildModel, readModel, ScenarioModel } from '../../server/src/core/model';
@@ -274,5 +275,77 @@ describe('core: the analysis of a file being edited, value edit after value edit
         { numRuns: 40 },
       );
     });
+  }
+});
+
+describe('core: the semantic checks after an edit inside one value', () => {
+  // Chains of declarations over earlier ones (P1 over P0, P10 over P1, ...), names that hold others, a type
+  // mismatch, an esmini difference, and a story that shadows a root parameter.
+  const chains = `<?xml version="1.0"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="d" author="a"/>
+  <ParameterDeclarations>
+    <ParameterDeclaration name="P0" parameterType="double" value="4"/>
+    <ParameterDeclaration name="P1" parameterType="double" value="\${$P0 * 2 + 1}"/>
+    <ParameterDeclaration name="P10" parameterType="int" value="\${$P1 / 3}"/>
+    <ParameterDeclaration name="P2" parameterType="string" value="$P10"/>
+    <ParameterDeclaration name="P3" parameterType="int" value="\${round($P1) % 4}"/>
+    <ParameterDeclaration name="P4" parameterType="boolean" value="\${not $P0 == 4}"/>
+    <ParameterDeclaration name="P5" parameterType="double" value="\${$P2 + 1}"/>
+  </ParameterDeclarations>
+  <Entities><ScenarioObject name="Ego"/></Entities>
+  <Storyboard>
+    <Init><Actions/></Init>
+    <Story name="S">
+      <ParameterDeclarations>
+        <ParameterDeclaration name="P0" parameterType="double" value="\${$P1 - 1}"/>
+      </ParameterDeclarations>
+      <Act name="A"><ManeuverGroup name="G" maximumExecutionCount="1"><Actors selectTriggeringEntities="false"><EntityRef entityRef="Ego"/></Actors>
+        <Maneuver name="M">
+          <Event name="E1" priority="overwrite"><Action name="A1"><AbsoluteTargetSpeed value="\${($P0 + $P10) / 3.6 + round($P3)}"/></Action></Event>
+          <Event name="E2" priority="overwrite"><Action name="A2"><AbsoluteTargetSpeed value="\${$P1 / ($P0 - 4)}"/></Action></Event>
+          <Event name="E3" priority="overwrite"><Action name="A3"><AbsoluteTargetSpeed value="\${$P5 * 2}"/></Action></Event>
+          <Event name="E4" priority="overwrite"><Action name="A4"><AbsoluteTargetSpeed value="$P2"/></Action></Event>
+        </Maneuver>
+      </ManeuverGroup><StartTrigger/></Act>
+    </Story>
+    <StopTrigger/>
+  </Storyboard>
+</OpenSCENARIO>
+`;
+  const typedInChains = fc.string({ unit: fc.constantFrom('1', '0', '4', '.', '-', '+', '*', '/', ' ', '$', '{', '}', '(', ')', 'P', 'x', 'a'), maxLength: 5 });
+  const chainEdit = fc.record({ which: fc.nat(), from: fc.nat(), length: fc.nat(4), inserted: typedInChains });
+  const ref = diskRef('/virtual/chains.xosc');
+  const problemsOf = (document: XmlDocument, reading: Reading) => {
+    const model = semanticModelOf(document);
+    const context: SemanticContext = { ref, model, evaluator: new Evaluator(model, undefined, reading), catalogs: { locations: [], references: [], files: [] }, modular: false };
+    return JSON.parse(JSON.stringify(findingsToProblems(ref, document, runChecks(context)))) as unknown;
+  };
+
+  for (const [name, text] of [['chained declarations', chains], ['the semantic scenario', scenario]] as const) {
+    for (const reading of ['standard', 'esmini'] as const) {
+      it(`carried over, equal the checks of the text read afresh: ${name}, ${reading} reading`, () => {
+        let carried = 0;
+        fc.assert(
+          fc.property(fc.array(chainEdit, { minLength: 1, maxLength: 6 }), (edits) => {
+            let document = parseXml(text);
+            problemsOf(document, reading);
+            for (const { which, from, length, inserted } of edits) {
+              const ranges = valueRanges(document);
+              const range = ranges[which % ranges.length];
+              const start = range.start + (from % (range.end - range.start + 1));
+              const end = Math.min(range.end, start + length);
+              const editedText = document.text.slice(0, start) + inserted + document.text.slice(end);
+              const next = reparseXml(document, editedText);
+              if (valueEditOf(next)) carried++;
+              assert.deepEqual(problemsOf(next, reading), problemsOf(parseXml(editedText), reading), `after replacing [${start}, ${end}) of ${range.name} by '${inserted}'`);
+              document = next;
+            }
+          }),
+          { numRuns: 300 },
+        );
+        assert.ok(carried > 500, `most edits take the incremental path (${carried})`);
+      });
+    }
   }
 });

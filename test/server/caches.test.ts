@@ -1,7 +1,8 @@
 import * as assert from 'node:assert/strict';
 import * as path from 'node:path';
 import { childRef, diskRef, ScenarioStore } from '../../server/src/core/sources';
-import { CachingFileSystem } from '../../server/src/workspace';
+import { FlatSource } from '../../server/src/core/flatten';
+import { CachingFileSystem, SharedSources } from '../../server/src/workspace';
 import { packageOf, scenario, simpleGroup } from '../support/fixtures';
 import { temporaryWorkspace } from '../support/workspace';
 
@@ -27,5 +28,21 @@ describe('core: the package cache is bounded by size', () => {
     await files.readFile(path.join(root, 'b.xosc'));
     assert.equal(files.size, 600);
     assert.equal(Buffer.from((await files.readFile(path.join(root, 'a.xosc'))) as Uint8Array).toString(), 'a'.repeat(600));
+  });
+
+  it('the server keeps read sources up to an approximate size, least recently used out, those of open documents always', async () => {
+    // A source of n characters counts about 30 n bytes.
+    const sourceOf = (characters: number) => Promise.resolve({ original: { document: { text: 'x'.repeat(characters) } }, text: undefined } as unknown as FlatSource);
+    const sources = new SharedSources(30 * 1500, () => new Set(['open']));
+    sources.set('open', sourceOf(1000));
+    sources.set('a', sourceOf(1000));
+    sources.set('b', sourceOf(1000));
+    await new Promise((resolve) => setImmediate(resolve));
+    assert.deepEqual(sources.keys(), ['open', 'b'], 'the oldest source not open went first');
+    void sources.get('open');
+    sources.set('c', sourceOf(1000));
+    await new Promise((resolve) => setImmediate(resolve));
+    assert.deepEqual(sources.keys(), ['open', 'c']);
+    assert.equal(sources.size, 30 * 1000, 'an open document does not count');
   });
 });

@@ -11,7 +11,7 @@ import { makeStore, parseOptions } from './options';
 
 function problemJson(problem: Problem): Record<string, unknown> {
   return {
-    file: displayRef(problem.source),
+    file: displayRef(problem.source, process.cwd()),
     line: problem.range.start.line + 1,
     column: problem.range.start.character + 1,
     endLine: problem.range.end.line + 1,
@@ -22,14 +22,14 @@ function problemJson(problem: Problem): Record<string, unknown> {
     message: problem.message,
     ...(problem.hint ? { hint: problem.hint } : {}),
     ...(problem.related?.length
-      ? { related: problem.related.map((item) => ({ file: displayRef(item.source), line: item.range.start.line + 1, column: item.range.start.character + 1, message: item.message })) }
+      ? { related: problem.related.map((item) => ({ file: displayRef(item.source, process.cwd()), line: item.range.start.line + 1, column: item.range.start.character + 1, message: item.message })) }
       : {}),
   };
 }
 
 /** Problems in file order, then line and column, as a compiler lists them; ties keep the order they were found in. */
 function sortedByPlace(problems: Problem[]): Problem[] {
-  const keyed = problems.map((problem) => ({ problem, file: displayRef(problem.source) }));
+  const keyed = problems.map((problem) => ({ problem, file: displayRef(problem.source, process.cwd()) }));
   keyed.sort(
     (a, b) =>
       (a.file < b.file ? -1 : a.file > b.file ? 1 : 0) ||

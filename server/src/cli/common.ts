@@ -44,7 +44,7 @@ export function report(problems: Problem[], io: CliOutput, quiet: boolean): { er
     // Hints (an unused parameter) are for the editor, where they show faded.
     if (problem.severity === 'hint') continue;
     if (quiet && problem.severity !== 'error') continue;
-    io.err(formatProblem(problem));
+    io.err(formatProblem(problem, process.cwd()));
   }
   return { errors, warnings };
 }
@@ -53,7 +53,7 @@ export function report(problems: Problem[], io: CliOutput, quiet: boolean): { er
 export function checkNotAnInput(output: string, inputs: SourceRef[]): void {
   for (const input of inputs) {
     if (fs.existsSync(output) && isSameFile(output, input.disk)) {
-      throw new InputError(`refusing to write ${output}: it is an input (${displayRef(input)}); choose another output file`);
+      throw new InputError(`refusing to write ${output}: it is an input (${displayRef(input, process.cwd())}); choose another output file`);
     }
   }
 }

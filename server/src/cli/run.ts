@@ -88,8 +88,8 @@ export async function runCommand(args: string[], io: CliOutput): Promise<number>
   for (const input of inputs) {
     const result = await runScenario(flattener, mainOf(input), { esminiPath: values.esmini, roadPath, duration, seed, force: values.force });
     try {
-      for (const problem of result.flattenProblems) if (problem.severity === 'error' || !values.quiet) io.err(formatProblem(problem));
-      for (const problem of result.problems) if (problem.severity === 'error' || !values.quiet) io.err(formatEsminiProblem(problem));
+      for (const problem of result.flattenProblems) if (problem.severity === 'error' || !values.quiet) io.err(formatProblem(problem, process.cwd()));
+      for (const problem of result.problems) if (problem.severity === 'error' || !values.quiet) io.err(formatEsminiProblem(problem, process.cwd()));
       if (result.outcome === 'no-esmini') {
         io.err(`modular2simple: error: ${result.message}`);
         return 3;

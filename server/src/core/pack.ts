@@ -24,6 +24,8 @@ export interface PackOptions {
   outputPath?: string;
   /** Store the road networks, catalogs and other files the scenarios name inside the package, with package-relative paths. */
   selfContained?: boolean;
+  /** Messages show files relative to it (the working directory, a workspace folder); whole without it. A folder's pack takes its store's. */
+  workingDirectory?: string;
 }
 
 export interface PackFolderOptions extends PackOptions {
@@ -140,17 +142,17 @@ function fileProblem(source: SourceRef, code: ProblemCode, message: string, hint
 }
 
 /** The file's text, or undefined with a problem when its encoding cannot be read. */
-function decodeOrReport(ref: SourceRef, bytes: Uint8Array, problems: Problem[]): string | undefined {
+function decodeOrReport(ref: SourceRef, bytes: Uint8Array, problems: Problem[], base: string | undefined): string | undefined {
   try {
     return decodeScenario(bytes);
   } catch (error) {
-    problems.push(fileProblem(ref, 'io', `${displayRef(ref)}: ${(error as Error).message}`));
+    problems.push(fileProblem(ref, 'io', `${displayRef(ref, base)}: ${(error as Error).message}`));
     return undefined;
   }
 }
 
-function checkXml(ref: SourceRef, bytes: Uint8Array, problems: Problem[]): void {
-  const text = decodeOrReport(ref, bytes, problems);
+function checkXml(ref: SourceRef, bytes: Uint8Array, problems: Problem[], base: string | undefined): void {
+  const text = decodeOrReport(ref, bytes, problems, base);
   if (text === undefined) return;
   const document = parseXml(text);
   for (const problem of document.problems) {
@@ -200,8 +202,8 @@ export async function packFiles(inputs: string[], limits: Partial<Limits> = {}, 
       continue;
     }
     if (lower.endsWith('.xosc')) {
-      checkXml(ref, bytes, problems);
-      const text = decodeOrReport(ref, bytes, []);
+      checkXml(ref, bytes, problems, options.workingDirectory);
+      const text = decodeOrReport(ref, bytes, [], options.workingDirectory);
       const document = text === undefined ? undefined : parseXml(text);
       if (text !== undefined && document && isWellFormed(document)) bytes = await rebasedForPackage(place, ref, bytes, text, document, name);
     }
@@ -245,7 +247,7 @@ async function packFolderInto(
 ): Promise<{ zip: JSZip; entries: string[] } | undefined> {
   const main = diskRef(path.join(folder, 'main.xosc'));
   if ((await store.kindOf(main.disk)) !== 'file') {
-    problems.push(fileProblem(diskRef(folder), 'io', `${displayRef(diskRef(folder))} holds no main.xosc, so it is not an unpacked package`, 'a package folder must hold main.xosc'));
+    problems.push(fileProblem(diskRef(folder), 'io', `${store.display(diskRef(folder))} holds no main.xosc, so it is not an unpacked package`, 'a package folder must hold main.xosc'));
     return undefined;
   }
   const zip = new JSZip();
@@ -272,11 +274,11 @@ async function packFolderInto(
       return;
     }
     inputs.push(ref);
-    const text = decodeOrReport(ref, bytes, problems);
+    const text = decodeOrReport(ref, bytes, problems, store.workingDirectory);
     const document = text === undefined ? undefined : parseXml(text);
     if (text === undefined || !document || !isWellFormed(document)) {
       add(entryName, bytes, refId(ref));
-      if (text !== undefined) checkXml(ref, bytes, problems);
+      if (text !== undefined) checkXml(ref, bytes, problems, store.workingDirectory);
       return;
     }
     add(entryName, await rebasedForPackage(place, ref, bytes, text, document, entryName), refId(ref));

@@ -195,7 +195,7 @@ export function problemData<C extends ProblemCodeWithData>(problem: Problem, cod
 
 export const ZERO_RANGE: Range = { start: { line: 0, character: 0 }, end: { line: 0, character: 0 } };
 
-/** `file:line:col: error: message (hint)`, as compilers print, with 1-based line and column. */
+/** `file:line:col: error: message (hint)`, as compilers print, with 1-based line and column; files relative to `base` when given. */
 export function formatProblem(problem: Problem, base?: string): string {
   const where = `${displayRef(problem.source, base)}:${problem.range.start.line + 1}:${problem.range.start.character + 1}`;
   const hint = problem.hint ? `\n  hint: ${problem.hint}` : '';
@@ -209,9 +209,21 @@ export function hasErrors(problems: Problem[]): boolean {
   return problems.some((problem) => problem.severity === 'error');
 }
 
+// Remembered per ref, as refIds are: the problems of one file share its ref, and a file can have thousands.
+const refKeys = new WeakMap<SourceRef, string>();
+
+function refKey(ref: SourceRef): string {
+  let key = refKeys.get(ref);
+  if (key === undefined) {
+    key = displayRef(ref, '/');
+    refKeys.set(ref, key);
+  }
+  return key;
+}
+
 export function problemKey(problem: Problem): string {
   const { start } = problem.range;
-  return `${displayRef(problem.source, '/')}:${start.line}:${start.character}:${problem.code}:${problem.message}`;
+  return `${refKey(problem.source)}:${start.line}:${start.character}:${problem.code}:${problem.message}`;
 }
 
 /** Sorts problems by file and position and drops repeats (a source used twice reports once). */

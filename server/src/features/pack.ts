@@ -30,7 +30,7 @@ export async function packCommand(workspace: Workspace, inputs: unknown, outputP
   const folder = paths.length === 1 ? (isFolder(paths[0]) ? paths[0] : path.basename(paths[0]) === 'main.xosc' ? path.dirname(paths[0]) : undefined) : undefined;
   if (paths.some((input) => input === output || isSameFile(input, output))) return refuse(`refusing to overwrite ${output}, one of the inputs`);
   // Paths are rebased onto the package's folder, or (self-contained) the files they name are stored inside it.
-  const packOptions = { outputPath: output, selfContained: selfContained === true };
+  const packOptions = { outputPath: output, selfContained: selfContained === true, workingDirectory: workspace.folders[0] };
   const result: PackResult = folder ? await packFolder(folder, workspace.store, packOptions) : await packFiles(paths, {}, packOptions);
   const problems = result.problems.map((problem) => summarize(workspace, problem));
   // Every file read or resolved to while packing counts: a referenced package must never be overwritten.

@@ -171,7 +171,7 @@ async function composedLines(workspace: Workspace, semantics: DocumentSemantics,
     if (refId(open.ref) === id) continue;
     const main = await workspace.source(open.ref);
     if ( !main.links.some((link) => link.source && refId(link.source.ref) === id)) continue;
-    for (const { group, result } of composedValues(main, element, attr.name)) {
+    for (const { group, result } of composedValues(main, element, attr.name, workspace.folders[0])) {
       const how =
         result.provenance.kind === 'override'
           ? `overridden by key \`${result.provenance.key}\``

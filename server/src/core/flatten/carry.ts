@@ -21,17 +21,18 @@ function sameValue(a: Declaration, b: Declaration): boolean {
 
 /**
  * Decides what to carry. `first` is the output rendered without carrying (parsed), `insertions` the copies in
- * it; `origin` maps an element of a source's flattened model to where it was written.
+ * it; `origin` maps an element of a source's flattened model to where it was written; messages show files relative to `base`.
  */
 export function planCarry(
   main: FlatSource,
   first: XmlDocument,
   insertions: Insertion[],
   origin: (source: FlatSource, element: XmlElement) => RelatedProblemLocation | undefined,
+  base: string | undefined,
 ): CarryPlan {
   // Nothing reaches outside the copied groups: nothing to carry, and no model of the whole output to build.
   if (carryShortcut.enabled && !insertions.some(mayCarry)) return { declarations: [], locations: [], problems: [] };
-  return planCarryOnOutput(main, first, insertions, origin);
+  return planCarryOnOutput(main, first, insertions, origin, base);
 }
 
 /** Whether planCarry skips outputs whose copies reach nothing outside them (off only in the test that compares both ways). */
@@ -43,6 +44,7 @@ function planCarryOnOutput(
   first: XmlDocument,
   insertions: Insertion[],
   origin: (source: FlatSource, element: XmlElement) => RelatedProblemLocation | undefined,
+  base: string | undefined,
 ): CarryPlan {
   const plan: CarryPlan = { declarations: [], locations: [], problems: [] };
   const mainSemantics = main.semantics;
@@ -77,7 +79,7 @@ function planCarryOnOutput(
         declaration.name,
         { source: main.ref, range: mainModel.document.lines.range(mainDeclaration.nameAttribute.valueStart, mainDeclaration.nameAttribute.valueEnd), message: '' },
         dropped && { ...dropped, message: `the source's declaration (value '${declaration.value}')` },
-        `parameter '${declaration.name}' is declared here with value '${mainDeclaration.value}', but the imported group '${group}' uses the declaration of ${displayRef(dropped?.source ?? source.ref)}${dropped ? `:${dropped.range.start.line + 1}` : ''} with value '${declaration.value}'; the output keeps this one`,
+        `parameter '${declaration.name}' is declared here with value '${mainDeclaration.value}', but the imported group '${group}' uses the declaration of ${displayRef(dropped?.source ?? source.ref, base)}${dropped ? `:${dropped.range.start.line + 1}` : ''} with value '${declaration.value}'; the output keeps this one`,
       );
     }
     return true;
@@ -319,9 +321,9 @@ export function carriedDeclaration(main: FlatSource, name: string): CarriedDecla
  * The value an attribute of an imported group takes in `main`'s flattened output, for each group
  * reference of `main` that imports the element: a ParameterReference override (evaluated in the
  * main file), or the attribute's own value read with the source's declarations, which is then either
- * the main file's root declaration of that name (it wins) or carried from the source.
+ * the main file's root declaration of that name (it wins) or carried from the source (named relative to `base`).
  */
-export function composedValues(main: FlatSource, element: XmlElement, attributeName: string): { group: LinkedGroupReference; result: ValueResult }[] {
+export function composedValues(main: FlatSource, element: XmlElement, attributeName: string, base?: string): { group: LinkedGroupReference; result: ValueResult }[] {
   const results: { group: LinkedGroupReference; result: ValueResult }[] = [];
   const mainEvaluator = main.semantics?.evaluator;
   for (const link of main.links) {
@@ -350,7 +352,7 @@ export function composedValues(main: FlatSource, element: XmlElement, attributeN
         results.push({ group, result: mainEvaluator.declarationValue(mainDeclaration) });
         continue;
       }
-      results.push({ group, result: { ...value, provenance: { kind: 'carried', declaration, from: displayRef(source.ref) } } });
+      results.push({ group, result: { ...value, provenance: { kind: 'carried', declaration, from: displayRef(source.ref, base) } } });
     }
   }
   return results;

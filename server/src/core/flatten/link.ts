@@ -56,7 +56,7 @@ export async function link(
   link.source = source;
   reportSourceErrors(reference, source, report);
   for (const groupReference of reference.groupReferences) {
-    link.groups.push(linkGroup(reference, groupReference, source, result, report));
+    link.groups.push(linkGroup(reference, groupReference, source, result, report, context.store.workingDirectory));
   }
   return link;
 }
@@ -148,7 +148,7 @@ async function resolveTarget(
   if (cycleStart >= 0) {
     const cycle = [...stack.slice(cycleStart), target];
     link.cycle = cycle;
-    report({ start, end, severity: 'error', code: 'cycle', message: `reference cycle: ${cycle.map((entry) => displayRef(entry)).join(' -> ')}`, hint: 'remove one reference of the cycle' });
+    report({ start, end, severity: 'error', code: 'cycle', message: `reference cycle: ${cycle.map((entry) => context.store.display(entry)).join(' -> ')}`, hint: 'remove one reference of the cycle' });
     return undefined;
   }
   const maxDepth = context.store.limits.maxDepth;
@@ -158,7 +158,7 @@ async function resolveTarget(
       end,
       severity: 'error',
       code: 'too-deep',
-      message: `references nest deeper than ${maxDepth} files: ${describeChain([...stack, target])}`,
+      message: `references nest deeper than ${maxDepth} files: ${describeChain([...stack, target], context.store.workingDirectory)}`,
       hint: 'flatten the inner packages first, or raise the bound with --max-depth',
     });
     return undefined;
@@ -182,7 +182,7 @@ function reportSourceErrors(reference: ScenarioReferenceInfo, source: FlatSource
 }
 
 /** Selects the group a ManeuverGroupReference names in the referenced file and plans its overrides. */
-function linkGroup(reference: ScenarioReferenceInfo, groupReference: ManeuverGroupReferenceInfo, source: FlatSource, result: FlatSource, report: Report): LinkedGroupReference {
+function linkGroup(reference: ScenarioReferenceInfo, groupReference: ManeuverGroupReferenceInfo, source: FlatSource, result: FlatSource, report: Report, base: string | undefined): LinkedGroupReference {
   const linked: LinkedGroupReference = { info: groupReference, target: undefined, overridable: [], plan: undefined };
   const sourceModel = source.model;
   if (!sourceModel || !groupReference.nameAttribute) return linked;
@@ -212,8 +212,8 @@ function linkGroup(reference: ScenarioReferenceInfo, groupReference: ManeuverGro
   const plan = planOverrides(linked.overridable, groupReference.parameters.filter((p) => p.keyAttribute));
   linked.plan = plan;
   checkMixedDefaults(plan, source, report);
-  reportUnknownKeys(linked, plan, source, report);
-  reportMissingDefaults(plan, source, report);
+  reportUnknownKeys(linked, plan, source, report, base);
+  reportMissingDefaults(plan, source, report, base);
   return linked;
 }
 
@@ -271,13 +271,13 @@ function checkMixedDefaults(plan: OverridePlan, source: FlatSource, report: Repo
 }
 
 /** Keys that match no listed attribute, with the likely fix (a whole key listed in the simple scenario, or a near name). */
-function reportUnknownKeys(linked: LinkedGroupReference, plan: OverridePlan, source: FlatSource, report: Report): void {
+function reportUnknownKeys(linked: LinkedGroupReference, plan: OverridePlan, source: FlatSource, report: Report, base: string | undefined): void {
   for (const unknown of plan.unknown) {
     const [start, end] = valueRange(unknown.parameter.keyAttribute, unknown.parameter.element);
     const listedVerbatim = linked.overridable.find((candidate) => candidate.attributeName === unknown.parameter.key);
     const verbatimOrigin = listedVerbatim ? originOf(source, listedVerbatim.element) : undefined;
     const hint = listedVerbatim
-      ? `<${listedVerbatim.element.name}> in ${displayRef((verbatimOrigin as { source: FlatSource }).source.ref)} lists '${listedVerbatim.attributeName}', which names no attribute; list '${listedVerbatim.attributeName.split('.').pop()}' there instead`
+      ? `<${listedVerbatim.element.name}> in ${displayRef((verbatimOrigin as { source: FlatSource }).source.ref, base)} lists '${listedVerbatim.attributeName}', which names no attribute; list '${listedVerbatim.attributeName.split('.').pop()}' there instead`
       : unknown.suggestion
         ? `did you mean '${unknown.suggestion}'?`
         : 'list the attribute in parameterAttributes of its element in the simple scenario';
@@ -300,7 +300,7 @@ function reportUnknownKeys(linked: LinkedGroupReference, plan: OverridePlan, sou
 }
 
 /** Keys that set an attribute listed in parameterAttributes but not written, so with no default. */
-function reportMissingDefaults(plan: OverridePlan, source: FlatSource, report: Report): void {
+function reportMissingDefaults(plan: OverridePlan, source: FlatSource, report: Report, base: string | undefined): void {
   for (const { parameter, target: attributeTarget } of plan.withoutDefault) {
     const [start, end] = valueRange(parameter.keyAttribute, parameter.element);
     const problem = report({
@@ -309,7 +309,7 @@ function reportMissingDefaults(plan: OverridePlan, source: FlatSource, report: R
       severity: 'error',
       code: 'no-default',
       message: `no default value: <${attributeTarget.element.name}> lists '${attributeTarget.attributeName}' in parameterAttributes but has no such attribute`,
-      hint: `add ${attributeTarget.attributeName}="..." to <${attributeTarget.element.name}> in ${displayRef(originOf(source, attributeTarget.element).source.ref)}`,
+      hint: `add ${attributeTarget.attributeName}="..." to <${attributeTarget.element.name}> in ${displayRef(originOf(source, attributeTarget.element).source.ref, base)}`,
     });
     problem.related = [declarationLocation(originOf(source, attributeTarget.element), attributeTarget.attributeName, 'listed here without a default value')];
   }

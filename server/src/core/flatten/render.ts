@@ -1,6 +1,6 @@
 import { buildModel, ManeuverGroupInfo, ScenarioModel } from '../model';
 import { RelatedProblemLocation, uniqueProblems } from '../problems';
-import { displayRef, ScenarioStore, SourceRef } from '../sources';
+import { ScenarioStore, SourceRef } from '../sources';
 import { detectEol, indentationAt } from '../text';
 import { attribute, parseXml, XmlElement } from '../xml';
 import { carryEdits, planCarry } from './carry';
@@ -44,7 +44,7 @@ export function render(store: ScenarioStore, result: FlatSource, model: Scenario
   let written = write(text, eol, replacements, []);
   // One parse of the first rendering serves the carry plan and, when nothing is carried, the model.
   const firstDocument = store.parseFlattened(result.ref, written.out);
-  const plan = planCarry(result, firstDocument, written.insertions, carryOrigin);
+  const plan = planCarry(result, firstDocument, written.insertions, carryOrigin, store.workingDirectory);
   const edits = carryEdits(result, plan, eol, sourceFolder);
   if (edits.length > 0) written = write(text, eol, replacements, edits);
   result.carried = plan;
@@ -167,7 +167,7 @@ function reportTooLarge(store: ScenarioStore, result: FlatSource, model: Scenari
     end,
     severity: 'error',
     code: 'too-large',
-    message: `the flattened ${displayRef(result.ref)} would exceed ${limit.toLocaleString('en-US')} characters (${projected.toLocaleString('en-US')} so far): groups imported through ${describeChain(chain)} multiply at each level`,
+    message: `the flattened ${store.display(result.ref)} would exceed ${limit.toLocaleString('en-US')} characters (${projected.toLocaleString('en-US')} so far): groups imported through ${describeChain(chain, store.workingDirectory)} multiply at each level`,
     hint: 'import fewer copies, or raise the bound with --max-output-size',
   });
   result.problems.push(problem);

@@ -28,7 +28,7 @@ export function valueRange(attributeNode: XmlAttribute | undefined, element: Xml
 }
 
 /** A chain of files for a message: all of a short one, the ends of a long one. */
-export function describeChain(chain: SourceRef[]): string {
-  const names = chain.map((entry) => displayRef(entry));
+export function describeChain(chain: SourceRef[], base: string | undefined): string {
+  const names = chain.map((entry) => displayRef(entry, base));
   return (names.length <= 12 ? names : [...names.slice(0, 5), `... (${names.length - 10} more)`, ...names.slice(-5)]).join(' -> ');
 }

@@ -10,6 +10,7 @@ import { ExpressionError } from './expressions';
 import { valueConstraints } from './checks/constraints';
 import { duplicateNames } from './checks/names';
 import { at, relatedAt } from './checks/support';
+import { carriedExpressionErrors, rememberExpressionErrors } from './checks/carriedResults';
 import { catalogVariables, undeclaredVariables, variableValues } from './checks/variables';
 import { lightTransitionTimes, phaseDurations, privateActionActors, trafficSignalControllerRefs, trafficSignalIds, valueRanges } from './networkChecks';
 import { RoadSignals } from './roadNetwork';
@@ -172,33 +173,48 @@ function expressionFinding(context: SemanticContext, element: XmlElement, attr: 
   return finding;
 }
 
-/** Syntax, type and division errors of every `${...}`, and values that do not fit their declared type. */
+/** The errors of a site's value that findings are made of. */
+function siteErrors(evaluator: Evaluator, site: SemanticModel['sites'][number]): ExpressionError[] {
+  if (site.form.kind !== 'expression') return NO_ERRORS;
+  const result = evaluator.evaluateSite(site);
+  const errors = [...(result.ok ? [] : result.errors), ...(result.warnings ?? [])].filter((error) => error.kind !== 'unknown-parameter');
+  return errors.length > 0 ? errors : NO_ERRORS;
+}
+
+/** The errors of a declaration's own value that findings are made of (its warnings, then a type mismatch of the value itself). */
+function declarationErrors(evaluator: Evaluator, declaration: Declaration): ExpressionError[] {
+  const attr = declaration.valueAttribute;
+  if (!attr || declaration.type === undefined) return NO_ERRORS;
+  const errors = evaluator.declarationWarnings(declaration).filter((warning) => warning.kind !== 'unknown-parameter');
+  const result = evaluator.declarationValue(declaration);
+  if (!result.ok && result.provenance.kind === 'declaration') {
+    // Errors inside the expression itself were reported at the site, with their column.
+    errors.push(...result.errors.filter((error) => error.start === attr.valueStart && error.end === attr.valueEnd && error.kind === 'type-mismatch'));
+  }
+  return errors.length > 0 ? errors : NO_ERRORS;
+}
+
+const NO_ERRORS: ExpressionError[] = [];
+
+/**
+ * Syntax, type and division errors of every `${...}`, and values that do not fit their declared type.
+ * After an edit inside one value, the errors of values the edit cannot change carry over (checks/carriedResults.ts).
+ */
 export const expressionErrors: SemanticCheck = (context) => {
   const { model, evaluator } = context;
+  // A catalog entry's evaluator with assignments computes other values than the model's own.
+  const remembered = evaluator.model === model && evaluator.assignments === undefined;
+  const carried = remembered ? carriedExpressionErrors(model, evaluator) : undefined;
+  const sites = model.sites.map((site, index) => carried?.site(index) ?? siteErrors(evaluator, site));
+  const declarations = model.declarations.map((declaration, index) => carried?.declaration(index) ?? declarationErrors(evaluator, declaration));
+  if (remembered) rememberExpressionErrors(model, evaluator, { sites, declarations });
   const findings: Finding[] = [];
-  for (const site of model.sites) {
-    if (site.form.kind !== 'expression') continue;
-    const result = evaluator.evaluateSite(site);
-    for (const error of [...(result.ok ? [] : result.errors), ...(result.warnings ?? [])]) {
-      const finding = expressionFinding(context, site.element, site.attribute, error);
-      if (finding) findings.push(finding);
-    }
-  }
-  for (const declaration of model.declarations) {
-    const attr = declaration.valueAttribute;
-    if (!attr || declaration.type === undefined) continue;
-    for (const warning of evaluator.declarationWarnings(declaration)) {
-      const finding = expressionFinding(context, declaration.element, attr, warning);
-      if (finding) findings.push(finding);
-    }
-    const result = evaluator.declarationValue(declaration);
-    if (result.ok || result.provenance.kind !== 'declaration') continue;
-    for (const error of result.errors) {
-      // Errors inside the expression itself were reported above, with their column.
-      const own = error.start === attr.valueStart && error.end === attr.valueEnd && error.kind === 'type-mismatch';
-      if (own) findings.push(expressionFinding(context, declaration.element, attr, error) as Finding);
-    }
-  }
+  model.sites.forEach((site, index) => {
+    for (const error of sites[index]) findings.push(expressionFinding(context, site.element, site.attribute, error) as Finding);
+  });
+  model.declarations.forEach((declaration, index) => {
+    for (const error of declarations[index]) findings.push(expressionFinding(context, declaration.element, declaration.valueAttribute as XmlAttribute, error) as Finding);
+  });
   return findings;
 };
 

@@ -9,6 +9,31 @@ import { Declaration, NamedElement, ParameterUse, Scope, SemanticModel, ValueSit
  */
 const STRUCTURAL_ATTRIBUTES: ReadonlySet<string> = new Set(['name', 'parameterType', 'variableType', 'parameterRef', 'variableRef', 'storyboardElementType']);
 
+/**
+ * How a carried model relates to the one it was carried from, for check results that carry over
+ * (checks/carriedResults.ts): the previous model, each site's index there (undefined for the edited
+ * value's fresh sites), the declarations whose element was edited, and how offsets moved. Declarations
+ * keep their order and count. Dropped once read, and when the next model is carried from this one,
+ * so at most one previous model is kept alive.
+ */
+export interface ModelCarry {
+  previous: SemanticModel;
+  siteOrigins: (number | undefined)[];
+  /** The declarations of the edited element (a parameter's or a variable's). */
+  editedDeclarations: Declaration[];
+  removedEnd: number;
+  delta: number;
+}
+
+const carries = new WeakMap<SemanticModel, ModelCarry>();
+
+/** The carry a model was made by, forgotten as it is taken. */
+export function takeModelCarry(model: SemanticModel): ModelCarry | undefined {
+  const carry = carries.get(model);
+  carries.delete(model);
+  return carry;
+}
+
 /** An expression tree with every offset moved by `delta`. */
 function shiftedNode(node: ExpressionNode, delta: number): ExpressionNode {
   // Literals in the parser's field order keep one object shape per kind (a spread would not).
@@ -138,6 +163,7 @@ export function carrySemanticModel(previous: SemanticModel, edit: ValueEdit, doc
   // Declarations, in the order they were made; the edited one (its value) is read again.
   const declarations = new Map<Declaration, Declaration>();
   let ownDeclaration: Declaration | undefined;
+  const editedDeclarations: Declaration[] = [];
   for (const declaration of previous.declarations) {
     const element = elementOf(declaration.element);
     const valueAttribute = attributeOf(declaration.element, declaration.valueAttribute);
@@ -151,6 +177,7 @@ export function carrySemanticModel(previous: SemanticModel, edit: ValueEdit, doc
       scope: scopes.get(declaration.scope) as Scope,
     };
     declarations.set(declaration, copy);
+    if (declaration.element === previousElement) editedDeclarations.push(copy);
     if (copy.kind === 'parameter') {
       copy.scope.declarations.push(copy);
       if (!copy.scope.byName.has(copy.name)) copy.scope.byName.set(copy.name, copy);
@@ -169,13 +196,16 @@ export function carrySemanticModel(previous: SemanticModel, edit: ValueEdit, doc
   const scope = scopeOf(edit.element);
   if (scope) new ParameterUseCollector(fresh).visitValue(edit.element, edit.attribute, scope, ownDeclaration);
 
+  const siteOrigins: (number | undefined)[] = [];
   let sitesPlaced = false;
-  for (const site of previous.sites) {
+  for (const [index, site] of previous.sites.entries()) {
     if (site.attribute === previousAttribute) continue;
     if (!sitesPlaced && comesAfter(site.element, site.attribute, previousElement, editedIndex)) {
       model.sites.push(...fresh.sites);
+      for (let i = 0; i < fresh.sites.length; i++) siteOrigins.push(undefined);
       sitesPlaced = true;
     }
+    siteOrigins.push(index);
     const copy: ValueSite = {
       element: elementOf(site.element),
       attribute: attributeOf(site.element, site.attribute) as XmlAttribute,
@@ -187,6 +217,7 @@ export function carrySemanticModel(previous: SemanticModel, edit: ValueEdit, doc
     model.sites.push(copy);
   }
   if (!sitesPlaced) model.sites.push(...fresh.sites);
+  for (let i = siteOrigins.length; i < model.sites.length; i++) siteOrigins.push(undefined);
   for (const site of model.sites) model.siteOf.set(site.attribute, site);
 
   let usesPlaced = false;
@@ -209,6 +240,8 @@ export function carrySemanticModel(previous: SemanticModel, edit: ValueEdit, doc
   }
   if (!usesPlaced) model.uses.push(...fresh.uses);
   for (const use of model.uses) if (use.declaration) model.usesOf.get(use.declaration)?.push(use);
+  carries.delete(previous);
+  carries.set(model, { previous, siteOrigins, editedDeclarations, removedEnd: edit.removedEnd, delta });
   return model;
 }
 

@@ -19,7 +19,7 @@
  * - the value of an attribute or `${...}` at an offset: `valueAt` -> { attribute, result } where
  *   `result` is a ValueResult: value, type and Provenance (`declaration`, or `assignment` for a catalog
  *   entry's parameter set by a CatalogReference: see `entryParameterValue`). Across a composition,
- *   core/carry.ts `composedValues(mainSource, element, attributeName)` gives the value an imported
+ *   core/flatten/carry.ts `composedValues(mainSource, element, attributeName, base)` gives the value an imported
  *   group's attribute takes in the main file's output, with Provenance `override` (the
  *   ParameterReference) or `carried` (the source declaration carried into the output), and
  *   `carriedDeclaration(mainSource, name)` what flattening carried under a name (after rendering;

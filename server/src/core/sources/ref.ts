@@ -36,11 +36,14 @@ export function sameRef(a: SourceRef, b: SourceRef): boolean {
   return refId(a) === refId(b);
 }
 
-/** A short form for messages: relative to `base` when the file lies below it. */
-export function displayRef(ref: SourceRef, base: string = process.cwd()): string {
+/**
+ * A short form for messages: relative to `base` (the caller's working directory or workspace folder)
+ * when the file lies below it; without a base, the whole path.
+ */
+export function displayRef(ref: SourceRef, base: string | undefined): string {
   const paths = pathsFor(ref.disk);
   // A base of the other platform's form (a POSIX working directory, a Windows file) never contains it.
-  const relative = pathsFor(base) === paths ? paths.relative(base, ref.disk) : '';
+  const relative = base !== undefined && pathsFor(base) === paths ? paths.relative(base, ref.disk) : '';
   const disk = relative && !relative.startsWith('..') && !paths.isAbsolute(relative) ? relative : ref.disk;
   return ref.entries.length === 0 ? disk : `${disk}/${ref.entries.join('/')}`;
 }

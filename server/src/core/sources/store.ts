@@ -102,7 +102,7 @@ export class ScenarioStore {
     return this.kinds.kind(filePath);
   }
 
-  /** A reference as messages show it: relative to the working directory when it lies below it (displayRef's own default without one). */
+  /** A reference as messages show it: relative to the working directory when it lies below it (whole without one). */
   display(ref: SourceRef): string {
     return displayRef(ref, this.workingDirectory);
   }
