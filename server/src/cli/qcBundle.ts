@@ -1,6 +1,7 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { parseArgs } from 'node:util';
+import { writeFileAtomic } from '../../../common/src/atomic';
 import { Flattener } from '../core/flatten';
 import { Problem, ProblemCode, Severity, uniqueProblems } from '../core/problems';
 import { ruleDescription, ruleIdOf } from '../core/rules';
@@ -113,7 +114,7 @@ export function resultFileText(config: BundleConfig, problems: Problem[], inputD
     lines.push(`    <Checker${xmlAttributes({ checkerId, description: ruleDescription(ruleIdOf(entry.code), entry.code), summary: `Found ${count} issue${count === 1 ? '' : 's'}`, status: 'completed' })}>`);
     for (const problem of entry.problems) {
       lines.push(`      <Issue${xmlAttributes({ issueId: issueId++, description: problem.message, level: LEVEL[problem.severity], ruleUID: uid })}>`);
-      lines.push(`        <Locations${xmlAttributes({ description: displayRef(problem.source) })}>`);
+      lines.push(`        <Locations${xmlAttributes({ description: displayRef(problem.source, process.cwd()) })}>`);
       lines.push(`          <FileLocation${xmlAttributes({ row: problem.range.start.line + 1, column: problem.range.start.character + 1 })}/>`);
       // An XPath only in the input file itself: the framework's viewers resolve it there.
       const inInput = inputDocument && problem.source.entries.length === 0 && path.resolve(problem.source.disk) === config.inputFile;
@@ -173,7 +174,8 @@ export async function qcBundleCommand(args: string[], io: CliOutput): Promise<nu
   const outputDir = path.resolve(values['output-dir'] ?? '.');
   fs.mkdirSync(outputDir, { recursive: true });
   const resultPath = path.join(outputDir, config.resultFile);
-  fs.writeFileSync(resultPath, resultFileText(config, problems, inputDocument));
-  io.err(`${displayRef(mainOf(config.inputFile))}: ${problems.length} issue${problems.length === 1 ? '' : 's'} written to ${resultPath}`);
+  // Written whole or not at all, as every output of this project.
+  await writeFileAtomic(resultPath, resultFileText(config, problems, inputDocument));
+  io.err(`${displayRef(mainOf(config.inputFile), process.cwd())}: ${problems.length} issue${problems.length === 1 ? '' : 's'} written to ${resultPath}`);
   return ExitCode.ok;
 }
