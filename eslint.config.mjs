@@ -3,7 +3,16 @@
 // VS Code), the client reaching into the server instead of common/src, features calling handlers.
 import tseslint from 'typescript-eslint';
 
-const editorModules = ['vscode', 'vscode-languageserver', 'vscode-languageserver/*', 'vscode-languageserver-*', 'vscode-languageclient', 'vscode-languageclient/*', 'vscode-jsonrpc', 'vscode-jsonrpc/*'];
+const editorModules = [
+  'vscode',
+  'vscode-languageserver',
+  'vscode-languageserver/*',
+  'vscode-languageserver-*',
+  'vscode-languageclient',
+  'vscode-languageclient/*',
+  'vscode-jsonrpc',
+  'vscode-jsonrpc/*',
+];
 
 export default tseslint.config(
   { ignores: ['dist/**', 'out/**', 'node_modules/**', '.cache/**', 'test-results/**', '**/*.js', '**/*.mjs', '**/*.cjs'] },
@@ -62,7 +71,11 @@ export default tseslint.config(
     rules: {
       'no-restricted-imports': [
         'error',
-        { patterns: [{ regex: '^\\.\\.?/(.*/)?handlers(/|$)', message: 'server/src/features do not import handlers: handlers call features.' }] },
+        {
+          patterns: [
+            { regex: '^\\.\\.?/(.*/)?handlers(/|$)', message: 'server/src/features do not import handlers: handlers call features.' },
+          ],
+        },
       ],
     },
   },

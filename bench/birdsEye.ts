@@ -19,8 +19,10 @@ function syntheticNetwork(roads: number): string {
   for (let i = 0; i < roads; i++) {
     const x0 = (i % 25) * 160;
     const y0 = Math.floor(i / 25) * 60;
-    const lanes = (side: string, ids: number[]) => `<${side}>${ids.map((id) => `<lane id="${id}" type="${Math.abs(id) === 3 ? 'sidewalk' : 'driving'}"><width sOffset="0" a="3.5" b="0" c="0.0005" d="-0.000002"/><width sOffset="40" a="3.6" b="0" c="0" d="0"/></lane>`).join('')}</${side}>`;
-    const section = (s: number) => `<laneSection s="${s}">${lanes('left', [3, 2, 1])}<center><lane id="0" type="none"/></center>${lanes('right', [-1, -2, -3])}</laneSection>`;
+    const lanes = (side: string, ids: number[]) =>
+      `<${side}>${ids.map((id) => `<lane id="${id}" type="${Math.abs(id) === 3 ? 'sidewalk' : 'driving'}"><width sOffset="0" a="3.5" b="0" c="0.0005" d="-0.000002"/><width sOffset="40" a="3.6" b="0" c="0" d="0"/></lane>`).join('')}</${side}>`;
+    const section = (s: number) =>
+      `<laneSection s="${s}">${lanes('left', [3, 2, 1])}<center><lane id="0" type="none"/></center>${lanes('right', [-1, -2, -3])}</laneSection>`;
     parts.push(`<road id="${i}" length="140" junction="-1"><planView>
 <geometry s="0" x="${x0}" y="${y0}" hdg="0" length="30"><line/></geometry>
 <geometry s="30" x="${x0 + 30}" y="${y0}" hdg="0" length="20"><spiral curvStart="0" curvEnd="0.01"/></geometry>
@@ -74,7 +76,9 @@ function syntheticRun(center: [number, number]): RunTracks {
 }
 
 async function main(): Promise<void> {
-  const networks: { name: string; text: string }[] = [{ name: '500 synthetic roads (line, spirals, arc, paramPoly3; 6 lanes, 2 sections)', text: syntheticNetwork(500) }];
+  const networks: { name: string; text: string }[] = [
+    { name: '500 synthetic roads (line, spirals, arc, paramPoly3; 6 lanes, 2 sections)', text: syntheticNetwork(500) },
+  ];
   if (fs.existsSync(town05)) networks.push({ name: 'CARLA Town05 (259 roads)', text: fs.readFileSync(town05, 'utf8') });
   else console.log(`(Town05 skipped: ${town05} is absent)`);
 
@@ -84,17 +88,26 @@ async function main(): Promise<void> {
   const { chromium: launcher } = await import('playwright-core');
   const browser = canDraw ? await launcher.launch({ executablePath: chromium, headless: true, args: ['--no-sandbox'] }) : undefined;
 
-  console.log(`bird's-eye view benchmark (server: parse, sample, median of 7; view: headless Chromium, 1200 x 800 canvas; load average ${(await import('node:os')).loadavg()[0].toFixed(1)} on ${(await import('node:os')).cpus().length} cores)`);
+  console.log(
+    `bird's-eye view benchmark (server: parse, sample, median of 7; view: headless Chromium, 1200 x 800 canvas; load average ${(await import('node:os')).loadavg()[0].toFixed(1)} on ${(await import('node:os')).cpus().length} cores)`,
+  );
   for (const network of networks) {
     const { scene, parseMs, sampleMs } = sceneOf(network.text, network.name);
-    const points = scene.sections.reduce((sum, section) => sum + section.borders.reduce((count, border) => count + border.length / 2, 0), 0);
+    const points = scene.sections.reduce(
+      (sum, section) => sum + section.borders.reduce((count, border) => count + border.length / 2, 0),
+      0,
+    );
     const kb = JSON.stringify(scene).length / 1024;
     console.log(`  ${network.name}`);
-    console.log(`    parse ${(network.text.length / 1024 / 1024).toFixed(1)} MB of XML: ${median(parseMs).toFixed(1)} ms; sample lane borders: ${median(sampleMs).toFixed(1)} ms median (${scene.sections.length} sections, ${points} points, ${kb.toFixed(0)} KB as JSON)`);
+    console.log(
+      `    parse ${(network.text.length / 1024 / 1024).toFixed(1)} MB of XML: ${median(parseMs).toFixed(1)} ms; sample lane borders: ${median(sampleMs).toFixed(1)} ms median (${scene.sections.length} sections, ${points} points, ${kb.toFixed(0)} KB as JSON)`,
+    );
     if (!browser) continue;
     const page = await (await browser.newContext({ bypassCSP: true, viewport: { width: 1200, height: 900 } })).newPage();
     await page.setContent(birdsEyeHtml('', 'about:blank', 'bench').replace(/<script[^]*?<\/script>/, ''));
-    await page.evaluate(`window.__messages = []; window.acquireVsCodeApi = () => ({ postMessage: (message) => window.__messages.push(message) });`);
+    await page.evaluate(
+      `window.__messages = []; window.acquireVsCodeApi = () => ({ postMessage: (message) => window.__messages.push(message) });`,
+    );
     await page.addScriptTag({ path: script });
     const nextStats = async (after: number): Promise<RenderStats> => {
       await page.waitForFunction(`window.__messages.filter((m) => m.type === 'rendered').length > ${after}`);
@@ -123,7 +136,9 @@ async function main(): Promise<void> {
     const beforePause = await rendered();
     await page.click('#play');
     const playing = await nextStats(beforePause);
-    console.log(`    playing 10 vehicles with trajectories: ${playing.frames} frames in 3 s, draw ${playing.frameMeanMs.toFixed(2)} ms mean, ${playing.frameWorstMs.toFixed(2)} ms worst per frame (60 fps budget: 16.7 ms)`);
+    console.log(
+      `    playing 10 vehicles with trajectories: ${playing.frames} frames in 3 s, draw ${playing.frameMeanMs.toFixed(2)} ms mean, ${playing.frameWorstMs.toFixed(2)} ms worst per frame (60 fps budget: 16.7 ms)`,
+    );
     // Following one car, its speed, gap and TTC plotted under the map: the layer moves with it and is redrawn when it runs out.
     const beforeChoose = await rendered();
     await page.evaluate(`window.postMessage(${JSON.stringify({ type: 'choose', entity: 'car9' })}, '*')`);
@@ -133,7 +148,9 @@ async function main(): Promise<void> {
     const beforeFollowPause = await rendered();
     await page.click('#play');
     const following = await nextStats(beforeFollowPause);
-    console.log(`    following car9 (46 m/s) with its plots: ${following.frames} frames in 3 s, draw ${following.frameMeanMs.toFixed(2)} ms mean, ${following.frameWorstMs.toFixed(2)} ms worst per frame`);
+    console.log(
+      `    following car9 (46 m/s) with its plots: ${following.frames} frames in 3 s, draw ${following.frameMeanMs.toFixed(2)} ms mean, ${following.frameWorstMs.toFixed(2)} ms worst per frame`,
+    );
     await page.close();
   }
   await browser?.close();

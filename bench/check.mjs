@@ -18,7 +18,9 @@ const runs = Number(process.env.BENCH_RUNS ?? 5);
 /** Wall ms, CPU ms and peak MB of one `check` (exit 0 or 1: problems found are not a failure here). */
 function measure(args, live = false) {
   const started = process.hrtime.bigint();
-  const preload = live ? ['--expose-gc', '--require', liveHeap] : ['--require', peak, ...(existsSync(cpuTime) ? ['--require', cpuTime] : [])];
+  const preload = live
+    ? ['--expose-gc', '--require', liveHeap]
+    : ['--require', peak, ...(existsSync(cpuTime) ? ['--require', cpuTime] : [])];
   const result = spawnSync(process.execPath, [...preload, cli, 'check', '-q', ...args], { encoding: 'utf8', maxBuffer: 1 << 28 });
   const ms = Number(process.hrtime.bigint() - started) / 1e6;
   if (result.status !== 0 && result.status !== 1) throw new Error(`check ${args.join(' ')} failed (${result.status}): ${result.stderr}`);
@@ -78,9 +80,20 @@ const oneMb = median(oneRuns, 'mb');
 const libraryMb = median(libraryRuns, 'mb');
 console.log(`check benchmark (${runs} runs each; node ${process.version}; ${process.arch})`);
 console.log('                                             median ms   CPU ms   peak MB');
-console.log(`  check the ${files.length} corpus files, one run         ${fmt(corpusMs)} ${fmt(median(corpusRuns, 'cpu'))} ${fmt(median(corpusRuns, 'mb'))}`);
-console.log(`  check one file (${path.basename(largest)})`.padEnd(47) + `${fmt(median(oneRuns, 'ms'))} ${fmt(median(oneRuns, 'cpu'))} ${fmt(oneMb)}`);
-console.log(`  check a folder of ${libraryCount} files`.padEnd(47) + `${fmt(median(libraryRuns, 'ms'))} ${fmt(median(libraryRuns, 'cpu'))} ${fmt(libraryMb)}`);
+console.log(
+  `  check the ${files.length} corpus files, one run         ${fmt(corpusMs)} ${fmt(median(corpusRuns, 'cpu'))} ${fmt(median(corpusRuns, 'mb'))}`,
+);
+console.log(
+  `  check one file (${path.basename(largest)})`.padEnd(47) + `${fmt(median(oneRuns, 'ms'))} ${fmt(median(oneRuns, 'cpu'))} ${fmt(oneMb)}`,
+);
+console.log(
+  `  check a folder of ${libraryCount} files`.padEnd(47) +
+    `${fmt(median(libraryRuns, 'ms'))} ${fmt(median(libraryRuns, 'cpu'))} ${fmt(libraryMb)}`,
+);
 console.log(`  ${files.length} corpus files: ${corpusMs < 1000 ? 'within' : 'OVER'} the 1 s target`);
-console.log(`  folder peak / one-file peak: ${(libraryMb / oneMb).toFixed(2)}x (${libraryMb / oneMb <= 1.5 ? 'within' : 'OVER'} the 1.5x target)`);
-console.log(`  heap still reachable at the end (after a full collection): one file ${oneLive.toFixed(1)} MB, the folder ${libraryLive.toFixed(1)} MB`);
+console.log(
+  `  folder peak / one-file peak: ${(libraryMb / oneMb).toFixed(2)}x (${libraryMb / oneMb <= 1.5 ? 'within' : 'OVER'} the 1.5x target)`,
+);
+console.log(
+  `  heap still reachable at the end (after a full collection): one file ${oneLive.toFixed(1)} MB, the folder ${libraryLive.toFixed(1)} MB`,
+);

@@ -90,15 +90,24 @@ const at = (i) => ({ textDocument: { uri }, position: cursors[i] });
 const hover = await measure('textDocument/hover', at);
 const definition = await measure('textDocument/definition', at);
 // A visible screen of 60 lines around each cursor, as an editor asks; and the whole file.
-const screen = await measure('textDocument/inlayHint', (i) => ({ textDocument: { uri }, range: { start: { line: Math.max(0, cursors[i].line - 30), character: 0 }, end: { line: cursors[i].line + 30, character: 0 } } }));
-const whole = await measure('textDocument/inlayHint', () => ({ textDocument: { uri }, range: { start: { line: 0, character: 0 }, end: { line: lineCount, character: 0 } } }));
+const screen = await measure('textDocument/inlayHint', (i) => ({
+  textDocument: { uri },
+  range: { start: { line: Math.max(0, cursors[i].line - 30), character: 0 }, end: { line: cursors[i].line + 30, character: 0 } },
+}));
+const whole = await measure('textDocument/inlayHint', () => ({
+  textDocument: { uri },
+  range: { start: { line: 0, character: 0 }, end: { line: lineCount, character: 0 } },
+}));
 const tokens = await measure('textDocument/semanticTokens/full', () => ({ textDocument: { uri } }));
 const completion = await measure('textDocument/completion', at);
-if (!hover.last || definition.last.length !== 1 || whole.last.length !== 1500 || completion.last.length !== 1000) throw new Error('the features did not answer as expected');
+if (!hover.last || definition.last.length !== 1 || whole.last.length !== 1500 || completion.last.length !== 1000)
+  throw new Error('the features did not answer as expected');
 
 // Edits of a declaration's value (as typing does), each followed by its diagnostics.
 const edits = [];
-const declarations = [...text.matchAll(/name="P(\d*[02468])" parameterType="double" value="/g)].map((match) => match.index + match[0].length);
+const declarations = [...text.matchAll(/name="P(\d*[02468])" parameterType="double" value="/g)].map(
+  (match) => match.index + match[0].length,
+);
 for (let i = 0; i < Math.min(samples, 60); i++) {
   const position = positionOf(text, declarations[(i * 37) % declarations.length]);
   version++;
@@ -106,7 +115,9 @@ for (let i = 0; i < Math.min(samples, 60); i++) {
   started = now();
   await connection.sendNotification('textDocument/didChange', {
     textDocument: { uri, version },
-    contentChanges: [{ range: { start: position, end: { line: position.line, character: position.character + 1 } }, text: String((i % 9) + 1) }],
+    contentChanges: [
+      { range: { start: position, end: { line: position.line, character: position.character + 1 } }, text: String((i % 9) + 1) },
+    ],
   });
   await pending;
   edits.push(now() - started);
@@ -114,7 +125,10 @@ for (let i = 0; i < Math.min(samples, 60); i++) {
 const edit = stats(edits);
 // After an edit, the first request also waits for the file's new analysis.
 version++;
-await connection.sendNotification('textDocument/didChange', { textDocument: { uri, version }, contentChanges: [{ range: { start: cursors[0], end: cursors[0] }, text: '' }] });
+await connection.sendNotification('textDocument/didChange', {
+  textDocument: { uri, version },
+  contentChanges: [{ range: { start: cursors[0], end: cursors[0] }, text: '' }],
+});
 started = now();
 await connection.sendRequest('textDocument/hover', at(1));
 const hoverAfterEdit = now() - started;
@@ -125,8 +139,13 @@ connection.dispose();
 rmSync(workspace, { recursive: true, force: true });
 
 const fmt = (n) => n.toFixed(2).padStart(8);
-const row = (label, figures, target) => console.log(`  ${label.padEnd(44)}${fmt(figures.median)}  ${fmt(figures.p95)}${target ? `   ${figures.p95 < target ? 'within' : 'OVER'} ${target} ms` : ''}`);
-console.log(`editor features over the language server: ${(text.length / 1024).toFixed(0)} KB, ${lineCount} lines, 1,000 parameters, 1,000 expressions (${samples} samples)`);
+const row = (label, figures, target) =>
+  console.log(
+    `  ${label.padEnd(44)}${fmt(figures.median)}  ${fmt(figures.p95)}${target ? `   ${figures.p95 < target ? 'within' : 'OVER'} ${target} ms` : ''}`,
+  );
+console.log(
+  `editor features over the language server: ${(text.length / 1024).toFixed(0)} KB, ${lineCount} lines, 1,000 parameters, 1,000 expressions (${samples} samples)`,
+);
 console.log('                                                median ms    p95 ms');
 console.log(`  open to first diagnostics                 ${fmt(openMs)}`);
 row('hover on $name / ${...}', hover, 20);

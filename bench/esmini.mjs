@@ -22,7 +22,9 @@ function stats(times) {
 const fmt = (n) => n.toFixed(0).padStart(7);
 
 if (!existsSync(esmini) || !existsSync(roads)) {
-  console.log(`(esmini benchmark skipped: ${existsSync(esmini) ? roads : esmini} is absent; build esmini with bash ../shared/esmini/build.sh .cache/esmini)`);
+  console.log(
+    `(esmini benchmark skipped: ${existsSync(esmini) ? roads : esmini} is absent; build esmini with bash ../shared/esmini/build.sh .cache/esmini)`,
+  );
   process.exit(0);
 }
 const folder = realpathSync(mkdtempSync(path.join(tmpdir(), 'm2s-bench-esmini-')));
@@ -35,7 +37,12 @@ connection.onNotification('window/logMessage', () => {});
 connection.onNotification('textDocument/publishDiagnostics', () => {});
 connection.onRequest('workspace/configuration', (params) => params.items.map(() => ({})));
 connection.listen();
-await connection.sendRequest('initialize', { processId: process.pid, rootUri: pathToFileURL(folder).href, workspaceFolders: [{ uri: pathToFileURL(folder).href, name: 'bench' }], capabilities: {} });
+await connection.sendRequest('initialize', {
+  processId: process.pid,
+  rootUri: pathToFileURL(folder).href,
+  workspaceFolders: [{ uri: pathToFileURL(folder).href, name: 'bench' }],
+  capabilities: {},
+});
 await connection.sendNotification('initialized', {});
 
 const request = [];
@@ -64,7 +71,9 @@ const cliRuns = Math.max(3, Math.floor(samples / 2));
 const cpuBefore = childrenCpuSeconds();
 for (let i = 0; i < cliRuns; i++) {
   const started = now();
-  const run = spawnSync(process.execPath, [cli, 'run', folder, '--check', '-q', '--road-path', roads, '--esmini', esmini], { encoding: 'utf8' });
+  const run = spawnSync(process.execPath, [cli, 'run', folder, '--check', '-q', '--road-path', roads, '--esmini', esmini], {
+    encoding: 'utf8',
+  });
   cliTimes.push(now() - started);
   if (run.status !== 0) throw new Error(`modular2simple run failed: ${run.stderr}`);
 }
@@ -72,10 +81,14 @@ const cpuPerRun = ((childrenCpuSeconds() - cpuBefore) / cliRuns) * 1000;
 rmSync(folder, { recursive: true, force: true });
 
 const [r, e, c] = [stats(request), stats(inEsmini), stats(cliTimes)];
-console.log(`Run in esmini benchmark: bundled examples (4 entities, ${last.duration} s simulated at ${last.timeStep} s steps; ${samples} runs)`);
+console.log(
+  `Run in esmini benchmark: bundled examples (4 entities, ${last.duration} s simulated at ${last.timeStep} s steps; ${samples} runs)`,
+);
 console.log('                                                   median ms   p95 ms');
 console.log(`  request to finished run (language server)         ${fmt(r.median)}  ${fmt(r.p95)}`);
 console.log(`    of which flatten + esmini + mapping (runner)    ${fmt(e.median)}  ${fmt(e.p95)}`);
 console.log(`  modular2simple run --check (CLI, with start-up)   ${fmt(c.median)}  ${fmt(c.p95)}`);
-console.log(`    CPU time per CLI run (node and esmini)          ${fmt(cpuPerRun)}            (independent of the machine's load: ${loadavg()[0].toFixed(1)} now, on ${cpus().length} cores)`);
+console.log(
+  `    CPU time per CLI run (node and esmini)          ${fmt(cpuPerRun)}            (independent of the machine's load: ${loadavg()[0].toFixed(1)} now, on ${cpus().length} cores)`,
+);
 console.log(`  target: the picture with trajectories under 2,000 ms: the run takes ${r.median < 2000 ? 'within' : 'OVER'} it`);

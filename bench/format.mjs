@@ -31,7 +31,14 @@ function stats(times) {
 
 /** A scenario of about `lines` lines, indented badly (every line at column 0) with long tags, comments and blank lines. */
 function messyScenario(lines) {
-  const parts = ['<?xml version="1.0" encoding="UTF-8"?>', '<OpenSCENARIO>', '<FileHeader revMajor="1" revMinor="0" date="2026-01-01T00:00:00" description="format benchmark" author="bench"/>', '<Storyboard>', '<Story name="S">', '<Act name="A">'];
+  const parts = [
+    '<?xml version="1.0" encoding="UTF-8"?>',
+    '<OpenSCENARIO>',
+    '<FileHeader revMajor="1" revMinor="0" date="2026-01-01T00:00:00" description="format benchmark" author="bench"/>',
+    '<Storyboard>',
+    '<Story name="S">',
+    '<Act name="A">',
+  ];
   for (let group = 0; parts.length < lines - 6; group++) {
     parts.push(
       `<ManeuverGroup name="G${group}" maximumExecutionCount="1">`,
@@ -97,7 +104,9 @@ let formatted = text;
     formatted = formatted.slice(0, offset(edit.range.start)) + edit.newText + formatted.slice(offset(edit.range.end));
   }
 }
-await connection.sendNotification('textDocument/didOpen', { textDocument: { uri: formattedUri, languageId: 'xosc', version: 1, text: formatted } });
+await connection.sendNotification('textDocument/didOpen', {
+  textDocument: { uri: formattedUri, languageId: 'xosc', version: 1, text: formatted },
+});
 const cleanTimes = [];
 for (let i = 0; i < samples; i++) {
   const started = now();
@@ -110,7 +119,11 @@ const rangeTimes = [];
 for (let i = 0; i < samples; i++) {
   const line = 7000 + i;
   const started = now();
-  await connection.sendRequest('textDocument/rangeFormatting', { textDocument: { uri }, options, range: { start: { line, character: 0 }, end: { line: line + 40, character: 0 } } });
+  await connection.sendRequest('textDocument/rangeFormatting', {
+    textDocument: { uri },
+    options,
+    range: { start: { line, character: 0 }, end: { line: line + 40, character: 0 } },
+  });
   rangeTimes.push(now() - started);
 }
 await connection.sendRequest('shutdown');
@@ -128,7 +141,9 @@ rmSync(folder, { recursive: true, force: true });
 
 const fmt = (n) => n.toFixed(1).padStart(7);
 const documentStats = stats(documentTimes);
-console.log(`formatter benchmark (${samples} runs; a ${inputLines.toLocaleString('en-US')}-line scenario at column 0, ${edits.length.toLocaleString('en-US')} edits)`);
+console.log(
+  `formatter benchmark (${samples} runs; a ${inputLines.toLocaleString('en-US')}-line scenario at column 0, ${edits.length.toLocaleString('en-US')} edits)`,
+);
 console.log('                                              median ms   p95 ms');
 console.log(`  Format Document over LSP (request to reply)   ${fmt(documentStats.median)}  ${fmt(documentStats.p95)}`);
 const clean = stats(cleanTimes);

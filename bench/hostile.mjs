@@ -20,20 +20,33 @@ const header = (groups) => `<?xml version="1.0" encoding="UTF-8"?>
 ${groups}  </Act></Story></Storyboard>
 </OpenSCENARIO>
 `;
-const simpleGroup = (name) => `<ManeuverGroup name="${name}" maximumExecutionCount="1"><Actors selectTriggeringEntities="false"><EntityRef entityRef="car"/></Actors>
+const simpleGroup = (
+  name,
+) => `<ManeuverGroup name="${name}" maximumExecutionCount="1"><Actors selectTriggeringEntities="false"><EntityRef entityRef="car"/></Actors>
   <Maneuver name="M"><Event name="E" priority="overwrite"><Action name="A"><SpeedActionTarget><AbsoluteTargetSpeed parameterAttributes="value" value="10"/></SpeedActionTarget></Action></Event></Maneuver></ManeuverGroup>
 `;
-const reference = (outer, file, group) => `<ManeuverGroup name="${outer}" maximumExecutionCount="1"><Actors selectTriggeringEntities="false"><EntityRef entityRef="car"/></Actors>
+const reference = (
+  outer,
+  file,
+  group,
+) => `<ManeuverGroup name="${outer}" maximumExecutionCount="1"><Actors selectTriggeringEntities="false"><EntityRef entityRef="car"/></Actors>
   <ScenarioReference scenarioFileName="${file}"><ManeuverGroupReference maneuverGroupName="${group}"/></ScenarioReference></ManeuverGroup>
 `;
 
 function measure(label, args, cwd) {
   const started = process.hrtime.bigint();
-  const result = spawnSync(process.execPath, ['--require', peak, cli, ...args], { cwd, encoding: 'utf8', env: { ...process.env, SCENARIO_PATH: '' }, maxBuffer: 256 * MiB });
+  const result = spawnSync(process.execPath, ['--require', peak, cli, ...args], {
+    cwd,
+    encoding: 'utf8',
+    env: { ...process.env, SCENARIO_PATH: '' },
+    maxBuffer: 256 * MiB,
+  });
   const ms = Number(process.hrtime.bigint() - started) / 1e6;
   const kb = Number(/@@peak-rss-kb (\d+)/.exec(result.stderr)?.[1] ?? NaN);
   const outcome = result.status === 0 ? 'accepted' : (/error: (.*)/.exec(result.stderr)?.[1] ?? `exit ${result.status}`).slice(0, 90);
-  console.log(`  ${label.padEnd(52)} ${ms.toFixed(0).padStart(7)} ms ${(kb / 1024).toFixed(0).padStart(6)} MB  exit ${result.status}: ${outcome}`);
+  console.log(
+    `  ${label.padEnd(52)} ${ms.toFixed(0).padStart(7)} ms ${(kb / 1024).toFixed(0).padStart(6)} MB  exit ${result.status}: ${outcome}`,
+  );
 }
 
 async function zipOf(files) {
@@ -95,7 +108,12 @@ console.log('hostile input, one CLI run each (time includes process start; peak 
   writeFileSync(path.join(dir, 'l20.xosc'), header(simpleGroup('G')));
   for (let level = 0; level < 20; level++) {
     const half = (name) => reference(name, `l${level + 1}.xosc`, 'G');
-    writeFileSync(path.join(dir, `l${level}.xosc`), header(`<ManeuverGroup name="G" maximumExecutionCount="1"><Actors selectTriggeringEntities="false"><EntityRef entityRef="car"/></Actors>\n${half('X')}${half('Y')}</ManeuverGroup>\n`));
+    writeFileSync(
+      path.join(dir, `l${level}.xosc`),
+      header(
+        `<ManeuverGroup name="G" maximumExecutionCount="1"><Actors selectTriggeringEntities="false"><EntityRef entityRef="car"/></Actors>\n${half('X')}${half('Y')}</ManeuverGroup>\n`,
+      ),
+    );
   }
   measure('flattened: 20 levels x 2 imports (2^20 copies), flatten', ['flatten', 'l0.xosc', '-o', 'out.xosc', '-q'], dir);
   measure('flattened: the level that fits (l8.xosc, 4,096 copies)', ['flatten', 'l8.xosc', '-o', 'out.xosc', '-q'], dir);
@@ -107,7 +125,9 @@ for (const levels of [63, 200]) {
   let inner;
   for (let level = levels; level >= 0; level--) {
     const name = Array.from({ length: levels - level }, () => 'G').join('.');
-    inner = await zipOf(inner ? { 'main.xosc': header(reference('G', 'inner.mosc', name)), 'inner.mosc': inner } : { 'main.xosc': header(simpleGroup('G')) });
+    inner = await zipOf(
+      inner ? { 'main.xosc': header(reference('G', 'inner.mosc', name)), 'inner.mosc': inner } : { 'main.xosc': header(simpleGroup('G')) },
+    );
   }
   writeFileSync(path.join(dir, 'outer.mosc'), inner);
   measure(`depth: packages nested ${levels} deep, flatten`, ['flatten', 'outer.mosc', '-o', 'out.xosc', '-q'], dir);
@@ -117,7 +137,10 @@ for (const levels of [63, 200]) {
 {
   const dir = folder('parse');
   writeFileSync(path.join(dir, 'attributes.xosc'), `<OpenSCENARIO ${Array.from({ length: 1_000_000 }, (_, i) => `a${i}="1"`).join(' ')}/>`);
-  writeFileSync(path.join(dir, 'ends.xosc'), '<OpenSCENARIO>' + '<a>'.repeat(1999) + '</zz>'.repeat(960_000) + '</a>'.repeat(1999) + '</OpenSCENARIO>');
+  writeFileSync(
+    path.join(dir, 'ends.xosc'),
+    '<OpenSCENARIO>' + '<a>'.repeat(1999) + '</zz>'.repeat(960_000) + '</a>'.repeat(1999) + '</OpenSCENARIO>',
+  );
   measure('parse: one tag with 1,000,000 attributes (13 MB)', ['check', 'attributes.xosc', '-q'], dir);
   measure('parse: 4.8 MB of end tags matching nothing', ['check', 'ends.xosc', '-q'], dir);
 }

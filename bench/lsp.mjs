@@ -166,7 +166,11 @@ function referenceGroup(index, simpleCount) {
 function mainScenario(references, simpleCount, padLines = 0) {
   const entities = Array.from({ length: 50 }, (_, i) => `    <ScenarioObject name="car${i}">${vehicle}</ScenarioObject>`).join('\n');
   // Plain OpenSCENARIO content (Init actions) pads a file to a realistic size without references.
-  const padding = Array.from({ length: Math.ceil(padLines / 3) }, (_, i) => `      <Private entityRef="car${i % 50}">\n        <PrivateAction><TeleportAction><Position><WorldPosition x="${i}" y="${i % 9}" z="0" h="0"/></Position></TeleportAction></PrivateAction>\n      </Private>`).join('\n');
+  const padding = Array.from(
+    { length: Math.ceil(padLines / 3) },
+    (_, i) =>
+      `      <Private entityRef="car${i % 50}">\n        <PrivateAction><TeleportAction><Position><WorldPosition x="${i}" y="${i % 9}" z="0" h="0"/></Position></TeleportAction></PrivateAction>\n      </Private>`,
+  ).join('\n');
   const groups = Array.from({ length: references }, (_, i) => referenceGroup(i, simpleCount)).join('\n');
   return `<?xml version="1.0" encoding="UTF-8"?>
 <OpenSCENARIO>
@@ -194,7 +198,8 @@ ${groups}
 
 const fmt = (n) => n.toFixed(1).padStart(8);
 const line = (label, value) => console.log(`  ${label.padEnd(52)}${value}`);
-const row = (label, { median, p95 }, target) => line(label, `${fmt(median)} ${fmt(p95)}   ${p95 <= target ? 'within' : 'OVER'} ${target} ms p95`);
+const row = (label, { median, p95 }, target) =>
+  line(label, `${fmt(median)} ${fmt(p95)}   ${p95 <= target ? 'within' : 'OVER'} ${target} ms p95`);
 
 console.log(`language server benchmark (${samples} samples per latency; node ${process.version}; dist/server.js over stdio)`);
 console.log(`  ${''.padEnd(52)}  median      p95`);
@@ -205,7 +210,8 @@ const workspace = realpathSync(mkdtempSync(path.join(tmpdir(), 'm2s-lsp-bench-')
 const simpleCount = 400;
 for (let i = 0; i < simpleCount; i++) writeFileSync(path.join(workspace, `simple_${i}.xosc`), simpleScenario(i));
 mkdirSync(path.join(workspace, 'mains'));
-for (let i = 0; i < 1000 - simpleCount - 1; i++) writeFileSync(path.join(workspace, 'mains', `main_${i}.xosc`), mainScenario(4, simpleCount).replace(/simple_/g, '../simple_'));
+for (let i = 0; i < 1000 - simpleCount - 1; i++)
+  writeFileSync(path.join(workspace, 'mains', `main_${i}.xosc`), mainScenario(4, simpleCount).replace(/simple_/g, '../simple_'));
 let bigMain = mainScenario(400, simpleCount);
 const padLines = 15_000 - bigMain.split('\n').length;
 bigMain = mainScenario(400, simpleCount, padLines);
@@ -237,7 +243,9 @@ async function editLatency(filePath, text, label) {
     started = now();
     await session.connection.sendNotification('textDocument/didChange', {
       textDocument: { uri, version },
-      contentChanges: [{ range: { start: position, end: { line: position.line, character: position.character + 1 } }, text: String(i % 10) }],
+      contentChanges: [
+        { range: { start: position, end: { line: position.line, character: position.character + 1 } }, text: String(i % 10) },
+      ],
     });
     await pending;
     times.push(now() - started);
@@ -254,16 +262,29 @@ writeFileSync(fewPath, fewReferences);
 const { uri: fewUri } = await editLatency(fewPath, fewReferences, `${fewReferences.split('\n').length - 1} lines, 40 references`);
 await session.connection.sendNotification('textDocument/didClose', { textDocument: { uri: fewUri } });
 const { uri: bigUri, version: bigVersion } = await editLatency(bigPath, bigMain, `${bigLines} lines, 400 references`);
-const bigPreview = await previewLatency(session.connection, bigUri, bigMain, 'key="AbsoluteTargetSpeed.value" value="', { samples: Math.min(samples, 40), version: bigVersion });
+const bigPreview = await previewLatency(session.connection, bigUri, bigMain, 'key="AbsoluteTargetSpeed.value" value="', {
+  samples: Math.min(samples, 40),
+  version: bigVersion,
+});
 row(`edit -> preview text and line map, ${bigLines} lines`, stats(bigPreview.times), 300);
 
-const completionPositions = Array.from({ length: 20 }, (_, i) => ({ textDocument: { uri: bigUri }, position: positionAfter(bigMain, 'key="', (i * 61) % 1200) }));
+const completionPositions = Array.from({ length: 20 }, (_, i) => ({
+  textDocument: { uri: bigUri },
+  position: positionAfter(bigMain, 'key="', (i * 61) % 1200),
+}));
 const completion = await timeRequests(session.connection, 'textDocument/completion', completionPositions);
 row(`completion of keys, ${bigLines} lines`, completion, 20);
-const definitionPositions = Array.from({ length: 20 }, (_, i) => ({ textDocument: { uri: bigUri }, position: positionAfter(bigMain, 'maneuverGroupName="G', (i * 19) % 400) }));
+const definitionPositions = Array.from({ length: 20 }, (_, i) => ({
+  textDocument: { uri: bigUri },
+  position: positionAfter(bigMain, 'maneuverGroupName="G', (i * 19) % 400),
+}));
 const definition = await timeRequests(session.connection, 'textDocument/definition', definitionPositions);
 row(`definition of maneuverGroupName, ${bigLines} lines`, definition, 20);
-const hover = await timeRequests(session.connection, 'textDocument/hover', completionPositions.map((params) => ({ ...params, position: { ...params.position, character: params.position.character + 3 } })));
+const hover = await timeRequests(
+  session.connection,
+  'textDocument/hover',
+  completionPositions.map((params) => ({ ...params, position: { ...params.position, character: params.position.character + 3 } })),
+);
 row(`hover on keys, ${bigLines} lines`, hover, 20);
 const busy = residentMb(session.child.pid);
 line('server resident memory right after the requests', `${fmt(busy.rss)} MB`);
@@ -326,7 +347,10 @@ if (!existsSync(library)) {
   const groups = Array.from({ length: 5 }, (_, i) => ({ textDocument: { uri }, position: positionAfter(text, 'maneuverGroupName="', i) }));
   row('definition of maneuverGroupName, largest corpus main', await timeRequests(corpus.connection, 'textDocument/definition', groups), 20);
   const corpusMemory = residentMb(corpus.child.pid);
-  line('server resident memory, largest corpus main (now / peak)', `${fmt(corpusMemory.rss)} MB ${fmt(corpusMemory.peak)} MB   ${corpusMemory.peak <= 150 ? 'within' : 'OVER'} 150 MB`);
+  line(
+    'server resident memory, largest corpus main (now / peak)',
+    `${fmt(corpusMemory.rss)} MB ${fmt(corpusMemory.peak)} MB   ${corpusMemory.peak <= 150 ? 'within' : 'OVER'} 150 MB`,
+  );
   await corpus.stop();
 }
 
@@ -392,10 +416,15 @@ function schemaScenario(minor, lines) {
     const file = path.join(folder, `v1_${minor}.xosc`);
     writeFileSync(file, text);
     const pending = schemaSession.diagnosticsFor(uriOf(file), 1);
-    await schemaSession.connection.sendNotification('textDocument/didOpen', { textDocument: { uri: uriOf(file), languageId: 'xosc', version: 1, text } });
+    await schemaSession.connection.sendNotification('textDocument/didOpen', {
+      textDocument: { uri: uriOf(file), languageId: 'xosc', version: 1, text },
+    });
     const diagnostics = await pending;
     if (diagnostics.length > 0) throw new Error(`the 1.${minor} scenario is not schema-valid: ${diagnostics[0].message}`);
-    await schemaSession.connection.sendRequest('textDocument/completion', { textDocument: { uri: uriOf(file) }, position: positionAfter(text, '<Actions>') });
+    await schemaSession.connection.sendRequest('textDocument/completion', {
+      textDocument: { uri: uriOf(file) },
+      position: positionAfter(text, '<Actions>'),
+    });
   }
   const big = schemaScenario('2', 15_000);
   const bigFile = path.join(folder, 'big_schema.xosc');
@@ -404,7 +433,9 @@ function schemaScenario(minor, lines) {
   let version = 1;
   let started = now();
   let pending = schemaSession.diagnosticsFor(uri, version);
-  await schemaSession.connection.sendNotification('textDocument/didOpen', { textDocument: { uri, languageId: 'xosc', version, text: big } });
+  await schemaSession.connection.sendNotification('textDocument/didOpen', {
+    textDocument: { uri, languageId: 'xosc', version, text: big },
+  });
   const opened = await pending;
   const bigLineCount = big.split('\n').length - 1;
   line(`open a schema-valid ${bigLineCount}-line 1.2 file to diagnostics`, `${fmt(now() - started)} ms   (${opened.length} diagnostics)`);
@@ -418,20 +449,39 @@ function schemaScenario(minor, lines) {
     // Every other edit makes the value invalid, so the schema check both finds and clears a problem.
     await schemaSession.connection.sendNotification('textDocument/didChange', {
       textDocument: { uri, version },
-      contentChanges: [{ range: { start: position, end: { line: position.line, character: position.character + 1 } }, text: i % 2 ? 'x' : String(i % 10) }],
+      contentChanges: [
+        { range: { start: position, end: { line: position.line, character: position.character + 1 } }, text: i % 2 ? 'x' : String(i % 10) },
+      ],
     });
     await pending;
     times.push(now() - started);
   }
   row(`edit -> schema diagnostics, ${bigLineCount} lines`, stats(times), 50);
-  const childPositions = Array.from({ length: 20 }, (_, i) => ({ textDocument: { uri }, position: positionAfter(big, '<SpeedAction>', (i * 53) % actions) }));
-  row(`schema completion of child elements, ${bigLineCount} lines`, await timeRequests(schemaSession.connection, 'textDocument/completion', childPositions), 20);
-  const valuePositions = Array.from({ length: 20 }, (_, i) => ({ textDocument: { uri }, position: positionAfter(big, 'dynamicsShape="', (i * 53) % actions) }));
-  row(`schema completion of enumeration values, ${bigLineCount} lines`, await timeRequests(schemaSession.connection, 'textDocument/completion', valuePositions), 20);
+  const childPositions = Array.from({ length: 20 }, (_, i) => ({
+    textDocument: { uri },
+    position: positionAfter(big, '<SpeedAction>', (i * 53) % actions),
+  }));
+  row(
+    `schema completion of child elements, ${bigLineCount} lines`,
+    await timeRequests(schemaSession.connection, 'textDocument/completion', childPositions),
+    20,
+  );
+  const valuePositions = Array.from({ length: 20 }, (_, i) => ({
+    textDocument: { uri },
+    position: positionAfter(big, 'dynamicsShape="', (i * 53) % actions),
+  }));
+  row(
+    `schema completion of enumeration values, ${bigLineCount} lines`,
+    await timeRequests(schemaSession.connection, 'textDocument/completion', valuePositions),
+    20,
+  );
   await new Promise((resolve) => setTimeout(resolve, 2500));
   const schemaMemory = residentMb(schemaSession.child.pid);
   line('server memory before any file was opened', `${fmt(memoryBefore.rss)} MB`);
-  line('server memory, four schemas loaded, 15,000-line file (now / peak)', `${fmt(schemaMemory.rss)} MB ${fmt(schemaMemory.peak)} MB   ${schemaMemory.rss <= 150 ? 'within' : 'OVER'} 150 MB`);
+  line(
+    'server memory, four schemas loaded, 15,000-line file (now / peak)',
+    `${fmt(schemaMemory.rss)} MB ${fmt(schemaMemory.peak)} MB   ${schemaMemory.rss <= 150 ? 'within' : 'OVER'} 150 MB`,
+  );
   await schemaSession.stop();
   rmSync(folder, { recursive: true, force: true });
 }

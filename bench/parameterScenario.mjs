@@ -9,7 +9,9 @@ export function parameterScenario() {
   }
   const events = [];
   for (let i = 0; i < 1000; i++) {
-    events.push(`          <Event name="E${i}" priority="overwrite"><Action name="A${i}"><AbsoluteTargetSpeed value="\${($P${i} + $P${(i * 7) % 1000}) / 3.6 + round($P${(i * 13) % 1000})}"/></Action></Event>`);
+    events.push(
+      `          <Event name="E${i}" priority="overwrite"><Action name="A${i}"><AbsoluteTargetSpeed value="\${($P${i} + $P${(i * 7) % 1000}) / 3.6 + round($P${(i * 13) % 1000})}"/></Action></Event>`,
+    );
   }
   return `<?xml version="1.0"?>
 <OpenSCENARIO>

@@ -25,7 +25,9 @@ export async function previewLatency(connection, uri, text, needle, { samples, v
     const started = now();
     await connection.sendNotification('textDocument/didChange', {
       textDocument: { uri, version: ++version },
-      contentChanges: [{ range: { start: position, end: { line: position.line, character: position.character + 1 } }, text: String(1 + (i % 9)) }],
+      contentChanges: [
+        { range: { start: position, end: { line: position.line, character: position.character + 1 } }, text: String(1 + (i % 9)) },
+      ],
     });
     const result = await connection.sendRequest('modular2simple/preview', { uri });
     times.push(now() - started);

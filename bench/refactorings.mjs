@@ -155,7 +155,11 @@ async function actionLatency(name, needle, into, only, kind) {
   for (let i = 0; i < samples; i++) {
     const position = positionOf(text, places[(i * 37) % places.length]);
     const started = now();
-    const actions = await connection.sendRequest('textDocument/codeAction', { textDocument: { uri }, range: { start: position, end: position }, context: { diagnostics: [], only } });
+    const actions = await connection.sendRequest('textDocument/codeAction', {
+      textDocument: { uri },
+      range: { start: position, end: position },
+      context: { diagnostics: [], only },
+    });
     times.push(now() - started);
     if (actions.some((action) => action.kind === kind && !action.disabled)) offered++;
   }
@@ -164,7 +168,9 @@ async function actionLatency(name, needle, into, only, kind) {
   const p95 = times[Math.min(times.length - 1, Math.ceil(times.length * 0.95) - 1)];
   const lines = text.split('\n').length - 1;
   const label = `${kind} (${lines} lines)`;
-  console.log(`  ${label.padEnd(52)}${median.toFixed(1).padStart(8)} ${p95.toFixed(1).padStart(8)}   ${p95 <= target ? 'within' : 'OVER'} ${target} ms p95  (offered ${offered}/${samples})`);
+  console.log(
+    `  ${label.padEnd(52)}${median.toFixed(1).padStart(8)} ${p95.toFixed(1).padStart(8)}   ${p95 <= target ? 'within' : 'OVER'} ${target} ms p95  (offered ${offered}/${samples})`,
+  );
 }
 
 console.log(`refactoring code action lists (${samples} samples each; dist/server.js over stdio)`);

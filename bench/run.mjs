@@ -42,7 +42,9 @@ if (!existsSync(library)) {
   const env = { SCENARIO_PATH: library };
   const bare = summary(Array.from({ length: runs }, () => measure(['-e', '0'])));
   const one = summary(Array.from({ length: runs }, () => measure([cli, '-cmx', largest, path.join(out, 'largest.xosc'), '-q'], env)));
-  const inputs = readdirSync(library).filter((n) => n.startsWith('modular_')).map((n) => path.join(library, n, 'result.mosc'));
+  const inputs = readdirSync(library)
+    .filter((n) => n.startsWith('modular_'))
+    .map((n) => path.join(library, n, 'result.mosc'));
   const all = summary(
     Array.from({ length: Math.max(5, Math.floor(runs / 3)) }, () => {
       rmSync(out, { recursive: true, force: true });
@@ -57,7 +59,9 @@ if (!existsSync(library)) {
   console.log(`  flatten largest example (1,172 lines)     ${fmt(one.median)}  ${fmt(one.p95)}  ${fmt(one.peakMb)}`);
   console.log(`  flatten all ${inputs.length} examples, one run         ${fmt(all.median)}  ${fmt(all.p95)}  ${fmt(all.peakMb)}`);
   console.log(`  ratio largest / bare start: ${(one.median / bare.median).toFixed(2)}x (target <= 2x); original tool: 700 ms, 75 MB`);
-  console.log(`  all ${inputs.length}: ${all.median < 500 ? 'within' : 'OVER'} the 500 ms target; peak memory ${Math.max(one.peakMb, all.peakMb) < 100 ? 'within' : 'OVER'} 100 MB`);
+  console.log(
+    `  all ${inputs.length}: ${all.median < 500 ? 'within' : 'OVER'} the 500 ms target; peak memory ${Math.max(one.peakMb, all.peakMb) < 100 ? 'within' : 'OVER'} 100 MB`,
+  );
 }
 
 console.log('');

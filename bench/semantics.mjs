@@ -55,7 +55,8 @@ for (let run = 0; run < runs; run++) {
   check.push(checked.ms);
   last = { model, findings: checked.result };
 }
-if (last.model.declarations.length !== 1000 || last.model.sites.filter((site) => site.form.kind === 'expression').length !== 1500) throw new Error('the generated scenario is not what the benchmark states');
+if (last.model.declarations.length !== 1000 || last.model.sites.filter((site) => site.form.kind === 'expression').length !== 1500)
+  throw new Error('the generated scenario is not what the benchmark states');
 if (last.findings.some((finding) => finding.severity === 'error')) throw new Error(`unexpected errors: ${last.findings[0].message}`);
 
 // Queries at offsets spread over the file, on one model (as the editor asks them between edits).
@@ -65,10 +66,14 @@ const query = (fn) => summary(offsets.map((offset) => time(() => fn(semantics, o
 const definition = query(core.declarationAt);
 const value = query(core.valueAt);
 const inScope = query(core.parametersInScopeAt);
-const references = summary(last.model.declarations.slice(0, 100).map((declaration) => time(() => core.referencesOf(semantics, declaration)).ms));
+const references = summary(
+  last.model.declarations.slice(0, 100).map((declaration) => time(() => core.referencesOf(semantics, declaration)).ms),
+);
 
 const fmt = (n) => n.toFixed(2).padStart(8);
-console.log(`semantic model benchmark: ${(text.length / 1024).toFixed(0)} KB, 1,000 parameters, 1,000 attributes with expressions (${runs} runs)`);
+console.log(
+  `semantic model benchmark: ${(text.length / 1024).toFixed(0)} KB, 1,000 parameters, 1,000 attributes with expressions (${runs} runs)`,
+);
 console.log('                                           median ms    p95 ms');
 console.log(`  parse XML                                 ${fmt(summary(parse).median)}  ${fmt(summary(parse).p95)}`);
 console.log(`  build the semantic model                  ${fmt(summary(build).median)}  ${fmt(summary(build).p95)}`);

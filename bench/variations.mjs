@@ -59,7 +59,9 @@ function timed(program, args, options = {}) {
 
 // esmini alone: the same concrete scenarios (vary writes them), the same options, `jobs` at a time.
 const concrete = path.join(folder, 'concrete');
-spawnSync(process.execPath, [cli, 'vary', 'large.xosc', '--out-dir', concrete, '--sample', String(sample), '--seed', '1', '-q'], { cwd: folder });
+spawnSync(process.execPath, [cli, 'vary', 'large.xosc', '--out-dir', concrete, '--sample', String(sample), '--seed', '1', '-q'], {
+  cwd: folder,
+});
 const files = readdirSync(concrete).map((name) => path.join(concrete, name));
 const alone = await (async () => {
   const cpuBefore = childrenCpuSeconds();
@@ -70,7 +72,25 @@ const alone = await (async () => {
       const file = files[next++];
       const csv = `${file}.csv`;
       await new Promise((resolve, reject) => {
-        const child = spawn(esmini, ['--headless', '--osc', file, '--fixed_timestep', '0.05', '--seed', '1', '--csv_logger', csv, '--disable_log', '--collision', '--path', folder], { stdio: 'ignore' });
+        const child = spawn(
+          esmini,
+          [
+            '--headless',
+            '--osc',
+            file,
+            '--fixed_timestep',
+            '0.05',
+            '--seed',
+            '1',
+            '--csv_logger',
+            csv,
+            '--disable_log',
+            '--collision',
+            '--path',
+            folder,
+          ],
+          { stdio: 'ignore' },
+        );
         child.on('error', reject);
         child.on('close', resolve);
       });
@@ -80,18 +100,44 @@ const alone = await (async () => {
   await Promise.all(Array.from({ length: jobs }, lane));
   return { wallMs: now() - started, cpu: childrenCpuSeconds() - cpuBefore };
 })();
-const batch = timed(process.execPath, [cli, 'batch', 'large.xosc', '--results', path.join(folder, 'results'), '--sample', String(sample), '--seed', '1', '--jobs', String(jobs), '--esmini', esmini, '-q']);
-const rows = readFileSync(path.join(folder, 'results', 'results.csv'), 'utf8').trim().split('\n').length - 1;
+const batch = timed(process.execPath, [
+  cli,
+  'batch',
+  'large.xosc',
+  '--results',
+  path.join(folder, 'results'),
+  '--sample',
+  String(sample),
+  '--seed',
+  '1',
+  '--jobs',
+  String(jobs),
+  '--esmini',
+  esmini,
+  '-q',
+]);
+const rows =
+  readFileSync(path.join(folder, 'results', 'results.csv'), 'utf8')
+    .trim()
+    .split('\n').length - 1;
 
 const perCore = (result) => sample / (result.wallMs / 1000) / jobs;
 const fmt = (n, digits = 1) => n.toFixed(digits).padStart(8);
-console.log(`Batch benchmark: a ${sample}-run sample of ${count} concrete scenarios (follow.xosc on e6mini, 3 s simulated at 0.05 s steps), ${jobs} at a time`);
+console.log(
+  `Batch benchmark: a ${sample}-run sample of ${count} concrete scenarios (follow.xosc on e6mini, 3 s simulated at 0.05 s steps), ${jobs} at a time`,
+);
 console.log('                                                 runs/s/core   CPU ms/run   wall s');
-console.log(`  esmini alone on the concrete scenarios          ${fmt(perCore(alone))}     ${fmt((alone.cpu * 1000) / sample)}   ${fmt(alone.wallMs / 1000)}`);
-console.log(`  modular2simple batch (${rows} rows)               ${fmt(perCore(batch))}     ${fmt((batch.cpu * 1000) / sample)}   ${fmt(batch.wallMs / 1000)}`);
+console.log(
+  `  esmini alone on the concrete scenarios          ${fmt(perCore(alone))}     ${fmt((alone.cpu * 1000) / sample)}   ${fmt(alone.wallMs / 1000)}`,
+);
+console.log(
+  `  modular2simple batch (${rows} rows)               ${fmt(perCore(batch))}     ${fmt((batch.cpu * 1000) / sample)}   ${fmt(batch.wallMs / 1000)}`,
+);
 const cpuOverhead = (batch.cpu / alone.cpu - 1) * 100;
 const wallOverhead = (batch.wallMs / alone.wallMs - 1) * 100;
-console.log(`  overhead per run: ${cpuOverhead.toFixed(1)} % of CPU, ${wallOverhead.toFixed(1)} % of wall-clock time (target < 10 %): ${cpuOverhead < 10 ? 'within' : 'OVER'}`);
+console.log(
+  `  overhead per run: ${cpuOverhead.toFixed(1)} % of CPU, ${wallOverhead.toFixed(1)} % of wall-clock time (target < 10 %): ${cpuOverhead < 10 ? 'within' : 'OVER'}`,
+);
 console.log(`  (the machine's load: ${loadavg()[0].toFixed(1)} on ${cpus().length} cores)`);
 
 // Through Redis: one worker, then two, each running one scenario at a time.
@@ -99,23 +145,52 @@ if (spawnSync('redis-server', ['--version']).status !== 0) {
   console.log('  (queue benchmark skipped: redis-server is not installed)');
 } else {
   const port = 20000 + Math.floor(Math.random() * 20000);
-  const redis = spawn('redis-server', ['--port', String(port), '--bind', '127.0.0.1', '--save', '', '--appendonly', 'no', '--dir', folder], { stdio: 'ignore' });
+  const redis = spawn(
+    'redis-server',
+    ['--port', String(port), '--bind', '127.0.0.1', '--save', '', '--appendonly', 'no', '--dir', folder],
+    { stdio: 'ignore' },
+  );
   const url = `redis://127.0.0.1:${port}`;
-  for (let i = 0; i < 100 && spawnSync('redis-cli', ['-p', String(port), 'ping'], { encoding: 'utf8' }).stdout.trim() !== 'PONG'; i++) spawnSync('sleep', ['0.05']);
+  for (let i = 0; i < 100 && spawnSync('redis-cli', ['-p', String(port), 'ping'], { encoding: 'utf8' }).stdout.trim() !== 'PONG'; i++)
+    spawnSync('sleep', ['0.05']);
   const throughQueue = async (workers) => {
     const cpuBefore = childrenCpuSeconds();
     const started = [];
-    for (let i = 0; i < workers; i++) started.push(spawn(process.execPath, [cli, 'worker', '--queue', url, '--jobs', '1', '--esmini', esmini, '--idle-exit', '1', '-q'], { stdio: 'ignore' }));
+    for (let i = 0; i < workers; i++)
+      started.push(
+        spawn(process.execPath, [cli, 'worker', '--queue', url, '--jobs', '1', '--esmini', esmini, '--idle-exit', '1', '-q'], {
+          stdio: 'ignore',
+        }),
+      );
     const ended = started.map((child) => new Promise((resolve) => child.on('close', resolve)));
-    const run = timed(process.execPath, [cli, 'batch', 'large.xosc', '--results', path.join(folder, `queued-${workers}`), '--sample', String(queueSample), '--seed', '2', '--queue', url, '-q']);
+    const run = timed(process.execPath, [
+      cli,
+      'batch',
+      'large.xosc',
+      '--results',
+      path.join(folder, `queued-${workers}`),
+      '--sample',
+      String(queueSample),
+      '--seed',
+      '2',
+      '--queue',
+      url,
+      '-q',
+    ]);
     await Promise.all(ended);
     return { ...run, cpu: childrenCpuSeconds() - cpuBefore };
   };
   const one = await throughQueue(1);
   const two = await throughQueue(2);
   redis.kill('SIGTERM');
-  console.log(`  through Redis, ${queueSample} runs: one worker ${fmt(one.wallMs / 1000)} s, two workers ${fmt(two.wallMs / 1000)} s: ${(one.wallMs / two.wallMs).toFixed(2)}x (target >= 1.8x on two free cores)`);
-  console.log(`    CPU ms per run, batch and workers together: one worker ${fmt((one.cpu * 1000) / queueSample)}, two ${fmt((two.cpu * 1000) / queueSample)} (esmini alone ${fmt((alone.cpu * 1000) / sample)})`);
-  console.log(`    (the machine's load: ${loadavg()[0].toFixed(1)} on ${cpus().length} cores; with fewer free cores than workers the ratio says more about the load than the queue)`);
+  console.log(
+    `  through Redis, ${queueSample} runs: one worker ${fmt(one.wallMs / 1000)} s, two workers ${fmt(two.wallMs / 1000)} s: ${(one.wallMs / two.wallMs).toFixed(2)}x (target >= 1.8x on two free cores)`,
+  );
+  console.log(
+    `    CPU ms per run, batch and workers together: one worker ${fmt((one.cpu * 1000) / queueSample)}, two ${fmt((two.cpu * 1000) / queueSample)} (esmini alone ${fmt((alone.cpu * 1000) / sample)})`,
+  );
+  console.log(
+    `    (the machine's load: ${loadavg()[0].toFixed(1)} on ${cpus().length} cores; with fewer free cores than workers the ratio says more about the load than the queue)`,
+  );
 }
 rmSync(folder, { recursive: true, force: true });

@@ -22,9 +22,21 @@ const entries = [
   // The Redis queue's client (batch --queue, worker) is loaded from node_modules only when used: start-up stays small.
   { entryPoints: ['server/src/cli.ts'], outfile: 'dist/cli-main.js', external: ['bullmq', 'ioredis'] },
   // The bird's-eye view's page: runs in the webview, everything bundled (no network, no CDN).
-  { entryPoints: ['client/src/birdsEye/webview/main.ts'], outfile: 'dist/birdsEye.js', platform: 'browser', format: 'iife', target: 'es2022' },
+  {
+    entryPoints: ['client/src/birdsEye/webview/main.ts'],
+    outfile: 'dist/birdsEye.js',
+    platform: 'browser',
+    format: 'iife',
+    target: 'es2022',
+  },
   // The Variations view's page (batch results: table and scatter), likewise.
-  { entryPoints: ['client/src/variations/webview/main.ts'], outfile: 'dist/variations.js', platform: 'browser', format: 'iife', target: 'es2022' },
+  {
+    entryPoints: ['client/src/variations/webview/main.ts'],
+    outfile: 'dist/variations.js',
+    platform: 'browser',
+    format: 'iife',
+    target: 'es2022',
+  },
 ];
 // The OpenSCENARIO schemas are compiled once here, so that nothing interprets XSD at run time.
 mkdirSync('dist', { recursive: true });

@@ -134,7 +134,9 @@ function compileSchema(text, version) {
       // The reference's occurrence applies to the whole group: wrap it.
       return { kind: 'sequence', min, max, items: [compiled] };
     }
-    const items = nodes(node.children).filter((candidate) => ['element', 'group', 'sequence', 'choice', 'all', 'any'].includes(candidate.tag)).map(compileParticle);
+    const items = nodes(node.children)
+      .filter((candidate) => ['element', 'group', 'sequence', 'choice', 'all', 'any'].includes(candidate.tag))
+      .map(compileParticle);
     return { kind: node.tag, min, max, items };
   }
 
@@ -191,7 +193,8 @@ function addHistory(schemas) {
       for (const attribute of type.attributes) {
         note(seen.attributeIn, `${typeName}@${attribute.name}`, schema.version);
         note(seen.attribute, attribute.name, schema.version);
-        if (attribute.deprecated || schema.simpleTypes[attribute.type]?.deprecated) note(deprecatedFirst, `a:${typeName}@${attribute.name}`, schema.version);
+        if (attribute.deprecated || schema.simpleTypes[attribute.type]?.deprecated)
+          note(deprecatedFirst, `a:${typeName}@${attribute.name}`, schema.version);
       }
     }
     for (const [typeName, type] of Object.entries(schema.simpleTypes)) {
@@ -238,14 +241,20 @@ function addHistory(schemas) {
 }
 
 export function compileSchemas(directory = path.join(root, 'schemas')) {
-  const schemas = SCHEMA_FILES.map(({ version, file }) => ({ ...compileSchema(readFileSync(path.join(directory, file), 'utf8'), version), file }));
+  const schemas = SCHEMA_FILES.map(({ version, file }) => ({
+    ...compileSchema(readFileSync(path.join(directory, file), 'utf8'), version),
+    file,
+  }));
   addHistory(schemas);
   return { source: 'ASAM OpenSCENARIO XML schemas (schemas/*.xsd), distributable under the ASAM license terms', schemas };
 }
 
 /** dist/openscenario-schemas.json: each version's model as JSON text of its own, parsed only when that version is checked (server/src/core/schema/model.ts). */
 export function schemaModelFile(compiled = compileSchemas()) {
-  return JSON.stringify({ source: compiled.source, schemas: Object.fromEntries(compiled.schemas.map((schema) => [schema.version, JSON.stringify(schema)])) });
+  return JSON.stringify({
+    source: compiled.source,
+    schemas: Object.fromEntries(compiled.schemas.map((schema) => [schema.version, JSON.stringify(schema)])),
+  });
 }
 
 if (process.argv[1] && path.resolve(process.argv[1]) === fileURLToPath(import.meta.url)) {

@@ -67,7 +67,10 @@ const shared = path.resolve(root, '..', 'shared', 'esmini');
 if (fs.existsSync(path.join(shared, 'build.sh'))) {
   const esmini = path.join(root, '.cache', 'esmini', 'bin', 'esmini');
   if (!fs.existsSync(esmini)) step('building esmini from ../shared/esmini into .cache/esmini (about 3 minutes, once)');
-  const built = spawnSync('bash', [path.join(shared, 'build.sh'), path.join(root, '.cache', 'esmini')], { cwd: root, stdio: ['ignore', 'ignore', 'inherit'] });
+  const built = spawnSync('bash', [path.join(shared, 'build.sh'), path.join(root, '.cache', 'esmini')], {
+    cwd: root,
+    stdio: ['ignore', 'ignore', 'inherit'],
+  });
   if (built.status === 0 && fs.existsSync(esmini)) {
     esminiSettings['modular2simple.esmini.path'] = esmini;
     esminiSettings['modular2simple.esmini.roadPath'] = [path.join(shared, 'xodr')];
@@ -82,29 +85,43 @@ fs.writeFileSync(config, `bind-addr: 127.0.0.1:${port}\nauth: none\n`);
 const server = spawn(
   codeServer,
   [
-    '--bind-addr', `127.0.0.1:${port}`,
-    '--auth', 'none',
+    '--bind-addr',
+    `127.0.0.1:${port}`,
+    '--auth',
+    'none',
     '--disable-telemetry',
     '--disable-update-check',
     '--disable-workspace-trust',
     '--disable-getting-started-override',
-    '--user-data-dir', userData,
-    '--extensions-dir', path.join(profile, 'extensions'),
-    '--config', config,
+    '--user-data-dir',
+    userData,
+    '--extensions-dir',
+    path.join(profile, 'extensions'),
+    '--config',
+    config,
   ],
   // Its own process group, so that stopping it ends its extension hosts and language servers too.
-  { stdio: ['ignore', 'ignore', 'inherit'], detached: true, env: { ...process.env, npm_config_nodedir: process.env.npm_config_nodedir ?? '/usr' } },
+  {
+    stdio: ['ignore', 'ignore', 'inherit'],
+    detached: true,
+    env: { ...process.env, npm_config_nodedir: process.env.npm_config_nodedir ?? '/usr' },
+  },
 );
 // The extension is loaded from this folder, as desktop VS Code's --extensionDevelopmentPath does.
 const payload = JSON.stringify([['extensionDevelopmentPath', `vscode-remote://127.0.0.1:${port}${root}`]]);
 const url = `http://127.0.0.1:${port}/?folder=${encodeURIComponent(workspace)}&payload=${encodeURIComponent(payload)}`;
 for (let attempt = 0; attempt < 150; attempt++) {
-  const ready = await fetch(`http://127.0.0.1:${port}/healthz`).then((response) => response.ok, () => false);
+  const ready = await fetch(`http://127.0.0.1:${port}/healthz`).then(
+    (response) => response.ok,
+    () => false,
+  );
   if (ready) break;
   if (server.exitCode !== null) process.exit(server.exitCode);
   await new Promise((resolve) => setTimeout(resolve, 200));
 }
-step(`VS Code (code-server) is running on 127.0.0.1 only. Open this address in a browser on this machine:\n\n  ${url}\n\nAfter a rebuild (npm run build), run "Developer: Reload Window". Stop with Ctrl+C.`);
+step(
+  `VS Code (code-server) is running on 127.0.0.1 only. Open this address in a browser on this machine:\n\n  ${url}\n\nAfter a rebuild (npm run build), run "Developer: Reload Window". Stop with Ctrl+C.`,
+);
 const stop = () => {
   try {
     process.kill(-server.pid, 'SIGTERM');

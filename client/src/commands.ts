@@ -60,7 +60,9 @@ function packageFolder(target: string): string | undefined {
 
 /** Beside the folder `NAME/` as `NAME.EXT`, or inside it when the folder is a workspace root. */
 function besideFolder(folder: string, extension: string): string {
-  const isRoot = (vscode.workspace.workspaceFolders ?? []).some((root) => root.uri.scheme === 'file' && path.resolve(root.uri.fsPath) === path.resolve(folder));
+  const isRoot = (vscode.workspace.workspaceFolders ?? []).some(
+    (root) => root.uri.scheme === 'file' && path.resolve(root.uri.fsPath) === path.resolve(folder),
+  );
   const name = `${path.basename(folder)}${extension}`;
   return isRoot ? path.join(folder, name) : path.join(path.dirname(folder), name);
 }
@@ -96,7 +98,9 @@ export class CommandReporter {
   async problems(action: string, problems: ProblemSummary[]): Promise<void> {
     this.log(`${action} failed:`);
     for (const problem of problems) {
-      this.log(`  ${problem.severity} ${problem.uri}:${problem.line + 1}:${problem.character + 1} ${problem.message}${problem.hint ? ` (${problem.hint})` : ''}`);
+      this.log(
+        `  ${problem.severity} ${problem.uri}:${problem.line + 1}:${problem.character + 1} ${problem.message}${problem.hint ? ` (${problem.hint})` : ''}`,
+      );
     }
     const first = problems.find((problem) => problem.severity === 'error') ?? problems[0];
     const advice = first ? `${first.message}${first.hint ? `; ${first.hint}` : ''}` : 'the language server gave no reason';
@@ -110,7 +114,10 @@ export class CommandReporter {
 
   async failure(action: string, error: unknown): Promise<void> {
     this.log(`${action} failed: ${(error as Error).stack ?? String(error)}`);
-    const choice = await vscode.window.showErrorMessage(`${action} failed: ${(error as Error).message}. See the Modular2Simple output for details.`, 'Show Details');
+    const choice = await vscode.window.showErrorMessage(
+      `${action} failed: ${(error as Error).message}. See the Modular2Simple output for details.`,
+      'Show Details',
+    );
     if (choice === 'Show Details') this.output.show(true);
   }
 }
@@ -131,16 +138,30 @@ async function confirmOverwrite(output: string, options: WriteCommandOptions): P
  * Where to write: the output a caller named (asking before replacing a file), or the place the
  * user picks in a save dialog that proposes the conventional name (the dialog asks about replacing).
  */
-async function chooseOutput(action: string, proposed: string, options: WriteCommandOptions, filters: Record<string, string[]>): Promise<string | undefined> {
+async function chooseOutput(
+  action: string,
+  proposed: string,
+  options: WriteCommandOptions,
+  filters: Record<string, string[]>,
+): Promise<string | undefined> {
   if (options.output) return (await confirmOverwrite(options.output, options)) ? options.output : undefined;
-  const picked = await vscode.window.showSaveDialog({ defaultUri: vscode.Uri.file(proposed), filters, saveLabel: action.split(' ')[0], title: action });
+  const picked = await vscode.window.showSaveDialog({
+    defaultUri: vscode.Uri.file(proposed),
+    filters,
+    saveLabel: action.split(' ')[0],
+    title: action,
+  });
   if (!picked) return undefined;
   return picked.scheme === 'file' ? picked.fsPath : picked.path;
 }
 
 type WriteOutcome = { result: WriteResult } | { error: unknown };
 
-async function withWriteProgress(action: string, output: string, write: (token: vscode.CancellationToken) => Promise<WriteResult>): Promise<WriteOutcome> {
+async function withWriteProgress(
+  action: string,
+  output: string,
+  write: (token: vscode.CancellationToken) => Promise<WriteResult>,
+): Promise<WriteOutcome> {
   try {
     return {
       result: await vscode.window.withProgress(
@@ -184,7 +205,10 @@ async function runWrite(
 
 /** Scenario files with unsaved changes, on disk or inside packages: Pack saves them first, so the package holds what the editor shows. */
 function unsavedScenarios(): vscode.TextDocument[] {
-  return vscode.workspace.textDocuments.filter((document) => document.isDirty && document.languageId === LANGUAGE_ID && (document.uri.scheme === 'file' || document.uri.scheme === PACKAGE_SCHEME));
+  return vscode.workspace.textDocuments.filter(
+    (document) =>
+      document.isDirty && document.languageId === LANGUAGE_ID && (document.uri.scheme === 'file' || document.uri.scheme === PACKAGE_SCHEME),
+  );
 }
 
 /** Saves the unsaved scenario files; answers their names, or undefined when one could not be saved. */
@@ -194,7 +218,9 @@ async function saveScenarios(reporter: CommandReporter, action: string): Promise
     const name = path.posix.basename(document.uri.path);
     if (!(await document.save())) {
       reporter.log(`${action}: could not save ${document.uri.toString()}`);
-      void vscode.window.showErrorMessage(`${action}: ${name} has unsaved changes and could not be saved, so nothing was packed. Save it, then pack again.`);
+      void vscode.window.showErrorMessage(
+        `${action}: ${name} has unsaved changes and could not be saved, so nothing was packed. Save it, then pack again.`,
+      );
       return undefined;
     }
     saved.push(name);
@@ -204,41 +230,78 @@ async function saveScenarios(reporter: CommandReporter, action: string): Promise
 
 /** Whether a package carries the road networks and catalogs its scenarios name; undefined when the user cancels. */
 async function chooseSelfContained(): Promise<boolean | undefined> {
-  const outside = { label: 'Reference roads and catalogs where they are', detail: 'the package names them relative to its folder; it runs only beside them', selfContained: false };
-  const inside = { label: 'Store roads and catalogs inside the package', detail: 'self-contained: the package runs wherever it is copied', selfContained: true };
-  const picked = await vscode.window.showQuickPick([outside, inside], { title: 'Pack into .mosc', placeHolder: 'Files the scenarios name outside the package', ignoreFocusOut: true });
+  const outside = {
+    label: 'Reference roads and catalogs where they are',
+    detail: 'the package names them relative to its folder; it runs only beside them',
+    selfContained: false,
+  };
+  const inside = {
+    label: 'Store roads and catalogs inside the package',
+    detail: 'self-contained: the package runs wherever it is copied',
+    selfContained: true,
+  };
+  const picked = await vscode.window.showQuickPick([outside, inside], {
+    title: 'Pack into .mosc',
+    placeHolder: 'Files the scenarios name outside the package',
+    ignoreFocusOut: true,
+  });
   return picked?.selfContained;
 }
 
-export async function packCommand(server: ServerCommandClient, reporter: CommandReporter, clicked: unknown, selected: unknown, ...rest: unknown[]): Promise<string | undefined> {
+export async function packCommand(
+  server: ServerCommandClient,
+  reporter: CommandReporter,
+  clicked: unknown,
+  selected: unknown,
+  ...rest: unknown[]
+): Promise<string | undefined> {
   const targets = commandTargets(clicked, selected).filter((uri) => uri.scheme === 'file');
   if (targets.length === 0) {
-    void vscode.window.showErrorMessage('Pack into .mosc: select a main.xosc, an unpacked package folder or the files to pack (one of them named main.xosc).');
+    void vscode.window.showErrorMessage(
+      'Pack into .mosc: select a main.xosc, an unpacked package folder or the files to pack (one of them named main.xosc).',
+    );
     return undefined;
   }
   const options = commandOptions(clicked, selected, ...rest);
   const selfContained = options.selfContained ?? (options.output !== undefined ? false : await chooseSelfContained());
   if (selfContained === undefined) return undefined;
-  const output = await chooseOutput('Pack into .mosc', defaultPackOutput(targets.map((uri) => uri.fsPath)), options, { 'OpenSCENARIO package': ['mosc'] });
+  const output = await chooseOutput('Pack into .mosc', defaultPackOutput(targets.map((uri) => uri.fsPath)), options, {
+    'OpenSCENARIO package': ['mosc'],
+  });
   if (!output) return undefined;
   // A package holds what the editor shows: unsaved scenario files are saved first, and the message says which.
   const saved = await saveScenarios(reporter, 'Pack into .mosc');
   if (!saved) return undefined;
   const note = saved.length > 0 ? ` (saved ${saved.join(', ')} first)` : '';
-  return runWrite(reporter, 'Pack into .mosc', output, async (token) => {
-    const result = await server.pack(targets, output, token, selfContained);
-    // Said when written, not only later in Problems: a package that reaches outside itself runs only beside those files.
-    const outside = result.written === null ? [] : result.problems.filter((problem) => problem.severity === 'warning' && problem.message.includes(' outside itself'));
-    if (outside.length > 0) {
-      void vscode.window.showWarningMessage(
-        `Pack into .mosc: ${problemPlace(outside[0])}${outside.length > 1 ? `; and ${outside.length - 1} more` : ''}. Pack again storing roads and catalogs inside the package to carry them.`,
-      );
-    }
-    return result;
-  }, note);
+  return runWrite(
+    reporter,
+    'Pack into .mosc',
+    output,
+    async (token) => {
+      const result = await server.pack(targets, output, token, selfContained);
+      // Said when written, not only later in Problems: a package that reaches outside itself runs only beside those files.
+      const outside =
+        result.written === null
+          ? []
+          : result.problems.filter((problem) => problem.severity === 'warning' && problem.message.includes(' outside itself'));
+      if (outside.length > 0) {
+        void vscode.window.showWarningMessage(
+          `Pack into .mosc: ${problemPlace(outside[0])}${outside.length > 1 ? `; and ${outside.length - 1} more` : ''}. Pack again storing roads and catalogs inside the package to carry them.`,
+        );
+      }
+      return result;
+    },
+    note,
+  );
 }
 
-export async function flattenCommand(server: ServerCommandClient, reporter: CommandReporter, clicked: unknown, selected: unknown, ...rest: unknown[]): Promise<string | undefined> {
+export async function flattenCommand(
+  server: ServerCommandClient,
+  reporter: CommandReporter,
+  clicked: unknown,
+  selected: unknown,
+  ...rest: unknown[]
+): Promise<string | undefined> {
   const [target] = commandTargets(clicked, selected);
   if (!target || target.scheme !== 'file') {
     void vscode.window.showErrorMessage('Flatten to .xosc: select a .mosc package, a main.xosc or an unpacked package folder on disk.');
@@ -254,7 +317,11 @@ export async function flattenCommand(server: ServerCommandClient, reporter: Comm
     const result = await server.flattenToFile(main, output, options, token);
     if (result.needsConfirmation !== 'outsideWorkspace') return result;
     const write = 'Write';
-    const answer = await vscode.window.showWarningMessage(`${output} lies outside the workspace. Write the flattened scenario there?`, { modal: true }, write);
+    const answer = await vscode.window.showWarningMessage(
+      `${output} lies outside the workspace. Write the flattened scenario there?`,
+      { modal: true },
+      write,
+    );
     return answer === write ? server.flattenToFile(main, output, options, token, true) : result;
   };
   const outcome = await withWriteProgress(action, output, (token) => flattenTo({}, token));
@@ -271,12 +338,16 @@ export async function flattenCommand(server: ServerCommandClient, reporter: Comm
     return undefined;
   }
   reporter.log(`${action} refused; writing anyway would keep these errors:`);
-  for (const problem of problems.filter((candidate) => candidate.severity === 'error')) reporter.log(`  ${problem.uri}:${problem.line + 1}:${problem.character + 1} ${problem.message}`);
+  for (const problem of problems.filter((candidate) => candidate.severity === 'error'))
+    reporter.log(`  ${problem.uri}:${problem.line + 1}:${problem.character + 1} ${problem.message}`);
   const writeAnyway = 'Write Anyway';
   const choice = await vscode.window.showWarningMessage(writeAnywayQuestion(action, problems), writeAnyway, 'Go to Problem');
   if (choice === 'Go to Problem') {
     const first = problems.find((problem) => problem.severity === 'error');
-    if (first) await vscode.window.showTextDocument(vscode.Uri.parse(first.uri), { selection: new vscode.Range(first.line, first.character, first.line, first.character) });
+    if (first)
+      await vscode.window.showTextDocument(vscode.Uri.parse(first.uri), {
+        selection: new vscode.Range(first.line, first.character, first.line, first.character),
+      });
     return undefined;
   }
   if (choice !== writeAnyway) return undefined;

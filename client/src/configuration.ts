@@ -9,6 +9,8 @@ export function resolveScenarioPaths(settings: unknown, folder: string | undefin
   if (!folder || typeof settings !== 'object' || settings === null || Array.isArray(settings)) return settings;
   const scenarioPath = (settings as { scenarioPath?: unknown }).scenarioPath;
   if (!Array.isArray(scenarioPath)) return settings;
-  const resolved = scenarioPath.map((entry: unknown) => (typeof entry === 'string' && entry.trim() ? path.resolve(folder, entry.trim()) : entry));
+  const resolved = scenarioPath.map((entry: unknown) =>
+    typeof entry === 'string' && entry.trim() ? path.resolve(folder, entry.trim()) : entry,
+  );
   return { ...(settings as Record<string, unknown>), scenarioPath: resolved };
 }

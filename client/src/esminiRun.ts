@@ -21,7 +21,9 @@ function toRange(range: RunEsminiResult['problems'][number]['range']): vscode.Ra
 
 /** The file's own errors as the language server reports them (esmini's messages from a run are not the scenario's). */
 function scenarioErrors(uri: vscode.Uri): number {
-  return vscode.languages.getDiagnostics(uri).filter((diagnostic) => diagnostic.severity === vscode.DiagnosticSeverity.Error && diagnostic.source !== 'esmini').length;
+  return vscode.languages
+    .getDiagnostics(uri)
+    .filter((diagnostic) => diagnostic.severity === vscode.DiagnosticSeverity.Error && diagnostic.source !== 'esmini').length;
 }
 
 /**
@@ -42,7 +44,8 @@ class RunLensProvider implements vscode.CodeLensProvider, vscode.Disposable {
     const position = document.positionAt(root);
     const range = new vscode.Range(position, position);
     return runLensTitles(scenarioErrors(document.uri)).map(
-      ({ title, force }) => new vscode.CodeLens(range, { title, command: force ? RUN_ESMINI_ANYWAY_COMMAND : RUN_ESMINI_COMMAND, arguments: [document.uri] }),
+      ({ title, force }) =>
+        new vscode.CodeLens(range, { title, command: force ? RUN_ESMINI_ANYWAY_COMMAND : RUN_ESMINI_COMMAND, arguments: [document.uri] }),
     );
   }
 
@@ -74,7 +77,14 @@ export class EsminiRunner implements vscode.Disposable {
       lenses,
       vscode.commands.registerCommand(RUN_ESMINI_COMMAND, (clicked: unknown) => this.run(clicked)),
       vscode.commands.registerCommand(RUN_ESMINI_ANYWAY_COMMAND, (clicked: unknown) => this.run(clicked, true)),
-      vscode.languages.registerCodeLensProvider([{ language: 'xosc', scheme: 'file' }, { language: 'xosc', scheme: 'mosc' }, { language: 'xosc', scheme: 'untitled' }], lenses),
+      vscode.languages.registerCodeLensProvider(
+        [
+          { language: 'xosc', scheme: 'file' },
+          { language: 'xosc', scheme: 'mosc' },
+          { language: 'xosc', scheme: 'untitled' },
+        ],
+        lenses,
+      ),
     );
   }
 
@@ -123,7 +133,9 @@ export class EsminiRunner implements vscode.Disposable {
     }
     const first = result.flattenProblems.find((problem) => problem.severity === 'error');
     if (choice === 'Go to Problem' && first) {
-      await vscode.window.showTextDocument(vscode.Uri.parse(first.uri), { selection: new vscode.Range(first.line, first.character, first.line, first.character) });
+      await vscode.window.showTextDocument(vscode.Uri.parse(first.uri), {
+        selection: new vscode.Range(first.line, first.character, first.line, first.character),
+      });
     }
   }
 
@@ -131,7 +143,11 @@ export class EsminiRunner implements vscode.Disposable {
     this.diagnostics.clear();
     const byUri = new Map<string, vscode.Diagnostic[]>();
     for (const problem of result.problems) {
-      const diagnostic = new vscode.Diagnostic(toRange(problem.range), problem.message + (problem.count > 1 ? ` (${problem.count} times)` : '') + (problem.note ? ` (${problem.note})` : ''), problem.severity === 'error' ? vscode.DiagnosticSeverity.Error : vscode.DiagnosticSeverity.Warning);
+      const diagnostic = new vscode.Diagnostic(
+        toRange(problem.range),
+        problem.message + (problem.count > 1 ? ` (${problem.count} times)` : '') + (problem.note ? ` (${problem.note})` : ''),
+        problem.severity === 'error' ? vscode.DiagnosticSeverity.Error : vscode.DiagnosticSeverity.Warning,
+      );
       diagnostic.source = 'esmini';
       const list = byUri.get(problem.uri) ?? [];
       list.push(diagnostic);
@@ -143,9 +159,14 @@ export class EsminiRunner implements vscode.Disposable {
     this.output.appendLine(`[${new Date().toISOString()}] ${source.toString(true)}: ${result.message}`);
     if (result.esmini) this.output.appendLine(`${result.esmini} ${(result.args ?? []).join(' ')}`);
     if (result.csvFile) this.output.appendLine(`CSV: ${result.csvFile}`);
-    if (result.roadFile) this.output.appendLine(`Road: ${result.roadFile.filepath} -> ${result.roadFile.loaded ?? result.roadFile.resolved ?? 'not found'}`);
-    for (const remark of result.remarks ?? []) this.output.appendLine(`info: ${remark.message}${remark.count > 1 ? ` (${remark.count} times)` : ''}: esmini's remark about its own files, not the scenario (${remark.why}; ${remark.origin})`);
-    for (const problem of result.flattenProblems) this.output.appendLine(`${problem.uri}:${problem.line + 1}:${problem.character + 1}: ${problem.severity}: ${problem.message}`);
+    if (result.roadFile)
+      this.output.appendLine(`Road: ${result.roadFile.filepath} -> ${result.roadFile.loaded ?? result.roadFile.resolved ?? 'not found'}`);
+    for (const remark of result.remarks ?? [])
+      this.output.appendLine(
+        `info: ${remark.message}${remark.count > 1 ? ` (${remark.count} times)` : ''}: esmini's remark about its own files, not the scenario (${remark.why}; ${remark.origin})`,
+      );
+    for (const problem of result.flattenProblems)
+      this.output.appendLine(`${problem.uri}:${problem.line + 1}:${problem.character + 1}: ${problem.severity}: ${problem.message}`);
     this.output.append(result.log);
     this.last = { source, result };
     this.emitter.fire(this.last);

@@ -61,9 +61,14 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
   const server = new ServerCommandClient(client);
   const serverReady = client.start().catch((error: unknown) => {
     log(`the language server did not start: ${(error as Error).stack ?? String(error)}`);
-    void vscode.window.showErrorMessage('Modular2Simple: the language server did not start; editing works, but checks, completion and preview do not. See the output for details.', 'Show Details').then((choice) => {
-      if (choice) output.show(true);
-    });
+    void vscode.window
+      .showErrorMessage(
+        'Modular2Simple: the language server did not start; editing works, but checks, completion and preview do not. See the output for details.',
+        'Show Details',
+      )
+      .then((choice) => {
+        if (choice) output.show(true);
+      });
   });
 
   const esmini = new EsminiRunner(client);
@@ -72,7 +77,11 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
   const preview = new FlattenedPreview((source) => server.preview(source), log);
   const structure = new StructureTree();
   // Scenario-path folders outside the workspace get watchers of their own; their events reach the server as the workspace's do.
-  const FILE_CHANGE: Record<'created' | 'changed' | 'deleted', FileChangeType> = { created: FileChangeType.Created, changed: FileChangeType.Changed, deleted: FileChangeType.Deleted };
+  const FILE_CHANGE: Record<'created' | 'changed' | 'deleted', FileChangeType> = {
+    created: FileChangeType.Created,
+    changed: FileChangeType.Changed,
+    deleted: FileChangeType.Deleted,
+  };
   const scenarioPathWatchers = new ScenarioPathWatchers((uri, kind) => {
     if (!client.isRunning()) return;
     client.sendNotification(DidChangeWatchedFilesNotification.type, { changes: [{ uri: uri.toString(), type: FILE_CHANGE[kind] }] }).then(
@@ -113,7 +122,11 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
   // The structure shown follows every change the server is sent (edits, file events) and saves, as the Outline does.
   let structureSource: vscode.Uri | undefined;
   const loadStructure = async (source: vscode.Uri, quietly = false): Promise<StructureNode | undefined> => {
-    const root = quietly ? await server.structure(source) : await vscode.window.withProgress({ location: { viewId: STRUCTURE_VIEW_ID }, title: 'Reading the references' }, () => server.structure(source));
+    const root = quietly
+      ? await server.structure(source)
+      : await vscode.window.withProgress({ location: { viewId: STRUCTURE_VIEW_ID }, title: 'Reading the references' }, () =>
+          server.structure(source),
+        );
     structureSource = source;
     structure.show(root ?? undefined);
     return root ?? undefined;
@@ -159,7 +172,11 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
   // A finished run goes straight into the picture: its trajectories beside the scenario.
   context.subscriptions.push(
     esmini.onDidRun((event) => {
-      if (event.result.csvFile) void vscode.commands.executeCommand('modular2simple.birdsEye.showRun', event.result.csvFile, { logText: event.result.log, scenario: event.source });
+      if (event.result.csvFile)
+        void vscode.commands.executeCommand('modular2simple.birdsEye.showRun', event.result.csvFile, {
+          logText: event.result.log,
+          scenario: event.source,
+        });
     }),
   );
 

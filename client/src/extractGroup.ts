@@ -16,7 +16,12 @@ function isArguments(value: unknown): value is ExtractGroupCommandArguments {
 /** The pick list of attributes to list in `parameterAttributes`, the suggested ones picked; undefined when the user cancels. */
 async function chooseAttributes(choices: ExtractGroupChoice[]): Promise<string[] | undefined> {
   type Item = vscode.QuickPickItem & { id: string };
-  const items: Item[] = choices.map((choice) => ({ id: choice.id, label: choice.label, description: `= ${choice.value}`, picked: choice.suggested }));
+  const items: Item[] = choices.map((choice) => ({
+    id: choice.id,
+    label: choice.label,
+    description: `= ${choice.value}`,
+    picked: choice.suggested,
+  }));
   const picked = await vscode.window.showQuickPick(items, {
     canPickMany: true,
     title: 'Extract to a simple scenario: the attributes a main may set',
@@ -30,7 +35,11 @@ async function chooseAttributes(choices: ExtractGroupChoice[]): Promise<string[]
  * *Extract to a simple scenario…* (the code action's command): lets the user change the choice of
  * attributes, asks the server for the edit, applies it and opens the new simple scenario beside.
  */
-export async function extractGroupCommand(server: ServerCommandClient, reporter: CommandReporter, args: unknown): Promise<ExtractGroupResult | undefined> {
+export async function extractGroupCommand(
+  server: ServerCommandClient,
+  reporter: CommandReporter,
+  args: unknown,
+): Promise<ExtractGroupResult | undefined> {
   if (!isArguments(args)) {
     void vscode.window.showErrorMessage('Extract to a simple scenario: use the light bulb (Ctrl+.) on a ManeuverGroup.');
     return undefined;
@@ -40,8 +49,13 @@ export async function extractGroupCommand(server: ServerCommandClient, reporter:
   try {
     const result = await server.extractGroup({ uri: args.uri, position: args.position, attributes });
     const edit = await server.workspaceEdit(result.edit);
-    if (!(await vscode.workspace.applyEdit(edit))) throw new Error('the editor did not apply the edit (the file may have changed meanwhile)');
-    await vscode.window.showTextDocument(vscode.Uri.parse(result.uri), { viewColumn: vscode.ViewColumn.Beside, preview: false, preserveFocus: true });
+    if (!(await vscode.workspace.applyEdit(edit)))
+      throw new Error('the editor did not apply the edit (the file may have changed meanwhile)');
+    await vscode.window.showTextDocument(vscode.Uri.parse(result.uri), {
+      viewColumn: vscode.ViewColumn.Beside,
+      preview: false,
+      preserveFocus: true,
+    });
     return result;
   } catch (error) {
     await reporter.failure('Extract to a simple scenario', error);

@@ -86,8 +86,18 @@ export class ServerCommandClient {
 
   /** Writes the flattened scenario; an existing output is replaced (the caller asked the user first). */
   /** `outsideWorkspace`: the user agreed to write outside the workspace (the server asks for that first). */
-  async flattenToFile(input: vscode.Uri, outputPath: string, options: FlattenOptions, token?: vscode.CancellationToken, outsideWorkspace = false): Promise<WriteResult> {
-    return (await this.started()).sendRequest(FlattenToFileRequest, { uri: input.toString(), outputPath, options, ...(outsideWorkspace ? { outsideWorkspace } : {}) }, token);
+  async flattenToFile(
+    input: vscode.Uri,
+    outputPath: string,
+    options: FlattenOptions,
+    token?: vscode.CancellationToken,
+    outsideWorkspace = false,
+  ): Promise<WriteResult> {
+    return (await this.started()).sendRequest(
+      FlattenToFileRequest,
+      { uri: input.toString(), outputPath, options, ...(outsideWorkspace ? { outsideWorkspace } : {}) },
+      token,
+    );
   }
 
   /** The live preview's text and line map, from the server's flattener. */
@@ -96,7 +106,11 @@ export class ServerCommandClient {
   }
 
   async pack(inputs: vscode.Uri[], outputPath: string, token?: vscode.CancellationToken, selfContained = false): Promise<WriteResult> {
-    return (await this.started()).sendRequest(PackRequest, { inputs: inputs.map((input) => input.toString()), outputPath, ...(selfContained ? { selfContained } : {}) }, token);
+    return (await this.started()).sendRequest(
+      PackRequest,
+      { inputs: inputs.map((input) => input.toString()), outputPath, ...(selfContained ? { selfContained } : {}) },
+      token,
+    );
   }
 
   /** Extract to a simple scenario with the attributes chosen: the edit to apply. */

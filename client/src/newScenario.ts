@@ -35,10 +35,17 @@ function isDirectory(filePath: string): boolean {
 
 /** The folder the command was run on: the explorer's folder (or a file's folder), else the workspace's first. */
 async function targetFolder(clicked: unknown): Promise<string | undefined> {
-  if (clicked instanceof vscode.Uri && clicked.scheme === 'file') return isDirectory(clicked.fsPath) ? clicked.fsPath : path.dirname(clicked.fsPath);
+  if (clicked instanceof vscode.Uri && clicked.scheme === 'file')
+    return isDirectory(clicked.fsPath) ? clicked.fsPath : path.dirname(clicked.fsPath);
   const folders = vscode.workspace.workspaceFolders?.filter((folder) => folder.uri.scheme === 'file') ?? [];
   if (folders.length === 1) return folders[0].uri.fsPath;
-  const chosen = await vscode.window.showOpenDialog({ canSelectFolders: true, canSelectFiles: false, openLabel: 'Create the scenario here', title: `${TITLE}: the folder`, defaultUri: folders[0]?.uri });
+  const chosen = await vscode.window.showOpenDialog({
+    canSelectFolders: true,
+    canSelectFiles: false,
+    openLabel: 'Create the scenario here',
+    title: `${TITLE}: the folder`,
+    defaultUri: folders[0]?.uri,
+  });
   return chosen?.[0]?.fsPath;
 }
 
@@ -61,7 +68,9 @@ function roadFilesBelow(folder: string, depth = ROAD_PATH_DEPTH, found: string[]
 
 /** The road networks to offer: those in the workspace, then those in the `modular2simple.esmini.roadPath` folders. */
 async function roadCandidates(folder: string): Promise<{ file: string; where: string }[]> {
-  const inWorkspace = (await vscode.workspace.findFiles('**/*.xodr', '**/node_modules/**', MAX_LISTED)).filter((uri) => uri.scheme === 'file').map((uri) => uri.fsPath);
+  const inWorkspace = (await vscode.workspace.findFiles('**/*.xodr', '**/node_modules/**', MAX_LISTED))
+    .filter((uri) => uri.scheme === 'file')
+    .map((uri) => uri.fsPath);
   const scope = vscode.Uri.file(folder);
   const base = (vscode.workspace.getWorkspaceFolder(scope) ?? vscode.workspace.workspaceFolders?.[0])?.uri.fsPath ?? folder;
   const roadPath = vscode.workspace.getConfiguration('modular2simple.esmini', scope).get<string[]>('roadPath') ?? [];
@@ -88,12 +97,21 @@ async function askRoadNetwork(folder: string): Promise<string | undefined> {
   ];
   const picked = await vscode.window.showQuickPick(items, {
     title: `${TITLE}: the road network`,
-    placeHolder: candidates.length > 0 ? 'The OpenDRIVE road network the scenario drives on' : 'No .xodr file in the workspace or in modular2simple.esmini.roadPath: browse for one',
+    placeHolder:
+      candidates.length > 0
+        ? 'The OpenDRIVE road network the scenario drives on'
+        : 'No .xodr file in the workspace or in modular2simple.esmini.roadPath: browse for one',
     matchOnDescription: true,
   });
   if (!picked) return undefined;
   if (picked.file) return picked.file;
-  const browsed = await vscode.window.showOpenDialog({ canSelectFiles: true, canSelectMany: false, filters: { OpenDRIVE: ['xodr'] }, title: `${TITLE}: the road network`, defaultUri: vscode.Uri.file(folder) });
+  const browsed = await vscode.window.showOpenDialog({
+    canSelectFiles: true,
+    canSelectMany: false,
+    filters: { OpenDRIVE: ['xodr'] },
+    title: `${TITLE}: the road network`,
+    defaultUri: vscode.Uri.file(folder),
+  });
   return browsed?.[0]?.fsPath;
 }
 
@@ -112,7 +130,12 @@ async function askFileName(folder: string): Promise<string | undefined> {
  * *New Modular Scenario…*: asks for a road network and a file name, has the server write the main
  * (an ego on the road, a Story/Act ready to import groups), writes it without overwriting anything and opens it.
  */
-export async function newScenarioCommand(server: ServerCommandClient, reporter: CommandReporter, clicked: unknown, ...rest: unknown[]): Promise<vscode.Uri | undefined> {
+export async function newScenarioCommand(
+  server: ServerCommandClient,
+  reporter: CommandReporter,
+  clicked: unknown,
+  ...rest: unknown[]
+): Promise<vscode.Uri | undefined> {
   const options = [clicked, ...rest].find(isNewScenarioOptions) ?? {};
   try {
     const folder = await targetFolder(clicked);
@@ -131,7 +154,9 @@ export async function newScenarioCommand(server: ServerCommandClient, reporter: 
     await fs.promises.mkdir(folder, { recursive: true });
     // 'wx': never over a file that appeared since the name was checked.
     await fs.promises.writeFile(target, result.text, { encoding: 'utf8', flag: 'wx' });
-    reporter.log(`${TITLE}: wrote ${target} (ego on road ${result.ego.roadId}, lane ${result.ego.laneId}, s ${result.ego.s} of ${result.roadFile})`);
+    reporter.log(
+      `${TITLE}: wrote ${target} (ego on road ${result.ego.roadId}, lane ${result.ego.laneId}, s ${result.ego.s} of ${result.roadFile})`,
+    );
     const uri = vscode.Uri.file(target);
     await vscode.window.showTextDocument(uri, { preview: false });
     return uri;

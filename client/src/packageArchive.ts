@@ -93,7 +93,10 @@ interface OpenPackages {
 
 /** Splits a package path into its archive on disk, nested packages and entry. */
 export async function locate(packagePath: string): Promise<PackageLocation> {
-  const segments = path.posix.normalize(packagePath.replace(/\\/g, '/')).split('/').filter((segment) => segment !== '');
+  const segments = path.posix
+    .normalize(packagePath.replace(/\\/g, '/'))
+    .split('/')
+    .filter((segment) => segment !== '');
   for (let split = segments.length; split >= 1; split--) {
     const disk = '/' + segments.slice(0, split).join('/');
     if (!isPackageName(disk) || !(await isFile(disk))) continue;
@@ -224,9 +227,11 @@ function rewrite(location: PackageLocation, change: (entries: PackageEntries) =>
   const previous = pendingRewrites.get(location.disk) ?? Promise.resolve();
   const next = previous.catch(() => undefined).then(() => rewriteNow(location, change));
   pendingRewrites.set(location.disk, next);
-  void next.finally(() => {
-    if (pendingRewrites.get(location.disk) === next) pendingRewrites.delete(location.disk);
-  }).catch(() => undefined);
+  void next
+    .finally(() => {
+      if (pendingRewrites.get(location.disk) === next) pendingRewrites.delete(location.disk);
+    })
+    .catch(() => undefined);
   return next;
 }
 
@@ -242,7 +247,11 @@ async function rewriteNow(location: PackageLocation, change: (entries: PackageEn
   await writeFileAtomic(location.disk, bytes);
 }
 
-export async function writeEntry(location: PackageLocation, content: Uint8Array, options: { create: boolean; overwrite: boolean }): Promise<void> {
+export async function writeEntry(
+  location: PackageLocation,
+  content: Uint8Array,
+  options: { create: boolean; overwrite: boolean },
+): Promise<void> {
   if (location.inner === '') throw new PackageError(`${describe(location)} is a package, not a file inside one`, 'invalid');
   await rewrite(location, (entries) => {
     const exists = entries.has(location.inner);

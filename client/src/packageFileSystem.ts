@@ -53,7 +53,10 @@ export class PackageFileSystem implements vscode.FileSystemProvider, vscode.Disp
           const watcher = vscode.workspace.createFileSystemWatcher(new vscode.RelativePattern(folder, path.basename(disk)));
           const fire = (): void => {
             const current = this.watchers.get(location.disk);
-            if (current) this.changes.fire([...current.uris].map((watched) => ({ type: vscode.FileChangeType.Changed, uri: vscode.Uri.parse(watched) })));
+            if (current)
+              this.changes.fire(
+                [...current.uris].map((watched) => ({ type: vscode.FileChangeType.Changed, uri: vscode.Uri.parse(watched) })),
+              );
           };
           watcher.onDidChange(fire);
           watcher.onDidCreate(fire);
@@ -92,7 +95,10 @@ export class PackageFileSystem implements vscode.FileSystemProvider, vscode.Disp
   readDirectory(uri: vscode.Uri): Promise<[string, vscode.FileType][]> {
     return this.run(uri, async () => {
       const children = await archive.listFolder(await archive.locate(uri.path));
-      return children.map(([name, kind]): [string, vscode.FileType] => [name, kind === 'file' ? vscode.FileType.File : vscode.FileType.Directory]);
+      return children.map(([name, kind]): [string, vscode.FileType] => [
+        name,
+        kind === 'file' ? vscode.FileType.File : vscode.FileType.Directory,
+      ]);
     });
   }
 
@@ -125,7 +131,9 @@ export class PackageFileSystem implements vscode.FileSystemProvider, vscode.Disp
   }
 
   createDirectory(uri: vscode.Uri): void {
-    throw vscode.FileSystemError.NoPermissions(`${uri.path}: a folder inside a package exists through its files; create a file in it instead`);
+    throw vscode.FileSystemError.NoPermissions(
+      `${uri.path}: a folder inside a package exists through its files; create a file in it instead`,
+    );
   }
 
   dispose(): void {

@@ -51,7 +51,9 @@ export class PackageViewProvider implements vscode.CustomReadonlyEditorProvider 
       if (message?.type === 'open') await vscode.commands.executeCommand('vscode.open', packageEntryUri(document.uri, message.entry));
       if (message?.type === 'run') await vscode.commands.executeCommand(message.command, document.uri);
     });
-    const watcher = vscode.workspace.createFileSystemWatcher(new vscode.RelativePattern(vscode.Uri.joinPath(document.uri, '..'), document.uri.path.split('/').pop() ?? ''));
+    const watcher = vscode.workspace.createFileSystemWatcher(
+      new vscode.RelativePattern(vscode.Uri.joinPath(document.uri, '..'), document.uri.path.split('/').pop() ?? ''),
+    );
     watcher.onDidChange(render);
     panel.onDidDispose(() => watcher.dispose());
     await render();

@@ -9,7 +9,11 @@ export const PREVIEW_SCHEME = 'modular2simple-preview';
 /** The preview of `source`: a read-only virtual document named as Flatten names its output, in the `xosc` language. */
 export function previewUri(source: vscode.Uri): vscode.Uri {
   const folder = vscode.Uri.joinPath(source, '..');
-  return vscode.Uri.from({ scheme: PREVIEW_SCHEME, path: vscode.Uri.joinPath(folder, flattenedName(source)).path, query: source.toString() });
+  return vscode.Uri.from({
+    scheme: PREVIEW_SCHEME,
+    path: vscode.Uri.joinPath(folder, flattenedName(source)).path,
+    query: source.toString(),
+  });
 }
 
 export function previewSource(preview: vscode.Uri): vscode.Uri {
@@ -17,7 +21,12 @@ export function previewSource(preview: vscode.Uri): vscode.Uri {
 }
 
 function describeProblems(problems: ProblemSummary[]): string {
-  return problems.map((problem) => `  ${problem.severity}: ${problem.uri}:${problem.line + 1}:${problem.character + 1}: ${problem.message}${problem.hint ? ` (${problem.hint})` : ''}`).join('\n');
+  return problems
+    .map(
+      (problem) =>
+        `  ${problem.severity}: ${problem.uri}:${problem.line + 1}:${problem.character + 1}: ${problem.message}${problem.hint ? ` (${problem.hint})` : ''}`,
+    )
+    .join('\n');
 }
 
 /** What the preview shows when flattening fails: why, as an XML comment, so the document stays valid XML. */
@@ -75,7 +84,12 @@ export class FlattenedPreview implements vscode.TextDocumentContentProvider, vsc
       // A preview shown again (say, a closed tab reopened) asks for the current text.
       vscode.window.tabGroups.onDidChangeTabs((event) => {
         for (const tab of event.opened) {
-          if (tab.input instanceof vscode.TabInputText && tab.input.uri.scheme === PREVIEW_SCHEME && !this.states.has(tab.input.uri.toString())) void this.refresh(tab.input.uri);
+          if (
+            tab.input instanceof vscode.TabInputText &&
+            tab.input.uri.scheme === PREVIEW_SCHEME &&
+            !this.states.has(tab.input.uri.toString())
+          )
+            void this.refresh(tab.input.uri);
         }
       }),
     );
@@ -88,7 +102,9 @@ export class FlattenedPreview implements vscode.TextDocumentContentProvider, vsc
    */
   refreshAll(): void {
     const inTabs = new Set(
-      vscode.window.tabGroups.all.flatMap((group) => group.tabs.map((tab) => (tab.input instanceof vscode.TabInputText ? tab.input.uri.toString() : undefined))),
+      vscode.window.tabGroups.all.flatMap((group) =>
+        group.tabs.map((tab) => (tab.input instanceof vscode.TabInputText ? tab.input.uri.toString() : undefined)),
+      ),
     );
     for (const document of vscode.workspace.textDocuments) {
       if (document.uri.scheme !== PREVIEW_SCHEME || document.isClosed) continue;
@@ -136,7 +152,11 @@ export class FlattenedPreview implements vscode.TextDocumentContentProvider, vsc
       return result;
     } catch (error) {
       this.log(`preview of ${source.toString()}: ${(error as Error).stack ?? String(error)}`);
-      return { text: null, problems: [{ uri: source.toString(), line: 0, character: 0, severity: 'error', message: (error as Error).message }], lines: [] };
+      return {
+        text: null,
+        problems: [{ uri: source.toString(), line: 0, character: 0, severity: 'error', message: (error as Error).message }],
+        lines: [],
+      };
     }
   }
 
@@ -187,7 +207,11 @@ export class FlattenedPreview implements vscode.TextDocumentContentProvider, vsc
     await this.refresh(uri);
     const document = await vscode.workspace.openTextDocument(uri);
     await vscode.languages.setTextDocumentLanguage(document, LANGUAGE_ID);
-    const editor = await vscode.window.showTextDocument(document, { viewColumn: vscode.ViewColumn.Beside, preserveFocus: true, preview: true });
+    const editor = await vscode.window.showTextDocument(document, {
+      viewColumn: vscode.ViewColumn.Beside,
+      preserveFocus: true,
+      preview: true,
+    });
     const sourceEditor = vscode.window.visibleTextEditors.find((visible) => visible.document.uri.toString() === source.toString());
     const line = place?.line ?? sourceEditor?.selection.active.line;
     if (showsFailure(this.states.get(uri.toString())?.result)) this.showFailureFromTop(uri);

@@ -17,7 +17,8 @@ export function whileRunning(isRunning: () => boolean): Middleware {
     provideHover: (document, position, token, next) => (isRunning() ? next(document, position, token) : undefined),
     provideInlayHints: (document, viewPort, token, next) => (isRunning() ? next(document, viewPort, token) : undefined),
     provideDocumentSemanticTokens: (document, token, next) => (isRunning() ? next(document, token) : undefined),
-    provideDocumentSemanticTokensEdits: (document, previousResultId, token, next) => (isRunning() ? next(document, previousResultId, token) : undefined),
+    provideDocumentSemanticTokensEdits: (document, previousResultId, token, next) =>
+      isRunning() ? next(document, previousResultId, token) : undefined,
     provideDocumentRangeSemanticTokens: (document, range, token, next) => (isRunning() ? next(document, range, token) : undefined),
   };
 }

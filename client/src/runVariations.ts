@@ -43,7 +43,9 @@ export class VariationsRunner implements vscode.Disposable {
   async run(clicked: unknown): Promise<VariationsRun | undefined> {
     const [source] = commandTargets(clicked, undefined);
     if (!source || source.scheme !== 'file') {
-      void vscode.window.showErrorMessage('Run Variations: open a distribution file (a .xosc with a ParameterValueDistribution) on disk first.');
+      void vscode.window.showErrorMessage(
+        'Run Variations: open a distribution file (a .xosc with a ParameterValueDistribution) on disk first.',
+      );
       return undefined;
     }
     const document = vscode.workspace.textDocuments.find((candidate) => candidate.uri.toString() === source.toString());
@@ -54,7 +56,8 @@ export class VariationsRunner implements vscode.Disposable {
     const settings = vscode.workspace.getConfiguration(SETTINGS, source);
     const args = ['batch', file, '--results', resultsFolder];
     const esminiPath = settings.get<string>('path');
-    if (esminiPath) args.push('--esmini', path.resolve(vscode.workspace.getWorkspaceFolder(source)?.uri.fsPath ?? path.dirname(file), esminiPath));
+    if (esminiPath)
+      args.push('--esmini', path.resolve(vscode.workspace.getWorkspaceFolder(source)?.uri.fsPath ?? path.dirname(file), esminiPath));
     const roadPath = settings.get<string[]>('roadPath') ?? [];
     if (roadPath.length > 0) args.push('--road-path', roadPath.join(path.delimiter));
     const duration = settings.get<number>('duration');
@@ -67,7 +70,11 @@ export class VariationsRunner implements vscode.Disposable {
       (progress, token) =>
         new Promise<VariationsRun>((resolve) => {
           // In VS Code's desktop extension host, process.execPath is Electron: it runs the CLI as Node only when told to.
-          const child = fork(this.cliPath, args, { cwd: path.dirname(file), stdio: ['ignore', 'pipe', 'pipe', 'ipc'], env: { ...process.env, ELECTRON_RUN_AS_NODE: '1' } });
+          const child = fork(this.cliPath, args, {
+            cwd: path.dirname(file),
+            stdio: ['ignore', 'pipe', 'pipe', 'ipc'],
+            env: { ...process.env, ELECTRON_RUN_AS_NODE: '1' },
+          });
           this.running.add(child);
           let cancelled = false;
           let reported = 0;
@@ -109,15 +116,21 @@ export class VariationsRunner implements vscode.Disposable {
     );
     const csv = path.join(resultsFolder, 'results.csv');
     if (outcome.cancelled) {
-      void vscode.window.showInformationMessage(`Run Variations stopped: the rows so far are in ${path.basename(resultsFolder)}/results.csv; run it again to run the rest.`);
+      void vscode.window.showInformationMessage(
+        `Run Variations stopped: the rows so far are in ${path.basename(resultsFolder)}/results.csv; run it again to run the rest.`,
+      );
     } else if (outcome.exitCode !== 0) {
-      const choice = await vscode.window.showErrorMessage(`Run Variations of ${name} failed (exit code ${outcome.exitCode}): see the output for why.`, 'Show Output');
+      const choice = await vscode.window.showErrorMessage(
+        `Run Variations of ${name} failed (exit code ${outcome.exitCode}): see the output for why.`,
+        'Show Output',
+      );
       if (choice === 'Show Output') this.output.show();
       if (!fs.existsSync(csv)) return outcome;
     }
     if (!fs.existsSync(csv)) return outcome;
     const commands = await vscode.commands.getCommands(true);
-    if (commands.includes(SHOW_VARIATIONS_COMMAND)) await vscode.commands.executeCommand(SHOW_VARIATIONS_COMMAND, vscode.Uri.file(resultsFolder));
+    if (commands.includes(SHOW_VARIATIONS_COMMAND))
+      await vscode.commands.executeCommand(SHOW_VARIATIONS_COMMAND, vscode.Uri.file(resultsFolder));
     else await vscode.window.showTextDocument(vscode.Uri.file(csv));
     return outcome;
   }

@@ -46,7 +46,9 @@ export class ScenarioPathWatchers implements vscode.Disposable {
 
   private update(): void {
     for (const watcher of this.watchers) watcher.dispose();
-    const roots = (vscode.workspace.workspaceFolders ?? []).filter((folder) => folder.uri.scheme === 'file').map((folder) => folder.uri.fsPath);
+    const roots = (vscode.workspace.workspaceFolders ?? [])
+      .filter((folder) => folder.uri.scheme === 'file')
+      .map((folder) => folder.uri.fsPath);
     this.watched = foldersOutsideWorkspace(scenarioPathFolders(), roots);
     this.watchers = this.watched.map((folder) => {
       const watcher = vscode.workspace.createFileSystemWatcher(new vscode.RelativePattern(vscode.Uri.file(folder), SCENARIO_GLOB));

@@ -28,9 +28,12 @@ export class StructureTree implements vscode.TreeDataProvider<StructureNode> {
   }
 
   getTreeItem(node: StructureNode): vscode.TreeItem {
-    const collapsible = node.children.length === 0
-      ? vscode.TreeItemCollapsibleState.None
-      : node.kind === 'group' ? vscode.TreeItemCollapsibleState.Collapsed : vscode.TreeItemCollapsibleState.Expanded;
+    const collapsible =
+      node.children.length === 0
+        ? vscode.TreeItemCollapsibleState.None
+        : node.kind === 'group'
+          ? vscode.TreeItemCollapsibleState.Collapsed
+          : vscode.TreeItemCollapsibleState.Expanded;
     const item = new vscode.TreeItem(node.label, collapsible);
     item.description = node.detail;
     item.iconPath = ICONS[node.kind];

@@ -29,7 +29,10 @@ export interface EsminiRun {
 }
 
 export class EsminiCsvError extends Error {
-  constructor(message: string, readonly line: number) {
+  constructor(
+    message: string,
+    readonly line: number,
+  ) {
     super(`line ${line}: ${message}`);
   }
 }
@@ -56,9 +59,15 @@ function columnName(header: string): { entity: number; field: string } | undefin
 export function parseEsminiCsv(text: string, options: { maxRows?: number } = {}): EsminiRun {
   const maxRows = options.maxRows ?? 1_000_000;
   const lines = text.split(/\r?\n/);
-  const headerValue = (prefix: string) => lines.slice(0, 6).find((line) => line.startsWith(prefix))?.slice(prefix.length).trim() ?? '';
+  const headerValue = (prefix: string) =>
+    lines
+      .slice(0, 6)
+      .find((line) => line.startsWith(prefix))
+      ?.slice(prefix.length)
+      .trim() ?? '';
   const columnLine = lines.findIndex((line, index) => index < 20 && line.startsWith('Index'));
-  if (!lines[0]?.startsWith('esmini') || columnLine < 0) throw new EsminiCsvError('not an esmini CSV log: expected esmini header lines and an `Index [-], TimeStamp [s], ...` column line', 1);
+  if (!lines[0]?.startsWith('esmini') || columnLine < 0)
+    throw new EsminiCsvError('not an esmini CSV log: expected esmini header lines and an `Index [-], TimeStamp [s], ...` column line', 1);
   const headers = lines[columnLine].split(',');
   const columns = new Map<number, Partial<Record<Field, number>>>();
   headers.forEach((header, index) => {

@@ -53,10 +53,15 @@ export async function readPackageBytes(
   for (const record of records) {
     if (record.name.endsWith('/') || record.name.endsWith('\\')) continue;
     const name = normalizeEntryName(record.name);
-    if (name === undefined) throw new Error(`${label} holds an entry named '${record.name}' that points outside the package; it was refused`);
+    if (name === undefined)
+      throw new Error(`${label} holds an entry named '${record.name}' that points outside the package; it was refused`);
     const first = stored.get(name);
     if (first !== undefined) {
-      throw new Error(`${label} holds the entry '${name}' twice` + (first === record.name ? '' : ` (as '${first}' and '${record.name}')`) + '; it was refused');
+      throw new Error(
+        `${label} holds the entry '${name}' twice` +
+          (first === record.name ? '' : ` (as '${first}' and '${record.name}')`) +
+          '; it was refused',
+      );
     }
     stored.set(name, record.name);
   }

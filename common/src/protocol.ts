@@ -239,4 +239,3 @@ export interface EsminiRemarkSummary {
   origin: string;
   why: string;
 }
-

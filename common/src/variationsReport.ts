@@ -198,12 +198,22 @@ export function scatterAxis(column: string, rows: readonly ResultRow[]): Scatter
     for (let value = Math.ceil(low / step) * step; value <= high + step * 1e-9; value += step) {
       ticks.push({ at: (value - low) / (high - low), label: formatTick(value, step) });
     }
-    return { column, kind: 'number', ticks, place: (cell) => (numeric(cell) === undefined ? undefined : (Number(cell) - low) / (high - low)) };
+    return {
+      column,
+      kind: 'number',
+      ticks,
+      place: (cell) => (numeric(cell) === undefined ? undefined : (Number(cell) - low) / (high - low)),
+    };
   }
   const categories = [...new Set(cells)].sort((a, b) => compareCells(a, b));
   const at = (position: number) => (categories.length === 1 ? 0.5 : position / (categories.length - 1));
   const positions = new Map(categories.map((category, position) => [category, at(position)]));
-  return { column, kind: 'category', ticks: categories.map((label, position) => ({ at: at(position), label })), place: (cell) => (cell === undefined ? undefined : positions.get(cell)) };
+  return {
+    column,
+    kind: 'category',
+    ticks: categories.map((label, position) => ({ at: at(position), label })),
+    place: (cell) => (cell === undefined ? undefined : positions.get(cell)),
+  };
 }
 
 /** The scatter of two columns: every row with both cells, at its place along each axis. */
@@ -219,7 +229,13 @@ export function scatterModel(rows: readonly ResultRow[], xColumn: string, yColum
       omitted++;
       continue;
     }
-    points.push({ index: row.index, outcome: row.outcome, x: px, y: py, label: `#${row.index} ${row.outcome}: ${xColumn}=${row.cells[xColumn]}, ${yColumn}=${row.cells[yColumn]}` });
+    points.push({
+      index: row.index,
+      outcome: row.outcome,
+      x: px,
+      y: py,
+      label: `#${row.index} ${row.outcome}: ${xColumn}=${row.cells[xColumn]}, ${yColumn}=${row.cells[yColumn]}`,
+    });
   }
   return { x, y, points, omitted };
 }
@@ -254,20 +270,30 @@ export function scatterSvg(model: ScatterModel, style: ScatterStyle): string {
   const sy = (at: number) => margin.top + plotHeight * (0.96 - 0.92 * at);
   const round = (value: number) => Math.round(value * 10) / 10;
   const parts: string[] = [];
-  parts.push(`<svg xmlns="http://www.w3.org/2000/svg" class="scatter" width="${style.width}" height="${style.height}" viewBox="0 0 ${style.width} ${style.height}" font-family="${escapeHtml(style.fontFamily)}" font-size="11" role="img" aria-label="${escapeHtml(`${model.y.column} against ${model.x.column}`)}">`);
-  parts.push(`<rect x="${margin.left}" y="${margin.top}" width="${plotWidth}" height="${plotHeight}" fill="none" stroke="${style.foreground}" stroke-opacity="0.5"/>`);
+  parts.push(
+    `<svg xmlns="http://www.w3.org/2000/svg" class="scatter" width="${style.width}" height="${style.height}" viewBox="0 0 ${style.width} ${style.height}" font-family="${escapeHtml(style.fontFamily)}" font-size="11" role="img" aria-label="${escapeHtml(`${model.y.column} against ${model.x.column}`)}">`,
+  );
+  parts.push(
+    `<rect x="${margin.left}" y="${margin.top}" width="${plotWidth}" height="${plotHeight}" fill="none" stroke="${style.foreground}" stroke-opacity="0.5"/>`,
+  );
   for (const tick of model.x.ticks) {
     const x = round(sx(tick.at));
     parts.push(`<line x1="${x}" y1="${margin.top}" x2="${x}" y2="${margin.top + plotHeight}" stroke="${style.grid}"/>`);
-    parts.push(`<text x="${x}" y="${margin.top + plotHeight + 14}" text-anchor="middle" fill="${style.foreground}">${escapeHtml(tick.label)}</text>`);
+    parts.push(
+      `<text x="${x}" y="${margin.top + plotHeight + 14}" text-anchor="middle" fill="${style.foreground}">${escapeHtml(tick.label)}</text>`,
+    );
   }
   for (const tick of model.y.ticks) {
     const y = round(sy(tick.at));
     parts.push(`<line x1="${margin.left}" y1="${y}" x2="${margin.left + plotWidth}" y2="${y}" stroke="${style.grid}"/>`);
     parts.push(`<text x="${margin.left - 6}" y="${y + 4}" text-anchor="end" fill="${style.foreground}">${escapeHtml(tick.label)}</text>`);
   }
-  parts.push(`<text class="axis-x" x="${margin.left + plotWidth / 2}" y="${style.height - 10}" text-anchor="middle" font-weight="bold" fill="${style.foreground}">${escapeHtml(model.x.column)}</text>`);
-  parts.push(`<text class="axis-y" transform="translate(14 ${margin.top + plotHeight / 2}) rotate(-90)" text-anchor="middle" font-weight="bold" fill="${style.foreground}">${escapeHtml(model.y.column)}</text>`);
+  parts.push(
+    `<text class="axis-x" x="${margin.left + plotWidth / 2}" y="${style.height - 10}" text-anchor="middle" font-weight="bold" fill="${style.foreground}">${escapeHtml(model.x.column)}</text>`,
+  );
+  parts.push(
+    `<text class="axis-y" transform="translate(14 ${margin.top + plotHeight / 2}) rotate(-90)" text-anchor="middle" font-weight="bold" fill="${style.foreground}">${escapeHtml(model.y.column)}</text>`,
+  );
   // Runs with the same two values (they differ in another parameter) are set around their place, so each shows and can be clicked.
   const offsets = new Map<ScatterPoint, { dx: number; dy: number }>();
   const byPlace = new Map<string, ScatterPoint[]>();
@@ -300,12 +326,18 @@ export function scatterSvg(model: ScatterModel, style: ScatterStyle): string {
   OUTCOMES.forEach((outcome, i) => {
     const y = margin.top + 10 + i * 18;
     const count = counts[outcome];
-    parts.push(`<circle cx="${legendX + 5}" cy="${y}" r="5" fill="${OUTCOME_COLORS[outcome]}"/><text class="legend" x="${legendX + 16}" y="${y + 4}" fill="${style.foreground}">${outcome} (${count})</text>`);
+    parts.push(
+      `<circle cx="${legendX + 5}" cy="${y}" r="5" fill="${OUTCOME_COLORS[outcome]}"/><text class="legend" x="${legendX + 16}" y="${y + 4}" fill="${style.foreground}">${outcome} (${count})</text>`,
+    );
   });
   const notes: string[] = [];
   if ([...byPlace.values()].some((group) => group.length > 1)) notes.push('same values: set', 'around their place');
   if (model.omitted > 0) notes.push(`${model.omitted} without values`);
-  notes.forEach((note, i) => parts.push(`<text x="${legendX}" y="${margin.top + 14 + (OUTCOMES.length + i) * 18}" fill="${style.foreground}" fill-opacity="0.7">${escapeHtml(note)}</text>`));
+  notes.forEach((note, i) =>
+    parts.push(
+      `<text x="${legendX}" y="${margin.top + 14 + (OUTCOMES.length + i) * 18}" fill="${style.foreground}" fill-opacity="0.7">${escapeHtml(note)}</text>`,
+    ),
+  );
   parts.push('</svg>');
   return parts.join('');
 }
@@ -349,7 +381,13 @@ export function summaryText(rows: readonly ResultRow[]): string {
 export function resultsReportHtml(table: ResultsTable, title: string): string {
   const axes = defaultAxes(table);
   const rows = sortRows(table.rows, { column: 'index', direction: 'ascending' });
-  const scatter = scatterSvg(scatterModel(rows, axes.x, axes.y), { width: 760, height: 420, foreground: '#222222', grid: '#dddddd', fontFamily: 'sans-serif' });
+  const scatter = scatterSvg(scatterModel(rows, axes.x, axes.y), {
+    width: 760,
+    height: 420,
+    foreground: '#222222',
+    grid: '#dddddd',
+    fontFamily: 'sans-serif',
+  });
   const rowStyles = OUTCOMES.map((outcome) => `tr.${outcome} td:nth-child(2){border-left:4px solid ${OUTCOME_COLORS[outcome]}}`).join('\n');
   return `<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8"/>

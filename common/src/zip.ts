@@ -41,7 +41,8 @@ function findEndOfCentralDirectory(bytes: Uint8Array, data: DataView): number {
   // The record is 22 bytes plus a comment of at most 65,535 bytes, at the very end.
   const lowest = Math.max(0, bytes.length - 22 - 0xffff);
   for (let offset = bytes.length - 22; offset >= lowest; offset--) {
-    if (data.getUint32(offset, true) === END_OF_CENTRAL_DIRECTORY && offset + 22 + data.getUint16(offset + 20, true) <= bytes.length) return offset;
+    if (data.getUint32(offset, true) === END_OF_CENTRAL_DIRECTORY && offset + 22 + data.getUint16(offset + 20, true) <= bytes.length)
+      return offset;
   }
   throw new ZipFormatError('no ZIP end-of-central-directory record was found');
 }
@@ -57,15 +58,18 @@ export function readCentralDirectory(bytes: Uint8Array, maxEntries: number): Zip
   const directorySize = data.getUint32(end + 12, true);
   const directoryOffset = data.getUint32(end + 16, true);
   if (end >= 20 && data.getUint32(end - 20, true) === ZIP64_LOCATOR) throw new ZipFormatError('ZIP64 archives are not supported');
-  if (count === 0xffff || directoryOffset === 0xffffffff || directorySize === 0xffffffff) throw new ZipFormatError('ZIP64 archives are not supported');
-  if (disk !== 0 || directoryDisk !== 0 || data.getUint16(end + 8, true) !== count) throw new ZipFormatError('archives split over several disks are not supported');
+  if (count === 0xffff || directoryOffset === 0xffffffff || directorySize === 0xffffffff)
+    throw new ZipFormatError('ZIP64 archives are not supported');
+  if (disk !== 0 || directoryDisk !== 0 || data.getUint16(end + 8, true) !== count)
+    throw new ZipFormatError('archives split over several disks are not supported');
   if (count > maxEntries) throw new ZipFormatError(`it holds ${count} entries, more than the ${maxEntries} allowed`);
   if (directoryOffset + directorySize > end) throw new ZipFormatError('the central directory lies outside the archive');
   const entries: ZipEntryRecord[] = [];
   let offset = directoryOffset;
   const decoder = new TextDecoder('utf-8', { fatal: true });
   for (let index = 0; index < count; index++) {
-    if (offset + 46 > end || data.getUint32(offset, true) !== CENTRAL_HEADER) throw new ZipFormatError(`central directory entry ${index + 1} is damaged`);
+    if (offset + 46 > end || data.getUint32(offset, true) !== CENTRAL_HEADER)
+      throw new ZipFormatError(`central directory entry ${index + 1} is damaged`);
     const flags = data.getUint16(offset + 8, true);
     const method = data.getUint16(offset + 10, true);
     const crc32 = data.getUint32(offset + 16, true);
@@ -83,11 +87,14 @@ export function readCentralDirectory(bytes: Uint8Array, maxEntries: number): Zip
       // Names without the UTF-8 flag may be in the old DOS code page; bytes above 127 are shown as they are.
       name = Buffer.from(bytes.subarray(offset + 46, offset + 46 + nameLength)).toString('latin1');
     }
-    if (compressedSize === 0xffffffff || uncompressedSize === 0xffffffff || localHeaderOffset === 0xffffffff) throw new ZipFormatError('ZIP64 archives are not supported');
+    if (compressedSize === 0xffffffff || uncompressedSize === 0xffffffff || localHeaderOffset === 0xffffffff)
+      throw new ZipFormatError('ZIP64 archives are not supported');
     if (flags & 1) throw new ZipFormatError(`the entry '${name}' is encrypted`);
-    if (localHeaderOffset + 30 > directoryOffset || data.getUint32(localHeaderOffset, true) !== LOCAL_HEADER) throw new ZipFormatError(`the entry '${name}' has no valid local header`);
+    if (localHeaderOffset + 30 > directoryOffset || data.getUint32(localHeaderOffset, true) !== LOCAL_HEADER)
+      throw new ZipFormatError(`the entry '${name}' has no valid local header`);
     const dataStart = localHeaderOffset + 30 + data.getUint16(localHeaderOffset + 26, true) + data.getUint16(localHeaderOffset + 28, true);
-    if (dataStart + compressedSize > directoryOffset) throw new ZipFormatError(`the data of entry '${name}' runs past the end of the archive`);
+    if (dataStart + compressedSize > directoryOffset)
+      throw new ZipFormatError(`the data of entry '${name}' runs past the end of the archive`);
     entries.push({ name, method, flags, crc32, compressedSize, uncompressedSize, localHeaderOffset, dataStart });
     offset += 46 + nameLength + extraLength + commentLength;
   }
@@ -122,20 +129,32 @@ export function crc32(bytes: Uint8Array): number {
  * The bytes of one entry. Inflating stops as soon as it would produce more than the entry's
  * declared size, `maxEntryBytes` or what the budget has left, so a bomb costs no more than the bound.
  */
-export function extractEntry(bytes: Uint8Array, entry: ZipEntryRecord, maxEntryBytes: number, budget: InflateBudget, label: string): Uint8Array {
+export function extractEntry(
+  bytes: Uint8Array,
+  entry: ZipEntryRecord,
+  maxEntryBytes: number,
+  budget: InflateBudget,
+  label: string,
+): Uint8Array {
   const bound = Math.min(entry.uncompressedSize, maxEntryBytes, budget.remaining);
   const exceeded = (): ZipFormatError => {
     if (bound === budget.remaining && bound < Math.min(entry.uncompressedSize, maxEntryBytes)) {
-      return new ZipFormatError(`${label} would exceed the ${budget.limit} bytes that one run may unpack from all packages together; it was refused (raise the bound with --max-unpacked-size)`);
+      return new ZipFormatError(
+        `${label} would exceed the ${budget.limit} bytes that one run may unpack from all packages together; it was refused (raise the bound with --max-unpacked-size)`,
+      );
     }
-    if (bound === maxEntryBytes && bound < entry.uncompressedSize) return new ZipFormatError(`${label} unpacks to more than ${maxEntryBytes} bytes; it was refused (raise the bound with --max-file-size)`);
+    if (bound === maxEntryBytes && bound < entry.uncompressedSize)
+      return new ZipFormatError(
+        `${label} unpacks to more than ${maxEntryBytes} bytes; it was refused (raise the bound with --max-file-size)`,
+      );
     return new ZipFormatError(`${label} unpacks to more than its declared ${entry.uncompressedSize} bytes`);
   };
   if (entry.uncompressedSize > bound) throw exceeded();
   const raw = bytes.subarray(entry.dataStart, entry.dataStart + entry.compressedSize);
   let content: Uint8Array;
   if (entry.method === 0) {
-    if (raw.length !== entry.uncompressedSize) throw new ZipFormatError(`the stored ${label} has ${raw.length} bytes, not the declared ${entry.uncompressedSize}`);
+    if (raw.length !== entry.uncompressedSize)
+      throw new ZipFormatError(`the stored ${label} has ${raw.length} bytes, not the declared ${entry.uncompressedSize}`);
     content = raw;
   } else if (entry.method === 8) {
     try {
@@ -146,7 +165,8 @@ export function extractEntry(bytes: Uint8Array, entry: ZipEntryRecord, maxEntryB
       throw new ZipFormatError(`${label} cannot be inflated (${(error as Error).message})`);
     }
     if (content.length > bound) throw exceeded();
-    if (content.length !== entry.uncompressedSize) throw new ZipFormatError(`${label} unpacks to ${content.length} bytes, not the declared ${entry.uncompressedSize}`);
+    if (content.length !== entry.uncompressedSize)
+      throw new ZipFormatError(`${label} unpacks to ${content.length} bytes, not the declared ${entry.uncompressedSize}`);
   } else {
     throw new ZipFormatError(`${label} uses compression method ${entry.method}; only stored and deflated entries are supported`);
   }

@@ -23,7 +23,9 @@ export function placeIn(source: FlatSource, start: number, end: number): Place |
 export function elementPlace(source: FlatSource, element: XmlElement, attributeName = 'name'): Place | undefined {
   const origin = originOf(source, element);
   const named = attribute(origin.element, attributeName);
-  return named ? placeIn(origin.source, named.valueStart, named.valueEnd) : placeIn(origin.source, origin.element.start, origin.element.nameEnd);
+  return named
+    ? placeIn(origin.source, named.valueStart, named.valueEnd)
+    : placeIn(origin.source, origin.element.start, origin.element.nameEnd);
 }
 
 /** Where `name` is listed in the parameterAttributes of an element (of the file the element was read from). */

@@ -55,7 +55,9 @@ export async function main(argv: string[], io: CliOutput): Promise<number> {
       io.err(`modular2simple: error: ${error.message}`);
       return ExitCode.problems;
     }
-    io.err(`modular2simple: internal error: ${(error as Error).stack ?? (error as Error).message}\nPlease report this with the input that caused it.`);
+    io.err(
+      `modular2simple: internal error: ${(error as Error).stack ?? (error as Error).message}\nPlease report this with the input that caused it.`,
+    );
     return ExitCode.internal;
   }
 }

@@ -4,7 +4,8 @@ import { startServer } from './languageServer';
 
 // createConnection reads the transport from the command line (--stdio, --node-ipc, --socket=N);
 // without one, a parent that gave us an IPC channel gets node IPC and anyone else gets stdio.
-if (!process.argv.some((argument) => /^--(stdio|node-ipc|socket|pipe)/.test(argument))) process.argv.push(process.send ? '--node-ipc' : '--stdio');
+if (!process.argv.some((argument) => /^--(stdio|node-ipc|socket|pipe)/.test(argument)))
+  process.argv.push(process.send ? '--node-ipc' : '--stdio');
 const connection = createConnection(ProposedFeatures.all);
 // A test driving a real editor cannot read its output channel, so it may name a file that collects the errors too.
 const errorLog = process.env.MODULAR2SIMPLE_SERVER_ERROR_LOG;
@@ -16,6 +17,8 @@ if (errorLog) {
   };
 }
 process.on('uncaughtException', (error) => connection.console.error(`uncaught: ${error.stack ?? error.message}`));
-process.on('unhandledRejection', (reason) => connection.console.error(`unhandled rejection: ${(reason as Error)?.stack ?? String(reason)}`));
+process.on('unhandledRejection', (reason) =>
+  connection.console.error(`unhandled rejection: ${(reason as Error)?.stack ?? String(reason)}`),
+);
 startServer(connection);
 connection.listen();

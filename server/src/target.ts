@@ -2,8 +2,24 @@ import { TextDocument } from 'vscode-languageserver-textdocument';
 import { FlatSource, LinkedGroupReference, LinkedReference } from './core/flatten';
 import { KeyMatch } from './core/keys';
 import { PARAMETER_ATTRIBUTES, parseParameterAttributeNames } from './core/model';
-import { CatalogReferenceResolution, catalogReferenceAt, Declaration, declarationAt, ParameterUse, parameterUseAt, ValueSite } from './core/semantics';
-import { ancestor, attributeAt, attributeNameContextAt, elementNameContextAt, openElementAt, valueContextAt, ValueContext } from './core/cursor';
+import {
+  CatalogReferenceResolution,
+  catalogReferenceAt,
+  Declaration,
+  declarationAt,
+  ParameterUse,
+  parameterUseAt,
+  ValueSite,
+} from './core/semantics';
+import {
+  ancestor,
+  attributeAt,
+  attributeNameContextAt,
+  elementNameContextAt,
+  openElementAt,
+  valueContextAt,
+  ValueContext,
+} from './core/cursor';
 import { SourceRef } from './core/sources';
 import { elementAt, parseXml, XmlAttribute, XmlDocument, XmlElement } from './core/xml';
 import { groupLinkOf, linkOf } from './analysis';
@@ -31,7 +47,14 @@ export interface GroupLink {
 export type Target =
   | { kind: 'nothing' }
   /** A CatalogReference's `catalogName` or `entryName` value, or one of its ParameterAssignments' `parameterRef` (an entryName may also be a `$name`). */
-  | { kind: 'catalogReference'; part: 'catalogName' | 'entryName' | 'parameterRef'; resolution: CatalogReferenceResolution; attribute: XmlAttribute; use: ParameterUse | undefined; hit: Hit | undefined }
+  | {
+      kind: 'catalogReference';
+      part: 'catalogName' | 'entryName' | 'parameterRef';
+      resolution: CatalogReferenceResolution;
+      attribute: XmlAttribute;
+      use: ParameterUse | undefined;
+      hit: Hit | undefined;
+    }
   /** A `$name` value or a parameterRef; `site` when it is a whole `$name` value. */
   | { kind: 'parameter'; use: ParameterUse; site: ValueSite | undefined; hit: Hit | undefined }
   /** A value written `${...}`; `use` is the name inside it under the cursor. */
@@ -67,8 +90,10 @@ function groupLinkAt(source: FlatSource, groupReference: XmlElement | undefined)
 /** The syntactic kinds: what the attribute under the cursor names, whatever its value is written as. */
 export function attributeTarget(source: FlatSource, hit: Hit, offset: number): SyntacticTarget {
   const { element, attribute } = hit;
-  if (element.name === 'ScenarioReference' && attribute.name === 'scenarioFileName') return { kind: 'fileReference', hit, link: linkOf(source, element) };
-  if (element.name === 'ManeuverGroupReference' && attribute.name === 'maneuverGroupName') return { kind: 'groupReference', hit, linked: groupLinkAt(source, element) };
+  if (element.name === 'ScenarioReference' && attribute.name === 'scenarioFileName')
+    return { kind: 'fileReference', hit, link: linkOf(source, element) };
+  if (element.name === 'ManeuverGroupReference' && attribute.name === 'maneuverGroupName')
+    return { kind: 'groupReference', hit, linked: groupLinkAt(source, element) };
   if (element.name === 'ParameterReference' && attribute.name === 'key') {
     const linked = groupLinkAt(source, ancestor(element.parent, 'ManeuverGroupReference'));
     return { kind: 'key', hit, linked, match: linked?.group?.plan?.matches.find((candidate) => candidate.parameter.element === element) };
@@ -99,10 +124,13 @@ export function targetAt(source: FlatSource, offset: number): Target {
     const resolution = catalogReferenceAt(semantics, offset);
     if (resolution) {
       const { reference } = resolution;
-      if (within(reference.entryNameAttribute, offset)) return { kind: 'catalogReference', part: 'entryName', resolution, attribute: reference.entryNameAttribute, use, hit };
-      if (within(reference.catalogNameAttribute, offset)) return { kind: 'catalogReference', part: 'catalogName', resolution, attribute: reference.catalogNameAttribute, use, hit };
+      if (within(reference.entryNameAttribute, offset))
+        return { kind: 'catalogReference', part: 'entryName', resolution, attribute: reference.entryNameAttribute, use, hit };
+      if (within(reference.catalogNameAttribute, offset))
+        return { kind: 'catalogReference', part: 'catalogName', resolution, attribute: reference.catalogNameAttribute, use, hit };
       const assignment = reference.assignments.find((candidate) => within(candidate.parameterRef, offset));
-      if (assignment?.parameterRef) return { kind: 'catalogReference', part: 'parameterRef', resolution, attribute: assignment.parameterRef, use, hit };
+      if (assignment?.parameterRef)
+        return { kind: 'catalogReference', part: 'parameterRef', resolution, attribute: assignment.parameterRef, use, hit };
     }
     const site = hit?.inValue ? semantics.model.siteOf.get(hit.attribute) : undefined;
     if (site && hit && site.form.kind === 'expression') return { kind: 'expression', site, use, hit };
@@ -181,7 +209,8 @@ export function completionTargetAt(document: XmlDocument, offset: number, semant
   if (context) {
     const { element, attribute: name } = context;
     if (semantic && dollarPrefix(context) !== undefined) return { kind: 'parameter', context };
-    if (semantic && element === 'CatalogReference' && (name === 'catalogName' || name === 'entryName')) return { kind: 'catalogReference', part: name, context };
+    if (semantic && element === 'CatalogReference' && (name === 'catalogName' || name === 'entryName'))
+      return { kind: 'catalogReference', part: name, context };
     if (element === 'ScenarioReference' && name === 'scenarioFileName') return { kind: 'fileReference', context };
     if (element === 'ManeuverGroupReference' && name === 'maneuverGroupName') return { kind: 'groupReference', context };
     if (element === 'ParameterReference' && name === 'key') return { kind: 'key', context };
@@ -193,5 +222,7 @@ export function completionTargetAt(document: XmlDocument, offset: number, semant
   const attributeName = attributeNameContextAt(document, offset);
   if (attributeName) return { kind: 'attributeName', ...attributeName };
   const elementName = elementNameContextAt(document, offset);
-  return elementName ? { kind: 'elementName', ...elementName, open: openElementAt(document, elementName.start, offset) } : { kind: 'nothing' };
+  return elementName
+    ? { kind: 'elementName', ...elementName, open: openElementAt(document, elementName.start, offset) }
+    : { kind: 'nothing' };
 }

@@ -84,7 +84,9 @@ export class UriResolver {
     if (untitled) return untitled;
     const packagePath = packageUriPath(uri);
     if (!packagePath) return undefined;
-    const ref = await this.store().refFromPackagePath(packagePath).catch(() => undefined);
+    const ref = await this.store()
+      .refFromPackagePath(packagePath)
+      .catch(() => undefined);
     if (ref) this.known.set(uri, ref);
     return ref;
   }

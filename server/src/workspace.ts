@@ -4,7 +4,18 @@ import { decodeScenario } from './core/encoding';
 import { isSchemaVersion } from './core/schema/model';
 import { SchemaCheckMemory } from './core/schema/problems';
 import { SchemaVersionSetting } from './core/schema/version';
-import { FileSystemHost, KindCache, nodeFileSystem, refId, ScenarioStore, SizedCache, SourceRef, splitScenarioPath, diskRef, childRef } from './core/sources';
+import {
+  FileSystemHost,
+  KindCache,
+  nodeFileSystem,
+  refId,
+  ScenarioStore,
+  SizedCache,
+  SourceRef,
+  splitScenarioPath,
+  diskRef,
+  childRef,
+} from './core/sources';
 import { LineIndex, Range } from './core/text';
 import { OpenDocument, OpenDocuments } from './documents';
 import { UriResolver, refToUri } from './uris';
@@ -47,11 +58,24 @@ export function readSettings(value: unknown): ServerSettings {
   const diagnostics = (record.diagnostics && typeof record.diagnostics === 'object' ? record.diagnostics : {}) as Record<string, unknown>;
   const delay = typeof diagnostics.delay === 'number' && diagnostics.delay >= 0 ? diagnostics.delay : DEFAULT_SETTINGS.diagnosticsDelay;
   const format = (record.format && typeof record.format === 'object' ? record.format : {}) as Record<string, unknown>;
-  const width = typeof format.maxLineWidth === 'number' && format.maxLineWidth >= 1 ? Math.floor(format.maxLineWidth) : DEFAULT_SETTINGS.formatMaxLineWidth;
+  const width =
+    typeof format.maxLineWidth === 'number' && format.maxLineWidth >= 1
+      ? Math.floor(format.maxLineWidth)
+      : DEFAULT_SETTINGS.formatMaxLineWidth;
   const simulator = isSimulator(record.simulator) ? record.simulator : DEFAULT_SETTINGS.simulator;
   const schema = (record.schema && typeof record.schema === 'object' ? record.schema : {}) as Record<string, unknown>;
-  const schemaVersion = schema.version === 'off' || schema.version === 'auto' || isSchemaVersion(schema.version) ? schema.version : DEFAULT_SETTINGS.schemaVersion;
-  return { scenarioPath, diagnosticsDelay: delay, maxIndexedFileBytes: DEFAULT_SETTINGS.maxIndexedFileBytes, simulator, formatMaxLineWidth: width, schemaVersion };
+  const schemaVersion =
+    schema.version === 'off' || schema.version === 'auto' || isSchemaVersion(schema.version)
+      ? schema.version
+      : DEFAULT_SETTINGS.schemaVersion;
+  return {
+    scenarioPath,
+    diagnosticsDelay: delay,
+    maxIndexedFileBytes: DEFAULT_SETTINGS.maxIndexedFileBytes,
+    simulator,
+    formatMaxLineWidth: width,
+    schemaVersion,
+  };
 }
 
 /** Bytes of files and of unpacked packages that the server keeps, each; the rest is read again on demand. */
@@ -168,7 +192,15 @@ const INDEX_SKIPPED_FOLDERS = new Set(['node_modules', '.git', 'dist', 'out', '.
 
 /** Every `.xosc` and `.mosc` below the folders, skipping build and dependency folders; never throws. */
 export function listScenarioFiles(folders: string[], limit = 100_000): Promise<string[]> {
-  return walkFiles(folders, { files: SCENARIO_FILE, skipFolders: INDEX_SKIPPED_FOLDERS, skipDotFiles: false, regularFilesOnly: true, unreadable: 'skip', sorted: true, limit });
+  return walkFiles(folders, {
+    files: SCENARIO_FILE,
+    skipFolders: INDEX_SKIPPED_FOLDERS,
+    skipDotFiles: false,
+    regularFilesOnly: true,
+    unreadable: 'skip',
+    sorted: true,
+    limit,
+  });
 }
 
 /** Heap bytes a read source takes per character of its text, about (its parse tree, models and evaluated values). */
@@ -272,7 +304,11 @@ class ReusingFlattener extends Flattener {
     this.shared.set(id, created);
     created.then(
       (source) => {
-        if (this.shared.get(id) === created) this.dependencies.set(id, source.dependencies.map((dependency) => refId(dependency)));
+        if (this.shared.get(id) === created)
+          this.dependencies.set(
+            id,
+            source.dependencies.map((dependency) => refId(dependency)),
+          );
       },
       () => this.shared.delete(id),
     );
@@ -328,9 +364,19 @@ export class Workspace {
     // Each folder searches its own setting (resource-scoped), relative entries taken from that folder.
     const folders = this.folders.map((folder) => ({
       folder,
-      scenarioPath: [...fromEnvironment, ...(this.folderScenarioPaths.get(folder) ?? this.settings.scenarioPath).map((entry) => path.resolve(folder, entry))],
+      scenarioPath: [
+        ...fromEnvironment,
+        ...(this.folderScenarioPaths.get(folder) ?? this.settings.scenarioPath).map((entry) => path.resolve(folder, entry)),
+      ],
     }));
-    const store = new ScenarioStore({ scenarioPath: [...fromEnvironment, ...fromSettings], root: this.folders[0], folders, host: this.files, packageCacheBytes: SERVER_CACHE_BYTES, workingDirectory: process.cwd() });
+    const store = new ScenarioStore({
+      scenarioPath: [...fromEnvironment, ...fromSettings],
+      root: this.folders[0],
+      folders,
+      host: this.files,
+      packageCacheBytes: SERVER_CACHE_BYTES,
+      workingDirectory: process.cwd(),
+    });
     for (const open of this.documents.values()) store.setOverlay(open.ref, open.document.getText());
     return store;
   }
@@ -395,7 +441,14 @@ export class Workspace {
 
   flattener(): Flattener {
     if (!this.currentFlattener || this.flattenerGeneration !== this.generation) {
-      this.currentFlattener = new ReusingFlattener(this.storeInstance, this.sharedSources, this.sourceDependencies, this.settings.simulator, { version: this.settings.schemaVersion }, this.schemaChecks);
+      this.currentFlattener = new ReusingFlattener(
+        this.storeInstance,
+        this.sharedSources,
+        this.sourceDependencies,
+        this.settings.simulator,
+        { version: this.settings.schemaVersion },
+        this.schemaChecks,
+      );
       this.flattenerGeneration = this.generation;
     }
     return this.currentFlattener;
@@ -413,7 +466,8 @@ export class Workspace {
     if (cached && cached.generation === this.generation) return cached.result;
     const result = this.flattener().analyze(ref);
     this.analysisResults.set(id, { generation: this.generation, result });
-    if (this.analysisResults.size > 200) for (const [key, entry] of this.analysisResults) if (entry.generation !== this.generation) this.analysisResults.delete(key);
+    if (this.analysisResults.size > 200)
+      for (const [key, entry] of this.analysisResults) if (entry.generation !== this.generation) this.analysisResults.delete(key);
     return result;
   }
 
@@ -483,7 +537,8 @@ export class Workspace {
       const packageRef = diskRef(filePath);
       const contents = await this.storeInstance.readPackage(packageRef).catch(() => undefined);
       for (const [name, bytes] of contents?.entries ?? []) {
-        const text = name.toLowerCase().endsWith('.xosc') && bytes.length <= this.settings.maxIndexedFileBytes ? decodeOrUndefined(bytes) : undefined;
+        const text =
+          name.toLowerCase().endsWith('.xosc') && bytes.length <= this.settings.maxIndexedFileBytes ? decodeOrUndefined(bytes) : undefined;
         if (text !== undefined) entry.groups.push(...scanScenario(text, childRef(packageRef, name)).groups);
       }
     }

@@ -10,7 +10,15 @@ describe('cli: hostile archives', function () {
   it('refuses entries that share one compressed stream, without inflating each of them', () => {
     const zeros = new Uint8Array(8 * 1024 * 1024);
     const aliases = Array.from({ length: 300 }, (_, index) => ({ name: `s${index}.xosc`, of: 1 }));
-    const root = temporaryWorkspace({ 'bomb.mosc': rawZip([{ name: 'main.xosc', data: mainOf('s0.xosc') }, { name: 'pad.xosc', data: zeros, deflate: true }], aliases) });
+    const root = temporaryWorkspace({
+      'bomb.mosc': rawZip(
+        [
+          { name: 'main.xosc', data: mainOf('s0.xosc') },
+          { name: 'pad.xosc', data: zeros, deflate: true },
+        ],
+        aliases,
+      ),
+    });
     const run = runBounded(['check', 'bomb.mosc'], { cwd: root, timeoutMs: 15_000, heapMb: 128 });
     assert.ok(!run.timedOut, `finished in ${run.ms} ms`);
     assert.equal(run.status, 1, run.stderr);
@@ -45,7 +53,12 @@ describe('cli: hostile archives', function () {
   ]) {
     it(`refuses a package holding ${label}`, () => {
       const evil = mainOf('missing.xosc');
-      const root = temporaryWorkspace({ 'dup.mosc': rawZip([{ name: 'main.xosc', data: scenario(simpleGroup('Go')) }, { name: second, data: evil }]) });
+      const root = temporaryWorkspace({
+        'dup.mosc': rawZip([
+          { name: 'main.xosc', data: scenario(simpleGroup('Go')) },
+          { name: second, data: evil },
+        ]),
+      });
       const run = runBounded(['flatten', 'dup.mosc'], { cwd: root });
       assert.equal(run.status, 1, run.stderr);
       assert.match(run.stderr, /holds the entry 'main\.xosc' twice/);

@@ -14,7 +14,9 @@ const COLUMNS = 'index,status,collision,min_distance_m,min_ttc_s,end_time_s,EgoS
 /** A folder with follow.xosc (its runs lasting `stopTime` simulated seconds) and its 36-scenario distribution. */
 function batchFolder(stopTime = 3, distribution?: string): string {
   const folder = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-batch-'));
-  const scenario = fs.readFileSync(path.join(FIXTURES, 'follow.xosc'), 'utf8').replace('name="StopTime" parameterType="double" value="3"', `name="StopTime" parameterType="double" value="${stopTime}"`);
+  const scenario = fs
+    .readFileSync(path.join(FIXTURES, 'follow.xosc'), 'utf8')
+    .replace('name="StopTime" parameterType="double" value="3"', `name="StopTime" parameterType="double" value="${stopTime}"`);
   fs.writeFileSync(path.join(folder, 'follow.xosc'), scenario);
   fs.writeFileSync(path.join(folder, 'd.xosc'), distribution ?? fs.readFileSync(path.join(FIXTURES, 'follow_distribution.xosc'), 'utf8'));
   return folder;
@@ -36,7 +38,10 @@ function indicesOf(rows: string[]): number[] {
 function assertEveryIndexOnce(rows: string[], count: number): void {
   const indices = indicesOf(rows);
   assert.equal(indices.length, count, `${count} rows`);
-  assert.deepEqual([...indices].sort((a, b) => a - b), Array.from({ length: count }, (_, i) => i));
+  assert.deepEqual(
+    [...indices].sort((a, b) => a - b),
+    Array.from({ length: count }, (_, i) => i),
+  );
 }
 
 const BATCH_ARGS = ['batch', 'd.xosc', '--results', 'results', '--jobs', '2', '--road-path', esminiRoads, '--esmini', esminiBinary];
@@ -46,7 +51,9 @@ function startBatch(folder: string, args: string[] = BATCH_ARGS) {
   const child = spawn(process.execPath, [cliPath, ...args], { cwd: folder, stdio: ['ignore', 'pipe', 'pipe'] });
   let stderr = '';
   child.stderr.on('data', (chunk: Buffer) => (stderr += chunk.toString()));
-  const ended = new Promise<{ code: number | null; signal: string | null; stderr: string }>((resolve) => child.on('close', (code, signal) => resolve({ code, signal, stderr })));
+  const ended = new Promise<{ code: number | null; signal: string | null; stderr: string }>((resolve) =>
+    child.on('close', (code, signal) => resolve({ code, signal, stderr })),
+  );
   return { child, ended };
 }
 
@@ -89,9 +96,15 @@ describe('cli: batch', function () {
       if (cells[2] === 'true') assert.equal(cells[3], '0.000', `a collision has no gap: ${cells.join(',')}`);
       assert.equal(cells[5], '3.050');
     }
-    const json = JSON.parse(fs.readFileSync(path.join(root, 'results', 'results.json'), 'utf8')) as { columns: string[]; rows: { index: string; collision: boolean; messages: { text: string }[] }[] };
+    const json = JSON.parse(fs.readFileSync(path.join(root, 'results', 'results.json'), 'utf8')) as {
+      columns: string[];
+      rows: { index: string; collision: boolean; messages: { text: string }[] }[];
+    };
     assert.deepEqual(json.columns, COLUMNS.split(','));
-    assert.deepEqual(json.rows.map((row) => Number(row.index)), Array.from({ length: 36 }, (_, i) => i));
+    assert.deepEqual(
+      json.rows.map((row) => Number(row.index)),
+      Array.from({ length: 36 }, (_, i) => i),
+    );
     assert.ok(json.rows[0].collision);
     assert.ok(json.rows[0].messages.some((message) => message.text === 'Collision between Ego and Lead'));
     const again = runCli(BATCH_ARGS, { cwd: root });
@@ -123,7 +136,10 @@ describe('cli: batch', function () {
       assertEveryIndexOnce(after, 36);
       assert.deepEqual(after.slice(0, before.length), before);
       const json = JSON.parse(fs.readFileSync(path.join(root, 'results', 'results.json'), 'utf8')) as { rows: { index: string }[] };
-      assert.deepEqual(json.rows.map((row) => Number(row.index)), Array.from({ length: 36 }, (_, i) => i));
+      assert.deepEqual(
+        json.rows.map((row) => Number(row.index)),
+        Array.from({ length: 36 }, (_, i) => i),
+      );
     });
   }
 
@@ -170,11 +186,15 @@ describe('cli: batch', function () {
 
   it('refuses 10^9 combinations before running anything unless --sample; --sample N runs N', function () {
     const ranges = ['EgoSpeed', 'LeadSpeed', 'LeadStartS']
-      .map((name) => `      <DeterministicSingleParameterDistribution parameterName="${name}">
+      .map(
+        (name) => `      <DeterministicSingleParameterDistribution parameterName="${name}">
         <DistributionRange stepWidth="1"><Range lowerLimit="1" upperLimit="1000"/></DistributionRange>
-      </DeterministicSingleParameterDistribution>`)
+      </DeterministicSingleParameterDistribution>`,
+      )
       .join('\n');
-    const distribution = fs.readFileSync(path.join(FIXTURES, 'follow_distribution.xosc'), 'utf8').replace(/<Deterministic>[\s\S]*<\/Deterministic>/, `<Deterministic>\n${ranges}\n    </Deterministic>`);
+    const distribution = fs
+      .readFileSync(path.join(FIXTURES, 'follow_distribution.xosc'), 'utf8')
+      .replace(/<Deterministic>[\s\S]*<\/Deterministic>/, `<Deterministic>\n${ranges}\n    </Deterministic>`);
     const root = folder(1, distribution);
     const refused = runCli(BATCH_ARGS, { cwd: root });
     assert.equal(refused.status, 1, refused.stderr);
@@ -200,7 +220,10 @@ describe('cli: batch', function () {
     const root = folder(3, stochastic);
     const run = runCli(BATCH_ARGS, { cwd: root });
     assert.equal(run.status, 0, run.stderr);
-    const lines = fs.readFileSync(path.join(root, 'results', 'results.csv'), 'utf8').trim().split('\n');
+    const lines = fs
+      .readFileSync(path.join(root, 'results', 'results.csv'), 'utf8')
+      .trim()
+      .split('\n');
     assert.equal(lines[0], 'index,status,collision,min_distance_m,min_ttc_s,end_time_s,EgoSpeed,LeadSpeed');
     assert.equal(lines.length, 7);
     for (const line of lines.slice(1)) {

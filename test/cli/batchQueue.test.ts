@@ -14,7 +14,9 @@ const FIXTURES = path.join(repoRoot, 'test', 'fixtures', 'variations');
 /** follow.xosc (runs of `stopTime` simulated seconds) and its 36-scenario distribution in a folder of their own. */
 function batchFolder(stopTime: number): string {
   const folder = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-queue-'));
-  const scenario = fs.readFileSync(path.join(FIXTURES, 'follow.xosc'), 'utf8').replace('name="StopTime" parameterType="double" value="3"', `name="StopTime" parameterType="double" value="${stopTime}"`);
+  const scenario = fs
+    .readFileSync(path.join(FIXTURES, 'follow.xosc'), 'utf8')
+    .replace('name="StopTime" parameterType="double" value="3"', `name="StopTime" parameterType="double" value="${stopTime}"`);
   fs.writeFileSync(path.join(folder, 'follow.xosc'), scenario);
   fs.copyFileSync(path.join(FIXTURES, 'follow_distribution.xosc'), path.join(folder, 'd.xosc'));
   return folder;
@@ -31,7 +33,9 @@ function background(args: string[], cwd: string): Background {
   let output = '';
   child.stdout.on('data', (chunk: Buffer) => (output += chunk.toString()));
   child.stderr.on('data', (chunk: Buffer) => (output += chunk.toString()));
-  const ended = new Promise<{ code: number | null; signal: string | null; output: string }>((resolve) => child.on('close', (code, signal) => resolve({ code, signal, output })));
+  const ended = new Promise<{ code: number | null; signal: string | null; output: string }>((resolve) =>
+    child.on('close', (code, signal) => resolve({ code, signal, output })),
+  );
   return { kill: (signal) => child.kill(signal), output: () => output, ended };
 }
 
@@ -40,7 +44,10 @@ function everyRowOnce(folder: string): string[] {
   const lines = fs.readFileSync(path.join(folder, 'results.csv'), 'utf8').split('\n');
   assert.equal(lines.pop(), '');
   const rows = lines.slice(1);
-  assert.deepEqual(rows.map((row) => Number(row.split(',')[0])).sort((a, b) => a - b), Array.from({ length: 36 }, (_, i) => i));
+  assert.deepEqual(
+    rows.map((row) => Number(row.split(',')[0])).sort((a, b) => a - b),
+    Array.from({ length: 36 }, (_, i) => i),
+  );
   return rows;
 }
 
@@ -68,7 +75,8 @@ describe('cli: batch through a Redis queue', function () {
     // The workers run in a folder of their own: what they run comes through Redis.
     const elsewhere = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-worker-'));
     folders.push(elsewhere);
-    for (let i = 0; i < 3; i++) workers.push(background(['worker', '--queue', redis.url, '--jobs', '1', '--esmini', esminiBinary], elsewhere));
+    for (let i = 0; i < 3; i++)
+      workers.push(background(['worker', '--queue', redis.url, '--jobs', '1', '--esmini', esminiBinary], elsewhere));
     const batch = background(['batch', 'd.xosc', '--results', 'queued', '--queue', redis.url, '--road-path', esminiRoads], root);
     const victim = workers[2];
     await waitUntil(() => /: (ok|error|timeout)/.test(victim.output()), 'the third worker to finish a run', 120_000, 10);
@@ -79,9 +87,14 @@ describe('cli: batch through a Redis queue', function () {
     assert.match(ended.output, /^36 runs \(36 ok, 0 error, 0 timeout; \d+ with a collision\); results in /m);
     const queued = everyRowOnce(path.join(root, 'queued'));
     const json = JSON.parse(fs.readFileSync(path.join(root, 'queued', 'results.json'), 'utf8')) as { rows: { index: string }[] };
-    assert.deepEqual(json.rows.map((row) => Number(row.index)), Array.from({ length: 36 }, (_, i) => i));
+    assert.deepEqual(
+      json.rows.map((row) => Number(row.index)),
+      Array.from({ length: 36 }, (_, i) => i),
+    );
     // Runs repeat exactly (fixed step and seed), so the queue's rows are the local pool's, in another order.
-    const local = runCli(['batch', 'd.xosc', '--results', 'local', '--jobs', '2', '--road-path', esminiRoads, '--esmini', esminiBinary], { cwd: root });
+    const local = runCli(['batch', 'd.xosc', '--results', 'local', '--jobs', '2', '--road-path', esminiRoads, '--esmini', esminiBinary], {
+      cwd: root,
+    });
     assert.equal(local.status, 0, local.stderr);
     assert.deepEqual([...queued].sort(), [...everyRowOnce(path.join(root, 'local'))].sort());
     for (const worker of workers.slice(0, 2)) worker.kill('SIGTERM');
@@ -113,7 +126,13 @@ describe('cli: batch through a Redis queue', function () {
     const port = await freePort();
     const batch = runCli(['batch', 'd.xosc', '--results', 'queued', '--queue', `redis://127.0.0.1:${port}`], { cwd: root });
     assert.equal(batch.status, 3, batch.stderr);
-    assert.match(batch.stderr, new RegExp(`^modular2simple: error: cannot reach Redis at redis://127\\.0\\.0\\.1:${port}: connect ECONNREFUSED .*; nothing was written$`, 'm'));
+    assert.match(
+      batch.stderr,
+      new RegExp(
+        `^modular2simple: error: cannot reach Redis at redis://127\\.0\\.0\\.1:${port}: connect ECONNREFUSED .*; nothing was written$`,
+        'm',
+      ),
+    );
     assert.ok(!fs.existsSync(path.join(root, 'queued')));
     const worker = runCli(['worker', '--queue', `redis://127.0.0.1:${port}`, '--esmini', process.execPath]);
     assert.equal(worker.status, 3, worker.stderr);

@@ -46,7 +46,19 @@ describe('cli: batch writes results.html and keeps runs', function () {
   it('results.html is well-formed, self-contained and has every row; --keep-runs keeps each run under runs/INDEX/', function () {
     requireEsmini(this);
     root = reportFolder();
-    const args = ['batch', 'd.xosc', '--results', 'results', '--jobs', '2', '--keep-runs', '--road-path', esminiRoads, '--esmini', esminiBinary];
+    const args = [
+      'batch',
+      'd.xosc',
+      '--results',
+      'results',
+      '--jobs',
+      '2',
+      '--keep-runs',
+      '--road-path',
+      esminiRoads,
+      '--esmini',
+      esminiBinary,
+    ];
     const run = runCli(args, { cwd: root });
     assert.equal(run.status, 0, run.stderr);
     assert.match(run.stderr, /results\.html/);
@@ -55,7 +67,11 @@ describe('cli: batch writes results.html and keeps runs', function () {
     const validity = XMLValidator.validate(html.replace(/^<!DOCTYPE html>\n/, ''));
     assert.equal(validity, true, JSON.stringify(validity));
     assert.doesNotMatch(html, /<script|\bsrc=|https?:\/\/(?!www\.w3\.org\/2000\/svg)/, 'nothing loaded from elsewhere, no script');
-    const csvRows = fs.readFileSync(path.join(root, 'results', 'results.csv'), 'utf8').trim().split('\n').slice(1);
+    const csvRows = fs
+      .readFileSync(path.join(root, 'results', 'results.csv'), 'utf8')
+      .trim()
+      .split('\n')
+      .slice(1);
     assert.equal(csvRows.length, 4);
     const tableRows = [...html.matchAll(/<tr class="(\w+)" data-index="(\d+)">/g)].map((match) => match[2]);
     assert.deepEqual(tableRows, ['0', '1', '2', '3']);
@@ -64,7 +80,8 @@ describe('cli: batch writes results.html and keeps runs', function () {
     assert.match(html, />EgoSpeed</);
     assert.match(html, />LeadSpeed</);
     for (const index of ['0', '1', '2', '3']) {
-      for (const file of ['scenario.xosc', 'trajectories.csv', 'esmini.log']) assert.ok(fs.existsSync(path.join(root, 'results', 'runs', index, file)), `runs/${index}/${file}`);
+      for (const file of ['scenario.xosc', 'trajectories.csv', 'esmini.log'])
+        assert.ok(fs.existsSync(path.join(root, 'results', 'runs', index, file)), `runs/${index}/${file}`);
     }
     assert.deepEqual(fs.readdirSync(path.join(root, 'results', 'runs')).sort(), ['0', '1', '2', '3'], 'nothing else in runs/');
     // Resumed with nothing to run: the report is written again, the same.

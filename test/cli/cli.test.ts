@@ -77,8 +77,25 @@ describe('cli: usage and compatibility', () => {
   it('check lists problems by file, then line and column, whatever order the files were named in', () => {
     const root = temporaryWorkspace({
       'simple.xosc': scenario(simpleGroup('Go')),
-      'a.xosc': scenario(outerGroup('Car', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Go', parameters: [['AbsoluteTargetSped.value', '1'], ['RelativeDistanceConditon.value', '2']] }] }])),
-      'b.xosc': scenario(outerGroup('Car', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Go', parameters: [['AbsoluteTargetSped.value', '1']] }] }])),
+      'a.xosc': scenario(
+        outerGroup('Car', 'car', [
+          {
+            file: 'simple.xosc',
+            groups: [
+              {
+                name: 'Go',
+                parameters: [
+                  ['AbsoluteTargetSped.value', '1'],
+                  ['RelativeDistanceConditon.value', '2'],
+                ],
+              },
+            ],
+          },
+        ]),
+      ),
+      'b.xosc': scenario(
+        outerGroup('Car', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Go', parameters: [['AbsoluteTargetSped.value', '1']] }] }]),
+      ),
     });
     const text = runCli(['check', 'b.xosc', 'a.xosc'], { cwd: root });
     assert.equal(text.status, 1);
@@ -87,7 +104,9 @@ describe('cli: usage and compatibility', () => {
       .map((line) => /^([^:]+):(\d+):(\d+): /.exec(line))
       .filter((match): match is RegExpExecArray => match !== null)
       .map((match) => ({ file: match[1], line: Number(match[2]), column: Number(match[3]) }));
-    const json = JSON.parse(runCli(['check', 'b.xosc', 'a.xosc', '--format', 'json'], { cwd: root }).stdout) as { problems: { file: string; line: number; column: number }[] };
+    const json = JSON.parse(runCli(['check', 'b.xosc', 'a.xosc', '--format', 'json'], { cwd: root }).stdout) as {
+      problems: { file: string; line: number; column: number }[];
+    };
     for (const listed of [places, json.problems.map(({ file, line, column }) => ({ file, line, column }))]) {
       assert.deepEqual(new Set(listed.map((place) => place.file)), new Set(['a.xosc', 'b.xosc']));
       const sorted = [...listed].sort((x, y) => (x.file < y.file ? -1 : x.file > y.file ? 1 : 0) || x.line - y.line || x.column - y.column);
@@ -119,12 +138,20 @@ describe('cli: every row of SPEC 7', () => {
       'simple.xosc': scenario(simpleGroup('Go') + simpleGroup('Stop')),
       'main.xosc': scenario(outerGroup('Car', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Gone' }] }])),
     });
-    expectFailure(root, ['flatten', 'main.xosc', '-o', 'out.xosc'], /main\.xosc:\d+:\d+: error: 'simple\.xosc' has no ManeuverGroup named 'Gone'; it has: Go, Stop/);
+    expectFailure(
+      root,
+      ['flatten', 'main.xosc', '-o', 'out.xosc'],
+      /main\.xosc:\d+:\d+: error: 'simple\.xosc' has no ManeuverGroup named 'Gone'; it has: Go, Stop/,
+    );
   });
 
   it('key that matches no listed attribute: error with the closest key', () => {
     const root = simpleWorkspace({}, [['WorldPositon.x', '3']]);
-    expectFailure(root, ['flatten', 'main.xosc', '-o', 'out.xosc'], /error: key 'WorldPositon\.x' matches no attribute[^\n]*\n\s+hint: did you mean 'WorldPosition\.x'\?/);
+    expectFailure(
+      root,
+      ['flatten', 'main.xosc', '-o', 'out.xosc'],
+      /error: key 'WorldPositon\.x' matches no attribute[^\n]*\n\s+hint: did you mean 'WorldPosition\.x'\?/,
+    );
   });
 
   it('listed attribute missing on its element: error "no default value"', () => {
@@ -147,7 +174,12 @@ describe('cli: every row of SPEC 7', () => {
     const root = temporaryWorkspace({
       'a.xosc': scenario(simpleGroup('A')),
       'b.xosc': scenario(simpleGroup('B')),
-      'main.xosc': scenario(outerGroup('Car', 'car', [{ file: 'a.xosc', groups: [{ name: 'A' }] }, { file: 'b.xosc', groups: [{ name: 'B' }] }])),
+      'main.xosc': scenario(
+        outerGroup('Car', 'car', [
+          { file: 'a.xosc', groups: [{ name: 'A' }] },
+          { file: 'b.xosc', groups: [{ name: 'B' }] },
+        ]),
+      ),
     });
     const run = runCli(['flatten', 'main.xosc'], { cwd: root });
     assert.equal(run.status, 0, run.stderr);
@@ -157,7 +189,12 @@ describe('cli: every row of SPEC 7', () => {
   it('a ParameterReference with a third attribute: read by name', () => {
     const root = simpleWorkspace();
     const main = path.join(root, 'main.xosc');
-    fs.writeFileSync(main, fs.readFileSync(main, 'utf8').replace('<ParameterReference key="value" value="12"/>', '<ParameterReference note="x" value="12" key="value"/>'));
+    fs.writeFileSync(
+      main,
+      fs
+        .readFileSync(main, 'utf8')
+        .replace('<ParameterReference key="value" value="12"/>', '<ParameterReference note="x" value="12" key="value"/>'),
+    );
     const run = runCli(['flatten', 'main.xosc'], { cwd: root });
     assert.equal(run.status, 0, run.stderr);
     assert.match(run.stdout, /<AbsoluteTargetSpeed value="12"\/>/);
@@ -172,7 +209,10 @@ describe('cli: every row of SPEC 7', () => {
     const secret = 'TOP-SECRET-CONTENT';
     const root = simpleWorkspace({ 'secret.txt': secret });
     const main = path.join(root, 'main.xosc');
-    const text = fs.readFileSync(main, 'utf8').replace('<OpenSCENARIO>', `<!DOCTYPE OpenSCENARIO [ <!ENTITY leak SYSTEM "file://${root}/secret.txt"> ]>\n<OpenSCENARIO>`).replace('value="12"', 'value="&leak;"');
+    const text = fs
+      .readFileSync(main, 'utf8')
+      .replace('<OpenSCENARIO>', `<!DOCTYPE OpenSCENARIO [ <!ENTITY leak SYSTEM "file://${root}/secret.txt"> ]>\n<OpenSCENARIO>`)
+      .replace('value="12"', 'value="&leak;"');
     fs.writeFileSync(main, text);
     const run = expectFailure(root, ['flatten', 'main.xosc', '-o', 'out.xosc'], /external entity '&leak;' is never resolved/);
     assert.ok(!run.stdout.includes(secret) && !run.stderr.includes(secret));
@@ -225,7 +265,11 @@ describe('cli: every row of SPEC 7', () => {
     zip.file('main.xosc', scenario(''));
     zip.file('../escape.xosc', scenario(''));
     const root = temporaryWorkspace({ 'evil.mosc': await zip.generateAsync({ type: 'uint8array' }) });
-    expectFailure(root, ['flatten', 'evil.mosc', '-o', 'out.xosc'], /entry named '\.\.\/escape\.xosc' that points outside the package; it was refused/);
+    expectFailure(
+      root,
+      ['flatten', 'evil.mosc', '-o', 'out.xosc'],
+      /entry named '\.\.\/escape\.xosc' that points outside the package; it was refused/,
+    );
     assert.ok(!fs.existsSync(path.join(path.dirname(root), 'escape.xosc')));
   });
 
@@ -233,7 +277,11 @@ describe('cli: every row of SPEC 7', () => {
     const root = simpleWorkspace();
     const simple = path.join(root, 'simple.xosc');
     fs.writeFileSync(simple, fs.readFileSync(simple, 'utf8').replace('</Maneuver>', '</Maneuvre>'));
-    expectFailure(root, ['flatten', 'main.xosc', '-o', 'out.xosc'], /simple\.xosc:\d+:\d+: error: end tag <\/Maneuvre> has no matching start tag/);
+    expectFailure(
+      root,
+      ['flatten', 'main.xosc', '-o', 'out.xosc'],
+      /simple\.xosc:\d+:\d+: error: end tag <\/Maneuvre> has no matching start tag/,
+    );
   });
 
   it('failure midway: an existing output is untouched and no temporary files are left', () => {
@@ -256,7 +304,10 @@ describe('cli: every row of SPEC 7', () => {
   });
 
   it('--force writes the output the original would have, reporting what was skipped', () => {
-    const root = simpleWorkspace({}, [['nope', '1'], ['value', '13']]);
+    const root = simpleWorkspace({}, [
+      ['nope', '1'],
+      ['value', '13'],
+    ]);
     const run = runCli(['flatten', 'main.xosc', '-o', 'out.xosc', '--force'], { cwd: root });
     assert.equal(run.status, 0, run.stderr);
     assert.match(run.stderr, /warning: key 'nope' matches no attribute.*\(skipped: --force\)/);

@@ -16,15 +16,23 @@ describe('cli: text that is not what it claims', function () {
     const run = runBounded(['flatten', 'main.xosc'], { cwd: root });
     assert.equal(run.status, 1, run.stderr);
     const line = (needle: string) => simple.split('\n').findIndex((text) => text.includes(needle)) + 1;
-    assert.match(run.stderr, new RegExp(`simple\\.xosc:${line('GoManeuver') || line('Maneuver name')}:\\d+: error: the character U\\+0001 is not allowed`));
+    assert.match(
+      run.stderr,
+      new RegExp(`simple\\.xosc:${line('GoManeuver') || line('Maneuver name')}:\\d+: error: the character U\\+0001 is not allowed`),
+    );
     assert.match(run.stderr, new RegExp(`simple\\.xosc:${line('&#1;')}:\\d+: error: the character reference '&#1;' names U\\+0001`));
     assert.match(run.stderr, /character reference '&#xFFFE;' names U\+FFFE/);
     assert.equal(run.stdout, '');
   });
 
   it('decodes ISO-8859-1 as declared and UTF-16 with a byte-order mark; the output is UTF-8 and says so', () => {
-    const latin = scenario(simpleGroup('Go')).replace('encoding="UTF-8"', 'encoding="ISO-8859-1"').replace('name="GoManeuver"', 'name="Gr\u00fc\u00dfe"');
-    const utf16 = Buffer.concat([Buffer.from([0xff, 0xfe]), Buffer.from(mainOf('latin.xosc').replace('encoding="UTF-8"', 'encoding="UTF-16"'), 'utf16le')]);
+    const latin = scenario(simpleGroup('Go'))
+      .replace('encoding="UTF-8"', 'encoding="ISO-8859-1"')
+      .replace('name="GoManeuver"', 'name="Gr\u00fc\u00dfe"');
+    const utf16 = Buffer.concat([
+      Buffer.from([0xff, 0xfe]),
+      Buffer.from(mainOf('latin.xosc').replace('encoding="UTF-8"', 'encoding="UTF-16"'), 'utf16le'),
+    ]);
     const root = temporaryWorkspace({ 'main.xosc': utf16, 'latin.xosc': Buffer.from(latin, 'latin1') });
     const run = runBounded(['flatten', 'main.xosc'], { cwd: root });
     assert.equal(run.status, 0, run.stderr);
@@ -36,7 +44,14 @@ describe('cli: text that is not what it claims', function () {
   it('refuses invalid UTF-8 and an encoding it cannot read, naming them', () => {
     const broken = Buffer.from(scenario(simpleGroup('Go')).replace('name="GoManeuver"', 'name="Gr\u00fc"'), 'latin1');
     const ebcdic = scenario(simpleGroup('Go')).replace('encoding="UTF-8"', 'encoding="EBCDIC-US"');
-    const root = temporaryWorkspace({ 'a.xosc': broken, 'b.xosc': ebcdic, 'main.xosc': scenario(outerGroup('A', 'car', [{ file: 'a.xosc', groups: [{ name: 'Go' }] }]) + outerGroup('B', 'car', [{ file: 'b.xosc', groups: [{ name: 'Go' }] }])) });
+    const root = temporaryWorkspace({
+      'a.xosc': broken,
+      'b.xosc': ebcdic,
+      'main.xosc': scenario(
+        outerGroup('A', 'car', [{ file: 'a.xosc', groups: [{ name: 'Go' }] }]) +
+          outerGroup('B', 'car', [{ file: 'b.xosc', groups: [{ name: 'Go' }] }]),
+      ),
+    });
     const run = runBounded(['check', 'main.xosc'], { cwd: root });
     assert.equal(run.status, 1, run.stderr);
     assert.match(run.stderr, /a\.xosc:\d+:1: error: .*byte 0xfc at offset \d+ is not valid UTF-8/);
@@ -48,7 +63,10 @@ describe('cli: text that is not what it claims', function () {
     const simple = scenario(simpleGroup('Go'))
       .replace('<OpenSCENARIO>', '<!DOCTYPE OpenSCENARIO [\n  <!ENTITY speed "12.5">\n  <!ENTITY who "car &amp; co">\n]>\n<OpenSCENARIO>')
       .replace('z="0"', 'z="&speed;"')
-      .replace('<Event name="Go" priority="overwrite">', '<Event name="Go" priority="overwrite">\n              <!-- &who; -->\n              <Note>&who; at &speed;</Note>');
+      .replace(
+        '<Event name="Go" priority="overwrite">',
+        '<Event name="Go" priority="overwrite">\n              <!-- &who; -->\n              <Note>&who; at &speed;</Note>',
+      );
     const root = temporaryWorkspace({ 'main.xosc': mainOf('simple.xosc'), 'simple.xosc': simple });
     const run = runBounded(['flatten', 'main.xosc'], { cwd: root });
     assert.equal(run.status, 0, run.stderr);

@@ -54,7 +54,12 @@ function composition(groups: Imported[]): string {
   const alksText = fs.readFileSync(alks, 'utf8');
   const brakeTime = alksText.match(/<ParameterDeclaration name="TargetBrakeTime"[^>]*\/>/)?.[0];
   assert.ok(brakeTime && alksText.includes('$TargetBrakeTime'), 'the ALKS scenario declares and uses TargetBrakeTime');
-  fs.writeFileSync(alks, alksText.replace(brakeTime, `${brakeTime}\n        <ParameterDeclaration name="$TargetBrakeDistance" parameterType="double" value="12"/>`).replace('$TargetBrakeTime', '${$TargetBrakeTime + $TargetBrakeDistance - 12}'));
+  fs.writeFileSync(
+    alks,
+    alksText
+      .replace(brakeTime, `${brakeTime}\n        <ParameterDeclaration name="$TargetBrakeDistance" parameterType="double" value="12"/>`)
+      .replace('$TargetBrakeTime', '${$TargetBrakeTime + $TargetBrakeDistance - 12}'),
+  );
   const cutIn = fs.readFileSync(path.join(esminiScenarios, 'cut-in.xosc'), 'utf8');
   const story = `<Story name="CutInAndBrakeStory">
          <Act name="CutInAndBrakeAct">
@@ -73,7 +78,10 @@ ${groups.map(outerGroup).join('')}            <StartTrigger>
    `;
   const main = cutIn
     .slice(0, cutIn.indexOf('<Story name='))
-    .replace('<ParameterDeclarations>', '<ParameterDeclarations>\n      <ParameterDeclaration name="Pace" parameterType="double" value="fast"/>')
+    .replace(
+      '<ParameterDeclarations>',
+      '<ParameterDeclarations>\n      <ParameterDeclaration name="Pace" parameterType="double" value="fast"/>',
+    )
     .concat(story, cutIn.slice(cutIn.indexOf('</Storyboard>')));
   fs.writeFileSync(path.join(scenarios, 'main.xosc'), main);
   return scenarios;
@@ -136,7 +144,10 @@ describe('cli: --force writes and runs whatever can be produced, listing what wa
     const forced = runCli([...args, '--force', '--csv', csv], { cwd: folder });
     assert.equal(forced.status, 0, forced.stderr);
     assert.match(forced.stderr, /main\.xosc:\d+:\d+: error: 'fast' is not a double/, 'the errors are listed');
-    assert.match(forced.stderr, /main\.xosc: esmini: \d+ errors?, \d+ warnings?; 3\.00 s simulated .*\(run anyway despite \d+ errors? in the scenario\)/);
+    assert.match(
+      forced.stderr,
+      /main\.xosc: esmini: \d+ errors?, \d+ warnings?; 3\.00 s simulated .*\(run anyway despite \d+ errors? in the scenario\)/,
+    );
     const rows = fs.readFileSync(csv, 'utf8').trim().split('\n').slice(7);
     assert.equal(Number(rows[rows.length - 1].split(',')[1]), 3);
   });

@@ -34,7 +34,10 @@ describe('cli: inputs that are not regular files', function () {
   });
 
   it('stats of a library whose main.xosc is a FIFO or a folder ends with a message', () => {
-    const root = withFifo({ 'lib/good/main.xosc': mainOf('simple.xosc'), 'lib/good/simple.xosc': scenario(simpleGroup('Go')) }, 'lib/fifo/main.xosc');
+    const root = withFifo(
+      { 'lib/good/main.xosc': mainOf('simple.xosc'), 'lib/good/simple.xosc': scenario(simpleGroup('Go')) },
+      'lib/fifo/main.xosc',
+    );
     fs.mkdirSync(path.join(root, 'lib/folder/main.xosc'), { recursive: true });
     const run = runBounded(['stats', 'lib'], { cwd: root, timeoutMs: 10_000 });
     assert.ok(!run.timedOut, 'did not hang on the FIFO');
@@ -61,7 +64,10 @@ describe('cli: inputs that are not regular files', function () {
   });
 
   it('a file over the size bound is reported as too large, not as missing', () => {
-    const root = temporaryWorkspace({ 'main.xosc': mainOf('big.xosc'), 'big.xosc': scenario(simpleGroup('Go')) + `<!-- ${'x'.repeat(4096)} -->` });
+    const root = temporaryWorkspace({
+      'main.xosc': mainOf('big.xosc'),
+      'big.xosc': scenario(simpleGroup('Go')) + `<!-- ${'x'.repeat(4096)} -->`,
+    });
     const run = runBounded(['check', 'main.xosc', '--max-file-size', '2K'], { cwd: root });
     assert.equal(run.status, 1, run.stderr);
     assert.match(run.stderr, /big\.xosc is too large to read \(\d+ bytes; the limit is 2048/);

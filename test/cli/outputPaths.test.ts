@@ -54,7 +54,10 @@ describe('cli: outputs reach their files wherever they are written (SPEC 11.6), 
   it('flatten beside the main changes no path: the output is the main file with the group copied in', () => {
     const target = path.join(ws, 'xosc', 'beside.xosc');
     assert.equal(runCli(['flatten', 'xosc/main.xosc', '-o', target], { cwd: ws }).status, 0);
-    assert.match(fs.readFileSync(target, 'utf8'), /<Directory path="\.\.\/xosc\/Catalogs\/Vehicles"\/>[\s\S]*<LogicFile filepath="\.\.\/xodr\/e6mini\.xodr"\/>\s*<SceneGraphFile filepath="\.\.\/models\/e6mini\.osgb"\/>/);
+    assert.match(
+      fs.readFileSync(target, 'utf8'),
+      /<Directory path="\.\.\/xosc\/Catalogs\/Vehicles"\/>[\s\S]*<LogicFile filepath="\.\.\/xodr\/e6mini\.xodr"\/>\s*<SceneGraphFile filepath="\.\.\/models\/e6mini\.osgb"\/>/,
+    );
   });
 
   it('flatten to standard output writes absolute paths; a path that does not resolve stays as written', async () => {
@@ -73,8 +76,14 @@ describe('cli: outputs reach their files wherever they are written (SPEC 11.6), 
     fs.mkdirSync(path.dirname(target), { recursive: true });
     const run = runCli(['pack', path.join(ws, 'xosc'), '-o', target], { cwd: temporaryFolder('m2s-paths-cli-') });
     assert.equal(run.status, 0, run.stderr);
-    assert.match(run.stderr, new RegExp(`warning: the package reaches the file ${escapeRegExp(path.join(ws, 'xodr', 'e6mini.xodr'))} outside itself`));
-    assert.match(run.stderr, new RegExp(`warning: the package reaches the folder ${escapeRegExp(path.join(ws, 'xosc', 'Catalogs', 'Vehicles'))} outside itself`));
+    assert.match(
+      run.stderr,
+      new RegExp(`warning: the package reaches the file ${escapeRegExp(path.join(ws, 'xodr', 'e6mini.xodr'))} outside itself`),
+    );
+    assert.match(
+      run.stderr,
+      new RegExp(`warning: the package reaches the folder ${escapeRegExp(path.join(ws, 'xosc', 'Catalogs', 'Vehicles'))} outside itself`),
+    );
     assert.match(run.stderr, /--self-contained/);
     // The package's catalog directory, now relative to the package's folder, resolves when the package is read.
     const check = runCli(['check', target], { cwd: temporaryFolder('m2s-paths-cli-') });
@@ -98,7 +107,8 @@ describe('cli: outputs reach their files wherever they are written (SPEC 11.6), 
     fs.copyFileSync(target, path.join(fresh, 'cut-in.mosc'));
     const flatten = runCli(['flatten', 'cut-in.mosc', '-o', 'cut-in.xosc'], { cwd: fresh });
     assert.equal(flatten.status, 0, flatten.stderr);
-    for (const named of namedPaths(path.join(fresh, 'cut-in.xosc'))) assert.ok(named.startsWith(fresh + path.sep), `${named} lies in the fresh folder`);
+    for (const named of namedPaths(path.join(fresh, 'cut-in.xosc')))
+      assert.ok(named.startsWith(fresh + path.sep), `${named} lies in the fresh folder`);
     assertSameRun((await runAlone(path.join(fresh, 'cut-in.xosc'))).steps, original, 'self-contained package');
     // Run in esmini (the CLI's run) from a private folder, with no road path: the same steps.
     const ran = runCli(['run', 'cut-in.mosc', '--esmini', esminiBinary, '--csv', 'run.csv'], { cwd: fresh });
@@ -186,16 +196,26 @@ describe('cli: concrete scenarios of vary and batch, and the outputs of modulari
     fs.mkdirSync(path.join(fresh, 'out', 'deep'), { recursive: true });
     const run = runCli(['vary', distribution, '--index', '0', '-o', 'out/deep/v0.xosc'], { cwd: fresh });
     assert.equal(run.status, 0, run.stderr);
-    for (const named of namedPaths(path.join(fresh, 'out', 'deep', 'v0.xosc'))) assert.ok(named.startsWith(path.join(fresh, 'out', 'deep') + path.sep) && fs.existsSync(named), `${named} is written beside the output`);
+    for (const named of namedPaths(path.join(fresh, 'out', 'deep', 'v0.xosc')))
+      assert.ok(
+        named.startsWith(path.join(fresh, 'out', 'deep') + path.sep) && fs.existsSync(named),
+        `${named} is written beside the output`,
+      );
     assertSameRun((await runAlone(path.join(fresh, 'out', 'deep', 'v0.xosc'))).steps, original, 'vary of a self-contained package');
     const all = runCli(['vary', distribution, '--out-dir', 'all'], { cwd: fresh });
     assert.equal(all.status, 0, all.stderr);
     assertSameRun((await runAlone(path.join(fresh, 'all', 'cut-in_0.xosc'))).steps, original, 'vary --out-dir of a self-contained package');
     // batch runs each in a private folder: the package's files are laid out for the runs, and no --road-path is needed.
-    const batch = runCli(['batch', distribution, '--results', 'results', '--duration', '2', '--jobs', '1', '--esmini', esminiBinary], { cwd: fresh });
+    const batch = runCli(['batch', distribution, '--results', 'results', '--duration', '2', '--jobs', '1', '--esmini', esminiBinary], {
+      cwd: fresh,
+    });
     assert.equal(batch.status, 0, batch.stderr);
     const rows = fs.readFileSync(path.join(fresh, 'results', 'results.json'), 'utf8');
-    const csv = fs.readFileSync(path.join(fresh, 'results', 'results.csv'), 'utf8').trim().split('\n').slice(1);
+    const csv = fs
+      .readFileSync(path.join(fresh, 'results', 'results.csv'), 'utf8')
+      .trim()
+      .split('\n')
+      .slice(1);
     assert.deepEqual(csv.map((row) => row.split(',').slice(0, 2).join(',')).sort(), ['0,timeout', '1,timeout'], rows);
   });
 
@@ -204,7 +224,9 @@ describe('cli: concrete scenarios of vary and batch, and the outputs of modulari
     fs.mkdirSync(path.join(ws, 'lib'), { recursive: true });
     for (const name of ['a.xosc', 'b.xosc']) fs.copyFileSync(path.join(ws, 'xosc', 'cut-in.xosc'), path.join(ws, 'lib', name));
     fs.mkdirSync(path.join(ws, 'modular', 'deep'), { recursive: true });
-    const modularize = runCli(['modularize', path.join(ws, 'lib'), '-o', path.join(ws, 'modular', 'deep', 'out')], { cwd: temporaryFolder('m2s-paths-cli-') });
+    const modularize = runCli(['modularize', path.join(ws, 'lib'), '-o', path.join(ws, 'modular', 'deep', 'out')], {
+      cwd: temporaryFolder('m2s-paths-cli-'),
+    });
     assert.equal(modularize.status, 0, modularize.stderr);
     const main = path.join(ws, 'modular', 'deep', 'out', 'a.xosc');
     assert.match(fs.readFileSync(main, 'utf8'), /<ScenarioReference /);
@@ -217,10 +239,12 @@ describe('cli: concrete scenarios of vary and batch, and the outputs of modulari
     assertSameRun((await runAlone(flat)).steps, original, 'modularized and flattened');
   });
 
-  it('batch with no road path runs each concrete scenario on the ScenarioFile\'s road and catalogs', () => {
+  it("batch with no road path runs each concrete scenario on the ScenarioFile's road and catalogs", () => {
     const distribution = speedDistribution(ws, 'cut-in.xosc');
     const results = path.join(temporaryFolder('m2s-paths-batch-'), 'results');
-    const run = runCli(['batch', distribution, '--results', results, '--duration', '2', '--jobs', '1', '--esmini', esminiBinary], { cwd: temporaryFolder('m2s-paths-cli-') });
+    const run = runCli(['batch', distribution, '--results', results, '--duration', '2', '--jobs', '1', '--esmini', esminiBinary], {
+      cwd: temporaryFolder('m2s-paths-cli-'),
+    });
     assert.equal(run.status, 0, run.stderr);
     const rows = fs.readFileSync(path.join(results, 'results.csv'), 'utf8').trim().split('\n').slice(1);
     assert.deepEqual(rows.map((row) => row.split(',').slice(0, 2).join(',')).sort(), ['0,timeout', '1,timeout']);
@@ -233,14 +257,23 @@ function escapeRegExp(text: string): string {
 
 describe('cli: the warnings pack prints about files a package reaches outside itself', () => {
   const withRoad = (logicFile: string) =>
-    scenario(simpleGroup('Go')).replace('<Entities>', `<ParameterDeclarations>\n    <ParameterDeclaration name="Road" parameterType="string" value="../xodr/road.xodr"/>\n  </ParameterDeclarations>\n  <RoadNetwork>\n    <LogicFile filepath="${logicFile}"/>\n  </RoadNetwork>\n  <Entities>`);
+    scenario(simpleGroup('Go')).replace(
+      '<Entities>',
+      `<ParameterDeclarations>\n    <ParameterDeclaration name="Road" parameterType="string" value="../xodr/road.xodr"/>\n  </ParameterDeclarations>\n  <RoadNetwork>\n    <LogicFile filepath="${logicFile}"/>\n  </RoadNetwork>\n  <Entities>`,
+    );
 
   it('-cxm files: each road named, at its line, with what it is written as in the package', async () => {
     const root = temporaryWorkspace({ 'xodr/road.xodr': '<OpenDRIVE/>', 'xosc/main.xosc': withRoad('../xodr/road.xodr') });
     fs.mkdirSync(path.join(root, 'out', 'deeper'), { recursive: true });
     const run = runCli(['-cxm', 'xosc/main.xosc', 'out/deeper/pkg.mosc'], { cwd: root });
     assert.equal(run.status, 0, run.stderr);
-    assert.match(run.stderr, new RegExp(`^xosc/main\\.xosc:\\d+:\\d+: warning: the package reaches the file ${escapeRegExp(path.join(root, 'xodr', 'road.xodr'))} outside itself \\(written '\\.\\./\\.\\./xodr/road\\.xodr', relative to the package's folder\\)`, 'm'));
+    assert.match(
+      run.stderr,
+      new RegExp(
+        `^xosc/main\\.xosc:\\d+:\\d+: warning: the package reaches the file ${escapeRegExp(path.join(root, 'xodr', 'road.xodr'))} outside itself \\(written '\\.\\./\\.\\./xodr/road\\.xodr', relative to the package's folder\\)`,
+        'm',
+      ),
+    );
     const entries = await unzipped(path.join(root, 'out', 'deeper', 'pkg.mosc'));
     assert.match(entries.get('main.xosc') ?? '', /<LogicFile filepath="\.\.\/\.\.\/xodr\/road\.xodr"\/>/);
   });
@@ -249,7 +282,10 @@ describe('cli: the warnings pack prints about files a package reaches outside it
     const root = temporaryWorkspace({ 'xodr/road.xodr': '<OpenDRIVE/>', 'xosc/main.xosc': withRoad('$Road') });
     const run = runCli(['pack', 'xosc', '-o', 'pkg.mosc', '--self-contained'], { cwd: root });
     assert.equal(run.status, 0, run.stderr);
-    assert.match(run.stderr, /warning: the package reaches the file .*road\.xodr outside itself; the package does not run without it\n\s*hint: '\$Road' names a parameter, so it is left as written/);
+    assert.match(
+      run.stderr,
+      /warning: the package reaches the file .*road\.xodr outside itself; the package does not run without it\n\s*hint: '\$Road' names a parameter, so it is left as written/,
+    );
   });
 
   it('--self-contained stores the road at a package-relative path and warns about nothing', async () => {
@@ -266,9 +302,18 @@ describe('cli: the warnings pack prints about files a package reaches outside it
 describe('cli: a self-contained package whose catalogs lie in its own folder (Directory path=".")', () => {
   it('stores them at the package root, and its flattening copied alone writes them beside the output, where it names them', () => {
     const withCatalogHere = scenario('')
-      .replace('<Entities>', '<CatalogLocations>\n    <VehicleCatalog>\n      <Directory path="."/>\n    </VehicleCatalog>\n  </CatalogLocations>\n  <Entities>')
-      .replace('<ScenarioObject name="ego"/>', '<ScenarioObject name="ego"><CatalogReference catalogName="VehicleCatalog" entryName="car_white"/></ScenarioObject>');
-    const root = temporaryWorkspace({ 'pkg/main.xosc': withCatalogHere, 'pkg/VehicleCatalog.xosc': fs.readFileSync(path.join(esminiCorpus, 'Catalogs', 'Vehicles', 'VehicleCatalog.xosc'), 'utf8') });
+      .replace(
+        '<Entities>',
+        '<CatalogLocations>\n    <VehicleCatalog>\n      <Directory path="."/>\n    </VehicleCatalog>\n  </CatalogLocations>\n  <Entities>',
+      )
+      .replace(
+        '<ScenarioObject name="ego"/>',
+        '<ScenarioObject name="ego"><CatalogReference catalogName="VehicleCatalog" entryName="car_white"/></ScenarioObject>',
+      );
+    const root = temporaryWorkspace({
+      'pkg/main.xosc': withCatalogHere,
+      'pkg/VehicleCatalog.xosc': fs.readFileSync(path.join(esminiCorpus, 'Catalogs', 'Vehicles', 'VehicleCatalog.xosc'), 'utf8'),
+    });
     assert.match(withCatalogHere, /entryName="car_white"/);
     const run = runCli(['pack', 'pkg', '-o', 'out.mosc', '--self-contained'], { cwd: root });
     assert.equal(run.status, 0, run.stderr);

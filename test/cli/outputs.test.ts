@@ -15,7 +15,12 @@ describe('cli: outputs', function () {
     const inner = new JSZip();
     inner.file('main.xosc', scenario(simpleGroup('Go')));
     const innerBytes = await inner.generateAsync({ type: 'uint8array' });
-    const root = temporaryWorkspace({ 'pkg/main.xosc': mainOf('inner.mosc'), 'pkg/inner.mosc': innerBytes, 'other/main.xosc': mainOf('lib.mosc'), 'lib/lib.mosc': innerBytes });
+    const root = temporaryWorkspace({
+      'pkg/main.xosc': mainOf('inner.mosc'),
+      'pkg/inner.mosc': innerBytes,
+      'other/main.xosc': mainOf('lib.mosc'),
+      'lib/lib.mosc': innerBytes,
+    });
     const direct = runBounded(['pack', 'pkg', '-o', 'pkg/inner.mosc'], { cwd: root });
     assert.equal(direct.status, 1, direct.stderr);
     assert.match(direct.stderr, /refusing to write pkg\/inner\.mosc: it is an input/);

@@ -19,22 +19,32 @@ const XQAR: Record<string, { children: string[]; attributes: string[] }> = {
   Checker: { children: ['Param', 'Issue', 'AddressedRule', 'Metadata'], attributes: ['checkerId', 'description', 'summary', 'status'] },
   Issue: { children: ['Locations', 'DomainSpecificInfo'], attributes: ['issueId', 'description', 'level', 'ruleUID'] },
   AddressedRule: { children: [], attributes: ['ruleUID'] },
-  Locations: { children: ['FileLocation', 'XMLLocation', 'InertialLocation', 'TimeLocation', 'MessageLocation'], attributes: ['description'] },
+  Locations: {
+    children: ['FileLocation', 'XMLLocation', 'InertialLocation', 'TimeLocation', 'MessageLocation'],
+    attributes: ['description'],
+  },
   FileLocation: { children: [], attributes: ['column', 'row', 'offset'] },
   XMLLocation: { children: [], attributes: ['xpath'] },
 };
 /** A Checker's children come in this order (an xs:sequence); so do an Issue's. */
-const SEQUENCES: Record<string, string[]> = { Checker: ['Param', 'Issue', 'AddressedRule', 'Metadata'], Issue: ['Locations', 'DomainSpecificInfo'] };
+const SEQUENCES: Record<string, string[]> = {
+  Checker: ['Param', 'Issue', 'AddressedRule', 'Metadata'],
+  Issue: ['Locations', 'DomainSpecificInfo'],
+};
 
 function validateXqar(text: string): XmlElement {
   const document = parseXml(text);
-  assert.deepEqual(document.problems.filter((problem) => problem.severity === 'error'), []);
+  assert.deepEqual(
+    document.problems.filter((problem) => problem.severity === 'error'),
+    [],
+  );
   const root = document.root;
   assert.equal(root?.name, 'CheckerResults');
   const visit = (element: XmlElement) => {
     const shape = XQAR[element.name];
     assert.ok(shape, `<${element.name}> is not an element of the result format`);
-    for (const attr of element.attributes) assert.ok(shape.attributes.includes(attr.name), `${element.name}@${attr.name} is not in the result format`);
+    for (const attr of element.attributes)
+      assert.ok(shape.attributes.includes(attr.name), `${element.name}@${attr.name} is not in the result format`);
     const order = SEQUENCES[element.name];
     let last = -1;
     for (const child of element.children) {
@@ -121,11 +131,18 @@ ${checkers.map((id) => `        <Checker checkerId="${id}" maxLevel="1" minLevel
 
 /** Runs the bundle as the framework does: the manifest's exec_command through a shell, with the framework's variables set. */
 function runAsFramework(root: string, configFile: string, outputDir: string): void {
-  const manifest = JSON.parse(execFileSync(process.execPath, [cliPath, 'qc-bundle', '--manifest'], { encoding: 'utf8' })) as { module: { name: string; exec_type: string; module_type: string; exec_command: string }[] };
+  const manifest = JSON.parse(execFileSync(process.execPath, [cliPath, 'qc-bundle', '--manifest'], { encoding: 'utf8' })) as {
+    module: { name: string; exec_type: string; module_type: string; exec_command: string }[];
+  };
   assert.equal(manifest.module.length, 1);
   const [module] = manifest.module;
   assert.deepEqual([module.name, module.exec_type, module.module_type], ['modular2simple', 'executable', 'checker_bundle']);
-  execFileSync('/bin/sh', ['-c', module.exec_command], { cwd: root, env: { ...process.env, ASAM_QC_FRAMEWORK_CONFIG_FILE: configFile, ASAM_QC_FRAMEWORK_OUTPUT_DIR: outputDir }, encoding: 'utf8', stdio: 'pipe' });
+  execFileSync('/bin/sh', ['-c', module.exec_command], {
+    cwd: root,
+    env: { ...process.env, ASAM_QC_FRAMEWORK_CONFIG_FILE: configFile, ASAM_QC_FRAMEWORK_OUTPUT_DIR: outputDir },
+    encoding: 'utf8',
+    stdio: 'pipe',
+  });
 }
 
 describe('cli: qc-bundle (a checker bundle of the ASAM Quality Checker Framework)', () => {
@@ -139,12 +156,22 @@ describe('cli: qc-bundle (a checker bundle of the ASAM Quality Checker Framework
     assert.equal(attr(bundle, 'name'), 'modular2simple');
     assert.ok(bundle.children.some((child) => child.name === 'Param' && attr(child, 'name') === 'InputFile'));
     const issues = all(result, 'Issue');
-    const signal = issues.find((issue) => attr(issue, 'ruleUID') === 'asam.net:xosc:1.2.0:reference_control.resolvable_signal_id_in_traffic_signal_state_action');
+    const signal = issues.find(
+      (issue) => attr(issue, 'ruleUID') === 'asam.net:xosc:1.2.0:reference_control.resolvable_signal_id_in_traffic_signal_state_action',
+    );
     assert.ok(signal, issues.map((issue) => attr(issue, 'ruleUID')).join('\n'));
     assert.equal(attr(signal, 'level'), '1');
-    assert.equal(attr(all(signal, 'XMLLocation')[0], 'xpath'), '/OpenSCENARIO/Storyboard/Init/Actions/GlobalAction/InfrastructureAction/TrafficSignalAction/TrafficSignalStateAction');
-    assert.equal(attr(all(signal, 'FileLocation')[0], 'row'), String(SCENARIO.split('\n').findIndex((line) => line.includes('name="999"')) + 1));
-    const light = issues.find((issue) => attr(issue, 'ruleUID') === 'asam.net:xosc:1.2.0:data_type.non_negative_transition_time_in_light_state_action');
+    assert.equal(
+      attr(all(signal, 'XMLLocation')[0], 'xpath'),
+      '/OpenSCENARIO/Storyboard/Init/Actions/GlobalAction/InfrastructureAction/TrafficSignalAction/TrafficSignalStateAction',
+    );
+    assert.equal(
+      attr(all(signal, 'FileLocation')[0], 'row'),
+      String(SCENARIO.split('\n').findIndex((line) => line.includes('name="999"')) + 1),
+    );
+    const light = issues.find(
+      (issue) => attr(issue, 'ruleUID') === 'asam.net:xosc:1.2.0:data_type.non_negative_transition_time_in_light_state_action',
+    );
     assert.ok(light);
     // Each checker addresses its rule; issue ids are unique.
     for (const checker of all(result, 'Checker')) assert.equal(all(checker, 'AddressedRule').length, 1);
@@ -157,14 +184,24 @@ describe('cli: qc-bundle (a checker bundle of the ASAM Quality Checker Framework
     fs.writeFileSync(path.join(root, 'config.xml'), config('scenario.xosc', [checker], 'light.xqar'));
     execFileSync(process.execPath, [cliPath, 'qc-bundle', 'config.xml'], { cwd: root, stdio: 'pipe' });
     const result = validateXqar(fs.readFileSync(path.join(root, 'light.xqar'), 'utf8'));
-    assert.deepEqual(all(result, 'Checker').map((element) => attr(element, 'checkerId')), [checker]);
+    assert.deepEqual(
+      all(result, 'Checker').map((element) => attr(element, 'checkerId')),
+      [checker],
+    );
     assert.equal(all(result, 'Issue').length, 1);
   });
 
   it('a configuration it cannot run from is a loud failure, and no result file is written', () => {
-    const root = temporaryWorkspace({ 'config.xml': '<Config><CheckerBundle application="modular2simple"/></Config>', 'bad.xml': '<NotAConfig/>' });
+    const root = temporaryWorkspace({
+      'config.xml': '<Config><CheckerBundle application="modular2simple"/></Config>',
+      'bad.xml': '<NotAConfig/>',
+    });
     for (const file of ['config.xml', 'bad.xml']) {
-      assert.throws(() => execFileSync(process.execPath, [cliPath, 'qc-bundle', '-c', file, '-o', 'out'], { cwd: root, stdio: 'pipe' }), (error: { status: number; stderr: Buffer }) => error.status === 1 && /InputFile|not a Quality Checker/.test(error.stderr.toString()));
+      assert.throws(
+        () => execFileSync(process.execPath, [cliPath, 'qc-bundle', '-c', file, '-o', 'out'], { cwd: root, stdio: 'pipe' }),
+        (error: { status: number; stderr: Buffer }) =>
+          error.status === 1 && /InputFile|not a Quality Checker/.test(error.stderr.toString()),
+      );
     }
     assert.ok(!fs.existsSync(path.join(root, 'out')));
   });

@@ -17,7 +17,11 @@ describe('cli: reuse blow-up', function () {
       files[`l${level}.xosc`] = scenario(group);
     }
     const root = temporaryWorkspace(files);
-    const run = runBounded(['flatten', 'l0.xosc', '-o', 'out.xosc', '--max-output-size', '4M'], { cwd: root, timeoutMs: 60_000, heapMb: 256 });
+    const run = runBounded(['flatten', 'l0.xosc', '-o', 'out.xosc', '--max-output-size', '4M'], {
+      cwd: root,
+      timeoutMs: 60_000,
+      heapMb: 256,
+    });
     assert.ok(!run.timedOut, 'finished');
     assert.equal(run.status, 1, run.stderr);
     assert.match(run.stderr, /would exceed 4,194,304 characters/);
@@ -31,7 +35,13 @@ describe('cli: reuse blow-up', function () {
 
   it('references nested deeper than the bound are an error naming the chain', () => {
     const files: Record<string, string> = { 'd30.xosc': scenario(simpleGroup('Go')) };
-    for (let level = 0; level < 30; level++) files[`d${level}.xosc`] = scenario(simpleGroup('Go').replace('</ManeuverGroup>', '</ManeuverGroup>\n' + outerGroup('Car', 'car', [{ file: `d${level + 1}.xosc`, groups: [{ name: 'Go' }] }])));
+    for (let level = 0; level < 30; level++)
+      files[`d${level}.xosc`] = scenario(
+        simpleGroup('Go').replace(
+          '</ManeuverGroup>',
+          '</ManeuverGroup>\n' + outerGroup('Car', 'car', [{ file: `d${level + 1}.xosc`, groups: [{ name: 'Go' }] }]),
+        ),
+      );
     const root = temporaryWorkspace(files);
     const run = runBounded(['check', 'd0.xosc', '--max-depth', '10'], { cwd: root });
     assert.equal(run.status, 1, run.stderr);

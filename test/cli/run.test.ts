@@ -37,7 +37,9 @@ describe('cli: run in esmini', function () {
     const root = examplesWith();
     const out = path.join(fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-run-out-')), 'run.csv');
     const before = listFiles(root);
-    const run = runCli(['run', '.', '--check', '--duration', '4', '--road-path', esminiRoads, '--esmini', esminiBinary, '--csv', out], { cwd: root });
+    const run = runCli(['run', '.', '--check', '--duration', '4', '--road-path', esminiRoads, '--esmini', esminiBinary, '--csv', out], {
+      cwd: root,
+    });
     assert.equal(run.status, 0, run.stderr);
     assert.match(run.stderr, /esmini: 0 errors, \d+ warnings?; 4\.00 s simulated/);
     assert.deepEqual(listFiles(root), before);
@@ -48,11 +50,18 @@ describe('cli: run in esmini', function () {
   it("run --check: 1 for esmini's error, printed on the simple scenario's line", function () {
     requireEsmini(this);
     const root = examplesWith('dynamicsShape="linear" value="3"', 'dynamicsShape="wobbly" value="3"');
-    const line = fs.readFileSync(path.join(root, 'lane_change.xosc'), 'utf8').split('\n').findIndex((text) => text.includes('wobbly')) + 1;
+    const line =
+      fs
+        .readFileSync(path.join(root, 'lane_change.xosc'), 'utf8')
+        .split('\n')
+        .findIndex((text) => text.includes('wobbly')) + 1;
     const args = ['run', 'main.xosc', '--duration', '2', '--road-path', esminiRoads, '--esmini', esminiBinary];
     const checked = runCli([...args, '--check'], { cwd: root });
     assert.equal(checked.status, 1, checked.stderr);
-    assert.match(checked.stderr, new RegExp(`^lane_change\\.xosc:${line}:\\d+: error: Dynamics shape wobbly unexpected.* \\(esmini\\)$`, 'm'));
+    assert.match(
+      checked.stderr,
+      new RegExp(`^lane_change\\.xosc:${line}:\\d+: error: Dynamics shape wobbly unexpected.* \\(esmini\\)$`, 'm'),
+    );
     assert.equal(runCli(args, { cwd: root }).status, 0, 'without --check a run with esmini errors still exits 0');
   });
 
@@ -70,8 +79,13 @@ describe('cli: run in esmini', function () {
   it('run --check over the whole library (every main.xosc) exits 0', function () {
     requireCorpus(this);
     requireEsmini(this);
-    const mains = fs.readdirSync(libraryDir).filter((name) => name.startsWith('modular_')).map((name) => path.join(libraryDir, name, 'main.xosc'));
-    const run = runCli(['run', ...mains, '--check', '-q', '--duration', '1', '--road-path', esminiRoads, '--esmini', esminiBinary], { env: { SCENARIO_PATH: libraryDir } });
+    const mains = fs
+      .readdirSync(libraryDir)
+      .filter((name) => name.startsWith('modular_'))
+      .map((name) => path.join(libraryDir, name, 'main.xosc'));
+    const run = runCli(['run', ...mains, '--check', '-q', '--duration', '1', '--road-path', esminiRoads, '--esmini', esminiBinary], {
+      env: { SCENARIO_PATH: libraryDir },
+    });
     assert.equal(run.status, 0, run.stderr);
     assert.equal(run.stderr, '', 'quiet: errors only');
   });

@@ -27,9 +27,21 @@ function runDirectly(file: string, folder: string, searchPath: string[]): Direct
   // A copy elsewhere: nothing is written beside the corpus, and files resolve through --path alone.
   const copy = path.join(folder, file);
   fs.writeFileSync(copy, limited);
-  const args = ['--headless', '--osc', copy, '--fixed_timestep', '0.05', '--seed', '1', '--disable_log', ...searchPath.flatMap((entry) => ['--path', entry])];
+  const args = [
+    '--headless',
+    '--osc',
+    copy,
+    '--fixed_timestep',
+    '0.05',
+    '--seed',
+    '1',
+    '--disable_log',
+    ...searchPath.flatMap((entry) => ['--path', entry]),
+  ];
   const run = spawnSync(esminiBinary, args, { cwd: folder, encoding: 'utf8', timeout: 60_000, killSignal: 'SIGKILL' });
-  const errors = readEsminiLog(`${run.stdout}\n${run.stderr}`).messages.filter((message) => message.level === 'error').map((message) => message.text);
+  const errors = readEsminiLog(`${run.stdout}\n${run.stderr}`)
+    .messages.filter((message) => message.level === 'error')
+    .map((message) => message.text);
   return { ran: run.status === 0, errors };
 }
 
@@ -42,15 +54,30 @@ describe("cli: every scenario of esmini's own that esmini runs also runs through
       console.log(`    (skipped: ${esminiScenarios} is absent)`);
       this.skip();
     }
-    const searchPath = [esminiRoads, ...fs.readdirSync(esminiCatalogs, { withFileTypes: true }).filter((entry) => entry.isDirectory()).map((entry) => path.join(esminiCatalogs, entry.name))];
+    const searchPath = [
+      esminiRoads,
+      ...fs
+        .readdirSync(esminiCatalogs, { withFileTypes: true })
+        .filter((entry) => entry.isDirectory())
+        .map((entry) => path.join(esminiCatalogs, entry.name)),
+    ];
     const folder = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-esmini-corpus-'));
-    const files = fs.readdirSync(esminiScenarios).filter((name) => name.endsWith('.xosc')).sort();
+    const files = fs
+      .readdirSync(esminiScenarios)
+      .filter((name) => name.endsWith('.xosc'))
+      .sort();
     const direct = new Map(files.map((file) => [file, runDirectly(file, folder, searchPath)]));
     fs.rmSync(folder, { recursive: true, force: true });
     const ran = files.filter((file) => direct.get(file)?.ran);
-    assert.ok(ran.length >= 60, `esmini ran only ${ran.length} of ${files.length}: ${files.filter((file) => !ran.includes(file)).join(', ')}`);
+    assert.ok(
+      ran.length >= 60,
+      `esmini ran only ${ran.length} of ${files.length}: ${files.filter((file) => !ran.includes(file)).join(', ')}`,
+    );
 
-    const cli = runCli(['run', ...ran, '--duration', String(DURATION), '--road-path', searchPath.join(path.delimiter), '--esmini', esminiBinary], { cwd: esminiScenarios });
+    const cli = runCli(
+      ['run', ...ran, '--duration', String(DURATION), '--road-path', searchPath.join(path.delimiter), '--esmini', esminiBinary],
+      { cwd: esminiScenarios },
+    );
     const outcomes = new Map<string, string>();
     for (const match of cli.stderr.matchAll(/^([^\s:]+\.xosc): (?!\d)(.*)$/gm)) outcomes.set(match[1], match[2]);
     const wrong: string[] = [];
@@ -65,6 +92,9 @@ describe("cli: every scenario of esmini's own that esmini runs also runs through
     // esmini's remarks about its own files are no problems of the scenario, at its first line or anywhere.
     const problemLines = cli.stderr.split('\n').filter((line) => /\(esmini\)( \(\d+ times\))?$/.test(line));
     assert.ok(problemLines.length > 0, 'the warnings esmini has about these scenarios are shown');
-    assert.deepEqual(problemLines.filter((line) => HARMLESS_MESSAGES.some((pattern) => pattern.test(line.replace(/^\S+:\d+:\d+: (error|warning): /, '')))), []);
+    assert.deepEqual(
+      problemLines.filter((line) => HARMLESS_MESSAGES.some((pattern) => pattern.test(line.replace(/^\S+:\d+:\d+: (error|warning): /, '')))),
+      [],
+    );
   });
 });

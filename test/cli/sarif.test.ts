@@ -8,7 +8,9 @@ import { repoRoot, requireCorpus, sharedDir } from '../support/paths';
 import { temporaryWorkspace } from '../support/workspace';
 
 /** The OASIS SARIF 2.1.0 schema (JSON Schema draft 04) as the @microsoft/jest-sarif package ships it: never downloaded at test time. */
-const sarifSchema = JSON.parse(fs.readFileSync(path.join(repoRoot, 'node_modules', '@microsoft', 'jest-sarif', 'lib', 'schemas', 'sarif-2.1.0-rtm.5.json'), 'utf8')) as object;
+const sarifSchema = JSON.parse(
+  fs.readFileSync(path.join(repoRoot, 'node_modules', '@microsoft', 'jest-sarif', 'lib', 'schemas', 'sarif-2.1.0-rtm.5.json'), 'utf8'),
+) as object;
 
 interface Region {
   startLine: number;
@@ -22,12 +24,19 @@ interface Log {
   runs: {
     tool: { driver: { rules: { id: string; shortDescription: { text: string }; helpUri?: string; properties: { codes: string[] } }[] } };
     artifacts: { location: { uri: string }; parentIndex?: number }[];
-    results: { ruleId: string; ruleIndex: number; level: string; message: { text: string }; locations: { physicalLocation: Location }[]; relatedLocations?: unknown[] }[];
+    results: {
+      ruleId: string;
+      ruleIndex: number;
+      level: string;
+      message: { text: string };
+      locations: { physicalLocation: Location }[];
+      relatedLocations?: unknown[];
+    }[];
   }[];
 }
 
 function validate(log: unknown): void {
-  const ajv = new Ajv({ strict: false, allErrors: true, unicodeRegExp: false }) // the schema's language pattern is not valid with the u flag;
+  const ajv = new Ajv({ strict: false, allErrors: true, unicodeRegExp: false }); // the schema's language pattern is not valid with the u flag;
   // The formats the schema names, checked as the URL parser and Date read them.
   ajv.addFormat('uri', (text: string) => URL.canParse(text));
   ajv.addFormat('uri-reference', (text: string) => URL.canParse(text, 'file:///base/'));
@@ -38,7 +47,9 @@ function validate(log: unknown): void {
 
 describe('cli: check --format sarif', () => {
   it('writes a SARIF 2.1.0 log valid against the OASIS schema: rules with descriptions, results with rule, level, file and region', async () => {
-    const broken = scenario(outerGroup('Car', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Go', parameters: [['AbsoluteTargetSped.value', '9']] }] }]));
+    const broken = scenario(
+      outerGroup('Car', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Go', parameters: [['AbsoluteTargetSped.value', '9']] }] }]),
+    );
     const zip = new JSZip();
     zip.file('main.xosc', scenario(outerGroup('Car', 'nobody', [{ file: 'missing.xosc', groups: [{ name: 'Go', parameters: [] }] }])));
     const root = temporaryWorkspace({
@@ -70,10 +81,16 @@ describe('cli: check --format sarif', () => {
 
     const xml = only.results.find((result) => result.ruleId === 'asam.net:xosc:1.0.0:xml.valid_xml_document');
     assert.ok(xml, 'malformed XML names the ASAM Quality Checker rule');
-    assert.match(String(rules[xml.ruleIndex].helpUri), /checker_bundle_doc\.md#check_asam_xosc_xml_valid_xml_document$/, 'and links to its description');
+    assert.match(
+      String(rules[xml.ruleIndex].helpUri),
+      /checker_bundle_doc\.md#check_asam_xosc_xml_valid_xml_document$/,
+      'and links to its description',
+    );
     assert.equal(xml.locations[0].physicalLocation.artifactLocation.uri, 'not%20xml.xosc');
 
-    const inPackage = only.results.find((result) => only.artifacts[result.locations[0].physicalLocation.artifactLocation.index].parentIndex !== undefined);
+    const inPackage = only.results.find(
+      (result) => only.artifacts[result.locations[0].physicalLocation.artifactLocation.index].parentIndex !== undefined,
+    );
     assert.ok(inPackage, 'a problem inside a package is located in the package entry');
     const entry = only.artifacts[inPackage.locations[0].physicalLocation.artifactLocation.index];
     assert.equal(entry.location.uri, 'main.xosc');
@@ -88,7 +105,10 @@ describe('cli: check --format sarif', () => {
     validate(log);
     const rules = log.runs[0].tool.driver.rules;
     for (const result of log.runs[0].results) assert.ok(rules[result.ruleIndex].shortDescription.text, result.ruleId);
-    assert.ok(log.runs[0].artifacts.every((artifact) => !artifact.location.uri.startsWith('file:')), 'files below the working folder are relative to SRCROOT');
+    assert.ok(
+      log.runs[0].artifacts.every((artifact) => !artifact.location.uri.startsWith('file:')),
+      'files below the working folder are relative to SRCROOT',
+    );
   });
 
   it('a clean check is a valid log with no results and exit 0', () => {
@@ -100,7 +120,7 @@ describe('cli: check --format sarif', () => {
     assert.deepEqual(log.runs[0].results, []);
   });
 
-  it('check --format json names each problem\'s rule; stats refuses sarif', () => {
+  it("check --format json names each problem's rule; stats refuses sarif", () => {
     const root = temporaryWorkspace({ 'main.xosc': '<OpenSCENARIO>' });
     const run = runCli(['check', 'main.xosc', '--format', 'json'], { cwd: root });
     const report = JSON.parse(run.stdout) as { problems: { code: string; rule: string }[] };

@@ -13,7 +13,15 @@ function examplesWithDistribution(scenarioFile: string): string {
   const root = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-vary-modular-'));
   fs.cpSync(path.join(repoRoot, 'examples'), root, { recursive: true });
   const main = path.join(root, 'main.xosc');
-  fs.writeFileSync(main, fs.readFileSync(main, 'utf8').replace('  <ParameterDeclarations/>\n  <CatalogLocations/>', `  <ParameterDeclarations>\n    ${DECLARED}\n  </ParameterDeclarations>\n  <CatalogLocations/>`));
+  fs.writeFileSync(
+    main,
+    fs
+      .readFileSync(main, 'utf8')
+      .replace(
+        '  <ParameterDeclarations/>\n  <CatalogLocations/>',
+        `  <ParameterDeclarations>\n    ${DECLARED}\n  </ParameterDeclarations>\n  <CatalogLocations/>`,
+      ),
+  );
   fs.writeFileSync(
     path.join(root, 'd.xosc'),
     `<?xml version="1.0" encoding="UTF-8"?>
@@ -64,7 +72,10 @@ describe('cli: vary and batch on a modular ScenarioFile (flattened per concrete 
     assert.equal(concrete.status, 0, concrete.stderr);
     assert.doesNotMatch(concrete.stdout, /ScenarioReference/);
     assert.ok(concrete.stdout.includes(DECLARED.replace('27.5', '20')));
-    fs.writeFileSync(path.join(root, 'd.xosc'), fs.readFileSync(path.join(root, 'd.xosc'), 'utf8').replace('filepath="encounter.mosc"', 'filepath="."'));
+    fs.writeFileSync(
+      path.join(root, 'd.xosc'),
+      fs.readFileSync(path.join(root, 'd.xosc'), 'utf8').replace('filepath="encounter.mosc"', 'filepath="."'),
+    );
     const folder = runCli(['vary', 'd.xosc', '--index', '0'], { cwd: root });
     assert.equal(folder.status, 0, folder.stderr);
     assert.equal(folder.stdout, concrete.stdout);
@@ -76,18 +87,33 @@ describe('cli: vary and batch on a modular ScenarioFile (flattened per concrete 
     fs.writeFileSync(main, fs.readFileSync(main, 'utf8').replace('maneuverGroupName="CutIn"', 'maneuverGroupName="NoSuchGroup"'));
     const run = runCli(['vary', 'd.xosc', '--out-dir', 'out'], { cwd: root });
     assert.equal(run.status, 1, run.stderr);
-    assert.match(run.stderr, /^d\.xosc:5:\d+: error: ScenarioFile main\.xosc .*cannot be flattened \(1 error\):\n {2}main\.xosc:\d+:\d+: error: .*NoSuchGroup/m);
+    assert.match(
+      run.stderr,
+      /^d\.xosc:5:\d+: error: ScenarioFile main\.xosc .*cannot be flattened \(1 error\):\n {2}main\.xosc:\d+:\d+: error: .*NoSuchGroup/m,
+    );
     assert.ok(!fs.existsSync(path.join(root, 'out')));
   });
 
   it('batch runs the flattened concrete scenarios of a modular main', function () {
     requireEsmini(this);
     const root = examples('main.xosc');
-    const run = runCli(['batch', 'd.xosc', '--results', 'results', '--duration', '1', '--jobs', '2', '--road-path', esminiRoads, '--esmini', esminiBinary], { cwd: root });
+    const run = runCli(
+      ['batch', 'd.xosc', '--results', 'results', '--duration', '1', '--jobs', '2', '--road-path', esminiRoads, '--esmini', esminiBinary],
+      { cwd: root },
+    );
     assert.equal(run.status, 0, run.stderr);
-    const lines = fs.readFileSync(path.join(root, 'results', 'results.csv'), 'utf8').trim().split('\n');
+    const lines = fs
+      .readFileSync(path.join(root, 'results', 'results.csv'), 'utf8')
+      .trim()
+      .split('\n');
     assert.equal(lines[0], 'index,status,collision,min_distance_m,min_ttc_s,end_time_s,CutInSpeed');
-    assert.deepEqual(lines.slice(1).map((line) => line.split(',')[0]).sort(), ['0', '1']);
+    assert.deepEqual(
+      lines
+        .slice(1)
+        .map((line) => line.split(',')[0])
+        .sort(),
+      ['0', '1'],
+    );
     for (const line of lines.slice(1)) assert.match(line, /^\d,(ok|timeout),(true|false),[\d.]+,[\d.]*,1\.0\d0,(20|30)$/);
   });
 });

@@ -26,12 +26,22 @@ function refused(fields: Partial<RunEsminiResult>): RunEsminiResult {
 
 describe('client: Write Anyway and Run Anyway', () => {
   it('names the errors (not the warnings) with their file and line, the first three and how many more', () => {
-    const problems = [problem('a', 0), problem('w', 1, 'warning'), problem('b', 1, 'error', 'file:///w/lane%20change.xosc'), problem('c', 2), problem('d', 3), problem('e', 4)];
+    const problems = [
+      problem('a', 0),
+      problem('w', 1, 'warning'),
+      problem('b', 1, 'error', 'file:///w/lane%20change.xosc'),
+      problem('c', 2),
+      problem('d', 3),
+      problem('e', 4),
+    ];
     assert.equal(namedErrors(problems), 'a (cut-in.xosc:1); b (lane change.xosc:2); c (cut-in.xosc:3); and 2 more');
   });
 
   it("Flatten's question counts every error, not only overrides, and names the key an override got wrong", () => {
-    const problems = [problem("key 'LaneChangeActionDynamic.value' matches no attribute listed in a parameterAttributes of group 'CutIn'", 12), problem("unknown name 'x'", 40)];
+    const problems = [
+      problem("key 'LaneChangeActionDynamic.value' matches no attribute listed in a parameterAttributes of group 'CutIn'", 12),
+      problem("unknown name 'x'", 40),
+    ];
     const question = writeAnywayQuestion('Flatten to .xosc', problems);
     assert.match(question, /^Flatten to \.xosc: nothing was written, because of 2 errors: key 'LaneChangeActionDynamic\.value'/);
     assert.match(question, /Write anyway.*\(as --force does\)\?$/);
@@ -39,7 +49,10 @@ describe('client: Write Anyway and Run Anyway', () => {
   });
 
   it('offers Run Anyway only for a run refused for its errors alone', () => {
-    assert.match(runAnywayQuestion(refused({ forcible: true })) ?? '', /^Run in esmini: the scenario has 1 error; nothing was run: unknown name 'BrakeCondition_HWT' \(cut-in\.xosc:162\)\. Run anyway/);
+    assert.match(
+      runAnywayQuestion(refused({ forcible: true })) ?? '',
+      /^Run in esmini: the scenario has 1 error; nothing was run: unknown name 'BrakeCondition_HWT' \(cut-in\.xosc:162\)\. Run anyway/,
+    );
     // A refusal that forcing cannot help (a missing group), and runs that happened, get no offer.
     assert.equal(runAnywayQuestion(refused({})), undefined);
     assert.equal(runAnywayQuestion(refused({ outcome: 'ok', forcible: true })), undefined);

@@ -1,7 +1,20 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { boxAt, drawEntities, drawRoads, drawTrajectories, fitTransform, laneAt, poseAt, roadShapes, sceneBounds, startBoxes, SvgPainter, toScreen } from '../../client/src/birdsEye/draw';
+import {
+  boxAt,
+  drawEntities,
+  drawRoads,
+  drawTrajectories,
+  fitTransform,
+  laneAt,
+  poseAt,
+  roadShapes,
+  sceneBounds,
+  startBoxes,
+  SvgPainter,
+  toScreen,
+} from '../../client/src/birdsEye/draw';
 import type { RunTracks } from '../../client/src/birdsEye/messages';
 import { loadRun, runTracks } from '../../client/src/birdsEye/runData';
 import { parseOpenDrive } from '../../server/src/core/opendrive/road';
@@ -15,7 +28,20 @@ function straightScene(): SceneResult {
     uri: 'file:///s.xosc',
     title: 's.xosc',
     sections: sampleNetwork(parseOpenDrive(STRAIGHT_ROAD)),
-    entities: [{ name: 'ego', kind: 'Vehicle', length: 4, width: 2, centerX: 1, x: 50, y: -1.75, hdg: 0, described: 'LanePosition', source: { uri: 'file:///s.xosc', line: 3, character: 4 } }],
+    entities: [
+      {
+        name: 'ego',
+        kind: 'Vehicle',
+        length: 4,
+        width: 2,
+        centerX: 1,
+        x: 50,
+        y: -1.75,
+        hdg: 0,
+        described: 'LanePosition',
+        source: { uri: 'file:///s.xosc', line: 3, character: 4 },
+      },
+    ],
     events: [],
     problems: [],
   };
@@ -32,7 +58,14 @@ const RUN: RunTracks = {
 describe("client: the bird's-eye view's drawing", () => {
   it('makes one polygon per lane between its borders, and finds the lane under a point', () => {
     const shapes = roadShapes(straightScene());
-    assert.deepEqual(shapes.lanes.map((lane) => [lane.lane, lane.driving]), [[1, true], [-1, true], [-2, false]]);
+    assert.deepEqual(
+      shapes.lanes.map((lane) => [lane.lane, lane.driving]),
+      [
+        [1, true],
+        [-1, true],
+        [-2, false],
+      ],
+    );
     assert.deepEqual(shapes.bounds, [0, -5.5, 200, 3.5]);
     assert.equal(laneAt(shapes, 100, 2)?.lane, 1);
     assert.equal(laneAt(shapes, 100, -2)?.lane, -1);
@@ -78,9 +111,13 @@ describe("client: the bird's-eye view's drawing", () => {
 
   it('thins a long run for the view and reads event starts from a log beside the CSV', async () => {
     const rows = 20_000;
-    const header = 'esmini GIT REV: v3.6.0\nesmini GIT TAG: \nesmini GIT BRANCH: x\nesmini BUILD VERSION: x\nScenario File Name: s.xosc\nNumber of Vehicles: 1\nIndex [-], TimeStamp [s], #1 Entity_Name [-], #1 World_Position_X [m], #1 World_Position_Y [m], #1 World_Heading_Angle [rad], \n';
+    const header =
+      'esmini GIT REV: v3.6.0\nesmini GIT TAG: \nesmini GIT BRANCH: x\nesmini BUILD VERSION: x\nScenario File Name: s.xosc\nNumber of Vehicles: 1\nIndex [-], TimeStamp [s], #1 Entity_Name [-], #1 World_Position_X [m], #1 World_Position_Y [m], #1 World_Heading_Angle [rad], \n';
     const body = Array.from({ length: rows }, (_, i) => `${i}, ${(i * 0.01).toFixed(2)}, car, ${i * 0.1}, 0.123456, 0.5, `).join('\n');
-    const folder = temporaryWorkspace({ 'out.csv': header + body + '\n', 'out.log': '[1.230] [info] Go standbyState -> startTransition -> runningState\n' });
+    const folder = temporaryWorkspace({
+      'out.csv': header + body + '\n',
+      'out.log': '[1.230] [info] Go standbyState -> startTransition -> runningState\n',
+    });
     try {
       const run = await loadRun({ csvPath: path.join(folder, 'out.csv') });
       assert.ok(run.times.length <= 6001 && run.times.length > 5000, `${run.times.length} frames`);
@@ -91,13 +128,18 @@ describe("client: the bird's-eye view's drawing", () => {
     } finally {
       fs.rmSync(folder, { recursive: true, force: true });
     }
-    const small = runTracks({ version: '', scenarioFile: '', times: Float64Array.from([0, 1]), entities: [], truncated: true }, 'x', new Map());
+    const small = runTracks(
+      { version: '', scenarioFile: '', times: Float64Array.from([0, 1]), entities: [], truncated: true },
+      'x',
+      new Map(),
+    );
     assert.deepEqual(small.times, [0, 1]);
     assert.match(small.notes.join(), /end is left out/);
   });
 
   it("names the road file the run loaded, from esmini's log, so that the view can tell a run on another road", async () => {
-    const csv = 'esmini GIT REV: v3.6.0\nesmini GIT TAG: \nesmini GIT BRANCH: x\nesmini BUILD VERSION: x\nScenario File Name: s.xosc\nNumber of Vehicles: 1\nIndex [-], TimeStamp [s], #1 Entity_Name [-], #1 World_Position_X [m], #1 World_Position_Y [m], #1 World_Heading_Angle [rad], \n0, 0.00, car, 0, 0, 0, \n';
+    const csv =
+      'esmini GIT REV: v3.6.0\nesmini GIT TAG: \nesmini GIT BRANCH: x\nesmini BUILD VERSION: x\nScenario File Name: s.xosc\nNumber of Vehicles: 1\nIndex [-], TimeStamp [s], #1 Entity_Name [-], #1 World_Position_X [m], #1 World_Position_Y [m], #1 World_Heading_Angle [rad], \n0, 0.00, car, 0, 0, 0, \n';
     const folder = temporaryWorkspace({ 'out.csv': csv });
     try {
       const run = await loadRun({ csvPath: path.join(folder, 'out.csv'), logText: '[] [info] Loaded OpenDRIVE: /roads/e6mini.xodr\n' });

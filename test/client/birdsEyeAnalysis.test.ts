@@ -1,6 +1,29 @@
 import * as assert from 'node:assert/strict';
-import { boxGap, centredOn, entitiesBounds, exportLayout, parseResolution, runSeries, scaleBar, tooltipPlace, wheelNotches, zoomAbout, ZOOM_STEP } from '../../client/src/birdsEye/analysis';
-import { drawEntities, drawExportOverlay, fitTransform, type PlacedBox, roadShapes, sceneBounds, shiftedPainter, SvgPainter, toScreen, toWorld } from '../../client/src/birdsEye/draw';
+import {
+  boxGap,
+  centredOn,
+  entitiesBounds,
+  exportLayout,
+  parseResolution,
+  runSeries,
+  scaleBar,
+  tooltipPlace,
+  wheelNotches,
+  zoomAbout,
+  ZOOM_STEP,
+} from '../../client/src/birdsEye/analysis';
+import {
+  drawEntities,
+  drawExportOverlay,
+  fitTransform,
+  type PlacedBox,
+  roadShapes,
+  sceneBounds,
+  shiftedPainter,
+  SvgPainter,
+  toScreen,
+  toWorld,
+} from '../../client/src/birdsEye/draw';
 import { type Bounds, overlaps, placeLabels } from '../../client/src/birdsEye/labels';
 import type { RunTracks } from '../../client/src/birdsEye/messages';
 import { drawPlots, plotSpecs, TTC_CEILING_S } from '../../client/src/birdsEye/plots';
@@ -11,13 +34,37 @@ const car = (name: string, x: number, y: number, hdg = 0): PlacedBox => ({ name,
 /** Ego at 20 m/s behind Lead at 10 m/s in the same lane (30 m between reference points), for 4 s; Far in another lane far ahead. */
 function followingRun(): RunTracks {
   const times = Array.from({ length: 81 }, (_, i) => i * 0.05);
-  const track = (name: string, x0: number, y: number, speed: number) => ({ name, length: 4.5, width: 1.8, centerX: 1.4, x: times.map((t) => x0 + speed * t), y: times.map(() => y), hdg: times.map(() => 0), speed: times.map(() => speed) });
-  return { label: 'following.csv', times, entities: [track('Ego', 0, 0, 20), track('Lead', 30, 0, 10), track('Far', 500, 3.5, 30)], starts: {}, notes: [] };
+  const track = (name: string, x0: number, y: number, speed: number) => ({
+    name,
+    length: 4.5,
+    width: 1.8,
+    centerX: 1.4,
+    x: times.map((t) => x0 + speed * t),
+    y: times.map(() => y),
+    hdg: times.map(() => 0),
+    speed: times.map(() => speed),
+  });
+  return {
+    label: 'following.csv',
+    times,
+    entities: [track('Ego', 0, 0, 20), track('Lead', 30, 0, 10), track('Far', 500, 3.5, 30)],
+    starts: {},
+    notes: [],
+  };
 }
 
 describe("client: the bird's-eye view as a tool for analysing a run", () => {
   it('*Entities* frames the entities where they are now, not their whole trajectories', () => {
-    const run: RunTracks = { label: 'r', times: [0, 100], entities: [{ name: 'A', length: 4, width: 2, centerX: 0, x: [0, 3000], y: [0, 0], hdg: [0, 0] }, { name: 'B', length: 4, width: 2, centerX: 0, x: [20, 3020], y: [3.5, 3.5], hdg: [0, 0] }], starts: {}, notes: [] };
+    const run: RunTracks = {
+      label: 'r',
+      times: [0, 100],
+      entities: [
+        { name: 'A', length: 4, width: 2, centerX: 0, x: [0, 3000], y: [0, 0], hdg: [0, 0] },
+        { name: 'B', length: 4, width: 2, centerX: 0, x: [20, 3020], y: [3.5, 3.5], hdg: [0, 0] },
+      ],
+      starts: {},
+      notes: [],
+    };
     const whole = sceneBounds({ lanes: [], borders: [], bounds: undefined }, undefined, run, true);
     assert.ok(whole[2] - whole[0] > 3000, 'the trajectories span 3 km');
     const now = entitiesBounds([car('A', 1500, 0), car('B', 1520, 3.5)])!;
@@ -47,7 +94,8 @@ describe("client: the bird's-eye view as a tool for analysing a run", () => {
       view = zoomAbout(view, wheelNotches(-100, 0), ...pointer);
       scales.push(view.scale);
     }
-    for (let i = 1; i < scales.length; i++) assert.ok(Math.abs(scales[i] / scales[i - 1] - ZOOM_STEP) < 1e-12, `notch ${i}: ${scales[i] / scales[i - 1]}`);
+    for (let i = 1; i < scales.length; i++)
+      assert.ok(Math.abs(scales[i] / scales[i - 1] - ZOOM_STEP) < 1e-12, `notch ${i}: ${scales[i] / scales[i - 1]}`);
     // Eight notches: 3.06x, not from the network to lane level.
     assert.ok(Math.abs(view.scale / start - ZOOM_STEP ** 8) < 1e-9);
     const after = toWorld(view, ...pointer);
@@ -63,7 +111,12 @@ describe("client: the bird's-eye view as a tool for analysing a run", () => {
     // Six cars within a few pixels of each other, as at network scale: "A3 Eg A2 A5 A1 A4" before.
     const names = ['Ego', 'A1', 'A2', 'A3', 'A4', 'A5'];
     const anchors: Bounds[] = names.map((_, i) => [300 + i * 2, 200 + (i % 2) * 3, 305 + i * 2, 203 + (i % 2) * 3]);
-    const labels = placeLabels(names.map((text, i) => ({ text, anchor: anchors[i], width: 30, height: 15, priority: text === 'A4' ? -1 : i })), anchors, 600, 400);
+    const labels = placeLabels(
+      names.map((text, i) => ({ text, anchor: anchors[i], width: 30, height: 15, priority: text === 'A4' ? -1 : i })),
+      anchors,
+      600,
+      400,
+    );
     assert.equal(labels.length, 6);
     assert.equal(labels[0].text, 'A4', 'the chosen entity is labelled first');
     for (let i = 0; i < labels.length; i++) {
@@ -72,21 +125,39 @@ describe("client: the bird's-eye view as a tool for analysing a run", () => {
       for (const anchor of anchors) assert.ok(!overlaps(box, anchor), `${labels[i].text} covers a car`);
       for (let j = i + 1; j < labels.length; j++) assert.ok(!overlaps(box, labels[j].box), `${labels[i].text} overlaps ${labels[j].text}`);
     }
-    assert.ok(labels.some((label) => label.leader), 'labels moved away have a leader line');
+    assert.ok(
+      labels.some((label) => label.leader),
+      'labels moved away have a leader line',
+    );
     // No room at all: the lower-priority labels are left out rather than drawn over each other.
-    const crowded = placeLabels(names.map((text, i) => ({ text, anchor: [40, 20, 42, 22] as Bounds, width: 30, height: 15, priority: i })), [], 84, 44);
+    const crowded = placeLabels(
+      names.map((text, i) => ({ text, anchor: [40, 20, 42, 22] as Bounds, width: 30, height: 15, priority: i })),
+      [],
+      84,
+      44,
+    );
     assert.ok(crowded.length < 6 && crowded.length > 0);
     assert.equal(crowded[0].text, 'Ego');
-    for (let i = 0; i < crowded.length; i++) for (let j = i + 1; j < crowded.length; j++) assert.ok(!overlaps(crowded[i].box, crowded[j].box));
+    for (let i = 0; i < crowded.length; i++)
+      for (let j = i + 1; j < crowded.length; j++) assert.ok(!overlaps(crowded[i].box, crowded[j].box));
   });
 
   it('draws cars at true size with a minimum on screen, their heading, and labels through the placement', () => {
     const svg = new SvgPainter(600, 400, '#000');
     // At network scale (0.2 px/m) a car would be 0.9 px long.
     const view = { scale: 0.2, left: 0, top: 1000 };
-    const labels = drawEntities(svg, names6().map((name, i) => car(name, 1000 + i * 3, 0)), view, () => '#fff', { width: 600, height: 400, chosen: 'Eg' });
+    const labels = drawEntities(
+      svg,
+      names6().map((name, i) => car(name, 1000 + i * 3, 0)),
+      view,
+      () => '#fff',
+      { width: 600, height: 400, chosen: 'Eg' },
+    );
     const text = svg.toString();
-    const polygon = /<polygon points="([^"]+)"/.exec(text)![1].split(' ').map((pair) => pair.split(',').map(Number));
+    const polygon = /<polygon points="([^"]+)"/
+      .exec(text)![1]
+      .split(' ')
+      .map((pair) => pair.split(',').map(Number));
     const xs = polygon.map(([x]) => x);
     const ys = polygon.map(([, y]) => y);
     assert.ok(Math.max(...ys) - Math.min(...ys) >= 6.9 && Math.max(...xs) - Math.min(...xs) >= 10, 'at least 7 px wide');
@@ -97,7 +168,10 @@ describe("client: the bird's-eye view as a tool for analysing a run", () => {
     // At lane level the true size is drawn: 4.5 m at 10 px/m.
     const near = new SvgPainter(600, 400, '#000');
     drawEntities(near, [car('A', 10, 0)], { scale: 10, left: 0, top: 10 }, () => '#fff');
-    const corners = /<polygon points="([^"]+)"/.exec(near.toString())![1].split(' ').map((pair) => Number(pair.split(',')[0]));
+    const corners = /<polygon points="([^"]+)"/
+      .exec(near.toString())![1]
+      .split(' ')
+      .map((pair) => Number(pair.split(',')[0]));
     assert.equal(Math.max(...corners) - Math.min(...corners), 45);
   });
 
@@ -115,7 +189,10 @@ describe("client: the bird's-eye view as a tool for analysing a run", () => {
   it('computes speed, gap and time to collision of the chosen entity against the others', () => {
     const run = followingRun();
     const series = runSeries(run, 'Ego')!;
-    assert.deepEqual(series.others.map((other) => other.name), ['Lead', 'Far']);
+    assert.deepEqual(
+      series.others.map((other) => other.name),
+      ['Lead', 'Far'],
+    );
     assert.equal(series.speed[10], 20);
     const lead = series.others[0];
     // Bumper to bumper: 30 m between reference points minus a car length (4.5 m, centred 1.4 m ahead on both).
@@ -135,17 +212,42 @@ describe("client: the bird's-eye view as a tool for analysing a run", () => {
     assert.ok(Math.abs(boxGap(car('A', 0, 0), car('B', 0, 5)) - 3.2) < 1e-9);
   });
 
-  it('carries esmini\'s speed column into the run the view draws', () => {
+  it("carries esmini's speed column into the run the view draws", () => {
     const times = Float64Array.from([0, 1]);
-    const track = { name: 'c', length: 4, width: 2, centerX: 1, x: Float64Array.from([0, 1]), y: Float64Array.from([0, 0]), hdg: Float64Array.from([0, 0]) };
-    assert.deepEqual(runTracks({ version: '', scenarioFile: '', times, truncated: false, entities: [{ ...track, speed: Float64Array.from([1.234, 2]) }] }, 'x', new Map()).entities[0].speed, [1.23, 2]);
-    assert.equal(runTracks({ version: '', scenarioFile: '', times, truncated: false, entities: [{ ...track, speed: Float64Array.from([NaN, NaN]) }] }, 'x', new Map()).entities[0].speed, undefined);
+    const track = {
+      name: 'c',
+      length: 4,
+      width: 2,
+      centerX: 1,
+      x: Float64Array.from([0, 1]),
+      y: Float64Array.from([0, 0]),
+      hdg: Float64Array.from([0, 0]),
+    };
+    assert.deepEqual(
+      runTracks(
+        { version: '', scenarioFile: '', times, truncated: false, entities: [{ ...track, speed: Float64Array.from([1.234, 2]) }] },
+        'x',
+        new Map(),
+      ).entities[0].speed,
+      [1.23, 2],
+    );
+    assert.equal(
+      runTracks(
+        { version: '', scenarioFile: '', times, truncated: false, entities: [{ ...track, speed: Float64Array.from([NaN, NaN]) }] },
+        'x',
+        new Map(),
+      ).entities[0].speed,
+      undefined,
+    );
   });
 
   it('plots the series as small multiples with the time marked', () => {
     const series = runSeries(followingRun(), 'Ego')!;
     const specs = plotSpecs(series);
-    assert.deepEqual(specs.map((spec) => spec.unit), ['m/s', 'm', 's']);
+    assert.deepEqual(
+      specs.map((spec) => spec.unit),
+      ['m/s', 'm', 's'],
+    );
     assert.equal(specs[0].high, 20);
     assert.equal(specs[2].high, TTC_CEILING_S);
     const svg = new SvgPainter(900, 150, '#000');
@@ -174,7 +276,10 @@ describe("client: the bird's-eye view as a tool for analysing a run", () => {
     const mapped = toScreen(layout.view, ...centre);
     assert.ok(Math.abs(mapped[0] - 960) < 1e-6 && Math.abs(mapped[1] - layout.map.height / 2) < 1e-6);
     assert.ok(layout.map.height / layout.view.scale >= 688 / 3 - 1e-9);
-    assert.deepEqual(layout.legend.map((item) => item.text), ['Ego', 'A1', 'A2', 'Ego (2)']);
+    assert.deepEqual(
+      layout.legend.map((item) => item.text),
+      ['Ego', 'A1', 'A2', 'Ego (2)'],
+    );
     assert.ok(layout.legend.every((item) => item.y > layout.map.height && item.y < 1080));
     assert.ok(layout.scale.x + layout.scale.pixels <= 1920 && layout.scale.x > layout.legend[3].x);
     const svg = new SvgPainter(1920, 1080, '#000');
@@ -191,14 +296,20 @@ describe("client: the bird's-eye view as a tool for analysing a run", () => {
     // Two runs side by side: each pane half the width, showing what its pane showed (313 px of the panel).
     const split = exportLayout(1920, 1080, shown, 313, 688, ['Ego'], 't', 2);
     assert.ok(Math.abs(split.view.scale - Math.min(960 / (313 / 3), split.map.height / (688 / 3))) < 1e-9);
-    assert.deepEqual(toScreen(split.view, ...toWorld(shown, 156.5, 344)).map((value) => Math.round(value * 1e6) / 1e6), [480, split.map.height / 2]);
+    assert.deepEqual(
+      toScreen(split.view, ...toWorld(shown, 156.5, 344)).map((value) => Math.round(value * 1e6) / 1e6),
+      [480, split.map.height / 2],
+    );
     const panes = new SvgPainter(200, 100, '#000');
     const right = shiftedPainter(panes, 100);
     right.clip?.(0, 0, 100, 100);
     right.text(5, 10, 'B', '#fff', 12);
     right.polygon([0, 0, 10, 0, 10, 10], '#fff');
     right.unclip?.();
-    assert.match(panes.toString(), /<clipPath id="pane1"><rect x="100" y="0" width="100" height="100"\/><\/clipPath><g clip-path="url\(#pane1\)">\n<text x="105" y="10"[^>]*>B<\/text>\n<polygon points="100,0 110,0 110,10" fill="#fff"\/>\n<\/g>/);
+    assert.match(
+      panes.toString(),
+      /<clipPath id="pane1"><rect x="100" y="0" width="100" height="100"\/><\/clipPath><g clip-path="url\(#pane1\)">\n<text x="105" y="10"[^>]*>B<\/text>\n<polygon points="100,0 110,0 110,10" fill="#fff"\/>\n<\/g>/,
+    );
     assert.deepEqual(parseResolution('1920x1080'), [1920, 1080]);
     assert.deepEqual(parseResolution(' 800 × 600 '), [800, 600]);
     assert.equal(parseResolution('8x8'), undefined);

@@ -11,7 +11,9 @@ interface Rule {
   patterns?: Rule[];
 }
 
-const grammar = JSON.parse(fs.readFileSync(path.resolve(__dirname, '..', '..', 'syntaxes', 'xosc.tmLanguage.json'), 'utf8')) as { repository: Record<string, Rule> };
+const grammar = JSON.parse(fs.readFileSync(path.resolve(__dirname, '..', '..', 'syntaxes', 'xosc.tmLanguage.json'), 'utf8')) as {
+  repository: Record<string, Rule>;
+};
 
 /**
  * The scopes a list of match rules gives a text, as TextMate scans: at each position the first rule
@@ -19,11 +21,13 @@ const grammar = JSON.parse(fs.readFileSync(path.resolve(__dirname, '..', '..', '
  */
 function scan(text: string, rules: Rule[]): string[] {
   const tokens: string[] = [];
-  for (let at = 0; at < text.length; ) {
-    const hit = rules.map((rule) => ({ rule, found: new RegExp(rule.match as string, 'y') })).find(({ found }) => {
-      found.lastIndex = at;
-      return found.test(text);
-    });
+  for (let at = 0; at < text.length;) {
+    const hit = rules
+      .map((rule) => ({ rule, found: new RegExp(rule.match as string, 'y') }))
+      .find(({ found }) => {
+        found.lastIndex = at;
+        return found.test(text);
+      });
     if (!hit) {
       at++;
       continue;
@@ -38,7 +42,8 @@ describe('TextMate grammar: $name and ${...} inside attribute values', () => {
   const [expression, parameter] = grammar.repository['parameter-value'].patterns as Rule[];
 
   it('is included in every quoted attribute value', () => {
-    for (const quoted of grammar.repository['generic-string'].patterns as Rule[]) assert.equal(quoted.patterns?.[0].include, '#parameter-value');
+    for (const quoted of grammar.repository['generic-string'].patterns as Rule[])
+      assert.equal(quoted.patterns?.[0].include, '#parameter-value');
   });
 
   it('scopes a ${...} from its opening to its closing brace, or to the closing quote when unfinished', () => {
@@ -67,7 +72,11 @@ describe('TextMate grammar: $name and ${...} inside attribute values', () => {
 
   it('scopes a whole-value $name, and leaves a digit inside a name alone', () => {
     assert.deepEqual(scan('$Ego_2', [parameter]), ['$Ego_2 variable.other.parameter.xosc']);
-    assert.deepEqual(scan('$P1 + 2', expression.patterns as Rule[]), ['$P1 variable.other.parameter.xosc', '+ keyword.operator.arithmetic.xosc', '2 constant.numeric.xosc']);
+    assert.deepEqual(scan('$P1 + 2', expression.patterns as Rule[]), [
+      '$P1 variable.other.parameter.xosc',
+      '+ keyword.operator.arithmetic.xosc',
+      '2 constant.numeric.xosc',
+    ]);
   });
 });
 
@@ -80,7 +89,13 @@ function scopeNames(node: unknown): string[] {
 describe('client: the xosc grammar', () => {
   it('underlines nothing: themes draw markup.underline through the text, hiding the underscores of file names', () => {
     const names = scopeNames(grammar);
-    assert.ok(names.some((name) => name.includes('reference.file.modular2simple')), 'the reference value scope is gone');
-    assert.deepEqual(names.filter((name) => /\bmarkup\.underline\b/.test(name)), []);
+    assert.ok(
+      names.some((name) => name.includes('reference.file.modular2simple')),
+      'the reference value scope is gone',
+    );
+    assert.deepEqual(
+      names.filter((name) => /\bmarkup\.underline\b/.test(name)),
+      [],
+    );
   });
 });

@@ -4,7 +4,10 @@ import { fileNameProblem, freeScenarioName } from '../../client/src/naming';
 
 describe('client: the file name New Modular Scenario proposes and accepts', () => {
   const folder = path.resolve('/work', 'scenarios');
-  const existing = (...names: string[]) => (file: string) => names.some((name) => path.join(folder, name) === file);
+  const existing =
+    (...names: string[]) =>
+    (file: string) =>
+      names.some((name) => path.join(folder, name) === file);
 
   it('proposes main.xosc, or the first main-N.xosc that is free', () => {
     assert.equal(freeScenarioName(folder, existing()), 'main.xosc');

@@ -33,14 +33,21 @@ describe('client: files inside .mosc packages (the mosc: file system)', () => {
   afterEach(() => fs.rmSync(folder, { recursive: true, force: true }));
 
   it('locates the archive on disk, the nested packages and the entry of a package path', async () => {
-    assert.deepEqual(await archive.locate(`${outer}/inner.mosc/simple.xosc`), { disk: outer, nested: ['inner.mosc'], inner: 'simple.xosc' });
+    assert.deepEqual(await archive.locate(`${outer}/inner.mosc/simple.xosc`), {
+      disk: outer,
+      nested: ['inner.mosc'],
+      inner: 'simple.xosc',
+    });
     assert.deepEqual(await archive.locate(`${outer}/lib/shared.xosc`), { disk: outer, nested: [], inner: 'lib/shared.xosc' });
     assert.deepEqual(await archive.locate(outer), { disk: outer, nested: [], inner: '' });
     await assert.rejects(archive.locate(path.join(folder, 'none.mosc', 'main.xosc')), { code: 'not-found' });
   });
 
   it('reads, stats and lists entries, nested packages as folders', async () => {
-    assert.equal(Buffer.from(await archive.readEntry(await archive.locate(`${outer}/inner.mosc/simple.xosc`))).toString(), '<inner-simple/>');
+    assert.equal(
+      Buffer.from(await archive.readEntry(await archive.locate(`${outer}/inner.mosc/simple.xosc`))).toString(),
+      '<inner-simple/>',
+    );
     assert.deepEqual(await archive.listFolder(await archive.locate(outer)), [
       ['inner.mosc', 'directory'],
       ['lib', 'directory'],
@@ -49,11 +56,20 @@ describe('client: files inside .mosc packages (the mosc: file system)', () => {
     assert.equal((await archive.stat(await archive.locate(`${outer}/lib`))).kind, 'directory');
     assert.equal((await archive.stat(await archive.locate(`${outer}/main.xosc`))).size, '<outer-main/>'.length);
     await assert.rejects(archive.stat(await archive.locate(`${outer}/missing.xosc`)), { code: 'not-found' });
-    assert.deepEqual(await archive.listAll(await archive.locate(outer)), ['main.xosc', 'inner.mosc', 'inner.mosc/main.xosc', 'inner.mosc/simple.xosc', 'lib/shared.xosc']);
+    assert.deepEqual(await archive.listAll(await archive.locate(outer)), [
+      'main.xosc',
+      'inner.mosc',
+      'inner.mosc/main.xosc',
+      'inner.mosc/simple.xosc',
+      'lib/shared.xosc',
+    ]);
   });
 
   it('saves an entry two packages deep and keeps every other entry', async () => {
-    await archive.writeEntry(await archive.locate(`${outer}/inner.mosc/simple.xosc`), Buffer.from('<changed/>'), { create: false, overwrite: true });
+    await archive.writeEntry(await archive.locate(`${outer}/inner.mosc/simple.xosc`), Buffer.from('<changed/>'), {
+      create: false,
+      overwrite: true,
+    });
     const top = await entriesOf(fs.readFileSync(outer));
     assert.equal(top['main.xosc'], '<outer-main/>');
     assert.equal(top['lib/shared.xosc'], '<shared/>');
@@ -93,7 +109,10 @@ describe('client: files inside .mosc packages (the mosc: file system)', () => {
     await archive.writeEntry(created, Buffer.from('<new/>'), { create: true, overwrite: false });
     await assert.rejects(archive.writeEntry(created, Buffer.from('y'), { create: true, overwrite: false }), { code: 'exists' });
     await archive.renameEntry(created, await archive.locate(`${outer}/renamed.xosc`), false);
-    await assert.rejects(archive.renameEntry(await archive.locate(`${outer}/renamed.xosc`), await archive.locate(`${outer}/main.xosc`), false), { code: 'exists' });
+    await assert.rejects(
+      archive.renameEntry(await archive.locate(`${outer}/renamed.xosc`), await archive.locate(`${outer}/main.xosc`), false),
+      { code: 'exists' },
+    );
     await archive.deleteEntry(await archive.locate(`${outer}/lib`));
     assert.deepEqual(Object.keys(await entriesOf(fs.readFileSync(outer))).sort(), ['inner.mosc', 'main.xosc', 'renamed.xosc']);
   });
@@ -102,7 +121,10 @@ describe('client: files inside .mosc packages (the mosc: file system)', () => {
     const broken = path.join(folder, 'broken.mosc');
     const bytes = Buffer.concat([Buffer.from('PK\x03\x04'), Buffer.alloc(64, 7)]);
     fs.writeFileSync(broken, bytes);
-    await assert.rejects(archive.locate(`${broken}/main.xosc`), (error: archive.PackageError) => error.code === 'broken' && /ZIP/.test(error.message));
+    await assert.rejects(
+      archive.locate(`${broken}/main.xosc`),
+      (error: archive.PackageError) => error.code === 'broken' && /ZIP/.test(error.message),
+    );
     const location: archive.PackageLocation = { disk: broken, nested: [], inner: 'main.xosc' };
     await assert.rejects(archive.writeEntry(location, Buffer.from('<x/>'), { create: true, overwrite: true }), { code: 'broken' });
     assert.deepEqual(fs.readFileSync(broken), bytes);

@@ -9,7 +9,9 @@ interface AutoClosingPair {
   close: string;
 }
 
-const languageConfiguration = JSON.parse(fs.readFileSync(path.join(repoRoot, 'language-configuration.json'), 'utf8')) as { autoClosingPairs: AutoClosingPair[] };
+const languageConfiguration = JSON.parse(fs.readFileSync(path.join(repoRoot, 'language-configuration.json'), 'utf8')) as {
+  autoClosingPairs: AutoClosingPair[];
+};
 
 /**
  * Types `keys` one by one into an empty line as VS Code does with this extension: an auto-closing
@@ -41,7 +43,14 @@ describe('client: closing tags as the user types', () => {
   });
 
   it('leaves empty elements, closing tags, comments and declarations alone', () => {
-    for (const before of ['<EntityRef entityRef="ego"/>', '</Actors>', '<!-- note -->', '<?xml version="1.0"?>', 'text >', '<!DOCTYPE x>']) {
+    for (const before of [
+      '<EntityRef entityRef="ego"/>',
+      '</Actors>',
+      '<!-- note -->',
+      '<?xml version="1.0"?>',
+      'text >',
+      '<!DOCTYPE x>',
+    ]) {
       assert.equal(closingTagFor(before, ''), undefined, before);
     }
   });

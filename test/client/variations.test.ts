@@ -33,7 +33,10 @@ describe('variations: the results table, its sorting, filtering and scatter', ()
   it('reads results.csv: columns, parameters, outcomes (a collision wins over ok), quoted fields; a cut-off last line is left out', () => {
     assert.deepEqual(table.parameters, ['EgoSpeed', 'Weather']);
     assert.deepEqual(indices(table.rows), ['0', '1', '2', '3', '10']);
-    assert.deepEqual(table.rows.map((row) => row.outcome), ['ok', 'collision', 'timeout', 'error', 'ok']);
+    assert.deepEqual(
+      table.rows.map((row) => row.outcome),
+      ['ok', 'collision', 'timeout', 'error', 'ok'],
+    );
     assert.equal(table.rows[3].cells.Weather, 'snow, heavy');
     assert.deepEqual(outcomeCounts(table.rows), { ok: 2, collision: 1, timeout: 1, error: 1 });
     assert.equal(parseResultsCsv(CSV + '11,ok,fal').rows.length, 5, 'a row still being written is not read');
@@ -66,11 +69,21 @@ describe('variations: the results table, its sorting, filtering and scatter', ()
     assert.equal(zero.x, (10 - 5) / 25);
     assert.equal(zero.y, 1);
     assert.equal(one.y, 0);
-    assert.deepEqual(numeric.x.ticks.map((tick) => tick.label), ['5', '10', '15', '20', '25', '30']);
+    assert.deepEqual(
+      numeric.x.ticks.map((tick) => tick.label),
+      ['5', '10', '15', '20', '25', '30'],
+    );
     for (const tick of [...numeric.x.ticks, ...numeric.y.ticks]) assert.ok(tick.at >= 0 && tick.at <= 1, `${tick.label} at ${tick.at}`);
     const category = scatterModel(table.rows, 'Weather', 'EgoSpeed');
     assert.equal(category.x.kind, 'category');
-    assert.deepEqual(category.x.ticks.map((tick) => [tick.label, tick.at]), [['dry', 0], ['snow, heavy', 0.5], ['wet', 1]]);
+    assert.deepEqual(
+      category.x.ticks.map((tick) => [tick.label, tick.at]),
+      [
+        ['dry', 0],
+        ['snow, heavy', 0.5],
+        ['wet', 1],
+      ],
+    );
     assert.equal(category.points.length, 5);
     const single = scatterModel(table.rows.slice(0, 1), 'EgoSpeed', 'EgoSpeed');
     assert.equal(single.points[0].x, 0.5, 'one value stands in the middle');
@@ -88,7 +101,11 @@ describe('variations: the results table, its sorting, filtering and scatter', ()
     assert.match(svg, />snow, heavy<\/text>/);
     // Runs 0 and 1 differ only in C: at the same A and B, they are set apart.
     const twins = parseResultsCsv(`${HEADER},A,B,C\n0,ok,false,1,1,1,1,1,1\n1,ok,true,1,1,1,1,1,2\n2,ok,false,1,1,1,2,2,1\n`);
-    const places = [...scatterSvg(scatterModel(twins.rows, 'A', 'B'), STYLE).matchAll(/<circle class="point" data-index="(\d)" cx="([\d.]+)" cy="([\d.]+)"/g)].map((match) => `${match[2]},${match[3]}`);
+    const places = [
+      ...scatterSvg(scatterModel(twins.rows, 'A', 'B'), STYLE).matchAll(
+        /<circle class="point" data-index="(\d)" cx="([\d.]+)" cy="([\d.]+)"/g,
+      ),
+    ].map((match) => `${match[2]},${match[3]}`);
     assert.equal(places.length, 3);
     assert.equal(new Set(places).size, 3, `each run has a place of its own: ${places.join(' ')}`);
   });
@@ -98,8 +115,15 @@ describe('variations: the results table, its sorting, filtering and scatter', ()
     const html = tableHtml(table.columns, rows, { column: 'EgoSpeed', direction: 'descending' }, true);
     assert.equal(XMLValidator.validate(html), true);
     assert.match(html, /<th data-column="EgoSpeed" aria-sort="descending"><button class="sort"[^>]*>EgoSpeed ▼<\/button><\/th>/);
-    assert.match(tableHtml(table.columns, rows, { column: 'EgoSpeed', direction: 'descending' }), /<th data-column="EgoSpeed" aria-sort="descending">EgoSpeed ▼<\/th>/, 'the report: no buttons');
-    assert.deepEqual([...html.matchAll(/<tr class="\w+" data-index="(\d+)">/g)].map((match) => match[1]), ['2', '1', '10', '0', '3']);
+    assert.match(
+      tableHtml(table.columns, rows, { column: 'EgoSpeed', direction: 'descending' }),
+      /<th data-column="EgoSpeed" aria-sort="descending">EgoSpeed ▼<\/th>/,
+      'the report: no buttons',
+    );
+    assert.deepEqual(
+      [...html.matchAll(/<tr class="\w+" data-index="(\d+)">/g)].map((match) => match[1]),
+      ['2', '1', '10', '0', '3'],
+    );
     assert.match(html, /<a href="#" class="open"[^>]*>#3<\/a>/);
     assert.doesNotMatch(tableHtml(table.columns, rows), /<a |<button/);
     assert.match(tableHtml(['index', 'x'], [{ index: '0', outcome: 'ok', cells: { index: '0', x: '<b>&' } }]), /<td>&lt;b&gt;&amp;<\/td>/);

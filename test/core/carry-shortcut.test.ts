@@ -16,7 +16,10 @@ async function flattenBothWays(root: string, main: string) {
       const carried = result.source.carried;
       return {
         text: result.text,
-        problems: result.problems.map((problem) => `${problem.source.disk}:${problem.range.start.line}:${problem.range.start.character}:${problem.code}:${problem.message}`),
+        problems: result.problems.map(
+          (problem) =>
+            `${problem.source.disk}:${problem.range.start.line}:${problem.range.start.character}:${problem.code}:${problem.message}`,
+        ),
         declarations: carried?.declarations.map((entry) => `${entry.name}=${entry.text}`),
         locations: carried?.locations.map((entry) => `${entry.kind}:${entry.directory}`),
       };
@@ -81,21 +84,28 @@ describe('planCarry shortcut (nothing reaches outside the copies: no model of th
       'main.xosc': main,
       'plain.xosc': simple(group('G', '3')),
       // Uses a root declaration of its source: it is carried.
-      'carrying.xosc': simple(group('G', '$Speed'), '\n  <ParameterDeclarations><ParameterDeclaration name="Speed" parameterType="double" value="7"/></ParameterDeclarations>'),
+      'carrying.xosc': simple(
+        group('G', '$Speed'),
+        '\n  <ParameterDeclarations><ParameterDeclaration name="Speed" parameterType="double" value="7"/></ParameterDeclarations>',
+      ),
       'only-plain.xosc': main.replace('carrying.xosc', 'plain.xosc'),
     });
-    const both = await flattenBothWays(root, path.join(root, "main.xosc"));
+    const both = await flattenBothWays(root, path.join(root, 'main.xosc'));
     assert.deepEqual(both.declarations, ['Speed=<ParameterDeclaration name="Speed" parameterType="double" value="7"/>']);
     assert.deepEqual((await flattenBothWays(root, path.join(root, 'only-plain.xosc'))).declarations, []);
   });
 
   it('gives the same results on the project fixture and on every main of the corpus', async function () {
-    await flattenBothWays(path.join(repoRoot, 'test', 'fixtures', 'semantics'), path.join(repoRoot, 'test', 'fixtures', 'semantics', 'main.xosc'));
+    await flattenBothWays(
+      path.join(repoRoot, 'test', 'fixtures', 'semantics'),
+      path.join(repoRoot, 'test', 'fixtures', 'semantics', 'main.xosc'),
+    );
     requireCorpus(this);
     await flattenBothWays(caseStudyDir, path.join(caseStudyDir, 'main.xosc'));
     for (const entry of fs.readdirSync(libraryDir, { withFileTypes: true })) {
       const folder = path.join(libraryDir, entry.name);
-      if (entry.isDirectory() && fs.existsSync(path.join(folder, 'main.xosc'))) await flattenBothWays(folder, path.join(folder, 'main.xosc'));
+      if (entry.isDirectory() && fs.existsSync(path.join(folder, 'main.xosc')))
+        await flattenBothWays(folder, path.join(folder, 'main.xosc'));
     }
   });
 });

@@ -10,7 +10,12 @@ import { childRef, diskRef, ScenarioStore } from '../../server/src/core/sources'
 import { libraryStats } from '../../server/src/core/stats';
 import { caseStudyDir, corpusDir, libraryDir, requireCorpus, sharedDir } from '../support/paths';
 
-const scenarios = fs.existsSync(libraryDir) ? fs.readdirSync(libraryDir).filter((name) => name.startsWith('modular_')).sort() : [];
+const scenarios = fs.existsSync(libraryDir)
+  ? fs
+      .readdirSync(libraryDir)
+      .filter((name) => name.startsWith('modular_'))
+      .sort()
+  : [];
 
 describe('corpus: the 31 library examples (SPEC 8)', function () {
   before(function () {
@@ -83,7 +88,7 @@ function paperTable(): { rows: [number, number, number][]; total: [number, numbe
   return { rows, total };
 }
 
-describe('corpus: stats reproduce the paper\'s Table 1 (SPEC 9)', function () {
+describe("corpus: stats reproduce the paper's Table 1 (SPEC 9)", function () {
   before(function () {
     requireCorpus(this);
   });
@@ -96,7 +101,10 @@ describe('corpus: stats reproduce the paper\'s Table 1 (SPEC 9)', function () {
       stats.rows.map((row) => [row.modularLines, row.flattenedLines, row.reduction]),
       table.rows,
     );
-    assert.deepEqual(stats.shared.map((item) => path.basename(item.file) + ':' + item.lines), ['simple_1.xosc:247', 'simple_2.xosc:276']);
+    assert.deepEqual(
+      stats.shared.map((item) => path.basename(item.file) + ':' + item.lines),
+      ['simple_1.xosc:247', 'simple_2.xosc:276'],
+    );
     assert.deepEqual([stats.totals.modularLines, stats.totals.flattenedLines, stats.totals.reduction], table.total);
   });
 });

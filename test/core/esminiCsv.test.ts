@@ -16,9 +16,23 @@ describe('core: esmini CSV log', function () {
   this.timeout(60_000);
 
   it('reads rows per step and the columns of each entity; a row cut short at the end is dropped', () => {
-    const header = ['esmini GIT REV: v3.6.0', 'esmini GIT TAG: ', 'esmini GIT BRANCH: master', 'esmini BUILD VERSION: N/A', 'Scenario File Name: s.xosc', 'Number of Vehicles: 1'];
-    const columns = 'Index [-], TimeStamp [s], #1 Entity_Name [-], #1 Current_Speed [m/s], #1 bb_x [m], #1 bb_length [m], #1 bb_width [m], #1 World_Position_X [m], #1 World_Position_Y [m], #1 World_Heading_Angle [rad], ';
-    const text = [...header, columns, '0, 0.000000, Ego, 10, 1.4, 5, 2, 1.5, 2.5, 0.1, ', '1, 0.050000, Ego, 10, 1.4, 5, 2, 2.0, 2.5, 0.1, ', '2, 0.1000'].join('\n');
+    const header = [
+      'esmini GIT REV: v3.6.0',
+      'esmini GIT TAG: ',
+      'esmini GIT BRANCH: master',
+      'esmini BUILD VERSION: N/A',
+      'Scenario File Name: s.xosc',
+      'Number of Vehicles: 1',
+    ];
+    const columns =
+      'Index [-], TimeStamp [s], #1 Entity_Name [-], #1 Current_Speed [m/s], #1 bb_x [m], #1 bb_length [m], #1 bb_width [m], #1 World_Position_X [m], #1 World_Position_Y [m], #1 World_Heading_Angle [rad], ';
+    const text = [
+      ...header,
+      columns,
+      '0, 0.000000, Ego, 10, 1.4, 5, 2, 1.5, 2.5, 0.1, ',
+      '1, 0.050000, Ego, 10, 1.4, 5, 2, 2.0, 2.5, 0.1, ',
+      '2, 0.1000',
+    ].join('\n');
     const run = parseEsminiCsv(text);
     assert.equal(run.version, 'v3.6.0');
     assert.equal(run.scenarioFile, 's.xosc');
@@ -28,11 +42,16 @@ describe('core: esmini CSV log', function () {
     assert.deepEqual([run.entities[0].length, run.entities[0].width, run.entities[0].centerX], [5, 2, 1.4]);
     assert.equal(parseEsminiCsv(text, { maxRows: 1 }).truncated, true);
     assert.throws(() => parseEsminiCsv('x,y\n1,2\n'), /line 1: not an esmini CSV log/);
-    assert.throws(() => parseEsminiCsv([...header, columns, '0, 0, Ego', '1, 0.05, Ego, 1, 1, 1, 1, 1, 1, 1, ', '', ''].join('\n')), /line 8: expected 10 fields, found 3/);
+    assert.throws(
+      () => parseEsminiCsv([...header, columns, '0, 0, Ego', '1, 0.05, Ego, 1, 1, 1, 1, 1, 1, 1, ', '', ''].join('\n')),
+      /line 8: expected 10 fields, found 3/,
+    );
   });
 
   it('reads when storyboard elements started from esmini log lines', () => {
-    const starts = parseEsminiStarts('[0.000] [info] CutInAct initState -> initToStandbyTransition -> standbyState\n[2.050] [info] CutInEvent standbyState -> startTransition -> runningState\n[9.000] [info] CutInEvent standbyState -> startTransition -> runningState\n');
+    const starts = parseEsminiStarts(
+      '[0.000] [info] CutInAct initState -> initToStandbyTransition -> standbyState\n[2.050] [info] CutInEvent standbyState -> startTransition -> runningState\n[9.000] [info] CutInEvent standbyState -> startTransition -> runningState\n',
+    );
     assert.deepEqual([...starts], [['CutInEvent', 2.05]]);
   });
 
@@ -41,11 +60,31 @@ describe('core: esmini CSV log', function () {
     const folder = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-esmini-csv-'));
     try {
       const csv = path.join(folder, 'out.csv');
-      const result = spawnSync(esmini, ['--headless', '--osc', fixture, '--fixed_timestep', '0.05', '--seed', '1', '--csv_logger', csv, '--disable_log', '--path', esminiXodrDir], { cwd: folder, encoding: 'utf8', timeout: 30_000 });
+      const result = spawnSync(
+        esmini,
+        [
+          '--headless',
+          '--osc',
+          fixture,
+          '--fixed_timestep',
+          '0.05',
+          '--seed',
+          '1',
+          '--csv_logger',
+          csv,
+          '--disable_log',
+          '--path',
+          esminiXodrDir,
+        ],
+        { cwd: folder, encoding: 'utf8', timeout: 30_000 },
+      );
       assert.equal(result.status, 0, result.stdout + result.stderr);
       const run = parseEsminiCsv(fs.readFileSync(csv, 'utf8'));
       assert.match(run.version, /^v3\./);
-      assert.deepEqual(run.entities.map((entity) => entity.name), ['Ego', 'Adversary']);
+      assert.deepEqual(
+        run.entities.map((entity) => entity.name),
+        ['Ego', 'Adversary'],
+      );
       // The StopTrigger fires past 12 s; one row per 0.05 s step from 0.
       assert.ok(run.times.length >= 240 && run.times.length < 260, `${run.times.length} rows`);
       for (let i = 1; i < run.times.length; i++) assert.ok(Math.abs(run.times[i] - run.times[i - 1] - 0.05) < 1e-6);

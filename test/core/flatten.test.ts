@@ -19,7 +19,22 @@ describe('core: flatten (SPEC 4)', () => {
   it('replaces the outer group by the renamed, overridden copy, at its indentation', async () => {
     const root = temporaryWorkspace({
       'simple.xosc': scenario(simpleGroup('Go')),
-      'main.xosc': scenario(outerGroup('Car1', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Go', parameters: [['AbsoluteTargetSpeed.value', '33'], ['entityRef', 'car']] }] }])),
+      'main.xosc': scenario(
+        outerGroup('Car1', 'car', [
+          {
+            file: 'simple.xosc',
+            groups: [
+              {
+                name: 'Go',
+                parameters: [
+                  ['AbsoluteTargetSpeed.value', '33'],
+                  ['entityRef', 'car'],
+                ],
+              },
+            ],
+          },
+        ]),
+      ),
     });
     const result = await flattenIn(root);
     assert.equal(result.problems.filter((p) => p.severity === 'error').length, 0, result.problems.map((p) => formatProblem(p)).join('\n'));
@@ -29,7 +44,11 @@ describe('core: flatten (SPEC 4)', () => {
     assert.match(text, /<EntityRef entityRef="car"\/>\n {14}<\/Condition>/);
     assert.doesNotMatch(text, /parameterAttributes|ScenarioReference/);
     const main = fs.readFileSync(path.join(root, 'main.xosc'), 'utf8');
-    assert.equal(text.slice(0, main.indexOf('<ManeuverGroup')), main.slice(0, main.indexOf('<ManeuverGroup')), 'text before the group is kept as written');
+    assert.equal(
+      text.slice(0, main.indexOf('<ManeuverGroup')),
+      main.slice(0, main.indexOf('<ManeuverGroup')),
+      'text before the group is kept as written',
+    );
   });
 
   it('gives the copy the actor of the outer group', async () => {
@@ -39,14 +58,22 @@ describe('core: flatten (SPEC 4)', () => {
     });
     const tree = canonicalTree((await flattenIn(root)).text!)!;
     const group = JSON.stringify(tree);
-    assert.match(group, /"name":"Actors","attributes":\{"selectTriggeringEntities":"false"\},"children":\[\{"name":"EntityRef","attributes":\{"entityRef":"ego"\}/);
+    assert.match(
+      group,
+      /"name":"Actors","attributes":\{"selectTriggeringEntities":"false"\},"children":\[\{"name":"EntityRef","attributes":\{"entityRef":"ego"\}/,
+    );
   });
 
   it('imports both ScenarioReferences of one group, in document order', async () => {
     const root = temporaryWorkspace({
       'a.xosc': scenario(simpleGroup('A')),
       'b.xosc': scenario(simpleGroup('B')),
-      'main.xosc': scenario(outerGroup('Car', 'car', [{ file: 'a.xosc', groups: [{ name: 'A' }] }, { file: 'b.xosc', groups: [{ name: 'B' }] }])),
+      'main.xosc': scenario(
+        outerGroup('Car', 'car', [
+          { file: 'a.xosc', groups: [{ name: 'A' }] },
+          { file: 'b.xosc', groups: [{ name: 'B' }] },
+        ]),
+      ),
     });
     const text = (await flattenIn(root)).text!;
     assert.ok(text.indexOf('name="Car.A"') > 0 && text.indexOf('name="Car.A"') < text.indexOf('name="Car.B"'));
@@ -55,8 +82,27 @@ describe('core: flatten (SPEC 4)', () => {
   it('flattens nested packages: dotted names, and the outermost value wins', async () => {
     const root = temporaryWorkspace({
       'simple.xosc': scenario(simpleGroup('Go')),
-      'inner/main.xosc': scenario(outerGroup('Inner', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Go', parameters: [['AbsoluteTargetSpeed.value', '20'], ['WorldPosition.x', '5']] }] }])),
-      'main.xosc': scenario(outerGroup('Outer', 'ego', [{ file: 'inner.mosc', groups: [{ name: 'Inner.Go', parameters: [['AbsoluteTargetSpeed.value', '30']] }] }])),
+      'inner/main.xosc': scenario(
+        outerGroup('Inner', 'car', [
+          {
+            file: 'simple.xosc',
+            groups: [
+              {
+                name: 'Go',
+                parameters: [
+                  ['AbsoluteTargetSpeed.value', '20'],
+                  ['WorldPosition.x', '5'],
+                ],
+              },
+            ],
+          },
+        ]),
+      ),
+      'main.xosc': scenario(
+        outerGroup('Outer', 'ego', [
+          { file: 'inner.mosc', groups: [{ name: 'Inner.Go', parameters: [['AbsoluteTargetSpeed.value', '30']] }] },
+        ]),
+      ),
     });
     const unpacked = await flattenIn(root);
     const text = unpacked.text!;
@@ -84,7 +130,9 @@ describe('core: flatten (SPEC 4)', () => {
     const flattener = new Flattener(store);
     const inner = flattener.rendered(await flattener.source(diskRef(path.join(root, 'inner/main.xosc')), []));
     const copied = inner.model!.groups.find((g) => g.name === 'Inner.Go')!;
-    const speed = [...copied.element.children[1].children[0].children[0].children[0].children].find((e) => e.name === 'AbsoluteTargetSpeed')!;
+    const speed = [...copied.element.children[1].children[0].children[0].children[0].children].find(
+      (e) => e.name === 'AbsoluteTargetSpeed',
+    )!;
     const origin = originOf(inner, speed);
     assert.equal(origin.source.ref.disk, path.join(root, 'simple.xosc'));
     assert.equal(origin.element.name, 'AbsoluteTargetSpeed');
@@ -96,11 +144,30 @@ describe('core: flatten (SPEC 4)', () => {
     const value = `a<b & "c" 'd' > é 中`;
     const root = temporaryWorkspace({
       'simple.xosc': scenario(simpleGroup('Go')),
-      'main.xosc': scenario(outerGroup('Car', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Go', parameters: [['value', value.replace(/&/g, '&amp;').replace(/</g, '&lt;').replace(/>/g, '&gt;').replace(/"/g, '&quot;')]] }] }])),
+      'main.xosc': scenario(
+        outerGroup('Car', 'car', [
+          {
+            file: 'simple.xosc',
+            groups: [
+              {
+                name: 'Go',
+                parameters: [['value', value.replace(/&/g, '&amp;').replace(/</g, '&lt;').replace(/>/g, '&gt;').replace(/"/g, '&quot;')]],
+              },
+            ],
+          },
+        ]),
+      ),
     });
     const text = (await flattenIn(root)).text!;
     assert.ok(isWellFormed(parseXml(text)));
-    assert.match(JSON.stringify(canonicalTree(text)), new RegExp(JSON.stringify(value).slice(1, -1).replace(/[.*+?^${}()|[\]\\]/g, '\\$&')));
+    assert.match(
+      JSON.stringify(canonicalTree(text)),
+      new RegExp(
+        JSON.stringify(value)
+          .slice(1, -1)
+          .replace(/[.*+?^${}()|[\]\\]/g, '\\$&'),
+      ),
+    );
   });
 
   it('keeps CRLF line ends of the main file and the inserted group', async () => {
@@ -115,12 +182,17 @@ describe('core: flatten (SPEC 4)', () => {
   it('changes one line of output when one value changes', async () => {
     const files = (value: string) => ({
       'simple.xosc': scenario(simpleGroup('Go')),
-      'main.xosc': scenario(outerGroup('Car', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Go', parameters: [['WorldPosition.x', value]] }] }])),
+      'main.xosc': scenario(
+        outerGroup('Car', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Go', parameters: [['WorldPosition.x', value]] }] }]),
+      ),
     });
     const before = (await flattenIn(temporaryWorkspace(files('7')))).text!.split('\n');
     const after = (await flattenIn(temporaryWorkspace(files('8')))).text!.split('\n');
     assert.equal(before.length, after.length);
-    assert.deepEqual(before.map((line, i) => (line === after[i] ? 0 : 1)).reduce((a: number, b: number) => a + b, 0), 1);
+    assert.deepEqual(
+      before.map((line, i) => (line === after[i] ? 0 : 1)).reduce((a: number, b: number) => a + b, 0),
+      1,
+    );
   });
 
   it('finds every problem in one run', async () => {
@@ -135,7 +207,10 @@ describe('core: flatten (SPEC 4)', () => {
     });
     const result = await flattenIn(root);
     assert.equal(result.text, undefined);
-    const codes = result.problems.filter((p) => p.severity === 'error').map((p) => p.code).sort();
+    const codes = result.problems
+      .filter((p) => p.severity === 'error')
+      .map((p) => p.code)
+      .sort();
     assert.deepEqual(codes, ['missing-file', 'no-entity-ref', 'unknown-group', 'unknown-key']);
   });
 

@@ -24,7 +24,8 @@ describe('formatter (core)', () => {
   });
 
   it('keeps the XML declaration, processing instructions, DOCTYPE and comments, each on its own line', () => {
-    const input = '<?xml version="1.0" encoding="UTF-8"?><!DOCTYPE A [ <!ENTITY e "v"> ]><!--  top  comment  --><A><?pi  some  data ?><!--inner--><B/></A><!--end-->';
+    const input =
+      '<?xml version="1.0" encoding="UTF-8"?><!DOCTYPE A [ <!ENTITY e "v"> ]><!--  top  comment  --><A><?pi  some  data ?><!--inner--><B/></A><!--end-->';
     assert.equal(
       format(input),
       '<?xml version="1.0" encoding="UTF-8"?>\n<!DOCTYPE A [ <!ENTITY e "v"> ]>\n<!--  top  comment  -->\n<A>\n  <?pi  some  data ?> <!--inner-->\n  <B/>\n</A>\n<!--end-->\n',
@@ -42,7 +43,8 @@ describe('formatter (core)', () => {
   });
 
   it('keeps the content of an element holding text or CDATA as written (mixed content)', () => {
-    const input = '<A>\n<Text   a="1">  two  spaces\n     kept <b>bold</b>  </Text>\n<Data><![CDATA[ <x>  ]]></Data>\n<Space xml:space="preserve">\n   <Kept/>\n</Space></A>';
+    const input =
+      '<A>\n<Text   a="1">  two  spaces\n     kept <b>bold</b>  </Text>\n<Data><![CDATA[ <x>  ]]></Data>\n<Space xml:space="preserve">\n   <Kept/>\n</Space></A>';
     assert.equal(
       format(input),
       '<A>\n  <Text a="1">  two  spaces\n     kept <b>bold</b>  </Text>\n  <Data><![CDATA[ <x>  ]]></Data>\n  <Space xml:space="preserve">\n   <Kept/>\n</Space>\n</A>\n',
@@ -53,13 +55,18 @@ describe('formatter (core)', () => {
     const attributes = 'zeta="1" alpha=\'a &amp; b\' middle="$param" expr="${$x + 1}"';
     const input = `<A><LongElementName ${attributes}/><Short a="1"/></A>`;
     const narrow = format(input, { tabSize: 2, insertSpaces: true, maxLineWidth: 40 });
-    assert.equal(narrow, '<A>\n  <LongElementName\n    zeta="1"\n    alpha=\'a &amp; b\'\n    middle="$param"\n    expr="${$x + 1}"/>\n  <Short a="1"/>\n</A>\n');
+    assert.equal(
+      narrow,
+      '<A>\n  <LongElementName\n    zeta="1"\n    alpha=\'a &amp; b\'\n    middle="$param"\n    expr="${$x + 1}"/>\n  <Short a="1"/>\n</A>\n',
+    );
     const wide = format(input, { tabSize: 2, insertSpaces: true, maxLineWidth: 120 });
     assert.ok(wide.includes(`  <LongElementName ${attributes}/>`));
     // The line of the wide form is 2 + 86 columns: exactly at the width stays on one line, one less wraps.
     const lineLength = `  <LongElementName ${attributes}/>`.length;
     assert.ok(format(input, { tabSize: 2, insertSpaces: true, maxLineWidth: lineLength }).includes(`<LongElementName ${attributes}/>`));
-    assert.ok(!format(input, { tabSize: 2, insertSpaces: true, maxLineWidth: lineLength - 1 }).includes(`<LongElementName ${attributes}/>`));
+    assert.ok(
+      !format(input, { tabSize: 2, insertSpaces: true, maxLineWidth: lineLength - 1 }).includes(`<LongElementName ${attributes}/>`),
+    );
     // A tab counts as tabSize columns when the width is measured.
     const tabbed = format(input, { tabSize: 8, insertSpaces: false, maxLineWidth: lineLength + 5 });
     assert.ok(!tabbed.includes(`<LongElementName ${attributes}/>`));
@@ -179,24 +186,39 @@ describe('formatter on generated documents (property)', () => {
   const space = fc.constantFrom('', ' ', '\n', '\n\n\n', '\t', '  \r\n  ', '\n    ');
   const name = fc.constantFrom('A', 'Event', 'x:y', 'Long_Name-1', 'ScenarioObject');
   const escape = (raw: string) => raw.replace(/&/g, '&amp;').replace(/</g, '&lt;').replace(/"/g, '&quot;');
-  const attributes = fc.uniqueArray(fc.tuple(fc.constantFrom('a', 'name', 'value', 'xml:space', 'b-c'), fc.string({ maxLength: 12 }), space), { selector: ([key]) => key, maxLength: 5 });
-  const comment = fc.string({ maxLength: 10 }).filter((body) => !body.includes('--') && !body.endsWith('-')).map((body) => `<!--${body}-->`);
+  const attributes = fc.uniqueArray(
+    fc.tuple(fc.constantFrom('a', 'name', 'value', 'xml:space', 'b-c'), fc.string({ maxLength: 12 }), space),
+    { selector: ([key]) => key, maxLength: 5 },
+  );
+  const comment = fc
+    .string({ maxLength: 10 })
+    .filter((body) => !body.includes('--') && !body.endsWith('-'))
+    .map((body) => `<!--${body}-->`);
   const text = fc.string({ minLength: 1, maxLength: 10 }).map((raw) => escape(raw).replace(/]]>/g, ']]&gt;'));
-  const cdata = fc.string({ maxLength: 10 }).filter((body) => !body.includes(']]>')).map((body) => `<![CDATA[${body}]]>`);
+  const cdata = fc
+    .string({ maxLength: 10 })
+    .filter((body) => !body.includes(']]>'))
+    .map((body) => `<![CDATA[${body}]]>`);
   const pi = fc.constantFrom('<?target some data?>', '<?pi?>');
   const { element } = fc.letrec<{ element: string; node: string }>((tie) => ({
-    element: fc.tuple(name, attributes, space, fc.boolean(), fc.array(fc.tuple(space, tie('node')), { maxLength: 4 }), space).map(([tag, attrs, inner, selfClosing, children, end]) => {
-      const open = `<${tag}${attrs.map(([key, value, gap]) => ` ${gap}${key}${gap}=${gap}"${escape(value)}"`).join('')}${inner}`;
-      if (selfClosing && children.length === 0) return `${open}/>`;
-      return `${open}>${children.map(([gap, child]) => gap + child).join('')}${end}</${tag}>`;
-    }),
+    element: fc
+      .tuple(name, attributes, space, fc.boolean(), fc.array(fc.tuple(space, tie('node')), { maxLength: 4 }), space)
+      .map(([tag, attrs, inner, selfClosing, children, end]) => {
+        const open = `<${tag}${attrs.map(([key, value, gap]) => ` ${gap}${key}${gap}=${gap}"${escape(value)}"`).join('')}${inner}`;
+        if (selfClosing && children.length === 0) return `${open}/>`;
+        return `${open}>${children.map(([gap, child]) => gap + child).join('')}${end}</${tag}>`;
+      }),
     // At the depth limit oneof takes its first choice, so a leaf comes first.
     node: fc.oneof({ maxDepth: 4, withCrossShrink: true }, comment, text, cdata, pi, tie('element'), tie('element')),
   }));
-  const documentText = fc.tuple(fc.boolean(), space, fc.option(comment), space, element, space).map(
-    ([declaration, a, before, b, root, c]) => `${declaration ? '<?xml version="1.0"?>' : ''}${a}${before ?? ''}${b}${root}${c}`,
-  );
-  const optionsArbitrary = fc.record({ tabSize: fc.integer({ min: 1, max: 8 }), insertSpaces: fc.boolean(), maxLineWidth: fc.integer({ min: 10, max: 120 }) });
+  const documentText = fc
+    .tuple(fc.boolean(), space, fc.option(comment), space, element, space)
+    .map(([declaration, a, before, b, root, c]) => `${declaration ? '<?xml version="1.0"?>' : ''}${a}${before ?? ''}${b}${root}${c}`);
+  const optionsArbitrary = fc.record({
+    tabSize: fc.integer({ min: 1, max: 8 }),
+    insertSpaces: fc.boolean(),
+    maxLineWidth: fc.integer({ min: 10, max: 120 }),
+  });
 
   it('changes only white space, keeps the document equivalent, and a second pass changes nothing', () => {
     fc.assert(

@@ -2,7 +2,17 @@ import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import fc from 'fast-check';
-import { buildSemanticModel, Declaration, Evaluator, findingsToProblems, runChecks, Scope, SemanticContext, SemanticModel, semanticModelOf } from '../../server/src/core/semantics';
+import {
+  buildSemanticModel,
+  Declaration,
+  Evaluator,
+  findingsToProblems,
+  runChecks,
+  Scope,
+  SemanticContext,
+  SemanticModel,
+  semanticModelOf,
+} from '../../server/src/core/semantics';
 import { Reading } from '../../server/src/core/semantics/evaluator';
 import { parseXml, reparseXml, valueEditOf, XmlAttribute, XmlDocument, XmlElement } from '../../server/src/core/xml';
 import { Flattener } from '../../server/src/core/flatten';
@@ -17,7 +27,11 @@ function shape(model: SemanticModel): unknown {
   const attr = (node: XmlAttribute | undefined) => (node ? [node.name, node.value, node.valueStart, node.valueEnd] : null);
   const scopeIndex = (scope: Scope | undefined) => (scope ? model.scopes.indexOf(scope) : -1);
   const declarationIndex = (declaration: Declaration | undefined) => (declaration ? model.declarations.indexOf(declaration) : -1);
-  const named = (entry: { name: string; element: XmlElement; nameAttribute: XmlAttribute | undefined }) => [entry.name, element(entry.element), attr(entry.nameAttribute)];
+  const named = (entry: { name: string; element: XmlElement; nameAttribute: XmlAttribute | undefined }) => [
+    entry.name,
+    element(entry.element),
+    attr(entry.nameAttribute),
+  ];
   return {
     root: scopeIndex(model.root),
     scopes: model.scopes.map((scope) => [
@@ -28,10 +42,36 @@ function shape(model: SemanticModel): unknown {
       [...scope.byName].map(([name, declaration]) => [name, declarationIndex(declaration)]),
       scope.catalogEntry,
     ]),
-    declarations: model.declarations.map((d) => [d.kind, d.name, d.type, d.writtenType, d.value, element(d.element), attr(d.nameAttribute), attr(d.valueAttribute), attr(d.typeAttribute), scopeIndex(d.scope), d.index]),
+    declarations: model.declarations.map((d) => [
+      d.kind,
+      d.name,
+      d.type,
+      d.writtenType,
+      d.value,
+      element(d.element),
+      attr(d.nameAttribute),
+      attr(d.valueAttribute),
+      attr(d.typeAttribute),
+      scopeIndex(d.scope),
+      d.index,
+    ]),
     variables: [...model.variables].map(([name, declaration]) => [name, declarationIndex(declaration)]),
-    uses: model.uses.map((use) => [use.name, use.start, use.end, element(use.element), attr(use.attribute), declarationIndex(use.declaration), use.via]),
-    sites: model.sites.map((site) => [element(site.element), attr(site.attribute), site.form, scopeIndex(site.scope), declarationIndex(site.declaration)]),
+    uses: model.uses.map((use) => [
+      use.name,
+      use.start,
+      use.end,
+      element(use.element),
+      attr(use.attribute),
+      declarationIndex(use.declaration),
+      use.via,
+    ]),
+    sites: model.sites.map((site) => [
+      element(site.element),
+      attr(site.attribute),
+      site.form,
+      scopeIndex(site.scope),
+      declarationIndex(site.declaration),
+    ]),
     siteOf: [...model.siteOf].map(([key, site]) => [attr(key), model.sites.indexOf(site)]),
     usesOf: [...model.usesOf].map(([declaration, uses]) => [declarationIndex(declaration), uses.map((use) => model.uses.indexOf(use))]),
     catalogLocations: model.catalogLocations.map((location) => [location.kind, element(location.directory), attr(location.pathAttribute)]),
@@ -39,15 +79,30 @@ function shape(model: SemanticModel): unknown {
       element(reference.element),
       attr(reference.catalogNameAttribute),
       attr(reference.entryNameAttribute),
-      reference.assignments.map((assignment) => [element(assignment.element), attr(assignment.parameterRef), attr(assignment.valueAttribute)]),
+      reference.assignments.map((assignment) => [
+        element(assignment.element),
+        attr(assignment.parameterRef),
+        attr(assignment.valueAttribute),
+      ]),
     ]),
     catalog: element(model.catalog),
     entities: model.entities.map(named),
     hasEntities: model.hasEntities,
     storyboardElements: model.storyboardElements.map(named),
-    storyboardByName: [...model.storyboardByName].map(([name, entries]) => [name, entries.map((entry) => model.storyboardElements.indexOf(entry))]),
-    storyboardReferences: model.storyboardReferences.map((reference) => [element(reference.element), attr(reference.refAttribute), reference.type]),
-    variableReferences: model.variableReferences.map((reference) => [element(reference.element), attr(reference.attribute), declarationIndex(reference.declaration)]),
+    storyboardByName: [...model.storyboardByName].map(([name, entries]) => [
+      name,
+      entries.map((entry) => model.storyboardElements.indexOf(entry)),
+    ]),
+    storyboardReferences: model.storyboardReferences.map((reference) => [
+      element(reference.element),
+      attr(reference.refAttribute),
+      reference.type,
+    ]),
+    variableReferences: model.variableReferences.map((reference) => [
+      element(reference.element),
+      attr(reference.attribute),
+      declarationIndex(reference.declaration),
+    ]),
     entityReferences: model.entityReferences.map((reference) => [element(reference.element), attr(reference.attribute)]),
     scopeOf: everyElement(model.document).map((node) => scopeIndex(model.scopeOf(node))),
   };
@@ -123,12 +178,18 @@ const scenario = `<?xml version="1.0"?>
 </OpenSCENARIO>
 `;
 
-const corpusFiles = ['openscenario/esmini/Catalogs/Vehicles/VehicleCatalog.xosc', 'openscenario/esmini/lane-change_clothoid_spline_based_trajectory.xosc']
+const corpusFiles = [
+  'openscenario/esmini/Catalogs/Vehicles/VehicleCatalog.xosc',
+  'openscenario/esmini/lane-change_clothoid_spline_based_trajectory.xosc',
+]
   .map((file) => path.join(sharedDir, 'corpus', file))
   .filter((file) => fs.existsSync(file));
 
 /** Characters typed into a value: digits, names, `$`, expression braces and operators (no markup). */
-const typed = fc.string({ unit: fc.constantFrom('1', '0', '.', '-', '+', '*', '/', ' ', '$', '{', '}', '(', ')', 'S', 'p', 'e', 'd', 'L', 'x', 'é'), maxLength: 5 });
+const typed = fc.string({
+  unit: fc.constantFrom('1', '0', '.', '-', '+', '*', '/', ' ', '$', '{', '}', '(', ')', 'S', 'p', 'e', 'd', 'L', 'x', 'é'),
+  maxLength: 5,
+});
 const edit = fc.record({ which: fc.nat(), from: fc.nat(), length: fc.nat(4), inserted: typed });
 
 /** Applies each edit inside one attribute value in turn, checking the carried model against a full build after each. */
@@ -145,7 +206,11 @@ function checkEdits(text: string, edits: { which: number; from: number; length: 
     const next = reparseXml(document, editedText);
     if (valueEditOf(next)) carried++;
     const model = semanticModelOf(next);
-    assert.deepEqual(shape(model), shape(buildSemanticModel(parseXml(editedText))), `after replacing [${start}, ${end}) of ${range.name} by '${inserted}'`);
+    assert.deepEqual(
+      shape(model),
+      shape(buildSemanticModel(parseXml(editedText))),
+      `after replacing [${start}, ${end}) of ${range.name} by '${inserted}'`,
+    );
     document = next;
   }
   return carried;
@@ -194,14 +259,29 @@ function scenarioShape(model: ScenarioModel): unknown {
     info.fileName,
     element(info.element),
     attr(info.fileAttribute),
-    info.groupReferences.map((group) => [group.name, element(group.element), attr(group.nameAttribute), group.parameters.map((p) => [p.key, p.value, element(p.element), attr(p.keyAttribute), attr(p.valueAttribute)])]),
+    info.groupReferences.map((group) => [
+      group.name,
+      element(group.element),
+      attr(group.nameAttribute),
+      group.parameters.map((p) => [p.key, p.value, element(p.element), attr(p.keyAttribute), attr(p.valueAttribute)]),
+    ]),
     info.outerGroup ? model.groups.indexOf(info.outerGroup) : -1,
   ];
   return {
-    groups: model.groups.map((group) => [group.name, element(group.element), attr(group.nameAttribute), element(group.actor), group.references.map((r) => model.references.indexOf(r))]),
+    groups: model.groups.map((group) => [
+      group.name,
+      element(group.element),
+      attr(group.nameAttribute),
+      element(group.actor),
+      group.references.map((r) => model.references.indexOf(r)),
+    ]),
     references: model.references.map(reference),
     entities: model.entities.map((entity) => [entity.name, element(entity.element), attr(entity.nameAttribute)]),
-    declarations: model.declarations.map((d) => [element(d.element), attr(d.attribute), d.names.map((n) => [n.name, n.start, n.end, attr(n.target)])]),
+    declarations: model.declarations.map((d) => [
+      element(d.element),
+      attr(d.attribute),
+      d.names.map((n) => [n.name, n.start, n.end, attr(n.target)]),
+    ]),
     structure: model.structure.map(element),
   };
 }
@@ -225,7 +305,11 @@ describe('core: the modular structure after an edit inside one value', () => {
             const editedText = document.text.slice(0, start) + inserted + document.text.slice(end);
             const next = reparseXml(document, editedText);
             if (valueEditOf(next)) carried++;
-            assert.deepEqual(scenarioShape(readModel(next)), scenarioShape(buildModel(parseXml(editedText))), `${path.basename(file)}: after replacing [${start}, ${end}) of ${range.name} by '${inserted}'`);
+            assert.deepEqual(
+              scenarioShape(readModel(next)),
+              scenarioShape(buildModel(parseXml(editedText))),
+              `${path.basename(file)}: after replacing [${start}, ${end}) of ${range.name} by '${inserted}'`,
+            );
             document = next;
           }
         }),
@@ -269,7 +353,11 @@ describe('core: the analysis of a file being edited, value edit after value edit
             const freshStore = new ScenarioStore({ scenarioPath: [], root: examples });
             freshStore.setOverlay(ref, current);
             const fresh = (await new Flattener(freshStore, 'asam', { version: 'auto' }).analyze(ref)).problems;
-            assert.deepEqual(JSON.parse(JSON.stringify(incremental)), JSON.parse(JSON.stringify(fresh)), `after replacing [${start}, ${end}) of ${range.name} by '${inserted}'`);
+            assert.deepEqual(
+              JSON.parse(JSON.stringify(incremental)),
+              JSON.parse(JSON.stringify(fresh)),
+              `after replacing [${start}, ${end}) of ${range.name} by '${inserted}'`,
+            );
           }
         }),
         { numRuns: 40 },
@@ -313,16 +401,28 @@ describe('core: the semantic checks after an edit inside one value', () => {
   </Storyboard>
 </OpenSCENARIO>
 `;
-  const typedInChains = fc.string({ unit: fc.constantFrom('1', '0', '4', '.', '-', '+', '*', '/', ' ', '$', '{', '}', '(', ')', 'P', 'x', 'a'), maxLength: 5 });
+  const typedInChains = fc.string({
+    unit: fc.constantFrom('1', '0', '4', '.', '-', '+', '*', '/', ' ', '$', '{', '}', '(', ')', 'P', 'x', 'a'),
+    maxLength: 5,
+  });
   const chainEdit = fc.record({ which: fc.nat(), from: fc.nat(), length: fc.nat(4), inserted: typedInChains });
   const ref = diskRef('/virtual/chains.xosc');
   const problemsOf = (document: XmlDocument, reading: Reading) => {
     const model = semanticModelOf(document);
-    const context: SemanticContext = { ref, model, evaluator: new Evaluator(model, undefined, reading), catalogs: { locations: [], references: [], files: [] }, modular: false };
+    const context: SemanticContext = {
+      ref,
+      model,
+      evaluator: new Evaluator(model, undefined, reading),
+      catalogs: { locations: [], references: [], files: [] },
+      modular: false,
+    };
     return JSON.parse(JSON.stringify(findingsToProblems(ref, document, runChecks(context)))) as unknown;
   };
 
-  for (const [name, text] of [['chained declarations', chains], ['the semantic scenario', scenario]] as const) {
+  for (const [name, text] of [
+    ['chained declarations', chains],
+    ['the semantic scenario', scenario],
+  ] as const) {
     for (const reading of ['standard', 'esmini'] as const) {
       it(`carried over, equal the checks of the text read afresh: ${name}, ${reading} reading`, () => {
         let carried = 0;
@@ -338,7 +438,11 @@ describe('core: the semantic checks after an edit inside one value', () => {
               const editedText = document.text.slice(0, start) + inserted + document.text.slice(end);
               const next = reparseXml(document, editedText);
               if (valueEditOf(next)) carried++;
-              assert.deepEqual(problemsOf(next, reading), problemsOf(parseXml(editedText), reading), `after replacing [${start}, ${end}) of ${range.name} by '${inserted}'`);
+              assert.deepEqual(
+                problemsOf(next, reading),
+                problemsOf(parseXml(editedText), reading),
+                `after replacing [${start}, ${end}) of ${range.name} by '${inserted}'`,
+              );
               document = next;
             }
           }),

@@ -3,7 +3,9 @@ import { keyForms, keyMatches, overridableAttributes, planOverrides, shortestUna
 import { findGroup, parseScenario } from '../../server/src/core/model';
 import { scenario, simpleGroup } from '../support/fixtures';
 
-const model = parseScenario(scenario(simpleGroup('G', '              <Position><WorldPosition parameterAttributes="y" x="0" y="9"/></Position>\n')));
+const model = parseScenario(
+  scenario(simpleGroup('G', '              <Position><WorldPosition parameterAttributes="y" x="0" y="9"/></Position>\n')),
+);
 const group = findGroup(model, 'G')!;
 const targets = overridableAttributes(model, group);
 
@@ -42,7 +44,10 @@ describe('core: override keys (SPEC 5)', () => {
 
   it('applies the most specific key, whatever the order', () => {
     for (const order of [0, 1]) {
-      const entries: [string, string][] = [['y', 'bare'], ['Action.Position.WorldPosition.y', 'specific']];
+      const entries: [string, string][] = [
+        ['y', 'bare'],
+        ['Action.Position.WorldPosition.y', 'specific'],
+      ];
       if (order) entries.reverse();
       const plan = planOverrides(targets, parameters(...entries));
       const firstY = targets.find((t) => t.attributeName === 'y' && t.path.includes('Action'))!;
@@ -58,7 +63,11 @@ describe('core: override keys (SPEC 5)', () => {
   });
 
   it('reports a key that reaches an attribute without default', () => {
-    const noDefault = parseScenario(scenario(`        <ManeuverGroup name="G"><Actors><EntityRef entityRef="car"/></Actors><Speed parameterAttributes="value,limit" value="1"/></ManeuverGroup>\n`));
+    const noDefault = parseScenario(
+      scenario(
+        `        <ManeuverGroup name="G"><Actors><EntityRef entityRef="car"/></Actors><Speed parameterAttributes="value,limit" value="1"/></ManeuverGroup>\n`,
+      ),
+    );
     const listed = overridableAttributes(noDefault, noDefault.groups[0]);
     const plan = planOverrides(listed, parameters(['limit', '3']));
     assert.equal(plan.withoutDefault.length, 1);

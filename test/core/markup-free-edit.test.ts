@@ -28,7 +28,11 @@ describe('markupFreeEdit (chunked comparison)', () => {
         const removed = Math.min(size - at, random(4));
         const inserted = Array.from({ length: random(4) }, () => 'abcz'[random(4)]).join('');
         const text = old.slice(0, at) + inserted + old.slice(at + removed);
-        assert.deepEqual(markupFreeEdit(old, text), differingRegion(old, text), `size ${size}, at ${at}, removed ${removed}, inserted '${inserted}'`);
+        assert.deepEqual(
+          markupFreeEdit(old, text),
+          differingRegion(old, text),
+          `size ${size}, at ${at}, removed ${removed}, inserted '${inserted}'`,
+        );
         checked++;
       }
     }
@@ -39,6 +43,9 @@ describe('markupFreeEdit (chunked comparison)', () => {
     const old = `${'<A x="1"/>\n'.repeat(500)}`;
     assert.equal(markupFreeEdit(old, old.replace('x="1"/>\n<A', 'x="1"/><A')), undefined);
     const at = old.length - 200;
-    assert.deepEqual(markupFreeEdit(old, old.slice(0, at) + old.slice(at).replace('x="1"', 'x="27"')), differingRegion(old, old.slice(0, at) + old.slice(at).replace('x="1"', 'x="27"')));
+    assert.deepEqual(
+      markupFreeEdit(old, old.slice(0, at) + old.slice(at).replace('x="1"', 'x="27"')),
+      differingRegion(old, old.slice(0, at) + old.slice(at).replace('x="1"', 'x="27"')),
+    );
   });
 });

@@ -65,12 +65,24 @@ function scenario(parts: Parts): string {
 `;
 }
 
-const RULE_CODES = new Set(['unknown-traffic-signal', 'unknown-traffic-signal-controller', 'no-actor', 'negative-transition-time', 'non-positive-phase-duration', 'out-of-range']);
+const RULE_CODES = new Set([
+  'unknown-traffic-signal',
+  'unknown-traffic-signal-controller',
+  'no-actor',
+  'negative-transition-time',
+  'non-positive-phase-duration',
+  'out-of-range',
+]);
 
 /** The problems of these rules for a scenario written beside `files`. */
 async function check(text: string, files: Record<string, string> = { 'road.xodr': ROAD }): Promise<{ problems: Problem[]; text: string }> {
   const root = temporaryWorkspace({ 'scenario.xosc': text, ...files });
-  const semantics = await analyzeDocument(diskRef(path.join(root, 'scenario.xosc')), parseXml(text), new CatalogLoader(new ScenarioStore({ scenarioPath: [], root })), false);
+  const semantics = await analyzeDocument(
+    diskRef(path.join(root, 'scenario.xosc')),
+    parseXml(text),
+    new CatalogLoader(new ScenarioStore({ scenarioPath: [], root })),
+    false,
+  );
   return { problems: semanticProblems(semantics).filter((problem) => RULE_CODES.has(problem.code)), text };
 }
 
@@ -105,7 +117,6 @@ describe('road-network and value-range rules', () => {
     assert.equal(ruleIdOf('out-of-range'), 'modular2simple:out-of-range');
   });
 
-
   it('a TrafficSignalStateAction naming no signal of the road file is an error at its name, with the QC rule', async () => {
     const { problems, text } = await check(scenario({ actions: signalAction('999') }));
     assert.equal(problems.length, 1, JSON.stringify(problems));
@@ -117,7 +128,13 @@ describe('road-network and value-range rules', () => {
 
   it("a signal of a road, of the road file's controller, of the scenario's controller, or given by a parameter, resolves", async () => {
     for (const name of ['101', '102', '201', '$Signal']) {
-      const { problems } = await check(scenario({ actions: signalAction(name), trafficSignals: CONTROLLERS, parameters: '<ParameterDeclaration name="Signal" parameterType="string" value="101"/>' }));
+      const { problems } = await check(
+        scenario({
+          actions: signalAction(name),
+          trafficSignals: CONTROLLERS,
+          parameters: '<ParameterDeclaration name="Signal" parameterType="string" value="101"/>',
+        }),
+      );
       assert.deepEqual(problems, [], name);
     }
   });
@@ -128,7 +145,8 @@ describe('road-network and value-range rules', () => {
   });
 
   it('a trafficSignalControllerRef naming no controller of the scenario is an error at the reference', async () => {
-    const action = '<GlobalAction><InfrastructureAction><TrafficSignalAction><TrafficSignalControllerAction trafficSignalControllerRef="Nope" phase="go"/></TrafficSignalAction></InfrastructureAction></GlobalAction>';
+    const action =
+      '<GlobalAction><InfrastructureAction><TrafficSignalAction><TrafficSignalControllerAction trafficSignalControllerRef="Nope" phase="go"/></TrafficSignalAction></InfrastructureAction></GlobalAction>';
     const { problems, text } = await check(scenario({ actions: action, trafficSignals: CONTROLLERS }));
     assert.equal(problems.length, 1, JSON.stringify(problems));
     assert.equal(problems[0].code, 'unknown-traffic-signal-controller');
@@ -150,7 +168,8 @@ describe('road-network and value-range rules', () => {
   });
 
   it('a negative LightStateAction transitionTime is an error at the attribute; zero is fine', async () => {
-    const light = (time: string) => `<PrivateAction><AppearanceAction><LightStateAction transitionTime="${time}"><LightType><VehicleLight vehicleLightType="headLights"/></LightType><LightState mode="on"/></LightStateAction></AppearanceAction></PrivateAction>`;
+    const light = (time: string) =>
+      `<PrivateAction><AppearanceAction><LightStateAction transitionTime="${time}"><LightType><VehicleLight vehicleLightType="headLights"/></LightType><LightState mode="on"/></LightStateAction></AppearanceAction></PrivateAction>`;
     const { problems, text } = await check(scenario({ actions: light('-0.5') }));
     assert.equal(problems.length, 1, JSON.stringify(problems));
     assert.equal(problems[0].code, 'negative-transition-time');
@@ -182,7 +201,12 @@ describe('road-network and value-range rules', () => {
     const expression = await check(scenario({ init: environment('${1 - 2}') }));
     assert.equal(expression.problems.length, 1);
     assert.deepEqual((await check(scenario({ init: environment('0.8') }))).problems, []);
-    const throttle = await check(scenario({ actions: '<PrivateAction><ControllerAction><OverrideControllerValueAction><Throttle active="true" value="0.5"/><Brake active="false" value="0"/><Clutch active="false" value="0"/><ParkingBrake active="false" value="0"/><SteeringWheel active="false" value="0"/><Gear active="false" number="0"/></OverrideControllerValueAction></ControllerAction></PrivateAction>' }));
+    const throttle = await check(
+      scenario({
+        actions:
+          '<PrivateAction><ControllerAction><OverrideControllerValueAction><Throttle active="true" value="0.5"/><Brake active="false" value="0"/><Clutch active="false" value="0"/><ParkingBrake active="false" value="0"/><SteeringWheel active="false" value="0"/><Gear active="false" number="0"/></OverrideControllerValueAction></ControllerAction></PrivateAction>',
+      }),
+    );
     assert.deepEqual(throttle.problems, []);
   });
 });

@@ -37,6 +37,9 @@ describe('core: the main New Modular Scenario writes, and where it puts the ego'
     const position = firstDescendant(root, 'LanePosition');
     assert.ok(logicFile && position);
     assert.equal(attributeValue(logicFile, 'filepath'), '../roads/a&b "x".xodr');
-    assert.deepEqual(['roadId', 'laneId', 's'].map((name) => attributeValue(position, name)), ['<1>', '-2', '12.5']);
+    assert.deepEqual(
+      ['roadId', 'laneId', 's'].map((name) => attributeValue(position, name)),
+      ['<1>', '-2', '12.5'],
+    );
   });
 });

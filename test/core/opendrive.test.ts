@@ -69,7 +69,23 @@ describe('core: OpenDRIVE reference line', () => {
   it('paramPoly3: arcLength and normalized ranges describe the same curve', () => {
     // A straight line along 45 degrees: u = p·cos45, v = p·sin45 for p in [0, 10].
     const k = Math.SQRT1_2;
-    const arcLength: Geometry = { kind: 'paramPoly3', s: 0, x: 0, y: 0, hdg: 0, length: 10, aU: 0, bU: k, cU: 0, dU: 0, aV: 0, bV: k, cV: 0, dV: 0, pRange: 'arcLength' };
+    const arcLength: Geometry = {
+      kind: 'paramPoly3',
+      s: 0,
+      x: 0,
+      y: 0,
+      hdg: 0,
+      length: 10,
+      aU: 0,
+      bU: k,
+      cU: 0,
+      dU: 0,
+      aV: 0,
+      bV: k,
+      cV: 0,
+      dV: 0,
+      pRange: 'arcLength',
+    };
     const normalized: Geometry = { ...arcLength, bU: 10 * k, bV: 10 * k, pRange: 'normalized' };
     for (const geometry of [arcLength, normalized]) {
       const pose = evaluateGeometry(geometry, 4);
@@ -78,7 +94,23 @@ describe('core: OpenDRIVE reference line', () => {
       close(pose.hdg, Math.PI / 4);
     }
     // An uneven parameter speed, u = 16·p² over p in [0, 1]: s = 1 m is still 1 m along the curve.
-    const uneven: Geometry = { kind: 'paramPoly3', s: 0, x: 5, y: 0, hdg: 0, length: 16, aU: 0, bU: 0, cU: 16, dU: 0, aV: 0, bV: 0, cV: 0, dV: 0, pRange: 'normalized' };
+    const uneven: Geometry = {
+      kind: 'paramPoly3',
+      s: 0,
+      x: 5,
+      y: 0,
+      hdg: 0,
+      length: 16,
+      aU: 0,
+      bU: 0,
+      cU: 16,
+      dU: 0,
+      aV: 0,
+      bV: 0,
+      cV: 0,
+      dV: 0,
+      pRange: 'normalized',
+    };
     close(evaluateGeometry(uneven, 1).x, 6, 1e-6);
   });
 });
@@ -99,8 +131,17 @@ describe('core: OpenDRIVE lanes', () => {
     assert.deepEqual(network.problems, []);
     const parsed = network.byId.get('7');
     assert.ok(parsed);
-    assert.deepEqual(parsed.laneSections.map((section) => [section.s, section.length]), [[0, 60], [60, 40]]);
-    assert.deepEqual(parsed.laneSections[0].lanes.map((lane) => lane.id), [2, 1, 0, -1]);
+    assert.deepEqual(
+      parsed.laneSections.map((section) => [section.s, section.length]),
+      [
+        [0, 60],
+        [60, 40],
+      ],
+    );
+    assert.deepEqual(
+      parsed.laneSections[0].lanes.map((lane) => lane.id),
+      [2, 1, 0, -1],
+    );
   });
 
   it('lane borders add widths outward from the lane-offset line, with several width entries and laneOffsets', () => {
@@ -120,7 +161,8 @@ describe('core: OpenDRIVE lanes', () => {
   });
 
   it('geometries follow each other along s; a road point is offset to the left of the heading', () => {
-    const geometries = '<geometry s="0" x="0" y="0" hdg="0" length="10"><line/></geometry><geometry s="10" x="10" y="0" hdg="0" length="15.707963267948966"><arc curvature="0.1"/></geometry>';
+    const geometries =
+      '<geometry s="0" x="0" y="0" hdg="0" length="10"><line/></geometry><geometry s="10" x="10" y="0" hdg="0" length="15.707963267948966"><arc curvature="0.1"/></geometry>';
     const parsed = parseOpenDrive(road(geometries, '', '', 25.707963267948966)).byId.get('7')!;
     const end = referencePose(parsed, 25.707963267948966);
     close(end.x, 20);
@@ -131,7 +173,13 @@ describe('core: OpenDRIVE lanes', () => {
   });
 
   it('superelevation projects the lateral offset onto the ground plane', () => {
-    const tilted = parseOpenDrive(road('<geometry s="0" x="0" y="0" hdg="0" length="100"><line/></geometry>', '', '<lateralProfile><superelevation s="0" a="0.5" b="0" c="0" d="0"/></lateralProfile>')).byId.get('7')!;
+    const tilted = parseOpenDrive(
+      road(
+        '<geometry s="0" x="0" y="0" hdg="0" length="100"><line/></geometry>',
+        '',
+        '<lateralProfile><superelevation s="0" a="0.5" b="0" c="0" d="0"/></lateralProfile>',
+      ),
+    ).byId.get('7')!;
     close(roadPoint(tilted, 10, 4).y, 4 * Math.cos(0.5));
   });
 

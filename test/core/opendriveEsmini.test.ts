@@ -44,7 +44,12 @@ describe('core: OpenDRIVE lane borders against esmini odrplot', function () {
   });
   after(() => outDir && fs.rmSync(outDir, { recursive: true, force: true }));
 
-  const files = fs.existsSync(esminiXodrDir) ? fs.readdirSync(esminiXodrDir).filter((name) => name.endsWith('.xodr')).sort() : [];
+  const files = fs.existsSync(esminiXodrDir)
+    ? fs
+        .readdirSync(esminiXodrDir)
+        .filter((name) => name.endsWith('.xodr'))
+        .sort()
+    : [];
   for (const file of files) {
     it(`${file}: every lane border point within 1 cm`, () => {
       const input = path.join(esminiXodrDir, file);
@@ -70,7 +75,10 @@ describe('core: OpenDRIVE lane borders against esmini odrplot', function () {
           const ours = laneBorderPoint(road, lane.section, lane.lane, s);
           const distance = Math.hypot(ours.x - point.x, ours.y - point.y);
           worst = Math.max(worst, distance);
-          assert.ok(distance <= TOLERANCE, `road ${lane.road} section ${lane.section} lane ${lane.lane} s=${s.toFixed(3)}: (${ours.x.toFixed(4)}, ${ours.y.toFixed(4)}) vs esmini (${point.x}, ${point.y}), ${(distance * 100).toFixed(2)} cm apart`);
+          assert.ok(
+            distance <= TOLERANCE,
+            `road ${lane.road} section ${lane.section} lane ${lane.lane} s=${s.toFixed(3)}: (${ours.x.toFixed(4)}, ${ours.y.toFixed(4)}) vs esmini (${point.x}, ${point.y}), ${(distance * 100).toFixed(2)} cm apart`,
+          );
           compared++;
         });
       }

@@ -17,7 +17,12 @@ import { openscenarioDir } from '../support/openscenarioCorpus';
  * entity is where it is in the run of the original at every step.
  */
 const esminiCorpus = path.join(openscenarioDir, 'esmini');
-const scenarios = fs.existsSync(esminiCorpus) ? fs.readdirSync(esminiCorpus).filter((name) => name.endsWith('.xosc')).sort() : [];
+const scenarios = fs.existsSync(esminiCorpus)
+  ? fs
+      .readdirSync(esminiCorpus)
+      .filter((name) => name.endsWith('.xosc'))
+      .sort()
+  : [];
 
 /** The composition's main file: every ManeuverGroup of a name of its own replaced by one of the same name and actors importing it from `sourceName`. */
 function compositionOf(text: string, sourceName: string): string {
@@ -31,7 +36,12 @@ function compositionOf(text: string, sourceName: string): string {
     const actors = group.children.find((child) => child.name === 'Actors');
     // A name two groups share would import the first one twice: such groups stay as written.
     // So do groups without an actor (an outer group needs one to give its imports).
-    if (!name || !actors?.children.some((child) => child.name === 'EntityRef') || groups.filter((other) => nameOf(other) === name).length > 1) continue;
+    if (
+      !name ||
+      !actors?.children.some((child) => child.name === 'EntityRef') ||
+      groups.filter((other) => nameOf(other) === name).length > 1
+    )
+      continue;
     out += text.slice(position, group.start);
     out += `${text.slice(group.start, group.startTagEnd)}\n${text.slice(actors.start, actors.end)}\n<ScenarioReference scenarioFileName="${sourceName}"><ManeuverGroupReference maneuverGroupName="${name}"/></ScenarioReference>\n</ManeuverGroup>`;
     position = group.end;
@@ -86,7 +96,9 @@ describe("core: compositions of esmini's scenarios flattened one folder deeper r
       const result = await new Flattener(new ScenarioStore({ scenarioPath: [], root: ws })).flatten(diskRef(main), { outputPath: output });
       // Whether an expression esmini accepts blocks flattening is the severity policy's part, not this test's.
       if (result.text === undefined) {
-        console.log(`      (skipped: ${name} does not flatten: ${result.problems.find((problem) => problem.severity === 'error')?.message})`);
+        console.log(
+          `      (skipped: ${name} does not flatten: ${result.problems.find((problem) => problem.severity === 'error')?.message})`,
+        );
         return this.skip();
       }
       fs.writeFileSync(output, result.text);

@@ -98,37 +98,71 @@ describe("core: a parameter's value against the schema type of the attribute it 
     assert.deepEqual(others, []);
     assert.equal(problem.severity, 'error');
     assert.equal(problem.code, 'type-mismatch');
-    assert.equal(problem.message, "'car_white', the value of parameter 'Host' (declared string), cannot be converted to the attribute's type double (LanePosition.s)");
+    assert.equal(
+      problem.message,
+      "'car_white', the value of parameter 'Host' (declared string), cannot be converted to the attribute's type double (LanePosition.s)",
+    );
     const lines = scenarioWith('$Host').split('\n');
-    assert.equal(problem.range.start.line, lines.findIndex((line) => line.includes('s="$Host"')));
+    assert.equal(
+      problem.range.start.line,
+      lines.findIndex((line) => line.includes('s="$Host"')),
+    );
     assert.equal(problem.related?.[0].message, "'Host' is declared here with the value 'car_white'");
-    assert.equal(problem.related?.[0].range.start.line, lines.findIndex((line) => line.includes('name="Host"')));
+    assert.equal(
+      problem.related?.[0].range.start.line,
+      lines.findIndex((line) => line.includes('name="Host"')),
+    );
   });
 
   it('5.0 for an integer is a warning; a boolean in a double and a word in an unsignedInt or an enumeration are errors', async () => {
     assert.deepEqual(described(await problemsOf('1', '$WholeText')), [
       "warning: '5.0', the value of parameter 'WholeText' (declared string), is a number with a fraction of zero for the attribute's type unsignedInt: the standard wants an integer, esmini reads it as 5 (ManeuverGroup.maximumExecutionCount)",
     ]);
-    assert.match(described(await problemsOf('$Fast')).join('\n'), /^error: 'true', the value of parameter 'Fast' \(declared boolean\), cannot be converted to the attribute's type double/);
-    assert.match(described(await problemsOf('1', '$Host')).join('\n'), /^error: 'car_white'.*cannot be converted to the attribute's type unsignedInt/);
-    assert.match(described(await problemsOf('1', '1', '$Host')).join('\n'), /^error: 'car_white'.*cannot be converted to the attribute's type Rule \(one of .*greaterThan/);
+    assert.match(
+      described(await problemsOf('$Fast')).join('\n'),
+      /^error: 'true', the value of parameter 'Fast' \(declared boolean\), cannot be converted to the attribute's type double/,
+    );
+    assert.match(
+      described(await problemsOf('1', '$Host')).join('\n'),
+      /^error: 'car_white'.*cannot be converted to the attribute's type unsignedInt/,
+    );
+    assert.match(
+      described(await problemsOf('1', '1', '$Host')).join('\n'),
+      /^error: 'car_white'.*cannot be converted to the attribute's type Rule \(one of .*greaterThan/,
+    );
   });
 
   it('checks a ParameterReference value `$name` against the imported attribute it sets, at the reference', async () => {
-    const simple = scenarioWith('1').replace('<SimulationTimeCondition value="1"', '<SimulationTimeCondition parameterAttributes="value" value="1"');
+    const simple = scenarioWith('1').replace(
+      '<SimulationTimeCondition value="1"',
+      '<SimulationTimeCondition parameterAttributes="value" value="1"',
+    );
     const main = simple
       .replace(/<ManeuverGroup maximumExecutionCount="1" name="G">[\s\S]*?<\/ManeuverGroup>/, '')
-      .replace('<ParameterDeclarations>', '<ParameterDeclarations>\n    <ParameterDeclaration name="Late" parameterType="string" value="soon"/>')
+      .replace(
+        '<ParameterDeclarations>',
+        '<ParameterDeclarations>\n    <ParameterDeclaration name="Late" parameterType="string" value="soon"/>',
+      )
       .replace(
         '<Act name="A">',
         '<Act name="A">\n        <ManeuverGroup maximumExecutionCount="1" name="Outer">\n          <Actors selectTriggeringEntities="false"><EntityRef entityRef="Ego"/></Actors>\n          <ScenarioReference scenarioFileName="simple.xosc"><ManeuverGroupReference maneuverGroupName="G"><ParameterReference key="value" value="$Late"/></ManeuverGroupReference></ScenarioReference>\n        </ManeuverGroup>',
       );
-    const root = temporaryWorkspace({ 'simple.xosc': simple.replace('<Actors selectTriggeringEntities="false"/>', '<Actors selectTriggeringEntities="false"/>\n          <Maneuver name="M"><Event name="E" priority="override"><Action name="X"><UserDefinedAction><CustomCommandAction type="t"/></UserDefinedAction></Action><StartTrigger><ConditionGroup><Condition name="C2" delay="0" conditionEdge="none"><ByValueCondition><SimulationTimeCondition parameterAttributes="value" value="1" rule="greaterThan"/></ByValueCondition></Condition></ConditionGroup></StartTrigger></Event></Maneuver>'), 'main.xosc': main });
+    const root = temporaryWorkspace({
+      'simple.xosc': simple.replace(
+        '<Actors selectTriggeringEntities="false"/>',
+        '<Actors selectTriggeringEntities="false"/>\n          <Maneuver name="M"><Event name="E" priority="override"><Action name="X"><UserDefinedAction><CustomCommandAction type="t"/></UserDefinedAction></Action><StartTrigger><ConditionGroup><Condition name="C2" delay="0" conditionEdge="none"><ByValueCondition><SimulationTimeCondition parameterAttributes="value" value="1" rule="greaterThan"/></ByValueCondition></Condition></ConditionGroup></StartTrigger></Event></Maneuver>',
+      ),
+      'main.xosc': main,
+    });
     try {
       const analysis = await new Flattener(new ScenarioStore(), 'asam', { version: 'auto' }).analyze(diskRef(path.join(root, 'main.xosc')));
-      const found = analysis.problems.filter((problem) => problem.code === 'type-mismatch').map((problem) => `${path.basename(problem.source.disk)}:${problem.range.start.line}: ${problem.message}`);
+      const found = analysis.problems
+        .filter((problem) => problem.code === 'type-mismatch')
+        .map((problem) => `${path.basename(problem.source.disk)}:${problem.range.start.line}: ${problem.message}`);
       const line = main.split('\n').findIndex((text) => text.includes('value="$Late"'));
-      assert.deepEqual(found, [`main.xosc:${line}: 'soon', the value of parameter 'Late' (declared string), cannot be converted to the attribute's type double (SimulationTimeCondition.value) (set by ParameterReference 'value')`]);
+      assert.deepEqual(found, [
+        `main.xosc:${line}: 'soon', the value of parameter 'Late' (declared string), cannot be converted to the attribute's type double (SimulationTimeCondition.value) (set by ParameterReference 'value')`,
+      ]);
     } finally {
       fs.rmSync(root, { recursive: true, force: true });
     }

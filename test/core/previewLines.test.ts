@@ -34,8 +34,14 @@ describe('core: where the flattened preview shows each line of its source', () =
       const written = sourceLines[line].trim();
       if (/<ManeuverGroup maximumExecutionCount="1" name="(CutInVehicle|LeadVehicle|Pedestrian)"/.test(written)) insideGroup = true;
       const reference = [...groupStarts.keys()].find((key) => written.includes(key));
-      if (reference) assert.match(previewLines[shown], new RegExp(`<ManeuverGroup\\b.*${groupStarts.get(reference)?.replace(/\./g, '\\.')}`), `line ${line + 1} (${written})`);
-      else if (insideGroup) assert.match(previewLines[shown], /<ManeuverGroup\b/, `line ${line + 1} (${written}) does not show at an imported group`);
+      if (reference)
+        assert.match(
+          previewLines[shown],
+          new RegExp(`<ManeuverGroup\\b.*${groupStarts.get(reference)?.replace(/\./g, '\\.')}`),
+          `line ${line + 1} (${written})`,
+        );
+      else if (insideGroup)
+        assert.match(previewLines[shown], /<ManeuverGroup\b/, `line ${line + 1} (${written}) does not show at an imported group`);
       else assert.equal(previewLines[shown].trim(), written, `line ${line + 1}`);
       if (insideGroup && written === '</ManeuverGroup>') insideGroup = false;
     }
@@ -43,7 +49,10 @@ describe('core: where the flattened preview shows each line of its source', () =
 
   it('keeps lines apart where a stripped parameterAttributes stood on a line of its own', async () => {
     const simple = scenario(simpleGroup('Go')).replace(/ parameterAttributes=/, '\n            parameterAttributes=');
-    const root = temporaryWorkspace({ 'simple.xosc': simple, 'main.xosc': scenario(outerGroup('Car1', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Go' }] }])) });
+    const root = temporaryWorkspace({
+      'simple.xosc': simple,
+      'main.xosc': scenario(outerGroup('Car1', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Go' }] }])),
+    });
     const { text, lines } = await previewOf(root, 'simple.xosc');
     const sourceLines = simple.split('\n');
     const previewLines = text.split('\n');
@@ -53,7 +62,10 @@ describe('core: where the flattened preview shows each line of its source', () =
       assert.ok(shown !== undefined);
       if (sourceLines[line].trim().startsWith('parameterAttributes=')) continue;
       const visible = sourceLines[line].replace(/\s*parameterAttributes="[^"]*"/, '').trim();
-      assert.ok(previewLines[shown].includes(visible) || visible.includes(previewLines[shown].trim()), `line ${line + 1}: ${visible} shown as ${previewLines[shown]}`);
+      assert.ok(
+        previewLines[shown].includes(visible) || visible.includes(previewLines[shown].trim()),
+        `line ${line + 1}: ${visible} shown as ${previewLines[shown]}`,
+      );
     }
   });
 

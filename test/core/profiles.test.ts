@@ -52,7 +52,8 @@ const LANE_CHANGE = `<PrivateAction><LateralAction><LaneChangeAction>
   <LaneChangeActionDynamics dynamicsShape="linear" value="20" dynamicsDimension="distance"/>
   <LaneChangeTarget><RelativeTargetLane entityRef="ego" value="1"/></LaneChangeTarget>
 </LaneChangeAction></LateralAction></PrivateAction>`;
-const TIME_OF_DAY = '<GlobalAction/><StartTrigger><ConditionGroup><Condition name="c" delay="0" conditionEdge="none"><ByValueCondition><TimeOfDayCondition dateTime="2026-01-01T08:00:00" rule="greaterThan"/></ByValueCondition></Condition></ConditionGroup></StartTrigger>';
+const TIME_OF_DAY =
+  '<GlobalAction/><StartTrigger><ConditionGroup><Condition name="c" delay="0" conditionEdge="none"><ByValueCondition><TimeOfDayCondition dateTime="2026-01-01T08:00:00" rule="greaterThan"/></ByValueCondition></Condition></ConditionGroup></StartTrigger>';
 
 function messages(simulator: Simulator, text: string, fileName = 'scenario.xosc'): string[] {
   return simulatorFindings(simulator, parseXml(text), fileName).map((finding) => finding.message);
@@ -62,8 +63,18 @@ describe('simulator profiles', () => {
   it('carla flags a 1.1 header and an unsupported action; asam flags neither', () => {
     const text = scenarioText('1', '', VISIBILITY);
     const carla = messages('carla', text);
-    assert.ok(carla.some((message) => /^CARLA ScenarioRunner accepts only OpenSCENARIO 1\.0; this file states 1\.1 \(srunner\/scenarioconfigs\/openscenario_configuration\.py\)$/.test(message)), carla.join('\n'));
-    assert.ok(carla.some((message) => /^CARLA ScenarioRunner does not support VisibilityAction.*\(Docs\/openscenario_support\.md\)$/.test(message)), carla.join('\n'));
+    assert.ok(
+      carla.some((message) =>
+        /^CARLA ScenarioRunner accepts only OpenSCENARIO 1\.0; this file states 1\.1 \(srunner\/scenarioconfigs\/openscenario_configuration\.py\)$/.test(
+          message,
+        ),
+      ),
+      carla.join('\n'),
+    );
+    assert.ok(
+      carla.some((message) => /^CARLA ScenarioRunner does not support VisibilityAction.*\(Docs\/openscenario_support\.md\)$/.test(message)),
+      carla.join('\n'),
+    );
     assert.deepEqual(messages('asam', text), []);
     assert.deepEqual(messages('carla', scenarioText('0', '', LANE_CHANGE)), []);
   });
@@ -81,7 +92,9 @@ describe('simulator profiles', () => {
   it('carla knows where an action may stand: a lane change runs in a Story, not in the Init', () => {
     const init = `<Private entityRef="ego">${LANE_CHANGE}</Private>`;
     const inInit = messages('carla', scenarioText('0', init, ''));
-    assert.deepEqual(inInit, ['CARLA ScenarioRunner does not support LaneChangeAction in the Init, only in a Story (Docs/openscenario_support.md)']);
+    assert.deepEqual(inInit, [
+      'CARLA ScenarioRunner does not support LaneChangeAction in the Init, only in a Story (Docs/openscenario_support.md)',
+    ]);
     assert.deepEqual(messages('carla', scenarioText('0', '', LANE_CHANGE)), []);
   });
 
@@ -95,17 +108,22 @@ describe('simulator profiles', () => {
       <LaneChangeTarget><RelativeTargetLane entityRef="ego" value="1"/></LaneChangeTarget>
     </LaneChangeAction></LateralAction></PrivateAction>`;
     const found = messages('carla', scenarioText('0', '', story));
-    assert.deepEqual(found, ['CARLA ScenarioRunner does not evaluate ${...} expressions: value="${$duration * 2}" is read as text (srunner/tools/openscenario_parser.py)']);
+    assert.deepEqual(found, [
+      'CARLA ScenarioRunner does not evaluate ${...} expressions: value="${$duration * 2}" is read as text (srunner/tools/openscenario_parser.py)',
+    ]);
     const sinusoidal = messages('carla', scenarioText('0', '', LANE_CHANGE.replace('"linear"', '"sinusoidal"')));
     assert.equal(sinusoidal.length, 1);
     assert.match(sinusoidal[0], /dynamicsShape="sinusoidal" on LaneChangeActionDynamics/);
   });
 
   it('carla reads catalogs only from files named <Type>Catalog.xosc; the version of a catalog is not checked', () => {
-    const catalog = '<OpenSCENARIO><FileHeader revMajor="0" revMinor="9" date="x" description="c" author=""/><Catalog name="cars"><Vehicle name="car"/></Catalog></OpenSCENARIO>';
+    const catalog =
+      '<OpenSCENARIO><FileHeader revMajor="0" revMinor="9" date="x" description="c" author=""/><Catalog name="cars"><Vehicle name="car"/></Catalog></OpenSCENARIO>';
     assert.deepEqual(messages('carla', catalog, 'VehicleCatalog.xosc'), []);
     const misnamed = messages('carla', catalog, 'Cars.xosc');
-    assert.deepEqual(misnamed, ['CARLA ScenarioRunner reads a catalog of Vehicle entries only from a file named VehicleCatalog.xosc in the catalog directory; this file is Cars.xosc (srunner/scenarioconfigs/openscenario_configuration.py)']);
+    assert.deepEqual(misnamed, [
+      'CARLA ScenarioRunner reads a catalog of Vehicle entries only from a file named VehicleCatalog.xosc in the catalog directory; this file is Cars.xosc (srunner/scenarioconfigs/openscenario_configuration.py)',
+    ]);
     assert.deepEqual(messages('esmini', catalog, 'Cars.xosc'), []);
   });
 
@@ -114,16 +132,28 @@ describe('simulator profiles', () => {
     const esmini = messages('esmini', text);
     assert.deepEqual(esmini, ['esmini does not support TimeOfDayCondition: the condition is ignored (osc_coverage.txt)']);
     assert.deepEqual(messages('asam', text), []);
-    const modify = '<GlobalAction><ParameterAction parameterRef="p"><ModifyAction><Rule><AddValue value="1"/></Rule></ModifyAction></ParameterAction></GlobalAction>';
+    const modify =
+      '<GlobalAction><ParameterAction parameterRef="p"><ModifyAction><Rule><AddValue value="1"/></Rule></ModifyAction></ParameterAction></GlobalAction>';
     assert.equal(messages('esmini', scenarioText('1', '', modify)).length, 1);
     // The same element under a VariableAction is supported.
-    assert.deepEqual(messages('esmini', scenarioText('2', '', modify.replace(/ParameterAction parameterRef/, 'VariableAction variableRef').replace('</ParameterAction>', '</VariableAction>'))), []);
+    assert.deepEqual(
+      messages(
+        'esmini',
+        scenarioText(
+          '2',
+          '',
+          modify.replace(/ParameterAction parameterRef/, 'VariableAction variableRef').replace('</ParameterAction>', '</VariableAction>'),
+        ),
+      ),
+      [],
+    );
   });
 
   it('every fact names the file it was read from, and each profile names its revision', () => {
     for (const profile of [CARLA_PROFILE, ESMINI_PROFILE]) {
       assert.match(profile.revision, /^[0-9a-f]{40}$/);
-      for (const fact of [...profile.elements, ...profile.attributes]) assert.ok(fact.source.length > 0, `${profile.name}: ${JSON.stringify(fact)}`);
+      for (const fact of [...profile.elements, ...profile.attributes])
+        assert.ok(fact.source.length > 0, `${profile.name}: ${JSON.stringify(fact)}`);
     }
   });
 
@@ -138,7 +168,11 @@ describe('simulator profiles', () => {
     const result = await flattener.flatten(diskRef(path.join(root, 'main.xosc')));
     assert.ok(result.text, JSON.stringify(result.problems.map((problem) => problem.message)));
     const problems = result.problems.filter((problem) => problem.code === 'simulator');
-    assert.equal(problems.filter((problem) => /VisibilityAction/.test(problem.message)).length, 1, 'reported once, though the source and the output are both checked');
+    assert.equal(
+      problems.filter((problem) => /VisibilityAction/.test(problem.message)).length,
+      1,
+      'reported once, though the source and the output are both checked',
+    );
     const visibility = problems.find((problem) => /VisibilityAction/.test(problem.message));
     assert.ok(visibility, problems.map((problem) => problem.message).join('\n'));
     assert.equal(path.basename(visibility.source.disk), 'simple.xosc');
@@ -146,7 +180,10 @@ describe('simulator profiles', () => {
     assert.equal(visibility.range.start.line, line);
     assert.equal(visibility.severity, 'warning');
     const standard = await new Flattener(new ScenarioStore({ scenarioPath: [], root })).flatten(diskRef(path.join(root, 'main.xosc')));
-    assert.deepEqual(standard.problems.filter((problem) => problem.code === 'simulator'), []);
+    assert.deepEqual(
+      standard.problems.filter((problem) => problem.code === 'simulator'),
+      [],
+    );
   });
 
   it('checks the flattened output too: a value set through a ParameterReference is reported where it is written', async () => {
@@ -156,9 +193,13 @@ describe('simulator profiles', () => {
 `;
     const root = temporaryWorkspace({
       'simple.xosc': scenario(simpleGroup('Go', body)),
-      'main.xosc': scenario(outerGroup('Car', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Go', parameters: [['dynamicsShape', 'sinusoidal']] }] }])),
+      'main.xosc': scenario(
+        outerGroup('Car', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Go', parameters: [['dynamicsShape', 'sinusoidal']] }] }]),
+      ),
     });
-    const result = await new Flattener(new ScenarioStore({ scenarioPath: [], root }), 'carla').flatten(diskRef(path.join(root, 'main.xosc')));
+    const result = await new Flattener(new ScenarioStore({ scenarioPath: [], root }), 'carla').flatten(
+      diskRef(path.join(root, 'main.xosc')),
+    );
     assert.ok(result.text, JSON.stringify(result.problems.map((problem) => problem.message)));
     const shape = result.problems.filter((problem) => problem.code === 'simulator' && /dynamicsShape/.test(problem.message));
     assert.equal(shape.length, 1, JSON.stringify(result.problems.map((problem) => problem.message)));
@@ -183,7 +224,10 @@ describe('simulator profiles on the corpus files each simulator runs', function 
       return /\.xosc$/i.test(entry.name) ? [full] : [];
     });
 
-  for (const [simulator, folder] of [['carla', 'scenario_runner'], ['esmini', 'esmini']] as const) {
+  for (const [simulator, folder] of [
+    ['carla', 'scenario_runner'],
+    ['esmini', 'esmini'],
+  ] as const) {
     it(`${simulator} warns about nothing that its own example scenarios (${folder}) use`, () => {
       const files = walk(path.join(corpus, folder));
       assert.ok(files.length >= 20, `found only ${files.length} files`);
@@ -202,19 +246,28 @@ describe('simulator profiles on the corpus files each simulator runs', function 
 
   it('carla warns about nothing in the modular library written for CARLA, flattened as CARLA gets it', async function () {
     const library = path.join(sharedDir, 'corpus', 'modular2simple', 'library');
-    const mains = fs.readdirSync(library).filter((name) => name.startsWith('modular_')).map((name) => path.join(library, name, 'main.xosc'));
+    const mains = fs
+      .readdirSync(library)
+      .filter((name) => name.startsWith('modular_'))
+      .map((name) => path.join(library, name, 'main.xosc'));
     assert.ok(mains.length >= 30);
     const flattener = new Flattener(new ScenarioStore({ scenarioPath: [library], root: library }), 'carla');
     for (const main of mains) {
       const result = await flattener.flatten(diskRef(main));
       assert.ok(result.text, main);
-      assert.deepEqual(result.problems.filter((problem) => problem.code === 'simulator').map((problem) => problem.message), [], main);
+      assert.deepEqual(
+        result.problems.filter((problem) => problem.code === 'simulator').map((problem) => problem.message),
+        [],
+        main,
+      );
     }
   });
 
   it('carla finds what CARLA does not run in esmini scenarios (the checks are not vacuous)', () => {
     const files = walk(path.join(corpus, 'esmini'));
-    const messages = files.flatMap((file) => simulatorFindings('carla', parseXml(fs.readFileSync(file, 'utf8')), path.basename(file)).map((finding) => finding.message));
+    const messages = files.flatMap((file) =>
+      simulatorFindings('carla', parseXml(fs.readFileSync(file, 'utf8')), path.basename(file)).map((finding) => finding.message),
+    );
     assert.ok(messages.some((message) => /accepts only OpenSCENARIO 1\.0; this file states 1\.[123]/.test(message)));
     assert.ok(messages.some((message) => /does not evaluate \$\{\.\.\.\} expressions/.test(message)));
   });

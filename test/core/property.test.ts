@@ -13,9 +13,14 @@ const xmlChar = fc.oneof(
   fc.constantFrom('<', '&', '"', "'", '>', ' ', ';', '#', 'é', 'ß', '東', '✓', '😀'),
   fc.string({ unit: 'grapheme', maxLength: 3 }),
 );
-const xmlText = fc
-  .array(xmlChar, { maxLength: 12 })
-  .map((parts) => parts.join('').replace(/[\u0000-\u0008\u000B\u000C\u000E-\u001F\uFFFE\uFFFF]/g, '').replace(/[\uD800-\uDFFF]/g, (c, i, s) => (/[\uD800-\uDBFF][\uDC00-\uDFFF]/.test(s.slice(i, i + 2)) || /[\uD800-\uDBFF][\uDC00-\uDFFF]/.test(s.slice(i - 1, i + 1)) ? c : '')));
+const xmlText = fc.array(xmlChar, { maxLength: 12 }).map((parts) =>
+  parts
+    .join('')
+    .replace(/[\u0000-\u0008\u000B\u000C\u000E-\u001F\uFFFE\uFFFF]/g, '')
+    .replace(/[\uD800-\uDFFF]/g, (c, i, s) =>
+      /[\uD800-\uDBFF][\uDC00-\uDFFF]/.test(s.slice(i, i + 2)) || /[\uD800-\uDBFF][\uDC00-\uDFFF]/.test(s.slice(i - 1, i + 1)) ? c : '',
+    ),
+);
 
 function find(tree: CanonicalElement, name: string): CanonicalElement | undefined {
   if (tree.name === name) return tree;

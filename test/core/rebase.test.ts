@@ -31,7 +31,11 @@ const BODY = `  <CatalogLocations>
 
 /** ws/xosc/scenario.xosc beside ws/xodr/road.xodr and ws/catalogs/Vehicles. */
 function workspace(): string {
-  return temporaryWorkspace({ 'xodr/road.xodr': '<OpenDRIVE/>', 'catalogs/Vehicles/cars.xosc': '<OpenSCENARIO/>', 'xosc/scenario.xosc': '' });
+  return temporaryWorkspace({
+    'xodr/road.xodr': '<OpenDRIVE/>',
+    'catalogs/Vehicles/cars.xosc': '<OpenSCENARIO/>',
+    'xosc/scenario.xosc': '',
+  });
 }
 
 async function rebased(text: string, base: string, outputDirectory: string | undefined) {
@@ -56,7 +60,8 @@ describe('core: rebasing the file paths of an output (SPEC 11.6)', () => {
       for (const [typeName, type] of Object.entries(schema.complexTypes)) {
         for (const particle of elementParticles(type.content)) {
           if (particle.type !== 'File' && particle.type !== 'Directory') continue;
-          for (const parent of elementNamesOfType.get(typeName) ?? []) assert.ok(known.has(`${parent}/${particle.name}`), `${version}: ${parent}/${particle.name} (${particle.type})`);
+          for (const parent of elementNamesOfType.get(typeName) ?? [])
+            assert.ok(known.has(`${parent}/${particle.name}`), `${version}: ${parent}/${particle.name} (${particle.type})`);
         }
       }
       assert.deepEqual(
@@ -71,7 +76,10 @@ describe('core: rebasing the file paths of an output (SPEC 11.6)', () => {
   });
 
   it('finds the paths of a document in order, and nothing under another parent', () => {
-    const text = SCENARIO('', BODY + '\n  <Entities><ScenarioObject name="x"><File filepath="not-a-path-site"/></ScenarioObject></Entities>');
+    const text = SCENARIO(
+      '',
+      BODY + '\n  <Entities><ScenarioObject name="x"><File filepath="not-a-path-site"/></ScenarioObject></Entities>',
+    );
     const sites = filePathSites(parseXml(text).root);
     assert.deepEqual(
       sites.map((site) => `${site.element.name}=${site.attribute.value}`),
@@ -116,7 +124,8 @@ describe('core: rebasing the file paths of an output (SPEC 11.6)', () => {
 
   it('leaves a path naming a parameter as written, warning when its value is a relative path that resolves', async () => {
     const root = workspace();
-    const declarations = '<ParameterDeclaration name="Road" parameterType="string" value="../xodr/road.xodr"/><ParameterDeclaration name="Town" parameterType="string" value="Town05"/>';
+    const declarations =
+      '<ParameterDeclaration name="Road" parameterType="string" value="../xodr/road.xodr"/><ParameterDeclaration name="Town" parameterType="string" value="Town05"/>';
     const body = '  <RoadNetwork>\n    <LogicFile filepath="$Road"/>\n    <SceneGraphFile filepath="$Town"/>\n  </RoadNetwork>';
     const moved = await rebased(SCENARIO(declarations, body), path.join(root, 'xosc'), path.join(root, 'out'));
     assert.deepEqual(moved.edits, []);
@@ -134,20 +143,24 @@ describe('core: Flattener.flatten rebases for its output (SPEC 11.6)', () => {
       `  <RoadNetwork>\n    <LogicFile filepath="${road}"/>\n  </RoadNetwork>\n  <Storyboard/>`,
     );
 
-  it('rewrites the main file\'s own paths for another folder, and warns at the main file\'s line about a path naming a parameter', async () => {
+  it("rewrites the main file's own paths for another folder, and warns at the main file's line about a path naming a parameter", async () => {
     const root = workspace();
     fs.writeFileSync(path.join(root, 'xosc', 'plain.xosc'), main('../xodr/road.xodr'));
     fs.writeFileSync(path.join(root, 'xosc', 'parameter.xosc'), main('$Road'));
     const flattener = new Flattener(new ScenarioStore({ scenarioPath: [], root }));
-    const plain = await flattener.flatten(diskRef(path.join(root, 'xosc', 'plain.xosc')), { outputPath: path.join(root, 'out', 'deeper', 'plain.xosc') });
+    const plain = await flattener.flatten(diskRef(path.join(root, 'xosc', 'plain.xosc')), {
+      outputPath: path.join(root, 'out', 'deeper', 'plain.xosc'),
+    });
     assert.match(plain.text ?? '', /<LogicFile filepath="\.\.\/\.\.\/xodr\/road\.xodr"\/>/);
-    const parameter = await flattener.flatten(diskRef(path.join(root, 'xosc', 'parameter.xosc')), { outputPath: path.join(root, 'out', 'deeper', 'parameter.xosc') });
+    const parameter = await flattener.flatten(diskRef(path.join(root, 'xosc', 'parameter.xosc')), {
+      outputPath: path.join(root, 'out', 'deeper', 'parameter.xosc'),
+    });
     assert.match(parameter.text ?? '', /<LogicFile filepath="\$Road"\/>/);
     const warning = parameter.problems.find((problem) => problem.code === 'file-path');
     assert.ok(warning, JSON.stringify(parameter.problems));
     assert.equal(warning.severity, 'warning');
     assert.equal(warning.source.disk, path.join(root, 'xosc', 'parameter.xosc'));
-    assert.equal(warning.range.start.line, 5, "the LogicFile line of parameter.xosc");
+    assert.equal(warning.range.start.line, 5, 'the LogicFile line of parameter.xosc');
     const beside = await flattener.flatten(diskRef(path.join(root, 'xosc', 'parameter.xosc')));
     assert.equal(beside.problems.filter((problem) => problem.code === 'file-path').length, 0);
   });

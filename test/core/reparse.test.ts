@@ -54,10 +54,15 @@ describe('core: re-parsing after an edit', () => {
 
   it('falls back to a full parse for any other edit, markup included', () => {
     fc.assert(
-      fc.property(fc.nat(original.length), fc.nat(6), fc.string({ unit: fc.constantFrom('<', '>', '"', "'", '&', '\n', 'x', ' ', '/', '='), maxLength: 4 }), (start, length, inserted) => {
-        const edited = original.slice(0, start) + inserted + original.slice(Math.min(original.length, start + length));
-        assert.deepEqual(shape(reparseXml(parsed, edited)), shape(parseXml(edited)));
-      }),
+      fc.property(
+        fc.nat(original.length),
+        fc.nat(6),
+        fc.string({ unit: fc.constantFrom('<', '>', '"', "'", '&', '\n', 'x', ' ', '/', '='), maxLength: 4 }),
+        (start, length, inserted) => {
+          const edited = original.slice(0, start) + inserted + original.slice(Math.min(original.length, start + length));
+          assert.deepEqual(shape(reparseXml(parsed, edited)), shape(parseXml(edited)));
+        },
+      ),
       { numRuns: 300 },
     );
   });
@@ -65,8 +70,16 @@ describe('core: re-parsing after an edit', () => {
   it('copies the tree rather than scanning it again when a value changes', () => {
     const at = original.indexOf('value="27.5"') + 'value="'.length;
     const edited = original.slice(0, at) + '3' + original.slice(at + 2);
-    assert.equal(reparseValueEdit(parsed, edited.replace('<Entities>', '<Entities >')), undefined, 'a second edit, in markup, is not taken');
-    assert.equal(reparseValueEdit(parsed, original.slice(0, at) + '"' + original.slice(at)), undefined, 'a quote typed into a value is not taken');
+    assert.equal(
+      reparseValueEdit(parsed, edited.replace('<Entities>', '<Entities >')),
+      undefined,
+      'a second edit, in markup, is not taken',
+    );
+    assert.equal(
+      reparseValueEdit(parsed, original.slice(0, at) + '"' + original.slice(at)),
+      undefined,
+      'a quote typed into a value is not taken',
+    );
     const document = reparseXml(parsed, edited);
     assert.notEqual(document.root, parsed.root, 'a new tree, so caches keyed by the old one never apply to it');
     assert.equal(parsed.root!.children.length, document.root!.children.length);

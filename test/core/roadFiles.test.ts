@@ -8,7 +8,7 @@ import { readEsminiLog } from '../../server/src/esmini/log';
 import { withRoadFile } from '../../server/src/esmini/run';
 import { temporaryWorkspace } from '../support/workspace';
 
-describe('road files: one resolver for Run in esmini and the bird\'s-eye view', () => {
+describe("road files: one resolver for Run in esmini and the bird's-eye view", () => {
   it('looks beside the scenario first (the path as written, then its file name), then in each road folder the same way', () => {
     assert.deepEqual(roadFileCandidates('../xodr/e6mini.xodr', '/ws/xosc', ['/roads', '/more']), [
       '/ws/xodr/e6mini.xodr',
@@ -25,7 +25,11 @@ describe('road files: one resolver for Run in esmini and the bird\'s-eye view', 
   });
 
   it('resolves to the first regular file, and lists what it looked at otherwise', async () => {
-    const root = temporaryWorkspace({ 'xosc/e6mini.xodr': '<OpenDRIVE/>', 'roads/xodr/e6mini.xodr': '<OpenDRIVE/>', 'folder/e6mini.xodr/inside': '' });
+    const root = temporaryWorkspace({
+      'xosc/e6mini.xodr': '<OpenDRIVE/>',
+      'roads/xodr/e6mini.xodr': '<OpenDRIVE/>',
+      'folder/e6mini.xodr/inside': '',
+    });
     const found = await resolveRoadFile(nodeFileSystem, '../xodr/e6mini.xodr', path.join(root, 'xosc'), [path.join(root, 'roads')]);
     assert.equal(found.resolved, path.join(root, 'xosc', 'e6mini.xodr'));
     const folderOnly = await resolveRoadFile(nodeFileSystem, 'e6mini.xodr', path.join(root, 'folder'), []);
@@ -34,7 +38,8 @@ describe('road files: one resolver for Run in esmini and the bird\'s-eye view', 
   });
 
   it('reads the LogicFile with its parameters evaluated, and hands esmini the resolved path in its place', () => {
-    const text = '<OpenSCENARIO><ParameterDeclarations><ParameterDeclaration name="Road" parameterType="string" value="../xodr/e6mini.xodr"/></ParameterDeclarations><RoadNetwork><LogicFile filepath="$Road"/></RoadNetwork></OpenSCENARIO>';
+    const text =
+      '<OpenSCENARIO><ParameterDeclarations><ParameterDeclaration name="Road" parameterType="string" value="../xodr/e6mini.xodr"/></ParameterDeclarations><RoadNetwork><LogicFile filepath="$Road"/></RoadNetwork></OpenSCENARIO>';
     assert.equal(logicFileOf(parseXml(text))?.filepath, '../xodr/e6mini.xodr');
     assert.equal(logicFileOf(parseXml('<OpenSCENARIO><RoadNetwork/></OpenSCENARIO>')), undefined);
     assert.equal(withRoadFile(text, '/a & b/e6mini.xodr'), text.replace('"$Road"', '"/a &amp; b/e6mini.xodr"'));
@@ -52,7 +57,10 @@ describe('road files: one resolver for Run in esmini and the bird\'s-eye view', 
       '[1.500] [warn] Stopping object walker Walk on conflicting Longitudinal domain(s)',
     ].join('\n');
     const { messages, remarks } = readEsminiLog(log);
-    assert.deepEqual(messages.map((message) => message.text), ['Stopping object walker Walk on conflicting Longitudinal domain(s)']);
+    assert.deepEqual(
+      messages.map((message) => message.text),
+      ['Stopping object walker Walk on conflicting Longitudinal domain(s)'],
+    );
     assert.deepEqual(
       remarks.map((remark) => [remark.text, remark.count, remark.level]),
       [

@@ -41,10 +41,16 @@ describe('core: scene of a scenario (entities at their start, events)', () => {
     assert.match(other.kind, /car_red \(catalog\)/);
     close(third.x, 20, 'third x');
     close(third.y, 0.5, 'third y');
-    assert.deepEqual(scene.entities.map((entity) => entity.problem), [undefined, undefined, undefined]);
+    assert.deepEqual(
+      scene.entities.map((entity) => entity.problem),
+      [undefined, undefined, undefined],
+    );
     assert.deepEqual(
       scene.events.map((event) => [event.name, event.maneuver, event.group, event.act, event.plannedTime]),
-      [['Go', 'M', 'G', 'A', 30.5], ['Near', 'M', 'G', 'A', undefined]],
+      [
+        ['Go', 'M', 'G', 'A', 30.5],
+        ['Near', 'M', 'G', 'A', undefined],
+      ],
     );
     assert.equal(scene.events[1].trigger, 'RelativeDistance lessThan 10');
   });
@@ -63,12 +69,20 @@ describe('core: scene of a scenario (entities at their start, events)', () => {
     close(other.y, -3, 'road y');
     close(third.x, 6, 'relative x');
     close(third.y, 5, 'relative y');
-    const left = scenarioScene(parseXml(sceneScenario('straight.xodr', teleport('ego', '<LanePosition roadId="1" laneId="1" s="10"/>'))), network).entities[0];
+    const left = scenarioScene(
+      parseXml(sceneScenario('straight.xodr', teleport('ego', '<LanePosition roadId="1" laneId="1" s="10"/>'))),
+      network,
+    ).entities[0];
     close(left.hdg, Math.PI, 'left lane heading');
   });
 
   it('evaluates ${...} expressions in positions through the semantic model', () => {
-    const text = sceneScenario('straight.xodr', teleport('ego', '<LanePosition roadId="1" laneId="-1" s="${$Half + 5}"/>'), '', '<ParameterDeclaration name="S" parameterType="double" value="30"/><ParameterDeclaration name="Half" parameterType="double" value="${$S / 2}"/>');
+    const text = sceneScenario(
+      'straight.xodr',
+      teleport('ego', '<LanePosition roadId="1" laneId="-1" s="${$Half + 5}"/>'),
+      '',
+      '<ParameterDeclaration name="S" parameterType="double" value="30"/><ParameterDeclaration name="Half" parameterType="double" value="${$S / 2}"/>',
+    );
     assert.equal(scenarioScene(parseXml(text), network).entities[0].x, 20);
   });
 
@@ -83,13 +97,24 @@ describe('core: scene of a scenario (entities at their start, events)', () => {
     assert.match(problems[0] ?? '', /road 9 is not in the road network/);
     assert.match(problems[1] ?? '', /LanePosition s="\$\{\$Missing \+ 1\}": .*Missing/);
     assert.match(problems[2] ?? '', /refers to ego, whose position is not known/);
-    const noRoads = scenarioScene(parseXml(sceneScenario('x.xodr', teleport('ego', '<LanePosition roadId="1" laneId="-1" s="10"/>'))), undefined);
+    const noRoads = scenarioScene(
+      parseXml(sceneScenario('x.xodr', teleport('ego', '<LanePosition roadId="1" laneId="-1" s="10"/>'))),
+      undefined,
+    );
     assert.match(noRoads.entities[0].problem ?? '', /road network is not loaded/);
   });
 
   it('samples lane borders into compact polylines, straight roads with few points', () => {
     const [section] = sampleNetwork(network);
-    assert.deepEqual(section.lanes.map((lane) => [lane.id, lane.driving]), [[1, true], [0, false], [-1, true], [-2, false]]);
+    assert.deepEqual(
+      section.lanes.map((lane) => [lane.id, lane.driving]),
+      [
+        [1, true],
+        [0, false],
+        [-1, true],
+        [-2, false],
+      ],
+    );
     // 200 m of straight road with constant widths: a few points per border.
     assert.ok(section.borders[0].length <= 2 * 10, `${section.borders[0].length / 2} points`);
     assert.deepEqual(section.borders[0].slice(0, 2), [0, 3.5]);

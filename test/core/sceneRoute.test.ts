@@ -56,19 +56,31 @@ describe('core: scene, entities placed by RoutePosition', function () {
 
   it('says why a route position cannot be placed: past the first road, from the current entity, an unresolved catalog route', () => {
     const twoRoads = `<Route name="R" closed="false">${waypoint('<LanePosition roadId="1" laneId="-1" s="190"/>')}${waypoint('<LanePosition roadId="2" laneId="-1" s="5"/>')}</Route>`;
-    const twoRoadNetwork = parseOpenDrive(STRAIGHT_ROAD.replace('</OpenDRIVE>', STRAIGHT_ROAD.slice(STRAIGHT_ROAD.indexOf('<road '), STRAIGHT_ROAD.indexOf('</road>') + 7).replace('id="1"', 'id="2"') + '</OpenDRIVE>'));
+    const twoRoadNetwork = parseOpenDrive(
+      STRAIGHT_ROAD.replace(
+        '</OpenDRIVE>',
+        STRAIGHT_ROAD.slice(STRAIGHT_ROAD.indexOf('<road '), STRAIGHT_ROAD.indexOf('</road>') + 7).replace('id="1"', 'id="2"') +
+          '</OpenDRIVE>',
+      ),
+    );
     const text = sceneScenario(
       'straight.xodr',
       teleport('ego', routePosition(twoRoads, '<FromLaneCoordinates pathS="15" laneId="-1"/>')) +
         teleport('other', routePosition(twoRoads, '<FromCurrentEntity entityRef="ego"/>')) +
-        teleport('third', routePosition('<CatalogReference catalogName="Routes" entryName="Nowhere"/>', '<FromLaneCoordinates pathS="0" laneId="-1"/>')),
+        teleport(
+          'third',
+          routePosition('<CatalogReference catalogName="Routes" entryName="Nowhere"/>', '<FromLaneCoordinates pathS="0" laneId="-1"/>'),
+        ),
     );
     const [ego, other, third] = scenarioScene(parseXml(text), twoRoadNetwork).entities;
     assert.match(ego.problem ?? '', /pathS 15 lies past road 1, 10 m along the route; the roads between its waypoints need routing/);
     assert.match(other.problem ?? '', /FromCurrentEntity is not evaluated/);
     assert.match(third.problem ?? '', /route Routes\/Nowhere is not found in the catalogs/);
     // Within the first road the same route places it.
-    const near = scenarioScene(parseXml(sceneScenario('straight.xodr', teleport('ego', routePosition(twoRoads, '<FromLaneCoordinates pathS="8" laneId="-1"/>')))), twoRoadNetwork);
+    const near = scenarioScene(
+      parseXml(sceneScenario('straight.xodr', teleport('ego', routePosition(twoRoads, '<FromLaneCoordinates pathS="8" laneId="-1"/>')))),
+      twoRoadNetwork,
+    );
     close(near.entities[0].x, 198, 'x near the road end');
   });
 
@@ -118,7 +130,12 @@ describe('core: scene, entities placed by RoutePosition', function () {
       );
       const [first] = await runEsmini(scenario, 0);
       const document = parseXml(fs.readFileSync(scenario, 'utf8'));
-      const semantics = await analyzeDocument(diskRef(scenario), document, new CatalogLoader(new ScenarioStore({ scenarioPath: [], root: folder })), false);
+      const semantics = await analyzeDocument(
+        diskRef(scenario),
+        document,
+        new CatalogLoader(new ScenarioStore({ scenarioPath: [], root: folder })),
+        false,
+      );
       const roads = parseOpenDrive(fs.readFileSync(path.join(esminiXodrDir, 'fabriksgatan.xodr'), 'utf8'));
       const scene = scenarioScene(document, roads, semantics);
       assert.match(scene.entities[1].described, /road 2, s 250/);

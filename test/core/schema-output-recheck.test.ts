@@ -59,7 +59,9 @@ const schemaChecks = new SchemaCheckMemory();
 
 /** The output's schema problems, with paths relative to the workspace and in a stable order. */
 async function outputProblems(store: ScenarioStore, root: string): Promise<string[]> {
-  const result = await new Flattener(store, 'asam', { version: 'auto' }, schemaChecks).flatten(diskRef(path.join(root, 'main.xosc')), { force: true });
+  const result = await new Flattener(store, 'asam', { version: 'auto' }, schemaChecks).flatten(diskRef(path.join(root, 'main.xosc')), {
+    force: true,
+  });
   const describe = (problem: Problem) =>
     `${path.relative(root, problem.source.disk)}:${problem.range.start.line}:${problem.range.start.character}-${problem.range.end.line}:${problem.range.end.character} ${problem.severity} ${problem.code} ${problem.message} ${problem.hint ?? ''} ${JSON.stringify(problem.data ?? {})}`;
   return outputSchemaProblems(result.source, schemaChecks, { version: 'auto' }).map(describe).sort();
@@ -92,7 +94,11 @@ describe('strict schema check of an output after an edit inside one value', func
       const incremental = await outputProblems(store, edited);
       // A new workspace each time: nothing remembered, the whole output is checked.
       const fresh = temporaryWorkspace({ 'main.xosc': text, 'simple.xosc': simple });
-      assert.deepEqual(incremental, await outputProblems(new ScenarioStore({ scenarioPath: [], root: fresh }), fresh), `${speeds.join(',')} ${dynamics}`);
+      assert.deepEqual(
+        incremental,
+        await outputProblems(new ScenarioStore({ scenarioPath: [], root: fresh }), fresh),
+        `${speeds.join(',')} ${dynamics}`,
+      );
       findings += incremental.length;
     }
     // The outputs do break the schema (no CatalogLocations, invalid values): the comparison is not of empty lists.

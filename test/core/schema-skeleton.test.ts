@@ -14,12 +14,18 @@ describe('core: minimal valid skeletons of schema elements (what the quick fix i
     for (const version of SCHEMA_VERSIONS) {
       const index = schemaIndex(version);
       const root: ElementParticle = { kind: 'element', name: index.schema.rootElement, type: index.schema.rootType, min: 1, max: 1 };
-      const text = skeletonText(elementSkeleton(index, root), { indent: '', unit: '  ', eol: '\n' }, (declaration) => placeholderValue(index, declaration.type));
+      const text = skeletonText(elementSkeleton(index, root), { indent: '', unit: '  ', eol: '\n' }, (declaration) =>
+        placeholderValue(index, declaration.type),
+      );
       // The placeholder header states 0.0; the file must state its own version to be read against it.
       const stated = text.replace('revMajor="0" revMinor="0"', `revMajor="1" revMinor="${version.split('.')[1]}"`);
       assert.notEqual(stated, text, version);
       const findings = checkSchema(parseXml(stated), { modular: true }).findings;
-      assert.deepEqual(findings.map((finding) => `${finding.code} ${finding.message}`), [], `${version}:\n${stated}`);
+      assert.deepEqual(
+        findings.map((finding) => `${finding.code} ${finding.message}`),
+        [],
+        `${version}:\n${stated}`,
+      );
       assert.match(stated, /<Storyboard>\n {4}<Init>\n {6}<Actions\/>\n {4}<\/Init>/, version);
     }
   });
@@ -32,7 +38,11 @@ describe('core: minimal valid skeletons of schema elements (what the quick fix i
       const verify = (element: SkeletonElement, level: number, open: Set<string>) => {
         const type = index.complexType(element.type);
         const required = (type?.attributes ?? []).filter((declaration) => declaration.required).map((declaration) => declaration.name);
-        assert.deepEqual(element.attributes.map((declaration) => declaration.name), required, `${version} <${element.name}>`);
+        assert.deepEqual(
+          element.attributes.map((declaration) => declaration.name),
+          required,
+          `${version} <${element.name}>`,
+        );
         if (!type?.content || type.content.kind === 'all') return;
         if (level >= SKELETON_DEPTH || open.has(element.type)) {
           assert.deepEqual(element.children, [], `${version} <${element.name}> is cut at depth ${level}`);
@@ -46,7 +56,10 @@ describe('core: minimal valid skeletons of schema elements (what the quick fix i
           assert.ok(next, `${version} <${element.name}> does not accept <${child.name}> here`);
           states = next.states;
         }
-        assert.ok(automaton.accepts(states), `${version} <${element.name}> is incomplete with ${element.children.map((child) => child.name).join(', ')}`);
+        assert.ok(
+          automaton.accepts(states),
+          `${version} <${element.name}> is incomplete with ${element.children.map((child) => child.name).join(', ')}`,
+        );
         checked++;
         const inside = new Set(open).add(element.type);
         for (const child of element.children) verify(child, level + 1, inside);
@@ -68,7 +81,9 @@ describe('core: minimal valid skeletons of schema elements (what the quick fix i
     const index = schemaIndex('1.0');
     const story = index.childParticle('Storyboard', 'Story', false) as ElementParticle;
     assert.deepEqual(elementSkeleton(index, story, 1).children, []);
-    const oneLine = skeletonText(elementSkeleton(index, story), { indent: '    ', unit: '  ', eol: '' }, (declaration) => placeholderValue(index, declaration.type));
+    const oneLine = skeletonText(elementSkeleton(index, story), { indent: '    ', unit: '  ', eol: '' }, (declaration) =>
+      placeholderValue(index, declaration.type),
+    );
     assert.equal(
       oneLine,
       '<Story name=""><Act name=""><ManeuverGroup maximumExecutionCount="0" name=""><Actors selectTriggeringEntities="false"/></ManeuverGroup><StartTrigger/></Act></Story>',

@@ -87,7 +87,11 @@ describe('core: the OpenSCENARIO schemas, compiled at build time', () => {
     assert.equal(schemaIndex('1.3').simpleType('CloudState')?.deprecated, true);
     const priority = schemaIndex('1.3').simpleType('Priority');
     assert.ok(priority?.alternatives.some((alternative) => alternative.deprecatedValues?.includes('overwrite')));
-    assert.ok(!schemaIndex('1.1').simpleType('Priority')?.alternatives.some((alternative) => alternative.deprecatedValues?.includes('overwrite')));
+    assert.ok(
+      !schemaIndex('1.1')
+        .simpleType('Priority')
+        ?.alternatives.some((alternative) => alternative.deprecatedValues?.includes('overwrite')),
+    );
   });
 
   it('checks values: built-in types, enumerations, $parameters everywhere a type admits one, ${expressions} from 1.1', () => {
@@ -100,19 +104,30 @@ describe('core: the OpenSCENARIO schemas, compiled at build time', () => {
     assert.ok(checkValue(double11, '${$a * 2}').valid);
     assert.ok(!checkValue(double11, '${$a < 2}').valid);
     const unsignedShort = schemaIndex('1.3').simpleType('UnsignedShort');
-    assert.ok(unsignedShort && checkValue(unsignedShort, '65535').valid && !checkValue(unsignedShort, '65536').valid && !checkValue(unsignedShort, '-1').valid);
+    assert.ok(
+      unsignedShort &&
+        checkValue(unsignedShort, '65535').valid &&
+        !checkValue(unsignedShort, '65536').valid &&
+        !checkValue(unsignedShort, '-1').valid,
+    );
     const dateTime = schemaIndex('1.0').simpleType('DateTime');
     assert.ok(dateTime && checkValue(dateTime, '2020-03-20T12:00:00').valid && !checkValue(dateTime, '2020-03-20').valid);
     const rule = schemaIndex('1.0').simpleType('Rule');
-    assert.ok(rule && checkValue(rule, 'greaterThan').valid && checkValue(rule, '$rule').valid && !checkValue(rule, 'greaterThanOrEqual').valid);
+    assert.ok(
+      rule && checkValue(rule, 'greaterThan').valid && checkValue(rule, '$rule').valid && !checkValue(rule, 'greaterThanOrEqual').valid,
+    );
     assert.ok(rule && checkValue(schemaIndex('1.2').simpleType('Rule') ?? rule, 'greaterOrEqual').valid);
   });
 
   it('chooses the schema by FileHeader revMajor/revMinor, the nearest for others, or the pinned one', () => {
-    const header = (major: string, minor: string) => parseXml(`<OpenSCENARIO><FileHeader revMajor="${major}" revMinor="${minor}"/></OpenSCENARIO>`);
+    const header = (major: string, minor: string) =>
+      parseXml(`<OpenSCENARIO><FileHeader revMajor="${major}" revMinor="${minor}"/></OpenSCENARIO>`);
     assert.equal(chooseVersion(header('1', '0')).version, '1.0');
     assert.equal(chooseVersion(header('1', '2')).version, '1.2');
-    assert.deepEqual([chooseVersion(header('0', '9')).version, chooseVersion(header('0', '9')).fallback], ['1.0', 'no schema for OpenSCENARIO 0.9']);
+    assert.deepEqual(
+      [chooseVersion(header('0', '9')).version, chooseVersion(header('0', '9')).fallback],
+      ['1.0', 'no schema for OpenSCENARIO 0.9'],
+    );
     assert.equal(chooseVersion(header('1', '7')).version, '1.3');
     assert.equal(chooseVersion(header('1', '0'), '1.3').version, '1.3');
   });
@@ -124,18 +139,32 @@ describe('core: the OpenSCENARIO schemas, compiled at build time', () => {
     assert.ok(automaton.accepts(after(['Init', 'Story', 'Story', 'StopTrigger'])));
     assert.ok(!automaton.accepts(after(['Init', 'StopTrigger'])));
     assert.equal(automaton.step(after(['Init']), 'StopTrigger'), undefined);
-    assert.deepEqual(automaton.missingBefore(after(['Init']), 'StopTrigger')?.map((particle) => particle.name), ['Story']);
-    assert.deepEqual(automaton.missingToEnd(after(['Init', 'Story'])).map((particle) => particle.name), ['StopTrigger']);
     assert.deepEqual(
-      allowedChildren(index, 'OpenScenario', ['FileHeader'], 'RoadNetwork').map((entry) => `${entry.particle.name}${entry.required ? '!' : ''}`),
+      automaton.missingBefore(after(['Init']), 'StopTrigger')?.map((particle) => particle.name),
+      ['Story'],
+    );
+    assert.deepEqual(
+      automaton.missingToEnd(after(['Init', 'Story'])).map((particle) => particle.name),
+      ['StopTrigger'],
+    );
+    assert.deepEqual(
+      allowedChildren(index, 'OpenScenario', ['FileHeader'], 'RoadNetwork').map(
+        (entry) => `${entry.particle.name}${entry.required ? '!' : ''}`,
+      ),
       ['ParameterDeclarations', 'CatalogLocations!', 'Catalog'],
     );
   });
 
   it('reports each kind of violation at its name or value', () => {
-    const text = SCENARIO('0', '    <Init><Actions/></Init>\n    <StopTrigger/>\n    <Story name="s"/>\n', '  <ParameterDeclarations><ParameterDeclaration name="p" parameterType="real" value="1" unit="m"/></ParameterDeclarations>\n');
+    const text = SCENARIO(
+      '0',
+      '    <Init><Actions/></Init>\n    <StopTrigger/>\n    <Story name="s"/>\n',
+      '  <ParameterDeclarations><ParameterDeclaration name="p" parameterType="real" value="1" unit="m"/></ParameterDeclarations>\n',
+    );
     const problems = schemaProblems(diskRef('/x/a.xosc'), parseXml(text), schemaChecks);
-    const summary = problems.map((problem) => `${problem.code}@${problem.range.start.line + 1}:${problem.range.start.character + 1} ${problem.message}`);
+    const summary = problems.map(
+      (problem) => `${problem.code}@${problem.range.start.line + 1}:${problem.range.start.character + 1} ${problem.message}`,
+    );
     assert.deepEqual(summary, [
       "schema-value@4:72 'real' is not a valid value of ParameterDeclaration.parameterType (ParameterType): expected one of boolean, dateTime, double, integer, string, unsignedInt, unsignedShort, a $parameter",
       "schema-unknown-attribute@4:88 <ParameterDeclaration> has no attribute 'unit' in OpenSCENARIO 1.0",
@@ -147,19 +176,28 @@ describe('core: the OpenSCENARIO schemas, compiled at build time', () => {
 
   it('validates Catalog and ParameterValueDistribution files (other roots of OpenSCENARIO)', () => {
     const catalog = `<OpenSCENARIO><FileHeader revMajor="1" revMinor="1" date="2024-01-01T00:00:00" description="d" author="a"/><Catalog name="C"><Vehicle name="v" vehicleCategory="car"/></Catalog></OpenSCENARIO>`;
-    const codes = schemaProblems(diskRef('/x/c.xosc'), parseXml(catalog), schemaChecks).map((problem) => `${problem.code} ${problem.message}`);
-    assert.deepEqual(codes, ['schema-missing-element <Vehicle> lacks the required elements <BoundingBox>, <Performance>, <Axles>, <Properties>']);
+    const codes = schemaProblems(diskRef('/x/c.xosc'), parseXml(catalog), schemaChecks).map(
+      (problem) => `${problem.code} ${problem.message}`,
+    );
+    assert.deepEqual(codes, [
+      'schema-missing-element <Vehicle> lacks the required elements <BoundingBox>, <Performance>, <Axles>, <Properties>',
+    ]);
     const distribution = `<OpenSCENARIO><FileHeader revMajor="1" revMinor="1" date="2024-01-01T00:00:00" description="d" author="a"/><ParameterValueDistribution><ScenarioFile filepath="a.xosc"/><Deterministic/></ParameterValueDistribution></OpenSCENARIO>`;
     assert.deepEqual(schemaProblems(diskRef('/x/d.xosc'), parseXml(distribution), schemaChecks), []);
     const distribution10 = distribution.replace('revMinor="1"', 'revMinor="0"');
     assert.deepEqual(
-      schemaProblems(diskRef('/x/d.xosc'), parseXml(distribution10), schemaChecks).map((problem) => problem.code).sort(),
+      schemaProblems(diskRef('/x/d.xosc'), parseXml(distribution10), schemaChecks)
+        .map((problem) => problem.code)
+        .sort(),
       ['schema-missing-element', 'schema-unknown-element'],
     );
   });
 
   it('the flattened output is checked strictly, each problem at its source: an override value at its ParameterReference', async () => {
-    const valid = SCENARIO('0', '    <Init><Actions/></Init>\n    <Story name="s"><Act name="a">\n{GROUP}      <StartTrigger/></Act></Story>\n    <StopTrigger/>\n');
+    const valid = SCENARIO(
+      '0',
+      '    <Init><Actions/></Init>\n    <Story name="s"><Act name="a">\n{GROUP}      <StartTrigger/></Act></Story>\n    <StopTrigger/>\n',
+    );
     const simple = valid.replace(
       '{GROUP}',
       `        <ManeuverGroup maximumExecutionCount="1" name="G"><Actors selectTriggeringEntities="false"/><Maneuver name="M"><Event name="E" priority="overwrite"><Action name="A"><PrivateAction><TeleportAction><Position><WorldPosition parameterAttributes="x" x="1" y="2"/></Position></TeleportAction></PrivateAction></Action><StartTrigger/></Event></Maneuver></ManeuverGroup>\n`,
@@ -179,12 +217,20 @@ describe('core: the OpenSCENARIO schemas, compiled at build time', () => {
     ]);
     // The editor analyses without rendering the output, and finds the same problem at the same place.
     const analysis = await new Flattener(store, 'asam', { version: 'auto' }).analyze(diskRef(path.join(root, 'main.xosc')));
-    assert.deepEqual(errorsOf(analysis.problems).map((problem) => formatProblem(problem, root)), errors);
+    assert.deepEqual(
+      errorsOf(analysis.problems).map((problem) => formatProblem(problem, root)),
+      errors,
+    );
     const forced = await new Flattener(store, 'asam', { version: 'auto' }).flatten(diskRef(path.join(root, 'main.xosc')), { force: true });
     assert.ok(forced.text?.includes('x="far"'));
     const fine = temporaryWorkspace({ 'main.xosc': main.replace('value="far"', 'value="-5"'), 'simple.xosc': simple });
-    const ok = await new Flattener(new ScenarioStore({ scenarioPath: [], root: fine }), 'asam', { version: 'auto' }).flatten(diskRef(path.join(fine, 'main.xosc')));
-    assert.deepEqual(errorsOf(ok.problems).map((problem) => formatProblem(problem)), []);
+    const ok = await new Flattener(new ScenarioStore({ scenarioPath: [], root: fine }), 'asam', { version: 'auto' }).flatten(
+      diskRef(path.join(fine, 'main.xosc')),
+    );
+    assert.deepEqual(
+      errorsOf(ok.problems).map((problem) => formatProblem(problem)),
+      [],
+    );
     assert.ok(ok.text?.includes('x="-5"'));
   });
 });
@@ -192,8 +238,15 @@ describe('core: the OpenSCENARIO schemas, compiled at build time', () => {
 describe('core: schema check after an edit inside one value', () => {
   it('moves the other findings and checks the edited value again, as a full check would', () => {
     const source = diskRef('/x/edited.xosc');
-    let text = SCENARIO('2', '    <Init><Actions><Private entityRef="ego"><PrivateAction><LongitudinalAction><SpeedAction><SpeedActionDynamics dynamicsShape="step" value="1" dynamicsDimension="time"/><SpeedActionTarget><AbsoluteTargetSpeed value="5"/></SpeedActionTarget></SpeedAction></LongitudinalAction></PrivateAction></Private></Actions></Init>\n    <Story name="s"><Act name="a" unknown="u"><ManeuverGroup maximumExecutionCount="1" name="g"><Actors selectTriggeringEntities="false"/></ManeuverGroup><StartTrigger/></Act></Story>\n    <StopTrigger/>\n');
-    const summary = (problems: Problem[]) => problems.map((problem) => `${problem.code}@${problem.range.start.line}:${problem.range.start.character}-${problem.range.end.character} ${problem.message}`);
+    let text = SCENARIO(
+      '2',
+      '    <Init><Actions><Private entityRef="ego"><PrivateAction><LongitudinalAction><SpeedAction><SpeedActionDynamics dynamicsShape="step" value="1" dynamicsDimension="time"/><SpeedActionTarget><AbsoluteTargetSpeed value="5"/></SpeedActionTarget></SpeedAction></LongitudinalAction></PrivateAction></Private></Actions></Init>\n    <Story name="s"><Act name="a" unknown="u"><ManeuverGroup maximumExecutionCount="1" name="g"><Actors selectTriggeringEntities="false"/></ManeuverGroup><StartTrigger/></Act></Story>\n    <StopTrigger/>\n',
+    );
+    const summary = (problems: Problem[]) =>
+      problems.map(
+        (problem) =>
+          `${problem.code}@${problem.range.start.line}:${problem.range.start.character}-${problem.range.end.character} ${problem.message}`,
+      );
     schemaProblems(source, parseXml(text), schemaChecks);
     const edits: [string, string][] = [
       ['value="5"', 'value="fast"'],
@@ -239,13 +292,24 @@ describe('corpus: every file validates against its own version', function () {
     const names = fs.readdirSync(libraryDir).filter((name) => name.startsWith('modular_'));
     for (const name of names) {
       const store = new ScenarioStore({ scenarioPath: [libraryDir], root: path.join(libraryDir, name) });
-      const result = await new Flattener(store, 'asam', { version: 'auto' }).flatten(childRef(diskRef(path.join(libraryDir, name, 'result.mosc')), 'main.xosc'));
+      const result = await new Flattener(store, 'asam', { version: 'auto' }).flatten(
+        childRef(diskRef(path.join(libraryDir, name, 'result.mosc')), 'main.xosc'),
+      );
       assert.ok(result.text, name);
-      assert.deepEqual(errorsOf(result.problems).map((problem) => formatProblem(problem)), [], name);
+      assert.deepEqual(
+        errorsOf(result.problems).map((problem) => formatProblem(problem)),
+        [],
+        name,
+      );
     }
     const store = new ScenarioStore({ scenarioPath: [], root: caseStudyDir });
-    const caseStudy = await new Flattener(store, 'asam', { version: 'auto' }).flatten(diskRef(path.join(caseStudyDir, 'main.xosc')), { force: true });
+    const caseStudy = await new Flattener(store, 'asam', { version: 'auto' }).flatten(diskRef(path.join(caseStudyDir, 'main.xosc')), {
+      force: true,
+    });
     assert.ok(caseStudy.text);
-    assert.deepEqual(caseStudy.problems.filter((problem) => problem.code.startsWith('schema-') && problem.severity === 'error'), []);
+    assert.deepEqual(
+      caseStudy.problems.filter((problem) => problem.code.startsWith('schema-') && problem.severity === 'error'),
+      [],
+    );
   });
 });

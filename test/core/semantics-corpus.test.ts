@@ -43,7 +43,8 @@ describe('semantics on the real OpenSCENARIO corpus (../shared/corpus/openscenar
         shown.push(formatProblem(problem, openscenarioDir));
       }
     }
-    const sorted = (lists: Record<string, string[]>) => Object.fromEntries(Object.entries(lists).map(([file, problems]) => [file, [...problems].sort()]));
+    const sorted = (lists: Record<string, string[]>) =>
+      Object.fromEntries(Object.entries(lists).map(([file, problems]) => [file, [...problems].sort()]));
     const expected = expectedCorpusFindings();
     assert.deepEqual(sorted(found), sorted(expected), shown.join('\n'));
     // The checks had something to check: every $name resolved, expressions evaluated, catalog entries found.
@@ -71,7 +72,8 @@ describe('semantics on the real OpenSCENARIO corpus (../shared/corpus/openscenar
     const wrongErrors: Record<string, string[]> = {
       'esmini/Catalogs/Controllers/ControllerCatalog.xosc': GENUINELY_WRONG['esmini/Catalogs/Controllers/ControllerCatalog.xosc'].problems,
       'esmini/car_walk.xosc': GENUINELY_WRONG['esmini/car_walk.xosc'].problems,
-      'esmini/Catalogs/Environments/EnvironmentCatalog.xosc': GENUINELY_WRONG['esmini/Catalogs/Environments/EnvironmentCatalog.xosc'].problems,
+      'esmini/Catalogs/Environments/EnvironmentCatalog.xosc':
+        GENUINELY_WRONG['esmini/Catalogs/Environments/EnvironmentCatalog.xosc'].problems,
     };
     assert.deepEqual(errors, wrongErrors, shown.join('\n'));
     for (const file of ['cut-in.xosc', 'cut-in_environment.xosc', 'traffic_lights.xosc']) assert.ok(!errors[`esmini/${file}`], file);

@@ -34,7 +34,10 @@ async function flatten(root: string, outputPath?: string) {
   return new Flattener(new ScenarioStore({ scenarioPath: [], root })).flatten(diskRef(path.join(root, 'main.xosc')), { outputPath });
 }
 
-const codes = (problems: Problem[]) => problems.filter((problem) => problem.severity !== 'hint').map((problem) => `${path.basename(problem.source.disk)}:${problem.range.start.line + 1}:${problem.code}`);
+const codes = (problems: Problem[]) =>
+  problems
+    .filter((problem) => problem.severity !== 'hint')
+    .map((problem) => `${path.basename(problem.source.disk)}:${problem.range.start.line + 1}:${problem.code}`);
 
 describe('semantics across a flatten (SPEC 11)', function () {
   this.timeout(60_000);
@@ -68,10 +71,26 @@ describe('semantics across a flatten (SPEC 11)', function () {
   });
 
   it('carries nothing when the main file declares what the group needs, and warns naming both places when values differ', async () => {
-    const same = await flatten(fixtureWorkspace({ 'main.xosc': (text) => text.replace('<ParameterDeclaration name="owner"', '<ParameterDeclaration name="TargetSpeed" parameterType="double" value="20"/>\n    <ParameterDeclaration name="owner"') }));
+    const same = await flatten(
+      fixtureWorkspace({
+        'main.xosc': (text) =>
+          text.replace(
+            '<ParameterDeclaration name="owner"',
+            '<ParameterDeclaration name="TargetSpeed" parameterType="double" value="20"/>\n    <ParameterDeclaration name="owner"',
+          ),
+      }),
+    );
     assert.deepEqual([...(same.text ?? '').matchAll(/name="TargetSpeed"/g)].length, 1);
     assert.deepEqual(codes(same.problems), []);
-    const other = await flatten(fixtureWorkspace({ 'main.xosc': (text) => text.replace('<ParameterDeclaration name="owner"', '<ParameterDeclaration name="TargetSpeed" parameterType="double" value="30"/>\n    <ParameterDeclaration name="owner"') }));
+    const other = await flatten(
+      fixtureWorkspace({
+        'main.xosc': (text) =>
+          text.replace(
+            '<ParameterDeclaration name="owner"',
+            '<ParameterDeclaration name="TargetSpeed" parameterType="double" value="30"/>\n    <ParameterDeclaration name="owner"',
+          ),
+      }),
+    );
     assert.ok(other.text);
     assert.deepEqual([...other.text.matchAll(/name="TargetSpeed"/g)].length, 1);
     assert.match(other.text, /name="TargetSpeed" parameterType="double" value="30"/);
@@ -83,10 +102,18 @@ describe('semantics across a flatten (SPEC 11)', function () {
     assert.equal(conflict.related?.[0].range.start.line, 4, 'and at the source declaration');
   });
 
-  it('never declares a name twice: a carried value using a parameter the main file declares reads the main file\'s', async () => {
+  it("never declares a name twice: a carried value using a parameter the main file declares reads the main file's", async () => {
     const root = fixtureWorkspace({
-      'speed_up.xosc': (text) => text.replace('name="SlowFactor" parameterType="double" value="0.5"', 'name="SlowFactor" parameterType="double" value="${$TargetSpeed / 40}"'),
-      'main.xosc': (text) => text.replace('<ParameterDeclaration name="owner"', '<ParameterDeclaration name="TargetSpeed" parameterType="double" value="30"/>\n    <ParameterDeclaration name="owner"'),
+      'speed_up.xosc': (text) =>
+        text.replace(
+          'name="SlowFactor" parameterType="double" value="0.5"',
+          'name="SlowFactor" parameterType="double" value="${$TargetSpeed / 40}"',
+        ),
+      'main.xosc': (text) =>
+        text.replace(
+          '<ParameterDeclaration name="owner"',
+          '<ParameterDeclaration name="TargetSpeed" parameterType="double" value="30"/>\n    <ParameterDeclaration name="owner"',
+        ),
     });
     const result = await flatten(root);
     assert.ok(result.text, codes(result.problems).join('\n'));
@@ -113,14 +140,20 @@ describe('semantics across a flatten (SPEC 11)', function () {
     assert.deepEqual(names, ['owner', 'TargetSpeed', 'SlowFactor']);
     assert.match(result.text, /<Directory path="inner\/catalogs\/Maneuvers"\/>/);
     assert.match(result.text, /name="Drive.Drive.Accelerate"/);
-    assert.match(result.text, /<SimulationTimeCondition value="6"/, 'the package main file\'s override is kept');
+    assert.match(result.text, /<SimulationTimeCondition value="6"/, "the package main file's override is kept");
     assert.deepEqual(codes(result.problems), []);
   });
 
   it('reports a reference to a group that flattening renamed at its source position, as an error', async () => {
     const condition = (ref: string) =>
       `<Condition name="AfterAccelerate" delay="0" conditionEdge="none"><ByValueCondition><StoryboardElementStateCondition storyboardElementType="maneuverGroup" storyboardElementRef="${ref}" state="completeState"/></ByValueCondition></Condition>`;
-    const root = fixtureWorkspace({ 'main.xosc': (text) => text.replace('<Condition name="End"', `${condition('Drive')}\n        </ConditionGroup>\n        <ConditionGroup>\n        <Condition name="End"`) });
+    const root = fixtureWorkspace({
+      'main.xosc': (text) =>
+        text.replace(
+          '<Condition name="End"',
+          `${condition('Drive')}\n        </ConditionGroup>\n        <ConditionGroup>\n        <Condition name="End"`,
+        ),
+    });
     const result = await flatten(root);
     assert.equal(result.text, undefined, codes(result.problems).join('\n'));
     const renamed = result.problems.find((problem) => problem.code === 'renamed-reference');
@@ -132,7 +165,10 @@ describe('semantics across a flatten (SPEC 11)', function () {
   });
 
   it('reports an undeclared parameter of an imported group in its source, and writes nothing', async () => {
-    const root = fixtureWorkspace({ 'speed_up.xosc': (text) => text.replace('<SpeedActionDynamics dynamicsShape="linear" value="2"', '<SpeedActionDynamics dynamicsShape="linear" value="$Ghost"') });
+    const root = fixtureWorkspace({
+      'speed_up.xosc': (text) =>
+        text.replace('<SpeedActionDynamics dynamicsShape="linear" value="2"', '<SpeedActionDynamics dynamicsShape="linear" value="$Ghost"'),
+    });
     const result = await flatten(root);
     assert.equal(result.text, undefined);
     const undeclared = result.problems.find((problem) => problem.code === 'undeclared-parameter');
@@ -146,16 +182,31 @@ describe('semantics across a flatten (SPEC 11)', function () {
     const root = fixtureWorkspace();
     const analysis = await new Flattener(new ScenarioStore({ scenarioPath: [], root })).analyze(diskRef(path.join(root, 'main.xosc')));
     assert.deepEqual(codes(analysis.problems), []);
-    const wrong = fixtureWorkspace({ 'main.xosc': (text) => text.replace('name="owner" parameterType="string" value="Ego"', 'name="owner" parameterType="string" value="Egg"') });
-    const wrongAnalysis = await new Flattener(new ScenarioStore({ scenarioPath: [], root: wrong })).analyze(diskRef(path.join(wrong, 'main.xosc')));
-    assert.ok(wrongAnalysis.problems.some((problem) => problem.code === 'undeclared-entity' && /'Egg'/.test(problem.message)), codes(wrongAnalysis.problems).join('\n'));
+    const wrong = fixtureWorkspace({
+      'main.xosc': (text) =>
+        text.replace('name="owner" parameterType="string" value="Ego"', 'name="owner" parameterType="string" value="Egg"'),
+    });
+    const wrongAnalysis = await new Flattener(new ScenarioStore({ scenarioPath: [], root: wrong })).analyze(
+      diskRef(path.join(wrong, 'main.xosc')),
+    );
+    assert.ok(
+      wrongAnalysis.problems.some((problem) => problem.code === 'undeclared-entity' && /'Egg'/.test(problem.message)),
+      codes(wrongAnalysis.problems).join('\n'),
+    );
   });
 
   it('warns where a key sets attributes whose defaults differ, listing them', async () => {
     const root = fixtureWorkspace({
       'speed_up.xosc': (text) =>
-        text.replace('<SpeedActionDynamics dynamicsShape="linear" value="2"', '<SpeedActionDynamics parameterAttributes="value" dynamicsShape="linear" value="2"'),
-      'main.xosc': (text) => text.replace('<ParameterReference key="SimulationTimeCondition.value" value="6"/>', '<ParameterReference key="SimulationTimeCondition.value" value="6"/>\n              <ParameterReference key="value" value="3"/>'),
+        text.replace(
+          '<SpeedActionDynamics dynamicsShape="linear" value="2"',
+          '<SpeedActionDynamics parameterAttributes="value" dynamicsShape="linear" value="2"',
+        ),
+      'main.xosc': (text) =>
+        text.replace(
+          '<ParameterReference key="SimulationTimeCondition.value" value="6"/>',
+          '<ParameterReference key="SimulationTimeCondition.value" value="6"/>\n              <ParameterReference key="value" value="3"/>',
+        ),
     });
     const result = await flatten(root);
     const mixed = result.problems.find((problem) => problem.code === 'key-mixed-defaults');

@@ -45,10 +45,15 @@ async function problemsOf(text: string, files: Record<string, string> = {}, name
   const store = new ScenarioStore({ scenarioPath: [], root });
   const semantics = await analyzeDocument(diskRef(path.join(root, name)), parseXml(text), new CatalogLoader(store), false);
   const lines = text.split('\n');
-  return semanticProblems(semantics)
-    // esmini's reading of unsigned types differs (simulator-value), which is not these rules' business.
-    .filter((problem) => problem.severity !== 'hint' && problem.code !== 'simulator-value')
-    .map((problem) => `${problem.code}:${problem.severity}:${lines[problem.range.start.line].slice(problem.range.start.character, problem.range.end.character)}`);
+  return (
+    semanticProblems(semantics)
+      // esmini's reading of unsigned types differs (simulator-value), which is not these rules' business.
+      .filter((problem) => problem.severity !== 'hint' && problem.code !== 'simulator-value')
+      .map(
+        (problem) =>
+          `${problem.code}:${problem.severity}:${lines[problem.range.start.line].slice(problem.range.start.character, problem.range.end.character)}`,
+      )
+  );
 }
 
 async function messagesOf(text: string, code: string, files: Record<string, string> = {}, name = 'scenario.xosc'): Promise<string[]> {
@@ -71,7 +76,10 @@ describe('rules: names unique on each level (ASAM QC reference_control.unique_el
   });
 
   it('compares names as their parameters evaluate, and finds two entities of one name', async () => {
-    const text = scenario(event('E1'), '<ParameterDeclarations><ParameterDeclaration name="Other" parameterType="string" value="Ego"/></ParameterDeclarations>').replace(
+    const text = scenario(
+      event('E1'),
+      '<ParameterDeclarations><ParameterDeclaration name="Other" parameterType="string" value="Ego"/></ParameterDeclarations>',
+    ).replace(
       '</ScenarioObject>',
       '</ScenarioObject>\n    <ScenarioObject name="$Other"><Vehicle name="car" vehicleCategory="car"/></ScenarioObject>',
     );
@@ -80,19 +88,32 @@ describe('rules: names unique on each level (ASAM QC reference_control.unique_el
 
   it('is a warning with simulator esmini, which runs both', async () => {
     const text = scenario(`${event('Event1')}\n${event('Event1')}`);
-    const semantics = await analyzeDocument(diskRef('/virtual/names.xosc'), parseXml(text), new CatalogLoader(new ScenarioStore()), false, 'esmini');
+    const semantics = await analyzeDocument(
+      diskRef('/virtual/names.xosc'),
+      parseXml(text),
+      new CatalogLoader(new ScenarioStore()),
+      false,
+      'esmini',
+    );
     assert.deepEqual(
-      semanticProblems(semantics).filter((problem) => problem.code === 'duplicate-name').map((problem) => problem.severity),
+      semanticProblems(semantics)
+        .filter((problem) => problem.code === 'duplicate-name')
+        .map((problem) => problem.severity),
       ['warning'],
     );
   });
 
   it('finds two ManeuverGroups of one name where a condition names them, and leaves them alone otherwise (SPEC: a duplicate nothing refers to harms nobody)', async () => {
-    const group = (name: string) => `<ManeuverGroup name="${name}" maximumExecutionCount="1"><Actors selectTriggeringEntities="false"/></ManeuverGroup>`;
+    const group = (name: string) =>
+      `<ManeuverGroup name="${name}" maximumExecutionCount="1"><Actors selectTriggeringEntities="false"/></ManeuverGroup>`;
     const twice = scenario(event('E')).replace('</Act>', `${group('Twin')}\n${group('Twin')}</Act>`);
     assert.deepEqual(await problemsOf(twice), []);
-    const condition = '<StartTrigger><ConditionGroup><Condition name="C" delay="0" conditionEdge="none"><ByValueCondition><StoryboardElementStateCondition storyboardElementType="maneuverGroup" storyboardElementRef="Twin" state="endTransition"/></ByValueCondition></Condition></ConditionGroup></StartTrigger>';
-    const referenced = twice.replace('<Event name="E" priority="override"><Action name="EAction"><UserDefinedAction><CustomCommandAction type="t"/></UserDefinedAction></Action>', `<Event name="E" priority="override"><Action name="EAction"><UserDefinedAction><CustomCommandAction type="t"/></UserDefinedAction></Action>${condition}`);
+    const condition =
+      '<StartTrigger><ConditionGroup><Condition name="C" delay="0" conditionEdge="none"><ByValueCondition><StoryboardElementStateCondition storyboardElementType="maneuverGroup" storyboardElementRef="Twin" state="endTransition"/></ByValueCondition></Condition></ConditionGroup></StartTrigger>';
+    const referenced = twice.replace(
+      '<Event name="E" priority="override"><Action name="EAction"><UserDefinedAction><CustomCommandAction type="t"/></UserDefinedAction></Action>',
+      `<Event name="E" priority="override"><Action name="EAction"><UserDefinedAction><CustomCommandAction type="t"/></UserDefinedAction></Action>${condition}`,
+    );
     assert.deepEqual(await problemsOf(referenced), ['duplicate-name:error:Twin']);
   });
 
@@ -151,8 +172,16 @@ describe('rules: a catalog entry declares its parameters (ASAM QC parameters.val
 });
 
 function constrained(type: string, value: string, groups: string[][]): string {
-  const written = groups.map((group) => `<ConstraintGroup>${group.map((constraint) => `<ValueConstraint rule="${constraint.split(' ')[0]}" value="${constraint.split(' ').slice(1).join(' ')}"/>`).join('')}</ConstraintGroup>`).join('');
-  return scenario(event('E', `<UserDefinedAction><CustomCommandAction type="$P"/></UserDefinedAction>`), `<ParameterDeclarations><ParameterDeclaration name="P" parameterType="${type}" value="${value}">${written}</ParameterDeclaration></ParameterDeclarations>`);
+  const written = groups
+    .map(
+      (group) =>
+        `<ConstraintGroup>${group.map((constraint) => `<ValueConstraint rule="${constraint.split(' ')[0]}" value="${constraint.split(' ').slice(1).join(' ')}"/>`).join('')}</ConstraintGroup>`,
+    )
+    .join('');
+  return scenario(
+    event('E', `<UserDefinedAction><CustomCommandAction type="$P"/></UserDefinedAction>`),
+    `<ParameterDeclarations><ParameterDeclaration name="P" parameterType="${type}" value="${value}">${written}</ParameterDeclaration></ParameterDeclarations>`,
+  );
 }
 
 describe('rules: ValueConstraintGroups', () => {
@@ -166,7 +195,12 @@ describe('rules: ValueConstraintGroups', () => {
     { type: 'string', groups: [['notEqualTo none']], breaking: 'none', keeping: 'some' },
     { type: 'boolean', groups: [['equalTo true']], breaking: 'false', keeping: 'true' },
     { type: 'boolean', groups: [['notEqualTo false']], breaking: 'false', keeping: 'true' },
-    { type: 'dateTime', groups: [['greaterThan 2020-01-01T00:00:00', 'lessThan 2021-01-01T00:00:00']], breaking: '2021-06-01T12:00:00', keeping: '2020-06-01T12:00:00' },
+    {
+      type: 'dateTime',
+      groups: [['greaterThan 2020-01-01T00:00:00', 'lessThan 2021-01-01T00:00:00']],
+      breaking: '2021-06-01T12:00:00',
+      keeping: '2020-06-01T12:00:00',
+    },
   ];
   for (const { type, groups, breaking, keeping } of cases) {
     it(`${type} ${groups.map((group) => group.join(' and ')).join(' or ')}: ${breaking} breaks it at the value, ${keeping} keeps it`, async () => {
@@ -185,7 +219,7 @@ describe('rules: ValueConstraintGroups', () => {
     assert.deepEqual(await problemsOf(constrained('int', '1', [['lessThan ten']])), ['value-constraint:error:ten']);
   });
 
-  it('checks a value a CatalogReference assigns against the entry parameter\'s constraints, at the assignment', async () => {
+  it("checks a value a CatalogReference assigns against the entry parameter's constraints, at the assignment", async () => {
     const catalog = `${CATALOG_HEAD}
     <Vehicle name="car" vehicleCategory="car" mass="$Mass">
       <ParameterDeclarations><ParameterDeclaration name="Mass" parameterType="double" value="1000"><ConstraintGroup><ValueConstraint rule="greaterThan" value="0"/></ConstraintGroup></ParameterDeclaration></ParameterDeclarations>
@@ -203,15 +237,18 @@ describe('rules: ValueConstraintGroups', () => {
   });
 });
 
-const VARIABLES = '<VariableDeclarations><VariableDeclaration name="Flag" variableType="boolean" value="false"/><VariableDeclaration name="Count" variableType="int" value="0"/></VariableDeclarations>';
+const VARIABLES =
+  '<VariableDeclarations><VariableDeclaration name="Flag" variableType="boolean" value="false"/><VariableDeclaration name="Count" variableType="int" value="0"/></VariableDeclarations>';
 
 function variableAction(inner: string, variable = 'Flag'): string {
   return event('E', `<GlobalAction><VariableAction variableRef="${variable}">${inner}</VariableAction></GlobalAction>`);
 }
 
 describe('rules: values given to variables', () => {
-  it('a SetAction value that is not of the variable\'s type, at the value', async () => {
-    assert.deepEqual(await problemsOf(scenario(variableAction('<SetAction value="wrongBoolean"/>'), VARIABLES)), ['type-mismatch:error:wrongBoolean']);
+  it("a SetAction value that is not of the variable's type, at the value", async () => {
+    assert.deepEqual(await problemsOf(scenario(variableAction('<SetAction value="wrongBoolean"/>'), VARIABLES)), [
+      'type-mismatch:error:wrongBoolean',
+    ]);
     assert.deepEqual(await problemsOf(scenario(variableAction('<SetAction value="true"/>'), VARIABLES)), []);
   });
 
@@ -221,10 +258,15 @@ describe('rules: values given to variables', () => {
     assert.deepEqual(await problemsOf(scenario(variableAction(modify, 'Count'), VARIABLES)), []);
   });
 
-  it('accepts a variableRef that names a parameter, as ASAM\'s checker does', async () => {
-    const head = `${VARIABLES}`.replace('<VariableDeclarations>', '<ParameterDeclarations><ParameterDeclaration name="Limit" parameterType="int" value="3"/></ParameterDeclarations><VariableDeclarations>');
+  it("accepts a variableRef that names a parameter, as ASAM's checker does", async () => {
+    const head = `${VARIABLES}`.replace(
+      '<VariableDeclarations>',
+      '<ParameterDeclarations><ParameterDeclaration name="Limit" parameterType="int" value="3"/></ParameterDeclarations><VariableDeclarations>',
+    );
     assert.deepEqual(await problemsOf(scenario(variableAction('<SetAction value="4"/>', 'Limit'), head)), []);
-    assert.deepEqual(await problemsOf(scenario(variableAction('<SetAction value="4"/>', 'Limt'), head)), ['undeclared-variable:error:Limt']);
+    assert.deepEqual(await problemsOf(scenario(variableAction('<SetAction value="4"/>', 'Limt'), head)), [
+      'undeclared-variable:error:Limt',
+    ]);
   });
 });
 
@@ -256,9 +298,14 @@ ${variableAction('<SetAction value="true"/>')}
 });
 
 describe('rules: a parameter value against the type that uses it', () => {
-  const head = '<ParameterDeclarations><ParameterDeclaration name="testDouble" parameterType="string" value="RRR1.1"/><ParameterDeclaration name="Speed" parameterType="double" value="1"/></ParameterDeclarations>';
-  it('a ParameterAction SetAction value that the parameter\'s type cannot take, at the value', async () => {
-    const set = (value: string) => scenario(event('E', `<GlobalAction><ParameterAction parameterRef="Speed"><SetAction value="${value}"/></ParameterAction></GlobalAction>`), head);
+  const head =
+    '<ParameterDeclarations><ParameterDeclaration name="testDouble" parameterType="string" value="RRR1.1"/><ParameterDeclaration name="Speed" parameterType="double" value="1"/></ParameterDeclarations>';
+  it("a ParameterAction SetAction value that the parameter's type cannot take, at the value", async () => {
+    const set = (value: string) =>
+      scenario(
+        event('E', `<GlobalAction><ParameterAction parameterRef="Speed"><SetAction value="${value}"/></ParameterAction></GlobalAction>`),
+        head,
+      );
     assert.deepEqual(await problemsOf(set('$testDouble')), ['type-mismatch:error:$testDouble']);
     assert.deepEqual(await problemsOf(set('2.5')), []);
   });
@@ -270,10 +317,17 @@ describe('rules: deprecated elements, attributes and values are warnings naming 
       .filter((problem) => problem.code === 'schema-deprecated')
       .map((problem) => `${problem.severity}: ${problem.message}`);
   const weather = (attributes: string) =>
-    scenario(event('E', `<GlobalAction><EnvironmentAction><Environment name="env"><TimeOfDay animation="false" dateTime="2026-01-01T12:00:00"/><Weather ${attributes}/><RoadCondition frictionScaleFactor="1"/></Environment></EnvironmentAction></GlobalAction>`));
+    scenario(
+      event(
+        'E',
+        `<GlobalAction><EnvironmentAction><Environment name="env"><TimeOfDay animation="false" dateTime="2026-01-01T12:00:00"/><Weather ${attributes}/><RoadCondition frictionScaleFactor="1"/></Environment></EnvironmentAction></GlobalAction>`,
+      ),
+    );
 
   it('a deprecated attribute: a warning that names what to write instead', () => {
-    assert.deepEqual(deprecatedOf(weather('cloudState="free"')), ['warning: Weather.cloudState is deprecated since OpenSCENARIO 1.2; write fractionalCloudCover instead']);
+    assert.deepEqual(deprecatedOf(weather('cloudState="free"')), [
+      'warning: Weather.cloudState is deprecated since OpenSCENARIO 1.2; write fractionalCloudCover instead',
+    ]);
   });
 
   it('a deprecated attribute written together with its replacement: a warning naming both', () => {
@@ -284,34 +338,49 @@ describe('rules: deprecated elements, attributes and values are warnings naming 
 
   it('a deprecated value and a deprecated element', () => {
     const text = scenario(event('E')).replace('priority="override"', 'priority="overwrite"');
-    assert.deepEqual(deprecatedOf(text), ["warning: the value 'overwrite' of Event.priority is deprecated in OpenSCENARIO 1.2; write 'override'"]);
-    const parameterAction = scenario(event('E', '<GlobalAction><ParameterAction parameterRef="P"><SetAction value="1"/></ParameterAction></GlobalAction>'), '<ParameterDeclarations><ParameterDeclaration name="P" parameterType="int" value="0"/></ParameterDeclarations>');
+    assert.deepEqual(deprecatedOf(text), [
+      "warning: the value 'overwrite' of Event.priority is deprecated in OpenSCENARIO 1.2; write 'override'",
+    ]);
+    const parameterAction = scenario(
+      event('E', '<GlobalAction><ParameterAction parameterRef="P"><SetAction value="1"/></ParameterAction></GlobalAction>'),
+      '<ParameterDeclarations><ParameterDeclaration name="P" parameterType="int" value="0"/></ParameterDeclarations>',
+    );
     assert.deepEqual(deprecatedOf(parameterAction), [
       'warning: <ParameterAction> is deprecated since OpenSCENARIO 1.2; write <VariableAction> on a variable instead',
       'warning: <SetAction> is deprecated since OpenSCENARIO 1.2; write the <SetAction> of a <VariableAction> instead',
     ]);
   });
 
-  it('carries the standard\'s form for the quick fix where only a name or a value changes', () => {
+  it("carries the standard's form for the quick fix where only a name or a value changes", () => {
     const suggestions = (text: string) =>
       schemaProblems(diskRef('/virtual/deprecated.xosc'), parseXml(text), new SchemaCheckMemory())
         .filter((problem) => problem.code === 'schema-deprecated')
         .map((problem) => problem.data);
-    assert.deepEqual(suggestions(scenario(event('E')).replace('priority="override"', 'priority="overwrite"')), [{ suggestion: 'override' }]);
+    assert.deepEqual(suggestions(scenario(event('E')).replace('priority="override"', 'priority="overwrite"')), [
+      { suggestion: 'override' },
+    ]);
     assert.deepEqual(suggestions(weather('cloudState="free"')), [undefined], 'cloudState and fractionalCloudCover take other values');
     // Sun.intensity is deprecated from 1.3 on (illuminance).
-    const sun = weather('fractionalCloudCover="zeroOktas"').replace('<Weather fractionalCloudCover="zeroOktas"/>', '<Weather fractionalCloudCover="zeroOktas"><Sun azimuth="0" elevation="1" intensity="1000"/></Weather>').replace('revMinor="2"', 'revMinor="3"');
+    const sun = weather('fractionalCloudCover="zeroOktas"')
+      .replace(
+        '<Weather fractionalCloudCover="zeroOktas"/>',
+        '<Weather fractionalCloudCover="zeroOktas"><Sun azimuth="0" elevation="1" intensity="1000"/></Weather>',
+      )
+      .replace('revMinor="2"', 'revMinor="3"');
     assert.deepEqual(suggestions(sun), [{ suggestion: 'illuminance' }]);
   });
 
-  it('nothing in the standard\'s current forms', () => {
+  it("nothing in the standard's current forms", () => {
     assert.deepEqual(deprecatedOf(weather('fractionalCloudCover="zeroOktas"')), []);
   });
 });
 
 describe('rules: the constant pi', () => {
   it('is named a constant from OpenSCENARIO 1.4 on in a 1.3 file', async () => {
-    const text = scenario(event('E'), '<ParameterDeclarations><ParameterDeclaration name="Half" parameterType="double" value="${pi / 2}"/></ParameterDeclarations>').replace('revMinor="2"', 'revMinor="3"');
+    const text = scenario(
+      event('E'),
+      '<ParameterDeclarations><ParameterDeclaration name="Half" parameterType="double" value="${pi / 2}"/></ParameterDeclarations>',
+    ).replace('revMinor="2"', 'revMinor="3"');
     const messages = await messagesOf(text, 'nonstandard-expression');
     assert.equal(messages.length, 1);
     assert.match(messages[0], /^'pi' is a constant from OpenSCENARIO 1\.4 on, not of 1\.3/);

@@ -149,9 +149,18 @@ describe('semantics: scopes, values and catalogs', () => {
     const root = semantics.model.root;
     assert.ok(root);
     assert.equal(root.element.name, 'OpenSCENARIO');
-    assert.deepEqual(root.declarations.map((declaration) => declaration.name), ['Speed', 'Twice', 'Count', 'Owner', 'Idle', 'Owner']);
-    assert.deepEqual(root.children.map((scope) => scope.element.name), ['Vehicle', 'Story']);
-    assert.deepEqual(root.children[1].children.map((scope) => scope.element.name), ['Maneuver']);
+    assert.deepEqual(
+      root.declarations.map((declaration) => declaration.name),
+      ['Speed', 'Twice', 'Count', 'Owner', 'Idle', 'Owner'],
+    );
+    assert.deepEqual(
+      root.children.map((scope) => scope.element.name),
+      ['Vehicle', 'Story'],
+    );
+    assert.deepEqual(
+      root.children[1].children.map((scope) => scope.element.name),
+      ['Maneuver'],
+    );
     assert.equal(scopeAt(semantics, at('$Speed"/></Action>'))?.element.name, 'Maneuver');
     assert.equal(scopeAt(semantics, at('AtRoot'))?.element.name, 'OpenSCENARIO');
   });
@@ -169,7 +178,10 @@ describe('semantics: scopes, values and catalogs', () => {
     // An entity declared inline shadows the root too.
     const inVehicle = declarationAt(semantics, at('maxSpeed="$Speed"', 11));
     assert.equal(inVehicle?.scope.element.name, 'Vehicle');
-    assert.equal(semantics.evaluator.declarationValue(inVehicle!).ok && (semantics.evaluator.declarationValue(inVehicle!) as { value: number }).value, 25);
+    assert.equal(
+      semantics.evaluator.declarationValue(inVehicle!).ok && (semantics.evaluator.declarationValue(inVehicle!) as { value: number }).value,
+      25,
+    );
   });
 
   it('lists the references of each declaration and never mixes scopes', () => {
@@ -180,7 +192,11 @@ describe('semantics: scopes, values and catalogs', () => {
       'Twice, the Story Speed, and AtRoot',
     );
     const story = semantics.model.root!.children[1].byName.get('Speed')!;
-    assert.deepEqual(referencesOf(semantics, story).map((use) => use.attribute.value), ['${$Speed * 2}', '${$Speed / ($Speed - 21)}', '${$Speed / ($Speed - 21)}'], 'InStory and Broken, nothing of M1 or S2');
+    assert.deepEqual(
+      referencesOf(semantics, story).map((use) => use.attribute.value),
+      ['${$Speed * 2}', '${$Speed / ($Speed - 21)}', '${$Speed / ($Speed - 21)}'],
+      'InStory and Broken, nothing of M1 or S2',
+    );
     assert.equal(declarationAt(semantics, at('name="Twice"', 7))?.name, 'Twice');
   });
 
@@ -197,20 +213,26 @@ describe('semantics: scopes, values and catalogs', () => {
     assert.ok(inManeuver?.result.ok && inManeuver.result.provenance.kind === 'declaration');
     assert.equal(inManeuver.result.value, 5);
     assert.equal(inManeuver.result.provenance.declaration.scope.element.name, 'Maneuver');
-    assert.deepEqual(valueAt(semantics, at('name="S2"', 7))?.result, { ok: true, value: 'S2', type: 'string', provenance: { kind: 'literal' } });
+    assert.deepEqual(valueAt(semantics, at('name="S2"', 7))?.result, {
+      ok: true,
+      value: 'S2',
+      type: 'string',
+      provenance: { kind: 'literal' },
+    });
   });
 
   it('offers the parameters in scope, innermost first, shadowed ones left out', () => {
     const inManeuver = parametersInScopeAt(semantics, at('InManeuver'));
-    assert.deepEqual(inManeuver.map((entry) => `${entry.declaration.name}@${entry.declaration.scope.element.name}`), [
-      'Speed@Maneuver',
-      'Twice@OpenSCENARIO',
-      'Count@OpenSCENARIO',
-      'Owner@OpenSCENARIO',
-      'Idle@OpenSCENARIO',
-    ]);
+    assert.deepEqual(
+      inManeuver.map((entry) => `${entry.declaration.name}@${entry.declaration.scope.element.name}`),
+      ['Speed@Maneuver', 'Twice@OpenSCENARIO', 'Count@OpenSCENARIO', 'Owner@OpenSCENARIO', 'Idle@OpenSCENARIO'],
+    );
     const inTwice = parametersInScopeAt(semantics, at('name="Twice"'));
-    assert.deepEqual(inTwice.map((entry) => entry.declaration.name), ['Speed'], 'a value sees only the earlier declarations');
+    assert.deepEqual(
+      inTwice.map((entry) => entry.declaration.name),
+      ['Speed'],
+      'a value sees only the earlier declarations',
+    );
   });
 
   it('resolves catalog references and evaluates an entry with the reference assignments', () => {
@@ -269,18 +291,32 @@ describe('semantics: catalogs inside packages, through SCENARIO_PATH, and from u
   it('finds a catalog directory that does not exist beside the file through SCENARIO_PATH, as esmini does with --path', async () => {
     const root = temporaryWorkspace({ 'scenarios/scenario.xosc': SCENARIO, 'shared/catalogs/VehicleCatalog.xosc': CATALOG });
     const store = new ScenarioStore({ scenarioPath: [path.join(root, 'shared')], root });
-    const semantics = await analyzeDocument(diskRef(path.join(root, 'scenarios', 'scenario.xosc')), parseXml(SCENARIO), new CatalogLoader(store), false);
+    const semantics = await analyzeDocument(
+      diskRef(path.join(root, 'scenarios', 'scenario.xosc')),
+      parseXml(SCENARIO),
+      new CatalogLoader(store),
+      false,
+    );
     assert.equal(semantics.catalogs.locations[0].directories[0].via, 'scenarioPath');
     assert.ok(semantics.catalogs.references.find((reference) => reference.entryName === 'car')?.entry);
   });
 
-  it('reads a catalog file from the editor\'s unsaved text', async () => {
+  it("reads a catalog file from the editor's unsaved text", async () => {
     const root = temporaryWorkspace({ 'scenario.xosc': SCENARIO, 'catalogs/VehicleCatalog.xosc': CATALOG });
     const store = new ScenarioStore({ scenarioPath: [], root });
-    store.setOverlay(diskRef(path.join(root, 'catalogs', 'VehicleCatalog.xosc')), CATALOG.replace('<Vehicle name="car"', '<Vehicle name="truck"'));
+    store.setOverlay(
+      diskRef(path.join(root, 'catalogs', 'VehicleCatalog.xosc')),
+      CATALOG.replace('<Vehicle name="car"', '<Vehicle name="truck"'),
+    );
     const semantics = await analyzeDocument(diskRef(path.join(root, 'scenario.xosc')), parseXml(SCENARIO), new CatalogLoader(store), false);
     const codes = semanticProblems(semantics).map((problem) => `${problem.code}:${problem.message}`);
-    assert.ok(codes.some((code) => code.startsWith("unknown-catalog-entry:catalog 'VehicleCatalog' has no entry named 'car'")), codes.join('\n'));
-    assert.ok(codes.some((code) => code.endsWith('it has: truck')), 'truck exists in the unsaved text');
+    assert.ok(
+      codes.some((code) => code.startsWith("unknown-catalog-entry:catalog 'VehicleCatalog' has no entry named 'car'")),
+      codes.join('\n'),
+    );
+    assert.ok(
+      codes.some((code) => code.endsWith('it has: truck')),
+      'truck exists in the unsaved text',
+    );
   });
 });

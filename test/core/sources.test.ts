@@ -41,7 +41,11 @@ describe('core: resolving scenarioFileName (SPEC 3)', () => {
   it('never searches parent folders from inside a .mosc, and a file NAME.mosc wins over a folder NAME/', async () => {
     const zip = new JSZip();
     zip.file('main.xosc', scenario(''));
-    const root = temporaryWorkspace({ 'beside.xosc': scenario(''), 'p.mosc': await zip.generateAsync({ type: 'uint8array' }), 'p/main.xosc': scenario('') });
+    const root = temporaryWorkspace({
+      'beside.xosc': scenario(''),
+      'p.mosc': await zip.generateAsync({ type: 'uint8array' }),
+      'p/main.xosc': scenario(''),
+    });
     const store = new ScenarioStore({ root, scenarioPath: [] });
     const inside = childRef(diskRef(path.join(root, 'p.mosc')), 'main.xosc');
     assert.equal((await store.resolve('beside.xosc', inside)).kind, 'missing');
@@ -57,7 +61,8 @@ describe('core: resolving scenarioFileName (SPEC 3)', () => {
       'simple.xosc': scenario(simpleGroup('Go')),
       'inner.mosc': await inner.generateAsync({ type: 'uint8array' }),
       'main.xosc': scenario(
-        outerGroup('Nested', 'car', [{ file: 'inner.mosc', groups: [{ name: 'Inner.Go' }] }]) + outerGroup('Direct', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Go' }] }]),
+        outerGroup('Nested', 'car', [{ file: 'inner.mosc', groups: [{ name: 'Inner.Go' }] }]) +
+          outerGroup('Direct', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Go' }] }]),
       ),
     });
     const text = (await new Flattener(new ScenarioStore({ root, scenarioPath: [] })).flatten(diskRef(path.join(root, 'main.xosc')))).text!;
@@ -98,7 +103,9 @@ describe('core: reading packages safely', () => {
     zip.file('main.xosc', scenario(simpleGroup('Go')));
     const bytes = await zip.generateAsync({ type: 'uint8array', compression: 'DEFLATE' });
     const root = temporaryWorkspace({ 'cut.mosc': bytes.slice(0, Math.floor(bytes.length / 2)) });
-    const result = await new Flattener(new ScenarioStore({ root, scenarioPath: [] })).flatten(childRef(diskRef(path.join(root, 'cut.mosc')), 'main.xosc'));
+    const result = await new Flattener(new ScenarioStore({ root, scenarioPath: [] })).flatten(
+      childRef(diskRef(path.join(root, 'cut.mosc')), 'main.xosc'),
+    );
     assert.equal(result.text, undefined);
     assert.equal(result.problems[0].code, 'bad-package');
     assert.match(result.problems[0].message, /cut\.mosc is not a readable ZIP archive/);

@@ -40,7 +40,8 @@ const ESMINI_LOGGED: [body: string, logged: string][] = [
   ['pow(10, 308) * 10', 'inf'],
 ];
 
-const lookup = (name: string): EsminiText | undefined => (ESMINI_PARAMETERS[name] === undefined ? undefined : { ok: true, text: ESMINI_PARAMETERS[name], rules: [] });
+const lookup = (name: string): EsminiText | undefined =>
+  ESMINI_PARAMETERS[name] === undefined ? undefined : { ok: true, text: ESMINI_PARAMETERS[name], rules: [] };
 
 /** The logged value (ten decimals) and our text (six, as esmini keeps it) name the same value. */
 function sameAsLogged(ours: string, logged: string): boolean {
@@ -87,7 +88,13 @@ const SCENARIO = `<?xml version="1.0" encoding="UTF-8"?>
 
 async function analyze(simulator?: 'esmini'): Promise<DocumentSemantics> {
   const root = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-values-'));
-  return analyzeDocument(diskRef(path.join(root, 'values.xosc')), parseXml(SCENARIO), new CatalogLoader(new ScenarioStore({ scenarioPath: [], root })), false, simulator);
+  return analyzeDocument(
+    diskRef(path.join(root, 'values.xosc')),
+    parseXml(SCENARIO),
+    new CatalogLoader(new ScenarioStore({ scenarioPath: [], root })),
+    false,
+    simulator,
+  );
 }
 
 function valueOf(semantics: DocumentSemantics, name: string): ValueResult {
@@ -170,14 +177,19 @@ describe('values by the standard and by esmini (SPEC 12)', () => {
       assert.ok(byStandard.ok && byStandard.differs, `${name} differs`);
       const fact = ESMINI_PROFILE.valueRules?.[rule as keyof NonNullable<typeof ESMINI_PROFILE.valueRules>];
       assert.ok(fact, rule);
-      assert.ok(byStandard.differs.reasons.some((reason) => reason.includes(fact.source)), `${name}: ${byStandard.differs.reasons.join(' | ')}`);
+      assert.ok(
+        byStandard.differs.reasons.some((reason) => reason.includes(fact.source)),
+        `${name}: ${byStandard.differs.reasons.join(' | ')}`,
+      );
       const warning = problemAt(problems, name, 'simulator-value');
       assert.equal(warning.severity, 'warning');
       assert.match(warning.message, new RegExp(`esmini computes ${String(esminiValue)} where the standard gives ${String(standardValue)}`));
     }
     // Where both agree there is no warning, and esmini's six decimals are no difference.
     assert.equal(okValue(valueOf(esmini, 'Same')), 7);
-    assert.ok(!problems.some((problem) => problem.code === 'simulator-value' && /Same|Third/.test(SCENARIO.split('\n')[problem.range.start.line])));
+    assert.ok(
+      !problems.some((problem) => problem.code === 'simulator-value' && /Same|Third/.test(SCENARIO.split('\n')[problem.range.start.line])),
+    );
     assert.equal(okValue(valueOf(esmini, 'Third')), 0.333333);
   });
 
@@ -202,7 +214,10 @@ describe('values by the standard and by esmini (SPEC 12)', () => {
     const stop = problemAt(problems, 'Stop', 'lenient-value');
     assert.equal(textOf(stop), '$RedLightDistance');
     assert.deepEqual(stop.data, { relatedReplacement: 'double' });
-    assert.equal(stop.related?.[0].range.start.line, SCENARIO.split('\n').findIndex((text) => text.includes('name="RedLightDistance"')));
+    assert.equal(
+      stop.related?.[0].range.start.line,
+      SCENARIO.split('\n').findIndex((text) => text.includes('name="RedLightDistance"')),
+    );
     const bare = problemAt(problems, 'Bare', 'lenient-value');
     assert.equal(textOf(bare), 'HeadwayTime_Brake');
     assert.deepEqual(bare.data, { suggestion: '$HeadwayTime_Brake' });
@@ -242,14 +257,21 @@ describe('values by the standard and by esmini (SPEC 12)', () => {
     const base = fs.readFileSync(path.join(sharedDir, 'corpus', 'openscenario', 'esmini', 'cut-in_simple.xosc'), 'utf8');
     const escape = (text: string) => text.replace(/&/g, '&amp;').replace(/</g, '&lt;').replace(/"/g, '&quot;');
     const declarations = [
-      ...Object.entries(ESMINI_PARAMETERS).map(([name, value]) => `<ParameterDeclaration name="${name}" parameterType="string" value="${value}"/>`),
-      ...ESMINI_LOGGED.map(([body], index) => `<ParameterDeclaration name="v${index}" parameterType="string" value="${escape(`\${${body}}`)}"/>`),
+      ...Object.entries(ESMINI_PARAMETERS).map(
+        ([name, value]) => `<ParameterDeclaration name="${name}" parameterType="string" value="${value}"/>`,
+      ),
+      ...ESMINI_LOGGED.map(
+        ([body], index) => `<ParameterDeclaration name="v${index}" parameterType="string" value="${escape(`\${${body}}`)}"/>`,
+      ),
     ].join('\n');
     const scenario = path.join(directory, 'values.xosc');
     fs.writeFileSync(scenario, base.replace('<ParameterDeclarations>', `<ParameterDeclarations>\n${declarations}`));
     const output = await new Promise<string>((resolve, reject) => {
       const chunks: string[] = [];
-      const child = spawn(esminiBinary, ['--headless', '--osc', scenario, '--fixed_timestep', '0.1', '--disable_log'], { cwd: directory, stdio: ['ignore', 'pipe', 'pipe'] });
+      const child = spawn(esminiBinary, ['--headless', '--osc', scenario, '--fixed_timestep', '0.1', '--disable_log'], {
+        cwd: directory,
+        stdio: ['ignore', 'pipe', 'pipe'],
+      });
       const timer = setTimeout(() => child.kill('SIGKILL'), 60_000);
       child.stdout.on('data', (chunk: Buffer) => chunks.push(chunk.toString()));
       child.stderr.on('data', (chunk: Buffer) => chunks.push(chunk.toString()));

@@ -57,9 +57,12 @@ ${body}
 `;
 }
 
-const single = (name: string, inner: string): string => `      <DeterministicSingleParameterDistribution parameterName="${name}">${inner}</DeterministicSingleParameterDistribution>`;
-const range = (name: string, step: string, lower: string, upper: string): string => single(name, `<DistributionRange stepWidth="${step}"><Range lowerLimit="${lower}" upperLimit="${upper}"/></DistributionRange>`);
-const set = (name: string, values: string[]): string => single(name, `<DistributionSet>${values.map((v) => `<Element value="${v}"/>`).join('')}</DistributionSet>`);
+const single = (name: string, inner: string): string =>
+  `      <DeterministicSingleParameterDistribution parameterName="${name}">${inner}</DeterministicSingleParameterDistribution>`;
+const range = (name: string, step: string, lower: string, upper: string): string =>
+  single(name, `<DistributionRange stepWidth="${step}"><Range lowerLimit="${lower}" upperLimit="${upper}"/></DistributionRange>`);
+const set = (name: string, values: string[]): string =>
+  single(name, `<DistributionSet>${values.map((v) => `<Element value="${v}"/>`).join('')}</DistributionSet>`);
 const multi = (sets: [string, string][][]): string =>
   `      <DeterministicMultiParameterDistribution><ValueSetDistribution>${sets.map((assignments) => `<ParameterValueSet>${assignments.map(([p, v]) => `<ParameterAssignment parameterRef="${p}" value="${v}"/>`).join('')}</ParameterValueSet>`).join('')}</ValueSetDistribution></DeterministicMultiParameterDistribution>`;
 
@@ -73,13 +76,59 @@ const CASES: { name: string; body: string }[] = [
   { name: 'negative range through zero', body: range('Gap', '0.1', '-0.3', '0.3') },
   { name: 'large values', body: range('Speed', '1.5', '1000000', '1000003') },
   { name: 'a range of one value', body: range('Lane', '1', '2', '2') },
-  { name: 'multi-parameter sets assigning different parameters', body: multi([[['Car', 'car_blue'], ['Weather', 'wet']], [['Weather', 'snow']], [['Car', 'van'], ['Speed', '3'], ['Gap', '0.5']]]) },
+  {
+    name: 'multi-parameter sets assigning different parameters',
+    body: multi([
+      [
+        ['Car', 'car_blue'],
+        ['Weather', 'wet'],
+      ],
+      [['Weather', 'snow']],
+      [
+        ['Car', 'van'],
+        ['Speed', '3'],
+        ['Gap', '0.5'],
+      ],
+    ]),
+  },
   {
     name: 'several distributions combined',
-    body: [range('Speed', '5', '10', '30'), set('Car', ['car_red', 'car_yellow']), multi([[['Weather', 'fog'], ['Lane', '-2']], [['Lane', '-3']]]), range('Gap', '0.25', '0.5', '1.25')].join('\n'),
+    body: [
+      range('Speed', '5', '10', '30'),
+      set('Car', ['car_red', 'car_yellow']),
+      multi([
+        [
+          ['Weather', 'fog'],
+          ['Lane', '-2'],
+        ],
+        [['Lane', '-3']],
+      ]),
+      range('Gap', '0.25', '0.5', '1.25'),
+    ].join('\n'),
   },
-  { name: 'the same parameter in two distributions (the later wins)', body: [set('Speed', ['1', '2']), multi([[['Speed', '7']], [['Gap', '9']], [['Gap', '3'], ['Gap', '4']]])].join('\n') },
-  { name: 'a larger product, sampled', body: [range('Speed', '0.5', '0', '20'), range('Gap', '0.1', '0.5', '3.5'), set('Car', ['a', 'b', 'c']), set('Weather', ['dry', 'wet'])].join('\n') },
+  {
+    name: 'the same parameter in two distributions (the later wins)',
+    body: [
+      set('Speed', ['1', '2']),
+      multi([
+        [['Speed', '7']],
+        [['Gap', '9']],
+        [
+          ['Gap', '3'],
+          ['Gap', '4'],
+        ],
+      ]),
+    ].join('\n'),
+  },
+  {
+    name: 'a larger product, sampled',
+    body: [
+      range('Speed', '0.5', '0', '20'),
+      range('Gap', '0.1', '0.5', '3.5'),
+      set('Car', ['a', 'b', 'c']),
+      set('Weather', ['dry', 'wet']),
+    ].join('\n'),
+  },
 ];
 
 interface EsminiRun {
@@ -88,7 +137,11 @@ interface EsminiRun {
 }
 
 function esmini(program: string, cwd: string, args: string[]): EsminiRun {
-  const result = spawnSync(program, ['--headless', '--fixed_timestep', '0.1', '--disable_log', ...args], { cwd, encoding: 'utf8', timeout: 60_000 });
+  const result = spawnSync(program, ['--headless', '--fixed_timestep', '0.1', '--disable_log', ...args], {
+    cwd,
+    encoding: 'utf8',
+    timeout: 60_000,
+  });
   return { status: result.status, log: `${result.stdout ?? ''}${result.stderr ?? ''}` };
 }
 
@@ -123,7 +176,7 @@ function ourValues(variations: Variations, index: bigint): Map<string, string> {
 function sampledIndices(count: bigint): bigint[] {
   if (count <= 40n) return [...Array(Number(count)).keys()].map(BigInt);
   const picks = new Set<bigint>([0n, 1n, count / 2n, count - 2n, count - 1n]);
-  for (let k = 1n; k <= 12n; k++) picks.add((k * 7919n * count) / 100_003n % count);
+  for (let k = 1n; k <= 12n; k++) picks.add(((k * 7919n * count) / 100_003n) % count);
   return [...picks].sort((a, b) => (a < b ? -1 : 1));
 }
 
@@ -137,7 +190,11 @@ async function compare(program: string, dir: string, file: string, log: string[]
   const scenarioName = path.basename(variations.scenarioPath).replace(/\.xosc$/, '');
   const indices = sampledIndices(variations.count);
   for (const index of indices) {
-    assert.deepEqual(ourValues(variations, index), esminiValues(program, dir, file, scenarioName, index, variations.count), `${file}: index ${index}`);
+    assert.deepEqual(
+      ourValues(variations, index),
+      esminiValues(program, dir, file, scenarioName, index, variations.count),
+      `${file}: index ${index}`,
+    );
   }
   log.push(`${file}: ${count} combinations, ${indices.length} indices compared`);
 }
@@ -181,12 +238,20 @@ describe('core: variations against esmini (--return_nr_permutations, --param_per
 
   it('UserDefinedDistribution: esmini refuses it, this tool expands type="list" in order', async () => {
     const file = 'userDefined.xosc';
-    fs.writeFileSync(path.join(dir, file), distribution(single('Car', '<UserDefinedDistribution type="list">car_red car_blue\n van</UserDefinedDistribution>')));
+    fs.writeFileSync(
+      path.join(dir, file),
+      distribution(single('Car', '<UserDefinedDistribution type="list">car_red car_blue\n van</UserDefinedDistribution>')),
+    );
     const run = esmini(program, dir, ['--osc', file, '--return_nr_permutations']);
     assert.match(run.log, /UserDefinedDistribution not yet supported/);
-    const loaded = await loadVariations(fs.readFileSync(path.join(dir, file), 'utf8'), path.join(dir, file), (p) => fs.promises.readFile(p, 'utf8'));
+    const loaded = await loadVariations(fs.readFileSync(path.join(dir, file), 'utf8'), path.join(dir, file), (p) =>
+      fs.promises.readFile(p, 'utf8'),
+    );
     const variations = loaded.variations as Variations;
     assert.equal(variations.count, 3n);
-    assert.deepEqual([0n, 1n, 2n].map((i) => ourValues(variations, i).get('Car')), ['car_red', 'car_blue', 'van']);
+    assert.deepEqual(
+      [0n, 1n, 2n].map((i) => ourValues(variations, i).get('Car')),
+      ['car_red', 'car_blue', 'van'],
+    );
   });
 });

@@ -61,27 +61,68 @@ describe('core: variations, seeded random numbers', () => {
   it('is xoshiro128** seeded by SplitMix64: the reference C implementation gives the same words', () => {
     // Printed by the reference C code of both generators (prng.di.unimi.it), seeded as random.ts documents.
     const seed0 = generatorForRun(0, 0);
-    assert.deepEqual(Array.from({ length: 6 }, () => seed0.nextUint32()), [513008459, 2795874746, 972916236, 1374099887, 2042740824, 3697851841]);
+    assert.deepEqual(
+      Array.from({ length: 6 }, () => seed0.nextUint32()),
+      [513008459, 2795874746, 972916236, 1374099887, 2042740824, 3697851841],
+    );
     const seed42 = generatorForRun(42, 1);
-    assert.deepEqual(Array.from({ length: 6 }, () => seed42.nextUint32()), [3699588373, 2050747386, 117689897, 4143233103, 1677809260, 2948185039]);
+    assert.deepEqual(
+      Array.from({ length: 6 }, () => seed42.nextUint32()),
+      [3699588373, 2050747386, 117689897, 4143233103, 1677809260, 2948185039],
+    );
     assert.equal(generatorForRun(12345.5, 0).nextDouble(), 0.3456700715785038);
   });
 
   it('gives the committed first draws of every sampler for seed 2026 (the algorithm is the contract)', () => {
     const cases: [StochasticDistribution, string[]][] = [
-      [distribution({ kind: 'normal', mean: 5, variance: 4 }), ['6.391592319134579', '4.06891030158754', '8.543146280785773', '2.696703226398891', '2.9465572575825845']],
-      [distribution({ kind: 'normal', mean: 0, variance: 1 }, { lower: 0.5, upper: 1 }), ['0.6957961595672898', '0.8115708773868275', '0.9937395145480998', '0.676665932124986', '0.6761186244275265']],
-      [distribution({ kind: 'logNormal', mean: 10, variance: 4 }), ['11.254541531892071', '8.942160351773394', '13.926882697579616', '7.806055321389547', '8.001592439665526']],
-      [distribution({ kind: 'uniform' }, { lower: -2, upper: 3 }), ['-0.8912462892895816', '-1.8513903539908299', '-1.4862709450226053', '0.4828960817663468', '2.6142892047524677']],
+      [
+        distribution({ kind: 'normal', mean: 5, variance: 4 }),
+        ['6.391592319134579', '4.06891030158754', '8.543146280785773', '2.696703226398891', '2.9465572575825845'],
+      ],
+      [
+        distribution({ kind: 'normal', mean: 0, variance: 1 }, { lower: 0.5, upper: 1 }),
+        ['0.6957961595672898', '0.8115708773868275', '0.9937395145480998', '0.676665932124986', '0.6761186244275265'],
+      ],
+      [
+        distribution({ kind: 'logNormal', mean: 10, variance: 4 }),
+        ['11.254541531892071', '8.942160351773394', '13.926882697579616', '7.806055321389547', '8.001592439665526'],
+      ],
+      [
+        distribution({ kind: 'uniform' }, { lower: -2, upper: 3 }),
+        ['-0.8912462892895816', '-1.8513903539908299', '-1.4862709450226053', '0.4828960817663468', '2.6142892047524677'],
+      ],
       [distribution({ kind: 'poisson', mean: 4 }), ['1', '3', '5', '1', '0']],
       [distribution({ kind: 'poisson', mean: 100 }), ['91', '85', '118', '101', '98']],
-      [distribution({ kind: 'histogram', bins: [{ weight: 1, range: bin(0, 1) }, { weight: 2, range: bin(1, 2) }, { weight: 1, range: bin(2, 4) }] }), ['0.02972192920183403', '0.4965792163532694', '2.213887756843163', '1.4383331791725682', '1.5236009105969637']],
-      [distribution({ kind: 'probabilitySet', elements: [{ value: 'a', weight: 1 }, { value: 'b', weight: 3 }] }), ['a', 'a', 'a', 'b', 'b']],
+      [
+        distribution({
+          kind: 'histogram',
+          bins: [
+            { weight: 1, range: bin(0, 1) },
+            { weight: 2, range: bin(1, 2) },
+            { weight: 1, range: bin(2, 4) },
+          ],
+        }),
+        ['0.02972192920183403', '0.4965792163532694', '2.213887756843163', '1.4383331791725682', '1.5236009105969637'],
+      ],
+      [
+        distribution({
+          kind: 'probabilitySet',
+          elements: [
+            { value: 'a', weight: 1 },
+            { value: 'b', weight: 3 },
+          ],
+        }),
+        ['a', 'a', 'a', 'b', 'b'],
+      ],
       [distribution({ kind: 'userDefined', type: 'list', values: ['x', 'y', 'z'] }), ['x', 'x', 'x', 'y', 'z']],
     ];
     for (const [d, expected] of cases) {
       const random = generatorForRun(2026, 0);
-      assert.deepEqual(Array.from({ length: 5 }, () => draw(random, d)), expected, d.sampler.kind);
+      assert.deepEqual(
+        Array.from({ length: 5 }, () => draw(random, d)),
+        expected,
+        d.sampler.kind,
+      );
     }
   });
 
@@ -125,7 +166,7 @@ describe('core: variations, samplers fit their distributions (n = 20000, fixed s
     const small = drawMany(distribution({ kind: 'poisson', mean: 4 })).map(Number);
     const counts = new Array<number>(11).fill(0);
     for (const v of small) counts[Math.min(v, 10)]++;
-    const pmf = counts.map((_, k) => Math.exp(-4) * 4 ** k / [1, 1, 2, 6, 24, 120, 720, 5040, 40320, 362880][k] || 0);
+    const pmf = counts.map((_, k) => (Math.exp(-4) * 4 ** k) / [1, 1, 2, 6, 24, 120, 720, 5040, 40320, 362880][k] || 0);
     pmf[10] = 1 - pmf.slice(0, 10).reduce((sum, p) => sum + p, 0);
     assert.ok(chiSquare(counts, pmf) < CHI2_CRITICAL[10], `chi-square ${chiSquare(counts, pmf)}`);
     for (const lambda of [30, 100, 1000]) {
@@ -138,19 +179,48 @@ describe('core: variations, samplers fit their distributions (n = 20000, fixed s
   });
 
   it('histogram: bins by weight (chi-square), uniform within a bin', () => {
-    const values = drawMany(distribution({ kind: 'histogram', bins: [{ weight: 1, range: bin(0, 1) }, { weight: 2, range: bin(1, 2) }, { weight: 1, range: bin(2, 4) }] })).map(Number);
+    const values = drawMany(
+      distribution({
+        kind: 'histogram',
+        bins: [
+          { weight: 1, range: bin(0, 1) },
+          { weight: 2, range: bin(1, 2) },
+          { weight: 1, range: bin(2, 4) },
+        ],
+      }),
+    ).map(Number);
     const counts = [0, 0, 0];
     for (const v of values) counts[v < 1 ? 0 : v < 2 ? 1 : 2]++;
     assert.ok(chiSquare(counts, [0.25, 0.5, 0.25]) < CHI2_CRITICAL[2]);
-    assert.ok(ks(values.filter((v) => v >= 2), (x) => (x - 2) / 2) < 1.95 / Math.sqrt(counts[2]));
+    assert.ok(
+      ks(
+        values.filter((v) => v >= 2),
+        (x) => (x - 2) / 2,
+      ) <
+        1.95 / Math.sqrt(counts[2]),
+    );
   });
 
   it('probability set and user-defined list: chi-square against their weights', () => {
-    const set = drawMany(distribution({ kind: 'probabilitySet', elements: [{ value: 'a', weight: 1 }, { value: 'b', weight: 3 }, { value: 'c', weight: 0 }] }));
+    const set = drawMany(
+      distribution({
+        kind: 'probabilitySet',
+        elements: [
+          { value: 'a', weight: 1 },
+          { value: 'b', weight: 3 },
+          { value: 'c', weight: 0 },
+        ],
+      }),
+    );
     assert.equal(set.filter((v) => v === 'c').length, 0);
     assert.ok(chiSquare([set.filter((v) => v === 'a').length, set.filter((v) => v === 'b').length], [0.25, 0.75]) < CHI2_CRITICAL[1]);
     const listed = drawMany(distribution({ kind: 'userDefined', type: 'list', values: ['x', 'y', 'z'] }));
-    assert.ok(chiSquare(['x', 'y', 'z'].map((v) => listed.filter((w) => w === v).length), [1 / 3, 1 / 3, 1 / 3]) < CHI2_CRITICAL[2]);
+    assert.ok(
+      chiSquare(
+        ['x', 'y', 'z'].map((v) => listed.filter((w) => w === v).length),
+        [1 / 3, 1 / 3, 1 / 3],
+      ) < CHI2_CRITICAL[2],
+    );
   });
 
   it('a Range is honoured by drawing again; an unreachable one is an error, not a hang', () => {
@@ -158,7 +228,10 @@ describe('core: variations, samplers fit their distributions (n = 20000, fixed s
     assert.ok(values.every((v) => v >= 0.5 && v <= 1));
     const poisson = drawMany(distribution({ kind: 'poisson', mean: 4 }, { lower: 2, upper: 3 })).map(Number);
     assert.ok(poisson.every((v) => v === 2 || v === 3));
-    assert.throws(() => draw(generatorForRun(0, 0), distribution({ kind: 'normal', mean: 0, variance: 1 }, { lower: 50, upper: 51 })), SamplingError);
+    assert.throws(
+      () => draw(generatorForRun(0, 0), distribution({ kind: 'normal', mean: 0, variance: 1 }, { lower: 50, upper: 51 })),
+      SamplingError,
+    );
   });
 });
 
@@ -201,11 +274,22 @@ describe('core: variations, stochastic distribution files', () => {
   it('has numberOfTestRuns concrete scenarios; run I is the same drawn alone or after the others; the seed changes it', async () => {
     const variations = await load(stochastic('randomSeed="7"'));
     assert.equal(variations.count, 50n);
-    const all = [...Array(50).keys()].map((i) => variations.assignmentAt(BigInt(i)).map((a) => a.value).join(','));
-    const alone = (await load(stochastic('randomSeed="7"'))).assignmentAt(37n).map((a) => a.value).join(',');
+    const all = [...Array(50).keys()].map((i) =>
+      variations
+        .assignmentAt(BigInt(i))
+        .map((a) => a.value)
+        .join(','),
+    );
+    const alone = (await load(stochastic('randomSeed="7"')))
+      .assignmentAt(37n)
+      .map((a) => a.value)
+      .join(',');
     assert.equal(alone, all[37]);
     assert.equal(new Set(all).size, 50);
-    const reseeded = (await load(stochastic('randomSeed="8"'))).assignmentAt(37n).map((a) => a.value).join(',');
+    const reseeded = (await load(stochastic('randomSeed="8"')))
+      .assignmentAt(37n)
+      .map((a) => a.value)
+      .join(',');
     assert.notEqual(reseeded, all[37]);
     const values = async (seed: string): Promise<string[]> => (await load(stochastic(seed))).assignmentAt(0n).map((a) => a.value);
     assert.deepEqual(await values(''), await values('randomSeed="0"'));
@@ -220,9 +304,18 @@ describe('core: variations, stochastic distribution files', () => {
     assert.deepEqual(out, ['50']);
     assert.equal(await varyCommand([file, '--out-dir', path.join(dir, 'out'), '--sample', '10', '--seed', '3'], io), 0);
     assert.equal(fs.readdirSync(path.join(dir, 'out')).length, 10);
-    fs.writeFileSync(file, stochastic('randomSeed="7"', '\n      <StochasticDistribution parameterName="Speed"><NormalDistribution expectedValue="0" variance="1"><Range lowerLimit="100" upperLimit="101"/></NormalDistribution></StochasticDistribution>'));
+    fs.writeFileSync(
+      file,
+      stochastic(
+        'randomSeed="7"',
+        '\n      <StochasticDistribution parameterName="Speed"><NormalDistribution expectedValue="0" variance="1"><Range lowerLimit="100" upperLimit="101"/></NormalDistribution></StochasticDistribution>',
+      ),
+    );
     const errors: string[] = [];
-    assert.equal(await varyCommand([file, '--out-dir', path.join(dir, 'never')], { out: () => undefined, err: (text) => errors.push(text) }), 1);
+    assert.equal(
+      await varyCommand([file, '--out-dir', path.join(dir, 'never')], { out: () => undefined, err: (text) => errors.push(text) }),
+      1,
+    );
     assert.equal(fs.existsSync(path.join(dir, 'never')), false);
     assert.match(errors.join('\n'), /d\.xosc:10:\d+: error: 10000 draws in a row fell outside the Range \[100, 101\]/);
   });

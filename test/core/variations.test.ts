@@ -96,12 +96,17 @@ describe('core: variations, deterministic expansion', () => {
     assert.deepEqual(parsed.problems, []);
     const { expansion } = expandDeterministic(parsed.distribution?.deterministic ?? [], '/x/d.xosc');
     assert.equal(expansion.count, 6n);
-    const values = [0n, 1n, 2n, 3n, 4n, 5n].map((i) => assignmentAt(expansion, i).map((a) => a.value).join(','));
+    const values = [0n, 1n, 2n, 3n, 4n, 5n].map((i) =>
+      assignmentAt(expansion, i)
+        .map((a) => a.value)
+        .join(','),
+    );
     assert.deepEqual(values, ['1.100000,a', '1.100000,b', '1.300000,a', '1.300000,b', '1.500000,a', '1.500000,b']);
   });
 
   it('splices values into the scenario and keeps every other byte (BOM, CRLF, quotes, escapes)', () => {
-    const text = '\uFEFF<?xml version="1.0"?>\r\n<OpenSCENARIO>\r\n  <ParameterDeclarations>\r\n    <ParameterDeclaration name=\'Car\'  parameterType="string" value = \'x\' />\r\n    <ParameterDeclaration name="Speed" parameterType="double" value="1"/>\r\n  </ParameterDeclarations>\r\n  <Storyboard><ParameterDeclarations><ParameterDeclaration name="Car" parameterType="string" value="inner"/></ParameterDeclarations></Storyboard>\r\n</OpenSCENARIO>\r\n';
+    const text =
+      '\uFEFF<?xml version="1.0"?>\r\n<OpenSCENARIO>\r\n  <ParameterDeclarations>\r\n    <ParameterDeclaration name=\'Car\'  parameterType="string" value = \'x\' />\r\n    <ParameterDeclaration name="Speed" parameterType="double" value="1"/>\r\n  </ParameterDeclarations>\r\n  <Storyboard><ParameterDeclarations><ParameterDeclaration name="Car" parameterType="string" value="inner"/></ParameterDeclarations></Storyboard>\r\n</OpenSCENARIO>\r\n';
     const { scenario, problems } = readScenarioParameters(text, '/x/s.xosc');
     assert.deepEqual(problems, []);
     const result = concreteScenarioText(scenario as NonNullable<typeof scenario>, [{ parameter: 'Car', value: "a'&<b", offset: 0 }]);
@@ -125,14 +130,24 @@ describe('core: variations, files and problems', () => {
   }
 
   it('names file:line:col for a parameter the scenario lacks, a missing ScenarioFile, a step of 0 or below, an empty range', async () => {
-    assert.deepEqual(await problemsOf(RANGE_AND_SET.replace('"Car"', '"Colour"')), ["d.xosc:10:64: error: parameter 'Colour' is not declared in the root ParameterDeclarations of scenario.xosc"]);
+    assert.deepEqual(await problemsOf(RANGE_AND_SET.replace('"Car"', '"Colour"')), [
+      "d.xosc:10:64: error: parameter 'Colour' is not declared in the root ParameterDeclarations of scenario.xosc",
+    ]);
     const missing = await problemsOf(RANGE_AND_SET, 'nowhere.xosc');
     assert.equal(missing.length, 1);
     assert.match(missing[0], /^d\.xosc:5:29: error: ScenarioFile nowhere\.xosc .*no such file$/);
-    assert.deepEqual(await problemsOf(RANGE_AND_SET.replace('stepWidth="0.2"', 'stepWidth="0"')), ['d.xosc:8:39: error: stepWidth 0 must be greater than 0']);
-    assert.deepEqual(await problemsOf(RANGE_AND_SET.replace('stepWidth="0.2"', 'stepWidth="-1"')), ['d.xosc:8:39: error: stepWidth -1 must be greater than 0']);
-    assert.deepEqual(await problemsOf(RANGE_AND_SET.replace('upperLimit="1.5"', 'upperLimit="1"')), ['d.xosc:8:44: error: the range is empty: upperLimit 1 is below lowerLimit 1.1']);
-    assert.deepEqual(await problemsOf(RANGE_AND_SET.replace('stepWidth="0.2"', 'stepWidth="fast"')), ['d.xosc:8:39: error: stepWidth="fast" is not a number']);
+    assert.deepEqual(await problemsOf(RANGE_AND_SET.replace('stepWidth="0.2"', 'stepWidth="0"')), [
+      'd.xosc:8:39: error: stepWidth 0 must be greater than 0',
+    ]);
+    assert.deepEqual(await problemsOf(RANGE_AND_SET.replace('stepWidth="0.2"', 'stepWidth="-1"')), [
+      'd.xosc:8:39: error: stepWidth -1 must be greater than 0',
+    ]);
+    assert.deepEqual(await problemsOf(RANGE_AND_SET.replace('upperLimit="1.5"', 'upperLimit="1"')), [
+      'd.xosc:8:44: error: the range is empty: upperLimit 1 is below lowerLimit 1.1',
+    ]);
+    assert.deepEqual(await problemsOf(RANGE_AND_SET.replace('stepWidth="0.2"', 'stepWidth="fast"')), [
+      'd.xosc:8:39: error: stepWidth="fast" is not a number',
+    ]);
   });
 
   it('reports bad input instead of failing: not XML, not a distribution, no distribution, not UTF-8', async () => {
@@ -155,7 +170,10 @@ describe('core: variations, files and problems', () => {
   });
 
   it('warns of values that do not fit the parameter type (esmini takes them as they are)', async () => {
-    const body = RANGE_AND_SET.replace('parameterName="Car"', 'parameterName="Gap"').replace('<Element value="a"/>', '<Element value="0.5"/>');
+    const body = RANGE_AND_SET.replace('parameterName="Car"', 'parameterName="Gap"').replace(
+      '<Element value="a"/>',
+      '<Element value="0.5"/>',
+    );
     assert.deepEqual(await problemsOf(body), ["d.xosc:10:64: warning: the value 'b' for double parameter 'Gap' is not a number"]);
     const stochastic = `    <Stochastic numberOfTestRuns="3">
       <StochasticDistribution parameterName="Speed"><PoissonDistribution expectedValue="2"/></StochasticDistribution>
@@ -163,7 +181,7 @@ describe('core: variations, files and problems', () => {
     assert.deepEqual(await problemsOf(stochastic), []);
   });
 
-  it('discards combinations that break the scenario\'s ValueConstraintGroups, and counts them', async () => {
+  it("discards combinations that break the scenario's ValueConstraintGroups, and counts them", async () => {
     fs.writeFileSync(
       path.join(dir, 'scenario.xosc'),
       SCENARIO.replace(
@@ -174,13 +192,21 @@ describe('core: variations, files and problems', () => {
     fs.writeFileSync(path.join(dir, 'd.xosc'), distribution(RANGE_AND_SET));
     const counted = await run([path.join(dir, 'd.xosc'), '--count']);
     assert.deepEqual([counted.code, counted.out], [0, ['4']]);
-    assert.deepEqual(counted.err, ['2 of 6 combinations break the scenario\'s ValueConstraintGroups and are discarded']);
+    assert.deepEqual(counted.err, ["2 of 6 combinations break the scenario's ValueConstraintGroups and are discarded"]);
     const discarded = await run([path.join(dir, 'd.xosc'), '--index', '2']);
     assert.equal(discarded.code, 1);
-    assert.match(discarded.err.join('\n'), /concrete scenario 2 is discarded: parameter 'Speed' = '1.300000' breaks its ValueConstraintGroups/);
+    assert.match(
+      discarded.err.join('\n'),
+      /concrete scenario 2 is discarded: parameter 'Speed' = '1.300000' breaks its ValueConstraintGroups/,
+    );
     const all = await run([path.join(dir, 'd.xosc'), '--out-dir', path.join(dir, 'out')]);
     assert.equal(all.code, 0);
-    assert.deepEqual(fs.readdirSync(path.join(dir, 'out')).sort(), ['scenario_0.xosc', 'scenario_1.xosc', 'scenario_4.xosc', 'scenario_5.xosc']);
+    assert.deepEqual(fs.readdirSync(path.join(dir, 'out')).sort(), [
+      'scenario_0.xosc',
+      'scenario_1.xosc',
+      'scenario_4.xosc',
+      'scenario_5.xosc',
+    ]);
     assert.match(all.err.join('\n'), /wrote 4 concrete scenarios .*; 2 discarded by the scenario's ValueConstraintGroups/);
   });
 });
@@ -203,7 +229,10 @@ describe('cli: vary', () => {
   it('--index I -o OUT writes concrete scenario I; without -o it goes to standard output', async () => {
     const output = path.join(dir, 'five.xosc');
     assert.equal((await run([file, '--index', '5', '-o', output])).code, 0);
-    const expected = SCENARIO.replace('name="Speed" parameterType="double" value="10"', 'name="Speed" parameterType="double" value="1.500000"').replace('value="car_white"', 'value="b"');
+    const expected = SCENARIO.replace(
+      'name="Speed" parameterType="double" value="10"',
+      'name="Speed" parameterType="double" value="1.500000"',
+    ).replace('value="car_white"', 'value="b"');
     assert.equal(fs.readFileSync(output, 'utf8'), expected);
     assert.deepEqual((await run([file, '--index', '5'])).out, [expected]);
   });
@@ -225,7 +254,10 @@ describe('cli: vary', () => {
   it('refuses 10^9 combinations before writing anything unless --sample; --sample N --seed S writes N', async () => {
     const big = `    <Deterministic>
 ${['Speed', 'Gap', 'Car']
-  .map((name) => `      <DeterministicSingleParameterDistribution parameterName="${name}"><DistributionRange stepWidth="1"><Range lowerLimit="1" upperLimit="1000"/></DistributionRange></DeterministicSingleParameterDistribution>`)
+  .map(
+    (name) =>
+      `      <DeterministicSingleParameterDistribution parameterName="${name}"><DistributionRange stepWidth="1"><Range lowerLimit="1" upperLimit="1000"/></DistributionRange></DeterministicSingleParameterDistribution>`,
+  )
   .join('\n')}
     </Deterministic>`;
     fs.writeFileSync(file, distribution(big));

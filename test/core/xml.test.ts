@@ -21,8 +21,8 @@ describe('core: XML parser with positions', () => {
   it('decodes references in values and escapes them back', () => {
     const document = parseXml('<R v="a &lt;&amp;&quot; &#233;&#x4E2D;"/>');
     assert.equal(document.root?.attributes[0].value, 'a <&" é中');
-    assert.equal(escapeAttributeValue('<&">\''), '&lt;&amp;&quot;&gt;\'');
-    assert.equal(escapeAttributeValue('it\'s', "'"), 'it&apos;s');
+    assert.equal(escapeAttributeValue('<&">\''), "&lt;&amp;&quot;&gt;'");
+    assert.equal(escapeAttributeValue("it's", "'"), 'it&apos;s');
   });
 
   it('reports well-formedness errors with line and column', () => {
@@ -63,7 +63,10 @@ describe('core: XML parser with positions', () => {
     const text = '<R>\n  <P key="Abs\n  <Q name="x"/>\n</R>';
     const document = parseXml(text);
     assert.ok(!isWellFormed(document));
-    assert.deepEqual(document.root?.children.map((c) => c.name), ['P', 'Q']);
+    assert.deepEqual(
+      document.root?.children.map((c) => c.name),
+      ['P', 'Q'],
+    );
     assert.equal(attribute(document.root!.children[1], 'name')?.value, 'x');
   });
 

@@ -39,11 +39,28 @@ export function prepareBirdsEye(workspace: string): void {
   const esmini = path.join(repoRoot, '.cache', 'esmini', 'bin', 'esmini');
   if (!fs.existsSync(esmini)) return;
   // The road folder of the workspace, as the view's roadPath: the run's log then names the file the view draws.
-  const run = spawnSync(esmini, ['--headless', '--osc', scenario, '--fixed_timestep', '0.05', '--seed', '1', '--csv_logger', path.join(workspace, BIRDS_EYE_FILES.csv), '--disable_log', '--path', path.join(workspace, BIRDS_EYE_FILES.roadFolder)], {
-    cwd: path.dirname(scenario),
-    encoding: 'utf8',
-    timeout: 60_000,
-  });
+  const run = spawnSync(
+    esmini,
+    [
+      '--headless',
+      '--osc',
+      scenario,
+      '--fixed_timestep',
+      '0.05',
+      '--seed',
+      '1',
+      '--csv_logger',
+      path.join(workspace, BIRDS_EYE_FILES.csv),
+      '--disable_log',
+      '--path',
+      path.join(workspace, BIRDS_EYE_FILES.roadFolder),
+    ],
+    {
+      cwd: path.dirname(scenario),
+      encoding: 'utf8',
+      timeout: 60_000,
+    },
+  );
   if (run.status !== 0) throw new Error(`esmini failed on the bird's-eye fixture (${run.status}):\n${run.stdout}\n${run.stderr}`);
   fs.writeFileSync(path.join(workspace, BIRDS_EYE_FILES.log), run.stdout);
   prepareHighwayMerge(workspace, esmini, xodrFolder);
@@ -62,11 +79,32 @@ function prepareHighwayMerge(workspace: string, esmini: string, xodrFolder: stri
   fs.copyFileSync(catalog, path.join(folder, '..', 'xosc', 'Catalogs', 'Vehicles', 'VehicleCatalog.xosc'));
   const text = fs.readFileSync(original, 'utf8');
   fs.writeFileSync(path.join(workspace, HIGHWAY_MERGE_FILES.scenario), text);
-  const variant = text.replace('name="A1_speed" parameterType="double" value="25"', 'name="A1_speed" parameterType="double" value="32"').replace('name="Gap1_time" parameterType="double" value="2.5"', 'name="Gap1_time" parameterType="double" value="1.2"');
-  if (variant === text) throw new Error('highway_merge.xosc no longer declares A1_speed 25 and Gap1_time 2.5: the compared variant needs another change');
+  const variant = text
+    .replace('name="A1_speed" parameterType="double" value="25"', 'name="A1_speed" parameterType="double" value="32"')
+    .replace('name="Gap1_time" parameterType="double" value="2.5"', 'name="Gap1_time" parameterType="double" value="1.2"');
+  if (variant === text)
+    throw new Error('highway_merge.xosc no longer declares A1_speed 25 and Gap1_time 2.5: the compared variant needs another change');
   fs.writeFileSync(path.join(workspace, HIGHWAY_MERGE_FILES.variant), variant);
-  for (const [scenario, csv, log] of [[HIGHWAY_MERGE_FILES.scenario, HIGHWAY_MERGE_FILES.csv, HIGHWAY_MERGE_FILES.log], [HIGHWAY_MERGE_FILES.variant, HIGHWAY_MERGE_FILES.variantCsv, HIGHWAY_MERGE_FILES.variantLog]]) {
-    const run = spawnSync(esmini, ['--headless', '--osc', path.join(workspace, scenario), '--fixed_timestep', '0.05', '--seed', '1', '--csv_logger', path.join(workspace, csv), '--disable_log'], { cwd: folder, encoding: 'utf8', timeout: 60_000 });
+  for (const [scenario, csv, log] of [
+    [HIGHWAY_MERGE_FILES.scenario, HIGHWAY_MERGE_FILES.csv, HIGHWAY_MERGE_FILES.log],
+    [HIGHWAY_MERGE_FILES.variant, HIGHWAY_MERGE_FILES.variantCsv, HIGHWAY_MERGE_FILES.variantLog],
+  ]) {
+    const run = spawnSync(
+      esmini,
+      [
+        '--headless',
+        '--osc',
+        path.join(workspace, scenario),
+        '--fixed_timestep',
+        '0.05',
+        '--seed',
+        '1',
+        '--csv_logger',
+        path.join(workspace, csv),
+        '--disable_log',
+      ],
+      { cwd: folder, encoding: 'utf8', timeout: 60_000 },
+    );
     if (run.status !== 0) throw new Error(`esmini failed on ${scenario} (${run.status}):\n${run.stdout}\n${run.stderr}`);
     fs.writeFileSync(path.join(workspace, log), run.stdout);
   }

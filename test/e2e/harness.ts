@@ -13,7 +13,8 @@ import { repoRoot } from '../support/paths';
  * playwright-core. Nothing is downloaded here.
  */
 
-export const CODE_SERVER = process.env.M2S_CODE_SERVER ?? path.join(repoRoot, '.cache', 'code-server', 'node_modules', '.bin', 'code-server');
+export const CODE_SERVER =
+  process.env.M2S_CODE_SERVER ?? path.join(repoRoot, '.cache', 'code-server', 'node_modules', '.bin', 'code-server');
 export const CHROMIUM = process.env.M2S_CHROMIUM ?? '/usr/bin/chromium';
 export const ARTIFACTS = path.join(repoRoot, 'test-results', 'e2e');
 const SETUP = 'scripts/e2e-setup.sh';
@@ -36,7 +37,12 @@ export function requireE2e(): boolean {
 }
 
 function run(command: string, args: string[], options: { cwd?: string; env?: NodeJS.ProcessEnv } = {}): string {
-  const result = spawnSync(command, args, { cwd: options.cwd ?? repoRoot, env: options.env ?? process.env, encoding: 'utf8', maxBuffer: 64 * 1024 * 1024 });
+  const result = spawnSync(command, args, {
+    cwd: options.cwd ?? repoRoot,
+    env: options.env ?? process.env,
+    encoding: 'utf8',
+    maxBuffer: 64 * 1024 * 1024,
+  });
   if (result.status !== 0) {
     throw new Error(`${command} ${args.join(' ')} failed (${result.status ?? result.signal}):\n${result.stdout}\n${result.stderr}`);
   }
@@ -135,12 +141,15 @@ export function createProfile(): Profile {
     // No extension gallery: the tests touch nothing beyond 127.0.0.1.
     EXTENSIONS_GALLERY: '{}',
   };
-  for (const key of ['XDG_CONFIG_HOME', 'XDG_DATA_HOME', 'XDG_CACHE_HOME', 'XDG_RUNTIME_DIR', 'TMPDIR'] as const) fs.mkdirSync(env[key] as string, { recursive: true, mode: 0o700 });
+  for (const key of ['XDG_CONFIG_HOME', 'XDG_DATA_HOME', 'XDG_CACHE_HOME', 'XDG_RUNTIME_DIR', 'TMPDIR'] as const)
+    fs.mkdirSync(env[key] as string, { recursive: true, mode: 0o700 });
   return { root, home, userData, extensions, env };
 }
 
 export function installExtension(profile: Profile, vsix: string): void {
-  run(CODE_SERVER, ['--extensions-dir', profile.extensions, '--user-data-dir', profile.userData, '--install-extension', vsix, '--force'], { env: profile.env });
+  run(CODE_SERVER, ['--extensions-dir', profile.extensions, '--user-data-dir', profile.userData, '--install-extension', vsix, '--force'], {
+    env: profile.env,
+  });
 }
 
 export interface CodeServer {
@@ -159,15 +168,20 @@ export async function startCodeServer(profile: Profile, extraEnv: NodeJS.Process
   const child = spawn(
     CODE_SERVER,
     [
-      '--bind-addr', `127.0.0.1:${port}`,
-      '--auth', 'none',
+      '--bind-addr',
+      `127.0.0.1:${port}`,
+      '--auth',
+      'none',
       '--disable-telemetry',
       '--disable-update-check',
       '--disable-workspace-trust',
       '--disable-getting-started-override',
-      '--user-data-dir', profile.userData,
-      '--extensions-dir', profile.extensions,
-      '--config', config,
+      '--user-data-dir',
+      profile.userData,
+      '--extensions-dir',
+      profile.extensions,
+      '--config',
+      config,
     ],
     { env: { ...profile.env, ...extraEnv }, detached: true, stdio: ['ignore', 'pipe', 'pipe'] },
   );
@@ -229,7 +243,15 @@ export async function launchBrowser(profile: Profile): Promise<Browser> {
     executablePath: CHROMIUM,
     headless: true,
     env: profile.env,
-    args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run', '--disable-background-networking', '--disable-component-update', '--disable-sync'],
+    args: [
+      '--no-sandbox',
+      '--disable-gpu',
+      '--disable-quic',
+      '--no-first-run',
+      '--disable-background-networking',
+      '--disable-component-update',
+      '--disable-sync',
+    ],
   });
 }
 
@@ -266,7 +288,11 @@ export class HarnessEndpoint {
     for await (const chunk of request) chunks.push(chunk as Buffer);
     const body = Buffer.concat(chunks).toString('utf8');
     const started = Date.now();
-    response.on('finish', () => this.log.push(`${new Date(started).toISOString()} ${request.url} ${body.slice(0, 200)} -> ${response.statusCode} in ${Date.now() - started} ms`));
+    response.on('finish', () =>
+      this.log.push(
+        `${new Date(started).toISOString()} ${request.url} ${body.slice(0, 200)} -> ${response.statusCode} in ${Date.now() - started} ms`,
+      ),
+    );
     try {
       if (request.url === '/result') {
         this.results.push(JSON.parse(body) as InsideResult);

@@ -14,8 +14,8 @@ export const INSIDE_TESTS = {
   insidePackage: 'language features work on a file inside a .mosc',
   expression: 'a ${...} shows its value as an inlay hint and in the hover, with the declarations it reads',
   scenarioPath: 'the modular2simple.scenarioPath setting reaches the server',
-  pack: 'Pack from the command palette writes a package equivalent to the CLI\'s',
-  flatten: 'Flatten from the command palette writes a file equivalent to the CLI\'s',
+  pack: "Pack from the command palette writes a package equivalent to the CLI's",
+  flatten: "Flatten from the command palette writes a file equivalent to the CLI's",
   structure: 'Show Structure lists the main file, packages, scenarios and groups',
   renameInPackage: 'renaming a group inside a .mosc updates the package and the files that use it',
   packUnsaved: 'Pack saves unsaved scenario files first, so the package holds what the editor shows, and says so',
@@ -24,17 +24,21 @@ export const INSIDE_TESTS = {
   birdsEye: "Show Bird's-Eye View draws the roads and the entities at their start, opens an entity's place, and follows edits",
   birdsEyeRun: "after a run, the bird's-eye view plays the trajectories and shows when the events started",
   birdsEyePackage: "the bird's-eye view shows a scenario inside a .mosc",
-  birdsEyeAnalysis: "after a run of esmini's highway_merge, the bird's-eye view frames the cars now, follows one with its speed, gap and TTC plots, compares a second run and exports at 1600x900 with legend, time and scale",
-  runEsmini: "Run in esmini from the CodeLens puts esmini's error on the simple scenario's line; a clean run clears it and shows its trajectories",
-  runEsminiClean: "Run in esmini on a clean modular scenario on e6mini shows no error, and the bird's-eye view draws the road the run loaded",
+  birdsEyeAnalysis:
+    "after a run of esmini's highway_merge, the bird's-eye view frames the cars now, follows one with its speed, gap and TTC plots, compares a second run and exports at 1600x900 with legend, time and scale",
+  runEsmini:
+    "Run in esmini from the CodeLens puts esmini's error on the simple scenario's line; a clean run clears it and shows its trajectories",
+  runEsminiClean:
+    "Run in esmini on a clean modular scenario on e6mini shows no error, and the bird's-eye view draws the road the run loaded",
   runEsminiCutIn: "Run in esmini on esmini's cut-in.xosc runs it: no refusal, no error toast, its lenient forms shown as warnings",
   runEsminiAnyway: 'Run Anyway on a scenario with an error runs it in esmini and says it ran despite the error',
   schemaCompletion: 'schema completion offers the child elements the OpenSCENARIO schema allows',
   schemaDeprecated: 'a deprecated OpenSCENARIO element is struck through',
   newScenario: 'New Modular Scenario… on a folder writes a main with an ego on the chosen road, opens it clean, and never overwrites',
-  distributionLens: "a distribution file shows its number of concrete scenarios (as vary --count) and Run Variations in a CodeLens",
-  variations: 'the Variations view shows a batch as a sortable, filterable table and scatter, and opens a run in the bird\'s-eye view',
-  extractToSimple: 'Extract to a simple scenario from the light bulb, with the pick list of attributes, replaces a group by a reference that flattens as before',
+  distributionLens: 'a distribution file shows its number of concrete scenarios (as vary --count) and Run Variations in a CodeLens',
+  variations: "the Variations view shows a batch as a sortable, filterable table and scatter, and opens a run in the bird's-eye view",
+  extractToSimple:
+    'Extract to a simple scenario from the light bulb, with the pick list of attributes, replaces a group by a reference that flattens as before',
 } as const;
 
 export type InsideTestKey = keyof typeof INSIDE_TESTS;

@@ -22,10 +22,28 @@ export function prepareVariations(workspace: string, roadFolder: string): void {
   const esmini = path.join(repoRoot, '.cache', 'esmini', 'bin', 'esmini');
   const cli = path.join(repoRoot, 'dist', 'cli.js');
   if (!fs.existsSync(esmini) || !fs.existsSync(path.join(workspace, roadFolder, 'e6mini.xodr'))) return;
-  const run = spawnSync(process.execPath, [cli, 'batch', 'd.xosc', '--results', 'results', '--jobs', '2', '--keep-runs', '--quiet', '--road-path', path.join(workspace, roadFolder), '--esmini', esmini], {
-    cwd: folder,
-    encoding: 'utf8',
-    timeout: 120_000,
-  });
+  const run = spawnSync(
+    process.execPath,
+    [
+      cli,
+      'batch',
+      'd.xosc',
+      '--results',
+      'results',
+      '--jobs',
+      '2',
+      '--keep-runs',
+      '--quiet',
+      '--road-path',
+      path.join(workspace, roadFolder),
+      '--esmini',
+      esmini,
+    ],
+    {
+      cwd: folder,
+      encoding: 'utf8',
+      timeout: 120_000,
+    },
+  );
   if (run.status !== 0) throw new Error(`the batch for the Variations test failed (${run.status}):\n${run.stdout}\n${run.stderr}`);
 }

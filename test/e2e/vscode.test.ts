@@ -35,11 +35,19 @@ async function prepareWorkspace(profile: Profile): Promise<string> {
   const brakingMain = await (await JSZip.loadAsync(braking)).file('main.xosc')?.async('string');
   assert.ok(brakingMain, 'examples/braking.mosc holds no main.xosc');
   const nested = new JSZip();
-  nested.file('main.xosc', brakingMain.replace('scenarioFileName="hard_brake.xosc"', 'scenarioFileName="braking.mosc"').replace('maneuverGroupName="HardBrake"', 'maneuverGroupName="Brake.HardBrake"'));
+  nested.file(
+    'main.xosc',
+    brakingMain
+      .replace('scenarioFileName="hard_brake.xosc"', 'scenarioFileName="braking.mosc"')
+      .replace('maneuverGroupName="HardBrake"', 'maneuverGroupName="Brake.HardBrake"'),
+  );
   nested.file('braking.mosc', braking);
   fs.writeFileSync(path.join(workspace, 'nested.mosc'), await nested.generateAsync({ type: 'uint8array', compression: 'DEFLATE' }));
   // A ZIP header followed by garbage: what a truncated download looks like.
-  fs.writeFileSync(path.join(workspace, 'broken.mosc'), Buffer.concat([Buffer.from('PK\x03\x04'), Buffer.from('this is not the rest of a ZIP archive\n'.repeat(8))]));
+  fs.writeFileSync(
+    path.join(workspace, 'broken.mosc'),
+    Buffer.concat([Buffer.from('PK\x03\x04'), Buffer.from('this is not the rest of a ZIP archive\n'.repeat(8))]),
+  );
   prepareBirdsEye(workspace);
   prepareVariations(workspace, BIRDS_EYE_FILES.roadFolder);
   return workspace;
@@ -48,7 +56,9 @@ async function prepareWorkspace(profile: Profile): Promise<string> {
 async function frameHasText(frame: Frame, text: string, selector = 'body'): Promise<boolean> {
   try {
     // Page code is a string: this project's types do not include the DOM.
-    return (await frame.evaluate(`[...document.querySelectorAll(${JSON.stringify(selector)})].some((element) => element.innerText.includes(${JSON.stringify(text)}))`)) as boolean;
+    return (await frame.evaluate(
+      `[...document.querySelectorAll(${JSON.stringify(selector)})].some((element) => element.innerText.includes(${JSON.stringify(text)}))`,
+    )) as boolean;
   } catch {
     return false;
   }
@@ -82,7 +92,10 @@ function servePage(endpoint: HarnessEndpoint, page: Page): void {
     await input.waitFor({ state: 'visible', timeout: 10_000 });
     await input.fill(`>${title}`);
     // Enter runs the focused row: wait until the filter has put this command there.
-    await page.locator('.quick-input-list .monaco-list-row.focused').filter({ hasText: title.split(': ').pop() ?? title }).waitFor({ timeout: 10_000 });
+    await page
+      .locator('.quick-input-list .monaco-list-row.focused')
+      .filter({ hasText: title.split(': ').pop() ?? title })
+      .waitFor({ timeout: 10_000 });
     await page.keyboard.press('Enter');
     return {};
   });
@@ -222,9 +235,15 @@ describe('the packaged extension in a real VS Code (code-server, headless Chromi
     });
   }
 
-  it('the .vsix holds the bundles and the manifest\'s assets, nothing else', () => {
-    const extensionFiles = vsixEntries.filter((name) => name.startsWith('extension/')).map((name) => name.slice('extension/'.length)).sort();
-    const manifest = JSON.parse(fs.readFileSync(path.join(repoRoot, 'package.json'), 'utf8')) as { main: string; contributes: { grammars: { path: string }[]; languages: { configuration?: string; icon?: { light: string } }[] } };
+  it("the .vsix holds the bundles and the manifest's assets, nothing else", () => {
+    const extensionFiles = vsixEntries
+      .filter((name) => name.startsWith('extension/'))
+      .map((name) => name.slice('extension/'.length))
+      .sort();
+    const manifest = JSON.parse(fs.readFileSync(path.join(repoRoot, 'package.json'), 'utf8')) as {
+      main: string;
+      contributes: { grammars: { path: string }[]; languages: { configuration?: string; icon?: { light: string } }[] };
+    };
     const needed = [
       manifest.main,
       'dist/server.js',
@@ -238,9 +257,15 @@ describe('the packaged extension in a real VS Code (code-server, headless Chromi
       ...fs.readdirSync(path.join(repoRoot, 'schemas')).map((file) => `schemas/${file}`),
       ...manifest.contributes.grammars.map((grammar) => grammar.path),
       ...manifest.contributes.languages.flatMap((language) => [language.configuration, language.icon?.light]),
-    ].filter((file): file is string => file !== undefined).map((file) => path.posix.normalize(file));
+    ]
+      .filter((file): file is string => file !== undefined)
+      .map((file) => path.posix.normalize(file));
     for (const file of needed) assert.ok(extensionFiles.includes(file), `${file} is missing from the .vsix`);
-    const unexpected = extensionFiles.filter((file) => !needed.includes(file) && !/^(package\.json|readme\.md|LICENSE(\.txt)?|client\/icons\/[\w-]+\.svg|dist\/cli-main\.js\.cache)$/i.test(file));
+    const unexpected = extensionFiles.filter(
+      (file) =>
+        !needed.includes(file) &&
+        !/^(package\.json|readme\.md|LICENSE(\.txt)?|client\/icons\/[\w-]+\.svg|dist\/cli-main\.js\.cache)$/i.test(file),
+    );
     assert.deepEqual(unexpected, [], 'the .vsix holds files that do not run');
   });
 
@@ -249,8 +274,13 @@ describe('the packaged extension in a real VS Code (code-server, headless Chromi
   });
 
   it('nothing else failed inside VS Code', () => {
-    const failed = [...results.values()].filter((result) => result.state === 'failed' && !Object.values(INSIDE_TESTS).includes(result.title as never));
-    assert.deepEqual(failed.map((result) => `${result.title}: ${result.error}`), []);
+    const failed = [...results.values()].filter(
+      (result) => result.state === 'failed' && !Object.values(INSIDE_TESTS).includes(result.title as never),
+    );
+    assert.deepEqual(
+      failed.map((result) => `${result.title}: ${result.error}`),
+      [],
+    );
     assert.ok(exitCode !== -1, `the tests inside VS Code did not finish within ${RUN_TIMEOUT_MS / 1000} s`);
   });
 });

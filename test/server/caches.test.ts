@@ -10,7 +10,8 @@ describe('core: the package cache is bounded by size', () => {
   it('keeps unpacked packages up to its bound and reads evicted ones again when needed', async () => {
     const padding = `<!-- ${'x'.repeat(1024 * 1024)} -->`;
     const files: Record<string, Uint8Array> = {};
-    for (let index = 0; index < 12; index++) files[`p${index}.mosc`] = await packageOf({ 'main.xosc': scenario(simpleGroup(`Go${index}`)) + padding });
+    for (let index = 0; index < 12; index++)
+      files[`p${index}.mosc`] = await packageOf({ 'main.xosc': scenario(simpleGroup(`Go${index}`)) + padding });
     const root = temporaryWorkspace(files);
     const store = new ScenarioStore({ root, scenarioPath: [], packageCacheBytes: 3 * 1024 * 1024 });
     for (let index = 0; index < 12; index++) await store.readPackage(diskRef(path.join(root, `p${index}.mosc`)));
@@ -32,7 +33,8 @@ describe('core: the package cache is bounded by size', () => {
 
   it('the server keeps read sources up to an approximate size, least recently used out, those of open documents always', async () => {
     // A source of n characters counts about 30 n bytes.
-    const sourceOf = (characters: number) => Promise.resolve({ original: { document: { text: 'x'.repeat(characters) } }, text: undefined } as unknown as FlatSource);
+    const sourceOf = (characters: number) =>
+      Promise.resolve({ original: { document: { text: 'x'.repeat(characters) } }, text: undefined } as unknown as FlatSource);
     const sources = new SharedSources(30 * 1500, () => new Set(['open']));
     sources.set('open', sourceOf(1000));
     sources.set('a', sourceOf(1000));

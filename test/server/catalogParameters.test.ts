@@ -67,16 +67,14 @@ const FILES: Record<string, string> = {
   'third.xosc': scenario('CarB', 'catalogs'),
 };
 
-
 /** `relative path:line:text` of each location, in the order given. */
 function summarize(root: string, locations: Location[], texts: Record<string, string>): string[] {
-  return locations
-    .map((location) => {
-      const relative = path.relative(root, new URL(location.uri).pathname);
-      const text = texts[relative];
-      const start = offsetOf(text, location.range.start);
-      return `${relative}:${location.range.start.line + 1}:${text.slice(start, offsetOf(text, location.range.end))}`;
-    });
+  return locations.map((location) => {
+    const relative = path.relative(root, new URL(location.uri).pathname);
+    const text = texts[relative];
+    const start = offsetOf(text, location.range.start);
+    return `${relative}:${location.range.start.line + 1}:${text.slice(start, offsetOf(text, location.range.end))}`;
+  });
 }
 
 describe('a catalog entry parameter across files: references and rename through ParameterAssignment (JSON-RPC)', function () {
@@ -107,15 +105,26 @@ describe('a catalog entry parameter across files: references and rename through 
     'nested/second.xosc:17:MaxSpeed',
   ];
 
-  it('renames entry A\'s declaration, its uses and exactly the assignments that reach entry A', async function () {
+  it("renames entry A's declaration, its uses and exactly the assignments that reach entry A", async function () {
     const at = client.at(uriOf('catalogs/Vehicles.xosc'), inside(CATALOG, 'name="MaxSpeed"', 8, 0));
     const prepared = await client.request<{ placeholder: string } | null>('textDocument/prepareRename', at);
     assert.equal(prepared?.placeholder, 'MaxSpeed');
     const edit = await client.request<WorkspaceEdit>('textDocument/rename', { ...at, newName: 'TopSpeed' });
     const changes = edit.changes ?? {};
-    assert.deepEqual(Object.keys(changes).sort(), [uriOf('catalogs/Vehicles.xosc'), uriOf('first.xosc'), uriOf('nested/second.xosc')].sort());
+    assert.deepEqual(
+      Object.keys(changes).sort(),
+      [uriOf('catalogs/Vehicles.xosc'), uriOf('first.xosc'), uriOf('nested/second.xosc')].sort(),
+    );
     const catalog = applyEdits(CATALOG, changes[uriOf('catalogs/Vehicles.xosc')]);
-    assert.equal(catalog, CATALOG.replace(vehicle('CarA', 50), vehicle('CarA', 50).replace(/MaxSpeed"/g, 'TopSpeed"').replace(/\$MaxSpeed/g, '$TopSpeed')));
+    assert.equal(
+      catalog,
+      CATALOG.replace(
+        vehicle('CarA', 50),
+        vehicle('CarA', 50)
+          .replace(/MaxSpeed"/g, 'TopSpeed"')
+          .replace(/\$MaxSpeed/g, '$TopSpeed'),
+      ),
+    );
     assert.match(catalog, /<Vehicle name="CarB"[\s\S]*name="MaxSpeed"[\s\S]*maxSpeed="\$MaxSpeed"[\s\S]*\$\{\$MaxSpeed \* 2\}/);
     for (const file of ['first.xosc', 'nested/second.xosc']) {
       const renamed = applyEdits(FILES[file], changes[uriOf(file)]);
@@ -124,7 +133,7 @@ describe('a catalog entry parameter across files: references and rename through 
     }
   });
 
-  it('renames from an assignment\'s parameterRef the same set', async function () {
+  it("renames from an assignment's parameterRef the same set", async function () {
     const text = FILES['first.xosc'];
     const at = client.at(uriOf('first.xosc'), inside(text, 'parameterRef="MaxSpeed"', 16));
     const prepared = await client.request<{ placeholder: string } | null>('textDocument/prepareRename', at);
@@ -132,11 +141,14 @@ describe('a catalog entry parameter across files: references and rename through 
     const edit = await client.request<WorkspaceEdit>('textDocument/rename', { ...at, newName: 'TopSpeed' });
     const count = Object.values(edit.changes ?? {}).reduce((sum, edits) => sum + edits.length, 0);
     assert.equal(count, expectedA.length);
-    assert.equal(applyEdits(text, edit.changes?.[uriOf('first.xosc')] ?? []), text.replace('parameterRef="MaxSpeed"', 'parameterRef="TopSpeed"'));
+    assert.equal(
+      applyEdits(text, edit.changes?.[uriOf('first.xosc')] ?? []),
+      text.replace('parameterRef="MaxSpeed"', 'parameterRef="TopSpeed"'),
+    );
     assert.equal(edit.changes?.[uriOf('third.xosc')], undefined);
   });
 
-  it('lists the same references from an assignment and from the declaration, and entry B\'s apart', async function () {
+  it("lists the same references from an assignment and from the declaration, and entry B's apart", async function () {
     const fromAssignment = await client.request<Location[]>('textDocument/references', {
       ...client.at(uriOf('first.xosc'), inside(FILES['first.xosc'], 'parameterRef="MaxSpeed"', 16)),
       context: { includeDeclaration: true },
@@ -146,19 +158,33 @@ describe('a catalog entry parameter across files: references and rename through 
       ...client.at(uriOf('catalogs/Vehicles.xosc'), inside(CATALOG, 'name="MaxSpeed"', 8, 0)),
       context: { includeDeclaration: false },
     });
-    assert.deepEqual(summarize(root, fromDeclaration, FILES), expectedA.filter((place) => place !== 'catalogs/Vehicles.xosc:7:MaxSpeed'));
+    assert.deepEqual(
+      summarize(root, fromDeclaration, FILES),
+      expectedA.filter((place) => place !== 'catalogs/Vehicles.xosc:7:MaxSpeed'),
+    );
     const entryB = await client.request<Location[]>('textDocument/references', {
       ...client.at(uriOf('catalogs/Vehicles.xosc'), inside(CATALOG, 'name="MaxSpeed"', 8, 1)),
       context: { includeDeclaration: true },
     });
-    assert.deepEqual(summarize(root, entryB, FILES), ['catalogs/Vehicles.xosc:16:MaxSpeed', 'catalogs/Vehicles.xosc:18:MaxSpeed', 'catalogs/Vehicles.xosc:20:MaxSpeed', 'third.xosc:17:MaxSpeed']);
+    assert.deepEqual(summarize(root, entryB, FILES), [
+      'catalogs/Vehicles.xosc:16:MaxSpeed',
+      'catalogs/Vehicles.xosc:18:MaxSpeed',
+      'catalogs/Vehicles.xosc:20:MaxSpeed',
+      'third.xosc:17:MaxSpeed',
+    ]);
   });
 
-  it('keeps the scenario\'s own MaxSpeed a one-file parameter', async function () {
+  it("keeps the scenario's own MaxSpeed a one-file parameter", async function () {
     const text = FILES['first.xosc'];
-    const edit = await client.request<WorkspaceEdit>('textDocument/rename', { ...client.at(uriOf('first.xosc'), inside(text, 'name="MaxSpeed"', 8)), newName: 'Limit' });
+    const edit = await client.request<WorkspaceEdit>('textDocument/rename', {
+      ...client.at(uriOf('first.xosc'), inside(text, 'name="MaxSpeed"', 8)),
+      newName: 'Limit',
+    });
     assert.deepEqual(Object.keys(edit.changes ?? {}), [uriOf('first.xosc')]);
-    assert.equal(applyEdits(text, edit.changes?.[uriOf('first.xosc')] ?? []), text.replace('name="MaxSpeed"', 'name="Limit"').replace('value="$MaxSpeed"', 'value="$Limit"'));
+    assert.equal(
+      applyEdits(text, edit.changes?.[uriOf('first.xosc')] ?? []),
+      text.replace('name="MaxSpeed"', 'name="Limit"').replace('value="$MaxSpeed"', 'value="$Limit"'),
+    );
   });
 });
 
@@ -171,7 +197,11 @@ describe('a catalog entry parameter set from inside a .mosc package (JSON-RPC)',
     const zip = new JSZip();
     zip.file('main.xosc', scenario('CarA', 'catalogs'));
     zip.file('catalogs/Vehicles.xosc', CATALOG);
-    root = temporaryWorkspace({ 'bundle.mosc': await zip.generateAsync({ type: 'uint8array' }), 'catalogs/Vehicles.xosc': CATALOG, 'first.xosc': scenario('CarA', 'catalogs') });
+    root = temporaryWorkspace({
+      'bundle.mosc': await zip.generateAsync({ type: 'uint8array' }),
+      'catalogs/Vehicles.xosc': CATALOG,
+      'first.xosc': scenario('CarA', 'catalogs'),
+    });
     client = await TestClient.start({ root });
     await client.indexed();
   });
@@ -188,12 +218,20 @@ describe('a catalog entry parameter set from inside a .mosc package (JSON-RPC)',
     const references = await client.request<Location[]>('textDocument/references', { ...at, context: { includeDeclaration: true } });
     assert.deepEqual(
       references.map((location) => `${location.uri.slice(location.uri.lastIndexOf('bundle.mosc/'))}:${location.range.start.line + 1}`),
-      ['bundle.mosc/catalogs/Vehicles.xosc:7', 'bundle.mosc/catalogs/Vehicles.xosc:9', 'bundle.mosc/catalogs/Vehicles.xosc:11', 'bundle.mosc/main.xosc:17'],
+      [
+        'bundle.mosc/catalogs/Vehicles.xosc:7',
+        'bundle.mosc/catalogs/Vehicles.xosc:9',
+        'bundle.mosc/catalogs/Vehicles.xosc:11',
+        'bundle.mosc/main.xosc:17',
+      ],
     );
     await assert.rejects(client.request('textDocument/rename', { ...at, newName: 'TopSpeed' }), /cannot write into packages/);
     // The catalog on disk is reached only by first.xosc, so its rename writes no package.
     const diskCatalog = await client.openFile(path.join(root, 'catalogs/Vehicles.xosc'));
-    const edit = await client.request<WorkspaceEdit>('textDocument/rename', { ...client.at(diskCatalog, inside(CATALOG, 'name="MaxSpeed"', 8, 0)), newName: 'TopSpeed' });
+    const edit = await client.request<WorkspaceEdit>('textDocument/rename', {
+      ...client.at(diskCatalog, inside(CATALOG, 'name="MaxSpeed"', 8, 0)),
+      newName: 'TopSpeed',
+    });
     assert.deepEqual(Object.keys(edit.changes ?? {}).sort(), [diskCatalog, fileUri(path.join(root, 'first.xosc'))].sort());
     await client.close(packageCatalog);
   });

@@ -18,19 +18,27 @@ describe('language server: completion offers what fits, once (JSON-RPC)', functi
     await server.client.close(uri);
     return [...items].sort((a, b) => (a.sortText ?? '').localeCompare(b.sortText ?? '')).map((item) => item.label);
   };
-  const inGroup = (content: string) => `<OpenSCENARIO><Storyboard><Story name="S"><Act name="A"><ManeuverGroup name="G"><Actors><EntityRef entityRef="e"/></Actors>
+  const inGroup = (
+    content: string,
+  ) => `<OpenSCENARIO><Storyboard><Story name="S"><Act name="A"><ManeuverGroup name="G"><Actors><EntityRef entityRef="e"/></Actors>
 ${content}`;
 
   it('offers each overridable attribute once, in its shortest unambiguous key', async function () {
-    const labels = await labelsAt(inGroup(`<ScenarioReference scenarioFileName="simple.xosc">
+    const labels = await labelsAt(
+      inGroup(`<ScenarioReference scenarioFileName="simple.xosc">
   <ManeuverGroupReference maneuverGroupName="Brake">
-    <ParameterReference key="|"`));
+    <ParameterReference key="|"`),
+    );
     assert.deepEqual(labels, ['AbsoluteTargetSpeed.value', 'delay', 'missing', 'SimulationTimeCondition.value']);
   });
 
   it('offers ScenarioReference snippets inside a ManeuverGroup, simple scenarios first', async function () {
     const labels = await labelsAt(inGroup('<|'));
-    assert.deepEqual(labels, ['ScenarioReference simple.xosc Brake', 'ScenarioReference simple.xosc Wait', 'ScenarioReference main.xosc Outer.Brake']);
+    assert.deepEqual(labels, [
+      'ScenarioReference simple.xosc Brake',
+      'ScenarioReference simple.xosc Wait',
+      'ScenarioReference main.xosc Outer.Brake',
+    ]);
   });
 
   it('offers no ScenarioReference snippet outside a ManeuverGroup', async function () {
@@ -40,25 +48,39 @@ ${content}`;
   });
 
   it('offers ParameterReference inside a ManeuverGroupReference: an empty one, then each key not given yet with its default', async function () {
-    const typed = cursor(inGroup(`<ScenarioReference scenarioFileName="simple.xosc">
+    const typed = cursor(
+      inGroup(`<ScenarioReference scenarioFileName="simple.xosc">
   <ManeuverGroupReference maneuverGroupName="Brake">
     <ParameterReference key="delay" value="1"/>
-    <|`));
+    <|`),
+    );
     const uri = await server.client.open(fileUri(path.join(server.root, 'typing.xosc')), typed.text);
     const items = await server.client.request<CompletionItem[]>('textDocument/completion', server.client.at(uri, typed.position));
     await server.client.close(uri);
     const sorted = [...items].sort((a, b) => (a.sortText ?? '').localeCompare(b.sortText ?? ''));
     assert.deepEqual(
       sorted.map((item) => item.label),
-      ['ParameterReference', 'ParameterReference AbsoluteTargetSpeed.value', 'ParameterReference missing', 'ParameterReference SimulationTimeCondition.value'],
+      [
+        'ParameterReference',
+        'ParameterReference AbsoluteTargetSpeed.value',
+        'ParameterReference missing',
+        'ParameterReference SimulationTimeCondition.value',
+      ],
     );
     assert.equal((sorted[0].textEdit as TextEdit).newText, '<ParameterReference key="$1" value="$2"/>$0');
     assert.equal(sorted[0].filterText, '<ParameterReference');
-    assert.equal((sorted[1].textEdit as TextEdit).newText, '<ParameterReference key="AbsoluteTargetSpeed.value" value="${1:\\${2*\\$a*\\$b\\}}"/>$0');
+    assert.equal(
+      (sorted[1].textEdit as TextEdit).newText,
+      '<ParameterReference key="AbsoluteTargetSpeed.value" value="${1:\\${2*\\$a*\\$b\\}}"/>$0',
+    );
   });
 
   it('offers parameterAttributes as an attribute name on the elements of a ManeuverGroup, once', async function () {
-    const inside = await labelsAt(inGroup('<Maneuver name="M"><Event name="E" priority="overwrite"><Action name="A"><PrivateAction><LongitudinalAction><SpeedAction><SpeedActionTarget><AbsoluteTargetSpeed value="5" |/>'));
+    const inside = await labelsAt(
+      inGroup(
+        '<Maneuver name="M"><Event name="E" priority="overwrite"><Action name="A"><PrivateAction><LongitudinalAction><SpeedAction><SpeedActionTarget><AbsoluteTargetSpeed value="5" |/>',
+      ),
+    );
     assert.ok(inside.includes('parameterAttributes'), inside.join(', '));
     const written = await labelsAt(inGroup('<Maneuver name="M"><Event parameterAttributes="priority" name="E" |'));
     assert.ok(!written.includes('parameterAttributes'), written.join(', '));
@@ -74,13 +96,17 @@ describe('language server: completion right after opening, through an unpacked p
   const server = useServer({ 'inner/main.xosc': PACKAGE_MAIN, 'inner/simple.xosc': SIMPLE, 'other.xosc': SIMPLE }, 'other.xosc');
 
   it('offers the keys of a group of the package at the first request', async function () {
-    const typed = cursor(`<OpenSCENARIO><Storyboard><Story name="S"><Act name="A"><ManeuverGroup name="G"><Actors><EntityRef entityRef="e"/></Actors>
+    const typed =
+      cursor(`<OpenSCENARIO><Storyboard><Story name="S"><Act name="A"><ManeuverGroup name="G"><Actors><EntityRef entityRef="e"/></Actors>
   <ScenarioReference scenarioFileName="inner.mosc">
     <ManeuverGroupReference maneuverGroupName="Inner.Brake">
       <ParameterReference key="|"`);
     const uri = await server.client.open(fileUri(path.join(server.root, 'typing.xosc')), typed.text);
     const items = await server.client.request<CompletionItem[]>('textDocument/completion', server.client.at(uri, typed.position));
-    assert.ok(items.some((item) => item.label === 'AbsoluteTargetSpeed.value'), items.map((item) => item.label).join(', '));
+    assert.ok(
+      items.some((item) => item.label === 'AbsoluteTargetSpeed.value'),
+      items.map((item) => item.label).join(', '),
+    );
   });
 });
 
@@ -112,7 +138,16 @@ describe('language server: completion in an empty file, with schema support on (
       assert.equal(inserted.startsWith('<?xml'), !marked.includes('<?xml'), marked);
       assert.match(inserted, /<FileHeader [^>]*revMajor="1" revMinor="3"/);
       assert.match(inserted, /date="\d{4}-\d\d-\d\dT\d\d:\d\d:\d\d"/);
-      for (const element of ['<OpenSCENARIO>', '<CatalogLocations/>', '<RoadNetwork/>', '<Entities/>', '<Storyboard>', '<Init>', '</OpenSCENARIO>']) assert.ok(inserted.includes(element), `${element} in ${inserted}`);
+      for (const element of [
+        '<OpenSCENARIO>',
+        '<CatalogLocations/>',
+        '<RoadNetwork/>',
+        '<Entities/>',
+        '<Storyboard>',
+        '<Init>',
+        '</OpenSCENARIO>',
+      ])
+        assert.ok(inserted.includes(element), `${element} in ${inserted}`);
     }
     const started = cursor('<OpenSCENARIO>\n  <|');
     const uri = await server.client.open(fileUri(path.join(server.root, 'started.xosc')), started.text);
@@ -122,7 +157,8 @@ describe('language server: completion in an empty file, with schema support on (
     await server.client.settingsChanged({ schema: { version: '1.0' } });
     let pinned: CompletionItem | undefined;
     const deadline = Date.now() + 10_000;
-    while ((pinned = await skeletonAt('|'))?.label !== 'OpenSCENARIO 1.0 scenario' && Date.now() < deadline) await new Promise((resolve) => setTimeout(resolve, 50));
+    while ((pinned = await skeletonAt('|'))?.label !== 'OpenSCENARIO 1.0 scenario' && Date.now() < deadline)
+      await new Promise((resolve) => setTimeout(resolve, 50));
     assert.equal(pinned?.label, 'OpenSCENARIO 1.0 scenario');
     assert.match((pinned.textEdit as TextEdit).newText, /revMajor="1" revMinor="0"/);
     await server.client.settingsChanged({});
@@ -140,14 +176,28 @@ describe('language server: completion in an empty file, with schema support on (
       };
       // The setting reaches the server asynchronously.
       let skeleton = await skeletonOffered();
-      for (const deadline = Date.now() + 10_000; !skeleton && Date.now() < deadline; skeleton = await skeletonOffered()) await new Promise((resolve) => setTimeout(resolve, 50));
+      for (const deadline = Date.now() + 10_000; !skeleton && Date.now() < deadline; skeleton = await skeletonOffered())
+        await new Promise((resolve) => setTimeout(resolve, 50));
       assert.ok(skeleton, version);
       const inserted = expandSnippet((skeleton.textEdit as TextEdit).newText);
-      for (const element of ['<FileHeader ', '<ParameterDeclarations/>', '<CatalogLocations/>', '<RoadNetwork/>', '<Entities/>', '<Init>', '<StopTrigger/>']) assert.ok(inserted.includes(element), `${version}: ${element} in\n${inserted}`);
+      for (const element of [
+        '<FileHeader ',
+        '<ParameterDeclarations/>',
+        '<CatalogLocations/>',
+        '<RoadNetwork/>',
+        '<Entities/>',
+        '<Init>',
+        '<StopTrigger/>',
+      ])
+        assert.ok(inserted.includes(element), `${version}: ${element} in\n${inserted}`);
       const date = /date="([^"]+)"/.exec(inserted)?.[1] ?? '';
       assert.ok(Math.abs(Date.parse(`${date}Z`) - Date.now()) < 60_000, `${version}: today's date, not ${date}`);
       const findings = checkSchema(parseXml(inserted), { modular: true }).findings;
-      assert.deepEqual(findings.map((finding) => `${finding.code} ${finding.message}`), [], `${version}:\n${inserted}`);
+      assert.deepEqual(
+        findings.map((finding) => `${finding.code} ${finding.message}`),
+        [],
+        `${version}:\n${inserted}`,
+      );
     }
     await server.client.settingsChanged({});
   });

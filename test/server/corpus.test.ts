@@ -33,11 +33,20 @@ describe('language server on the case study (../shared/corpus)', function () {
 
   it('warns about the NAME.xosc fallback and the keys that simple_2.xosc lists as whole keys', async function () {
     const diagnostics = await client.diagnosticsOf(mainUri);
-    assert.deepEqual(diagnostics.map((diagnostic) => `${diagnostic.range.start.line + 1}:${diagnostic.code}`), ['339:xosc-fallback', '492:unknown-key', '518:unknown-key']);
-    assert.deepEqual(diagnostics.map((diagnostic) => diagnostic.severity), [DiagnosticSeverity.Warning, DiagnosticSeverity.Error, DiagnosticSeverity.Error]);
+    assert.deepEqual(
+      diagnostics.map((diagnostic) => `${diagnostic.range.start.line + 1}:${diagnostic.code}`),
+      ['339:xosc-fallback', '492:unknown-key', '518:unknown-key'],
+    );
+    assert.deepEqual(
+      diagnostics.map((diagnostic) => diagnostic.severity),
+      [DiagnosticSeverity.Warning, DiagnosticSeverity.Error, DiagnosticSeverity.Error],
+    );
     const related = diagnostics[1].relatedInformation?.[0];
     assert.equal(related?.location.uri, fileUri(path.join(caseStudyDir, 'simple_2.xosc')));
-    assert.equal(rangeText(fs.readFileSync(path.join(caseStudyDir, 'simple_2.xosc'), 'utf8'), related.location), 'AbsoluteTargetSpeed.value');
+    assert.equal(
+      rangeText(fs.readFileSync(path.join(caseStudyDir, 'simple_2.xosc'), 'utf8'), related.location),
+      'AbsoluteTargetSpeed.value',
+    );
   });
 
   it('completes keys for a group of simple_2.xosc, which lists the dotted AbsoluteTargetSpeed.value (issue 7, item 3)', async function () {
@@ -56,9 +65,14 @@ describe('language server on the case study (../shared/corpus)', function () {
     await main(['check', caseStudyDir, '--format', 'json'], { out: (text) => printed.push(text), err: () => undefined });
     const report = JSON.parse(printed.join('')) as { problems: { file: string; line: number; code: string; severity: string }[] };
     const severityName = ['', 'error', 'warning', 'information'];
-    const fromCli = report.problems.filter((problem) => path.resolve(problem.file) === path.join(caseStudyDir, 'main.xosc')).map((problem) => `${problem.line}:${problem.code}:${problem.severity}`);
+    const fromCli = report.problems
+      .filter((problem) => path.resolve(problem.file) === path.join(caseStudyDir, 'main.xosc'))
+      .map((problem) => `${problem.line}:${problem.code}:${problem.severity}`);
     const diagnostics = await client.diagnosticsOf(mainUri);
-    assert.deepEqual(diagnostics.map((diagnostic) => `${diagnostic.range.start.line + 1}:${diagnostic.code}:${severityName[diagnostic.severity ?? 0]}`), fromCli);
+    assert.deepEqual(
+      diagnostics.map((diagnostic) => `${diagnostic.range.start.line + 1}:${diagnostic.code}:${severityName[diagnostic.severity ?? 0]}`),
+      fromCli,
+    );
   });
 
   it('shows the parameterAttributes entry of simple_2.xosc that names no attribute', async function () {
@@ -71,7 +85,10 @@ describe('language server on the case study (../shared/corpus)', function () {
   });
 
   it('goes to definition through the nested package for a dotted group name', async function () {
-    const locations = await client.request<Location[]>('textDocument/definition', client.at(mainUri, positionAfter(mainText, 'maneuverGroupName="VehicleCollisionInit.Coll')));
+    const locations = await client.request<Location[]>(
+      'textDocument/definition',
+      client.at(mainUri, positionAfter(mainText, 'maneuverGroupName="VehicleCollisionInit.Coll')),
+    );
     assert.equal(locations.length, 1);
     assert.equal(locations[0].uri, fileUri(path.join(caseStudyDir, 'simple_1.xosc')));
     assert.equal(locations[0].range.start.line + 1, 117);
@@ -79,7 +96,10 @@ describe('language server on the case study (../shared/corpus)', function () {
   });
 
   it('goes from a key to the attribute it overrides in simple_1.xosc', async function () {
-    const locations = await client.request<Location[]>('textDocument/definition', client.at(mainUri, positionAfter(mainText, 'key="AcquirePositionAction.Position.WorldPosition.x')));
+    const locations = await client.request<Location[]>(
+      'textDocument/definition',
+      client.at(mainUri, positionAfter(mainText, 'key="AcquirePositionAction.Position.WorldPosition.x')),
+    );
     assert.equal(locations.length, 1);
     const simple = fs.readFileSync(path.join(caseStudyDir, 'simple_1.xosc'), 'utf8');
     assert.match(rangeText(simple, locations[0]), /^x="-?[\d.]+"$/);
@@ -87,20 +107,32 @@ describe('language server on the case study (../shared/corpus)', function () {
   });
 
   it('goes from scenarioFileName to the unpacked package', async function () {
-    const [location] = await client.request<Location[]>('textDocument/definition', client.at(mainUri, positionAfter(mainText, 'scenarioFileName="modular_1.m')));
+    const [location] = await client.request<Location[]>(
+      'textDocument/definition',
+      client.at(mainUri, positionAfter(mainText, 'scenarioFileName="modular_1.m')),
+    );
     assert.equal(location.uri, fileUri(path.join(caseStudyDir, 'modular_1', 'main.xosc')));
   });
 
   it('completes only the key not yet given in a group reference', async function () {
-    const items = await client.request<CompletionItem[]>('textDocument/completion', client.at(mainUri, positionAfter(mainText, 'key="', 1)));
+    const items = await client.request<CompletionItem[]>(
+      'textDocument/completion',
+      client.at(mainUri, positionAfter(mainText, 'key="', 1)),
+    );
     const sorted = items.sort((a, b) => (a.sortText ?? '').localeCompare(b.sortText ?? '')).map((item) => item.label);
     assert.equal(sorted[0], 'delay');
     assert.ok(sorted.every((label) => label.endsWith('delay')));
   });
 
   it('hovers a key with the value taking effect', async function () {
-    const hover = await client.request<Hover>('textDocument/hover', client.at(mainUri, positionAfter(mainText, 'key="AbsoluteTargetSpeed.va', 2)));
-    assert.match((hover.contents as MarkupContent).value, /default `6\.8` declared at `simple_1\.xosc:130`; takes effect: `10` \(this key\)/);
+    const hover = await client.request<Hover>(
+      'textDocument/hover',
+      client.at(mainUri, positionAfter(mainText, 'key="AbsoluteTargetSpeed.va', 2)),
+    );
+    assert.match(
+      (hover.contents as MarkupContent).value,
+      /default `6\.8` declared at `simple_1\.xosc:130`; takes effect: `10` \(this key\)/,
+    );
   });
 
   it('completes keys on a line being typed in the middle of the file (not well-formed)', async function () {
@@ -109,29 +141,46 @@ describe('language server on the case study (../shared/corpus)', function () {
     const typed = `${mainText.slice(0, anchor)}<ParameterReference key="${mainText.slice(mainText.indexOf('\n', anchor))}`;
     const uri = fileUri(path.join(caseStudyDir, 'typed-main.xosc'));
     await client.open(uri, typed);
-    const items = await client.request<CompletionItem[]>('textDocument/completion', client.at(uri, positionAt(typed, anchor + '<ParameterReference key="'.length)));
+    const items = await client.request<CompletionItem[]>(
+      'textDocument/completion',
+      client.at(uri, positionAt(typed, anchor + '<ParameterReference key="'.length)),
+    );
     const labels = items.sort((a, b) => (a.sortText ?? '').localeCompare(b.sortText ?? '')).map((item) => item.label);
     assert.equal(labels[0], 'duration', 'the key no longer given is offered first, in its shortest form');
-    assert.ok(labels.every((label) => label.endsWith('duration')), `only that key: ${labels}`);
+    assert.ok(
+      labels.every((label) => label.endsWith('duration')),
+      `only that key: ${labels}`,
+    );
     await client.close(uri);
   });
 
   it('renames a group of simple_1.xosc in the package main and in the dotted names of the outer main', async function () {
     const simplePath = path.join(caseStudyDir, 'simple_1.xosc');
     const uri = await client.openFile(simplePath);
-    const edit = await client.request<WorkspaceEdit>('textDocument/rename', { ...client.at(uri, positionAfter(fs.readFileSync(simplePath, 'utf8'), 'name="CollisionI')), newName: 'Crash' });
+    const edit = await client.request<WorkspaceEdit>('textDocument/rename', {
+      ...client.at(uri, positionAfter(fs.readFileSync(simplePath, 'utf8'), 'name="CollisionI')),
+      newName: 'Crash',
+    });
     const changes = edit.changes ?? {};
     const inner = changes[fileUri(path.join(caseStudyDir, 'modular_1', 'main.xosc'))] ?? [];
-    assert.deepEqual(inner.map((change) => change.newText), ['Crash']);
+    assert.deepEqual(
+      inner.map((change) => change.newText),
+      ['Crash'],
+    );
     const outer = changes[mainUri] ?? [];
     assert.equal(outer.length, 6);
     assert.ok(outer.every((change) => change.newText === 'VehicleCollisionInit.Crash'));
-    assert.deepEqual(changes[uri].map((change) => change.newText), ['Crash']);
+    assert.deepEqual(
+      changes[uri].map((change) => change.newText),
+      ['Crash'],
+    );
     await client.close(uri);
   });
 
   it('updates references to an unpacked package when its folder is renamed', async function () {
-    const edit = await client.request<WorkspaceEdit | null>('workspace/willRenameFiles', { files: [{ oldUri: fileUri(path.join(caseStudyDir, 'modular_2')), newUri: fileUri(path.join(caseStudyDir, 'leaving')) }] });
+    const edit = await client.request<WorkspaceEdit | null>('workspace/willRenameFiles', {
+      files: [{ oldUri: fileUri(path.join(caseStudyDir, 'modular_2')), newUri: fileUri(path.join(caseStudyDir, 'leaving')) }],
+    });
     const changes = edit?.changes?.[mainUri] ?? [];
     assert.ok(changes.length > 0);
     assert.ok(changes.every((change) => change.newText === 'leaving.mosc'));
@@ -141,9 +190,22 @@ describe('language server on the case study (../shared/corpus)', function () {
   it('finds every reference to a group of simple_1.xosc, in the package and through it', async function () {
     const simplePath = path.join(caseStudyDir, 'simple_1.xosc');
     const uri = await client.openFile(simplePath);
-    const locations = await client.request<Location[]>('textDocument/references', { ...client.at(uri, positionAfter(fs.readFileSync(simplePath, 'utf8'), 'name="CollisionI')), context: { includeDeclaration: false } });
-    const found = locations.map((location) => `${path.relative(caseStudyDir, new URL(location.uri).pathname)}:${location.range.start.line + 1}`).sort();
-    assert.deepEqual(found, ['main.xosc:310', 'main.xosc:340', 'main.xosc:370', 'main.xosc:400', 'main.xosc:430', 'main.xosc:460', 'modular_1/main.xosc:122']);
+    const locations = await client.request<Location[]>('textDocument/references', {
+      ...client.at(uri, positionAfter(fs.readFileSync(simplePath, 'utf8'), 'name="CollisionI')),
+      context: { includeDeclaration: false },
+    });
+    const found = locations
+      .map((location) => `${path.relative(caseStudyDir, new URL(location.uri).pathname)}:${location.range.start.line + 1}`)
+      .sort();
+    assert.deepEqual(found, [
+      'main.xosc:310',
+      'main.xosc:340',
+      'main.xosc:370',
+      'main.xosc:400',
+      'main.xosc:430',
+      'main.xosc:460',
+      'modular_1/main.xosc:122',
+    ]);
     await client.close(uri);
   });
 });
@@ -182,13 +244,19 @@ describe('language server on the library (../shared/corpus)', function () {
     const text = fs.readFileSync(path.join(libraryDir, 'modular_hero_back', 'main.xosc'), 'utf8');
     await client.open(uri, text);
     const diagnostics = await client.diagnosticsOf(uri);
-    assert.deepEqual(diagnostics.filter((diagnostic) => diagnostic.severity === DiagnosticSeverity.Error), []);
-    const [location] = await client.request<Location[]>('textDocument/definition', client.at(uri, positionAfter(text, 'maneuverGroupName="ManeuverGroupV')));
+    assert.deepEqual(
+      diagnostics.filter((diagnostic) => diagnostic.severity === DiagnosticSeverity.Error),
+      [],
+    );
+    const [location] = await client.request<Location[]>(
+      'textDocument/definition',
+      client.at(uri, positionAfter(text, 'maneuverGroupName="ManeuverGroupV')),
+    );
     assert.equal(location.uri, fileUri(path.join(libraryDir, 'simple_1.xosc')));
     await client.close(uri);
   });
 
-  it('flattens every library scenario to the original tool\'s output', async function () {
+  it("flattens every library scenario to the original tool's output", async function () {
     for (const name of fs.readdirSync(libraryDir).filter((entry) => entry.startsWith('modular_hero'))) {
       const result = await client.send(FlattenToTextRequest, { uri: `mosc:${path.join(libraryDir, name, 'result.mosc')}/main.xosc` });
       assert.ok(result.text, `${name}: ${JSON.stringify(result.problems)}`);

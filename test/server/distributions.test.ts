@@ -66,7 +66,7 @@ function varyCount(file: string): string {
   return execFileSync(process.execPath, [cliPath, 'vary', file, '--count'], { encoding: 'utf8', stdio: ['ignore', 'pipe', 'pipe'] }).trim();
 }
 
-describe('distribution files in the editor: esmini\'s cut-in_parameter_set.xosc', function () {
+describe("distribution files in the editor: esmini's cut-in_parameter_set.xosc", function () {
   before(function () {
     if (!fs.existsSync(esminiCorpus)) this.skip();
   });
@@ -75,11 +75,16 @@ describe('distribution files in the editor: esmini\'s cut-in_parameter_set.xosc'
 
   it('has no problem of its own', async () => {
     const diagnostics = await fixture.client.diagnosticsOf(fixture.openUri);
-    assert.deepEqual(diagnostics.filter((d: Diagnostic) => d.source === 'modular2simple' && d.severity === 1), []);
+    assert.deepEqual(
+      diagnostics.filter((d: Diagnostic) => d.source === 'modular2simple' && d.severity === 1),
+      [],
+    );
   });
 
   it('shows the number of concrete scenarios, the same as vary --count, and Run Variations', async () => {
-    const lenses = (await fixture.client.connection.sendRequest('textDocument/codeLens', { textDocument: { uri: fixture.openUri } })) as CodeLens[];
+    const lenses = (await fixture.client.connection.sendRequest('textDocument/codeLens', {
+      textDocument: { uri: fixture.openUri },
+    })) as CodeLens[];
     const count = varyCount(file());
     assert.equal(count, '12');
     assert.deepEqual(lensTitles(lenses), [`${count} concrete scenarios`, 'Run Variations']);
@@ -88,24 +93,47 @@ describe('distribution files in the editor: esmini\'s cut-in_parameter_set.xosc'
 
   it('hovers a distribution with its values', async () => {
     const text = fs.readFileSync(file(), 'utf8').replace(/^\uFEFF/, '');
-    const hover = (await fixture.client.connection.sendRequest('textDocument/hover', { textDocument: { uri: fixture.openUri }, position: at(text, 'parameterName="TargetSpeed|Factor"') })) as Hover | null;
-    assert.equal(hoverText(hover), '**3 values**\n\n- TargetSpeedFactor = 1.100000\n- TargetSpeedFactor = 1.300000\n- TargetSpeedFactor = 1.500000');
-    const multi = (await fixture.client.connection.sendRequest('textDocument/hover', { textDocument: { uri: fixture.openUri }, position: at(text, '<DeterministicMulti|ParameterDistribution') })) as Hover | null;
+    const hover = (await fixture.client.connection.sendRequest('textDocument/hover', {
+      textDocument: { uri: fixture.openUri },
+      position: at(text, 'parameterName="TargetSpeed|Factor"'),
+    })) as Hover | null;
+    assert.equal(
+      hoverText(hover),
+      '**3 values**\n\n- TargetSpeedFactor = 1.100000\n- TargetSpeedFactor = 1.300000\n- TargetSpeedFactor = 1.500000',
+    );
+    const multi = (await fixture.client.connection.sendRequest('textDocument/hover', {
+      textDocument: { uri: fixture.openUri },
+      position: at(text, '<DeterministicMulti|ParameterDistribution'),
+    })) as Hover | null;
     assert.equal(hoverText(multi), '**2 values**\n\n- HostVehicle = car_blue, TargetVehicle = car_yellow\n- TargetVehicle = van_red');
   });
 
   it('completes a parameterName with the root parameters of the scenario, with type and default', async () => {
     const text = fs.readFileSync(file(), 'utf8').replace(/^\uFEFF/, '');
-    const items = (await fixture.client.connection.sendRequest('textDocument/completion', { textDocument: { uri: fixture.openUri }, position: at(text, 'parameterName="|EgoSpeed"') })) as CompletionItem[];
+    const items = (await fixture.client.connection.sendRequest('textDocument/completion', {
+      textDocument: { uri: fixture.openUri },
+      position: at(text, 'parameterName="|EgoSpeed"'),
+    })) as CompletionItem[];
     assert.deepEqual(
       items.map((item) => `${item.label}: ${item.detail}`),
-      ['HostVehicle: string = car_white', 'TargetVehicle: string = car_red', 'EgoStartS: double = 50', 'HeadwayTime_LaneChange: double = 0.4', 'HeadwayTime_Brake: double = 0.7', 'EgoSpeed: double = 108', 'TargetSpeedFactor: double = 1.2'],
+      [
+        'HostVehicle: string = car_white',
+        'TargetVehicle: string = car_red',
+        'EgoStartS: double = 50',
+        'HeadwayTime_LaneChange: double = 0.4',
+        'HeadwayTime_Brake: double = 0.7',
+        'EgoSpeed: double = 108',
+        'TargetSpeedFactor: double = 1.2',
+      ],
     );
   });
 
   it('goes from a parameterName to its declaration in the scenario', async () => {
     const text = fs.readFileSync(file(), 'utf8').replace(/^\uFEFF/, '');
-    const locations = (await fixture.client.connection.sendRequest('textDocument/definition', { textDocument: { uri: fixture.openUri }, position: at(text, 'parameterRef="Target|Vehicle"', 'car_blue') })) as Location[];
+    const locations = (await fixture.client.connection.sendRequest('textDocument/definition', {
+      textDocument: { uri: fixture.openUri },
+      position: at(text, 'parameterRef="Target|Vehicle"', 'car_blue'),
+    })) as Location[];
     assert.equal(locations.length, 1);
     assert.equal(locations[0].uri, fileUri(path.join(fixture.root, 'xosc', 'cut-in.xosc')));
     const declared = fs.readFileSync(path.join(fixture.root, 'xosc', 'cut-in.xosc'), 'utf8').replace(/^\uFEFF/, '');
@@ -116,8 +144,16 @@ describe('distribution files in the editor: esmini\'s cut-in_parameter_set.xosc'
   it('runs the first concrete scenario in esmini, saying which', async function () {
     requireEsmini(this);
     this.timeout(120_000);
-    const result = (await fixture.client.connection.sendRequest(RunEsminiRequest, { uri: fixture.openUri, esminiPath: esminiBinary, roadPath: [esminiRoads], duration: 2 })) as RunEsminiResult;
-    assert.match(result.message, /^ran concrete scenario 0 of 12 \(HostVehicle = car_blue, TargetVehicle = car_yellow, EgoSpeed = 70\.0, TargetSpeedFactor = 1\.100000\)/);
+    const result = (await fixture.client.connection.sendRequest(RunEsminiRequest, {
+      uri: fixture.openUri,
+      esminiPath: esminiBinary,
+      roadPath: [esminiRoads],
+      duration: 2,
+    })) as RunEsminiResult;
+    assert.match(
+      result.message,
+      /^ran concrete scenario 0 of 12 \(HostVehicle = car_blue, TargetVehicle = car_yellow, EgoSpeed = 70\.0, TargetSpeedFactor = 1\.100000\)/,
+    );
     assert.equal(result.outcome, 'ok', result.log);
     assert.ok(result.csvFile && fs.existsSync(result.csvFile));
   });
@@ -131,9 +167,12 @@ describe('distribution files in the editor: checks, counts and fixes', function 
       'unknown.xosc': distribution(`      <DeterministicSingleParameterDistribution parameterName="Sped">
         <DistributionSet><Element value="20"/></DistributionSet>
       </DeterministicSingleParameterDistribution>`),
-      'missing.xosc': distribution(`      <DeterministicSingleParameterDistribution parameterName="Speed">
+      'missing.xosc': distribution(
+        `      <DeterministicSingleParameterDistribution parameterName="Speed">
         <DistributionSet><Element value="20"/></DistributionSet>
-      </DeterministicSingleParameterDistribution>`, 'nowhere.xosc'),
+      </DeterministicSingleParameterDistribution>`,
+        'nowhere.xosc',
+      ),
       'steps.xosc': distribution(`      <DeterministicSingleParameterDistribution parameterName="Speed">
         <DistributionRange stepWidth="0"><Range lowerLimit="10" upperLimit="30"/></DistributionRange>
       </DeterministicSingleParameterDistribution>
@@ -146,10 +185,13 @@ describe('distribution files in the editor: checks, counts and fixes', function 
     },
     'ranges.xosc',
   );
-  const own = (diagnostics: Diagnostic[]) => diagnostics.filter((d) => d.source === 'modular2simple' && (d.code === 'distribution' || d.code === 'unknown-distribution-parameter'));
+  const own = (diagnostics: Diagnostic[]) =>
+    diagnostics.filter((d) => d.source === 'modular2simple' && (d.code === 'distribution' || d.code === 'unknown-distribution-parameter'));
 
   it('counts what the ValueConstraintGroups keep, as vary --count', async () => {
-    const lenses = (await fixture.client.connection.sendRequest('textDocument/codeLens', { textDocument: { uri: fixture.openUri } })) as CodeLens[];
+    const lenses = (await fixture.client.connection.sendRequest('textDocument/codeLens', {
+      textDocument: { uri: fixture.openUri },
+    })) as CodeLens[];
     const count = varyCount(path.join(fixture.root, 'ranges.xosc'));
     assert.equal(count, '28');
     assert.deepEqual(lensTitles(lenses), ['28 concrete scenarios (7 of 35 discarded by ValueConstraintGroups)', 'Run Variations']);
@@ -164,8 +206,15 @@ describe('distribution files in the editor: checks, counts and fixes', function 
     const text = fs.readFileSync(path.join(fixture.root, 'unknown.xosc'), 'utf8');
     const start = at(text, 'parameterName="|Sped"');
     assert.deepEqual(diagnostics[0].range, { start, end: { line: start.line, character: start.character + 4 } });
-    const actions = (await fixture.client.connection.sendRequest('textDocument/codeAction', { textDocument: { uri }, range: diagnostics[0].range, context: { diagnostics } })) as { title: string }[];
-    assert.deepEqual(actions.map((action) => action.title), ["Change to 'Speed'"]);
+    const actions = (await fixture.client.connection.sendRequest('textDocument/codeAction', {
+      textDocument: { uri },
+      range: diagnostics[0].range,
+      context: { diagnostics },
+    })) as { title: string }[];
+    assert.deepEqual(
+      actions.map((action) => action.title),
+      ["Change to 'Speed'"],
+    );
     const lenses = (await fixture.client.connection.sendRequest('textDocument/codeLens', { textDocument: { uri } })) as CodeLens[];
     assert.deepEqual(lensTitles(lenses), ['no concrete scenarios: the distribution has errors']);
   });
@@ -197,7 +246,7 @@ describe('distribution files in the editor: checks, counts and fixes', function 
     );
   });
 
-  it('warns of a value that does not fit its parameter\'s type', async () => {
+  it("warns of a value that does not fit its parameter's type", async () => {
     const uri = await fixture.client.openFile(path.join(fixture.root, 'types.xosc'));
     const diagnostics = own(await fixture.client.diagnosticsOf(uri));
     assert.equal(diagnostics.length, 1);
@@ -233,13 +282,21 @@ describe('distribution files in the editor: a modular main as the ScenarioFile',
   it('is flattened: no problem, the count as vary --count, definition in the main file', async () => {
     const diagnostics = await fixture.client.diagnosticsOf(fixture.openUri);
     assert.deepEqual(diagnostics.filter((d) => d.severity === 1).map(messageOf), []);
-    const lenses = (await fixture.client.connection.sendRequest('textDocument/codeLens', { textDocument: { uri: fixture.openUri } })) as CodeLens[];
+    const lenses = (await fixture.client.connection.sendRequest('textDocument/codeLens', {
+      textDocument: { uri: fixture.openUri },
+    })) as CodeLens[];
     const count = varyCount(path.join(fixture.root, 'xosc', 'speeds.xosc'));
     assert.equal(count, '3');
     assert.deepEqual(lensTitles(lenses), [`${count} concrete scenarios`, 'Run Variations']);
     const text = fs.readFileSync(path.join(fixture.root, 'xosc', 'speeds.xosc'), 'utf8');
-    const locations = (await fixture.client.connection.sendRequest('textDocument/definition', { textDocument: { uri: fixture.openUri }, position: at(text, 'parameterName="Ego|Speed"') })) as Location[];
-    assert.deepEqual(locations.map((location) => [location.uri, location.range.start.line]), [[fileUri(path.join(fixture.root, 'xosc', 'main.xosc')), 5]]);
+    const locations = (await fixture.client.connection.sendRequest('textDocument/definition', {
+      textDocument: { uri: fixture.openUri },
+      position: at(text, 'parameterName="Ego|Speed"'),
+    })) as Location[];
+    assert.deepEqual(
+      locations.map((location) => [location.uri, location.range.start.line]),
+      [[fileUri(path.join(fixture.root, 'xosc', 'main.xosc')), 5]],
+    );
   });
 });
 
@@ -260,11 +317,16 @@ describe('distribution files in the editor: stochastic', function () {
   const fixture = useServer({ 'plain.xosc': scenario, 'draws.xosc': stochastic }, 'draws.xosc');
 
   it('counts the runs as vary --count and hovers the first draws', async () => {
-    const lenses = (await fixture.client.connection.sendRequest('textDocument/codeLens', { textDocument: { uri: fixture.openUri } })) as CodeLens[];
+    const lenses = (await fixture.client.connection.sendRequest('textDocument/codeLens', {
+      textDocument: { uri: fixture.openUri },
+    })) as CodeLens[];
     const count = varyCount(path.join(fixture.root, 'draws.xosc'));
     assert.equal(count, '40');
     assert.deepEqual(lensTitles(lenses), ['40 concrete scenarios', 'Run Variations']);
-    const hover = (await fixture.client.connection.sendRequest('textDocument/hover', { textDocument: { uri: fixture.openUri }, position: at(stochastic, '<Stochastic|Distribution') })) as Hover | null;
+    const hover = (await fixture.client.connection.sendRequest('textDocument/hover', {
+      textDocument: { uri: fixture.openUri },
+      position: at(stochastic, '<Stochastic|Distribution'),
+    })) as Hover | null;
     const lines = hoverText(hover).split('\n');
     assert.equal(lines[0], '**40 draws** from a uniform distribution (seed 7)');
     assert.equal(lines.length, 2 + 5 + 1);

@@ -13,7 +13,10 @@ describe('language server: links on scenarioFileName values (JSON-RPC)', functio
     const uri = await examples.client().openFile(mainPath);
     const links = await examples.client().request<DocumentLink[]>('textDocument/documentLink', { textDocument: { uri } });
     const lines = text.split('\n');
-    const shown = links.map((link) => [lines[link.range.start.line].slice(link.range.start.character, link.range.end.character), link.target]);
+    const shown = links.map((link) => [
+      lines[link.range.start.line].slice(link.range.start.character, link.range.end.character),
+      link.target,
+    ]);
     assert.deepEqual(shown, [
       ['lane_change.xosc', fileUri(path.join(examples.root(), 'lane_change.xosc'))],
       ['braking.mosc', `mosc:${path.join(examples.root(), 'braking.mosc')}/main.xosc`],
@@ -24,7 +27,12 @@ describe('language server: links on scenarioFileName values (JSON-RPC)', functio
   it('gives no link where the name does not resolve', async function () {
     const mainPath = path.join(examples.root(), 'main.xosc');
     const uri = fileUri(mainPath);
-    await examples.client().open(uri, fs.readFileSync(mainPath, 'utf8').replace('scenarioFileName="lane_change.xosc"', 'scenarioFileName="nowhere_at_all.xosc"'));
+    await examples
+      .client()
+      .open(
+        uri,
+        fs.readFileSync(mainPath, 'utf8').replace('scenarioFileName="lane_change.xosc"', 'scenarioFileName="nowhere_at_all.xosc"'),
+      );
     const links = await examples.client().request<DocumentLink[]>('textDocument/documentLink', { textDocument: { uri } });
     assert.equal(links.length, 2);
   });

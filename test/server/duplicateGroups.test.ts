@@ -9,13 +9,19 @@ describe('language server: duplicate group names (JSON-RPC)', function () {
 
   it('warns on the reference that is ambiguous', async function () {
     const diagnostics = await server.client.diagnosticsOf(server.openUri);
-    assert.deepEqual(diagnostics.map((diagnostic) => diagnostic.code), ['ambiguous-group']);
+    assert.deepEqual(
+      diagnostics.map((diagnostic) => diagnostic.code),
+      ['ambiguous-group'],
+    );
   });
 
   it('does not warn on duplicate names in a file of its own', async function () {
     const uri = await server.client.openFile(path.join(server.root, 'simple.xosc'));
     const diagnostics = await server.client.diagnosticsOf(uri);
-    assert.deepEqual(diagnostics.filter((diagnostic) => diagnostic.code === 'duplicate-group'), []);
+    assert.deepEqual(
+      diagnostics.filter((diagnostic) => diagnostic.code === 'duplicate-group'),
+      [],
+    );
     await server.client.close(uri);
   });
 });

@@ -47,13 +47,27 @@ describe('esmini: time limit and log (no simulator needed)', () => {
   it('adds the time limit to the StopTrigger as an OR, keeping every element before it in place', () => {
     const text = fs.readFileSync(path.join(examples, 'lane_change.xosc'), 'utf8');
     const limited = withTimeLimit(text, 12.5) as string;
-    const stop = parseXml(limited).root?.children.find((child) => child.name === 'Storyboard')?.children.find((child) => child.name === 'StopTrigger');
+    const stop = parseXml(limited)
+      .root?.children.find((child) => child.name === 'Storyboard')
+      ?.children.find((child) => child.name === 'StopTrigger');
     assert.ok(stop);
-    assert.match(limited.slice(stop.start, stop.end), new RegExp(`name="${TIME_LIMIT_CONDITION}".*<SimulationTimeCondition value="12.5" rule="greaterThan"/>`));
+    assert.match(
+      limited.slice(stop.start, stop.end),
+      new RegExp(`name="${TIME_LIMIT_CONDITION}".*<SimulationTimeCondition value="12.5" rule="greaterThan"/>`),
+    );
     assert.equal(limited.slice(0, stop.start), text.slice(0, stop.start));
-    const withOwnStop = text.replace('<StopTrigger/>', '<StopTrigger><ConditionGroup><Condition name="own"/></ConditionGroup></StopTrigger>');
-    assert.match(withTimeLimit(withOwnStop, 3) as string, /<Condition name="own"\/><\/ConditionGroup><ConditionGroup><Condition name="modular2simple_time_limit"/);
-    assert.match(withTimeLimit(text.replace('<StopTrigger/>', ''), 3) as string, /<StopTrigger><ConditionGroup>.*<\/StopTrigger>\s*<\/Storyboard>/s);
+    const withOwnStop = text.replace(
+      '<StopTrigger/>',
+      '<StopTrigger><ConditionGroup><Condition name="own"/></ConditionGroup></StopTrigger>',
+    );
+    assert.match(
+      withTimeLimit(withOwnStop, 3) as string,
+      /<Condition name="own"\/><\/ConditionGroup><ConditionGroup><Condition name="modular2simple_time_limit"/,
+    );
+    assert.match(
+      withTimeLimit(text.replace('<StopTrigger/>', ''), 3) as string,
+      /<StopTrigger><ConditionGroup>.*<\/StopTrigger>\s*<\/Storyboard>/s,
+    );
     assert.equal(withTimeLimit('<OpenSCENARIO/>', 3), undefined);
   });
 
@@ -97,19 +111,33 @@ describe('esmini: time limit and log (no simulator needed)', () => {
       '[] [warn] Something esmini says about nothing here',
     ].join('\n');
     const problems = mapEsminiMessages(parseEsminiLog(log), flat.source, main);
-    const at = (index: number) => [path.basename(problems[index].source.disk), lineOf(problems[index].source.disk, problems[index].range.start.line).trim()];
-    assert.deepEqual(at(0), ['lane_change.xosc', '<LaneChangeActionDynamics parameterAttributes="value, dynamicsShape" dynamicsShape="sinusoidal" value="2" dynamicsDimension="time"/>']);
+    const at = (index: number) => [
+      path.basename(problems[index].source.disk),
+      lineOf(problems[index].source.disk, problems[index].range.start.line).trim(),
+    ];
+    assert.deepEqual(at(0), [
+      'lane_change.xosc',
+      '<LaneChangeActionDynamics parameterAttributes="value, dynamicsShape" dynamicsShape="sinusoidal" value="2" dynamicsDimension="time"/>',
+    ]);
     assert.deepEqual(at(1), ['crossing.xosc', '<Action name="Walk">']);
     assert.deepEqual(at(2), ['main.xosc', '<LogicFile filepath="Town05"/>']);
     assert.deepEqual([problems[3].located, problems[3].range.start.line, path.basename(problems[3].source.disk)], [false, 0, 'main.xosc']);
   });
 
   it('maps a value that an override set to the ParameterReference that set it, through a package too', async () => {
-    const root = examplesCopy({ file: 'main.xosc', from: '<ParameterReference key="LaneChangeActionDynamics.value" value="1.5"/>', to: '<ParameterReference key="LaneChangeActionDynamics.value" value="1.5"/>\n              <ParameterReference key="LaneChangeActionDynamics.dynamicsShape" value="jerky"/>' });
+    const root = examplesCopy({
+      file: 'main.xosc',
+      from: '<ParameterReference key="LaneChangeActionDynamics.value" value="1.5"/>',
+      to: '<ParameterReference key="LaneChangeActionDynamics.value" value="1.5"/>\n              <ParameterReference key="LaneChangeActionDynamics.dynamicsShape" value="jerky"/>',
+    });
     const main = diskRef(path.join(root, 'main.xosc'));
     const flat = await new Flattener(new ScenarioStore({ root })).flatten(main);
     assert.ok(flat.text, JSON.stringify(flat.problems));
-    const [problem] = mapEsminiMessages(parseEsminiLog('[] [error] Exception: Dynamics shape jerky unexpected. Supported: linear'), flat.source, main);
+    const [problem] = mapEsminiMessages(
+      parseEsminiLog('[] [error] Exception: Dynamics shape jerky unexpected. Supported: linear'),
+      flat.source,
+      main,
+    );
     assert.equal(problem.source.disk, main.disk);
     assert.match(lineOf(main.disk, problem.range.start.line), /key="LaneChangeActionDynamics.dynamicsShape" value="jerky"/);
     // A name, through two levels of packages: the event in the simple scenario inside braking.mosc.
@@ -118,16 +146,27 @@ describe('esmini: time limit and log (no simulator needed)', () => {
   });
 
   it('maps a message about a road or lane to the position naming them: the override that set the lane, a ${...} lane, else the road', async () => {
-    const teleport = '<Event name="Jump" priority="overwrite"><Action name="Jump"><PrivateAction><TeleportAction><Position><LanePosition parameterAttributes="laneId" roadId="550" laneId="-1" s="10" offset="0"/></Position></TeleportAction></PrivateAction></Action></Event>';
-    const root = examplesCopy({ file: 'lane_change.xosc', from: '<Event name="ChangeLane" priority="overwrite">', to: `${teleport}\n            <Event name="ChangeLane" priority="overwrite">` });
+    const teleport =
+      '<Event name="Jump" priority="overwrite"><Action name="Jump"><PrivateAction><TeleportAction><Position><LanePosition parameterAttributes="laneId" roadId="550" laneId="-1" s="10" offset="0"/></Position></TeleportAction></PrivateAction></Action></Event>';
+    const root = examplesCopy({
+      file: 'lane_change.xosc',
+      from: '<Event name="ChangeLane" priority="overwrite">',
+      to: `${teleport}\n            <Event name="ChangeLane" priority="overwrite">`,
+    });
     const mainFile = path.join(root, 'main.xosc');
     const mainText = fs.readFileSync(mainFile, 'utf8');
-    assert.ok(mainText.includes('<WorldPosition x="-50" y="0.8" z="0" h="3.14159"/>') && mainText.includes('<ParameterReference key="RelativeDistanceCondition.value" value="12"/>'));
+    assert.ok(
+      mainText.includes('<WorldPosition x="-50" y="0.8" z="0" h="3.14159"/>') &&
+        mainText.includes('<ParameterReference key="RelativeDistanceCondition.value" value="12"/>'),
+    );
     fs.writeFileSync(
       mainFile,
       mainText
         .replace('<WorldPosition x="-50" y="0.8" z="0" h="3.14159"/>', '<LanePosition roadId="550" laneId="${-2 + 1}" s="5"/>')
-        .replace('<ParameterReference key="RelativeDistanceCondition.value" value="12"/>', '<ParameterReference key="RelativeDistanceCondition.value" value="12"/>\n              <ParameterReference key="LanePosition.laneId" value="-2"/>'),
+        .replace(
+          '<ParameterReference key="RelativeDistanceCondition.value" value="12"/>',
+          '<ParameterReference key="RelativeDistanceCondition.value" value="12"/>\n              <ParameterReference key="LanePosition.laneId" value="-2"/>',
+        ),
     );
     const main = diskRef(mainFile);
     const flat = await new Flattener(new ScenarioStore({ root })).flatten(main);
@@ -160,7 +199,9 @@ describe('esmini: time limit and log (no simulator needed)', () => {
     assert.match((location as { message: string }).message, /modular2simple\.esmini\.path.*build\.sh \.cache\/esmini/s);
     const configured = locateEsmini('no/such/esmini', os.tmpdir());
     assert.match((configured as { message: string }).message, /esmini is not at .*no\/such\/esmini/);
-    const result = await runScenario(new Flattener(new ScenarioStore({ root: examples })), diskRef(path.join(examples, 'main.xosc')), { esminiPath: path.join(os.tmpdir(), 'no-such-esmini') });
+    const result = await runScenario(new Flattener(new ScenarioStore({ root: examples })), diskRef(path.join(examples, 'main.xosc')), {
+      esminiPath: path.join(os.tmpdir(), 'no-such-esmini'),
+    });
     assert.equal(result.outcome, 'no-esmini');
     assert.equal(result.runFolder, undefined);
   });
@@ -212,7 +253,9 @@ describe('esmini: runs (the simulator built by the test setup)', function () {
       results.push(result);
       assert.equal(result.outcome, 'ok', `${file}: ${result.message}`);
       assert.deepEqual(errorsOf(result), [], file);
-      const moved = [...tracksOf(readEsminiCsv(result.csvFile as string)).values()].map((track) => Math.hypot(track[track.length - 1].x - track[0].x, track[track.length - 1].y - track[0].y));
+      const moved = [...tracksOf(readEsminiCsv(result.csvFile as string)).values()].map((track) =>
+        Math.hypot(track[track.length - 1].x - track[0].x, track[track.length - 1].y - track[0].y),
+      );
       assert.ok(Math.max(...moved) > 5, `${file}: moved ${moved.map((distance) => distance.toFixed(1)).join(', ')} m`);
     }
   });
@@ -248,14 +291,26 @@ describe('esmini: runs (the simulator built by the test setup)', function () {
   it('repeats exactly with the same step and seed', async function () {
     requireEsmini(this);
     const store = new ScenarioStore({ root: examples });
-    const [a, b] = [await run(store, path.join(examples, 'main.xosc'), { duration: 5 }), await run(store, path.join(examples, 'main.xosc'), { duration: 5 })];
-    const rows = (result: EsminiRunResult) => fs.readFileSync(result.csvFile as string, 'utf8').split('\n').slice(6).join('\n');
+    const [a, b] = [
+      await run(store, path.join(examples, 'main.xosc'), { duration: 5 }),
+      await run(store, path.join(examples, 'main.xosc'), { duration: 5 }),
+    ];
+    const rows = (result: EsminiRunResult) =>
+      fs
+        .readFileSync(result.csvFile as string, 'utf8')
+        .split('\n')
+        .slice(6)
+        .join('\n');
     assert.equal(rows(a), rows(b));
   });
 
   it("shows esmini's message on the line of the simple scenario that has the mistake", async function () {
     requireEsmini(this);
-    const root = examplesCopy({ file: 'lane_change.xosc', from: 'dynamicsShape="linear" value="3"', to: 'dynamicsShape="wobbly" value="3"' });
+    const root = examplesCopy({
+      file: 'lane_change.xosc',
+      from: 'dynamicsShape="linear" value="3"',
+      to: 'dynamicsShape="wobbly" value="3"',
+    });
     const result = await run(new ScenarioStore({ root }), path.join(root, 'main.xosc'), { duration: 5 });
     assert.equal(result.outcome, 'errors');
     const [error] = errorsOf(result);
@@ -286,13 +341,29 @@ describe('esmini: runs (the simulator built by the test setup)', function () {
     fs.cpSync(path.join(esminiCatalogs, 'Vehicles'), path.join(root, 'catalogs', 'vehicles'), { recursive: true });
     const text = fs
       .readFileSync(path.join(root, 'lane_change.xosc'), 'utf8')
-      .replace('<CatalogLocations/>', '<CatalogLocations><VehicleCatalog><Directory path="catalogs/vehicles"/></VehicleCatalog></CatalogLocations>')
+      .replace(
+        '<CatalogLocations/>',
+        '<CatalogLocations><VehicleCatalog><Directory path="catalogs/vehicles"/></VehicleCatalog></CatalogLocations>',
+      )
       .replace('<LogicFile filepath="Town05"/>', '<LogicFile filepath="roads/straight.xodr"/>')
-      .replace(/<Vehicle name="vehicle\.audi\.tt"[\s\S]*?<\/Vehicle>/, '<CatalogReference catalogName="VehicleCatalog" entryName="car_red"/>')
-      .replace(/<Init>[\s\S]*?<\/Init>/, '<Init><Actions><Private entityRef="ego"><PrivateAction><TeleportAction><Position><LanePosition roadId="1" laneId="-1" s="50" offset="0"/></Position></TeleportAction></PrivateAction></Private><Private entityRef="adversary"><PrivateAction><TeleportAction><Position><LanePosition roadId="1" laneId="-1" s="20" offset="0"/></Position></TeleportAction></PrivateAction></Private></Actions></Init>');
+      .replace(
+        /<Vehicle name="vehicle\.audi\.tt"[\s\S]*?<\/Vehicle>/,
+        '<CatalogReference catalogName="VehicleCatalog" entryName="car_red"/>',
+      )
+      .replace(
+        /<Init>[\s\S]*?<\/Init>/,
+        '<Init><Actions><Private entityRef="ego"><PrivateAction><TeleportAction><Position><LanePosition roadId="1" laneId="-1" s="50" offset="0"/></Position></TeleportAction></PrivateAction></Private><Private entityRef="adversary"><PrivateAction><TeleportAction><Position><LanePosition roadId="1" laneId="-1" s="20" offset="0"/></Position></TeleportAction></PrivateAction></Private></Actions></Init>',
+      );
     fs.writeFileSync(path.join(root, 'plain.xosc'), text);
     const result = await run(new ScenarioStore({ root }), path.join(root, 'plain.xosc'), { duration: 3, roadPath: [] });
-    assert.equal(result.outcome, 'ok', `${result.message}\n${JSON.stringify(result.problems)}\n${result.log.split('\n').filter((line) => /error|warn/.test(line)).join('\n')}`);
+    assert.equal(
+      result.outcome,
+      'ok',
+      `${result.message}\n${JSON.stringify(result.problems)}\n${result.log
+        .split('\n')
+        .filter((line) => /error|warn/.test(line))
+        .join('\n')}`,
+    );
     assert.match(result.log, /Loaded OpenDRIVE: .*roads\/straight\.xodr/);
     assert.deepEqual(errorsOf(result), []);
     // A road the file does not have: the message lands on the position that names it.

@@ -21,7 +21,13 @@ describe('language server: the Run in esmini request over JSON-RPC', function ()
   afterEach(async () => client.stop());
 
   const run = (uri: string, options: Record<string, unknown> = {}) =>
-    client.connection.sendRequest(RunEsminiRequest, { uri, esminiPath: esminiBinary, roadPath: [esminiRoads], duration: 3, ...options }) as Promise<RunEsminiResult>;
+    client.connection.sendRequest(RunEsminiRequest, {
+      uri,
+      esminiPath: esminiBinary,
+      roadPath: [esminiRoads],
+      duration: 3,
+      ...options,
+    }) as Promise<RunEsminiResult>;
 
   it('a missing esmini is an answer that says how to get it, not a failure', async () => {
     const result = await run(fileUri(path.join(root, 'main.xosc')), { esminiPath: path.join(root, 'no-esmini') });
@@ -43,7 +49,9 @@ describe('language server: the Run in esmini request over JSON-RPC', function ()
     const offset = text.indexOf('dynamicsShape="linear"') + 'dynamicsShape="'.length;
     const line = text.slice(0, offset).split('\n').length - 1;
     const character = offset - text.lastIndexOf('\n', offset - 1) - 1;
-    await client.change(uri, [{ range: { start: { line, character }, end: { line, character: character + 'linear'.length } }, text: 'wobbly' }]);
+    await client.change(uri, [
+      { range: { start: { line, character }, end: { line, character: character + 'linear'.length } }, text: 'wobbly' },
+    ]);
     const broken = await run(fileUri(path.join(root, 'main.xosc')));
     assert.equal(broken.outcome, 'errors', broken.message);
     const [error] = broken.problems.filter((problem) => problem.severity === 'error');
@@ -63,8 +71,11 @@ describe('language server: the Run in esmini request over JSON-RPC', function ()
     const at = text.indexOf('<ParameterDeclarations/>');
     const line = text.slice(0, at).split('\n').length - 1;
     const character = at - text.lastIndexOf('\n', at - 1) - 1;
-    const declaration = '<ParameterDeclarations><ParameterDeclaration name="Pace" parameterType="double" value="fast"/></ParameterDeclarations>';
-    await client.change(uri, [{ range: { start: { line, character }, end: { line, character: character + '<ParameterDeclarations/>'.length } }, text: declaration }]);
+    const declaration =
+      '<ParameterDeclarations><ParameterDeclaration name="Pace" parameterType="double" value="fast"/></ParameterDeclarations>';
+    await client.change(uri, [
+      { range: { start: { line, character }, end: { line, character: character + '<ParameterDeclarations/>'.length } }, text: declaration },
+    ]);
     const refused = await run(uri);
     assert.equal(refused.outcome, 'not-flattened', refused.message);
     assert.equal(refused.forcible, true);
@@ -79,14 +90,22 @@ describe('language server: the Run in esmini request over JSON-RPC', function ()
     assert.equal(forced.outcome, 'ok', forced.message);
     assert.equal(forced.forcible, undefined);
     assert.match(forced.message, /3\.00 s simulated .*\(run anyway despite 1 error in the scenario\)$/);
-    assert.deepEqual(forced.flattenProblems.filter((problem) => problem.severity === 'error'), [error]);
+    assert.deepEqual(
+      forced.flattenProblems.filter((problem) => problem.severity === 'error'),
+      [error],
+    );
     assert.ok(forced.csvFile && fs.existsSync(forced.csvFile));
 
     // A group that does not exist leaves nothing to run, forced or not: no offer to run anyway.
     const group = text.indexOf('maneuverGroupName="') + 'maneuverGroupName="'.length;
     const groupLine = text.slice(0, group).split('\n').length - 1;
     const groupCharacter = group - text.lastIndexOf('\n', group - 1) - 1;
-    await client.change(uri, [{ range: { start: { line: groupLine, character: groupCharacter }, end: { line: groupLine, character: groupCharacter } }, text: 'NoSuch' }]);
+    await client.change(uri, [
+      {
+        range: { start: { line: groupLine, character: groupCharacter }, end: { line: groupLine, character: groupCharacter } },
+        text: 'NoSuch',
+      },
+    ]);
     for (const force of [false, true]) {
       const missing = await run(uri, { force });
       assert.equal(missing.outcome, 'not-flattened', missing.message);

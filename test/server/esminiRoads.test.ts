@@ -30,8 +30,17 @@ describe('language server: Run in esmini uses the road the picture draws, and re
 
   const mainUri = () => fileUri(path.join(root, MODULAR_RUN.main));
   const run = (roadPath: string[]) =>
-    client.connection.sendRequest(RunEsminiRequest, { uri: mainUri(), esminiPath: esminiBinary, roadPath, duration: 4 }) as Promise<RunEsminiResult>;
-  const scene = (roadPath: string[]) => client.connection.sendRequest(SceneRequest, { uri: mainUri(), roadPath: roadPath.map((folder) => path.resolve(root, folder)) }) as Promise<SceneResult>;
+    client.connection.sendRequest(RunEsminiRequest, {
+      uri: mainUri(),
+      esminiPath: esminiBinary,
+      roadPath,
+      duration: 4,
+    }) as Promise<RunEsminiResult>;
+  const scene = (roadPath: string[]) =>
+    client.connection.sendRequest(SceneRequest, {
+      uri: mainUri(),
+      roadPath: roadPath.map((folder) => path.resolve(root, folder)),
+    }) as Promise<SceneResult>;
 
   /** Runs and draws with one roadPath; both must name `expected`, and esmini's log must say it loaded it. */
   async function sameRoad(roadPath: string[], expected: string): Promise<RunEsminiResult> {
@@ -39,10 +48,21 @@ describe('language server: Run in esmini uses the road the picture draws, and re
     assert.equal(picture.roadFile?.resolved, expected, picture.problems.join('\n'));
     const mainLines = fs.readFileSync(path.join(root, MODULAR_RUN.main), 'utf8').split('\n');
     const logicLine = mainLines.findIndex((line) => line.includes('<LogicFile '));
-    assert.deepEqual(picture.roadFile?.source, { uri: mainUri(), line: logicLine, character: mainLines[logicLine].indexOf('../xodr/e6mini.xodr') });
+    assert.deepEqual(picture.roadFile?.source, {
+      uri: mainUri(),
+      line: logicLine,
+      character: mainLines[logicLine].indexOf('../xodr/e6mini.xodr'),
+    });
     assert.deepEqual(picture.problems, [], 'the picture places every entity on the road it draws');
     assert.equal(result.roadFile?.resolved, expected);
-    assert.equal(result.roadFile?.loaded, expected, `esmini's log: ${result.log.split('\n').filter((line) => /OpenDRIVE/.test(line)).join('\n')}`);
+    assert.equal(
+      result.roadFile?.loaded,
+      expected,
+      `esmini's log: ${result.log
+        .split('\n')
+        .filter((line) => /OpenDRIVE/.test(line))
+        .join('\n')}`,
+    );
     assert.equal(result.outcome, 'ok', `${result.message}\n${JSON.stringify(result.problems, null, 1)}`);
     return result;
   }
@@ -52,7 +72,10 @@ describe('language server: Run in esmini uses the road the picture draws, and re
     const result = await sameRoad([esminiRoads], path.join(root, MODULAR_RUN.road));
     assert.deepEqual(result.problems, [], 'nothing for a toast or the Problems view');
     assert.match(result.message, /^esmini: 0 errors, 0 warnings; 4\.00 s simulated/);
-    assert.deepEqual(result.flattenProblems.filter((problem) => problem.severity === 'error'), []);
+    assert.deepEqual(
+      result.flattenProblems.filter((problem) => problem.severity === 'error'),
+      [],
+    );
     const remarks = new Map((result.remarks ?? []).map((remark) => [remark.message, remark]));
     const railPole = remarks.get('Unsupported object type: rail-pole - interpret as NONE');
     assert.ok(railPole, JSON.stringify(result.remarks));
@@ -61,8 +84,14 @@ describe('language server: Run in esmini uses the road the picture draws, and re
     const sceneGraph = remarks.get('scene graph file ../models/e6mini.osgb not located, using specified file path');
     assert.ok(sceneGraph, JSON.stringify(result.remarks));
     assert.match(sceneGraph.origin, /CommonMini\.cpp:\d+ LocateFile.*ScenarioEngine\.cpp/);
-    assert.match(remarks.get('3D model car_white.osgb not located, using specified file path')?.origin ?? '', /Entities\.cpp:\d+ Object::SetModel3DFullPath/);
-    assert.match(remarks.get('Unsupported geo reference attr: +no_defs')?.origin ?? '', /RoadManager\.cpp:\d+ OpenDrive::ParseGeoLocalization/);
+    assert.match(
+      remarks.get('3D model car_white.osgb not located, using specified file path')?.origin ?? '',
+      /Entities\.cpp:\d+ Object::SetModel3DFullPath/,
+    );
+    assert.match(
+      remarks.get('Unsupported geo reference attr: +no_defs')?.origin ?? '',
+      /RoadManager\.cpp:\d+ OpenDrive::ParseGeoLocalization/,
+    );
     for (const remark of result.remarks ?? []) assert.ok(remark.why.length > 0, remark.message);
   });
 
@@ -72,7 +101,7 @@ describe('language server: Run in esmini uses the road the picture draws, and re
     await sameRoad(['roads'], path.join(root, MODULAR_RUN.road));
   });
 
-  it("the file name beside the scenario comes before roadPath, also when roadPath holds the path as written", async function () {
+  it('the file name beside the scenario comes before roadPath, also when roadPath holds the path as written', async function () {
     requireEsmini(this);
     // ../xodr/e6mini.xodr is missing beside xosc/main.xosc; xosc/e6mini.xodr is there, and so is decoy/sub/../xodr/e6mini.xodr.
     fs.renameSync(path.join(root, MODULAR_RUN.road), path.join(root, 'xosc', 'e6mini.xodr'));
@@ -138,7 +167,11 @@ describe('esmini: the bundled examples run without a warning', function () {
       const result = await runScenario(new Flattener(store), main, { esminiPath: esminiBinary, roadPath: [esminiRoads], duration: 20 });
       try {
         assert.equal(result.outcome, 'ok', `${file}: ${result.message}`);
-        assert.deepEqual(result.problems.map((problem) => `${problem.severity}: ${problem.message}`), [], file);
+        assert.deepEqual(
+          result.problems.map((problem) => `${problem.severity}: ${problem.message}`),
+          [],
+          file,
+        );
         assert.equal(result.roadFile?.loaded, path.join(esminiRoads, 'Town05'), file);
       } finally {
         removeRunFolder(result);

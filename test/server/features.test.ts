@@ -22,7 +22,6 @@ import { fileUri, TestClient } from './harness';
 import { at, cursor } from '../support/cursor';
 import { temporaryWorkspace } from '../support/workspace';
 
-
 async function packageBytes(): Promise<Uint8Array> {
   const zip = new JSZip();
   zip.file('main.xosc', PACKAGE_MAIN);
@@ -40,13 +39,15 @@ function codes(diagnostics: Diagnostic[]): string[] {
 
 function textAt(text: string, range: { start: { line: number; character: number }; end: { line: number; character: number } }): string {
   const lines = text.split('\n');
-  const offset = (position: { line: number; character: number }) => lines.slice(0, position.line).reduce((sum, line) => sum + line.length + 1, 0) + position.character;
+  const offset = (position: { line: number; character: number }) =>
+    lines.slice(0, position.line).reduce((sum, line) => sum + line.length + 1, 0) + position.character;
   return text.slice(offset(range.start), offset(range.end));
 }
 
 function applyEdits(text: string, edits: TextEdit[]): string {
   const lines = text.split('\n');
-  const offset = (position: { line: number; character: number }) => lines.slice(0, position.line).reduce((sum, line) => sum + line.length + 1, 0) + position.character;
+  const offset = (position: { line: number; character: number }) =>
+    lines.slice(0, position.line).reduce((sum, line) => sum + line.length + 1, 0) + position.character;
   const sorted = [...edits].sort((a, b) => offset(b.range.start) - offset(a.range.start));
   let result = text;
   for (const edit of sorted) result = result.slice(0, offset(edit.range.start)) + edit.newText + result.slice(offset(edit.range.end));
@@ -124,7 +125,9 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
       const [cycle] = diagnostics;
       assert.match(messageOf(cycle), /cycleA\.xosc -> .*cycleB\.xosc -> .*cycleA\.xosc/);
       assert.equal(textAt(cycleFile('A', 'cycleB.xosc'), cycle.range), 'cycleB.xosc');
-      const steps = cycle.relatedInformation?.map((item) => `${path.basename(item.location.uri)}:${item.location.range.start.line}:${item.message}`);
+      const steps = cycle.relatedInformation?.map(
+        (item) => `${path.basename(item.location.uri)}:${item.location.range.start.line}:${item.message}`,
+      );
       assert.deepEqual(steps, ['cycleA.xosc:2:cycleA.xosc references cycleB.xosc', 'cycleB.xosc:2:cycleB.xosc references cycleA.xosc']);
       await client.close(uri);
     });
@@ -142,8 +145,13 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
     it('re-diagnoses an open main file when a simple scenario it uses is edited (unsaved)', async function () {
       await client.open(simpleUri, SIMPLE);
       const start = at(SIMPLE, '<ManeuverGroup name="|Brake"');
-      await client.change(simpleUri, [{ range: { start, end: { line: start.line, character: start.character + 'Brake'.length } }, text: 'Braking' }]);
-      const diagnostics = await client.diagnosticsOf(mainUri, (list) => list.filter((diagnostic) => diagnostic.code === 'unknown-group').length === 2);
+      await client.change(simpleUri, [
+        { range: { start, end: { line: start.line, character: start.character + 'Brake'.length } }, text: 'Braking' },
+      ]);
+      const diagnostics = await client.diagnosticsOf(
+        mainUri,
+        (list) => list.filter((diagnostic) => diagnostic.code === 'unknown-group').length === 2,
+      );
       assert.ok(diagnostics.some((diagnostic) => /has no ManeuverGroup named 'Brake'; it has: Braking, Wait/.test(messageOf(diagnostic))));
       await client.close(simpleUri);
       await client.diagnosticsOf(mainUri, (list) => list.filter((diagnostic) => diagnostic.code === 'unknown-group').length === 1);
@@ -161,7 +169,8 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
   });
 
   describe('definition', function () {
-    const definition = (markedSnippet: string, after?: string) => client.request<Location[]>('textDocument/definition', client.at(mainUri, at(MAIN, markedSnippet, after)));
+    const definition = (markedSnippet: string, after?: string) =>
+      client.request<Location[]>('textDocument/definition', client.at(mainUri, at(MAIN, markedSnippet, after)));
 
     it('goes from scenarioFileName to the file', async function () {
       const [location] = await definition('scenarioFileName="sim|ple.xosc"', 'name="Outer"');
@@ -211,7 +220,10 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
       const [location] = await client.request<Location[]>('textDocument/definition', client.at(uri, position));
       assert.equal(location.uri, `mosc:${path.join(root, 'pkg.mosc')}/simple.xosc`);
       const symbols = await client.request<DocumentSymbol[]>('textDocument/documentSymbol', { textDocument: { uri } });
-      assert.deepEqual(symbols.map((symbol) => symbol.name), ['ego', 'Storyboard']);
+      assert.deepEqual(
+        symbols.map((symbol) => symbol.name),
+        ['ego', 'Storyboard'],
+      );
       await client.close(uri);
     });
   });
@@ -221,7 +233,8 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
 
     it('offers the file names that resolve, packages and siblings', async function () {
       const uri = fileUri(path.join(root, 'typing.xosc'));
-      const typed = cursor(`<OpenSCENARIO><Storyboard><Story name="S"><Act name="A"><ManeuverGroup name="G"><Actors><EntityRef entityRef="e"/></Actors>
+      const typed =
+        cursor(`<OpenSCENARIO><Storyboard><Story name="S"><Act name="A"><ManeuverGroup name="G"><Actors><EntityRef entityRef="e"/></Actors>
   <ScenarioReference scenarioFileName="|`);
       await client.open(uri, typed.text);
       const items = await client.request<CompletionItem[]>('textDocument/completion', client.at(uri, typed.position));
@@ -235,26 +248,39 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
       await client.open(uri, typed);
       const position = at(typed, 'scenarioFileName="|"');
       const items = await client.request<CompletionItem[]>('textDocument/completion', client.at(uri, position));
-      assert.deepEqual(items.map((item) => `${item.label} (${item.detail})`), ['simple.xosc (pkg.mosc)']);
+      assert.deepEqual(
+        items.map((item) => `${item.label} (${item.detail})`),
+        ['simple.xosc (pkg.mosc)'],
+      );
       await client.close(uri);
     });
 
     it('offers the default value of the attribute a key reaches', async function () {
       const position = at(MAIN, 'key="AbsoluteTargetSpeed.value" value="|7"');
       const items = await client.request<CompletionItem[]>('textDocument/completion', client.at(mainUri, position));
-      assert.deepEqual(items.map((item) => `${item.label}: ${item.detail}`), ['5: default of AbsoluteTargetSpeed.value']);
+      assert.deepEqual(
+        items.map((item) => `${item.label}: ${item.detail}`),
+        ['5: default of AbsoluteTargetSpeed.value'],
+      );
       assert.equal(textAt(MAIN, (items[0].textEdit as TextEdit).range), '7');
     });
 
     it('offers the entities of the file for entityRef', async function () {
-      const items = await client.request<CompletionItem[]>('textDocument/completion', client.at(mainUri, at(MAIN, 'entityRef="ca|r"', 'name="Fourth"')));
-      assert.deepEqual(items.map((item) => item.label), ['hero', 'car']);
+      const items = await client.request<CompletionItem[]>(
+        'textDocument/completion',
+        client.at(mainUri, at(MAIN, 'entityRef="ca|r"', 'name="Fourth"')),
+      );
+      assert.deepEqual(
+        items.map((item) => item.label),
+        ['hero', 'car'],
+      );
       assert.equal(textAt(MAIN, (items[0].textEdit as TextEdit).range), 'car');
     });
 
     it('offers the groups of the referenced file while the document is not well-formed', async function () {
       const uri = fileUri(path.join(root, 'typing.xosc'));
-      const typed = cursor(`<OpenSCENARIO><Storyboard><Story name="S"><Act name="A"><ManeuverGroup name="G"><Actors><EntityRef entityRef="e"/></Actors>
+      const typed =
+        cursor(`<OpenSCENARIO><Storyboard><Story name="S"><Act name="A"><ManeuverGroup name="G"><Actors><EntityRef entityRef="e"/></Actors>
   <ScenarioReference scenarioFileName="pkg.mosc">
     <ManeuverGroupReference maneuverGroupName="|`);
       await client.open(uri, typed.text);
@@ -265,7 +291,8 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
 
     it('offers the keys not yet given, shortest unambiguous form first, with default and origin', async function () {
       const uri = fileUri(path.join(root, 'typing.xosc'));
-      const typed = cursor(`<OpenSCENARIO><Storyboard><Story name="S"><Act name="A"><ManeuverGroup name="G"><Actors><EntityRef entityRef="e"/></Actors>
+      const typed =
+        cursor(`<OpenSCENARIO><Storyboard><Story name="S"><Act name="A"><ManeuverGroup name="G"><Actors><EntityRef entityRef="e"/></Actors>
   <ScenarioReference scenarioFileName="simple.xosc">
     <ManeuverGroupReference maneuverGroupName="Brake">
       <ParameterReference key="delay" value="1"/>
@@ -282,7 +309,7 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
       await client.close(uri);
     });
 
-    it('offers the element\'s own attributes inside parameterAttributes, aware of the comma list', async function () {
+    it("offers the element's own attributes inside parameterAttributes, aware of the comma list", async function () {
       const uri = fileUri(path.join(root, 'simple2.xosc'));
       const typed = cursor(`<OpenSCENARIO><Storyboard>
   <WorldPosition parameterAttributes="x, |" x="1" y="2" z="0" h="3.14"/>
@@ -296,7 +323,8 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
 
     it('offers a snippet writing a whole ScenarioReference with every key at its default', async function () {
       const uri = fileUri(path.join(root, 'typing.xosc'));
-      const typed = cursor(`<OpenSCENARIO><Storyboard><Story name="S"><Act name="A"><ManeuverGroup name="G"><Actors><EntityRef entityRef="e"/></Actors>
+      const typed =
+        cursor(`<OpenSCENARIO><Storyboard><Story name="S"><Act name="A"><ManeuverGroup name="G"><Actors><EntityRef entityRef="e"/></Actors>
   <Sce|`);
       await client.open(uri, typed.text);
       const items = await client.request<CompletionItem[]>('textDocument/completion', client.at(uri, typed.position));
@@ -314,7 +342,7 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
   });
 
   describe('hover', function () {
-    it('shows a key\'s default, the value that takes effect and where each comes from', async function () {
+    it("shows a key's default, the value that takes effect and where each comes from", async function () {
       const hover = await client.request<Hover>('textDocument/hover', client.at(mainUri, at(MAIN, 'key="AbsoluteTargetSpeed.val|ue"')));
       const value = (hover.contents as MarkupContent).value;
       assert.match(value, /default `5` declared at `simple\.xosc:20`/);
@@ -342,7 +370,10 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
   describe('references and rename', function () {
     it('finds every reference to a group from its declaration', async function () {
       const uri = await client.openFile(path.join(root, 'simple.xosc'));
-      const locations = await client.request<Location[]>('textDocument/references', { ...client.at(uri, at(SIMPLE, '<ManeuverGroup name="|Brake"')), context: { includeDeclaration: false } });
+      const locations = await client.request<Location[]>('textDocument/references', {
+        ...client.at(uri, at(SIMPLE, '<ManeuverGroup name="|Brake"')),
+        context: { includeDeclaration: false },
+      });
       const found = locations.map((location) => `${path.basename(location.uri)}:${location.range.start.line}`).sort();
       assert.deepEqual(found, ['clean.xosc:13', 'main.xosc:14']);
       await client.close(uri);
@@ -351,11 +382,19 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
     it('finds every key that overrides an attribute listed in parameterAttributes', async function () {
       const uri = await client.openFile(path.join(root, 'simple.xosc'));
       const position = at(SIMPLE, 'parameterAttributes="v|alue" value="5"');
-      const locations = await client.request<Location[]>('textDocument/references', { ...client.at(uri, position), context: { includeDeclaration: false } });
-      const found = locations.map((location) => `${path.basename(location.uri)}:${textAt(fs.readFileSync(new URL(location.uri), 'utf8'), location.range)}`).sort();
+      const locations = await client.request<Location[]>('textDocument/references', {
+        ...client.at(uri, position),
+        context: { includeDeclaration: false },
+      });
+      const found = locations
+        .map((location) => `${path.basename(location.uri)}:${textAt(fs.readFileSync(new URL(location.uri), 'utf8'), location.range)}`)
+        .sort();
       assert.deepEqual(found, ['clean.xosc:AbsoluteTargetSpeed.value', 'main.xosc:AbsoluteTargetSpeed.value']);
       // The same from the attribute that holds the default.
-      const fromAttribute = await client.request<Location[]>('textDocument/references', { ...client.at(uri, at(SIMPLE, 'parameterAttributes="value" va|lue="5"')), context: { includeDeclaration: true } });
+      const fromAttribute = await client.request<Location[]>('textDocument/references', {
+        ...client.at(uri, at(SIMPLE, 'parameterAttributes="value" va|lue="5"')),
+        context: { includeDeclaration: true },
+      });
       assert.equal(fromAttribute.length, 3);
       assert.equal(textAt(SIMPLE, fromAttribute[0].range), 'value');
       await client.close(uri);
@@ -364,20 +403,35 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
     it('renames a group and every maneuverGroupName that uses it', async function () {
       const uri = await client.openFile(path.join(root, 'simple.xosc'));
       const position = at(SIMPLE, '<ManeuverGroup name="Br|ake"');
-      const prepared = await client.request<{ range: Location['range']; placeholder: string }>('textDocument/prepareRename', client.at(uri, position));
+      const prepared = await client.request<{ range: Location['range']; placeholder: string }>(
+        'textDocument/prepareRename',
+        client.at(uri, position),
+      );
       assert.equal(prepared.placeholder, 'Brake');
       const edit = await client.request<WorkspaceEdit>('textDocument/rename', { ...client.at(uri, position), newName: 'Stop' });
       const changes = edit.changes ?? {};
-      assert.deepEqual(Object.keys(changes).map((key) => path.basename(key)).sort(), ['clean.xosc', 'main.xosc', 'simple.xosc']);
+      assert.deepEqual(
+        Object.keys(changes)
+          .map((key) => path.basename(key))
+          .sort(),
+        ['clean.xosc', 'main.xosc', 'simple.xosc'],
+      );
       assert.match(applyEdits(SIMPLE, changes[uri]), /<ManeuverGroup name="Stop"/);
       assert.match(applyEdits(MAIN, changes[mainUri]), /maneuverGroupName="Stop">/);
       await client.close(uri);
     });
 
     it('updates scenarioFileName values when a file is renamed', async function () {
-      const edit = await client.request<WorkspaceEdit>('workspace/willRenameFiles', { files: [{ oldUri: simpleUri, newUri: fileUri(path.join(root, 'braking.xosc')) }] });
+      const edit = await client.request<WorkspaceEdit>('workspace/willRenameFiles', {
+        files: [{ oldUri: simpleUri, newUri: fileUri(path.join(root, 'braking.xosc')) }],
+      });
       const changes = edit.changes ?? {};
-      assert.deepEqual(Object.keys(changes).map((key) => path.basename(key)).sort(), ['clean.xosc', 'main.xosc']);
+      assert.deepEqual(
+        Object.keys(changes)
+          .map((key) => path.basename(key))
+          .sort(),
+        ['clean.xosc', 'main.xosc'],
+      );
       const renamed = applyEdits(MAIN, changes[mainUri]);
       assert.equal((renamed.match(/scenarioFileName="braking\.xosc"/g) ?? []).length, 2);
       assert.ok(!renamed.includes('"simple.xosc"'));
@@ -388,7 +442,11 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
     async function actionsFor(code: string): Promise<CodeAction[]> {
       const diagnostics = await client.diagnosticsOf(mainUri);
       const diagnostic = diagnostics.find((candidate) => candidate.code === code) as Diagnostic;
-      return client.request<CodeAction[]>('textDocument/codeAction', { textDocument: { uri: mainUri }, range: diagnostic.range, context: { diagnostics: [diagnostic] } });
+      return client.request<CodeAction[]>('textDocument/codeAction', {
+        textDocument: { uri: mainUri },
+        range: diagnostic.range,
+        context: { diagnostics: [diagnostic] },
+      });
     }
 
     it('replaces an unknown key by the closest valid one', async function () {
@@ -414,16 +472,27 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
       assert.ok(add, `among ${actions.map((candidate) => candidate.title)}`);
       assert.equal(add.title, 'Add 2 missing keys with their defaults');
       const edited = applyEdits(MAIN, add.edit?.changes?.[mainUri] ?? []);
-      assert.match(edited, /<ParameterReference key="missing" value="3"\/>\n {14}<ParameterReference key="delay" value="0"\/>\n {14}<ParameterReference key="SimulationTimeCondition\.value" value="2"\/>\n {12}<\/ManeuverGroupReference>/);
+      assert.match(
+        edited,
+        /<ParameterReference key="missing" value="3"\/>\n {14}<ParameterReference key="delay" value="0"\/>\n {14}<ParameterReference key="SimulationTimeCondition\.value" value="2"\/>\n {12}<\/ManeuverGroupReference>/,
+      );
     });
 
     it('offers the missing keys on a valid key line only where a diagnostic asks, else as a rewrite on the group reference tag', async function () {
       const actionsAt = (markedSnippet: string, only?: string[]) => {
         const position = at(MAIN, markedSnippet);
-        return client.request<CodeAction[]>('textDocument/codeAction', { textDocument: { uri: mainUri }, range: { start: position, end: position }, context: { diagnostics: [], ...(only ? { only } : {}) } });
+        return client.request<CodeAction[]>('textDocument/codeAction', {
+          textDocument: { uri: mainUri },
+          range: { start: position, end: position },
+          context: { diagnostics: [], ...(only ? { only } : {}) },
+        });
       };
       const missingKeys = (actions: CodeAction[]) => actions.filter((candidate) => /missing key/.test(candidate.title));
-      assert.deepEqual(missingKeys(await actionsAt('key="AbsoluteTargetSpeed.value" value="|7"')), [], 'no lightbulb on a valid ParameterReference');
+      assert.deepEqual(
+        missingKeys(await actionsAt('key="AbsoluteTargetSpeed.value" value="|7"')),
+        [],
+        'no lightbulb on a valid ParameterReference',
+      );
       const [rewrite] = missingKeys(await actionsAt('maneuverGroupName="Br|ake"'));
       assert.ok(rewrite, 'the rewrite on the ManeuverGroupReference tag');
       assert.equal(rewrite.kind, 'refactor.rewrite');
@@ -437,7 +506,11 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
     it('offers to list the closest attribute or to add a default in the simple scenario', async function () {
       const uri = await client.openFile(path.join(root, 'simple.xosc'));
       const [diagnostic] = await client.diagnosticsOf(uri);
-      const actions = await client.request<CodeAction[]>('textDocument/codeAction', { textDocument: { uri }, range: diagnostic.range, context: { diagnostics: [diagnostic] } });
+      const actions = await client.request<CodeAction[]>('textDocument/codeAction', {
+        textDocument: { uri },
+        range: diagnostic.range,
+        context: { diagnostics: [diagnostic] },
+      });
       const add = actions.find((candidate) => candidate.title === "Add a default value for 'missing'");
       assert.ok(add);
       assert.match(applyEdits(SIMPLE, add.edit?.changes?.[uri] ?? []), /parameterAttributes="delay, missing" missing=""/);
@@ -452,7 +525,10 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
       const story = storyboard.children?.[0] as DocumentSymbol;
       assert.equal(story.name, 'Main');
       const act = story.children?.[0] as DocumentSymbol;
-      assert.deepEqual(act.children?.map((group) => group.name), ['Outer', 'Second', 'Third', 'Fourth']);
+      assert.deepEqual(
+        act.children?.map((group) => group.name),
+        ['Outer', 'Second', 'Third', 'Fourth'],
+      );
       const reference = act.children?.[0].children?.find((child) => child.detail === 'ScenarioReference') as DocumentSymbol;
       assert.equal(reference.name, 'simple.xosc');
       assert.equal(reference.children?.[0].name, 'Brake');
@@ -481,7 +557,11 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
   describe('custom requests', function () {
     it('flattens to text for the preview', async function () {
       const result = await client.send(FlattenToTextRequest, { uri: fileUri(path.join(root, 'clean.xosc')) });
-      assert.deepEqual(result.problems.map((problem) => problem.severity), ['warning'], 'only the warning of simple.xosc');
+      assert.deepEqual(
+        result.problems.map((problem) => problem.severity),
+        ['warning'],
+        'only the warning of simple.xosc',
+      );
       assert.ok(result.text);
       assert.match(result.text, /<ManeuverGroup name="Outer\.Brake"/);
       assert.match(result.text, /<AbsoluteTargetSpeed value="9"\/>/);
@@ -502,7 +582,10 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
       assert.match(fs.readFileSync(output, 'utf8'), /Outer\.Brake/);
       assert.deepEqual(fs.readdirSync(path.dirname(output)), ['flat.xosc']);
       const before = fs.readFileSync(path.join(root, 'simple.xosc'), 'utf8');
-      const refused = await client.send(FlattenToFileRequest, { uri: fileUri(path.join(root, 'clean.xosc')), outputPath: path.join(root, 'simple.xosc') });
+      const refused = await client.send(FlattenToFileRequest, {
+        uri: fileUri(path.join(root, 'clean.xosc')),
+        outputPath: path.join(root, 'simple.xosc'),
+      });
       assert.equal(refused.written, null);
       assert.ok(refused.problems.some((problem) => /refusing to overwrite simple\.xosc/.test(problem.message)));
       assert.equal(fs.readFileSync(path.join(root, 'simple.xosc'), 'utf8'), before);
@@ -519,7 +602,10 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
       assert.deepEqual(Object.keys(zip.files).sort(), ['main.xosc', 'simple.xosc']);
       const flattened = await client.send(FlattenToTextRequest, { uri: `mosc:${output}/main.xosc` });
       assert.match(flattened.text ?? '', /<ManeuverGroup name="Inner\.Brake"/);
-      const refused = await client.send(PackRequest, { inputs: [fileUri(path.join(root, 'simple.xosc')), fileUri(path.join(folder, 'main.xosc'))], outputPath: path.join(root, 'simple.xosc') });
+      const refused = await client.send(PackRequest, {
+        inputs: [fileUri(path.join(root, 'simple.xosc')), fileUri(path.join(folder, 'main.xosc'))],
+        outputPath: path.join(root, 'simple.xosc'),
+      });
       assert.equal(refused.written, null);
       fs.rmSync(folder, { recursive: true });
     });
@@ -528,12 +614,10 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
       const tree = await client.send(StructureRequest, { uri: mainUri });
       assert.ok(tree);
       assert.equal(tree.kind, 'main');
-      assert.deepEqual(tree.children.map((child) => `${child.kind}:${child.label}`), [
-        'reference:Outer → simple.xosc',
-        'reference:Second → pkg.xosc',
-        'missing:nowhere.xosc',
-        'reference:Fourth → simple.xosc',
-      ]);
+      assert.deepEqual(
+        tree.children.map((child) => `${child.kind}:${child.label}`),
+        ['reference:Outer → simple.xosc', 'reference:Second → pkg.xosc', 'missing:nowhere.xosc', 'reference:Fourth → simple.xosc'],
+      );
       const second = tree.children[1];
       assert.equal(second.children[0].kind, 'package');
       assert.equal(second.children[0].children[0].label, 'Inner → simple.xosc');
@@ -546,7 +630,10 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
       const tree = await client.send(StructureRequest, { uri: fileUri(path.join(root, 'pkg.mosc')) });
       assert.ok(tree);
       assert.equal(tree.uri, `mosc:${path.join(root, 'pkg.mosc')}/main.xosc`);
-      assert.deepEqual(tree.children.map((child) => child.label), ['Inner → simple.xosc']);
+      assert.deepEqual(
+        tree.children.map((child) => child.label),
+        ['Inner → simple.xosc'],
+      );
       const flattened = await client.send(FlattenToTextRequest, { uri: fileUri(path.join(root, 'pkg.mosc')) });
       assert.match(flattened.text ?? '', /<ManeuverGroup name="Inner\.Brake"/);
     });
@@ -577,9 +664,10 @@ describe('language server: edits inside packages (JSON-RPC)', function () {
       const uri = `mosc:${path.join(root, 'pkg.mosc')}/simple.xosc`;
       await client.open(uri, SIMPLE);
       const position = at(SIMPLE, '<ManeuverGroup name="Br|ake"');
-      return await client
-        .request<WorkspaceEdit>('textDocument/rename', { ...client.at(uri, position), newName: 'Halt' })
-        .then((edit) => ({ edit, uri }), (error: Error) => ({ error, uri }));
+      return await client.request<WorkspaceEdit>('textDocument/rename', { ...client.at(uri, position), newName: 'Halt' }).then(
+        (edit) => ({ edit, uri }),
+        (error: Error) => ({ error, uri }),
+      );
     } finally {
       await client.stop();
     }

@@ -4,7 +4,8 @@ import { TextEdit } from 'vscode-languageserver/node';
 import { fileUri, TestClient } from './harness';
 import { temporaryWorkspace } from '../support/workspace';
 
-const MESSY = '<?xml version="1.0"?>\n<OpenSCENARIO>\n<FileHeader revMajor="1" revMinor="0" date="2026-01-01T00:00:00" description="formatting" author="test"/>\n<Entities>\n\n\n<ScenarioObject name="Ego"/>\n</Entities>\n</OpenSCENARIO>\n';
+const MESSY =
+  '<?xml version="1.0"?>\n<OpenSCENARIO>\n<FileHeader revMajor="1" revMinor="0" date="2026-01-01T00:00:00" description="formatting" author="test"/>\n<Entities>\n\n\n<ScenarioObject name="Ego"/>\n</Entities>\n</OpenSCENARIO>\n';
 
 function apply(text: string, edits: TextEdit[]): string {
   const starts = [0];
@@ -41,7 +42,10 @@ describe('formatting over JSON-RPC', function () {
     const uri = await client.open(fileUri(path.join(root, 'scenario.xosc')), MESSY);
     // The width (60) comes from the settings, read after `initialized`: wait until the server has them.
     await client.diagnosticsOf(uri);
-    const edits = await client.request<TextEdit[]>('textDocument/formatting', { textDocument: { uri }, options: { tabSize: 2, insertSpaces: true } });
+    const edits = await client.request<TextEdit[]>('textDocument/formatting', {
+      textDocument: { uri },
+      options: { tabSize: 2, insertSpaces: true },
+    });
     assert.ok(edits.length > 1, 'expected several small edits, not one replacement');
     for (const edit of edits) assert.match(edit.newText, /^\s*$/);
     const formatted = apply(MESSY, edits);
@@ -49,7 +53,10 @@ describe('formatting over JSON-RPC', function () {
       formatted,
       '<?xml version="1.0"?>\n<OpenSCENARIO>\n  <FileHeader\n    revMajor="1"\n    revMinor="0"\n    date="2026-01-01T00:00:00"\n    description="formatting"\n    author="test"/>\n  <Entities>\n    <ScenarioObject name="Ego"/>\n  </Entities>\n</OpenSCENARIO>\n',
     );
-    const tabs = apply(MESSY, await client.request<TextEdit[]>('textDocument/formatting', { textDocument: { uri }, options: { tabSize: 4, insertSpaces: false } }));
+    const tabs = apply(
+      MESSY,
+      await client.request<TextEdit[]>('textDocument/formatting', { textDocument: { uri }, options: { tabSize: 4, insertSpaces: false } }),
+    );
     assert.ok(tabs.includes('\n\t<Entities>\n\t\t<ScenarioObject name="Ego"/>'));
   });
 
@@ -70,7 +77,10 @@ describe('formatting over JSON-RPC', function () {
   it('refuses a malformed document: no edits, and a message naming the line', async () => {
     const broken = '<OpenSCENARIO>\n  <Entities>\n</OpenSCENARIO>\n';
     const uri = await client.open(fileUri(path.join(root, 'broken.xosc')), broken);
-    const edits = await client.request<TextEdit[]>('textDocument/formatting', { textDocument: { uri }, options: { tabSize: 2, insertSpaces: true } });
+    const edits = await client.request<TextEdit[]>('textDocument/formatting', {
+      textDocument: { uri },
+      options: { tabSize: 2, insertSpaces: true },
+    });
     assert.deepEqual(edits, []);
     const message = await client.until(() => messages.find((entry) => /not well-formed/.test(entry.message)), 'a message');
     assert.match(message.message, /line 2/);

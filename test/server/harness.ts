@@ -96,7 +96,9 @@ export class TestClient {
     let connection: ProtocolConnection;
     let client: TestClient;
     if (options.process) {
-      const child = spawn(process.execPath, [`--max-old-space-size=${options.process.heapMb}`, serverBundle, '--stdio'], { stdio: ['pipe', 'pipe', 'pipe'] });
+      const child = spawn(process.execPath, [`--max-old-space-size=${options.process.heapMb}`, serverBundle, '--stdio'], {
+        stdio: ['pipe', 'pipe', 'pipe'],
+      });
       const watchdog = setTimeout(() => child.kill('SIGKILL'), options.process.watchdogMs);
       let stderr = '';
       child.stderr.on('data', (chunk: Buffer) => (stderr = (stderr + chunk.toString()).slice(-20_000)));
@@ -191,7 +193,10 @@ export class TestClient {
     for (;;) {
       const value = check();
       if (value !== undefined && value !== false) return value;
-      if (this.exit) throw new Error(`the server process ended (code ${this.exit.code}, signal ${this.exit.signal}) while waiting for ${what}: ${this.exit.stderr.slice(-2000)}`);
+      if (this.exit)
+        throw new Error(
+          `the server process ended (code ${this.exit.code}, signal ${this.exit.signal}) while waiting for ${what}: ${this.exit.stderr.slice(-2000)}`,
+        );
       if (Date.now() > deadline) throw new Error(`timed out waiting for ${what}`);
       await new Promise<void>((resolve) => {
         const timer = setTimeout(resolve, 50);
@@ -204,17 +209,28 @@ export class TestClient {
   }
 
   /** The diagnostics of `uri` once a publication for its current version arrived. */
-  async diagnosticsOf(uri: string, predicate: (diagnostics: Diagnostic[]) => boolean = () => true, timeout = 10_000): Promise<Diagnostic[]> {
-    return this.until(() => {
-      const published = this.diagnostics.get(uri);
-      const version = this.versions.get(uri);
-      if (!published || (version !== undefined && published.version !== undefined && published.version !== version)) return undefined;
-      return predicate(published.diagnostics) ? published.diagnostics : undefined;
-    }, `diagnostics of ${uri}`, timeout);
+  async diagnosticsOf(
+    uri: string,
+    predicate: (diagnostics: Diagnostic[]) => boolean = () => true,
+    timeout = 10_000,
+  ): Promise<Diagnostic[]> {
+    return this.until(
+      () => {
+        const published = this.diagnostics.get(uri);
+        const version = this.versions.get(uri);
+        if (!published || (version !== undefined && published.version !== undefined && published.version !== version)) return undefined;
+        return predicate(published.diagnostics) ? published.diagnostics : undefined;
+      },
+      `diagnostics of ${uri}`,
+      timeout,
+    );
   }
 
   async indexed(): Promise<void> {
-    await this.until(() => this.progress.some((entry) => (entry as { value?: { kind?: string } }).value?.kind === 'end') || undefined, 'indexing to end');
+    await this.until(
+      () => this.progress.some((entry) => (entry as { value?: { kind?: string } }).value?.kind === 'end') || undefined,
+      'indexing to end',
+    );
   }
 
   async settingsChanged(settings: Record<string, unknown>): Promise<void> {
@@ -255,10 +271,14 @@ export class TestClient {
 
   /** Claims a logged error the test provoked on purpose (waiting briefly for it); fails when none matches. */
   async expectError(pattern: RegExp): Promise<string> {
-    const index = await this.until(() => {
-      const found = this.errors.findIndex((error) => pattern.test(error));
-      return found >= 0 ? found + 1 : undefined;
-    }, `a logged error matching ${pattern}`, 5_000);
+    const index = await this.until(
+      () => {
+        const found = this.errors.findIndex((error) => pattern.test(error));
+        return found >= 0 ? found + 1 : undefined;
+      },
+      `a logged error matching ${pattern}`,
+      5_000,
+    );
     return this.errors.splice(index - 1, 1)[0];
   }
 
@@ -320,7 +340,11 @@ export interface ServerFixture {
  * Registers before/after hooks of the calling suite: a temporary workspace of `files`, a server on
  * it, indexed, with `open` (relative) open and its diagnostics published; all gone after the suite.
  */
-export function useServer(files: Record<string, string | Uint8Array>, open: string, options: Omit<ClientOptions, 'root'> = {}): ServerFixture {
+export function useServer(
+  files: Record<string, string | Uint8Array>,
+  open: string,
+  options: Omit<ClientOptions, 'root'> = {},
+): ServerFixture {
   const fixture = {} as ServerFixture;
   before(async function () {
     fixture.root = temporaryWorkspace(files, 'm2s-server-');

@@ -22,7 +22,9 @@ describe('language server with hostile input (JSON-RPC)', function () {
     const files: Record<string, string> = { 'l20.xosc': scenario(simpleGroup('G')) };
     for (let level = 0; level < 20; level++) {
       const half = (name: string) => outerGroup(name, 'car', [{ file: `l${level + 1}.xosc`, groups: [{ name: 'G' }] }]);
-      files[`l${level}.xosc`] = scenario(`        <ManeuverGroup name="G" maximumExecutionCount="1">\n          <Actors selectTriggeringEntities="false"><EntityRef entityRef="car"/></Actors>\n${half('X')}${half('Y')}        </ManeuverGroup>\n`);
+      files[`l${level}.xosc`] = scenario(
+        `        <ManeuverGroup name="G" maximumExecutionCount="1">\n          <Actors selectTriggeringEntities="false"><EntityRef entityRef="car"/></Actors>\n${half('X')}${half('Y')}        </ManeuverGroup>\n`,
+      );
     }
     const root = temporaryWorkspace(files);
     const client = await TestClient.start({ root, process: { heapMb: 256, watchdogMs: 170_000 } });
@@ -51,18 +53,43 @@ describe('language server with hostile input (JSON-RPC)', function () {
         'pkg/main.xosc': mainOf('inner.mosc'),
         'pkg/inner.mosc': await packageOf({ 'main.xosc': scenario(simpleGroup('Go')) }),
         'open.mosc': await packageOf({ 'main.xosc': mainOf('simple.xosc'), 'simple.xosc': scenario(simpleGroup('Go')) }),
-        'dup.mosc': rawZip([{ name: 'main.xosc', data: scenario(simpleGroup('Go')) }, { name: './main.xosc', data: scenario(simpleGroup('Other')) }]),
+        'dup.mosc': rawZip([
+          { name: 'main.xosc', data: scenario(simpleGroup('Go')) },
+          { name: './main.xosc', data: scenario(simpleGroup('Other')) },
+        ]),
         'uses-dup.xosc': mainOf('dup.mosc'),
-        'latin.xosc': Buffer.from(scenario(simpleGroup('Go')).replace('encoding="UTF-8"', 'encoding="ISO-8859-1"').replace('name="GoManeuver"', 'name="Gr\u00fc\u00dfe"'), 'latin1'),
+        'latin.xosc': Buffer.from(
+          scenario(simpleGroup('Go'))
+            .replace('encoding="UTF-8"', 'encoding="ISO-8859-1"')
+            .replace('name="GoManeuver"', 'name="Gr\u00fc\u00dfe"'),
+          'latin1',
+        ),
         'broken.xosc': Buffer.from(scenario(simpleGroup('Go')).replace('name="GoManeuver"', 'name="Gr\u00fc\u00dfe"'), 'latin1'),
-        'text.xosc': scenario(outerGroup('A', 'car', [{ file: 'latin.xosc', groups: [{ name: 'Go' }] }]) + outerGroup('B', 'car', [{ file: 'broken.xosc', groups: [{ name: 'Go' }] }])),
+        'text.xosc': scenario(
+          outerGroup('A', 'car', [{ file: 'latin.xosc', groups: [{ name: 'Go' }] }]) +
+            outerGroup('B', 'car', [{ file: 'broken.xosc', groups: [{ name: 'Go' }] }]),
+        ),
       });
-      const overlap = rawZip([{ name: 'main.xosc', data: scenario(simpleGroup('Go')) }, { name: 'pad.xosc', data: new Uint8Array(4 * 1024 * 1024), deflate: true }], Array.from({ length: 200 }, (_, index) => ({ name: `s${index}.xosc`, of: 1 })));
+      const overlap = rawZip(
+        [
+          { name: 'main.xosc', data: scenario(simpleGroup('Go')) },
+          { name: 'pad.xosc', data: new Uint8Array(4 * 1024 * 1024), deflate: true },
+        ],
+        Array.from({ length: 200 }, (_, index) => ({ name: `s${index}.xosc`, of: 1 })),
+      );
       fs.writeFileSync(path.join(root, 'overlap.mosc'), overlap);
       fs.writeFileSync(path.join(root, 'uses-overlap.xosc'), mainOf('overlap.mosc'));
-      fs.writeFileSync(path.join(root, 'control.xosc'), scenario(simpleGroup('Go')).replace('name="GoManeuver"', 'name="Go\u0001"').replace('<Event name="Go"', '<Event name="&#xFFFE;"'));
+      fs.writeFileSync(
+        path.join(root, 'control.xosc'),
+        scenario(simpleGroup('Go')).replace('name="GoManeuver"', 'name="Go\u0001"').replace('<Event name="Go"', '<Event name="&#xFFFE;"'),
+      );
       fs.writeFileSync(path.join(root, 'uses-control.xosc'), mainOf('control.xosc'));
-      fs.writeFileSync(path.join(root, 'dtd.xosc'), scenario(simpleGroup('Go')).replace('<OpenSCENARIO>', '<!DOCTYPE OpenSCENARIO [<!ENTITY height "0.5">]>\n<OpenSCENARIO>').replace('z="0"', 'z="&height;"'));
+      fs.writeFileSync(
+        path.join(root, 'dtd.xosc'),
+        scenario(simpleGroup('Go'))
+          .replace('<OpenSCENARIO>', '<!DOCTYPE OpenSCENARIO [<!ENTITY height "0.5">]>\n<OpenSCENARIO>')
+          .replace('z="0"', 'z="&height;"'),
+      );
       fs.writeFileSync(path.join(root, 'uses-dtd.xosc'), mainOf('dtd.xosc'));
       // A FIFO in the workspace: reading it would wait for a writer forever.
       execFileSync('mkfifo', [path.join(root, 'stuck.xosc')]);
@@ -73,7 +100,10 @@ describe('language server with hostile input (JSON-RPC)', function () {
     it('indexes a workspace holding a FIFO named like a scenario, and reports the FIFO where it is referenced', async () => {
       const uri = await client.open(fileUri(path.join(root, 'fifo-user.xosc')), mainOf('stuck.xosc'));
       const diagnostics = await client.diagnosticsOf(uri, (found) => found.length > 0);
-      assert.ok(diagnostics.some((diagnostic) => diagnostic.severity === 1), JSON.stringify(diagnostics));
+      assert.ok(
+        diagnostics.some((diagnostic) => diagnostic.severity === 1),
+        JSON.stringify(diagnostics),
+      );
       await client.close(uri);
     });
 
@@ -157,7 +187,10 @@ describe('language server with hostile input (JSON-RPC)', function () {
       const lines = fs.readFileSync(path.join(root, 'control.xosc'), 'utf8').split('\n');
       const control = diagnostics.find((diagnostic) => /U\+0001 is not allowed/.test(String(diagnostic.message)));
       assert.ok(control, JSON.stringify(diagnostics));
-      assert.equal(control.range.start.line, lines.findIndex((line) => line.includes('\u0001')));
+      assert.equal(
+        control.range.start.line,
+        lines.findIndex((line) => line.includes('\u0001')),
+      );
       assert.equal(control.range.start.character, lines[control.range.start.line].indexOf('\u0001'));
       assert.ok(diagnostics.some((diagnostic) => /'&#xFFFE;' names U\+FFFE/.test(String(diagnostic.message))));
       await client.close(uri);
@@ -168,7 +201,10 @@ describe('language server with hostile input (JSON-RPC)', function () {
 
     it('an internal DTD entity of a simple scenario is expanded in the flattened text', async () => {
       const result = await client.send(FlattenToTextRequest, { uri: fileUri(path.join(root, 'uses-dtd.xosc')) });
-      assert.deepEqual(result.problems.filter((problem) => problem.severity === 'error'), []);
+      assert.deepEqual(
+        result.problems.filter((problem) => problem.severity === 'error'),
+        [],
+      );
       assert.match(result.text ?? '', /z="0\.5"/);
       assert.doesNotMatch(result.text ?? '', /&height;/);
     });
@@ -178,15 +214,43 @@ describe('language server with hostile input (JSON-RPC)', function () {
       const original = fs.readFileSync(path.join(root, 'main.xosc'), 'utf8');
       await client.open(uri, original);
       let text = original;
-      const pieces = ['<', '>', '"', '</ManeuverGroup>', '<ScenarioReference scenarioFileName="', 'dup.mosc', 'pkg/inner.mosc', '&#1;', '&#xFFFE;', '\u0000', '<!DOCTYPE x [<!ENTITY a "&a;&a;">]>', '&a;', 'key="', 'parameterAttributes="', 'x="1" x="2"'];
-      const edit = fc.record({ at: fc.nat(), remove: fc.nat({ max: 60 }), insert: fc.oneof(fc.constantFrom(...pieces), fc.string({ maxLength: 12 })) });
+      const pieces = [
+        '<',
+        '>',
+        '"',
+        '</ManeuverGroup>',
+        '<ScenarioReference scenarioFileName="',
+        'dup.mosc',
+        'pkg/inner.mosc',
+        '&#1;',
+        '&#xFFFE;',
+        '\u0000',
+        '<!DOCTYPE x [<!ENTITY a "&a;&a;">]>',
+        '&a;',
+        'key="',
+        'parameterAttributes="',
+        'x="1" x="2"',
+      ];
+      const edit = fc.record({
+        at: fc.nat(),
+        remove: fc.nat({ max: 60 }),
+        insert: fc.oneof(fc.constantFrom(...pieces), fc.string({ maxLength: 12 })),
+      });
       const edits = fc.sample(fc.array(edit, { minLength: 150, maxLength: 150 }), { seed: 20260808, numRuns: 1 })[0];
       for (const [index, { at, remove, insert }] of edits.entries()) {
         const start = text.length === 0 ? 0 : at % text.length;
         const end = Math.min(text.length, start + remove);
         const lines = text.slice(0, start).split('\n');
         const endLines = text.slice(0, end).split('\n');
-        await client.change(uri, [{ range: { start: { line: lines.length - 1, character: lines[lines.length - 1].length }, end: { line: endLines.length - 1, character: endLines[endLines.length - 1].length } }, text: insert }]);
+        await client.change(uri, [
+          {
+            range: {
+              start: { line: lines.length - 1, character: lines[lines.length - 1].length },
+              end: { line: endLines.length - 1, character: endLines[endLines.length - 1].length },
+            },
+            text: insert,
+          },
+        ]);
         text = text.slice(0, start) + insert + text.slice(end);
         if (index % 10 === 9) {
           await client.diagnosticsOf(uri, () => true, 30_000);

@@ -22,7 +22,12 @@ interface NeovimReport {
 }
 
 /** Lua for Neovim 0.7: start the built server over stdio, open the file, ask, write JSON, quit. */
-function probe(root: string, file: string, output: string, positions: Record<'definition' | 'hover' | 'completion', { line: number; character: number }>): string {
+function probe(
+  root: string,
+  file: string,
+  output: string,
+  positions: Record<'definition' | 'hover' | 'completion', { line: number; character: number }>,
+): string {
   const lua = (value: unknown) => JSON.stringify(value).replace(/\[/g, '{').replace(/\]/g, '}');
   return `
 local out = { errors = {} }
@@ -89,7 +94,12 @@ describe('the built server driven by Neovim (a second LSP client)', function () 
         completion: at(MAIN, 'maneuverGroupName="|Brake"'),
       }),
     );
-    const run = spawnSync('nvim', ['--headless', '--clean', '-u', 'NONE', '-c', `luafile ${script}`], { cwd: root, encoding: 'utf8', timeout: 45_000, env: { ...process.env, HOME: root, XDG_STATE_HOME: root, XDG_DATA_HOME: root } });
+    const run = spawnSync('nvim', ['--headless', '--clean', '-u', 'NONE', '-c', `luafile ${script}`], {
+      cwd: root,
+      encoding: 'utf8',
+      timeout: 45_000,
+      env: { ...process.env, HOME: root, XDG_STATE_HOME: root, XDG_DATA_HOME: root },
+    });
     assert.ok(fs.existsSync(output), `nvim wrote no report (status ${run.status}): ${run.stderr}${run.stdout}`);
     report = JSON.parse(fs.readFileSync(output, 'utf8')) as NeovimReport;
   });
@@ -123,6 +133,9 @@ describe('the built server driven by Neovim (a second LSP client)', function () 
 
   it('completes group names', function () {
     const items = Array.isArray(report.completion) ? report.completion : (report.completion?.items ?? []);
-    assert.deepEqual(items.map((item) => item.label), ['Brake', 'Wait']);
+    assert.deepEqual(
+      items.map((item) => item.label),
+      ['Brake', 'Wait'],
+    );
   });
 });

@@ -17,9 +17,18 @@ const ROAD = 'fabriksgatan.xodr';
 describe('language server: New Modular Scenario builds a main with an ego on a road network (JSON-RPC)', function () {
   this.timeout(120_000);
   // The road two folders up and across from the new scenario: the path written must reach it from there.
-  const server = useServer({ [`roads/town/${ROAD}`]: fs.readFileSync(path.join(esminiRoads, ROAD)), 'scenarios/README.txt': 'new scenarios go here\n', 'other.xosc': '<OpenSCENARIO/>', 'brake.xosc': SIMPLE }, 'other.xosc', {
-    schema: true,
-  });
+  const server = useServer(
+    {
+      [`roads/town/${ROAD}`]: fs.readFileSync(path.join(esminiRoads, ROAD)),
+      'scenarios/README.txt': 'new scenarios go here\n',
+      'other.xosc': '<OpenSCENARIO/>',
+      'brake.xosc': SIMPLE,
+    },
+    'other.xosc',
+    {
+      schema: true,
+    },
+  );
 
   it('writes a schema-valid main, with no diagnostics, that esmini runs with the ego on the lane chosen', async function () {
     const scenario = path.join(server.root, 'scenarios', 'cut-in', 'main.xosc');
@@ -32,9 +41,13 @@ describe('language server: New Modular Scenario builds a main with an ego on a r
     assert.ok(egoRoad, `road ${result.ego.roadId} exists`);
     const section = egoRoad.laneSections[laneSectionIndexAt(egoRoad, result.ego.s)];
     assert.equal(section.lanes.find((lane) => lane.id === result.ego.laneId)?.type, 'driving');
-    for (const element of ['<Vehicle ', '<Story ', '<Act ', '<ManeuverGroup ', '<StopTrigger>']) assert.ok(result.text.includes(element), element);
+    for (const element of ['<Vehicle ', '<Story ', '<Act ', '<ManeuverGroup ', '<StopTrigger>'])
+      assert.ok(result.text.includes(element), element);
     assert.doesNotMatch(result.text, /Catalog(Reference|Location )/, 'no catalog needed');
-    assert.deepEqual(checkSchema(parseXml(result.text), { modular: true }).findings.map((finding) => finding.message), []);
+    assert.deepEqual(
+      checkSchema(parseXml(result.text), { modular: true }).findings.map((finding) => finding.message),
+      [],
+    );
 
     fs.mkdirSync(path.dirname(scenario), { recursive: true });
     fs.writeFileSync(scenario, result.text);
@@ -46,22 +59,35 @@ describe('language server: New Modular Scenario builds a main with an ego on a r
     const line = result.text.slice(0, comment).split('\n').length - 1;
     const character = comment - result.text.lastIndexOf('\n', comment - 1) - 1;
     await server.client.change(uri, [{ range: { start: { line, character }, end: { line, character } }, text: '<' }]);
-    const offered = await server.client.request<CompletionItem[]>('textDocument/completion', { textDocument: { uri }, position: { line, character: character + 1 } });
-    assert.ok(offered.some((item) => /^ScenarioReference brake\.xosc Brake$/.test(item.label)), offered.map((item) => item.label).join(', '));
+    const offered = await server.client.request<CompletionItem[]>('textDocument/completion', {
+      textDocument: { uri },
+      position: { line, character: character + 1 },
+    });
+    assert.ok(
+      offered.some((item) => /^ScenarioReference brake\.xosc Brake$/.test(item.label)),
+      offered.map((item) => item.label).join(', '),
+    );
     await server.client.change(uri, [{ range: { start: { line, character }, end: { line, character: character + 1 } }, text: '' }]);
     assert.deepEqual(await server.client.diagnosticsOf(uri), []);
 
     requireEsmini(this);
     const run = await server.client.send(RunEsminiRequest, { uri, esminiPath: esminiBinary, roadPath: [], duration: 2 });
     assert.equal(run.outcome, 'ok', `${run.message}\n${run.log}`);
-    assert.deepEqual(run.problems.filter((problem) => problem.severity === 'error'), [], run.log);
+    assert.deepEqual(
+      run.problems.filter((problem) => problem.severity === 'error'),
+      [],
+      run.log,
+    );
     assert.ok(run.csvFile);
     const [first] = readEsminiCsv(run.csvFile);
     const placed = first.positions.Ego;
     assert.ok(placed, `the ego is in esmini's log: ${Object.keys(first.positions).join(', ')}`);
     const sectionIndex = laneSectionIndexAt(egoRoad, result.ego.s);
     const expected = roadPoint(egoRoad, result.ego.s, laneCenterT(egoRoad, sectionIndex, result.ego.laneId, result.ego.s));
-    assert.ok(Math.hypot(placed[0] - expected.x, placed[1] - expected.y) < 1, `ego at ${placed.join(', ')}, the lane's centre at ${expected.x}, ${expected.y}`);
+    assert.ok(
+      Math.hypot(placed[0] - expected.x, placed[1] - expected.y) < 1,
+      `ego at ${placed.join(', ')}, the lane's centre at ${expected.x}, ${expected.y}`,
+    );
     await server.client.close(uri);
   });
 
@@ -70,7 +96,11 @@ describe('language server: New Modular Scenario builds a main with an ego on a r
     for (const version of SCHEMA_VERSIONS) {
       const text = newMainScenario({ version, roadFile: 'road.xodr', ego });
       assert.match(text, new RegExp(`revMajor="1" revMinor="${version.split('.')[1]}"`));
-      assert.deepEqual(checkSchema(parseXml(text), { modular: true }).findings.map((finding) => finding.message), [], version);
+      assert.deepEqual(
+        checkSchema(parseXml(text), { modular: true }).findings.map((finding) => finding.message),
+        [],
+        version,
+      );
     }
   });
 
@@ -87,7 +117,10 @@ describe('language server: New Modular Scenario builds a main with an ego on a r
     };
     await refused(fileUri(path.join(server.root, 'roads', 'none.xodr')), /none\.xodr does not exist/);
     await refused(fileUri(path.join(server.root, 'other.xosc')), /no place for the ego .*not an OpenDRIVE file/);
-    fs.writeFileSync(path.join(server.root, 'roads', 'footway.xodr'), '<OpenDRIVE><road id="1" length="50" junction="-1"><planView><geometry s="0" x="0" y="0" hdg="0" length="50"><line/></geometry></planView><lanes><laneSection s="0"><center><lane id="0" type="none"/></center><right><lane id="-1" type="sidewalk"><width sOffset="0" a="2" b="0" c="0" d="0"/></lane></right></laneSection></lanes></road></OpenDRIVE>');
+    fs.writeFileSync(
+      path.join(server.root, 'roads', 'footway.xodr'),
+      '<OpenDRIVE><road id="1" length="50" junction="-1"><planView><geometry s="0" x="0" y="0" hdg="0" length="50"><line/></geometry></planView><lanes><laneSection s="0"><center><lane id="0" type="none"/></center><right><lane id="-1" type="sidewalk"><width sOffset="0" a="2" b="0" c="0" d="0"/></lane></right></laneSection></lanes></road></OpenDRIVE>',
+    );
     await refused(fileUri(path.join(server.root, 'roads', 'footway.xodr')), /none of its 1 roads has a driving lane/);
     await refused('relative/road.xodr', /no absolute file path/);
   });

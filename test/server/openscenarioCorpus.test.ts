@@ -42,17 +42,22 @@ describe('language server on the real OpenSCENARIO corpus (../shared/corpus/open
       const diagnostics = await client.diagnosticsOf(uri, () => true, 30_000);
       for (const diagnostic of diagnostics) {
         const severe = diagnostic.severity === DiagnosticSeverity.Error || diagnostic.severity === DiagnosticSeverity.Warning;
-        if (severe && SEMANTIC_CODES.has(diagnostic.code as never)) (found[relative] ??= []).push(`${diagnostic.range.start.line + 1}:${String(diagnostic.code)}`);
+        if (severe && SEMANTIC_CODES.has(diagnostic.code as never))
+          (found[relative] ??= []).push(`${diagnostic.range.start.line + 1}:${String(diagnostic.code)}`);
       }
       const tokens = await client.request<{ data: number[] }>('textDocument/semanticTokens/full', { textDocument: { uri } });
-      const hints = await client.request<InlayHint[]>('textDocument/inlayHint', { textDocument: { uri }, range: { start: { line: 0, character: 0 }, end: { line: 1_000_000, character: 0 } } });
+      const hints = await client.request<InlayHint[]>('textDocument/inlayHint', {
+        textDocument: { uri },
+        range: { start: { line: 0, character: 0 }, end: { line: 1_000_000, character: 0 } },
+      });
       tokenCount += tokens.data.length / 5;
       hintCount += hints.length;
       await client.close(uri);
     }
     // Most files use $parameters; 27 use ${...}.
     assert.ok(tokenCount > 1000 && hintCount > 60, `${tokenCount} tokens, ${hintCount} hints`);
-    const sorted = (lists: Record<string, string[]>) => Object.fromEntries(Object.entries(lists).map(([file, problems]) => [file, [...problems].sort()]));
+    const sorted = (lists: Record<string, string[]>) =>
+      Object.fromEntries(Object.entries(lists).map(([file, problems]) => [file, [...problems].sort()]));
     assert.deepEqual(sorted(found), sorted(expectedCorpusFindings()));
   });
 
@@ -66,7 +71,10 @@ describe('language server on the real OpenSCENARIO corpus (../shared/corpus/open
     const catalogText = fs.readFileSync(catalogPath, 'utf8');
     assert.equal(locations.length, 2);
     assert.equal(locations[0].uri, fileUri(catalogPath));
-    assert.equal(catalogText.split('\n')[locations[0].range.start.line].slice(locations[0].range.start.character, locations[0].range.end.character), 'car_white');
+    assert.equal(
+      catalogText.split('\n')[locations[0].range.start.line].slice(locations[0].range.start.character, locations[0].range.end.character),
+      'car_white',
+    );
     assert.equal(locations[1].uri, uri);
     assert.equal(locations[1].range.start.line, text.slice(0, text.indexOf('name="HostVehicle"')).split('\n').length - 1);
     await esmini.close(uri);
@@ -76,14 +84,20 @@ describe('language server on the real OpenSCENARIO corpus (../shared/corpus/open
     const file = path.join(esminiDir, 'cut-in.xosc');
     const text = fs.readFileSync(file, 'utf8');
     const uri = await esmini.openFile(file);
-    const hints = await esmini.request<InlayHint[]>('textDocument/inlayHint', { textDocument: { uri }, range: { start: { line: 0, character: 0 }, end: { line: text.split('\n').length, character: 0 } } });
+    const hints = await esmini.request<InlayHint[]>('textDocument/inlayHint', {
+      textDocument: { uri },
+      range: { start: { line: 0, character: 0 }, end: { line: text.split('\n').length, character: 0 } },
+    });
     // cut-in.xosc: EgoSpeed 108 km/h as m/s, ${$EgoSpeed / 3.6} = 30.
     const expression = text.indexOf('${$EgoSpeed / 3.6}');
     assert.ok(expression > 0);
     const hint = hints.find((candidate) => candidate.position.line === positionAt(text, expression).line);
     assert.equal(hint?.label, '= 30');
     const hover = await esmini.request<Hover>('textDocument/hover', esmini.at(uri, positionAt(text, expression + 4)));
-    assert.match((hover.contents as MarkupContent).value, /= \*\*30\*\* \(double\)[\s\S]*`\$EgoSpeed` = 108 \(double\), declared in `<OpenSCENARIO>`/);
+    assert.match(
+      (hover.contents as MarkupContent).value,
+      /= \*\*30\*\* \(double\)[\s\S]*`\$EgoSpeed` = 108 \(double\), declared in `<OpenSCENARIO>`/,
+    );
     await esmini.close(uri);
   });
 });

@@ -10,7 +10,8 @@ import { temporaryWorkspace } from '../support/workspace';
 import { fileUri, TestClient } from './harness';
 
 /** SPEC 11.6 through the editor's commands: Flatten to .xosc and Pack into .mosc write outputs that reach the sources' files. */
-const withRoad = (groups: string) => scenario(groups).replace('<Entities>', '<RoadNetwork>\n    <LogicFile filepath="../xodr/road.xodr"/>\n  </RoadNetwork>\n  <Entities>');
+const withRoad = (groups: string) =>
+  scenario(groups).replace('<Entities>', '<RoadNetwork>\n    <LogicFile filepath="../xodr/road.xodr"/>\n  </RoadNetwork>\n  <Entities>');
 
 describe('language server: written outputs rebase their file paths (SPEC 11.6)', function () {
   let root: string;
@@ -32,7 +33,10 @@ describe('language server: written outputs rebase their file paths (SPEC 11.6)',
 
   it('Flatten to .xosc one folder up names the road from there', async () => {
     const output = path.join(root, 'ws', 'xosc.flattened.xosc');
-    const result = await client.send(FlattenToFileRequest, { uri: fileUri(path.join(root, 'ws', 'xosc', 'main.xosc')), outputPath: output });
+    const result = await client.send(FlattenToFileRequest, {
+      uri: fileUri(path.join(root, 'ws', 'xosc', 'main.xosc')),
+      outputPath: output,
+    });
     assert.equal(result.written, output, JSON.stringify(result.problems));
     assert.match(fs.readFileSync(output, 'utf8'), /<LogicFile filepath="xodr\/road\.xodr"\/>/);
   });
@@ -42,13 +46,27 @@ describe('language server: written outputs rebase their file paths (SPEC 11.6)',
     fs.mkdirSync(path.dirname(output), { recursive: true });
     const outside = await client.send(PackRequest, { inputs: [fileUri(path.join(root, 'ws', 'xosc'))], outputPath: output });
     assert.equal(outside.written, output, JSON.stringify(outside.problems));
-    assert.ok(outside.problems.some((problem) => problem.severity === 'warning' && problem.message.includes(`reaches the file ${path.join(root, 'ws', 'xodr', 'road.xodr')} outside itself`)), JSON.stringify(outside.problems));
+    assert.ok(
+      outside.problems.some(
+        (problem) =>
+          problem.severity === 'warning' &&
+          problem.message.includes(`reaches the file ${path.join(root, 'ws', 'xodr', 'road.xodr')} outside itself`),
+      ),
+      JSON.stringify(outside.problems),
+    );
     const packed = await JSZip.loadAsync(fs.readFileSync(output));
     assert.match((await packed.file('main.xosc')?.async('string')) ?? '', /<LogicFile filepath="\.\.\/\.\.\/ws\/xodr\/road\.xodr"\/>/);
 
-    const contained = await client.send(PackRequest, { inputs: [fileUri(path.join(root, 'ws', 'xosc'))], outputPath: output, selfContained: true });
+    const contained = await client.send(PackRequest, {
+      inputs: [fileUri(path.join(root, 'ws', 'xosc'))],
+      outputPath: output,
+      selfContained: true,
+    });
     assert.equal(contained.written, output, JSON.stringify(contained.problems));
-    assert.deepEqual(contained.problems.filter((problem) => problem.severity === 'warning'), []);
+    assert.deepEqual(
+      contained.problems.filter((problem) => problem.severity === 'warning'),
+      [],
+    );
     const zip = await JSZip.loadAsync(fs.readFileSync(output));
     assert.deepEqual(Object.keys(zip.files).sort(), ['files/road.xodr', 'main.xosc', 'simple.xosc']);
     assert.match((await zip.file('main.xosc')?.async('string')) ?? '', /<LogicFile filepath="files\/road\.xodr"\/>/);
@@ -105,7 +123,11 @@ describe('language server: Flatten and Pack to folders of other depths write out
     assert.equal(pack.written, packed, JSON.stringify(pack.problems));
     const flat = path.join(temporaryFolder('m2s-paths-server-'), 'x', 'y', 'cut-in.xosc');
     fs.mkdirSync(path.dirname(flat), { recursive: true });
-    const flattened = await client.send(FlattenToFileRequest, { uri: `mosc:${packed}/main.xosc`, outputPath: flat, outsideWorkspace: true });
+    const flattened = await client.send(FlattenToFileRequest, {
+      uri: `mosc:${packed}/main.xosc`,
+      outputPath: flat,
+      outsideWorkspace: true,
+    });
     assert.equal(flattened.written, flat, JSON.stringify(flattened.problems));
     assert.deepEqual(namedPaths(flat), expectedPaths);
     assertSameRun((await runAlone(flat)).steps, original, 'flattened package');
@@ -120,7 +142,11 @@ describe('language server: Flatten and Pack to folders of other depths write out
     fs.copyFileSync(packed, path.join(fresh, 'cut-in.mosc'));
     const flat = path.join(fresh, 'out', 'cut-in.xosc');
     fs.mkdirSync(path.dirname(flat), { recursive: true });
-    const flattened = await client.send(FlattenToFileRequest, { uri: `mosc:${path.join(fresh, 'cut-in.mosc')}/main.xosc`, outputPath: flat, outsideWorkspace: true });
+    const flattened = await client.send(FlattenToFileRequest, {
+      uri: `mosc:${path.join(fresh, 'cut-in.mosc')}/main.xosc`,
+      outputPath: flat,
+      outsideWorkspace: true,
+    });
     assert.equal(flattened.written, flat, JSON.stringify(flattened.problems));
     for (const named of namedPaths(flat)) assert.ok(named.startsWith(fresh + path.sep), `${named} lies in the fresh folder`);
     assertSameRun((await runAlone(flat)).steps, original, 'self-contained package');

@@ -57,7 +57,10 @@ describe("language server: a parameter's value against the type of each attribut
     assert.deepEqual(others, []);
     assert.equal(problem.severity, DiagnosticSeverity.Error);
     assert.deepEqual(problem.range.start, at(text, 's="|$HostVehicle"'));
-    assert.match(String(problem.message), /^'car_white', the value of parameter 'HostVehicle' \(declared string\), cannot be converted to the attribute's type double \(LanePosition\.s\)/);
+    assert.match(
+      String(problem.message),
+      /^'car_white', the value of parameter 'HostVehicle' \(declared string\), cannot be converted to the attribute's type double \(LanePosition\.s\)/,
+    );
     const [declaration] = problem.relatedInformation ?? [];
     assert.equal(declaration.location.uri, uri);
     assert.deepEqual(declaration.location.range.start, at(text, 'name="HostVehicle" parameterType="string" value="|car_white"'));
@@ -67,7 +70,10 @@ describe("language server: a parameter's value against the type of each attribut
   it('a numeric string converts to a double; `1.0` for an integer is a warning; an enumeration value must be one of its values', async () => {
     const text = cutIn()
       .replace('s="$EgoStartS"', 's="$Start"')
-      .replace('<ManeuverGroup maximumExecutionCount="1" name="CutInAndBrakeSequence">', '<ManeuverGroup maximumExecutionCount="$Count" name="CutInAndBrakeSequence">')
+      .replace(
+        '<ManeuverGroup maximumExecutionCount="1" name="CutInAndBrakeSequence">',
+        '<ManeuverGroup maximumExecutionCount="$Count" name="CutInAndBrakeSequence">',
+      )
       .replace('dynamicsShape="step"', 'dynamicsShape="$TargetVehicle"');
     const uri = fileUri(path.join(root, 'kinds.xosc'));
     await client.open(uri, text);
@@ -76,8 +82,18 @@ describe("language server: a parameter's value against the type of each attribut
     assert.equal(described.length, 2, described.join('\n'));
     const countLine = at(text, 'maximumExecutionCount="|$Count"').line;
     const shapeLine = at(text, 'dynamicsShape="|$TargetVehicle"').line;
-    assert.match(described.find((line) => line.startsWith(`${countLine}:`)) ?? '', new RegExp(`^${countLine}:${DiagnosticSeverity.Warning}:'1\\.0', the value of parameter 'Count' \\(declared string\\), is a number with a fraction of zero for the attribute's type unsignedInt`));
-    assert.match(described.find((line) => line.startsWith(`${shapeLine}:`)) ?? '', new RegExp(`^${shapeLine}:${DiagnosticSeverity.Error}:'car_red', the value of parameter 'TargetVehicle' .*cannot be converted to the attribute's type DynamicsShape \\(one of`));
+    assert.match(
+      described.find((line) => line.startsWith(`${countLine}:`)) ?? '',
+      new RegExp(
+        `^${countLine}:${DiagnosticSeverity.Warning}:'1\\.0', the value of parameter 'Count' \\(declared string\\), is a number with a fraction of zero for the attribute's type unsignedInt`,
+      ),
+    );
+    assert.match(
+      described.find((line) => line.startsWith(`${shapeLine}:`)) ?? '',
+      new RegExp(
+        `^${shapeLine}:${DiagnosticSeverity.Error}:'car_red', the value of parameter 'TargetVehicle' .*cannot be converted to the attribute's type DynamicsShape \\(one of`,
+      ),
+    );
     await client.close(uri);
   });
 
@@ -89,7 +105,17 @@ describe("language server: a parameter's value against the type of each attribut
     await client.open(uri, text);
     const items = await client.request<CompletionItem[]>('textDocument/completion', client.at(uri, positionAt(text, offset + 1)));
     const ordered = [...items].sort((a, b) => (a.sortText ?? '').localeCompare(b.sortText ?? '')).map((item) => item.label);
-    assert.deepEqual(ordered, ['$EgoStartS', '$HeadwayTime_LaneChange', '$HeadwayTime_Brake', '$EgoSpeed', '$TargetSpeedFactor', '$Count', '$Start', '$HostVehicle', '$TargetVehicle']);
+    assert.deepEqual(ordered, [
+      '$EgoStartS',
+      '$HeadwayTime_LaneChange',
+      '$HeadwayTime_Brake',
+      '$EgoSpeed',
+      '$TargetSpeedFactor',
+      '$Count',
+      '$Start',
+      '$HostVehicle',
+      '$TargetVehicle',
+    ]);
     await client.close(uri);
   });
 });

@@ -31,7 +31,12 @@ describe('language server: the live preview request (JSON-RPC)', function () {
 
   it('answers no text and no lines, with the problems, when the scenario cannot be flattened', async function () {
     const mainPath = path.join(examples.root(), 'main.xosc');
-    const uri = await examples.client().open(`${new URL(`file://${mainPath}`).href}`, fs.readFileSync(mainPath, 'utf8').replace('scenarioFileName="lane_change.xosc"', 'scenarioFileName="nowhere.xosc"'));
+    const uri = await examples
+      .client()
+      .open(
+        `${new URL(`file://${mainPath}`).href}`,
+        fs.readFileSync(mainPath, 'utf8').replace('scenarioFileName="lane_change.xosc"', 'scenarioFileName="nowhere.xosc"'),
+      );
     const result = await examples.client().request<PreviewResult>(PreviewRequest.method, { uri });
     assert.equal(result.text, null);
     assert.deepEqual(result.lines, []);

@@ -15,7 +15,10 @@ interface WorkspaceReport {
 async function checkLines(root: string): Promise<string[]> {
   const printed: string[] = [];
   // The harness turns the server's schema check off (minimal fixtures), so check runs the same way.
-  await main(withoutSchema(['check', root, '--format', 'json', '--root', root]), { out: (text) => printed.push(text), err: () => undefined });
+  await main(withoutSchema(['check', root, '--format', 'json', '--root', root]), {
+    out: (text) => printed.push(text),
+    err: () => undefined,
+  });
   const report = JSON.parse(printed.join('')) as { problems: { file: string; line: number; code: string; severity: string }[] };
   return report.problems.map((problem) => `${path.resolve(problem.file)}:${problem.line}:${problem.code}:${problem.severity}`).sort();
 }
@@ -23,7 +26,12 @@ async function checkLines(root: string): Promise<string[]> {
 function reportLines(report: WorkspaceReport): string[] {
   const severityName = ['', 'error', 'warning', 'information'];
   return report.items
-    .flatMap((file) => (file.items ?? []).map((diagnostic) => `${fileURLToPath(file.uri)}:${diagnostic.range.start.line + 1}:${diagnostic.code}:${severityName[diagnostic.severity ?? 0]}`))
+    .flatMap((file) =>
+      (file.items ?? []).map(
+        (diagnostic) =>
+          `${fileURLToPath(file.uri)}:${diagnostic.range.start.line + 1}:${diagnostic.code}:${severityName[diagnostic.severity ?? 0]}`,
+      ),
+    )
     .sort();
 }
 
@@ -33,7 +41,10 @@ describe('language server: workspace-wide pull diagnostics (JSON-RPC)', function
       'simple.xosc': withDuplicateGroups(),
       'main.xosc': MAIN,
       'clean.xosc': mainWithKeys(['<ParameterReference key="AbsoluteTargetSpeed.value" value="9"/>']),
-      'unopened/broken.xosc': mainWithKeys(['<ParameterReference key="nosuchkey" value="1"/>']).replace('scenarioFileName="simple.xosc"', 'scenarioFileName="../simple.xosc"'),
+      'unopened/broken.xosc': mainWithKeys(['<ParameterReference key="nosuchkey" value="1"/>']).replace(
+        'scenarioFileName="simple.xosc"',
+        'scenarioFileName="../simple.xosc"',
+      ),
     },
     'clean.xosc',
     { pullDiagnostics: true },
@@ -42,7 +53,10 @@ describe('language server: workspace-wide pull diagnostics (JSON-RPC)', function
   it('reports every scenario file of the workspace as check does, open or not', async function () {
     const report = await server.client.request<WorkspaceReport>('workspace/diagnostic', { previousResultIds: [] });
     const lines = reportLines(report);
-    assert.ok(lines.some((line) => line.includes(`${path.sep}unopened${path.sep}broken.xosc:`) && line.includes(':unknown-key:error')), lines.join('\n'));
+    assert.ok(
+      lines.some((line) => line.includes(`${path.sep}unopened${path.sep}broken.xosc:`) && line.includes(':unknown-key:error')),
+      lines.join('\n'),
+    );
     assert.deepEqual(lines, await checkLines(server.root));
   });
 
@@ -55,7 +69,7 @@ describe('language server: workspace-wide pull diagnostics (JSON-RPC)', function
     assert.equal(server.client.diagnostics.size, 0, 'a pulling client gets no diagnostics pushed');
   });
 
-  it('pulls an open document\'s diagnostics, with those other files place in it, and asks for a new pull after an edit', async function () {
+  it("pulls an open document's diagnostics, with those other files place in it, and asks for a new pull after an edit", async function () {
     const uri = await server.client.openFile(path.join(server.root, 'simple.xosc'));
     const report = await server.client.request<{ kind: string; items: Diagnostic[] }>('textDocument/diagnostic', { textDocument: { uri } });
     // The duplicate Brake is reported because main.xosc and clean.xosc refer to that name.

@@ -13,7 +13,9 @@ describe('quick-fix data as a client sends it back', function () {
     assert.ok(isDiagnosticData({ code: 'unknown-key', data: { suggestion: 'speed' } }));
     assert.ok(isDiagnosticData({ code: 'unknown-key', data: { relatedReplacement: 'value' } }));
     assert.ok(isDiagnosticData({ code: 'unknown-group', data: { groups: ['A', 'B'] } }));
-    assert.ok(isDiagnosticData({ code: 'schema-missing-element', data: { missing: ['Actors'], parent: 'ManeuverGroup', insertAt: '120' } }));
+    assert.ok(
+      isDiagnosticData({ code: 'schema-missing-element', data: { missing: ['Actors'], parent: 'ManeuverGroup', insertAt: '120' } }),
+    );
     assert.ok(isDiagnosticData({ code: 'no-default' }));
     assert.ok(isDiagnosticData({ code: 'cycle' }));
     for (const junk of [
@@ -42,7 +44,10 @@ describe('quick-fix data as a client sends it back', function () {
     let mainUri: string;
 
     before(async function () {
-      root = temporaryWorkspace({ 'simple.xosc': markers(SIMPLE).text, 'main.xosc': mainWithKeys(['<ParameterReference key="AbsoluteTargetSped.value" value="9"/>']) });
+      root = temporaryWorkspace({
+        'simple.xosc': markers(SIMPLE).text,
+        'main.xosc': mainWithKeys(['<ParameterReference key="AbsoluteTargetSped.value" value="9"/>']),
+      });
       client = await TestClient.start({ root });
       await client.indexed();
       mainUri = await client.openFile(path.join(root, 'main.xosc'));
@@ -57,14 +62,27 @@ describe('quick-fix data as a client sends it back', function () {
       const diagnostics = await client.diagnosticsOf(mainUri, (all) => all.some((candidate) => candidate.code === 'unknown-key'));
       const diagnostic = diagnostics.find((candidate) => candidate.code === 'unknown-key') as Diagnostic;
       const request = (data: unknown) =>
-        client.request<CodeAction[]>('textDocument/codeAction', { textDocument: { uri: mainUri }, range: diagnostic.range, context: { diagnostics: [{ ...diagnostic, data }] } });
+        client.request<CodeAction[]>('textDocument/codeAction', {
+          textDocument: { uri: mainUri },
+          range: diagnostic.range,
+          context: { diagnostics: [{ ...diagnostic, data }] },
+        });
       const own = (await request(diagnostic.data)).filter((action) => action.diagnostics);
       assert.deepEqual(
         own.map((action) => action.title),
         ["Change key to 'AbsoluteTargetSpeed.value'"],
       );
-      for (const junk of [undefined, 'x', { code: 'unknown-key', data: { suggestion: 1 } }, { code: 'unknown-key', suggestion: 'AbsoluteTargetSpeed.value' }]) {
-        assert.deepEqual((await request(junk)).filter((action) => action.diagnostics), [], JSON.stringify(junk));
+      for (const junk of [
+        undefined,
+        'x',
+        { code: 'unknown-key', data: { suggestion: 1 } },
+        { code: 'unknown-key', suggestion: 'AbsoluteTargetSpeed.value' },
+      ]) {
+        assert.deepEqual(
+          (await request(junk)).filter((action) => action.diagnostics),
+          [],
+          JSON.stringify(junk),
+        );
       }
     });
   });

@@ -32,7 +32,10 @@ async function applyWorkspaceEdit(client: TestClient, edit: WorkspaceEdit, open:
     assert.ok(TextDocumentEdit.is(change));
     const uri = change.textDocument.uri;
     const before = open.get(uri) ?? fs.readFileSync(fileURLToPath(uri), 'utf8');
-    const after = applyEdits(before, change.edits.filter((item): item is TextEdit => 'newText' in item));
+    const after = applyEdits(
+      before,
+      change.edits.filter((item): item is TextEdit => 'newText' in item),
+    );
     if (open.has(uri)) {
       open.set(uri, after);
       await client.change(uri, [{ text: after }]);
@@ -44,7 +47,9 @@ async function applyWorkspaceEdit(client: TestClient, edit: WorkspaceEdit, open:
     await client.change(uri, [{ text: after }]);
   }
   if (created.length > 0)
-    await client.connection.sendNotification('workspace/didChangeWatchedFiles', { changes: created.map((file) => ({ uri: fileUri(file), type: FileChangeType.Created })) });
+    await client.connection.sendNotification('workspace/didChangeWatchedFiles', {
+      changes: created.map((file) => ({ uri: fileUri(file), type: FileChangeType.Created })),
+    });
   return created;
 }
 
@@ -56,7 +61,11 @@ async function flattened(client: TestClient, uri: string, force = false): Promis
 
 async function refactorings(client: TestClient, uri: string, text: string, offset: number, only: string[]): Promise<CodeAction[]> {
   const position = positionAt(text, offset);
-  return client.request<CodeAction[]>('textDocument/codeAction', { textDocument: { uri }, range: { start: position, end: position }, context: { diagnostics: [], only } });
+  return client.request<CodeAction[]>('textDocument/codeAction', {
+    textDocument: { uri },
+    range: { start: position, end: position },
+    context: { diagnostics: [], only },
+  });
 }
 
 describe('refactorings over JSON-RPC on the corpus (issue 19)', function () {
@@ -104,7 +113,11 @@ describe('refactorings over JSON-RPC on the corpus (issue 19)', function () {
         assert.match(fs.readFileSync(created[0], 'utf8'), /<Storyboard>/);
         assert.match(open.get(uri) as string, /<ScenarioReference scenarioFileName="[^"]+\.xosc">/);
         const after = await flattened(client, uri);
-        assert.equal(firstDifference(after, before), undefined, `${name}: group '${group.name}' extracted to ${path.basename(created[0])} flattens differently`);
+        assert.equal(
+          firstDifference(after, before),
+          undefined,
+          `${name}: group '${group.name}' extracted to ${path.basename(created[0])} flattens differently`,
+        );
         // The simple scenario stands on its own: it flattens (it is a plain scenario) with no error.
         const simpleUri = await client.openFile(created[0]);
         await flattened(client, simpleUri);
@@ -112,14 +125,18 @@ describe('refactorings over JSON-RPC on the corpus (issue 19)', function () {
         // Back to the scenario as it was, for its next group.
         await client.change(uri, [{ text }]);
         for (const createdFile of created) fs.rmSync(createdFile);
-        await client.connection.sendNotification('workspace/didChangeWatchedFiles', { changes: created.map((createdFile) => ({ uri: fileUri(createdFile), type: FileChangeType.Deleted })) });
+        await client.connection.sendNotification('workspace/didChangeWatchedFiles', {
+          changes: created.map((createdFile) => ({ uri: fileUri(createdFile), type: FileChangeType.Deleted })),
+        });
         extracted++;
         scenarios.add(name);
       }
       await client.close(uri);
     }
     assert.ok(scenarios.size >= 50 && extracted >= 90, `only ${extracted} groups of ${scenarios.size} esmini scenarios extracted`);
-    console.log(`      ${extracted} groups of ${scenarios.size} esmini scenarios extracted, each flattened output equivalent; refused: ${refused.length ? refused.join('; ') : 'none'}`);
+    console.log(
+      `      ${extracted} groups of ${scenarios.size} esmini scenarios extracted, each flattened output equivalent; refused: ${refused.length ? refused.join('; ') : 'none'}`,
+    );
   });
 
   it('extracts with the attributes chosen through the extractGroup request, and refuses a client that cannot create files', async function () {
@@ -145,7 +162,10 @@ describe('refactorings over JSON-RPC on the corpus (issue 19)', function () {
       const actions = await refactorings(other, otherUri, cutIn, offset, ['refactor']);
       const action = actions.find((candidate) => candidate.kind === 'refactor.extract.simpleScenario');
       assert.match(action?.disabled?.reason ?? '', /cannot apply edits that create files/);
-      await assert.rejects(other.send(ExtractGroupRequest, { uri: otherUri, position: positionAt(cutIn, offset) }), /cannot apply edits that create files/);
+      await assert.rejects(
+        other.send(ExtractGroupRequest, { uri: otherUri, position: positionAt(cutIn, offset) }),
+        /cannot apply edits that create files/,
+      );
     } finally {
       await other.stop();
     }
@@ -155,9 +175,18 @@ describe('refactorings over JSON-RPC on the corpus (issue 19)', function () {
     const file = path.join(root, 'esmini', 'cut-in.xosc');
     const text = fs.readFileSync(file, 'utf8');
     const uri = await client.openFile(file);
-    await assert.rejects(client.send(ExtractGroupRequest, { uri, position: { line: 0, character: 0 } }), /no ManeuverGroup start tag at the position/);
-    await assert.rejects(client.send(ExtractGroupRequest, { uri, position: { line: 0, character: 0 }, attributes: [3] as unknown as string[] }), /attributes must be a list of choice ids/);
-    await assert.rejects(client.send(ExtractGroupRequest, { uri: 'file:///nowhere/x.xosc', position: { line: 0, character: 0 } }), /is not an open scenario/);
+    await assert.rejects(
+      client.send(ExtractGroupRequest, { uri, position: { line: 0, character: 0 } }),
+      /no ManeuverGroup start tag at the position/,
+    );
+    await assert.rejects(
+      client.send(ExtractGroupRequest, { uri, position: { line: 0, character: 0 }, attributes: [3] as unknown as string[] }),
+      /attributes must be a list of choice ids/,
+    );
+    await assert.rejects(
+      client.send(ExtractGroupRequest, { uri: 'file:///nowhere/x.xosc', position: { line: 0, character: 0 } }),
+      /is not an open scenario/,
+    );
     // Cut off in the middle of a group: nothing to move, and no failure.
     const broken = text.slice(0, text.indexOf('<Maneuver ') + 10);
     await client.change(uri, [{ text: broken }]);
@@ -183,10 +212,17 @@ describe('refactorings over JSON-RPC on the corpus (issue 19)', function () {
         assert.equal(actions.length, 1, `${folder}: one inline action on '${group.name}'`);
         assert.ok(actions[0].edit, `${folder}: ${JSON.stringify(actions[0])}`);
         await applyWorkspaceEdit(client, actions[0].edit, open);
-        assert.equal(firstDifference(await flattened(client, uri), before), undefined, `${folder}: inlining '${group.name}' changed the flattened scenario`);
+        assert.equal(
+          firstDifference(await flattened(client, uri), before),
+          undefined,
+          `${folder}: inlining '${group.name}' changed the flattened scenario`,
+        );
       }
       // Everything inlined, the main is the paper's flattened result.
-      assert.equal(firstDifference(open.get(uri) as string, fs.readFileSync(path.join(root, 'library', folder, 'result.xosc'), 'utf8')), undefined);
+      assert.equal(
+        firstDifference(open.get(uri) as string, fs.readFileSync(path.join(root, 'library', folder, 'result.xosc'), 'utf8')),
+        undefined,
+      );
       await client.close(uri);
     }
   });
@@ -204,7 +240,11 @@ describe('refactorings over JSON-RPC on the corpus (issue 19)', function () {
       const actions = await refactorings(client, uri, text, group.element.start + 1, ['refactor.inline']);
       assert.ok(actions[0]?.edit, `'${group.name}': ${JSON.stringify(actions)}`);
       await applyWorkspaceEdit(client, actions[0].edit, open);
-      assert.equal(firstDifference(await flattened(client, uri, true), before), undefined, `inlining '${group.name}' changed the flattened scenario`);
+      assert.equal(
+        firstDifference(await flattened(client, uri, true), before),
+        undefined,
+        `inlining '${group.name}' changed the flattened scenario`,
+      );
       inlined++;
     }
     assert.ok(inlined >= 2, `${inlined} groups inlined`);
@@ -231,7 +271,9 @@ describe('refactorings over JSON-RPC on the corpus (issue 19)', function () {
     const written = open.get(uri) as string;
     assert.match(written.slice(dynamics(written)), /^<SpeedActionDynamics parameterAttributes="dynamicsShape,value" dynamicsShape="step"/);
     // Once listed, it is not offered again; the group's name and its actor never are.
-    const listed = await refactorings(client, uri, written, written.indexOf('dynamicsShape="', dynamics(written)) + 2, ['refactor.rewrite']);
+    const listed = await refactorings(client, uri, written, written.indexOf('dynamicsShape="', dynamics(written)) + 2, [
+      'refactor.rewrite',
+    ]);
     assert.equal(listed.filter((candidate) => candidate.kind === 'refactor.rewrite.makeOverridable').length, 0);
     const name = await refactorings(client, uri, written, vehicleGroup(written) + 20, ['refactor.rewrite']);
     assert.equal(name.filter((candidate) => candidate.kind === 'refactor.rewrite.makeOverridable').length, 0);
@@ -262,22 +304,55 @@ describe('Extract to catalog over JSON-RPC: esmini runs the scenario identically
 
   const cases: { file: string; element: string; title: RegExp; edit?: [string, string]; expect: RegExp[] }[] = [
     // The catalog there has a different car_white: a new catalog file beside it (the name stays).
-    { file: 'straight_500m.xosc', element: '<Vehicle name="car_white"', title: /VehicleCatalog_2\/car_white in VehicleCatalog_2\.xosc/, expect: [/<CatalogReference catalogName="VehicleCatalog_2" entryName="car_white"\/>/] },
+    {
+      file: 'straight_500m.xosc',
+      element: '<Vehicle name="car_white"',
+      title: /VehicleCatalog_2\/car_white in VehicleCatalog_2\.xosc/,
+      expect: [/<CatalogReference catalogName="VehicleCatalog_2" entryName="car_white"\/>/],
+    },
     // No ManeuverCatalog location: a new Catalogs/ManeuverCatalog.xosc and its location.
-    { file: 'cut-in.xosc', element: '<Maneuver ', title: /ManeuverCatalog\/\w+ in ManeuverCatalog\.xosc/, expect: [/<ManeuverCatalog>\s*<Directory path="Catalogs"\/>\s*<\/ManeuverCatalog>/, /<CatalogReference catalogName="ManeuverCatalog" entryName="CutInManeuver">/] },
+    {
+      file: 'cut-in.xosc',
+      element: '<Maneuver ',
+      title: /ManeuverCatalog\/\w+ in ManeuverCatalog\.xosc/,
+      expect: [
+        /<ManeuverCatalog>\s*<Directory path="Catalogs"\/>\s*<\/ManeuverCatalog>/,
+        /<CatalogReference catalogName="ManeuverCatalog" entryName="CutInManeuver">/,
+      ],
+    },
     // Both catalog files there are the catalog ControllerCatalog, which has an ACCController of its own: a new catalog, under
     // its name (esmini's controller type). A scenario parameter the controller uses is declared in the entry and passed in.
-    { file: 'acc-test.xosc', element: '<Controller name="ACCController"', title: /ControllerCatalog_2\/ACCController in ControllerCatalog_2\.xosc/, expect: [/<ParameterAssignment parameterRef="EgoSpeed" value="\$EgoSpeed"\/>/] },
+    {
+      file: 'acc-test.xosc',
+      element: '<Controller name="ACCController"',
+      title: /ControllerCatalog_2\/ACCController in ControllerCatalog_2\.xosc/,
+      expect: [/<ParameterAssignment parameterRef="EgoSpeed" value="\$EgoSpeed"\/>/],
+    },
     // A pedestrian and a misc object, each into its kind's catalog.
-    { file: 'straight_500m_pedestrian.xosc', element: '<Pedestrian name="Pedestrian1"', title: /Pedestrian1 in \w+\.xosc/, expect: [/<CatalogReference catalogName="\w+" entryName="Pedestrian1"\/>/] },
-    { file: 'drop-bike.xosc', element: '<MiscObject name="box"', title: /box in \w+\.xosc/, expect: [/<CatalogReference catalogName="\w+" entryName="box"\/>/] },
+    {
+      file: 'straight_500m_pedestrian.xosc',
+      element: '<Pedestrian name="Pedestrian1"',
+      title: /Pedestrian1 in \w+\.xosc/,
+      expect: [/<CatalogReference catalogName="\w+" entryName="Pedestrian1"\/>/],
+    },
+    {
+      file: 'drop-bike.xosc',
+      element: '<MiscObject name="box"',
+      title: /box in \w+\.xosc/,
+      expect: [/<CatalogReference catalogName="\w+" entryName="box"\/>/],
+    },
     // The catalog's sloppyDriver, with its own Sloppiness parameter: reused, the value that differs assigned.
     {
       file: 'cut-in_sloppy.xosc',
       element: '<Controller name="sloppyDriver"',
-      edit: ['<Property name="mode" value="additive"/>\n                    <Property name="sloppiness" value="0.6" />', '<Property name="sloppiness" value="0.6" />\n                    <Property name="mode" value="additive"/>'],
+      edit: [
+        '<Property name="mode" value="additive"/>\n                    <Property name="sloppiness" value="0.6" />',
+        '<Property name="sloppiness" value="0.6" />\n                    <Property name="mode" value="additive"/>',
+      ],
       title: /ControllerCatalog\/sloppyDriver in ControllerCatalog\.xosc, an entry there already/,
-      expect: [/<CatalogReference catalogName="ControllerCatalog" entryName="sloppyDriver">\s*<ParameterAssignments>\s*<ParameterAssignment parameterRef="Sloppiness" value="0.6"\/>\s*<\/ParameterAssignments>\s*<\/CatalogReference>/],
+      expect: [
+        /<CatalogReference catalogName="ControllerCatalog" entryName="sloppyDriver">\s*<ParameterAssignments>\s*<ParameterAssignment parameterRef="Sloppiness" value="0.6"\/>\s*<\/ParameterAssignments>\s*<\/CatalogReference>/,
+      ],
     },
   ];
   for (const { file: name, element, title, edit, expect } of cases) {

@@ -33,14 +33,20 @@ describe('language server: errors of the handlers are loud (JSON-RPC)', function
 
   it('passes a deliberate error through unchanged, logging nothing', async function () {
     await assert.rejects(
-      server.client.request('textDocument/rename', { ...server.client.at(server.openUri, positionAfter(MAIN, '<OpenSCENARIO')), newName: 'X' }),
+      server.client.request('textDocument/rename', {
+        ...server.client.at(server.openUri, positionAfter(MAIN, '<OpenSCENARIO')),
+        newName: 'X',
+      }),
       rejectsWith(LSPErrorCodes.RequestFailed, /^only ManeuverGroup and parameter names can be renamed$/),
     );
     assert.deepEqual(server.client.errors, []);
   });
 
   it('answers a custom request with bad parameters as InvalidParams, logging nothing', async function () {
-    await assert.rejects(server.client.send(StructureRequest, { uri: 'http://example.com/x' }), rejectsWith(ErrorCodes.InvalidParams, /not a scenario URI/));
+    await assert.rejects(
+      server.client.send(StructureRequest, { uri: 'http://example.com/x' }),
+      rejectsWith(ErrorCodes.InvalidParams, /not a scenario URI/),
+    );
     assert.deepEqual(server.client.errors, []);
   });
 
@@ -59,7 +65,11 @@ describe('language server: errors of the handlers are loud (JSON-RPC)', function
     try {
       const source = new CancellationTokenSource();
       const position = positionAfter(MAIN, 'maneuverGroupName="');
-      const answer = server.client.connection.sendRequest('textDocument/references', { ...server.client.at(server.openUri, position), context: { includeDeclaration: true } }, source.token);
+      const answer = server.client.connection.sendRequest(
+        'textDocument/references',
+        { ...server.client.at(server.openUri, position), context: { includeDeclaration: true } },
+        source.token,
+      );
       await reached;
       source.cancel();
       // The cancellation travels to the server before the work goes on: the answer to a later request shows it was read.
@@ -69,7 +79,10 @@ describe('language server: errors of the handlers are loud (JSON-RPC)', function
     } finally {
       server.client.workspace.referringFiles = original;
     }
-    const locations = await server.client.request<unknown[]>('textDocument/references', { ...server.client.at(server.openUri, positionAfter(MAIN, 'maneuverGroupName="')), context: { includeDeclaration: true } });
+    const locations = await server.client.request<unknown[]>('textDocument/references', {
+      ...server.client.at(server.openUri, positionAfter(MAIN, 'maneuverGroupName="')),
+      context: { includeDeclaration: true },
+    });
     assert.ok(locations.length > 0, 'the same request answers when not cancelled');
     assert.deepEqual(server.client.errors, []);
   });

@@ -38,7 +38,11 @@ async function askEverything(client: TestClient, uri: string, position: { line: 
     client.request('textDocument/references', { ...at, context: { includeDeclaration: true } }),
     client.request('textDocument/documentSymbol', { textDocument: { uri } }),
     client.request('textDocument/codeLens', { textDocument: { uri } }),
-    client.request('textDocument/codeAction', { textDocument: { uri }, range: { start: position, end: position }, context: { diagnostics: [] } }),
+    client.request('textDocument/codeAction', {
+      textDocument: { uri },
+      range: { start: position, end: position },
+      context: { diagnostics: [] },
+    }),
     client.request('workspace/symbol', { query: 'a' }),
     client.send(StructureRequest, { uri }),
   ]);
@@ -87,11 +91,27 @@ describe('language server with bad input', function () {
     const uri = await client.openFile(path.join(root, 'main.xosc'));
     // It reads a 20 MB file and inflates a bomb: seconds on a busy machine.
     const diagnostics: Diagnostic[] = await client.diagnosticsOf(uri, () => true, 60_000);
-    const onLine = (fileName: string) => diagnostics.filter((diagnostic) => diagnostic.range.start.line === fs.readFileSync(path.join(root, 'main.xosc'), 'utf8').split('\n').findIndex((line) => line.includes(`"${fileName}"`)));
+    const onLine = (fileName: string) =>
+      diagnostics.filter(
+        (diagnostic) =>
+          diagnostic.range.start.line ===
+          fs
+            .readFileSync(path.join(root, 'main.xosc'), 'utf8')
+            .split('\n')
+            .findIndex((line) => line.includes(`"${fileName}"`)),
+      );
     for (const fileName of ['garbage.xosc', 'truncated.mosc', 'bomb.mosc', 'deep.xosc', 'self.xosc', 'garbage.mosc', 'empty.xosc']) {
-      assert.ok(onLine(fileName).some((diagnostic) => diagnostic.severity === 1), `an error on the reference to ${fileName}: ${JSON.stringify(diagnostics.map((d) => [d.range.start.line, d.message]))}`);
+      assert.ok(
+        onLine(fileName).some((diagnostic) => diagnostic.severity === 1),
+        `an error on the reference to ${fileName}: ${JSON.stringify(diagnostics.map((d) => [d.range.start.line, d.message]))}`,
+      );
     }
-    assert.ok(onLine('bomb.mosc').some((diagnostic) => /more than .* bytes/.test(String(diagnostic.message)) || /more than/.test(JSON.stringify(diagnostic.relatedInformation))));
+    assert.ok(
+      onLine('bomb.mosc').some(
+        (diagnostic) =>
+          /more than .* bytes/.test(String(diagnostic.message)) || /more than/.test(JSON.stringify(diagnostic.relatedInformation)),
+      ),
+    );
     assert.ok(!onLine('big.xosc').some((diagnostic) => diagnostic.severity === 1), 'the 20 MB file is valid and read');
     const text = fs.readFileSync(path.join(root, 'main.xosc'), 'utf8');
     for (let offset = 0; offset < text.length; offset += 97) await askEverything(client, uri, positionAt(text, offset));
@@ -133,7 +153,26 @@ describe('language server with bad input', function () {
 /** Random edits to a text: deletions, insertions of XML-ish or binary noise, duplications and truncation. */
 const mutation = fc.oneof(
   fc.record({ kind: fc.constant('delete' as const), at: fc.nat(), length: fc.nat({ max: 400 }) }),
-  fc.record({ kind: fc.constant('insert' as const), at: fc.nat(), text: fc.oneof(fc.string({ maxLength: 30 }), fc.constantFrom('<', '>', '"', "'", '</ManeuverGroup>', '<ScenarioReference scenarioFileName="', 'key="', '&amp;', '<!DOCTYPE x [<!ENTITY a "b">]>', '\u0000', '\uFFFF')) }),
+  fc.record({
+    kind: fc.constant('insert' as const),
+    at: fc.nat(),
+    text: fc.oneof(
+      fc.string({ maxLength: 30 }),
+      fc.constantFrom(
+        '<',
+        '>',
+        '"',
+        "'",
+        '</ManeuverGroup>',
+        '<ScenarioReference scenarioFileName="',
+        'key="',
+        '&amp;',
+        '<!DOCTYPE x [<!ENTITY a "b">]>',
+        '\u0000',
+        '\uFFFF',
+      ),
+    ),
+  }),
   fc.record({ kind: fc.constant('duplicate' as const), at: fc.nat(), length: fc.nat({ max: 2000 }) }),
   fc.record({ kind: fc.constant('truncate' as const), at: fc.nat() }),
 );
@@ -170,16 +209,22 @@ describe('language server under random mutations of corpus files (property)', fu
     sources.push(path.join(libraryDir, 'modular_hero_right_left_front_back_pedestrian', 'main.xosc'));
     let run = 0;
     await fc.assert(
-      fc.asyncProperty(fc.constantFrom(...sources), fc.array(mutation, { minLength: 1, maxLength: 6 }), fc.array(fc.nat(), { minLength: 3, maxLength: 3 }), async (source, mutations, cursorSeeds) => {
-        // Each run opens the mutated text in place of the real file, as an editor's unsaved buffer.
-        const uri = fileUri(source);
-        const text = mutate(fs.readFileSync(source, 'utf8'), mutations);
-        run++;
-        await client.open(uri, text);
-        await client.diagnosticsOf(uri);
-        for (const seed of cursorSeeds) await askEverything(client, uri, positionAt(text, text.length === 0 ? 0 : seed % (text.length + 1)));
-        await client.close(uri);
-      }),
+      fc.asyncProperty(
+        fc.constantFrom(...sources),
+        fc.array(mutation, { minLength: 1, maxLength: 6 }),
+        fc.array(fc.nat(), { minLength: 3, maxLength: 3 }),
+        async (source, mutations, cursorSeeds) => {
+          // Each run opens the mutated text in place of the real file, as an editor's unsaved buffer.
+          const uri = fileUri(source);
+          const text = mutate(fs.readFileSync(source, 'utf8'), mutations);
+          run++;
+          await client.open(uri, text);
+          await client.diagnosticsOf(uri);
+          for (const seed of cursorSeeds)
+            await askEverything(client, uri, positionAt(text, text.length === 0 ? 0 : seed % (text.length + 1)));
+          await client.close(uri);
+        },
+      ),
       { numRuns: 60 },
     );
     assert.equal(run >= 60, true);

@@ -43,11 +43,19 @@ describe('language server: diagnostics link their ASAM Quality Checker rule', fu
     if (root) fs.rmSync(root, { recursive: true, force: true });
   });
 
-  it('links a rule of ASAM QC to its description, and leaves the project\'s own rules unlinked', async () => {
+  it("links a rule of ASAM QC to its description, and leaves the project's own rules unlinked", async () => {
     const uri = await client.openFile(path.join(root, 'links.xosc'));
-    const diagnostics = await client.diagnosticsOf(uri, (list) => list.some((diagnostic) => diagnostic.code === 'duplicate-name') && list.some((diagnostic) => diagnostic.code === 'undeclared-parameter'));
+    const diagnostics = await client.diagnosticsOf(
+      uri,
+      (list) =>
+        list.some((diagnostic) => diagnostic.code === 'duplicate-name') &&
+        list.some((diagnostic) => diagnostic.code === 'undeclared-parameter'),
+    );
     const duplicate = diagnostics.find((diagnostic) => diagnostic.code === 'duplicate-name');
-    assert.equal(duplicate?.codeDescription?.href, 'https://github.com/asam-ev/qc-openscenarioxml/blob/main/checker_bundle_doc.md#check_asam_xosc_reference_control_unique_element_names_on_same_level');
+    assert.equal(
+      duplicate?.codeDescription?.href,
+      'https://github.com/asam-ev/qc-openscenarioxml/blob/main/checker_bundle_doc.md#check_asam_xosc_reference_control_unique_element_names_on_same_level',
+    );
     const undeclared = diagnostics.find((diagnostic) => diagnostic.code === 'undeclared-parameter');
     assert.equal(undeclared?.codeDescription, undefined);
   });
@@ -65,10 +73,10 @@ const MANEUVER_CATALOG = `<?xml version="1.0"?>
 `;
 
 function referencing(variables: string): string {
-  return SCENARIO.replace('<Entities>', `${variables}<CatalogLocations><ManeuverCatalog><Directory path="catalogs"/></ManeuverCatalog></CatalogLocations>\n  <Entities>`).replace(
-    /<Maneuver name="M">[\s\S]*<\/Maneuver>/,
-    '<CatalogReference catalogName="ManeuverCatalog" entryName="Flip"/>',
-  );
+  return SCENARIO.replace(
+    '<Entities>',
+    `${variables}<CatalogLocations><ManeuverCatalog><Directory path="catalogs"/></ManeuverCatalog></CatalogLocations>\n  <Entities>`,
+  ).replace(/<Maneuver name="M">[\s\S]*<\/Maneuver>/, '<CatalogReference catalogName="ManeuverCatalog" entryName="Flip"/>');
 }
 
 describe('language server: a variable of a catalog entry names the scenarios that reference the entry', function () {
@@ -79,7 +87,9 @@ describe('language server: a variable of a catalog entry names the scenarios tha
   before(async function () {
     root = temporaryWorkspace({
       'catalogs/ManeuverCatalog.xosc': MANEUVER_CATALOG,
-      'declares.xosc': referencing('<VariableDeclarations><VariableDeclaration name="Flag" variableType="boolean" value="false"/></VariableDeclarations>\n  '),
+      'declares.xosc': referencing(
+        '<VariableDeclarations><VariableDeclaration name="Flag" variableType="boolean" value="false"/></VariableDeclarations>\n  ',
+      ),
       'lacks.xosc': referencing(''),
     });
     client = await TestClient.start({ root });
@@ -92,12 +102,19 @@ describe('language server: a variable of a catalog entry names the scenarios tha
 
   it('notes in the catalog which referencing scenario declares it and which does not; the one that does not has an error', async () => {
     const catalogUri = await client.openFile(path.join(root, 'catalogs', 'ManeuverCatalog.xosc'));
-    const [note] = (await client.diagnosticsOf(catalogUri, (list) => list.some((diagnostic) => diagnostic.code === 'undeclared-variable'))).filter((diagnostic) => diagnostic.code === 'undeclared-variable');
+    const [note] = (
+      await client.diagnosticsOf(catalogUri, (list) => list.some((diagnostic) => diagnostic.code === 'undeclared-variable'))
+    ).filter((diagnostic) => diagnostic.code === 'undeclared-variable');
     assert.equal(note.severity, 3, 'information');
     const related = (note.relatedInformation ?? []).map((item) => `${path.basename(item.location.uri)}: ${item.message}`).sort();
     assert.deepEqual(related, ["declares.xosc: declares variable 'Flag'", "lacks.xosc: does not declare variable 'Flag' (an error there)"]);
     const lacksUri = await client.openFile(path.join(root, 'lacks.xosc'));
-    const errors = (await client.diagnosticsOf(lacksUri, (list) => list.some((diagnostic) => diagnostic.code === 'undeclared-variable'))).filter((diagnostic) => diagnostic.code === 'undeclared-variable');
-    assert.deepEqual(errors.map((diagnostic) => diagnostic.severity), [1]);
+    const errors = (
+      await client.diagnosticsOf(lacksUri, (list) => list.some((diagnostic) => diagnostic.code === 'undeclared-variable'))
+    ).filter((diagnostic) => diagnostic.code === 'undeclared-variable');
+    assert.deepEqual(
+      errors.map((diagnostic) => diagnostic.severity),
+      [1],
+    );
   });
 });

@@ -16,7 +16,10 @@ describe('language server: a saved file is read again from disk (JSON-RPC)', fun
     const at = positionAfter(text, 'key="RelativeDistanceCondition.value" value="');
     await examples.client().change(uri, [{ range: { start: at, end: { line: at.line, character: at.character + 2 } }, text: '17.5' }]);
     // The editor saves (the client's Pack does this first), then asks for the package at once.
-    fs.writeFileSync(mainPath, text.replace('key="RelativeDistanceCondition.value" value="12"', 'key="RelativeDistanceCondition.value" value="17.5"'));
+    fs.writeFileSync(
+      mainPath,
+      text.replace('key="RelativeDistanceCondition.value" value="12"', 'key="RelativeDistanceCondition.value" value="17.5"'),
+    );
     await examples.client().connection.sendNotification('textDocument/didSave', { textDocument: { uri } });
     const output = path.join(examples.root(), 'out.mosc');
     const result = await examples.client().request<WriteResult>(PackRequest.method, { inputs: [fileUri(mainPath)], outputPath: output });

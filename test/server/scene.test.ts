@@ -18,7 +18,8 @@ const SIMPLE = sceneScenario(
 );
 const MAIN = sceneScenario(
   'straight.xodr',
-  teleport('ego', '<LanePosition roadId="1" laneId="-1" s="$EgoS"/>') + teleport('other', '<RelativeLanePosition entityRef="ego" dLane="0" ds="15"/>'),
+  teleport('ego', '<LanePosition roadId="1" laneId="-1" s="$EgoS"/>') +
+    teleport('other', '<RelativeLanePosition entityRef="ego" dLane="0" ds="15"/>'),
   `<Story name="S"><Act name="A">\n${outerGroup('Outer', 'ego', [{ file: 'simple.xosc', groups: [{ name: 'Simple' }] }])}</Act></Story>`,
   '<ParameterDeclaration name="EgoS" parameterType="double" value="40"/>',
 );
@@ -32,7 +33,10 @@ const ROUTES = `<?xml version="1.0" encoding="UTF-8"?>
   </Route></Catalog>
 </OpenSCENARIO>
 `;
-const ON_ROUTE = teleport('third', '<RoutePosition><RouteRef><CatalogReference catalogName="StraightRoutes" entryName="Along"><ParameterAssignments><ParameterAssignment parameterRef="From" value="20"/></ParameterAssignments></CatalogReference></RouteRef><InRoutePosition><FromLaneCoordinates pathS="30" laneId="-1"/></InRoutePosition></RoutePosition>');
+const ON_ROUTE = teleport(
+  'third',
+  '<RoutePosition><RouteRef><CatalogReference catalogName="StraightRoutes" entryName="Along"><ParameterAssignments><ParameterAssignment parameterRef="From" value="20"/></ParameterAssignments></CatalogReference></RouteRef><InRoutePosition><FromLaneCoordinates pathS="30" laneId="-1"/></InRoutePosition></RoutePosition>',
+);
 const VEHICLES = `<?xml version="1.0" encoding="UTF-8"?>
 <OpenSCENARIO><FileHeader revMajor="1" revMinor="1" date="2026-01-01T00:00:00" description="vehicles" author="test"/>
   <Catalog name="VehicleCatalog"><Vehicle name="car_red" vehicleCategory="car"/></Catalog>
@@ -40,7 +44,10 @@ const VEHICLES = `<?xml version="1.0" encoding="UTF-8"?>
 `;
 // With catalog locations given, the fixture's car_red must be found too (else the scenario does not flatten).
 const withRoutes = (scenario: string) =>
-  scenario.replace('<RoadNetwork>', '<CatalogLocations><VehicleCatalog><Directory path="Vehicles"/></VehicleCatalog><RouteCatalog><Directory path="Routes"/></RouteCatalog></CatalogLocations><RoadNetwork>');
+  scenario.replace(
+    '<RoadNetwork>',
+    '<CatalogLocations><VehicleCatalog><Directory path="Vehicles"/></VehicleCatalog><RouteCatalog><Directory path="Routes"/></RouteCatalog></CatalogLocations><RoadNetwork>',
+  );
 /** A scenario read as written, and one flattened (it imports simple.xosc), each placing an entity on a catalog route. */
 const PLAIN_ROUTE = withRoutes(sceneScenario('straight.xodr', ON_ROUTE));
 const MODULAR_ROUTE = withRoutes(MAIN.replace('</Actions></Init>', `${ON_ROUTE}</Actions></Init>`));
@@ -53,17 +60,20 @@ describe('language server: modular2simple/scene (JSON-RPC)', function () {
     const zip = new JSZip();
     zip.file('main.xosc', MAIN);
     zip.file('simple.xosc', SIMPLE);
-    root = temporaryWorkspace({
-      'roads/straight.xodr': STRAIGHT_ROAD,
-      'main.xosc': MAIN,
-      'simple.xosc': SIMPLE,
-      'Routes/StraightRoutes.xosc': ROUTES,
-      'Vehicles/VehicleCatalog.xosc': VEHICLES,
-      'plainRoute.xosc': PLAIN_ROUTE,
-      'modularRoute.xosc': MODULAR_ROUTE,
-      'packed/pkg.mosc': await zip.generateAsync({ type: 'uint8array' }),
-      'packed/straight.xodr': STRAIGHT_ROAD,
-    }, 'm2s-server-');
+    root = temporaryWorkspace(
+      {
+        'roads/straight.xodr': STRAIGHT_ROAD,
+        'main.xosc': MAIN,
+        'simple.xosc': SIMPLE,
+        'Routes/StraightRoutes.xosc': ROUTES,
+        'Vehicles/VehicleCatalog.xosc': VEHICLES,
+        'plainRoute.xosc': PLAIN_ROUTE,
+        'modularRoute.xosc': MODULAR_ROUTE,
+        'packed/pkg.mosc': await zip.generateAsync({ type: 'uint8array' }),
+        'packed/straight.xodr': STRAIGHT_ROAD,
+      },
+      'm2s-server-',
+    );
     client = await TestClient.start({ root });
     await client.indexed();
   });
@@ -82,12 +92,15 @@ describe('language server: modular2simple/scene (JSON-RPC)', function () {
     assert.equal(result.roadFile?.resolved, path.join(root, 'roads', 'straight.xodr'));
     assert.equal(result.roadFile?.roadCount, 1);
     assert.equal(result.sections.length, 1);
-    assert.deepEqual(result.sections[0].lanes.map((lane) => lane.id), [1, 0, -1, -2]);
+    assert.deepEqual(
+      result.sections[0].lanes.map((lane) => lane.id),
+      [1, 0, -1, -2],
+    );
     const [ego, other] = result.entities;
     assert.deepEqual([ego.name, ego.x, ego.y], ['ego', 40, -1.75]);
     assert.deepEqual([other.x, other.y], [55, -1.75]);
     // The entity opens at its TeleportAction's position; the event, imported by flattening, in the simple scenario.
-    assert.deepEqual(ego.source, { uri: mainUri, ...positionAfter(MAIN, '<Private entityRef="ego"><PrivateAction><TeleportAction>'), });
+    assert.deepEqual(ego.source, { uri: mainUri, ...positionAfter(MAIN, '<Private entityRef="ego"><PrivateAction><TeleportAction>') });
     assert.equal(result.events.length, 1);
     assert.deepEqual([result.events[0].name, result.events[0].group, result.events[0].plannedTime], ['Brake', 'Outer.Simple', 3]);
     assert.deepEqual(result.events[0].source, { uri: fileUri(path.join(root, 'simple.xosc')), ...positionAfter(SIMPLE, '<Event name="') });
@@ -96,7 +109,10 @@ describe('language server: modular2simple/scene (JSON-RPC)', function () {
   it('reads a road file again when it changed on disk', async () => {
     const road = path.join(root, 'roads', 'straight.xodr');
     const mainUri = fileUri(path.join(root, 'main.xosc'));
-    fs.writeFileSync(road, STRAIGHT_ROAD.replace('<width sOffset="0" a="2" b="0" c="0" d="0"/>', '<width sOffset="0" a="3" b="0" c="0" d="0"/>'));
+    fs.writeFileSync(
+      road,
+      STRAIGHT_ROAD.replace('<width sOffset="0" a="2" b="0" c="0" d="0"/>', '<width sOffset="0" a="3" b="0" c="0" d="0"/>'),
+    );
     try {
       const widened = await scene({ uri: mainUri, roadPath: ['roads'] });
       assert.equal(widened.sections[0].borders[3][1], -6.5);
@@ -114,7 +130,10 @@ describe('language server: modular2simple/scene (JSON-RPC)', function () {
       assert.equal(moved.entities[0].x, 70);
       const missing = await scene({ uri: mainUri });
       assert.equal(missing.sections.length, 0);
-      assert.match(missing.problems.join('\n'), /road file "straight.xodr" not found; looked for .*m2s-server.*straight\.xodr.*modular2simple\.esmini\.roadPath/s);
+      assert.match(
+        missing.problems.join('\n'),
+        /road file "straight.xodr" not found; looked for .*m2s-server.*straight\.xodr.*modular2simple\.esmini\.roadPath/s,
+      );
       assert.match(missing.problems.join('\n'), /ego: the road network is not loaded/);
     } finally {
       await client.close(mainUri);

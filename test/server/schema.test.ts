@@ -1,6 +1,15 @@
 import * as assert from 'node:assert/strict';
 import * as path from 'node:path';
-import { CodeAction, CompletionItem, CompletionItemTag, Diagnostic, DiagnosticTag, Hover, MarkupContent, TextEdit } from 'vscode-languageserver/node';
+import {
+  CodeAction,
+  CompletionItem,
+  CompletionItemTag,
+  Diagnostic,
+  DiagnosticTag,
+  Hover,
+  MarkupContent,
+  TextEdit,
+} from 'vscode-languageserver/node';
 import { checkSchema } from '../../server/src/core/schema/validate';
 import { parseXml } from '../../server/src/core/xml';
 import { fileUri, TestClient } from './harness';
@@ -51,13 +60,15 @@ function messageOf(diagnostic: Diagnostic): string {
 
 function textAt(text: string, range: Diagnostic['range']): string {
   const lines = text.split('\n');
-  const offset = (position: { line: number; character: number }) => lines.slice(0, position.line).reduce((sum, line) => sum + line.length + 1, 0) + position.character;
+  const offset = (position: { line: number; character: number }) =>
+    lines.slice(0, position.line).reduce((sum, line) => sum + line.length + 1, 0) + position.character;
   return text.slice(offset(range.start), offset(range.end));
 }
 
 function applyEdits(text: string, edits: TextEdit[]): string {
   const lines = text.split('\n');
-  const offset = (position: { line: number; character: number }) => lines.slice(0, position.line).reduce((sum, line) => sum + line.length + 1, 0) + position.character;
+  const offset = (position: { line: number; character: number }) =>
+    lines.slice(0, position.line).reduce((sum, line) => sum + line.length + 1, 0) + position.character;
   let result = text;
   for (const edit of [...edits].sort((a, b) => offset(b.range.start) - offset(a.range.start))) {
     result = result.slice(0, offset(edit.range.start)) + edit.newText + result.slice(offset(edit.range.end));
@@ -150,15 +161,23 @@ describe('server: OpenSCENARIO schema completion, hover and validation (over JSO
   });
 
   it('completes attribute names (required first, written ones left out), enumeration values and $parameters', async () => {
-    const attributes = cursor(scenario('0').replace('<ParameterDeclaration name="TargetSpeed"', '<ParameterDeclaration name="TargetSpeed" |'));
+    const attributes = cursor(
+      scenario('0').replace('<ParameterDeclaration name="TargetSpeed"', '<ParameterDeclaration name="TargetSpeed" |'),
+    );
     const uri = await client.open(fileUri(path.join(root, 'attributes.xosc')), attributes.text);
     const names = itemsOf(await client.request('textDocument/completion', client.at(uri, attributes.position)));
     assert.deepEqual(labels(names), []);
-    const open = cursor(scenario('0', { actions: '        <Private entityRef="ego"><PrivateAction><LongitudinalAction><SpeedAction |/></LongitudinalAction></PrivateAction></Private>\n' }));
+    const open = cursor(
+      scenario('0', {
+        actions:
+          '        <Private entityRef="ego"><PrivateAction><LongitudinalAction><SpeedAction |/></LongitudinalAction></PrivateAction></Private>\n',
+      }),
+    );
     const uri2 = await client.open(fileUri(path.join(root, 'attributes2.xosc')), open.text);
     assert.deepEqual(labels(await client.request('textDocument/completion', client.at(uri2, open.position))), []);
     const dynamics = scenario('0', {
-      actions: '        <Private entityRef="ego"><PrivateAction><LongitudinalAction><SpeedAction><SpeedActionDynamics dynamicsShape="" value="$" /></SpeedAction></LongitudinalAction></PrivateAction></Private>\n',
+      actions:
+        '        <Private entityRef="ego"><PrivateAction><LongitudinalAction><SpeedAction><SpeedActionDynamics dynamicsShape="" value="$" /></SpeedAction></LongitudinalAction></PrivateAction></Private>\n',
     });
     const uri3 = await client.open(fileUri(path.join(root, 'values.xosc')), dynamics);
     const shapes = labels(await client.request('textDocument/completion', client.at(uri3, at(dynamics, 'dynamicsShape="|"'))));
@@ -173,18 +192,31 @@ describe('server: OpenSCENARIO schema completion, hover and validation (over JSO
 
   it('hover names the type, the allowed values, whether required, and the version that introduced or deprecated it', async () => {
     const text = scenario('2', {
-      actions: '        <Private entityRef="ego"><PrivateAction><ActivateControllerAction longitudinal="true"/></PrivateAction></Private>\n',
+      actions:
+        '        <Private entityRef="ego"><PrivateAction><ActivateControllerAction longitudinal="true"/></PrivateAction></Private>\n',
     });
     const uri = await client.open(fileUri(path.join(root, 'hover.xosc')), text);
     const at = (needle: string, shift = 1) => positionAt(text, text.indexOf(needle) + shift);
     const element = await client.request<Hover>('textDocument/hover', client.at(uri, at('<ActivateControllerAction')));
     const elementText = (element.contents as MarkupContent).value;
-    assert.match(elementText, /\*\*`<ActivateControllerAction>`\*\* — type `ActivateControllerAction`, minOccurs 0, maxOccurs 1 in `<PrivateAction>`/);
+    assert.match(
+      elementText,
+      /\*\*`<ActivateControllerAction>`\*\* — type `ActivateControllerAction`, minOccurs 0, maxOccurs 1 in `<PrivateAction>`/,
+    );
     assert.match(elementText, /\*\*deprecated\*\* since 1\.1/);
     const attribute = await client.request<Hover>('textDocument/hover', client.at(uri, at('longitudinal=')));
     assert.match((attribute.contents as MarkupContent).value, /ActivateControllerAction\.longitudinal\*\* — `Boolean`, optional/);
     assert.match((attribute.contents as MarkupContent).value, /xsd:boolean, a \\\$parameter, an \\\$\{expression\}/);
-    const variables = await client.request<Hover>('textDocument/hover', client.at(await client.open(fileUri(path.join(root, 'hover12.xosc')), scenario('2', { root: '  <VariableDeclarations/>\n' })), positionAt(scenario('2', { root: '  <VariableDeclarations/>\n' }), scenario('2', { root: '  <VariableDeclarations/>\n' }).indexOf('<VariableDeclarations') + 2)));
+    const variables = await client.request<Hover>(
+      'textDocument/hover',
+      client.at(
+        await client.open(fileUri(path.join(root, 'hover12.xosc')), scenario('2', { root: '  <VariableDeclarations/>\n' })),
+        positionAt(
+          scenario('2', { root: '  <VariableDeclarations/>\n' }),
+          scenario('2', { root: '  <VariableDeclarations/>\n' }).indexOf('<VariableDeclarations') + 2,
+        ),
+      ),
+    );
     assert.match((variables.contents as MarkupContent).value, /introduced in OpenSCENARIO 1\.2 \(this file: 1\.2\)/);
   });
 
@@ -212,8 +244,14 @@ describe('server: OpenSCENARIO schema completion, hover and validation (over JSO
     const deprecated = diagnostics.find((diagnostic) => diagnostic.code === 'schema-deprecated') as Diagnostic;
     assert.deepEqual(deprecated.tags, [DiagnosticTag.Deprecated]);
     const fixes = async (code: string, written?: string) => {
-      const diagnostic = diagnostics.find((candidate) => candidate.code === code && (written === undefined || textAt(text, candidate.range) === written)) as Diagnostic;
-      return client.request<CodeAction[]>('textDocument/codeAction', { textDocument: { uri }, range: diagnostic.range, context: { diagnostics: [diagnostic] } });
+      const diagnostic = diagnostics.find(
+        (candidate) => candidate.code === code && (written === undefined || textAt(text, candidate.range) === written),
+      ) as Diagnostic;
+      return client.request<CodeAction[]>('textDocument/codeAction', {
+        textDocument: { uri },
+        range: diagnostic.range,
+        context: { diagnostics: [diagnostic] },
+      });
     };
     const rename = (await fixes('schema-unknown-element'))[0];
     // A PrivateAction holds a LateralAction (which holds the LaneChangeAction): the closest valid name here.
@@ -221,7 +259,10 @@ describe('server: OpenSCENARIO schema completion, hover and validation (over JSO
     const renamed = applyEdits(text, rename.edit?.changes?.[uri] ?? []);
     assert.ok(renamed.includes('<PrivateAction><LateralAction/></PrivateAction>'));
     const value = await fixes('schema-value', 'stepp');
-    assert.deepEqual(value.map((action) => action.title), ["Change to 'step'"]);
+    assert.deepEqual(
+      value.map((action) => action.title),
+      ["Change to 'step'"],
+    );
     assert.deepEqual(await fixes('schema-value', 'yes'), []);
     const missing = (await fixes('schema-missing-attribute'))[0];
     assert.equal(missing.title, "Add 'entityRef'");
@@ -234,7 +275,11 @@ describe('server: OpenSCENARIO schema completion, hover and validation (over JSO
     const diagnostics = await schemaDiagnostics(uri, (list) => list.length > 0);
     assert.equal(diagnostics.length, 1);
     assert.equal(messageOf(diagnostics[0]), '<Storyboard> lacks the required element <StopTrigger>');
-    const actions = await client.request<CodeAction[]>('textDocument/codeAction', { textDocument: { uri }, range: diagnostics[0].range, context: { diagnostics } });
+    const actions = await client.request<CodeAction[]>('textDocument/codeAction', {
+      textDocument: { uri },
+      range: diagnostics[0].range,
+      context: { diagnostics },
+    });
     const fixed = applyEdits(text, actions[0].edit?.changes?.[uri] ?? []);
     assert.equal(fixed, scenario('0'));
   });
@@ -244,11 +289,16 @@ describe('server: OpenSCENARIO schema completion, hover and validation (over JSO
     const storyStart = full.indexOf('    <Story name="story">');
     const storyEnd = full.indexOf('    <StopTrigger/>');
     const cases = [
-      { name: 'Init', text: full.replace('    <Init>\n      <Actions>\n      </Actions>\n    </Init>\n', ''), inserted: '    <Init>\n      <Actions/>\n    </Init>\n' },
+      {
+        name: 'Init',
+        text: full.replace('    <Init>\n      <Actions>\n      </Actions>\n    </Init>\n', ''),
+        inserted: '    <Init>\n      <Actions/>\n    </Init>\n',
+      },
       {
         name: 'Story',
         text: full.slice(0, storyStart) + full.slice(storyEnd),
-        inserted: '    <Story name="">\n      <Act name="">\n        <ManeuverGroup maximumExecutionCount="0" name="">\n          <Actors selectTriggeringEntities="false"/>\n        </ManeuverGroup>\n        <StartTrigger/>\n      </Act>\n    </Story>\n',
+        inserted:
+          '    <Story name="">\n      <Act name="">\n        <ManeuverGroup maximumExecutionCount="0" name="">\n          <Actors selectTriggeringEntities="false"/>\n        </ManeuverGroup>\n        <StartTrigger/>\n      </Act>\n    </Story>\n',
       },
     ];
     for (const { name, text, inserted } of cases) {
@@ -256,12 +306,18 @@ describe('server: OpenSCENARIO schema completion, hover and validation (over JSO
       const diagnostics = await schemaDiagnostics(uri, (list) => list.length > 0);
       assert.equal(diagnostics.length, 1, name);
       assert.match(messageOf(diagnostics[0]), new RegExp(`^<Storyboard> lacks the required element <${name}>`));
-      const actions = await client.request<CodeAction[]>('textDocument/codeAction', { textDocument: { uri }, range: diagnostics[0].range, context: { diagnostics } });
+      const actions = await client.request<CodeAction[]>('textDocument/codeAction', {
+        textDocument: { uri },
+        range: diagnostics[0].range,
+        context: { diagnostics },
+      });
       assert.equal(actions[0].title, `Insert <${name}>`);
       const fixed = applyEdits(text, actions[0].edit?.changes?.[uri] ?? []);
       assert.ok(fixed.includes(inserted), fixed);
       // Re-validated with the core validator: nothing is missing in what was inserted (the empty names are values to fill in).
-      const findings = checkSchema(parseXml(fixed), { modular: true }).findings.map((finding) => `${finding.code} <${finding.element.name}>`);
+      const findings = checkSchema(parseXml(fixed), { modular: true }).findings.map(
+        (finding) => `${finding.code} <${finding.element.name}>`,
+      );
       assert.deepEqual(findings, [], name);
       const after = await client.open(fileUri(path.join(root, `skeleton_${name}_fixed.xosc`)), fixed);
       assert.deepEqual(await schemaDiagnostics(after), [], name);
@@ -271,7 +327,11 @@ describe('server: OpenSCENARIO schema completion, hover and validation (over JSO
     const uri = await client.open(fileUri(path.join(root, 'skeleton_self_closing.xosc')), selfClosing);
     const diagnostics = await schemaDiagnostics(uri, (list) => list.length > 0);
     assert.deepEqual(diagnostics.map(messageOf), ['<Init> lacks the required element <Actions>']);
-    const actions = await client.request<CodeAction[]>('textDocument/codeAction', { textDocument: { uri }, range: diagnostics[0].range, context: { diagnostics } });
+    const actions = await client.request<CodeAction[]>('textDocument/codeAction', {
+      textDocument: { uri },
+      range: diagnostics[0].range,
+      context: { diagnostics },
+    });
     const fixed = applyEdits(selfClosing, actions[0].edit?.changes?.[uri] ?? []);
     assert.ok(fixed.includes('    <Init>\n      <Actions/>\n    </Init>\n    <Story'), fixed);
   });
@@ -288,12 +348,18 @@ describe('server: OpenSCENARIO schema completion, hover and validation (over JSO
 
   it('the modular extension is accepted where SPEC puts it, and nowhere else', async () => {
     const text = scenario('0')
-      .replace('<Actors selectTriggeringEntities="false"/>', '<Actors selectTriggeringEntities="false"/>\n          <ScenarioReference scenarioFileName="other.xosc"><ManeuverGroupReference maneuverGroupName="g"><ParameterReference key="k" value="1"/></ManeuverGroupReference></ScenarioReference>')
+      .replace(
+        '<Actors selectTriggeringEntities="false"/>',
+        '<Actors selectTriggeringEntities="false"/>\n          <ScenarioReference scenarioFileName="other.xosc"><ManeuverGroupReference maneuverGroupName="g"><ParameterReference key="k" value="1"/></ManeuverGroupReference></ScenarioReference>',
+      )
       .replace('<RoadNetwork/>', '<RoadNetwork parameterAttributes="x"/>');
     const uri = await client.open(fileUri(path.join(root, 'modular.xosc')), text);
     const diagnostics = await client.diagnosticsOf(uri, (list) => list.length > 0);
     // Only the flattener's own findings (the referenced file is missing), no schema complaint.
-    assert.ok(diagnostics.every((diagnostic) => !String(diagnostic.code).startsWith('schema-')), diagnostics.map(messageOf).join('\n'));
+    assert.ok(
+      diagnostics.every((diagnostic) => !String(diagnostic.code).startsWith('schema-')),
+      diagnostics.map(messageOf).join('\n'),
+    );
     const misplaced = scenario('0', { actions: '        <ScenarioReference scenarioFileName="x.xosc"/>\n' });
     const uri2 = await client.open(fileUri(path.join(root, 'misplaced.xosc')), misplaced);
     const codes = (await client.diagnosticsOf(uri2, (list) => list.length > 0)).map((diagnostic) => String(diagnostic.code));
@@ -302,7 +368,9 @@ describe('server: OpenSCENARIO schema completion, hover and validation (over JSO
   });
 
   it('deprecated completion items carry the deprecated tag', async () => {
-    const { text, position } = cursor(scenario('3', { actions: '        <Private entityRef="ego"><PrivateAction><|</PrivateAction></Private>\n' }));
+    const { text, position } = cursor(
+      scenario('3', { actions: '        <Private entityRef="ego"><PrivateAction><|</PrivateAction></Private>\n' }),
+    );
     const uri = await client.open(fileUri(path.join(root, 'deprecated.xosc')), text);
     const items = itemsOf(await client.request('textDocument/completion', client.at(uri, position)));
     const activate = items.find((item) => item.label === 'ActivateControllerAction');

@@ -32,7 +32,9 @@ describe('language server: semantic diagnostics', function () {
 
   it('publishes expression errors, unused parameters (faded) and no false entity warning for entityRef="$owner"', async () => {
     const uri = await client.openFile(path.join(root, 'speed_up.xosc'));
-    const diagnostics: Diagnostic[] = await client.diagnosticsOf(uri, (list) => list.some((diagnostic) => diagnostic.code === 'division-by-zero'));
+    const diagnostics: Diagnostic[] = await client.diagnosticsOf(uri, (list) =>
+      list.some((diagnostic) => diagnostic.code === 'division-by-zero'),
+    );
     const division = diagnostics.find((diagnostic) => diagnostic.code === 'division-by-zero');
     assert.ok(division);
     assert.equal(division.severity, DiagnosticSeverity.Error);
@@ -55,8 +57,18 @@ describe('language server: semantic diagnostics', function () {
     const withError = await client.diagnosticsOf(uri, (list) => list.some((diagnostic) => diagnostic.code === 'undeclared-parameter'));
     const undeclared = withError.find((diagnostic) => diagnostic.code === 'undeclared-parameter');
     assert.ok(undeclared);
-    assert.equal(typed.split('\n')[undeclared.range.start.line].slice(undeclared.range.start.character, undeclared.range.end.character), '$Initial');
-    await client.change(uri, [{ text: typed.replace('<ParameterDeclaration name="owner"', '<ParameterDeclaration name="Initial" parameterType="double" value="5"/>\n    <ParameterDeclaration name="owner"') }]);
+    assert.equal(
+      typed.split('\n')[undeclared.range.start.line].slice(undeclared.range.start.character, undeclared.range.end.character),
+      '$Initial',
+    );
+    await client.change(uri, [
+      {
+        text: typed.replace(
+          '<ParameterDeclaration name="owner"',
+          '<ParameterDeclaration name="Initial" parameterType="double" value="5"/>\n    <ParameterDeclaration name="owner"',
+        ),
+      },
+    ]);
     await client.diagnosticsOf(uri, (list) => !list.some((diagnostic) => diagnostic.code === 'undeclared-parameter'));
   });
 });

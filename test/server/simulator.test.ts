@@ -38,7 +38,9 @@ describe('simulator profile in the language server', function () {
     const diagnostics = await client.diagnosticsOf(uri, (list) => list.some((diagnostic) => diagnostic.code === 'simulator'));
     const simulator = diagnostics.filter((diagnostic) => diagnostic.code === 'simulator');
     assert.ok(simulator.every((diagnostic) => diagnostic.severity === DiagnosticSeverity.Warning));
-    const version = simulator.find((diagnostic) => /accepts only OpenSCENARIO 1\.0; this file states 1\.1/.test(String(diagnostic.message)));
+    const version = simulator.find((diagnostic) =>
+      /accepts only OpenSCENARIO 1\.0; this file states 1\.1/.test(String(diagnostic.message)),
+    );
     assert.ok(version);
     assert.equal(version.range.start.line, 2);
     assert.equal(SCENARIO.split('\n')[2].slice(version.range.start.character, version.range.end.character), '1');
@@ -49,6 +51,9 @@ describe('simulator profile in the language server', function () {
   it('drops them when the setting goes back to asam', async () => {
     await client.settingsChanged({ simulator: 'asam' });
     const diagnostics = await client.diagnosticsOf(uri, (list) => !list.some((diagnostic) => diagnostic.code === 'simulator'));
-    assert.deepEqual(diagnostics.filter((diagnostic) => diagnostic.code === 'simulator'), []);
+    assert.deepEqual(
+      diagnostics.filter((diagnostic) => diagnostic.code === 'simulator'),
+      [],
+    );
   });
 });

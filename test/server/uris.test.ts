@@ -82,7 +82,11 @@ describe('server: file and package URIs on Windows and POSIX paths', () => {
   posixOnly('writes and reads mosc: URIs of POSIX packages in every authority form', () => {
     const ref = childRef(childRef(diskRef('/abs/my pkg.mosc'), 'inner.mosc'), 'main.xosc');
     assert.equal(refToUri(ref), 'mosc:/abs/my%20pkg.mosc/inner.mosc/main.xosc');
-    for (const uri of ['mosc:/abs/my%20pkg.mosc/inner.mosc/main.xosc', 'mosc:///abs/my%20pkg.mosc/inner.mosc/main.xosc', 'MOSC:/abs/x/../my%20pkg.mosc/inner.mosc/main.xosc']) {
+    for (const uri of [
+      'mosc:/abs/my%20pkg.mosc/inner.mosc/main.xosc',
+      'mosc:///abs/my%20pkg.mosc/inner.mosc/main.xosc',
+      'MOSC:/abs/x/../my%20pkg.mosc/inner.mosc/main.xosc',
+    ]) {
       assert.equal(packageUriPath(uri), '/abs/my pkg.mosc/inner.mosc/main.xosc', uri);
     }
   });
@@ -101,11 +105,20 @@ describe('server: file and package URIs on Windows and POSIX paths', () => {
     const uri = 'mosc:/c%3A/scenarios/outer.mosc/inner.mosc/lib/x.xosc';
     assert.deepEqual(await resolver.toRef(uri), expected);
     assert.deepEqual(await store.refFromPackagePath('C:\\scenarios\\outer.mosc\\inner.mosc\\lib\\x.xosc'), expected);
-    assert.deepEqual(await store.refFromPackagePath('C:/scenarios/outer.mosc/inner.mosc\\main.xosc'), { disk: 'C:\\scenarios\\outer.mosc', entries: ['inner.mosc', 'main.xosc'] });
-    assert.deepEqual(await store.refFromPackagePath('C:\\scenarios\\outer.mosc\\main.xosc'), { disk: 'C:\\scenarios\\outer.mosc', entries: ['main.xosc'] });
+    assert.deepEqual(await store.refFromPackagePath('C:/scenarios/outer.mosc/inner.mosc\\main.xosc'), {
+      disk: 'C:\\scenarios\\outer.mosc',
+      entries: ['inner.mosc', 'main.xosc'],
+    });
+    assert.deepEqual(await store.refFromPackagePath('C:\\scenarios\\outer.mosc\\main.xosc'), {
+      disk: 'C:\\scenarios\\outer.mosc',
+      entries: ['main.xosc'],
+    });
     assert.equal(refToUri(expected), uri, 'the reference writes the URI it was read from');
     assert.equal(await store.refFromPackagePath('D:\\scenarios\\outer.mosc\\main.xosc'), undefined);
-    assert.ok(host.asked.every((asked) => !asked.includes('/')), `the disk is asked in Windows form only: ${host.asked.join(', ')}`);
+    assert.ok(
+      host.asked.every((asked) => !asked.includes('/')),
+      `the disk is asked in Windows form only: ${host.asked.join(', ')}`,
+    );
   });
 
   posixOnly('finds the package file and the nested packages of a POSIX mosc: URI', async () => {
@@ -140,9 +153,17 @@ describe('server: file and package URIs on Windows and POSIX paths', () => {
     assert.equal(await found('own.xosc'), 'folder:project\\pkg\\own.xosc');
     assert.equal(await found('up.xosc'), 'parent:project\\up.xosc');
     assert.equal(await found('../lib.mosc'), 'folder:project\\lib\\main.xosc', 'an unpacked package folder');
-    assert.equal(await found('above.xosc'), 'missing:C:\\work\\project\\pkg,C:\\work\\project (parent folder)', 'the search stops at the root');
+    assert.equal(
+      await found('above.xosc'),
+      'missing:C:\\work\\project\\pkg,C:\\work\\project (parent folder)',
+      'the search stops at the root',
+    );
     const inner = childRef(childRef(diskRef('C:\\work\\project\\outer.mosc'), 'inner.mosc'), 'main.xosc');
-    assert.equal(await found('lib/x.xosc', inner), 'package:project\\outer.mosc/inner.mosc/lib/x.xosc', 'entries inside packages stay POSIX');
+    assert.equal(
+      await found('lib/x.xosc', inner),
+      'package:project\\outer.mosc/inner.mosc/lib/x.xosc',
+      'entries inside packages stay POSIX',
+    );
     assert.equal(await found('../outer.mosc'), 'folder:project\\outer.mosc/main.xosc');
   });
 

@@ -1,7 +1,16 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { CodeAction, Diagnostic, DiagnosticSeverity, Hover, InlayHint, MarkupContent, TextEdit, WorkspaceEdit } from 'vscode-languageserver/node';
+import {
+  CodeAction,
+  Diagnostic,
+  DiagnosticSeverity,
+  Hover,
+  InlayHint,
+  MarkupContent,
+  TextEdit,
+  WorkspaceEdit,
+} from 'vscode-languageserver/node';
 import { TestClient } from './harness';
 import { applyEdits, inside } from './textEdits';
 import { temporaryWorkspace } from '../support/workspace';
@@ -65,19 +74,27 @@ describe('values as the simulator computes them, and the severity policy (JSON-R
   it('publishes the lenient forms and the values esmini computes otherwise as warnings, with no error', async function () {
     const { client, uri } = await open({});
     const diagnostics = await client.diagnosticsOf(uri);
-    const shown = diagnostics.filter((diagnostic) => diagnostic.severity !== DiagnosticSeverity.Hint).map((diagnostic) => `${diagnostic.range.start.line}:${String(diagnostic.code)}:${diagnostic.severity}`);
-    assert.deepEqual(shown.sort(), [
-      `${lineOf('name="Mod"')}:simulator-value:2`,
-      `${lineOf('name="$TargetBrakeDistance"')}:lenient-value:2`,
-      `${lineOf('name="Minus"')}:lenient-value:2`,
-      `${lineOf('name="Stop"')}:lenient-value:2`,
-      `${lineOf('name="Brake"')}:lenient-value:2`,
-      // esmini reads the bare word as text: '30 + -5.0 + HeadwayTime_Brake' glued, whose double is 30.
-      `${lineOf('name="Brake"')}:simulator-value:2`,
-      `${lineOf('<Event name=')}:lenient-value:2`,
-    ].sort());
+    const shown = diagnostics
+      .filter((diagnostic) => diagnostic.severity !== DiagnosticSeverity.Hint)
+      .map((diagnostic) => `${diagnostic.range.start.line}:${String(diagnostic.code)}:${diagnostic.severity}`);
+    assert.deepEqual(
+      shown.sort(),
+      [
+        `${lineOf('name="Mod"')}:simulator-value:2`,
+        `${lineOf('name="$TargetBrakeDistance"')}:lenient-value:2`,
+        `${lineOf('name="Minus"')}:lenient-value:2`,
+        `${lineOf('name="Stop"')}:lenient-value:2`,
+        `${lineOf('name="Brake"')}:lenient-value:2`,
+        // esmini reads the bare word as text: '30 + -5.0 + HeadwayTime_Brake' glued, whose double is 30.
+        `${lineOf('name="Brake"')}:simulator-value:2`,
+        `${lineOf('<Event name=')}:lenient-value:2`,
+      ].sort(),
+    );
     const modulo = diagnostics.find((diagnostic) => diagnostic.code === 'simulator-value');
-    assert.match(String(modulo?.message ?? ''), /esmini computes -1 where the standard gives 3: esmini computes % as C remainder\(\).*expr\.h:378-380/);
+    assert.match(
+      String(modulo?.message ?? ''),
+      /esmini computes -1 where the standard gives 3: esmini computes % as C remainder\(\).*expr\.h:378-380/,
+    );
   });
 
   it('fixes each to the standard form', async function () {
@@ -86,7 +103,11 @@ describe('values as the simulator computes them, and the severity policy (JSON-R
     let text = VALUES;
     const edits: TextEdit[] = [];
     for (const diagnostic of diagnostics) {
-      const actions = await client.request<CodeAction[]>('textDocument/codeAction', { textDocument: { uri }, range: diagnostic.range, context: { diagnostics: [diagnostic] } });
+      const actions = await client.request<CodeAction[]>('textDocument/codeAction', {
+        textDocument: { uri },
+        range: diagnostic.range,
+        context: { diagnostics: [diagnostic] },
+      });
       const fix = actions.find((action) => action.isPreferred);
       assert.ok(fix?.edit, `a fix for ${diagnostic.message}`);
       edits.push(...((fix.edit as WorkspaceEdit).changes?.[uri] ?? []));
@@ -105,16 +126,25 @@ describe('values as the simulator computes them, and the severity policy (JSON-R
 
   it("shows the standard's value in hover and inlay hints, and esmini's beside it where it differs", async function () {
     const { client, uri } = await open({});
-    const hints = await client.request<InlayHint[]>('textDocument/inlayHint', { textDocument: { uri }, range: { start: { line: 0, character: 0 }, end: { line: 100, character: 0 } } });
+    const hints = await client.request<InlayHint[]>('textDocument/inlayHint', {
+      textDocument: { uri },
+      range: { start: { line: 0, character: 0 }, end: { line: 100, character: 0 } },
+    });
     const label = (needle: string) => hints.find((hint) => hint.position.line === lineOf(needle))?.label;
     assert.equal(label('name="Mod"'), '= 3 (esmini -1)');
     assert.equal(label('name="Stop"'), '= 44');
     assert.equal(label('name="Brake"'), '= 25.7 (esmini 30)');
     assert.equal(label('<Event name='), '= BrakeCondition_HWT_0.7');
     const hover = await client.request<Hover>('textDocument/hover', client.at(uri, inside(VALUES, '${7 % 4}', 3)));
-    assert.match((hover.contents as MarkupContent).value, /= \*\*3\*\* \(double\); by the standard 3, by esmini -1 \(esmini computes % as C remainder/);
+    assert.match(
+      (hover.contents as MarkupContent).value,
+      /= \*\*3\*\* \(double\); by the standard 3, by esmini -1 \(esmini computes % as C remainder/,
+    );
     const use = await client.request<Hover>('textDocument/hover', client.at(uri, inside(VALUES, '$TargetBrakeDistance +', 3)));
-    assert.match((use.contents as MarkupContent).value, /- `\$TargetBrakeDistance` = 30 \(double\), declared in `<OpenSCENARIO>` on line 8/);
+    assert.match(
+      (use.contents as MarkupContent).value,
+      /- `\$TargetBrakeDistance` = 30 \(double\), declared in `<OpenSCENARIO>` on line 8/,
+    );
   });
 
   it("with modular2simple.simulator = esmini, gives esmini's value first and names the standard's", async function () {
@@ -129,6 +159,9 @@ describe('values as the simulator computes them, and the severity policy (JSON-R
     }
     assert.equal(label, '= -1 (standard 3)');
     const diagnostics: Diagnostic[] = await client.diagnosticsOf(uri);
-    assert.ok(!diagnostics.some((diagnostic) => diagnostic.severity === DiagnosticSeverity.Error), diagnostics.map((diagnostic) => diagnostic.message).join('\n'));
+    assert.ok(
+      !diagnostics.some((diagnostic) => diagnostic.severity === DiagnosticSeverity.Error),
+      diagnostics.map((diagnostic) => diagnostic.message).join('\n'),
+    );
   });
 });

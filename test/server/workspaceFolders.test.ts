@@ -33,7 +33,9 @@ describe('language server: workspaces as users have them (JSON-RPC)', function (
   });
 
   const codesOf = async (filePath: string, predicate?: (diagnostics: Diagnostic[]) => boolean) =>
-    (await (client as TestClient).diagnosticsOf(await (client as TestClient).openFile(filePath), predicate)).map((diagnostic) => diagnostic.code);
+    (await (client as TestClient).diagnosticsOf(await (client as TestClient).openFile(filePath), predicate)).map(
+      (diagnostic) => diagnostic.code,
+    );
 
   it('searches upward to the folder a file is in, not only to the first folder', async function () {
     client = await TestClient.start({ root: path.join(parent, 'first'), folders: [path.join(parent, 'second')] });
@@ -57,15 +59,29 @@ describe('language server: workspaces as users have them (JSON-RPC)', function (
     await client.indexed();
     const uri = fileUri(path.join(parent, 'second', 'sub', 'main.xosc'));
     assert.deepEqual(await codesOf(path.join(parent, 'second', 'sub', 'main.xosc')), ['missing-file']);
-    await client.connection.sendNotification('workspace/didChangeWorkspaceFolders', { event: { added: [{ uri: fileUri(path.join(parent, 'second')), name: 'second' }], removed: [] } });
-    await client.until(() => (client as TestClient).diagnostics.get(uri)?.diagnostics.length === 0 || undefined, 'the file to resolve in its new folder');
+    await client.connection.sendNotification('workspace/didChangeWorkspaceFolders', {
+      event: { added: [{ uri: fileUri(path.join(parent, 'second')), name: 'second' }], removed: [] },
+    });
+    await client.until(
+      () => (client as TestClient).diagnostics.get(uri)?.diagnostics.length === 0 || undefined,
+      'the file to resolve in its new folder',
+    );
   });
 
   it('checks an untitled document', async function () {
     client = await TestClient.start({ root: path.join(parent, 'second') });
     await client.indexed();
-    const uri = await client.open('untitled:Untitled-1', mainIn('lib.xosc').replace('maneuverGroupName="Brake">', 'maneuverGroupName="Brake">\n<ParameterReference key="nosuchkey" value="1"/>'));
+    const uri = await client.open(
+      'untitled:Untitled-1',
+      mainIn('lib.xosc').replace(
+        'maneuverGroupName="Brake">',
+        'maneuverGroupName="Brake">\n<ParameterReference key="nosuchkey" value="1"/>',
+      ),
+    );
     const diagnostics = await client.diagnosticsOf(uri);
-    assert.deepEqual(diagnostics.map((diagnostic) => diagnostic.code), ['unknown-key']);
+    assert.deepEqual(
+      diagnostics.map((diagnostic) => diagnostic.code),
+      ['unknown-key'],
+    );
   });
 });

@@ -29,7 +29,20 @@ export async function runEsmini(scenario: string, maxTime: number, wallLimitMs =
   const directory = path.dirname(scenario);
   const csv = path.join(directory, `${path.basename(scenario, '.xosc')}.esmini.csv`);
   fs.rmSync(csv, { force: true });
-  const args = ['--headless', '--osc', scenario, '--fixed_timestep', '0.05', '--seed', '1', '--csv_logger', csv, '--disable_log', '--path', esminiXodrDir];
+  const args = [
+    '--headless',
+    '--osc',
+    scenario,
+    '--fixed_timestep',
+    '0.05',
+    '--seed',
+    '1',
+    '--csv_logger',
+    csv,
+    '--disable_log',
+    '--path',
+    esminiXodrDir,
+  ];
   const output: string[] = [];
   const code = await new Promise<number | null>((resolve, reject) => {
     const child = spawn(esminiBinary, args, { cwd: directory, stdio: ['ignore', 'pipe', 'pipe'] });
@@ -50,10 +63,15 @@ export async function runEsmini(scenario: string, maxTime: number, wallLimitMs =
 
 /** The steps of esmini's CSV log (`--csv_logger`) up to `maxTime` seconds of simulated time. */
 export function readEsminiCsv(csv: string, maxTime = Infinity): EsminiStep[] {
-  const lines = fs.readFileSync(csv, 'utf8').split(/\r?\n/).slice(6).filter((line) => line.trim());
+  const lines = fs
+    .readFileSync(csv, 'utf8')
+    .split(/\r?\n/)
+    .slice(6)
+    .filter((line) => line.trim());
   const header = lines[0].split(',').map((cell) => cell.trim());
   const entityColumns = header.flatMap((cell, index) => (/^#\d+ Entity_Name/.test(cell) ? [index] : []));
-  const offsetOf = (name: string) => header.findIndex((cell) => cell === `#1 ${name}`) - header.findIndex((cell) => cell === '#1 Entity_Name [-]');
+  const offsetOf = (name: string) =>
+    header.findIndex((cell) => cell === `#1 ${name}`) - header.findIndex((cell) => cell === '#1 Entity_Name [-]');
   const [x, y, z] = ['World_Position_X [m]', 'World_Position_Y [m]', 'World_Position_Z [m]'].map(offsetOf);
   const steps: EsminiStep[] = [];
   for (const line of lines.slice(1)) {
@@ -61,7 +79,8 @@ export function readEsminiCsv(csv: string, maxTime = Infinity): EsminiStep[] {
     const time = Number(cells[1]);
     if (time > maxTime) break;
     const positions: EsminiStep['positions'] = {};
-    for (const column of entityColumns) positions[cells[column]] = [Number(cells[column + x]), Number(cells[column + y]), Number(cells[column + z])];
+    for (const column of entityColumns)
+      positions[cells[column]] = [Number(cells[column + x]), Number(cells[column + y]), Number(cells[column + z])];
     steps.push({ time, positions });
   }
   return steps;

@@ -12,7 +12,9 @@ export const esminiBinDir = path.join(repoRoot, '.cache', 'esmini', 'bin');
 export function requireEsminiProgram(context: Mocha.Context, program: 'esmini' | 'odrplot' | 'dat2csv'): string {
   const file = path.join(esminiBinDir, program);
   if (fs.existsSync(file) && fs.existsSync(esminiXodrDir)) return file;
-  const why = !fs.existsSync(esminiXodrDir) ? `${esminiXodrDir} is absent` : `${file} is absent (build it with: bash ../shared/esmini/build.sh .cache/esmini)`;
+  const why = !fs.existsSync(esminiXodrDir)
+    ? `${esminiXodrDir} is absent`
+    : `${file} is absent (build it with: bash ../shared/esmini/build.sh .cache/esmini)`;
   if (process.env.M2S_REQUIRE_ESMINI) throw new Error(`M2S_REQUIRE_ESMINI is set, but ${why}`);
   console.log(`    (skipped: ${why})`);
   context.skip();

@@ -21,7 +21,11 @@ export function withoutSchema(args: string[], schema = false): string[] {
 
 export function runCli(args: string[], options: { cwd?: string; env?: Record<string, string | undefined>; schema?: boolean } = {}): CliRun {
   const env = { ...process.env, SCENARIO_PATH: '', ...options.env };
-  const result = spawnSync(process.execPath, [cliPath, ...withoutSchema(args, options.schema)], { cwd: options.cwd, env, encoding: 'utf8' });
+  const result = spawnSync(process.execPath, [cliPath, ...withoutSchema(args, options.schema)], {
+    cwd: options.cwd,
+    env,
+    encoding: 'utf8',
+  });
   return { status: result.status ?? -1, stdout: result.stdout, stderr: result.stderr };
 }
 
@@ -76,7 +80,10 @@ export interface ReferenceSpec {
 
 /** A main file's outer group holding references. */
 export function outerGroup(name: string, actor: string | undefined, references: ReferenceSpec[]): string {
-  const actors = actor === undefined ? '' : `          <Actors selectTriggeringEntities="false">\n            <EntityRef entityRef="${actor}"/>\n          </Actors>\n`;
+  const actors =
+    actor === undefined
+      ? ''
+      : `          <Actors selectTriggeringEntities="false">\n            <EntityRef entityRef="${actor}"/>\n          </Actors>\n`;
   const body = references
     .map(
       (reference) =>
@@ -85,7 +92,9 @@ export function outerGroup(name: string, actor: string | undefined, references: 
           .map(
             (group) =>
               `            <ManeuverGroupReference maneuverGroupName="${group.name}">\n` +
-              (group.parameters ?? []).map(([key, value]) => `              <ParameterReference key="${key}" value="${value}"/>\n`).join('') +
+              (group.parameters ?? [])
+                .map(([key, value]) => `              <ParameterReference key="${key}" value="${value}"/>\n`)
+                .join('') +
               `            </ManeuverGroupReference>\n`,
           )
           .join('') +

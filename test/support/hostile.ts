@@ -9,7 +9,10 @@ import { cliPath, repoRoot } from './paths';
  * Runs the CLI in a child process bounded by the test itself: killed after `timeoutMs` (a watchdog)
  * and limited to `heapMb` of V8 heap, so that a regression fails the test instead of the machine.
  */
-export function runBounded(args: string[], options: { cwd?: string; env?: Record<string, string | undefined>; timeoutMs?: number; heapMb?: number } = {}): CliRun & { timedOut: boolean; ms: number } {
+export function runBounded(
+  args: string[],
+  options: { cwd?: string; env?: Record<string, string | undefined>; timeoutMs?: number; heapMb?: number } = {},
+): CliRun & { timedOut: boolean; ms: number } {
   const started = Date.now();
   const result = spawnSync(process.execPath, [`--max-old-space-size=${options.heapMb ?? 256}`, cliPath, ...withoutSchema(args)], {
     cwd: options.cwd,
@@ -24,7 +27,11 @@ export function runBounded(args: string[], options: { cwd?: string; env?: Record
 }
 
 /** A script run by node with the project's TypeScript loader, bounded the same way. */
-export function runScript(script: string, args: string[], options: { timeoutMs?: number; heapMb?: number; cwd?: string } = {}): CliRun & { timedOut: boolean } {
+export function runScript(
+  script: string,
+  args: string[],
+  options: { timeoutMs?: number; heapMb?: number; cwd?: string } = {},
+): CliRun & { timedOut: boolean } {
   const result = spawnSync(process.execPath, [`--max-old-space-size=${options.heapMb ?? 512}`, '--import', 'tsx', script, ...args], {
     cwd: options.cwd ?? repoRoot,
     encoding: 'utf8',

@@ -19,7 +19,8 @@ export const MODULAR_RUN = {
 export function modularRunWorkspace(root: string): string {
   fs.mkdirSync(path.join(root, 'xosc'), { recursive: true });
   fs.mkdirSync(path.join(root, 'xodr'), { recursive: true });
-  for (const file of [MODULAR_RUN.main, MODULAR_RUN.simple]) fs.copyFileSync(path.join(repoRoot, 'test', 'fixtures', 'modularRun', file), path.join(root, file));
+  for (const file of [MODULAR_RUN.main, MODULAR_RUN.simple])
+    fs.copyFileSync(path.join(repoRoot, 'test', 'fixtures', 'modularRun', file), path.join(root, file));
   fs.copyFileSync(path.join(esminiXodrDir, 'e6mini.xodr'), path.join(root, MODULAR_RUN.road));
   return root;
 }

@@ -43,7 +43,7 @@ export const SEMANTIC_CODES = new Set<ProblemCode>([
 export const GENUINELY_WRONG: Record<string, { problems: string[]; reason: string }> = {
   'esmini/Catalogs/Controllers/ControllerCatalog.xosc': {
     problems: ['95:type-mismatch'],
-    reason: "FollowMode is declared parameterType=\"double\" with value 'time' (esmini reads it as text)",
+    reason: 'FollowMode is declared parameterType="double" with value \'time\' (esmini reads it as text)',
   },
   'esmini/Catalogs/Vehicles/VehicleCatalog.xosc': {
     problems: ['66:duplicate-parameter'],
@@ -82,7 +82,8 @@ export const GENUINELY_WRONG: Record<string, { problems: string[]; reason: strin
 export const ESMINI_FORMS: Record<string, { problems: string[]; reason: string }> = {
   'esmini/cut-in.xosc': {
     problems: ['162:lenient-value'],
-    reason: '${BrakeCondition_HWT + _ + $HeadwayTime_Brake} glues words as text (esmini gives BrakeCondition_HWT_0.7); the standard has no text in expressions',
+    reason:
+      '${BrakeCondition_HWT + _ + $HeadwayTime_Brake} glues words as text (esmini gives BrakeCondition_HWT_0.7); the standard has no text in expressions',
   },
   'esmini/cut-in_environment.xosc': {
     problems: ['316:lenient-value'],
@@ -101,18 +102,21 @@ export const ESMINI_FORMS: Record<string, { problems: string[]; reason: string }
 export const ESMINI_ACCEPTS: Record<string, { problems: string[]; reason: string }> = {
   'esmini/Catalogs/Maneuvers/HWManeuvers.xosc': {
     problems: ['84:undeclared-catalog-parameter'],
-    reason: 'a maneuver uses $AccRate without declaring it (ASAM QC parameters.valid_parameter_declaration_in_catalogs); esmini takes it from the referencing scenario',
+    reason:
+      'a maneuver uses $AccRate without declaring it (ASAM QC parameters.valid_parameter_declaration_in_catalogs); esmini takes it from the referencing scenario',
   },
   'esmini/acc-test.xosc': {
     problems: ['262:duplicate-name'],
-    reason: 'one Maneuver holds two Events named EgoSpeedEvent (ASAM QC reference_control.unique_element_names_on_same_level); esmini runs both',
+    reason:
+      'one Maneuver holds two Events named EgoSpeedEvent (ASAM QC reference_control.unique_element_names_on_same_level); esmini runs both',
   },
 };
 
 /** What the semantic checks report on the corpus: the genuinely wrong files' problems, what esmini accepts, and the esmini forms' warnings, by file. */
 export function expectedCorpusFindings(): Record<string, string[]> {
   const expected: Record<string, string[]> = {};
-  for (const list of [GENUINELY_WRONG, ESMINI_ACCEPTS, ESMINI_FORMS]) for (const [file, entry] of Object.entries(list)) (expected[file] ??= []).push(...entry.problems);
+  for (const list of [GENUINELY_WRONG, ESMINI_ACCEPTS, ESMINI_FORMS])
+    for (const [file, entry] of Object.entries(list)) (expected[file] ??= []).push(...entry.problems);
   return expected;
 }
 
@@ -129,4 +133,3 @@ export function corpusFiles(): string[] {
   walk(openscenarioDir);
   return found.sort();
 }
-

@@ -26,7 +26,10 @@ export function cutInWorkspace(): string {
   fs.mkdirSync(path.join(ws, 'xosc', 'Catalogs', 'Vehicles'), { recursive: true });
   fs.mkdirSync(path.join(ws, 'xodr'));
   fs.copyFileSync(path.join(esminiXodrDir, 'e6mini.xodr'), path.join(ws, 'xodr', 'e6mini.xodr'));
-  fs.copyFileSync(path.join(esminiCorpus, 'Catalogs', 'Vehicles', 'VehicleCatalog.xosc'), path.join(ws, 'xosc', 'Catalogs', 'Vehicles', 'VehicleCatalog.xosc'));
+  fs.copyFileSync(
+    path.join(esminiCorpus, 'Catalogs', 'Vehicles', 'VehicleCatalog.xosc'),
+    path.join(ws, 'xosc', 'Catalogs', 'Vehicles', 'VehicleCatalog.xosc'),
+  );
   const original = fs.readFileSync(path.join(esminiCorpus, 'cut-in.xosc'), 'utf8').replace(GLUED_NAME, 'BrakeCondition_HWT_0.7');
   fs.writeFileSync(path.join(ws, 'xosc', 'cut-in.xosc'), original);
   // The main file is the same scenario with its one group imported from cut-in.xosc.
@@ -70,11 +73,14 @@ export async function runAlone(scenario: string): Promise<{ steps: EsminiStep[];
 export function assertSameRun(actual: EsminiStep[], expected: EsminiStep[], what: string): void {
   assert.ok(expected.length > 100, `the original runs (${expected.length} steps)`);
   assert.equal(actual.length, expected.length, `${what}: number of steps`);
-  for (let index = 0; index < expected.length; index++) assert.deepEqual(actual[index], expected[index], `${what}: step ${index} (t=${expected[index].time})`);
+  for (let index = 0; index < expected.length; index++)
+    assert.deepEqual(actual[index], expected[index], `${what}: step ${index} (t=${expected[index].time})`);
 }
 
 /** The file or folder a path attribute of a written scenario names, resolved from the scenario's folder. */
 export function namedPaths(scenario: string): string[] {
   const text = fs.readFileSync(scenario, 'utf8');
-  return [...text.matchAll(/<(?:LogicFile|Directory) (?:filepath|path)="([^"]*)"/g)].map((match) => path.resolve(path.dirname(scenario), match[1]));
+  return [...text.matchAll(/<(?:LogicFile|Directory) (?:filepath|path)="([^"]*)"/g)].map((match) =>
+    path.resolve(path.dirname(scenario), match[1]),
+  );
 }

@@ -44,7 +44,8 @@ async function build(kind: string, size: number): Promise<Operation> {
     case 'attributes': {
       const text = '<r ' + Array.from({ length: size }, (_, i) => `a${i}="${i}"`).join(' ') + ' a0="again"/>';
       return () => {
-        if (!parseXml(text).problems.some((problem) => /appears twice/.test(problem.message))) throw new Error('the duplicate was not found');
+        if (!parseXml(text).problems.some((problem) => /appears twice/.test(problem.message)))
+          throw new Error('the duplicate was not found');
       };
     }
     case 'end-tags': {

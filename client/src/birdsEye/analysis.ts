@@ -64,7 +64,15 @@ export function entitiesBounds(boxes: PlacedBox[], margin = 15, minimumSpan = 80
 }
 
 /** The tooltip's top-left corner: beside the pointer, flipped and clamped so that it stays inside the panel. */
-export function tooltipPlace(pointerX: number, pointerY: number, width: number, height: number, panelWidth: number, panelHeight: number, offset = 14): [number, number] {
+export function tooltipPlace(
+  pointerX: number,
+  pointerY: number,
+  width: number,
+  height: number,
+  panelWidth: number,
+  panelHeight: number,
+  offset = 14,
+): [number, number] {
   let x = pointerX + offset;
   let y = pointerY + offset;
   if (x + width > panelWidth) x = pointerX - offset - width;
@@ -98,7 +106,10 @@ export function boxGap(a: PlacedBox, b: PlacedBox): number {
   const ca = boxCorners(a);
   const cb = boxCorners(b);
   let gap = Infinity;
-  for (const [from, to] of [[ca, cb], [cb, ca]] as const) {
+  for (const [from, to] of [
+    [ca, cb],
+    [cb, ca],
+  ] as const) {
     for (let i = 0; i < from.length; i += 2) {
       if (inside(to, from[i], from[i + 1])) return 0;
       for (let j = 0; j < to.length; j += 2) {
@@ -129,10 +140,19 @@ export interface RunSeries {
 
 type Track = RunTracks['entities'][number];
 
-const boxOf = (track: Track, i: number): PlacedBox => ({ name: track.name, x: track.x[i], y: track.y[i], hdg: track.hdg[i], length: track.length, width: track.width, centerX: track.centerX });
+const boxOf = (track: Track, i: number): PlacedBox => ({
+  name: track.name,
+  x: track.x[i],
+  y: track.y[i],
+  hdg: track.hdg[i],
+  length: track.length,
+  width: track.width,
+  centerX: track.centerX,
+});
 
 function speedOf(run: RunTracks, track: Track): number[] {
-  if (track.speed && track.speed.length === run.times.length && track.speed.some(Number.isFinite)) return track.speed.map((value) => Math.abs(value));
+  if (track.speed && track.speed.length === run.times.length && track.speed.some(Number.isFinite))
+    return track.speed.map((value) => Math.abs(value));
   const n = run.times.length;
   return run.times.map((_, i) => {
     const a = Math.max(0, i - 1);
@@ -192,7 +212,16 @@ export interface ExportLayout {
  * `shown` of `shownWidth` × `shownHeight` px, refitted), a band below with a legend of the entities,
  * the time and a scale bar. Sizes grow with the picture.
  */
-export function exportLayout(width: number, height: number, shown: ViewTransform, shownWidth: number, shownHeight: number, entities: string[], timeText: string, panes = 1): ExportLayout {
+export function exportLayout(
+  width: number,
+  height: number,
+  shown: ViewTransform,
+  shownWidth: number,
+  shownHeight: number,
+  entities: string[],
+  timeText: string,
+  panes = 1,
+): ExportLayout {
   const fontSize = Math.max(11, Math.round(Math.min(width, height) / 60));
   const band = Math.round(fontSize * 2.6);
   const map = { x: 0, y: 0, width, height: Math.max(1, height - band) };
@@ -213,7 +242,16 @@ export function exportLayout(width: number, height: number, shown: ViewTransform
     legend.push({ x, y: baseline, text });
     x += itemWidth;
   }
-  return { width, height, map, view, legend, time, scale: { x: barX, y: baseline, pixels: bar.pixels, text: bar.metres >= 1000 ? `${bar.metres / 1000} km` : `${bar.metres} m` }, fontSize };
+  return {
+    width,
+    height,
+    map,
+    view,
+    legend,
+    time,
+    scale: { x: barX, y: baseline, pixels: bar.pixels, text: bar.metres >= 1000 ? `${bar.metres / 1000} km` : `${bar.metres} m` },
+    fontSize,
+  };
 }
 
 /** `1920x1080` (or `1920 x 1080`, `1920*1080`) → [1920, 1080]; undefined when not a size from 16 to 16384 px. */

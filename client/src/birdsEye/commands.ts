@@ -25,16 +25,34 @@ export function registerBirdsEye(context: vscode.ExtensionContext, client: Langu
     vscode.commands.registerCommand('modular2simple.birdsEye.showRun', async (csvPath?: unknown, options?: unknown) => {
       let path = typeof csvPath === 'string' ? csvPath : csvPath instanceof vscode.Uri ? csvPath.fsPath : undefined;
       if (!path) {
-        const picked = await vscode.window.showOpenDialog({ canSelectMany: false, filters: { 'esmini CSV log': ['csv'] }, title: 'Load an esmini run (--csv_logger output)' });
+        const picked = await vscode.window.showOpenDialog({
+          canSelectMany: false,
+          filters: { 'esmini CSV log': ['csv'] },
+          title: 'Load an esmini run (--csv_logger output)',
+        });
         path = picked?.[0]?.fsPath;
         if (!path) return;
       }
-      const given = (options && typeof options === 'object' ? options : {}) as { logPath?: unknown; logText?: unknown; scenario?: unknown; compare?: unknown };
+      const given = (options && typeof options === 'object' ? options : {}) as {
+        logPath?: unknown;
+        logText?: unknown;
+        scenario?: unknown;
+        compare?: unknown;
+      };
       const run: RunSource = { csvPath: path };
       if (typeof given.logPath === 'string') run.logPath = given.logPath;
       if (typeof given.logText === 'string') run.logText = given.logText;
-      const scenario = typeof given.scenario === 'string' ? vscode.Uri.parse(given.scenario) : given.scenario instanceof vscode.Uri ? given.scenario : undefined;
-      await view.showRun(run, scenario, given.compare === true || given.compare === 'overlay' ? 'overlay' : given.compare === 'side' ? 'side' : undefined);
+      const scenario =
+        typeof given.scenario === 'string'
+          ? vscode.Uri.parse(given.scenario)
+          : given.scenario instanceof vscode.Uri
+            ? given.scenario
+            : undefined;
+      await view.showRun(
+        run,
+        scenario,
+        given.compare === true || given.compare === 'overlay' ? 'overlay' : given.compare === 'side' ? 'side' : undefined,
+      );
     }),
     // Saves the picture shown (args: 'png' | 'svg', target path or URI, { width, height }; without a target, asks where; without a size, the panel's).
     vscode.commands.registerCommand('modular2simple.birdsEye.save', async (format?: unknown, target?: unknown, resolution?: unknown) => {
@@ -45,7 +63,15 @@ export function registerBirdsEye(context: vscode.ExtensionContext, client: Langu
         return undefined;
       }
       const given = (resolution && typeof resolution === 'object' ? resolution : {}) as { width?: unknown; height?: unknown };
-      const size = typeof given.width === 'number' && typeof given.height === 'number' && given.width >= 16 && given.height >= 16 && given.width <= 16384 && given.height <= 16384 ? { width: Math.round(given.width), height: Math.round(given.height) } : undefined;
+      const size =
+        typeof given.width === 'number' &&
+        typeof given.height === 'number' &&
+        given.width >= 16 &&
+        given.height >= 16 &&
+        given.width <= 16384 &&
+        given.height <= 16384
+          ? { width: Math.round(given.width), height: Math.round(given.height) }
+          : undefined;
       return view.saveTo(kind, uri, size);
     }),
   );

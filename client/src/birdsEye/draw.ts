@@ -108,7 +108,16 @@ export function roadShapes(scene: SceneResult): RoadShapes {
         polygon[j] = outer[i];
         polygon[j + 1] = outer[i + 1];
       }
-      lanes.push({ road: section.road, section: section.section, lane: lane.id, type: lane.type, driving: lane.driving, junction: section.junction, polygon, box: extend(undefined, polygon)! });
+      lanes.push({
+        road: section.road,
+        section: section.section,
+        lane: lane.id,
+        type: lane.type,
+        driving: lane.driving,
+        junction: section.junction,
+        polygon,
+        box: extend(undefined, polygon)!,
+      });
     });
   }
   return { lanes, borders, bounds };
@@ -118,9 +127,16 @@ export function roadShapes(scene: SceneResult): RoadShapes {
  * What the picture frames: with `focus`, where the entities start and drive (with `margin` metres
  * around, the roads clipped to it), else everything including the whole road network.
  */
-export function sceneBounds(shapes: RoadShapes, scene: SceneResult | undefined, run: RunTracks | undefined, focus = false, margin = 40): [number, number, number, number] {
+export function sceneBounds(
+  shapes: RoadShapes,
+  scene: SceneResult | undefined,
+  run: RunTracks | undefined,
+  focus = false,
+  margin = 40,
+): [number, number, number, number] {
   let bounds = shapes.bounds && !focus ? ([...shapes.bounds] as [number, number, number, number]) : undefined;
-  for (const entity of scene?.entities ?? []) if (entity.x !== undefined && entity.y !== undefined) bounds = extend(bounds, [entity.x - 3, entity.y - 3, entity.x + 3, entity.y + 3]);
+  for (const entity of scene?.entities ?? [])
+    if (entity.x !== undefined && entity.y !== undefined) bounds = extend(bounds, [entity.x - 3, entity.y - 3, entity.x + 3, entity.y + 3]);
   for (const track of run?.entities ?? []) {
     const xy: number[] = [];
     for (let i = 0; i < track.x.length; i += Math.max(1, Math.floor(track.x.length / 200))) xy.push(track.x[i], track.y[i]);
@@ -173,13 +189,25 @@ export function drawRoads(painter: Painter, shapes: RoadShapes, view: ViewTransf
   }
   // Lines only where they are more than a few pixels apart: at network scale they would paint the roads white.
   if (view.scale >= 1.5) {
-    for (const border of shapes.borders) painter.polyline(project(view, border.xy), border.center ? COLORS.center : COLORS.border, border.center ? 1.2 : 0.6, border.center && view.scale > 3 ? [6, 4] : undefined);
+    for (const border of shapes.borders)
+      painter.polyline(
+        project(view, border.xy),
+        border.center ? COLORS.center : COLORS.border,
+        border.center ? 1.2 : 0.6,
+        border.center && view.scale > 3 ? [6, 4] : undefined,
+      );
   }
   return drawn;
 }
 
 /** Each entity's path over the run; a compared run's dashed. */
-export function drawTrajectories(painter: Painter, run: RunTracks, view: ViewTransform, colorOf: (name: string) => string, dashed = false): void {
+export function drawTrajectories(
+  painter: Painter,
+  run: RunTracks,
+  view: ViewTransform,
+  colorOf: (name: string) => string,
+  dashed = false,
+): void {
   for (const track of run.entities) {
     const xy = new Float64Array(track.x.length * 2);
     for (let i = 0; i < track.x.length; i++) {
@@ -210,7 +238,11 @@ export function poseAt(run: RunTracks, track: RunTracks['entities'][number], tim
   let dh = track.hdg[high] - track.hdg[low];
   if (dh > Math.PI) dh -= 2 * Math.PI;
   if (dh < -Math.PI) dh += 2 * Math.PI;
-  return { x: track.x[low] + w * (track.x[high] - track.x[low]), y: track.y[low] + w * (track.y[high] - track.y[low]), hdg: track.hdg[low] + w * dh };
+  return {
+    x: track.x[low] + w * (track.x[high] - track.x[low]),
+    y: track.y[low] + w * (track.y[high] - track.y[low]),
+    hdg: track.hdg[low] + w * dh,
+  };
 }
 
 export interface PlacedBox {
@@ -228,7 +260,12 @@ export function boxCorners(box: PlacedBox): number[] {
   const cos = Math.cos(box.hdg);
   const sin = Math.sin(box.hdg);
   const corners: number[] = [];
-  for (const [u, v] of [[1, 1], [1, -1], [-1, -1], [-1, 1]] as const) {
+  for (const [u, v] of [
+    [1, 1],
+    [1, -1],
+    [-1, -1],
+    [-1, 1],
+  ] as const) {
     const du = box.centerX + (u * box.length) / 2;
     const dv = (v * box.width) / 2;
     corners.push(box.x + du * cos - dv * sin, box.y + du * sin + dv * cos);
@@ -278,13 +315,30 @@ const LABEL_SIZE = 12;
  * Entities: their box at true size (at least a few pixels), a chevron at the front showing the heading,
  * and their names placed so that no two overlap (with a leader line when moved away).
  */
-export function drawEntities(painter: Painter, boxes: PlacedBox[], view: ViewTransform, colorOf: (name: string) => string, options: EntityDrawing = {}): PlacedLabel[] {
+export function drawEntities(
+  painter: Painter,
+  boxes: PlacedBox[],
+  view: ViewTransform,
+  colorOf: (name: string) => string,
+  options: EntityDrawing = {},
+): PlacedLabel[] {
   const compare = options.compare ?? [];
   const obstacles: Bounds[] = [];
   const drawOne = (box: PlacedBox, ghost: boolean) => {
     const drawn = drawnBox(box, view);
     const corners = project(view, boxCorners(drawn));
-    const outline = [corners[0], corners[1], corners[2], corners[3], corners[4], corners[5], corners[6], corners[7], corners[0], corners[1]];
+    const outline = [
+      corners[0],
+      corners[1],
+      corners[2],
+      corners[3],
+      corners[4],
+      corners[5],
+      corners[6],
+      corners[7],
+      corners[0],
+      corners[1],
+    ];
     if (ghost) painter.polyline(outline, colorOf(box.name), 2, [4, 3]);
     else {
       painter.polygon(corners, colorOf(box.name));
@@ -296,13 +350,23 @@ export function drawEntities(painter: Painter, boxes: PlacedBox[], view: ViewTra
     const at = (u: number, v: number) => [drawn.x + u * cos - v * sin, drawn.y + u * sin + v * cos];
     const front = drawn.centerX + drawn.length / 2;
     const back = front - Math.min(drawn.length / 3, drawn.width);
-    painter.polyline(project(view, [...at(back, drawn.width * 0.35), ...at(front, 0), ...at(back, -drawn.width * 0.35)]), ghost ? colorOf(box.name) : '#1b1b1b', 2);
+    painter.polyline(
+      project(view, [...at(back, drawn.width * 0.35), ...at(front, 0), ...at(back, -drawn.width * 0.35)]),
+      ghost ? colorOf(box.name) : '#1b1b1b',
+      2,
+    );
     obstacles.push(screenBox(view, drawn));
   };
   for (const box of compare) drawOne(box, true);
   for (const box of boxes) drawOne(box, false);
   const labelSize = options.labelSize ?? LABEL_SIZE;
-  const request = (box: PlacedBox, text: string, priority: number): LabelRequest => ({ text, anchor: screenBox(view, drawnBox(box, view)), width: text.length * labelSize * 0.62 + 4, height: labelSize + 3, priority });
+  const request = (box: PlacedBox, text: string, priority: number): LabelRequest => ({
+    text,
+    anchor: screenBox(view, drawnBox(box, view)),
+    width: text.length * labelSize * 0.62 + 4,
+    height: labelSize + 3,
+    priority,
+  });
   const requests = [
     ...boxes.map((box, index) => request(box, box.name, box.name === options.chosen ? -1 : index)),
     ...compare.map((box, index) => request(box, `${box.name}${options.compareSuffix ?? ' (2)'}`, boxes.length + index)),
@@ -319,7 +383,15 @@ export function drawEntities(painter: Painter, boxes: PlacedBox[], view: ViewTra
 export function startBoxes(entities: SceneEntity[]): PlacedBox[] {
   return entities
     .filter((entity) => entity.x !== undefined && entity.y !== undefined)
-    .map((entity) => ({ name: entity.name, x: entity.x!, y: entity.y!, hdg: entity.hdg ?? 0, length: entity.length, width: entity.width, centerX: entity.centerX }));
+    .map((entity) => ({
+      name: entity.name,
+      x: entity.x!,
+      y: entity.y!,
+      hdg: entity.hdg ?? 0,
+      length: entity.length,
+      width: entity.width,
+      centerX: entity.centerX,
+    }));
 }
 
 export function pointInPolygon(xy: ArrayLike<number>, x: number, y: number): boolean {
@@ -360,7 +432,11 @@ const fixed = (value: number) => (Math.round(value * 10) / 10).toString();
 export class SvgPainter implements Painter {
   private readonly parts: string[] = [];
 
-  constructor(private readonly width: number, private readonly height: number, background: string) {
+  constructor(
+    private readonly width: number,
+    private readonly height: number,
+    background: string,
+  ) {
     this.parts.push(`<rect width="${width}" height="${height}" fill="${background}"/>`);
   }
 
@@ -375,14 +451,18 @@ export class SvgPainter implements Painter {
   }
 
   polyline(xy: ArrayLike<number>, stroke: string, width: number, dash?: number[]): void {
-    this.parts.push(`<polyline points="${this.points(xy)}" fill="none" stroke="${stroke}" stroke-width="${width}"${dash ? ` stroke-dasharray="${dash.join(' ')}"` : ''}/>`);
+    this.parts.push(
+      `<polyline points="${this.points(xy)}" fill="none" stroke="${stroke}" stroke-width="${width}"${dash ? ` stroke-dasharray="${dash.join(' ')}"` : ''}/>`,
+    );
   }
 
   private clips = 0;
 
   clip(x: number, y: number, width: number, height: number): void {
     const id = `pane${++this.clips}`;
-    this.parts.push(`<clipPath id="${id}"><rect x="${fixed(x)}" y="${fixed(y)}" width="${fixed(width)}" height="${fixed(height)}"/></clipPath><g clip-path="url(#${id})">`);
+    this.parts.push(
+      `<clipPath id="${id}"><rect x="${fixed(x)}" y="${fixed(y)}" width="${fixed(width)}" height="${fixed(height)}"/></clipPath><g clip-path="url(#${id})">`,
+    );
   }
 
   unclip(): void {
@@ -390,7 +470,9 @@ export class SvgPainter implements Painter {
   }
 
   text(x: number, y: number, text: string, color: string, size: number): void {
-    this.parts.push(`<text x="${fixed(x)}" y="${fixed(y)}" fill="${color}" font-size="${size}" font-family="sans-serif">${escapeXml(text)}</text>`);
+    this.parts.push(
+      `<text x="${fixed(x)}" y="${fixed(y)}" fill="${color}" font-size="${size}" font-family="sans-serif">${escapeXml(text)}</text>`,
+    );
   }
 
   toString(): string {
@@ -399,14 +481,26 @@ export class SvgPainter implements Painter {
 }
 
 /** The band of an exported picture: the time, a legend of the entities (a compared run's dashed) and a scale bar. */
-export function drawExportOverlay(painter: Painter, layout: ExportLayout, colorOf: (name: string) => string, compared: Set<string> = new Set()): void {
+export function drawExportOverlay(
+  painter: Painter,
+  layout: ExportLayout,
+  colorOf: (name: string) => string,
+  compared: Set<string> = new Set(),
+): void {
   const { width, height, map, fontSize } = layout;
   painter.polygon([0, map.height, width, map.height, width, height, 0, height], '#1e1e1e');
   painter.text(layout.time.x, layout.time.y, layout.time.text, COLORS.label, fontSize);
   for (const item of layout.legend) {
     const top = item.y - fontSize * 0.8;
-    if (compared.has(item.text)) painter.polyline([item.x, top, item.x + fontSize, top, item.x + fontSize, top + fontSize, item.x, top + fontSize, item.x, top], colorOf(item.text.replace(/ \(2\)$/, '')), 2, [3, 2]);
-    else painter.polygon([item.x, top, item.x + fontSize, top, item.x + fontSize, top + fontSize, item.x, top + fontSize], colorOf(item.text));
+    if (compared.has(item.text))
+      painter.polyline(
+        [item.x, top, item.x + fontSize, top, item.x + fontSize, top + fontSize, item.x, top + fontSize, item.x, top],
+        colorOf(item.text.replace(/ \(2\)$/, '')),
+        2,
+        [3, 2],
+      );
+    else
+      painter.polygon([item.x, top, item.x + fontSize, top, item.x + fontSize, top + fontSize, item.x, top + fontSize], colorOf(item.text));
     painter.text(item.x + fontSize * 1.4, item.y, item.text, COLORS.label, fontSize);
   }
   const { x, y, pixels, text } = layout.scale;

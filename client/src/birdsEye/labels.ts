@@ -25,7 +25,16 @@ export interface PlacedLabel {
 export const overlaps = (a: Bounds, b: Bounds): boolean => a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3];
 
 /** Directions around the anchor, the usual map-labelling order: upper right first. */
-const DIRECTIONS: [number, number][] = [[1, -1], [1, 1], [-1, -1], [-1, 1], [1, 0], [-1, 0], [0, -1], [0, 1]];
+const DIRECTIONS: [number, number][] = [
+  [1, -1],
+  [1, 1],
+  [-1, -1],
+  [-1, 1],
+  [1, 0],
+  [-1, 0],
+  [0, -1],
+  [0, 1],
+];
 /** Gaps from the anchor tried in turn, px; beyond the first, a leader line joins label and anchor. */
 const DISTANCES = [3, 18, 36, 60];
 

@@ -1,6 +1,6 @@
 /** The bird's-eye view's page: everything it loads is the bundled dist/birdsEye.js (no network, no CDN). */
 export function birdsEyeHtml(cspSource: string, scriptUri: string, scriptNonce: string): string {
-    return `<!DOCTYPE html><html><head><meta charset="utf-8">
+  return `<!DOCTYPE html><html><head><meta charset="utf-8">
 <meta http-equiv="Content-Security-Policy" content="default-src 'none'; img-src ${cspSource} data:; style-src 'unsafe-inline'; script-src 'nonce-${scriptNonce}';">
 <style>
 body{margin:0;padding:0;font-family:var(--vscode-font-family);font-size:var(--vscode-font-size);color:var(--vscode-foreground);display:flex;flex-direction:column;height:100vh;overflow:hidden}

@@ -104,7 +104,9 @@ export class BirdsEyeView implements vscode.Disposable {
     this.endComparison();
     this.runSource = run;
     this.runWatcher?.dispose();
-    this.runWatcher = vscode.workspace.createFileSystemWatcher(new vscode.RelativePattern(vscode.Uri.file(path.dirname(run.csvPath)), path.basename(run.csvPath)));
+    this.runWatcher = vscode.workspace.createFileSystemWatcher(
+      new vscode.RelativePattern(vscode.Uri.file(path.dirname(run.csvPath)), path.basename(run.csvPath)),
+    );
     this.runWatcher.onDidChange(() => void this.reloadRun());
     this.runWatcher.onDidCreate(() => void this.reloadRun());
     await this.reloadRun();
@@ -113,7 +115,9 @@ export class BirdsEyeView implements vscode.Disposable {
   private async showComparison(run: RunSource): Promise<void> {
     this.compareSource = run;
     this.compareWatcher?.dispose();
-    this.compareWatcher = vscode.workspace.createFileSystemWatcher(new vscode.RelativePattern(vscode.Uri.file(path.dirname(run.csvPath)), path.basename(run.csvPath)));
+    this.compareWatcher = vscode.workspace.createFileSystemWatcher(
+      new vscode.RelativePattern(vscode.Uri.file(path.dirname(run.csvPath)), path.basename(run.csvPath)),
+    );
     this.compareWatcher.onDidChange(() => void this.reloadComparison());
     this.compareWatcher.onDidCreate(() => void this.reloadComparison());
     await this.reloadComparison();
@@ -170,7 +174,9 @@ export class BirdsEyeView implements vscode.Disposable {
       if (!this.client.isRunning()) await this.client.start();
       const roadPath = vscode.workspace.getConfiguration('modular2simple', source).get<string[]>('esmini.roadPath', []);
       const folder = vscode.workspace.getWorkspaceFolder(source)?.uri.fsPath ?? vscode.workspace.workspaceFolders?.[0]?.uri.fsPath;
-      const resolvedRoadPath = roadPath.filter((entry) => typeof entry === 'string' && entry).map((entry) => (folder ? path.resolve(folder, entry) : entry));
+      const resolvedRoadPath = roadPath
+        .filter((entry) => typeof entry === 'string' && entry)
+        .map((entry) => (folder ? path.resolve(folder, entry) : entry));
       const scene = await this.client.sendRequest(SceneRequest, { uri: source.toString(), roadPath: resolvedRoadPath });
       if (source !== this.source) return;
       this.scene = scene;
@@ -187,16 +193,26 @@ export class BirdsEyeView implements vscode.Disposable {
 
   private createPanel(): void {
     const scriptRoot = vscode.Uri.joinPath(this.extensionUri, 'dist');
-    const panel = vscode.window.createWebviewPanel(BIRDS_EYE_VIEW_TYPE, "Bird's-Eye View", { viewColumn: vscode.ViewColumn.Beside, preserveFocus: true }, {
-      enableScripts: true,
-      retainContextWhenHidden: true,
-      localResourceRoots: [scriptRoot],
-    });
+    const panel = vscode.window.createWebviewPanel(
+      BIRDS_EYE_VIEW_TYPE,
+      "Bird's-Eye View",
+      { viewColumn: vscode.ViewColumn.Beside, preserveFocus: true },
+      {
+        enableScripts: true,
+        retainContextWhenHidden: true,
+        localResourceRoots: [scriptRoot],
+      },
+    );
     this.panel = panel;
     this.ready = false;
-    panel.webview.html = birdsEyeHtml(panel.webview.cspSource, panel.webview.asWebviewUri(vscode.Uri.joinPath(scriptRoot, 'birdsEye.js')).toString(), nonce());
+    panel.webview.html = birdsEyeHtml(
+      panel.webview.cspSource,
+      panel.webview.asWebviewUri(vscode.Uri.joinPath(scriptRoot, 'birdsEye.js')).toString(),
+      nonce(),
+    );
     panel.webview.onDidReceiveMessage((message: unknown) => {
-      if (isFromView(message)) void this.receive(message).catch((error: unknown) => this.log(`bird's-eye view: ${(error as Error).stack ?? String(error)}`));
+      if (isFromView(message))
+        void this.receive(message).catch((error: unknown) => this.log(`bird's-eye view: ${(error as Error).stack ?? String(error)}`));
     });
     panel.onDidDispose(() => {
       this.panel = undefined;
@@ -218,11 +234,18 @@ export class BirdsEyeView implements vscode.Disposable {
         return;
       case 'open': {
         const position = new vscode.Position(message.source.line, message.source.character);
-        await vscode.window.showTextDocument(vscode.Uri.parse(message.source.uri), { viewColumn: vscode.ViewColumn.One, selection: new vscode.Range(position, position) });
+        await vscode.window.showTextDocument(vscode.Uri.parse(message.source.uri), {
+          viewColumn: vscode.ViewColumn.One,
+          selection: new vscode.Range(position, position),
+        });
         return;
       }
       case 'loadRun': {
-        const picked = await vscode.window.showOpenDialog({ canSelectMany: false, filters: { 'esmini CSV log': ['csv'] }, title: 'Load an esmini run (--csv_logger output)' });
+        const picked = await vscode.window.showOpenDialog({
+          canSelectMany: false,
+          filters: { 'esmini CSV log': ['csv'] },
+          title: 'Load an esmini run (--csv_logger output)',
+        });
         if (picked?.[0]) await this.showRun({ csvPath: picked[0].fsPath }, undefined, message.compare ? 'overlay' : undefined);
         return;
       }
@@ -276,8 +299,15 @@ export class BirdsEyeView implements vscode.Disposable {
 
   private async save(format: 'png' | 'svg', data: string, given?: vscode.Uri): Promise<vscode.Uri | undefined> {
     const base = this.source ? this.source.path.replace(/\.(xosc|mosc)$/i, '') : 'birds-eye';
-    const suggested = vscode.Uri.file(`${this.source?.scheme === 'file' ? base : path.join(vscode.workspace.workspaceFolders?.[0]?.uri.fsPath ?? '', path.posix.basename(base))}.birds-eye.${format}`);
-    const target = given ?? (await vscode.window.showSaveDialog({ defaultUri: suggested, filters: format === 'png' ? { 'PNG image': ['png'] } : { 'SVG image': ['svg'] } }));
+    const suggested = vscode.Uri.file(
+      `${this.source?.scheme === 'file' ? base : path.join(vscode.workspace.workspaceFolders?.[0]?.uri.fsPath ?? '', path.posix.basename(base))}.birds-eye.${format}`,
+    );
+    const target =
+      given ??
+      (await vscode.window.showSaveDialog({
+        defaultUri: suggested,
+        filters: format === 'png' ? { 'PNG image': ['png'] } : { 'SVG image': ['svg'] },
+      }));
     if (!target) return undefined;
     const bytes = format === 'png' ? Buffer.from(data.replace(/^data:image\/png;base64,/, ''), 'base64') : Buffer.from(data, 'utf8');
     if (target.scheme === 'file') await writeFileAtomic(target.fsPath, bytes);

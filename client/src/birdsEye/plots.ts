@@ -39,9 +39,36 @@ export function niceCeiling(value: number): number {
 export function plotSpecs(series: RunSeries): PlotSpec[] {
   const gaps = series.others.map((other) => ({ name: other.name, values: other.gap }));
   return [
-    { title: `speed of ${series.chosen}`, unit: 'm/s', lines: [{ name: series.chosen, values: series.speed }], low: 0, high: niceCeiling(finiteMax([series.speed], 1)) },
-    { title: `gap from ${series.chosen}`, unit: 'm', lines: gaps, low: 0, high: niceCeiling(Math.min(finiteMax(gaps.map((gap) => gap.values), 10), 200)) },
-    { title: `time to collision with ${series.chosen}`, unit: 's', lines: series.others.map((other) => ({ name: other.name, values: other.ttc })), low: 0, high: TTC_CEILING_S, threshold: 1.5 },
+    {
+      title: `speed of ${series.chosen}`,
+      unit: 'm/s',
+      lines: [{ name: series.chosen, values: series.speed }],
+      low: 0,
+      high: niceCeiling(finiteMax([series.speed], 1)),
+    },
+    {
+      title: `gap from ${series.chosen}`,
+      unit: 'm',
+      lines: gaps,
+      low: 0,
+      high: niceCeiling(
+        Math.min(
+          finiteMax(
+            gaps.map((gap) => gap.values),
+            10,
+          ),
+          200,
+        ),
+      ),
+    },
+    {
+      title: `time to collision with ${series.chosen}`,
+      unit: 's',
+      lines: series.others.map((other) => ({ name: other.name, values: other.ttc })),
+      low: 0,
+      high: TTC_CEILING_S,
+      threshold: 1.5,
+    },
   ];
 }
 
@@ -67,7 +94,17 @@ export function drawPlotCursor(painter: Painter, areas: PlotArea[], time: number
  * Draws `specs` side by side in the rectangle (x, y, width, height), the time `time` marked on each
  * (none when undefined: the view draws the mark per frame over a cached picture).
  */
-export function drawPlots(painter: Painter, specs: PlotSpec[], times: number[], time: number | undefined, x: number, y: number, width: number, height: number, colorOf: (name: string) => string): PlotArea[] {
+export function drawPlots(
+  painter: Painter,
+  specs: PlotSpec[],
+  times: number[],
+  time: number | undefined,
+  x: number,
+  y: number,
+  width: number,
+  height: number,
+  colorOf: (name: string) => string,
+): PlotArea[] {
   painter.polygon([x, y, x + width, y, x + width, y + height, x, y + height], PLOT_COLORS.background);
   const areas: PlotArea[] = [];
   if (specs.length === 0 || times.length === 0) return areas;
@@ -82,14 +119,16 @@ export function drawPlots(painter: Painter, specs: PlotSpec[], times: number[], 
     const bottom = y + height - 18;
     if (right - left < 10 || bottom - top < 10) return;
     const sx = (t: number) => left + ((t - t0) / (t1 - t0)) * (right - left);
-    const sy = (value: number) => bottom - ((Math.min(Math.max(value, spec.low), spec.high) - spec.low) / (spec.high - spec.low)) * (bottom - top);
+    const sy = (value: number) =>
+      bottom - ((Math.min(Math.max(value, spec.low), spec.high) - spec.low) / (spec.high - spec.low)) * (bottom - top);
     painter.text(left - 30, y + 13, `${spec.title} (${spec.unit})`, PLOT_COLORS.text, 11);
     painter.polyline([left, top, left, bottom, right, bottom], PLOT_COLORS.axis, 1);
     painter.text(left - 28, top + 8, String(spec.high), PLOT_COLORS.axis, 10);
     painter.text(left - 28, bottom, String(spec.low), PLOT_COLORS.axis, 10);
     painter.text(left, bottom + 13, `${t0.toFixed(0)} s`, PLOT_COLORS.axis, 10);
     painter.text(right - 30, bottom + 13, `${t1.toFixed(0)} s`, PLOT_COLORS.axis, 10);
-    if (spec.threshold !== undefined) painter.polyline([left, sy(spec.threshold), right, sy(spec.threshold)], PLOT_COLORS.threshold, 1, [3, 3]);
+    if (spec.threshold !== undefined)
+      painter.polyline([left, sy(spec.threshold), right, sy(spec.threshold)], PLOT_COLORS.threshold, 1, [3, 3]);
     for (const line of spec.lines) {
       // A gap in the data (NaN: no TTC while not closing in) breaks the line.
       let run: number[] = [];

@@ -47,12 +47,17 @@ export function runTracks(run: EsminiRun, label: string, starts: Map<string, num
 /** Reads an esmini CSV (and its log, when given) into what the view draws. */
 export async function loadRun(source: RunSource): Promise<RunTracks> {
   const stat = await fs.promises.stat(source.csvPath);
-  if (stat.size > MAX_CSV_BYTES) throw new Error(`${source.csvPath} is ${Math.round(stat.size / 1024 / 1024)} MB; the view reads runs up to ${MAX_CSV_BYTES / 1024 / 1024} MB`);
+  if (stat.size > MAX_CSV_BYTES)
+    throw new Error(
+      `${source.csvPath} is ${Math.round(stat.size / 1024 / 1024)} MB; the view reads runs up to ${MAX_CSV_BYTES / 1024 / 1024} MB`,
+    );
   const run = parseEsminiCsv(await fs.promises.readFile(source.csvPath, 'utf8'));
   let logText = source.logText;
   if (logText === undefined) {
     // esmini writes log.txt beside where it ran unless told otherwise; a CSV's sibling is the usual place.
-    const candidates = source.logPath ? [source.logPath] : [source.csvPath.replace(/\.csv$/i, '.log'), path.join(path.dirname(source.csvPath), 'log.txt')];
+    const candidates = source.logPath
+      ? [source.logPath]
+      : [source.csvPath.replace(/\.csv$/i, '.log'), path.join(path.dirname(source.csvPath), 'log.txt')];
     for (const candidate of candidates) {
       logText = await fs.promises.readFile(candidate, 'utf8').catch(() => undefined);
       if (logText !== undefined) break;

@@ -8,13 +8,20 @@ export function registerVariations(context: vscode.ExtensionContext, log: (messa
     view,
     // Args: a results folder or its results.csv (a path or a URI, as the explorer's context menu gives); without one, asks.
     vscode.commands.registerCommand('modular2simple.showVariations', async (target?: unknown) => {
-      let folder = typeof target === 'string' ? target : target instanceof vscode.Uri && target.scheme === 'file' ? target.fsPath : undefined;
+      let folder =
+        typeof target === 'string' ? target : target instanceof vscode.Uri && target.scheme === 'file' ? target.fsPath : undefined;
       if (!folder) {
         const active = vscode.window.activeTextEditor?.document.uri;
         if (active?.scheme === 'file' && /(^|\/)results\.csv$/i.test(active.path)) folder = active.fsPath;
       }
       if (!folder) {
-        const picked = await vscode.window.showOpenDialog({ canSelectFiles: true, canSelectFolders: true, canSelectMany: false, filters: { 'Batch results': ['csv'] }, title: 'Show Variations: a batch results folder or its results.csv' });
+        const picked = await vscode.window.showOpenDialog({
+          canSelectFiles: true,
+          canSelectFolders: true,
+          canSelectMany: false,
+          filters: { 'Batch results': ['csv'] },
+          title: 'Show Variations: a batch results folder or its results.csv',
+        });
         folder = picked?.[0]?.fsPath;
         if (!folder) return;
       }

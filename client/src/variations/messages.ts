@@ -3,8 +3,7 @@ import type { ResultsTable } from '../../../common/src/variationsReport';
 
 export type ToView =
   /** The results to show; `runs` says whether the batch kept its runs (batch --keep-runs), so rows can be opened. */
-  | { type: 'results'; title: string; table: ResultsTable; runs: boolean }
-  | { type: 'error'; message: string };
+  { type: 'results'; title: string; table: ResultsTable; runs: boolean } | { type: 'error'; message: string };
 
 /** What the view reports after drawing, for tests and a status line. */
 export interface VariationsStats {
@@ -18,10 +17,7 @@ export interface VariationsStats {
   outcomes: string[];
 }
 
-export type FromView =
-  | { type: 'ready' }
-  | { type: 'openRun'; index: string }
-  | { type: 'rendered'; stats: VariationsStats };
+export type FromView = { type: 'ready' } | { type: 'openRun'; index: string } | { type: 'rendered'; stats: VariationsStats };
 
 export const isFromView = (value: unknown): value is FromView =>
   typeof value === 'object' && value !== null && typeof (value as { type?: unknown }).type === 'string';

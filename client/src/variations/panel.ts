@@ -15,7 +15,11 @@ function nonce(): string {
 /** The files of one kept run (batch --keep-runs): DIR/runs/INDEX/. */
 export function keptRun(resultsFolder: string, index: string): { csvPath: string; logPath: string; scenario: string } {
   const folder = path.join(resultsFolder, 'runs', index);
-  return { csvPath: path.join(folder, 'trajectories.csv'), logPath: path.join(folder, 'esmini.log'), scenario: path.join(folder, 'scenario.xosc') };
+  return {
+    csvPath: path.join(folder, 'trajectories.csv'),
+    logPath: path.join(folder, 'esmini.log'),
+    scenario: path.join(folder, 'scenario.xosc'),
+  };
 }
 
 /** A results folder, or the folder of a results.csv. */
@@ -82,8 +86,12 @@ export class VariationsView implements vscode.Disposable {
       const table = parseResultsCsv(await fs.promises.readFile(csvFile, 'utf8'));
       this.post({ type: 'results', title, table, runs: fs.existsSync(path.join(folder, 'runs')) });
     } catch (error) {
-      const reason = (error as NodeJS.ErrnoException).code === 'ENOENT' ? 'no results.csv there (run modular2simple batch FILE --results DIR first)' : (error as Error).message;
-      if (!(error instanceof ResultsCsvError) && (error as NodeJS.ErrnoException).code !== 'ENOENT') this.log(`variations view: ${(error as Error).stack ?? String(error)}`);
+      const reason =
+        (error as NodeJS.ErrnoException).code === 'ENOENT'
+          ? 'no results.csv there (run modular2simple batch FILE --results DIR first)'
+          : (error as Error).message;
+      if (!(error instanceof ResultsCsvError) && (error as NodeJS.ErrnoException).code !== 'ENOENT')
+        this.log(`variations view: ${(error as Error).stack ?? String(error)}`);
       this.post({ type: 'error', message: `${csvFile}: ${reason}` });
     }
   }
@@ -93,11 +101,16 @@ export class VariationsView implements vscode.Disposable {
     if (!this.folder) return;
     const run = keptRun(this.folder, index);
     if (!fs.existsSync(run.csvPath)) {
-      void vscode.window.showErrorMessage(`Run ${index} was not kept: run the batch with --keep-runs to open its runs (${path.join(this.folder, 'runs', index)} does not exist).`);
+      void vscode.window.showErrorMessage(
+        `Run ${index} was not kept: run the batch with --keep-runs to open its runs (${path.join(this.folder, 'runs', index)} does not exist).`,
+      );
       return;
     }
     this.openedRun = index;
-    await vscode.commands.executeCommand('modular2simple.birdsEye.showRun', run.csvPath, { logPath: run.logPath, scenario: vscode.Uri.file(run.scenario).toString() });
+    await vscode.commands.executeCommand('modular2simple.birdsEye.showRun', run.csvPath, {
+      logPath: run.logPath,
+      scenario: vscode.Uri.file(run.scenario).toString(),
+    });
   }
 
   private post(message: ToView): void {
@@ -114,9 +127,14 @@ export class VariationsView implements vscode.Disposable {
     });
     this.panel = panel;
     this.ready = false;
-    panel.webview.html = variationsHtml(panel.webview.cspSource, panel.webview.asWebviewUri(vscode.Uri.joinPath(scriptRoot, 'variations.js')).toString(), nonce());
+    panel.webview.html = variationsHtml(
+      panel.webview.cspSource,
+      panel.webview.asWebviewUri(vscode.Uri.joinPath(scriptRoot, 'variations.js')).toString(),
+      nonce(),
+    );
     panel.webview.onDidReceiveMessage((message: unknown) => {
-      if (isFromView(message)) void this.receive(message).catch((error: unknown) => this.log(`variations view: ${(error as Error).stack ?? String(error)}`));
+      if (isFromView(message))
+        void this.receive(message).catch((error: unknown) => this.log(`variations view: ${(error as Error).stack ?? String(error)}`));
     });
     panel.onDidDispose(() => {
       this.panel = undefined;

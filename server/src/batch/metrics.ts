@@ -62,7 +62,10 @@ function overlap(a: Point[], b: Point[]): boolean {
       const [x2, y2] = polygon[(i + 1) % polygon.length];
       const nx = y2 - y1;
       const ny = x1 - x2;
-      let minA = Infinity, maxA = -Infinity, minB = Infinity, maxB = -Infinity;
+      let minA = Infinity,
+        maxA = -Infinity,
+        minB = Infinity,
+        maxB = -Infinity;
       for (const [px, py] of a) {
         const d = nx * px + ny * py;
         minA = Math.min(minA, d);
@@ -91,7 +94,10 @@ function pointToSegment([px, py]: Point, [ax, ay]: Point, [bx, by]: Point): numb
 export function polygonGap(a: Point[], b: Point[]): number {
   if (overlap(a, b)) return 0;
   let gap = Infinity;
-  for (const [from, to] of [[a, b], [b, a]]) {
+  for (const [from, to] of [
+    [a, b],
+    [b, a],
+  ]) {
     for (const point of from) {
       for (let i = 0; i < to.length; i++) gap = Math.min(gap, pointToSegment(point, to[i], to[(i + 1) % to.length]));
     }

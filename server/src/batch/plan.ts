@@ -43,7 +43,11 @@ export function namedPaths(text: string): { roads: string[]; catalogFolders: str
 
 /** Where a run of the scenario looks for roads and catalogs: its own folder, its catalog folders, then the road path. */
 export function searchPathOf(text: string, scenarioFolder: string, roadPath: string[]): string[] {
-  const folders = [scenarioFolder, ...namedPaths(text).catalogFolders.map((folder) => path.resolve(scenarioFolder, folder)), ...roadPath.map((folder) => path.resolve(folder))];
+  const folders = [
+    scenarioFolder,
+    ...namedPaths(text).catalogFolders.map((folder) => path.resolve(scenarioFolder, folder)),
+    ...roadPath.map((folder) => path.resolve(folder)),
+  ];
   return [...new Set(folders)];
 }
 
@@ -55,7 +59,10 @@ export function filesNeeded(text: string, scenarioFolder: string, searchPath: st
   const { roads, catalogFolders } = namedPaths(text);
   const files = new Set<string>();
   for (const road of roads) {
-    const candidates = [path.resolve(scenarioFolder, road), ...searchPath.flatMap((folder) => [path.resolve(folder, road), path.join(folder, path.basename(road))])];
+    const candidates = [
+      path.resolve(scenarioFolder, road),
+      ...searchPath.flatMap((folder) => [path.resolve(folder, road), path.join(folder, path.basename(road))]),
+    ];
     const found = candidates.find((candidate) => fs.existsSync(candidate) && fs.statSync(candidate).isFile());
     if (found) files.add(found);
   }
@@ -67,13 +74,19 @@ export function filesNeeded(text: string, scenarioFolder: string, searchPath: st
     } catch {
       continue;
     }
-    for (const name of names) if (name.toLowerCase().endsWith('.xosc') && fs.statSync(path.join(resolved, name)).isFile()) files.add(path.join(resolved, name));
+    for (const name of names)
+      if (name.toLowerCase().endsWith('.xosc') && fs.statSync(path.join(resolved, name)).isFile()) files.add(path.join(resolved, name));
   }
   return [...files];
 }
 
 /** Concrete scenario `index` as a run, or why the scenario's ValueConstraintGroups discard it. */
-export function concreteRun(variations: Variations, index: bigint, parameterNames: string[], searchPath: string[]): ConcreteRun | { broken: { parameter: string; value: string } } {
+export function concreteRun(
+  variations: Variations,
+  index: bigint,
+  parameterNames: string[],
+  searchPath: string[],
+): ConcreteRun | { broken: { parameter: string; value: string } } {
   const concrete = variations.concreteAt(index);
   if ('broken' in concrete) return { broken: concrete.broken };
   const values = valuesAfter(variations.scenario, concrete.assignments);

@@ -47,7 +47,14 @@ export interface RunJob {
 export class RedisUnreachableError extends Error {}
 
 /** Connection options for BullMQ from redis://HOST:PORT[/DB]. */
-export function connectionOf(url: URL): { host: string; port: number; db: number; username?: string; password?: string; maxRetriesPerRequest: null } {
+export function connectionOf(url: URL): {
+  host: string;
+  port: number;
+  db: number;
+  username?: string;
+  password?: string;
+  maxRetriesPerRequest: null;
+} {
   const db = Number(url.pathname.replace(/^\//, '') || 0);
   return {
     host: url.hostname,
@@ -61,7 +68,14 @@ export function connectionOf(url: URL): { host: string; port: number; db: number
 
 /** A client that fails at once when Redis cannot be reached, instead of retrying for ever: RedisUnreachableError. */
 export async function connect(url: URL): Promise<Redis> {
-  const client = new Redis({ ...connectionOf(url), lazyConnect: true, connectTimeout: 3000, maxRetriesPerRequest: 1, retryStrategy: () => null, enableOfflineQueue: false });
+  const client = new Redis({
+    ...connectionOf(url),
+    lazyConnect: true,
+    connectTimeout: 3000,
+    maxRetriesPerRequest: 1,
+    retryStrategy: () => null,
+    enableOfflineQueue: false,
+  });
   // The socket's own error (ECONNREFUSED, ENOTFOUND) says more than the closed connection the command then meets.
   let socketError: Error | undefined;
   client.on('error', (error: Error) => (socketError ??= error));
@@ -71,7 +85,9 @@ export async function connect(url: URL): Promise<Redis> {
     return client;
   } catch (error) {
     client.disconnect();
-    throw new RedisUnreachableError(`cannot reach Redis at ${url.protocol}//${url.host}: ${(socketError ?? (error as Error)).message || 'connection refused'}`);
+    throw new RedisUnreachableError(
+      `cannot reach Redis at ${url.protocol}//${url.host}: ${(socketError ?? (error as Error)).message || 'connection refused'}`,
+    );
   }
 }
 
@@ -89,7 +105,13 @@ function relativeTo(folder: string, file: string): string {
  * report as they come. Jobs are named by batch and index, so a run again adds nothing twice; rows are
  * read back from the start, so none reported while the batch was away is lost.
  */
-export async function queueBatch(url: URL, plan: BatchPlanView, identity: BatchIdentity, resultsFolder: string, options: { quiet: boolean; io: CliOutput; settings: RunSettings }): Promise<number> {
+export async function queueBatch(
+  url: URL,
+  plan: BatchPlanView,
+  identity: BatchIdentity,
+  resultsFolder: string,
+  options: { quiet: boolean; io: CliOutput; settings: RunSettings },
+): Promise<number> {
   const { io, quiet, settings } = options;
   const client = await connect(url);
   let queue: Queue | undefined;
@@ -120,7 +142,11 @@ export async function queueBatch(url: URL, plan: BatchPlanView, identity: BatchI
     for (const job of await queue.getFailed(0, -1)) if ((job.data as RunJob).batchId === batchId && job.id) await queue.remove(job.id);
     const pending = new Set<string>();
     let discarded = 0;
-    const jobs: { name: string; data: RunJob; opts: { jobId: string; attempts: number; removeOnComplete: boolean; removeOnFail: boolean } }[] = [];
+    const jobs: {
+      name: string;
+      data: RunJob;
+      opts: { jobId: string; attempts: number; removeOnComplete: boolean; removeOnFail: boolean };
+    }[] = [];
     for (const index of todo) {
       const run = concreteRun(plan.variations, index, plan.parameterNames, []);
       if ('broken' in run) {
@@ -129,13 +155,34 @@ export async function queueBatch(url: URL, plan: BatchPlanView, identity: BatchI
       }
       const jobId = `${batchId}-${run.index}`;
       pending.add(run.index);
-      jobs.push({ name: 'run', data: { batchId, index: run.index, text: run.text, parameters: run.parameters, files, searchPath, duration: settings.duration, seed: settings.seed }, opts: { jobId, attempts: ATTEMPTS, removeOnComplete: true, removeOnFail: false } });
+      jobs.push({
+        name: 'run',
+        data: {
+          batchId,
+          index: run.index,
+          text: run.text,
+          parameters: run.parameters,
+          files,
+          searchPath,
+          duration: settings.duration,
+          seed: settings.seed,
+        },
+        opts: { jobId, attempts: ATTEMPTS, removeOnComplete: true, removeOnFail: false },
+      });
       if (jobs.length >= 200) await queue.addBulk(jobs.splice(0));
     }
     if (jobs.length > 0) await queue.addBulk(jobs.splice(0));
-    if (!quiet) io.err(`${pending.size} run${pending.size === 1 ? '' : 's'} on the queue ${QUEUE_NAME} at ${url.host}` + (already > 0 ? `; ${already} already in ${results.csvFile}` : ''));
+    if (!quiet)
+      io.err(
+        `${pending.size} run${pending.size === 1 ? '' : 's'} on the queue ${QUEUE_NAME} at ${url.host}` +
+          (already > 0 ? `; ${already} already in ${results.csvFile}` : ''),
+      );
 
-    const progress = new Progress(pending.size, quiet ? undefined : process.stderr.isTTY ? process.stderr : undefined, quiet ? () => undefined : io.err);
+    const progress = new Progress(
+      pending.size,
+      quiet ? undefined : process.stderr.isTTY ? process.stderr : undefined,
+      quiet ? () => undefined : io.err,
+    );
     const tally = { ok: 0, error: 0, timeout: 0, collisions: 0 };
     let cursor = 0;
     let lastFailedCheck = 0;
@@ -175,7 +222,9 @@ export async function queueBatch(url: URL, plan: BatchPlanView, identity: BatchI
     }
     if (failed.size > 0) {
       const [index, reason] = [...failed][0];
-      io.err(`modular2simple: error: ${failed.size} run${failed.size === 1 ? '' : 's'} failed on the workers ${ATTEMPTS} times (index ${index}: ${reason}); ${summary}; run the same command again to try them again`);
+      io.err(
+        `modular2simple: error: ${failed.size} run${failed.size === 1 ? '' : 's'} failed on the workers ${ATTEMPTS} times (index ${index}: ${reason}); ${summary}; run the same command again to try them again`,
+      );
       return 3;
     }
     await client.del(resultsKey(batchId));
@@ -184,12 +233,17 @@ export async function queueBatch(url: URL, plan: BatchPlanView, identity: BatchI
   } catch (error) {
     // Redis went away after the batch reached it: what arrived is written; the rest waits in Redis for a run again.
     if (client.status === 'ready' || error instanceof RedisUnreachableError) throw error;
-    throw new RedisUnreachableError(`lost Redis at ${url.protocol}//${url.host}: ${(error as Error).message}; the rows that arrived are in ${results?.csvFile ?? resultsFolder}: run the same command again to collect the rest`);
+    throw new RedisUnreachableError(
+      `lost Redis at ${url.protocol}//${url.host}: ${(error as Error).message}; the rows that arrived are in ${results?.csvFile ?? resultsFolder}: run the same command again to collect the rest`,
+    );
   } finally {
     process.off('SIGINT', onSignal);
     process.off('SIGTERM', onSignal);
     await results?.finish();
-    const closed = await Promise.race([(queue?.close() ?? Promise.resolve()).then(() => true), new Promise<boolean>((resolve) => setTimeout(() => resolve(false), 5000).unref())]);
+    const closed = await Promise.race([
+      (queue?.close() ?? Promise.resolve()).then(() => true),
+      new Promise<boolean>((resolve) => setTimeout(() => resolve(false), 5000).unref()),
+    ]);
     client.disconnect();
     // BullMQ's connection would try to reach a Redis that is gone for ever: the process ends once its output is written.
     if (!closed) setTimeout(() => process.exit(3), 1000).unref();

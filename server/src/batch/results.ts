@@ -54,7 +54,14 @@ function number(value: number | null, digits: number): string {
 }
 
 export function csvLine(row: BatchRow, parameterNames: string[]): string {
-  const fixed = [row.index, row.status, String(row.collision), number(row.min_distance_m, 3), number(row.min_ttc_s, 3), number(row.end_time_s, 3)];
+  const fixed = [
+    row.index,
+    row.status,
+    String(row.collision),
+    number(row.min_distance_m, 3),
+    number(row.min_ttc_s, 3),
+    number(row.end_time_s, 3),
+  ];
   return [...fixed, ...parameterNames.map((name) => row.parameters[name] ?? '')].map(csvField).join(',') + '\n';
 }
 
@@ -113,10 +120,14 @@ export class ResultsFolder {
     try {
       existing = await fs.promises.readFile(results.csvFile, 'utf8');
     } catch (error) {
-      if ((error as NodeJS.ErrnoException).code !== 'ENOENT') throw new ResultsError(`cannot read ${results.csvFile}: ${(error as Error).message}`);
+      if ((error as NodeJS.ErrnoException).code !== 'ENOENT')
+        throw new ResultsError(`cannot read ${results.csvFile}: ${(error as Error).message}`);
     }
     if (existing !== undefined && existing.length > 0) {
-      if (!existing.startsWith(header)) throw new ResultsError(`${results.csvFile} holds another batch's results (its columns are not ${header.trim()}); use another --results folder`);
+      if (!existing.startsWith(header))
+        throw new ResultsError(
+          `${results.csvFile} holds another batch's results (its columns are not ${header.trim()}); use another --results folder`,
+        );
       let stored: BatchIdentity | undefined;
       try {
         stored = JSON.parse(await fs.promises.readFile(results.identityFile, 'utf8')) as BatchIdentity;
@@ -124,7 +135,10 @@ export class ResultsFolder {
         stored = undefined;
       }
       const differs = stored ? (Object.keys(identity) as (keyof BatchIdentity)[]).filter((key) => stored[key] !== identity[key]) : [];
-      if (differs.length > 0) throw new ResultsError(`${results.csvFile} holds another batch's results (it differs in ${differs.join(', ')}); use another --results folder`);
+      if (differs.length > 0)
+        throw new ResultsError(
+          `${results.csvFile} holds another batch's results (it differs in ${differs.join(', ')}); use another --results folder`,
+        );
       const whole = existing.slice(0, existing.lastIndexOf('\n') + 1);
       for (const index of indicesIn(whole)) results.done.add(index);
       if (whole.length < existing.length) await fs.promises.truncate(results.csvFile, Buffer.byteLength(whole));

@@ -54,12 +54,16 @@ export async function runConcrete(job: ConcreteRun, settings: RunSettings, cance
     let status: RunStatus;
     if (result.outcome === 'ok') {
       // The added time limit fired: the scenario did not end by itself within the duration.
-      const limited = result.simulatedTime !== undefined && result.simulatedTime >= settings.duration - (RUN_DEFAULTS.timeStep / 2);
+      const limited = result.simulatedTime !== undefined && result.simulatedTime >= settings.duration - RUN_DEFAULTS.timeStep / 2;
       status = limited || result.end === 'interrupted' ? 'timeout' : 'ok';
     } else if (result.outcome === 'failed' && result.end === 'killed') status = 'timeout';
     else status = 'error';
     let message = result.message;
-    let metrics = { ego: undefined as string | undefined, minDistance: undefined as number | undefined, minTtc: undefined as number | undefined };
+    let metrics = {
+      ego: undefined as string | undefined,
+      minDistance: undefined as number | undefined,
+      minTtc: undefined as number | undefined,
+    };
     if (result.csvFile) {
       try {
         metrics = trajectoryMetrics(parseEsminiCsv(await fs.promises.readFile(result.csvFile, 'latin1')), settings.duration);
@@ -83,7 +87,8 @@ export async function runConcrete(job: ConcreteRun, settings: RunSettings, cance
       messages: result.messages.map((each) => ({ level: each.level, time: each.time ?? null, text: each.text })),
     };
   } finally {
-    if (settings.keepRunsIn && result.runFolder && result.outcome !== 'cancelled') keepRunFolder(result.runFolder, result.log, path.join(settings.keepRunsIn, job.index));
+    if (settings.keepRunsIn && result.runFolder && result.outcome !== 'cancelled')
+      keepRunFolder(result.runFolder, result.log, path.join(settings.keepRunsIn, job.index));
     else removeRunFolder(result);
   }
 }

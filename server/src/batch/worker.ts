@@ -75,7 +75,13 @@ export async function runWorker(url: URL, options: WorkerOptions): Promise<numbe
         // A hard link costs nothing per run; a copy where links are not possible.
         await fs.promises.link(cached, target).catch(() => fs.promises.copyFile(cached, target));
       }
-      const searchPath = [...new Set([scenarioFolder, ...data.searchPath.map((folder) => path.resolve(scenarioFolder, folder)), ...data.files.map((file) => path.dirname(path.resolve(scenarioFolder, file.relative)))])];
+      const searchPath = [
+        ...new Set([
+          scenarioFolder,
+          ...data.searchPath.map((folder) => path.resolve(scenarioFolder, folder)),
+          ...data.files.map((file) => path.dirname(path.resolve(scenarioFolder, file.relative))),
+        ]),
+      ];
       const row = await runConcrete(
         { index: data.index, text: data.text, parameters: data.parameters, searchPath },
         { duration: data.duration, seed: data.seed, esminiPath: options.esminiPath, runsFolder: layout },
@@ -123,9 +129,14 @@ export async function runWorker(url: URL, options: WorkerOptions): Promise<numbe
     }
   });
   // Waits for the runs in flight; with Redis gone that could last for ever, so after a while it stops waiting.
-  const closed = await Promise.race([worker.close().then(() => true), new Promise<boolean>((resolve) => setTimeout(() => resolve(false), CLOSE_WAIT_MS).unref())]);
+  const closed = await Promise.race([
+    worker.close().then(() => true),
+    new Promise<boolean>((resolve) => setTimeout(() => resolve(false), CLOSE_WAIT_MS).unref()),
+  ]);
   if (!closed) {
-    options.io.err(`worker: Redis did not answer within ${CLOSE_WAIT_MS / 1000} s of stopping; the jobs in flight go back to the queue when their locks lapse`);
+    options.io.err(
+      `worker: Redis did not answer within ${CLOSE_WAIT_MS / 1000} s of stopping; the jobs in flight go back to the queue when their locks lapse`,
+    );
     await Promise.race([worker.disconnect(), new Promise((resolve) => setTimeout(resolve, 1000).unref())]);
   }
   client.disconnect();

@@ -9,7 +9,14 @@ import { BatchIdentity, ResultsError, ResultsFolder } from '../batch/results';
 import { NoEsminiError, runConcrete, RunSettings } from '../batch/runConcrete';
 import type { PackagedFile } from '../core/flatten/rebase';
 import { FileKind, nodeFileSystem, splitScenarioPath } from '../core/sources';
-import { formatVariationProblems, loadVariations, rebasedConcreteText, samplingProblem, SamplingError, Variations } from '../core/variations';
+import {
+  formatVariationProblems,
+  loadVariations,
+  rebasedConcreteText,
+  samplingProblem,
+  SamplingError,
+  Variations,
+} from '../core/variations';
 import { locateEsmini } from '../esmini/locate';
 import { RUN_DEFAULTS } from '../esmini/run';
 import type { CliOutput } from './common';
@@ -139,9 +146,11 @@ async function batch(argv: string[], io: CliOutput): Promise<number> {
   const seed = values.seed === undefined ? 0 : Number(wholeNumber(values.seed, '--seed'));
   const maxCombinations = wholeNumber(values['max-combinations'], '--max-combinations') ?? DEFAULT_MAX_COMBINATIONS;
   if (sample === 0n) throw new BatchUsageError('--sample takes at least 1');
-  if (sample !== undefined && sample > maxCombinations) throw new BatchUsageError(`--sample ${sample} is more than --max-combinations ${maxCombinations}`);
+  if (sample !== undefined && sample > maxCombinations)
+    throw new BatchUsageError(`--sample ${sample} is more than --max-combinations ${maxCombinations}`);
   const duration = values.duration === undefined ? RUN_DEFAULTS.duration : Number(values.duration);
-  if (!(duration > 0) || !Number.isFinite(duration)) throw new BatchUsageError(`--duration takes a positive number of seconds, not '${values.duration}'`);
+  if (!(duration > 0) || !Number.isFinite(duration))
+    throw new BatchUsageError(`--duration takes a positive number of seconds, not '${values.duration}'`);
   const queue = queueOption(values.queue);
   if (queue && values['keep-runs']) throw new BatchUsageError('--keep-runs keeps the runs of this machine: it does not go with --queue');
 
@@ -155,7 +164,11 @@ async function batch(argv: string[], io: CliOutput): Promise<number> {
   }
   const base = process.cwd();
   const packagedFiles: PackagedFile[] = [];
-  const loaded = await loadVariations(distributionText, distributionPath, flatteningScenarioLoader((values['scenario-path'] ?? []).flatMap(splitScenarioPath), packagedFiles));
+  const loaded = await loadVariations(
+    distributionText,
+    distributionPath,
+    flatteningScenarioLoader((values['scenario-path'] ?? []).flatMap(splitScenarioPath), packagedFiles),
+  );
   const printProblems = (problems = loaded.problems): void => {
     for (const line of formatVariationProblems(problems, loaded.lines, base)) if (!values.quiet || line.includes(': error: ')) io.err(line);
   };
@@ -163,7 +176,9 @@ async function batch(argv: string[], io: CliOutput): Promise<number> {
   const variations = loaded.variations;
   if (!variations) return EXIT.problems;
   if (sample === undefined && variations.count > maxCombinations) {
-    throw new BatchInputError(`${positionals[0]}: ${variations.count} combinations are more than --max-combinations ${maxCombinations}; nothing was run (use --sample N, or raise --max-combinations)`);
+    throw new BatchInputError(
+      `${positionals[0]}: ${variations.count} combinations are more than --max-combinations ${maxCombinations}; nothing was run (use --sample N, or raise --max-combinations)`,
+    );
   }
   const chosen = sample === undefined ? enumerate(variations.count) : sampleIndices(variations.count, sample, seed);
   // Every draw is made before anything runs, so a Range that cannot be met leaves nothing behind.
@@ -202,7 +217,8 @@ async function batch(argv: string[], io: CliOutput): Promise<number> {
     try {
       return await queueBatch(queue, plan, identity, values.results, { quiet: values.quiet, io, settings });
     } catch (error) {
-      if (error instanceof RedisUnreachableError) throw new ResultsError(error.message.startsWith('lost ') ? error.message : `${error.message}; nothing was written`);
+      if (error instanceof RedisUnreachableError)
+        throw new ResultsError(error.message.startsWith('lost ') ? error.message : `${error.message}; nothing was written`);
       throw error;
     }
   }
@@ -242,7 +258,14 @@ export interface BatchPlanView {
 }
 
 /** Runs what results.csv lacks on this machine, `jobs` at a time; SIGINT or SIGTERM stop it cleanly. */
-async function runLocally(plan: BatchPlanView, results: ResultsFolder, settings: RunSettings, jobs: number, io: CliOutput, quiet: boolean): Promise<number> {
+async function runLocally(
+  plan: BatchPlanView,
+  results: ResultsFolder,
+  settings: RunSettings,
+  jobs: number,
+  io: CliOutput,
+  quiet: boolean,
+): Promise<number> {
   const already = plan.chosen.filter((index) => results.done.has(index.toString())).length;
   const todo = plan.chosen.filter((index) => !results.done.has(index.toString()));
   const stop = new AbortController();
@@ -250,7 +273,11 @@ async function runLocally(plan: BatchPlanView, results: ResultsFolder, settings:
   const onSignal = () => (stop.signal.aborted ? process.exit(EXIT.interrupted) : stop.abort());
   process.on('SIGINT', onSignal);
   process.on('SIGTERM', onSignal);
-  const progress = new Progress(todo.length, quiet ? undefined : process.stderr.isTTY ? process.stderr : undefined, quiet ? () => undefined : io.err);
+  const progress = new Progress(
+    todo.length,
+    quiet ? undefined : process.stderr.isTTY ? process.stderr : undefined,
+    quiet ? () => undefined : io.err,
+  );
   const tally = { ok: 0, error: 0, timeout: 0, collisions: 0, discarded: 0 };
   let failure: unknown;
   let next = 0;

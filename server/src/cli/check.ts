@@ -22,7 +22,14 @@ function problemJson(problem: Problem): Record<string, unknown> {
     message: problem.message,
     ...(problem.hint ? { hint: problem.hint } : {}),
     ...(problem.related?.length
-      ? { related: problem.related.map((item) => ({ file: displayRef(item.source, process.cwd()), line: item.range.start.line + 1, column: item.range.start.character + 1, message: item.message })) }
+      ? {
+          related: problem.related.map((item) => ({
+            file: displayRef(item.source, process.cwd()),
+            line: item.range.start.line + 1,
+            column: item.range.start.character + 1,
+            message: item.message,
+          })),
+        }
       : {}),
   };
 }
@@ -65,7 +72,17 @@ export async function checkCommand(args: string[], io: CliOutput): Promise<numbe
   const files: string[] = [];
   for (const input of inputs) {
     if (!fs.existsSync(input)) throw new InputError(`${input}: no such file or folder`);
-    if (fs.statSync(input).isDirectory()) files.push(...(await walkFiles([input], { files: SCENARIO_FILE, skipFolders: CHECKED_SKIPPED_FOLDERS, skipDotFiles: true, regularFilesOnly: false, unreadable: 'throw', sorted: true })));
+    if (fs.statSync(input).isDirectory())
+      files.push(
+        ...(await walkFiles([input], {
+          files: SCENARIO_FILE,
+          skipFolders: CHECKED_SKIPPED_FOLDERS,
+          skipDotFiles: true,
+          regularFilesOnly: false,
+          unreadable: 'throw',
+          sorted: true,
+        })),
+      );
     else files.push(input);
   }
   if (io.ownsProcess && files.length > 1) keepHeapSmallForManyFiles();
@@ -87,7 +104,10 @@ export async function checkCommand(args: string[], io: CliOutput): Promise<numbe
     io.out(JSON.stringify(sarifLog(problems, process.cwd()), null, 2));
   } else {
     report(problems, io, options.quiet);
-    if (!options.quiet) io.err(`checked ${files.length} file${files.length === 1 ? '' : 's'}: ${errors} error${errors === 1 ? '' : 's'}, ${warnings} warning${warnings === 1 ? '' : 's'}`);
+    if (!options.quiet)
+      io.err(
+        `checked ${files.length} file${files.length === 1 ? '' : 's'}: ${errors} error${errors === 1 ? '' : 's'}, ${warnings} warning${warnings === 1 ? '' : 's'}`,
+      );
   }
   return errors > 0 ? ExitCode.problems : ExitCode.ok;
 }

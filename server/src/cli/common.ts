@@ -59,7 +59,11 @@ export function checkNotAnInput(output: string, inputs: SourceRef[]): void {
 }
 
 /** Writes every output or none; `-` is standard output. */
-export async function write(outputs: { target: string; data: string | Uint8Array; summary: string }[], io: CliOutput, quiet: boolean): Promise<number> {
+export async function write(
+  outputs: { target: string; data: string | Uint8Array; summary: string }[],
+  io: CliOutput,
+  quiet: boolean,
+): Promise<number> {
   const files = outputs.filter((output) => output.target !== '-');
   for (const output of files) {
     const directory = path.dirname(path.resolve(output.target));
@@ -71,7 +75,10 @@ export async function write(outputs: { target: string; data: string | Uint8Array
   const result = await writeFilesAtomic(files.map((output) => ({ target: output.target, data: output.data })));
   if (result.failed) {
     const { target, error } = result.failed;
-    const changed = result.written.length === 0 ? 'nothing was changed' : `only ${result.written.join(', ')} ${result.written.length === 1 ? 'was' : 'were'} written`;
+    const changed =
+      result.written.length === 0
+        ? 'nothing was changed'
+        : `only ${result.written.join(', ')} ${result.written.length === 1 ? 'was' : 'were'} written`;
     io.err(`${target}: error: cannot write the output (${error.message}); ${changed}`);
     return ExitCode.io;
   }

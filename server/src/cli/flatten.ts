@@ -17,7 +17,11 @@ async function flattenInputs(inputs: string[], outputs: string[] | undefined, op
   for (const [index, input] of inputs.entries()) {
     const output = outputs?.[index];
     const standardOutput = output === undefined || output === '-';
-    const result = await flattener.flatten(mainOf(input), { force: options.force, outputPath: standardOutput ? undefined : output, standardOutput });
+    const result = await flattener.flatten(mainOf(input), {
+      force: options.force,
+      outputPath: standardOutput ? undefined : output,
+      standardOutput,
+    });
     results.push(result);
     problems = problems.concat(result.problems);
   }
@@ -34,7 +38,9 @@ async function flattenInputs(inputs: string[], outputs: string[] | undefined, op
   if (results.some((result) => result.text === undefined)) {
     // The refused output could be rendered: only the errors stopped it, and --force writes it anyway.
     const forcible = !options.force && results.every((result) => result.text !== undefined || result.source.text !== undefined);
-    const skipping = problems.some((problem) => OVERRIDE_PROBLEM_CODES.has(problem.code) && problem.severity === 'error') ? ', skipping the overrides that cannot apply' : '';
+    const skipping = problems.some((problem) => OVERRIDE_PROBLEM_CODES.has(problem.code) && problem.severity === 'error')
+      ? ', skipping the overrides that cannot apply'
+      : '';
     io.err(`${counted}; nothing was written` + (forcible ? ` (--force writes it anyway${skipping})` : ''));
     return ExitCode.problems;
   }
@@ -48,8 +54,16 @@ async function flattenInputs(inputs: string[], outputs: string[] | undefined, op
   for (const file of results.flatMap((result) => result.files)) fs.mkdirSync(path.dirname(file.path), { recursive: true });
   return write(
     results.flatMap((result, i) => [
-      { target: outputs[i], data: result.text as string, summary: `wrote ${outputs[i]} (${countEditorLines(result.text as string)} lines)` },
-      ...result.files.map((file) => ({ target: file.path, data: file.bytes, summary: `wrote ${path.relative(path.dirname(path.resolve(outputs[i])), file.path)} (a file of the package the output names)` })),
+      {
+        target: outputs[i],
+        data: result.text as string,
+        summary: `wrote ${outputs[i]} (${countEditorLines(result.text as string)} lines)`,
+      },
+      ...result.files.map((file) => ({
+        target: file.path,
+        data: file.bytes,
+        summary: `wrote ${path.relative(path.dirname(path.resolve(outputs[i])), file.path)} (a file of the package the output names)`,
+      })),
     ]),
     io,
     options.quiet,
@@ -71,10 +85,13 @@ export async function flattenCommand(args: string[], io: CliOutput): Promise<num
   if (inputs.length === 0) throw new UsageError('flatten needs an input: a .mosc, a main.xosc or an unpacked folder');
   if (options.outDir) {
     if (options.output) throw new UsageError('use either -o or --out-dir');
-    if (!fs.existsSync(options.outDir) || !fs.statSync(options.outDir).isDirectory()) throw new InputError(`${options.outDir}: no such folder`);
+    if (!fs.existsSync(options.outDir) || !fs.statSync(options.outDir).isDirectory())
+      throw new InputError(`${options.outDir}: no such folder`);
     let names = inputs.map(outputNameFor);
     // Inputs with a shared file name (lib/*/result.mosc) are told apart by their folders.
-    names = names.map((name, index) => (names.indexOf(name) !== names.lastIndexOf(name) ? `${path.basename(path.dirname(path.resolve(inputs[index])))}.xosc` : name));
+    names = names.map((name, index) =>
+      names.indexOf(name) !== names.lastIndexOf(name) ? `${path.basename(path.dirname(path.resolve(inputs[index])))}.xosc` : name,
+    );
     const outputs = names.map((name) => path.join(options.outDir as string, name));
     const duplicates = outputs.filter((output, index) => outputs.indexOf(output) !== index);
     if (duplicates.length > 0) throw new UsageError(`two inputs would both be written to ${duplicates[0]}`);

@@ -17,13 +17,21 @@ interface Plan {
 }
 
 /** Only .xosc files are formatted (a .mosc is an archive); a folder the user names is walked whole, in the order it lists. */
-const FORMATTED_FILES = { files: /\.xosc$/i, skipFolders: new Set(['node_modules']), skipDotFiles: true, regularFilesOnly: true, unreadable: 'throw', sorted: false } as const;
+const FORMATTED_FILES = {
+  files: /\.xosc$/i,
+  skipFolders: new Set(['node_modules']),
+  skipDotFiles: true,
+  regularFilesOnly: true,
+  unreadable: 'throw',
+  sorted: false,
+} as const;
 
 function indentOption(value: string | undefined): Pick<FormatOptions, 'tabSize' | 'insertSpaces'> | undefined {
   if (value === undefined) return undefined;
   if (value === 'tab') return { tabSize: 4, insertSpaces: false };
   const spaces = Number(value);
-  if (!Number.isInteger(spaces) || spaces < 0 || spaces > 16) throw new FormatUsageError(`--indent takes a number of spaces (0-16) or 'tab', not '${value}'`);
+  if (!Number.isInteger(spaces) || spaces < 0 || spaces > 16)
+    throw new FormatUsageError(`--indent takes a number of spaces (0-16) or 'tab', not '${value}'`);
   return { tabSize: spaces, insertSpaces: true };
 }
 
@@ -56,7 +64,12 @@ export async function formatCommand(args: string[], io: CliOutput): Promise<numb
     ({ values, positionals } = parseArgs({
       args,
       allowPositionals: true,
-      options: { check: { type: 'boolean' }, width: { type: 'string' }, indent: { type: 'string' }, quiet: { type: 'boolean', short: 'q' } },
+      options: {
+        check: { type: 'boolean' },
+        width: { type: 'string' },
+        indent: { type: 'string' },
+        quiet: { type: 'boolean', short: 'q' },
+      },
     }));
     if (positionals.length === 0) throw new FormatUsageError('format needs at least one .xosc file or folder');
   } catch (error) {
@@ -69,7 +82,8 @@ export async function formatCommand(args: string[], io: CliOutput): Promise<numb
     indent = indentOption(values.indent);
     if (values.width !== undefined) {
       width = Number(values.width);
-      if (!Number.isInteger(width) || width < 1) throw new FormatUsageError(`--width takes a positive number of columns, not '${values.width}'`);
+      if (!Number.isInteger(width) || width < 1)
+        throw new FormatUsageError(`--width takes a positive number of columns, not '${values.width}'`);
     }
   } catch (error) {
     io.err(`modular2simple: ${(error as Error).message}\nRun 'modular2simple --help' for usage.`);
@@ -95,7 +109,11 @@ export async function formatCommand(args: string[], io: CliOutput): Promise<numb
 
   if (values.check) {
     for (const plan of changed) io.out(plan.file);
-    if (!values.quiet) io.err(`${changed.length} of ${files.length} file${files.length === 1 ? '' : 's'} would be reformatted` + (problems.length ? `; ${problems.length} could not be read or parsed` : ''));
+    if (!values.quiet)
+      io.err(
+        `${changed.length} of ${files.length} file${files.length === 1 ? '' : 's'} would be reformatted` +
+          (problems.length ? `; ${problems.length} could not be read or parsed` : ''),
+      );
     return changed.length > 0 || problems.length > 0 ? ExitCode.problems : ExitCode.ok;
   }
   if (problems.length > 0) {

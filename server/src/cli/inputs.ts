@@ -15,7 +15,12 @@ export function mainOf(input: string): SourceRef {
  * folder where the search upward from an unpacked folder stops (`root`, else the working directory,
  * or the first input's folder when it lies elsewhere).
  */
-export function storeForInputs(scenarioPath: string[], root: string | undefined, inputs: string[], limits: Partial<Limits> = {}): ScenarioStore {
+export function storeForInputs(
+  scenarioPath: string[],
+  root: string | undefined,
+  inputs: string[],
+  limits: Partial<Limits> = {},
+): ScenarioStore {
   const cwd = process.cwd();
   const firstInput = inputs[0] ? path.resolve(inputs[0]) : cwd;
   const insideCwd = firstInput === cwd || firstInput.startsWith(cwd + path.sep);

@@ -65,7 +65,18 @@ export function parseSize(text: string, flag: string): number {
  * looks like an option is missing, not taken; grouped or glued short options and `--` are unknown options.
  */
 export function parseOptions(args: string[]): Options {
-  const options: Options = { positional: [], force: false, scenarioPath: [], includeScenarioPath: false, selfContained: false, format: 'text', quiet: false, simulator: 'asam', schemaVersion: 'auto', limits: {} };
+  const options: Options = {
+    positional: [],
+    force: false,
+    scenarioPath: [],
+    includeScenarioPath: false,
+    selfContained: false,
+    format: 'text',
+    quiet: false,
+    simulator: 'asam',
+    schemaVersion: 'auto',
+    limits: {},
+  };
   const { tokens } = parseArgs({ args, options: SHARED_OPTIONS, strict: false, allowPositionals: true, tokens: true });
   for (const token of tokens) {
     if (token.kind === 'positional') {
@@ -75,12 +86,14 @@ export function parseOptions(args: string[]): Options {
     const arg = args[token.index];
     if (token.kind === 'option-terminator') throw new UsageError(`unknown option '${arg}'`);
     const name = token.name;
-    const asTyped = arg === token.rawName || (token.rawName.startsWith('--') && token.inlineValue === true && arg === `${token.rawName}=${token.value}`);
+    const asTyped =
+      arg === token.rawName || (token.rawName.startsWith('--') && token.inlineValue === true && arg === `${token.rawName}=${token.value}`);
     if (!isOptionName(name) || !asTyped) throw new UsageError(`unknown option '${arg}'`);
     const flag = token.rawName;
     const take = (): string => {
       const value = token.value;
-      if (!token.inlineValue && (value === undefined || (value.startsWith('-') && value.length > 1))) throw new UsageError(`${flag} needs a value`);
+      if (!token.inlineValue && (value === undefined || (value.startsWith('-') && value.length > 1)))
+        throw new UsageError(`${flag} needs a value`);
       return value as string;
     };
     switch (name) {
@@ -107,7 +120,8 @@ export function parseOptions(args: string[]): Options {
         break;
       case 'format': {
         const format = take();
-        if (format !== 'text' && format !== 'json' && format !== 'sarif') throw new UsageError(`--format takes text, json or sarif, not '${format}'`);
+        if (format !== 'text' && format !== 'json' && format !== 'sarif')
+          throw new UsageError(`--format takes text, json or sarif, not '${format}'`);
         options.format = format;
         break;
       }
@@ -119,7 +133,8 @@ export function parseOptions(args: string[]): Options {
       }
       case 'schema-version': {
         const version = take();
-        if (version !== 'auto' && version !== 'off' && !isSchemaVersion(version)) throw new UsageError(`--schema-version takes auto, off, ${SCHEMA_VERSIONS.join(', ')}; not '${version}'`);
+        if (version !== 'auto' && version !== 'off' && !isSchemaVersion(version))
+          throw new UsageError(`--schema-version takes auto, off, ${SCHEMA_VERSIONS.join(', ')}; not '${version}'`);
         options.schemaVersion = version;
         break;
       }

@@ -11,9 +11,17 @@ async function packInputs(inputs: string[], output: string, options: Options, io
   let result: PackResult;
   if (folderInput) {
     checkInputExists(inputs[0]);
-    result = await packFolder(inputs[0], makeStore(options, inputs), { includeScenarioPath: options.includeScenarioPath, outputPath: output, selfContained: options.selfContained });
+    result = await packFolder(inputs[0], makeStore(options, inputs), {
+      includeScenarioPath: options.includeScenarioPath,
+      outputPath: output,
+      selfContained: options.selfContained,
+    });
   } else {
-    result = await packFiles(inputs, options.limits, { outputPath: output, selfContained: options.selfContained, workingDirectory: process.cwd() });
+    result = await packFiles(inputs, options.limits, {
+      outputPath: output,
+      selfContained: options.selfContained,
+      workingDirectory: process.cwd(),
+    });
   }
   const { errors } = report(result.problems, io, options.quiet);
   if (!result.bytes) {

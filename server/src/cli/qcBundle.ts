@@ -36,24 +36,30 @@ export interface BundleConfig {
 }
 
 function paramsOf(element: XmlElement): { name: string; value: string }[] {
-  return element.children.filter((child) => child.name === 'Param').map((param) => ({ name: attributeValue(param, 'name') ?? '', value: attributeValue(param, 'value') ?? '' }));
+  return element.children
+    .filter((child) => child.name === 'Param')
+    .map((param) => ({ name: attributeValue(param, 'name') ?? '', value: attributeValue(param, 'value') ?? '' }));
 }
 
 /** Reads a framework configuration file; throws InputError for one this bundle cannot run from. */
 export function readBundleConfig(text: string, configPath: string): BundleConfig {
   const document = parseXml(text);
   const root = document.root;
-  if (!root || root.name !== 'Config' || document.problems.some((problem) => problem.severity === 'error')) throw new InputError(`${configPath}: not a Quality Checker Framework configuration (an XML <Config>)`);
+  if (!root || root.name !== 'Config' || document.problems.some((problem) => problem.severity === 'error'))
+    throw new InputError(`${configPath}: not a Quality Checker Framework configuration (an XML <Config>)`);
   const bundle = root.children.find((child) => child.name === 'CheckerBundle' && attributeValue(child, 'application') === BUNDLE_NAME);
   const globalParams = paramsOf(root);
   const bundleParams = bundle ? paramsOf(bundle) : [];
   // A bundle's own parameter wins over the configuration's global one of the same name.
-  const param = (name: string) => bundleParams.find((entry) => entry.name === name)?.value ?? globalParams.find((entry) => entry.name === name)?.value;
+  const param = (name: string) =>
+    bundleParams.find((entry) => entry.name === name)?.value ?? globalParams.find((entry) => entry.name === name)?.value;
   const inputFile = param('InputFile');
   if (!inputFile) throw new InputError(`${configPath}: no <Param name="InputFile" value="..."/>`);
   const resultFile = param('resultFile') ?? DEFAULT_RESULT_FILE;
-  if (path.basename(resultFile) !== resultFile || !resultFile.endsWith('.xqar')) throw new InputError(`${configPath}: resultFile '${resultFile}' must be a file name ending in .xqar, with no folder`);
-  const checkers = bundle?.children.filter((child) => child.name === 'Checker').map((checker) => attributeValue(checker, 'checkerId') ?? '') ?? [];
+  if (path.basename(resultFile) !== resultFile || !resultFile.endsWith('.xqar'))
+    throw new InputError(`${configPath}: resultFile '${resultFile}' must be a file name ending in .xqar, with no folder`);
+  const checkers =
+    bundle?.children.filter((child) => child.name === 'Checker').map((checker) => attributeValue(checker, 'checkerId') ?? '') ?? [];
   const merged = new Map([...globalParams, ...bundleParams].map((entry) => [entry.name, entry.value]));
   return {
     inputFile: path.resolve(path.dirname(configPath), inputFile),
@@ -104,18 +110,29 @@ export function resultFileText(config: BundleConfig, problems: Problem[], inputD
   }
   const lines = ['<?xml version="1.0" encoding="UTF-8"?>', '<CheckerResults version="1.0.0">'];
   const total = [...byChecker.values()].reduce((sum, entry) => sum + entry.problems.length, 0);
-  const bundle = { name: BUNDLE_NAME, version: VERSION, description: 'modular2simple check: the OpenSCENARIO checks of the modular2simple toolkit', summary: `Found ${total} issue${total === 1 ? '' : 's'}` };
+  const bundle = {
+    name: BUNDLE_NAME,
+    version: VERSION,
+    description: 'modular2simple check: the OpenSCENARIO checks of the modular2simple toolkit',
+    summary: `Found ${total} issue${total === 1 ? '' : 's'}`,
+  };
   lines.push(`  <CheckerBundle${xmlAttributes(bundle)}>`);
   for (const param of config.params) lines.push(`    <Param${xmlAttributes(param)}/>`);
   let issueId = 0;
   for (const [checkerId, entry] of [...byChecker].sort(([a], [b]) => (a < b ? -1 : a > b ? 1 : 0))) {
     const uid = qcRuleUid(entry.code);
     const count = entry.problems.length;
-    lines.push(`    <Checker${xmlAttributes({ checkerId, description: ruleDescription(ruleIdOf(entry.code), entry.code), summary: `Found ${count} issue${count === 1 ? '' : 's'}`, status: 'completed' })}>`);
+    lines.push(
+      `    <Checker${xmlAttributes({ checkerId, description: ruleDescription(ruleIdOf(entry.code), entry.code), summary: `Found ${count} issue${count === 1 ? '' : 's'}`, status: 'completed' })}>`,
+    );
     for (const problem of entry.problems) {
-      lines.push(`      <Issue${xmlAttributes({ issueId: issueId++, description: problem.message, level: LEVEL[problem.severity], ruleUID: uid })}>`);
+      lines.push(
+        `      <Issue${xmlAttributes({ issueId: issueId++, description: problem.message, level: LEVEL[problem.severity], ruleUID: uid })}>`,
+      );
       lines.push(`        <Locations${xmlAttributes({ description: displayRef(problem.source, process.cwd()) })}>`);
-      lines.push(`          <FileLocation${xmlAttributes({ row: problem.range.start.line + 1, column: problem.range.start.character + 1 })}/>`);
+      lines.push(
+        `          <FileLocation${xmlAttributes({ row: problem.range.start.line + 1, column: problem.range.start.character + 1 })}/>`,
+      );
       // An XPath only in the input file itself: the framework's viewers resolve it there.
       const inInput = inputDocument && problem.source.entries.length === 0 && path.resolve(problem.source.disk) === config.inputFile;
       const element = inInput ? elementAt(inputDocument, inputDocument.lines.offsetAt(problem.range.start)) : undefined;
@@ -132,7 +149,12 @@ export function resultFileText(config: BundleConfig, problems: Problem[], inputD
 
 /** The module manifest that registers this bundle with a framework installation (manifest_file.md), for this installation's command. */
 export function moduleManifest(command: string): string {
-  const module = { name: BUNDLE_NAME, exec_type: 'executable', module_type: 'checker_bundle', exec_command: `${command} qc-bundle -c $ASAM_QC_FRAMEWORK_CONFIG_FILE -o $ASAM_QC_FRAMEWORK_OUTPUT_DIR` };
+  const module = {
+    name: BUNDLE_NAME,
+    exec_type: 'executable',
+    module_type: 'checker_bundle',
+    exec_command: `${command} qc-bundle -c $ASAM_QC_FRAMEWORK_CONFIG_FILE -o $ASAM_QC_FRAMEWORK_OUTPUT_DIR`,
+  };
   return JSON.stringify({ module: [module] }, null, 2);
 }
 
@@ -163,19 +185,25 @@ export async function qcBundleCommand(args: string[], io: CliOutput): Promise<nu
   }
   // The framework's convention also allows the configuration as the only argument.
   const configPath = values.config ?? (positionals.length === 1 ? positionals[0] : undefined);
-  if (!configPath || (values.config && positionals.length > 0)) throw new UsageError('qc-bundle needs its configuration file: qc-bundle -c CONFIG.xml [-o OUTPUT_DIR]');
+  if (!configPath || (values.config && positionals.length > 0))
+    throw new UsageError('qc-bundle needs its configuration file: qc-bundle -c CONFIG.xml [-o OUTPUT_DIR]');
   if (!fs.existsSync(configPath)) throw new InputError(`${configPath}: no such file`);
   const config = readBundleConfig(fs.readFileSync(configPath, 'utf8'), path.resolve(configPath));
   if (!fs.existsSync(config.inputFile)) throw new InputError(`${config.inputFile}: no such file (the configuration's InputFile)`);
 
   const flattener = new Flattener(storeForInputs([], undefined, [config.inputFile]));
   const problems = uniqueProblems((await flattener.flatten(mainOf(config.inputFile))).problems);
-  const inputDocument = fs.statSync(config.inputFile).isFile() && config.inputFile.toLowerCase().endsWith('.xosc') ? parseXml(decodeUtf8(fs.readFileSync(config.inputFile))) : undefined;
+  const inputDocument =
+    fs.statSync(config.inputFile).isFile() && config.inputFile.toLowerCase().endsWith('.xosc')
+      ? parseXml(decodeUtf8(fs.readFileSync(config.inputFile)))
+      : undefined;
   const outputDir = path.resolve(values['output-dir'] ?? '.');
   fs.mkdirSync(outputDir, { recursive: true });
   const resultPath = path.join(outputDir, config.resultFile);
   // Written whole or not at all, as every output of this project.
   await writeFileAtomic(resultPath, resultFileText(config, problems, inputDocument));
-  io.err(`${displayRef(mainOf(config.inputFile), process.cwd())}: ${problems.length} issue${problems.length === 1 ? '' : 's'} written to ${resultPath}`);
+  io.err(
+    `${displayRef(mainOf(config.inputFile), process.cwd())}: ${problems.length} issue${problems.length === 1 ? '' : 's'} written to ${resultPath}`,
+  );
   return ExitCode.ok;
 }

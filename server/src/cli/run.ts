@@ -70,7 +70,8 @@ export async function runCommand(args: string[], io: CliOutput): Promise<number>
   const { values, positionals: inputs } = parsed;
   if (inputs.length === 0) return usage(io, 'run needs a scenario: a .xosc, a .mosc or an unpacked folder');
   const duration = values.duration === undefined ? RUN_DEFAULTS.duration : Number(values.duration);
-  if (!(duration > 0) || !Number.isFinite(duration)) return usage(io, `--duration takes a positive number of seconds, not '${values.duration}'`);
+  if (!(duration > 0) || !Number.isFinite(duration))
+    return usage(io, `--duration takes a positive number of seconds, not '${values.duration}'`);
   const seed = values.seed === undefined ? RUN_DEFAULTS.seed : Number(values.seed);
   if (!Number.isInteger(seed) || seed < 0) return usage(io, `--seed takes a whole number, not '${values.seed}'`);
   if (values.csv !== undefined && inputs.length > 1) return usage(io, '--csv takes one input');
@@ -86,10 +87,18 @@ export async function runCommand(args: string[], io: CliOutput): Promise<number>
   let notRun = false;
   let errors = 0;
   for (const input of inputs) {
-    const result = await runScenario(flattener, mainOf(input), { esminiPath: values.esmini, roadPath, duration, seed, force: values.force });
+    const result = await runScenario(flattener, mainOf(input), {
+      esminiPath: values.esmini,
+      roadPath,
+      duration,
+      seed,
+      force: values.force,
+    });
     try {
-      for (const problem of result.flattenProblems) if (problem.severity === 'error' || !values.quiet) io.err(formatProblem(problem, process.cwd()));
-      for (const problem of result.problems) if (problem.severity === 'error' || !values.quiet) io.err(formatEsminiProblem(problem, process.cwd()));
+      for (const problem of result.flattenProblems)
+        if (problem.severity === 'error' || !values.quiet) io.err(formatProblem(problem, process.cwd()));
+      for (const problem of result.problems)
+        if (problem.severity === 'error' || !values.quiet) io.err(formatEsminiProblem(problem, process.cwd()));
       if (result.outcome === 'no-esmini') {
         io.err(`modular2simple: error: ${result.message}`);
         return 3;
@@ -102,7 +111,8 @@ export async function runCommand(args: string[], io: CliOutput): Promise<number>
       }
       if (result.outcome === 'not-flattened') notRun = true;
       if (result.outcome === 'errors') errors++;
-      if (!values.quiet || result.outcome !== 'ok') io.err(`${input}: ${result.message}${result.forcible ? ' (--force runs it anyway)' : ''}`);
+      if (!values.quiet || result.outcome !== 'ok')
+        io.err(`${input}: ${result.message}${result.forcible ? ' (--force runs it anyway)' : ''}`);
       if (values.csv !== undefined && result.csvFile) {
         const output = path.resolve(values.csv);
         await writeFileAtomic(output, csvUpTo(fs.readFileSync(result.csvFile, 'utf8'), duration));

@@ -108,7 +108,12 @@ export function sarifLog(problems: readonly Problem[], workingDirectory: string)
 
   const physical = (ref: SourceRef, range: Problem['range']): SarifPhysicalLocation => ({
     artifactLocation: artifactOf(ref),
-    region: { startLine: range.start.line + 1, startColumn: range.start.character + 1, endLine: range.end.line + 1, endColumn: range.end.character + 1 },
+    region: {
+      startLine: range.start.line + 1,
+      startColumn: range.start.character + 1,
+      endLine: range.end.line + 1,
+      endColumn: range.end.character + 1,
+    },
   });
 
   const results = problems.map((problem): SarifResult => {
@@ -138,7 +143,13 @@ export function sarifLog(problems: readonly Problem[], workingDirectory: string)
       message: { text },
       locations: [{ physicalLocation: physical(problem.source, problem.range) }],
       ...(problem.related?.length
-        ? { relatedLocations: problem.related.map((item, id) => ({ id, physicalLocation: physical(item.source, item.range), message: { text: item.message } })) }
+        ? {
+            relatedLocations: problem.related.map((item, id) => ({
+              id,
+              physicalLocation: physical(item.source, item.range),
+              message: { text: item.message },
+            })),
+          }
         : {}),
       properties: { code: problem.code },
     };

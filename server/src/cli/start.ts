@@ -26,7 +26,13 @@ export function loadBundle(folder: string, requireFn: NodeJS.Require, cachedData
   const filename = path.join(folder, CLI_BUNDLE);
   const script = new vm.Script(Module.wrap(fs.readFileSync(filename, 'utf8')), { filename, cachedData });
   const bundle = { exports: {} as LoadedBundle['exports'], filename, id: filename, loaded: false };
-  const run = script.runInThisContext() as (exports: unknown, require: NodeJS.Require, module: unknown, filename: string, dirname: string) => void;
+  const run = script.runInThisContext() as (
+    exports: unknown,
+    require: NodeJS.Require,
+    module: unknown,
+    filename: string,
+    dirname: string,
+  ) => void;
   run.call(bundle.exports, bundle.exports, requireFn, bundle, filename, folder);
   return { exports: bundle.exports, script };
 }

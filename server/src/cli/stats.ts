@@ -19,11 +19,16 @@ export async function statsCommand(args: string[], io: CliOutput): Promise<numbe
     const width = Math.max(8, ...stats.rows.map((row) => row.scenario.length));
     io.out(`${'#'.padStart(3)}  ${'scenario'.padEnd(width)}  ${'modular'.padStart(8)}  ${'flattened'.padStart(9)}  reduction`);
     stats.rows.forEach((row, index) => {
-      io.out(`${String(index + 1).padStart(3)}  ${row.scenario.padEnd(width)}  ${String(row.modularLines).padStart(8)}  ${String(row.flattenedLines).padStart(9)}  ${row.reduction.toFixed(1).padStart(8)} %`);
+      io.out(
+        `${String(index + 1).padStart(3)}  ${row.scenario.padEnd(width)}  ${String(row.modularLines).padStart(8)}  ${String(row.flattenedLines).padStart(9)}  ${row.reduction.toFixed(1).padStart(8)} %`,
+      );
     });
-    for (const item of stats.shared) io.out(`     ${('+ ' + path.relative(path.resolve(library), item.file)).padEnd(width)}  ${String(item.lines).padStart(8)}`);
+    for (const item of stats.shared)
+      io.out(`     ${('+ ' + path.relative(path.resolve(library), item.file)).padEnd(width)}  ${String(item.lines).padStart(8)}`);
     const { totals } = stats;
-    io.out(`     ${'total'.padEnd(width)}  ${totals.modularLines.toLocaleString('en-US').padStart(8)}  ${totals.flattenedLines.toLocaleString('en-US').padStart(9)}  ${totals.reduction.toFixed(1).padStart(8)} %`);
+    io.out(
+      `     ${'total'.padEnd(width)}  ${totals.modularLines.toLocaleString('en-US').padStart(8)}  ${totals.flattenedLines.toLocaleString('en-US').padStart(9)}  ${totals.reduction.toFixed(1).padStart(8)} %`,
+    );
   }
   return stats.problems.length > 0 ? ExitCode.problems : ExitCode.ok;
 }

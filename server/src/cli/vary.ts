@@ -3,7 +3,15 @@ import * as path from 'node:path';
 import { parseArgs } from 'node:util';
 import type { CliOutput } from './common';
 import { isSameFile, writeFileAtomic } from '../../../common/src/atomic';
-import { loadVariations, formatVariationProblems, rebasedConcreteText, samplingProblem, SamplingError, ScenarioTextLoader, Variations } from '../core/variations';
+import {
+  loadVariations,
+  formatVariationProblems,
+  rebasedConcreteText,
+  samplingProblem,
+  SamplingError,
+  ScenarioTextLoader,
+  Variations,
+} from '../core/variations';
 import { seedBits, Xoshiro128StarStar } from '../core/variations/random';
 import { flatteningScenarioLoader, readUtf8Exactly, scenarioFolderOf } from './scenarioText';
 import { FileKind, nodeFileSystem, splitScenarioPath } from '../core/sources';
@@ -111,14 +119,16 @@ async function vary(argv: string[], io: Output, givenLoader: ScenarioTextLoader 
   const modes = [values.count, values.index !== undefined, values['out-dir'] !== undefined].filter(Boolean).length;
   if (modes !== 1) return usage(io, 'vary needs exactly one of --count, --index I or --out-dir DIR');
   if (values.output !== undefined && values.index === undefined) return usage(io, '-o goes with --index I (use --out-dir DIR for many)');
-  if ((values.sample !== undefined || values.seed !== undefined) && values['out-dir'] === undefined) return usage(io, '--sample and --seed go with --out-dir DIR');
+  if ((values.sample !== undefined || values.seed !== undefined) && values['out-dir'] === undefined)
+    return usage(io, '--sample and --seed go with --out-dir DIR');
   if (values.seed !== undefined && values.sample === undefined) return usage(io, '--seed goes with --sample N');
   const index = wholeNumber(values.index, '--index');
   const sample = wholeNumber(values.sample, '--sample');
   const seed = values.seed === undefined ? 0 : Number(wholeNumber(values.seed, '--seed'));
   const maxCombinations = wholeNumber(values['max-combinations'], '--max-combinations') ?? DEFAULT_MAX_COMBINATIONS;
   if (sample === 0n) return usage(io, '--sample takes at least 1');
-  if (sample !== undefined && sample > maxCombinations) return usage(io, `--sample ${sample} is more than --max-combinations ${maxCombinations}`);
+  if (sample !== undefined && sample > maxCombinations)
+    return usage(io, `--sample ${sample} is more than --max-combinations ${maxCombinations}`);
 
   const distributionPath = path.resolve(positionals[0]);
   let distributionText: string;
@@ -131,7 +141,8 @@ async function vary(argv: string[], io: Output, givenLoader: ScenarioTextLoader 
   const base = process.cwd();
   // The roads and catalogs a self-contained package ScenarioFile holds: written beside each concrete scenario, where it names them.
   const packagedFiles: PackagedFile[] = [];
-  const loadScenarioText = givenLoader ?? flatteningScenarioLoader((values['scenario-path'] ?? []).flatMap(splitScenarioPath), packagedFiles);
+  const loadScenarioText =
+    givenLoader ?? flatteningScenarioLoader((values['scenario-path'] ?? []).flatMap(splitScenarioPath), packagedFiles);
   const loaded = await loadVariations(distributionText, distributionPath, loadScenarioText);
   const printProblems = (problems = loaded.problems): void => {
     for (const line of formatVariationProblems(problems, loaded.lines, base)) if (!values.quiet || line.includes(': error: ')) io.err(line);
@@ -139,14 +150,21 @@ async function vary(argv: string[], io: Output, givenLoader: ScenarioTextLoader 
   printProblems();
   const variations = loaded.variations;
   if (!variations) return EXIT.problems;
-  const where = (offset: number): string => formatVariationProblems([{ file: distributionPath, offset, severity: 'error', message: '' }], loaded.lines, base)[0].replace(/: error: $/, '');
+  const where = (offset: number): string =>
+    formatVariationProblems([{ file: distributionPath, offset, severity: 'error', message: '' }], loaded.lines, base)[0].replace(
+      /: error: $/,
+      '',
+    );
 
   if (values.count) {
     if (!variations.constrained) {
       io.out(variations.count.toString());
       return EXIT.ok;
     }
-    if (variations.count > maxCombinations) throw new InputProblem(`${where(0)}: ${variations.count} combinations are more than --max-combinations ${maxCombinations}; the scenario's ValueConstraintGroups can only be counted by checking each`);
+    if (variations.count > maxCombinations)
+      throw new InputProblem(
+        `${where(0)}: ${variations.count} combinations are more than --max-combinations ${maxCombinations}; the scenario's ValueConstraintGroups can only be counted by checking each`,
+      );
     let discarded = 0n;
     try {
       for (const each of enumerate(variations.count)) if (variations.brokenAt(each)) discarded++;
@@ -156,7 +174,8 @@ async function vary(argv: string[], io: Output, givenLoader: ScenarioTextLoader 
       return EXIT.problems;
     }
     const tally = { discarded };
-    if (!values.quiet && tally.discarded > 0n) io.err(`${tally.discarded} of ${variations.count} combinations break the scenario's ValueConstraintGroups and are discarded`);
+    if (!values.quiet && tally.discarded > 0n)
+      io.err(`${tally.discarded} of ${variations.count} combinations break the scenario's ValueConstraintGroups and are discarded`);
     io.out((variations.count - tally.discarded).toString());
     return EXIT.ok;
   }
@@ -172,9 +191,15 @@ async function vary(argv: string[], io: Output, givenLoader: ScenarioTextLoader 
   };
   const warned = new Set<string>();
   const rebased = async (text: string, outputDirectory: string | undefined): Promise<string> => {
-    const result = await rebasedConcreteText(text, scenarioFolder, outputDirectory === undefined ? undefined : path.resolve(outputDirectory), kindOf);
+    const result = await rebasedConcreteText(
+      text,
+      scenarioFolder,
+      outputDirectory === undefined ? undefined : path.resolve(outputDirectory),
+      kindOf,
+    );
     for (const warning of result.warnings) {
-      if (!values.quiet && !warned.has(warning)) io.err(`${path.relative(base, variations.scenarioPath) || variations.scenarioPath}: warning: ${warning}`);
+      if (!values.quiet && !warned.has(warning))
+        io.err(`${path.relative(base, variations.scenarioPath) || variations.scenarioPath}: warning: ${warning}`);
       warned.add(warning);
     }
     return result.text;
@@ -190,16 +215,26 @@ async function vary(argv: string[], io: Output, givenLoader: ScenarioTextLoader 
     }
   };
   if (index !== undefined) {
-    if (index >= variations.count) throw new InputProblem(`${where(0)}: index ${index} is out of range: the distribution has ${variations.count} combinations (0..${variations.count - 1n})`);
+    if (index >= variations.count)
+      throw new InputProblem(
+        `${where(0)}: index ${index} is out of range: the distribution has ${variations.count} combinations (0..${variations.count - 1n})`,
+      );
     const concrete = concreteOrProblem(variations, index, distributionPath, printProblems);
     if (!concrete) return EXIT.problems;
-    if ('broken' in concrete) throw new InputProblem(`concrete scenario ${index} is discarded: parameter '${concrete.broken.parameter}' = '${concrete.broken.value}' breaks its ValueConstraintGroups`);
+    if ('broken' in concrete)
+      throw new InputProblem(
+        `concrete scenario ${index} is discarded: parameter '${concrete.broken.parameter}' = '${concrete.broken.value}' breaks its ValueConstraintGroups`,
+      );
     if (values.output === undefined) {
       io.out(await rebased(concrete.text, undefined));
-      if (packagedFiles.length > 0 && !values.quiet) io.err(`${path.relative(base, variations.scenarioPath) || variations.scenarioPath}: warning: the scenario names ${packagedFiles.length} file${packagedFiles.length === 1 ? '' : 's'} stored in the package, which standard output cannot carry; write it with -o`);
+      if (packagedFiles.length > 0 && !values.quiet)
+        io.err(
+          `${path.relative(base, variations.scenarioPath) || variations.scenarioPath}: warning: the scenario names ${packagedFiles.length} file${packagedFiles.length === 1 ? '' : 's'} stored in the package, which standard output cannot carry; write it with -o`,
+        );
       return EXIT.ok;
     }
-    if (inputs.some((input) => isSameFile(input, values.output as string))) throw new UsageError(`-o ${values.output} is an input; it is never overwritten`);
+    if (inputs.some((input) => isSameFile(input, values.output as string)))
+      throw new UsageError(`-o ${values.output} is an input; it is never overwritten`);
     const text = await rebased(concrete.text, path.dirname(values.output));
     try {
       await writePackagedBeside(path.dirname(values.output));
@@ -213,7 +248,9 @@ async function vary(argv: string[], io: Output, givenLoader: ScenarioTextLoader 
 
   const outDir = values['out-dir'] as string;
   if (sample === undefined && variations.count > maxCombinations) {
-    throw new InputProblem(`${where(0)}: ${variations.count} combinations are more than --max-combinations ${maxCombinations}; nothing was written (use --sample N, or raise --max-combinations)`);
+    throw new InputProblem(
+      `${where(0)}: ${variations.count} combinations are more than --max-combinations ${maxCombinations}; nothing was written (use --sample N, or raise --max-combinations)`,
+    );
   }
   const chosen = sample === undefined ? enumerate(variations.count) : sampleIndices(variations.count, sample, seed);
   // Every draw is made before anything is written, so a Range that cannot be met leaves no output behind.
@@ -256,7 +293,12 @@ async function vary(argv: string[], io: Output, givenLoader: ScenarioTextLoader 
     }
     written++;
   }
-  if (!values.quiet) io.err(`wrote ${written} concrete scenario${written === 1 ? '' : 's'} to ${outDir}` + (discarded > 0 ? `; ${discarded} discarded by the scenario's ValueConstraintGroups` : '') + (sample !== undefined ? ` (a sample of ${chosen.length} of ${variations.count}, seed ${seed})` : ''));
+  if (!values.quiet)
+    io.err(
+      `wrote ${written} concrete scenario${written === 1 ? '' : 's'} to ${outDir}` +
+        (discarded > 0 ? `; ${discarded} discarded by the scenario's ValueConstraintGroups` : '') +
+        (sample !== undefined ? ` (a sample of ${chosen.length} of ${variations.count}, seed ${seed})` : ''),
+    );
   return EXIT.ok;
 }
 
@@ -266,7 +308,12 @@ function enumerate(count: bigint): bigint[] {
   return all;
 }
 
-function concreteOrProblem(variations: Variations, index: bigint, distributionPath: string, printProblems: (problems: ReturnType<typeof samplingProblem>[]) => void): ReturnType<Variations['concreteAt']> | undefined {
+function concreteOrProblem(
+  variations: Variations,
+  index: bigint,
+  distributionPath: string,
+  printProblems: (problems: ReturnType<typeof samplingProblem>[]) => void,
+): ReturnType<Variations['concreteAt']> | undefined {
   try {
     return variations.concreteAt(index);
   } catch (error) {

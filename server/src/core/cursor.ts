@@ -43,7 +43,10 @@ export function attributeAt(document: XmlDocument, offset: number): { element: X
   const element = elementAt(document, offset);
   if (!element || offset > element.startTagEnd) return undefined;
   for (const candidate of element.attributes) {
-    if ((offset >= candidate.nameStart && offset <= candidate.nameEnd) || (offset >= candidate.valueStart && offset <= candidate.valueEnd)) {
+    if (
+      (offset >= candidate.nameStart && offset <= candidate.nameEnd) ||
+      (offset >= candidate.valueStart && offset <= candidate.valueEnd)
+    ) {
       return { element, attribute: candidate };
     }
   }
@@ -87,14 +90,23 @@ export function elementNameContextAt(document: XmlDocument, offset: number): { s
 }
 
 /** The start tag the cursor stands in, outside any attribute value: for attribute-name completion. */
-export function attributeNameContextAt(document: XmlDocument, offset: number): { tagStart: number; element: string; written: string[]; start: number; prefix: string } | undefined {
+export function attributeNameContextAt(
+  document: XmlDocument,
+  offset: number,
+): { tagStart: number; element: string; written: string[]; start: number; prefix: string } | undefined {
   const element = startTagAt(document, offset);
   if (!element || offset <= element.nameEnd || valueContextAt(document, offset)) return undefined;
   const text = document.text;
   let start = offset;
   while (start > 0 && /[-\w.:]/.test(text[start - 1])) start--;
   if (!/\s/.test(text[start - 1] ?? '')) return undefined;
-  return { tagStart: element.start, element: element.name, written: element.attributes.map((entry) => entry.name), start, prefix: text.slice(start, offset) };
+  return {
+    tagStart: element.start,
+    element: element.name,
+    written: element.attributes.map((entry) => entry.name),
+    start,
+    prefix: text.slice(start, offset),
+  };
 }
 
 /** The innermost element still open at `start`, where a child typed there goes (a half-typed `<Nam` parses as an element of its own). */

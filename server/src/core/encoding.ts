@@ -58,7 +58,8 @@ function firstInvalidUtf8(bytes: Uint8Array): number {
     if (length === 0 || i + length > bytes.length) return i;
     for (let k = 1; k < length; k++) if ((bytes[i + k] & 0xc0) !== 0x80) return i;
     const second = bytes[i + 1];
-    if ((b === 0xe0 && second < 0xa0) || (b === 0xed && second > 0x9f) || (b === 0xf0 && second < 0x90) || (b === 0xf4 && second > 0x8f)) return i;
+    if ((b === 0xe0 && second < 0xa0) || (b === 0xed && second > 0x9f) || (b === 0xf0 && second < 0x90) || (b === 0xf4 && second > 0x8f))
+      return i;
     i += length;
   }
   return -1;
@@ -86,13 +87,22 @@ export function decodeScenario(bytes: Uint8Array): string {
   if (declared === undefined) return decodeUtf8Strict(bytes, 0);
   const key = declared.toLowerCase();
   if (key === 'utf-16' || key === 'utf-16le' || key === 'utf-16be') {
-    throw new DecodeError(`the XML declaration says encoding="${declared}" but the file has no UTF-16 byte-order mark; save it as UTF-8`, 0, 0);
+    throw new DecodeError(
+      `the XML declaration says encoding="${declared}" but the file has no UTF-16 byte-order mark; save it as UTF-8`,
+      0,
+      0,
+    );
   }
   const decoder = DECLARED[key];
   if (!decoder) throw new DecodeError(`the file declares encoding="${declared}", which cannot be read; save it as UTF-8`, 0, 0);
   if (key === 'us-ascii' || key === 'ascii') {
     const high = bytes.findIndex((byte) => byte >= 0x80);
-    if (high >= 0) throw new DecodeError(`byte 0x${bytes[high].toString(16)} at offset ${high} is not ASCII, which the XML declaration promises; save the file as UTF-8`, high, lineOf(bytes, high));
+    if (high >= 0)
+      throw new DecodeError(
+        `byte 0x${bytes[high].toString(16)} at offset ${high} is not ASCII, which the XML declaration promises; save the file as UTF-8`,
+        high,
+        lineOf(bytes, high),
+      );
   }
   return key === 'utf-8' || key === 'utf8' ? decodeUtf8Strict(bytes, 0) : decodeChecked(bytes, declared, decoder);
 }

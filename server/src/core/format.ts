@@ -18,9 +18,7 @@ export interface FormatEdit {
   newText: string;
 }
 
-export type FormatResult =
-  | { ok: true; edits: FormatEdit[]; text: string }
-  | { ok: false; message: string; line: number; column: number };
+export type FormatResult = { ok: true; edits: FormatEdit[]; text: string } | { ok: false; message: string; line: number; column: number };
 
 /** A node of element content that the element tree does not hold: comment, CDATA, PI, DOCTYPE or text. */
 interface Misc {
@@ -107,7 +105,12 @@ function endTagStart(text: string, element: XmlElement): number {
  * refused. With `range` (offsets), only white space overlapping those lines is changed. A parse of
  * `text` that the caller already holds may be given, to save parsing it again.
  */
-export function formatXml(text: string, options: FormatOptions, range?: { start: number; end: number }, parsed?: XmlDocument): FormatResult {
+export function formatXml(
+  text: string,
+  options: FormatOptions,
+  range?: { start: number; end: number },
+  parsed?: XmlDocument,
+): FormatResult {
   const document = parsed && parsed.text === text ? parsed : parseXml(text);
   if (!isWellFormed(document) || !document.root) {
     const problem = document.problems.find((candidate) => candidate.severity === 'error');
@@ -163,8 +166,10 @@ export function formatXml(text: string, options: FormatOptions, range?: { start:
   const startTag = (element: XmlElement, depth: number) => {
     const closeStart = element.selfClosing ? element.startTagEnd - 2 : element.startTagEnd - 1;
     const attributes = element.attributes;
-    let width = indent(depth).length + (options.insertSpaces ? 0 : depth * (unitWidth - 1)) + 1 + element.name.length + (element.selfClosing ? 2 : 1);
-    for (const attribute of attributes) width += 1 + attribute.nameEnd - attribute.nameStart + 1 + attribute.valueEnd - attribute.valueStart + 2;
+    let width =
+      indent(depth).length + (options.insertSpaces ? 0 : depth * (unitWidth - 1)) + 1 + element.name.length + (element.selfClosing ? 2 : 1);
+    for (const attribute of attributes)
+      width += 1 + attribute.nameEnd - attribute.nameStart + 1 + attribute.valueEnd - attribute.valueStart + 2;
     const separator = attributes.length >= 2 && width > options.maxLineWidth ? lineBreak(depth + 1) : ' ';
     let previous = element.nameEnd;
     for (const attribute of attributes) {

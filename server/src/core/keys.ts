@@ -127,7 +127,11 @@ export function suggestKey(key: string, targets: OverridableAttribute[]): string
   const meant = best.target;
   // As qualified as the key written (the writer chose that level), and never reaching another attribute.
   const unambiguous = keyForms(meant).filter((form) => targets.every((other) => other === meant || !keyMatches(form, other)));
-  return unambiguous.find((form) => form.split('.').length >= parts.length) ?? unambiguous[unambiguous.length - 1] ?? shortestUnambiguousKey(meant, targets);
+  return (
+    unambiguous.find((form) => form.split('.').length >= parts.length) ??
+    unambiguous[unambiguous.length - 1] ??
+    shortestUnambiguousKey(meant, targets)
+  );
 }
 
 /** Decides which parameter sets which attribute: the longest matching key wins, then the last one written. */

@@ -154,7 +154,11 @@ function carryModel(previous: ScenarioModel, edit: ValueEdit, document: XmlDocum
   const attributeOf = (element: XmlElement, attr: XmlAttribute | undefined) => (attr ? edit.attributeOf(element, attr) : undefined);
   const edited = edit.previousElement;
   const carryReference = (reference: ScenarioReferenceInfo, outerGroup: ManeuverGroupInfo | undefined): ScenarioReferenceInfo => {
-    const touched = reference.element === edited || reference.groupReferences.some((group) => group.element === edited || group.parameters.some((parameter) => parameter.element === edited));
+    const touched =
+      reference.element === edited ||
+      reference.groupReferences.some(
+        (group) => group.element === edited || group.parameters.some((parameter) => parameter.element === edited),
+      );
     if (touched) return readReference(elementOf(reference.element), outerGroup);
     return {
       fileName: reference.fileName,
@@ -196,16 +200,27 @@ function carryModel(previous: ScenarioModel, edit: ValueEdit, document: XmlDocum
   return {
     document,
     groups: [...groups.values()],
-    references: previous.references.map((reference) => references.get(reference) ?? carryReference(reference, reference.outerGroup && groups.get(reference.outerGroup))),
+    references: previous.references.map(
+      (reference) => references.get(reference) ?? carryReference(reference, reference.outerGroup && groups.get(reference.outerGroup)),
+    ),
     entities: previous.entities.map((entity) => {
       const nameAttribute = attributeOf(entity.element, entity.nameAttribute);
-      return { name: entity.element === edited ? (nameAttribute?.value ?? '') : entity.name, element: elementOf(entity.element), nameAttribute };
+      return {
+        name: entity.element === edited ? (nameAttribute?.value ?? '') : entity.name,
+        element: elementOf(entity.element),
+        nameAttribute,
+      };
     }),
     declarations: previous.declarations.map((declaration) => {
       const element = elementOf(declaration.element);
       const declared = attributeOf(declaration.element, declaration.attribute) as XmlAttribute;
       if (declaration.element === edited) return { element, attribute: declared, names: parseParameterAttributeNames(element, declared) };
-      const names = declaration.names.map((name) => ({ name: name.name, start: edit.shift(name.start), end: edit.shift(name.end), target: attributeOf(declaration.element, name.target) }));
+      const names = declaration.names.map((name) => ({
+        name: name.name,
+        start: edit.shift(name.start),
+        end: edit.shift(name.end),
+        target: attributeOf(declaration.element, name.target),
+      }));
       return { element, attribute: declared, names };
     }),
     structure: previous.structure.map(elementOf),

@@ -23,7 +23,10 @@ function placementOn(road: Road): EgoPlacement | undefined {
     if (section.length <= 0) continue;
     // A little way into the section (at most 10 m), so the car stands wholly on it where it can.
     const s = Math.round((section.s + Math.min(10, section.length / 2)) * 100) / 100;
-    const lane = section.lanes.filter(isDrivingLane).sort(byPreference).find((candidate) => laneWidth(section, candidate, s) >= MIN_LANE_WIDTH);
+    const lane = section.lanes
+      .filter(isDrivingLane)
+      .sort(byPreference)
+      .find((candidate) => laneWidth(section, candidate, s) >= MIN_LANE_WIDTH);
     if (lane) return { roadId: road.id, laneId: lane.id, s };
   }
   return undefined;

@@ -6,7 +6,17 @@ import { declareUtf8 } from './encoding';
 import { buildModel } from './model';
 import { Problem, ProblemCode, ZERO_RANGE } from './problems';
 import { decodeScenario } from './encoding';
-import { DEFAULT_LIMITS, diskRef, displayRef, Limits, nodeFileSystem, normalizeEntryName, refId, ScenarioStore, SourceRef } from './sources';
+import {
+  DEFAULT_LIMITS,
+  diskRef,
+  displayRef,
+  Limits,
+  nodeFileSystem,
+  normalizeEntryName,
+  refId,
+  ScenarioStore,
+  SourceRef,
+} from './sources';
 import { isWellFormed, parseXml } from './xml';
 
 export interface PackResult {
@@ -94,13 +104,25 @@ async function carryIntoPackage(place: PackPlace, resolved: ResolvedPath): Promi
  * onto the files carried into the package; unchanged when no path needs it. Warns at each path that
  * reaches outside the package.
  */
-async function rebasedForPackage(place: PackPlace, ref: SourceRef, bytes: Uint8Array, text: string, document: ReturnType<typeof parseXml>, entryName: string): Promise<Uint8Array> {
+async function rebasedForPackage(
+  place: PackPlace,
+  ref: SourceRef,
+  bytes: Uint8Array,
+  text: string,
+  document: ReturnType<typeof parseXml>,
+  entryName: string,
+): Promise<Uint8Array> {
   if (ref.entries.length > 0) return bytes;
   const outputDirectory = path.dirname(path.resolve(place.options.outputPath ?? 'package.mosc'));
   const entryFolder = path.posix.dirname(entryName);
   const carried = new Map<ResolvedPath, string>();
   if (place.options.selfContained) {
-    const probe = await rebasePaths({ document, baseOf: () => path.dirname(ref.disk), outputDirectory, kindOf: (diskPath) => nodeFileSystem.kind(diskPath) });
+    const probe = await rebasePaths({
+      document,
+      baseOf: () => path.dirname(ref.disk),
+      outputDirectory,
+      kindOf: (diskPath) => nodeFileSystem.kind(diskPath),
+    });
     for (const resolved of probe.resolved) {
       if (resolved.viaParameter) continue;
       const name = await carryIntoPackage(place, resolved);
@@ -127,7 +149,9 @@ async function rebasedForPackage(place: PackPlace, ref: SourceRef, bytes: Uint8A
       code: 'file-path',
       message: `the package reaches ${resolved.kind === 'directory' ? 'the folder' : 'the file'} ${resolved.disk} outside itself${resolved.rewritten !== undefined ? ` (written '${resolved.rewritten}', relative to the package's folder)` : ''}; the package does not run without it`,
       // A path naming a parameter is never rewritten (SPEC 11.6), so not carried either.
-      hint: resolved.viaParameter ? `'${attribute.value}' names a parameter, so it is left as written; write the path itself to have it rebased or carried` : 'pack with --self-contained to store it inside the package',
+      hint: resolved.viaParameter
+        ? `'${attribute.value}' names a parameter, so it is left as written; write the path itself to have it rebased or carried`
+        : 'pack with --self-contained to store it inside the package',
     });
   }
   if (rebase.edits.length === 0) return bytes;
@@ -137,7 +161,13 @@ async function rebasedForPackage(place: PackPlace, ref: SourceRef, bytes: Uint8A
 // A fixed entry time makes two packings of the same files byte-identical.
 const ENTRY_DATE = new Date(Date.UTC(2000, 0, 1, 0, 0, 0));
 
-function fileProblem(source: SourceRef, code: ProblemCode, message: string, hint?: string, severity: Problem['severity'] = 'error'): Problem {
+function fileProblem(
+  source: SourceRef,
+  code: ProblemCode,
+  message: string,
+  hint?: string,
+  severity: Problem['severity'] = 'error',
+): Problem {
   return { source, range: ZERO_RANGE, severity, code, message, hint };
 }
 
@@ -156,7 +186,13 @@ function checkXml(ref: SourceRef, bytes: Uint8Array, problems: Problem[], base: 
   if (text === undefined) return;
   const document = parseXml(text);
   for (const problem of document.problems) {
-    problems.push({ source: ref, range: document.lines.range(problem.start, problem.end), severity: problem.severity, code: 'xml', message: problem.message });
+    problems.push({
+      source: ref,
+      range: document.lines.range(problem.start, problem.end),
+      severity: problem.severity,
+      code: 'xml',
+      message: problem.message,
+    });
   }
 }
 
@@ -176,12 +212,26 @@ export async function packFiles(inputs: string[], limits: Partial<Limits> = {}, 
     const name = path.basename(input);
     const lower = name.toLowerCase();
     if (!lower.endsWith('.xosc') && !lower.endsWith('.mosc')) {
-      problems.push(fileProblem(ref, 'invalid-reference', `'${name}' is neither a .xosc scenario nor a .mosc package`, 'pack only .xosc and .mosc files'));
+      problems.push(
+        fileProblem(
+          ref,
+          'invalid-reference',
+          `'${name}' is neither a .xosc scenario nor a .mosc package`,
+          'pack only .xosc and .mosc files',
+        ),
+      );
       continue;
     }
     const previous = seen.get(name);
     if (previous) {
-      problems.push(fileProblem(ref, 'invalid-reference', `two inputs are named '${name}' (the other is ${previous}); names must be unique in a package`, 'rename one of them'));
+      problems.push(
+        fileProblem(
+          ref,
+          'invalid-reference',
+          `two inputs are named '${name}' (the other is ${previous}); names must be unique in a package`,
+          'rename one of them',
+        ),
+      );
       continue;
     }
     seen.set(name, input);
@@ -205,7 +255,8 @@ export async function packFiles(inputs: string[], limits: Partial<Limits> = {}, 
       checkXml(ref, bytes, problems, options.workingDirectory);
       const text = decodeOrReport(ref, bytes, [], options.workingDirectory);
       const document = text === undefined ? undefined : parseXml(text);
-      if (text !== undefined && document && isWellFormed(document)) bytes = await rebasedForPackage(place, ref, bytes, text, document, name);
+      if (text !== undefined && document && isWellFormed(document))
+        bytes = await rebasedForPackage(place, ref, bytes, text, document, name);
     }
     zip.file(name, bytes, { date: ENTRY_DATE, createFolders: false });
     entries.push(name);
@@ -216,7 +267,9 @@ export async function packFiles(inputs: string[], limits: Partial<Limits> = {}, 
       fileProblem(
         diskRef(inputs[0] ?? '.'),
         'invalid-reference',
-        mains.length === 0 ? 'a package needs exactly one input named main.xosc; none was given' : `a package needs exactly one main.xosc; ${mains.length} were given`,
+        mains.length === 0
+          ? 'a package needs exactly one input named main.xosc; none was given'
+          : `a package needs exactly one main.xosc; ${mains.length} were given`,
         'name the modular main file main.xosc',
       ),
     );
@@ -247,7 +300,14 @@ async function packFolderInto(
 ): Promise<{ zip: JSZip; entries: string[] } | undefined> {
   const main = diskRef(path.join(folder, 'main.xosc'));
   if ((await store.kindOf(main.disk)) !== 'file') {
-    problems.push(fileProblem(diskRef(folder), 'io', `${store.display(diskRef(folder))} holds no main.xosc, so it is not an unpacked package`, 'a package folder must hold main.xosc'));
+    problems.push(
+      fileProblem(
+        diskRef(folder),
+        'io',
+        `${store.display(diskRef(folder))} holds no main.xosc, so it is not an unpacked package`,
+        'a package folder must hold main.xosc',
+      ),
+    );
     return undefined;
   }
   const zip = new JSZip();
@@ -257,7 +317,10 @@ async function packFolderInto(
   const add = (name: string, bytes: Uint8Array, origin: string) => {
     const existing = added.get(name);
     if (existing !== undefined) {
-      if (existing !== origin) problems.push(fileProblem(main, 'invalid-reference', `two different files would be stored as '${name}': ${existing} and ${origin}`));
+      if (existing !== origin)
+        problems.push(
+          fileProblem(main, 'invalid-reference', `two different files would be stored as '${name}': ${existing} and ${origin}`),
+        );
       return;
     }
     added.set(name, origin);
@@ -284,7 +347,9 @@ async function packFolderInto(
     add(entryName, await rebasedForPackage(place, ref, bytes, text, document, entryName), refId(ref));
     const model = buildModel(document);
     for (const reference of model.references) {
-      const range = reference.fileAttribute ? document.lines.range(reference.fileAttribute.valueStart, reference.fileAttribute.valueEnd) : ZERO_RANGE;
+      const range = reference.fileAttribute
+        ? document.lines.range(reference.fileAttribute.valueStart, reference.fileAttribute.valueEnd)
+        : ZERO_RANGE;
       const report = (code: ProblemCode, message: string, hint?: string, severity: Problem['severity'] = 'error') =>
         problems.push({ source: ref, range, severity, code, message, hint });
       const resolution = await store.resolve(reference.fileName, ref);
@@ -296,11 +361,21 @@ async function packFolderInto(
         continue;
       }
       if (resolution.kind === 'invalid' || resolution.kind === 'unreadable' || name === undefined) {
-        report(resolution.kind === 'unreadable' ? 'bad-package' : 'invalid-reference', resolution.kind === 'invalid' || resolution.kind === 'unreadable' ? resolution.message : `'${reference.fileName}' points outside the package`);
+        report(
+          resolution.kind === 'unreadable' ? 'bad-package' : 'invalid-reference',
+          resolution.kind === 'invalid' || resolution.kind === 'unreadable'
+            ? resolution.message
+            : `'${reference.fileName}' points outside the package`,
+        );
         continue;
       }
       if (resolution.via === 'scenarioPath' && !options.includeScenarioPath) {
-        report('missing-file', `'${reference.fileName}' was found through SCENARIO_PATH and is left out of the package`, 'pass --include-scenario-path to store it too', 'information');
+        report(
+          'missing-file',
+          `'${reference.fileName}' was found through SCENARIO_PATH and is left out of the package`,
+          'pass --include-scenario-path to store it too',
+          'information',
+        );
         continue;
       }
       if (resolution.kind === 'scenario') {
@@ -310,12 +385,20 @@ async function packFolderInto(
       }
       const packageName = resolution.fallbackFrom ? `${name.slice(0, -'.xosc'.length)}.mosc` : name;
       if (resolution.fallbackFrom) {
-        report('xosc-fallback', `'${resolution.fallbackFrom}' does not exist; the package '${packageName}' is stored for it`, `write scenarioFileName="${packageName}"`, 'warning');
+        report(
+          'xosc-fallback',
+          `'${resolution.fallbackFrom}' does not exist; the package '${packageName}' is stored for it`,
+          `write scenarioFileName="${packageName}"`,
+          'warning',
+        );
       }
       if (resolution.folder && resolution.packageRef.entries.length === 0) {
         const nestedFolder = resolution.packageRef.disk;
         if (stack.includes(nestedFolder) || nestedFolder === folder) {
-          report('cycle', `package cycle: ${[...stack, folder, nestedFolder].map((entry) => (store.workingDirectory === undefined ? entry : path.relative(store.workingDirectory, entry) || '.')).join(' -> ')}`);
+          report(
+            'cycle',
+            `package cycle: ${[...stack, folder, nestedFolder].map((entry) => (store.workingDirectory === undefined ? entry : path.relative(store.workingDirectory, entry) || '.')).join(' -> ')}`,
+          );
           continue;
         }
         const nested = await packFolderInto(nestedFolder, store, options, problems, [...stack, folder], inputs);

@@ -11,5 +11,11 @@ export function splitDiskPath(diskPath: string): { root: string; names: string[]
   const resolved = paths.resolve(diskPath);
   const root = paths.parse(resolved).root;
   const separators = paths.sep === '\\' ? /[\\/]/ : /\//;
-  return { root, names: resolved.slice(root.length).split(separators).filter((name) => name.length > 0) };
+  return {
+    root,
+    names: resolved
+      .slice(root.length)
+      .split(separators)
+      .filter((name) => name.length > 0),
+  };
 }

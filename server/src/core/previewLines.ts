@@ -13,7 +13,13 @@ interface ReplacedRegion {
 function replacedRegions(insertions: Insertion[], additions: Addition[]): ReplacedRegion[] {
   const regions = new Map<number, ReplacedRegion>();
   // Text carried into the root (SPEC 11.5) replaces a region of its own; its lines show where it starts.
-  const carried: ReplacedRegion[] = additions.map((addition) => ({ inStart: addition.replacedStart, inEnd: addition.replacedEnd, outStart: addition.start, outEnd: addition.end, insertions: [] }));
+  const carried: ReplacedRegion[] = additions.map((addition) => ({
+    inStart: addition.replacedStart,
+    inEnd: addition.replacedEnd,
+    outStart: addition.start,
+    outEnd: addition.end,
+    insertions: [],
+  }));
   for (const insertion of insertions) {
     const region = regions.get(insertion.replacedStart);
     if (region) {
@@ -21,7 +27,13 @@ function replacedRegions(insertions: Insertion[], additions: Addition[]): Replac
       region.outEnd = Math.max(region.outEnd, insertion.end);
       region.insertions.push(insertion);
     } else {
-      regions.set(insertion.replacedStart, { inStart: insertion.replacedStart, inEnd: insertion.replacedEnd, outStart: insertion.start, outEnd: insertion.end, insertions: [insertion] });
+      regions.set(insertion.replacedStart, {
+        inStart: insertion.replacedStart,
+        inEnd: insertion.replacedEnd,
+        outStart: insertion.start,
+        outEnd: insertion.end,
+        insertions: [insertion],
+      });
     }
   }
   return [...carried, ...regions.values()].sort((a, b) => a.inStart - b.inStart);
@@ -77,7 +89,10 @@ export function previewLineMap(source: FlatSource): LineSegment[] {
     }
     const region = regions[next];
     if (region && lineOf(region.inStart) <= line) {
-      const insertion = region.insertions.find((candidate) => lineOf(candidate.reference.element.start) <= line && line <= lineOf(candidate.reference.element.end)) ?? region.insertions[0];
+      const insertion =
+        region.insertions.find(
+          (candidate) => lineOf(candidate.reference.element.start) <= line && line <= lineOf(candidate.reference.element.end),
+        ) ?? region.insertions[0];
       lines.push(previewLineAt(insertion?.start ?? region.outStart));
     } else {
       lines.push(previewLineAt(inLines.lineStart(line) + shift));

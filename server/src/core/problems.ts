@@ -200,7 +200,10 @@ export function formatProblem(problem: Problem, base?: string): string {
   const where = `${displayRef(problem.source, base)}:${problem.range.start.line + 1}:${problem.range.start.character + 1}`;
   const hint = problem.hint ? `\n  hint: ${problem.hint}` : '';
   const related = (problem.related ?? [])
-    .map((item) => `\n  ${displayRef(item.source, base)}:${item.range.start.line + 1}:${item.range.start.character + 1}: note: ${item.message}`)
+    .map(
+      (item) =>
+        `\n  ${displayRef(item.source, base)}:${item.range.start.line + 1}:${item.range.start.character + 1}: note: ${item.message}`,
+    )
     .join('');
   return `${where}: ${problem.severity === 'information' || problem.severity === 'hint' ? 'note' : problem.severity}: ${problem.message}${hint}${related}`;
 }

@@ -39,7 +39,9 @@ export function scenarioFolderOf(ref: SourceRef): string {
 
 /** Road folders (a setting, a request's field) as absolute paths: a relative one starts at `base` (the workspace folder, or the working directory). */
 export function roadFolders(roadPath: readonly unknown[] | undefined, base: string): string[] {
-  return (roadPath ?? []).filter((folder): folder is string => typeof folder === 'string' && folder.trim() !== '').map((folder) => path.resolve(base, folder));
+  return (roadPath ?? [])
+    .filter((folder): folder is string => typeof folder === 'string' && folder.trim() !== '')
+    .map((folder) => path.resolve(base, folder));
 }
 
 /**
@@ -57,7 +59,12 @@ export function roadFileCandidates(filepath: string, scenarioFolder: string, roa
 }
 
 /** The road file a scenario in `scenarioFolder` uses: the first candidate that is a regular file. */
-export async function resolveRoadFile(host: FileSystemHost, filepath: string, scenarioFolder: string, roadFolderList: readonly string[]): Promise<RoadFileResolution> {
+export async function resolveRoadFile(
+  host: FileSystemHost,
+  filepath: string,
+  scenarioFolder: string,
+  roadFolderList: readonly string[],
+): Promise<RoadFileResolution> {
   const candidates = roadFileCandidates(filepath, scenarioFolder, roadFolderList);
   for (const candidate of candidates) if ((await host.kind(candidate)) === 'file') return { filepath, resolved: candidate, candidates };
   return { filepath, candidates };

@@ -38,7 +38,8 @@ export const QC_RULE_DESCRIPTIONS: Record<(typeof QC)[keyof typeof QC], string> 
   [QC.storyboardReference]: 'Every storyboard element reference resolves to a storyboard element.',
   [QC.uniqueNames]: 'The names of the elements on one level (the children of one element) are unique.',
   [QC.catalogParameters]: 'A catalog entry declares every parameter it uses.',
-  [QC.signalId]: 'The signal a TrafficSignalStateAction names exists in the road network (or a TrafficSignalController of the scenario sets it).',
+  [QC.signalId]:
+    'The signal a TrafficSignalStateAction names exists in the road network (or a TrafficSignalController of the scenario sets it).',
   [QC.signalController]: 'A trafficSignalControllerRef names a TrafficSignalController of the scenario.',
   [QC.privateActionActor]: 'A ManeuverGroup whose maneuvers hold private actions names actors for them.',
   [QC.allowedOperators]: 'Expressions use only the operators and functions the standard defines.',
@@ -73,15 +74,17 @@ export const RULES: Record<ProblemCode, Rule> = {
   'schema-order': { description: 'Child elements stand in the order the ASAM schema gives.', qcRule: QC.validSchema },
   'schema-cardinality': { description: 'Child elements occur as often as the ASAM schema allows.', qcRule: QC.validSchema },
   'schema-value': { description: "An attribute's value fits its ASAM schema type.", qcRule: QC.validSchema },
-  'schema-deprecated': { description: 'No deprecated element, attribute or value is used (a warning, as in both official checkers); the replacement is named.' },
-  'schema-version': { description: "The FileHeader names an OpenSCENARIO version the project knows." },
+  'schema-deprecated': {
+    description: 'No deprecated element, attribute or value is used (a warning, as in both official checkers); the replacement is named.',
+  },
+  'schema-version': { description: 'The FileHeader names an OpenSCENARIO version the project knows.' },
   'too-large': { description: 'A file or a flattened result stays within the size bounds.' },
   'too-deep': { description: 'A chain of references stays within the depth bound.' },
   'undeclared-parameter': { description: 'A $name names a declared parameter.' },
   'unused-parameter': { description: 'A declared parameter is used.' },
   'duplicate-parameter': { description: 'A parameter is declared once in its scope.' },
-  'expression-syntax': { description: 'A ${...} expression follows the standard\'s grammar.' },
-  'type-mismatch': { description: "A value converts to the type that uses it." },
+  'expression-syntax': { description: "A ${...} expression follows the standard's grammar." },
+  'type-mismatch': { description: 'A value converts to the type that uses it.' },
   'division-by-zero': { description: 'An expression does not divide by zero.' },
   'nonstandard-expression': { description: 'An expression uses only what the standard defines.', qcRule: QC.allowedOperators },
   'catalog-directory': { description: 'A CatalogLocations directory exists.' },
@@ -90,11 +93,23 @@ export const RULES: Record<ProblemCode, Rule> = {
   'unknown-assigned-parameter': { description: 'A ParameterAssignment names a parameter the catalog entry declares.' },
   'unknown-storyboard-element': { description: 'A storyboardElementRef names a storyboard element.', qcRule: QC.storyboardReference },
   'ambiguous-reference': { description: 'A reference resolves to exactly one element.', qcRule: QC.uniqueEntityReferences },
-  'undeclared-variable': { description: 'A variableRef names a declared variable (or a parameter, as ASAM QC accepts); a variable of a catalog entry is declared by each scenario that references the entry.', qcRule: QC.variableReference },
+  'undeclared-variable': {
+    description:
+      'A variableRef names a declared variable (or a parameter, as ASAM QC accepts); a variable of a catalog entry is declared by each scenario that references the entry.',
+    qcRule: QC.variableReference,
+  },
   'undeclared-catalog-parameter': { description: 'A catalog entry declares every parameter it uses.', qcRule: QC.catalogParameters },
-  'duplicate-name': { description: 'The children of one element have unique names (Events of a Maneuver, Acts of a Story, entities, ...).', qcRule: QC.uniqueNames },
-  'duplicate-catalog-entry': { description: 'The entries of a catalog have unique names, so that a CatalogReference names exactly one.', qcRule: QC.uniqueEntityReferences },
-  'value-constraint': { description: "A parameter's value satisfies one of its declaration's ConstraintGroups (all the ValueConstraints of the group)." },
+  'duplicate-name': {
+    description: 'The children of one element have unique names (Events of a Maneuver, Acts of a Story, entities, ...).',
+    qcRule: QC.uniqueNames,
+  },
+  'duplicate-catalog-entry': {
+    description: 'The entries of a catalog have unique names, so that a CatalogReference names exactly one.',
+    qcRule: QC.uniqueEntityReferences,
+  },
+  'value-constraint': {
+    description: "A parameter's value satisfies one of its declaration's ConstraintGroups (all the ValueConstraints of the group).",
+  },
   'key-mixed-defaults': { description: 'The attributes one key sets share one default.' },
   'parameter-conflict': { description: "A carried declaration agrees with the main file's declaration of the same name (SPEC 11)." },
   'catalog-location-conflict': { description: "A carried catalog location agrees with the main file's (SPEC 11)." },
@@ -104,13 +119,28 @@ export const RULES: Record<ProblemCode, Rule> = {
   'simulator-value': { description: 'A value is the same in the standard and in the selected simulator.' },
   overflow: { description: "A number stays within its type's range (IEEE double, int, unsignedInt, unsignedShort)." },
   'file-path': { description: 'A file path of a written scenario names, from where it is written, the file its source named (SPEC 11.6).' },
-  'unknown-traffic-signal': { description: 'A TrafficSignalStateAction names a signal of the road network or of the scenario\'s signal controllers.', qcRule: QC.signalId },
-  'unknown-traffic-signal-controller': { description: 'A trafficSignalControllerRef names a TrafficSignalController of the scenario.', qcRule: QC.signalController },
-  'no-actor': { description: 'A ManeuverGroup with private actions names an actor (an EntityRef, or selectTriggeringEntities).', qcRule: QC.privateActionActor },
+  'unknown-traffic-signal': {
+    description: "A TrafficSignalStateAction names a signal of the road network or of the scenario's signal controllers.",
+    qcRule: QC.signalId,
+  },
+  'unknown-traffic-signal-controller': {
+    description: 'A trafficSignalControllerRef names a TrafficSignalController of the scenario.',
+    qcRule: QC.signalController,
+  },
+  'no-actor': {
+    description: 'A ManeuverGroup with private actions names an actor (an EntityRef, or selectTriggeringEntities).',
+    qcRule: QC.privateActionActor,
+  },
   'negative-transition-time': { description: 'A LightStateAction transitionTime is not negative.', qcRule: QC.transitionTime },
-  'non-positive-phase-duration': { description: 'A Phase duration is positive (zero: a warning, within the standard\'s range).', qcRule: QC.phaseDuration },
+  'non-positive-phase-duration': {
+    description: "A Phase duration is positive (zero: a warning, within the standard's range).",
+    qcRule: QC.phaseDuration,
+  },
   'out-of-range': { description: 'A value lies within the range the standard gives for its attribute (core/semantics/ranges.ts).' },
-  distribution: { description: 'A ParameterValueDistribution expands: its ScenarioFile resolves, its values fit their parameters, its ranges and steps make sense.' },
+  distribution: {
+    description:
+      'A ParameterValueDistribution expands: its ScenarioFile resolves, its values fit their parameters, its ranges and steps make sense.',
+  },
   'unknown-distribution-parameter': { description: "A distribution's parameterName is a parameter its ScenarioFile declares at its root." },
 };
 
@@ -132,5 +162,7 @@ export function ruleHelpUri(code: ProblemCode): string | undefined {
 
 /** The description of a rule id as `ruleIdOf` gives it. */
 export function ruleDescription(ruleId: string, code: ProblemCode): string {
-  return Object.hasOwn(QC_RULE_DESCRIPTIONS, ruleId) ? QC_RULE_DESCRIPTIONS[ruleId as keyof typeof QC_RULE_DESCRIPTIONS] : RULES[code].description;
+  return Object.hasOwn(QC_RULE_DESCRIPTIONS, ruleId)
+    ? QC_RULE_DESCRIPTIONS[ruleId as keyof typeof QC_RULE_DESCRIPTIONS]
+    : RULES[code].description;
 }

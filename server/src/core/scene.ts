@@ -90,7 +90,8 @@ class Reader {
     const result = this.evaluator.attributeValue(element, found);
     if (!result.ok) throw new Error(`${element.name} ${name}="${found.value}": ${result.errors[0]?.message ?? 'cannot be evaluated'}`);
     const parsed = typeof result.value === 'number' ? result.value : Number(result.value);
-    if (String(result.value).trim() === '' || !Number.isFinite(parsed)) throw new Error(`${element.name} ${name}="${found.value}" is not a number`);
+    if (String(result.value).trim() === '' || !Number.isFinite(parsed))
+      throw new Error(`${element.name} ${name}="${found.value}" is not a number`);
     return parsed;
   }
 }
@@ -144,8 +145,12 @@ function routeOf(reader: Reader, routeRef: XmlElement, semantics: DocumentSemant
   const resolution = semantics ? catalogEntryFor(semantics, reference) : undefined;
   const named = `${attributeValue(reference, 'catalogName') ?? '?'}/${attributeValue(reference, 'entryName') ?? '?'}`;
   if (!semantics || !resolution?.entry) throw new Error(`the route ${named} is not found in the catalogs`);
-  if (resolution.entry.element.name !== 'Route') throw new Error(`the catalog entry ${named} is a ${resolution.entry.element.name}, not a Route`);
-  return { route: resolution.entry.element, reader: new Reader(new Evaluator(resolution.entry.file.model, assignmentsOf(resolution.reference, semantics.evaluator))) };
+  if (resolution.entry.element.name !== 'Route')
+    throw new Error(`the catalog entry ${named} is a ${resolution.entry.element.name}, not a Route`);
+  return {
+    route: resolution.entry.element,
+    reader: new Reader(new Evaluator(resolution.entry.file.model, assignmentsOf(resolution.reference, semantics.evaluator))),
+  };
 }
 
 /** A waypoint on a road and the direction the route leaves it in (+1 along the reference line). */
@@ -158,7 +163,10 @@ interface RouteStop {
 function routeStops(reader: Reader, route: XmlElement, network: RoadNetwork | undefined): RouteStop[] {
   const stops = children(route, 'Waypoint').map((waypoint): RouteStop => {
     const where = path(waypoint, 'Position')?.children[0];
-    if (where?.name !== 'LanePosition' && where?.name !== 'RoadPosition') throw new Error(`a waypoint of route ${attributeValue(route, 'name') ?? ''} is a ${where?.name ?? 'empty Position'}; only LanePosition and RoadPosition waypoints are followed`);
+    if (where?.name !== 'LanePosition' && where?.name !== 'RoadPosition')
+      throw new Error(
+        `a waypoint of route ${attributeValue(route, 'name') ?? ''} is a ${where?.name ?? 'empty Position'}; only LanePosition and RoadPosition waypoints are followed`,
+      );
     const road = roadOf(network, reader.text(where, 'roadId'));
     // As esmini's first waypoint (RoadManager.cpp, Route::AddWaypoint, 3.6.0): the route leaves it in the lane's driving direction (right-hand traffic).
     const side = reader.number(where, where.name === 'LanePosition' ? 'laneId' : 't');
@@ -182,7 +190,10 @@ function alongRoute(stops: RouteStop[], pathS: number): { road: Road; s: number 
     const end = next?.road === stop.road ? next.s : stop.direction > 0 ? stop.road.length : 0;
     const length = Math.abs(end - stop.s);
     if (pathS <= start + length + 1e-9) return { road: stop.road, s: stop.s + stop.direction * (pathS - start) };
-    if (next && next.road !== stop.road) throw new Error(`pathS ${pathS} lies past road ${stop.road.id}, ${start + length} m along the route; the roads between its waypoints need routing, which this view does not do`);
+    if (next && next.road !== stop.road)
+      throw new Error(
+        `pathS ${pathS} lies past road ${stop.road.id}, ${start + length} m along the route; the roads between its waypoints need routing, which this view does not do`,
+      );
     start += length;
   }
   throw new Error(`pathS ${pathS} is past the route's end (${start} m)`);
@@ -192,7 +203,8 @@ function onRoute(reader: Reader, kind: XmlElement, network: RoadNetwork | undefi
   const routeRef = child(kind, 'RouteRef');
   const inRoute = child(kind, 'InRoutePosition')?.children[0];
   if (!routeRef || !inRoute) throw new Error('the RoutePosition needs a RouteRef and an InRoutePosition');
-  if (inRoute.name !== 'FromLaneCoordinates' && inRoute.name !== 'FromRoadCoordinates') throw new Error(`${inRoute.name} is not evaluated by this view`);
+  if (inRoute.name !== 'FromLaneCoordinates' && inRoute.name !== 'FromRoadCoordinates')
+    throw new Error(`${inRoute.name} is not evaluated by this view`);
   const route = routeOf(reader, routeRef, semantics);
   const routeName = attributeValue(route.route, 'name') ?? 'route';
   const pathS = reader.number(inRoute, 'pathS');
@@ -200,15 +212,34 @@ function onRoute(reader: Reader, kind: XmlElement, network: RoadNetwork | undefi
   if (inRoute.name === 'FromLaneCoordinates') {
     const laneId = Math.trunc(reader.number(inRoute, 'laneId'));
     const offset = reader.number(inRoute, 'laneOffset', 0);
-    return onLane(reader, kind, road, laneId, s, offset, `RoutePosition ${routeName}, pathS ${pathS}, lane ${laneId} (road ${road.id}, s ${s})`);
+    return onLane(
+      reader,
+      kind,
+      road,
+      laneId,
+      s,
+      offset,
+      `RoutePosition ${routeName}, pathS ${pathS}, lane ${laneId} (road ${road.id}, s ${s})`,
+    );
   }
   // esmini 3.6 reads this t as an integer (ScenarioReader.cpp, strtoi); the standard's double is used here.
   const t = reader.number(inRoute, 't');
   const point = roadPoint(road, s, t);
-  return { x: point.x, y: point.y, hdg: orientedHeading(reader, kind, point.hdg), described: `RoutePosition ${routeName}, pathS ${pathS}, t ${t} (road ${road.id}, s ${s})` };
+  return {
+    x: point.x,
+    y: point.y,
+    hdg: orientedHeading(reader, kind, point.hdg),
+    described: `RoutePosition ${routeName}, pathS ${pathS}, t ${t} (road ${road.id}, s ${s})`,
+  };
 }
 
-function evaluatePosition(reader: Reader, position: XmlElement, network: RoadNetwork | undefined, placed: Map<string, Placed>, semantics: DocumentSemantics | undefined): Placed {
+function evaluatePosition(
+  reader: Reader,
+  position: XmlElement,
+  network: RoadNetwork | undefined,
+  placed: Map<string, Placed>,
+  semantics: DocumentSemantics | undefined,
+): Placed {
   const kind = position.children[0];
   if (!kind) throw new Error('the Position is empty');
   const reference = (): Placed => {
@@ -228,20 +259,38 @@ function evaluatePosition(reader: Reader, position: XmlElement, network: RoadNet
       const laneId = Math.trunc(reader.number(kind, 'laneId'));
       const s = reader.number(kind, 's');
       const offset = reader.number(kind, 'offset', 0);
-      return onLane(reader, kind, road, laneId, s, offset, `LanePosition road ${road.id}, lane ${laneId}, s ${s}${offset ? `, offset ${offset}` : ''}`);
+      return onLane(
+        reader,
+        kind,
+        road,
+        laneId,
+        s,
+        offset,
+        `LanePosition road ${road.id}, lane ${laneId}, s ${s}${offset ? `, offset ${offset}` : ''}`,
+      );
     }
     case 'RoadPosition': {
       const road = roadOf(network, reader.text(kind, 'roadId'));
       const s = reader.number(kind, 's');
       const t = reader.number(kind, 't');
       const point = roadPoint(road, s, t);
-      return { x: point.x, y: point.y, hdg: orientedHeading(reader, kind, point.hdg), described: `RoadPosition road ${road.id}, s ${s}, t ${t}` };
+      return {
+        x: point.x,
+        y: point.y,
+        hdg: orientedHeading(reader, kind, point.hdg),
+        described: `RoadPosition road ${road.id}, s ${s}, t ${t}`,
+      };
     }
     case 'RelativeWorldPosition': {
       const base = reference();
       const dx = reader.number(kind, 'dx');
       const dy = reader.number(kind, 'dy');
-      return { x: base.x + dx, y: base.y + dy, hdg: orientedHeading(reader, kind, base.hdg), described: `RelativeWorldPosition ${reader.text(kind, 'entityRef')} + (${dx}, ${dy})` };
+      return {
+        x: base.x + dx,
+        y: base.y + dy,
+        hdg: orientedHeading(reader, kind, base.hdg),
+        described: `RelativeWorldPosition ${reader.text(kind, 'entityRef')} + (${dx}, ${dy})`,
+      };
     }
     case 'RelativeObjectPosition': {
       const base = reference();
@@ -249,7 +298,12 @@ function evaluatePosition(reader: Reader, position: XmlElement, network: RoadNet
       const dy = reader.number(kind, 'dy');
       const cos = Math.cos(base.hdg);
       const sin = Math.sin(base.hdg);
-      return { x: base.x + dx * cos - dy * sin, y: base.y + dx * sin + dy * cos, hdg: orientedHeading(reader, kind, base.hdg), described: `RelativeObjectPosition ${reader.text(kind, 'entityRef')} + (${dx}, ${dy})` };
+      return {
+        x: base.x + dx * cos - dy * sin,
+        y: base.y + dx * sin + dy * cos,
+        hdg: orientedHeading(reader, kind, base.hdg),
+        described: `RelativeObjectPosition ${reader.text(kind, 'entityRef')} + (${dx}, ${dy})`,
+      };
     }
     case 'RelativeLanePosition': {
       const base = reference();
@@ -262,7 +316,15 @@ function evaluatePosition(reader: Reader, position: XmlElement, network: RoadNet
       const forward = laneId <= 0;
       const target = relativeLaneId(laneId, forward ? dLane : -dLane);
       const s = base.road.s + (forward ? ds : -ds);
-      return onLane(reader, kind, road, target, s, forward ? offset : -offset, `RelativeLanePosition ${reader.text(kind, 'entityRef')}, dLane ${dLane}, ds ${ds}`);
+      return onLane(
+        reader,
+        kind,
+        road,
+        target,
+        s,
+        forward ? offset : -offset,
+        `RelativeLanePosition ${reader.text(kind, 'entityRef')}, dLane ${dLane}, ds ${ds}`,
+      );
     }
     case 'RelativeRoadPosition': {
       const base = reference();
@@ -272,7 +334,12 @@ function evaluatePosition(reader: Reader, position: XmlElement, network: RoadNet
       const { road, s } = base.road;
       const t = laneCenterT(road, laneSectionIndexAt(road, s), base.road.laneId, s, base.road.offset) + dt;
       const point = roadPoint(road, s + ds, t);
-      return { x: point.x, y: point.y, hdg: orientedHeading(reader, kind, point.hdg), described: `RelativeRoadPosition ${reader.text(kind, 'entityRef')}, ds ${ds}, dt ${dt}` };
+      return {
+        x: point.x,
+        y: point.y,
+        hdg: orientedHeading(reader, kind, point.hdg),
+        described: `RelativeRoadPosition ${reader.text(kind, 'entityRef')}, ds ${ds}, dt ${dt}`,
+      };
     }
     case 'RoutePosition':
       return onRoute(reader, kind, network, semantics);
@@ -315,7 +382,9 @@ const DEFAULT_BOX: Record<string, { length: number; width: number; centerX: numb
 };
 
 function entityKind(object: XmlElement): { kind: string; body?: XmlElement } {
-  const body = object.children.find((candidate) => ['Vehicle', 'Pedestrian', 'MiscObject', 'CatalogReference', 'ExternalObjectReference'].includes(candidate.name));
+  const body = object.children.find((candidate) =>
+    ['Vehicle', 'Pedestrian', 'MiscObject', 'CatalogReference', 'ExternalObjectReference'].includes(candidate.name),
+  );
   return { kind: body?.name ?? 'Entity', body };
 }
 

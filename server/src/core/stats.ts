@@ -71,7 +71,9 @@ export async function libraryStats(library: string, limits: Partial<Limits> = {}
       flattenedLines = countEditorLines(flattened.text);
       flattenedFrom = 'flattened';
     } else {
-      problems.push(`${folder}: cannot be flattened (${flattened.problems.filter((p) => p.severity === 'error').length} errors; run 'modular2simple check')`);
+      problems.push(
+        `${folder}: cannot be flattened (${flattened.problems.filter((p) => p.severity === 'error').length} errors; run 'modular2simple check')`,
+      );
       continue;
     }
     rows.push({ scenario: folder, modularLines, flattenedLines, reduction: reduction(modularLines, flattenedLines), flattenedFrom });
@@ -79,5 +81,10 @@ export async function libraryStats(library: string, limits: Partial<Limits> = {}
   const sharedList = [...shared.entries()].sort(([a], [b]) => a.localeCompare(b)).map(([file, lines]) => ({ file, lines }));
   const modularLines = rows.reduce((sum, row) => sum + row.modularLines, 0) + sharedList.reduce((sum, item) => sum + item.lines, 0);
   const flattenedLines = rows.reduce((sum, row) => sum + row.flattenedLines, 0);
-  return { rows, shared: sharedList, totals: { modularLines, flattenedLines, reduction: reduction(modularLines, flattenedLines) }, problems };
+  return {
+    rows,
+    shared: sharedList,
+    totals: { modularLines, flattenedLines, reduction: reduction(modularLines, flattenedLines) },
+    problems,
+  };
 }

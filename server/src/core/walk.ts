@@ -43,7 +43,11 @@ export async function walkFiles(folders: string[], options: WalkOptions): Promis
       const full = path.join(folder, entry.name);
       if (entry.isDirectory()) {
         if (!entry.name.startsWith('.') && !options.skipFolders.has(entry.name)) await visit(full);
-      } else if ((options.skipDotFiles ? !entry.name.startsWith('.') : true) && (options.regularFilesOnly ? entry.isFile() : true) && options.files.test(entry.name)) {
+      } else if (
+        (options.skipDotFiles ? !entry.name.startsWith('.') : true) &&
+        (options.regularFilesOnly ? entry.isFile() : true) &&
+        options.files.test(entry.name)
+      ) {
         found.push(full);
       }
     }

@@ -23,7 +23,11 @@ function isExecutableFile(candidate: string): boolean {
 
 /** The program in a configured path: the file itself, or `esmini` in that folder or in its `bin/`. */
 function programAt(configured: string): string | undefined {
-  const candidates = [configured, ...PROGRAM_NAMES.map((name) => path.join(configured, name)), ...PROGRAM_NAMES.map((name) => path.join(configured, 'bin', name))];
+  const candidates = [
+    configured,
+    ...PROGRAM_NAMES.map((name) => path.join(configured, name)),
+    ...PROGRAM_NAMES.map((name) => path.join(configured, 'bin', name)),
+  ];
   return candidates.find(isExecutableFile);
 }
 
@@ -31,12 +35,19 @@ function programAt(configured: string): string | undefined {
  * Finds esmini: the configured path first (relative to `base`), then every folder of PATH.
  * A configured path that holds no esmini is reported rather than silently replaced by PATH's.
  */
-export function locateEsmini(configured: string | undefined, base: string = process.cwd(), searchPath: string | undefined = process.env.PATH): EsminiLocation {
+export function locateEsmini(
+  configured: string | undefined,
+  base: string = process.cwd(),
+  searchPath: string | undefined = process.env.PATH,
+): EsminiLocation {
   if (configured && configured.trim()) {
     const resolved = path.resolve(base, configured.trim());
     const program = programAt(resolved);
     if (program) return { found: true, program };
-    return { found: false, message: `esmini is not at ${resolved} (setting modular2simple.esmini.path or --esmini). ${ESMINI_MISSING_HELP}` };
+    return {
+      found: false,
+      message: `esmini is not at ${resolved} (setting modular2simple.esmini.path or --esmini). ${ESMINI_MISSING_HELP}`,
+    };
   }
   for (const folder of (searchPath ?? '').split(path.delimiter)) {
     if (!folder) continue;

@@ -54,7 +54,9 @@ function elementsNamed(root: XmlElement, name: string): XmlElement[] {
 function positionsOnRoad(root: XmlElement, valueOf: ValueOf, roadId: string, laneId?: string): Target[] {
   const onRoad = allElements(root).filter((element) => valueOf(element, 'roadId') === roadId);
   const onLane = laneId === undefined ? [] : onRoad.filter((element) => Number(valueOf(element, 'laneId')) === Number(laneId));
-  return onLane.length > 0 ? onLane.map((element) => ({ element, attribute: 'laneId' })) : onRoad.map((element) => ({ element, attribute: 'roadId' }));
+  return onLane.length > 0
+    ? onLane.map((element) => ({ element, attribute: 'laneId' }))
+    : onRoad.map((element) => ({ element, attribute: 'roadId' }));
 }
 
 function ancestorNamed(element: XmlElement, name: string): XmlElement | undefined {
@@ -71,7 +73,9 @@ const RULES: MessageRule[] = [
       elementsNamed(root, 'SimulationTimeCondition')
         .filter((element) => Math.abs(Number(attribute(element, 'value')?.value)) < 1e-9)
         .map((element) => ancestorNamed(element, 'Condition'))
-        .filter((condition): condition is XmlElement => Boolean(condition && attribute(condition, 'conditionEdge')?.value === match[1] && ancestorNamed(condition, 'Event')))
+        .filter((condition): condition is XmlElement =>
+          Boolean(condition && attribute(condition, 'conditionEdge')?.value === match[1] && ancestorNamed(condition, 'Event')),
+        )
         .map((condition) => ({ element: condition, attribute: 'conditionEdge' })),
   },
   {
@@ -86,8 +90,12 @@ const RULES: MessageRule[] = [
   },
   {
     // RoadManager.cpp (Position::SetLanePos and kin): a lane the road does not have where the position is.
-    pattern: /^(?:Lane id (-?\d+) does not exist on road (\S+)|GetLaneMaterialByS: No valid lane (-?\d+) at road (\S+)|Lane section idx \d+ does not exist on road (\S+))/,
-    targets: (root, match, valueOf) => (match[5] !== undefined ? positionsOnRoad(root, valueOf, match[5]) : positionsOnRoad(root, valueOf, match[2] ?? match[4], match[1] ?? match[3])),
+    pattern:
+      /^(?:Lane id (-?\d+) does not exist on road (\S+)|GetLaneMaterialByS: No valid lane (-?\d+) at road (\S+)|Lane section idx \d+ does not exist on road (\S+))/,
+    targets: (root, match, valueOf) =>
+      match[5] !== undefined
+        ? positionsOnRoad(root, valueOf, match[5])
+        : positionsOnRoad(root, valueOf, match[2] ?? match[4], match[1] ?? match[3]),
   },
   {
     // ScenarioReader.cpp, printed when Init places no entity (or its actions depend on each other).
@@ -97,19 +105,26 @@ const RULES: MessageRule[] = [
   {
     // Storyboard.cpp: "Stopping object <entity> <action> on conflicting <domain> domain(s)".
     pattern: /^Stopping object \S+ (.+) on conflicting/,
-    targets: (root, match) => elementsNamed(root, 'Action').filter((element) => attribute(element, 'name')?.value === match[1]).map((element) => ({ element, attribute: 'name' })),
+    targets: (root, match) =>
+      elementsNamed(root, 'Action')
+        .filter((element) => attribute(element, 'name')?.value === match[1])
+        .map((element) => ({ element, attribute: 'name' })),
   },
   {
     // "cloudState is deprecated in v1.2 ...", "In Precipitation, intensity is deprecated in v1.1 ...".
     pattern: /^(?:In (\w+), )?(\w+) is deprecated/,
     targets: (root, match) =>
-      allElements(root).filter((element) => (!match[1] || element.name === match[1]) && attribute(element, match[2])).map((element) => ({ element, attribute: match[2] })),
+      allElements(root)
+        .filter((element) => (!match[1] || element.name === match[1]) && attribute(element, match[2]))
+        .map((element) => ({ element, attribute: match[2] })),
   },
   {
     pattern: /^Property: color format invalid/,
     targets: (root) =>
       elementsNamed(root, 'Property')
-        .filter((element) => attribute(element, 'name')?.value === 'color' && !/^#[0-9a-fA-F]{6}$/.test(attribute(element, 'value')?.value ?? ''))
+        .filter(
+          (element) => attribute(element, 'name')?.value === 'color' && !/^#[0-9a-fA-F]{6}$/.test(attribute(element, 'value')?.value ?? ''),
+        )
         .map((element) => ({ element, attribute: 'value' })),
     // esmini skips the property and runs on; CARLA reads this "R,G,B" form, so it is no error of the scenario.
     severity: 'warning',
@@ -117,10 +132,14 @@ const RULES: MessageRule[] = [
   },
   {
     pattern: /^(?:Invalid Dynamics shape: (\S+)|Dynamics shape (\S+) unexpected)/,
-    targets: (root, match) => allElements(root).filter((element) => attribute(element, 'dynamicsShape')?.value === (match[1] ?? match[2])).map((element) => ({ element, attribute: 'dynamicsShape' })),
+    targets: (root, match) =>
+      allElements(root)
+        .filter((element) => attribute(element, 'dynamicsShape')?.value === (match[1] ?? match[2]))
+        .map((element) => ({ element, attribute: 'dynamicsShape' })),
   },
   {
-    pattern: /^(?:Unexpected XML element|Unsupported element type|Unexpected child element|Unsupported global action|Unsupported EnvironmentAction|Unexpected property element): (\w+)/,
+    pattern:
+      /^(?:Unexpected XML element|Unsupported element type|Unexpected child element|Unsupported global action|Unsupported EnvironmentAction|Unexpected property element): (\w+)/,
     targets: (root, match) => elementsNamed(root, match[1]).map((element) => ({ element })),
   },
 ];
@@ -130,20 +149,32 @@ const NAMING_ATTRIBUTES = ['name', 'entityRef', 'storyboardElementRef', 'masterE
 
 /** Targets for a message that quotes a name or a value: elements whose naming attribute, then any attribute, equals a word of it. */
 function targetsByWords(root: XmlElement, text: string): Target[] {
-  const words = [...new Set(text.split(/[\s,;:()'"{}[\]]+|\.(?=\s|$)/).filter((word) => word.length > 1 && !/^[-+]?\d+(\.\d+)?$/.test(word)))];
+  const words = [
+    ...new Set(text.split(/[\s,;:()'"{}[\]]+|\.(?=\s|$)/).filter((word) => word.length > 1 && !/^[-+]?\d+(\.\d+)?$/.test(word))),
+  ];
   const wordSet = new Set(words);
   // Storyboard elements first: an entity's name also appears in messages about its actions.
   const storyboard = root.children.find((element) => element.name === 'Storyboard');
-  const elements = storyboard ? [...descendants(storyboard), root, ...descendants(root).filter((element) => element.start < storyboard.start || element.start >= storyboard.end)] : allElements(root);
+  const elements = storyboard
+    ? [
+        ...descendants(storyboard),
+        root,
+        ...descendants(root).filter((element) => element.start < storyboard.start || element.start >= storyboard.end),
+      ]
+    : allElements(root);
   for (const naming of NAMING_ATTRIBUTES) {
-    const found = elements.filter((element) => wordSet.has(attribute(element, naming)?.value ?? '')).map((element) => ({ element, attribute: naming }));
+    const found = elements
+      .filter((element) => wordSet.has(attribute(element, naming)?.value ?? ''))
+      .map((element) => ({ element, attribute: naming }));
     if (found.length > 0) return found;
   }
   // Else the first word of the message that is some attribute's value ("Invalid priority: sometimes").
   for (const word of words) {
     const found: Target[] = [];
     for (const element of elements) {
-      const match = element.attributes.find((candidate: XmlAttribute) => candidate.value === word && candidate.name !== PARAMETER_ATTRIBUTES);
+      const match = element.attributes.find(
+        (candidate: XmlAttribute) => candidate.value === word && candidate.name !== PARAMETER_ATTRIBUTES,
+      );
       if (match) found.push({ element, attribute: match.name });
     }
     if (found.length > 0) return found;
@@ -155,8 +186,15 @@ function targetsByWords(root: XmlElement, text: string): Target[] {
  * Where the value of a flattened element's attribute was written: the ParameterReference that
  * overrode it on the way in, else the attribute in the file the element was copied from.
  */
-function valueOrigin(source: FlatSource, element: XmlElement, name: string | undefined): { source: FlatSource; element: XmlElement; attribute: XmlAttribute | undefined } {
-  const insertion = source.model !== source.original ? source.insertions.find((candidate) => element.start >= candidate.start && element.end <= candidate.end) : undefined;
+function valueOrigin(
+  source: FlatSource,
+  element: XmlElement,
+  name: string | undefined,
+): { source: FlatSource; element: XmlElement; attribute: XmlAttribute | undefined } {
+  const insertion =
+    source.model !== source.original
+      ? source.insertions.find((candidate) => element.start >= candidate.start && element.end <= candidate.end)
+      : undefined;
   const copy = insertion ? source.model?.groups.find((group) => group.element.start === insertion.start)?.element : undefined;
   const original = insertion?.group.target?.element;
   const counterpart = copy && original ? [original, ...descendants(original)][[copy, ...descendants(copy)].indexOf(element)] : undefined;
@@ -165,7 +203,8 @@ function valueOrigin(source: FlatSource, element: XmlElement, name: string | und
     return { ...origin, attribute: name === undefined ? undefined : attribute(origin.element, name) };
   }
   for (const [target, parameter] of insertion.group.plan?.applied ?? []) {
-    if (target.element === counterpart && target.attributeName === name) return { source, element: parameter.element, attribute: parameter.valueAttribute };
+    if (target.element === counterpart && target.attributeName === name)
+      return { source, element: parameter.element, attribute: parameter.valueAttribute };
   }
   return valueOrigin(insertion.link.source, counterpart, name);
 }
@@ -175,7 +214,9 @@ function rangeOf(source: FlatSource, target: Target): { source: SourceRef; range
   const model = origin.source.original ?? origin.source.model;
   if (!model) return undefined;
   // An attribute added by flattening (no such attribute in the source) falls back to the tag.
-  const [start, end] = origin.attribute ? [origin.attribute.valueStart, origin.attribute.valueEnd] : [origin.element.start + 1, origin.element.nameEnd];
+  const [start, end] = origin.attribute
+    ? [origin.attribute.valueStart, origin.attribute.valueEnd]
+    : [origin.element.start + 1, origin.element.nameEnd];
   if (end > model.document.text.length) return undefined;
   return { source: origin.source.ref, range: model.document.lines.range(start, end) };
 }

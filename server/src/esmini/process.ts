@@ -53,8 +53,21 @@ export interface EsminiProcessResult {
   reason?: string;
 }
 
-export function esminiArguments(options: Pick<EsminiProcessOptions, 'scenarioFile' | 'csvFile' | 'searchPath' | 'timeStep' | 'seed' | 'collision'>): string[] {
-  const args = ['--headless', '--osc', options.scenarioFile, '--fixed_timestep', String(options.timeStep), '--seed', String(options.seed), '--csv_logger', options.csvFile, '--disable_log'];
+export function esminiArguments(
+  options: Pick<EsminiProcessOptions, 'scenarioFile' | 'csvFile' | 'searchPath' | 'timeStep' | 'seed' | 'collision'>,
+): string[] {
+  const args = [
+    '--headless',
+    '--osc',
+    options.scenarioFile,
+    '--fixed_timestep',
+    String(options.timeStep),
+    '--seed',
+    String(options.seed),
+    '--csv_logger',
+    options.csvFile,
+    '--disable_log',
+  ];
   if (options.collision) args.push('--collision');
   for (const folder of options.searchPath) args.push('--path', folder);
   return args;
@@ -129,7 +142,9 @@ export function runEsminiProcess(options: EsminiProcessOptions): Promise<EsminiP
         droppedOutput += tail.length - half;
         tail = tail.slice(tail.length - half);
       }
-      return droppedOutput > 0 ? `${output}\n(${droppedOutput} characters of output left out here)\n${tail.slice(tail.indexOf('\n') + 1)}` : output + tail;
+      return droppedOutput > 0
+        ? `${output}\n(${droppedOutput} characters of output left out here)\n${tail.slice(tail.indexOf('\n') + 1)}`
+        : output + tail;
     };
     child.stdout.on('data', collect);
     child.stderr.on('data', collect);
@@ -172,9 +187,12 @@ export function runEsminiProcess(options: EsminiProcessOptions): Promise<EsminiP
       if (size > options.maxCsvBytes) interrupt(`its CSV passed ${Math.round(options.maxCsvBytes / 1e6)} MB`);
       const time = lastCsvTime(options.csvFile);
       // One step of slack: the added StopTrigger ends it at the first step past the limit by itself.
-      if (time !== undefined && time > options.duration + 2 * options.timeStep) interrupt(`its simulated time passed the ${options.duration} s limit`);
+      if (time !== undefined && time > options.duration + 2 * options.timeStep)
+        interrupt(`its simulated time passed the ${options.duration} s limit`);
     }, POLL_MS);
-    child.on('error', (error) => finish({ end: 'not-started', exitCode: null, signal: null, reason: `cannot start ${options.program}: ${error.message}` }));
+    child.on('error', (error) =>
+      finish({ end: 'not-started', exitCode: null, signal: null, reason: `cannot start ${options.program}: ${error.message}` }),
+    );
     child.on('close', (exitCode, signal) => finish({ end, exitCode, signal, reason }));
   });
 }

@@ -112,7 +112,9 @@ export function sourceFolderOf(ref: SourceRef): string {
  */
 export function withRoadFile(text: string, absolutePath: string): string {
   const network = parseXml(text).root?.children.find((child) => child.name === 'RoadNetwork');
-  const filepath = network?.children.find((child) => child.name === 'LogicFile')?.attributes.find((candidate) => candidate.name === 'filepath');
+  const filepath = network?.children
+    .find((child) => child.name === 'LogicFile')
+    ?.attributes.find((candidate) => candidate.name === 'filepath');
   if (!filepath) return text;
   return `${text.slice(0, filepath.valueStart)}${escapeAttributeValue(absolutePath, filepath.quote)}${text.slice(filepath.valueEnd)}`;
 }
@@ -145,7 +147,15 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
   const duration = options.duration ?? RUN_DEFAULTS.duration;
   const timeStep = options.timeStep ?? RUN_DEFAULTS.timeStep;
   const seed = options.seed ?? RUN_DEFAULTS.seed;
-  const base = { log: '', duration, timeStep, seed, problems: [] as EsminiProblem[], remarks: [] as EsminiRemark[], flattenProblems: [] as Problem[] };
+  const base = {
+    log: '',
+    duration,
+    timeStep,
+    seed,
+    problems: [] as EsminiProblem[],
+    remarks: [] as EsminiRemark[],
+    flattenProblems: [] as Problem[],
+  };
   const elapsed = () => Date.now() - started;
   if (!(duration > 0) || !Number.isFinite(duration)) throw new Error(`the duration must be a positive number of seconds, not ${duration}`);
 
@@ -163,36 +173,84 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
     const counted = `the scenario has ${errors} error${errors === 1 ? '' : 's'}`;
     // Rendered but refused for its errors: forcing runs it.
     if (!options.force && flat.source.text !== undefined) {
-      return { ...base, flattenProblems, outcome: 'not-flattened', forcible: true, esmini: location.program, message: `${counted}; nothing was run`, wallMs: elapsed() };
+      return {
+        ...base,
+        flattenProblems,
+        outcome: 'not-flattened',
+        forcible: true,
+        esmini: location.program,
+        message: `${counted}; nothing was run`,
+        wallMs: elapsed(),
+      };
     }
-    return { ...base, flattenProblems, outcome: 'not-flattened', esmini: location.program, message: `${counted} and cannot be flattened; nothing was run`, wallMs: elapsed() };
+    return {
+      ...base,
+      flattenProblems,
+      outcome: 'not-flattened',
+      esmini: location.program,
+      message: `${counted} and cannot be flattened; nothing was run`,
+      wallMs: elapsed(),
+    };
   }
   const sourceFolder = sourceFolderOf(main);
   const folders = roadFolders(options.roadPath, options.base ?? process.cwd());
   // The LogicFile as the main file writes it, resolved as the bird's-eye view resolves it, whatever the flattened text says.
   const logic = logicFileOf((flat.source.original ?? flat.source.model)?.document ?? parseXml(flat.text));
   const road = logic ? await resolveRoadFile(nodeFileSystem, logic.filepath, sourceFolder, folders) : undefined;
-  const roadFile: RunRoadFile | undefined = road ? { filepath: road.filepath, resolved: road.resolved, candidates: road.candidates } : undefined;
+  const roadFile: RunRoadFile | undefined = road
+    ? { filepath: road.filepath, resolved: road.resolved, candidates: road.candidates }
+    : undefined;
   const limited = withTimeLimit(road?.resolved ? withRoadFile(flat.text, road.resolved) : flat.text, duration);
   if (limited === undefined) {
-    return { ...base, flattenProblems, outcome: 'not-flattened', esmini: location.program, message: 'the scenario has no <Storyboard>, so esmini has nothing to run', wallMs: elapsed() };
+    return {
+      ...base,
+      flattenProblems,
+      outcome: 'not-flattened',
+      esmini: location.program,
+      message: 'the scenario has no <Storyboard>, so esmini has nothing to run',
+      wallMs: elapsed(),
+    };
   }
 
   const searchPath = unique([sourceFolder, ...catalogFolders(flat.source, sourceFolder), ...folders]);
-  const ran = await runLimitedText(location.program, limited, searchPath, options, timeStep, seed, duration, { runFolder, files: flat.files });
+  const ran = await runLimitedText(location.program, limited, searchPath, options, timeStep, seed, duration, {
+    runFolder,
+    files: flat.files,
+  });
   const log = readEsminiLog(ran.run.output);
   if (roadFile) roadFile.loaded = parseEsminiLoadedRoad(ran.run.output);
   // Handed an absolute path, esmini loads that file; should it load another (none was found here), the run and the picture differ: said on the LogicFile.
   if (roadFile?.loaded && path.resolve(runFolder, roadFile.loaded) !== roadFile.resolved) {
-    const drawn = roadFile.resolved ? `the bird's-eye view draws ${roadFile.resolved}` : `the bird's-eye view found none (looked for ${roadFile.candidates.join(', ')})`;
-    log.messages.unshift({ level: 'warn', time: undefined, text: `OpenDRIVE file ${roadFile.loaded} is the road esmini loaded; ${drawn}`, logLine: 0 });
+    const drawn = roadFile.resolved
+      ? `the bird's-eye view draws ${roadFile.resolved}`
+      : `the bird's-eye view found none (looked for ${roadFile.candidates.join(', ')})`;
+    log.messages.unshift({
+      level: 'warn',
+      time: undefined,
+      text: `OpenDRIVE file ${roadFile.loaded} is the road esmini loaded; ${drawn}`,
+      logLine: 0,
+    });
   }
   const problems = mapEsminiMessages(log.messages, flat.source, main);
   const errors = problems.filter((problem) => problem.severity === 'error').length;
   const outcome = outcomeOf(ran, errors, problems.length - errors);
   const scenarioErrors = flattenProblems.filter((problem) => problem.severity === 'error').length;
-  const forced = scenarioErrors > 0 && (outcome.outcome === 'ok' || outcome.outcome === 'errors') ? ` (run anyway despite ${scenarioErrors} error${scenarioErrors === 1 ? '' : 's'} in the scenario)` : '';
-  return { ...base, flattenProblems, problems, remarks: log.remarks, roadFile, ...ran.common, esmini: location.program, wallMs: elapsed(), ...outcome, message: outcome.message + forced };
+  const forced =
+    scenarioErrors > 0 && (outcome.outcome === 'ok' || outcome.outcome === 'errors')
+      ? ` (run anyway despite ${scenarioErrors} error${scenarioErrors === 1 ? '' : 's'} in the scenario)`
+      : '';
+  return {
+    ...base,
+    flattenProblems,
+    problems,
+    remarks: log.remarks,
+    roadFile,
+    ...ran.common,
+    esmini: location.program,
+    wallMs: elapsed(),
+    ...outcome,
+    message: outcome.message + forced,
+  };
 }
 
 /** A plain scenario's run (`runScenarioText`): esmini's messages as it printed them, placed on no source line. */
@@ -214,12 +272,27 @@ export async function runScenarioText(text: string, searchPath: string[], option
   const location = locateEsmini(options.esminiPath, options.base);
   if (!location.found) return { ...base, outcome: 'no-esmini', message: location.message, wallMs: elapsed() };
   const limited = withTimeLimit(text, duration);
-  if (limited === undefined) return { ...base, outcome: 'not-flattened', esmini: location.program, message: 'the scenario has no <Storyboard>, so esmini has nothing to run', wallMs: elapsed() };
+  if (limited === undefined)
+    return {
+      ...base,
+      outcome: 'not-flattened',
+      esmini: location.program,
+      message: 'the scenario has no <Storyboard>, so esmini has nothing to run',
+      wallMs: elapsed(),
+    };
   const roadPath = (options.roadPath ?? []).map((folder) => path.resolve(options.base ?? process.cwd(), folder));
   const ran = await runLimitedText(location.program, limited, unique([...searchPath, ...roadPath]), options, timeStep, seed, duration);
   const { messages, remarks } = readEsminiLog(ran.run.output);
   const errors = messages.filter((message) => message.level === 'error').length;
-  return { ...base, messages, remarks, ...ran.common, esmini: location.program, wallMs: elapsed(), ...outcomeOf(ran, errors, messages.length - errors) };
+  return {
+    ...base,
+    messages,
+    remarks,
+    ...ran.common,
+    esmini: location.program,
+    wallMs: elapsed(),
+    ...outcomeOf(ran, errors, messages.length - errors),
+  };
 }
 
 interface LimitedRun {
@@ -289,7 +362,9 @@ function outcomeOf(ran: LimitedRun, errors: number, warnings: number): Pick<Esmi
     return { outcome: 'failed', message: `esmini ended with exit code ${run.exitCode} without an error message; see its log` };
   }
   const covered =
-    common.simulatedTime === undefined ? 'no trajectory: esmini placed no entity (each needs a position in Init, such as a TeleportAction)' : `${common.simulatedTime.toFixed(2)} s simulated`;
+    common.simulatedTime === undefined
+      ? 'no trajectory: esmini placed no entity (each needs a position in Init, such as a TeleportAction)'
+      : `${common.simulatedTime.toFixed(2)} s simulated`;
   return { outcome: errors > 0 ? 'errors' : 'ok', message: `esmini: ${counts}; ${covered} (${(run.wallMs / 1000).toFixed(2)} s)` };
 }
 

@@ -30,7 +30,11 @@ function isEntryParameter(declaration: Declaration | undefined): declaration is 
 }
 
 /** The entry parameter the target names: by its declaration or a use inside the entry, or by an assignment's parameterRef. */
-export async function entryParameterOf(workspace: Workspace, semantics: DocumentSemantics, target: Target): Promise<EntryParameter | undefined> {
+export async function entryParameterOf(
+  workspace: Workspace,
+  semantics: DocumentSemantics,
+  target: Target,
+): Promise<EntryParameter | undefined> {
   const declaration = declarationOf(target);
   if (isEntryParameter(declaration)) return { catalog: semantics, declaration };
   if (target.kind !== 'catalogReference' || target.part !== 'parameterRef' || !target.resolution.entry) return undefined;
@@ -91,7 +95,11 @@ function toPlace(place: NamePlace): Place {
 }
 
 /** References of a catalog entry's parameter across the workspace. */
-export async function entryParameterReferences(workspace: Workspace, parameter: EntryParameter, includeDeclaration: boolean): Promise<Place[]> {
+export async function entryParameterReferences(
+  workspace: Workspace,
+  parameter: EntryParameter,
+  includeDeclaration: boolean,
+): Promise<Place[]> {
   const places = (await placesOf(workspace, parameter)).map(toPlace);
   return includeDeclaration ? places : places.slice(1);
 }
@@ -104,11 +112,18 @@ export function entryParameterRenameRange(target: Target): { start: number; end:
 /** Renames a catalog entry's parameter in the entry and in every assignment that sets it. */
 export async function renameEntryParameter(workspace: Workspace, parameter: EntryParameter, newName: string): Promise<WorkspaceEdit> {
   const name = newName.startsWith('$') ? newName.slice(1) : newName;
-  if (!PARAMETER_NAME.test(name)) throw new ResponseError(LSPErrorCodes.RequestFailed, `'${newName}' is not a parameter name (letters, digits and _, not starting with a digit)`);
+  if (!PARAMETER_NAME.test(name))
+    throw new ResponseError(
+      LSPErrorCodes.RequestFailed,
+      `'${newName}' is not a parameter name (letters, digits and _, not starting with a digit)`,
+    );
   const places = await placesOf(workspace, parameter);
   const inPackage = places.find((place) => place.semantics.ref.entries.length > 0);
   if (inPackage && !workspace.editablePackages) {
-    throw new ResponseError(LSPErrorCodes.RequestFailed, `the parameter is set in ${displayRef(inPackage.semantics.ref, workspace.folders[0])}, inside a .mosc package, and this editor cannot write into packages`);
+    throw new ResponseError(
+      LSPErrorCodes.RequestFailed,
+      `the parameter is set in ${displayRef(inPackage.semantics.ref, workspace.folders[0])}, inside a .mosc package, and this editor cannot write into packages`,
+    );
   }
   const changes: Record<string, TextEdit[]> = {};
   for (const place of places) {

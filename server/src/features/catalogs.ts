@@ -1,6 +1,14 @@
 import { CompletionItem, CompletionItemKind } from 'vscode-languageserver/node';
 import { TextDocument } from 'vscode-languageserver-textdocument';
-import { CatalogEntry, CatalogFile, CatalogLoader, Declaration, DocumentSemantics, entryParameterValue, formatValue } from '../core/semantics';
+import {
+  CatalogEntry,
+  CatalogFile,
+  CatalogLoader,
+  Declaration,
+  DocumentSemantics,
+  entryParameterValue,
+  formatValue,
+} from '../core/semantics';
 import { displayRef, refId } from '../core/sources';
 import { XmlAttribute, XmlElement } from '../core/xml';
 import { Place } from '../analysis';
@@ -49,13 +57,20 @@ async function reachableCatalogs(workspace: Workspace, semantics: DocumentSemant
   const loader = new CatalogLoader(workspace.store);
   const files = new Map<string, CatalogFile>();
   for (const location of semantics.catalogs.locations) {
-    for (const directory of location.directories) for (const file of await loader.allCatalogsIn(directory)) if (!files.has(refId(file.ref))) files.set(refId(file.ref), file);
+    for (const directory of location.directories)
+      for (const file of await loader.allCatalogsIn(directory)) if (!files.has(refId(file.ref))) files.set(refId(file.ref), file);
   }
   return [...files.values()];
 }
 
 /** Completion of `catalogName` or `entryName` in a CatalogReference. */
-export async function catalogCompletion(workspace: Workspace, semantics: DocumentSemantics, document: TextDocument, context: ValueContext, part: 'catalogName' | 'entryName'): Promise<CompletionItem[]> {
+export async function catalogCompletion(
+  workspace: Workspace,
+  semantics: DocumentSemantics,
+  document: TextDocument,
+  context: ValueContext,
+  part: 'catalogName' | 'entryName',
+): Promise<CompletionItem[]> {
   const range = { start: document.positionAt(context.valueStart), end: document.positionAt(context.valueEnd) };
   const catalogs = await reachableCatalogs(workspace, semantics);
   const where = (file: CatalogFile) => displayRef(file.ref, workspace.folders[0]);
@@ -63,7 +78,12 @@ export async function catalogCompletion(workspace: Workspace, semantics: Documen
     const seen = new Set<string>();
     return catalogs
       .filter((file) => file.name && !seen.has(file.name) && seen.add(file.name))
-      .map((file) => ({ label: file.name, kind: CompletionItemKind.Module, detail: `${file.entries.length} entries — ${where(file)}`, textEdit: { range, newText: file.name } }));
+      .map((file) => ({
+        label: file.name,
+        kind: CompletionItemKind.Module,
+        detail: `${file.entries.length} entries — ${where(file)}`,
+        textEdit: { range, newText: file.name },
+      }));
   }
   const catalogName = context.siblings.find((sibling) => sibling.name === 'catalogName')?.value.trim();
   return catalogs
@@ -73,14 +93,21 @@ export async function catalogCompletion(workspace: Workspace, semantics: Documen
         label: entry.name,
         kind: CompletionItemKind.Class,
         detail: `${entry.element.name} of ${file.name} — ${where(file)}`,
-        documentation: entryDeclarations(file, entry.element).map((declaration) => `${declaration.name} = ${declaration.value}`).join('\n') || undefined,
+        documentation:
+          entryDeclarations(file, entry.element)
+            .map((declaration) => `${declaration.name} = ${declaration.value}`)
+            .join('\n') || undefined,
         textEdit: { range, newText: entry.name },
       })),
     );
 }
 
 /** Hover on a ParameterAssignment's `parameterRef`: the entry's parameter, its default and the value this reference gives it. */
-export function assignmentHover(workspace: Workspace, semantics: DocumentSemantics, target: CatalogReferenceTarget): { markdown: string; start: number; end: number } | undefined {
+export function assignmentHover(
+  workspace: Workspace,
+  semantics: DocumentSemantics,
+  target: CatalogReferenceTarget,
+): { markdown: string; start: number; end: number } | undefined {
   const { resolution, attribute: parameterRef } = target;
   const entry = resolution.entry;
   if (target.part !== 'parameterRef' || !entry) return undefined;

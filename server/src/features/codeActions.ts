@@ -34,7 +34,15 @@ async function refactoringActions(
 ): Promise<CodeAction[]> {
   const asked = REFACTORINGS.filter((refactoring) => wanted(refactoring.kind, only));
   if (asked.length === 0) return [];
-  const target = await refactoringTarget(workspace, uri, ref, document, document.offsetAt(range.start), document.offsetAt(range.end), client);
+  const target = await refactoringTarget(
+    workspace,
+    uri,
+    ref,
+    document,
+    document.offsetAt(range.start),
+    document.offsetAt(range.end),
+    client,
+  );
   if (!target) return [];
   const actions: CodeAction[] = [];
   for (const refactoring of asked) actions.push(...(await refactoring.actions(target)));

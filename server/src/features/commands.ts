@@ -48,7 +48,8 @@ export async function refOf(workspace: Workspace, uri: unknown): Promise<SourceR
   // A package (a .mosc, or an unpacked folder) stands for its main.xosc.
   const last = ref.entries.length > 0 ? ref.entries[ref.entries.length - 1] : ref.disk;
   if (last.toLowerCase().endsWith('.mosc')) return childRef(ref, 'main.xosc');
-  if (ref.entries.length === 0 && (await workspace.store.host.kind(ref.disk)) === 'directory') return diskRef(path.join(ref.disk, 'main.xosc'));
+  if (ref.entries.length === 0 && (await workspace.store.host.kind(ref.disk)) === 'directory')
+    return diskRef(path.join(ref.disk, 'main.xosc'));
   return ref;
 }
 
@@ -56,7 +57,9 @@ export async function refOf(workspace: Workspace, uri: unknown): Promise<SourceR
 export async function flattenToText(workspace: Workspace, uri: unknown, options: unknown): Promise<FlattenTextResult> {
   const ref = await refOf(workspace, uri);
   // The preview shows the flattened text even when it breaks the schema: the editor's diagnostics say where.
-  const result = await new Flattener(workspace.store, workspace.settings.simulator, { version: 'off' }).flatten(ref, { force: forceOf(options) });
+  const result = await new Flattener(workspace.store, workspace.settings.simulator, { version: 'off' }).flatten(ref, {
+    force: forceOf(options),
+  });
   return { text: result.text ?? null, problems: result.problems.map((problem) => summarize(workspace, problem)) };
 }
 
@@ -69,7 +72,8 @@ export async function flattenToFile(workspace: Workspace, uri: unknown, outputPa
   const ref = await refOf(workspace, uri);
   if (typeof outputPath !== 'string' || !outputPath) throw invalidParams('expected an output path');
   const output = path.resolve(filePathOf(outputPath) ?? outputPath);
-  if (!output.toLowerCase().endsWith('.xosc')) return { written: null, problems: [outputProblem(workspace, ref, `the output '${output}' must end in .xosc`)] };
+  if (!output.toLowerCase().endsWith('.xosc'))
+    return { written: null, problems: [outputProblem(workspace, ref, `the output '${output}' must end in .xosc`)] };
   if (workspace.folders.length > 0 && !insideFolders(output, workspace.folders) && !outsideConfirmed(options)) {
     return {
       written: null,
@@ -77,10 +81,20 @@ export async function flattenToFile(workspace: Workspace, uri: unknown, outputPa
       needsConfirmation: 'outsideWorkspace',
     };
   }
-  const result = await new Flattener(workspace.store, workspace.settings.simulator, { version: workspace.settings.schemaVersion }).flatten(ref, { force: forceOf(options), outputPath: output });
+  const result = await new Flattener(workspace.store, workspace.settings.simulator, { version: workspace.settings.schemaVersion }).flatten(
+    ref,
+    { force: forceOf(options), outputPath: output },
+  );
   const problems = result.problems.map((problem) => summarize(workspace, problem));
   const input = result.source.dependencies.find((dependency) => dependency.disk === output || isSameFile(dependency.disk, output));
-  if (input) return { written: null, problems: [...problems, outputProblem(workspace, ref, `refusing to overwrite ${displayRef(input, workspace.folders[0])}, an input of this flattening`)] };
+  if (input)
+    return {
+      written: null,
+      problems: [
+        ...problems,
+        outputProblem(workspace, ref, `refusing to overwrite ${displayRef(input, workspace.folders[0])}, an input of this flattening`),
+      ],
+    };
   if (result.text === undefined) return { written: null, problems };
   // A self-contained package's roads and catalogs go beside the output that names them.
   for (const file of result.files) {
@@ -92,7 +106,13 @@ export async function flattenToFile(workspace: Workspace, uri: unknown, outputPa
 }
 
 /** Writes an output atomically; a refusal of the writer (read-only, a folder) is a problem, not an exception. */
-export async function writeOutput(workspace: Workspace, output: string, data: string | Uint8Array, problems: ProblemSummary[], ref: SourceRef): Promise<WriteResult> {
+export async function writeOutput(
+  workspace: Workspace,
+  output: string,
+  data: string | Uint8Array,
+  problems: ProblemSummary[],
+  ref: SourceRef,
+): Promise<WriteResult> {
   try {
     await writeFileAtomic(output, data);
   } catch (error) {
@@ -110,18 +130,46 @@ export async function structure(workspace: Workspace, uri: unknown): Promise<Str
   if (!source.original) return null;
   const visiting = new Set<string>();
   const build = (flat: FlatSource, kind: StructureNode['kind'], label: string): StructureNode => {
-    const node: StructureNode = { kind, label, detail: displayRef(flat.ref, workspace.folders[0]), uri: workspace.uriOf(flat.ref), line: 0, character: 0, children: [] };
+    const node: StructureNode = {
+      kind,
+      label,
+      detail: displayRef(flat.ref, workspace.folders[0]),
+      uri: workspace.uriOf(flat.ref),
+      line: 0,
+      character: 0,
+      children: [],
+    };
     if (visiting.has(refId(flat.ref))) return node;
     visiting.add(refId(flat.ref));
     for (const link of flat.links) {
       const position = flat.original?.document.lines.positionAt(link.info.element.start);
       const target = resolvedTarget(link.resolution);
       if (!target || !link.source) {
-        node.children.push({ kind: 'missing', label: link.info.fileName || '(no scenarioFileName)', detail: link.resolution.kind === 'missing' ? 'not found' : link.resolution.kind === 'invalid' || link.resolution.kind === 'unreadable' ? link.resolution.message : 'cycle', uri: workspace.uriOf(flat.ref), line: position?.line, character: position?.character, children: [] });
+        node.children.push({
+          kind: 'missing',
+          label: link.info.fileName || '(no scenarioFileName)',
+          detail:
+            link.resolution.kind === 'missing'
+              ? 'not found'
+              : link.resolution.kind === 'invalid' || link.resolution.kind === 'unreadable'
+                ? link.resolution.message
+                : 'cycle',
+          uri: workspace.uriOf(flat.ref),
+          line: position?.line,
+          character: position?.character,
+          children: [],
+        });
         continue;
       }
       const child = build(link.source, link.resolution.kind === 'package' ? 'package' : 'scenario', link.info.fileName);
-      const reference: StructureNode = { kind: 'reference', label: `${link.info.outerGroup?.name ?? '?'} → ${link.info.fileName}`, uri: workspace.uriOf(flat.ref), line: position?.line, character: position?.character, children: [child] };
+      const reference: StructureNode = {
+        kind: 'reference',
+        label: `${link.info.outerGroup?.name ?? '?'} → ${link.info.fileName}`,
+        uri: workspace.uriOf(flat.ref),
+        line: position?.line,
+        character: position?.character,
+        children: [child],
+      };
       for (const group of link.groups) {
         const place = group.target ? elementPlace(link.source, group.target.element) : undefined;
         reference.children.push({

@@ -36,7 +36,8 @@ function listFolder(directory: string, exclude: string | undefined): string[] {
   for (const entry of entries) {
     const full = path.join(directory, entry.name);
     if (entry.isFile() && /\.(xosc|mosc)$/i.test(entry.name) && full !== exclude) names.push(entry.name);
-    else if (entry.isDirectory() && fs.existsSync(path.join(full, 'main.xosc')) && full !== (exclude && path.dirname(exclude))) names.push(`${entry.name}.mosc`);
+    else if (entry.isDirectory() && fs.existsSync(path.join(full, 'main.xosc')) && full !== (exclude && path.dirname(exclude)))
+      names.push(`${entry.name}.mosc`);
   }
   return names.sort();
 }
@@ -59,11 +60,17 @@ export async function fileNameCandidates(workspace: Workspace, from: SourceRef):
       for (const entry of contents ? [...contents.entries.keys()].sort() : []) {
         if (entry === self) continue;
         if (/\.(xosc|mosc)$/i.test(entry) && !entry.endsWith('/main.xosc')) add(entry, displayRef(packageRef, workspace.folders[0]));
-        else if (entry.endsWith('/main.xosc')) add(`${entry.slice(0, -'/main.xosc'.length)}.mosc`, displayRef(packageRef, workspace.folders[0]));
+        else if (entry.endsWith('/main.xosc'))
+          add(`${entry.slice(0, -'/main.xosc'.length)}.mosc`, displayRef(packageRef, workspace.folders[0]));
       }
       continue;
     }
-    const where = place.via === 'folder' ? 'this folder' : place.via === 'scenarioPath' ? `${place.directory} (scenario path)` : `${place.directory} (parent folder)`;
+    const where =
+      place.via === 'folder'
+        ? 'this folder'
+        : place.via === 'scenarioPath'
+          ? `${place.directory} (scenario path)`
+          : `${place.directory} (parent folder)`;
     for (const name of listFolder(place.directory, from.disk)) add(name, where);
   }
   return [...seen.values()];
@@ -74,7 +81,12 @@ function replaceRange(document: TextDocument, start: number, end: number): LspRa
 }
 
 /** The enclosing ScenarioReference's source: the last one that starts before `before`. */
-async function referencedSource(workspace: Workspace, ref: SourceRef, document: XmlDocument, before: number): Promise<{ source: FlatSource | undefined; fileName: string }> {
+async function referencedSource(
+  workspace: Workspace,
+  ref: SourceRef,
+  document: XmlDocument,
+  before: number,
+): Promise<{ source: FlatSource | undefined; fileName: string }> {
   const reference = lastElementBefore(document, 'ScenarioReference', before);
   if (!reference) return { source: undefined, fileName: '' };
   const fileName = attribute(reference, 'scenarioFileName')?.value ?? '';
@@ -96,24 +108,46 @@ async function groupBefore(workspace: Workspace, ref: SourceRef, document: XmlDo
 }
 
 /** The default values of the attributes that the key written in the same tag reaches. */
-async function valueItems(workspace: Workspace, ref: SourceRef, document: TextDocument, parsed: XmlDocument, context: ValueContext): Promise<CompletionItem[]> {
+async function valueItems(
+  workspace: Workspace,
+  ref: SourceRef,
+  document: TextDocument,
+  parsed: XmlDocument,
+  context: ValueContext,
+): Promise<CompletionItem[]> {
   const key = context.siblings.find((sibling) => sibling.name === 'key')?.value.trim();
   const found = key ? await groupBefore(workspace, ref, parsed, context.tagStart) : undefined;
   if (!found || !key) return [];
   const range = replaceRange(document, context.valueStart, context.valueEnd);
   const defaults = new Map<string, string>();
   for (const target of found.targets) {
-    if (target.defaultValue !== undefined && keyMatches(key, target) && !defaults.has(target.defaultValue)) defaults.set(target.defaultValue, `default of ${target.element.name}.${target.attributeName}`);
+    if (target.defaultValue !== undefined && keyMatches(key, target) && !defaults.has(target.defaultValue))
+      defaults.set(target.defaultValue, `default of ${target.element.name}.${target.attributeName}`);
   }
-  return [...defaults].map(([value, detail]) => ({ label: value, kind: CompletionItemKind.Value, detail, textEdit: { range, newText: value } }));
+  return [...defaults].map(([value, detail]) => ({
+    label: value,
+    kind: CompletionItemKind.Value,
+    detail,
+    textEdit: { range, newText: value },
+  }));
 }
 
-async function keyItems(workspace: Workspace, ref: SourceRef, document: TextDocument, parsed: XmlDocument, context: ValueContext): Promise<CompletionItem[]> {
+async function keyItems(
+  workspace: Workspace,
+  ref: SourceRef,
+  document: TextDocument,
+  parsed: XmlDocument,
+  context: ValueContext,
+): Promise<CompletionItem[]> {
   const text = document.getText();
   const found = await groupBefore(workspace, ref, parsed, context.tagStart);
   if (!found) return [];
   const { source, group, groupReference, targets } = found;
-  const blockEnd = [text.indexOf('</ManeuverGroupReference', context.valueEnd), text.indexOf('<ManeuverGroupReference', context.valueEnd), text.length]
+  const blockEnd = [
+    text.indexOf('</ManeuverGroupReference', context.valueEnd),
+    text.indexOf('<ManeuverGroupReference', context.valueEnd),
+    text.length,
+  ]
     .filter((index) => index >= 0)
     .reduce((a, b) => Math.min(a, b));
   const given = elementsBetween(parsed, 'ParameterReference', groupReference.start, blockEnd)
@@ -176,7 +210,10 @@ function parameterAttributeItems(document: TextDocument, context: ValueContext):
 /** A whole ScenarioReference block for one group of a file, every key set to its default (tab stops on values). */
 export function referenceSnippet(fileName: string, groupName: string, targets: OverridableAttribute[], indent: string): string {
   const escape = (value: string) => value.replace(/[$}\\]/g, (char) => `\\${char}`);
-  const lines = [`<ScenarioReference scenarioFileName="${escape(fileName)}">`, `${indent}<ManeuverGroupReference maneuverGroupName="${escape(groupName)}">`];
+  const lines = [
+    `<ScenarioReference scenarioFileName="${escape(fileName)}">`,
+    `${indent}<ManeuverGroupReference maneuverGroupName="${escape(groupName)}">`,
+  ];
   keyChoices(targets).forEach((choice, index) => {
     const defaultValue = choice.targets[0].defaultValue;
     if (defaultValue === undefined || choice.forms.length === 0) return;
@@ -191,7 +228,13 @@ export function referenceSnippet(fileName: string, groupName: string, targets: O
  * without references of their own, whose groups list attributes to override) come first, then the
  * other files in lookup order.
  */
-async function snippetItems(workspace: Workspace, ref: SourceRef, document: TextDocument, start: number, offset: number): Promise<CompletionItem[]> {
+async function snippetItems(
+  workspace: Workspace,
+  ref: SourceRef,
+  document: TextDocument,
+  start: number,
+  offset: number,
+): Promise<CompletionItem[]> {
   const range = replaceRange(document, start, offset);
   const indent = /^( +|\t)/m.exec(document.getText().slice(0, 4000))?.[1] ?? '    ';
   const ranked: { rank: number; item: CompletionItem }[] = [];
@@ -224,7 +267,12 @@ async function snippetItems(workspace: Workspace, ref: SourceRef, document: Text
 const REFERENCE_ELEMENTS = new Set(['ScenarioReference', 'ManeuverGroupReference', 'ParameterReference']);
 
 /** `parameterAttributes` on an element of a ManeuverGroup (a simple scenario's groups), unless it is written already. */
-function parameterAttributesItem(parsed: XmlDocument, target: { tagStart: number; written: string[]; start: number }, document: TextDocument, offset: number): CompletionItem[] {
+function parameterAttributesItem(
+  parsed: XmlDocument,
+  target: { tagStart: number; written: string[]; start: number },
+  document: TextDocument,
+  offset: number,
+): CompletionItem[] {
   if (target.written.includes(PARAMETER_ATTRIBUTES)) return [];
   const found = elementAt(parsed, target.tagStart);
   const element = found && found.start === target.tagStart ? found : undefined;
@@ -234,7 +282,8 @@ function parameterAttributesItem(parsed: XmlDocument, target: { tagStart: number
       label: PARAMETER_ATTRIBUTES,
       kind: CompletionItemKind.Field,
       detail: 'the attributes a main file may override (modular scenarios)',
-      documentation: 'A comma-separated list of attributes of this element; each one\'s own value is its default, and a ParameterReference key of a main file sets it.',
+      documentation:
+        "A comma-separated list of attributes of this element; each one's own value is its default, and a ParameterReference key of a main file sets it.",
       sortText: '0_999',
       insertTextFormat: InsertTextFormat.Snippet,
       textEdit: { range: replaceRange(document, target.start, offset), newText: `${PARAMETER_ATTRIBUTES}="$1"` },
@@ -243,7 +292,14 @@ function parameterAttributesItem(parsed: XmlDocument, target: { tagStart: number
 }
 
 /** `<ParameterReference .../>` inside a ManeuverGroupReference: an empty one, then one per key not given yet with its default. */
-async function parameterReferenceItems(workspace: Workspace, ref: SourceRef, document: TextDocument, parsed: XmlDocument, start: number, offset: number): Promise<CompletionItem[]> {
+async function parameterReferenceItems(
+  workspace: Workspace,
+  ref: SourceRef,
+  document: TextDocument,
+  parsed: XmlDocument,
+  start: number,
+  offset: number,
+): Promise<CompletionItem[]> {
   const range = replaceRange(document, start, offset);
   const typedOpen = document.getText()[start] === '<';
   const filter = (label: string) => (typedOpen ? `<${label}` : label);
@@ -260,7 +316,9 @@ async function parameterReferenceItems(workspace: Workspace, ref: SourceRef, doc
   ];
   const found = await groupBefore(workspace, ref, parsed, start);
   if (!found) return items;
-  const given = found.groupReference.children.filter((child) => child.name === 'ParameterReference').map((child) => attribute(child, 'key')?.value.trim() ?? '');
+  const given = found.groupReference.children
+    .filter((child) => child.name === 'ParameterReference')
+    .map((child) => attribute(child, 'key')?.value.trim() ?? '');
   const escape = (value: string) => value.replace(/[$}\\]/g, (char) => `\\${char}`);
   keyChoices(found.targets).forEach((choice, index) => {
     const [form] = choice.forms;
@@ -311,7 +369,15 @@ export async function complete(workspace: Workspace, ref: SourceRef, document: T
   const range = 'context' in target ? replaceRange(document, target.context.valueStart, target.context.valueEnd) : undefined;
   switch (target.kind) {
     case 'parameter':
-      return semantics ? parameterCompletion(document, semantics, target.context, offset, attributeTypeAt(indexFor(parsed, workspace.settings.schemaVersion), parsed, target.context)) : [];
+      return semantics
+        ? parameterCompletion(
+            document,
+            semantics,
+            target.context,
+            offset,
+            attributeTypeAt(indexFor(parsed, workspace.settings.schemaVersion), parsed, target.context),
+          )
+        : [];
     case 'catalogReference':
       return semantics ? catalogCompletion(workspace, semantics, document, target.context, target.part) : [];
     case 'fileReference':
@@ -342,14 +408,19 @@ export async function complete(workspace: Workspace, ref: SourceRef, document: T
     case 'listedAttribute':
       return parameterAttributeItems(document, target.context);
     case 'entityReference':
-      return (source.original?.entities ?? []).map((entity) => ({ label: entity.name, kind: CompletionItemKind.Variable, textEdit: { range: range as LspRange, newText: entity.name } }));
+      return (source.original?.entities ?? []).map((entity) => ({
+        label: entity.name,
+        kind: CompletionItemKind.Variable,
+        textEdit: { range: range as LspRange, newText: entity.name },
+      }));
     case 'attributeName':
       return [...schemaCompletion(workspace, parsed, target, offset), ...parameterAttributesItem(parsed, target, document, offset)];
     case 'elementName': {
       const schemaItems = schemaCompletion(workspace, parsed, target, offset);
       const skeleton = skeletonItems(workspace, parsed, document, target.start, offset);
       if (skeleton.length > 0) return [...skeleton, ...schemaItems];
-      if (target.open?.name === 'ManeuverGroupReference') return [...schemaItems, ...(await parameterReferenceItems(workspace, ref, document, parsed, target.start, offset))];
+      if (target.open?.name === 'ManeuverGroupReference')
+        return [...schemaItems, ...(await parameterReferenceItems(workspace, ref, document, parsed, target.start, offset))];
       // A ScenarioReference's parent is the ManeuverGroup it fills (SPEC), so it is offered nowhere else.
       if ('ScenarioReference'.toLowerCase().startsWith(target.prefix.toLowerCase()) && target.open?.name === 'ManeuverGroup') {
         return [...schemaItems, ...(await snippetItems(workspace, ref, document, target.start, offset))];

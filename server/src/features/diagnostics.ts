@@ -79,7 +79,11 @@ function cycleDiagnostics(workspace: Workspace, root: FlatSource): Diagnostic[] 
           return target !== undefined && refId(target) === next;
         });
         const range = from && stepLink ? referencePlace(from, stepLink) : undefined;
-        if (from && range) related.push({ location: { uri: workspace.uriOf(from.ref), range }, message: `${baseName(cycle[step])} references ${baseName(cycle[step + 1])}` });
+        if (from && range)
+          related.push({
+            location: { uri: workspace.uriOf(from.ref), range },
+            message: `${baseName(cycle[step])} references ${baseName(cycle[step + 1])}`,
+          });
       }
       const first = related[0];
       if (!first) continue;
@@ -106,11 +110,18 @@ export async function diagnose(workspace: Workspace, ref: SourceRef): Promise<{ 
   for (const problem of result.problems) {
     if (refId(problem.source) !== id) continue;
     // A reference whose only error is a cycle already carries the cycle diagnostic.
-    const cycleOnly = problem.code === 'source-errors' && cycles.some((cycle) => cycle.range.start.line === problem.range.start.line && cycle.range.start.character === problem.range.start.character) && /has 1 error: reference cycle/.test(problem.message);
+    const cycleOnly =
+      problem.code === 'source-errors' &&
+      cycles.some(
+        (cycle) => cycle.range.start.line === problem.range.start.line && cycle.range.start.character === problem.range.start.character,
+      ) &&
+      /has 1 error: reference cycle/.test(problem.message);
     if (cycleOnly) continue;
     const diagnostic = toDiagnostic(problem, workspace);
     if (problem.code === 'cycle') {
-      const link = result.source.links.find((candidate) => candidate.cycle && referencePlace(result.source, candidate)?.start.line === problem.range.start.line);
+      const link = result.source.links.find(
+        (candidate) => candidate.cycle && referencePlace(result.source, candidate)?.start.line === problem.range.start.line,
+      );
       const members = link?.cycle ?? [];
       diagnostic.relatedInformation = members.slice(0, -1).map((member, index) => ({
         location: { uri: workspace.uriOf(member), range: ZERO_RANGE },
@@ -158,7 +169,9 @@ export class DiagnosticsScheduler {
     for (const [id] of this.workspace.documents) {
       const dependencies = this.dependencies.get(id);
       const affected = changedIds.some(
-        (changed) => changed === id || (dependencies && [...dependencies].some((dependency) => dependency === changed || dependency.startsWith(changed + '/'))),
+        (changed) =>
+          changed === id ||
+          (dependencies && [...dependencies].some((dependency) => dependency === changed || dependency.startsWith(changed + '/'))),
       );
       if (affected) this.pending.add(id);
     }

@@ -77,7 +77,8 @@ async function analyze(workspace: Workspace, ref: SourceRef): Promise<Distributi
     scenarioRef = read.declaredIn;
     return read.text;
   });
-  const parameters = scenarioText === undefined ? [] : (readScenarioParameters(scenarioText, scenarioPath ?? '').scenario?.declarations ?? []);
+  const parameters =
+    scenarioText === undefined ? [] : (readScenarioParameters(scenarioText, scenarioPath ?? '').scenario?.declarations ?? []);
   return { ref, file, text, loaded, scenarioPath, scenarioRef, parameters };
 }
 
@@ -136,7 +137,9 @@ export function distributionProblems(analysis: DistributionAnalysis): Problem[] 
         ...(suggestion ? { data: { suggestion } } : {}),
       };
     }
-    const message = own ? problem.message : `in the ScenarioFile (${path.basename(problem.file)}:${scenarioLine(analysis, problem)}): ${problem.message}`;
+    const message = own
+      ? problem.message
+      : `in the ScenarioFile (${path.basename(problem.file)}:${scenarioLine(analysis, problem)}): ${problem.message}`;
     return { source: analysis.ref, range, severity, code: 'distribution', message };
   });
 }
@@ -158,7 +161,12 @@ function rangeWarnings(analysis: DistributionAnalysis): VariationProblem[] {
     if (factor.kind !== 'range') continue;
     const { lower, upper, offset } = factor.range;
     if (upper > lower && factor.step > upper - lower) {
-      warnings.push({ file: analysis.file, offset, severity: 'warning', message: `stepWidth ${factor.step} is wider than the range ${lower}..${upper}: only ${lower} is used` });
+      warnings.push({
+        file: analysis.file,
+        offset,
+        severity: 'warning',
+        message: `stepWidth ${factor.step} is wider than the range ${lower}..${upper}: only ${lower} is used`,
+      });
     }
   }
   return warnings;
@@ -177,7 +185,11 @@ export function countConcrete(variations: Variations): DistributionCount {
 
 function countEach(variations: Variations): DistributionCount {
   if (!variations.constrained) return { concrete: variations.count, discarded: 0n, total: variations.count };
-  if (variations.count > MAX_COUNTED_COMBINATIONS) return { total: variations.count, uncounted: `more than ${MAX_COUNTED_COMBINATIONS} combinations are not checked against the ValueConstraintGroups one by one` };
+  if (variations.count > MAX_COUNTED_COMBINATIONS)
+    return {
+      total: variations.count,
+      uncounted: `more than ${MAX_COUNTED_COMBINATIONS} combinations are not checked against the ValueConstraintGroups one by one`,
+    };
   let discarded = 0n;
   try {
     for (let index = 0n; index < variations.count; index++) if (variations.brokenAt(index)) discarded++;
@@ -207,14 +219,19 @@ export async function distributionLenses(workspace: Workspace, uri: string, ref:
   const title =
     'uncounted' in count
       ? `${plural(count.total, 'combination')} (${count.uncounted})`
-      : `${plural(count.concrete, 'concrete scenario')}` + (count.discarded > 0n ? ` (${count.discarded} of ${count.total} discarded by ValueConstraintGroups)` : '');
+      : `${plural(count.concrete, 'concrete scenario')}` +
+        (count.discarded > 0n ? ` (${count.discarded} of ${count.total} discarded by ValueConstraintGroups)` : '');
   return [
     { range, command: { title, command: '' } },
     { range, command: { title: 'Run Variations', command: RUN_VARIATIONS_COMMAND, arguments: [uri] } },
   ];
 }
 
-const DISTRIBUTION_ELEMENTS = new Set(['DeterministicSingleParameterDistribution', 'DeterministicMultiParameterDistribution', 'StochasticDistribution']);
+const DISTRIBUTION_ELEMENTS = new Set([
+  'DeterministicSingleParameterDistribution',
+  'DeterministicMultiParameterDistribution',
+  'StochasticDistribution',
+]);
 
 function elementsAt(root: XmlElement | undefined, offset: number): XmlElement[] {
   const found: XmlElement[] = [];
@@ -264,7 +281,12 @@ export async function distributionHover(workspace: Workspace, ref: SourceRef, of
     draws.push(`- ${error.message}`);
   }
   const more = stochastic.runs > HOVER_VALUES ? [`- … (${stochastic.runs - HOVER_VALUES} more)`] : [];
-  const value = [`**${plural(BigInt(stochastic.runs), 'draw')}** from a ${drawn.sampler.kind} distribution (seed ${stochastic.seed})`, '', ...draws, ...more].join('\n');
+  const value = [
+    `**${plural(BigInt(stochastic.runs), 'draw')}** from a ${drawn.sampler.kind} distribution (seed ${stochastic.seed})`,
+    '',
+    ...draws,
+    ...more,
+  ].join('\n');
   return { contents: { kind: MarkupKind.Markdown, value }, range };
 }
 
@@ -280,7 +302,12 @@ function parameterNameAt(text: string, offset: number): { start: number; end: nu
 }
 
 /** In a `parameterName` or `parameterRef`: the scenario's root parameters, with type and default. */
-export async function distributionCompletion(workspace: Workspace, ref: SourceRef, text: string, offset: number): Promise<CompletionItem[] | undefined> {
+export async function distributionCompletion(
+  workspace: Workspace,
+  ref: SourceRef,
+  text: string,
+  offset: number,
+): Promise<CompletionItem[] | undefined> {
   if (!isDistributionText(text)) return undefined;
   const at = parameterNameAt(text, offset);
   if (!at) return undefined;

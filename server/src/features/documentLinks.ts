@@ -16,7 +16,11 @@ export async function documentLinks(workspace: Workspace, ref: SourceRef): Promi
     const value = link.info.fileAttribute;
     const target = resolvedTarget(link.resolution);
     if (!value || !target || value.valueEnd <= value.valueStart) continue;
-    links.push({ range: model.document.lines.range(value.valueStart, value.valueEnd), target: workspace.uriOf(target), tooltip: `Open ${displayRef(target, workspace.folders[0])}` });
+    links.push({
+      range: model.document.lines.range(value.valueStart, value.valueEnd),
+      target: workspace.uriOf(target),
+      tooltip: `Open ${displayRef(target, workspace.folders[0])}`,
+    });
   }
   return links;
 }

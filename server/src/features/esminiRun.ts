@@ -30,7 +30,8 @@ export class EsminiRuns {
   async run(params: RunEsminiParams, token?: CancellationToken): Promise<RunEsminiResult> {
     const workspace = this.workspace;
     const ref = await refOf(workspace, params?.uri);
-    const duration = typeof params.duration === 'number' && params.duration > 0 && Number.isFinite(params.duration) ? params.duration : undefined;
+    const duration =
+      typeof params.duration === 'number' && params.duration > 0 && Number.isFinite(params.duration) ? params.duration : undefined;
     const cancel = new AbortController();
     token?.onCancellationRequested(() => cancel.abort());
     const options: EsminiRunOptions = {
@@ -42,7 +43,9 @@ export class EsminiRuns {
       force: params.force === true,
     };
     const distribution = await distributionAnalysis(workspace, ref);
-    const result = distribution ? await runFirstConcrete(distribution, options) : await runScenario(new Flattener(workspace.store), ref, options);
+    const result = distribution
+      ? await runFirstConcrete(distribution, options)
+      : await runScenario(new Flattener(workspace.store), ref, options);
     const id = refId(ref);
     const earlier = this.previous.get(id);
     if (earlier) removeRunFolder(earlier);
@@ -78,7 +81,9 @@ export class EsminiRuns {
       esmini: result.esmini,
       args: result.args,
       remarks: result.remarks.map((remark) => ({ message: remark.text, count: remark.count, origin: remark.origin, why: remark.why })),
-      ...(result.roadFile ? { roadFile: { filepath: result.roadFile.filepath, resolved: result.roadFile.resolved, loaded: result.roadFile.loaded } } : {}),
+      ...(result.roadFile
+        ? { roadFile: { filepath: result.roadFile.filepath, resolved: result.roadFile.resolved, loaded: result.roadFile.loaded } }
+        : {}),
     };
   }
 }
@@ -89,22 +94,44 @@ export class EsminiRuns {
  */
 async function runFirstConcrete(analysis: DistributionAnalysis, options: EsminiRunOptions): Promise<EsminiRunResult> {
   const variations = analysis.loaded.variations;
-  const notRun = (message: string, flattenProblems: Problem[] = []): EsminiRunResult => ({ outcome: 'not-flattened', message, log: '', duration: options.duration ?? 0, timeStep: 0, seed: 0, wallMs: 0, problems: [], remarks: [], flattenProblems });
+  const notRun = (message: string, flattenProblems: Problem[] = []): EsminiRunResult => ({
+    outcome: 'not-flattened',
+    message,
+    log: '',
+    duration: options.duration ?? 0,
+    timeStep: 0,
+    seed: 0,
+    wallMs: 0,
+    problems: [],
+    remarks: [],
+    flattenProblems,
+  });
   if (!variations) {
     const problems = distributionProblems(analysis).filter((problem) => problem.severity === 'error');
-    return notRun(`the distribution has ${problems.length} error${problems.length === 1 ? '' : 's'}, so it has no concrete scenario to run`, problems);
+    return notRun(
+      `the distribution has ${problems.length} error${problems.length === 1 ? '' : 's'}, so it has no concrete scenario to run`,
+      problems,
+    );
   }
   let chosen: { index: bigint; text: string; values: string } | undefined;
   try {
     for (let index = 0n; index < variations.count && !chosen; index++) {
       const concrete = variations.concreteAt(index);
-      if ('text' in concrete) chosen = { index, text: concrete.text, values: concrete.assignments.map((assignment) => `${assignment.parameter} = ${assignment.value}`).join(', ') };
+      if ('text' in concrete)
+        chosen = {
+          index,
+          text: concrete.text,
+          values: concrete.assignments.map((assignment) => `${assignment.parameter} = ${assignment.value}`).join(', '),
+        };
     }
   } catch (error) {
     if (!(error instanceof SamplingError)) throw error;
     return notRun(`the distribution cannot be drawn from: ${error.message}`);
   }
-  if (!chosen) return notRun(`every one of the distribution's ${variations.count} combinations breaks the scenario's ValueConstraintGroups: nothing to run`);
+  if (!chosen)
+    return notRun(
+      `every one of the distribution's ${variations.count} combinations breaks the scenario's ValueConstraintGroups: nothing to run`,
+    );
   const scenarioFolder = path.dirname(variations.scenarioPath);
   const ran = await runScenarioText(chosen.text, searchPathOf(chosen.text, scenarioFolder, []), options);
   const which = `concrete scenario ${chosen.index} of ${variations.count} (${chosen.values})`;

@@ -34,15 +34,28 @@ export async function hover(workspace: Workspace, ref: SourceRef, offset: number
   const target = targetAt(source, offset);
   const distribution = await distributionHover(workspace, ref, offset);
   if (distribution) return distribution;
-  return (await modularHover(workspace, source, model, target, offset)) ?? schemaHoverAt(model.document, workspace.settings.schemaVersion, target);
+  return (
+    (await modularHover(workspace, source, model, target, offset)) ??
+    schemaHoverAt(model.document, workspace.settings.schemaVersion, target)
+  );
 }
 
 /** Hover for parameters, keys (default, effective value and where each comes from) and references (what the group does). */
-async function modularHover(workspace: Workspace, source: FlatSource, model: ScenarioModel, target: Target, offset: number): Promise<Hover | null> {
+async function modularHover(
+  workspace: Workspace,
+  source: FlatSource,
+  model: ScenarioModel,
+  target: Target,
+  offset: number,
+): Promise<Hover | null> {
   const semantics = source.semantics;
   const assignment = semantics && target.kind === 'catalogReference' ? assignmentHover(workspace, semantics, target) : undefined;
   const semantic = assignment ?? (semantics ? await parameterHover(workspace, semantics, target) : undefined);
-  if (semantic) return { contents: { kind: MarkupKind.Markdown, value: semantic.markdown }, range: model.document.lines.range(semantic.start, semantic.end) };
+  if (semantic)
+    return {
+      contents: { kind: MarkupKind.Markdown, value: semantic.markdown },
+      range: model.document.lines.range(semantic.start, semantic.end),
+    };
   const syntactic = syntacticTarget(source, target, offset);
   if (syntactic.kind === 'nothing' || syntactic.kind === 'elementName') return null;
   const { attribute } = syntactic.hit;
@@ -62,7 +75,12 @@ async function modularHover(workspace: Workspace, source: FlatSource, model: Sce
     case 'groupReference': {
       const { link, group } = syntactic.linked ?? {};
       if (!link?.source || !group?.target) return null;
-      return reply(groupSummary(`ManeuverGroup **${escapeMarkdown(group.target.name)}** of ${code(link.info.fileName)} (${group.overridable.length} overridable attributes)`, group.target));
+      return reply(
+        groupSummary(
+          `ManeuverGroup **${escapeMarkdown(group.target.name)}** of ${code(link.info.fileName)} (${group.overridable.length} overridable attributes)`,
+          group.target,
+        ),
+      );
     }
     case 'key': {
       const linkedSource = syntactic.linked?.link.source;
@@ -73,24 +91,36 @@ async function modularHover(workspace: Workspace, source: FlatSource, model: Sce
       const key = code(attribute.value);
       if (match.targets.length === 0) return reply(`key ${key} overrides nothing in group ${code(group.info.name)}`);
       const sets = attributesSetBy(group, match);
-      const lines = [sets.length > 0 ? `key ${key} sets ${sets.length} attribute${sets.length === 1 ? '' : 's'}:` : `key ${key} sets nothing: a more specific key sets every attribute it matches`];
+      const lines = [
+        sets.length > 0
+          ? `key ${key} sets ${sets.length} attribute${sets.length === 1 ? '' : 's'}:`
+          : `key ${key} sets nothing: a more specific key sets every attribute it matches`,
+      ];
       if (sets.length > 0) lines.push('');
       for (const set of sets) {
         const declared = where(workspace, overridablePlace(linkedSource, set));
-        lines.push(`- ${code(`${set.path.join('.')}.${set.attributeName}`)}: default ${defaultOf(set)} declared at ${declared}; takes effect: ${code(match.parameter.value)} (this key)`);
+        lines.push(
+          `- ${code(`${set.path.join('.')}.${set.attributeName}`)}: default ${defaultOf(set)} declared at ${declared}; takes effect: ${code(match.parameter.value)} (this key)`,
+        );
       }
       const taken = match.targets.filter((candidate) => !sets.includes(candidate));
       if (taken.length > 0) lines.push('', `Matched, but set by a more specific key:`, '');
       for (const overridden of taken) {
         const applied = plan.applied.get(overridden);
-        const by = applied ? `${code(applied.value)} from ${code(applied.key)} on line ${model.document.lines.positionAt(applied.element.start).line + 1}` : 'its default';
+        const by = applied
+          ? `${code(applied.value)} from ${code(applied.key)} on line ${model.document.lines.positionAt(applied.element.start).line + 1}`
+          : 'its default';
         lines.push(`- ${code(`${overridden.path.join('.')}.${overridden.attributeName}`)}: ${by}`);
       }
       return reply(lines.join('\n'));
     }
     case 'entityReference': {
       const entity = model.entities.find((candidate) => candidate.name === attribute.value);
-      return reply(entity ? `entity ${code(entity.name)} (${entity.element.children[0]?.name ?? 'ScenarioObject'})` : `entity ${code(attribute.value)} is not declared in this file`);
+      return reply(
+        entity
+          ? `entity ${code(entity.name)} (${entity.element.children[0]?.name ?? 'ScenarioObject'})`
+          : `entity ${code(attribute.value)} is not declared in this file`,
+      );
     }
     default:
       return null;

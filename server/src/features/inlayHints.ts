@@ -22,8 +22,14 @@ function allHints(semantics: DocumentSemantics): ExpressionHint[] {
     if (!result.ok) continue;
     // Where esmini computes another value, the hint gives both: the selected reading's first (SPEC 12).
     const differs = result.differs;
-    const other = differs ? (semantics.evaluator.reading === 'esmini' ? ` (standard ${differs.standard})` : ` (esmini ${differs.esmini})`) : '';
-    const why = differs ? `; by the standard ${differs.standard}, by esmini ${differs.esmini}${differs.reasons.length ? `: ${differs.reasons.join('; ')}` : ''}` : '';
+    const other = differs
+      ? semantics.evaluator.reading === 'esmini'
+        ? ` (standard ${differs.standard})`
+        : ` (esmini ${differs.esmini})`
+      : '';
+    const why = differs
+      ? `; by the standard ${differs.standard}, by esmini ${differs.esmini}${differs.reasons.length ? `: ${differs.reasons.join('; ')}` : ''}`
+      : '';
     hints.push({
       offset: site.attribute.valueEnd,
       hint: {

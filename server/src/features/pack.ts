@@ -20,15 +20,32 @@ function isFolder(filePath: string): boolean {
  * Packs a folder (or the folder of a lone main.xosc) with everything it references, or a list of
  * files at the root of a new package; writes the archive atomically, never over an input.
  */
-export async function packCommand(workspace: Workspace, inputs: unknown, outputPath: unknown, selfContained?: unknown): Promise<WriteResult> {
-  if (!Array.isArray(inputs) || inputs.length === 0 || !inputs.every((input) => typeof input === 'string')) throw invalidParams('expected a list of input URIs');
+export async function packCommand(
+  workspace: Workspace,
+  inputs: unknown,
+  outputPath: unknown,
+  selfContained?: unknown,
+): Promise<WriteResult> {
+  if (!Array.isArray(inputs) || inputs.length === 0 || !inputs.every((input) => typeof input === 'string'))
+    throw invalidParams('expected a list of input URIs');
   if (typeof outputPath !== 'string' || !outputPath) throw invalidParams('expected an output path');
   const output = path.resolve(filePathOf(outputPath) ?? outputPath);
-  const refuse = (message: string): WriteResult => ({ written: null, problems: [{ uri: outputPath, line: 0, character: 0, severity: 'error', message }] });
+  const refuse = (message: string): WriteResult => ({
+    written: null,
+    problems: [{ uri: outputPath, line: 0, character: 0, severity: 'error', message }],
+  });
   if (!output.toLowerCase().endsWith('.mosc')) return refuse(`the output '${output}' must end in .mosc`);
   const paths = (inputs as string[]).map((input) => path.resolve(filePathOf(input) ?? input));
-  const folder = paths.length === 1 ? (isFolder(paths[0]) ? paths[0] : path.basename(paths[0]) === 'main.xosc' ? path.dirname(paths[0]) : undefined) : undefined;
-  if (paths.some((input) => input === output || isSameFile(input, output))) return refuse(`refusing to overwrite ${output}, one of the inputs`);
+  const folder =
+    paths.length === 1
+      ? isFolder(paths[0])
+        ? paths[0]
+        : path.basename(paths[0]) === 'main.xosc'
+          ? path.dirname(paths[0])
+          : undefined
+      : undefined;
+  if (paths.some((input) => input === output || isSameFile(input, output)))
+    return refuse(`refusing to overwrite ${output}, one of the inputs`);
   // Paths are rebased onto the package's folder, or (self-contained) the files they name are stored inside it.
   const packOptions = { outputPath: output, selfContained: selfContained === true, workingDirectory: workspace.folders[0] };
   const result: PackResult = folder ? await packFolder(folder, workspace.store, packOptions) : await packFiles(paths, {}, packOptions);

@@ -2,7 +2,16 @@ import { CompletionItem, CompletionItemKind, LSPErrorCodes, ResponseError, TextE
 import { TextDocument } from 'vscode-languageserver-textdocument';
 import { composedValues } from '../core/flatten/carry';
 import { FlatSource, LinkedGroupReference } from '../core/flatten';
-import { Declaration, DocumentSemantics, formatValue, ParameterUse, parametersInScopeAt, Provenance, referencesOf, ValueResult } from '../core/semantics';
+import {
+  Declaration,
+  DocumentSemantics,
+  formatValue,
+  ParameterUse,
+  parametersInScopeAt,
+  Provenance,
+  referencesOf,
+  ValueResult,
+} from '../core/semantics';
 import { displayRef, refId, SourceRef } from '../core/sources';
 import { SchemaIndex } from '../core/schema/index';
 import { SimpleType } from '../core/schema/model';
@@ -20,7 +29,10 @@ import { Workspace } from '../workspace';
  */
 
 /** The semantics of the file as the workspace read it (unsaved text and packages included). */
-export async function semanticsOf(workspace: Workspace, ref: SourceRef): Promise<{ source: FlatSource; semantics: DocumentSemantics } | undefined> {
+export async function semanticsOf(
+  workspace: Workspace,
+  ref: SourceRef,
+): Promise<{ source: FlatSource; semantics: DocumentSemantics } | undefined> {
   const source = await workspace.source(ref);
   return source.semantics ? { source, semantics: source.semantics } : undefined;
 }
@@ -31,7 +43,9 @@ function lineOf(semantics: DocumentSemantics, offset: number): number {
 
 function declarationPlace(semantics: DocumentSemantics, declaration: Declaration): Place {
   const name = declaration.nameAttribute;
-  const range = name ? semantics.model.document.lines.range(name.valueStart, name.valueEnd) : semantics.model.document.lines.range(declaration.element.start, declaration.element.nameEnd);
+  const range = name
+    ? semantics.model.document.lines.range(name.valueStart, name.valueEnd)
+    : semantics.model.document.lines.range(declaration.element.start, declaration.element.nameEnd);
   return { ref: semantics.ref, range };
 }
 
@@ -66,12 +80,24 @@ export const PARAMETER_NAME = /^[A-Za-z_][A-Za-z0-9_]*$/;
  * Renames a parameter: its declaration and exactly its uses. A same-named
  * parameter of another scope is another Declaration of the model, so it is left alone.
  */
-export function renameParameter(workspace: Workspace, semantics: DocumentSemantics, declaration: Declaration | undefined, newName: string): WorkspaceEdit | undefined {
+export function renameParameter(
+  workspace: Workspace,
+  semantics: DocumentSemantics,
+  declaration: Declaration | undefined,
+  newName: string,
+): WorkspaceEdit | undefined {
   if (!declaration?.nameAttribute) return undefined;
   const name = newName.startsWith('$') ? newName.slice(1) : newName;
-  if (!PARAMETER_NAME.test(name)) throw new ResponseError(LSPErrorCodes.RequestFailed, `'${newName}' is not a parameter name (letters, digits and _, not starting with a digit)`);
+  if (!PARAMETER_NAME.test(name))
+    throw new ResponseError(
+      LSPErrorCodes.RequestFailed,
+      `'${newName}' is not a parameter name (letters, digits and _, not starting with a digit)`,
+    );
   if (semantics.ref.entries.length > 0 && !workspace.editablePackages) {
-    throw new ResponseError(LSPErrorCodes.RequestFailed, 'the parameter is inside a .mosc package, and this editor cannot write into packages');
+    throw new ResponseError(
+      LSPErrorCodes.RequestFailed,
+      'the parameter is inside a .mosc package, and this editor cannot write into packages',
+    );
   }
   const lines = semantics.model.document.lines;
   const edits: TextEdit[] = [TextEdit.replace(lines.range(declaration.nameAttribute.valueStart, declaration.nameAttribute.valueEnd), name)];
@@ -83,7 +109,9 @@ export function renameParameter(workspace: Workspace, semantics: DocumentSemanti
 }
 
 export function describeValue(result: ValueResult): string {
-  return result.ok ? `${formatValue(result.value)} (${result.type})${differenceNote(result)}` : `cannot be evaluated: ${result.errors[0]?.message ?? 'unknown error'}`;
+  return result.ok
+    ? `${formatValue(result.value)} (${result.type})${differenceNote(result)}`
+    : `cannot be evaluated: ${result.errors[0]?.message ?? 'unknown error'}`;
 }
 
 /** Where esmini computes another value than the standard: both, and esmini's rules that make the difference (SPEC 12). */
@@ -97,10 +125,17 @@ export function differenceNote(result: ValueResult): string {
  * The schema type of the attribute a value is typed in (the tolerant parse's element at the tag, else the
  * first type with an element of that name); undefined with schema support off or an unknown attribute.
  */
-export function attributeTypeAt(index: SchemaIndex | undefined, parsed: XmlDocument, context: ValueContext): { name: string; type: SimpleType } | undefined {
+export function attributeTypeAt(
+  index: SchemaIndex | undefined,
+  parsed: XmlDocument,
+  context: ValueContext,
+): { name: string; type: SimpleType } | undefined {
   if (!index) return undefined;
   const found = elementAt(parsed, context.tagStart);
-  const placed = found && found.start === context.tagStart && found.name === context.element ? attributeType(index, found, context.attribute) : undefined;
+  const placed =
+    found && found.start === context.tagStart && found.name === context.element
+      ? attributeType(index, found, context.attribute)
+      : undefined;
   if (placed) return placed;
   const typeName = typeByElementName(index, context.element);
   const declaration = typeName ? index.attribute(typeName, context.attribute) : undefined;
@@ -164,13 +199,18 @@ function carriedFrom(workspace: Workspace, main: FlatSource, group: LinkedGroupR
 }
 
 /** What each open main file importing this file makes of the attribute (a ParameterReference override or a carried declaration). */
-async function composedLines(workspace: Workspace, semantics: DocumentSemantics, element: XmlElement, attr: XmlAttribute): Promise<string[]> {
+async function composedLines(
+  workspace: Workspace,
+  semantics: DocumentSemantics,
+  element: XmlElement,
+  attr: XmlAttribute,
+): Promise<string[]> {
   const lines: string[] = [];
   const id = refId(semantics.ref);
   for (const open of workspace.documents.values()) {
     if (refId(open.ref) === id) continue;
     const main = await workspace.source(open.ref);
-    if ( !main.links.some((link) => link.source && refId(link.source.ref) === id)) continue;
+    if (!main.links.some((link) => link.source && refId(link.source.ref) === id)) continue;
     for (const { group, result } of composedValues(main, element, attr.name, workspace.folders[0])) {
       const how =
         result.provenance.kind === 'override'
@@ -180,7 +220,9 @@ async function composedLines(workspace: Workspace, semantics: DocumentSemantics,
             : result.provenance.kind === 'declaration'
               ? `the main file's declaration of \`${result.provenance.declaration.name}\``
               : 'as written';
-      lines.push(`- in \`${displayRef(main.ref, workspace.folders[0])}\` (group ${group.info.name}): **${result.ok ? formatValue(result.value) : 'not evaluable'}**, ${how}`);
+      lines.push(
+        `- in \`${displayRef(main.ref, workspace.folders[0])}\` (group ${group.info.name}): **${result.ok ? formatValue(result.value) : 'not evaluable'}**, ${how}`,
+      );
     }
   }
   return lines;
@@ -190,7 +232,11 @@ async function composedLines(workspace: Workspace, semantics: DocumentSemantics,
  * Hover on a `$name` or an attribute written `${...}`: type, value and where the value comes from
  * (the declarations of every parameter it reads).
  */
-export async function parameterHover(workspace: Workspace, semantics: DocumentSemantics, target: Target): Promise<{ markdown: string; start: number; end: number } | undefined> {
+export async function parameterHover(
+  workspace: Workspace,
+  semantics: DocumentSemantics,
+  target: Target,
+): Promise<{ markdown: string; start: number; end: number } | undefined> {
   const hit = target.kind === 'nothing' || target.kind === 'elementName' ? undefined : target.hit;
   const found = hit?.inValue ? { element: hit.element, attribute: hit.attribute } : undefined;
   const use = target.kind === 'parameter' || target.kind === 'expression' || target.kind === 'catalogReference' ? target.use : undefined;
@@ -200,7 +246,11 @@ export async function parameterHover(workspace: Workspace, semantics: DocumentSe
     const result = semantics.evaluator.attributeValue(element, attr);
     const lines: string[] = [];
     const written = attr.value.trim();
-    lines.push(site.form.kind === 'expression' ? `\`${written}\` = **${result.ok ? formatValue(result.value) : '?'}**${result.ok ? ` (${result.type})${differenceNote(result)}` : ''}` : `**${written}** = ${describeValue(result)}`);
+    lines.push(
+      site.form.kind === 'expression'
+        ? `\`${written}\` = **${result.ok ? formatValue(result.value) : '?'}**${result.ok ? ` (${result.type})${differenceNote(result)}` : ''}`
+        : `**${written}** = ${describeValue(result)}`,
+    );
     if (!result.ok) for (const error of result.errors) lines.push(`- error: ${error.message}`);
     const provenance = provenanceLine(semantics, result.provenance);
     if (provenance) lines.push('', provenance);
@@ -216,7 +266,9 @@ export async function parameterHover(workspace: Workspace, semantics: DocumentSe
         if (seen.has(candidate.declaration)) continue;
         seen.add(candidate.declaration);
         const value = semantics.evaluator.declarationValue(candidate.declaration);
-        lines.push(`- \`$${candidate.name}\` = ${describeValue(value)}, declared in ${scopeName(candidate.declaration)} on line ${lineOf(semantics, candidate.declaration.element.start)}`);
+        lines.push(
+          `- \`$${candidate.name}\` = ${describeValue(value)}, declared in ${scopeName(candidate.declaration)} on line ${lineOf(semantics, candidate.declaration.element.start)}`,
+        );
       }
     }
     const composed = await composedLines(workspace, semantics, element, attr);
@@ -237,7 +289,11 @@ export async function parameterHover(workspace: Workspace, semantics: DocumentSe
     // A literal of an imported group: shown only when a main file overrides it.
     const composed = await composedLines(workspace, semantics, found.element, found.attribute);
     if (composed.some((line) => line.includes('overridden by key'))) {
-      return { markdown: [`**${found.attribute.value}** as written`, '', 'in the files that import it:', ...composed].join('\n'), start: found.attribute.valueStart, end: found.attribute.valueEnd };
+      return {
+        markdown: [`**${found.attribute.value}** as written`, '', 'in the files that import it:', ...composed].join('\n'),
+        start: found.attribute.valueStart,
+        end: found.attribute.valueEnd,
+      };
     }
   }
   const declaration = target.kind === 'declaration' ? target.declaration : undefined;

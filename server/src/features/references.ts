@@ -28,17 +28,33 @@ export function nameTargetOf(source: FlatSource, target: SyntacticTarget): NameT
   switch (target.kind) {
     case 'groupDeclaration': {
       const { element, attribute } = target.hit;
-      return { kind: 'group', ref, elementStart: element.start, name: attribute.value, declaration: place(attribute.valueStart, attribute.valueEnd) };
+      return {
+        kind: 'group',
+        ref,
+        elementStart: element.start,
+        name: attribute.value,
+        declaration: place(attribute.valueStart, attribute.valueEnd),
+      };
     }
     case 'listedAttribute':
-      return { kind: 'attribute', ref, elementStart: target.hit.element.start, name: target.name, declaration: place(target.start, target.end) };
+      return {
+        kind: 'attribute',
+        ref,
+        elementStart: target.hit.element.start,
+        name: target.name,
+        declaration: place(target.start, target.end),
+      };
     case 'groupReference': {
       const { link, group } = target.linked ?? {};
       if (!link?.source || !group?.target) return undefined;
       const origin = originOf(link.source, group.target.element);
       const name = origin.element.attributes.find((candidate) => candidate.name === 'name');
-      const declaration = name ? placeIn(origin.source, name.valueStart, name.valueEnd) : placeIn(origin.source, origin.element.start, origin.element.nameEnd);
-      return declaration ? { kind: 'group', ref: origin.source.ref, elementStart: origin.element.start, name: name?.value ?? '', declaration } : undefined;
+      const declaration = name
+        ? placeIn(origin.source, name.valueStart, name.valueEnd)
+        : placeIn(origin.source, origin.element.start, origin.element.nameEnd);
+      return declaration
+        ? { kind: 'group', ref: origin.source.ref, elementStart: origin.element.start, name: name?.value ?? '', declaration }
+        : undefined;
     }
     case 'key': {
       const { link, group } = target.linked ?? {};
@@ -47,7 +63,9 @@ export function nameTargetOf(source: FlatSource, target: SyntacticTarget): NameT
       if (!first) return undefined;
       const origin = originOf(link.source, first.element);
       const declaration = listedPlace(origin.source, origin.element, first.attributeName);
-      return declaration ? { kind: 'attribute', ref: origin.source.ref, elementStart: origin.element.start, name: first.attributeName, declaration } : undefined;
+      return declaration
+        ? { kind: 'attribute', ref: origin.source.ref, elementStart: origin.element.start, name: first.attributeName, declaration }
+        : undefined;
     }
     default:
       return undefined;
@@ -55,7 +73,13 @@ export function nameTargetOf(source: FlatSource, target: SyntacticTarget): NameT
 }
 
 /** References of what the cursor names: a catalog entry's parameter, a parameter, a group or an overridable attribute. */
-export async function referencesAt(workspace: Workspace, ref: SourceRef, offset: number, includeDeclaration: boolean, checkCancelled: () => void): Promise<Place[]> {
+export async function referencesAt(
+  workspace: Workspace,
+  ref: SourceRef,
+  offset: number,
+  includeDeclaration: boolean,
+  checkCancelled: () => void,
+): Promise<Place[]> {
   const source = await workspace.source(ref);
   const target = targetAt(source, offset);
   const semantics = source.semantics;
@@ -74,13 +98,19 @@ export async function referencesAt(workspace: Workspace, ref: SourceRef, offset:
 }
 
 /** The range a rename at the cursor replaces, and its current text; null where nothing renameable stands. */
-export async function prepareRenameAt(workspace: Workspace, ref: SourceRef, offset: number): Promise<{ range: Range; placeholder: string } | null> {
+export async function prepareRenameAt(
+  workspace: Workspace,
+  ref: SourceRef,
+  offset: number,
+): Promise<{ range: Range; placeholder: string } | null> {
   const source = await workspace.source(ref);
   const target = targetAt(source, offset);
   const lines = source.original?.document.lines;
   const semantics = source.semantics;
   const assigned = entryParameterRenameRange(target);
-  const parameter = semantics ? (parameterRenameRange(target) ?? (assigned && (await entryParameterOf(workspace, semantics, target)) ? assigned : undefined)) : undefined;
+  const parameter = semantics
+    ? (parameterRenameRange(target) ?? (assigned && (await entryParameterOf(workspace, semantics, target)) ? assigned : undefined))
+    : undefined;
   if (parameter && lines) return { range: lines.range(parameter.start, parameter.end), placeholder: parameter.name };
   const subject = nameTargetOf(source, syntacticTarget(source, target, offset));
   if (!subject || subject.kind !== 'group') return null;
@@ -95,7 +125,13 @@ export async function prepareRenameAt(workspace: Workspace, ref: SourceRef, offs
 }
 
 /** Renames what the cursor names: a catalog entry's parameter, a parameter, or a ManeuverGroup with every reference to it. */
-export async function renameAt(workspace: Workspace, ref: SourceRef, offset: number, newName: string, checkCancelled: () => void): Promise<WorkspaceEdit> {
+export async function renameAt(
+  workspace: Workspace,
+  ref: SourceRef,
+  offset: number,
+  newName: string,
+  checkCancelled: () => void,
+): Promise<WorkspaceEdit> {
   const source = await workspace.source(ref);
   const target = targetAt(source, offset);
   const semantics = source.semantics;
@@ -104,7 +140,8 @@ export async function renameAt(workspace: Workspace, ref: SourceRef, offset: num
   const parameterEdit = semantics ? renameParameter(workspace, semantics, declarationOf(target), newName) : undefined;
   if (parameterEdit) return parameterEdit;
   const subject = nameTargetOf(source, syntacticTarget(source, target, offset));
-  if (!subject || subject.kind !== 'group') throw new ResponseError(LSPErrorCodes.RequestFailed, 'only ManeuverGroup and parameter names can be renamed');
+  if (!subject || subject.kind !== 'group')
+    throw new ResponseError(LSPErrorCodes.RequestFailed, 'only ManeuverGroup and parameter names can be renamed');
   if (subject.ref.entries.length > 0 && !workspace.editablePackages) {
     throw new ResponseError(LSPErrorCodes.RequestFailed, 'the group is inside a .mosc package, and this editor cannot write into packages');
   }
@@ -140,7 +177,11 @@ export async function usagesOf(workspace: Workspace, target: NameTarget): Promis
         for (const match of linked.plan?.matches ?? []) {
           const keyAttribute = match.parameter.keyAttribute;
           if (!keyAttribute) continue;
-          const reaches = match.targets.some((candidate) => candidate.attributeName === target.name && sameElement(link.source as FlatSource, candidate.element, target.ref, target.elementStart));
+          const reaches = match.targets.some(
+            (candidate) =>
+              candidate.attributeName === target.name &&
+              sameElement(link.source as FlatSource, candidate.element, target.ref, target.elementStart),
+          );
           if (!reaches) continue;
           const place = placeIn(source, keyAttribute.valueStart, keyAttribute.valueEnd);
           if (place) found.set(`${refId(place.ref)}:${keyAttribute.valueStart}`, { place, text: keyAttribute.value });
@@ -176,7 +217,12 @@ export async function renameGroup(workspace: Workspace, target: NameTarget, newN
   const edit: WorkspaceEdit = { changes: {} };
   addEdit(edit, workspace, target.ref, target.declaration.range, newName);
   for (const usage of await usagesOf(workspace, target)) {
-    const replaced = usage.text === target.name ? newName : usage.text.endsWith(`.${target.name}`) ? `${usage.text.slice(0, -target.name.length)}${newName}` : undefined;
+    const replaced =
+      usage.text === target.name
+        ? newName
+        : usage.text.endsWith(`.${target.name}`)
+          ? `${usage.text.slice(0, -target.name.length)}${newName}`
+          : undefined;
     if (replaced !== undefined) addEdit(edit, workspace, usage.place.ref, usage.place.range, replaced);
   }
   return edit;
@@ -208,7 +254,12 @@ export async function fileRenameEdits(workspace: Workspace, renames: { oldUri: s
       const written = fileAttribute.value;
       const slash = written.lastIndexOf('/');
       const sameFolder = path.dirname(move.from) === path.dirname(move.to);
-      const newValue = sameFolder ? `${written.slice(0, slash + 1)}${newBase}` : path.relative(path.dirname(ref.disk), folderPackage ? `${move.to}.mosc` : move.to).split(path.sep).join('/');
+      const newValue = sameFolder
+        ? `${written.slice(0, slash + 1)}${newBase}`
+        : path
+            .relative(path.dirname(ref.disk), folderPackage ? `${move.to}.mosc` : move.to)
+            .split(path.sep)
+            .join('/');
       const place = placeIn(source, fileAttribute.valueStart, fileAttribute.valueEnd);
       if (place) addEdit(edit, workspace, ref, place.range, newValue);
     }

@@ -45,7 +45,12 @@ export class RoadNetworkCache {
   }
 }
 
-function locationOf(workspace: Workspace, source: FlatSource, element: XmlElement | undefined, attributeName = 'name'): SourceLocation | undefined {
+function locationOf(
+  workspace: Workspace,
+  source: FlatSource,
+  element: XmlElement | undefined,
+  attributeName = 'name',
+): SourceLocation | undefined {
   const place = element ? elementPlace(source, element, attributeName) : undefined;
   return place ? { uri: workspace.uriOf(place.ref), line: place.range.start.line, character: place.range.start.character } : undefined;
 }
@@ -59,7 +64,8 @@ export async function buildScene(workspace: Workspace, roads: RoadNetworkCache, 
   const model = source.model ?? source.original;
   if (!model?.document.root) throw new ResponseError(-32602, `${displayRef(ref, workspace.folders[0])} could not be read as a scenario`);
   const problems: string[] = [];
-  if (!source.model && source.original && source.links.length > 0) problems.push('the scenario could not be flattened; the view shows the file as written, without the groups it imports');
+  if (!source.model && source.original && source.links.length > 0)
+    problems.push('the scenario could not be flattened; the view shows the file as written, without the groups it imports');
 
   // The road file is needed before positions can be evaluated. It is resolved as Run in esmini resolves it (core/roadFiles.ts), from the file as written.
   const logic = logicFileOf((source.original ?? model).document);
@@ -75,7 +81,9 @@ export async function buildScene(workspace: Workspace, roads: RoadNetworkCache, 
     const { resolved, candidates } = await resolveRoadFile(nodeFileSystem, logic.filepath, scenarioFolder, folders);
     roadFile = { filepath: logic.filepath, resolved, roadCount: 0, source: locationOf(workspace, source, shownLogic?.element, 'filepath') };
     if (!resolved) {
-      problems.push(`road file "${logic.filepath}" not found; looked for ${candidates.join(', ')}. Add its folder to the setting modular2simple.esmini.roadPath.`);
+      problems.push(
+        `road file "${logic.filepath}" not found; looked for ${candidates.join(', ')}. Add its folder to the setting modular2simple.esmini.roadPath.`,
+      );
     } else {
       // Read fresh from disk (a road file may change), bounded, and refused when not a regular file (a FIFO, a device), so that a road file never hangs the server.
       const read = await nodeFileSystem.readFile(resolved, MAX_ROAD_FILE_BYTES + 1).then(
@@ -85,7 +93,8 @@ export async function buildScene(workspace: Workspace, roads: RoadNetworkCache, 
       const bytes = read.bytes;
       if (read.error) problems.push(`road file ${resolved} could not be read: ${read.error}`);
       else if (!bytes) problems.push(`road file ${resolved} could not be read`);
-      else if (bytes.byteLength > MAX_ROAD_FILE_BYTES) problems.push(`road file ${resolved} is larger than ${MAX_ROAD_FILE_BYTES / 1024 / 1024} MB; not drawn`);
+      else if (bytes.byteLength > MAX_ROAD_FILE_BYTES)
+        problems.push(`road file ${resolved} is larger than ${MAX_ROAD_FILE_BYTES / 1024 / 1024} MB; not drawn`);
       else {
         const text = decodeUtf8(bytes);
         const loaded = roads.load(resolved, text);
@@ -100,7 +109,10 @@ export async function buildScene(workspace: Workspace, roads: RoadNetworkCache, 
   }
 
   // Routes named through catalogs are found by the semantics of the document shown (a flattened text is analysed afresh).
-  const semantics = source.semantics?.model.document === model.document ? source.semantics : await analyzeDocument(ref, model.document, workspace.flattener().catalogs, false);
+  const semantics =
+    source.semantics?.model.document === model.document
+      ? source.semantics
+      : await analyzeDocument(ref, model.document, workspace.flattener().catalogs, false);
   const scene = scenarioScene(model.document, network, semantics);
   for (const entity of scene.entities) if (entity.problem) problems.push(`${entity.name}: ${entity.problem}`);
   return {

@@ -38,7 +38,9 @@ export function elementSnippet(index: SchemaIndex, particle: ElementParticle): s
   if (skeleton.children.length > 0) {
     let stop = 0;
     // The editor turns the snippet's tabs into the document's indentation and indents it where it is inserted.
-    const text = skeletonText(skeleton, { indent: '', unit: '\t', eol: '\n' }, (declaration) => attributeValueSnippet(index, declaration, ++stop));
+    const text = skeletonText(skeleton, { indent: '', unit: '\t', eol: '\n' }, (declaration) =>
+      attributeValueSnippet(index, declaration, ++stop),
+    );
     const closing = `\n</${particle.name}>`;
     return `${text.slice(0, text.length - closing.length)}$0${closing}`;
   }
@@ -102,7 +104,12 @@ function typeAtTag(index: SchemaIndex, document: XmlDocument, tagStart: number, 
 }
 
 /** Attribute names not yet written, required first. */
-function attributeItems(index: SchemaIndex, document: XmlDocument, context: { tagStart: number; element: string; written: string[]; start: number }, offset: number): CompletionItem[] {
+function attributeItems(
+  index: SchemaIndex,
+  document: XmlDocument,
+  context: { tagStart: number; element: string; written: string[]; start: number },
+  offset: number,
+): CompletionItem[] {
   const typeName = typeAtTag(index, document, context.tagStart, context.element);
   const type = typeName ? index.complexType(typeName) : undefined;
   if (!type) return [];
@@ -154,11 +161,25 @@ function valueItems(index: SchemaIndex, document: XmlDocument, context: ValueCon
     for (const value of alternative.enumeration ?? []) {
       const deprecated = alternative.deprecatedValues?.includes(value) ?? false;
       const since = alternative.valuesSince?.[value];
-      const item: CompletionItem = { label: value, kind: CompletionItemKind.EnumMember, detail: `${declaration.type}${since ? `, since OpenSCENARIO ${since}` : ''}${deprecated ? ', deprecated' : ''}`, sortText: `${deprecated ? 1 : 0}_${value}`, textEdit: { range, newText: value } };
+      const item: CompletionItem = {
+        label: value,
+        kind: CompletionItemKind.EnumMember,
+        detail: `${declaration.type}${since ? `, since OpenSCENARIO ${since}` : ''}${deprecated ? ', deprecated' : ''}`,
+        sortText: `${deprecated ? 1 : 0}_${value}`,
+        textEdit: { range, newText: value },
+      };
       if (deprecated) item.tags = [CompletionItemTag.Deprecated];
       items.push(item);
     }
-    if (alternative.builtin === 'boolean') for (const value of ['true', 'false']) items.push({ label: value, kind: CompletionItemKind.Value, detail: declaration.type, sortText: `0_${value}`, textEdit: { range, newText: value } });
+    if (alternative.builtin === 'boolean')
+      for (const value of ['true', 'false'])
+        items.push({
+          label: value,
+          kind: CompletionItemKind.Value,
+          detail: declaration.type,
+          sortText: `0_${value}`,
+          textEdit: { range, newText: value },
+        });
   }
   if (simple.parameter) {
     for (const parameter of declaredParameters(document)) {
@@ -198,7 +219,10 @@ export function scenarioSkeletonSnippet(index: SchemaIndex, withDeclaration: boo
   let stop = 0;
   // What the schema leaves optional but a new scenario wants: its parameters and an end.
   const scenario = withOptionalChild(index, elementSkeleton(index, root), 'ParameterDeclarations');
-  const complete = { ...scenario, children: scenario.children.map((child) => (child.name === 'Storyboard' ? withOptionalChild(index, child, 'StopTrigger') : child)) };
+  const complete = {
+    ...scenario,
+    children: scenario.children.map((child) => (child.name === 'Storyboard' ? withOptionalChild(index, child, 'StopTrigger') : child)),
+  };
   const text = skeletonText(complete, { indent: '', unit: '\t', eol: '\n' }, (declaration) =>
     declaration.name in filled
       ? escapeSnippet(filled[declaration.name])

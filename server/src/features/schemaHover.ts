@@ -47,7 +47,10 @@ function attributeHover(index: SchemaIndex, elementName: string, declaration: At
 export function schemaHoverAt(document: XmlDocument, setting: Parameters<typeof indexFor>[1], target: Target): Hover | null {
   const index = indexFor(document, setting);
   if (!index) return null;
-  const reply = (value: string, start: number, end: number): Hover => ({ contents: { kind: MarkupKind.Markdown, value }, range: document.lines.range(start, end) });
+  const reply = (value: string, start: number, end: number): Hover => ({
+    contents: { kind: MarkupKind.Markdown, value },
+    range: document.lines.range(start, end),
+  });
   if (target.kind === 'elementName') {
     const { element } = target;
     const particle = particleOfElement(index, element);
@@ -56,5 +59,7 @@ export function schemaHoverAt(document: XmlDocument, setting: Parameters<typeof 
   const hit = target.kind === 'nothing' || target.hit === undefined || target.hit.inValue ? undefined : target.hit;
   const typeName = hit ? typeOfElement(index, hit.element) : undefined;
   const declaration = hit && typeName ? index.attribute(typeName, hit.attribute.name) : undefined;
-  return hit && declaration ? reply(attributeHover(index, hit.element.name, declaration), hit.attribute.nameStart, hit.attribute.nameEnd) : null;
+  return hit && declaration
+    ? reply(attributeHover(index, hit.element.name, declaration), hit.attribute.nameStart, hit.attribute.nameEnd)
+    : null;
 }

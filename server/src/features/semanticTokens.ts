@@ -71,7 +71,8 @@ function listTokens(semantics: DocumentSemantics): Token[] {
   const tokens: Token[] = [];
   for (const declaration of model.declarations) {
     const name = declaration.nameAttribute;
-    if (name && name.valueEnd > name.valueStart) tokens.push({ start: name.valueStart, end: name.valueEnd, type: 'parameter', modifiers: DECLARATION });
+    if (name && name.valueEnd > name.valueStart)
+      tokens.push({ start: name.valueStart, end: name.valueEnd, type: 'parameter', modifiers: DECLARATION });
   }
   for (const site of model.sites) {
     if (site.form.kind === 'parameter') {
@@ -81,10 +82,14 @@ function listTokens(semantics: DocumentSemantics): Token[] {
     const expression = site.form.expression;
     tokens.push({ start: expression.start, end: expression.bodyStart, type: 'operator', modifiers: 0 });
     if (expression.tree) treeTokens(text, expression.tree, tokens);
-    else for (const parameter of expression.parameters) tokens.push({ start: parameter.start, end: parameter.end, type: 'parameter', modifiers: 0 });
-    if (expression.bodyEnd < expression.end) tokens.push({ start: expression.bodyEnd, end: expression.end, type: 'operator', modifiers: 0 });
+    else
+      for (const parameter of expression.parameters)
+        tokens.push({ start: parameter.start, end: parameter.end, type: 'parameter', modifiers: 0 });
+    if (expression.bodyEnd < expression.end)
+      tokens.push({ start: expression.bodyEnd, end: expression.end, type: 'operator', modifiers: 0 });
   }
-  for (const use of model.uses) if (use.via === 'parameterRef') tokens.push({ start: use.start, end: use.end, type: 'parameter', modifiers: 0 });
+  for (const use of model.uses)
+    if (use.via === 'parameterRef') tokens.push({ start: use.start, end: use.end, type: 'parameter', modifiers: 0 });
   tokens.sort((a, b) => a.start - b.start);
   const result: Token[] = [];
   let last = -1;

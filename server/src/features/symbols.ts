@@ -39,7 +39,8 @@ export function documentSymbols(document: XmlDocument): DocumentSymbol[] {
         target.push(symbol);
         childTarget = symbol.children as DocumentSymbol[];
       }
-      for (let index = current.children.length - 1; index >= 0; index--) stack.push({ element: current.children[index], into: childTarget });
+      for (let index = current.children.length - 1; index >= 0; index--)
+        stack.push({ element: current.children[index], into: childTarget });
     }
   };
   const symbols: DocumentSymbol[] = [];
@@ -63,7 +64,12 @@ export async function workspaceSymbols(workspace: Workspace, query: string, limi
   for (const file of await workspace.indexedFiles()) {
     for (const group of file.groups) {
       if (!group.name || !matches(group.name)) continue;
-      symbols.push({ name: group.name, kind: SymbolKind.Class, location: { uri: workspace.uriOf(group.ref), range: group.range }, containerName: displayRef(group.ref, workspace.folders[0]) });
+      symbols.push({
+        name: group.name,
+        kind: SymbolKind.Class,
+        location: { uri: workspace.uriOf(group.ref), range: group.range },
+        containerName: displayRef(group.ref, workspace.folders[0]),
+      });
       if (symbols.length >= limit) return symbols;
     }
   }
@@ -100,7 +106,10 @@ export async function codeLenses(workspace: Workspace, uri: string, ref: SourceR
     const title = link.source ? overrideSummary(written, applied) : 'unresolved reference';
     lenses.push({ range, command: { title, command: '' } });
     // The line lets the preview open at the groups this reference imports.
-    lenses.push({ range, command: { title: 'flatten preview', command: OPEN_PREVIEW_COMMAND, arguments: [uri, { line: range.start.line }] } });
+    lenses.push({
+      range,
+      command: { title: 'flatten preview', command: OPEN_PREVIEW_COMMAND, arguments: [uri, { line: range.start.line }] },
+    });
   }
   return lenses;
 }

@@ -6,7 +6,18 @@ export function register(context: ServerContext): void {
   context.connection.onCodeAction(
     request(context, 'textDocument/codeAction', async (params) => {
       const open = await openDocument(context, params.textDocument.uri);
-      return open ? codeActions(context.workspace, params.textDocument.uri, open.ref, open.document, params.range, params.context.diagnostics, params.context.only, context.client.edits) : [];
+      return open
+        ? codeActions(
+            context.workspace,
+            params.textDocument.uri,
+            open.ref,
+            open.document,
+            params.range,
+            params.context.diagnostics,
+            params.context.only,
+            context.client.edits,
+          )
+        : [];
     }),
   );
 }

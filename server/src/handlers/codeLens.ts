@@ -8,7 +8,10 @@ export function register(context: ServerContext): void {
     request(context, 'textDocument/codeLens', async (params) => {
       const open = await openDocument(context, params.textDocument.uri);
       if (!open) return [];
-      return [...(await distributionLenses(context.workspace, params.textDocument.uri, open.ref)), ...(await codeLenses(context.workspace, params.textDocument.uri, open.ref))];
+      return [
+        ...(await distributionLenses(context.workspace, params.textDocument.uri, open.ref)),
+        ...(await codeLenses(context.workspace, params.textDocument.uri, open.ref)),
+      ];
     }),
   );
 }

@@ -12,7 +12,8 @@ export function listen(context: ServerContext): void {
   if (!context.client.foldersChange) return;
   connection.workspace.onDidChangeWorkspaceFolders((event) => {
     void notification(context, 'workspace/didChangeWorkspaceFolders', async () => {
-      const paths = (folders: { uri: string }[]) => folders.map((folder) => filePathOf(folder.uri)).filter((folder): folder is string => folder !== undefined);
+      const paths = (folders: { uri: string }[]) =>
+        folders.map((folder) => filePathOf(folder.uri)).filter((folder): folder is string => folder !== undefined);
       const removed = new Set(paths(event.removed));
       const folders = [...workspace.folders.filter((folder) => !removed.has(folder)), ...paths(event.added)];
       workspace.configure(folders, workspace.settings);

@@ -16,7 +16,11 @@ export function register(context: ServerContext): void {
       if (!open) throw new ResponseError(ErrorCodes.InvalidParams, `extractGroup: ${params.uri} is not an open scenario`);
       const offset = open.document.offsetAt(params.position);
       const target = await refactoringTarget(context.workspace, params.uri, open.ref, open.document, offset, offset, context.client.edits);
-      if (!target) throw new ResponseError(LSPErrorCodes.ContentModified, 'extractGroup: the document is not well-formed XML, or changed while it was read');
+      if (!target)
+        throw new ResponseError(
+          LSPErrorCodes.ContentModified,
+          'extractGroup: the document is not well-formed XML, or changed while it was read',
+        );
       return extractGroupEdit(target, params.attributes);
     }),
   );

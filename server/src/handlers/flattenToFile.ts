@@ -6,6 +6,15 @@ import { request, ServerContext } from './context';
 export function register(context: ServerContext): void {
   context.connection.onRequest(
     FlattenToFileRequest,
-    request(context, FlattenToFileRequest.method, (params) => flattenToFile(context.workspace, params?.uri, params?.outputPath, { ...params?.options, outsideWorkspace: params?.outsideWorkspace }), { writes: true }),
+    request(
+      context,
+      FlattenToFileRequest.method,
+      (params) =>
+        flattenToFile(context.workspace, params?.uri, params?.outputPath, {
+          ...params?.options,
+          outsideWorkspace: params?.outsideWorkspace,
+        }),
+      { writes: true },
+    ),
   );
 }

@@ -10,11 +10,22 @@ async function parsed(context: ServerContext, uri: string): Promise<XmlDocument 
 }
 
 /** Formats a whole document or the lines of `range`; a malformed document gets a message and no edits. */
-export async function formatDocument(context: ServerContext, uri: string, options: FormattingOptions, range?: { start: number; end: number }): Promise<TextEdit[]> {
+export async function formatDocument(
+  context: ServerContext,
+  uri: string,
+  options: FormattingOptions,
+  range?: { start: number; end: number },
+): Promise<TextEdit[]> {
   const document = context.workspace.documents.text(uri);
   // The client sends only documents of the xosc language (untitled ones too); a package is never text.
   if (!document || /\.mosc$/i.test(uri)) return [];
-  const { edits, refusal } = formattingEdits(document, options, context.workspace.settings.formatMaxLineWidth, range, await parsed(context, uri));
+  const { edits, refusal } = formattingEdits(
+    document,
+    options,
+    context.workspace.settings.formatMaxLineWidth,
+    range,
+    await parsed(context, uri),
+  );
   // A notification, not a request: nothing waits for the user to dismiss it.
   if (refusal) void context.connection.sendNotification(ShowMessageNotification.type, { type: MessageType.Warning, message: refusal });
   return edits;

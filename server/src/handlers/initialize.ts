@@ -1,5 +1,11 @@
 import * as path from 'node:path';
-import { CodeActionKind, InitializeParams, InitializeResult, ResourceOperationKind, TextDocumentSyncKind } from 'vscode-languageserver/node';
+import {
+  CodeActionKind,
+  InitializeParams,
+  InitializeResult,
+  ResourceOperationKind,
+  TextDocumentSyncKind,
+} from 'vscode-languageserver/node';
 import { SEMANTIC_TOKENS_LEGEND } from '../features/semanticTokens';
 import { CUSTOM_REQUESTS } from '../../../common/src/protocol';
 import { filePathOf } from '../uris';
@@ -39,7 +45,14 @@ export function register(context: ServerContext): void {
         definitionProvider: true,
         referencesProvider: true,
         renameProvider: { prepareProvider: true },
-        codeActionProvider: { codeActionKinds: [CodeActionKind.QuickFix, CodeActionKind.RefactorRewrite, CodeActionKind.RefactorExtract, CodeActionKind.RefactorInline] },
+        codeActionProvider: {
+          codeActionKinds: [
+            CodeActionKind.QuickFix,
+            CodeActionKind.RefactorRewrite,
+            CodeActionKind.RefactorExtract,
+            CodeActionKind.RefactorInline,
+          ],
+        },
         documentSymbolProvider: true,
         workspaceSymbolProvider: true,
         codeLensProvider: { resolveProvider: false },

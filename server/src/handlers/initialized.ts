@@ -7,7 +7,9 @@ async function index(context: ServerContext): Promise<void> {
   const progress = await context.connection.window.createWorkDoneProgress();
   progress.begin('Indexing scenarios', 0, 'listing files', false);
   const started = Date.now();
-  const count = await context.workspace.indexAll((done, total) => progress.report(Math.round((done / Math.max(1, total)) * 100), `${done}/${total} files`));
+  const count = await context.workspace.indexAll((done, total) =>
+    progress.report(Math.round((done / Math.max(1, total)) * 100), `${done}/${total} files`),
+  );
   progress.done();
   context.connection.console.info(`indexed ${count} scenario files in ${Date.now() - started} ms`);
 }
@@ -19,9 +21,12 @@ export function register(context: ServerContext): void {
     didChangeWorkspaceFolders.listen(context);
     context.indexed = notification(context, 'initialized', async () => {
       await loadSettings(context);
-      if (context.client.canConfigure) await connection.client.register(DidChangeConfigurationNotification.type, { section: CONFIGURATION_SECTION });
+      if (context.client.canConfigure)
+        await connection.client.register(DidChangeConfigurationNotification.type, { section: CONFIGURATION_SECTION });
       if (context.client.canWatch) {
-        await connection.client.register(DidChangeWatchedFilesNotification.type, { watchers: [{ globPattern: '**/*.xosc' }, { globPattern: '**/*.mosc' }] });
+        await connection.client.register(DidChangeWatchedFilesNotification.type, {
+          watchers: [{ globPattern: '**/*.xosc' }, { globPattern: '**/*.mosc' }],
+        });
       }
       await index(context);
       context.diagnostics.all();

@@ -6,6 +6,11 @@ import { request, ServerContext } from './context';
 export function register(context: ServerContext): void {
   context.connection.onRequest(
     PackRequest,
-    request(context, PackRequest.method, (params) => packCommand(context.workspace, params?.inputs, params?.outputPath, params?.selfContained), { writes: true }),
+    request(
+      context,
+      PackRequest.method,
+      (params) => packCommand(context.workspace, params?.inputs, params?.outputPath, params?.selfContained),
+      { writes: true },
+    ),
   );
 }

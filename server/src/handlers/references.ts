@@ -11,7 +11,13 @@ export function register(context: ServerContext): void {
       checkCancelled(token, METHOD);
       const open = await openDocument(context, params.textDocument.uri);
       if (!open) return [];
-      const places = await referencesAt(context.workspace, open.ref, open.document.offsetAt(params.position), params.context.includeDeclaration, () => checkCancelled(token, METHOD));
+      const places = await referencesAt(
+        context.workspace,
+        open.ref,
+        open.document.offsetAt(params.position),
+        params.context.includeDeclaration,
+        () => checkCancelled(token, METHOD),
+      );
       return placesToLocations(context.workspace, places);
     }),
   );

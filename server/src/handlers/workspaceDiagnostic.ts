@@ -33,7 +33,13 @@ export function register(context: ServerContext): void {
         if (previous.get(uri) === version) {
           items.push({ kind: DocumentDiagnosticReportKind.Unchanged, uri, version: documentVersion, resultId: version });
         } else {
-          items.push({ kind: DocumentDiagnosticReportKind.Full, uri, version: documentVersion, resultId: version, items: await fileDiagnostics(workspace, ref, byFile.get(id)?.problems ?? []) });
+          items.push({
+            kind: DocumentDiagnosticReportKind.Full,
+            uri,
+            version: documentVersion,
+            resultId: version,
+            items: await fileDiagnostics(workspace, ref, byFile.get(id)?.problems ?? []),
+          });
         }
         checkCancelled(token, METHOD);
       }

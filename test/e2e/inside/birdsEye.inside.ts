@@ -30,17 +30,27 @@ export function defineBirdsEyeTests(): void {
     });
 
     afterEach(async function () {
-      await screenshot(`${this.currentTest?.state === 'failed' ? 'FAILED ' : ''}${this.currentTest?.title ?? 'unnamed'}`).catch(() => undefined);
+      await screenshot(`${this.currentTest?.state === 'failed' ? 'FAILED ' : ''}${this.currentTest?.title ?? 'unnamed'}`).catch(
+        () => undefined,
+      );
     });
 
     it(INSIDE_TESTS.birdsEye, async function () {
-      skipUnless(this, fs.existsSync(path.join(workspaceRoot(), BIRDS_EYE_FILES.roadFolder, 'e6mini.xodr')), "esmini's road files (../shared/esmini/xodr) are absent");
+      skipUnless(
+        this,
+        fs.existsSync(path.join(workspaceRoot(), BIRDS_EYE_FILES.roadFolder, 'e6mini.xodr')),
+        "esmini's road files (../shared/esmini/xodr) are absent",
+      );
       const editor = await open(BIRDS_EYE_FILES.scenario);
       // As a person does: the command palette, with the scenario's editor active.
       const started = Date.now();
       await runFromPalette("Modular2Simple: Show Bird's-Eye View");
       const view = api().birdsEye;
-      const stats = await waitFor('the view to draw the road and the entities', () => (view.stats && view.stats.lanes > 0 && view.stats.entities === 2 ? view.stats : undefined), 20_000);
+      const stats = await waitFor(
+        'the view to draw the road and the entities',
+        () => (view.stats && view.stats.lanes > 0 && view.stats.entities === 2 ? view.stats : undefined),
+        20_000,
+      );
       console.log(`command to picture: ${Date.now() - started} ms (roads drawn in ${stats.staticDrawMs.toFixed(1)} ms)`);
       assert.deepEqual(view.scene?.problems, []);
       assert.equal(view.scene?.roadFile?.resolved, path.join(workspaceRoot(), BIRDS_EYE_FILES.roadFolder, 'e6mini.xodr'));
@@ -65,7 +75,9 @@ export function defineBirdsEyeTests(): void {
       // An unsaved edit moves Ego: the view follows.
       const before = view.scene;
       await replaceText(editor.document, 'name="EgoS" parameterType="double" value="50"', 'name="EgoS" parameterType="double" value="150"');
-      await waitFor('the view to follow the edit', () => (view.scene !== before && (view.scene?.entities[0]?.y ?? 0) > 140 ? true : undefined));
+      await waitFor('the view to follow the edit', () =>
+        view.scene !== before && (view.scene?.entities[0]?.y ?? 0) > 140 ? true : undefined,
+      );
       await revertAndClose();
     });
 
@@ -76,7 +88,10 @@ export function defineBirdsEyeTests(): void {
       const view = api().birdsEye;
       // What the esmini run command does when a run ends.
       const started = Date.now();
-      await vscode.commands.executeCommand('modular2simple.birdsEye.showRun', csv, { logPath: path.join(workspaceRoot(), BIRDS_EYE_FILES.log), scenario: vscode.Uri.file(path.join(workspaceRoot(), BIRDS_EYE_FILES.scenario)).toString() });
+      await vscode.commands.executeCommand('modular2simple.birdsEye.showRun', csv, {
+        logPath: path.join(workspaceRoot(), BIRDS_EYE_FILES.log),
+        scenario: vscode.Uri.file(path.join(workspaceRoot(), BIRDS_EYE_FILES.scenario)).toString(),
+      });
       await waitFor('the trajectories', () => (view.stats?.trajectories === 2 && view.stats.lanes > 0 ? true : undefined));
       console.log(`run handed over to trajectories drawn: ${Date.now() - started} ms`);
       await waitFor('when CutInEvent started', () => pageShows('started 2.05 s'));
@@ -89,9 +104,13 @@ export function defineBirdsEyeTests(): void {
       await new Promise((resolve) => setTimeout(resolve, 2500));
       await screenshot("bird's-eye view playing a run");
       assert.ok(await clickText('Pause run'), 'no Pause button');
-      const played = await waitFor('the playback figures', () => (view.stats && !view.stats.playing && view.stats.frames > 0 ? view.stats : undefined));
+      const played = await waitFor('the playback figures', () =>
+        view.stats && !view.stats.playing && view.stats.frames > 0 ? view.stats : undefined,
+      );
       assert.ok(played.time > 1, `playback reached ${played.time} s`);
-      console.log(`playback: ${played.frames} frames, ${played.frameMeanMs.toFixed(2)} ms mean, ${played.frameWorstMs.toFixed(2)} ms worst to draw a frame`);
+      console.log(
+        `playback: ${played.frames} frames, ${played.frameMeanMs.toFixed(2)} ms mean, ${played.frameWorstMs.toFixed(2)} ms worst to draw a frame`,
+      );
       // The picture saved as PNG and as SVG, as the view's buttons do (here to given files).
       const png = path.join(workspaceRoot(), 'birdsEye', 'picture.png');
       const svg = path.join(workspaceRoot(), 'birdsEye', 'picture.svg');
@@ -108,12 +127,21 @@ export function defineBirdsEyeTests(): void {
 
     it(INSIDE_TESTS.birdsEyeAnalysis, async function () {
       const csv = path.join(workspaceRoot(), HIGHWAY_MERGE_FILES.csv);
-      skipUnless(this, fs.existsSync(csv), 'esmini is not built, or its highway_merge.xosc or soderleden.xodr is absent, so there is no run of it to analyse');
+      skipUnless(
+        this,
+        fs.existsSync(csv),
+        'esmini is not built, or its highway_merge.xosc or soderleden.xodr is absent, so there is no run of it to analyse',
+      );
       const scenario = vscode.Uri.file(path.join(workspaceRoot(), HIGHWAY_MERGE_FILES.scenario));
       await vscode.window.showTextDocument(scenario, { preview: false });
       const view = api().birdsEye;
-      await vscode.commands.executeCommand('modular2simple.birdsEye.showRun', csv, { logPath: path.join(workspaceRoot(), HIGHWAY_MERGE_FILES.log), scenario: scenario.toString() });
-      const first = await waitFor('the six trajectories', () => (view.stats?.trajectories === 6 && view.stats.lanes > 0 && view.stats.time === 0 ? view.stats : undefined));
+      await vscode.commands.executeCommand('modular2simple.birdsEye.showRun', csv, {
+        logPath: path.join(workspaceRoot(), HIGHWAY_MERGE_FILES.log),
+        scenario: scenario.toString(),
+      });
+      const first = await waitFor('the six trajectories', () =>
+        view.stats?.trajectories === 6 && view.stats.lanes > 0 && view.stats.time === 0 ? view.stats : undefined,
+      );
       assert.equal(view.scene?.roadFile?.resolved, path.join(workspaceRoot(), 'birdsEye', 'xodr', 'soderleden.xodr'));
       // *Entities* frames the cars where they are now (some 170 m across at the start), not their trajectories (over 500 m).
       assert.ok(first.spanMetres < 300, `the view spans ${first.spanMetres} m`);
@@ -127,19 +155,31 @@ export function defineBirdsEyeTests(): void {
       assert.ok(await clickText('Play run'), 'no Play button');
       await new Promise((resolve) => setTimeout(resolve, 3000));
       assert.ok(await clickText('Pause run'), 'no Pause button');
-      const played = await waitFor('the playback figures', () => (view.stats && !view.stats.playing && view.stats.frames > 0 ? view.stats : undefined));
+      const played = await waitFor('the playback figures', () =>
+        view.stats && !view.stats.playing && view.stats.frames > 0 ? view.stats : undefined,
+      );
       assert.ok(played.time > 1, `playback reached ${played.time} s`);
       assert.ok(played.spanMetres < 300, 'following keeps the scale');
-      console.log(`following Ego: ${played.frames} frames, ${played.frameMeanMs.toFixed(2)} ms mean, ${played.frameWorstMs.toFixed(2)} ms worst to draw a frame`);
+      console.log(
+        `following Ego: ${played.frames} frames, ${played.frameMeanMs.toFixed(2)} ms mean, ${played.frameWorstMs.toFixed(2)} ms worst to draw a frame`,
+      );
       await screenshot("bird's-eye view following Ego on highway_merge, with its speed, gap and TTC plots");
 
       // A second concrete scenario (A1 faster, a shorter gap): overlaid, then side by side.
-      await vscode.commands.executeCommand('modular2simple.birdsEye.showRun', path.join(workspaceRoot(), HIGHWAY_MERGE_FILES.variantCsv), { logPath: path.join(workspaceRoot(), HIGHWAY_MERGE_FILES.variantLog), compare: true });
-      const overlaid = await waitFor('the compared run overlaid', () => (view.stats?.compared === 6 && !view.stats.sideBySide ? view.stats : undefined));
+      await vscode.commands.executeCommand('modular2simple.birdsEye.showRun', path.join(workspaceRoot(), HIGHWAY_MERGE_FILES.variantCsv), {
+        logPath: path.join(workspaceRoot(), HIGHWAY_MERGE_FILES.variantLog),
+        compare: true,
+      });
+      const overlaid = await waitFor('the compared run overlaid', () =>
+        view.stats?.compared === 6 && !view.stats.sideBySide ? view.stats : undefined,
+      );
       assert.equal(overlaid.trajectories, 6, 'the first run stays');
       assert.ok(await pageShows('compared with: highway_merge_fast.csv'), 'the title names the compared run');
       await screenshot("bird's-eye view comparing two runs of highway_merge, the second dashed");
-      await vscode.commands.executeCommand('modular2simple.birdsEye.showRun', path.join(workspaceRoot(), HIGHWAY_MERGE_FILES.variantCsv), { logPath: path.join(workspaceRoot(), HIGHWAY_MERGE_FILES.variantLog), compare: 'side' });
+      await vscode.commands.executeCommand('modular2simple.birdsEye.showRun', path.join(workspaceRoot(), HIGHWAY_MERGE_FILES.variantCsv), {
+        logPath: path.join(workspaceRoot(), HIGHWAY_MERGE_FILES.variantLog),
+        compare: 'side',
+      });
       await waitFor('the runs side by side', () => (view.stats?.compared === 6 && view.stats.sideBySide ? true : undefined));
       await screenshot("bird's-eye view comparing two runs of highway_merge side by side");
 

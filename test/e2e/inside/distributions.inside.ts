@@ -32,18 +32,30 @@ export const distributionTests: InsideTests = {
     try {
       const distribution = await open('distributions/xosc/cut-in_parameter_set.xosc');
       const cliPath = process.env[HARNESS_ENV.cli] ?? '';
-      const count = execFileSync(process.execPath, [cliPath, 'vary', path.join(folder, 'cut-in_parameter_set.xosc'), '--count'], { encoding: 'utf8', env: { ...process.env, ELECTRON_RUN_AS_NODE: '1' } }).trim();
+      const count = execFileSync(process.execPath, [cliPath, 'vary', path.join(folder, 'cut-in_parameter_set.xosc'), '--count'], {
+        encoding: 'utf8',
+        env: { ...process.env, ELECTRON_RUN_AS_NODE: '1' },
+      }).trim();
       assert.equal(count, '12');
       const lenses = await waitFor('the count lens', async () => {
-        const found = await vscode.commands.executeCommand<vscode.CodeLens[]>('vscode.executeCodeLensProvider', distribution.document.uri, 100);
+        const found = await vscode.commands.executeCommand<vscode.CodeLens[]>(
+          'vscode.executeCodeLensProvider',
+          distribution.document.uri,
+          100,
+        );
         return found.some((lens) => lens.command?.command === 'modular2simple.runVariations') ? found : undefined;
       });
       assert.deepEqual(
         lenses.map((lens) => lens.command?.title),
         ['▶ Run in esmini', `${count} concrete scenarios`, 'Run Variations'],
       );
-      const errors = vscode.languages.getDiagnostics(distribution.document.uri).filter((diagnostic) => diagnostic.severity === vscode.DiagnosticSeverity.Error);
-      assert.deepEqual(errors.map((diagnostic) => diagnostic.message), []);
+      const errors = vscode.languages
+        .getDiagnostics(distribution.document.uri)
+        .filter((diagnostic) => diagnostic.severity === vscode.DiagnosticSeverity.Error);
+      assert.deepEqual(
+        errors.map((diagnostic) => diagnostic.message),
+        [],
+      );
       await screenshot('the count of concrete scenarios above a distribution');
 
       // Run Variations from its lens: a batch of the 12 beside the file, results.csv opened (no Variations view here).
@@ -57,14 +69,19 @@ export const distributionTests: InsideTests = {
       await settings.update('duration', 2, vscode.ConfigurationTarget.Workspace);
       try {
         const run = lenses.find((lens) => lens.command?.command === 'modular2simple.runVariations');
-        const outcome = await vscode.commands.executeCommand<{ exitCode: number | null; resultsFolder: string }>(run?.command?.command ?? '', ...(run?.command?.arguments ?? []));
+        const outcome = await vscode.commands.executeCommand<{ exitCode: number | null; resultsFolder: string }>(
+          run?.command?.command ?? '',
+          ...(run?.command?.arguments ?? []),
+        );
         assert.equal(outcome?.exitCode, 0);
         assert.equal(outcome.resultsFolder, path.join(folder, 'cut-in_parameter_set.results'));
         const rows = fs.readFileSync(path.join(outcome.resultsFolder, 'results.csv'), 'utf8').trim().split('\n');
         assert.equal(rows.length, 13, rows.join('\n'));
         // The Variations view shows the results (results.csv in an editor where the view is not registered).
         await waitFor('the results shown', () =>
-          vscode.window.tabGroups.all.some((group) => group.tabs.some((tab) => tab.label.startsWith('Variations') || tab.label === 'results.csv')),
+          vscode.window.tabGroups.all.some((group) =>
+            group.tabs.some((tab) => tab.label.startsWith('Variations') || tab.label === 'results.csv'),
+          ),
         );
         await screenshot('Run Variations showed its results');
       } finally {

@@ -38,7 +38,10 @@ export const editingTests: InsideTests = {
       if (fs.existsSync(logs)) walk(logs);
       return found;
     };
-    const logged = () => clientLogs().map((file) => fs.readFileSync(file, 'utf8')).join('\n');
+    const logged = () =>
+      clientLogs()
+        .map((file) => fs.readFileSync(file, 'utf8'))
+        .join('\n');
     const before = logged().length;
     const main = await open('main.xosc');
     const cursorAt = positionOf(main.document, 'key="AbsoluteTargetSpeed.value"');
@@ -72,7 +75,9 @@ export const editingTests: InsideTests = {
     const referenceLine = positionOf(main.document, '<ScenarioReference').line;
     main.revealRange(new vscode.Range(referenceLine - 4, 0, referenceLine - 4, 0), vscode.TextEditorRevealType.AtTop);
     const tags = await waitFor('the tags to be drawn', async () => {
-      const found = await post<Record<string, string | null>>('/tokenColors', { words: ['ScenarioReference', 'ManeuverGroupReference', 'ParameterReference', 'Actors'] });
+      const found = await post<Record<string, string | null>>('/tokenColors', {
+        words: ['ScenarioReference', 'ManeuverGroupReference', 'ParameterReference', 'Actors'],
+      });
       return Object.values(found).every((color) => color !== null) ? found : undefined;
     });
     assert.notEqual(tags.ScenarioReference, tags.Actors, 'ScenarioReference is drawn like any other element');
@@ -87,10 +92,22 @@ export const editingTests: InsideTests = {
     editor.selection = new vscode.Selection(1, 2, 1, 2);
     await vscode.commands.executeCommand('workbench.action.focusActiveEditorGroup');
     await typeText('<Actors selectTriggeringEntities="false">');
-    await waitFor('the closing tag', () => editor.document.lineAt(1).text === '  <Actors selectTriggeringEntities="false"></Actors>' || undefined, 5_000);
-    assert.equal(editor.selection.active.character, '  <Actors selectTriggeringEntities="false">'.length, 'the cursor is not between the tags');
+    await waitFor(
+      'the closing tag',
+      () => editor.document.lineAt(1).text === '  <Actors selectTriggeringEntities="false"></Actors>' || undefined,
+      5_000,
+    );
+    assert.equal(
+      editor.selection.active.character,
+      '  <Actors selectTriggeringEntities="false">'.length,
+      'the cursor is not between the tags',
+    );
     await pressKeys(['Control+Slash']);
-    await waitFor('the line to be commented out', () => editor.document.lineAt(1).text === '  <!-- <Actors selectTriggeringEntities="false"></Actors> -->' || undefined, 5_000);
+    await waitFor(
+      'the line to be commented out',
+      () => editor.document.lineAt(1).text === '  <!-- <Actors selectTriggeringEntities="false"></Actors> -->' || undefined,
+      5_000,
+    );
     await screenshot('typing closes tags and comments lines');
     await revertAndClose();
     fs.rmSync(file);

@@ -4,7 +4,18 @@ import * as path from 'node:path';
 import * as vscode from 'vscode';
 import { RunEsminiRequest, type RunEsminiResult } from '../../../common/src/protocol';
 import { HARNESS_ENV } from '../titles';
-import { api, type InsideTests, offersRequest, open, positionOf, replaceText, requireServerFeature, revertAndClose, waitFor, workspaceRoot } from './helpers';
+import {
+  api,
+  type InsideTests,
+  offersRequest,
+  open,
+  positionOf,
+  replaceText,
+  requireServerFeature,
+  revertAndClose,
+  waitFor,
+  workspaceRoot,
+} from './helpers';
 import { pageShows, screenshot } from './harnessClient';
 
 /** esmini as the test setup builds it beside the CLI under test, and the shared road files; skips the test without them. */
@@ -26,7 +37,10 @@ function esminiCutInFolder(repository: string, roads: string, folder: string): s
   fs.mkdirSync(path.join(folder, 'xosc', 'Catalogs', 'Vehicles'), { recursive: true });
   fs.mkdirSync(path.join(folder, 'xodr'), { recursive: true });
   fs.copyFileSync(path.join(corpus, 'cut-in.xosc'), path.join(folder, 'xosc', 'cut-in.xosc'));
-  fs.copyFileSync(path.join(corpus, 'Catalogs', 'Vehicles', 'VehicleCatalog.xosc'), path.join(folder, 'xosc', 'Catalogs', 'Vehicles', 'VehicleCatalog.xosc'));
+  fs.copyFileSync(
+    path.join(corpus, 'Catalogs', 'Vehicles', 'VehicleCatalog.xosc'),
+    path.join(folder, 'xosc', 'Catalogs', 'Vehicles', 'VehicleCatalog.xosc'),
+  );
   fs.copyFileSync(path.join(roads, 'e6mini.xodr'), path.join(folder, 'xodr', 'e6mini.xodr'));
   return path.join(folder, 'xosc', 'cut-in.xosc');
 }
@@ -65,8 +79,12 @@ export const esminiTests: InsideTests = {
         return found.find((lens) => lens.command?.command === 'modular2simple.runEsmini');
       });
       assert.equal(lenses.command?.title, '▶ Run in esmini');
-      const esminiDiagnostics = () => vscode.languages.getDiagnostics(simple.document.uri).filter((diagnostic) => diagnostic.source === 'esmini');
-      const broken = await vscode.commands.executeCommand<RunEsminiResult>(lenses.command?.command ?? '', ...(lenses.command?.arguments ?? []));
+      const esminiDiagnostics = () =>
+        vscode.languages.getDiagnostics(simple.document.uri).filter((diagnostic) => diagnostic.source === 'esmini');
+      const broken = await vscode.commands.executeCommand<RunEsminiResult>(
+        lenses.command?.command ?? '',
+        ...(lenses.command?.arguments ?? []),
+      );
       assert.equal(broken?.outcome, 'errors', broken?.message);
       const [error] = esminiDiagnostics();
       assert.ok(error, 'no esmini diagnostic on the simple scenario');
@@ -121,8 +139,13 @@ export const esminiTests: InsideTests = {
       assert.match(result.message, /^esmini: 0 errors, 0 warnings; 6\.00 s simulated/);
       assert.deepEqual(result.problems, []);
       // esmini's remarks about its road (rail-poles) and 3D models are information, not problems of the scenario.
-      assert.ok(result.remarks?.some((remark) => remark.message.startsWith('Unsupported object type: rail-pole')), JSON.stringify(result.remarks));
-      const esminiDiagnostics = vscode.languages.getDiagnostics().flatMap(([, diagnostics]) => diagnostics.filter((diagnostic) => diagnostic.source === 'esmini'));
+      assert.ok(
+        result.remarks?.some((remark) => remark.message.startsWith('Unsupported object type: rail-pole')),
+        JSON.stringify(result.remarks),
+      );
+      const esminiDiagnostics = vscode.languages
+        .getDiagnostics()
+        .flatMap(([, diagnostics]) => diagnostics.filter((diagnostic) => diagnostic.source === 'esmini'));
       assert.deepEqual(esminiDiagnostics, [], 'no esmini diagnostic anywhere');
       // What a person sees: the information toast, and no error toast.
       await waitFor('the information toast', () => pageShows('esmini: 0 errors, 0 warnings', '.notifications-toasts'), 10_000);
@@ -130,7 +153,11 @@ export const esminiTests: InsideTests = {
       // The run and the picture: one road file, the one beside the scenario, drawn with the run's trajectories.
       assert.equal(result.roadFile?.loaded, road, `esmini loaded ${result.roadFile?.loaded}`);
       const view = api().birdsEye;
-      await waitFor("the run in the bird's-eye view", () => (view.stats?.trajectories === 2 && view.scene?.uri === main.document.uri.toString() ? true : undefined), 30_000);
+      await waitFor(
+        "the run in the bird's-eye view",
+        () => (view.stats?.trajectories === 2 && view.scene?.uri === main.document.uri.toString() ? true : undefined),
+        30_000,
+      );
       assert.equal(view.scene?.roadFile?.resolved, road);
       assert.deepEqual(view.scene?.problems, [], 'every entity is on the road drawn');
       await waitFor('the road file named in the view', () => pageShows(`road ${road}`));
@@ -156,9 +183,16 @@ export const esminiTests: InsideTests = {
       const scenario = await open('esminiCutIn/xosc/cut-in.xosc');
       const uri = scenario.document.uri;
       // esmini's text gluing in ${BrakeCondition_HWT + _ + $HeadwayTime_Brake}: a warning by the severity policy, never an error.
-      const glued = await waitFor('the warning on the glued expression', () => ownDiagnostics(uri).find((diagnostic) => /glues it/.test(diagnostic.message)));
+      const glued = await waitFor('the warning on the glued expression', () =>
+        ownDiagnostics(uri).find((diagnostic) => /glues it/.test(diagnostic.message)),
+      );
       assert.equal(glued.severity, vscode.DiagnosticSeverity.Warning, glued.message);
-      assert.deepEqual(ownDiagnostics(uri).filter((diagnostic) => diagnostic.severity === vscode.DiagnosticSeverity.Error).map((diagnostic) => diagnostic.message), []);
+      assert.deepEqual(
+        ownDiagnostics(uri)
+          .filter((diagnostic) => diagnostic.severity === vscode.DiagnosticSeverity.Error)
+          .map((diagnostic) => diagnostic.message),
+        [],
+      );
       const [lens] = await runLenses(uri, 1);
       assert.equal(lens.command?.title, '▶ Run in esmini', 'no Run Anyway on a scenario without errors');
       const result = await vscode.commands.executeCommand<RunEsminiResult>(lens.command?.command ?? '', ...(lens.command?.arguments ?? []));
@@ -166,8 +200,14 @@ export const esminiTests: InsideTests = {
       assert.match(result.message, /^esmini: 0 errors, 0 warnings; 5\.00 s simulated/);
       assert.deepEqual(result.problems, []);
       assert.equal(result.forcible, undefined);
-      assert.deepEqual(result.flattenProblems.filter((problem) => problem.severity === 'error'), []);
-      assert.ok(result.flattenProblems.some((problem) => problem.severity === 'warning' && /glues it/.test(problem.message)), JSON.stringify(result.flattenProblems));
+      assert.deepEqual(
+        result.flattenProblems.filter((problem) => problem.severity === 'error'),
+        [],
+      );
+      assert.ok(
+        result.flattenProblems.some((problem) => problem.severity === 'warning' && /glues it/.test(problem.message)),
+        JSON.stringify(result.flattenProblems),
+      );
       assert.equal(result.roadFile?.loaded, path.join(folder, 'xodr', 'e6mini.xodr'), `esmini loaded ${result.roadFile?.loaded}`);
       assert.ok(result.csvFile && fs.existsSync(result.csvFile));
       await waitFor('the information toast', () => pageShows('esmini: 0 errors, 0 warnings', '.notifications-toasts'), 10_000);
@@ -190,7 +230,10 @@ export const esminiTests: InsideTests = {
     const cutIn = esminiCutInFolder(repository, roads, folder);
     // A double parameter whose value is no number: an error by any policy, which esmini never reads.
     const text = fs.readFileSync(cutIn, 'utf8');
-    const broken = text.replace('<ParameterDeclarations>', '<ParameterDeclarations>\n      <ParameterDeclaration name="Pace" parameterType="double" value="fast"/>');
+    const broken = text.replace(
+      '<ParameterDeclarations>',
+      '<ParameterDeclarations>\n      <ParameterDeclaration name="Pace" parameterType="double" value="fast"/>',
+    );
     assert.notEqual(broken, text, 'cut-in.xosc has root ParameterDeclarations');
     const file = path.join(folder, 'xosc', 'anyway.xosc');
     fs.writeFileSync(file, broken);
@@ -200,23 +243,37 @@ export const esminiTests: InsideTests = {
     try {
       const scenario = await open('esminiAnyway/xosc/anyway.xosc');
       const uri = scenario.document.uri;
-      const error = await waitFor('the error on the parameter', () => ownDiagnostics(uri).find((diagnostic) => diagnostic.severity === vscode.DiagnosticSeverity.Error));
+      const error = await waitFor('the error on the parameter', () =>
+        ownDiagnostics(uri).find((diagnostic) => diagnostic.severity === vscode.DiagnosticSeverity.Error),
+      );
       assert.match(error.message, /'fast' is not a double/);
       const lenses = await runLenses(uri, 2);
-      assert.deepEqual(lenses.map((lens) => lens.command?.title), ['▶ Run in esmini', '▶ Run Anyway (1 error)']);
+      assert.deepEqual(
+        lenses.map((lens) => lens.command?.title),
+        ['▶ Run in esmini', '▶ Run Anyway (1 error)'],
+      );
       assert.equal(lenses[1].command?.command, 'modular2simple.runEsminiAnyway');
       // The plain run is refused, and says Run Anyway would run it.
-      const refused = await vscode.commands.executeCommand<RunEsminiResult>(lenses[0].command?.command ?? '', ...(lenses[0].command?.arguments ?? []));
+      const refused = await vscode.commands.executeCommand<RunEsminiResult>(
+        lenses[0].command?.command ?? '',
+        ...(lenses[0].command?.arguments ?? []),
+      );
       assert.equal(refused?.outcome, 'not-flattened', refused?.message);
       assert.equal(refused.forcible, true);
       await waitFor('the Run Anyway question', () => pageShows('Run Anyway', '.notifications-toasts'), 10_000);
       await screenshot('Run in esmini refused, offering Run Anyway');
       await vscode.commands.executeCommand('notifications.clearAll');
 
-      const forced = await vscode.commands.executeCommand<RunEsminiResult>(lenses[1].command?.command ?? '', ...(lenses[1].command?.arguments ?? []));
+      const forced = await vscode.commands.executeCommand<RunEsminiResult>(
+        lenses[1].command?.command ?? '',
+        ...(lenses[1].command?.arguments ?? []),
+      );
       assert.equal(forced?.outcome, 'ok', forced?.message);
       assert.match(forced.message, /3\.00 s simulated .*\(run anyway despite 1 error in the scenario\)$/);
-      assert.ok(forced.flattenProblems.some((problem) => problem.severity === 'error' && /'fast' is not a double/.test(problem.message)), JSON.stringify(forced.flattenProblems));
+      assert.ok(
+        forced.flattenProblems.some((problem) => problem.severity === 'error' && /'fast' is not a double/.test(problem.message)),
+        JSON.stringify(forced.flattenProblems),
+      );
       assert.ok(forced.csvFile && fs.existsSync(forced.csvFile));
       await waitFor('the toast saying it ran anyway', () => pageShows('run anyway despite 1 error', '.notifications-toasts'), 10_000);
       assert.ok(!(await pageShows('Run in esmini:', '.notifications-toasts')), 'an error toast is shown');

@@ -15,7 +15,18 @@ import { refactoringTests } from './refactorings.inside';
 import { structureTests } from './structure.inside';
 import { distributionTests } from './distributions.inside';
 
-const TESTS: InsideTests = { ...editingTests, ...packageTests, ...languageFeatureTests, ...previewTests, ...packAndFlattenTests, ...structureTests, ...esminiTests, ...newScenarioTests, ...distributionTests, ...refactoringTests };
+const TESTS: InsideTests = {
+  ...editingTests,
+  ...packageTests,
+  ...languageFeatureTests,
+  ...previewTests,
+  ...packAndFlattenTests,
+  ...structureTests,
+  ...esminiTests,
+  ...newScenarioTests,
+  ...distributionTests,
+  ...refactoringTests,
+};
 
 /**
  * The order the tests run in, one VS Code and one workspace for all: a test sees what earlier ones left
@@ -73,7 +84,9 @@ export function defineExtensionTests(): void {
     });
 
     afterEach(async function () {
-      await screenshot(`${this.currentTest?.state === 'failed' ? 'FAILED ' : ''}${this.currentTest?.title ?? 'unnamed'}`).catch(() => undefined);
+      await screenshot(`${this.currentTest?.state === 'failed' ? 'FAILED ' : ''}${this.currentTest?.title ?? 'unnamed'}`).catch(
+        () => undefined,
+      );
       await vscode.commands.executeCommand('workbench.action.closeAllEditors');
     });
 

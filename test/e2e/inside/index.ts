@@ -17,7 +17,14 @@ export async function run(): Promise<void> {
   const failures = await new Promise<number>((resolve) => {
     const runner = mocha.run((count) => resolve(count));
     const report = (test: Mocha.Test, state: 'passed' | 'failed' | 'pending', error?: Error): void => {
-      pending.push(post('/result', { title: test.title, state, durationMs: test.duration ?? 0, error: error ? `${error.message}\n${error.stack ?? ''}` : undefined }).catch(() => undefined));
+      pending.push(
+        post('/result', {
+          title: test.title,
+          state,
+          durationMs: test.duration ?? 0,
+          error: error ? `${error.message}\n${error.stack ?? ''}` : undefined,
+        }).catch(() => undefined),
+      );
     };
     runner.on('pass', (test) => report(test, 'passed'));
     runner.on('fail', (test, error: Error) => report(test as Mocha.Test, 'failed', error));

@@ -3,7 +3,17 @@ import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
 import * as vscode from 'vscode';
-import { api, type InsideTests, open, positionOf, replaceText, requireServerFeature, revertAndClose, waitFor, workspaceRoot } from './helpers';
+import {
+  api,
+  type InsideTests,
+  open,
+  positionOf,
+  replaceText,
+  requireServerFeature,
+  revertAndClose,
+  waitFor,
+  workspaceRoot,
+} from './helpers';
 import { pageShows, post, pressKeys, screenshot } from './harnessClient';
 
 /** The language server's features as the editor shows them: diagnostics, completion, definition, the scenario path, expressions, the schema. */
@@ -12,10 +22,15 @@ export const languageFeatureTests: InsideTests = {
     requireServerFeature(this, 'diagnostics', !!api().serverCapabilities()?.textDocumentSync);
     const editor = await open('main.xosc');
     const uri = editor.document.uri;
-    await waitFor('the example to check clean', () => vscode.languages.getDiagnostics(uri).every((d) => d.severity !== vscode.DiagnosticSeverity.Error) || undefined);
+    await waitFor(
+      'the example to check clean',
+      () => vscode.languages.getDiagnostics(uri).every((d) => d.severity !== vscode.DiagnosticSeverity.Error) || undefined,
+    );
     await replaceText(editor.document, 'key="AbsoluteTargetSpeed.value"', 'key="AbsoluteTargetSped.value"');
     const keyLine = positionOf(editor.document, 'AbsoluteTargetSped.value').line;
-    const diagnostic = await waitFor('a diagnostic on the bad key', () => vscode.languages.getDiagnostics(uri).find((d) => d.range.start.line === keyLine));
+    const diagnostic = await waitFor('a diagnostic on the bad key', () =>
+      vscode.languages.getDiagnostics(uri).find((d) => d.range.start.line === keyLine),
+    );
     assert.match(diagnostic.message, /AbsoluteTargetSped\.value|AbsoluteTargetSpeed/);
     editor.revealRange(diagnostic.range, vscode.TextEditorRevealType.InCenter);
     editor.selection = new vscode.Selection(diagnostic.range.start, diagnostic.range.start);
@@ -35,16 +50,27 @@ export const languageFeatureTests: InsideTests = {
     const cursor = new vscode.Position(at.line + 1, at.character + '<ParameterReference key="'.length);
     editor.selection = new vscode.Selection(cursor, cursor);
     const list = await waitFor('completion items', async () => {
-      const result = await vscode.commands.executeCommand<vscode.CompletionList>('vscode.executeCompletionItemProvider', editor.document.uri, cursor);
+      const result = await vscode.commands.executeCommand<vscode.CompletionList>(
+        'vscode.executeCompletionItemProvider',
+        editor.document.uri,
+        cursor,
+      );
       return result.items.length > 0 ? result : undefined;
     });
     const labels = list.items.map((item) => (typeof item.label === 'string' ? item.label : item.label.label));
     for (const expected of ['dynamicsShape', 'delay', 'SimulationTimeCondition.value']) {
-      assert.ok(labels.some((label) => label === expected || label.endsWith(`.${expected}`)), `completion lacks ${expected}: ${labels.join(', ')}`);
+      assert.ok(
+        labels.some((label) => label === expected || label.endsWith(`.${expected}`)),
+        `completion lacks ${expected}: ${labels.join(', ')}`,
+      );
     }
     assert.ok(!labels.includes('AbsoluteTargetSpeed.value'), `a key already given is offered again: ${labels.join(', ')}`);
     await vscode.commands.executeCommand('editor.action.triggerSuggest');
-    await waitFor('the suggest widget', async () => (await post<{ found: boolean }>('/findText', { text: 'dynamicsShape' })).found || undefined, 10_000);
+    await waitFor(
+      'the suggest widget',
+      async () => (await post<{ found: boolean }>('/findText', { text: 'dynamicsShape' })).found || undefined,
+      10_000,
+    );
     await screenshot('completion offers the overridable keys (widget)');
     await revertAndClose();
   },
@@ -54,7 +80,11 @@ export const languageFeatureTests: InsideTests = {
     const editor = await open('main.xosc');
     const cursor = positionOf(editor.document, 'scenarioFileName="lane_change.xosc"', 'scenarioFileName="lane'.length);
     editor.selection = new vscode.Selection(cursor, cursor);
-    const locations = await vscode.commands.executeCommand<(vscode.Location | vscode.LocationLink)[]>('vscode.executeDefinitionProvider', editor.document.uri, cursor);
+    const locations = await vscode.commands.executeCommand<(vscode.Location | vscode.LocationLink)[]>(
+      'vscode.executeDefinitionProvider',
+      editor.document.uri,
+      cursor,
+    );
     const targets = locations.map((location) => ('targetUri' in location ? location.targetUri : location.uri).fsPath);
     assert.deepEqual(targets, [path.join(workspaceRoot(), 'lane_change.xosc')]);
     // Then the key press, as a person does it, in the page, with the keyboard focus in the editor.
@@ -76,7 +106,8 @@ export const languageFeatureTests: InsideTests = {
     const uri = editor.document.uri;
     await replaceText(editor.document, 'scenarioFileName="lane_change.xosc"', 'scenarioFileName="shared_lane_change.xosc"');
     const line = positionOf(editor.document, 'shared_lane_change.xosc').line;
-    const onReference = (): vscode.Diagnostic | undefined => vscode.languages.getDiagnostics(uri).find((d) => d.range.start.line === line && d.severity === vscode.DiagnosticSeverity.Error);
+    const onReference = (): vscode.Diagnostic | undefined =>
+      vscode.languages.getDiagnostics(uri).find((d) => d.range.start.line === line && d.severity === vscode.DiagnosticSeverity.Error);
     await waitFor('the missing file to be reported', onReference);
     const settings = vscode.workspace.getConfiguration('modular2simple');
     await settings.update('scenarioPath', [library], vscode.ConfigurationTarget.Workspace);
@@ -85,12 +116,16 @@ export const languageFeatureTests: InsideTests = {
       // The library lies outside the workspace, and still its files are watched: a file removed there is reported.
       // A new watcher starts in its own time: the file goes away and comes back until the removal is seen.
       const [present, away] = [path.join(library, 'shared_lane_change.xosc'), path.join(library, 'moved_away.xosc')];
-      await waitFor('the removed library file to be reported', async () => {
-        if (fs.existsSync(away)) fs.renameSync(away, present);
-        await new Promise((resolve) => setTimeout(resolve, 500));
-        fs.renameSync(present, away);
-        return await waitFor('the removal to be reported', onReference, 3_000).catch(() => undefined);
-      }, 20_000);
+      await waitFor(
+        'the removed library file to be reported',
+        async () => {
+          if (fs.existsSync(away)) fs.renameSync(away, present);
+          await new Promise((resolve) => setTimeout(resolve, 500));
+          fs.renameSync(present, away);
+          return await waitFor('the removal to be reported', onReference, 3_000).catch(() => undefined);
+        },
+        20_000,
+      );
       fs.renameSync(path.join(library, 'moved_away.xosc'), path.join(library, 'shared_lane_change.xosc'));
       await waitFor('the restored library file to resolve', () => !onReference() || undefined, 15_000);
     } finally {
@@ -116,18 +151,34 @@ export const languageFeatureTests: InsideTests = {
   schemaCompletion: async function () {
     requireServerFeature(this, 'completion', !!api().serverCapabilities()?.completionProvider);
     const editor = await open('crossing.xosc');
-    await replaceText(editor.document, '<Actions>\n        <Private entityRef="ego">', '<Actions>\n        <\n        <Private entityRef="ego">');
+    await replaceText(
+      editor.document,
+      '<Actions>\n        <Private entityRef="ego">',
+      '<Actions>\n        <\n        <Private entityRef="ego">',
+    );
     const line = positionOf(editor.document, '<Actions>').line + 1;
     editor.selection = new vscode.Selection(new vscode.Position(line, 9), new vscode.Position(line, 9));
     editor.revealRange(new vscode.Range(line, 0, line, 9), vscode.TextEditorRevealType.InCenter);
     const list = await waitFor('schema completion items', async () => {
-      const result = await vscode.commands.executeCommand<vscode.CompletionList>('vscode.executeCompletionItemProvider', editor.document.uri, new vscode.Position(line, 9));
+      const result = await vscode.commands.executeCommand<vscode.CompletionList>(
+        'vscode.executeCompletionItemProvider',
+        editor.document.uri,
+        new vscode.Position(line, 9),
+      );
       return result.items.length > 0 ? result : undefined;
     });
     const labels = list.items.map((item) => (typeof item.label === 'string' ? item.label : item.label.label));
-    assert.deepEqual(labels.filter((label) => ['GlobalAction', 'UserDefinedAction', 'Private'].includes(label)), ['GlobalAction', 'UserDefinedAction', 'Private']);
+    assert.deepEqual(
+      labels.filter((label) => ['GlobalAction', 'UserDefinedAction', 'Private'].includes(label)),
+      ['GlobalAction', 'UserDefinedAction', 'Private'],
+    );
     await vscode.commands.executeCommand('editor.action.triggerSuggest');
-    await waitFor('the suggest widget showing UserDefinedAction', async () => (await post<{ found: boolean }>('/findText', { text: 'UserDefinedAction', selector: '.suggest-widget' })).found || undefined, 10_000);
+    await waitFor(
+      'the suggest widget showing UserDefinedAction',
+      async () =>
+        (await post<{ found: boolean }>('/findText', { text: 'UserDefinedAction', selector: '.suggest-widget' })).found || undefined,
+      10_000,
+    );
     await screenshot('schema completion of a child element (widget)');
     await vscode.commands.executeCommand('hideSuggestWidget');
     await revertAndClose();
@@ -139,16 +190,29 @@ export const languageFeatureTests: InsideTests = {
     // The example as an OpenSCENARIO 1.3 file whose Init activates a controller the way 1.0 did (deprecated since 1.1).
     const deprecated = crossing
       .replace('revMinor="0"', 'revMinor="3"')
-      .replace('<Actions>\n', '<Actions>\n        <Private entityRef="walker">\n          <PrivateAction>\n            <ActivateControllerAction longitudinal="true"/>\n          </PrivateAction>\n        </Private>\n');
+      .replace(
+        '<Actions>\n',
+        '<Actions>\n        <Private entityRef="walker">\n          <PrivateAction>\n            <ActivateControllerAction longitudinal="true"/>\n          </PrivateAction>\n        </Private>\n',
+      );
     const file = path.join(workspaceRoot(), 'deprecated_1_3.xosc');
     fs.writeFileSync(file, deprecated);
     const editor = await open('deprecated_1_3.xosc');
     const diagnostic = await waitFor('the deprecated diagnostic', () =>
-      vscode.languages.getDiagnostics(editor.document.uri).find((candidate) => candidate.tags?.includes(vscode.DiagnosticTag.Deprecated) && /<ActivateControllerAction>/.test(candidate.message)),
+      vscode.languages
+        .getDiagnostics(editor.document.uri)
+        .find(
+          (candidate) => candidate.tags?.includes(vscode.DiagnosticTag.Deprecated) && /<ActivateControllerAction>/.test(candidate.message),
+        ),
     );
     assert.match(diagnostic.message, /<ActivateControllerAction> is deprecated since OpenSCENARIO 1\.1/);
     editor.revealRange(diagnostic.range, vscode.TextEditorRevealType.InCenter);
-    await waitFor('the struck-through element name', async () => (await post<{ found: boolean }>('/findText', { text: 'ActivateControllerAction', selector: '.squiggly-inline-deprecated' })).found || undefined, 10_000);
+    await waitFor(
+      'the struck-through element name',
+      async () =>
+        (await post<{ found: boolean }>('/findText', { text: 'ActivateControllerAction', selector: '.squiggly-inline-deprecated' }))
+          .found || undefined,
+      10_000,
+    );
     editor.selection = new vscode.Selection(diagnostic.range.start, diagnostic.range.start);
     await vscode.commands.executeCommand('editor.action.showHover');
     await screenshot('a deprecated element struck through (hover)');
@@ -189,17 +253,31 @@ const EXPRESSIONS = `<?xml version="1.0" encoding="UTF-8"?>
 async function showExpression(): Promise<void> {
   const editor = await open('expressions.xosc');
   const hints = await waitFor('the inlay hints', async () => {
-    const found = await vscode.commands.executeCommand<vscode.InlayHint[]>('vscode.executeInlayHintProvider', editor.document.uri, new vscode.Range(0, 0, editor.document.lineCount, 0));
+    const found = await vscode.commands.executeCommand<vscode.InlayHint[]>(
+      'vscode.executeInlayHintProvider',
+      editor.document.uri,
+      new vscode.Range(0, 0, editor.document.lineCount, 0),
+    );
     return found.length > 0 ? found : undefined;
   });
-  assert.deepEqual(hints.map((hint) => hint.label), ['= 3']);
+  assert.deepEqual(
+    hints.map((hint) => hint.label),
+    ['= 3'],
+  );
   // What a person sees: the value drawn after the attribute, then the hover over the expression.
   // The editor draws spaces as no-break spaces.
-  await waitFor('the hint drawn in the editor', async () => (await pageShows('= 3', '.monaco-editor .view-lines')) || (await pageShows('=\u00a03', '.monaco-editor .view-lines')));
+  await waitFor(
+    'the hint drawn in the editor',
+    async () => (await pageShows('= 3', '.monaco-editor .view-lines')) || (await pageShows('=\u00a03', '.monaco-editor .view-lines')),
+  );
   const cursor = positionOf(editor.document, '${2*$a/$b}', 3);
   editor.selection = new vscode.Selection(cursor, cursor);
   await vscode.commands.executeCommand('workbench.action.focusActiveEditorGroup');
   await vscode.commands.executeCommand('editor.action.showHover');
-  await waitFor('the hover with the value and the declarations', async () => (await pageShows('= 3 (double)', '.monaco-hover')) && (await pageShows('declared in <OpenSCENARIO> on line 6', '.monaco-hover')));
+  await waitFor(
+    'the hover with the value and the declarations',
+    async () =>
+      (await pageShows('= 3 (double)', '.monaco-hover')) && (await pageShows('declared in <OpenSCENARIO> on line 6', '.monaco-hover')),
+  );
   await screenshot('expression value as inlay hint and hover');
 }

@@ -33,7 +33,10 @@ export const newScenarioTests: InsideTests = {
     await typeText('e6mini');
     await screenshot('New Modular Scenario asks for the road network');
     await pressKeys(['Enter']);
-    await waitForQuickInput('the file name question, proposing main.xosc', (shown) => /file name/.test(shown.title) && shown.value === 'main.xosc');
+    await waitForQuickInput(
+      'the file name question, proposing main.xosc',
+      (shown) => /file name/.test(shown.title) && shown.value === 'main.xosc',
+    );
     await pressKeys(['Enter']);
     const created = await running;
     const written = path.join(folder, 'main.xosc');
@@ -41,13 +44,26 @@ export const newScenarioTests: InsideTests = {
     const text = fs.readFileSync(written, 'utf8');
     assert.ok(text.includes('<LogicFile filepath="../../roads/e6mini.xodr"/>'), text);
     assert.match(text, /<LanePosition roadId="[^"]+" laneId="-\d+" s="[\d.]+"/);
-    const editor = await waitFor('the new scenario in the editor', () => (vscode.window.activeTextEditor?.document.uri.fsPath === written ? vscode.window.activeTextEditor : undefined));
+    const editor = await waitFor('the new scenario in the editor', () =>
+      vscode.window.activeTextEditor?.document.uri.fsPath === written ? vscode.window.activeTextEditor : undefined,
+    );
     // The server has read it once it answers for it; then no problem may show.
-    await waitFor('the outline of the new scenario', async () => ((await vscode.commands.executeCommand<unknown[]>('vscode.executeDocumentSymbolProvider', editor.document.uri))?.length ?? 0) > 0 || undefined);
+    await waitFor(
+      'the outline of the new scenario',
+      async () =>
+        ((await vscode.commands.executeCommand<unknown[]>('vscode.executeDocumentSymbolProvider', editor.document.uri))?.length ?? 0) > 0 ||
+        undefined,
+    );
     await new Promise((resolve) => setTimeout(resolve, 2_000));
-    assert.deepEqual(vscode.languages.getDiagnostics(editor.document.uri).map((diagnostic) => diagnostic.message), []);
+    assert.deepEqual(
+      vscode.languages.getDiagnostics(editor.document.uri).map((diagnostic) => diagnostic.message),
+      [],
+    );
     const importHere = text.indexOf('<!-- Import behaviours');
-    editor.revealRange(new vscode.Range(editor.document.positionAt(importHere), editor.document.positionAt(importHere)), vscode.TextEditorRevealType.InCenter);
+    editor.revealRange(
+      new vscode.Range(editor.document.positionAt(importHere), editor.document.positionAt(importHere)),
+      vscode.TextEditorRevealType.InCenter,
+    );
     await screenshot('New Modular Scenario wrote a main with an ego on e6mini');
 
     // Again in the same folder: main.xosc is taken, so main-2.xosc is proposed; Escape writes nothing.
@@ -55,7 +71,10 @@ export const newScenarioTests: InsideTests = {
     await waitForQuickInput('the road network question', (shown) => /road network/.test(shown.title));
     await typeText('e6mini');
     await pressKeys(['Enter']);
-    await waitForQuickInput('the file name question, proposing main-2.xosc', (shown) => /file name/.test(shown.title) && shown.value === 'main-2.xosc');
+    await waitForQuickInput(
+      'the file name question, proposing main-2.xosc',
+      (shown) => /file name/.test(shown.title) && shown.value === 'main-2.xosc',
+    );
     await pressKeys(['Escape']);
     assert.equal(await again, undefined);
     assert.deepEqual(fs.readdirSync(folder), ['main.xosc']);

@@ -5,7 +5,18 @@ import * as path from 'node:path';
 import * as vscode from 'vscode';
 import { firstDifference } from '../../../server/src/core/equivalence';
 import { FlattenToFileRequest, PackRequest } from '../../../common/src/protocol';
-import { acceptSaveDialog, cli, type InsideTests, offersRequest, open, replaceText, requireServerFeature, waitFor, workspaceRoot, zipEntries } from './helpers';
+import {
+  acceptSaveDialog,
+  cli,
+  type InsideTests,
+  offersRequest,
+  open,
+  replaceText,
+  requireServerFeature,
+  waitFor,
+  workspaceRoot,
+  zipEntries,
+} from './helpers';
 import { clickText, pageShows, pressKeys, quickInput, runFromPalette, screenshot } from './harnessClient';
 
 /** Answers the Pack command's first question (where roads and catalogs go) with its first choice: they stay where they are, as the CLI's pack without --self-contained. */
@@ -95,7 +106,11 @@ export const packAndFlattenTests: InsideTests = {
     requireServerFeature(this, 'pack', offersRequest(PackRequest));
     const root = workspaceRoot();
     const editor = await open('main.xosc');
-    await replaceText(editor.document, 'key="RelativeDistanceCondition.value" value="12"', 'key="RelativeDistanceCondition.value" value="17.5"');
+    await replaceText(
+      editor.document,
+      'key="RelativeDistanceCondition.value" value="12"',
+      'key="RelativeDistanceCondition.value" value="17.5"',
+    );
     assert.ok(editor.document.isDirty);
     await vscode.commands.executeCommand('workbench.action.focusActiveEditorGroup');
     await runFromPalette('Modular2Simple: Pack into .mosc');
@@ -105,7 +120,10 @@ export const packAndFlattenTests: InsideTests = {
     await waitFor(path.basename(written), () => fs.existsSync(written) || undefined);
     // The package holds what the editor shows, the file was saved to match, and the message says so.
     const packed = await zipEntries(written);
-    assert.ok(packed.get('main.xosc')?.includes('key="RelativeDistanceCondition.value" value="17.5"'), 'the package holds the saved text, not the edited one');
+    assert.ok(
+      packed.get('main.xosc')?.includes('key="RelativeDistanceCondition.value" value="17.5"'),
+      'the package holds the saved text, not the edited one',
+    );
     assert.equal(packed.get('main.xosc'), editor.document.getText());
     assert.ok(!editor.document.isDirty, 'main.xosc was not saved');
     await waitFor('the message naming the saved file', () => pageShows('saved main.xosc first'), 10_000);

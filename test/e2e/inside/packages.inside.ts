@@ -4,7 +4,19 @@ import * as path from 'node:path';
 import JSZip from 'jszip';
 import * as vscode from 'vscode';
 import { StructureRequest } from '../../../common/src/protocol';
-import { api, type InsideTests, offersRequest, packageUri, positionOf, replaceText, requireServerFeature, revertAndClose, waitFor, workspaceRoot, zipEntries } from './helpers';
+import {
+  api,
+  type InsideTests,
+  offersRequest,
+  packageUri,
+  positionOf,
+  replaceText,
+  requireServerFeature,
+  revertAndClose,
+  waitFor,
+  workspaceRoot,
+  zipEntries,
+} from './helpers';
 import { clickText, pageShows, post } from './harnessClient';
 
 /** .mosc packages: the package view, editing and saving inside them, language features and rename inside them. */
@@ -18,7 +30,11 @@ export const packageTests: InsideTests = {
     assert.ok(shown);
     // A click on an entry opens it in place, through the mosc: file system.
     assert.ok(await clickText('hard_brake.xosc'), 'no link to hard_brake.xosc');
-    await waitFor('hard_brake.xosc to open', () => vscode.window.activeTextEditor?.document.uri.toString() === packageUri('braking.mosc', 'hard_brake.xosc').toString() || undefined);
+    await waitFor(
+      'hard_brake.xosc to open',
+      () =>
+        vscode.window.activeTextEditor?.document.uri.toString() === packageUri('braking.mosc', 'hard_brake.xosc').toString() || undefined,
+    );
     if (offersRequest(StructureRequest)) {
       await vscode.commands.executeCommand('vscode.open', vscode.Uri.file(path.join(workspaceRoot(), 'braking.mosc')));
       await waitFor('the package view', () => pageShows('Show Structure'));
@@ -28,7 +44,10 @@ export const packageTests: InsideTests = {
     const entries = await vscode.workspace.fs.readDirectory(packageUri('braking.mosc'));
     assert.deepEqual(entries.map(([name]) => name).sort(), ['hard_brake.xosc', 'main.xosc']);
     const nested = await vscode.workspace.fs.readDirectory(packageUri('nested.mosc'));
-    assert.deepEqual(nested, [['braking.mosc', vscode.FileType.Directory], ['main.xosc', vscode.FileType.File]]);
+    assert.deepEqual(nested, [
+      ['braking.mosc', vscode.FileType.Directory],
+      ['main.xosc', vscode.FileType.File],
+    ]);
   },
 
   packageEdit: async function () {
@@ -51,23 +70,38 @@ export const packageTests: InsideTests = {
     const after = await zipEntries(archive);
     assert.deepEqual([...after.keys()].sort(), [...before.keys()].sort());
     assert.equal(after.get('main.xosc'), mainDocument.getText());
-    const innerAfter = await JSZip.loadAsync(await (await JSZip.loadAsync(fs.readFileSync(archive))).file('braking.mosc')!.async('uint8array'));
-    assert.equal(await innerAfter.file('hard_brake.xosc')!.async('string'), document.getText(), 'saving the second file lost the first change');
+    const innerAfter = await JSZip.loadAsync(
+      await (await JSZip.loadAsync(fs.readFileSync(archive))).file('braking.mosc')!.async('uint8array'),
+    );
+    assert.equal(
+      await innerAfter.file('hard_brake.xosc')!.async('string'),
+      document.getText(),
+      'saving the second file lost the first change',
+    );
     const inner = await JSZip.loadAsync(await (await JSZip.loadAsync(fs.readFileSync(archive))).file('braking.mosc')!.async('uint8array'));
     const saved = await inner.file('hard_brake.xosc')!.async('string');
     assert.ok(saved.includes('<!-- edited inside two packages -->'), 'the change is not in the archive');
     assert.equal(saved, document.getText());
-    assert.ok(fs.readdirSync(workspaceRoot()).every((name) => !name.endsWith('.tmp')), 'a temporary file was left behind');
+    assert.ok(
+      fs.readdirSync(workspaceRoot()).every((name) => !name.endsWith('.tmp')),
+      'a temporary file was left behind',
+    );
   },
 
   brokenPackage: async function () {
     const archive = path.join(workspaceRoot(), 'broken.mosc');
     const bytes = fs.readFileSync(archive);
     await assert.rejects(() => Promise.resolve(vscode.workspace.openTextDocument(packageUri('broken.mosc', 'main.xosc'))), /ZIP|zip/);
-    await assert.rejects(() => Promise.resolve(vscode.workspace.fs.writeFile(packageUri('broken.mosc', 'main.xosc'), Buffer.from('<OpenSCENARIO/>'))), /ZIP|zip/);
+    await assert.rejects(
+      () => Promise.resolve(vscode.workspace.fs.writeFile(packageUri('broken.mosc', 'main.xosc'), Buffer.from('<OpenSCENARIO/>'))),
+      /ZIP|zip/,
+    );
     assert.deepEqual(fs.readFileSync(archive), bytes, 'the broken archive was changed');
     await vscode.commands.executeCommand('vscode.open', vscode.Uri.file(archive));
-    await waitFor('the package view to report the broken archive', async () => (await post<{ found: boolean }>('/findText', { text: 'not a readable ZIP' })).found || undefined);
+    await waitFor(
+      'the package view to report the broken archive',
+      async () => (await post<{ found: boolean }>('/findText', { text: 'not a readable ZIP' })).found || undefined,
+    );
   },
 
   insidePackage: async function () {
@@ -76,7 +110,11 @@ export const packageTests: InsideTests = {
     const editor = await vscode.window.showTextDocument(await vscode.workspace.openTextDocument(main));
     const cursor = positionOf(editor.document, 'scenarioFileName="hard_brake.xosc"', 'scenarioFileName="hard'.length);
     const locations = await waitFor('a definition inside the package', async () => {
-      const found = await vscode.commands.executeCommand<(vscode.Location | vscode.LocationLink)[]>('vscode.executeDefinitionProvider', main, cursor);
+      const found = await vscode.commands.executeCommand<(vscode.Location | vscode.LocationLink)[]>(
+        'vscode.executeDefinitionProvider',
+        main,
+        cursor,
+      );
       return found.length > 0 ? found : undefined;
     });
     const target = 'targetUri' in locations[0] ? locations[0].targetUri : locations[0].uri;
@@ -87,7 +125,9 @@ export const packageTests: InsideTests = {
     await vscode.window.showTextDocument(editor.document);
     await replaceText(editor.document, 'key="SimulationTimeCondition.value"', 'key="SimulationTimeCondition.valeu"');
     const keyLine = positionOf(editor.document, 'SimulationTimeCondition.valeu').line;
-    await waitFor('a diagnostic inside the package', () => vscode.languages.getDiagnostics(main).find((d) => d.range.start.line === keyLine));
+    await waitFor('a diagnostic inside the package', () =>
+      vscode.languages.getDiagnostics(main).find((d) => d.range.start.line === keyLine),
+    );
     await revertAndClose();
   },
 
@@ -98,7 +138,12 @@ export const packageTests: InsideTests = {
     await vscode.window.showTextDocument(document);
     const position = positionOf(document, 'name="HardBrake"', 'name="Hard'.length);
     const edit = await waitFor('a rename edit', async () => {
-      const found = await vscode.commands.executeCommand<vscode.WorkspaceEdit | undefined>('vscode.executeDocumentRenameProvider', uri, position, 'SuddenBrake');
+      const found = await vscode.commands.executeCommand<vscode.WorkspaceEdit | undefined>(
+        'vscode.executeDocumentRenameProvider',
+        uri,
+        position,
+        'SuddenBrake',
+      );
       return found && found.size > 0 ? found : undefined;
     });
     const touched = edit.entries().map(([target]) => target.toString());

@@ -1,7 +1,17 @@
 import * as assert from 'node:assert/strict';
 import * as path from 'node:path';
 import * as vscode from 'vscode';
-import { api, type InsideTests, open, positionOf, replaceText, requireServerFeature, revertAndClose, waitFor, workspaceRoot } from './helpers';
+import {
+  api,
+  type InsideTests,
+  open,
+  positionOf,
+  replaceText,
+  requireServerFeature,
+  revertAndClose,
+  waitFor,
+  workspaceRoot,
+} from './helpers';
 import { pageShows, post, runFromPalette, screenshot } from './harnessClient';
 
 /** The flattened preview: opened from a CodeLens and from the palette, following edits. */
@@ -10,16 +20,21 @@ export const previewTests: InsideTests = {
     this.timeout(90_000);
     requireServerFeature(this, 'codeLens', !!api().serverCapabilities()?.codeLensProvider);
     const editor = await open('main.xosc');
-    const previewOpen = () => vscode.workspace.textDocuments.find((document) => document.uri.scheme === 'modular2simple-preview' && !document.isClosed);
-    const previewEditor = () => vscode.window.visibleTextEditors.find((visible) => visible.document.uri.scheme === 'modular2simple-preview');
-    const shows = (preview: vscode.TextEditor, line: number) => preview.visibleRanges.some((range) => range.start.line <= line && line <= range.end.line);
+    const previewOpen = () =>
+      vscode.workspace.textDocuments.find((document) => document.uri.scheme === 'modular2simple-preview' && !document.isClosed);
+    const previewEditor = () =>
+      vscode.window.visibleTextEditors.find((visible) => visible.document.uri.scheme === 'modular2simple-preview');
+    const shows = (preview: vscode.TextEditor, line: number) =>
+      preview.visibleRanges.some((range) => range.start.line <= line && line <= range.end.line);
     // The "flatten preview" CodeLens of the third reference opens the preview at the group that reference imports, not at line 1.
     const referenceLine = positionOf(editor.document, 'scenarioFileName="pedestrian.mosc"').line;
     const lenses = await waitFor('the CodeLenses', async () => {
       const found = await vscode.commands.executeCommand<vscode.CodeLens[]>('vscode.executeCodeLensProvider', editor.document.uri, 100);
       return found.some((candidate) => candidate.command?.command === 'modular2simple.openPreview') ? found : undefined;
     });
-    const lens = lenses.find((candidate) => candidate.command?.command === 'modular2simple.openPreview' && candidate.range.start.line === referenceLine)?.command;
+    const lens = lenses.find(
+      (candidate) => candidate.command?.command === 'modular2simple.openPreview' && candidate.range.start.line === referenceLine,
+    )?.command;
     assert.ok(lens, `no flatten preview lens on line ${referenceLine + 1}`);
     await vscode.commands.executeCommand(lens.command, ...(lens.arguments ?? []));
     const preview = await waitFor('the preview', previewOpen);
@@ -28,7 +43,11 @@ export const previewTests: InsideTests = {
     assert.ok(!preview.getText().includes('ScenarioReference'), 'the preview still holds a ScenarioReference');
     const pedestrian = positionOf(preview, 'name="Pedestrian.Walker.Crossing"').line;
     const atLens = await waitFor('the preview editor', previewEditor);
-    await waitFor('the preview to open at the pedestrian group', () => (shows(atLens, pedestrian) && !shows(atLens, 0)) || undefined, 10_000);
+    await waitFor(
+      'the preview to open at the pedestrian group',
+      () => (shows(atLens, pedestrian) && !shows(atLens, 0)) || undefined,
+      10_000,
+    );
     await screenshot('preview opens at the group of the CodeLens');
     await vscode.commands.executeCommand('workbench.action.closeEditorsInOtherGroups');
 
@@ -41,7 +60,11 @@ export const previewTests: InsideTests = {
     await runFromPalette('Modular2Simple: Open Flattened Preview');
     const atCursor = await waitFor('the preview editor', previewEditor);
     const cutIn = positionOf(atCursor.document, 'name="CutInVehicle.CutIn"').line;
-    await waitFor('the preview to open at the group of the cursor', () => (shows(atCursor, cutIn) && !shows(atCursor, 0)) || undefined, 10_000);
+    await waitFor(
+      'the preview to open at the group of the cursor',
+      () => (shows(atCursor, cutIn) && !shows(atCursor, 0)) || undefined,
+      10_000,
+    );
     await screenshot('preview opens at the group of the cursor');
 
     // Each edit reaches the preview; the time from the edit to the new text is printed (a figure, not a limit).
@@ -50,10 +73,15 @@ export const previewTests: InsideTests = {
     for (const value of ['31.25', '32.5', '33.75', '35', '36.25']) {
       let arrived = 0;
       const listener = vscode.workspace.onDidChangeTextDocument((event) => {
-        if (event.document === atCursor.document && !arrived && event.document.getText().includes(`value="${value}"`)) arrived = performance.now();
+        if (event.document === atCursor.document && !arrived && event.document.getText().includes(`value="${value}"`))
+          arrived = performance.now();
       });
       const started = performance.now();
-      await replaceText(editor.document, `key="AbsoluteTargetSpeed.value" value="${previous}"`, `key="AbsoluteTargetSpeed.value" value="${value}"`);
+      await replaceText(
+        editor.document,
+        `key="AbsoluteTargetSpeed.value" value="${previous}"`,
+        `key="AbsoluteTargetSpeed.value" value="${value}"`,
+      );
       await waitFor('the preview to follow the edit', () => arrived > 0 || undefined);
       listener.dispose();
       latencies.push(Math.round(arrived - started));
@@ -74,7 +102,10 @@ export const previewTests: InsideTests = {
     // A simple scenario that breaks turns the preview into the few lines saying why: shown from its first line, not scrolled below them.
     const simple = await vscode.workspace.openTextDocument(vscode.Uri.file(path.join(workspaceRoot(), 'lane_change.xosc')));
     await replaceText(simple, 'ManeuverGroup name="CutIn"', 'ManeuverGroup name="CutInRenamed"');
-    await waitFor('the preview to say why it cannot flatten', () => atCursor.document.getText().includes('cannot be flattened') || undefined);
+    await waitFor(
+      'the preview to say why it cannot flatten',
+      () => atCursor.document.getText().includes('cannot be flattened') || undefined,
+    );
     await waitFor('the preview to show its first line', () => shows(atCursor, 0) || undefined, 10_000);
     await waitFor('the explanation to be on screen', () => pageShows('error:', '.editor-group-container:not(.active) .view-lines'), 10_000);
     await screenshot('preview of a main whose simple scenario broke');

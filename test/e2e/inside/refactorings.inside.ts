@@ -11,7 +11,11 @@ import { pressKeys, quickInput, screenshot } from './harnessClient';
 /** The refactorings of issue 19 as a person uses them in VS Code. */
 export const refactoringTests: InsideTests = {
   extractToSimple: async function () {
-    requireServerFeature(this, 'Extract to a simple scenario', offersRequest(ExtractGroupRequest) && !!api().serverCapabilities()?.codeActionProvider);
+    requireServerFeature(
+      this,
+      'Extract to a simple scenario',
+      offersRequest(ExtractGroupRequest) && !!api().serverCapabilities()?.codeActionProvider,
+    );
     // A plain scenario: the example main flattened, whose groups are plain OpenSCENARIO.
     cli(['flatten', 'main.xosc', '-o', 'extract_e2e.xosc']);
     const plainFile = path.join(workspaceRoot(), 'extract_e2e.xosc');
@@ -25,7 +29,12 @@ export const refactoringTests: InsideTests = {
     editor.selection = new vscode.Selection(at, at);
     editor.revealRange(new vscode.Range(at, at), vscode.TextEditorRevealType.AtTop);
     const actions = await waitFor('the Extract to a simple scenario action', async () => {
-      const found = await vscode.commands.executeCommand<vscode.CodeAction[]>('vscode.executeCodeActionProvider', editor.document.uri, new vscode.Range(at, at), 'refactor.extract');
+      const found = await vscode.commands.executeCommand<vscode.CodeAction[]>(
+        'vscode.executeCodeActionProvider',
+        editor.document.uri,
+        new vscode.Range(at, at),
+        'refactor.extract',
+      );
       return found.find((action) => action.title.startsWith(`Extract '${groupName}' to a simple scenario`));
     });
     assert.equal(actions.command?.command, EXTRACT_GROUP_COMMAND);
@@ -40,8 +49,13 @@ export const refactoringTests: InsideTests = {
     await applied;
     const simpleName = `${fileStem(groupName)}.xosc`;
     const simpleFile = path.join(workspaceRoot(), simpleName);
-    await waitFor('the group replaced by a ScenarioReference', () => editor.document.getText().includes(`<ScenarioReference scenarioFileName="${simpleName}">`) || undefined);
-    const simple = await waitFor('the simple scenario open beside', () => vscode.workspace.textDocuments.find((document) => document.uri.fsPath === simpleFile));
+    await waitFor(
+      'the group replaced by a ScenarioReference',
+      () => editor.document.getText().includes(`<ScenarioReference scenarioFileName="${simpleName}">`) || undefined,
+    );
+    const simple = await waitFor('the simple scenario open beside', () =>
+      vscode.workspace.textDocuments.find((document) => document.uri.fsPath === simpleFile),
+    );
     assert.match(simple.getText(), /parameterAttributes="/);
     await screenshot('Extract to a simple scenario: the main and its new simple scenario');
     assert.ok(await vscode.workspace.saveAll(false));

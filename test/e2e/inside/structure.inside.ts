@@ -3,7 +3,18 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import * as vscode from 'vscode';
 import { StructureRequest, type StructureNode } from '../../../common/src/protocol';
-import { api, flattenTree, type InsideTests, offersRequest, open, positionOf, replaceText, requireServerFeature, waitFor, workspaceRoot } from './helpers';
+import {
+  api,
+  flattenTree,
+  type InsideTests,
+  offersRequest,
+  open,
+  positionOf,
+  replaceText,
+  requireServerFeature,
+  waitFor,
+  workspaceRoot,
+} from './helpers';
 import { pageShows, screenshot } from './harnessClient';
 
 /** The structure view: what it lists and how it follows edits, renames and files changed on disk. */
@@ -15,9 +26,16 @@ export const structureTests: InsideTests = {
     assert.ok(root, 'no structure');
     const nodes = flattenTree(root);
     assert.equal(root.kind, 'main');
-    for (const kind of ['package', 'scenario', 'group'] as const) assert.ok(nodes.some((node) => node.kind === kind), `no ${kind} in the structure`);
+    for (const kind of ['package', 'scenario', 'group'] as const)
+      assert.ok(
+        nodes.some((node) => node.kind === kind),
+        `no ${kind} in the structure`,
+      );
     for (const name of ['lane_change.xosc', 'braking.mosc', 'pedestrian']) {
-      assert.ok(nodes.some((node) => node.label.includes(name)), `${name} is not in the structure`);
+      assert.ok(
+        nodes.some((node) => node.label.includes(name)),
+        `${name} is not in the structure`,
+      );
     }
     // What a person sees: the tree view itself lists the packages and scenarios.
     for (const name of ['braking.mosc', 'lane_change.xosc']) {
@@ -36,20 +54,34 @@ export const structureTests: InsideTests = {
     const editor = await open('main.xosc');
     const root = await vscode.commands.executeCommand<StructureNode | undefined>('modular2simple.showStructure', editor.document.uri);
     assert.ok(root);
-    const groupLabels = () => flattenTree(api().structure() ?? root).filter((node) => node.kind === 'group' || node.kind === 'missing').map((node) => `${node.label}: ${node.detail ?? ''}`);
+    const groupLabels = () =>
+      flattenTree(api().structure() ?? root)
+        .filter((node) => node.kind === 'group' || node.kind === 'missing')
+        .map((node) => `${node.label}: ${node.detail ?? ''}`);
     const original = /^CutIn: \d+ attributes? overridden$/;
-    assert.ok(groupLabels().some((label) => original.test(label)), groupLabels().join(', '));
+    assert.ok(
+      groupLabels().some((label) => original.test(label)),
+      groupLabels().join(', '),
+    );
     // A cross-file rename, not saved: the group and its reference change in two files.
     const laneChange = await vscode.workspace.openTextDocument(vscode.Uri.file(path.join(workspaceRoot(), 'lane_change.xosc')));
     await vscode.window.showTextDocument(laneChange);
     const edit = await waitFor('a rename edit', async () => {
-      const found = await vscode.commands.executeCommand<vscode.WorkspaceEdit | undefined>('vscode.executeDocumentRenameProvider', laneChange.uri, positionOf(laneChange, 'name="CutIn"', 'name="Cut'.length), 'CutInLeft');
+      const found = await vscode.commands.executeCommand<vscode.WorkspaceEdit | undefined>(
+        'vscode.executeDocumentRenameProvider',
+        laneChange.uri,
+        positionOf(laneChange, 'name="CutIn"', 'name="Cut'.length),
+        'CutInLeft',
+      );
       return found && found.size > 1 ? found : undefined;
     });
     assert.ok(await vscode.workspace.applyEdit(edit));
     await waitFor('the renamed group in the tree view', () => pageShows('CutInLeft', '.customview-tree'), 10_000);
     assert.ok(!(await pageShows('no such group', '.customview-tree')), 'the tree shows "no such group" after the rename');
-    assert.ok(groupLabels().some((label) => label.startsWith('CutInLeft:')), groupLabels().join(', '));
+    assert.ok(
+      groupLabels().some((label) => label.startsWith('CutInLeft:')),
+      groupLabels().join(', '),
+    );
     await screenshot('structure follows a cross-file rename');
     // Undone without saving: the tree follows back.
     for (const document of [laneChange, editor.document]) {
@@ -68,6 +100,10 @@ export const structureTests: InsideTests = {
     } finally {
       fs.writeFileSync(file, saved);
     }
-    await waitFor('the tree to follow the restored file', async () => !(await pageShows('no such group', '.customview-tree')) || undefined, 15_000);
+    await waitFor(
+      'the tree to follow the restored file',
+      async () => !(await pageShows('no such group', '.customview-tree')) || undefined,
+      15_000,
+    );
   },
 };

@@ -24,13 +24,16 @@ export function defineVariationsTests(): void {
     });
 
     afterEach(async function () {
-      await screenshot(`${this.currentTest?.state === 'failed' ? 'FAILED ' : ''}${this.currentTest?.title ?? 'unnamed'}`).catch(() => undefined);
+      await screenshot(`${this.currentTest?.state === 'failed' ? 'FAILED ' : ''}${this.currentTest?.title ?? 'unnamed'}`).catch(
+        () => undefined,
+      );
     });
 
     it(INSIDE_TESTS.variations, async function () {
       const csv = path.join(workspaceRoot(), VARIATIONS_FILES.results, 'results.csv');
       if (!fs.existsSync(csv)) {
-        if (process.env.M2S_REQUIRE_ESMINI) throw new Error('M2S_REQUIRE_ESMINI is set, but there are no batch results (esmini or its roads are absent)');
+        if (process.env.M2S_REQUIRE_ESMINI)
+          throw new Error('M2S_REQUIRE_ESMINI is set, but there are no batch results (esmini or its roads are absent)');
         console.log('skipped: esmini is not built, so there is no batch to show');
         this.skip();
       }
@@ -43,14 +46,19 @@ export function defineVariationsTests(): void {
       assert.equal(first.points, 36, 'a point per run');
       assert.deepEqual([first.x, first.y], ['EgoSpeed', 'LeadSpeed']);
       assert.ok(await pageShows('36 runs:'), 'the summary is shown');
-      const collisions = fs.readFileSync(csv, 'utf8').split('\n').filter((line) => line.split(',')[2] === 'true').length;
+      const collisions = fs
+        .readFileSync(csv, 'utf8')
+        .split('\n')
+        .filter((line) => line.split(',')[2] === 'true').length;
       assert.ok(collisions > 0 && collisions < 36, `${collisions} collisions: the fixture has some`);
       assert.ok(await pageShows(`collision (${collisions})`), 'the legend and the filter count the collisions');
       await screenshot('Variations view of 36 runs');
 
       // Sorted by a header, filtered by outcome: what the view draws follows.
       assert.ok(await clickText('min_distance_m'), 'no min_distance_m header');
-      await waitFor('sorted by min_distance_m', () => (view.stats?.sort.column === 'min_distance_m' && view.stats.sort.direction === 'ascending' ? true : undefined));
+      await waitFor('sorted by min_distance_m', () =>
+        view.stats?.sort.column === 'min_distance_m' && view.stats.sort.direction === 'ascending' ? true : undefined,
+      );
       assert.ok(await clickText(`ok (${36 - collisions})`), 'no ok filter');
       const filtered = await waitFor('only the collisions left', () => (view.stats?.shown === collisions ? view.stats : undefined));
       assert.equal(filtered.points, collisions);
@@ -58,10 +66,18 @@ export function defineVariationsTests(): void {
       await screenshot('Variations view: collisions only, by smallest distance');
 
       // A click on a row's index opens that run in the bird's-eye view.
-      const firstCollision = fs.readFileSync(csv, 'utf8').split('\n').find((line) => line.split(',')[2] === 'true')!.split(',')[0];
+      const firstCollision = fs
+        .readFileSync(csv, 'utf8')
+        .split('\n')
+        .find((line) => line.split(',')[2] === 'true')!
+        .split(',')[0];
       assert.ok(await clickText(`#${firstCollision}`), `no link to run ${firstCollision}`);
       const birdsEye = api().birdsEye;
-      await waitFor('the run in the bird\'s-eye view', () => (view.openedRun === firstCollision && birdsEye.stats?.trajectories === 2 ? true : undefined), 30_000);
+      await waitFor(
+        "the run in the bird's-eye view",
+        () => (view.openedRun === firstCollision && birdsEye.stats?.trajectories === 2 ? true : undefined),
+        30_000,
+      );
       await screenshot(`Variations view: run ${firstCollision} opened in the bird's-eye view`);
       await vscode.commands.executeCommand('workbench.action.closeAllEditors');
     });

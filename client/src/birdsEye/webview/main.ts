@@ -133,7 +133,8 @@ function boxesAt(tracks: RunTracks): PlacedBox[] {
   const boxes: PlacedBox[] = [];
   for (const track of tracks.entities) {
     const pose = poseAt(tracks, track, time);
-    if (Number.isFinite(pose.x)) boxes.push({ name: track.name, ...pose, length: track.length, width: track.width, centerX: track.centerX });
+    if (Number.isFinite(pose.x))
+      boxes.push({ name: track.name, ...pose, length: track.length, width: track.width, centerX: track.centerX });
   }
   return boxes;
 }
@@ -179,14 +180,21 @@ function drawStatic(painter: Painter, width: number, height: number, pane: Pane 
 
 /** The pane's entities, its overlay's dashed, labels kept inside the pane. */
 function drawPane(painter: Painter, pane: Pane, paneView: ViewTransform, height: number, labelSize = 12): string[] {
-  const labels = drawEntities(painter, paneBoxes(pane), paneView, colorOf, { width: pane.width, height, chosen, compare: pane.overlay ? boxesAt(pane.overlay) : [], labelSize });
+  const labels = drawEntities(painter, paneBoxes(pane), paneView, colorOf, {
+    width: pane.width,
+    height,
+    chosen,
+    compare: pane.overlay ? boxesAt(pane.overlay) : [],
+    labelSize,
+  });
   if (sideBySide && compare && pane.tracks) painter.text(8, 8 + labelSize, `run: ${pane.tracks.label}`, COLORS.label, labelSize + 1);
   return labels.map((label) => label.text);
 }
 
 /** The legend names the road file drawn, so that a saved picture says which road it shows. */
 function drawRoadLegend(painter: Painter, height: number): void {
-  if (scene?.roadFile) painter.text(8, height - 8, `road: ${scene.roadFile.resolved ?? `${scene.roadFile.filepath} (not found)`}`, COLORS.label, 11);
+  if (scene?.roadFile)
+    painter.text(8, height - 8, `road: ${scene.roadFile.resolved ?? `${scene.roadFile.filepath} (not found)`}`, COLORS.label, 11);
 }
 
 /** Roads and trajectories change only with the view or the data: drawn once into their layers, a margin around each pane. */
@@ -398,7 +406,12 @@ function renderPanel(): void {
   const entities = element<HTMLDivElement>('entities');
   entities.replaceChildren();
   for (const entity of scene?.entities ?? []) {
-    const item = button(`■ ${entity.name}`, `${entity.kind}: ${entity.described}${entity.problem ? ` — ${entity.problem}` : ''}`, () => open(entity.source), 'entity');
+    const item = button(
+      `■ ${entity.name}`,
+      `${entity.kind}: ${entity.described}${entity.problem ? ` — ${entity.problem}` : ''}`,
+      () => open(entity.source),
+      'entity',
+    );
     item.style.color = colorOf(entity.name);
     entities.append(item);
   }
@@ -409,9 +422,19 @@ function renderPanel(): void {
   const total = duration();
   for (const event of scene?.events ?? []) {
     const started = run?.starts[event.name];
-    const when = started !== undefined ? `started ${started.toFixed(2)} s` : event.plannedTime !== undefined ? `planned ${event.plannedTime} s` : run ? 'did not start' : 'start after a run';
+    const when =
+      started !== undefined
+        ? `started ${started.toFixed(2)} s`
+        : event.plannedTime !== undefined
+          ? `planned ${event.plannedTime} s`
+          : run
+            ? 'did not start'
+            : 'start after a run';
     const item = document.createElement('li');
-    item.append(button(event.name, `${event.act} / ${event.group} / ${event.maneuver}`, () => open(event.source), 'event'), ` ${when} · ${event.trigger}`);
+    item.append(
+      button(event.name, `${event.act} / ${event.group} / ${event.maneuver}`, () => open(event.source), 'event'),
+      ` ${when} · ${event.trigger}`,
+    );
     events.append(item);
     const at = started ?? event.plannedTime;
     if (at !== undefined && total > 0 && at <= total) {
@@ -432,15 +455,27 @@ function renderPanel(): void {
   const problems = element<HTMLUListElement>('problems');
   const drawn = scene?.roadFile?.resolved;
   // The run and the picture resolve the road alike (core/roadFiles.ts); a run loaded elsewhere (an older CSV, another tool) is said so.
-  const otherRoad = run?.roadFile && drawn && run.roadFile !== drawn ? [`the run loaded the road file ${run.roadFile}; the picture draws ${drawn}`] : [];
-  problems.replaceChildren(...[...(scene?.problems ?? []), ...(run?.notes ?? []), ...otherRoad].map((problem) => Object.assign(document.createElement('li'), { textContent: problem })));
-  const road = scene?.roadFile ? ` · road ${drawn ?? `${scene.roadFile.filepath} (not found)`}${drawn ? ` (${scene.roadFile.roadCount} road${scene.roadFile.roadCount === 1 ? '' : 's'})` : ''}` : '';
+  const otherRoad =
+    run?.roadFile && drawn && run.roadFile !== drawn ? [`the run loaded the road file ${run.roadFile}; the picture draws ${drawn}`] : [];
+  problems.replaceChildren(
+    ...[...(scene?.problems ?? []), ...(run?.notes ?? []), ...otherRoad].map((problem) =>
+      Object.assign(document.createElement('li'), { textContent: problem }),
+    ),
+  );
+  const road = scene?.roadFile
+    ? ` · road ${drawn ?? `${scene.roadFile.filepath} (not found)`}${drawn ? ` (${scene.roadFile.roadCount} road${scene.roadFile.roadCount === 1 ? '' : 's'})` : ''}`
+    : '';
   const title = element<HTMLSpanElement>('title');
   title.textContent = scene ? `${scene.title}${road}${run ? ` · run: ${run.label}` : ''}` : 'loading…';
   title.title = drawn ? `The road file drawn: ${drawn} (${scene?.roadFile?.filepath} as the scenario says)` : '';
-  const names = [...new Set([...(run?.entities.map((track) => track.name) ?? []), ...(scene?.entities.map((entity) => entity.name) ?? [])])];
+  const names = [
+    ...new Set([...(run?.entities.map((track) => track.name) ?? []), ...(scene?.entities.map((entity) => entity.name) ?? [])]),
+  ];
   if (chosen && !names.includes(chosen)) chosen = undefined;
-  followList.replaceChildren(Object.assign(document.createElement('option'), { value: '', textContent: 'Follow: none' }), ...names.map((name) => Object.assign(document.createElement('option'), { value: name, textContent: `Follow ${name}` })));
+  followList.replaceChildren(
+    Object.assign(document.createElement('option'), { value: '', textContent: 'Follow: none' }),
+    ...names.map((name) => Object.assign(document.createElement('option'), { value: name, textContent: `Follow ${name}` })),
+  );
   followList.value = following && chosen ? chosen : '';
   if (compare) title.textContent += ` · compared with: ${compare.label}${sideBySide ? ' (right)' : ' (dashed)'}`;
   compareMode.style.display = compare ? '' : 'none';
@@ -479,9 +514,16 @@ window.addEventListener('message', (event: MessageEvent<ToView>) => {
   } else if (message.type === 'choose') {
     choose(message.entity, message.entity !== undefined);
   } else if (message.type === 'export') {
-    vscode.postMessage({ type: 'save', format: message.format, data: picture(message.format, message.width, message.height), id: message.id });
+    vscode.postMessage({
+      type: 'save',
+      format: message.format,
+      data: picture(message.format, message.width, message.height),
+      id: message.id,
+    });
   } else if (message.type === 'error') {
-    element<HTMLUListElement>('problems').replaceChildren(Object.assign(document.createElement('li'), { textContent: message.message, className: 'error' }));
+    element<HTMLUListElement>('problems').replaceChildren(
+      Object.assign(document.createElement('li'), { textContent: message.message, className: 'error' }),
+    );
   }
 });
 
@@ -519,10 +561,21 @@ canvas.addEventListener('mousemove', (event) => {
   const [x, y] = toWorld(view, event.offsetX - pane.x, event.offsetY);
   const box = boxAt(paneBoxes(pane), view, x, y);
   const lane = box ? undefined : laneAt(shapes, x, y);
-  const text = box ? `${box.name} (click to follow it and open its position in the source)` : lane ? `road ${lane.road} · lane ${lane.lane} · ${lane.type}${lane.junction ? ' · junction' : ''}` : '';
+  const text = box
+    ? `${box.name} (click to follow it and open its position in the source)`
+    : lane
+      ? `road ${lane.road} · lane ${lane.lane} · ${lane.type}${lane.junction ? ' · junction' : ''}`
+      : '';
   tooltip.textContent = text;
   tooltip.style.display = text ? 'block' : 'none';
-  const [left, top] = tooltipPlace(event.offsetX, event.offsetY, tooltip.offsetWidth, tooltip.offsetHeight, stage.clientWidth, stage.clientHeight);
+  const [left, top] = tooltipPlace(
+    event.offsetX,
+    event.offsetY,
+    tooltip.offsetWidth,
+    tooltip.offsetHeight,
+    stage.clientWidth,
+    stage.clientHeight,
+  );
   tooltip.style.left = `${left}px`;
   tooltip.style.top = `${top}px`;
   canvas.style.cursor = box ? 'pointer' : 'default';
@@ -564,7 +617,10 @@ function picture(format: 'png' | 'svg', width = size().width, height = size().he
   const shown = view ?? fitTransform(sceneBounds(shapes, scene, run), shownPanes[0].width, shownSize.height);
   const overlaid = compare !== undefined && !sideBySide;
   const compared = new Set(overlaid && compare ? compare.entities.map((track) => `${track.name} (2)`) : []);
-  const names = [...new Set([...currentBoxes().map((box) => box.name), ...(sideBySide ? comparedBoxes().map((box) => box.name) : [])]), ...compared];
+  const names = [
+    ...new Set([...currentBoxes().map((box) => box.name), ...(sideBySide ? comparedBoxes().map((box) => box.name) : [])]),
+    ...compared,
+  ];
   const timeText = `${run ? `t = ${time.toFixed(2)} s of ${duration().toFixed(2)} s` : 'start positions'}${compare ? ` · ${run?.label} vs ${compare.label}${overlaid ? ' (dashed)' : ''}` : ''}`;
   const layout = exportLayout(width, height, shown, shownPanes[0].width, shownSize.height, names, timeText, shownPanes.length);
   const draw = (painter: Painter) => {

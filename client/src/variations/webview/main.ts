@@ -57,7 +57,9 @@ function axisChoices(current: ResultsTable): string[] {
 }
 
 function fillSelect(select: HTMLSelectElement, choices: string[], value: string): void {
-  select.innerHTML = choices.map((choice) => `<option value="${escapeHtml(choice)}"${choice === value ? ' selected' : ''}>${escapeHtml(choice)}</option>`).join('');
+  select.innerHTML = choices
+    .map((choice) => `<option value="${escapeHtml(choice)}"${choice === value ? ' selected' : ''}>${escapeHtml(choice)}</option>`)
+    .join('');
 }
 
 function renderFilters(current: ResultsTable): void {
@@ -79,15 +81,33 @@ function render(): void {
   const plotKey = JSON.stringify([table.rows.length, [...shown], axes, width, height]);
   if (plotKey !== drawnPlot) {
     const foreground = themeColor('--vscode-foreground', '#cccccc');
-    plotElement.innerHTML = scatterSvg(model, { width, height, foreground, grid: themeColor('--vscode-panel-border', '#80808040'), fontFamily: themeColor('--vscode-font-family', 'sans-serif') });
+    plotElement.innerHTML = scatterSvg(model, {
+      width,
+      height,
+      foreground,
+      grid: themeColor('--vscode-panel-border', '#80808040'),
+      fontFamily: themeColor('--vscode-font-family', 'sans-serif'),
+    });
     drawnPlot = plotKey;
   }
   const visible = sorted.slice(0, MAX_TABLE_ROWS);
   tableElement.innerHTML = tableHtml(table.columns, visible, order, runsKept);
   summaryElement.textContent = `${summaryText(table.rows)}; ${filtered.length} shown${runsKept ? '; click a row or a point to open its run' : '; the runs were not kept (batch --keep-runs), so they cannot be opened'}`;
-  noteElement.textContent = sorted.length > visible.length ? `The first ${visible.length} of ${sorted.length} rows: sort or filter to see others.` : '';
+  noteElement.textContent =
+    sorted.length > visible.length ? `The first ${visible.length} of ${sorted.length} rows: sort or filter to see others.` : '';
   markSelected();
-  vscode.postMessage({ type: 'rendered', stats: { rows: table.rows.length, shown: filtered.length, points: model.points.length, sort: order, x: axes.x, y: axes.y, outcomes: [...shown] } });
+  vscode.postMessage({
+    type: 'rendered',
+    stats: {
+      rows: table.rows.length,
+      shown: filtered.length,
+      points: model.points.length,
+      sort: order,
+      x: axes.x,
+      y: axes.y,
+      outcomes: [...shown],
+    },
+  });
 }
 
 function markSelected(): void {

@@ -77,7 +77,11 @@ function planCarryOnOutput(
       const dropped = origin(source, declaration.element);
       conflict(
         declaration.name,
-        { source: main.ref, range: mainModel.document.lines.range(mainDeclaration.nameAttribute.valueStart, mainDeclaration.nameAttribute.valueEnd), message: '' },
+        {
+          source: main.ref,
+          range: mainModel.document.lines.range(mainDeclaration.nameAttribute.valueStart, mainDeclaration.nameAttribute.valueEnd),
+          message: '',
+        },
         dropped && { ...dropped, message: `the source's declaration (value '${declaration.value}')` },
         `parameter '${declaration.name}' is declared here with value '${mainDeclaration.value}', but the imported group '${group}' uses the declaration of ${displayRef(dropped?.source ?? source.ref, base)}${dropped ? `:${dropped.range.start.line + 1}` : ''} with value '${declaration.value}'; the output keeps this one`,
       );
@@ -124,7 +128,9 @@ function planCarryOnOutput(
     for (const use of output.uses) {
       if (use.start < insertion.start || use.end > insertion.end) continue;
       const original = counterpart.get(use.element);
-      const sourceUse = original ? usesIn(sourceModel, original).find((candidate) => candidate.attribute.name === use.attribute.name && candidate.name === use.name) : undefined;
+      const sourceUse = original
+        ? usesIn(sourceModel, original).find((candidate) => candidate.attribute.name === use.attribute.name && candidate.name === use.name)
+        : undefined;
       const declaration = sourceUse?.declaration;
       if (!declaration || isWithin(declaration.element, target.element)) continue;
       if (!use.declaration || use.declaration.scope === output.root) {
@@ -136,7 +142,10 @@ function planCarryOnOutput(
         const dropped = origin(source, declaration.element);
         // Before the first copy the first rendering is the main file's text; past it, the reference stands for the place.
         const name = use.declaration.nameAttribute;
-        const here = name.valueEnd <= firstCopy ? { start: name.valueStart, end: name.valueEnd } : { start: insertion.reference.element.start, end: insertion.reference.element.nameEnd };
+        const here =
+          name.valueEnd <= firstCopy
+            ? { start: name.valueStart, end: name.valueEnd }
+            : { start: insertion.reference.element.start, end: insertion.reference.element.nameEnd };
         conflict(
           use.name,
           { source: main.ref, range: mainModel.document.lines.range(here.start, here.end), message: '' },
@@ -150,7 +159,9 @@ function planCarryOnOutput(
   // In each source's order, sources in the order they were first needed.
   const sourceOrder: FlatSource[] = [];
   for (const entry of carried.values()) if (!sourceOrder.includes(entry.source)) sourceOrder.push(entry.source);
-  plan.declarations = [...carried.values()].sort((a, b) => sourceOrder.indexOf(a.source) - sourceOrder.indexOf(b.source) || a.declaration.element.start - b.declaration.element.start);
+  plan.declarations = [...carried.values()].sort(
+    (a, b) => sourceOrder.indexOf(a.source) - sourceOrder.indexOf(b.source) || a.declaration.element.start - b.declaration.element.start,
+  );
   return plan;
 }
 
@@ -193,9 +204,18 @@ function usesIn(model: SemanticModel, element: XmlElement): ParameterUse[] {
 }
 
 /** The catalog locations an imported group's CatalogReferences need and the main file lacks. */
-function planLocations(plan: CarryPlan, main: FlatSource, source: FlatSource, output: SemanticModel, insertion: Insertion, counterpart: Map<XmlElement, XmlElement>): void {
+function planLocations(
+  plan: CarryPlan,
+  main: FlatSource,
+  source: FlatSource,
+  output: SemanticModel,
+  insertion: Insertion,
+  counterpart: Map<XmlElement, XmlElement>,
+): void {
   const mainLocations = main.semantics?.catalogs.locations ?? [];
-  const references = output.catalogReferences.filter((reference) => reference.element.start >= insertion.start && reference.element.end <= insertion.end);
+  const references = output.catalogReferences.filter(
+    (reference) => reference.element.start >= insertion.start && reference.element.end <= insertion.end,
+  );
   if (references.length === 0 || !source.model) return;
   const sourceEvaluator = new Evaluator(semanticModelOf(source.model.document));
   const needed: CarriedLocation[] = [];
@@ -217,7 +237,9 @@ function planLocations(plan: CarryPlan, main: FlatSource, source: FlatSource, ou
       if (!model) continue;
       plan.problems.push({
         source: main.ref,
-        range: attr ? model.document.lines.range(attr.valueStart, attr.valueEnd) : model.document.lines.range(own.location.directory.start, own.location.directory.nameEnd),
+        range: attr
+          ? model.document.lines.range(attr.valueStart, attr.valueEnd)
+          : model.document.lines.range(own.location.directory.start, own.location.directory.nameEnd),
         severity: 'warning',
         code: 'catalog-location-conflict',
         message: `an imported group needs the ${need.kind} directory ${need.directory}, but this file's ${need.kind} is ${own.path ?? '(none)'}; OpenSCENARIO allows one directory per catalog kind, so the output keeps this one`,
@@ -280,7 +302,12 @@ export function carryEdits(main: FlatSource, plan: CarryPlan, eol: string, mainF
       if (declarations) edits.push({ start: declarations.start, end: declarations.end, text: whole, parts: shifted });
       else {
         const prefix = eol + childIndent;
-        edits.push({ start: anchor, end: anchor, text: prefix + whole, parts: shifted.map((part) => ({ ...part, start: part.start + prefix.length, end: part.end + prefix.length })) });
+        edits.push({
+          start: anchor,
+          end: anchor,
+          text: prefix + whole,
+          parts: shifted.map((part) => ({ ...part, start: part.start + prefix.length, end: part.end + prefix.length })),
+        });
       }
     }
   }
@@ -302,7 +329,9 @@ export function carryEdits(main: FlatSource, plan: CarryPlan, eol: string, mainF
       else {
         // Schema order: FileHeader, ParameterDeclarations, (VariableDeclarations, MonitorDeclarations), CatalogLocations, RoadNetwork.
         const before = child('RoadNetwork');
-        const preceding = ['MonitorDeclarations', 'VariableDeclarations', 'ParameterDeclarations'].map(child).find((candidate) => candidate !== undefined);
+        const preceding = ['MonitorDeclarations', 'VariableDeclarations', 'ParameterDeclarations']
+          .map(child)
+          .find((candidate) => candidate !== undefined);
         if (preceding) edits.push({ start: preceding.end, end: preceding.end, text: eol + childIndent + whole, parts: [] });
         else if (before) edits.push({ start: before.start, end: before.start, text: whole + eol + childIndent, parts: [] });
         else edits.push({ start: anchor, end: anchor, text: eol + childIndent + whole, parts: [] });
@@ -323,7 +352,12 @@ export function carriedDeclaration(main: FlatSource, name: string): CarriedDecla
  * main file), or the attribute's own value read with the source's declarations, which is then either
  * the main file's root declaration of that name (it wins) or carried from the source (named relative to `base`).
  */
-export function composedValues(main: FlatSource, element: XmlElement, attributeName: string, base?: string): { group: LinkedGroupReference; result: ValueResult }[] {
+export function composedValues(
+  main: FlatSource,
+  element: XmlElement,
+  attributeName: string,
+  base?: string,
+): { group: LinkedGroupReference; result: ValueResult }[] {
   const results: { group: LinkedGroupReference; result: ValueResult }[] = [];
   const mainEvaluator = main.semantics?.evaluator;
   for (const link of main.links) {
@@ -331,7 +365,9 @@ export function composedValues(main: FlatSource, element: XmlElement, attributeN
     if (!source?.model) continue;
     for (const group of link.groups) {
       if (!group.target || !isWithin(element, group.target.element)) continue;
-      const override = group.plan ? [...group.plan.applied].find(([target]) => target.element === element && target.attributeName === attributeName)?.[1] : undefined;
+      const override = group.plan
+        ? [...group.plan.applied].find(([target]) => target.element === element && target.attributeName === attributeName)?.[1]
+        : undefined;
       if (override?.valueAttribute && mainEvaluator) {
         const value = mainEvaluator.attributeValue(override.element, override.valueAttribute);
         const provenance = { kind: 'override' as const, parameterReference: override.element, key: override.key };

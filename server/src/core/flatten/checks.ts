@@ -22,7 +22,12 @@ function entityRefElements(group: XmlElement): XmlElement[] {
 }
 
 /** Catalog problems, which the output check reports only for what flattening carried. */
-const CATALOG_CODES: ReadonlySet<ProblemCode> = new Set<ProblemCode>(['catalog-directory', 'unknown-catalog', 'unknown-catalog-entry', 'unknown-assigned-parameter']);
+const CATALOG_CODES: ReadonlySet<ProblemCode> = new Set<ProblemCode>([
+  'catalog-directory',
+  'unknown-catalog',
+  'unknown-catalog-entry',
+  'unknown-assigned-parameter',
+]);
 
 /** Warns on each name in `parameterAttributes` that names no attribute of its element. */
 export function checkDeclarations(result: FlatSource, model: ScenarioModel): void {
@@ -68,13 +73,16 @@ export function entityProblems(source: FlatSource): Problem[] {
       // The entities the copy will name: overrides first, then the outer actor, then the source's own value.
       const overridden = new Map<XmlElement, string>();
       for (const [target, parameter] of linked.plan.applied) {
-        if (target.attributeName === 'entityRef') overridden.set(target.element, valueIn(main, parameter.element, parameter.valueAttribute) ?? parameter.value);
+        if (target.attributeName === 'entityRef')
+          overridden.set(target.element, valueIn(main, parameter.element, parameter.valueAttribute) ?? parameter.value);
       }
       const missing = new Set<string>();
       for (const element of entityRefElements(linked.target.element)) {
         const value =
           overridden.get(element) ??
-          (element === linked.target.actor && actorEntity !== undefined ? actorEntity : valueIn(sourceEvaluator, element, attribute(element, 'entityRef')));
+          (element === linked.target.actor && actorEntity !== undefined
+            ? actorEntity
+            : valueIn(sourceEvaluator, element, attribute(element, 'entityRef')));
         if (value !== undefined && !declared.has(value)) missing.add(value);
       }
       for (const name of missing) {
@@ -118,7 +126,9 @@ export async function checkOutput(context: OutputCheckContext, source: FlatSourc
   // The main file's own catalog locations are written as they are, relative to it; its own check covers them.
   const carried = (element: XmlElement) =>
     [...source.insertions, ...source.additions].some((region) => element.start >= region.start && element.end <= region.end);
-  return findings.filter((finding) => !CATALOG_CODES.has(finding.code) || carried(finding.element)).map((finding) => problemAtOrigin(source, finding));
+  return findings
+    .filter((finding) => !CATALOG_CODES.has(finding.code) || carried(finding.element))
+    .map((finding) => problemAtOrigin(source, finding));
 }
 
 /** A finding on the flattened text, placed where its element was written. */
@@ -136,4 +146,3 @@ function problemAtOrigin(source: FlatSource, finding: Finding): Problem {
   }
   return problemOfFinding(finding, origin.source.ref, document ? document.lines.range(start, end) : ZERO_RANGE);
 }
-

@@ -46,7 +46,10 @@ export function parameterAttributeSpans(model: ScenarioModel): { start: number; 
 
 /** Removes every `parameterAttributes` attribute, with the white space before it. */
 export function stripParameterAttributes(model: ScenarioModel): string {
-  return applyEdits(model.document.text, parameterAttributeSpans(model).map((span) => ({ ...span, text: '' })));
+  return applyEdits(
+    model.document.text,
+    parameterAttributeSpans(model).map((span) => ({ ...span, text: '' })),
+  );
 }
 
 const ENTITY_REFERENCE = /<!--[\s\S]*?-->|<!\[CDATA\[[\s\S]*?\]\]>|&([A-Za-z_:][\w.:-]*);/g;
@@ -59,8 +62,16 @@ const PREDEFINED = new Set(['lt', 'gt', 'amp', 'quot', 'apos']);
 function expandEntitiesInCopy(text: string, group: XmlElement, entities: ReadonlyMap<string, string>, edits: Map<number, TextEdit>): void {
   for (const element of selfAndDescendants(group)) {
     for (const attributeNode of element.attributes) {
-      if (edits.has(attributeNode.valueStart) || !/&(?!(?:lt|gt|amp|quot|apos);|#)/.test(text.slice(attributeNode.valueStart, attributeNode.valueEnd))) continue;
-      edits.set(attributeNode.valueStart, { start: attributeNode.valueStart, end: attributeNode.valueEnd, text: escapeAttributeValue(attributeNode.value, attributeNode.quote) });
+      if (
+        edits.has(attributeNode.valueStart) ||
+        !/&(?!(?:lt|gt|amp|quot|apos);|#)/.test(text.slice(attributeNode.valueStart, attributeNode.valueEnd))
+      )
+        continue;
+      edits.set(attributeNode.valueStart, {
+        start: attributeNode.valueStart,
+        end: attributeNode.valueEnd,
+        text: escapeAttributeValue(attributeNode.value, attributeNode.quote),
+      });
     }
     if (element.selfClosing) continue;
     // Text runs: between the start tag, the children and the end tag.
@@ -76,7 +87,11 @@ function expandEntitiesInCopy(text: string, group: XmlElement, entities: Readonl
         const value = entities.get(name);
         if (value === undefined) continue;
         const start = from + match.index;
-        edits.set(start, { start, end: start + match[0].length, text: value.replace(/&/g, '&amp;').replace(/</g, '&lt;').replace(/>/g, '&gt;') });
+        edits.set(start, {
+          start,
+          end: start + match[0].length,
+          text: value.replace(/&/g, '&amp;').replace(/</g, '&lt;').replace(/>/g, '&gt;'),
+        });
       }
       if (child) from = child.end;
     }
@@ -93,13 +108,22 @@ export interface CopyPlace {
 }
 
 /** The text of one imported group as the output holds it: renamed, its actor and overrides set, re-indented. */
-export function copyGroup(sourceText: string, sourceModel: ScenarioModel, linked: LinkedGroupReference, { outerName, actorEntity, indent: targetIndent, eol }: CopyPlace): string {
+export function copyGroup(
+  sourceText: string,
+  sourceModel: ScenarioModel,
+  linked: LinkedGroupReference,
+  { outerName, actorEntity, indent: targetIndent, eol }: CopyPlace,
+): string {
   const target = linked.target as ManeuverGroupInfo;
   const edits = new Map<number, TextEdit>();
   const setAttribute = (element: XmlElement, name: string, value: string) => {
     const existing = attribute(element, name);
     if (existing) {
-      edits.set(existing.valueStart, { start: existing.valueStart, end: existing.valueEnd, text: escapeAttributeValue(value, existing.quote) });
+      edits.set(existing.valueStart, {
+        start: existing.valueStart,
+        end: existing.valueEnd,
+        text: escapeAttributeValue(value, existing.quote),
+      });
     } else {
       edits.set(element.nameEnd, { start: element.nameEnd, end: element.nameEnd, text: ` ${name}="${escapeAttributeValue(value)}"` });
     }

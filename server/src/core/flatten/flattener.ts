@@ -26,7 +26,9 @@ function catalogIndexOf(source: FlatSource): Map<string, { kind: string; directo
     const name = resolution.catalogName;
     if (!file || !name || file.ref.entries.length > 0 || index.has(name)) continue;
     const directory = path.dirname(file.ref.disk);
-    const location = catalogs?.locations.find((candidate) => candidate.directories.some((known) => !known.packageRef && known.directory === directory));
+    const location = catalogs?.locations.find((candidate) =>
+      candidate.directories.some((known) => !known.packageRef && known.directory === directory),
+    );
     if (location) index.set(name, { kind: location.location.kind, directory });
   }
   for (const link of source.links) {
@@ -67,13 +69,17 @@ export class Flattener {
   /** Flattens the scenario `main` (a `main.xosc` on disk or inside a package) into plain OpenSCENARIO. */
   async flatten(main: SourceRef, options: FlattenOptions = {}): Promise<FlattenResult> {
     // Standard output names files absolutely (SPEC 11.6); a file names them from its own folder.
-    const outputPath = options.standardOutput ? undefined : path.resolve(options.outputPath ?? path.join(pathBaseOf(main), 'flattened.xosc'));
+    const outputPath = options.standardOutput
+      ? undefined
+      : path.resolve(options.outputPath ?? path.join(pathBaseOf(main), 'flattened.xosc'));
     const analysis = await this.analyze(main);
     const source = this.rendered(analysis.source);
     // The output is checked strictly against the schema too; its problems are reported where the source wrote them.
     const schemaVersion = this.schema.version;
     const schemaOutput =
-      schemaVersion !== 'off' && source.model && source.model !== source.original ? outputSchemaProblems(source, this.schemaChecks, { version: schemaVersion }) : [];
+      schemaVersion !== 'off' && source.model && source.model !== source.original
+        ? outputSchemaProblems(source, this.schemaChecks, { version: schemaVersion })
+        : [];
     // Rendering the main file itself may find it too large.
     const found = [
       ...analysis.problems,
@@ -161,7 +167,17 @@ export class Flattener {
     }
     const document = this.store.parse(ref, text);
     for (const problem of document.problems) {
-      result.problems.push(problemAt({ source: ref, document, start: problem.start, end: problem.end, severity: problem.severity, code: 'xml', message: problem.message }));
+      result.problems.push(
+        problemAt({
+          source: ref,
+          document,
+          start: problem.start,
+          end: problem.end,
+          severity: problem.severity,
+          code: 'xml',
+          message: problem.message,
+        }),
+      );
     }
     const schemaVersion = this.schema.version;
     if (schemaVersion !== 'off') result.problems.push(...schemaProblems(ref, document, this.schemaChecks, { version: schemaVersion }));
@@ -174,7 +190,8 @@ export class Flattener {
       result.problems.push(...semanticProblems(semantics));
       // The schema's attribute types, for the values parameters give them.
       if (schemaVersion !== 'off') result.problems.push(...parameterValueProblems(semantics, schemaVersion));
-      for (const file of semantics.catalogs.files) if (!result.dependencies.some((known) => refId(known) === refId(file))) result.dependencies.push(file);
+      for (const file of semantics.catalogs.files)
+        if (!result.dependencies.some((known) => refId(known) === refId(file))) result.dependencies.push(file);
     }
     const wellFormed = isWellFormed(document);
     await this.linkAll(result, model, stack);

@@ -46,7 +46,14 @@ export async function link(
   };
   checkReferenceShape(reference, report);
   if (!reference.fileAttribute) {
-    report({ start: reference.element.start, end: reference.element.nameEnd, severity: 'error', code: 'missing-attribute', message: 'ScenarioReference has no scenarioFileName attribute', hint: 'add scenarioFileName="NAME.xosc" or "NAME.mosc"' });
+    report({
+      start: reference.element.start,
+      end: reference.element.nameEnd,
+      severity: 'error',
+      code: 'missing-attribute',
+      message: 'ScenarioReference has no scenarioFileName attribute',
+      hint: 'add scenarioFileName="NAME.xosc" or "NAME.mosc"',
+    });
     return link;
   }
   checkReferenceChildren(reference, report);
@@ -64,7 +71,13 @@ export async function link(
 /** A reference must stand in a ManeuverGroup whose actor the imported groups take. */
 function checkReferenceShape(reference: ScenarioReferenceInfo, report: Report): void {
   if (!reference.outerGroup) {
-    report({ start: reference.element.start, end: reference.element.nameEnd, severity: 'error', code: 'reference-outside-group', message: 'a ScenarioReference must stand directly inside a ManeuverGroup' });
+    report({
+      start: reference.element.start,
+      end: reference.element.nameEnd,
+      severity: 'error',
+      code: 'reference-outside-group',
+      message: 'a ScenarioReference must stand directly inside a ManeuverGroup',
+    });
   } else if (!reference.outerGroup.actor) {
     const group = reference.outerGroup;
     const [start, end] = valueRange(group.nameAttribute, group.element);
@@ -78,7 +91,14 @@ function checkReferenceShape(reference: ScenarioReferenceInfo, report: Report): 
     });
   } else if (!attribute(reference.outerGroup.actor, 'entityRef')) {
     const actor = reference.outerGroup.actor;
-    report({ start: actor.start, end: actor.nameEnd, severity: 'error', code: 'no-entity-ref', message: 'this EntityRef has no entityRef attribute', hint: 'write entityRef="NAME" with the name of a ScenarioObject' });
+    report({
+      start: actor.start,
+      end: actor.nameEnd,
+      severity: 'error',
+      code: 'no-entity-ref',
+      message: 'this EntityRef has no entityRef attribute',
+      hint: 'write entityRef="NAME" with the name of a ScenarioObject',
+    });
   }
 }
 
@@ -86,7 +106,13 @@ function checkReferenceShape(reference: ScenarioReferenceInfo, report: Report): 
 function checkReferenceChildren(reference: ScenarioReferenceInfo, report: Report): void {
   for (const groupReference of reference.groupReferences) {
     if (!groupReference.nameAttribute) {
-      report({ start: groupReference.element.start, end: groupReference.element.nameEnd, severity: 'error', code: 'missing-attribute', message: 'ManeuverGroupReference has no maneuverGroupName attribute' });
+      report({
+        start: groupReference.element.start,
+        end: groupReference.element.nameEnd,
+        severity: 'error',
+        code: 'missing-attribute',
+        message: 'ManeuverGroupReference has no maneuverGroupName attribute',
+      });
     }
     for (const parameter of groupReference.parameters) {
       if (!parameter.keyAttribute || !parameter.valueAttribute) {
@@ -120,13 +146,27 @@ async function resolveTarget(
     return undefined;
   }
   if (resolution.kind === 'unreadable') {
-    report({ start, end, severity: 'error', code: 'bad-package', message: `cannot look up '${reference.fileName}': ${resolution.message}`, hint: resolution.hint });
+    report({
+      start,
+      end,
+      severity: 'error',
+      code: 'bad-package',
+      message: `cannot look up '${reference.fileName}': ${resolution.message}`,
+      hint: resolution.hint,
+    });
     return undefined;
   }
   if (resolution.kind === 'missing') {
     const { suggestion } = resolution;
     const hint = suggestion ? `did you mean '${suggestion}'?` : resolution.hint;
-    const problem = report({ start, end, severity: 'error', code: 'missing-file', message: `cannot find '${reference.fileName}'; searched ${resolution.searched.join(', ')}`, hint });
+    const problem = report({
+      start,
+      end,
+      severity: 'error',
+      code: 'missing-file',
+      message: `cannot find '${reference.fileName}'; searched ${resolution.searched.join(', ')}`,
+      hint,
+    });
     if (suggestion) problem.data = { suggestion };
     return undefined;
   }
@@ -148,7 +188,14 @@ async function resolveTarget(
   if (cycleStart >= 0) {
     const cycle = [...stack.slice(cycleStart), target];
     link.cycle = cycle;
-    report({ start, end, severity: 'error', code: 'cycle', message: `reference cycle: ${cycle.map((entry) => context.store.display(entry)).join(' -> ')}`, hint: 'remove one reference of the cycle' });
+    report({
+      start,
+      end,
+      severity: 'error',
+      code: 'cycle',
+      message: `reference cycle: ${cycle.map((entry) => context.store.display(entry)).join(' -> ')}`,
+      hint: 'remove one reference of the cycle',
+    });
     return undefined;
   }
   const maxDepth = context.store.limits.maxDepth;
@@ -168,7 +215,9 @@ async function resolveTarget(
 
 /** Errors in the referenced file stop flattening; schema problems do not (they are reported in their own file and checked again in the output). */
 function reportSourceErrors(reference: ScenarioReferenceInfo, source: FlatSource, report: Report): void {
-  const sourceErrors = source.allProblems.filter((problem) => problem.severity === 'error' && !OVERRIDE_PROBLEM_CODES.has(problem.code) && !SCHEMA_PROBLEM_CODES.has(problem.code));
+  const sourceErrors = source.allProblems.filter(
+    (problem) => problem.severity === 'error' && !OVERRIDE_PROBLEM_CODES.has(problem.code) && !SCHEMA_PROBLEM_CODES.has(problem.code),
+  );
   if (sourceErrors.length === 0) return;
   const [start, end] = valueRange(reference.fileAttribute, reference.element);
   const problem = report({
@@ -182,7 +231,14 @@ function reportSourceErrors(reference: ScenarioReferenceInfo, source: FlatSource
 }
 
 /** Selects the group a ManeuverGroupReference names in the referenced file and plans its overrides. */
-function linkGroup(reference: ScenarioReferenceInfo, groupReference: ManeuverGroupReferenceInfo, source: FlatSource, result: FlatSource, report: Report, base: string | undefined): LinkedGroupReference {
+function linkGroup(
+  reference: ScenarioReferenceInfo,
+  groupReference: ManeuverGroupReferenceInfo,
+  source: FlatSource,
+  result: FlatSource,
+  report: Report,
+  base: string | undefined,
+): LinkedGroupReference {
   const linked: LinkedGroupReference = { info: groupReference, target: undefined, overridable: [], plan: undefined };
   const sourceModel = source.model;
   if (!sourceModel || !groupReference.nameAttribute) return linked;
@@ -196,7 +252,9 @@ function linkGroup(reference: ScenarioReferenceInfo, groupReference: ManeuverGro
       end,
       severity: 'error',
       code: 'unknown-group',
-      message: `'${reference.fileName}' has no ManeuverGroup named '${groupReference.name}'` + (names.length ? `; it has: ${names.join(', ')}` : '; it has no ManeuverGroup'),
+      message:
+        `'${reference.fileName}' has no ManeuverGroup named '${groupReference.name}'` +
+        (names.length ? `; it has: ${names.join(', ')}` : '; it has no ManeuverGroup'),
       hint: suggestion ? `did you mean '${suggestion}'?` : undefined,
     });
     problem.data = { ...(suggestion ? { suggestion } : {}), groups: names };
@@ -205,11 +263,20 @@ function linkGroup(reference: ScenarioReferenceInfo, groupReference: ManeuverGro
   linked.target = targetGroup;
   const named = sourceModel.groups.filter((group) => group.name === groupReference.name);
   if (named.length > 1) {
-    report({ start, end, severity: 'warning', code: 'ambiguous-group', message: `'${reference.fileName}' has more than one ManeuverGroup named '${groupReference.name}'; the first one is used` });
+    report({
+      start,
+      end,
+      severity: 'warning',
+      code: 'ambiguous-group',
+      message: `'${reference.fileName}' has more than one ManeuverGroup named '${groupReference.name}'; the first one is used`,
+    });
     result.problems.push(...duplicateGroupProblems(source, named));
   }
   linked.overridable = overridableAttributes(sourceModel, targetGroup);
-  const plan = planOverrides(linked.overridable, groupReference.parameters.filter((p) => p.keyAttribute));
+  const plan = planOverrides(
+    linked.overridable,
+    groupReference.parameters.filter((p) => p.keyAttribute),
+  );
   linked.plan = plan;
   checkMixedDefaults(plan, source, report);
   reportUnknownKeys(linked, plan, source, report, base);
@@ -243,7 +310,9 @@ function duplicateGroupProblems(source: FlatSource, named: ManeuverGroupInfo[]):
       message: `another ManeuverGroup is already named '${group.name}'; a reference to that name takes the first one`,
       hint: 'give each ManeuverGroup a unique name',
     });
-    problem.related = [{ source: first.ref, range: first.document.lines.range(first.start, first.end), message: 'the first group of that name' }];
+    problem.related = [
+      { source: first.ref, range: first.document.lines.range(first.start, first.end), message: 'the first group of that name' },
+    ];
     problems.push(problem);
   }
   return problems;
@@ -266,12 +335,24 @@ function checkMixedDefaults(plan: OverridePlan, source: FlatSource, report: Repo
       message: `key '${match.parameter.key}' sets ${targets.length} attributes whose defaults differ: ${listed.join(', ')}; all of them get '${match.parameter.value}'`,
       hint: 'write a longer key that reaches only the attributes you mean, or list the attribute in parameterAttributes only where it should be overridden',
     });
-    problem.related = targets.map((target) => declarationLocation(originOf(source, target.element), target.attributeName, `'${target.attributeName}' with default '${target.defaultValue}'`));
+    problem.related = targets.map((target) =>
+      declarationLocation(
+        originOf(source, target.element),
+        target.attributeName,
+        `'${target.attributeName}' with default '${target.defaultValue}'`,
+      ),
+    );
   }
 }
 
 /** Keys that match no listed attribute, with the likely fix (a whole key listed in the simple scenario, or a near name). */
-function reportUnknownKeys(linked: LinkedGroupReference, plan: OverridePlan, source: FlatSource, report: Report, base: string | undefined): void {
+function reportUnknownKeys(
+  linked: LinkedGroupReference,
+  plan: OverridePlan,
+  source: FlatSource,
+  report: Report,
+  base: string | undefined,
+): void {
   for (const unknown of plan.unknown) {
     const [start, end] = valueRange(unknown.parameter.keyAttribute, unknown.parameter.element);
     const listedVerbatim = linked.overridable.find((candidate) => candidate.attributeName === unknown.parameter.key);
@@ -290,7 +371,9 @@ function reportUnknownKeys(linked: LinkedGroupReference, plan: OverridePlan, sou
       hint,
     });
     if (listedVerbatim && verbatimOrigin) {
-      problem.related = [declarationLocation(verbatimOrigin, listedVerbatim.attributeName, 'listed here as a whole key instead of an attribute name')];
+      problem.related = [
+        declarationLocation(verbatimOrigin, listedVerbatim.attributeName, 'listed here as a whole key instead of an attribute name'),
+      ];
       // The mistake lives in the simple scenario: a fix at this use site rewrites the listed name there.
       problem.data = { relatedReplacement: listedVerbatim.attributeName.split('.').pop() ?? listedVerbatim.attributeName };
     } else if (unknown.suggestion) {
@@ -311,6 +394,8 @@ function reportMissingDefaults(plan: OverridePlan, source: FlatSource, report: R
       message: `no default value: <${attributeTarget.element.name}> lists '${attributeTarget.attributeName}' in parameterAttributes but has no such attribute`,
       hint: `add ${attributeTarget.attributeName}="..." to <${attributeTarget.element.name}> in ${displayRef(originOf(source, attributeTarget.element).source.ref, base)}`,
     });
-    problem.related = [declarationLocation(originOf(source, attributeTarget.element), attributeTarget.attributeName, 'listed here without a default value')];
+    problem.related = [
+      declarationLocation(originOf(source, attributeTarget.element), attributeTarget.attributeName, 'listed here without a default value'),
+    ];
   }
 }

@@ -10,7 +10,9 @@ import { FlatSource, Insertion } from './types';
 export function originOf(source: FlatSource, element: XmlElement): { source: FlatSource; element: XmlElement } {
   if (!source.model || !source.original || source.model === source.original) return { source, element };
   const insertion = source.insertions.find((candidate) => element.start >= candidate.start && element.end <= candidate.end);
-  const addition = insertion ? undefined : source.additions.find((candidate) => element.start >= candidate.start && element.end <= candidate.end);
+  const addition = insertion
+    ? undefined
+    : source.additions.find((candidate) => element.start >= candidate.start && element.end <= candidate.end);
   const part = addition?.parts.find((candidate) => element.start === candidate.start && element.end === candidate.end);
   if (part) return originOf(part.source, part.element);
   if (!insertion) return { source, element: originalOutsideCopies(source, element) };
@@ -22,12 +24,23 @@ export function originOf(source: FlatSource, element: XmlElement): { source: Fla
 function originalOutsideCopies(source: FlatSource, element: XmlElement): XmlElement {
   const regions = new Map<number, { outStart: number; outEnd: number; inStart: number; inEnd: number }>();
   for (const candidate of source.additions) {
-    regions.set(-1 - candidate.replacedStart, { outStart: candidate.start, outEnd: candidate.end, inStart: candidate.replacedStart, inEnd: candidate.replacedEnd });
+    regions.set(-1 - candidate.replacedStart, {
+      outStart: candidate.start,
+      outEnd: candidate.end,
+      inStart: candidate.replacedStart,
+      inEnd: candidate.replacedEnd,
+    });
   }
   for (const candidate of source.insertions) {
     const region = regions.get(candidate.replacedStart);
     if (region) region.outEnd = Math.max(region.outEnd, candidate.end);
-    else regions.set(candidate.replacedStart, { outStart: candidate.start, outEnd: candidate.end, inStart: candidate.replacedStart, inEnd: candidate.replacedEnd });
+    else
+      regions.set(candidate.replacedStart, {
+        outStart: candidate.start,
+        outEnd: candidate.end,
+        inStart: candidate.replacedStart,
+        inEnd: candidate.replacedEnd,
+      });
   }
   let shift = 0;
   for (const region of regions.values()) {
@@ -38,7 +51,11 @@ function originalOutsideCopies(source: FlatSource, element: XmlElement): XmlElem
 }
 
 /** The element of the imported group (in the referenced file's flattened model) that `element` of an insertion copies. */
-export function copiedFrom(source: FlatSource, insertion: Insertion, element: XmlElement): { source: FlatSource; element: XmlElement } | undefined {
+export function copiedFrom(
+  source: FlatSource,
+  insertion: Insertion,
+  element: XmlElement,
+): { source: FlatSource; element: XmlElement } | undefined {
   const copyRoot = source.model?.groups.find((group) => group.element.start === insertion.start)?.element;
   const sourceOfCopy = insertion.link.source;
   const targetGroup = insertion.group.target;
@@ -49,7 +66,11 @@ export function copiedFrom(source: FlatSource, insertion: Insertion, element: Xm
 }
 
 /** The location of a name inside the `parameterAttributes` of an element, in the file it was written in. */
-export function declarationLocation(origin: { source: FlatSource; element: XmlElement }, name: string, message: string): RelatedProblemLocation {
+export function declarationLocation(
+  origin: { source: FlatSource; element: XmlElement },
+  name: string,
+  message: string,
+): RelatedProblemLocation {
   const model = origin.source.original ?? origin.source.model;
   const listed = listedName(origin.element, name);
   const start = listed?.start ?? origin.element.start;

@@ -29,7 +29,12 @@ function locatedFinding(document: XmlDocument, entry: PlacedFinding): SchemaFind
 }
 
 /** The strict check of an output, reusing the check of its previous rendering after an edit inside one value (the live preview). */
-function outputFindings(output: FlatSource, document: XmlDocument, memory: SchemaCheckMemory, options: Omit<SchemaCheckOptions, 'modular'>): SchemaFinding[] {
+function outputFindings(
+  output: FlatSource,
+  document: XmlDocument,
+  memory: SchemaCheckMemory,
+  options: Omit<SchemaCheckOptions, 'modular'>,
+): SchemaFinding[] {
   const strict = { ...options, modular: false };
   const located = memory.check(`output:${refId(output.ref)}`, document, strict).map((entry) => locatedFinding(document, entry));
   if (located.every((finding) => finding !== undefined)) return located as SchemaFinding[];
@@ -40,7 +45,11 @@ function outputFindings(output: FlatSource, document: XmlDocument, memory: Schem
  * The schema's problems of a flattened output, strictly (no extension), each at the place in the
  * source files that the offending element or attribute was copied from.
  */
-export function outputSchemaProblems(output: FlatSource, memory: SchemaCheckMemory, options: Omit<SchemaCheckOptions, 'modular'> = {}): Problem[] {
+export function outputSchemaProblems(
+  output: FlatSource,
+  memory: SchemaCheckMemory,
+  options: Omit<SchemaCheckOptions, 'modular'> = {},
+): Problem[] {
   const document = output.model?.document;
   if (!document) return [];
   const problems: Problem[] = [];
@@ -51,11 +60,20 @@ export function outputSchemaProblems(output: FlatSource, memory: SchemaCheckMemo
     // Data offsets (insertAt) belong to the output; they are dropped rather than pointing into the wrong file.
     const data = finding.data ? { ...finding.data } : undefined;
     if (data) delete data.insertAt;
-    const override = finding.part === 'value' && finding.attribute ? overrideOf(output, finding.element, finding.attribute.name) : undefined;
+    const override =
+      finding.part === 'value' && finding.attribute ? overrideOf(output, finding.element, finding.attribute.name) : undefined;
     if (override?.valueAttribute && output.original) {
       // The value came from a ParameterReference of this file: that is where it must be fixed.
       const [start, end] = [override.valueAttribute.valueStart, override.valueAttribute.valueEnd];
-      problems.push(toProblem(output.ref, output.original.document, { ...finding, message: `${finding.message} (set by ParameterReference '${override.key}')`, data }, start, end));
+      problems.push(
+        toProblem(
+          output.ref,
+          output.original.document,
+          { ...finding, message: `${finding.message} (set by ParameterReference '${override.key}')`, data },
+          start,
+          end,
+        ),
+      );
       continue;
     }
     const mapped: SchemaFinding = { ...finding, element: origin.element, data };
@@ -99,12 +117,23 @@ export function overrideValueProblems(main: FlatSource, options: Omit<SchemaChec
         const overridden: XmlAttribute = { ...written, value: parameter.value };
         checkAttribute(index, chosen, target.element, typeName, overridden, (finding) => {
           if (finding.part !== 'value' || finding.severity === 'information') return;
-          problems.push(toProblem(main.ref, document, { ...finding, message: `${finding.message} (set by ParameterReference '${parameter.key}')`, data: undefined }, valueAttribute.valueStart, valueAttribute.valueEnd));
+          problems.push(
+            toProblem(
+              main.ref,
+              document,
+              { ...finding, message: `${finding.message} (set by ParameterReference '${parameter.key}')`, data: undefined },
+              valueAttribute.valueStart,
+              valueAttribute.valueEnd,
+            ),
+          );
         });
         // An override `$name`: the main file's parameter must fit the attribute it sets.
         const site = main.semantics?.model.siteOf.get(valueAttribute);
         const attributeTypeOf = site ? attributeType(index, target.element, target.attributeName) : undefined;
-        const mismatch = site && attributeTypeOf && main.semantics ? siteTypeProblem(main.semantics, site, attributeTypeOf, `${target.element.name}.${target.attributeName}`) : undefined;
+        const mismatch =
+          site && attributeTypeOf && main.semantics
+            ? siteTypeProblem(main.semantics, site, attributeTypeOf, `${target.element.name}.${target.attributeName}`)
+            : undefined;
         if (mismatch) problems.push({ ...mismatch, message: `${mismatch.message} (set by ParameterReference '${parameter.key}')` });
       }
     }

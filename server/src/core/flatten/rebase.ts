@@ -163,7 +163,11 @@ export async function rebasePaths(request: RebaseRequest): Promise<PathRebase> {
     else if (!path.isAbsolute(value) && output !== resolved.base) text = written(path.relative(output, disk), value);
     if (text === undefined || text === value) continue;
     resolved.rewritten = text;
-    result.edits.push({ start: site.attribute.valueStart, end: site.attribute.valueEnd, text: escapeAttributeValue(text, site.attribute.quote) });
+    result.edits.push({
+      start: site.attribute.valueStart,
+      end: site.attribute.valueEnd,
+      text: escapeAttributeValue(text, site.attribute.quote),
+    });
   }
   return result;
 }
@@ -181,7 +185,11 @@ export interface PackagedFile {
 }
 
 /** The package files a path written in a packaged file names: the entry itself, or a folder's direct files. */
-async function packagedEntries(store: ScenarioStore, ref: SourceRef, value: string): Promise<{ name: string; files: [string, Uint8Array][] } | undefined> {
+async function packagedEntries(
+  store: ScenarioStore,
+  ref: SourceRef,
+  value: string,
+): Promise<{ name: string; files: [string, Uint8Array][] } | undefined> {
   if (ref.entries.length === 0 || path.isAbsolute(value) || namesParameter(value)) return undefined;
   const packageRef: SourceRef = { disk: ref.disk, entries: ref.entries.slice(0, -1) };
   const entry = ref.entries[ref.entries.length - 1];
@@ -195,7 +203,9 @@ async function packagedEntries(store: ScenarioStore, ref: SourceRef, value: stri
   const own = name ? contents.entries.get(name) : undefined;
   if (own) return { name, files: [[name, own]] };
   const prefix = name ? `${name}/` : '';
-  const files = [...contents.entries].filter(([candidate]) => candidate.startsWith(prefix) && !candidate.slice(prefix.length).includes('/'));
+  const files = [...contents.entries].filter(
+    ([candidate]) => candidate.startsWith(prefix) && !candidate.slice(prefix.length).includes('/'),
+  );
   return files.length > 0 ? { name, files } : undefined;
 }
 
@@ -240,13 +250,25 @@ export async function rebaseFlattened(
     if (!packaged) continue;
     inPackage.add(site.element);
     if (outputPath === undefined || outputDirectory === undefined) {
-      problems.push(problemAtOrigin(site.element, site.attribute.name, `'${site.attribute.value}' names ${packaged.name} inside the package, which standard output cannot carry; it is left as written`, 'flatten to a file: the package\'s files are then written beside it'));
+      problems.push(
+        problemAtOrigin(
+          site.element,
+          site.attribute.name,
+          `'${site.attribute.value}' names ${packaged.name} inside the package, which standard output cannot carry; it is left as written`,
+          "flatten to a file: the package's files are then written beside it",
+        ),
+      );
       continue;
     }
     const folder = `${path.basename(outputPath).replace(/\.xosc$/i, '')}.files`;
     for (const [entry, bytes] of packaged.files) files.set(path.join(outputDirectory, folder, ...entry.split('/')), bytes);
     const text = written(packaged.name ? `${folder}/${packaged.name}` : folder, site.attribute.value);
-    if (text !== site.attribute.value) edits.push({ start: site.attribute.valueStart, end: site.attribute.valueEnd, text: escapeAttributeValue(text, site.attribute.quote) });
+    if (text !== site.attribute.value)
+      edits.push({
+        start: site.attribute.valueStart,
+        end: site.attribute.valueEnd,
+        text: escapeAttributeValue(text, site.attribute.quote),
+      });
   }
   const rebase = await rebasePaths({
     document: model.document,
@@ -255,7 +277,19 @@ export async function rebaseFlattened(
     kindOf: (diskPath) => store.kindOf(diskPath),
   });
   for (const finding of rebase.findings) {
-    problems.push(problemAtOrigin(finding.site.element, finding.site.attribute.name, finding.message, 'declare the parameter with an absolute path, or write the output beside this file'));
+    problems.push(
+      problemAtOrigin(
+        finding.site.element,
+        finding.site.attribute.name,
+        finding.message,
+        'declare the parameter with an absolute path, or write the output beside this file',
+      ),
+    );
   }
-  return { edits: [...edits, ...rebase.edits], resolved: rebase.resolved, problems, files: [...files].map(([filePath, bytes]) => ({ path: filePath, bytes })) };
+  return {
+    edits: [...edits, ...rebase.edits],
+    resolved: rebase.resolved,
+    problems,
+    files: [...files].map(([filePath, bytes]) => ({ path: filePath, bytes })),
+  };
 }

@@ -77,7 +77,12 @@ function plannedReplacements(store: ScenarioStore, result: FlatSource, model: Sc
       if (!link?.source?.model || link.source.text === undefined) return undefined;
       for (const linked of link.groups) {
         if (!linked.target || !linked.plan) return undefined;
-        const copy = copyGroup(link.source.text, link.source.model, linked, { outerName: group.name, actorEntity, indent: targetIndent, eol });
+        const copy = copyGroup(link.source.text, link.source.model, linked, {
+          outerName: group.name,
+          actorEntity,
+          indent: targetIndent,
+          eol,
+        });
         projected += copy.length + eol.length + targetIndent.length;
         if (projected > store.limits.maxFlattenedChars) {
           reportTooLarge(store, result, model, link, projected);
@@ -144,17 +149,24 @@ function carryOrigin(source: FlatSource, element: XmlElement): RelatedProblemLoc
   const found = originOf(source, element);
   const document = (found.source.original ?? found.source.model)?.document;
   const named = attribute(found.element, 'name');
-  return document ? { source: found.source.ref, range: document.lines.range(named?.valueStart ?? found.element.start, named?.valueEnd ?? found.element.nameEnd), message: '' } : undefined;
+  return document
+    ? {
+        source: found.source.ref,
+        range: document.lines.range(named?.valueStart ?? found.element.start, named?.valueEnd ?? found.element.nameEnd),
+        message: '',
+      }
+    : undefined;
 }
 
 /** Reports a flattened result over the bound at the reference that crossed it, naming the chain of the largest imports. */
 function reportTooLarge(store: ScenarioStore, result: FlatSource, model: ScenarioModel, link: LinkedReference, projected: number): void {
   const chain: SourceRef[] = [result.ref];
-  for (let current: LinkedReference | undefined = link; current?.source; ) {
+  for (let current: LinkedReference | undefined = link; current?.source;) {
     chain.push(current.source.ref);
     let largest: LinkedReference | undefined;
     for (const candidate of current.source.links) {
-      if (candidate.source?.text !== undefined && (!largest || candidate.source.text.length > (largest.source?.text?.length ?? 0))) largest = candidate;
+      if (candidate.source?.text !== undefined && (!largest || candidate.source.text.length > (largest.source?.text?.length ?? 0)))
+        largest = candidate;
     }
     current = largest;
   }

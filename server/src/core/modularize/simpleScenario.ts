@@ -109,7 +109,8 @@ export async function simpleScenarioText(parts: SimpleScenarioParts): Promise<st
   // Parameters the group uses, with those their values use in turn, in the order first needed.
   const needed: string[] = [];
   const want = (text: string) => {
-    for (const match of [...text.matchAll(PARAMETER_USE), ...text.matchAll(PARAMETER_REF)]) if (!needed.includes(match[1])) needed.push(match[1]);
+    for (const match of [...text.matchAll(PARAMETER_USE), ...text.matchAll(PARAMETER_REF)])
+      if (!needed.includes(match[1])) needed.push(match[1]);
   };
   for (const text of [groupText, ...entities, catalogText, roadText]) want(text);
   const foundDeclarations: { document: XmlDocument; element: XmlElement }[] = [];

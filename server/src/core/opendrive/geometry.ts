@@ -27,15 +27,27 @@ export type Geometry =
   | (GeometryStart & { kind: 'poly3'; a: number; b: number; c: number; d: number; arc?: ArcLengthTable })
   | (GeometryStart & {
       kind: 'paramPoly3';
-      aU: number; bU: number; cU: number; dU: number;
-      aV: number; bV: number; cV: number; dV: number;
+      aU: number;
+      bU: number;
+      cU: number;
+      dU: number;
+      aV: number;
+      bV: number;
+      cV: number;
+      dV: number;
       pRange: 'arcLength' | 'normalized';
       arc?: ArcLengthTable;
     });
 
 // Gauss-Legendre nodes and weights on [-1, 1], 8 points: exact for polynomials of degree 15.
-const GL_NODES = [-0.9602898564975363, -0.7966664774136267, -0.525532409916329, -0.1834346424956498, 0.1834346424956498, 0.525532409916329, 0.7966664774136267, 0.9602898564975363];
-const GL_WEIGHTS = [0.1012285362903763, 0.2223810344533745, 0.3137066458778873, 0.362683783378362, 0.362683783378362, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763];
+const GL_NODES = [
+  -0.9602898564975363, -0.7966664774136267, -0.525532409916329, -0.1834346424956498, 0.1834346424956498, 0.525532409916329,
+  0.7966664774136267, 0.9602898564975363,
+];
+const GL_WEIGHTS = [
+  0.1012285362903763, 0.2223810344533745, 0.3137066458778873, 0.362683783378362, 0.362683783378362, 0.3137066458778873, 0.2223810344533745,
+  0.1012285362903763,
+];
 
 function integrate(f: (u: number) => number, from: number, to: number): number {
   const half = (to - from) / 2;

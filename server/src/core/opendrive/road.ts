@@ -67,7 +67,13 @@ function numberOf(element: XmlElement, name: string, fallback = 0): number {
 }
 
 function cubicOf(element: XmlElement, startAttribute: string): Cubic {
-  return { start: numberOf(element, startAttribute), a: numberOf(element, 'a'), b: numberOf(element, 'b'), c: numberOf(element, 'c'), d: numberOf(element, 'd') };
+  return {
+    start: numberOf(element, startAttribute),
+    a: numberOf(element, 'a'),
+    b: numberOf(element, 'b'),
+    c: numberOf(element, 'c'),
+    d: numberOf(element, 'd'),
+  };
 }
 
 function childrenNamed(element: XmlElement | undefined, name: string): XmlElement[] {
@@ -75,7 +81,13 @@ function childrenNamed(element: XmlElement | undefined, name: string): XmlElemen
 }
 
 function geometryOf(element: XmlElement): Geometry | undefined {
-  const start = { s: numberOf(element, 's'), x: numberOf(element, 'x'), y: numberOf(element, 'y'), hdg: numberOf(element, 'hdg'), length: numberOf(element, 'length') };
+  const start = {
+    s: numberOf(element, 's'),
+    x: numberOf(element, 'x'),
+    y: numberOf(element, 'y'),
+    hdg: numberOf(element, 'hdg'),
+    length: numberOf(element, 'length'),
+  };
   const shape = element.children[0];
   if (!shape) return undefined;
   switch (shape.name) {
@@ -86,13 +98,26 @@ function geometryOf(element: XmlElement): Geometry | undefined {
     case 'spiral':
       return { ...start, kind: 'spiral', curvStart: numberOf(shape, 'curvStart'), curvEnd: numberOf(shape, 'curvEnd') };
     case 'poly3':
-      return { ...start, kind: 'poly3', a: numberOf(shape, 'a'), b: numberOf(shape, 'b'), c: numberOf(shape, 'c'), d: numberOf(shape, 'd') };
+      return {
+        ...start,
+        kind: 'poly3',
+        a: numberOf(shape, 'a'),
+        b: numberOf(shape, 'b'),
+        c: numberOf(shape, 'c'),
+        d: numberOf(shape, 'd'),
+      };
     case 'paramPoly3':
       return {
         ...start,
         kind: 'paramPoly3',
-        aU: numberOf(shape, 'aU'), bU: numberOf(shape, 'bU'), cU: numberOf(shape, 'cU'), dU: numberOf(shape, 'dU'),
-        aV: numberOf(shape, 'aV'), bV: numberOf(shape, 'bV'), cV: numberOf(shape, 'cV'), dV: numberOf(shape, 'dV'),
+        aU: numberOf(shape, 'aU'),
+        bU: numberOf(shape, 'bU'),
+        cU: numberOf(shape, 'cU'),
+        dU: numberOf(shape, 'dU'),
+        aV: numberOf(shape, 'aV'),
+        bV: numberOf(shape, 'bV'),
+        cV: numberOf(shape, 'cV'),
+        dV: numberOf(shape, 'dV'),
         pRange: attributeValue(shape, 'pRange') === 'normalized' ? 'normalized' : 'arcLength',
       };
     default:
@@ -105,8 +130,12 @@ function laneOf(element: XmlElement): Lane {
   return {
     id: Math.trunc(numberOf(element, 'id')),
     type: attributeValue(element, 'type') ?? 'none',
-    widths: childrenNamed(element, 'width').map((width) => cubicOf(width, 'sOffset')).sort(bySOffset),
-    borders: childrenNamed(element, 'border').map((border) => cubicOf(border, 'sOffset')).sort(bySOffset),
+    widths: childrenNamed(element, 'width')
+      .map((width) => cubicOf(width, 'sOffset'))
+      .sort(bySOffset),
+    borders: childrenNamed(element, 'border')
+      .map((border) => cubicOf(border, 'sOffset'))
+      .sort(bySOffset),
     start: element.start,
   };
 }
@@ -119,7 +148,11 @@ function roadOf(element: XmlElement, problems: RoadNetwork['problems']): Road {
   for (const geometryElement of childrenNamed(planView, 'geometry')) {
     const geometry = geometryOf(geometryElement);
     if (geometry) geometries.push(geometry);
-    else problems.push({ message: `road ${id}: unsupported geometry <${geometryElement.children[0]?.name ?? '(empty)'}>`, offset: geometryElement.start });
+    else
+      problems.push({
+        message: `road ${id}: unsupported geometry <${geometryElement.children[0]?.name ?? '(empty)'}>`,
+        offset: geometryElement.start,
+      });
   }
   geometries.sort((a, b) => a.s - b.s);
   const lanesElement = childrenNamed(element, 'lanes')[0];
@@ -140,8 +173,12 @@ function roadOf(element: XmlElement, problems: RoadNetwork['problems']): Road {
     length,
     junction: attributeValue(element, 'junction') ?? '-1',
     geometries,
-    laneOffsets: childrenNamed(lanesElement, 'laneOffset').map((offset) => cubicOf(offset, 's')).sort((a, b) => a.start - b.start),
-    superelevations: childrenNamed(lateral, 'superelevation').map((entry) => cubicOf(entry, 's')).sort((a, b) => a.start - b.start),
+    laneOffsets: childrenNamed(lanesElement, 'laneOffset')
+      .map((offset) => cubicOf(offset, 's'))
+      .sort((a, b) => a.start - b.start),
+    superelevations: childrenNamed(lateral, 'superelevation')
+      .map((entry) => cubicOf(entry, 's'))
+      .sort((a, b) => a.start - b.start),
     laneSections: sections,
   };
 }
@@ -149,13 +186,19 @@ function roadOf(element: XmlElement, problems: RoadNetwork['problems']): Road {
 /** Reads an OpenDRIVE file's roads. Problems are collected, never thrown: a partial network still draws. */
 export function parseOpenDrive(text: string): RoadNetwork {
   const document = parseXml(text);
-  const problems: RoadNetwork['problems'] = document.problems.filter((problem) => problem.severity === 'error').slice(0, 20).map((problem) => ({ message: problem.message, offset: problem.start }));
+  const problems: RoadNetwork['problems'] = document.problems
+    .filter((problem) => problem.severity === 'error')
+    .slice(0, 20)
+    .map((problem) => ({ message: problem.message, offset: problem.start }));
   const roads: Road[] = [];
-  if (document.root?.name !== 'OpenDRIVE') problems.push({ message: 'not an OpenDRIVE file: the root element is not <OpenDRIVE>', offset: document.root?.start ?? 0 });
+  if (document.root?.name !== 'OpenDRIVE')
+    problems.push({ message: 'not an OpenDRIVE file: the root element is not <OpenDRIVE>', offset: document.root?.start ?? 0 });
   else for (const element of childrenNamed(document.root, 'road')) roads.push(roadOf(element, problems));
   const signalIds = new Set<string>();
-  for (const road of childrenNamed(document.root, 'road')) for (const signal of childrenNamed(childrenNamed(road, 'signals')[0], 'signal')) signalIds.add(attributeValue(signal, 'id') ?? '');
-  for (const controller of childrenNamed(document.root, 'controller')) for (const control of childrenNamed(controller, 'control')) signalIds.add(attributeValue(control, 'signalId') ?? '');
+  for (const road of childrenNamed(document.root, 'road'))
+    for (const signal of childrenNamed(childrenNamed(road, 'signals')[0], 'signal')) signalIds.add(attributeValue(signal, 'id') ?? '');
+  for (const controller of childrenNamed(document.root, 'controller'))
+    for (const control of childrenNamed(controller, 'control')) signalIds.add(attributeValue(control, 'signalId') ?? '');
   signalIds.delete('');
   return { roads, byId: new Map(roads.map((road) => [road.id, road])), problems, signalIds };
 }
@@ -281,7 +324,7 @@ export function laneCenterT(road: Road, sectionIndex: number, laneId: number, s:
   const lane = laneById(section, laneId);
   const width = lane ? laneWidth(section, lane, s) : 0;
   const outer = outerBorderT(section, laneId, s);
-  return roadCubicAt(road.laneOffsets, s) + outer - Math.sign(laneId) * width / 2 + offset;
+  return roadCubicAt(road.laneOffsets, s) + outer - (Math.sign(laneId) * width) / 2 + offset;
 }
 
 /** The point on a lane's outer border (lane 0: the lane-offset line) at road s. */

@@ -22,17 +22,24 @@ function sectionStations(road: Road, section: LaneSection, options: Required<Sam
   const breaks = new Set<number>([start, end]);
   for (const geometry of road.geometries) if (geometry.s > start && geometry.s < end) breaks.add(geometry.s);
   for (const offset of road.laneOffsets) if (offset.start > start && offset.start < end) breaks.add(offset.start);
-  for (const lane of section.lanes) for (const width of lane.widths) if (width.start > 0 && width.start < section.length) breaks.add(start + width.start);
+  for (const lane of section.lanes)
+    for (const width of lane.widths) if (width.start > 0 && width.start < section.length) breaks.add(start + width.start);
   const sorted = [...breaks].sort((a, b) => a - b);
   // How fast the borders bend sideways from cubic widths and offsets: |2c| + |6d|·L summed outward, a bound on t''.
-  const bend = (cubics: Cubic[], span: number) => cubics.reduce((worst, cubic) => Math.max(worst, Math.abs(2 * cubic.c) + Math.abs(6 * cubic.d) * span), 0);
-  const lateralBend = bend(road.laneOffsets, section.length) + section.lanes.reduce((sum, lane) => sum + bend(lane.widths, section.length) + bend(lane.borders, section.length), 0);
+  const bend = (cubics: Cubic[], span: number) =>
+    cubics.reduce((worst, cubic) => Math.max(worst, Math.abs(2 * cubic.c) + Math.abs(6 * cubic.d) * span), 0);
+  const lateralBend =
+    bend(road.laneOffsets, section.length) +
+    section.lanes.reduce((sum, lane) => sum + bend(lane.widths, section.length) + bend(lane.borders, section.length), 0);
   const rolling = !isLinear(road.superelevations);
   const stations: number[] = [];
   for (let i = 0; i + 1 < sorted.length; i++) {
     const from = sorted[i];
     const to = sorted[i + 1];
-    const geometry = road.geometries.find((candidate, index) => candidate.s <= from + 1e-9 && (index + 1 === road.geometries.length || road.geometries[index + 1].s > from + 1e-9));
+    const geometry = road.geometries.find(
+      (candidate, index) =>
+        candidate.s <= from + 1e-9 && (index + 1 === road.geometries.length || road.geometries[index + 1].s > from + 1e-9),
+    );
     const curvature = geometry ? curvatureBound(geometry) : 0;
     let step = rolling ? options.maxCurvedStep : options.maxStep;
     // Chord error of a curve bending by k (1/m) over a step h is about k·h²/8.
@@ -49,7 +56,11 @@ const round = (value: number) => Math.round(value * 100) / 100;
 
 /** The lane borders of every lane section of every road, as polylines ready to draw. */
 export function sampleNetwork(network: RoadNetwork, options: SamplingOptions = {}): SectionPolylines[] {
-  const settings: Required<SamplingOptions> = { chordError: options.chordError ?? 0.03, maxStep: options.maxStep ?? 25, maxCurvedStep: options.maxCurvedStep ?? 2 };
+  const settings: Required<SamplingOptions> = {
+    chordError: options.chordError ?? 0.03,
+    maxStep: options.maxStep ?? 25,
+    maxCurvedStep: options.maxCurvedStep ?? 2,
+  };
   const result: SectionPolylines[] = [];
   for (const road of network.roads) {
     road.laneSections.forEach((section, index) => {

@@ -18,7 +18,13 @@ export const CARLA_PROFILE: SimulatorProfile = {
   revision: '94ff3b8af752bad2b9d464ad5105868906aa34c0',
   versions: { revMajor: '1', revMinor: '0', source: CONFIGURATION },
   elements: [
-    { element: 'TrafficAction', parent: 'GlobalAction', support: 'unsupported', source: PARSER, note: 'global traffic actions raise "Global actions are not yet supported"' },
+    {
+      element: 'TrafficAction',
+      parent: 'GlobalAction',
+      support: 'unsupported',
+      source: PARSER,
+      note: 'global traffic actions raise "Global actions are not yet supported"',
+    },
     { element: 'TrafficSignalStateAction', support: 'unsupported', places: { init: false, story: true }, source: DOC },
     { element: 'TrafficSignalControllerAction', support: 'unsupported', places: { init: false, story: true }, source: DOC },
     { element: 'CustomCommandAction', support: 'unsupported', places: { init: false, story: true }, source: DOC },
@@ -27,7 +33,13 @@ export const CARLA_PROFILE: SimulatorProfile = {
     { element: 'LongitudinalDistanceAction', support: 'unsupported', places: { init: false, story: true }, source: DOC },
     { element: 'SynchronizeAction', support: 'unsupported', places: { init: false, story: true }, source: RUNNER },
     { element: 'VisibilityAction', support: 'unsupported', source: DOC, note: 'it raises "Visibility actions are not yet supported"' },
-    { element: 'AbsoluteTargetLane', parent: 'LaneChangeTarget', support: 'unsupported', source: DOC, note: 'lane changes are relative to the actor itself (RelativeTargetLane)' },
+    {
+      element: 'AbsoluteTargetLane',
+      parent: 'LaneChangeTarget',
+      support: 'unsupported',
+      source: DOC,
+      note: 'lane changes are relative to the actor itself (RelativeTargetLane)',
+    },
     { element: 'Clothoid', parent: 'Shape', support: 'unsupported', source: PARSER, note: 'trajectories are followed as polylines only' },
     { element: 'Nurbs', parent: 'Shape', support: 'unsupported', source: PARSER, note: 'trajectories are followed as polylines only' },
     { element: 'RoutePosition', support: 'unsupported', source: DOC, note: 'it raises "Route positions are not yet supported"' },
@@ -37,7 +49,13 @@ export const CARLA_PROFILE: SimulatorProfile = {
   ],
   attributes: [
     { element: 'LongitudinalDistanceAction', attribute: 'timeGap', supportedValues: [], source: DOC, note: 'only distance is implemented' },
-    { element: 'DistanceCondition', attribute: 'freespace', supportedValues: ['false'], source: DOC, note: 'the distance is measured between reference points' },
+    {
+      element: 'DistanceCondition',
+      attribute: 'freespace',
+      supportedValues: ['false'],
+      source: DOC,
+      note: 'the distance is measured between reference points',
+    },
     {
       element: 'StoryboardElementStateCondition',
       attribute: 'state',
@@ -45,9 +63,25 @@ export const CARLA_PROFILE: SimulatorProfile = {
       source: PARSER,
       note: 'only start, stop and end transitions and completeState are implemented',
     },
-    { element: '*', parent: 'OverrideControllerValueAction', attribute: 'active', supportedValues: ['false'], source: PARSER, note: 'every override must be inactive' },
-    { element: 'LaneChangeActionDynamics', attribute: 'dynamicsShape', supportedValues: ['linear'], source: DOC, note: 'every lane change is linear' },
+    {
+      element: '*',
+      parent: 'OverrideControllerValueAction',
+      attribute: 'active',
+      supportedValues: ['false'],
+      source: PARSER,
+      note: 'every override must be inactive',
+    },
+    {
+      element: 'LaneChangeActionDynamics',
+      attribute: 'dynamicsShape',
+      supportedValues: ['linear'],
+      source: DOC,
+      note: 'every lane change is linear',
+    },
   ],
-  catalogFileNames: { types: ['Vehicle', 'Controller', 'Pedestrian', 'MiscObject', 'Environment', 'Maneuver', 'Trajectory', 'Route'], source: CONFIGURATION },
+  catalogFileNames: {
+    types: ['Vehicle', 'Controller', 'Pedestrian', 'MiscObject', 'Environment', 'Maneuver', 'Trajectory', 'Route'],
+    source: CONFIGURATION,
+  },
   expressionsNotEvaluated: { source: PARSER },
 };

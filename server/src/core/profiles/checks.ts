@@ -76,7 +76,10 @@ const elementCheck: ProfileCheck = ({ profile, elements }) => {
         const place = placeOf(element);
         if (!place || fact.places[place]) continue;
         const elsewhere = place === 'init' ? 'only in a Story' : 'only in the Init';
-        findings.push({ element, message: `${profile.name} does not support ${describe(fact)} in ${place === 'init' ? 'the Init' : 'a Story'}, ${elsewhere}${note} (${fact.source})` });
+        findings.push({
+          element,
+          message: `${profile.name} does not support ${describe(fact)} in ${place === 'init' ? 'the Init' : 'a Story'}, ${elsewhere}${note} (${fact.source})`,
+        });
       } else if (fact.support === 'ignored') {
         findings.push({ element, message: `${profile.name} ignores ${describe(fact)}${note} (${fact.source})` });
       } else {
@@ -103,7 +106,11 @@ const attributeCheck: ProfileCheck = ({ profile, elements }) => {
       const found = attribute(element, fact.attribute);
       if (!found || !breaks(fact, found.value)) continue;
       const what = fact.supportedValues?.length === 0 ? fact.attribute : `${fact.attribute}="${found.value}"`;
-      findings.push({ element, attribute: found, message: `${profile.name} does not support ${what} on ${element.name}: ${fact.note} (${fact.source})` });
+      findings.push({
+        element,
+        attribute: found,
+        message: `${profile.name} does not support ${what} on ${element.name}: ${fact.note} (${fact.source})`,
+      });
     }
   }
   return findings;
@@ -116,7 +123,11 @@ const expressionCheck: ProfileCheck = ({ profile, elements }) => {
   for (const element of elements) {
     for (const candidate of element.attributes) {
       if (!candidate.value.includes('${')) continue;
-      findings.push({ element, attribute: candidate, message: `${profile.name} does not evaluate \${...} expressions: ${candidate.name}="${candidate.value}" is read as text (${source})` });
+      findings.push({
+        element,
+        attribute: candidate,
+        message: `${profile.name} does not evaluate \${...} expressions: ${candidate.name}="${candidate.value}" is read as text (${source})`,
+      });
     }
   }
   return findings;
@@ -127,10 +138,22 @@ const catalogNameCheck: ProfileCheck = ({ profile, document, fileName }) => {
   const catalog = document.root?.children.find((child) => child.name === 'Catalog');
   const type = catalog?.children[0]?.name;
   if (!rule || !catalog || !type) return [];
-  if (!rule.types.includes(type)) return [{ element: catalog, message: `${profile.name} reads no catalog of ${type} entries; it reads ${rule.types.map((name) => name + 'Catalog').join(', ')} (${rule.source})` }];
+  if (!rule.types.includes(type))
+    return [
+      {
+        element: catalog,
+        message: `${profile.name} reads no catalog of ${type} entries; it reads ${rule.types.map((name) => name + 'Catalog').join(', ')} (${rule.source})`,
+      },
+    ];
   const expected = `${type}Catalog.xosc`;
   if (fileName === expected) return [];
-  return [{ element: catalog, attribute: attribute(catalog, 'name'), message: `${profile.name} reads a catalog of ${type} entries only from a file named ${expected} in the catalog directory; this file is ${fileName} (${rule.source})` }];
+  return [
+    {
+      element: catalog,
+      attribute: attribute(catalog, 'name'),
+      message: `${profile.name} reads a catalog of ${type} entries only from a file named ${expected} in the catalog directory; this file is ${fileName} (${rule.source})`,
+    },
+  ];
 };
 
 /** The checks of every simulator profile, in the order their findings are listed. */
@@ -139,6 +162,11 @@ export const PROFILE_CHECKS: readonly ProfileCheck[] = [versionCheck, elementChe
 /** What `simulator` will not run in a document (none for `asam`, the standard alone). */
 export function simulatorFindings(simulator: Simulator, document: XmlDocument, fileName: string): SimulatorFinding[] {
   if (simulator === 'asam' || !document.root) return [];
-  const context: ProfileCheckContext = { profile: PROFILES[simulator], document, fileName, elements: [document.root, ...descendants(document.root)] };
+  const context: ProfileCheckContext = {
+    profile: PROFILES[simulator],
+    document,
+    fileName,
+    elements: [document.root, ...descendants(document.root)],
+  };
   return PROFILE_CHECKS.flatMap((check) => check(context));
 }

@@ -139,7 +139,8 @@ export async function extractToCatalog(request: ExtractCatalogRequest): Promise<
   const text = document.text;
   const eol = detectEol(text);
   const root = document.root;
-  if (!catalogCandidate(element) || !root) throw new RefactoringRefusal('only an entity\'s Vehicle, Pedestrian, MiscObject or Controller, or a Maneuver, can move into a catalog');
+  if (!catalogCandidate(element) || !root)
+    throw new RefactoringRefusal("only an entity's Vehicle, Pedestrian, MiscObject or Controller, or a Maneuver, can move into a catalog");
   const kind = CATALOG_KINDS[element.name].kind;
   const locations = child(root, 'CatalogLocations');
   if (!locations) throw new RefactoringRefusal('the scenario has no CatalogLocations');
@@ -159,19 +160,23 @@ export async function extractToCatalog(request: ExtractCatalogRequest): Promise<
     if (own.has(name) || passed.some((entry) => entry.name === name)) continue;
     const declaration = declarationInScope(element, name);
     if (!declaration) throw new RefactoringRefusal(`parameter '${name}' is not declared`);
-    if ((attributeValue(declaration, 'value') ?? '').includes('$')) throw new RefactoringRefusal(`parameter '${name}' has a value computed from others, which a catalog's default cannot hold`);
+    if ((attributeValue(declaration, 'value') ?? '').includes('$'))
+      throw new RefactoringRefusal(`parameter '${name}' has a value computed from others, which a catalog's default cannot hold`);
     passed.push({ name, declaration });
   }
 
   // A ParameterCondition or ParameterSetAction names a scenario parameter to test or set: inside an entry it would name the entry's own.
   for (const item of selfAndDescendants(element)) {
     const named = item.name === 'ParameterAssignment' ? undefined : attributeValue(item, 'parameterRef')?.replace(/^\$/, '');
-    if (named !== undefined && !own.has(named)) throw new RefactoringRefusal(`its ${item.name} names the scenario parameter '${named}', which a catalog entry cannot reach`);
+    if (named !== undefined && !own.has(named))
+      throw new RefactoringRefusal(`its ${item.name} names the scenario parameter '${named}', which a catalog entry cannot reach`);
   }
 
   const catalogs = (await request.catalogsIn(directory))
     .map((candidate) => ({ ...candidate, read: catalogOf(candidate.text) }))
-    .filter((candidate): candidate is CatalogFileText & { read: { document: XmlDocument; catalog: XmlElement } } => candidate.read !== undefined);
+    .filter(
+      (candidate): candidate is CatalogFileText & { read: { document: XmlDocument; catalog: XmlElement } } => candidate.read !== undefined,
+    );
   const name = attributeValue(element, 'name') as string;
   const entryName = name;
   const holdsKind = (candidate: (typeof catalogs)[number]) => candidate.read.catalog.children.some((entry) => entry.name === element.name);
@@ -192,7 +197,11 @@ export async function extractToCatalog(request: ExtractCatalogRequest): Promise<
   // The name stays (esmini takes a controller's name for its type, conditions name maneuvers): a catalog where it is free, else a new one.
   // Files of one catalog name are one catalog: the name must be free in all of them.
   const holdsName = (catalogName: string | undefined) =>
-    catalogs.some((other) => attributeValue(other.read.catalog, 'name') === catalogName && other.read.catalog.children.some((entry) => attributeValue(entry, 'name') === name));
+    catalogs.some(
+      (other) =>
+        attributeValue(other.read.catalog, 'name') === catalogName &&
+        other.read.catalog.children.some((entry) => attributeValue(entry, 'name') === name),
+    );
   if (!reused) chosen = ordered.find((candidate) => !holdsName(attributeValue(candidate.read.catalog, 'name')));
   for (const { name: parameter } of passed) assignments.set(parameter, `$${parameter}`);
   const catalogNames = new Set(catalogs.map((candidate) => attributeValue(candidate.read.catalog, 'name')));
@@ -215,12 +224,27 @@ export async function extractToCatalog(request: ExtractCatalogRequest): Promise<
           const at = lineStart(text, text.lastIndexOf('</', declarations.end - 1));
           edits.push({ start: at, end: at, text: lines.map((line) => `${inner}${step}${line}${eol}`).join('') });
         } else if (declarations) {
-          edits.push({ start: declarations.start, end: declarations.end, text: [`<ParameterDeclarations>`, ...lines.map((line) => `${inner}${step}${line}`), `${inner}</ParameterDeclarations>`].join(eol) });
+          edits.push({
+            start: declarations.start,
+            end: declarations.end,
+            text: [`<ParameterDeclarations>`, ...lines.map((line) => `${inner}${step}${line}`), `${inner}</ParameterDeclarations>`].join(
+              eol,
+            ),
+          });
         } else if (element.selfClosing) {
           throw new RefactoringRefusal(`the ${element.name} is empty`);
         } else {
           const at = element.children[0] ? lineStart(text, element.children[0].start) : element.startTagEnd;
-          edits.push({ start: at, end: at, text: [`${inner}<ParameterDeclarations>`, ...lines.map((line) => `${inner}${step}${line}`), `${inner}</ParameterDeclarations>`, ''].join(eol) });
+          edits.push({
+            start: at,
+            end: at,
+            text: [
+              `${inner}<ParameterDeclarations>`,
+              ...lines.map((line) => `${inner}${step}${line}`),
+              `${inner}</ParameterDeclarations>`,
+              '',
+            ].join(eol),
+          });
         }
       }
       edits.sort((a, b) => a.start - b.start);
@@ -244,7 +268,11 @@ export async function extractToCatalog(request: ExtractCatalogRequest): Promise<
       const onOwnLine = /^[ \t]*$/.test(catalogText.slice(at, close));
       const insertAt = onOwnLine ? at : close;
       const entry = `${entryIndent}${entryText(entryIndent, catalogEol)}${catalogEol}`;
-      catalog = { path: chosen.path, create: false, edits: [{ start: insertAt, end: insertAt, text: onOwnLine ? entry : catalogEol + entry }] };
+      catalog = {
+        path: chosen.path,
+        create: false,
+        edits: [{ start: insertAt, end: insertAt, text: onOwnLine ? entry : catalogEol + entry }],
+      };
     } else {
       let target = path.join(directory, `${catalogName}.xosc`);
       for (let n = 2; await request.exists(target); n++) target = path.join(directory, `${catalogName}_${n}.xosc`);
@@ -279,7 +307,9 @@ export async function extractToCatalog(request: ExtractCatalogRequest): Promise<
       : [
           `<CatalogReference catalogName=${q(catalogName)} entryName=${q(entryName)}>`,
           `${indent}${unit}<ParameterAssignments>`,
-          ...[...assignments].map(([parameter, value]) => `${indent}${unit}${unit}<ParameterAssignment parameterRef=${q(parameter)} value=${q(value)}/>`),
+          ...[...assignments].map(
+            ([parameter, value]) => `${indent}${unit}${unit}<ParameterAssignment parameterRef=${q(parameter)} value=${q(value)}/>`,
+          ),
           `${indent}${unit}</ParameterAssignments>`,
           `${indent}</CatalogReference>`,
         ];
@@ -301,7 +331,13 @@ export async function extractToCatalog(request: ExtractCatalogRequest): Promise<
     const relative = path.relative(path.dirname(file), directory).split(path.sep).join('/') || '.';
     if (locations.selfClosing) {
       const outer = indentationAt(text, locations.start);
-      const lines = [`<CatalogLocations>`, `${outer}${unit}<${kind}>`, `${outer}${unit}${unit}<Directory path=${q(relative)}/>`, `${outer}${unit}</${kind}>`, `${outer}</CatalogLocations>`];
+      const lines = [
+        `<CatalogLocations>`,
+        `${outer}${unit}<${kind}>`,
+        `${outer}${unit}${unit}<Directory path=${q(relative)}/>`,
+        `${outer}${unit}</${kind}>`,
+        `${outer}</CatalogLocations>`,
+      ];
       edits.push({ start: locations.start, end: locations.end, text: lines.join(eol) });
     } else {
       const inner = childIndent(text, locations, unit);

@@ -34,7 +34,11 @@ function attributeId(element: number, name: string): string {
  * enumeration values are suggested. Undefined when the group cannot be extracted (no name, no actor,
  * already importing or declaring overridable attributes).
  */
-export function tunableAttributes(document: XmlDocument, group: ManeuverGroupInfo, entityNames: ReadonlySet<string>): TunableAttribute[] | undefined {
+export function tunableAttributes(
+  document: XmlDocument,
+  group: ManeuverGroupInfo,
+  entityNames: ReadonlySet<string>,
+): TunableAttribute[] | undefined {
   const read = readOccurrence(0, document, group);
   if (!read) return undefined;
   const { shape, occurrence } = read;
@@ -103,7 +107,10 @@ async function freeFile(directory: string, stem: string, exists: (file: string) 
 export async function extractGroup(request: ExtractGroupRequest): Promise<ExtractedGroup> {
   const { file, text, document, group } = request;
   const read = readOccurrence(0, document, group);
-  if (!read) throw new RefactoringRefusal('only a named ManeuverGroup with an actor, no ScenarioReference and no parameterAttributes can be extracted');
+  if (!read)
+    throw new RefactoringRefusal(
+      'only a named ManeuverGroup with an actor, no ScenarioReference and no parameterAttributes can be extracted',
+    );
   const { shape, occurrence } = read;
   const tunable = tunableAttributes(document, group, request.entityNames) ?? [];
   const wanted = new Set(request.chosen ?? tunable.filter((candidate) => candidate.suggested).map((candidate) => candidate.id));

@@ -19,7 +19,10 @@ export function inlineEdits(main: FlatSource, outerGroup: XmlElement): TextEdit[
   const stripped = parameterAttributeSpans(model)
     .filter((span) => span.start >= start && span.end <= end)
     .map((span) => ({ ...span, text: '' }));
-  const edits: TextEdit[] = [{ start: copies[0].replacedStart, end: copies[0].replacedEnd, text: applyEdits(flattened, stripped, start, end) }];
-  for (const addition of main.additions) edits.push({ start: addition.replacedStart, end: addition.replacedEnd, text: flattened.slice(addition.start, addition.end) });
+  const edits: TextEdit[] = [
+    { start: copies[0].replacedStart, end: copies[0].replacedEnd, text: applyEdits(flattened, stripped, start, end) },
+  ];
+  for (const addition of main.additions)
+    edits.push({ start: addition.replacedStart, end: addition.replacedEnd, text: flattened.slice(addition.start, addition.end) });
   return edits;
 }

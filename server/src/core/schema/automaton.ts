@@ -139,7 +139,8 @@ export class ContentAutomaton {
   /** The element particles allowed next, each name once, in the content model's order. */
   allowed(states: StateSet): ElementParticle[] {
     const byName = new Map<string, ElementParticle>();
-    for (const state of states) for (const edge of this.edges[state]) if (!byName.has(edge.particle.name)) byName.set(edge.particle.name, edge.particle);
+    for (const state of states)
+      for (const edge of this.edges[state]) if (!byName.has(edge.particle.name)) byName.set(edge.particle.name, edge.particle);
     return [...byName.values()];
   }
 

@@ -1,5 +1,15 @@
 import { ContentAutomaton } from './automaton';
-import { AttributeDeclaration, CompiledSchema, ComplexType, ElementParticle, elementParticles, SCHEMA_VERSIONS, schemaFor, SchemaVersion, SimpleType } from './model';
+import {
+  AttributeDeclaration,
+  CompiledSchema,
+  ComplexType,
+  ElementParticle,
+  elementParticles,
+  SCHEMA_VERSIONS,
+  schemaFor,
+  SchemaVersion,
+  SimpleType,
+} from './model';
 import { MODULAR_PLACEMENT, MODULAR_SIMPLE_TYPES, MODULAR_TYPES } from './modular';
 
 /** One version's schema with the lookups validation and completion need, built once per version. */
@@ -28,7 +38,8 @@ export class SchemaIndex {
     let byName = this.children.get(typeName);
     if (!byName) {
       byName = new Map();
-      for (const particle of elementParticles(this.complexType(typeName)?.content)) if (!byName.has(particle.name)) byName.set(particle.name, particle);
+      for (const particle of elementParticles(this.complexType(typeName)?.content))
+        if (!byName.has(particle.name)) byName.set(particle.name, particle);
       this.children.set(typeName, byName);
     }
     return byName.get(childName);
@@ -58,7 +69,9 @@ export class SchemaIndex {
 
   /** The name the content model sees for a child: a ScenarioReference takes a Maneuver's place. */
   modelName(typeName: string, childName: string, modular: boolean): string {
-    return modular && typeName === MODULAR_PLACEMENT.parentType && childName === MODULAR_PLACEMENT.element ? MODULAR_PLACEMENT.standsFor : childName;
+    return modular && typeName === MODULAR_PLACEMENT.parentType && childName === MODULAR_PLACEMENT.element
+      ? MODULAR_PLACEMENT.standsFor
+      : childName;
   }
 
   /** Whether a complex type's element (by particle) is deprecated in this version. */
@@ -71,7 +84,13 @@ export class SchemaIndex {
   }
 }
 
-const SCENARIO_REFERENCE_PARTICLE: ElementParticle = { kind: 'element', name: MODULAR_PLACEMENT.element, type: MODULAR_PLACEMENT.type, min: 0, max: -1 };
+const SCENARIO_REFERENCE_PARTICLE: ElementParticle = {
+  kind: 'element',
+  name: MODULAR_PLACEMENT.element,
+  type: MODULAR_PLACEMENT.type,
+  min: 0,
+  max: -1,
+};
 
 const indexes = new Map<SchemaVersion, SchemaIndex>();
 

@@ -22,7 +22,12 @@ export const MODULAR_TYPES: Record<string, ComplexType> = {
 };
 
 /** Where the extension's top element may stand: its parent's type, and the standard element whose place it takes. */
-export const MODULAR_PLACEMENT = { element: 'ScenarioReference', type: '#ScenarioReference', parentType: 'ManeuverGroup', standsFor: 'Maneuver' } as const;
+export const MODULAR_PLACEMENT = {
+  element: 'ScenarioReference',
+  type: '#ScenarioReference',
+  parentType: 'ManeuverGroup',
+  standsFor: 'Maneuver',
+} as const;
 
 /** The attribute every element may carry in a simple scenario (SPEC 2). */
 export const MODULAR_ATTRIBUTE = 'parameterAttributes';

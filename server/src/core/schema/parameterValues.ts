@@ -15,7 +15,11 @@ import { chooseVersion, SchemaVersionSetting } from './version';
  */
 
 /** The type of an attribute as the schema declares it; undefined where the schema does not place the element. */
-export function attributeType(index: SchemaIndex, element: XmlElement, attributeName: string): { name: string; type: SimpleType } | undefined {
+export function attributeType(
+  index: SchemaIndex,
+  element: XmlElement,
+  attributeName: string,
+): { name: string; type: SimpleType } | undefined {
   const typeName = typeOfElement(index, element);
   const declaration = typeName ? index.attribute(typeName, attributeName) : undefined;
   const type = declaration ? index.simpleType(declaration.type) : undefined;
@@ -44,7 +48,11 @@ interface Mismatch {
 }
 
 /** Whether a parameter's value fits the attribute's type; what is wrong when it does not. */
-function mismatchOf(value: { value: string | number | boolean; type: ParameterType }, attributeTypeName: string, type: SimpleType): Mismatch | undefined {
+function mismatchOf(
+  value: { value: string | number | boolean; type: ParameterType },
+  attributeTypeName: string,
+  type: SimpleType,
+): Mismatch | undefined {
   const target = targetOf(type);
   if (target) {
     // Checked first: the lenient reading converts `5.0` to an integer, which is still a warning here.
@@ -66,7 +74,10 @@ function mismatchOf(value: { value: string | number | boolean; type: ParameterTy
 }
 
 /** Whether a parameter's value converts to an attribute's type without a word (completion offers such parameters first). */
-export function valueFits(value: { value: string | number | boolean; type: ParameterType }, attribute: { name: string; type: SimpleType }): boolean {
+export function valueFits(
+  value: { value: string | number | boolean; type: ParameterType },
+  attribute: { name: string; type: SimpleType },
+): boolean {
   return mismatchOf(value, attribute.name, attribute.type) === undefined;
 }
 
@@ -74,7 +85,12 @@ export function valueFits(value: { value: string | number | boolean; type: Param
  * The problem of a `$name` site whose value does not fit an attribute's type, at the site, naming the
  * declaration; `attributeName` is how the message names the attribute (`LanePosition.s`).
  */
-export function siteTypeProblem(semantics: DocumentSemantics, site: ValueSite, target: { name: string; type: SimpleType }, attributeName: string): Problem | undefined {
+export function siteTypeProblem(
+  semantics: DocumentSemantics,
+  site: ValueSite,
+  target: { name: string; type: SimpleType },
+  attributeName: string,
+): Problem | undefined {
   if (site.form.kind !== 'parameter') return undefined;
   const declaration = resolveName(site.scope, site.form.name, site.declaration);
   if (!declaration) return undefined;
@@ -96,7 +112,9 @@ export function siteTypeProblem(semantics: DocumentSemantics, site: ValueSite, t
     related: [
       {
         source: semantics.ref,
-        range: place ? document.lines.range(place.valueStart, place.valueEnd) : document.lines.range(declaration.element.start, declaration.element.nameEnd),
+        range: place
+          ? document.lines.range(place.valueStart, place.valueEnd)
+          : document.lines.range(declaration.element.start, declaration.element.nameEnd),
         message: `'${declaration.name}' is declared here with the value '${declaration.value}'`,
       },
     ],

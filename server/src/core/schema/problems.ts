@@ -8,7 +8,13 @@ import { checkAttribute, checkSchema, findingOffsets, SchemaCheckOptions, Schema
 
 /** A finding as a problem at offsets of `document`. */
 export function toProblem(source: SourceRef, document: XmlDocument, finding: FindingWords, start: number, end: number): Problem {
-  const problem: Problem = { source, range: document.lines.range(start, end), severity: finding.severity, code: finding.code, message: finding.message };
+  const problem: Problem = {
+    source,
+    range: document.lines.range(start, end),
+    severity: finding.severity,
+    code: finding.code,
+    message: finding.message,
+  };
   if (finding.hint) problem.hint = finding.hint;
   if (finding.data) problem.data = finding.data;
   return problem;
@@ -69,7 +75,8 @@ function recheckValueEdit(previous: RememberedCheck, document: XmlDocument): Pla
   if (typeName) checkAttribute(index, previous.chosen, element, typeName, edited, (finding) => fresh.push(placed(finding)));
   for (const entry of kept) {
     const insertAt = entry.finding.data?.insertAt;
-    if (insertAt !== undefined && Number(insertAt) >= edit.removedEnd) entry.finding = { ...entry.finding, data: { ...entry.finding.data, insertAt: String(Number(insertAt) + delta) } };
+    if (insertAt !== undefined && Number(insertAt) >= edit.removedEnd)
+      entry.finding = { ...entry.finding, data: { ...entry.finding.data, insertAt: String(Number(insertAt) + delta) } };
   }
   return [...kept, ...fresh].sort((a, b) => a.start - b.start);
 }
@@ -102,6 +109,13 @@ export class SchemaCheckMemory {
 }
 
 /** The schema's problems of one file as it is written (the modular extension allowed). */
-export function schemaProblems(source: SourceRef, document: XmlDocument, memory: SchemaCheckMemory, options: Omit<SchemaCheckOptions, 'modular'> = {}): Problem[] {
-  return memory.check(refId(source), document, { ...options, modular: true }).map((entry) => toProblem(source, document, entry.finding, entry.start, entry.end));
+export function schemaProblems(
+  source: SourceRef,
+  document: XmlDocument,
+  memory: SchemaCheckMemory,
+  options: Omit<SchemaCheckOptions, 'modular'> = {},
+): Problem[] {
+  return memory
+    .check(refId(source), document, { ...options, modular: true })
+    .map((entry) => toProblem(source, document, entry.finding, entry.start, entry.end));
 }

@@ -66,7 +66,12 @@ export function allowedChildren(index: SchemaIndex, typeName: string, preceding:
   let states = automaton.start;
   for (const name of preceding) states = automaton.step(states, index.modelName(typeName, name, true))?.states ?? states;
   const followingName = following === undefined ? undefined : index.modelName(typeName, following, true);
-  const path = followingName === undefined ? automaton.missingToEnd(states) : automaton.step(states, followingName) ? [] : (automaton.missingBefore(states, followingName) ?? []);
+  const path =
+    followingName === undefined
+      ? automaton.missingToEnd(states)
+      : automaton.step(states, followingName)
+        ? []
+        : (automaton.missingBefore(states, followingName) ?? []);
   const required = new Set(path.map((particle) => particle.name));
   // In the content model's order, whatever order the automaton's states hold them in.
   const order = index.childParticles(typeName);

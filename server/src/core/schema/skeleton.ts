@@ -65,7 +65,8 @@ export function elementSkeleton(index: SchemaIndex, particle: ElementParticle, d
   const build = (current: ElementParticle, level: number, open: ReadonlySet<string>): SkeletonElement => {
     const type = index.complexType(current.type);
     const attributes = requiredAttributes(index, current.type);
-    if (!type?.content || level >= depth || open.has(current.type)) return { name: current.name, type: current.type, attributes, children: [] };
+    if (!type?.content || level >= depth || open.has(current.type))
+      return { name: current.name, type: current.type, attributes, children: [] };
     const inside = new Set(open).add(current.type);
     const children = requiredParticles(index, type.content, inside).map((child) => build(child, level + 1, inside));
     return { name: current.name, type: current.type, attributes, children };
@@ -83,7 +84,11 @@ export interface SkeletonLayout {
 }
 
 /** The skeleton as XML text; `value` writes an attribute's value (a placeholder, or a snippet's tab stop). */
-export function skeletonText(skeleton: SkeletonElement, layout: SkeletonLayout, value: (declaration: AttributeDeclaration) => string): string {
+export function skeletonText(
+  skeleton: SkeletonElement,
+  layout: SkeletonLayout,
+  value: (declaration: AttributeDeclaration) => string,
+): string {
   const write = (element: SkeletonElement, indent: string): string => {
     const open = `<${element.name}${element.attributes.map((declaration) => ` ${declaration.name}="${value(declaration)}"`).join('')}`;
     if (element.children.length === 0) return `${open}/>`;

@@ -43,7 +43,13 @@ function list(particles: ElementParticle[]): string {
   return particles.map((particle) => `<${particle.name}>`).join(', ');
 }
 
-function introducedHint(typeName: string, name: string, kind: 'element' | 'attribute', chosen: ChosenVersion, others: string[]): string | undefined {
+function introducedHint(
+  typeName: string,
+  name: string,
+  kind: 'element' | 'attribute',
+  chosen: ChosenVersion,
+  others: string[],
+): string | undefined {
   const versions = versionsWith(typeName, name, kind).filter((version) => version !== chosen.version);
   if (versions.length === 0) return undefined;
   const stated = chosen.stated ? `the FileHeader states ${chosen.stated}` : `the file is read as ${chosen.version}`;
@@ -74,7 +80,14 @@ export function checkSchema(document: XmlDocument, options: SchemaCheckOptions):
     });
   }
   if (root.name !== index.schema.rootElement) {
-    report({ element: root, part: 'tag', severity: 'error', code: 'schema-unknown-element', message: `the root element must be <${index.schema.rootElement}>, not <${root.name}>`, data: { suggestion: index.schema.rootElement } });
+    report({
+      element: root,
+      part: 'tag',
+      severity: 'error',
+      code: 'schema-unknown-element',
+      message: `the root element must be <${index.schema.rootElement}>, not <${root.name}>`,
+      data: { suggestion: index.schema.rootElement },
+    });
     return { chosen, findings };
   }
   const stack: { element: XmlElement; typeName: string }[] = [{ element: root, typeName: index.schema.rootType }];
@@ -90,13 +103,22 @@ export function checkSchema(document: XmlDocument, options: SchemaCheckOptions):
 }
 
 /** The checks of one attribute: its name, its value, deprecation. */
-export function checkAttribute(index: SchemaIndex, chosen: ChosenVersion, element: XmlElement, typeName: string, attribute: XmlAttribute, report: (finding: SchemaFinding) => void): void {
+export function checkAttribute(
+  index: SchemaIndex,
+  chosen: ChosenVersion,
+  element: XmlElement,
+  typeName: string,
+  attribute: XmlAttribute,
+  report: (finding: SchemaFinding) => void,
+): void {
   const type = index.complexType(typeName);
   if (!type) return;
   if (attribute.name === MODULAR_ATTRIBUTE || attribute.name.startsWith('xmlns') || attribute.name.startsWith('xsi:')) return;
   const declaration = index.attribute(typeName, attribute.name);
   if (!declaration) {
-    const candidates = type.attributes.map((candidate) => candidate.name).filter((name) => !element.attributes.some((other) => other.name === name));
+    const candidates = type.attributes
+      .map((candidate) => candidate.name)
+      .filter((name) => !element.attributes.some((other) => other.name === name));
     const suggestion = closestMatch(attribute.name, candidates);
     report({
       element,
@@ -161,14 +183,21 @@ export function checkAttribute(index: SchemaIndex, chosen: ChosenVersion, elemen
   }
 }
 
-function checkAttributes(index: SchemaIndex, chosen: ChosenVersion, element: XmlElement, typeName: string, report: (finding: SchemaFinding) => void): void {
+function checkAttributes(
+  index: SchemaIndex,
+  chosen: ChosenVersion,
+  element: XmlElement,
+  typeName: string,
+  report: (finding: SchemaFinding) => void,
+): void {
   const type = index.complexType(typeName);
   if (!type) return;
   for (const attribute of element.attributes) checkAttribute(index, chosen, element, typeName, attribute, report);
   // The extension's own attributes are checked where the flattener reads them.
   if (MODULAR_TYPES[typeName]) return;
   const missing: string[] = [];
-  for (const declaration of type.attributes) if (declaration.required && !element.attributes.some((written) => written.name === declaration.name)) missing.push(declaration.name);
+  for (const declaration of type.attributes)
+    if (declaration.required && !element.attributes.some((written) => written.name === declaration.name)) missing.push(declaration.name);
   if (missing.length > 0) {
     report({
       element,
@@ -211,10 +240,17 @@ function checkChildren(
         part: 'tag',
         severity: 'error',
         code: 'schema-unknown-element',
-        message: type.text || others.length === 0 ? `<${element.name}> holds no elements in OpenSCENARIO ${chosen.version}, yet <${child.name}> stands in it` : `<${element.name}> has no child <${child.name}> in OpenSCENARIO ${chosen.version}`,
+        message:
+          type.text || others.length === 0
+            ? `<${element.name}> holds no elements in OpenSCENARIO ${chosen.version}, yet <${child.name}> stands in it`
+            : `<${element.name}> has no child <${child.name}> in OpenSCENARIO ${chosen.version}`,
         hint:
           introducedHint(typeName, child.name, 'element', chosen, others) ??
-          (suggestion ? `did you mean <${suggestion}>?` : others.length > 0 ? `its children: ${others.map((other) => `<${other}>`).join(', ')}` : undefined),
+          (suggestion
+            ? `did you mean <${suggestion}>?`
+            : others.length > 0
+              ? `its children: ${others.map((other) => `<${other}>`).join(', ')}`
+              : undefined),
         data: suggestion ? { suggestion } : undefined,
       });
       continue;
@@ -236,13 +272,24 @@ function checkChildren(
   return accepted;
 }
 
-function checkAll(items: ElementParticle[], element: XmlElement, known: { child: XmlElement; particle: ElementParticle }[], report: (finding: SchemaFinding) => void): void {
+function checkAll(
+  items: ElementParticle[],
+  element: XmlElement,
+  known: { child: XmlElement; particle: ElementParticle }[],
+  report: (finding: SchemaFinding) => void,
+): void {
   const counts = new Map<string, number>();
   for (const { child, particle } of known) {
     const count = (counts.get(child.name) ?? 0) + 1;
     counts.set(child.name, count);
     if (particle.max !== -1 && count > particle.max) {
-      report({ element: child, part: 'tag', severity: 'error', code: 'schema-cardinality', message: `too many <${child.name}> in <${element.name}>: at most ${particle.max}` });
+      report({
+        element: child,
+        part: 'tag',
+        severity: 'error',
+        code: 'schema-cardinality',
+        message: `too many <${child.name}> in <${element.name}>: at most ${particle.max}`,
+      });
     }
   }
   const missing = items.filter((item) => item.kind === 'element' && item.min > (counts.get(item.name) ?? 0));
@@ -275,15 +322,31 @@ function checkSequence(
     }
     const missing = automaton.missingBefore(states, name);
     if (missing && missing.length > 0 && missing.every((candidate) => !seen.has(candidate.name))) {
-      const later = missing.map((candidate) => known.slice(position + 1).find((other) => !placedEarly.has(other.child) && index.modelName(typeName, other.child.name, options.modular) === candidate.name)?.child);
+      const later = missing.map(
+        (candidate) =>
+          known
+            .slice(position + 1)
+            .find(
+              (other) => !placedEarly.has(other.child) && index.modelName(typeName, other.child.name, options.modular) === candidate.name,
+            )?.child,
+      );
       if (later.every((other) => other !== undefined)) {
         // The "missing" elements are written, only after this one: an order problem, reported once here.
         for (const other of later) placedEarly.add(other as XmlElement);
-        report({ element: child, part: 'tag', severity: 'error', code: 'schema-order', message: `<${child.name}> is out of order in <${element.name}>: ${list(missing)} must come before it` });
+        report({
+          element: child,
+          part: 'tag',
+          severity: 'error',
+          code: 'schema-order',
+          message: `<${child.name}> is out of order in <${element.name}>: ${list(missing)} must come before it`,
+        });
       } else {
         reportMissing(element, missing, child, report);
       }
-      const after = missing.reduce<StateSet | undefined>((current, candidate) => (current ? automaton.step(current, candidate.name)?.states : undefined), states);
+      const after = missing.reduce<StateSet | undefined>(
+        (current, candidate) => (current ? automaton.step(current, candidate.name)?.states : undefined),
+        states,
+      );
       const stepped = after ? automaton.step(after, name) : undefined;
       if (stepped) {
         states = stepped.states;
@@ -292,7 +355,13 @@ function checkSequence(
     }
     const count = seen.get(name) ?? 0;
     if (particle.max !== -1 && count > particle.max) {
-      report({ element: child, part: 'tag', severity: 'error', code: 'schema-cardinality', message: `too many <${child.name}> in <${element.name}>: at most ${particle.max}` });
+      report({
+        element: child,
+        part: 'tag',
+        severity: 'error',
+        code: 'schema-cardinality',
+        message: `too many <${child.name}> in <${element.name}>: at most ${particle.max}`,
+      });
     } else if (!reportedOrder) {
       // One order problem per parent: after it, the position in the content model is a guess.
       reportedOrder = true;
@@ -312,7 +381,12 @@ function checkSequence(
   }
 }
 
-function reportMissing(element: XmlElement, missing: ElementParticle[], before: XmlElement | undefined, report: (finding: SchemaFinding) => void): void {
+function reportMissing(
+  element: XmlElement,
+  missing: ElementParticle[],
+  before: XmlElement | undefined,
+  report: (finding: SchemaFinding) => void,
+): void {
   const names = missing.map((particle) => particle.name);
   report({
     element: before ?? element,

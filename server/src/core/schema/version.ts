@@ -30,7 +30,8 @@ export function chooseVersion(document: XmlDocument, setting: SchemaVersionSetti
   if (isSchemaVersion(stated)) return { version: stated, stated, header };
   const majorNumber = Number(major);
   const minorNumber = Number(minor);
-  if (!Number.isInteger(majorNumber) || !Number.isInteger(minorNumber)) return { version: LATEST, stated, header, fallback: `the FileHeader states ${stated}` };
+  if (!Number.isInteger(majorNumber) || !Number.isInteger(minorNumber))
+    return { version: LATEST, stated, header, fallback: `the FileHeader states ${stated}` };
   const version: SchemaVersion = majorNumber < 1 ? '1.0' : LATEST;
   return { version, stated, header, fallback: `no schema for OpenSCENARIO ${stated}` };
 }

@@ -24,11 +24,20 @@ export class CatalogElementCollector {
           if (child.name !== 'ParameterAssignments') continue;
           for (const assignment of child.children) {
             if (assignment.name === 'ParameterAssignment') {
-              assignments.push({ element: assignment, parameterRef: attribute(assignment, 'parameterRef'), valueAttribute: attribute(assignment, 'value') });
+              assignments.push({
+                element: assignment,
+                parameterRef: attribute(assignment, 'parameterRef'),
+                valueAttribute: attribute(assignment, 'value'),
+              });
             }
           }
         }
-        this.model.catalogReferences.push({ element, catalogNameAttribute: attribute(element, 'catalogName'), entryNameAttribute: attribute(element, 'entryName'), assignments });
+        this.model.catalogReferences.push({
+          element,
+          catalogNameAttribute: attribute(element, 'catalogName'),
+          entryNameAttribute: attribute(element, 'entryName'),
+          assignments,
+        });
         break;
       }
     }

@@ -1,7 +1,15 @@
 import * as path from 'node:path';
 import { childRef, diskRef, normalizeEntryName, refId, ScenarioStore, SourceRef } from '../sources';
 import { attribute, XmlElement } from '../xml';
-import { Assignments, buildSemanticModel, referencedName, CatalogLocationInfo, CatalogReferenceInfo, Evaluator, SemanticModel } from './model';
+import {
+  Assignments,
+  buildSemanticModel,
+  referencedName,
+  CatalogLocationInfo,
+  CatalogReferenceInfo,
+  Evaluator,
+  SemanticModel,
+} from './model';
 
 /**
  * Catalogs (ASAM OpenSCENARIO 1.x section 9.4): a `CatalogLocations` `Directory path` is relative to
@@ -92,10 +100,12 @@ export class CatalogLoader {
       const written = folder ? `${folder}/${pathText}` : pathText;
       // `.` (or `./`) at the package's root names the root itself, which normalizes to no name at all.
       const joined = normalizeEntryName(written) ?? (/^[./]+$/.test(written) && !written.includes('..') ? '' : undefined);
-      if (joined !== undefined && (await this.listing({ packageRef, directory: joined, via: 'file' })).length > 0) found.push({ packageRef, directory: joined, via: 'file' });
+      if (joined !== undefined && (await this.listing({ packageRef, directory: joined, via: 'file' })).length > 0)
+        found.push({ packageRef, directory: joined, via: 'file' });
       // A package's paths to files outside it are written relative to the package's folder (SPEC 11.6).
       const beside = path.resolve(path.dirname(from.disk), pathText);
-      if (found.length === 0 && (await this.store.kindOf(beside)) === 'directory') found.push({ packageRef: undefined, directory: beside, via: 'file' });
+      if (found.length === 0 && (await this.store.kindOf(beside)) === 'directory')
+        found.push({ packageRef: undefined, directory: beside, via: 'file' });
     } else {
       const candidate = path.resolve(path.dirname(from.disk), pathText);
       if ((await this.store.kindOf(candidate)) === 'directory') found.push({ packageRef: undefined, directory: candidate, via: 'file' });
@@ -104,7 +114,8 @@ export class CatalogLoader {
     for (const base of this.store.scenarioPath) {
       for (const candidate of [path.resolve(base, pathText), base, path.join(base, path.basename(pathText))]) {
         if (found.some((known) => known.directory === candidate)) continue;
-        if ((await this.store.kindOf(candidate)) === 'directory') found.push({ packageRef: undefined, directory: candidate, via: 'scenarioPath' });
+        if ((await this.store.kindOf(candidate)) === 'directory')
+          found.push({ packageRef: undefined, directory: candidate, via: 'scenarioPath' });
       }
     }
     return found;
@@ -120,10 +131,15 @@ export class CatalogLoader {
           const contents = await this.store.readPackage(directory.packageRef).catch(() => undefined);
           if (!contents) return [];
           const prefix = directory.directory ? `${directory.directory}/` : '';
-          return [...contents.entries.keys()].filter((name) => name.startsWith(prefix) && !name.slice(prefix.length).includes('/') && name.toLowerCase().endsWith('.xosc')).sort();
+          return [...contents.entries.keys()]
+            .filter((name) => name.startsWith(prefix) && !name.slice(prefix.length).includes('/') && name.toLowerCase().endsWith('.xosc'))
+            .sort();
         }
         const names = (await this.store.host.listDirectory?.(directory.directory)) ?? [];
-        return names.filter((name) => name.toLowerCase().endsWith('.xosc')).sort().map((name) => path.join(directory.directory, name));
+        return names
+          .filter((name) => name.toLowerCase().endsWith('.xosc'))
+          .sort()
+          .map((name) => path.join(directory.directory, name));
       })();
       this.listings.set(key, pending);
     }
@@ -217,7 +233,8 @@ export class CatalogLoader {
         }
       }
       for (const file of catalogs) files.set(refId(file.ref), file.ref);
-      const entry = entryName === undefined ? undefined : catalogs.flatMap((file) => file.entries).find((candidate) => candidate.name === entryName);
+      const entry =
+        entryName === undefined ? undefined : catalogs.flatMap((file) => file.entries).find((candidate) => candidate.name === entryName);
       references.push({ reference, catalogName, entryName, catalogs, entry, searched: directories.length > 0, foundByFileName });
     }
     return { locations, references, files: [...files.values()] };

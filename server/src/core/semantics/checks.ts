@@ -12,9 +12,24 @@ import { duplicateNames } from './checks/names';
 import { at, relatedAt } from './checks/support';
 import { carriedExpressionErrors, rememberExpressionErrors } from './checks/carriedResults';
 import { catalogVariables, undeclaredVariables, variableValues } from './checks/variables';
-import { lightTransitionTimes, phaseDurations, privateActionActors, trafficSignalControllerRefs, trafficSignalIds, valueRanges } from './networkChecks';
+import {
+  lightTransitionTimes,
+  phaseDurations,
+  privateActionActors,
+  trafficSignalControllerRefs,
+  trafficSignalIds,
+  valueRanges,
+} from './networkChecks';
 import { RoadSignals } from './roadNetwork';
-import { Declaration, Evaluator, referencedName, resolveName, SemanticModel, STORYBOARD_ELEMENT_NAMES, STORYBOARD_ELEMENT_TYPES } from './model';
+import {
+  Declaration,
+  Evaluator,
+  referencedName,
+  resolveName,
+  SemanticModel,
+  STORYBOARD_ELEMENT_NAMES,
+  STORYBOARD_ELEMENT_TYPES,
+} from './model';
 
 /**
  * The semantic checks: each is one small function over a document's model, registered in
@@ -89,7 +104,9 @@ export const undeclaredParameters: SemanticCheck = ({ model, simulator }) =>
  */
 export const dollarDeclarations: SemanticCheck = ({ model }) =>
   model.declarations
-    .filter((declaration) => declaration.kind === 'parameter' && declaration.nameAttribute?.value.trim().startsWith('$') && declaration.name)
+    .filter(
+      (declaration) => declaration.kind === 'parameter' && declaration.nameAttribute?.value.trim().startsWith('$') && declaration.name,
+    )
     .map((declaration) => {
       const attr = declaration.nameAttribute as XmlAttribute;
       const exact = attr.value.length === attr.valueEnd - attr.valueStart;
@@ -159,7 +176,15 @@ function expressionFinding(context: SemanticContext, element: XmlElement, attr: 
   const exactOffsets = attr.value.length === attr.valueEnd - attr.valueStart;
   const start = exactOffsets ? error.start : attr.valueStart;
   const end = exactOffsets ? Math.max(error.end, error.start + 1) : attr.valueEnd;
-  const finding: Finding = { element, attribute: attr, start, end, severity: WARNING_KINDS.has(error.kind) ? 'warning' : 'error', code: EXPRESSION_CODES[error.kind], message: error.message };
+  const finding: Finding = {
+    element,
+    attribute: attr,
+    start,
+    end,
+    severity: WARNING_KINDS.has(error.kind) ? 'warning' : 'error',
+    code: EXPRESSION_CODES[error.kind],
+    message: error.message,
+  };
   const fix = error.fix;
   if (fix && fix.start === start && fix.end === end) {
     finding.data = { suggestion: fix.text };
@@ -189,7 +214,9 @@ function declarationErrors(evaluator: Evaluator, declaration: Declaration): Expr
   const result = evaluator.declarationValue(declaration);
   if (!result.ok && result.provenance.kind === 'declaration') {
     // Errors inside the expression itself were reported at the site, with their column.
-    errors.push(...result.errors.filter((error) => error.start === attr.valueStart && error.end === attr.valueEnd && error.kind === 'type-mismatch'));
+    errors.push(
+      ...result.errors.filter((error) => error.start === attr.valueStart && error.end === attr.valueEnd && error.kind === 'type-mismatch'),
+    );
   }
   return errors.length > 0 ? errors : NO_ERRORS;
 }
@@ -206,14 +233,17 @@ export const expressionErrors: SemanticCheck = (context) => {
   const remembered = evaluator.model === model && evaluator.assignments === undefined;
   const carried = remembered ? carriedExpressionErrors(model, evaluator) : undefined;
   const sites = model.sites.map((site, index) => carried?.site(index) ?? siteErrors(evaluator, site));
-  const declarations = model.declarations.map((declaration, index) => carried?.declaration(index) ?? declarationErrors(evaluator, declaration));
+  const declarations = model.declarations.map(
+    (declaration, index) => carried?.declaration(index) ?? declarationErrors(evaluator, declaration),
+  );
   if (remembered) rememberExpressionErrors(model, evaluator, { sites, declarations });
   const findings: Finding[] = [];
   model.sites.forEach((site, index) => {
     for (const error of sites[index]) findings.push(expressionFinding(context, site.element, site.attribute, error) as Finding);
   });
   model.declarations.forEach((declaration, index) => {
-    for (const error of declarations[index]) findings.push(expressionFinding(context, declaration.element, declaration.valueAttribute as XmlAttribute, error) as Finding);
+    for (const error of declarations[index])
+      findings.push(expressionFinding(context, declaration.element, declaration.valueAttribute as XmlAttribute, error) as Finding);
   });
   return findings;
 };
@@ -270,7 +300,11 @@ export const catalogReferences: SemanticCheck = (context) => {
     }
     const entryModel = resolution.entry.file.model;
     const referenceScope = context.model.scopeOf(reference.element);
-    const free = new Set(entryModel.uses.filter((use) => !use.declaration && catalogEntryOf(entryModel, use.element) === resolution.entry?.element).map((use) => use.name));
+    const free = new Set(
+      entryModel.uses
+        .filter((use) => !use.declaration && catalogEntryOf(entryModel, use.element) === resolution.entry?.element)
+        .map((use) => use.name),
+    );
     for (const name of free) {
       if (resolveName(referenceScope, name, undefined)) continue;
       findings.push({
@@ -283,7 +317,8 @@ export const catalogReferences: SemanticCheck = (context) => {
       });
     }
     const entryScope = entryModel.scopeOf(resolution.entry.element);
-    const declared = entryScope && entryScope.element === resolution.entry.element ? entryScope.declarations.map((declaration) => declaration.name) : [];
+    const declared =
+      entryScope && entryScope.element === resolution.entry.element ? entryScope.declarations.map((declaration) => declaration.name) : [];
     for (const assignment of reference.assignments) {
       const name = assignment.parameterRef ? referencedName(assignment.parameterRef).name : undefined;
       if (name === undefined || declared.includes(name)) continue;
@@ -292,7 +327,9 @@ export const catalogReferences: SemanticCheck = (context) => {
         ...at(assignment.element, assignment.parameterRef),
         severity: 'error',
         code: 'unknown-assigned-parameter',
-        message: `catalog entry '${resolution.entry.name}' declares no parameter '${name}'` + (declared.length ? `; it declares: ${declared.join(', ')}` : '; it declares none'),
+        message:
+          `catalog entry '${resolution.entry.name}' declares no parameter '${name}'` +
+          (declared.length ? `; it declares: ${declared.join(', ')}` : '; it declares none'),
         hint: suggestion ? `did you mean '${suggestion}'?` : undefined,
         data: suggestion ? { suggestion } : undefined,
       });
@@ -323,11 +360,18 @@ export const undeclaredEntities: SemanticCheck = ({ model, evaluator }) => {
 };
 
 /** The storyboard elements a reference may name (an optional `A::B::` prefix names ancestors). */
-export function storyboardTargets(model: SemanticModel, extra: { name: string; element: XmlElement }[], written: string, type: string | undefined): XmlElement[] {
+export function storyboardTargets(
+  model: SemanticModel,
+  extra: { name: string; element: XmlElement }[],
+  written: string,
+  type: string | undefined,
+): XmlElement[] {
   const parts = written.split('::').map((part) => part.trim());
   const name = parts.pop() ?? '';
   const elementName = type ? STORYBOARD_ELEMENT_TYPES[type] : undefined;
-  const candidates = [...(model.storyboardByName.get(name) ?? []), ...extra.filter((candidate) => candidate.name === name)].filter((candidate) => !elementName || candidate.element.name === elementName);
+  const candidates = [...(model.storyboardByName.get(name) ?? []), ...extra.filter((candidate) => candidate.name === name)].filter(
+    (candidate) => !elementName || candidate.element.name === elementName,
+  );
   if (parts.length === 0) return candidates.map((candidate) => candidate.element);
   return candidates
     .filter((candidate) => {
@@ -356,7 +400,9 @@ function catalogStoryboardNames(context: SemanticContext): { name: string; eleme
 /** Every StoryboardElementStateCondition names an element of its type that exists. */
 export const storyboardReferences: SemanticCheck = (context) => {
   if (context.modular || context.model.catalog) return [];
-  const unresolvedCatalogManeuvers = context.catalogs.references.some((resolution) => !resolution.entry && resolution.reference.element.parent?.name === 'ManeuverGroup');
+  const unresolvedCatalogManeuvers = context.catalogs.references.some(
+    (resolution) => !resolution.entry && resolution.reference.element.parent?.name === 'ManeuverGroup',
+  );
   if (unresolvedCatalogManeuvers) return [];
   const extra = catalogStoryboardNames(context);
   const findings: Finding[] = [];
@@ -365,7 +411,9 @@ export const storyboardReferences: SemanticCheck = (context) => {
     const type = context.evaluator.textOf(reference.element, attribute(reference.element, 'storyboardElementType'));
     if (written === undefined || storyboardTargets(context.model, extra, written, type).length > 0) continue;
     const elementName = type ? STORYBOARD_ELEMENT_TYPES[type] : undefined;
-    const known = context.model.storyboardElements.filter((candidate) => !elementName || candidate.element.name === elementName).map((candidate) => candidate.name);
+    const known = context.model.storyboardElements
+      .filter((candidate) => !elementName || candidate.element.name === elementName)
+      .map((candidate) => candidate.name);
     const suggestion = known.length <= 2000 ? closestMatch(written, known) : undefined;
     findings.push({
       ...at(reference.element, reference.refAttribute),
@@ -406,7 +454,11 @@ export const flattenedStoryboardReferences: SemanticCheck = (context) => {
     }
     // An outer group OUTER became OUTER.INNER, and an imported group INNER became OUTER.INNER.
     const renamed = context.model.storyboardElements
-      .filter((candidate) => (candidate.name.endsWith(`.${written}`) || candidate.name.startsWith(`${written}.`)) && (!elementName || candidate.element.name === elementName))
+      .filter(
+        (candidate) =>
+          (candidate.name.endsWith(`.${written}`) || candidate.name.startsWith(`${written}.`)) &&
+          (!elementName || candidate.element.name === elementName),
+      )
       .map((candidate) => candidate.name);
     if (renamed.length > 0) {
       findings.push({

@@ -20,6 +20,7 @@ export class EntityCollector {
         break;
       }
     }
-    for (const attr of element.attributes) if (ENTITY_REFERENCE_ATTRIBUTES.has(attr.name)) this.model.entityReferences.push({ element, attribute: attr });
+    for (const attr of element.attributes)
+      if (ENTITY_REFERENCE_ATTRIBUTES.has(attr.name)) this.model.entityReferences.push({ element, attribute: attr });
   }
 }

@@ -11,7 +11,14 @@ import { ExpressionNode, ParameterType, ParameterValue } from './expressions';
  */
 
 /** What esmini makes of a value: the text it keeps, or why it stops the scenario. */
-export type EsminiText = { ok: true; text: string; rules: ValueRule[]; /** The number the text reads as when esmini's tokenizer reads it as one number (kept to compute on trees). */ number?: number } | { ok: false; message: string; rules: ValueRule[] };
+export type EsminiText =
+  | {
+      ok: true;
+      text: string;
+      rules: ValueRule[];
+      /** The number the text reads as when esmini's tokenizer reads it as one number (kept to compute on trees). */ number?: number;
+    }
+  | { ok: false; message: string; rules: ValueRule[] };
 
 /** The text of a parameter as esmini holds it; undefined when esmini cannot find it (it stops). */
 export type EsminiParameterText = (name: string) => EsminiText | undefined;
@@ -81,10 +88,31 @@ const BINARY_PRECEDENCE: Record<string, number> = {
   ',': 12,
 };
 const RIGHT_ASSOCIATIVE = new Set(['**', '=', ',']);
-const ESMINI_FUNCTIONS: Record<string, number> = { round: 1, floor: 1, ceil: 1, sqrt: 1, pow: 2, sin: 1, cos: 1, tan: 1, asin: 1, acos: 1, atan: 1, sign: 1, abs: 1, max: 2, min: 2 };
+const ESMINI_FUNCTIONS: Record<string, number> = {
+  round: 1,
+  floor: 1,
+  ceil: 1,
+  sqrt: 1,
+  pow: 2,
+  sin: 1,
+  cos: 1,
+  tan: 1,
+  asin: 1,
+  acos: 1,
+  atan: 1,
+  sign: 1,
+  abs: 1,
+  max: 2,
+  min: 2,
+};
 const CONSTANTS: Record<string, number> = { pi: 3.14159265358979323846, e: 2.718281828459045 };
 
-type Token = { kind: 'number'; text: string } | { kind: 'word'; text: string } | { kind: 'open' } | { kind: 'close' } | { kind: 'operator'; text: string; unary: boolean };
+type Token =
+  | { kind: 'number'; text: string }
+  | { kind: 'word'; text: string }
+  | { kind: 'open' }
+  | { kind: 'close' }
+  | { kind: 'operator'; text: string; unary: boolean };
 
 type Scan = { tokens: Token[] } | { text: true } | { failure: string };
 
@@ -413,7 +441,11 @@ export function esminiExpression(body: string, lookup: EsminiParameterText): Esm
     addRule(rules, 'textGluing');
     return { ok: true, text: glueText(text), rules };
   }
-  const failed = (why: string): EsminiText => ({ ok: false, message: `esmini stops: "Failed to evaluate the expression" (${why}: '${text}')`, rules: [...rules, 'failure'] });
+  const failed = (why: string): EsminiText => ({
+    ok: false,
+    message: `esmini stops: "Failed to evaluate the expression" (${why}: '${text}')`,
+    rules: [...rules, 'failure'],
+  });
   if ('failure' in scanned) return failed(scanned.failure);
   if (scanned.tokens.length === 0) return { ok: true, text: sixDecimals(0), rules };
   try {

@@ -1,7 +1,18 @@
 import { ValueRule } from '../profiles/facts';
 import { XmlAttribute, XmlElement } from '../xml';
 import { atof, esminiFromTree, EsminiText, esminiExpression, esminiRule, esminiTyped, plainNumber } from './esminiValues';
-import { convertValue, evaluateTree, ExpressionError, formatValue, integralConversionError, LookupResult, ParameterType, ParameterValue, parseLiteral, TypedValue } from './expressions';
+import {
+  convertValue,
+  evaluateTree,
+  ExpressionError,
+  formatValue,
+  integralConversionError,
+  LookupResult,
+  ParameterType,
+  ParameterValue,
+  parseLiteral,
+  TypedValue,
+} from './expressions';
 import { resolveName } from './scopes';
 import { Declaration, ParameterAssignmentInfo, Scope, SemanticModel, ValueSite } from './types';
 
@@ -37,7 +48,17 @@ export type ValueResult =
 export type Assignments = Map<string, { value: TypedValue | undefined; assignment: ParameterAssignmentInfo }>;
 
 /** esmini's rules worth naming in a message (substituting text and writing six decimals explain nothing alone). */
-const NAMED_RULES: readonly ValueRule[] = ['numbers', 'textGluing', 'keywords', 'remainder', 'divisionByZero', 'round', 'sign', 'comparisons', 'failure'];
+const NAMED_RULES: readonly ValueRule[] = [
+  'numbers',
+  'textGluing',
+  'keywords',
+  'remainder',
+  'divisionByZero',
+  'round',
+  'sign',
+  'comparisons',
+  'failure',
+];
 
 function reasonsOf(rules: readonly ValueRule[], conversion?: ValueRule): string[] {
   const named = NAMED_RULES.filter((rule) => rules.includes(rule));
@@ -98,18 +119,42 @@ export class Evaluator {
       const esmini = this.esminiDeclarationText(declaration);
       const type = declaration.type ?? 'string';
       if (esmini.ok) {
-        const typed = declaration.type === 'double' && esmini.number !== undefined ? { value: esmini.number, rule: 'doubleConversion' as const } : esminiTyped(esmini.text, declaration.type);
+        const typed =
+          declaration.type === 'double' && esmini.number !== undefined
+            ? { value: esmini.number, rule: 'doubleConversion' as const }
+            : esminiTyped(esmini.text, declaration.type);
         if (this.reading === 'esmini') result = { ok: true, value: typed.value, type, provenance: standard.provenance };
         if (!sameValue(standard.value, typed.value)) {
-          const differs = { standard: formatValue(standard.value), esmini: formatValue(typed.value), reasons: reasonsOf(esmini.rules, typed.rule) };
-          result = this.reading === 'esmini' ? { ok: true, value: typed.value, type, provenance: standard.provenance, differs } : { ...standard, differs };
+          const differs = {
+            standard: formatValue(standard.value),
+            esmini: formatValue(typed.value),
+            reasons: reasonsOf(esmini.rules, typed.rule),
+          };
+          result =
+            this.reading === 'esmini'
+              ? { ok: true, value: typed.value, type, provenance: standard.provenance, differs }
+              : { ...standard, differs };
           const attr = declaration.valueAttribute;
           if (attr && standard.provenance.kind === 'declaration') {
-            this.warn(declaration, { kind: 'simulator', message: `'${declaration.name}': ${differenceMessage(differs)}`, start: attr.valueStart, end: attr.valueEnd });
+            this.warn(declaration, {
+              kind: 'simulator',
+              message: `'${declaration.name}': ${differenceMessage(differs)}`,
+              start: attr.valueStart,
+              end: attr.valueEnd,
+            });
           }
         }
-      } else if (declaration.valueAttribute && standard.provenance.kind === 'declaration' && this.model.siteOf.get(declaration.valueAttribute)?.form.kind !== 'expression') {
-        this.warn(declaration, { kind: 'simulator', message: esmini.message, start: declaration.valueAttribute.valueStart, end: declaration.valueAttribute.valueEnd });
+      } else if (
+        declaration.valueAttribute &&
+        standard.provenance.kind === 'declaration' &&
+        this.model.siteOf.get(declaration.valueAttribute)?.form.kind !== 'expression'
+      ) {
+        this.warn(declaration, {
+          kind: 'simulator',
+          message: esmini.message,
+          start: declaration.valueAttribute.valueStart,
+          end: declaration.valueAttribute.valueEnd,
+        });
       }
     }
     this.declarationValues.set(declaration, result);
@@ -143,31 +188,70 @@ export class Evaluator {
     if (assigned?.value) {
       const provenance: Provenance = { kind: 'assignment', declaration, assignment: assigned.assignment };
       const converted = convertValue(assigned.value, type);
-      if ('message' in converted) return { ok: false, errors: [this.errorAt(assigned.assignment.valueAttribute, 'type-mismatch', converted.message)], provenance };
+      if ('message' in converted)
+        return { ok: false, errors: [this.errorAt(assigned.assignment.valueAttribute, 'type-mismatch', converted.message)], provenance };
       return { ok: true, value: converted.value, type, provenance };
     }
     const provenance: Provenance = { kind: 'declaration', declaration };
     const attr = declaration.valueAttribute;
-    if (!attr) return { ok: false, errors: [this.errorAt(undefined, 'syntax', `the declaration of '${declaration.name}' has no value`, declaration.element)], provenance };
+    if (!attr)
+      return {
+        ok: false,
+        errors: [this.errorAt(undefined, 'syntax', `the declaration of '${declaration.name}' has no value`, declaration.element)],
+        provenance,
+      };
     const site = this.model.siteOf.get(attr);
     if (!site) {
       const literal = parseLiteral(attr.value, type);
-      if ('message' in literal) return { ok: false, errors: [this.errorAt(attr, 'type-mismatch', `${literal.message}, but '${declaration.name}' is declared ${declaration.writtenType ?? 'without a type'}`)], provenance };
+      if ('message' in literal)
+        return {
+          ok: false,
+          errors: [
+            this.errorAt(
+              attr,
+              'type-mismatch',
+              `${literal.message}, but '${declaration.name}' is declared ${declaration.writtenType ?? 'without a type'}`,
+            ),
+          ],
+          provenance,
+        };
       if (literal.lenient) {
         const leading = attr.value.length - attr.value.trimStart().length;
         const exact = attr.value.length === attr.valueEnd - attr.valueStart;
         const start = exact ? attr.valueStart + leading : attr.valueStart;
         const end = exact ? attr.valueStart + attr.value.trimEnd().length : attr.valueEnd;
-        this.warn(declaration, { kind: 'lenient', message: literal.lenient.message, start, end, fix: { start, end, text: literal.lenient.standard } });
+        this.warn(declaration, {
+          kind: 'lenient',
+          message: literal.lenient.message,
+          start,
+          end,
+          fix: { start, end, text: literal.lenient.standard },
+        });
       }
       return { ok: true, value: literal.value, type, provenance };
     }
-    const evaluated = site.form.kind === 'expression' ? this.lenientSite(site as ValueSite & { form: { kind: 'expression' } }).standard : this.standardSite(site);
+    const evaluated =
+      site.form.kind === 'expression'
+        ? this.lenientSite(site as ValueSite & { form: { kind: 'expression' } }).standard
+        : this.standardSite(site);
     if (!evaluated.ok) return { ok: false, errors: evaluated.errors, provenance };
-    const integral = site.form.kind === 'expression' ? integralConversionError({ value: evaluated.value, type: evaluated.type }, type) : undefined;
-    if (integral) return { ok: false, errors: [this.errorAt(attr, 'type-mismatch', `${integral}, but '${declaration.name}' is declared ${declaration.writtenType}`)], provenance };
+    const integral =
+      site.form.kind === 'expression' ? integralConversionError({ value: evaluated.value, type: evaluated.type }, type) : undefined;
+    if (integral)
+      return {
+        ok: false,
+        errors: [this.errorAt(attr, 'type-mismatch', `${integral}, but '${declaration.name}' is declared ${declaration.writtenType}`)],
+        provenance,
+      };
     const converted = convertValue({ value: evaluated.value, type: evaluated.type }, type);
-    if ('message' in converted) return { ok: false, errors: [this.errorAt(attr, 'type-mismatch', `${converted.message}, but '${declaration.name}' is declared ${declaration.writtenType}`)], provenance };
+    if ('message' in converted)
+      return {
+        ok: false,
+        errors: [
+          this.errorAt(attr, 'type-mismatch', `${converted.message}, but '${declaration.name}' is declared ${declaration.writtenType}`),
+        ],
+        provenance,
+      };
     return { ok: true, value: converted.value, type, provenance };
   }
 
@@ -211,13 +295,22 @@ export class Evaluator {
 
   private computeEsminiSiteText(site: ValueSite): EsminiText {
     if (site.form.kind === 'parameter') {
-      return this.esminiName(site.scope, site.form.name, site.declaration) ?? { ok: false, message: `esmini stops: "Failed to resolve parameter $${site.form.name}"`, rules: ['failure'] };
+      return (
+        this.esminiName(site.scope, site.form.name, site.declaration) ?? {
+          ok: false,
+          message: `esmini stops: "Failed to resolve parameter $${site.form.name}"`,
+          rules: ['failure'],
+        }
+      );
     }
     const body = site.attribute.value.trimEnd().slice(2);
     const lookup = (name: string) => this.esminiName(site.scope, name, site.declaration);
     const tree = site.form.expression.tree;
     // Most expressions read the same on the tree as in esmini's text, without building any text.
-    return (tree && body.endsWith('}') && body.indexOf('}') === body.length - 1 ? esminiFromTree(tree, body.slice(0, -1), lookup) : undefined) ?? esminiExpression(body, lookup);
+    return (
+      (tree && body.endsWith('}') && body.indexOf('}') === body.length - 1 ? esminiFromTree(tree, body.slice(0, -1), lookup) : undefined) ??
+      esminiExpression(body, lookup)
+    );
   }
 
   /** The value of a `$name` or `${...}` by the standard's rules, with the lenient forms it accepts (as warnings). */
@@ -226,15 +319,35 @@ export class Evaluator {
       const declaration = resolveName(site.scope, name, site.declaration);
       if (!declaration) return undefined;
       const value = this.standardDeclaration(declaration);
-      if (!value.ok) return { error: { kind: 'unknown-parameter' as const, message: `'${name}' has no valid value (${value.errors[0]?.message ?? 'see its declaration'})`, start, end } };
+      if (!value.ok)
+        return {
+          error: {
+            kind: 'unknown-parameter' as const,
+            message: `'${name}' has no valid value (${value.errors[0]?.message ?? 'see its declaration'})`,
+            start,
+            end,
+          },
+        };
       const typeAttribute = declaration.typeAttribute;
-      if (value.type !== 'string' || !typeAttribute || typeAttribute.value.length !== typeAttribute.valueEnd - typeAttribute.valueStart) return { value: value.value, type: value.type };
+      if (value.type !== 'string' || !typeAttribute || typeAttribute.value.length !== typeAttribute.valueEnd - typeAttribute.valueStart)
+        return { value: value.value, type: value.type };
       return { value: value.value, type: value.type, retype: { start: typeAttribute.valueStart, end: typeAttribute.valueEnd } };
     };
     if (site.form.kind === 'parameter') {
       const declaration = resolveName(site.scope, site.form.name, site.declaration);
       if (!declaration) {
-        return { ok: false, errors: [{ kind: 'unknown-parameter', message: `parameter '${site.form.name}' is not declared in this scope`, start: site.form.start, end: site.form.end }], provenance: { kind: 'literal' } };
+        return {
+          ok: false,
+          errors: [
+            {
+              kind: 'unknown-parameter',
+              message: `parameter '${site.form.name}' is not declared in this scope`,
+              start: site.form.start,
+              end: site.form.end,
+            },
+          ],
+          provenance: { kind: 'literal' },
+        };
       }
       const value = this.standardDeclaration(declaration);
       if (value.ok) return value;
@@ -245,7 +358,9 @@ export class Evaluator {
     if (!expression.tree) return { ok: false, errors: expression.errors, provenance: { kind: 'literal' } };
     const warnings: ExpressionError[] = [];
     const evaluated = evaluateTree(expression.tree, lookup, warnings);
-    return evaluated.ok ? { ok: true, value: evaluated.value, type: evaluated.type, provenance: { kind: 'literal' }, warnings } : { ok: false, errors: evaluated.errors, provenance: { kind: 'literal' }, warnings };
+    return evaluated.ok
+      ? { ok: true, value: evaluated.value, type: evaluated.type, provenance: { kind: 'literal' }, warnings }
+      : { ok: false, errors: evaluated.errors, provenance: { kind: 'literal' }, warnings };
   }
 
   /**
@@ -257,7 +372,10 @@ export class Evaluator {
    * The standard's value of a `${...}` with the lenient forms (SPEC 12): where the standard fails on
    * text that esmini glues, the glued text, with a warning whose fix writes it as a literal.
    */
-  private lenientSite(site: ValueSite & { form: { kind: 'expression' } }): { standard: ValueResult & { warnings?: ExpressionError[] }; esmini: EsminiText } {
+  private lenientSite(site: ValueSite & { form: { kind: 'expression' } }): {
+    standard: ValueResult & { warnings?: ExpressionError[] };
+    esmini: EsminiText;
+  } {
     const known = this.lenientValues.get(site);
     if (known) return known;
     const result = this.computeLenientSite(site);
@@ -265,7 +383,10 @@ export class Evaluator {
     return result;
   }
 
-  private computeLenientSite(site: ValueSite & { form: { kind: 'expression' } }): { standard: ValueResult & { warnings?: ExpressionError[] }; esmini: EsminiText } {
+  private computeLenientSite(site: ValueSite & { form: { kind: 'expression' } }): {
+    standard: ValueResult & { warnings?: ExpressionError[] };
+    esmini: EsminiText;
+  } {
     const standard = this.standardSite(site);
     const esmini = this.esminiSiteText(site);
     const [first] = standard.ok ? [] : standard.errors;
@@ -278,7 +399,16 @@ export class Evaluator {
       // A lone `${$name}` is the plain reference `$name`; anything else becomes the glued literal.
       fix: { ...whole, text: site.form.expression.tree?.kind === 'parameter' ? `$${site.form.expression.tree.name}` : esmini.text },
     };
-    return { standard: { ok: true, value: esmini.text, type: 'string', provenance: { kind: 'literal' }, warnings: [...(standard.warnings ?? []), warning] }, esmini };
+    return {
+      standard: {
+        ok: true,
+        value: esmini.text,
+        type: 'string',
+        provenance: { kind: 'literal' },
+        warnings: [...(standard.warnings ?? []), warning],
+      },
+      esmini,
+    };
   }
 
   evaluateSite(site: ValueSite): ValueResult & { warnings?: ExpressionError[] } {
@@ -302,19 +432,31 @@ export class Evaluator {
     const whole = { start: expression.start, end: expression.end };
     if (!standard.ok) {
       if (esmini.ok) {
-        const errors = standard.errors.map((error, index) => (index === 0 ? { ...error, message: `${error.message} (esmini computes ${esmini.text}: ${reasonsOf(esmini.rules).join('; ') || 'it reads the expression otherwise'})` } : error));
+        const errors = standard.errors.map((error, index) =>
+          index === 0
+            ? {
+                ...error,
+                message: `${error.message} (esmini computes ${esmini.text}: ${reasonsOf(esmini.rules).join('; ') || 'it reads the expression otherwise'})`,
+              }
+            : error,
+        );
         return { ...standard, errors, warnings };
       }
       return standard;
     }
     if (!esmini.ok) {
-      if (!site.declaration) warnings.push({ kind: 'simulator', message: `${esmini.message}; the standard gives ${formatValue(standard.value)}`, ...whole });
+      if (!site.declaration)
+        warnings.push({ kind: 'simulator', message: `${esmini.message}; the standard gives ${formatValue(standard.value)}`, ...whole });
       return { ...standard, warnings };
     }
     const esminiValue = readAs(esmini, standard.type);
     if (sameValue(standard.value, esminiValue)) return this.reading === 'esmini' ? { ...standard, value: esminiValue, warnings } : standard;
     const chosen = this.reading === 'esmini' ? { value: esminiValue } : {};
-    const differs: ValueDifference = { standard: formatValue(standard.value), esmini: formatValue(esminiValue), reasons: reasonsOf(esmini.rules) };
+    const differs: ValueDifference = {
+      standard: formatValue(standard.value),
+      esmini: formatValue(esminiValue),
+      reasons: reasonsOf(esmini.rules),
+    };
     if (!site.declaration) warnings.push({ kind: 'simulator', message: differenceMessage(differs), ...whole });
     return { ...standard, ...chosen, differs, warnings };
   }

@@ -52,7 +52,8 @@ export function normalizeParameterType(written: string | undefined): ParameterTy
  * SPEC 12); `simulator`: esmini computes another value than the standard (a warning); `overflow`: a
  * double beyond its range, an error by the standard's rules.
  */
-export type ExpressionErrorKind = 'syntax' | 'unknown-parameter' | 'type-mismatch' | 'division-by-zero' | 'nonstandard' | 'lenient' | 'overflow' | 'simulator';
+export type ExpressionErrorKind =
+  'syntax' | 'unknown-parameter' | 'type-mismatch' | 'division-by-zero' | 'nonstandard' | 'lenient' | 'overflow' | 'simulator';
 
 /** Text to write instead, at document offsets, to reach the standard's form. */
 export interface ExpressionFix {
@@ -197,7 +198,13 @@ export function parseExpressionBody(body: string, base = 0): { tree: ExpressionN
   const isWord = (token: Token, word: string) => token.kind === 'word' && token.word === word;
   const isSymbol = (token: Token, symbol: string) => token.kind === 'symbol' && token.symbol === symbol;
   const describe = (token: Token) =>
-    token.kind === 'end' ? 'the end of the expression' : token.kind === 'symbol' ? `'${token.symbol}'` : token.kind === 'word' ? `'${token.word}'` : 'a value';
+    token.kind === 'end'
+      ? 'the end of the expression'
+      : token.kind === 'symbol'
+        ? `'${token.symbol}'`
+        : token.kind === 'word'
+          ? `'${token.word}'`
+          : 'a value';
 
   const binaryLevel = (operators: BinaryOperator[], next: () => ExpressionNode) => (): ExpressionNode => {
     let left = next();
@@ -230,7 +237,8 @@ export function parseExpressionBody(body: string, base = 0): { tree: ExpressionN
     }
     if (token.kind === 'word') {
       index++;
-      if (token.word === 'true' || token.word === 'false') return { kind: 'boolean', value: token.word === 'true', start: token.start, end: token.end };
+      if (token.word === 'true' || token.word === 'false')
+        return { kind: 'boolean', value: token.word === 'true', start: token.start, end: token.end };
       if (token.word in FUNCTIONS) {
         const name = token.word as FunctionName;
         const open = peek();
@@ -249,7 +257,10 @@ export function parseExpressionBody(body: string, base = 0): { tree: ExpressionN
         index++;
         const arity = FUNCTIONS[name].arity;
         if (args.length !== arity) {
-          fail({ kind: 'word', word: name, start: token.start, end: close.end }, `${name} takes ${arity} argument${arity === 1 ? '' : 's'}, not ${args.length}`);
+          fail(
+            { kind: 'word', word: name, start: token.start, end: close.end },
+            `${name} takes ${arity} argument${arity === 1 ? '' : 's'}, not ${args.length}`,
+          );
         }
         return { kind: 'call', name, args, start: token.start, end: close.end };
       }
@@ -334,7 +345,9 @@ export function parametersOf(tree: ExpressionNode | undefined): { name: string; 
 
 /** Every `$name` token of a body that did not parse: rename, references and the unused check still reach each one. */
 function parameterTokens(body: string, base: number): { name: string; start: number; end: number }[] {
-  return tokenize(body, base, []).flatMap((token) => (token.kind === 'parameter' ? [{ name: token.name, start: token.start, end: token.end }] : []));
+  return tokenize(body, base, []).flatMap((token) =>
+    token.kind === 'parameter' ? [{ name: token.name, start: token.start, end: token.end }] : [],
+  );
 }
 
 /** A `$name` written as a whole attribute value (XSD `parameter`: `[$][A-Za-z_][A-Za-z0-9_]*`). */
@@ -359,7 +372,13 @@ export function valueForm(value: string, base = 0): ValueForm {
     const closed = trimmed.endsWith('}');
     const bodyEnd = closed ? trimmed.length - 1 : trimmed.length;
     const parsed = parseExpressionBody(trimmed.slice(2, bodyEnd), base + 2);
-    if (!closed) parsed.errors.unshift({ kind: 'syntax', message: `an expression must end with '}'`, start: base + trimmed.length - 1, end: base + trimmed.length });
+    if (!closed)
+      parsed.errors.unshift({
+        kind: 'syntax',
+        message: `an expression must end with '}'`,
+        start: base + trimmed.length - 1,
+        end: base + trimmed.length,
+      });
     const expression: ParsedExpression = {
       start: base,
       end: base + trimmed.length,
@@ -367,7 +386,8 @@ export function valueForm(value: string, base = 0): ValueForm {
       bodyEnd: base + bodyEnd,
       tree: closed ? parsed.tree : undefined,
       errors: parsed.errors,
-      parameters: parsed.tree && parsed.errors.length === 0 ? parametersOf(parsed.tree) : parameterTokens(trimmed.slice(2, bodyEnd), base + 2),
+      parameters:
+        parsed.tree && parsed.errors.length === 0 ? parametersOf(parsed.tree) : parameterTokens(trimmed.slice(2, bodyEnd), base + 2),
       names: namesOf(parsed.tree),
     };
     return { kind: 'expression', expression };
@@ -429,18 +449,25 @@ export function evaluateTree(tree: ExpressionNode, lookup: ParameterLookup, warn
   };
   const numberOf = (node: ExpressionNode, what: string): number => {
     const result = visit(node);
-    if (typeof result.value !== 'number') mismatch(node, `${what} needs a number, but this is the ${result.type} ${JSON.stringify(result.value)}`);
+    if (typeof result.value !== 'number')
+      mismatch(node, `${what} needs a number, but this is the ${result.type} ${JSON.stringify(result.value)}`);
     return result.value as number;
   };
   const booleanOf = (node: ExpressionNode, operator: string): boolean => {
     const result = visit(node);
-    if (typeof result.value !== 'boolean') mismatch(node, `'${operator}' needs a boolean, but this is the ${result.type} ${JSON.stringify(result.value)}`);
+    if (typeof result.value !== 'boolean')
+      mismatch(node, `'${operator}' needs a boolean, but this is the ${result.type} ${JSON.stringify(result.value)}`);
     return result.value as boolean;
   };
   const number = (value: number): TypedValue => ({ value, type: 'double' });
   const finite = (node: ExpressionNode, value: number, left: number, right = 0): TypedValue => {
     if (!Number.isFinite(value) && !Number.isNaN(value) && Number.isFinite(left) && Number.isFinite(right)) {
-      throw new EvaluationFailure({ kind: 'overflow', message: `the result is beyond the range of a double (at most 1.7976931348623157E308)`, start: node.start, end: node.end });
+      throw new EvaluationFailure({
+        kind: 'overflow',
+        message: `the result is beyond the range of a double (at most 1.7976931348623157E308)`,
+        start: node.start,
+        end: node.end,
+      });
     }
     return number(value);
   };
@@ -448,7 +475,14 @@ export function evaluateTree(tree: ExpressionNode, lookup: ParameterLookup, warn
     if (found.type === 'dateTime') mismatch(node, `the dateTime parameter '${node.name}' cannot be used in an expression`);
     if (found.type !== 'string') return found;
     const read = readStringAsValue(String(found.value));
-    if (!read) throw new EvaluationFailure({ kind: 'type-mismatch', message: `the string parameter '${node.name}' (${JSON.stringify(found.value)}) cannot be used in an expression`, start: node.start, end: node.end, text: true });
+    if (!read)
+      throw new EvaluationFailure({
+        kind: 'type-mismatch',
+        message: `the string parameter '${node.name}' (${JSON.stringify(found.value)}) cannot be used in an expression`,
+        start: node.start,
+        end: node.end,
+        text: true,
+      });
     warnings.push({
       kind: 'lenient',
       message: `'${node.name}' is a string parameter: the standard allows no string in an expression; esmini and the ASAM OpenSCENARIO API read its text ${JSON.stringify(found.value)} as the ${read.type} ${String(read.value)}`,
@@ -462,7 +496,12 @@ export function evaluateTree(tree: ExpressionNode, lookup: ParameterLookup, warn
     switch (node.kind) {
       case 'number':
         if (!Number.isFinite(node.value)) {
-          throw new EvaluationFailure({ kind: 'overflow', message: `this number is beyond the range of a double (at most 1.7976931348623157E308)`, start: node.start, end: node.end });
+          throw new EvaluationFailure({
+            kind: 'overflow',
+            message: `this number is beyond the range of a double (at most 1.7976931348623157E308)`,
+            start: node.start,
+            end: node.end,
+          });
         }
         return number(node.value);
       case 'boolean':
@@ -493,7 +532,13 @@ export function evaluateTree(tree: ExpressionNode, lookup: ParameterLookup, warn
       }
       case 'parameter': {
         const found = lookup(node.name, node.start, node.end);
-        if (!found) throw new EvaluationFailure({ kind: 'unknown-parameter', message: `parameter '${node.name}' is not declared in this scope`, start: node.start, end: node.end });
+        if (!found)
+          throw new EvaluationFailure({
+            kind: 'unknown-parameter',
+            message: `parameter '${node.name}' is not declared in this scope`,
+            start: node.start,
+            end: node.end,
+          });
         if ('error' in found) throw new EvaluationFailure(found.error);
         return parameterValue(node, found);
       }
@@ -517,7 +562,13 @@ export function evaluateTree(tree: ExpressionNode, lookup: ParameterLookup, warn
             return finite(node, left * right, left, right);
           case '/':
           case '%':
-            if (right === 0) throw new EvaluationFailure({ kind: 'division-by-zero', message: `division by zero: the right side of '${node.operator}' is 0`, start: node.right.start, end: node.right.end });
+            if (right === 0)
+              throw new EvaluationFailure({
+                kind: 'division-by-zero',
+                message: `division by zero: the right side of '${node.operator}' is 0`,
+                start: node.right.start,
+                end: node.right.end,
+              });
             return finite(node, node.operator === '/' ? left / right : left % right, left, right);
         }
         break;
@@ -527,7 +578,12 @@ export function evaluateTree(tree: ExpressionNode, lookup: ParameterLookup, warn
         const value = applyFunction(node.name, args);
         if (!Number.isNaN(value)) return finite(node, value, args.every(Number.isFinite) ? 0 : Infinity);
         if (!Number.isFinite(value)) {
-          throw new EvaluationFailure({ kind: 'type-mismatch', message: `${node.name}(${args.join(', ')}) has no real value`, start: node.start, end: node.end });
+          throw new EvaluationFailure({
+            kind: 'type-mismatch',
+            message: `${node.name}(${args.join(', ')}) has no real value`,
+            start: node.start,
+            end: node.end,
+          });
         }
         return number(value);
       }
@@ -589,7 +645,10 @@ const INTEGRAL_WITH_FRACTION = /^([+-]?[0-9]+)\.0*$/;
  * Reads a literal written for a parameter of `type` (XSD lexical forms); a message when it does not fit.
  * `lenient` names a form the standard refuses that has one clear meaning (`-5.0` for an int).
  */
-export function parseLiteral(text: string, type: ParameterType): { value: ParameterValue; lenient?: { message: string; standard: string } } | { message: string } {
+export function parseLiteral(
+  text: string,
+  type: ParameterType,
+): { value: ParameterValue; lenient?: { message: string; standard: string } } | { message: string } {
   const trimmed = text.trim();
   switch (type) {
     case 'double':
@@ -604,7 +663,13 @@ export function parseLiteral(text: string, type: ParameterType): { value: Parame
         const standard = String(value);
         const range = checkRange(value, type);
         if (range) return range;
-        return { value, lenient: { standard, message: `'${trimmed}' is not ${type === 'int' ? 'an int' : `an ${type}`} by the standard (no fraction is allowed, not even .0); esmini reads it as ${standard}` } };
+        return {
+          value,
+          lenient: {
+            standard,
+            message: `'${trimmed}' is not ${type === 'int' ? 'an int' : `an ${type}`} by the standard (no fraction is allowed, not even .0); esmini reads it as ${standard}`,
+          },
+        };
       }
       if (!INTEGER.test(trimmed)) return { message: `'${text}' is not ${type === 'int' ? 'an int' : `an ${type}`}` };
       return checkRange(Number(trimmed), type) ?? { value: Number(trimmed) };
@@ -622,8 +687,10 @@ export function parseLiteral(text: string, type: ParameterType): { value: Parame
 
 function checkRange(value: number, type: ParameterType): { message: string } | undefined {
   if (type === 'int' && (value < -2147483648 || value > 2147483647)) return { message: `${value} is outside the range of an int` };
-  if (type === 'unsignedInt' && (value < 0 || value > 4294967295)) return { message: `${value} is outside the range of an unsignedInt (0 to 4294967295)` };
-  if (type === 'unsignedShort' && (value < 0 || value > 65535)) return { message: `${value} is outside the range of an unsignedShort (0 to 65535)` };
+  if (type === 'unsignedInt' && (value < 0 || value > 4294967295))
+    return { message: `${value} is outside the range of an unsignedInt (0 to 4294967295)` };
+  if (type === 'unsignedShort' && (value < 0 || value > 65535))
+    return { message: `${value} is outside the range of an unsignedShort (0 to 65535)` };
   return undefined;
 }
 

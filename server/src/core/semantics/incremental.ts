@@ -7,7 +7,14 @@ import { Declaration, NamedElement, ParameterUse, Scope, SemanticModel, ValueSit
  * Attributes whose value the model reads beyond a `$name` or `${...}` (names resolve, types and
  * `parameterRef`s decide what a use is): an edit of one of them builds the model again.
  */
-const STRUCTURAL_ATTRIBUTES: ReadonlySet<string> = new Set(['name', 'parameterType', 'variableType', 'parameterRef', 'variableRef', 'storyboardElementType']);
+const STRUCTURAL_ATTRIBUTES: ReadonlySet<string> = new Set([
+  'name',
+  'parameterType',
+  'variableType',
+  'parameterRef',
+  'variableRef',
+  'storyboardElementType',
+]);
 
 /**
  * How a carried model relates to the one it was carried from, for check results that carry over
@@ -53,7 +60,14 @@ function shiftedNode(node: ExpressionNode, delta: number): ExpressionNode {
     case 'unary':
       return { kind: 'unary', operator: node.operator, operand: shiftedNode(node.operand, delta), start, end };
     case 'binary':
-      return { kind: 'binary', operator: node.operator, left: shiftedNode(node.left, delta), right: shiftedNode(node.right, delta), start, end };
+      return {
+        kind: 'binary',
+        operator: node.operator,
+        left: shiftedNode(node.left, delta),
+        right: shiftedNode(node.right, delta),
+        start,
+        end,
+      };
     case 'call':
       return { kind: 'call', name: node.name, args: node.args.map((arg) => shiftedNode(arg, delta)), start, end };
     default:
@@ -85,7 +99,11 @@ function shiftedForm(form: ValueSite['form'], delta: number): ValueSite['form'] 
         ...(error.fix ? { fix: { start: error.fix.start + delta, end: error.fix.end + delta, text: error.fix.text } } : {}),
         ...(error.text ? { text: error.text } : {}),
       })),
-      parameters: expression.parameters.map((parameter) => ({ name: parameter.name, start: parameter.start + delta, end: parameter.end + delta })),
+      parameters: expression.parameters.map((parameter) => ({
+        name: parameter.name,
+        start: parameter.start + delta,
+        end: parameter.end + delta,
+      })),
       names: expression.names.map((name) => ({ name: name.name, start: name.start + delta, end: name.end + delta })),
     },
   };
@@ -113,7 +131,14 @@ export function carrySemanticModel(previous: SemanticModel, edit: ValueEdit, doc
   const scopes = new Map<Scope, Scope>();
   const scopeByElement = new Map<XmlElement, Scope>();
   for (const scope of previous.scopes) {
-    const copy: Scope = { element: elementOf(scope.element), parent: scope.parent && scopes.get(scope.parent), children: [], declarations: [], byName: new Map(), catalogEntry: scope.catalogEntry };
+    const copy: Scope = {
+      element: elementOf(scope.element),
+      parent: scope.parent && scopes.get(scope.parent),
+      children: [],
+      declarations: [],
+      byName: new Map(),
+      catalogEntry: scope.catalogEntry,
+    };
     copy.parent?.children.push(copy);
     scopes.set(scope, copy);
     scopeByElement.set(copy.element, copy);
@@ -129,7 +154,11 @@ export function carrySemanticModel(previous: SemanticModel, edit: ValueEdit, doc
     sites: [],
     siteOf: new Map(),
     usesOf: new Map(),
-    catalogLocations: previous.catalogLocations.map((location) => ({ kind: location.kind, directory: elementOf(location.directory), pathAttribute: attributeOf(location.directory, location.pathAttribute) })),
+    catalogLocations: previous.catalogLocations.map((location) => ({
+      kind: location.kind,
+      directory: elementOf(location.directory),
+      pathAttribute: attributeOf(location.directory, location.pathAttribute),
+    })),
     catalogReferences: previous.catalogReferences.map((reference) => ({
       element: elementOf(reference.element),
       catalogNameAttribute: attributeOf(reference.element, reference.catalogNameAttribute),
@@ -145,12 +174,23 @@ export function carrySemanticModel(previous: SemanticModel, edit: ValueEdit, doc
     hasEntities: previous.hasEntities,
     storyboardElements: [],
     storyboardByName: new Map(),
-    storyboardReferences: previous.storyboardReferences.map((reference) => ({ element: elementOf(reference.element), refAttribute: attributeOf(reference.element, reference.refAttribute) as XmlAttribute, type: reference.type })),
+    storyboardReferences: previous.storyboardReferences.map((reference) => ({
+      element: elementOf(reference.element),
+      refAttribute: attributeOf(reference.element, reference.refAttribute) as XmlAttribute,
+      type: reference.type,
+    })),
     variableReferences: [],
-    entityReferences: previous.entityReferences.map((reference) => ({ element: elementOf(reference.element), attribute: attributeOf(reference.element, reference.attribute) as XmlAttribute })),
+    entityReferences: previous.entityReferences.map((reference) => ({
+      element: elementOf(reference.element),
+      attribute: attributeOf(reference.element, reference.attribute) as XmlAttribute,
+    })),
     scopeOf,
   };
-  const named = (entry: NamedElement): NamedElement => ({ name: entry.name, element: elementOf(entry.element), nameAttribute: attributeOf(entry.element, entry.nameAttribute) });
+  const named = (entry: NamedElement): NamedElement => ({
+    name: entry.name,
+    element: elementOf(entry.element),
+    nameAttribute: attributeOf(entry.element, entry.nameAttribute),
+  });
   model.entities = previous.entities.map(named);
   const storyboard = new Map<NamedElement, NamedElement>();
   for (const entry of previous.storyboardElements) {
@@ -158,7 +198,11 @@ export function carrySemanticModel(previous: SemanticModel, edit: ValueEdit, doc
     storyboard.set(entry, copy);
     model.storyboardElements.push(copy);
   }
-  for (const [name, entries] of previous.storyboardByName) model.storyboardByName.set(name, entries.map((entry) => storyboard.get(entry) as NamedElement));
+  for (const [name, entries] of previous.storyboardByName)
+    model.storyboardByName.set(
+      name,
+      entries.map((entry) => storyboard.get(entry) as NamedElement),
+    );
 
   // Declarations, in the order they were made; the edited one (its value) is read again.
   const declarations = new Map<Declaration, Declaration>();
@@ -189,7 +233,11 @@ export function carrySemanticModel(previous: SemanticModel, edit: ValueEdit, doc
     model.usesOf.set(copy, []);
   }
   const declarationOf = (declaration: Declaration | undefined) => declaration && declarations.get(declaration);
-  model.variableReferences = previous.variableReferences.map((reference) => ({ element: elementOf(reference.element), attribute: attributeOf(reference.element, reference.attribute) as XmlAttribute, declaration: declarationOf(reference.declaration) }));
+  model.variableReferences = previous.variableReferences.map((reference) => ({
+    element: elementOf(reference.element),
+    attribute: attributeOf(reference.element, reference.attribute) as XmlAttribute,
+    declaration: declarationOf(reference.declaration),
+  }));
 
   // The edited value's own site and uses, read as the walk reads them, go where the walk put them.
   const fresh: Pick<SemanticModel, 'sites' | 'siteOf' | 'uses' | 'usesOf'> = { sites: [], siteOf: new Map(), uses: [], usesOf: new Map() };

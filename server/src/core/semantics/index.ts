@@ -67,7 +67,13 @@ export function semanticModelOf(document: XmlDocument): SemanticModel {
 }
 
 /** Builds the semantics of a parsed document and resolves its catalogs. */
-export async function analyzeDocument(ref: SourceRef, document: XmlDocument, loader: CatalogLoader, modular: boolean, simulator?: Simulator): Promise<DocumentSemantics> {
+export async function analyzeDocument(
+  ref: SourceRef,
+  document: XmlDocument,
+  loader: CatalogLoader,
+  modular: boolean,
+  simulator?: Simulator,
+): Promise<DocumentSemantics> {
   const model = semanticModelOf(document);
   const evaluator = new Evaluator(model, undefined, readingOf(simulator));
   const catalogs: CatalogResolution = await loader.resolve(ref, model, evaluator);
@@ -128,14 +134,20 @@ export function parametersInScopeAt(semantics: DocumentSemantics, offset: number
   const element = elementAt(semantics.model.document, offset);
   const scope = element ? semantics.model.scopeOf(element) : semantics.model.root;
   // Inside a declaration's value only the earlier declarations of its scope are visible.
-  const within = element && element.name === 'ParameterDeclaration' ? semantics.model.declarations.find((candidate) => candidate.element === element) : undefined;
+  const within =
+    element && element.name === 'ParameterDeclaration'
+      ? semantics.model.declarations.find((candidate) => candidate.element === element)
+      : undefined;
   return visibleDeclarations(scope, within)
     .filter((declaration) => declaration.kind === 'parameter')
     .map((declaration) => ({ declaration, value: semantics.evaluator.declarationValue(declaration) }));
 }
 
 /** The attribute value holding the offset, evaluated (a literal evaluates to itself with type string). */
-export function valueAt(semantics: DocumentSemantics, offset: number): { element: XmlElement; attribute: XmlAttribute; result: ValueResult } | undefined {
+export function valueAt(
+  semantics: DocumentSemantics,
+  offset: number,
+): { element: XmlElement; attribute: XmlAttribute; result: ValueResult } | undefined {
   const element = elementAt(semantics.model.document, offset);
   const attr = element?.attributes.find((candidate) => offset >= candidate.valueStart && offset <= candidate.valueEnd);
   if (!element || !attr) return undefined;
@@ -156,7 +168,13 @@ export function catalogReferenceAt(semantics: DocumentSemantics, offset: number)
 }
 
 /** The value a catalog entry's parameter takes when the entry is used by this reference (its assignment, else its default). */
-export function entryParameterValue(semantics: DocumentSemantics, resolution: CatalogReferenceResolution, declaration: Declaration): ValueResult {
+export function entryParameterValue(
+  semantics: DocumentSemantics,
+  resolution: CatalogReferenceResolution,
+  declaration: Declaration,
+): ValueResult {
   const entryModel = resolution.entry?.file.model ?? semantics.model;
-  return new Evaluator(entryModel, assignmentsOf(resolution.reference, semantics.evaluator), semantics.evaluator.reading).declarationValue(declaration);
+  return new Evaluator(entryModel, assignmentsOf(resolution.reference, semantics.evaluator), semantics.evaluator.reading).declarationValue(
+    declaration,
+  );
 }

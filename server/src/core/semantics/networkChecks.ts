@@ -30,7 +30,9 @@ function elementsNamed(model: SemanticModel, name: string): XmlElement[] {
 }
 
 function at(element: XmlElement, attr: XmlAttribute | undefined): Pick<Finding, 'element' | 'attribute' | 'start' | 'end'> {
-  return attr ? { element, attribute: attr, start: attr.valueStart, end: attr.valueEnd } : { element, attribute: undefined, start: element.start, end: element.nameEnd };
+  return attr
+    ? { element, attribute: attr, start: attr.valueStart, end: attr.valueEnd }
+    : { element, attribute: undefined, start: element.start, end: element.nameEnd };
 }
 
 /** An attribute's value as a number after `$parameter`/`${...}` evaluation; undefined when it is absent or no number (other rules report that). */
@@ -84,7 +86,9 @@ export const trafficSignalIds: SemanticCheck = (context) => {
 export const trafficSignalControllerRefs: SemanticCheck = (context) => {
   const controllers = signalControllers(context.model);
   if (!controllers) return [];
-  const names = new Set(controllers.map((controller) => textOf(context, controller, 'name')?.text).filter((name): name is string => name !== undefined));
+  const names = new Set(
+    controllers.map((controller) => textOf(context, controller, 'name')?.text).filter((name): name is string => name !== undefined),
+  );
   const findings: Finding[] = [];
   for (const elementName of ['TrafficSignalControllerAction', 'TrafficSignalControllerCondition']) {
     for (const element of elementsNamed(context.model, elementName)) {
@@ -122,7 +126,13 @@ export const privateActionActors: SemanticCheck = (context) => {
       code: 'no-actor',
       message: `ManeuverGroup '${attribute(group, 'name')?.value ?? ''}' holds private actions but names no actor for them to act on (ASAM's Quality Checker reports it as an error; esmini runs it, the actions acting on no entity)`,
       hint: 'add <EntityRef entityRef="..."/> to its <Actors>',
-      related: [{ source: context.ref, range: context.model.document.lines.range(privateAction.start, privateAction.nameEnd), message: 'a private action of the group' }],
+      related: [
+        {
+          source: context.ref,
+          range: context.model.document.lines.range(privateAction.start, privateAction.nameEnd),
+          message: 'a private action of the group',
+        },
+      ],
     });
   }
   return findings;
@@ -133,7 +143,14 @@ export const lightTransitionTimes: SemanticCheck = (context) =>
   elementsNamed(context.model, 'LightStateAction').flatMap((action): Finding[] => {
     const time = numberOf(context, action, 'transitionTime');
     if (!time || time.value >= 0) return [];
-    return [{ ...at(action, time.attr), severity: 'error', code: 'negative-transition-time', message: `the transition time of a LightStateAction must not be negative; it is ${time.value} s` }];
+    return [
+      {
+        ...at(action, time.attr),
+        severity: 'error',
+        code: 'negative-transition-time',
+        message: `the transition time of a LightStateAction must not be negative; it is ${time.value} s`,
+      },
+    ];
   });
 
 /**
@@ -145,14 +162,16 @@ export const phaseDurations: SemanticCheck = (context) =>
     const duration = numberOf(context, phase, 'duration');
     if (!duration || duration.value > 0) return [];
     const zero = duration.value === 0;
-    return [{
-      ...at(phase, duration.attr),
-      severity: zero ? 'warning' : 'error',
-      code: 'non-positive-phase-duration',
-      message: zero
-        ? "a Phase of duration 0 is within the standard's range [0..inf[, but ASAM's Quality Checker requires a positive duration"
-        : `the duration of a Phase must be positive; it is ${duration.value} s`,
-    }];
+    return [
+      {
+        ...at(phase, duration.attr),
+        severity: zero ? 'warning' : 'error',
+        code: 'non-positive-phase-duration',
+        message: zero
+          ? "a Phase of duration 0 is within the standard's range [0..inf[, but ASAM's Quality Checker requires a positive duration"
+          : `the duration of a Phase must be positive; it is ${duration.value} s`,
+      },
+    ];
   });
 
 function inRange(value: number, range: ValueRange): boolean {

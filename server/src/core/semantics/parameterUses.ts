@@ -67,7 +67,8 @@ export class ParameterUseCollector {
       }
       found.sort((a, b) => a.start - b.start);
     }
-    for (const name of found) this.addUse({ name: name.name, start: name.start, end: name.end, element, attribute: attr, declaration: name.declaration, via });
+    for (const name of found)
+      this.addUse({ name: name.name, start: name.start, end: name.end, element, attribute: attr, declaration: name.declaration, via });
   }
 
   private addUse(use: ParameterUse): void {

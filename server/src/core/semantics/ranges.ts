@@ -58,7 +58,11 @@ export const VALUE_RANGES: readonly ValueRange[] = [
   ...each('Axle', ['wheelDiameter'], { min: 0, minOpen: true }),
   ...each('Axle', ['trackWidth'], NON_NEGATIVE),
   ...each('Performance', ['maxSpeed', 'maxAcceleration', 'maxDeceleration', 'maxAccelerationRate', 'maxDecelerationRate'], NON_NEGATIVE),
-  ...each('DynamicConstraints', ['maxSpeed', 'maxAcceleration', 'maxDeceleration', 'maxAccelerationRate', 'maxDecelerationRate'], NON_NEGATIVE),
+  ...each(
+    'DynamicConstraints',
+    ['maxSpeed', 'maxAcceleration', 'maxDeceleration', 'maxAccelerationRate', 'maxDecelerationRate'],
+    NON_NEGATIVE,
+  ),
   // Actions.
   ...each('TransitionDynamics', ['value'], NON_NEGATIVE),
   ...each('SpeedProfileEntry', ['time'], NON_NEGATIVE),

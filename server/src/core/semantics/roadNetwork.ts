@@ -30,7 +30,12 @@ const FRESH_MS = 2000;
  * resolve it (core/roadFiles.ts; the road folders are the store's scenario path, esmini's `--path`).
  * Undefined when the document names none or it cannot be found or read: the road rules then say nothing.
  */
-export async function roadSignalsOf(store: ScenarioStore, ref: SourceRef, document: XmlDocument, evaluator: Evaluator): Promise<RoadSignals | undefined> {
+export async function roadSignalsOf(
+  store: ScenarioStore,
+  ref: SourceRef,
+  document: XmlDocument,
+  evaluator: Evaluator,
+): Promise<RoadSignals | undefined> {
   const logic = logicFileOf(document, evaluator);
   if (!logic) return undefined;
   const { resolved } = await resolveRoadFile(store.host, logic.filepath, scenarioFolderOf(ref), store.scenarioPathFor(ref));

@@ -72,7 +72,8 @@ export class ScopeCollector {
     for (const child of element.children) {
       if (child.name !== 'ParameterDeclarations') continue;
       for (const declaration of child.children) {
-        if (declaration.name === 'ParameterDeclaration') this.declarationByElement.set(declaration, this.declare(scope, declaration, 'parameter'));
+        if (declaration.name === 'ParameterDeclaration')
+          this.declarationByElement.set(declaration, this.declare(scope, declaration, 'parameter'));
       }
     }
     return scope;

@@ -20,7 +20,8 @@ export class StoryboardCollector {
   visit(element: XmlElement): void {
     if (element.name === 'StoryboardElementStateCondition') {
       const refAttribute = attribute(element, 'storyboardElementRef');
-      if (refAttribute) this.model.storyboardReferences.push({ element, refAttribute, type: attribute(element, 'storyboardElementType')?.value });
+      if (refAttribute)
+        this.model.storyboardReferences.push({ element, refAttribute, type: attribute(element, 'storyboardElementType')?.value });
     } else if (STORYBOARD_ELEMENT_NAMES.has(element.name)) {
       const nameAttribute = attribute(element, 'name');
       const named = { name: nameAttribute?.value ?? '', element, nameAttribute };

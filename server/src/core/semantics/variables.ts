@@ -14,7 +14,8 @@ export class VariableCollector {
 
   visit(element: XmlElement, scope: Scope): void {
     if (element.name === 'VariableDeclarations') {
-      for (const declaration of element.children) if (declaration.name === 'VariableDeclaration') this.scopes.declare(scope, declaration, 'variable');
+      for (const declaration of element.children)
+        if (declaration.name === 'VariableDeclaration') this.scopes.declare(scope, declaration, 'variable');
     }
     if (VARIABLE_REF_ELEMENTS.has(element.name)) {
       const ref = attribute(element, 'variableRef');
@@ -24,6 +25,7 @@ export class VariableCollector {
 
   /** Variables are global (declared at the root), so references are resolved once all are known. */
   finish(): void {
-    for (const reference of this.model.variableReferences) reference.declaration = this.model.variables.get(referencedName(reference.attribute).name);
+    for (const reference of this.model.variableReferences)
+      reference.declaration = this.model.variables.get(referencedName(reference.attribute).name);
   }
 }

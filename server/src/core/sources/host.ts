@@ -62,7 +62,10 @@ export const nodeFileSystem: FileSystemHost = {
     try {
       const stat = await handle.stat();
       if (!stat.isFile()) throw new FileReadError(`${filePath} is ${describeKind(stat)}, not a file; only regular files are read`);
-      if (stat.size > maxBytes) throw new FileReadError(`${filePath} is too large to read (${stat.size} bytes; the limit is ${maxBytes}, raised with --max-file-size)`);
+      if (stat.size > maxBytes)
+        throw new FileReadError(
+          `${filePath} is too large to read (${stat.size} bytes; the limit is ${maxBytes}, raised with --max-file-size)`,
+        );
       // Read at most one byte past the bound, in case the file grows while it is read.
       const buffer = Buffer.alloc(Math.min(stat.size, maxBytes) + 1);
       let length = 0;
@@ -72,7 +75,8 @@ export const nodeFileSystem: FileSystemHost = {
         length += bytesRead;
         if (length === buffer.length) break;
       }
-      if (length > maxBytes) throw new FileReadError(`${filePath} is too large to read (more than ${maxBytes} bytes, raised with --max-file-size)`);
+      if (length > maxBytes)
+        throw new FileReadError(`${filePath} is too large to read (more than ${maxBytes} bytes, raised with --max-file-size)`);
       return buffer.subarray(0, length);
     } finally {
       await handle.close();

@@ -54,9 +54,16 @@ export class ScenarioStore {
     this.workingDirectory = options.workingDirectory;
     this.root = options.root ? pathsFor(options.root).resolve(options.root) : undefined;
     // Innermost first, so a folder nested in another is found before it.
-    this.folders = (options.folders ?? []).map((entry) => ({ ...entry, folder: pathsFor(entry.folder).resolve(entry.folder) })).sort((a, b) => b.folder.length - a.folder.length);
+    this.folders = (options.folders ?? [])
+      .map((entry) => ({ ...entry, folder: pathsFor(entry.folder).resolve(entry.folder) }))
+      .sort((a, b) => b.folder.length - a.folder.length);
     this.limits = { ...DEFAULT_LIMITS, ...options.limits };
-    this.packages = new PackageCache(this.limits, options.packageCacheBytes ?? Infinity, (ref) => this.readBytes(ref), (ref) => this.display(ref));
+    this.packages = new PackageCache(
+      this.limits,
+      options.packageCacheBytes ?? Infinity,
+      (ref) => this.readBytes(ref),
+      (ref) => this.display(ref),
+    );
   }
 
   /** Starts a new run: what it may unpack is counted from zero (packages still cached cost nothing). */
@@ -248,7 +255,13 @@ export class ScenarioStore {
     if (wantPackage) {
       const folder = candidate.slice(0, -'.mosc'.length);
       if ((await this.kindOf(paths.join(folder, 'main.xosc'))) === 'file') {
-        return { kind: 'package', packageRef: diskRef(folder), main: diskRef(paths.join(folder, 'main.xosc')), folder: true, via: place.via };
+        return {
+          kind: 'package',
+          packageRef: diskRef(folder),
+          main: diskRef(paths.join(folder, 'main.xosc')),
+          folder: true,
+          via: place.via,
+        };
       }
     }
     return undefined;
@@ -256,7 +269,8 @@ export class ScenarioStore {
 
   /** A place as a message names it: an absolute folder (a relative one, say '.', leaves the reader guessing which). */
   private describePlace(place: LookupPlace): string {
-    if (place.packageRef) return [place.packageRef.disk, ...place.packageRef.entries, ...(place.directory ? [place.directory] : [])].join('/');
+    if (place.packageRef)
+      return [place.packageRef.disk, ...place.packageRef.entries, ...(place.directory ? [place.directory] : [])].join('/');
     const label = place.via === 'scenarioPath' ? ' (SCENARIO_PATH)' : place.via === 'parent' ? ' (parent folder)' : '';
     return `${place.directory}${label}`;
   }
@@ -309,13 +323,18 @@ export class ScenarioStore {
       }
     }
     const searched = places.map((place) => this.describePlace(place));
-    const suggestion = closestMatch(trimmed, (await this.namesIn(places, trimmed)).filter((candidate) => candidate !== trimmed));
+    const suggestion = closestMatch(
+      trimmed,
+      (await this.namesIn(places, trimmed)).filter((candidate) => candidate !== trimmed),
+    );
     return {
       kind: 'missing',
       searched,
-      hint: this.scenarioPath.length === 0 ? 'set SCENARIO_PATH (or the modular2simple.scenarioPath setting) to the folder that holds it' : undefined,
+      hint:
+        this.scenarioPath.length === 0
+          ? 'set SCENARIO_PATH (or the modular2simple.scenarioPath setting) to the folder that holds it'
+          : undefined,
       ...(suggestion ? { suggestion } : {}),
     };
   }
 }
-

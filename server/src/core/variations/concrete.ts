@@ -34,16 +34,26 @@ const RULES = new Set<string>(['equalTo', 'greaterThan', 'lessThan', 'greaterOrE
 const NUMERIC_TYPES = new Set(['double', 'int', 'integer', 'unsignedInt', 'unsignedShort']);
 
 /** The scenario's root parameter declarations (`OpenSCENARIO/ParameterDeclarations`, where esmini assigns). */
-export function readScenarioParameters(text: string, file: string): { scenario: ScenarioParameters | undefined; problems: VariationProblem[] } {
+export function readScenarioParameters(
+  text: string,
+  file: string,
+): { scenario: ScenarioParameters | undefined; problems: VariationProblem[] } {
   const problems: VariationProblem[] = [];
   const document = parseXml(text);
-  for (const xmlProblem of document.problems) if (xmlProblem.severity === 'error') problems.push({ file, offset: xmlProblem.start, message: xmlProblem.message, severity: 'error' });
+  for (const xmlProblem of document.problems)
+    if (xmlProblem.severity === 'error') problems.push({ file, offset: xmlProblem.start, message: xmlProblem.message, severity: 'error' });
   const root = document.root;
   if (!root || problems.length > 0) {
     if (!root && problems.length === 0) problems.push({ file, offset: 0, message: 'no root element', severity: 'error' });
     return { scenario: undefined, problems };
   }
-  if (root.children.some((c) => c.name === 'ParameterValueDistribution')) problems.push({ file, offset: root.start, message: 'the ScenarioFile is itself a distribution file, not a scenario', severity: 'error' });
+  if (root.children.some((c) => c.name === 'ParameterValueDistribution'))
+    problems.push({
+      file,
+      offset: root.start,
+      message: 'the ScenarioFile is itself a distribution file, not a scenario',
+      severity: 'error',
+    });
   const declarations: DeclaredParameter[] = [];
   const list = root.name === 'OpenSCENARIO' ? root.children.find((c) => c.name === 'ParameterDeclarations') : undefined;
   for (const declaration of list?.children.filter((c) => c.name === 'ParameterDeclaration') ?? []) {
@@ -57,14 +67,26 @@ export function readScenarioParameters(text: string, file: string): { scenario: 
         const rule = attribute(constraint, 'rule');
         const value = attribute(constraint, 'value');
         if (!rule || !value || !RULES.has(rule.value)) {
-          problems.push({ file, offset: constraint.start, message: `a ValueConstraint needs rule (${[...RULES].join(', ')}) and value`, severity: 'error' });
+          problems.push({
+            file,
+            offset: constraint.start,
+            message: `a ValueConstraint needs rule (${[...RULES].join(', ')}) and value`,
+            severity: 'error',
+          });
           continue;
         }
         constraints.push({ rule: rule.value as ConstraintRule, value: value.value });
       }
       constraintGroups.push(constraints);
     }
-    declarations.push({ name: name.value, type: attribute(declaration, 'parameterType')?.value ?? 'string', value: valueAttribute.value, valueAttribute, offset: declaration.start, constraintGroups });
+    declarations.push({
+      name: name.value,
+      type: attribute(declaration, 'parameterType')?.value ?? 'string',
+      value: valueAttribute.value,
+      valueAttribute,
+      offset: declaration.start,
+      constraintGroups,
+    });
   }
   return { scenario: { text, lines: document.lines, declarations }, problems };
 }
@@ -120,7 +142,10 @@ export async function rebasedConcreteText(
   kindOf: (diskPath: string) => Promise<FileKind>,
 ): Promise<{ text: string; warnings: string[] }> {
   const rebase = await rebasePaths({ document: parseXml(text), baseOf: () => fromDirectory, outputDirectory: toDirectory, kindOf });
-  return { text: rebase.edits.length === 0 ? text : applyEdits(text, rebase.edits), warnings: rebase.findings.map((finding) => finding.message) };
+  return {
+    text: rebase.edits.length === 0 ? text : applyEdits(text, rebase.edits),
+    warnings: rebase.findings.map((finding) => finding.message),
+  };
 }
 
 /** Whether the scenario declares any ValueConstraintGroup at its root. */
@@ -129,7 +154,10 @@ export function hasConstraints(scenario: ScenarioParameters): boolean {
 }
 
 /** The first declared parameter whose final value breaks its constraint groups, or undefined when all hold. */
-export function brokenConstraint(scenario: ScenarioParameters, assignments: ParameterValue[]): { parameter: string; value: string } | undefined {
+export function brokenConstraint(
+  scenario: ScenarioParameters,
+  assignments: ParameterValue[],
+): { parameter: string; value: string } | undefined {
   const values = valuesAfter(scenario, assignments);
   const seen = new Set<string>();
   for (const declaration of scenario.declarations) {

@@ -24,7 +24,10 @@ export interface DeterministicExpansion {
   count: bigint;
 }
 
-export function expandDeterministic(distributions: DeterministicDistribution[], file: string): { expansion: DeterministicExpansion; problems: VariationProblem[] } {
+export function expandDeterministic(
+  distributions: DeterministicDistribution[],
+  file: string,
+): { expansion: DeterministicExpansion; problems: VariationProblem[] } {
   const problems: VariationProblem[] = [];
   const factors: ParameterValue[][][] = [];
   for (const distribution of distributions) {
@@ -40,11 +43,20 @@ export function expandDeterministic(distributions: DeterministicDistribution[], 
         const { lower, upper } = distribution.range;
         const estimate = Math.floor((upper - lower) / distribution.step) + 1;
         if (estimate > MAX_RANGE_VALUES) {
-          problems.push({ file, offset: distribution.range.offset, severity: 'error', message: `this range has about ${estimate.toLocaleString('en-US')} values at stepWidth ${distribution.step}; at most ${MAX_RANGE_VALUES.toLocaleString('en-US')} are expanded` });
+          problems.push({
+            file,
+            offset: distribution.range.offset,
+            severity: 'error',
+            message: `this range has about ${estimate.toLocaleString('en-US')} values at stepWidth ${distribution.step}; at most ${MAX_RANGE_VALUES.toLocaleString('en-US')} are expanded`,
+          });
           factors.push([]);
           break;
         }
-        factors.push(rangeValues(lower, upper, distribution.step).map((value) => [{ parameter: distribution.parameter, value, offset: distribution.offset }]));
+        factors.push(
+          rangeValues(lower, upper, distribution.step).map((value) => [
+            { parameter: distribution.parameter, value, offset: distribution.offset },
+          ]),
+        );
         break;
       }
     }

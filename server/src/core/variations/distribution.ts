@@ -63,7 +63,10 @@ export const USER_DEFINED_LIST_TYPE = 'list';
 const DECIMAL = /^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$/;
 
 /** Parses a ParameterValueDistribution file; problems name offsets of `text`. Never throws on bad input. */
-export function parseDistribution(text: string, file: string): { distribution: DistributionFile | undefined; problems: VariationProblem[] } {
+export function parseDistribution(
+  text: string,
+  file: string,
+): { distribution: DistributionFile | undefined; problems: VariationProblem[] } {
   const problems: VariationProblem[] = [];
   const problem = (offset: number, message: string, severity: 'error' | 'warning' = 'error'): void => {
     problems.push({ file, offset, message, severity });
@@ -123,7 +126,10 @@ export function parseDistribution(text: string, file: string): { distribution: D
     const type = required(owner, 'type');
     if (!type) return undefined;
     if (type.value.trim().toLowerCase() !== USER_DEFINED_LIST_TYPE) {
-      problem(type.offset, `UserDefinedDistribution type="${type.value}" is not understood; type="${USER_DEFINED_LIST_TYPE}" takes values separated by white space`);
+      problem(
+        type.offset,
+        `UserDefinedDistribution type="${type.value}" is not understood; type="${USER_DEFINED_LIST_TYPE}" takes values separated by white space`,
+      );
       return undefined;
     }
     const content = decodeText(text.slice(owner.startTagEnd, Math.max(owner.startTagEnd, owner.end - `</${owner.name}>`.length)));
@@ -148,7 +154,8 @@ export function parseDistribution(text: string, file: string): { distribution: D
   let stochastic: DistributionFile['stochastic'];
   const deterministicElement = child(element, 'Deterministic');
   const stochasticElement = child(element, 'Stochastic');
-  if (deterministicElement && stochasticElement) problem(stochasticElement.start, 'a distribution is either <Deterministic> or <Stochastic>, not both');
+  if (deterministicElement && stochasticElement)
+    problem(stochasticElement.start, 'a distribution is either <Deterministic> or <Stochastic>, not both');
   if (!deterministicElement && !stochasticElement) problem(element.start, 'no <Deterministic> or <Stochastic> distribution');
 
   if (deterministicElement) {
@@ -194,7 +201,8 @@ export function parseDistribution(text: string, file: string): { distribution: D
           const stepOffset = attribute(definition, 'stepWidth')?.valueStart ?? definition.start;
           const limits = range(definition, true);
           if (step !== undefined && !(step > 0)) problem(stepOffset, `stepWidth ${step} must be greater than 0`);
-          else if (step !== undefined && limits) deterministic.push({ kind: 'range', parameter: parameter.value, offset: parameter.offset, step, range: limits });
+          else if (step !== undefined && limits)
+            deterministic.push({ kind: 'range', parameter: parameter.value, offset: parameter.offset, step, range: limits });
         } else if (definition.name === 'UserDefinedDistribution') {
           const listed = userDefinedValues(definition);
           if (listed) {
@@ -209,7 +217,8 @@ export function parseDistribution(text: string, file: string): { distribution: D
   if (stochasticElement) {
     const runs = number(stochasticElement, 'numberOfTestRuns');
     const runsOffset = attribute(stochasticElement, 'numberOfTestRuns')?.valueStart ?? stochasticElement.start;
-    if (runs !== undefined && !(Number.isSafeInteger(runs) && runs >= 0)) problem(runsOffset, `numberOfTestRuns ${runs} is not a whole number of runs`);
+    if (runs !== undefined && !(Number.isSafeInteger(runs) && runs >= 0))
+      problem(runsOffset, `numberOfTestRuns ${runs} is not a whole number of runs`);
     const seed = attribute(stochasticElement, 'randomSeed') ? number(stochasticElement, 'randomSeed') : 0;
     const distributions: StochasticDistribution[] = [];
     for (const item of stochasticElement.children) {
@@ -233,9 +242,15 @@ export function parseDistribution(text: string, file: string): { distribution: D
           const mean = number(definition, 'expectedValue');
           const variance = number(definition, 'variance');
           limits = range(definition, false);
-          if (variance !== undefined && variance < 0) problem(attribute(definition, 'variance')?.valueStart ?? definition.start, `variance ${variance} is negative`);
-          if (definition.name === 'LogNormalDistribution' && mean !== undefined && !(mean > 0)) problem(attribute(definition, 'expectedValue')?.valueStart ?? definition.start, `a log-normal distribution's expectedValue must be greater than 0, not ${mean}`);
-          if (mean !== undefined && variance !== undefined) sampler = { kind: definition.name === 'NormalDistribution' ? 'normal' : 'logNormal', mean, variance };
+          if (variance !== undefined && variance < 0)
+            problem(attribute(definition, 'variance')?.valueStart ?? definition.start, `variance ${variance} is negative`);
+          if (definition.name === 'LogNormalDistribution' && mean !== undefined && !(mean > 0))
+            problem(
+              attribute(definition, 'expectedValue')?.valueStart ?? definition.start,
+              `a log-normal distribution's expectedValue must be greater than 0, not ${mean}`,
+            );
+          if (mean !== undefined && variance !== undefined)
+            sampler = { kind: definition.name === 'NormalDistribution' ? 'normal' : 'logNormal', mean, variance };
           break;
         }
         case 'UniformDistribution':
@@ -245,7 +260,11 @@ export function parseDistribution(text: string, file: string): { distribution: D
         case 'PoissonDistribution': {
           const mean = number(definition, 'expectedValue');
           limits = range(definition, false);
-          if (mean !== undefined && !(mean >= 0)) problem(attribute(definition, 'expectedValue')?.valueStart ?? definition.start, `a Poisson distribution's expectedValue must not be negative, not ${mean}`);
+          if (mean !== undefined && !(mean >= 0))
+            problem(
+              attribute(definition, 'expectedValue')?.valueStart ?? definition.start,
+              `a Poisson distribution's expectedValue must not be negative, not ${mean}`,
+            );
           if (mean !== undefined) sampler = { kind: 'poisson', mean };
           break;
         }
@@ -254,7 +273,8 @@ export function parseDistribution(text: string, file: string): { distribution: D
           for (const bin of definition.children.filter((c) => c.name === 'Bin')) {
             const weight = number(bin, 'weight');
             const binRange = range(bin, true);
-            if (weight !== undefined && weight < 0) problem(attribute(bin, 'weight')?.valueStart ?? bin.start, `weight ${weight} is negative`);
+            if (weight !== undefined && weight < 0)
+              problem(attribute(bin, 'weight')?.valueStart ?? bin.start, `weight ${weight} is negative`);
             if (weight !== undefined && binRange) bins.push({ weight, range: binRange });
           }
           if (bins.length > 0 && bins.every((bin) => bin.weight === 0)) problem(definition.start, 'every Bin has weight 0');
@@ -267,7 +287,8 @@ export function parseDistribution(text: string, file: string): { distribution: D
           for (const element of definition.children.filter((c) => c.name === 'Element')) {
             const value = required(element, 'value');
             const weight = number(element, 'weight');
-            if (weight !== undefined && weight < 0) problem(attribute(element, 'weight')?.valueStart ?? element.start, `weight ${weight} is negative`);
+            if (weight !== undefined && weight < 0)
+              problem(attribute(element, 'weight')?.valueStart ?? element.start, `weight ${weight} is negative`);
             if (value && weight !== undefined) elements.push({ value: value.value, weight });
           }
           if (elements.length === 0) problem(definition.start, 'the ProbabilityDistributionSet has no Element');
@@ -283,7 +304,8 @@ export function parseDistribution(text: string, file: string): { distribution: D
         default:
           problem(definition.start, `unexpected <${definition.name}> in a StochasticDistribution`);
       }
-      if (sampler && problems.length === before) distributions.push({ parameter: parameter.value, offset: parameter.offset, sampler, range: limits });
+      if (sampler && problems.length === before)
+        distributions.push({ parameter: parameter.value, offset: parameter.offset, sampler, range: limits });
     }
     if (runs !== undefined && seed !== undefined) stochastic = { runs, seed, distributions, offset: stochasticElement.start };
   }

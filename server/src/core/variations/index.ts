@@ -1,6 +1,14 @@
 import * as path from 'node:path';
 import { LineIndex } from '../text';
-import { brokenConstraint, concreteScenarioText, hasConstraints, readScenarioParameters, ScenarioParameters, typeMismatch, undeclaredParameters } from './concrete';
+import {
+  brokenConstraint,
+  concreteScenarioText,
+  hasConstraints,
+  readScenarioParameters,
+  ScenarioParameters,
+  typeMismatch,
+  undeclaredParameters,
+} from './concrete';
 import { assignmentAt, DeterministicExpansion, expandDeterministic } from './deterministic';
 import { DistributionFile, formatVariationProblem, ParameterValue, parseDistribution, VariationProblem } from './distribution';
 import { SamplingError, stochasticAssignment } from './stochastic';
@@ -42,11 +50,16 @@ export interface LoadResult {
 }
 
 /** Reads a distribution and its scenario and checks every parameter it names; problems rather than throws for bad input. */
-export async function loadVariations(distributionText: string, distributionPath: string, loadScenarioText: ScenarioTextLoader): Promise<LoadResult> {
+export async function loadVariations(
+  distributionText: string,
+  distributionPath: string,
+  loadScenarioText: ScenarioTextLoader,
+): Promise<LoadResult> {
   const lines = new Map<string, LineIndex>();
   const { distribution, problems } = parseDistribution(distributionText, distributionPath);
   lines.set(distributionPath, distribution?.lines ?? new LineIndex(distributionText));
-  if (!distribution || problems.some((p) => p.severity === 'error') || !distribution.scenarioFile.path) return { variations: undefined, problems, lines };
+  if (!distribution || problems.some((p) => p.severity === 'error') || !distribution.scenarioFile.path)
+    return { variations: undefined, problems, lines };
 
   const scenarioPath = path.resolve(path.dirname(distributionPath), distribution.scenarioFile.path);
   let scenarioText: string;
@@ -54,7 +67,12 @@ export async function loadVariations(distributionText: string, distributionPath:
     scenarioText = await loadScenarioText(scenarioPath);
   } catch (error) {
     const reason = (error as NodeJS.ErrnoException).code === 'ENOENT' ? 'no such file' : (error as Error).message;
-    problems.push({ file: distributionPath, offset: distribution.scenarioFile.offset, severity: 'error', message: `ScenarioFile ${distribution.scenarioFile.path} (${scenarioPath}): ${reason}` });
+    problems.push({
+      file: distributionPath,
+      offset: distribution.scenarioFile.offset,
+      severity: 'error',
+      message: `ScenarioFile ${distribution.scenarioFile.path} (${scenarioPath}): ${reason}`,
+    });
     return { variations: undefined, problems, lines };
   }
   const read = readScenarioParameters(scenarioText, scenarioPath);
@@ -70,17 +88,34 @@ export async function loadVariations(distributionText: string, distributionPath:
     problems.push(...expanded.problems);
     expansion = expanded.expansion;
     named = expansion.factors.flat(2);
-    if (expansion.factors.length === 0) problems.push({ file: distributionPath, offset: distribution.scenarioFile.offset, severity: 'error', message: 'the <Deterministic> element has no distribution: there is nothing to vary' });
+    if (expansion.factors.length === 0)
+      problems.push({
+        file: distributionPath,
+        offset: distribution.scenarioFile.offset,
+        severity: 'error',
+        message: 'the <Deterministic> element has no distribution: there is nothing to vary',
+      });
   } else {
     const stochastic = distribution.stochastic;
     named = stochastic ? stochastic.distributions.map((d) => ({ parameter: d.parameter, value: '', offset: d.offset })) : [];
-    if (stochastic && stochastic.distributions.length === 0) problems.push({ file: distributionPath, offset: stochastic.offset, severity: 'error', message: 'the <Stochastic> element has no StochasticDistribution' });
+    if (stochastic && stochastic.distributions.length === 0)
+      problems.push({
+        file: distributionPath,
+        offset: stochastic.offset,
+        severity: 'error',
+        message: 'the <Stochastic> element has no StochasticDistribution',
+      });
   }
   const reported = new Set<string>();
   for (const missing of undeclaredParameters(scenario, named)) {
     if (reported.has(`${missing.parameter}@${missing.offset}`)) continue;
     reported.add(`${missing.parameter}@${missing.offset}`);
-    problems.push({ file: distributionPath, offset: missing.offset, severity: 'error', message: `parameter '${missing.parameter}' is not declared in the root ParameterDeclarations of ${distribution.scenarioFile.path}` });
+    problems.push({
+      file: distributionPath,
+      offset: missing.offset,
+      severity: 'error',
+      message: `parameter '${missing.parameter}' is not declared in the root ParameterDeclarations of ${distribution.scenarioFile.path}`,
+    });
   }
   if (problems.some((p) => p.severity === 'error')) return { variations: undefined, problems, lines };
   problems.push(...typeWarnings(scenario, expansion ? named : [], distribution, distributionPath));
@@ -89,7 +124,8 @@ export async function loadVariations(distributionText: string, distributionPath:
   const assignments = expansion
     ? (index: bigint): ParameterValue[] => assignmentAt(expansion, index)
     : (index: bigint): ParameterValue[] => {
-        if (!stochastic || index < 0n || index >= BigInt(stochastic.runs)) throw new RangeError(`index ${index} is outside 0..${(stochastic ? BigInt(stochastic.runs) : 0n) - 1n}`);
+        if (!stochastic || index < 0n || index >= BigInt(stochastic.runs))
+          throw new RangeError(`index ${index} is outside 0..${(stochastic ? BigInt(stochastic.runs) : 0n) - 1n}`);
         return stochasticAssignment(stochastic.distributions, stochastic.seed, Number(index));
       };
   const variations: Variations = {
@@ -116,7 +152,12 @@ export async function loadVariations(distributionText: string, distributionPath:
 const CONTINUOUS_SAMPLERS = new Set(['normal', 'logNormal', 'uniform', 'histogram']);
 
 /** Values that do not fit the type of the parameter they go to: warned, since esmini takes them as they are. */
-function typeWarnings(scenario: ScenarioParameters, deterministicValues: ParameterValue[], distribution: DistributionFile, file: string): VariationProblem[] {
+function typeWarnings(
+  scenario: ScenarioParameters,
+  deterministicValues: ParameterValue[],
+  distribution: DistributionFile,
+  file: string,
+): VariationProblem[] {
   const types = new Map<string, string>();
   for (const declaration of scenario.declarations) if (!types.has(declaration.name)) types.set(declaration.name, declaration.type);
   const warnings: VariationProblem[] = [];
@@ -126,13 +167,26 @@ function typeWarnings(scenario: ScenarioParameters, deterministicValues: Paramet
     const mismatch = typeMismatch(assignment.value, type);
     if (!mismatch || reported.has(assignment.parameter)) continue;
     reported.add(assignment.parameter);
-    warnings.push({ file, offset: assignment.offset, severity: 'warning', message: `the value '${assignment.value}' for ${type} parameter '${assignment.parameter}' ${mismatch}` });
+    warnings.push({
+      file,
+      offset: assignment.offset,
+      severity: 'warning',
+      message: `the value '${assignment.value}' for ${type} parameter '${assignment.parameter}' ${mismatch}`,
+    });
   }
   for (const stochastic of distribution.stochastic?.distributions ?? []) {
     const type = types.get(stochastic.parameter) ?? 'string';
     const kind = stochastic.sampler.kind;
-    if ((type === 'boolean' && kind !== 'probabilitySet' && kind !== 'userDefined') || (['int', 'integer', 'unsignedInt', 'unsignedShort'].includes(type) && CONTINUOUS_SAMPLERS.has(kind))) {
-      warnings.push({ file, offset: stochastic.offset, severity: 'warning', message: `${type} parameter '${stochastic.parameter}' gets values drawn from a ${kind} distribution, which are not ${type === 'boolean' ? 'true or false' : 'whole numbers'}` });
+    if (
+      (type === 'boolean' && kind !== 'probabilitySet' && kind !== 'userDefined') ||
+      (['int', 'integer', 'unsignedInt', 'unsignedShort'].includes(type) && CONTINUOUS_SAMPLERS.has(kind))
+    ) {
+      warnings.push({
+        file,
+        offset: stochastic.offset,
+        severity: 'warning',
+        message: `${type} parameter '${stochastic.parameter}' gets values drawn from a ${kind} distribution, which are not ${type === 'boolean' ? 'true or false' : 'whole numbers'}`,
+      });
     }
   }
   return warnings;
@@ -145,7 +199,9 @@ export function samplingProblem(error: SamplingError, distributionPath: string):
 
 /** Prints problems as file:line:col, with file names relative to `base` when given. */
 export function formatVariationProblems(problems: VariationProblem[], lines: Map<string, LineIndex>, base?: string): string[] {
-  return problems.map((problem) => formatVariationProblem(problem, lines.get(problem.file), base ? path.relative(base, problem.file) || problem.file : problem.file));
+  return problems.map((problem) =>
+    formatVariationProblem(problem, lines.get(problem.file), base ? path.relative(base, problem.file) || problem.file : problem.file),
+  );
 }
 
 export { SamplingError } from './stochastic';

@@ -84,7 +84,7 @@ export class Xoshiro128StarStar {
 }
 
 function rotl(x: number, k: number): number {
-  return ((x << k) | (x >>> (32 - k))) | 0;
+  return (x << k) | (x >>> (32 - k)) | 0;
 }
 
 /** The generator of stochastic run `runIndex` for a seed: runs are independent, so any run can be drawn alone. */

@@ -63,7 +63,10 @@ export function poisson(random: Xoshiro128StarStar, mean: number): number {
 
 /** ln Γ(x) for x >= 1 by the Stirling series, after shifting x up to 7 (numpy's loggam). */
 export function logGamma(x: number): number {
-  const coefficients = [8.333333333333333e-2, -2.777777777777778e-3, 7.936507936507937e-4, -5.952380952380952e-4, 8.417508417508418e-4, -1.917526917526918e-3, 6.410256410256410e-3, -2.955065359477124e-2, 1.796443723688307e-1, -1.39243221690590];
+  const coefficients = [
+    8.333333333333333e-2, -2.777777777777778e-3, 7.936507936507937e-4, -5.952380952380952e-4, 8.417508417508418e-4, -1.917526917526918e-3,
+    6.41025641025641e-3, -2.955065359477124e-2, 1.796443723688307e-1, -1.3924322169059,
+  ];
   if (x === 1 || x === 2) return 0;
   let shifted = x;
   let shifts = 0;
@@ -98,7 +101,11 @@ function weightedIndex(random: Xoshiro128StarStar, weights: number[]): number {
 }
 
 /** One draw, as the text a parameter's value gets. */
-function drawOnce(random: Xoshiro128StarStar, sampler: StochasticSampler, range: NumericRange | undefined): { text: string; value: number | undefined } {
+function drawOnce(
+  random: Xoshiro128StarStar,
+  sampler: StochasticSampler,
+  range: NumericRange | undefined,
+): { text: string; value: number | undefined } {
   switch (sampler.kind) {
     case 'normal': {
       const value = sampler.mean + Math.sqrt(sampler.variance) * normal(random);
@@ -119,12 +126,24 @@ function drawOnce(random: Xoshiro128StarStar, sampler: StochasticSampler, range:
       return { text: String(value), value };
     }
     case 'histogram': {
-      const bin = sampler.bins[weightedIndex(random, sampler.bins.map((b) => b.weight))];
+      const bin =
+        sampler.bins[
+          weightedIndex(
+            random,
+            sampler.bins.map((b) => b.weight),
+          )
+        ];
       const value = bin.range.lower + random.nextDouble() * (bin.range.upper - bin.range.lower);
       return { text: formatNumber(value), value };
     }
     case 'probabilitySet': {
-      const text = sampler.elements[weightedIndex(random, sampler.elements.map((e) => e.weight))].value;
+      const text =
+        sampler.elements[
+          weightedIndex(
+            random,
+            sampler.elements.map((e) => e.weight),
+          )
+        ].value;
       return { text, value: numberOrUndefined(text) };
     }
     case 'userDefined': {
@@ -153,11 +172,18 @@ export function draw(random: Xoshiro128StarStar, distribution: StochasticDistrib
     if (value === undefined) throw new SamplingError(`the value "${text}" is not a number, so the Range cannot hold it`, range.offset);
     if (value >= range.lower && value <= range.upper) return text;
   }
-  throw new SamplingError(`${MAX_TRIES} draws in a row fell outside the Range [${range?.lower}, ${range?.upper}]; the range is too narrow for this distribution`, range?.offset ?? distribution.offset);
+  throw new SamplingError(
+    `${MAX_TRIES} draws in a row fell outside the Range [${range?.lower}, ${range?.upper}]; the range is too narrow for this distribution`,
+    range?.offset ?? distribution.offset,
+  );
 }
 
 /** The assignments of stochastic run `runIndex`: one draw per distribution, in document order, from that run's own generator. */
 export function stochasticAssignment(distributions: StochasticDistribution[], seed: number, runIndex: number): ParameterValue[] {
   const random = generatorForRun(seed, runIndex);
-  return distributions.map((distribution) => ({ parameter: distribution.parameter, value: draw(random, distribution), offset: distribution.offset }));
+  return distributions.map((distribution) => ({
+    parameter: distribution.parameter,
+    value: draw(random, distribution),
+    offset: distribution.offset,
+  }));
 }

@@ -86,7 +86,11 @@ export class EntityDecoder {
         if (!Number.isFinite(code) || !/^#(x[0-9a-fA-F]+|[0-9]+)$/.test(reference)) {
           this.report(`invalid character reference '&${reference};'`, at, refEnd);
         } else if (!isXmlChar(code)) {
-          this.report(`the character reference '&${reference};' names ${code > 0x10ffff ? 'no character' : codePointName(code)}, which XML does not allow`, at, refEnd);
+          this.report(
+            `the character reference '&${reference};' names ${code > 0x10ffff ? 'no character' : codePointName(code)}, which XML does not allow`,
+            at,
+            refEnd,
+          );
         } else {
           out += String.fromCodePoint(code);
         }

@@ -4,4 +4,15 @@ export { isXmlChar } from './characters';
 export { parseXml } from './scanner';
 export { forgetValueEdit, markupFreeEdit, reparseValueEdit, reparseXml, valueEditOf } from './reparse';
 export type { ValueEdit } from './reparse';
-export { attribute, attributeValue, descendants, elementAt, elementStartingAt, escapeAttributeValue, firstDescendant, isWellFormed, isWithin, selfAndDescendants } from './tree';
+export {
+  attribute,
+  attributeValue,
+  descendants,
+  elementAt,
+  elementStartingAt,
+  escapeAttributeValue,
+  firstDescendant,
+  isWellFormed,
+  isWithin,
+  selfAndDescendants,
+} from './tree';

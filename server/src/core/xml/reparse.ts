@@ -20,10 +20,12 @@ export function markupFreeEdit(old: string, text: string): { prefix: number; rem
   const shorter = Math.min(old.length, text.length);
   // Equal chunks are skipped by the engine's string comparison, far faster than a loop over characters.
   let prefix = 0;
-  while (prefix + COMPARED_CHUNK <= shorter && old.slice(prefix, prefix + COMPARED_CHUNK) === text.slice(prefix, prefix + COMPARED_CHUNK)) prefix += COMPARED_CHUNK;
+  while (prefix + COMPARED_CHUNK <= shorter && old.slice(prefix, prefix + COMPARED_CHUNK) === text.slice(prefix, prefix + COMPARED_CHUNK))
+    prefix += COMPARED_CHUNK;
   while (prefix < shorter && old.charCodeAt(prefix) === text.charCodeAt(prefix)) prefix++;
   let suffix = 0;
-  const sameChunkBefore = (end: number) => old.slice(old.length - end - COMPARED_CHUNK, old.length - end) === text.slice(text.length - end - COMPARED_CHUNK, text.length - end);
+  const sameChunkBefore = (end: number) =>
+    old.slice(old.length - end - COMPARED_CHUNK, old.length - end) === text.slice(text.length - end - COMPARED_CHUNK, text.length - end);
   while (suffix + COMPARED_CHUNK <= shorter - prefix && sameChunkBefore(suffix)) suffix += COMPARED_CHUNK;
   while (suffix < shorter - prefix && old.charCodeAt(old.length - 1 - suffix) === text.charCodeAt(text.length - 1 - suffix)) suffix++;
   const removedEnd = old.length - suffix;
@@ -160,7 +162,10 @@ export function reparseValueEdit(previous: XmlDocument, text: string): XmlDocume
     previousAttribute: target,
     attribute: editedCopy as XmlAttribute,
     elementOf,
-    attributeOf: (sourceElement, source) => (source.nameStart < removedEnd && source !== target ? source : elementOf(sourceElement).attributes[sourceElement.attributes.indexOf(source)]),
+    attributeOf: (sourceElement, source) =>
+      source.nameStart < removedEnd && source !== target
+        ? source
+        : elementOf(sourceElement).attributes[sourceElement.attributes.indexOf(source)],
     shift,
   });
   return document;

@@ -105,7 +105,11 @@ class XmlScanner {
         NOT_XML_CHAR.lastIndex = match.index + 2;
         continue;
       }
-      this.report(`the character ${codePointName(match[0].charCodeAt(0))} is not allowed in XML; remove it or write it another way`, match.index, match.index + 1);
+      this.report(
+        `the character ${codePointName(match[0].charCodeAt(0))} is not allowed in XML; remove it or write it another way`,
+        match.index,
+        match.index + 1,
+      );
     }
     NOT_XML_CHAR.lastIndex = 0;
   }
@@ -316,7 +320,11 @@ class XmlScanner {
       // Most values hold neither references nor line breaks: no copy is made for them.
       const value = PLAIN_VALUE.test(raw) ? raw : this.decoder.decodeReferences(raw.replace(/[\t\n\r]/g, ' '), valueStart, valueEnd, 0);
       // A linear scan for the usual handful of attributes, a set beyond: a tag with 40,000 attributes stays linear.
-      if (element.attributes.length < 16 ? element.attributes.some((existing) => existing.name === attributeName) : (attributeNames ??= new Set(element.attributes.map((a) => a.name))).has(attributeName)) {
+      if (
+        element.attributes.length < 16
+          ? element.attributes.some((existing) => existing.name === attributeName)
+          : (attributeNames ??= new Set(element.attributes.map((a) => a.name))).has(attributeName)
+      ) {
         this.report(`attribute '${attributeName}' appears twice`, nameStart, nameEnd);
       }
       attributeNames?.add(attributeName);
@@ -347,7 +355,11 @@ class XmlScanner {
     while (stack.length - 1 > matchIndex) {
       const unclosed = this.popElement();
       unclosed.end = start;
-      this.report(`element <${unclosed.name}> is not closed (expected </${unclosed.name}> before </${name}>)`, unclosed.start, unclosed.nameEnd);
+      this.report(
+        `element <${unclosed.name}> is not closed (expected </${unclosed.name}> before </${name}>)`,
+        unclosed.start,
+        unclosed.nameEnd,
+      );
     }
     const element = this.popElement();
     element.end = this.position;

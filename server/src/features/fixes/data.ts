@@ -4,7 +4,9 @@ import { PROBLEM_CODE_LIST, Problem, ProblemCode, ProblemCodeWithData, ProblemDa
  * What a diagnostic carries for its quick fixes: its problem code and the data that code names.
  * A discriminated union by `code`; a client sends it back as it likes, so it is read with `isDiagnosticData`.
  */
-export type DiagnosticData = { [C in ProblemCode]: C extends ProblemCodeWithData ? { code: C; data?: ProblemDataByCode[C] } : { code: C } }[ProblemCode];
+export type DiagnosticData = {
+  [C in ProblemCode]: C extends ProblemCodeWithData ? { code: C; data?: ProblemDataByCode[C] } : { code: C };
+}[ProblemCode];
 
 /** The diagnostic data of one code. */
 export type DiagnosticDataOf<C extends ProblemCode> = Extract<DiagnosticData, { code: C }>;
@@ -40,20 +42,25 @@ function isMissingAttributes(value: unknown): value is ProblemDataByCode['schema
 
 /** One check per code that carries data: that the value has the shape `ProblemDataByCode` names. */
 const DATA_GUARDS: { [C in ProblemCodeWithData]: (value: unknown) => value is ProblemDataByCode[C] } = {
-  'unknown-key': (value): value is ProblemDataByCode['unknown-key'] => isSuggestion(value) || (isRecord(value) && isString(value.relatedReplacement)),
+  'unknown-key': (value): value is ProblemDataByCode['unknown-key'] =>
+    isSuggestion(value) || (isRecord(value) && isString(value.relatedReplacement)),
   'xosc-fallback': (value): value is ProblemDataByCode['xosc-fallback'] => isRecord(value) && isString(value.replacement),
   'missing-file': isSuggestion,
-  'unknown-group': (value): value is ProblemDataByCode['unknown-group'] => isRecord(value) && isOptionalString(value.suggestion) && isStringList(value.groups),
+  'unknown-group': (value): value is ProblemDataByCode['unknown-group'] =>
+    isRecord(value) && isOptionalString(value.suggestion) && isStringList(value.groups),
   'unknown-parameter-attribute': isSuggestion,
   'undeclared-parameter': (value): value is ProblemDataByCode['undeclared-parameter'] => isRecord(value) && isString(value.parameter),
-  'undeclared-catalog-parameter': (value): value is ProblemDataByCode['undeclared-catalog-parameter'] => isRecord(value) && isString(value.parameter),
+  'undeclared-catalog-parameter': (value): value is ProblemDataByCode['undeclared-catalog-parameter'] =>
+    isRecord(value) && isString(value.parameter),
   'undeclared-entity': (value): value is ProblemDataByCode['undeclared-entity'] => isRecord(value) && isString(value.entity),
-  'undeclared-variable': (value): value is ProblemDataByCode['undeclared-variable'] => isRecord(value) && isString(value.variable) && isOptionalString(value.entry),
+  'undeclared-variable': (value): value is ProblemDataByCode['undeclared-variable'] =>
+    isRecord(value) && isString(value.variable) && isOptionalString(value.entry),
   'unknown-catalog-entry': isSuggestion,
   'unknown-assigned-parameter': isSuggestion,
   'unknown-storyboard-element': isSuggestion,
   'unknown-distribution-parameter': isSuggestion,
-  'lenient-value': (value): value is ProblemDataByCode['lenient-value'] => isSuggestion(value) || (isRecord(value) && isString(value.relatedReplacement)),
+  'lenient-value': (value): value is ProblemDataByCode['lenient-value'] =>
+    isSuggestion(value) || (isRecord(value) && isString(value.relatedReplacement)),
   'renamed-reference': isSuggestion,
   'catalog-location-conflict': (value): value is ProblemDataByCode['catalog-location-conflict'] => isRecord(value) && isString(value.key),
   'schema-unknown-element': isSuggestion,

@@ -21,7 +21,11 @@ export interface FixDocument {
 export type FixDataOf<C extends ProblemCode> = C extends ProblemCodeWithData ? ProblemDataByCode[C] : never;
 
 /** The quick fixes of one diagnostic of one of a module's codes. */
-export type FixFunction<C extends ProblemCode> = (data: FixDataOf<C> | undefined, target: FixDocument, workspace: Workspace) => CodeAction[] | Promise<CodeAction[]>;
+export type FixFunction<C extends ProblemCode> = (
+  data: FixDataOf<C> | undefined,
+  target: FixDocument,
+  workspace: Workspace,
+) => CodeAction[] | Promise<CodeAction[]>;
 
 /** A fix module: the codes it handles and their fixes. */
 export interface ProblemFix {

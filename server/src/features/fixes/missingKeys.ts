@@ -38,13 +38,18 @@ export async function missingKeysAction(
   const linked = link && groupReference ? groupLinkOf(link, groupReference) : undefined;
   if (!groupReference || !linked?.target || groupReference.selfClosing || !groupReference.closed) return undefined;
   const inGroup = (at: LspRange) => document.offsetAt(at.start) >= groupReference.start && document.offsetAt(at.end) <= groupReference.end;
-  const askedBy = diagnostics.filter((diagnostic) => isDiagnosticData(diagnostic.data) && diagnostic.data.code === 'unknown-key' && inGroup(diagnostic.range));
+  const askedBy = diagnostics.filter(
+    (diagnostic) => isDiagnosticData(diagnostic.data) && diagnostic.data.code === 'unknown-key' && inGroup(diagnostic.range),
+  );
   const onTag = document.offsetAt(range.start) >= groupReference.start && document.offsetAt(range.end) <= groupReference.startTagEnd;
   const kind = askedBy.length > 0 ? CodeActionKind.QuickFix : CodeActionKind.RefactorRewrite;
   if ((askedBy.length === 0 && !onTag) || !wanted(kind, only)) return undefined;
   const given = linked.info.parameters.map((parameter) => parameter.key);
   const missing = keyChoices(linked.overridable).filter(
-    (choice) => choice.forms.length > 0 && choice.targets[0].defaultValue !== undefined && !choice.targets.some((target) => given.some((key) => keyMatches(key, target))),
+    (choice) =>
+      choice.forms.length > 0 &&
+      choice.targets[0].defaultValue !== undefined &&
+      !choice.targets.some((target) => given.some((key) => keyMatches(key, target))),
   );
   if (missing.length === 0) return undefined;
   const text = document.getText();
@@ -54,7 +59,10 @@ export async function missingKeysAction(
   const unit = /^( +|\t)/m.exec(text.slice(0, 4000))?.[1] ?? '    ';
   const indent = lastParameter ? indentOfLine(text, lastParameter.element.start) : outerIndent + unit;
   const eol = text.includes('\r\n') ? '\r\n' : '\n';
-  const lines = missing.map((choice) => `${indent}<ParameterReference key="${choice.forms[0]}" value="${escapeAttributeValue(choice.targets[0].defaultValue ?? '')}"/>`);
+  const lines = missing.map(
+    (choice) =>
+      `${indent}<ParameterReference key="${choice.forms[0]}" value="${escapeAttributeValue(choice.targets[0].defaultValue ?? '')}"/>`,
+  );
   // Insert at the start of the closing tag's line, so that its indentation stays as written.
   const closeLineStart = text.lastIndexOf('\n', closeTag - 1) + 1;
   const onOwnLine = /^[ \t]*$/.test(text.slice(closeLineStart, closeTag));

@@ -12,11 +12,21 @@ export const noDefaultFix = problemFix(['no-default'], async (_data, { document,
   const targetText = await workspace.text(targetRef);
   if (targetText === undefined) return [];
   const targetDocument = TextDocument.create(related.location.uri, 'xml', 0, targetText);
-  const listedName = targetText.slice(targetDocument.offsetAt(related.location.range.start), targetDocument.offsetAt(related.location.range.end));
+  const listedName = targetText.slice(
+    targetDocument.offsetAt(related.location.range.start),
+    targetDocument.offsetAt(related.location.range.end),
+  );
   const element = elementAt(parseXml(targetText), targetDocument.offsetAt(related.location.range.start));
   if (!element || !/^[A-Za-z_][-\w]*$/.test(listedName)) return [];
   const parameter = elementAt(parseXml(document.getText()), document.offsetAt(diagnostic.range.start));
   const value = (parameter && attribute(parameter, 'value')?.value) ?? '';
   const at = targetDocument.positionAt(attributeInsertOffset(element));
-  return [quickFix(`Add default ${listedName}="${value}" to <${element.name}>`, diagnostic, { changes: { [workspace.uriOf(targetRef)]: [TextEdit.insert(at, ` ${listedName}="${escapeAttributeValue(value)}"`)] } }, true)];
+  return [
+    quickFix(
+      `Add default ${listedName}="${value}" to <${element.name}>`,
+      diagnostic,
+      { changes: { [workspace.uriOf(targetRef)]: [TextEdit.insert(at, ` ${listedName}="${escapeAttributeValue(value)}"`)] } },
+      true,
+    ),
+  ];
 });

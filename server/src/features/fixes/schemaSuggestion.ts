@@ -2,6 +2,17 @@ import { TextEdit } from 'vscode-languageserver/node';
 import { problemFix, quickFix } from './fix';
 
 /** An attribute name or a value the schema does not know, or a distribution's parameter the scenario lacks: the closest one it does; a deprecated one: the standard's form. */
-export const schemaSuggestionFix = problemFix(['schema-unknown-attribute', 'schema-value', 'schema-deprecated', 'unknown-distribution-parameter'], (data, { uri, diagnostic }) =>
-  data?.suggestion ? [quickFix(`Change to '${data.suggestion}'`, diagnostic, { changes: { [uri]: [TextEdit.replace(diagnostic.range, data.suggestion)] } }, true)] : [],
+export const schemaSuggestionFix = problemFix(
+  ['schema-unknown-attribute', 'schema-value', 'schema-deprecated', 'unknown-distribution-parameter'],
+  (data, { uri, diagnostic }) =>
+    data?.suggestion
+      ? [
+          quickFix(
+            `Change to '${data.suggestion}'`,
+            diagnostic,
+            { changes: { [uri]: [TextEdit.replace(diagnostic.range, data.suggestion)] } },
+            true,
+          ),
+        ]
+      : [],
 );

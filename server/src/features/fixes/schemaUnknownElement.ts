@@ -9,6 +9,12 @@ export const schemaUnknownElementFix = problemFix(['schema-unknown-element'], as
   if (!data?.suggestion || !element) return [];
   const edits = [TextEdit.replace(diagnostic.range, data.suggestion)];
   const closing = element.selfClosing || !element.closed ? -1 : text.lastIndexOf(`</${element.name}`, element.end);
-  if (closing > element.start) edits.push(TextEdit.replace({ start: document.positionAt(closing + 2), end: document.positionAt(closing + 2 + element.name.length) }, data.suggestion));
+  if (closing > element.start)
+    edits.push(
+      TextEdit.replace(
+        { start: document.positionAt(closing + 2), end: document.positionAt(closing + 2 + element.name.length) },
+        data.suggestion,
+      ),
+    );
   return [quickFix(`Change to <${data.suggestion}>`, diagnostic, { changes: { [uri]: edits } }, true)];
 });

@@ -30,7 +30,9 @@ function sourceTemplate(source: FlatSource, semantics: DocumentSemantics, name: 
     if (declaration && link.source) return templateOf(declaration, displayRef(link.source.ref, folder));
   }
   const elsewhere = semantics.model.declarations.find((declaration) => declaration.name === name && declaration.kind === 'parameter');
-  return elsewhere ? templateOf(elsewhere, `line ${semantics.model.document.lines.positionAt(elsewhere.element.start).line + 1}`) : undefined;
+  return elsewhere
+    ? templateOf(elsewhere, `line ${semantics.model.document.lines.positionAt(elsewhere.element.start).line + 1}`)
+    : undefined;
 }
 
 function declarationsChild(element: XmlElement): XmlElement | undefined {
@@ -41,7 +43,15 @@ function unitOf(text: string): string {
   return /^( +|\t)/m.exec(text.slice(0, 4000))?.[1] ?? '  ';
 }
 
-function declareParameterFix(uri: string, document: TextDocument, source: FlatSource, semantics: DocumentSemantics, diagnostic: Diagnostic, name: string, folder: string | undefined): CodeAction | undefined {
+function declareParameterFix(
+  uri: string,
+  document: TextDocument,
+  source: FlatSource,
+  semantics: DocumentSemantics,
+  diagnostic: Diagnostic,
+  name: string,
+  folder: string | undefined,
+): CodeAction | undefined {
   const text = document.getText();
   const offset = document.offsetAt(diagnostic.range.start);
   const template = sourceTemplate(source, semantics, name, folder);
@@ -57,10 +67,15 @@ function declareParameterFix(uri: string, document: TextDocument, source: FlatSo
     const closeLineStart = text.lastIndexOf('\n', close - 1) + 1;
     const outer = indentationAt(text, holder.start);
     const onOwnLine = /^[ \t]*$/.test(text.slice(closeLineStart, close));
-    edit = onOwnLine ? TextEdit.insert(document.positionAt(closeLineStart), `${outer}${unit}${line}${eol}`) : TextEdit.insert(document.positionAt(close), `${eol}${outer}${unit}${line}${eol}${outer}`);
+    edit = onOwnLine
+      ? TextEdit.insert(document.positionAt(closeLineStart), `${outer}${unit}${line}${eol}`)
+      : TextEdit.insert(document.positionAt(close), `${eol}${outer}${unit}${line}${eol}${outer}`);
   } else if (holder) {
     const outer = indentationAt(text, holder.start);
-    edit = TextEdit.replace({ start: document.positionAt(holder.start), end: document.positionAt(holder.end) }, `<ParameterDeclarations>${eol}${outer}${unit}${line}${eol}${outer}</ParameterDeclarations>`);
+    edit = TextEdit.replace(
+      { start: document.positionAt(holder.start), end: document.positionAt(holder.end) },
+      `<ParameterDeclarations>${eol}${outer}${unit}${line}${eol}${outer}</ParameterDeclarations>`,
+    );
   } else {
     const root = semantics.model.root?.element;
     if (!root) return undefined;
@@ -68,14 +83,25 @@ function declareParameterFix(uri: string, document: TextDocument, source: FlatSo
     const header = root.children.find((child) => child.name === 'FileHeader');
     const anchor = header ? header.end : root.startTagEnd;
     const outer = header ? indentationAt(text, header.start) : indentationAt(text, root.start) + unit;
-    edit = TextEdit.insert(document.positionAt(anchor), `${eol}${outer}<ParameterDeclarations>${eol}${outer}${unit}${line}${eol}${outer}</ParameterDeclarations>`);
+    edit = TextEdit.insert(
+      document.positionAt(anchor),
+      `${eol}${outer}<ParameterDeclarations>${eol}${outer}${unit}${line}${eol}${outer}</ParameterDeclarations>`,
+    );
   }
-  const title = template?.from ? `Declare parameter '${name}' (value ${template.value} from ${template.from})` : `Declare parameter '${name}'`;
+  const title = template?.from
+    ? `Declare parameter '${name}' (value ${template.value} from ${template.from})`
+    : `Declare parameter '${name}'`;
   return { title, kind: CodeActionKind.QuickFix, diagnostics: [diagnostic], isPreferred: true, edit: { changes: { [uri]: [edit] } } };
 }
 
-export const undeclaredParameterFix = problemFix(['undeclared-parameter', 'undeclared-catalog-parameter'], async (data, { uri, ref, document, diagnostic }, workspace) => {
-  const source = await workspace.source(ref);
-  const fix = data?.parameter && source.semantics ? declareParameterFix(uri, document, source, source.semantics, diagnostic, data.parameter, workspace.folders[0]) : undefined;
-  return fix ? [fix] : [];
-});
+export const undeclaredParameterFix = problemFix(
+  ['undeclared-parameter', 'undeclared-catalog-parameter'],
+  async (data, { uri, ref, document, diagnostic }, workspace) => {
+    const source = await workspace.source(ref);
+    const fix =
+      data?.parameter && source.semantics
+        ? declareParameterFix(uri, document, source, source.semantics, diagnostic, data.parameter, workspace.folders[0])
+        : undefined;
+    return fix ? [fix] : [];
+  },
+);

@@ -7,11 +7,14 @@ export const unknownParameterAttributeFix = problemFix(['unknown-parameter-attri
   const text = document.getText();
   const actions: CodeAction[] = [];
   const listedName = text.slice(document.offsetAt(diagnostic.range.start), document.offsetAt(diagnostic.range.end));
-  if (data?.suggestion) actions.push(quickFix(`List '${data.suggestion}' instead`, diagnostic, singleEdit(uri, diagnostic.range, data.suggestion), true));
+  if (data?.suggestion)
+    actions.push(quickFix(`List '${data.suggestion}' instead`, diagnostic, singleEdit(uri, diagnostic.range, data.suggestion), true));
   const element = elementAt(parseXml(text), document.offsetAt(diagnostic.range.start));
   if (element && /^[A-Za-z_][-\w]*$/.test(listedName)) {
     const at = document.positionAt(attributeInsertOffset(element));
-    actions.push(quickFix(`Add a default value for '${listedName}'`, diagnostic, { changes: { [uri]: [TextEdit.insert(at, ` ${listedName}=""`)] } }));
+    actions.push(
+      quickFix(`Add a default value for '${listedName}'`, diagnostic, { changes: { [uri]: [TextEdit.insert(at, ` ${listedName}=""`)] } }),
+    );
   }
   return actions;
 });

@@ -24,7 +24,8 @@ async function catalogsIn(workspace: Workspace, directory: string): Promise<(Cat
     const file = path.join(directory, name);
     const open = workspace.documents.get(refId(diskRef(file)));
     const text = open ? open.document.getText() : await fs.readFile(file, 'utf8').catch(() => undefined);
-    if (text !== undefined && /<Catalog[\s>]/.test(text)) files.push({ path: file, text, version: open?.document.version, uri: open?.uri ?? fileUri(file).toString() });
+    if (text !== undefined && /<Catalog[\s>]/.test(text))
+      files.push({ path: file, text, version: open?.document.version, uri: open?.uri ?? fileUri(file).toString() });
   }
   return files;
 }
@@ -74,6 +75,12 @@ export const extractToCatalogRefactoring: Refactoring = {
       version: known?.version,
     };
     const where = `${path.basename(extracted.catalog.path)}${extracted.reused ? ', an entry there already' : ''}`;
-    return [{ title: `${title.slice(0, -1)} (${extracted.catalogName}/${extracted.entryName} in ${where})`, kind: EXTRACT_TO_CATALOG_KIND, edit: createAndEdit(target, [catalogFile], extracted.edits) }];
+    return [
+      {
+        title: `${title.slice(0, -1)} (${extracted.catalogName}/${extracted.entryName} in ${where})`,
+        kind: EXTRACT_TO_CATALOG_KIND,
+        edit: createAndEdit(target, [catalogFile], extracted.edits),
+      },
+    ];
   },
 };

@@ -39,11 +39,16 @@ export async function extractGroupEdit(target: RefactoringTarget, attributes: re
       exists: async (file) => (await nodeFileSystem.kind(file)) !== undefined || target.workspace.documents.has(refId(diskRef(file))),
     });
   } catch (error) {
-    if (error instanceof RefactoringRefusal) throw new ResponseError(ErrorCodes.InvalidRequest, `Extract to a simple scenario: ${error.message}`);
+    if (error instanceof RefactoringRefusal)
+      throw new ResponseError(ErrorCodes.InvalidRequest, `Extract to a simple scenario: ${error.message}`);
     throw error;
   }
   const uri = fileUri(extracted.file).toString();
-  return { edit: createAndEdit(target, [{ uri, create: true, text: extracted.text, edits: [] }], [extracted.replacement]), uri, parameters: extracted.parameters };
+  return {
+    edit: createAndEdit(target, [{ uri, create: true, text: extracted.text, edits: [] }], [extracted.replacement]),
+    uri,
+    parameters: extracted.parameters,
+  };
 }
 
 /**
@@ -73,7 +78,11 @@ export const extractToSimpleRefactoring: Refactoring = {
       throw error;
     }
     const { edit, uri } = extracted;
-    const action: CodeAction = { title: `${title.slice(0, -1)} (${decodeURIComponent(path.posix.basename(uri))})`, kind: EXTRACT_TO_SIMPLE_KIND, edit };
+    const action: CodeAction = {
+      title: `${title.slice(0, -1)} (${decodeURIComponent(path.posix.basename(uri))})`,
+      kind: EXTRACT_TO_SIMPLE_KIND,
+      edit,
+    };
     return [action];
   },
 };

@@ -9,4 +9,9 @@ export { NO_CLIENT_EDITS, refactoringTarget } from './refactoring';
 export { extractGroupEdit } from './extractToSimple';
 
 /** Every refactoring, in the order their actions are listed. */
-export const REFACTORINGS: readonly Refactoring[] = [extractToSimpleRefactoring, extractToCatalogRefactoring, makeOverridableRefactoring, inlineRefactoring];
+export const REFACTORINGS: readonly Refactoring[] = [
+  extractToSimpleRefactoring,
+  extractToCatalogRefactoring,
+  makeOverridableRefactoring,
+  inlineRefactoring,
+];

@@ -24,6 +24,8 @@ export const makeOverridableRefactoring: Refactoring = {
     if ((element === group.element && attribute.name === 'name') || (element === group.actor && attribute.name === 'entityRef')) return [];
     const edit = makeOverridableEdit(element, attribute);
     if (!edit) return [];
-    return [{ title: `Make '${element.name}.${attribute.name}' overridable`, kind: MAKE_OVERRIDABLE_KIND, edit: documentEdit(target, [edit]) }];
+    return [
+      { title: `Make '${element.name}.${attribute.name}' overridable`, kind: MAKE_OVERRIDABLE_KIND, edit: documentEdit(target, [edit]) },
+    ];
   },
 };

@@ -1,4 +1,11 @@
-import { CodeAction, CreateFile, OptionalVersionedTextDocumentIdentifier, TextDocumentEdit, TextEdit, WorkspaceEdit } from 'vscode-languageserver/node';
+import {
+  CodeAction,
+  CreateFile,
+  OptionalVersionedTextDocumentIdentifier,
+  TextDocumentEdit,
+  TextEdit,
+  WorkspaceEdit,
+} from 'vscode-languageserver/node';
 import { TextDocument } from 'vscode-languageserver-textdocument';
 import { TextEdit as CoreTextEdit } from '../../core/flatten/edits';
 import { FlatSource } from '../../core/flatten';
@@ -47,7 +54,14 @@ export function lspEdits(document: TextDocument, edits: readonly CoreTextEdit[])
 /** The edits of one document, versioned when the client can check the version. */
 export function documentEdit(target: RefactoringTarget, edits: readonly CoreTextEdit[]): WorkspaceEdit {
   if (!target.client.documentChanges) return { changes: { [target.uri]: lspEdits(target.document, edits) } };
-  return { documentChanges: [TextDocumentEdit.create(OptionalVersionedTextDocumentIdentifier.create(target.uri, target.document.version), lspEdits(target.document, edits))] };
+  return {
+    documentChanges: [
+      TextDocumentEdit.create(
+        OptionalVersionedTextDocumentIdentifier.create(target.uri, target.document.version),
+        lspEdits(target.document, edits),
+      ),
+    ],
+  };
 }
 
 /** Why a client cannot take an edit that creates files, or undefined when it can. */
@@ -79,7 +93,12 @@ export function createAndEdit(target: RefactoringTarget, files: readonly FileCha
       changes.push(TextDocumentEdit.create(identifier, lspEdits(TextDocument.create(file.uri, 'xml', 0, file.text), file.edits)));
     }
   }
-  changes.push(TextDocumentEdit.create(OptionalVersionedTextDocumentIdentifier.create(target.uri, target.document.version), lspEdits(target.document, edits)));
+  changes.push(
+    TextDocumentEdit.create(
+      OptionalVersionedTextDocumentIdentifier.create(target.uri, target.document.version),
+      lspEdits(target.document, edits),
+    ),
+  );
   return { documentChanges: changes };
 }
 

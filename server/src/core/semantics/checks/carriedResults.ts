@@ -60,7 +60,7 @@ export function carriedExpressionErrors(model: SemanticModel, evaluator: Evaluat
   for (const declaration of carry.editedDeclarations) if (declaration.name) changed.add(declaration.name);
   const dependent = (text: string | undefined) => text !== undefined && changed.size > 0 && mentions(text, changed);
   const changedDeclarations = new Set(carry.editedDeclarations);
-  for (let grown = changed.size > 0; grown; ) {
+  for (let grown = changed.size > 0; grown;) {
     grown = false;
     for (const declaration of model.declarations) {
       if (changedDeclarations.has(declaration) || !dependent(declaration.valueAttribute?.value)) continue;

@@ -107,12 +107,16 @@ function brokenConstraints(groups: Constraint[][], value: ParameterValue, type: 
   const readable = groups.filter((group) => group.every((constraint) => typeof constraint.value !== 'object'));
   if (readable.length === 0) return undefined;
   const left = comparable(value, type);
-  const broken = readable.map((group) => group.filter((constraint) => !holds(constraint.rule, left, comparable(constraint.value as ParameterValue, type))));
+  const broken = readable.map((group) =>
+    group.filter((constraint) => !holds(constraint.rule, left, comparable(constraint.value as ParameterValue, type))),
+  );
   return broken.some((group) => group.length === 0) ? undefined : broken;
 }
 
 function describe(broken: Constraint[][]): string {
-  const groups = broken.map((group) => group.map((constraint) => `${RULE_WORDS[constraint.rule]} ${formatValue(constraint.value as ParameterValue)}`).join(' and '));
+  const groups = broken.map((group) =>
+    group.map((constraint) => `${RULE_WORDS[constraint.rule]} ${formatValue(constraint.value as ParameterValue)}`).join(' and '),
+  );
   return groups.length === 1 ? `it is not ${groups[0]}` : `no constraint group holds (${groups.map((group) => `not ${group}`).join('; ')})`;
 }
 
@@ -144,7 +148,16 @@ export const valueConstraints: SemanticCheck = (context) => {
       severity: 'error',
       code: 'value-constraint',
       message: `the value ${formatValue(result.value)} of parameter '${declaration.name}' breaks its ConstraintGroup: ${describe(broken)}`,
-      related: broken.flat().map((constraint) => relatedAt(context, constraint.element.start, constraint.element.nameEnd, `${constraint.rule} ${formatValue(constraint.value as ParameterValue)}`)),
+      related: broken
+        .flat()
+        .map((constraint) =>
+          relatedAt(
+            context,
+            constraint.element.start,
+            constraint.element.nameEnd,
+            `${constraint.rule} ${formatValue(constraint.value as ParameterValue)}`,
+          ),
+        ),
     });
   }
   for (const resolution of context.catalogs.references) {
@@ -153,7 +166,9 @@ export const valueConstraints: SemanticCheck = (context) => {
     const entryModel = entry.file.model;
     const scope = entryModel.scopeOf(entry.element);
     if (!scope || scope.element !== entry.element) continue;
-    const constrained = scope.declarations.filter((declaration) => declaration.type !== undefined && declaration.element.children.some((child) => child.name === 'ConstraintGroup'));
+    const constrained = scope.declarations.filter(
+      (declaration) => declaration.type !== undefined && declaration.element.children.some((child) => child.name === 'ConstraintGroup'),
+    );
     if (constrained.length === 0) continue;
     const entryEvaluator = new Evaluator(entryModel, assignmentsOf(resolution.reference, context.evaluator), context.evaluator.reading);
     for (const assignment of resolution.reference.assignments) {

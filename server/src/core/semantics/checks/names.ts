@@ -36,7 +36,9 @@ export const duplicateNames: SemanticCheck = (context) => {
   if (!root) return [];
   const findings: Finding[] = [];
   const referenced = new Set(model.storyboardReferences.map((reference) => reference.refAttribute.value.split('::').pop()?.trim() ?? ''));
-  const referencedEntities = new Set(model.entityReferences.map((reference) => evaluator.textOf(reference.element, reference.attribute) ?? reference.attribute.value));
+  const referencedEntities = new Set(
+    model.entityReferences.map((reference) => evaluator.textOf(reference.element, reference.attribute) ?? reference.attribute.value),
+  );
   for (const parent of [root, ...descendants(root)]) {
     if (parent.children.length < 2) continue;
     const first = new Map<string, XmlElement>();
@@ -65,7 +67,9 @@ export const duplicateNames: SemanticCheck = (context) => {
               ambiguous ? '' : " (ASAM's Quality Checker reports it as an error; no reference of this file names it, and esmini runs both)"
             }${esmini && ambiguous ? ' (esmini runs both and resolves a reference to the name to the first)' : ''}`,
         hint: `rename one of them`,
-        related: [relatedAt(context, earlierName?.valueStart ?? earlier.start, earlierName?.valueEnd ?? earlier.nameEnd, `the first '${name}'`)],
+        related: [
+          relatedAt(context, earlierName?.valueStart ?? earlier.start, earlierName?.valueEnd ?? earlier.nameEnd, `the first '${name}'`),
+        ],
       });
     }
   }

@@ -62,7 +62,12 @@ function valueTargets(model: SemanticModel): ValueTarget[] {
     if (declaration) targets.push({ element: reference.element, declaration, name });
   }
   for (const use of model.uses) {
-    if (use.via !== 'parameterRef' || !use.declaration || (use.element.name !== 'ParameterAction' && use.element.name !== 'ParameterCondition')) continue;
+    if (
+      use.via !== 'parameterRef' ||
+      !use.declaration ||
+      (use.element.name !== 'ParameterAction' && use.element.name !== 'ParameterCondition')
+    )
+      continue;
     targets.push({ element: use.element, declaration: use.declaration, name: use.name });
   }
   return targets;
