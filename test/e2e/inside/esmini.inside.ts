@@ -275,7 +275,7 @@ export const esminiTests: InsideTests = {
         JSON.stringify(forced.flattenProblems),
       );
       assert.ok(forced.csvFile && fs.existsSync(forced.csvFile));
-      // What the client reported to the user (the message its information toast shows).
+      // What the client reported to the user (the message its information toast shows, kept in the screenshot below).
       assert.match(api().lastEsminiRun()?.result.message ?? '', /\(run anyway despite 1 error in the scenario\)$/);
       assert.ok(!(await pageShows('Run in esmini:', '.notifications-toasts')), 'an error toast is shown');
       await screenshot('Run Anyway ran the scenario despite its error');
