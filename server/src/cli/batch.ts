@@ -20,7 +20,7 @@ import {
 import { locateEsmini } from '../esmini/locate';
 import { RUN_DEFAULTS } from '../esmini/run';
 import type { CliOutput } from './common';
-import { flatteningScenarioLoader, readUtf8Exactly, scenarioFolderOf } from './scenarioText';
+import { flatteningScenarioLoader, readDistributionFile, scenarioFolderOf } from './scenarioText';
 import { sampleIndices } from './vary';
 
 export const BATCH_HELP = `Run every concrete scenario of a distribution in esmini (modular2simple batch FILE --results DIR ...):
@@ -154,14 +154,9 @@ async function batch(argv: string[], io: CliOutput): Promise<number> {
   const queue = queueOption(values.queue);
   if (queue && values['keep-runs']) throw new BatchUsageError('--keep-runs keeps the runs of this machine: it does not go with --queue');
 
-  const distributionPath = path.resolve(positionals[0]);
-  let distributionText: string;
-  try {
-    distributionText = await readUtf8Exactly(distributionPath);
-  } catch (error) {
-    const reason = (error as NodeJS.ErrnoException).code === 'ENOENT' ? 'no such file' : (error as Error).message;
-    throw new BatchInputError(`${positionals[0]}: ${reason}`);
-  }
+  const distribution = await readDistributionFile(positionals[0]);
+  if ('problem' in distribution) throw new BatchInputError(distribution.problem);
+  const { path: distributionPath, text: distributionText } = distribution;
   const base = process.cwd();
   const packagedFiles: PackagedFile[] = [];
   const loaded = await loadVariations(

@@ -16,6 +16,17 @@ export async function readUtf8Exactly(file: string): Promise<string> {
   }
 }
 
+/** The distribution file named on the command line, or what is wrong with it in a few words (`vary` and `batch` report it alike). */
+export async function readDistributionFile(given: string): Promise<{ path: string; text: string } | { problem: string }> {
+  const file = path.resolve(given);
+  try {
+    return { path: file, text: await readUtf8Exactly(file) };
+  } catch (error) {
+    const reason = (error as NodeJS.ErrnoException).code === 'ENOENT' ? 'no such file' : (error as Error).message;
+    return { problem: `${given}: ${reason}` };
+  }
+}
+
 // A main file is a scenario with a ScenarioReference in some ManeuverGroup; a plain one has none at all.
 const REFERENCE = /<ScenarioReference\b/;
 

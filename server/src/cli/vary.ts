@@ -13,7 +13,7 @@ import {
   Variations,
 } from '../core/variations';
 import { seedBits, Xoshiro128StarStar } from '../core/variations/random';
-import { flatteningScenarioLoader, readUtf8Exactly, scenarioFolderOf } from './scenarioText';
+import { flatteningScenarioLoader, readDistributionFile, scenarioFolderOf } from './scenarioText';
 import { FileKind, nodeFileSystem, splitScenarioPath } from '../core/sources';
 import type { PackagedFile } from '../core/flatten/rebase';
 
@@ -130,14 +130,9 @@ async function vary(argv: string[], io: Output, givenLoader: ScenarioTextLoader 
   if (sample !== undefined && sample > maxCombinations)
     return usage(io, `--sample ${sample} is more than --max-combinations ${maxCombinations}`);
 
-  const distributionPath = path.resolve(positionals[0]);
-  let distributionText: string;
-  try {
-    distributionText = await readUtf8Exactly(distributionPath);
-  } catch (error) {
-    const reason = (error as NodeJS.ErrnoException).code === 'ENOENT' ? 'no such file' : (error as Error).message;
-    throw new InputProblem(`${positionals[0]}: ${reason}`);
-  }
+  const distribution = await readDistributionFile(positionals[0]);
+  if ('problem' in distribution) throw new InputProblem(distribution.problem);
+  const { path: distributionPath, text: distributionText } = distribution;
   const base = process.cwd();
   // The roads and catalogs a self-contained package ScenarioFile holds: written beside each concrete scenario, where it names them.
   const packagedFiles: PackagedFile[] = [];
