@@ -2,7 +2,7 @@ import * as fs from 'node:fs';
 import * as v8 from 'node:v8';
 import { Flattener } from '../core/flatten';
 import { Problem, uniqueProblems } from '../core/problems';
-import { ruleIdOf } from '../core/rules';
+import { ruleOf } from '../core/rules';
 import { displayRef } from '../core/sources';
 import { SCENARIO_FILE, walkFiles } from '../core/walk';
 import { CliOutput, ExitCode, InputError, report, UsageError } from './common';
@@ -18,7 +18,7 @@ function problemJson(problem: Problem): Record<string, unknown> {
     endColumn: problem.range.end.character + 1,
     severity: problem.severity,
     code: problem.code,
-    rule: ruleIdOf(problem.code),
+    rule: ruleOf(problem).id,
     message: problem.message,
     ...(problem.hint ? { hint: problem.hint } : {}),
     ...(problem.related?.length

@@ -3,8 +3,8 @@ import * as path from 'node:path';
 import { parseArgs } from 'node:util';
 import { writeFileAtomic } from '../../../common/src/atomic';
 import { Flattener } from '../core/flatten';
-import { Problem, ProblemCode, Severity, uniqueProblems } from '../core/problems';
-import { ruleDescription, ruleIdOf } from '../core/rules';
+import { Problem, Severity, uniqueProblems } from '../core/problems';
+import { ProblemRule, ruleOf, RuledProblem } from '../core/rules';
 import { displayRef } from '../core/sources';
 import { decodeUtf8 } from '../core/text';
 import { attributeValue, elementAt, escapeAttributeValue, parseXml, XmlDocument, XmlElement } from '../core/xml';
@@ -70,15 +70,14 @@ export function readBundleConfig(text: string, configPath: string): BundleConfig
 }
 
 /** The rule uid a result file names: the ASAM uid, or one of the same form for the project's own rules. */
-export function qcRuleUid(code: ProblemCode): string {
-  const id = ruleIdOf(code);
-  return id.startsWith('asam.net:') ? id : `${BUNDLE_NAME}:xosc:1.0.0:${BUNDLE_NAME}.${code.replace(/-/g, '_')}`;
+export function qcRuleUid(problem: RuledProblem): string {
+  return ruleOf(problem).qcRule ?? `${BUNDLE_NAME}:xosc:1.0.0:${BUNDLE_NAME}.${problem.code.replace(/-/g, '_')}`;
 }
 
 /** One checker per rule: its id is the rule's name. */
-export function checkerIdOf(code: ProblemCode): string {
-  const id = ruleIdOf(code);
-  const name = id.startsWith('asam.net:') ? id.slice(id.lastIndexOf(':') + 1).replace(/\./g, '_') : code.replace(/-/g, '_');
+export function checkerIdOf(problem: RuledProblem): string {
+  const qcRule = ruleOf(problem).qcRule;
+  const name = qcRule ? qcRule.slice(qcRule.lastIndexOf(':') + 1).replace(/\./g, '_') : problem.code.replace(/-/g, '_');
   return `check_${BUNDLE_NAME}_${name}`;
 }
 
@@ -100,11 +99,11 @@ function xmlAttributes(values: Record<string, string | number>): string {
 
 /** The `.xqar` text of the problems of one checked input. */
 export function resultFileText(config: BundleConfig, problems: Problem[], inputDocument: XmlDocument | undefined): string {
-  const byChecker = new Map<string, { code: ProblemCode; problems: Problem[] }>();
+  const byChecker = new Map<string, { uid: string; rule: ProblemRule; problems: Problem[] }>();
   for (const problem of problems) {
-    const checkerId = checkerIdOf(problem.code);
+    const checkerId = checkerIdOf(problem);
     if (config.checkerIds && !config.checkerIds.has(checkerId)) continue;
-    const entry = byChecker.get(checkerId) ?? { code: problem.code, problems: [] };
+    const entry = byChecker.get(checkerId) ?? { uid: qcRuleUid(problem), rule: ruleOf(problem), problems: [] };
     entry.problems.push(problem);
     byChecker.set(checkerId, entry);
   }
@@ -120,10 +119,10 @@ export function resultFileText(config: BundleConfig, problems: Problem[], inputD
   for (const param of config.params) lines.push(`    <Param${xmlAttributes(param)}/>`);
   let issueId = 0;
   for (const [checkerId, entry] of [...byChecker].sort(([a], [b]) => (a < b ? -1 : a > b ? 1 : 0))) {
-    const uid = qcRuleUid(entry.code);
+    const uid = entry.uid;
     const count = entry.problems.length;
     lines.push(
-      `    <Checker${xmlAttributes({ checkerId, description: ruleDescription(ruleIdOf(entry.code), entry.code), summary: `Found ${count} issue${count === 1 ? '' : 's'}`, status: 'completed' })}>`,
+      `    <Checker${xmlAttributes({ checkerId, description: entry.rule.description, summary: `Found ${count} issue${count === 1 ? '' : 's'}`, status: 'completed' })}>`,
     );
     for (const problem of entry.problems) {
       lines.push(

@@ -1,7 +1,7 @@
 import * as path from 'node:path';
 import { pathToFileURL } from 'node:url';
 import { Problem, Severity } from '../core/problems';
-import { ruleDescription, ruleHelpUri, ruleIdOf, RULES } from '../core/rules';
+import { ruleOf } from '../core/rules';
 import { SourceRef } from '../core/sources';
 import { VERSION } from './common';
 
@@ -117,16 +117,16 @@ export function sarifLog(problems: readonly Problem[], workingDirectory: string)
   });
 
   const results = problems.map((problem): SarifResult => {
-    const ruleId = ruleIdOf(problem.code);
+    const rule = ruleOf(problem);
+    const ruleId = rule.id;
     let index = ruleIndex.get(ruleId);
     if (index === undefined) {
       index = rules.length;
-      const qcRule = RULES[problem.code].qcRule;
-      const helpUri = ruleHelpUri(problem.code);
+      const { qcRule, helpUri } = rule;
       rules.push({
         id: ruleId,
         name: qcRule ? (ruleId.split(':').pop() ?? ruleId) : problem.code,
-        shortDescription: { text: ruleDescription(ruleId, problem.code) },
+        shortDescription: { text: rule.description },
         ...(helpUri ? { helpUri } : {}),
         defaultConfiguration: { level: levelOf(problem.severity) },
         properties: { codes: [problem.code], ...(qcRule ? { asamQualityCheckerRule: qcRule } : {}) },

@@ -98,6 +98,18 @@ export interface Problem {
   related?: RelatedProblemLocation[];
   /** Data a quick fix needs (for example the suggested key), never shown; its shape is the one `ProblemDataByCode` names for the code. */
   data?: ProblemData;
+  /** What the problem is about, where the rule it breaks depends on that (core/rules.ts `ruleOf`); the schema's findings name it. */
+  subject?: ProblemSubject;
+}
+
+/** The element (and attribute) a problem is about, by name. */
+export interface ProblemSubject {
+  element: string;
+  attribute?: string;
+  /** Set when the element is the document's root. */
+  root?: true;
+  /** Of the children a schema-missing-element problem names, those the element has none of (the others stand out of order). */
+  absent?: string[];
 }
 
 /** The name or value to write instead of the one written. */

@@ -1,4 +1,4 @@
-import { ProblemCode } from './problems';
+import { Problem, ProblemCode } from './problems';
 
 /**
  * The rule each problem code stands for: a one-line description and, where ASAM's Quality Checker for
@@ -8,11 +8,14 @@ import { ProblemCode } from './problems';
 export interface Rule {
   description: string;
   /** The ASAM Quality Checker rule uid, `asam.net:xosc:<version>:<group>.<rule>`. */
-  qcRule?: string;
+  qcRule?: QcRuleUid;
 }
 
 const QC = {
   validXml: 'asam.net:xosc:1.0.0:xml.valid_xml_document',
+  rootTag: 'asam.net:xosc:1.0.0:xml.root_tag_is_openscenario',
+  fileHeader: 'asam.net:xosc:1.0.0:xml.fileheader_is_present',
+  versionDefined: 'asam.net:xosc:1.0.0:xml.version_is_defined',
   validSchema: 'asam.net:xosc:1.0.0:xml.valid_schema',
   entityReferences: 'asam.net:xosc:1.2.0:reference_control.resolvable_entity_references',
   uniqueEntityReferences: 'asam.net:xosc:1.2.0:reference_control.uniquely_resolvable_entity_references',
@@ -31,6 +34,9 @@ const QC = {
 /** What each ASAM Quality Checker rule requires, in our words (one rule may stand for several codes). */
 export const QC_RULE_DESCRIPTIONS: Record<(typeof QC)[keyof typeof QC], string> = {
   [QC.validXml]: 'The file is a well-formed XML document.',
+  [QC.rootTag]: 'The root element is <OpenSCENARIO>.',
+  [QC.fileHeader]: 'The root element has a <FileHeader>.',
+  [QC.versionDefined]: 'The FileHeader states revMajor and revMinor, each an unsignedShort.',
   [QC.validSchema]: 'The file is valid against the ASAM OpenSCENARIO schema of its version.',
   [QC.entityReferences]: 'Every entity reference resolves to a declared entity.',
   [QC.uniqueEntityReferences]: 'Every entity reference resolves to exactly one element.',
@@ -144,25 +150,65 @@ export const RULES: Record<ProblemCode, Rule> = {
   'unknown-distribution-parameter': { description: "A distribution's parameterName is a parameter its ScenarioFile declares at its root." },
 };
 
-/** The id a report gives a problem's rule: the ASAM Quality Checker uid where one exists, the project's code otherwise. */
-export function ruleIdOf(code: ProblemCode): string {
-  return RULES[code].qcRule ?? `modular2simple:${code}`;
+/** An ASAM Quality Checker rule uid this project maps a problem to. */
+export type QcRuleUid = (typeof QC)[keyof typeof QC];
+
+/** What `ruleOf` reads of a problem: its code, and for the rules that depend on it, its data and subject. */
+export type RuledProblem = Pick<Problem, 'code' | 'data' | 'subject'>;
+
+/** The rule a problem breaks, as the editor, `check --format json`, SARIF and qc-bundle name it. */
+export interface ProblemRule {
+  /** The ASAM Quality Checker uid where that checker has the rule, `modular2simple:<code>` otherwise. */
+  id: string;
+  /** The ASAM Quality Checker uid, where that checker has the rule. */
+  qcRule?: QcRuleUid;
+  description: string;
+  /** Where the rule is described: ASAM's checker documentation for its rules; undefined for the project's own. */
+  helpUri?: string;
+}
+
+/** The FileHeader attributes that state the version (ASAM QC xml.version_is_defined). */
+const VERSION_ATTRIBUTES: readonly string[] = ['revMajor', 'revMinor'];
+
+function missingNames(problem: RuledProblem): readonly string[] {
+  const data = problem.data;
+  return data && 'missing' in data && Array.isArray(data.missing) ? data.missing : [];
+}
+
+/**
+ * ASAM's checker splits three schema rules off its valid_schema rule; a problem of one of them names
+ * that rule instead of its code's: the root element, a missing FileHeader, the FileHeader's version.
+ */
+function specificQcRule(problem: RuledProblem): QcRuleUid | undefined {
+  const subject = problem.subject;
+  if (!subject) return undefined;
+  if (problem.code === 'schema-unknown-element' && subject.root) return QC.rootTag;
+  if (problem.code === 'schema-missing-element' && subject.root && subject.absent?.includes('FileHeader')) return QC.fileHeader;
+  // The schema allows a FileHeader only as the root's child: any FileHeader it reports on is that one.
+  if (subject.element !== 'FileHeader') return undefined;
+  if (problem.code === 'schema-missing-attribute' && missingNames(problem).some((name) => VERSION_ATTRIBUTES.includes(name)))
+    return QC.versionDefined;
+  if (problem.code === 'schema-value' && subject.attribute !== undefined && VERSION_ATTRIBUTES.includes(subject.attribute))
+    return QC.versionDefined;
+  return undefined;
 }
 
 /** Where ASAM describes its Quality Checker rules: one section per checker, `check_asam_xosc_<group>_<rule>`. */
 const QC_CHECKER_DOC = 'https://github.com/asam-ev/qc-openscenarioxml/blob/main/checker_bundle_doc.md';
 
-/** The address of the description of a code's ASAM Quality Checker rule; undefined for the project's own rules. */
-export function ruleHelpUri(code: ProblemCode): string | undefined {
-  const uid = RULES[code].qcRule;
-  if (!uid) return undefined;
+function qcHelpUri(uid: QcRuleUid): string {
   const rule = uid.slice(uid.lastIndexOf(':') + 1).replace('.', '_');
   return `${QC_CHECKER_DOC}#check_asam_xosc_${rule}`;
 }
 
-/** The description of a rule id as `ruleIdOf` gives it. */
-export function ruleDescription(ruleId: string, code: ProblemCode): string {
-  return Object.hasOwn(QC_RULE_DESCRIPTIONS, ruleId)
-    ? QC_RULE_DESCRIPTIONS[ruleId as keyof typeof QC_RULE_DESCRIPTIONS]
-    : RULES[code].description;
+/** The rule of a problem: the one place that decides it (per problem, where ASAM's checker has a more specific rule than the code's). */
+export function ruleOf(problem: RuledProblem): ProblemRule {
+  const qcRule = specificQcRule(problem) ?? RULES[problem.code].qcRule;
+  if (!qcRule) return { id: `modular2simple:${problem.code}`, description: RULES[problem.code].description };
+  return { id: qcRule, qcRule, description: QC_RULE_DESCRIPTIONS[qcRule], helpUri: qcHelpUri(qcRule) };
+}
+
+/** The rule id of a code's problems in general (`ruleOf` of a problem may name a more specific one). */
+export function ruleIdOf(code: ProblemCode): string {
+  return ruleOf({ code }).id;
 }

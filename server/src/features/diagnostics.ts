@@ -1,7 +1,7 @@
 import { Connection, Diagnostic, DiagnosticRelatedInformation, DiagnosticSeverity, DiagnosticTag } from 'vscode-languageserver/node';
 import { FlatSource, LinkedReference } from '../core/flatten';
 import { Problem, ZERO_RANGE } from '../core/problems';
-import { ruleHelpUri } from '../core/rules';
+import { ruleOf } from '../core/rules';
 import { Range } from '../core/text';
 import { resolvedTarget } from '../analysis';
 import { baseName, displayRef, refId, SourceRef } from '../core/sources';
@@ -28,17 +28,17 @@ export function toDiagnostic(problem: Problem, workspace: Workspace): Diagnostic
     location: { uri: workspace.uriOf(item.source), range: item.range },
     message: item.message,
   }));
+  const rule = ruleOf(problem);
   const diagnostic: Diagnostic = {
     range: problem.range,
     severity: severityOf(problem),
-    code: problem.code,
+    // The rule the user knows from ASAM's checker where it has one; quick fixes and clients read the project's code in `data`.
+    code: rule.qcRule ?? problem.code,
     source: DIAGNOSTIC_SOURCE,
     message: problem.hint ? `${problem.message}\n${problem.hint}` : problem.message,
     data: diagnosticDataOf(problem),
   };
-  // The code stays the project's (quick fixes, clients and tests read it); the link names the ASAM Quality Checker rule.
-  const help = ruleHelpUri(problem.code);
-  if (help) diagnostic.codeDescription = { href: help };
+  if (rule.helpUri) diagnostic.codeDescription = { href: rule.helpUri };
   if (related.length > 0) diagnostic.relatedInformation = related;
   if (problem.code === 'xosc-fallback' || problem.code === 'schema-deprecated') diagnostic.tags = [DiagnosticTag.Deprecated];
   if (problem.code === 'unused-parameter') diagnostic.tags = [DiagnosticTag.Unnecessary];

@@ -5,7 +5,7 @@ import { schemaIndex } from '../schema/index';
 import { attributeType, siteTypeProblem } from '../schema/parameterValues';
 import { PlacedFinding, SchemaCheckMemory, toProblem } from '../schema/problems';
 import { typeOfElement } from '../schema/query';
-import { checkAttribute, checkSchema, findingOffsets, SchemaCheckOptions, SchemaFinding } from '../schema/validate';
+import { checkAttribute, checkSchema, findingOffsets, SchemaCheckOptions, SchemaFinding, subjectOf } from '../schema/validate';
 import { chooseVersion } from '../schema/version';
 import { attribute, elementAt, XmlAttribute, XmlDocument, XmlElement } from '../xml';
 import { copiedFrom, originOf } from './origin';
@@ -69,7 +69,7 @@ export function outputSchemaProblems(
         toProblem(
           output.ref,
           output.original.document,
-          { ...finding, message: `${finding.message} (set by ParameterReference '${override.key}')`, data },
+          { ...finding, message: `${finding.message} (set by ParameterReference '${override.key}')`, data, subject: subjectOf(finding) },
           start,
           end,
         ),
@@ -80,7 +80,7 @@ export function outputSchemaProblems(
     if (finding.attribute) mapped.attribute = attribute(origin.element, finding.attribute.name);
     if (finding.part !== 'tag' && !mapped.attribute) mapped.part = 'tag';
     const [start, end] = findingOffsets(mapped);
-    problems.push(toProblem(origin.source.ref, originDocument, mapped, start, end));
+    problems.push(toProblem(origin.source.ref, originDocument, { ...mapped, subject: subjectOf(mapped) }, start, end));
   }
   return problems;
 }
@@ -121,7 +121,12 @@ export function overrideValueProblems(main: FlatSource, options: Omit<SchemaChec
             toProblem(
               main.ref,
               document,
-              { ...finding, message: `${finding.message} (set by ParameterReference '${parameter.key}')`, data: undefined },
+              {
+                ...finding,
+                message: `${finding.message} (set by ParameterReference '${parameter.key}')`,
+                data: undefined,
+                subject: subjectOf(finding),
+              },
               valueAttribute.valueStart,
               valueAttribute.valueEnd,
             ),

@@ -1,10 +1,10 @@
-import { Problem } from '../problems';
+import { Problem, ProblemSubject } from '../problems';
 import { refId, SourceRef } from '../sources';
 import { schemaIndex } from './index';
 import { typeOfElement } from './query';
 import { ChosenVersion } from './version';
 import { markupFreeEdit, XmlAttribute, XmlDocument, XmlElement } from '../xml';
-import { checkAttribute, checkSchema, findingOffsets, SchemaCheckOptions, SchemaFinding } from './validate';
+import { checkAttribute, checkSchema, findingOffsets, SchemaCheckOptions, SchemaFinding, subjectOf } from './validate';
 
 /** A finding as a problem at offsets of `document`. */
 export function toProblem(source: SourceRef, document: XmlDocument, finding: FindingWords, start: number, end: number): Problem {
@@ -17,6 +17,7 @@ export function toProblem(source: SourceRef, document: XmlDocument, finding: Fin
   };
   if (finding.hint) problem.hint = finding.hint;
   if (finding.data) problem.data = finding.data;
+  if (finding.subject) problem.subject = finding.subject;
   return problem;
 }
 
@@ -29,7 +30,8 @@ export interface PlacedFinding {
   finding: FindingWords;
 }
 
-export type FindingWords = Omit<SchemaFinding, 'element' | 'attribute'>;
+/** A finding without its parse tree: the element and attribute only by name. */
+export type FindingWords = Omit<SchemaFinding, 'element' | 'attribute'> & { subject?: ProblemSubject };
 
 interface RememberedCheck {
   text: string;
@@ -44,7 +46,7 @@ function placed(finding: SchemaFinding): PlacedFinding {
   const [start, end] = findingOffsets(finding);
   // The tree is dropped: only offsets and words are kept.
   const { element: _element, attribute: _attribute, ...words } = finding;
-  return { start, end, attributeName: finding.attribute?.name, finding: words };
+  return { start, end, attributeName: finding.attribute?.name, finding: { ...words, subject: subjectOf(finding) } };
 }
 
 /**

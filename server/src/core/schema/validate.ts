@@ -1,4 +1,4 @@
-import { ProblemCode, SCHEMA_PROBLEM_CODE_LIST, SchemaFindingData, SchemaProblemCode, Severity } from '../problems';
+import { ProblemCode, ProblemSubject, SCHEMA_PROBLEM_CODE_LIST, SchemaFindingData, SchemaProblemCode, Severity } from '../problems';
 import { closestMatch } from '../text';
 import { XmlAttribute, XmlDocument, XmlElement } from '../xml';
 import { StateSet } from './automaton';
@@ -396,6 +396,24 @@ function reportMissing(
     message: `<${element.name}> lacks the required element${names.length > 1 ? 's' : ''} ${list(missing)}${before ? ` before <${before.name}>` : ''}`,
     data: { missing: names, parent: element.name, ...(before ? { insertAt: String(before.start) } : {}) },
   });
+}
+
+/** What a finding is about, by name, for a problem that outlives the parse tree. */
+export function subjectOf(finding: Pick<SchemaFinding, 'code' | 'element' | 'attribute' | 'data'>): ProblemSubject {
+  const parent = finding.data?.parent;
+  // A missing child is about its parent, though the finding stands at the sibling it belongs before.
+  const element =
+    finding.code === 'schema-missing-element' && parent !== undefined && finding.element.name !== parent
+      ? (finding.element.parent ?? finding.element)
+      : finding.element;
+  const subject: ProblemSubject = { element: element.name };
+  if (finding.attribute) subject.attribute = finding.attribute.name;
+  if (!element.parent) subject.root = true;
+  if (finding.code === 'schema-missing-element') {
+    const present = new Set(element.children.map((child) => child.name));
+    subject.absent = (finding.data?.missing ?? []).filter((name) => !present.has(name));
+  }
+  return subject;
 }
 
 /** The offsets a finding points at in the document it was found in. */
