@@ -6,6 +6,7 @@ import { firstDifference } from '../../server/src/core/equivalence';
 import { main } from '../../server/src/cli';
 import { FlattenToTextRequest } from '../../common/src/protocol';
 import { fileUri, TestClient } from './harness';
+import { problemCodeOf } from '../support/diagnostics';
 import { positionAfter, positionAt } from '../support/cursor';
 import { caseStudyDir, libraryDir, requireCorpus } from '../support/paths';
 
@@ -34,7 +35,7 @@ describe('language server on the case study (../shared/corpus)', function () {
   it('warns about the NAME.xosc fallback and the keys that simple_2.xosc lists as whole keys', async function () {
     const diagnostics = await client.diagnosticsOf(mainUri);
     assert.deepEqual(
-      diagnostics.map((diagnostic) => `${diagnostic.range.start.line + 1}:${diagnostic.code}`),
+      diagnostics.map((diagnostic) => `${diagnostic.range.start.line + 1}:${problemCodeOf(diagnostic)}`),
       ['339:xosc-fallback', '492:unknown-key', '518:unknown-key'],
     );
     assert.deepEqual(
@@ -70,7 +71,9 @@ describe('language server on the case study (../shared/corpus)', function () {
       .map((problem) => `${problem.line}:${problem.code}:${problem.severity}`);
     const diagnostics = await client.diagnosticsOf(mainUri);
     assert.deepEqual(
-      diagnostics.map((diagnostic) => `${diagnostic.range.start.line + 1}:${diagnostic.code}:${severityName[diagnostic.severity ?? 0]}`),
+      diagnostics.map(
+        (diagnostic) => `${diagnostic.range.start.line + 1}:${problemCodeOf(diagnostic)}:${severityName[diagnostic.severity ?? 0]}`,
+      ),
       fromCli,
     );
   });
@@ -78,7 +81,7 @@ describe('language server on the case study (../shared/corpus)', function () {
   it('shows the parameterAttributes entry of simple_2.xosc that names no attribute', async function () {
     const uri = await client.openFile(path.join(caseStudyDir, 'simple_2.xosc'));
     const diagnostics: Diagnostic[] = await client.diagnosticsOf(uri);
-    const entry = diagnostics.find((diagnostic) => diagnostic.code === 'unknown-parameter-attribute');
+    const entry = diagnostics.find((diagnostic) => problemCodeOf(diagnostic) === 'unknown-parameter-attribute');
     assert.ok(entry);
     assert.equal(entry.range.start.line + 1, 129);
     await client.close(uri);
@@ -219,7 +222,9 @@ describe('language server settings (../shared/corpus)', function () {
     await client.open(uri, fs.readFileSync(path.join(libraryDir, 'modular_hero_back', 'main.xosc'), 'utf8'));
     // Inside a .mosc there is no search of parent folders, so simple_1.xosc needs the setting.
     const before = await client.diagnosticsOf(uri);
-    assert.ok(before.some((diagnostic) => diagnostic.code === 'missing-file' && /simple_1\.xosc/.test(String(diagnostic.message))));
+    assert.ok(
+      before.some((diagnostic) => problemCodeOf(diagnostic) === 'missing-file' && /simple_1\.xosc/.test(String(diagnostic.message))),
+    );
     await client.settingsChanged({ scenarioPath: [libraryDir] });
     await client.diagnosticsOf(uri, (diagnostics) => !diagnostics.some((diagnostic) => diagnostic.severity === DiagnosticSeverity.Error));
     await client.stop();

@@ -5,6 +5,7 @@ import * as path from 'node:path';
 import { CodeLens, CompletionItem, Diagnostic, Hover, Location, MarkupContent } from 'vscode-languageserver/node';
 import { RunEsminiRequest, RunEsminiResult } from '../../common/src/protocol';
 import { fileUri, useServer } from './harness';
+import { problemCodeOf } from '../support/diagnostics';
 import { cliPath, sharedDir } from '../support/paths';
 import { esminiBinary, esminiRoads, requireEsmini } from '../support/esmini';
 import { at } from '../support/cursor';
@@ -186,7 +187,10 @@ describe('distribution files in the editor: checks, counts and fixes', function 
     'ranges.xosc',
   );
   const own = (diagnostics: Diagnostic[]) =>
-    diagnostics.filter((d) => d.source === 'modular2simple' && (d.code === 'distribution' || d.code === 'unknown-distribution-parameter'));
+    diagnostics.filter(
+      (d) =>
+        d.source === 'modular2simple' && (problemCodeOf(d) === 'distribution' || problemCodeOf(d) === 'unknown-distribution-parameter'),
+    );
 
   it('counts what the ValueConstraintGroups keep, as vary --count', async () => {
     const lenses = (await fixture.client.connection.sendRequest('textDocument/codeLens', {
@@ -201,7 +205,7 @@ describe('distribution files in the editor: checks, counts and fixes', function 
     const uri = await fixture.client.openFile(path.join(fixture.root, 'unknown.xosc'));
     const diagnostics = own(await fixture.client.diagnosticsOf(uri));
     assert.equal(diagnostics.length, 1);
-    assert.equal(diagnostics[0].code, 'unknown-distribution-parameter');
+    assert.equal(problemCodeOf(diagnostics[0]), 'unknown-distribution-parameter');
     assert.equal(diagnostics[0].severity, 1);
     const text = fs.readFileSync(path.join(fixture.root, 'unknown.xosc'), 'utf8');
     const start = at(text, 'parameterName="|Sped"');

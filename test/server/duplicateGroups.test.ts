@@ -2,6 +2,7 @@ import * as assert from 'node:assert/strict';
 import * as path from 'node:path';
 import { mainWithKeys, withDuplicateGroups } from './fixtures/scenarios';
 import { useServer } from './harness';
+import { problemCodeOf } from '../support/diagnostics';
 
 describe('language server: duplicate group names (JSON-RPC)', function () {
   const duplicated = withDuplicateGroups();
@@ -10,7 +11,7 @@ describe('language server: duplicate group names (JSON-RPC)', function () {
   it('warns on the reference that is ambiguous', async function () {
     const diagnostics = await server.client.diagnosticsOf(server.openUri);
     assert.deepEqual(
-      diagnostics.map((diagnostic) => diagnostic.code),
+      diagnostics.map((diagnostic) => problemCodeOf(diagnostic)),
       ['ambiguous-group'],
     );
   });
@@ -19,7 +20,7 @@ describe('language server: duplicate group names (JSON-RPC)', function () {
     const uri = await server.client.openFile(path.join(server.root, 'simple.xosc'));
     const diagnostics = await server.client.diagnosticsOf(uri);
     assert.deepEqual(
-      diagnostics.filter((diagnostic) => diagnostic.code === 'duplicate-group'),
+      diagnostics.filter((diagnostic) => problemCodeOf(diagnostic) === 'duplicate-group'),
       [],
     );
     await server.client.close(uri);

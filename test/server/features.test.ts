@@ -19,6 +19,7 @@ import {
 import { FlattenToFileRequest, FlattenToTextRequest, PackRequest, StructureRequest } from '../../common/src/protocol';
 import { CLEAN, cycleFile, MAIN, PACKAGE_MAIN, SIMPLE } from './fixtures/scenarios';
 import { fileUri, TestClient } from './harness';
+import { problemCodeOf } from '../support/diagnostics';
 import { at, cursor } from '../support/cursor';
 import { temporaryWorkspace } from '../support/workspace';
 
@@ -34,7 +35,7 @@ function messageOf(diagnostic: Diagnostic): string {
 }
 
 function codes(diagnostics: Diagnostic[]): string[] {
-  return diagnostics.map((diagnostic) => String(diagnostic.code)).sort();
+  return diagnostics.map((diagnostic) => String(problemCodeOf(diagnostic))).sort();
 }
 
 function textAt(text: string, range: { start: { line: number; character: number }; end: { line: number; character: number } }): string {
@@ -84,24 +85,24 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
     it('reports every problem of the main file with its code, severity and precise range', async function () {
       const diagnostics = await client.diagnosticsOf(mainUri);
       assert.deepEqual(codes(diagnostics), ['missing-file', 'no-default', 'unknown-group', 'unknown-key', 'xosc-fallback']);
-      const unknownKey = diagnostics.find((diagnostic) => diagnostic.code === 'unknown-key') as Diagnostic;
+      const unknownKey = diagnostics.find((diagnostic) => problemCodeOf(diagnostic) === 'unknown-key') as Diagnostic;
       assert.equal(unknownKey.severity, DiagnosticSeverity.Error, 'an unknown key is an error, as for the CLI');
       assert.equal(textAt(MAIN, unknownKey.range), 'dela');
       assert.match(messageOf(unknownKey), /did you mean 'delay'/);
-      const unknownGroup = diagnostics.find((diagnostic) => diagnostic.code === 'unknown-group') as Diagnostic;
+      const unknownGroup = diagnostics.find((diagnostic) => problemCodeOf(diagnostic) === 'unknown-group') as Diagnostic;
       assert.equal(textAt(MAIN, unknownGroup.range), 'Brak');
       assert.match(messageOf(unknownGroup), /it has: Brake, Wait/);
-      const missing = diagnostics.find((diagnostic) => diagnostic.code === 'missing-file') as Diagnostic;
+      const missing = diagnostics.find((diagnostic) => problemCodeOf(diagnostic) === 'missing-file') as Diagnostic;
       assert.equal(missing.severity, DiagnosticSeverity.Error);
       assert.equal(textAt(MAIN, missing.range), 'nowhere.xosc');
-      const fallback = diagnostics.find((diagnostic) => diagnostic.code === 'xosc-fallback') as Diagnostic;
+      const fallback = diagnostics.find((diagnostic) => problemCodeOf(diagnostic) === 'xosc-fallback') as Diagnostic;
       assert.equal(fallback.severity, DiagnosticSeverity.Warning);
       assert.equal(textAt(MAIN, fallback.range), 'pkg.xosc');
     });
 
     it('relates a key without default to the listed name in the simple scenario', async function () {
       const diagnostics = await client.diagnosticsOf(mainUri);
-      const noDefault = diagnostics.find((diagnostic) => diagnostic.code === 'no-default') as Diagnostic;
+      const noDefault = diagnostics.find((diagnostic) => problemCodeOf(diagnostic) === 'no-default') as Diagnostic;
       assert.equal(noDefault.severity, DiagnosticSeverity.Error);
       assert.equal(textAt(MAIN, noDefault.range), 'missing');
       const related = noDefault.relatedInformation?.[0];
@@ -136,7 +137,7 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
       const uri = fileUri(path.join(root, 'broken.xosc'));
       await client.open(uri, '<OpenSCENARIO>\n  <Storyboard>\n    <Story name="x">\n</OpenSCENARIO>\n');
       const broken = await client.diagnosticsOf(uri);
-      assert.ok(broken.some((diagnostic) => diagnostic.code === 'xml' && diagnostic.severity === DiagnosticSeverity.Error));
+      assert.ok(broken.some((diagnostic) => problemCodeOf(diagnostic) === 'xml' && diagnostic.severity === DiagnosticSeverity.Error));
       await client.change(uri, [{ text: '<OpenSCENARIO>\n  <Storyboard/>\n</OpenSCENARIO>\n' }]);
       assert.deepEqual(await client.diagnosticsOf(uri), []);
       await client.close(uri);
@@ -150,21 +151,24 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
       ]);
       const diagnostics = await client.diagnosticsOf(
         mainUri,
-        (list) => list.filter((diagnostic) => diagnostic.code === 'unknown-group').length === 2,
+        (list) => list.filter((diagnostic) => problemCodeOf(diagnostic) === 'unknown-group').length === 2,
       );
       assert.ok(diagnostics.some((diagnostic) => /has no ManeuverGroup named 'Brake'; it has: Braking, Wait/.test(messageOf(diagnostic))));
       await client.close(simpleUri);
-      await client.diagnosticsOf(mainUri, (list) => list.filter((diagnostic) => diagnostic.code === 'unknown-group').length === 1);
+      await client.diagnosticsOf(
+        mainUri,
+        (list) => list.filter((diagnostic) => problemCodeOf(diagnostic) === 'unknown-group').length === 1,
+      );
     });
 
     it('follows file changes on disk (didChangeWatchedFiles)', async function () {
       const nowhere = path.join(root, 'nowhere.xosc');
       fs.writeFileSync(nowhere, SIMPLE.replace('name="Brake"', 'name="Any"'));
       await client.connection.sendNotification('workspace/didChangeWatchedFiles', { changes: [{ uri: fileUri(nowhere), type: 1 }] });
-      await client.diagnosticsOf(mainUri, (list) => !list.some((diagnostic) => diagnostic.code === 'missing-file'));
+      await client.diagnosticsOf(mainUri, (list) => !list.some((diagnostic) => problemCodeOf(diagnostic) === 'missing-file'));
       fs.rmSync(nowhere);
       await client.connection.sendNotification('workspace/didChangeWatchedFiles', { changes: [{ uri: fileUri(nowhere), type: 3 }] });
-      await client.diagnosticsOf(mainUri, (list) => list.some((diagnostic) => diagnostic.code === 'missing-file'));
+      await client.diagnosticsOf(mainUri, (list) => list.some((diagnostic) => problemCodeOf(diagnostic) === 'missing-file'));
     });
   });
 
@@ -441,7 +445,7 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
   describe('quick fixes', function () {
     async function actionsFor(code: string): Promise<CodeAction[]> {
       const diagnostics = await client.diagnosticsOf(mainUri);
-      const diagnostic = diagnostics.find((candidate) => candidate.code === code) as Diagnostic;
+      const diagnostic = diagnostics.find((candidate) => problemCodeOf(candidate) === code) as Diagnostic;
       return client.request<CodeAction[]>('textDocument/codeAction', {
         textDocument: { uri: mainUri },
         range: diagnostic.range,

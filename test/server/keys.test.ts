@@ -1,6 +1,7 @@
 import * as assert from 'node:assert/strict';
 import * as path from 'node:path';
 import { CodeAction, CompletionItem, Diagnostic, Hover, Location, MarkupContent, TextEdit } from 'vscode-languageserver/node';
+import { problemCodeOf } from '../support/diagnostics';
 import { cursor, positionAfter } from '../support/cursor';
 import { DOTTED, MAIN, MAIN_OVERRIDES, SIMPLE_EXPRESSION } from './fixtures/scenarios';
 import { fileUri, useServer } from './harness';
@@ -117,8 +118,8 @@ describe('language server: a simple scenario listing a dotted name in parameterA
 
   it('still adds the missing keys', async function () {
     const diagnostics = await server.client.diagnosticsOf(server.openUri);
-    const diagnostic = diagnostics.find((candidate) => candidate.code === 'unknown-key') as Diagnostic;
-    assert.ok(diagnostic, JSON.stringify(diagnostics.map((candidate) => candidate.code)));
+    const diagnostic = diagnostics.find((candidate) => problemCodeOf(candidate) === 'unknown-key') as Diagnostic;
+    assert.ok(diagnostic, JSON.stringify(diagnostics.map((candidate) => problemCodeOf(candidate))));
     const actions = await server.client.request<CodeAction[]>('textDocument/codeAction', {
       textDocument: { uri: server.openUri },
       range: diagnostic.range,

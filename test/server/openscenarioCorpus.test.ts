@@ -2,6 +2,7 @@ import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { DiagnosticSeverity, Hover, InlayHint, Location, MarkupContent } from 'vscode-languageserver/node';
+import { problemCodeOf } from '../support/diagnostics';
 import { corpusFiles, expectedCorpusFindings, openscenarioDir, SEMANTIC_CODES } from '../support/openscenarioCorpus';
 import { fileUri, TestClient } from './harness';
 import { positionAt } from '../support/cursor';
@@ -42,8 +43,8 @@ describe('language server on the real OpenSCENARIO corpus (../shared/corpus/open
       const diagnostics = await client.diagnosticsOf(uri, () => true, 30_000);
       for (const diagnostic of diagnostics) {
         const severe = diagnostic.severity === DiagnosticSeverity.Error || diagnostic.severity === DiagnosticSeverity.Warning;
-        if (severe && SEMANTIC_CODES.has(diagnostic.code as never))
-          (found[relative] ??= []).push(`${diagnostic.range.start.line + 1}:${String(diagnostic.code)}`);
+        if (severe && SEMANTIC_CODES.has(problemCodeOf(diagnostic) as never))
+          (found[relative] ??= []).push(`${diagnostic.range.start.line + 1}:${String(problemCodeOf(diagnostic))}`);
       }
       const tokens = await client.request<{ data: number[] }>('textDocument/semanticTokens/full', { textDocument: { uri } });
       const hints = await client.request<InlayHint[]>('textDocument/inlayHint', {

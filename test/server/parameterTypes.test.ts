@@ -2,6 +2,7 @@ import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { CompletionItem, Diagnostic, DiagnosticSeverity } from 'vscode-languageserver/node';
+import { problemCodeOf } from '../support/diagnostics';
 import { at, offsetAt, positionAt } from '../support/cursor';
 import { openscenarioDir } from '../support/openscenarioCorpus';
 import { temporaryWorkspace } from '../support/workspace';
@@ -20,7 +21,7 @@ function cutIn(): string {
 }
 
 function typeProblems(diagnostics: Diagnostic[]): Diagnostic[] {
-  return diagnostics.filter((diagnostic) => diagnostic.code === 'type-mismatch');
+  return diagnostics.filter((diagnostic) => problemCodeOf(diagnostic) === 'type-mismatch');
 }
 
 describe("language server: a parameter's value against the type of each attribute that uses it (JSON-RPC)", function () {

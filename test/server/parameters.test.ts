@@ -20,6 +20,7 @@ import { SEMANTIC_TOKENS_LEGEND } from '../../server/src/features/semanticTokens
 import { BARE, CARS, FAULTY, PARAMETERS } from './fixtures/parameters';
 import { fileUri, TestClient } from './harness';
 import { applyEdits, inside, offsetOf, Position } from './textEdits';
+import { problemCodeOf } from '../support/diagnostics';
 import { repoRoot } from '../support/paths';
 import { temporaryWorkspace } from '../support/workspace';
 
@@ -87,7 +88,7 @@ describe('editor features on the semantic model: $name, ${...} and catalogs (JSO
   it('reports no diagnostic on the well-formed file (the entity check reads $owner as Ego)', async function () {
     const diagnostics = await client.diagnosticsOf(uri);
     assert.deepEqual(
-      diagnostics.map((diagnostic) => `${diagnostic.range.start.line + 1}:${diagnostic.code}: ${diagnostic.message}`),
+      diagnostics.map((diagnostic) => `${diagnostic.range.start.line + 1}:${problemCodeOf(diagnostic)}: ${diagnostic.message}`),
       [],
     );
   });
@@ -269,22 +270,26 @@ describe('editor features on the semantic model: $name, ${...} and catalogs (JSO
     await client.open(scratch, wrong);
     const diagnostics = await client.diagnosticsOf(scratch, (list) => list.length > 0);
     assert.deepEqual(
-      diagnostics.map((diagnostic) => `${String(diagnostic.code)}:${textAt(wrong, diagnostic.range)}`),
+      diagnostics.map((diagnostic) => `${String(problemCodeOf(diagnostic))}:${textAt(wrong, diagnostic.range)}`),
       ['unknown-catalog-entry:Sedna'],
     );
     await client.change(scratch, [{ text: wrong.replace('entryName="Sedna"', 'entryName="Sedan"') }]);
     const assigned = await client.diagnosticsOf(scratch, (list) =>
-      list.some((diagnostic) => diagnostic.code === 'unknown-assigned-parameter'),
+      list.some((diagnostic) => problemCodeOf(diagnostic) === 'unknown-assigned-parameter'),
     );
     assert.deepEqual(
-      assigned.map((diagnostic) => `${String(diagnostic.code)}:${textAt(wrong, diagnostic.range)}`),
+      assigned.map((diagnostic) => `${String(problemCodeOf(diagnostic))}:${textAt(wrong, diagnostic.range)}`),
       ['unknown-assigned-parameter:TopSpeed'],
     );
     await client.change(scratch, [
       { text: wrong.replace('catalogName="Cars"', 'catalogName="Bikes"').replace('entryName="Sedna"', 'entryName="Sedan"') },
     ]);
-    const catalog = await client.diagnosticsOf(scratch, (list) => list.some((diagnostic) => diagnostic.code === 'unknown-catalog'));
-    assert.ok(catalog.some((diagnostic) => diagnostic.code === 'unknown-catalog' && diagnostic.severity === DiagnosticSeverity.Error));
+    const catalog = await client.diagnosticsOf(scratch, (list) =>
+      list.some((diagnostic) => problemCodeOf(diagnostic) === 'unknown-catalog'),
+    );
+    assert.ok(
+      catalog.some((diagnostic) => problemCodeOf(diagnostic) === 'unknown-catalog' && diagnostic.severity === DiagnosticSeverity.Error),
+    );
     await client.close(scratch);
   });
 
@@ -325,7 +330,7 @@ describe('editor features on the semantic model: $name, ${...} and catalogs (JSO
       const faulty = await client.openFile(path.join(root, 'faulty.xosc'));
       const diagnostics = await client.diagnosticsOf(faulty);
       const shown = diagnostics
-        .map((diagnostic) => `${String(diagnostic.code)}:${textAt(FAULTY, diagnostic.range)}:${diagnostic.severity}`)
+        .map((diagnostic) => `${String(problemCodeOf(diagnostic))}:${textAt(FAULTY, diagnostic.range)}:${diagnostic.severity}`)
         .sort();
       assert.deepEqual(shown, [
         `division-by-zero:0:${DiagnosticSeverity.Error}`,
@@ -333,13 +338,15 @@ describe('editor features on the semantic model: $name, ${...} and catalogs (JSO
         `undeclared-parameter:$stopTime:${DiagnosticSeverity.Error}`,
         `unused-parameter:idle:${DiagnosticSeverity.Hint}`,
       ]);
-      const unused = diagnostics.find((diagnostic) => diagnostic.code === 'unused-parameter') as Diagnostic;
+      const unused = diagnostics.find((diagnostic) => problemCodeOf(diagnostic) === 'unused-parameter') as Diagnostic;
       assert.deepEqual(unused.tags, [DiagnosticTag.Unnecessary]);
     });
 
     it('offers to declare an undeclared parameter in the nearest ParameterDeclarations', async function () {
       const faulty = fileUri(path.join(root, 'faulty.xosc'));
-      const diagnostic = (await client.diagnosticsOf(faulty)).find((candidate) => candidate.code === 'undeclared-parameter') as Diagnostic;
+      const diagnostic = (await client.diagnosticsOf(faulty)).find(
+        (candidate) => problemCodeOf(candidate) === 'undeclared-parameter',
+      ) as Diagnostic;
       const actions = await client.request<CodeAction[]>('textDocument/codeAction', {
         textDocument: { uri: faulty },
         range: diagnostic.range,
@@ -356,7 +363,9 @@ describe('editor features on the semantic model: $name, ${...} and catalogs (JSO
 
     it('creates the root ParameterDeclarations after the FileHeader when there is none', async function () {
       const bare = await client.openFile(path.join(root, 'bare.xosc'));
-      const diagnostic = (await client.diagnosticsOf(bare)).find((candidate) => candidate.code === 'undeclared-parameter') as Diagnostic;
+      const diagnostic = (await client.diagnosticsOf(bare)).find(
+        (candidate) => problemCodeOf(candidate) === 'undeclared-parameter',
+      ) as Diagnostic;
       const actions = await client.request<CodeAction[]>('textDocument/codeAction', {
         textDocument: { uri: bare },
         range: diagnostic.range,
@@ -368,8 +377,11 @@ describe('editor features on the semantic model: $name, ${...} and catalogs (JSO
         /author="tests"\/>\n {2}<ParameterDeclarations>\n {4}<ParameterDeclaration name="stopTime" parameterType="string" value=""\/>\n {2}<\/ParameterDeclarations>\n {2}<RoadNetwork\/>/,
       );
       await client.change(bare, [{ text: fixed }]);
-      const after = await client.diagnosticsOf(bare, (list) => !list.some((candidate) => candidate.code === 'undeclared-parameter'));
-      assert.ok(after.every((candidate) => candidate.code !== 'undeclared-parameter'));
+      const after = await client.diagnosticsOf(
+        bare,
+        (list) => !list.some((candidate) => problemCodeOf(candidate) === 'undeclared-parameter'),
+      );
+      assert.ok(after.every((candidate) => problemCodeOf(candidate) !== 'undeclared-parameter'));
     });
   });
 
@@ -446,7 +458,7 @@ describe('editor features across a composition: provenance and the source value 
         client.diagnostics
           .get(mainUri)
           ?.diagnostics.find(
-            (candidate) => candidate.code === 'undeclared-parameter' && textAt(edited, candidate.range) === '$TargetSpeed',
+            (candidate) => problemCodeOf(candidate) === 'undeclared-parameter' && textAt(edited, candidate.range) === '$TargetSpeed',
           ),
       'the undeclared $TargetSpeed',
     );
@@ -490,8 +502,10 @@ describe('editor features across a composition: provenance and the source value 
     try {
       await other.indexed();
       const mainUri = await other.openFile(mainPath);
-      const diagnostics = await other.diagnosticsOf(mainUri, (list) => list.some((diagnostic) => diagnostic.code === 'key-mixed-defaults'));
-      const mixed = diagnostics.find((diagnostic) => diagnostic.code === 'key-mixed-defaults') as Diagnostic;
+      const diagnostics = await other.diagnosticsOf(mainUri, (list) =>
+        list.some((diagnostic) => problemCodeOf(diagnostic) === 'key-mixed-defaults'),
+      );
+      const mixed = diagnostics.find((diagnostic) => problemCodeOf(diagnostic) === 'key-mixed-defaults') as Diagnostic;
       assert.equal(mixed.severity, DiagnosticSeverity.Warning);
       assert.equal(textAt(mainText, mixed.range), 'value');
       assert.match(String(mixed.message), /sets 2 attributes whose defaults differ: '2' \(1×\), '\$BrakeTime' \(1×\)/);

@@ -3,6 +3,7 @@ import * as path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { Diagnostic } from 'vscode-languageserver/node';
 import { main } from '../../server/src/cli';
+import { problemCodeOf } from '../support/diagnostics';
 import { withoutSchema } from '../support/fixtures';
 import { MAIN, mainWithKeys, withDuplicateGroups } from './fixtures/scenarios';
 import { useServer } from './harness';
@@ -29,7 +30,7 @@ function reportLines(report: WorkspaceReport): string[] {
     .flatMap((file) =>
       (file.items ?? []).map(
         (diagnostic) =>
-          `${fileURLToPath(file.uri)}:${diagnostic.range.start.line + 1}:${diagnostic.code}:${severityName[diagnostic.severity ?? 0]}`,
+          `${fileURLToPath(file.uri)}:${diagnostic.range.start.line + 1}:${problemCodeOf(diagnostic)}:${severityName[diagnostic.severity ?? 0]}`,
       ),
     )
     .sort();
@@ -73,7 +74,10 @@ describe('language server: workspace-wide pull diagnostics (JSON-RPC)', function
     const uri = await server.client.openFile(path.join(server.root, 'simple.xosc'));
     const report = await server.client.request<{ kind: string; items: Diagnostic[] }>('textDocument/diagnostic', { textDocument: { uri } });
     // The duplicate Brake is reported because main.xosc and clean.xosc refer to that name.
-    assert.deepEqual(report.items.map((diagnostic) => diagnostic.code).sort(), ['duplicate-group', 'unknown-parameter-attribute']);
+    assert.deepEqual(report.items.map((diagnostic) => problemCodeOf(diagnostic)).sort(), [
+      'duplicate-group',
+      'unknown-parameter-attribute',
+    ]);
     const before = server.client.refreshes;
     await server.client.change(uri, [{ range: { start: { line: 0, character: 0 }, end: { line: 0, character: 0 } }, text: ' ' }]);
     await server.client.until(() => server.client.refreshes > before || undefined, 'a workspace/diagnostic/refresh');

@@ -4,6 +4,7 @@ import * as path from 'node:path';
 import { CodeAction, Diagnostic } from 'vscode-languageserver/node';
 import { isDiagnosticData } from '../../server/src/features/fixes';
 import { mainWithKeys, SIMPLE } from './fixtures/scenarios';
+import { problemCodeOf } from '../support/diagnostics';
 import { markers } from '../support/cursor';
 import { temporaryWorkspace } from '../support/workspace';
 import { TestClient } from './harness';
@@ -59,8 +60,8 @@ describe('quick-fix data as a client sends it back', function () {
     });
 
     it('offers no fix for a diagnostic whose data is not what the server sent, and fails nothing', async function () {
-      const diagnostics = await client.diagnosticsOf(mainUri, (all) => all.some((candidate) => candidate.code === 'unknown-key'));
-      const diagnostic = diagnostics.find((candidate) => candidate.code === 'unknown-key') as Diagnostic;
+      const diagnostics = await client.diagnosticsOf(mainUri, (all) => all.some((candidate) => problemCodeOf(candidate) === 'unknown-key'));
+      const diagnostic = diagnostics.find((candidate) => problemCodeOf(candidate) === 'unknown-key') as Diagnostic;
       const request = (data: unknown) =>
         client.request<CodeAction[]>('textDocument/codeAction', {
           textDocument: { uri: mainUri },

@@ -4,6 +4,7 @@ import * as path from 'node:path';
 import { CodeAction, Diagnostic } from 'vscode-languageserver/node';
 import { mainWithKeys, SIMPLE } from './fixtures/scenarios';
 import { fileUri, useServer } from './harness';
+import { problemCodeOf } from '../support/diagnostics';
 
 describe('language server: quick fixes (JSON-RPC)', function () {
   const simpleText = SIMPLE;
@@ -30,7 +31,7 @@ describe('language server: quick fixes (JSON-RPC)', function () {
 
   async function fixes(name: string, code: string): Promise<{ diagnostic: Diagnostic; actions: CodeAction[] }[]> {
     const uri = await server.client.openFile(path.join(server.root, name));
-    const diagnostics = (await server.client.diagnosticsOf(uri)).filter((diagnostic) => diagnostic.code === code);
+    const diagnostics = (await server.client.diagnosticsOf(uri)).filter((diagnostic) => problemCodeOf(diagnostic) === code);
     const result = [];
     for (const diagnostic of diagnostics) {
       const actions = await server.client.request<CodeAction[]>('textDocument/codeAction', {

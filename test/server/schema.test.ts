@@ -13,6 +13,7 @@ import {
 import { checkSchema } from '../../server/src/core/schema/validate';
 import { parseXml } from '../../server/src/core/xml';
 import { fileUri, TestClient } from './harness';
+import { problemCodeOf } from '../support/diagnostics';
 import { at, cursor, positionAt } from '../support/cursor';
 import { temporaryWorkspace } from '../support/workspace';
 
@@ -97,7 +98,7 @@ describe('server: OpenSCENARIO schema completion, hover and validation (over JSO
 
   /** The schema's diagnostics of a file (other checks, such as unused parameters, are tested elsewhere). */
   const schemaDiagnostics = async (uri: string, predicate: (list: Diagnostic[]) => boolean = () => true) => {
-    const only = (list: Diagnostic[]) => list.filter((diagnostic) => String(diagnostic.code).startsWith('schema-'));
+    const only = (list: Diagnostic[]) => list.filter((diagnostic) => String(problemCodeOf(diagnostic)).startsWith('schema-'));
     return only(await client.diagnosticsOf(uri, (list) => predicate(only(list))));
   };
 
@@ -121,7 +122,7 @@ describe('server: OpenSCENARIO schema completion, hover and validation (over JSO
     const uri12 = await client.open(fileUri(path.join(root, 'variables_12.xosc')), root12);
     const in10 = await schemaDiagnostics(uri10, (list) => list.length > 0);
     assert.equal(in10.length, 1, in10.map(messageOf).join('\n'));
-    assert.equal(in10[0].code, 'schema-unknown-element');
+    assert.equal(problemCodeOf(in10[0]), 'schema-unknown-element');
     assert.equal(textAt(root10, in10[0].range), 'VariableDeclarations');
     assert.match(messageOf(in10[0]), /<OpenSCENARIO> has no child <VariableDeclarations> in OpenSCENARIO 1\.0/);
     assert.match(messageOf(in10[0]), /belongs to OpenSCENARIO 1\.2, 1\.3; the FileHeader states 1\.0/);
@@ -231,7 +232,7 @@ describe('server: OpenSCENARIO schema completion, hover and validation (over JSO
     });
     const uri = await client.open(fileUri(path.join(root, 'broken.xosc')), text);
     const diagnostics = await schemaDiagnostics(uri, (list) => list.length > 0);
-    const summary = diagnostics.map((diagnostic) => `${diagnostic.code} ${textAt(text, diagnostic.range)}`).sort();
+    const summary = diagnostics.map((diagnostic) => `${problemCodeOf(diagnostic)} ${textAt(text, diagnostic.range)}`).sort();
     assert.deepEqual(summary, [
       'schema-cardinality Position',
       'schema-deprecated ActivateControllerAction',
@@ -241,11 +242,11 @@ describe('server: OpenSCENARIO schema completion, hover and validation (over JSO
       'schema-value stepp',
       'schema-value yes',
     ]);
-    const deprecated = diagnostics.find((diagnostic) => diagnostic.code === 'schema-deprecated') as Diagnostic;
+    const deprecated = diagnostics.find((diagnostic) => problemCodeOf(diagnostic) === 'schema-deprecated') as Diagnostic;
     assert.deepEqual(deprecated.tags, [DiagnosticTag.Deprecated]);
     const fixes = async (code: string, written?: string) => {
       const diagnostic = diagnostics.find(
-        (candidate) => candidate.code === code && (written === undefined || textAt(text, candidate.range) === written),
+        (candidate) => problemCodeOf(candidate) === code && (written === undefined || textAt(text, candidate.range) === written),
       ) as Diagnostic;
       return client.request<CodeAction[]>('textDocument/codeAction', {
         textDocument: { uri },
@@ -357,12 +358,12 @@ describe('server: OpenSCENARIO schema completion, hover and validation (over JSO
     const diagnostics = await client.diagnosticsOf(uri, (list) => list.length > 0);
     // Only the flattener's own findings (the referenced file is missing), no schema complaint.
     assert.ok(
-      diagnostics.every((diagnostic) => !String(diagnostic.code).startsWith('schema-')),
+      diagnostics.every((diagnostic) => !String(problemCodeOf(diagnostic)).startsWith('schema-')),
       diagnostics.map(messageOf).join('\n'),
     );
     const misplaced = scenario('0', { actions: '        <ScenarioReference scenarioFileName="x.xosc"/>\n' });
     const uri2 = await client.open(fileUri(path.join(root, 'misplaced.xosc')), misplaced);
-    const codes = (await client.diagnosticsOf(uri2, (list) => list.length > 0)).map((diagnostic) => String(diagnostic.code));
+    const codes = (await client.diagnosticsOf(uri2, (list) => list.length > 0)).map((diagnostic) => String(problemCodeOf(diagnostic)));
     assert.ok(codes.includes('reference-outside-group'), codes.join(', '));
     assert.ok(!codes.some((code) => code.startsWith('schema-')), codes.join(', '));
   });

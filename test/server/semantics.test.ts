@@ -2,6 +2,7 @@ import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { Diagnostic, DiagnosticSeverity, DiagnosticTag } from 'vscode-languageserver/node';
+import { problemCodeOf } from '../support/diagnostics';
 import { repoRoot } from '../support/paths';
 import { temporaryWorkspace } from '../support/workspace';
 import { TestClient } from './harness';
@@ -33,20 +34,20 @@ describe('language server: semantic diagnostics', function () {
   it('publishes expression errors, unused parameters (faded) and no false entity warning for entityRef="$owner"', async () => {
     const uri = await client.openFile(path.join(root, 'speed_up.xosc'));
     const diagnostics: Diagnostic[] = await client.diagnosticsOf(uri, (list) =>
-      list.some((diagnostic) => diagnostic.code === 'division-by-zero'),
+      list.some((diagnostic) => problemCodeOf(diagnostic) === 'division-by-zero'),
     );
-    const division = diagnostics.find((diagnostic) => diagnostic.code === 'division-by-zero');
+    const division = diagnostics.find((diagnostic) => problemCodeOf(diagnostic) === 'division-by-zero');
     assert.ok(division);
     assert.equal(division.severity, DiagnosticSeverity.Error);
     const line = fs.readFileSync(path.join(root, 'speed_up.xosc'), 'utf8').split('\n')[division.range.start.line];
     assert.equal(line.slice(division.range.start.character, division.range.end.character), '0');
-    const unused = diagnostics.find((diagnostic) => diagnostic.code === 'unused-parameter');
+    const unused = diagnostics.find((diagnostic) => problemCodeOf(diagnostic) === 'unused-parameter');
     assert.ok(unused && unused.severity === DiagnosticSeverity.Hint && unused.tags?.includes(DiagnosticTag.Unnecessary));
     assert.match(String(unused.message), /'Unrelated'/);
 
     const mainUri = await client.openFile(path.join(root, 'main.xosc'));
     const mainDiagnostics = await client.diagnosticsOf(mainUri);
-    assert.ok(!mainDiagnostics.some((diagnostic) => diagnostic.code === 'undeclared-entity'), JSON.stringify(mainDiagnostics));
+    assert.ok(!mainDiagnostics.some((diagnostic) => problemCodeOf(diagnostic) === 'undeclared-entity'), JSON.stringify(mainDiagnostics));
   });
 
   it('reports an undeclared parameter while typing, and clears it once declared', async () => {
@@ -54,8 +55,10 @@ describe('language server: semantic diagnostics', function () {
     const text = fs.readFileSync(path.join(root, 'main.xosc'), 'utf8');
     const typed = text.replace('<AbsoluteTargetSpeed value="5"/>', '<AbsoluteTargetSpeed value="$Initial"/>');
     await client.change(uri, [{ text: typed }]);
-    const withError = await client.diagnosticsOf(uri, (list) => list.some((diagnostic) => diagnostic.code === 'undeclared-parameter'));
-    const undeclared = withError.find((diagnostic) => diagnostic.code === 'undeclared-parameter');
+    const withError = await client.diagnosticsOf(uri, (list) =>
+      list.some((diagnostic) => problemCodeOf(diagnostic) === 'undeclared-parameter'),
+    );
+    const undeclared = withError.find((diagnostic) => problemCodeOf(diagnostic) === 'undeclared-parameter');
     assert.ok(undeclared);
     assert.equal(
       typed.split('\n')[undeclared.range.start.line].slice(undeclared.range.start.character, undeclared.range.end.character),
@@ -69,6 +72,6 @@ describe('language server: semantic diagnostics', function () {
         ),
       },
     ]);
-    await client.diagnosticsOf(uri, (list) => !list.some((diagnostic) => diagnostic.code === 'undeclared-parameter'));
+    await client.diagnosticsOf(uri, (list) => !list.some((diagnostic) => problemCodeOf(diagnostic) === 'undeclared-parameter'));
   });
 });

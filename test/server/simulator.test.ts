@@ -2,6 +2,7 @@ import * as assert from 'node:assert/strict';
 import * as path from 'node:path';
 import { DiagnosticSeverity } from 'vscode-languageserver/node';
 import { fileUri, TestClient } from './harness';
+import { problemCodeOf } from '../support/diagnostics';
 import { temporaryWorkspace } from '../support/workspace';
 
 const SCENARIO = `<?xml version="1.0" encoding="UTF-8"?>
@@ -35,8 +36,8 @@ describe('simulator profile in the language server', function () {
   });
 
   it('publishes the carla findings as warnings at their source positions', async () => {
-    const diagnostics = await client.diagnosticsOf(uri, (list) => list.some((diagnostic) => diagnostic.code === 'simulator'));
-    const simulator = diagnostics.filter((diagnostic) => diagnostic.code === 'simulator');
+    const diagnostics = await client.diagnosticsOf(uri, (list) => list.some((diagnostic) => problemCodeOf(diagnostic) === 'simulator'));
+    const simulator = diagnostics.filter((diagnostic) => problemCodeOf(diagnostic) === 'simulator');
     assert.ok(simulator.every((diagnostic) => diagnostic.severity === DiagnosticSeverity.Warning));
     const version = simulator.find((diagnostic) =>
       /accepts only OpenSCENARIO 1\.0; this file states 1\.1/.test(String(diagnostic.message)),
@@ -50,9 +51,9 @@ describe('simulator profile in the language server', function () {
 
   it('drops them when the setting goes back to asam', async () => {
     await client.settingsChanged({ simulator: 'asam' });
-    const diagnostics = await client.diagnosticsOf(uri, (list) => !list.some((diagnostic) => diagnostic.code === 'simulator'));
+    const diagnostics = await client.diagnosticsOf(uri, (list) => !list.some((diagnostic) => problemCodeOf(diagnostic) === 'simulator'));
     assert.deepEqual(
-      diagnostics.filter((diagnostic) => diagnostic.code === 'simulator'),
+      diagnostics.filter((diagnostic) => problemCodeOf(diagnostic) === 'simulator'),
       [],
     );
   });

@@ -13,6 +13,7 @@ import {
 } from 'vscode-languageserver/node';
 import { TestClient } from './harness';
 import { applyEdits, inside } from './textEdits';
+import { problemCodeOf } from '../support/diagnostics';
 import { temporaryWorkspace } from '../support/workspace';
 
 /** Values and severities by SPEC 12 (issue 17) over JSON-RPC: hover, inlay hints, diagnostics and their quick fixes. */
@@ -76,7 +77,7 @@ describe('values as the simulator computes them, and the severity policy (JSON-R
     const diagnostics = await client.diagnosticsOf(uri);
     const shown = diagnostics
       .filter((diagnostic) => diagnostic.severity !== DiagnosticSeverity.Hint)
-      .map((diagnostic) => `${diagnostic.range.start.line}:${String(diagnostic.code)}:${diagnostic.severity}`);
+      .map((diagnostic) => `${diagnostic.range.start.line}:${String(problemCodeOf(diagnostic))}:${diagnostic.severity}`);
     assert.deepEqual(
       shown.sort(),
       [
@@ -90,7 +91,7 @@ describe('values as the simulator computes them, and the severity policy (JSON-R
         `${lineOf('<Event name=')}:lenient-value:2`,
       ].sort(),
     );
-    const modulo = diagnostics.find((diagnostic) => diagnostic.code === 'simulator-value');
+    const modulo = diagnostics.find((diagnostic) => problemCodeOf(diagnostic) === 'simulator-value');
     assert.match(
       String(modulo?.message ?? ''),
       /esmini computes -1 where the standard gives 3: esmini computes % as C remainder\(\).*expr\.h:378-380/,
@@ -99,7 +100,7 @@ describe('values as the simulator computes them, and the severity policy (JSON-R
 
   it('fixes each to the standard form', async function () {
     const { client, uri } = await open({});
-    const diagnostics = (await client.diagnosticsOf(uri)).filter((diagnostic) => diagnostic.code === 'lenient-value');
+    const diagnostics = (await client.diagnosticsOf(uri)).filter((diagnostic) => problemCodeOf(diagnostic) === 'lenient-value');
     let text = VALUES;
     const edits: TextEdit[] = [];
     for (const diagnostic of diagnostics) {

@@ -2,6 +2,7 @@ import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { Diagnostic } from 'vscode-languageserver/node';
+import { problemCodeOf } from '../support/diagnostics';
 import { temporaryWorkspace } from '../support/workspace';
 import { mainWithKeys, SIMPLE } from './fixtures/scenarios';
 import { fileUri, TestClient } from './harness';
@@ -33,8 +34,8 @@ describe('language server: workspaces as users have them (JSON-RPC)', function (
   });
 
   const codesOf = async (filePath: string, predicate?: (diagnostics: Diagnostic[]) => boolean) =>
-    (await (client as TestClient).diagnosticsOf(await (client as TestClient).openFile(filePath), predicate)).map(
-      (diagnostic) => diagnostic.code,
+    (await (client as TestClient).diagnosticsOf(await (client as TestClient).openFile(filePath), predicate)).map((diagnostic) =>
+      problemCodeOf(diagnostic),
     );
 
   it('searches upward to the folder a file is in, not only to the first folder', async function () {
@@ -80,7 +81,7 @@ describe('language server: workspaces as users have them (JSON-RPC)', function (
     );
     const diagnostics = await client.diagnosticsOf(uri);
     assert.deepEqual(
-      diagnostics.map((diagnostic) => diagnostic.code),
+      diagnostics.map((diagnostic) => problemCodeOf(diagnostic)),
       ['unknown-key'],
     );
   });
