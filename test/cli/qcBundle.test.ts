@@ -4,6 +4,7 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { parseXml, XmlElement } from '../../server/src/core/xml';
 import { cliPath } from '../support/paths';
+import { RULE_FILES } from '../support/qcRuleFiles';
 import { temporaryWorkspace } from '../support/workspace';
 
 /**
@@ -176,6 +177,28 @@ describe('cli: qc-bundle (a checker bundle of the ASAM Quality Checker Framework
     // Each checker addresses its rule; issue ids are unique.
     for (const checker of all(result, 'Checker')) assert.equal(all(checker, 'AddressedRule').length, 1);
     assert.equal(new Set(issues.map((issue) => attr(issue, 'issueId'))).size, issues.length);
+  });
+
+  it("names the rule of each issue as the editor does: the FileHeader's version is its own checker (xml.version_is_defined), its date valid_schema", () => {
+    const root = temporaryWorkspace(RULE_FILES);
+    fs.writeFileSync(path.join(root, 'config.xml'), config('version.xosc'));
+    execFileSync(process.execPath, [cliPath, 'qc-bundle', 'config.xml'], { cwd: root, stdio: 'pipe' });
+    const result = validateXqar(fs.readFileSync(path.join(root, 'modular2simple.xqar'), 'utf8'));
+    const addressed = (checkerId: string) => {
+      const checker = all(result, 'Checker').find((element) => attr(element, 'checkerId') === checkerId);
+      assert.ok(
+        checker,
+        all(result, 'Checker')
+          .map((element) => attr(element, 'checkerId'))
+          .join('\n'),
+      );
+      return { rule: attr(all(checker, 'AddressedRule')[0], 'ruleUID'), issues: all(checker, 'Issue').length };
+    };
+    assert.deepEqual(addressed('check_modular2simple_xml_version_is_defined'), {
+      rule: 'asam.net:xosc:1.0.0:xml.version_is_defined',
+      issues: 2,
+    });
+    assert.deepEqual(addressed('check_modular2simple_xml_valid_schema'), { rule: 'asam.net:xosc:1.0.0:xml.valid_schema', issues: 1 });
   });
 
   it("reports only the checkers a configuration names, into the configuration's resultFile; the configuration alone as argument works too", () => {

@@ -5,6 +5,7 @@ import Ajv from 'ajv-draft-04';
 import JSZip from 'jszip';
 import { outerGroup, runCli, scenario, simpleGroup } from '../support/fixtures';
 import { repoRoot, requireCorpus, sharedDir } from '../support/paths';
+import { EXPECTED_RULES, qcRuleHref, RULE_FILES } from '../support/qcRuleFiles';
 import { temporaryWorkspace } from '../support/workspace';
 
 /** The OASIS SARIF 2.1.0 schema (JSON Schema draft 04) as the @microsoft/jest-sarif package ships it: never downloaded at test time. */
@@ -129,5 +130,28 @@ describe('cli: check --format sarif', () => {
     const stats = runCli(['stats', '.', '--format', 'sarif'], { cwd: root });
     assert.equal(stats.status, 2);
     assert.match(stats.stderr, /stats writes text or json/);
+  });
+
+  it('json and sarif name the rule of each problem as the editor does: a more specific QC rule where the problem has one', () => {
+    const root = temporaryWorkspace(RULE_FILES);
+    const json = runCli(['check', '.', '--format', 'json'], { cwd: root, schema: true });
+    const report = JSON.parse(json.stdout) as { problems: { file: string; code: string; rule: string }[] };
+    const named = new Set(report.problems.map((problem) => `${problem.file} ${problem.code} ${problem.rule}`));
+    for (const [file, code, qcRule] of EXPECTED_RULES) {
+      const line = `${file} ${code} ${qcRule ?? `modular2simple:${code}`}`;
+      assert.ok(named.has(line), `${line} not in\n${[...named].join('\n')}`);
+    }
+    const sarif = runCli(['check', '.', '--format', 'sarif'], { cwd: root, schema: true });
+    const log = JSON.parse(sarif.stdout) as Log;
+    validate(log);
+    const [only] = log.runs;
+    const rootTag = 'asam.net:xosc:1.0.0:xml.root_tag_is_openscenario';
+    const result = only.results.find((candidate) => candidate.ruleId === rootTag);
+    assert.ok(result, only.results.map((candidate) => candidate.ruleId).join('\n'));
+    const rule = only.tool.driver.rules[result.ruleIndex];
+    assert.equal(rule.helpUri, qcRuleHref(rootTag));
+    assert.deepEqual(rule.properties.codes, ['schema-unknown-element']);
+    const schema = only.tool.driver.rules.find((candidate) => candidate.id === 'asam.net:xosc:1.0.0:xml.valid_schema');
+    assert.ok(schema?.properties.codes.includes('schema-value'), 'the FileHeader date is valid_schema');
   });
 });

@@ -190,7 +190,8 @@ export async function qcBundleCommand(args: string[], io: CliOutput): Promise<nu
   const config = readBundleConfig(fs.readFileSync(configPath, 'utf8'), path.resolve(configPath));
   if (!fs.existsSync(config.inputFile)) throw new InputError(`${config.inputFile}: no such file (the configuration's InputFile)`);
 
-  const flattener = new Flattener(storeForInputs([], undefined, [config.inputFile]));
+  // As `check` does by default: the schema of the file's version too (ASAM's checker has the schema rules).
+  const flattener = new Flattener(storeForInputs([], undefined, [config.inputFile]), 'asam', { version: 'auto' });
   const problems = uniqueProblems((await flattener.flatten(mainOf(config.inputFile))).problems);
   const inputDocument =
     fs.statSync(config.inputFile).isFile() && config.inputFile.toLowerCase().endsWith('.xosc')
