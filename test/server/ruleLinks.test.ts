@@ -97,6 +97,11 @@ describe('language server: each rule of ASAM QC the project maps is the code of 
     assert.deepEqual([...covered].sort(), Object.keys(QC_RULE_DESCRIPTIONS).sort());
   });
 
+  it('every diagnostic carries its project code in data.code, whatever its code names', () => {
+    for (const [file, diagnostics] of found)
+      for (const diagnostic of diagnostics) assert.ok(problemCodeOf(diagnostic), `${file}: ${JSON.stringify(diagnostic)}`);
+  });
+
   for (const [file, code, qcRule] of EXPECTED_RULES) {
     it(`${file}: ${code} is ${qcRule ?? 'its own rule'}`, () => {
       const diagnostics = found.get(file) ?? [];
