@@ -76,7 +76,7 @@ export const GENUINELY_WRONG: Record<string, { problems: string[]; reason: strin
   'scenario_runner/VehicleLateralDistance.xosc': {
     problems: ['163:out-of-range'],
     reason:
-      "LateralDistanceAction distance='-2.0': the distance is [0..inf[ (RA Consulting's range rules); a 1.0 file has no displacement to name the side",
+      "LateralDistanceAction distance='-2.0': the distance is [0..inf[ (RA Consulting's range rules); a 1.0 file has no displacement to name the side. A warning: esmini uses the absolute value",
   },
 };
 
@@ -103,6 +103,7 @@ export const ESMINI_FORMS: Record<string, { problems: string[]; reason: string }
 /**
  * Files of the corpus that break a rule of the standard (an error in its reading, as ASAM's Quality
  * Checker reports it) where esmini runs them with one meaning: a warning with simulator esmini (SPEC 12).
+ * A value out of its range that esmini reads with one clear meaning is a warning in every reading.
  */
 export const ESMINI_ACCEPTS: Record<string, { problems: string[]; reason: string }> = {
   'esmini/Catalogs/Maneuvers/HWManeuvers.xosc': {

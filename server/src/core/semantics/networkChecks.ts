@@ -178,8 +178,8 @@ export const phaseDurations: SemanticCheck = (context) =>
 /**
  * Values within the ranges the standard gives for the file's version (core/semantics/ranges.ts),
  * evaluated after `$parameter`/`${...}` resolution: an error, as in RA Consulting's checker. Where esmini
- * reads such a value with one meaning, the message says so, and with simulator esmini it is a warning
- * (SPEC 12). A range that a rule of its own checks is left to it.
+ * reads such a value with one clear meaning (a negative rate as its magnitude), it is a warning that says
+ * both (SPEC 12: what a mainstream simulator runs with one meaning). A range that a rule of its own checks is left to it.
  */
 export const valueRanges: SemanticCheck = (context) => {
   const findings: Finding[] = [];
@@ -197,9 +197,9 @@ export const valueRanges: SemanticCheck = (context) => {
           range.esmini && (!when || textOf(context, element, when.attribute)?.text.trim() === when.value) ? range.esmini : undefined;
         findings.push({
           ...at(element, value.attr),
-          severity: esmini && context.simulator === 'esmini' ? 'warning' : 'error',
+          severity: esmini ? 'warning' : 'error',
           code: 'out-of-range',
-          message: `${range.element} ${range.attribute} ${value.value}${written} is outside the standard's range ${rangeText(range)}${modelClass}${esmini ? `; esmini ${esmini.reading}` : ''}`,
+          message: `${range.element} ${range.attribute} ${value.value}${written} is outside the standard's range ${rangeText(range)}${modelClass}${esmini ? ` (RA Consulting's checker reports it as an error); esmini ${esmini.reading}` : ''}`,
         });
       }
     }

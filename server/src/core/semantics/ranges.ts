@@ -30,7 +30,7 @@ export interface ValueRange {
   versions: readonly SchemaVersion[];
   /** A rule of its own checks this range, with a message of its own (core/semantics/networkChecks.ts). */
   checkedBy?: ProblemCode;
-  /** How esmini reads a value outside the range with one meaning (read in its sources): a warning with simulator esmini (SPEC 12). */
+  /** How esmini reads a value outside the range with one clear meaning (read in its sources): a warning that says both (SPEC 12). */
   esmini?: EsminiReading;
 }
 
