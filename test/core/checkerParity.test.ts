@@ -206,3 +206,22 @@ describe("checker parity: RA Consulting's DeprecatedChecker (a deprecated attrib
     assert.deepEqual(deprecated(override('<Brake active="false"><BrakeForce value="500"/></Brake>')), []);
   });
 });
+
+describe("checker parity: RA Consulting's catalog loading", () => {
+  const withCatalog = (reference: boolean) =>
+    scenario(CUSTOM)
+      .replace(
+        '<CatalogLocations/>',
+        '<CatalogLocations><VehicleCatalog><Directory path="missing/vehicles"/></VehicleCatalog></CatalogLocations>',
+      )
+      .replace(
+        /<Vehicle name="car"[\s\S]*?<\/Vehicle>/,
+        reference ? '<CatalogReference catalogName="VehicleCatalog" entryName="car"/>' : '$&',
+      );
+
+  it('a catalog directory that cannot be resolved is a warning at its path when a reference needs it, and no problem otherwise', async () => {
+    const needed = await semanticsOf(withCatalog(true));
+    assert.ok(needed.includes('catalog-directory:warning:missing/vehicles'), needed.join('\n'));
+    assert.deepEqual(await semanticsOf(withCatalog(false)), []);
+  });
+});
