@@ -142,7 +142,10 @@ export const RULES: Record<ProblemCode, Rule> = {
     description: "A Phase duration is positive (zero: a warning, within the standard's range).",
     qcRule: QC.phaseDuration,
   },
-  'out-of-range': { description: 'A value lies within the range the standard gives for its attribute (core/semantics/ranges.ts).' },
+  'out-of-range': {
+    description:
+      "A value lies within the range RA Consulting's range checker rules give its attribute in the file's version (core/semantics/ranges.ts); a warning where esmini reads it with one meaning.",
+  },
   distribution: {
     description:
       'A ParameterValueDistribution expands: its ScenarioFile resolves, its values fit their parameters, its ranges and steps make sense.',

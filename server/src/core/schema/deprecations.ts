@@ -9,6 +9,8 @@ export interface Replacement {
   instead: string;
   /** The attributes of the same element that replace a deprecated attribute (written together: both named). */
   attributes?: readonly string[];
+  /** The child elements that replace a deprecated attribute (written together: both named, as RA Consulting's checker does). */
+  elements?: readonly string[];
   /** The attribute's new name when only the name changed (same unit and values): the quick fix renames it. */
   rename?: string;
 }
@@ -40,9 +42,9 @@ const REPLACEMENTS: Record<string, Replacement> = {
   'GlobalAction.ParameterAction': { instead: '<VariableAction> on a variable' },
   'ParameterAction.SetAction': { instead: 'the <SetAction> of a <VariableAction>' },
   'ParameterAction.ModifyAction': { instead: 'the <ModifyAction> of a <VariableAction>' },
-  'OverrideBrakeAction.value': { instead: 'a <BrakePercent> or <BrakeForce> child' },
-  'OverrideParkingBrakeAction.value': { instead: 'a <BrakePercent> or <BrakeForce> child' },
-  'OverrideGearAction.number': { instead: 'a <ManualGear> or <AutomaticGear> child' },
+  'OverrideBrakeAction.value': { instead: 'a <BrakePercent> or <BrakeForce> child', elements: ['BrakePercent', 'BrakeForce'] },
+  'OverrideParkingBrakeAction.value': { instead: 'a <BrakePercent> or <BrakeForce> child', elements: ['BrakePercent', 'BrakeForce'] },
+  'OverrideGearAction.number': { instead: 'a <ManualGear> or <AutomaticGear> child', elements: ['ManualGear', 'AutomaticGear'] },
   'Pedestrian.model': { instead: 'model3d', attributes: ['model3d'], rename: 'model3d' },
   'Precipitation.intensity': {
     instead: 'precipitationIntensity',
@@ -54,7 +56,7 @@ const REPLACEMENTS: Record<string, Replacement> = {
   'TrafficSourceAction.TrafficDefinition': { instead: '<TrafficDistribution>' },
   'TrafficSwarmAction.TrafficDefinition': { instead: '<TrafficDistribution>' },
   'TrafficSourceAction.velocity': { instead: 'speed', attributes: ['speed'], rename: 'speed' },
-  'TrafficSwarmAction.velocity': { instead: '<InitialSpeedRange>' },
+  'TrafficSwarmAction.velocity': { instead: '<InitialSpeedRange>', elements: ['InitialSpeedRange'] },
   'Weather.cloudState': { instead: 'fractionalCloudCover', attributes: ['fractionalCloudCover'] },
 };
 

@@ -166,7 +166,10 @@ export function checkAttribute(
   }
   if (index.isAttributeDeprecated(declaration)) {
     const replacement = replacementOf(typeName, attribute.name);
-    const together = replacement?.attributes?.filter((name) => element.attributes.some((other) => other.name === name)) ?? [];
+    const together = [
+      ...(replacement?.attributes?.filter((name) => element.attributes.some((other) => other.name === name)) ?? []),
+      ...(replacement?.elements?.filter((name) => element.children.some((child) => child.name === name)).map((name) => `<${name}>`) ?? []),
+    ];
     const since = declaration.deprecatedSince ? ` since OpenSCENARIO ${declaration.deprecatedSince}` : '';
     report({
       element,

@@ -1,6 +1,7 @@
+import { chooseVersion } from '../schema/version';
 import { attribute, descendants, XmlAttribute, XmlElement } from '../xml';
 import type { Finding, SemanticCheck, SemanticContext } from './checks';
-import { VALUE_RANGES, ValueRange, rangeText } from './ranges';
+import { inRange, rangeText, valueRangesOf } from './ranges';
 import { SemanticModel } from './types';
 
 /**
@@ -174,26 +175,33 @@ export const phaseDurations: SemanticCheck = (context) =>
     ];
   });
 
-function inRange(value: number, range: ValueRange): boolean {
-  if (range.min !== undefined && (range.minOpen ? value <= range.min : value < range.min)) return false;
-  if (range.max !== undefined && (range.maxOpen ? value >= range.max : value > range.max)) return false;
-  return true;
-}
-
-/** Values within the ranges the standard gives (core/semantics/ranges.ts), evaluated after `$parameter`/`${...}` resolution. */
+/**
+ * Values within the ranges the standard gives for the file's version (core/semantics/ranges.ts),
+ * evaluated after `$parameter`/`${...}` resolution: an error, as in RA Consulting's checker. Where esmini
+ * reads such a value with one clear meaning (a negative rate as its magnitude), it is a warning that says
+ * both (SPEC 12: what a mainstream simulator runs with one meaning). A range that a rule of its own checks is left to it.
+ */
 export const valueRanges: SemanticCheck = (context) => {
   const findings: Finding[] = [];
-  for (const range of VALUE_RANGES) {
-    for (const element of elementsNamed(context.model, range.element)) {
-      const value = numberOf(context, element, range.attribute);
-      if (!value || inRange(value.value, range)) continue;
-      const written = value.attr.value.trim() === String(value.value) ? '' : ` (from ${value.attr.value.trim()})`;
-      findings.push({
-        ...at(element, value.attr),
-        severity: 'error',
-        code: 'out-of-range',
-        message: `${range.element} ${range.attribute} ${value.value}${written} is outside the standard's range ${rangeText(range)}`,
-      });
+  const { version } = chooseVersion(context.model.document);
+  for (const [elementName, ranges] of valueRangesOf(version)) {
+    for (const element of elementsNamed(context.model, elementName)) {
+      for (const range of ranges) {
+        if (range.checkedBy) continue;
+        const value = numberOf(context, element, range.attribute);
+        if (!value || inRange(value.value, range)) continue;
+        const written = value.attr.value.trim() === String(value.value) ? '' : ` (from ${value.attr.value.trim()})`;
+        const modelClass = range.modelClass ? ` (class ${range.modelClass} of the ASAM model)` : '';
+        const when = range.esmini?.when;
+        const esmini =
+          range.esmini && (!when || textOf(context, element, when.attribute)?.text.trim() === when.value) ? range.esmini : undefined;
+        findings.push({
+          ...at(element, value.attr),
+          severity: esmini ? 'warning' : 'error',
+          code: 'out-of-range',
+          message: `${range.element} ${range.attribute} ${value.value}${written} is outside the standard's range ${rangeText(range)}${modelClass}${esmini ? ` (RA Consulting's checker reports it as an error); esmini ${esmini.reading}` : ''}`,
+        });
+      }
     }
   }
   return findings;

@@ -1,0 +1,390 @@
+import * as assert from 'node:assert/strict';
+import * as path from 'node:path';
+import { Problem } from '../../server/src/core/problems';
+import { schemaIndex } from '../../server/src/core/schema/index';
+import { typeByElementName } from '../../server/src/core/schema/query';
+import { checkSchema } from '../../server/src/core/schema/validate';
+import { SCHEMA_VERSIONS, SchemaVersion } from '../../server/src/core/schema/model';
+import { analyzeDocument, CatalogLoader, semanticProblems } from '../../server/src/core/semantics';
+import { rangeText, VALUE_RANGES, ValueRange } from '../../server/src/core/semantics/ranges';
+import { Simulator } from '../../server/src/core/profiles/simulators';
+import { diskRef, ScenarioStore } from '../../server/src/core/sources';
+import { parseXml } from '../../server/src/core/xml';
+import { temporaryWorkspace } from '../support/workspace';
+
+/** The out-of-range problems of a scenario (a file of its own in a fresh folder). */
+async function outOfRange(text: string, simulator?: Simulator): Promise<Problem[]> {
+  const root = temporaryWorkspace({ 'scenario.xosc': text });
+  const semantics = await analyzeDocument(
+    diskRef(path.join(root, 'scenario.xosc')),
+    parseXml(text),
+    new CatalogLoader(new ScenarioStore({ scenarioPath: [], root })),
+    false,
+    simulator,
+  );
+  return semanticProblems(semantics).filter((problem) => problem.code === 'out-of-range');
+}
+
+/** The text a problem's range covers (on one line). */
+function textAt(text: string, problem: Problem): string {
+  const { start, end } = problem.range;
+  return text.split('\n')[start.line].slice(start.character, end.character);
+}
+
+/** A file of `version` holding one element with one attribute: the range check looks at elements by name, wherever they stand. */
+function bare(version: string, element: string, attributeName: string, value: string): string {
+  const [major, minor] = version.split('.');
+  return `<?xml version="1.0"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="${major}" revMinor="${minor}" date="2026-01-01T00:00:00" description="d" author="a"/>
+  <${element} ${attributeName}="${value}"/>
+</OpenSCENARIO>
+`;
+}
+
+/** Values just outside the range, one per bound. */
+function breaking(range: ValueRange): number[] {
+  const values: number[] = [];
+  if (range.min !== undefined) values.push(range.minOpen ? range.min : range.min - 1);
+  if (range.max !== undefined) values.push(range.maxOpen ? range.max : range.max + 1);
+  return values;
+}
+
+/** Values inside the range: each closed bound itself, else a value just inside it. */
+function keeping(range: ValueRange): number[] {
+  const values: number[] = [];
+  if (range.min !== undefined) values.push(range.minOpen ? range.min + 0.5 : range.min);
+  if (range.max !== undefined) values.push(range.maxOpen ? range.max - 0.5 : range.max);
+  return values;
+}
+
+const CHECKED = VALUE_RANGES.filter((range) => !range.checkedBy);
+
+describe('value ranges (RA Consulting range checker rules, per version)', () => {
+  it('writes each range as the standard does', () => {
+    assert.equal(rangeText({ min: 0 }), '[0..inf[');
+    assert.equal(rangeText({ min: 0, minOpen: true }), ']0..inf[');
+    assert.equal(rangeText({ min: 0, max: 1 }), '[0..1]');
+    assert.equal(rangeText({ min: 0, minOpen: true, max: 100 }), ']0..100]');
+    assert.equal(rangeText({ min: 0, max: 2 * Math.PI, maxOpen: true }), '[0..2PI[');
+    assert.equal(rangeText({ min: -Math.PI, max: Math.PI }), '[-PI..PI]');
+  });
+
+  it("every rule names an element of its model class and an attribute of it in each version's schema, but the 1.3 additions RA Consulting lists for 1.2 too", () => {
+    const missing: string[] = [];
+    for (const range of VALUE_RANGES)
+      for (const version of range.versions) {
+        const index = schemaIndex(version);
+        const type = typeByElementName(index, range.element);
+        if (type !== (range.modelClass ?? range.element) || !index.attribute(type, range.attribute))
+          missing.push(`${version} ${range.element}.${range.attribute}`);
+      }
+    // RA Consulting's 1.2 rules hold the 1.3 ones; these three do not exist in the 1.2 schema, so no 1.2 file can break them.
+    assert.deepEqual(missing.sort(), [
+      '1.2 ColorCmyk.cyan',
+      '1.2 ColorCmyk.key',
+      '1.2 ColorCmyk.magenta',
+      '1.2 ColorCmyk.yellow',
+      '1.2 ColorRgb.blue',
+      '1.2 ColorRgb.green',
+      '1.2 ColorRgb.red',
+      '1.2 LightState.luminousIntensity',
+      '1.2 Sun.illuminance',
+    ]);
+  });
+
+  it('a value beyond each bound of every rule is an error at the attribute, naming the range; the bounds themselves (closed) or just inside (open) are kept', async () => {
+    for (const range of CHECKED) {
+      for (const version of range.versions) {
+        for (const value of breaking(range)) {
+          const text = bare(version, range.element, range.attribute, String(value));
+          const problems = await outOfRange(text);
+          const label = `${version} ${range.element} ${range.attribute}=${value}`;
+          assert.equal(problems.length, 1, label);
+          assert.equal(problems[0].severity, range.esmini && !range.esmini.when ? 'warning' : 'error', label);
+          assert.equal(textAt(text, problems[0]), String(value), label);
+          assert.ok(
+            problems[0].message.includes(`is outside the standard's range ${rangeText(range)}`),
+            `${label}: ${problems[0].message}`,
+          );
+          assert.ok(problems[0].message.startsWith(`${range.element} ${range.attribute} `), label);
+        }
+        for (const value of keeping(range)) {
+          assert.deepEqual(
+            await outOfRange(bare(version, range.element, range.attribute, String(value))),
+            [],
+            `${version} ${range.element} ${range.attribute}=${value}`,
+          );
+        }
+      }
+    }
+  });
+
+  it('a rule holds only in the versions RA Consulting gives it for; a later version is read as 1.3', async () => {
+    const checkedIn = (range: ValueRange, version: SchemaVersion) => range.versions.includes(version);
+    let scoped = 0;
+    for (const range of CHECKED) {
+      for (const version of SCHEMA_VERSIONS) {
+        if (checkedIn(range, version)) continue;
+        scoped++;
+        for (const value of breaking(range))
+          assert.deepEqual(
+            await outOfRange(bare(version, range.element, range.attribute, String(value))),
+            [],
+            `${version} ${range.element}`,
+          );
+      }
+    }
+    assert.ok(scoped > 40, `${scoped} rules of 1.2 on only`);
+    // RoadPosition s exists since 1.0; its range [0..inf[ is a rule of 1.2 and 1.3 only.
+    assert.deepEqual(await outOfRange(bare('1.1', 'RoadPosition', 's', '-1')), []);
+    assert.equal((await outOfRange(bare('1.2', 'RoadPosition', 's', '-1'))).length, 1);
+    assert.equal((await outOfRange(bare('1.4', 'RoadPosition', 's', '-1'))).length, 1);
+    // The element of the class AnimationAction is AnimationStateAction in 1.2 and AnimationAction in 1.3.
+    assert.equal((await outOfRange(bare('1.2', 'AnimationStateAction', 'animationDuration', '-1'))).length, 1);
+    assert.deepEqual(await outOfRange(bare('1.3', 'AnimationStateAction', 'animationDuration', '-1')), []);
+    assert.equal((await outOfRange(bare('1.3', 'AnimationAction', 'animationDuration', '-1'))).length, 1);
+  });
+
+  it('an attribute of the same name under another element is not checked (a BrakeInput value, a Brake of a force)', async () => {
+    assert.deepEqual(await outOfRange(bare('1.3', 'BrakePercent', 'value', '5')), []);
+    assert.deepEqual(await outOfRange(bare('1.3', 'Axle', 'maxSteering', '9')), []);
+    assert.equal((await outOfRange(bare('1.3', 'Brake', 'value', '5'))).length, 1);
+    const [problem] = await outOfRange(bare('1.3', 'Brake', 'value', '5'));
+    assert.match(problem.message, /class OverrideBrakeAction of the ASAM model/);
+  });
+
+  it('Phase duration and LightStateAction transitionTime are left to their own rules', async () => {
+    assert.deepEqual(await outOfRange(bare('1.3', 'Phase', 'duration', '-1')), []);
+    assert.deepEqual(await outOfRange(bare('1.3', 'LightStateAction', 'transitionTime', '-1')), []);
+  });
+});
+
+/** A schema-valid 1.3 scenario in which each family of ranges has a value: weather, entity, storyboard, controller overrides, positions. */
+function scenario(version = '3'): string {
+  return `<?xml version="1.0"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="${version}" date="2026-01-01T00:00:00" description="ranges" author="t"/>
+  <ParameterDeclarations>
+    <ParameterDeclaration name="Rate" parameterType="double" value="4"/>
+  </ParameterDeclarations>
+  <CatalogLocations/>
+  <RoadNetwork/>
+  <Entities>
+    <ScenarioObject name="Ego">
+      <Vehicle name="car" vehicleCategory="car">
+        <BoundingBox><Center x="1.4" y="0" z="0.9"/><Dimensions width="2" length="4.5" height="1.5"/></BoundingBox>
+        <Performance maxSpeed="60" maxAcceleration="5" maxDeceleration="9"/>
+        <Axles>
+          <FrontAxle maxSteering="0.5" wheelDiameter="0.6" trackWidth="1.8" positionX="3" positionZ="0.3"/>
+          <RearAxle maxSteering="0" wheelDiameter="0.6" trackWidth="1.8" positionX="0" positionZ="0.3"/>
+        </Axles>
+        <Properties/>
+      </Vehicle>
+    </ScenarioObject>
+  </Entities>
+  <Storyboard>
+    <Init>
+      <Actions>
+        <GlobalAction>
+          <EnvironmentAction>
+            <Environment name="env">
+              <TimeOfDay animation="false" dateTime="2026-01-01T12:00:00"/>
+              <Weather temperature="293" atmosphericPressure="101325">
+                <Sun azimuth="3" elevation="1" illuminance="1000"/>
+                <Fog visualRange="1000"/>
+                <Precipitation precipitationType="dry" precipitationIntensity="0"/>
+                <Wind direction="0" speed="3"/>
+              </Weather>
+              <RoadCondition frictionScaleFactor="0.9"/>
+            </Environment>
+          </EnvironmentAction>
+        </GlobalAction>
+        <Private entityRef="Ego">
+          <PrivateAction>
+            <TeleportAction><Position><RoadPosition roadId="1" s="10" t="0"/></Position></TeleportAction>
+          </PrivateAction>
+        </Private>
+      </Actions>
+    </Init>
+    <Story name="S">
+      <Act name="A">
+        <ManeuverGroup name="G" maximumExecutionCount="1">
+          <Actors selectTriggeringEntities="false"><EntityRef entityRef="Ego"/></Actors>
+          <Maneuver name="M">
+            <Event name="E" priority="override" maximumExecutionCount="1">
+              <Action name="Speed">
+                <PrivateAction>
+                  <LongitudinalAction>
+                    <SpeedAction>
+                      <SpeedActionDynamics dynamicsShape="linear" value="$Rate" dynamicsDimension="rate"/>
+                      <SpeedActionTarget><AbsoluteTargetSpeed value="20"/></SpeedActionTarget>
+                    </SpeedAction>
+                  </LongitudinalAction>
+                </PrivateAction>
+              </Action>
+              <Action name="Override">
+                <PrivateAction>
+                  <ControllerAction>
+                    <OverrideControllerValueAction>
+                      <Throttle active="true" value="0.5" maxRate="2"/>
+                      <Brake active="false"><BrakePercent value="0.2"/></Brake>
+                      <Clutch active="false" value="0"/>
+                      <ParkingBrake active="false"><BrakeForce value="500"/></ParkingBrake>
+                      <SteeringWheel active="false" value="0" maxRate="1" maxTorque="5"/>
+                      <Gear active="false"><ManualGear number="1"/></Gear>
+                    </OverrideControllerValueAction>
+                  </ControllerAction>
+                </PrivateAction>
+              </Action>
+              <Action name="Geo">
+                <PrivateAction>
+                  <TeleportAction><Position><GeoPosition latitudeDeg="48.1" longitudeDeg="11.5" altitude="0"/></Position></TeleportAction>
+                </PrivateAction>
+              </Action>
+              <StartTrigger>
+                <ConditionGroup>
+                  <Condition name="C" delay="0" conditionEdge="none">
+                    <ByValueCondition><SimulationTimeCondition value="1" rule="greaterThan"/></ByValueCondition>
+                  </Condition>
+                </ConditionGroup>
+              </StartTrigger>
+            </Event>
+          </Maneuver>
+        </ManeuverGroup>
+        <StartTrigger>
+          <ConditionGroup>
+            <Condition name="Start" delay="0" conditionEdge="none">
+              <ByValueCondition><SimulationTimeCondition value="0" rule="greaterThan"/></ByValueCondition>
+            </Condition>
+          </ConditionGroup>
+        </StartTrigger>
+      </Act>
+    </Story>
+    <StopTrigger/>
+  </Storyboard>
+</OpenSCENARIO>
+`;
+}
+
+/** Each family: the written value replaced, the text the problem covers, and the range its message names. */
+const FAMILIES: { family: string; from: string; to: string; at: string; range: string; warning?: true }[] = [
+  { family: 'weather', from: 'temperature="293"', to: 'temperature="400"', at: '400', range: '[170..340]' },
+  { family: 'weather', from: 'atmosphericPressure="101325"', to: 'atmosphericPressure="10000"', at: '10000', range: '[80000..120000]' },
+  { family: 'sun', from: 'azimuth="3"', to: 'azimuth="7"', at: '7', range: '[0..2PI]' },
+  {
+    family: 'wind (open upper bound)',
+    from: 'direction="0"',
+    to: 'direction="${2 * 3.141592653589793}"',
+    at: '${2 * 3.141592653589793}',
+    range: '[0..2PI[',
+  },
+  { family: 'fog', from: 'visualRange="1000"', to: 'visualRange="-1"', at: '-1', range: '[0..inf[' },
+  { family: 'road condition', from: 'frictionScaleFactor="0.9"', to: 'frictionScaleFactor="-0.1"', at: '-0.1', range: '[0..inf[' },
+  { family: 'dimensions', from: 'length="4.5"', to: 'length="-4.5"', at: '-4.5', range: '[0..inf[' },
+  { family: 'performance', from: 'maxDeceleration="9"', to: 'maxDeceleration="-9"', at: '-9', range: '[0..inf[' },
+  {
+    family: 'axle (open lower bound)',
+    from: 'wheelDiameter="0.6" trackWidth="1.8" positionX="3"',
+    to: 'wheelDiameter="0" trackWidth="1.8" positionX="3"',
+    at: '0',
+    range: ']0..inf[',
+  },
+  { family: 'axle', from: 'maxSteering="0.5"', to: 'maxSteering="4"', at: '4', range: '[0..PI]', warning: true },
+  {
+    family: 'execution count',
+    from: 'priority="override" maximumExecutionCount="1"',
+    to: 'priority="override" maximumExecutionCount="0"',
+    at: '0',
+    range: '[1..inf[',
+  },
+  {
+    family: 'execution count',
+    from: 'name="G" maximumExecutionCount="1"',
+    to: 'name="G" maximumExecutionCount="0"',
+    at: '0',
+    range: '[1..inf[',
+  },
+  { family: 'condition delay', from: 'name="C" delay="0"', to: 'name="C" delay="-2"', at: '-2', range: '[0..inf[' },
+  {
+    family: 'transition dynamics (through a parameter)',
+    from: 'value="4"/>',
+    to: 'value="-4"/>',
+    at: '$Rate',
+    range: '[0..inf[',
+    warning: true,
+  },
+  { family: 'controller override', from: 'value="0.5" maxRate="2"', to: 'value="1.5" maxRate="2"', at: '1.5', range: '[0..1]' },
+  {
+    family: 'controller override rate',
+    from: 'maxRate="1" maxTorque="5"',
+    to: 'maxRate="101" maxTorque="5"',
+    at: '101',
+    range: ']0..100]',
+  },
+  { family: 'controller override torque', from: 'maxTorque="5"', to: 'maxTorque="0"', at: '0', range: ']0..inf[' },
+  { family: 'road position', from: 's="10"', to: 's="-10"', at: '-10', range: '[0..inf[' },
+  { family: 'geo position', from: 'latitudeDeg="48.1"', to: 'latitudeDeg="91"', at: '91', range: '[-90..90]' },
+];
+
+describe('value ranges in a schema-valid scenario', () => {
+  it('the scenario is valid against the 1.3 schema and keeps every range', async () => {
+    const text = scenario();
+    const schema = checkSchema(parseXml(text), { modular: false });
+    assert.deepEqual(
+      schema.findings.filter((finding) => finding.severity === 'error').map((finding) => finding.message),
+      [],
+    );
+    assert.deepEqual(await outOfRange(text), []);
+  });
+
+  for (const { family, from, to, at, range, warning } of FAMILIES) {
+    it(`${family}: ${to} is ${warning ? 'a warning (esmini reads it with one meaning)' : 'an error'} at the value naming ${range}`, async () => {
+      const text = scenario().replace(from, to);
+      assert.notEqual(text, scenario(), from);
+      const problems = await outOfRange(text);
+      assert.equal(problems.length, 1, JSON.stringify(problems));
+      assert.equal(problems[0].severity, warning ? 'warning' : 'error');
+      assert.equal(textAt(text, problems[0]), at);
+      assert.ok(problems[0].message.includes(`outside the standard's range ${range}`), problems[0].message);
+    });
+  }
+
+  it('a negative rate, which esmini takes as its magnitude, is a warning saying what each reads (SPEC 12); a negative time stays an error', async () => {
+    const negative = scenario().replace('value="4"/>', 'value="-4"/>');
+    for (const simulator of [undefined, 'esmini'] as const) {
+      const [problem] = await outOfRange(negative, simulator);
+      assert.equal(problem.severity, 'warning');
+      assert.match(
+        problem.message,
+        /range \[0\.\.inf\[ \(class TransitionDynamics of the ASAM model\) \(RA Consulting's checker reports it as an error\); esmini takes the rate's magnitude/,
+      );
+    }
+    const time = negative.replace('dynamicsDimension="rate"', 'dynamicsDimension="time"');
+    const [timed] = await outOfRange(time, 'esmini');
+    assert.equal(timed.severity, 'error');
+    assert.doesNotMatch(timed.message, /esmini/);
+  });
+
+  it('a maxSteering in degrees (esmini uses it nowhere) and a negative lateral distance (esmini takes its magnitude) are warnings', async () => {
+    const degrees = scenario().replace('maxSteering="0.5"', 'maxSteering="30"');
+    const [steering] = await outOfRange(degrees);
+    assert.equal(steering.severity, 'warning');
+    assert.match(steering.message, /uses it nowhere/);
+    const [lateral] = await outOfRange(bare('1.0', 'LateralDistanceAction', 'distance', '-2.0'));
+    assert.equal(lateral.severity, 'warning');
+    assert.match(
+      lateral.message,
+      /LateralDistanceAction distance -2 \(from -2\.0\) is outside the standard's range \[0\.\.inf\[.*esmini uses the absolute value/,
+    );
+  });
+
+  it('in a 1.1 file the rules of 1.2 on (RoadPosition s) do not apply, the rules of 1.0 on (Dimensions) do', async () => {
+    const older = scenario('1').replace('s="10"', 's="-10"').replace('length="4.5"', 'length="-4.5"');
+    const problems = await outOfRange(older);
+    assert.deepEqual(
+      problems.map((problem) => textAt(older, problem)),
+      ['-4.5'],
+    );
+  });
+});
