@@ -226,15 +226,17 @@ describe('core: flatten (SPEC 4)', () => {
     assert.match(cycle.message, /a\.xosc -> .*b\.xosc -> .*a\.xosc/);
   });
 
-  it('warns where an imported group uses an entity that the main file does not declare', async () => {
+  it('reports an error where an imported group uses an entity that the main file does not declare (esmini stops at it: SPEC 12)', async () => {
     const root = temporaryWorkspace({
       'simple.xosc': scenario(simpleGroup('Go')),
       'main.xosc': scenario(outerGroup('Car', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Go' }] }]), ['car']),
     });
     const result = await flattenIn(root);
-    const warning = result.problems.find((p) => p.code === 'undeclared-entity');
-    assert.ok(warning);
-    assert.match(warning.message, /'ego'/);
-    assert.notEqual(result.text, undefined, 'a warning does not stop the output');
+    const problem = result.problems.find((p) => p.code === 'undeclared-entity');
+    assert.ok(problem);
+    assert.equal(problem.severity, 'error');
+    assert.match(problem.message, /'ego'/);
+    assert.equal(result.text, undefined, 'an error stops the output');
+    assert.notEqual((await flattenIn(root, 'main.xosc', true)).text, undefined, '--force writes it');
   });
 });

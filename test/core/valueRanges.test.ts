@@ -154,6 +154,14 @@ describe('value ranges (RA Consulting range checker rules, per version)', () => 
     assert.match(problem.message, /class OverrideBrakeAction of the ASAM model/);
   });
 
+  it("a GeoPosition's longitudeDeg spans a longitude's [-180..180], not the latitude bounds RA Consulting's data gives it", async () => {
+    assert.deepEqual(await outOfRange(bare('1.3', 'GeoPosition', 'longitudeDeg', '116.4')), []);
+    assert.deepEqual(await outOfRange(bare('1.3', 'GeoPosition', 'longitudeDeg', '-180')), []);
+    const [problem] = await outOfRange(bare('1.3', 'GeoPosition', 'longitudeDeg', '181'));
+    assert.match(problem.message, /\[-180\.\.180\]/);
+    assert.equal((await outOfRange(bare('1.3', 'GeoPosition', 'latitudeDeg', '91'))).length, 1);
+  });
+
   it('Phase duration and LightStateAction transitionTime are left to their own rules', async () => {
     assert.deepEqual(await outOfRange(bare('1.3', 'Phase', 'duration', '-1')), []);
     assert.deepEqual(await outOfRange(bare('1.3', 'LightStateAction', 'transitionTime', '-1')), []);

@@ -93,7 +93,7 @@ export function entityProblems(source: FlatSource): Problem[] {
             document: original.document,
             start,
             end,
-            severity: 'warning',
+            severity: 'error',
             code: 'undeclared-entity',
             message: `the imported group '${linked.info.name}' uses entity '${name}', which this file does not declare in <Entities>`,
             hint: `declare a ScenarioObject named '${name}', or override the key that sets it (for example 'entityRef')`,

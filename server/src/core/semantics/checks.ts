@@ -349,7 +349,8 @@ export const undeclaredEntities: SemanticCheck = ({ model, evaluator }) => {
     const suggestion = names.size <= 2000 ? closestMatch(value, names) : undefined;
     findings.push({
       ...at(element, attr),
-      severity: 'warning',
+      // An error by SPEC 12 and ASAM QC alike: esmini stops at it ("Failed to find object").
+      severity: 'error',
       code: 'undeclared-entity',
       message: `entity '${value}'${value !== attr.value ? ` (the value of ${attr.value})` : ''} is not declared in <Entities>`,
       hint: suggestion ? `did you mean '${suggestion}'?` : `declare a ScenarioObject named '${value}'`,
@@ -417,7 +418,7 @@ export const storyboardReferences: SemanticCheck = (context) => {
     const suggestion = known.length <= 2000 ? closestMatch(written, known) : undefined;
     findings.push({
       ...at(reference.element, reference.refAttribute),
-      severity: 'warning',
+      severity: 'error',
       code: 'unknown-storyboard-element',
       message: `no ${elementName ?? 'storyboard element'} named '${written}'`,
       hint: suggestion ? `did you mean '${suggestion}'?` : undefined,
@@ -473,7 +474,7 @@ export const flattenedStoryboardReferences: SemanticCheck = (context) => {
     }
     findings.push({
       ...at(reference.element, reference.refAttribute),
-      severity: 'warning',
+      severity: 'error',
       code: 'unknown-storyboard-element',
       message: `no ${elementName ?? 'storyboard element'} named '${written}'`,
     });

@@ -121,8 +121,9 @@ export const VALUE_RANGES: readonly ValueRange[] = [
   ...rules('Fog', ['visualRange'], NON_NEGATIVE, ALL),
   ...rules('GeoPosition', ['altitude'], NON_NEGATIVE, FROM_1_2),
   ...rules('GeoPosition', ['latitude', 'longitude'], PLUS_MINUS_PI, FROM_1_2),
-  // Their rules give longitudeDeg the bounds of latitudeDeg; kept as they give it.
-  ...rules('GeoPosition', ['latitudeDeg', 'longitudeDeg'], { min: -90, max: 90 }, FROM_1_2),
+  ...rules('GeoPosition', ['latitudeDeg'], { min: -90, max: 90 }, FROM_1_2),
+  // Their data gives longitudeDeg a latitude's [-90..90], which would refuse every place east of 90° (Beijing, Tokyo).
+  ...rules('GeoPosition', ['longitudeDeg'], { min: -180, max: 180 }, FROM_1_2),
   ...rules('LaneOffsetActionDynamics', ['maxLateralAcc'], NON_NEGATIVE, ALL),
   ...rules('LanePosition', ['s'], NON_NEGATIVE, ALL),
   ...rules('LateralDistanceAction', ['distance'], NON_NEGATIVE, ALL, { esmini: MAGNITUDE }),
