@@ -10,6 +10,9 @@ const VALID_SCHEMA = 'asam.net:xosc:1.0.0:xml.valid_schema';
 /** Where ASAM's checker documents its rules, one anchor per rule. */
 const CHECKER_DOC = 'https://github.com/asam-ev/qc-openscenarioxml/blob/main/checker_bundle_doc.md';
 
+/** The Problems panel's filter "Show Active File Only" (a toggle). */
+const TOGGLE_ACTIVE_FILE_ONLY = 'workbench.actions.workbench.panel.markers.view.toggleActiveFile';
+
 /** A diagnostic's code as the VS Code API gives it: the rule's uid with the link to its description, or a plain code. */
 function codeOf(diagnostic: vscode.Diagnostic): string | { value: string; target: string } | undefined {
   const code = diagnostic.code;
@@ -54,11 +57,18 @@ async function showRuleCodes(): Promise<void> {
   assert.equal(codeOf(unused), 'unused-parameter');
   assert.equal(duplicate.source, 'modular2simple');
 
-  // The Problems panel shows the rule after the source, as a link.
+  // The Problems panel shows the rule after the source, as a link; only this file's problems, so that its rows are drawn.
   await vscode.commands.executeCommand('workbench.actions.view.problems');
-  await waitFor('the rule uid in the Problems panel', async () => (await pageShows(UNIQUE_NAMES, '.markers-panel')) || undefined, 10_000);
-  assert.ok(await pageShows(VALID_SCHEMA, '.markers-panel'), 'the Problems panel does not show the valid_schema rule');
-  await screenshot('the Problems panel names each rule (ASAM QC uid)');
+  await vscode.commands.executeCommand(TOGGLE_ACTIVE_FILE_ONLY);
+  try {
+    editor.revealRange(duplicate.range, vscode.TextEditorRevealType.InCenter);
+    editor.selection = new vscode.Selection(duplicate.range.start, duplicate.range.start);
+    await waitFor('the rule uid in the Problems panel', async () => (await pageShows(UNIQUE_NAMES, '.markers-panel')) || undefined, 10_000);
+    assert.ok(await pageShows(VALID_SCHEMA, '.markers-panel'), 'the Problems panel does not show the valid_schema rule');
+    await screenshot('the Problems panel names each rule (ASAM QC uid)');
+  } finally {
+    await vscode.commands.executeCommand(TOGGLE_ACTIVE_FILE_ONLY);
+  }
 
   // The quick fix of a diagnostic whose code is an ASAM QC rule is still offered, and applies.
   const actions = await vscode.commands.executeCommand<vscode.CodeAction[]>(
