@@ -16,7 +16,8 @@ const TOGGLE_ACTIVE_FILE_ONLY = 'workbench.actions.workbench.panel.markers.view.
 /** A diagnostic's code as the VS Code API gives it: the rule's uid with the link to its description, or a plain code. */
 function codeOf(diagnostic: vscode.Diagnostic): string | { value: string; target: string } | undefined {
   const code = diagnostic.code;
-  if (code === undefined || typeof code !== 'object') return code === undefined ? undefined : String(code);
+  if (code === undefined) return undefined;
+  if (typeof code !== 'object') return String(code);
   return { value: String(code.value), target: code.target.toString(true) };
 }
 
