@@ -12,6 +12,7 @@ import { packAndFlattenTests } from './packAndFlatten.inside';
 import { packageTests } from './packages.inside';
 import { previewTests } from './preview.inside';
 import { refactoringTests } from './refactorings.inside';
+import { ruleTests } from './rules.inside';
 import { structureTests } from './structure.inside';
 import { distributionTests } from './distributions.inside';
 
@@ -26,6 +27,7 @@ const TESTS: InsideTests = {
   ...newScenarioTests,
   ...distributionTests,
   ...refactoringTests,
+  ...ruleTests,
 };
 
 /**
@@ -61,6 +63,7 @@ const ORDER: InsideTestKey[] = [
   'structureFollows',
   'schemaCompletion',
   'schemaDeprecated',
+  'ruleCodes',
   'newScenario',
   'distributionLens',
   'extractToSimple',
