@@ -268,7 +268,7 @@ describe('semantics: scopes, values and catalogs', () => {
       'unknown-assigned-parameter:error:Sped',
       'unknown-catalog-entry:error:truck',
       'unknown-catalog:error:BikeCatalog',
-      'unknown-storyboard-element:error:E9',
+      'unknown-storyboard-element:warning:E9',
       'unused-parameter:hint:Count',
       'unused-parameter:hint:Idle',
     ]);

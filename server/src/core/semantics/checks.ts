@@ -418,7 +418,8 @@ export const storyboardReferences: SemanticCheck = (context) => {
     const suggestion = known.length <= 2000 ? closestMatch(written, known) : undefined;
     findings.push({
       ...at(reference.element, reference.refAttribute),
-      severity: 'error',
+      // A warning in a file of its own: a simple scenario may name an element of the main it is composed into; the flattened output's check (below) makes it an error where it still names nothing.
+      severity: 'warning',
       code: 'unknown-storyboard-element',
       message: `no ${elementName ?? 'storyboard element'} named '${written}'`,
       hint: suggestion ? `did you mean '${suggestion}'?` : undefined,
