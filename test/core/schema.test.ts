@@ -203,13 +203,15 @@ describe('core: the OpenSCENARIO schemas, compiled at build time', () => {
       `        <ManeuverGroup maximumExecutionCount="1" name="G"><Actors selectTriggeringEntities="false"/><Maneuver name="M"><Event name="E" priority="overwrite"><Action name="A"><PrivateAction><TeleportAction><Position><WorldPosition parameterAttributes="x" x="1" y="2"/></Position></TeleportAction></PrivateAction></Action><StartTrigger/></Event></Maneuver></ManeuverGroup>\n`,
     );
     // The main declares its actor on one line (an undeclared one is an error of its own), so the lines stay as they were.
-    const main = valid.replace(
-      '<Entities/>',
-      '<Entities><ScenarioObject name="ego"><MiscObject miscObjectCategory="obstacle" mass="1" name="box"><BoundingBox><Center x="0" y="0" z="0"/><Dimensions width="1" length="1" height="1"/></BoundingBox><Properties/></MiscObject></ScenarioObject></Entities>',
-    ).replace(
-      '{GROUP}',
-      `        <ManeuverGroup maximumExecutionCount="1" name="Outer"><Actors selectTriggeringEntities="false"><EntityRef entityRef="ego"/></Actors>\n          <ScenarioReference scenarioFileName="simple.xosc"><ManeuverGroupReference maneuverGroupName="G"><ParameterReference key="x" value="far"/></ManeuverGroupReference></ScenarioReference>\n        </ManeuverGroup>\n`,
-    );
+    const main = valid
+      .replace(
+        '<Entities/>',
+        '<Entities><ScenarioObject name="ego"><MiscObject miscObjectCategory="obstacle" mass="1" name="box"><BoundingBox><Center x="0" y="0" z="0"/><Dimensions width="1" length="1" height="1"/></BoundingBox><Properties/></MiscObject></ScenarioObject></Entities>',
+      )
+      .replace(
+        '{GROUP}',
+        `        <ManeuverGroup maximumExecutionCount="1" name="Outer"><Actors selectTriggeringEntities="false"><EntityRef entityRef="ego"/></Actors>\n          <ScenarioReference scenarioFileName="simple.xosc"><ManeuverGroupReference maneuverGroupName="G"><ParameterReference key="x" value="far"/></ManeuverGroupReference></ScenarioReference>\n        </ManeuverGroup>\n`,
+      );
     const root = temporaryWorkspace({ 'main.xosc': main, 'simple.xosc': simple });
     const store = new ScenarioStore({ scenarioPath: [], root });
     const result = await new Flattener(store, 'asam', { version: 'auto' }).flatten(diskRef(path.join(root, 'main.xosc')));
