@@ -40,6 +40,23 @@ function onlyCommandFile(commandFile) {
   };
 }
 
+/**
+ * The CLI's bundles run in a vm.Script (server/src/cli/start.ts), which has no module loader for `import()`:
+ * a lazily imported Node module (`await import('node:crypto')`) is required instead, when it is first used.
+ */
+const builtinsRequired = {
+  name: 'builtins-required',
+  setup(build) {
+    build.onResolve({ filter: /^node:/ }, (args) =>
+      args.kind === 'dynamic-import' ? { path: args.path, namespace: 'builtin-required' } : undefined,
+    );
+    build.onLoad({ filter: /.*/, namespace: 'builtin-required' }, (args) => ({
+      contents: `module.exports = require(${JSON.stringify(args.path)});`,
+      loader: 'js',
+    }));
+  },
+};
+
 // The CLI's entry: a small file that runs a bundle from V8's code cache (server/src/cli/start.ts); built first, as it names the command bundles.
 const starter = { entryPoints: ['server/src/cli/start.ts'], outfile: 'dist/cli.js', banner: { js: '#!/usr/bin/env node' } };
 mkdirSync('dist', { recursive: true });
@@ -52,13 +69,13 @@ const entries = [
   { entryPoints: ['server/src/server.ts'], outfile: 'dist/server.js', banner: { js: '#!/usr/bin/env node' } },
   starter,
   // The whole CLI. The Redis queue's client (batch --queue, worker) is loaded from node_modules only when used: start-up stays small.
-  { entryPoints: ['server/src/cli.ts'], outfile: 'dist/cli-main.js', external: ['bullmq', 'ioredis'] },
+  { entryPoints: ['server/src/cli.ts'], outfile: 'dist/cli-main.js', external: ['bullmq', 'ioredis'], plugins: [builtinsRequired] },
   // The short commands' own bundles.
   ...commandFiles.map((file) => ({
     entryPoints: ['server/src/cli.ts'],
     outfile: `dist/${commandBundle(file)}`,
     external: ['bullmq', 'ioredis'],
-    plugins: [onlyCommandFile(file)],
+    plugins: [onlyCommandFile(file), builtinsRequired],
   })),
   // The bird's-eye view's page: runs in the webview, everything bundled (no network, no CDN).
   {
