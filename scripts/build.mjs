@@ -18,9 +18,10 @@ const common = {
 };
 
 /**
- * A command's own bundle is cli.ts with only that file of cli/: cli.ts's imports of the other command
- * files (and of help, which imports them) load a module that throws, as the program's entry runs this
- * bundle for that command alone (server/src/cli/start.ts, COMMAND_BUNDLES).
+ * A command's own bundle is cli.ts with only that file of cli/: cli.ts's lazy imports of the other
+ * command files (and of help, which imports them) load a module that throws, as the program's entry
+ * runs this bundle for that command alone (server/src/cli/start.ts, COMMAND_BUNDLES). What cli.ts
+ * imports statically it always needs, and is bundled.
  */
 function onlyCommandFile(commandFile) {
   return {
@@ -28,7 +29,7 @@ function onlyCommandFile(commandFile) {
     setup(build) {
       build.onResolve({ filter: /^\.\/cli\/\w+$/ }, (args) => {
         const file = args.path.slice('./cli/'.length);
-        if (path.resolve(args.importer) !== path.resolve('server/src/cli.ts') || file === commandFile || file === 'common')
+        if (args.kind !== 'dynamic-import' || path.resolve(args.importer) !== path.resolve('server/src/cli.ts') || file === commandFile)
           return undefined;
         return { path: file, namespace: 'other-command' };
       });
