@@ -1,6 +1,8 @@
-// One bundle per side, so that the extension, the server and the CLI each start from a single file.
+// One bundle per side, so that the extension, the server and the CLI each start from a single file (the CLI: one per short command too).
 import * as esbuild from 'esbuild';
 import { chmodSync, mkdirSync, writeFileSync } from 'node:fs';
+import { createRequire } from 'node:module';
+import path from 'node:path';
 import { writeCliCodeCache } from './cli-code-cache.mjs';
 import { schemaModelFile } from './compile-schemas.mjs';
 
@@ -14,13 +16,68 @@ const common = {
   minify: process.argv.includes('--minify'),
   logLevel: 'warning',
 };
+
+/**
+ * A command's own bundle is cli.ts with only that file of cli/: cli.ts's lazy imports of the other
+ * command files (and of help, which imports them) load a module that throws, as the program's entry
+ * runs this bundle for that command alone (server/src/cli/start.ts, COMMAND_BUNDLES). What cli.ts
+ * imports statically it always needs, and is bundled.
+ */
+function onlyCommandFile(commandFile) {
+  return {
+    name: 'only-command-file',
+    setup(build) {
+      build.onResolve({ filter: /^\.\/cli\/\w+$/ }, (args) => {
+        const file = args.path.slice('./cli/'.length);
+        if (args.kind !== 'dynamic-import' || path.resolve(args.importer) !== path.resolve('server/src/cli.ts') || file === commandFile)
+          return undefined;
+        return { path: file, namespace: 'other-command' };
+      });
+      build.onLoad({ filter: /.*/, namespace: 'other-command' }, (args) => ({
+        contents: `throw new Error(${JSON.stringify(`cli/${args.path} is not in the bundle of cli/${commandFile} (scripts/build.mjs)`)});`,
+        loader: 'js',
+      }));
+    },
+  };
+}
+
+/**
+ * The CLI's bundles run in a vm.Script (server/src/cli/start.ts), which has no module loader for `import()`:
+ * a lazily imported Node module (`await import('node:crypto')`) is required instead, when it is first used.
+ */
+const builtinsRequired = {
+  name: 'builtins-required',
+  setup(build) {
+    build.onResolve({ filter: /^node:/ }, (args) =>
+      args.kind === 'dynamic-import' ? { path: args.path, namespace: 'builtin-required' } : undefined,
+    );
+    build.onLoad({ filter: /.*/, namespace: 'builtin-required' }, (args) => ({
+      contents: `module.exports = require(${JSON.stringify(args.path)});`,
+      loader: 'js',
+    }));
+  },
+};
+
+// The CLI's entry: a small file that runs a bundle from V8's code cache (server/src/cli/start.ts); built first, as it names the command bundles.
+const starter = { entryPoints: ['server/src/cli/start.ts'], outfile: 'dist/cli.js', banner: { js: '#!/usr/bin/env node' } };
+mkdirSync('dist', { recursive: true });
+await esbuild.build({ ...common, ...starter });
+const { COMMAND_BUNDLES, commandBundle } = createRequire(import.meta.url)(path.resolve('dist/cli.js'));
+const commandFiles = [...new Set(Object.values(COMMAND_BUNDLES))];
+
 const entries = [
   { entryPoints: ['client/src/extension.ts'], outfile: 'dist/client.js', external: ['vscode'] },
   { entryPoints: ['server/src/server.ts'], outfile: 'dist/server.js', banner: { js: '#!/usr/bin/env node' } },
-  // The CLI: a small entry that runs the bundle from V8's code cache (server/src/cli/start.ts).
-  { entryPoints: ['server/src/cli/start.ts'], outfile: 'dist/cli.js', banner: { js: '#!/usr/bin/env node' } },
-  // The Redis queue's client (batch --queue, worker) is loaded from node_modules only when used: start-up stays small.
-  { entryPoints: ['server/src/cli.ts'], outfile: 'dist/cli-main.js', external: ['bullmq', 'ioredis'] },
+  starter,
+  // The whole CLI. The Redis queue's client (batch --queue, worker) is loaded from node_modules only when used: start-up stays small.
+  { entryPoints: ['server/src/cli.ts'], outfile: 'dist/cli-main.js', external: ['bullmq', 'ioredis'], plugins: [builtinsRequired] },
+  // The short commands' own bundles.
+  ...commandFiles.map((file) => ({
+    entryPoints: ['server/src/cli.ts'],
+    outfile: `dist/${commandBundle(file)}`,
+    external: ['bullmq', 'ioredis'],
+    plugins: [onlyCommandFile(file), builtinsRequired],
+  })),
   // The bird's-eye view's page: runs in the webview, everything bundled (no network, no CDN).
   {
     entryPoints: ['client/src/birdsEye/webview/main.ts'],
@@ -39,7 +96,6 @@ const entries = [
   },
 ];
 // The OpenSCENARIO schemas are compiled once here, so that nothing interprets XSD at run time.
-mkdirSync('dist', { recursive: true });
 writeFileSync('dist/openscenario-schemas.json', schemaModelFile());
 const contexts = await Promise.all(entries.map((entry) => esbuild.context({ ...common, ...entry })));
 if (watch) {

@@ -1,28 +1,53 @@
-// V8's code cache for the CLI's bundle (read by server/src/cli/start.ts, the program's entry): the bundle is
-// compiled and run here as the entry runs it, on the examples, so that the cache holds the functions a
-// flatten, a pack and a check compile; a run then reads them instead of compiling them.
+// V8's code cache for each of the CLI's bundles (read by server/src/cli/start.ts, the program's entry): a bundle
+// is compiled and run here as the entry runs it, on the examples, so that its cache holds the functions its
+// commands compile; a run then reads them instead of compiling them.
 import { existsSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { createRequire } from 'node:module';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
 
+/** The command lines run on the examples before a bundle's cache is written, by command file of cli/ (`main`: the whole CLI). */
+function warmingRuns(examples, out) {
+  const flatten = [
+    ['-cmx', path.join(examples, 'braking.mosc'), path.join(out, 'braking.xosc'), '-q'],
+    ['flatten', path.join(examples, 'main.xosc'), '-o', path.join(out, 'main.xosc'), '-q'],
+  ];
+  const pack = [['pack', path.join(examples, 'pedestrian'), '-o', path.join(out, 'pedestrian.mosc'), '-q']];
+  const check = [['check', examples, '-q']];
+  return {
+    main: [...flatten, ...pack, ...check],
+    flatten,
+    pack,
+    check,
+    stats: [['stats', examples]],
+    // --check writes nothing.
+    format: [['format', '--check', examples, '-q']],
+  };
+}
+
+/** The bundle files the program's entry may run: the whole CLI's and each short command's. */
+function cliBundles(entry) {
+  return [
+    { file: entry.CLI_BUNDLE, runs: 'main' },
+    ...[...new Set(Object.values(entry.COMMAND_BUNDLES))].map((file) => ({ file: entry.commandBundle(file), runs: file })),
+  ];
+}
+
 export async function writeCliCodeCache(root) {
   const dist = path.join(root, 'dist');
   const require = createRequire(path.join(dist, 'cli.js'));
   const entry = require('./cli.js');
-  const { exports: cli, script } = entry.loadBundle(dist, require, undefined);
   const examples = path.join(root, 'examples');
-  if (existsSync(path.join(examples, 'braking.mosc'))) {
-    const out = mkdtempSync(path.join(tmpdir(), 'm2s-code-cache-'));
-    const quiet = { out: () => undefined, err: () => undefined };
-    try {
-      await cli.main(['-cmx', path.join(examples, 'braking.mosc'), path.join(out, 'braking.xosc'), '-q'], quiet);
-      await cli.main(['flatten', path.join(examples, 'main.xosc'), '-o', path.join(out, 'main.xosc'), '-q'], quiet);
-      await cli.main(['pack', path.join(examples, 'pedestrian'), '-o', path.join(out, 'pedestrian.mosc'), '-q'], quiet);
-      await cli.main(['check', examples, '-q'], quiet);
-    } finally {
-      rmSync(out, { recursive: true, force: true });
+  const out = mkdtempSync(path.join(tmpdir(), 'm2s-code-cache-'));
+  const quiet = { out: () => undefined, err: () => undefined };
+  try {
+    const runs = warmingRuns(examples, out);
+    for (const { file, runs: name } of cliBundles(entry)) {
+      const { exports: cli, script } = entry.loadBundle(dist, require, undefined, file);
+      if (existsSync(path.join(examples, 'braking.mosc'))) for (const argv of runs[name] ?? []) await cli.main(argv, quiet);
+      writeFileSync(path.join(dist, file + entry.CODE_CACHE_SUFFIX), script.createCachedData());
     }
+  } finally {
+    rmSync(out, { recursive: true, force: true });
   }
-  writeFileSync(path.join(dist, entry.CLI_CODE_CACHE), script.createCachedData());
 }

@@ -112,6 +112,8 @@ export function readCentralDirectory(bytes: Uint8Array, maxEntries: number): Zip
 let crcTable: Uint32Array | undefined;
 
 export function crc32(bytes: Uint8Array): number {
+  // Node's own where it has one (20.15 on): this byte loop runs in V8's interpreter in a short CLI run, most of unpacking a package.
+  if (typeof zlib.crc32 === 'function') return zlib.crc32(bytes);
   if (!crcTable) {
     crcTable = new Uint32Array(256);
     for (let n = 0; n < 256; n++) {

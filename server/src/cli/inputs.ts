@@ -1,6 +1,7 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { childRef, diskRef, Limits, ScenarioStore, SourceRef, splitScenarioPath } from '../core/sources';
+import { cliFileSystem } from './fileSystem';
 
 /** The main file that an input names: a package's main.xosc, a folder's main.xosc, or the file itself. */
 export function mainOf(input: string): SourceRef {
@@ -30,5 +31,6 @@ export function storeForInputs(
     root: root ?? (insideCwd ? cwd : inputFolder),
     workingDirectory: cwd,
     limits,
+    host: cliFileSystem,
   });
 }

@@ -5,25 +5,55 @@ import * as vm from 'node:vm';
 import type * as Cli from '../cli';
 
 /**
- * The program's entry (dist/cli.js): it runs the CLI's bundle (dist/cli-main.js) from V8's code cache,
- * which `npm run build` writes beside it after a flatten, a pack and a check (scripts/cli-code-cache.mjs).
+ * The program's entry (dist/cli.js): it runs one of the CLI's bundles from V8's code cache, which
+ * `npm run build` writes beside each bundle after running its commands (scripts/cli-code-cache.mjs).
+ * A short command (a flatten, a pack, a check) runs a bundle of its own that holds only its code, so
+ * that reading, deserializing and evaluating the code of the other commands is not paid at each start;
+ * every other command line (help, run, batch, a wrong command) runs the whole CLI (dist/cli-main.js).
  * Compiling the bundle and the functions a command calls is most of a short run's start-up; with the
  * cache V8 reads them back. A cache that does not fit (another Node) is rejected by V8 and the bundle
  * is compiled as usual.
  */
 
-/** The bundle and its code cache, as the build writes them and this entry reads them. */
+/** The whole CLI's bundle; a bundle's code cache is its name followed by CODE_CACHE_SUFFIX. */
 export const CLI_BUNDLE = 'cli-main.js';
-export const CLI_CODE_CACHE = 'cli-main.js.cache';
+export const CODE_CACHE_SUFFIX = '.cache';
+
+/**
+ * The commands that have a bundle of their own (`cli-<file>.js`, built by scripts/build.mjs from
+ * cli.ts with only that file of cli/), by the name the command line gives. A command not listed runs
+ * the whole CLI, so a command added to cli.ts alone works, only without the faster start.
+ */
+export const COMMAND_BUNDLES: Readonly<Record<string, string>> = {
+  flatten: 'flatten',
+  '-cmx': 'flatten',
+  '--convert-mosc-to-xosc': 'flatten',
+  pack: 'pack',
+  '-cxm': 'pack',
+  '--convert-xosc-into-mosc': 'pack',
+  check: 'check',
+  stats: 'stats',
+  format: 'format',
+};
+
+/** The bundle file of a command file of cli/ (a value of COMMAND_BUNDLES). */
+export function commandBundle(commandFile: string): string {
+  return `cli-${commandFile}.js`;
+}
 
 export interface LoadedBundle {
   exports: Pick<typeof Cli, 'main' | 'runFromCommandLine'>;
   script: vm.Script;
 }
 
-/** Compiles and runs the bundle as Node's CommonJS loader would, with the code cache when there is one. */
-export function loadBundle(folder: string, requireFn: NodeJS.Require, cachedData: Buffer | undefined): LoadedBundle {
-  const filename = path.join(folder, CLI_BUNDLE);
+/** Compiles and runs a bundle as Node's CommonJS loader would, with the code cache when there is one. */
+export function loadBundle(
+  folder: string,
+  requireFn: NodeJS.Require,
+  cachedData: Buffer | undefined,
+  bundleFile: string = CLI_BUNDLE,
+): LoadedBundle {
+  const filename = path.join(folder, bundleFile);
   const script = new vm.Script(Module.wrap(fs.readFileSync(filename, 'utf8')), { filename, cachedData });
   const bundle = { exports: {} as LoadedBundle['exports'], filename, id: filename, loaded: false };
   const run = script.runInThisContext() as (
@@ -37,11 +67,11 @@ export function loadBundle(folder: string, requireFn: NodeJS.Require, cachedData
   return { exports: bundle.exports, script };
 }
 
-function readCache(folder: string): Buffer | undefined {
+function readCache(folder: string, bundleFile: string): Buffer | undefined {
   try {
-    const cache = path.join(folder, CLI_CODE_CACHE);
+    const cache = path.join(folder, bundleFile + CODE_CACHE_SUFFIX);
     // V8 checks a cache against its source by length alone: a bundle rebuilt after its cache (watch mode) is compiled as usual.
-    if (fs.statSync(cache).mtimeMs < fs.statSync(path.join(folder, CLI_BUNDLE)).mtimeMs) return undefined;
+    if (fs.statSync(cache).mtimeMs < fs.statSync(path.join(folder, bundleFile)).mtimeMs) return undefined;
     return fs.readFileSync(cache);
   } catch {
     // No cache (a build without it): the bundle is compiled as usual.
@@ -49,4 +79,15 @@ function readCache(folder: string): Buffer | undefined {
   }
 }
 
-if (require.main === module) loadBundle(__dirname, require, readCache(__dirname)).exports.runFromCommandLine();
+/** The bundle a command line runs: its command's own when the build wrote one (the .vsix ships only the whole CLI). */
+export function bundleFor(folder: string, argv: readonly string[]): string {
+  const name = argv[0];
+  if (name === undefined || !Object.hasOwn(COMMAND_BUNDLES, name)) return CLI_BUNDLE;
+  const own = commandBundle(COMMAND_BUNDLES[name]);
+  return fs.existsSync(path.join(folder, own)) ? own : CLI_BUNDLE;
+}
+
+if (require.main === module) {
+  const bundleFile = bundleFor(__dirname, process.argv.slice(2));
+  loadBundle(__dirname, require, readCache(__dirname, bundleFile), bundleFile).exports.runFromCommandLine();
+}

@@ -15,6 +15,12 @@ export class LineIndex {
 
   constructor(readonly text: string) {
     const starts = [0];
+    // Without a CR, native searches find the lines: the character loop is slow before V8 has compiled it (a CLI run).
+    if (!text.includes('\r')) {
+      for (let at = text.indexOf('\n'); at !== -1; at = text.indexOf('\n', at + 1)) starts.push(at + 1);
+      this.lineStarts = starts;
+      return;
+    }
     for (let i = 0; i < text.length; i++) {
       const code = text.charCodeAt(i);
       if (code === 10) {
@@ -63,9 +69,12 @@ export class LineIndex {
 /** Lines as an editor shows them: a last line without a newline counts, an empty file has none. */
 export function countEditorLines(text: string): number {
   if (text.length === 0) return 0;
-  const index = new LineIndex(text);
+  // LineIndex's count, found by native searches: a CLI run counts its output once, before V8 has compiled the character loop.
+  let lineCount = 1;
+  for (let at = text.indexOf('\n'); at !== -1; at = text.indexOf('\n', at + 1)) lineCount++;
+  for (let at = text.indexOf('\r'); at !== -1; at = text.indexOf('\r', at + 1)) if (text.charCodeAt(at + 1) !== 10) lineCount++;
   const endsWithNewline = text.endsWith('\n') || text.endsWith('\r');
-  return endsWithNewline ? index.lineCount - 1 : index.lineCount;
+  return endsWithNewline ? lineCount - 1 : lineCount;
 }
 
 /** Decodes file bytes as UTF-8, accepting and dropping a byte-order mark. */

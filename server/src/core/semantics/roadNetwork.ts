@@ -1,4 +1,3 @@
-import { createHash } from 'node:crypto';
 import { MAX_ROAD_FILE_BYTES, parseOpenDrive } from '../opendrive/road';
 import { logicFileOf, resolveRoadFile, scenarioFolderOf } from '../roadFiles';
 import { ScenarioStore, SourceRef } from '../sources';
@@ -55,6 +54,8 @@ async function readRoadSignals(store: ScenarioStore, file: string): Promise<Road
   // Unreadable (too large, not a regular file, gone): not a problem of these rules.
   const bytes = await store.host.readFile(file, MAX_ROAD_FILE_BYTES + 1).catch(() => undefined);
   if (!bytes || bytes.byteLength > MAX_ROAD_FILE_BYTES) return undefined;
+  // Loaded here, not with the module: a run that reads no road file (most CLI runs) does not pay for Node's crypto.
+  const { createHash } = await import('node:crypto');
   const hash = createHash('sha1').update(bytes).digest('hex');
   const cached = summaries.get(file);
   if (cached?.hash === hash) return cached.signals;

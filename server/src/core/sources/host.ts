@@ -39,7 +39,7 @@ export class KindCache {
 
 export class FileReadError extends Error {}
 
-function describeKind(stat: fs.Stats): string {
+export function describeKind(stat: fs.Stats): string {
   if (stat.isDirectory()) return 'a folder';
   if (stat.isFIFO()) return 'a FIFO';
   if (stat.isCharacterDevice()) return 'a character device';

@@ -1,0 +1,50 @@
+import * as assert from 'node:assert/strict';
+import { spawnSync } from 'node:child_process';
+import * as fs from 'node:fs';
+import * as os from 'node:os';
+import * as path from 'node:path';
+import { bundleFor, CLI_BUNDLE, CODE_CACHE_SUFFIX, COMMAND_BUNDLES, commandBundle, loadBundle } from '../../server/src/cli/start';
+import { repoRoot } from '../support/paths';
+
+const dist = path.join(repoRoot, 'dist');
+const examples = path.join(repoRoot, 'examples');
+
+describe("cli: the program's entry runs a command's own bundle", function () {
+  this.timeout(60_000);
+
+  it('a short command runs its own bundle, every other command line the whole CLI', () => {
+    assert.equal(bundleFor(dist, ['flatten', 'x.mosc']), 'cli-flatten.js');
+    assert.equal(bundleFor(dist, ['-cmx', 'a.mosc', 'b.xosc']), 'cli-flatten.js');
+    assert.equal(bundleFor(dist, ['--convert-xosc-into-mosc', 'a.xosc', 'b.mosc']), 'cli-pack.js');
+    assert.equal(bundleFor(dist, ['check', '.']), 'cli-check.js');
+    for (const argv of [[], ['--help'], ['--version'], ['run', 'x.xosc'], ['batch'], ['nonsense'], ['toString'], ['__proto__']])
+      assert.equal(bundleFor(dist, argv), CLI_BUNDLE, argv.join(' '));
+  });
+
+  it('the build wrote every command bundle with a code cache that V8 accepts', () => {
+    for (const file of [CLI_BUNDLE, ...new Set(Object.values(COMMAND_BUNDLES).map(commandBundle))]) {
+      const { script, exports } = loadBundle(dist, require, fs.readFileSync(path.join(dist, file + CODE_CACHE_SUFFIX)), file);
+      assert.equal(script.cachedDataRejected, false, `${file}'s code cache was rejected`);
+      assert.equal(typeof exports.main, 'function', file);
+    }
+  });
+
+  it('without the command bundles (the .vsix ships only the whole CLI) the same command gives the same output', () => {
+    const shipped = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-start-'));
+    try {
+      for (const file of ['cli.js', CLI_BUNDLE, CLI_BUNDLE + CODE_CACHE_SUFFIX, 'openscenario-schemas.json'])
+        fs.copyFileSync(path.join(dist, file), path.join(shipped, file));
+      assert.equal(bundleFor(shipped, ['flatten', 'x.mosc']), CLI_BUNDLE);
+      const flatten = (entry: string, output: string) =>
+        spawnSync(process.execPath, [entry, '-cmx', path.join(examples, 'braking.mosc'), path.join(shipped, output)], { encoding: 'utf8' });
+      const own = flatten(path.join(dist, 'cli.js'), 'own.xosc');
+      const whole = flatten(path.join(shipped, 'cli.js'), 'whole.xosc');
+      assert.equal(own.status, 0, own.stderr);
+      assert.equal(whole.status, 0, whole.stderr);
+      assert.equal(whole.stderr.replace('whole.xosc', 'own.xosc'), own.stderr);
+      assert.equal(fs.readFileSync(path.join(shipped, 'whole.xosc'), 'utf8'), fs.readFileSync(path.join(shipped, 'own.xosc'), 'utf8'));
+    } finally {
+      fs.rmSync(shipped, { recursive: true, force: true });
+    }
+  });
+});
