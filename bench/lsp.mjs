@@ -13,6 +13,8 @@ const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 const server = path.join(root, 'dist', 'server.js');
 const library = path.resolve(root, '..', 'shared', 'corpus', 'modular2simple', 'library');
 const samples = Number(process.env.BENCH_SAMPLES ?? 100);
+// BENCH_NODE_ARGS are given to the server's node (e.g. --require of a probe); BENCH_LSP_EDITS_ONLY=1 stops after part 1.
+const nodeArgs = (process.env.BENCH_NODE_ARGS ?? '').split(' ').filter(Boolean);
 
 if (!existsSync(server)) {
   console.error('dist/server.js is missing: run npm run build first');
@@ -35,7 +37,7 @@ function residentMb(pid) {
 
 /** Starts the server over stdio with a workspace folder; resolves once indexing reported its end. */
 async function start(folder, settings = {}) {
-  const child = spawn(process.execPath, [server, '--stdio'], { stdio: ['pipe', 'pipe', 'inherit'] });
+  const child = spawn(process.execPath, [...nodeArgs, server, '--stdio'], { stdio: ['pipe', 'pipe', 'inherit'] });
   const connection = createProtocolConnection(new StreamMessageReader(child.stdout), new StreamMessageWriter(child.stdin));
   const diagnosticsWaiters = new Map();
   let indexEnd;
@@ -295,6 +297,7 @@ const memory = residentMb(session.child.pid);
 line('  after the 15,000-line edits, at rest (now / peak)', `${fmt(memory.rss)} MB ${fmt(memory.peak)} MB   (stress figure)`);
 await session.stop();
 rmSync(workspace, { recursive: true, force: true });
+if (process.env.BENCH_LSP_EDITS_ONLY === '1') process.exit(0);
 
 // ---- 2. the bundled examples: edit to preview ------------------------------------------------------
 
