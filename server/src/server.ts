@@ -1,9 +1,6 @@
 import * as fs from 'node:fs';
 import { createConnection, ProposedFeatures } from 'vscode-languageserver/node';
-import { tuneServerHeap } from './heapSettings';
 import { startServer } from './languageServer';
-
-tuneServerHeap();
 
 // createConnection reads the transport from the command line (--stdio, --node-ipc, --socket=N);
 // without one, a parent that gave us an IPC channel gets node IPC and anyone else gets stdio.

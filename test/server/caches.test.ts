@@ -6,7 +6,6 @@ import { childRef, diskRef, ScenarioStore } from '../../server/src/core/sources'
 import { FlatSource } from '../../server/src/core/flatten';
 import { SchemaCheckMemory, schemaProblems } from '../../server/src/core/schema/problems';
 import { parseXml } from '../../server/src/core/xml';
-import { tuneServerHeap } from '../../server/src/heapSettings';
 import { CachingFileSystem, DEFAULT_SETTINGS, SharedSources, Workspace } from '../../server/src/workspace';
 import { packageOf, scenario, simpleGroup } from '../support/fixtures';
 import { temporaryWorkspace } from '../support/workspace';
@@ -114,12 +113,5 @@ describe('server: analyses of files not open are bounded like the shared sources
     assert.equal(first.tree.deref(), undefined, "a's parse tree was let go");
     const again = await analyseA();
     assert.deepEqual(again.problems, first.problems);
-  });
-});
-
-describe('server: the process heap setting', () => {
-  it('leaves a growth chosen on the command line or in NODE_OPTIONS alone', () => {
-    assert.equal(tuneServerHeap(['--heap-growing-percent=20'], undefined), false);
-    assert.equal(tuneServerHeap([], '--max-old-space-size=4096 --heap_growing_percent=20'), false);
   });
 });
