@@ -16,6 +16,7 @@ import {
   diskRef,
   childRef,
 } from './core/sources';
+import { Problem } from './core/problems';
 import { LineIndex, Range } from './core/text';
 import { OpenDocument, OpenDocuments } from './documents';
 import { UriResolver, refToUri } from './uris';
@@ -300,7 +301,8 @@ class ReusingFlattener extends Flattener {
     const id = refId(ref);
     const known = this.shared.get(id);
     if (known) return known;
-    const created = super.source(ref, stack);
+    // Only the shared sources hold it (not this generation's own cache too), so their bound holds within a generation.
+    const created = this.build(ref, [...stack, ref]);
     this.shared.set(id, created);
     created.then(
       (source) => {
@@ -314,6 +316,13 @@ class ReusingFlattener extends Flattener {
     );
     return created;
   }
+}
+
+/** An analysis of one generation: whole while pending or for an open document, else its problems only. */
+interface CachedAnalysis {
+  generation: number;
+  result: Promise<AnalysisResult> | undefined;
+  problems: Problem[];
 }
 
 /**
@@ -336,15 +345,18 @@ export class Workspace {
   private flattenerGeneration = -1;
   private currentFlattener: Flattener | undefined;
   /** Sources read so far, kept across generations until a file they depend on changes. */
-  private readonly sharedSources = new SharedSources(SHARED_SOURCE_BYTES, () => this.keptSources());
+  private readonly sharedSources: SharedSources;
   private readonly sourceDependencies = new Map<string, string[]>();
   /** The files each open document's source read, as last known (kept in memory while it is open). */
   private readonly openDocumentReads = new Map<string, string[]>();
   /** The last schema check of each file, shared by every generation's flattener. */
   private readonly schemaChecks = new SchemaCheckMemory();
-  private readonly analysisResults = new Map<string, { generation: number; result: Promise<AnalysisResult> }>();
+  /** Analyses of the current generation; one of a file not open keeps only its problems, its source staying in the shared sources. */
+  private readonly analysisResults = new Map<string, CachedAnalysis>();
 
-  constructor() {
+  /** `sharedSourceBytes`: the bound of the read sources kept beyond those open documents read. */
+  constructor(sharedSourceBytes = SHARED_SOURCE_BYTES) {
+    this.sharedSources = new SharedSources(sharedSourceBytes, () => this.keptSources());
     this.storeInstance = this.createStore();
     this.uris = new UriResolver(() => this.storeInstance);
   }
@@ -463,9 +475,25 @@ export class Workspace {
   analyze(ref: SourceRef): Promise<AnalysisResult> {
     const id = refId(ref);
     const cached = this.analysisResults.get(id);
-    if (cached && cached.generation === this.generation) return cached.result;
+    if (cached && cached.generation === this.generation) {
+      if (cached.result) return cached.result;
+      const problems = cached.problems;
+      // The source as the shared sources still hold it, or read again: the same text gives the same source.
+      return this.source(ref).then((source) => ({ problems, source }));
+    }
     const result = this.flattener().analyze(ref);
-    this.analysisResults.set(id, { generation: this.generation, result });
+    const fresh: CachedAnalysis = { generation: this.generation, result, problems: [] };
+    this.analysisResults.set(id, fresh);
+    // A file not open must not keep its parse tree past the bound of the shared sources.
+    if (!this.documents.get(id))
+      result.then(
+        (analysis) => {
+          if (this.analysisResults.get(id) !== fresh || this.documents.get(id)) return;
+          fresh.problems = analysis.problems;
+          fresh.result = undefined;
+        },
+        () => undefined,
+      );
     if (this.analysisResults.size > 200)
       for (const [key, entry] of this.analysisResults) if (entry.generation !== this.generation) this.analysisResults.delete(key);
     return result;

@@ -1,8 +1,12 @@
 import * as assert from 'node:assert/strict';
 import * as path from 'node:path';
+import * as v8 from 'node:v8';
+import * as vm from 'node:vm';
 import { childRef, diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { FlatSource } from '../../server/src/core/flatten';
-import { CachingFileSystem, SharedSources } from '../../server/src/workspace';
+import { SchemaCheckMemory, schemaProblems } from '../../server/src/core/schema/problems';
+import { parseXml } from '../../server/src/core/xml';
+import { CachingFileSystem, DEFAULT_SETTINGS, SharedSources, Workspace } from '../../server/src/workspace';
 import { packageOf, scenario, simpleGroup } from '../support/fixtures';
 import { temporaryWorkspace } from '../support/workspace';
 
@@ -46,5 +50,68 @@ describe('core: the package cache is bounded by size', () => {
     await new Promise((resolve) => setImmediate(resolve));
     assert.deepEqual(sources.keys(), ['open', 'c']);
     assert.equal(sources.size, 30 * 1000, 'an open document does not count');
+  });
+});
+
+/** A full garbage collection, after the current job (a WeakRef keeps its target until the job ends). */
+async function collectGarbage(): Promise<void> {
+  await new Promise((resolve) => setImmediate(resolve));
+  v8.setFlagsFromString('--expose-gc');
+  (vm.runInNewContext('gc') as () => void)();
+}
+
+describe('core: the last schema checks are bounded by size', () => {
+  const fileText = (name: string) => scenario(simpleGroup(name));
+
+  it('keeps checks up to its bound, least recently checked out; a file checked again after eviction gets the same findings', () => {
+    const sizing = new SchemaCheckMemory();
+    const first = schemaProblems(diskRef('/virtual/a.xosc'), parseXml(fileText('A')), sizing);
+    assert.ok(first.length > 0, 'the fixture breaks the schema');
+    const one = sizing.size;
+    const memory = new SchemaCheckMemory(64, Math.floor(2.5 * one));
+    for (const name of ['a', 'b', 'c'])
+      schemaProblems(diskRef(`/virtual/${name}.xosc`), parseXml(fileText(name === 'a' ? 'A' : name)), memory);
+    assert.deepEqual(memory.keys(), ['/virtual/b.xosc', '/virtual/c.xosc'], 'the least recently checked file went first');
+    assert.ok(memory.size <= 2.5 * one, `${memory.size} bytes remembered`);
+    const again = schemaProblems(diskRef('/virtual/a.xosc'), parseXml(fileText('A')), memory);
+    assert.deepEqual(again, first);
+    assert.deepEqual(memory.keys(), ['/virtual/c.xosc', '/virtual/a.xosc']);
+  });
+
+  it('a remembered check keeps no parse tree', async () => {
+    const memory = new SchemaCheckMemory();
+    const tree = (() => {
+      const document = parseXml(fileText('A'));
+      schemaProblems(diskRef('/virtual/a.xosc'), document, memory);
+      assert.ok(document.root);
+      return new WeakRef(document.root);
+    })();
+    await collectGarbage();
+    assert.equal(tree.deref(), undefined);
+    assert.deepEqual(memory.keys(), ['/virtual/a.xosc']);
+  });
+});
+
+describe('server: analyses of files not open are bounded like the shared sources', () => {
+  it('lets their parse trees go past the bound, and analysing one again gives the same problems', async () => {
+    const texts = Object.fromEntries(['a', 'b', 'c'].map((name) => [`${name}.xosc`, scenario(simpleGroup(name.toUpperCase()))]));
+    const root = temporaryWorkspace(texts);
+    // Room for about one read source (30 bytes a character).
+    const workspace = new Workspace(Math.floor(30 * 1.5 * texts['a.xosc'].length));
+    workspace.configure([root], DEFAULT_SETTINGS);
+    const analyseA = async () => {
+      const analysis = await workspace.analyze(diskRef(path.join(root, 'a.xosc')));
+      assert.ok(analysis.source.original);
+      const topElement = analysis.source.original.document.root;
+      assert.ok(topElement);
+      return { tree: new WeakRef(topElement), problems: analysis.problems };
+    };
+    const first = await analyseA();
+    assert.ok(first.problems.length > 0);
+    for (const name of ['b', 'c']) await workspace.analyze(diskRef(path.join(root, `${name}.xosc`)));
+    await collectGarbage();
+    assert.equal(first.tree.deref(), undefined, "a's parse tree was let go");
+    const again = await analyseA();
+    assert.deepEqual(again.problems, first.problems);
   });
 });

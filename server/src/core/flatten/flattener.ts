@@ -131,7 +131,7 @@ export class Flattener {
     return source;
   }
 
-  private async build(ref: SourceRef, stack: SourceRef[]): Promise<FlatSource> {
+  protected async build(ref: SourceRef, stack: SourceRef[]): Promise<FlatSource> {
     const result: FlatSource = {
       ref,
       original: undefined,

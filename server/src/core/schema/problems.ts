@@ -42,6 +42,15 @@ interface RememberedCheck {
 
 const REMEMBERED_FILES = 64;
 
+/** Characters of remembered text (and about 100 bytes a finding) kept in all: the text of a file no longer open is its own copy. */
+export const REMEMBERED_CHECK_BYTES = 32 * 1024 * 1024;
+
+const BYTES_PER_FINDING = 100;
+
+function rememberedSize(check: RememberedCheck): number {
+  return check.text.length + BYTES_PER_FINDING * check.placed.length;
+}
+
 function placed(finding: SchemaFinding): PlacedFinding {
   const [start, end] = findingOffsets(finding);
   // The tree is dropped: only offsets and words are kept.
@@ -84,16 +93,34 @@ function recheckValueEdit(previous: RememberedCheck, document: XmlDocument): Pla
 }
 
 /**
- * The last schema check of each file (at most 64), for edits inside one attribute value (typing a value
- * in a large file). One is owned by whoever checks a stream of edits: a language server's workspace, a CLI run.
+ * The last schema check of each file (at most 64, and at most about 32 MiB of text and findings, the
+ * least recently checked file going first), for edits inside one attribute value (typing a value in a
+ * large file). One is owned by whoever checks a stream of edits: a language server's workspace, a CLI run.
+ * A file no longer remembered is simply checked in full again.
  */
 export class SchemaCheckMemory {
-  private readonly checks = new Map<string, RememberedCheck>();
+  private readonly checks = new Map<string, { check: RememberedCheck; size: number }>();
+  private total = 0;
+
+  constructor(
+    private readonly maxFiles = REMEMBERED_FILES,
+    private readonly maxBytes = REMEMBERED_CHECK_BYTES,
+  ) {}
+
+  /** Approximate bytes remembered. */
+  get size(): number {
+    return this.total;
+  }
+
+  /** The files remembered, the least recently checked first. */
+  keys(): string[] {
+    return [...this.checks.keys()];
+  }
 
   /** The schema check of a document, from the remembered check of its previous text where one value edit separates them. */
   check(key: string, document: XmlDocument, options: SchemaCheckOptions): PlacedFinding[] {
     const setting = `${options.version ?? 'auto'} ${options.modular ? 'modular' : 'strict'}`;
-    const previous = this.checks.get(key);
+    const previous = this.checks.get(key)?.check;
     let check: RememberedCheck | undefined;
     // The same text checks the same (a file read again by a new generation's flattener).
     const same = previous && previous.setting === setting && previous.text === document.text;
@@ -101,12 +128,28 @@ export class SchemaCheckMemory {
     if (previous && moved) check = { ...previous, text: document.text, placed: moved };
     else {
       const full = checkSchema(document, options);
-      check = { text: document.text, setting, chosen: full.chosen, placed: full.findings.map(placed) };
+      // The FileHeader element would keep the whole parse tree; a re-check needs only the version.
+      check = { text: document.text, setting, chosen: { ...full.chosen, header: undefined }, placed: full.findings.map(placed) };
     }
-    this.checks.delete(key);
-    this.checks.set(key, check);
-    if (this.checks.size > REMEMBERED_FILES) this.checks.delete(this.checks.keys().next().value as string);
+    this.remember(key, check);
     return check.placed;
+  }
+
+  private remember(key: string, check: RememberedCheck): void {
+    const previous = this.checks.get(key);
+    if (previous) {
+      this.checks.delete(key);
+      this.total -= previous.size;
+    }
+    const size = rememberedSize(check);
+    if (size > this.maxBytes) return;
+    this.checks.set(key, { check, size });
+    this.total += size;
+    for (const [oldest, entry] of this.checks) {
+      if (this.checks.size <= this.maxFiles && this.total <= this.maxBytes) break;
+      this.checks.delete(oldest);
+      this.total -= entry.size;
+    }
   }
 }
 
