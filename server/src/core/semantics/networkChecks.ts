@@ -1,4 +1,4 @@
-import { attribute, descendants, XmlAttribute, XmlElement } from '../xml';
+import { attribute, XmlAttribute, XmlElement } from '../xml';
 import type { Finding, SemanticCheck, SemanticContext } from './checks';
 import { VALUE_RANGES, ValueRange, rangeText } from './ranges';
 import { SemanticModel } from './types';
@@ -18,15 +18,30 @@ function elementsNamed(model: SemanticModel, name: string): XmlElement[] {
   let index = elementIndex.get(model);
   if (!index) {
     index = new Map();
-    const root = model.document.root;
-    for (const element of root ? [root, ...descendants(root)] : []) {
+    // One walk in document order with an explicit stack: no array of every element, as the tree is walked once per edit.
+    const stack: XmlElement[] = model.document.root ? [model.document.root] : [];
+    while (stack.length > 0) {
+      const element = stack.pop() as XmlElement;
       const list = index.get(element.name);
       if (list) list.push(element);
       else index.set(element.name, [element]);
+      for (let i = element.children.length - 1; i >= 0; i--) stack.push(element.children[i]);
     }
     elementIndex.set(model, index);
   }
   return index.get(name) ?? [];
+}
+
+/** The first element below `element` of a name, in document order (the walk stops there). */
+function firstBelow(element: XmlElement, name: string): XmlElement | undefined {
+  const stack: XmlElement[] = [];
+  for (let i = element.children.length - 1; i >= 0; i--) stack.push(element.children[i]);
+  while (stack.length > 0) {
+    const next = stack.pop() as XmlElement;
+    if (next.name === name) return next;
+    for (let i = next.children.length - 1; i >= 0; i--) stack.push(next.children[i]);
+  }
+  return undefined;
 }
 
 function at(element: XmlElement, attr: XmlAttribute | undefined): Pick<Finding, 'element' | 'attribute' | 'start' | 'end'> {
@@ -115,7 +130,7 @@ export const trafficSignalControllerRefs: SemanticCheck = (context) => {
 export const privateActionActors: SemanticCheck = (context) => {
   const findings: Finding[] = [];
   for (const group of elementsNamed(context.model, 'ManeuverGroup')) {
-    const privateAction = descendants(group).find((element) => element.name === 'PrivateAction');
+    const privateAction = firstBelow(group, 'PrivateAction');
     if (!privateAction) continue;
     const actors = group.children.find((child) => child.name === 'Actors');
     if (actors?.children.some((child) => child.name === 'EntityRef')) continue;

@@ -7,6 +7,8 @@ import { XmlAttribute, XmlDocument, XmlElement } from './types';
  * Parses `text` knowing `previous`, the same document before one edit. When the edit lies inside a
  * single attribute value and changes no markup, the tree is copied with shifted offsets instead of
  * scanning the text again (typing a value in a large file); otherwise this is `parseXml(text)`.
+ * Subtrees wholly before the edit are not copied: the new tree shares them (their roots' `parent`
+ * then names the new tree's element, so the previous tree is only read through `valueEditOf`).
  */
 export function reparseXml(previous: XmlDocument, text: string): XmlDocument {
   return reparseValueEdit(previous, text) ?? parseXml(text);
@@ -132,6 +134,11 @@ export function reparseValueEdit(previous: XmlDocument, text: string): XmlDocume
     });
   };
   const copy = (source: XmlElement, parent: XmlElement | undefined): XmlElement => {
+    // A subtree wholly before the edit keeps its offsets and values: shared, only its root taking the new parent.
+    if (source.end <= prefix && parent) {
+      source.parent = parent;
+      return source;
+    }
     const result: XmlElement = {
       name: source.name,
       start: shift(source.start),
@@ -149,7 +156,7 @@ export function reparseValueEdit(previous: XmlDocument, text: string): XmlDocume
   };
   const root = copy(previous.root, undefined);
   const document = documentOf(text, root, previous.entities);
-  const elementOf = counterparts(previous.root, root);
+  const elementOf = counterparts(previous.root, root, prefix);
   const newElement = elementOf(editedElement);
   valueEdits.delete(previous);
   valueEdits.set(document, {
@@ -190,10 +197,12 @@ function documentOf(text: string, root: XmlElement, entities: ReadonlyMap<string
  * The trees have the same shape: an element's counterpart is found by the same child indices. The path
  * of the last lookup is kept, as models ask in document order and the next element is usually near.
  */
-function counterparts(previousRoot: XmlElement, root: XmlElement): (source: XmlElement) => XmlElement {
+function counterparts(previousRoot: XmlElement, root: XmlElement, prefix: number): (source: XmlElement) => XmlElement {
   const fromPath: XmlElement[] = [previousRoot];
   const toPath: XmlElement[] = [root];
   return (source) => {
+    // A subtree wholly before the edit is shared by both trees.
+    if (source.end <= prefix) return source;
     // Climb to the deepest element of the last path that holds the source.
     while (fromPath.length > 1) {
       const top = fromPath[fromPath.length - 1];
