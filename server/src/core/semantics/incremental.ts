@@ -109,6 +109,37 @@ function shiftedForm(form: ValueSite['form'], delta: number): ValueSite['form'] 
   };
 }
 
+type SiteForm = ValueSite['form'];
+
+/**
+ * A site carried over edits: its parsed form is moved by `formDelta` when first read. Most sites of a
+ * carried model are never read before the next edit carries them again, so their forms are not copied
+ * on each keystroke: the deltas of successive edits add up instead.
+ */
+class CarriedSite implements ValueSite {
+  private moved: SiteForm | undefined;
+
+  constructor(
+    readonly element: XmlElement,
+    readonly attribute: XmlAttribute,
+    readonly scope: Scope,
+    readonly declaration: Declaration | undefined,
+    readonly baseForm: SiteForm,
+    readonly formDelta: number,
+  ) {}
+
+  get form(): SiteForm {
+    this.moved ??= this.formDelta === 0 ? this.baseForm : shiftedForm(this.baseForm, this.formDelta);
+    return this.moved;
+  }
+
+  /** The form and delta a carried copy starts from: the unmoved form while it was never read. */
+  static origin(site: ValueSite): { form: SiteForm; delta: number } {
+    if (site instanceof CarriedSite && site.moved === undefined) return { form: site.baseForm, delta: site.formDelta };
+    return { form: site.form, delta: 0 };
+  }
+}
+
 /** Whether a use or site of `element` comes after those of `attr` of `edited` in the model's walk (document order, then attribute order). */
 function comesAfter(element: XmlElement, attr: XmlAttribute | undefined, edited: XmlElement, editedIndex: number): boolean {
   if (element !== edited) return element.start > edited.start;
@@ -211,14 +242,19 @@ export function carrySemanticModel(previous: SemanticModel, edit: ValueEdit, doc
   for (const declaration of previous.declarations) {
     const element = elementOf(declaration.element);
     const valueAttribute = attributeOf(declaration.element, declaration.valueAttribute);
+    // A literal in the field order of the model's own (a spread makes slower objects of another shape).
     const copy: Declaration = {
-      ...declaration,
+      kind: declaration.kind,
+      name: declaration.name,
+      type: declaration.type,
+      writtenType: declaration.writtenType,
       value: declaration.element === previousElement ? (attribute(element, 'value')?.value ?? '') : declaration.value,
       element,
       nameAttribute: attributeOf(declaration.element, declaration.nameAttribute),
       valueAttribute,
       typeAttribute: attributeOf(declaration.element, declaration.typeAttribute),
       scope: scopes.get(declaration.scope) as Scope,
+      index: declaration.index,
     };
     declarations.set(declaration, copy);
     if (declaration.element === previousElement) editedDeclarations.push(copy);
@@ -254,15 +290,18 @@ export function carrySemanticModel(previous: SemanticModel, edit: ValueEdit, doc
       sitesPlaced = true;
     }
     siteOrigins.push(index);
-    const copy: ValueSite = {
-      element: elementOf(site.element),
-      attribute: attributeOf(site.element, site.attribute) as XmlAttribute,
-      // A value before the edit keeps its offsets, so its parsed form is shared.
-      form: site.attribute.valueStart >= edit.removedEnd ? shiftedForm(site.form, delta) : site.form,
-      scope: scopes.get(site.scope) as Scope,
-      declaration: declarationOf(site.declaration),
-    };
-    model.sites.push(copy);
+    // A value before the edit keeps its offsets; one after it moves by the edit's delta when its form is read.
+    const origin = CarriedSite.origin(site);
+    model.sites.push(
+      new CarriedSite(
+        elementOf(site.element),
+        attributeOf(site.element, site.attribute) as XmlAttribute,
+        scopes.get(site.scope) as Scope,
+        declarationOf(site.declaration),
+        origin.form,
+        site.attribute.valueStart >= edit.removedEnd ? origin.delta + delta : origin.delta,
+      ),
+    );
   }
   if (!sitesPlaced) model.sites.push(...fresh.sites);
   for (let i = siteOrigins.length; i < model.sites.length; i++) siteOrigins.push(undefined);
