@@ -1,4 +1,5 @@
 import { attribute, ValueEdit, XmlAttribute, XmlDocument, XmlElement } from '../xml';
+import { carryElementIndex } from './elementIndex';
 import { ExpressionNode } from './expressions';
 import { ParameterUseCollector } from './parameterUses';
 import { Declaration, NamedElement, ParameterUse, Scope, SemanticModel, ValueSite } from './types';
@@ -327,6 +328,7 @@ export function carrySemanticModel(previous: SemanticModel, edit: ValueEdit, doc
   }
   if (!usesPlaced) model.uses.push(...fresh.uses);
   for (const use of model.uses) if (use.declaration) model.usesOf.get(use.declaration)?.push(use);
+  carryElementIndex(previous, model, elementOf);
   carries.delete(previous);
   carries.set(model, { previous, siteOrigins, editedDeclarations, removedEnd: edit.removedEnd, delta });
   return model;

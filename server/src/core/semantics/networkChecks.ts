@@ -2,6 +2,7 @@ import { attribute, XmlAttribute, XmlElement } from '../xml';
 import type { Finding, SemanticCheck, SemanticContext } from './checks';
 import { VALUE_RANGES, ValueRange, rangeText } from './ranges';
 import { SemanticModel } from './types';
+import { elementsNamed } from './elementIndex';
 
 /**
  * The rules about traffic signals, actors and value ranges (ASAM Quality Checker rules
@@ -10,27 +11,6 @@ import { SemanticModel } from './types';
  * `data_type.non_negative_transition_time_in_light_state_action`, `data_type.positive_duration_in_phase`,
  * and the ranges the standard gives). Each is one SemanticCheck registered in SEMANTIC_CHECKS.
  */
-
-/** The document's elements by name, gathered once per model (the checks below each ask for a few names). */
-const elementIndex = new WeakMap<SemanticModel, Map<string, XmlElement[]>>();
-
-function elementsNamed(model: SemanticModel, name: string): XmlElement[] {
-  let index = elementIndex.get(model);
-  if (!index) {
-    index = new Map();
-    // One walk in document order with an explicit stack: no array of every element, as the tree is walked once per edit.
-    const stack: XmlElement[] = model.document.root ? [model.document.root] : [];
-    while (stack.length > 0) {
-      const element = stack.pop() as XmlElement;
-      const list = index.get(element.name);
-      if (list) list.push(element);
-      else index.set(element.name, [element]);
-      for (let i = element.children.length - 1; i >= 0; i--) stack.push(element.children[i]);
-    }
-    elementIndex.set(model, index);
-  }
-  return index.get(name) ?? [];
-}
 
 /** The first element below `element` of a name, in document order (the walk stops there). */
 function firstBelow(element: XmlElement, name: string): XmlElement | undefined {

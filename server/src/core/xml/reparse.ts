@@ -104,7 +104,10 @@ export function reparseValueEdit(previous: XmlDocument, text: string): XmlDocume
     edited = element.attributes.find((candidate) => candidate.valueStart <= prefix && removedEnd <= candidate.valueEnd);
     if (edited) break;
     if (prefix < element.startTagEnd) return undefined;
-    element = element.children.find((child) => child.start <= prefix && removedEnd <= child.end);
+    // By halves: an element may have thousands of children (the Init actions of a large file).
+    const index = childIndexAt(element, prefix);
+    const child: XmlElement | undefined = index < 0 ? undefined : element.children[index];
+    element = child && removedEnd <= child.end ? child : undefined;
   }
   if (!edited || !element) return undefined;
   const delta = insertedEnd - removedEnd;
