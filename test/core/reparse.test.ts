@@ -64,10 +64,13 @@ describe('core: re-parsing after an edit', () => {
     const parentsHold = (node: XmlElement): boolean => node.children.every((child) => child.parent === node && parentsHold(child));
     fc.assert(
       fc.property(
-        fc.array(fc.record({ which: fc.nat(), from: fc.nat(), inserted: fc.string({ unit: fc.constantFrom('1', '.', 'a'), maxLength: 3 }) }), {
-          minLength: 1,
-          maxLength: 5,
-        }),
+        fc.array(
+          fc.record({ which: fc.nat(), from: fc.nat(), inserted: fc.string({ unit: fc.constantFrom('1', '.', 'a'), maxLength: 3 }) }),
+          {
+            minLength: 1,
+            maxLength: 5,
+          },
+        ),
         (edits) => {
           let document = parseXml(original);
           for (const { which, from, inserted } of edits) {

@@ -1,4 +1,4 @@
-import { XmlElement } from '../xml';
+import { ValueEdit, XmlElement } from '../xml';
 import { SemanticModel } from './types';
 
 /** The document's elements by name, gathered once per model (the network checks each ask for a few names). */
@@ -27,10 +27,12 @@ export function elementsNamed(model: SemanticModel, name: string): XmlElement[] 
  * name in the same order, each its counterpart (most are shared with the previous tree), instead of a
  * walk of the whole tree on each keystroke.
  */
-export function carryElementIndex(previous: SemanticModel, model: SemanticModel, elementOf: (element: XmlElement) => XmlElement): void {
+export function carryElementIndex(previous: SemanticModel, model: SemanticModel, edit: ValueEdit): void {
   const known = elementIndex.get(previous);
   if (!known) return;
   const index = new Map<string, XmlElement[]>();
-  for (const [name, elements] of known) index.set(name, elements.map(elementOf));
+  // In document order: when the last is shared, so is every one, and the list is the previous one.
+  for (const [name, elements] of known)
+    index.set(name, edit.shared(elements[elements.length - 1]) ? elements : elements.map(edit.elementOf));
   elementIndex.set(model, index);
 }

@@ -156,6 +156,8 @@ function comesAfter(element: XmlElement, attr: XmlAttribute | undefined, edited:
 export function carrySemanticModel(previous: SemanticModel, edit: ValueEdit, document: XmlDocument): SemanticModel | undefined {
   if (previous.document !== edit.previous || STRUCTURAL_ATTRIBUTES.has(edit.attribute.name)) return undefined;
   const elementOf = edit.elementOf;
+  // What refers only to elements the new tree shares (wholly before the edit) is taken as it is.
+  const shared = edit.shared;
   const attributeOf = (element: XmlElement, attr: XmlAttribute | undefined) => (attr ? edit.attributeOf(element, attr) : undefined);
   const { previousElement, previousAttribute, delta } = edit;
   const editedIndex = previousElement.attributes.indexOf(previousAttribute);
@@ -186,43 +188,62 @@ export function carrySemanticModel(previous: SemanticModel, edit: ValueEdit, doc
     sites: [],
     siteOf: new Map(),
     usesOf: new Map(),
-    catalogLocations: previous.catalogLocations.map((location) => ({
-      kind: location.kind,
-      directory: elementOf(location.directory),
-      pathAttribute: attributeOf(location.directory, location.pathAttribute),
-    })),
-    catalogReferences: previous.catalogReferences.map((reference) => ({
-      element: elementOf(reference.element),
-      catalogNameAttribute: attributeOf(reference.element, reference.catalogNameAttribute),
-      entryNameAttribute: attributeOf(reference.element, reference.entryNameAttribute),
-      assignments: reference.assignments.map((assignment) => ({
-        element: elementOf(assignment.element),
-        parameterRef: attributeOf(assignment.element, assignment.parameterRef),
-        valueAttribute: attributeOf(assignment.element, assignment.valueAttribute),
-      })),
-    })),
+    catalogLocations: previous.catalogLocations.map((location) =>
+      shared(location.directory)
+        ? location
+        : {
+            kind: location.kind,
+            directory: elementOf(location.directory),
+            pathAttribute: attributeOf(location.directory, location.pathAttribute),
+          },
+    ),
+    catalogReferences: previous.catalogReferences.map((reference) =>
+      shared(reference.element)
+        ? reference
+        : {
+            element: elementOf(reference.element),
+            catalogNameAttribute: attributeOf(reference.element, reference.catalogNameAttribute),
+            entryNameAttribute: attributeOf(reference.element, reference.entryNameAttribute),
+            assignments: reference.assignments.map((assignment) => ({
+              element: elementOf(assignment.element),
+              parameterRef: attributeOf(assignment.element, assignment.parameterRef),
+              valueAttribute: attributeOf(assignment.element, assignment.valueAttribute),
+            })),
+          },
+    ),
     catalog: previous.catalog && elementOf(previous.catalog),
     entities: [],
     hasEntities: previous.hasEntities,
     storyboardElements: [],
     storyboardByName: new Map(),
-    storyboardReferences: previous.storyboardReferences.map((reference) => ({
-      element: elementOf(reference.element),
-      refAttribute: attributeOf(reference.element, reference.refAttribute) as XmlAttribute,
-      type: reference.type,
-    })),
+    storyboardReferences: previous.storyboardReferences.map((reference) =>
+      shared(reference.element)
+        ? reference
+        : {
+            element: elementOf(reference.element),
+            refAttribute: attributeOf(reference.element, reference.refAttribute) as XmlAttribute,
+            type: reference.type,
+          },
+    ),
     variableReferences: [],
-    entityReferences: previous.entityReferences.map((reference) => ({
-      element: elementOf(reference.element),
-      attribute: attributeOf(reference.element, reference.attribute) as XmlAttribute,
-    })),
+    entityReferences: previous.entityReferences.map((reference) =>
+      shared(reference.element)
+        ? reference
+        : {
+            element: elementOf(reference.element),
+            attribute: attributeOf(reference.element, reference.attribute) as XmlAttribute,
+          },
+    ),
     scopeOf,
   };
-  const named = (entry: NamedElement): NamedElement => ({
-    name: entry.name,
-    element: elementOf(entry.element),
-    nameAttribute: attributeOf(entry.element, entry.nameAttribute),
-  });
+  const named = (entry: NamedElement): NamedElement =>
+    shared(entry.element)
+      ? entry
+      : {
+          name: entry.name,
+          element: elementOf(entry.element),
+          nameAttribute: attributeOf(entry.element, entry.nameAttribute),
+        };
   model.entities = previous.entities.map(named);
   const storyboard = new Map<NamedElement, NamedElement>();
   for (const entry of previous.storyboardElements) {
@@ -328,7 +349,7 @@ export function carrySemanticModel(previous: SemanticModel, edit: ValueEdit, doc
   }
   if (!usesPlaced) model.uses.push(...fresh.uses);
   for (const use of model.uses) if (use.declaration) model.usesOf.get(use.declaration)?.push(use);
-  carryElementIndex(previous, model, elementOf);
+  carryElementIndex(previous, model, edit);
   carries.delete(previous);
   carries.set(model, { previous, siteOrigins, editedDeclarations, removedEnd: edit.removedEnd, delta });
   return model;

@@ -55,6 +55,8 @@ export interface ValueEdit {
   attribute: XmlAttribute;
   /** The new tree's counterpart of an element of the previous tree. */
   elementOf(previous: XmlElement): XmlElement;
+  /** Whether an element of the previous tree is in the new one too (wholly before the edit): what refers only to it carries over as it is. */
+  shared(previous: XmlElement): boolean;
   /** The new tree's counterpart of an attribute of an element of the previous tree. */
   attributeOf(previousElement: XmlElement, previous: XmlAttribute): XmlAttribute;
   /** An offset of the previous text in the new text. */
@@ -172,6 +174,7 @@ export function reparseValueEdit(previous: XmlDocument, text: string): XmlDocume
     previousAttribute: target,
     attribute: editedCopy as XmlAttribute,
     elementOf,
+    shared: (source) => source.end <= prefix,
     attributeOf: (sourceElement, source) =>
       source.nameStart < removedEnd && source !== target
         ? source
