@@ -209,6 +209,8 @@ function counterparts(previousRoot: XmlElement, root: XmlElement, prefix: number
   return (source) => {
     // A subtree wholly before the edit is shared by both trees.
     if (source.end <= prefix) return source;
+    // The element of the last lookup (its attributes are mapped right after it).
+    if (source === fromPath[fromPath.length - 1]) return toPath[toPath.length - 1];
     // Climb to the deepest element of the last path that holds the source.
     while (fromPath.length > 1) {
       const top = fromPath[fromPath.length - 1];
