@@ -254,7 +254,8 @@ export function carrySemanticModel(previous: SemanticModel, edit: ValueEdit, doc
   for (const [name, entries] of previous.storyboardByName)
     model.storyboardByName.set(
       name,
-      entries.map((entry) => storyboard.get(entry) as NamedElement),
+      // Entries taken as they are keep their list (it is only read once built).
+      entries.every((entry) => storyboard.get(entry) === entry) ? entries : entries.map((entry) => storyboard.get(entry) as NamedElement),
     );
 
   // Declarations, in the order they were made; the edited one (its value) is read again.
