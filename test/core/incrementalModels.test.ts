@@ -401,6 +401,39 @@ describe('core: the semantic checks after an edit inside one value', () => {
   </Storyboard>
 </OpenSCENARIO>
 `;
+  // The checks that walk the whole tree (names on each level, the element index of the network checks):
+  // a name computed from a parameter, signal controllers and their references, actors, ranges; edits before
+  // and after each part, so that subtrees shared with the previous tree and copied ones both occur.
+  const walked = `<?xml version="1.0"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="d" author="a"/>
+  <ParameterDeclarations>
+    <ParameterDeclaration name="P0" parameterType="string" value="E1"/>
+    <ParameterDeclaration name="P1" parameterType="double" value="-1"/>
+  </ParameterDeclarations>
+  <RoadNetwork>
+    <TrafficSignals>
+      <TrafficSignalController name="C1"><Phase name="go" duration="\${$P1 + 1}"/></TrafficSignalController>
+      <TrafficSignalController name="$P0"><Phase name="stop" duration="4"/></TrafficSignalController>
+    </TrafficSignals>
+  </RoadNetwork>
+  <Entities><ScenarioObject name="Ego"/><ScenarioObject name="Ego"/></Entities>
+  <Storyboard>
+    <Init><Actions><GlobalAction><InfrastructureAction><TrafficSignalAction><TrafficSignalControllerAction trafficSignalControllerRef="C2" phase="go"/></TrafficSignalAction></InfrastructureAction></GlobalAction></Actions></Init>
+    <Story name="S">
+      <Act name="A"><ManeuverGroup name="G" maximumExecutionCount="1"><Actors selectTriggeringEntities="false"/>
+        <Maneuver name="M">
+          <Event name="$P0" priority="overwrite"><Action name="A1"><PrivateAction><AppearanceAction><LightStateAction transitionTime="$P1"><LightType><VehicleLight vehicleLightType="headLights"/></LightType><LightState mode="on"/></LightStateAction></AppearanceAction></PrivateAction></Action></Event>
+          <Event name="E1" priority="overwrite"><Action name="A2"><GlobalAction><EnvironmentAction><Environment name="env"><Weather><Fog visualRange="\${$P1 * 2}"/><Sun intensity="1" azimuth="7" elevation="1"/></Weather></Environment></EnvironmentAction></GlobalAction></Action>
+            <StartTrigger><ConditionGroup><Condition name="C" delay="0" conditionEdge="none"><ByValueCondition><TrafficSignalControllerCondition trafficSignalControllerRef="C1" phase="go"/></ByValueCondition></Condition></ConditionGroup></StartTrigger></Event>
+          <Event name="E2" priority="overwrite"><Action name="A3"><PrivateAction><TeleportAction><Position><WorldPosition x="0" y="0"/></Position></TeleportAction></PrivateAction></Action></Event>
+        </Maneuver>
+      </ManeuverGroup><StartTrigger/></Act>
+    </Story>
+    <StopTrigger/>
+  </Storyboard>
+</OpenSCENARIO>
+`;
   const typedInChains = fc.string({
     unit: fc.constantFrom('1', '0', '4', '.', '-', '+', '*', '/', ' ', '$', '{', '}', '(', ')', 'P', 'x', 'a'),
     maxLength: 5,
@@ -422,6 +455,7 @@ describe('core: the semantic checks after an edit inside one value', () => {
   for (const [name, text] of [
     ['chained declarations', chains],
     ['the semantic scenario', scenario],
+    ['the checks that walk the tree', walked],
   ] as const) {
     for (const reading of ['standard', 'esmini'] as const) {
       it(`carried over, equal the checks of the text read afresh: ${name}, ${reading} reading`, () => {

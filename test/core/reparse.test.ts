@@ -52,6 +52,46 @@ describe('core: re-parsing after an edit', () => {
     );
   });
 
+  it('shares the subtrees before the edit, and every parent is the element holding it, edit after edit', () => {
+    const valuesOf = (document: XmlDocument) => {
+      const found: { start: number; end: number }[] = [];
+      (function collect(node: XmlElement) {
+        for (const a of node.attributes) found.push({ start: a.valueStart, end: a.valueEnd });
+        node.children.forEach(collect);
+      })(document.root!);
+      return found;
+    };
+    const parentsHold = (node: XmlElement): boolean => node.children.every((child) => child.parent === node && parentsHold(child));
+    fc.assert(
+      fc.property(
+        fc.array(
+          fc.record({ which: fc.nat(), from: fc.nat(), inserted: fc.string({ unit: fc.constantFrom('1', '.', 'a'), maxLength: 3 }) }),
+          {
+            minLength: 1,
+            maxLength: 5,
+          },
+        ),
+        (edits) => {
+          let document = parseXml(original);
+          for (const { which, from, inserted } of edits) {
+            const candidates = valuesOf(document);
+            const value = candidates[which % candidates.length];
+            const start = value.start + (from % (value.end - value.start + 1));
+            const edited = document.text.slice(0, start) + inserted + document.text.slice(start);
+            const next = reparseValueEdit(document, edited);
+            assert.ok(next, 'an edit inside a value takes the fast path');
+            assert.deepEqual(shape(next), shape(parseXml(edited)));
+            assert.ok(parentsHold(next.root!), 'each child names its parent in the new tree');
+            const before = document.root!.children.filter((child) => child.end <= start);
+            for (const child of before) assert.ok(next.root!.children.includes(child), 'a subtree before the edit is shared');
+            document = next;
+          }
+        },
+      ),
+      { numRuns: 200 },
+    );
+  });
+
   it('falls back to a full parse for any other edit, markup included', () => {
     fc.assert(
       fc.property(

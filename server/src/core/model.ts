@@ -153,7 +153,10 @@ function carryModel(previous: ScenarioModel, edit: ValueEdit, document: XmlDocum
   const elementOf = edit.elementOf;
   const attributeOf = (element: XmlElement, attr: XmlAttribute | undefined) => (attr ? edit.attributeOf(element, attr) : undefined);
   const edited = edit.previousElement;
+  // What refers only to elements the new tree shares (wholly before the edit) is taken as it is.
+  const shared = edit.shared;
   const carryReference = (reference: ScenarioReferenceInfo, outerGroup: ManeuverGroupInfo | undefined): ScenarioReferenceInfo => {
+    if (shared(reference.element) && outerGroup === reference.outerGroup) return reference;
     const touched =
       reference.element === edited ||
       reference.groupReferences.some(
@@ -182,6 +185,12 @@ function carryModel(previous: ScenarioModel, edit: ValueEdit, document: XmlDocum
   const groups = new Map<ManeuverGroupInfo, ManeuverGroupInfo>();
   const references = new Map<ScenarioReferenceInfo, ScenarioReferenceInfo>();
   for (const group of previous.groups) {
+    if (shared(group.element)) {
+      // Its references lie inside it: shared too.
+      groups.set(group, group);
+      for (const reference of group.references) references.set(reference, reference);
+      continue;
+    }
     const nameAttribute = attributeOf(group.element, group.nameAttribute);
     const copy: ManeuverGroupInfo = {
       name: group.element === edited ? (nameAttribute?.value ?? '') : group.name,
@@ -204,6 +213,7 @@ function carryModel(previous: ScenarioModel, edit: ValueEdit, document: XmlDocum
       (reference) => references.get(reference) ?? carryReference(reference, reference.outerGroup && groups.get(reference.outerGroup)),
     ),
     entities: previous.entities.map((entity) => {
+      if (shared(entity.element)) return entity;
       const nameAttribute = attributeOf(entity.element, entity.nameAttribute);
       return {
         name: entity.element === edited ? (nameAttribute?.value ?? '') : entity.name,
@@ -212,6 +222,7 @@ function carryModel(previous: ScenarioModel, edit: ValueEdit, document: XmlDocum
       };
     }),
     declarations: previous.declarations.map((declaration) => {
+      if (shared(declaration.element)) return declaration;
       const element = elementOf(declaration.element);
       const declared = attributeOf(declaration.element, declaration.attribute) as XmlAttribute;
       if (declaration.element === edited) return { element, attribute: declared, names: parseParameterAttributeNames(element, declared) };
@@ -223,7 +234,7 @@ function carryModel(previous: ScenarioModel, edit: ValueEdit, document: XmlDocum
       }));
       return { element, attribute: declared, names };
     }),
-    structure: previous.structure.map(elementOf),
+    structure: previous.structure.every(shared) ? previous.structure : previous.structure.map(elementOf),
   };
 }
 

@@ -45,7 +45,8 @@ const analyses = new WeakMap<Workspace, Map<string, { version: number; analysis:
 
 /** Whether a text is a ParameterValueDistribution file (a quick scan, before any parse). */
 export function isDistributionText(text: string): boolean {
-  return DISTRIBUTION.test(text);
+  // The plain search first: a large file that is no distribution is not run through the regular expression.
+  return text.includes('<ParameterValueDistribution') && DISTRIBUTION.test(text);
 }
 
 /** The file's distribution read with its scenario; undefined when it is not a distribution file on disk. */

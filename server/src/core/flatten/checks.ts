@@ -2,7 +2,17 @@ import * as path from 'node:path';
 import { PARAMETER_ATTRIBUTES, ScenarioModel } from '../model';
 import { Problem, ProblemCode, ZERO_RANGE } from '../problems';
 import { Simulator } from '../profiles/simulators';
-import { CatalogLoader, Evaluator, Finding, OUTPUT_CHECKS, problemOfFinding, readingOf, runChecks, semanticModelOf } from '../semantics';
+import {
+  CatalogLoader,
+  Evaluator,
+  Finding,
+  OUTPUT_CHECKS,
+  problemOfFinding,
+  readingOf,
+  runChecks,
+  SemanticModel,
+  semanticModelOf,
+} from '../semantics';
 import { closestMatch } from '../text';
 import { attribute, selfAndDescendants, XmlAttribute, XmlElement } from '../xml';
 import { originOf } from './origin';
@@ -55,6 +65,15 @@ export function checkDeclarations(result: FlatSource, model: ScenarioModel): voi
 }
 
 /** Warns where an imported group names an entity the outermost main file does not declare. */
+// An evaluator is a pure function of its model: one per imported file's model, not one per reference and edit.
+const standardEvaluators = new WeakMap<SemanticModel, Evaluator>();
+
+function standardEvaluatorOf(model: SemanticModel): Evaluator {
+  let evaluator = standardEvaluators.get(model);
+  if (!evaluator) standardEvaluators.set(model, (evaluator = new Evaluator(model)));
+  return evaluator;
+}
+
 export function entityProblems(source: FlatSource): Problem[] {
   const original = source.original;
   if (!original) return [];
@@ -67,7 +86,7 @@ export function entityProblems(source: FlatSource): Problem[] {
   for (const link of source.links) {
     const actor = link.info.outerGroup?.actor;
     const actorEntity = actor ? valueIn(main, actor, attribute(actor, 'entityRef')) : undefined;
-    const sourceEvaluator = link.source?.model ? new Evaluator(semanticModelOf(link.source.model.document)) : undefined;
+    const sourceEvaluator = link.source?.model ? standardEvaluatorOf(semanticModelOf(link.source.model.document)) : undefined;
     for (const linked of link.groups) {
       if (!linked.target || !linked.plan) continue;
       // The entities the copy will name: overrides first, then the outer actor, then the source's own value.

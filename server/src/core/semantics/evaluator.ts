@@ -471,7 +471,10 @@ export class Evaluator {
   /** An attribute's value as text (the literal itself, or the evaluated value); undefined when it cannot be evaluated. */
   textOf(element: XmlElement, attr: XmlAttribute | undefined): string | undefined {
     if (!attr) return undefined;
-    const result = this.attributeValue(element, attr);
+    // A literal is its own text: no result object for each of the many names the checks read.
+    const site = this.model.siteOf.get(attr);
+    if (!site || site.element !== element) return attr.value;
+    const result = this.evaluateSite(site);
     return result.ok ? String(result.value) : undefined;
   }
 

@@ -1,4 +1,5 @@
 import { attribute, ValueEdit, XmlAttribute, XmlDocument, XmlElement } from '../xml';
+import { carryElementIndex } from './elementIndex';
 import { ExpressionNode } from './expressions';
 import { ParameterUseCollector } from './parameterUses';
 import { Declaration, NamedElement, ParameterUse, Scope, SemanticModel, ValueSite } from './types';
@@ -109,6 +110,37 @@ function shiftedForm(form: ValueSite['form'], delta: number): ValueSite['form'] 
   };
 }
 
+type SiteForm = ValueSite['form'];
+
+/**
+ * A site carried over edits: its parsed form is moved by `formDelta` when first read. Most sites of a
+ * carried model are never read before the next edit carries them again, so their forms are not copied
+ * on each keystroke: the deltas of successive edits add up instead.
+ */
+class CarriedSite implements ValueSite {
+  private moved: SiteForm | undefined;
+
+  constructor(
+    readonly element: XmlElement,
+    readonly attribute: XmlAttribute,
+    readonly scope: Scope,
+    readonly declaration: Declaration | undefined,
+    readonly baseForm: SiteForm,
+    readonly formDelta: number,
+  ) {}
+
+  get form(): SiteForm {
+    this.moved ??= this.formDelta === 0 ? this.baseForm : shiftedForm(this.baseForm, this.formDelta);
+    return this.moved;
+  }
+
+  /** The form and delta a carried copy starts from: the unmoved form while it was never read. */
+  static origin(site: ValueSite): { form: SiteForm; delta: number } {
+    if (site instanceof CarriedSite && site.moved === undefined) return { form: site.baseForm, delta: site.formDelta };
+    return { form: site.form, delta: 0 };
+  }
+}
+
 /** Whether a use or site of `element` comes after those of `attr` of `edited` in the model's walk (document order, then attribute order). */
 function comesAfter(element: XmlElement, attr: XmlAttribute | undefined, edited: XmlElement, editedIndex: number): boolean {
   if (element !== edited) return element.start > edited.start;
@@ -124,6 +156,8 @@ function comesAfter(element: XmlElement, attr: XmlAttribute | undefined, edited:
 export function carrySemanticModel(previous: SemanticModel, edit: ValueEdit, document: XmlDocument): SemanticModel | undefined {
   if (previous.document !== edit.previous || STRUCTURAL_ATTRIBUTES.has(edit.attribute.name)) return undefined;
   const elementOf = edit.elementOf;
+  // What refers only to elements the new tree shares (wholly before the edit) is taken as it is.
+  const shared = edit.shared;
   const attributeOf = (element: XmlElement, attr: XmlAttribute | undefined) => (attr ? edit.attributeOf(element, attr) : undefined);
   const { previousElement, previousAttribute, delta } = edit;
   const editedIndex = previousElement.attributes.indexOf(previousAttribute);
@@ -154,43 +188,62 @@ export function carrySemanticModel(previous: SemanticModel, edit: ValueEdit, doc
     sites: [],
     siteOf: new Map(),
     usesOf: new Map(),
-    catalogLocations: previous.catalogLocations.map((location) => ({
-      kind: location.kind,
-      directory: elementOf(location.directory),
-      pathAttribute: attributeOf(location.directory, location.pathAttribute),
-    })),
-    catalogReferences: previous.catalogReferences.map((reference) => ({
-      element: elementOf(reference.element),
-      catalogNameAttribute: attributeOf(reference.element, reference.catalogNameAttribute),
-      entryNameAttribute: attributeOf(reference.element, reference.entryNameAttribute),
-      assignments: reference.assignments.map((assignment) => ({
-        element: elementOf(assignment.element),
-        parameterRef: attributeOf(assignment.element, assignment.parameterRef),
-        valueAttribute: attributeOf(assignment.element, assignment.valueAttribute),
-      })),
-    })),
+    catalogLocations: previous.catalogLocations.map((location) =>
+      shared(location.directory)
+        ? location
+        : {
+            kind: location.kind,
+            directory: elementOf(location.directory),
+            pathAttribute: attributeOf(location.directory, location.pathAttribute),
+          },
+    ),
+    catalogReferences: previous.catalogReferences.map((reference) =>
+      shared(reference.element)
+        ? reference
+        : {
+            element: elementOf(reference.element),
+            catalogNameAttribute: attributeOf(reference.element, reference.catalogNameAttribute),
+            entryNameAttribute: attributeOf(reference.element, reference.entryNameAttribute),
+            assignments: reference.assignments.map((assignment) => ({
+              element: elementOf(assignment.element),
+              parameterRef: attributeOf(assignment.element, assignment.parameterRef),
+              valueAttribute: attributeOf(assignment.element, assignment.valueAttribute),
+            })),
+          },
+    ),
     catalog: previous.catalog && elementOf(previous.catalog),
     entities: [],
     hasEntities: previous.hasEntities,
     storyboardElements: [],
     storyboardByName: new Map(),
-    storyboardReferences: previous.storyboardReferences.map((reference) => ({
-      element: elementOf(reference.element),
-      refAttribute: attributeOf(reference.element, reference.refAttribute) as XmlAttribute,
-      type: reference.type,
-    })),
+    storyboardReferences: previous.storyboardReferences.map((reference) =>
+      shared(reference.element)
+        ? reference
+        : {
+            element: elementOf(reference.element),
+            refAttribute: attributeOf(reference.element, reference.refAttribute) as XmlAttribute,
+            type: reference.type,
+          },
+    ),
     variableReferences: [],
-    entityReferences: previous.entityReferences.map((reference) => ({
-      element: elementOf(reference.element),
-      attribute: attributeOf(reference.element, reference.attribute) as XmlAttribute,
-    })),
+    entityReferences: previous.entityReferences.map((reference) =>
+      shared(reference.element)
+        ? reference
+        : {
+            element: elementOf(reference.element),
+            attribute: attributeOf(reference.element, reference.attribute) as XmlAttribute,
+          },
+    ),
     scopeOf,
   };
-  const named = (entry: NamedElement): NamedElement => ({
-    name: entry.name,
-    element: elementOf(entry.element),
-    nameAttribute: attributeOf(entry.element, entry.nameAttribute),
-  });
+  const named = (entry: NamedElement): NamedElement =>
+    shared(entry.element)
+      ? entry
+      : {
+          name: entry.name,
+          element: elementOf(entry.element),
+          nameAttribute: attributeOf(entry.element, entry.nameAttribute),
+        };
   model.entities = previous.entities.map(named);
   const storyboard = new Map<NamedElement, NamedElement>();
   for (const entry of previous.storyboardElements) {
@@ -201,7 +254,8 @@ export function carrySemanticModel(previous: SemanticModel, edit: ValueEdit, doc
   for (const [name, entries] of previous.storyboardByName)
     model.storyboardByName.set(
       name,
-      entries.map((entry) => storyboard.get(entry) as NamedElement),
+      // Entries taken as they are keep their list (it is only read once built).
+      entries.every((entry) => storyboard.get(entry) === entry) ? entries : entries.map((entry) => storyboard.get(entry) as NamedElement),
     );
 
   // Declarations, in the order they were made; the edited one (its value) is read again.
@@ -211,14 +265,19 @@ export function carrySemanticModel(previous: SemanticModel, edit: ValueEdit, doc
   for (const declaration of previous.declarations) {
     const element = elementOf(declaration.element);
     const valueAttribute = attributeOf(declaration.element, declaration.valueAttribute);
+    // A literal in the field order of the model's own (a spread makes slower objects of another shape).
     const copy: Declaration = {
-      ...declaration,
+      kind: declaration.kind,
+      name: declaration.name,
+      type: declaration.type,
+      writtenType: declaration.writtenType,
       value: declaration.element === previousElement ? (attribute(element, 'value')?.value ?? '') : declaration.value,
       element,
       nameAttribute: attributeOf(declaration.element, declaration.nameAttribute),
       valueAttribute,
       typeAttribute: attributeOf(declaration.element, declaration.typeAttribute),
       scope: scopes.get(declaration.scope) as Scope,
+      index: declaration.index,
     };
     declarations.set(declaration, copy);
     if (declaration.element === previousElement) editedDeclarations.push(copy);
@@ -254,15 +313,18 @@ export function carrySemanticModel(previous: SemanticModel, edit: ValueEdit, doc
       sitesPlaced = true;
     }
     siteOrigins.push(index);
-    const copy: ValueSite = {
-      element: elementOf(site.element),
-      attribute: attributeOf(site.element, site.attribute) as XmlAttribute,
-      // A value before the edit keeps its offsets, so its parsed form is shared.
-      form: site.attribute.valueStart >= edit.removedEnd ? shiftedForm(site.form, delta) : site.form,
-      scope: scopes.get(site.scope) as Scope,
-      declaration: declarationOf(site.declaration),
-    };
-    model.sites.push(copy);
+    // A value before the edit keeps its offsets; one after it moves by the edit's delta when its form is read.
+    const origin = CarriedSite.origin(site);
+    model.sites.push(
+      new CarriedSite(
+        elementOf(site.element),
+        attributeOf(site.element, site.attribute) as XmlAttribute,
+        scopes.get(site.scope) as Scope,
+        declarationOf(site.declaration),
+        origin.form,
+        site.attribute.valueStart >= edit.removedEnd ? origin.delta + delta : origin.delta,
+      ),
+    );
   }
   if (!sitesPlaced) model.sites.push(...fresh.sites);
   for (let i = siteOrigins.length; i < model.sites.length; i++) siteOrigins.push(undefined);
@@ -288,6 +350,7 @@ export function carrySemanticModel(previous: SemanticModel, edit: ValueEdit, doc
   }
   if (!usesPlaced) model.uses.push(...fresh.uses);
   for (const use of model.uses) if (use.declaration) model.usesOf.get(use.declaration)?.push(use);
+  carryElementIndex(previous, model, edit);
   carries.delete(previous);
   carries.set(model, { previous, siteOrigins, editedDeclarations, removedEnd: edit.removedEnd, delta });
   return model;

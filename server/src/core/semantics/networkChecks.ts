@@ -1,8 +1,9 @@
 import { chooseVersion } from '../schema/version';
-import { attribute, descendants, XmlAttribute, XmlElement } from '../xml';
+import { attribute, XmlAttribute, XmlElement } from '../xml';
 import type { Finding, SemanticCheck, SemanticContext } from './checks';
 import { inRange, rangeText, valueRangesOf } from './ranges';
 import { SemanticModel } from './types';
+import { elementsNamed } from './elementIndex';
 
 /**
  * The rules about traffic signals, actors and value ranges (ASAM Quality Checker rules
@@ -12,22 +13,16 @@ import { SemanticModel } from './types';
  * and the ranges the standard gives). Each is one SemanticCheck registered in SEMANTIC_CHECKS.
  */
 
-/** The document's elements by name, gathered once per model (the checks below each ask for a few names). */
-const elementIndex = new WeakMap<SemanticModel, Map<string, XmlElement[]>>();
-
-function elementsNamed(model: SemanticModel, name: string): XmlElement[] {
-  let index = elementIndex.get(model);
-  if (!index) {
-    index = new Map();
-    const root = model.document.root;
-    for (const element of root ? [root, ...descendants(root)] : []) {
-      const list = index.get(element.name);
-      if (list) list.push(element);
-      else index.set(element.name, [element]);
-    }
-    elementIndex.set(model, index);
+/** The first element below `element` of a name, in document order (the walk stops there). */
+function firstBelow(element: XmlElement, name: string): XmlElement | undefined {
+  const stack: XmlElement[] = [];
+  for (let i = element.children.length - 1; i >= 0; i--) stack.push(element.children[i]);
+  while (stack.length > 0) {
+    const next = stack.pop() as XmlElement;
+    if (next.name === name) return next;
+    for (let i = next.children.length - 1; i >= 0; i--) stack.push(next.children[i]);
   }
-  return index.get(name) ?? [];
+  return undefined;
 }
 
 function at(element: XmlElement, attr: XmlAttribute | undefined): Pick<Finding, 'element' | 'attribute' | 'start' | 'end'> {
@@ -116,7 +111,7 @@ export const trafficSignalControllerRefs: SemanticCheck = (context) => {
 export const privateActionActors: SemanticCheck = (context) => {
   const findings: Finding[] = [];
   for (const group of elementsNamed(context.model, 'ManeuverGroup')) {
-    const privateAction = descendants(group).find((element) => element.name === 'PrivateAction');
+    const privateAction = firstBelow(group, 'PrivateAction');
     if (!privateAction) continue;
     const actors = group.children.find((child) => child.name === 'Actors');
     if (actors?.children.some((child) => child.name === 'EntityRef')) continue;

@@ -7,6 +7,8 @@ import { XmlAttribute, XmlDocument, XmlElement } from './types';
  * Parses `text` knowing `previous`, the same document before one edit. When the edit lies inside a
  * single attribute value and changes no markup, the tree is copied with shifted offsets instead of
  * scanning the text again (typing a value in a large file); otherwise this is `parseXml(text)`.
+ * Subtrees wholly before the edit are not copied: the new tree shares them (their roots' `parent`
+ * then names the new tree's element, so the previous tree is only read through `valueEditOf`).
  */
 export function reparseXml(previous: XmlDocument, text: string): XmlDocument {
   return reparseValueEdit(previous, text) ?? parseXml(text);
@@ -53,6 +55,8 @@ export interface ValueEdit {
   attribute: XmlAttribute;
   /** The new tree's counterpart of an element of the previous tree. */
   elementOf(previous: XmlElement): XmlElement;
+  /** Whether an element of the previous tree is in the new one too (wholly before the edit): what refers only to it carries over as it is. */
+  shared(previous: XmlElement): boolean;
   /** The new tree's counterpart of an attribute of an element of the previous tree. */
   attributeOf(previousElement: XmlElement, previous: XmlAttribute): XmlAttribute;
   /** An offset of the previous text in the new text. */
@@ -102,7 +106,10 @@ export function reparseValueEdit(previous: XmlDocument, text: string): XmlDocume
     edited = element.attributes.find((candidate) => candidate.valueStart <= prefix && removedEnd <= candidate.valueEnd);
     if (edited) break;
     if (prefix < element.startTagEnd) return undefined;
-    element = element.children.find((child) => child.start <= prefix && removedEnd <= child.end);
+    // By halves: an element may have thousands of children (the Init actions of a large file).
+    const index = childIndexAt(element, prefix);
+    const child: XmlElement | undefined = index < 0 ? undefined : element.children[index];
+    element = child && removedEnd <= child.end ? child : undefined;
   }
   if (!edited || !element) return undefined;
   const delta = insertedEnd - removedEnd;
@@ -132,6 +139,11 @@ export function reparseValueEdit(previous: XmlDocument, text: string): XmlDocume
     });
   };
   const copy = (source: XmlElement, parent: XmlElement | undefined): XmlElement => {
+    // A subtree wholly before the edit keeps its offsets and values: shared, only its root taking the new parent.
+    if (source.end <= prefix && parent) {
+      source.parent = parent;
+      return source;
+    }
     const result: XmlElement = {
       name: source.name,
       start: shift(source.start),
@@ -149,7 +161,7 @@ export function reparseValueEdit(previous: XmlDocument, text: string): XmlDocume
   };
   const root = copy(previous.root, undefined);
   const document = documentOf(text, root, previous.entities);
-  const elementOf = counterparts(previous.root, root);
+  const elementOf = counterparts(previous.root, root, prefix);
   const newElement = elementOf(editedElement);
   valueEdits.delete(previous);
   valueEdits.set(document, {
@@ -162,6 +174,7 @@ export function reparseValueEdit(previous: XmlDocument, text: string): XmlDocume
     previousAttribute: target,
     attribute: editedCopy as XmlAttribute,
     elementOf,
+    shared: (source) => source.end <= prefix,
     attributeOf: (sourceElement, source) =>
       source.nameStart < removedEnd && source !== target
         ? source
@@ -190,10 +203,14 @@ function documentOf(text: string, root: XmlElement, entities: ReadonlyMap<string
  * The trees have the same shape: an element's counterpart is found by the same child indices. The path
  * of the last lookup is kept, as models ask in document order and the next element is usually near.
  */
-function counterparts(previousRoot: XmlElement, root: XmlElement): (source: XmlElement) => XmlElement {
+function counterparts(previousRoot: XmlElement, root: XmlElement, prefix: number): (source: XmlElement) => XmlElement {
   const fromPath: XmlElement[] = [previousRoot];
   const toPath: XmlElement[] = [root];
   return (source) => {
+    // A subtree wholly before the edit is shared by both trees.
+    if (source.end <= prefix) return source;
+    // The element of the last lookup (its attributes are mapped right after it).
+    if (source === fromPath[fromPath.length - 1]) return toPath[toPath.length - 1];
     // Climb to the deepest element of the last path that holds the source.
     while (fromPath.length > 1) {
       const top = fromPath[fromPath.length - 1];

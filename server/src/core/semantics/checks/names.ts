@@ -1,4 +1,4 @@
-import { attribute, descendants, XmlElement } from '../../xml';
+import { attribute, XmlElement } from '../../xml';
 import type { Finding, SemanticCheck } from '../checks';
 import { at, relatedAt } from './support';
 
@@ -39,14 +39,19 @@ export const duplicateNames: SemanticCheck = (context) => {
   const referencedEntities = new Set(
     model.entityReferences.map((reference) => evaluator.textOf(reference.element, reference.attribute) ?? reference.attribute.value),
   );
-  for (const parent of [root, ...descendants(root)]) {
+  // Every element of the tree is walked on each edit: an explicit stack, and the cheapest tests first.
+  const stack: XmlElement[] = [root];
+  while (stack.length > 0) {
+    const parent = stack.pop() as XmlElement;
+    for (let i = parent.children.length - 1; i >= 0; i--) stack.push(parent.children[i]);
     if (parent.children.length < 2) continue;
-    const first = new Map<string, XmlElement>();
+    let first: Map<string, XmlElement> | undefined;
     for (const child of parent.children) {
-      if (NAMES_CHECKED_ELSEWHERE.has(child.name) || holdsScenarioReference(child)) continue;
       const nameAttribute = attribute(child, 'name');
+      if (!nameAttribute || NAMES_CHECKED_ELSEWHERE.has(child.name) || holdsScenarioReference(child)) continue;
       const name = evaluator.textOf(child, nameAttribute);
-      if (!nameAttribute || name === undefined || name === '') continue;
+      if (name === undefined || name === '') continue;
+      first ??= new Map<string, XmlElement>();
       const earlier = first.get(name);
       if (!earlier) {
         first.set(name, child);

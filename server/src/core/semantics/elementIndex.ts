@@ -1,0 +1,38 @@
+import { ValueEdit, XmlElement } from '../xml';
+import { SemanticModel } from './types';
+
+/** The document's elements by name, gathered once per model (the network checks each ask for a few names). */
+const elementIndex = new WeakMap<SemanticModel, Map<string, XmlElement[]>>();
+
+export function elementsNamed(model: SemanticModel, name: string): XmlElement[] {
+  let index = elementIndex.get(model);
+  if (!index) {
+    index = new Map();
+    // One walk in document order with an explicit stack: no array of every element.
+    const stack: XmlElement[] = model.document.root ? [model.document.root] : [];
+    while (stack.length > 0) {
+      const element = stack.pop() as XmlElement;
+      const list = index.get(element.name);
+      if (list) list.push(element);
+      else index.set(element.name, [element]);
+      for (let i = element.children.length - 1; i >= 0; i--) stack.push(element.children[i]);
+    }
+    elementIndex.set(model, index);
+  }
+  return index.get(name) ?? [];
+}
+
+/**
+ * The index of a model carried over an in-value edit, from the previous model's: the same elements by
+ * name in the same order, each its counterpart (most are shared with the previous tree), instead of a
+ * walk of the whole tree on each keystroke.
+ */
+export function carryElementIndex(previous: SemanticModel, model: SemanticModel, edit: ValueEdit): void {
+  const known = elementIndex.get(previous);
+  if (!known) return;
+  const index = new Map<string, XmlElement[]>();
+  // In document order: when the last is shared, so is every one, and the list is the previous one.
+  for (const [name, elements] of known)
+    index.set(name, edit.shared(elements[elements.length - 1]) ? elements : elements.map(edit.elementOf));
+  elementIndex.set(model, index);
+}
