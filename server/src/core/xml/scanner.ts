@@ -1,7 +1,7 @@
 import { LineIndex } from '../text';
 import { codePointName, isNameStart, isSpace, LINE_END, NOT_XML_CHAR, PLAIN_VALUE } from './characters';
 import { EntityDecoder } from './entities';
-import { XmlDocument, XmlElement, XmlParseOptions, XmlProblem } from './types';
+import { XmlAttribute, XmlDocument, XmlElement, XmlParseOptions, XmlProblem } from './types';
 
 /**
  * A tolerant XML parser that records the offsets of every element and attribute. It never reads
@@ -144,17 +144,18 @@ class XmlScanner {
     } else this.position = close + 2;
   }
 
+  // test() rather than exec(): no match array is made, which was most of a flatten's garbage from parsing.
   private readName(): string {
-    this.namePattern.lastIndex = this.position;
-    const match = this.namePattern.exec(this.text);
-    if (!match) return '';
-    this.position += match[0].length;
-    return match[0];
+    const start = this.position;
+    this.namePattern.lastIndex = start;
+    if (!this.namePattern.test(this.text)) return '';
+    this.position = this.namePattern.lastIndex;
+    return this.text.slice(start, this.position);
   }
 
   private skipSpace(): void {
     this.spacePattern.lastIndex = this.position;
-    this.spacePattern.exec(this.text);
+    this.spacePattern.test(this.text);
     this.position = this.spacePattern.lastIndex;
   }
 
@@ -322,7 +323,7 @@ class XmlScanner {
       // A linear scan for the usual handful of attributes, a set beyond: a tag with 40,000 attributes stays linear.
       if (
         element.attributes.length < 16
-          ? element.attributes.some((existing) => existing.name === attributeName)
+          ? hasAttributeNamed(element.attributes, attributeName)
           : (attributeNames ??= new Set(element.attributes.map((a) => a.name))).has(attributeName)
       ) {
         this.report(`attribute '${attributeName}' appears twice`, nameStart, nameEnd);
@@ -383,4 +384,10 @@ class XmlScanner {
     if (this.nextCdataEnd < from) this.nextCdataEnd = this.indexOrEnd(']]>', from);
     if (this.nextCdataEnd < to) this.report(`']]>' is not allowed in text`, this.nextCdataEnd, this.nextCdataEnd + 3);
   }
+}
+
+/** A loop rather than some(): no closure per attribute read. */
+function hasAttributeNamed(attributes: readonly XmlAttribute[], name: string): boolean {
+  for (let i = 0; i < attributes.length; i++) if (attributes[i].name === name) return true;
+  return false;
 }
