@@ -195,13 +195,18 @@ function checkAttributes(
 ): void {
   const type = index.complexType(typeName);
   if (!type) return;
-  for (const attribute of element.attributes) checkAttribute(index, chosen, element, typeName, attribute, report);
+  // Index loops, no closures: this runs for every element of every file a flatten reads and writes.
+  const attributes = element.attributes;
+  for (let i = 0; i < attributes.length; i++) checkAttribute(index, chosen, element, typeName, attributes[i], report);
   // The extension's own attributes are checked where the flattener reads them.
   if (MODULAR_TYPES[typeName]) return;
-  const missing: string[] = [];
-  for (const declaration of type.attributes)
-    if (declaration.required && !element.attributes.some((written) => written.name === declaration.name)) missing.push(declaration.name);
-  if (missing.length > 0) {
+  let missing: string[] | undefined;
+  const declarations = type.attributes;
+  for (let i = 0; i < declarations.length; i++) {
+    const declaration = declarations[i];
+    if (declaration.required && !isWritten(attributes, declaration.name)) (missing ??= []).push(declaration.name);
+  }
+  if (missing) {
     report({
       element,
       part: 'tag',
@@ -211,6 +216,11 @@ function checkAttributes(
       data: { missing },
     });
   }
+}
+
+function isWritten(attributes: readonly XmlAttribute[], name: string): boolean {
+  for (let i = 0; i < attributes.length; i++) if (attributes[i].name === name) return true;
+  return false;
 }
 
 function deprecatedInstead(typeName: string, name: string): string {
@@ -231,7 +241,9 @@ function checkChildren(
   const accepted: { element: XmlElement; typeName: string }[] = [];
   if (!type) return accepted;
   const known: { child: XmlElement; particle: ElementParticle }[] = [];
-  for (const child of element.children) {
+  const children = element.children;
+  for (let i = 0; i < children.length; i++) {
+    const child = children[i];
     // A ScenarioReference outside a ManeuverGroup is reported by the flattener.
     if (options.modular && child.name === MODULAR_PLACEMENT.element && typeName !== MODULAR_PLACEMENT.parentType) continue;
     const particle = index.childParticle(typeName, child.name, options.modular);
@@ -309,6 +321,21 @@ function checkSequence(
 ): void {
   const automaton = index.automaton(typeName);
   let states: StateSet = automaton.start;
+  // A valid sequence (nearly every one) is stepped through without allocating; any misstep is redone below.
+  let valid = true;
+  for (let position = 0; position < known.length && valid; position++) {
+    const next = automaton.step(states, index.modelName(typeName, known[position].child.name, options.modular));
+    if (next) states = next.states;
+    else valid = false;
+  }
+  if (valid) {
+    if (!automaton.accepts(states)) {
+      const missing = automaton.missingToEnd(states);
+      if (missing.length > 0) reportMissing(element, missing, undefined, report);
+    }
+    return;
+  }
+  states = automaton.start;
   const seen = new Map<string, number>();
   let reportedOrder = false;
   /** Children written later that an order problem already placed earlier in the content model. */
