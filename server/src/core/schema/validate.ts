@@ -228,6 +228,8 @@ function deprecatedInstead(typeName: string, name: string): string {
   return replacement ? `; write ${replacement.instead} instead` : '';
 }
 
+const NO_ENTRIES: never[] = [];
+
 /** Checks the children of an element against its content model; returns the children to descend into. */
 function checkChildren(
   index: SchemaIndex,
@@ -238,10 +240,11 @@ function checkChildren(
   report: (finding: SchemaFinding) => void,
 ): { element: XmlElement; typeName: string }[] {
   const type = index.complexType(typeName);
-  const accepted: { element: XmlElement; typeName: string }[] = [];
-  if (!type) return accepted;
-  const known: { child: XmlElement; particle: ElementParticle }[] = [];
   const children = element.children;
+  // A leaf (most elements) allocates no lists: the shared empty one is only read.
+  const accepted: { element: XmlElement; typeName: string }[] = children.length === 0 ? NO_ENTRIES : [];
+  if (!type) return accepted;
+  const known: { child: XmlElement; particle: ElementParticle }[] = children.length === 0 ? NO_ENTRIES : [];
   for (let i = 0; i < children.length; i++) {
     const child = children[i];
     // A ScenarioReference outside a ManeuverGroup is reported by the flattener.
