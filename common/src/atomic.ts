@@ -150,9 +150,10 @@ export interface PreparedOutputSync {
 
 function removeQuietly(temporary: string): void {
   try {
-    fs.rmSync(temporary, { force: true });
+    // The temporary is a file this process made: unlink is rm for it, without loading rm's folder walker.
+    fs.unlinkSync(temporary);
   } catch {
-    // Best effort, as the asynchronous path's rm().catch().
+    // Already gone (renamed), or best effort, as the asynchronous path's rm().catch().
   }
 }
 
