@@ -259,7 +259,8 @@ export function compileSchemas(directory = path.join(root, 'schemas')) {
 export function schemaModelFile(compiled = compileSchemas()) {
   const width = 10;
   const pad = (offset) => String(offset).padStart(width, ' ');
-  const rangesLine = (ranges) => `{"ranges":{${ranges.map(([version, start, end]) => `"${version}":[${pad(start)},${pad(end)}]`).join(',')}},\n`;
+  const rangesLine = (ranges) =>
+    `{"ranges":{${ranges.map(([version, start, end]) => `"${version}":[${pad(start)},${pad(end)}]`).join(',')}},\n`;
   const placeholder = rangesLine(compiled.schemas.map((schema) => [schema.version, 0, 0]));
   let rest = `"source":${JSON.stringify(compiled.source)},"schemas":{`;
   const ranges = [];

@@ -57,9 +57,7 @@ function stat(target: string): fs.Stats | undefined {
 }
 
 /** Where and how an output is written: in place (a device) or through a temporary file beside it. */
-type OutputPlan =
-  | { device: true; resolved: string }
-  | { device: false; real: string; temporary: string; existing: fs.Stats | undefined };
+type OutputPlan = { device: true; resolved: string } | { device: false; real: string; temporary: string; existing: fs.Stats | undefined };
 
 /**
  * Decides how a target is written, refusing a folder or a read-only file. A target that is not a

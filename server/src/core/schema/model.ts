@@ -96,7 +96,8 @@ function readModelFile(): { bytes: Buffer; ranges: CompiledSchemaRanges['ranges'
   const lineEnd = bytes.indexOf(10);
   // The first line is `{"ranges":{...},`: closed, it is a JSON object of its own.
   const header = lineEnd < 0 ? undefined : (JSON.parse(bytes.toString('latin1', 0, lineEnd).replace(/,\s*$/, '}')) as CompiledSchemaRanges);
-  if (!header?.ranges) throw new Error(`the compiled OpenSCENARIO schema model (${SCHEMA_MODEL_FILE}) is from an older build: run \`npm run build\``);
+  if (!header?.ranges)
+    throw new Error(`the compiled OpenSCENARIO schema model (${SCHEMA_MODEL_FILE}) is from an older build: run \`npm run build\``);
   return { bytes, ranges: header.ranges };
 }
 
