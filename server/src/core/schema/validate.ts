@@ -228,6 +228,13 @@ function deprecatedInstead(typeName: string, name: string): string {
   return replacement ? `; write ${replacement.instead} instead` : '';
 }
 
+/** A child the content model knows: where the check descends, and what the order and number checks read. */
+interface KnownChild {
+  element: XmlElement;
+  typeName: string;
+  particle: ElementParticle;
+}
+
 const NO_ENTRIES: never[] = [];
 
 /** Checks the children of an element against its content model; returns the children to descend into. */
@@ -242,9 +249,8 @@ function checkChildren(
   const type = index.complexType(typeName);
   const children = element.children;
   // A leaf (most elements) allocates no lists: the shared empty one is only read.
-  const accepted: { element: XmlElement; typeName: string }[] = children.length === 0 ? NO_ENTRIES : [];
+  const accepted: KnownChild[] = children.length === 0 ? NO_ENTRIES : [];
   if (!type) return accepted;
-  const known: { child: XmlElement; particle: ElementParticle }[] = children.length === 0 ? NO_ENTRIES : [];
   for (let i = 0; i < children.length; i++) {
     const child = children[i];
     // A ScenarioReference outside a ManeuverGroup is reported by the flattener.
@@ -273,8 +279,7 @@ function checkChildren(
       });
       continue;
     }
-    known.push({ child, particle });
-    accepted.push({ element: child, typeName: particle.type });
+    accepted.push({ element: child, typeName: particle.type, particle });
     if (index.isDeprecated(particle)) {
       report({
         element: child,
@@ -285,19 +290,14 @@ function checkChildren(
       });
     }
   }
-  if (type.content?.kind === 'all') checkAll(type.content.items as ElementParticle[], element, known, report);
-  else checkSequence(index, typeName, element, known, options, report);
+  if (type.content?.kind === 'all') checkAll(type.content.items as ElementParticle[], element, accepted, report);
+  else checkSequence(index, typeName, element, accepted, options, report);
   return accepted;
 }
 
-function checkAll(
-  items: ElementParticle[],
-  element: XmlElement,
-  known: { child: XmlElement; particle: ElementParticle }[],
-  report: (finding: SchemaFinding) => void,
-): void {
+function checkAll(items: ElementParticle[], element: XmlElement, known: KnownChild[], report: (finding: SchemaFinding) => void): void {
   const counts = new Map<string, number>();
-  for (const { child, particle } of known) {
+  for (const { element: child, particle } of known) {
     const count = (counts.get(child.name) ?? 0) + 1;
     counts.set(child.name, count);
     if (particle.max !== -1 && count > particle.max) {
@@ -318,7 +318,7 @@ function checkSequence(
   index: SchemaIndex,
   typeName: string,
   element: XmlElement,
-  known: { child: XmlElement; particle: ElementParticle }[],
+  known: KnownChild[],
   options: SchemaCheckOptions,
   report: (finding: SchemaFinding) => void,
 ): void {
@@ -327,7 +327,7 @@ function checkSequence(
   // A valid sequence (nearly every one) is stepped through without allocating; any misstep is redone below.
   let valid = true;
   for (let position = 0; position < known.length && valid; position++) {
-    const next = automaton.step(states, index.modelName(typeName, known[position].child.name, options.modular));
+    const next = automaton.step(states, index.modelName(typeName, known[position].element.name, options.modular));
     if (next) states = next.states;
     else valid = false;
   }
@@ -344,7 +344,7 @@ function checkSequence(
   /** Children written later that an order problem already placed earlier in the content model. */
   const placedEarly = new Set<XmlElement>();
   for (let position = 0; position < known.length; position++) {
-    const { child, particle } = known[position];
+    const { element: child, particle } = known[position];
     if (placedEarly.has(child)) continue;
     const name = index.modelName(typeName, child.name, options.modular);
     seen.set(name, (seen.get(name) ?? 0) + 1);
@@ -360,8 +360,9 @@ function checkSequence(
           known
             .slice(position + 1)
             .find(
-              (other) => !placedEarly.has(other.child) && index.modelName(typeName, other.child.name, options.modular) === candidate.name,
-            )?.child,
+              (other) =>
+                !placedEarly.has(other.element) && index.modelName(typeName, other.element.name, options.modular) === candidate.name,
+            )?.element,
       );
       if (later.every((other) => other !== undefined)) {
         // The "missing" elements are written, only after this one: an order problem, reported once here.
