@@ -91,10 +91,12 @@ export function checkSchema(document: XmlDocument, options: SchemaCheckOptions):
     return { chosen, findings };
   }
   const stack: { element: XmlElement; typeName: string }[] = [{ element: root, typeName: index.schema.rootType }];
+  // One list of an element's known children, refilled for each element rather than made anew.
+  const accepted: KnownChild[] = [];
   while (stack.length > 0 && findings.length < MAX_FINDINGS) {
     const { element, typeName } = stack.pop() as { element: XmlElement; typeName: string };
     checkAttributes(index, chosen, element, typeName, report);
-    const accepted = checkChildren(index, chosen, element, typeName, options, report);
+    checkChildren(index, chosen, element, typeName, options, report, accepted);
     for (let i = accepted.length - 1; i >= 0; i--) stack.push(accepted[i]);
   }
   // In document order, as a reader goes through the file.
@@ -235,9 +237,7 @@ interface KnownChild {
   particle: ElementParticle;
 }
 
-const NO_ENTRIES: never[] = [];
-
-/** Checks the children of an element against its content model; returns the children to descend into. */
+/** Checks the children of an element against its content model; fills `accepted` with the children to descend into. */
 function checkChildren(
   index: SchemaIndex,
   chosen: ChosenVersion,
@@ -245,12 +245,12 @@ function checkChildren(
   typeName: string,
   options: SchemaCheckOptions,
   report: (finding: SchemaFinding) => void,
-): { element: XmlElement; typeName: string }[] {
+  accepted: KnownChild[],
+): void {
   const type = index.complexType(typeName);
   const children = element.children;
-  // A leaf (most elements) allocates no lists: the shared empty one is only read.
-  const accepted: KnownChild[] = children.length === 0 ? NO_ENTRIES : [];
-  if (!type) return accepted;
+  accepted.length = 0;
+  if (!type) return;
   for (let i = 0; i < children.length; i++) {
     const child = children[i];
     // A ScenarioReference outside a ManeuverGroup is reported by the flattener.
@@ -292,7 +292,6 @@ function checkChildren(
   }
   if (type.content?.kind === 'all') checkAll(type.content.items as ElementParticle[], element, accepted, report);
   else checkSequence(index, typeName, element, accepted, options, report);
-  return accepted;
 }
 
 function checkAll(items: ElementParticle[], element: XmlElement, known: KnownChild[], report: (finding: SchemaFinding) => void): void {
