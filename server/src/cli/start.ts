@@ -1,7 +1,8 @@
 import { isAscii } from 'node:buffer';
-import * as fs from 'node:fs';
-import * as path from 'node:path';
-import * as vm from 'node:vm';
+// Named imports: a bundled namespace import copies every export of the module (fs has a hundred) at each start.
+import { existsSync, readFileSync, statSync } from 'node:fs';
+import { join } from 'node:path';
+import { Script } from 'node:vm';
 import type * as Cli from '../cli';
 
 /**
@@ -43,7 +44,7 @@ export function commandBundle(commandFile: string): string {
 
 export interface LoadedBundle {
   exports: Pick<typeof Cli, 'main' | 'runFromCommandLine'>;
-  script: vm.Script;
+  script: Script;
 }
 
 /**
@@ -66,8 +67,8 @@ export function loadBundle(
   cachedData: Buffer | undefined,
   bundleFile: string = CLI_BUNDLE,
 ): LoadedBundle {
-  const filename = path.join(folder, bundleFile);
-  const script = new vm.Script(wrapAsModule(bundleSource(fs.readFileSync(filename))), { filename, cachedData });
+  const filename = join(folder, bundleFile);
+  const script = new Script(wrapAsModule(bundleSource(readFileSync(filename))), { filename, cachedData });
   const bundle = { exports: {} as LoadedBundle['exports'], filename, id: filename, loaded: false };
   const run = script.runInThisContext() as (
     exports: unknown,
@@ -82,10 +83,10 @@ export function loadBundle(
 
 function readCache(folder: string, bundleFile: string): Buffer | undefined {
   try {
-    const cache = path.join(folder, bundleFile + CODE_CACHE_SUFFIX);
+    const cache = join(folder, bundleFile + CODE_CACHE_SUFFIX);
     // V8 checks a cache against its source by length alone: a bundle rebuilt after its cache (watch mode) is compiled as usual.
-    if (fs.statSync(cache).mtimeMs < fs.statSync(path.join(folder, bundleFile)).mtimeMs) return undefined;
-    return fs.readFileSync(cache);
+    if (statSync(cache).mtimeMs < statSync(join(folder, bundleFile)).mtimeMs) return undefined;
+    return readFileSync(cache);
   } catch {
     // No cache (a build without it): the bundle is compiled as usual.
     return undefined;
@@ -97,7 +98,7 @@ export function bundleFor(folder: string, argv: readonly string[]): string {
   const name = argv[0];
   if (name === undefined || !Object.hasOwn(COMMAND_BUNDLES, name)) return CLI_BUNDLE;
   const own = commandBundle(COMMAND_BUNDLES[name]);
-  return fs.existsSync(path.join(folder, own)) ? own : CLI_BUNDLE;
+  return existsSync(join(folder, own)) ? own : CLI_BUNDLE;
 }
 
 /**
