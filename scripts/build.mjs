@@ -58,6 +58,25 @@ const builtinsRequired = {
   },
 };
 
+/**
+ * `import * as fs from 'node:fs'` in each of N files is, bundled, N copies of fs's hundred properties as
+ * getters (esbuild's __toESM) at every start; through one module that re-exports the built-in they are
+ * made once. For the CLI's bundles, whose start-up is most of a short run.
+ */
+const sharedBuiltinNamespaces = {
+  name: 'shared-builtin-namespaces',
+  setup(build) {
+    build.onResolve({ filter: /^node:(fs|path)$/ }, (args) =>
+      args.kind === 'import-statement' && args.namespace === 'file' ? { path: args.path, namespace: 'shared-builtin' } : undefined,
+    );
+    build.onLoad({ filter: /.*/, namespace: 'shared-builtin' }, (args) => ({
+      // No default export: a default import of these (none today) fails the build rather than being undefined.
+      contents: `export * from ${JSON.stringify(args.path)};\n`,
+      loader: 'js',
+    }));
+  },
+};
+
 // The CLI's entry: a small file that runs a bundle from V8's code cache (server/src/cli/start.ts); built first, as it names the command bundles.
 const starter = { entryPoints: ['server/src/cli/start.ts'], outfile: 'dist/cli.js', banner: { js: '#!/usr/bin/env node' } };
 mkdirSync('dist', { recursive: true });
@@ -70,13 +89,18 @@ const entries = [
   { entryPoints: ['server/src/server.ts'], outfile: 'dist/server.js', banner: { js: '#!/usr/bin/env node' } },
   starter,
   // The whole CLI. The Redis queue's client (batch --queue, worker) is loaded from node_modules only when used: start-up stays small.
-  { entryPoints: ['server/src/cli.ts'], outfile: 'dist/cli-main.js', external: ['bullmq', 'ioredis'], plugins: [builtinsRequired] },
+  {
+    entryPoints: ['server/src/cli.ts'],
+    outfile: 'dist/cli-main.js',
+    external: ['bullmq', 'ioredis'],
+    plugins: [builtinsRequired, sharedBuiltinNamespaces],
+  },
   // The short commands' own bundles.
   ...commandFiles.map((file) => ({
     entryPoints: ['server/src/cli.ts'],
     outfile: `dist/${commandBundle(file)}`,
     external: ['bullmq', 'ioredis'],
-    plugins: [onlyCommandFile(file), builtinsRequired],
+    plugins: [onlyCommandFile(file), builtinsRequired, sharedBuiltinNamespaces],
   })),
   // The bird's-eye view's page: runs in the webview, everything bundled (no network, no CDN).
   {

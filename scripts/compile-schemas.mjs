@@ -249,12 +249,29 @@ export function compileSchemas(directory = path.join(root, 'schemas')) {
   return { source: 'ASAM OpenSCENARIO XML schemas (schemas/*.xsd), distributable under the ASAM license terms', schemas };
 }
 
-/** dist/openscenario-schemas.json: each version's model as JSON text of its own, parsed only when that version is checked (server/src/core/schema/model.ts). */
+/**
+ * dist/openscenario-schemas.json: one JSON object whose first line gives the byte range of each version's
+ * model in the file, so that a run reads and parses only the version it checks (server/src/core/schema/model.ts):
+ *   {"ranges":{"1.0":[  start,    end],...},
+ *   "source":"...","schemas":{"1.0":{...},...}}
+ * The offsets are padded with spaces to a fixed width, so that the first line's length does not depend on them.
+ */
 export function schemaModelFile(compiled = compileSchemas()) {
-  return JSON.stringify({
-    source: compiled.source,
-    schemas: Object.fromEntries(compiled.schemas.map((schema) => [schema.version, JSON.stringify(schema)])),
+  const width = 10;
+  const pad = (offset) => String(offset).padStart(width, ' ');
+  const rangesLine = (ranges) =>
+    `{"ranges":{${ranges.map(([version, start, end]) => `"${version}":[${pad(start)},${pad(end)}]`).join(',')}},\n`;
+  const placeholder = rangesLine(compiled.schemas.map((schema) => [schema.version, 0, 0]));
+  let rest = `"source":${JSON.stringify(compiled.source)},"schemas":{`;
+  const ranges = [];
+  compiled.schemas.forEach((schema, i) => {
+    rest += `${i > 0 ? ',' : ''}"${schema.version}":`;
+    const text = JSON.stringify(schema);
+    const start = Buffer.byteLength(placeholder) + Buffer.byteLength(rest);
+    rest += text;
+    ranges.push([schema.version, start, start + Buffer.byteLength(text)]);
   });
+  return rangesLine(ranges) + rest + '}}';
 }
 
 if (process.argv[1] && path.resolve(process.argv[1]) === fileURLToPath(import.meta.url)) {

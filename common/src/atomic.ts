@@ -56,35 +56,21 @@ function stat(target: string): fs.Stats | undefined {
   }
 }
 
+/** Where and how an output is written: in place (a device) or through a temporary file beside it. */
+type OutputPlan = { device: true; resolved: string } | { device: false; real: string; temporary: string; existing: fs.Stats | undefined };
+
 /**
- * Writes the data beside the target without touching the target yet. A target that is not a regular
- * file (a device, a FIFO, /dev/stdout) is written directly instead: renaming over it would replace
- * the device. A read-only target is refused, as a shell redirection would refuse it; the mode of an
- * existing target is kept; the temporary name is short, so that any name the target may have works.
+ * Decides how a target is written, refusing a folder or a read-only file. A target that is not a
+ * regular file (a device, a FIFO, /dev/stdout) is written directly: renaming over it would replace
+ * the device. A link is followed, so that the file it names is replaced and the link kept; the
+ * temporary name is short, so that any name the target may have works.
  */
-export async function prepareOutput(target: string, data: OutputData): Promise<PreparedOutput> {
+function planOutput(target: string): OutputPlan {
   const resolved = path.resolve(target);
   const existing = stat(resolved);
   if (existing?.isDirectory()) throw new OutputError(`${target} is a folder`);
-  if (existing && !existing.isFile()) {
-    // A device or pipe: written in place when committed, since there is nothing to replace atomically.
-    return {
-      target,
-      commit: async () => {
-        const handle = await fs.promises.open(resolved, fs.constants.O_WRONLY | fs.constants.O_APPEND);
-        try {
-          if (typeof data === 'string' || data instanceof Uint8Array) await handle.writeFile(data);
-          else for await (const chunk of data) await handle.write(chunk);
-        } finally {
-          await handle.close();
-        }
-      },
-      abort: async () => undefined,
-    };
-  }
-  // A link is followed, so that the file it names is replaced and the link kept.
+  if (existing && !existing.isFile()) return { device: true, resolved };
   const real = existing ? fs.realpathSync(resolved) : resolved;
-  const directory = path.dirname(real);
   if (existing) {
     const ownerCanWrite = (existing.mode & 0o200) !== 0;
     let accessible = true;
@@ -95,7 +81,34 @@ export async function prepareOutput(target: string, data: OutputData): Promise<P
     }
     if (!ownerCanWrite || !accessible) throw new OutputError(`${target} is read-only; make it writable or choose another output`);
   }
-  const temporary = path.join(directory, `.m2s-${process.pid}-${Math.random().toString(36).slice(2, 10)}.tmp`);
+  const temporary = path.join(path.dirname(real), `.m2s-${process.pid}-${Math.random().toString(36).slice(2, 10)}.tmp`);
+  return { device: false, real, temporary, existing };
+}
+
+/**
+ * Writes the data beside the target without touching the target yet (a device is written directly
+ * when committed). A read-only target is refused, as a shell redirection would refuse it; the mode of
+ * an existing target is kept.
+ */
+export async function prepareOutput(target: string, data: OutputData): Promise<PreparedOutput> {
+  const plan = planOutput(target);
+  if (plan.device) {
+    // A device or pipe: written in place when committed, since there is nothing to replace atomically.
+    return {
+      target,
+      commit: async () => {
+        const handle = await fs.promises.open(plan.resolved, fs.constants.O_WRONLY | fs.constants.O_APPEND);
+        try {
+          if (typeof data === 'string' || data instanceof Uint8Array) await handle.writeFile(data);
+          else for await (const chunk of data) await handle.write(chunk);
+        } finally {
+          await handle.close();
+        }
+      },
+      abort: async () => undefined,
+    };
+  }
+  const { real, temporary, existing } = plan;
   track(temporary);
   try {
     await fs.promises.writeFile(temporary, data, { flag: 'wx', mode: existing ? existing.mode & 0o7777 : 0o666 });
@@ -121,6 +134,78 @@ export async function prepareOutput(target: string, data: OutputData): Promise<P
     },
     abort: async () => {
       await fs.promises.rm(temporary, { force: true }).catch(() => undefined);
+      untrack(temporary);
+    },
+  };
+}
+
+/** An output prepared with blocking calls (prepareOutputSync). */
+export interface PreparedOutputSync {
+  target: string;
+  commit(): void;
+  abort(): void;
+}
+
+function removeQuietly(temporary: string): void {
+  try {
+    // The temporary is a file this process made: unlink is rm for it, without loading rm's folder walker.
+    fs.unlinkSync(temporary);
+  } catch {
+    // Already gone (renamed), or best effort, as the asynchronous path's rm().catch().
+  }
+}
+
+/**
+ * prepareOutput with blocking calls, for data already in memory: the same checks, temporary file and
+ * rename. The CLI writes so, as a thread-pool turn per call was a noticeable part of a short run.
+ */
+export function prepareOutputSync(target: string, data: string | Uint8Array): PreparedOutputSync {
+  const plan = planOutput(target);
+  if (plan.device) {
+    return {
+      target,
+      commit: () => {
+        const descriptor = fs.openSync(plan.resolved, fs.constants.O_WRONLY | fs.constants.O_APPEND);
+        try {
+          fs.writeFileSync(descriptor, data);
+        } finally {
+          fs.closeSync(descriptor);
+        }
+      },
+      abort: () => undefined,
+    };
+  }
+  const { real, temporary, existing } = plan;
+  track(temporary);
+  try {
+    fs.writeFileSync(temporary, data, { flag: 'wx', mode: existing ? existing.mode & 0o7777 : 0o666 });
+    if (existing) {
+      fs.chmodSync(temporary, existing.mode & 0o7777);
+      if (process.getuid?.() === 0) {
+        try {
+          fs.chownSync(temporary, existing.uid, existing.gid);
+        } catch {
+          // Keeping the owner needs privileges; without them the file belongs to whoever writes it.
+        }
+      }
+    }
+  } catch (error) {
+    removeQuietly(temporary);
+    untrack(temporary);
+    throw error;
+  }
+  return {
+    target,
+    commit: () => {
+      try {
+        fs.renameSync(temporary, real);
+      } finally {
+        removeQuietly(temporary);
+        untrack(temporary);
+      }
+    },
+    abort: () => {
+      removeQuietly(temporary);
       untrack(temporary);
     },
   };
@@ -163,6 +248,30 @@ export async function writeFilesAtomic(outputs: { target: string; data: OutputDa
       written.push(prepared[i].target);
     } catch (error) {
       for (const rest of prepared.slice(i + 1)) await rest.abort();
+      return { written, failed: { target: prepared[i].target, error: error as Error } };
+    }
+  }
+  return { written };
+}
+
+/** writeFilesAtomic with blocking calls, for data already in memory: every output or none. */
+export function writeFilesAtomicSync(outputs: { target: string; data: string | Uint8Array }[]): WriteAllResult {
+  const prepared: PreparedOutputSync[] = [];
+  for (const output of outputs) {
+    try {
+      prepared.push(prepareOutputSync(output.target, output.data));
+    } catch (error) {
+      for (const done of prepared) done.abort();
+      return { written: [], failed: { target: output.target, error: error as Error } };
+    }
+  }
+  const written: string[] = [];
+  for (let i = 0; i < prepared.length; i++) {
+    try {
+      prepared[i].commit();
+      written.push(prepared[i].target);
+    } catch (error) {
+      for (const rest of prepared.slice(i + 1)) rest.abort();
       return { written, failed: { target: prepared[i].target, error: error as Error } };
     }
   }

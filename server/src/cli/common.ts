@@ -1,6 +1,6 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { isSameFile, writeFilesAtomic } from '../../../common/src/atomic';
+import { isSameFile, writeFilesAtomicSync } from '../../../common/src/atomic';
 import { formatProblem, Problem, uniqueProblems } from '../core/problems';
 import { displayRef, SourceRef } from '../core/sources';
 
@@ -72,7 +72,8 @@ export async function write(
       return ExitCode.io;
     }
   }
-  const result = await writeFilesAtomic(files.map((output) => ({ target: output.target, data: output.data })));
+  // Blocking writes: the data is in memory, and a thread-pool turn per call was a noticeable part of a short run.
+  const result = writeFilesAtomicSync(files.map((output) => ({ target: output.target, data: output.data })));
   if (result.failed) {
     const { target, error } = result.failed;
     const changed =

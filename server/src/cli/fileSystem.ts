@@ -45,8 +45,9 @@ export const cliFileSystem: FileSystemHost = {
   },
   kind(filePath) {
     try {
-      const stat = fs.statSync(filePath);
-      return Promise.resolve(stat.isFile() ? 'file' : stat.isDirectory() ? 'directory' : undefined);
+      // No entry is the common answer while candidates are searched: undefined, not an error with a stack trace.
+      const stat = fs.statSync(filePath, { throwIfNoEntry: false });
+      return Promise.resolve(stat?.isFile() ? 'file' : stat?.isDirectory() ? 'directory' : undefined);
     } catch {
       return Promise.resolve(undefined);
     }

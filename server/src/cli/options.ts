@@ -49,6 +49,49 @@ type OptionName = keyof typeof SHARED_OPTIONS;
 
 const isOptionName = (name: string): name is OptionName => Object.hasOwn(SHARED_OPTIONS, name);
 
+/** The tokens of `parseArgs` that parseOptions reads. */
+type OptionToken =
+  | { kind: 'positional'; index: number; value: string }
+  | { kind: 'option-terminator'; index: number }
+  | { kind: 'option'; index: number; name: string; rawName: string; value: string | undefined; inlineValue: boolean | undefined };
+
+const SHORT_OPTION_NAMES = new Map<string, OptionName>(
+  Object.entries(SHARED_OPTIONS).flatMap(([name, option]) => ('short' in option ? [[`-${option.short}`, name as OptionName]] : [])),
+);
+
+/**
+ * parseArgs's tokens for a plain command line (paths, known flags, `--name VALUE`, `-o VALUE`) made
+ * without it: loading and first running node:util's parseArgs was over a millisecond of a flatten.
+ * Anything else (`--name=VALUE`, grouped short flags, `--`, `-`, a value that starts with '-', an
+ * unknown option) is left to parseArgs: undefined.
+ */
+function plainTokens(args: readonly string[]): OptionToken[] | undefined {
+  const tokens: OptionToken[] = [];
+  for (let index = 0; index < args.length; index++) {
+    const arg = args[index];
+    if (!arg.startsWith('-')) {
+      tokens.push({ kind: 'positional', index, value: arg });
+      continue;
+    }
+    const name = arg.startsWith('--') ? arg.slice(2) : SHORT_OPTION_NAMES.get(arg);
+    if (name === undefined || !isOptionName(name)) return undefined;
+    if (SHARED_OPTIONS[name].type === 'boolean') {
+      tokens.push({ kind: 'option', index, name, rawName: arg, value: undefined, inlineValue: undefined });
+      continue;
+    }
+    const value = args[index + 1];
+    if (value === undefined || value.startsWith('-')) return undefined;
+    tokens.push({ kind: 'option', index, name, rawName: arg, value, inlineValue: false });
+    index++;
+  }
+  return tokens;
+}
+
+/** The tokens of the command line, as parseArgs gives them (see plainTokens). */
+export function optionTokens(args: string[]): OptionToken[] {
+  return plainTokens(args) ?? parseArgs({ args, options: SHARED_OPTIONS, strict: false, allowPositionals: true, tokens: true }).tokens;
+}
+
 /** A size such as 1048576, 512K, 64M or 2G. */
 export function parseSize(text: string, flag: string): number {
   const match = /^(\d+)([KMG]?)B?$/i.exec(text.trim());
@@ -77,8 +120,7 @@ export function parseOptions(args: string[]): Options {
     schemaVersion: 'auto',
     limits: {},
   };
-  const { tokens } = parseArgs({ args, options: SHARED_OPTIONS, strict: false, allowPositionals: true, tokens: true });
-  for (const token of tokens) {
+  for (const token of optionTokens(args)) {
     if (token.kind === 'positional') {
       options.positional.push(token.value);
       continue;

@@ -36,6 +36,8 @@ export const FILE_PATH_ELEMENTS: readonly { parent: string; element: string; att
 ];
 
 const SITE_BY_ELEMENT = new Map(FILE_PATH_ELEMENTS.map((entry) => [`${entry.parent}/${entry.element}`, entry]));
+/** The element names of SITE_BY_ELEMENT: most elements are passed over without building a key. */
+const SITE_ELEMENT_NAMES = new Set(FILE_PATH_ELEMENTS.map((entry) => entry.element));
 
 /** One attribute of a document that holds a file path. */
 export interface FilePathSite {
@@ -48,8 +50,11 @@ export interface FilePathSite {
 export function filePathSites(root: XmlElement | undefined): FilePathSite[] {
   if (!root) return [];
   const sites: FilePathSite[] = [];
-  for (const element of selfAndDescendants(root)) {
-    const entry = element.parent ? SITE_BY_ELEMENT.get(`${element.parent.name}/${element.name}`) : undefined;
+  const elements = selfAndDescendants(root);
+  for (let i = 0; i < elements.length; i++) {
+    const element = elements[i];
+    const entry =
+      element.parent && SITE_ELEMENT_NAMES.has(element.name) ? SITE_BY_ELEMENT.get(`${element.parent.name}/${element.name}`) : undefined;
     const attribute = entry ? element.attributes.find((candidate) => candidate.name === entry.attribute) : undefined;
     if (entry && attribute) sites.push({ element, attribute, kind: entry.kind });
   }

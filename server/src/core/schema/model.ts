@@ -77,19 +77,29 @@ export interface CompiledSchema {
 }
 
 /**
- * The file `npm run build` writes: each version's model as JSON text of its own, so that a run parses
- * only the versions it checks against (a CLI flatten one of four; parsing is most of loading).
+ * The first line of the file `npm run build` writes (scripts/compile-schemas.mjs): the byte range of each
+ * version's model, so that a run decodes and parses only the versions it checks against (a CLI flatten
+ * one of four; decoding and parsing the whole file was most of loading).
  */
-interface CompiledSchemaFile {
-  source: string;
-  schemas: Partial<Record<SchemaVersion, string>>;
+interface CompiledSchemaRanges {
+  ranges: Partial<Record<SchemaVersion, [number, number]>>;
 }
 
 /** The compiled model's file name; `npm run build` writes it next to the bundles in dist/. */
 export const SCHEMA_MODEL_FILE = 'openscenario-schemas.json';
 
-let file: CompiledSchemaFile | undefined;
+let file: { bytes: Buffer; ranges: CompiledSchemaRanges['ranges'] } | undefined;
 const loaded = new Map<SchemaVersion, CompiledSchema>();
+
+function readModelFile(): { bytes: Buffer; ranges: CompiledSchemaRanges['ranges'] } {
+  const bytes = fs.readFileSync(modelPath());
+  const lineEnd = bytes.indexOf(10);
+  // The first line is `{"ranges":{...},`: closed, it is a JSON object of its own.
+  const header = lineEnd < 0 ? undefined : (JSON.parse(bytes.toString('latin1', 0, lineEnd).replace(/,\s*$/, '}')) as CompiledSchemaRanges);
+  if (!header?.ranges)
+    throw new Error(`the compiled OpenSCENARIO schema model (${SCHEMA_MODEL_FILE}) is from an older build: run \`npm run build\``);
+  return { bytes, ranges: header.ranges };
+}
 
 function modelPath(): string {
   // Bundled: beside dist/server.js and dist/cli.js. From source (tests): the repository's dist/.
@@ -103,12 +113,14 @@ function modelPath(): string {
 export function schemaFor(version: SchemaVersion): CompiledSchema {
   let schema = loaded.get(version);
   if (!schema) {
-    file ??= JSON.parse(fs.readFileSync(modelPath(), 'utf8')) as CompiledSchemaFile;
-    const text = file.schemas[version];
-    if (text === undefined) throw new Error(`no compiled schema for OpenSCENARIO ${version}`);
-    schema = JSON.parse(text) as CompiledSchema;
+    file ??= readModelFile();
+    const range = file.ranges[version];
+    if (range === undefined) throw new Error(`no compiled schema for OpenSCENARIO ${version}`);
+    schema = JSON.parse(file.bytes.toString('utf8', range[0], range[1])) as CompiledSchema;
     loaded.set(version, schema);
-    delete file.schemas[version];
+    delete file.ranges[version];
+    // Every version read: the file's bytes are no longer needed.
+    if (Object.keys(file.ranges).length === 0) file = { bytes: Buffer.alloc(0), ranges: {} };
   }
   return schema;
 }

@@ -91,10 +91,12 @@ export function checkSchema(document: XmlDocument, options: SchemaCheckOptions):
     return { chosen, findings };
   }
   const stack: { element: XmlElement; typeName: string }[] = [{ element: root, typeName: index.schema.rootType }];
+  // One list of an element's known children, refilled for each element rather than made anew.
+  const accepted: KnownChild[] = [];
   while (stack.length > 0 && findings.length < MAX_FINDINGS) {
     const { element, typeName } = stack.pop() as { element: XmlElement; typeName: string };
     checkAttributes(index, chosen, element, typeName, report);
-    const accepted = checkChildren(index, chosen, element, typeName, options, report);
+    checkChildren(index, chosen, element, typeName, options, report, accepted);
     for (let i = accepted.length - 1; i >= 0; i--) stack.push(accepted[i]);
   }
   // In document order, as a reader goes through the file.
@@ -195,13 +197,18 @@ function checkAttributes(
 ): void {
   const type = index.complexType(typeName);
   if (!type) return;
-  for (const attribute of element.attributes) checkAttribute(index, chosen, element, typeName, attribute, report);
+  // Index loops, no closures: this runs for every element of every file a flatten reads and writes.
+  const attributes = element.attributes;
+  for (let i = 0; i < attributes.length; i++) checkAttribute(index, chosen, element, typeName, attributes[i], report);
   // The extension's own attributes are checked where the flattener reads them.
   if (MODULAR_TYPES[typeName]) return;
-  const missing: string[] = [];
-  for (const declaration of type.attributes)
-    if (declaration.required && !element.attributes.some((written) => written.name === declaration.name)) missing.push(declaration.name);
-  if (missing.length > 0) {
+  let missing: string[] | undefined;
+  const declarations = type.attributes;
+  for (let i = 0; i < declarations.length; i++) {
+    const declaration = declarations[i];
+    if (declaration.required && !isWritten(attributes, declaration.name)) (missing ??= []).push(declaration.name);
+  }
+  if (missing) {
     report({
       element,
       part: 'tag',
@@ -213,12 +220,24 @@ function checkAttributes(
   }
 }
 
+function isWritten(attributes: readonly XmlAttribute[], name: string): boolean {
+  for (let i = 0; i < attributes.length; i++) if (attributes[i].name === name) return true;
+  return false;
+}
+
 function deprecatedInstead(typeName: string, name: string): string {
   const replacement = replacementOf(typeName, name);
   return replacement ? `; write ${replacement.instead} instead` : '';
 }
 
-/** Checks the children of an element against its content model; returns the children to descend into. */
+/** A child the content model knows: where the check descends, and what the order and number checks read. */
+interface KnownChild {
+  element: XmlElement;
+  typeName: string;
+  particle: ElementParticle;
+}
+
+/** Checks the children of an element against its content model; fills `accepted` with the children to descend into. */
 function checkChildren(
   index: SchemaIndex,
   chosen: ChosenVersion,
@@ -226,12 +245,14 @@ function checkChildren(
   typeName: string,
   options: SchemaCheckOptions,
   report: (finding: SchemaFinding) => void,
-): { element: XmlElement; typeName: string }[] {
+  accepted: KnownChild[],
+): void {
   const type = index.complexType(typeName);
-  const accepted: { element: XmlElement; typeName: string }[] = [];
-  if (!type) return accepted;
-  const known: { child: XmlElement; particle: ElementParticle }[] = [];
-  for (const child of element.children) {
+  const children = element.children;
+  accepted.length = 0;
+  if (!type) return;
+  for (let i = 0; i < children.length; i++) {
+    const child = children[i];
     // A ScenarioReference outside a ManeuverGroup is reported by the flattener.
     if (options.modular && child.name === MODULAR_PLACEMENT.element && typeName !== MODULAR_PLACEMENT.parentType) continue;
     const particle = index.childParticle(typeName, child.name, options.modular);
@@ -258,8 +279,7 @@ function checkChildren(
       });
       continue;
     }
-    known.push({ child, particle });
-    accepted.push({ element: child, typeName: particle.type });
+    accepted.push({ element: child, typeName: particle.type, particle });
     if (index.isDeprecated(particle)) {
       report({
         element: child,
@@ -270,19 +290,13 @@ function checkChildren(
       });
     }
   }
-  if (type.content?.kind === 'all') checkAll(type.content.items as ElementParticle[], element, known, report);
-  else checkSequence(index, typeName, element, known, options, report);
-  return accepted;
+  if (type.content?.kind === 'all') checkAll(type.content.items as ElementParticle[], element, accepted, report);
+  else checkSequence(index, typeName, element, accepted, options, report);
 }
 
-function checkAll(
-  items: ElementParticle[],
-  element: XmlElement,
-  known: { child: XmlElement; particle: ElementParticle }[],
-  report: (finding: SchemaFinding) => void,
-): void {
+function checkAll(items: ElementParticle[], element: XmlElement, known: KnownChild[], report: (finding: SchemaFinding) => void): void {
   const counts = new Map<string, number>();
-  for (const { child, particle } of known) {
+  for (const { element: child, particle } of known) {
     const count = (counts.get(child.name) ?? 0) + 1;
     counts.set(child.name, count);
     if (particle.max !== -1 && count > particle.max) {
@@ -303,18 +317,33 @@ function checkSequence(
   index: SchemaIndex,
   typeName: string,
   element: XmlElement,
-  known: { child: XmlElement; particle: ElementParticle }[],
+  known: KnownChild[],
   options: SchemaCheckOptions,
   report: (finding: SchemaFinding) => void,
 ): void {
   const automaton = index.automaton(typeName);
   let states: StateSet = automaton.start;
+  // A valid sequence (nearly every one) is stepped through without allocating; any misstep is redone below.
+  let valid = true;
+  for (let position = 0; position < known.length && valid; position++) {
+    const next = automaton.step(states, index.modelName(typeName, known[position].element.name, options.modular));
+    if (next) states = next.states;
+    else valid = false;
+  }
+  if (valid) {
+    if (!automaton.accepts(states)) {
+      const missing = automaton.missingToEnd(states);
+      if (missing.length > 0) reportMissing(element, missing, undefined, report);
+    }
+    return;
+  }
+  states = automaton.start;
   const seen = new Map<string, number>();
   let reportedOrder = false;
   /** Children written later that an order problem already placed earlier in the content model. */
   const placedEarly = new Set<XmlElement>();
   for (let position = 0; position < known.length; position++) {
-    const { child, particle } = known[position];
+    const { element: child, particle } = known[position];
     if (placedEarly.has(child)) continue;
     const name = index.modelName(typeName, child.name, options.modular);
     seen.set(name, (seen.get(name) ?? 0) + 1);
@@ -330,8 +359,9 @@ function checkSequence(
           known
             .slice(position + 1)
             .find(
-              (other) => !placedEarly.has(other.child) && index.modelName(typeName, other.child.name, options.modular) === candidate.name,
-            )?.child,
+              (other) =>
+                !placedEarly.has(other.element) && index.modelName(typeName, other.element.name, options.modular) === candidate.name,
+            )?.element,
       );
       if (later.every((other) => other !== undefined)) {
         // The "missing" elements are written, only after this one: an order problem, reported once here.

@@ -56,16 +56,27 @@ export interface ValueCheck {
   expressionNotInVersion?: boolean;
 }
 
+// The common answers are shared (and frozen): a check runs for every attribute of every file read.
+const VALID: ValueCheck = Object.freeze({ valid: true });
+const INVALID: ValueCheck = Object.freeze({ valid: false });
+
+function matchesAnyPattern(patterns: readonly string[], value: string): boolean {
+  for (let i = 0; i < patterns.length; i++) if (patternOf(patterns[i]).test(value)) return true;
+  return false;
+}
+
 export function checkValue(type: SimpleType, value: string): ValueCheck {
-  if (type.parameter && PARAMETER_PATTERN.test(value)) return { valid: true };
-  if (type.expression && EXPRESSION_PATTERN.test(value)) return { valid: true };
-  for (const alternative of type.alternatives) {
-    if (alternative.builtin && builtinAccepts(alternative.builtin, value)) return { valid: true };
+  if (type.parameter && PARAMETER_PATTERN.test(value)) return VALID;
+  if (type.expression && EXPRESSION_PATTERN.test(value)) return VALID;
+  const alternatives = type.alternatives;
+  for (let i = 0; i < alternatives.length; i++) {
+    const alternative = alternatives[i];
+    if (alternative.builtin && builtinAccepts(alternative.builtin, value)) return VALID;
     if (alternative.enumeration?.includes(value)) return { valid: true, deprecated: alternative.deprecatedValues?.includes(value) };
-    if (alternative.patterns?.some((pattern) => patternOf(pattern).test(value))) return { valid: true };
+    if (alternative.patterns && matchesAnyPattern(alternative.patterns, value)) return VALID;
   }
   if (!type.expression && type.parameter && EXPRESSION_PATTERN.test(value)) return { valid: false, expressionNotInVersion: true };
-  return { valid: false };
+  return INVALID;
 }
 
 export function enumerationValues(type: SimpleType): string[] {

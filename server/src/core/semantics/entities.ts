@@ -20,7 +20,8 @@ export class EntityCollector {
         break;
       }
     }
-    for (const attr of element.attributes)
-      if (ENTITY_REFERENCE_ATTRIBUTES.has(attr.name)) this.model.entityReferences.push({ element, attribute: attr });
+    const attributes = element.attributes;
+    for (let i = 0; i < attributes.length; i++)
+      if (ENTITY_REFERENCE_ATTRIBUTES.has(attributes[i].name)) this.model.entityReferences.push({ element, attribute: attributes[i] });
   }
 }

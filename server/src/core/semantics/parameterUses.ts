@@ -36,7 +36,8 @@ export class ParameterUseCollector {
 
   /** `ownDeclaration`: the declaration `element` makes, whose value sees only the earlier ones of its scope. */
   visit(element: XmlElement, scope: Scope, ownDeclaration: Declaration | undefined): void {
-    for (const attr of element.attributes) this.visitValue(element, attr, scope, ownDeclaration);
+    const attributes = element.attributes;
+    for (let i = 0; i < attributes.length; i++) this.visitValue(element, attributes[i], scope, ownDeclaration);
     if (PARAMETER_REF_ELEMENTS.has(element.name) && !isCarlaCriterion(element)) {
       const ref = attribute(element, 'parameterRef');
       if (ref && ref.value.trim()) {

@@ -122,7 +122,7 @@ export const VALUE_RANGES: readonly ValueRange[] = [
   ...rules('GeoPosition', ['altitude'], NON_NEGATIVE, FROM_1_2),
   ...rules('GeoPosition', ['latitude', 'longitude'], PLUS_MINUS_PI, FROM_1_2),
   ...rules('GeoPosition', ['latitudeDeg'], { min: -90, max: 90 }, FROM_1_2),
-  // Their data gives longitudeDeg a latitude's [-90..90], which would refuse every place east of 90° (Beijing, Tokyo).
+  // Their data gives longitudeDeg a latitude's [-90..90], which would refuse every place east of 90 degrees (Beijing, Tokyo).
   ...rules('GeoPosition', ['longitudeDeg'], { min: -180, max: 180 }, FROM_1_2),
   ...rules('LaneOffsetActionDynamics', ['maxLateralAcc'], NON_NEGATIVE, ALL),
   ...rules('LanePosition', ['s'], NON_NEGATIVE, ALL),

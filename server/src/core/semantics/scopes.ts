@@ -57,8 +57,10 @@ export class ScopeCollector {
   /** Opens the scope an element holds, declaring its parameters before anything below it is read. */
   enter(element: XmlElement, current: Scope | undefined): Scope | undefined {
     let holdsDeclarations = false;
-    for (const child of element.children) {
-      if (child.name === 'ParameterDeclarations') {
+    // Index loops on this per-element path: for...of makes an iterator and a result object per step until optimized.
+    const children = element.children;
+    for (let i = 0; i < children.length; i++) {
+      if (children[i].name === 'ParameterDeclarations') {
         holdsDeclarations = true;
         break;
       }

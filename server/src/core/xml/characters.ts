@@ -11,6 +11,11 @@ export function isNameStart(code: number): boolean {
   return (code >= 65 && code <= 90) || (code >= 97 && code <= 122) || code === 95 || code === 58 || code >= 0xc0;
 }
 
+/** A character a name may hold after its first (NaN, past the end, is none). */
+export function isNameChar(code: number): boolean {
+  return isNameStart(code) || (code >= 48 && code <= 57) || code === 45 || code === 46 || code === 0xb7;
+}
+
 /** Whether a code point is a Char of XML 1.0: no NUL, no other C0 control but tab and line ends, no U+FFFE/U+FFFF. */
 export function isXmlChar(code: number): boolean {
   return (

@@ -1,7 +1,7 @@
 import { LineIndex } from '../text';
-import { codePointName, isNameStart, isSpace, LINE_END, NOT_XML_CHAR, PLAIN_VALUE } from './characters';
+import { codePointName, isNameChar, isNameStart, isSpace, LINE_END, NOT_XML_CHAR, PLAIN_VALUE } from './characters';
 import { EntityDecoder } from './entities';
-import { XmlDocument, XmlElement, XmlParseOptions, XmlProblem } from './types';
+import { XmlAttribute, XmlDocument, XmlElement, XmlParseOptions, XmlProblem } from './types';
 
 /**
  * A tolerant XML parser that records the offsets of every element and attribute. It never reads
@@ -22,8 +22,11 @@ class XmlScanner {
   private readonly stack: XmlElement[] = [];
   private position: number;
   private seenDoctype = false;
-  /** How many elements of each name are open: an end tag that matches none is known at once. */
-  private readonly openByName = new Map<string, number>();
+  /**
+   * How many elements of each name are open: an end tag that matches none is known at once. Built at the
+   * first end tag that does not close the innermost element (none, in a well-formed document), kept after.
+   */
+  private openByName: Map<string, number> | undefined;
   // The next '&', '<' and ']]>' are found once and reused, so each text run costs only its own length.
   private nextAmpersand = -1;
   private nextOpen = -1;
@@ -56,11 +59,13 @@ class XmlScanner {
         this.position = text.length;
         break;
       }
-      if (text.startsWith('<!--', open)) this.skipComment(open);
-      else if (text.startsWith('<![CDATA[', open)) this.skipCdata(open);
-      else if (text.startsWith('<?', open)) this.skipProcessingInstruction(open);
-      else if (text.startsWith('<!DOCTYPE', open)) this.parseDoctype(open);
-      else if (text.startsWith('</', open)) this.parseEndTag(open);
+      // The character after '<' tells most constructs apart without comparing strings.
+      const next = text.charCodeAt(open + 1);
+      if (next === 33 && text.startsWith('<!--', open)) this.skipComment(open);
+      else if (next === 33 && text.startsWith('<![CDATA[', open)) this.skipCdata(open);
+      else if (next === 63) this.skipProcessingInstruction(open);
+      else if (next === 33 && text.startsWith('<!DOCTYPE', open)) this.parseDoctype(open);
+      else if (next === 47) this.parseEndTag(open);
       else this.parseStartTag(open);
     }
     while (this.stack.length > 0) {
@@ -144,17 +149,18 @@ class XmlScanner {
     } else this.position = close + 2;
   }
 
+  // test() rather than exec(): no match array is made, which was most of a flatten's garbage from parsing.
   private readName(): string {
-    this.namePattern.lastIndex = this.position;
-    const match = this.namePattern.exec(this.text);
-    if (!match) return '';
-    this.position += match[0].length;
-    return match[0];
+    const start = this.position;
+    this.namePattern.lastIndex = start;
+    if (!this.namePattern.test(this.text)) return '';
+    this.position = this.namePattern.lastIndex;
+    return this.text.slice(start, this.position);
   }
 
   private skipSpace(): void {
     this.spacePattern.lastIndex = this.position;
-    this.spacePattern.exec(this.text);
+    this.spacePattern.test(this.text);
     this.position = this.spacePattern.lastIndex;
   }
 
@@ -252,7 +258,7 @@ class XmlScanner {
       return;
     }
     stack.push(element);
-    this.openByName.set(name, (this.openByName.get(name) ?? 0) + 1);
+    if (this.openByName) this.openByName.set(name, (this.openByName.get(name) ?? 0) + 1);
   }
 
   /** Reads the attributes of a start tag up to its `>` or `/>`; false when the tag is not terminated. */
@@ -322,7 +328,7 @@ class XmlScanner {
       // A linear scan for the usual handful of attributes, a set beyond: a tag with 40,000 attributes stays linear.
       if (
         element.attributes.length < 16
-          ? element.attributes.some((existing) => existing.name === attributeName)
+          ? hasAttributeNamed(element.attributes, attributeName)
           : (attributeNames ??= new Set(element.attributes.map((a) => a.name))).has(attributeName)
       ) {
         this.report(`attribute '${attributeName}' appears twice`, nameStart, nameEnd);
@@ -334,18 +340,37 @@ class XmlScanner {
 
   private popElement(): XmlElement {
     const element = this.stack.pop() as XmlElement;
-    this.openByName.set(element.name, (this.openByName.get(element.name) ?? 1) - 1);
+    if (this.openByName) this.openByName.set(element.name, (this.openByName.get(element.name) ?? 1) - 1);
     return element;
+  }
+
+  private isOpen(name: string): boolean {
+    if (!this.openByName) {
+      this.openByName = new Map();
+      for (const open of this.stack) this.openByName.set(open.name, (this.openByName.get(open.name) ?? 0) + 1);
+    }
+    return (this.openByName.get(name) ?? 0) > 0;
+  }
+
+  /** Whether the name at the position is `name` entire; if so, moves past it. */
+  private readsName(name: string): boolean {
+    const end = this.position + name.length;
+    if (!this.text.startsWith(name, this.position) || isNameChar(this.text.charCodeAt(end))) return false;
+    this.position = end;
+    return true;
   }
 
   private parseEndTag(start: number): void {
     const stack = this.stack;
     this.position = start + 2;
-    const name = this.readName();
+    // Nearly every end tag closes the innermost element: its name is compared in place, not read out.
+    const innermost = stack.length > 0 ? stack[stack.length - 1].name : undefined;
+    const closesInnermost = innermost !== undefined && this.readsName(innermost);
+    const name = closesInnermost ? innermost : this.readName();
     this.skipSpace();
     if (this.text.charCodeAt(this.position) === 62) this.position++;
     else this.report(`end tag </${name}> is not closed with '>'`, start, this.position);
-    if (!this.openByName.get(name)) {
+    if (!closesInnermost && !this.isOpen(name)) {
       this.report(`end tag </${name}> has no matching start tag`, start, this.position);
       return;
     }
@@ -383,4 +408,10 @@ class XmlScanner {
     if (this.nextCdataEnd < from) this.nextCdataEnd = this.indexOrEnd(']]>', from);
     if (this.nextCdataEnd < to) this.report(`']]>' is not allowed in text`, this.nextCdataEnd, this.nextCdataEnd + 3);
   }
+}
+
+/** A loop rather than some(): no closure per attribute read. */
+function hasAttributeNamed(attributes: readonly XmlAttribute[], name: string): boolean {
+  for (let i = 0; i < attributes.length; i++) if (attributes[i].name === name) return true;
+  return false;
 }

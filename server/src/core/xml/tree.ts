@@ -1,7 +1,9 @@
 import { XmlAttribute, XmlDocument, XmlElement } from './types';
 
 export function attribute(element: XmlElement, name: string): XmlAttribute | undefined {
-  for (const candidate of element.attributes) if (candidate.name === name) return candidate;
+  // An index loop: for...of makes an iterator per call, and this is called for nearly every element read.
+  const attributes = element.attributes;
+  for (let i = 0; i < attributes.length; i++) if (attributes[i].name === name) return attributes[i];
   return undefined;
 }
 
@@ -51,7 +53,9 @@ export function isWellFormed(document: XmlDocument): boolean {
 
 /** The element and every element below it, in document order. */
 export function selfAndDescendants(element: XmlElement): XmlElement[] {
-  return [element, ...descendants(element)];
+  const result = descendants(element);
+  result.unshift(element);
+  return result;
 }
 
 /** The element of the tree that starts exactly at an offset. */
