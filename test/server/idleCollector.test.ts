@@ -1,5 +1,5 @@
 import * as assert from 'node:assert/strict';
-import { constants, PerformanceObserver } from 'node:perf_hooks';
+import { constants, PerformanceEntry, PerformanceObserver } from 'node:perf_hooks';
 import { IdleCollector } from '../../server/src/idleCollector';
 
 /** Counts the full (mark-compact) collections while `run` goes on and a little after. */
@@ -7,7 +7,8 @@ async function majorCollectionsDuring(run: () => void): Promise<number> {
   let count = 0;
   const observer = new PerformanceObserver((list) => {
     for (const entry of list.getEntries()) {
-      if ((entry.detail as { kind?: number } | undefined)?.kind === constants.NODE_PERFORMANCE_GC_MAJOR) count++;
+      const detail = (entry as PerformanceEntry & { detail?: { kind?: number } }).detail;
+      if (detail?.kind === constants.NODE_PERFORMANCE_GC_MAJOR) count++;
     }
   });
   observer.observe({ entryTypes: ['gc'] });
