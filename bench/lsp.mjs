@@ -252,7 +252,7 @@ async function editLatency(filePath, text, label) {
     await pending;
     times.push(now() - started);
   }
-  row(`edit -> diagnostics, ${label}`, stats(times), 50);
+  row(`edit -> diagnostics, ${label}`, stats(times), 30);
   return { uri, version };
 }
 
