@@ -1,5 +1,5 @@
 import * as fs from 'node:fs';
-import { DEFAULT_LIMITS, describeKind, FileReadError, FileSystemHost } from '../core/sources';
+import { boundedBytes, DEFAULT_LIMITS, FileSystemHost, openError, readBufferFor } from '../core/sources';
 
 /**
  * The CLI's files, read with blocking calls: a command does one thing at a time, and each call of the
@@ -14,19 +14,11 @@ export const cliFileSystem: FileSystemHost = {
       // Non-blocking, so that opening a FIFO returns at once instead of waiting for a writer.
       descriptor = fs.openSync(filePath, fs.constants.O_RDONLY | fs.constants.O_NONBLOCK);
     } catch (error) {
-      const code = (error as NodeJS.ErrnoException).code;
-      if (code === 'ENOENT' || code === 'ENOTDIR') return Promise.resolve(undefined);
-      return Promise.reject(new FileReadError(`cannot read ${filePath} (${code ?? (error as Error).message})`));
+      const refusal = openError(filePath, error);
+      return refusal ? Promise.reject(refusal) : Promise.resolve(undefined);
     }
     try {
-      const stat = fs.fstatSync(descriptor);
-      if (!stat.isFile()) throw new FileReadError(`${filePath} is ${describeKind(stat)}, not a file; only regular files are read`);
-      if (stat.size > maxBytes)
-        throw new FileReadError(
-          `${filePath} is too large to read (${stat.size} bytes; the limit is ${maxBytes}, raised with --max-file-size)`,
-        );
-      // Read at most one byte past the bound, in case the file grows while it is read.
-      const buffer = Buffer.alloc(Math.min(stat.size, maxBytes) + 1);
+      const buffer = readBufferFor(filePath, fs.fstatSync(descriptor), maxBytes);
       let length = 0;
       for (;;) {
         const bytesRead = fs.readSync(descriptor, buffer, length, buffer.length - length, null);
@@ -34,9 +26,7 @@ export const cliFileSystem: FileSystemHost = {
         length += bytesRead;
         if (length === buffer.length) break;
       }
-      if (length > maxBytes)
-        throw new FileReadError(`${filePath} is too large to read (more than ${maxBytes} bytes, raised with --max-file-size)`);
-      return Promise.resolve(buffer.subarray(0, length));
+      return Promise.resolve(boundedBytes(filePath, buffer, length, maxBytes));
     } catch (error) {
       return Promise.reject(error as Error);
     } finally {

@@ -48,6 +48,28 @@ export function describeKind(stat: fs.Stats): string {
   return 'not a regular file';
 }
 
+/** The error opening a file for reading gives, or undefined where the file does not exist. */
+export function openError(filePath: string, error: unknown): FileReadError | undefined {
+  const code = (error as NodeJS.ErrnoException).code;
+  if (code === 'ENOENT' || code === 'ENOTDIR') return undefined;
+  return new FileReadError(`cannot read ${filePath} (${code ?? (error as Error).message})`);
+}
+
+/** A buffer for reading the opened file: one byte past the bound, in case it grows while it is read; refuses what is not a regular file or is too large. */
+export function readBufferFor(filePath: string, stat: fs.Stats, maxBytes: number): Buffer {
+  if (!stat.isFile()) throw new FileReadError(`${filePath} is ${describeKind(stat)}, not a file; only regular files are read`);
+  if (stat.size > maxBytes)
+    throw new FileReadError(`${filePath} is too large to read (${stat.size} bytes; the limit is ${maxBytes}, raised with --max-file-size)`);
+  return Buffer.alloc(Math.min(stat.size, maxBytes) + 1);
+}
+
+/** The bytes read, refused when the file grew past the bound while it was read. */
+export function boundedBytes(filePath: string, buffer: Buffer, length: number, maxBytes: number): Uint8Array {
+  if (length > maxBytes)
+    throw new FileReadError(`${filePath} is too large to read (more than ${maxBytes} bytes, raised with --max-file-size)`);
+  return buffer.subarray(0, length);
+}
+
 export const nodeFileSystem: FileSystemHost = {
   async readFile(filePath, maxBytes = DEFAULT_LIMITS.maxEntryBytes) {
     let handle: fs.promises.FileHandle;
@@ -55,19 +77,12 @@ export const nodeFileSystem: FileSystemHost = {
       // Non-blocking, so that opening a FIFO returns at once instead of waiting for a writer.
       handle = await fs.promises.open(filePath, fs.constants.O_RDONLY | fs.constants.O_NONBLOCK);
     } catch (error) {
-      const code = (error as NodeJS.ErrnoException).code;
-      if (code === 'ENOENT' || code === 'ENOTDIR') return undefined;
-      throw new FileReadError(`cannot read ${filePath} (${code ?? (error as Error).message})`);
+      const refusal = openError(filePath, error);
+      if (!refusal) return undefined;
+      throw refusal;
     }
     try {
-      const stat = await handle.stat();
-      if (!stat.isFile()) throw new FileReadError(`${filePath} is ${describeKind(stat)}, not a file; only regular files are read`);
-      if (stat.size > maxBytes)
-        throw new FileReadError(
-          `${filePath} is too large to read (${stat.size} bytes; the limit is ${maxBytes}, raised with --max-file-size)`,
-        );
-      // Read at most one byte past the bound, in case the file grows while it is read.
-      const buffer = Buffer.alloc(Math.min(stat.size, maxBytes) + 1);
+      const buffer = readBufferFor(filePath, await handle.stat(), maxBytes);
       let length = 0;
       for (;;) {
         const { bytesRead } = await handle.read(buffer, length, buffer.length - length, null);
@@ -75,9 +90,7 @@ export const nodeFileSystem: FileSystemHost = {
         length += bytesRead;
         if (length === buffer.length) break;
       }
-      if (length > maxBytes)
-        throw new FileReadError(`${filePath} is too large to read (more than ${maxBytes} bytes, raised with --max-file-size)`);
-      return buffer.subarray(0, length);
+      return boundedBytes(filePath, buffer, length, maxBytes);
     } finally {
       await handle.close();
     }

@@ -4,7 +4,7 @@ export type { PackageContents } from '../../../../common/src/packageEntries';
 export { splitScenarioPath } from '../../../../common/src/scenarioPath';
 export { baseName, childRef, diskRef, displayRef, refId, sameRef, SourceError } from './ref';
 export type { SourceRef } from './ref';
-export { describeKind, FileReadError, KindCache, nodeFileSystem } from './host';
+export { boundedBytes, FileReadError, KindCache, nodeFileSystem, openError, readBufferFor } from './host';
 export type { FileKind, FileSystemHost } from './host';
 export { DEFAULT_LIMITS, DEFAULT_PACKAGE_LIMITS } from './limits';
 export type { Limits, PackageLimits } from './limits';
