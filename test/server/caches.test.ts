@@ -78,6 +78,12 @@ describe('core: the last schema checks are bounded by size', () => {
     assert.deepEqual(memory.keys(), ['/virtual/c.xosc', '/virtual/a.xosc']);
   });
 
+  it('keeps at most its number of files, however small they are', () => {
+    const memory = new SchemaCheckMemory(2);
+    for (const name of ['a', 'b', 'c']) schemaProblems(diskRef(`/virtual/${name}.xosc`), parseXml(fileText(name)), memory);
+    assert.deepEqual(memory.keys(), ['/virtual/b.xosc', '/virtual/c.xosc']);
+  });
+
   it('a remembered check keeps no parse tree', async () => {
     const memory = new SchemaCheckMemory();
     const tree = (() => {

@@ -1,5 +1,5 @@
 import { Problem, ProblemSubject } from '../problems';
-import { refId, SourceRef } from '../sources';
+import { refId, SizedCache, SourceRef } from '../sources';
 import { schemaIndex } from './index';
 import { typeOfElement } from './query';
 import { ChosenVersion } from './version';
@@ -99,28 +99,26 @@ function recheckValueEdit(previous: RememberedCheck, document: XmlDocument): Pla
  * A file no longer remembered is simply checked in full again.
  */
 export class SchemaCheckMemory {
-  private readonly checks = new Map<string, { check: RememberedCheck; size: number }>();
-  private total = 0;
+  private readonly checks: SizedCache<RememberedCheck>;
 
-  constructor(
-    private readonly maxFiles = REMEMBERED_FILES,
-    private readonly maxBytes = REMEMBERED_CHECK_BYTES,
-  ) {}
+  constructor(maxFiles = REMEMBERED_FILES, maxBytes = REMEMBERED_CHECK_BYTES) {
+    this.checks = new SizedCache(maxBytes, maxFiles);
+  }
 
   /** Approximate bytes remembered. */
   get size(): number {
-    return this.total;
+    return this.checks.size;
   }
 
   /** The files remembered, the least recently checked first. */
   keys(): string[] {
-    return [...this.checks.keys()];
+    return this.checks.keys();
   }
 
   /** The schema check of a document, from the remembered check of its previous text where one value edit separates them. */
   check(key: string, document: XmlDocument, options: SchemaCheckOptions): PlacedFinding[] {
     const setting = `${options.version ?? 'auto'} ${options.modular ? 'modular' : 'strict'}`;
-    const previous = this.checks.get(key)?.check;
+    const previous = this.checks.get(key);
     let check: RememberedCheck | undefined;
     // The same text checks the same (a file read again by a new generation's flattener).
     const same = previous && previous.setting === setting && previous.text === document.text;
@@ -131,25 +129,8 @@ export class SchemaCheckMemory {
       // The FileHeader element would keep the whole parse tree; a re-check needs only the version.
       check = { text: document.text, setting, chosen: { ...full.chosen, header: undefined }, placed: full.findings.map(placed) };
     }
-    this.remember(key, check);
+    this.checks.set(key, check, rememberedSize(check));
     return check.placed;
-  }
-
-  private remember(key: string, check: RememberedCheck): void {
-    const previous = this.checks.get(key);
-    if (previous) {
-      this.checks.delete(key);
-      this.total -= previous.size;
-    }
-    const size = rememberedSize(check);
-    if (size > this.maxBytes) return;
-    this.checks.set(key, { check, size });
-    this.total += size;
-    for (const [oldest, entry] of this.checks) {
-      if (this.checks.size <= this.maxFiles && this.total <= this.maxBytes) break;
-      this.checks.delete(oldest);
-      this.total -= entry.size;
-    }
   }
 }
 

@@ -1,12 +1,20 @@
-/** Keeps values up to a total size, forgetting the least recently used first. */
+/** Keeps values up to a total size (and, if given, a number of entries), forgetting the least recently used first. */
 export class SizedCache<T> {
   private readonly entries = new Map<string, { value: T; size: number }>();
   private total = 0;
 
-  constructor(readonly maxBytes: number) {}
+  constructor(
+    readonly maxBytes: number,
+    readonly maxEntries = Infinity,
+  ) {}
 
   get size(): number {
     return this.total;
+  }
+
+  /** The keys, the least recently used first. */
+  keys(): string[] {
+    return [...this.entries.keys()];
   }
 
   get(key: string): T | undefined {
@@ -23,7 +31,7 @@ export class SizedCache<T> {
     this.entries.set(key, { value, size });
     this.total += size;
     for (const [oldest, entry] of this.entries) {
-      if (this.total <= this.maxBytes) break;
+      if (this.total <= this.maxBytes && this.entries.size <= this.maxEntries) break;
       this.entries.delete(oldest);
       this.total -= entry.size;
     }
