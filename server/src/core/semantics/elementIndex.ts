@@ -1,4 +1,4 @@
-import { ValueEdit, XmlElement } from '../xml';
+import { forEachElement, ValueEdit, XmlElement } from '../xml';
 import { SemanticModel } from './types';
 
 /** The document's elements by name, gathered once per model (the network checks each ask for a few names). */
@@ -7,16 +7,14 @@ const elementIndex = new WeakMap<SemanticModel, Map<string, XmlElement[]>>();
 export function elementsNamed(model: SemanticModel, name: string): XmlElement[] {
   let index = elementIndex.get(model);
   if (!index) {
-    index = new Map();
-    // One walk in document order with an explicit stack: no array of every element.
-    const stack: XmlElement[] = model.document.root ? [model.document.root] : [];
-    while (stack.length > 0) {
-      const element = stack.pop() as XmlElement;
-      const list = index.get(element.name);
-      if (list) list.push(element);
-      else index.set(element.name, [element]);
-      for (let i = element.children.length - 1; i >= 0; i--) stack.push(element.children[i]);
-    }
+    const byName = new Map<string, XmlElement[]>();
+    if (model.document.root)
+      forEachElement(model.document.root, (element) => {
+        const list = byName.get(element.name);
+        if (list) list.push(element);
+        else byName.set(element.name, [element]);
+      });
+    index = byName;
     elementIndex.set(model, index);
   }
   return index.get(name) ?? [];

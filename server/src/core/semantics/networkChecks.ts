@@ -1,5 +1,5 @@
 import { chooseVersion } from '../schema/version';
-import { attribute, XmlAttribute, XmlElement } from '../xml';
+import { attribute, firstDescendant, XmlAttribute, XmlElement } from '../xml';
 import type { Finding, SemanticCheck, SemanticContext } from './checks';
 import { inRange, rangeText, valueRangesOf } from './ranges';
 import { SemanticModel } from './types';
@@ -12,18 +12,6 @@ import { elementsNamed } from './elementIndex';
  * `data_type.non_negative_transition_time_in_light_state_action`, `data_type.positive_duration_in_phase`,
  * and the ranges the standard gives). Each is one SemanticCheck registered in SEMANTIC_CHECKS.
  */
-
-/** The first element below `element` of a name, in document order (the walk stops there). */
-function firstBelow(element: XmlElement, name: string): XmlElement | undefined {
-  const stack: XmlElement[] = [];
-  for (let i = element.children.length - 1; i >= 0; i--) stack.push(element.children[i]);
-  while (stack.length > 0) {
-    const next = stack.pop() as XmlElement;
-    if (next.name === name) return next;
-    for (let i = next.children.length - 1; i >= 0; i--) stack.push(next.children[i]);
-  }
-  return undefined;
-}
 
 function at(element: XmlElement, attr: XmlAttribute | undefined): Pick<Finding, 'element' | 'attribute' | 'start' | 'end'> {
   return attr
@@ -111,7 +99,7 @@ export const trafficSignalControllerRefs: SemanticCheck = (context) => {
 export const privateActionActors: SemanticCheck = (context) => {
   const findings: Finding[] = [];
   for (const group of elementsNamed(context.model, 'ManeuverGroup')) {
-    const privateAction = firstBelow(group, 'PrivateAction');
+    const privateAction = firstDescendant(group, 'PrivateAction');
     if (!privateAction) continue;
     const actors = group.children.find((child) => child.name === 'Actors');
     if (actors?.children.some((child) => child.name === 'EntityRef')) continue;

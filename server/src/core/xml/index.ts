@@ -8,6 +8,7 @@ export {
   attribute,
   attributeValue,
   descendants,
+  forEachElement,
   elementAt,
   elementStartingAt,
   escapeAttributeValue,

@@ -11,21 +11,34 @@ export function attributeValue(element: XmlElement, name: string): string | unde
   return attribute(element, name)?.value;
 }
 
+/** Calls `visit` on `element` and every element below it, in document order, without an array of them all. */
+export function forEachElement(element: XmlElement, visit: (element: XmlElement) => void): void {
+  const stack: XmlElement[] = [element];
+  while (stack.length > 0) {
+    const next = stack.pop() as XmlElement;
+    visit(next);
+    for (let i = next.children.length - 1; i >= 0; i--) stack.push(next.children[i]);
+  }
+}
+
 /** Every element below `element`, in document order (an array: generators are slow on hot paths). */
 export function descendants(element: XmlElement): XmlElement[] {
   const result: XmlElement[] = [];
+  forEachElement(element, (next) => {
+    if (next !== element) result.push(next);
+  });
+  return result;
+}
+
+/** The first element below `element` of a name, in document order (the walk stops there). */
+export function firstDescendant(element: XmlElement, name: string): XmlElement | undefined {
   const stack: XmlElement[] = [];
   for (let i = element.children.length - 1; i >= 0; i--) stack.push(element.children[i]);
   while (stack.length > 0) {
     const next = stack.pop() as XmlElement;
-    result.push(next);
+    if (next.name === name) return next;
     for (let i = next.children.length - 1; i >= 0; i--) stack.push(next.children[i]);
   }
-  return result;
-}
-
-export function firstDescendant(element: XmlElement, name: string): XmlElement | undefined {
-  for (const candidate of descendants(element)) if (candidate.name === name) return candidate;
   return undefined;
 }
 

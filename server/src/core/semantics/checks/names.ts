@@ -1,4 +1,4 @@
-import { attribute, XmlElement } from '../../xml';
+import { attribute, forEachElement, XmlElement } from '../../xml';
 import type { Finding, SemanticCheck } from '../checks';
 import { at, relatedAt } from './support';
 
@@ -39,12 +39,9 @@ export const duplicateNames: SemanticCheck = (context) => {
   const referencedEntities = new Set(
     model.entityReferences.map((reference) => evaluator.textOf(reference.element, reference.attribute) ?? reference.attribute.value),
   );
-  // Every element of the tree is walked on each edit: an explicit stack, and the cheapest tests first.
-  const stack: XmlElement[] = [root];
-  while (stack.length > 0) {
-    const parent = stack.pop() as XmlElement;
-    for (let i = parent.children.length - 1; i >= 0; i--) stack.push(parent.children[i]);
-    if (parent.children.length < 2) continue;
+  // Every element of the tree is walked on each edit: the cheapest tests first.
+  forEachElement(root, (parent) => {
+    if (parent.children.length < 2) return;
     let first: Map<string, XmlElement> | undefined;
     for (const child of parent.children) {
       const nameAttribute = attribute(child, 'name');
@@ -77,6 +74,6 @@ export const duplicateNames: SemanticCheck = (context) => {
         ],
       });
     }
-  }
+  });
   return findings;
 };
