@@ -13,7 +13,8 @@ const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 const server = path.join(root, 'dist', 'server.js');
 const library = path.resolve(root, '..', 'shared', 'corpus', 'modular2simple', 'library');
 const samples = Number(process.env.BENCH_SAMPLES ?? 100);
-// BENCH_NODE_ARGS are given to the server's node (e.g. --require of a probe); BENCH_LSP_EDITS_ONLY=1 stops after part 1.
+// BENCH_NODE_ARGS are given to the server's node (e.g. --require of a probe); BENCH_LSP_EDITS_ONLY=1 stops after part 1;
+// BENCH_TIMES=1 prints each edit's time in order.
 const nodeArgs = (process.env.BENCH_NODE_ARGS ?? '').split(' ').filter(Boolean);
 
 if (!existsSync(server)) {
@@ -253,6 +254,7 @@ async function editLatency(filePath, text, label) {
     times.push(now() - started);
   }
   row(`edit -> diagnostics, ${label}`, stats(times), 30);
+  if (process.env.BENCH_TIMES) console.log(times.map((t) => t.toFixed(0)).join(" "));
   return { uri, version };
 }
 

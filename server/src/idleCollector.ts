@@ -15,7 +15,7 @@ const PRESSURE_FLOOR_BYTES = 128 * 1024 * 1024;
  */
 export class IdleCollector {
   private timer: NodeJS.Timeout | undefined;
-  private readonly collect: (() => void) | undefined;
+  private readonly collect: ((options?: { type: 'minor' | 'major' }) => void) | undefined;
   private pressureBound: number;
   private pressureCollectionQueued = false;
 
@@ -26,7 +26,7 @@ export class IdleCollector {
     this.pressureBound = pressureFloorBytes;
     try {
       v8.setFlagsFromString('--expose-gc');
-      this.collect = vm.runInNewContext('gc') as () => void;
+      this.collect = vm.runInNewContext('gc') as (options?: { type: 'minor' | 'major' }) => void;
     } catch {
       this.collect = undefined;
     }
@@ -44,14 +44,25 @@ export class IdleCollector {
     this.relievePressure();
   }
 
-  /** Used heap past the bound: one full collection, queued behind what is already running. */
+  /**
+   * Used heap past the bound: one full collection, queued behind what is already running. Otherwise,
+   * a young generation more than half full: one scavenge now, between edits, where it copies only the
+   * last analysis and overlaps the diagnostics delay, rather than inside the next analysis, where it
+   * would copy the previous analysis and the one being built and hold the edit's diagnostics up.
+   */
   private relievePressure(): void {
-    if (this.pressureCollectionQueued || v8.getHeapStatistics().used_heap_size <= this.pressureBound) return;
+    if (this.pressureCollectionQueued) return;
+    const full = v8.getHeapStatistics().used_heap_size > this.pressureBound;
+    if (!full && !youngGenerationHalfFull()) return;
     this.pressureCollectionQueued = true;
     setImmediate(() => {
       this.pressureCollectionQueued = false;
-      this.collect?.();
-      this.rebound();
+      if (full) {
+        this.collect?.();
+        this.rebound();
+      } else {
+        this.collect?.({ type: 'minor' });
+      }
     });
   }
 
@@ -74,4 +85,10 @@ export class IdleCollector {
     }
     this.rebound();
   }
+}
+
+/** Whether the young generation's current semi-space is more than half used. */
+function youngGenerationHalfFull(): boolean {
+  const young = v8.getHeapSpaceStatistics().find((space) => space.space_name === 'new_space');
+  return young !== undefined && young.space_used_size > young.space_available_size;
 }
