@@ -254,7 +254,7 @@ async function editLatency(filePath, text, label) {
     times.push(now() - started);
   }
   row(`edit -> diagnostics, ${label}`, stats(times), 30);
-  if (process.env.BENCH_TIMES) console.log(times.map((t) => t.toFixed(0)).join(" "));
+  if (process.env.BENCH_TIMES) console.log(times.map((t) => t.toFixed(0)).join(' '));
   return { uri, version };
 }
 
