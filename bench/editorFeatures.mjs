@@ -128,6 +128,7 @@ for (let i = 0; i < warmUp + Math.min(samples, 60); i++) {
   (i < warmUp ? coldEdits : edits).push(now() - started);
 }
 const edit = stats(edits);
+if (process.env.BENCH_TIMES) console.log([...coldEdits, ...edits].map((t) => t.toFixed(0)).join(' '));
 // After an edit, the first request also waits for the file's new analysis.
 version++;
 await connection.sendNotification('textDocument/didChange', {

@@ -7,7 +7,8 @@ import { FlatSource } from '../../server/src/core/flatten';
 import { SchemaCheckMemory, schemaProblems } from '../../server/src/core/schema/problems';
 import { parseXml } from '../../server/src/core/xml';
 import { CachingFileSystem, DEFAULT_SETTINGS, SharedSources, Workspace } from '../../server/src/workspace';
-import { packageOf, scenario, simpleGroup } from '../support/fixtures';
+import { TextDocument } from 'vscode-languageserver-textdocument';
+import { outerGroup, packageOf, scenario, simpleGroup } from '../support/fixtures';
 import { temporaryWorkspace } from '../support/workspace';
 
 describe('core: the package cache is bounded by size', () => {
@@ -119,5 +120,46 @@ describe('server: analyses of files not open are bounded like the shared sources
     assert.equal(first.tree.deref(), undefined, "a's parse tree was let go");
     const again = await analyseA();
     assert.deepEqual(again.problems, first.problems);
+  });
+});
+
+describe('server: the files an open document reads are kept from its first analysis on', () => {
+  it('an open main file importing more than the bound holds keeps every file it read: its next edit reads none again', async () => {
+    const simpleNames = ['s0', 's1', 's2', 's3', 's4'];
+    const texts: Record<string, string> = Object.fromEntries(
+      simpleNames.map((name) => [`${name}.xosc`, scenario(simpleGroup(name.toUpperCase()))]),
+    );
+    texts['main.xosc'] = scenario(
+      outerGroup(
+        'Car',
+        'car',
+        simpleNames.map((name) => ({ file: `${name}.xosc`, groups: [{ name: name.toUpperCase() }] })),
+      ),
+    );
+    const root = temporaryWorkspace(texts);
+    // Room for about two of the five files read (30 bytes a character).
+    const workspace = new Workspace(Math.floor(30 * 2.5 * texts['s0.xosc'].length));
+    workspace.configure([root], DEFAULT_SETTINGS);
+    const main = diskRef(path.join(root, 'main.xosc'));
+    const uri = `file://${main.disk}`;
+    workspace.documents.add(uri, TextDocument.create(uri, 'xml', 1, texts['main.xosc']), Promise.resolve(main));
+    workspace.open(uri, main);
+    const importedSources = async () => {
+      const analysis = await workspace.analyze(main);
+      const sources = analysis.source.links.map((link) => link.source);
+      assert.equal(sources.length, simpleNames.length);
+      return sources;
+    };
+    const first = await importedSources();
+    const opened = workspace.documents.text(uri) as TextDocument;
+    const end = opened.positionAt(opened.getText().length);
+    const edited = TextDocument.update(opened, [{ range: { start: end, end }, text: '<!-- typed -->' }], 2);
+    workspace.documents.setText(uri, edited);
+    workspace.update(main);
+    const afterEdit = await importedSources();
+    assert.deepEqual(
+      afterEdit.map((source, index) => (source === first[index] ? 'reused' : `${simpleNames[index]} read again`)),
+      simpleNames.map(() => 'reused'),
+    );
   });
 });
