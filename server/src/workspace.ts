@@ -1,9 +1,7 @@
 import * as path from 'node:path';
-import { AnalysisResult, Flattener, FlatSource, SchemaOptions } from './core/flatten';
+import { AnalysisResult, Flattener, FlatSource } from './core/flatten';
 import { decodeScenario } from './core/encoding';
-import { isSchemaVersion } from './core/schema/model';
 import { SchemaCheckMemory } from './core/schema/problems';
-import { SchemaVersionSetting } from './core/schema/version';
 import {
   FileSystemHost,
   KindCache,
@@ -20,64 +18,9 @@ import { Problem } from './core/problems';
 import { LineIndex, Range } from './core/text';
 import { OpenDocument, OpenDocuments } from './documents';
 import { UriResolver, refToUri } from './uris';
-import { DEFAULT_FORMAT_OPTIONS } from './core/format';
-import { isSimulator, Simulator } from './core/profiles/simulators';
 import { SCENARIO_FILE, walkFiles } from './core/walk';
-
-export interface ServerSettings {
-  /** Directories searched after SCENARIO_PATH. */
-  scenarioPath: string[];
-  /** Delay between the last edit and new diagnostics, in milliseconds. */
-  diagnosticsDelay: number;
-  /** Files larger than this are indexed by name only, never parsed for workspace symbols. */
-  maxIndexedFileBytes: number;
-  /** The simulator whose known gaps are reported as warnings (`asam`: none). */
-  simulator: Simulator;
-  /** Past this width a formatted start tag puts each attribute on its own line. */
-  formatMaxLineWidth: number;
-  /** The OpenSCENARIO schema files are checked against (`modular2simple.schema.version`). */
-  schemaVersion: SchemaVersionSetting | 'off';
-}
-
-export const DEFAULT_SETTINGS: ServerSettings = {
-  scenarioPath: [],
-  diagnosticsDelay: 5,
-  maxIndexedFileBytes: 8 * 1024 * 1024,
-  simulator: 'asam',
-  formatMaxLineWidth: DEFAULT_FORMAT_OPTIONS.maxLineWidth,
-  schemaVersion: 'auto',
-};
-
-/** Reads settings sent by a client, keeping defaults for anything missing or of the wrong type. */
-export function readSettings(value: unknown): ServerSettings {
-  const record = (value && typeof value === 'object' ? value : {}) as Record<string, unknown>;
-  const scenarioPath = Array.isArray(record.scenarioPath)
-    ? record.scenarioPath.filter((entry): entry is string => typeof entry === 'string' && entry.trim().length > 0)
-    : typeof record.scenarioPath === 'string'
-      ? splitScenarioPath(record.scenarioPath)
-      : [];
-  const diagnostics = (record.diagnostics && typeof record.diagnostics === 'object' ? record.diagnostics : {}) as Record<string, unknown>;
-  const delay = typeof diagnostics.delay === 'number' && diagnostics.delay >= 0 ? diagnostics.delay : DEFAULT_SETTINGS.diagnosticsDelay;
-  const format = (record.format && typeof record.format === 'object' ? record.format : {}) as Record<string, unknown>;
-  const width =
-    typeof format.maxLineWidth === 'number' && format.maxLineWidth >= 1
-      ? Math.floor(format.maxLineWidth)
-      : DEFAULT_SETTINGS.formatMaxLineWidth;
-  const simulator = isSimulator(record.simulator) ? record.simulator : DEFAULT_SETTINGS.simulator;
-  const schema = (record.schema && typeof record.schema === 'object' ? record.schema : {}) as Record<string, unknown>;
-  const schemaVersion =
-    schema.version === 'off' || schema.version === 'auto' || isSchemaVersion(schema.version)
-      ? schema.version
-      : DEFAULT_SETTINGS.schemaVersion;
-  return {
-    scenarioPath,
-    diagnosticsDelay: delay,
-    maxIndexedFileBytes: DEFAULT_SETTINGS.maxIndexedFileBytes,
-    simulator,
-    formatMaxLineWidth: width,
-    schemaVersion,
-  };
-}
+import { DEFAULT_SETTINGS, ServerSettings } from './settings';
+import { ReusingFlattener, SHARED_SOURCE_BYTES, SharedSources } from './sharedSources';
 
 /** Bytes of files and of unpacked packages that the server keeps, each; the rest is read again on demand. */
 export const SERVER_CACHE_BYTES = 64 * 1024 * 1024;
@@ -202,123 +145,6 @@ export function listScenarioFiles(folders: string[], limit = 100_000): Promise<s
     sorted: true,
     limit,
   });
-}
-
-/** Heap bytes a read source takes per character of its text, about (its parse tree, models and evaluated values). */
-const SOURCE_BYTES_PER_CHARACTER = 30;
-
-/** The read sources kept across generations beyond those open documents read, about this many heap bytes in all. */
-export const SHARED_SOURCE_BYTES = 64 * 1024 * 1024;
-
-/**
- * The sources shared across generations, least recently used first out once the approximate size of
- * the others passes a bound (a source is sized when it is read). Those `kept` names (open documents and
- * the files they read) stay and do not count: a large open main file must not push out the files it
- * imports, which every edit of it reads again. A source let go is read again on demand.
- */
-export class SharedSources {
-  private readonly entries = new Map<string, { source: Promise<FlatSource>; size: number }>();
-  private total = 0;
-
-  constructor(
-    private readonly maxBytes: number,
-    private readonly kept: () => ReadonlySet<string>,
-  ) {}
-
-  /** Approximate heap bytes of the sources not kept (as it was when each was read). */
-  get size(): number {
-    return this.total;
-  }
-
-  get(id: string): Promise<FlatSource> | undefined {
-    const entry = this.entries.get(id);
-    if (!entry) return undefined;
-    this.entries.delete(id);
-    this.entries.set(id, entry);
-    return entry.source;
-  }
-
-  set(id: string, source: Promise<FlatSource>): void {
-    this.delete(id);
-    const entry = { source, size: 0 };
-    this.entries.set(id, entry);
-    source.then(
-      (flat) => {
-        if (this.entries.get(id) !== entry) return;
-        if (this.kept().has(id)) return;
-        entry.size = SOURCE_BYTES_PER_CHARACTER * ((flat.original?.document.text.length ?? 0) + (flat.text?.length ?? 0));
-        this.total += entry.size;
-        this.trim();
-      },
-      // The flattener forgets a source that failed; nothing is counted for it.
-      () => undefined,
-    );
-  }
-
-  delete(id: string): void {
-    const entry = this.entries.get(id);
-    if (!entry) return;
-    this.entries.delete(id);
-    this.total -= entry.size;
-  }
-
-  clear(): void {
-    this.entries.clear();
-    this.total = 0;
-  }
-
-  keys(): string[] {
-    return [...this.entries.keys()];
-  }
-
-  private trim(): void {
-    if (this.total <= this.maxBytes) return;
-    const kept = this.kept();
-    for (const [id, entry] of this.entries) {
-      if (this.total <= this.maxBytes) break;
-      if (entry.size > 0 && !kept.has(id)) this.delete(id);
-    }
-  }
-}
-
-/**
- * A Flattener that shares what it read with the Flatteners of later generations, so that an edit
- * in one file analyses that file again and reuses every unchanged file it depends on.
- */
-class ReusingFlattener extends Flattener {
-  constructor(
-    store: ScenarioStore,
-    private readonly shared: SharedSources,
-    private readonly dependencies: Map<string, string[]>,
-    simulator: Simulator,
-    schema: SchemaOptions,
-    schemaChecks: SchemaCheckMemory,
-    /** Told of each file read on behalf of another (the first of `stack`), before the read finishes. */
-    private readonly noteRead: (reader: string, id: string) => void,
-  ) {
-    super(store, simulator, schema, schemaChecks);
-  }
-
-  override source(ref: SourceRef, stack: SourceRef[]): Promise<FlatSource> {
-    const id = refId(ref);
-    if (stack.length > 0) this.noteRead(refId(stack[0]), id);
-    const known = this.shared.get(id);
-    if (known) return known;
-    // Only the shared sources hold it (not this generation's own cache too), so their bound holds within a generation.
-    const created = this.build(ref, [...stack, ref]);
-    this.shared.set(id, created);
-    created.then(
-      (source) => {
-        if (this.shared.get(id) === created)
-          this.dependencies.set(
-            id,
-            source.dependencies.map((dependency) => refId(dependency)),
-          );
-      },
-      () => this.shared.delete(id),
-    );
-    return created;
-  }
 }
 
 /** An analysis of one generation: whole while pending or for an open document, else its problems only. */

@@ -1,14 +1,7 @@
 import * as assert from 'node:assert/strict';
-import {
-  convertValue,
-  evaluateTree,
-  ExpressionError,
-  parseExpressionBody,
-  parseLiteral,
-  ParameterLookup,
-  TypedValue,
-  valueForm,
-} from '../../server/src/core/semantics/expressions';
+import { evaluateTree, ParameterLookup } from '../../server/src/core/semantics/expressionEvaluation';
+import { ExpressionError, parseExpressionBody, valueForm } from '../../server/src/core/semantics/expressionParser';
+import { convertValue, parseLiteral, TypedValue } from '../../server/src/core/semantics/values';
 
 const PARAMETERS: Record<string, TypedValue> = {
   a: { value: 6, type: 'double' },

@@ -6,7 +6,9 @@ import { childRef, diskRef, ScenarioStore } from '../../server/src/core/sources'
 import { FlatSource } from '../../server/src/core/flatten';
 import { SchemaCheckMemory, schemaProblems } from '../../server/src/core/schema/problems';
 import { parseXml } from '../../server/src/core/xml';
-import { CachingFileSystem, DEFAULT_SETTINGS, SharedSources, Workspace } from '../../server/src/workspace';
+import { DEFAULT_SETTINGS } from '../../server/src/settings';
+import { SharedSources } from '../../server/src/sharedSources';
+import { CachingFileSystem, Workspace } from '../../server/src/workspace';
 import { TextDocument } from 'vscode-languageserver-textdocument';
 import { outerGroup, packageOf, scenario, simpleGroup } from '../support/fixtures';
 import { temporaryWorkspace } from '../support/workspace';

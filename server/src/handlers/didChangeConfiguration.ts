@@ -1,5 +1,5 @@
 import { fileUri } from '../uris';
-import { readSettings } from '../workspace';
+import { readSettings } from '../settings';
 import { notification, ServerContext } from './context';
 
 export const CONFIGURATION_SECTION = 'modular2simple';

@@ -9,7 +9,7 @@ import {
 import { SEMANTIC_TOKENS_LEGEND } from '../features/semanticTokens';
 import { CUSTOM_REQUESTS } from '../../../common/src/protocol';
 import { filePathOf } from '../uris';
-import { readSettings } from '../workspace';
+import { readSettings } from '../settings';
 import { ServerContext } from './context';
 
 /** `initialize`: reads the client's capabilities, folders and first settings; announces what the server does. */

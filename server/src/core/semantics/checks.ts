@@ -6,7 +6,7 @@ import { closestMatch } from '../text';
 import { attribute, descendants, XmlAttribute, XmlElement } from '../xml';
 import { CatalogResolution } from './catalogs';
 import { esminiRule } from './esminiValues';
-import { ExpressionError } from './expressions';
+import { ExpressionError } from './expressionParser';
 import { valueConstraints } from './checks/constraints';
 import { duplicateNames } from './checks/names';
 import { at, relatedAt } from './checks/support';

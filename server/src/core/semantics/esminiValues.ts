@@ -1,6 +1,7 @@
 import { ESMINI_PROFILE } from '../profiles/esmini';
 import { ValueRule } from '../profiles/facts';
-import { ExpressionNode, ParameterType, ParameterValue } from './expressions';
+import { ExpressionNode } from './expressionParser';
+import { ParameterType, ParameterValue } from './values';
 
 /**
  * Values as esmini (release 3.6.0) computes them. esmini keeps every parameter value as text; a

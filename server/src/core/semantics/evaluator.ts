@@ -1,18 +1,9 @@
 import { ValueRule } from '../profiles/facts';
 import { XmlAttribute, XmlElement } from '../xml';
 import { atof, esminiFromTree, EsminiText, esminiExpression, esminiRule, esminiTyped, plainNumber } from './esminiValues';
-import {
-  convertValue,
-  evaluateTree,
-  ExpressionError,
-  formatValue,
-  integralConversionError,
-  LookupResult,
-  ParameterType,
-  ParameterValue,
-  parseLiteral,
-  TypedValue,
-} from './expressions';
+import { evaluateTree, LookupResult } from './expressionEvaluation';
+import { ExpressionError } from './expressionParser';
+import { convertValue, formatValue, integralConversionError, ParameterType, ParameterValue, parseLiteral, TypedValue } from './values';
 import { resolveName } from './scopes';
 import { Declaration, ParameterAssignmentInfo, Scope, SemanticModel, ValueSite } from './types';
 

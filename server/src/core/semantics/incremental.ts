@@ -1,6 +1,6 @@
 import { attribute, ValueEdit, XmlAttribute, XmlDocument, XmlElement } from '../xml';
 import { carryElementIndex } from './elementIndex';
-import { ExpressionNode } from './expressions';
+import { ExpressionNode } from './expressionParser';
 import { ParameterUseCollector } from './parameterUses';
 import { Declaration, NamedElement, ParameterUse, Scope, SemanticModel, ValueSite } from './types';
 

@@ -41,7 +41,9 @@ import { Reading } from './evaluator';
 import { roadSignalsOf } from './roadNetwork';
 import { buildSemanticModel, Declaration, Evaluator, ParameterUse, Scope, SemanticModel, ValueResult, visibleDeclarations } from './model';
 
-export * from './expressions';
+export * from './values';
+export * from './expressionParser';
+export * from './expressionEvaluation';
 export * from './model';
 export * from './catalogs';
 export * from './checks';

@@ -1,5 +1,5 @@
 import { attribute, XmlAttribute, XmlElement } from '../xml';
-import { valueForm } from './expressions';
+import { valueForm } from './expressionParser';
 import { resolveName } from './scopes';
 import { Declaration, ParameterUse, Scope, SemanticModel, ValueSite } from './types';
 

@@ -1,5 +1,5 @@
 import { attribute, XmlElement } from '../xml';
-import { normalizeParameterType } from './expressions';
+import { normalizeParameterType } from './values';
 import { Declaration, DeclarationKind, Scope, SemanticModel } from './types';
 
 /**

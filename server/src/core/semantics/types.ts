@@ -1,5 +1,6 @@
 import { XmlAttribute, XmlDocument, XmlElement } from '../xml';
-import { ParameterType, ValueForm } from './expressions';
+import { ValueForm } from './expressionParser';
+import { ParameterType } from './values';
 
 /**
  * The OpenSCENARIO semantic model of one parsed document (synchronous, no file access): parameter

@@ -1,4 +1,4 @@
-import { ExpressionError } from '../expressions';
+import { ExpressionError } from '../expressionParser';
 import { Evaluator } from '../evaluator';
 import { ModelCarry, takeModelCarry } from '../incremental';
 import { SemanticModel } from '../types';

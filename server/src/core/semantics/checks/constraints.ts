@@ -1,7 +1,7 @@
 import { attribute, XmlElement } from '../../xml';
 import { assignmentsOf } from '../catalogs';
 import type { Finding, SemanticCheck, SemanticContext } from '../checks';
-import { convertValue, formatValue, ParameterType, ParameterValue } from '../expressions';
+import { convertValue, formatValue, ParameterType, ParameterValue } from '../values';
 import { Declaration, Evaluator, referencedName } from '../model';
 import { at, relatedAt } from './support';
 

@@ -1,6 +1,6 @@
 import { attribute, XmlElement } from '../../xml';
 import type { Finding, SemanticCheck } from '../checks';
-import { convertValue } from '../expressions';
+import { convertValue } from '../values';
 import { Declaration, referencedName, resolveName, SemanticModel } from '../model';
 import { at } from './support';
 

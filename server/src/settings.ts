@@ -1,0 +1,60 @@
+import { isSchemaVersion } from './core/schema/model';
+import { SchemaVersionSetting } from './core/schema/version';
+import { splitScenarioPath } from './core/sources';
+import { DEFAULT_FORMAT_OPTIONS } from './core/format';
+import { isSimulator, Simulator } from './core/profiles/simulators';
+
+export interface ServerSettings {
+  /** Directories searched after SCENARIO_PATH. */
+  scenarioPath: string[];
+  /** Delay between the last edit and new diagnostics, in milliseconds. */
+  diagnosticsDelay: number;
+  /** Files larger than this are indexed by name only, never parsed for workspace symbols. */
+  maxIndexedFileBytes: number;
+  /** The simulator whose known gaps are reported as warnings (`asam`: none). */
+  simulator: Simulator;
+  /** Past this width a formatted start tag puts each attribute on its own line. */
+  formatMaxLineWidth: number;
+  /** The OpenSCENARIO schema files are checked against (`modular2simple.schema.version`). */
+  schemaVersion: SchemaVersionSetting | 'off';
+}
+
+export const DEFAULT_SETTINGS: ServerSettings = {
+  scenarioPath: [],
+  diagnosticsDelay: 5,
+  maxIndexedFileBytes: 8 * 1024 * 1024,
+  simulator: 'asam',
+  formatMaxLineWidth: DEFAULT_FORMAT_OPTIONS.maxLineWidth,
+  schemaVersion: 'auto',
+};
+
+/** Reads settings sent by a client, keeping defaults for anything missing or of the wrong type. */
+export function readSettings(value: unknown): ServerSettings {
+  const record = (value && typeof value === 'object' ? value : {}) as Record<string, unknown>;
+  const scenarioPath = Array.isArray(record.scenarioPath)
+    ? record.scenarioPath.filter((entry): entry is string => typeof entry === 'string' && entry.trim().length > 0)
+    : typeof record.scenarioPath === 'string'
+      ? splitScenarioPath(record.scenarioPath)
+      : [];
+  const diagnostics = (record.diagnostics && typeof record.diagnostics === 'object' ? record.diagnostics : {}) as Record<string, unknown>;
+  const delay = typeof diagnostics.delay === 'number' && diagnostics.delay >= 0 ? diagnostics.delay : DEFAULT_SETTINGS.diagnosticsDelay;
+  const format = (record.format && typeof record.format === 'object' ? record.format : {}) as Record<string, unknown>;
+  const width =
+    typeof format.maxLineWidth === 'number' && format.maxLineWidth >= 1
+      ? Math.floor(format.maxLineWidth)
+      : DEFAULT_SETTINGS.formatMaxLineWidth;
+  const simulator = isSimulator(record.simulator) ? record.simulator : DEFAULT_SETTINGS.simulator;
+  const schema = (record.schema && typeof record.schema === 'object' ? record.schema : {}) as Record<string, unknown>;
+  const schemaVersion =
+    schema.version === 'off' || schema.version === 'auto' || isSchemaVersion(schema.version)
+      ? schema.version
+      : DEFAULT_SETTINGS.schemaVersion;
+  return {
+    scenarioPath,
+    diagnosticsDelay: delay,
+    maxIndexedFileBytes: DEFAULT_SETTINGS.maxIndexedFileBytes,
+    simulator,
+    formatMaxLineWidth: width,
+    schemaVersion,
+  };
+}

@@ -1,0 +1,121 @@
+import { Flattener, FlatSource, SchemaOptions } from './core/flatten';
+import { SchemaCheckMemory } from './core/schema/problems';
+import { refId, ScenarioStore, SourceRef } from './core/sources';
+import { Simulator } from './core/profiles/simulators';
+
+/** Heap bytes a read source takes per character of its text, about (its parse tree, models and evaluated values). */
+const SOURCE_BYTES_PER_CHARACTER = 30;
+
+/** The read sources kept across generations beyond those open documents read, about this many heap bytes in all. */
+export const SHARED_SOURCE_BYTES = 64 * 1024 * 1024;
+
+/**
+ * The sources shared across generations, least recently used first out once the approximate size of
+ * the others passes a bound (a source is sized when it is read). Those `kept` names (open documents and
+ * the files they read) stay and do not count: a large open main file must not push out the files it
+ * imports, which every edit of it reads again. A source let go is read again on demand.
+ */
+export class SharedSources {
+  private readonly entries = new Map<string, { source: Promise<FlatSource>; size: number }>();
+  private total = 0;
+
+  constructor(
+    private readonly maxBytes: number,
+    private readonly kept: () => ReadonlySet<string>,
+  ) {}
+
+  /** Approximate heap bytes of the sources not kept (as it was when each was read). */
+  get size(): number {
+    return this.total;
+  }
+
+  get(id: string): Promise<FlatSource> | undefined {
+    const entry = this.entries.get(id);
+    if (!entry) return undefined;
+    this.entries.delete(id);
+    this.entries.set(id, entry);
+    return entry.source;
+  }
+
+  set(id: string, source: Promise<FlatSource>): void {
+    this.delete(id);
+    const entry = { source, size: 0 };
+    this.entries.set(id, entry);
+    source.then(
+      (flat) => {
+        if (this.entries.get(id) !== entry) return;
+        if (this.kept().has(id)) return;
+        entry.size = SOURCE_BYTES_PER_CHARACTER * ((flat.original?.document.text.length ?? 0) + (flat.text?.length ?? 0));
+        this.total += entry.size;
+        this.trim();
+      },
+      // The flattener forgets a source that failed; nothing is counted for it.
+      () => undefined,
+    );
+  }
+
+  delete(id: string): void {
+    const entry = this.entries.get(id);
+    if (!entry) return;
+    this.entries.delete(id);
+    this.total -= entry.size;
+  }
+
+  clear(): void {
+    this.entries.clear();
+    this.total = 0;
+  }
+
+  keys(): string[] {
+    return [...this.entries.keys()];
+  }
+
+  private trim(): void {
+    if (this.total <= this.maxBytes) return;
+    const kept = this.kept();
+    for (const [id, entry] of this.entries) {
+      if (this.total <= this.maxBytes) break;
+      if (entry.size > 0 && !kept.has(id)) this.delete(id);
+    }
+  }
+}
+
+/**
+ * A Flattener that shares what it read with the Flatteners of later generations, so that an edit
+ * in one file analyses that file again and reuses every unchanged file it depends on.
+ */
+export class ReusingFlattener extends Flattener {
+  constructor(
+    store: ScenarioStore,
+    private readonly shared: SharedSources,
+    private readonly dependencies: Map<string, string[]>,
+    simulator: Simulator,
+    schema: SchemaOptions,
+    schemaChecks: SchemaCheckMemory,
+    /** Told of each file read on behalf of another (the first of `stack`), before the read finishes. */
+    private readonly noteRead: (reader: string, id: string) => void,
+  ) {
+    super(store, simulator, schema, schemaChecks);
+  }
+
+  override source(ref: SourceRef, stack: SourceRef[]): Promise<FlatSource> {
+    const id = refId(ref);
+    if (stack.length > 0) this.noteRead(refId(stack[0]), id);
+    const known = this.shared.get(id);
+    if (known) return known;
+    // Only the shared sources hold it (not this generation's own cache too), so their bound holds within a generation.
+    const created = this.build(ref, [...stack, ref]);
+    this.shared.set(id, created);
+    created.then(
+      (source) => {
+        if (this.shared.get(id) === created)
+          this.dependencies.set(
+            id,
+            source.dependencies.map((dependency) => refId(dependency)),
+          );
+      },
+      () => this.shared.delete(id),
+    );
+    return created;
+  }
+}
