@@ -1,4 +1,7 @@
-/** The page's lists, rebuilt when the scene or the runs change: entities, events and their timeline markers, problems, the title, the follow list. */
+/**
+ * The page's lists, rebuilt when the scene or the runs change: entities, events and their timeline markers,
+ * problems, the title, the follow list.
+ */
 import { setTime } from './controls';
 import { compareMode, element, followList, playButton, slider } from './dom';
 import { open } from './host';

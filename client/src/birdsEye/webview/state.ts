@@ -1,4 +1,7 @@
-/** What the view shows (the scene, the runs, the camera, the time, the entity chosen) and what follows from it: the panes, where the entities are. */
+/**
+ * What the view shows (the scene, the runs, the camera, the time, the entity chosen) and what follows from it:
+ * the panes, where the entities are.
+ */
 import type { SceneResult } from '../../../../common/src/sceneProtocol';
 import { ENTITY_COLORS, PlacedBox, poseAt, RoadShapes, startBoxes, ViewTransform } from '../draw';
 import type { RunTracks } from '../messages';
