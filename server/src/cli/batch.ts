@@ -7,7 +7,7 @@ import { concreteRun, searchPathOf, variedParameters } from '../batch/plan';
 import { Progress } from '../batch/progress';
 import { BatchIdentity, ResultsError, ResultsFolder } from '../batch/results';
 import { NoEsminiError, runConcrete, RunSettings } from '../batch/runConcrete';
-import type { PackagedFile } from '../core/flatten/rebase';
+import type { PackagedFile } from '../core/flatten/types';
 import { FileKind, nodeFileSystem, splitScenarioPath } from '../core/sources';
 import {
   formatVariationProblems,
