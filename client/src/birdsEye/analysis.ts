@@ -3,7 +3,7 @@
  * tooltip's place, the speed/gap/time-to-collision series and the export's layout.
  * No DOM, so that it runs (and is tested) in Node too.
  */
-import { boxCorners, type PlacedBox, type ViewTransform, toWorld } from './draw';
+import { boxCorners, type ExportLayout, type PlacedBox, type ViewTransform, toWorld } from './draw';
 import type { Bounds } from './labels';
 import type { RunTracks } from './messages';
 
@@ -192,19 +192,6 @@ export function scaleBar(scale: number, maxPixels: number): { metres: number; pi
   const power = 10 ** Math.floor(Math.log10(most));
   const metres = [5, 2, 1].map((step) => step * power).find((value) => value <= most) ?? power;
   return { metres, pixels: metres * scale };
-}
-
-export interface ExportLayout {
-  width: number;
-  height: number;
-  /** The map's area on the picture; the band below it holds legend, time and scale bar. */
-  map: { x: number; y: number; width: number; height: number };
-  /** The view for the map (for each pane of it): the same centre as shown, scaled so that it shows at least what was shown. */
-  view: ViewTransform;
-  legend: { x: number; y: number; text: string }[];
-  time: { x: number; y: number; text: string };
-  scale: { x: number; y: number; pixels: number; text: string };
-  fontSize: number;
 }
 
 /**

@@ -3,7 +3,6 @@
  * SVG document when the picture is saved. No DOM here, so that it runs (and is tested) in Node too.
  */
 import type { SceneEntity, SceneResult } from '../../../common/src/sceneProtocol';
-import type { ExportLayout } from './analysis';
 import { type Bounds, type LabelRequest, type PlacedLabel, placeLabels } from './labels';
 import type { RunTracks } from './messages';
 
@@ -478,6 +477,20 @@ export class SvgPainter implements Painter {
   toString(): string {
     return `<?xml version="1.0" encoding="UTF-8"?>\n<svg xmlns="http://www.w3.org/2000/svg" width="${this.width}" height="${this.height}" viewBox="0 0 ${this.width} ${this.height}">\n${this.parts.join('\n')}\n</svg>\n`;
   }
+}
+
+/** Where things go on an exported picture (made by exportLayout in analysis.ts, drawn by drawExportOverlay). */
+export interface ExportLayout {
+  width: number;
+  height: number;
+  /** The map's area on the picture; the band below it holds legend, time and scale bar. */
+  map: { x: number; y: number; width: number; height: number };
+  /** The view for the map (for each pane of it): the same centre as shown, scaled so that it shows at least what was shown. */
+  view: ViewTransform;
+  legend: { x: number; y: number; text: string }[];
+  time: { x: number; y: number; text: string };
+  scale: { x: number; y: number; pixels: number; text: string };
+  fontSize: number;
 }
 
 /** The band of an exported picture: the time, a legend of the entities (a compared run's dashed) and a scale bar. */

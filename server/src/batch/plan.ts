@@ -1,9 +1,23 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
+import type { PackagedFile } from '../core/flatten/types';
 import type { Variations } from '../core/variations';
 import { valuesAfter } from '../core/variations/concrete';
 import { attribute, descendants, parseXml } from '../core/xml';
 import type { ConcreteRun } from './runConcrete';
+
+/** What a batch runs: the chosen indices of a distribution, with where their runs look for files. */
+export interface BatchPlanView {
+  variations: Variations;
+  chosen: bigint[];
+  parameterNames: string[];
+  searchPath: string[];
+  scenarioFolder: string;
+  /** Files of a self-contained package ScenarioFile that its flattened text names (`flattened.files/`), relative to `scenarioFolder`. */
+  packagedFiles: PackagedFile[];
+  /** Where a local batch wrote `packagedFiles`, in the same layout. */
+  packagedFolder?: string;
+}
 
 /** The varied parameters, in the order the distribution names them first: the columns after the fixed ones. */
 export function variedParameters(variations: Variations): string[] {

@@ -1,5 +1,10 @@
 import type { BatchRow } from './results';
 
+/** Where a batch or a worker reports its progress and summaries: the CLI's standard error. */
+export interface BatchOutput {
+  err: (text: string) => void;
+}
+
 function clock(seconds: number): string {
   if (!Number.isFinite(seconds)) return '--:--';
   const whole = Math.round(seconds);

@@ -3,10 +3,8 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { Queue } from 'bullmq';
 import { Redis } from 'ioredis';
-import type { BatchPlanView } from '../cli/batch';
-import type { CliOutput } from '../cli/common';
-import { concreteRun, filesNeeded } from './plan';
-import { Progress } from './progress';
+import { BatchPlanView, concreteRun, filesNeeded } from './plan';
+import { BatchOutput, Progress } from './progress';
 import { BatchIdentity, BatchRow, ResultsFolder } from './results';
 import type { RunSettings } from './runConcrete';
 
@@ -110,7 +108,7 @@ export async function queueBatch(
   plan: BatchPlanView,
   identity: BatchIdentity,
   resultsFolder: string,
-  options: { quiet: boolean; io: CliOutput; settings: RunSettings },
+  options: { quiet: boolean; io: BatchOutput; settings: RunSettings },
 ): Promise<number> {
   const { io, quiet, settings } = options;
   const client = await connect(url);

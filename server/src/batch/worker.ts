@@ -2,9 +2,9 @@ import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
 import { Job, Worker } from 'bullmq';
-import type { CliOutput } from '../cli/common';
 import { makeRunFolder } from '../esmini/process';
 import { connect, connectionOf, fileKey, LOCK_DURATION_MS, QUEUE_NAME, resultsKey, RunJob, STALLED_INTERVAL_MS } from './queue';
+import type { BatchOutput } from './progress';
 import { runConcrete } from './runConcrete';
 
 /** How long a stopping worker waits for its runs in flight and for Redis. */
@@ -16,7 +16,7 @@ export interface WorkerOptions {
   /** Seconds with nothing to do after which the worker stops; undefined: it runs until interrupted. */
   idleExit?: number;
   quiet: boolean;
-  io: CliOutput;
+  io: BatchOutput;
 }
 
 /** Placed files stay out of the folder they are copied from: a job's layout nests the scenario's folder `depth` levels down. */

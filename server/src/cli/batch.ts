@@ -3,20 +3,13 @@ import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
 import { parseArgs } from 'node:util';
-import { concreteRun, searchPathOf, variedParameters } from '../batch/plan';
+import { BatchPlanView, concreteRun, searchPathOf, variedParameters } from '../batch/plan';
 import { Progress } from '../batch/progress';
 import { BatchIdentity, ResultsError, ResultsFolder } from '../batch/results';
 import { NoEsminiError, runConcrete, RunSettings } from '../batch/runConcrete';
-import type { PackagedFile } from '../core/flatten/rebase';
+import type { PackagedFile } from '../core/flatten/types';
 import { FileKind, nodeFileSystem, splitScenarioPath } from '../core/sources';
-import {
-  formatVariationProblems,
-  loadVariations,
-  rebasedConcreteText,
-  samplingProblem,
-  SamplingError,
-  Variations,
-} from '../core/variations';
+import { formatVariationProblems, loadVariations, rebasedConcreteText, samplingProblem, SamplingError } from '../core/variations';
 import { locateEsmini } from '../esmini/locate';
 import { RUN_DEFAULTS } from '../esmini/run';
 import type { CliOutput } from './common';
@@ -237,19 +230,6 @@ async function batch(argv: string[], io: CliOutput): Promise<number> {
     // Left only when empty: a run cut short by a kill leaves its folder there, to be looked at.
     if (settings.runsFolder) await fs.promises.rmdir(settings.runsFolder).catch(() => undefined);
   }
-}
-
-/** What a batch runs: the chosen indices of a distribution, with where their runs look for files. */
-export interface BatchPlanView {
-  variations: Variations;
-  chosen: bigint[];
-  parameterNames: string[];
-  searchPath: string[];
-  scenarioFolder: string;
-  /** Files of a self-contained package ScenarioFile that its flattened text names (`flattened.files/`), relative to `scenarioFolder`. */
-  packagedFiles: PackagedFile[];
-  /** Where a local batch wrote `packagedFiles`, in the same layout. */
-  packagedFolder?: string;
 }
 
 /** Runs what results.csv lacks on this machine, `jobs` at a time; SIGINT or SIGTERM stop it cleanly. */

@@ -1,7 +1,7 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { Flattener } from '../core/flatten';
-import type { PackagedFile } from '../core/flatten/rebase';
+import type { PackagedFile } from '../core/flatten/types';
 import { formatProblem } from '../core/problems';
 import type { ScenarioTextLoader } from '../core/variations';
 import { mainOf, storeForInputs } from './inputs';

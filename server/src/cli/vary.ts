@@ -15,7 +15,7 @@ import {
 import { seedBits, Xoshiro128StarStar } from '../core/variations/random';
 import { flatteningScenarioLoader, readDistributionFile, scenarioFolderOf } from './scenarioText';
 import { FileKind, nodeFileSystem, splitScenarioPath } from '../core/sources';
-import type { PackagedFile } from '../core/flatten/rebase';
+import type { PackagedFile } from '../core/flatten/types';
 
 export const VARY_HELP = `Concrete scenarios of a ParameterValueDistribution (modular2simple vary FILE ...):
   --count                   print the number of concrete scenarios alone (after ValueConstraintGroups)

@@ -13,9 +13,9 @@ import { applyEdits, parameterAttributeSpans } from './edits';
 import { link } from './link';
 import { outputSchemaProblems, overrideValueProblems } from './outputSchema';
 import { problemAt } from './report';
-import { PackagedFile, pathBaseOf, rebaseFlattened } from './rebase';
+import { pathBaseOf, rebaseFlattened } from './rebase';
 import { render } from './render';
-import { AnalysisResult, FlatSource, FlattenOptions, FlattenResult, SchemaOptions } from './types';
+import { AnalysisResult, FlatSource, FlattenOptions, FlattenResult, PackagedFile, SchemaOptions } from './types';
 
 /** The catalogs a file reaches (its own references first, then those of the files it imports from). */
 function catalogIndexOf(source: FlatSource): Map<string, { kind: string; directory: string }> {

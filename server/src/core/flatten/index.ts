@@ -29,5 +29,6 @@ export type {
   Insertion,
   LinkedGroupReference,
   LinkedReference,
+  PackagedFile,
   SchemaOptions,
 } from './types';

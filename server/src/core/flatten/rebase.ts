@@ -7,7 +7,7 @@ import { normalizeEntryName, ScenarioStore, SourceRef } from '../sources';
 import { escapeAttributeValue, selfAndDescendants, XmlAttribute, XmlDocument, XmlElement } from '../xml';
 import type { TextEdit } from './edits';
 import { originOf } from './origin';
-import type { FlatSource } from './types';
+import type { FlatSource, PackagedFile } from './types';
 
 /**
  * Rebasing the file paths of a written scenario (SPEC 11.6): each path the schema types as a file or a
@@ -180,13 +180,6 @@ export async function rebasePaths(request: RebaseRequest): Promise<PathRebase> {
 /** The folder the relative paths of a file resolve from: its own folder, or for a packaged file the package's folder on disk. */
 export function pathBaseOf(ref: SourceRef): string {
   return path.dirname(ref.disk);
-}
-
-/** A file stored in a package that an output names: written beside the output (in `<name>.files/`) so that the output runs. */
-export interface PackagedFile {
-  /** Where it is written, absolute. */
-  path: string;
-  bytes: Uint8Array;
 }
 
 /** The package files a path written in a packaged file names: the entry itself, or a folder's direct files. */

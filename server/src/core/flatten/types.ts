@@ -5,7 +5,6 @@ import { SchemaVersionSetting } from '../schema/version';
 import { Declaration, DocumentSemantics } from '../semantics';
 import { Resolution, SourceRef } from '../sources';
 import { XmlElement } from '../xml';
-import type { PackagedFile } from './rebase';
 
 /** Problems that the original tool ignored silently: what `--force` skips (reported as skipped, not as errors). */
 export const OVERRIDE_PROBLEM_CODES: ReadonlySet<ProblemCode> = new Set<ProblemCode>([
@@ -139,6 +138,13 @@ export interface FlattenOptions {
 export interface AnalysisResult {
   problems: Problem[];
   source: FlatSource;
+}
+
+/** A file stored in a package that an output names: written beside the output (in `<name>.files/`) so that the output runs. */
+export interface PackagedFile {
+  /** Where it is written, absolute. */
+  path: string;
+  bytes: Uint8Array;
 }
 
 export interface FlattenResult {

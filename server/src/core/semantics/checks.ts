@@ -1,15 +1,14 @@
-import { Problem, ProblemCode } from '../problems';
+import { ProblemCode } from '../problems';
 import { simulatorFindings } from '../profiles/checks';
-import { Simulator } from '../profiles/simulators';
-import { baseName, SourceRef } from '../sources';
+import { baseName } from '../sources';
 import { closestMatch } from '../text';
 import { attribute, descendants, XmlAttribute, XmlElement } from '../xml';
-import { CatalogResolution } from './catalogs';
 import { esminiRule } from './esminiValues';
 import { ExpressionError } from './expressionParser';
 import { valueConstraints } from './checks/constraints';
 import { duplicateNames } from './checks/names';
 import { at, relatedAt } from './checks/support';
+import type { Finding, SemanticCheck, SemanticContext } from './checks/types';
 import { carriedExpressionErrors, rememberExpressionErrors } from './checks/carriedResults';
 import { catalogVariables, undeclaredVariables, variableValues } from './checks/variables';
 import {
@@ -20,7 +19,6 @@ import {
   trafficSignalIds,
   valueRanges,
 } from './networkChecks';
-import { RoadSignals } from './roadNetwork';
 import {
   Declaration,
   Evaluator,
@@ -37,32 +35,7 @@ import {
  * Problems (for a flattened output, at the source position each element came from).
  */
 
-export interface SemanticContext {
-  ref: SourceRef;
-  model: SemanticModel;
-  evaluator: Evaluator;
-  catalogs: CatalogResolution;
-  /**
-   * True for a modular main file, whose storyboard names are only known once it is flattened; the
-   * flattened output is checked for them instead.
-   */
-  modular: boolean;
-  /** The simulator whose known gaps are checked (core/profiles); absent or `asam`: none. */
-  simulator?: Simulator;
-  /** The signals of the road file the document names; absent when it names none or it cannot be read (the road rules are then skipped). */
-  road?: RoadSignals;
-}
-
-/** A problem at document offsets, before it is given a file and a range (`problemOfFinding`). */
-export interface Finding extends Omit<Problem, 'source' | 'range'> {
-  element: XmlElement;
-  /** The attribute the offsets lie in, when they do (for mapping an output position to its source). */
-  attribute: XmlAttribute | undefined;
-  start: number;
-  end: number;
-}
-
-export type SemanticCheck = (context: SemanticContext) => Finding[];
+export type { Finding, SemanticCheck, SemanticContext } from './checks/types';
 
 /** The entry of a catalog file that holds an element (the child of its `Catalog`). */
 export function catalogEntryOf(model: SemanticModel, element: XmlElement): XmlElement | undefined {

@@ -33,13 +33,12 @@ import { Problem } from '../problems';
 import { Simulator } from '../profiles/simulators';
 import { SourceRef } from '../sources';
 import { Range } from '../text';
-import { elementAt, forgetValueEdit, valueEditOf, XmlAttribute, XmlDocument, XmlElement } from '../xml';
-import { carrySemanticModel } from './incremental';
+import { elementAt, XmlAttribute, XmlDocument, XmlElement } from '../xml';
 import { assignmentsOf, CatalogLoader, CatalogReferenceResolution, CatalogResolution } from './catalogs';
 import { Finding, runChecks, SemanticContext } from './checks';
 import { Reading } from './evaluator';
 import { roadSignalsOf } from './roadNetwork';
-import { buildSemanticModel, Declaration, Evaluator, ParameterUse, Scope, SemanticModel, ValueResult, visibleDeclarations } from './model';
+import { Declaration, Evaluator, ParameterUse, Scope, semanticModelOf, ValueResult, visibleDeclarations } from './model';
 
 export * from './values';
 export * from './expressionParser';
@@ -50,23 +49,6 @@ export * from './checks';
 
 /** Everything known about one document: its model, an evaluator and its catalogs. */
 export type DocumentSemantics = SemanticContext;
-
-// Models are pure functions of a parse, which never changes once built.
-const models = new WeakMap<XmlDocument, SemanticModel>();
-
-/** The model of a parse: carried over from the previous parse's after an edit inside one value, else built. */
-export function semanticModelOf(document: XmlDocument): SemanticModel {
-  let model = models.get(document);
-  if (!model) {
-    const edit = valueEditOf(document);
-    const previous = edit && models.get(edit.previous);
-    model = (edit && previous && carrySemanticModel(previous, edit, document)) ?? buildSemanticModel(document);
-    models.set(document, model);
-    // The previous parse is no longer needed for this one.
-    if (edit) forgetValueEdit(document);
-  }
-  return model;
-}
 
 /** Builds the semantics of a parsed document and resolves its catalogs. */
 export async function analyzeDocument(

@@ -1,6 +1,7 @@
-import { XmlDocument, XmlElement } from '../xml';
+import { forgetValueEdit, valueEditOf, XmlDocument, XmlElement } from '../xml';
 import { CatalogElementCollector } from './catalogElements';
 import { EntityCollector } from './entities';
+import { carrySemanticModel } from './incremental';
 import { ParameterUseCollector } from './parameterUses';
 import { ScopeCollector } from './scopes';
 import { StoryboardCollector } from './storyboard';
@@ -68,5 +69,22 @@ export function buildSemanticModel(document: XmlDocument): SemanticModel {
     storyboard.visit(element);
   }
   variables.finish();
+  return model;
+}
+
+// Models are pure functions of a parse, which never changes once built.
+const models = new WeakMap<XmlDocument, SemanticModel>();
+
+/** The model of a parse: carried over from the previous parse's after an edit inside one value, else built. */
+export function semanticModelOf(document: XmlDocument): SemanticModel {
+  let model = models.get(document);
+  if (!model) {
+    const edit = valueEditOf(document);
+    const previous = edit && models.get(edit.previous);
+    model = (edit && previous && carrySemanticModel(previous, edit, document)) ?? buildSemanticModel(document);
+    models.set(document, model);
+    // The previous parse is no longer needed for this one.
+    if (edit) forgetValueEdit(document);
+  }
   return model;
 }

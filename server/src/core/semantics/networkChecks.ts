@@ -1,6 +1,6 @@
 import { chooseVersion } from '../schema/version';
 import { attribute, firstDescendant, XmlAttribute, XmlElement } from '../xml';
-import type { Finding, SemanticCheck, SemanticContext } from './checks';
+import type { Finding, SemanticCheck, SemanticContext } from './checks/types';
 import { inRange, rangeText, valueRangesOf } from './ranges';
 import { SemanticModel } from './types';
 import { elementsNamed } from './elementIndex';

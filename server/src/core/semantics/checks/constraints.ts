@@ -1,6 +1,6 @@
 import { attribute, XmlElement } from '../../xml';
 import { assignmentsOf } from '../catalogs';
-import type { Finding, SemanticCheck, SemanticContext } from '../checks';
+import type { Finding, SemanticCheck, SemanticContext } from './types';
 import { convertValue, formatValue, ParameterType, ParameterValue } from '../values';
 import { Declaration, Evaluator, referencedName } from '../model';
 import { at, relatedAt } from './support';

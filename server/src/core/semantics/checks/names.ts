@@ -1,5 +1,5 @@
 import { attribute, forEachElement, XmlElement } from '../../xml';
-import type { Finding, SemanticCheck } from '../checks';
+import type { Finding, SemanticCheck } from './types';
 import { at, relatedAt } from './support';
 
 /**

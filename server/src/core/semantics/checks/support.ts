@@ -1,6 +1,6 @@
 import type { RelatedProblemLocation } from '../../problems';
 import { XmlAttribute, XmlElement } from '../../xml';
-import type { Finding, SemanticContext } from '../checks';
+import type { Finding, SemanticContext } from './types';
 
 /** A finding's place: an attribute's value, or the element's start tag name. */
 export function at(element: XmlElement, attr: XmlAttribute | undefined): Pick<Finding, 'element' | 'attribute' | 'start' | 'end'> {

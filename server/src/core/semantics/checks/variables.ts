@@ -1,5 +1,5 @@
 import { attribute, XmlElement } from '../../xml';
-import type { Finding, SemanticCheck } from '../checks';
+import type { Finding, SemanticCheck } from './types';
 import { convertValue } from '../values';
 import { Declaration, referencedName, resolveName, SemanticModel } from '../model';
 import { at } from './support';

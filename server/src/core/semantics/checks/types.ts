@@ -1,0 +1,35 @@
+/** What a semantic check is given and what it reports: shared by checks.ts, the checks of checks/ and networkChecks.ts. */
+import type { Problem } from '../../problems';
+import type { Simulator } from '../../profiles/simulators';
+import type { SourceRef } from '../../sources';
+import type { XmlAttribute, XmlElement } from '../../xml';
+import type { CatalogResolution } from '../catalogs';
+import type { Evaluator, SemanticModel } from '../model';
+import type { RoadSignals } from '../roadNetwork';
+
+export interface SemanticContext {
+  ref: SourceRef;
+  model: SemanticModel;
+  evaluator: Evaluator;
+  catalogs: CatalogResolution;
+  /**
+   * True for a modular main file, whose storyboard names are only known once it is flattened; the
+   * flattened output is checked for them instead.
+   */
+  modular: boolean;
+  /** The simulator whose known gaps are checked (core/profiles); absent or `asam`: none. */
+  simulator?: Simulator;
+  /** The signals of the road file the document names; absent when it names none or it cannot be read (the road rules are then skipped). */
+  road?: RoadSignals;
+}
+
+/** A problem at document offsets, before it is given a file and a range (`problemOfFinding`). */
+export interface Finding extends Omit<Problem, 'source' | 'range'> {
+  element: XmlElement;
+  /** The attribute the offsets lie in, when they do (for mapping an output position to its source). */
+  attribute: XmlAttribute | undefined;
+  start: number;
+  end: number;
+}
+
+export type SemanticCheck = (context: SemanticContext) => Finding[];

@@ -1,0 +1,143 @@
+import * as assert from 'node:assert/strict';
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import * as ts from 'typescript';
+import { repoRoot } from '../support/paths';
+
+const SOURCE_FOLDERS = ['server/src', 'client/src', 'common/src'];
+
+/** Every .ts file under the source folders, as a path relative to the repository with '/'. */
+function sourceFiles(): string[] {
+  const files: string[] = [];
+  const visit = (folder: string) => {
+    for (const entry of fs.readdirSync(path.join(repoRoot, folder), { withFileTypes: true })) {
+      const relative = `${folder}/${entry.name}`;
+      if (entry.isDirectory()) visit(relative);
+      else if (entry.name.endsWith('.ts')) files.push(relative);
+    }
+  };
+  SOURCE_FOLDERS.forEach(visit);
+  return files.sort();
+}
+
+/** The file a relative specifier names: x.ts or x/index.ts; undefined for a file that is no TypeScript source. */
+function resolve(from: string, specifier: string, known: Set<string>): string | undefined {
+  const base = path.posix.normalize(path.posix.join(path.posix.dirname(from), specifier));
+  return [base, `${base}.ts`, `${base}/index.ts`].find((candidate) => known.has(candidate));
+}
+
+/**
+ * Each file's relative imports, resolved: `import`, `import type`, `export ... from`, `import('./x')` and
+ * `require('./x')`, read by TypeScript's own pre-processor (so an import-shaped line in a string is none).
+ */
+function importGraph(): Map<string, string[]> {
+  const files = sourceFiles();
+  const known = new Set(files);
+  const graph = new Map<string, string[]>();
+  for (const file of files) {
+    const text = fs.readFileSync(path.join(repoRoot, file), 'utf8');
+    const imported = new Set<string>();
+    for (const { fileName } of ts.preProcessFile(text, true, true).importedFiles) {
+      if (!fileName.startsWith('.')) continue;
+      const target = resolve(file, fileName, known);
+      // A relative import of no source file here (a JSON file, say) is no edge of this graph, but it must name a file.
+      if (!target) {
+        const base = path.join(repoRoot, path.dirname(file), fileName);
+        assert.ok(
+          [base, `${base}.ts`, path.join(base, 'index.ts')].some((candidate) => fs.existsSync(candidate)),
+          `${file} imports '${fileName}', which names no file`,
+        );
+        continue;
+      }
+      imported.add(target);
+    }
+    graph.set(file, [...imported].sort());
+  }
+  return graph;
+}
+
+/** The strongly connected components of more than one file, or of one file importing itself (Tarjan). */
+function circles(graph: Map<string, string[]>): string[][] {
+  const index = new Map<string, number>();
+  const lowest = new Map<string, number>();
+  const stack: string[] = [];
+  const onStack = new Set<string>();
+  const found: string[][] = [];
+  const connect = (file: string) => {
+    index.set(file, index.size);
+    lowest.set(file, index.get(file)!);
+    stack.push(file);
+    onStack.add(file);
+    for (const next of graph.get(file) ?? []) {
+      if (!index.has(next)) {
+        connect(next);
+        lowest.set(file, Math.min(lowest.get(file)!, lowest.get(next)!));
+      } else if (onStack.has(next)) lowest.set(file, Math.min(lowest.get(file)!, index.get(next)!));
+    }
+    if (lowest.get(file) !== index.get(file)) return;
+    const component: string[] = [];
+    let member: string;
+    do {
+      member = stack.pop()!;
+      onStack.delete(member);
+      component.push(member);
+    } while (member !== file);
+    if (component.length > 1 || graph.get(file)!.includes(file)) found.push(component.sort());
+  };
+  for (const file of graph.keys()) if (!index.has(file)) connect(file);
+  return found;
+}
+
+/** One shortest loop through a circle's first file, as `a -> b -> a`. */
+function loopThrough(circle: string[], graph: Map<string, string[]>): string {
+  const members = new Set(circle);
+  const start = circle[0];
+  const cameFrom = new Map<string, string>();
+  const queue = [start];
+  while (queue.length > 0) {
+    const file = queue.shift()!;
+    for (const next of graph.get(file)!) {
+      if (!members.has(next) || cameFrom.has(next)) continue;
+      cameFrom.set(next, file);
+      if (next === start) {
+        const loop = [start];
+        for (let step = file; step !== start; step = cameFrom.get(step)!) loop.unshift(step);
+        return [start, ...loop].join(' -> ');
+      }
+      queue.push(next);
+    }
+  }
+  throw new Error(`no loop through ${start} in its own circle`);
+}
+
+describe('layering: the imports of server/src, client/src and common/src', () => {
+  let graph: Map<string, string[]>;
+  before(() => {
+    graph = importGraph();
+  });
+
+  it('reads the imports of every source file, each kind of them', () => {
+    assert.ok(graph.size > 200, `only ${graph.size} files read`);
+    const importsOf = (file: string) => graph.get(file) ?? [];
+    assert.ok(importsOf('server/src/cli.ts').includes('server/src/cli/common.ts'));
+    // A dynamic import counts: the CLI loads each command's file when it runs.
+    assert.ok(importsOf('server/src/cli.ts').includes('server/src/cli/batch.ts'));
+    // So does a re-export (`export * from`), and a folder resolves to its index.ts.
+    assert.ok(importsOf('server/src/core/semantics/index.ts').includes('server/src/core/semantics/expressions.ts'));
+    assert.ok(importsOf('server/src/core/roadFiles.ts').includes('server/src/core/sources/index.ts'));
+  });
+
+  it('has no import cycle', () => {
+    const loops = circles(graph).map((circle) => `${loopThrough(circle, graph)}  (a circle of ${circle.length}: ${circle.join(', ')})`);
+    assert.deepEqual(loops, [], `import cycles:\n${loops.join('\n')}`);
+  });
+
+  it('imports server/src/cli/ only from the CLI itself: the batch runner and the rest sit below it', () => {
+    const upward = [...graph]
+      .filter(([file]) => file !== 'server/src/cli.ts' && !file.startsWith('server/src/cli/'))
+      .flatMap(([file, imports]) =>
+        imports.filter((target) => target.startsWith('server/src/cli/')).map((target) => `${file} -> ${target}`),
+      );
+    assert.deepEqual(upward, []);
+  });
+});
