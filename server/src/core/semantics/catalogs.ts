@@ -75,10 +75,10 @@ export interface CatalogResolution {
 }
 
 /**
- * Catalog files modelled so far, by file and text: an editor makes a loader per edit, and the catalogs
- * it reaches rarely change between edits. Bounded; the oldest entry goes first.
+ * Catalog files modelled so far, per store (a workspace's, a CLI run's), by file and text: an editor makes
+ * a loader per edit, and the catalogs it reaches rarely change between edits. Bounded; the oldest entry goes first.
  */
-const modelled = new Map<string, { text: string; file: CatalogFile | undefined }>();
+const modelledByStore = new WeakMap<ScenarioStore, Map<string, { text: string; file: CatalogFile | undefined }>>();
 const MODELLED_LIMIT = 200;
 
 /** Reads catalog files once per instance (one instance per analysis generation). */
@@ -158,6 +158,8 @@ export class CatalogLoader {
       pending = (async () => {
         const text = await this.store.readText(ref).catch(() => undefined);
         if (text === undefined || !/<Catalog[\s>]/.test(text)) return undefined;
+        let modelled = modelledByStore.get(this.store);
+        if (!modelled) modelledByStore.set(this.store, (modelled = new Map()));
         const known = modelled.get(id);
         if (known && known.text === text) return known.file;
         const model = buildSemanticModel(this.store.parse(ref, text));

@@ -12,8 +12,8 @@ export interface RoadSignals {
   signalIds: ReadonlySet<string>;
 }
 
-/** Signals of road files read so far, by path and content hash: a road file is large and rarely changes. Bounded; the oldest goes first. */
-const summaries = new Map<string, { hash: string; signals: RoadSignals }>();
+/** Signals of road files read so far, per store, by path and content hash: a road file is large and rarely changes. Bounded; the oldest goes first. */
+const summariesByStore = new WeakMap<ScenarioStore, Map<string, { hash: string; signals: RoadSignals }>>();
 const SUMMARY_LIMIT = 8;
 
 /**
@@ -57,6 +57,8 @@ async function readRoadSignals(store: ScenarioStore, file: string): Promise<Road
   // Loaded here, not with the module: a run that reads no road file (most CLI runs) does not pay for Node's crypto.
   const { createHash } = await import('node:crypto');
   const hash = createHash('sha1').update(bytes).digest('hex');
+  let summaries = summariesByStore.get(store);
+  if (!summaries) summariesByStore.set(store, (summaries = new Map()));
   const cached = summaries.get(file);
   if (cached?.hash === hash) return cached.signals;
   const network = parseOpenDrive(decodeUtf8(bytes));
