@@ -129,6 +129,28 @@ describe("distribution files in the editor: esmini's cut-in_parameter_set.xosc",
     );
   });
 
+  it('completes a parameterName being typed, its closing quote not yet written, replacing what is typed', async () => {
+    const text = fs.readFileSync(file(), 'utf8').replace(/^\uFEFF/, '');
+    const typed = text.replace('parameterName="EgoSpeed"', 'parameterName="Ego');
+    assert.notEqual(typed, text);
+    await fixture.client.change(fixture.openUri, [{ text: typed }]);
+    try {
+      const position = at(typed, 'parameterName="Ego|');
+      const items = (await fixture.client.connection.sendRequest('textDocument/completion', {
+        textDocument: { uri: fixture.openUri },
+        position,
+      })) as CompletionItem[];
+      assert.ok(
+        items.some((item) => item.label === 'EgoSpeed'),
+        items.map((item) => item.label).join(', '),
+      );
+      const edit = items[0].textEdit as { range: { start: { line: number; character: number }; end: { line: number; character: number } } };
+      assert.deepEqual(edit.range, { start: { line: position.line, character: position.character - 'Ego'.length }, end: position });
+    } finally {
+      await fixture.client.change(fixture.openUri, [{ text }]);
+    }
+  });
+
   it('goes from a parameterName to its declaration in the scenario', async () => {
     const text = fs.readFileSync(file(), 'utf8').replace(/^\uFEFF/, '');
     const locations = (await fixture.client.connection.sendRequest('textDocument/definition', {

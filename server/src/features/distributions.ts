@@ -1,5 +1,6 @@
 import * as path from 'node:path';
 import { CodeLens, CompletionItem, CompletionItemKind, Hover, MarkupKind } from 'vscode-languageserver/node';
+import { valueContextAt } from '../core/cursor';
 import { Problem } from '../core/problems';
 import { childRef, diskRef, refId, SourceRef } from '../core/sources';
 import { closestMatch, LineIndex, Range } from '../core/text';
@@ -56,13 +57,17 @@ export function distributionAnalysis(workspace: Workspace, ref: SourceRef): Prom
   const id = refId(ref);
   const cached = perWorkspace.get(id);
   if (cached && cached.version === workspace.version) return cached.analysis;
-  const analysis = analyze(workspace, ref);
+  const analysis = analyze(workspace, ref, cached?.analysis);
   perWorkspace.set(id, { version: workspace.version, analysis });
   if (perWorkspace.size > 50) for (const [key, entry] of perWorkspace) if (entry.version !== workspace.version) perWorkspace.delete(key);
   return analysis;
 }
 
-async function analyze(workspace: Workspace, ref: SourceRef): Promise<DistributionAnalysis | undefined> {
+async function analyze(
+  workspace: Workspace,
+  ref: SourceRef,
+  previous: Promise<DistributionAnalysis | undefined> | undefined,
+): Promise<DistributionAnalysis | undefined> {
   // A distribution inside a package has no folder of its own for the ScenarioFile to resolve from.
   if (ref.entries.length > 0) return undefined;
   const text = await workspace.text(ref);
@@ -78,6 +83,12 @@ async function analyze(workspace: Workspace, ref: SourceRef): Promise<Distributi
     scenarioRef = read.declaredIn;
     return read.text;
   });
+  // A value being typed (its quote not yet closed) leaves the file unreadable: its scenario is the one it named a moment ago.
+  if (scenarioText === undefined && parseXml(text).problems.length > 0) {
+    const before = await previous?.catch(() => undefined);
+    if (before?.scenarioRef)
+      return { ref, file, text, loaded, scenarioPath: before.scenarioPath, scenarioRef: before.scenarioRef, parameters: before.parameters };
+  }
   const parameters =
     scenarioText === undefined ? [] : (readScenarioParameters(scenarioText, scenarioPath ?? '').scenario?.declarations ?? []);
   return { ref, file, text, loaded, scenarioPath, scenarioRef, parameters };
@@ -291,15 +302,14 @@ export async function distributionHover(workspace: Workspace, ref: SourceRef, of
   return { contents: { kind: MarkupKind.Markdown, value }, range };
 }
 
-/** The `parameterName` or `parameterRef` value the offset stands in, from the text as it is typed. */
+/**
+ * The `parameterName` or `parameterRef` value the offset stands in, as the file's tolerant tree has it
+ * (core/cursor, which every feature asks what is at an offset; a value still being typed ends at the cursor's line).
+ */
 function parameterNameAt(text: string, offset: number): { start: number; end: number; name: string } | undefined {
-  const before = text.slice(Math.max(0, offset - 400), offset);
-  const opened = /\bparameter(?:Name|Ref)\s*=\s*(["'])([^"'<>]*)$/.exec(before);
-  if (!opened) return undefined;
-  const start = offset - opened[2].length;
-  let end = offset;
-  while (end < text.length && text[end] !== opened[1] && text[end] !== '<' && text[end] !== '\n') end++;
-  return { start, end, name: text.slice(start, end) };
+  const value = valueContextAt(parseXml(text), offset);
+  if (!value || (value.attribute !== 'parameterName' && value.attribute !== 'parameterRef')) return undefined;
+  return { start: value.valueStart, end: value.valueEnd, name: text.slice(value.valueStart, value.valueEnd) };
 }
 
 /** In a `parameterName` or `parameterRef`: the scenario's root parameters, with type and default. */
