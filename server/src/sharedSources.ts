@@ -12,11 +12,13 @@ export const SHARED_SOURCE_BYTES = 64 * 1024 * 1024;
 /**
  * The sources shared across generations, least recently used first out once the approximate size of
  * the others passes a bound (a source is sized when it is read). Those `kept` names (open documents and
- * the files they read) stay and do not count: a large open main file must not push out the files it
- * imports, which every edit of it reads again. A source let go is read again on demand.
+ * the files they read) stay and do not count while kept: a large open main file must not push out the
+ * files it imports, which every edit of it reads again; once its document closes they count again and
+ * may go. A source let go is read again on demand.
  */
 export class SharedSources {
   private readonly entries = new Map<string, { source: Promise<FlatSource>; size: number }>();
+  /** Bytes of every source read, kept or not. */
   private total = 0;
 
   constructor(
@@ -26,7 +28,7 @@ export class SharedSources {
 
   /** Approximate heap bytes of the sources not kept (as it was when each was read). */
   get size(): number {
-    return this.total;
+    return this.total - this.keptBytes(this.kept());
   }
 
   get(id: string): Promise<FlatSource> | undefined {
@@ -44,7 +46,6 @@ export class SharedSources {
     source.then(
       (flat) => {
         if (this.entries.get(id) !== entry) return;
-        if (this.kept().has(id)) return;
         entry.size = SOURCE_BYTES_PER_CHARACTER * ((flat.original?.document.text.length ?? 0) + (flat.text?.length ?? 0));
         this.total += entry.size;
         this.trim();
@@ -70,13 +71,23 @@ export class SharedSources {
     return [...this.entries.keys()];
   }
 
-  private trim(): void {
-    if (this.total <= this.maxBytes) return;
+  /** Lets the least recently used sources not kept go until the rest is within the bound (also when a document closed). */
+  trim(): void {
     const kept = this.kept();
+    let counted = this.total - this.keptBytes(kept);
     for (const [id, entry] of this.entries) {
-      if (this.total <= this.maxBytes) break;
-      if (entry.size > 0 && !kept.has(id)) this.delete(id);
+      if (counted <= this.maxBytes) break;
+      if (entry.size > 0 && !kept.has(id)) {
+        counted -= entry.size;
+        this.delete(id);
+      }
     }
+  }
+
+  private keptBytes(kept: ReadonlySet<string>): number {
+    let bytes = 0;
+    for (const id of kept) bytes += this.entries.get(id)?.size ?? 0;
+    return bytes;
   }
 }
 

@@ -375,6 +375,8 @@ export class Workspace {
     this.uris.forget(uri);
     this.storeInstance.setOverlay(open.ref, undefined);
     this.changed([refId(open.ref)]);
+    // What the document kept (the files it read) counts against the bound again.
+    this.sharedSources.trim();
     return open;
   }
 

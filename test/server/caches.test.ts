@@ -54,6 +54,23 @@ describe('core: the package cache is bounded by size', () => {
     assert.deepEqual(sources.keys(), ['open', 'c']);
     assert.equal(sources.size, 30 * 1000, 'an open document does not count');
   });
+
+  it('a source kept while its document is open counts again once it closes, and goes past the bound', async () => {
+    const sourceOf = (characters: number) =>
+      Promise.resolve({ original: { document: { text: 'x'.repeat(characters) } }, text: undefined } as unknown as FlatSource);
+    let kept = new Set(['main', 'imported']);
+    const sources = new SharedSources(30 * 1500, () => kept);
+    sources.set('main', sourceOf(1000));
+    sources.set('imported', sourceOf(1000));
+    sources.set('other', sourceOf(1000));
+    await new Promise((resolve) => setImmediate(resolve));
+    assert.deepEqual(sources.keys(), ['main', 'imported', 'other'], 'the kept ones do not count: all within the bound');
+    assert.equal(sources.size, 30 * 1000);
+    kept = new Set();
+    sources.trim();
+    assert.deepEqual(sources.keys(), ['other'], 'closed, the two oldest went');
+    assert.equal(sources.size, 30 * 1000);
+  });
 });
 
 /** A full garbage collection, after the current job (a WeakRef keeps its target until the job ends). */
@@ -163,5 +180,11 @@ describe('server: the files an open document reads are kept from its first analy
       afterEdit.map((source, index) => (source === first[index] ? 'reused' : `${simpleNames[index]} read again`)),
       simpleNames.map(() => 'reused'),
     );
+    // Closed, the files it read count against the bound again: about two of the five stay.
+    workspace.close(uri);
+    const held: string[] = [];
+    for (const [index, name] of simpleNames.entries())
+      if ((await workspace.source(diskRef(path.join(root, `${name}.xosc`)))) === afterEdit[index]) held.push(name);
+    assert.ok(held.length <= 2, `still held after the document closed: ${held.join(', ')}`);
   });
 });
