@@ -2,7 +2,7 @@ import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import fc from 'fast-check';
-import { parseXml, reparseValueEdit, reparseXml, XmlDocument, XmlElement } from '../../server/src/core/xml';
+import { parseXml, reparseValueEdit, reparseXml, valueEditOf, XmlDocument, XmlElement } from '../../server/src/core/xml';
 import { repoRoot } from '../support/paths';
 
 /** Everything a consumer reads from a parse, as plain data. */
@@ -90,6 +90,33 @@ describe('core: re-parsing after an edit', () => {
       ),
       { numRuns: 200 },
     );
+  });
+
+  it('maps every element of the previous tree to its counterpart: itself before the edit, its copy after', () => {
+    const elementsOf = (document: XmlDocument) => {
+      const found: XmlElement[] = [];
+      (function collect(node: XmlElement) {
+        found.push(node);
+        node.children.forEach(collect);
+      })(document.root!);
+      return found;
+    };
+    const before = elementsOf(parsed);
+    for (const value of [values[0], values[Math.floor(values.length / 2)], values[values.length - 1]]) {
+      const edited = original.slice(0, value.start) + '7' + original.slice(value.end);
+      const document = reparseValueEdit(parsed, edited);
+      assert.ok(document);
+      const edit = valueEditOf(document);
+      assert.ok(edit, 'the re-parse keeps how it was made');
+      const after = elementsOf(document);
+      assert.equal(after.length, before.length);
+      // In document order, the counterpart of the n-th element is the n-th element of the new tree.
+      before.forEach((element, index) => {
+        const counterpart = edit.elementOf(element);
+        assert.equal(counterpart, after[index], `element ${index} (<${element.name}> at ${element.start})`);
+        assert.equal(counterpart === element, element.end <= value.start, `shared exactly when wholly before the edit: ${index}`);
+      });
+    }
   });
 
   it('falls back to a full parse for any other edit, markup included', () => {

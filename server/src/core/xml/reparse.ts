@@ -138,6 +138,8 @@ export function reparseValueEdit(previous: XmlDocument, text: string): XmlDocume
       };
     });
   };
+  // Each copied element's copy, for the models carried over: one lookup each (walking both trees by child index cost more, above all before V8 compiled it).
+  const copies = new Map<XmlElement, XmlElement>();
   const copy = (source: XmlElement, parent: XmlElement | undefined): XmlElement => {
     // A subtree wholly before the edit keeps its offsets and values: shared, only its root taking the new parent.
     if (source.end <= prefix && parent) {
@@ -156,12 +158,13 @@ export function reparseValueEdit(previous: XmlDocument, text: string): XmlDocume
       children: [],
       parent,
     };
+    copies.set(source, result);
     for (const child of source.children) result.children.push(copy(child, result));
     return result;
   };
   const root = copy(previous.root, undefined);
   const document = documentOf(text, root, previous.entities);
-  const elementOf = counterparts(previous.root, root, prefix);
+  const elementOf = counterpartsIn(copies, prefix);
   const newElement = elementOf(editedElement);
   valueEdits.delete(previous);
   valueEdits.set(document, {
@@ -199,35 +202,12 @@ function documentOf(text: string, root: XmlElement, entities: ReadonlyMap<string
   };
 }
 
-/**
- * The trees have the same shape: an element's counterpart is found by the same child indices. The path
- * of the last lookup is kept, as models ask in document order and the next element is usually near.
- */
-function counterparts(previousRoot: XmlElement, root: XmlElement, prefix: number): (source: XmlElement) => XmlElement {
-  const fromPath: XmlElement[] = [previousRoot];
-  const toPath: XmlElement[] = [root];
+/** The counterpart of an element of the previous tree: itself when shared (wholly before the edit), else its copy. */
+function counterpartsIn(copies: ReadonlyMap<XmlElement, XmlElement>, prefix: number): (source: XmlElement) => XmlElement {
   return (source) => {
-    // A subtree wholly before the edit is shared by both trees.
     if (source.end <= prefix) return source;
-    // The element of the last lookup (its attributes are mapped right after it).
-    if (source === fromPath[fromPath.length - 1]) return toPath[toPath.length - 1];
-    // Climb to the deepest element of the last path that holds the source.
-    while (fromPath.length > 1) {
-      const top = fromPath[fromPath.length - 1];
-      if (top.start <= source.start && (source.start < top.end || top === source)) break;
-      fromPath.pop();
-      toPath.pop();
-    }
-    let from = fromPath[fromPath.length - 1];
-    let to = toPath[toPath.length - 1];
-    while (from !== source) {
-      const index = childIndexAt(from, source.start);
-      if (index < 0) throw new Error(`no element at ${source.start} in the previous parse`);
-      from = from.children[index];
-      to = to.children[index];
-      fromPath.push(from);
-      toPath.push(to);
-    }
-    return to;
+    const counterpart = copies.get(source);
+    if (!counterpart) throw new Error(`no element at ${source.start} in the previous parse`);
+    return counterpart;
   };
 }
