@@ -5,6 +5,7 @@ import { ruleIdOf } from '../../server/src/core/rules';
 import { analyzeDocument, CatalogLoader, semanticProblems } from '../../server/src/core/semantics';
 import { diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { parseXml } from '../../server/src/core/xml';
+import { roadScenario } from '../support/fixtures';
 import { temporaryWorkspace } from '../support/workspace';
 
 /** A road file with one road, signal 101 on it, and a controller that controls signal 102. */
@@ -31,23 +32,7 @@ interface Parts {
 
 /** A 1.2 scenario with a road network, one ManeuverGroup, and whatever each case puts in. */
 function scenario(parts: Parts): string {
-  return `<?xml version="1.0"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="s" author="t"/>
-  <ParameterDeclarations>${parts.parameters ?? ''}</ParameterDeclarations>
-  <CatalogLocations/>
-  <RoadNetwork>
-    <LogicFile filepath="${parts.logicFile ?? 'road.xodr'}"/>
-    ${parts.trafficSignals ?? ''}
-  </RoadNetwork>
-  <Entities>
-    <ScenarioObject name="Ego"><Vehicle name="car" vehicleCategory="car"><BoundingBox><Center x="0" y="0" z="0"/><Dimensions width="2" length="4" height="1.5"/></BoundingBox><Performance maxSpeed="50" maxAcceleration="5" maxDeceleration="5"/><Axles><FrontAxle maxSteering="0.5" wheelDiameter="0.6" trackWidth="1.8" positionX="3" positionZ="0.3"/><RearAxle maxSteering="0" wheelDiameter="0.6" trackWidth="1.8" positionX="0" positionZ="0.3"/></Axles><Properties/></Vehicle></ScenarioObject>
-  </Entities>
-  <Storyboard>
-    <Init><Actions>${parts.init ?? ''}</Actions></Init>
-    <Story name="S">
-      <Act name="A">
-        <ManeuverGroup name="G" maximumExecutionCount="1">
+  const group = `<ManeuverGroup name="G" maximumExecutionCount="1">
           <Actors selectTriggeringEntities="false">${parts.actors ?? '<EntityRef entityRef="Ego"/>'}</Actors>
           <Maneuver name="M">
             <Event name="E" priority="override">
@@ -55,14 +40,8 @@ function scenario(parts: Parts): string {
               <StartTrigger/>
             </Event>
           </Maneuver>
-        </ManeuverGroup>
-        <StartTrigger/>
-      </Act>
-    </Story>
-    <StopTrigger/>
-  </Storyboard>
-</OpenSCENARIO>
-`;
+        </ManeuverGroup>`;
+  return roadScenario({ ...parts, init: parts.init ?? '', groups: [group] });
 }
 
 const RULE_CODES = new Set([

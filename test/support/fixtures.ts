@@ -48,6 +48,45 @@ export function scenario(groups: string, entities: string[] = ['ego', 'car']): s
   return HEADER.replace('{ENTITIES}', () => declared).replace('{GROUPS}', () => groups);
 }
 
+/** The parts of a schema-valid OpenSCENARIO 1.2 scenario on a road file, one vehicle (Ego) in it, that a case puts in. */
+export interface RoadScenarioParts {
+  header?: string;
+  parameters?: string;
+  logicFile?: string;
+  trafficSignals?: string;
+  /** The Init actions; none when left out. */
+  init?: string;
+  groups: string[];
+}
+
+/** A schema-valid OpenSCENARIO 1.2 scenario on `road.xodr` (or `logicFile`) with one vehicle, Ego, and the parts a case puts in. */
+export function roadScenario(parts: RoadScenarioParts): string {
+  return `<?xml version="1.0"?>
+<OpenSCENARIO>
+  ${parts.header ?? '<FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="s" author="t"/>'}
+  <ParameterDeclarations>${parts.parameters ?? ''}</ParameterDeclarations>
+  <CatalogLocations/>
+  <RoadNetwork>
+    <LogicFile filepath="${parts.logicFile ?? 'road.xodr'}"/>
+    ${parts.trafficSignals ?? ''}
+  </RoadNetwork>
+  <Entities>
+    <ScenarioObject name="Ego"><Vehicle name="car" vehicleCategory="car"><BoundingBox><Center x="0" y="0" z="0"/><Dimensions width="2" length="4" height="1.5"/></BoundingBox><Performance maxSpeed="50" maxAcceleration="5" maxDeceleration="5"/><Axles><FrontAxle maxSteering="0.5" wheelDiameter="0.6" trackWidth="1.8" positionX="3" positionZ="0.3"/><RearAxle maxSteering="0" wheelDiameter="0.6" trackWidth="1.8" positionX="0" positionZ="0.3"/></Axles><Properties/></Vehicle></ScenarioObject>
+  </Entities>
+  <Storyboard>
+    <Init>${parts.init === undefined ? '<Actions/>' : `<Actions>${parts.init}</Actions>`}</Init>
+    <Story name="S">
+      <Act name="A">
+        ${parts.groups.join('\n        ')}
+        <StartTrigger/>
+      </Act>
+    </Story>
+    <StopTrigger/>
+  </Storyboard>
+</OpenSCENARIO>
+`;
+}
+
 /** A simple scenario's group with overridable attributes. */
 export function simpleGroup(name: string, body = ''): string {
   return `        <ManeuverGroup name="${name}" maximumExecutionCount="1">

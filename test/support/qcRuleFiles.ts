@@ -3,6 +3,8 @@
  * problem to (core/rules.ts), and which project code and rule uid each problem reports (issue 18, item 2).
  */
 
+import { roadScenario, RoadScenarioParts } from './fixtures';
+
 /** A road file with one road and signal 101 on it. */
 const ROAD = `<?xml version="1.0"?>
 <OpenDRIVE>
@@ -33,32 +35,9 @@ function group(name: string, actors: string, events: string[]): string {
 const CUSTOM = '<UserDefinedAction><CustomCommandAction type="t"/></UserDefinedAction>';
 const EGO = '<EntityRef entityRef="Ego"/>';
 
-/** A 1.2 scenario on road.xodr with the parts a case puts in. */
-function scenario(parts: { header?: string; parameters?: string; trafficSignals?: string; groups: string[] }): string {
-  return `<?xml version="1.0"?>
-<OpenSCENARIO>
-  ${parts.header ?? HEADER}
-  <ParameterDeclarations>${parts.parameters ?? ''}</ParameterDeclarations>
-  <CatalogLocations/>
-  <RoadNetwork>
-    <LogicFile filepath="road.xodr"/>
-    ${parts.trafficSignals ?? ''}
-  </RoadNetwork>
-  <Entities>
-    <ScenarioObject name="Ego"><Vehicle name="car" vehicleCategory="car"><BoundingBox><Center x="0" y="0" z="0"/><Dimensions width="2" length="4" height="1.5"/></BoundingBox><Performance maxSpeed="50" maxAcceleration="5" maxDeceleration="5"/><Axles><FrontAxle maxSteering="0.5" wheelDiameter="0.6" trackWidth="1.8" positionX="3" positionZ="0.3"/><RearAxle maxSteering="0" wheelDiameter="0.6" trackWidth="1.8" positionX="0" positionZ="0.3"/></Axles><Properties/></Vehicle></ScenarioObject>
-  </Entities>
-  <Storyboard>
-    <Init><Actions/></Init>
-    <Story name="S">
-      <Act name="A">
-        ${parts.groups.join('\n        ')}
-        <StartTrigger/>
-      </Act>
-    </Story>
-    <StopTrigger/>
-  </Storyboard>
-</OpenSCENARIO>
-`;
+/** A 1.2 scenario on road.xodr with the parts a case puts in, under this file's header. */
+function scenario(parts: RoadScenarioParts): string {
+  return roadScenario({ ...parts, header: parts.header ?? HEADER });
 }
 
 const CLEAN = scenario({ groups: [group('G', EGO, [event('E', CUSTOM)])] });
