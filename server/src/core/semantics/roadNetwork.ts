@@ -12,17 +12,26 @@ export interface RoadSignals {
   signalIds: ReadonlySet<string>;
 }
 
-/** Signals of road files read so far, per store, by path and content hash: a road file is large and rarely changes. Bounded; the oldest goes first. */
-const summariesByStore = new WeakMap<ScenarioStore, Map<string, { hash: string; signals: RoadSignals }>>();
-const SUMMARY_LIMIT = 8;
-
 /**
- * Within one store, a road file read in the last moments is not read again: a folder check reads
- * each road file about once, while an editor (one store for the session) sees a changed road file on
- * its next analysis after that.
+ * What a store (a workspace's, a CLI run's) remembers of road files. `reads`: a road file read in the
+ * last moments is not read again, so a folder check reads each road file about once, while an editor
+ * (one store for the session) sees a changed road file on its next analysis after that. `summaries`: the
+ * signals by path and content hash, as a road file is large and rarely changes (bounded, the oldest out).
  */
-const perStore = new WeakMap<ScenarioStore, Map<string, { readAt: number; pending: Promise<RoadSignals | undefined> }>>();
+interface RoadMemory {
+  reads: Map<string, { readAt: number; pending: Promise<RoadSignals | undefined> }>;
+  summaries: Map<string, { hash: string; signals: RoadSignals }>;
+}
+
+const memories = new WeakMap<ScenarioStore, RoadMemory>();
+const SUMMARY_LIMIT = 8;
 const FRESH_MS = 2000;
+
+function memoryOf(store: ScenarioStore): RoadMemory {
+  let memory = memories.get(store);
+  if (!memory) memories.set(store, (memory = { reads: new Map(), summaries: new Map() }));
+  return memory;
+}
 
 /**
  * The signals of the road file a scenario names, resolved as Run in esmini and the bird's-eye view
@@ -39,8 +48,7 @@ export async function roadSignalsOf(
   if (!logic) return undefined;
   const { resolved } = await resolveRoadFile(store.host, logic.filepath, scenarioFolderOf(ref), store.scenarioPathFor(ref));
   if (!resolved) return undefined;
-  let known = perStore.get(store);
-  if (!known) perStore.set(store, (known = new Map()));
+  const known = memoryOf(store).reads;
   const now = Date.now();
   let entry = known.get(resolved);
   if (!entry || now - entry.readAt > FRESH_MS) {
@@ -57,8 +65,7 @@ async function readRoadSignals(store: ScenarioStore, file: string): Promise<Road
   // Loaded here, not with the module: a run that reads no road file (most CLI runs) does not pay for Node's crypto.
   const { createHash } = await import('node:crypto');
   const hash = createHash('sha1').update(bytes).digest('hex');
-  let summaries = summariesByStore.get(store);
-  if (!summaries) summariesByStore.set(store, (summaries = new Map()));
+  const summaries = memoryOf(store).summaries;
   const cached = summaries.get(file);
   if (cached?.hash === hash) return cached.signals;
   const network = parseOpenDrive(decodeUtf8(bytes));
