@@ -110,6 +110,57 @@ function loopThrough(circle: string[], graph: Map<string, string[]>): string {
   throw new Error(`no loop through ${start} in its own circle`);
 }
 
+/**
+ * The imports between the parts of each folder: a part is a folder inside it (with everything below) or a
+ * file directly in it; each edge keeps one import that makes it, as `file -> file`.
+ */
+function folderGraphs(graph: Map<string, string[]>): Map<string, Map<string, Map<string, string>>> {
+  const folders = new Set<string>();
+  for (const file of graph.keys()) {
+    for (let folder = path.posix.dirname(file); folder !== '.'; folder = path.posix.dirname(folder)) folders.add(folder);
+  }
+  const byFolder = new Map<string, Map<string, Map<string, string>>>();
+  for (const folder of folders) {
+    const partOf = (file: string) =>
+      file.startsWith(`${folder}/`) ? `${folder}/${file.slice(folder.length + 1).split('/')[0]}` : undefined;
+    const parts = new Map<string, Map<string, string>>();
+    for (const [file, imports] of graph) {
+      const from = partOf(file);
+      if (!from) continue;
+      if (!parts.has(from)) parts.set(from, new Map());
+      for (const target of imports) {
+        const to = partOf(target);
+        if (to && to !== from && !parts.get(from)!.has(to)) parts.get(from)!.set(to, `${file} -> ${target}`);
+      }
+    }
+    byFolder.set(folder, parts);
+  }
+  return byFolder;
+}
+
+/**
+ * Each circle among the parts of a folder that holds a folder (a circle of files alone is a file cycle): its
+ * parts, and each import between two of them with one import that makes it, so two folders that import
+ * each other are named with one import each way.
+ */
+function folderCircles(graph: Map<string, string[]>): string[] {
+  const found: string[] = [];
+  for (const [folder, parts] of folderGraphs(graph)) {
+    const partGraph = new Map([...parts].map(([part, imports]) => [part, [...imports.keys()].sort()]));
+    for (const circle of circles(partGraph)) {
+      if (circle.every((part) => graph.has(part))) continue;
+      const steps = circle.flatMap((from) =>
+        partGraph
+          .get(from)!
+          .filter((to) => circle.includes(to))
+          .map((to) => `    ${from} -> ${to}: ${parts.get(from)!.get(to)}`),
+      );
+      found.push([`in ${folder}, a circle of ${circle.join(', ')}:`, ...steps].join('\n'));
+    }
+  }
+  return found;
+}
+
 describe('layering: the imports of server/src, client/src and common/src', () => {
   let graph: Map<string, string[]>;
   before(() => {
@@ -124,12 +175,41 @@ describe('layering: the imports of server/src, client/src and common/src', () =>
     assert.ok(importsOf('server/src/cli.ts').includes('server/src/cli/batch.ts'));
     // So does a re-export (`export * from`), and a folder resolves to its index.ts.
     assert.ok(importsOf('server/src/core/semantics/index.ts').includes('server/src/core/semantics/values.ts'));
-    assert.ok(importsOf('server/src/core/roadFiles.ts').includes('server/src/core/sources/index.ts'));
+    assert.ok(importsOf('server/src/core/semantics/roadFiles.ts').includes('server/src/core/sources/index.ts'));
   });
 
   it('has no import cycle', () => {
     const loops = circles(graph).map((circle) => `${loopThrough(circle, graph)}  (a circle of ${circle.length}: ${circle.join(', ')})`);
     assert.deepEqual(loops, [], `import cycles:\n${loops.join('\n')}`);
+  });
+
+  it('has no import cycle between folders: no two parts of a folder (a folder inside it, a file in it) import each other', () => {
+    const loops = folderCircles(graph);
+    assert.deepEqual(loops, [], `folders that import each other:\n${loops.join('\n')}`);
+  });
+
+  it('names the folders of a folder cycle and one import each way', () => {
+    const cyclic = new Map([
+      ['x/a/one.ts', ['x/b/two.ts']],
+      ['x/b/two.ts', []],
+      ['x/b/three.ts', ['x/a/four.ts']],
+      ['x/a/four.ts', []],
+      ['x/c.ts', ['x/a/one.ts']],
+    ]);
+    assert.deepEqual(folderCircles(cyclic), [
+      ['in x, a circle of x/a, x/b:', '    x/a -> x/b: x/a/one.ts -> x/b/two.ts', '    x/b -> x/a: x/b/three.ts -> x/a/four.ts'].join('\n'),
+    ]);
+    // Files alone in a loop are the file test's; a folder and a file beside it that import each other are a folder cycle.
+    cyclic.set('x/b/two.ts', ['x/c.ts']);
+    cyclic.set('x/b/three.ts', []);
+    assert.deepEqual(folderCircles(cyclic), [
+      [
+        'in x, a circle of x/a, x/b, x/c.ts:',
+        '    x/a -> x/b: x/a/one.ts -> x/b/two.ts',
+        '    x/b -> x/c.ts: x/b/two.ts -> x/c.ts',
+        '    x/c.ts -> x/a: x/c.ts -> x/a/one.ts',
+      ].join('\n'),
+    ]);
   });
 
   it('imports server/src/cli/ only from the CLI itself: the batch runner and the rest sit below it', () => {

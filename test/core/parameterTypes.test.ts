@@ -2,7 +2,7 @@ import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { formatProblem, Problem } from '../../server/src/core/problems';
-import { parameterValueProblems } from '../../server/src/core/schema/parameterValues';
+import { parameterValueProblems } from '../../server/src/core/semantics/parameterValues';
 import { analyzeDocument, CatalogLoader } from '../../server/src/core/semantics';
 import { diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { parseXml } from '../../server/src/core/xml';

@@ -1,7 +1,7 @@
 import * as assert from 'node:assert/strict';
 import * as path from 'node:path';
 import { parseEsminiLoadedRoad } from '../../common/src/esminiCsv';
-import { logicFileOf, resolveRoadFile, roadFileCandidates, roadFolders } from '../../server/src/core/roadFiles';
+import { logicFileOf, resolveRoadFile, roadFileCandidates, roadFolders } from '../../server/src/core/semantics/roadFiles';
 import { nodeFileSystem } from '../../server/src/core/sources';
 import { parseXml } from '../../server/src/core/xml';
 import { readEsminiLog } from '../../server/src/esmini/log';

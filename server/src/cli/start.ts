@@ -3,7 +3,7 @@ import { isAscii } from 'node:buffer';
 import { existsSync, readFileSync, statSync } from 'node:fs';
 import { join } from 'node:path';
 import { Script } from 'node:vm';
-import type * as Cli from '../cli';
+import type { CliOutput } from './common';
 
 /**
  * The program's entry (dist/cli.js): it runs one of the CLI's bundles from V8's code cache, which
@@ -42,8 +42,14 @@ export function commandBundle(commandFile: string): string {
   return `cli-${commandFile}.js`;
 }
 
+/** What a bundle of cli.ts exports to this entry: declared here, as cli.ts sits above cli/ (cli.ts imports this folder). */
+export interface CliEntry {
+  main(argv: string[], io: CliOutput): Promise<number>;
+  runFromCommandLine(): void;
+}
+
 export interface LoadedBundle {
-  exports: Pick<typeof Cli, 'main' | 'runFromCommandLine'>;
+  exports: CliEntry;
   script: Script;
 }
 

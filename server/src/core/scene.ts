@@ -4,7 +4,7 @@
  */
 import { laneById, laneCenterT, laneSectionIndexAt, Road, RoadNetwork, roadPoint } from './opendrive/road';
 import { normalizeAngle } from './opendrive/geometry';
-import { logicFileOf } from './roadFiles';
+import { logicFileOf } from './semantics/roadFiles';
 import { assignmentsOf, catalogEntryFor, DocumentSemantics, Evaluator, semanticModelOf } from './semantics';
 import { attribute, attributeValue, XmlDocument, XmlElement } from './xml';
 

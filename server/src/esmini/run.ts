@@ -3,7 +3,7 @@ import * as os from 'node:os';
 import * as path from 'node:path';
 import { Flattener, FlatSource } from '../core/flatten';
 import { Problem } from '../core/problems';
-import { logicFileOf, resolveRoadFile, roadFolders, scenarioFolderOf } from '../core/roadFiles';
+import { logicFileOf, resolveRoadFile, roadFolders, scenarioFolderOf } from '../core/semantics/roadFiles';
 import { nodeFileSystem, SourceRef } from '../core/sources';
 import { attribute, descendants, escapeAttributeValue, parseXml } from '../core/xml';
 import { parseEsminiLoadedRoad } from '../../../common/src/esminiCsv';
@@ -93,7 +93,7 @@ export interface EsminiRunResult {
 export interface RunRoadFile {
   /** As the scenario's LogicFile says, evaluated. */
   filepath: string;
-  /** Absolute: the file the bird's-eye view draws too (core/roadFiles.ts); undefined when not found. */
+  /** Absolute: the file the bird's-eye view draws too (core/semantics/roadFiles.ts); undefined when not found. */
   resolved?: string;
   /** Every path looked at, in order. */
   candidates: string[];

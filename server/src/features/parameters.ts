@@ -15,7 +15,7 @@ import {
 import { displayRef, refId, SourceRef } from '../core/sources';
 import { SchemaIndex } from '../core/schema/index';
 import { SimpleType } from '../core/schema/model';
-import { attributeType, valueFits } from '../core/schema/parameterValues';
+import { attributeType, valueFits } from '../core/semantics/parameterValues';
 import { typeByElementName } from '../core/schema/query';
 import { elementAt, XmlAttribute, XmlDocument, XmlElement } from '../core/xml';
 import { Place } from '../analysis';

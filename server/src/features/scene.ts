@@ -3,7 +3,7 @@ import { elementPlace } from '../analysis';
 import { FlatSource } from '../core/flatten';
 import { MAX_ROAD_FILE_BYTES, parseOpenDrive, RoadNetwork } from '../core/opendrive/road';
 import { sampleNetwork } from '../core/opendrive/sample';
-import { logicFileOf, resolveRoadFile, roadFolders, scenarioFolderOf } from '../core/roadFiles';
+import { logicFileOf, resolveRoadFile, roadFolders, scenarioFolderOf } from '../core/semantics/roadFiles';
 import { scenarioScene } from '../core/scene';
 import { analyzeDocument } from '../core/semantics';
 import { baseName, displayRef, nodeFileSystem } from '../core/sources';
@@ -67,7 +67,7 @@ export async function buildScene(workspace: Workspace, roads: RoadNetworkCache, 
   if (!source.model && source.original && source.links.length > 0)
     problems.push('the scenario could not be flattened; the view shows the file as written, without the groups it imports');
 
-  // The road file is needed before positions can be evaluated. It is resolved as Run in esmini resolves it (core/roadFiles.ts), from the file as written.
+  // The road file is needed before positions can be evaluated. It is resolved as Run in esmini resolves it (core/semantics/roadFiles.ts), from the file as written.
   const logic = logicFileOf((source.original ?? model).document);
   // Places are found from the document shown (the flattened one for a main file).
   const shownLogic = logicFileOf(model.document);

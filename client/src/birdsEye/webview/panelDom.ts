@@ -68,7 +68,7 @@ export function renderPanel(): void {
   markers.append(cursor);
   const problems = element<HTMLUListElement>('problems');
   const drawn = state.scene?.roadFile?.resolved;
-  // The run and the picture resolve the road alike (core/roadFiles.ts); a run loaded elsewhere (an older CSV, another tool) is said so.
+  // The run and the picture resolve the road alike (core/semantics/roadFiles.ts); a run loaded elsewhere (an older CSV, another tool) is said so.
   const otherRoad =
     state.run?.roadFile && drawn && state.run.roadFile !== drawn
       ? [`the run loaded the road file ${state.run.roadFile}; the picture draws ${drawn}`]

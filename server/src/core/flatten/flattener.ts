@@ -3,7 +3,7 @@ import { declareUtf8 } from '../encoding';
 import { buildModel, readModel, ScenarioModel } from '../model';
 import { Problem, uniqueProblems } from '../problems';
 import { Simulator } from '../profiles/simulators';
-import { parameterValueProblems } from '../schema/parameterValues';
+import { parameterValueProblems } from '../semantics/parameterValues';
 import { SchemaCheckMemory, schemaProblems } from '../schema/problems';
 import { analyzeDocument, CatalogLoader, semanticProblems } from '../semantics';
 import { refId, ScenarioStore, SourceError, SourceRef } from '../sources';

@@ -2,7 +2,7 @@ import { ParameterReferenceInfo } from '../model';
 import { Problem } from '../problems';
 import { refId } from '../sources';
 import { schemaIndex } from '../schema/index';
-import { attributeType, siteTypeProblem } from '../schema/parameterValues';
+import { attributeType, siteTypeProblem } from '../semantics/parameterValues';
 import { PlacedFinding, SchemaCheckMemory, toProblem } from '../schema/problems';
 import { typeOfElement } from '../schema/query';
 import { checkAttribute, checkSchema, findingOffsets, SchemaCheckOptions, SchemaFinding, subjectOf } from '../schema/validate';

@@ -1,5 +1,5 @@
 import { MAX_ROAD_FILE_BYTES, parseOpenDrive } from '../opendrive/road';
-import { logicFileOf, resolveRoadFile, scenarioFolderOf } from '../roadFiles';
+import { logicFileOf, resolveRoadFile, scenarioFolderOf } from './roadFiles';
 import { ScenarioStore, SourceRef } from '../sources';
 import { decodeUtf8 } from '../text';
 import { XmlDocument } from '../xml';
@@ -35,7 +35,7 @@ function memoryOf(store: ScenarioStore): RoadMemory {
 
 /**
  * The signals of the road file a scenario names, resolved as Run in esmini and the bird's-eye view
- * resolve it (core/roadFiles.ts; the road folders are the store's scenario path, esmini's `--path`).
+ * resolve it (core/semantics/roadFiles.ts; the road folders are the store's scenario path, esmini's `--path`).
  * Undefined when the document names none or it cannot be found or read: the road rules then say nothing.
  */
 export async function roadSignalsOf(

@@ -1,11 +1,13 @@
 import { Problem, Severity } from '../problems';
-import { convertValue, DocumentSemantics, formatValue, ParameterType, resolveName, ValueSite } from '../semantics';
+import { SchemaIndex, schemaIndex } from '../schema/index';
+import { SimpleType } from '../schema/model';
+import { typeOfElement } from '../schema/query';
+import { builtinOf, checkValue, describeType } from '../schema/values';
+import { chooseVersion, SchemaVersionSetting } from '../schema/version';
 import { XmlElement } from '../xml';
-import { SchemaIndex, schemaIndex } from './index';
-import { SimpleType } from './model';
-import { typeOfElement } from './query';
-import { builtinOf, checkValue, describeType } from './values';
-import { chooseVersion, SchemaVersionSetting } from './version';
+import type { DocumentSemantics } from './index';
+import { resolveName, ValueSite } from './model';
+import { convertValue, formatValue, ParameterType } from './values';
 
 /*
  * A parameter's value against the type of every attribute that uses it (`s="$HostVehicle"` with a string

@@ -3,10 +3,10 @@
  * the bird's-eye view draws the file that Run in esmini loads.
  */
 import * as path from 'node:path';
+import { FileSystemHost, SourceRef } from '../sources';
+import { XmlDocument, XmlElement } from '../xml';
 // The model module, not the semantics index: the index runs the checks, whose road rules read road files through this one.
-import { Evaluator, semanticModelOf } from './semantics/model';
-import { FileSystemHost, SourceRef } from './sources';
-import { XmlDocument, XmlElement } from './xml';
+import { Evaluator, semanticModelOf } from './model';
 
 export interface LogicFile {
   /** As the scenario says, `$parameters` and `${...}` evaluated. */
