@@ -1,11 +1,13 @@
 #!/usr/bin/env node
 // `npm start`: opens the bundled examples/ in a real VS Code with this extension loaded. Installs
-// what is missing first (npm ci, the bundles, and code-server when desktop VS Code is not installed).
+// what is missing first (npm ci, the bundles, and code-server when desktop VS Code is not installed);
+// esmini is built after the editor is open, with its progress shown, as it takes minutes the first time.
 import { spawn, spawnSync } from 'node:child_process';
 import * as fs from 'node:fs';
 import * as net from 'node:net';
 import * as path from 'node:path';
 import { fileURLToPath } from 'node:url';
+import { buildEsmini } from './esminiBuild.mjs';
 import { writeStartSettings } from './startSettings.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
@@ -50,9 +52,28 @@ if (!fs.existsSync(path.join(root, 'node_modules', '.package-lock.json'))) {
 step('building the extension, the language server and the CLI');
 runOrExit(process.execPath, [path.join(root, 'scripts', 'build.mjs')]);
 
+// Run in esmini and the bird's-eye view want esmini and road files: esmini is built from ../shared/esmini when it is
+// there, into .cache/esmini, where the language server and the CLI look for it (server/src/esmini/locate.ts).
+const shared = path.resolve(root, '..', 'shared', 'esmini');
+const esminiDest = path.join(root, '.cache', 'esmini');
+const canBuildEsmini = fs.existsSync(path.join(shared, 'build.sh'));
+
+/** Builds esmini (at once when built before), telling how far it is; after the editor is open, so that it is usable meanwhile. */
+async function buildEsminiAfterOpening() {
+  if (!canBuildEsmini) return;
+  if (!fs.existsSync(path.join(esminiDest, 'bin', 'esmini')))
+    step(
+      'building esmini from ../shared/esmini into .cache/esmini (once; 3 to 20 minutes on 2 cores, longer when they are busy). ' +
+        'The editor works meanwhile; Run in esmini finds esmini when the build is done.',
+    );
+  const program = await buildEsmini({ buildScript: path.join(shared, 'build.sh'), dest: esminiDest, report: step });
+  if (!program) step('esmini did not build (the lines above say why): Run in esmini will say how to get it');
+}
+
 if (onPath('code') && !process.env.M2S_USE_CODE_SERVER) {
   step(`opening ${path.relative(root, workspace) || '.'} in VS Code with the extension loaded`);
   runOrExit('code', ['--new-window', `--extensionDevelopmentPath=${root}`, workspace]);
+  await buildEsminiAfterOpening();
   process.exit(0);
 }
 
@@ -61,21 +82,9 @@ if (!fs.existsSync(codeServer)) {
   runOrExit('bash', [path.join(root, 'scripts', 'e2e-setup.sh'), '--code-server']);
 }
 
-// Run in esmini and the bird's-eye view want esmini and road files: built from ../shared/esmini when it is there.
+// esmini itself needs no setting (the server finds .cache/esmini); the road files beside it do.
 const esminiSettings = {};
-const shared = path.resolve(root, '..', 'shared', 'esmini');
-if (fs.existsSync(path.join(shared, 'build.sh'))) {
-  const esmini = path.join(root, '.cache', 'esmini', 'bin', 'esmini');
-  if (!fs.existsSync(esmini)) step('building esmini from ../shared/esmini into .cache/esmini (about 3 minutes, once)');
-  const built = spawnSync('bash', [path.join(shared, 'build.sh'), path.join(root, '.cache', 'esmini')], {
-    cwd: root,
-    stdio: ['ignore', 'ignore', 'inherit'],
-  });
-  if (built.status === 0 && fs.existsSync(esmini)) {
-    esminiSettings['modular2simple.esmini.path'] = esmini;
-    esminiSettings['modular2simple.esmini.roadPath'] = [path.join(shared, 'xodr')];
-  } else step('esmini did not build: Run in esmini will say how to get it');
-}
+if (canBuildEsmini) esminiSettings['modular2simple.esmini.roadPath'] = [path.join(shared, 'xodr')];
 
 const userData = path.join(profile, 'user-data');
 writeStartSettings(path.join(userData, 'User', 'settings.json'), esminiSettings);
@@ -119,9 +128,8 @@ for (let attempt = 0; attempt < 150; attempt++) {
   if (server.exitCode !== null) process.exit(server.exitCode);
   await new Promise((resolve) => setTimeout(resolve, 200));
 }
-step(
-  `VS Code (code-server) is running on 127.0.0.1 only. Open this address in a browser on this machine:\n\n  ${url}\n\nAfter a rebuild (npm run build), run "Developer: Reload Window". Stop with Ctrl+C.`,
-);
+const opened = `VS Code (code-server) is running on 127.0.0.1 only. Open this address in a browser on this machine:\n\n  ${url}\n\nAfter a rebuild (npm run build), run "Developer: Reload Window". Stop with Ctrl+C.`;
+step(opened);
 const stop = () => {
   try {
     process.kill(-server.pid, 'SIGTERM');
@@ -140,3 +148,7 @@ const stop = () => {
 process.on('SIGINT', stop);
 process.on('SIGTERM', stop);
 server.on('exit', (code) => process.exit(code ?? 0));
+const esminiWasBuilt = fs.existsSync(path.join(esminiDest, 'bin', 'esmini'));
+await buildEsminiAfterOpening();
+// The address again, as the build's lines have pushed it up.
+if (canBuildEsmini && !esminiWasBuilt) step(opened);

@@ -1,6 +1,7 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
+import { buildEsmini, buildPercent } from '../../scripts/esminiBuild.mjs';
 import { writeStartSettings } from '../../scripts/startSettings.mjs';
 import { repoRoot } from '../support/paths';
 import { temporaryWorkspace } from '../support/workspace';
@@ -30,5 +31,47 @@ describe('npm start: the settings of the VS Code it opens', () => {
     assert.match(script, /import \{ writeStartSettings \} from '\.\/startSettings\.mjs'/);
     assert.match(script, /writeStartSettings\(path\.join\(userData, 'User', 'settings\.json'\), esminiSettings\)/);
     assert.doesNotMatch(script, /autoSave/);
+  });
+});
+
+describe('npm start: building esmini after the editor is open', () => {
+  it('reads how far make is from its log', () => {
+    assert.equal(buildPercent('-- Configuring done\n'), undefined);
+    assert.equal(buildPercent('[  3%] Building CXX object a.o\nwarning: [ 99%] quoted\n[ 42%] Building CXX object b.o\n'), 42);
+    assert.equal(buildPercent('[100%] Built target esmini\n'), 100);
+  });
+
+  it('reports the build as make goes, then where esmini is; a failed build is told and yields no program', async function () {
+    this.timeout(20_000);
+    const dest = temporaryWorkspace();
+    // A stand-in for ../shared/esmini/build.sh: writes make's lines to DEST/build.log as it goes, then the program.
+    const buildScript = path.join(dest, 'build.sh');
+    fs.writeFileSync(
+      buildScript,
+      'set -e\nfor p in 5 25 26 60 100; do echo "[ $p%] Building CXX object x.o" >> "$1/build.log"; sleep 0.2; done\n' +
+        'if [ -n "$FAIL" ]; then exit 1; fi\nmkdir -p "$1/bin" && printf "#!/bin/sh\\n" > "$1/bin/esmini" && chmod +x "$1/bin/esmini"\n',
+    );
+    try {
+      const lines: string[] = [];
+      const program = await buildEsmini({ buildScript, dest, report: (line) => lines.push(line), pollMs: 20 });
+      assert.equal(program, path.join(dest, 'bin', 'esmini'));
+      const percents = lines.flatMap((line) => /esmini build: (\d+) %/.exec(line)?.[1] ?? []).map(Number);
+      // One line per tenth passed (a poll may see 26 rather than 25 on a busy machine), never two in one tenth.
+      assert.ok(percents.length >= 3 && percents[percents.length - 1] === 100, lines.join('\n'));
+      percents
+        .slice(1)
+        .forEach((percent, index) => assert.ok(Math.floor(percent / 10) > Math.floor(percents[index] / 10), lines.join('\n')));
+      assert.match(lines[lines.length - 1], /^esmini built in \d+ s: .*bin\/esmini$/);
+
+      fs.rmSync(path.join(dest, 'bin'), { recursive: true });
+      fs.rmSync(path.join(dest, 'build.log'));
+      process.env.FAIL = '1';
+      const failed: string[] = [];
+      assert.equal(await buildEsmini({ buildScript, dest, report: (line) => failed.push(line), pollMs: 20 }), undefined);
+      assert.match(failed[failed.length - 1], /^esmini did not build after \d+ s$/);
+    } finally {
+      delete process.env.FAIL;
+      fs.rmSync(dest, { recursive: true, force: true });
+    }
   });
 });

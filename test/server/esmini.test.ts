@@ -5,7 +5,7 @@ import * as path from 'node:path';
 import { Flattener } from '../../server/src/core/flatten';
 import { childRef, diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { parseEsminiLog } from '../../server/src/esmini/log';
-import { locateEsmini } from '../../server/src/esmini/locate';
+import { locateEsmini, projectEsminiFolder } from '../../server/src/esmini/locate';
 import { mapEsminiMessages } from '../../server/src/esmini/messages';
 import { lastCsvTime, makeRunFolder, runEsminiProcess } from '../../server/src/esmini/process';
 import { EsminiRunOptions, EsminiRunResult, removeRunFolder, runScenario } from '../../server/src/esmini/run';
@@ -194,7 +194,7 @@ describe('esmini: time limit and log (no simulator needed)', () => {
   });
 
   it('tells how to get esmini when it is missing, and runs nothing', async () => {
-    const location = locateEsmini(undefined, process.cwd(), '');
+    const location = locateEsmini(undefined, process.cwd(), '', []);
     assert.equal(location.found, false);
     assert.match((location as { message: string }).message, /modular2simple\.esmini\.path.*build\.sh \.cache\/esmini/s);
     const configured = locateEsmini('no/such/esmini', os.tmpdir());
@@ -204,6 +204,30 @@ describe('esmini: time limit and log (no simulator needed)', () => {
     });
     assert.equal(result.outcome, 'no-esmini');
     assert.equal(result.runFolder, undefined);
+  });
+});
+
+describe('esmini: where it is found', () => {
+  it('after the setting and PATH, in .cache/esmini/bin of the project the program runs from (where npm start builds it)', () => {
+    const project = fs.realpathSync(fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-locate-')));
+    try {
+      fs.writeFileSync(path.join(project, 'package.json'), '{}');
+      const built = path.join(project, '.cache', 'esmini', 'bin');
+      const onPath = path.join(project, 'on-path');
+      for (const folder of [built, onPath, path.join(project, 'dist')]) fs.mkdirSync(folder, { recursive: true });
+      for (const folder of [built, onPath]) fs.writeFileSync(path.join(folder, 'esmini'), '#!/bin/sh\n', { mode: 0o755 });
+      assert.equal(projectEsminiFolder(path.join(project, 'dist')), built);
+      assert.equal(
+        projectEsminiFolder(path.join(__dirname, '..', '..', 'server', 'src', 'esmini')),
+        path.resolve(__dirname, '..', '..', '.cache', 'esmini', 'bin'),
+      );
+      assert.deepEqual(locateEsmini(undefined, project, '', [built]), { found: true, program: path.join(built, 'esmini') });
+      assert.deepEqual(locateEsmini(undefined, project, onPath, [built]), { found: true, program: path.join(onPath, 'esmini') });
+      // A configured path that holds no esmini is reported, not replaced by the one built.
+      assert.equal(locateEsmini('elsewhere', project, '', [built]).found, false);
+    } finally {
+      fs.rmSync(project, { recursive: true, force: true });
+    }
   });
 });
 

@@ -37,7 +37,7 @@ export const BATCH_HELP = `Run every concrete scenario of a distribution in esmi
 
 export const WORKER_HELP = `Run a batch's concrete scenarios from a queue (modular2simple worker --queue redis://HOST:PORT ...):
   --jobs N                  runs at a time (default: the number of cores)
-  --esmini PATH             the esmini program, or its folder (default: esmini on PATH)
+  --esmini PATH             the esmini program, or its folder (default: esmini on PATH, else the one npm start built)
   --idle-exit S             stop after S seconds with nothing to do (default: run until interrupted)`;
 
 const EXIT = { ok: 0, problems: 1, usage: 2, io: 3, internal: 4, interrupted: 130 } as const;

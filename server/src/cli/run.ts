@@ -14,7 +14,7 @@ export const RUN_HELP = `Run in esmini (modular2simple run INPUT... [options]):
   --duration S              simulated seconds to run at most (default ${RUN_DEFAULTS.duration}); fixed step ${RUN_DEFAULTS.timeStep} s
   --seed N                  esmini's random seed (default ${RUN_DEFAULTS.seed})
   --road-path DIRS          extra folders for road files and catalogs (separated by ';' or ':')
-  --esmini PATH             the esmini program, or its folder (default: esmini on PATH)
+  --esmini PATH             the esmini program, or its folder (default: esmini on PATH, else the one npm start built)
   --check                   exit 1 when esmini reports an error (for CI over a library)
   --force                   run whatever can be flattened despite the scenario's errors, listing them
   --csv OUT                 keep esmini's CSV log of the run (one input only)

@@ -5,9 +5,10 @@ export type EsminiLocation = { found: true; program: string } | { found: false; 
 
 /** What to tell a user who has no esmini: where it is looked for and how to get it. */
 export const ESMINI_MISSING_HELP =
-  'esmini was not found. It is looked for in the setting modular2simple.esmini.path (the CLI: --esmini PATH), then on PATH. ' +
+  'esmini was not found. It is looked for in the setting modular2simple.esmini.path (the CLI: --esmini PATH), then on PATH, ' +
+  'then in .cache/esmini/bin of this project (where npm start builds it). ' +
   'Get it from https://github.com/esmini/esmini/releases (bin/esmini), or build it headless from the source package shipped ' +
-  'beside this project: bash ../shared/esmini/build.sh .cache/esmini, then point modular2simple.esmini.path at .cache/esmini/bin/esmini.';
+  'beside this project: bash ../shared/esmini/build.sh .cache/esmini (npm start does this), or point modular2simple.esmini.path at an esmini.';
 
 const PROGRAM_NAMES = process.platform === 'win32' ? ['esmini.exe', 'esmini'] : ['esmini'];
 
@@ -32,13 +33,25 @@ function programAt(configured: string): string | undefined {
 }
 
 /**
- * Finds esmini: the configured path first (relative to `base`), then every folder of PATH.
- * A configured path that holds no esmini is reported rather than silently replaced by PATH's.
+ * `.cache/esmini/bin` of the project this program runs from (the nearest folder above it with a package.json: the
+ * repository for `dist/` and for the sources), where `npm start` and the test setup build esmini.
+ */
+export function projectEsminiFolder(from: string = __dirname): string | undefined {
+  for (let folder = from, level = 0; level < 4; folder = path.dirname(folder), level++) {
+    if (fs.existsSync(path.join(folder, 'package.json'))) return path.join(folder, '.cache', 'esmini', 'bin');
+  }
+  return undefined;
+}
+
+/**
+ * Finds esmini: the configured path first (relative to `base`), then every folder of PATH, then `builtFolders`
+ * (the esmini `npm start` built). A configured path that holds no esmini is reported rather than silently replaced.
  */
 export function locateEsmini(
   configured: string | undefined,
   base: string = process.cwd(),
   searchPath: string | undefined = process.env.PATH,
+  builtFolders: readonly string[] = [projectEsminiFolder()].filter((folder) => folder !== undefined),
 ): EsminiLocation {
   if (configured && configured.trim()) {
     const resolved = path.resolve(base, configured.trim());
@@ -49,7 +62,7 @@ export function locateEsmini(
       message: `esmini is not at ${resolved} (setting modular2simple.esmini.path or --esmini). ${ESMINI_MISSING_HELP}`,
     };
   }
-  for (const folder of (searchPath ?? '').split(path.delimiter)) {
+  for (const folder of [...(searchPath ?? '').split(path.delimiter), ...builtFolders]) {
     if (!folder) continue;
     for (const name of PROGRAM_NAMES) {
       const candidate = path.join(folder, name);

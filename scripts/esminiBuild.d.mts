@@ -1,0 +1,8 @@
+export declare function buildPercent(logText: string): number | undefined;
+export declare function buildEsmini(options: {
+  buildScript: string;
+  dest: string;
+  report: (line: string) => void;
+  pollMs?: number;
+  quietMs?: number;
+}): Promise<string | undefined>;
