@@ -1,6 +1,5 @@
 import * as path from 'node:path';
 import { AnalysisResult, Flattener, FlatSource } from './core/flatten';
-import { decodeScenario } from './core/encoding';
 import { SchemaCheckMemory } from './core/schema/problems';
 import {
   FileSystemHost,
@@ -15,12 +14,13 @@ import {
   childRef,
 } from './core/sources';
 import { Problem } from './core/problems';
-import { LineIndex, Range } from './core/text';
 import { OpenDocument, OpenDocuments } from './documents';
 import { UriResolver, refToUri } from './uris';
-import { SCENARIO_FILE, walkFiles } from './core/walk';
 import { DEFAULT_SETTINGS, ServerSettings } from './settings';
 import { ReusingFlattener, SHARED_SOURCE_BYTES, SharedSources } from './sharedSources';
+import { decodeOrUndefined, IndexedFile, scanScenario, WorkspaceIndex } from './workspaceIndex';
+
+export { IndexedFile, IndexedGroup, listScenarioFiles, scanScenario } from './workspaceIndex';
 
 /** Bytes of files and of unpacked packages that the server keeps, each; the rest is read again on demand. */
 export const SERVER_CACHE_BYTES = 64 * 1024 * 1024;
@@ -90,63 +90,6 @@ export class CachingFileSystem implements FileSystemHost {
   }
 }
 
-export interface IndexedGroup {
-  name: string;
-  range: Range;
-  /** The file the group is written in: the indexed file, or an entry of the indexed package. */
-  ref: SourceRef;
-}
-
-/** What the index knows of one scenario file on disk without keeping its parse tree. */
-export interface IndexedFile {
-  path: string;
-  kind: 'xosc' | 'mosc';
-  groups: IndexedGroup[];
-  /** Whether the file holds ScenarioReferences (and so can refer to other files). */
-  modular: boolean;
-}
-
-/** A file's text for the index; a file in an encoding that cannot be read is indexed without groups (its analysis reports why). */
-function decodeOrUndefined(bytes: Uint8Array): string | undefined {
-  try {
-    return decodeScenario(bytes);
-  } catch {
-    return undefined;
-  }
-}
-
-/**
- * Group names (with ranges) and whether references occur, by a scan of the text: the index of a
- * large workspace is built without keeping or even building parse trees. Comments are skipped.
- */
-export function scanScenario(text: string, ref: SourceRef): Pick<IndexedFile, 'groups' | 'modular'> {
-  const lines = new LineIndex(text);
-  const groups: IndexedGroup[] = [];
-  const pattern = /<!--[\s\S]*?(?:-->|$)|<ManeuverGroup\b[^>]*>/g;
-  for (let match = pattern.exec(text); match; match = pattern.exec(text)) {
-    if (match[0].startsWith('<!--')) continue;
-    const name = /\sname\s*=\s*(?:"([^"]*)"|'([^']*)')/.exec(match[0]);
-    groups.push({ name: name ? (name[1] ?? name[2]) : '', range: lines.range(match.index, match.index + match[0].length), ref });
-  }
-  return { groups, modular: /<ScenarioReference\b/.test(text) };
-}
-
-/** Build output and test runner caches of an editor workspace are not scenarios of its own. */
-const INDEX_SKIPPED_FOLDERS = new Set(['node_modules', '.git', 'dist', 'out', '.vscode-test']);
-
-/** Every `.xosc` and `.mosc` below the folders, skipping build and dependency folders; never throws. */
-export function listScenarioFiles(folders: string[], limit = 100_000): Promise<string[]> {
-  return walkFiles(folders, {
-    files: SCENARIO_FILE,
-    skipFolders: INDEX_SKIPPED_FOLDERS,
-    skipDotFiles: false,
-    regularFilesOnly: true,
-    unreadable: 'skip',
-    sorted: true,
-    limit,
-  });
-}
-
 /** An analysis of one generation: whole while pending or for an open document, else its problems only. */
 interface CachedAnalysis {
   generation: number;
@@ -161,7 +104,7 @@ interface CachedAnalysis {
 export class Workspace {
   readonly files = new CachingFileSystem();
   readonly documents = new OpenDocuments();
-  readonly index = new Map<string, IndexedFile>();
+  readonly index = new WorkspaceIndex();
   readonly uris: UriResolver;
   folders: string[] = [];
   settings: ServerSettings = DEFAULT_SETTINGS;
@@ -396,19 +339,22 @@ export class Workspace {
     this.files.invalidate(resolved);
     this.storeInstance.invalidate(resolved);
     this.index.delete(resolved);
+    if (existence) this.index.forgetListing();
     this.changed(existence ? undefined : [resolved]);
   }
 
   /** Reads one file into the index; files that vanish or cannot be parsed are indexed without groups. */
   async indexFile(filePath: string): Promise<IndexedFile> {
     const kind: IndexedFile['kind'] = filePath.toLowerCase().endsWith('.mosc') ? 'mosc' : 'xosc';
-    const entry: IndexedFile = { path: filePath, kind, groups: [], modular: false };
+    const entry: IndexedFile = { path: filePath, kind, groups: [], modular: false, catalogReferences: [] };
     if (kind === 'xosc') {
       const bytes = await this.files.readFile(filePath);
-      if (bytes && bytes.length <= this.settings.maxIndexedFileBytes) {
+      if (bytes) {
         const open = this.documents.get(refId(diskRef(filePath)));
-        const text = open ? open.document.getText() : decodeOrUndefined(bytes);
+        const text =
+          bytes.length > this.settings.maxIndexedFileBytes ? undefined : open ? open.document.getText() : decodeOrUndefined(bytes);
         if (text !== undefined) Object.assign(entry, scanScenario(text, diskRef(filePath)));
+        else entry.catalogReferences.push({ ref: diskRef(filePath), entryNames: undefined });
       }
     } else {
       entry.modular = true;
@@ -416,9 +362,15 @@ export class Workspace {
       const packageRef = diskRef(filePath);
       const contents = await this.storeInstance.readPackage(packageRef).catch(() => undefined);
       for (const [name, bytes] of contents?.entries ?? []) {
-        const text =
-          name.toLowerCase().endsWith('.xosc') && bytes.length <= this.settings.maxIndexedFileBytes ? decodeOrUndefined(bytes) : undefined;
-        if (text !== undefined) entry.groups.push(...scanScenario(text, childRef(packageRef, name)).groups);
+        if (!name.toLowerCase().endsWith('.xosc')) continue;
+        const text = bytes.length <= this.settings.maxIndexedFileBytes ? decodeOrUndefined(bytes) : undefined;
+        if (text === undefined) {
+          entry.catalogReferences.push({ ref: childRef(packageRef, name), entryNames: undefined });
+          continue;
+        }
+        const scan = scanScenario(text, childRef(packageRef, name));
+        entry.groups.push(...scan.groups);
+        entry.catalogReferences.push(...scan.catalogReferences);
       }
     }
     this.index.set(filePath, entry);
@@ -428,7 +380,7 @@ export class Workspace {
   /** Indexes every scenario file of the workspace folders, reporting progress as a fraction done. */
   async indexAll(progress?: (done: number, total: number) => void): Promise<number> {
     this.storeInstance.resetBudget();
-    const filePaths = await listScenarioFiles(this.folders);
+    const filePaths = await this.index.walk(this.folders);
     let done = 0;
     for (const filePath of filePaths) {
       try {
@@ -444,13 +396,31 @@ export class Workspace {
 
   /** Index entries, reading again any file that changed since it was indexed. */
   async indexedFiles(): Promise<IndexedFile[]> {
-    const known = await listScenarioFiles(this.folders);
+    return this.entriesOf(await this.index.walk(this.folders));
+  }
+
+  private async entriesOf(known: string[]): Promise<IndexedFile[]> {
     const result: IndexedFile[] = [];
     for (const filePath of known) {
       const entry = this.index.get(filePath) ?? (await this.indexFile(filePath).catch(() => undefined));
       if (entry) result.push(entry);
     }
     return result;
+  }
+
+  /**
+   * The scenarios that may name catalog entry `entryName` (undefined: any) in a CatalogReference: from
+   * the index's reverse index (no other file is read), and the open documents (their text in memory).
+   */
+  async catalogReferrers(entryName?: string): Promise<SourceRef[]> {
+    const refs = new Map<string, SourceRef>();
+    const entries = await this.entriesOf(await this.index.paths(this.folders));
+    for (const ref of WorkspaceIndex.catalogReferrers(entries, entryName)) {
+      // A folder that vanished is not reported file by file: a candidate of the kept list is checked to exist.
+      if ((await this.files.kind(ref.disk)) === 'file') refs.set(refId(ref), ref);
+    }
+    for (const open of this.documents.values()) refs.set(refId(open.ref), open.ref);
+    return [...refs.values()];
   }
 
   /** The main files whose references may reach another file: every modular file of the workspace, and the open ones. */

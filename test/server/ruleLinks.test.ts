@@ -5,6 +5,7 @@ import { CodeAction, Diagnostic } from 'vscode-languageserver/node';
 import { QC_RULE_DESCRIPTIONS } from '../../server/src/core/rules';
 import { EXPECTED_RULES, qcRuleHref, RULE_FILES } from '../support/qcRuleFiles';
 import { problemCodeOf } from '../support/diagnostics';
+import { MANEUVER_CATALOG } from '../support/fixtures';
 import { temporaryWorkspace } from '../support/workspace';
 import { fileUri, TestClient } from './harness';
 import { applyEdits } from './textEdits';
@@ -151,17 +152,6 @@ describe('language server: each rule of ASAM QC the project maps is the code of 
     }
   });
 });
-
-const MANEUVER_CATALOG = `<?xml version="1.0"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="maneuvers" author="t"/>
-  <Catalog name="ManeuverCatalog">
-    <Maneuver name="Flip">
-      <Event name="E" priority="override"><Action name="A"><GlobalAction><VariableAction variableRef="Flag"><SetAction value="true"/></VariableAction></GlobalAction></Action></Event>
-    </Maneuver>
-  </Catalog>
-</OpenSCENARIO>
-`;
 
 function referencing(variables: string): string {
   return SCENARIO.replace(

@@ -165,3 +165,15 @@ export async function packageOf(files: Record<string, string>): Promise<Uint8Arr
   for (const [name, text] of Object.entries(files)) zip.file(name, text);
   return zip.generateAsync({ type: 'uint8array', compression: 'DEFLATE' });
 }
+
+/** A catalog of one maneuver, Flip, that sets variable Flag (declared by the scenarios that reference it). */
+export const MANEUVER_CATALOG = `<?xml version="1.0"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="maneuvers" author="t"/>
+  <Catalog name="ManeuverCatalog">
+    <Maneuver name="Flip">
+      <Event name="E" priority="override"><Action name="A"><GlobalAction><VariableAction variableRef="Flag"><SetAction value="true"/></VariableAction></GlobalAction></Action></Event>
+    </Maneuver>
+  </Catalog>
+</OpenSCENARIO>
+`;

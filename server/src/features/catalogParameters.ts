@@ -1,6 +1,6 @@
 import { LSPErrorCodes, ResponseError, TextEdit, WorkspaceEdit } from 'vscode-languageserver/node';
 import { Declaration, DocumentSemantics, referencedName, referencesOf } from '../core/semantics';
-import { childRef, diskRef, displayRef, refId, SourceRef } from '../core/sources';
+import { displayRef, refId } from '../core/sources';
 import { Place } from '../analysis';
 import { declarationOf, Target } from '../target';
 import { Workspace } from '../workspace';
@@ -46,24 +46,6 @@ export async function entryParameterOf(
   return catalog && isEntryParameter(named) ? { catalog, declaration: named } : undefined;
 }
 
-/** The scenario files of the workspace (every `.xosc` entry of a package too) and the open documents. */
-export async function scenarioRefs(workspace: Workspace): Promise<SourceRef[]> {
-  const refs = new Map<string, SourceRef>();
-  for (const entry of await workspace.indexedFiles()) {
-    if (entry.kind === 'xosc') {
-      refs.set(refId(diskRef(entry.path)), diskRef(entry.path));
-      continue;
-    }
-    const packageRef = diskRef(entry.path);
-    const contents = await workspace.store.readPackage(packageRef).catch(() => undefined);
-    for (const name of contents?.entries.keys() ?? []) {
-      if (name.toLowerCase().endsWith('.xosc')) refs.set(refId(childRef(packageRef, name)), childRef(packageRef, name));
-    }
-  }
-  for (const open of workspace.documents.values()) refs.set(refId(open.ref), open.ref);
-  return [...refs.values()];
-}
-
 /** The declaration, its uses inside the entry, then every ParameterAssignment naming it through a CatalogReference to that entry. */
 async function placesOf(workspace: Workspace, parameter: EntryParameter): Promise<NamePlace[]> {
   const { catalog, declaration } = parameter;
@@ -73,7 +55,7 @@ async function placesOf(workspace: Workspace, parameter: EntryParameter): Promis
   for (const use of referencesOf(catalog, declaration)) places.push({ semantics: catalog, start: use.end - use.name.length, end: use.end });
   const catalogId = refId(catalog.ref);
   const entryStart = declaration.scope.element.start;
-  for (const ref of await scenarioRefs(workspace)) {
+  for (const ref of await workspace.catalogReferrers()) {
     const text = await workspace.text(ref);
     if (text === undefined || !/<CatalogReference\b/.test(text)) continue;
     const semantics = (await workspace.source(ref)).semantics;

@@ -3,7 +3,6 @@ import { Problem, problemData } from '../core/problems';
 import { resolveName } from '../core/semantics';
 import { refId, SourceRef } from '../core/sources';
 import { Workspace } from '../workspace';
-import { scenarioRefs } from './catalogParameters';
 
 /**
  * A variable a catalog entry uses resolves against the scenarios that reference the entry (issue 18):
@@ -18,7 +17,8 @@ export async function referencingScenarios(
   if (problem.severity !== 'information' || data?.entry === undefined) return [];
   const catalogId = refId(catalogRef);
   const related: DiagnosticRelatedInformation[] = [];
-  for (const ref of await scenarioRefs(workspace)) {
+  // The reverse index names the candidates: no file of the workspace is read only to be ruled out.
+  for (const ref of await workspace.catalogReferrers(data.entry)) {
     if (refId(ref) === catalogId) continue;
     const text = await workspace.text(ref);
     if (text === undefined || !text.includes(data.entry) || !/<CatalogReference\b/.test(text)) continue;

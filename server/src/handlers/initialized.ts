@@ -27,6 +27,8 @@ export function register(context: ServerContext): void {
         await connection.client.register(DidChangeWatchedFilesNotification.type, {
           watchers: [{ globPattern: '**/*.xosc' }, { globPattern: '**/*.mosc' }],
         });
+        // Files appearing and vanishing are reported from now on: the index keeps its list between walks.
+        context.workspace.index.watched = true;
       }
       await index(context);
       context.diagnostics.all();

@@ -1,0 +1,152 @@
+import { decodeScenario } from './core/encoding';
+import { refId, SourceRef } from './core/sources';
+import { LineIndex, Range } from './core/text';
+import { SCENARIO_FILE, walkFiles } from './core/walk';
+
+export interface IndexedGroup {
+  name: string;
+  range: Range;
+  /** The file the group is written in: the indexed file, or an entry of the indexed package. */
+  ref: SourceRef;
+}
+
+/** The catalog entries one scenario names in `CatalogReference`s: the reverse index from entries to the files naming them. */
+export interface IndexedCatalogReferences {
+  /** The scenario: the indexed file, or an entry of the indexed package. */
+  ref: SourceRef;
+  /**
+   * Each `entryName` value as written (a `$name` or `${...}` names no entry until the file is analysed);
+   * undefined when the scenario was not scanned (too large or not decodable): it may name any.
+   */
+  entryNames: string[] | undefined;
+}
+
+/** What the index knows of one scenario file on disk without keeping its parse tree. */
+export interface IndexedFile {
+  path: string;
+  kind: 'xosc' | 'mosc';
+  groups: IndexedGroup[];
+  /** Whether the file holds ScenarioReferences (and so can refer to other files). */
+  modular: boolean;
+  /** Its scenarios (the file, or each of a package) that name catalog entries, or were not scanned. */
+  catalogReferences: IndexedCatalogReferences[];
+}
+
+/** A file's text for the index; a file in an encoding that cannot be read is indexed without groups (its analysis reports why). */
+export function decodeOrUndefined(bytes: Uint8Array): string | undefined {
+  try {
+    return decodeScenario(bytes);
+  } catch {
+    return undefined;
+  }
+}
+
+const ENTRY_NAME = /\sentryName\s*=\s*(?:"([^"]*)"|'([^']*)')/;
+
+/**
+ * Group names (with ranges), whether references occur and the catalog references, by a scan of the
+ * text: the index of a large workspace is built without keeping or even building parse trees.
+ * Comments are skipped.
+ */
+export function scanScenario(text: string, ref: SourceRef): Pick<IndexedFile, 'groups' | 'modular' | 'catalogReferences'> {
+  const lines = new LineIndex(text);
+  const groups: IndexedGroup[] = [];
+  const entryNames: string[] = [];
+  // A CatalogReference's tag is read quote-aware: a `>` inside another attribute's value must not hide its entryName.
+  const pattern = /<!--[\s\S]*?(?:-->|$)|<ManeuverGroup\b[^>]*>|<(CatalogReference)\b(?:[^>"']|"[^"]*"|'[^']*')*>/g;
+  for (let match = pattern.exec(text); match; match = pattern.exec(text)) {
+    if (match[0].startsWith('<!--')) continue;
+    if (match[1] === 'CatalogReference') {
+      const entryName = ENTRY_NAME.exec(match[0]);
+      entryNames.push(entryName ? (entryName[1] ?? entryName[2]) : '');
+      continue;
+    }
+    const name = /\sname\s*=\s*(?:"([^"]*)"|'([^']*)')/.exec(match[0]);
+    groups.push({ name: name ? (name[1] ?? name[2]) : '', range: lines.range(match.index, match.index + match[0].length), ref });
+  }
+  return { groups, modular: /<ScenarioReference\b/.test(text), catalogReferences: entryNames.length > 0 ? [{ ref, entryNames }] : [] };
+}
+
+/** Build output and test runner caches of an editor workspace are not scenarios of its own. */
+const INDEX_SKIPPED_FOLDERS = new Set(['node_modules', '.git', 'dist', 'out', '.vscode-test']);
+
+/** Every `.xosc` and `.mosc` below the folders, skipping build and dependency folders; never throws. */
+export function listScenarioFiles(folders: string[], limit = 100_000): Promise<string[]> {
+  return walkFiles(folders, {
+    files: SCENARIO_FILE,
+    skipFolders: INDEX_SKIPPED_FOLDERS,
+    skipDotFiles: false,
+    regularFilesOnly: true,
+    unreadable: 'skip',
+    sorted: true,
+    limit,
+  });
+}
+
+/** An entry name as written that may read as another name: a parameter, an entity reference, white space the parser normalizes. */
+function mayReadOtherwise(entryName: string): boolean {
+  return /[$&\t\n\r]/.test(entryName);
+}
+
+/**
+ * The index of the workspace's scenario files: an entry per file (read again after the file changes)
+ * and the list of the files. The list comes from one walk of the folders; while the client reports
+ * files appearing and vanishing (`watched`), it stays true until such an event, so the passes that ask
+ * the index (a diagnostic pass above all) walk no folder.
+ */
+export class WorkspaceIndex {
+  private readonly entries = new Map<string, IndexedFile>();
+  /** The scenario files as the last walk found them, sorted; undefined until a walk or after a file appeared or vanished. */
+  private listed: string[] | undefined;
+  /** Whether the client reports files appearing and vanishing (watched-file events), so the list stays true between walks. */
+  watched = false;
+
+  get(filePath: string): IndexedFile | undefined {
+    return this.entries.get(filePath);
+  }
+
+  set(filePath: string, entry: IndexedFile): void {
+    this.entries.set(filePath, entry);
+  }
+
+  /** The file's entry is stale (read again on next use); the file stays in the list. */
+  delete(filePath: string): void {
+    this.entries.delete(filePath);
+  }
+
+  /** A file appeared or vanished: the list is walked again on next use. */
+  forgetListing(): void {
+    this.listed = undefined;
+  }
+
+  /** Everything: the folders changed. */
+  clear(): void {
+    this.entries.clear();
+    this.listed = undefined;
+  }
+
+  /** The scenario files of the folders, by a walk, which the list then keeps. */
+  async walk(folders: string[]): Promise<string[]> {
+    const walked = await listScenarioFiles(folders);
+    this.listed = walked;
+    return walked;
+  }
+
+  /** The scenario files of the folders: the list kept while watched, else a walk. */
+  async paths(folders: string[]): Promise<string[]> {
+    return this.watched && this.listed ? this.listed : this.walk(folders);
+  }
+
+  /**
+   * The scenarios that may name catalog entry `entryName` (`undefined`: any entry) in a CatalogReference,
+   * from the entries' scans: those writing it, or a `$name` in its place, and those not scanned.
+   */
+  static catalogReferrers(entries: IndexedFile[], entryName: string | undefined): SourceRef[] {
+    const refs = new Map<string, SourceRef>();
+    for (const entry of entries)
+      for (const { ref, entryNames } of entry.catalogReferences)
+        if (!entryNames || entryName === undefined || entryNames.some((name) => name === entryName || mayReadOtherwise(name)))
+          refs.set(refId(ref), ref);
+    return [...refs.values()];
+  }
+}
