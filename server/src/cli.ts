@@ -18,6 +18,7 @@ const COMMANDS: Record<string, () => Promise<Command>> = {
   batch: async () => (await import('./cli/batch')).batchCommand,
   worker: async () => (await import('./cli/worker')).workerCommand,
   'qc-bundle': async () => (await import('./cli/qcBundle')).qcBundleCommand,
+  export: async () => (await import('./cli/export')).exportCommand,
   // The original tool's forms.
   '-cxm': async () => (await import('./cli/pack')).convertXoscIntoMoscCommand,
   '--convert-xosc-into-mosc': async () => (await import('./cli/pack')).convertXoscIntoMoscCommand,

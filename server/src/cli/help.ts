@@ -4,6 +4,7 @@ import { RUN_HELP } from './run';
 import { VARY_HELP } from './vary';
 import { BATCH_HELP, WORKER_HELP } from './batch';
 import { VERSION } from './common';
+import { EXPORT_HELP } from './export';
 
 export const HELP = `modular2simple ${VERSION}: pack, flatten and check modular OpenSCENARIO scenarios
 
@@ -26,6 +27,9 @@ Usage:
   modular2simple batch FILE --results DIR [--jobs N] [--queue redis://HOST:PORT]
                                                    run them all in esmini; results.csv and results.json
   modular2simple worker --queue redis://HOST:PORT    run a batch's runs from a Redis queue
+  modular2simple export INPUT --target carla -o OUT.xosc [--report LOSSES.json] [--carla 0.9.15|0.9.16]
+                                                   OpenSCENARIO 1.0 that CARLA's ScenarioRunner builds,
+                                                   with a report of what it cannot keep
 ${FORMAT_HELP}
 
 Compatible with the original tool:
@@ -72,6 +76,8 @@ ${MODULARIZE_HELP}
 ${BATCH_HELP}
 
 ${WORKER_HELP}
+
+${EXPORT_HELP}
 
 Environment:
   SCENARIO_PATH             folders searched for referenced scenarios (separated by ';' or ':')

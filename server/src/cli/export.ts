@@ -1,0 +1,240 @@
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import { parseArgs } from 'node:util';
+import { isSameFile } from '../../../common/src/atomic';
+import {
+  CARLA_RELEASES,
+  CarlaExport,
+  CarlaExportOptionError,
+  CarlaExportOptions,
+  exportForCarla,
+  exportTextForCarla,
+  isCarlaRelease,
+} from '../core/export/carla';
+import { diskRef, nodeFileSystem, splitScenarioPath } from '../core/sources';
+import { loadVariations, formatVariationProblems, rebasedConcreteText, SamplingError } from '../core/variations';
+import { CliOutput, ExitCode, InputError, UsageError, write } from './common';
+import { mainOf, storeForInputs } from './inputs';
+import { flatteningScenarioLoader, readUtf8Exactly } from './scenarioText';
+
+export const EXPORT_HELP = `Export for CARLA's ScenarioRunner (modular2simple export INPUT --target carla -o OUT.xosc):
+  INPUT                     a .xosc, a modular main.xosc, an unpacked folder, a .mosc, or a
+                            ParameterValueDistribution file with --index I
+  --target carla            the simulator (the only one for now)
+  -o, --output OUT.xosc     where to write the OpenSCENARIO 1.0 file (never over an input)
+  --report LOSSES.json      also write the loss report as JSON: {"losses": [{kind, file, line,
+                            element, what, carla}], ...}; written when the export is refused too
+  --carla 0.9.15|0.9.16     the ScenarioRunner release whose facts apply (default 0.9.16: its
+                            AssignRouteAction/AcquirePositionAction crash refuses the export)
+  --blueprints FILE.json    {"car_white": "vehicle.audi.tt", ...}: entity names to CARLA blueprints
+  --road TOWN|FILE.xodr     the road instead of the scenario's LogicFile
+  --road-path DIRS          folders where the scenario's .xodr is looked for (separated by ':' or ';')
+  --ego NAME                the vehicle ScenarioRunner takes as the ego (default: the one named
+                            ego or hero, else the first vehicle)
+  --index I                 the concrete scenario of a distribution file to export
+  --scenario-path DIRS      as for flatten: where a modular main's references are looked for
+  -q, --quiet               print refusals and errors only
+  Every $parameter and \${expression} is evaluated, catalog entries are inlined, 1.1-1.3 forms are written
+  in 1.0 where the meaning is kept; what is not kept is listed (file:line, what ScenarioRunner does
+  instead). A file whose meaning would be lost is refused: exit 1, nothing written.
+  Exit codes: 0 written (losses may be listed), 1 refused, 2 usage, 3 an output could not be written.`;
+
+interface ExportArguments {
+  input: string;
+  output: string;
+  report: string | undefined;
+  index: bigint | undefined;
+  scenarioPath: string[];
+  quiet: boolean;
+  options: CarlaExportOptions;
+}
+
+function parse(argv: string[]): ExportArguments | 'help' {
+  let parsed;
+  try {
+    parsed = parseArgs({
+      args: argv,
+      allowPositionals: true,
+      options: {
+        target: { type: 'string' },
+        output: { type: 'string', short: 'o' },
+        report: { type: 'string' },
+        carla: { type: 'string' },
+        blueprints: { type: 'string' },
+        road: { type: 'string' },
+        'road-path': { type: 'string', multiple: true },
+        ego: { type: 'string' },
+        index: { type: 'string' },
+        'scenario-path': { type: 'string', multiple: true },
+        quiet: { type: 'boolean', short: 'q', default: false },
+        help: { type: 'boolean', short: 'h', default: false },
+      },
+    });
+  } catch (error) {
+    throw new UsageError((error as Error).message);
+  }
+  const { values, positionals } = parsed;
+  if (values.help) return 'help';
+  if (positionals.length !== 1) throw new UsageError('export takes one input');
+  if (values.target === undefined) throw new UsageError('export needs --target carla');
+  if (values.target !== 'carla') throw new UsageError(`--target takes carla, not '${values.target}'`);
+  if (values.output === undefined) throw new UsageError('export needs -o OUT.xosc');
+  const release = values.carla ?? '0.9.16';
+  if (!isCarlaRelease(release)) throw new UsageError(`--carla takes ${CARLA_RELEASES.join(' or ')}, not '${release}'`);
+  if (values.index !== undefined && !/^\d+$/.test(values.index.trim()))
+    throw new UsageError(`--index takes a whole number, not '${values.index}'`);
+  return {
+    input: positionals[0],
+    output: values.output,
+    report: values.report,
+    index: values.index === undefined ? undefined : BigInt(values.index.trim()),
+    scenarioPath: (values['scenario-path'] ?? []).flatMap(splitScenarioPath),
+    quiet: values.quiet ?? false,
+    options: {
+      release,
+      outputPath: path.resolve(values.output),
+      blueprints: values.blueprints === undefined ? undefined : readBlueprints(values.blueprints),
+      road: values.road === undefined || values.road.toLowerCase().endsWith('.xodr') === false ? values.road : path.resolve(values.road),
+      ego: values.ego,
+      roadFolders: (values['road-path'] ?? []).flatMap(splitScenarioPath).map((folder) => path.resolve(folder)),
+    },
+  };
+}
+
+function readBlueprints(file: string): Record<string, string> {
+  let text: string;
+  try {
+    text = fs.readFileSync(file, 'utf8');
+  } catch (error) {
+    throw new InputError(`${file}: cannot read the blueprint table (${(error as NodeJS.ErrnoException).code ?? (error as Error).message})`);
+  }
+  let table: unknown;
+  try {
+    table = JSON.parse(text);
+  } catch (error) {
+    throw new InputError(`${file}: the blueprint table is not JSON (${(error as Error).message})`);
+  }
+  if (
+    typeof table !== 'object' ||
+    table === null ||
+    Array.isArray(table) ||
+    Object.values(table).some((value) => typeof value !== 'string')
+  )
+    throw new InputError(
+      `${file}: the blueprint table must be a JSON object of names to blueprint ids, such as {"car_white": "vehicle.audi.tt"}`,
+    );
+  return table as Record<string, string>;
+}
+
+const DISTRIBUTION = /<ParameterValueDistribution\b/;
+
+/** The export of one input: a distribution's concrete scenario, or any scenario the flattener takes. */
+async function exportInput(args: ExportArguments, io: CliOutput): Promise<CarlaExport> {
+  const input = args.input;
+  if (!fs.existsSync(input)) throw new InputError(`${input}: no such file or folder`);
+  const store = storeForInputs(args.scenarioPath, undefined, [input]);
+  const isFile = fs.statSync(input).isFile();
+  let text: string | undefined;
+  if (isFile && input.toLowerCase().endsWith('.xosc')) {
+    try {
+      text = await readUtf8Exactly(input);
+    } catch (error) {
+      throw new InputError(`${input}: cannot read it (${(error as NodeJS.ErrnoException).code ?? (error as Error).message})`);
+    }
+  }
+  if (text !== undefined && DISTRIBUTION.test(text)) {
+    if (args.index === undefined)
+      throw new InputError(
+        `${input}: a ParameterValueDistribution: choose its concrete scenario with --index I (modular2simple vary ${input} --count counts them)`,
+      );
+    const loaded = await loadVariations(text, path.resolve(input), flatteningScenarioLoader(args.scenarioPath));
+    for (const line of formatVariationProblems(loaded.problems, loaded.lines, process.cwd())) io.err(line);
+    const variations = loaded.variations;
+    if (!variations) throw new InputError(`${input}: the distribution cannot be read`);
+    if (args.index >= variations.count) throw new InputError(`${input}: index ${args.index} is out of range (0..${variations.count - 1n})`);
+    let concrete;
+    try {
+      concrete = variations.concreteAt(args.index);
+    } catch (error) {
+      if (error instanceof SamplingError) throw new InputError(`${input}: ${error.message}`);
+      throw error;
+    }
+    if ('broken' in concrete)
+      throw new InputError(
+        `${input}: concrete scenario ${args.index} is discarded by its ValueConstraintGroups ('${concrete.broken.parameter}' = '${concrete.broken.value}')`,
+      );
+    const scenarioFolder = path.dirname(variations.scenarioPath);
+    const absolute = await rebasedConcreteText(concrete.text, scenarioFolder, undefined, (file) => nodeFileSystem.kind(file));
+    return exportTextForCarla(store, diskRef(variations.scenarioPath), absolute.text, args.options);
+  }
+  if (args.index !== undefined) throw new UsageError('--index goes with a ParameterValueDistribution file');
+  return exportForCarla(store, mainOf(input), args.options);
+}
+
+function lossLine(loss: CarlaExport['losses'][number]): string {
+  return `${loss.file}:${loss.line}: ${loss.kind === 'refused' ? 'error' : 'warning'}: <${loss.element}> ${loss.what} [${loss.kind}; CARLA: ${loss.carla}]`;
+}
+
+/** `modular2simple export INPUT --target carla -o OUT.xosc [--report LOSSES.json] [--carla 0.9.15|0.9.16]`. */
+export async function exportCommand(argv: string[], io: CliOutput): Promise<number> {
+  const args = parse(argv);
+  if (args === 'help') {
+    io.out(EXPORT_HELP);
+    return ExitCode.ok;
+  }
+  if (fs.existsSync(args.input) && isSameFile(args.input, args.output))
+    throw new InputError(`refusing to write ${args.output}: it is the input; choose another output file`);
+  let result: CarlaExport;
+  try {
+    result = await exportInput(args, io);
+  } catch (error) {
+    if (error instanceof CarlaExportOptionError) throw new InputError(error.message);
+    throw error;
+  }
+  for (const loss of result.losses) if (!args.quiet || loss.kind === 'refused') io.err(lossLine(loss));
+  const report = {
+    input: path.resolve(args.input),
+    output: path.resolve(args.output),
+    target: 'carla',
+    carla: args.options.release,
+    written: result.text !== undefined,
+    refused: result.refused ?? null,
+    road: result.road ?? null,
+    ego: result.ego ?? null,
+    losses: result.losses.map(({ kind, file, line, element, what, carla }) => ({ kind, file, line, element, what, carla })),
+  };
+  const reportOutput =
+    args.report === undefined
+      ? []
+      : [
+          {
+            target: args.report,
+            data: JSON.stringify(report, null, 2) + '\n',
+            summary: `wrote the loss report ${args.report} (${result.losses.length} entries)`,
+          },
+        ];
+  if (result.text === undefined) {
+    io.err(
+      `modular2simple: export refused: ${result.refused ?? 'unknown reason'}; nothing was written${args.report ? ' but the report' : ''}`,
+    );
+    if (reportOutput.length > 0) {
+      const code = await write(reportOutput, io, args.quiet);
+      if (code !== ExitCode.ok) return code;
+    }
+    return ExitCode.problems;
+  }
+  const counts =
+    result.losses.length === 0 ? 'nothing lost' : `${result.losses.length} loss${result.losses.length === 1 ? '' : 'es'} listed above`;
+  return write(
+    [
+      {
+        target: args.output,
+        data: result.text,
+        summary: `wrote ${args.output} for CARLA ScenarioRunner ${args.options.release} (OpenSCENARIO 1.0; ${counts})`,
+      },
+      ...reportOutput,
+    ],
+    io,
+    args.quiet,
+  );
+}

@@ -1,0 +1,664 @@
+/**
+ * Export for CARLA's ScenarioRunner: one plain OpenSCENARIO 1.0 file that ScenarioRunner loads and builds,
+ * and a report of every loss (what cannot be kept, where it was written, what ScenarioRunner does instead).
+ *
+ * The steps: flatten (modular mains and packages), evaluate every `$name` and `${...}` (ScenarioRunner
+ * resolves them in a few places only), inline catalog entries (its catalog file and naming rules), write the
+ * 1.0 header, map 1.1-1.3 forms to 1.0 where the meaning is kept (./carlaRules.ts), mark the ego, map
+ * entity names to CARLA blueprints, and name the road as a CARLA town or an `.xodr` path from the output's
+ * folder. What is left outside the 1.0 schema is dropped at the smallest unit (an attribute, a condition, an
+ * action) and reported; a file whose meaning would be lost entirely is refused.
+ */
+import * as path from 'node:path';
+import { Flattener } from '../flatten';
+import { formatProblem, Problem } from '../problems';
+import { logicFileOf, resolveRoadFile } from '../roadFiles';
+import { checkSchema } from '../schema/validate';
+import { analyzeDocument, assignmentsOf, CatalogLoader, DocumentSemantics, Evaluator, formatValue } from '../semantics';
+import { displayRef, ScenarioStore, SourceRef } from '../sources';
+import { parseXml, XmlDocument, XmlElement } from '../xml';
+import {
+  CarlaRelease,
+  CARLA_TOWNS,
+  DEFAULT_VEHICLE_BLUEPRINTS,
+  DEFAULT_WALKER_BLUEPRINT,
+  isCarlaBlueprint,
+  SR_CONFIGURATION,
+  SR_SCHEMA,
+} from './carlaFacts';
+import { applyCarlaRules, CarlaLoss, LossSink, tidyEmptyContainers } from './carlaRules';
+import {
+  allNodes,
+  ancestor,
+  appendChild,
+  attr,
+  child,
+  childrenNamed,
+  makeNode,
+  named,
+  Node,
+  nodeFromXml,
+  Place,
+  removeAttr,
+  removeNode,
+  replaceNode,
+  serialize,
+  setAttr,
+} from './tree';
+
+export type { CarlaLoss } from './carlaRules';
+export { CARLA_RELEASES, CARLA_TOWNS, isCarlaRelease } from './carlaFacts';
+export type { CarlaRelease } from './carlaFacts';
+
+export interface CarlaExportOptions {
+  /** The ScenarioRunner release whose facts apply (0.9.16 by default). */
+  release?: CarlaRelease;
+  /** Where the export will be written (absolute): the road's path is written relative to its folder (SPEC 11.6). */
+  outputPath: string;
+  /** Entity names (a Vehicle's `name`, a Pedestrian's `model` or `name`) to CARLA blueprints; wins over the defaults. */
+  blueprints?: Readonly<Record<string, string>>;
+  /** The road instead of the scenario's LogicFile: a CARLA town name or an `.xodr` path (absolute, or from the working directory of the caller). */
+  road?: string;
+  /** The entity ScenarioRunner is to take as the ego (a Vehicle); else the one named ego/hero, else the first vehicle. */
+  ego?: string;
+  /** Folders where a road file is looked for when it is not beside the scenario (as `run --road-path`). */
+  roadFolders?: readonly string[];
+}
+
+/** Wrong options (an unknown blueprint, a town that does not exist): the caller's mistake, not the scenario's. */
+export class CarlaExportOptionError extends Error {}
+
+export interface CarlaExport {
+  /** The 1.0 scenario to write; undefined when the export is refused. */
+  text: string | undefined;
+  /** Everything not kept as written, at its source (refusals too, `kind: 'refused'`). */
+  losses: CarlaLoss[];
+  /** Why nothing is written, in one sentence; undefined when `text` is set. */
+  refused: string | undefined;
+  /** Errors that stopped flattening the input (a modular main whose references are broken). */
+  problems: Problem[];
+  /** The road the export names: a CARLA town, or the `.xodr` file on disk (absolute). */
+  road: { town: string } | { file: string } | undefined;
+  /** The entity marked as ScenarioRunner's ego. */
+  ego: string | undefined;
+}
+
+/**
+ * Exports a scenario file, modular main, unpacked folder or package (`main`, as the flattener takes it) for
+ * ScenarioRunner. The store reads the sources (the editor's store sees unsaved text).
+ */
+export async function exportForCarla(store: ScenarioStore, main: SourceRef, options: CarlaExportOptions): Promise<CarlaExport> {
+  checkOptions(options);
+  const flattened = await new Flattener(store, undefined, { version: 'off' }).flatten(main, { standardOutput: true });
+  if (flattened.text === undefined) {
+    const errors = flattened.problems.filter((problem) => problem.severity === 'error');
+    const first = errors[0] ? formatProblem(errors[0], undefined) : 'the input could not be read';
+    return {
+      text: undefined,
+      losses: [],
+      refused: `the input cannot be flattened (${errors.length} error${errors.length === 1 ? '' : 's'}; the first: ${first})`,
+      problems: errors,
+      road: undefined,
+      ego: undefined,
+    };
+  }
+  if (flattened.files.length > 0)
+    return {
+      text: undefined,
+      losses: [],
+      refused:
+        'the package names roads or catalogs stored inside it; unpack it first (modular2simple flatten --self-contained) and export the folder',
+      problems: [],
+      road: undefined,
+      ego: undefined,
+    };
+  // A plain scenario is exported as written: its relative paths resolve from its folder as esmini and the checks resolve them.
+  const source = flattened.source;
+  const plain = source.insertions.length === 0 && source.additions.length === 0 && source.original?.document.text;
+  return exportTextForCarla(store, main, plain || flattened.text, options);
+}
+
+/**
+ * Exports plain scenario text (a flattened main, one concrete scenario of a distribution) that stands for
+ * `ref`: its relative paths start from `ref`'s folder, its losses are placed in `ref` unless `placeOf` knows better.
+ */
+export async function exportTextForCarla(
+  store: ScenarioStore,
+  ref: SourceRef,
+  text: string,
+  options: CarlaExportOptions,
+  placeOf?: (element: XmlElement) => Place | undefined,
+): Promise<CarlaExport> {
+  checkOptions(options);
+  const losses: CarlaLoss[] = [];
+  const result = (refused: string | undefined, out?: string, extra: Partial<CarlaExport> = {}): CarlaExport => ({
+    text: refused === undefined ? out : undefined,
+    losses,
+    refused,
+    problems: [],
+    road: undefined,
+    ego: undefined,
+    ...extra,
+  });
+  const document = parseXml(text);
+  const root = document.root;
+  const wellFormed = document.problems.every((problem) => problem.severity !== 'error');
+  if (!root || !wellFormed) {
+    const first = document.problems[0];
+    return result(
+      `the file is not well-formed XML${first ? ` (line ${document.lines.positionAt(first.start).line + 1}: ${first.message})` : ''}`,
+    );
+  }
+  const ownPlace = (element: XmlElement): Place => placeIn(ref, document, element);
+  const place = (element: XmlElement): Place => placeOf?.(element) ?? ownPlace(element);
+  if (root.name !== 'OpenSCENARIO') return result(`the root element is <${root.name}>, not <OpenSCENARIO>`);
+  if (root.children.some((each) => each.name === 'ParameterValueDistribution'))
+    return result('the file is a ParameterValueDistribution: export one concrete scenario of it (modular2simple export FILE --index I)');
+  if (root.children.some((each) => each.name === 'Catalog')) return result('the file is a catalog, not a scenario');
+  if (!root.children.some((each) => each.name === 'Storyboard')) return result('the file has no Storyboard');
+
+  const semantics = await analyzeDocument(ref, document, new CatalogLoader(store), false);
+  const sink = lossSink(losses, (node) => node.place ?? ownPlace(root));
+  const unevaluated: { element: XmlElement; name: string; message: string }[] = [];
+  const elementNodes = new Map<XmlElement, Node>();
+  const fallbacks: { element: XmlElement; name: string; how: string }[] = [];
+  const tree = nodeFromXml(document, root, place, (element, index) =>
+    evaluatedValue(
+      semantics.evaluator,
+      element,
+      index,
+      (message) => unevaluated.push({ element, name: element.attributes[index].name, message }),
+      (how) => fallbacks.push({ element, name: element.attributes[index].name, how }),
+    ),
+  );
+  mapElements(root, tree, elementNodes);
+  for (const failure of unevaluated) {
+    const node = elementNodes.get(failure.element) as Node;
+    sink.refuse(
+      node,
+      `@${failure.name}`,
+      `its value cannot be computed (${failure.message})`,
+      'ScenarioRunner would fail on it while loading',
+    );
+  }
+
+  for (const fallback of fallbacks)
+    sink.approximated(
+      elementNodes.get(fallback.element) as Node,
+      `${fallback.element.name}/@${fallback.name}`,
+      fallback.how,
+      'ScenarioRunner reads the value written',
+    );
+
+  inlineCatalogs(semantics, elementNodes, sink);
+  const catalogLocations = child(tree, 'CatalogLocations');
+  if (catalogLocations) catalogLocations.children = [];
+  for (const leftover of named(tree, 'CatalogReference')) {
+    if (ancestor(leftover, 'Entities') && leftover.parent?.name !== 'ScenarioObject') {
+      // A catalog entry's own reference (a trailer of a truck): a detail ScenarioRunner has no use for.
+      sink.dropped(
+        leftover,
+        `${leftover.parent?.name ?? ''}/CatalogReference`,
+        `the ${leftover.parent?.name ?? 'part'} '${attr(leftover, 'entryName')}' of an inlined entity is dropped`,
+        'ScenarioRunner spawns one actor per ScenarioObject and nothing attached to it',
+      );
+      removeNode(leftover.parent?.name === 'Trailer' ? (leftover.parent as Node) : leftover);
+      continue;
+    }
+    sink.refuse(
+      leftover,
+      'CatalogReference',
+      `catalog '${attr(leftover, 'catalogName')}' entry '${attr(leftover, 'entryName')}' is not found`,
+      'ScenarioRunner stops loading at an unknown catalog entry',
+    );
+  }
+
+  const eventsBefore = named(tree, 'Event').length;
+  rewriteHeader(tree, ref);
+  const road = await rewriteRoad(store, tree, ref, document, semantics, options, sink);
+  const ego = markEgo(tree, options, sink);
+  mapBlueprints(tree, options, sink);
+  applyCarlaRules(tree, { release: options.release ?? '0.9.16', sink });
+  dropOutsideSchema(tree, sink);
+  tidyEmptyContainers(tree);
+
+  if (eventsBefore > 0 && named(tree, 'Event').length === 0)
+    sink.refuse(
+      child(tree, 'Storyboard') ?? tree,
+      'Storyboard',
+      `none of its ${eventsBefore} events is left after the drops above`,
+      'ScenarioRunner would run nothing of the story',
+    );
+  const refusals = losses.filter((loss) => loss.kind === 'refused');
+  if (refusals.length > 0) return result(refusalSentence(refusals), undefined, { road, ego });
+  const out = serialize(tree);
+  // What is written must be 1.0 as ScenarioRunner's bundled schema reads it; anything left is a bug of a rule, not the user's.
+  const check = checkSchema(parseXml(out), { modular: false, version: '1.0' });
+  const schemaErrors = check.findings.filter((finding) => finding.severity === 'error');
+  if (schemaErrors.length > 0) {
+    const outDocument = parseXml(out);
+    const first = schemaErrors[0];
+    const line = outDocument.lines.positionAt(first.element.start).line + 1;
+    return result(
+      `the export would not be valid OpenSCENARIO 1.0 (${SR_SCHEMA}): line ${line} of the export, <${first.element.name}>: ${first.message}`,
+      undefined,
+      { road, ego },
+    );
+  }
+  return result(undefined, out, { road, ego });
+}
+
+function checkOptions(options: CarlaExportOptions): void {
+  for (const [name, blueprint] of Object.entries(options.blueprints ?? {})) {
+    if (!isCarlaBlueprint(blueprint))
+      throw new CarlaExportOptionError(
+        `the blueprint table maps '${name}' to '${blueprint}', which is no CARLA 0.9.15/0.9.16 blueprint (vehicle.*, walker.pedestrian.0001-0049 or static.prop.*)`,
+      );
+  }
+  if (options.road !== undefined && !options.road.toLowerCase().endsWith('.xodr') && !CARLA_TOWNS.includes(options.road))
+    throw new CarlaExportOptionError(`--road '${options.road}' is neither a CARLA town (${CARLA_TOWNS.join(', ')}) nor an .xodr file`);
+}
+
+function placeIn(ref: SourceRef, document: XmlDocument, element: XmlElement): Place {
+  return { source: ref, range: { start: document.lines.positionAt(element.start), end: document.lines.positionAt(element.startTagEnd) } };
+}
+
+function mapElements(element: XmlElement, node: Node, into: Map<XmlElement, Node>): void {
+  into.set(element, node);
+  element.children.forEach((each, index) => mapElements(each, node.children[index], into));
+}
+
+/** How a value that the standard cannot compute was computed after all, for the loss report. */
+type Fallback = (how: string) => void;
+
+/**
+ * An attribute's value to write: itself when literal, else its `$name` or `${...}` evaluated by the standard;
+ * where the standard gives none, a catalog entry's `$name` from the scenario's own parameters, else esmini's
+ * reading (the files were written for esmini), each named by `fellBack`; `failed` when nothing gives one.
+ */
+function evaluatedValue(
+  evaluator: Evaluator,
+  element: XmlElement,
+  index: number,
+  failed: (message: string) => void,
+  fellBack: Fallback,
+  scenario?: DocumentSemantics,
+): string {
+  const attribute = element.attributes[index];
+  const site = evaluator.model.siteOf.get(attribute);
+  if (!site || site.element !== element) return attribute.value;
+  const value = evaluator.evaluateSite(site);
+  if (value.ok) return formatValue(value.value);
+  const global = scenario && site.form.kind === 'parameter' ? scenario.model.root?.byName.get(site.form.name) : undefined;
+  if (scenario && global) {
+    const globalValue = scenario.evaluator.declarationValue(global);
+    if (globalValue.ok) {
+      fellBack(
+        `$${global.name} is not declared in the catalog entry: the scenario's own ${global.name} = ${formatValue(globalValue.value)} is used, as esmini does`,
+      );
+      return formatValue(globalValue.value);
+    }
+  }
+  const esmini = evaluator.esminiSiteText(site);
+  if (esmini.ok) {
+    fellBack(
+      `${attribute.value} is written as esmini computes it, '${esmini.text}' (the standard gives no value: ${value.errors[0]?.message ?? 'an error'})`,
+    );
+    return esmini.text;
+  }
+  failed(value.errors[0]?.message ?? 'unknown error');
+  return attribute.value;
+}
+
+function lossSink(losses: CarlaLoss[], placeOf: (node: Node) => Place): LossSink {
+  const add = (kind: CarlaLoss['kind'], node: Node, element: string, what: string, carla: string): void => {
+    const place = placeOf(node);
+    losses.push({
+      kind,
+      file: displayRef(place.source, undefined),
+      line: place.range.start.line + 1,
+      element,
+      what,
+      carla,
+      source: place.source,
+      range: place.range,
+    });
+  };
+  return {
+    dropped: (node, element, what, carla) => add('dropped', node, element, what, carla),
+    approximated: (node, element, what, carla) => add('approximated', node, element, what, carla),
+    refuse: (node, element, what, carla) => add('refused', node, element, what, carla),
+  };
+}
+
+function refusalSentence(refusals: CarlaLoss[]): string {
+  const first = refusals[0];
+  const more = refusals.length > 1 ? ` (and ${refusals.length - 1} more)` : '';
+  return `${first.file}:${first.line}: <${first.element}> ${first.what}: ${first.carla}${more}`;
+}
+
+/** Each CatalogReference replaced by its entry, the entry's parameters evaluated with the reference's values (SR_CONFIGURATION `_load_catalogs` names catalogs by file and type). */
+function inlineCatalogs(semantics: DocumentSemantics, nodes: Map<XmlElement, Node>, sink: LossSink): void {
+  for (const resolution of semantics.catalogs.references) {
+    const node = nodes.get(resolution.reference.element);
+    const entry = resolution.entry;
+    if (!node || !entry) continue;
+    const entryEvaluator = new Evaluator(entry.file.model, assignmentsOf(resolution.reference, semantics.evaluator));
+    const entryDocument = entry.file.model.document;
+    const inlined = nodeFromXml(
+      entryDocument,
+      entry.element,
+      (element) => placeIn(entry.file.ref, entryDocument, element),
+      (element, index) =>
+        evaluatedValue(
+          entryEvaluator,
+          element,
+          index,
+          (message) =>
+            sink.refuse(
+              node,
+              'CatalogReference',
+              `the value of ${element.name}/@${element.attributes[index].name} in catalog entry '${entry.name}' cannot be computed (${message})`,
+              'ScenarioRunner would fail on it while loading',
+            ),
+          (how) =>
+            sink.approximated(
+              node,
+              `${element.name}/@${element.attributes[index].name}`,
+              `in catalog entry '${entry.name}': ${how}`,
+              'ScenarioRunner reads the value written',
+            ),
+          semantics,
+        ),
+    );
+    for (const declarations of childrenNamed(inlined, 'ParameterDeclarations')) removeNode(declarations);
+    replaceNode(node, inlined);
+  }
+}
+
+function rewriteHeader(tree: Node, ref: SourceRef): void {
+  const header = child(tree, 'FileHeader');
+  if (!header) return;
+  // ScenarioRunner names the scenario by the description and stops without one (SR_CONFIGURATION _validate_result).
+  if (!attr(header, 'description')?.trim())
+    setAttr(header, 'description', path.basename(ref.entries.at(-1) ?? ref.disk).replace(/\.xosc$/i, ''));
+  setAttr(header, 'revMajor', '1');
+  setAttr(header, 'revMinor', '0');
+  // The 1.1+ License and Properties of a header carry no behaviour.
+  header.children = [];
+}
+
+async function rewriteRoad(
+  store: ScenarioStore,
+  tree: Node,
+  ref: SourceRef,
+  document: XmlDocument,
+  semantics: DocumentSemantics,
+  options: CarlaExportOptions,
+  sink: LossSink,
+): Promise<CarlaExport['road']> {
+  const network = child(tree, 'RoadNetwork');
+  const logic = network ? child(network, 'LogicFile') : undefined;
+  const header = child(tree, 'FileHeader');
+  let road: CarlaExport['road'];
+  if (options.road !== undefined) {
+    if (CARLA_TOWNS.includes(options.road)) road = { town: options.road };
+    else {
+      const file = path.resolve(options.road);
+      if ((await store.host.kind(file)) !== 'file') throw new CarlaExportOptionError(`--road ${options.road}: no such .xodr file`);
+      road = { file };
+    }
+  } else {
+    const written = logicFileOf(document, semantics.evaluator);
+    if (!written || !logic) {
+      sink.refuse(
+        network ?? tree,
+        'RoadNetwork',
+        'names no road (no LogicFile)',
+        `ScenarioRunner stops with "CARLA level not defined" (${SR_CONFIGURATION} _validate_result); give one with --road TOWN|FILE.xodr`,
+      );
+      return undefined;
+    }
+    if (CARLA_TOWNS.includes(written.filepath)) road = { town: written.filepath };
+    else {
+      const found = await resolveRoadFile(store.host, written.filepath, path.dirname(ref.disk), options.roadFolders ?? []);
+      if (!found.resolved || !found.resolved.toLowerCase().endsWith('.xodr')) {
+        sink.refuse(
+          logic,
+          'LogicFile',
+          `names the road '${written.filepath}', which is neither a CARLA town nor a readable .xodr file (looked for at ${found.candidates.join(', ')})`,
+          `ScenarioRunner loads it as a CARLA map and fails (${SR_CONFIGURATION} _set_carla_town); give the road with --road TOWN|FILE.xodr or --road-path DIR`,
+        );
+        return undefined;
+      }
+      road = { file: found.resolved };
+    }
+  }
+  if (!network || !logic) {
+    const roadNetwork = network ?? appendChild(tree, makeNode('RoadNetwork'), child(tree, 'Entities'));
+    appendChild(roadNetwork, makeNode('LogicFile', [['filepath', '']]), roadNetwork.children[0]);
+  }
+  const logicNode = child(child(tree, 'RoadNetwork') as Node, 'LogicFile') as Node;
+  if ('town' in road) setAttr(logicNode, 'filepath', road.town);
+  else {
+    const relative = path.relative(path.dirname(options.outputPath), road.file).split(path.sep).join('/');
+    setAttr(logicNode, 'filepath', relative || path.basename(road.file));
+  }
+  const networkNode = child(tree, 'RoadNetwork') as Node;
+  const sceneGraph = child(networkNode, 'SceneGraphFile');
+  // ScenarioRunner ignores the scene graph (it draws CARLA's own map); its path would not resolve from the output's folder.
+  if (sceneGraph) removeNode(sceneGraph);
+  const description = header ? attr(header, 'description') : undefined;
+  if (header && description?.startsWith('CARLA:') && 'file' in road) {
+    setAttr(header, 'description', description.slice('CARLA:'.length).trimStart() || 'scenario');
+    sink.approximated(
+      header,
+      'FileHeader',
+      "the description's 'CARLA:' prefix is removed: the road is an .xodr file in OpenDRIVE coordinates",
+      `with the prefix ScenarioRunner would read positions in CARLA's left-handed coordinates (${SR_CONFIGURATION} _set_scenario_name)`,
+    );
+  }
+  return road;
+}
+
+const EGO_NAMES = /^(ego|hero|ego_vehicle|egovehicle)$/i;
+
+function egoProperty(properties: Node): boolean {
+  return childrenNamed(properties, 'Property').some(
+    (property) => attr(property, 'name') === 'type' && attr(property, 'value') === 'ego_vehicle',
+  );
+}
+
+/** Marks one vehicle with `<Property name="type" value="ego_vehicle"/>` as ScenarioRunner reads it (SR_CONFIGURATION `_extract_vehicle_information`). */
+function markEgo(tree: Node, options: CarlaExportOptions, sink: LossSink): string | undefined {
+  const entities = child(tree, 'Entities');
+  const objects = entities ? childrenNamed(entities, 'ScenarioObject') : [];
+  const vehicleOf = (object: Node): Node | undefined => allNodes(object).find((each) => each.name === 'Vehicle');
+  const vehicles = objects.filter((object) => vehicleOf(object));
+  if (options.ego !== undefined) {
+    const chosen = objects.find((object) => attr(object, 'name') === options.ego);
+    if (!chosen)
+      throw new CarlaExportOptionError(
+        `--ego ${options.ego}: the scenario has no entity of that name (it has ${objects.map((object) => attr(object, 'name')).join(', ') || 'none'})`,
+      );
+    if (!vehicleOf(chosen)) throw new CarlaExportOptionError(`--ego ${options.ego}: ScenarioRunner takes only a Vehicle as the ego`);
+  }
+  const already = vehicles.filter((object) => allNodes(object).some((each) => each.name === 'Properties' && egoProperty(each)));
+  const chosen =
+    (options.ego !== undefined ? vehicles.find((object) => attr(object, 'name') === options.ego) : undefined) ??
+    (already.length > 0 ? already[0] : undefined) ??
+    vehicles.find((object) => EGO_NAMES.test(attr(object, 'name') ?? '')) ??
+    vehicles.find((object) => /ego|hero/i.test(attr(object, 'name') ?? '')) ??
+    vehicles[0];
+  if (!chosen) {
+    sink.approximated(
+      entities ?? tree,
+      'Entities',
+      'no vehicle to mark as the ego',
+      'ScenarioRunner runs it without an ego vehicle ("No ego vehicles defined in scenario")',
+    );
+    return undefined;
+  }
+  const name = attr(chosen, 'name') as string;
+  if (already.length === 0 && !EGO_NAMES.test(name) && !/ego|hero/i.test(name) && options.ego === undefined)
+    sink.approximated(
+      chosen,
+      'ScenarioObject',
+      `'${name}' is taken as the ego (the first vehicle; none is named ego or hero)`,
+      'ScenarioRunner spawns it as the ego vehicle (choose another with --ego NAME)',
+    );
+  for (const object of vehicles) {
+    const vehicle = vehicleOf(object) as Node;
+    const properties = child(vehicle, 'Properties') ?? appendChild(vehicle, makeNode('Properties'));
+    for (const property of childrenNamed(properties, 'Property'))
+      if (attr(property, 'name') === 'type' && attr(property, 'value') === 'ego_vehicle' && object !== chosen) removeNode(property);
+    if (object === chosen && !egoProperty(properties))
+      appendChild(
+        properties,
+        makeNode('Property', [
+          ['name', 'type'],
+          ['value', 'ego_vehicle'],
+        ]),
+        properties.children.find((each) => each.name === 'File'),
+      );
+  }
+  return name;
+}
+
+/** Vehicle `name`s and Pedestrian `model`s as CARLA blueprints: the user's table, else kept when a blueprint, else by category. */
+function mapBlueprints(tree: Node, options: CarlaExportOptions, sink: LossSink): void {
+  const table = options.blueprints ?? {};
+  const chosen = (written: string | undefined): string | undefined =>
+    written !== undefined && Object.hasOwn(table, written) ? table[written] : undefined;
+  for (const vehicle of named(tree, 'Vehicle')) {
+    const name = attr(vehicle, 'name') ?? '';
+    const category = attr(vehicle, 'vehicleCategory') ?? 'car';
+    const blueprint =
+      chosen(name) ?? (isCarlaBlueprint(name) ? name : (DEFAULT_VEHICLE_BLUEPRINTS[category] ?? DEFAULT_VEHICLE_BLUEPRINTS.car));
+    if (blueprint === name) continue;
+    setAttr(vehicle, 'name', blueprint);
+    if (chosen(name) === undefined)
+      sink.approximated(
+        vehicle,
+        'Vehicle',
+        `'${name}' is no CARLA blueprint: spawned as ${blueprint} (its category ${category})`,
+        'ScenarioRunner spawns the vehicle named by the blueprint (a blueprint table with --blueprints FILE.json chooses another)',
+      );
+  }
+  for (const pedestrian of named(tree, 'Pedestrian')) {
+    const model = attr(pedestrian, 'model') ?? '';
+    const name = attr(pedestrian, 'name') ?? '';
+    const blueprint =
+      chosen(model) ??
+      chosen(name) ??
+      (isCarlaBlueprint(model) ? model : isCarlaBlueprint(name) && name.startsWith('walker.') ? name : DEFAULT_WALKER_BLUEPRINT);
+    if (blueprint === model) continue;
+    setAttr(pedestrian, 'model', blueprint);
+    if (chosen(model) === undefined && chosen(name) === undefined)
+      sink.approximated(
+        pedestrian,
+        'Pedestrian',
+        `'${model || name}' is no CARLA walker: spawned as ${blueprint}`,
+        'ScenarioRunner spawns the walker its model names (a blueprint table with --blueprints FILE.json chooses another)',
+      );
+  }
+  for (const misc of named(tree, 'MiscObject')) {
+    const name = attr(misc, 'name') ?? '';
+    const category = attr(misc, 'miscObjectCategory');
+    const blueprint = chosen(name);
+    if (blueprint) setAttr(misc, 'name', blueprint);
+    else if (category !== 'barrier' && category !== 'guardRail' && !isCarlaBlueprint(name))
+      sink.approximated(
+        misc,
+        'MiscObject',
+        `'${name}' is no CARLA prop`,
+        'ScenarioRunner asks CARLA for a blueprint of that name, which spawns nothing (map it with --blueprints FILE.json)',
+      );
+  }
+}
+
+/**
+ * What the project's 1.0 schema still rejects after the rules: an unknown attribute is dropped, an unknown
+ * element drops the smallest unit holding it (a condition, an action, an init action); anything else (a
+ * missing part) is refused, never written.
+ */
+function dropOutsideSchema(tree: Node, sink: LossSink): void {
+  for (let round = 0; round < 8; round++) {
+    const out = serialize(tree);
+    const outDocument = parseXml(out);
+    const findings = checkSchema(outDocument, { modular: false, version: '1.0' }).findings.filter(
+      (finding) => finding.severity === 'error',
+    );
+    if (findings.length === 0) return;
+    const nodeAt = nodesByOffset(tree, outDocument);
+    let changed = false;
+    for (const finding of findings) {
+      const node = nodeAt.get(finding.element);
+      if (!node || (!node.parent && node !== tree)) continue;
+      if (finding.attribute && finding.code === 'schema-unknown-attribute') {
+        if (removeAttr(node, finding.attribute.name)) {
+          sink.dropped(
+            node,
+            `${node.name}/@${finding.attribute.name}`,
+            'is not in OpenSCENARIO 1.0: dropped',
+            `ScenarioRunner's 1.0 schema (${SR_SCHEMA}) refuses it; nothing in ScenarioRunner reads it`,
+          );
+          changed = true;
+        }
+        continue;
+      }
+      if (finding.code === 'schema-unknown-element') {
+        const unit = droppableUnit(node);
+        if (unit && unit.parent) {
+          sink.dropped(
+            unit,
+            unit === node ? node.name : `${unit.name} holding <${node.name}>`,
+            `<${node.name}> is not in OpenSCENARIO 1.0: the ${unit.name} is dropped`,
+            `ScenarioRunner's 1.0 schema (${SR_SCHEMA}) refuses it`,
+          );
+          removeNode(unit);
+          changed = true;
+          continue;
+        }
+      }
+      sink.refuse(
+        node,
+        node.name,
+        `cannot be written as OpenSCENARIO 1.0 (${finding.message})`,
+        `ScenarioRunner's 1.0 schema (${SR_SCHEMA}) refuses the file`,
+      );
+      return;
+    }
+    if (!changed) return;
+    tidyEmptyContainers(tree);
+  }
+}
+
+const DROPPABLE = new Set([
+  'Condition',
+  'Action',
+  'PrivateAction',
+  'GlobalAction',
+  'UserDefinedAction',
+  'ParameterDeclaration',
+  'Property',
+  'AdditionalAxle',
+]);
+
+function droppableUnit(node: Node): Node | undefined {
+  // Entity and road details past 1.0 (trailers, 3D models) carry nothing ScenarioRunner spawns or drives by.
+  for (let at = node.parent; at; at = at.parent) if (at.name === 'Entities' || at.name === 'RoadNetwork') return node;
+  for (let at: Node | undefined = node; at; at = at.parent) {
+    if (DROPPABLE.has(at.name)) return at;
+    // Init's PrivateAction children hold the actions directly.
+    if (at.parent?.name === 'Private' || at.parent?.name === 'Actions') return at;
+  }
+  return undefined;
+}
+
+/** The serialized text's elements (a parse of `serialize(tree)`) mapped back to the nodes, by document order. */
+function nodesByOffset(tree: Node, document: XmlDocument): Map<XmlElement, Node> {
+  const map = new Map<XmlElement, Node>();
+  if (document.root) mapElements(document.root, tree, map);
+  return map;
+}

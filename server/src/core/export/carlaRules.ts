@@ -1,0 +1,940 @@
+/**
+ * The export's mapping rules, one function each: a 1.1-1.3 form written in its 1.0 form where the meaning is
+ * kept, or what ScenarioRunner refuses, ignores or crashes on dropped, approximated or refused, each reported.
+ * Every rule names the ScenarioRunner code it follows (revision SR_REVISION of carlaFacts.ts).
+ */
+import { SourceRef } from '../sources';
+import { Range } from '../text';
+import { CarlaRelease, SR_ATOMICS, SR_CONFIGURATION, SR_PARSER, SR_SCENARIO } from './carlaFacts';
+import {
+  allNodes,
+  ancestor,
+  appendChild,
+  attr,
+  child,
+  childrenNamed,
+  cloneNode,
+  makeNode,
+  named,
+  Node,
+  removeAttr,
+  removeNode,
+  renameAttr,
+  replaceNode,
+  setAttr,
+} from './tree';
+
+/** One thing of the input that the export does not keep as written. */
+export interface CarlaLoss {
+  /** dropped: not in the export; approximated: written otherwise, with a meaning close to the original; refused: nothing is written. */
+  kind: 'dropped' | 'approximated' | 'refused';
+  /** The file it was written in (as the user named it, or absolute) and its line, 1-based. */
+  file: string;
+  line: number;
+  /** The element, or `Element/@attribute`. */
+  element: string;
+  /** What happens to it in the export. */
+  what: string;
+  /** What ScenarioRunner does instead (or would do with the original), with its source. */
+  carla: string;
+  source: SourceRef;
+  range: Range;
+}
+
+export interface LossSink {
+  dropped(node: Node, element: string, what: string, carla: string): void;
+  approximated(node: Node, element: string, what: string, carla: string): void;
+  refuse(node: Node, element: string, what: string, carla: string): void;
+}
+
+export interface RuleContext {
+  release: CarlaRelease;
+  sink: LossSink;
+}
+
+/** Drops the smallest unit of a storyboard holding `node` that ScenarioRunner can do without: its Condition, its Event's Action or its Init action. */
+function dropUnit(node: Node, context: RuleContext, element: string, carla: string): void {
+  const unit =
+    ancestorOrSelf(node, 'Condition') ??
+    (ancestor(node, 'Event') ? ancestorOrSelf(node, 'Action') : undefined) ??
+    (ancestor(node, 'Init') ? (ancestorOrSelf(node, 'PrivateAction') ?? ancestorOrSelf(node, 'GlobalAction')) : undefined);
+  if (!unit) {
+    context.sink.refuse(node, element, 'cannot be dropped without losing what holds it', carla);
+    return;
+  }
+  const where = unit.name === 'Condition' ? 'condition' : ancestor(unit, 'Init') ? 'init action' : 'action';
+  context.sink.dropped(node, element, `the ${where}${attr(unit, 'name') ? ` '${attr(unit, 'name')}'` : ''} is dropped`, carla);
+  removeNode(unit);
+}
+
+function ancestorOrSelf(node: Node, name: string): Node | undefined {
+  return node.name === name ? node : ancestor(node, name);
+}
+
+/** The 1.1 `ControllerAction/ActivateControllerAction` is the 1.0 `PrivateAction/ActivateControllerAction` (SR_PARSER convert_maneuver_to_atomic: ChangeAutoPilot). */
+function activateControllerAction(tree: Node, context: RuleContext): void {
+  for (const controllerAction of named(tree, 'ControllerAction')) {
+    const activate = child(controllerAction, 'ActivateControllerAction');
+    if (!activate) continue;
+    for (const extra of ['controllerRef', 'objectControllerRef', 'animation', 'lighting']) {
+      const value = attr(activate, extra);
+      if (
+        value !== undefined &&
+        removeAttr(activate, extra) &&
+        (extra === 'controllerRef' || extra === 'objectControllerRef' || value === 'true')
+      )
+        context.sink.dropped(
+          activate,
+          `ActivateControllerAction/@${extra}`,
+          'is not in 1.0: dropped',
+          `ScenarioRunner toggles the autopilot of the actor itself (${SR_PARSER} ChangeAutoPilot)`,
+        );
+    }
+    const others = controllerAction.children.filter((each) => each !== activate);
+    replaceNode(controllerAction, activate);
+    // A 1.1 ControllerAction holds one of its actions; others beside it would be a second PrivateAction.
+    for (const other of others)
+      context.sink.dropped(
+        other,
+        other.name,
+        'written beside an ActivateControllerAction: dropped',
+        'a 1.0 PrivateAction holds one action',
+      );
+  }
+}
+
+/** 1.0 needs both halves of a ControllerAction (SR's schema); an inactive override changes nothing (SR_PARSER get_controller refuses only active ones). */
+function controllerActionHalves(tree: Node, context: RuleContext): void {
+  for (const assign of named(tree, 'AssignControllerAction')) {
+    const objectController = child(assign, 'ObjectController');
+    if (objectController) replaceNode(objectController, objectController.children[0] ?? makeNode('Controller'));
+    for (const extra of ['activateLateral', 'activateLongitudinal', 'activateAnimation', 'activateLighting']) {
+      const value = attr(assign, extra);
+      if (value === undefined) continue;
+      removeAttr(assign, extra);
+      if (value === 'true')
+        context.sink.approximated(
+          assign,
+          `AssignControllerAction/@${extra}`,
+          'is not in 1.0: dropped',
+          `ScenarioRunner activates the module it assigns at once (${SR_PARSER} get_controller, ChangeActorControl)`,
+        );
+    }
+  }
+  for (const controllerAction of named(tree, 'ControllerAction')) {
+    const assign = child(controllerAction, 'AssignControllerAction');
+    let override = child(controllerAction, 'OverrideControllerValueAction');
+    if (!assign) {
+      dropUnit(
+        controllerAction,
+        context,
+        'ControllerAction',
+        `a 1.0 ControllerAction assigns a controller; an override alone has no 1.0 form (${SR_PARSER} get_controller)`,
+      );
+      continue;
+    }
+    if (!override) {
+      override = appendChild(controllerAction, makeNode('OverrideControllerValueAction'));
+    }
+    const parts: [string, [string, string][]][] = [
+      [
+        'Throttle',
+        [
+          ['value', '0'],
+          ['active', 'false'],
+        ],
+      ],
+      [
+        'Brake',
+        [
+          ['value', '0'],
+          ['active', 'false'],
+        ],
+      ],
+      [
+        'Clutch',
+        [
+          ['value', '0'],
+          ['active', 'false'],
+        ],
+      ],
+      [
+        'ParkingBrake',
+        [
+          ['value', '0'],
+          ['active', 'false'],
+        ],
+      ],
+      [
+        'SteeringWheel',
+        [
+          ['value', '0'],
+          ['active', 'false'],
+        ],
+      ],
+      [
+        'Gear',
+        [
+          ['number', '0'],
+          ['active', 'false'],
+        ],
+      ],
+    ];
+    if (override.children.some((each) => attr(each, 'active') === 'true')) {
+      dropUnit(
+        override,
+        context,
+        'OverrideControllerValueAction',
+        `ScenarioRunner refuses an active override (${SR_PARSER} get_controller: "not yet supported")`,
+      );
+      continue;
+    }
+    for (const [name, attributes] of parts) {
+      const existing = child(override, name);
+      if (existing) {
+        existing.children = [];
+        for (const [key, value] of attributes) if (attr(existing, key) === undefined) setAttr(existing, key, value);
+        existing.attributes = existing.attributes.filter(([key]) => attributes.some(([wanted]) => wanted === key));
+      } else
+        appendChild(
+          override,
+          makeNode(
+            name,
+            attributes.map(([key, value]) => [key, value]),
+          ),
+        );
+    }
+  }
+}
+
+const OKTAS: Record<string, string> = {
+  zeroOktas: 'free',
+  oneOktas: 'free',
+  twoOktas: 'free',
+  threeOktas: 'cloudy',
+  fourOktas: 'cloudy',
+  fiveOktas: 'cloudy',
+  sixOktas: 'overcast',
+  sevenOktas: 'overcast',
+  eightOktas: 'overcast',
+  nineOktas: 'overcast',
+};
+
+/** A 1.1 attribute in physical units written as the 1.0 attribute of 0..1 (`full` units = 1), where 1.0 has none yet. */
+function scaledRename(node: Node, from: string, to: string, full: number, unit: string, context: RuleContext, carla: string): void {
+  const written = attr(node, from);
+  if (written === undefined) return;
+  removeAttr(node, from);
+  if (attr(node, to) !== undefined) return;
+  const scaled = Number(Math.min(1, Math.max(0, Number(written) / full)).toFixed(4));
+  setAttr(node, to, String(scaled));
+  if (Number(written) !== 0)
+    context.sink.approximated(
+      node,
+      `${node.name}/@${from}`,
+      `${written} ${unit} is written as ${to} ${scaled} (${full} ${unit} = 1)`,
+      carla,
+    );
+}
+
+/** The 1.1 weather in 1.0 words, as far as ScenarioRunner reads them (SR_PARSER get_weather: sun intensity 0..1, rain intensity 0..1, fog range). */
+function weather(tree: Node, context: RuleContext): void {
+  for (const environment of named(tree, 'Environment')) {
+    if (!child(environment, 'TimeOfDay'))
+      appendChild(
+        environment,
+        makeNode('TimeOfDay', [
+          ['animation', 'false'],
+          ['dateTime', '2020-01-01T12:00:00'],
+        ]),
+        environment.children[0],
+      );
+    if (!child(environment, 'Weather')) appendChild(environment, makeNode('Weather'));
+    if (!child(environment, 'RoadCondition')) appendChild(environment, makeNode('RoadCondition', [['frictionScaleFactor', '1']]));
+    const timeOfDay = child(environment, 'TimeOfDay') as Node;
+    const dateTime = attr(timeOfDay, 'dateTime') ?? '';
+    const plain = /^(\d{4}-\d\d-\d\dT\d\d:\d\d:\d\d)/.exec(dateTime);
+    if (plain && plain[1] !== dateTime) {
+      setAttr(timeOfDay, 'dateTime', plain[1]);
+      context.sink.approximated(
+        timeOfDay,
+        'TimeOfDay/@dateTime',
+        `'${dateTime}' is written as ${plain[1]} (no time zone or fraction)`,
+        `ScenarioRunner reads it with strptime "%Y-%m-%dT%H:%M:%S" (${SR_PARSER} get_weather)`,
+      );
+    }
+  }
+  for (const node of named(tree, 'Weather')) {
+    const cover = attr(node, 'fractionalCloudCover');
+    if (cover !== undefined) {
+      removeAttr(node, 'fractionalCloudCover');
+      if (attr(node, 'cloudState') === undefined) {
+        setAttr(node, 'cloudState', OKTAS[cover] ?? 'free');
+        context.sink.approximated(
+          node,
+          'Weather/@fractionalCloudCover',
+          `${cover} is written as cloudState="${OKTAS[cover] ?? 'free'}"`,
+          `ScenarioRunner does not read the cloud state; its clouds follow the sun's intensity (${SR_PARSER} get_weather)`,
+        );
+      }
+    }
+    if (attr(node, 'cloudState') === undefined) setAttr(node, 'cloudState', 'free');
+    for (const extra of ['atmosphericPressure', 'temperature']) {
+      if (removeAttr(node, extra))
+        context.sink.dropped(
+          node,
+          `Weather/@${extra}`,
+          'is not in 1.0: dropped',
+          `ScenarioRunner has no such weather parameter (${SR_PARSER} get_weather)`,
+        );
+    }
+    for (const extra of ['Wind', 'DomeImage']) {
+      const found = child(node, extra);
+      if (found) {
+        removeNode(found);
+        context.sink.dropped(
+          found,
+          extra,
+          'is not in 1.0: dropped',
+          `ScenarioRunner sets a fixed wind and no dome image (${SR_PARSER} get_weather)`,
+        );
+      }
+    }
+    let sun = child(node, 'Sun');
+    if (!sun)
+      sun = appendChild(
+        node,
+        makeNode('Sun', [
+          ['azimuth', '0'],
+          ['elevation', '1.31'],
+          ['intensity', '1'],
+        ]),
+      );
+    scaledRename(
+      sun,
+      'illuminance',
+      'intensity',
+      100000,
+      'lx',
+      context,
+      `ScenarioRunner reads the intensity as 0..1, cloudiness = 100 - 100 x intensity (${SR_PARSER} get_weather)`,
+    );
+    for (const [key, value] of [
+      ['azimuth', '0'],
+      ['elevation', '1.31'],
+      ['intensity', '1'],
+    ])
+      if (attr(sun, key) === undefined) setAttr(sun, key, value);
+    if (!child(node, 'Fog')) appendChild(node, makeNode('Fog', [['visualRange', '100000']]));
+    let precipitation = child(node, 'Precipitation');
+    if (!precipitation)
+      precipitation = appendChild(
+        node,
+        makeNode('Precipitation', [
+          ['precipitationType', 'dry'],
+          ['intensity', '0'],
+        ]),
+      );
+    scaledRename(
+      precipitation,
+      'precipitationIntensity',
+      'intensity',
+      10,
+      'mm/h',
+      context,
+      `ScenarioRunner reads the intensity as 0..1 (${SR_PARSER} get_weather)`,
+    );
+    if (attr(precipitation, 'intensity') === undefined) setAttr(precipitation, 'intensity', '0');
+    // The 1.0 Weather is an xsd:all of Sun, Fog, Precipitation: any order is valid.
+  }
+}
+
+/** The first number `read` finds in the actor's Init actions (its Private), or undefined. */
+function fromInit(tree: Node, actor: string, read: (privateNode: Node) => number | undefined): number | undefined {
+  const init = named(tree, 'Init')[0];
+  const privates = init ? named(init, 'Private').filter((privateNode) => attr(privateNode, 'entityRef') === actor) : [];
+  for (const privateNode of privates) {
+    const found = read(privateNode);
+    if (found !== undefined) return found;
+  }
+  return undefined;
+}
+
+/** The actor's start lane, from its Init TeleportAction to a LanePosition: what a relative lane change counts from. */
+function startLaneOf(tree: Node, actor: string): number | undefined {
+  return fromInit(tree, actor, (privateNode) => {
+    const lane = named(privateNode, 'LanePosition').find((each) => ancestor(each, 'TeleportAction'));
+    return lane ? Number(attr(lane, 'laneId')) : undefined;
+  });
+}
+
+/** The actor's speed set in Init (an absolute SpeedAction), the nominal speed of a time gap. */
+function startSpeedOf(tree: Node, actor: string): number | undefined {
+  return fromInit(tree, actor, (privateNode) => {
+    const target = named(privateNode, 'AbsoluteTargetSpeed')[0];
+    return target ? Number(attr(target, 'value')) : undefined;
+  });
+}
+
+/** The entities an action of a storyboard acts on: its ManeuverGroup's Actors, or the Private of an Init action. */
+function actorsOf(node: Node): string[] {
+  const privateNode = ancestor(node, 'Private');
+  if (privateNode) return [attr(privateNode, 'entityRef') ?? ''];
+  const group = ancestor(node, 'ManeuverGroup');
+  const actors = group ? child(group, 'Actors') : undefined;
+  return actors ? childrenNamed(actors, 'EntityRef').map((each) => attr(each, 'entityRef') ?? '') : [];
+}
+
+/**
+ * `AbsoluteTargetLane` crashes ScenarioRunner (SR_PARSER convert_maneuver_to_atomic reads `value` of a
+ * RelativeTargetLane only): written as the relative change from the actor's start lane (same side of the road).
+ */
+function absoluteTargetLane(tree: Node, context: RuleContext): void {
+  for (const target of named(tree, 'AbsoluteTargetLane')) {
+    const actors = actorsOf(target);
+    const start = actors.length === 1 ? startLaneOf(tree, actors[0]) : undefined;
+    const wanted = Number(attr(target, 'value'));
+    const carla = `ScenarioRunner changes lanes relative to the actor's lane only; an AbsoluteTargetLane crashes it (${SR_PARSER} convert_maneuver_to_atomic)`;
+    if (start === undefined || !Number.isInteger(wanted) || Math.sign(start) !== Math.sign(wanted) || start === 0) {
+      dropUnit(
+        target,
+        context,
+        'AbsoluteTargetLane',
+        `${carla}; the actor's start lane is not known, so no relative change can be computed`,
+      );
+      continue;
+    }
+    // Lane ids grow to the driver's left on both sides of the reference line.
+    const relative = wanted - start;
+    const relativeNode = makeNode(
+      'RelativeTargetLane',
+      [
+        ['entityRef', actors[0]],
+        ['value', String(relative)],
+      ],
+      [],
+      target.place,
+    );
+    replaceNode(target, relativeNode);
+    context.sink.approximated(
+      relativeNode,
+      'AbsoluteTargetLane',
+      `lane ${wanted} is written as a change of ${relative} from the actor's start lane ${start} (right if the actor changed lanes before)`,
+      carla,
+    );
+  }
+}
+
+/** `timeGap` is refused (SR_PARSER: "LongitudinalDistanceAction: timeGap is not implemented"): a distance at the actor's start speed. */
+function longitudinalTimeGap(tree: Node, context: RuleContext): void {
+  for (const action of named(tree, 'LongitudinalDistanceAction')) {
+    for (const extra of ['coordinateSystem', 'displacement']) {
+      const value = attr(action, extra);
+      if (value !== undefined && removeAttr(action, extra) && !['entity', 'trailingReferencedEntity', 'any'].includes(value))
+        context.sink.approximated(
+          action,
+          `LongitudinalDistanceAction/@${extra}`,
+          `${value} is not in 1.0: dropped`,
+          `ScenarioRunner keeps the distance behind or ahead as the actors stand (${SR_PARSER} KeepLongitudinalGap)`,
+        );
+    }
+    const gap = attr(action, 'timeGap');
+    if (gap === undefined) continue;
+    const actors = actorsOf(action);
+    const speed =
+      actors.length === 1 ? (startSpeedOf(tree, attr(action, 'entityRef') ?? actors[0]) ?? startSpeedOf(tree, actors[0])) : undefined;
+    const carla = `ScenarioRunner refuses a time gap ("timeGap is not implemented", ${SR_PARSER} convert_maneuver_to_atomic)`;
+    if (speed === undefined || !(speed > 0)) {
+      dropUnit(action, context, 'LongitudinalDistanceAction/@timeGap', `${carla}; no start speed to turn it into a distance`);
+      continue;
+    }
+    const distance = Number((Number(gap) * speed).toFixed(3));
+    removeAttr(action, 'timeGap');
+    setAttr(action, 'distance', String(distance));
+    context.sink.approximated(
+      action,
+      'LongitudinalDistanceAction/@timeGap',
+      `${gap} s is written as ${distance} m (at the start speed ${speed} m/s)`,
+      carla,
+    );
+  }
+}
+
+/** The 1.1 TrajectoryRef wraps what 1.0 writes directly; Clothoid and Nurbs are refused (SR_PARSER get_trajectory: "Clothoid shapes are currently unsupported"). */
+function trajectories(tree: Node, context: RuleContext): void {
+  for (const action of named(tree, 'FollowTrajectoryAction')) {
+    const wrapper = child(action, 'TrajectoryRef');
+    if (wrapper) {
+      const inner = wrapper.children[0];
+      if (inner) replaceNode(wrapper, inner);
+      else removeNode(wrapper);
+    }
+    const offset = attr(action, 'initialDistanceOffset');
+    if (offset !== undefined) {
+      removeAttr(action, 'initialDistanceOffset');
+      if (Number(offset) !== 0)
+        context.sink.approximated(
+          action,
+          'FollowTrajectoryAction/@initialDistanceOffset',
+          'is not in 1.0: the trajectory is followed from its start',
+          `${SR_PARSER} get_trajectory reads the vertices only`,
+        );
+    }
+    if (!child(action, 'TimeReference')) appendChild(action, makeNode('TimeReference', [], [makeNode('None')]));
+    const mode = child(action, 'TrajectoryFollowingMode');
+    if (!mode) appendChild(action, makeNode('TrajectoryFollowingMode', [['followingMode', 'position']]));
+    else for (const extra of ['lateralControlStrategy']) removeAttr(mode, extra);
+    const shape = allNodes(action).find((each) => each.name === 'Clothoid' || each.name === 'Nurbs' || each.name === 'ClothoidSpline');
+    if (shape) {
+      dropUnit(
+        action,
+        context,
+        shape.name,
+        `ScenarioRunner follows polylines only and refuses a ${shape.name} (${SR_PARSER} get_trajectory)`,
+      );
+      continue;
+    }
+    const timing = ancestor(action, 'Event') ? child(child(action, 'TimeReference') ?? action, 'Timing') : undefined;
+    for (const polyline of named(action, 'Polyline')) {
+      const vertices = childrenNamed(polyline, 'Vertex');
+      const missing = vertices.filter((vertex) => attr(vertex, 'time') === undefined);
+      if (missing.length === 0) continue;
+      for (const vertex of vertices) if (attr(vertex, 'time') === undefined) setAttr(vertex, 'time', '0');
+      context.sink.approximated(
+        polyline,
+        'Vertex/@time',
+        `${missing.length} vertices without a time are given time 0`,
+        `1.0 requires a vertex time; ScenarioRunner ${timing ? 'reads the times' : 'passes the times to the controller, which ignores them when the trajectory has no timing'} (${SR_PARSER} get_trajectory)`,
+      );
+    }
+  }
+}
+
+/** ScenarioRunner refuses these positions (SR_PARSER convert_position_to_transform: RoutePosition raises NotImplementedError); Geo and Trajectory positions are not 1.0. */
+function unsupportedPositions(tree: Node, context: RuleContext): void {
+  for (const name of ['RoutePosition', 'GeoPosition', 'TrajectoryPosition', 'RoadRange']) {
+    for (const node of named(tree, name)) {
+      if (!node.parent) continue;
+      const inInitTeleport = ancestor(node, 'Init') && ancestor(node, 'TeleportAction');
+      if (inInitTeleport) {
+        context.sink.refuse(
+          node,
+          name,
+          'places an actor at the start, and ScenarioRunner cannot place it',
+          `${SR_PARSER} convert_position_to_transform has no ${name}`,
+        );
+        continue;
+      }
+      dropUnit(node, context, name, `ScenarioRunner has no ${name} (${SR_PARSER} convert_position_to_transform)`);
+    }
+  }
+  for (const position of named(tree, 'RelativeLanePosition')) {
+    const dsLane = attr(position, 'dsLane');
+    if (dsLane !== undefined) {
+      removeAttr(position, 'dsLane');
+      if (attr(position, 'ds') === undefined) setAttr(position, 'ds', dsLane);
+      context.sink.approximated(
+        position,
+        'RelativeLanePosition/@dsLane',
+        `the distance along the lane ${dsLane} is written as ds (along the road)`,
+        `${SR_PARSER} convert_position_to_transform reads ds`,
+      );
+    }
+  }
+}
+
+/** Actions ScenarioRunner refuses while building (SR_PARSER convert_maneuver_to_atomic) or that are not 1.0. */
+const REFUSED_ACTIONS: Record<string, string> = {
+  TrafficAction: `ScenarioRunner refuses global traffic actions ("Global actions are not yet supported", ${SR_PARSER} convert_maneuver_to_atomic)`,
+  VisibilityAction: `ScenarioRunner refuses it ("Visibility actions are not yet supported", ${SR_PARSER} convert_maneuver_to_atomic)`,
+  VariableAction: 'variables are not in 1.0',
+  SetMonitorAction: 'monitors are not in 1.0',
+  LightStateAction: 'vehicle lights are not in 1.0',
+  AnimationAction: 'animations are not in 1.0',
+  AppearanceAction: 'appearance actions are not in 1.0',
+  ConnectTrailerAction: 'trailers are not in 1.0',
+  DisconnectTrailerAction: 'trailers are not in 1.0',
+  RandomRouteAction: 'random routes are not in 1.0',
+  SpeedProfileAction: 'speed profiles are not in 1.0',
+  TrafficAreaAction: 'traffic areas are not in 1.0',
+  TrafficStopAction: 'traffic actions are not in 1.0',
+  UserDefinedAction: `ScenarioRunner does not run user-defined actions other than a CustomCommandAction (${SR_PARSER} convert_maneuver_to_atomic)`,
+};
+
+function refusedActions(tree: Node, context: RuleContext): void {
+  for (const [name, carla] of Object.entries(REFUSED_ACTIONS)) {
+    for (const node of named(tree, name)) {
+      if (!node.parent) continue;
+      if (name === 'UserDefinedAction' && child(node, 'CustomCommandAction')) continue;
+      dropUnit(node, context, name, carla);
+    }
+  }
+}
+
+/** ScenarioRunner 0.9.16 builds every AssignRouteAction and AcquirePositionAction as ChangeActorWaypoints without times, which raises (SR_ATOMICS ChangeActorWaypoints.__init__, commit ab5996d7). */
+function routeActionCrash(tree: Node, context: RuleContext): void {
+  if (context.release !== '0.9.16') return;
+  for (const name of ['AssignRouteAction', 'AcquirePositionAction']) {
+    for (const node of named(tree, name)) {
+      if (!node.parent || ancestor(node, 'Init')) continue;
+      context.sink.refuse(
+        node,
+        name,
+        'crashes ScenarioRunner 0.9.16 while it builds the scenario',
+        `0.9.16 creates ChangeActorWaypoints without times for it, which raises "object of type 'NoneType' has no len()" (${SR_ATOMICS} ChangeActorWaypoints.__init__, a regression of commit ab5996d7); no 1.0 form keeps a route's meaning without that atomic; export with --carla 0.9.15 for ScenarioRunner 0.9.15`,
+      );
+    }
+  }
+  const init = named(tree, 'Init')[0];
+  if (!init) return;
+  for (const name of ['AssignRouteAction', 'AcquirePositionAction']) {
+    for (const node of named(init, name)) {
+      context.sink.refuse(
+        node,
+        name,
+        'crashes ScenarioRunner 0.9.16 while it builds the scenario',
+        `the Init route is built as ChangeActorWaypoints without times, which raises (${SR_SCENARIO} _create_init_behavior, ${SR_ATOMICS} ChangeActorWaypoints.__init__, commit ab5996d7); export with --carla 0.9.15 for ScenarioRunner 0.9.15`,
+      );
+    }
+  }
+}
+
+/** 1.1-1.3 conditions that are not 1.0, and the UserDefinedValueCondition SR refuses ("not yet supported", SR_PARSER convert_condition_to_atomic). */
+const REFUSED_CONDITIONS: Record<string, string> = {
+  UserDefinedValueCondition: `ScenarioRunner refuses it ("ByValue UserDefinedValue conditions are not yet supported", ${SR_PARSER} convert_condition_to_atomic)`,
+  VariableCondition: 'variables are not in 1.0',
+  AngleCondition: 'angle conditions are not in 1.0',
+  RelativeAngleCondition: 'angle conditions are not in 1.0',
+  RelativeClearanceCondition: 'clearance conditions are not in 1.0',
+};
+
+const RULE_VALUES: Record<string, string> = { greaterOrEqual: 'greaterThan', lessOrEqual: 'lessThan' };
+
+function conditions(tree: Node, context: RuleContext): void {
+  for (const [name, carla] of Object.entries(REFUSED_CONDITIONS))
+    for (const node of named(tree, name))
+      if (node.parent) dropUnit(node, context, name, `${carla}; the condition group waits for its other conditions`);
+  for (const node of allNodes(tree)) {
+    const rule = attr(node, 'rule');
+    if (rule && RULE_VALUES[rule]) {
+      setAttr(node, 'rule', RULE_VALUES[rule]);
+      context.sink.approximated(
+        node,
+        `${node.name}/@rule`,
+        `${rule} is written as ${RULE_VALUES[rule]} (1.0 has no ${rule}; they differ only at equality)`,
+        `ScenarioRunner compares with ${RULE_VALUES[rule]} (${SR_PARSER} operators)`,
+      );
+    } else if (rule === 'notEqualTo') dropUnit(node, context, `${node.name}/@rule`, `1.0 has no notEqualTo (${SR_PARSER} operators)`);
+  }
+  for (const name of ['DistanceCondition', 'TimeHeadwayCondition', 'TimeToCollisionCondition', 'RelativeDistanceCondition']) {
+    for (const node of named(tree, name)) {
+      const system = attr(node, 'coordinateSystem');
+      removeAttr(node, 'coordinateSystem');
+      removeAttr(node, 'routingAlgorithm');
+      const distanceType = attr(node, 'relativeDistanceType');
+      if (name !== 'RelativeDistanceCondition') removeAttr(node, 'relativeDistanceType');
+      else if (distanceType === 'euclidianDistance') setAttr(node, 'relativeDistanceType', 'cartesianDistance');
+      if (name !== 'RelativeDistanceCondition' && attr(node, 'alongRoute') === undefined)
+        setAttr(node, 'alongRoute', system === 'road' || system === 'lane' ? 'true' : 'false');
+      if (attr(node, 'freespace') === undefined) setAttr(node, 'freespace', 'false');
+      if (system && system !== 'entity' && name === 'RelativeDistanceCondition')
+        context.sink.approximated(
+          node,
+          `${name}/@coordinateSystem`,
+          `${system} is not in 1.0: the distance is measured between the entities`,
+          `${SR_PARSER} convert_condition_to_atomic measures ${name} in CARLA's world`,
+        );
+    }
+  }
+  for (const node of named(tree, 'StoryboardElementStateCondition')) {
+    const state = attr(node, 'state');
+    if (state === 'runningState' || state === 'startTransition') {
+      if (state === 'runningState') {
+        setAttr(node, 'state', 'startTransition');
+        context.sink.approximated(
+          node,
+          'StoryboardElementStateCondition/@state',
+          'runningState is written as startTransition (a condition holds from the moment it is first true)',
+          `ScenarioRunner knows start, stop and end transitions and completeState only (${SR_PARSER} convert_condition_to_atomic, issue #1067)`,
+        );
+      }
+    } else if (state && !['stopTransition', 'endTransition', 'completeState'].includes(state))
+      dropUnit(
+        node,
+        context,
+        'StoryboardElementStateCondition',
+        `ScenarioRunner refuses the state ${state} (${SR_PARSER} convert_condition_to_atomic)`,
+      );
+  }
+  for (const reach of named(tree, 'ReachPositionCondition')) removeAttr(reach, 'coordinateSystem');
+}
+
+/** Storyboard semantics ScenarioRunner does not keep (FACTS: priority, conditionEdge, maximumExecutionCount of an event, triggeringEntitiesRule): reported, once per kind and file. */
+function ignoredSemantics(tree: Node, context: RuleContext): void {
+  const events = named(tree, 'Event');
+  for (const event of events) {
+    const priority = attr(event, 'priority');
+    if (priority === 'override') setAttr(event, 'priority', 'overwrite');
+  }
+  const reportFirst = (nodes: Node[], element: string, what: (count: number) => string, carla: string): void => {
+    if (nodes.length > 0) context.sink.approximated(nodes[0], element, what(nodes.length), carla);
+  };
+  reportFirst(
+    events.filter((event) => attr(event, 'priority') !== 'parallel'),
+    'Event/@priority',
+    (count) => `${count} event${count === 1 ? '' : 's'} with priority overwrite or skip (here and after)`,
+    `ScenarioRunner runs every event in parallel: a later event neither stops nor waits for a running one (${SR_PARSER}, issues #555, #935)`,
+  );
+  reportFirst(
+    events.filter((event) => Number(attr(event, 'maximumExecutionCount') ?? '1') > 1),
+    'Event/@maximumExecutionCount',
+    (count) => `${count} event${count === 1 ? '' : 's'} meant to run more than once`,
+    `ScenarioRunner runs an event once (${SR_SCENARIO})`,
+  );
+  const edged = named(tree, 'Condition').filter((condition) =>
+    ['falling', 'risingOrFalling'].includes(attr(condition, 'conditionEdge') ?? ''),
+  );
+  for (const condition of edged)
+    context.sink.approximated(
+      condition,
+      'Condition/@conditionEdge',
+      `${attr(condition, 'conditionEdge')} is not kept: the condition fires when it is first true`,
+      `ScenarioRunner ignores conditionEdge; every condition latches once (${SR_PARSER} convert_condition_to_atomic)`,
+    );
+  reportFirst(
+    named(tree, 'Condition').filter((condition) => attr(condition, 'conditionEdge') === 'rising'),
+    'Condition/@conditionEdge',
+    (count) => `${count} condition${count === 1 ? '' : 's'} with conditionEdge rising fire when first true, also when true from the start`,
+    `ScenarioRunner ignores conditionEdge (${SR_PARSER} convert_condition_to_atomic)`,
+  );
+  reportFirst(
+    named(tree, 'TriggeringEntities').filter(
+      (node) => attr(node, 'triggeringEntitiesRule') === 'all' && childrenNamed(node, 'EntityRef').length > 1,
+    ),
+    'TriggeringEntities/@triggeringEntitiesRule',
+    () => "'all' over several entities is decided by the last entity listed",
+    `ScenarioRunner ignores the rule and uses the last EntityRef (${SR_PARSER} convert_condition_to_atomic)`,
+  );
+}
+
+/**
+ * The Storyboard's StopTrigger is ignored but for `criteria_` conditions (SR_SCENARIO _create_test_criteria):
+ * its groups are added to every Act's StopTrigger (ending every act ends the story), the original kept for criteria.
+ */
+function storyboardStop(tree: Node, context: RuleContext): void {
+  const storyboard = named(tree, 'Storyboard')[0];
+  if (!storyboard) return;
+  let stop = child(storyboard, 'StopTrigger');
+  if (!stop) stop = appendChild(storyboard, makeNode('StopTrigger'));
+  else {
+    removeNode(stop);
+    appendChild(storyboard, stop);
+  }
+  const groups = childrenNamed(stop, 'ConditionGroup').filter((group) =>
+    childrenNamed(group, 'Condition').some((condition) => !(attr(condition, 'name') ?? '').startsWith('criteria_')),
+  );
+  if (groups.length === 0) return;
+  const acts = named(storyboard, 'Act');
+  for (const act of acts) {
+    const actStop = child(act, 'StopTrigger') ?? appendChild(act, makeNode('StopTrigger'));
+    for (const group of groups) appendChild(actStop, cloneNode(group));
+  }
+  const anded = groups.some((group) => childrenNamed(group, 'Condition').length > 1);
+  context.sink.approximated(
+    stop,
+    'Storyboard/StopTrigger',
+    `its condition groups are added to the StopTrigger of each of the ${acts.length} acts${anded ? ' (ScenarioRunner ORs the conditions inside an act stop group, where the standard ANDs them)' : ''}`,
+    `ScenarioRunner ignores the Storyboard's StopTrigger but for criteria_ conditions (${SR_SCENARIO} _create_test_criteria); the scenario ends when its acts end`,
+  );
+}
+
+/** 1.0 entity parts that 1.1+ made optional or added. */
+function entities(tree: Node, context: RuleContext): void {
+  for (const vehicle of named(tree, 'Vehicle')) {
+    for (const extra of ['mass', 'model3d', 'role']) removeAttr(vehicle, extra);
+    const performance = child(vehicle, 'Performance');
+    if (performance) {
+      for (const extra of ['maxAccelerationRate', 'maxDecelerationRate']) removeAttr(performance, extra);
+      if (attr(performance, 'maxDeceleration') === undefined)
+        setAttr(performance, 'maxDeceleration', attr(performance, 'maxAcceleration') ?? '10');
+    }
+    const axles = child(vehicle, 'Axles');
+    if (axles && !child(axles, 'FrontAxle')) {
+      const rear = child(axles, 'RearAxle');
+      if (rear) appendChild(axles, Object.assign(cloneNode(rear), { name: 'FrontAxle' }), rear);
+    }
+    if (!child(vehicle, 'Properties')) appendChild(vehicle, makeNode('Properties'));
+  }
+  for (const pedestrian of named(tree, 'Pedestrian')) {
+    for (const extra of ['model3d', 'role']) removeAttr(pedestrian, extra);
+    if (attr(pedestrian, 'mass') === undefined) setAttr(pedestrian, 'mass', '80');
+    if (attr(pedestrian, 'model') === undefined) setAttr(pedestrian, 'model', attr(pedestrian, 'name') ?? '');
+    if (!child(pedestrian, 'Properties')) appendChild(pedestrian, makeNode('Properties'));
+  }
+  for (const misc of named(tree, 'MiscObject')) {
+    removeAttr(misc, 'model3d');
+    if (!child(misc, 'Properties')) appendChild(misc, makeNode('Properties'));
+  }
+  for (const object of named(tree, 'ScenarioObject')) {
+    const external = child(object, 'ExternalObjectReference');
+    if (external)
+      context.sink.refuse(
+        external,
+        'ExternalObjectReference',
+        'names an object ScenarioRunner cannot spawn',
+        `${SR_CONFIGURATION} _set_actor_information spawns Vehicles, Pedestrians and MiscObjects only`,
+      );
+  }
+}
+
+/** Parameters are evaluated by the export; declarations stay for ParameterConditions and ParameterActions, in 1.0's types. */
+function parameters(tree: Node, context: RuleContext): void {
+  for (const declaration of named(tree, 'ParameterDeclaration')) {
+    if (attr(declaration, 'parameterType') === 'int') setAttr(declaration, 'parameterType', 'integer');
+    for (const constraint of childrenNamed(declaration, 'ConstraintGroup')) removeNode(constraint);
+  }
+  for (const declarations of named(tree, 'VariableDeclarations')) {
+    removeNode(declarations);
+    context.sink.dropped(
+      declarations,
+      'VariableDeclarations',
+      'are not in 1.0: dropped (their conditions and actions are dropped and named too)',
+      'ScenarioRunner has no variables',
+    );
+  }
+  for (const node of allNodes(tree)) {
+    if (attr(node, 'parameterType') === 'int') setAttr(node, 'parameterType', 'integer');
+  }
+  // A ParameterDeclarations that only the entry's own values used is empty once they are evaluated.
+  for (const declarations of named(tree, 'ParameterDeclarations'))
+    if (declarations.parent?.name !== 'OpenSCENARIO') removeNode(declarations);
+}
+
+function renamedValues(tree: Node): void {
+  for (const node of allNodes(tree)) {
+    for (const entry of node.attributes) if (entry[1] === 'euclidianDistance') entry[1] = 'cartesianDistance';
+    renameAttr(node, 'curvaturePrime', 'curvatureDot');
+  }
+}
+
+/** A trigger that fires at the first step: what a 1.2 Act or Event without a StartTrigger means (it starts with its parent). */
+function startAtOnce(): Node {
+  return makeNode(
+    'StartTrigger',
+    [],
+    [
+      makeNode(
+        'ConditionGroup',
+        [],
+        [
+          makeNode(
+            'Condition',
+            [
+              ['name', 'start'],
+              ['delay', '0'],
+              ['conditionEdge', 'none'],
+            ],
+            [
+              makeNode(
+                'ByValueCondition',
+                [],
+                [
+                  makeNode('SimulationTimeCondition', [
+                    ['value', '0'],
+                    ['rule', 'greaterThan'],
+                  ]),
+                ],
+              ),
+            ],
+          ),
+        ],
+      ),
+    ],
+  );
+}
+
+/** Parts 1.0 requires that 1.1-1.3 made optional, written with the meaning the later standard gives their absence. */
+function requiredParts(tree: Node): void {
+  const storyboard = named(tree, 'Storyboard')[0];
+  if (storyboard && childrenNamed(storyboard, 'Story').length === 0) {
+    // An Init-only scenario: one story with an act that has nothing to do, so that the 1.0 Storyboard has its Story.
+    const story = makeNode(
+      'Story',
+      [['name', 'init_only']],
+      [
+        makeNode(
+          'Act',
+          [['name', 'init_only']],
+          [
+            makeNode(
+              'ManeuverGroup',
+              [
+                ['name', 'init_only'],
+                ['maximumExecutionCount', '1'],
+              ],
+              [makeNode('Actors', [['selectTriggeringEntities', 'false']])],
+            ),
+            startAtOnce(),
+          ],
+        ),
+      ],
+    );
+    appendChild(storyboard, story, child(storyboard, 'StopTrigger'));
+  }
+  for (const holder of [...named(tree, 'Act'), ...named(tree, 'Event')]) {
+    if (child(holder, 'StartTrigger')) continue;
+    appendChild(holder, startAtOnce(), child(holder, 'StopTrigger'));
+  }
+  for (const controller of named(tree, 'Controller')) if (!child(controller, 'Properties')) appendChild(controller, makeNode('Properties'));
+}
+
+/** Every rule, in the order they apply. */
+export const CARLA_RULES: readonly { name: string; apply: (tree: Node, context: RuleContext) => void }[] = [
+  { name: 'parameters', apply: parameters },
+  { name: 'entities', apply: entities },
+  { name: 'activate-controller', apply: activateControllerAction },
+  { name: 'controller-halves', apply: controllerActionHalves },
+  { name: 'weather', apply: weather },
+  { name: 'absolute-target-lane', apply: absoluteTargetLane },
+  { name: 'time-gap', apply: longitudinalTimeGap },
+  { name: 'trajectories', apply: trajectories },
+  { name: 'positions', apply: unsupportedPositions },
+  { name: 'refused-actions', apply: refusedActions },
+  { name: 'route-crash', apply: routeActionCrash },
+  { name: 'conditions', apply: conditions },
+  { name: 'ignored-semantics', apply: ignoredSemantics },
+  { name: 'storyboard-stop', apply: storyboardStop },
+  { name: 'renamed-values', apply: (tree) => renamedValues(tree) },
+  { name: 'required-parts', apply: (tree) => requiredParts(tree) },
+];
+
+export function applyCarlaRules(tree: Node, context: RuleContext): void {
+  for (const rule of CARLA_RULES) rule.apply(tree, context);
+  tidyEmptyContainers(tree);
+}
+
+/**
+ * What dropping left empty goes too: an Event without actions, a Maneuver without events, a ConditionGroup
+ * without conditions, a Private without actions (a ManeuverGroup may be empty in 1.0).
+ */
+export function tidyEmptyContainers(tree: Node): void {
+  let changed = true;
+  while (changed) {
+    changed = false;
+    for (const node of allNodes(tree)) {
+      if (!node.parent) continue;
+      const empty =
+        (node.name === 'Event' && childrenNamed(node, 'Action').length === 0) ||
+        (node.name === 'Maneuver' && childrenNamed(node, 'Event').length === 0) ||
+        (node.name === 'ConditionGroup' && childrenNamed(node, 'Condition').length === 0) ||
+        (node.name === 'Private' && childrenNamed(node, 'PrivateAction').length === 0) ||
+        (node.name === 'Action' && node.children.length === 0) ||
+        (node.name === 'PrivateAction' && node.children.length === 0) ||
+        (node.name === 'GlobalAction' && node.children.length === 0);
+      if (empty) {
+        removeNode(node);
+        changed = true;
+      }
+    }
+  }
+}
