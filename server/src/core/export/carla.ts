@@ -12,7 +12,7 @@
 import * as path from 'node:path';
 import { Flattener } from '../flatten';
 import { formatProblem, Problem } from '../problems';
-import { logicFileOf, resolveRoadFile } from '../roadFiles';
+import { logicFileOf, resolveRoadFile } from '../semantics/roadFiles';
 import { checkSchema } from '../schema/validate';
 import { analyzeDocument, assignmentsOf, CatalogLoader, DocumentSemantics, Evaluator, formatValue } from '../semantics';
 import { displayRef, ScenarioStore, SourceRef } from '../sources';
