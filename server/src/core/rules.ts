@@ -1,60 +1,11 @@
+import { DefinedCode, DIAGNOSTICS, QC, QC_RULE_DESCRIPTIONS, QcRuleUid, Rule } from './diagnostics';
 import { Problem, ProblemCode } from './problems';
 
-/**
- * The rule each problem code stands for: a one-line description and, where ASAM's Quality Checker for
- * OpenSCENARIO XML (asam-ev/qc-openscenarioxml, checker_bundle_doc.md) has the same rule, its uid, so
- * that a report names the rule a team already knows.
- */
-export interface Rule {
-  description: string;
-  /** The ASAM Quality Checker rule uid, `asam.net:xosc:<version>:<group>.<rule>`. */
-  qcRule?: QcRuleUid;
-}
+export { QC_RULE_DESCRIPTIONS };
+export type { QcRuleUid, Rule };
 
-const QC = {
-  validXml: 'asam.net:xosc:1.0.0:xml.valid_xml_document',
-  rootTag: 'asam.net:xosc:1.0.0:xml.root_tag_is_openscenario',
-  fileHeader: 'asam.net:xosc:1.0.0:xml.fileheader_is_present',
-  versionDefined: 'asam.net:xosc:1.0.0:xml.version_is_defined',
-  validSchema: 'asam.net:xosc:1.0.0:xml.valid_schema',
-  entityReferences: 'asam.net:xosc:1.2.0:reference_control.resolvable_entity_references',
-  uniqueEntityReferences: 'asam.net:xosc:1.2.0:reference_control.uniquely_resolvable_entity_references',
-  variableReference: 'asam.net:xosc:1.2.0:reference_control.resolvable_variable_reference',
-  storyboardReference: 'asam.net:xosc:1.2.0:reference_control.resolvable_storyboard_element_reference',
-  uniqueNames: 'asam.net:xosc:1.2.0:reference_control.unique_element_names_on_same_level',
-  catalogParameters: 'asam.net:xosc:1.2.0:parameters.valid_parameter_declaration_in_catalogs',
-  signalId: 'asam.net:xosc:1.2.0:reference_control.resolvable_signal_id_in_traffic_signal_state_action',
-  signalController: 'asam.net:xosc:1.2.0:reference_control.resolvable_traffic_signal_controller_by_traffic_signal_controller_ref',
-  privateActionActor: 'asam.net:xosc:1.2.0:reference_control.valid_actor_reference_in_private_actions',
-  allowedOperators: 'asam.net:xosc:1.2.0:data_type.allowed_operators',
-  transitionTime: 'asam.net:xosc:1.2.0:data_type.non_negative_transition_time_in_light_state_action',
-  phaseDuration: 'asam.net:xosc:1.2.0:data_type.positive_duration_in_phase',
-} as const;
-
-/** What each ASAM Quality Checker rule requires, in our words (one rule may stand for several codes). */
-export const QC_RULE_DESCRIPTIONS: Record<(typeof QC)[keyof typeof QC], string> = {
-  [QC.validXml]: 'The file is a well-formed XML document.',
-  [QC.rootTag]: 'The root element is <OpenSCENARIO>.',
-  [QC.fileHeader]: 'The root element has a <FileHeader>.',
-  [QC.versionDefined]: 'The FileHeader states revMajor and revMinor, each an unsignedShort.',
-  [QC.validSchema]: 'The file is valid against the ASAM OpenSCENARIO schema of its version.',
-  [QC.entityReferences]: 'Every entity reference resolves to a declared entity.',
-  [QC.uniqueEntityReferences]: 'Every entity reference resolves to exactly one element.',
-  [QC.variableReference]: 'Every variable reference resolves to a declared variable.',
-  [QC.storyboardReference]: 'Every storyboard element reference resolves to a storyboard element.',
-  [QC.uniqueNames]: 'The names of the elements on one level (the children of one element) are unique.',
-  [QC.catalogParameters]: 'A catalog entry declares every parameter it uses.',
-  [QC.signalId]:
-    'The signal a TrafficSignalStateAction names exists in the road network (or a TrafficSignalController of the scenario sets it).',
-  [QC.signalController]: 'A trafficSignalControllerRef names a TrafficSignalController of the scenario.',
-  [QC.privateActionActor]: 'A ManeuverGroup whose maneuvers hold private actions names actors for them.',
-  [QC.allowedOperators]: 'Expressions use only the operators and functions the standard defines.',
-  [QC.transitionTime]: 'The transitionTime of a LightStateAction is not negative.',
-  [QC.phaseDuration]: 'The duration of a traffic-signal Phase is positive.',
-};
-
-/** Every code has an entry: a new code does not compile until it says what rule it is. */
-export const RULES: Record<ProblemCode, Rule> = {
+/** The rules of the codes without a module of their own in core/diagnostics/ (each of those names its rule there). */
+const OTHER_RULES: Record<Exclude<ProblemCode, DefinedCode>, Rule> = {
   xml: { description: 'The file is well-formed XML.', qcRule: QC.validXml },
   io: { description: 'The file can be read.' },
   'bad-package': { description: 'A .mosc package is a readable ZIP archive holding main.xosc.' },
@@ -64,9 +15,6 @@ export const RULES: Record<ProblemCode, Rule> = {
   'unknown-group': { description: 'A maneuverGroupName names a ManeuverGroup of the referenced file.' },
   'ambiguous-group': { description: 'A maneuverGroupName names exactly one ManeuverGroup.' },
   'duplicate-group': { description: 'A referenced file has no two ManeuverGroups of the same name.' },
-  'unknown-key': { description: 'A ParameterReference key matches an attribute listed in parameterAttributes.' },
-  'no-default': { description: 'An attribute listed in parameterAttributes has a default value.' },
-  'unknown-parameter-attribute': { description: 'A parameterAttributes entry names an attribute of its element.' },
   'missing-attribute': { description: 'A reference element has its required attributes.' },
   'no-entity-ref': { description: 'A ManeuverGroup holding a ScenarioReference names its actor with an EntityRef.' },
   'reference-outside-group': { description: 'A ScenarioReference stands inside a ManeuverGroup.' },
@@ -153,8 +101,11 @@ export const RULES: Record<ProblemCode, Rule> = {
   'unknown-distribution-parameter': { description: "A distribution's parameterName is a parameter its ScenarioFile declares at its root." },
 };
 
-/** An ASAM Quality Checker rule uid this project maps a problem to. */
-export type QcRuleUid = (typeof QC)[keyof typeof QC];
+/** Every code has an entry: a new code does not compile until it says what rule it is. */
+export const RULES: Record<ProblemCode, Rule> = {
+  ...OTHER_RULES,
+  ...(Object.fromEntries(DIAGNOSTICS.map((definition) => [definition.code, definition.rule])) as Record<DefinedCode, Rule>),
+};
 
 /** What `ruleOf` reads of a problem: its code, and for the rules that depend on it, its data and subject. */
 export type RuledProblem = Pick<Problem, 'code' | 'data' | 'subject'>;

@@ -1,4 +1,5 @@
 import * as path from 'node:path';
+import { unknownParameterAttributeWording } from '../diagnostics/unknownParameterAttribute';
 import { PARAMETER_ATTRIBUTES, ScenarioModel } from '../model';
 import { Problem, ProblemCode, ZERO_RANGE } from '../problems';
 import { Simulator } from '../profiles/simulators';
@@ -51,12 +52,7 @@ export function checkDeclarations(result: FlatSource, model: ScenarioModel): voi
         document: model.document,
         start: name.start,
         end: name.end,
-        severity: 'warning',
-        code: 'unknown-parameter-attribute',
-        message:
-          `'${name.name}' names no attribute of <${declaration.element.name}>, so no default value exists and no key can override it` +
-          (attributes.length ? ` (its attributes: ${attributes.join(', ')})` : ''),
-        hint: suggestion ? `write '${suggestion}'` : `add ${name.name}="..." to <${declaration.element.name}> as its default`,
+        ...unknownParameterAttributeWording(name.name, declaration.element.name, attributes, suggestion),
       });
       if (suggestion) problem.data = { suggestion };
       result.problems.push(problem);

@@ -1,3 +1,5 @@
+import { NO_DEFAULT_LISTED_NOTE, noDefaultWording } from '../diagnostics/noDefault';
+import { UNKNOWN_KEY_LISTED_NOTE, unknownKeyData, UnknownKeyFacts, unknownKeyWording } from '../diagnostics/unknownKey';
 import { overridableAttributes, OverridePlan, planOverrides } from '../keys';
 import { findGroup, ManeuverGroupInfo, ManeuverGroupReferenceInfo, ScenarioModel, ScenarioReferenceInfo } from '../model';
 import { Problem } from '../problems';
@@ -357,28 +359,21 @@ function reportUnknownKeys(
     const [start, end] = valueRange(unknown.parameter.keyAttribute, unknown.parameter.element);
     const listedVerbatim = linked.overridable.find((candidate) => candidate.attributeName === unknown.parameter.key);
     const verbatimOrigin = listedVerbatim ? originOf(source, listedVerbatim.element) : undefined;
-    const hint = listedVerbatim
-      ? `<${listedVerbatim.element.name}> in ${displayRef((verbatimOrigin as { source: FlatSource }).source.ref, base)} lists '${listedVerbatim.attributeName}', which names no attribute; list '${listedVerbatim.attributeName.split('.').pop()}' there instead`
-      : unknown.suggestion
-        ? `did you mean '${unknown.suggestion}'?`
-        : 'list the attribute in parameterAttributes of its element in the simple scenario';
-    const problem = report({
-      start,
-      end,
-      severity: 'error',
-      code: 'unknown-key',
-      message: `key '${unknown.parameter.key}' matches no attribute listed in a parameterAttributes of group '${linked.info.name}'`,
-      hint,
-    });
+    const facts: UnknownKeyFacts = {
+      key: unknown.parameter.key,
+      group: linked.info.name,
+      listedVerbatim:
+        listedVerbatim && verbatimOrigin
+          ? { element: listedVerbatim.element.name, name: listedVerbatim.attributeName, file: displayRef(verbatimOrigin.source.ref, base) }
+          : undefined,
+      suggestion: unknown.suggestion,
+    };
+    const problem = report({ start, end, ...unknownKeyWording(facts) });
     if (listedVerbatim && verbatimOrigin) {
-      problem.related = [
-        declarationLocation(verbatimOrigin, listedVerbatim.attributeName, 'listed here as a whole key instead of an attribute name'),
-      ];
-      // The mistake lives in the simple scenario: a fix at this use site rewrites the listed name there.
-      problem.data = { relatedReplacement: listedVerbatim.attributeName.split('.').pop() ?? listedVerbatim.attributeName };
-    } else if (unknown.suggestion) {
-      problem.data = { suggestion: unknown.suggestion };
+      problem.related = [declarationLocation(verbatimOrigin, listedVerbatim.attributeName, UNKNOWN_KEY_LISTED_NOTE)];
     }
+    const data = unknownKeyData(facts);
+    if (data) problem.data = data;
   }
 }
 
@@ -386,16 +381,12 @@ function reportUnknownKeys(
 function reportMissingDefaults(plan: OverridePlan, source: FlatSource, report: Report, base: string | undefined): void {
   for (const { parameter, target: attributeTarget } of plan.withoutDefault) {
     const [start, end] = valueRange(parameter.keyAttribute, parameter.element);
+    const origin = originOf(source, attributeTarget.element);
     const problem = report({
       start,
       end,
-      severity: 'error',
-      code: 'no-default',
-      message: `no default value: <${attributeTarget.element.name}> lists '${attributeTarget.attributeName}' in parameterAttributes but has no such attribute`,
-      hint: `add ${attributeTarget.attributeName}="..." to <${attributeTarget.element.name}> in ${displayRef(originOf(source, attributeTarget.element).source.ref, base)}`,
+      ...noDefaultWording(attributeTarget.element.name, attributeTarget.attributeName, displayRef(origin.source.ref, base)),
     });
-    problem.related = [
-      declarationLocation(originOf(source, attributeTarget.element), attributeTarget.attributeName, 'listed here without a default value'),
-    ];
+    problem.related = [declarationLocation(origin, attributeTarget.attributeName, NO_DEFAULT_LISTED_NOTE)];
   }
 }

@@ -1,3 +1,4 @@
+import { SKIPPED_BY_FORCE } from '../diagnostics';
 import { OverridableAttribute, OverridePlan } from '../keys';
 import { ManeuverGroupInfo, ManeuverGroupReferenceInfo, ScenarioModel, ScenarioReferenceInfo } from '../model';
 import { Problem, ProblemCode } from '../problems';
@@ -7,11 +8,7 @@ import { Resolution, SourceRef } from '../sources';
 import { XmlElement } from '../xml';
 
 /** Problems that the original tool ignored silently: what `--force` skips (reported as skipped, not as errors). */
-export const OVERRIDE_PROBLEM_CODES: ReadonlySet<ProblemCode> = new Set<ProblemCode>([
-  'unknown-key',
-  'no-default',
-  'unknown-parameter-attribute',
-]);
+export const OVERRIDE_PROBLEM_CODES: ReadonlySet<ProblemCode> = SKIPPED_BY_FORCE;
 
 export interface LinkedGroupReference {
   info: ManeuverGroupReferenceInfo;

@@ -1,3 +1,4 @@
+import { DefinedCode, DIAGNOSTICS, isOptionalString, isRecord, isString, isStringList, isSuggestion } from '../../core/diagnostics';
 import { PROBLEM_CODE_LIST, Problem, ProblemCode, ProblemCodeWithData, ProblemDataByCode } from '../../core/problems';
 
 /**
@@ -16,39 +17,16 @@ export function diagnosticDataOf(problem: Problem): { code: ProblemCode; data?: 
   return problem.data ? { code: problem.code, data: problem.data } : { code: problem.code };
 }
 
-function isRecord(value: unknown): value is Record<string, unknown> {
-  return typeof value === 'object' && value !== null && !Array.isArray(value);
-}
-
-function isString(value: unknown): value is string {
-  return typeof value === 'string';
-}
-
-function isOptionalString(value: unknown): value is string | undefined {
-  return value === undefined || isString(value);
-}
-
-function isStringList(value: unknown): value is string[] {
-  return Array.isArray(value) && value.every(isString);
-}
-
-function isSuggestion(value: unknown): value is ProblemDataByCode['schema-value'] {
-  return isRecord(value) && isString(value.suggestion);
-}
-
 function isMissingAttributes(value: unknown): value is ProblemDataByCode['schema-missing-attribute'] {
   return isRecord(value) && isStringList(value.missing);
 }
 
-/** One check per code that carries data: that the value has the shape `ProblemDataByCode` names. */
-const DATA_GUARDS: { [C in ProblemCodeWithData]: (value: unknown) => value is ProblemDataByCode[C] } = {
-  'unknown-key': (value): value is ProblemDataByCode['unknown-key'] =>
-    isSuggestion(value) || (isRecord(value) && isString(value.relatedReplacement)),
+/** One check per code that carries data and has no module in core/diagnostics/ (whose modules check their own). */
+const OTHER_GUARDS: { [C in Exclude<ProblemCodeWithData, DefinedCode>]: (value: unknown) => value is ProblemDataByCode[C] } = {
   'xosc-fallback': (value): value is ProblemDataByCode['xosc-fallback'] => isRecord(value) && isString(value.replacement),
   'missing-file': isSuggestion,
   'unknown-group': (value): value is ProblemDataByCode['unknown-group'] =>
     isRecord(value) && isOptionalString(value.suggestion) && isStringList(value.groups),
-  'unknown-parameter-attribute': isSuggestion,
   'undeclared-parameter': (value): value is ProblemDataByCode['undeclared-parameter'] => isRecord(value) && isString(value.parameter),
   'undeclared-catalog-parameter': (value): value is ProblemDataByCode['undeclared-catalog-parameter'] =>
     isRecord(value) && isString(value.parameter),
@@ -79,13 +57,15 @@ function isProblemCode(value: unknown): value is ProblemCode {
   return isString(value) && PROBLEM_CODES.has(value);
 }
 
-function carriesData(code: ProblemCode): code is ProblemCodeWithData {
-  return Object.prototype.hasOwnProperty.call(DATA_GUARDS, code);
-}
+/** The check of each code's data: its module's, else the one here. */
+const DATA_GUARDS: ReadonlyMap<ProblemCode, (value: unknown) => boolean> = new Map([
+  ...Object.entries<(value: unknown) => boolean>(OTHER_GUARDS).map(([code, guard]) => [code as ProblemCode, guard] as const),
+  ...DIAGNOSTICS.flatMap((definition) => (definition.isData ? [[definition.code, definition.isData] as const] : [])),
+]);
 
 /** Whether a diagnostic's data (as a client sent it back) is a known code with the data that code names, or none. */
 export function isDiagnosticData(value: unknown): value is DiagnosticData {
   if (!isRecord(value) || !isProblemCode(value.code)) return false;
   if (value.data === undefined) return true;
-  return carriesData(value.code) && DATA_GUARDS[value.code](value.data);
+  return DATA_GUARDS.get(value.code)?.(value.data) ?? false;
 }

@@ -1,9 +1,8 @@
 import { CodeAction, CodeActionKind, Diagnostic, Range as LspRange, TextEdit, WorkspaceEdit } from 'vscode-languageserver/node';
 import { TextDocument } from 'vscode-languageserver-textdocument';
-import { PARAMETER_ATTRIBUTES } from '../../core/model';
 import { ProblemCode, ProblemCodeWithData, ProblemDataByCode } from '../../core/problems';
 import { SourceRef } from '../../core/sources';
-import { attribute, XmlDocument, XmlElement } from '../../core/xml';
+import { XmlDocument } from '../../core/xml';
 import { Workspace } from '../../workspace';
 import { DiagnosticData, DiagnosticDataOf } from './data';
 
@@ -57,15 +56,4 @@ export function quickFix(title: string, diagnostic: Diagnostic | undefined, edit
   if (diagnostic) action.diagnostics = [diagnostic];
   if (preferred) action.isPreferred = true;
   return action;
-}
-
-/** The text offset where a new attribute goes: right after parameterAttributes, else after the element name. */
-export function attributeInsertOffset(element: XmlElement): number {
-  const declaration = attribute(element, PARAMETER_ATTRIBUTES);
-  return declaration ? declaration.valueEnd + 1 : element.nameEnd;
-}
-
-export function indentOfLine(text: string, offset: number): string {
-  const lineStart = text.lastIndexOf('\n', offset - 1) + 1;
-  return /^[ \t]*/.exec(text.slice(lineStart))?.[0] ?? '';
 }

@@ -1,14 +1,13 @@
+import { DIAGNOSTICS } from '../../core/diagnostics';
+import { definitionFix } from './definitionFix';
 import { ProblemFix } from './fix';
 import { lenientValueFix } from './lenientValue';
-import { noDefaultFix } from './noDefault';
 import { schemaMissingAttributeFix } from './schemaMissingAttribute';
 import { schemaMissingElementFix } from './schemaMissingElement';
 import { schemaSuggestionFix } from './schemaSuggestion';
 import { schemaUnknownElementFix } from './schemaUnknownElement';
 import { undeclaredParameterFix } from './undeclaredParameter';
 import { unknownGroupFix } from './unknownGroup';
-import { unknownKeyFix } from './unknownKey';
-import { unknownParameterAttributeFix } from './unknownParameterAttribute';
 import { missingFileFix, xoscFallbackFix } from './xoscFallback';
 
 export type { DiagnosticData } from './data';
@@ -16,14 +15,12 @@ export { diagnosticDataOf, isDiagnosticData } from './data';
 export type { FixDocument, ProblemFix } from './fix';
 export { missingKeysAction } from './missingKeys';
 
-/** Every fix module; a code is handled by at most one of them. */
+/** Every fix: those of the diagnostics' modules (core/diagnostics/), then the fix modules here; a code is handled by at most one of them. */
 export const PROBLEM_FIXES: readonly ProblemFix[] = [
-  unknownKeyFix,
+  ...DIAGNOSTICS.filter((definition) => definition.fixes).map(definitionFix),
   xoscFallbackFix,
   missingFileFix,
   unknownGroupFix,
-  unknownParameterAttributeFix,
-  noDefaultFix,
   undeclaredParameterFix,
   lenientValueFix,
   schemaSuggestionFix,

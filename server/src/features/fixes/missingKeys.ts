@@ -1,13 +1,13 @@
 import { CodeAction, CodeActionKind, Diagnostic, Range as LspRange, TextEdit } from 'vscode-languageserver/node';
 import { TextDocument } from 'vscode-languageserver-textdocument';
+import { missingKeysInsertion } from '../../core/diagnostics/unknownKey';
 import { keyMatches } from '../../core/keys';
 import { SourceRef } from '../../core/sources';
-import { elementAt, escapeAttributeValue } from '../../core/xml';
+import { elementAt } from '../../core/xml';
 import { groupLinkOf, keyChoices, linkOf } from '../../analysis';
 import { ancestor } from '../../core/cursor';
 import { Workspace } from '../../workspace';
 import { isDiagnosticData } from './data';
-import { indentOfLine } from './fix';
 
 /** Whether a client that asks only for actions of the `only` kinds wants one of `kind` (kinds are dotted hierarchies). */
 function wanted(kind: string, only: readonly string[] | undefined): boolean {
@@ -52,25 +52,17 @@ export async function missingKeysAction(
       !choice.targets.some((target) => given.some((key) => keyMatches(key, target))),
   );
   if (missing.length === 0) return undefined;
-  const text = document.getText();
-  const closeTag = text.lastIndexOf('</', groupReference.end - 1);
-  const outerIndent = indentOfLine(text, groupReference.start);
   const lastParameter = linked.info.parameters[linked.info.parameters.length - 1];
-  const unit = /^( +|\t)/m.exec(text.slice(0, 4000))?.[1] ?? '    ';
-  const indent = lastParameter ? indentOfLine(text, lastParameter.element.start) : outerIndent + unit;
-  const eol = text.includes('\r\n') ? '\r\n' : '\n';
-  const lines = missing.map(
-    (choice) =>
-      `${indent}<ParameterReference key="${choice.forms[0]}" value="${escapeAttributeValue(choice.targets[0].defaultValue ?? '')}"/>`,
+  const insertion = missingKeysInsertion(
+    document.getText(),
+    groupReference.start,
+    groupReference.end,
+    lastParameter?.element.start,
+    missing.map((choice) => ({ key: choice.forms[0], defaultValue: choice.targets[0].defaultValue ?? '' })),
   );
-  // Insert at the start of the closing tag's line, so that its indentation stays as written.
-  const closeLineStart = text.lastIndexOf('\n', closeTag - 1) + 1;
-  const onOwnLine = /^[ \t]*$/.test(text.slice(closeLineStart, closeTag));
-  const insertAt = onOwnLine ? closeLineStart : closeTag;
-  const newText = onOwnLine ? lines.join(eol) + eol : eol + lines.join(eol) + eol + outerIndent;
   return {
-    title: `Add ${missing.length} missing key${missing.length === 1 ? '' : 's'} with their defaults`,
+    title: insertion.title,
     kind,
-    edit: { changes: { [uri]: [TextEdit.insert(document.positionAt(insertAt), newText)] } },
+    edit: { changes: { [uri]: [TextEdit.insert(document.positionAt(insertion.offset), insertion.newText)] } },
   };
 }

@@ -1,7 +1,8 @@
 import { TextEdit } from 'vscode-languageserver/node';
 import { indexFor, typeByElementName, typeOfElement } from '../../core/schema/query';
 import { elementSkeleton, placeholderValue, skeletonText } from '../../core/schema/skeleton';
-import { indentOfLine, problemFix, quickFix } from './fix';
+import { indentOfLine } from '../../core/diagnostics';
+import { problemFix, quickFix } from './fix';
 import { elementAtRange } from './schema';
 
 /** Required elements the element lacks: each inserted as a minimal valid skeleton, before the element they must precede or at the end. */

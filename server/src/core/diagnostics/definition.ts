@@ -1,0 +1,129 @@
+import { Problem, ProblemCode, ProblemCodeWithData, ProblemDataByCode, Severity } from '../problems';
+import { Position, Range } from '../text';
+import { PARAMETER_ATTRIBUTES } from '../model';
+import { attribute, XmlDocument, XmlElement } from '../xml';
+import { Rule } from './qcRules';
+
+/** The data a problem of code `C` carries: the shape `ProblemDataByCode` names, none for a code without data. */
+export type DataOf<C extends ProblemCode> = C extends ProblemCodeWithData ? ProblemDataByCode[C] : never;
+
+/** What a problem says, apart from where: the part a diagnostic's module builds. */
+export type ProblemWording<C extends ProblemCode = ProblemCode> = Pick<Problem, 'severity' | 'message' | 'hint'> & { code: C };
+
+/** A text with its line index, as a fix reads and places it (an LSP `TextDocument` is one). */
+export interface TextLines {
+  getText(): string;
+  positionAt(offset: number): Position;
+  offsetAt(position: Position): number;
+}
+
+/** The problem's first related location, as a fix of the problem may read and edit it. */
+export interface RelatedPlace {
+  range: Range;
+  /** Whether it lies in the document of the problem. */
+  sameDocument: boolean;
+  /** The name of its file, as the last segment of its address. */
+  fileName: string;
+  /** Whether a fix may edit its file (not inside a package the workspace does not edit, nor a file it cannot name). */
+  editable(): Promise<boolean>;
+  /** Its file's text, where a fix may edit it. */
+  text(): Promise<TextLines | undefined>;
+}
+
+/** What a fix of one problem is given: the problem's data, document and range, and its first related place. */
+export interface FixContext<D> {
+  data: D | undefined;
+  document: TextLines;
+  range: Range;
+  /** The document's parse tree (parsed at most once per request). */
+  parsed(): Promise<XmlDocument>;
+  related: RelatedPlace | undefined;
+}
+
+/** One replacement of a fix: in the problem's document, or in the file of its first related place. */
+export interface FixEdit {
+  place: 'document' | 'related';
+  range: Range;
+  newText: string;
+}
+
+/** A quick fix of a problem, as text edits: the editor's adapter (server/src/features/fixes/) makes it a code action. */
+export interface CoreFix {
+  title: string;
+  edits: FixEdit[];
+  preferred?: boolean;
+}
+
+/** One diagnostic: its code, its rule, its usual severity, the data its problems carry and their quick fixes. */
+export interface DiagnosticBase<C extends ProblemCode> {
+  readonly code: C;
+  readonly rule: Rule;
+  /** The severity its producers give it (where they choose per problem, the usual one). */
+  readonly severity: Severity;
+  /** A problem the original tool ignored silently: what `flatten --force` skips. */
+  readonly skippedByForce?: true;
+  /** Shown struck through in the editor: what the problem names is kept only for compatibility. */
+  readonly deprecated?: true;
+  readonly fixes?: (context: FixContext<DataOf<C>>) => CoreFix[] | Promise<CoreFix[]>;
+}
+
+/** A code whose problems carry data checks it (a client sends a diagnostic's data back as it likes). */
+export type DiagnosticDefinition<C extends ProblemCode> = DiagnosticBase<C> &
+  (C extends ProblemCodeWithData ? { readonly isData: (value: unknown) => value is DataOf<C> } : { readonly isData?: undefined });
+
+/** A definition in the registry, whatever its code: its fixes take the data `isData` accepted. */
+export interface RegisteredDiagnostic<C extends ProblemCode = ProblemCode> extends Omit<DiagnosticBase<C>, 'fixes'> {
+  readonly isData?: (value: unknown) => boolean;
+  readonly fixes?: (context: FixContext<unknown>) => Promise<CoreFix[]>;
+}
+
+/** A diagnostic's definition as the registry lists it. */
+export function defineDiagnostic<C extends ProblemCode>(definition: DiagnosticDefinition<C>): RegisteredDiagnostic<C> {
+  const { fixes } = definition;
+  return {
+    ...definition,
+    // The adapter passes only data that `isData` accepted, so the data has the code's shape.
+    fixes: fixes && (async (context) => fixes(context as FixContext<DataOf<C>>)),
+  };
+}
+
+export function isRecord(value: unknown): value is Record<string, unknown> {
+  return typeof value === 'object' && value !== null && !Array.isArray(value);
+}
+
+export function isString(value: unknown): value is string {
+  return typeof value === 'string';
+}
+
+export function isOptionalString(value: unknown): value is string | undefined {
+  return value === undefined || isString(value);
+}
+
+export function isStringList(value: unknown): value is string[] {
+  return Array.isArray(value) && value.every(isString);
+}
+
+/** A record whose fields each pass their check. */
+export function isRecordOf<T>(value: unknown, fields: { [K in keyof T]-?: (field: unknown) => boolean }): value is T {
+  if (!isRecord(value)) return false;
+  return Object.entries<(field: unknown) => boolean>(fields).every(([name, check]) => check(value[name]));
+}
+
+export const isSuggestion = (value: unknown): value is ProblemDataByCode['schema-value'] =>
+  isRecordOf<ProblemDataByCode['schema-value']>(value, { suggestion: isString });
+
+/** A replacement in the file of a problem's first related location. */
+export const isRelatedReplacement = (value: unknown): value is { relatedReplacement: string } =>
+  isRecordOf<{ relatedReplacement: string }>(value, { relatedReplacement: isString });
+
+/** The indentation of the line that holds `offset`. */
+export function indentOfLine(text: string, offset: number): string {
+  const lineStart = text.lastIndexOf('\n', offset - 1) + 1;
+  return /^[ \t]*/.exec(text.slice(lineStart))?.[0] ?? '';
+}
+
+/** The text offset where a new attribute goes: right after parameterAttributes, else after the element name. */
+export function attributeInsertOffset(element: XmlElement): number {
+  const declaration = attribute(element, PARAMETER_ATTRIBUTES);
+  return declaration ? declaration.valueEnd + 1 : element.nameEnd;
+}

@@ -1,0 +1,30 @@
+import { ProblemCode } from '../problems';
+import { RegisteredDiagnostic } from './definition';
+import { NO_DEFAULT } from './noDefault';
+import { UNKNOWN_KEY } from './unknownKey';
+import { UNKNOWN_PARAMETER_ATTRIBUTE } from './unknownParameterAttribute';
+
+export * from './definition';
+export { QC, QC_RULE_DESCRIPTIONS } from './qcRules';
+export type { QcRuleUid, Rule } from './qcRules';
+
+/**
+ * Every diagnostic that has its own module (server/src/core/diagnostics/<code>.ts): one entry per code.
+ * The codes not listed yet keep their rule in core/rules.ts and their fix in features/fixes/.
+ */
+export const DIAGNOSTICS = [UNKNOWN_KEY, NO_DEFAULT, UNKNOWN_PARAMETER_ATTRIBUTE] as const;
+
+/** The codes whose diagnostic has its own module. */
+export type DefinedCode = (typeof DIAGNOSTICS)[number]['code'];
+
+const BY_CODE: ReadonlyMap<ProblemCode, RegisteredDiagnostic> = new Map(DIAGNOSTICS.map((definition) => [definition.code, definition]));
+
+/** The module of a code, where it has one. */
+export function diagnosticOf(code: ProblemCode): RegisteredDiagnostic | undefined {
+  return BY_CODE.get(code);
+}
+
+/** The codes `flatten --force` skips. */
+export const SKIPPED_BY_FORCE: ReadonlySet<ProblemCode> = new Set(
+  DIAGNOSTICS.filter((definition) => definition.skippedByForce).map((definition) => definition.code),
+);

@@ -1,0 +1,45 @@
+import * as assert from 'node:assert/strict';
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import { DIAGNOSTICS, SKIPPED_BY_FORCE } from '../../../server/src/core/diagnostics';
+import { PROBLEM_CODE_LIST } from '../../../server/src/core/problems';
+import { RULES } from '../../../server/src/core/rules';
+import { repoRoot } from '../../support/paths';
+
+const MODULES = path.join(repoRoot, 'server/src/core/diagnostics');
+/** The files of the folder that are no diagnostic's module. */
+const SHARED = ['definition.ts', 'index.ts', 'qcRules.ts'];
+
+/** `unknown-key` -> `unknownKey`: the name of a code's module. */
+function moduleName(code: string): string {
+  return code.replace(/-(\w)/g, (_, letter: string) => letter.toUpperCase());
+}
+
+describe('diagnostics: one module per diagnostic, registered in one list', () => {
+  it('lists each code once, and only codes of problems.ts', () => {
+    const codes = DIAGNOSTICS.map((definition) => definition.code);
+    assert.deepEqual([...new Set(codes)], codes, 'a code listed twice');
+    for (const code of codes) assert.ok((PROBLEM_CODE_LIST as readonly string[]).includes(code), `${code} is no problem code`);
+  });
+
+  it('has one module file per listed code, named after it, and no module left out of the list', () => {
+    const files = fs
+      .readdirSync(MODULES)
+      .filter((name) => name.endsWith('.ts') && !SHARED.includes(name))
+      .sort();
+    assert.deepEqual(files, DIAGNOSTICS.map((definition) => `${moduleName(definition.code)}.ts`).sort());
+    for (const definition of DIAGNOSTICS) {
+      const text = fs.readFileSync(path.join(MODULES, `${moduleName(definition.code)}.ts`), 'utf8');
+      assert.equal(text.match(/defineDiagnostic\(/g)?.length, 1, `${definition.code}: one definition in its module`);
+      assert.ok(text.includes(`code: '${definition.code}'`), `${definition.code}: defined in its own module`);
+    }
+  });
+
+  it("names each listed code's rule from its module", () => {
+    for (const definition of DIAGNOSTICS) assert.equal(RULES[definition.code], definition.rule);
+  });
+
+  it('skips under --force what the original tool ignored silently: the key and listing problems', () => {
+    assert.deepEqual([...SKIPPED_BY_FORCE].sort(), ['no-default', 'unknown-key', 'unknown-parameter-attribute']);
+  });
+});
