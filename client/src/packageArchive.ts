@@ -2,7 +2,8 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import JSZip from 'jszip';
 import { writeFileAtomic } from '../../common/src/atomic';
-import { normalizeEntryName, readPackageBytes } from '../../common/src/packageEntries';
+import { DEFAULT_PACKAGE_LIMITS, normalizeEntryName, readPackageBytes } from '../../common/src/packageEntries';
+import { entryDate, readCentralDirectory } from '../../common/src/zip';
 
 /**
  * The files inside `.mosc` packages, addressed by paths that read every package as a folder:
@@ -71,11 +72,11 @@ class PackageEntries extends Map<string, Uint8Array> {
 async function loadEntries(bytes: Uint8Array, label: string): Promise<PackageEntries> {
   const entries = new PackageEntries();
   try {
-    // The core reader checks names, sizes and CRCs; the dates come from a second, cheap read of the directory.
+    // The core reader checks names, sizes and CRCs; the dates come from a second, cheap read of its central directory.
     for (const [name, content] of (await readPackageBytes(bytes, label)).entries) entries.set(name, content);
-    for (const file of Object.values((await JSZip.loadAsync(bytes)).files)) {
-      const name = normalizeEntryName(file.name);
-      if (name !== undefined && entries.has(name)) entries.dates.set(name, file.date);
+    for (const record of readCentralDirectory(bytes, DEFAULT_PACKAGE_LIMITS.maxEntries)) {
+      const name = normalizeEntryName(record.name);
+      if (name !== undefined && entries.has(name)) entries.dates.set(name, entryDate(record));
     }
   } catch (error) {
     throw new PackageError((error as Error).message, 'broken');

@@ -19,6 +19,23 @@ export interface ZipEntryRecord {
   localHeaderOffset: number;
   /** Offset of the entry's data, after its local header. */
   dataStart: number;
+  /** The last-modified date and time as MS-DOS stores them: time in the low 16 bits, date in the high (entryDate). */
+  dosDateTime: number;
+}
+
+/** An entry's date, read as JSZip reads and writes it (the DOS fields as UTC), so that a date written by one reads back unchanged. */
+export function entryDate(entry: ZipEntryRecord): Date {
+  const value = entry.dosDateTime;
+  return new Date(
+    Date.UTC(
+      ((value >>> 25) & 0x7f) + 1980,
+      ((value >>> 21) & 0x0f) - 1,
+      (value >>> 16) & 0x1f,
+      (value >>> 11) & 0x1f,
+      (value >>> 5) & 0x3f,
+      (value & 0x1f) << 1,
+    ),
+  );
 }
 
 export class ZipFormatError extends Error {}
@@ -73,6 +90,7 @@ export function readCentralDirectory(bytes: Uint8Array, maxEntries: number): Zip
       throw new ZipFormatError(`central directory entry ${index + 1} is damaged`);
     const flags = data.getUint16(offset + 8, true);
     const method = data.getUint16(offset + 10, true);
+    const dosDateTime = data.getUint32(offset + 12, true);
     const crc32 = data.getUint32(offset + 16, true);
     const compressedSize = data.getUint32(offset + 20, true);
     const uncompressedSize = data.getUint32(offset + 24, true);
@@ -96,7 +114,7 @@ export function readCentralDirectory(bytes: Uint8Array, maxEntries: number): Zip
     const dataStart = localHeaderOffset + 30 + data.getUint16(localHeaderOffset + 26, true) + data.getUint16(localHeaderOffset + 28, true);
     if (dataStart + compressedSize > directoryOffset)
       throw new ZipFormatError(`the data of entry '${name}' runs past the end of the archive`);
-    entries.push({ name, method, flags, crc32, compressedSize, uncompressedSize, localHeaderOffset, dataStart });
+    entries.push({ name, method, flags, crc32, compressedSize, uncompressedSize, localHeaderOffset, dataStart, dosDateTime });
     offset += 46 + nameLength + extraLength + commentLength;
   }
   // Each entry owns its bytes: overlapping entries are how one compressed stream is inflated many times.

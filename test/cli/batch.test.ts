@@ -3,6 +3,7 @@ import { spawn } from 'node:child_process';
 import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
+import { cliInTemporaryProject } from '../support/cliProject';
 import { esminiBinary, esminiRoads, requireEsmini } from '../support/esmini';
 import { runCli } from '../support/fixtures';
 import { cliPath, repoRoot } from '../support/paths';
@@ -182,6 +183,29 @@ describe('cli: batch', function () {
     refused(['batch', 'd.xosc', '--results', 'results', '--queue', 'http://localhost:1'], 2, /--queue takes redis:\/\/HOST:PORT/);
     fs.writeFileSync(path.join(root, 'd.xosc'), distribution);
     refused(['batch', 'd.xosc', '--results', 'results', '--esmini', path.join(root, 'no-esmini')], 3, /esmini is not at /);
+  });
+
+  it('--queue without the queue packages (bullmq, ioredis) says what to install and exits 3, writing nothing; worker likewise', () => {
+    const root = folder();
+    // A stand-in where npm start builds esmini: nothing runs, as the queue's packages are looked for first.
+    const stub = path.join(root, 'esmini-stub');
+    fs.writeFileSync(stub, '#!/bin/sh\nexit 9\n', { mode: 0o755 });
+    const withoutQueue = cliInTemporaryProject(stub);
+    try {
+      const queued = withoutQueue.run(['batch', 'd.xosc', '--results', 'results', '--queue', 'redis://127.0.0.1:1'], root);
+      assert.equal(queued.status, 3, queued.stderr);
+      assert.match(
+        queued.stderr,
+        /--queue needs the npm packages bullmq and ioredis, and bullmq is not installed: run 'npm install bullmq@6 ioredis@6'/,
+      );
+      assert.ok(!fs.existsSync(path.join(root, 'results')));
+      const worker = withoutQueue.run(['worker', '--queue', 'redis://127.0.0.1:1'], root);
+      assert.equal(worker.status, 3, worker.stderr);
+      assert.match(worker.stderr, /--queue needs the npm packages bullmq and ioredis/);
+      assert.doesNotMatch(queued.stderr + worker.stderr, /internal error|    at /);
+    } finally {
+      withoutQueue.remove();
+    }
   });
 
   it('refuses 10^9 combinations before running anything unless --sample; --sample N runs N', function () {

@@ -1,8 +1,8 @@
 import * as assert from 'node:assert/strict';
-import { spawnSync } from 'node:child_process';
 import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
+import { cliInTemporaryProject } from '../support/cliProject';
 import { esminiBinary, requireEsmini, esminiRoads } from '../support/esmini';
 import { runCli } from '../support/fixtures';
 import { libraryDir, repoRoot, requireCorpus } from '../support/paths';
@@ -18,29 +18,6 @@ function examplesWith(from?: string, to?: string): string {
   return root;
 }
 
-/**
- * A project folder holding the built CLI (its program copied, the bundle it runs linked) and, when given, an esmini
- * where `npm start` builds it: the CLI finds esmini by the folder it runs from, so the repository's own is left out.
- */
-function projectWithCli(esmini?: string): { project: string; cli: string } {
-  const project = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-project-'));
-  fs.writeFileSync(path.join(project, 'package.json'), '{}');
-  fs.mkdirSync(path.join(project, 'dist'));
-  fs.copyFileSync(path.join(repoRoot, 'dist', 'cli.js'), path.join(project, 'dist', 'cli.js'));
-  for (const file of ['cli-main.js', 'cli-main.js.cache', 'openscenario-schemas.json'])
-    fs.symlinkSync(path.join(repoRoot, 'dist', file), path.join(project, 'dist', file));
-  if (esmini !== undefined) {
-    fs.mkdirSync(path.join(project, '.cache', 'esmini', 'bin'), { recursive: true });
-    fs.symlinkSync(esmini, path.join(project, '.cache', 'esmini', 'bin', 'esmini'));
-  }
-  return { project, cli: path.join(project, 'dist', 'cli.js') };
-}
-
-function runCliOf(cli: string, args: string[], cwd: string, env: Record<string, string>): { status: number | null; stderr: string } {
-  const result = spawnSync(process.execPath, [cli, ...args], { cwd, env: { ...process.env, SCENARIO_PATH: '', ...env }, encoding: 'utf8' });
-  return { status: result.status, stderr: result.stderr };
-}
-
 describe('cli: run in esmini', function () {
   this.timeout(120_000);
 
@@ -51,26 +28,26 @@ describe('cli: run in esmini', function () {
     const missing = runCli(['run', 'examples', '--esmini', path.join(os.tmpdir(), 'no-such-esmini')], { cwd: repoRoot });
     assert.equal(missing.status, 3);
     assert.match(missing.stderr, /esmini is not at .*build\.sh \.cache\/esmini/s);
-    const { project, cli } = projectWithCli();
+    const withoutEsmini = cliInTemporaryProject();
     try {
-      const noPath = runCliOf(cli, ['run', path.join(repoRoot, 'examples')], repoRoot, { PATH: '' });
+      const noPath = withoutEsmini.run(['run', path.join(repoRoot, 'examples')], repoRoot, { PATH: '' });
       assert.equal(noPath.status, 3);
       assert.match(noPath.stderr, /esmini was not found/);
     } finally {
-      fs.rmSync(project, { recursive: true, force: true });
+      withoutEsmini.remove();
     }
   });
 
   it('finds the esmini npm start built (.cache/esmini/bin of the project it runs from) with none on PATH', function () {
     requireEsmini(this);
-    const { project, cli } = projectWithCli(esminiBinary);
+    const withEsmini = cliInTemporaryProject(esminiBinary);
     const root = examplesWith();
     try {
-      const run = runCliOf(cli, ['run', '.', '--check', '--duration', '1', '--road-path', esminiRoads], root, { PATH: '' });
+      const run = withEsmini.run(['run', '.', '--check', '--duration', '1', '--road-path', esminiRoads], root, { PATH: '' });
       assert.equal(run.status, 0, run.stderr);
       assert.match(run.stderr, /esmini: 0 errors, \d+ warnings?; 1\.00 s simulated/);
     } finally {
-      fs.rmSync(project, { recursive: true, force: true });
+      withEsmini.remove();
       fs.rmSync(root, { recursive: true, force: true });
     }
   });

@@ -8,9 +8,9 @@ import { repoRoot, requireCorpus, sharedDir } from '../support/paths';
 import { EXPECTED_RULES, qcRuleHref, RULE_FILES } from '../support/qcRuleFiles';
 import { temporaryWorkspace } from '../support/workspace';
 
-/** The OASIS SARIF 2.1.0 schema (JSON Schema draft 04) as the @microsoft/jest-sarif package ships it: never downloaded at test time. */
+/** The OASIS SARIF 2.1.0 schema (JSON Schema draft 04), kept in the fixtures with its source (NOTICE.md there): never downloaded at test time. */
 const sarifSchema = JSON.parse(
-  fs.readFileSync(path.join(repoRoot, 'node_modules', '@microsoft', 'jest-sarif', 'lib', 'schemas', 'sarif-2.1.0-rtm.5.json'), 'utf8'),
+  fs.readFileSync(path.join(repoRoot, 'test', 'fixtures', 'sarif', 'sarif-2.1.0-rtm.5.json'), 'utf8'),
 ) as object;
 
 interface Region {

@@ -4,6 +4,7 @@ import * as os from 'node:os';
 import * as path from 'node:path';
 import JSZip from 'jszip';
 import * as archive from '../../client/src/packageArchive';
+import { entryDate, readCentralDirectory } from '../../common/src/zip';
 import { waitUntil } from '../support/wait';
 
 async function zip(entries: Record<string, string | Uint8Array>): Promise<Uint8Array> {
@@ -101,6 +102,23 @@ describe('client: files inside .mosc packages (the mosc: file system)', () => {
     await archive.writeEntry(shared, Buffer.from('<shared changed="yes"/>'), { create: false, overwrite: true });
     assert.equal((await archive.stat(simple)).mtime, simpleBefore.mtime);
     assert.ok((await archive.stat(shared)).mtime > sharedBefore.mtime, 'the saved entry keeps its old date');
+  });
+
+  it("reads each entry's date with the package reader exactly as JSZip, which writes the packages, dates it", async () => {
+    const dates = [
+      new Date(Date.UTC(2024, 2, 5, 13, 47, 58)),
+      new Date(Date.UTC(1999, 11, 31, 23, 59, 58)),
+      new Date(Date.UTC(2107, 0, 1, 0, 0, 0)),
+    ];
+    const file = new JSZip();
+    dates.forEach((date, index) => file.file(`entry${index}.xosc`, '<x/>', { date }));
+    const bytes = await file.generateAsync({ type: 'uint8array' });
+    const read = readCentralDirectory(bytes, 10).map(entryDate);
+    assert.deepEqual(read, dates);
+    assert.deepEqual(
+      read,
+      Object.values((await JSZip.loadAsync(bytes)).files).map((entry) => entry.date),
+    );
   });
 
   it('creates, renames and deletes entries, and refuses what would lose data', async () => {

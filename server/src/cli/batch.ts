@@ -5,6 +5,7 @@ import * as path from 'node:path';
 import { parseArgs } from 'node:util';
 import { BatchPlanView, concreteRun, searchPathOf, variedParameters } from '../batch/plan';
 import { Progress } from '../batch/progress';
+import { loadQueueModule, QueuePackagesMissingError } from '../batch/queuePackages';
 import { BatchIdentity, ResultsError, ResultsFolder } from '../batch/results';
 import { NoEsminiError, runConcrete, RunSettings } from '../batch/runConcrete';
 import type { PackagedFile } from '../core/flatten/types';
@@ -93,7 +94,7 @@ export async function batchCommand(argv: string[], io: CliOutput): Promise<numbe
       io.err(`modular2simple: error: ${error.message}`);
       return EXIT.problems;
     }
-    if (error instanceof ResultsError || error instanceof NoEsminiError) {
+    if (error instanceof ResultsError || error instanceof NoEsminiError || error instanceof QueuePackagesMissingError) {
       io.err(`modular2simple: error: ${error.message}`);
       return EXIT.io;
     }
@@ -201,7 +202,7 @@ async function batch(argv: string[], io: CliOutput): Promise<number> {
   const plan: BatchPlanView = { variations, chosen, parameterNames, searchPath, scenarioFolder, packagedFiles };
 
   if (queue) {
-    const { queueBatch, RedisUnreachableError } = await import('../batch/queue');
+    const { queueBatch, RedisUnreachableError } = await loadQueueModule(() => import('../batch/queue'));
     try {
       return await queueBatch(queue, plan, identity, values.results, { quiet: values.quiet, io, settings });
     } catch (error) {

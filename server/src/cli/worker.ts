@@ -1,4 +1,5 @@
 import { parseArgs } from 'node:util';
+import { loadQueueModule, QueuePackagesMissingError } from '../batch/queuePackages';
 import { locateEsmini } from '../esmini/locate';
 import { BatchUsageError, jobsOption, queueOption } from './batch';
 import type { CliOutput } from './common';
@@ -38,8 +39,15 @@ export async function workerCommand(argv: string[], io: CliOutput): Promise<numb
       io.err(`modular2simple: error: ${location.message}`);
       return 3;
     }
-    const { runWorker } = await import('../batch/worker');
-    const { RedisUnreachableError } = await import('../batch/queue');
+    let queueModules;
+    try {
+      queueModules = await loadQueueModule(() => Promise.all([import('../batch/worker'), import('../batch/queue')]));
+    } catch (error) {
+      if (!(error instanceof QueuePackagesMissingError)) throw error;
+      io.err(`modular2simple: error: ${error.message}`);
+      return 3;
+    }
+    const [{ runWorker }, { RedisUnreachableError }] = queueModules;
     try {
       return await runWorker(url, { jobs, esminiPath: location.program, idleExit, quiet: values.quiet, io });
     } catch (error) {
