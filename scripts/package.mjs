@@ -21,7 +21,10 @@ run([
   '--no-dependencies',
   '--allow-missing-repository',
   '--skip-license',
-  // The README links to files of this repository, which has no public address to point them at.
+  // The extension's page is a README for its users; the repository's README.md is for people working on the code.
+  '--readme-path',
+  'docs/marketplace/README.md',
+  // A README that links to files of this repository would point nowhere: there is no public address to rewrite them to.
   '--no-rewrite-relative-links',
   '--out',
   out,
