@@ -2,12 +2,13 @@ import { Flattener, FlatSource, SchemaOptions } from './core/flatten';
 import { SchemaCheckMemory } from './core/schema/problems';
 import { refId, ScenarioStore, SourceRef } from './core/sources';
 import { Simulator } from './core/profiles/simulators';
+import { SERVER_MEMOS } from './database';
 
 /** Heap bytes a read source takes per character of its text, about (its parse tree, models and evaluated values). */
 const SOURCE_BYTES_PER_CHARACTER = 30;
 
 /** The read sources kept across generations beyond those open documents read, about this many heap bytes in all. */
-export const SHARED_SOURCE_BYTES = 64 * 1024 * 1024;
+export const SHARED_SOURCE_BYTES: number = SERVER_MEMOS.sharedSources.bound.bytes;
 
 /**
  * The sources shared across generations, least recently used first out once the approximate size of

@@ -19,11 +19,12 @@ import { UriResolver, refToUri } from './uris';
 import { DEFAULT_SETTINGS, ServerSettings } from './settings';
 import { ReusingFlattener, SHARED_SOURCE_BYTES, SharedSources } from './sharedSources';
 import { decodeOrUndefined, IndexedFile, scanScenario, WorkspaceIndex } from './workspaceIndex';
+import { SERVER_MEMOS } from './database';
 
 export { IndexedFile, IndexedGroup, listScenarioFiles, scanScenario } from './workspaceIndex';
 
 /** Bytes of files and of unpacked packages that the server keeps, each; the rest is read again on demand. */
-export const SERVER_CACHE_BYTES = 64 * 1024 * 1024;
+export const SERVER_CACHE_BYTES: number = SERVER_MEMOS.fileBytes.bound.bytes;
 
 /**
  * Keeps file bytes (up to a total size, least recently used first out) and kinds in memory until a
@@ -286,7 +287,7 @@ export class Workspace {
         },
         () => undefined,
       );
-    if (this.analysisResults.size > 200)
+    if (this.analysisResults.size > SERVER_MEMOS.analyses.bound.entries)
       for (const [key, entry] of this.analysisResults) if (entry.generation !== this.generation) this.analysisResults.delete(key);
     return result;
   }

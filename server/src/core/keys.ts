@@ -1,6 +1,7 @@
 import { editDistance } from './text';
 import { ManeuverGroupInfo, ParameterAttributeName, ParameterReferenceInfo, ScenarioModel } from './model';
 import { XmlElement } from './xml';
+import { coreMemo } from './memos';
 
 /** An attribute of a group that a main file may override. */
 export interface OverridableAttribute {
@@ -36,7 +37,7 @@ function isWithin(element: XmlElement, ancestor: XmlElement): boolean {
 }
 
 // Parse trees never change once built, so a group's list is computed once, however often it is imported.
-const overridableCache = new WeakMap<XmlElement, OverridableAttribute[]>();
+const overridableCache = coreMemo<XmlElement, OverridableAttribute[]>('overridableAttributes');
 
 /** Every attribute the group lists in a `parameterAttributes`, in document order. */
 export function overridableAttributes(model: ScenarioModel, group: ManeuverGroupInfo): OverridableAttribute[] {

@@ -1,4 +1,5 @@
 import { attribute, descendants, parseXml, ValueEdit, valueEditOf, XmlAttribute, XmlDocument, XmlElement } from './xml';
+import { coreMemo } from './memos';
 
 export const PARAMETER_ATTRIBUTES = 'parameterAttributes';
 
@@ -135,7 +136,7 @@ export function buildModel(document: XmlDocument): ScenarioModel {
 }
 
 // The last model read from each parse, from which the model of the next parse after a value edit is carried.
-const lastModels = new WeakMap<XmlDocument, ScenarioModel>();
+const lastModels = coreMemo<XmlDocument, ScenarioModel>('lastScenarioModels');
 
 /**
  * `buildModel`, carried over from the previous parse's model when `document` was re-parsed from it after an

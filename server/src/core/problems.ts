@@ -1,5 +1,6 @@
 import { Range } from './text';
 import { displayRef, SourceRef } from './sources';
+import { coreMemo } from './memos';
 
 /** `hint` is shown faded in the editor (an unused parameter) and left out of the CLI's text report. */
 export type Severity = 'error' | 'warning' | 'information' | 'hint';
@@ -225,7 +226,7 @@ export function hasErrors(problems: Problem[]): boolean {
 }
 
 // Remembered per ref, as refIds are: the problems of one file share its ref, and a file can have thousands.
-const refKeys = new WeakMap<SourceRef, string>();
+const refKeys = coreMemo<SourceRef, string>('problemRefKeys');
 
 function refKey(ref: SourceRef): string {
   let key = refKeys.get(ref);

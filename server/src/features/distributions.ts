@@ -11,6 +11,7 @@ import { ParameterValue } from '../core/variations/distribution';
 import { parseXml, XmlElement } from '../core/xml';
 import { Place } from '../analysis';
 import { Workspace } from '../workspace';
+import { SERVER_MEMOS, serverMemo } from '../database';
 
 /** The client command that runs `batch` for a distribution file (CodeLens and palette). */
 export const RUN_VARIATIONS_COMMAND = 'modular2simple.runVariations';
@@ -42,7 +43,9 @@ export interface DistributionAnalysis {
   parameters: DeclaredParameter[];
 }
 
-const analyses = new WeakMap<Workspace, Map<string, { version: number; analysis: Promise<DistributionAnalysis | undefined> }>>();
+const analyses = serverMemo<Workspace, Map<string, { version: number; analysis: Promise<DistributionAnalysis | undefined> }>>(
+  'distributionAnalyses',
+);
 
 /** Whether a text is a ParameterValueDistribution file (a quick scan, before any parse). */
 export function isDistributionText(text: string): boolean {
@@ -59,7 +62,8 @@ export function distributionAnalysis(workspace: Workspace, ref: SourceRef): Prom
   if (cached && cached.version === workspace.version) return cached.analysis;
   const analysis = analyze(workspace, ref, cached?.analysis);
   perWorkspace.set(id, { version: workspace.version, analysis });
-  if (perWorkspace.size > 50) for (const [key, entry] of perWorkspace) if (entry.version !== workspace.version) perWorkspace.delete(key);
+  if (perWorkspace.size > SERVER_MEMOS.distributionAnalyses.bound.entries)
+    for (const [key, entry] of perWorkspace) if (entry.version !== workspace.version) perWorkspace.delete(key);
   return analysis;
 }
 
@@ -184,7 +188,7 @@ function rangeWarnings(analysis: DistributionAnalysis): VariationProblem[] {
   return warnings;
 }
 
-const counts = new WeakMap<Variations, DistributionCount>();
+const counts = serverMemo<Variations, DistributionCount>('distributionCounts');
 
 /** How many concrete scenarios the distribution gives, discarding those its scenario's ValueConstraintGroups refuse; once per analysis. */
 export function countConcrete(variations: Variations): DistributionCount {

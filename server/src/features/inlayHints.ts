@@ -1,5 +1,6 @@
 import { InlayHint, InlayHintKind } from 'vscode-languageserver/node';
 import { DocumentSemantics, formatValue } from '../core/semantics';
+import { serverMemo } from '../database';
 
 interface ExpressionHint {
   /** Offset of the attribute value's end (the hint goes after its closing quote). */
@@ -8,7 +9,7 @@ interface ExpressionHint {
 }
 
 // A model never changes once built, so the hints of one analysis are computed once, for every range asked.
-const hintsOf = new WeakMap<DocumentSemantics, ExpressionHint[]>();
+const hintsOf = serverMemo<DocumentSemantics, ExpressionHint[]>('inlayHints');
 
 function allHints(semantics: DocumentSemantics): ExpressionHint[] {
   const known = hintsOf.get(semantics);

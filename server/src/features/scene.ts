@@ -12,6 +12,7 @@ import { XmlElement } from '../core/xml';
 import { SceneParams, SceneResult, SourceLocation } from '../../../common/src/sceneProtocol';
 import type { SectionPolylines } from '../../../common/src/sectionPolylines';
 import { Workspace } from '../workspace';
+import { SERVER_MEMOS } from '../database';
 
 /** Road files are large and rarely change: the sampled network is kept per path, size and content. */
 interface CachedNetwork {
@@ -21,7 +22,7 @@ interface CachedNetwork {
   roadCount: number;
   problems: string[];
 }
-const NETWORK_CACHE_SIZE = 4;
+const NETWORK_CACHE_SIZE = SERVER_MEMOS.roadNetworks.bound.entries;
 
 /** The sampled road networks of one server, the most recently used few, each kept while its text is unchanged. */
 export class RoadNetworkCache {

@@ -1,5 +1,6 @@
 import { SemanticTokens, SemanticTokensBuilder, SemanticTokensLegend } from 'vscode-languageserver/node';
 import { DocumentSemantics, ExpressionNode } from '../core/semantics';
+import { serverMemo } from '../database';
 
 /** Semantic highlighting of `$name` and `${...}`: parameters, operators, numbers and functions, apart from literal values. */
 
@@ -53,7 +54,7 @@ function treeTokens(text: string, node: ExpressionNode, out: Token[]): void {
 }
 
 // A model never changes once built: its tokens are listed once per analysis.
-const tokensOf = new WeakMap<DocumentSemantics, Token[]>();
+const tokensOf = serverMemo<DocumentSemantics, Token[]>('semanticTokens');
 
 /** The tokens between two offsets, sorted and without overlaps. */
 export function semanticTokenList(semantics: DocumentSemantics, start = 0, end = Number.MAX_SAFE_INTEGER): Token[] {
@@ -101,7 +102,7 @@ function listTokens(semantics: DocumentSemantics): Token[] {
   return result;
 }
 
-const encodedOf = new WeakMap<DocumentSemantics, SemanticTokens>();
+const encodedOf = serverMemo<DocumentSemantics, SemanticTokens>('encodedSemanticTokens');
 
 export function semanticTokens(semantics: DocumentSemantics, start?: number, end?: number): SemanticTokens {
   if (start === undefined && end === undefined) {

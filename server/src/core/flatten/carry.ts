@@ -5,6 +5,7 @@ import { Declaration, Evaluator, ParameterUse, SemanticModel, semanticModelOf, V
 import { displayRef } from '../sources';
 import { indentationAt } from '../text';
 import { attribute, elementStartingAt, escapeAttributeValue, isWithin, selfAndDescendants, XmlDocument, XmlElement } from '../xml';
+import { coreMemo } from '../memos';
 
 /**
  * What flattening carries from imported groups' sources into the output (SPEC 11): the parameter
@@ -165,7 +166,7 @@ function planCarryOnOutput(
   return plan;
 }
 
-const reachesOutside = new WeakMap<XmlElement, boolean>();
+const reachesOutside = coreMemo<XmlElement, boolean>('reachesOutside');
 
 /**
  * Whether a copied group can need anything carried: a use in the source's group of a declaration
@@ -186,7 +187,7 @@ function mayCarry(insertion: Insertion): boolean {
   return reaches;
 }
 
-const usesByElement = new WeakMap<SemanticModel, Map<XmlElement, ParameterUse[]>>();
+const usesByElement = coreMemo<SemanticModel, Map<XmlElement, ParameterUse[]>>('parameterUses');
 
 /** The uses written in one element's attributes. */
 function usesIn(model: SemanticModel, element: XmlElement): ParameterUse[] {

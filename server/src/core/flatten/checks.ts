@@ -19,8 +19,9 @@ import { attribute, selfAndDescendants, XmlAttribute, XmlElement } from '../xml'
 import { originOf } from './origin';
 import { problemAt, valueRange } from './report';
 import { FlatSource } from './types';
+import { coreMemo } from '../memos';
 
-const entityRefCache = new WeakMap<XmlElement, XmlElement[]>();
+const entityRefCache = coreMemo<XmlElement, XmlElement[]>('entityReferences');
 
 /** The elements of a group that carry an entityRef; computed once per parsed group. */
 function entityRefElements(group: XmlElement): XmlElement[] {
@@ -62,7 +63,7 @@ export function checkDeclarations(result: FlatSource, model: ScenarioModel): voi
 
 /** Warns where an imported group names an entity the outermost main file does not declare. */
 // An evaluator is a pure function of its model: one per imported file's model, not one per reference and edit.
-const standardEvaluators = new WeakMap<SemanticModel, Evaluator>();
+const standardEvaluators = coreMemo<SemanticModel, Evaluator>('standardEvaluators');
 
 function standardEvaluatorOf(model: SemanticModel): Evaluator {
   let evaluator = standardEvaluators.get(model);

@@ -4,6 +4,7 @@ import { indentationAt } from '../text';
 import { attributeValue, descendants, escapeAttributeValue, parseXml, XmlDocument, XmlElement } from '../xml';
 import { GroupOccurrence } from './shape';
 import { ParsedInput, RebasePaths } from './types';
+import { coreMemo } from '../memos';
 
 export interface SimpleScenarioParts {
   groupText: string;
@@ -36,7 +37,7 @@ function child(element: XmlElement | undefined, name: string): XmlElement | unde
 }
 
 // Each document's elements by kind and `name`, built once however many behaviours look into it.
-const namedIndex = new WeakMap<XmlDocument, Map<string, XmlElement>>();
+const namedIndex = coreMemo<XmlDocument, Map<string, XmlElement>>('namedElements');
 
 /** The first element of one of `elementNames` whose `name` attribute is `wanted`, looked for in each document in turn. */
 function findNamed(

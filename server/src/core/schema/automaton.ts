@@ -1,4 +1,5 @@
 import { ElementParticle, Particle } from './model';
+import { coreMemo } from '../memos';
 
 interface Edge {
   particle: ElementParticle;
@@ -7,6 +8,9 @@ interface Edge {
 
 /** A set of automaton states, sorted, after following every empty transition. */
 export type StateSet = readonly number[];
+
+// State sets are interned per automaton, so one memo serves every automaton.
+const transitions = coreMemo<StateSet, Map<string, { states: StateSet; particle: ElementParticle } | null>>('contentTransitions');
 
 /**
  * A content model (sequence/choice with occurrences) as a nondeterministic automaton over child
@@ -18,7 +22,6 @@ export class ContentAutomaton {
   private readonly edges: Edge[][] = [];
   private readonly closures = new Map<number, number[]>();
   private readonly interned = new Map<string, StateSet>();
-  private readonly transitions = new WeakMap<StateSet, Map<string, { states: StateSet; particle: ElementParticle } | null>>();
   readonly start: StateSet;
   private readonly accept: number;
 
@@ -107,10 +110,10 @@ export class ContentAutomaton {
 
   /** The states after a child named `name`, or undefined when no path allows it here. */
   step(states: StateSet, name: string): { states: StateSet; particle: ElementParticle } | undefined {
-    let table = this.transitions.get(states);
+    let table = transitions.get(states);
     if (!table) {
       table = new Map();
-      this.transitions.set(states, table);
+      transitions.set(states, table);
     }
     const remembered = table.get(name);
     if (remembered !== undefined) return remembered ?? undefined;

@@ -5,6 +5,7 @@ import { typeOfElement } from './query';
 import { ChosenVersion } from './version';
 import { markupFreeEdit, XmlAttribute, XmlDocument, XmlElement } from '../xml';
 import { checkAttribute, checkSchema, findingOffsets, SchemaCheckOptions, SchemaFinding, subjectOf } from './validate';
+import { CORE_MEMOS } from '../memos';
 
 /** A finding as a problem at offsets of `document`. */
 export function toProblem(source: SourceRef, document: XmlDocument, finding: FindingWords, start: number, end: number): Problem {
@@ -40,10 +41,10 @@ interface RememberedCheck {
   placed: PlacedFinding[];
 }
 
-const REMEMBERED_FILES = 64;
+const REMEMBERED_FILES: number = CORE_MEMOS.lastSchemaChecks.bound.entries;
 
 /** Characters of remembered text (and about 100 bytes a finding) kept in all: the text of a file no longer open is its own copy. */
-export const REMEMBERED_CHECK_BYTES = 32 * 1024 * 1024;
+export const REMEMBERED_CHECK_BYTES: number = CORE_MEMOS.lastSchemaChecks.bound.bytes;
 
 const BYTES_PER_FINDING = 100;
 

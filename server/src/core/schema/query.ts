@@ -2,6 +2,7 @@ import { XmlDocument, XmlElement } from '../xml';
 import { SchemaIndex, schemaIndex } from './index';
 import { AttributeDeclaration, ElementParticle } from './model';
 import { chooseVersion, SchemaVersionSetting } from './version';
+import { coreMemo } from '../memos';
 
 /** The schema index a document is read against, or undefined when schema support is off. */
 export function indexFor(document: XmlDocument, setting: SchemaVersionSetting | 'off'): SchemaIndex | undefined {
@@ -19,7 +20,7 @@ export function typeOfElement(index: SchemaIndex, element: XmlElement): string |
   return typeName;
 }
 
-const typesByIndex = new WeakMap<SchemaIndex, WeakMap<XmlElement, string | undefined>>();
+const typesByIndex = coreMemo<SchemaIndex, WeakMap<XmlElement, string | undefined>>('elementTypes');
 
 function typeAlongChain(index: SchemaIndex, element: XmlElement): string | undefined {
   const chain: XmlElement[] = [];

@@ -10,6 +10,7 @@ import {
   Evaluator,
   SemanticModel,
 } from './model';
+import { CORE_MEMOS, coreMemo } from '../memos';
 
 /**
  * Catalogs (ASAM OpenSCENARIO 1.x section 9.4): a `CatalogLocations` `Directory path` is relative to
@@ -78,8 +79,8 @@ export interface CatalogResolution {
  * Catalog files modelled so far, per store (a workspace's, a CLI run's), by file and text: an editor makes
  * a loader per edit, and the catalogs it reaches rarely change between edits. Bounded; the oldest entry goes first.
  */
-const modelledByStore = new WeakMap<ScenarioStore, Map<string, { text: string; file: CatalogFile | undefined }>>();
-const MODELLED_LIMIT = 200;
+const modelledByStore = coreMemo<ScenarioStore, Map<string, { text: string; file: CatalogFile | undefined }>>('catalogFiles');
+const MODELLED_LIMIT = CORE_MEMOS.catalogFiles.bound.entries;
 
 /** Reads catalog files once per instance (one instance per analysis generation). */
 export class CatalogLoader {

@@ -1,8 +1,9 @@
 import { forEachElement, ValueEdit, XmlElement } from '../xml';
 import { SemanticModel } from './types';
+import { coreMemo } from '../memos';
 
 /** The document's elements by name, gathered once per model (the network checks each ask for a few names). */
-const elementIndex = new WeakMap<SemanticModel, Map<string, XmlElement[]>>();
+const elementIndex = coreMemo<SemanticModel, Map<string, XmlElement[]>>('elementIndex');
 
 export function elementsNamed(model: SemanticModel, name: string): XmlElement[] {
   let index = elementIndex.get(model);

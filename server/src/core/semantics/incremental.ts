@@ -3,6 +3,7 @@ import { carryElementIndex } from './elementIndex';
 import { ExpressionNode } from './expressionParser';
 import { ParameterUseCollector } from './parameterUses';
 import { Declaration, NamedElement, ParameterUse, Scope, SemanticModel, ValueSite } from './types';
+import { coreMemo } from '../memos';
 
 /**
  * Attributes whose value the model reads beyond a `$name` or `${...}` (names resolve, types and
@@ -33,7 +34,7 @@ export interface ModelCarry {
   delta: number;
 }
 
-const carries = new WeakMap<SemanticModel, ModelCarry>();
+const carries = coreMemo<SemanticModel, ModelCarry>('modelCarries');
 
 /** The carry a model was made by, forgotten as it is taken. */
 export function takeModelCarry(model: SemanticModel): ModelCarry | undefined {

@@ -7,6 +7,7 @@ import { ScopeCollector } from './scopes';
 import { StoryboardCollector } from './storyboard';
 import { Scope, SemanticModel } from './types';
 import { VariableCollector } from './variables';
+import { coreMemo } from '../memos';
 
 export * from './types';
 export { resolveName, visibleDeclarations } from './scopes';
@@ -73,7 +74,7 @@ export function buildSemanticModel(document: XmlDocument): SemanticModel {
 }
 
 // Models are pure functions of a parse, which never changes once built.
-const models = new WeakMap<XmlDocument, SemanticModel>();
+const models = coreMemo<XmlDocument, SemanticModel>('semanticModels');
 
 /** The model of a parse: carried over from the previous parse's after an edit inside one value, else built. */
 export function semanticModelOf(document: XmlDocument): SemanticModel {

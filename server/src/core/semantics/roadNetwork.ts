@@ -4,6 +4,7 @@ import { ScenarioStore, SourceRef } from '../sources';
 import { decodeUtf8 } from '../text';
 import { XmlDocument } from '../xml';
 import { Evaluator } from './model';
+import { CORE_MEMOS, coreMemo } from '../memos';
 
 /** What the road-network rules need of the OpenDRIVE file a scenario names (its `RoadNetwork/LogicFile`). */
 export interface RoadSignals {
@@ -23,9 +24,8 @@ interface RoadMemory {
   summaries: Map<string, { hash: string; signals: RoadSignals }>;
 }
 
-const memories = new WeakMap<ScenarioStore, RoadMemory>();
-const SUMMARY_LIMIT = 8;
-const FRESH_MS = 2000;
+const memories = coreMemo<ScenarioStore, RoadMemory>('roadSignals');
+const { entries: SUMMARY_LIMIT, freshMs: FRESH_MS } = CORE_MEMOS.roadSignals.bound;
 
 function memoryOf(store: ScenarioStore): RoadMemory {
   let memory = memories.get(store);

@@ -1,4 +1,5 @@
 import { pathsFor } from '../paths';
+import { coreMemo } from '../memos';
 
 /**
  * Where a scenario file lives: a path on disk, then zero or more entry names, each inside the
@@ -30,7 +31,7 @@ export function refId(ref: SourceRef): string {
   return id;
 }
 
-const refIds = new WeakMap<SourceRef, string>();
+const refIds = coreMemo<SourceRef, string>('refIds');
 
 export function sameRef(a: SourceRef, b: SourceRef): boolean {
   return refId(a) === refId(b);

@@ -2,6 +2,7 @@ import { LineIndex } from '../text';
 import { PLAIN_VALUE } from './characters';
 import { parseXml } from './scanner';
 import { XmlAttribute, XmlDocument, XmlElement } from './types';
+import { coreMemo } from '../memos';
 
 /**
  * Parses `text` knowing `previous`, the same document before one edit. When the edit lies inside a
@@ -64,7 +65,7 @@ export interface ValueEdit {
 }
 
 // Only the latest parse of a chain keeps its edit (and so the previous tree): older ones are forgotten.
-const valueEdits = new WeakMap<XmlDocument, ValueEdit>();
+const valueEdits = coreMemo<XmlDocument, ValueEdit>('previousParseOfValueEdit');
 
 /** The value edit that made `document` from its previous parse, until `forgetValueEdit`. */
 export function valueEditOf(document: XmlDocument): ValueEdit | undefined {

@@ -2,6 +2,7 @@ import { ExpressionError } from '../expressionParser';
 import { Evaluator } from '../evaluator';
 import { ModelCarry, takeModelCarry } from '../incremental';
 import { SemanticModel } from '../types';
+import { coreMemo } from '../../memos';
 
 /**
  * The expression errors of one model in one reading, before they are placed: per site and per
@@ -13,7 +14,7 @@ export interface ExpressionErrorResults {
   declarations: readonly ExpressionError[][];
 }
 
-const results = new WeakMap<SemanticModel, Map<Evaluator['reading'], ExpressionErrorResults>>();
+const results = coreMemo<SemanticModel, Map<Evaluator['reading'], ExpressionErrorResults>>('expressionErrors');
 
 /** The results of the previous model, moved to this one: undefined where the edit may change them. */
 export interface CarriedResults {

@@ -1,0 +1,220 @@
+/**
+ * The core's memos, each declared once: what it is keyed by, what it holds, how much it keeps and what
+ * makes it stale (the query table of rust-analyzer's `RootDatabase`, by hand). A module asks for its
+ * memo by name (`coreMemo`) instead of making a `WeakMap` of its own; the server's database
+ * (`server/src/database.ts`) composes this table with its own, and ARCHITECTURE.md's table of caches is
+ * rendered from both. This module imports nothing, so every folder of the core may use it.
+ */
+
+/** How much a memo keeps. */
+export interface MemoBound {
+  /** At most this many entries (files, unless said otherwise). */
+  entries?: number;
+  /** At most about this many bytes. */
+  bytes?: number;
+  /** Entries older than this are read again. */
+  freshMs?: number;
+  /** The bound in words, as ARCHITECTURE.md says it. */
+  text: string;
+}
+
+/** One memo: a piece of derived state, who owns it and when it goes. */
+export interface MemoDeclaration {
+  /** Where it lives: the module, and the owner when it is not the module. */
+  where: string;
+  /** What it is keyed by: the value it is derived from. */
+  key: string;
+  /** What it holds. */
+  holds: string;
+  bound: MemoBound;
+  /** What makes an entry stale, or why nothing does. */
+  invalidated: string;
+}
+
+/** A memo attached to its key: it goes when the key is collected, nothing else keeps it. */
+const WITH_KEY: MemoBound = { text: 'one entry per key, collected with it' };
+
+/** Every piece of derived state the core keeps, by name. */
+export const CORE_MEMOS = {
+  packages: {
+    where: '`ScenarioStore.packages` (`SizedCache`)',
+    key: 'a `.mosc` on disk or inside another package',
+    holds: 'unpacked `.mosc` contents, least recently used out',
+    bound: { text: "the store's `packageCacheBytes`: 64 MiB in the server" },
+    invalidated: '`ScenarioStore.invalidate` on a watched-file event; a new store on settings or workspace folder changes',
+  },
+  overlays: {
+    where: '`ScenarioStore.overlays`',
+    key: 'an open file',
+    holds: 'unsaved text of open documents (an input, not derived: the one state the others are derived from besides the disk)',
+    bound: { text: 'one per open document' },
+    invalidated: 'replaced on every change; removed on close',
+  },
+  previousParses: {
+    where: '`ScenarioStore.editedParses`',
+    key: 'an open file',
+    holds: 'the last parse of each open document, for incremental re-parse',
+    bound: { text: 'one per open document' },
+    invalidated: 'replaced by each parse; removed on close',
+  },
+  schemaModel: {
+    where: '`core/schema/model.ts`, `core/schema/index.ts`',
+    key: 'a schema version, then a type',
+    holds:
+      "the compiled schemas (`dist/openscenario-schemas.json`, whose first line gives each version's byte range: a process decodes and parses only the versions it checks), per version the children, attributes and a content automaton per type, built on first use",
+    bound: { text: 'the versions checked' },
+    invalidated: 'never: built from bundled data',
+  },
+  lastSchemaChecks: {
+    where: '`SchemaCheckMemory` (`core/schema/problems.ts`), one per `Workspace` and one per CLI run',
+    key: 'a file',
+    holds:
+      "each file's last schema findings by offset, its text and chosen version (no parse tree), so an edit inside one attribute value re-checks only that attribute",
+    bound: { entries: 64, bytes: 32 * 1024 * 1024, text: '64 files and about 32 MiB (text, 100 bytes a finding)' },
+    invalidated: 'replaced by the next check of the file; the least recently checked file goes first (checked in full when next asked)',
+  },
+  refIds: {
+    where: '`core/sources/ref.ts` (`refId`)',
+    key: 'a `SourceRef`',
+    holds: 'the ref as a string id',
+    bound: WITH_KEY,
+    invalidated: 'never: a ref never changes',
+  },
+  problemRefKeys: {
+    where: '`core/problems.ts`',
+    key: 'a `SourceRef`',
+    holds: "the key a problem's file sorts and groups by",
+    bound: WITH_KEY,
+    invalidated: 'never: a ref never changes',
+  },
+  overridableAttributes: {
+    where: '`core/keys.ts`',
+    key: 'a group element',
+    holds: 'the attributes a group lists',
+    bound: WITH_KEY,
+    invalidated:
+      "never: an element's offsets, attributes and subtree never change (a value re-parse shares only subtrees wholly before the edit, re-pointing just their roots' `parent`; the rest are new elements)",
+  },
+  lastScenarioModels: {
+    where: '`core/model.ts`',
+    key: 'a parse',
+    holds: 'the last modular model read from it, from which the model of the next parse after a value edit is carried',
+    bound: WITH_KEY,
+    invalidated: 'never: a new parse is a new key',
+  },
+  previousParseOfValueEdit: {
+    where: '`valueEditOf` (`core/xml/reparse.ts`)',
+    key: 'the new parse of an in-value edit',
+    holds: 'the parse it came from, and how its elements map to the new ones',
+    bound: { text: 'at most one previous tree per edited file' },
+    invalidated: "once the new parse's semantic model is built (`forgetValueEdit`), or when the next edit re-parses it",
+  },
+  semanticModels: {
+    where: '`semanticModelOf` (`core/semantics/model.ts`)',
+    key: 'a parse',
+    holds:
+      "scopes, declarations, uses of `$name` and `${...}`, names; after an edit inside one value that is not a name, type or reference, carried over from the previous parse's model (`semantics/incremental.ts`: elements mapped through the re-parse's table of the copies it made, entries about shared subtrees taken as they are, later offsets moved, a site's parsed form moved only when read, the edited value read again)",
+    bound: WITH_KEY,
+    invalidated:
+      'never: a new parse is a new key; each `FlatSource` holds its `DocumentSemantics` (model, evaluator, catalogs) and goes with it',
+  },
+  modelCarries: {
+    where: '`core/semantics/incremental.ts`',
+    key: 'a semantic model carried over an in-value edit',
+    holds: 'what its checks take from the previous model (the changed declarations, the offset shift)',
+    bound: WITH_KEY,
+    invalidated: 'taken once (`takeModelCarry`)',
+  },
+  expressionErrors: {
+    where: '`checks/carriedResults.ts`',
+    key: 'a semantic model, per reading',
+    holds:
+      'the errors of each site and declaration the last `expressionErrors` found, before they are placed; a model carried over an in-value edit takes those of values naming no changed declaration (transitively), offsets moved',
+    bound: WITH_KEY,
+    invalidated: 'never: a new model is a new key; the carry from the previous model is taken once (`takeModelCarry`)',
+  },
+  elementIndex: {
+    where: '`elementsNamed` (`core/semantics/elementIndex.ts`)',
+    key: 'a semantic model',
+    holds: "the document's elements by name, for the network checks",
+    bound: WITH_KEY,
+    invalidated:
+      "never: a new model is a new key; a model carried over an in-value edit takes the previous model's lists, each element its counterpart (a list wholly before the edit as it is)",
+  },
+  catalogFiles: {
+    where: '`core/semantics/catalogs.ts`, per store',
+    key: 'a `ScenarioStore` (a workspace, a CLI run), then file and text',
+    holds:
+      "each catalog file's model and entries, so a loader of the next generation (or the next file of a folder check) does not model it again",
+    bound: { entries: 200, text: '200 files' },
+    invalidated: 'a changed text is modelled again; the oldest goes first',
+  },
+  roadSignals: {
+    where: '`core/semantics/roadNetwork.ts`, per store',
+    key: 'a `ScenarioStore`, then the road file',
+    holds:
+      'the signal ids of the road file a scenario names, for the road rules: a read reused for 2 s, and the signals by path and content hash',
+    bound: { entries: 8, freshMs: 2000, text: '8 files by content hash; reads of the last 2 s' },
+    invalidated: 'a read older than 2 s is read again; a changed text is parsed again',
+  },
+  standardEvaluators: {
+    where: '`core/flatten/checks.ts`',
+    key: "an imported file's semantic model",
+    holds: 'the evaluator of its values without overrides, one per model rather than one per reference and edit',
+    bound: WITH_KEY,
+    invalidated: 'never: a new model is a new key',
+  },
+  entityReferences: {
+    where: '`core/flatten/checks.ts`',
+    key: 'a group element',
+    holds: 'the entity references below it',
+    bound: WITH_KEY,
+    invalidated: 'never: an element never changes',
+  },
+  reachesOutside: {
+    where: '`core/flatten/carry.ts`',
+    key: 'an element a carried declaration targets',
+    holds: 'whether its values name declarations outside the group',
+    bound: WITH_KEY,
+    invalidated: 'never: an element never changes',
+  },
+  parameterUses: {
+    where: '`core/flatten/carry.ts`',
+    key: 'a semantic model',
+    holds: 'its parameter uses by element, for the carry of declarations (SPEC 11)',
+    bound: WITH_KEY,
+    invalidated: 'never: a new model is a new key',
+  },
+  namedElements: {
+    where: '`core/modularize/simpleScenario.ts`',
+    key: 'a parse',
+    holds: 'its elements by kind and `name`, however many behaviours look into it',
+    bound: WITH_KEY,
+    invalidated: 'never: a new parse is a new key',
+  },
+  elementTypes: {
+    where: '`typeOfElement` (`core/schema/query.ts`)',
+    key: 'a schema index, then an element',
+    holds: "the element's complex type, found from the root's content model (override checks ask on every edit)",
+    bound: WITH_KEY,
+    invalidated: 'never: a parse and a schema never change',
+  },
+  contentTransitions: {
+    where: '`core/schema/automaton.ts`, per content automaton',
+    key: 'a set of automaton states, then a child name',
+    holds: 'the states after that child, and the particle it matched',
+    bound: WITH_KEY,
+    invalidated: 'never: built from bundled schemas',
+  },
+} as const satisfies Record<string, MemoDeclaration>;
+
+export type CoreMemoName = keyof typeof CORE_MEMOS;
+
+/**
+ * The store of one of the core's memos, keyed by the object it is derived from. Each name is asked for
+ * by one module (`test/server/database.test.ts` checks it).
+ */
+export function coreMemo<K extends object, V>(name: CoreMemoName): WeakMap<K, V> {
+  void name;
+  return new WeakMap<K, V>();
+}
