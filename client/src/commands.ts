@@ -279,11 +279,10 @@ export async function packCommand(
     output,
     async (token) => {
       const result = await server.pack(targets, output, token, selfContained);
-      // Said when written, not only later in Problems: a package that reaches outside itself runs only beside those files.
+      // Said when written, not only later in Problems: a package that reaches outside itself runs only beside those files
+      // (pack's one file-path warning, core/pack.ts).
       const outside =
-        result.written === null
-          ? []
-          : result.problems.filter((problem) => problem.severity === 'warning' && problem.message.includes(' outside itself'));
+        result.written === null ? [] : result.problems.filter((problem) => problem.severity === 'warning' && problem.code === 'file-path');
       if (outside.length > 0) {
         void vscode.window.showWarningMessage(
           `Pack into .mosc: ${problemPlace(outside[0])}${outside.length > 1 ? `; and ${outside.length - 1} more` : ''}. Pack again storing roads and catalogs inside the package to carry them.`,

@@ -143,6 +143,8 @@ export interface ProblemSummary {
   severity: 'error' | 'warning' | 'information' | 'hint';
   message: string;
   hint?: string;
+  /** The problem's code (server/src/core/problems.ts), what a client tells problems apart by. */
+  code?: string;
 }
 
 export interface FlattenTextResult {

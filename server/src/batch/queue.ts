@@ -42,7 +42,15 @@ export interface RunJob {
   seed: number;
 }
 
-export class RedisUnreachableError extends Error {}
+export class RedisUnreachableError extends Error {
+  constructor(
+    message: string,
+    /** Redis went away after the batch reached it: the rows that arrived are written. */
+    readonly lostAfterStart = false,
+  ) {
+    super(message);
+  }
+}
 
 /** Connection options for BullMQ from redis://HOST:PORT[/DB]. */
 export function connectionOf(url: URL): {
@@ -233,6 +241,7 @@ export async function queueBatch(
     if (client.status === 'ready' || error instanceof RedisUnreachableError) throw error;
     throw new RedisUnreachableError(
       `lost Redis at ${url.protocol}//${url.host}: ${(error as Error).message}; the rows that arrived are in ${results?.csvFile ?? resultsFolder}: run the same command again to collect the rest`,
+      true,
     );
   } finally {
     process.off('SIGINT', onSignal);

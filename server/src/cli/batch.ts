@@ -159,7 +159,8 @@ async function batch(argv: string[], io: CliOutput): Promise<number> {
     flatteningScenarioLoader((values['scenario-path'] ?? []).flatMap(splitScenarioPath), packagedFiles),
   );
   const printProblems = (problems = loaded.problems): void => {
-    for (const line of formatVariationProblems(problems, loaded.lines, base)) if (!values.quiet || line.includes(': error: ')) io.err(line);
+    const shown = values.quiet ? problems.filter((problem) => problem.severity === 'error') : problems;
+    for (const line of formatVariationProblems(shown, loaded.lines, base)) io.err(line);
   };
   printProblems();
   const variations = loaded.variations;
@@ -207,7 +208,7 @@ async function batch(argv: string[], io: CliOutput): Promise<number> {
       return await queueBatch(queue, plan, identity, values.results, { quiet: values.quiet, io, settings });
     } catch (error) {
       if (error instanceof RedisUnreachableError)
-        throw new ResultsError(error.message.startsWith('lost ') ? error.message : `${error.message}; nothing was written`);
+        throw new ResultsError(error.lostAfterStart ? error.message : `${error.message}; nothing was written`);
       throw error;
     }
   }

@@ -140,7 +140,8 @@ async function vary(argv: string[], io: Output, givenLoader: ScenarioTextLoader 
     givenLoader ?? flatteningScenarioLoader((values['scenario-path'] ?? []).flatMap(splitScenarioPath), packagedFiles);
   const loaded = await loadVariations(distributionText, distributionPath, loadScenarioText);
   const printProblems = (problems = loaded.problems): void => {
-    for (const line of formatVariationProblems(problems, loaded.lines, base)) if (!values.quiet || line.includes(': error: ')) io.err(line);
+    const shown = values.quiet ? problems.filter((problem) => problem.severity === 'error') : problems;
+    for (const line of formatVariationProblems(shown, loaded.lines, base)) io.err(line);
   };
   printProblems();
   const variations = loaded.variations;

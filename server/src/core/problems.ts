@@ -101,6 +101,14 @@ export interface Problem {
   data?: ProblemData;
   /** What the problem is about, where the rule it breaks depends on that (core/rules.ts `ruleOf`); the schema's findings name it. */
   subject?: ProblemSubject;
+  /** Of a `source-errors` problem: the error its chain of first errors ends in, for whoever must tell what stands behind it. */
+  cause?: ProblemCause;
+}
+
+/** The first error of a referenced file, followed through the files it references in turn, and how many errors its own file has. */
+export interface ProblemCause {
+  code: ProblemCode;
+  among: number;
 }
 
 /** The element (and attribute) a problem is about, by name. */

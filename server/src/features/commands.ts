@@ -20,6 +20,7 @@ export function summarize(workspace: Workspace, problem: Problem): ProblemSummar
     message: problem.message,
   };
   if (problem.hint) summary.hint = problem.hint;
+  summary.code = problem.code;
   return summary;
 }
 

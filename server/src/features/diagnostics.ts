@@ -109,13 +109,14 @@ export async function diagnose(workspace: Workspace, ref: SourceRef): Promise<{ 
   const diagnostics: Diagnostic[] = [...cycles];
   for (const problem of result.problems) {
     if (refId(problem.source) !== id) continue;
-    // A reference whose only error is a cycle already carries the cycle diagnostic.
+    // A reference whose only error (or the only error of a file it leads to) is a cycle already carries the cycle diagnostic.
     const cycleOnly =
       problem.code === 'source-errors' &&
       cycles.some(
         (cycle) => cycle.range.start.line === problem.range.start.line && cycle.range.start.character === problem.range.start.character,
       ) &&
-      /has 1 error: reference cycle/.test(problem.message);
+      problem.cause?.code === 'cycle' &&
+      problem.cause.among === 1;
     if (cycleOnly) continue;
     const diagnostic = toDiagnostic(problem, workspace);
     if (problem.code === 'cycle') {

@@ -24,7 +24,6 @@ const HOVER_VALUES = 5;
 
 const DISTRIBUTION = /<ParameterValueDistribution\b/;
 const REFERENCE = /<ScenarioReference\b/;
-const UNDECLARED = /^parameter '(.*)' is not declared in the root ParameterDeclarations of /;
 
 /** The number of concrete scenarios, as `vary --count` gives it. */
 export type DistributionCount = { concrete: bigint; discarded: bigint; total: bigint } | { total: bigint; uncounted: string };
@@ -141,9 +140,9 @@ export function distributionProblems(analysis: DistributionAnalysis): Problem[] 
     const extent = extentAt(analysis.text, own ? problem.offset : scenarioFileOffset);
     const range: Range = lines.range(extent.start, extent.end);
     const severity = problem.severity;
-    const undeclared = own ? UNDECLARED.exec(problem.message) : null;
-    if (undeclared) {
-      const suggestion = closestMatch(undeclared[1], names);
+    const undeclared = own ? problem.undeclaredParameter : undefined;
+    if (undeclared !== undefined) {
+      const suggestion = closestMatch(undeclared, names);
       return {
         source: analysis.ref,
         range,

@@ -39,6 +39,31 @@ describe('diagnostics: one module per diagnostic, registered in one list', () =>
     for (const definition of DIAGNOSTICS) assert.equal(RULES[definition.code], definition.rule);
   });
 
+  it('leaves no decision to the text of a message: no source tests, searches or compares one', () => {
+    // `x.message.includes(...)`, `.startsWith(`, `.match(`..., `/re/.test(x.message)`, `x.message === ...`, a printed line searched for its severity.
+    const decisions = [
+      /\.message\s*\.\s*(includes|startsWith|endsWith|match|matchAll|search|indexOf|lastIndexOf)\(/,
+      /\.(test|exec)\(\s*[\w.()]*\.message\b/,
+      /\.message\s*[!=]==|[!=]==\s*[\w.]*\.message\b/,
+      /\.includes\(': (error|warning): '\)/,
+    ];
+    const found: string[] = [];
+    const visit = (folder: string): void => {
+      for (const entry of fs.readdirSync(path.join(repoRoot, folder), { withFileTypes: true })) {
+        const relative = `${folder}/${entry.name}`;
+        if (entry.isDirectory()) visit(relative);
+        else if (entry.name.endsWith('.ts'))
+          fs.readFileSync(path.join(repoRoot, relative), 'utf8')
+            .split('\n')
+            .forEach((line, index) => {
+              if (decisions.some((decision) => decision.test(line))) found.push(`${relative}:${index + 1}: ${line.trim()}`);
+            });
+      }
+    };
+    ['server/src', 'client/src', 'common/src'].forEach(visit);
+    assert.deepEqual(found, []);
+  });
+
   it('skips under --force what the original tool ignored silently: the key and listing problems', () => {
     assert.deepEqual([...SKIPPED_BY_FORCE].sort(), ['no-default', 'unknown-key', 'unknown-parameter-attribute']);
   });

@@ -158,7 +158,7 @@ export class Flattener {
         source: ref,
         range: { start: { line, character: 0 }, end: { line, character: 0 } },
         severity: 'error',
-        code: sourceError && /ZIP|package|unpacks|entry/.test(sourceError.message) ? 'bad-package' : 'io',
+        code: sourceError?.code ?? 'io',
         message: (error as Error).message,
         hint: sourceError?.hint,
       });

@@ -230,6 +230,8 @@ function reportSourceErrors(reference: ScenarioReferenceInfo, source: FlatSource
     message: `'${reference.fileName}' has ${sourceErrors.length} error${sourceErrors.length === 1 ? '' : 's'}: ${sourceErrors[0].message}`,
   });
   problem.related = sourceErrors.slice(0, 20).map((item) => ({ source: item.source, range: item.range, message: item.message }));
+  const first = sourceErrors[0];
+  problem.cause = first.cause ?? { code: first.code, among: sourceErrors.length };
 }
 
 /** Selects the group a ManeuverGroupReference names in the referenced file and plans its overrides. */

@@ -63,7 +63,7 @@ export class PackageCache {
         try {
           return await readPackageBytes(bytes, this.display(ref), this.limits, this.budget);
         } catch (error) {
-          throw new SourceError((error as Error).message, ref, 'rebuild the package with `modular2simple pack`');
+          throw new SourceError((error as Error).message, ref, 'rebuild the package with `modular2simple pack`', undefined, 'bad-package');
         }
       })();
       pending = reading;

@@ -61,6 +61,8 @@ export class SourceError extends Error {
     readonly hint?: string,
     /** Zero-based line of the problem in the file, when known. */
     readonly line?: number,
+    /** What failed: reading the file (`io`), or the package it lies in (`bad-package`), as the problem's code says. */
+    readonly code: 'io' | 'bad-package' = 'io',
   ) {
     super(message);
   }

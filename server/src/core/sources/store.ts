@@ -128,7 +128,14 @@ export class ScenarioStore {
     const parent: SourceRef = { disk: ref.disk, entries: ref.entries.slice(0, -1) };
     const contents = await this.readPackage(parent);
     const bytes = contents.entries.get(ref.entries[ref.entries.length - 1]);
-    if (!bytes) throw new SourceError(`${this.display(parent)} holds no entry '${ref.entries[ref.entries.length - 1]}'`, ref);
+    if (!bytes)
+      throw new SourceError(
+        `${this.display(parent)} holds no entry '${ref.entries[ref.entries.length - 1]}'`,
+        ref,
+        undefined,
+        undefined,
+        'bad-package',
+      );
     return bytes;
   }
 

@@ -7,6 +7,8 @@ export interface VariationProblem {
   offset: number;
   message: string;
   severity: 'error' | 'warning';
+  /** Set when the problem is a parameterName the ScenarioFile does not declare at its root: that name. */
+  undeclaredParameter?: string;
 }
 
 /** A place in a file's text, kept so that later checks (unknown parameter, impossible range) can point at it. */

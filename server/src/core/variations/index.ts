@@ -115,6 +115,7 @@ export async function loadVariations(
       offset: missing.offset,
       severity: 'error',
       message: `parameter '${missing.parameter}' is not declared in the root ParameterDeclarations of ${distribution.scenarioFile.path}`,
+      undeclaredParameter: missing.parameter,
     });
   }
   if (problems.some((p) => p.severity === 'error')) return { variations: undefined, problems, lines };
