@@ -1,30 +1,35 @@
-import { CliOutput, Command, ExitCode, InputError, UsageError, VERSION } from './cli/common';
+import { asksForHelp, CliCommand, CliOutput, ExitCode, failure, UsageError, VERSION } from './cli/common';
 
 export { ExitCode } from './cli/common';
 
 /**
  * The commands, each loaded only when it runs (a flatten does not load the packer's ZIP writer nor
- * esmini's runner). A new command is one entry here and one file in cli/.
+ * esmini's runner). A new command is one row here and one file in cli/ exporting its CliCommand: its
+ * help (`COMMAND --help`) and what it runs, throwing UsageError, InputError or UnavailableError
+ * (cli/common.ts) for exit codes 2, 1 and 3.
  */
-const COMMANDS: Record<string, () => Promise<Command>> = {
-  flatten: async () => (await import('./cli/flatten')).flattenCommand,
-  pack: async () => (await import('./cli/pack')).packCommand,
-  check: async () => (await import('./cli/check')).checkCommand,
-  stats: async () => (await import('./cli/stats')).statsCommand,
-  format: async () => (await import('./cli/format')).formatCommand,
-  run: async () => (await import('./cli/run')).runCommand,
-  vary: async () => (await import('./cli/vary')).varyCommand,
-  modularize: async () => (await import('./cli/modularize')).modularizeCommand,
-  batch: async () => (await import('./cli/batch')).batchCommand,
-  worker: async () => (await import('./cli/worker')).workerCommand,
-  'qc-bundle': async () => (await import('./cli/qcBundle')).qcBundleCommand,
-  export: async () => (await import('./cli/export')).exportCommand,
+const COMMANDS: Record<string, () => Promise<CliCommand>> = {
+  flatten: async () => (await import('./cli/flatten')).FLATTEN,
+  pack: async () => (await import('./cli/pack')).PACK,
+  check: async () => (await import('./cli/check')).CHECK,
+  stats: async () => (await import('./cli/stats')).STATS,
+  format: async () => (await import('./cli/format')).FORMAT,
+  run: async () => (await import('./cli/run')).RUN,
+  vary: async () => (await import('./cli/vary')).VARY,
+  modularize: async () => (await import('./cli/modularize')).MODULARIZE,
+  batch: async () => (await import('./cli/batch')).BATCH,
+  worker: async () => (await import('./cli/worker')).WORKER,
+  'qc-bundle': async () => (await import('./cli/qcBundle')).QC_BUNDLE,
+  export: async () => (await import('./cli/export')).EXPORT,
   // The original tool's forms.
-  '-cxm': async () => (await import('./cli/pack')).convertXoscIntoMoscCommand,
-  '--convert-xosc-into-mosc': async () => (await import('./cli/pack')).convertXoscIntoMoscCommand,
-  '-cmx': async () => (await import('./cli/flatten')).convertMoscToXoscCommand,
-  '--convert-mosc-to-xosc': async () => (await import('./cli/flatten')).convertMoscToXoscCommand,
+  '-cxm': async () => (await import('./cli/pack')).CONVERT_XOSC_INTO_MOSC,
+  '--convert-xosc-into-mosc': async () => (await import('./cli/pack')).CONVERT_XOSC_INTO_MOSC,
+  '-cmx': async () => (await import('./cli/flatten')).CONVERT_MOSC_TO_XOSC,
+  '--convert-mosc-to-xosc': async () => (await import('./cli/flatten')).CONVERT_MOSC_TO_XOSC,
 };
+
+/** The names the command line takes, in the table's order (aliases included). */
+export const COMMAND_NAMES: readonly string[] = Object.keys(COMMANDS);
 
 /** Runs the command line; returns the exit code. Never throws. */
 export async function main(argv: string[], io: CliOutput): Promise<number> {
@@ -46,15 +51,16 @@ export async function main(argv: string[], io: CliOutput): Promise<number> {
       throw new UsageError(`unknown command '${name}'`);
     }
     const command = await load();
-    return await command(rest, io);
-  } catch (error) {
-    if (error instanceof UsageError) {
-      io.err(`modular2simple: ${error.message}\nRun 'modular2simple --help' for usage.`);
-      return ExitCode.usage;
+    if (asksForHelp(rest)) {
+      io.out(command.help);
+      return ExitCode.ok;
     }
-    if (error instanceof InputError) {
-      io.err(`modular2simple: error: ${error.message}`);
-      return ExitCode.problems;
+    return await command.run(rest, io);
+  } catch (error) {
+    const failed = failure(error);
+    if (failed) {
+      io.err(failed.message);
+      return failed.code;
     }
     io.err(
       `modular2simple: internal error: ${(error as Error).stack ?? (error as Error).message}\nPlease report this with the input that caused it.`,

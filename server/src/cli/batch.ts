@@ -2,7 +2,6 @@ import { createHash } from 'node:crypto';
 import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
-import { parseArgs } from 'node:util';
 import { BatchPlanView, concreteRun, searchPathOf, variedParameters } from '../batch/plan';
 import { Progress } from '../batch/progress';
 import { loadQueueModule, QueuePackagesMissingError } from '../batch/queuePackages';
@@ -13,7 +12,7 @@ import { FileKind, nodeFileSystem, splitScenarioPath } from '../core/sources';
 import { formatVariationProblems, loadVariations, rebasedConcreteText, samplingProblem, SamplingError } from '../core/variations';
 import { locateEsmini } from '../esmini/locate';
 import { RUN_DEFAULTS } from '../esmini/run';
-import type { CliOutput } from './common';
+import { CliCommand, CliOutput, ExitCode, InputError, parseCommandLine, UnavailableError, UsageError, wholeNumber } from './common';
 import { flatteningScenarioLoader, readDistributionFile, scenarioFolderOf } from './scenarioText';
 import { sampleIndices } from './vary';
 
@@ -36,26 +35,11 @@ export const BATCH_HELP = `Run every concrete scenario of a distribution in esmi
   Exit codes: 0 every run done, 1 the input has errors (nothing run), 2 usage, 3 no esmini, Redis unreachable
   or the results cannot be written, 4 internal error, 130 interrupted (run it again to finish).`;
 
-export const WORKER_HELP = `Run a batch's concrete scenarios from a queue (modular2simple worker --queue redis://HOST:PORT ...):
-  --jobs N                  runs at a time (default: the number of cores)
-  --esmini PATH             the esmini program, or its folder (default: esmini on PATH, else the one npm start built)
-  --idle-exit S             stop after S seconds with nothing to do (default: run until interrupted)`;
-
-const EXIT = { ok: 0, problems: 1, usage: 2, io: 3, internal: 4, interrupted: 130 } as const;
 const DEFAULT_MAX_COMBINATIONS = 1_000_000n;
-
-export class BatchUsageError extends Error {}
-class BatchInputError extends Error {}
-
-export function wholeNumber(text: string | undefined, option: string): bigint | undefined {
-  if (text === undefined) return undefined;
-  if (!/^\d+$/.test(text.trim())) throw new BatchUsageError(`${option} takes a whole number, not '${text}'`);
-  return BigInt(text.trim());
-}
 
 export function jobsOption(text: string | undefined): number {
   const jobs = wholeNumber(text, '--jobs');
-  if (jobs === 0n) throw new BatchUsageError('--jobs takes at least 1');
+  if (jobs === 0n) throw new UsageError('--jobs takes at least 1');
   return jobs === undefined ? Math.max(1, os.availableParallelism?.() ?? os.cpus().length) : Number(jobs);
 }
 
@@ -65,9 +49,9 @@ export function queueOption(text: string | undefined): URL | undefined {
   try {
     url = new URL(text);
   } catch {
-    throw new BatchUsageError(`--queue takes redis://HOST:PORT, not '${text}'`);
+    throw new UsageError(`--queue takes redis://HOST:PORT, not '${text}'`);
   }
-  if (url.protocol !== 'redis:' || !url.hostname) throw new BatchUsageError(`--queue takes redis://HOST:PORT, not '${text}'`);
+  if (url.protocol !== 'redis:' || !url.hostname) throw new UsageError(`--queue takes redis://HOST:PORT, not '${text}'`);
   return url;
 }
 
@@ -82,74 +66,52 @@ function enumerate(count: bigint): bigint[] {
 }
 
 /** `modular2simple batch`: runs the concrete scenarios of a distribution file and writes their results. */
-export async function batchCommand(argv: string[], io: CliOutput): Promise<number> {
+async function batchCommand(argv: string[], io: CliOutput): Promise<number> {
   try {
-    return await batch(argv, io);
+    return await runBatch(argv, io);
   } catch (error) {
-    if (error instanceof BatchUsageError) {
-      io.err(`modular2simple: ${error.message}\nRun 'modular2simple --help' for usage.`);
-      return EXIT.usage;
-    }
-    if (error instanceof BatchInputError) {
-      io.err(`modular2simple: error: ${error.message}`);
-      return EXIT.problems;
-    }
-    if (error instanceof ResultsError || error instanceof NoEsminiError || error instanceof QueuePackagesMissingError) {
-      io.err(`modular2simple: error: ${error.message}`);
-      return EXIT.io;
-    }
+    // The batch runner's own failures (below cli/, which it does not import) are exit 3 as the CLI's.
+    if (error instanceof ResultsError || error instanceof NoEsminiError || error instanceof QueuePackagesMissingError)
+      throw new UnavailableError(error.message);
     throw error;
   }
 }
 
-async function batch(argv: string[], io: CliOutput): Promise<number> {
-  let parsed;
-  try {
-    parsed = parseArgs({
-      args: argv,
-      allowPositionals: true,
-      options: {
-        results: { type: 'string' },
-        jobs: { type: 'string' },
-        sample: { type: 'string' },
-        seed: { type: 'string' },
-        duration: { type: 'string' },
-        'max-combinations': { type: 'string' },
-        queue: { type: 'string' },
-        'keep-runs': { type: 'boolean', default: false },
-        esmini: { type: 'string' },
-        'road-path': { type: 'string', multiple: true },
-        'scenario-path': { type: 'string', multiple: true },
-        quiet: { type: 'boolean', short: 'q', default: false },
-        help: { type: 'boolean', short: 'h', default: false },
-      },
-    });
-  } catch (error) {
-    throw new BatchUsageError((error as Error).message);
-  }
-  const { values, positionals } = parsed;
-  if (values.help) {
-    io.out(BATCH_HELP);
-    return EXIT.ok;
-  }
-  if (positionals.length !== 1) throw new BatchUsageError('batch takes one distribution file');
-  if (values.results === undefined) throw new BatchUsageError('batch needs --results DIR');
-  if (values.seed !== undefined && values.sample === undefined) throw new BatchUsageError('--seed goes with --sample N');
+export const BATCH: CliCommand = { help: BATCH_HELP, run: batchCommand };
+
+async function runBatch(argv: string[], io: CliOutput): Promise<number> {
+  const { values, positionals } = parseCommandLine(argv, {
+    results: { type: 'string' },
+    jobs: { type: 'string' },
+    sample: { type: 'string' },
+    seed: { type: 'string' },
+    duration: { type: 'string' },
+    'max-combinations': { type: 'string' },
+    queue: { type: 'string' },
+    'keep-runs': { type: 'boolean', default: false },
+    esmini: { type: 'string' },
+    'road-path': { type: 'string', multiple: true },
+    'scenario-path': { type: 'string', multiple: true },
+    quiet: { type: 'boolean', short: 'q', default: false },
+  });
+  if (positionals.length !== 1) throw new UsageError('batch takes one distribution file');
+  if (values.results === undefined) throw new UsageError('batch needs --results DIR');
+  if (values.seed !== undefined && values.sample === undefined) throw new UsageError('--seed goes with --sample N');
   const jobs = jobsOption(values.jobs);
   const sample = wholeNumber(values.sample, '--sample');
   const seed = values.seed === undefined ? 0 : Number(wholeNumber(values.seed, '--seed'));
   const maxCombinations = wholeNumber(values['max-combinations'], '--max-combinations') ?? DEFAULT_MAX_COMBINATIONS;
-  if (sample === 0n) throw new BatchUsageError('--sample takes at least 1');
+  if (sample === 0n) throw new UsageError('--sample takes at least 1');
   if (sample !== undefined && sample > maxCombinations)
-    throw new BatchUsageError(`--sample ${sample} is more than --max-combinations ${maxCombinations}`);
+    throw new UsageError(`--sample ${sample} is more than --max-combinations ${maxCombinations}`);
   const duration = values.duration === undefined ? RUN_DEFAULTS.duration : Number(values.duration);
   if (!(duration > 0) || !Number.isFinite(duration))
-    throw new BatchUsageError(`--duration takes a positive number of seconds, not '${values.duration}'`);
+    throw new UsageError(`--duration takes a positive number of seconds, not '${values.duration}'`);
   const queue = queueOption(values.queue);
-  if (queue && values['keep-runs']) throw new BatchUsageError('--keep-runs keeps the runs of this machine: it does not go with --queue');
+  if (queue && values['keep-runs']) throw new UsageError('--keep-runs keeps the runs of this machine: it does not go with --queue');
 
   const distribution = await readDistributionFile(positionals[0]);
-  if ('problem' in distribution) throw new BatchInputError(distribution.problem);
+  if ('problem' in distribution) throw new InputError(distribution.problem);
   const { path: distributionPath, text: distributionText } = distribution;
   const base = process.cwd();
   const packagedFiles: PackagedFile[] = [];
@@ -164,9 +126,9 @@ async function batch(argv: string[], io: CliOutput): Promise<number> {
   };
   printProblems();
   const variations = loaded.variations;
-  if (!variations) return EXIT.problems;
+  if (!variations) return ExitCode.problems;
   if (sample === undefined && variations.count > maxCombinations) {
-    throw new BatchInputError(
+    throw new InputError(
       `${positionals[0]}: ${variations.count} combinations are more than --max-combinations ${maxCombinations}; nothing was run (use --sample N, or raise --max-combinations)`,
     );
   }
@@ -179,7 +141,7 @@ async function batch(argv: string[], io: CliOutput): Promise<number> {
       } catch (error) {
         if (!(error instanceof SamplingError)) throw error;
         printProblems([samplingProblem(error, distributionPath)]);
-        return EXIT.problems;
+        return ExitCode.problems;
       }
     }
   }
@@ -247,7 +209,7 @@ async function runLocally(
   const todo = plan.chosen.filter((index) => !results.done.has(index.toString()));
   const stop = new AbortController();
   // A second signal does not wait for the runs in flight to be stopped.
-  const onSignal = () => (stop.signal.aborted ? process.exit(EXIT.interrupted) : stop.abort());
+  const onSignal = () => (stop.signal.aborted ? process.exit(ExitCode.interrupted) : stop.abort());
   process.on('SIGINT', onSignal);
   process.on('SIGTERM', onSignal);
   const progress = new Progress(
@@ -307,8 +269,8 @@ async function runLocally(
     (tally.discarded > 0 ? `, ${tally.discarded} discarded by the scenario's ValueConstraintGroups` : '');
   if (stop.signal.aborted) {
     io.err(`interrupted after ${summary}; ${results.done.size} rows are in ${results.csvFile}: run the same command again to run the rest`);
-    return EXIT.interrupted;
+    return ExitCode.interrupted;
   }
   if (!quiet) io.err(`${summary}; results in ${results.csvFile}, ${results.jsonFile} and ${results.htmlFile}`);
-  return EXIT.ok;
+  return ExitCode.ok;
 }

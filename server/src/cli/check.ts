@@ -5,9 +5,9 @@ import { Problem, uniqueProblems } from '../core/problems';
 import { ruleOf } from '../core/rules';
 import { displayRef } from '../core/sources';
 import { SCENARIO_FILE, walkFiles } from '../core/walk';
-import { CliOutput, ExitCode, InputError, report, UsageError } from './common';
+import { CliCommand, CliOutput, ExitCode, InputError, report, UsageError } from './common';
 import { mainOf } from './inputs';
-import { makeStore, parseOptions } from './options';
+import { makeStore, parseOptions, READING_OPTIONS_HELP, SIMULATOR_OPTION_HELP } from './options';
 
 function problemJson(problem: Problem): Record<string, unknown> {
   return {
@@ -68,7 +68,7 @@ function keepHeapSmallForManyFiles(): void {
 }
 
 /** `modular2simple check PATH... [--format json|sarif]`: every problem of every scenario file, as a compiler reports them. */
-export async function checkCommand(args: string[], io: CliOutput): Promise<number> {
+async function checkCommand(args: string[], io: CliOutput): Promise<number> {
   const options = parseOptions(args);
   const inputs = options.positional;
   if (inputs.length === 0) throw new UsageError('check needs at least one file or folder');
@@ -115,3 +115,15 @@ export async function checkCommand(args: string[], io: CliOutput): Promise<numbe
   }
   return errors > 0 ? ExitCode.problems : ExitCode.ok;
 }
+
+export const CHECK: CliCommand = {
+  help: `Report every problem of scenario files, as a compiler does (modular2simple check PATH... [--format text|json|sarif]):
+  a folder is checked whole (every .xosc and .mosc below it); problems print as FILE:LINE:COL: SEVERITY: MESSAGE.
+  --format text|json|sarif  text on standard error (the default), or JSON or SARIF 2.1.0 (for CI dashboards)
+                            on standard output
+${SIMULATOR_OPTION_HELP}
+${READING_OPTIONS_HELP}
+  Exit codes: 0 no error (warnings may have been printed), 1 errors found or an input cannot be read, 2 usage,
+  4 internal error.`,
+  run: checkCommand,
+};

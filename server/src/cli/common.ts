@@ -1,13 +1,14 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
+import { parseArgs, ParseArgsConfig } from 'node:util';
 import { isSameFile, writeFilesAtomicSync } from '../../../common/src/atomic';
 import { formatProblem, Problem, uniqueProblems } from '../core/problems';
 import { displayRef, SourceRef } from '../core/sources';
 
 export const VERSION = '0.1.0';
 
-/** Exit codes, as documented in the README. */
-export const ExitCode = { ok: 0, problems: 1, usage: 2, io: 3, internal: 4 } as const;
+/** Exit codes of every command, as documented in the README (130: batch interrupted, run it again to finish). */
+export const ExitCode = { ok: 0, problems: 1, usage: 2, io: 3, internal: 4, interrupted: 130 } as const;
 
 /** Where a command prints: its result on `out`, problems and summaries on `err`. */
 export interface CliOutput {
@@ -23,8 +24,63 @@ export class UsageError extends Error {}
 /** An input that cannot be used: printed as an error, exit 1. */
 export class InputError extends Error {}
 
-/** A command of the table in cli.ts: its arguments after the command name, its exit code. */
+/** What a command needs beside its inputs cannot be had (no esmini, Redis unreachable, a results folder not writable): printed as an error, exit 3. */
+export class UnavailableError extends Error {}
+
+/** How main (cli.ts) answers each error class: a message on standard error and an exit code. */
+export function failure(error: unknown): { message: string; code: number } | undefined {
+  if (error instanceof UsageError)
+    return { message: `modular2simple: ${error.message}\nRun 'modular2simple --help' for usage.`, code: ExitCode.usage };
+  if (error instanceof InputError) return { message: `modular2simple: error: ${error.message}`, code: ExitCode.problems };
+  if (error instanceof UnavailableError) return { message: `modular2simple: error: ${error.message}`, code: ExitCode.io };
+  return undefined;
+}
+
+/** What a command runs: its arguments after the command name, its exit code. */
 export type Command = (args: string[], io: CliOutput) => Promise<number>;
+
+/** A command of the table in cli.ts: its help (printed for `--help` or `-h`, exit 0) and what it runs. */
+export interface CliCommand {
+  help: string;
+  run: Command;
+}
+
+/** An option's whole number (a count, an index, a seed); undefined when the option is absent. */
+export function wholeNumber(text: string | undefined, option: string): bigint | undefined {
+  if (text === undefined) return undefined;
+  if (!/^\d+$/.test(text.trim())) throw new UsageError(`${option} takes a whole number, not '${text}'`);
+  return BigInt(text.trim());
+}
+
+/** Whether the arguments ask for the command's help: `--help` or `-h` before any `--`. */
+export function asksForHelp(args: readonly string[]): boolean {
+  const end = args.indexOf('--');
+  return (end < 0 ? args : args.slice(0, end)).some((arg) => arg === '--help' || arg === '-h');
+}
+
+/**
+ * The arguments read by node:util's parseArgs (strict, positionals allowed); a wrong one is a UsageError
+ * worded as the shared options word it (`unknown option '--x'`, `--name needs a value`).
+ */
+export function parseCommandLine<const T extends NonNullable<ParseArgsConfig['options']>>(
+  args: string[],
+  options: T,
+): ReturnType<typeof parseArgs<{ args: string[]; options: T; strict: true; allowPositionals: true }>> {
+  try {
+    return parseArgs({ args, options, strict: true as const, allowPositionals: true as const });
+  } catch (error) {
+    const message = (error as Error).message;
+    const unknown = /Unknown option '([^']+)'/.exec(message);
+    const missing = /Option '(?:-\w, )?(--[\w-]+)/.exec(message);
+    throw new UsageError(
+      unknown
+        ? `unknown option '${unknown[1]}'`
+        : missing && /argument missing/.test(message)
+          ? `${missing[1]} needs a value`
+          : message.split('\n')[0],
+    );
+  }
+}
 
 export function checkInputExists(input: string): void {
   if (!fs.existsSync(input)) throw new InputError(`${input}: no such file or folder`);

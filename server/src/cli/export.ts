@@ -1,6 +1,5 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { parseArgs } from 'node:util';
 import { isSameFile } from '../../../common/src/atomic';
 import {
   CARLA_RELEASES,
@@ -13,7 +12,7 @@ import {
 } from '../core/export/carla';
 import { diskRef, nodeFileSystem, splitScenarioPath } from '../core/sources';
 import { loadVariations, formatVariationProblems, rebasedConcreteText, SamplingError } from '../core/variations';
-import { CliOutput, ExitCode, InputError, UsageError, write } from './common';
+import { CliCommand, CliOutput, ExitCode, InputError, parseCommandLine, UsageError, write } from './common';
 import { mainOf, storeForInputs } from './inputs';
 import { flatteningScenarioLoader, readUtf8Exactly } from './scenarioText';
 
@@ -49,32 +48,20 @@ interface ExportArguments {
   options: CarlaExportOptions;
 }
 
-function parse(argv: string[]): ExportArguments | 'help' {
-  let parsed;
-  try {
-    parsed = parseArgs({
-      args: argv,
-      allowPositionals: true,
-      options: {
-        target: { type: 'string' },
-        output: { type: 'string', short: 'o' },
-        report: { type: 'string' },
-        carla: { type: 'string' },
-        blueprints: { type: 'string' },
-        road: { type: 'string' },
-        'road-path': { type: 'string', multiple: true },
-        ego: { type: 'string' },
-        index: { type: 'string' },
-        'scenario-path': { type: 'string', multiple: true },
-        quiet: { type: 'boolean', short: 'q', default: false },
-        help: { type: 'boolean', short: 'h', default: false },
-      },
-    });
-  } catch (error) {
-    throw new UsageError((error as Error).message);
-  }
-  const { values, positionals } = parsed;
-  if (values.help) return 'help';
+function parse(argv: string[]): ExportArguments {
+  const { values, positionals } = parseCommandLine(argv, {
+    target: { type: 'string' },
+    output: { type: 'string', short: 'o' },
+    report: { type: 'string' },
+    carla: { type: 'string' },
+    blueprints: { type: 'string' },
+    road: { type: 'string' },
+    'road-path': { type: 'string', multiple: true },
+    ego: { type: 'string' },
+    index: { type: 'string' },
+    'scenario-path': { type: 'string', multiple: true },
+    quiet: { type: 'boolean', short: 'q', default: false },
+  });
   if (positionals.length !== 1) throw new UsageError('export takes one input');
   if (values.target === undefined) throw new UsageError('export needs --target carla');
   if (values.target !== 'carla') throw new UsageError(`--target takes carla, not '${values.target}'`);
@@ -176,12 +163,8 @@ function lossLine(loss: CarlaExport['losses'][number]): string {
 }
 
 /** `modular2simple export INPUT --target carla -o OUT.xosc [--report LOSSES.json] [--carla 0.9.15|0.9.16]`. */
-export async function exportCommand(argv: string[], io: CliOutput): Promise<number> {
+async function exportCommand(argv: string[], io: CliOutput): Promise<number> {
   const args = parse(argv);
-  if (args === 'help') {
-    io.out(EXPORT_HELP);
-    return ExitCode.ok;
-  }
   if (fs.existsSync(args.input) && isSameFile(args.input, args.output))
     throw new InputError(`refusing to write ${args.output}: it is the input; choose another output file`);
   let result: CarlaExport;
@@ -238,3 +221,5 @@ export async function exportCommand(argv: string[], io: CliOutput): Promise<numb
     args.quiet,
   );
 }
+
+export const EXPORT: CliCommand = { help: EXPORT_HELP, run: exportCommand };

@@ -3,9 +3,9 @@ import * as path from 'node:path';
 import { Flattener, OVERRIDE_PROBLEM_CODES } from '../core/flatten';
 import { Problem } from '../core/problems';
 import { countEditorLines } from '../core/text';
-import { checkInputExists, checkNotAnInput, CliOutput, ExitCode, InputError, report, UsageError, write } from './common';
+import { checkInputExists, checkNotAnInput, CliCommand, CliOutput, ExitCode, InputError, report, UsageError, write } from './common';
 import { mainOf } from './inputs';
-import { makeStore, Options, parseOptions } from './options';
+import { makeStore, Options, parseOptions, READING_OPTIONS_HELP, SIMULATOR_OPTION_HELP, WRITING_EXIT_CODES_HELP } from './options';
 
 /** Flattens each input; without `outputs` the results go to standard output. */
 async function flattenInputs(inputs: string[], outputs: string[] | undefined, options: Options, io: CliOutput): Promise<number> {
@@ -79,7 +79,7 @@ function outputNameFor(input: string): string {
 }
 
 /** `modular2simple flatten INPUT [-o OUT.xosc]` or `flatten INPUT... --out-dir DIR`. */
-export async function flattenCommand(args: string[], io: CliOutput): Promise<number> {
+async function flattenCommand(args: string[], io: CliOutput): Promise<number> {
   const options = parseOptions(args);
   const inputs = options.positional;
   if (inputs.length === 0) throw new UsageError('flatten needs an input: a .mosc, a main.xosc or an unpacked folder');
@@ -102,9 +102,33 @@ export async function flattenCommand(args: string[], io: CliOutput): Promise<num
 }
 
 /** The original tool's `-cmx|--convert-mosc-to-xosc IN.mosc OUT.xosc`: a flatten to OUT. */
-export async function convertMoscToXoscCommand(args: string[], io: CliOutput): Promise<number> {
+async function convertMoscToXoscCommand(args: string[], io: CliOutput): Promise<number> {
   const options = parseOptions(args);
   const inputs = options.positional;
   if (inputs.length !== 2) throw new UsageError('-cmx takes one input .mosc and one output .xosc');
   return flattenInputs([inputs[0]], [inputs[1]], options, io);
 }
+
+const FORCE_HELP = `  --force                   write whatever can be produced despite errors, listing them; overrides that cannot
+                            apply (unknown keys, attributes without default) are skipped, as the original did`;
+
+export const FLATTEN: CliCommand = {
+  help: `Flatten a .mosc, a main.xosc or an unpacked folder into one plain scenario
+(modular2simple flatten INPUT [-o FILE], or flatten INPUT... --out-dir DIR):
+  -o, --output FILE         the scenario to write; '-' or no -o prints it to standard output
+  --out-dir DIR             write each input to DIR/NAME.xosc (several inputs)
+${FORCE_HELP}
+${SIMULATOR_OPTION_HELP}
+${READING_OPTIONS_HELP}
+${WRITING_EXIT_CODES_HELP}`,
+  run: flattenCommand,
+};
+
+export const CONVERT_MOSC_TO_XOSC: CliCommand = {
+  help: `Flatten a package, as the original tool's -cmx did (modular2simple -cmx|--convert-mosc-to-xosc IN.mosc OUT.xosc):
+  the same as modular2simple flatten IN.mosc -o OUT.xosc, with flatten's options.
+${FORCE_HELP}
+${READING_OPTIONS_HELP}
+${WRITING_EXIT_CODES_HELP}`,
+  run: convertMoscToXoscCommand,
+};

@@ -1,14 +1,11 @@
 import * as fs from 'node:fs';
-import { parseArgs } from 'node:util';
 import { writeFileAtomic } from '../../../common/src/atomic';
 import { DEFAULT_FORMAT_OPTIONS, detectIndentation, FormatOptions, formatXml } from '../core/format';
 import { walkFiles } from '../core/walk';
-import { CliOutput, ExitCode } from './common';
+import { CliCommand, CliOutput, ExitCode, parseCommandLine, UsageError } from './common';
 
 export const FORMAT_HELP = `  modular2simple format [--check] [--width N] [--indent N|tab] PATH...
                                                    format .xosc files in place (folders: every .xosc below)`;
-
-class FormatUsageError extends Error {}
 
 interface Plan {
   file: string;
@@ -31,7 +28,7 @@ function indentOption(value: string | undefined): Pick<FormatOptions, 'tabSize' 
   if (value === 'tab') return { tabSize: 4, insertSpaces: false };
   const spaces = Number(value);
   if (!Number.isInteger(spaces) || spaces < 0 || spaces > 16)
-    throw new FormatUsageError(`--indent takes a number of spaces (0-16) or 'tab', not '${value}'`);
+    throw new UsageError(`--indent takes a number of spaces (0-16) or 'tab', not '${value}'`);
   return { tabSize: spaces, insertSpaces: true };
 }
 
@@ -57,37 +54,19 @@ function planFile(file: string, indent: Pick<FormatOptions, 'tabSize' | 'insertS
 }
 
 /** `modular2simple format`: formats in place, or with --check only lists the files that would change. */
-export async function formatCommand(args: string[], io: CliOutput): Promise<number> {
-  let values: { check?: boolean; width?: string; indent?: string; quiet?: boolean };
-  let positionals: string[];
-  try {
-    ({ values, positionals } = parseArgs({
-      args,
-      allowPositionals: true,
-      options: {
-        check: { type: 'boolean' },
-        width: { type: 'string' },
-        indent: { type: 'string' },
-        quiet: { type: 'boolean', short: 'q' },
-      },
-    }));
-    if (positionals.length === 0) throw new FormatUsageError('format needs at least one .xosc file or folder');
-  } catch (error) {
-    io.err(`modular2simple: ${(error as Error).message}\nRun 'modular2simple --help' for usage.`);
-    return ExitCode.usage;
-  }
-  let indent: Pick<FormatOptions, 'tabSize' | 'insertSpaces'> | undefined;
+async function formatCommand(args: string[], io: CliOutput): Promise<number> {
+  const { values, positionals } = parseCommandLine(args, {
+    check: { type: 'boolean' },
+    width: { type: 'string' },
+    indent: { type: 'string' },
+    quiet: { type: 'boolean', short: 'q' },
+  });
+  if (positionals.length === 0) throw new UsageError('format needs at least one .xosc file or folder');
+  const indent = indentOption(values.indent);
   let width = DEFAULT_FORMAT_OPTIONS.maxLineWidth;
-  try {
-    indent = indentOption(values.indent);
-    if (values.width !== undefined) {
-      width = Number(values.width);
-      if (!Number.isInteger(width) || width < 1)
-        throw new FormatUsageError(`--width takes a positive number of columns, not '${values.width}'`);
-    }
-  } catch (error) {
-    io.err(`modular2simple: ${(error as Error).message}\nRun 'modular2simple --help' for usage.`);
-    return ExitCode.usage;
+  if (values.width !== undefined) {
+    width = Number(values.width);
+    if (!Number.isInteger(width) || width < 1) throw new UsageError(`--width takes a positive number of columns, not '${values.width}'`);
   }
 
   const files: string[] = [];
@@ -132,3 +111,15 @@ export async function formatCommand(args: string[], io: CliOutput): Promise<numb
   if (!values.quiet) io.err(`formatted ${changed.length} of ${files.length} file${files.length === 1 ? '' : 's'}`);
   return ExitCode.ok;
 }
+
+export const FORMAT: CliCommand = {
+  help: `Format .xosc files in place (modular2simple format [--check] [--width N] [--indent N|tab] PATH...):
+  a folder is formatted whole (every .xosc below it); a file that does not parse is reported and left alone.
+  --check                   list the files that would change and write nothing
+  --width N                 past N columns a start tag puts each attribute on its own line (default 120)
+  --indent N|tab            the indentation (default: what the file uses, else 2 spaces)
+  -q, --quiet               print errors only
+  Exit codes: 0 formatted (with --check: nothing would change), 1 a file could not be read or parsed (nothing
+  was written; with --check: or a file would change), 2 usage, 3 a file could not be written, 4 internal error.`,
+  run: formatCommand,
+};

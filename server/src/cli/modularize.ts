@@ -1,26 +1,28 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { parseArgs } from 'node:util';
 import { writeFilesAtomic } from '../../../common/src/atomic';
 import { modularize, ModularizeInput, ModularizeResult, notAPlainScenario } from '../core/modularize';
 import { countEditorLines } from '../core/text';
 import { parseXml, XmlDocument } from '../core/xml';
-import { CliOutput, ExitCode, InputError, UsageError } from './common';
+import { CliCommand, CliOutput, ExitCode, InputError, parseCommandLine, UsageError } from './common';
 
-export const MODULARIZE_HELP = `Modularize a library (modular2simple modularize INPUT... -o OUT):
+export const MODULARIZE_HELP = `Modularize a library (modular2simple modularize INPUT... --out-dir DIR):
   Finds the ManeuverGroups that recur across the input scenarios (files, or folders searched for
-  .xosc files) with the same structure, extracts each once into OUT/simple/NAME.xosc, named after what
-  it does, and writes for each input IN/rel.xosc a main OUT/rel.xosc that imports them. Each main is
+  .xosc files) with the same structure, extracts each once into DIR/simple/NAME.xosc, named after what
+  it does, and writes for each input IN/rel.xosc a main DIR/rel.xosc that imports them. Each main is
   flattened and compared with its input (SPEC 8) before anything is written. Catalogs, parameter
   distributions and modular mains among the inputs are left alone.
-  --force                   write into an OUT that exists (never over an input)
+  --out-dir DIR             the folder to write the mains and simple scenarios to (-o DIR, the older form, too)
+  --force                   write into a DIR that exists (never over an input)
   --dry-run                 print what would be made; write nothing
   --format text|json        the report's format
   -q, --quiet               print errors only
-  Exit codes: 0 done (or nothing to extract), 1 an input cannot be read or parsed, OUT exists, or a
+  Exit codes: 0 done (or nothing to extract), 1 an input cannot be read or parsed, DIR exists, or a
   main would not flatten back (nothing written), 2 usage, 3 the output could not be written, 4 internal error.`;
 
 const OPTIONS = {
+  'out-dir': { type: 'string' },
+  // The older name of --out-dir.
   output: { type: 'string', short: 'o' },
   force: { type: 'boolean' },
   'dry-run': { type: 'boolean' },
@@ -38,31 +40,17 @@ interface ModularizeArguments {
 }
 
 function parseModularizeArguments(args: string[]): ModularizeArguments {
-  let parsed;
-  try {
-    parsed = parseArgs({ args, options: OPTIONS, strict: true, allowPositionals: true });
-  } catch (error) {
-    // Worded as the other commands word it.
-    const message = (error as Error).message;
-    const unknown = /Unknown option '([^']+)'/.exec(message);
-    const missing = /Option '(?:-\w, )?(--[\w-]+)/.exec(message);
-    throw new UsageError(
-      unknown
-        ? `unknown option '${unknown[1]}'`
-        : missing && /argument missing/.test(message)
-          ? `${missing[1]} needs a value`
-          : message.split('\n')[0],
-    );
-  }
-  const { values, positionals } = parsed;
+  const { values, positionals } = parseCommandLine(args, OPTIONS);
   if (positionals.length === 0) throw new UsageError('modularize needs input scenarios or folders');
-  if (values.output === undefined || values.output === '')
-    throw new UsageError('modularize needs -o OUT, the folder to write the mains and simple scenarios to');
+  if (values.output !== undefined && values['out-dir'] !== undefined) throw new UsageError('use either -o or --out-dir');
+  const out = values['out-dir'] ?? values.output;
+  if (out === undefined || out === '')
+    throw new UsageError('modularize needs --out-dir DIR (or -o DIR), the folder to write the mains and simple scenarios to');
   const format = values.format ?? 'text';
   if (format !== 'text' && format !== 'json') throw new UsageError(`--format takes text or json, not '${format}'`);
   return {
     inputs: positionals,
-    out: path.resolve(values.output),
+    out: path.resolve(out),
     force: values.force === true,
     dryRun: values['dry-run'] === true,
     format,
@@ -220,7 +208,7 @@ function report(
 }
 
 /** `modular2simple modularize INPUT... -o OUT [--force] [--dry-run] [--format json]`. */
-export async function modularizeCommand(args: string[], io: CliOutput): Promise<number> {
+async function modularizeCommand(args: string[], io: CliOutput): Promise<number> {
   const options = parseModularizeArguments(args);
   const { out } = options;
   const files = [...new Set(options.inputs.flatMap(scenarioFiles))];
@@ -315,3 +303,5 @@ export async function modularizeCommand(args: string[], io: CliOutput): Promise<
   }
   return ExitCode.ok;
 }
+
+export const MODULARIZE: CliCommand = { help: MODULARIZE_HELP, run: modularizeCommand };

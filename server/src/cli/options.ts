@@ -6,6 +6,27 @@ import { Limits, ScenarioStore, splitScenarioPath } from '../core/sources';
 import { UsageError } from './common';
 import { storeForInputs } from './inputs';
 
+/** The --help lines of the options every command of the shared set reads, whatever it writes. */
+export const READING_OPTIONS_HELP = `  --scenario-path DIRS      folders searched after the package, before SCENARIO_PATH's own
+                            (separated by ';' or ':')
+  --root DIR                where the search upward from an unpacked folder stops (default: the
+                            working directory, or the input's folder when it lies elsewhere)
+  --schema-version V        the OpenSCENARIO schema files are checked against: auto (each file's
+                            FileHeader, the default), 1.0, 1.1, 1.2, 1.3, or off
+  --max-file-size SIZE      largest scenario file or package entry read (default 32M)
+  --max-unpacked-size SIZE  bytes one run may unpack from packages, all together (default 128M)
+  --max-output-size SIZE    characters of one flattened result (default 8M)
+  --max-depth N             files in one chain of references, nested packages included (default 64)
+  -q, --quiet               print errors only`;
+
+/** The --help line of --simulator. */
+export const SIMULATOR_OPTION_HELP = `  --simulator asam|carla|esmini
+                            also warn about what this simulator does not run (default asam: the standard alone)`;
+
+/** The exit codes of a command that writes a file from its inputs. */
+export const WRITING_EXIT_CODES_HELP = `  Exit codes: 0 written (warnings may have been printed), 1 the input has errors and nothing was written,
+  2 usage, 3 the output could not be written and nothing was changed, 4 internal error.`;
+
 /** The options of flatten, pack, check, stats and -cxm/-cmx. */
 export interface Options {
   positional: string[];

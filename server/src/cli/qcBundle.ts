@@ -1,6 +1,5 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { parseArgs } from 'node:util';
 import { writeFileAtomic } from '../../../common/src/atomic';
 import { Flattener } from '../core/flatten';
 import { Problem, Severity, uniqueProblems } from '../core/problems';
@@ -8,11 +7,11 @@ import { ProblemRule, ruleOf, RuledProblem } from '../core/rules';
 import { displayRef } from '../core/sources';
 import { decodeUtf8 } from '../core/text';
 import { attributeValue, elementAt, escapeAttributeValue, parseXml, XmlDocument, XmlElement } from '../core/xml';
-import { CliOutput, ExitCode, InputError, UsageError, VERSION } from './common';
+import { CliCommand, CliOutput, ExitCode, InputError, parseCommandLine, UsageError, VERSION } from './common';
 import { mainOf, storeForInputs } from './inputs';
 
 /**
- * `modular2simple qc-bundle -c CONFIG.xml [-o OUTPUT_DIR]`: `check` as a checker bundle of ASAM's
+ * `modular2simple qc-bundle -c CONFIG.xml [--out-dir DIR]`: `check` as a checker bundle of ASAM's
  * Quality Checker Framework (asam-ev/qc-framework, doc/manual: file_formats.md, manifest_file.md,
  * writing_user_defined_modules.md). The framework hands a bundle its configuration file (a `Config`
  * with `Param name="InputFile"` and a `CheckerBundle application="modular2simple"`) and an output
@@ -161,23 +160,16 @@ function shellQuoted(text: string): string {
   return /^[\w@%+=:,./-]+$/.test(text) ? text : `'${text.replace(/'/g, `'\\''`)}'`;
 }
 
-/** `modular2simple qc-bundle -c CONFIG [-o DIR]`, or `qc-bundle --manifest`. Exit 0 whenever a result file was written: issues are results, not failures. */
-export async function qcBundleCommand(args: string[], io: CliOutput): Promise<number> {
-  let parsed;
-  try {
-    parsed = parseArgs({
-      args,
-      allowPositionals: true,
-      options: {
-        config: { type: 'string', short: 'c' },
-        'output-dir': { type: 'string', short: 'o' },
-        manifest: { type: 'boolean', default: false },
-      },
-    });
-  } catch (error) {
-    throw new UsageError((error as Error).message);
-  }
-  const { values, positionals } = parsed;
+/** `modular2simple qc-bundle -c CONFIG [--out-dir DIR]`, or `qc-bundle --manifest`. Exit 0 whenever a result file was written: issues are results, not failures. */
+async function qcBundleCommand(args: string[], io: CliOutput): Promise<number> {
+  const { values, positionals } = parseCommandLine(args, {
+    config: { type: 'string', short: 'c' },
+    'out-dir': { type: 'string' },
+    // The framework's own form (the manifest's exec_command passes -o).
+    'output-dir': { type: 'string', short: 'o' },
+    manifest: { type: 'boolean', default: false },
+  });
+  if (values['out-dir'] !== undefined && values['output-dir'] !== undefined) throw new UsageError('use either -o or --out-dir');
   if (values.manifest) {
     io.out(moduleManifest([process.execPath, process.argv[1] ?? 'modular2simple'].map(shellQuoted).join(' ')));
     return ExitCode.ok;
@@ -185,7 +177,7 @@ export async function qcBundleCommand(args: string[], io: CliOutput): Promise<nu
   // The framework's convention also allows the configuration as the only argument.
   const configPath = values.config ?? (positionals.length === 1 ? positionals[0] : undefined);
   if (!configPath || (values.config && positionals.length > 0))
-    throw new UsageError('qc-bundle needs its configuration file: qc-bundle -c CONFIG.xml [-o OUTPUT_DIR]');
+    throw new UsageError('qc-bundle needs its configuration file: qc-bundle -c CONFIG.xml [--out-dir DIR]');
   if (!fs.existsSync(configPath)) throw new InputError(`${configPath}: no such file`);
   const config = readBundleConfig(fs.readFileSync(configPath, 'utf8'), path.resolve(configPath));
   if (!fs.existsSync(config.inputFile)) throw new InputError(`${config.inputFile}: no such file (the configuration's InputFile)`);
@@ -197,7 +189,7 @@ export async function qcBundleCommand(args: string[], io: CliOutput): Promise<nu
     fs.statSync(config.inputFile).isFile() && config.inputFile.toLowerCase().endsWith('.xosc')
       ? parseXml(decodeUtf8(fs.readFileSync(config.inputFile)))
       : undefined;
-  const outputDir = path.resolve(values['output-dir'] ?? '.');
+  const outputDir = path.resolve(values['out-dir'] ?? values['output-dir'] ?? '.');
   fs.mkdirSync(outputDir, { recursive: true });
   const resultPath = path.join(outputDir, config.resultFile);
   // Written whole or not at all, as every output of this project.
@@ -207,3 +199,16 @@ export async function qcBundleCommand(args: string[], io: CliOutput): Promise<nu
   );
   return ExitCode.ok;
 }
+
+export const QC_BUNDLE: CliCommand = {
+  help: `Check as a checker bundle of ASAM's Quality Checker Framework (modular2simple qc-bundle -c CONFIG.xml [--out-dir DIR]):
+  -c, --config CONFIG.xml   the framework's configuration: its InputFile is checked as check does (the schema of the
+                            file's version too); the configuration may also be the only argument
+  --out-dir DIR             the folder the result file (.xqar) is written to (default: the working directory;
+                            -o DIR and --output-dir DIR, the framework's form, too)
+  --manifest                print the module manifest that registers this bundle with the framework
+  Issues found are results, not failures: exit 0 whenever the result file was written.
+  Exit codes: 0 the result file was written, 1 the configuration or its InputFile cannot be used, 2 usage,
+  4 internal error.`,
+  run: qcBundleCommand,
+};

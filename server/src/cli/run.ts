@@ -1,13 +1,12 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { parseArgs } from 'node:util';
 import { writeFileAtomic } from '../../../common/src/atomic';
 import { Flattener } from '../core/flatten';
 import { formatProblem } from '../core/problems';
 import { displayRef, splitScenarioPath } from '../core/sources';
 import { EsminiProblem } from '../esmini/messages';
 import { removeRunFolder, RUN_DEFAULTS, runScenario } from '../esmini/run';
-import { CliOutput } from './common';
+import { CliCommand, CliOutput, ExitCode, InputError, parseCommandLine, UnavailableError, UsageError } from './common';
 import { mainOf, storeForInputs } from './inputs';
 
 export const RUN_HELP = `Run in esmini (modular2simple run INPUT... [options]):
@@ -30,11 +29,6 @@ export function formatEsminiProblem(problem: EsminiProblem, base?: string): stri
   return `${where}: ${problem.severity}: ${problem.message} (esmini)${repeats}${note}`;
 }
 
-function usage(io: CliOutput, message: string): number {
-  io.err(`modular2simple: ${message}\nRun 'modular2simple --help' for usage.`);
-  return 2;
-}
-
 /** Rows of esmini's CSV up to `duration`: header lines kept, later rows dropped. */
 function csvUpTo(text: string, duration: number): string {
   const lines = text.split('\n');
@@ -46,41 +40,26 @@ function csvUpTo(text: string, duration: number): string {
 }
 
 /** `modular2simple run`: flattens each input, runs it in esmini and prints esmini's problems on their source lines. */
-export async function runCommand(args: string[], io: CliOutput): Promise<number> {
-  let parsed;
-  try {
-    parsed = parseArgs({
-      args,
-      allowPositionals: true,
-      options: {
-        duration: { type: 'string' },
-        seed: { type: 'string' },
-        'road-path': { type: 'string', multiple: true },
-        esmini: { type: 'string' },
-        check: { type: 'boolean', default: false },
-        force: { type: 'boolean', default: false },
-        csv: { type: 'string' },
-        'scenario-path': { type: 'string', multiple: true },
-        quiet: { type: 'boolean', short: 'q', default: false },
-      },
-    });
-  } catch (error) {
-    return usage(io, (error as Error).message);
-  }
-  const { values, positionals: inputs } = parsed;
-  if (inputs.length === 0) return usage(io, 'run needs a scenario: a .xosc, a .mosc or an unpacked folder');
+async function runCommand(args: string[], io: CliOutput): Promise<number> {
+  const { values, positionals: inputs } = parseCommandLine(args, {
+    duration: { type: 'string' },
+    seed: { type: 'string' },
+    'road-path': { type: 'string', multiple: true },
+    esmini: { type: 'string' },
+    check: { type: 'boolean', default: false },
+    force: { type: 'boolean', default: false },
+    csv: { type: 'string' },
+    'scenario-path': { type: 'string', multiple: true },
+    quiet: { type: 'boolean', short: 'q', default: false },
+  });
+  if (inputs.length === 0) throw new UsageError('run needs a scenario: a .xosc, a .mosc or an unpacked folder');
   const duration = values.duration === undefined ? RUN_DEFAULTS.duration : Number(values.duration);
   if (!(duration > 0) || !Number.isFinite(duration))
-    return usage(io, `--duration takes a positive number of seconds, not '${values.duration}'`);
+    throw new UsageError(`--duration takes a positive number of seconds, not '${values.duration}'`);
   const seed = values.seed === undefined ? RUN_DEFAULTS.seed : Number(values.seed);
-  if (!Number.isInteger(seed) || seed < 0) return usage(io, `--seed takes a whole number, not '${values.seed}'`);
-  if (values.csv !== undefined && inputs.length > 1) return usage(io, '--csv takes one input');
-  for (const input of inputs) {
-    if (!fs.existsSync(input)) {
-      io.err(`modular2simple: error: ${input}: no such file or folder`);
-      return 1;
-    }
-  }
+  if (!Number.isInteger(seed) || seed < 0) throw new UsageError(`--seed takes a whole number, not '${values.seed}'`);
+  if (values.csv !== undefined && inputs.length > 1) throw new UsageError('--csv takes one input');
+  for (const input of inputs) if (!fs.existsSync(input)) throw new InputError(`${input}: no such file or folder`);
   const roadPath = (values['road-path'] ?? []).flatMap(splitScenarioPath);
   const flattener = new Flattener(storeForInputs((values['scenario-path'] ?? []).flatMap(splitScenarioPath), undefined, inputs));
   let failed = false;
@@ -99,10 +78,7 @@ export async function runCommand(args: string[], io: CliOutput): Promise<number>
         if (problem.severity === 'error' || !values.quiet) io.err(formatProblem(problem, process.cwd()));
       for (const problem of result.problems)
         if (problem.severity === 'error' || !values.quiet) io.err(formatEsminiProblem(problem, process.cwd()));
-      if (result.outcome === 'no-esmini') {
-        io.err(`modular2simple: error: ${result.message}`);
-        return 3;
-      }
+      if (result.outcome === 'no-esmini') throw new UnavailableError(result.message);
       if (result.outcome === 'failed' || result.outcome === 'cancelled') {
         io.err(`${input}: error: ${result.message}`);
         if (result.log) io.err(result.log.split('\n').slice(-15).join('\n'));
@@ -122,6 +98,8 @@ export async function runCommand(args: string[], io: CliOutput): Promise<number>
       removeRunFolder(result);
     }
   }
-  if (failed) return 3;
-  return notRun || (values.check && errors > 0) ? 1 : 0;
+  if (failed) return ExitCode.io;
+  return notRun || (values.check && errors > 0) ? ExitCode.problems : ExitCode.ok;
 }
+
+export const RUN: CliCommand = { help: RUN_HELP, run: runCommand };

@@ -1,11 +1,11 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { libraryStats } from '../core/stats';
-import { CliOutput, ExitCode, InputError, UsageError } from './common';
-import { parseOptions } from './options';
+import { CliCommand, CliOutput, ExitCode, InputError, UsageError } from './common';
+import { parseOptions, READING_OPTIONS_HELP } from './options';
 
 /** `modular2simple stats LIBRARY [--format json]`: lines of code of a library (the paper's Table 1). */
-export async function statsCommand(args: string[], io: CliOutput): Promise<number> {
+async function statsCommand(args: string[], io: CliOutput): Promise<number> {
   const options = parseOptions(args);
   if (options.positional.length !== 1) throw new UsageError('stats takes one library folder');
   const library = options.positional[0];
@@ -32,3 +32,12 @@ export async function statsCommand(args: string[], io: CliOutput): Promise<numbe
   }
   return stats.problems.length > 0 ? ExitCode.problems : ExitCode.ok;
 }
+
+export const STATS: CliCommand = {
+  help: `Lines of code of a library, modular and flattened (the paper's Table 1) (modular2simple stats LIBRARY [--format text|json]):
+  --format text|json        a table (the default) or JSON, on standard output
+${READING_OPTIONS_HELP}
+  Exit codes: 0 done, 1 a scenario of the library could not be flattened or the folder is missing, 2 usage,
+  4 internal error.`,
+  run: statsCommand,
+};

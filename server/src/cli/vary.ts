@@ -1,7 +1,6 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { parseArgs } from 'node:util';
-import type { CliOutput } from './common';
+import { CliCommand, CliOutput, ExitCode, failure, InputError, parseCommandLine, UsageError, wholeNumber } from './common';
 import { isSameFile, writeFileAtomic } from '../../../common/src/atomic';
 import {
   loadVariations,
@@ -31,27 +30,11 @@ export const VARY_HELP = `Concrete scenarios of a ParameterValueDistribution (mo
   main.xosc, an unpacked folder or a .mosc is flattened first (as flatten does), then its values replaced.
   Exit codes: 0 done, 1 the input has errors (nothing written), 2 usage, 3 an output could not be written, 4 internal error.`;
 
-const EXIT = { ok: 0, problems: 1, usage: 2, io: 3, internal: 4 } as const;
 const DEFAULT_MAX_COMBINATIONS = 1_000_000n;
 
 type Output = CliOutput;
 
-class InputProblem extends Error {}
-
 export { readUtf8Exactly } from './scenarioText';
-
-function usage(io: Output, message: string): number {
-  io.err(`modular2simple: ${message}\nRun 'modular2simple --help' for usage.`);
-  return EXIT.usage;
-}
-
-function wholeNumber(text: string | undefined, option: string): bigint | undefined {
-  if (text === undefined) return undefined;
-  if (!/^\d+$/.test(text.trim())) throw new UsageError(`${option} takes a whole number, not '${text}'`);
-  return BigInt(text.trim());
-}
-
-class UsageError extends Error {}
 
 /** N distinct indices below `count`, ascending, by Floyd's algorithm with the project's generator. */
 export function sampleIndices(count: bigint, wanted: bigint, seed: number): bigint[] {
@@ -76,62 +59,49 @@ export function sampleIndices(count: bigint, wanted: bigint, seed: number): bigi
  */
 export async function varyCommand(argv: string[], io: Output, loadScenarioText?: ScenarioTextLoader): Promise<number> {
   try {
-    return await vary(argv, io, loadScenarioText);
+    return await varyScenarios(argv, io, loadScenarioText);
   } catch (error) {
-    if (error instanceof UsageError) return usage(io, error.message);
-    if (error instanceof InputProblem) {
-      io.err(`modular2simple: error: ${error.message}`);
-      return EXIT.problems;
+    // Called by main and by tests: answers its failures itself, as main does.
+    const failed = failure(error);
+    if (failed) {
+      io.err(failed.message);
+      return failed.code;
     }
     io.err(`modular2simple: internal error: ${(error as Error).stack ?? String(error)}\nPlease report this with the input that caused it.`);
-    return EXIT.internal;
+    return ExitCode.internal;
   }
 }
 
-async function vary(argv: string[], io: Output, givenLoader: ScenarioTextLoader | undefined): Promise<number> {
-  let parsed;
-  try {
-    parsed = parseArgs({
-      args: argv,
-      allowPositionals: true,
-      options: {
-        count: { type: 'boolean', default: false },
-        index: { type: 'string' },
-        output: { type: 'string', short: 'o' },
-        'out-dir': { type: 'string' },
-        sample: { type: 'string' },
-        seed: { type: 'string' },
-        'max-combinations': { type: 'string' },
-        'scenario-path': { type: 'string', multiple: true },
-        quiet: { type: 'boolean', short: 'q', default: false },
-        help: { type: 'boolean', short: 'h', default: false },
-      },
-    });
-  } catch (error) {
-    return usage(io, (error as Error).message);
-  }
-  const { values, positionals } = parsed;
-  if (values.help) {
-    io.out(VARY_HELP);
-    return EXIT.ok;
-  }
-  if (positionals.length !== 1) return usage(io, 'vary takes one distribution file');
+async function varyScenarios(argv: string[], io: Output, givenLoader: ScenarioTextLoader | undefined): Promise<number> {
+  const { values, positionals } = parseCommandLine(argv, {
+    count: { type: 'boolean', default: false },
+    index: { type: 'string' },
+    output: { type: 'string', short: 'o' },
+    'out-dir': { type: 'string' },
+    sample: { type: 'string' },
+    seed: { type: 'string' },
+    'max-combinations': { type: 'string' },
+    'scenario-path': { type: 'string', multiple: true },
+    quiet: { type: 'boolean', short: 'q', default: false },
+  });
+  if (positionals.length !== 1) throw new UsageError('vary takes one distribution file');
   const modes = [values.count, values.index !== undefined, values['out-dir'] !== undefined].filter(Boolean).length;
-  if (modes !== 1) return usage(io, 'vary needs exactly one of --count, --index I or --out-dir DIR');
-  if (values.output !== undefined && values.index === undefined) return usage(io, '-o goes with --index I (use --out-dir DIR for many)');
+  if (modes !== 1) throw new UsageError('vary needs exactly one of --count, --index I or --out-dir DIR');
+  if (values.output !== undefined && values.index === undefined)
+    throw new UsageError('-o goes with --index I (use --out-dir DIR for many)');
   if ((values.sample !== undefined || values.seed !== undefined) && values['out-dir'] === undefined)
-    return usage(io, '--sample and --seed go with --out-dir DIR');
-  if (values.seed !== undefined && values.sample === undefined) return usage(io, '--seed goes with --sample N');
+    throw new UsageError('--sample and --seed go with --out-dir DIR');
+  if (values.seed !== undefined && values.sample === undefined) throw new UsageError('--seed goes with --sample N');
   const index = wholeNumber(values.index, '--index');
   const sample = wholeNumber(values.sample, '--sample');
   const seed = values.seed === undefined ? 0 : Number(wholeNumber(values.seed, '--seed'));
   const maxCombinations = wholeNumber(values['max-combinations'], '--max-combinations') ?? DEFAULT_MAX_COMBINATIONS;
-  if (sample === 0n) return usage(io, '--sample takes at least 1');
+  if (sample === 0n) throw new UsageError('--sample takes at least 1');
   if (sample !== undefined && sample > maxCombinations)
-    return usage(io, `--sample ${sample} is more than --max-combinations ${maxCombinations}`);
+    throw new UsageError(`--sample ${sample} is more than --max-combinations ${maxCombinations}`);
 
   const distribution = await readDistributionFile(positionals[0]);
-  if ('problem' in distribution) throw new InputProblem(distribution.problem);
+  if ('problem' in distribution) throw new InputError(distribution.problem);
   const { path: distributionPath, text: distributionText } = distribution;
   const base = process.cwd();
   // The roads and catalogs a self-contained package ScenarioFile holds: written beside each concrete scenario, where it names them.
@@ -145,7 +115,7 @@ async function vary(argv: string[], io: Output, givenLoader: ScenarioTextLoader 
   };
   printProblems();
   const variations = loaded.variations;
-  if (!variations) return EXIT.problems;
+  if (!variations) return ExitCode.problems;
   const where = (offset: number): string =>
     formatVariationProblems([{ file: distributionPath, offset, severity: 'error', message: '' }], loaded.lines, base)[0].replace(
       /: error: $/,
@@ -155,10 +125,10 @@ async function vary(argv: string[], io: Output, givenLoader: ScenarioTextLoader 
   if (values.count) {
     if (!variations.constrained) {
       io.out(variations.count.toString());
-      return EXIT.ok;
+      return ExitCode.ok;
     }
     if (variations.count > maxCombinations)
-      throw new InputProblem(
+      throw new InputError(
         `${where(0)}: ${variations.count} combinations are more than --max-combinations ${maxCombinations}; the scenario's ValueConstraintGroups can only be counted by checking each`,
       );
     let discarded = 0n;
@@ -167,13 +137,13 @@ async function vary(argv: string[], io: Output, givenLoader: ScenarioTextLoader 
     } catch (error) {
       if (!(error instanceof SamplingError)) throw error;
       printProblems([samplingProblem(error, distributionPath)]);
-      return EXIT.problems;
+      return ExitCode.problems;
     }
     const tally = { discarded };
     if (!values.quiet && tally.discarded > 0n)
       io.err(`${tally.discarded} of ${variations.count} combinations break the scenario's ValueConstraintGroups and are discarded`);
     io.out((variations.count - tally.discarded).toString());
-    return EXIT.ok;
+    return ExitCode.ok;
   }
 
   const inputs = [distributionPath, variations.scenarioPath];
@@ -212,13 +182,13 @@ async function vary(argv: string[], io: Output, givenLoader: ScenarioTextLoader 
   };
   if (index !== undefined) {
     if (index >= variations.count)
-      throw new InputProblem(
+      throw new InputError(
         `${where(0)}: index ${index} is out of range: the distribution has ${variations.count} combinations (0..${variations.count - 1n})`,
       );
     const concrete = concreteOrProblem(variations, index, distributionPath, printProblems);
-    if (!concrete) return EXIT.problems;
+    if (!concrete) return ExitCode.problems;
     if ('broken' in concrete)
-      throw new InputProblem(
+      throw new InputError(
         `concrete scenario ${index} is discarded: parameter '${concrete.broken.parameter}' = '${concrete.broken.value}' breaks its ValueConstraintGroups`,
       );
     if (values.output === undefined) {
@@ -227,7 +197,7 @@ async function vary(argv: string[], io: Output, givenLoader: ScenarioTextLoader 
         io.err(
           `${path.relative(base, variations.scenarioPath) || variations.scenarioPath}: warning: the scenario names ${packagedFiles.length} file${packagedFiles.length === 1 ? '' : 's'} stored in the package, which standard output cannot carry; write it with -o`,
         );
-      return EXIT.ok;
+      return ExitCode.ok;
     }
     if (inputs.some((input) => isSameFile(input, values.output as string)))
       throw new UsageError(`-o ${values.output} is an input; it is never overwritten`);
@@ -237,14 +207,14 @@ async function vary(argv: string[], io: Output, givenLoader: ScenarioTextLoader 
       await writeFileAtomic(values.output, text);
     } catch (error) {
       io.err(`modular2simple: cannot write ${values.output}: ${(error as Error).message}`);
-      return EXIT.io;
+      return ExitCode.io;
     }
-    return EXIT.ok;
+    return ExitCode.ok;
   }
 
   const outDir = values['out-dir'] as string;
   if (sample === undefined && variations.count > maxCombinations) {
-    throw new InputProblem(
+    throw new InputError(
       `${where(0)}: ${variations.count} combinations are more than --max-combinations ${maxCombinations}; nothing was written (use --sample N, or raise --max-combinations)`,
     );
   }
@@ -257,7 +227,7 @@ async function vary(argv: string[], io: Output, givenLoader: ScenarioTextLoader 
       } catch (error) {
         if (!(error instanceof SamplingError)) throw error;
         printProblems([samplingProblem(error, distributionPath)]);
-        return EXIT.problems;
+        return ExitCode.problems;
       }
     }
   }
@@ -265,7 +235,7 @@ async function vary(argv: string[], io: Output, givenLoader: ScenarioTextLoader 
     await fs.promises.mkdir(outDir, { recursive: true });
   } catch (error) {
     io.err(`modular2simple: cannot create ${outDir}: ${(error as Error).message}`);
-    return EXIT.io;
+    return ExitCode.io;
   }
   const stem = path.basename(variations.scenarioPath).replace(/\.[^.]*$/, '');
   const width = (variations.count - 1n).toString().length;
@@ -285,7 +255,7 @@ async function vary(argv: string[], io: Output, givenLoader: ScenarioTextLoader 
       await writeFileAtomic(target, text);
     } catch (error) {
       io.err(`modular2simple: cannot write ${target}: ${(error as Error).message} (${written} concrete scenarios were written before it)`);
-      return EXIT.io;
+      return ExitCode.io;
     }
     written++;
   }
@@ -295,7 +265,7 @@ async function vary(argv: string[], io: Output, givenLoader: ScenarioTextLoader 
         (discarded > 0 ? `; ${discarded} discarded by the scenario's ValueConstraintGroups` : '') +
         (sample !== undefined ? ` (a sample of ${chosen.length} of ${variations.count}, seed ${seed})` : ''),
     );
-  return EXIT.ok;
+  return ExitCode.ok;
 }
 
 function enumerate(count: bigint): bigint[] {
@@ -318,3 +288,5 @@ function concreteOrProblem(
     return undefined;
   }
 }
+
+export const VARY: CliCommand = { help: VARY_HELP, run: (args, io) => varyCommand(args, io) };
