@@ -1,6 +1,9 @@
 import * as path from 'node:path';
 import JSZip from 'jszip';
 import { rebasePaths, ResolvedPath } from './flatten/rebase';
+import { ProblemWording } from './diagnostics';
+import { leftOutOfPackageWording, missingFileWording } from './diagnostics/missingFile';
+import { fallbackPackageName, xoscFallbackWording } from './diagnostics/xoscFallback';
 import { applyEdits } from './flatten/edits';
 import { declareUtf8 } from './encoding';
 import { buildModel } from './model';
@@ -352,12 +355,13 @@ async function packFolderInto(
         : ZERO_RANGE;
       const report = (code: ProblemCode, message: string, hint?: string, severity: Problem['severity'] = 'error') =>
         problems.push({ source: ref, range, severity, code, message, hint });
+      const reportWording = ({ code, message, hint, severity }: ProblemWording) => report(code, message, hint, severity);
       const resolution = await store.resolve(reference.fileName, ref);
       if (resolution.kind === 'scenario') inputs.push(resolution.ref);
       if (resolution.kind === 'package') inputs.push(resolution.packageRef, resolution.main);
       const name = normalizeEntryName(reference.fileName);
       if (resolution.kind === 'missing') {
-        report('missing-file', `cannot find '${reference.fileName}'; searched ${resolution.searched.join(', ')}`, resolution.hint);
+        reportWording(missingFileWording(reference.fileName, resolution.searched, undefined, resolution.hint));
         continue;
       }
       if (resolution.kind === 'invalid' || resolution.kind === 'unreadable' || name === undefined) {
@@ -370,12 +374,7 @@ async function packFolderInto(
         continue;
       }
       if (resolution.via === 'scenarioPath' && !options.includeScenarioPath) {
-        report(
-          'missing-file',
-          `'${reference.fileName}' was found through SCENARIO_PATH and is left out of the package`,
-          'pass --include-scenario-path to store it too',
-          'information',
-        );
+        reportWording(leftOutOfPackageWording(reference.fileName));
         continue;
       }
       if (resolution.kind === 'scenario') {
@@ -383,15 +382,8 @@ async function packFolderInto(
         await visit(resolution.ref, name, [...chain, refId(resolution.ref)]);
         continue;
       }
-      const packageName = resolution.fallbackFrom ? `${name.slice(0, -'.xosc'.length)}.mosc` : name;
-      if (resolution.fallbackFrom) {
-        report(
-          'xosc-fallback',
-          `'${resolution.fallbackFrom}' does not exist; the package '${packageName}' is stored for it`,
-          `write scenarioFileName="${packageName}"`,
-          'warning',
-        );
-      }
+      const packageName = resolution.fallbackFrom ? fallbackPackageName(name) : name;
+      if (resolution.fallbackFrom) reportWording(xoscFallbackWording(resolution.fallbackFrom, packageName, 'stored'));
       if (resolution.folder && resolution.packageRef.entries.length === 0) {
         const nestedFolder = resolution.packageRef.disk;
         if (stack.includes(nestedFolder) || nestedFolder === folder) {

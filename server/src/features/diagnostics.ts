@@ -1,6 +1,7 @@
 import { Connection, Diagnostic, DiagnosticRelatedInformation, DiagnosticSeverity, DiagnosticTag } from 'vscode-languageserver/node';
 import { FlatSource, LinkedReference } from '../core/flatten';
 import { Problem, ZERO_RANGE } from '../core/problems';
+import { diagnosticOf } from '../core/diagnostics';
 import { ruleOf } from '../core/rules';
 import { Range } from '../core/text';
 import { resolvedTarget } from '../analysis';
@@ -40,7 +41,7 @@ export function toDiagnostic(problem: Problem, workspace: Workspace): Diagnostic
   };
   if (rule.helpUri) diagnostic.codeDescription = { href: rule.helpUri };
   if (related.length > 0) diagnostic.relatedInformation = related;
-  if (problem.code === 'xosc-fallback' || problem.code === 'schema-deprecated') diagnostic.tags = [DiagnosticTag.Deprecated];
+  if (diagnosticOf(problem.code)?.deprecated || problem.code === 'schema-deprecated') diagnostic.tags = [DiagnosticTag.Deprecated];
   if (problem.code === 'unused-parameter') diagnostic.tags = [DiagnosticTag.Unnecessary];
   return diagnostic;
 }

@@ -1,28 +1,6 @@
 import * as assert from 'node:assert/strict';
-import { TextDocument } from 'vscode-languageserver-textdocument';
-import { FixContext, RelatedPlace } from '../../../server/src/core/diagnostics';
 import { missingKeysInsertion, UNKNOWN_KEY, unknownKeyData, unknownKeyWording } from '../../../server/src/core/diagnostics/unknownKey';
-import { parseXml } from '../../../server/src/core/xml';
-
-const RANGE = { start: { line: 0, character: 1 }, end: { line: 0, character: 4 } };
-
-function context(data: unknown, related?: Partial<RelatedPlace>): FixContext<unknown> {
-  const document = TextDocument.create('file:///main.xosc', 'xml', 0, '<a/>');
-  return {
-    data,
-    document,
-    range: RANGE,
-    parsed: async () => parseXml(document.getText()),
-    related: related && {
-      range: RANGE,
-      sameDocument: false,
-      fileName: 'simple.xosc',
-      editable: async () => true,
-      text: async () => undefined,
-      ...related,
-    },
-  };
-}
+import { fixContext as context, RANGE } from './support';
 
 describe('diagnostics: unknown-key', () => {
   it('words the problem and its hint from what the flattener found', () => {

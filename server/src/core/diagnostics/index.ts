@@ -1,8 +1,11 @@
 import { ProblemCode } from '../problems';
 import { RegisteredDiagnostic } from './definition';
+import { MISSING_FILE } from './missingFile';
 import { NO_DEFAULT } from './noDefault';
+import { UNKNOWN_GROUP } from './unknownGroup';
 import { UNKNOWN_KEY } from './unknownKey';
 import { UNKNOWN_PARAMETER_ATTRIBUTE } from './unknownParameterAttribute';
+import { XOSC_FALLBACK } from './xoscFallback';
 
 export * from './definition';
 export { QC, QC_RULE_DESCRIPTIONS } from './qcRules';
@@ -12,7 +15,7 @@ export type { QcRuleUid, Rule } from './qcRules';
  * Every diagnostic that has its own module (server/src/core/diagnostics/<code>.ts): one entry per code.
  * The codes not listed yet keep their rule in core/rules.ts and their fix in features/fixes/.
  */
-export const DIAGNOSTICS = [UNKNOWN_KEY, NO_DEFAULT, UNKNOWN_PARAMETER_ATTRIBUTE] as const;
+export const DIAGNOSTICS = [MISSING_FILE, XOSC_FALLBACK, UNKNOWN_GROUP, UNKNOWN_KEY, NO_DEFAULT, UNKNOWN_PARAMETER_ATTRIBUTE] as const;
 
 /** The codes whose diagnostic has its own module. */
 export type DefinedCode = (typeof DIAGNOSTICS)[number]['code'];

@@ -1,3 +1,6 @@
+import { missingFileWording } from '../diagnostics/missingFile';
+import { unknownGroupData, unknownGroupWording } from '../diagnostics/unknownGroup';
+import { fallbackPackageName, xoscFallbackWording } from '../diagnostics/xoscFallback';
 import { NO_DEFAULT_LISTED_NOTE, noDefaultWording } from '../diagnostics/noDefault';
 import { UNKNOWN_KEY_LISTED_NOTE, unknownKeyData, UnknownKeyFacts, unknownKeyWording } from '../diagnostics/unknownKey';
 import { overridableAttributes, OverridePlan, planOverrides } from '../keys';
@@ -160,28 +163,13 @@ async function resolveTarget(
   }
   if (resolution.kind === 'missing') {
     const { suggestion } = resolution;
-    const hint = suggestion ? `did you mean '${suggestion}'?` : resolution.hint;
-    const problem = report({
-      start,
-      end,
-      severity: 'error',
-      code: 'missing-file',
-      message: `cannot find '${reference.fileName}'; searched ${resolution.searched.join(', ')}`,
-      hint,
-    });
+    const problem = report({ start, end, ...missingFileWording(reference.fileName, resolution.searched, suggestion, resolution.hint) });
     if (suggestion) problem.data = { suggestion };
     return undefined;
   }
   if (resolution.kind === 'package' && resolution.fallbackFrom) {
-    const packageName = `${resolution.fallbackFrom.slice(0, -'.xosc'.length)}.mosc`;
-    const problem = report({
-      start,
-      end,
-      severity: 'warning',
-      code: 'xosc-fallback',
-      message: `'${resolution.fallbackFrom}' does not exist; the flattened package '${packageName}' is used in its place`,
-      hint: `write scenarioFileName="${packageName}"`,
-    });
+    const packageName = fallbackPackageName(resolution.fallbackFrom);
+    const problem = report({ start, end, ...xoscFallbackWording(resolution.fallbackFrom, packageName, 'used') });
     problem.data = { replacement: packageName };
   }
   const target = resolution.kind === 'package' ? resolution.main : resolution.ref;
@@ -251,17 +239,8 @@ function linkGroup(
   if (!targetGroup) {
     const names = [...new Set(sourceModel.groups.map((group) => group.name))];
     const suggestion = closestMatch(groupReference.name, names);
-    const problem = report({
-      start,
-      end,
-      severity: 'error',
-      code: 'unknown-group',
-      message:
-        `'${reference.fileName}' has no ManeuverGroup named '${groupReference.name}'` +
-        (names.length ? `; it has: ${names.join(', ')}` : '; it has no ManeuverGroup'),
-      hint: suggestion ? `did you mean '${suggestion}'?` : undefined,
-    });
-    problem.data = { ...(suggestion ? { suggestion } : {}), groups: names };
+    const problem = report({ start, end, ...unknownGroupWording(reference.fileName, groupReference.name, names, suggestion) });
+    problem.data = unknownGroupData(names, suggestion);
     return linked;
   }
   linked.target = targetGroup;

@@ -23,10 +23,6 @@ function isMissingAttributes(value: unknown): value is ProblemDataByCode['schema
 
 /** One check per code that carries data and has no module in core/diagnostics/ (whose modules check their own). */
 const OTHER_GUARDS: { [C in Exclude<ProblemCodeWithData, DefinedCode>]: (value: unknown) => value is ProblemDataByCode[C] } = {
-  'xosc-fallback': (value): value is ProblemDataByCode['xosc-fallback'] => isRecord(value) && isString(value.replacement),
-  'missing-file': isSuggestion,
-  'unknown-group': (value): value is ProblemDataByCode['unknown-group'] =>
-    isRecord(value) && isOptionalString(value.suggestion) && isStringList(value.groups),
   'undeclared-parameter': (value): value is ProblemDataByCode['undeclared-parameter'] => isRecord(value) && isString(value.parameter),
   'undeclared-catalog-parameter': (value): value is ProblemDataByCode['undeclared-catalog-parameter'] =>
     isRecord(value) && isString(value.parameter),

@@ -7,8 +7,6 @@ import { schemaMissingElementFix } from './schemaMissingElement';
 import { schemaSuggestionFix } from './schemaSuggestion';
 import { schemaUnknownElementFix } from './schemaUnknownElement';
 import { undeclaredParameterFix } from './undeclaredParameter';
-import { unknownGroupFix } from './unknownGroup';
-import { missingFileFix, xoscFallbackFix } from './xoscFallback';
 
 export type { DiagnosticData } from './data';
 export { diagnosticDataOf, isDiagnosticData } from './data';
@@ -18,9 +16,6 @@ export { missingKeysAction } from './missingKeys';
 /** Every fix: those of the diagnostics' modules (core/diagnostics/), then the fix modules here; a code is handled by at most one of them. */
 export const PROBLEM_FIXES: readonly ProblemFix[] = [
   ...DIAGNOSTICS.filter((definition) => definition.fixes).map(definitionFix),
-  xoscFallbackFix,
-  missingFileFix,
-  unknownGroupFix,
   undeclaredParameterFix,
   lenientValueFix,
   schemaSuggestionFix,
