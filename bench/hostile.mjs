@@ -1,4 +1,4 @@
-// Figures for hostile input (not a timed test): for each bound of the README, the CLI on the largest
+// Figures for hostile input (not a timed test): for each bound of docs/cli.md, the CLI on the largest
 // input that bound lets through or stops, with its time and peak memory. Run `npm run build` first.
 import { spawnSync } from 'node:child_process';
 import { mkdtempSync, rmSync, writeFileSync, mkdirSync } from 'node:fs';

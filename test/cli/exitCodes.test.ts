@@ -15,6 +15,6 @@ describe('cli: messages', () => {
     });
     assert.equal(code, 4);
     assert.match(errors.join('\n'), /internal error: .*a bug/);
-    assert.match(fs.readFileSync(path.join(repoRoot, 'README.md'), 'utf8'), /\| 4 \| internal error/);
+    assert.match(fs.readFileSync(path.join(repoRoot, 'docs', 'cli.md'), 'utf8'), /\| 4 \| internal error/);
   });
 });

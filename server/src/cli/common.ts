@@ -7,7 +7,7 @@ import { displayRef, SourceRef } from '../core/sources';
 
 export const VERSION = '0.1.0';
 
-/** Exit codes of every command, as documented in the README (130: batch interrupted, run it again to finish). */
+/** Exit codes of every command, as documented in docs/cli.md (130: batch interrupted, run it again to finish). */
 export const ExitCode = { ok: 0, problems: 1, usage: 2, io: 3, internal: 4, interrupted: 130 } as const;
 
 /** Where a command prints: its result on `out`, problems and summaries on `err`. */
