@@ -92,8 +92,8 @@ export class CatalogLoader {
   /** The directories a `Directory path` written in `from` stands for, those that exist, in search order. */
   async directories(from: SourceRef, written: string): Promise<CatalogDirectory[]> {
     const found: CatalogDirectory[] = [];
-    const pathText = written.trim().replace(/\\/g, '/');
-    if (!pathText) return found;
+    // An empty path is relative to the file like any other: its own folder, as `.` is (esmini 3.6 ignores the entry, ScenarioReader.cpp RegisterCatalogDirectory).
+    const pathText = written.trim().replace(/\\/g, '/') || '.';
     if (from.entries.length > 0) {
       const packageRef: SourceRef = { disk: from.disk, entries: from.entries.slice(0, -1) };
       const entry = from.entries[from.entries.length - 1];

@@ -221,13 +221,43 @@ export const expressionErrors: SemanticCheck = (context) => {
   return findings;
 };
 
-/** Unknown catalogs, entries and assigned parameters; directories that do not exist. */
+/**
+ * The catalog kinds (`CatalogLocations` children) a CatalogReference may be found in, by where it stands
+ * (ASAM OpenSCENARIO 1.x: a ScenarioObject's entity is a Vehicle, Pedestrian or MiscObject; an
+ * ObjectController's a Controller; and so on). Undefined where the place does not tell.
+ */
+const CATALOG_KINDS_BY_PARENT: Readonly<Record<string, readonly string[]>> = {
+  ScenarioObject: ['VehicleCatalog', 'PedestrianCatalog', 'MiscObjectCatalog'],
+  EntityObject: ['VehicleCatalog', 'PedestrianCatalog', 'MiscObjectCatalog'],
+  CentralSwarmObject: ['VehicleCatalog', 'PedestrianCatalog', 'MiscObjectCatalog'],
+  ObjectController: ['ControllerCatalog'],
+  AssignControllerAction: ['ControllerCatalog'],
+  ManeuverGroup: ['ManeuverCatalog'],
+  EnvironmentAction: ['EnvironmentCatalog'],
+  AssignRouteAction: ['RouteCatalog'],
+  RoutingAction: ['RouteCatalog'],
+  FollowTrajectoryAction: ['TrajectoryCatalog'],
+  TrajectoryRef: ['TrajectoryCatalog'],
+};
+
+/**
+ * Unknown catalogs, entries and assigned parameters; directories that do not exist where a reference
+ * needs them: a catalog kind with a reference that found no catalog. A directory no reference needs is
+ * harmless (CARLA and esmini load such files; a generator writes every kind, some empty or unused).
+ */
 export const catalogReferences: SemanticCheck = (context) => {
   const findings: Finding[] = [];
-  // A directory no reference needs is harmless (CARLA and esmini load such files), so it is only reported when used.
-  const used = context.catalogs.references.length > 0;
+  const neededKinds = new Set<string>();
+  let anyKindNeeded = false;
+  for (const resolution of context.catalogs.references) {
+    if (resolution.catalogName === undefined || resolution.catalogs.length > 0) continue;
+    const kinds = CATALOG_KINDS_BY_PARENT[resolution.reference.element.parent?.name ?? ''];
+    if (kinds) for (const kind of kinds) neededKinds.add(kind);
+    else anyKindNeeded = true;
+  }
   for (const location of context.catalogs.locations) {
-    if (!used || location.path === undefined || location.directories.length > 0) continue;
+    if (!anyKindNeeded && !neededKinds.has(location.location.kind)) continue;
+    if (location.path === undefined || location.directories.length > 0) continue;
     findings.push({
       ...at(location.location.directory, location.location.pathAttribute),
       severity: 'warning',

@@ -1,0 +1,100 @@
+import * as assert from 'node:assert/strict';
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import { runCli } from '../support/fixtures';
+import { temporaryWorkspace } from '../support/workspace';
+
+/**
+ * Issue 27's false alarms, each on a file of the shape real files have (a scenario-generation library's
+ * output, the standard's examples), written here: `check` as a user runs it, its JSON read.
+ */
+
+interface Reported {
+  code: string;
+  severity: string;
+  message: string;
+  line: number;
+}
+
+function check(folder: string, file: string, ...options: string[]): Reported[] {
+  const run = runCli(['check', path.join(folder, file), '--format', 'json', ...options], { cwd: folder, schema: true });
+  assert.ok(run.status === 0 || run.status === 1, run.stderr);
+  const report = JSON.parse(run.stdout) as { problems: Reported[] };
+  return report.problems.map(({ code, severity, message, line }) => ({ code, severity, message, line }));
+}
+
+const VEHICLE = `<Vehicle name="car" vehicleCategory="car"><BoundingBox><Center x="1.4" y="0" z="0.9"/><Dimensions width="2" length="4.5" height="1.5"/></BoundingBox><Performance maxSpeed="50" maxAcceleration="5" maxDeceleration="9"/><Axles><FrontAxle maxSteering="0.5" wheelDiameter="0.6" trackWidth="1.8" positionX="3" positionZ="0.3"/><RearAxle maxSteering="0" wheelDiameter="0.6" trackWidth="1.8" positionX="0" positionZ="0.3"/></Axles><Properties/></Vehicle>`;
+
+/** A schema-valid 1.2 scenario with `locations` as its CatalogLocations and `entity` as Ego's. */
+function scenarioWith(parts: { locations?: string; entity?: string; parameters?: string; header?: string }): string {
+  return `<?xml version="1.0" encoding="UTF-8"?>
+<OpenSCENARIO>
+  ${parts.header ?? '<FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="shape" author="t"/>'}
+  <ParameterDeclarations>${parts.parameters ?? ''}</ParameterDeclarations>
+  <CatalogLocations>${parts.locations ?? ''}</CatalogLocations>
+  <RoadNetwork/>
+  <Entities>
+    <ScenarioObject name="Ego">${parts.entity ?? VEHICLE}</ScenarioObject>
+  </Entities>
+  <Storyboard>
+    <Init><Actions/></Init>
+    <StopTrigger/>
+  </Storyboard>
+</OpenSCENARIO>
+`;
+}
+
+const VEHICLE_CATALOG = `<?xml version="1.0" encoding="UTF-8"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="vehicles" author="t"/>
+  <Catalog name="VehicleCatalog">${VEHICLE}</Catalog>
+</OpenSCENARIO>
+`;
+
+describe('real file shapes: no false alarms (issue 27)', function () {
+  this.timeout(60_000);
+  let folder: string;
+  afterEach(() => fs.rmSync(folder, { recursive: true, force: true }));
+
+  describe('catalog-directory', () => {
+    // What a generator writes: every kind with an empty path (the file's own folder), and Route and
+    // Trajectory catalogs in folders that do not exist, none of which a reference uses.
+    const generated = ['VehicleCatalog', 'PedestrianCatalog', 'MiscObjectCatalog', 'ControllerCatalog', 'EnvironmentCatalog']
+      .map((kind) => `<${kind}><Directory path=""/></${kind}>`)
+      .concat(
+        '<RouteCatalog><Directory path="../Catalogs/Routes"/></RouteCatalog>',
+        '<TrajectoryCatalog><Directory path="missing/trajectories"/></TrajectoryCatalog>',
+      )
+      .join('');
+    const reference = '<CatalogReference catalogName="VehicleCatalog" entryName="car"/>';
+
+    it('empty paths and directories no reference needs are not reported; an empty path finds the catalogs beside the file', () => {
+      folder = temporaryWorkspace({
+        'main.xosc': scenarioWith({ locations: generated, entity: reference }),
+        'VehicleCatalog.xosc': VEHICLE_CATALOG,
+      });
+      assert.deepEqual(check(folder, 'main.xosc'), []);
+    });
+
+    it('a missing directory of the kind an unresolved reference needs is still reported, and only that one', () => {
+      folder = temporaryWorkspace({
+        'main.xosc': scenarioWith({
+          locations: generated.replace(
+            '<VehicleCatalog><Directory path=""/></VehicleCatalog>',
+            '<VehicleCatalog><Directory path="missing/vehicles"/></VehicleCatalog>',
+          ),
+          entity: reference,
+        }),
+      });
+      const problems = check(folder, 'main.xosc');
+      assert.deepEqual(
+        problems.filter((problem) => problem.code === 'catalog-directory').map((problem) => problem.message),
+        ["the VehicleCatalog directory 'missing/vehicles' does not exist (relative to this file, or in SCENARIO_PATH)"],
+      );
+      assert.ok(
+        problems.some((problem) => problem.code === 'unknown-catalog'),
+        JSON.stringify(problems),
+      );
+    });
+  });
+});
