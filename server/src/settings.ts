@@ -2,7 +2,7 @@ import { isSchemaVersion } from './core/schema/model';
 import { SchemaVersionSetting } from './core/schema/version';
 import { splitScenarioPath } from './core/sources';
 import { DEFAULT_FORMAT_OPTIONS } from './core/format';
-import { isSimulator, Simulator } from './core/profiles/simulators';
+import { CarlaRelease, DEFAULT_CARLA_RELEASE, isCarlaRelease, isSimulator, Simulator } from './core/profiles/simulators';
 
 export interface ServerSettings {
   /** Directories searched after SCENARIO_PATH. */
@@ -13,6 +13,8 @@ export interface ServerSettings {
   maxIndexedFileBytes: number;
   /** The simulator whose known gaps are reported as warnings (`asam`: none). */
   simulator: Simulator;
+  /** With `simulator` = `carla`: the ScenarioRunner release whose facts apply (`modular2simple.carla.release`). */
+  carlaRelease: CarlaRelease;
   /** Past this width a formatted start tag puts each attribute on its own line. */
   formatMaxLineWidth: number;
   /** The OpenSCENARIO schema files are checked against (`modular2simple.schema.version`). */
@@ -24,6 +26,7 @@ export const DEFAULT_SETTINGS: ServerSettings = {
   diagnosticsDelay: 5,
   maxIndexedFileBytes: 8 * 1024 * 1024,
   simulator: 'asam',
+  carlaRelease: DEFAULT_CARLA_RELEASE,
   formatMaxLineWidth: DEFAULT_FORMAT_OPTIONS.maxLineWidth,
   schemaVersion: 'auto',
 };
@@ -44,6 +47,8 @@ export function readSettings(value: unknown): ServerSettings {
       ? Math.floor(format.maxLineWidth)
       : DEFAULT_SETTINGS.formatMaxLineWidth;
   const simulator = isSimulator(record.simulator) ? record.simulator : DEFAULT_SETTINGS.simulator;
+  const carla = (record.carla && typeof record.carla === 'object' ? record.carla : {}) as Record<string, unknown>;
+  const carlaRelease = isCarlaRelease(carla.release) ? carla.release : DEFAULT_SETTINGS.carlaRelease;
   const schema = (record.schema && typeof record.schema === 'object' ? record.schema : {}) as Record<string, unknown>;
   const schemaVersion =
     schema.version === 'off' || schema.version === 'auto' || isSchemaVersion(schema.version)
@@ -54,6 +59,7 @@ export function readSettings(value: unknown): ServerSettings {
     diagnosticsDelay: delay,
     maxIndexedFileBytes: DEFAULT_SETTINGS.maxIndexedFileBytes,
     simulator,
+    carlaRelease,
     formatMaxLineWidth: width,
     schemaVersion,
   };

@@ -1,7 +1,7 @@
 import { Flattener, FlatSource, SchemaOptions } from './core/flatten';
 import { SchemaCheckMemory } from './core/schema/problems';
 import { refId, ScenarioStore, SourceRef } from './core/sources';
-import { Simulator } from './core/profiles/simulators';
+import { CarlaRelease, Simulator } from './core/profiles/simulators';
 import { SERVER_MEMOS } from './database';
 
 /** Heap bytes a read source takes per character of its text, about (its parse tree, models and evaluated values). */
@@ -106,8 +106,9 @@ export class ReusingFlattener extends Flattener {
     schemaChecks: SchemaCheckMemory,
     /** Told of each file read on behalf of another (the first of `stack`), before the read finishes. */
     private readonly noteRead: (reader: string, id: string) => void,
+    carlaRelease: CarlaRelease,
   ) {
-    super(store, simulator, schema, schemaChecks);
+    super(store, simulator, schema, schemaChecks, carlaRelease);
   }
 
   override source(ref: SourceRef, stack: SourceRef[]): Promise<FlatSource> {

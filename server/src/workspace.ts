@@ -253,6 +253,7 @@ export class Workspace {
         { version: this.settings.schemaVersion },
         this.schemaChecks,
         (reader, id) => this.noteRead(reader, id),
+        this.settings.carlaRelease,
       );
       this.flattenerGeneration = this.generation;
     }

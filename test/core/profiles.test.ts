@@ -65,55 +65,75 @@ describe('simulator profiles', () => {
     const carla = messages('carla', text);
     assert.ok(
       carla.some((message) =>
-        /^CARLA ScenarioRunner accepts only OpenSCENARIO 1\.0; this file states 1\.1 \(srunner\/scenarioconfigs\/openscenario_configuration\.py\)$/.test(
+        /^CARLA ScenarioRunner accepts only OpenSCENARIO 1\.0; this file states 1\.1 \(srunner\/scenarioconfigs\/openscenario_configuration\.py:105\)$/.test(
           message,
         ),
       ),
       carla.join('\n'),
     );
     assert.ok(
-      carla.some((message) => /^CARLA ScenarioRunner does not support VisibilityAction.*\(Docs\/openscenario_support\.md\)$/.test(message)),
+      carla.some((message) =>
+        /^CARLA ScenarioRunner does not support VisibilityAction in a Story.*\(srunner\/tools\/openscenario_parser\.py:1454\)$/.test(
+          message,
+        ),
+      ),
       carla.join('\n'),
     );
     assert.deepEqual(messages('asam', text), []);
     assert.deepEqual(messages('carla', scenarioText('0', '', LANE_CHANGE)), []);
   });
 
-  it('carla reports the finding at the source position: the revMinor value and the action tag', () => {
+  it('carla reports the finding at the source position (the revMinor value, the action tag), as an error with its one-edit fix', () => {
     const text = scenarioText('1', '', VISIBILITY);
     const document = parseXml(text);
     const findings = simulatorFindings('carla', document, 'scenario.xosc');
     const version = findings.find((finding) => finding.attribute?.name === 'revMinor');
     assert.ok(version?.attribute);
     assert.equal(text.slice(version.attribute.valueStart, version.attribute.valueEnd), '1');
-    assert.ok(findings.some((finding) => finding.element.name === 'VisibilityAction'));
+    assert.equal(version.severity, 'error');
+    assert.equal(version.suggestion, '0');
+    const visibility = findings.find((finding) => finding.element.name === 'VisibilityAction');
+    assert.equal(visibility?.severity, 'error');
+  });
+
+  it('carla: a route action is an error under 0.9.16 (the ChangeActorWaypoints crash) and nothing under 0.9.15', () => {
+    const acquire =
+      '<PrivateAction><RoutingAction><AcquirePositionAction><Position><WorldPosition x="1" y="2"/></Position></AcquirePositionAction></RoutingAction></PrivateAction>';
+    const text = scenarioText('0', '', acquire);
+    const latest = simulatorFindings('carla', parseXml(text), 'scenario.xosc', '0.9.16');
+    assert.deepEqual(
+      latest.map((finding) => [finding.severity, finding.element.name]),
+      [['error', 'AcquirePositionAction']],
+    );
+    assert.match(latest[0].message, /atomic_behaviors\.py:773/);
+    assert.deepEqual(simulatorFindings('carla', parseXml(text), 'scenario.xosc', '0.9.15'), []);
   });
 
   it('carla knows where an action may stand: a lane change runs in a Story, not in the Init', () => {
     const init = `<Private entityRef="ego">${LANE_CHANGE}</Private>`;
     const inInit = messages('carla', scenarioText('0', init, ''));
-    assert.deepEqual(inInit, [
-      'CARLA ScenarioRunner does not support LaneChangeAction in the Init, only in a Story (Docs/openscenario_support.md)',
-    ]);
+    assert.equal(inInit.length, 1);
+    assert.match(
+      inInit[0],
+      /^CARLA ScenarioRunner ignores LaneChangeAction in the Init: the Init runs Speed, .*\(srunner\/scenarios\/open_scenario\.py:263-348\)$/,
+    );
     assert.deepEqual(messages('carla', scenarioText('0', '', LANE_CHANGE)), []);
   });
 
-  it('carla flags ${...} expressions and unsupported values, but not $parameters it resolves', () => {
-    const story = `<PrivateAction><LongitudinalAction><SpeedAction>
-      <SpeedActionDynamics dynamicsShape="step" value="\${$duration * 2}" dynamicsDimension="time"/>
-      <SpeedActionTarget><AbsoluteTargetSpeed value="$speed"/></SpeedActionTarget>
-    </SpeedAction></LongitudinalAction></PrivateAction>
-    <PrivateAction><LateralAction><LaneChangeAction>
+  it('carla flags values it does not run, but not $parameters it resolves', () => {
+    const story = `<PrivateAction><LateralAction><LaneChangeAction>
       <LaneChangeActionDynamics dynamicsShape="$shape" value="2" dynamicsDimension="time"/>
       <LaneChangeTarget><RelativeTargetLane entityRef="ego" value="1"/></LaneChangeTarget>
     </LaneChangeAction></LateralAction></PrivateAction>`;
-    const found = messages('carla', scenarioText('0', '', story));
-    assert.deepEqual(found, [
-      'CARLA ScenarioRunner does not evaluate ${...} expressions: value="${$duration * 2}" is read as text (srunner/tools/openscenario_parser.py)',
-    ]);
-    const sinusoidal = messages('carla', scenarioText('0', '', LANE_CHANGE.replace('"linear"', '"sinusoidal"')));
+    assert.deepEqual(messages('carla', scenarioText('0', '', story)), []);
+    const sinusoidal = simulatorFindings(
+      'carla',
+      parseXml(scenarioText('0', '', LANE_CHANGE.replace('"linear"', '"sinusoidal"'))),
+      'a.xosc',
+    );
     assert.equal(sinusoidal.length, 1);
-    assert.match(sinusoidal[0], /dynamicsShape="sinusoidal" on LaneChangeActionDynamics/);
+    assert.match(sinusoidal[0].message, /dynamicsShape="sinusoidal" on LaneChangeActionDynamics/);
+    assert.equal(sinusoidal[0].severity, 'warning');
   });
 
   it('carla reads catalogs only from files named <Type>Catalog.xosc; the version of a catalog is not checked', () => {
@@ -122,7 +142,7 @@ describe('simulator profiles', () => {
     assert.deepEqual(messages('carla', catalog, 'VehicleCatalog.xosc'), []);
     const misnamed = messages('carla', catalog, 'Cars.xosc');
     assert.deepEqual(misnamed, [
-      'CARLA ScenarioRunner reads a catalog of Vehicle entries only from a file named VehicleCatalog.xosc in the catalog directory; this file is Cars.xosc (srunner/scenarioconfigs/openscenario_configuration.py)',
+      'CARLA ScenarioRunner reads a catalog of Vehicle entries only from a file named VehicleCatalog.xosc in the catalog directory; this file is Cars.xosc (srunner/scenarioconfigs/openscenario_configuration.py:108-144)',
     ]);
     assert.deepEqual(messages('esmini', catalog, 'Cars.xosc'), []);
   });
@@ -165,7 +185,8 @@ describe('simulator profiles', () => {
     );
     const root = temporaryWorkspace({ 'simple.xosc': simple, 'main.xosc': main });
     const flattener = new Flattener(new ScenarioStore({ scenarioPath: [], root }), 'carla');
-    const result = await flattener.flatten(diskRef(path.join(root, 'main.xosc')));
+    // Forced: the scenario has no road, which ScenarioRunner refuses (an error that blocks a flatten otherwise).
+    const result = await flattener.flatten(diskRef(path.join(root, 'main.xosc')), { force: true });
     assert.ok(result.text, JSON.stringify(result.problems.map((problem) => problem.message)));
     const problems = result.problems.filter((problem) => problem.code === 'simulator');
     assert.equal(
@@ -178,7 +199,7 @@ describe('simulator profiles', () => {
     assert.equal(path.basename(visibility.source.disk), 'simple.xosc');
     const line = simple.split('\n').findIndex((text) => text.includes('<VisibilityAction'));
     assert.equal(visibility.range.start.line, line);
-    assert.equal(visibility.severity, 'warning');
+    assert.equal(visibility.severity, 'error');
     const standard = await new Flattener(new ScenarioStore({ scenarioPath: [], root })).flatten(diskRef(path.join(root, 'main.xosc')));
     assert.deepEqual(
       standard.problems.filter((problem) => problem.code === 'simulator'),
@@ -199,6 +220,9 @@ describe('simulator profiles', () => {
     });
     const result = await new Flattener(new ScenarioStore({ scenarioPath: [], root }), 'carla').flatten(
       diskRef(path.join(root, 'main.xosc')),
+      {
+        force: true,
+      },
     );
     assert.ok(result.text, JSON.stringify(result.problems.map((problem) => problem.message)));
     const shape = result.problems.filter((problem) => problem.code === 'simulator' && /dynamicsShape/.test(problem.message));
@@ -233,7 +257,8 @@ describe('simulator profiles on the corpus files each simulator runs', function 
       assert.ok(files.length >= 20, `found only ${files.length} files`);
       const found: string[] = [];
       for (const file of files) {
-        for (const finding of simulatorFindings(simulator, parseXml(fs.readFileSync(file, 'utf8')), path.basename(file))) {
+        // 0.9.15: the release before the route-action regression, which two of CARLA's examples hit in 0.9.16.
+        for (const finding of simulatorFindings(simulator, parseXml(fs.readFileSync(file, 'utf8')), path.basename(file), '0.9.15')) {
           found.push(`${path.relative(corpus, file)}: ${finding.message}`);
         }
       }
@@ -244,21 +269,41 @@ describe('simulator profiles on the corpus files each simulator runs', function 
     });
   }
 
-  it('carla warns about nothing in the modular library written for CARLA, flattened as CARLA gets it', async function () {
+  it('carla 0.9.16 finds the route-action crash in two of its own examples, and nothing else', () => {
+    const found = walk(path.join(corpus, 'scenario_runner')).flatMap((file) =>
+      simulatorFindings('carla', parseXml(fs.readFileSync(file, 'utf8')), path.basename(file)).map(
+        (finding) => `${path.basename(file)}: ${finding.severity} ${finding.element.name}`,
+      ),
+    );
+    assert.deepEqual(found, [
+      'IntersectionCollisionAvoidance.xosc: error AcquirePositionAction',
+      'SyncArrivalIntersection.xosc: error AcquirePositionAction',
+    ]);
+  });
+
+  it('carla reports no error in the modular library written for CARLA 0.9.15, flattened as CARLA gets it, and the route-action crash under 0.9.16', async function () {
     const library = path.join(sharedDir, 'corpus', 'modular2simple', 'library');
     const mains = fs
       .readdirSync(library)
       .filter((name) => name.startsWith('modular_'))
       .map((name) => path.join(library, name, 'main.xosc'));
     assert.ok(mains.length >= 30);
-    const flattener = new Flattener(new ScenarioStore({ scenarioPath: [library], root: library }), 'carla');
+    const store = new ScenarioStore({ scenarioPath: [library], root: library });
+    const older = new Flattener(store, 'carla', undefined, undefined, '0.9.15');
+    const latest = new Flattener(store, 'carla');
     for (const main of mains) {
-      const result = await flattener.flatten(diskRef(main));
+      const result = await older.flatten(diskRef(main));
       assert.ok(result.text, main);
       assert.deepEqual(
-        result.problems.filter((problem) => problem.code === 'simulator').map((problem) => problem.message),
+        result.problems.filter((problem) => problem.severity === 'error').map((problem) => problem.message),
         [],
         main,
+      );
+      const crashes = (await latest.flatten(diskRef(main))).problems.filter((problem) => problem.severity === 'error');
+      assert.ok(crashes.length > 0, main);
+      assert.ok(
+        crashes.every((problem) => /does not support (AcquirePositionAction|AssignRouteAction): .*ab5996d7/.test(problem.message)),
+        crashes.map((problem) => problem.message).join('\n'),
       );
     }
   });
@@ -269,6 +314,6 @@ describe('simulator profiles on the corpus files each simulator runs', function 
       simulatorFindings('carla', parseXml(fs.readFileSync(file, 'utf8')), path.basename(file)).map((finding) => finding.message),
     );
     assert.ok(messages.some((message) => /accepts only OpenSCENARIO 1\.0; this file states 1\.[123]/.test(message)));
-    assert.ok(messages.some((message) => /does not evaluate \$\{\.\.\.\} expressions/.test(message)));
+    assert.ok(messages.some((message) => /does not support RoutePosition/.test(message)));
   });
 });

@@ -35,18 +35,21 @@ describe('simulator profile in the language server', function () {
     await client.stop();
   });
 
-  it('publishes the carla findings as warnings at their source positions', async () => {
+  it('publishes what CARLA refuses as errors and what it runs otherwise as warnings, at their source positions', async () => {
     const diagnostics = await client.diagnosticsOf(uri, (list) => list.some((diagnostic) => problemCodeOf(diagnostic) === 'simulator'));
     const simulator = diagnostics.filter((diagnostic) => problemCodeOf(diagnostic) === 'simulator');
-    assert.ok(simulator.every((diagnostic) => diagnostic.severity === DiagnosticSeverity.Warning));
     const version = simulator.find((diagnostic) =>
       /accepts only OpenSCENARIO 1\.0; this file states 1\.1/.test(String(diagnostic.message)),
     );
     assert.ok(version);
+    assert.equal(version.severity, DiagnosticSeverity.Error);
+    const road = simulator.find((diagnostic) => /names no LogicFile/.test(String(diagnostic.message)));
+    assert.equal(road?.severity, DiagnosticSeverity.Error);
     assert.equal(version.range.start.line, 2);
     assert.equal(SCENARIO.split('\n')[2].slice(version.range.start.character, version.range.end.character), '1');
     const action = simulator.find((diagnostic) => /does not support VisibilityAction/.test(String(diagnostic.message)));
     assert.equal(action?.range.start.line, 9);
+    assert.equal(action?.severity, DiagnosticSeverity.Error);
   });
 
   it('drops them when the setting goes back to asam', async () => {

@@ -93,7 +93,7 @@ async function checkCommand(args: string[], io: CliOutput): Promise<number> {
   const found: Problem[] = [];
   for (const file of files) {
     // A flattener per file holds one file's trees at a time (issue 18): a folder check's memory stays that of its largest file; catalogs are still modelled once (core/semantics/catalogs.ts).
-    const flattener = new Flattener(store, options.simulator, { version: options.schemaVersion });
+    const flattener = new Flattener(store, options.simulator, { version: options.schemaVersion }, undefined, options.carlaRelease);
     const result = await flattener.flatten(mainOf(file));
     // A copy with strings of its own: a message cut from a file's text would keep the whole text alive until the report.
     for (const problem of result.problems) found.push(structuredClone(problem));

@@ -11,7 +11,7 @@ import { makeStore, Options, parseOptions, READING_OPTIONS_HELP, SIMULATOR_OPTIO
 async function flattenInputs(inputs: string[], outputs: string[] | undefined, options: Options, io: CliOutput): Promise<number> {
   for (const input of inputs) checkInputExists(input);
   const store = makeStore(options, inputs);
-  const flattener = new Flattener(store, options.simulator, { version: options.schemaVersion });
+  const flattener = new Flattener(store, options.simulator, { version: options.schemaVersion }, undefined, options.carlaRelease);
   const results = [];
   let problems: Problem[] = [];
   for (const [index, input] of inputs.entries()) {

@@ -1,7 +1,15 @@
 import { parseArgs } from 'node:util';
 import { isSchemaVersion, SCHEMA_VERSIONS } from '../core/schema/model';
 import { SchemaVersionSetting } from '../core/schema/version';
-import { isSimulator, Simulator, SIMULATORS } from '../core/profiles/simulators';
+import {
+  CARLA_RELEASES,
+  CarlaRelease,
+  DEFAULT_CARLA_RELEASE,
+  isCarlaRelease,
+  isSimulator,
+  Simulator,
+  SIMULATORS,
+} from '../core/profiles/simulators';
 import { Limits, ScenarioStore, splitScenarioPath } from '../core/sources';
 import { UsageError } from './common';
 import { storeForInputs } from './inputs';
@@ -21,7 +29,9 @@ export const READING_OPTIONS_HELP = `  --scenario-path DIRS      folders searche
 
 /** The --help line of --simulator. */
 export const SIMULATOR_OPTION_HELP = `  --simulator asam|carla|esmini
-                            also warn about what this simulator does not run (default asam: the standard alone)`;
+                            also report what this simulator does not run: an error where it refuses the
+                            scenario, a warning where it runs it otherwise (default asam: the standard alone)
+  --carla 0.9.15|0.9.16     with --simulator carla: the ScenarioRunner release (default 0.9.16)`;
 
 /** The exit codes of a command that writes a file from its inputs. */
 export const WRITING_EXIT_CODES_HELP = `  Exit codes: 0 written (warnings may have been printed), 1 the input has errors and nothing was written,
@@ -40,6 +50,8 @@ export interface Options {
   format: 'text' | 'json' | 'sarif';
   quiet: boolean;
   simulator: Simulator;
+  /** With --simulator carla: the ScenarioRunner release whose facts apply (--carla). */
+  carlaRelease: CarlaRelease;
   schemaVersion: SchemaVersionSetting | 'off';
   limits: Partial<Limits>;
 }
@@ -58,6 +70,7 @@ const SHARED_OPTIONS = {
   'self-contained': { type: 'boolean' },
   format: { type: 'string' },
   simulator: { type: 'string' },
+  carla: { type: 'string' },
   'schema-version': { type: 'string' },
   quiet: { type: 'boolean', short: 'q' },
   'max-file-size': { type: 'string' },
@@ -138,6 +151,7 @@ export function parseOptions(args: string[]): Options {
     format: 'text',
     quiet: false,
     simulator: 'asam',
+    carlaRelease: DEFAULT_CARLA_RELEASE,
     schemaVersion: 'auto',
     limits: {},
   };
@@ -192,6 +206,12 @@ export function parseOptions(args: string[]): Options {
         const simulator = take();
         if (!isSimulator(simulator)) throw new UsageError(`--simulator takes ${SIMULATORS.join(', ')}, not '${simulator}'`);
         options.simulator = simulator;
+        break;
+      }
+      case 'carla': {
+        const release = take();
+        if (!isCarlaRelease(release)) throw new UsageError(`--carla takes ${CARLA_RELEASES.join(', ')}, not '${release}'`);
+        options.carlaRelease = release;
         break;
       }
       case 'schema-version': {

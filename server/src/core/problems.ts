@@ -172,6 +172,16 @@ export interface MissingElementsData {
   insertAt?: string;
 }
 
+/**
+ * What answers a simulator finding: the text to write at its range where one edit does it, a catalog file
+ * to rename (absolute paths), and whether the export for CARLA maps it.
+ */
+export interface SimulatorFixData {
+  suggestion?: string;
+  rename?: { from: string; to: string };
+  exportMaps?: boolean;
+}
+
 /** The data each problem code carries (where it carries any). */
 export interface ProblemDataByCode {
   'unknown-key': SuggestionData | RelatedReplacementData;
@@ -197,6 +207,7 @@ export interface ProblemDataByCode {
   'schema-version': SuggestionData;
   'schema-missing-attribute': MissingAttributesData;
   'schema-missing-element': MissingElementsData;
+  simulator: SimulatorFixData;
 }
 
 export type ProblemCodeWithData = keyof ProblemDataByCode;

@@ -58,7 +58,13 @@ export async function refOf(workspace: Workspace, uri: unknown): Promise<SourceR
 export async function flattenToText(workspace: Workspace, uri: unknown, options: unknown): Promise<FlattenTextResult> {
   const ref = await refOf(workspace, uri);
   // The preview shows the flattened text even when it breaks the schema: the editor's diagnostics say where.
-  const result = await new Flattener(workspace.store, workspace.settings.simulator, { version: 'off' }).flatten(ref, {
+  const result = await new Flattener(
+    workspace.store,
+    workspace.settings.simulator,
+    { version: 'off' },
+    undefined,
+    workspace.settings.carlaRelease,
+  ).flatten(ref, {
     force: forceOf(options),
   });
   return { text: result.text ?? null, problems: result.problems.map((problem) => summarize(workspace, problem)) };
@@ -82,10 +88,13 @@ export async function flattenToFile(workspace: Workspace, uri: unknown, outputPa
       needsConfirmation: 'outsideWorkspace',
     };
   }
-  const result = await new Flattener(workspace.store, workspace.settings.simulator, { version: workspace.settings.schemaVersion }).flatten(
-    ref,
-    { force: forceOf(options), outputPath: output },
-  );
+  const result = await new Flattener(
+    workspace.store,
+    workspace.settings.simulator,
+    { version: workspace.settings.schemaVersion },
+    undefined,
+    workspace.settings.carlaRelease,
+  ).flatten(ref, { force: forceOf(options), outputPath: output });
   const problems = result.problems.map((problem) => summarize(workspace, problem));
   const input = result.source.dependencies.find((dependency) => dependency.disk === output || isSameFile(dependency.disk, output));
   if (input)

@@ -2,8 +2,9 @@ import * as path from 'node:path';
 import { unknownParameterAttributeWording } from '../diagnostics/unknownParameterAttribute';
 import { PARAMETER_ATTRIBUTES, ScenarioModel } from '../model';
 import { Problem, ProblemCode, ZERO_RANGE } from '../problems';
-import { Simulator } from '../profiles/simulators';
+import { CarlaRelease, Simulator } from '../profiles/simulators';
 import {
+  carlaSemantics,
   CatalogLoader,
   Evaluator,
   Finding,
@@ -126,6 +127,7 @@ export function entityProblems(source: FlatSource): Problem[] {
 export interface OutputCheckContext {
   readonly catalogs: CatalogLoader;
   readonly simulator: Simulator;
+  readonly carlaRelease: CarlaRelease;
 }
 
 /**
@@ -137,8 +139,13 @@ export async function checkOutput(context: OutputCheckContext, source: FlatSourc
   if (!source.model || !source.original || source.model === source.original) return [];
   const model = semanticModelOf(source.model.document);
   const evaluator = new Evaluator(model, undefined, readingOf(context.simulator));
-  const catalogs = await context.catalogs.resolve({ disk: path.join(mainFolder, 'flattened.xosc'), entries: [] }, model, evaluator);
-  const findings = runChecks({ ref: source.ref, model, evaluator, catalogs, modular: false, simulator: context.simulator }, OUTPUT_CHECKS);
+  const outputRef = { disk: path.join(mainFolder, 'flattened.xosc'), entries: [] };
+  const catalogs = await context.catalogs.resolve(outputRef, model, evaluator);
+  const carla = context.simulator === 'carla' ? await carlaSemantics(context.catalogs, outputRef, model, context.carlaRelease) : {};
+  const findings = runChecks(
+    { ref: source.ref, model, evaluator, catalogs, modular: false, simulator: context.simulator, ...carla },
+    OUTPUT_CHECKS,
+  );
   // The main file's own catalog locations are written as they are, relative to it; its own check covers them.
   const carried = (element: XmlElement) =>
     [...source.insertions, ...source.additions].some((region) => element.start >= region.start && element.end <= region.end);

@@ -2,7 +2,7 @@ import * as path from 'node:path';
 import { declareUtf8 } from '../encoding';
 import { buildModel, readModel, ScenarioModel } from '../model';
 import { Problem, uniqueProblems } from '../problems';
-import { Simulator } from '../profiles/simulators';
+import { CarlaRelease, DEFAULT_CARLA_RELEASE, Simulator } from '../profiles/simulators';
 import { parameterValueProblems } from '../semantics/parameterValues';
 import { SchemaCheckMemory, schemaProblems } from '../schema/problems';
 import { analyzeDocument, CatalogLoader, semanticProblems } from '../semantics';
@@ -54,6 +54,8 @@ export class Flattener {
     readonly schema: SchemaOptions = { version: 'off' },
     /** The last schema check of each file, for a quick check again after an edit inside one value (a workspace passes its own to each generation). */
     readonly schemaChecks: SchemaCheckMemory = new SchemaCheckMemory(),
+    /** With `simulator` = `carla`: the ScenarioRunner release whose facts apply. */
+    readonly carlaRelease: CarlaRelease = DEFAULT_CARLA_RELEASE,
   ) {
     this.catalogs = new CatalogLoader(store);
   }
@@ -185,7 +187,7 @@ export class Flattener {
     result.original = model;
     checkDeclarations(result, model);
     if (document.root) {
-      const semantics = await analyzeDocument(ref, document, this.catalogs, model.references.length > 0, this.simulator);
+      const semantics = await analyzeDocument(ref, document, this.catalogs, model.references.length > 0, this.simulator, this.carlaRelease);
       result.semantics = semantics;
       result.problems.push(...semanticProblems(semantics));
       // The schema's attribute types, for the values parameters give them.

@@ -1,87 +1,293 @@
+import { CarlaRelease } from './simulators';
 import { SimulatorProfile } from './facts';
 
-// Facts read from carla-simulator/scenario_runner at revision 94ff3b8af752bad2b9d464ad5105868906aa34c0:
-// Docs/openscenario_support.md (support tables) and the code that runs a scenario
-// (srunner/tools/openscenario_parser.py, srunner/scenarios/open_scenario.py,
-// srunner/scenarioconfigs/openscenario_configuration.py). Where the code runs more than the table
-// says (EnvironmentAction and SynchronizeAction in a Story; LaneOffsetAction and routing actions in
-// Init), the code is taken as the fact, so that working scenarios get no warning.
-const DOC = 'Docs/openscenario_support.md';
+/*
+ * What CARLA's ScenarioRunner does with OpenSCENARIO, read from carla-simulator/scenario_runner at
+ * 94ff3b8a (the 0.9.16 release) and checked by loading files through its own loader offline
+ * (../shared/carla/FACTS.md, ../shared/carla/check.py). Every fact names the file and line that show it;
+ * where the code and Docs/openscenario_support.md disagree the code is the fact. What ScenarioRunner refuses
+ * to load or to build is an error (SPEC 12: the scenario means nothing there); what it runs otherwise
+ * than written is a warning.
+ */
 const PARSER = 'srunner/tools/openscenario_parser.py';
 const RUNNER = 'srunner/scenarios/open_scenario.py';
 const CONFIGURATION = 'srunner/scenarioconfigs/openscenario_configuration.py';
+const ATOMICS = 'srunner/scenariomanager/scenarioatomics/atomic_behaviors.py';
+const INIT_NOTE =
+  'the Init runs Speed, Teleport, Controller, LaneOffset, LateralDistance, routing and trajectory actions, the first EnvironmentAction, ParameterActions and entity actions only';
 
 export const CARLA_PROFILE: SimulatorProfile = {
   simulator: 'carla',
   name: 'CARLA ScenarioRunner',
   repository: 'carla-simulator/scenario_runner',
   revision: '94ff3b8af752bad2b9d464ad5105868906aa34c0',
-  versions: { revMajor: '1', revMinor: '0', source: CONFIGURATION },
+  versions: { revMajor: '1', revMinor: '0', source: `${CONFIGURATION}:105`, severity: 'error' },
   elements: [
+    // Refused while the scenario is built: the file fails to load in ScenarioRunner.
     {
       element: 'TrafficAction',
       parent: 'GlobalAction',
       support: 'unsupported',
-      source: PARSER,
-      note: 'global traffic actions raise "Global actions are not yet supported"',
+      severity: 'error',
+      in: 'story',
+      source: `${PARSER}:1296`,
+      note: 'it raises "Global actions are not yet supported"',
     },
-    { element: 'TrafficSignalStateAction', support: 'unsupported', places: { init: false, story: true }, source: DOC },
-    { element: 'TrafficSignalControllerAction', support: 'unsupported', places: { init: false, story: true }, source: DOC },
-    { element: 'CustomCommandAction', support: 'unsupported', places: { init: false, story: true }, source: DOC },
-    { element: 'ActivateControllerAction', support: 'unsupported', places: { init: false, story: true }, source: DOC },
-    { element: 'LaneChangeAction', support: 'unsupported', places: { init: false, story: true }, source: DOC },
-    { element: 'LongitudinalDistanceAction', support: 'unsupported', places: { init: false, story: true }, source: DOC },
-    { element: 'SynchronizeAction', support: 'unsupported', places: { init: false, story: true }, source: RUNNER },
-    { element: 'VisibilityAction', support: 'unsupported', source: DOC, note: 'it raises "Visibility actions are not yet supported"' },
+    {
+      element: 'VisibilityAction',
+      support: 'unsupported',
+      severity: 'error',
+      in: 'story',
+      source: `${PARSER}:1454`,
+      note: 'it raises "Visibility actions are not yet supported"',
+    },
     {
       element: 'AbsoluteTargetLane',
       parent: 'LaneChangeTarget',
       support: 'unsupported',
-      source: DOC,
-      note: 'lane changes are relative to the actor itself (RelativeTargetLane)',
+      severity: 'error',
+      source: `${PARSER}:1380-1383`,
+      note: 'a lane change reads only RelativeTargetLane, and crashes without one',
     },
-    { element: 'Clothoid', parent: 'Shape', support: 'unsupported', source: PARSER, note: 'trajectories are followed as polylines only' },
-    { element: 'Nurbs', parent: 'Shape', support: 'unsupported', source: PARSER, note: 'trajectories are followed as polylines only' },
-    { element: 'RoutePosition', support: 'unsupported', source: DOC, note: 'it raises "Route positions are not yet supported"' },
-    { element: 'UserDefinedValueCondition', support: 'unsupported', source: DOC },
-    { element: 'EntitySelection', support: 'ignored', source: DOC },
-    { element: 'ObjectController', support: 'ignored', source: DOC },
+    {
+      element: 'Clothoid',
+      parent: 'Shape',
+      support: 'unsupported',
+      severity: 'error',
+      source: `${PARSER}:622-623`,
+      note: 'trajectories are polylines only',
+    },
+    {
+      element: 'Nurbs',
+      parent: 'Shape',
+      support: 'unsupported',
+      severity: 'error',
+      source: `${PARSER}:624-625`,
+      note: 'trajectories are polylines only',
+    },
+    {
+      element: 'RoutePosition',
+      support: 'unsupported',
+      severity: 'error',
+      source: `${PARSER}:859-860`,
+      note: 'it raises "Route positions are not yet supported"',
+    },
+    {
+      element: 'UserDefinedValueCondition',
+      support: 'unsupported',
+      severity: 'error',
+      source: `${PARSER}:1147-1148`,
+      note: 'it raises "ByValue UserDefinedValue conditions are not yet supported"',
+    },
+    // The 0.9.16 regression (commit ab5996d7, PR #1149): ChangeActorWaypoints is built without times.
+    {
+      element: 'AssignRouteAction',
+      support: 'unsupported',
+      severity: 'error',
+      releases: ['0.9.16'],
+      source: `${ATOMICS}:773 (${PARSER}:1508, ${RUNNER}:334)`,
+      note: 'building ChangeActorWaypoints without times raises "object of type \'NoneType\' has no len()", a regression of commit ab5996d7 (0.9.15 runs it)',
+    },
+    {
+      element: 'AcquirePositionAction',
+      support: 'unsupported',
+      severity: 'error',
+      releases: ['0.9.16'],
+      source: `${ATOMICS}:773 (${PARSER}:1518, ${RUNNER}:347)`,
+      note: 'building ChangeActorWaypoints without times raises "object of type \'NoneType\' has no len()", a regression of commit ab5996d7 (0.9.15 runs it)',
+    },
+    // Run otherwise than written: the Init runs only some actions (FACTS.md) and passes over the rest.
+    { element: 'TrafficAction', support: 'ignored', in: 'init', source: `${RUNNER}:263-348`, note: INIT_NOTE },
+    { element: 'VisibilityAction', support: 'ignored', in: 'init', source: `${RUNNER}:263-348`, note: INIT_NOTE },
+    { element: 'TrafficSignalStateAction', support: 'ignored', in: 'init', source: `${RUNNER}:263-348`, note: INIT_NOTE },
+    { element: 'TrafficSignalControllerAction', support: 'ignored', in: 'init', source: `${RUNNER}:263-348`, note: INIT_NOTE },
+    { element: 'CustomCommandAction', support: 'ignored', in: 'init', source: `${RUNNER}:263-348`, note: INIT_NOTE },
+    { element: 'ActivateControllerAction', support: 'ignored', in: 'init', source: `${RUNNER}:263-348`, note: INIT_NOTE },
+    { element: 'LaneChangeAction', support: 'ignored', in: 'init', source: `${RUNNER}:263-348`, note: INIT_NOTE },
+    { element: 'LongitudinalDistanceAction', support: 'ignored', in: 'init', source: `${RUNNER}:263-348`, note: INIT_NOTE },
+    { element: 'SynchronizeAction', support: 'ignored', in: 'init', source: `${RUNNER}:263-348`, note: INIT_NOTE },
+    { element: 'EntitySelection', support: 'ignored', source: `${CONFIGURATION}:236-260` },
+    { element: 'ObjectController', support: 'ignored', source: `${CONFIGURATION}:236-260` },
   ],
   attributes: [
-    { element: 'LongitudinalDistanceAction', attribute: 'timeGap', supportedValues: [], source: DOC, note: 'only distance is implemented' },
     {
-      element: 'DistanceCondition',
-      attribute: 'freespace',
-      supportedValues: ['false'],
-      source: DOC,
-      note: 'the distance is measured between reference points',
+      element: 'LongitudinalDistanceAction',
+      attribute: 'timeGap',
+      supportedValues: [],
+      severity: 'error',
+      source: `${PARSER}:1362-1363`,
+      note: 'it raises "LongitudinalDistanceAction: timeGap is not implemented"',
     },
     {
       element: 'StoryboardElementStateCondition',
       attribute: 'state',
       supportedValues: ['startTransition', 'stopTransition', 'endTransition', 'completeState'],
-      source: PARSER,
-      note: 'only start, stop and end transitions and completeState are implemented',
+      severity: 'error',
+      source: `${PARSER}:1135-1146`,
+      note: 'it raises "Only start, stop, endTransitions and completeState are currently supported"',
     },
     {
       element: '*',
       parent: 'OverrideControllerValueAction',
       attribute: 'active',
       supportedValues: ['false'],
-      source: PARSER,
-      note: 'every override must be inactive',
+      severity: 'error',
+      source: `${PARSER}:545-548`,
+      note: 'an active override raises "Controller override actions are not yet supported"',
+    },
+    {
+      element: 'Precipitation',
+      attribute: 'precipitationType',
+      unsupportedValues: ['snow'],
+      severity: 'error',
+      source: `${PARSER}:503-504`,
+      note: 'it raises "CARLA does not support snow precipitation"',
+    },
+    {
+      element: 'DistanceCondition',
+      attribute: 'freespace',
+      supportedValues: ['false'],
+      source: `${PARSER}:1081-1096`,
+      note: 'the distance is measured between reference points',
     },
     {
       element: 'LaneChangeActionDynamics',
       attribute: 'dynamicsShape',
       supportedValues: ['linear'],
-      source: DOC,
+      source: `${PARSER}:1380-1390`,
       note: 'every lane change is linear',
+    },
+    {
+      element: 'Condition',
+      attribute: 'conditionEdge',
+      unsupportedValues: ['falling', 'risingOrFalling'],
+      source: `${PARSER}:865-890`,
+      note: 'every condition is latched the first time it holds',
     },
   ],
   catalogFileNames: {
     types: ['Vehicle', 'Controller', 'Pedestrian', 'MiscObject', 'Environment', 'Maneuver', 'Trajectory', 'Route'],
-    source: CONFIGURATION,
+    source: `${CONFIGURATION}:108-144`,
   },
-  expressionsNotEvaluated: { source: PARSER },
 };
+
+/** A fact of ScenarioRunner that a check of its own applies (core/semantics/checks/carla.ts): what it does, where the code shows it. */
+export interface CarlaFact {
+  /** What ScenarioRunner does, completing "CARLA ScenarioRunner ...". */
+  does: string;
+  source: string;
+  /** `error`: it refuses to load or build the scenario; `warning`: it runs it otherwise than written. */
+  severity: 'error' | 'warning';
+  /** The releases the fact holds for; every release when absent. */
+  releases?: readonly CarlaRelease[];
+}
+
+/** The facts the CARLA checks apply, by name. */
+export const CARLA_FACTS = {
+  expressionNumber: {
+    does: 'does not evaluate ${...}: a number or choice written so fails its 1.0 schema, and its parser raises "could not convert" (it reads only literals and $names)',
+    source: `${PARSER}:129-148`,
+    severity: 'error',
+  },
+  expressionText: {
+    does: 'does not evaluate ${...}: this text attribute is kept as the characters written',
+    source: `${PARSER}:157-159`,
+    severity: 'warning',
+  },
+  parameterNotResolved: {
+    does: 'reads this attribute as written, without resolving $parameters (only values it wraps in ParameterRef are resolved)',
+    source: `${PARSER}:879 (delay), ${CONFIGURATION}:164-165 (LogicFile), ${PARSER}:363-366 (catalogName)`,
+    severity: 'error',
+  },
+  noRoadNetwork: {
+    does: 'takes the CARLA town from RoadNetwork/LogicFile; without one it fails ("CARLA level not defined")',
+    source: `${CONFIGURATION}:164-181, 417-418`,
+    severity: 'error',
+  },
+  roadFileMissing: {
+    does: 'loads an .xodr LogicFile from the scenario\'s folder and fails when it does not exist ("The provided RoadNetwork ... does not exist")',
+    source: `${CONFIGURATION}:167-171`,
+    severity: 'error',
+  },
+  unknownTown: {
+    does: 'loads a LogicFile that is not an .xodr as a CARLA map, and fails for a name that is not one',
+    source: `${CONFIGURATION}:208-209`,
+    severity: 'error',
+  },
+  catalogNotLoaded: {
+    does: 'reads each catalog type only from <Directory>/<Type>Catalog.xosc beside the scenario, keyed by the catalog name, and fails on a reference to a catalog or entry it did not read (KeyError)',
+    source: `${CONFIGURATION}:108-144, ${PARSER}:363-366`,
+    severity: 'error',
+  },
+  catalogNameShared: {
+    does: 'keeps catalogs in one table by name, across types: the catalog read later replaces the one of the same name',
+    source: `${CONFIGURATION}:112, 141-144`,
+    severity: 'error',
+  },
+  catalogSchema: {
+    does: 'validates every catalog file it reads against its bundled OpenSCENARIO 1.0 schema and fails on the first error',
+    source: `${CONFIGURATION}:75-83, 138-139`,
+    severity: 'error',
+  },
+  catalogEntityRef: {
+    does: 'replaces only the $parameters an entry declares or its reference assigns; an entityRef left as a $name names no actor ("Cannot find actor ... for condition")',
+    source: `${PARSER}:383-421, 914`,
+    severity: 'error',
+  },
+  controllerActionParts: {
+    does: "reads a ControllerAction's AssignControllerAction and then iterates its OverrideControllerValueAction; without either it crashes (StopIteration, \"'NoneType' object is not iterable\")",
+    source: `${PARSER}:528, 545-546`,
+    severity: 'error',
+  },
+  freespaceRequired: {
+    does: 'reads these flags with strtobool, which crashes when one is absent (the 1.0 schema requires them)',
+    source: `${PARSER}:948, 974, 1047, 1049`,
+    severity: 'error',
+  },
+  eventPriority: {
+    does: 'ignores Event priority: the events of a maneuver all run, each when its start trigger holds',
+    source: `${RUNNER}:425-427`,
+    severity: 'warning',
+  },
+  eventRepetition: {
+    does: "ignores an Event's maximumExecutionCount: the event runs once",
+    source: `${RUNNER}:425-427`,
+    severity: 'warning',
+  },
+  triggeringEntitiesRule: {
+    does: 'ignores triggeringEntitiesRule: the condition is evaluated for the last entity listed only',
+    source: `${PARSER}:888-890`,
+    severity: 'warning',
+  },
+  actStopTrigger: {
+    does: "OR-s the conditions of one group of an Act's StopTrigger (the standard AND-s them)",
+    source: `${RUNNER}:492-496`,
+    severity: 'warning',
+  },
+  storyboardStopTrigger: {
+    does: "ignores the Storyboard's StopTrigger except ParameterConditions named criteria_*, which become test criteria",
+    source: `${RUNNER}:572-590`,
+    severity: 'warning',
+  },
+  blueprint: {
+    does: 'spawns the CARLA blueprint this name gives; a name that is not one (such as an esmini catalog name) falls back to a default of the category',
+    source: `${CONFIGURATION}:299, 321`,
+    severity: 'warning',
+  },
+  noEgo: {
+    does: 'runs the ScenarioObjects whose Property type is "ego_vehicle" as the ego; this scenario marks none',
+    source: `${CONFIGURATION}:301-313, 420-421`,
+    severity: 'warning',
+  },
+} as const satisfies Record<string, CarlaFact>;
+
+export type CarlaFactName = keyof typeof CARLA_FACTS;
+
+/** The maps CARLA 0.9.15 and 0.9.16 load by name (the harness's stub knows the same list). */
+export const CARLA_TOWNS: readonly string[] = [
+  ...['Town01', 'Town02', 'Town03', 'Town04', 'Town05', 'Town06', 'Town07', 'Town10HD'].flatMap((town) => [town, `${town}_Opt`]),
+  'Town11',
+  'Town12',
+  'Town13',
+  'Town15',
+];

@@ -1,8 +1,8 @@
 import { attribute, descendants, XmlAttribute, XmlDocument, XmlElement } from '../xml';
 import { CARLA_PROFILE } from './carla';
 import { ESMINI_PROFILE } from './esmini';
-import { AttributeFact, ElementFact, SimulatorProfile } from './facts';
-import { Simulator } from './simulators';
+import { AttributeFact, ElementFact, FactSeverity, SimulatorProfile } from './facts';
+import { CarlaRelease, DEFAULT_CARLA_RELEASE, Simulator } from './simulators';
 
 export const PROFILES: Record<Exclude<Simulator, 'asam'>, SimulatorProfile> = { carla: CARLA_PROFILE, esmini: ESMINI_PROFILE };
 
@@ -11,6 +11,9 @@ export interface SimulatorFinding {
   element: XmlElement;
   attribute?: XmlAttribute;
   message: string;
+  severity: FactSeverity;
+  /** The text to write over the attribute's value, where that one edit answers the finding. */
+  suggestion?: string;
 }
 
 export interface ProfileCheckContext {
@@ -20,6 +23,8 @@ export interface ProfileCheckContext {
   fileName: string;
   /** Every element of the document, in document order. */
   elements: XmlElement[];
+  /** The CARLA release whose facts apply (a fact may hold for some releases only). */
+  release: CarlaRelease;
 }
 
 /** One check of a simulator profile over a document. */
@@ -53,38 +58,41 @@ const versionCheck: ProfileCheck = ({ profile, document }) => {
   const major = attribute(header, 'revMajor');
   const minor = attribute(header, 'revMinor');
   if (!major || !minor || (major.value === wanted.revMajor && minor.value === wanted.revMinor)) return [];
+  const onMinor = major.value === wanted.revMajor;
   return [
     {
       element: header,
-      attribute: major.value === wanted.revMajor ? minor : major,
+      attribute: onMinor ? minor : major,
+      severity: wanted.severity ?? 'warning',
       message: `${profile.name} accepts only OpenSCENARIO ${wanted.revMajor}.${wanted.revMinor}; this file states ${major.value}.${minor.value} (${wanted.source})`,
+      suggestion: onMinor ? wanted.revMinor : wanted.revMajor,
     },
   ];
 };
 
-const elementCheck: ProfileCheck = ({ profile, elements }) => {
+function holds(fact: { releases?: readonly CarlaRelease[] }, release: CarlaRelease): boolean {
+  return !fact.releases || fact.releases.includes(release);
+}
+
+const elementCheck: ProfileCheck = ({ profile, elements, release }) => {
   const facts = new Map<string, ElementFact[]>();
-  for (const fact of profile.elements) facts.set(fact.element, [...(facts.get(fact.element) ?? []), fact]);
+  for (const fact of profile.elements) if (holds(fact, release)) facts.set(fact.element, [...(facts.get(fact.element) ?? []), fact]);
   const findings: SimulatorFinding[] = [];
   for (const element of elements) {
     const candidates = facts.get(element.name);
     if (!candidates) continue;
     for (const fact of candidates) {
       if (fact.parent && element.parent?.name !== fact.parent) continue;
+      const place = placeOf(element);
+      if (fact.in && place !== fact.in) continue;
+      const where = fact.in === 'init' ? ' in the Init' : fact.in === 'story' ? ' in a Story' : '';
       const note = fact.note ? `: ${fact.note}` : '';
-      if (fact.places) {
-        const place = placeOf(element);
-        if (!place || fact.places[place]) continue;
-        const elsewhere = place === 'init' ? 'only in a Story' : 'only in the Init';
-        findings.push({
-          element,
-          message: `${profile.name} does not support ${describe(fact)} in ${place === 'init' ? 'the Init' : 'a Story'}, ${elsewhere}${note} (${fact.source})`,
-        });
-      } else if (fact.support === 'ignored') {
-        findings.push({ element, message: `${profile.name} ignores ${describe(fact)}${note} (${fact.source})` });
-      } else {
-        findings.push({ element, message: `${profile.name} does not support ${describe(fact)}${note} (${fact.source})` });
-      }
+      const verb = fact.support === 'ignored' ? 'ignores' : 'does not support';
+      findings.push({
+        element,
+        severity: fact.severity ?? 'warning',
+        message: `${profile.name} ${verb} ${describe(fact)}${where}${note} (${fact.source})`,
+      });
     }
   }
   return findings;
@@ -109,24 +117,8 @@ const attributeCheck: ProfileCheck = ({ profile, elements }) => {
       findings.push({
         element,
         attribute: found,
+        severity: fact.severity ?? 'warning',
         message: `${profile.name} does not support ${what} on ${element.name}: ${fact.note} (${fact.source})`,
-      });
-    }
-  }
-  return findings;
-};
-
-const expressionCheck: ProfileCheck = ({ profile, elements }) => {
-  const source = profile.expressionsNotEvaluated?.source;
-  if (!source) return [];
-  const findings: SimulatorFinding[] = [];
-  for (const element of elements) {
-    for (const candidate of element.attributes) {
-      if (!candidate.value.includes('${')) continue;
-      findings.push({
-        element,
-        attribute: candidate,
-        message: `${profile.name} does not evaluate \${...} expressions: ${candidate.name}="${candidate.value}" is read as text (${source})`,
       });
     }
   }
@@ -142,6 +134,7 @@ const catalogNameCheck: ProfileCheck = ({ profile, document, fileName }) => {
     return [
       {
         element: catalog,
+        severity: 'warning',
         message: `${profile.name} reads no catalog of ${type} entries; it reads ${rule.types.map((name) => name + 'Catalog').join(', ')} (${rule.source})`,
       },
     ];
@@ -151,22 +144,29 @@ const catalogNameCheck: ProfileCheck = ({ profile, document, fileName }) => {
     {
       element: catalog,
       attribute: attribute(catalog, 'name'),
+      severity: 'warning',
       message: `${profile.name} reads a catalog of ${type} entries only from a file named ${expected} in the catalog directory; this file is ${fileName} (${rule.source})`,
     },
   ];
 };
 
 /** The checks of every simulator profile, in the order their findings are listed. */
-export const PROFILE_CHECKS: readonly ProfileCheck[] = [versionCheck, elementCheck, attributeCheck, expressionCheck, catalogNameCheck];
+export const PROFILE_CHECKS: readonly ProfileCheck[] = [versionCheck, elementCheck, attributeCheck, catalogNameCheck];
 
 /** What `simulator` will not run in a document (none for `asam`, the standard alone). */
-export function simulatorFindings(simulator: Simulator, document: XmlDocument, fileName: string): SimulatorFinding[] {
+export function simulatorFindings(
+  simulator: Simulator,
+  document: XmlDocument,
+  fileName: string,
+  release: CarlaRelease = DEFAULT_CARLA_RELEASE,
+): SimulatorFinding[] {
   if (simulator === 'asam' || !document.root) return [];
   const context: ProfileCheckContext = {
     profile: PROFILES[simulator],
     document,
     fileName,
     elements: [document.root, ...descendants(document.root)],
+    release,
   };
   return PROFILE_CHECKS.flatMap((check) => check(context));
 }

@@ -1,18 +1,27 @@
-import { Simulator } from './simulators';
+import { CarlaRelease, Simulator } from './simulators';
 
 /** How a simulator treats an element where it is written. */
 export type Support = 'unsupported' | 'ignored';
 
-/** An element a simulator does not run (anywhere, or in the places marked false). */
+/**
+ * `error` where the simulator refuses to load or build the scenario (SPEC 12: it means nothing there);
+ * a fact without one is a warning: the simulator runs the scenario otherwise than written.
+ */
+export type FactSeverity = 'error' | 'warning';
+
+/** An element a simulator does not run (anywhere, or in one place only). */
 export interface ElementFact {
   element: string;
   /** Only when the element's parent has this name (ModifyAction of a ParameterAction, not of a VariableAction). */
   parent?: string;
   support: Support;
-  /** For actions supported in only one place: whether the Init or a Story (or a catalog's Maneuver) runs it. */
-  places?: { init: boolean; story: boolean };
+  /** The fact holds only for an action in the Init, or in a Story (or a catalog's Maneuver). */
+  in?: 'init' | 'story';
+  severity?: FactSeverity;
+  /** The releases of the simulator the fact holds for; all when absent. */
+  releases?: readonly CarlaRelease[];
   note?: string;
-  /** The file of the simulator's repository that states or shows the fact. */
+  /** The file (and lines) of the simulator's repository that state or show the fact. */
   source: string;
 }
 
@@ -26,6 +35,7 @@ export interface AttributeFact {
   supportedValues?: string[];
   /** Values that do not work (when the working ones are too many to list). */
   unsupportedValues?: string[];
+  severity?: FactSeverity;
   note: string;
   source: string;
 }
@@ -38,13 +48,11 @@ export interface SimulatorProfile {
   repository: string;
   revision: string;
   /** The FileHeader versions a scenario may state; undefined when all standard versions are accepted. */
-  versions?: { revMajor: string; revMinor: string; source: string };
+  versions?: { revMajor: string; revMinor: string; source: string; severity?: FactSeverity };
   elements: ElementFact[];
   attributes: AttributeFact[];
   /** Catalog files are found by the name `<Type>Catalog.xosc` in their directory. */
   catalogFileNames?: { types: string[]; source: string };
-  /** `${...}` expressions are passed on as text, never evaluated. */
-  expressionsNotEvaluated?: { source: string };
   /** Where the simulator computes a value otherwise than the standard, each rule with the lines that show it. */
   valueRules?: Record<ValueRule, ValueRuleFact>;
 }

@@ -7,6 +7,7 @@ import { esminiRule } from './esminiValues';
 import { ExpressionError } from './expressionParser';
 import { valueConstraints } from './checks/constraints';
 import { duplicateNames } from './checks/names';
+import { carlaReleaseOf, carlaScenario } from './checks/carla';
 import { at, relatedAt } from './checks/support';
 import type { Finding, SemanticCheck, SemanticContext } from './checks/types';
 import { carriedExpressionErrors, rememberExpressionErrors } from './checks/carriedResults';
@@ -487,12 +488,13 @@ export const flattenedStoryboardReferences: SemanticCheck = (context) => {
 };
 
 /** What the chosen simulator does not run, from facts read in its own sources (core/profiles/). */
-export const simulatorProfile: SemanticCheck = ({ ref, model, simulator }) =>
-  simulatorFindings(simulator ?? 'asam', model.document, baseName(ref)).map((finding) => ({
+export const simulatorProfile: SemanticCheck = (context) =>
+  simulatorFindings(context.simulator ?? 'asam', context.model.document, baseName(context.ref), carlaReleaseOf(context)).map((finding) => ({
     ...at(finding.element, finding.attribute),
-    severity: 'warning',
+    severity: finding.severity,
     code: 'simulator',
     message: finding.message,
+    ...(finding.suggestion !== undefined ? { data: { suggestion: finding.suggestion } } : {}),
   }));
 
 /** The checks of a document, in the order their problems are listed. */
@@ -511,6 +513,7 @@ export const SEMANTIC_CHECKS: readonly { name: string; check: SemanticCheck }[] 
   { name: 'names unique on each level', check: duplicateNames },
   { name: 'value constraints', check: valueConstraints },
   { name: 'simulator profile', check: simulatorProfile },
+  { name: 'CARLA ScenarioRunner', check: carlaScenario },
   // Traffic signals, actors and value ranges (./networkChecks.ts).
   { name: 'traffic signal id', check: trafficSignalIds },
   { name: 'traffic signal controller', check: trafficSignalControllerRefs },
@@ -529,6 +532,7 @@ export const OUTPUT_CHECKS: readonly { name: string; check: SemanticCheck }[] = 
   { name: 'undeclared variable', check: undeclaredVariables },
   // What the simulator gets is the output: a value set through a ParameterReference is checked here.
   { name: 'simulator profile', check: simulatorProfile },
+  { name: 'CARLA ScenarioRunner', check: carlaScenario },
 ];
 
 export { undeclaredVariables };

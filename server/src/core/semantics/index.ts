@@ -30,15 +30,16 @@
  * - problems: `semanticProblems(semantics)` runs every check of SEMANTIC_CHECKS (./checks.ts).
  */
 import { Problem } from '../problems';
-import { Simulator } from '../profiles/simulators';
+import { CarlaRelease, Simulator } from '../profiles/simulators';
 import { SourceRef } from '../sources';
 import { Range } from '../text';
 import { elementAt, XmlAttribute, XmlDocument, XmlElement } from '../xml';
+import { carlaFilesOf } from './carlaFiles';
 import { assignmentsOf, CatalogLoader, CatalogReferenceResolution, CatalogResolution } from './catalogs';
 import { Finding, runChecks, SemanticContext } from './checks';
 import { Reading } from './evaluator';
 import { roadSignalsOf } from './roadNetwork';
-import { Declaration, Evaluator, ParameterUse, Scope, semanticModelOf, ValueResult, visibleDeclarations } from './model';
+import { Declaration, Evaluator, ParameterUse, Scope, SemanticModel, semanticModelOf, ValueResult, visibleDeclarations } from './model';
 
 export * from './values';
 export * from './expressionParser';
@@ -57,12 +58,25 @@ export async function analyzeDocument(
   loader: CatalogLoader,
   modular: boolean,
   simulator?: Simulator,
+  carlaRelease?: CarlaRelease,
 ): Promise<DocumentSemantics> {
   const model = semanticModelOf(document);
   const evaluator = new Evaluator(model, undefined, readingOf(simulator));
   const catalogs: CatalogResolution = await loader.resolve(ref, model, evaluator);
   const road = await roadSignalsOf(loader.store, ref, document, evaluator);
-  return { ref, model, evaluator, catalogs, modular, simulator, ...(road ? { road } : {}) };
+  const carla = simulator === 'carla' ? await carlaSemantics(loader, ref, model, carlaRelease) : {};
+  return { ref, model, evaluator, catalogs, modular, simulator, ...carla, ...(road ? { road } : {}) };
+}
+
+/** What the CARLA checks need beyond the document: the release, and the files ScenarioRunner reads beside it. */
+export async function carlaSemantics(
+  loader: CatalogLoader,
+  ref: SourceRef,
+  model: SemanticModel,
+  carlaRelease: CarlaRelease | undefined,
+): Promise<Pick<SemanticContext, 'carlaRelease' | 'carlaFiles'>> {
+  const carlaFiles = await carlaFilesOf(loader.store, loader, ref, model);
+  return { ...(carlaRelease ? { carlaRelease } : {}), ...(carlaFiles ? { carlaFiles } : {}) };
 }
 
 /** The reading values are computed in for a simulator (SPEC 12): esmini's own for esmini, else the standard's. */

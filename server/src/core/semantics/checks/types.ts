@@ -1,6 +1,7 @@
 /** What a semantic check is given and what it reports: shared by checks.ts, the checks of checks/ and networkChecks.ts. */
 import type { Problem } from '../../problems';
-import type { Simulator } from '../../profiles/simulators';
+import type { CarlaRelease, Simulator } from '../../profiles/simulators';
+import type { CarlaFiles } from '../carlaFiles';
 import type { SourceRef } from '../../sources';
 import type { XmlAttribute, XmlElement } from '../../xml';
 import type { CatalogResolution } from '../catalogs';
@@ -19,6 +20,10 @@ export interface SemanticContext {
   modular: boolean;
   /** The simulator whose known gaps are checked (core/profiles); absent or `asam`: none. */
   simulator?: Simulator;
+  /** With `simulator` = `carla`: the ScenarioRunner release whose facts apply (0.9.16 when absent). */
+  carlaRelease?: CarlaRelease;
+  /** With `simulator` = `carla`: the catalog and road files ScenarioRunner reads beside the scenario, as it finds them. */
+  carlaFiles?: CarlaFiles;
   /** The signals of the road file the document names; absent when it names none or it cannot be read (the road rules are then skipped). */
   road?: RoadSignals;
 }
