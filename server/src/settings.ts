@@ -48,7 +48,7 @@ export function readSettings(value: unknown): ServerSettings {
       : DEFAULT_SETTINGS.formatMaxLineWidth;
   const simulator = isSimulator(record.simulator) ? record.simulator : DEFAULT_SETTINGS.simulator;
   const carla = (record.carla && typeof record.carla === 'object' ? record.carla : {}) as Record<string, unknown>;
-  const carlaRelease = isCarlaRelease(carla.release) ? carla.release : DEFAULT_SETTINGS.carlaRelease;
+  const carlaRelease = typeof carla.release === 'string' && isCarlaRelease(carla.release) ? carla.release : DEFAULT_SETTINGS.carlaRelease;
   const schema = (record.schema && typeof record.schema === 'object' ? record.schema : {}) as Record<string, unknown>;
   const schemaVersion =
     schema.version === 'off' || schema.version === 'auto' || isSchemaVersion(schema.version)

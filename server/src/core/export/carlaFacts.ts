@@ -3,49 +3,18 @@
  * the default blueprint for each kind of entity. The export (./carla.ts) and its checks read these.
  */
 
-/** The ScenarioRunner releases whose facts the export knows (`--carla`). */
-export const CARLA_RELEASES = ['0.9.15', '0.9.16'] as const;
-export type CarlaRelease = (typeof CARLA_RELEASES)[number];
-
-export function isCarlaRelease(value: string): value is CarlaRelease {
-  return (CARLA_RELEASES as readonly string[]).includes(value);
-}
-
-/** carla-simulator/scenario_runner at the 0.9.16 release (`v0.9.16`). */
-export const SR_REVISION = '94ff3b8af752bad2b9d464ad5105868906aa34c0';
-export const SR_PARSER = 'srunner/tools/openscenario_parser.py';
-export const SR_SCENARIO = 'srunner/scenarios/open_scenario.py';
-export const SR_CONFIGURATION = 'srunner/scenarioconfigs/openscenario_configuration.py';
-export const SR_ATOMICS = 'srunner/scenariomanager/scenarioatomics/atomic_behaviors.py';
-export const SR_SCHEMA = 'srunner/openscenario/OpenSCENARIO.xsd';
-
-/**
- * CARLA's maps that `client.load_world` knows in 0.9.15 and 0.9.16 (carla.readthedocs.io `core_map`,
- * "CARLA maps"; the same list as ../shared/carla's mock `CARLA_MAPS`). ScenarioRunner loops on
- * `get_map().name != town` after loading (SR_CONFIGURATION `_set_carla_town`), so any other name fails.
- */
-export const CARLA_TOWNS: readonly string[] = [
-  'Town01',
-  'Town01_Opt',
-  'Town02',
-  'Town02_Opt',
-  'Town03',
-  'Town03_Opt',
-  'Town04',
-  'Town04_Opt',
-  'Town05',
-  'Town05_Opt',
-  'Town06',
-  'Town06_Opt',
-  'Town07',
-  'Town07_Opt',
-  'Town10HD',
-  'Town10HD_Opt',
-  'Town11',
-  'Town12',
-  'Town13',
-  'Town15',
-];
+export {
+  CARLA_RELEASES,
+  CARLA_TOWNS,
+  isCarlaRelease,
+  SR_ATOMICS,
+  SR_CONFIGURATION,
+  SR_PARSER,
+  SR_REVISION,
+  SR_SCENARIO,
+  SR_SCHEMA,
+} from '../profiles/scenarioRunner';
+export type { CarlaRelease } from '../profiles/scenarioRunner';
 
 /**
  * The vehicle blueprints of CARLA 0.9.15 and 0.9.16 (carla-simulator/carla `Docs/catalogue_vehicles.md`

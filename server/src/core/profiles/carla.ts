@@ -1,3 +1,4 @@
+import { SR_ATOMICS, SR_CONFIGURATION, SR_PARSER, SR_REVISION, SR_SCENARIO } from './scenarioRunner';
 import { CarlaRelease } from './simulators';
 import { SimulatorProfile } from './facts';
 
@@ -9,10 +10,10 @@ import { SimulatorProfile } from './facts';
  * to load or to build is an error (SPEC 12: the scenario means nothing there); what it runs otherwise
  * than written is a warning.
  */
-const PARSER = 'srunner/tools/openscenario_parser.py';
-const RUNNER = 'srunner/scenarios/open_scenario.py';
-const CONFIGURATION = 'srunner/scenarioconfigs/openscenario_configuration.py';
-const ATOMICS = 'srunner/scenariomanager/scenarioatomics/atomic_behaviors.py';
+const PARSER = SR_PARSER;
+const RUNNER = SR_SCENARIO;
+const CONFIGURATION = SR_CONFIGURATION;
+const ATOMICS = SR_ATOMICS;
 const INIT_NOTE =
   'the Init runs Speed, Teleport, Controller, LaneOffset, LateralDistance, routing and trajectory actions, the first EnvironmentAction, ParameterActions and entity actions only';
 
@@ -20,7 +21,7 @@ export const CARLA_PROFILE: SimulatorProfile = {
   simulator: 'carla',
   name: 'CARLA ScenarioRunner',
   repository: 'carla-simulator/scenario_runner',
-  revision: '94ff3b8af752bad2b9d464ad5105868906aa34c0',
+  revision: SR_REVISION,
   versions: { revMajor: '1', revMinor: '0', source: `${CONFIGURATION}:105`, severity: 'error' },
   elements: [
     // Refused while the scenario is built: the file fails to load in ScenarioRunner.
@@ -282,12 +283,3 @@ export const CARLA_FACTS = {
 } as const satisfies Record<string, CarlaFact>;
 
 export type CarlaFactName = keyof typeof CARLA_FACTS;
-
-/** The maps CARLA 0.9.15 and 0.9.16 load by name (the harness's stub knows the same list). */
-export const CARLA_TOWNS: readonly string[] = [
-  ...['Town01', 'Town02', 'Town03', 'Town04', 'Town05', 'Town06', 'Town07', 'Town10HD'].flatMap((town) => [town, `${town}_Opt`]),
-  'Town11',
-  'Town12',
-  'Town13',
-  'Town15',
-];

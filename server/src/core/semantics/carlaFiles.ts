@@ -1,5 +1,5 @@
 import * as path from 'node:path';
-import { CARLA_TOWNS } from '../profiles/carla';
+import { CARLA_TOWNS } from '../profiles/scenarioRunner';
 import { checkSchema } from '../schema/validate';
 import { diskRef, ScenarioStore, SourceRef } from '../sources';
 import { XmlAttribute, XmlDocument, XmlElement } from '../xml';
