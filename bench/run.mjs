@@ -70,7 +70,16 @@ if (process.env.BENCH_CLI_ONLY === '1') process.exit();
 console.log('');
 spawnSync(process.execPath, [path.join(root, 'bench', 'semantics.mjs')], { stdio: 'inherit' });
 
-for (const name of ['lsp.mjs', 'format.mjs', 'esmini.mjs', 'modularize.mjs', 'variations.mjs', 'check.mjs', 'refactorings.mjs']) {
+for (const name of [
+  'lsp.mjs',
+  'format.mjs',
+  'esmini.mjs',
+  'modularize.mjs',
+  'variations.mjs',
+  'check.mjs',
+  'refactorings.mjs',
+  'carla.mjs',
+]) {
   const bench = path.join(root, 'bench', name);
   if (!existsSync(bench)) continue;
   console.log('');

@@ -22,6 +22,9 @@ function warmingRuns(examples, out) {
     stats: [['stats', examples]],
     // --check writes nothing.
     format: [['format', '--check', examples, '-q']],
+    export: [
+      ['export', path.join(examples, 'main.xosc'), '--target', 'carla', '--carla', '0.9.15', '-o', path.join(out, 'carla.xosc'), '-q'],
+    ],
   };
 }
 

@@ -40,5 +40,17 @@ else
   echo "== ../shared/esmini is absent: the simulator tests will say so"
 fi
 
+# The CARLA tests check exports with ScenarioRunner's own loader, unpacked from ../shared/carla into
+# .cache/carla (idempotent: a second run only checks the stamp; as root it apt-gets its Debian packages).
+if [ -f ../shared/carla/check.py ]; then
+  echo "== CARLA ScenarioRunner harness (.cache/carla)"
+  if ! python3 ../shared/carla/check.py setup >/dev/null 2>&1; then
+    [ -z "${M2S_REQUIRE_CARLA:-}" ] || { python3 ../shared/carla/check.py setup; exit 1; }
+    echo "== the ScenarioRunner harness did not set up: the CARLA tests will say so"
+  fi
+else
+  echo "== ../shared/carla is absent: the CARLA tests will say so"
+fi
+
 echo "== tests"
 npm test

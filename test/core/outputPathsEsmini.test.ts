@@ -1,5 +1,4 @@
 import * as assert from 'node:assert/strict';
-import { spawn } from 'node:child_process';
 import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
@@ -9,6 +8,7 @@ import { descendants, parseXml } from '../../server/src/core/xml';
 import { esminiBinary, EsminiStep, readEsminiCsv, requireEsmini } from '../support/esmini';
 import { esminiXodrDir } from '../support/esminiBinaries';
 import { openscenarioDir } from '../support/openscenarioCorpus';
+import { runBounded } from '../support/processes';
 
 /**
  * SPEC 11.6 on esmini's own scenarios: each becomes a composition (ws/xosc/NAME.main.xosc importing every
@@ -52,21 +52,10 @@ function compositionOf(text: string, sourceName: string): string {
 async function runAlone(scenario: string, cwd: string): Promise<{ steps: EsminiStep[] | undefined; log: string }> {
   const csv = path.join(cwd, `${path.basename(scenario)}.csv`);
   const args = ['--headless', '--osc', scenario, '--fixed_timestep', '0.05', '--seed', '1', '--csv_logger', csv, '--disable_log'];
-  const output: string[] = [];
-  const code = await new Promise<number | null>((resolve, reject) => {
-    const child = spawn(esminiBinary, args, { cwd, stdio: ['ignore', 'pipe', 'pipe'] });
-    const timer = setTimeout(() => child.kill('SIGKILL'), 120_000);
-    child.stdout.on('data', (chunk: Buffer) => output.push(chunk.toString()));
-    child.stderr.on('data', (chunk: Buffer) => output.push(chunk.toString()));
-    child.on('error', reject);
-    child.on('close', (status) => {
-      clearTimeout(timer);
-      resolve(status);
-    });
-  });
+  const { code, output } = await runBounded(esminiBinary, args, { cwd }, 120_000);
   const steps = code === 0 && fs.existsSync(csv) ? readEsminiCsv(csv) : undefined;
   fs.rmSync(csv, { force: true });
-  return { steps, log: output.join('') };
+  return { steps, log: output };
 }
 
 describe("core: compositions of esmini's scenarios flattened one folder deeper run as the originals (SPEC 11.6)", function () {

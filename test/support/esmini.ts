@@ -1,7 +1,7 @@
-import { spawn } from 'node:child_process';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { esminiBinDir, esminiXodrDir, requireEsminiProgram } from './esminiBinaries';
+import { runBounded } from './processes';
 
 /** esmini as built by `bash ../shared/esmini/build.sh .cache/esmini`. */
 export const esminiBinary = path.join(esminiBinDir, 'esmini');
@@ -43,19 +43,8 @@ export async function runEsmini(scenario: string, maxTime: number, wallLimitMs =
     '--path',
     esminiXodrDir,
   ];
-  const output: string[] = [];
-  const code = await new Promise<number | null>((resolve, reject) => {
-    const child = spawn(esminiBinary, args, { cwd: directory, stdio: ['ignore', 'pipe', 'pipe'] });
-    const timer = setTimeout(() => child.kill('SIGKILL'), wallLimitMs);
-    child.stdout.on('data', (chunk: Buffer) => output.push(chunk.toString()));
-    child.stderr.on('data', (chunk: Buffer) => output.push(chunk.toString()));
-    child.on('error', reject);
-    child.on('close', (status) => {
-      clearTimeout(timer);
-      resolve(status);
-    });
-  });
-  if (code !== 0 || !fs.existsSync(csv)) throw new Error(`esmini failed on ${scenario} (exit ${code}):\n${output.join('').slice(-2000)}`);
+  const { code, output } = await runBounded(esminiBinary, args, { cwd: directory }, wallLimitMs);
+  if (code !== 0 || !fs.existsSync(csv)) throw new Error(`esmini failed on ${scenario} (exit ${code}):\n${output.slice(-2000)}`);
   const steps = readEsminiCsv(csv, maxTime);
   fs.rmSync(csv, { force: true });
   return steps;

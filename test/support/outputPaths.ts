@@ -1,11 +1,11 @@
 import * as assert from 'node:assert/strict';
-import { spawn } from 'node:child_process';
 import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
 import { esminiBinary, EsminiStep, readEsminiCsv } from './esmini';
 import { esminiXodrDir } from './esminiBinaries';
 import { sharedDir } from './paths';
+import { runBounded } from './processes';
 
 /**
  * What the SPEC 11.6 tests (CLI and language server) share: a composition of esmini's cut-in laid out as
@@ -53,19 +53,8 @@ export async function runAlone(scenario: string): Promise<{ steps: EsminiStep[];
   const cwd = temporaryFolder('m2s-paths-cwd-');
   const csv = path.join(cwd, 'run.csv');
   const args = ['--headless', '--osc', scenario, '--fixed_timestep', '0.05', '--seed', '1', '--csv_logger', csv, '--disable_log'];
-  const output: string[] = [];
-  const code = await new Promise<number | null>((resolve, reject) => {
-    const child = spawn(esminiBinary, args, { cwd, stdio: ['ignore', 'pipe', 'pipe'] });
-    const timer = setTimeout(() => child.kill('SIGKILL'), 120_000);
-    child.stdout.on('data', (chunk: Buffer) => output.push(chunk.toString()));
-    child.stderr.on('data', (chunk: Buffer) => output.push(chunk.toString()));
-    child.on('error', reject);
-    child.on('close', (status) => {
-      clearTimeout(timer);
-      resolve(status);
-    });
-  });
-  const log = output.join('');
+  const { code, output } = await runBounded(esminiBinary, args, { cwd }, 120_000);
+  const log = output;
   assert.ok(code === 0 && fs.existsSync(csv), `esmini failed on ${scenario} (exit ${code}):\n${log.slice(-2000)}`);
   return { steps: readEsminiCsv(csv), log };
 }

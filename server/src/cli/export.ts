@@ -30,6 +30,7 @@ export const EXPORT_HELP = `Export for CARLA's ScenarioRunner (modular2simple ex
   --road-path DIRS          folders where the scenario's .xodr is looked for (separated by ':' or ';')
   --ego NAME                the vehicle ScenarioRunner takes as the ego (default: the one named
                             ego or hero, else the first vehicle)
+  --force                   as for flatten: overrides that cannot apply are skipped (each listed)
   --index I                 the concrete scenario of a distribution file to export
   --scenario-path DIRS      as for flatten: where a modular main's references are looked for
   -q, --quiet               print refusals and errors only
@@ -58,6 +59,7 @@ function parse(argv: string[]): ExportArguments {
     road: { type: 'string' },
     'road-path': { type: 'string', multiple: true },
     ego: { type: 'string' },
+    force: { type: 'boolean', default: false },
     index: { type: 'string' },
     'scenario-path': { type: 'string', multiple: true },
     quiet: { type: 'boolean', short: 'q', default: false },
@@ -83,6 +85,7 @@ function parse(argv: string[]): ExportArguments {
       blueprints: values.blueprints === undefined ? undefined : readBlueprints(values.blueprints),
       road: values.road === undefined || values.road.toLowerCase().endsWith('.xodr') === false ? values.road : path.resolve(values.road),
       ego: values.ego,
+      force: values.force ?? false,
       roadFolders: (values['road-path'] ?? []).flatMap(splitScenarioPath).map((folder) => path.resolve(folder)),
     },
   };

@@ -35,6 +35,7 @@ export const COMMAND_BUNDLES: Readonly<Record<string, string>> = {
   check: 'check',
   stats: 'stats',
   format: 'format',
+  export: 'export',
 };
 
 /** The bundle file of a command file of cli/ (a value of COMMAND_BUNDLES). */

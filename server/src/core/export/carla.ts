@@ -10,12 +10,13 @@
  * action) and reported; a file whose meaning would be lost entirely is refused.
  */
 import * as path from 'node:path';
-import { Flattener } from '../flatten';
+import { Flattener, originOf, OVERRIDE_PROBLEM_CODES } from '../flatten';
+import type { FlatSource } from '../flatten/types';
 import { formatProblem, Problem } from '../problems';
 import { logicFileOf, resolveRoadFile } from '../semantics/roadFiles';
 import { checkSchema } from '../schema/validate';
 import { analyzeDocument, assignmentsOf, CatalogLoader, DocumentSemantics, Evaluator, formatValue } from '../semantics';
-import { displayRef, ScenarioStore, SourceRef } from '../sources';
+import { displayRef, ScenarioStore, SourceError, SourceRef } from '../sources';
 import { parseXml, XmlDocument, XmlElement } from '../xml';
 import {
   CarlaRelease,
@@ -63,6 +64,8 @@ export interface CarlaExportOptions {
   ego?: string;
   /** Folders where a road file is looked for when it is not beside the scenario (as `run --road-path`). */
   roadFolders?: readonly string[];
+  /** Flatten past overrides that cannot apply (unknown keys, attributes without default), as the original tool did: each is named as dropped. */
+  force?: boolean;
 }
 
 /** Wrong options (an unknown blueprint, a town that does not exist): the caller's mistake, not the scenario's. */
@@ -89,13 +92,26 @@ export interface CarlaExport {
  */
 export async function exportForCarla(store: ScenarioStore, main: SourceRef, options: CarlaExportOptions): Promise<CarlaExport> {
   checkOptions(options);
-  const flattened = await new Flattener(store, undefined, { version: 'off' }).flatten(main, { standardOutput: true });
+  // A plain scenario (no ScenarioReference) is exported as written, without a flattening pass that would model it twice.
+  if (main.entries.length === 0) {
+    let text: string | undefined;
+    try {
+      text = await store.readText(main);
+    } catch (error) {
+      if (!(error instanceof SourceError)) throw error;
+      return { text: undefined, losses: [], refused: error.message, problems: [], road: undefined, ego: undefined };
+    }
+    if (!/<ScenarioReference\b/.test(text)) return exportTextForCarla(store, main, text, options);
+  }
+  const flattened = await new Flattener(store, undefined, { version: 'off' }).flatten(main, { standardOutput: true, force: options.force });
   if (flattened.text === undefined) {
     const errors = flattened.problems.filter((problem) => problem.severity === 'error');
     const first = errors[0] ? formatProblem(errors[0], undefined) : 'the input could not be read';
     return {
       text: undefined,
-      losses: [],
+      losses: errors.map((problem) =>
+        problemLoss(problem, 'refused', problem.message, 'nothing can be exported before the input flattens'),
+      ),
       refused: `the input cannot be flattened (${errors.length} error${errors.length === 1 ? '' : 's'}; the first: ${first})`,
       problems: errors,
       road: undefined,
@@ -115,7 +131,19 @@ export async function exportForCarla(store: ScenarioStore, main: SourceRef, opti
   // A plain scenario is exported as written: its relative paths resolve from its folder as esmini and the checks resolve them.
   const source = flattened.source;
   const plain = source.insertions.length === 0 && source.additions.length === 0 && source.original?.document.text;
-  return exportTextForCarla(store, main, plain || flattened.text, options);
+  const text = plain || flattened.text;
+  const exported = await exportTextForCarla(store, main, text, options, plain ? undefined : sourcePlaces(source));
+  // Forced past (--force), an override that cannot apply is one more thing the export does not keep.
+  const skipped = flattened.problems.filter((problem) => problem.severity === 'error' && OVERRIDE_PROBLEM_CODES.has(problem.code));
+  const skippedLosses = skipped.map((problem) =>
+    problemLoss(
+      problem,
+      'dropped',
+      `${problem.message} (skipped: --force)`,
+      "the flattened scenario keeps the simple scenario's own value there, as the original Modular2Simple tool did",
+    ),
+  );
+  return { ...exported, losses: [...skippedLosses, ...exported.losses] };
 }
 
 /**
@@ -219,8 +247,8 @@ export async function exportTextForCarla(
   const ego = markEgo(tree, options, sink);
   mapBlueprints(tree, options, sink);
   applyCarlaRules(tree, { release: options.release ?? '0.9.16', sink });
-  dropOutsideSchema(tree, sink);
-  tidyEmptyContainers(tree);
+  // The text the last schema check passed: nothing changes the tree after it.
+  const checked = dropOutsideSchema(tree, sink);
 
   if (eventsBefore > 0 && named(tree, 'Event').length === 0)
     sink.refuse(
@@ -231,10 +259,11 @@ export async function exportTextForCarla(
     );
   const refusals = losses.filter((loss) => loss.kind === 'refused');
   if (refusals.length > 0) return result(refusalSentence(refusals), undefined, { road, ego });
-  const out = serialize(tree);
+  const out = checked ?? serialize(tree);
   // What is written must be 1.0 as ScenarioRunner's bundled schema reads it; anything left is a bug of a rule, not the user's.
-  const check = checkSchema(parseXml(out), { modular: false, version: '1.0' });
-  const schemaErrors = check.findings.filter((finding) => finding.severity === 'error');
+  const schemaErrors = checked
+    ? []
+    : checkSchema(parseXml(out), { modular: false, version: '1.0' }).findings.filter((finding) => finding.severity === 'error');
   if (schemaErrors.length > 0) {
     const outDocument = parseXml(out);
     const first = schemaErrors[0];
@@ -246,6 +275,51 @@ export async function exportTextForCarla(
     );
   }
   return result(undefined, out, { road, ego });
+}
+
+function problemLoss(problem: Problem, kind: CarlaLoss['kind'], what: string, carla: string): CarlaLoss {
+  return {
+    kind,
+    file: displayRef(problem.source, undefined),
+    line: problem.range.start.line + 1,
+    element: problem.subject?.element ?? (problem.code === 'unknown-key' || problem.code === 'no-default' ? 'ParameterReference' : 'input'),
+    what,
+    carla,
+    source: problem.source,
+    range: problem.range,
+  };
+}
+
+/** The path of an element by name and index among same-named siblings: the same in the rendered output and the flattener's model of it. */
+function pathOf(element: XmlElement): string {
+  const parts: string[] = [];
+  for (let at: XmlElement | undefined = element; at; at = at.parent) {
+    const siblings = at.parent ? at.parent.children.filter((each) => each.name === at?.name) : [at];
+    parts.push(`${at.name}[${siblings.indexOf(at)}]`);
+  }
+  return parts.reverse().join('/');
+}
+
+/** Where each element of a rendered flattened text was written: its counterpart in the flattener's model, followed to the file it was copied from (originOf). */
+function sourcePlaces(source: FlatSource): (element: XmlElement) => Place | undefined {
+  let byPath: Map<string, XmlElement> | undefined;
+  return (element) => {
+    if (!source.model) return undefined;
+    if (!byPath) {
+      byPath = new Map();
+      const stack = source.model.document.root ? [source.model.document.root] : [];
+      while (stack.length > 0) {
+        const next = stack.pop() as XmlElement;
+        byPath.set(pathOf(next), next);
+        stack.push(...next.children);
+      }
+    }
+    const counterpart = byPath.get(pathOf(element));
+    if (!counterpart) return undefined;
+    const origin = originOf(source, counterpart);
+    const originDocument = (origin.source.original ?? origin.source.model)?.document;
+    return originDocument ? placeIn(origin.source.ref, originDocument, origin.element) : undefined;
+  };
 }
 
 function checkOptions(options: CarlaExportOptions): void {
@@ -311,8 +385,13 @@ function evaluatedValue(
 }
 
 function lossSink(losses: CarlaLoss[], placeOf: (node: Node) => Place): LossSink {
+  // A catalog entry used twice is inlined twice: its losses are named once.
+  const seen = new Set<string>();
   const add = (kind: CarlaLoss['kind'], node: Node, element: string, what: string, carla: string): void => {
     const place = placeOf(node);
+    const key = [kind, displayRef(place.source, undefined), place.range.start.line, place.range.start.character, element, what].join('\0');
+    if (seen.has(key)) return;
+    seen.add(key);
     losses.push({
       kind,
       file: displayRef(place.source, undefined),
@@ -582,14 +661,14 @@ function mapBlueprints(tree: Node, options: CarlaExportOptions, sink: LossSink):
  * element drops the smallest unit holding it (a condition, an action, an init action); anything else (a
  * missing part) is refused, never written.
  */
-function dropOutsideSchema(tree: Node, sink: LossSink): void {
+function dropOutsideSchema(tree: Node, sink: LossSink): string | undefined {
   for (let round = 0; round < 8; round++) {
     const out = serialize(tree);
     const outDocument = parseXml(out);
     const findings = checkSchema(outDocument, { modular: false, version: '1.0' }).findings.filter(
       (finding) => finding.severity === 'error',
     );
-    if (findings.length === 0) return;
+    if (findings.length === 0) return out;
     const nodeAt = nodesByOffset(tree, outDocument);
     let changed = false;
     for (const finding of findings) {
@@ -627,11 +706,12 @@ function dropOutsideSchema(tree: Node, sink: LossSink): void {
         `cannot be written as OpenSCENARIO 1.0 (${finding.message})`,
         `ScenarioRunner's 1.0 schema (${SR_SCHEMA}) refuses the file`,
       );
-      return;
+      return undefined;
     }
-    if (!changed) return;
+    if (!changed) return undefined;
     tidyEmptyContainers(tree);
   }
+  return undefined;
 }
 
 const DROPPABLE = new Set([

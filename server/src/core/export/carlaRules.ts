@@ -634,8 +634,18 @@ function conditions(tree: Node, context: RuleContext): void {
       const distanceType = attr(node, 'relativeDistanceType');
       if (name !== 'RelativeDistanceCondition') removeAttr(node, 'relativeDistanceType');
       else if (distanceType === 'euclidianDistance') setAttr(node, 'relativeDistanceType', 'cartesianDistance');
-      if (name !== 'RelativeDistanceCondition' && attr(node, 'alongRoute') === undefined)
-        setAttr(node, 'alongRoute', system === 'road' || system === 'lane' ? 'true' : 'false');
+      if (name !== 'RelativeDistanceCondition' && attr(node, 'alongRoute') === undefined) {
+        const alongRoute = system === 'road' || system === 'lane';
+        setAttr(node, 'alongRoute', String(alongRoute));
+        // 1.0 knows the distance along the road (alongRoute) or the straight one between the entities; not a longitudinal or lateral part of it.
+        if (!alongRoute && distanceType !== undefined && distanceType !== 'euclidianDistance' && distanceType !== 'cartesianDistance')
+          context.sink.approximated(
+            node,
+            `${name}/@relativeDistanceType`,
+            `${distanceType} in ${system ?? 'entity'} coordinates has no 1.0 form: written as alongRoute="false", the distance between the entities`,
+            `${SR_PARSER} convert_condition_to_atomic reads alongRoute`,
+          );
+      }
       if (attr(node, 'freespace') === undefined) setAttr(node, 'freespace', 'false');
       if (system && system !== 'entity' && name === 'RelativeDistanceCondition')
         context.sink.approximated(
@@ -752,6 +762,12 @@ function storyboardStop(tree: Node, context: RuleContext): void {
 function entities(tree: Node, context: RuleContext): void {
   for (const vehicle of named(tree, 'Vehicle')) {
     for (const extra of ['mass', 'model3d', 'role']) removeAttr(vehicle, extra);
+    // A Trailer that names no entity pulls nothing: it, and the hitch and coupler then, mean nothing to drop (1.2+, not 1.0).
+    const trailer = child(vehicle, 'Trailer');
+    const reference = trailer ? child(trailer, 'TrailerRef') : undefined;
+    if (trailer && trailer.children.length <= 1 && (!reference || !attr(reference, 'entityRef'))) removeNode(trailer);
+    if (!child(vehicle, 'Trailer'))
+      for (const part of ['TrailerHitch', 'TrailerCoupler']) for (const each of childrenNamed(vehicle, part)) removeNode(each);
     const performance = child(vehicle, 'Performance');
     if (performance) {
       for (const extra of ['maxAccelerationRate', 'maxDecelerationRate']) removeAttr(performance, extra);

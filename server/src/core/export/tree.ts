@@ -139,8 +139,16 @@ export function nodeFromXml(
     element.name,
     element.attributes.map((attribute, index) => [attribute.name, value(element, index)]),
     element.children.map((each) => nodeFromXml(document, each, placeOf, value)),
-    placeOf(element),
   );
+  // Where an element was written is asked only for the few that a loss names: computed then.
+  let place: Place | undefined | null = null;
+  Object.defineProperty(node, 'place', {
+    get: () => (place === null ? (place = placeOf(element)) : place),
+    set: (given: Place | undefined) => {
+      place = given;
+    },
+    enumerable: true,
+  });
   if (element.children.length === 0 && !element.selfClosing) {
     const closeTag = document.text.lastIndexOf('</', element.end);
     const raw = closeTag > element.startTagEnd ? document.text.slice(element.startTagEnd, closeTag) : '';

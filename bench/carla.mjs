@@ -1,0 +1,67 @@
+// `export --target carla` (issue 26): the largest esmini sample exported under 1.5x a bare `node` start,
+// and, beside it, what ScenarioRunner's own loader (../shared/carla/check.py) takes for that one file.
+import { spawnSync } from 'node:child_process';
+import { existsSync, mkdtempSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
+const shared = path.resolve(root, '..', 'shared');
+const esmini = path.join(shared, 'corpus', 'openscenario', 'esmini');
+const cli = path.join(root, 'dist', 'cli.js');
+const peak = path.join(root, 'bench', 'peak-rss.cjs');
+const runs = Number(process.env.BENCH_RUNS ?? 9);
+
+function measure(command, args) {
+  const started = process.hrtime.bigint();
+  const result = spawnSync(command, args, { encoding: 'utf8', cwd: root });
+  const ms = Number(process.hrtime.bigint() - started) / 1e6;
+  if (result.status !== 0) throw new Error(`${command} ${args.join(' ')} failed (${result.status}): ${result.stderr}`);
+  const kb = Number(/@@peak-rss-kb (\d+)/.exec(result.stderr)?.[1] ?? NaN);
+  return { ms, mb: kb / 1024, stdout: result.stdout };
+}
+
+function median(samples) {
+  const times = samples.map((sample) => sample.ms).sort((a, b) => a - b);
+  return times[Math.floor(times.length / 2)];
+}
+
+const fmt = (n) => n.toFixed(1).padStart(8);
+
+if (!existsSync(cli)) {
+  console.error('dist/cli.js is missing: run npm run build first');
+  process.exit(1);
+}
+if (!existsSync(esmini)) {
+  console.log(`(CARLA export benchmark skipped: ${esmini} is absent)`);
+  process.exit(0);
+}
+
+const out = mkdtempSync(path.join(tmpdir(), 'm2s-bench-carla-'));
+try {
+  // parking_demo.xosc (1,113 lines) is the largest sample; its routes build in ScenarioRunner 0.9.15.
+  const input = path.join(esmini, 'parking_demo.xosc');
+  const output = path.join(out, 'parking_demo.xosc');
+  const exportArgs = [
+    ...['--require', peak, cli, 'export', input, '--target', 'carla', '--carla', '0.9.15', '-o', output, '-q'],
+    ...['--road-path', path.join(shared, 'esmini', 'xodr'), '--scenario-path', path.join(esmini, 'Catalogs')],
+  ];
+  const bare = Array.from({ length: runs }, () => measure(process.execPath, ['--require', peak, '-e', '0']));
+  const exported = Array.from({ length: runs }, () => measure(process.execPath, exportArgs));
+  console.log(`CARLA export benchmark (${runs} runs each; node ${process.version})`);
+  console.log('                                              median ms   peak MB');
+  console.log(`  node -e 0 (bare start)                       ${fmt(median(bare))}  ${fmt(Math.max(...bare.map((s) => s.mb)))}`);
+  console.log(`  export --target carla, parking_demo.xosc     ${fmt(median(exported))}  ${fmt(Math.max(...exported.map((s) => s.mb)))}`);
+  const ratio = median(exported) / median(bare);
+  console.log(`  ratio export / bare start: ${ratio.toFixed(2)}x (target <= 1.5x: ${ratio <= 1.5 ? 'within' : 'OVER'})`);
+  const harness = path.join(shared, 'carla', 'check.py');
+  if (existsSync(harness) && existsSync(path.join(root, '.cache', 'carla', 'scenario_runner'))) {
+    const checked = measure('python3', [harness, '--fix-sr-bugs', output]);
+    console.log(
+      `  beside it, ScenarioRunner's loader on the export (check.py, one file): ${fmt(checked.ms)} ms, ${checked.stdout.split('\n')[0]}`,
+    );
+  } else console.log('  (the ScenarioRunner harness is not set up: python3 ../shared/carla/check.py setup)');
+} finally {
+  rmSync(out, { recursive: true, force: true });
+}

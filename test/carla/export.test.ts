@@ -1,0 +1,343 @@
+import { strict as assert } from 'node:assert';
+import * as fs from 'node:fs';
+import * as os from 'node:os';
+import * as path from 'node:path';
+import { main } from '../../server/src/cli';
+import { harnessVerdicts, requireCarlaHarness } from '../support/carla';
+import { esminiCatalogs, esminiRoads, requireEsmini, runEsmini, tracksOf } from '../support/esmini';
+import { openscenarioDir } from '../support/openscenarioCorpus';
+import { caseStudyDir, libraryDir, requireCorpus } from '../support/paths';
+
+interface Exported {
+  input: string;
+  output: string;
+  code: number;
+  stderr: string;
+  report: {
+    written: boolean;
+    refused: string | null;
+    losses: { kind: string; file: string; line: number; element: string; what: string; carla: string }[];
+  };
+}
+
+/** `modular2simple export INPUT --target carla -o OUT --report OUT.json ...` in this process. */
+async function exportFile(input: string, output: string, extra: string[] = []): Promise<Exported> {
+  const errors: string[] = [];
+  const report = output.replace(/\.xosc$/, '.json');
+  const code = await main(['export', input, '--target', 'carla', '-o', output, '--report', report, ...extra], {
+    out: () => {},
+    err: (text) => errors.push(text),
+  });
+  const parsed = fs.existsSync(report) ? (JSON.parse(fs.readFileSync(report, 'utf8')) as Exported['report']) : undefined;
+  return { input, output, code, stderr: errors.join('\n'), report: parsed as Exported['report'] };
+}
+
+/** Each export is written and builds in ScenarioRunner, or is refused (exit 1, nothing written) with a reason: never a crash, never silent. */
+function assertBuiltOrRefused(
+  results: Exported[],
+  verdicts: Map<string, { status: string; stage: string | null; reason: string | null }>,
+): void {
+  for (const result of results) {
+    const name =
+      path.basename(result.input === result.output ? result.input : path.dirname(result.input)) + ' ' + path.basename(result.input);
+    assert.ok(result.code === 0 || result.code === 1, `${name}: exit ${result.code}\n${result.stderr}`);
+    assert.ok(result.report, `${name}: no report`);
+    if (result.code === 0) {
+      assert.equal(result.report.written, true, name);
+      const verdict = verdicts.get(path.resolve(result.output));
+      assert.equal(verdict?.status, 'OK', `${name}: ScenarioRunner: ${verdict?.stage} ${verdict?.reason}`);
+    } else {
+      assert.equal(fs.existsSync(result.output), false, `${name}: refused, yet written`);
+      assert.equal(result.report.written, false, name);
+      assert.ok(result.report.refused && result.report.refused.length > 10, `${name}: refused without a reason`);
+      assert.match(result.stderr, /export refused: |error: /, name);
+    }
+  }
+}
+
+function listTemporary(directory: string): string[] {
+  return fs.readdirSync(directory).filter((name) => !/\.(xosc|json)$/.test(name));
+}
+
+describe('export --target carla, checked by ScenarioRunner (../shared/carla)', function () {
+  this.timeout(600_000);
+  let out: string;
+
+  before(function () {
+    requireCorpus(this);
+    requireCarlaHarness(this);
+  });
+  beforeEach(() => {
+    out = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-carla-export-'));
+  });
+  afterEach(() => {
+    fs.rmSync(out, { recursive: true, force: true });
+  });
+
+  it("esmini's samples: each export builds in ScenarioRunner 0.9.16 or is refused naming why", async () => {
+    const esmini = path.join(openscenarioDir, 'esmini');
+    const inputs = fs.readdirSync(esmini).filter((name) => name.endsWith('.xosc'));
+    const results: Exported[] = [];
+    for (const name of inputs) {
+      const extra = ['--road-path', esminiRoads, '--scenario-path', path.join(esmini, 'Catalogs')];
+      // The one distribution file is exported as its first concrete scenario.
+      if (name === 'cut-in_parameter_set.xosc') extra.push('--index', '0');
+      results.push(await exportFile(path.join(esmini, name), path.join(out, name), extra));
+    }
+    const written = results.filter((result) => result.code === 0);
+    const verdicts = await harnessVerdicts(
+      written.map((result) => result.output),
+      { timeoutSeconds: 120 },
+    );
+    assertBuiltOrRefused(results, verdicts);
+    // Measured: 51 of the 69 are written (none built before the export); a regression shows here.
+    assert.ok(written.length >= 51, `only ${written.length} of ${inputs.length} written`);
+    assert.deepEqual(listTemporary(out), []);
+    const refusedFor = (name: string): string => results.find((result) => path.basename(result.input) === name)?.report.refused ?? '';
+    assert.match(refusedFor('ltap-od.xosc'), /RoutePosition/);
+    assert.match(refusedFor('parking_lot.xosc'), /no road/);
+    assert.match(refusedFor('parking_demo.xosc'), /0\.9\.16/);
+  });
+
+  it("ScenarioRunner's own examples: 0.9.16 builds all but the two its route crash refuses; 0.9.15 builds all", async () => {
+    const examples = path.join(openscenarioDir, 'scenario_runner');
+    const inputs = fs.readdirSync(examples).filter((name) => name.endsWith('.xosc') && !name.endsWith('Catalog.xosc'));
+    for (const release of ['0.9.16', '0.9.15']) {
+      const folder = path.join(out, release);
+      fs.mkdirSync(folder);
+      const results: Exported[] = [];
+      for (const name of inputs)
+        results.push(
+          await exportFile(path.join(examples, name), path.join(folder, name), ['--carla', release, '--scenario-path', examples]),
+        );
+      const verdicts = await harnessVerdicts(
+        results.filter((result) => result.code === 0).map((result) => result.output),
+        { fixSrBugs: release === '0.9.15' },
+      );
+      assertBuiltOrRefused(results, verdicts);
+      const refused = results.filter((result) => result.code !== 0).map((result) => path.basename(result.input));
+      if (release === '0.9.16') {
+        assert.deepEqual(refused.sort(), ['IntersectionCollisionAvoidance.xosc', 'SyncArrivalIntersection.xosc']);
+        for (const result of results.filter((each) => each.code !== 0))
+          assert.match(result.report.refused ?? '', /AcquirePositionAction.*0\.9\.16.*ab5996d7/s);
+      } else assert.deepEqual(refused, []);
+    }
+  });
+
+  it("the paper's 31 library scenarios and its case study build on Town05 with --carla 0.9.15; 0.9.16 refuses them naming its crash", async () => {
+    const mains = fs
+      .readdirSync(libraryDir)
+      .filter((name) => fs.existsSync(path.join(libraryDir, name, 'main.xosc')))
+      .map((name) => path.join(libraryDir, name, 'main.xosc'));
+    assert.equal(mains.length, 31);
+    for (const release of ['0.9.15', '0.9.16']) {
+      const folder = path.join(out, release);
+      fs.mkdirSync(folder);
+      const results: Exported[] = [];
+      for (const input of mains)
+        results.push(
+          await exportFile(input, path.join(folder, `${path.basename(path.dirname(input))}.xosc`), [
+            '--carla',
+            release,
+            '--scenario-path',
+            libraryDir,
+          ]),
+        );
+      // The case study as its users flattened it: the original tool skipped its three keys that match no attribute.
+      results.push(await exportFile(caseStudyDir, path.join(folder, 'case-study.xosc'), ['--carla', release, '--force']));
+      if (release === '0.9.16') {
+        for (const result of results) {
+          assert.equal(result.code, 1, `${result.input}\n${result.stderr}`);
+          assert.match(result.report.refused ?? '', /(AcquirePositionAction|AssignRouteAction).*crashes ScenarioRunner 0\.9\.16/);
+        }
+        continue;
+      }
+      assert.deepEqual(
+        results.filter((result) => result.code !== 0).map((result) => `${result.input}: ${result.stderr}`),
+        [],
+      );
+      const verdicts = await harnessVerdicts(
+        results.map((result) => result.output),
+        { fixSrBugs: true },
+      );
+      assertBuiltOrRefused(results, verdicts);
+      for (const result of results) {
+        const verdict = verdicts.get(path.resolve(result.output)) as { town?: string; egos?: string[] };
+        assert.equal(verdict.town, 'Town05', result.input);
+        assert.deepEqual(verdict.egos, ['hero'], result.input);
+      }
+      const skipped = results.at(-1)?.report.losses.filter((loss) => loss.element === 'ParameterReference') ?? [];
+      assert.equal(skipped.length, 3, 'the three skipped keys of the case study are named');
+    }
+  });
+});
+
+describe('export --target carla, round trip in esmini', function () {
+  this.timeout(300_000);
+  let out: string;
+  before(function () {
+    requireCorpus(this);
+    requireEsmini(this);
+  });
+  beforeEach(() => {
+    out = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-carla-roundtrip-'));
+  });
+  afterEach(() => {
+    fs.rmSync(out, { recursive: true, force: true });
+  });
+
+  // What the export reports but writes as esmini reads it: how ScenarioRunner runs the file differs, the file does not.
+  const SCENARIO_RUNNER_ONLY = new Set([
+    'Event/@priority',
+    'Event/@maximumExecutionCount',
+    'Condition/@conditionEdge',
+    'Storyboard/StopTrigger',
+    'Vehicle',
+    'Pedestrian',
+    'ScenarioObject',
+  ]);
+
+  it("esmini's samples that map without loss move in esmini as the originals do (within 0.1 m)", async () => {
+    const esmini = path.join(openscenarioDir, 'esmini');
+    const compared: string[] = [];
+    for (const name of fs.readdirSync(esmini).filter((each) => each.endsWith('.xosc'))) {
+      const original = path.join(esmini, name);
+      const exported = await exportFile(original, path.join(out, name), [
+        '--road-path',
+        esminiRoads,
+        '--scenario-path',
+        path.join(esmini, 'Catalogs'),
+      ]);
+      if (exported.code !== 0 || exported.report.losses.some((loss) => !SCENARIO_RUNNER_ONLY.has(loss.element))) continue;
+      // The original as esmini runs it from here: its catalogs named where they are.
+      const copy = path.join(out, `original_${name}`);
+      fs.writeFileSync(copy, fs.readFileSync(original, 'utf8').replace(/\.\.\/xosc\/Catalogs\//g, `${esminiCatalogs}/`));
+      const before = tracksOf(await runEsmini(copy, 20));
+      const after = tracksOf(await runEsmini(exported.output, 20));
+      assert.deepEqual([...after.keys()].sort(), [...before.keys()].sort(), name);
+      for (const [entity, track] of before) {
+        const other = after.get(entity) ?? [];
+        assert.equal(other.length, track.length, `${name} ${entity}`);
+        const worst = Math.max(0, ...track.map((point, index) => Math.hypot(point.x - other[index].x, point.y - other[index].y)));
+        assert.ok(worst <= 0.1, `${name}: ${entity} is ${worst.toFixed(3)} m away at worst`);
+      }
+      compared.push(name);
+    }
+    // Measured: 24 of esmini's samples map without loss (cut-in.xosc does not: its longitudinal time headway has no 1.0 form).
+    assert.ok(compared.length >= 24, `only ${compared.length} compared: ${compared.join(', ')}`);
+    assert.ok(compared.includes('cut-in_simple.xosc') && compared.includes('highway_driver.xosc'));
+  });
+});
+
+describe('export --target carla, bad input', () => {
+  let out: string;
+  const scenario = (): string => path.join(openscenarioDir, 'scenario_runner', 'FollowLeadingVehicle.xosc');
+  before(function () {
+    requireCorpus(this);
+  });
+  beforeEach(() => {
+    out = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-carla-bad-'));
+  });
+  afterEach(() => {
+    fs.rmSync(out, { recursive: true, force: true });
+  });
+
+  it('an unknown blueprint in the table: exit 1 naming it, nothing written', async () => {
+    const table = path.join(out, 'blueprints.json');
+    fs.writeFileSync(table, JSON.stringify({ 'vehicle.lincoln.mkz_2017': 'vehicle.flying.carpet' }));
+    const result = await exportFile(scenario(), path.join(out, 'out.xosc'), ['--blueprints', table]);
+    assert.equal(result.code, 1);
+    assert.match(result.stderr, /vehicle\.flying\.carpet.*no CARLA 0\.9\.15\/0\.9\.16 blueprint/);
+    assert.deepEqual(fs.readdirSync(out), ['blueprints.json']);
+  });
+
+  it('a blueprint table that is not JSON: exit 1 naming the file', async () => {
+    const table = path.join(out, 'blueprints.json');
+    fs.writeFileSync(table, '{car_white: vehicle.audi.tt}');
+    const result = await exportFile(scenario(), path.join(out, 'out.xosc'), ['--blueprints', table]);
+    assert.equal(result.code, 1);
+    assert.match(result.stderr, /blueprints\.json: the blueprint table is not JSON/);
+  });
+
+  it('a known blueprint in the table is used for that vehicle', async () => {
+    const table = path.join(out, 'blueprints.json');
+    fs.writeFileSync(table, JSON.stringify({ 'vehicle.lincoln.mkz_2017': 'vehicle.audi.tt' }));
+    const result = await exportFile(scenario(), path.join(out, 'out.xosc'), ['--blueprints', table]);
+    assert.equal(result.code, 0, result.stderr);
+    assert.match(fs.readFileSync(result.output, 'utf8'), /<Vehicle name="vehicle\.audi\.tt"/);
+  });
+
+  it('a town that is neither a CARLA town nor a readable .xodr: exit 1, nothing written', async () => {
+    for (const road of ['Town99', path.join(out, 'missing.xodr')]) {
+      const result = await exportFile(scenario(), path.join(out, 'out.xosc'), ['--road', road]);
+      assert.equal(result.code, 1, road);
+      assert.match(result.stderr, road === 'Town99' ? /'Town99' is neither a CARLA town/ : /no such \.xodr file/);
+      assert.deepEqual(fs.readdirSync(out), []);
+    }
+  });
+
+  it("a scenario's LogicFile naming no town and no file: refused with the report naming the line", async () => {
+    const input = path.join(out, 'in.xosc');
+    fs.writeFileSync(
+      input,
+      fs
+        .readFileSync(scenario(), 'utf8')
+        .replace('filepath="Town01"', 'filepath="$Road"')
+        .replace(
+          '<ParameterDeclarations>',
+          '<ParameterDeclarations><ParameterDeclaration name="Road" parameterType="string" value="Town99"/>',
+        ),
+    );
+    const result = await exportFile(input, path.join(out, 'out.xosc'));
+    assert.equal(result.code, 1);
+    assert.equal(fs.existsSync(path.join(out, 'out.xosc')), false);
+    const loss = result.report.losses.find((each) => each.kind === 'refused');
+    assert.equal(loss?.element, 'LogicFile');
+    assert.match(result.stderr, /in\.xosc:\d+: error: <LogicFile>/);
+  });
+
+  it('an unreadable input: exit 1, nothing written', async () => {
+    for (const input of [path.join(out, 'absent.xosc'), out]) {
+      const result = await exportFile(input, path.join(out, 'out.xosc'));
+      assert.equal(result.code, 1, input);
+      assert.match(result.stderr, /no such file|holds no main\.xosc|cannot be flattened|not well-formed/);
+    }
+    const broken = path.join(out, 'broken.xosc');
+    fs.writeFileSync(broken, '<OpenSCENARIO><FileHeader');
+    const result = await exportFile(broken, path.join(out, 'out.xosc'));
+    assert.equal(result.code, 1);
+    assert.equal(fs.existsSync(path.join(out, 'out.xosc')), false);
+  });
+
+  it('never writes over its input, and wrong usage is exit 2', async () => {
+    const input = path.join(out, 'in.xosc');
+    fs.copyFileSync(scenario(), input);
+    const before = fs.readFileSync(input, 'utf8');
+    const result = await exportFile(input, input);
+    assert.equal(result.code, 1);
+    assert.match(result.stderr, /it is the input/);
+    assert.equal(fs.readFileSync(input, 'utf8'), before);
+    const io = { out: () => {}, err: () => {} };
+    assert.equal(await main(['export', input, '-o', path.join(out, 'x.xosc')], io), 2);
+    assert.equal(await main(['export', input, '--target', 'esmini', '-o', path.join(out, 'x.xosc')], io), 2);
+    assert.equal(await main(['export', input, '--target', 'carla', '-o', path.join(out, 'x.xosc'), '--carla', '0.9.14'], io), 2);
+  });
+
+  it('the road is written relative to the output folder, and the output resolves it from any folder (SPEC 11.6)', async () => {
+    const deep = path.join(out, 'a', 'b');
+    fs.mkdirSync(deep, { recursive: true });
+    const input = path.join(openscenarioDir, 'esmini', 'cut-in.xosc');
+    const result = await exportFile(input, path.join(deep, 'cut-in.xosc'), [
+      '--road-path',
+      esminiRoads,
+      '--scenario-path',
+      path.join(openscenarioDir, 'esmini', 'Catalogs'),
+    ]);
+    assert.equal(result.code, 0, result.stderr);
+    const logicFile = /<LogicFile filepath="([^"]+)"/.exec(fs.readFileSync(result.output, 'utf8'))?.[1] ?? '';
+    assert.ok(!path.isAbsolute(logicFile), logicFile);
+    assert.equal(path.resolve(deep, logicFile), path.join(esminiRoads, 'e6mini.xodr'));
+    assert.match(fs.readFileSync(result.output, 'utf8'), /revMajor="1" revMinor="0"/);
+    assert.doesNotMatch(fs.readFileSync(result.output, 'utf8'), /\$|CatalogReference/);
+  });
+});

@@ -1,0 +1,82 @@
+import { spawnSync } from 'node:child_process';
+import * as fs from 'node:fs';
+import * as os from 'node:os';
+import * as path from 'node:path';
+import { repoRoot, sharedDir } from './paths';
+import { runBounded } from './processes';
+
+/** CARLA's ScenarioRunner 0.9.16, offline, as ../shared/carla/README.md describes: the tests' oracle. */
+export const carlaCheckScript = path.join(sharedDir, 'carla', 'check.py');
+export const carlaCache = path.join(repoRoot, '.cache', 'carla');
+
+let ready: string | undefined;
+
+/**
+ * Skips the calling suite with a message when the harness cannot run here; with M2S_REQUIRE_CARLA set,
+ * fails instead. Unpacks it into .cache/carla on first use (`check.py setup`, idempotent; scripts/test-all.sh runs it first).
+ */
+export function requireCarlaHarness(context: Mocha.Context): void {
+  if (ready === 'yes') return;
+  const why = ready ?? whyHarnessUnavailable();
+  ready = why ?? 'yes';
+  if (why === undefined) return;
+  if (process.env.M2S_REQUIRE_CARLA) throw new Error(`M2S_REQUIRE_CARLA is set, but ${why}`);
+  console.log(`    (skipped: ${why})`);
+  context.skip();
+}
+
+function whyHarnessUnavailable(): string | undefined {
+  if (!fs.existsSync(carlaCheckScript)) return `${carlaCheckScript} is absent`;
+  const python = spawnSync('python3', ['--version'], { encoding: 'utf8', timeout: 10_000 });
+  if (python.status !== 0) return 'python3 is not on the PATH';
+  if (!fs.existsSync(path.join(carlaCache, 'scenario_runner', 'scenario_runner.py'))) {
+    const setup = spawnSync('python3', [carlaCheckScript, 'setup'], {
+      cwd: repoRoot,
+      env: { ...process.env, CARLA_ORACLE_CACHE: carlaCache },
+      encoding: 'utf8',
+      timeout: 300_000,
+    });
+    if (setup.status !== 0)
+      return `the ScenarioRunner harness is not set up (python3 ../shared/carla/check.py setup, as root: ${(setup.stderr || setup.stdout).trim().split('\n').slice(-1)[0]})`;
+  }
+  return undefined;
+}
+
+/** One file's verdict: OK, FAIL (with the stage and reason) or SKIP. */
+export interface HarnessVerdict {
+  status: 'OK' | 'FAIL' | 'SKIP';
+  stage: string | null;
+  reason: string | null;
+  tree_nodes?: number;
+  egos?: string[];
+  town?: string;
+}
+
+/**
+ * ScenarioRunner's verdict on each file, from one run of the harness over all of them (it imports
+ * ScenarioRunner once and forks per file). `fixSrBugs` sets aside 0.9.16's route crash: 0.9.15's verdicts.
+ */
+export async function harnessVerdicts(
+  files: string[],
+  options: { fixSrBugs?: boolean; timeoutSeconds?: number } = {},
+): Promise<Map<string, HarnessVerdict>> {
+  const json = path.join(fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-carla-')), 'verdicts.json');
+  try {
+    const perFile = options.timeoutSeconds ?? 60;
+    const args = [carlaCheckScript, '--json', json, '--timeout', String(perFile), '--jobs', '2'];
+    if (options.fixSrBugs) args.push('--fix-sr-bugs');
+    // Whatever happens inside, the harness as a whole is bounded: a file per (timeout / 2 jobs), plus start-up.
+    const { code, output } = await runBounded(
+      'python3',
+      [...args, ...files],
+      { cwd: repoRoot, env: { ...process.env, CARLA_ORACLE_CACHE: carlaCache } },
+      (files.length * perFile * 1000) / 2 + 60_000,
+    );
+    if ((code !== 0 && code !== 1) || !fs.existsSync(json))
+      throw new Error(`the ScenarioRunner harness failed (exit ${code}):\n${output.slice(-2000)}`);
+    const parsed = JSON.parse(fs.readFileSync(json, 'utf8')) as { results: (HarnessVerdict & { file: string })[] };
+    return new Map(parsed.results.map((result) => [path.resolve(result.file), result]));
+  } finally {
+    fs.rmSync(path.dirname(json), { recursive: true, force: true });
+  }
+}
