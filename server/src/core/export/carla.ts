@@ -15,7 +15,7 @@ import type { FlatSource } from '../flatten/types';
 import { formatProblem, Problem } from '../problems';
 import { logicFileOf, resolveRoadFile } from '../semantics/roadFiles';
 import { checkSchema } from '../schema/validate';
-import { analyzeDocument, assignmentsOf, CatalogLoader, DocumentSemantics, Evaluator, formatValue } from '../semantics';
+import { assignmentsOf, CatalogLoader, DocumentSemantics, Evaluator, formatValue, semanticModelOf } from '../semantics';
 import { displayRef, ScenarioStore, SourceError, SourceRef } from '../sources';
 import { parseXml, XmlDocument, XmlElement } from '../xml';
 import {
@@ -185,7 +185,16 @@ export async function exportTextForCarla(
   if (root.children.some((each) => each.name === 'Catalog')) return result('the file is a catalog, not a scenario');
   if (!root.children.some((each) => each.name === 'Storyboard')) return result('the file has no Storyboard');
 
-  const semantics = await analyzeDocument(ref, document, new CatalogLoader(store), false);
+  // The model, values and catalogs alone: the road rules' signal reading (analyzeDocument parses the road file) has nothing to tell an export.
+  const model = semanticModelOf(document);
+  const evaluator = new Evaluator(model);
+  const semantics: DocumentSemantics = {
+    ref,
+    model,
+    evaluator,
+    catalogs: await new CatalogLoader(store).resolve(ref, model, evaluator),
+    modular: false,
+  };
   const sink = lossSink(losses, (node) => node.place ?? ownPlace(root));
   const unevaluated: { element: XmlElement; name: string; message: string }[] = [];
   const elementNodes = new Map<XmlElement, Node>();
