@@ -30,9 +30,10 @@ export function runBounded(
 export function runScript(
   script: string,
   args: string[],
-  options: { timeoutMs?: number; heapMb?: number; cwd?: string } = {},
+  options: { timeoutMs?: number; heapMb?: number; cwd?: string; nodeArgs?: string[] } = {},
 ): CliRun & { timedOut: boolean } {
-  const result = spawnSync(process.execPath, [`--max-old-space-size=${options.heapMb ?? 512}`, '--import', 'tsx', script, ...args], {
+  const nodeArgs = [`--max-old-space-size=${options.heapMb ?? 512}`, ...(options.nodeArgs ?? []), '--import', 'tsx'];
+  const result = spawnSync(process.execPath, [...nodeArgs, script, ...args], {
     cwd: options.cwd ?? repoRoot,
     encoding: 'utf8',
     timeout: options.timeoutMs ?? 60_000,
@@ -50,7 +51,7 @@ export function startScript(script: string, args: string[], cwd = repoRoot) {
 export const scalingScript = path.join(repoRoot, 'test', 'support', 'scaling.ts');
 
 /**
- * The ratio of the time an operation takes at 4x its size to the time at 1x, each the best of three
+ * The ratio of the CPU time an operation takes at 4x its size to the time at 1x, each the best of three
  * runs in a child process: about 4 for a linear operation, 16 for a quadratic one.
  */
 export function scalingRatio(kind: string, small: number, factor = 4): { ratio: number; smallMs: number; largeMs: number } {
@@ -62,6 +63,18 @@ export function scalingRatio(kind: string, small: number, factor = 4): { ratio: 
   const smallMs = Math.max(1, time(small));
   const largeMs = time(small * factor);
   return { ratio: largeMs / smallMs, smallMs, largeMs };
+}
+
+/** What each check of a document takes at `small` and at `factor` times its size (CPU milliseconds, best of three; see scaling.ts `checkTimes`). */
+export function checkScalingTimes(small: number, factor = 4): { name: string; smallMs: number; largeMs: number }[] {
+  const times = (size: number): Record<string, number> => {
+    const run = runScript(scalingScript, ['checks', String(size)], { timeoutMs: 180_000, heapMb: 1024, nodeArgs: ['--expose-gc'] });
+    if (run.status !== 0) throw new Error(`checks at ${size}: ${run.timedOut ? 'timed out' : run.stderr}`);
+    return JSON.parse(run.stdout) as Record<string, number>;
+  };
+  const smallTimes = times(small);
+  const largeTimes = times(small * factor);
+  return Object.keys(largeTimes).map((name) => ({ name, smallMs: smallTimes[name], largeMs: largeTimes[name] }));
 }
 
 export interface RawEntry {
