@@ -97,4 +97,43 @@ describe('real file shapes: no false alarms (issue 27)', function () {
       );
     });
   });
+
+  describe("a distribution's parameterName written with '$'", () => {
+    // scenariogeneration writes parameterName="$egospeed" for the root parameter egospeed; esmini reads it so.
+    const distribution = `<?xml version="1.0" encoding="UTF-8"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="d" author="t"/>
+  <ParameterValueDistribution>
+    <ScenarioFile filepath="scenario.xosc"/>
+    <Deterministic>
+      <DeterministicSingleParameterDistribution parameterName="$egospeed">
+        <DistributionSet><Element value="10"/><Element value="20"/></DistributionSet>
+      </DeterministicSingleParameterDistribution>
+    </Deterministic>
+  </ParameterValueDistribution>
+</OpenSCENARIO>
+`;
+    const files = () => ({
+      'scenario.xosc': scenarioWith({ parameters: '<ParameterDeclaration name="egospeed" parameterType="double" value="5"/>' }),
+      'distribution.xosc': distribution,
+    });
+
+    it('check reports no undeclared parameter and flatten writes the file', () => {
+      folder = temporaryWorkspace(files());
+      assert.deepEqual(check(folder, 'distribution.xosc'), []);
+      const flattened = runCli(['flatten', 'distribution.xosc', '-o', 'out.xosc'], { cwd: folder });
+      assert.equal(flattened.status, 0, flattened.stderr);
+      assert.ok(fs.existsSync(path.join(folder, 'out.xosc')));
+    });
+
+    it("vary varies the root parameter egospeed, warning that the standard's name has no '$'", () => {
+      folder = temporaryWorkspace(files());
+      const count = runCli(['vary', 'distribution.xosc', '--count'], { cwd: folder });
+      assert.equal(count.status, 0, count.stderr);
+      assert.equal(count.stdout.trim(), '2');
+      assert.match(count.stderr, /warning: the standard names a parameter without '\$' \('egospeed'\)/);
+      const second = runCli(['vary', 'distribution.xosc', '--index', '1'], { cwd: folder });
+      assert.match(second.stdout, /<ParameterDeclaration name="egospeed" parameterType="double" value="20"\/>/);
+    });
+  });
 });

@@ -5,8 +5,11 @@ import { Declaration, ParameterUse, Scope, SemanticModel, ValueSite } from './ty
 
 /** Elements whose `parameterRef` names a parameter of the enclosing scopes (1.0-1.1 parameter actions and conditions). */
 const PARAMETER_REF_ELEMENTS = new Set(['ParameterCondition', 'ParameterAction', 'ParameterSetAction', 'ParameterModifyAction']);
-/** Attributes that name a parameter or variable rather than use its value; esmini accepts them with a leading `$`. */
-const NAME_REFERENCE_ATTRIBUTES = new Set(['parameterRef', 'variableRef']);
+/**
+ * Attributes that name a parameter or variable rather than use its value; esmini accepts them with a leading `$`.
+ * A distribution's `parameterName` names a root parameter of its ScenarioFile, not one of its own file.
+ */
+const NAME_REFERENCE_ATTRIBUTES = new Set(['parameterRef', 'variableRef', 'parameterName']);
 
 /**
  * CARLA scenario_runner reads a StopTrigger condition named `criteria_NAME` as its evaluation

@@ -95,6 +95,19 @@ export function parseDistribution(
     }
     return { value: found.value, offset: found.valueStart };
   };
+  // esmini finds a root parameter by its name with or without a leading `$` (Parameters.cpp getParameterEntry), and a
+  // widely used generator writes parameterName="$speed": the name without it, with a warning (SPEC 12).
+  const parameterName = (owner: XmlElement, name: string): { value: string; offset: number } | undefined => {
+    const found = required(owner, name);
+    if (!found || !found.value.trimStart().startsWith('$')) return found;
+    const bare = found.value.trim().slice(1);
+    problem(
+      found.offset,
+      `the standard names a parameter without '$' ('${bare}'); esmini reads ${name}="${found.value}" as '${bare}', and so does this tool`,
+      'warning',
+    );
+    return { value: bare, offset: found.offset };
+  };
   const number = (owner: XmlElement, name: string): number | undefined => {
     const found = required(owner, name);
     if (!found) return undefined;
@@ -173,7 +186,7 @@ export function parseDistribution(
         for (const set of valueSets.children.filter((c) => c.name === 'ParameterValueSet')) {
           const assignments: ParameterValue[] = [];
           for (const assignment of set.children.filter((c) => c.name === 'ParameterAssignment')) {
-            const parameter = required(assignment, 'parameterRef');
+            const parameter = parameterName(assignment, 'parameterRef');
             const value = required(assignment, 'value');
             if (parameter && value) assignments.push({ parameter: parameter.value, value: value.value, offset: parameter.offset });
           }
@@ -183,7 +196,7 @@ export function parseDistribution(
         if (sets.length === 0) problem(valueSets.start, 'the ValueSetDistribution has no ParameterValueSet');
         deterministic.push({ kind: 'multi', offset: item.start, sets });
       } else if (item.name === 'DeterministicSingleParameterDistribution') {
-        const parameter = required(item, 'parameterName');
+        const parameter = parameterName(item, 'parameterName');
         const definition = item.children[0];
         if (!parameter) continue;
         if (!definition) {
@@ -228,7 +241,7 @@ export function parseDistribution(
         problem(item.start, `unexpected <${item.name}> in <Stochastic>`);
         continue;
       }
-      const parameter = required(item, 'parameterName');
+      const parameter = parameterName(item, 'parameterName');
       const definition = item.children[0];
       if (!parameter) continue;
       if (!definition) {
