@@ -2,6 +2,7 @@ import * as path from 'node:path';
 import JSZip from 'jszip';
 import { rebasePaths, ResolvedPath } from './flatten/rebase';
 import { ProblemWording } from './diagnostics';
+import { packageCycleWording } from './diagnostics/cycle';
 import { leftOutOfPackageWording, missingFileWording } from './diagnostics/missingFile';
 import { fallbackPackageName, xoscFallbackWording } from './diagnostics/xoscFallback';
 import { applyEdits } from './flatten/edits';
@@ -387,9 +388,12 @@ async function packFolderInto(
       if (resolution.folder && resolution.packageRef.entries.length === 0) {
         const nestedFolder = resolution.packageRef.disk;
         if (stack.includes(nestedFolder) || nestedFolder === folder) {
-          report(
-            'cycle',
-            `package cycle: ${[...stack, folder, nestedFolder].map((entry) => (store.workingDirectory === undefined ? entry : path.relative(store.workingDirectory, entry) || '.')).join(' -> ')}`,
+          reportWording(
+            packageCycleWording(
+              [...stack, folder, nestedFolder].map((entry) =>
+                store.workingDirectory === undefined ? entry : path.relative(store.workingDirectory, entry) || '.',
+              ),
+            ),
           );
           continue;
         }

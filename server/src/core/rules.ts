@@ -15,9 +15,7 @@ const OTHER_RULES: Record<Exclude<ProblemCode, DefinedCode>, Rule> = {
   'missing-attribute': { description: 'A reference element has its required attributes.' },
   'no-entity-ref': { description: 'A ManeuverGroup holding a ScenarioReference names its actor with an EntityRef.' },
   'reference-outside-group': { description: 'A ScenarioReference stands inside a ManeuverGroup.' },
-  cycle: { description: 'References do not form a cycle.' },
   'undeclared-entity': { description: 'An entity reference names a declared entity.', qcRule: QC.entityReferences },
-  'source-errors': { description: 'A referenced file has no errors of its own.' },
   'schema-unknown-element': { description: 'Every element is one the ASAM schema allows there.', qcRule: QC.validSchema },
   'schema-unknown-attribute': { description: 'Every attribute is one the ASAM schema allows on its element.', qcRule: QC.validSchema },
   'schema-missing-element': { description: 'Every element the ASAM schema requires is present.', qcRule: QC.validSchema },
@@ -91,11 +89,6 @@ const OTHER_RULES: Record<Exclude<ProblemCode, DefinedCode>, Rule> = {
     description:
       "A value lies within the range RA Consulting's range checker rules give its attribute in the file's version (core/semantics/ranges.ts); a warning where esmini reads it with one meaning.",
   },
-  distribution: {
-    description:
-      'A ParameterValueDistribution expands: its ScenarioFile resolves, its values fit their parameters, its ranges and steps make sense.',
-  },
-  'unknown-distribution-parameter': { description: "A distribution's parameterName is a parameter its ScenarioFile declares at its root." },
 };
 
 /** Every code has an entry: a new code does not compile until it says what rule it is. */

@@ -2,6 +2,8 @@ import { Connection, Diagnostic, DiagnosticRelatedInformation, DiagnosticSeverit
 import { FlatSource, LinkedReference } from '../core/flatten';
 import { Problem, ZERO_RANGE } from '../core/problems';
 import { diagnosticOf } from '../core/diagnostics';
+import { cycleMessage } from '../core/diagnostics/cycle';
+import { standsForCycleOnly } from '../core/diagnostics/sourceErrors';
 import { ruleOf } from '../core/rules';
 import { Range } from '../core/text';
 import { resolvedTarget } from '../analysis';
@@ -93,7 +95,7 @@ function cycleDiagnostics(workspace: Workspace, root: FlatSource): Diagnostic[] 
         severity: DiagnosticSeverity.Error,
         code: 'cycle',
         source: DIAGNOSTIC_SOURCE,
-        message: `reference cycle: ${cycle.map((member) => displayRef(member, workspace.folders[0])).join(' -> ')}`,
+        message: cycleMessage(cycle.map((member) => displayRef(member, workspace.folders[0]))),
         relatedInformation: related,
         data: { code: 'cycle' } satisfies DiagnosticData,
       });
@@ -112,12 +114,10 @@ export async function diagnose(workspace: Workspace, ref: SourceRef): Promise<{ 
     if (refId(problem.source) !== id) continue;
     // A reference whose only error (or the only error of a file it leads to) is a cycle already carries the cycle diagnostic.
     const cycleOnly =
-      problem.code === 'source-errors' &&
+      standsForCycleOnly(problem) &&
       cycles.some(
         (cycle) => cycle.range.start.line === problem.range.start.line && cycle.range.start.character === problem.range.start.character,
-      ) &&
-      problem.cause?.code === 'cycle' &&
-      problem.cause.among === 1;
+      );
     if (cycleOnly) continue;
     const diagnostic = toDiagnostic(problem, workspace);
     if (problem.code === 'cycle') {

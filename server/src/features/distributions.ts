@@ -4,6 +4,8 @@ import { valueContextAt } from '../core/cursor';
 import { Problem } from '../core/problems';
 import { childRef, diskRef, refId, SourceRef } from '../core/sources';
 import { closestMatch, LineIndex, Range } from '../core/text';
+import { distributionWording } from '../core/diagnostics/distribution';
+import { unknownDistributionParameterWording } from '../core/diagnostics/unknownDistributionParameter';
 import { loadVariations, LoadResult, SamplingError, Variations, VariationProblem } from '../core/variations';
 import { DeclaredParameter, readScenarioParameters } from '../core/variations/concrete';
 import { expandDeterministic } from '../core/variations/deterministic';
@@ -146,16 +148,12 @@ export function distributionProblems(analysis: DistributionAnalysis): Problem[] 
       return {
         source: analysis.ref,
         range,
-        severity,
-        code: 'unknown-distribution-parameter',
-        message: problem.message + (suggestion ? `; did you mean '${suggestion}'?` : ''),
+        ...unknownDistributionParameterWording(severity, problem.message, suggestion),
         ...(suggestion ? { data: { suggestion } } : {}),
       };
     }
-    const message = own
-      ? problem.message
-      : `in the ScenarioFile (${path.basename(problem.file)}:${scenarioLine(analysis, problem)}): ${problem.message}`;
-    return { source: analysis.ref, range, severity, code: 'distribution', message };
+    const inScenario = own ? undefined : { file: path.basename(problem.file), line: scenarioLine(analysis, problem) };
+    return { source: analysis.ref, range, ...distributionWording(severity, problem.message, inScenario) };
   });
 }
 

@@ -127,3 +127,13 @@ export function attributeInsertOffset(element: XmlElement): number {
   const declaration = attribute(element, PARAMETER_ATTRIBUTES);
   return declaration ? declaration.valueEnd + 1 : element.nameEnd;
 }
+
+/** `Change to '<text>'`: `text` written where the problem is. */
+export function changeTo(range: Range, text: string, preferred = true): CoreFix {
+  return { title: `Change to '${text}'`, edits: [{ place: 'document', range, newText: text }], preferred };
+}
+
+/** The fix of a code whose data names the closest valid text: change to it. */
+export function changeToSuggestion({ data, range }: FixContext<{ suggestion: string }>): CoreFix[] {
+  return data?.suggestion ? [changeTo(range, data.suggestion)] : [];
+}

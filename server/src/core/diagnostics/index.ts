@@ -1,7 +1,11 @@
 import { ProblemCode } from '../problems';
 import { RegisteredDiagnostic } from './definition';
+import { CYCLE } from './cycle';
+import { DISTRIBUTION } from './distribution';
 import { MISSING_FILE } from './missingFile';
 import { NO_DEFAULT } from './noDefault';
+import { SOURCE_ERRORS } from './sourceErrors';
+import { UNKNOWN_DISTRIBUTION_PARAMETER } from './unknownDistributionParameter';
 import { UNKNOWN_GROUP } from './unknownGroup';
 import { UNKNOWN_KEY } from './unknownKey';
 import { UNKNOWN_PARAMETER_ATTRIBUTE } from './unknownParameterAttribute';
@@ -15,7 +19,18 @@ export type { QcRuleUid, Rule } from './qcRules';
  * Every diagnostic that has its own module (server/src/core/diagnostics/<code>.ts): one entry per code.
  * The codes not listed yet keep their rule in core/rules.ts and their fix in features/fixes/.
  */
-export const DIAGNOSTICS = [MISSING_FILE, XOSC_FALLBACK, UNKNOWN_GROUP, UNKNOWN_KEY, NO_DEFAULT, UNKNOWN_PARAMETER_ATTRIBUTE] as const;
+export const DIAGNOSTICS = [
+  MISSING_FILE,
+  XOSC_FALLBACK,
+  UNKNOWN_GROUP,
+  UNKNOWN_KEY,
+  NO_DEFAULT,
+  UNKNOWN_PARAMETER_ATTRIBUTE,
+  DISTRIBUTION,
+  UNKNOWN_DISTRIBUTION_PARAMETER,
+  CYCLE,
+  SOURCE_ERRORS,
+] as const;
 
 /** The codes whose diagnostic has its own module. */
 export type DefinedCode = (typeof DIAGNOSTICS)[number]['code'];

@@ -1,4 +1,4 @@
-import { defineDiagnostic, isSuggestion, ProblemWording } from './definition';
+import { changeToSuggestion, defineDiagnostic, isSuggestion, ProblemWording } from './definition';
 
 /** A scenarioFileName that names no file where it was looked up (`searched`); the hint names the closest file there, else `hint`. */
 export function missingFileWording(
@@ -31,8 +31,5 @@ export const MISSING_FILE = defineDiagnostic({
   rule: { description: 'A scenarioFileName resolves to a file (SPEC 3).' },
   severity: 'error',
   isData: isSuggestion,
-  fixes: ({ data, range }) =>
-    data?.suggestion
-      ? [{ title: `Change to '${data.suggestion}'`, edits: [{ place: 'document', range, newText: data.suggestion }], preferred: true }]
-      : [],
+  fixes: changeToSuggestion,
 });

@@ -1,5 +1,5 @@
 import { ProblemDataByCode } from '../problems';
-import { defineDiagnostic, isOptionalString, isRecordOf, isStringList, ProblemWording } from './definition';
+import { changeTo, defineDiagnostic, isOptionalString, isRecordOf, isStringList, ProblemWording } from './definition';
 
 /** A file with more groups than this offers only the first ones as fixes of an unknown group. */
 const MAX_GROUP_FIXES = 20;
@@ -33,10 +33,6 @@ export const UNKNOWN_GROUP = defineDiagnostic({
     isRecordOf<ProblemDataByCode['unknown-group']>(value, { suggestion: isOptionalString, groups: isStringList }),
   fixes: ({ data, range }) => {
     const names = [...new Set([...(data?.suggestion ? [data.suggestion] : []), ...(data?.groups ?? []).filter((name) => name.length > 0)])];
-    return names.slice(0, MAX_GROUP_FIXES).map((name) => ({
-      title: `Change to '${name}'`,
-      edits: [{ place: 'document', range, newText: name }],
-      preferred: name === data?.suggestion,
-    }));
+    return names.slice(0, MAX_GROUP_FIXES).map((name) => changeTo(range, name, name === data?.suggestion));
   },
 });

@@ -1,5 +1,5 @@
 import { ProblemDataByCode } from '../problems';
-import { defineDiagnostic, isRecordOf, isString, ProblemWording } from './definition';
+import { changeTo, defineDiagnostic, isRecordOf, isString, ProblemWording } from './definition';
 
 /** The package read for a `NAME.xosc` that does not exist: `NAME.mosc`. */
 export function fallbackPackageName(xoscName: string): string {
@@ -30,8 +30,5 @@ export const XOSC_FALLBACK = defineDiagnostic({
   deprecated: true,
   isData: (value): value is ProblemDataByCode['xosc-fallback'] =>
     isRecordOf<ProblemDataByCode['xosc-fallback']>(value, { replacement: isString }),
-  fixes: ({ data, range }) =>
-    data?.replacement
-      ? [{ title: `Change to '${data.replacement}'`, edits: [{ place: 'document', range, newText: data.replacement }], preferred: true }]
-      : [],
+  fixes: ({ data, range }) => (data?.replacement ? [changeTo(range, data.replacement)] : []),
 });

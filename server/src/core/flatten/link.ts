@@ -1,4 +1,6 @@
+import { cycleWording } from '../diagnostics/cycle';
 import { missingFileWording } from '../diagnostics/missingFile';
+import { sourceErrorsCause, sourceErrorsWording } from '../diagnostics/sourceErrors';
 import { unknownGroupData, unknownGroupWording } from '../diagnostics/unknownGroup';
 import { fallbackPackageName, xoscFallbackWording } from '../diagnostics/xoscFallback';
 import { NO_DEFAULT_LISTED_NOTE, noDefaultWording } from '../diagnostics/noDefault';
@@ -178,14 +180,7 @@ async function resolveTarget(
   if (cycleStart >= 0) {
     const cycle = [...stack.slice(cycleStart), target];
     link.cycle = cycle;
-    report({
-      start,
-      end,
-      severity: 'error',
-      code: 'cycle',
-      message: `reference cycle: ${cycle.map((entry) => context.store.display(entry)).join(' -> ')}`,
-      hint: 'remove one reference of the cycle',
-    });
+    report({ start, end, ...cycleWording(cycle.map((entry) => context.store.display(entry))) });
     return undefined;
   }
   const maxDepth = context.store.limits.maxDepth;
@@ -210,16 +205,9 @@ function reportSourceErrors(reference: ScenarioReferenceInfo, source: FlatSource
   );
   if (sourceErrors.length === 0) return;
   const [start, end] = valueRange(reference.fileAttribute, reference.element);
-  const problem = report({
-    start,
-    end,
-    severity: 'error',
-    code: 'source-errors',
-    message: `'${reference.fileName}' has ${sourceErrors.length} error${sourceErrors.length === 1 ? '' : 's'}: ${sourceErrors[0].message}`,
-  });
+  const problem = report({ start, end, ...sourceErrorsWording(reference.fileName, sourceErrors) });
   problem.related = sourceErrors.slice(0, 20).map((item) => ({ source: item.source, range: item.range, message: item.message }));
-  const first = sourceErrors[0];
-  problem.cause = first.cause ?? { code: first.code, among: sourceErrors.length };
+  problem.cause = sourceErrorsCause(sourceErrors);
 }
 
 /** Selects the group a ManeuverGroupReference names in the referenced file and plans its overrides. */

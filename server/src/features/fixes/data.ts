@@ -32,7 +32,6 @@ const OTHER_GUARDS: { [C in Exclude<ProblemCodeWithData, DefinedCode>]: (value: 
   'unknown-catalog-entry': isSuggestion,
   'unknown-assigned-parameter': isSuggestion,
   'unknown-storyboard-element': isSuggestion,
-  'unknown-distribution-parameter': isSuggestion,
   'lenient-value': (value): value is ProblemDataByCode['lenient-value'] =>
     isSuggestion(value) || (isRecord(value) && isString(value.relatedReplacement)),
   'renamed-reference': isSuggestion,

@@ -1,9 +1,9 @@
 import { TextEdit } from 'vscode-languageserver/node';
 import { problemFix, quickFix } from './fix';
 
-/** An attribute name or a value the schema does not know, or a distribution's parameter the scenario lacks: the closest one it does; a deprecated one: the standard's form. */
+/** An attribute name or a value the schema does not know: the closest one it does; a deprecated one: the standard's form. */
 export const schemaSuggestionFix = problemFix(
-  ['schema-unknown-attribute', 'schema-value', 'schema-deprecated', 'unknown-distribution-parameter'],
+  ['schema-unknown-attribute', 'schema-value', 'schema-deprecated'],
   (data, { uri, diagnostic }) =>
     data?.suggestion
       ? [
