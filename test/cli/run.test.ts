@@ -67,7 +67,7 @@ describe('cli: run in esmini', function () {
     assert.equal(Number(rows[rows.length - 1].split(',')[1]), 4);
   });
 
-  it("run --check: 1 for esmini's error, printed on the simple scenario's line", function () {
+  it("esmini's error printed on the simple scenario's line; one that stops esmini before it runs exits 3 (it did not run), with or without --check", function () {
     requireEsmini(this);
     const root = examplesWith('dynamicsShape="linear" value="3"', 'dynamicsShape="wobbly" value="3"');
     const line =
@@ -77,12 +77,17 @@ describe('cli: run in esmini', function () {
         .findIndex((text) => text.includes('wobbly')) + 1;
     const args = ['run', 'main.xosc', '--duration', '2', '--road-path', esminiRoads, '--esmini', esminiBinary];
     const checked = runCli([...args, '--check'], { cwd: root });
-    assert.equal(checked.status, 1, checked.stderr);
+    assert.equal(checked.status, 3, checked.stderr);
     assert.match(
       checked.stderr,
       new RegExp(`^lane_change\\.xosc:${line}:\\d+: error: Dynamics shape wobbly unexpected.* \\(esmini\\)$`, 'm'),
     );
-    assert.equal(runCli(args, { cwd: root }).status, 0, 'without --check a run with esmini errors still exits 0');
+    const unchecked = runCli(args, { cwd: root });
+    assert.equal(unchecked.status, 3, 'esmini refused the scenario (exit 255): a run that did not happen is not reported as done');
+    assert.match(
+      unchecked.stderr,
+      /main\.xosc: error: esmini did not run the scenario \(exit code \d+\): Dynamics shape wobbly unexpected/,
+    );
   });
 
   it('a scenario that cannot be flattened is not run and exits 1', function () {
@@ -94,6 +99,25 @@ describe('cli: run in esmini', function () {
     assert.equal(run.status, 1);
     assert.match(run.stderr, /has no ManeuverGroup named 'CutOut'/);
     assert.match(run.stderr, /cannot be flattened; nothing was run/);
+  });
+
+  it("a scenario esmini refuses (a 0.9 FileHeader) did not run: esmini's message and exit 3, with or without --check (issue 27)", function () {
+    requireEsmini(this);
+    const root = examplesWith();
+    try {
+      const main = path.join(root, 'main.xosc');
+      fs.writeFileSync(main, fs.readFileSync(main, 'utf8').replace('revMajor="1" revMinor="0"', 'revMajor="0" revMinor="9"'));
+      for (const check of [[], ['--check']]) {
+        const run = runCli(['run', 'main.xosc', '--duration', '2', '--road-path', esminiRoads, '--esmini', esminiBinary, ...check], {
+          cwd: root,
+        });
+        assert.equal(run.status, 3, run.stderr);
+        assert.match(run.stderr, /main\.xosc: error: esmini did not run the scenario \(exit code \d+\): OpenSCENARIO v0\.9 not supported/);
+        assert.doesNotMatch(run.stderr, /placed no entity/);
+      }
+    } finally {
+      fs.rmSync(root, { recursive: true, force: true });
+    }
   });
 
   it('run --check over the whole library (every main.xosc) exits 0', function () {

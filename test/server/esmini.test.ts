@@ -336,7 +336,9 @@ describe('esmini: runs (the simulator built by the test setup)', function () {
       to: 'dynamicsShape="wobbly" value="3"',
     });
     const result = await run(new ScenarioStore({ root }), path.join(root, 'main.xosc'), { duration: 5 });
-    assert.equal(result.outcome, 'errors');
+    // esmini stops at the unknown shape before it simulates anything (exit 255): the run did not happen.
+    assert.equal(result.outcome, 'failed');
+    assert.match(result.message, /^esmini did not run the scenario \(exit code \d+\): Dynamics shape wobbly unexpected/);
     const [error] = errorsOf(result);
     assert.ok(error, result.log);
     assert.equal(error.source.disk, path.join(root, 'lane_change.xosc'));

@@ -233,7 +233,7 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
   }
   const problems = mapEsminiMessages(log.messages, flat.source, main);
   const errors = problems.filter((problem) => problem.severity === 'error').length;
-  const outcome = outcomeOf(ran, errors, problems.length - errors);
+  const outcome = outcomeOf(ran, errors, problems.length - errors, problems.find((problem) => problem.severity === 'error')?.message);
   const scenarioErrors = flattenProblems.filter((problem) => problem.severity === 'error').length;
   const forced =
     scenarioErrors > 0 && (outcome.outcome === 'ok' || outcome.outcome === 'errors')
@@ -291,7 +291,7 @@ export async function runScenarioText(text: string, searchPath: string[], option
     ...ran.common,
     esmini: location.program,
     wallMs: elapsed(),
-    ...outcomeOf(ran, errors, messages.length - errors),
+    ...outcomeOf(ran, errors, messages.length - errors, messages.find((message) => message.level === 'error')?.text),
   };
 }
 
@@ -352,14 +352,22 @@ async function runLimitedText(
   };
 }
 
-/** How a run ended, in a word and a sentence, from how the process ended and how many errors esmini reported. */
-function outcomeOf(ran: LimitedRun, errors: number, warnings: number): Pick<EsminiRunResult, 'outcome' | 'message'> {
+/**
+ * How a run ended, in a word and a sentence, from how the process ended and the errors esmini reported
+ * (`firstError`: the first one's text). A run that simulated nothing while esmini reported an error did not
+ * happen: esmini refused the scenario (a 0.9 header, a controller it does not know), and says why.
+ */
+function outcomeOf(ran: LimitedRun, errors: number, warnings: number, firstError?: string): Pick<EsminiRunResult, 'outcome' | 'message'> {
   const { run, common } = ran;
   const counts = `${errors} error${errors === 1 ? '' : 's'}, ${warnings} warning${warnings === 1 ? '' : 's'}`;
   if (run.end === 'cancelled') return { outcome: 'cancelled', message: 'the run was cancelled' };
   if (run.end === 'not-started' || run.end === 'killed') return { outcome: 'failed', message: `esmini ${run.reason ?? 'failed'}` };
   if (run.exitCode !== 0 && run.end === 'exited' && errors === 0) {
     return { outcome: 'failed', message: `esmini ended with exit code ${run.exitCode} without an error message; see its log` };
+  }
+  if (errors > 0 && common.simulatedTime === undefined) {
+    const code = run.end === 'exited' && run.exitCode !== 0 ? ` (exit code ${run.exitCode})` : '';
+    return { outcome: 'failed', message: `esmini did not run the scenario${code}: ${firstError ?? 'see its log'}` };
   }
   const covered =
     common.simulatedTime === undefined
