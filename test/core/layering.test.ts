@@ -161,6 +161,60 @@ function folderCircles(graph: Map<string, string[]>): string[] {
   return found;
 }
 
+/**
+ * The layer pictures of ARCHITECTURE.md's Layers section: for each folder drawn (a line `server/src/` or
+ * `server/src/core/` at the start), its rows top to bottom, each the parts it names (`a.ts, b/`).
+ */
+function layerPictures(markdown: string): Map<string, string[][]> {
+  const section = markdown.slice(markdown.indexOf('## Layers'), markdown.indexOf('\n## ', markdown.indexOf('## Layers') + 1));
+  const pictures = new Map<string, string[][]>();
+  let rows: string[][] | undefined;
+  let folder = '';
+  for (const line of section.split('\n')) {
+    const heading = /^(server\/src(?:\/core)?)\/\s*$/.exec(line);
+    if (heading) {
+      folder = heading[1];
+      rows = [];
+      pictures.set(folder, rows);
+    } else if (/^\S/.test(line)) rows = undefined;
+    else if (rows && /^ {2}\S/.test(line)) {
+      rows.push(
+        line
+          .trim()
+          .split(/\s{2,}/)[0]
+          .split(/,\s*/)
+          .map((part) => `${folder}/${part.replace(/\/$/, '')}`),
+      );
+    }
+  }
+  return pictures;
+}
+
+/** What is wrong with the pictures: a folder not drawn, a part that is not there, a part importing one on its own line or above. */
+function pictureErrors(graph: Map<string, string[]>, pictures: Map<string, string[][]>): string[] {
+  const errors: string[] = [];
+  const byFolder = folderGraphs(graph);
+  for (const [folder, rows] of pictures) {
+    const parts = byFolder.get(folder) ?? new Map<string, Map<string, string>>();
+    const rowOf = new Map(rows.flatMap((row, index) => row.map((part) => [part, index] as const)));
+    for (const part of new Set(rows.flat()))
+      if (rows.flat().filter((drawn) => drawn === part).length > 1) errors.push(`${folder}: ${part} is drawn twice`);
+    for (const part of parts.keys()) if (!graph.has(part) && !rowOf.has(part)) errors.push(`${folder}: the folder ${part} is not drawn`);
+    for (const [part, row] of rowOf) {
+      if (!parts.has(part)) {
+        errors.push(`${folder}: ${part} is drawn but not there`);
+        continue;
+      }
+      for (const [target, example] of parts.get(part)!) {
+        const below = rowOf.get(target);
+        if (below !== undefined && below <= row)
+          errors.push(`${folder}: ${part} is drawn above or beside ${target}, which it imports (${example})`);
+      }
+    }
+  }
+  return errors;
+}
+
 describe('layering: the imports of server/src, client/src and common/src', () => {
   let graph: Map<string, string[]>;
   before(() => {
@@ -186,6 +240,20 @@ describe('layering: the imports of server/src, client/src and common/src', () =>
   it('has no import cycle between folders: no two parts of a folder (a folder inside it, a file in it) import each other', () => {
     const loops = folderCircles(graph);
     assert.deepEqual(loops, [], `folders that import each other:\n${loops.join('\n')}`);
+  });
+
+  it("matches ARCHITECTURE.md's layer pictures: every folder drawn, each part above what it imports", () => {
+    const pictures = layerPictures(fs.readFileSync(path.join(repoRoot, 'ARCHITECTURE.md'), 'utf8'));
+    assert.deepEqual([...pictures.keys()], ['server/src', 'server/src/core']);
+    assert.ok(pictures.get('server/src/core')!.flat().includes('server/src/core/semantics'));
+    const errors = pictureErrors(graph, pictures);
+    assert.deepEqual(errors, [], `ARCHITECTURE.md's layer pictures:\n${errors.join('\n')}`);
+    // A picture drawn upside down fails, naming the import.
+    const upsideDown = new Map([...pictures].map(([folder, rows]) => [folder, [...rows].reverse()]));
+    assert.match(
+      pictureErrors(graph, upsideDown).join('\n'),
+      /server\/src\/core\/xml is drawn above or beside server\/src\/core\/text\.ts, which it imports/,
+    );
   });
 
   it('names the folders of a folder cycle and one import each way', () => {
