@@ -5,4 +5,5 @@ export declare function buildEsmini(options: {
   report: (line: string) => void;
   pollMs?: number;
   quietMs?: number;
+  signal?: AbortSignal;
 }): Promise<string | undefined>;

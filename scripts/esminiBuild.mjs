@@ -18,11 +18,12 @@ export function buildPercent(logText) {
 /**
  * Runs `bash buildScript dest` and calls `report` with a line at each 10 % make passes (and at least every
  * `quietMs` while it stays at one step), then once at the end. Resolves to the esmini program, or undefined
- * when the build failed (its own messages, on standard error, say why).
- * @param {{ buildScript: string, dest: string, report: (line: string) => void, pollMs?: number, quietMs?: number }} options
+ * when the build failed (its own messages, on standard error, say why) or was stopped by `signal`, which ends
+ * the build's whole process group (bash, make and the compilers), so that nothing builds on unseen.
+ * @param {{ buildScript: string, dest: string, report: (line: string) => void, pollMs?: number, quietMs?: number, signal?: AbortSignal }} options
  * @returns {Promise<string | undefined>}
  */
-export function buildEsmini({ buildScript, dest, report, pollMs = 2000, quietMs = 60_000 }) {
+export function buildEsmini({ buildScript, dest, report, pollMs = 2000, quietMs = 60_000, signal }) {
   const program = path.join(dest, 'bin', 'esmini');
   const log = path.join(dest, 'build.log');
   const started = Date.now();
@@ -48,16 +49,27 @@ export function buildEsmini({ buildScript, dest, report, pollMs = 2000, quietMs 
     }
   };
   return new Promise((resolve) => {
-    const child = spawn('bash', [buildScript, dest], { stdio: ['ignore', 'ignore', 'inherit'] });
-    // An earlier build's log would report its 100 % at once: only a log written by this build counts.
+    if (signal?.aborted) return resolve(undefined);
+    // An earlier build's log would report its 100 % at once: only a log written by this build counts (read before it starts).
     const earlierLog = fs.existsSync(log) ? fs.statSync(log).mtimeMs : undefined;
+    const child = spawn('bash', [buildScript, dest], { stdio: ['ignore', 'ignore', 'inherit'], detached: true });
+    const stop = () => {
+      try {
+        process.kill(-(/** @type {number} */ (child.pid)), 'SIGTERM');
+      } catch {
+        // already ended
+      }
+    };
+    signal?.addEventListener('abort', stop, { once: true });
     const timer = setInterval(() => {
       if (earlierLog === undefined || (fs.existsSync(log) && fs.statSync(log).mtimeMs !== earlierLog)) poll();
     }, pollMs);
     const finish = (/** @type {boolean} */ ok) => {
       clearInterval(timer);
+      signal?.removeEventListener('abort', stop);
       const built = ok && fs.existsSync(program);
-      if (reported >= 0) report(built ? `esmini built in ${elapsed()}: ${program}` : `esmini did not build after ${elapsed()}`);
+      if (signal?.aborted) report(`esmini build stopped after ${elapsed()}; the next npm start builds it again`);
+      else if (reported >= 0) report(built ? `esmini built in ${elapsed()}: ${program}` : `esmini did not build after ${elapsed()}`);
       resolve(built ? program : undefined);
     };
     child.on('error', () => finish(false));

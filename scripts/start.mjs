@@ -57,6 +57,8 @@ runOrExit(process.execPath, [path.join(root, 'scripts', 'build.mjs')]);
 const shared = path.resolve(root, '..', 'shared', 'esmini');
 const esminiDest = path.join(root, '.cache', 'esmini');
 const canBuildEsmini = fs.existsSync(path.join(shared, 'build.sh'));
+// The build runs in a process group of its own: stopping npm start (Ctrl+C, SIGTERM) stops it too.
+const esminiBuildStop = new AbortController();
 
 /** Builds esmini (at once when built before), telling how far it is; after the editor is open, so that it is usable meanwhile. */
 async function buildEsminiAfterOpening() {
@@ -66,13 +68,24 @@ async function buildEsminiAfterOpening() {
       'building esmini from ../shared/esmini into .cache/esmini (once; 3 to 20 minutes on 2 cores, longer when they are busy). ' +
         'The editor works meanwhile; Run in esmini finds esmini when the build is done.',
     );
-  const program = await buildEsmini({ buildScript: path.join(shared, 'build.sh'), dest: esminiDest, report: step });
-  if (!program) step('esmini did not build (the lines above say why): Run in esmini will say how to get it');
+  const program = await buildEsmini({
+    buildScript: path.join(shared, 'build.sh'),
+    dest: esminiDest,
+    report: step,
+    signal: esminiBuildStop.signal,
+  });
+  if (!program && !esminiBuildStop.signal.aborted)
+    step('esmini did not build (the lines above say why): Run in esmini will say how to get it');
 }
 
 if (onPath('code') && !process.env.M2S_USE_CODE_SERVER) {
   step(`opening ${path.relative(root, workspace) || '.'} in VS Code with the extension loaded`);
   runOrExit('code', ['--new-window', `--extensionDevelopmentPath=${root}`, workspace]);
+  for (const signal of ['SIGINT', 'SIGTERM'])
+    process.on(signal, () => {
+      esminiBuildStop.abort();
+      process.exit(130);
+    });
   await buildEsminiAfterOpening();
   process.exit(0);
 }
@@ -131,6 +144,7 @@ for (let attempt = 0; attempt < 150; attempt++) {
 const opened = `VS Code (code-server) is running on 127.0.0.1 only. Open this address in a browser on this machine:\n\n  ${url}\n\nAfter a rebuild (npm run build), run "Developer: Reload Window". Stop with Ctrl+C.`;
 step(opened);
 const stop = () => {
+  esminiBuildStop.abort();
   try {
     process.kill(-server.pid, 'SIGTERM');
   } catch {
@@ -151,4 +165,4 @@ server.on('exit', (code) => process.exit(code ?? 0));
 const esminiWasBuilt = fs.existsSync(path.join(esminiDest, 'bin', 'esmini'));
 await buildEsminiAfterOpening();
 // The address again, as the build's lines have pushed it up.
-if (canBuildEsmini && !esminiWasBuilt) step(opened);
+if (canBuildEsmini && !esminiWasBuilt && !esminiBuildStop.signal.aborted) step(opened);

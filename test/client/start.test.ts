@@ -4,6 +4,7 @@ import * as path from 'node:path';
 import { buildEsmini, buildPercent } from '../../scripts/esminiBuild.mjs';
 import { writeStartSettings } from '../../scripts/startSettings.mjs';
 import { repoRoot } from '../support/paths';
+import { waitUntil } from '../support/wait';
 import { temporaryWorkspace } from '../support/workspace';
 
 describe('npm start: the settings of the VS Code it opens', () => {
@@ -34,6 +35,14 @@ describe('npm start: the settings of the VS Code it opens', () => {
   });
 });
 
+/** A stand-in for ../shared/esmini/build.sh in a fresh folder, which is also the build's DEST. */
+function standInBuild(script: string): { dest: string; buildScript: string } {
+  const dest = temporaryWorkspace();
+  const buildScript = path.join(dest, 'build.sh');
+  fs.writeFileSync(buildScript, script);
+  return { dest, buildScript };
+}
+
 describe('npm start: building esmini after the editor is open', () => {
   it('reads how far make is from its log', () => {
     assert.equal(buildPercent('-- Configuring done\n'), undefined);
@@ -43,11 +52,8 @@ describe('npm start: building esmini after the editor is open', () => {
 
   it('reports the build as make goes, then where esmini is; a failed build is told and yields no program', async function () {
     this.timeout(20_000);
-    const dest = temporaryWorkspace();
-    // A stand-in for ../shared/esmini/build.sh: writes make's lines to DEST/build.log as it goes, then the program.
-    const buildScript = path.join(dest, 'build.sh');
-    fs.writeFileSync(
-      buildScript,
+    // Writes make's lines to DEST/build.log as it goes, then the program.
+    const { dest, buildScript } = standInBuild(
       'set -e\nfor p in 5 25 26 60 100; do echo "[ $p%] Building CXX object x.o" >> "$1/build.log"; sleep 0.2; done\n' +
         'if [ -n "$FAIL" ]; then exit 1; fi\nmkdir -p "$1/bin" && printf "#!/bin/sh\\n" > "$1/bin/esmini" && chmod +x "$1/bin/esmini"\n',
     );
@@ -71,6 +77,35 @@ describe('npm start: building esmini after the editor is open', () => {
       assert.match(failed[failed.length - 1], /^esmini did not build after \d+ s$/);
     } finally {
       delete process.env.FAIL;
+      fs.rmSync(dest, { recursive: true, force: true });
+    }
+  });
+  it('stopping npm start stops the build with everything it started (make and the compilers run in its group)', async function () {
+    this.timeout(20_000);
+    // Its "compiler" is a background sleep, as make's children are: it must end with the build.
+    const { dest, buildScript } = standInBuild(
+      'sleep 30 & echo $! > "$1/compiler.pid"\necho "[ 10%] Building CXX object x.o" >> "$1/build.log"\nwait\n',
+    );
+    // A killed process whose parent is gone may stay a zombie until something reaps it: that counts as ended.
+    const running = (pid: number) => {
+      try {
+        return !/^\d+ \(.*\) Z/.test(fs.readFileSync(`/proc/${pid}/stat`, 'utf8'));
+      } catch {
+        return false;
+      }
+    };
+    try {
+      const stop = new AbortController();
+      const lines: string[] = [];
+      const built = buildEsmini({ buildScript, dest, report: (line) => lines.push(line), pollMs: 20, signal: stop.signal });
+      await waitUntil(() => fs.existsSync(path.join(dest, 'compiler.pid')) && lines.length > 0, 'the stand-in build to start', 10_000);
+      const compiler = Number(fs.readFileSync(path.join(dest, 'compiler.pid'), 'utf8'));
+      assert.ok(running(compiler));
+      stop.abort();
+      assert.equal(await built, undefined);
+      assert.match(lines[lines.length - 1], /^esmini build stopped after \d+ s/);
+      await waitUntil(() => !running(compiler), 'the compiler to end with the build', 5_000);
+    } finally {
       fs.rmSync(dest, { recursive: true, force: true });
     }
   });
