@@ -904,6 +904,35 @@ function requiredParts(tree: Node): void {
   for (const controller of named(tree, 'Controller')) if (!child(controller, 'Properties')) appendChild(controller, makeNode('Properties'));
 }
 
+/**
+ * ScenarioRunner finds a traffic light by `id=N` (CARLA's actor id) or `pos=X,Y` only, in the states Green, Red,
+ * Yellow and Off (SR_PARSER get_traffic_light_from_osc_name, tl_states); any other name or state raises while
+ * the scenario is built, so such an action or condition is dropped, named.
+ */
+function trafficSignals(tree: Node, context: RuleContext): void {
+  for (const name of ['TrafficSignalStateAction', 'TrafficSignalCondition']) {
+    for (const node of named(tree, name)) {
+      if (!node.parent) continue;
+      const signal = attr(node, 'name') ?? '';
+      const state = attr(node, 'state') ?? '';
+      if (!/^(id=\d+|pos=-?[\d.]+,-?[\d.]+)$/.test(signal))
+        dropUnit(
+          node,
+          context,
+          name,
+          `ScenarioRunner names a traffic light by its CARLA actor id=N or pos=X,Y; '${signal}' (an OpenDRIVE signal id) raises "Unknown traffic light" (${SR_PARSER} get_traffic_light_from_osc_name)`,
+        );
+      else if (!['GREEN', 'RED', 'YELLOW', 'OFF'].includes(state.toUpperCase()))
+        dropUnit(
+          node,
+          context,
+          name,
+          `ScenarioRunner knows the states Green, Red, Yellow and Off; '${state}' raises (${SR_PARSER} tl_states)`,
+        );
+    }
+  }
+}
+
 /** Every rule, in the order they apply. */
 export const CARLA_RULES: readonly { name: string; apply: (tree: Node, context: RuleContext) => void }[] = [
   { name: 'parameters', apply: parameters },
@@ -917,6 +946,7 @@ export const CARLA_RULES: readonly { name: string; apply: (tree: Node, context: 
   { name: 'positions', apply: unsupportedPositions },
   { name: 'refused-actions', apply: refusedActions },
   { name: 'route-crash', apply: routeActionCrash },
+  { name: 'traffic-signals', apply: trafficSignals },
   { name: 'conditions', apply: conditions },
   { name: 'ignored-semantics', apply: ignoredSemantics },
   { name: 'storyboard-stop', apply: storyboardStop },
