@@ -136,4 +136,22 @@ describe('real file shapes: no false alarms (issue 27)', function () {
       assert.match(second.stdout, /<ParameterDeclaration name="egospeed" parameterType="double" value="20"\/>/);
     });
   });
+
+  it('simulator-value on unsignedShort and unsignedInt parameters says what differs: esmini does not support the type', () => {
+    folder = temporaryWorkspace({
+      'main.xosc': scenarioWith({
+        parameters:
+          '<ParameterDeclaration name="count" parameterType="unsignedShort" value="65535"/><ParameterDeclaration name="n" parameterType="unsignedInt" value="3"/>',
+      }),
+    });
+    const problems = check(folder, 'main.xosc').filter((problem) => problem.code === 'simulator-value');
+    assert.deepEqual(
+      problems.map((problem) => problem.message),
+      ['count', 'n'].map(
+        (name, index) =>
+          `'${name}': esmini does not support parameters of type ${['unsignedShort', 'unsignedInt'][index]}: it logs "Type ${['unsignedShort', 'unsignedInt'][index]} is not supported yet" and keeps the value as text ('${['65535', '3'][index]}'), which an attribute then reads as written (esmini 3.6 Parameters.cpp parseParameterDeclarations)`,
+      ),
+    );
+    assert.ok(problems.every((problem) => problem.severity === 'warning'));
+  });
 });

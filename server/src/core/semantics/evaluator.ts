@@ -75,6 +75,9 @@ function readAs(esmini: EsminiText & { ok: true }, type: ParameterType): Paramet
   return esmini.text;
 }
 
+/** The parameter types esmini declares with an error and no type of its own (esmini 3.6 Parameters.cpp: "Type ... is not supported yet"). */
+const ESMINI_UNSUPPORTED_TYPES: ReadonlySet<ParameterType> = new Set<ParameterType>(['unsignedInt', 'unsignedShort', 'dateTime']);
+
 function differenceMessage(difference: ValueDifference): string {
   return `esmini computes ${difference.esmini} where the standard gives ${difference.standard}${difference.reasons.length ? `: ${difference.reasons.join('; ')}` : ''}`;
 }
@@ -115,7 +118,16 @@ export class Evaluator {
             ? { value: esmini.number, rule: 'doubleConversion' as const }
             : esminiTyped(esmini.text, declaration.type);
         if (this.reading === 'esmini') result = { ok: true, value: typed.value, type, provenance: standard.provenance };
-        if (!sameValue(standard.value, typed.value)) {
+        const unsupported = declaration.type !== undefined && ESMINI_UNSUPPORTED_TYPES.has(declaration.type);
+        const typeAttribute = declaration.typeAttribute;
+        if (unsupported && typeAttribute && standard.provenance.kind === 'declaration') {
+          this.warn(declaration, {
+            kind: 'simulator',
+            message: `'${declaration.name}': esmini does not support parameters of type ${declaration.type}: it logs "Type ${declaration.type} is not supported yet" and keeps the value as text ('${esmini.text}'), which an attribute then reads as written (esmini 3.6 Parameters.cpp parseParameterDeclarations)`,
+            start: typeAttribute.valueStart,
+            end: typeAttribute.valueEnd,
+          });
+        } else if (!sameValue(standard.value, typed.value)) {
           const differs = {
             standard: formatValue(standard.value),
             esmini: formatValue(typed.value),
