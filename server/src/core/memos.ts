@@ -157,6 +157,13 @@ export const CORE_MEMOS = {
     bound: { entries: 8, freshMs: 2000, text: '8 files by content hash; reads of the last 2 s' },
     invalidated: 'a read older than 2 s is read again; a changed text is parsed again',
   },
+  carlaCatalogSchemaErrors: {
+    where: '`core/semantics/carlaFiles.ts`',
+    key: 'a modelled catalog file (`CatalogFile`)',
+    holds: "the first 3 of its errors against the OpenSCENARIO 1.0 schema, for the CARLA profile's report",
+    bound: WITH_KEY,
+    invalidated: 'never: a changed text is modelled again, a new key (see `catalogFiles`)',
+  },
   standardEvaluators: {
     where: '`core/flatten/checks.ts`',
     key: "an imported file's semantic model",

@@ -5,6 +5,7 @@ import { diskRef, ScenarioStore, SourceRef } from '../sources';
 import { XmlAttribute, XmlDocument, XmlElement } from '../xml';
 import { CatalogFile, CatalogLoader } from './catalogs';
 import { SemanticModel } from './model';
+import { coreMemo } from '../memos';
 
 /**
  * The files CARLA's ScenarioRunner reads beside a scenario, found as it finds them (its
@@ -43,7 +44,7 @@ export interface CarlaFiles {
 }
 
 /** A catalog file's errors against the 1.0 schema, once per modelled catalog (catalogs are modelled once per text). */
-const schemaErrorsOf = new WeakMap<CatalogFile, string[]>();
+const schemaErrorsOf = coreMemo<CatalogFile, string[]>('carlaCatalogSchemaErrors');
 const SCHEMA_ERRORS_KEPT = 3;
 
 function catalogSchemaErrors(file: CatalogFile): string[] {
