@@ -294,6 +294,23 @@ export async function packCommand(
   );
 }
 
+/** Sends a write; where the server asks first (an output outside the workspace), asks the user and sends it again if agreed. */
+async function writeConfirmingOutside(
+  output: string,
+  what: string,
+  send: (outsideWorkspace: boolean) => Promise<WriteResult>,
+): Promise<WriteResult> {
+  const result = await send(false);
+  if (result.needsConfirmation !== 'outsideWorkspace') return result;
+  const write = 'Write';
+  const answer = await vscode.window.showWarningMessage(
+    `${output} lies outside the workspace. Write ${what} there?`,
+    { modal: true },
+    write,
+  );
+  return answer === write ? send(true) : result;
+}
+
 export async function flattenCommand(
   server: ServerCommandClient,
   reporter: CommandReporter,
@@ -312,17 +329,8 @@ export async function flattenCommand(
   if (!output) return undefined;
   const main = mainFileOf(target);
   // The server writes outside the workspace only when the user agrees.
-  const flattenTo = async (options: FlattenOptions, token: vscode.CancellationToken): Promise<WriteResult> => {
-    const result = await server.flattenToFile(main, output, options, token);
-    if (result.needsConfirmation !== 'outsideWorkspace') return result;
-    const write = 'Write';
-    const answer = await vscode.window.showWarningMessage(
-      `${output} lies outside the workspace. Write the flattened scenario there?`,
-      { modal: true },
-      write,
-    );
-    return answer === write ? server.flattenToFile(main, output, options, token, true) : result;
-  };
+  const flattenTo = (options: FlattenOptions, token: vscode.CancellationToken): Promise<WriteResult> =>
+    writeConfirmingOutside(output, 'the flattened scenario', (outside) => server.flattenToFile(main, output, options, token, outside));
   const outcome = await withWriteProgress(action, output, (token) => flattenTo({}, token));
   if ('error' in outcome) {
     await reporter.failure(action, outcome.error);
@@ -351,4 +359,45 @@ export async function flattenCommand(
   }
   if (choice !== writeAnyway) return undefined;
   return runWrite(reporter, action, output, (token) => flattenTo({ force: true }, token), writtenAnywayNote(problems));
+}
+
+/** The output proposed for an export for CARLA: `<name>.carla.xosc` beside the scenario (or its package). */
+function defaultCarlaOutput(input: string): string {
+  const flattened = defaultFlattenOutput(input);
+  return flattened.replace(/(\.flattened)?\.xosc$/i, '.carla.xosc');
+}
+
+/**
+ * *Export for CARLA…*: asks for the output, has the server write OpenSCENARIO 1.0 for ScenarioRunner
+ * (modular2simple/exportForCarla) and lists the loss report in the output; a refusal names its reasons.
+ */
+export async function exportForCarlaCommand(
+  server: ServerCommandClient,
+  reporter: CommandReporter,
+  clicked: unknown,
+  selected: unknown,
+  ...rest: unknown[]
+): Promise<string | undefined> {
+  const [target] = commandTargets(clicked, selected);
+  if (!target || (target.scheme !== 'file' && target.scheme !== PACKAGE_SCHEME)) {
+    void vscode.window.showErrorMessage(
+      'Export for CARLA: open or select a .xosc, a main.xosc, a .mosc or an unpacked package folder first.',
+    );
+    return undefined;
+  }
+  const action = 'Export for CARLA';
+  const options = commandOptions(clicked, selected, ...rest);
+  const input = target.scheme === 'file' ? target.fsPath : (target.path.split(/\.mosc\//i)[0] ?? target.path) + '.mosc';
+  const output = await chooseOutput(action, defaultCarlaOutput(input), options, { OpenSCENARIO: ['xosc'] });
+  if (!output) return undefined;
+  const exportTo = (token: vscode.CancellationToken): Promise<WriteResult> =>
+    writeConfirmingOutside(output, 'the export', (outside) => server.exportForCarla(target, output, token, outside));
+  const outcome = await withWriteProgress(action, output, exportTo);
+  if ('error' in outcome) {
+    await reporter.failure(action, outcome.error);
+    return undefined;
+  }
+  if (outcome.result.written !== null) return reportWritten(reporter, action, { ...outcome.result, written: outcome.result.written });
+  await reporter.problems(action, outcome.result.problems);
+  return undefined;
 }

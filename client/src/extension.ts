@@ -3,10 +3,10 @@ import * as vscode from 'vscode';
 import type { ServerCapabilities } from 'vscode-languageclient';
 import { DidChangeWatchedFilesNotification, FileChangeType } from 'vscode-languageclient';
 import type { LanguageClient } from 'vscode-languageclient/node';
-import { EXTRACT_GROUP_COMMAND, PACKAGE_SCHEME, type StructureNode } from '../../common/src/protocol';
+import { EXPORT_FOR_CARLA_COMMAND, EXTRACT_GROUP_COMMAND, PACKAGE_SCHEME, type StructureNode } from '../../common/src/protocol';
 import { registerBirdsEye } from './birdsEye/commands';
 import type { BirdsEyeView } from './birdsEye/panel';
-import { CommandReporter, commandTargets, flattenCommand, mainFileOf, packCommand } from './commands';
+import { CommandReporter, commandTargets, exportForCarlaCommand, flattenCommand, mainFileOf, packCommand } from './commands';
 import { ChangeFollower } from './followChanges';
 import { LANGUAGE_ID, ServerCommandClient, createLanguageClient } from './languageClient';
 import { newScenarioCommand } from './newScenario';
@@ -107,6 +107,7 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
   register(RUN_VARIATIONS_COMMAND, (clicked) => variationsRunner.run(clicked));
   register('modular2simple.pack', (clicked, selected, ...rest) => packCommand(server, reporter, clicked, selected, ...rest));
   register('modular2simple.flatten', (clicked, selected, ...rest) => flattenCommand(server, reporter, clicked, selected, ...rest));
+  register(EXPORT_FOR_CARLA_COMMAND, (clicked, selected, ...rest) => exportForCarlaCommand(server, reporter, clicked, selected, ...rest));
   register('modular2simple.newScenario', (clicked, ...rest) => newScenarioCommand(server, reporter, clicked, ...rest));
   register(EXTRACT_GROUP_COMMAND, (args) => extractGroupCommand(server, reporter, args));
   register('modular2simple.openPreview', async (clicked, at) => {

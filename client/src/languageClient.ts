@@ -3,6 +3,7 @@ import { LanguageClient, TransportKind, type LanguageClientOptions, type ServerO
 import type { WorkspaceEdit as LspWorkspaceEdit } from 'vscode-languageserver-protocol';
 import {
   ExtractGroupRequest,
+  ExportForCarlaRequest,
   FlattenToFileRequest,
   FlattenToTextRequest,
   NewScenarioRequest,
@@ -86,6 +87,19 @@ export class ServerCommandClient {
 
   /** Writes the flattened scenario; an existing output is replaced (the caller asked the user first). */
   /** `outsideWorkspace`: the user agreed to write outside the workspace (the server asks for that first). */
+  async exportForCarla(
+    input: vscode.Uri,
+    outputPath: string,
+    token?: vscode.CancellationToken,
+    outsideWorkspace = false,
+  ): Promise<WriteResult> {
+    return (await this.started()).sendRequest(
+      ExportForCarlaRequest,
+      { uri: input.toString(), outputPath, ...(outsideWorkspace ? { outsideWorkspace } : {}) },
+      token,
+    );
+  }
+
   async flattenToFile(
     input: vscode.Uri,
     outputPath: string,

@@ -38,6 +38,21 @@ export interface StructureParams {
   uri: string;
 }
 
+export interface ExportForCarlaParams {
+  /** A .xosc, a modular main, a .mosc or an unpacked package folder, as a `file:` or `mosc:` URI. */
+  uri: string;
+  /** A file system path or a `file:` URI, ending in .xosc. */
+  outputPath: string;
+  /** The user agreed to write outside the workspace folders (see WriteResult.needsConfirmation). */
+  outsideWorkspace?: boolean;
+}
+
+/** Writes the scenario as OpenSCENARIO 1.0 for ScenarioRunner; the loss report comes back as problems at their source lines. */
+export const ExportForCarlaRequest = new RequestType<ExportForCarlaParams, WriteResult, void>('modular2simple/exportForCarla');
+
+/** The editor command that exports a scenario for CARLA's ScenarioRunner (a quick fix of a CARLA finding offers it). */
+export const EXPORT_FOR_CARLA_COMMAND = 'modular2simple.exportForCarla';
+
 /** The custom requests; their method names are also advertised in `capabilities.experimental.requests`. */
 export const FlattenToTextRequest = new RequestType<FlattenToTextParams, FlattenTextResult, void>('modular2simple/flattenToText');
 export const FlattenToFileRequest = new RequestType<FlattenToFileParams, WriteResult, void>('modular2simple/flattenToFile');
@@ -130,6 +145,7 @@ export const CUSTOM_REQUESTS = [
   PreviewRequest.method,
   NewScenarioRequest.method,
   ExtractGroupRequest.method,
+  ExportForCarlaRequest.method,
 ];
 
 /** URI scheme of files inside a `.mosc`: `mosc:/abs/path/pkg.mosc/inner.mosc/main.xosc`. */

@@ -1,6 +1,8 @@
 import * as assert from 'node:assert/strict';
 import * as path from 'node:path';
-import { DiagnosticSeverity } from 'vscode-languageserver/node';
+import { CodeAction, Diagnostic, DiagnosticSeverity, RenameFile, TextEdit } from 'vscode-languageserver/node';
+import { EXPORT_FOR_CARLA_COMMAND, ExportForCarlaRequest, WriteResult } from '../../common/src/protocol';
+import * as fs from 'node:fs';
 import { fileUri, TestClient } from './harness';
 import { problemCodeOf } from '../support/diagnostics';
 import { temporaryWorkspace } from '../support/workspace';
@@ -59,5 +61,114 @@ describe('simulator profile in the language server', function () {
       diagnostics.filter((diagnostic) => problemCodeOf(diagnostic) === 'simulator'),
       [],
     );
+  });
+});
+
+const CATALOG = `<?xml version="1.0" encoding="UTF-8"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="0" date="2026-01-01T00:00:00" description="cars" author="test"/>
+  <Catalog name="cars"><Vehicle name="vehicle.tesla.model3" vehicleCategory="car">
+    <BoundingBox><Center x="1" y="0" z="1"/><Dimensions width="2" length="4" height="1.5"/></BoundingBox>
+    <Performance maxSpeed="50" maxAcceleration="5" maxDeceleration="9"/>
+    <Axles><FrontAxle maxSteering="0.5" wheelDiameter="0.6" trackWidth="1.7" positionX="2.9" positionZ="0.3"/>
+    <RearAxle maxSteering="0" wheelDiameter="0.6" trackWidth="1.7" positionX="0" positionZ="0.3"/></Axles>
+    <Properties/>
+  </Vehicle></Catalog>
+</OpenSCENARIO>
+`;
+
+/** A 1.1 scenario for CARLA: its version, a \${...} speed and a catalog ScenarioRunner does not find by its file name. */
+const FIXABLE = `<?xml version="1.0" encoding="UTF-8"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="1" date="2026-01-01T00:00:00" description="fixes" author="test"/>
+  <ParameterDeclarations><ParameterDeclaration name="Speed" parameterType="double" value="36"/></ParameterDeclarations>
+  <CatalogLocations><VehicleCatalog><Directory path="catalogs"/></VehicleCatalog></CatalogLocations>
+  <RoadNetwork><LogicFile filepath="Town05"/></RoadNetwork>
+  <Entities>
+    <ScenarioObject name="hero"><CatalogReference catalogName="cars" entryName="vehicle.tesla.model3"/></ScenarioObject>
+  </Entities>
+  <Storyboard>
+    <Init><Actions><Private entityRef="hero"><PrivateAction><LongitudinalAction><SpeedAction>
+      <SpeedActionDynamics dynamicsShape="step" value="0" dynamicsDimension="time"/>
+      <SpeedActionTarget><AbsoluteTargetSpeed value="\${$Speed / 3.6}"/></SpeedActionTarget>
+    </SpeedAction></LongitudinalAction></PrivateAction></Private></Actions></Init>
+    <StopTrigger/>
+  </Storyboard>
+</OpenSCENARIO>
+`;
+
+describe('CARLA findings offer their fixes over JSON-RPC', function () {
+  let client: TestClient;
+  let root: string;
+  let uri: string;
+
+  before(async () => {
+    root = temporaryWorkspace({ 'scenario.xosc': FIXABLE, 'catalogs/Cars.xosc': CATALOG });
+    client = await TestClient.start({ root, settings: { simulator: 'carla' } });
+    uri = await client.open(fileUri(path.join(root, 'scenario.xosc')), FIXABLE);
+  });
+
+  after(async () => {
+    await client.stop();
+  });
+
+  const actionsFor = async (diagnostic: Diagnostic): Promise<CodeAction[]> =>
+    client.request<CodeAction[]>('textDocument/codeAction', {
+      textDocument: { uri },
+      range: diagnostic.range,
+      context: { diagnostics: [diagnostic] },
+    });
+
+  const carlaDiagnostic = async (pattern: RegExp): Promise<Diagnostic> => {
+    const diagnostics = await client.diagnosticsOf(uri, (list) => list.some((diagnostic) => pattern.test(String(diagnostic.message))));
+    const found = diagnostics.find((diagnostic) => problemCodeOf(diagnostic) === 'simulator' && pattern.test(String(diagnostic.message)));
+    assert.ok(found, diagnostics.map((diagnostic) => String(diagnostic.message)).join('\n'));
+    assert.equal(found.severity, DiagnosticSeverity.Error);
+    return found;
+  };
+
+  const editOf = (action: CodeAction | undefined): TextEdit | undefined => action?.edit?.changes?.[uri]?.[0];
+
+  it('the version: write revMinor="0"', async () => {
+    const version = await carlaDiagnostic(/accepts only OpenSCENARIO 1\.0/);
+    const actions = await actionsFor(version);
+    const write = actions.find((action) => action.title === "Write '0'");
+    assert.equal(editOf(write)?.newText, '0');
+    assert.deepEqual(editOf(write)?.range, version.range);
+  });
+
+  it('a ${...} number: write its value, which the inlay hint shows, or export for CARLA', async () => {
+    const expression = await carlaDiagnostic(/does not evaluate \$\{\.\.\.\}/);
+    assert.match(String(expression.message), /value="\$\{\$Speed \/ 3\.6\}", which is 10/);
+    const actions = await actionsFor(expression);
+    assert.equal(editOf(actions.find((action) => action.title === "Write '10'"))?.newText, '10');
+    const exportAction = actions.find((action) => action.command?.command === EXPORT_FOR_CARLA_COMMAND);
+    assert.deepEqual(exportAction?.command?.arguments, [uri]);
+  });
+
+  it('a catalog in a file of another name: rename it to the name ScenarioRunner reads', async () => {
+    const catalog = await carlaDiagnostic(/reads the Vehicle catalog only from .*VehicleCatalog\.xosc, which does not exist/);
+    const actions = await actionsFor(catalog);
+    const rename = actions.find((action) => action.title === 'Rename Cars.xosc to VehicleCatalog.xosc');
+    const change = rename?.edit?.documentChanges?.[0] as RenameFile | undefined;
+    assert.equal(change?.kind, 'rename');
+    assert.equal(change?.oldUri, fileUri(path.join(root, 'catalogs', 'Cars.xosc')));
+    assert.equal(change?.newUri, fileUri(path.join(root, 'catalogs', 'VehicleCatalog.xosc')));
+    assert.equal(change?.options?.overwrite, false);
+  });
+
+  it('Export for CARLA through the server: writes OpenSCENARIO 1.0 with the catalog inlined, and never over its input', async () => {
+    const output = path.join(root, 'out', 'scenario.carla.xosc');
+    fs.mkdirSync(path.dirname(output));
+    const result = await client.request<WriteResult>(ExportForCarlaRequest.method, { uri, outputPath: output });
+    assert.equal(result.written, output, JSON.stringify(result.problems));
+    const written = fs.readFileSync(output, 'utf8');
+    assert.match(written, /revMajor="1" revMinor="0"/);
+    assert.match(written, /<Vehicle name="vehicle\.tesla\.model3"/);
+    assert.match(written, /<AbsoluteTargetSpeed value="10"/);
+    const over = await client.request<WriteResult>(ExportForCarlaRequest.method, { uri, outputPath: path.join(root, 'scenario.xosc') });
+    assert.equal(over.written, null);
+    assert.match(over.problems[0].message, /refusing to overwrite .*scenario\.xosc, the scenario being exported/);
+    assert.equal(fs.readFileSync(path.join(root, 'scenario.xosc'), 'utf8'), FIXABLE);
   });
 });

@@ -63,7 +63,6 @@ const OTHER_RULES: Record<Exclude<ProblemCode, DefinedCode>, Rule> = {
   'parameter-conflict': { description: "A carried declaration agrees with the main file's declaration of the same name (SPEC 11)." },
   'catalog-location-conflict': { description: "A carried catalog location agrees with the main file's (SPEC 11)." },
   'renamed-reference': { description: 'A reference to a group that flattening renames is updated.' },
-  simulator: { description: 'The selected simulator runs what the file uses.' },
   'lenient-value': { description: "A value is written in the standard's form, not only in a form esmini also accepts (SPEC 12)." },
   'simulator-value': { description: 'A value is the same in the standard and in the selected simulator.' },
   overflow: { description: "A number stays within its type's range (IEEE double, int, unsignedInt, unsignedShort)." },

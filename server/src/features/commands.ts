@@ -34,11 +34,11 @@ function forceOf(options: unknown): boolean {
 }
 
 /** Whether the client asked the user and was told to write outside the workspace. */
-function outsideConfirmed(options: unknown): boolean {
+export function outsideConfirmed(options: unknown): boolean {
   return Boolean(options && typeof options === 'object' && (options as { outsideWorkspace?: unknown }).outsideWorkspace === true);
 }
 
-function insideFolders(filePath: string, folders: string[]): boolean {
+export function insideFolders(filePath: string, folders: string[]): boolean {
   return folders.some((folder) => filePath === folder || filePath.startsWith(folder.endsWith(path.sep) ? folder : folder + path.sep));
 }
 

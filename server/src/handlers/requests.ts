@@ -1,5 +1,6 @@
 import { CancellationToken, LSPErrorCodes, Position, ResponseError } from 'vscode-languageserver/node';
 import {
+  ExportForCarlaRequest,
   FlattenToFileRequest,
   FlattenToTextRequest,
   NewScenarioRequest,
@@ -11,6 +12,7 @@ import {
 import { SceneRequest } from '../../../common/src/sceneProtocol';
 import { SourceRef } from '../core/sources';
 import { OpenDocument } from '../documents';
+import { exportForCarlaToFile } from '../features/carlaExport';
 import { codeActions } from '../features/codeActions';
 import { flattenToFile, flattenToText, structure } from '../features/commands';
 import { complete } from '../features/completion';
@@ -253,6 +255,18 @@ export const REQUESTS: Record<string, (context: ServerContext, method: string) =
             ...params?.options,
             outsideWorkspace: params?.outsideWorkspace,
           }),
+        { writes: true },
+      ),
+    ),
+  // Writes the scenario for CARLA's ScenarioRunner atomically, never over its input; the loss report comes back as problems.
+  [ExportForCarlaRequest.method]: (context, method) =>
+    context.connection.onRequest(
+      ExportForCarlaRequest,
+      request(
+        context,
+        method,
+        (params) =>
+          exportForCarlaToFile(context.workspace, params?.uri, params?.outputPath, { outsideWorkspace: params?.outsideWorkspace }),
         { writes: true },
       ),
     ),

@@ -52,7 +52,14 @@ export interface CoreFix {
   title: string;
   edits: FixEdit[];
   preferred?: boolean;
+  /** A file to rename (absolute paths), where renaming is the fix (a catalog file ScenarioRunner reads only by name). */
+  rename?: { from: string; to: string };
+  /** An editor command that does what no edit can, given the problem's document: exporting it for a simulator. */
+  command?: EditorCommand;
 }
+
+/** The commands a core fix may offer, by what they do (the editor's adapter names its own command for each). */
+export type EditorCommand = 'export-for-carla';
 
 /** One diagnostic: its code, its rule, its usual severity, the data its problems carry and their quick fixes. */
 export interface DiagnosticBase<C extends ProblemCode> {

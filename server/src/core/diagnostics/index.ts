@@ -9,6 +9,7 @@ import { UNKNOWN_DISTRIBUTION_PARAMETER } from './unknownDistributionParameter';
 import { UNKNOWN_GROUP } from './unknownGroup';
 import { UNKNOWN_KEY } from './unknownKey';
 import { UNKNOWN_PARAMETER_ATTRIBUTE } from './unknownParameterAttribute';
+import { SIMULATOR } from './simulator';
 import { XOSC_FALLBACK } from './xoscFallback';
 
 export * from './definition';
@@ -30,6 +31,7 @@ export const DIAGNOSTICS = [
   UNKNOWN_DISTRIBUTION_PARAMETER,
   CYCLE,
   SOURCE_ERRORS,
+  SIMULATOR,
 ] as const;
 
 /** The codes whose diagnostic has its own module. */

@@ -44,11 +44,6 @@ const OTHER_GUARDS: { [C in Exclude<ProblemCodeWithData, DefinedCode>]: (value: 
   'schema-missing-attribute': isMissingAttributes,
   'schema-missing-element': (value): value is ProblemDataByCode['schema-missing-element'] =>
     isRecord(value) && isStringList(value.missing) && isString(value.parent) && isOptionalString(value.insertAt),
-  simulator: (value): value is ProblemDataByCode['simulator'] =>
-    isRecord(value) &&
-    isOptionalString(value.suggestion) &&
-    (value.exportMaps === undefined || typeof value.exportMaps === 'boolean') &&
-    (value.rename === undefined || (isRecord(value.rename) && isString(value.rename.from) && isString(value.rename.to))),
 };
 
 const PROBLEM_CODES: ReadonlySet<string> = new Set(PROBLEM_CODE_LIST);

@@ -1,6 +1,8 @@
-import { CodeAction, TextEdit, WorkspaceEdit } from 'vscode-languageserver/node';
+import { CodeAction, CodeActionKind, RenameFile, TextEdit, WorkspaceEdit } from 'vscode-languageserver/node';
+import { EXPORT_FOR_CARLA_COMMAND } from '../../../../common/src/protocol';
 import { TextDocument } from 'vscode-languageserver-textdocument';
-import { CoreFix, FixContext, RegisteredDiagnostic, RelatedPlace } from '../../core/diagnostics';
+import { CoreFix, EditorCommand, FixContext, RegisteredDiagnostic, RelatedPlace } from '../../core/diagnostics';
+import { fileUri } from '../../uris';
 import { SourceRef } from '../../core/sources';
 import { Workspace } from '../../workspace';
 import { FixDocument, ProblemFix, quickFix } from './fix';
@@ -25,8 +27,22 @@ function relatedPlace(target: FixDocument, workspace: Workspace, file: () => Pro
   };
 }
 
-/** A fix of the core (text edits in the document or its related file) as a code action of the diagnostic. */
+/** The editor's command for each command a core fix may offer. */
+const EDITOR_COMMANDS: Record<EditorCommand, string> = { 'export-for-carla': EXPORT_FOR_CARLA_COMMAND };
+
+/** A fix of the core (text edits in the document or its related file, a file's rename, an editor command) as a code action of the diagnostic. */
 async function codeAction(fix: CoreFix, target: FixDocument, file: () => Promise<EditableFile>): Promise<CodeAction> {
+  if (fix.command)
+    return {
+      title: fix.title,
+      kind: CodeActionKind.QuickFix,
+      diagnostics: [target.diagnostic],
+      command: { title: fix.title, command: EDITOR_COMMANDS[fix.command], arguments: [target.uri] },
+    };
+  if (fix.rename) {
+    const rename = RenameFile.create(fileUri(fix.rename.from).toString(), fileUri(fix.rename.to).toString(), { overwrite: false });
+    return quickFix(fix.title, target.diagnostic, { documentChanges: [rename] }, fix.preferred);
+  }
   const changes: NonNullable<WorkspaceEdit['changes']> = {};
   for (const edit of fix.edits) {
     const uri = edit.place === 'document' ? target.uri : (await file())?.uri;
