@@ -277,8 +277,15 @@ function scenario(version = '3'): string {
 
 /** Each family: the written value replaced, the text the problem covers, and the range its message names. */
 const FAMILIES: { family: string; from: string; to: string; at: string; range: string; warning?: true }[] = [
-  { family: 'weather', from: 'temperature="293"', to: 'temperature="400"', at: '400', range: '[170..340]' },
-  { family: 'weather', from: 'atmosphericPressure="101325"', to: 'atmosphericPressure="10000"', at: '10000', range: '[80000..120000]' },
+  { family: 'weather', from: 'temperature="293"', to: 'temperature="400"', at: '400', range: '[170..340]', warning: true },
+  {
+    family: 'weather',
+    from: 'atmosphericPressure="101325"',
+    to: 'atmosphericPressure="10000"',
+    at: '10000',
+    range: '[80000..120000]',
+    warning: true,
+  },
   { family: 'sun', from: 'azimuth="3"', to: 'azimuth="7"', at: '7', range: '[0..2PI]' },
   {
     family: 'wind (open upper bound)',
@@ -322,7 +329,22 @@ const FAMILIES: { family: string; from: string; to: string; at: string; range: s
     range: '[0..inf[',
     warning: true,
   },
-  { family: 'controller override', from: 'value="0.5" maxRate="2"', to: 'value="1.5" maxRate="2"', at: '1.5', range: '[0..1]' },
+  {
+    family: 'clutch override',
+    from: '<Clutch active="false" value="0"/>',
+    to: '<Clutch active="false" value="2"/>',
+    at: '2',
+    range: '[0..1]',
+    warning: true,
+  },
+  {
+    family: 'controller override',
+    from: 'value="0.5" maxRate="2"',
+    to: 'value="1.5" maxRate="2"',
+    at: '1.5',
+    range: '[0..1]',
+    warning: true,
+  },
   {
     family: 'controller override rate',
     from: 'maxRate="1" maxTorque="5"',

@@ -85,6 +85,19 @@ const RATE_MAGNITUDE: EsminiReading = {
   when: { attribute: 'dynamicsDimension', value: 'rate' },
 };
 
+// esmini 3.6 clamps these into the standard's range when it reads them, and runs the scenario (SPEC 12: a warning that says so).
+const OVERRIDE_CLAMP: EsminiReading = {
+  reading:
+    'clamps it into [0..1] and runs (ScenarioReader.cpp OverrideControllerValueAction, OSCPrivateAction.cpp OverrideControlAction::RangeCheckAndErrorLog)',
+};
+const PRESSURE_CLAMP: EsminiReading = {
+  reading:
+    'clamps it into [80000..120000] Pa, warning "Atmospheric pressure clamped", and runs (OSCEnvironment.cpp SetAtmosphericPressure)',
+};
+const TEMPERATURE_CLAMP: EsminiReading = {
+  reading: 'clamps it into [170..340] K, warning "Temperature clamped", and runs (OSCEnvironment.cpp SetTemperature)',
+};
+
 const AXLES = { modelClass: 'Axle', elements: ['FrontAxle', 'RearAxle', 'AdditionalAxle'] };
 const TRANSITION_DYNAMICS = { modelClass: 'TransitionDynamics', elements: ['LaneChangeActionDynamics', 'SpeedActionDynamics'] };
 
@@ -134,13 +147,13 @@ export const VALUE_RANGES: readonly ValueRange[] = [
   ...rules('MiscObject', ['mass'], NON_NEGATIVE, ALL),
   ...rules('Nurbs', ['order'], { min: 2 }, ALL),
   ...rules('OffroadCondition', ['duration'], NON_NEGATIVE, ALL),
-  ...rules({ modelClass: 'OverrideBrakeAction', elements: ['Brake'] }, ['value'], FRACTION, ALL),
-  ...rules({ modelClass: 'OverrideClutchAction', elements: ['Clutch'] }, ['value'], FRACTION, ALL),
+  ...rules({ modelClass: 'OverrideBrakeAction', elements: ['Brake'] }, ['value'], FRACTION, ALL, { esmini: OVERRIDE_CLAMP }),
+  ...rules({ modelClass: 'OverrideClutchAction', elements: ['Clutch'] }, ['value'], FRACTION, ALL, { esmini: OVERRIDE_CLAMP }),
   ...rules({ modelClass: 'OverrideClutchAction', elements: ['Clutch'] }, ['maxRate'], RATE, FROM_1_2),
-  ...rules({ modelClass: 'OverrideParkingBrakeAction', elements: ['ParkingBrake'] }, ['value'], FRACTION, ALL),
+  ...rules({ modelClass: 'OverrideParkingBrakeAction', elements: ['ParkingBrake'] }, ['value'], FRACTION, ALL, { esmini: OVERRIDE_CLAMP }),
   ...rules({ modelClass: 'OverrideSteeringWheelAction', elements: ['SteeringWheel'] }, ['maxRate'], RATE, FROM_1_2),
   ...rules({ modelClass: 'OverrideSteeringWheelAction', elements: ['SteeringWheel'] }, ['maxTorque'], POSITIVE, FROM_1_2),
-  ...rules({ modelClass: 'OverrideThrottleAction', elements: ['Throttle'] }, ['value'], FRACTION, ALL),
+  ...rules({ modelClass: 'OverrideThrottleAction', elements: ['Throttle'] }, ['value'], FRACTION, ALL, { esmini: OVERRIDE_CLAMP }),
   ...rules('Performance', ['maxAcceleration', 'maxDeceleration'], NON_NEGATIVE, ALL),
   ...rules('Performance', ['maxAccelerationRate', 'maxDecelerationRate'], NON_NEGATIVE, FROM_1_2),
   ...rules('Phase', ['duration'], NON_NEGATIVE, ALL, { checkedBy: 'non-positive-phase-duration' }),
@@ -168,8 +181,8 @@ export const VALUE_RANGES: readonly ValueRange[] = [
   ...rules('TraveledDistanceCondition', ['value'], NON_NEGATIVE, ALL),
   ...rules('VehicleCategoryDistributionEntry', ['weight'], NON_NEGATIVE, ALL),
   ...rules('VehicleRoleDistributionEntry', ['weight'], NON_NEGATIVE, FROM_1_2),
-  ...rules('Weather', ['temperature'], { min: 170, max: 340 }, FROM_1_2),
-  ...rules('Weather', ['atmosphericPressure'], { min: 80000, max: 120000 }, FROM_1_2),
+  ...rules('Weather', ['temperature'], { min: 170, max: 340 }, FROM_1_2, { esmini: TEMPERATURE_CLAMP }),
+  ...rules('Weather', ['atmosphericPressure'], { min: 80000, max: 120000 }, FROM_1_2, { esmini: PRESSURE_CLAMP }),
   ...rules('Wind', ['direction'], { min: 0, max: 2 * Math.PI, maxOpen: true }, FROM_1_2),
   ...rules('Wind', ['speed'], NON_NEGATIVE, FROM_1_2),
 ];
