@@ -1,5 +1,11 @@
 import { ProblemCode } from '../problems';
 import { RegisteredDiagnostic } from './definition';
+import { AMBIGUOUS_GROUP } from './ambiguousGroup';
+import { DUPLICATE_GROUP } from './duplicateGroup';
+import { KEY_MIXED_DEFAULTS } from './keyMixedDefaults';
+import { NO_ENTITY_REF } from './noEntityRef';
+import { REFERENCE_OUTSIDE_GROUP } from './referenceOutsideGroup';
+import { TOO_DEEP } from './tooDeep';
 import { CYCLE } from './cycle';
 import { DISTRIBUTION } from './distribution';
 import { MISSING_FILE } from './missingFile';
@@ -32,6 +38,12 @@ export const DIAGNOSTICS = [
   CYCLE,
   SOURCE_ERRORS,
   SIMULATOR,
+  AMBIGUOUS_GROUP,
+  DUPLICATE_GROUP,
+  KEY_MIXED_DEFAULTS,
+  NO_ENTITY_REF,
+  REFERENCE_OUTSIDE_GROUP,
+  TOO_DEEP,
 ] as const;
 
 /** The codes whose diagnostic has its own module. */

@@ -1,4 +1,10 @@
+import { ambiguousGroupWording } from '../diagnostics/ambiguousGroup';
 import { cycleWording } from '../diagnostics/cycle';
+import { DUPLICATE_GROUP_FIRST_NOTE, duplicateGroupWording } from '../diagnostics/duplicateGroup';
+import { keyMixedDefaultsNote, keyMixedDefaultsWording } from '../diagnostics/keyMixedDefaults';
+import { noActorsWording, noEntityRefAttributeWording } from '../diagnostics/noEntityRef';
+import { referenceOutsideGroupWording } from '../diagnostics/referenceOutsideGroup';
+import { tooDeepWording } from '../diagnostics/tooDeep';
 import { missingFileWording } from '../diagnostics/missingFile';
 import { sourceErrorsCause, sourceErrorsWording } from '../diagnostics/sourceErrors';
 import { unknownGroupData, unknownGroupWording } from '../diagnostics/unknownGroup';
@@ -78,34 +84,14 @@ export async function link(
 /** A reference must stand in a ManeuverGroup whose actor the imported groups take. */
 function checkReferenceShape(reference: ScenarioReferenceInfo, report: Report): void {
   if (!reference.outerGroup) {
-    report({
-      start: reference.element.start,
-      end: reference.element.nameEnd,
-      severity: 'error',
-      code: 'reference-outside-group',
-      message: 'a ScenarioReference must stand directly inside a ManeuverGroup',
-    });
+    report({ start: reference.element.start, end: reference.element.nameEnd, ...referenceOutsideGroupWording() });
   } else if (!reference.outerGroup.actor) {
     const group = reference.outerGroup;
     const [start, end] = valueRange(group.nameAttribute, group.element);
-    report({
-      start,
-      end,
-      severity: 'error',
-      code: 'no-entity-ref',
-      message: `ManeuverGroup '${group.name}' has no <Actors><EntityRef entityRef="..."/></Actors>, so the imported groups have no actor`,
-      hint: 'add an Actors element with the EntityRef of the entity that performs the imported groups',
-    });
+    report({ start, end, ...noActorsWording(group.name) });
   } else if (!attribute(reference.outerGroup.actor, 'entityRef')) {
     const actor = reference.outerGroup.actor;
-    report({
-      start: actor.start,
-      end: actor.nameEnd,
-      severity: 'error',
-      code: 'no-entity-ref',
-      message: 'this EntityRef has no entityRef attribute',
-      hint: 'write entityRef="NAME" with the name of a ScenarioObject',
-    });
+    report({ start: actor.start, end: actor.nameEnd, ...noEntityRefAttributeWording() });
   }
 }
 
@@ -185,14 +171,7 @@ async function resolveTarget(
   }
   const maxDepth = context.store.limits.maxDepth;
   if (stack.length >= maxDepth) {
-    report({
-      start,
-      end,
-      severity: 'error',
-      code: 'too-deep',
-      message: `references nest deeper than ${maxDepth} files: ${describeChain([...stack, target], context.store.workingDirectory)}`,
-      hint: 'flatten the inner packages first, or raise the bound with --max-depth',
-    });
+    report({ start, end, ...tooDeepWording(maxDepth, describeChain([...stack, target], context.store.workingDirectory)) });
     return undefined;
   }
   return target;
@@ -234,13 +213,7 @@ function linkGroup(
   linked.target = targetGroup;
   const named = sourceModel.groups.filter((group) => group.name === groupReference.name);
   if (named.length > 1) {
-    report({
-      start,
-      end,
-      severity: 'warning',
-      code: 'ambiguous-group',
-      message: `'${reference.fileName}' has more than one ManeuverGroup named '${groupReference.name}'; the first one is used`,
-    });
+    report({ start, end, ...ambiguousGroupWording(reference.fileName, groupReference.name) });
     result.problems.push(...duplicateGroupProblems(source, named));
   }
   linked.overridable = overridableAttributes(sourceModel, targetGroup);
@@ -276,13 +249,10 @@ function duplicateGroupProblems(source: FlatSource, named: ManeuverGroupInfo[]):
       document: place.document,
       start: place.start,
       end: place.end,
-      severity: 'warning',
-      code: 'duplicate-group',
-      message: `another ManeuverGroup is already named '${group.name}'; a reference to that name takes the first one`,
-      hint: 'give each ManeuverGroup a unique name',
+      ...duplicateGroupWording(group.name),
     });
     problem.related = [
-      { source: first.ref, range: first.document.lines.range(first.start, first.end), message: 'the first group of that name' },
+      { source: first.ref, range: first.document.lines.range(first.start, first.end), message: DUPLICATE_GROUP_FIRST_NOTE },
     ];
     problems.push(problem);
   }
@@ -297,20 +267,12 @@ function checkMixedDefaults(plan: OverridePlan, source: FlatSource, report: Repo
     const [start, end] = valueRange(match.parameter.keyAttribute, match.parameter.element);
     const counts = new Map<string, number>();
     for (const target of targets) counts.set(target.defaultValue as string, (counts.get(target.defaultValue as string) ?? 0) + 1);
-    const listed = [...counts].map(([value, count]) => `'${value}' (${count}×)`);
-    const problem = report({
-      start,
-      end,
-      severity: 'warning',
-      code: 'key-mixed-defaults',
-      message: `key '${match.parameter.key}' sets ${targets.length} attributes whose defaults differ: ${listed.join(', ')}; all of them get '${match.parameter.value}'`,
-      hint: 'write a longer key that reaches only the attributes you mean, or list the attribute in parameterAttributes only where it should be overridden',
-    });
+    const problem = report({ start, end, ...keyMixedDefaultsWording(match.parameter.key, targets.length, counts, match.parameter.value) });
     problem.related = targets.map((target) =>
       declarationLocation(
         originOf(source, target.element),
         target.attributeName,
-        `'${target.attributeName}' with default '${target.defaultValue}'`,
+        keyMixedDefaultsNote(target.attributeName, target.defaultValue),
       ),
     );
   }
