@@ -41,6 +41,7 @@ async function nestedPackages(levels: number): Promise<Operation> {
     inner = await zip.generateAsync({ type: 'uint8array', compression: 'DEFLATE' });
   }
   const folder = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-scaling-'));
+  process.on('exit', () => fs.rmSync(folder, { recursive: true, force: true }));
   const file = path.join(folder, 'outer.mosc');
   fs.writeFileSync(file, inner as Uint8Array);
   return async () => {
