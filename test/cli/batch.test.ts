@@ -1,20 +1,20 @@
 import * as assert from 'node:assert/strict';
 import { spawn } from 'node:child_process';
 import * as fs from 'node:fs';
-import * as os from 'node:os';
 import * as path from 'node:path';
 import { cliInTemporaryProject } from '../support/cliProject';
 import { esminiBinary, esminiRoads, requireEsmini } from '../support/esmini';
 import { runCli } from '../support/fixtures';
 import { cliPath, repoRoot } from '../support/paths';
 import { waitUntil } from '../support/wait';
+import { temporaryFolder } from '../support/temporaryDirectory';
 
 const FIXTURES = path.join(repoRoot, 'test', 'fixtures', 'variations');
 const COLUMNS = 'index,status,collision,min_distance_m,min_ttc_s,end_time_s,EgoSpeed,LeadSpeed,LeadStartS';
 
 /** A folder with follow.xosc (its runs lasting `stopTime` simulated seconds) and its 36-scenario distribution. */
 function batchFolder(stopTime = 3, distribution?: string): string {
-  const folder = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-batch-'));
+  const folder = temporaryFolder('m2s-batch-');
   const scenario = fs
     .readFileSync(path.join(FIXTURES, 'follow.xosc'), 'utf8')
     .replace('name="StopTime" parameterType="double" value="3"', `name="StopTime" parameterType="double" value="${stopTime}"`);

@@ -1,19 +1,19 @@
 import * as assert from 'node:assert/strict';
 import { spawn } from 'node:child_process';
 import * as fs from 'node:fs';
-import * as os from 'node:os';
 import * as path from 'node:path';
 import { esminiBinary, esminiRoads, requireEsmini } from '../support/esmini';
 import { runCli } from '../support/fixtures';
 import { cliPath, repoRoot } from '../support/paths';
 import { freePort, RedisServer, requireRedis, startRedis } from '../support/redis';
 import { waitUntil } from '../support/wait';
+import { temporaryFolder } from '../support/temporaryDirectory';
 
 const FIXTURES = path.join(repoRoot, 'test', 'fixtures', 'variations');
 
 /** follow.xosc (runs of `stopTime` simulated seconds) and its 36-scenario distribution in a folder of their own. */
 function batchFolder(stopTime: number): string {
-  const folder = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-queue-'));
+  const folder = temporaryFolder('m2s-queue-');
   const scenario = fs
     .readFileSync(path.join(FIXTURES, 'follow.xosc'), 'utf8')
     .replace('name="StopTime" parameterType="double" value="3"', `name="StopTime" parameterType="double" value="${stopTime}"`);
@@ -28,8 +28,8 @@ interface Background {
   ended: Promise<{ code: number | null; signal: string | null; output: string }>;
 }
 
-function background(args: string[], cwd: string): Background {
-  const child = spawn(process.execPath, [cliPath, ...args], { cwd, stdio: ['ignore', 'pipe', 'pipe'] });
+function background(args: string[], cwd: string, env: NodeJS.ProcessEnv = {}): Background {
+  const child = spawn(process.execPath, [cliPath, ...args], { cwd, env: { ...process.env, ...env }, stdio: ['ignore', 'pipe', 'pipe'] });
   let output = '';
   child.stdout.on('data', (chunk: Buffer) => (output += chunk.toString()));
   child.stderr.on('data', (chunk: Buffer) => (output += chunk.toString()));
@@ -57,9 +57,12 @@ describe('cli: batch through a Redis queue', function () {
   const folders: string[] = [];
   const workers: Background[] = [];
   afterEach(async () => {
+    // Told to stop, a worker removes what it keeps in the temporary directory; one that does not stop in time is killed.
     for (const worker of workers.splice(0)) {
-      worker.kill('SIGKILL');
+      worker.kill('SIGTERM');
+      const timer = setTimeout(() => worker.kill('SIGKILL'), 30_000);
       await worker.ended;
+      clearTimeout(timer);
     }
     await redis?.stop();
     redis = undefined;
@@ -73,10 +76,15 @@ describe('cli: batch through a Redis queue', function () {
     const root = batchFolder(8);
     folders.push(root);
     // The workers run in a folder of their own: what they run comes through Redis.
-    const elsewhere = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-worker-'));
+    const elsewhere = temporaryFolder('m2s-worker-');
     folders.push(elsewhere);
+    // The one killed below cannot remove its own folder: it keeps it in one of the test's.
     for (let i = 0; i < 3; i++)
-      workers.push(background(['worker', '--queue', redis.url, '--jobs', '1', '--esmini', esminiBinary], elsewhere));
+      workers.push(
+        background(['worker', '--queue', redis.url, '--jobs', '1', '--esmini', esminiBinary], elsewhere, {
+          ...(i === 2 ? { TMPDIR: temporaryFolder('m2s-killed-worker-') } : {}),
+        }),
+      );
     const batch = background(['batch', 'd.xosc', '--results', 'queued', '--queue', redis.url, '--road-path', esminiRoads], root);
     const victim = workers[2];
     await waitUntil(() => /: (ok|error|timeout)/.test(victim.output()), 'the third worker to finish a run', 120_000, 10);

@@ -6,12 +6,13 @@ import { XMLValidator } from 'fast-xml-parser';
 import { esminiBinary, esminiRoads, requireEsmini } from '../support/esmini';
 import { runCli } from '../support/fixtures';
 import { repoRoot } from '../support/paths';
+import { temporaryFolder } from '../support/temporaryDirectory';
 
 const FIXTURES = path.join(repoRoot, 'test', 'fixtures', 'variations');
 
 /** follow.xosc with a distribution of its two speeds: 2 x 2 = 4 concrete scenarios. */
 function reportFolder(): string {
-  const folder = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-report-'));
+  const folder = temporaryFolder('m2s-report-');
   fs.copyFileSync(path.join(FIXTURES, 'follow.xosc'), path.join(folder, 'follow.xosc'));
   fs.writeFileSync(
     path.join(folder, 'd.xosc'),

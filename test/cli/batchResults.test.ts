@@ -1,10 +1,10 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
-import * as os from 'node:os';
 import * as path from 'node:path';
 import type { EntityTrack, EsminiRun } from '../../common/src/esminiCsv';
 import { collisionsIn, polygonGap, trajectoryMetrics } from '../../server/src/batch/metrics';
 import { BatchIdentity, BatchRow, csvLine, ResultsError, ResultsFolder } from '../../server/src/batch/results';
+import { temporaryFolder } from '../support/temporaryDirectory';
 
 function track(name: string, xs: number[], speed = 0): EntityTrack {
   return {
@@ -102,7 +102,7 @@ describe('batch: trajectory metrics and results files', () => {
       csvLine(row('3', { Car: 'a,b', Name: 'say "hi"', Speed: '1' }), ['Car', 'Name', 'Speed']),
       '3,ok,false,1.235,,3.000,"a,b","say ""hi""",1\n',
     );
-    const folder = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-results-'));
+    const folder = temporaryFolder('m2s-results-');
     try {
       const results = await ResultsFolder.open(folder, ['Speed'], IDENTITY);
       await results.append(row('0', { Speed: '1' }));

@@ -1,11 +1,11 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
-import * as os from 'node:os';
 import * as path from 'node:path';
 import { esminiBinary, esminiCatalogs, esminiRoads, requireEsmini } from '../support/esmini';
 import { runCli } from '../support/fixtures';
 import { openscenarioDir } from '../support/openscenarioCorpus';
 import { listFiles } from '../support/workspace';
+import { temporaryFolder } from '../support/temporaryDirectory';
 
 const esminiScenarios = path.join(openscenarioDir, 'esmini');
 /** The temporary folders made, removed after the suite. */
@@ -45,7 +45,7 @@ function outerGroup({ name, actor, file, group }: Imported): string {
  * the ALKS copy declares a parameter in the 0.9 style (`name="$TargetBrakeDistance"`) and uses it.
  */
 function composition(groups: Imported[]): string {
-  const root = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-force-'));
+  const root = temporaryFolder('m2s-force-');
   made.push(root);
   const scenarios = path.join(root, 'xosc');
   fs.cpSync(esminiCatalogs, path.join(scenarios, 'Catalogs'), { recursive: true });

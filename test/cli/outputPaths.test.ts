@@ -4,7 +4,8 @@ import * as path from 'node:path';
 import { esminiBinary, EsminiStep, readEsminiCsv, requireEsmini } from '../support/esmini';
 import JSZip from 'jszip';
 import { runCli, scenario, simpleGroup } from '../support/fixtures';
-import { assertSameRun, cutInWorkspace, esminiCorpus, namedPaths, runAlone, temporaryFolder } from '../support/outputPaths';
+import { assertSameRun, cutInWorkspace, esminiCorpus, namedPaths, runAlone } from '../support/outputPaths';
+import { temporaryFolder } from '../support/temporaryDirectory';
 import { temporaryWorkspace } from '../support/workspace';
 
 /**

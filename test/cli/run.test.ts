@@ -7,9 +7,10 @@ import { esminiBinary, requireEsmini, esminiRoads } from '../support/esmini';
 import { runCli } from '../support/fixtures';
 import { libraryDir, repoRoot, requireCorpus } from '../support/paths';
 import { listFiles } from '../support/workspace';
+import { temporaryFolder } from '../support/temporaryDirectory';
 
 function examplesWith(from?: string, to?: string): string {
-  const root = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-run-'));
+  const root = temporaryFolder('m2s-run-');
   fs.cpSync(path.join(repoRoot, 'examples'), root, { recursive: true });
   if (from !== undefined && to !== undefined) {
     const file = path.join(root, 'lane_change.xosc');
@@ -55,7 +56,7 @@ describe('cli: run in esmini', function () {
   it('run --check: 0 for the examples, with the CSV kept where asked; nothing written beside the sources', function () {
     requireEsmini(this);
     const root = examplesWith();
-    const out = path.join(fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-run-out-')), 'run.csv');
+    const out = path.join(temporaryFolder('m2s-run-out-'), 'run.csv');
     const before = listFiles(root);
     const run = runCli(['run', '.', '--check', '--duration', '4', '--road-path', esminiRoads, '--esmini', esminiBinary, '--csv', out], {
       cwd: root,

@@ -1,13 +1,13 @@
 import * as assert from 'node:assert/strict';
 import { spawnSync } from 'node:child_process';
 import * as fs from 'node:fs';
-import * as os from 'node:os';
 import * as path from 'node:path';
 import { HARMLESS_MESSAGES, readEsminiLog } from '../../server/src/esmini/log';
 import { withTimeLimit } from '../../server/src/esmini/timeLimit';
 import { esminiBinary, esminiCatalogs, esminiRoads, requireEsmini } from '../support/esmini';
 import { runCli } from '../support/fixtures';
 import { sharedDir } from '../support/paths';
+import { temporaryFolder } from '../support/temporaryDirectory';
 
 const esminiScenarios = path.join(sharedDir, 'corpus', 'openscenario', 'esmini');
 
@@ -61,7 +61,7 @@ describe("cli: every scenario of esmini's own that esmini runs also runs through
         .filter((entry) => entry.isDirectory())
         .map((entry) => path.join(esminiCatalogs, entry.name)),
     ];
-    const folder = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-esmini-corpus-'));
+    const folder = temporaryFolder('m2s-esmini-corpus-');
     const files = fs
       .readdirSync(esminiScenarios)
       .filter((name) => name.endsWith('.xosc'))

@@ -1,10 +1,10 @@
 import * as assert from 'node:assert/strict';
 import { spawnSync } from 'node:child_process';
 import * as fs from 'node:fs';
-import * as os from 'node:os';
 import * as path from 'node:path';
 import { bundleFor, CLI_BUNDLE, CODE_CACHE_SUFFIX, COMMAND_BUNDLES, commandBundle, loadBundle } from '../../server/src/cli/start';
 import { repoRoot } from '../support/paths';
+import { temporaryFolder } from '../support/temporaryDirectory';
 
 const dist = path.join(repoRoot, 'dist');
 const examples = path.join(repoRoot, 'examples');
@@ -30,7 +30,7 @@ describe("cli: the program's entry runs a command's own bundle", function () {
   });
 
   it('without the command bundles (the .vsix ships only the whole CLI) the same command gives the same output', () => {
-    const shipped = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-start-'));
+    const shipped = temporaryFolder('m2s-start-');
     try {
       for (const file of ['cli.js', CLI_BUNDLE, CLI_BUNDLE + CODE_CACHE_SUFFIX, 'openscenario-schemas.json'])
         fs.copyFileSync(path.join(dist, file), path.join(shipped, file));

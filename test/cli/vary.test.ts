@@ -1,16 +1,16 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
-import * as os from 'node:os';
 import * as path from 'node:path';
 import { esminiBinary, esminiRoads, requireEsmini } from '../support/esmini';
 import { runCli } from '../support/fixtures';
 import { repoRoot } from '../support/paths';
+import { temporaryFolder } from '../support/temporaryDirectory';
 
 const DECLARED = '<ParameterDeclaration name="CutInSpeed" parameterType="double" value="27.5"/>';
 
 /** The examples with a root parameter in main.xosc, and a distribution over it naming `scenarioFile`. */
 function examplesWithDistribution(scenarioFile: string): string {
-  const root = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-vary-modular-'));
+  const root = temporaryFolder('m2s-vary-modular-');
   fs.cpSync(path.join(repoRoot, 'examples'), root, { recursive: true });
   const main = path.join(root, 'main.xosc');
   fs.writeFileSync(

@@ -1,11 +1,11 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
-import * as os from 'node:os';
 import * as path from 'node:path';
 import JSZip from 'jszip';
 import * as archive from '../../client/src/packageArchive';
 import { entryDate, readCentralDirectory } from '../../common/src/zip';
 import { waitUntil } from '../support/wait';
+import { temporaryFolder } from '../support/temporaryDirectory';
 
 async function zip(entries: Record<string, string | Uint8Array>): Promise<Uint8Array> {
   const file = new JSZip();
@@ -25,7 +25,7 @@ describe('client: files inside .mosc packages (the mosc: file system)', () => {
   let outer: string;
 
   beforeEach(async () => {
-    folder = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-archive-'));
+    folder = temporaryFolder('m2s-archive-');
     outer = path.join(folder, 'outer.mosc');
     const inner = await zip({ 'main.xosc': '<inner-main/>', 'simple.xosc': '<inner-simple/>' });
     fs.writeFileSync(outer, await zip({ 'main.xosc': '<outer-main/>', 'inner.mosc': inner, 'lib/shared.xosc': '<shared/>' }));

@@ -1,6 +1,5 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
-import * as os from 'node:os';
 import * as path from 'node:path';
 import { firstDifference } from '../../server/src/core/equivalence';
 import { Flattener } from '../../server/src/core/flatten';
@@ -9,6 +8,7 @@ import { formatProblem } from '../../server/src/core/problems';
 import { childRef, diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { libraryStats } from '../../server/src/core/stats';
 import { caseStudyDir, corpusDir, libraryDir, requireCorpus, sharedDir } from '../support/paths';
+import { temporaryFolder } from '../support/temporaryDirectory';
 
 const scenarios = fs.existsSync(libraryDir)
   ? fs
@@ -58,7 +58,7 @@ describe('corpus: the case study', function () {
   });
 
   it('packed by our pack into nested .mosc files: matches the original output', async () => {
-    const work = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-case-'));
+    const work = temporaryFolder('m2s-case-');
     const store = new ScenarioStore({ scenarioPath: [], root: caseStudyDir });
     const packed = await packFolder(caseStudyDir, store);
     assert.ok(packed.bytes, packed.problems.map((p) => formatProblem(p)).join('\n'));

@@ -1,7 +1,6 @@
 import * as assert from 'node:assert/strict';
 import { spawnSync } from 'node:child_process';
 import * as fs from 'node:fs';
-import * as os from 'node:os';
 import * as path from 'node:path';
 import { parseEsminiCsv, parseEsminiStarts } from '../../common/src/esminiCsv';
 import { parseOpenDrive } from '../../server/src/core/opendrive/road';
@@ -9,6 +8,7 @@ import { scenarioScene } from '../../server/src/core/scene';
 import { parseXml } from '../../server/src/core/xml';
 import { repoRoot } from '../support/paths';
 import { esminiXodrDir, requireEsminiProgram } from '../support/esminiBinaries';
+import { temporaryFolder } from '../support/temporaryDirectory';
 
 const fixture = path.join(repoRoot, 'test', 'fixtures', 'birdsEye', 'cut_in.xosc');
 
@@ -57,7 +57,7 @@ describe('core: esmini CSV log', function () {
 
   it('on a real esmini run: every entity, every step, and start positions matching the view within 1 cm', function () {
     const esmini = requireEsminiProgram(this, 'esmini');
-    const folder = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-esmini-csv-'));
+    const folder = temporaryFolder('m2s-esmini-csv-');
     try {
       const csv = path.join(folder, 'out.csv');
       const result = spawnSync(

@@ -1,10 +1,10 @@
 import * as assert from 'node:assert/strict';
 import { spawnSync } from 'node:child_process';
 import * as fs from 'node:fs';
-import * as os from 'node:os';
 import * as path from 'node:path';
 import { laneBorderPoint, laneById, parseOpenDrive } from '../../server/src/core/opendrive/road';
 import { esminiXodrDir, requireEsminiProgram } from '../support/esminiBinaries';
+import { temporaryFolder } from '../support/temporaryDirectory';
 
 interface OdrplotLane {
   road: string;
@@ -40,7 +40,7 @@ describe('core: OpenDRIVE lane borders against esmini odrplot', function () {
   let outDir: string;
   before(function () {
     odrplot = requireEsminiProgram(this, 'odrplot');
-    outDir = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-odrplot-'));
+    outDir = temporaryFolder('m2s-odrplot-');
   });
   after(() => outDir && fs.rmSync(outDir, { recursive: true, force: true }));
 

@@ -1,6 +1,5 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
-import * as os from 'node:os';
 import * as path from 'node:path';
 import { Flattener } from '../../server/src/core/flatten';
 import { diskRef, ScenarioStore } from '../../server/src/core/sources';
@@ -9,6 +8,7 @@ import { esminiBinary, EsminiStep, readEsminiCsv, requireEsmini } from '../suppo
 import { esminiXodrDir } from '../support/esminiBinaries';
 import { openscenarioDir } from '../support/openscenarioCorpus';
 import { runBounded } from '../support/processes';
+import { temporaryFolder } from '../support/temporaryDirectory';
 
 /**
  * SPEC 11.6 on esmini's own scenarios: each becomes a composition (ws/xosc/NAME.main.xosc importing every
@@ -66,11 +66,11 @@ describe("core: compositions of esmini's scenarios flattened one folder deeper r
   before(function () {
     requireEsmini(this);
     if (scenarios.length === 0) this.skip();
-    ws = path.join(fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-paths-corpus-')), 'ws');
+    ws = path.join(temporaryFolder('m2s-paths-corpus-'), 'ws');
     fs.cpSync(esminiCorpus, path.join(ws, 'xosc'), { recursive: true });
     fs.cpSync(esminiXodrDir, path.join(ws, 'xodr'), { recursive: true });
     fs.mkdirSync(path.join(ws, 'out', 'deeper'), { recursive: true });
-    cwd = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-paths-corpus-cwd-'));
+    cwd = temporaryFolder('m2s-paths-corpus-cwd-');
   });
 
   for (const name of scenarios) {

@@ -1,6 +1,5 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
-import * as os from 'node:os';
 import * as path from 'node:path';
 import { parseOpenDrive } from '../../server/src/core/opendrive/road';
 import { scenarioScene } from '../../server/src/core/scene';
@@ -10,6 +9,7 @@ import { parseXml } from '../../server/src/core/xml';
 import { esminiXodrDir } from '../support/esminiBinaries';
 import { requireEsmini, runEsmini } from '../support/esmini';
 import { sceneScenario, STRAIGHT_ROAD, teleport } from '../support/roads';
+import { temporaryFolder } from '../support/temporaryDirectory';
 
 const close = (actual: number | undefined, expected: number, what: string) =>
   assert.ok(actual !== undefined && Math.abs(actual - expected) < 1e-6, `${what}: ${actual} is not ${expected}`);
@@ -86,7 +86,7 @@ describe('core: scene, entities placed by RoutePosition', function () {
 
   it('on a real esmini run: routes from a catalog (with a parameter assigned) start where esmini starts them, within 1 cm', async function () {
     requireEsmini(this);
-    const folder = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-route-'));
+    const folder = temporaryFolder('m2s-route-');
     try {
       fs.mkdirSync(path.join(folder, 'Routes'));
       fs.writeFileSync(

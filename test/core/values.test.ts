@@ -1,7 +1,6 @@
 import * as assert from 'node:assert/strict';
 import { spawn } from 'node:child_process';
 import * as fs from 'node:fs';
-import * as os from 'node:os';
 import * as path from 'node:path';
 import { Problem } from '../../server/src/core/problems';
 import { ESMINI_PROFILE } from '../../server/src/core/profiles/esmini';
@@ -11,6 +10,7 @@ import { diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { parseXml } from '../../server/src/core/xml';
 import { esminiBinary, requireEsmini } from '../support/esmini';
 import { sharedDir } from '../support/paths';
+import { temporaryFolder } from '../support/temporaryDirectory';
 
 /**
  * Values by the standard's rules and by esmini's (SPEC 12, issue 17). The esmini texts below are
@@ -87,7 +87,7 @@ const SCENARIO = `<?xml version="1.0" encoding="UTF-8"?>
 `;
 
 async function analyze(simulator?: 'esmini'): Promise<DocumentSemantics> {
-  const root = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-values-'));
+  const root = temporaryFolder('m2s-values-');
   return analyzeDocument(
     diskRef(path.join(root, 'values.xosc')),
     parseXml(SCENARIO),
@@ -253,7 +253,7 @@ describe('values by the standard and by esmini (SPEC 12)', () => {
   it('agrees with the real esmini on every body, line by line', async function () {
     requireEsmini(this);
     this.timeout(120_000);
-    const directory = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-values-esmini-'));
+    const directory = temporaryFolder('m2s-values-esmini-');
     const base = fs.readFileSync(path.join(sharedDir, 'corpus', 'openscenario', 'esmini', 'cut-in_simple.xosc'), 'utf8');
     const escape = (text: string) => text.replace(/&/g, '&amp;').replace(/</g, '&lt;').replace(/"/g, '&quot;');
     const declarations = [

@@ -1,12 +1,12 @@
 import * as assert from 'node:assert/strict';
 import { spawnSync } from 'node:child_process';
 import * as fs from 'node:fs';
-import * as os from 'node:os';
 import * as path from 'node:path';
 import { readScenarioParameters, valuesAfter } from '../../server/src/core/variations/concrete';
 import { loadVariations, Variations } from '../../server/src/core/variations';
 import { esminiXodrDir, requireEsminiProgram } from '../support/esminiBinaries';
 import { sharedDir } from '../support/paths';
+import { temporaryFolder } from '../support/temporaryDirectory';
 
 /**
  * The expansion against esmini itself: `--return_nr_permutations` for the count (read from its log line,
@@ -207,7 +207,7 @@ describe('core: variations against esmini (--return_nr_permutations, --param_per
 
   before(function () {
     program = requireEsminiProgram(this, 'esmini');
-    dir = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-vary-esmini-'));
+    dir = temporaryFolder('m2s-vary-esmini-');
     fs.writeFileSync(path.join(dir, 'scenario.xosc'), SCENARIO(path.join(esminiXodrDir, 'straight_500m.xodr')));
   });
   after(() => {

@@ -1,12 +1,12 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
-import * as os from 'node:os';
 import * as path from 'node:path';
 import { varyCommand } from '../../server/src/cli/vary';
 import { loadVariations, Variations } from '../../server/src/core/variations';
 import { NumericRange, StochasticDistribution, StochasticSampler } from '../../server/src/core/variations/distribution';
 import { generatorForRun, Xoshiro128StarStar } from '../../server/src/core/variations/random';
 import { draw, SamplingError } from '../../server/src/core/variations/stochastic';
+import { temporaryFolder } from '../support/temporaryDirectory';
 
 const N = 20_000;
 
@@ -260,7 +260,7 @@ describe('core: variations, stochastic distribution files', () => {
 </OpenSCENARIO>
 `;
   beforeEach(() => {
-    dir = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-vary-stochastic-'));
+    dir = temporaryFolder('m2s-vary-stochastic-');
     fs.writeFileSync(path.join(dir, 'scenario.xosc'), scenario);
   });
   afterEach(() => fs.rmSync(dir, { recursive: true, force: true }));

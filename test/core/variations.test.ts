@@ -1,12 +1,12 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
-import * as os from 'node:os';
 import * as path from 'node:path';
 import { varyCommand } from '../../server/src/cli/vary';
 import { concreteScenarioText, readScenarioParameters } from '../../server/src/core/variations/concrete';
 import { assignmentAt, expandDeterministic, formatFixed6, rangeValues } from '../../server/src/core/variations/deterministic';
 import { parseDistribution } from '../../server/src/core/variations/distribution';
 import { formatVariationProblems, loadVariations } from '../../server/src/core/variations';
+import { temporaryFolder } from '../support/temporaryDirectory';
 
 const SCENARIO = `<?xml version="1.0" encoding="UTF-8"?>
 <OpenSCENARIO>
@@ -117,7 +117,7 @@ describe('core: variations, deterministic expansion', () => {
 describe('core: variations, files and problems', () => {
   let dir: string;
   beforeEach(() => {
-    dir = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-vary-'));
+    dir = temporaryFolder('m2s-vary-');
     fs.writeFileSync(path.join(dir, 'scenario.xosc'), SCENARIO);
   });
   afterEach(() => fs.rmSync(dir, { recursive: true, force: true }));
@@ -215,7 +215,7 @@ describe('cli: vary', () => {
   let dir: string;
   let file: string;
   beforeEach(() => {
-    dir = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-vary-'));
+    dir = temporaryFolder('m2s-vary-');
     fs.writeFileSync(path.join(dir, 'scenario.xosc'), SCENARIO);
     file = path.join(dir, 'd.xosc');
     fs.writeFileSync(file, distribution(RANGE_AND_SET));

@@ -167,7 +167,7 @@ describe("distribution files in the editor: esmini's cut-in_parameter_set.xosc",
   it('runs the first concrete scenario in esmini, saying which', async function () {
     requireEsmini(this);
     this.timeout(120_000);
-    const result = (await fixture.client.connection.sendRequest(RunEsminiRequest, {
+    const result = (await fixture.client.send(RunEsminiRequest, {
       uri: fixture.openUri,
       esminiPath: esminiBinary,
       roadPath: [esminiRoads],

@@ -14,12 +14,13 @@ import { parseXml } from '../../server/src/core/xml';
 import { esminiBinary, tracksOf, readEsminiCsv, requireEsmini, esminiCatalogs, esminiRoads } from '../support/esmini';
 import { libraryDir, repoRoot, requireCorpus } from '../support/paths';
 import { listFiles } from '../support/workspace';
+import { temporaryFolder } from '../support/temporaryDirectory';
 
 const examples = path.join(repoRoot, 'examples');
 
 /** A copy of the bundled examples in a fresh folder, with `edit` applied to one file's text. */
 function examplesCopy(edit?: { file: string; from: string; to: string }): string {
-  const root = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-esmini-'));
+  const root = temporaryFolder('m2s-esmini-');
   fs.cpSync(examples, root, { recursive: true });
   if (edit) {
     const file = path.join(root, edit.file);
@@ -72,7 +73,7 @@ describe('esmini: time limit and log (no simulator needed)', () => {
   });
 
   it('reads the last complete CSV row, ignoring a row being written', () => {
-    const folder = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-csv-'));
+    const folder = temporaryFolder('m2s-csv-');
     const csv = path.join(folder, 'a.csv');
     fs.writeFileSync(csv, 'esmini GIT REV: x\nIndex [-], TimeStamp [s], #1 Entity_Name [-]\n0, 0.000000, ego\n1, 0.050000, ego\n2, 0.1');
     assert.equal(lastCsvTime(csv), 0.05);

@@ -1,11 +1,11 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
-import * as os from 'node:os';
 import * as path from 'node:path';
 import { RunEsminiRequest, RunEsminiResult } from '../../common/src/protocol';
 import { esminiBinary, requireEsmini, esminiRoads } from '../support/esmini';
 import { repoRoot } from '../support/paths';
 import { fileUri, TestClient } from './harness';
+import { temporaryFolder } from '../support/temporaryDirectory';
 
 describe('language server: the Run in esmini request over JSON-RPC', function () {
   this.timeout(120_000);
@@ -13,7 +13,7 @@ describe('language server: the Run in esmini request over JSON-RPC', function ()
   let client: TestClient;
 
   beforeEach(async () => {
-    root = fs.realpathSync(fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-server-run-')));
+    root = temporaryFolder('m2s-server-run-');
     fs.cpSync(path.join(repoRoot, 'examples'), root, { recursive: true });
     client = await TestClient.start({ root });
     await client.indexed();
@@ -21,7 +21,7 @@ describe('language server: the Run in esmini request over JSON-RPC', function ()
   afterEach(async () => client.stop());
 
   const run = (uri: string, options: Record<string, unknown> = {}) =>
-    client.connection.sendRequest(RunEsminiRequest, {
+    client.send(RunEsminiRequest, {
       uri,
       esminiPath: esminiBinary,
       roadPath: [esminiRoads],

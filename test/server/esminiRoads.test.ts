@@ -30,7 +30,7 @@ describe('language server: Run in esmini uses the road the picture draws, and re
 
   const mainUri = () => fileUri(path.join(root, MODULAR_RUN.main));
   const run = (roadPath: string[]) =>
-    client.connection.sendRequest(RunEsminiRequest, {
+    client.send(RunEsminiRequest, {
       uri: mainUri(),
       esminiPath: esminiBinary,
       roadPath,

@@ -76,10 +76,15 @@ export class TestClient {
   capabilities: Record<string, unknown> = {};
   private schema: boolean | undefined;
   private readonly waiters: (() => void)[] = [];
+  /**
+   * The run folders of the esmini runs an in-process server answered: the server removes them when its
+   * process exits (server/src/features/esminiRun.ts), which for a server in the test's process is after the run.
+   */
+  private readonly runFolders = new Set<string>();
 
   private constructor(
     readonly connection: ProtocolConnection,
-    private readonly server: { dispose(): void },
+    private readonly server: { dispose(): void; exited?: () => Promise<void> },
     private readonly serverWorkspace: Workspace | undefined,
   ) {}
 
@@ -103,6 +108,7 @@ export class TestClient {
       let stderr = '';
       child.stderr.on('data', (chunk: Buffer) => (stderr = (stderr + chunk.toString()).slice(-20_000)));
       connection = createProtocolConnection(new StreamMessageReader(child.stdout), new StreamMessageWriter(child.stdin));
+      const exited = new Promise<void>((resolve) => child.once('exit', () => resolve()));
       client = new TestClient(
         connection,
         {
@@ -110,6 +116,8 @@ export class TestClient {
             clearTimeout(watchdog);
             child.kill('SIGKILL');
           },
+          // Told to exit, the server removes what it keeps in the temporary directory; one that does not is killed.
+          exited: () => Promise.race([exited, new Promise<void>((resolve) => setTimeout(resolve, 10_000))]),
         },
         undefined,
       );
@@ -260,13 +268,19 @@ export class TestClient {
     await this.connection.sendNotification('textDocument/didClose', { textDocument: { uri } });
   }
 
-  request<R>(method: string, params: unknown): Promise<R> {
-    return this.connection.sendRequest(method, params) as Promise<R>;
+  async request<R>(method: string, params: unknown): Promise<R> {
+    return this.noteRunFolder((await this.connection.sendRequest(method, params)) as R);
   }
 
   /** Sends one of the typed custom requests of server/src/protocol.ts. */
-  send<P, R>(type: RequestType<P, R, void>, params: P, token?: CancellationToken): Promise<R> {
-    return this.connection.sendRequest(type.method, params, token) as Promise<R>;
+  async send<P, R>(type: RequestType<P, R, void>, params: P, token?: CancellationToken): Promise<R> {
+    return this.noteRunFolder((await this.connection.sendRequest(type.method, params, token)) as R);
+  }
+
+  private noteRunFolder<R>(result: R): R {
+    const scenarioFile = (result as { scenarioFile?: unknown } | null)?.scenarioFile;
+    if (this.serverWorkspace && typeof scenarioFile === 'string') this.runFolders.add(path.dirname(scenarioFile));
+    return result;
   }
 
   /** Claims a logged error the test provoked on purpose (waiting briefly for it); fails when none matches. */
@@ -300,9 +314,14 @@ export class TestClient {
   async stop(): Promise<void> {
     TestClient.running.delete(this);
     await this.connection.sendRequest('shutdown').catch(() => undefined);
-    // Ending the streams would make vscode-languageserver exit the process, so only the connections go.
+    if (this.server.exited) {
+      await this.connection.sendNotification('exit').catch(() => undefined);
+      await this.server.exited();
+    }
+    // In this process, ending the streams would make vscode-languageserver exit it, so only the connections go.
     this.connection.dispose();
     this.server.dispose();
+    for (const folder of this.runFolders) fs.rmSync(folder, { recursive: true, force: true });
     this.assertNoErrors();
   }
 }

@@ -5,7 +5,8 @@ import JSZip from 'jszip';
 import { FlattenToFileRequest, PackRequest } from '../../common/src/protocol';
 import { EsminiStep, requireEsmini } from '../support/esmini';
 import { scenario, simpleGroup } from '../support/fixtures';
-import { assertSameRun, cutInWorkspace, namedPaths, runAlone, temporaryFolder } from '../support/outputPaths';
+import { assertSameRun, cutInWorkspace, namedPaths, runAlone } from '../support/outputPaths';
+import { temporaryFolder } from '../support/temporaryDirectory';
 import { temporaryWorkspace } from '../support/workspace';
 import { fileUri, TestClient } from './harness';
 

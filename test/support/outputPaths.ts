@@ -1,11 +1,11 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
-import * as os from 'node:os';
 import * as path from 'node:path';
 import { esminiBinary, EsminiStep, readEsminiCsv } from './esmini';
 import { esminiXodrDir } from './esminiBinaries';
 import { sharedDir } from './paths';
 import { runBounded } from './processes';
+import { temporaryFolder } from './temporaryDirectory';
 
 /**
  * What the SPEC 11.6 tests (CLI and language server) share: a composition of esmini's cut-in laid out as
@@ -16,13 +16,12 @@ export const esminiCorpus = path.join(sharedDir, 'corpus', 'openscenario', 'esmi
 /** esmini evaluates this expression to the literal below; the project's own reading of it is another task's. */
 const GLUED_NAME = '${BrakeCondition_HWT + _ + $HeadwayTime_Brake}';
 
-export function temporaryFolder(prefix: string): string {
-  return fs.mkdtempSync(path.join(os.tmpdir(), prefix));
-}
-
-/** ws/xosc/{cut-in.xosc, main.xosc, Catalogs/Vehicles}, ws/xodr/e6mini.xodr; returns ws. */
+/**
+ * ws/xosc/{cut-in.xosc, main.xosc, Catalogs/Vehicles}, ws/xodr/e6mini.xodr; returns ws, two folders below a
+ * temporary folder, so that an output written two folders up from ws lands in that folder, which goes with it.
+ */
 export function cutInWorkspace(): string {
-  const ws = path.join(temporaryFolder('m2s-paths-'), 'ws');
+  const ws = path.join(temporaryFolder('m2s-paths-'), 'parent', 'ws');
   fs.mkdirSync(path.join(ws, 'xosc', 'Catalogs', 'Vehicles'), { recursive: true });
   fs.mkdirSync(path.join(ws, 'xodr'));
   fs.copyFileSync(path.join(esminiXodrDir, 'e6mini.xodr'), path.join(ws, 'xodr', 'e6mini.xodr'));

@@ -1,8 +1,7 @@
 import { ChildProcess, spawn, spawnSync } from 'node:child_process';
 import * as fs from 'node:fs';
 import * as net from 'node:net';
-import * as os from 'node:os';
-import * as path from 'node:path';
+import { temporaryFolder } from './temporaryDirectory';
 import { waitUntil } from './wait';
 
 /** A free TCP port on 127.0.0.1 (nothing listens on it once this resolves). */
@@ -38,7 +37,7 @@ export function requireRedis(context: Mocha.Context): void {
 /** A redis-server of the test's own on 127.0.0.1 and a free port, with no persistence, in a temporary folder. */
 export async function startRedis(): Promise<RedisServer> {
   const port = await freePort();
-  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-redis-'));
+  const dir = temporaryFolder('m2s-redis-');
   const child: ChildProcess = spawn(
     'redis-server',
     ['--port', String(port), '--bind', '127.0.0.1', '--save', '', '--appendonly', 'no', '--dir', dir],

@@ -1,10 +1,13 @@
 import * as fs from 'node:fs';
-import * as os from 'node:os';
 import * as path from 'node:path';
+import { temporaryFolder } from './temporaryDirectory';
 
-/** A fresh temporary folder (its real path) holding the given files (paths relative to it); `prefix` starts its name. */
+/**
+ * A fresh temporary folder (its real path) holding the given files (paths relative to it); `prefix` starts its
+ * name. It is removed when the top-level `describe` that made it ends (test/support/temporaryDirectory.ts).
+ */
 export function temporaryWorkspace(files: Record<string, string | Uint8Array> = {}, prefix = 'm2s-test-'): string {
-  const root = fs.realpathSync(fs.mkdtempSync(path.join(os.tmpdir(), prefix)));
+  const root = temporaryFolder(prefix);
   for (const [name, content] of Object.entries(files)) {
     const full = path.join(root, name);
     fs.mkdirSync(path.dirname(full), { recursive: true });
