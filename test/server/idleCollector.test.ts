@@ -3,7 +3,11 @@ import { constants, PerformanceEntry, PerformanceObserver } from 'node:perf_hook
 import * as v8 from 'node:v8';
 import { IdleCollector } from '../../server/src/idleCollector';
 
-/** Counts the collections of one kind while `run` goes on and a little after. */
+/**
+ * Counts the collections of one kind while `run` goes on and over the next event-loop turns: the collector's
+ * collection runs in an immediate, and its entry reaches the observer two turns later. Turns, not a time: on a
+ * busy machine a 50 ms timer could fire before the queued collection ran.
+ */
 async function collectionsDuring(kind: number, run: () => void): Promise<number> {
   let count = 0;
   const observer = new PerformanceObserver((list) => {
@@ -14,7 +18,7 @@ async function collectionsDuring(kind: number, run: () => void): Promise<number>
   });
   observer.observe({ entryTypes: ['gc'] });
   run();
-  await new Promise((resolve) => setTimeout(resolve, 50));
+  for (let turn = 0; turn < 10; turn++) await new Promise((resolve) => setImmediate(resolve));
   observer.disconnect();
   return count;
 }
