@@ -19,6 +19,13 @@ export const CHROMIUM = process.env.M2S_CHROMIUM ?? '/usr/bin/chromium';
 export const ARTIFACTS = path.join(repoRoot, 'test-results', 'e2e');
 const SETUP = 'scripts/e2e-setup.sh';
 
+/**
+ * The longest the run may go without progress (a setup step done, a request from the tests inside VS Code),
+ * rather than one limit for the whole run, which a busy machine overran: more than the longest limit an
+ * inside test has of its own (120 s), so that a slow test fails there, by name, before the harness gives up.
+ */
+export const STALL_MS = 180_000;
+
 /** Why the real-VS-Code tests cannot run here, or undefined when everything is installed. */
 export function missingTools(): string | undefined {
   const missing: string[] = [];
@@ -42,7 +49,11 @@ function run(command: string, args: string[], options: { cwd?: string; env?: Nod
     env: options.env ?? process.env,
     encoding: 'utf8',
     maxBuffer: 64 * 1024 * 1024,
+    timeout: STALL_MS,
+    killSignal: 'SIGKILL',
   });
+  if ((result.error as NodeJS.ErrnoException | undefined)?.code === 'ETIMEDOUT')
+    throw new Error(`${command} ${args.join(' ')} did not finish within ${STALL_MS / 1000} s:\n${result.stdout}\n${result.stderr}`);
   if (result.status !== 0) {
     throw new Error(`${command} ${args.join(' ')} failed (${result.status ?? result.signal}):\n${result.stdout}\n${result.stderr}`);
   }
@@ -213,14 +224,14 @@ export async function startCodeServer(profile: Profile, extraEnv: NodeJS.Process
       // the group is empty
     }
   };
-  const deadline = Date.now() + 30_000;
+  const deadline = Date.now() + STALL_MS;
   while (Date.now() < deadline) {
     if (child.exitCode !== null) throw new Error(`code-server exited (${child.exitCode}):\n${log.join('')}`);
     if (await healthy(`${url}/healthz`)) return { port, url, process: child, log, stop };
     await new Promise((resolve) => setTimeout(resolve, 200));
   }
   await stop();
-  throw new Error(`code-server did not answer on ${url} within 30 s:\n${log.join('')}`);
+  throw new Error(`code-server did not answer on ${url} within ${STALL_MS / 1000} s:\n${log.join('')}`);
 }
 
 function healthy(url: string): Promise<boolean> {
@@ -277,6 +288,9 @@ export class HarnessEndpoint {
   private server: http.Server | undefined;
   url = '';
 
+  /** `onRequest` hears of every request, as the progress of the tests inside VS Code. */
+  constructor(private readonly onRequest: (route: string) => void = () => undefined) {}
+
   async start(): Promise<void> {
     this.server = http.createServer((request, response) => void this.handle(request, response));
     await new Promise<void>((resolve) => this.server?.listen(0, '127.0.0.1', resolve));
@@ -288,6 +302,7 @@ export class HarnessEndpoint {
     for await (const chunk of request) chunks.push(chunk as Buffer);
     const body = Buffer.concat(chunks).toString('utf8');
     const started = Date.now();
+    this.onRequest(request.url ?? '');
     response.on('finish', () =>
       this.log.push(
         `${new Date(started).toISOString()} ${request.url} ${body.slice(0, 200)} -> ${response.statusCode} in ${Date.now() - started} ms`,
@@ -318,6 +333,39 @@ export class HarnessEndpoint {
 
   async stop(): Promise<void> {
     await new Promise<void>((resolve) => (this.server ? this.server.close(() => resolve()) : resolve()));
+  }
+}
+
+/**
+ * The run's progress: each step resets the stall limit (and the mocha limit of the hook that waits, which
+ * `onProgress` resets); `stalled` resolves once nothing progressed for STALL_MS, naming the last step.
+ */
+export class Progress {
+  private lastStep = 'start';
+  private lastAt = Date.now();
+  private timer: NodeJS.Timeout | undefined;
+
+  constructor(private readonly onProgress: () => void) {}
+
+  step(what: string): void {
+    this.lastStep = what;
+    this.lastAt = Date.now();
+    this.onProgress();
+  }
+
+  stalled(): Promise<string> {
+    return new Promise((resolve) => {
+      const check = (): void => {
+        const idle = Date.now() - this.lastAt;
+        if (idle >= STALL_MS) resolve(`no progress for ${Math.round(idle / 1000)} s after ${this.lastStep}`);
+        else this.timer = setTimeout(check, Math.min(1000, STALL_MS - idle));
+      };
+      check();
+    });
+  }
+
+  stop(): void {
+    clearTimeout(this.timer);
   }
 }
 
