@@ -7,6 +7,7 @@ import { diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { parseXml } from '../../server/src/core/xml';
 import { roadScenario } from '../support/fixtures';
 import { temporaryWorkspace } from '../support/workspace';
+import { textAt } from '../support/textEdits';
 
 /** A road file with one road, signal 101 on it, and a controller that controls signal 102. */
 const ROAD = `<?xml version="1.0"?>
@@ -65,11 +66,9 @@ async function check(text: string, files: Record<string, string> = { 'road.xodr'
   return { problems: semanticProblems(semantics).filter((problem) => RULE_CODES.has(problem.code)), text };
 }
 
-/** The text a problem's range covers. */
-function textAt(text: string, problem: Problem): string {
-  const lines = text.split('\n');
-  const { start, end } = problem.range;
-  return start.line === end.line ? lines[start.line].slice(start.character, end.character) : lines[start.line].slice(start.character);
+/** The text a problem's range covers, up to the end of its first line. */
+function firstLineAt(text: string, problem: Problem): string {
+  return textAt(text, problem.range).split('\n')[0];
 }
 
 function signalAction(name: string): string {
@@ -101,7 +100,7 @@ describe('road-network and value-range rules', () => {
     assert.equal(problems.length, 1, JSON.stringify(problems));
     assert.equal(problems[0].code, 'unknown-traffic-signal');
     assert.equal(problems[0].severity, 'error');
-    assert.equal(textAt(text, problems[0]), '999');
+    assert.equal(firstLineAt(text, problems[0]), '999');
     assert.equal(ruleIdOf(problems[0].code), 'asam.net:xosc:1.2.0:reference_control.resolvable_signal_id_in_traffic_signal_state_action');
   });
 
@@ -129,7 +128,7 @@ describe('road-network and value-range rules', () => {
     const { problems, text } = await check(scenario({ actions: action, trafficSignals: CONTROLLERS }));
     assert.equal(problems.length, 1, JSON.stringify(problems));
     assert.equal(problems[0].code, 'unknown-traffic-signal-controller');
-    assert.equal(textAt(text, problems[0]), 'Nope');
+    assert.equal(firstLineAt(text, problems[0]), 'Nope');
     assert.match(problems[0].message, /'Ctrl'/);
     const clean = await check(scenario({ actions: action.replace('Nope', 'Ctrl'), trafficSignals: CONTROLLERS }));
     assert.deepEqual(clean.problems, []);
@@ -141,7 +140,7 @@ describe('road-network and value-range rules', () => {
     assert.equal(problems.length, 1, JSON.stringify(problems));
     assert.equal(problems[0].code, 'no-actor');
     assert.equal(problems[0].severity, 'warning');
-    assert.equal(textAt(text, problems[0]), '<Actors');
+    assert.equal(firstLineAt(text, problems[0]), '<Actors');
     assert.deepEqual((await check(bare.replace('selectTriggeringEntities="false"', 'selectTriggeringEntities="true"'))).problems, []);
     assert.deepEqual((await check(scenario({}))).problems, []);
   });
@@ -152,7 +151,7 @@ describe('road-network and value-range rules', () => {
     const { problems, text } = await check(scenario({ actions: light('-0.5') }));
     assert.equal(problems.length, 1, JSON.stringify(problems));
     assert.equal(problems[0].code, 'negative-transition-time');
-    assert.equal(textAt(text, problems[0]), '-0.5');
+    assert.equal(firstLineAt(text, problems[0]), '-0.5');
     assert.deepEqual((await check(scenario({ actions: light('0') }))).problems, []);
   });
 
@@ -161,7 +160,7 @@ describe('road-network and value-range rules', () => {
     const negative = await check(withDuration('-1'));
     assert.equal(negative.problems.length, 1);
     assert.equal(negative.problems[0].severity, 'error');
-    assert.equal(textAt(negative.text, negative.problems[0]), '-1');
+    assert.equal(firstLineAt(negative.text, negative.problems[0]), '-1');
     const zero = await check(withDuration('0'));
     assert.equal(zero.problems[0].severity, 'warning');
     assert.match(zero.problems[0].message, /standard.*ASAM/);
@@ -175,7 +174,7 @@ describe('road-network and value-range rules', () => {
     const { problems, text } = await check(scenario({ init: environment('$Friction'), parameters }));
     assert.equal(problems.length, 1, JSON.stringify(problems));
     assert.equal(problems[0].code, 'out-of-range');
-    assert.equal(textAt(text, problems[0]), '$Friction');
+    assert.equal(firstLineAt(text, problems[0]), '$Friction');
     assert.match(problems[0].message, /frictionScaleFactor -0\.2 \(from \$Friction\) is outside the standard's range \[0\.\.inf\[/);
     const expression = await check(scenario({ init: environment('${1 - 2}') }));
     assert.equal(expression.problems.length, 1);

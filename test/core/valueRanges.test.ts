@@ -11,6 +11,7 @@ import { Simulator } from '../../server/src/core/profiles/simulators';
 import { diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { parseXml } from '../../server/src/core/xml';
 import { temporaryWorkspace } from '../support/workspace';
+import { textAt } from '../support/textEdits';
 
 /** The out-of-range problems of a scenario (a file of its own in a fresh folder). */
 async function outOfRange(text: string, simulator?: Simulator): Promise<Problem[]> {
@@ -23,12 +24,6 @@ async function outOfRange(text: string, simulator?: Simulator): Promise<Problem[
     simulator,
   );
   return semanticProblems(semantics).filter((problem) => problem.code === 'out-of-range');
-}
-
-/** The text a problem's range covers (on one line). */
-function textAt(text: string, problem: Problem): string {
-  const { start, end } = problem.range;
-  return text.split('\n')[start.line].slice(start.character, end.character);
 }
 
 /** A file of `version` holding one element with one attribute: the range check looks at elements by name, wherever they stand. */
@@ -102,7 +97,7 @@ describe('value ranges (RA Consulting range checker rules, per version)', () => 
           const label = `${version} ${range.element} ${range.attribute}=${value}`;
           assert.equal(problems.length, 1, label);
           assert.equal(problems[0].severity, range.esmini && !range.esmini.when ? 'warning' : 'error', label);
-          assert.equal(textAt(text, problems[0]), String(value), label);
+          assert.equal(textAt(text, problems[0].range), String(value), label);
           assert.ok(
             problems[0].message.includes(`is outside the standard's range ${rangeText(range)}`),
             `${label}: ${problems[0].message}`,
@@ -375,7 +370,7 @@ describe('value ranges in a schema-valid scenario', () => {
       const problems = await outOfRange(text);
       assert.equal(problems.length, 1, JSON.stringify(problems));
       assert.equal(problems[0].severity, warning ? 'warning' : 'error');
-      assert.equal(textAt(text, problems[0]), at);
+      assert.equal(textAt(text, problems[0].range), at);
       assert.ok(problems[0].message.includes(`outside the standard's range ${range}`), problems[0].message);
     });
   }
@@ -413,7 +408,7 @@ describe('value ranges in a schema-valid scenario', () => {
     const older = scenario('1').replace('s="10"', 's="-10"').replace('length="4.5"', 'length="-4.5"');
     const problems = await outOfRange(older);
     assert.deepEqual(
-      problems.map((problem) => textAt(older, problem)),
+      problems.map((problem) => textAt(older, problem.range)),
       ['-4.5'],
     );
   });

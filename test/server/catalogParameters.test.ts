@@ -4,7 +4,7 @@ import * as path from 'node:path';
 import JSZip from 'jszip';
 import { Location, WorkspaceEdit } from 'vscode-languageserver/node';
 import { fileUri, TestClient } from './harness';
-import { applyEdits, inside, offsetOf } from './textEdits';
+import { applyEdits, inside, offsetOf } from '../support/textEdits';
 import { temporaryWorkspace } from '../support/workspace';
 
 /** A vehicle catalog entry that declares MaxSpeed and uses it. */

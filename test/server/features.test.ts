@@ -22,6 +22,7 @@ import { fileUri, TestClient } from './harness';
 import { problemCodeOf } from '../support/diagnostics';
 import { at, cursor } from '../support/cursor';
 import { temporaryWorkspace } from '../support/workspace';
+import { applyEdits, textAt } from '../support/textEdits';
 
 async function packageBytes(): Promise<Uint8Array> {
   const zip = new JSZip();
@@ -36,23 +37,6 @@ function messageOf(diagnostic: Diagnostic): string {
 
 function codes(diagnostics: Diagnostic[]): string[] {
   return diagnostics.map((diagnostic) => String(problemCodeOf(diagnostic))).sort();
-}
-
-function textAt(text: string, range: { start: { line: number; character: number }; end: { line: number; character: number } }): string {
-  const lines = text.split('\n');
-  const offset = (position: { line: number; character: number }) =>
-    lines.slice(0, position.line).reduce((sum, line) => sum + line.length + 1, 0) + position.character;
-  return text.slice(offset(range.start), offset(range.end));
-}
-
-function applyEdits(text: string, edits: TextEdit[]): string {
-  const lines = text.split('\n');
-  const offset = (position: { line: number; character: number }) =>
-    lines.slice(0, position.line).reduce((sum, line) => sum + line.length + 1, 0) + position.character;
-  const sorted = [...edits].sort((a, b) => offset(b.range.start) - offset(a.range.start));
-  let result = text;
-  for (const edit of sorted) result = result.slice(0, offset(edit.range.start)) + edit.newText + result.slice(offset(edit.range.end));
-  return result;
 }
 
 describe('language server on its own fixtures (JSON-RPC)', function () {

@@ -19,16 +19,12 @@ import {
 import { SEMANTIC_TOKENS_LEGEND } from '../../server/src/features/semanticTokens';
 import { BARE, CARS, FAULTY, PARAMETERS } from './fixtures/parameters';
 import { fileUri, TestClient } from './harness';
-import { applyEdits, inside, offsetOf, Position } from './textEdits';
+import { applyEdits, inside, Position, textAt } from '../support/textEdits';
 import { problemCodeOf } from '../support/diagnostics';
 import { repoRoot } from '../support/paths';
 import { temporaryWorkspace } from '../support/workspace';
 
 type Range = { start: Position; end: Position };
-
-function textAt(text: string, range: Range): string {
-  return text.slice(offsetOf(text, range.start), offsetOf(text, range.end));
-}
 
 function lineOf(text: string, needle: string, nth = 0): number {
   return inside(text, needle, 0, nth).line;

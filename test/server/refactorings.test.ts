@@ -13,7 +13,7 @@ import { requireEsmini, runEsmini } from '../support/esmini';
 import { esminiXodrDir } from '../support/esminiBinaries';
 import { temporaryWorkspace } from '../support/workspace';
 import { fileUri, TestClient } from './harness';
-import { applyEdits } from './textEdits';
+import { applyEdits } from '../support/textEdits';
 
 const esminiCorpus = path.join(sharedDir, 'corpus', 'openscenario', 'esmini');
 const CAN_CREATE = { documentChanges: true, resourceOperations: ['create' as const] };

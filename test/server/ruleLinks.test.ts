@@ -8,7 +8,7 @@ import { problemCodeOf } from '../support/diagnostics';
 import { MANEUVER_CATALOG } from '../support/fixtures';
 import { temporaryWorkspace } from '../support/workspace';
 import { fileUri, TestClient } from './harness';
-import { applyEdits } from './textEdits';
+import { applyEdits } from '../support/textEdits';
 
 const SCENARIO = `<?xml version="1.0"?>
 <OpenSCENARIO>

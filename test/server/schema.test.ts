@@ -16,6 +16,7 @@ import { fileUri, TestClient } from './harness';
 import { problemCodeOf } from '../support/diagnostics';
 import { at, cursor, positionAt } from '../support/cursor';
 import { temporaryWorkspace } from '../support/workspace';
+import { applyEdits, textAt } from '../support/textEdits';
 
 /** A small scenario valid against every schema version; `{MINOR}` is its revMinor, `{ROOT}` goes after ParameterDeclarations. */
 const TEMPLATE = `<?xml version="1.0" encoding="UTF-8"?>
@@ -57,24 +58,6 @@ function scenario(minor: string, parts: { root?: string; actions?: string } = {}
 
 function messageOf(diagnostic: Diagnostic): string {
   return typeof diagnostic.message === 'string' ? diagnostic.message : '';
-}
-
-function textAt(text: string, range: Diagnostic['range']): string {
-  const lines = text.split('\n');
-  const offset = (position: { line: number; character: number }) =>
-    lines.slice(0, position.line).reduce((sum, line) => sum + line.length + 1, 0) + position.character;
-  return text.slice(offset(range.start), offset(range.end));
-}
-
-function applyEdits(text: string, edits: TextEdit[]): string {
-  const lines = text.split('\n');
-  const offset = (position: { line: number; character: number }) =>
-    lines.slice(0, position.line).reduce((sum, line) => sum + line.length + 1, 0) + position.character;
-  let result = text;
-  for (const edit of [...edits].sort((a, b) => offset(b.range.start) - offset(a.range.start))) {
-    result = result.slice(0, offset(edit.range.start)) + edit.newText + result.slice(offset(edit.range.end));
-  }
-  return result;
 }
 
 function labels(items: CompletionItem[] | { items: CompletionItem[] } | null): string[] {

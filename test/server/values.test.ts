@@ -12,7 +12,7 @@ import {
   WorkspaceEdit,
 } from 'vscode-languageserver/node';
 import { TestClient } from './harness';
-import { applyEdits, inside } from './textEdits';
+import { applyEdits, inside } from '../support/textEdits';
 import { problemCodeOf } from '../support/diagnostics';
 import { temporaryWorkspace } from '../support/workspace';
 

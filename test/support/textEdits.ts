@@ -1,5 +1,5 @@
 import { TextEdit } from 'vscode-languageserver/node';
-import { positionAt } from '../support/cursor';
+import { positionAt } from './cursor';
 
 export type Position = { line: number; character: number };
 
@@ -7,6 +7,11 @@ export type Position = { line: number; character: number };
 export function offsetOf(text: string, position: Position): number {
   const lines = text.split('\n');
   return lines.slice(0, position.line).reduce((sum, line) => sum + line.length + 1, 0) + position.character;
+}
+
+/** The text a range covers. */
+export function textAt(text: string, range: { start: Position; end: Position }): string {
+  return text.slice(offsetOf(text, range.start), offsetOf(text, range.end));
 }
 
 /** The text after the edits (all relative to the original text), applied from the end backwards. */
