@@ -13,6 +13,10 @@ const cli = path.join(root, 'dist', 'cli.js');
 const peak = path.join(root, 'bench', 'peak-rss.cjs');
 const runs = Number(process.env.BENCH_RUNS ?? 9);
 
+/**
+ * @param {string} command
+ * @param {string[]} args
+ */
 function measure(command, args) {
   const started = process.hrtime.bigint();
   const result = spawnSync(command, args, { encoding: 'utf8', cwd: root });
@@ -22,11 +26,13 @@ function measure(command, args) {
   return { ms, mb: kb / 1024, stdout: result.stdout };
 }
 
+/** @param {{ ms: number }[]} samples */
 function median(samples) {
   const times = samples.map((sample) => sample.ms).sort((a, b) => a - b);
   return times[Math.floor(times.length / 2)];
 }
 
+/** @param {number} n */
 const fmt = (n) => n.toFixed(1).padStart(8);
 
 if (!existsSync(cli)) {

@@ -15,7 +15,11 @@ const cpuTime = path.join(root, 'bench', 'cpu-time.cjs');
 const liveHeap = path.join(root, 'bench', 'live-heap.cjs');
 const runs = Number(process.env.BENCH_RUNS ?? 5);
 
-/** Wall ms, CPU ms and peak MB of one `check` (exit 0 or 1: problems found are not a failure here). */
+/**
+ * Wall ms, CPU ms and peak MB of one `check` (exit 0 or 1: problems found are not a failure here).
+ * @param {string[]} args
+ * @param {boolean} [live] the live heap at the end instead of the peak
+ */
 function measure(args, live = false) {
   const started = process.hrtime.bigint();
   const preload = live
@@ -30,11 +34,19 @@ function measure(args, live = false) {
   return { ms, cpu, mb: kb / 1024, liveMb };
 }
 
+/**
+ * @param {Record<string, number>[]} samples
+ * @param {string} key
+ */
 function median(samples, key) {
   const values = samples.map((sample) => sample[key]).sort((a, b) => a - b);
   return values[Math.floor(values.length / 2)];
 }
 
+/**
+ * @param {string} folder
+ * @returns {string[]}
+ */
 function scenarioFiles(folder) {
   const found = [];
   for (const entry of readdirSync(folder, { withFileTypes: true })) {
@@ -45,6 +57,7 @@ function scenarioFiles(folder) {
   return found;
 }
 
+/** @param {number} n */
 const fmt = (n) => n.toFixed(1).padStart(8);
 
 if (!existsSync(cli)) {

@@ -20,10 +20,15 @@ if (!existsSync(server)) {
 }
 
 const now = () => Number(process.hrtime.bigint()) / 1e6;
+/** @param {number[]} times */
 function stats(times) {
   const sorted = [...times].sort((a, b) => a - b);
   return { median: sorted[Math.floor(sorted.length / 2)], p95: sorted[Math.min(sorted.length - 1, Math.ceil(sorted.length * 0.95) - 1)] };
 }
+/**
+ * @param {string} text
+ * @param {number} offset
+ */
 function positionOf(text, offset) {
   const before = text.slice(0, offset);
   const line = before.split('\n').length - 1;
@@ -63,6 +68,10 @@ await connection.sendRequest('initialize', {
   capabilities: {},
 });
 await connection.sendNotification('initialized', {});
+/**
+ * @param {number} version
+ * @returns {Promise<import('vscode-languageserver-protocol').Diagnostic[]>}
+ */
 const diagnosticsOf = (version) => new Promise((resolve) => waiters.set(version, resolve));
 
 let version = 1;
@@ -77,6 +86,10 @@ if (first.some((diagnostic) => diagnostic.severity === 1)) throw new Error(`unex
 const uses = [...text.matchAll(/\$P\d+/g)].map((match) => match.index + 2);
 const cursors = Array.from({ length: samples }, (_, i) => positionOf(text, uses[Math.floor((i * uses.length) / samples)]));
 const lineCount = text.split('\n').length;
+/**
+ * @param {string} method
+ * @param {(i: number) => object} paramsOf
+ */
 async function measure(method, paramsOf) {
   const times = [];
   let last;
@@ -88,6 +101,7 @@ async function measure(method, paramsOf) {
   }
   return { ...stats(times), last };
 }
+/** @param {number} i */
 const at = (i) => ({ textDocument: { uri }, position: cursors[i] });
 const hover = await measure('textDocument/hover', at);
 const definition = await measure('textDocument/definition', at);
@@ -106,12 +120,14 @@ if (!hover.last || definition.last.length !== 1 || whole.last.length !== 1500 ||
   throw new Error('the features did not answer as expected');
 
 // Edits of a declaration's value (as typing does), each followed by its diagnostics.
+/** @type {number[]} */
 const edits = [];
 const declarations = [...text.matchAll(/name="P(\d*[02468])" parameterType="double" value="/g)].map(
   (match) => match.index + match[0].length,
 );
 // The first edits after the file opened run code V8 has not compiled yet: timed apart from the steady state.
 const warmUp = 10;
+/** @type {number[]} */
 const coldEdits = [];
 for (let i = 0; i < warmUp + Math.min(samples, 60); i++) {
   const position = positionOf(text, declarations[(i * 37) % declarations.length]);
@@ -144,7 +160,13 @@ await connection.sendNotification('exit');
 connection.dispose();
 rmSync(workspace, { recursive: true, force: true });
 
+/** @param {number} n */
 const fmt = (n) => n.toFixed(2).padStart(8);
+/**
+ * @param {string} label
+ * @param {{ median: number, p95: number }} figures
+ * @param {number} [target]
+ */
 const row = (label, figures, target) =>
   console.log(
     `  ${label.padEnd(44)}${fmt(figures.median)}  ${fmt(figures.p95)}${target ? `   ${figures.p95 < target ? 'within' : 'OVER'} ${target} ms` : ''}`,

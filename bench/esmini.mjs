@@ -15,10 +15,12 @@ const roads = path.resolve(root, '..', 'shared', 'esmini', 'xodr');
 const samples = Number(process.env.BENCH_RUNS ?? 10);
 const now = () => Number(process.hrtime.bigint()) / 1e6;
 
+/** @param {number[]} times */
 function stats(times) {
   const sorted = [...times].sort((a, b) => a - b);
   return { median: sorted[Math.floor(sorted.length / 2)], p95: sorted[Math.min(sorted.length - 1, Math.ceil(sorted.length * 0.95) - 1)] };
 }
+/** @param {number} n */
 const fmt = (n) => n.toFixed(0).padStart(7);
 
 if (!existsSync(esmini) || !existsSync(roads)) {

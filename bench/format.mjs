@@ -18,18 +18,25 @@ if (!existsSync(server) || !existsSync(cli)) {
   process.exit(1);
 }
 
-/** CPU time (user + system) a process has used, in ms: on a loaded machine wall time says little. */
+/**
+ * CPU time (user + system) a process has used, in ms: on a loaded machine wall time says little.
+ * @param {number | undefined} pid
+ */
 function cpuMs(pid) {
   const fields = readFileSync(`/proc/${pid}/stat`, 'utf8').split(') ')[1].split(' ');
   return ((Number(fields[11]) + Number(fields[12])) * 1000) / 100;
 }
 
+/** @param {number[]} times */
 function stats(times) {
   const sorted = [...times].sort((a, b) => a - b);
   return { median: sorted[Math.floor(sorted.length / 2)], p95: sorted[Math.min(sorted.length - 1, Math.ceil(sorted.length * 0.95) - 1)] };
 }
 
-/** A scenario of about `lines` lines, indented badly (every line at column 0) with long tags, comments and blank lines. */
+/**
+ * A scenario of about `lines` lines, indented badly (every line at column 0) with long tags, comments and blank lines.
+ * @param {number} lines
+ */
 function messyScenario(lines) {
   const parts = [
     '<?xml version="1.0" encoding="UTF-8"?>',
@@ -72,7 +79,8 @@ const inputLines = text.split('\n').length;
 
 const child = spawn(process.execPath, [server, '--stdio'], { stdio: ['pipe', 'pipe', 'inherit'] });
 const connection = createProtocolConnection(new StreamMessageReader(child.stdout), new StreamMessageWriter(child.stdin));
-connection.onNotification(() => {});
+// Every other notification is dropped: vscode-jsonrpc's catch-all handler, which ProtocolConnection's type leaves out.
+/** @type {import('vscode-jsonrpc').MessageConnection} */ (/** @type {unknown} */ (connection)).onNotification(() => {});
 connection.onRequest('workspace/configuration', (params) => params.items.map(() => ({})));
 connection.onRequest('window/workDoneProgress/create', () => null);
 connection.onRequest('client/registerCapability', () => null);
@@ -99,6 +107,7 @@ let formatted = text;
   const lines = formatted.split('\n');
   const starts = [0];
   for (const line of lines) starts.push(starts[starts.length - 1] + line.length + 1);
+  /** @param {{ line: number, character: number }} position */
   const offset = (position) => starts[position.line] + position.character;
   for (const edit of [...edits].sort((a, b) => offset(b.range.start) - offset(a.range.start))) {
     formatted = formatted.slice(0, offset(edit.range.start)) + edit.newText + formatted.slice(offset(edit.range.end));
@@ -139,6 +148,7 @@ for (let i = 0; i < Math.max(5, Math.floor(samples / 3)); i++) {
 }
 rmSync(folder, { recursive: true, force: true });
 
+/** @param {number} n */
 const fmt = (n) => n.toFixed(1).padStart(7);
 const documentStats = stats(documentTimes);
 console.log(

@@ -12,6 +12,7 @@ const cli = path.join(root, 'dist', 'cli.js');
 const peak = path.join(root, 'bench', 'peak-rss.cjs');
 const MiB = 1024 * 1024;
 
+/** @param {string} groups */
 const header = (groups) => `<?xml version="1.0" encoding="UTF-8"?>
 <OpenSCENARIO>
   <FileHeader revMajor="1" revMinor="0" date="2026-01-01T00:00:00" description="bench" author="bench"/>
@@ -20,11 +21,17 @@ const header = (groups) => `<?xml version="1.0" encoding="UTF-8"?>
 ${groups}  </Act></Story></Storyboard>
 </OpenSCENARIO>
 `;
+/** @param {string} name */
 const simpleGroup = (
   name,
 ) => `<ManeuverGroup name="${name}" maximumExecutionCount="1"><Actors selectTriggeringEntities="false"><EntityRef entityRef="car"/></Actors>
   <Maneuver name="M"><Event name="E" priority="overwrite"><Action name="A"><SpeedActionTarget><AbsoluteTargetSpeed parameterAttributes="value" value="10"/></SpeedActionTarget></Action></Event></Maneuver></ManeuverGroup>
 `;
+/**
+ * @param {string} outer
+ * @param {string} file
+ * @param {string} group
+ */
 const reference = (
   outer,
   file,
@@ -33,6 +40,11 @@ const reference = (
   <ScenarioReference scenarioFileName="${file}"><ManeuverGroupReference maneuverGroupName="${group}"/></ScenarioReference></ManeuverGroup>
 `;
 
+/**
+ * @param {string} label
+ * @param {string[]} args
+ * @param {string} cwd
+ */
 function measure(label, args, cwd) {
   const started = process.hrtime.bigint();
   const result = spawnSync(process.execPath, ['--require', peak, cli, ...args], {
@@ -49,6 +61,7 @@ function measure(label, args, cwd) {
   );
 }
 
+/** @param {Record<string, string | Uint8Array>} files */
 async function zipOf(files) {
   const zip = new JSZip();
   for (const [name, content] of Object.entries(files)) zip.file(name, content);
@@ -56,6 +69,7 @@ async function zipOf(files) {
 }
 
 const work = mkdtempSync(path.join(tmpdir(), 'm2s-bench-hostile-'));
+/** @param {string} name */
 const folder = (name) => {
   const dir = path.join(work, name);
   mkdirSync(dir, { recursive: true });
@@ -107,6 +121,7 @@ console.log('hostile input, one CLI run each (time includes process start; peak 
   const dir = folder('reuse');
   writeFileSync(path.join(dir, 'l20.xosc'), header(simpleGroup('G')));
   for (let level = 0; level < 20; level++) {
+    /** @param {string} name */
     const half = (name) => reference(name, `l${level + 1}.xosc`, 'G');
     writeFileSync(
       path.join(dir, `l${level}.xosc`),
@@ -122,6 +137,7 @@ console.log('hostile input, one CLI run each (time includes process start; peak 
 // Nesting depth: packages nested 63 deep (within the bound of 64 files) and 200 deep.
 for (const levels of [63, 200]) {
   const dir = folder(`depth${levels}`);
+  /** @type {Uint8Array | undefined} */
   let inner;
   for (let level = levels; level >= 0; level--) {
     const name = Array.from({ length: levels - level }, () => 'G').join('.');
@@ -129,7 +145,7 @@ for (const levels of [63, 200]) {
       inner ? { 'main.xosc': header(reference('G', 'inner.mosc', name)), 'inner.mosc': inner } : { 'main.xosc': header(simpleGroup('G')) },
     );
   }
-  writeFileSync(path.join(dir, 'outer.mosc'), inner);
+  writeFileSync(path.join(dir, 'outer.mosc'), /** @type {Uint8Array} */ (inner));
   measure(`depth: packages nested ${levels} deep, flatten`, ['flatten', 'outer.mosc', '-o', 'out.xosc', '-q'], dir);
 }
 

@@ -23,25 +23,36 @@ if (!existsSync(server)) {
 }
 
 const now = () => Number(process.hrtime.bigint()) / 1e6;
+/** @param {string} file */
 const uriOf = (file) => pathToFileURL(file).href;
 
+/** @param {number[]} times */
 function stats(times) {
   const sorted = [...times].sort((a, b) => a - b);
   return { median: sorted[Math.floor(sorted.length / 2)], p95: sorted[Math.min(sorted.length - 1, Math.ceil(sorted.length * 0.95) - 1)] };
 }
 
+/** @param {number | undefined} pid */
 function residentMb(pid) {
   const status = readFileSync(`/proc/${pid}/status`, 'utf8');
+  /** @param {string} field */
   const kb = (field) => Number(new RegExp(`${field}:\\s+(\\d+)`).exec(status)?.[1] ?? NaN);
   return { rss: kb('VmRSS') / 1024, peak: kb('VmHWM') / 1024 };
 }
 
-/** Starts the server over stdio with a workspace folder; resolves once indexing reported its end. */
+/**
+ * Starts the server over stdio with a workspace folder; resolves once indexing reported its end.
+ * @param {string} folder
+ * @param {Record<string, unknown>} [settings]
+ */
 async function start(folder, settings = {}) {
   const child = spawn(process.execPath, [...nodeArgs, server, '--stdio'], { stdio: ['pipe', 'pipe', 'inherit'] });
   const connection = createProtocolConnection(new StreamMessageReader(child.stdout), new StreamMessageWriter(child.stdin));
+  /** @type {Map<string, { version: number, resolve: (diagnostics: import('vscode-languageserver-protocol').Diagnostic[]) => void }>} */
   const diagnosticsWaiters = new Map();
+  /** @type {(at: number) => void} */
   let indexEnd;
+  /** @type {Promise<number>} */
   const indexed = new Promise((resolve) => (indexEnd = resolve));
   connection.onNotification('textDocument/publishDiagnostics', (params) => {
     const waiter = diagnosticsWaiters.get(params.uri);
@@ -67,6 +78,11 @@ async function start(folder, settings = {}) {
   const started = now();
   await connection.sendNotification('initialized', {});
   const indexMs = (await indexed) - started;
+  /**
+   * @param {string} uri
+   * @param {number} version
+   * @returns {Promise<import('vscode-languageserver-protocol').Diagnostic[]>}
+   */
   const diagnosticsFor = (uri, version) => new Promise((resolve) => diagnosticsWaiters.set(uri, { version, resolve }));
   const stop = async () => {
     await connection.sendRequest('shutdown');
@@ -76,6 +92,11 @@ async function start(folder, settings = {}) {
   return { child, connection, indexMs, diagnosticsFor, stop };
 }
 
+/**
+ * @param {import('vscode-languageserver-protocol').ProtocolConnection} connection
+ * @param {string} method
+ * @param {object[]} paramsList
+ */
 async function timeRequests(connection, method, paramsList) {
   const times = [];
   let last;
@@ -88,6 +109,11 @@ async function timeRequests(connection, method, paramsList) {
   return { ...stats(times), last };
 }
 
+/**
+ * @param {string} text
+ * @param {string} needle
+ * @param {number} [nth]
+ */
 function positionAfter(text, needle, nth = 0) {
   let index = -1;
   for (let i = 0; i <= nth; i++) index = text.indexOf(needle, index + 1);
@@ -106,6 +132,7 @@ const vehicle =
   '<FrontAxle maxSteering="0.5" wheelDiameter="0.8" trackWidth="1.7" positionX="2.9" positionZ="0.4"/>' +
   '<RearAxle maxSteering="0" wheelDiameter="0.8" trackWidth="1.7" positionX="0" positionZ="0.4"/></Axles><Properties/></Vehicle>';
 
+/** @param {number} index */
 function simpleScenario(index) {
   const groups = [0, 1, 2]
     .map(
@@ -151,6 +178,10 @@ ${groups}
 `;
 }
 
+/**
+ * @param {number} index
+ * @param {number} simpleCount
+ */
 function referenceGroup(index, simpleCount) {
   return `        <ManeuverGroup name="Car${index}" maximumExecutionCount="1">
           <Actors selectTriggeringEntities="false">
@@ -166,6 +197,11 @@ function referenceGroup(index, simpleCount) {
         </ManeuverGroup>`;
 }
 
+/**
+ * @param {number} references
+ * @param {number} simpleCount
+ * @param {number} [padLines]
+ */
 function mainScenario(references, simpleCount, padLines = 0) {
   const entities = Array.from({ length: 50 }, (_, i) => `    <ScenarioObject name="car${i}">${vehicle}</ScenarioObject>`).join('\n');
   // Plain OpenSCENARIO content (Init actions) pads a file to a realistic size without references.
@@ -199,8 +235,18 @@ ${groups}
 `;
 }
 
+/** @param {number} n */
 const fmt = (n) => n.toFixed(1).padStart(8);
+/**
+ * @param {string} label
+ * @param {string} value
+ */
 const line = (label, value) => console.log(`  ${label.padEnd(52)}${value}`);
+/**
+ * @param {string} label
+ * @param {{ median: number, p95: number }} figures
+ * @param {number} target
+ */
 const row = (label, { median, p95 }, target) =>
   line(label, `${fmt(median)} ${fmt(p95)}   ${p95 <= target ? 'within' : 'OVER'} ${target} ms p95`);
 
@@ -228,7 +274,12 @@ line('index 1,000 files (start to $/progress end)', `${fmt(session.indexMs)} ms 
 const indexMemory = residentMb(session.child.pid);
 line('server resident memory, 1,000 files indexed', `${fmt(indexMemory.rss)} MB   ${indexMemory.rss <= 150 ? 'within' : 'OVER'} 150 MB`);
 
-/** Opens a file, then changes one override value at a time (as typing does) and waits for its diagnostics. */
+/**
+ * Opens a file, then changes one override value at a time (as typing does) and waits for its diagnostics.
+ * @param {string} filePath
+ * @param {string} text
+ * @param {string} label
+ */
 async function editLatency(filePath, text, label) {
   const uri = uriOf(filePath);
   let version = 1;
@@ -363,7 +414,11 @@ if (!existsSync(library)) {
 
 // ---- 3. OpenSCENARIO schema: validation after an edit, completion, four schemas in memory ----------
 
-/** A schema-valid scenario of about `lines` lines: Init actions of one entity, each a speed change. */
+/**
+ * A schema-valid scenario of about `lines` lines: Init actions of one entity, each a speed change.
+ * @param {string} minor
+ * @param {number} lines
+ */
 function schemaScenario(minor, lines) {
   const head = `<?xml version="1.0" encoding="UTF-8"?>
 <OpenSCENARIO>
@@ -382,6 +437,7 @@ function schemaScenario(minor, lines) {
     <Init>
       <Actions>
 `;
+  /** @param {number} i */
   const action = (i) => `        <Private entityRef="ego">
           <PrivateAction>
             <LongitudinalAction>

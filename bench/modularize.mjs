@@ -16,7 +16,11 @@ if (!existsSync(cli)) {
   process.exit(1);
 }
 
-/** Wall time of one run in ms, the output folder removed first; the report's total line. */
+/**
+ * Wall time of one run in ms, the output folder removed first; the report's total line.
+ * @param {string[]} args
+ * @param {string} out
+ */
 function measure(args, out) {
   rmSync(out, { recursive: true, force: true });
   const started = process.hrtime.bigint();
@@ -34,12 +38,19 @@ function measure(args, out) {
   };
 }
 
+/**
+ * @param {{ ms: number, cpuMs: number }[]} samples
+ * @param {'ms' | 'cpuMs'} [field]
+ */
 function median(samples, field = 'ms') {
   const times = samples.map((sample) => sample[field]).sort((a, b) => a - b);
   return times[Math.floor(times.length / 2)];
 }
 
-/** A deterministic generator (mulberry32), so every run modularizes the same scenarios. */
+/**
+ * A deterministic generator (mulberry32), so every run modularizes the same scenarios.
+ * @param {number} seed
+ */
 function generator(seed) {
   let state = seed >>> 0;
   return () => {
@@ -51,6 +62,7 @@ function generator(seed) {
   };
 }
 
+/** @type {((value: number) => string)[]} */
 const BEHAVIOURS = [
   (v) =>
     `<LongitudinalAction><SpeedAction><SpeedActionDynamics dynamicsShape="step" value="0" dynamicsDimension="time"/><SpeedActionTarget><AbsoluteTargetSpeed value="${v}"/></SpeedActionTarget></SpeedAction></LongitudinalAction>`,
@@ -61,7 +73,11 @@ const BEHAVIOURS = [
     `<LongitudinalAction><SpeedAction><SpeedActionDynamics dynamicsShape="linear" value="${v}" dynamicsDimension="rate"/><SpeedActionTarget><RelativeTargetSpeed entityRef="ego" value="0" speedTargetValueType="delta" continuous="false"/></SpeedActionTarget></SpeedAction></LongitudinalAction>`,
 ];
 
-/** A scenario of `groups` maneuver groups, each one of the behaviours above with its own values. */
+/**
+ * A scenario of `groups` maneuver groups, each one of the behaviours above with its own values.
+ * @param {() => number} random
+ * @param {number} index
+ */
 function generatedScenario(random, index) {
   const lines = [
     '<?xml version="1.0" encoding="UTF-8"?>',

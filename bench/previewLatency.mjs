@@ -4,6 +4,11 @@
 
 const now = () => Number(process.hrtime.bigint()) / 1e6;
 
+/**
+ * @param {string} text
+ * @param {string} needle
+ * @param {number} nth
+ */
 function positionAfter(text, needle, nth) {
   let index = -1;
   for (let i = 0; i <= nth; i++) index = text.indexOf(needle, index + 1);
@@ -16,6 +21,11 @@ function positionAfter(text, needle, nth) {
  * Changes the first character of a value after `needle` (cycling through its occurrences) to a
  * digit, then asks for the preview; `version` is the document's current version. Answers the
  * times (ms) and the next free version; fails when a preview lacks text.
+ * @param {import('vscode-languageserver-protocol').ProtocolConnection} connection
+ * @param {string} uri
+ * @param {string} text
+ * @param {string} needle
+ * @param {{ samples: number, version: number }} options
  */
 export async function previewLatency(connection, uri, text, needle, { samples, version }) {
   const occurrences = text.split(needle).length - 1;

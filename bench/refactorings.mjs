@@ -19,9 +19,15 @@ if (!existsSync(server)) {
 }
 
 const now = () => Number(process.hrtime.bigint()) / 1e6;
+/** @param {string} file */
 const uriOf = (file) => pathToFileURL(file).href;
 
+/**
+ * @param {number} index
+ * @param {boolean} listed
+ */
 function group(index, listed) {
+  /** @param {string} names */
   const list = (names) => (listed ? ` parameterAttributes="${names}"` : '');
   return `        <ManeuverGroup name="G${index}" maximumExecutionCount="1">
           <Actors selectTriggeringEntities="false">
@@ -55,6 +61,7 @@ function group(index, listed) {
         </ManeuverGroup>`;
 }
 
+/** @param {number} index */
 function referenceGroup(index) {
   return `        <ManeuverGroup name="Car${index}" maximumExecutionCount="1">
           <Actors selectTriggeringEntities="false">
@@ -68,6 +75,10 @@ function referenceGroup(index) {
         </ManeuverGroup>`;
 }
 
+/**
+ * @param {(index: number) => string} groups
+ * @param {number} lines
+ */
 function scenario(groups, lines) {
   const entities = Array.from({ length: 20 }, (_, i) => `    <ScenarioObject name="car${i}"/>`).join('\n');
   const head = `<?xml version="1.0" encoding="UTF-8"?>
@@ -101,12 +112,21 @@ ${entities}
   return head + body.join('\n') + tail;
 }
 
+/**
+ * @param {string} text
+ * @param {number} offset
+ */
 function positionOf(text, offset) {
   const before = text.slice(0, offset);
   return { line: before.split('\n').length - 1, character: offset - (before.lastIndexOf('\n') + 1) };
 }
 
-/** Offsets of every occurrence of `needle`, `into` characters in. */
+/**
+ * Offsets of every occurrence of `needle`, `into` characters in.
+ * @param {string} text
+ * @param {string} needle
+ * @param {number} into
+ */
 function offsets(text, needle, into) {
   const found = [];
   for (let index = text.indexOf(needle); index >= 0; index = text.indexOf(needle, index + 1)) found.push(index + into);
@@ -114,6 +134,7 @@ function offsets(text, needle, into) {
 }
 
 const folder = realpathSync(mkdtempSync(path.join(tmpdir(), 'm2s-refactor-bench-')));
+/** @type {Record<string, string>} */
 const files = {
   'plain.xosc': scenario((i) => group(i, false), 15_000),
   'simple.xosc': scenario((i) => group(i, true), 15_000),
@@ -123,6 +144,7 @@ for (const [name, text] of Object.entries(files)) writeFileSync(path.join(folder
 
 const child = spawn(process.execPath, [server, '--stdio'], { stdio: ['pipe', 'pipe', 'inherit'] });
 const connection = createProtocolConnection(new StreamMessageReader(child.stdout), new StreamMessageWriter(child.stdin));
+/** @type {Map<string, (value?: unknown) => void>} */
 const published = new Map();
 connection.onNotification('textDocument/publishDiagnostics', (params) => published.get(params.uri)?.());
 connection.onNotification('window/logMessage', () => {});
@@ -138,6 +160,7 @@ await connection.sendRequest('initialize', {
 });
 await connection.sendNotification('initialized', {});
 
+/** @param {string} name */
 async function open(name) {
   const uri = uriOf(path.join(folder, name));
   const diagnosed = new Promise((resolve) => published.set(uri, resolve));
@@ -146,6 +169,13 @@ async function open(name) {
   return uri;
 }
 
+/**
+ * @param {string} name
+ * @param {string} needle
+ * @param {number} into
+ * @param {string[] | undefined} only
+ * @param {string} kind
+ */
 async function actionLatency(name, needle, into, only, kind) {
   const uri = await open(name);
   const text = files[name];
@@ -155,6 +185,7 @@ async function actionLatency(name, needle, into, only, kind) {
   for (let i = 0; i < samples; i++) {
     const position = positionOf(text, places[(i * 37) % places.length]);
     const started = now();
+    /** @type {import('vscode-languageserver-protocol').CodeAction[]} */
     const actions = await connection.sendRequest('textDocument/codeAction', {
       textDocument: { uri },
       range: { start: position, end: position },

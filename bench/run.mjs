@@ -12,6 +12,10 @@ const cli = path.join(root, 'dist', 'cli.js');
 const peak = path.join(root, 'bench', 'peak-rss.cjs');
 const runs = Number(process.env.BENCH_RUNS ?? 15);
 
+/**
+ * @param {string[]} args
+ * @param {Record<string, string>} [env]
+ */
 function measure(args, env = {}) {
   const started = process.hrtime.bigint();
   const result = spawnSync(process.execPath, ['--require', peak, ...args], { env: { ...process.env, ...env }, encoding: 'utf8' });
@@ -21,6 +25,7 @@ function measure(args, env = {}) {
   return { ms, mb: kb / 1024 };
 }
 
+/** @param {{ ms: number, mb: number }[]} samples */
 function summary(samples) {
   const times = samples.map((s) => s.ms).sort((a, b) => a - b);
   const median = times[Math.floor(times.length / 2)];
@@ -28,6 +33,7 @@ function summary(samples) {
   return { median, p95, peakMb: Math.max(...samples.map((s) => s.mb)) };
 }
 
+/** @param {number} n */
 const fmt = (n) => n.toFixed(1).padStart(7);
 
 if (!existsSync(cli)) {

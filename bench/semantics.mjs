@@ -24,15 +24,21 @@ await esbuild.build({
   outfile: bundle,
   logLevel: 'warning',
 });
+/** @type {typeof import('../server/src/core/semantics') & Pick<typeof import('../server/src/core/xml'), 'parseXml'>} */
 const core = createRequire(import.meta.url)(bundle);
 rmSync(work, { recursive: true, force: true });
 
+/**
+ * @template T
+ * @param {() => T} action
+ */
 function time(action) {
   const started = process.hrtime.bigint();
   const result = action();
   return { ms: Number(process.hrtime.bigint() - started) / 1e6, result };
 }
 
+/** @param {number[]} samples */
 function summary(samples) {
   const sorted = [...samples].sort((a, b) => a - b);
   return { median: sorted[Math.floor(sorted.length / 2)], p95: sorted[Math.min(sorted.length - 1, Math.ceil(sorted.length * 0.95) - 1)] };
@@ -41,8 +47,11 @@ function summary(samples) {
 const text = parameterScenario();
 const emptyCatalogs = { locations: [], references: [], files: [] };
 const ref = { disk: path.join(root, 'bench.xosc'), entries: [] };
+/** @type {number[]} */
 const parse = [];
+/** @type {number[]} */
 const build = [];
+/** @type {number[]} */
 const check = [];
 let last;
 for (let run = 0; run < runs; run++) {
@@ -55,6 +64,7 @@ for (let run = 0; run < runs; run++) {
   check.push(checked.ms);
   last = { model, findings: checked.result };
 }
+if (!last) throw new Error('BENCH_RUNS is 0: nothing was measured');
 if (last.model.declarations.length !== 1000 || last.model.sites.filter((site) => site.form.kind === 'expression').length !== 1500)
   throw new Error('the generated scenario is not what the benchmark states');
 if (last.findings.some((finding) => finding.severity === 'error')) throw new Error(`unexpected errors: ${last.findings[0].message}`);
@@ -62,6 +72,7 @@ if (last.findings.some((finding) => finding.severity === 'error')) throw new Err
 // Queries at offsets spread over the file, on one model (as the editor asks them between edits).
 const semantics = { ref, model: last.model, evaluator: new core.Evaluator(last.model), catalogs: emptyCatalogs, modular: false };
 const offsets = last.model.uses.filter((_, index) => index % 10 === 0).map((use) => use.start + 1);
+/** @param {(semantics: Parameters<typeof core.declarationAt>[0], offset: number) => unknown} fn */
 const query = (fn) => summary(offsets.map((offset) => time(() => fn(semantics, offset)).ms));
 const definition = query(core.declarationAt);
 const value = query(core.valueAt);
@@ -70,6 +81,7 @@ const references = summary(
   last.model.declarations.slice(0, 100).map((declaration) => time(() => core.referencesOf(semantics, declaration)).ms),
 );
 
+/** @param {number} n */
 const fmt = (n) => n.toFixed(2).padStart(8);
 console.log(
   `semantic model benchmark: ${(text.length / 1024).toFixed(0)} KB, 1,000 parameters, 1,000 attributes with expressions (${runs} runs)`,

@@ -31,6 +31,12 @@ function childrenCpuSeconds() {
 const folder = mkdtempSync(path.join(tmpdir(), 'm2s-bench-variations-'));
 copyFileSync(path.join(root, 'test', 'fixtures', 'variations', 'follow.xosc'), path.join(folder, 'follow.xosc'));
 copyFileSync(path.join(roads, 'e6mini.xodr'), path.join(folder, 'e6mini.xodr'));
+/**
+ * @param {string} name
+ * @param {number} lower
+ * @param {number} upper
+ * @param {number} step
+ */
 const range = (name, lower, upper, step) =>
   `<DeterministicSingleParameterDistribution parameterName="${name}"><DistributionRange stepWidth="${step}"><Range lowerLimit="${lower}" upperLimit="${upper}"/></DistributionRange></DeterministicSingleParameterDistribution>`;
 writeFileSync(
@@ -47,7 +53,12 @@ writeFileSync(
 );
 const count = spawnSync(process.execPath, [cli, 'vary', 'large.xosc', '--count'], { cwd: folder, encoding: 'utf8' }).stdout.trim();
 
-/** Runs a command to its end; its wall-clock milliseconds and the CPU seconds it and its children used. */
+/**
+ * Runs a command to its end; its wall-clock milliseconds and the CPU seconds it and its children used.
+ * @param {string} program
+ * @param {string[]} args
+ * @param {import('node:child_process').SpawnSyncOptions} [options]
+ */
 function timed(program, args, options = {}) {
   const cpuBefore = childrenCpuSeconds();
   const started = now();
@@ -121,7 +132,12 @@ const rows =
     .trim()
     .split('\n').length - 1;
 
+/** @param {{ wallMs: number }} result */
 const perCore = (result) => sample / (result.wallMs / 1000) / jobs;
+/**
+ * @param {number} n
+ * @param {number} [digits]
+ */
 const fmt = (n, digits = 1) => n.toFixed(digits).padStart(8);
 console.log(
   `Batch benchmark: a ${sample}-run sample of ${count} concrete scenarios (follow.xosc on e6mini, 3 s simulated at 0.05 s steps), ${jobs} at a time`,
@@ -153,6 +169,7 @@ if (spawnSync('redis-server', ['--version']).status !== 0) {
   const url = `redis://127.0.0.1:${port}`;
   for (let i = 0; i < 100 && spawnSync('redis-cli', ['-p', String(port), 'ping'], { encoding: 'utf8' }).stdout.trim() !== 'PONG'; i++)
     spawnSync('sleep', ['0.05']);
+  /** @param {number} workers */
   const throughQueue = async (workers) => {
     const cpuBefore = childrenCpuSeconds();
     const started = [];

@@ -7,6 +7,7 @@ import { writeCliCodeCache } from './cli-code-cache.mjs';
 import { schemaModelFile } from './compile-schemas.mjs';
 
 const watch = process.argv.includes('--watch');
+/** @type {esbuild.BuildOptions} */
 const common = {
   bundle: true,
   platform: 'node',
@@ -22,6 +23,8 @@ const common = {
  * command files (and of help, which imports them) load a module that throws, as the program's entry
  * runs this bundle for that command alone (server/src/cli/start.ts, COMMAND_BUNDLES). What cli.ts
  * imports statically it always needs, and is bundled.
+ * @param {string} commandFile
+ * @returns {esbuild.Plugin}
  */
 function onlyCommandFile(commandFile) {
   return {
@@ -44,6 +47,7 @@ function onlyCommandFile(commandFile) {
 /**
  * The CLI's bundles run in a vm.Script (server/src/cli/start.ts), which has no module loader for `import()`:
  * a lazily imported Node module (`await import('node:crypto')`) is required instead, when it is first used.
+ * @type {esbuild.Plugin}
  */
 const builtinsRequired = {
   name: 'builtins-required',
@@ -62,6 +66,7 @@ const builtinsRequired = {
  * `import * as fs from 'node:fs'` in each of N files is, bundled, N copies of fs's hundred properties as
  * getters (esbuild's __toESM) at every start; through one module that re-exports the built-in they are
  * made once. For the CLI's bundles, whose start-up is most of a short run.
+ * @type {esbuild.Plugin}
  */
 const sharedBuiltinNamespaces = {
   name: 'shared-builtin-namespaces',
@@ -84,6 +89,7 @@ await esbuild.build({ ...common, ...starter });
 const { COMMAND_BUNDLES, commandBundle } = createRequire(import.meta.url)(path.resolve('dist/cli.js'));
 const commandFiles = [...new Set(Object.values(COMMAND_BUNDLES))];
 
+/** @type {esbuild.BuildOptions[]} */
 const entries = [
   { entryPoints: ['client/src/extension.ts'], outfile: 'dist/client.js', external: ['vscode'] },
   { entryPoints: ['server/src/server.ts'], outfile: 'dist/server.js', banner: { js: '#!/usr/bin/env node' } },

@@ -6,7 +6,14 @@ import { createRequire } from 'node:module';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
 
+/** @typedef {typeof import('../server/src/cli/start')} CliEntry dist/cli.js, the program's entry, built from it */
+
 /** The command lines run on the examples before a bundle's cache is written, by command file of cli/ (`main`: the whole CLI). */
+/**
+ * @param {string} examples
+ * @param {string} out
+ * @returns {Record<string, string[][]>}
+ */
 function warmingRuns(examples, out) {
   const flatten = [
     ['-cmx', path.join(examples, 'braking.mosc'), path.join(out, 'braking.xosc'), '-q'],
@@ -29,6 +36,7 @@ function warmingRuns(examples, out) {
 }
 
 /** The bundle files the program's entry may run: the whole CLI's and each short command's. */
+/** @param {CliEntry} entry */
 function cliBundles(entry) {
   return [
     { file: entry.CLI_BUNDLE, runs: 'main' },
@@ -36,9 +44,11 @@ function cliBundles(entry) {
   ];
 }
 
+/** @param {string} root */
 export async function writeCliCodeCache(root) {
   const dist = path.join(root, 'dist');
   const require = createRequire(path.join(dist, 'cli.js'));
+  /** @type {CliEntry} */
   const entry = require('./cli.js');
   const examples = path.join(root, 'examples');
   const out = mkdtempSync(path.join(tmpdir(), 'm2s-code-cache-'));

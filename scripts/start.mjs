@@ -15,10 +15,16 @@ const workspace = path.resolve(process.argv[2] ?? path.join(root, 'examples'));
 const codeServer = path.join(root, '.cache', 'code-server', 'node_modules', '.bin', 'code-server');
 const profile = path.join(root, '.cache', 'code-server-profile');
 
+/** @param {string} message */
 function step(message) {
   console.log(`modular2simple: ${message}`);
 }
 
+/**
+ * @param {string} command
+ * @param {string[]} args
+ * @param {import('node:child_process').SpawnSyncOptions} [options]
+ */
 function runOrExit(command, args, options = {}) {
   const result = spawnSync(command, args, { cwd: root, stdio: 'inherit', ...options });
   if (result.status !== 0) {
@@ -27,17 +33,22 @@ function runOrExit(command, args, options = {}) {
   }
 }
 
+/** @param {string} command */
 function onPath(command) {
   return spawnSync('sh', ['-c', `command -v ${command}`], { encoding: 'utf8' }).status === 0;
 }
 
+/**
+ * @param {number} preferred
+ * @returns {Promise<number>}
+ */
 function freePort(preferred) {
   return new Promise((resolve) => {
     const server = net.createServer();
     server.once('error', () => {
       const fallback = net.createServer();
       fallback.listen(0, '127.0.0.1', () => {
-        const { port } = fallback.address();
+        const { port } = /** @type {net.AddressInfo} */ (fallback.address());
         fallback.close(() => resolve(port));
       });
     });
@@ -96,6 +107,7 @@ if (!fs.existsSync(codeServer)) {
 }
 
 // esmini itself needs no setting (the server finds .cache/esmini); the road files beside it do.
+/** @type {Record<string, unknown>} */
 const esminiSettings = {};
 if (canBuildEsmini) esminiSettings['modular2simple.esmini.roadPath'] = [path.join(shared, 'xodr')];
 
@@ -146,13 +158,13 @@ step(opened);
 const stop = () => {
   esminiBuildStop.abort();
   try {
-    process.kill(-server.pid, 'SIGTERM');
+    process.kill(-(/** @type {number} */ (server.pid)), 'SIGTERM');
   } catch {
     process.exit(0);
   }
   setTimeout(() => {
     try {
-      process.kill(-server.pid, 'SIGKILL');
+      process.kill(-(/** @type {number} */ (server.pid)), 'SIGKILL');
     } catch {
       // already gone
     }
