@@ -1,12 +1,12 @@
 import { strict as assert } from 'node:assert';
 import * as fs from 'node:fs';
-import * as os from 'node:os';
 import * as path from 'node:path';
 import { main } from '../../server/src/cli';
 import { harnessVerdicts, requireCarlaHarness } from '../support/carla';
 import { esminiCatalogs, esminiRoads, requireEsmini, runEsmini, tracksOf } from '../support/esmini';
 import { openscenarioDir } from '../support/openscenarioCorpus';
 import { caseStudyDir, libraryDir, requireCorpus } from '../support/paths';
+import { temporaryFolder } from '../support/temporaryDirectory';
 
 interface Exported {
   input: string;
@@ -68,7 +68,7 @@ describe('export --target carla, checked by ScenarioRunner (../shared/carla)', f
     requireCarlaHarness(this);
   });
   beforeEach(() => {
-    out = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-carla-export-'));
+    out = temporaryFolder('m2s-carla-export-');
   });
   afterEach(() => {
     fs.rmSync(out, { recursive: true, force: true });
@@ -208,7 +208,7 @@ describe('export --target carla, round trip in esmini', function () {
     requireEsmini(this);
   });
   beforeEach(() => {
-    out = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-carla-roundtrip-'));
+    out = temporaryFolder('m2s-carla-roundtrip-');
   });
   afterEach(() => {
     fs.rmSync(out, { recursive: true, force: true });
@@ -264,7 +264,7 @@ describe('export --target carla, bad input', () => {
     requireCorpus(this);
   });
   beforeEach(() => {
-    out = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-carla-bad-'));
+    out = temporaryFolder('m2s-carla-bad-');
   });
   afterEach(() => {
     fs.rmSync(out, { recursive: true, force: true });

@@ -1,18 +1,18 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
-import * as os from 'node:os';
 import * as path from 'node:path';
 import { COMMAND_NAMES, ExitCode } from '../../server/src/cli';
 import { runCli } from '../support/fixtures';
 import { listFiles } from '../support/workspace';
 import { repoRoot } from '../support/paths';
+import { temporaryFolder } from '../support/temporaryDirectory';
 
 /** Every command of the table, over the program itself (dist/cli.js, which runs a short command's own bundle). */
 describe('cli: every command has one shape (help, options, exit codes)', function () {
   this.timeout(120_000);
   let root: string;
   before(() => {
-    root = fs.realpathSync(fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-shape-')));
+    root = temporaryFolder('m2s-shape-');
     fs.copyFileSync(path.join(repoRoot, 'test/fixtures/variations/follow.xosc'), path.join(root, 'follow.xosc'));
     fs.copyFileSync(path.join(repoRoot, 'test/fixtures/variations/follow_distribution.xosc'), path.join(root, 'distribution.xosc'));
   });

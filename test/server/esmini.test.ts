@@ -210,7 +210,7 @@ describe('esmini: time limit and log (no simulator needed)', () => {
 
 describe('esmini: where it is found', () => {
   it('after the setting and PATH, in .cache/esmini/bin of the project the program runs from (where npm start builds it)', () => {
-    const project = fs.realpathSync(fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-locate-')));
+    const project = temporaryFolder('m2s-locate-');
     try {
       fs.writeFileSync(path.join(project, 'package.json'), '{}');
       const built = path.join(project, '.cache', 'esmini', 'bin');
@@ -288,7 +288,7 @@ describe('esmini: runs (the simulator built by the test setup)', function () {
   it('follows the CSV and interrupts a scenario past the limit when nothing else stops it (SIGINT, a clean quit)', async function () {
     requireEsmini(this);
     const flat = await new Flattener(new ScenarioStore({ root: examples })).flatten(diskRef(path.join(examples, 'main.xosc')));
-    const folder = makeRunFolder(os.tmpdir(), 'm2s-sigint-');
+    const folder = makeRunFolder(temporaryFolder('m2s-sigint-'));
     const scenarioFile = path.join(folder, 'scenario.xosc');
     fs.writeFileSync(scenarioFile, flat.text as string);
     const csvFile = path.join(folder, 'run.csv');

@@ -1,9 +1,9 @@
 import { spawnSync } from 'node:child_process';
 import * as fs from 'node:fs';
-import * as os from 'node:os';
 import * as path from 'node:path';
 import { repoRoot, sharedDir } from './paths';
 import { runBounded } from './processes';
+import { temporaryFolder } from './temporaryDirectory';
 
 /** CARLA's ScenarioRunner 0.9.16, offline, as ../shared/carla/README.md describes: the tests' oracle. */
 export const carlaCheckScript = path.join(sharedDir, 'carla', 'check.py');
@@ -60,7 +60,7 @@ export async function harnessVerdicts(
   files: string[],
   options: { fixSrBugs?: boolean; timeoutSeconds?: number } = {},
 ): Promise<Map<string, HarnessVerdict>> {
-  const json = path.join(fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-carla-')), 'verdicts.json');
+  const json = path.join(temporaryFolder('m2s-carla-'), 'verdicts.json');
   try {
     const perFile = options.timeoutSeconds ?? 60;
     const args = [carlaCheckScript, '--json', json, '--timeout', String(perFile), '--jobs', '2'];

@@ -1,8 +1,8 @@
 import { spawnSync } from 'node:child_process';
 import * as fs from 'node:fs';
-import * as os from 'node:os';
 import * as path from 'node:path';
 import { repoRoot } from './paths';
+import { temporaryFolder } from './temporaryDirectory';
 
 /**
  * The built CLI in a project folder of its own (its program copied, the bundle it runs linked), with no node_modules:
@@ -17,7 +17,7 @@ export interface CliProject {
 
 /** `esmini`: a program to place where npm start builds esmini, `.cache/esmini/bin/esmini` (a link to it). */
 export function cliInTemporaryProject(esmini?: string): CliProject {
-  const project = fs.realpathSync(fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-project-')));
+  const project = temporaryFolder('m2s-project-');
   fs.writeFileSync(path.join(project, 'package.json'), '{}');
   fs.mkdirSync(path.join(project, 'dist'));
   const cli = path.join(project, 'dist', 'cli.js');
