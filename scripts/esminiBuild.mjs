@@ -61,12 +61,15 @@ export function buildEsmini({ buildScript, dest, report, pollMs = 2000, quietMs 
       }
     };
     signal?.addEventListener('abort', stop, { once: true });
-    const timer = setInterval(() => {
+    const pollThisBuild = () => {
       if (earlierLog === undefined || (fs.existsSync(log) && fs.statSync(log).mtimeMs !== earlierLog)) poll();
-    }, pollMs);
+    };
+    const timer = setInterval(pollThisBuild, pollMs);
     const finish = (/** @type {boolean} */ ok) => {
       clearInterval(timer);
       signal?.removeEventListener('abort', stop);
+      // The log's last lines (make's 100 %) may land after the last poll: read them once more before the closing line.
+      if (!signal?.aborted) pollThisBuild();
       const built = ok && fs.existsSync(program);
       if (signal?.aborted) report(`esmini build stopped after ${elapsed()}; the next npm start builds it again`);
       else if (reported >= 0) report(built ? `esmini built in ${elapsed()}: ${program}` : `esmini did not build after ${elapsed()}`);

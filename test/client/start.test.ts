@@ -52,9 +52,10 @@ describe('npm start: building esmini after the editor is open', () => {
 
   it('reports the build as make goes, then where esmini is; a failed build is told and yields no program', async function () {
     this.timeout(20_000);
-    // Writes make's lines to DEST/build.log as it goes, then the program.
+    // Writes make's lines to DEST/build.log as it goes, then the program; make's 100 % comes right before it exits.
     const { dest, buildScript } = standInBuild(
-      'set -e\nfor p in 5 25 26 60 100; do echo "[ $p%] Building CXX object x.o" >> "$1/build.log"; sleep 0.2; done\n' +
+      'set -e\nfor p in 5 25 26 60; do echo "[ $p%] Building CXX object x.o" >> "$1/build.log"; sleep 0.2; done\n' +
+        'echo "[100%] Built target esmini" >> "$1/build.log"\n' +
         'if [ -n "$FAIL" ]; then exit 1; fi\nmkdir -p "$1/bin" && printf "#!/bin/sh\\n" > "$1/bin/esmini" && chmod +x "$1/bin/esmini"\n',
     );
     try {
