@@ -5,7 +5,8 @@ import type { ProblemSummary, RunEsminiResult } from '../../common/src/protocol'
  * run, and what was wrong is listed). No VS Code here, so that the wording is tested without an editor.
  */
 
-function fileName(uri: string): string {
+/** The last segment of a URI, decoded. */
+export function fileName(uri: string): string {
   const last = uri.slice(uri.lastIndexOf('/') + 1);
   try {
     return decodeURIComponent(last);

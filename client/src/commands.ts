@@ -5,6 +5,8 @@ import { PACKAGE_SCHEME, type FlattenOptions, type ProblemSummary, type WriteRes
 import { problemPlace, writeAnywayQuestion, writtenAnywayNote } from './anyway';
 import { LANGUAGE_ID, type ServerCommandClient } from './languageClient';
 import { FLATTENED_SUFFIX, flattenedName } from './naming';
+import type { PlacedDiagnostics } from './carla/diagnostics';
+import { exportSummary, problemLine } from './carla/placed';
 import { packageEntryUri } from './packageFileSystem';
 
 /** Options a caller (a test, a keybinding) may pass instead of being asked. */
@@ -93,6 +95,10 @@ export class CommandReporter {
 
   log(message: string): void {
     this.output.appendLine(`[${new Date().toISOString()}] ${message}`);
+  }
+
+  show(): void {
+    this.output.show(true);
   }
 
   async problems(action: string, problems: ProblemSummary[]): Promise<void> {
@@ -369,11 +375,13 @@ function defaultCarlaOutput(input: string): string {
 
 /**
  * *Export for CARLA…*: asks for the output, has the server write OpenSCENARIO 1.0 for ScenarioRunner
- * (modular2simple/exportForCarla) and lists the loss report in the output; a refusal names its reasons.
+ * (modular2simple/exportForCarla); the loss report lands as diagnostics on the source lines (replacing the previous
+ * export's) and in the output channel; a refusal names its reasons and writes nothing.
  */
 export async function exportForCarlaCommand(
   server: ServerCommandClient,
   reporter: CommandReporter,
+  losses: PlacedDiagnostics,
   clicked: unknown,
   selected: unknown,
   ...rest: unknown[]
@@ -390,6 +398,7 @@ export async function exportForCarlaCommand(
   const input = target.scheme === 'file' ? target.fsPath : (target.path.split(/\.mosc\//i)[0] ?? target.path) + '.mosc';
   const output = await chooseOutput(action, defaultCarlaOutput(input), options, { OpenSCENARIO: ['xosc'] });
   if (!output) return undefined;
+  losses.clear();
   const exportTo = (token: vscode.CancellationToken): Promise<WriteResult> =>
     writeConfirmingOutside(output, 'the export', (outside) => server.exportForCarla(target, output, token, outside));
   const outcome = await withWriteProgress(action, output, exportTo);
@@ -397,7 +406,21 @@ export async function exportForCarlaCommand(
     await reporter.failure(action, outcome.error);
     return undefined;
   }
-  if (outcome.result.written !== null) return reportWritten(reporter, action, { ...outcome.result, written: outcome.result.written });
-  await reporter.problems(action, outcome.result.problems);
+  const { result } = outcome;
+  if (result.needsConfirmation) return undefined;
+  losses.replace(result.problems);
+  reporter.log(`${action} of ${target.toString(true)}: ${exportSummary(result.written, result.problems)}`);
+  for (const problem of result.problems) reporter.log(`  ${problemLine(problem)}`);
+  if (result.written !== null) {
+    const written = result.written;
+    void vscode.window
+      .showInformationMessage(`${action}: ${exportSummary(written, result.problems)}`, 'Open', 'Show Report')
+      .then((choice) => {
+        if (choice === 'Open') void vscode.commands.executeCommand('vscode.open', vscode.Uri.file(written));
+        if (choice === 'Show Report') reporter.show();
+      });
+    return written;
+  }
+  await reporter.problems(action, result.problems);
   return undefined;
 }

@@ -5,6 +5,7 @@ import { DidChangeWatchedFilesNotification, FileChangeType } from 'vscode-langua
 import type { LanguageClient } from 'vscode-languageclient/node';
 import { EXPORT_FOR_CARLA_COMMAND, EXTRACT_GROUP_COMMAND, PACKAGE_SCHEME, type StructureNode } from '../../common/src/protocol';
 import { registerBirdsEye } from './birdsEye/commands';
+import { PlacedDiagnostics } from './carla/diagnostics';
 import type { BirdsEyeView } from './birdsEye/panel';
 import { CommandReporter, commandTargets, exportForCarlaCommand, flattenCommand, mainFileOf, packCommand } from './commands';
 import { ChangeFollower } from './followChanges';
@@ -107,7 +108,12 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
   register(RUN_VARIATIONS_COMMAND, (clicked) => variationsRunner.run(clicked));
   register('modular2simple.pack', (clicked, selected, ...rest) => packCommand(server, reporter, clicked, selected, ...rest));
   register('modular2simple.flatten', (clicked, selected, ...rest) => flattenCommand(server, reporter, clicked, selected, ...rest));
-  register(EXPORT_FOR_CARLA_COMMAND, (clicked, selected, ...rest) => exportForCarlaCommand(server, reporter, clicked, selected, ...rest));
+  // The last export's losses at their source lines, replaced by the next export's.
+  const carlaLosses = new PlacedDiagnostics('carla-export', 'Export for CARLA');
+  context.subscriptions.push(carlaLosses);
+  register(EXPORT_FOR_CARLA_COMMAND, (clicked, selected, ...rest) =>
+    exportForCarlaCommand(server, reporter, carlaLosses, clicked, selected, ...rest),
+  );
   register('modular2simple.newScenario', (clicked, ...rest) => newScenarioCommand(server, reporter, clicked, ...rest));
   register(EXTRACT_GROUP_COMMAND, (args) => extractGroupCommand(server, reporter, args));
   register('modular2simple.openPreview', async (clicked, at) => {

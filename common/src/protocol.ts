@@ -161,6 +161,8 @@ export interface ProblemSummary {
   hint?: string;
   /** The problem's code (server/src/core/problems.ts), what a client tells problems apart by. */
   code?: string;
+  /** Where the problem's range ends (zero-based), when the server knows it; else it covers its line from `character`. */
+  end?: { line: number; character: number };
 }
 
 export interface FlattenTextResult {

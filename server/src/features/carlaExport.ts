@@ -12,6 +12,7 @@ function lossSummary(workspace: Workspace, loss: CarlaLoss): ProblemSummary {
     uri: workspace.uriOf(loss.source),
     line: loss.range.start.line,
     character: loss.range.start.character,
+    end: { line: loss.range.end.line, character: loss.range.end.character },
     severity: loss.kind === 'refused' ? 'error' : 'warning',
     message: `${loss.element}: ${loss.what} (${loss.kind}); ${loss.carla}`,
     code: `carla-export-${loss.kind}`,

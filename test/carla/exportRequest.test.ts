@@ -1,0 +1,109 @@
+import * as assert from 'node:assert/strict';
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import { exportSummary, placedByUri } from '../../client/src/carla/placed';
+import { ExportForCarlaRequest, type ProblemSummary } from '../../common/src/protocol';
+import { fileUri, TestClient } from '../server/harness';
+import { repoRoot } from '../support/paths';
+import { temporaryWorkspace } from '../support/workspace';
+
+/** The line (one-based) of the first line of `file` that matches `pattern`. */
+function lineOf(file: string, pattern: RegExp): number {
+  const index = fs
+    .readFileSync(file, 'utf8')
+    .split('\n')
+    .findIndex((line) => pattern.test(line));
+  assert.ok(index >= 0, `${pattern} is not in ${file}`);
+  return index + 1;
+}
+
+function losses(problems: ProblemSummary[]): ProblemSummary[] {
+  return problems.filter((problem) => problem.code?.startsWith('carla-export-'));
+}
+
+/** A server on a fresh copy of the bundled examples, with `settings`, for the calling suite. */
+function serveExamples(settings: Record<string, unknown>): { root: () => string; client: () => TestClient } {
+  let root = '';
+  let client: TestClient | undefined;
+  before(async function () {
+    root = temporaryWorkspace({}, 'm2s-carla-examples-');
+    fs.cpSync(path.join(repoRoot, 'examples'), root, { recursive: true });
+    client = await TestClient.start({ root, settings });
+    await client.indexed();
+  });
+  after(async function () {
+    await client?.stop();
+    if (root) fs.rmSync(root, { recursive: true, force: true });
+  });
+  return {
+    root: () => root,
+    client: () => {
+      if (!client) throw new Error('the server has not started');
+      return client;
+    },
+  };
+}
+
+describe('Export for CARLA over JSON-RPC: the loss report at the modular sources (ScenarioRunner 0.9.15)', function () {
+  this.timeout(60_000);
+  const examples = serveExamples({ carla: { release: '0.9.15' } });
+
+  it("places an imported group's losses in its simple scenario, with the range of the element, and writes the file", async () => {
+    const root = examples.root();
+    const client = examples.client();
+    const output = path.join(root, 'main.carla.xosc');
+    const laneChange = path.join(root, 'lane_change.xosc');
+    // Under 0.9.15 the AcquirePositionAction of crossing.xosc builds, so the main is written.
+    try {
+      const result = await client.send(ExportForCarlaRequest, { uri: fileUri(path.join(root, 'main.xosc')), outputPath: output });
+      assert.equal(result.written, output);
+      assert.match(fs.readFileSync(output, 'utf8'), /revMajor="1" revMinor="0"/);
+      const found = losses(result.problems);
+      const priority = found.find((loss) => loss.message.startsWith('Event/@priority') && loss.uri === fileUri(laneChange));
+      assert.ok(priority, JSON.stringify(found, null, 1));
+      assert.equal(priority.line + 1, lineOf(laneChange, /<Event .*priority=/));
+      assert.equal(priority.severity, 'warning');
+      assert.ok(priority.end && priority.end.line >= priority.line, 'the loss has the range of its element');
+      assert.match(priority.message, /ScenarioRunner runs every event in parallel/);
+      assert.equal(
+        found.some((loss) => loss.uri === fileUri(path.join(root, 'main.xosc')) && loss.message.startsWith('Event/@priority')),
+        false,
+        'not in the main, which only imports the group',
+      );
+      assert.match(exportSummary(result.written, result.problems), /^wrote main\.carla\.xosc; \d+ losses in .*lane_change\.xosc/);
+    } finally {
+      fs.rmSync(output, { force: true });
+    }
+  });
+});
+
+describe('Export for CARLA over JSON-RPC: a refusal (ScenarioRunner 0.9.16)', function () {
+  this.timeout(60_000);
+  const examples = serveExamples({});
+
+  it('refuses a main whose imported group crashes ScenarioRunner 0.9.16: the refusal at the simple scenario, nothing written', async () => {
+    const root = examples.root();
+    const output = path.join(root, 'main.carla.xosc');
+    const result = await examples.client().send(ExportForCarlaRequest, { uri: fileUri(path.join(root, 'main.xosc')), outputPath: output });
+    assert.equal(result.written, null);
+    assert.equal(fs.existsSync(output), false, 'nothing is written for a refused export');
+    assert.deepEqual(
+      fs.readdirSync(root).filter((name) => name.includes('carla') || name.startsWith('.')),
+      [],
+      'no temporary file is left beside it',
+    );
+    const crossing = fileUri(path.join(root, 'crossing.xosc'));
+    const refusal = losses(result.problems).find((loss) => loss.severity === 'error');
+    assert.ok(refusal, JSON.stringify(result.problems, null, 1));
+    assert.equal(refusal.uri, crossing, 'the refusal is in the simple scenario that wrote the action, not the main');
+    assert.equal(refusal.line + 1, lineOf(path.join(root, 'crossing.xosc'), /<AcquirePositionAction/));
+    assert.match(refusal.message, /AcquirePositionAction: crashes ScenarioRunner 0\.9\.16/);
+    // The losses of the groups imported from lane_change.xosc land there; the editor groups them per file.
+    const byUri = placedByUri(result.problems);
+    assert.ok(byUri.get(fileUri(path.join(root, 'lane_change.xosc')))?.some((placed) => placed.code === 'carla-export-approximated'));
+    assert.ok(
+      result.problems.some((problem) => problem.severity === 'error' && /not exported: /.test(problem.message)),
+      'the refusal is named in a sentence',
+    );
+  });
+});
