@@ -43,7 +43,7 @@ export const SERVER_MEMOS = {
     where: '`Workspace.index` (`WorkspaceIndex`, `workspaceIndex.ts`)',
     key: 'a scenario file on disk',
     holds:
-      'by a text scan: group names, whether it has references, and the catalog entries its `CatalogReference`s name (the reverse index a diagnostic pass asks for the scenarios referencing an entry, `Workspace.catalogReferrers`, instead of reading every file); the list of files from one walk of the folders, kept while the client reports files appearing and vanishing',
+      "by a text scan: group names, whether it has references, and the catalog entries its `CatalogReference`s name (the reverse index a diagnostic pass asks for the scenarios referencing an entry, `Workspace.catalogReferrers`, instead of reading every file), and the `scenarioFileName`s its references write (the reverse index a pull of a file's diagnostics asks for the main files that may reach it, `Workspace.referringFiles(target)`, instead of analysing every main file); the list of files from one walk of the folders, kept while the client reports files appearing and vanishing",
     bound: { text: 'one entry per scenario file of the folders (no parse tree, files over `maxIndexedFileBytes` not scanned)' },
     invalidated:
       'an entry: the file changes on disk or in the editor, read again on next use; the list: a file appearing or vanishing (walked again on next use), folders changing',

@@ -18,10 +18,13 @@ import { OpenDocument, OpenDocuments } from './documents';
 import { UriResolver, refToUri } from './uris';
 import { DEFAULT_SETTINGS, ServerSettings } from './settings';
 import { ReusingFlattener, SHARED_SOURCE_BYTES, SharedSources } from './sharedSources';
-import { decodeOrUndefined, IndexedFile, scanScenario, WorkspaceIndex } from './workspaceIndex';
+import { decodeOrUndefined, IndexedFile, isIndexedFolder, mainOf, scanScenario, WorkspaceIndex } from './workspaceIndex';
 import { SERVER_MEMOS } from './database';
 
-export { IndexedFile, IndexedGroup, listScenarioFiles, scanScenario } from './workspaceIndex';
+export { IndexedFile, IndexedGroup, listScenarioFiles, mainOf, scanScenario } from './workspaceIndex';
+
+/** A file read as a catalog may take problems from any main file whose catalog locations name its folder. */
+const MAY_BE_CATALOG = /<Catalog\b/;
 
 /** Bytes of files and of unpacked packages that the server keeps, each; the rest is read again on demand. */
 export const SERVER_CACHE_BYTES: number = SERVER_MEMOS.fileBytes.bound.bytes;
@@ -114,6 +117,8 @@ export class Workspace {
   /** Whether the client opens and saves files inside packages (`mosc:` URIs), so edits may reach them. */
   editablePackages = false;
   private storeInstance: ScenarioStore;
+  /** The folders of every `scenarioPath` the store searches (the environment's, the window's, each folder's). */
+  private searchFolders: string[] = [];
   private generation = 0;
   private flattenerGeneration = -1;
   private currentFlattener: Flattener | undefined;
@@ -157,6 +162,7 @@ export class Workspace {
         ...(this.folderScenarioPaths.get(folder) ?? this.settings.scenarioPath).map((entry) => path.resolve(folder, entry)),
       ],
     }));
+    this.searchFolders = [...fromEnvironment, ...fromSettings, ...folders.flatMap((folder) => folder.scenarioPath)];
     const store = new ScenarioStore({
       scenarioPath: [...fromEnvironment, ...fromSettings],
       root: this.folders[0],
@@ -348,7 +354,7 @@ export class Workspace {
   /** Reads one file into the index; files that vanish or cannot be parsed are indexed without groups. */
   async indexFile(filePath: string): Promise<IndexedFile> {
     const kind: IndexedFile['kind'] = filePath.toLowerCase().endsWith('.mosc') ? 'mosc' : 'xosc';
-    const entry: IndexedFile = { path: filePath, kind, groups: [], modular: false, catalogReferences: [] };
+    const entry: IndexedFile = { path: filePath, kind, groups: [], modular: false, catalogReferences: [], scenarioNames: [] };
     if (kind === 'xosc') {
       const bytes = await this.files.readFile(filePath);
       if (bytes) {
@@ -356,24 +362,35 @@ export class Workspace {
         const text =
           bytes.length > this.settings.maxIndexedFileBytes ? undefined : open ? open.document.getText() : decodeOrUndefined(bytes);
         if (text !== undefined) Object.assign(entry, scanScenario(text, diskRef(filePath)));
-        else entry.catalogReferences.push({ ref: diskRef(filePath), entryNames: undefined });
+        else {
+          entry.catalogReferences.push({ ref: diskRef(filePath), entryNames: undefined });
+          entry.scenarioNames = undefined;
+        }
       }
     } else {
       entry.modular = true;
       // The scenarios stored at the root of a package (nested packages are left to their own readers).
       const packageRef = diskRef(filePath);
       const contents = await this.storeInstance.readPackage(packageRef).catch(() => undefined);
+      const scenarioNames: string[] = [];
+      let scanned = true;
       for (const [name, bytes] of contents?.entries ?? []) {
+        // A nested package's references are not scanned: the package may reach any file.
+        if (name.toLowerCase().endsWith('.mosc')) scanned = false;
         if (!name.toLowerCase().endsWith('.xosc')) continue;
         const text = bytes.length <= this.settings.maxIndexedFileBytes ? decodeOrUndefined(bytes) : undefined;
         if (text === undefined) {
           entry.catalogReferences.push({ ref: childRef(packageRef, name), entryNames: undefined });
+          scanned = false;
           continue;
         }
         const scan = scanScenario(text, childRef(packageRef, name));
         entry.groups.push(...scan.groups);
         entry.catalogReferences.push(...scan.catalogReferences);
+        if (scan.scenarioNames) scenarioNames.push(...scan.scenarioNames);
+        else scanned = false;
       }
+      entry.scenarioNames = scanned ? scenarioNames : undefined;
     }
     this.index.set(filePath, entry);
     return entry;
@@ -425,13 +442,24 @@ export class Workspace {
     return [...refs.values()];
   }
 
-  /** The main files whose references may reach another file: every modular file of the workspace, and the open ones. */
-  async referringFiles(): Promise<SourceRef[]> {
+  /**
+   * The main files whose references may reach another file: every modular file of the workspace, and the
+   * open ones. With a `target`, only those that may reach it (`WorkspaceIndex.referrersOf`, from the
+   * index's scan of their `scenarioFileName`s; no other file is read), unless names may resolve outside
+   * the index (a `scenarioPath` folder it does not hold) or the target may be read as a catalog.
+   */
+  async referringFiles(target?: SourceRef): Promise<SourceRef[]> {
     const refs = new Map<string, SourceRef>();
-    for (const entry of await this.indexedFiles()) {
-      if (entry.kind === 'xosc' && entry.modular) refs.set(entry.path, diskRef(entry.path));
-      if (entry.kind === 'mosc') refs.set(entry.path, childRef(diskRef(entry.path), 'main.xosc'));
-    }
+    const entries = await this.entriesOf(await this.index.paths(this.folders));
+    const narrowed =
+      target !== undefined &&
+      this.searchFolders.every((folder) => isIndexedFolder(folder, this.folders)) &&
+      !MAY_BE_CATALOG.test((await this.text(target)) ?? '<Catalog ');
+    const mains = narrowed
+      ? WorkspaceIndex.referrersOf(entries, target)
+      : entries.filter((entry) => entry.kind === 'mosc' || entry.modular).map((entry) => mainOf(entry.path, entry.kind));
+    // A folder that vanished is not reported file by file: a main of the kept list is checked to exist.
+    for (const main of mains) if ((await this.files.kind(main.disk)) === 'file') refs.set(refId(main), main);
     for (const open of this.documents.values()) refs.set(refId(open.ref), open.ref);
     return [...refs.values()];
   }

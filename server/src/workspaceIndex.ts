@@ -1,5 +1,6 @@
+import * as path from 'node:path';
 import { decodeScenario } from './core/encoding';
-import { refId, SourceRef } from './core/sources';
+import { childRef, diskRef, refId, SourceRef } from './core/sources';
 import { LineIndex, Range } from './core/text';
 import { SCENARIO_FILE, walkFiles } from './core/walk';
 
@@ -30,6 +31,12 @@ export interface IndexedFile {
   modular: boolean;
   /** Its scenarios (the file, or each of a package) that name catalog entries, or were not scanned. */
   catalogReferences: IndexedCatalogReferences[];
+  /**
+   * Each `scenarioFileName` value as written in the file (in a package: in any of its scenarios), the
+   * reverse index from files to the main files that may reach them; undefined when a package holds
+   * what the scan does not read (a nested package, a scenario too large or not decodable): it may reach any.
+   */
+  scenarioNames: string[] | undefined;
 }
 
 /** A file's text for the index; a file in an encoding that cannot be read is indexed without groups (its analysis reports why). */
@@ -42,18 +49,24 @@ export function decodeOrUndefined(bytes: Uint8Array): string | undefined {
 }
 
 const ENTRY_NAME = /\sentryName\s*=\s*(?:"([^"]*)"|'([^']*)')/;
+const SCENARIO_FILE_NAME = /\sscenarioFileName\s*=\s*(?:"([^"]*)"|'([^']*)')/;
 
 /**
  * Group names (with ranges), whether references occur and the catalog references, by a scan of the
  * text: the index of a large workspace is built without keeping or even building parse trees.
  * Comments are skipped.
  */
-export function scanScenario(text: string, ref: SourceRef): Pick<IndexedFile, 'groups' | 'modular' | 'catalogReferences'> {
+export function scanScenario(
+  text: string,
+  ref: SourceRef,
+): Pick<IndexedFile, 'groups' | 'modular' | 'catalogReferences' | 'scenarioNames'> {
   const lines = new LineIndex(text);
   const groups: IndexedGroup[] = [];
   const entryNames: string[] = [];
-  // A CatalogReference's tag is read quote-aware: a `>` inside another attribute's value must not hide its entryName.
-  const pattern = /<!--[\s\S]*?(?:-->|$)|<ManeuverGroup\b[^>]*>|<(CatalogReference)\b(?:[^>"']|"[^"]*"|'[^']*')*>/g;
+  let scenarioNames: string[] | undefined = [];
+  // A reference's tag is read quote-aware: a `>` inside another attribute's value must not hide the name read.
+  const pattern =
+    /<!--[\s\S]*?(?:-->|$)|<ManeuverGroup\b[^>]*>|<(CatalogReference|ScenarioReference)\b(?:[^>"']|"[^"]*"|'[^']*')*>|(<ScenarioReference\b)/g;
   for (let match = pattern.exec(text); match; match = pattern.exec(text)) {
     if (match[0].startsWith('<!--')) continue;
     if (match[1] === 'CatalogReference') {
@@ -61,10 +74,22 @@ export function scanScenario(text: string, ref: SourceRef): Pick<IndexedFile, 'g
       entryNames.push(entryName ? (entryName[1] ?? entryName[2]) : '');
       continue;
     }
+    if (match[1] === 'ScenarioReference' || match[2]) {
+      // A tag the scan cannot read whole (a quote left open) may still name a file for the parser: it may reach any.
+      const fileName = match[2] ? null : SCENARIO_FILE_NAME.exec(match[0]);
+      if (fileName) scenarioNames?.push(fileName[1] ?? fileName[2]);
+      else if (match[2]) scenarioNames = undefined;
+      continue;
+    }
     const name = /\sname\s*=\s*(?:"([^"]*)"|'([^']*)')/.exec(match[0]);
     groups.push({ name: name ? (name[1] ?? name[2]) : '', range: lines.range(match.index, match.index + match[0].length), ref });
   }
-  return { groups, modular: /<ScenarioReference\b/.test(text), catalogReferences: entryNames.length > 0 ? [{ ref, entryNames }] : [] };
+  return {
+    groups,
+    modular: /<ScenarioReference\b/.test(text),
+    catalogReferences: entryNames.length > 0 ? [{ ref, entryNames }] : [],
+    scenarioNames,
+  };
 }
 
 /** Build output and test runner caches of an editor workspace are not scenarios of its own. */
@@ -81,6 +106,53 @@ export function listScenarioFiles(folders: string[], limit = 100_000): Promise<s
     sorted: true,
     limit,
   });
+}
+
+/** Whether a folder's scenario files are in the index: below a workspace folder, through no folder the walk skips. */
+export function isIndexedFolder(folder: string, folders: string[]): boolean {
+  return folders.some((root) => {
+    const relative = path.relative(root, folder);
+    if (relative === '') return true;
+    if (path.isAbsolute(relative)) return false;
+    return relative.split(path.sep).every((part) => part !== '..' && !part.startsWith('.') && !INDEX_SKIPPED_FOLDERS.has(part));
+  });
+}
+
+/** The main file `check` analyses for an indexed file: the file itself, or a package's main.xosc. */
+export function mainOf(filePath: string, kind: IndexedFile['kind']): SourceRef {
+  return kind === 'mosc' ? childRef(diskRef(filePath), 'main.xosc') : diskRef(filePath);
+}
+
+/** A file name as a `scenarioFileName` may end in it: lowercased, without `.xosc` or `.mosc` (`NAME.xosc` may read `NAME.mosc`). */
+function stemOf(fileName: string): string {
+  const lower = fileName.toLowerCase();
+  return lower.endsWith('.xosc') || lower.endsWith('.mosc') ? lower.slice(0, -'.xosc'.length) : lower;
+}
+
+/**
+ * The stems under which a `scenarioFileName` may reach a file: its own name's, and for a `main.xosc` its
+ * folder's or package's (a folder package `P.mosc`, or `P.xosc` read as that package).
+ */
+function stemsReaching(ref: SourceRef): string[] {
+  const parts = [path.basename(ref.disk), ...ref.entries.flatMap((entry) => entry.split('/'))];
+  const stems = [stemOf(parts[parts.length - 1])];
+  if (parts.length === 1 && stems[0] === 'main') stems.push(stemOf(path.basename(path.dirname(ref.disk))));
+  else if (stems[0] === 'main') stems.push(stemOf(parts[parts.length - 2]));
+  return stems;
+}
+
+/**
+ * The stem a written `scenarioFileName` names, or undefined when it may reach a file under another name
+ * or outside the index: a parameter or entity reference, white space the parser normalizes, an absolute
+ * path, a path through `..` or through a folder the index skips.
+ */
+function writtenStem(name: string): string | undefined {
+  const trimmed = name.trim();
+  if (mayReadOtherwise(trimmed) || path.isAbsolute(trimmed) || /^[a-zA-Z]:/.test(trimmed)) return undefined;
+  const parts = trimmed.split(/[/\\]/);
+  const folders = parts.slice(0, -1).filter((part) => part !== '.' && part !== '');
+  if (folders.some((part) => part.startsWith('.') || INDEX_SKIPPED_FOLDERS.has(part))) return undefined;
+  return stemOf(parts[parts.length - 1]);
 }
 
 /** An entry name as written that may read as another name: a parameter, an entity reference, white space the parser normalizes. */
@@ -148,5 +220,37 @@ export class WorkspaceIndex {
         if (!entryNames || entryName === undefined || entryNames.some((name) => name === entryName || mayReadOtherwise(name)))
           refs.set(refId(ref), ref);
     return [...refs.values()];
+  }
+
+  /**
+   * The main files (as `mainOf` gives them, in the entries' order) whose references may reach `target`,
+   * directly or through other files, from the entries' scans: a main naming a file under one of the
+   * names reaching the target, or under one reaching such a main, or under any name when its scan
+   * cannot tell (`scenarioNames` undefined, a name `writtenStem` cannot read). A file too large to scan
+   * is no main (as for `check`'s pull) but may stand between a main and the target.
+   */
+  static referrersOf(entries: IndexedFile[], target: SourceRef): SourceRef[] {
+    const reached = new Set(stemsReaching(target));
+    for (const entry of entries)
+      if (!entry.scenarioNames) for (const stem of stemsReaching(mainOf(entry.path, entry.kind))) reached.add(stem);
+    const candidates = entries.filter((entry) => entry.kind === 'mosc' || entry.modular);
+    const selected = new Set<IndexedFile>();
+    for (let grew = true; grew;) {
+      grew = false;
+      for (const entry of candidates) {
+        if (selected.has(entry)) continue;
+        const reaches =
+          !entry.scenarioNames ||
+          entry.scenarioNames.some((name) => {
+            const stem = writtenStem(name);
+            return stem === undefined || reached.has(stem);
+          });
+        if (!reaches) continue;
+        selected.add(entry);
+        for (const stem of stemsReaching(mainOf(entry.path, entry.kind))) reached.add(stem);
+        grew = true;
+      }
+    }
+    return candidates.filter((entry) => selected.has(entry)).map((entry) => mainOf(entry.path, entry.kind));
   }
 }

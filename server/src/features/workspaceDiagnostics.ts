@@ -1,13 +1,8 @@
 import { CancellationToken, Diagnostic } from 'vscode-languageserver/node';
 import { Problem, problemKey, uniqueProblems } from '../core/problems';
-import { childRef, diskRef, refId, SourceRef } from '../core/sources';
-import { Workspace } from '../workspace';
+import { refId, SourceRef } from '../core/sources';
+import { mainOf, Workspace } from '../workspace';
 import { diagnose, toDiagnostic } from './diagnostics';
-
-/** The main file `check` analyses for an indexed file: the file itself, or a package's main.xosc. */
-function mainOf(filePath: string, kind: 'xosc' | 'mosc'): SourceRef {
-  return kind === 'mosc' ? childRef(diskRef(filePath), 'main.xosc') : diskRef(filePath);
-}
 
 /** Problems by the id of the file they are in. */
 export type ProblemsByFile = Map<string, { ref: SourceRef; problems: Problem[] }>;

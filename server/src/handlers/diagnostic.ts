@@ -14,7 +14,7 @@ export function register(context: ServerContext): void {
       if (params.previousResultId === version) return { kind: DocumentDiagnosticReportKind.Unchanged, resultId: version };
       const open = await openDocument(context, params.textDocument.uri);
       if (!open) return { kind: DocumentDiagnosticReportKind.Full, items: [] };
-      const mains = [open.ref, ...(await workspace.referringFiles())];
+      const mains = [open.ref, ...(await workspace.referringFiles(open.ref))];
       checkCancelled(token, METHOD);
       const placed = (await problemsByFile(workspace, mains, token)).get(refId(open.ref))?.problems ?? [];
       checkCancelled(token, METHOD);
