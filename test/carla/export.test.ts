@@ -2,7 +2,9 @@ import { strict as assert } from 'node:assert';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { main } from '../../server/src/cli';
-import { harnessVerdicts, requireCarlaHarness } from '../support/carla';
+import { parseXml } from '../../server/src/core/xml';
+import type { XmlElement } from '../../server/src/core/xml';
+import { HarnessVerdict, harnessVerdicts, requireCarlaHarness } from '../support/carla';
 import { esminiCatalogs, esminiRoads, requireEsmini, runEsmini, tracksOf } from '../support/esmini';
 import { openscenarioDir } from '../support/openscenarioCorpus';
 import { caseStudyDir, libraryDir, requireCorpus } from '../support/paths';
@@ -55,6 +57,83 @@ function assertBuiltOrRefused(
   }
 }
 
+/** The storyboard's story elements as ScenarioRunner's tree names them (SCENE: a ManeuverGroup), with the element. */
+const STORY_KINDS: Record<string, string> = {
+  Act: 'ACT',
+  ManeuverGroup: 'SCENE',
+  Maneuver: 'MANEUVER',
+  Event: 'EVENT',
+  Action: 'ACTION',
+  Condition: 'CONDITION',
+};
+
+function storyElements(text: string): { kind: string; name: string; element: XmlElement }[] {
+  const found: { kind: string; name: string; element: XmlElement }[] = [];
+  const storyboard = parseXml(text).root?.children.find((each) => each.name === 'Storyboard');
+  const visit = (element: XmlElement, inStory: boolean): void => {
+    const kind = STORY_KINDS[element.name];
+    const name = element.attributes.find((attribute) => attribute.name === 'name')?.value;
+    // Of the Storyboard's own StopTrigger ScenarioRunner builds the criteria_ conditions only (the export reports the rest).
+    if (kind && name !== undefined && (inStory || (kind === 'CONDITION' && name.startsWith('criteria_'))))
+      found.push({ kind, name, element });
+    for (const each of element.children) visit(each, inStory || element.name === 'Story');
+  };
+  if (storyboard) visit(storyboard, false);
+  return found;
+}
+
+/** Whether ScenarioRunner's built tree holds the element: by its kind and name, a condition as an atomic (or its one-shot) of its name. */
+function inTree(tree: [string, string][], kind: string, name: string): boolean {
+  if (kind !== 'CONDITION') return tree.some(([each, written]) => each === kind && written === name);
+  const criterion = name.startsWith('criteria_') ? name.slice('criteria_'.length) : undefined;
+  return tree.some(
+    ([each, written]) =>
+      (each === 'NODE' && (written === name || written.endsWith(`>${name} Done?`))) || (each === 'CLASS' && written === criterion),
+  );
+}
+
+/**
+ * Every story element of each export that ScenarioRunner built reaches its tree, and every element of a
+ * plain input that the export does not write is named by a loss within its lines: never a silent drop.
+ */
+function assertNoSilentDrop(results: Exported[], verdicts: Map<string, HarnessVerdict>): void {
+  const silent: string[] = [];
+  for (const result of results.filter((each) => each.code === 0)) {
+    const tree = verdicts.get(path.resolve(result.output))?.tree;
+    assert.ok(tree, `${result.output}: the harness listed no tree`);
+    const exported = storyElements(fs.readFileSync(result.output, 'utf8'));
+    for (const { kind, name } of exported)
+      if (!inTree(tree, kind, name))
+        silent.push(`${path.basename(result.input)}: ${kind} '${name}' is exported but not in ScenarioRunner's tree`);
+    const originalText = fs.readFileSync(
+      fs.statSync(result.input).isDirectory() ? path.join(result.input, 'main.xosc') : result.input,
+      'utf8',
+    );
+    // A modular main's storyboard is made of other files: the flattened text stands for it, which the export itself reads.
+    if (/<ScenarioReference\b/.test(originalText) || fs.statSync(result.input).isDirectory()) continue;
+    const lines = parseXml(originalText).lines;
+    const written = new Set(exported.map(({ kind, name }) => `${kind} ${name}`));
+    const original = storyElements(originalText);
+    const missing = new Set(original.filter(({ kind, name }) => !written.has(`${kind} ${name}`)).map(({ element }) => element));
+    const lossWithin = (element: XmlElement): boolean => {
+      const first = lines.positionAt(element.start).line + 1;
+      const last = lines.positionAt(element.end).line + 1;
+      return result.report.losses.some(
+        (loss) => path.resolve(loss.file) === path.resolve(result.input) && loss.line >= first && loss.line <= last,
+      );
+    };
+    for (const { kind, name, element } of original) {
+      if (!missing.has(element)) continue;
+      // Named by a loss within its lines, or gone with a story element (its Event, say) that a loss names.
+      let named = false;
+      for (let at: XmlElement | undefined = element; at && !named; at = at.parent) named = missing.has(at) && lossWithin(at);
+      const line = lines.positionAt(element.start).line + 1;
+      if (!named) silent.push(`${path.basename(result.input)}:${line}: ${kind} '${name}' is not exported, and no loss names it`);
+    }
+  }
+  assert.deepEqual(silent, []);
+}
+
 function listTemporary(directory: string): string[] {
   return fs.readdirSync(directory).filter((name) => !/\.(xosc|json)$/.test(name));
 }
@@ -87,9 +166,10 @@ describe('export --target carla, checked by ScenarioRunner (../shared/carla)', f
     const written = results.filter((result) => result.code === 0);
     const verdicts = await harnessVerdicts(
       written.map((result) => result.output),
-      { timeoutSeconds: 120 },
+      { timeoutSeconds: 120, tree: true },
     );
     assertBuiltOrRefused(results, verdicts);
+    assertNoSilentDrop(results, verdicts);
     // Measured: 51 of the 69 are written (none built before the export); a regression shows here.
     assert.ok(written.length >= 51, `only ${written.length} of ${inputs.length} written`);
     assert.deepEqual(listTemporary(out), []);
@@ -118,13 +198,12 @@ describe('export --target carla, checked by ScenarioRunner (../shared/carla)', f
       older.filter((result) => result.code !== 0).map((result) => result.stderr),
       [],
     );
-    assertBuiltOrRefused(
-      older,
-      await harnessVerdicts(
-        older.map((result) => result.output),
-        { fixSrBugs: true },
-      ),
+    const olderVerdicts = await harnessVerdicts(
+      older.map((result) => result.output),
+      { fixSrBugs: true, tree: true },
     );
+    assertBuiltOrRefused(older, olderVerdicts);
+    assertNoSilentDrop(older, olderVerdicts);
   });
 
   it("ScenarioRunner's own examples: 0.9.16 builds all but the two its route crash refuses; 0.9.15 builds all", async () => {
@@ -140,9 +219,10 @@ describe('export --target carla, checked by ScenarioRunner (../shared/carla)', f
         );
       const verdicts = await harnessVerdicts(
         results.filter((result) => result.code === 0).map((result) => result.output),
-        { fixSrBugs: release === '0.9.15' },
+        { fixSrBugs: release === '0.9.15', tree: true },
       );
       assertBuiltOrRefused(results, verdicts);
+      assertNoSilentDrop(results, verdicts);
       const refused = results.filter((result) => result.code !== 0).map((result) => path.basename(result.input));
       if (release === '0.9.16') {
         assert.deepEqual(refused.sort(), ['IntersectionCollisionAvoidance.xosc', 'SyncArrivalIntersection.xosc']);
@@ -186,9 +266,10 @@ describe('export --target carla, checked by ScenarioRunner (../shared/carla)', f
       );
       const verdicts = await harnessVerdicts(
         results.map((result) => result.output),
-        { fixSrBugs: true },
+        { fixSrBugs: true, tree: true },
       );
       assertBuiltOrRefused(results, verdicts);
+      assertNoSilentDrop(results, verdicts);
       for (const result of results) {
         const verdict = verdicts.get(path.resolve(result.output)) as { town?: string; egos?: string[] };
         assert.equal(verdict.town, 'Town05', result.input);

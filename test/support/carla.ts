@@ -50,20 +50,31 @@ export interface HarnessVerdict {
   tree_nodes?: number;
   egos?: string[];
   town?: string;
+  /**
+   * With `tree: true`: what of the storyboard ScenarioRunner's built tree holds, as [kind, name] pairs
+   * (kind ACT, SCENE = ManeuverGroup, MANEUVER, EVENT, ACTION by their OpenSCENARIO names; NODE, every
+   * behaviour's name, where conditions appear; CLASS, every behaviour's class), read by ./carlaTree.py.
+   */
+  tree?: [string, string][];
 }
+
+/** ./carlaTree.py: check.py run unchanged, its results also listing each built tree's story elements. */
+const treeScript = path.join(__dirname, 'carlaTree.py');
 
 /**
  * ScenarioRunner's verdict on each file, from one run of the harness over all of them (it imports
- * ScenarioRunner once and forks per file). `fixSrBugs` sets aside 0.9.16's route crash: 0.9.15's verdicts.
+ * ScenarioRunner once and forks per file). `fixSrBugs` sets aside 0.9.16's route crash: 0.9.15's verdicts;
+ * `tree` lists what of each storyboard reached the built tree.
  */
 export async function harnessVerdicts(
   files: string[],
-  options: { fixSrBugs?: boolean; timeoutSeconds?: number } = {},
+  options: { fixSrBugs?: boolean; timeoutSeconds?: number; tree?: boolean } = {},
 ): Promise<Map<string, HarnessVerdict>> {
   const json = path.join(temporaryFolder('m2s-carla-'), 'verdicts.json');
   try {
     const perFile = options.timeoutSeconds ?? 60;
-    const args = [carlaCheckScript, '--json', json, '--timeout', String(perFile), '--jobs', '2'];
+    const script = options.tree ? [treeScript, carlaCheckScript] : [carlaCheckScript];
+    const args = [...script, '--json', json, '--timeout', String(perFile), '--jobs', '2'];
     if (options.fixSrBugs) args.push('--fix-sr-bugs');
     // Whatever happens inside, the harness as a whole is bounded: a file per (timeout / 2 jobs), plus start-up.
     const { code, output } = await runBounded(

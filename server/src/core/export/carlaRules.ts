@@ -933,9 +933,30 @@ function trafficSignals(tree: Node, context: RuleContext): void {
   }
 }
 
+/**
+ * An Action with nothing in it (ScenarioRunner's ChangingWeather.xosc has one) is built as `Idle(duration=0)`
+ * (SR_PARSER convert_maneuver_to_atomic): it does nothing. 1.0 has no empty Action, so it is dropped, named;
+ * its Event goes with it when it has no other action.
+ */
+function emptyActions(tree: Node, context: RuleContext): void {
+  for (const action of named(tree, 'Action')) {
+    if (action.children.length > 0 || !ancestor(action, 'Story')) continue;
+    const event = action.parent;
+    const alone = event !== undefined && childrenNamed(event, 'Action').length === 1;
+    context.sink.dropped(
+      action,
+      'Action',
+      `'${attr(action, 'name') ?? ''}' holds no action: dropped${alone ? `, and with it its Event '${attr(event, 'name') ?? ''}', which has no other` : ''}`,
+      `ScenarioRunner builds an empty Action as Idle(duration=0), which does nothing (${SR_PARSER} convert_maneuver_to_atomic)`,
+    );
+    removeNode(action);
+  }
+}
+
 /** Every rule, in the order they apply. */
 export const CARLA_RULES: readonly { name: string; apply: (tree: Node, context: RuleContext) => void }[] = [
   { name: 'parameters', apply: parameters },
+  { name: 'empty-actions', apply: emptyActions },
   { name: 'entities', apply: entities },
   { name: 'activate-controller', apply: activateControllerAction },
   { name: 'controller-halves', apply: controllerActionHalves },

@@ -1,0 +1,79 @@
+"""The CARLA harness (../shared/carla/check.py), run unchanged, with one addition of the tests': each OK
+file's result also lists the story elements of the behaviour tree ScenarioRunner built ("tree": the Acts,
+ManeuverGroups, Maneuvers, Events and Actions by their OpenSCENARIO names, and the names of the condition
+atomics), so a test can tell what of the exported storyboard reached the tree.
+
+    python3 carlaTree.py CHECK_PY [check.py's own options and files]
+
+check.py forks a server (`--serve`) from its own file; here the server is this script again, so the
+addition holds there. Nothing in ../shared is changed.
+"""
+
+import importlib.util
+import os
+import sys
+
+
+def load_check(path):
+    spec = importlib.util.spec_from_file_location('carla_check', path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def story_elements(scenario):
+    """What of the storyboard the built tree holds: (kind, name) pairs.
+
+    StoryElementStatusToBlackboard wraps each Act, ManeuverGroup ("SCENE"), Maneuver, Event and Action
+    (scenario_runner srunner/scenarios/open_scenario.py _create_behavior); a condition is an atomic named
+    after it (srunner/tools/openscenario_parser.py convert_condition_to_atomic, name=condition_name), or,
+    for the Storyboard's criteria_, a criterion of that name (_create_test_criteria)."""
+    found = set()
+    for node in scenario.scenario_tree.iterate():
+        kind = getattr(node, 'story_element_type', None)
+        element = getattr(node, 'element_name', None)
+        if kind is not None and element is not None:
+            found.add((str(kind).upper(), str(element)))
+        found.add(('NODE', str(node.name)))
+        # A criteria_X condition is built as an instance of class X under its own default name.
+        found.add(('CLASS', type(node).__name__))
+    return sorted([kind, name] for kind, name in found)
+
+
+def main():
+    check_path = os.environ.get('M2S_CARLA_CHECK')
+    argv = sys.argv[1:]
+    if check_path is None:
+        if not argv:
+            print('usage: carlaTree.py CHECK_PY [check.py options] FILES', file=sys.stderr)
+            return 2
+        check_path, argv = os.path.abspath(argv[0]), argv[1:]
+        os.environ['M2S_CARLA_CHECK'] = check_path  # for the server, which check.py starts from this file
+    check = load_check(check_path)
+    check.__file__ = os.path.abspath(__file__)  # Server starts `python3 <__file__> --serve`: this script
+    original_run_file = check.run_file
+
+    def run_file(env, path, opts, emit):
+        built = {}
+        original_lazy_refs = check._lazy_refs
+
+        def lazy_refs(scenario, parameter_ref):
+            # Called once the tree is built (run_file, stage build): the moment to read it.
+            built['tree'] = story_elements(scenario)
+            return original_lazy_refs(scenario, parameter_ref)
+
+        check._lazy_refs = lazy_refs
+
+        def emit_with_tree(kind, payload):
+            if kind == 'RESULT' and 'tree' in built:
+                payload['tree'] = built['tree']
+            emit(kind, payload)
+
+        return original_run_file(env, path, opts, emit_with_tree)
+
+    check.run_file = run_file
+    return check.main(argv)
+
+
+if __name__ == '__main__':
+    sys.exit(main())
