@@ -165,6 +165,44 @@ describe('cli: batch', function () {
     assert.deepEqual(new Set(csvRows(root)), new Set(whole.split('\n').slice(1, -1)));
   });
 
+  it("a combination that breaks the scenario's ValueConstraintGroups keeps its index: a row of status discarded, with its values, not run", function () {
+    requireEsmini(this);
+    const root = folder();
+    const scenarioFile = path.join(root, 'follow.xosc');
+    // The lead at most half the ego's speed: (10, 10), (10, 15) and (20, 15) break it, at each of the 3 gaps.
+    fs.writeFileSync(
+      scenarioFile,
+      fs
+        .readFileSync(scenarioFile, 'utf8')
+        .replace(
+          '<ParameterDeclaration name="LeadSpeed" parameterType="double" value="10"/>',
+          '<ParameterDeclaration name="LeadSpeed" parameterType="double" value="10"><ConstraintGroup><ValueConstraint rule="lessOrEqual" value="${$EgoSpeed / 2}"/></ConstraintGroup></ParameterDeclaration>',
+        ),
+    );
+    const run = runCli(BATCH_ARGS, { cwd: root });
+    assert.equal(run.status, 0, run.stderr);
+    assert.match(
+      run.stderr,
+      /^27 runs \(27 ok, 0 error, 0 timeout; \d+ with a collision\), 9 discarded by the scenario's ValueConstraintGroups; results in /m,
+    );
+    const rows = csvRows(root);
+    assertEveryIndexOnce(rows, 36);
+    for (const row of rows) {
+      const cells = row.split(',');
+      const [ego, lead] = [Number(cells[6]), Number(cells[7])];
+      const breaks = lead > ego / 2;
+      assert.equal(cells[1], breaks ? 'discarded' : 'ok', row);
+      if (breaks) assert.deepEqual(cells.slice(2, 6), ['false', '', '', ''], `a discarded row has no measure: ${row}`);
+    }
+    const json = JSON.parse(fs.readFileSync(path.join(root, 'results', 'results.json'), 'utf8')) as {
+      rows: { index: string; status: string; message: string }[];
+    };
+    const discarded = json.rows.filter((row) => row.status === 'discarded');
+    assert.equal(discarded.length, 9);
+    assert.match(discarded[0].message, /^discarded: parameter 'LeadSpeed' = '10.000000' breaks its ValueConstraintGroups$/);
+    assert.match(fs.readFileSync(path.join(root, 'results', 'results.html'), 'utf8'), /discarded \(9\)/);
+  });
+
   it('refuses bad input before running anything, leaving no results folder', () => {
     const root = folder();
     const results = path.join(root, 'results');

@@ -38,7 +38,7 @@ describe('variations: the results table, its sorting, filtering and scatter', ()
       ['ok', 'collision', 'timeout', 'error', 'ok'],
     );
     assert.equal(table.rows[3].cells.Weather, 'snow, heavy');
-    assert.deepEqual(outcomeCounts(table.rows), { ok: 2, collision: 1, timeout: 1, error: 1 });
+    assert.deepEqual(outcomeCounts(table.rows), { ok: 2, collision: 1, timeout: 1, error: 1, discarded: 0 });
     assert.equal(parseResultsCsv(CSV + '11,ok,fal').rows.length, 5, 'a row still being written is not read');
     assert.deepEqual(csvRecords('a,"b ""c""",d\r\n'), [['a', 'b "c"', 'd']]);
     assert.throws(() => parseResultsCsv('x,y\n1,2\n'), ResultsCsvError);

@@ -7,6 +7,7 @@ import { loadVariations, Variations } from '../../server/src/core/variations';
 import { esminiXodrDir, requireEsminiProgram } from '../support/esminiBinaries';
 import { sharedDir } from '../support/paths';
 import { temporaryFolder } from '../support/temporaryDirectory';
+import { runCli } from '../support/fixtures';
 
 /**
  * The expansion against esmini itself: `--return_nr_permutations` for the count (read from its log line,
@@ -43,12 +44,12 @@ const SCENARIO = (road: string): string => `<?xml version="1.0" encoding="UTF-8"
 </OpenSCENARIO>
 `;
 
-function distribution(body: string): string {
+function distribution(body: string, scenarioFile = 'scenario.xosc'): string {
   return `<?xml version="1.0" encoding="UTF-8"?>
 <OpenSCENARIO>
   <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="d" author="m2s"/>
   <ParameterValueDistribution>
-    <ScenarioFile filepath="scenario.xosc"/>
+    <ScenarioFile filepath="${scenarioFile}"/>
     <Deterministic>
 ${body}
     </Deterministic>
@@ -234,6 +235,57 @@ describe('core: variations against esmini (--return_nr_permutations, --param_per
     fs.cpSync(source, path.join(root, 'xosc'), { recursive: true });
     fs.symlinkSync(esminiXodrDir, path.join(root, 'xodr'));
     await compare(program, path.join(root, 'xosc'), 'cut-in_parameter_set.xosc', log);
+  });
+
+  it("ValueConstraintGroups (an expression over another parameter, two groups): esmini's numbering kept, the combinations that break them discarded at their own index", async () => {
+    // esmini knows no ValueConstraintGroup: its permutation I is combination I of the whole product, whatever the constraints say.
+    const constrained = SCENARIO(path.join(esminiXodrDir, 'straight_500m.xodr')).replace(
+      '<ParameterDeclaration name="Gap" parameterType="double" value="1"/>',
+      `<ParameterDeclaration name="Gap" parameterType="double" value="1">
+      <ConstraintGroup><ValueConstraint rule="lessThan" value="\${$Speed - 0.2}"/><ValueConstraint rule="greaterThan" value="0"/></ConstraintGroup>
+      <ConstraintGroup><ValueConstraint rule="equalTo" value="$Top"/></ConstraintGroup>
+    </ParameterDeclaration>
+    <ParameterDeclaration name="Top" parameterType="double" value="2.5"/>`,
+    );
+    fs.writeFileSync(path.join(dir, 'constrained.xosc'), constrained);
+    const file = 'constrainedDistribution.xosc';
+    fs.writeFileSync(
+      path.join(dir, file),
+      distribution(
+        [set('Speed', ['1', '2', '3']), set('Gap', ['0.5', '1.5', '2.5', '-1']), set('Car', ['a', 'b'])].join('\n'),
+        'constrained.xosc',
+      ),
+    );
+    const loaded = await loadVariations(fs.readFileSync(path.join(dir, file), 'utf8'), path.join(dir, file), (p) =>
+      fs.promises.readFile(p, 'utf8'),
+    );
+    assert.deepEqual(loaded.problems, []);
+    const variations = loaded.variations as Variations;
+    const count = esminiCount(program, dir, file);
+    assert.equal(variations.count, BigInt(count), "the count is esmini's, constraints or not");
+    const discarded: bigint[] = [];
+    for (let index = 0n; index < variations.count; index++) {
+      const theirs = esminiValues(program, dir, file, 'constrained', index, variations.count);
+      const concrete = variations.concreteAt(index);
+      assert.deepEqual(valuesAfter(variations.scenario, concrete.assignments), theirs, `index ${index}`);
+      // The constraint read by hand from esmini's values: 0 < Gap < Speed - 0.2, or Gap = Top (2.5).
+      const speed = Number(theirs.get('Speed'));
+      const gap = Number(theirs.get('Gap'));
+      const holds = (gap < speed - 0.2 && gap > 0) || gap === 2.5;
+      assert.equal('broken' in concrete, !holds, `index ${index}: Speed ${speed}, Gap ${gap}`);
+      if (!holds) discarded.push(index);
+    }
+    assert.ok(discarded.length > 0 && discarded.length < count, `some, not all, are discarded: ${discarded.length} of ${count}`);
+    const counted = runCli(['vary', file, '--count'], { cwd: dir });
+    assert.equal(counted.status, 0, counted.stderr);
+    assert.equal(
+      counted.stdout.trim(),
+      `${count} combinations (esmini's --param_permutation 0..${count - 1}), ${count - discarded.length} kept: ${discarded.length} break the scenario's ValueConstraintGroups and are discarded`,
+    );
+    const refused = runCli(['vary', file, '--index', discarded[0].toString()], { cwd: dir });
+    assert.equal(refused.status, 1);
+    assert.match(refused.stderr, new RegExp(`concrete scenario ${discarded[0]} is discarded`));
+    log.push(`${file}: ${count} combinations, ${discarded.length} discarded, every index compared`);
   });
 
   it('UserDefinedDistribution: esmini refuses it, this tool expands type="list" in order', async () => {

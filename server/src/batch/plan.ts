@@ -5,6 +5,7 @@ import type { Variations } from '../core/variations';
 import { valuesAfter } from '../core/variations/concrete';
 import { attribute, descendants, parseXml } from '../core/xml';
 import type { ConcreteRun } from './runConcrete';
+import type { BatchRow } from './results';
 
 /** What a batch runs: the chosen indices of a distribution, with where their runs look for files. */
 export interface BatchPlanView {
@@ -94,17 +95,34 @@ export function filesNeeded(text: string, scenarioFolder: string, searchPath: st
   return [...files];
 }
 
-/** Concrete scenario `index` as a run, or why the scenario's ValueConstraintGroups discard it. */
+/** Concrete scenario `index` as a run, or its row when the scenario's ValueConstraintGroups discard it. */
 export function concreteRun(
   variations: Variations,
   index: bigint,
   parameterNames: string[],
   searchPath: string[],
-): ConcreteRun | { broken: { parameter: string; value: string } } {
+): ConcreteRun | { discarded: BatchRow } {
   const concrete = variations.concreteAt(index);
-  if ('broken' in concrete) return { broken: concrete.broken };
   const values = valuesAfter(variations.scenario, concrete.assignments);
   const parameters: Record<string, string> = {};
   for (const name of parameterNames) parameters[name] = values.get(name) ?? '';
+  if ('broken' in concrete) return { discarded: discardedRow(index.toString(), parameters, concrete.broken) };
   return { index: index.toString(), text: concrete.text, parameters, searchPath };
+}
+
+/** The row of a combination that breaks the scenario's ValueConstraintGroups: it keeps its index and values, and does not run. */
+function discardedRow(index: string, parameters: Record<string, string>, broken: { parameter: string; value: string }): BatchRow {
+  return {
+    index,
+    status: 'discarded',
+    collision: false,
+    min_distance_m: null,
+    min_ttc_s: null,
+    end_time_s: null,
+    parameters,
+    ego: null,
+    collisions: [],
+    message: `discarded: parameter '${broken.parameter}' = '${broken.value}' breaks its ValueConstraintGroups`,
+    messages: [],
+  };
 }

@@ -155,7 +155,8 @@ export async function queueBatch(
     }[] = [];
     for (const index of todo) {
       const run = concreteRun(plan.variations, index, plan.parameterNames, []);
-      if ('broken' in run) {
+      if ('discarded' in run) {
+        await results.append(run.discarded);
         discarded++;
         continue;
       }
@@ -189,7 +190,7 @@ export async function queueBatch(
       quiet ? undefined : process.stderr.isTTY ? process.stderr : undefined,
       quiet ? () => undefined : io.err,
     );
-    const tally = { ok: 0, error: 0, timeout: 0, collisions: 0 };
+    const tally = { ok: 0, error: 0, timeout: 0, discarded: 0, collisions: 0 };
     let cursor = 0;
     let lastFailedCheck = 0;
     const failed = new Map<string, string>();

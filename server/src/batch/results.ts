@@ -4,8 +4,12 @@ import { writeFileAtomic } from '../../../common/src/atomic';
 import { parseResultsCsv, resultsReportHtml } from '../../../common/src/variationsReport';
 import type { Collision } from './metrics';
 
-/** `ok`: esmini ran it and reported no error; `error`: it reported one or could not run it; `timeout`: stopped by --duration or the wall-clock limit. */
-export type RunStatus = 'ok' | 'error' | 'timeout';
+/**
+ * `ok`: esmini ran it and reported no error; `error`: it reported one or could not run it; `timeout`: stopped by
+ * --duration or the wall-clock limit; `discarded`: not run, its values break the scenario's ValueConstraintGroups
+ * (the row keeps its index, esmini's --param_permutation, and its values).
+ */
+export type RunStatus = 'ok' | 'error' | 'timeout' | 'discarded';
 
 /** One concrete scenario's result: a line of results.csv, and with its messages an entry of results.json. */
 export interface BatchRow {

@@ -231,8 +231,10 @@ async function runLocally(
     while (!stop.signal.aborted && next < todo.length) {
       const index = todo[next++];
       const run = concreteRun(plan.variations, index, plan.parameterNames, plan.searchPath);
-      if ('broken' in run) {
+      if ('discarded' in run) {
+        await results.append(run.discarded);
         tally.discarded++;
+        progress.tick(run.discarded);
         continue;
       }
       let text = (await rebasedConcreteText(run.text, plan.scenarioFolder, undefined, kindOf)).text;

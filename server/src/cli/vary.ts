@@ -17,8 +17,10 @@ import { FileKind, nodeFileSystem, splitScenarioPath } from '../core/sources';
 import type { PackagedFile } from '../core/flatten/types';
 
 export const VARY_HELP = `Concrete scenarios of a ParameterValueDistribution (modular2simple vary FILE ...):
-  --count                   print the number of concrete scenarios alone (after ValueConstraintGroups)
-  --index I [-o OUT.xosc]   write concrete scenario I (esmini's --param_permutation I); standard output without -o
+  --count                   print the number of combinations (esmini's permutations); when the scenario's
+                            ValueConstraintGroups discard some, also how many are kept
+  --index I [-o OUT.xosc]   write concrete scenario I (esmini's --param_permutation I; a discarded one keeps
+                            its index and is refused); standard output without -o
   --out-dir DIR             write every concrete scenario as DIR/SCENARIO_I.xosc
   --sample N --seed S       with --out-dir: N indices drawn at random (seed S, default 0)
   --max-combinations N      refuse more combinations than N before writing anything (default 1000000)
@@ -139,10 +141,12 @@ async function varyScenarios(argv: string[], io: Output, givenLoader: ScenarioTe
       printProblems([samplingProblem(error, distributionPath)]);
       return ExitCode.problems;
     }
-    const tally = { discarded };
-    if (!values.quiet && tally.discarded > 0n)
-      io.err(`${tally.discarded} of ${variations.count} combinations break the scenario's ValueConstraintGroups and are discarded`);
-    io.out((variations.count - tally.discarded).toString());
+    // Both numbers: esmini knows no ValueConstraintGroup, so its permutations are every combination, and index I stays its I.
+    io.out(
+      discarded === 0n
+        ? variations.count.toString()
+        : `${variations.count} combinations (esmini's --param_permutation 0..${variations.count - 1n}), ${variations.count - discarded} kept: ${discarded} break the scenario's ValueConstraintGroups and are discarded`,
+    );
     return ExitCode.ok;
   }
 

@@ -4,6 +4,9 @@ import { rebasePaths } from '../flatten/rebase';
 import type { FileKind } from '../sources/host';
 import { LineIndex } from '../text';
 import { ParameterValue, VariationProblem } from './distribution';
+import { valueForm } from '../semantics/expressionParser';
+import { evaluateTree, LookupResult } from '../semantics/expressionEvaluation';
+import { normalizeParameterType, readStringAsValue } from '../semantics/values';
 
 export type ConstraintRule = 'equalTo' | 'greaterThan' | 'lessThan' | 'greaterOrEqual' | 'lessOrEqual' | 'notEqualTo';
 
@@ -159,29 +162,75 @@ export function brokenConstraint(
   assignments: ParameterValue[],
 ): { parameter: string; value: string } | undefined {
   const values = valuesAfter(scenario, assignments);
+  const resolve = resolverOf(scenario, values);
   const seen = new Set<string>();
   for (const declaration of scenario.declarations) {
     if (seen.has(declaration.name)) continue;
     seen.add(declaration.name);
     if (declaration.constraintGroups.length === 0) continue;
-    const value = values.get(declaration.name) as string;
+    const value = resolve(declaration.name) ?? (values.get(declaration.name) as string);
     const numeric = NUMERIC_TYPES.has(declaration.type);
-    const holds = declaration.constraintGroups.some((group) => group.every((constraint) => meets(value, constraint, numeric)));
-    if (!holds) return { parameter: declaration.name, value };
+    const holds = declaration.constraintGroups.some((group) =>
+      group.every((constraint) => {
+        const bound = resolve.text(constraint.value);
+        return bound !== undefined && meets(value, bound, constraint.rule, numeric);
+      }),
+    );
+    if (!holds) return { parameter: declaration.name, value: values.get(declaration.name) as string };
   }
   return undefined;
 }
 
+type Resolver = ((name: string) => string | undefined) & { text(written: string): string | undefined };
+
+/**
+ * The text of a value as the concrete scenario gives it: a literal as written, `$name` and `${...}` (as in
+ * ALKS's `value="${-$Ego_InitSpeed_Ve0_kph}"`) evaluated over the combination's parameter values. Undefined
+ * when it cannot be evaluated (an undeclared name, a circle, an expression error).
+ */
+function resolverOf(scenario: ScenarioParameters, values: Map<string, string>): Resolver {
+  const types = new Map<string, string>();
+  for (const declaration of scenario.declarations) if (!types.has(declaration.name)) types.set(declaration.name, declaration.type);
+  const resolved = new Map<string, string | undefined>();
+  const resolving = new Set<string>();
+  const text = (written: string): string | undefined => {
+    const form = valueForm(written.trim());
+    if (form.kind === 'literal') return written;
+    if (form.kind === 'parameter') return byName(form.name);
+    const tree = form.expression.tree;
+    if (!tree || form.expression.errors.length > 0) return undefined;
+    const result = evaluateTree(tree, (name): LookupResult | undefined => {
+      const found = byName(name);
+      if (found === undefined) return undefined;
+      const type = normalizeParameterType(types.get(name)) ?? 'string';
+      if (type === 'string' || type === 'dateTime') return { value: found, type };
+      return readStringAsValue(found) ?? { value: found, type: 'string' };
+    });
+    return result.ok ? String(result.value) : undefined;
+  };
+  const byName = (name: string): string | undefined => {
+    if (resolved.has(name)) return resolved.get(name);
+    const written = values.get(name);
+    if (written === undefined || resolving.has(name)) return undefined;
+    resolving.add(name);
+    const value = text(written);
+    resolving.delete(name);
+    resolved.set(name, value);
+    return value;
+  };
+  return Object.assign(byName, { text });
+}
+
 /** Numbers compare as numbers for numeric parameter types; everything else compares as text (dateTime in ISO form orders correctly). */
-function meets(value: string, constraint: ValueConstraint, numeric: boolean): boolean {
+function meets(value: string, bound: string, rule: ConstraintRule, numeric: boolean): boolean {
   let order: number;
   if (numeric) {
     const left = Number(value.trim());
-    const right = Number(constraint.value.trim());
+    const right = Number(bound.trim());
     if (!Number.isFinite(left) || !Number.isFinite(right)) return false;
     order = left === right ? 0 : left < right ? -1 : 1;
-  } else order = value === constraint.value ? 0 : value < constraint.value ? -1 : 1;
-  switch (constraint.rule) {
+  } else order = value === bound ? 0 : value < bound ? -1 : 1;
+  switch (rule) {
     case 'equalTo':
       return order === 0;
     case 'notEqualTo':
