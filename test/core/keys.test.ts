@@ -1,5 +1,12 @@
 import * as assert from 'node:assert/strict';
-import { keyForms, keyMatches, overridableAttributes, planOverrides, shortestUnambiguousKey } from '../../server/src/core/keys';
+import {
+  keyForms,
+  keyMatches,
+  overridableAttributes,
+  planOverrides,
+  positionedKeyForms,
+  shortestUnambiguousKey,
+} from '../../server/src/core/keys';
 import { findGroup, parseScenario } from '../../server/src/core/model';
 import { scenario, simpleGroup } from '../support/fixtures';
 
@@ -80,5 +87,42 @@ describe('core: override keys (SPEC 5)', () => {
     const y = targets.find((t) => t.attributeName === 'y')!;
     assert.equal(shortestUnambiguousKey(y, targets), 'Action.Position.WorldPosition.y');
     assert.equal(keyForms(value)[0], 'value');
+  });
+  it("tells two attributes of one path apart by position: Event[2] (the project's addition to SPEC 5)", () => {
+    // Two Events of one Maneuver: every plain key of the second speed also reaches the first.
+    const twice = parseScenario(
+      scenario(
+        simpleGroup('T').replace(
+          /( *<Event name="Go"[\s\S]*?<\/Event>\n)/,
+          (event: string) => event + event.replace('name="Go" priority', 'name="Again" priority').replace('value="10"', 'value="20"'),
+        ),
+      ),
+    );
+    const all = overridableAttributes(twice, findGroup(twice, 'T')!);
+    const speeds = all.filter((t) => t.element.name === 'AbsoluteTargetSpeed');
+    assert.equal(speeds.length, 2);
+    const [first, second] = speeds;
+    assert.ok(
+      keyForms(second).every((form) => keyMatches(form, first)),
+      'no plain key tells them apart',
+    );
+    assert.equal(shortestUnambiguousKey(second, all), 'Event[2].Action.SpeedActionTarget.AbsoluteTargetSpeed.value');
+    assert.ok(keyMatches('Event[1].Action.SpeedActionTarget.AbsoluteTargetSpeed.value', first));
+    assert.ok(!keyMatches('Event[1].Action.SpeedActionTarget.AbsoluteTargetSpeed.value', second));
+    assert.ok(!keyMatches('Event[3].Action.SpeedActionTarget.AbsoluteTargetSpeed.value', second));
+    assert.ok(!keyMatches('Event[x].Action.SpeedActionTarget.AbsoluteTargetSpeed.value', second), 'a malformed position matches nothing');
+    assert.ok(positionedKeyForms(second).includes('Event[2].Action.SpeedActionTarget.AbsoluteTargetSpeed.value'));
+    // The positioned key is more specific than the plain one of the same length, whatever the order.
+    for (const order of [0, 1]) {
+      const entries: [string, string][] = [
+        ['Event.Action.SpeedActionTarget.AbsoluteTargetSpeed.value', 'both'],
+        ['Event[2].Action.SpeedActionTarget.AbsoluteTargetSpeed.value', 'second'],
+      ];
+      if (order) entries.reverse();
+      const plan = planOverrides(all, parameters(...entries));
+      assert.equal(plan.applied.get(first)?.value, 'both');
+      assert.equal(plan.applied.get(second)?.value, 'second');
+      assert.deepEqual(plan.unknown, []);
+    }
   });
 });

@@ -143,7 +143,13 @@ describe('core: modularize', function () {
   });
 
   it('a group name without an outer part, and an actor, are reproduced exactly', async () => {
-    const texts = [scenario(speedGroup('Brake', 'car', '10', 'car')), scenario(speedGroup('Slow', 'ego', '10', 'ego'))];
+    // Four uses: two would not pay for the simple scenario they need.
+    const texts = [
+      scenario(speedGroup('Brake', 'car', '10', 'car')),
+      scenario(speedGroup('Slow', 'ego', '10', 'ego')),
+      scenario(speedGroup('Stop', 'car', '10', 'car')),
+      scenario(speedGroup('Halt', 'ego', '10', 'ego')),
+    ];
     const inputs = texts.map((text, index) => ({ path: `/virtual/in/s${index}.xosc`, output: `/virtual/out/s${index}.xosc`, text }));
     const result = await modularize(inputs, { simpleFolder: '/virtual/out/simple' });
     assert.deepEqual(result.failures, []);
@@ -173,8 +179,8 @@ describe('core: modularize', function () {
     assert.equal(result.totals.reduction, 0);
   });
 
-  it('two attributes that no key tells apart keep their groups inline unless the uses agree on them', async () => {
-    // Two Events whose AbsoluteTargetSpeed paths are identical: one key would set both.
+  it('two attributes of one path are told apart by a key that gives the position (Event[2])', async () => {
+    // Two Events whose AbsoluteTargetSpeed paths are identical: a plain key would set both.
     const twice = (name: string, first: string, second: string) =>
       speedGroup(name, 'car', first).replace(
         /(<Maneuver name="M">\n)([\s\S]*?<\/Event>\n)/,
@@ -188,13 +194,41 @@ describe('core: modularize', function () {
     }));
     const result = await modularize(inputs, { simpleFolder: '/virtual/out/simple' });
     assert.deepEqual(result.failures, []);
+    assert.deepEqual(result.keptInline, []);
     assert.equal(result.behaviours.length, 1);
-    assert.equal(result.behaviours[0].uses.length, 2);
     assert.deepEqual(
-      result.keptInline.map((kept) => kept.group),
-      ['X.G'],
+      result.behaviours[0].uses.map((use) => use.overrides),
+      [
+        [
+          { key: 'Event[1].Action.PrivateAction.LongitudinalAction.SpeedAction.SpeedActionTarget.AbsoluteTargetSpeed.value', value: '1' },
+          { key: 'Event[2].Action.PrivateAction.LongitudinalAction.SpeedAction.SpeedActionTarget.AbsoluteTargetSpeed.value', value: '2' },
+        ],
+        [],
+        [],
+      ],
     );
-    assert.match(result.keptInline[0].reason, /no key tells its attributes/);
+    const flattened = await flattenAll(result);
+    for (const input of inputs) assert.equal(firstDifference(flattened.get(input.path) as string, input.text), undefined);
+  });
+
+  it('the shortest key that sets the same attributes (entityRef), not the ten-segment path from ManeuverGroup down', async () => {
+    // Two conditions of one ConditionGroup: their EntityRefs share one path and always name the same
+    // entity, so one short key sets both (the old code wrote the whole path from ManeuverGroup down).
+    const twoConditions = (text: string) =>
+      text.replace(
+        /( *<Condition name="C"[\s\S]*?<\/Condition>\n)/,
+        (condition: string) => condition + condition.replace('name="C"', 'name="C2"'),
+      );
+    const inputs = ['car', 'ego', 'car', 'ego'].map((trigger, index) => ({
+      path: `/virtual/in/s${index}.xosc`,
+      output: `/virtual/out/s${index}.xosc`,
+      text: scenario(twoConditions(speedGroup(`G${index}.Go`, 'car', '10', trigger))),
+    }));
+    const result = await modularize(inputs, { simpleFolder: '/virtual/out/simple' });
+    assert.deepEqual(result.failures, []);
+    assert.equal(result.behaviours.length, 1);
+    const keys = new Set(result.behaviours[0].uses.flatMap((use) => use.overrides.map((override) => override.key)));
+    assert.deepEqual([...keys], ['entityRef']);
     const flattened = await flattenAll(result);
     for (const input of inputs) assert.equal(firstDifference(flattened.get(input.path) as string, input.text), undefined);
   });

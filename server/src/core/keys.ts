@@ -65,20 +65,45 @@ export function overridableAttributes(model: ScenarioModel, group: ManeuverGroup
   return result;
 }
 
-/** Whether `key` (a dotted path ending in an attribute name) reaches `target` (SPEC 5). */
+/** Whether `key` (a dotted path ending in an attribute name) reaches `target` (SPEC 5, and the project's `Element[n]`). */
 export function keyMatches(key: string, target: OverridableAttribute): boolean {
   return partsMatch(key.split('.'), target);
+}
+
+/** A key segment `Event[2]`: the element name and, when given, its 1-based position among its parent's children of that name. */
+const SEGMENT = /^([^[\]]+)(?:\[([1-9]\d*)\])?$/;
+
+/** The 1-based position of `element` among its parent's children of the same name. */
+function positionAmongNamesakes(element: XmlElement): number {
+  const siblings = element.parent?.children ?? [element];
+  let position = 0;
+  for (const sibling of siblings) {
+    if (sibling.name === element.name) position++;
+    if (sibling === element) return position;
+  }
+  return 1;
 }
 
 /** keyMatches for a key already split at its dots (a key is matched against every attribute of a group). */
 function partsMatch(parts: string[], target: OverridableAttribute): boolean {
   const last = parts.length - 1;
   if (parts[last] !== target.attributeName) return false;
-  for (let i = 0; i < last; i++) if (parts[i].length === 0) return false;
   if (last > target.path.length) return false;
   const offset = target.path.length - last;
-  for (let i = 0; i < last; i++) if (parts[i] !== target.path[offset + i]) return false;
+  let element: XmlElement | undefined = target.element;
+  // Read upwards from the element, so each indexed segment is checked on the element it names.
+  for (let i = last - 1; i >= 0; i--, element = element?.parent) {
+    const segment = SEGMENT.exec(parts[i]);
+    if (!segment || segment[1] !== target.path[offset + i]) return false;
+    if (segment[2] !== undefined && (!element || positionAmongNamesakes(element) !== Number(segment[2]))) return false;
+  }
   return true;
+}
+
+/** How specific a key is, for "the most specific key wins": its length, then how many of its segments give a position. */
+function specificity(key: string): number {
+  const parts = key.split('.');
+  return parts.length * 1000 + parts.filter((part) => part.endsWith(']')).length;
 }
 
 /** Every key that reaches the attribute, shortest first: `attr`, `Element.attr`, `Parent.Element.attr`, ... */
@@ -90,13 +115,39 @@ export function keyForms(target: OverridableAttribute): string[] {
   return forms;
 }
 
-/** The shortest key that reaches this attribute and no other attribute of the group. */
-export function shortestUnambiguousKey(target: OverridableAttribute, all: OverridableAttribute[]): string {
-  const forms = keyForms(target);
-  for (const form of forms) {
-    if (all.every((other) => other === target || !keyMatches(form, other))) return form;
+/**
+ * Keys that give positions (`Event[2].Action.name`), for attributes whose element paths are equal
+ * (two Events of one Maneuver): shortest first, and among keys of one length those with one position
+ * before the one with every segment positioned. The group element itself is never positioned.
+ */
+export function positionedKeyForms(target: OverridableAttribute): string[] {
+  const chain: XmlElement[] = [];
+  for (let element: XmlElement | undefined = target.element; chain.length < target.path.length && element; element = element.parent)
+    chain.unshift(element);
+  const positioned = (element: XmlElement) => `${element.name}[${positionAmongNamesakes(element)}]`;
+  const forms: string[] = [];
+  for (let length = 1; length <= chain.length; length++) {
+    const suffix = chain.slice(chain.length - length);
+    // The group element (chain[0]) is named plainly: the key is read from the group down.
+    const indexable = suffix.map((element) => element !== chain[0]);
+    for (let i = suffix.length - 1; i >= 0; i--) {
+      if (!indexable[i]) continue;
+      forms.push([...suffix.map((element, j) => (j === i ? positioned(element) : element.name)), target.attributeName].join('.'));
+    }
+    if (indexable.filter(Boolean).length > 1)
+      forms.push([...suffix.map((element, j) => (indexable[j] ? positioned(element) : element.name)), target.attributeName].join('.'));
   }
-  return forms[forms.length - 1];
+  return forms;
+}
+
+/**
+ * The shortest key that reaches this attribute and no other attribute of the group: a plain key
+ * (SPEC 5) where one does, else one that gives the position of the elements whose paths are equal.
+ */
+export function shortestUnambiguousKey(target: OverridableAttribute, all: OverridableAttribute[]): string {
+  const alone = (form: string) => all.every((other) => other === target || !keyMatches(form, other));
+  const forms = keyForms(target);
+  return forms.find(alone) ?? positionedKeyForms(target).find(alone) ?? forms[forms.length - 1];
 }
 
 /** The edit distance of two names when it is no more than a typo (one edit per three characters, at least one). */
@@ -113,7 +164,7 @@ function nearlyEqual(a: string, b: string): number | undefined {
 export function suggestKey(key: string, targets: OverridableAttribute[]): string | undefined {
   const parts = key.split('.');
   const attributeName = parts[parts.length - 1];
-  const elementName = parts.length > 1 ? parts[parts.length - 2] : undefined;
+  const elementName = parts.length > 1 ? parts[parts.length - 2].replace(/\[\d*\]$/, '') : undefined;
   let best: { target: OverridableAttribute; distance: number } | undefined;
   for (const target of targets) {
     const forms = keyForms(target);
@@ -135,7 +186,7 @@ export function suggestKey(key: string, targets: OverridableAttribute[]): string
   );
 }
 
-/** Decides which parameter sets which attribute: the longest matching key wins, then the last one written. */
+/** Decides which parameter sets which attribute: the longest matching key wins (on a tie, the one giving more positions), then the last one written. */
 export function planOverrides(targets: OverridableAttribute[], parameters: ParameterReferenceInfo[]): OverridePlan {
   const applied = new Map<OverridableAttribute, ParameterReferenceInfo>();
   const matches: KeyMatch[] = [];
@@ -155,7 +206,7 @@ export function planOverrides(targets: OverridableAttribute[], parameters: Param
         continue;
       }
       const previous = applied.get(target);
-      if (!previous || previous.key.split('.').length <= parameter.key.split('.').length) applied.set(target, parameter);
+      if (!previous || specificity(previous.key) <= specificity(parameter.key)) applied.set(target, parameter);
     }
   }
   return { applied, matches, unknown, withoutDefault };

@@ -1,4 +1,4 @@
-import { keyMatches, overridableAttributes, OverridableAttribute, shortestUnambiguousKey } from '../keys';
+import { keyForms, keyMatches, overridableAttributes, OverridableAttribute, positionedKeyForms } from '../keys';
 import { parseScenario } from '../model';
 import { applyEdits, reindent, TextEdit } from '../flatten/edits';
 import { indentationAt } from '../text';
@@ -116,14 +116,20 @@ export async function planBehaviour(
   for (const target of targets) {
     const index = slotOf(target);
     if (index < 0) return { reason: `'${target.attributeName}' is listed on an element the group does not have` };
-    const key = shortestUnambiguousKey(target, targets);
-    const reached = targets.filter((other) => keyMatches(key, other)).map(slotOf);
-    // A key that still reaches several attributes sets them all: only right where they always agree.
-    if (
-      reached.length > 1 &&
-      !occurrences.every((occurrence) => reached.every((other) => occurrence.values[other] === occurrence.values[index]))
-    ) {
-      return { reason: `no key tells its attributes '${key}' apart`, conflict: reached };
+    // The shortest key whose attributes take this one's value in every use: a key reaching several
+    // attributes sets them all, which is right exactly where they always agree.
+    const agrees = (key: string) =>
+      targets
+        .filter((other) => keyMatches(key, other))
+        .map(slotOf)
+        .every((other) => occurrences.every((occurrence) => occurrence.values[other] === occurrence.values[index]));
+    const key = keyForms(target).find(agrees) ?? positionedKeyForms(target).find(agrees);
+    if (key === undefined) {
+      const longest = keyForms(target).at(-1) as string;
+      return {
+        reason: `no key tells its attributes '${longest}' apart`,
+        conflict: targets.filter((other) => keyMatches(longest, other)).map(slotOf),
+      };
     }
     keys.set(index, key);
   }

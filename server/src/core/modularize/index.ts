@@ -16,7 +16,7 @@ import { diskRef, Limits, ScenarioStore } from '../sources';
 import { countEditorLines } from '../text';
 import { parseXml, XmlDocument } from '../xml';
 import { planBehaviour } from './behaviour';
-import { mainText } from './mainText';
+import { mainText, referenceGroup } from './mainText';
 import { memoryHost } from './memoryHost';
 import { behaviourName, uniqueName } from './naming';
 import { GroupOccurrence, GroupShape, readOccurrence } from './shape';
@@ -55,6 +55,22 @@ function recurringGroups(inputs: ParsedInput[], excluded: Set<string>): Map<stri
   return byShape;
 }
 
+/**
+ * What extracting a behaviour does to the library's size (SPEC 9 lines): the lines its groups take in
+ * the inputs less those of the groups that import it (`replaced`), less its simple scenario's.
+ */
+function linesSaved(behaviour: Behaviour, inputs: ParsedInput[]): { saved: number; replaced: number; simple: number } {
+  let replaced = 0;
+  for (const use of behaviour.uses) {
+    const input = inputs[use.occurrence.input];
+    const group = use.occurrence.group.element;
+    const reference = referenceGroup(input, behaviour, use, '', '  ', '\n');
+    replaced += input.text.slice(group.start, group.end).split('\n').length - reference.split('\n').length;
+  }
+  const simple = countEditorLines(behaviour.text);
+  return { saved: replaced - simple, replaced, simple };
+}
+
 interface Plan {
   behaviours: Behaviour[];
   mains: MainResult[];
@@ -78,7 +94,19 @@ async function plan(inputs: ParsedInput[], rebase: RebasePaths, simpleFolder: st
     const file = path.join(simpleFolder, `${stem}.xosc`);
     const planned = await planBehaviour(key, shape.slots, occurrences, inputs, file, rebase);
     if (planned.behaviour) {
-      behaviours.push(planned.behaviour);
+      const cost = linesSaved(planned.behaviour, inputs);
+      if (cost.saved > 0) {
+        behaviours.push(planned.behaviour);
+        continue;
+      }
+      // Extracting it would make the library larger: its simple scenario outweighs what its uses save.
+      taken.delete(stem.toLowerCase());
+      for (const use of planned.behaviour.uses)
+        keptInline.push({
+          input: inputs[use.occurrence.input].path,
+          group: use.occurrence.group.name,
+          reason: `extracting it would not pay: its simple scenario (${cost.simple} lines) outweighs the ${cost.replaced} lines its ${planned.behaviour.uses.length} uses would save`,
+        });
       continue;
     }
     taken.delete(stem.toLowerCase());

@@ -10,7 +10,7 @@ function referenceName(main: string, file: string): string {
 }
 
 /** The group that imports a behaviour in place of the group it was extracted from. */
-function referenceGroup(input: ParsedInput, behaviour: Behaviour, use: Use, indent: string, unit: string, eol: string): string {
+export function referenceGroup(input: ParsedInput, behaviour: Behaviour, use: Use, indent: string, unit: string, eol: string): string {
   const group = use.occurrence.group;
   const actors = group.actor?.parent;
   const q = (value: string) => `"${escapeAttributeValue(value)}"`;

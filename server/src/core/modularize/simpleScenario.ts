@@ -23,6 +23,7 @@ export interface SimpleScenarioParts {
 const PARAMETER_USE = /\$\{?([A-Za-z_][\w]*)/g;
 /** A ParameterCondition or ParameterAction names its parameter without a `$`. */
 const PARAMETER_REF = /\bparameterRef\s*=\s*["']\$?([A-Za-z_]\w*)["']/g;
+const VARIABLE_REF = /\bvariableRef\s*=\s*["']([^"']+)["']/g;
 
 /** An element's text moved to `depth` levels of `unit`. */
 function copied(document: XmlDocument, element: XmlElement, unit: string, depth: number, eol: string): string {
@@ -30,6 +31,16 @@ function copied(document: XmlDocument, element: XmlElement, unit: string, depth:
     unit.repeat(depth) +
     reindent(document.text.slice(element.start, element.end), indentationAt(document.text, element.start), unit.repeat(depth), eol)
   );
+}
+
+/**
+ * A declaration copied for the simple scenario: one that holds only comments is written on one line
+ * (the comments stay in the main, which keeps its own declaration); one with constraints as written.
+ */
+function declarationText(document: XmlDocument, element: XmlElement, unit: string, eol: string): string {
+  if (element.selfClosing || element.children.length > 0) return copied(document, element, unit, 2, eol);
+  const startTag = document.text.slice(element.start, element.startTagEnd).replace(/\s*>$/, '');
+  return `${unit.repeat(2)}${startTag.replace(/\s*\r?\n\s*/g, ' ')}/>`;
 }
 
 function child(element: XmlElement | undefined, name: string): XmlElement | undefined {
@@ -123,12 +134,34 @@ export async function simpleScenarioText(parts: SimpleScenarioParts): Promise<st
   }
   // In the order the inputs declare them: a value may only use parameters declared before it.
   foundDeclarations.sort((a, b) => documents.indexOf(a.document) - documents.indexOf(b.document) || a.element.start - b.element.start);
-  const declarations = foundDeclarations.map((found) => copied(found.document, found.element, unit, 2, eol));
+  const declarations = foundDeclarations.map((found) => declarationText(found.document, found.element, unit, eol));
   lines.push(
     declarations.length > 0
       ? [`${unit}<ParameterDeclarations>`, ...declarations, `${unit}</ParameterDeclarations>`].join(eol)
       : `${unit}<ParameterDeclarations/>`,
   );
+
+  // Variables the group uses; a catalog entry it references may use any the scenario declares (a catalog declares none).
+  const variables = new Set([...groupText.matchAll(VARIABLE_REF)].map((match) => match[1]));
+  const declaredVariables = child(root, 'VariableDeclarations');
+  if (declaredVariables && /<CatalogReference\b/.test(groupText))
+    for (const declaration of declaredVariables.children) {
+      const name = attributeValue(declaration, 'name');
+      if (name !== undefined) variables.add(name);
+    }
+  const variableDeclarations = [...variables].flatMap((name) => {
+    const found = findNamed(documents, ['VariableDeclaration'], name);
+    return found ? [found] : [];
+  });
+  variableDeclarations.sort((a, b) => documents.indexOf(a.document) - documents.indexOf(b.document) || a.element.start - b.element.start);
+  if (variableDeclarations.length > 0)
+    lines.push(
+      [
+        `${unit}<VariableDeclarations>`,
+        ...variableDeclarations.map((found) => copied(found.document, found.element, unit, 2, eol)),
+        `${unit}</VariableDeclarations>`,
+      ].join(eol),
+    );
 
   lines.push(catalogText, roadText);
   lines.push(entities.length > 0 ? [`${unit}<Entities>`, ...entities, `${unit}</Entities>`].join(eol) : `${unit}<Entities/>`);
