@@ -10,7 +10,15 @@ export const esminiBinDir = path.join(repoRoot, '.cache', 'esmini', 'bin');
  * of the suite with a message. With M2S_REQUIRE_ESMINI set, a missing program fails instead.
  */
 export function requireEsminiProgram(context: Mocha.Context, program: 'esmini' | 'odrplot' | 'dat2csv'): string {
-  const file = path.join(esminiBinDir, program);
+  return requireBuilt(context, path.join(esminiBinDir, program));
+}
+
+/** esmini's C library as the same build installs it (`.cache/esmini/lib`), or a skip with a message (a failure with M2S_REQUIRE_ESMINI). */
+export function requireEsminiLibrary(context: Mocha.Context): string {
+  return requireBuilt(context, path.join(esminiBinDir, '..', 'lib', 'libesminiLib.so'));
+}
+
+function requireBuilt(context: Mocha.Context, file: string): string {
   if (fs.existsSync(file) && fs.existsSync(esminiXodrDir)) return file;
   const why = !fs.existsSync(esminiXodrDir)
     ? `${esminiXodrDir} is absent`

@@ -11,6 +11,7 @@
  *   checks.ts       checks of a file read and of the output
  *   outputSchema.ts the schema check of the output
  *   flattener.ts    the Flattener, which reads, links and renders files and caches them
+ *   storyboardMap.ts each storyboard element of a flattened scenario with esmini's path and its place in the sources
  */
 export { Flattener } from './flattener';
 export { copiedFrom, declarationLocation, originOf } from './origin';

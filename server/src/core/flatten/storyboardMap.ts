@@ -1,0 +1,166 @@
+import { ZERO_RANGE } from '../problems';
+import { Range } from '../text';
+import { SourceRef } from '../sources';
+import { attribute, XmlElement } from '../xml';
+import { originOf } from './origin';
+import { FlatSource } from './types';
+
+/** The storyboard elements esmini reports transitions of, and the condition it reports firing. */
+export type StoryboardKind = 'Story' | 'Act' | 'ManeuverGroup' | 'Maneuver' | 'Event' | 'Action' | 'Condition';
+
+const NESTED_KINDS: Record<string, readonly StoryboardKind[]> = {
+  Storyboard: ['Story'],
+  Story: ['Act'],
+  Act: ['ManeuverGroup'],
+  ManeuverGroup: ['Maneuver'],
+  Maneuver: ['Event'],
+  Event: ['Action'],
+};
+
+/** esmini's element type numbers (StoryboardElement.hpp, ElementType; the esminiLib.hpp callback passes them). */
+export const ESMINI_ELEMENT_TYPES: Record<number, StoryboardKind | 'Storyboard'> = {
+  1: 'Storyboard',
+  2: 'Story',
+  3: 'Act',
+  4: 'ManeuverGroup',
+  5: 'Maneuver',
+  6: 'Event',
+  7: 'Action',
+};
+
+/** What a condition compares, as the flattened scenario writes it (values may still be `$name`s). */
+export interface ConditionSpec {
+  /** The condition element's name: `TimeHeadwayCondition`, `SimulationTimeCondition`, ... */
+  type: string;
+  rule: string | undefined;
+  /** The threshold as written. */
+  value: string | undefined;
+  /** The entity compared against, for the relative conditions. */
+  entityRef: string | undefined;
+  /** The triggering entities of a ByEntityCondition. */
+  triggeringEntities: string[];
+  edge: string | undefined;
+  delay: string | undefined;
+}
+
+/** One storyboard element of the flattened scenario with the place in the modular sources it was written. */
+export interface MappedElement {
+  kind: StoryboardKind;
+  /** As esmini names it: the name evaluated when it holds an expression it could evaluate, else as written. */
+  name: string;
+  /** esmini's full path (`Story::Act::ManeuverGroup::Maneuver::Event::Action`); for a condition, its owner's path then its name. */
+  path: string;
+  element: XmlElement;
+  parent: MappedElement | undefined;
+  /** Where the element was written: the simple scenario for a copy of an imported group. */
+  source: SourceRef;
+  /** 0-based lines of its start tag in that file. */
+  range: Range;
+  /** The start tag's last line (a tag may spread its attributes over several). */
+  lastTagLine: number;
+  condition?: ConditionSpec;
+}
+
+function conditionSpec(condition: XmlElement): ConditionSpec {
+  const byEntity = condition.children.find((child) => child.name === 'ByEntityCondition');
+  const byValue = condition.children.find((child) => child.name === 'ByValueCondition');
+  const inner = byEntity ? byEntity.children.find((child) => child.name === 'EntityCondition')?.children[0] : byValue?.children[0];
+  const triggering = byEntity?.children.find((child) => child.name === 'TriggeringEntities');
+  return {
+    type: inner?.name ?? 'Condition',
+    rule: inner ? attribute(inner, 'rule')?.value : undefined,
+    value: inner ? (attribute(inner, 'value') ?? attribute(inner, 'duration') ?? attribute(inner, 'tolerance'))?.value : undefined,
+    entityRef: inner ? attribute(inner, 'entityRef')?.value : undefined,
+    triggeringEntities: (triggering?.children ?? [])
+      .filter((child) => child.name === 'EntityRef')
+      .map((child) => attribute(child, 'entityRef')?.value ?? ''),
+    edge: attribute(condition, 'conditionEdge')?.value,
+    delay: attribute(condition, 'delay')?.value,
+  };
+}
+
+/** The Conditions of a trigger element (StartTrigger, StopTrigger). */
+function triggerConditions(trigger: XmlElement | undefined): XmlElement[] {
+  if (!trigger) return [];
+  return trigger.children
+    .filter((group) => group.name === 'ConditionGroup')
+    .flatMap((group) => group.children.filter((child) => child.name === 'Condition'));
+}
+
+/**
+ * Every storyboard element of a flattened scenario (Story to Action, and every Condition of their triggers and of
+ * the Storyboard's StopTrigger), each with esmini's path and where it was written in the modular sources, so that a
+ * transition esmini reports finds its source line and a breakpoint on a source line finds every flattened copy.
+ * `evaluateName` gives esmini's name for a name holding `$` or `${...}` (undefined when it cannot).
+ */
+export class StoryboardMap {
+  readonly elements: MappedElement[] = [];
+  private readonly byPath = new Map<string, MappedElement>();
+  private readonly conditionsByName = new Map<string, MappedElement[]>();
+
+  constructor(
+    readonly flat: FlatSource,
+    evaluateName: (element: XmlElement, written: string) => string | undefined = () => undefined,
+  ) {
+    const root = flat.model?.document.root;
+    const storyboard = root?.children.find((child) => child.name === 'Storyboard');
+    if (!storyboard) return;
+    const visit = (element: XmlElement, parent: MappedElement | undefined) => {
+      const kinds = NESTED_KINDS[element.name] ?? [];
+      // Actions live under Event directly; the others under their parent, ManeuverGroup's Maneuvers too.
+      for (const child of element.children) {
+        if (!kinds.includes(child.name as StoryboardKind)) continue;
+        const mapped = this.add(child, child.name as StoryboardKind, parent, evaluateName);
+        visit(child, mapped);
+        const trigger = child.children.find((candidate) => candidate.name === 'StartTrigger');
+        const stop = child.children.find((candidate) => candidate.name === 'StopTrigger');
+        for (const condition of [...triggerConditions(trigger), ...triggerConditions(stop)])
+          this.add(condition, 'Condition', mapped, evaluateName);
+      }
+    };
+    visit(storyboard, undefined);
+    for (const condition of triggerConditions(storyboard.children.find((child) => child.name === 'StopTrigger')))
+      this.add(condition, 'Condition', undefined, evaluateName);
+  }
+
+  private add(
+    element: XmlElement,
+    kind: StoryboardKind,
+    parent: MappedElement | undefined,
+    evaluateName: (element: XmlElement, written: string) => string | undefined,
+  ): MappedElement {
+    const written = attribute(element, 'name')?.value ?? '';
+    const name = written.includes('$') ? (evaluateName(element, written) ?? written) : written;
+    const path = parent ? `${parent.path}::${name}` : name;
+    const origin = originOf(this.flat, element);
+    const document = (origin.source.original ?? origin.source.model)?.document;
+    const range = document ? document.lines.range(origin.element.start, origin.element.nameEnd) : ZERO_RANGE;
+    const lastTagLine = document ? document.lines.range(origin.element.startTagEnd - 1, origin.element.startTagEnd - 1).start.line : 0;
+    const mapped: MappedElement = { kind, name, path, element, parent, source: origin.source.ref, range, lastTagLine };
+    if (kind === 'Condition') {
+      mapped.condition = conditionSpec(element);
+      const sameName = this.conditionsByName.get(name);
+      if (sameName) sameName.push(mapped);
+      else this.conditionsByName.set(name, [mapped]);
+    } else if (!this.byPath.has(path)) {
+      this.byPath.set(path, mapped);
+    }
+    this.elements.push(mapped);
+    return mapped;
+  }
+
+  /** The element esmini names by this full path (`A::B::C`). */
+  atPath(path: string): MappedElement | undefined {
+    return this.byPath.get(path);
+  }
+
+  /** The conditions of that name (esmini's condition callback gives only the name: copies of a group share it). */
+  conditionsNamed(name: string): MappedElement[] {
+    return this.conditionsByName.get(name) ?? [];
+  }
+
+  /** Every flattened element whose start tag, in the file `isFile` accepts, covers the 0-based line. */
+  atLine(isFile: (ref: SourceRef) => boolean, line: number): MappedElement[] {
+    return this.elements.filter((element) => line >= element.range.start.line && line <= element.lastTagLine && isFile(element.source));
+  }
+}

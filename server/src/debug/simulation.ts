@@ -1,0 +1,354 @@
+import * as fs from 'node:fs';
+import * as os from 'node:os';
+import * as path from 'node:path';
+import { Flattener, FlatSource } from '../core/flatten';
+import { ESMINI_ELEMENT_TYPES, MappedElement, StoryboardMap } from '../core/flatten/storyboardMap';
+import { Problem } from '../core/problems';
+import { Evaluator, semanticModelOf } from '../core/semantics';
+import { logicFileOf, resolveRoadFile, roadFolders } from '../core/semantics/roadFiles';
+import { nodeFileSystem, SourceRef } from '../core/sources';
+import { attribute, parseXml } from '../core/xml';
+import { EsminiLibrary, EsminiObjectState, loadEsminiLibrary } from '../esmini/library';
+import { readEsminiLog } from '../esmini/log';
+import { EsminiProblem, mapEsminiMessages } from '../esmini/messages';
+import { makeRunFolder } from '../esmini/process';
+import { catalogFolders, RUN_DEFAULTS, sourceFolderOf, withRoadFile } from '../esmini/run';
+
+/*
+ * A scenario run step by step in esmini's library, editor-free: the debug adapter (debug/adapter.ts) and the CLI's
+ * `run --trace` both drive it. Every storyboard transition and condition firing esmini reports through its callbacks
+ * comes back with the element it names in the flattened scenario and where that was written in the modular sources.
+ */
+
+export type ElementState = 'standby' | 'running' | 'complete';
+const STATES: Record<number, ElementState> = { 1: 'standby', 2: 'running', 3: 'complete' };
+
+/** Why a condition became true, from esmini's own log line for it (`HWT: 0.41 > 0.40`). */
+export interface ConditionReason {
+  /** esmini's words after `delay: D, ` (`HWT: 0.41 > 0.40, edge rising`). */
+  detail: string;
+  /** What esmini measured (`HWT`, `rel_dist`, `speed`, the time for a SimulationTimeCondition). */
+  quantity?: string;
+  measured?: number;
+  /** esmini's rule sign: `>`, `<`, `==`, `>=`, `<=`, `!=`. */
+  rule?: string;
+  threshold?: number;
+}
+
+/** One storyboard transition or condition firing, as esmini reported it. */
+export interface StoryboardEvent {
+  time: number;
+  /** esmini's full path (`Story::Act::ManeuverGroup::Maneuver::Event`); a condition's owner path then its name. */
+  element: string;
+  name: string;
+  type: string;
+  /** For a condition: `true` (it fired). */
+  state: ElementState | 'true';
+  /** The element in the flattened scenario (undefined when the map has no element of that path). */
+  mapped: MappedElement | undefined;
+  /** For a condition: the rule and threshold as the scenario writes them, and what esmini measured. */
+  reason?: ConditionReason;
+}
+
+export interface SimulationOptions {
+  timeStep?: number;
+  /** Simulated seconds after which the run ends, when the scenario's StopTrigger has not ended it. */
+  duration?: number;
+  seed?: number;
+  roadPath?: string[];
+  base?: string;
+  esminiLibrary?: string;
+  force?: boolean;
+}
+
+export interface EntityState extends EsminiObjectState {
+  name: string;
+  acceleration: number;
+}
+
+/** Time-to-collision and gap from one entity to another. */
+export interface EntityPair {
+  from: string;
+  to: string;
+  /** Longitudinal free-space distance along the road (esmini's SE_GetDistanceToObject ds). */
+  gap: number | undefined;
+  ttc: number | undefined;
+}
+
+/** A scenario that could not be started: the messages name the source lines when they can. */
+export class SimulationLoadError extends Error {
+  constructor(
+    message: string,
+    readonly problems: (Problem | EsminiProblem)[] = [],
+  ) {
+    super(message);
+  }
+}
+
+/** The scenario as esmini will read it, with its map back to the sources. */
+export interface PreparedScenario {
+  main: SourceRef;
+  text: string;
+  searchPath: string[];
+  flat: FlatSource;
+  map: StoryboardMap;
+  flattenProblems: Problem[];
+}
+
+/** Flattens `main` and finds its road and catalog folders as Run in esmini does (esmini/run.ts). */
+export async function prepareScenario(flattener: Flattener, main: SourceRef, options: SimulationOptions): Promise<PreparedScenario> {
+  const sourceFolder = sourceFolderOf(main);
+  // Flattened as if written beside the main file, so that its relative file paths name the files the sources name.
+  const flat = await flattener.flatten(main, { outputPath: path.join(sourceFolder, '.modular2simple-debug.xosc'), force: options.force });
+  if (flat.text === undefined) {
+    const errors = flat.problems.filter((problem) => problem.severity === 'error');
+    throw new SimulationLoadError(
+      `the scenario has ${errors.length} error${errors.length === 1 ? '' : 's'}${options.force ? ' and cannot be flattened' : ' (force: true runs it anyway)'}; nothing was run`,
+      errors,
+    );
+  }
+  const folders = roadFolders(options.roadPath, options.base ?? process.cwd());
+  const logic = logicFileOf((flat.source.original ?? flat.source.model)?.document ?? parseXml(flat.text));
+  const road = logic ? await resolveRoadFile(nodeFileSystem, logic.filepath, sourceFolder, folders) : undefined;
+  const text = road?.resolved ? withRoadFile(flat.text, road.resolved) : flat.text;
+  const document = flat.source.model?.document;
+  const evaluator = document ? new Evaluator(semanticModelOf(document)) : undefined;
+  const map = new StoryboardMap(flat.source, (element) => evaluator?.textOf(element, attribute(element, 'name')));
+  return {
+    main,
+    text,
+    searchPath: [...new Set([sourceFolder, ...catalogFolders(flat.source, sourceFolder), ...folders])],
+    flat: flat.source,
+    map,
+    flattenProblems: flat.problems,
+  };
+}
+
+// esmini 3.6 OSCCondition::Log: `<name>: true, delay: <d>, <GetAdditionalLogInfo()>`.
+const CONDITION_LOG = /^\[[^\]]*\] \[info\] (.+?): true, delay: [-\d.]+, (.*)$/;
+// The additional info of the conditions that compare one measure with a value (OSCCondition.cpp): `HWT: 0.41 > 0.40, edge ...`.
+const MEASURE = /^(?:([A-Za-z_ ]+): )?(-?[\d.]+|Inf) (>=|<=|==|!=|>|<) (-?[\d.]+)/;
+
+/** Reads what esmini's log says about a condition it found true. */
+export function conditionReason(detail: string): ConditionReason {
+  const match = MEASURE.exec(detail);
+  if (!match) return { detail };
+  return {
+    detail,
+    quantity: match[1] ?? 'time',
+    measured: match[2] === 'Inf' ? Infinity : Number(match[2]),
+    rule: match[3],
+    threshold: Number(match[4]),
+  };
+}
+
+/**
+ * One run of a prepared scenario in esmini's library. Only one can be open per process (the library's state is
+ * global): `close` before the next.
+ */
+export class Simulation {
+  readonly timeStep: number;
+  readonly duration: number;
+  private readonly library: EsminiLibrary;
+  private readonly folder: string;
+  private readonly logFile: string;
+  private logOffset = 0;
+  private pending: StoryboardEvent[] = [];
+  /** The last condition line of the log per condition name (its delay may fire it steps later). */
+  private readonly conditionLines = new Map<string, string>();
+  /** The state of each element by path. */
+  readonly states = new Map<
+    string,
+    { state: ElementState; since: number; mapped: MappedElement | undefined; type: string; name: string }
+  >();
+  private closed = false;
+  ended = false;
+
+  constructor(
+    readonly scenario: PreparedScenario,
+    readonly options: SimulationOptions = {},
+  ) {
+    this.timeStep = options.timeStep ?? RUN_DEFAULTS.timeStep;
+    this.duration = options.duration ?? RUN_DEFAULTS.duration;
+    if (!(this.timeStep > 0) || !(this.duration > 0))
+      throw new SimulationLoadError('timeStep and duration must be positive numbers of seconds');
+    this.library = loadEsminiLibrary(options.esminiLibrary, options.base);
+    this.folder = makeRunFolder(path.join(os.tmpdir(), 'modular2simple-esmini'));
+    this.logFile = path.join(this.folder, 'log.txt');
+  }
+
+  /** Loads the scenario into esmini; throws SimulationLoadError with esmini's messages on their source lines when it refuses it. */
+  start(): StoryboardEvent[] {
+    const library = this.library;
+    library.logToConsole(false);
+    library.setLogFilePath(this.logFile);
+    library.clearPaths();
+    for (const folder of this.scenario.searchPath) library.addPath(folder);
+    library.setSeed(this.options.seed ?? RUN_DEFAULTS.seed);
+    // esmini reads relative file names from its working folder first: the main file's folder, as for the process runs.
+    const previous = process.cwd();
+    let result: number;
+    try {
+      process.chdir(this.scenario.searchPath[0]);
+      result = library.initWithString(this.scenario.text);
+    } finally {
+      process.chdir(previous);
+    }
+    if (result !== 0) {
+      library.flushLog();
+      const log = this.readLog();
+      library.close();
+      this.closed = true;
+      this.removeFolder();
+      const problems = mapEsminiMessages(readEsminiLog(log).messages, this.scenario.flat, this.scenario.main);
+      const errors = problems.filter((problem) => problem.severity === 'error');
+      throw new SimulationLoadError(`esmini did not load the scenario: ${errors[0]?.message ?? 'see its log'}`, errors);
+    }
+    library.onStoryboardChange((name, type, state, fullPath) => this.transition(name, type, state, fullPath));
+    library.onCondition((name, timestamp) => this.conditionFired(name, timestamp));
+    // Stories start during SE_Init, before a callback can be registered: reported here, at time 0.
+    const started: StoryboardEvent[] = this.scenario.map.elements
+      .filter((element) => element.kind === 'Story')
+      .map((element) => ({ time: 0, element: element.path, name: element.name, type: 'Story', state: 'running', mapped: element }));
+    for (const event of started)
+      this.states.set(event.element, { state: 'running', since: 0, mapped: event.mapped, type: 'Story', name: event.name });
+    return started;
+  }
+
+  get time(): number {
+    return this.library.simulationTime();
+  }
+
+  /** One step of `timeStep` seconds; what esmini reported during it. */
+  step(): StoryboardEvent[] {
+    if (this.ended || this.closed) return [];
+    this.library.stepDT(this.timeStep);
+    const events = this.pending;
+    this.pending = [];
+    this.attributeConditions(events);
+    if (this.library.quitFlag() !== 0 || this.library.simulationTime() >= this.duration - 1e-9) this.ended = true;
+    return events;
+  }
+
+  private transition(name: string, type: number, state: number, fullPath: string): void {
+    const kind = ESMINI_ELEMENT_TYPES[type] ?? `type ${type}`;
+    const element = fullPath || name;
+    const mapped = this.scenario.map.atPath(element);
+    const stateName = STATES[state] ?? 'standby';
+    const time = this.library.simulationTime();
+    this.states.set(element, { state: stateName, since: time, mapped, type: kind, name });
+    this.pending.push({ time, element, name, type: kind, state: stateName, mapped });
+  }
+
+  private conditionFired(name: string, timestamp: number): void {
+    this.library.flushLog();
+    for (const line of this.readLog().split('\n')) {
+      const match = CONDITION_LOG.exec(line);
+      if (match) this.conditionLines.set(match[1], match[2]);
+    }
+    const detail = this.conditionLines.get(name);
+    const candidates = this.scenario.map.conditionsNamed(name);
+    this.pending.push({
+      time: timestamp,
+      element: candidates[0]?.path ?? name,
+      name,
+      type: 'Condition',
+      state: 'true',
+      mapped: candidates[0],
+      reason: detail === undefined ? undefined : conditionReason(detail),
+    });
+  }
+
+  /**
+   * esmini names a condition only by its name, which the copies of an imported group share: the one meant is the one
+   * whose owner started in the same step, when one did.
+   */
+  private attributeConditions(events: StoryboardEvent[]): void {
+    const started = new Set(events.filter((event) => event.state === 'running').map((event) => event.element));
+    for (const event of events) {
+      if (event.type !== 'Condition') continue;
+      const candidates = this.scenario.map.conditionsNamed(event.name);
+      if (candidates.length < 2) continue;
+      const owned = candidates.find((candidate) => candidate.parent && started.has(candidate.parent.path));
+      if (owned) {
+        event.mapped = owned;
+        event.element = owned.path;
+      }
+    }
+  }
+
+  private readLog(): string {
+    let fd: number;
+    try {
+      fd = fs.openSync(this.logFile, 'r');
+    } catch {
+      return '';
+    }
+    try {
+      const size = fs.fstatSync(fd).size;
+      if (size <= this.logOffset) return '';
+      const buffer = Buffer.alloc(size - this.logOffset);
+      fs.readSync(fd, buffer, 0, buffer.length, this.logOffset);
+      this.logOffset = size;
+      return buffer.toString('utf8');
+    } finally {
+      fs.closeSync(fd);
+    }
+  }
+
+  /** Every entity's state now. */
+  entities(): EntityState[] {
+    const entities: EntityState[] = [];
+    const count = this.library.objectCount();
+    for (let index = 0; index < count; index++) {
+      const id = this.library.objectId(index);
+      const state = this.library.objectState(id);
+      if (!state) continue;
+      entities.push({ ...state, name: this.library.objectName(id), acceleration: this.library.objectAcceleration(id) });
+    }
+    return entities;
+  }
+
+  /** TTC and gap from each entity to each other. */
+  pairs(entities: EntityState[] = this.entities()): EntityPair[] {
+    const pairs: EntityPair[] = [];
+    for (const from of entities)
+      for (const to of entities) {
+        if (from.id === to.id) continue;
+        pairs.push({
+          from: from.name,
+          to: to.name,
+          gap: this.library.distance(from.id, to.id, true)?.ds,
+          ttc: this.library.timeToCollision(from.id, to.id),
+        });
+      }
+    return pairs;
+  }
+
+  parameters(): { name: string; value: string | number | boolean | undefined }[] {
+    return this.library.parameterNames().map(({ name, type }) => ({ name, value: this.library.parameterValue(name, type) }));
+  }
+
+  variables(): { name: string; value: string | number | boolean | undefined }[] {
+    return this.library.variableNames().map(({ name, type }) => ({ name, value: this.library.variableValue(name, type) }));
+  }
+
+  /** The elements running now, outermost first. */
+  running(): { path: string; type: string; name: string; since: number; mapped: MappedElement | undefined }[] {
+    return [...this.states.entries()]
+      .filter(([, value]) => value.state === 'running')
+      .map(([key, value]) => ({ path: key, type: value.type, name: value.name, since: value.since, mapped: value.mapped }));
+  }
+
+  close(): void {
+    if (!this.closed) {
+      this.closed = true;
+      this.library.close();
+    }
+    this.removeFolder();
+  }
+
+  private removeFolder(): void {
+    fs.rmSync(this.folder, { recursive: true, force: true });
+  }
+}
