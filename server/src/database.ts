@@ -11,7 +11,8 @@ export const SERVER_MEMOS = {
   fileBytes: {
     where: '`CachingFileSystem` (`workspace.ts`)',
     key: 'a path',
-    holds: 'bytes of each file read (read again on demand once let go), file/folder kinds',
+    holds:
+      'bytes of each file an analysis read (read again on demand once let go; the scan of the index reads without keeping, `readOnce`), file/folder kinds',
     bound: { bytes: 64 * 1024 * 1024, text: '64 MiB of bytes in all, least recently used out' },
     invalidated: 'a watched-file event for the path (bytes below it, all kinds); a save; settings',
   },

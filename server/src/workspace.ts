@@ -71,6 +71,13 @@ export class CachingFileSystem implements FileSystemHost {
     return pending;
   }
 
+  /** The bytes held, or read without keeping them: for a reader that needs them once (the index's scan). */
+  readOnce(filePath: string, maxBytes?: number): Promise<Uint8Array | undefined> {
+    return this.bytes.get(filePath) !== undefined || this.pending.has(filePath)
+      ? this.readFile(filePath, maxBytes)
+      : this.inner.readFile(filePath, maxBytes);
+  }
+
   kind(filePath: string): Promise<'file' | 'directory' | undefined> {
     return this.kinds.kind(filePath);
   }
@@ -356,7 +363,8 @@ export class Workspace {
     const kind: IndexedFile['kind'] = filePath.toLowerCase().endsWith('.mosc') ? 'mosc' : 'xosc';
     const entry: IndexedFile = { path: filePath, kind, groups: [], modular: false, catalogReferences: [], scenarioNames: [] };
     if (kind === 'xosc') {
-      const bytes = await this.files.readFile(filePath);
+      // The scan needs the bytes once; the files an analysis reads are kept when it reads them.
+      const bytes = await this.files.readOnce(filePath);
       if (bytes) {
         const open = this.documents.get(refId(diskRef(filePath)));
         const text =

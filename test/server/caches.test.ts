@@ -1,4 +1,5 @@
 import * as assert from 'node:assert/strict';
+import * as fs from 'node:fs';
 import * as path from 'node:path';
 import * as v8 from 'node:v8';
 import * as vm from 'node:vm';
@@ -36,6 +37,21 @@ describe('core: the package cache is bounded by size', () => {
     await files.readFile(path.join(root, 'b.xosc'));
     assert.equal(files.size, 600);
     assert.equal(Buffer.from((await files.readFile(path.join(root, 'a.xosc'))) as Uint8Array).toString(), 'a'.repeat(600));
+  });
+
+  it('the index reads each file once and keeps no bytes of its own; those an analysis reads are kept', async () => {
+    const root = temporaryWorkspace({ 'a.xosc': scenario(simpleGroup('A')), 'b.xosc': scenario(simpleGroup('B')) });
+    const workspace = new Workspace();
+    workspace.configure([root], DEFAULT_SETTINGS);
+    assert.equal(await workspace.indexAll(), 2);
+    assert.deepEqual(
+      (await workspace.indexedFiles()).map((entry) => entry.groups.map((group) => group.name)),
+      [['A'], ['B']],
+    );
+    assert.equal(workspace.files.size, 0, 'the scan kept no bytes');
+    await workspace.analyze(diskRef(path.join(root, 'a.xosc')));
+    assert.equal(workspace.files.size, Buffer.byteLength(scenario(simpleGroup('A'))), 'the analysed file is kept');
+    fs.rmSync(root, { recursive: true, force: true });
   });
 
   it('the server keeps read sources up to an approximate size, least recently used out, those of open documents always', async () => {

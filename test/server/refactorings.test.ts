@@ -18,9 +18,13 @@ import { applyEdits } from '../support/textEdits';
 const esminiCorpus = path.join(sharedDir, 'corpus', 'openscenario', 'esmini');
 const CAN_CREATE = { documentChanges: true, resourceOperations: ['create' as const] };
 
-/** The files a WorkspaceEdit creates and the new texts of those it edits, applied to the disk (and to the open documents through didChange). */
+/**
+ * The files a WorkspaceEdit creates and the new texts of those it edits, applied to the disk (and to the open
+ * documents through didChange); the files written on disk are reported as an editor's file watcher does.
+ */
 async function applyWorkspaceEdit(client: TestClient, edit: WorkspaceEdit, open: Map<string, string>): Promise<string[]> {
   const created: string[] = [];
+  const changed: string[] = [];
   for (const change of edit.documentChanges ?? []) {
     if (CreateFile.is(change)) {
       const file = fileURLToPath(change.uri);
@@ -39,18 +43,28 @@ async function applyWorkspaceEdit(client: TestClient, edit: WorkspaceEdit, open:
     if (open.has(uri)) {
       open.set(uri, after);
       await client.change(uri, [{ text: after }]);
-    } else fs.writeFileSync(fileURLToPath(uri), after);
+    } else {
+      const file = fileURLToPath(uri);
+      fs.writeFileSync(file, after);
+      if (!created.includes(file)) changed.push(file);
+    }
   }
   for (const [uri, edits] of Object.entries(edit.changes ?? {})) {
     const after = applyEdits(open.get(uri) as string, edits);
     open.set(uri, after);
     await client.change(uri, [{ text: after }]);
   }
-  if (created.length > 0)
-    await client.connection.sendNotification('workspace/didChangeWatchedFiles', {
-      changes: created.map((file) => ({ uri: fileUri(file), type: FileChangeType.Created })),
-    });
+  await fileEvents(client, created, FileChangeType.Created);
+  await fileEvents(client, changed, FileChangeType.Changed);
   return created;
+}
+
+/** What an editor's file watcher reports of files written on disk (the server keeps the bytes it read until told). */
+async function fileEvents(client: TestClient, files: string[], type: FileChangeType): Promise<void> {
+  if (files.length > 0)
+    await client.connection.sendNotification('workspace/didChangeWatchedFiles', {
+      changes: files.map((file) => ({ uri: fileUri(file), type })),
+    });
 }
 
 async function flattened(client: TestClient, uri: string, force = false): Promise<string> {
@@ -362,6 +376,7 @@ describe('Extract to catalog over JSON-RPC: esmini runs the scenario identically
         const original = fs.readFileSync(file, 'utf8');
         assert.ok(original.includes(edit[0]));
         fs.writeFileSync(file, original.replace(edit[0], edit[1]));
+        await fileEvents(client, [file], FileChangeType.Changed);
       }
       const text = fs.readFileSync(file, 'utf8');
       const before = await runEsmini(file, 20);
@@ -376,7 +391,9 @@ describe('Extract to catalog over JSON-RPC: esmini runs the scenario identically
       const after = open.get(uri) as string;
       for (const pattern of expect) assert.match(after, pattern);
       assert.ok(!after.includes(element), `${name}: the element moved out`);
+      // Saved, then closed: the watcher reports the save.
       fs.writeFileSync(file, after);
+      await fileEvents(client, [file], FileChangeType.Changed);
       await client.close(uri);
       // The scenario checks clean (the catalog entry resolves) and esmini runs it exactly as before.
       const check = await client.send(FlattenToTextRequest, { uri });
