@@ -51,6 +51,18 @@ const VEHICLE_CATALOG = `<?xml version="1.0" encoding="UTF-8"?>
 </OpenSCENARIO>
 `;
 
+/** A ParameterValueDistribution of scenario.xosc with `body` as its Deterministic's distributions. */
+const distributionOf = (body: string): string => `<?xml version="1.0" encoding="UTF-8"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="d" author="t"/>
+  <ParameterValueDistribution>
+    <ScenarioFile filepath="scenario.xosc"/>
+    <Deterministic>${body}
+    </Deterministic>
+  </ParameterValueDistribution>
+</OpenSCENARIO>
+`;
+
 describe('real file shapes: no false alarms (issue 27)', function () {
   this.timeout(60_000);
   let folder: string;
@@ -100,27 +112,21 @@ describe('real file shapes: no false alarms (issue 27)', function () {
 
   describe("a distribution's parameterName written with '$'", () => {
     // scenariogeneration writes parameterName="$egospeed" for the root parameter egospeed; esmini reads it so.
-    const distribution = `<?xml version="1.0" encoding="UTF-8"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="d" author="t"/>
-  <ParameterValueDistribution>
-    <ScenarioFile filepath="scenario.xosc"/>
-    <Deterministic>
+    const distribution = distributionOf(`
       <DeterministicSingleParameterDistribution parameterName="$egospeed">
         <DistributionSet><Element value="10"/><Element value="20"/></DistributionSet>
-      </DeterministicSingleParameterDistribution>
-    </Deterministic>
-  </ParameterValueDistribution>
-</OpenSCENARIO>
-`;
+      </DeterministicSingleParameterDistribution>`);
     const files = () => ({
       'scenario.xosc': scenarioWith({ parameters: '<ParameterDeclaration name="egospeed" parameterType="double" value="5"/>' }),
       'distribution.xosc': distribution,
     });
 
-    it('check reports no undeclared parameter and flatten writes the file', () => {
+    it("check reports no undeclared parameter (vary's warning only) and flatten writes the file", () => {
       folder = temporaryWorkspace(files());
-      assert.deepEqual(check(folder, 'distribution.xosc'), []);
+      assert.deepEqual(
+        check(folder, 'distribution.xosc').map(({ code, severity, line }) => ({ code, severity, line })),
+        [{ code: 'distribution', severity: 'warning', line: 7 }],
+      );
       const flattened = runCli(['flatten', 'distribution.xosc', '-o', 'out.xosc'], { cwd: folder });
       assert.equal(flattened.status, 0, flattened.stderr);
       assert.ok(fs.existsSync(path.join(folder, 'out.xosc')));
@@ -135,6 +141,32 @@ describe('real file shapes: no false alarms (issue 27)', function () {
       const second = runCli(['vary', 'distribution.xosc', '--index', '1'], { cwd: folder });
       assert.match(second.stdout, /<ParameterDeclaration name="egospeed" parameterType="double" value="20"\/>/);
     });
+  });
+
+  it('check validates a distribution file as vary does: a parameterName the ScenarioFile no longer declares is an error at its line', () => {
+    folder = temporaryWorkspace({
+      'scenario.xosc': scenarioWith({ parameters: '<ParameterDeclaration name="EgoSpeed" parameterType="double" value="5"/>' }),
+      'distribution.xosc': distributionOf(`
+      <DeterministicSingleParameterDistribution parameterName="EgoSpeed">
+        <DistributionSet><Element value="10"/><Element value="20"/></DistributionSet>
+      </DeterministicSingleParameterDistribution>
+      <DeterministicSingleParameterDistribution parameterName="Ego_InitSpeed">
+        <DistributionSet><Element value="10"/></DistributionSet>
+      </DeterministicSingleParameterDistribution>`),
+    });
+    assert.deepEqual(check(folder, 'distribution.xosc'), [
+      {
+        code: 'unknown-distribution-parameter',
+        severity: 'error',
+        line: 10,
+        message: "parameter 'Ego_InitSpeed' is not declared in the root ParameterDeclarations of scenario.xosc; did you mean 'EgoSpeed'?",
+      },
+    ]);
+    const text = runCli(['check', 'distribution.xosc'], { cwd: folder, schema: true });
+    assert.equal(text.status, 1);
+    assert.match(text.stderr, /^distribution\.xosc:10:\d+: error: parameter 'Ego_InitSpeed' is not declared/m);
+    const vary = runCli(['vary', 'distribution.xosc', '--count'], { cwd: folder });
+    assert.equal(vary.status, 1, 'vary refuses it alike');
   });
 
   it('simulator-value on unsignedShort and unsignedInt parameters says what differs: esmini does not support the type', () => {

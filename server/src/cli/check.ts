@@ -7,6 +7,7 @@ import { displayRef } from '../core/sources';
 import { SCENARIO_FILE, walkFiles } from '../core/walk';
 import { CliCommand, CliOutput, ExitCode, InputError, report, UsageError } from './common';
 import { mainOf } from './inputs';
+import { distributionFileProblems } from './scenarioText';
 import { makeStore, parseOptions, READING_OPTIONS_HELP, SIMULATOR_OPTION_HELP } from './options';
 
 function problemJson(problem: Problem): Record<string, unknown> {
@@ -97,6 +98,8 @@ async function checkCommand(args: string[], io: CliOutput): Promise<number> {
     const result = await flattener.flatten(mainOf(file));
     // A copy with strings of its own: a message cut from a file's text would keep the whole text alive until the report.
     for (const problem of result.problems) found.push(structuredClone(problem));
+    // A distribution file is checked as vary reads it: a parameterName its ScenarioFile no longer declares is an error.
+    found.push(...(await distributionFileProblems(file, options.scenarioPath)));
   }
   const problems = sortedByPlace(uniqueProblems(found));
   const errors = problems.filter((problem) => problem.severity === 'error').length;

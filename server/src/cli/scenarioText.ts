@@ -2,8 +2,11 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { Flattener } from '../core/flatten';
 import type { PackagedFile } from '../core/flatten/types';
-import { formatProblem } from '../core/problems';
-import type { ScenarioTextLoader } from '../core/variations';
+import { formatProblem, Problem } from '../core/problems';
+import { diskRef } from '../core/sources';
+import { loadVariations, ScenarioTextLoader } from '../core/variations';
+import { readScenarioParameters } from '../core/variations/concrete';
+import { distributionProblems, isDistributionText } from '../core/variations/problems';
 import { mainOf, storeForInputs } from './inputs';
 
 /** Reads a file as UTF-8 with its byte order mark kept, so that a concrete scenario is byte for byte the original but for its values. */
@@ -62,4 +65,30 @@ export function flatteningScenarioLoader(scenarioPath: string[] = [], packagedFi
 /** The folder the ScenarioFile's relative paths (roads, catalogs) start from: its own folder, a package's, or the unpacked folder itself. */
 export function scenarioFolderOf(file: string): string {
   return fs.existsSync(file) && fs.statSync(file).isDirectory() ? file : path.dirname(file);
+}
+
+/**
+ * A distribution file's problems as `vary` finds them (its ScenarioFile read by the same loader: a parameterName the
+ * scenario does not declare, a ScenarioFile that does not resolve, values that do not fit), located in the file as
+ * the editor shows them; none for a file that is no distribution.
+ */
+export async function distributionFileProblems(file: string, scenarioPath: string[]): Promise<Problem[]> {
+  const absolute = path.resolve(file);
+  let text: string;
+  try {
+    text = await readUtf8Exactly(absolute);
+  } catch {
+    return []; // The flattener reports a file it cannot read.
+  }
+  if (!isDistributionText(text)) return [];
+  const load = flatteningScenarioLoader(scenarioPath);
+  let scenarioText: string | undefined;
+  let scenarioFile = '';
+  const loaded = await loadVariations(text, absolute, async (scenario) => {
+    scenarioFile = scenario;
+    scenarioText = await load(scenario);
+    return scenarioText;
+  });
+  const parameters = scenarioText === undefined ? [] : (readScenarioParameters(scenarioText, scenarioFile).scenario?.declarations ?? []);
+  return distributionProblems({ ref: diskRef(absolute), file: absolute, text, loaded, parameters });
 }

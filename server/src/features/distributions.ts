@@ -1,13 +1,11 @@
 import * as path from 'node:path';
 import { CodeLens, CompletionItem, CompletionItemKind, Hover, MarkupKind } from 'vscode-languageserver/node';
 import { valueContextAt } from '../core/cursor';
-import { Problem } from '../core/problems';
 import { childRef, diskRef, refId, SourceRef } from '../core/sources';
-import { closestMatch, LineIndex, Range } from '../core/text';
-import { distributionWording } from '../core/diagnostics/distribution';
-import { unknownDistributionParameterWording } from '../core/diagnostics/unknownDistributionParameter';
-import { loadVariations, LoadResult, SamplingError, Variations, VariationProblem } from '../core/variations';
-import { DeclaredParameter, readScenarioParameters } from '../core/variations/concrete';
+import { loadVariations, SamplingError, Variations } from '../core/variations';
+import { DistributionRead, distributionProblems, isDistributionText } from '../core/variations/problems';
+import { LineIndex } from '../core/text';
+import { readScenarioParameters } from '../core/variations/concrete';
 import { expandDeterministic } from '../core/variations/deterministic';
 import { ParameterValue } from '../core/variations/distribution';
 import { parseXml, XmlElement } from '../core/xml';
@@ -24,35 +22,24 @@ export const MAX_COUNTED_COMBINATIONS = 200_000n;
 /** Values a hover lists before it says how many there are. */
 const HOVER_VALUES = 5;
 
-const DISTRIBUTION = /<ParameterValueDistribution\b/;
 const REFERENCE = /<ScenarioReference\b/;
 
 /** The number of concrete scenarios, as `vary --count` gives it. */
 export type DistributionCount = { concrete: bigint; discarded: bigint; total: bigint } | { total: bigint; uncounted: string };
 
 /** A distribution file read with its scenario, once per workspace generation. */
-export interface DistributionAnalysis {
-  ref: SourceRef;
-  file: string;
-  text: string;
-  loaded: LoadResult;
+export interface DistributionAnalysis extends DistributionRead {
   /** The ScenarioFile's absolute path, where the file names one. */
   scenarioPath: string | undefined;
   /** The file that declares the scenario's root parameters as written (a modular main inside a `.mosc`). */
   scenarioRef: SourceRef | undefined;
-  /** The root parameters of the scenario as esmini sees it (flattened for a modular main). */
-  parameters: DeclaredParameter[];
 }
 
 const analyses = serverMemo<Workspace, Map<string, { version: number; analysis: Promise<DistributionAnalysis | undefined> }>>(
   'distributionAnalyses',
 );
 
-/** Whether a text is a ParameterValueDistribution file (a quick scan, before any parse). */
-export function isDistributionText(text: string): boolean {
-  // The plain search first: a large file that is no distribution is not run through the regular expression.
-  return text.includes('<ParameterValueDistribution') && DISTRIBUTION.test(text);
-}
+export { distributionProblems, isDistributionText };
 
 /** The file's distribution read with its scenario; undefined when it is not a distribution file on disk. */
 export function distributionAnalysis(workspace: Workspace, ref: SourceRef): Promise<DistributionAnalysis | undefined> {
@@ -116,73 +103,6 @@ async function scenarioTextOf(workspace: Workspace, absolute: string): Promise<{
   const errors = result.problems.filter((problem) => problem.severity === 'error');
   const first = errors[0];
   throw new Error(`cannot be flattened (${errors.length} error${errors.length === 1 ? '' : 's'})` + (first ? `: ${first.message}` : ''));
-}
-
-/** The extent of what a problem's offset points at: an attribute value, or an element's name. */
-function extentAt(text: string, offset: number): { start: number; end: number } {
-  const quote = text[offset - 1];
-  if (quote === '"' || quote === "'") {
-    const end = text.indexOf(quote, offset);
-    return { start: offset, end: end < 0 ? offset : end };
-  }
-  if (text[offset] === '<') {
-    const name = /^<[\w:.-]*/.exec(text.slice(offset, offset + 200));
-    return { start: offset + 1, end: offset + (name ? name[0].length : 1) };
-  }
-  return { start: offset, end: Math.min(text.length, offset + 1) };
-}
-
-/** The engine's problems as the file's problems: those in the scenario are shown at the ScenarioFile. */
-export function distributionProblems(analysis: DistributionAnalysis): Problem[] {
-  const lines = new LineIndex(analysis.text);
-  const scenarioFileOffset = analysis.loaded.variations?.distribution.scenarioFile.offset ?? scenarioFileAttributeOffset(analysis.text);
-  const names = analysis.parameters.map((declaration) => declaration.name);
-  return [...analysis.loaded.problems, ...rangeWarnings(analysis)].map((problem): Problem => {
-    const own = problem.file === analysis.file;
-    const extent = extentAt(analysis.text, own ? problem.offset : scenarioFileOffset);
-    const range: Range = lines.range(extent.start, extent.end);
-    const severity = problem.severity;
-    const undeclared = own ? problem.undeclaredParameter : undefined;
-    if (undeclared !== undefined) {
-      const suggestion = closestMatch(undeclared, names);
-      return {
-        source: analysis.ref,
-        range,
-        ...unknownDistributionParameterWording(severity, problem.message, suggestion),
-        ...(suggestion ? { data: { suggestion } } : {}),
-      };
-    }
-    const inScenario = own ? undefined : { file: path.basename(problem.file), line: scenarioLine(analysis, problem) };
-    return { source: analysis.ref, range, ...distributionWording(severity, problem.message, inScenario) };
-  });
-}
-
-function scenarioLine(analysis: DistributionAnalysis, problem: VariationProblem): number {
-  const lines = analysis.loaded.lines.get(problem.file);
-  return lines ? lines.positionAt(problem.offset).line + 1 : 1;
-}
-
-function scenarioFileAttributeOffset(text: string): number {
-  const found = /<ScenarioFile\b[^>]*?\bfilepath\s*=\s*["']/.exec(text);
-  return found ? found.index + found[0].length : Math.max(0, text.search(DISTRIBUTION));
-}
-
-/** A range whose step is wider than the range itself gives its lower limit alone: likely not what was meant. */
-function rangeWarnings(analysis: DistributionAnalysis): VariationProblem[] {
-  const warnings: VariationProblem[] = [];
-  for (const factor of analysis.loaded.variations?.distribution.deterministic ?? []) {
-    if (factor.kind !== 'range') continue;
-    const { lower, upper, offset } = factor.range;
-    if (upper > lower && factor.step > upper - lower) {
-      warnings.push({
-        file: analysis.file,
-        offset,
-        severity: 'warning',
-        message: `stepWidth ${factor.step} is wider than the range ${lower}..${upper}: only ${lower} is used`,
-      });
-    }
-  }
-  return warnings;
 }
 
 const counts = serverMemo<Variations, DistributionCount>('distributionCounts');
