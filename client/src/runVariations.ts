@@ -60,8 +60,11 @@ export class VariationsRunner implements vscode.Disposable {
       args.push('--esmini', path.resolve(vscode.workspace.getWorkspaceFolder(source)?.uri.fsPath ?? path.dirname(file), esminiPath));
     const roadPath = settings.get<string[]>('roadPath') ?? [];
     if (roadPath.length > 0) args.push('--road-path', roadPath.join(path.delimiter));
-    const duration = settings.get<number>('duration');
+    // No duration set: each run goes to its scenario's own end (the CLI's default), not to an arbitrary limit.
+    const duration = settings.get<number | null>('duration');
     if (typeof duration === 'number' && duration > 0) args.push('--duration', String(duration));
+    // Kept by default, so that a row of the Variations view opens its run.
+    if (vscode.workspace.getConfiguration('modular2simple.variations', source).get<boolean>('keepRuns') !== false) args.push('--keep-runs');
 
     this.output.appendLine(`modular2simple ${args.join(' ')}`);
     const name = path.basename(file);

@@ -5,11 +5,12 @@
  */
 
 /** What happened in a run, as the view colours and filters it: a collision wins over the status; `discarded` never ran (ValueConstraintGroups). */
-export type Outcome = 'ok' | 'error' | 'timeout' | 'collision' | 'discarded';
-export const OUTCOMES: readonly Outcome[] = ['ok', 'collision', 'timeout', 'error', 'discarded'];
+export type Outcome = 'ok' | 'limit' | 'error' | 'timeout' | 'collision' | 'discarded';
+export const OUTCOMES: readonly Outcome[] = ['ok', 'limit', 'collision', 'timeout', 'error', 'discarded'];
 /** Colours distinguishable on dark and light themes and by most colour-blind readers (Okabe-Ito, and a neutral grey for what did not run). */
 export const OUTCOME_COLORS: Record<Outcome, string> = {
   ok: '#009e73',
+  limit: '#56b4e9',
   collision: '#d55e00',
   timeout: '#e69f00',
   error: '#cc79a7',
@@ -73,7 +74,7 @@ export function csvRecords(text: string): string[][] {
 
 export function outcomeOf(status: string, collision: string): Outcome {
   if (collision === 'true') return 'collision';
-  return status === 'error' || status === 'timeout' || status === 'discarded' ? status : 'ok';
+  return status === 'error' || status === 'timeout' || status === 'limit' || status === 'discarded' ? status : 'ok';
 }
 
 /** results.csv as a table; throws ResultsCsvError when it is not one (no header, or not the batch's columns). */
@@ -140,7 +141,7 @@ export function filterRows(rows: readonly ResultRow[], shown: ReadonlySet<Outcom
 
 /** How many rows have each outcome. */
 export function outcomeCounts(rows: readonly { outcome: Outcome }[]): Record<Outcome, number> {
-  const counts: Record<Outcome, number> = { ok: 0, collision: 0, timeout: 0, error: 0, discarded: 0 };
+  const counts: Record<Outcome, number> = { ok: 0, limit: 0, collision: 0, timeout: 0, error: 0, discarded: 0 };
   for (const row of rows) counts[row.outcome]++;
   return counts;
 }
@@ -317,7 +318,7 @@ export function scatterSvg(model: ScatterModel, style: ScatterStyle): string {
     });
   }
   // Collisions and errors are drawn last, so that what failed is on top.
-  const drawOrder: Outcome[] = ['discarded', 'ok', 'timeout', 'error', 'collision'];
+  const drawOrder: Outcome[] = ['discarded', 'ok', 'limit', 'timeout', 'error', 'collision'];
   for (const outcome of drawOrder) {
     for (const point of model.points) {
       if (point.outcome !== outcome) continue;

@@ -87,7 +87,7 @@ describe('cli: batch', function () {
     const root = folder();
     const run = runCli(BATCH_ARGS, { cwd: root });
     assert.equal(run.status, 0, run.stderr);
-    assert.match(run.stderr, /^36 runs \(36 ok, 0 error, 0 timeout; \d+ with a collision\); results in /m);
+    assert.match(run.stderr, /^36 runs \(36 ok, 0 limit, 0 timeout, 0 error; \d+ with a collision\); results in /m);
     const rows = csvRows(root);
     assertEveryIndexOnce(rows, 36);
     const byIndex = new Map(rows.map((row) => [Number(row.split(',')[0]), row.split(',')]));
@@ -183,7 +183,7 @@ describe('cli: batch', function () {
     assert.equal(run.status, 0, run.stderr);
     assert.match(
       run.stderr,
-      /^27 runs \(27 ok, 0 error, 0 timeout; \d+ with a collision\), 9 discarded by the scenario's ValueConstraintGroups; results in /m,
+      /^27 runs \(27 ok, 0 limit, 0 timeout, 0 error; \d+ with a collision\), 9 discarded by the scenario's ValueConstraintGroups; results in /m,
     );
     const rows = csvRows(root);
     assertEveryIndexOnce(rows, 36);
@@ -201,6 +201,29 @@ describe('cli: batch', function () {
     assert.equal(discarded.length, 9);
     assert.match(discarded[0].message, /^discarded: parameter 'LeadSpeed' = '10.000000' breaks its ValueConstraintGroups$/);
     assert.match(fs.readFileSync(path.join(root, 'results', 'results.html'), 'utf8'), /discarded \(9\)/);
+  });
+
+  it("runs each scenario to its own end, past the editor's old 30 s; --duration before that end warns first and gives status limit", function () {
+    requireEsmini(this);
+    // StopTime 40: the StopTrigger ends every run at 40 s, as ALKS scenarios end at 40-370 s.
+    const root = folder(40);
+    const own = runCli([...BATCH_ARGS, '--sample', '2'], { cwd: root });
+    assert.equal(own.status, 0, own.stderr);
+    assert.doesNotMatch(own.stderr, /warning/);
+    for (const cells of csvRows(root).map((row) => row.split(','))) {
+      assert.equal(cells[1], 'ok', cells.join(','));
+      assert.equal(cells[5], '40.050', 'the scenario ran to its StopTrigger (the first step past 40 s)');
+    }
+    const cut = folder(40);
+    const limited = runCli([...BATCH_ARGS, '--sample', '2', '--duration', '5'], { cwd: cut });
+    assert.equal(limited.status, 0, limited.stderr);
+    const warning = limited.stderr.indexOf(
+      "d.xosc: warning: the scenario's StopTrigger ends all 2 runs after the --duration limit of 5 s (at up to 40 s): they will stop at 5 s with status limit",
+    );
+    assert.ok(warning >= 0, limited.stderr);
+    assert.ok(warning < limited.stderr.indexOf('[1/2]'), 'the warning comes before the runs');
+    assert.match(limited.stderr, /^2 runs \(0 ok, 2 limit, 0 timeout, 0 error; /m);
+    for (const cells of csvRows(cut).map((row) => row.split(','))) assert.deepEqual([cells[1], cells[5]], ['limit', '5.000']);
   });
 
   it('refuses bad input before running anything, leaving no results folder', () => {

@@ -92,7 +92,7 @@ describe('cli: batch through a Redis queue', function () {
     assert.equal((await victim.ended).signal, 'SIGKILL');
     const ended = await batch.ended;
     assert.equal(ended.code, 0, ended.output);
-    assert.match(ended.output, /^36 runs \(36 ok, 0 error, 0 timeout; \d+ with a collision\); results in /m);
+    assert.match(ended.output, /^36 runs \(36 ok, 0 limit, 0 timeout, 0 error; \d+ with a collision\); results in /m);
     const queued = everyRowOnce(path.join(root, 'queued'));
     const json = JSON.parse(fs.readFileSync(path.join(root, 'queued', 'results.json'), 'utf8')) as { rows: { index: string }[] };
     assert.deepEqual(

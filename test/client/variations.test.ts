@@ -38,7 +38,12 @@ describe('variations: the results table, its sorting, filtering and scatter', ()
       ['ok', 'collision', 'timeout', 'error', 'ok'],
     );
     assert.equal(table.rows[3].cells.Weather, 'snow, heavy');
-    assert.deepEqual(outcomeCounts(table.rows), { ok: 2, collision: 1, timeout: 1, error: 1, discarded: 0 });
+    assert.deepEqual(outcomeCounts(table.rows), { ok: 2, limit: 0, collision: 1, timeout: 1, error: 1, discarded: 0 });
+    assert.equal(
+      parseResultsCsv(`${HEADER}\n4,limit,false,,,30.000\n`).rows[0].outcome,
+      'limit',
+      'a run stopped at the limit set is no ok',
+    );
     assert.equal(parseResultsCsv(CSV + '11,ok,fal').rows.length, 5, 'a row still being written is not read');
     assert.deepEqual(csvRecords('a,"b ""c""",d\r\n'), [['a', 'b "c"', 'd']]);
     assert.throws(() => parseResultsCsv('x,y\n1,2\n'), ResultsCsvError);
@@ -134,7 +139,7 @@ describe('variations: the results table, its sorting, filtering and scatter', ()
     assert.equal(XMLValidator.validate(html.replace(/^<!DOCTYPE html>\n/, '')), true);
     assert.match(html, /<title>Variations of d\.xosc &lt;1&gt;<\/title>/);
     assert.equal((html.match(/<tr class=/g) ?? []).length, 5);
-    assert.match(html, /5 runs: 2 ok, 1 collision, 1 timeout, 1 error/);
+    assert.match(html, /5 runs: 2 ok, 0 limit, 1 collision, 1 timeout, 1 error, 0 discarded/);
     assert.doesNotMatch(html, /<script|src=/);
   });
 });

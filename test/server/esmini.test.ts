@@ -194,6 +194,32 @@ describe('esmini: time limit and log (no simulator needed)', () => {
     fs.rmSync(root, { recursive: true, force: true });
   });
 
+  it('stops a run that makes no progress as hung (no fixed wall-clock limit: a long run that progresses goes on)', async () => {
+    const folder = temporaryFolder('m2s-stall-');
+    // A stand-in that hangs before its first step, as esmini stuck loading would.
+    const program = path.join(folder, 'stuck');
+    fs.writeFileSync(program, '#!/bin/sh\nexec sleep 60\n', { mode: 0o755 });
+    const started = Date.now();
+    const result = await runEsminiProcess({
+      program,
+      scenarioFile: path.join(folder, 'scenario.xosc'),
+      workDir: folder,
+      csvFile: path.join(folder, 'run.csv'),
+      searchPath: [],
+      timeStep: 0.05,
+      seed: 1,
+      duration: 30,
+      stallMs: 1500,
+      maxCsvBytes: 1e6,
+      maxOutputChars: 1e4,
+    });
+    fs.rmSync(folder, { recursive: true, force: true });
+    assert.equal(result.end, 'killed', result.reason);
+    assert.equal(result.stoppedBy, 'stall');
+    assert.match(result.reason ?? '', /made no progress for 1\.5 s of wall-clock time \(before its first step\)/);
+    assert.ok(Date.now() - started < 55_000, 'stopped long before the stand-in would have ended');
+  });
+
   it('tells how to get esmini when it is missing, and runs nothing', async () => {
     const location = locateEsmini(undefined, process.cwd(), '', []);
     assert.equal(location.found, false);
@@ -301,7 +327,7 @@ describe('esmini: runs (the simulator built by the test setup)', function () {
       timeStep: 0.05,
       seed: 1,
       duration: 2,
-      wallTimeoutMs: 60_000,
+      stallMs: 60_000,
       maxCsvBytes: 200e6,
       maxOutputChars: 1e6,
     });

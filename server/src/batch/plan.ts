@@ -4,6 +4,7 @@ import type { PackagedFile } from '../core/flatten/types';
 import type { Variations } from '../core/variations';
 import { valuesAfter } from '../core/variations/concrete';
 import { attribute, descendants, parseXml } from '../core/xml';
+import { scenarioEnd } from '../esmini/timeLimit';
 import type { ConcreteRun } from './runConcrete';
 import type { BatchRow } from './results';
 
@@ -125,4 +126,41 @@ function discardedRow(index: string, parameters: Record<string, string>, broken:
     message: `discarded: parameter '${broken.parameter}' = '${broken.value}' breaks its ValueConstraintGroups`,
     messages: [],
   };
+}
+
+/** Runs whose end `limitWarning` reads before a batch starts: enough to speak for a batch, bounded for a huge one. */
+const ENDS_READ = 1000;
+
+/**
+ * What to say before a batch whose limit (`--duration`) comes before the scenario's own end in some runs: they will
+ * stop at the limit with status `limit`. Undefined when no run read ends past it (or no limit is set).
+ */
+export function limitWarning(plan: Pick<BatchPlanView, 'variations' | 'chosen'>, duration: number | undefined): string | undefined {
+  if (duration === undefined) return undefined;
+  let read = 0;
+  let past = 0;
+  let latest = 0;
+  let only = true;
+  for (const index of plan.chosen.slice(0, ENDS_READ)) {
+    const concrete = plan.variations.concreteAt(index);
+    if ('broken' in concrete) continue;
+    read++;
+    const end = scenarioEnd(concrete.text);
+    if (!end || end.seconds <= duration) continue;
+    past++;
+    latest = Math.max(latest, end.seconds);
+    only &&= end.only;
+  }
+  if (past === 0) return undefined;
+  const which =
+    past === read
+      ? read === 1
+        ? 'the run'
+        : `all ${read} runs`
+      : `${past} of ${read === plan.chosen.length ? 'the' : 'the first'} ${read} runs`;
+  return (
+    `the scenario's StopTrigger ends ${which} after the --duration limit of ${duration} s (at up to ${Number(latest.toFixed(3))} s)` +
+    `${only ? '' : ', unless its other stop conditions end them first'}: they will stop at ${duration} s with status limit; ` +
+    `leave --duration out to run each to its own end`
+  );
 }

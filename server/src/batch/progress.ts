@@ -1,4 +1,4 @@
-import type { BatchRow } from './results';
+import { BatchRow, RUN_STATUSES, RunStatus } from './results';
 
 /** Where a batch or a worker reports its progress and summaries: the CLI's standard error. */
 export interface BatchOutput {
@@ -47,5 +47,31 @@ export class Progress {
   /** Ends the bar's line on a terminal. */
   end(): void {
     if (this.tty && this.done > 0) this.tty.write('\n');
+  }
+}
+
+/** The statuses of runs that happened (a discarded combination did not run). */
+const RAN_STATUSES = RUN_STATUSES.filter((status) => status !== 'discarded');
+
+/** The runs of a batch counted by status, and the one-line summary `batch` prints at its end. */
+export class Tally {
+  private readonly counts: Record<RunStatus, number> = { ok: 0, limit: 0, timeout: 0, error: 0, discarded: 0 };
+  private collisions = 0;
+
+  add(row: BatchRow): void {
+    this.counts[row.status]++;
+    if (row.collision) this.collisions++;
+  }
+
+  /** `12 runs (3 ok, 9 limit, 0 timeout, 0 error; 1 with a collision)`, with what was there before and what was discarded. */
+  summary(already: number, csvFile: string): string {
+    const ran = RAN_STATUSES.reduce((sum, status) => sum + this.counts[status], 0);
+    const discarded = this.counts.discarded;
+    const counts = RAN_STATUSES.map((status) => `${this.counts[status]} ${status}`).join(', ');
+    return (
+      `${ran} run${ran === 1 ? '' : 's'} (${counts}; ${this.collisions} with a collision)` +
+      (already > 0 ? `, ${already} already in ${csvFile}` : '') +
+      (discarded > 0 ? `, ${discarded} discarded by the scenario's ValueConstraintGroups` : '')
+    );
   }
 }

@@ -4,7 +4,7 @@ import * as path from 'node:path';
 import { Queue } from 'bullmq';
 import { Redis } from 'ioredis';
 import { BatchPlanView, concreteRun, filesNeeded } from './plan';
-import { BatchOutput, Progress } from './progress';
+import { BatchOutput, Progress, Tally } from './progress';
 import { BatchIdentity, BatchRow, ResultsFolder } from './results';
 import type { RunSettings } from './runConcrete';
 
@@ -38,7 +38,8 @@ export interface RunJob {
   files: JobFile[];
   /** The search folders, relative to the scenario's folder. */
   searchPath: string[];
-  duration: number;
+  /** The limit the user set; null: the scenario's own end. */
+  duration: number | null;
   seed: number;
 }
 
@@ -147,7 +148,7 @@ export async function queueBatch(
     // Jobs of this batch that failed on every try in an earlier attempt at it are tried again.
     for (const job of await queue.getFailed(0, -1)) if ((job.data as RunJob).batchId === batchId && job.id) await queue.remove(job.id);
     const pending = new Set<string>();
-    let discarded = 0;
+    const tally = new Tally();
     const jobs: {
       name: string;
       data: RunJob;
@@ -157,7 +158,7 @@ export async function queueBatch(
       const run = concreteRun(plan.variations, index, plan.parameterNames, []);
       if ('discarded' in run) {
         await results.append(run.discarded);
-        discarded++;
+        tally.add(run.discarded);
         continue;
       }
       const jobId = `${batchId}-${run.index}`;
@@ -171,7 +172,7 @@ export async function queueBatch(
           parameters: run.parameters,
           files,
           searchPath,
-          duration: settings.duration,
+          duration: settings.duration ?? null,
           seed: settings.seed,
         },
         opts: { jobId, attempts: ATTEMPTS, removeOnComplete: true, removeOnFail: false },
@@ -190,7 +191,6 @@ export async function queueBatch(
       quiet ? undefined : process.stderr.isTTY ? process.stderr : undefined,
       quiet ? () => undefined : io.err,
     );
-    const tally = { ok: 0, error: 0, timeout: 0, discarded: 0, collisions: 0 };
     let cursor = 0;
     let lastFailedCheck = 0;
     const failed = new Map<string, string>();
@@ -203,8 +203,7 @@ export async function queueBatch(
         pending.delete(row.index);
         failed.delete(row.index);
         await results.append(row);
-        tally[row.status]++;
-        if (row.collision) tally.collisions++;
+        tally.add(row);
         progress.tick(row);
       }
       if (rows.length > 0) continue;
@@ -218,11 +217,7 @@ export async function queueBatch(
       await new Promise((resolve) => setTimeout(resolve, 50));
     }
     progress.end();
-    const ran = tally.ok + tally.error + tally.timeout;
-    const summary =
-      `${ran} run${ran === 1 ? '' : 's'} (${tally.ok} ok, ${tally.error} error, ${tally.timeout} timeout; ${tally.collisions} with a collision)` +
-      (already > 0 ? `, ${already} already in ${results.csvFile}` : '') +
-      (discarded > 0 ? `, ${discarded} discarded by the scenario's ValueConstraintGroups` : '');
+    const summary = tally.summary(already, results.csvFile);
     if (stop.signal.aborted) {
       io.err(`interrupted after ${summary}; the rest stay on the queue: run the same command again to collect them`);
       return 130;

@@ -5,11 +5,13 @@ import { parseResultsCsv, resultsReportHtml } from '../../../common/src/variatio
 import type { Collision } from './metrics';
 
 /**
- * `ok`: esmini ran it and reported no error; `error`: it reported one or could not run it; `timeout`: stopped by
- * --duration or the wall-clock limit; `discarded`: not run, its values break the scenario's ValueConstraintGroups
- * (the row keeps its index, esmini's --param_permutation, and its values).
+ * `ok`: the scenario ended by itself and esmini reported no error; `limit`: the limit the user set (--duration)
+ * stopped it before it ended; `timeout`: it hung (no progress) or ran away; `error`: esmini reported an error or
+ * could not run it; `discarded`: not run, its values break the scenario's ValueConstraintGroups (the row keeps its
+ * index, esmini's --param_permutation, and its values).
  */
-export type RunStatus = 'ok' | 'error' | 'timeout' | 'discarded';
+export type RunStatus = 'ok' | 'limit' | 'timeout' | 'error' | 'discarded';
+export const RUN_STATUSES: readonly RunStatus[] = ['ok', 'limit', 'timeout', 'error', 'discarded'];
 
 /** One concrete scenario's result: a line of results.csv, and with its messages an entry of results.json. */
 export interface BatchRow {
@@ -42,7 +44,8 @@ export interface BatchIdentity {
   distributionSha256: string;
   sample: string | null;
   seed: number;
-  duration: number;
+  /** The limit the user set, in simulated seconds; null: each scenario's own end. */
+  duration: number | null;
   esminiSeed: number;
 }
 

@@ -1,7 +1,7 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { EsminiCsvError, parseEsminiCsv } from '../../../common/src/esminiCsv';
-import { removeRunFolder, RUN_DEFAULTS, runScenarioText } from '../esmini/run';
+import { EsminiTextRunResult, removeRunFolder, runScenarioText } from '../esmini/run';
 import { collisionsIn, trajectoryMetrics } from './metrics';
 import type { BatchRow, RunStatus } from './results';
 
@@ -17,12 +17,11 @@ export interface ConcreteRun {
 }
 
 export interface RunSettings {
-  /** Simulated seconds at most. */
-  duration: number;
+  /** Simulated seconds at most, as the user set it; undefined: each scenario's own end. */
+  duration?: number;
   /** esmini's seed. */
   seed: number;
   esminiPath?: string;
-  wallTimeoutMs?: number;
   runsFolder?: string;
   /**
    * Where each run's folder is kept, as `<index>/` (scenario.xosc, trajectories.csv, esmini.log), instead of
@@ -44,20 +43,13 @@ export async function runConcrete(job: ConcreteRun, settings: RunSettings, cance
     duration: settings.duration,
     seed: settings.seed,
     collision: true,
-    wallTimeoutMs: settings.wallTimeoutMs,
     runsFolder: settings.runsFolder,
     cancel,
   });
   try {
     if (result.outcome === 'no-esmini') throw new NoEsminiError(result.message);
     if (result.outcome === 'cancelled') return undefined;
-    let status: RunStatus;
-    if (result.outcome === 'ok') {
-      // The added time limit fired: the scenario did not end by itself within the duration.
-      const limited = result.simulatedTime !== undefined && result.simulatedTime >= settings.duration - RUN_DEFAULTS.timeStep / 2;
-      status = limited || result.end === 'interrupted' ? 'timeout' : 'ok';
-    } else if (result.outcome === 'failed' && result.end === 'killed') status = 'timeout';
-    else status = 'error';
+    const status = runStatusOf(result);
     let message = result.message;
     let metrics = {
       ego: undefined as string | undefined,
@@ -66,7 +58,7 @@ export async function runConcrete(job: ConcreteRun, settings: RunSettings, cance
     };
     if (result.csvFile) {
       try {
-        metrics = trajectoryMetrics(parseEsminiCsv(await fs.promises.readFile(result.csvFile, 'latin1')), settings.duration);
+        metrics = trajectoryMetrics(parseEsminiCsv(await fs.promises.readFile(result.csvFile, 'latin1')), result.duration);
       } catch (error) {
         if (!(error instanceof EsminiCsvError)) throw error;
         message += `; its CSV log cannot be read: ${error.message}`;
@@ -91,6 +83,19 @@ export async function runConcrete(job: ConcreteRun, settings: RunSettings, cance
       keepRunFolder(result.runFolder, result.log, path.join(settings.keepRunsIn, job.index));
     else removeRunFolder(result);
   }
+}
+
+/**
+ * A run's status: `ok` when the scenario ended by itself; `limit` when the limit the user set stopped it first, or
+ * the default length of a scenario whose StopTrigger has no condition; `timeout` when it hung (no progress) or ran
+ * away (its CSV past the size bound, or an hour simulated with no limit set and its StopTrigger not fired); `error` when esmini reported an error or did not run it.
+ */
+export function runStatusOf(result: EsminiTextRunResult): RunStatus {
+  if (result.outcome === 'failed' && result.end === 'killed') return 'timeout';
+  if (result.outcome !== 'ok') return 'error';
+  if (result.end === 'interrupted' && !result.reachedLimit) return 'timeout';
+  if (result.reachedLimit) return result.limitKind === 'runaway' ? 'timeout' : 'limit';
+  return 'ok';
 }
 
 /** Moves a run's folder to `target` (replacing a run kept there before), with esmini's log beside its CSV. */

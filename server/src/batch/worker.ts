@@ -84,7 +84,7 @@ export async function runWorker(url: URL, options: WorkerOptions): Promise<numbe
       ];
       const row = await runConcrete(
         { index: data.index, text: data.text, parameters: data.parameters, searchPath },
-        { duration: data.duration, seed: data.seed, esminiPath: options.esminiPath, runsFolder: layout },
+        { duration: data.duration ?? undefined, seed: data.seed, esminiPath: options.esminiPath, runsFolder: layout },
         stopping.signal,
       );
       // Ctrl-C on a terminal reaches esmini too, which then ends early as if by itself: the job runs again elsewhere.

@@ -2,8 +2,8 @@ import { createHash } from 'node:crypto';
 import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
-import { BatchPlanView, concreteRun, searchPathOf, variedParameters } from '../batch/plan';
-import { Progress } from '../batch/progress';
+import { BatchPlanView, concreteRun, limitWarning, searchPathOf, variedParameters } from '../batch/plan';
+import { Progress, Tally } from '../batch/progress';
 import { loadQueueModule, QueuePackagesMissingError } from '../batch/queuePackages';
 import { BatchIdentity, ResultsError, ResultsFolder } from '../batch/results';
 import { NoEsminiError, runConcrete, RunSettings } from '../batch/runConcrete';
@@ -12,7 +12,17 @@ import { FileKind, nodeFileSystem, splitScenarioPath } from '../core/sources';
 import { formatVariationProblems, loadVariations, rebasedConcreteText, samplingProblem, SamplingError } from '../core/variations';
 import { locateEsmini } from '../esmini/locate';
 import { RUN_DEFAULTS } from '../esmini/run';
-import { CliCommand, CliOutput, ExitCode, InputError, parseCommandLine, UnavailableError, UsageError, wholeNumber } from './common';
+import {
+  CliCommand,
+  CliOutput,
+  durationOption,
+  ExitCode,
+  InputError,
+  parseCommandLine,
+  UnavailableError,
+  UsageError,
+  wholeNumber,
+} from './common';
 import { flatteningScenarioLoader, readDistributionFile, scenarioFolderOf } from './scenarioText';
 import { sampleIndices } from './vary';
 
@@ -21,14 +31,18 @@ export const BATCH_HELP = `Run every concrete scenario of a distribution in esmi
                             missing runs (an interrupted batch loses nothing and repeats nothing)
   --jobs N                  runs at a time (default: the number of cores)
   --sample N --seed S       N concrete scenarios drawn at random (seed S, default 0) instead of all
-  --duration S              simulated seconds per run at most (default ${RUN_DEFAULTS.duration}); fixed step ${RUN_DEFAULTS.timeStep} s, seed ${RUN_DEFAULTS.seed}
+  --duration S              stop each run at S simulated seconds if its scenario has not ended by then (status
+                            limit; a warning before the batch says when the scenario's StopTrigger ends past it);
+                            default: each scenario's own end (one not ended after ${RUN_DEFAULTS.runawaySeconds} s, or that makes no
+                            progress for ${RUN_DEFAULTS.stallMs / 1000} s, is stopped: status timeout; one whose StopTrigger has no
+                            condition runs ${RUN_DEFAULTS.noEndSeconds} s: status limit); fixed step ${RUN_DEFAULTS.timeStep} s, seed ${RUN_DEFAULTS.seed}
   --max-combinations N      refuse more combinations than N before running anything, unless --sample (default 1000000)
   --keep-runs               keep each run's files in DIR/runs/INDEX/ (scenario.xosc, trajectories.csv, esmini.log),
                             so that the Variations view and results.html can open a run; local runs only
   --queue redis://HOST:PORT put the runs on a BullMQ queue in Redis for 'modular2simple worker' and collect the results
   --esmini PATH, --road-path DIRS, --scenario-path DIRS   as for run
-  results.csv: index, status (ok; error: esmini reported one; timeout: stopped at --duration or the wall-clock
-  limit), collision (esmini's collision detection), min_distance_m and min_ttc_s (the ego, or the first entity,
+  results.csv: index, status (ok: the scenario ended by itself; limit: stopped at --duration before it ended;
+  timeout: it hung or ran away; error: esmini reported an error or did not run it), collision (esmini's collision detection), min_distance_m and min_ttc_s (the ego, or the first entity,
   against every other: bounding-box gap, and gap over closing speed), end_time_s, then one column per varied
   parameter. results.json: the same rows with esmini's messages. results.html: the table and a scatter of the
   first two parameters coloured by outcome, self-contained (written at the end, and on every resume).
@@ -104,9 +118,7 @@ async function runBatch(argv: string[], io: CliOutput): Promise<number> {
   if (sample === 0n) throw new UsageError('--sample takes at least 1');
   if (sample !== undefined && sample > maxCombinations)
     throw new UsageError(`--sample ${sample} is more than --max-combinations ${maxCombinations}`);
-  const duration = values.duration === undefined ? RUN_DEFAULTS.duration : Number(values.duration);
-  if (!(duration > 0) || !Number.isFinite(duration))
-    throw new UsageError(`--duration takes a positive number of seconds, not '${values.duration}'`);
+  const duration = durationOption(values.duration);
   const queue = queueOption(values.queue);
   if (queue && values['keep-runs']) throw new UsageError('--keep-runs keeps the runs of this machine: it does not go with --queue');
 
@@ -156,13 +168,15 @@ async function runBatch(argv: string[], io: CliOutput): Promise<number> {
     scenarioSha256: sha256(variations.scenario.text),
     sample: sample === undefined ? null : sample.toString(),
     seed,
-    duration,
+    duration: duration ?? null,
     esminiSeed: settings.seed,
   };
   const parameterNames = variedParameters(variations);
   const scenarioFolder = scenarioFolderOf(variations.scenarioPath);
   const searchPath = searchPathOf(variations.scenario.text, scenarioFolder, (values['road-path'] ?? []).flatMap(splitScenarioPath));
   const plan: BatchPlanView = { variations, chosen, parameterNames, searchPath, scenarioFolder, packagedFiles };
+  const warning = limitWarning(plan, duration);
+  if (warning) io.err(`${positionals[0]}: warning: ${warning}`);
 
   if (queue) {
     const { queueBatch, RedisUnreachableError } = await loadQueueModule(() => import('../batch/queue'));
@@ -217,7 +231,7 @@ async function runLocally(
     quiet ? undefined : process.stderr.isTTY ? process.stderr : undefined,
     quiet ? () => undefined : io.err,
   );
-  const tally = { ok: 0, error: 0, timeout: 0, collisions: 0, discarded: 0 };
+  const tally = new Tally();
   let failure: unknown;
   let next = 0;
   // A run's scenario is written to a private folder: its paths name the ScenarioFile's roads and catalogs absolutely (SPEC 11.6).
@@ -233,7 +247,7 @@ async function runLocally(
       const run = concreteRun(plan.variations, index, plan.parameterNames, plan.searchPath);
       if ('discarded' in run) {
         await results.append(run.discarded);
-        tally.discarded++;
+        tally.add(run.discarded);
         progress.tick(run.discarded);
         continue;
       }
@@ -243,8 +257,7 @@ async function runLocally(
       // Ctrl-C on a terminal reaches esmini too, which then ends early as if by itself: such a run is not a result.
       if (!row || stop.signal.aborted) continue;
       await results.append(row);
-      tally[row.status]++;
-      if (row.collision) tally.collisions++;
+      tally.add(row);
       progress.tick(row);
     }
   };
@@ -264,11 +277,7 @@ async function runLocally(
     await results.finish();
   }
   if (failure) throw failure;
-  const ran = tally.ok + tally.error + tally.timeout;
-  const summary =
-    `${ran} run${ran === 1 ? '' : 's'} (${tally.ok} ok, ${tally.error} error, ${tally.timeout} timeout; ${tally.collisions} with a collision)` +
-    (already > 0 ? `, ${already} already in ${results.csvFile}` : '') +
-    (tally.discarded > 0 ? `, ${tally.discarded} discarded by the scenario's ValueConstraintGroups` : '');
+  const summary = tally.summary(already, results.csvFile);
   if (stop.signal.aborted) {
     io.err(`interrupted after ${summary}; ${results.done.size} rows are in ${results.csvFile}: run the same command again to run the rest`);
     return ExitCode.interrupted;

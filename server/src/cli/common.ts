@@ -53,6 +53,15 @@ export function wholeNumber(text: string | undefined, option: string): bigint | 
 }
 
 /** Whether the arguments ask for the command's help: `--help` or `-h` before any `--`. */
+/** --duration's seconds: undefined when not given (each scenario's own end), a UsageError when not a positive number. */
+export function durationOption(text: string | undefined): number | undefined {
+  if (text === undefined) return undefined;
+  const duration = Number(text);
+  if (!(duration > 0) || !Number.isFinite(duration) || text.trim() === '')
+    throw new UsageError(`--duration takes a positive number of seconds, not '${text}'`);
+  return duration;
+}
+
 export function asksForHelp(args: readonly string[]): boolean {
   const end = args.indexOf('--');
   return (end < 0 ? args : args.slice(0, end)).some((arg) => arg === '--help' || arg === '-h');

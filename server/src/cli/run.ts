@@ -6,11 +6,13 @@ import { formatProblem } from '../core/problems';
 import { displayRef, splitScenarioPath } from '../core/sources';
 import { EsminiProblem } from '../esmini/messages';
 import { removeRunFolder, RUN_DEFAULTS, runScenario } from '../esmini/run';
-import { CliCommand, CliOutput, ExitCode, InputError, parseCommandLine, UnavailableError, UsageError } from './common';
+import { CliCommand, CliOutput, durationOption, ExitCode, InputError, parseCommandLine, UnavailableError, UsageError } from './common';
 import { mainOf, storeForInputs } from './inputs';
 
 export const RUN_HELP = `Run in esmini (modular2simple run INPUT... [options]):
-  --duration S              simulated seconds to run at most (default ${RUN_DEFAULTS.duration}); fixed step ${RUN_DEFAULTS.timeStep} s
+  --duration S              stop at S simulated seconds if the scenario has not ended by then (default: its own
+                            end, when its StopTrigger fires; one not ended after ${RUN_DEFAULTS.runawaySeconds} s is stopped, and one whose
+                            StopTrigger has no condition runs ${RUN_DEFAULTS.noEndSeconds} s); fixed step ${RUN_DEFAULTS.timeStep} s
   --seed N                  esmini's random seed (default ${RUN_DEFAULTS.seed})
   --road-path DIRS          extra folders for road files and catalogs (separated by ';' or ':')
   --esmini PATH             the esmini program, or its folder (default: esmini on PATH, else the one npm start built)
@@ -53,9 +55,7 @@ async function runCommand(args: string[], io: CliOutput): Promise<number> {
     quiet: { type: 'boolean', short: 'q', default: false },
   });
   if (inputs.length === 0) throw new UsageError('run needs a scenario: a .xosc, a .mosc or an unpacked folder');
-  const duration = values.duration === undefined ? RUN_DEFAULTS.duration : Number(values.duration);
-  if (!(duration > 0) || !Number.isFinite(duration))
-    throw new UsageError(`--duration takes a positive number of seconds, not '${values.duration}'`);
+  const duration = durationOption(values.duration);
   const seed = values.seed === undefined ? RUN_DEFAULTS.seed : Number(values.seed);
   if (!Number.isInteger(seed) || seed < 0) throw new UsageError(`--seed takes a whole number, not '${values.seed}'`);
   if (values.csv !== undefined && inputs.length > 1) throw new UsageError('--csv takes one input');
@@ -91,7 +91,7 @@ async function runCommand(args: string[], io: CliOutput): Promise<number> {
         io.err(`${input}: ${result.message}${result.forcible ? ' (--force runs it anyway)' : ''}`);
       if (values.csv !== undefined && result.csvFile) {
         const output = path.resolve(values.csv);
-        await writeFileAtomic(output, csvUpTo(fs.readFileSync(result.csvFile, 'utf8'), duration));
+        await writeFileAtomic(output, csvUpTo(fs.readFileSync(result.csvFile, 'utf8'), result.duration));
         if (!values.quiet) io.err(`wrote ${values.csv}`);
       }
     } finally {

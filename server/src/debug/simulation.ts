@@ -13,6 +13,7 @@ import { readEsminiLog } from '../esmini/log';
 import { EsminiProblem, mapEsminiMessages } from '../esmini/messages';
 import { makeRunFolder } from '../esmini/process';
 import { catalogFolders, RUN_DEFAULTS, sourceFolderOf, withRoadFile } from '../esmini/run';
+import { runLimit } from '../esmini/timeLimit';
 
 /*
  * A scenario run step by step in esmini's library, editor-free: the debug adapter (debug/adapter.ts) and the CLI's
@@ -169,7 +170,8 @@ export class Simulation {
     readonly options: SimulationOptions = {},
   ) {
     this.timeStep = options.timeStep ?? RUN_DEFAULTS.timeStep;
-    this.duration = options.duration ?? RUN_DEFAULTS.duration;
+    // As Run in esmini: the scenario's own end unless a duration is set (esmini/timeLimit.ts runLimit).
+    this.duration = runLimit(scenario.text, options.duration).seconds;
     if (!(this.timeStep > 0) || !(this.duration > 0))
       throw new SimulationLoadError('timeStep and duration must be positive numbers of seconds');
     this.library = loadEsminiLibrary(options.esminiLibrary, options.base);

@@ -8,7 +8,7 @@ export type EsminiEnd =
   | 'exited'
   /** SIGINT after its CSV passed the time limit or the size limit (a clean quit in esmini). */
   | 'interrupted'
-  /** SIGKILL after the wall-clock limit, or when it ignored SIGINT. */
+  /** SIGKILL after it made no progress for `stallMs`, or when it ignored SIGINT. */
   | 'killed'
   /** It could not be started. */
   | 'not-started'
@@ -30,8 +30,8 @@ export interface EsminiProcessOptions {
   collision?: boolean;
   /** Simulated seconds after which the run is stopped by SIGINT if it has not stopped itself. */
   duration: number;
-  /** Wall-clock backstop in milliseconds, then SIGKILL. */
-  wallTimeoutMs: number;
+  /** Wall-clock milliseconds in which its CSV neither grows nor advances (or, before it has one, since the start) before SIGKILL: a hang. */
+  stallMs: number;
   /** SIGINT when the CSV grows beyond this many bytes. */
   maxCsvBytes: number;
   /** Output kept in memory beyond this many characters is dropped (counted in `droppedOutput`). */
@@ -51,6 +51,8 @@ export interface EsminiProcessResult {
   wallMs: number;
   /** Why the process was stopped from outside, or why it did not start. */
   reason?: string;
+  /** What stopped it from outside: its simulated time passed the limit, its CSV the size limit, or it made no progress. */
+  stoppedBy?: 'time' | 'size' | 'stall';
 }
 
 export function esminiArguments(
@@ -107,6 +109,7 @@ export function runEsminiProcess(options: EsminiProcessOptions): Promise<EsminiP
     let output = '';
     let droppedOutput = 0;
     let reason: string | undefined;
+    let stoppedBy: EsminiProcessResult['stoppedBy'];
     let end: EsminiEnd = 'exited';
     let settled = false;
     const timers: NodeJS.Timeout[] = [];
@@ -148,10 +151,11 @@ export function runEsminiProcess(options: EsminiProcessOptions): Promise<EsminiP
     };
     child.stdout.on('data', collect);
     child.stderr.on('data', collect);
-    const interrupt = (why: string) => {
+    const interrupt = (why: string, by: 'time' | 'size') => {
       if (end !== 'exited') return;
       end = 'interrupted';
       reason = why;
+      stoppedBy = by;
       child.kill('SIGINT');
       timers.push(
         setTimeout(() => {
@@ -168,32 +172,40 @@ export function runEsminiProcess(options: EsminiProcessOptions): Promise<EsminiP
     };
     options.cancel?.addEventListener('abort', onCancel);
     if (options.cancel?.aborted) onCancel();
-    timers.push(
-      setTimeout(() => {
-        if (end === 'exited' || end === 'interrupted') {
-          end = 'killed';
-          reason = `still running after ${options.wallTimeoutMs / 1000} s of wall-clock time`;
-          child.kill('SIGKILL');
-        }
-      }, options.wallTimeoutMs),
-    );
+    // Progress, not a fixed wall-clock time, tells a hang: a long scenario on a loaded machine takes its time.
+    let lastProgress = Date.now();
+    let lastSize = -1;
+    let lastTime: number | undefined;
+    const stall = () => {
+      if (end !== 'exited' && end !== 'interrupted') return;
+      end = 'killed';
+      stoppedBy = 'stall';
+      const at = lastTime === undefined ? 'before its first step' : `at ${lastTime} s simulated`;
+      reason = `made no progress for ${options.stallMs / 1000} s of wall-clock time (${at}): it hung`;
+      child.kill('SIGKILL');
+    };
     const poll = setInterval(() => {
-      let size = 0;
+      let size = -1;
       try {
         size = fs.statSync(options.csvFile).size;
       } catch {
-        return;
+        // No CSV yet: esmini is loading.
       }
-      if (size > options.maxCsvBytes) interrupt(`its CSV passed ${Math.round(options.maxCsvBytes / 1e6)} MB`);
-      const time = lastCsvTime(options.csvFile);
+      const time = size >= 0 ? lastCsvTime(options.csvFile) : undefined;
+      if (size !== lastSize || time !== lastTime) {
+        lastProgress = Date.now();
+        lastSize = size;
+        lastTime = time;
+      } else if (Date.now() - lastProgress > options.stallMs) stall();
+      if (size > options.maxCsvBytes) interrupt(`its CSV passed ${Math.round(options.maxCsvBytes / 1e6)} MB`, 'size');
       // One step of slack: the added StopTrigger ends it at the first step past the limit by itself.
       if (time !== undefined && time > options.duration + 2 * options.timeStep)
-        interrupt(`its simulated time passed the ${options.duration} s limit`);
+        interrupt(`its simulated time passed the ${options.duration} s limit`, 'time');
     }, POLL_MS);
     child.on('error', (error) =>
       finish({ end: 'not-started', exitCode: null, signal: null, reason: `cannot start ${options.program}: ${error.message}` }),
     );
-    child.on('close', (exitCode, signal) => finish({ end, exitCode, signal, reason }));
+    child.on('close', (exitCode, signal) => finish({ end, exitCode, signal, reason, stoppedBy }));
   });
 }
 

@@ -11,15 +11,16 @@ import { locateEsmini } from './locate';
 import { EsminiLogMessage, EsminiRemark, readEsminiLog } from './log';
 import { EsminiProblem, mapEsminiMessages } from './messages';
 import { EsminiEnd, EsminiProcessResult, lastCsvTime, makeRunFolder, runEsminiProcess } from './process';
-import { withTimeLimit } from './timeLimit';
+import { LimitKind, NO_END_SECONDS, runLimit, RUNAWAY_SECONDS, withTimeLimit } from './timeLimit';
 
 export const RUN_DEFAULTS = {
-  /** Simulated seconds. */
-  duration: 30,
+  runawaySeconds: RUNAWAY_SECONDS,
+  noEndSeconds: NO_END_SECONDS,
   /** Seconds per step, decoupled from the clock. */
   timeStep: 0.05,
   seed: 1,
-  wallTimeoutMs: 60_000,
+  /** Wall-clock milliseconds without progress (its CSV neither grows nor advances) after which a run is stopped as hung. */
+  stallMs: 60_000,
   maxCsvBytes: 200 * 1024 * 1024,
   maxOutputChars: 8 * 1024 * 1024,
 } as const;
@@ -31,10 +32,12 @@ export interface EsminiRunOptions {
   base?: string;
   /** Extra folders for road files (and catalogs), after the scenario's own folders; relative ones start at `base`. */
   roadPath?: string[];
+  /** Simulated seconds at most, set by the user; undefined: the scenario's own end (`runLimit`: the runaway guard, or the default length of a scenario with no stop condition). */
   duration?: number;
   timeStep?: number;
   seed?: number;
-  wallTimeoutMs?: number;
+  /** Wall-clock milliseconds without progress before the run is stopped as hung (`RUN_DEFAULTS.stallMs`). */
+  stallMs?: number;
   /** Parent of the private run folder; the system's temporary folder by default. */
   runsFolder?: string;
   /** esmini's global collision detection (`--collision`): each collision is logged as a warning. */
@@ -76,7 +79,11 @@ export interface EsminiRunResult {
   exitCode?: number | null;
   /** Simulated seconds covered by the CSV (its last TimeStamp, at most `duration`). */
   simulatedTime?: number;
+  /** The time limit added to the run, in simulated seconds, and where it comes from (`runLimit`). */
   duration: number;
+  limitKind: LimitKind;
+  /** The added time limit ended the run: the scenario had not ended by itself by then. */
+  reachedLimit?: boolean;
   timeStep: number;
   seed: number;
   wallMs: number;
@@ -144,12 +151,13 @@ function unique(items: string[]): string[] {
  */
 export async function runScenario(flattener: Flattener, main: SourceRef, options: EsminiRunOptions = {}): Promise<EsminiRunResult> {
   const started = Date.now();
-  const duration = options.duration ?? RUN_DEFAULTS.duration;
   const timeStep = options.timeStep ?? RUN_DEFAULTS.timeStep;
   const seed = options.seed ?? RUN_DEFAULTS.seed;
   const base = {
     log: '',
-    duration,
+    // Until the scenario is read: a run that does not happen has no other.
+    duration: options.duration ?? RUNAWAY_SECONDS,
+    limitKind: (options.duration === undefined ? 'runaway' : 'user') as LimitKind,
     timeStep,
     seed,
     problems: [] as EsminiProblem[],
@@ -157,7 +165,7 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
     flattenProblems: [] as Problem[],
   };
   const elapsed = () => Date.now() - started;
-  if (!(duration > 0) || !Number.isFinite(duration)) throw new Error(`the duration must be a positive number of seconds, not ${duration}`);
+  checkDuration(options.duration);
 
   const location = locateEsmini(options.esminiPath, options.base);
   if (!location.found) return { ...base, outcome: 'no-esmini', message: location.message, wallMs: elapsed() };
@@ -167,7 +175,8 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
   const scenarioFile = path.join(runFolder, 'scenario.xosc');
   const flat = await flattener.flatten(main, { outputPath: scenarioFile, force: options.force });
   const flattenProblems = flat.problems;
-  if (flat.text === undefined || withTimeLimit(flat.text, duration) === undefined) fs.rmSync(runFolder, { recursive: true, force: true });
+  if (flat.text === undefined || withTimeLimit(flat.text, base.duration) === undefined)
+    fs.rmSync(runFolder, { recursive: true, force: true });
   if (flat.text === undefined) {
     const errors = flattenProblems.filter((problem) => problem.severity === 'error').length;
     const counted = `the scenario has ${errors} error${errors === 1 ? '' : 's'}`;
@@ -200,6 +209,8 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
   const roadFile: RunRoadFile | undefined = road
     ? { filepath: road.filepath, resolved: road.resolved, candidates: road.candidates }
     : undefined;
+  const limit = runLimit(flat.text, options.duration);
+  const duration = limit.seconds;
   const limited = withTimeLimit(road?.resolved ? withRoadFile(flat.text, road.resolved) : flat.text, duration);
   if (limited === undefined) {
     return {
@@ -213,7 +224,7 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
   }
 
   const searchPath = unique([sourceFolder, ...catalogFolders(flat.source, sourceFolder), ...folders]);
-  const ran = await runLimitedText(location.program, limited, searchPath, options, timeStep, seed, duration, {
+  const ran = await runLimitedText(location.program, limited, searchPath, options, timeStep, seed, limit, {
     runFolder,
     files: flat.files,
   });
@@ -246,6 +257,8 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
     remarks: log.remarks,
     roadFile,
     ...ran.common,
+    duration,
+    limitKind: limit.kind,
     esmini: location.program,
     wallMs: elapsed(),
     ...outcome,
@@ -263,15 +276,23 @@ export type EsminiTextRunResult = Omit<EsminiRunResult, 'problems' | 'flattenPro
  */
 export async function runScenarioText(text: string, searchPath: string[], options: EsminiRunOptions = {}): Promise<EsminiTextRunResult> {
   const started = Date.now();
-  const duration = options.duration ?? RUN_DEFAULTS.duration;
   const timeStep = options.timeStep ?? RUN_DEFAULTS.timeStep;
   const seed = options.seed ?? RUN_DEFAULTS.seed;
-  const base = { log: '', duration, timeStep, seed, messages: [] as EsminiLogMessage[], remarks: [] as EsminiRemark[] };
+  checkDuration(options.duration);
+  const limit = runLimit(text, options.duration);
+  const base = {
+    log: '',
+    duration: limit.seconds,
+    limitKind: limit.kind,
+    timeStep,
+    seed,
+    messages: [] as EsminiLogMessage[],
+    remarks: [] as EsminiRemark[],
+  };
   const elapsed = () => Date.now() - started;
-  if (!(duration > 0) || !Number.isFinite(duration)) throw new Error(`the duration must be a positive number of seconds, not ${duration}`);
   const location = locateEsmini(options.esminiPath, options.base);
   if (!location.found) return { ...base, outcome: 'no-esmini', message: location.message, wallMs: elapsed() };
-  const limited = withTimeLimit(text, duration);
+  const limited = withTimeLimit(text, limit.seconds);
   if (limited === undefined)
     return {
       ...base,
@@ -281,7 +302,7 @@ export async function runScenarioText(text: string, searchPath: string[], option
       wallMs: elapsed(),
     };
   const roadPath = (options.roadPath ?? []).map((folder) => path.resolve(options.base ?? process.cwd(), folder));
-  const ran = await runLimitedText(location.program, limited, unique([...searchPath, ...roadPath]), options, timeStep, seed, duration);
+  const ran = await runLimitedText(location.program, limited, unique([...searchPath, ...roadPath]), options, timeStep, seed, limit);
   const { messages, remarks } = readEsminiLog(ran.run.output);
   const errors = messages.filter((message) => message.level === 'error').length;
   return {
@@ -297,7 +318,12 @@ export async function runScenarioText(text: string, searchPath: string[], option
 
 interface LimitedRun {
   run: EsminiProcessResult;
-  common: Pick<EsminiRunResult, 'args' | 'runFolder' | 'scenarioFile' | 'csvFile' | 'log' | 'end' | 'exitCode' | 'simulatedTime'>;
+  common: Pick<
+    EsminiRunResult,
+    'args' | 'runFolder' | 'scenarioFile' | 'csvFile' | 'log' | 'end' | 'exitCode' | 'simulatedTime' | 'reachedLimit'
+  >;
+  /** The added time limit, in simulated seconds, and where it comes from. */
+  limit: { seconds: number; kind: LimitKind };
 }
 
 /** Writes the time-limited text (and the files a self-contained package carries) to a private folder and runs esmini on it. */
@@ -308,9 +334,10 @@ async function runLimitedText(
   options: EsminiRunOptions,
   timeStep: number,
   seed: number,
-  duration: number,
+  limit: { seconds: number; kind: LimitKind },
   prepared: { runFolder?: string; files?: readonly { path: string; bytes: Uint8Array }[] } = {},
 ): Promise<LimitedRun> {
+  const duration = limit.seconds;
   const runFolder = prepared.runFolder ?? makeRunFolder(options.runsFolder ?? path.join(os.tmpdir(), 'modular2simple-esmini'));
   const scenarioFile = path.join(runFolder, 'scenario.xosc');
   const csvFile = path.join(runFolder, 'trajectories.csv');
@@ -329,7 +356,7 @@ async function runLimitedText(
     seed,
     duration,
     collision: options.collision,
-    wallTimeoutMs: options.wallTimeoutMs ?? RUN_DEFAULTS.wallTimeoutMs,
+    stallMs: options.stallMs ?? RUN_DEFAULTS.stallMs,
     maxCsvBytes: RUN_DEFAULTS.maxCsvBytes,
     maxOutputChars: RUN_DEFAULTS.maxOutputChars,
     onOutput: options.onOutput,
@@ -337,9 +364,14 @@ async function runLimitedText(
   });
   const hasCsv = fs.existsSync(csvFile);
   const lastTime = hasCsv ? lastCsvTime(csvFile) : undefined;
+  // The added StopTrigger fires at the first step past the limit; the CSV's follower interrupts a run that went on.
+  const reachedLimit =
+    (lastTime !== undefined && lastTime >= duration - timeStep / 2) || (run.end === 'interrupted' && run.stoppedBy === 'time');
   return {
     run,
+    limit,
     common: {
+      reachedLimit,
       args: run.args,
       runFolder,
       scenarioFile,
@@ -369,11 +401,26 @@ function outcomeOf(ran: LimitedRun, errors: number, warnings: number, firstError
     const code = run.end === 'exited' && run.exitCode !== 0 ? ` (exit code ${run.exitCode})` : '';
     return { outcome: 'failed', message: `esmini did not run the scenario${code}: ${firstError ?? 'see its log'}` };
   }
+  const limit = {
+    user: `: stopped at the ${trimmed(ran.limit.seconds)} s limit set for the run, before the scenario ended by itself`,
+    'no-end': `: the scenario's StopTrigger has no condition, so it has no end of its own and runs ${trimmed(ran.limit.seconds)} s (set a duration to run longer)`,
+    runaway: `: its StopTrigger had not ended it after ${trimmed(ran.limit.seconds)} s simulated, so it was stopped as a runaway`,
+  }[ran.limit.kind];
   const covered =
     common.simulatedTime === undefined
       ? 'no trajectory: esmini placed no entity (each needs a position in Init, such as a TeleportAction)'
-      : `${common.simulatedTime.toFixed(2)} s simulated`;
+      : `${common.simulatedTime.toFixed(2)} s simulated${common.reachedLimit ? limit : ''}`;
   return { outcome: errors > 0 ? 'errors' : 'ok', message: `esmini: ${counts}; ${covered} (${(run.wallMs / 1000).toFixed(2)} s)` };
+}
+
+function checkDuration(duration: number | undefined): void {
+  if (duration !== undefined && (!(duration > 0) || !Number.isFinite(duration)))
+    throw new Error(`the duration must be a positive number of seconds, not ${duration}`);
+}
+
+/** Seconds without trailing zeros: 30, 2.5. */
+function trimmed(seconds: number): string {
+  return String(Number(seconds.toFixed(3)));
 }
 
 /** Removes a run's private folder (its CSV and scenario copy). */

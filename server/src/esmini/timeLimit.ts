@@ -1,5 +1,30 @@
+import { Evaluator, semanticModelOf } from '../core/semantics';
 import { detectEol } from '../core/text';
-import { parseXml, XmlElement } from '../core/xml';
+import { attribute, parseXml, XmlElement } from '../core/xml';
+
+/**
+ * Simulated seconds after which a run with no limit set is stopped as a runaway although its StopTrigger has
+ * conditions: they have not ended it. esmini itself goes on for ever then (esmini 3.6 playerbase.cpp logs
+ * "Simulation time > 1 hour. Put a stopTrigger for automatic ending" and runs on).
+ */
+export const RUNAWAY_SECONDS = 3600;
+/** Simulated seconds a scenario with no stop condition at all (an empty StopTrigger) runs when no limit is set: it has no end of its own. */
+export const NO_END_SECONDS = 30;
+
+/**
+ * The limit a run gets: the user's (`user`); else, the scenario's own end standing, the runaway guard (`runaway`);
+ * or, for a scenario whose StopTrigger has no condition, the default length (`no-end`).
+ */
+export type LimitKind = 'user' | 'no-end' | 'runaway';
+
+export function runLimit(text: string, duration: number | undefined): { seconds: number; kind: LimitKind } {
+  if (duration !== undefined) return { seconds: duration, kind: 'user' };
+  const stop = child(child(parseXml(text).root, 'Storyboard'), 'StopTrigger');
+  const conditions = stop?.children.some(
+    (group) => group.name === 'ConditionGroup' && group.children.some((each) => each.name === 'Condition'),
+  );
+  return conditions ? { seconds: RUNAWAY_SECONDS, kind: 'runaway' } : { seconds: NO_END_SECONDS, kind: 'no-end' };
+}
 
 /** The condition name the runner adds; a run whose last step passes the limit was ended by it. */
 export const TIME_LIMIT_CONDITION = 'modular2simple_time_limit';
@@ -39,4 +64,51 @@ export function withTimeLimit(text: string, seconds: number): string | undefined
   if (stop.selfClosing) return `${text.slice(0, stop.start)}<StopTrigger>${group}</StopTrigger>${text.slice(stop.end)}`;
   const closing = text.lastIndexOf('</', stop.end - 1);
   return `${text.slice(0, closing)}${group}${text.slice(closing)}`;
+}
+
+/** When a scenario's Storyboard StopTrigger ends it by simulated time alone. */
+export interface ScenarioEnd {
+  /** Simulated seconds at which a condition group made of SimulationTimeConditions alone fires first. */
+  seconds: number;
+  /** False when other condition groups could end it earlier (they are ORed with this one). */
+  only: boolean;
+}
+
+/** SimulationTimeCondition rules that fire once the time passes the value; `lessThan` fires at the start, not at an end. */
+const ENDING_RULES = new Set(['greaterThan', 'greaterOrEqual', 'equalTo']);
+
+/**
+ * The simulated time at which the scenario's own StopTrigger ends it, read as esmini evaluates its parameters and
+ * expressions: the earliest condition group whose conditions are all SimulationTimeConditions (each fires at its
+ * value plus its delay; a group fires when all have). Undefined when no group ends it by time alone.
+ */
+export function scenarioEnd(text: string): ScenarioEnd | undefined {
+  const document = parseXml(text);
+  const stop = child(child(document.root, 'Storyboard'), 'StopTrigger');
+  const groups = stop?.children.filter((each) => each.name === 'ConditionGroup') ?? [];
+  if (groups.length === 0) return undefined;
+  const evaluator = new Evaluator(semanticModelOf(document), undefined, 'esmini');
+  const number = (element: XmlElement, name: string): number | undefined => {
+    const found = attribute(element, name);
+    if (!found) return name === 'delay' ? 0 : undefined;
+    const result = evaluator.attributeValue(element, found);
+    const value = result.ok ? Number(result.value) : NaN;
+    return Number.isFinite(value) ? value : undefined;
+  };
+  let earliest: number | undefined;
+  let timeOnly = 0;
+  for (const group of groups) {
+    let groupEnd: number | undefined = -Infinity;
+    for (const condition of group.children.filter((each) => each.name === 'Condition')) {
+      const time = child(child(condition, 'ByValueCondition'), 'SimulationTimeCondition');
+      const value = time && ENDING_RULES.has(attribute(time, 'rule')?.value ?? '') ? number(time, 'value') : undefined;
+      const delay = number(condition, 'delay');
+      if (value === undefined || delay === undefined || groupEnd === undefined) groupEnd = undefined;
+      else groupEnd = Math.max(groupEnd, value + delay);
+    }
+    if (groupEnd === undefined || groupEnd === -Infinity) continue;
+    timeOnly++;
+    earliest = earliest === undefined ? groupEnd : Math.min(earliest, groupEnd);
+  }
+  return earliest === undefined ? undefined : { seconds: earliest, only: timeOnly === groups.length };
 }

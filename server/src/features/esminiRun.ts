@@ -99,6 +99,7 @@ async function runFirstConcrete(analysis: DistributionAnalysis, options: EsminiR
     message,
     log: '',
     duration: options.duration ?? 0,
+    limitKind: options.duration === undefined ? 'runaway' : 'user',
     timeStep: 0,
     seed: 0,
     wallMs: 0,
