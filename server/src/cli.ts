@@ -21,6 +21,7 @@ const COMMANDS: Record<string, () => Promise<CliCommand>> = {
   worker: async () => (await import('./cli/worker')).WORKER,
   'qc-bundle': async () => (await import('./cli/qcBundle')).QC_BUNDLE,
   export: async () => (await import('./cli/export')).EXPORT,
+  library: async () => (await import('./cli/library')).LIBRARY,
   // The original tool's forms.
   '-cxm': async () => (await import('./cli/pack')).CONVERT_XOSC_INTO_MOSC,
   '--convert-xosc-into-mosc': async () => (await import('./cli/pack')).CONVERT_XOSC_INTO_MOSC,

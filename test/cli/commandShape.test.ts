@@ -31,6 +31,7 @@ describe('cli: every command has one shape (help, options, exit codes)', functio
         'export',
         'flatten',
         'format',
+        'library',
         'modularize',
         'pack',
         'qc-bundle',
@@ -80,6 +81,7 @@ describe('cli: every command has one shape (help, options, exit codes)', functio
     batch: ['no-such.xosc', '--results', 'results'],
     'qc-bundle': ['-c', 'no-such.xml'],
     export: ['no-such.xosc', '--target', 'carla', '-o', 'out.xosc'],
+    library: ['show', 'no-such-module'],
     '-cxm': ['no-such.xosc', 'out.mosc'],
     '-cmx': ['no-such.mosc', 'out.xosc'],
   };

@@ -33,6 +33,9 @@ Usage:
   modular2simple export INPUT --target carla -o OUT.xosc [--report LOSSES.json] [--carla 0.9.15|0.9.16]
                                                    OpenSCENARIO 1.0 that CARLA's ScenarioRunner builds,
                                                    with a report of what it cannot keep
+  modular2simple library list|show NAME|path [--format json]
+                                                   the scenario library: modules a main names as
+                                                   scenarioFileName="library:NAME"
 ${FORMAT_HELP}
 
 Compatible with the original tool:

@@ -1,6 +1,7 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { childRef, diskRef, Limits, ScenarioStore, SourceRef, splitScenarioPath } from '../core/sources';
+import { libraryFolders } from '../libraries';
 import { cliFileSystem } from './fileSystem';
 
 /** The main file that an input names: a package's main.xosc, a folder's main.xosc, or the file itself. */
@@ -31,6 +32,7 @@ export function storeForInputs(
     root: root ?? (insideCwd ? cwd : inputFolder),
     workingDirectory: cwd,
     limits,
+    libraries: libraryFolders([]),
     host: cliFileSystem,
   });
 }

@@ -9,6 +9,7 @@ export type { FileKind, FileSystemHost } from './host';
 export { DEFAULT_LIMITS, DEFAULT_PACKAGE_LIMITS } from './limits';
 export type { Limits, PackageLimits } from './limits';
 export { SizedCache } from './sizedCache';
-export type { FolderOptions, LookupPlace, Resolution } from './resolution';
+export type { FolderOptions, LibraryFolder, LookupPlace, Resolution } from './resolution';
+export { LIBRARY_PREFIX, libraryFileName } from './resolution';
 export { ScenarioStore } from './store';
 export type { StoreOptions } from './store';

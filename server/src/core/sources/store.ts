@@ -9,7 +9,7 @@ import { DEFAULT_LIMITS, Limits } from './limits';
 import { Overlays } from './overlays';
 import { PackageCache } from './packages';
 import { childRef, diskRef, displayRef, SourceError, SourceRef } from './ref';
-import { FolderOptions, isWithinFolder, LookupPlace, Resolution } from './resolution';
+import { FolderOptions, isWithinFolder, LIBRARY_PREFIX, LibraryFolder, libraryFileName, LookupPlace, Resolution } from './resolution';
 
 export interface StoreOptions {
   /** Directories searched after the package itself: SCENARIO_PATH first, then the editor's setting. */
@@ -28,6 +28,8 @@ export interface StoreOptions {
    * scenario path instead of `scenarioPath` (an editor's per-folder setting).
    */
   folders?: FolderOptions[];
+  /** The scenario libraries `library:NAME` is looked up in, in order: the first holding NAME wins. */
+  libraries?: LibraryFolder[];
   host?: FileSystemHost;
   limits?: Partial<Limits>;
   /** Bytes of unpacked packages kept for reuse; the least recently used are read again when needed. */
@@ -40,6 +42,7 @@ export class ScenarioStore {
   readonly scenarioPath: string[];
   readonly root: string | undefined;
   readonly folders: FolderOptions[];
+  readonly libraries: LibraryFolder[];
   readonly limits: Limits;
   /** Relative to it messages show paths, and the upward search stops there when no folder or root holds a file. */
   readonly workingDirectory: string | undefined;
@@ -57,6 +60,7 @@ export class ScenarioStore {
     this.folders = (options.folders ?? [])
       .map((entry) => ({ ...entry, folder: pathsFor(entry.folder).resolve(entry.folder) }))
       .sort((a, b) => b.folder.length - a.folder.length);
+    this.libraries = (options.libraries ?? []).map((entry) => ({ ...entry, folder: pathsFor(entry.folder).resolve(entry.folder) }));
     this.limits = { ...DEFAULT_LIMITS, ...options.limits };
     this.packages = new PackageCache(
       this.limits,
@@ -305,10 +309,49 @@ export class ScenarioStore {
     return [...names];
   }
 
+  /**
+   * Resolves `library:NAME`: `NAME.xosc` (or NAME, when it ends in .xosc or .mosc) in each library folder in
+   * order, the first that holds it winning; the others holding it are `shadowed`.
+   */
+  async resolveInLibraries(moduleName: string): Promise<Resolution> {
+    const fileName = libraryFileName(moduleName.trim());
+    if (!moduleName.trim() || /[\\/]/.test(moduleName) || moduleName.includes('..'))
+      return { kind: 'invalid', message: `'${LIBRARY_PREFIX}${moduleName}' must name a module of a library: ${LIBRARY_PREFIX}NAME` };
+    const isPackage = fileName.toLowerCase().endsWith('.mosc');
+    const found: Resolution[] = [];
+    for (const library of this.libraries) {
+      const place: LookupPlace = { packageRef: undefined, directory: library.folder, via: 'library' };
+      const resolution = await this.findIn(place, fileName, isPackage);
+      if (resolution) found.push(resolution);
+    }
+    if (found.length > 0) {
+      const shadowed = found
+        .slice(1)
+        .flatMap((other) => (other.kind === 'scenario' ? [other.ref.disk] : other.kind === 'package' ? [other.packageRef.disk] : []));
+      return shadowed.length > 0 && (found[0].kind === 'scenario' || found[0].kind === 'package') ? { ...found[0], shadowed } : found[0];
+    }
+    const names: string[] = [];
+    for (const library of this.libraries) {
+      const listed = (await this.host.listDirectory?.(library.folder)) ?? [];
+      for (const entry of listed) if (/\.xosc$/i.test(entry)) names.push(entry.slice(0, -'.xosc'.length));
+    }
+    const suggestion = closestMatch(moduleName.trim().replace(/\.xosc$/i, ''), names);
+    return {
+      kind: 'missing',
+      searched: this.libraries.map((library) => `${library.folder} (${library.label} library)`),
+      hint:
+        this.libraries.length === 0
+          ? 'no scenario library is known here: name a folder in SCENARIO_LIBRARY_PATH or the modular2simple.library.folders setting'
+          : 'modular2simple library list names every module',
+      ...(suggestion ? { suggestion: `${LIBRARY_PREFIX}${suggestion}` } : {}),
+    };
+  }
+
   /** Resolves a `scenarioFileName` written in the file `from` (SPEC 3). */
   async resolve(name: string, from: SourceRef): Promise<Resolution> {
     const trimmed = name.trim();
     if (!trimmed) return { kind: 'invalid', message: 'scenarioFileName is empty' };
+    if (trimmed.startsWith(LIBRARY_PREFIX)) return this.resolveInLibraries(trimmed.slice(LIBRARY_PREFIX.length));
     const lower = trimmed.toLowerCase();
     const isPackage = lower.endsWith('.mosc');
     if (!isPackage && !lower.endsWith('.xosc')) {

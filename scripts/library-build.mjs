@@ -1,0 +1,587 @@
+#!/usr/bin/env node
+// `node scripts/library-build.mjs`: writes the scenario library's modules (library/NAME.xosc) and their
+// example mains (library/examples/NAME.xosc) from the descriptions below. Each module is a whole scenario that runs
+// by itself (its group in a story, on the library's own road); its example main is the same scenario with the group
+// replaced by a ScenarioReference to `library:NAME`, every key at its default. test/library/ runs each example in
+// esmini and checks the behaviour, and that these files are what this script writes.
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+const ROAD = 'straight_1000m.xodr';
+
+/** @param {string} text @param {number} depth */
+const indent = (text, depth) =>
+  text
+    .split('\n')
+    .map((line) => (line ? ' '.repeat(depth) + line : line))
+    .join('\n');
+
+const VEHICLE = (/** @type {string} */ name, /** @type {string} */ model) => `<ScenarioObject name="${name}">
+  <Vehicle name="${model}" vehicleCategory="car">
+    <ParameterDeclarations/>
+    <Performance maxSpeed="69.444" maxAcceleration="10" maxDeceleration="10"/>
+    <BoundingBox>
+      <Center x="1.5" y="0" z="0.9"/>
+      <Dimensions width="2.0" length="4.5" height="1.5"/>
+    </BoundingBox>
+    <Axles>
+      <FrontAxle maxSteering="0.5" wheelDiameter="0.6" trackWidth="1.8" positionX="3.1" positionZ="0.3"/>
+      <RearAxle maxSteering="0" wheelDiameter="0.6" trackWidth="1.8" positionX="0" positionZ="0.3"/>
+    </Axles>
+    <Properties/>
+  </Vehicle>
+</ScenarioObject>`;
+export const BICYCLE = (/** @type {string} */ name) => `<ScenarioObject name="${name}">
+  <Vehicle name="vehicle.diamondback.century" vehicleCategory="bicycle">
+    <ParameterDeclarations/>
+    <Performance maxSpeed="15" maxAcceleration="3" maxDeceleration="6"/>
+    <BoundingBox>
+      <Center x="0.5" y="0" z="0.9"/>
+      <Dimensions width="0.6" length="1.8" height="1.8"/>
+    </BoundingBox>
+    <Axles>
+      <FrontAxle maxSteering="0.5" wheelDiameter="0.7" trackWidth="0.1" positionX="1.1" positionZ="0.35"/>
+      <RearAxle maxSteering="0" wheelDiameter="0.7" trackWidth="0.1" positionX="0" positionZ="0.35"/>
+    </Axles>
+    <Properties/>
+  </Vehicle>
+</ScenarioObject>`;
+const PEDESTRIAN = (/** @type {string} */ name) => `<ScenarioObject name="${name}">
+  <Pedestrian name="walker.pedestrian.0001" pedestrianCategory="pedestrian" mass="75" model3d="walker.pedestrian.0001">
+    <ParameterDeclarations/>
+    <BoundingBox>
+      <Center x="0" y="0" z="0.9"/>
+      <Dimensions width="0.5" length="0.5" height="1.8"/>
+    </BoundingBox>
+    <Properties/>
+  </Pedestrian>
+</ScenarioObject>`;
+export const OBSTRUCTION = (/** @type {string} */ name) => `<ScenarioObject name="${name}">
+  <Vehicle name="vehicle.carlamotors.carlacola" vehicleCategory="van">
+    <ParameterDeclarations/>
+    <Performance maxSpeed="30" maxAcceleration="3" maxDeceleration="8"/>
+    <BoundingBox>
+      <Center x="2.5" y="0" z="1.3"/>
+      <Dimensions width="2.2" length="6" height="2.6"/>
+    </BoundingBox>
+    <Axles>
+      <FrontAxle maxSteering="0.5" wheelDiameter="0.8" trackWidth="1.9" positionX="4" positionZ="0.4"/>
+      <RearAxle maxSteering="0" wheelDiameter="0.8" trackWidth="1.9" positionX="0" positionZ="0.4"/>
+    </Axles>
+    <Properties/>
+  </Vehicle>
+</ScenarioObject>`;
+
+/**
+ * An entity's Init: where it stands on the library's road and its speed.
+ * @param {string} entity @param {number} lane @param {number} s @param {number} speed @param {{ offset?: number, heading?: number }} [more]
+ */
+function placed(entity, lane, s, speed, more = {}) {
+  const orientation = more.heading !== undefined ? `\n        <Orientation type="relative" h="${more.heading}" p="0" r="0"/>\n      ` : '';
+  const position = `<LanePosition roadId="0" laneId="${lane}" s="${s}" offset="${more.offset ?? 0}"${orientation ? `>${orientation}</LanePosition>` : '/>'}`;
+  return `<Private entityRef="${entity}">
+  <PrivateAction>
+    <TeleportAction>
+      <Position>
+        ${position}
+      </Position>
+    </TeleportAction>
+  </PrivateAction>
+  <PrivateAction>
+    <LongitudinalAction>
+      <SpeedAction>
+        <SpeedActionDynamics dynamicsShape="step" value="0" dynamicsDimension="time"/>
+        <SpeedActionTarget>
+          <AbsoluteTargetSpeed value="${speed}"/>
+        </SpeedActionTarget>
+      </SpeedAction>
+    </LongitudinalAction>
+  </PrivateAction>
+</Private>`;
+}
+
+/** @param {string} name @param {string} condition @param {string} [edge] */
+const trigger = (name, condition, edge = 'none') => `<StartTrigger>
+  <ConditionGroup>
+    <Condition name="${name}" delay="0" conditionEdge="${edge}">
+${indent(condition, 6)}
+    </Condition>
+  </ConditionGroup>
+</StartTrigger>`;
+const atTime = (/** @type {number} */ time, /** @type {string} */ listed = '') => `<ByValueCondition>
+  <SimulationTimeCondition${listed} value="${time}" rule="greaterThan"/>
+</ByValueCondition>`;
+/** @param {string} triggering @param {string} condition */
+const byEntity = (triggering, condition) => `<ByEntityCondition>
+  <TriggeringEntities triggeringEntitiesRule="any">
+    <EntityRef parameterAttributes="entityRef" entityRef="${triggering}"/>
+  </TriggeringEntities>
+  <EntityCondition>
+    ${condition}
+  </EntityCondition>
+</ByEntityCondition>`;
+
+/** @param {string} name @param {string} actions @param {string} start @param {string} [priority] */
+const event = (name, actions, start, priority = 'overwrite') => `<Event name="${name}" priority="${priority}">
+${indent(actions, 2)}
+${indent(start, 2)}
+</Event>`;
+/** @param {string} name @param {string} action */
+const privateAction = (name, action) => `<Action name="${name}">
+  <PrivateAction>
+${indent(action, 4)}
+  </PrivateAction>
+</Action>`;
+/** @param {string} dynamics @param {string} target */
+const speedAction = (dynamics, target) => `<LongitudinalAction>
+  <SpeedAction>
+    ${dynamics}
+    <SpeedActionTarget>
+      ${target}
+    </SpeedActionTarget>
+  </SpeedAction>
+</LongitudinalAction>`;
+/** @param {string} dynamics @param {string} target */
+const laneChange = (dynamics, target) => `<LateralAction>
+  <LaneChangeAction>
+    ${dynamics}
+    <LaneChangeTarget>
+      ${target}
+    </LaneChangeTarget>
+  </LaneChangeAction>
+</LateralAction>`;
+/** A straight walk or ride from where the actor stands, `length` metres ahead of it. @param {string} actor @param {number} length */
+const crossing = (actor, length) => `<RoutingAction>
+  <FollowTrajectoryAction>
+    <TrajectoryRef>
+      <Trajectory name="Crossing" closed="false">
+        <ParameterDeclarations/>
+        <Shape>
+          <Polyline>
+            <Vertex>
+              <Position>
+                <RelativeObjectPosition parameterAttributes="entityRef" entityRef="${actor}" dx="0" dy="0"/>
+              </Position>
+            </Vertex>
+            <Vertex>
+              <Position>
+                <RelativeObjectPosition parameterAttributes="entityRef,dx" entityRef="${actor}" dx="${length}" dy="0"/>
+              </Position>
+            </Vertex>
+          </Polyline>
+        </Shape>
+      </Trajectory>
+    </TrajectoryRef>
+    <TimeReference>
+      <None/>
+    </TimeReference>
+    <TrajectoryFollowingMode followingMode="position"/>
+  </FollowTrajectoryAction>
+</RoutingAction>`;
+
+/**
+ * @typedef {{ key: string, name: string, unit?: string, range?: string, about: string }} Parameter
+ * @typedef {{
+ *   name: string, title: string, group: string, summary: string, actor: string, groupName: string,
+ *   entities: string[], init: string[], parameters: Parameter[], maneuver: string, stopAt: number,
+ *   actorName: string, keys: Record<string, string>,
+ * }} Module
+ */
+
+/** @type {Module[]} */
+export const MODULES = [
+  {
+    name: 'cut-in',
+    title: 'Cut-in',
+    group: 'Vehicles ahead',
+    summary:
+      "A vehicle in a lane beside the ego's (either side) drives at a set speed and, once the gap between it and the ego is below the one asked, changes into the ego's lane.",
+    actor: "the cutting-in car, in a lane beside the ego's",
+    actorName: 'adversary',
+    groupName: 'CutIn',
+    entities: [VEHICLE('ego', 'vehicle.lincoln.mkz_2017'), VEHICLE('adversary', 'vehicle.audi.tt')],
+    init: [placed('ego', -1, 50, 20), placed('adversary', -2, 85, 17)],
+    stopAt: 10,
+    parameters: [
+      { key: 'AbsoluteTargetSpeed.value', name: 'speed', unit: 'm/s', range: '0..70', about: "the cutting-in car's speed from the start" },
+      {
+        key: 'RelativeDistanceCondition.value',
+        name: 'gap',
+        unit: 'm',
+        range: '2..100',
+        about: 'the gap (bumper to bumper, along the road) between the ego and the car when the lane change starts',
+      },
+      {
+        key: 'LaneChangeActionDynamics.value',
+        name: 'laneChangeTime',
+        unit: 's',
+        range: '0.5..10',
+        about: 'how long the lane change takes',
+      },
+      { key: 'RelativeDistanceCondition.entityRef', name: 'ego', about: 'the vehicle it cuts in ahead of' },
+      { key: 'RelativeTargetLane.entityRef', name: 'egoLane', about: 'the vehicle whose lane it changes into (the ego)' },
+      { key: 'EntityRef.entityRef', name: 'self', about: 'the cutting-in car itself (as in Actors): its gap triggers the lane change' },
+    ],
+    keys: {},
+    maneuver: [
+      event(
+        'CutInSpeed',
+        privateAction(
+          'CutInSpeed',
+          speedAction(
+            '<SpeedActionDynamics dynamicsShape="step" value="0" dynamicsDimension="time"/>',
+            '<AbsoluteTargetSpeed parameterAttributes="value" value="17"/>',
+          ),
+        ),
+        trigger('CutInSpeedStart', atTime(0)),
+        'parallel',
+      ),
+      event(
+        'CutInLaneChange',
+        privateAction(
+          'CutInLaneChange',
+          laneChange(
+            '<LaneChangeActionDynamics parameterAttributes="value" dynamicsShape="sinusoidal" value="3" dynamicsDimension="time"/>',
+            '<RelativeTargetLane parameterAttributes="entityRef" entityRef="ego" value="0"/>',
+          ),
+        ),
+        trigger(
+          'CutInGap',
+          byEntity(
+            'adversary',
+            '<RelativeDistanceCondition parameterAttributes="entityRef,value" entityRef="ego" relativeDistanceType="longitudinal" value="20" freespace="true" rule="lessThan"/>',
+          ),
+        ),
+        'parallel',
+      ),
+    ].join('\n'),
+  },
+  {
+    name: 'lead-brake',
+    title: 'Lead vehicle braking',
+    group: 'Vehicles ahead',
+    summary:
+      "The vehicle ahead in the ego's lane brakes at a set deceleration down to a set speed, once the ego's time headway to it is below the one asked (at once when it already is).",
+    actor: "the lead vehicle, ahead in the ego's lane",
+    actorName: 'lead',
+    groupName: 'LeadBrake',
+    entities: [VEHICLE('ego', 'vehicle.lincoln.mkz_2017'), VEHICLE('lead', 'vehicle.audi.tt')],
+    init: [placed('ego', -1, 50, 16), placed('lead', -1, 84.5, 14)],
+    stopAt: 8,
+    parameters: [
+      { key: 'SpeedActionDynamics.value', name: 'deceleration', unit: 'm/s²', range: '0.5..10', about: 'how hard the lead vehicle brakes' },
+      {
+        key: 'AbsoluteTargetSpeed.value',
+        name: 'speedAfter',
+        unit: 'm/s',
+        range: '0..70',
+        about: 'the speed it brakes down to (0: to a stop)',
+      },
+      {
+        key: 'TimeHeadwayCondition.value',
+        name: 'headway',
+        unit: 's',
+        range: '0.2..10',
+        about: "the ego's time headway (gap / ego speed) to the lead vehicle when the braking starts",
+      },
+      { key: 'TimeHeadwayCondition.entityRef', name: 'self', about: 'the lead vehicle itself (as in Actors)' },
+      { key: 'EntityRef.entityRef', name: 'ego', about: 'the vehicle following it, whose headway counts' },
+    ],
+    keys: {},
+    maneuver: event(
+      'LeadBrake',
+      privateAction(
+        'LeadBrake',
+        speedAction(
+          '<SpeedActionDynamics parameterAttributes="value" dynamicsShape="linear" value="6" dynamicsDimension="rate"/>',
+          '<AbsoluteTargetSpeed parameterAttributes="value" value="0"/>',
+        ),
+      ),
+      trigger(
+        'LeadBrakeHeadway',
+        byEntity(
+          'ego',
+          '<TimeHeadwayCondition parameterAttributes="entityRef,value" entityRef="lead" value="1.5" freespace="true" coordinateSystem="road" relativeDistanceType="longitudinal" rule="lessThan"/>',
+        ),
+      ),
+      'parallel',
+    ),
+  },
+  {
+    name: 'slow-target',
+    title: 'Stationary or slow target ahead',
+    group: 'Vehicles ahead',
+    summary: "A vehicle ahead in the ego's lane stands still or drives slowly at a set speed from the start, for the ego to come up to.",
+    actor: "the target vehicle, ahead in the ego's lane",
+    actorName: 'target',
+    groupName: 'SlowTarget',
+    entities: [VEHICLE('ego', 'vehicle.lincoln.mkz_2017'), VEHICLE('target', 'vehicle.audi.tt')],
+    init: [placed('ego', -1, 50, 14), placed('target', -1, 150, 10)],
+    stopAt: 6,
+    parameters: [{ key: 'AbsoluteTargetSpeed.value', name: 'speed', unit: 'm/s', range: '0..40', about: 'its speed (0: stationary)' }],
+    keys: {},
+    maneuver: event(
+      'SlowTargetSpeed',
+      privateAction(
+        'SlowTargetSpeed',
+        speedAction(
+          '<SpeedActionDynamics dynamicsShape="step" value="0" dynamicsDimension="time"/>',
+          '<AbsoluteTargetSpeed parameterAttributes="value" value="0"/>',
+        ),
+      ),
+      trigger('SlowTargetStart', atTime(0)),
+      'parallel',
+    ),
+  },
+  {
+    name: 'pedestrian-crossing',
+    title: 'Pedestrian crossing',
+    group: 'Vulnerable road users',
+    summary:
+      "A pedestrian at the roadside (near or far side, or behind a parked vehicle: where the main places it, facing across the road) walks straight across at a set speed once the ego's time headway to its crossing line is below the one asked.",
+    actor: 'the pedestrian, at the roadside facing across the road',
+    actorName: 'pedestrian',
+    groupName: 'PedestrianCrossing',
+    entities: [VEHICLE('ego', 'vehicle.lincoln.mkz_2017'), PEDESTRIAN('pedestrian')],
+    init: [placed('ego', -1, 20, 10), placed('pedestrian', -4, 100, 0, { offset: 0.75, heading: 1.5708 })],
+    stopAt: 10,
+    parameters: [
+      { key: 'AbsoluteTargetSpeed.value', name: 'speed', unit: 'm/s', range: '0.5..3', about: 'its walking speed' },
+      {
+        key: 'TimeHeadwayCondition.value',
+        name: 'headway',
+        unit: 's',
+        range: '0.5..15',
+        about:
+          "the ego's time to the crossing line when it starts walking: distance to the ego's path / speed puts it on the path as the ego arrives",
+      },
+      { key: 'RelativeObjectPosition.dx', name: 'distance', unit: 'm', range: '1..30', about: 'how far it walks' },
+      {
+        key: 'RelativeObjectPosition.entityRef',
+        name: 'self',
+        about: 'the pedestrian itself (as in Actors): its walk starts where it stands',
+      },
+      { key: 'TimeHeadwayCondition.entityRef', name: 'selfHeadway', about: 'the pedestrian itself, the ego headway is measured to' },
+      { key: 'EntityRef.entityRef', name: 'ego', about: 'the vehicle it crosses in front of' },
+    ],
+    keys: {},
+    maneuver: event(
+      'PedestrianWalk',
+      [
+        privateAction('PedestrianPath', crossing('pedestrian', 14)),
+        privateAction(
+          'PedestrianSpeed',
+          speedAction(
+            '<SpeedActionDynamics dynamicsShape="step" value="0" dynamicsDimension="time"/>',
+            '<AbsoluteTargetSpeed parameterAttributes="value" value="1.5"/>',
+          ),
+        ),
+      ].join('\n'),
+      trigger(
+        'PedestrianHeadway',
+        byEntity(
+          'ego',
+          '<TimeHeadwayCondition parameterAttributes="entityRef,value" entityRef="pedestrian" value="6" freespace="false" coordinateSystem="road" relativeDistanceType="longitudinal" rule="lessThan"/>',
+        ),
+      ),
+      'parallel',
+    ),
+  },
+  {
+    name: 'cut-out',
+    title: 'Cut-out revealing a target',
+    group: 'Vehicles ahead',
+    summary:
+      "The vehicle ahead in the ego's lane changes lane once it is within the gap asked of a stopped or slow vehicle further ahead, revealing it to the ego.",
+    actor: "the cutting-out vehicle, ahead in the ego's lane",
+    actorName: 'lead',
+    groupName: 'CutOut',
+    entities: [VEHICLE('ego', 'vehicle.lincoln.mkz_2017'), VEHICLE('lead', 'vehicle.audi.tt'), VEHICLE('target', 'vehicle.tesla.model3')],
+    init: [placed('ego', -1, 50, 15), placed('lead', -1, 80, 15), placed('target', -1, 180, 0)],
+    stopAt: 9,
+    parameters: [
+      {
+        key: 'RelativeDistanceCondition.value',
+        name: 'gap',
+        unit: 'm',
+        range: '2..100',
+        about: 'its gap to the vehicle ahead of it when the lane change starts',
+      },
+      {
+        key: 'LaneChangeActionDynamics.value',
+        name: 'laneChangeTime',
+        unit: 's',
+        range: '0.5..10',
+        about: 'how long the lane change takes',
+      },
+      {
+        key: 'RelativeTargetLane.value',
+        name: 'side',
+        unit: 'lanes',
+        range: '-1..1',
+        about: 'the lane it moves to: 1 the next lane to the left, -1 to the right',
+      },
+      { key: 'RelativeDistanceCondition.entityRef', name: 'target', about: 'the vehicle ahead that it reveals' },
+      {
+        key: 'RelativeTargetLane.entityRef',
+        name: 'self',
+        about: 'the cutting-out vehicle itself (as in Actors): its lane is the reference',
+      },
+      { key: 'EntityRef.entityRef', name: 'selfTrigger', about: 'the cutting-out vehicle itself, whose gap counts' },
+    ],
+    keys: {},
+    maneuver: event(
+      'CutOutLaneChange',
+      privateAction(
+        'CutOutLaneChange',
+        laneChange(
+          '<LaneChangeActionDynamics parameterAttributes="value" dynamicsShape="sinusoidal" value="2" dynamicsDimension="time"/>',
+          '<RelativeTargetLane parameterAttributes="entityRef,value" entityRef="lead" value="-1"/>',
+        ),
+      ),
+      trigger(
+        'CutOutGap',
+        byEntity(
+          'lead',
+          '<RelativeDistanceCondition parameterAttributes="entityRef,value" entityRef="target" relativeDistanceType="longitudinal" value="30" freespace="true" rule="lessThan"/>',
+        ),
+      ),
+      'parallel',
+    ),
+  },
+];
+
+/** The doc block a library module opens with (read by server/src/library/modules.ts). @param {Module} module */
+function docBlock(module) {
+  const parameters = module.parameters.map(
+    (parameter) =>
+      `parameter ${parameter.key} = ${parameter.name}${parameter.unit ? ` [${parameter.unit}]` : ''}${parameter.range ? ` (${parameter.range})` : ''}: ${parameter.about}`,
+  );
+  return `<!-- library module
+name: ${module.name}
+title: ${module.title}
+group: ${module.group}
+maneuverGroup: ${module.groupName}
+actor: ${module.actorName}: ${module.actor}
+summary: ${module.summary}
+${parameters.join('\n')}
+-->`;
+}
+
+/** @param {Module} module @param {string} description @param {string} storyGroup @param {string} comment @param {string} roads */
+function scenario(module, description, storyGroup, comment, roads) {
+  return `<?xml version="1.0" encoding="UTF-8"?>
+${comment}
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="1" date="2026-11-27T00:00:00" description="${description}" author="modular2simple library"/>
+  <ParameterDeclarations/>
+  <CatalogLocations/>
+  <RoadNetwork>
+    <LogicFile filepath="${roads}/${ROAD}"/>
+  </RoadNetwork>
+  <Entities>
+${indent(module.entities.join('\n'), 4)}
+  </Entities>
+  <Storyboard>
+    <Init>
+      <Actions>
+${indent(module.init.join('\n'), 8)}
+      </Actions>
+    </Init>
+    <Story name="${module.groupName}Story">
+      <Act name="${module.groupName}Act">
+${indent(storyGroup, 8)}
+${indent(trigger('ActStart', atTime(0)), 8)}
+      </Act>
+    </Story>
+    <StopTrigger>
+      <ConditionGroup>
+        <Condition name="End" delay="0" conditionEdge="none">
+          <ByValueCondition>
+            <SimulationTimeCondition value="${module.stopAt}" rule="greaterThan"/>
+          </ByValueCondition>
+        </Condition>
+      </ConditionGroup>
+    </StopTrigger>
+  </Storyboard>
+</OpenSCENARIO>
+`;
+}
+
+/** @param {string} xml @param {string} key */
+function defaultOf(xml, key) {
+  const parts = key.split('.');
+  const attribute = parts[parts.length - 1];
+  const element = parts[parts.length - 2];
+  const found = new RegExp(`<${element}\\b[^>]*\\bparameterAttributes="[^"]*\\b${attribute}\\b[^"]*"[^>]*\\s${attribute}="([^"]*)"`).exec(
+    xml,
+  );
+  if (!found) throw new Error(`no default for ${key}`);
+  return found[1];
+}
+
+/** @param {Module} module */
+export function moduleText(module) {
+  const group = `<ManeuverGroup name="${module.groupName}" maximumExecutionCount="1">
+  <Actors selectTriggeringEntities="false">
+    <EntityRef entityRef="${module.actorName}"/>
+  </Actors>
+  <Maneuver name="${module.groupName}Maneuver">
+${indent(module.maneuver, 4)}
+  </Maneuver>
+</ManeuverGroup>`;
+  return scenario(module, `Library module: ${module.title}`, group, docBlock(module), 'roads');
+}
+
+/** @param {Module} module */
+export function exampleText(module) {
+  const moduleXml = moduleText(module);
+  const references = module.parameters
+    .map(
+      (parameter) =>
+        `      <ParameterReference key="${parameter.key}" value="${module.keys[parameter.key] ?? defaultOf(moduleXml, parameter.key)}"/>`,
+    )
+    .join('\n');
+  const group = `<ManeuverGroup name="${module.groupName}" maximumExecutionCount="1">
+  <Actors selectTriggeringEntities="false">
+    <EntityRef entityRef="${module.actorName}"/>
+  </Actors>
+  <ScenarioReference scenarioFileName="library:${module.name}">
+    <ManeuverGroupReference maneuverGroupName="${module.groupName}">
+${references}
+    </ManeuverGroupReference>
+  </ScenarioReference>
+</ManeuverGroup>`;
+  return scenario(
+    module,
+    `Example of the library module ${module.name}`,
+    group,
+    `<!-- Example main of the library module ${module.name}: ${module.title}. -->`,
+    '../roads',
+  );
+}
+
+export const LIBRARY_FOLDER = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', 'library');
+
+/** Every file this script writes, by its path in the library. @returns {[string, string][]} */
+function libraryFiles() {
+  return MODULES.flatMap((module) => [
+    [`${module.name}.xosc`, moduleText(module)],
+    [`examples/${module.name}.xosc`, exampleText(module)],
+  ]);
+}
+
+if (process.argv[1] === fileURLToPath(import.meta.url)) {
+  // --check: write nothing, list the files that differ from what this script writes (exit 1 if any).
+  const check = process.argv.includes('--check');
+  const stale = [];
+  fs.mkdirSync(path.join(LIBRARY_FOLDER, 'examples'), { recursive: true });
+  for (const [name, text] of libraryFiles()) {
+    const file = path.join(LIBRARY_FOLDER, name);
+    if (!check) fs.writeFileSync(file, text);
+    else if (!fs.existsSync(file) || fs.readFileSync(file, 'utf8') !== text) stale.push(name);
+  }
+  for (const name of stale) console.log(`library/${name} differs from what scripts/library-build.mjs writes: run it`);
+  process.exitCode = stale.length > 0 ? 1 : 0;
+}

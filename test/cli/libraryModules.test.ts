@@ -1,0 +1,212 @@
+import { strict as assert } from 'node:assert';
+import { spawnSync } from 'node:child_process';
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import { main } from '../../server/src/cli';
+import { LibraryModule, listLibraries } from '../../server/src/core/library';
+import { nodeFileSystem } from '../../server/src/core/sources';
+import { builtInLibraryFolder, libraryFolders } from '../../server/src/libraries';
+import { harnessVerdicts, requireCarlaHarness } from '../support/carla';
+import { requireEsmini, runEsmini, tracksOf } from '../support/esmini';
+import { repoRoot } from '../support/paths';
+import { temporaryFolder } from '../support/temporaryDirectory';
+
+/**
+ * Every module of the built-in library, verified (issue 28): schema-valid with no warning under `check`, its example
+ * main flattened and run in esmini with the behaviour asserted on esmini's own trajectories, from the parameters the
+ * module documents (so a changed default is checked as it now is), and its CARLA export built by ScenarioRunner's loader.
+ */
+
+type Track = { time: number; x: number; y: number }[];
+
+/** Vehicles of the library: the bounding box's front is 3.75 m ahead of the reference point, its rear 0.75 m behind. */
+const FRONT = 3.75;
+const REAR = 0.75;
+const STEP = 0.05;
+
+function parameter(module: LibraryModule, name: string): number {
+  const found = module.parameters.find((candidate) => candidate.name === name);
+  assert.ok(found?.defaultValue !== undefined, `${module.name} documents no parameter '${name}' with a default`);
+  return Number(found.defaultValue);
+}
+
+function trackOf(tracks: Map<string, Track>, name: string): Track {
+  const track = tracks.get(name);
+  assert.ok(track && track.length > 2, `esmini logged no track for ${name}`);
+  return track;
+}
+
+/** Speed along x between two consecutive steps. */
+function speedAt(track: Track, index: number): number {
+  return (track[index + 1].x - track[index].x) / (track[index + 1].time - track[index].time);
+}
+
+/** The first step at which the track leaves its first y (a lane change or a crossing starts). */
+function lateralStart(track: Track): number {
+  const index = track.findIndex((point) => Math.abs(point.y - track[0].y) > 1e-5);
+  assert.ok(index > 0, 'the entity never moved sideways');
+  return index - 1;
+}
+
+const sameTime = (track: Track, time: number) => track.findIndex((point) => point.time >= time - 1e-6);
+
+/** What each module's example must show in esmini, from the values its parameters give. */
+const BEHAVIOURS: Record<string, (module: LibraryModule, tracks: Map<string, Track>) => void> = {
+  'cut-in': (module, tracks) => {
+    const [ego, car] = [trackOf(tracks, 'ego'), trackOf(tracks, 'adversary')];
+    const speed = parameter(module, 'speed');
+    assert.ok(Math.abs(speedAt(car, 2) - speed) < 0.05, `the cutting-in car drives at ${speedAt(car, 2)}, not ${speed} m/s`);
+    const start = lateralStart(car);
+    const gap = car[start].x - REAR - (ego[start].x + FRONT);
+    const closing = Math.abs(speedAt(ego, start) - speedAt(car, start)) * STEP;
+    assert.ok(Math.abs(gap - parameter(module, 'gap')) <= closing + 0.05, `the lane change starts at a gap of ${gap.toFixed(2)} m`);
+    const end = sameTime(car, car[start].time + parameter(module, 'laneChangeTime') + 2 * STEP);
+    assert.ok(end > 0, 'the run ends before the lane change does');
+    assert.ok(Math.abs(car[end].y - ego[end].y) < 0.05, `the car ends at y ${car[end].y}, the ego's lane at ${ego[end].y}`);
+    assert.ok(car[end].x - REAR > ego[end].x + FRONT, 'the car ends ahead of the ego');
+  },
+  'cut-out': (module, tracks) => {
+    const [ego, lead, target] = [trackOf(tracks, 'ego'), trackOf(tracks, 'lead'), trackOf(tracks, 'target')];
+    const start = lateralStart(lead);
+    const gap = target[start].x - REAR - (lead[start].x + FRONT);
+    assert.ok(
+      Math.abs(gap - parameter(module, 'gap')) <= speedAt(lead, start) * STEP + 0.05,
+      `the cut-out starts at a gap of ${gap.toFixed(2)} m`,
+    );
+    const end = sameTime(lead, lead[start].time + parameter(module, 'laneChangeTime') + 2 * STEP);
+    const side = parameter(module, 'side');
+    assert.ok(Math.abs(lead[end].y - (ego[end].y + side * 3.5)) < 0.05, `the lead ends at y ${lead[end].y}`);
+    assert.ok(
+      Math.abs(target[end].y - ego[end].y) < 0.05 && target[end].x > ego[end].x,
+      'the revealed target stands in the ego lane ahead',
+    );
+  },
+  'lead-brake': (module, tracks) => {
+    const [ego, lead] = [trackOf(tracks, 'ego'), trackOf(tracks, 'lead')];
+    const before = speedAt(lead, 0);
+    const start = lead.findIndex((_, index) => index < lead.length - 1 && speedAt(lead, index) < before - 0.01);
+    assert.ok(start > 0, 'the lead never brakes');
+    // The condition held at the step before the speed first drops.
+    const trigger = start - 1;
+    const headway = (lead[trigger].x - REAR - (ego[trigger].x + FRONT)) / speedAt(ego, trigger);
+    assert.ok(Math.abs(headway - parameter(module, 'headway')) <= STEP * 1.5, `the braking starts at a headway of ${headway.toFixed(3)} s`);
+    const deceleration = parameter(module, 'deceleration');
+    const after = parameter(module, 'speedAfter');
+    const middle = start + Math.floor((before - after) / deceleration / STEP / 2);
+    const measured = (speedAt(lead, middle - 4) - speedAt(lead, middle + 4)) / (8 * STEP);
+    assert.ok(Math.abs(measured - deceleration) < 0.1, `the lead decelerates at ${measured.toFixed(2)} m/s², not ${deceleration}`);
+    const last = lead.length - 2;
+    assert.ok(Math.abs(speedAt(lead, last) - after) < 0.05, `the lead ends at ${speedAt(lead, last)} m/s, not ${after}`);
+  },
+  'slow-target': (module, tracks) => {
+    const target = trackOf(tracks, 'target');
+    const speed = parameter(module, 'speed');
+    for (let index = 1; index < target.length - 1; index++)
+      assert.ok(
+        Math.abs(speedAt(target, index) - speed) < 0.01,
+        `the target drives at ${speedAt(target, index)} m/s at ${target[index].time} s`,
+      );
+  },
+  'pedestrian-crossing': (module, tracks) => {
+    const [ego, walker] = [trackOf(tracks, 'ego'), trackOf(tracks, 'pedestrian')];
+    const start = lateralStart(walker);
+    const egoSpeed = speedAt(ego, start);
+    const headway = (walker[start].x - ego[start].x) / egoSpeed;
+    assert.ok(
+      Math.abs(headway - parameter(module, 'headway')) <= STEP * 1.5,
+      `it starts walking at an ego headway of ${headway.toFixed(3)} s`,
+    );
+    const speed = parameter(module, 'speed');
+    const walked = (walker[start + 21].y - walker[start + 1].y) / (20 * STEP);
+    assert.ok(Math.abs(Math.abs(walked) - speed) < 0.02, `it walks at ${walked.toFixed(3)} m/s, not ${speed}`);
+    // On the ego's path (its lane's centre line) at the time the ego's reference point reaches the crossing line.
+    const onPath = walker.findIndex(
+      (point, index) => index > start && Math.sign(point.y - ego[index].y) !== Math.sign(walker[start].y - ego[start].y),
+    );
+    const egoArrives = ego.findIndex((point) => point.x >= walker[start].x);
+    assert.ok(onPath > 0 && egoArrives > 0, 'the pedestrian or the ego never reaches the crossing point');
+    assert.ok(
+      Math.abs(walker[onPath].time - ego[egoArrives].time) <= 0.15,
+      `on the path at ${walker[onPath].time} s, the ego there at ${ego[egoArrives].time} s`,
+    );
+    const distance = parameter(module, 'distance');
+    const final = walker[walker.length - 1];
+    assert.ok(
+      Math.abs(Math.abs(final.y - walker[start].y) - distance) < 0.05 ||
+        walker[walker.length - 1].time < walker[start].time + distance / speed,
+      'it walks the distance asked',
+    );
+  },
+};
+
+describe('library modules: each verified in esmini and CARLA (issue 28)', function () {
+  this.timeout(600_000);
+  const libraryFolder = builtInLibraryFolder();
+  let modules: LibraryModule[] = [];
+  const outputs = temporaryFolder('m2s-library-');
+
+  before(async () => {
+    assert.ok(libraryFolder, 'the built-in library is not found');
+    const listing = await listLibraries(nodeFileSystem, libraryFolders([], {}));
+    assert.deepEqual(listing.problems, []);
+    modules = listing.modules;
+  });
+
+  it('the modules and example mains are what scripts/library-build.mjs writes, the roads what scripts/library-roads.mjs writes', () => {
+    for (const script of ['library-build.mjs', 'library-roads.mjs']) {
+      const run = spawnSync(process.execPath, [path.join(repoRoot, 'scripts', script), '--check'], { encoding: 'utf8' });
+      assert.equal(run.status, 0, `${script} --check: ${run.stdout}${run.stderr}`);
+    }
+  });
+
+  it('every module has a doc block, documented keys, an example main; and a behaviour checked here', () => {
+    assert.ok(modules.length >= 5, `${modules.length} modules`);
+    for (const module of modules) {
+      assert.ok(module.example && fs.existsSync(module.example), `${module.name}: no example main`);
+      assert.ok(BEHAVIOURS[module.name], `${module.name}: no behaviour assertion in this test`);
+      for (const parameter of module.parameters)
+        assert.ok(parameter.defaultValue !== undefined, `${module.name} ${parameter.key}: no default`);
+    }
+  });
+
+  it('every module and example main: schema-valid, no error and no warning under check', async () => {
+    const errors: string[] = [];
+    const out: string[] = [];
+    const files = modules.flatMap((module) => [module.file, module.example ?? '']);
+    const code = await main(['check', ...files], { out: (text) => out.push(text), err: (text) => errors.push(text) });
+    assert.equal(code, 0, errors.join('\n'));
+    assert.match(errors.join('\n') + out.join('\n'), /0 errors, 0 warnings/);
+  });
+
+  it('every example main flattens and runs in esmini, and the behaviour happens as its parameters say', async function () {
+    requireEsmini(this);
+    for (const module of modules) {
+      const flat = path.join(outputs, `${module.name}.xosc`);
+      const errors: string[] = [];
+      const code = await main(['flatten', module.example ?? '', '-o', flat, '-q'], { out: () => {}, err: (text) => errors.push(text) });
+      assert.equal(code, 0, `${module.name}: ${errors.join('\n')}`);
+      const steps = await runEsmini(flat, 60);
+      BEHAVIOURS[module.name](module, tracksOf(steps));
+    }
+  });
+
+  it("every example main's CARLA export builds in ScenarioRunner's loader", async function () {
+    requireCarlaHarness(this);
+    const exported: string[] = [];
+    for (const module of modules) {
+      const output = path.join(outputs, `${module.name}.carla.xosc`);
+      const errors: string[] = [];
+      const code = await main(['export', module.example ?? '', '--target', 'carla', '-o', output, '-q'], {
+        out: () => {},
+        err: (text) => errors.push(text),
+      });
+      assert.equal(code, 0, `${module.name}: ${errors.join('\n')}`);
+      exported.push(output);
+    }
+    const verdicts = await harnessVerdicts(exported);
+    for (const file of exported) {
+      const verdict = verdicts.get(path.resolve(file));
+      assert.equal(verdict?.status, 'OK', `${path.basename(file)}: ${verdict?.stage} ${verdict?.reason}`);
+    }
+  });
+});
