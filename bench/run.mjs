@@ -100,10 +100,11 @@ if (existsSync(editorBench)) {
   if (result.status !== 0) process.exitCode = result.status ?? 1;
 }
 
-const birdsEyeBench = path.join(root, 'bench', 'birdsEye.ts');
-if (existsSync(birdsEyeBench)) {
+for (const name of ['modularizeLibraries.ts', 'birdsEye.ts']) {
+  const bench = path.join(root, 'bench', name);
+  if (!existsSync(bench)) continue;
   console.log('');
-  const result = spawnSync(process.execPath, ['--import', 'tsx', birdsEyeBench], { stdio: 'inherit', cwd: root });
+  const result = spawnSync(process.execPath, ['--import', 'tsx', bench], { stdio: 'inherit', cwd: root });
   if (result.status !== 0) process.exitCode = result.status ?? 1;
 }
 

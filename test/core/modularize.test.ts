@@ -10,7 +10,7 @@ import { buildModel } from '../../server/src/core/model';
 import { diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { parseXml } from '../../server/src/core/xml';
 import { libraryDir, requireCorpus } from '../support/paths';
-import { scenario, xmlAttribute as xmlAttributeValue } from '../support/fixtures';
+import { scenario, speedChangeGroup as speedGroup, xmlAttribute as xmlAttributeValue } from '../support/fixtures';
 
 /** The paper's 31 flattened scenarios, each as `OUT/<folder>/result.xosc`. */
 function libraryInputs(out: string): ModularizeInput[] {
@@ -33,46 +33,6 @@ async function flattenAll(result: ModularizeResult): Promise<Map<string, string 
   const flattened = new Map<string, string | undefined>();
   for (const main of result.mains) flattened.set(main.input, (await flattener.flatten(diskRef(main.output))).text);
   return flattened;
-}
-
-/** A group doing one speed change, its speed, actor, trigger entity and name as given. */
-function speedGroup(name: string, actor: string, speed: string, trigger = 'ego'): string {
-  return `        <ManeuverGroup maximumExecutionCount="1" name="${name}">
-          <Actors selectTriggeringEntities="false">
-            <EntityRef entityRef="${actor}"/>
-          </Actors>
-          <Maneuver name="M">
-            <Event name="E" priority="overwrite">
-              <Action name="A">
-                <PrivateAction>
-                  <LongitudinalAction>
-                    <SpeedAction>
-                      <SpeedActionDynamics dynamicsShape="step" value="0" dynamicsDimension="time"/>
-                      <SpeedActionTarget>
-                        <AbsoluteTargetSpeed value="${speed}"/>
-                      </SpeedActionTarget>
-                    </SpeedAction>
-                  </LongitudinalAction>
-                </PrivateAction>
-              </Action>
-              <StartTrigger>
-                <ConditionGroup>
-                  <Condition name="C" delay="0" conditionEdge="rising">
-                    <ByEntityCondition>
-                      <TriggeringEntities triggeringEntitiesRule="any">
-                        <EntityRef entityRef="${trigger}"/>
-                      </TriggeringEntities>
-                      <EntityCondition>
-                        <TraveledDistanceCondition value="5"/>
-                      </EntityCondition>
-                    </ByEntityCondition>
-                  </Condition>
-                </ConditionGroup>
-              </StartTrigger>
-            </Event>
-          </Maneuver>
-        </ManeuverGroup>
-`;
 }
 
 describe('core: modularize', function () {

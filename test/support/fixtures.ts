@@ -177,3 +177,43 @@ export const MANEUVER_CATALOG = `<?xml version="1.0"?>
   </Catalog>
 </OpenSCENARIO>
 `;
+
+/** A group doing one speed change after 5 m, its speed, actor, trigger entity and name as given; `extra` goes after its Actors. */
+export function speedChangeGroup(name: string, actor: string, speed: string, trigger = 'ego', extra = ''): string {
+  return `        <ManeuverGroup maximumExecutionCount="1" name="${name}">
+          <Actors selectTriggeringEntities="false">
+            <EntityRef entityRef="${actor}"/>
+          </Actors>
+${extra}          <Maneuver name="M">
+            <Event name="E" priority="overwrite">
+              <Action name="A">
+                <PrivateAction>
+                  <LongitudinalAction>
+                    <SpeedAction>
+                      <SpeedActionDynamics dynamicsShape="step" value="0" dynamicsDimension="time"/>
+                      <SpeedActionTarget>
+                        <AbsoluteTargetSpeed value="${speed}"/>
+                      </SpeedActionTarget>
+                    </SpeedAction>
+                  </LongitudinalAction>
+                </PrivateAction>
+              </Action>
+              <StartTrigger>
+                <ConditionGroup>
+                  <Condition name="C" delay="0" conditionEdge="rising">
+                    <ByEntityCondition>
+                      <TriggeringEntities triggeringEntitiesRule="any">
+                        <EntityRef entityRef="${trigger}"/>
+                      </TriggeringEntities>
+                      <EntityCondition>
+                        <TraveledDistanceCondition value="5"/>
+                      </EntityCondition>
+                    </ByEntityCondition>
+                  </Condition>
+                </ConditionGroup>
+              </StartTrigger>
+            </Event>
+          </Maneuver>
+        </ManeuverGroup>
+`;
+}

@@ -69,7 +69,10 @@ function findNamed(
       namedIndex.set(document, index);
     }
     for (const elementName of elementNames) {
-      const element = index.get(`${elementName}\n${wanted}`);
+      // A declaration may be written name="$owner", the lenient form check and flatten accept.
+      const element =
+        index.get(`${elementName}\n${wanted}`) ??
+        (elementName === 'ParameterDeclaration' ? index.get(`${elementName}\n$${wanted}`) : undefined);
       if (element) return { document, element };
     }
   }

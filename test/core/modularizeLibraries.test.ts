@@ -1,0 +1,172 @@
+import * as assert from 'node:assert/strict';
+import * as path from 'node:path';
+import { firstDifference } from '../../server/src/core/equivalence';
+import { Flattener } from '../../server/src/core/flatten';
+import { memoryHost, modularize, ModularizeInput, ModularizeResult } from '../../server/src/core/modularize';
+import { diskRef, ScenarioStore } from '../../server/src/core/sources';
+import { figuresLine, modularizeLibrary, realLibraries } from '../support/modularizeLibrary';
+import { speedChangeGroup } from '../support/fixtures';
+import { requireCorpus } from '../support/paths';
+import { temporaryWorkspace } from '../support/workspace';
+
+/** A plain OpenSCENARIO 1.2 scenario: `story` goes inside its Story, `head` after its ParameterDeclarations. */
+function scenarioWith(parts: { head?: string; storyDeclarations?: string; groups: string }): string {
+  return `<?xml version="1.0" encoding="UTF-8"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="test" author="test"/>
+  <ParameterDeclarations/>
+${parts.head ?? '  <CatalogLocations/>\n'}  <RoadNetwork/>
+  <Entities>
+    <ScenarioObject name="ego"/>
+    <ScenarioObject name="car"/>
+  </Entities>
+  <Storyboard>
+    <Init>
+      <Actions/>
+    </Init>
+    <Story name="S">
+${parts.storyDeclarations ?? ''}      <Act name="A">
+${parts.groups}        <StartTrigger/>
+      </Act>
+    </Story>
+    <StopTrigger/>
+  </Storyboard>
+</OpenSCENARIO>
+`;
+}
+
+/** Each main flattened again from memory (catalogs from the disk), compared with its input. */
+async function assertFlattensBack(inputs: ModularizeInput[], result: ModularizeResult): Promise<void> {
+  assert.deepEqual(result.failures, []);
+  const files = new Map<string, string>();
+  for (const behaviour of result.behaviours) files.set(behaviour.file, behaviour.text);
+  for (const main of result.mains) files.set(main.output, main.text);
+  const flattener = new Flattener(new ScenarioStore({ host: memoryHost(files), scenarioPath: [] }));
+  for (const [index, main] of result.mains.entries()) {
+    const flattened = await flattener.flatten(diskRef(main.output), { outputPath: main.output });
+    assert.ok(flattened.text !== undefined, `${main.output}: ${flattened.problems.map((problem) => problem.message).join('; ')}`);
+    assert.equal(firstDifference(flattened.text, inputs[index].text), undefined, main.output);
+  }
+}
+
+describe('core: modularize on real libraries (issue 28)', function () {
+  this.timeout(300_000);
+
+  it('every library on this machine: no larger, every main flattens back equivalent, what is left inline said why', async function () {
+    requireCorpus(this);
+    const { libraries, missing } = realLibraries();
+    for (const name of missing) console.log(`      (${name} skipped: absent)`);
+    for (const library of libraries) {
+      const { figures } = await modularizeLibrary(library);
+      console.log(`      ${figuresLine(figures)}`);
+      assert.equal(figures.equivalent, figures.scenarios, library.name);
+      assert.ok(figures.linesAfter <= figures.linesBefore, `${library.name}: ${figures.linesBefore} -> ${figures.linesAfter}`);
+      for (const kept of figures.keptInline) assert.ok(kept.reason.length > 0, `${kept.group} in ${kept.input}`);
+      if (library.name.startsWith("the paper's library")) assert.ok(figures.reduction >= 54.4, `${figures.reduction} %`);
+    }
+  });
+
+  it('leaves a group inline when its simple scenario would outweigh what its uses save, and says so', async () => {
+    // Two uses of a 33-line group: the simple scenario it needs is longer than the 46 lines they would save.
+    const inputs = ['car', 'ego'].map((actor, index) => ({
+      path: `/virtual/in/s${index}.xosc`,
+      output: `/virtual/out/s${index}.xosc`,
+      text: scenarioWith({ groups: speedChangeGroup(`G${index}.Go`, actor, '10', actor) }),
+    }));
+    const result = await modularize(inputs, { simpleFolder: '/virtual/out/simple' });
+    assert.equal(result.behaviours.length, 0);
+    assert.ok(result.totals.linesAfter <= result.totals.linesBefore);
+    assert.equal(result.keptInline.length, 2);
+    assert.match(
+      result.keptInline[0].reason,
+      /would not pay: its simple scenario \(\d+ lines\) outweighs the \d+ lines its 2 uses would save/,
+    );
+    // Four uses pay for it.
+    const four = ['car', 'ego', 'car', 'ego'].map((actor, index) => ({
+      path: `/virtual/in/s${index}.xosc`,
+      output: `/virtual/out/s${index}.xosc`,
+      text: scenarioWith({ groups: speedChangeGroup(`G${index}.Go`, actor, '10', actor) }),
+    }));
+    const paying = await modularize(four, { simpleFolder: '/virtual/out/simple' });
+    assert.equal(paying.behaviours.length, 1);
+    assert.ok(paying.totals.linesAfter < paying.totals.linesBefore);
+    await assertFlattensBack(four, paying);
+  });
+
+  it('accepts a Story that declares name="$owner", the lenient form check and flatten accept', async () => {
+    const inputs = ['car', 'ego', 'car', 'ego'].map((owner, index) => ({
+      path: `/virtual/in/s${index}.xosc`,
+      output: `/virtual/out/s${index}.xosc`,
+      text: scenarioWith({
+        storyDeclarations: `      <ParameterDeclarations>\n        <ParameterDeclaration parameterType="string" name="$owner" value="${owner}"/>\n      </ParameterDeclarations>\n`,
+        groups: speedChangeGroup(`G${index}.Go`, '$owner', String(10 + index), '$owner'),
+      }),
+    }));
+    const result = await modularize(inputs, { simpleFolder: '/virtual/out/simple' });
+    assert.deepEqual(result.keptInline, []);
+    assert.equal(result.behaviours.length, 1);
+    assert.match(result.behaviours[0].text, /<ParameterDeclaration parameterType="string" name="\$owner" value="car"\/>/);
+    await assertFlattensBack(inputs, result);
+  });
+
+  it("carries the variables a group's catalog entry uses (a catalog declares none): the extracted group flattens back", async () => {
+    // As in Euro NCAP's scenarios: each group references a catalog maneuver that sets a variable of the scenario.
+    const catalog = `<?xml version="1.0" encoding="UTF-8"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="maneuvers" author="test"/>
+  <Catalog name="ManeuverCatalog">
+    <Maneuver name="Flag">
+      <Event name="SetFlag" priority="override">
+        <Action name="Set">
+          <GlobalAction>
+            <VariableAction variableRef="done">
+              <SetAction value="true"/>
+            </VariableAction>
+          </GlobalAction>
+        </Action>
+        <StartTrigger>
+          <ConditionGroup>
+            <Condition name="Always" delay="0" conditionEdge="none">
+              <ByValueCondition>
+                <SimulationTimeCondition value="1" rule="greaterThan"/>
+              </ByValueCondition>
+            </Condition>
+          </ConditionGroup>
+        </StartTrigger>
+      </Event>
+    </Maneuver>
+  </Catalog>
+</OpenSCENARIO>
+`;
+    const head = `  <VariableDeclarations>
+    <VariableDeclaration name="done" variableType="boolean" value="false"/>
+    <VariableDeclaration name="unused" variableType="double" value="0"/>
+  </VariableDeclarations>
+  <CatalogLocations>
+    <ManeuverCatalog>
+      <Directory path="Catalogs"/>
+    </ManeuverCatalog>
+  </CatalogLocations>
+`;
+    const reference = `          <CatalogReference catalogName="ManeuverCatalog" entryName="Flag"/>\n`;
+    const files: Record<string, string> = { 'lib/Catalogs/ManeuverCatalog.xosc': catalog };
+    ['car', 'ego', 'car', 'ego'].forEach((actor, index) => {
+      files[`lib/s${index}.xosc`] = scenarioWith({
+        head,
+        groups: speedChangeGroup(`G${index}.Go`, actor, String(10 + index), actor, reference),
+      });
+    });
+    const root = temporaryWorkspace(files);
+    const inputs = [0, 1, 2, 3].map((index) => ({
+      path: path.join(root, 'lib', `s${index}.xosc`),
+      output: path.join(root, 'out', `s${index}.xosc`),
+      text: files[`lib/s${index}.xosc`],
+    }));
+    const result = await modularize(inputs, { simpleFolder: path.join(root, 'out', 'simple') });
+    assert.deepEqual(result.keptInline, []);
+    assert.equal(result.behaviours.length, 1);
+    assert.match(result.behaviours[0].text, /<VariableDeclaration name="done" variableType="boolean" value="false"\/>/);
+    assert.deepEqual(result.failures, []);
+    assert.ok(result.totals.linesAfter < result.totals.linesBefore);
+  });
+});
