@@ -5,7 +5,8 @@ import { CORE_MEMOS, MemoDeclaration } from './core/memos';
  * once with its key, its bound and what invalidates it (rust-analyzer's `RootDatabase`, the TypeScript
  * language service's `Program`). It composes the core's table (`core/memos.ts`); ARCHITECTURE.md's
  * table of caches is `cachesTable()` of it, which `test/server/database.test.ts` keeps so. A change
- * to the generation (`Workspace.changed`) is what makes the per-generation entries stale.
+ * to the generation (`AnalysisDatabase.changed`, `analysisDatabase.ts`, the owner of the analysis state) is what
+ * makes the per-generation entries stale.
  */
 export const SERVER_MEMOS = {
   fileBytes: {
@@ -17,15 +18,16 @@ export const SERVER_MEMOS = {
     invalidated: 'a watched-file event for the path (bytes below it, all kinds); a save; settings',
   },
   sharedSources: {
-    where: '`Workspace.sharedSources` (`SharedSources`, `sharedSources.ts`)',
+    where: '`AnalysisDatabase.sharedSources` (`analysisDatabase.ts`; `SharedSources`, `sharedSources.ts`)',
     key: 'a file id',
     holds:
-      'each file read and flattened (`FlatSource`), across generations; the only holder of the parse trees of files not open (a source let go is read again, to the same answer). Open documents and the files they read are kept beyond the bound, uncounted (a file counts as read by an open document from the moment its first analysis asks for it, `Workspace.noteRead`, so a main importing more than the bound does not push out the files it read first); once the document closes, what it kept counts again and the least recently used go past the bound',
+      'each file read and flattened (`FlatSource`), across generations; the only holder of the parse trees of files not open (a source let go is read again, to the same answer). Open documents and the files they read are kept beyond the bound, uncounted (a file counts as read by an open document from the moment its first analysis asks for it, `AnalysisDatabase.noteRead`, so a main importing more than the bound does not push out the files it read first); once the document closes, what it kept counts again and the least recently used go past the bound',
     bound: { bytes: 64 * 1024 * 1024, text: 'about 64 MiB of heap (30 bytes per character of text), least recently used out' },
-    invalidated: '`Workspace.changed(ids)`: the file and everything depending on it; all on settings or a file appearing or vanishing',
+    invalidated:
+      '`AnalysisDatabase.changed(ids)`: the file and everything depending on it; all on settings or a file appearing or vanishing',
   },
   analyses: {
-    where: '`Workspace.analysisResults`',
+    where: '`AnalysisDatabase.analysisResults` (`analysisDatabase.ts`)',
     key: 'a file id, per generation',
     holds:
       'a file analysed as a main file: whole for an open document, only the problems for another file (its source is asked of the shared sources again)',
@@ -33,7 +35,7 @@ export const SERVER_MEMOS = {
     invalidated: 'a new generation for the file or its dependencies',
   },
   flattener: {
-    where: '`Workspace.flattener()`',
+    where: '`AnalysisDatabase.flattener()`',
     key: 'the generation',
     holds:
       "one `Flattener`; the server's (`ReusingFlattener`, `sharedSources.ts`) keeps no per-file cache of its own, the shared sources are its cache (the CLI's `Flattener` caches every file of its run)",

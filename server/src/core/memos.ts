@@ -66,7 +66,7 @@ export const CORE_MEMOS = {
     invalidated: 'never: built from bundled data',
   },
   lastSchemaChecks: {
-    where: '`SchemaCheckMemory` (`core/schema/problems.ts`), one per `Workspace` and one per CLI run',
+    where: '`SchemaCheckMemory` (`core/schema/problems.ts`), one per `AnalysisDatabase` and one per CLI run',
     key: 'a file',
     holds:
       "each file's last schema findings by offset, its text and chosen version (no parse tree), so an edit inside one attribute value re-checks only that attribute",
