@@ -5,8 +5,8 @@ import { PACKAGE_SCHEME, type FlattenOptions, type ProblemSummary, type WriteRes
 import { problemPlace, writeAnywayQuestion, writtenAnywayNote } from './anyway';
 import { LANGUAGE_ID, type ServerCommandClient } from './languageClient';
 import { FLATTENED_SUFFIX, flattenedName } from './naming';
-import type { PlacedDiagnostics } from './carla/diagnostics';
-import { exportSummary, problemLine } from './carla/placed';
+import type { PlacedDiagnostics } from './placedDiagnostics';
+import { exportSummary, problemLine } from './placed';
 import { packageEntryUri } from './packageFileSystem';
 
 /** Options a caller (a test, a keybinding) may pass instead of being asked. */

@@ -5,7 +5,8 @@ import { DidChangeWatchedFilesNotification, FileChangeType } from 'vscode-langua
 import type { LanguageClient } from 'vscode-languageclient/node';
 import { EXPORT_FOR_CARLA_COMMAND, EXTRACT_GROUP_COMMAND, PACKAGE_SCHEME, type StructureNode } from '../../common/src/protocol';
 import { registerBirdsEye } from './birdsEye/commands';
-import { PlacedDiagnostics } from './carla/diagnostics';
+import { CarlaCommands } from './carla/commands';
+import { PlacedDiagnostics } from './placedDiagnostics';
 import type { BirdsEyeView } from './birdsEye/panel';
 import { CommandReporter, commandTargets, exportForCarlaCommand, flattenCommand, mainFileOf, packCommand } from './commands';
 import { ChangeFollower } from './followChanges';
@@ -34,6 +35,10 @@ export interface Modular2SimpleApi {
   readonly birdsEye: BirdsEyeView;
   /** The Variations view (a batch's results): what it shows and last drew. */
   readonly variations: VariationsView;
+  /** *Check in CARLA ScenarioRunner* and *Run in CARLA*: the last check's result and its diagnostics. */
+  readonly carla: CarlaCommands;
+  /** The last *Export for CARLA…*'s losses as diagnostics. */
+  readonly carlaExportLosses: vscode.DiagnosticCollection;
   /** The latest Run in esmini, and an event after each (for views of its trajectories). */
   readonly lastEsminiRun: () => EsminiRunEvent | undefined;
   readonly onDidRunEsmini: vscode.Event<EsminiRunEvent>;
@@ -114,6 +119,8 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
   register(EXPORT_FOR_CARLA_COMMAND, (clicked, selected, ...rest) =>
     exportForCarlaCommand(server, reporter, carlaLosses, clicked, selected, ...rest),
   );
+  const carla = new CarlaCommands(server, reporter, carlaLosses, context.storageUri ?? context.globalStorageUri);
+  context.subscriptions.push(carla);
   register('modular2simple.newScenario', (clicked, ...rest) => newScenarioCommand(server, reporter, clicked, ...rest));
   register(EXTRACT_GROUP_COMMAND, (args) => extractGroupCommand(server, reporter, args));
   register('modular2simple.openPreview', async (clicked, at) => {
@@ -195,6 +202,8 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
     onDidRunEsmini: esmini.onDidRun,
     birdsEye,
     variations,
+    carla,
+    carlaExportLosses: carlaLosses.collection,
   };
 }
 

@@ -2,6 +2,7 @@ import * as vscode from 'vscode';
 import { LanguageClient, TransportKind, type LanguageClientOptions, type ServerOptions } from 'vscode-languageclient/node';
 import type { WorkspaceEdit as LspWorkspaceEdit } from 'vscode-languageserver-protocol';
 import {
+  CheckInScenarioRunnerRequest,
   ExtractGroupRequest,
   ExportForCarlaRequest,
   FlattenToFileRequest,
@@ -11,6 +12,8 @@ import {
   PackRequest,
   PreviewRequest,
   StructureRequest,
+  type CheckInScenarioRunnerParams,
+  type CheckInScenarioRunnerResult,
   type ExtractGroupParams,
   type ExtractGroupResult,
   type FlattenOptions,
@@ -83,6 +86,11 @@ export class ServerCommandClient {
 
   async flattenToText(uri: vscode.Uri, options: FlattenOptions = {}): Promise<FlattenTextResult> {
     return (await this.started()).sendRequest(FlattenToTextRequest, { uri: uri.toString(), options });
+  }
+
+  /** The scenario exported and loaded by ScenarioRunner's own code (the harness shipped with the extension). */
+  async checkInScenarioRunner(params: CheckInScenarioRunnerParams, token?: vscode.CancellationToken): Promise<CheckInScenarioRunnerResult> {
+    return (await this.started()).sendRequest(CheckInScenarioRunnerRequest, params, token);
   }
 
   /** Writes the flattened scenario; an existing output is replaced (the caller asked the user first). */

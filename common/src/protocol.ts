@@ -50,6 +50,38 @@ export interface ExportForCarlaParams {
 /** Writes the scenario as OpenSCENARIO 1.0 for ScenarioRunner; the loss report comes back as problems at their source lines. */
 export const ExportForCarlaRequest = new RequestType<ExportForCarlaParams, WriteResult, void>('modular2simple/exportForCarla');
 
+/** *Check in CARLA ScenarioRunner*: the scenario exported for ScenarioRunner and loaded by ScenarioRunner's own code, without CARLA. */
+export interface CheckInScenarioRunnerParams {
+  /** A .xosc, a modular main, a .mosc or an unpacked package folder, as a `file:` or `mosc:` URI (its unsaved text is used). */
+  uri: string;
+  /** Setting modular2simple.carla.scenarioRunnerPath: the ScenarioRunner folder (scenario_runner.py). */
+  scenarioRunnerPath?: string;
+  /** Setting modular2simple.carla.python: a Python with ScenarioRunner's requirements (default `python3`). */
+  python?: string;
+  /** Setting modular2simple.carla.timeLimit: seconds before the check is stopped (default 120). */
+  timeLimitSeconds?: number;
+}
+
+export interface CheckInScenarioRunnerResult {
+  /**
+   * `built`: ScenarioRunner loaded the export and built its behaviour tree; `refused`: it raised (the problems say
+   * where); `not-exported`: the export refused the scenario; the rest: the check could not run (the message says what to set).
+   */
+  outcome: 'built' | 'refused' | 'not-exported' | 'no-scenario-runner' | 'no-python' | 'requirements' | 'timeout' | 'failed';
+  /** One sentence for the user, saying what to do when the check did not run. */
+  message: string;
+  /** ScenarioRunner's refusal at the source line of the element it failed on; the export's refusals when not exported. */
+  problems: ProblemSummary[];
+  /** ScenarioRunner's warnings and the harness's output, for the output channel. */
+  log: string;
+  /** The command run (program and arguments), when one was. */
+  command?: string[];
+}
+
+export const CheckInScenarioRunnerRequest = new RequestType<CheckInScenarioRunnerParams, CheckInScenarioRunnerResult, void>(
+  'modular2simple/checkInScenarioRunner',
+);
+
 /** The editor command that exports a scenario for CARLA's ScenarioRunner (a quick fix of a CARLA finding offers it). */
 export const EXPORT_FOR_CARLA_COMMAND = 'modular2simple.exportForCarla';
 
@@ -146,6 +178,7 @@ export const CUSTOM_REQUESTS = [
   NewScenarioRequest.method,
   ExtractGroupRequest.method,
   ExportForCarlaRequest.method,
+  CheckInScenarioRunnerRequest.method,
 ];
 
 /** URI scheme of files inside a `.mosc`: `mosc:/abs/path/pkg.mosc/inner.mosc/main.xosc`. */

@@ -1,21 +1,12 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { exportSummary, placedByUri } from '../../client/src/carla/placed';
+import { exportSummary, placedByUri } from '../../client/src/placed';
 import { ExportForCarlaRequest, type ProblemSummary } from '../../common/src/protocol';
 import { fileUri, TestClient } from '../server/harness';
+import { lineMatching } from '../support/carla';
 import { repoRoot } from '../support/paths';
 import { temporaryWorkspace } from '../support/workspace';
-
-/** The line (one-based) of the first line of `file` that matches `pattern`. */
-function lineOf(file: string, pattern: RegExp): number {
-  const index = fs
-    .readFileSync(file, 'utf8')
-    .split('\n')
-    .findIndex((line) => pattern.test(line));
-  assert.ok(index >= 0, `${pattern} is not in ${file}`);
-  return index + 1;
-}
 
 function losses(problems: ProblemSummary[]): ProblemSummary[] {
   return problems.filter((problem) => problem.code?.startsWith('carla-export-'));
@@ -61,7 +52,7 @@ describe('Export for CARLA over JSON-RPC: the loss report at the modular sources
       const found = losses(result.problems);
       const priority = found.find((loss) => loss.message.startsWith('Event/@priority') && loss.uri === fileUri(laneChange));
       assert.ok(priority, JSON.stringify(found, null, 1));
-      assert.equal(priority.line + 1, lineOf(laneChange, /<Event .*priority=/));
+      assert.equal(priority.line, lineMatching(laneChange, /<Event .*priority=/));
       assert.equal(priority.severity, 'warning');
       assert.ok(priority.end && priority.end.line >= priority.line, 'the loss has the range of its element');
       assert.match(priority.message, /ScenarioRunner runs every event in parallel/);
@@ -96,7 +87,7 @@ describe('Export for CARLA over JSON-RPC: a refusal (ScenarioRunner 0.9.16)', fu
     const refusal = losses(result.problems).find((loss) => loss.severity === 'error');
     assert.ok(refusal, JSON.stringify(result.problems, null, 1));
     assert.equal(refusal.uri, crossing, 'the refusal is in the simple scenario that wrote the action, not the main');
-    assert.equal(refusal.line + 1, lineOf(path.join(root, 'crossing.xosc'), /<AcquirePositionAction/));
+    assert.equal(refusal.line, lineMatching(path.join(root, 'crossing.xosc'), /<AcquirePositionAction/));
     assert.match(refusal.message, /AcquirePositionAction: crashes ScenarioRunner 0\.9\.16/);
     // The losses of the groups imported from lane_change.xosc land there; the editor groups them per file.
     const byUri = placedByUri(result.problems);

@@ -91,3 +91,30 @@ export async function harnessVerdicts(
     fs.rmSync(path.dirname(json), { recursive: true, force: true });
   }
 }
+
+/** ScenarioRunner 0.9.16's own source, as the harness unpacks it: what a user names in `modular2simple.carla.scenarioRunnerPath`. */
+export const scenarioRunnerFolder = path.join(carlaCache, 'scenario_runner');
+
+/**
+ * A Python that has ScenarioRunner's requirements, as a user's would (pip installs them): the harness's
+ * interpreter with py_trees 0.8.3 and the XSD library versions ScenarioRunner pins on its path, as a wrapper
+ * script in `folder`. Without them it lacks py_trees (`bare: true`): the "no requirements" case.
+ */
+export function scenarioRunnerPython(folder: string, bare = false): string {
+  const interpreter = process.env.CARLA_ORACLE_PYTHON ?? '/usr/bin/python3';
+  const libraries = ['py_trees-0.8.3', 'xmlschema-1.0.18', 'elementpath-1.3.3'].map((name) => path.join(carlaCache, name));
+  const wrapper = path.join(folder, bare ? 'python-bare' : 'python-scenario-runner');
+  const pythonPath = bare ? '' : `PYTHONPATH='${libraries.join(':')}' `;
+  fs.writeFileSync(wrapper, `#!/bin/sh\n${pythonPath}exec '${interpreter}' "$@"\n`, { mode: 0o755 });
+  return wrapper;
+}
+
+/** The zero-based line of the first line of `file` matching `pattern` (failing the test when none does). */
+export function lineMatching(file: string, pattern: RegExp): number {
+  const index = fs
+    .readFileSync(file, 'utf8')
+    .split('\n')
+    .findIndex((line) => pattern.test(line));
+  if (index < 0) throw new Error(`${String(pattern)} is not in ${file}`);
+  return index;
+}

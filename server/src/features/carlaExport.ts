@@ -7,7 +7,7 @@ import { Workspace } from '../workspace';
 import { insideFolders, invalidParams, outsideConfirmed, refOf, summarize, writeOutput } from './commands';
 
 /** A loss of the export as the editor lists it: a refusal is an error, what is dropped or approximated a warning. */
-function lossSummary(workspace: Workspace, loss: CarlaLoss): ProblemSummary {
+export function lossSummary(workspace: Workspace, loss: CarlaLoss): ProblemSummary {
   return {
     uri: workspace.uriOf(loss.source),
     line: loss.range.start.line,

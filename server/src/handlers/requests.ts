@@ -1,5 +1,6 @@
 import { CancellationToken, LSPErrorCodes, Position, ResponseError } from 'vscode-languageserver/node';
 import {
+  CheckInScenarioRunnerRequest,
   ExportForCarlaRequest,
   FlattenToFileRequest,
   FlattenToTextRequest,
@@ -12,6 +13,7 @@ import {
 import { SceneRequest } from '../../../common/src/sceneProtocol';
 import { SourceRef } from '../core/sources';
 import { OpenDocument } from '../documents';
+import { checkInScenarioRunner } from '../features/carlaCheck';
 import { exportForCarlaToFile } from '../features/carlaExport';
 import { codeActions } from '../features/codeActions';
 import { flattenToFile, flattenToText, structure } from '../features/commands';
@@ -269,6 +271,12 @@ export const REQUESTS: Record<string, (context: ServerContext, method: string) =
           exportForCarlaToFile(context.workspace, params?.uri, params?.outputPath, { outsideWorkspace: params?.outsideWorkspace }),
         { writes: true },
       ),
+    ),
+  // The scenario exported into a private folder and loaded by ScenarioRunner's own code; what it raised comes back at its source line.
+  [CheckInScenarioRunnerRequest.method]: (context, method) =>
+    context.connection.onRequest(
+      CheckInScenarioRunnerRequest,
+      request(context, method, (params, token) => checkInScenarioRunner(context.workspace, params, token)),
     ),
   // Writes a .mosc of a folder (or main.xosc) with what it references, or of chosen files.
   [PackRequest.method]: (context, method) =>

@@ -84,6 +84,11 @@ export interface CarlaExport {
   road: { town: string } | { file: string } | undefined;
   /** The entity marked as ScenarioRunner's ego. */
   ego: string | undefined;
+  /**
+   * Where each element of `text` was written in the sources, in document order (an element the export added
+   * stands at its nearest written ancestor): a message about the export's element N belongs at `places[N]`.
+   */
+  places?: readonly (Place | undefined)[];
 }
 
 /**
@@ -252,6 +257,9 @@ export async function exportTextForCarla(
 
   const eventsBefore = named(tree, 'Event').length;
   rewriteHeader(tree, ref);
+  // A simple scenario exported as it is: `parameterAttributes` marks what a main may override (SPEC), its values are
+  // the defaults; ScenarioRunner's 1.0 schema refuses the attribute, and flattening removes it the same way.
+  for (const node of allNodes(tree)) removeAttr(node, 'parameterAttributes');
   const road = await rewriteRoad(store, tree, ref, document, semantics, options, sink);
   const ego = markEgo(tree, options, sink);
   mapBlueprints(tree, options, sink);
@@ -283,7 +291,16 @@ export async function exportTextForCarla(
       { road, ego },
     );
   }
-  return result(undefined, out, { road, ego });
+  return result(undefined, out, { road, ego, places: documentPlaces(tree) });
+}
+
+/** The place of each node in document order, which is the order `serialize` writes them in; an added node takes its ancestor's. */
+function documentPlaces(tree: Node): (Place | undefined)[] {
+  return allNodes(tree).map((node) => {
+    let at: Node | undefined = node;
+    while (at && !at.place) at = at.parent;
+    return at?.place;
+  });
 }
 
 function problemLoss(problem: Problem, kind: CarlaLoss['kind'], what: string, carla: string): CarlaLoss {

@@ -1,5 +1,5 @@
 import * as vscode from 'vscode';
-import type { ProblemSummary } from '../../../common/src/protocol';
+import type { ProblemSummary } from '../../common/src/protocol';
 import { placedByUri, type PlacedMessage } from './placed';
 
 const SEVERITY: Record<PlacedMessage['severity'], vscode.DiagnosticSeverity> = {

@@ -1,5 +1,5 @@
-import type { ProblemSummary } from '../../../common/src/protocol';
-import { fileName } from '../anyway';
+import type { ProblemSummary } from '../../common/src/protocol';
+import { fileName } from './anyway';
 
 /*
  * Messages about a scenario placed on its source lines: the loss report of *Export for CARLA…* and what
