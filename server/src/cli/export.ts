@@ -1,19 +1,12 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { isSameFile } from '../../../common/src/atomic';
-import {
-  CARLA_RELEASES,
-  CarlaExport,
-  CarlaExportOptionError,
-  CarlaExportOptions,
-  exportForCarla,
-  exportTextForCarla,
-  isCarlaRelease,
-} from '../core/export/carla';
+import { CarlaExport, CarlaExportOptionError, CarlaExportOptions, exportForCarla, exportTextForCarla } from '../core/export/carla';
 import { diskRef, nodeFileSystem, splitScenarioPath } from '../core/sources';
 import { loadVariations, formatVariationProblems, rebasedConcreteText, SamplingError } from '../core/variations';
 import { CliCommand, CliOutput, ExitCode, InputError, parseCommandLine, UsageError, write } from './common';
 import { mainOf, storeForInputs } from './inputs';
+import { CARLA_OPTION, carlaOptionHelp, carlaReleaseOption } from './options';
 import { flatteningScenarioLoader, readUtf8Exactly } from './scenarioText';
 
 export const EXPORT_HELP = `Export for CARLA's ScenarioRunner (modular2simple export INPUT --target carla -o OUT.xosc):
@@ -23,8 +16,7 @@ export const EXPORT_HELP = `Export for CARLA's ScenarioRunner (modular2simple ex
   -o, --output OUT.xosc     where to write the OpenSCENARIO 1.0 file (never over an input)
   --report LOSSES.json      also write the loss report as JSON: {"losses": [{kind, file, line,
                             element, what, carla}], ...}; written when the export is refused too
-  --carla 0.9.15|0.9.16     the ScenarioRunner release whose facts apply (default 0.9.16: its
-                            AssignRouteAction/AcquirePositionAction crash refuses the export)
+${carlaOptionHelp('refuses the export')}
   --blueprints FILE.json    {"car_white": "vehicle.audi.tt", ...}: entity names to CARLA blueprints
   --road TOWN|FILE.xodr     the road instead of the scenario's LogicFile
   --road-path DIRS          folders where the scenario's .xodr is looked for (separated by ':' or ';')
@@ -54,7 +46,7 @@ function parse(argv: string[]): ExportArguments {
     target: { type: 'string' },
     output: { type: 'string', short: 'o' },
     report: { type: 'string' },
-    carla: { type: 'string' },
+    ...CARLA_OPTION,
     blueprints: { type: 'string' },
     road: { type: 'string' },
     'road-path': { type: 'string', multiple: true },
@@ -68,8 +60,7 @@ function parse(argv: string[]): ExportArguments {
   if (values.target === undefined) throw new UsageError('export needs --target carla');
   if (values.target !== 'carla') throw new UsageError(`--target takes carla, not '${values.target}'`);
   if (values.output === undefined) throw new UsageError('export needs -o OUT.xosc');
-  const release = values.carla ?? '0.9.16';
-  if (!isCarlaRelease(release)) throw new UsageError(`--carla takes ${CARLA_RELEASES.join(' or ')}, not '${release}'`);
+  const release = carlaReleaseOption(values.carla);
   if (values.index !== undefined && !/^\d+$/.test(values.index.trim()))
     throw new UsageError(`--index takes a whole number, not '${values.index}'`);
   return {

@@ -27,11 +27,30 @@ export const READING_OPTIONS_HELP = `  --scenario-path DIRS      folders searche
   --max-depth N             files in one chain of references, nested packages included (default 64)
   -q, --quiet               print errors only`;
 
+/**
+ * --carla, one option for every command that takes it (check/flatten --simulator carla, export): its
+ * table entry, its --help line and its reading.
+ */
+export const CARLA_OPTION = { carla: { type: 'string' } } as const;
+
+/** The --help line of --carla; `crash` says what the default release's route crash does in that command. */
+export function carlaOptionHelp(crash: string): string {
+  return `  --carla ${CARLA_RELEASES.join('|')}     the ScenarioRunner release whose facts apply (default ${DEFAULT_CARLA_RELEASE}, whose
+                            AssignRouteAction/AcquirePositionAction crash ${crash})`;
+}
+
+/** The release --carla names (the default when it is not given). */
+export function carlaReleaseOption(value: string | undefined): CarlaRelease {
+  const release = value ?? DEFAULT_CARLA_RELEASE;
+  if (!isCarlaRelease(release)) throw new UsageError(`--carla takes ${CARLA_RELEASES.join(', ')}, not '${release}'`);
+  return release;
+}
+
 /** The --help line of --simulator. */
 export const SIMULATOR_OPTION_HELP = `  --simulator asam|carla|esmini
                             also report what this simulator does not run: an error where it refuses the
                             scenario, a warning where it runs it otherwise (default asam: the standard alone)
-  --carla 0.9.15|0.9.16     with --simulator carla: the ScenarioRunner release (default 0.9.16)`;
+${carlaOptionHelp('is an error with --simulator carla')}`;
 
 /** The exit codes of a command that writes a file from its inputs. */
 export const WRITING_EXIT_CODES_HELP = `  Exit codes: 0 written (warnings may have been printed), 1 the input has errors and nothing was written,
@@ -70,7 +89,7 @@ const SHARED_OPTIONS = {
   'self-contained': { type: 'boolean' },
   format: { type: 'string' },
   simulator: { type: 'string' },
-  carla: { type: 'string' },
+  ...CARLA_OPTION,
   'schema-version': { type: 'string' },
   quiet: { type: 'boolean', short: 'q' },
   'max-file-size': { type: 'string' },
@@ -208,12 +227,9 @@ export function parseOptions(args: string[]): Options {
         options.simulator = simulator;
         break;
       }
-      case 'carla': {
-        const release = take();
-        if (!isCarlaRelease(release)) throw new UsageError(`--carla takes ${CARLA_RELEASES.join(', ')}, not '${release}'`);
-        options.carlaRelease = release;
+      case 'carla':
+        options.carlaRelease = carlaReleaseOption(take());
         break;
-      }
       case 'schema-version': {
         const version = take();
         if (version !== 'auto' && version !== 'off' && !isSchemaVersion(version))

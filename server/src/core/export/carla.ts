@@ -12,11 +12,13 @@
 import * as path from 'node:path';
 import { Flattener, originOf, OVERRIDE_PROBLEM_CODES } from '../flatten';
 import type { FlatSource } from '../flatten/types';
+import { MAX_ROAD_FILE_BYTES, parseOpenDrive, RoadNetwork } from '../opendrive/road';
 import { formatProblem, Problem } from '../problems';
 import { logicFileOf, resolveRoadFile } from '../semantics/roadFiles';
 import { checkSchema } from '../schema/validate';
 import { assignmentsOf, CatalogLoader, DocumentSemantics, Evaluator, formatValue, semanticModelOf } from '../semantics';
 import { displayRef, ScenarioStore, SourceError, SourceRef } from '../sources';
+import { decodeUtf8 } from '../text';
 import { parseXml, XmlDocument, XmlElement } from '../xml';
 import {
   CarlaRelease,
@@ -263,7 +265,9 @@ export async function exportTextForCarla(
   const road = await rewriteRoad(store, tree, ref, document, semantics, options, sink);
   const ego = markEgo(tree, options, sink);
   mapBlueprints(tree, options, sink);
-  applyCarlaRules(tree, { release: options.release ?? '0.9.16', sink });
+  // Route positions are placed on the road they name: only then is the road file read.
+  const roads = road && 'file' in road && named(tree, 'RoutePosition').length > 0 ? await readRoads(store, road.file) : undefined;
+  applyCarlaRules(tree, { release: options.release ?? '0.9.16', sink, roads });
   // The text the last schema check passed: nothing changes the tree after it.
   const checked = dropOutsideSchema(tree, sink);
 
@@ -301,6 +305,14 @@ function documentPlaces(tree: Node): (Place | undefined)[] {
     while (at && !at.place) at = at.parent;
     return at?.place;
   });
+}
+
+/** The road file's roads, or undefined when it cannot be read (the rules then name why a route position stays unconverted). */
+async function readRoads(store: ScenarioStore, file: string): Promise<RoadNetwork | undefined> {
+  const bytes = await store.host.readFile(file, MAX_ROAD_FILE_BYTES + 1).catch(() => undefined);
+  if (!bytes || bytes.byteLength > MAX_ROAD_FILE_BYTES) return undefined;
+  const network = parseOpenDrive(decodeUtf8(bytes));
+  return network.roads.length > 0 ? network : undefined;
 }
 
 function problemLoss(problem: Problem, kind: CarlaLoss['kind'], what: string, carla: string): CarlaLoss {

@@ -3,6 +3,7 @@
  * kept, or what ScenarioRunner refuses, ignores or crashes on dropped, approximated or refused, each reported.
  * Every rule names the ScenarioRunner code it follows (revision SR_REVISION of carlaFacts.ts).
  */
+import type { RoadNetwork } from '../opendrive/road';
 import { SourceRef } from '../sources';
 import { Range } from '../text';
 import { CarlaRelease, SR_ATOMICS, SR_CONFIGURATION, SR_PARSER, SR_SCENARIO } from './carlaFacts';
@@ -50,6 +51,8 @@ export interface LossSink {
 export interface RuleContext {
   release: CarlaRelease;
   sink: LossSink;
+  /** The scenario's OpenDRIVE roads when the road is an `.xodr` file the export read (route positions need their lengths). */
+  roads?: RoadNetwork;
 }
 
 /** Drops the smallest unit of a storyboard holding `node` that ScenarioRunner can do without: its Condition, its Event's Action or its Init action. */
@@ -510,22 +513,119 @@ function trajectories(tree: Node, context: RuleContext): void {
   }
 }
 
+/** A position ScenarioRunner cannot convert: refused where it places an actor at the start, else its condition or action dropped. */
+function unconvertiblePosition(node: Node, name: string, context: RuleContext, why = ''): void {
+  if (ancestor(node, 'Init') && ancestor(node, 'TeleportAction')) {
+    context.sink.refuse(
+      node,
+      name,
+      `places an actor at the start, and ScenarioRunner cannot place it${why}`,
+      `${SR_PARSER} convert_position_to_transform has no ${name}`,
+    );
+    return;
+  }
+  dropUnit(node, context, name, `ScenarioRunner has no ${name} (${SR_PARSER} convert_position_to_transform)${why}`);
+}
+
+/**
+ * A RoutePosition whose point lies on the road of the route's first waypoint, written as the LanePosition
+ * (FromLaneCoordinates) or RoadPosition (FromRoadCoordinates) it names: ScenarioRunner has no RoutePosition
+ * (SR_PARSER convert_position_to_transform raises NotImplementedError) but converts both (same function).
+ * Where the point is, as esmini computes it (RoadManager.cpp Route::SetPathS, Position::SetRouteLanePosition,
+ * esmini 3.6): from the first waypoint, pathS metres along its road in the driving direction of its lane
+ * (right-hand traffic: a negative lane drives towards growing s), on the lane the position names, with its
+ * offset; the heading follows the lane as for a LanePosition (OSCPosition.cpp SetRouteRefLaneCoord). A point
+ * past that road needs the route planned through the network, which the export does not do: named why.
+ */
+function routePositions(tree: Node, context: RuleContext): void {
+  for (const position of named(tree, 'RoutePosition')) {
+    if (!position.parent) continue;
+    const mapped = routePositionOnFirstRoad(position, context.roads);
+    if (typeof mapped === 'string') {
+      unconvertiblePosition(position, 'RoutePosition', context, `; the export cannot write it otherwise: ${mapped}`);
+      continue;
+    }
+    replaceNode(position, mapped.node);
+    context.sink.approximated(
+      mapped.node,
+      'RoutePosition',
+      `written as the ${mapped.node.name} it names on the route's first road (${mapped.summary})`,
+      `ScenarioRunner has no RoutePosition (${SR_PARSER} convert_position_to_transform) and converts a ${mapped.node.name}; the point is where esmini puts it (RoadManager.cpp Route::SetPathS)`,
+    );
+  }
+}
+
+function routePositionOnFirstRoad(position: Node, roads: RoadNetwork | undefined): { node: Node; summary: string } | string {
+  const route = child(child(position, 'RouteRef') ?? position, 'Route');
+  if (!route) return 'its route is not written in the scenario or a catalog it loads';
+  const waypoints = childrenNamed(route, 'Waypoint');
+  const lanePositionOf = (waypoint: Node | undefined): Node | undefined =>
+    waypoint ? child(child(waypoint, 'Position') ?? waypoint, 'LanePosition') : undefined;
+  const first = lanePositionOf(waypoints[0]);
+  if (!first) return "the route's first waypoint is not a LanePosition";
+  const inRoute = child(position, 'InRoutePosition');
+  const coordinates = inRoute?.children[0];
+  if (!coordinates || (coordinates.name !== 'FromLaneCoordinates' && coordinates.name !== 'FromRoadCoordinates'))
+    return `${coordinates?.name ?? 'an empty InRoutePosition'} is where the entity is when the scenario runs`;
+  const roadId = attr(first, 'roadId') ?? '';
+  const startS = Number(attr(first, 's'));
+  const pathS = Number(attr(coordinates, 'pathS'));
+  if (!Number.isFinite(startS) || !Number.isFinite(pathS) || pathS < 0) return 'its pathS or the first waypoint s is not a number';
+  const direction = Number(attr(first, 'laneId')) < 0 ? 1 : -1;
+  const s = startS + direction * pathS;
+  if (pathS > 0) {
+    const road = roads?.byId.get(roadId);
+    if (!road)
+      return roads ? `road ${roadId} is not in the road network` : 'the road is a CARLA town, whose road lengths the export cannot read';
+    if (s < 0 || s > road.length)
+      return `the point lies past road ${roadId} (pathS ${pathS} from s ${startS}, the road is ${road.length} m long)`;
+    const next = lanePositionOf(waypoints[1]);
+    if (next && attr(next, 'roadId') === roadId && Math.abs(Number(attr(next, 's')) - startS) < pathS)
+      return "the point lies past the route's second waypoint";
+  }
+  const written = String(Number(s.toFixed(6)));
+  const orientation = child(position, 'Orientation');
+  const extra = orientation ? [cloneNode(orientation)] : [];
+  if (coordinates.name === 'FromRoadCoordinates') {
+    const t = attr(coordinates, 't') ?? '0';
+    return {
+      node: makeNode(
+        'RoadPosition',
+        [
+          ['roadId', roadId],
+          ['s', written],
+          ['t', t],
+        ],
+        extra,
+        position.place,
+      ),
+      summary: `road ${roadId}, s ${written}, t ${t}`,
+    };
+  }
+  const laneId = attr(coordinates, 'laneId') ?? '';
+  const offset = attr(coordinates, 'laneOffset') ?? '0';
+  return {
+    node: makeNode(
+      'LanePosition',
+      [
+        ['roadId', roadId],
+        ['laneId', laneId],
+        ['offset', offset],
+        ['s', written],
+      ],
+      extra,
+      position.place,
+    ),
+    summary: `road ${roadId}, lane ${laneId}, s ${written}${offset !== '0' ? `, offset ${offset}` : ''}`,
+  };
+}
+
 /** ScenarioRunner refuses these positions (SR_PARSER convert_position_to_transform: RoutePosition raises NotImplementedError); Geo and Trajectory positions are not 1.0. */
 function unsupportedPositions(tree: Node, context: RuleContext): void {
   for (const name of ['RoutePosition', 'GeoPosition', 'TrajectoryPosition', 'RoadRange']) {
     for (const node of named(tree, name)) {
       if (!node.parent) continue;
-      const inInitTeleport = ancestor(node, 'Init') && ancestor(node, 'TeleportAction');
-      if (inInitTeleport) {
-        context.sink.refuse(
-          node,
-          name,
-          'places an actor at the start, and ScenarioRunner cannot place it',
-          `${SR_PARSER} convert_position_to_transform has no ${name}`,
-        );
-        continue;
-      }
-      dropUnit(node, context, name, `ScenarioRunner has no ${name} (${SR_PARSER} convert_position_to_transform)`);
+      unconvertiblePosition(node, name, context);
     }
   }
   for (const position of named(tree, 'RelativeLanePosition')) {
@@ -964,6 +1064,7 @@ export const CARLA_RULES: readonly { name: string; apply: (tree: Node, context: 
   { name: 'absolute-target-lane', apply: absoluteTargetLane },
   { name: 'time-gap', apply: longitudinalTimeGap },
   { name: 'trajectories', apply: trajectories },
+  { name: 'route-positions', apply: routePositions },
   { name: 'positions', apply: unsupportedPositions },
   { name: 'refused-actions', apply: refusedActions },
   { name: 'route-crash', apply: routeActionCrash },
