@@ -167,6 +167,21 @@ describe('cli: modularize', function () {
     assert.ok(!fs.existsSync(path.join(root, 'out')));
   });
 
+  it('groups that recur but would not pay: each left inline with its reason, not called unique', () => {
+    // One small event: two uses save less than the simple scenario they need.
+    const small = (name: string, speed: string) => speedGroup(name, speed).replace(/( *<Event name="E2"[\s\S]*<\/Event>\n)/, '');
+    const root = temporaryWorkspace({ 'lib/a.xosc': scenario(small('A.Go', '10')), 'lib/b.xosc': scenario(small('B.Go', '20')) });
+    const run = runCli(['modularize', 'lib', '-o', 'out'], { cwd: root });
+    assert.equal(run.status, 0, run.stderr);
+    assert.match(run.stdout, /2 recurring groups left inline, each for the reason below: nothing extracted, nothing written/);
+    assert.match(
+      run.stdout,
+      /kept inline: A\.Go in lib\/a\.xosc: extracting it would not pay: its simple scenario \(\d+ lines\) outweighs the \d+ lines its 2 uses would save/,
+    );
+    assert.doesNotMatch(run.stdout, /no ManeuverGroup recurs/);
+    assert.ok(!fs.existsSync(path.join(root, 'out')));
+  });
+
   it('an input that does not parse: named with its line, nothing written', () => {
     const root = temporaryWorkspace({
       'lib/a.xosc': scenario(speedGroup('A.Go', '10')),

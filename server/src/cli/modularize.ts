@@ -170,7 +170,12 @@ function report(
     );
     return;
   }
-  if (result.behaviours.length === 0) {
+  if (result.behaviours.length === 0 && result.keptInline.length > 0) {
+    const groups = result.keptInline.length;
+    io.out(
+      `${groups} recurring group${groups === 1 ? '' : 's'} left inline, each for the reason below: nothing extracted, nothing written`,
+    );
+  } else if (result.behaviours.length === 0) {
     io.out(
       `no ManeuverGroup recurs across the ${result.mains.length} scenario${result.mains.length === 1 ? '' : 's'}: nothing extracted, nothing written`,
     );
