@@ -36,6 +36,21 @@ describe('language server: the Run in esmini request over JSON-RPC', function ()
     assert.deepEqual(result.problems, []);
   });
 
+  it("adds one exit listener for every server's run folders, however many servers of one process run esmini", async () => {
+    const noEsmini = { esminiPath: path.join(root, 'no-esmini') };
+    await run(fileUri(path.join(root, 'main.xosc')), noEsmini);
+    const listeners = process.listenerCount('exit');
+    const other = await TestClient.start({ root });
+    try {
+      await other.indexed();
+      for (const server of [other, client])
+        await server.send(RunEsminiRequest, { uri: fileUri(path.join(root, 'main.xosc')), ...noEsmini });
+    } finally {
+      await other.stop();
+    }
+    assert.equal(process.listenerCount('exit'), listeners, 'exit listeners added by the later runs');
+  });
+
   it('runs the unsaved text of an open simple scenario and answers with its message on that line, and the CSV', async function () {
     requireEsmini(this);
     const clean = await run(fileUri(path.join(root, 'main.xosc')));

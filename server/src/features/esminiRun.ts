@@ -15,6 +15,22 @@ function stringList(value: unknown): string[] {
   return Array.isArray(value) ? value.filter((item): item is string => typeof item === 'string' && item.trim().length > 0) : [];
 }
 
+/** The latest run folders of every server of this process, removed when it exits: one exit listener for all (tests start many servers in one process). */
+const runsUntilExit = new Set<EsminiRunResult>();
+let exitListener = false;
+
+function keepUntilExit(run: EsminiRunResult): void {
+  runsUntilExit.add(run);
+  if (exitListener) return;
+  exitListener = true;
+  process.on('exit', () => runsUntilExit.forEach((kept) => removeRunFolder(kept)));
+}
+
+function removeNow(run: EsminiRunResult): void {
+  removeRunFolder(run);
+  runsUntilExit.delete(run);
+}
+
 /**
  * Run in esmini for one server: flattens the file as the editor has it and runs it. The files of a
  * file's previous run are removed when it runs again, and all of this server's when the process exits.
@@ -22,8 +38,6 @@ function stringList(value: unknown): string[] {
 export class EsminiRuns {
   /** The run folders still on disk, the latest run of each file. */
   private readonly previous = new Map<string, EsminiRunResult>();
-  /** Added with the first run, so that a server that never runs esmini adds no exit listener. */
-  private exitListener = false;
 
   constructor(private readonly workspace: Workspace) {}
 
@@ -48,12 +62,10 @@ export class EsminiRuns {
       : await runScenario(new Flattener(workspace.store), ref, options);
     const id = refId(ref);
     const earlier = this.previous.get(id);
-    if (earlier) removeRunFolder(earlier);
+    if (earlier) removeNow(earlier);
     this.previous.set(id, result);
-    if (!this.exitListener) {
-      this.exitListener = true;
-      process.on('exit', () => this.previous.forEach((run) => removeRunFolder(run)));
-    }
+    // Added with the first run, so that a process whose servers never run esmini adds no exit listener.
+    keepUntilExit(result);
     return {
       outcome: result.outcome,
       message: result.message,
