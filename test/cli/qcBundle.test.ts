@@ -3,6 +3,7 @@ import { execFileSync } from 'node:child_process';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { parseXml, XmlElement } from '../../server/src/core/xml';
+import { ExitCode } from '../../server/src/cli/common';
 import { cliPath } from '../support/paths';
 import { RULE_FILES } from '../support/qcRuleFiles';
 import { temporaryWorkspace } from '../support/workspace';
@@ -227,5 +228,21 @@ describe('cli: qc-bundle (a checker bundle of the ASAM Quality Checker Framework
       );
     }
     assert.ok(!fs.existsSync(path.join(root, 'out')));
+  });
+
+  it('a result file it cannot write is exit 3 (an output error, as for every command), saying nothing was changed', () => {
+    const root = temporaryWorkspace({ 'main.xosc': SCENARIO, 'config.xml': config('main.xosc'), blocker: 'a file, not a folder' });
+    // The output folder cannot be made (a file stands in its path), or the result's name is taken by a folder.
+    fs.mkdirSync(path.join(root, 'taken', 'modular2simple.xqar'), { recursive: true });
+    for (const outputDir of [path.join('blocker', 'out'), 'taken']) {
+      assert.throws(
+        () => execFileSync(process.execPath, [cliPath, 'qc-bundle', '-c', 'config.xml', '-o', outputDir], { cwd: root, stdio: 'pipe' }),
+        (error: { status: number; stderr: Buffer }) =>
+          error.status === ExitCode.io &&
+          /modular2simple\.xqar: error: cannot write the output \(.*\); nothing was changed/.test(error.stderr.toString()),
+      );
+    }
+    assert.equal(fs.readFileSync(path.join(root, 'blocker'), 'utf8'), 'a file, not a folder');
+    assert.deepEqual(fs.readdirSync(path.join(root, 'taken', 'modular2simple.xqar')), []);
   });
 });

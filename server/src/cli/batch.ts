@@ -46,8 +46,9 @@ export const BATCH_HELP = `Run every concrete scenario of a distribution in esmi
   against every other: bounding-box gap, and gap over closing speed), end_time_s, then one column per varied
   parameter. results.json: the same rows with esmini's messages. results.html: the table and a scatter of the
   first two parameters coloured by outcome, self-contained (written at the end, and on every resume).
-  Exit codes: 0 every run done, 1 the input has errors (nothing run), 2 usage, 3 no esmini, Redis unreachable
-  or the results cannot be written, 4 internal error, 130 interrupted (run it again to finish).`;
+  Exit codes: 0 every run done, 1 the input has errors (nothing run), 2 usage, 3 no esmini, the queue packages
+  missing (bullmq and ioredis, for --queue), Redis unreachable or the results cannot be written, 4 internal error,
+  130 interrupted (run it again to finish).`;
 
 const DEFAULT_MAX_COMBINATIONS = 1_000_000n;
 

@@ -1,13 +1,12 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { writeFileAtomic } from '../../../common/src/atomic';
 import { Flattener } from '../core/flatten';
 import { Problem, Severity, uniqueProblems } from '../core/problems';
 import { ProblemRule, ruleOf, RuledProblem } from '../core/rules';
 import { displayRef } from '../core/sources';
 import { decodeUtf8 } from '../core/text';
 import { attributeValue, elementAt, escapeAttributeValue, parseXml, XmlDocument, XmlElement } from '../core/xml';
-import { CliCommand, CliOutput, ExitCode, InputError, parseCommandLine, UsageError, VERSION } from './common';
+import { CliCommand, CliOutput, ExitCode, InputError, parseCommandLine, UsageError, VERSION, write } from './common';
 import { mainOf, storeForInputs } from './inputs';
 
 /**
@@ -190,14 +189,25 @@ async function qcBundleCommand(args: string[], io: CliOutput): Promise<number> {
       ? parseXml(decodeUtf8(fs.readFileSync(config.inputFile)))
       : undefined;
   const outputDir = path.resolve(values['out-dir'] ?? values['output-dir'] ?? '.');
-  fs.mkdirSync(outputDir, { recursive: true });
   const resultPath = path.join(outputDir, config.resultFile);
-  // Written whole or not at all, as every output of this project.
-  await writeFileAtomic(resultPath, resultFileText(config, problems, inputDocument));
-  io.err(
-    `${displayRef(mainOf(config.inputFile), process.cwd())}: ${problems.length} issue${problems.length === 1 ? '' : 's'} written to ${resultPath}`,
+  try {
+    fs.mkdirSync(outputDir, { recursive: true });
+  } catch (error) {
+    io.err(`${resultPath}: error: cannot write the output (${(error as Error).message}); nothing was changed`);
+    return ExitCode.io;
+  }
+  // Written whole or not at all, as every output of this project; a failure is exit 3 as for every command.
+  return write(
+    [
+      {
+        target: resultPath,
+        data: resultFileText(config, problems, inputDocument),
+        summary: `${displayRef(mainOf(config.inputFile), process.cwd())}: ${problems.length} issue${problems.length === 1 ? '' : 's'} written to ${resultPath}`,
+      },
+    ],
+    io,
+    false,
   );
-  return ExitCode.ok;
 }
 
 export const QC_BUNDLE: CliCommand = {
@@ -209,6 +219,6 @@ export const QC_BUNDLE: CliCommand = {
   --manifest                print the module manifest that registers this bundle with the framework
   Issues found are results, not failures: exit 0 whenever the result file was written.
   Exit codes: 0 the result file was written, 1 the configuration or its InputFile cannot be used, 2 usage,
-  4 internal error.`,
+  3 the result file could not be written (nothing was changed), 4 internal error.`,
   run: qcBundleCommand,
 };
