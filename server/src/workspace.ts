@@ -315,6 +315,25 @@ export class Workspace {
     return filePaths.length;
   }
 
+  /**
+   * The distribution files of the workspace whose ScenarioFile is the scenario `ref` (a plain file, or the unpacked
+   * folder or package whose main.xosc it is), from the index.
+   */
+  async distributionsOf(ref: SourceRef): Promise<string[]> {
+    const named = new Set<string>();
+    if (ref.entries.length === 0) {
+      named.add(path.resolve(ref.disk));
+      if (path.basename(ref.disk) === 'main.xosc') named.add(path.dirname(path.resolve(ref.disk)));
+    } else if (ref.entries.length === 1 && ref.entries[0] === 'main.xosc') named.add(path.resolve(ref.disk));
+    const found: string[] = [];
+    for (const entry of await this.indexedFiles()) {
+      if (entry.distributionOf === undefined) continue;
+      const scenario = path.resolve(path.dirname(entry.path), entry.distributionOf);
+      if (named.has(scenario) || named.has(scenario.replace(/[\\/]+$/, ''))) found.push(entry.path);
+    }
+    return found;
+  }
+
   /** Index entries, reading again any file that changed since it was indexed. */
   async indexedFiles(): Promise<IndexedFile[]> {
     return this.entriesOf(await this.index.walk(this.folders));

@@ -37,6 +37,8 @@ export interface IndexedFile {
    * what the scan does not read (a nested package, a scenario too large or not decodable): it may reach any.
    */
   scenarioNames: string[] | undefined;
+  /** For a ParameterValueDistribution file: its ScenarioFile's `filepath` as written (the scenario whose root parameters it varies). */
+  distributionOf?: string;
 }
 
 /** A file's text for the index; a file in an encoding that cannot be read is indexed without groups (its analysis reports why). */
@@ -50,6 +52,7 @@ export function decodeOrUndefined(bytes: Uint8Array): string | undefined {
 
 const ENTRY_NAME = /\sentryName\s*=\s*(?:"([^"]*)"|'([^']*)')/;
 const SCENARIO_FILE_NAME = /\sscenarioFileName\s*=\s*(?:"([^"]*)"|'([^']*)')/;
+const DISTRIBUTION_SCENARIO_FILE = /<ScenarioFile\b[^>]*?\sfilepath\s*=\s*(?:"([^"]*)"|'([^']*)')/;
 
 /**
  * Group names (with ranges), whether references occur and the catalog references, by a scan of the
@@ -59,7 +62,7 @@ const SCENARIO_FILE_NAME = /\sscenarioFileName\s*=\s*(?:"([^"]*)"|'([^']*)')/;
 export function scanScenario(
   text: string,
   ref: SourceRef,
-): Pick<IndexedFile, 'groups' | 'modular' | 'catalogReferences' | 'scenarioNames'> {
+): Pick<IndexedFile, 'groups' | 'modular' | 'catalogReferences' | 'scenarioNames' | 'distributionOf'> {
   const lines = new LineIndex(text);
   const groups: IndexedGroup[] = [];
   const entryNames: string[] = [];
@@ -84,7 +87,9 @@ export function scanScenario(
     const name = /\sname\s*=\s*(?:"([^"]*)"|'([^']*)')/.exec(match[0]);
     groups.push({ name: name ? (name[1] ?? name[2]) : '', range: lines.range(match.index, match.index + match[0].length), ref });
   }
+  const scenarioFile = text.includes('<ParameterValueDistribution') ? DISTRIBUTION_SCENARIO_FILE.exec(text) : null;
   return {
+    ...(scenarioFile ? { distributionOf: scenarioFile[1] ?? scenarioFile[2] } : {}),
     groups,
     modular: /<ScenarioReference\b/.test(text),
     catalogReferences: entryNames.length > 0 ? [{ ref, entryNames }] : [],

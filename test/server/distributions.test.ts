@@ -2,7 +2,8 @@ import * as assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { CodeLens, CompletionItem, Diagnostic, Hover, Location, MarkupContent } from 'vscode-languageserver/node';
+import { CodeLens, CompletionItem, Diagnostic, Hover, Location, MarkupContent, WorkspaceEdit } from 'vscode-languageserver/node';
+import { applyEdits } from '../support/textEdits';
 import { RunEsminiRequest, RunEsminiResult } from '../../common/src/protocol';
 import { fileUri, useServer } from './harness';
 import { problemCodeOf } from '../support/diagnostics';
@@ -364,5 +365,46 @@ describe('distribution files in the editor: stochastic', function () {
       assert.ok(value >= 20 && value <= 30, line);
     }
     assert.equal(lines[7], '- … (35 more)');
+  });
+});
+
+describe('distribution files in the editor: renaming a root parameter', function () {
+  const varies = distribution(`      <DeterministicSingleParameterDistribution parameterName="Speed">
+        <DistributionSet><Element value="20"/><Element value="25"/></DistributionSet>
+      </DeterministicSingleParameterDistribution>
+      <DeterministicSingleParameterDistribution parameterName="$Speed">
+        <DistributionSet><Element value="30"/></DistributionSet>
+      </DeterministicSingleParameterDistribution>
+      <DeterministicMultiParameterDistribution><ValueSetDistribution><ParameterValueSet>
+        <ParameterAssignment parameterRef="Speed" value="5"/><ParameterAssignment parameterRef="Gap" value="16"/>
+      </ParameterValueSet></ValueSetDistribution></DeterministicMultiParameterDistribution>`);
+  const fixture = useServer(
+    {
+      'plain.xosc': scenario,
+      'other.xosc': scenario,
+      'varies.xosc': varies,
+      // The same parameter name in a distribution of another scenario: not this parameter.
+      'elsewhere.xosc': varies.replace('filepath="plain.xosc"', 'filepath="other.xosc"'),
+    },
+    'plain.xosc',
+  );
+
+  it('renames the parameterName and parameterRef of every distribution that varies it, and only those', async () => {
+    const edit = (await fixture.client.connection.sendRequest('textDocument/rename', {
+      textDocument: { uri: fixture.openUri },
+      position: at(scenario, 'name="S|peed"'),
+      newName: 'EgoSpeed',
+    })) as WorkspaceEdit;
+    const changes = edit.changes ?? {};
+    assert.deepEqual(Object.keys(changes).sort(), [fixture.openUri, fileUri(path.join(fixture.root, 'varies.xosc'))].sort());
+    const renamed = applyEdits(varies, changes[fileUri(path.join(fixture.root, 'varies.xosc'))]);
+    assert.equal(renamed.match(/parameterName="EgoSpeed"/g)?.length, 1);
+    assert.equal(renamed.match(/parameterName="\$EgoSpeed"/g)?.length, 1, "the '$' written before the name is kept");
+    assert.match(renamed, /<ParameterAssignment parameterRef="EgoSpeed" value="5"\/><ParameterAssignment parameterRef="Gap"/);
+    assert.doesNotMatch(renamed, /"\$?Speed"/);
+    assert.match(
+      applyEdits(scenario, changes[fixture.openUri]),
+      /<ParameterDeclaration name="EgoSpeed" parameterType="double" value="30"\/>/,
+    );
   });
 });

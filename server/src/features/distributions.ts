@@ -1,5 +1,5 @@
 import * as path from 'node:path';
-import { CodeLens, CompletionItem, CompletionItemKind, Hover, MarkupKind } from 'vscode-languageserver/node';
+import { CodeLens, CompletionItem, CompletionItemKind, Hover, MarkupKind, TextEdit } from 'vscode-languageserver/node';
 import { valueContextAt } from '../core/cursor';
 import { childRef, diskRef, refId, SourceRef } from '../core/sources';
 import { loadVariations, SamplingError, Variations } from '../core/variations';
@@ -8,7 +8,7 @@ import { LineIndex } from '../core/text';
 import { readScenarioParameters } from '../core/variations/concrete';
 import { expandDeterministic } from '../core/variations/deterministic';
 import { ParameterValue } from '../core/variations/distribution';
-import { parseXml, XmlElement } from '../core/xml';
+import { attribute, descendants, parseXml, XmlElement } from '../core/xml';
 import { Place } from '../analysis';
 import { Workspace } from '../workspace';
 import { SERVER_MEMOS, serverMemo } from '../database';
@@ -273,4 +273,39 @@ export async function distributionDefinition(workspace: Workspace, ref: SourceRe
   const start = nameValue ? declaration.offset + nameValue.index + nameValue[0].length : declaration.offset;
   const lines = new LineIndex(declaredText);
   return [{ ref: analysis.scenarioRef, range: lines.range(start, start + (nameValue ? declaration.name.length : 0)) }];
+}
+
+/** The attributes of a distribution file that name a root parameter of its ScenarioFile, by element. */
+const PARAMETER_NAMING: Readonly<Record<string, string>> = {
+  DeterministicSingleParameterDistribution: 'parameterName',
+  StochasticDistribution: 'parameterName',
+  ParameterAssignment: 'parameterRef',
+};
+
+/**
+ * A root parameter renamed in `scenario`: the same name changed in every distribution file of the workspace that
+ * varies it (its `parameterName`s and `parameterRef`s; a `$` written before the name is kept), by file URI.
+ */
+export async function distributionRenameEdits(
+  workspace: Workspace,
+  scenario: SourceRef,
+  oldName: string,
+  newName: string,
+): Promise<Record<string, TextEdit[]>> {
+  const changes: Record<string, TextEdit[]> = {};
+  for (const file of await workspace.distributionsOf(scenario)) {
+    const ref = diskRef(file);
+    const text = await workspace.text(ref);
+    if (text === undefined) continue;
+    const document = parseXml(text);
+    const edits: TextEdit[] = [];
+    for (const element of document.root ? descendants(document.root) : []) {
+      const naming = PARAMETER_NAMING[element.name];
+      const value = naming ? attribute(element, naming) : undefined;
+      if (!value || (value.value !== oldName && value.value !== `$${oldName}`)) continue;
+      edits.push(TextEdit.replace(document.lines.range(value.valueEnd - oldName.length, value.valueEnd), newName));
+    }
+    if (edits.length > 0) changes[workspace.uriOf(ref)] = edits;
+  }
+  return changes;
 }

@@ -10,6 +10,7 @@ import { filePathOf } from '../uris';
 import { Workspace } from '../workspace';
 import { entryParameterOf, entryParameterReferences, entryParameterRenameRange, renameEntryParameter } from './catalogParameters';
 import { parameterReferences, parameterRenameRange, renameParameter } from './parameters';
+import { distributionRenameEdits } from './distributions';
 
 /** A group or an overridable attribute, identified by the file and element it is written in. */
 export type NameTarget =
@@ -137,7 +138,13 @@ export async function renameAt(
   const semantics = source.semantics;
   const entryParameter = semantics ? await entryParameterOf(workspace, semantics, target) : undefined;
   if (entryParameter) return renameEntryParameter(workspace, entryParameter, newName);
-  const parameterEdit = semantics ? renameParameter(workspace, semantics, declarationOf(target), newName) : undefined;
+  const declaration = declarationOf(target);
+  const parameterEdit = semantics ? renameParameter(workspace, semantics, declaration, newName) : undefined;
+  if (parameterEdit && semantics && declaration && declaration.kind === 'parameter' && declaration.scope.parent === undefined) {
+    // A root parameter: the distribution files that vary it name it too.
+    const renamed = newName.startsWith('$') ? newName.slice(1) : newName;
+    Object.assign(parameterEdit.changes ?? {}, await distributionRenameEdits(workspace, semantics.ref, declaration.name, renamed));
+  }
   if (parameterEdit) return parameterEdit;
   const subject = nameTargetOf(source, syntacticTarget(source, target, offset));
   if (!subject || subject.kind !== 'group')
