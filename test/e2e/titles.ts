@@ -39,6 +39,8 @@ export const INSIDE_TESTS = {
   newScenario: 'New Modular Scenario… on a folder writes a main with an ego on the chosen road, opens it clean, and never overwrites',
   distributionLens: 'a distribution file shows its number of concrete scenarios (as vary --count) and Run Variations in a CodeLens',
   variations: "the Variations view shows a batch as a sortable, filterable table and scatter, and opens a run in the bird's-eye view",
+  carlaExport:
+    "Export for CARLA… from the palette writes the 1.0 file and puts its losses as diagnostics on the simple scenario's lines; a refused export writes nothing",
   extractToSimple:
     'Extract to a simple scenario from the light bulb, with the pick list of attributes, replaces a group by a reference that flattens as before',
 } as const;

@@ -268,6 +268,8 @@ describe('the packaged extension in a real VS Code (code-server, headless Chromi
       'dist/variations.js',
       // The compiled OpenSCENARIO schemas the server reads, and the ASAM schemas with their licence note.
       'dist/openscenario-schemas.json',
+      // The harness Check in CARLA ScenarioRunner runs with the user's Python.
+      'server/python/scenario_runner_check.py',
       ...fs.readdirSync(path.join(repoRoot, 'schemas')).map((file) => `schemas/${file}`),
       ...manifest.contributes.grammars.map((grammar) => grammar.path),
       ...manifest.contributes.languages.flatMap((language) => [language.configuration, language.icon?.light]),

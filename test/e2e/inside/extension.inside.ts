@@ -15,6 +15,7 @@ import { refactoringTests } from './refactorings.inside';
 import { ruleTests } from './rules.inside';
 import { structureTests } from './structure.inside';
 import { distributionTests } from './distributions.inside';
+import { carlaTests } from './carla.inside';
 
 const TESTS: InsideTests = {
   ...editingTests,
@@ -28,6 +29,7 @@ const TESTS: InsideTests = {
   ...distributionTests,
   ...refactoringTests,
   ...ruleTests,
+  ...carlaTests,
 };
 
 /**
@@ -67,6 +69,7 @@ const ORDER: InsideTestKey[] = [
   'newScenario',
   'distributionLens',
   'extractToSimple',
+  'carlaExport',
 ];
 
 /** The extension's tests inside VS Code, each feature's in its own file; the bird's-eye view's follow (birdsEye.inside.ts). */

@@ -1,0 +1,108 @@
+import * as assert from 'node:assert/strict';
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import * as vscode from 'vscode';
+import { ExportForCarlaRequest } from '../../../common/src/protocol';
+import { HARNESS_ENV } from '../titles';
+import { pageShows, runFromPalette, screenshot } from './harnessClient';
+import {
+  acceptSaveDialog,
+  type InsideTests,
+  offersRequest,
+  open,
+  positionOf,
+  requireServerFeature,
+  revertAndClose,
+  waitFor,
+  workspaceRoot,
+} from './helpers';
+
+const SOURCE = 'Export for CARLA';
+
+function exportLosses(uri: vscode.Uri): vscode.Diagnostic[] {
+  return vscode.languages.getDiagnostics(uri).filter((diagnostic) => diagnostic.source === SOURCE);
+}
+
+/**
+ * test/fixtures/modularRun laid out as esmini's corpus is (xosc/ beside xodr/, esmini's catalog names such as
+ * car_white), in the workspace's `carlaExport/`; undefined when esmini's e6mini road is not beside the repository.
+ */
+function carlaExportFolder(): string | undefined {
+  const repository = path.resolve(path.dirname(process.env[HARNESS_ENV.cli] ?? '.'), '..');
+  const road = path.resolve(repository, '..', 'shared', 'esmini', 'xodr', 'e6mini.xodr');
+  if (!fs.existsSync(road)) return undefined;
+  const folder = path.join(workspaceRoot(), 'carlaExport');
+  fs.mkdirSync(path.join(folder, 'xosc'), { recursive: true });
+  fs.mkdirSync(path.join(folder, 'xodr'), { recursive: true });
+  for (const file of ['main.xosc', 'cut_in_group.xosc'])
+    fs.copyFileSync(path.join(repository, 'test', 'fixtures', 'modularRun', 'xosc', file), path.join(folder, 'xosc', file));
+  fs.copyFileSync(road, path.join(folder, 'xodr', 'e6mini.xodr'));
+  return folder;
+}
+
+/** *Export for CARLA…* from the palette: the file written, its losses as diagnostics on the simple scenario's lines. */
+export const carlaTests: InsideTests = {
+  carlaExport: async function () {
+    this.timeout(120_000);
+    requireServerFeature(this, 'exportForCarla', offersRequest(ExportForCarlaRequest));
+    const folder = carlaExportFolder();
+    if (!folder) {
+      assert.ok(!process.env.M2S_REQUIRE_ESMINI, "M2S_REQUIRE_ESMINI is set, but esmini's e6mini.xodr is absent");
+      console.log("skipped: esmini's e6mini.xodr is not beside the repository");
+      this.skip();
+    }
+    try {
+      const main = await open('carlaExport/xosc/main.xosc');
+      await runFromPalette('Modular2Simple: Export for CARLA…');
+      // Proposed as Flatten proposes, with .carla.xosc: beside the folder that stands for the package.
+      const written = path.join(folder, 'xosc.carla.xosc');
+      await acceptSaveDialog(path.basename(written));
+      await waitFor(path.basename(written), () => fs.existsSync(written) || undefined, 60_000);
+      const text = fs.readFileSync(written, 'utf8');
+      assert.match(text, /<FileHeader [^>]*revMajor="1" revMinor="0"/);
+      assert.match(text, /<Property name="type" value="ego_vehicle"\/>/);
+      assert.doesNotMatch(text, /parameterAttributes|ScenarioReference/);
+
+      // The imported group's loss lands in the simple scenario, on the Event that has the priority; the main's own in the main.
+      const simple = vscode.Uri.file(path.join(folder, 'xosc', 'cut_in_group.xosc'));
+      const simpleDocument = await vscode.workspace.openTextDocument(simple);
+      const priority = await waitFor('the priority loss in cut_in_group.xosc', () =>
+        exportLosses(simple).find((diagnostic) => diagnostic.message.startsWith('Event/@priority')),
+      );
+      assert.equal(priority.range.start.line, positionOf(simpleDocument, 'priority=').line);
+      assert.equal(priority.severity, vscode.DiagnosticSeverity.Warning);
+      assert.match(priority.message, /ScenarioRunner runs every event in parallel/);
+      assert.ok(
+        exportLosses(main.document.uri).some((diagnostic) => /'car_white' is no CARLA blueprint/.test(diagnostic.message)),
+        'the blueprint loss is on the main',
+      );
+      const editor = await vscode.window.showTextDocument(simpleDocument, { viewColumn: vscode.ViewColumn.One, preview: false });
+      editor.revealRange(priority.range, vscode.TextEditorRevealType.InCenter);
+      editor.selection = new vscode.Selection(priority.range.start, priority.range.start);
+      await vscode.commands.executeCommand('workbench.actions.view.problems');
+      await waitFor(
+        'the loss in the Problems panel',
+        async () => (await pageShows('ScenarioRunner runs every event in parallel', '.markers-panel')) || undefined,
+        15_000,
+      );
+      await screenshot('Export for CARLA: the losses on the simple scenario');
+
+      // A refused export writes nothing, and its refusal replaces the previous export's losses.
+      const crossing = vscode.Uri.file(path.join(workspaceRoot(), 'crossing.xosc'));
+      const refusedOutput = path.join(folder, 'crossing.carla.xosc');
+      // The command answers once its error message is dismissed (it offers Go to Problem): not awaited until then.
+      const answer = vscode.commands.executeCommand('modular2simple.exportForCarla', crossing, undefined, { output: refusedOutput });
+      const refusal = await waitFor('the refusal on crossing.xosc', () =>
+        exportLosses(crossing).find((diagnostic) => diagnostic.severity === vscode.DiagnosticSeverity.Error),
+      );
+      assert.match(refusal.message, /AcquirePositionAction: crashes ScenarioRunner 0\.9\.16/);
+      await waitFor('the refusal message', async () => (await pageShows('Export for CARLA failed: AcquirePositionAction')) || undefined);
+      await vscode.commands.executeCommand('notifications.clearAll');
+      assert.equal(await answer, undefined);
+      assert.equal(fs.existsSync(refusedOutput), false, 'a refused export writes nothing');
+      assert.deepEqual(exportLosses(simple), [], 'the next export replaces the previous losses');
+    } finally {
+      await revertAndClose();
+    }
+  },
+};
