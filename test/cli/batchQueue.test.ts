@@ -22,6 +22,59 @@ function batchFolder(stopTime: number): string {
   return folder;
 }
 
+/**
+ * The shape of the ALKS logical scenarios: the distribution one folder above its ScenarioFile, the road a varied
+ * parameter (filepath="$Road") naming files beside the scenario, a vehicle from a catalog folder of its own.
+ * Six runs, stopped at 5 s by --duration (status limit), the fastest ego colliding before that.
+ */
+function alksShapedFolder(): string {
+  const root = temporaryFolder('m2s-queue-alks-');
+  const scenarios = path.join(root, 'scenarios');
+  fs.mkdirSync(path.join(scenarios, 'roads'), { recursive: true });
+  fs.mkdirSync(path.join(scenarios, 'catalogs', 'vehicles'), { recursive: true });
+  for (const name of ['e6mini.xodr', 'e6mini_copy.xodr'])
+    fs.copyFileSync(path.join(esminiRoads, 'e6mini.xodr'), path.join(scenarios, 'roads', name));
+  const follow = fs.readFileSync(path.join(FIXTURES, 'follow.xosc'), 'utf8');
+  const ego = /<Vehicle name="ego_car"[\s\S]*?<\/Vehicle>/.exec(follow)![0];
+  fs.writeFileSync(
+    path.join(scenarios, 'catalogs', 'vehicles', 'VehicleCatalog.xosc'),
+    `<?xml version="1.0" encoding="UTF-8"?>\n<OpenSCENARIO>\n  <FileHeader revMajor="1" revMinor="2" date="2026-11-27T00:00:00" description="vehicles" author="modular2simple tests"/>\n  <Catalog name="VehicleCatalog">\n${ego}\n  </Catalog>\n</OpenSCENARIO>\n`,
+  );
+  const scenario = follow
+    .replace('name="StopTime" parameterType="double" value="3"', 'name="StopTime" parameterType="double" value="40"')
+    .replace(
+      '<ParameterDeclarations>',
+      '<ParameterDeclarations>\n    <ParameterDeclaration name="Road" parameterType="string" value="./roads/e6mini.xodr"/>',
+    )
+    .replace(
+      '<CatalogLocations/>',
+      '<CatalogLocations><VehicleCatalog><Directory path="./catalogs/vehicles"/></VehicleCatalog></CatalogLocations>',
+    )
+    .replace('<LogicFile filepath="e6mini.xodr"/>', '<LogicFile filepath="$Road"/>')
+    .replace(ego, '<CatalogReference catalogName="VehicleCatalog" entryName="ego_car"/>');
+  fs.writeFileSync(path.join(scenarios, 'follow.xosc'), scenario);
+  fs.writeFileSync(
+    path.join(root, 'd.xosc'),
+    `<?xml version="1.0" encoding="UTF-8"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="2" date="2026-11-27T00:00:00" description="road and ego speed" author="modular2simple tests"/>
+  <ParameterValueDistribution>
+    <ScenarioFile filepath="./scenarios/follow.xosc"/>
+    <Deterministic>
+      <DeterministicSingleParameterDistribution parameterName="Road">
+        <DistributionSet><Element value="./roads/e6mini.xodr"/><Element value="./roads/e6mini_copy.xodr"/></DistributionSet>
+      </DeterministicSingleParameterDistribution>
+      <DeterministicSingleParameterDistribution parameterName="EgoSpeed">
+        <DistributionSet><Element value="10"/><Element value="20"/><Element value="30"/></DistributionSet>
+      </DeterministicSingleParameterDistribution>
+    </Deterministic>
+  </ParameterValueDistribution>
+</OpenSCENARIO>
+`,
+  );
+  return root;
+}
+
 interface Background {
   kill(signal: NodeJS.Signals): void;
   output(): string;
@@ -107,6 +160,45 @@ describe('cli: batch through a Redis queue', function () {
     assert.deepEqual([...queued].sort(), [...everyRowOnce(path.join(root, 'local'))].sort());
     for (const worker of workers.slice(0, 2)) worker.kill('SIGTERM');
     for (const worker of workers.slice(0, 2)) assert.equal((await worker.ended).code, 0);
+  });
+
+  it('the ALKS shape (road a varied parameter, catalogs beside the scenario): three workers each in an empty folder, one killed, give the local rows, status included', async function () {
+    requireEsmini(this);
+    requireRedis(this);
+    redis = await startRedis();
+    const root = alksShapedFolder();
+    folders.push(root);
+    for (let i = 0; i < 3; i++) {
+      // Each in an empty folder of its own, as on machines that share no disk: what a run needs comes through Redis.
+      const empty = temporaryFolder('m2s-worker-');
+      folders.push(empty);
+      workers.push(
+        background(['worker', '--queue', redis.url, '--jobs', '1', '--esmini', esminiBinary], empty, {
+          ...(i === 2 ? { TMPDIR: temporaryFolder('m2s-killed-worker-') } : {}),
+        }),
+      );
+    }
+    const args = ['batch', 'd.xosc', '--duration', '5', '--esmini', esminiBinary];
+    const batch = background([...args, '--results', 'queued', '--queue', redis.url], root);
+    const victim = workers[2];
+    await waitUntil(() => /: (ok|limit|error|timeout)/.test(victim.output()), 'the third worker to finish a run', 120_000, 10);
+    victim.kill('SIGKILL');
+    const ended = await batch.ended;
+    assert.equal(ended.code, 0, ended.output);
+    const local = runCli([...args, '--results', 'local', '--jobs', '2'], { cwd: root });
+    assert.equal(local.status, 0, local.stderr);
+    const rowsOf = (folder: string) =>
+      fs
+        .readFileSync(path.join(root, folder, 'results.csv'), 'utf8')
+        .split('\n')
+        .slice(1, -1)
+        .sort();
+    const localRows = rowsOf('local');
+    assert.equal(localRows.length, 6);
+    // Every run found its road and its catalog: stopped at the limit, the fastest ego after hitting the lead.
+    for (const row of localRows) assert.match(row, /^\d,limit,(true|false),[\d.]+,[\d.]*,5\.000,\.\/roads\/e6mini(_copy)?\.xodr,/);
+    assert.ok(localRows.some((row) => row.split(',')[2] === 'true'));
+    assert.deepEqual(rowsOf('queued'), localRows);
   });
 
   it('a batch interrupted while the workers run collects the rest when run again, nothing twice', async function () {

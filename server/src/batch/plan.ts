@@ -3,7 +3,8 @@ import * as path from 'node:path';
 import type { PackagedFile } from '../core/flatten/types';
 import type { Variations } from '../core/variations';
 import { valuesAfter } from '../core/variations/concrete';
-import { attribute, descendants, parseXml } from '../core/xml';
+import { Evaluator, semanticModelOf } from '../core/semantics';
+import { attribute, descendants, parseXml, XmlElement } from '../core/xml';
 import { scenarioEnd } from '../esmini/timeLimit';
 import type { ConcreteRun } from './runConcrete';
 import type { BatchRow } from './results';
@@ -35,21 +36,35 @@ export function variedParameters(variations: Variations): string[] {
   return names;
 }
 
-/** Literal paths a scenario names outside itself: its road network's LogicFile and its catalog directories. */
-export function namedPaths(text: string): { roads: string[]; catalogFolders: string[] } {
-  const root = parseXml(text).root;
+/** The paths a scenario names outside itself, `$name` and `${...}` evaluated as esmini reads them: its LogicFile and its catalog directories. */
+export interface NamedPaths {
+  roads: string[];
+  catalogFolders: string[];
+}
+
+export function namedPaths(text: string): NamedPaths {
+  const document = parseXml(text);
   const roads: string[] = [];
   const catalogFolders: string[] = [];
-  const literal = (value: string | undefined) => (value && !value.includes('$') ? value : undefined);
-  for (const child of root?.children ?? []) {
+  let evaluator: Evaluator | undefined;
+  // A concrete scenario of a distribution often names its road through a varied parameter (ALKS: filepath="$Road").
+  const valueOf = (element: XmlElement, name: string): string | undefined => {
+    const found = attribute(element, name);
+    if (!found?.value) return undefined;
+    if (!found.value.includes('$')) return found.value;
+    evaluator ??= new Evaluator(semanticModelOf(document), undefined, 'esmini');
+    const result = evaluator.attributeValue(element, found);
+    return result.ok && typeof result.value === 'string' && result.value ? result.value : undefined;
+  };
+  for (const child of document.root?.children ?? []) {
     if (child.name === 'RoadNetwork') {
       const logicFile = child.children.find((each) => each.name === 'LogicFile');
-      const logic = logicFile ? literal(attribute(logicFile, 'filepath')?.value) : undefined;
+      const logic = logicFile ? valueOf(logicFile, 'filepath') : undefined;
       if (logic) roads.push(logic);
     }
     if (child.name === 'CatalogLocations') {
       for (const directory of descendants(child)) {
-        const value = directory.name === 'Directory' ? literal(attribute(directory, 'path')?.value) : undefined;
+        const value = directory.name === 'Directory' ? valueOf(directory, 'path') : undefined;
         if (value) catalogFolders.push(value);
       }
     }
@@ -72,7 +87,11 @@ export function searchPathOf(text: string, scenarioFolder: string, roadPath: str
  * folder, then each search folder with the path and with its file name): the road file and every catalog file.
  */
 export function filesNeeded(text: string, scenarioFolder: string, searchPath: string[]): string[] {
-  const { roads, catalogFolders } = namedPaths(text);
+  return filesNamed(namedPaths(text), scenarioFolder, searchPath);
+}
+
+/** `filesNeeded` of the paths a scenario names. */
+export function filesNamed({ roads, catalogFolders }: NamedPaths, scenarioFolder: string, searchPath: string[]): string[] {
   const files = new Set<string>();
   for (const road of roads) {
     const candidates = [

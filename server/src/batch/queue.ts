@@ -3,7 +3,7 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { Queue } from 'bullmq';
 import { Redis } from 'ioredis';
-import { BatchPlanView, concreteRun, filesNeeded } from './plan';
+import { BatchPlanView, concreteRun, filesNamed, namedPaths } from './plan';
 import { BatchOutput, Progress, Tally } from './progress';
 import { BatchIdentity, BatchRow, ResultsFolder } from './results';
 import type { RunSettings } from './runConcrete';
@@ -133,14 +133,39 @@ export async function queueBatch(
     const already = plan.chosen.filter((index) => results!.done.has(index.toString())).length;
     const todo = plan.chosen.filter((index) => !results!.done.has(index.toString()));
 
-    // Each file once, by its content.
-    const files: JobFile[] = [];
-    for (const file of filesNeeded(plan.variations.scenario.text, plan.scenarioFolder, plan.searchPath)) {
-      const bytes = await fs.promises.readFile(file);
-      const hash = sha256(bytes);
-      await client.set(fileKey(hash), bytes, 'EX', FILE_TTL_SECONDS, 'NX');
-      files.push({ relative: relativeTo(plan.scenarioFolder, file), sha256: hash });
-    }
+    // Each file once, by its content; each job lists every file its run names (its road may be a varied parameter).
+    const sent = new Map<string, Promise<JobFile>>();
+    const send = (relative: string, read: () => Promise<Uint8Array>): Promise<JobFile> => {
+      let pending = sent.get(relative);
+      if (!pending) {
+        pending = (async () => {
+          const bytes = Buffer.from(await read());
+          const hash = sha256(bytes);
+          await client.set(fileKey(hash), bytes, 'EX', FILE_TTL_SECONDS, 'NX');
+          return { relative, sha256: hash };
+        })();
+        sent.set(relative, pending);
+      }
+      return pending;
+    };
+    // The roads and catalogs a self-contained package ScenarioFile holds go with every job, where its flattened text names them.
+    const packaged = await Promise.all(
+      plan.packagedFiles.map((file) => send(relativeTo(plan.scenarioFolder, file.path), () => Promise.resolve(file.bytes))),
+    );
+    const filesByPaths = new Map<string, Promise<JobFile[]>>();
+    const filesOf = (text: string): Promise<JobFile[]> => {
+      const named = namedPaths(text);
+      const key = JSON.stringify(named);
+      let files = filesByPaths.get(key);
+      if (!files) {
+        const onDisk = filesNamed(named, plan.scenarioFolder, plan.searchPath);
+        files = Promise.all(onDisk.map((file) => send(relativeTo(plan.scenarioFolder, file), () => fs.promises.readFile(file)))).then(
+          (found) => [...packaged, ...found.filter((file) => !packaged.some((each) => each.relative === file.relative))],
+        );
+        filesByPaths.set(key, files);
+      }
+      return files;
+    };
     const searchPath = plan.searchPath.map((folder) => relativeTo(plan.scenarioFolder, folder) || '.');
 
     queue = new Queue(QUEUE_NAME, { connection: connectionOf(url) });
@@ -170,7 +195,7 @@ export async function queueBatch(
           index: run.index,
           text: run.text,
           parameters: run.parameters,
-          files,
+          files: await filesOf(run.text),
           searchPath,
           duration: settings.duration ?? null,
           seed: settings.seed,

@@ -2,6 +2,8 @@ import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
 import { Job, Worker } from 'bullmq';
+import { nodeFileSystem } from '../core/sources';
+import { rebasedConcreteText } from '../core/variations';
 import { makeRunFolder } from '../esmini/process';
 import { connect, connectionOf, fileKey, LOCK_DURATION_MS, QUEUE_NAME, resultsKey, RunJob, STALLED_INTERVAL_MS } from './queue';
 import type { BatchOutput } from './progress';
@@ -82,8 +84,10 @@ export async function runWorker(url: URL, options: WorkerOptions): Promise<numbe
           ...data.files.map((file) => path.dirname(path.resolve(scenarioFolder, file.relative))),
         ]),
       ];
+      // As a local batch runs it: the paths it names made absolute from where its files now lie.
+      const text = (await rebasedConcreteText(data.text, scenarioFolder, undefined, (file) => nodeFileSystem.kind(file))).text;
       const row = await runConcrete(
-        { index: data.index, text: data.text, parameters: data.parameters, searchPath },
+        { index: data.index, text, parameters: data.parameters, searchPath },
         { duration: data.duration ?? undefined, seed: data.seed, esminiPath: options.esminiPath, runsFolder: layout },
         stopping.signal,
       );
