@@ -7,7 +7,9 @@ import { LibraryModule, listLibraries } from '../../server/src/core/library';
 import { nodeFileSystem } from '../../server/src/core/sources';
 import { builtInLibraryFolder, libraryFolders } from '../../server/src/libraries';
 import { harnessVerdicts, requireCarlaHarness } from '../support/carla';
-import { requireEsmini, runEsmini, tracksOf } from '../support/esmini';
+import { EsminiRun } from '../../common/src/esminiCsv';
+import { runExample } from '../../scripts/library-pictures';
+import { esminiBinary, requireEsmini } from '../support/esmini';
 import { repoRoot } from '../support/paths';
 import { temporaryFolder } from '../support/temporaryDirectory';
 
@@ -46,6 +48,12 @@ function lateralStart(track: Track): number {
   const index = track.findIndex((point) => Math.abs(point.y - track[0].y) > 1e-5);
   assert.ok(index > 0, 'the entity never moved sideways');
   return index - 1;
+}
+
+function tracksOf(run: EsminiRun): Map<string, Track> {
+  return new Map(
+    run.entities.map((entity) => [entity.name, Array.from(run.times, (time, index) => ({ time, x: entity.x[index], y: entity.y[index] }))]),
+  );
 }
 
 const sameTime = (track: Track, time: number) => track.findIndex((point) => point.time >= time - 1e-6);
@@ -178,15 +186,18 @@ describe('library modules: each verified in esmini and CARLA (issue 28)', functi
     assert.match(errors.join('\n') + out.join('\n'), /0 errors, 0 warnings/);
   });
 
-  it('every example main flattens and runs in esmini, and the behaviour happens as its parameters say', async function () {
+  it('every example main flattens and runs in esmini, the behaviour happens as its parameters say, and its picture is drawn from that run', async function () {
     requireEsmini(this);
     for (const module of modules) {
-      const flat = path.join(outputs, `${module.name}.xosc`);
-      const errors: string[] = [];
-      const code = await main(['flatten', module.example ?? '', '-o', flat, '-q'], { out: () => {}, err: (text) => errors.push(text) });
-      assert.equal(code, 0, `${module.name}: ${errors.join('\n')}`);
-      const steps = await runEsmini(flat, 60);
-      BEHAVIOURS[module.name](module, tracksOf(steps));
+      const { run, svg } = await runExample(module, outputs, esminiBinary);
+      BEHAVIOURS[module.name](module, tracksOf(run));
+      const picture = path.join(libraryFolder ?? '', 'pictures', `${module.name}.svg`);
+      assert.ok(module.picture, `${module.name}: no picture (npx tsx scripts/library-pictures.ts draws them)`);
+      assert.equal(
+        svg,
+        fs.readFileSync(picture, 'utf8'),
+        `${module.name}: its picture is not what scripts/library-pictures.ts draws from this run`,
+      );
     }
   });
 
