@@ -661,13 +661,13 @@ const REFUSED_ACTIONS: Record<string, string> = {
   UserDefinedAction: `ScenarioRunner does not run user-defined actions other than a CustomCommandAction (${SR_PARSER} convert_maneuver_to_atomic)`,
 };
 
+const REFUSED_ACTION_NAMES: ReadonlySet<string> = new Set(Object.keys(REFUSED_ACTIONS));
+
 function refusedActions(tree: Node, context: RuleContext): void {
-  for (const [name, carla] of Object.entries(REFUSED_ACTIONS)) {
-    for (const node of named(tree, name)) {
-      if (!node.parent) continue;
-      if (name === 'UserDefinedAction' && child(node, 'CustomCommandAction')) continue;
-      dropUnit(node, context, name, carla);
-    }
+  for (const node of named(tree, REFUSED_ACTION_NAMES)) {
+    if (!node.parent || !ancestor(node, 'OpenSCENARIO')) continue;
+    if (node.name === 'UserDefinedAction' && child(node, 'CustomCommandAction')) continue;
+    dropUnit(node, context, node.name, REFUSED_ACTIONS[node.name]);
   }
 }
 

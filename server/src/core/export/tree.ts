@@ -65,8 +65,17 @@ export function allNodes(node: Node): Node[] {
   return result;
 }
 
-export function named(node: Node, name: string): Node[] {
-  return allNodes(node).filter((candidate) => candidate.name === name);
+/** Every node below `node` (itself included) of that name, or of one of those names, in document order. */
+export function named(node: Node, name: string | ReadonlySet<string>): Node[] {
+  const result: Node[] = [];
+  // The rules ask this of the whole tree dozens of times: one walk, no list of every node.
+  const visit = typeof name === 'string' ? (each: Node) => each.name === name : (each: Node) => name.has(each.name);
+  const walk = (at: Node): void => {
+    if (visit(at)) result.push(at);
+    for (const each of at.children) walk(each);
+  };
+  walk(node);
+  return result;
 }
 
 export function makeNode(name: string, attributes: [string, string][] = [], children: Node[] = [], place?: Place): Node {
@@ -125,6 +134,32 @@ function decodeText(text: string): string {
   );
 }
 
+/** A node read from the parser's tree: where it was written is asked only for the few that a loss names, and computed then. */
+class ParsedNode implements Node {
+  parent: Node | undefined = undefined;
+  text?: string;
+  private known: Place | undefined | null = null;
+
+  constructor(
+    private readonly element: XmlElement,
+    private readonly placeOf: (element: XmlElement) => Place | undefined,
+    public name: string,
+    public attributes: [string, string][],
+    public children: Node[],
+  ) {
+    for (const each of children) each.parent = this;
+  }
+
+  get place(): Place | undefined {
+    if (this.known === null) this.known = this.placeOf(this.element);
+    return this.known;
+  }
+
+  set place(given: Place | undefined) {
+    this.known = given;
+  }
+}
+
 /**
  * The parser's element as a node tree; `placeOf` says where each element was written. `value` gives each
  * attribute's value as it is to be written (an export evaluates `$name` and `${...}` there).
@@ -135,20 +170,13 @@ export function nodeFromXml(
   placeOf: (element: XmlElement) => Place | undefined,
   value: (element: XmlElement, index: number) => string,
 ): Node {
-  const node = makeNode(
+  const node = new ParsedNode(
+    element,
+    placeOf,
     element.name,
     element.attributes.map((attribute, index) => [attribute.name, value(element, index)]),
     element.children.map((each) => nodeFromXml(document, each, placeOf, value)),
   );
-  // Where an element was written is asked only for the few that a loss names: computed then.
-  let place: Place | undefined | null = null;
-  Object.defineProperty(node, 'place', {
-    get: () => (place === null ? (place = placeOf(element)) : place),
-    set: (given: Place | undefined) => {
-      place = given;
-    },
-    enumerable: true,
-  });
   if (element.children.length === 0 && !element.selfClosing) {
     const closeTag = document.text.lastIndexOf('</', element.end);
     const raw = closeTag > element.startTagEnd ? document.text.slice(element.startTagEnd, closeTag) : '';
