@@ -270,6 +270,16 @@ describe('the packaged extension in a real VS Code (code-server, headless Chromi
       'dist/openscenario-schemas.json',
       // The harness Check in CARLA ScenarioRunner runs with the user's Python.
       'server/python/scenario_runner_check.py',
+      // The built-in scenario library that scenarioFileName="library:NAME" resolves in (issue 28).
+      ...fs
+        .readdirSync(path.join(repoRoot, 'library'), { recursive: true, withFileTypes: true })
+        .filter((entry) => entry.isFile())
+        .map((entry) =>
+          path.posix.join(
+            'library',
+            path.relative(path.join(repoRoot, 'library'), path.join(entry.parentPath, entry.name)).split(path.sep).join('/'),
+          ),
+        ),
       ...fs.readdirSync(path.join(repoRoot, 'schemas')).map((file) => `schemas/${file}`),
       ...manifest.contributes.grammars.map((grammar) => grammar.path),
       ...manifest.contributes.languages.flatMap((language) => [language.configuration, language.icon?.light]),
