@@ -7,6 +7,8 @@ import { CarlaRelease, DEFAULT_CARLA_RELEASE, isCarlaRelease, isSimulator, Simul
 export interface ServerSettings {
   /** Directories searched after SCENARIO_PATH. */
   scenarioPath: string[];
+  /** The user's scenario libraries (`modular2simple.library.folders`), searched for `library:NAME` before the built-in one. */
+  libraryFolders: string[];
   /** Delay between the last edit and new diagnostics, in milliseconds. */
   diagnosticsDelay: number;
   /** Files larger than this are indexed by name only, never parsed for workspace symbols. */
@@ -23,6 +25,7 @@ export interface ServerSettings {
 
 export const DEFAULT_SETTINGS: ServerSettings = {
   scenarioPath: [],
+  libraryFolders: [],
   diagnosticsDelay: 5,
   maxIndexedFileBytes: 8 * 1024 * 1024,
   simulator: 'asam',
@@ -54,8 +57,13 @@ export function readSettings(value: unknown): ServerSettings {
     schema.version === 'off' || schema.version === 'auto' || isSchemaVersion(schema.version)
       ? schema.version
       : DEFAULT_SETTINGS.schemaVersion;
+  const library = (record.library && typeof record.library === 'object' ? record.library : {}) as Record<string, unknown>;
+  const libraryFolders = Array.isArray(library.folders)
+    ? library.folders.filter((entry): entry is string => typeof entry === 'string' && entry.trim().length > 0)
+    : [];
   return {
     scenarioPath,
+    libraryFolders,
     diagnosticsDelay: delay,
     maxIndexedFileBytes: DEFAULT_SETTINGS.maxIndexedFileBytes,
     simulator,

@@ -13,6 +13,7 @@ import {
   childRef,
 } from './core/sources';
 import { OpenDocument, OpenDocuments } from './documents';
+import { libraryFolders } from './libraries';
 import { UriResolver, refToUri } from './uris';
 import { DEFAULT_SETTINGS, ServerSettings } from './settings';
 import { SHARED_SOURCE_BYTES } from './sharedSources';
@@ -156,6 +157,8 @@ export class Workspace {
       scenarioPath: [...fromEnvironment, ...fromSettings],
       root: this.folders[0],
       folders,
+      // Relative library folders are taken from the first workspace folder, as the window's scenarioPath is.
+      libraries: libraryFolders(this.settings.libraryFolders.map((entry) => path.resolve(this.folders[0] ?? process.cwd(), entry))),
       host: this.files,
       packageCacheBytes: SERVER_CACHE_BYTES,
       workingDirectory: process.cwd(),

@@ -5,7 +5,7 @@ import { TextDocument } from 'vscode-languageserver-textdocument';
 import { FlatSource } from '../core/flatten';
 import { keyMatches, OverridableAttribute, overridableAttributes } from '../core/keys';
 import { findGroup, PARAMETER_ATTRIBUTES } from '../core/model';
-import { displayRef, SourceRef } from '../core/sources';
+import { displayRef, LIBRARY_PREFIX, SourceRef } from '../core/sources';
 import { keyChoices, overridablePlace, sourceForFileName } from '../analysis';
 import { ancestor, elementsBetween, lastElementBefore, ValueContext } from '../core/cursor';
 import { indexFor } from '../core/schema/query';
@@ -73,6 +73,10 @@ export async function fileNameCandidates(workspace: Workspace, from: SourceRef):
           : `${place.directory} (parent folder)`;
     for (const name of listFolder(place.directory, from.disk)) add(name, where);
   }
+  // The library modules last, each as `library:NAME` (SPEC 3 as docs/library.md extends it), the first library's winning.
+  for (const library of workspace.store.libraries)
+    for (const name of listFolder(library.folder, from.disk))
+      if (name.toLowerCase().endsWith('.xosc')) add(`${LIBRARY_PREFIX}${name.slice(0, -'.xosc'.length)}`, `${library.label} library`);
   return [...seen.values()];
 }
 
@@ -243,11 +247,13 @@ async function snippetItems(
     const source = await sourceForFileName(workspace, ref, candidate.name);
     if (!source?.model) continue;
     const simple = source.links.length === 0 && source.model.declarations.length > 0;
+    // The user's own files first, the library's modules after them.
+    const kind = candidate.name.startsWith(LIBRARY_PREFIX) ? 2 : simple ? 0 : 1;
     for (const group of source.model.groups) {
       if (ranked.length >= MAX_SNIPPETS) break;
       const targets = overridableAttributes(source.model, group);
       ranked.push({
-        rank: (simple ? 0 : 1) * 1_000_000 + fileIndex * 1000 + ranked.length,
+        rank: kind * 1_000_000 + fileIndex * 1000 + ranked.length,
         item: {
           label: `ScenarioReference ${candidate.name} ${group.name}`,
           kind: CompletionItemKind.Snippet,
