@@ -17,6 +17,10 @@ import { UNKNOWN_KEY } from './unknownKey';
 import { UNKNOWN_PARAMETER_ATTRIBUTE } from './unknownParameterAttribute';
 import { SIMULATOR } from './simulator';
 import { XOSC_FALLBACK } from './xoscFallback';
+import { CATALOG_DIRECTORY } from './catalogDirectory';
+import { CATALOG_LOCATION_CONFLICT } from './catalogLocationConflict';
+import { PARAMETER_CONFLICT } from './parameterConflict';
+import { TOO_LARGE } from './tooLarge';
 
 export * from './definition';
 export { QC, QC_RULE_DESCRIPTIONS } from './qcRules';
@@ -44,6 +48,10 @@ export const DIAGNOSTICS = [
   NO_ENTITY_REF,
   REFERENCE_OUTSIDE_GROUP,
   TOO_DEEP,
+  TOO_LARGE,
+  CATALOG_DIRECTORY,
+  CATALOG_LOCATION_CONFLICT,
+  PARAMETER_CONFLICT,
 ] as const;
 
 /** The codes whose diagnostic has its own module. */

@@ -6,6 +6,15 @@ import { displayRef } from '../sources';
 import { indentationAt } from '../text';
 import { attribute, elementStartingAt, escapeAttributeValue, isWithin, selfAndDescendants, XmlDocument, XmlElement } from '../xml';
 import { coreMemo } from '../memos';
+import { ProblemWording } from '../diagnostics/definition';
+import { catalogLocationConflictKey, catalogLocationConflictWording } from '../diagnostics/catalogLocationConflict';
+import {
+  declaredAroundGroupWording,
+  firstCarriedKeptWording,
+  keptDeclarationNote,
+  mainDeclarationKeptWording,
+  sourceDeclarationNote,
+} from '../diagnostics/parameterConflict';
 
 /**
  * What flattening carries from imported groups' sources into the output (SPEC 11): the parameter
@@ -56,17 +65,15 @@ function planCarryOnOutput(
   const carried = new Map<string, CarriedDeclaration>();
   const reported = new Set<string>();
 
-  const conflict = (name: string, kept: RelatedProblemLocation, dropped: RelatedProblemLocation | undefined, message: string) => {
+  const conflict = (
+    name: string,
+    kept: RelatedProblemLocation,
+    dropped: RelatedProblemLocation | undefined,
+    wording: ProblemWording<'parameter-conflict'>,
+  ) => {
     if (reported.has(name)) return;
     reported.add(name);
-    plan.problems.push({
-      source: kept.source,
-      range: kept.range,
-      severity: 'warning',
-      code: 'parameter-conflict',
-      message,
-      related: dropped ? [dropped] : undefined,
-    });
+    plan.problems.push({ source: kept.source, range: kept.range, ...wording, related: dropped ? [dropped] : undefined });
   };
 
   const mainRoot = mainSemantics.model.root;
@@ -83,8 +90,14 @@ function planCarryOnOutput(
           range: mainModel.document.lines.range(mainDeclaration.nameAttribute.valueStart, mainDeclaration.nameAttribute.valueEnd),
           message: '',
         },
-        dropped && { ...dropped, message: `the source's declaration (value '${declaration.value}')` },
-        `parameter '${declaration.name}' is declared here with value '${mainDeclaration.value}', but the imported group '${group}' uses the declaration of ${displayRef(dropped?.source ?? source.ref, base)}${dropped ? `:${dropped.range.start.line + 1}` : ''} with value '${declaration.value}'; the output keeps this one`,
+        dropped && { ...dropped, message: sourceDeclarationNote(declaration.value) },
+        mainDeclarationKeptWording(
+          declaration.name,
+          mainDeclaration.value,
+          group,
+          `${displayRef(dropped?.source ?? source.ref, base)}${dropped ? `:${dropped.range.start.line + 1}` : ''}`,
+          declaration.value,
+        ),
       );
     }
     return true;
@@ -100,8 +113,8 @@ function planCarryOnOutput(
         conflict(
           declaration.name,
           dropped,
-          kept && { ...kept, message: `the declaration the output keeps (value '${existing.declaration.value}')` },
-          `imported groups use two declarations of parameter '${declaration.name}' with different values; the output keeps the first one carried (value '${existing.declaration.value}'), not this one (value '${declaration.value}')`,
+          kept && { ...kept, message: keptDeclarationNote(existing.declaration.value) },
+          firstCarriedKeptWording(declaration.name, existing.declaration.value, declaration.value),
         );
       }
       return;
@@ -150,8 +163,8 @@ function planCarryOnOutput(
         conflict(
           use.name,
           { source: main.ref, range: mainModel.document.lines.range(here.start, here.end), message: '' },
-          dropped && { ...dropped, message: `the source's declaration (value '${declaration.value}')` },
-          `the imported group '${insertion.reference.name}' uses parameter '${use.name}' declared with value '${declaration.value}' in its source, but in this file it takes the value '${use.declaration.value}' of a declaration around the group`,
+          dropped && { ...dropped, message: sourceDeclarationNote(declaration.value) },
+          declaredAroundGroupWording(insertion.reference.name, use.name, declaration.value, use.declaration.value),
         );
       }
     }
@@ -231,7 +244,7 @@ function planLocations(
     const own = mainLocations.find((location) => location.location.kind === need.kind);
     if (own) {
       if (own.directories.some((directory) => directory.directory === need.directory)) continue;
-      const key = `location:${need.kind}`;
+      const key = catalogLocationConflictKey(need.kind);
       if (plan.problems.some((problem) => problemData(problem, 'catalog-location-conflict')?.key === key)) continue;
       const attr = own.location.pathAttribute;
       const model = main.original;
@@ -241,11 +254,7 @@ function planLocations(
         range: attr
           ? model.document.lines.range(attr.valueStart, attr.valueEnd)
           : model.document.lines.range(own.location.directory.start, own.location.directory.nameEnd),
-        severity: 'warning',
-        code: 'catalog-location-conflict',
-        message: `an imported group needs the ${need.kind} directory ${need.directory}, but this file's ${need.kind} is ${own.path ?? '(none)'}; OpenSCENARIO allows one directory per catalog kind, so the output keeps this one`,
-        hint: `put the catalogs the imported group uses into ${own.path}, or point ${need.kind} at ${need.directory}`,
-        data: { key },
+        ...catalogLocationConflictWording(need.kind, need.directory, own.path),
       });
       continue;
     }

@@ -8,6 +8,7 @@ import { copyGroup } from './edits';
 import { originOf } from './origin';
 import { describeChain, problemAt, valueRange } from './report';
 import { Addition, CarryEdit, FlatSource, Insertion, LinkedGroupReference, LinkedReference } from './types';
+import { tooLargeWording } from '../diagnostics/tooLarge';
 
 /** One imported group's text, ready to replace its outer group. */
 interface Copy {
@@ -177,10 +178,7 @@ function reportTooLarge(store: ScenarioStore, result: FlatSource, model: Scenari
     document: model.document,
     start,
     end,
-    severity: 'error',
-    code: 'too-large',
-    message: `the flattened ${store.display(result.ref)} would exceed ${limit.toLocaleString('en-US')} characters (${projected.toLocaleString('en-US')} so far): groups imported through ${describeChain(chain, store.workingDirectory)} multiply at each level`,
-    hint: 'import fewer copies, or raise the bound with --max-output-size',
+    ...tooLargeWording(store.display(result.ref), limit, projected, describeChain(chain, store.workingDirectory)),
   });
   result.problems.push(problem);
   result.allProblems = uniqueProblems([...result.allProblems, problem]);

@@ -20,6 +20,7 @@ import {
   trafficSignalIds,
   valueRanges,
 } from './networkChecks';
+import { catalogDirectoryWording } from '../diagnostics/catalogDirectory';
 import {
   Declaration,
   Evaluator,
@@ -261,10 +262,7 @@ export const catalogReferences: SemanticCheck = (context) => {
     if (location.path === undefined || location.directories.length > 0) continue;
     findings.push({
       ...at(location.location.directory, location.location.pathAttribute),
-      severity: 'warning',
-      code: 'catalog-directory',
-      message: `the ${location.location.kind} directory '${location.path}' does not exist (relative to this file, or in SCENARIO_PATH)`,
-      hint: 'correct the path, or add the folder that holds the catalogs to SCENARIO_PATH (the modular2simple.scenarioPath setting)',
+      ...catalogDirectoryWording(location.location.kind, location.path),
     });
   }
   for (const resolution of context.catalogs.references) {

@@ -35,7 +35,6 @@ const OTHER_GUARDS: { [C in Exclude<ProblemCodeWithData, DefinedCode>]: (value: 
   'lenient-value': (value): value is ProblemDataByCode['lenient-value'] =>
     isSuggestion(value) || (isRecord(value) && isString(value.relatedReplacement)),
   'renamed-reference': isSuggestion,
-  'catalog-location-conflict': (value): value is ProblemDataByCode['catalog-location-conflict'] => isRecord(value) && isString(value.key),
   'schema-unknown-element': isSuggestion,
   'schema-unknown-attribute': isSuggestion,
   'schema-value': isSuggestion,
