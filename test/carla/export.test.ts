@@ -420,6 +420,32 @@ describe('export --target carla, bad input', () => {
     assert.match(result.stderr, /in\.xosc:\d+: error: <LogicFile>/);
   });
 
+  it("a RoutePosition past the road of its route's first waypoint: refused once, naming why", async () => {
+    const esmini = path.join(openscenarioDir, 'esmini');
+    const input = path.join(out, 'ltap-far.xosc');
+    fs.writeFileSync(
+      input,
+      fs
+        .readFileSync(path.join(esmini, 'ltap-od.xosc'), 'utf8')
+        .replace('name="NPCStartPointS" parameterType="double" value="150"', 'name="NPCStartPointS" parameterType="double" value="900"'),
+    );
+    const result = await exportFile(input, path.join(out, 'out.xosc'), [
+      '--carla',
+      '0.9.15',
+      ...['--road-path', esminiRoads, '--scenario-path', path.join(esmini, 'Catalogs')],
+    ]);
+    assert.equal(result.code, 1, result.stderr);
+    assert.equal(fs.existsSync(path.join(out, 'out.xosc')), false);
+    const refused = result.report.losses.filter((loss) => loss.kind === 'refused');
+    assert.deepEqual(
+      refused.map((loss) => [loss.element, loss.line]),
+      [['RoutePosition', 98]],
+    );
+    assert.match(refused[0].what, /past road 2 \(pathS 900 from s 100, the road is 304\.19 m long\)/);
+    // The two others of the file lie on their first road and are written as LanePositions.
+    assert.equal(result.report.losses.filter((loss) => loss.element === 'RoutePosition' && loss.kind === 'approximated').length, 2);
+  });
+
   it('an unreadable input: exit 1, nothing written', async () => {
     for (const input of [path.join(out, 'absent.xosc'), out]) {
       const result = await exportFile(input, path.join(out, 'out.xosc'));

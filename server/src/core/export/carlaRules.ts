@@ -578,7 +578,7 @@ function routePositionOnFirstRoad(position: Node, roads: RoadNetwork | undefined
     if (!road)
       return roads ? `road ${roadId} is not in the road network` : 'the road is a CARLA town, whose road lengths the export cannot read';
     if (s < 0 || s > road.length)
-      return `the point lies past road ${roadId} (pathS ${pathS} from s ${startS}, the road is ${road.length} m long)`;
+      return `the point lies past road ${roadId} (pathS ${pathS} from s ${startS}, the road is ${Number(road.length.toFixed(2))} m long)`;
     const next = lanePositionOf(waypoints[1]);
     if (next && attr(next, 'roadId') === roadId && Math.abs(Number(attr(next, 's')) - startS) < pathS)
       return "the point lies past the route's second waypoint";
@@ -620,9 +620,10 @@ function routePositionOnFirstRoad(position: Node, roads: RoadNetwork | undefined
   };
 }
 
-/** ScenarioRunner refuses these positions (SR_PARSER convert_position_to_transform: RoutePosition raises NotImplementedError); Geo and Trajectory positions are not 1.0. */
+/** ScenarioRunner refuses these positions (SR_PARSER convert_position_to_transform); Geo and Trajectory positions are not 1.0. */
 function unsupportedPositions(tree: Node, context: RuleContext): void {
-  for (const name of ['RoutePosition', 'GeoPosition', 'TrajectoryPosition', 'RoadRange']) {
+  // RoutePosition: the rule route-positions writes or names every one.
+  for (const name of ['GeoPosition', 'TrajectoryPosition', 'RoadRange']) {
     for (const node of named(tree, name)) {
       if (!node.parent) continue;
       unconvertiblePosition(node, name, context);
