@@ -450,6 +450,129 @@ export const MODULES = [
       'parallel',
     ),
   },
+  {
+    name: 'cyclist-ahead',
+    title: 'Cyclist ahead',
+    group: 'Vulnerable road users',
+    summary: "A cyclist rides ahead in the ego's lane, near its right edge, at a set speed from the start, for the ego to come up to.",
+    actor: "the cyclist, ahead in the ego's lane",
+    actorName: 'cyclist',
+    groupName: 'CyclistAhead',
+    entities: [VEHICLE('ego', 'vehicle.lincoln.mkz_2017'), BICYCLE('cyclist')],
+    init: [placed('ego', -1, 20, 14), placed('cyclist', -1, 80, 5, { offset: -0.9 })],
+    stopAt: 6,
+    parameters: [{ key: 'AbsoluteTargetSpeed.value', name: 'speed', unit: 'm/s', range: '0..12', about: 'its riding speed' }],
+    keys: {},
+    maneuver: event(
+      'CyclistSpeed',
+      privateAction(
+        'CyclistSpeed',
+        speedAction(
+          '<SpeedActionDynamics dynamicsShape="step" value="0" dynamicsDimension="time"/>',
+          '<AbsoluteTargetSpeed parameterAttributes="value" value="4"/>',
+        ),
+      ),
+      trigger('CyclistStart', atTime(0)),
+      'parallel',
+    ),
+  },
+  {
+    name: 'cyclist-crossing',
+    title: 'Cyclist crossing',
+    group: 'Vulnerable road users',
+    summary:
+      "A cyclist at the roadside (where the main places it, facing across the road) rides straight across at a set speed once the ego's time headway to its crossing line is below the one asked.",
+    actor: 'the cyclist, at the roadside facing across the road',
+    actorName: 'cyclist',
+    groupName: 'CyclistCrossing',
+    entities: [VEHICLE('ego', 'vehicle.lincoln.mkz_2017'), BICYCLE('cyclist')],
+    init: [placed('ego', -1, 20, 12), placed('cyclist', -4, 100, 0, { offset: 0.5, heading: 1.5708 })],
+    stopAt: 9,
+    parameters: [
+      { key: 'AbsoluteTargetSpeed.value', name: 'speed', unit: 'm/s', range: '1..10', about: 'its riding speed' },
+      {
+        key: 'TimeHeadwayCondition.value',
+        name: 'headway',
+        unit: 's',
+        range: '0.5..15',
+        about:
+          "the ego's time to the crossing line when it starts riding: distance to the ego's path / speed puts it on the path as the ego arrives",
+      },
+      { key: 'RelativeObjectPosition.dx', name: 'distance', unit: 'm', range: '1..30', about: 'how far it rides' },
+      {
+        key: 'RelativeObjectPosition.entityRef',
+        name: 'self',
+        about: 'the cyclist itself (as in Actors): its ride starts where it stands',
+      },
+      { key: 'TimeHeadwayCondition.entityRef', name: 'selfHeadway', about: 'the cyclist itself, the ego headway is measured to' },
+      { key: 'EntityRef.entityRef', name: 'ego', about: 'the vehicle it crosses in front of' },
+    ],
+    keys: {},
+    maneuver: event(
+      'CyclistRide',
+      [
+        privateAction('CyclistPath', crossing('cyclist', 16)),
+        privateAction(
+          'CyclistSpeed',
+          speedAction(
+            '<SpeedActionDynamics dynamicsShape="step" value="0" dynamicsDimension="time"/>',
+            '<AbsoluteTargetSpeed parameterAttributes="value" value="4"/>',
+          ),
+        ),
+      ].join('\n'),
+      trigger(
+        'CyclistHeadway',
+        byEntity(
+          'ego',
+          '<TimeHeadwayCondition parameterAttributes="entityRef,value" entityRef="cyclist" value="2.25" freespace="false" coordinateSystem="road" relativeDistanceType="longitudinal" rule="lessThan"/>',
+        ),
+      ),
+      'parallel',
+    ),
+  },
+  {
+    name: 'lane-change',
+    title: 'Lane change',
+    group: 'Vehicles beside',
+    summary: 'A vehicle changes one lane to the left or right at a set time, taking a set time for it.',
+    actor: 'the vehicle changing lane',
+    actorName: 'adversary',
+    groupName: 'LaneChange',
+    entities: [VEHICLE('ego', 'vehicle.lincoln.mkz_2017'), VEHICLE('adversary', 'vehicle.audi.tt')],
+    init: [placed('ego', -1, 50, 15), placed('adversary', -2, 70, 15)],
+    stopAt: 7,
+    parameters: [
+      { key: 'SimulationTimeCondition.value', name: 'startTime', unit: 's', range: '0..600', about: 'when the lane change starts' },
+      {
+        key: 'LaneChangeActionDynamics.value',
+        name: 'laneChangeTime',
+        unit: 's',
+        range: '0.5..10',
+        about: 'how long the lane change takes',
+      },
+      {
+        key: 'RelativeTargetLane.value',
+        name: 'side',
+        unit: 'lanes',
+        range: '-1..1',
+        about: 'the lane it moves to: 1 the next lane to the left, -1 to the right',
+      },
+      { key: 'RelativeTargetLane.entityRef', name: 'self', about: 'the vehicle itself (as in Actors): its lane is the reference' },
+    ],
+    keys: {},
+    maneuver: event(
+      'LaneChange',
+      privateAction(
+        'LaneChange',
+        laneChange(
+          '<LaneChangeActionDynamics parameterAttributes="value" dynamicsShape="sinusoidal" value="3" dynamicsDimension="time"/>',
+          '<RelativeTargetLane parameterAttributes="entityRef,value" entityRef="adversary" value="1"/>',
+        ),
+      ),
+      trigger('LaneChangeStart', atTime(2, ' parameterAttributes="value"')),
+      'parallel',
+    ),
+  },
 ];
 
 /** The doc block a library module opens with (read by server/src/library/modules.ts). @param {Module} module */

@@ -106,46 +106,62 @@ const BEHAVIOURS: Record<string, (module: LibraryModule, tracks: Map<string, Tra
     const last = lead.length - 2;
     assert.ok(Math.abs(speedAt(lead, last) - after) < 0.05, `the lead ends at ${speedAt(lead, last)} m/s, not ${after}`);
   },
-  'slow-target': (module, tracks) => {
-    const target = trackOf(tracks, 'target');
-    const speed = parameter(module, 'speed');
-    for (let index = 1; index < target.length - 1; index++)
-      assert.ok(
-        Math.abs(speedAt(target, index) - speed) < 0.01,
-        `the target drives at ${speedAt(target, index)} m/s at ${target[index].time} s`,
-      );
-  },
-  'pedestrian-crossing': (module, tracks) => {
-    const [ego, walker] = [trackOf(tracks, 'ego'), trackOf(tracks, 'pedestrian')];
-    const start = lateralStart(walker);
-    const egoSpeed = speedAt(ego, start);
-    const headway = (walker[start].x - ego[start].x) / egoSpeed;
-    assert.ok(
-      Math.abs(headway - parameter(module, 'headway')) <= STEP * 1.5,
-      `it starts walking at an ego headway of ${headway.toFixed(3)} s`,
-    );
-    const speed = parameter(module, 'speed');
-    const walked = (walker[start + 21].y - walker[start + 1].y) / (20 * STEP);
-    assert.ok(Math.abs(Math.abs(walked) - speed) < 0.02, `it walks at ${walked.toFixed(3)} m/s, not ${speed}`);
-    // On the ego's path (its lane's centre line) at the time the ego's reference point reaches the crossing line.
-    const onPath = walker.findIndex(
-      (point, index) => index > start && Math.sign(point.y - ego[index].y) !== Math.sign(walker[start].y - ego[start].y),
-    );
-    const egoArrives = ego.findIndex((point) => point.x >= walker[start].x);
-    assert.ok(onPath > 0 && egoArrives > 0, 'the pedestrian or the ego never reaches the crossing point');
-    assert.ok(
-      Math.abs(walker[onPath].time - ego[egoArrives].time) <= 0.15,
-      `on the path at ${walker[onPath].time} s, the ego there at ${ego[egoArrives].time} s`,
-    );
-    const distance = parameter(module, 'distance');
-    const final = walker[walker.length - 1];
-    assert.ok(
-      Math.abs(Math.abs(final.y - walker[start].y) - distance) < 0.05 ||
-        walker[walker.length - 1].time < walker[start].time + distance / speed,
-      'it walks the distance asked',
-    );
+  'slow-target': (module, tracks) => steadySpeed(module, trackOf(tracks, 'target')),
+  'cyclist-ahead': (module, tracks) => steadySpeed(module, trackOf(tracks, 'cyclist')),
+  'pedestrian-crossing': (module, tracks) => crossesAsTheEgoArrives(module, trackOf(tracks, 'ego'), trackOf(tracks, 'pedestrian')),
+  'cyclist-crossing': (module, tracks) => crossesAsTheEgoArrives(module, trackOf(tracks, 'ego'), trackOf(tracks, 'cyclist')),
+  'lane-change': (module, tracks) => {
+    const car = trackOf(tracks, 'adversary');
+    const start = lateralStart(car);
+    assert.ok(Math.abs(car[start].time - parameter(module, 'startTime')) <= STEP * 1.5, `the lane change starts at ${car[start].time} s`);
+    const end = sameTime(car, car[start].time + parameter(module, 'laneChangeTime') + 2 * STEP);
+    const expected = car[start].y + parameter(module, 'side') * 3.5;
+    assert.ok(Math.abs(car[end].y - expected) < 0.05, `it ends at y ${car[end].y}, not ${expected}`);
+    const halfway = sameTime(car, car[start].time + parameter(module, 'laneChangeTime') / 2);
+    assert.ok(Math.abs(car[halfway].y - expected) > 0.5, 'it is still changing lane halfway through the time asked');
   },
 };
+
+/** The actor keeps the speed asked from the start. */
+function steadySpeed(module: LibraryModule, target: Track): void {
+  const speed = parameter(module, 'speed');
+  for (let index = 1; index < target.length - 1; index++)
+    assert.ok(
+      Math.abs(speedAt(target, index) - speed) < 0.01,
+      `the target drives at ${speedAt(target, index)} m/s at ${target[index].time} s`,
+    );
+}
+
+/** A pedestrian or cyclist starts across at the ego headway asked, at the speed asked, and is on the ego's path as the ego arrives. */
+function crossesAsTheEgoArrives(module: LibraryModule, ego: Track, walker: Track): void {
+  const start = lateralStart(walker);
+  const egoSpeed = speedAt(ego, start);
+  const headway = (walker[start].x - ego[start].x) / egoSpeed;
+  assert.ok(
+    Math.abs(headway - parameter(module, 'headway')) <= STEP * 1.5,
+    `it starts walking at an ego headway of ${headway.toFixed(3)} s`,
+  );
+  const speed = parameter(module, 'speed');
+  const walked = (walker[start + 21].y - walker[start + 1].y) / (20 * STEP);
+  assert.ok(Math.abs(Math.abs(walked) - speed) < 0.02, `it walks at ${walked.toFixed(3)} m/s, not ${speed}`);
+  // On the ego's path (its lane's centre line) at the time the ego's reference point reaches the crossing line.
+  const onPath = walker.findIndex(
+    (point, index) => index > start && Math.sign(point.y - ego[index].y) !== Math.sign(walker[start].y - ego[start].y),
+  );
+  const egoArrives = ego.findIndex((point) => point.x >= walker[start].x);
+  assert.ok(onPath > 0 && egoArrives > 0, 'the pedestrian or the ego never reaches the crossing point');
+  assert.ok(
+    Math.abs(walker[onPath].time - ego[egoArrives].time) <= 0.15,
+    `on the path at ${walker[onPath].time} s, the ego there at ${ego[egoArrives].time} s`,
+  );
+  const distance = parameter(module, 'distance');
+  const final = walker[walker.length - 1];
+  assert.ok(
+    Math.abs(Math.abs(final.y - walker[start].y) - distance) < 0.05 ||
+      walker[walker.length - 1].time < walker[start].time + distance / speed,
+    'it walks the distance asked',
+  );
+}
 
 describe('library modules: each verified in esmini and CARLA (issue 28)', function () {
   this.timeout(600_000);
