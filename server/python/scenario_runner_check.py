@@ -252,7 +252,7 @@ def check(scenario_runner, scenario, towns):
     if not os.path.isfile(os.path.join(mock, 'carla.py')):
         emit({'status': 'not-scenario-runner',
               'reason': '%s has no srunner/tests/carla_mocks/carla.py, the stand-in for CARLA that this check '
-                        'builds on (ScenarioRunner 0.9.13 and later have it)' % scenario_runner}, 3)
+                        'builds on (in ScenarioRunner since 2021; 0.9.16 has it)' % scenario_runner}, 3)
     # The stand-in first: a CARLA Python API installed in this Python must not be the one imported.
     sys.path[:0] = [mock, scenario_runner]
     for name in [name for name in sys.modules if name == 'carla' or name.startswith('agents')]:

@@ -269,6 +269,20 @@ describe('Check in CARLA ScenarioRunner over JSON-RPC', function () {
     const missing = await check('lane_change.xosc', { python: path.join(root, 'no-python-here') });
     assert.equal(missing.outcome, 'no-python');
     assert.match(missing.message, /set modular2simple\.carla\.python/i);
+    // A road that is no CARLA town: the export refuses it, ScenarioRunner is not asked, the refusal is at the LogicFile.
+    const noTown = path.join(root, 'no_town.xosc');
+    fs.writeFileSync(
+      noTown,
+      fs.readFileSync(path.join(root, 'lane_change.xosc'), 'utf8').replace(/(<LogicFile filepath=")[^"]*"/, '$1Town99"'),
+    );
+    const notExported = await check('no_town.xosc');
+    assert.equal(notExported.outcome, 'not-exported');
+    assert.match(
+      notExported.message,
+      /was not exported \(with the facts of ScenarioRunner 0\.9\.15, setting modular2simple\.carla\.release\)/,
+    );
+    assert.equal(notExported.problems[0]?.line, lineMatching(noTown, /<LogicFile/));
+    assert.equal(notExported.command, undefined, 'ScenarioRunner was not run');
     const hanging = path.join(root, 'python-hangs');
     fs.writeFileSync(hanging, '#!/bin/sh\nsleep 600\n', { mode: 0o755 });
     const stopped = await check('lane_change.xosc', { python: hanging, timeLimitSeconds: 1 });

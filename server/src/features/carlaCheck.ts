@@ -90,7 +90,7 @@ export async function checkInScenarioRunner(
     if (exported.text === undefined)
       return notRun(
         'not-exported',
-        `Check in CARLA ScenarioRunner: ${name} was not exported, so ScenarioRunner did not see it: ${exported.refused ?? 'refused'}`,
+        `Check in CARLA ScenarioRunner: ${name} was not exported (with the facts of ScenarioRunner ${workspace.settings.carlaRelease}, setting modular2simple.carla.release), so ScenarioRunner did not see it: ${exported.refused ?? 'refused'}`,
         {
           problems: exported.losses.filter((loss) => loss.kind === 'refused').map((loss) => lossSummary(workspace, loss)),
         },
