@@ -280,6 +280,9 @@ export interface InsideResult {
  */
 export class HarnessEndpoint {
   readonly results: InsideResult[] = [];
+  /** Resolves with the number of failures when the suite inside VS Code says it has finished. */
+  readonly finished: Promise<number>;
+  private resolveFinished: (failures: number) => void = () => undefined;
   /** Further routes, answered with what their handler returns (as JSON). */
   readonly routes = new Map<string, (body: unknown) => Promise<unknown>>();
   /** Every request with its time and duration, kept as an artifact for diagnosing a hung test. */
@@ -289,7 +292,9 @@ export class HarnessEndpoint {
   url = '';
 
   /** `onRequest` hears of every request, as the progress of the tests inside VS Code. */
-  constructor(private readonly onRequest: (route: string) => void = () => undefined) {}
+  constructor(private readonly onRequest: (route: string) => void = () => undefined) {
+    this.finished = new Promise((resolve) => (this.resolveFinished = resolve));
+  }
 
   async start(): Promise<void> {
     this.server = http.createServer((request, response) => void this.handle(request, response));
@@ -311,6 +316,8 @@ export class HarnessEndpoint {
     try {
       if (request.url === '/result') {
         this.results.push(JSON.parse(body) as InsideResult);
+      } else if (request.url === '/finished') {
+        this.resolveFinished((JSON.parse(body) as { failures: number }).failures);
       } else if (request.url === '/screenshot') {
         const { name } = JSON.parse(body) as { name: string };
         const file = path.join(ARTIFACTS, `${name.replace(/[^\w.-]+/g, '-').slice(0, 100)}.png`);
@@ -332,7 +339,10 @@ export class HarnessEndpoint {
   }
 
   async stop(): Promise<void> {
-    await new Promise<void>((resolve) => (this.server ? this.server.close(() => resolve()) : resolve()));
+    const closed = new Promise<void>((resolve) => (this.server ? this.server.close(() => resolve()) : resolve()));
+    // A request left open by an extension host that was killed would keep close() waiting for ever.
+    this.server?.closeAllConnections();
+    await closed;
   }
 }
 
