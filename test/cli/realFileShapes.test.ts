@@ -169,6 +169,44 @@ describe('real file shapes: no false alarms (issue 27)', function () {
     assert.equal(vary.status, 1, 'vary refuses it alike');
   });
 
+  it("a double parameter holding 'time': an error by the standard, a warning under simulator esmini, which runs it with atof's 0", () => {
+    folder = temporaryWorkspace({
+      'main.xosc': scenarioWith({ parameters: '<ParameterDeclaration name="t" parameterType="double" value="time"/>' }),
+    });
+    const notUnused = (problems: Reported[]) => problems.filter((problem) => problem.code !== 'unused-parameter');
+    const standard = notUnused(check(folder, 'main.xosc'));
+    assert.deepEqual(
+      standard.map(({ code, severity }) => ({ code, severity })),
+      [{ code: 'type-mismatch', severity: 'error' }],
+    );
+    const esmini = notUnused(check(folder, 'main.xosc', '--simulator', 'esmini'));
+    assert.deepEqual(
+      esmini.map(({ code, severity, line }) => ({ code, severity, line })),
+      [{ code: 'simulator-value', severity: 'warning', line: 4 }],
+    );
+    assert.match(
+      esmini[0].message,
+      /^'time' is not a double, but 't' is declared double, so the standard refuses it; esmini runs it: esmini puts a parameter's text as written where \$name is used .*; esmini reads a double with atof\(\).*: 'time' where the text is used, 0 where a double is$/,
+    );
+  });
+
+  it("a 0.9 FileHeader read as 1.0: priority 'override' is a 1.2 value, not a misspelling of 'overwrite' (deprecated since 1.2)", () => {
+    folder = temporaryWorkspace({
+      'main.xosc': scenarioWith({
+        header: '<FileHeader revMajor="0" revMinor="9" date="2026-01-01T00:00:00" description="old" author="t"/>',
+      }).replace(
+        '<StopTrigger/>',
+        '<Story name="S"><Act name="A"><ManeuverGroup name="G" maximumExecutionCount="1"><Actors selectTriggeringEntities="false"/><Maneuver name="M"><Event name="E" priority="override"><Action name="a"><GlobalAction><InfrastructureAction><TrafficSignalAction><TrafficSignalStateAction name="s" state="on"/></TrafficSignalAction></InfrastructureAction></GlobalAction></Action><StartTrigger/></Event></Maneuver></ManeuverGroup><StartTrigger/></Act></Story><StopTrigger/>',
+      ),
+    });
+    const run = runCli(['check', 'main.xosc', '--format', 'json'], { cwd: folder, schema: true });
+    const report = JSON.parse(run.stdout) as { problems: { code: string; message: string; hint?: string }[] };
+    const priority = report.problems.find((problem) => problem.message.startsWith("'override' is not a valid value of Event.priority"));
+    assert.ok(priority, run.stdout);
+    assert.equal(priority.hint, "'override' is a value of OpenSCENARIO 1.2, 1.3; the FileHeader states 0.9 (revMinor)");
+    assert.doesNotMatch(run.stdout, /did you mean 'overwrite'/);
+  });
+
   it('simulator-value on unsignedShort and unsignedInt parameters says what differs: esmini does not support the type', () => {
     folder = temporaryWorkspace({
       'main.xosc': scenarioWith({

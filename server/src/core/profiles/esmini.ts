@@ -108,6 +108,10 @@ export const ESMINI_PROFILE: SimulatorProfile = {
       does: 'reads a double with atof(): the longest prefix that is a number, 0 when none',
       source: `${PARAMETERS}:540-544, ${COMMON}:1036-1039`,
     },
+    declarationText: {
+      does: "puts a parameter's text as written where $name is used (getParameter returns the declaration's value attribute)",
+      source: `${PARAMETERS}:73-88`,
+    },
     failure: { does: 'stops the scenario with "Failed to evaluate the expression"', source: `${PARAMETERS}:449-453` },
   },
 };

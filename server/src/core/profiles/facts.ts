@@ -73,6 +73,7 @@ export type ValueRule =
   | 'intConversion'
   | 'booleanConversion'
   | 'doubleConversion'
+  | 'declarationText'
   | 'failure';
 
 export interface ValueRuleFact {

@@ -4,7 +4,7 @@ import { XmlAttribute, XmlDocument, XmlElement } from '../xml';
 import { StateSet } from './automaton';
 import { replacementOf, valueReplacementOf } from './deprecations';
 import { SchemaIndex, schemaIndex, versionsWith } from './index';
-import { ElementParticle } from './model';
+import { ElementParticle, SCHEMA_VERSIONS } from './model';
 import { MODULAR_ATTRIBUTE, MODULAR_PLACEMENT, MODULAR_TYPES } from './modular';
 import { checkValue, describeType, enumerationValues } from './values';
 import { chooseVersion, ChosenVersion, SchemaVersionSetting } from './version';
@@ -55,6 +55,20 @@ function introducedHint(
   const stated = chosen.stated ? `the FileHeader states ${chosen.stated}` : `the file is read as ${chosen.version}`;
   const suggestion = closestMatch(name, others);
   return `${kind === 'element' ? `<${name}>` : `'${name}'`} belongs to OpenSCENARIO ${versions.join(', ')}; ${stated} (revMinor)${suggestion ? `; or did you mean ${kind === 'element' ? `<${suggestion}>` : `'${suggestion}'`}?` : ''}`;
+}
+
+/** Where an attribute's value is valid in other versions of the schema: which, and the version the file is read as. */
+function valueIntroducedHint(typeName: string, attribute: XmlAttribute, chosen: ChosenVersion): string | undefined {
+  const versions = SCHEMA_VERSIONS.filter((version) => {
+    if (version === chosen.version) return false;
+    const index = schemaIndex(version);
+    const declaration = index.attribute(typeName, attribute.name);
+    const simple = declaration ? index.simpleType(declaration.type) : undefined;
+    return simple !== undefined && checkValue(simple, attribute.value).valid;
+  });
+  if (versions.length === 0) return undefined;
+  const stated = chosen.stated ? `the FileHeader states ${chosen.stated}` : `the file is read as ${chosen.version}`;
+  return `'${attribute.value}' is a value of OpenSCENARIO ${versions.join(', ')}; ${stated} (revMinor)`;
 }
 
 /**
@@ -141,7 +155,9 @@ export function checkAttribute(
   const check = checkValue(simple, attribute.value);
   if (!check.valid) {
     const values = enumerationValues(simple);
-    const suggestion = values.length > 0 ? closestMatch(attribute.value, values) : undefined;
+    // A value of a later version ('override', 1.2) is not misspelt: the closest value here may be the one that version deprecates ('overwrite').
+    const inVersions = check.expressionNotInVersion ? undefined : valueIntroducedHint(typeName, attribute, chosen);
+    const suggestion = values.length > 0 && !inVersions ? closestMatch(attribute.value, values) : undefined;
     report({
       element,
       attribute,
@@ -151,7 +167,7 @@ export function checkAttribute(
       message: check.expressionNotInVersion
         ? `the expression '${attribute.value}' needs OpenSCENARIO 1.1 or later; this file is read as ${chosen.version}`
         : `'${attribute.value}' is not a valid value of ${element.name}.${attribute.name} (${declaration.type}): expected ${describeType(simple)}`,
-      hint: suggestion ? `did you mean '${suggestion}'?` : undefined,
+      hint: inVersions ?? (suggestion ? `did you mean '${suggestion}'?` : undefined),
       data: suggestion ? { suggestion } : undefined,
     });
   } else if (check.deprecated) {

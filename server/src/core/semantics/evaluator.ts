@@ -159,9 +159,36 @@ export class Evaluator {
           end: declaration.valueAttribute.valueEnd,
         });
       }
-    }
+    } else if (this.reading === 'esmini') result = this.esminiReadingOfRefused(declaration, standard);
     this.declarationValues.set(declaration, result);
     return result;
+  }
+
+  /**
+   * A literal the standard refuses for its declared type ('time' for a double) that esmini converts all the same
+   * (atof, atoi, == 'true'): under the esmini reading the scenario runs with esmini's value, a warning that gives both.
+   */
+  private esminiReadingOfRefused(declaration: Declaration, standard: ValueResult & { ok: false }): ValueResult {
+    const attr = declaration.valueAttribute;
+    const type = declaration.type;
+    if (
+      !attr ||
+      standard.provenance.kind !== 'declaration' ||
+      (type !== 'double' && type !== 'int' && type !== 'boolean') ||
+      this.model.siteOf.get(attr) ||
+      !standard.errors.every((error) => error.kind === 'type-mismatch')
+    )
+      return standard;
+    const esmini = this.esminiDeclarationText(declaration);
+    if (!esmini.ok) return standard;
+    const typed = esminiTyped(esmini.text, type);
+    this.warn(declaration, {
+      kind: 'simulator',
+      message: `${standard.errors[0].message}, so the standard refuses it; esmini runs it: ${[esminiRule('declarationText'), ...reasonsOf([], typed.rule)].join('; ')}: '${esmini.text}' where the text is used, ${formatValue(typed.value)} where a ${type} is`,
+      start: attr.valueStart,
+      end: attr.valueEnd,
+    });
+    return { ok: true, value: typed.value, type, provenance: standard.provenance };
   }
 
   /** Warnings about a declaration's own value: a lenient literal, or a value esmini computes otherwise (after declarationValue). */
