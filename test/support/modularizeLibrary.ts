@@ -51,7 +51,9 @@ function xoscIn(folder: string): string[] {
 /**
  * The libraries on this machine: the corpus in ../shared, and the public test-protocol libraries when a
  * checkout of them is in M2S_REAL_LIBRARIES (default .cache/real-libraries): `ncap/` holding
- * vectorgrp/OSC-NCAP-scenarios, `alks/` holding asam-oss/OSC-ALKS-scenarios. Absent ones are named in `missing`.
+ * vectorgrp/OSC-NCAP-scenarios, `alks/` holding asam-oss/OSC-ALKS-scenarios, `asam/` holding the folders
+ * exampleFilesVersion1_2 and exampleFilesVersion1_3 of RA-Consulting-GmbH/openscenario.api.test
+ * (cpp/applications/openScenarioTester/res/, ASAM's examples). Absent ones are named in `missing`.
  */
 export function realLibraries(): { libraries: RealLibrary[]; missing: string[] } {
   const corpus = path.join(sharedDir, 'corpus');
@@ -77,6 +79,10 @@ export function realLibraries(): { libraries: RealLibrary[]; missing: string[] }
     {
       name: 'ALKS templates (OSC-ALKS-scenarios, 15)',
       files: xoscIn(path.join(real, 'alks', 'logical_scenarios', 'concrete_scenarios')),
+    },
+    {
+      name: "ASAM's 1.2 and 1.3 examples (openscenario.api.test)",
+      files: ['exampleFilesVersion1_2', 'exampleFilesVersion1_3'].flatMap((folder) => xoscIn(path.join(real, 'asam', folder))),
     },
   ];
   return {

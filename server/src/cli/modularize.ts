@@ -180,7 +180,9 @@ function report(
       `no ManeuverGroup recurs across the ${result.mains.length} scenario${result.mains.length === 1 ? '' : 's'}: nothing extracted, nothing written`,
     );
   } else {
-    io.out(`${result.behaviours.length} simple scenario${result.behaviours.length === 1 ? '' : 's'} in ${shown(simpleFolder)}:`);
+    const files = new Set(result.behaviours.map((behaviour) => behaviour.file)).size;
+    const shared = files < result.behaviours.length ? ` holding ${result.behaviours.length} behaviours` : '';
+    io.out(`${files} simple scenario${files === 1 ? '' : 's'}${shared} in ${shown(simpleFolder)}:`);
     result.behaviours.forEach((behaviour, index) => {
       const mains = [...new Set(behaviour.uses.map((use) => shown(result.mains[use.occurrence.input].output)))];
       io.out(
@@ -203,9 +205,11 @@ function report(
       `${shown(main.output).padEnd(width)}  ${String(main.linesBefore).padStart(7)}  ${String(main.linesAfter).padStart(7)}  ${reduction.toFixed(1).padStart(7)} %`,
     );
   }
-  result.behaviours.forEach((behaviour, index) =>
-    io.out(`${('+ ' + shown(behaviour.file)).padEnd(width)}  ${''.padStart(7)}  ${String(simpleLines[index]).padStart(7)}`),
-  );
+  // A simple scenario that several behaviours share is counted once.
+  result.behaviours.forEach((behaviour, index) => {
+    if (result.behaviours.findIndex((other) => other.file === behaviour.file) !== index) return;
+    io.out(`${('+ ' + shown(behaviour.file)).padEnd(width)}  ${''.padStart(7)}  ${String(simpleLines[index]).padStart(7)}`);
+  });
   const { totals } = result;
   io.out(
     `${'total (SPEC 9)'.padEnd(width)}  ${totals.linesBefore.toLocaleString('en-US').padStart(7)}  ${totals.linesAfter.toLocaleString('en-US').padStart(7)}  ${totals.reduction.toFixed(1).padStart(7)} %`,

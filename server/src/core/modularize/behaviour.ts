@@ -146,7 +146,8 @@ export async function planBehaviour(
     return { occurrence, outerName: outerNames[position] ?? occurrence.values[nameSlot], overrides };
   });
   const parameters = [...keys.keys()].sort((a, b) => a - b).map((index) => `${elements[slots[index].element].name}.${slots[index].name}`);
-  return { behaviour: { shapeKey, file, groupName, slots, defaults, parameters: [...new Set(parameters)], uses, text } };
+  const part = { groupText, groupName, occurrences, defaults };
+  return { behaviour: { shapeKey, file, groupName, slots, defaults, parameters: [...new Set(parameters)], uses, text, part } };
 }
 
 /** The indentation of one level: that of the root's first child, else two spaces. */

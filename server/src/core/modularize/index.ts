@@ -14,8 +14,9 @@ import { applyEdits } from '../flatten/edits';
 import { buildModel } from '../model';
 import { diskRef, Limits, ScenarioStore } from '../sources';
 import { countEditorLines } from '../text';
-import { parseXml, XmlDocument } from '../xml';
-import { planBehaviour } from './behaviour';
+import { attributeValue, parseXml, XmlDocument } from '../xml';
+import { indentUnit, planBehaviour } from './behaviour';
+import { simpleScenarioText } from './simpleScenario';
 import { mainText, referenceGroup } from './mainText';
 import { memoryHost } from './memoryHost';
 import { behaviourName, uniqueName } from './naming';
@@ -55,11 +56,8 @@ function recurringGroups(inputs: ParsedInput[], excluded: Set<string>): Map<stri
   return byShape;
 }
 
-/**
- * What extracting a behaviour does to the library's size (SPEC 9 lines): the lines its groups take in
- * the inputs less those of the groups that import it (`replaced`), less its simple scenario's.
- */
-function linesSaved(behaviour: Behaviour, inputs: ParsedInput[]): { saved: number; replaced: number; simple: number } {
+/** The lines a behaviour's uses take in the inputs less those of the groups that import it (SPEC 9 lines). */
+function linesReplaced(behaviour: Behaviour, inputs: ParsedInput[]): number {
   let replaced = 0;
   for (const use of behaviour.uses) {
     const input = inputs[use.occurrence.input];
@@ -67,8 +65,104 @@ function linesSaved(behaviour: Behaviour, inputs: ParsedInput[]): { saved: numbe
     const reference = referenceGroup(input, behaviour, use, '', '  ', '\n');
     replaced += input.text.slice(group.start, group.end).split('\n').length - reference.split('\n').length;
   }
-  const simple = countEditorLines(behaviour.text);
-  return { saved: replaced - simple, replaced, simple };
+  return replaced;
+}
+
+/** What simple scenarios can share a file: the same version and catalog locations (as rebased there); the first one's road network serves. */
+function poolKey(behaviour: Behaviour): string {
+  const root = parseXml(behaviour.text).root;
+  const part = (name: string) => {
+    const element = root?.children.find((child) => child.name === name);
+    return element ? behaviour.text.slice(element.start, element.end).replace(/\s+/g, ' ') : '';
+  };
+  const header = root?.children.find((child) => child.name === 'FileHeader');
+  return [header ? `${attributeValue(header, 'revMajor')}.${attributeValue(header, 'revMinor')}` : '', part('CatalogLocations')].join('\n');
+}
+
+/**
+ * The behaviours worth extracting, each with its simple scenario: behaviours that can share a file (see
+ * poolKey; their group names differ) are written into one, which pays its declarations, catalogs, roads
+ * and storyboard once. A file is kept only when its uses save more lines than it takes, dropping its
+ * least paying behaviours until it does; what is dropped is kept inline with the figures (never larger).
+ */
+async function paying(
+  candidates: Behaviour[],
+  inputs: ParsedInput[],
+  rebase: RebasePaths,
+  simpleFolder: string,
+  taken: Set<string>,
+  pooling: boolean,
+  keptInline: ModularizeResult['keptInline'],
+): Promise<Behaviour[]> {
+  const pools = new Map<string, Behaviour[]>();
+  for (const [index, behaviour] of candidates.entries()) {
+    const key = pooling ? poolKey(behaviour) : String(index);
+    let n = 0;
+    while (pools.get(`${key}#${n}`)?.some((other) => other.groupName === behaviour.groupName)) n++;
+    pools.set(`${key}#${n}`, [...(pools.get(`${key}#${n}`) ?? []), behaviour]);
+  }
+  const leaveInline = (behaviour: Behaviour, reason: string) => {
+    for (const use of behaviour.uses)
+      keptInline.push({ input: inputs[use.occurrence.input].path, group: use.occurrence.group.name, reason });
+  };
+  const result: Behaviour[] = [];
+  for (const members of pools.values()) {
+    const replaced = new Map(members.map((member) => [member, linesReplaced(member, inputs)]));
+    // What a member adds to a shared file: its group's lines; one that cannot pay even that stays inline.
+    const own = (member: Behaviour) => member.part.groupText.split('\n').length;
+    let kept = members.filter((member) => {
+      if (members.length === 1 || (replaced.get(member) as number) > own(member)) return true;
+      leaveInline(
+        member,
+        `extracting it would not pay: its group alone takes ${own(member)} lines in a simple scenario, its ${member.uses.length} uses would save ${replaced.get(member)}`,
+      );
+      return false;
+    });
+    /** The file `chosen` would share and the lines it saves in all (its uses' lines less its own). */
+    const build = async (chosen: Behaviour[]) => {
+      if (chosen.length === 1) return { text: chosen[0].text, net: (replaced.get(chosen[0]) as number) - countEditorLines(chosen[0].text) };
+      const representative = inputs[chosen[0].part.occurrences[0].input];
+      const text = await simpleScenarioText({
+        ...chosen[0].part,
+        others: chosen.slice(1).map((member) => member.part),
+        file: path.join(simpleFolder, 'behaviours.xosc'),
+        inputs,
+        unit: indentUnit(representative.text, representative.document.root?.children[0]?.start),
+        eol: representative.text.includes('\r\n') ? '\r\n' : '\n',
+        rebase,
+      });
+      return { text, net: chosen.reduce((sum, member) => sum + (replaced.get(member) as number), 0) - countEditorLines(text) };
+    };
+    let current = kept.length > 0 ? await build(kept) : undefined;
+    // A member whose leaving makes the file save more goes back inline (what it brings costs more than it saves).
+    while (current && kept.length > 1) {
+      let best: { member: Behaviour; built: { text: string; net: number } } | undefined;
+      for (const member of kept) {
+        const built = await build(kept.filter((other) => other !== member));
+        if (built.net > (best?.built.net ?? current.net)) best = { member, built };
+      }
+      if (!best) break;
+      leaveInline(
+        best.member,
+        `extracting it would not pay: sharing a simple scenario with ${kept.length - 1} other behaviours it adds more lines than its ${best.member.uses.length} uses save`,
+      );
+      kept = kept.filter((member) => member !== best.member);
+      current = best.built;
+    }
+    if (!current || kept.length === 0) continue;
+    if (current.net <= 0) {
+      for (const member of kept)
+        leaveInline(
+          member,
+          `extracting it would not pay: its simple scenario (${countEditorLines(current.text)} lines) outweighs the ${replaced.get(member)} lines its ${member.uses.length} uses would save`,
+        );
+      continue;
+    }
+    const file = kept.length === 1 ? kept[0].file : path.join(simpleFolder, `${uniqueName('behaviours', taken)}.xosc`);
+    const text = current.text;
+    for (const member of kept) result.push({ ...member, file, text });
+  }
+  return result;
 }
 
 interface Plan {
@@ -77,8 +171,14 @@ interface Plan {
   keptInline: ModularizeResult['keptInline'];
 }
 
-async function plan(inputs: ParsedInput[], rebase: RebasePaths, simpleFolder: string, excluded: Map<string, string>): Promise<Plan> {
-  const behaviours: Behaviour[] = [];
+async function plan(
+  inputs: ParsedInput[],
+  rebase: RebasePaths,
+  simpleFolder: string,
+  excluded: Map<string, string>,
+  pooling: boolean,
+): Promise<Plan> {
+  const candidates: Behaviour[] = [];
   const keptInline: ModularizeResult['keptInline'] = [];
   const taken = new Set<string>();
   const pending = [...recurringGroups(inputs, new Set(excluded.keys())).values()].map(({ shape, occurrences }) => ({
@@ -94,19 +194,7 @@ async function plan(inputs: ParsedInput[], rebase: RebasePaths, simpleFolder: st
     const file = path.join(simpleFolder, `${stem}.xosc`);
     const planned = await planBehaviour(key, shape.slots, occurrences, inputs, file, rebase);
     if (planned.behaviour) {
-      const cost = linesSaved(planned.behaviour, inputs);
-      if (cost.saved > 0) {
-        behaviours.push(planned.behaviour);
-        continue;
-      }
-      // Extracting it would make the library larger: its simple scenario outweighs what its uses save.
-      taken.delete(stem.toLowerCase());
-      for (const use of planned.behaviour.uses)
-        keptInline.push({
-          input: inputs[use.occurrence.input].path,
-          group: use.occurrence.group.name,
-          reason: `extracting it would not pay: its simple scenario (${cost.simple} lines) outweighs the ${cost.replaced} lines its ${planned.behaviour.uses.length} uses would save`,
-        });
+      candidates.push(planned.behaviour);
       continue;
     }
     taken.delete(stem.toLowerCase());
@@ -130,6 +218,7 @@ async function plan(inputs: ParsedInput[], rebase: RebasePaths, simpleFolder: st
         reason: planned.reason ?? 'cannot be imported exactly',
       });
   }
+  const behaviours = await paying(candidates, inputs, rebase, simpleFolder, taken, pooling, keptInline);
   const mains: MainResult[] = [];
   for (const [index, input] of inputs.entries()) {
     const uses = behaviours.flatMap((behaviour) =>
@@ -193,8 +282,15 @@ export async function modularize(
     parsed.push({ ...input, document, pathEdits: await rebase(document, path.dirname(input.path), path.dirname(input.output)) });
   }
   const excluded = new Map<string, string>();
-  let planned = await plan(parsed, rebase, options.simpleFolder, excluded);
+  let pooling = true;
+  let planned = await plan(parsed, rebase, options.simpleFolder, excluded, pooling);
   let failures = await verify(parsed, planned, limits);
+  if (failures.length > 0) {
+    // A shared file may be what fails (two behaviours' declarations at odds): each in its own file, then.
+    pooling = false;
+    planned = await plan(parsed, rebase, options.simpleFolder, excluded, pooling);
+    failures = await verify(parsed, planned, limits);
+  }
   const keptInline: ModularizeResult['keptInline'] = [];
   for (let round = 0; failures.length > 0 && round < 8; round++) {
     const failing = new Set(failures.map((failure) => failure.input));
@@ -212,13 +308,16 @@ export async function modularize(
         });
     }
     if (dropped === 0) break;
-    planned = await plan(parsed, rebase, options.simpleFolder, excluded);
+    planned = await plan(parsed, rebase, options.simpleFolder, excluded, pooling);
     failures = await verify(parsed, planned, limits);
   }
   const linesBefore = planned.mains.reduce((sum, main) => sum + main.linesBefore, 0);
   const linesAfter =
     planned.mains.reduce((sum, main) => sum + main.linesAfter, 0) +
-    planned.behaviours.reduce((sum, behaviour) => sum + countEditorLines(behaviour.text), 0);
+    [...new Map(planned.behaviours.map((behaviour) => [behaviour.file, behaviour.text])).values()].reduce(
+      (sum, text) => sum + countEditorLines(text),
+      0,
+    );
   return {
     mains: planned.mains,
     behaviours: planned.behaviours,

@@ -6,6 +6,14 @@ import { GroupOccurrence } from './shape';
 import { ParsedInput, RebasePaths } from './types';
 import { coreMemo } from '../memos';
 
+/** One group of a simple scenario: its text as written there, its name, where it came from, its defaults. */
+export interface PooledGroup {
+  groupText: string;
+  groupName: string;
+  occurrences: GroupOccurrence[];
+  defaults: string[];
+}
+
 export interface SimpleScenarioParts {
   groupText: string;
   groupName: string;
@@ -15,6 +23,8 @@ export interface SimpleScenarioParts {
   inputs: ParsedInput[];
   /** The group's attribute values as the simple scenario holds them. */
   defaults: string[];
+  /** More groups the same file holds (a pool of behaviours sharing its declarations, catalogs and roads). */
+  others?: PooledGroup[];
   unit: string;
   eol: string;
   rebase: RebasePaths;
@@ -85,9 +95,14 @@ function findNamed(
  * network and catalog locations (rebased onto the simple scenario's folder), and a story that plays it.
  */
 export async function simpleScenarioText(parts: SimpleScenarioParts): Promise<string> {
-  const { groupText, groupName, file, occurrences, inputs, defaults, unit, eol, rebase } = parts;
+  const { groupName, file, occurrences, inputs, unit, eol, rebase } = parts;
+  const groups: PooledGroup[] = [parts, ...(parts.others ?? [])];
+  const groupText = groups.map((group) => group.groupText).join(eol);
+  const defaults = groups.flatMap((group) => group.defaults);
   const representative = inputs[occurrences[0].input];
-  const documents = [...new Set(occurrences.map((occurrence) => inputs[occurrence.input]))].map((input) => input.document);
+  const documents = [...new Set(groups.flatMap((group) => group.occurrences).map((occurrence) => inputs[occurrence.input]))].map(
+    (input) => input.document,
+  );
   const root = representative.document.root as XmlElement;
   const header = child(root, 'FileHeader');
   const lines: string[] = ['<?xml version="1.0" encoding="UTF-8"?>', representative.text.slice(root.start, root.startTagEnd)];
@@ -95,7 +110,12 @@ export async function simpleScenarioText(parts: SimpleScenarioParts): Promise<st
     ['revMajor', attributeValue(header ?? root, 'revMajor') ?? '1'],
     ['revMinor', attributeValue(header ?? root, 'revMinor') ?? '0'],
     ['date', attributeValue(header ?? root, 'date') ?? '2020-01-01T00:00:00'],
-    ['description', `${groupName}: a behaviour shared by ${occurrences.length} groups, extracted by modular2simple modularize`],
+    [
+      'description',
+      groups.length === 1
+        ? `${groupName}: a behaviour shared by ${occurrences.length} groups, extracted by modular2simple modularize`
+        : `${groups.map((group) => group.groupName).join(', ')}: ${groups.length} behaviours, extracted by modular2simple modularize`,
+    ],
     ['author', attributeValue(header ?? root, 'author') ?? 'modular2simple'],
   ];
   lines.push(`${unit}<FileHeader ${headerAttributes.map(([name, value]) => `${name}="${escapeAttributeValue(value)}"`).join(' ')}/>`);
@@ -169,37 +189,41 @@ export async function simpleScenarioText(parts: SimpleScenarioParts): Promise<st
   lines.push(catalogText, roadText);
   lines.push(entities.length > 0 ? [`${unit}<Entities>`, ...entities, `${unit}</Entities>`].join(eol) : `${unit}<Entities/>`);
 
-  // The Act and Story keep the names they had around the group, which its conditions may name.
-  const act = occurrences[0].group.element.parent;
-  const actName = (act?.name === 'Act' && attributeValue(act, 'name')) || `${groupName}Act`;
-  const story = act?.parent;
-  const storyName = (story?.name === 'Story' && attributeValue(story, 'name')) || `${groupName}Story`;
+  // Each Act and Story keeps the name it had around its groups, which their conditions may name.
   const u = (depth: number) => unit.repeat(depth);
-  lines.push(
-    [
-      `${u(1)}<Storyboard>`,
-      `${u(2)}<Init>`,
-      `${u(3)}<Actions/>`,
-      `${u(2)}</Init>`,
-      `${u(2)}<Story name="${escapeAttributeValue(storyName)}">`,
-      `${u(3)}<Act name="${escapeAttributeValue(actName)}">`,
-      `${u(4)}${groupText}`,
-      `${u(4)}<StartTrigger>`,
-      `${u(5)}<ConditionGroup>`,
-      `${u(6)}<Condition name="${escapeAttributeValue(groupName)}Start" delay="0" conditionEdge="none">`,
-      `${u(7)}<ByValueCondition>`,
-      `${u(8)}<SimulationTimeCondition value="0" rule="greaterThan"/>`,
-      `${u(7)}</ByValueCondition>`,
-      `${u(6)}</Condition>`,
-      `${u(5)}</ConditionGroup>`,
-      `${u(4)}</StartTrigger>`,
-      `${u(3)}</Act>`,
-      `${u(2)}</Story>`,
-      `${u(2)}<StopTrigger/>`,
-      `${u(1)}</Storyboard>`,
-      `</${root.name}>`,
-    ].join(eol),
-  );
+  const stories = new Map<string, Map<string, PooledGroup[]>>();
+  for (const group of groups) {
+    const act = group.occurrences[0].group.element.parent;
+    const actName = (act?.name === 'Act' && attributeValue(act, 'name')) || `${group.groupName}Act`;
+    const story = act?.parent;
+    const storyName = (story?.name === 'Story' && attributeValue(story, 'name')) || `${group.groupName}Story`;
+    const acts = stories.get(storyName) ?? new Map<string, PooledGroup[]>();
+    stories.set(storyName, acts);
+    acts.set(actName, [...(acts.get(actName) ?? []), group]);
+  }
+  const storyboard = [`${u(1)}<Storyboard>`, `${u(2)}<Init>`, `${u(3)}<Actions/>`, `${u(2)}</Init>`];
+  for (const [storyName, acts] of stories) {
+    storyboard.push(`${u(2)}<Story name="${escapeAttributeValue(storyName)}">`);
+    for (const [actName, members] of acts) {
+      storyboard.push(`${u(3)}<Act name="${escapeAttributeValue(actName)}">`);
+      for (const member of members) storyboard.push(`${u(4)}${member.groupText}`);
+      storyboard.push(
+        `${u(4)}<StartTrigger>`,
+        `${u(5)}<ConditionGroup>`,
+        `${u(6)}<Condition name="${escapeAttributeValue(members[0].groupName)}Start" delay="0" conditionEdge="none">`,
+        `${u(7)}<ByValueCondition>`,
+        `${u(8)}<SimulationTimeCondition value="0" rule="greaterThan"/>`,
+        `${u(7)}</ByValueCondition>`,
+        `${u(6)}</Condition>`,
+        `${u(5)}</ConditionGroup>`,
+        `${u(4)}</StartTrigger>`,
+        `${u(3)}</Act>`,
+      );
+    }
+    storyboard.push(`${u(2)}</Story>`);
+  }
+  storyboard.push(`${u(2)}<StopTrigger/>`, `${u(1)}</Storyboard>`, `</${root.name}>`);
+  lines.push(storyboard.join(eol));
   const text = lines.join(eol) + eol;
   return applyEdits(text, await rebase(parseXml(text), path.dirname(representative.path), path.dirname(file)));
 }

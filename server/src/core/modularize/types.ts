@@ -1,6 +1,7 @@
 import { TextEdit } from '../flatten/edits';
 import { XmlDocument } from '../xml';
 import { GroupOccurrence, Slot } from './shape';
+import type { PooledGroup } from './simpleScenario';
 
 /** One scenario to modularize: where it is, where its main goes, its text. */
 export interface ModularizeInput {
@@ -48,7 +49,10 @@ export interface Behaviour {
   /** Attributes listed in `parameterAttributes`, as `Element.attr` keys in document order. */
   parameters: string[];
   uses: Use[];
+  /** The simple scenario's text (shared by the behaviours pooled into one file). */
   text: string;
+  /** The group as its simple scenario holds it, for pooling it with others into one file. */
+  part: PooledGroup;
 }
 
 /** What modularize made of one input. */
