@@ -93,19 +93,21 @@ const commandFiles = [...new Set(Object.values(COMMAND_BUNDLES))];
 const entries = [
   { entryPoints: ['client/src/extension.ts'], outfile: 'dist/client.js', external: ['vscode'] },
   { entryPoints: ['server/src/server.ts'], outfile: 'dist/server.js', banner: { js: '#!/usr/bin/env node' } },
+  // The debug adapter, a process of its own (esmini crashing ends it, not the editor); koffi is native, loaded from node_modules.
+  { entryPoints: ['server/src/debugAdapter.ts'], outfile: 'dist/debugAdapter.js', external: ['koffi'] },
   starter,
   // The whole CLI. The Redis queue's client (batch --queue, worker) is loaded from node_modules only when used: start-up stays small.
   {
     entryPoints: ['server/src/cli.ts'],
     outfile: 'dist/cli-main.js',
-    external: ['bullmq', 'ioredis'],
+    external: ['bullmq', 'ioredis', 'koffi'],
     plugins: [builtinsRequired, sharedBuiltinNamespaces],
   },
   // The short commands' own bundles.
   ...commandFiles.map((file) => ({
     entryPoints: ['server/src/cli.ts'],
     outfile: `dist/${commandBundle(file)}`,
-    external: ['bullmq', 'ioredis'],
+    external: ['bullmq', 'ioredis', 'koffi'],
     plugins: [onlyCommandFile(file), builtinsRequired, sharedBuiltinNamespaces],
   })),
   // The bird's-eye view's page: runs in the webview, everything bundled (no network, no CDN).

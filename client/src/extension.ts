@@ -23,6 +23,7 @@ import { RUN_VARIATIONS_COMMAND, VariationsRunner } from './runVariations';
 import { registerVariations } from './variations/commands';
 import type { VariationsView } from './variations/panel';
 import { extractGroupCommand } from './extractGroup';
+import { registerDebugging } from './debugging';
 
 /** What the extension hands to other extensions and to its own tests. */
 export interface Modular2SimpleApi {
@@ -79,6 +80,7 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
 
   const esmini = new EsminiRunner(client);
   context.subscriptions.push(esmini);
+  registerDebugging(context);
 
   const preview = new FlattenedPreview((source) => server.preview(source), log);
   const structure = new StructureTree();

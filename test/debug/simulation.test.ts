@@ -9,6 +9,7 @@ import { esminiCatalogs, esminiRoads } from '../support/esmini';
 import { requireEsminiLibrary } from '../support/esminiBinaries';
 import { openscenarioDir } from '../support/openscenarioCorpus';
 import { temporaryFolder } from '../support/temporaryDirectory';
+import { writeTwoCutIns } from '../support/debugScenarios';
 
 const cutIn = path.join(openscenarioDir, 'esmini', 'cut-in.xosc');
 const roadPath = [esminiRoads, path.join(esminiCatalogs, 'Vehicles')];
@@ -102,22 +103,6 @@ describe('debug: a scenario run step by step in esmini library', () => {
     assert.match(ESMINI_LIBRARY_MISSING_HELP, /bash \.\.\/shared\/esmini\/build\.sh \.cache\/esmini/);
   });
 });
-
-/** The examples' lane_change.xosc imported by two groups of one main file, for two adversaries. */
-export function writeTwoCutIns(folder: string): void {
-  const examples = path.resolve(__dirname, '..', '..', 'examples');
-  fs.copyFileSync(path.join(examples, 'lane_change.xosc'), path.join(folder, 'lane_change.xosc'));
-  const main = fs.readFileSync(path.join(examples, 'main.xosc'), 'utf8');
-  const first = main.indexOf('        <ManeuverGroup maximumExecutionCount="1" name="CutInVehicle">');
-  const second = main.indexOf('        <ManeuverGroup maximumExecutionCount="1" name="LeadVehicle">');
-  const startTrigger = main.indexOf('        <StartTrigger>', second);
-  const cutInGroup = main.slice(first, second);
-  const leadGroup = cutInGroup
-    .replace('name="CutInVehicle"', 'name="CutInLead"')
-    .replaceAll('"adversary"', '"lead"')
-    .replace('key="RelativeDistanceCondition.value" value="12"', 'key="RelativeDistanceCondition.value" value="30"');
-  fs.writeFileSync(path.join(folder, 'main.xosc'), main.slice(0, second) + leadGroup + main.slice(startTrigger));
-}
 
 function laneChangeEventLine(folder: string): number {
   return fs

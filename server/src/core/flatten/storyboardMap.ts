@@ -1,6 +1,6 @@
 import { ZERO_RANGE } from '../problems';
 import { Range } from '../text';
-import { SourceRef } from '../sources';
+import { displayRef, SourceRef } from '../sources';
 import { attribute, XmlElement } from '../xml';
 import { originOf } from './origin';
 import { FlatSource } from './types';
@@ -97,6 +97,8 @@ export class StoryboardMap {
   readonly elements: MappedElement[] = [];
   private readonly byPath = new Map<string, MappedElement>();
   private readonly conditionsByName = new Map<string, MappedElement[]>();
+  /** The text of each file an element was written in, by its display key. */
+  private readonly texts = new Map<string, string>();
 
   constructor(
     readonly flat: FlatSource,
@@ -134,6 +136,7 @@ export class StoryboardMap {
     const path = parent ? `${parent.path}::${name}` : name;
     const origin = originOf(this.flat, element);
     const document = (origin.source.original ?? origin.source.model)?.document;
+    if (document) this.texts.set(refKey(origin.source.ref), document.text);
     const range = document ? document.lines.range(origin.element.start, origin.element.nameEnd) : ZERO_RANGE;
     const lastTagLine = document ? document.lines.range(origin.element.startTagEnd - 1, origin.element.startTagEnd - 1).start.line : 0;
     const mapped: MappedElement = { kind, name, path, element, parent, source: origin.source.ref, range, lastTagLine };
@@ -159,8 +162,17 @@ export class StoryboardMap {
     return this.conditionsByName.get(name) ?? [];
   }
 
+  /** The text of a file an element was written in (the files inside a package have no path to open). */
+  textOf(ref: SourceRef): string | undefined {
+    return this.texts.get(refKey(ref));
+  }
+
   /** Every flattened element whose start tag, in the file `isFile` accepts, covers the 0-based line. */
   atLine(isFile: (ref: SourceRef) => boolean, line: number): MappedElement[] {
     return this.elements.filter((element) => line >= element.range.start.line && line <= element.lastTagLine && isFile(element.source));
   }
+}
+
+function refKey(ref: SourceRef): string {
+  return displayRef(ref, undefined);
 }

@@ -1,0 +1,260 @@
+import { DebugClient } from '@vscode/debugadapter-testsupport';
+import { DebugProtocol } from '@vscode/debugprotocol';
+import * as assert from 'node:assert/strict';
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import { esminiBinary, esminiCatalogs, esminiRoads } from '../support/esmini';
+import { requireEsminiLibrary, requireEsminiProgram } from '../support/esminiBinaries';
+import { openscenarioDir } from '../support/openscenarioCorpus';
+import { repoRoot } from '../support/paths';
+import { runBounded } from '../support/processes';
+import { temporaryFolder } from '../support/temporaryDirectory';
+import { writeTwoCutIns } from '../support/debugScenarios';
+
+const cutIn = path.join(openscenarioDir, 'esmini', 'cut-in.xosc');
+const roadPath = [esminiRoads, path.join(esminiCatalogs, 'Vehicles')];
+const adapterSource = path.join(repoRoot, 'server', 'src', 'debugAdapter.ts');
+
+function lineOf(file: string, text: string): number {
+  const index = fs
+    .readFileSync(file, 'utf8')
+    .split('\n')
+    .findIndex((line) => line.includes(text));
+  assert.ok(index >= 0, `${text} in ${file}`);
+  return index + 1;
+}
+
+/** The adapter as VS Code starts it: a process of its own speaking DAP on stdio (from the sources, through tsx). */
+async function startClient(): Promise<{ client: DebugClient; stderr: () => string }> {
+  const client = new DebugClient(process.execPath, adapterSource, 'modular2simple', {
+    env: { ...process.env, NODE_OPTIONS: `${process.env.NODE_OPTIONS ?? ''} --import=tsx`.trim() },
+    stdio: ['pipe', 'pipe', 'pipe'],
+  });
+  client.defaultTimeout = 30_000;
+  await client.start();
+  let stderr = '';
+  // The adapter's stderr carries its logged exceptions: a test fails when there is one.
+  (client as unknown as { _adapterProcess?: { stderr?: NodeJS.ReadableStream } })._adapterProcess?.stderr?.on('data', (chunk: Buffer) => {
+    stderr += chunk.toString();
+  });
+  return { client, stderr: () => stderr };
+}
+
+async function variablesOf(client: DebugClient, reference: number): Promise<DebugProtocol.Variable[]> {
+  return (await client.variablesRequest({ variablesReference: reference })).body.variables;
+}
+
+async function scope(client: DebugClient, name: string): Promise<DebugProtocol.Variable[]> {
+  const frames = (await client.stackTraceRequest({ threadId: 1 })).body.stackFrames;
+  const scopes = (await client.scopesRequest({ frameId: frames[0].id })).body.scopes;
+  const found = scopes.find((candidate) => candidate.name === name);
+  assert.ok(found, `scope ${name} in ${scopes.map((candidate) => candidate.name).join(', ')}`);
+  return variablesOf(client, found.variablesReference);
+}
+
+async function evaluate(client: DebugClient, expression: string): Promise<string> {
+  return (await client.evaluateRequest({ expression, context: 'watch' })).body.result;
+}
+
+/** esmini's own headless run of a scenario: its log and CSV (the reference the adapter is compared with). */
+async function esminiReference(scenario: string): Promise<{ log: string; csv: string[][] }> {
+  const folder = temporaryFolder();
+  const args = ['--headless', '--osc', scenario, '--fixed_timestep', '0.05', '--seed', '1', '--csv_logger', path.join(folder, 'run.csv')];
+  args.push('--logfile_path', path.join(folder, 'log.txt'));
+  for (const folderOfPath of roadPath) args.push('--path', folderOfPath);
+  const { code, output } = await runBounded(esminiBinary, args, { cwd: folder }, 120_000);
+  assert.equal(code, 0, output.slice(-2000));
+  const csv = fs
+    .readFileSync(path.join(folder, 'run.csv'), 'utf8')
+    .split(/\r?\n/)
+    .slice(6)
+    .filter((line) => line.trim())
+    .map((line) => line.split(',').map((cell) => cell.trim()));
+  return { log: fs.readFileSync(path.join(folder, 'log.txt'), 'utf8'), csv };
+}
+
+/** An entity's fields in esmini's CSV row at a time. */
+function csvEntity(csv: string[][], time: number, entity: string): { x: number; y: number; speed: number; lane: number } {
+  const header = csv[0];
+  const row = csv.slice(1).find((cells) => Math.abs(Number(cells[1]) - time) < 1e-6);
+  assert.ok(row, `a CSV row at ${time}`);
+  const at = row.indexOf(entity);
+  const offset = (column: string) => header.indexOf(`#1 ${column}`) - header.indexOf('#1 Entity_Name [-]');
+  return {
+    x: Number(row[at + offset('World_Position_X [m]')]),
+    y: Number(row[at + offset('World_Position_Y [m]')]),
+    speed: Number(row[at + offset('Current_Speed [m/s]')]),
+    lane: Number(row[at + offset('lane_id')]),
+  };
+}
+
+describe('debug adapter through the Debug Adapter Protocol', function () {
+  this.timeout(180_000);
+  let client: DebugClient;
+  let stderr: () => string;
+
+  before(function () {
+    requireEsminiLibrary(this);
+    requireEsminiProgram(this, 'esmini');
+    if (!fs.existsSync(cutIn)) {
+      console.log(`    (skipped: ${cutIn} is absent)`);
+      this.skip();
+    }
+  });
+
+  beforeEach(async () => {
+    ({ client, stderr } = await startClient());
+  });
+
+  afterEach(async () => {
+    await client.stop();
+    assert.equal(stderr(), '', 'the adapter logged an exception');
+  });
+
+  it("stops on an Event of cut-in.xosc when esmini's log starts it, with the entities of esmini's CSV; step over; continue to the end", async () => {
+    const reference = await esminiReference(cutIn);
+    const started = /^\[([\d.]+)\] \[info\] CutInEvent standbyState -> startTransition -> runningState/m.exec(reference.log);
+    assert.ok(started, "esmini's log starts CutInEvent");
+    const esminiTime = Number(started[1]);
+    const eventLine = lineOf(cutIn, '<Event name="CutInEvent"');
+
+    await client.hitBreakpoint({ type: 'modular2simple', request: 'launch', program: cutIn, roadPath }, { path: cutIn, line: eventLine });
+    const frames = (await client.stackTraceRequest({ threadId: 1 })).body.stackFrames;
+    assert.equal(frames[0].name, 'Event CutInEvent (running)');
+    assert.equal(frames[0].line, eventLine);
+    assert.deepEqual(
+      frames.slice(1, 5).map((frame) => frame.name),
+      ['Maneuver CutInManeuver', 'ManeuverGroup CutInAndBrakeSequence', 'Act CutInAndBrakeAct', 'Story CutInAndBrakeStory'],
+    );
+    const time = Number(await evaluate(client, 'time'));
+    assert.ok(Math.abs(time - esminiTime) <= 0.05 + 1e-9, `stopped at ${time}, esmini's log starts it at ${esminiTime}`);
+
+    const entities = await scope(client, 'Entities');
+    for (const name of ['Ego', 'OverTaker']) {
+      const entity = entities.find((variable) => variable.name === name);
+      assert.ok(entity, `${name} in Entities`);
+      const fields = Object.fromEntries(
+        (await variablesOf(client, entity.variablesReference)).map((field) => [field.name, Number(field.value)]),
+      );
+      const expected = csvEntity(reference.csv, time, name);
+      assert.ok(Math.abs(fields.x - expected.x) < 1e-3, `${name}.x ${fields.x} vs CSV ${expected.x}`);
+      assert.ok(Math.abs(fields.y - expected.y) < 1e-3, `${name}.y ${fields.y} vs CSV ${expected.y}`);
+      assert.ok(Math.abs(fields.speed - expected.speed) < 1e-3, `${name}.speed ${fields.speed} vs CSV ${expected.speed}`);
+      assert.equal(fields.lane, expected.lane);
+      for (const field of ['h', 'road', 's', 't', 'acceleration']) assert.ok(Number.isFinite(fields[field]), `${name}.${field}`);
+    }
+    // Why it fired: the condition that started the event, with esmini's measure and the threshold.
+    const why = await scope(client, 'Why it fired');
+    assert.equal(why[0].name, 'CutInStartCondition');
+    assert.equal(why[0].value, 'HWT: 0.41 > 0.4');
+    const details = Object.fromEntries((await variablesOf(client, why[0].variablesReference)).map((field) => [field.name, field.value]));
+    assert.equal(details.type, 'TimeHeadwayCondition');
+    assert.equal(details.rule, 'greaterThan');
+    assert.equal(details.threshold, '0.4');
+    assert.match(details.measured, /^0\.41/);
+    assert.equal(await evaluate(client, '$EgoSpeed'), '108');
+    assert.equal(await evaluate(client, 'Ego.speed > 20'), 'true');
+    const pairs = await scope(client, 'Gaps and TTC');
+    assert.ok(
+      pairs.some((pair) => pair.name === 'Ego → OverTaker' && /^gap -?\d/.test(pair.value)),
+      JSON.stringify(pairs),
+    );
+
+    // Step over: to the next storyboard transition, the brake event esmini starts at 8.00 s.
+    const brake = /^\[([\d.]+)\] \[info\] OvertakerBrakeEvent standbyState -> startTransition -> runningState/m.exec(reference.log);
+    assert.ok(brake);
+    await Promise.all([client.nextRequest({ threadId: 1 }), client.waitForEvent('stopped')]);
+    assert.ok(Math.abs(Number(await evaluate(client, 'time')) - Number(brake[1])) <= 0.05 + 1e-9);
+    const afterStep = (await client.stackTraceRequest({ threadId: 1 })).body.stackFrames;
+    assert.match(afterStep[0].name, /OvertakerBrake/);
+
+    // One simulation step.
+    const before = Number(await evaluate(client, 'time'));
+    await Promise.all([client.stepInRequest({ threadId: 1 }), client.waitForEvent('stopped')]);
+    assert.equal((Number(await evaluate(client, 'time')) - before).toFixed(3), '0.050');
+
+    await Promise.all([client.continueRequest({ threadId: 1 }), client.waitForEvent('terminated')]);
+  });
+
+  it('stops on the simple scenario line for each flattened copy of a group a main imports twice', async () => {
+    const folder = temporaryFolder();
+    writeTwoCutIns(folder);
+    const simple = path.join(folder, 'lane_change.xosc');
+    const line = lineOf(simple, '<Event name="ChangeLane"');
+    const main = path.join(folder, 'main.xosc');
+    const launched = client.launch({ type: 'modular2simple', request: 'launch', program: main, roadPath, duration: 30 });
+    await client.waitForEvent('initialized');
+    const set = await client.setBreakpointsRequest({ source: { path: simple }, breakpoints: [{ line }, { line: line + 3 }] });
+    assert.equal(set.body.breakpoints[0].verified, true);
+    assert.match(set.body.breakpoints[0].message ?? '', /Event CutInVehicle\.CutIn::|Event ChangeLane \(2 flattened copies\)/);
+    assert.equal(set.body.breakpoints[1].verified, false, 'a line with no storyboard element');
+    // Each wait is armed before the request that leads to the event: the run can stop before the answer is read.
+    let next: Promise<DebugProtocol.Event> = client.waitForEvent('stopped');
+    await client.configurationDoneRequest();
+    await launched;
+    const stops: string[] = [];
+    for (let copy = 0; copy < 2; copy++) {
+      await next;
+      const frames = (await client.stackTraceRequest({ threadId: 1 })).body.stackFrames;
+      assert.equal(frames[0].source?.path, simple);
+      assert.equal(frames[0].line, line);
+      stops.push(frames.map((frame) => frame.name).join(' < '));
+      next = client.waitForEvent(copy === 0 ? 'stopped' : 'terminated');
+      await client.continueRequest({ threadId: 1 });
+    }
+    assert.notEqual(stops[0], stops[1], 'two different copies');
+    assert.ok(
+      stops.some((stop) => stop.includes('CutInVehicle.CutIn')) && stops.some((stop) => stop.includes('CutInLead.CutIn')),
+      stops.join('\n'),
+    );
+    await next;
+  });
+
+  it('keeps a conditional breakpoint that never holds from stopping, and stops at a time breakpoint', async () => {
+    const eventLine = lineOf(cutIn, '<Event name="CutInEvent"');
+    const launched = client.launch({ type: 'modular2simple', request: 'launch', program: cutIn, roadPath });
+    await client.waitForEvent('initialized');
+    await client.setBreakpointsRequest({ source: { path: cutIn }, breakpoints: [{ line: eventLine, condition: 'Ego.speed > 1000' }] });
+    const functions = await client.setFunctionBreakpointsRequest({ breakpoints: [{ name: 't=5.0' }] });
+    assert.equal(functions.body.breakpoints[0].verified, true);
+    const stop = client.waitForEvent('stopped');
+    await client.configurationDoneRequest();
+    await launched;
+    const stopped = (await stop) as DebugProtocol.StoppedEvent;
+    assert.equal(stopped.body.reason, 'function breakpoint');
+    assert.equal(Number(await evaluate(client, 'time')).toFixed(2), '5.00');
+    await Promise.all([client.continueRequest({ threadId: 1 }), client.waitForEvent('terminated')]);
+  });
+
+  it("ends the session cleanly with esmini's message when the scenario does not load", async () => {
+    const folder = temporaryFolder();
+    const bad = path.join(folder, 'bad-road.xosc');
+    fs.writeFileSync(bad, fs.readFileSync(cutIn, 'utf8').replace('../xodr/e6mini.xodr', 'no-such-road.xodr'));
+    const outputs: string[] = [];
+    client.on('output', (event: DebugProtocol.OutputEvent) => outputs.push(event.body.output));
+    await client.initializeRequest();
+    const terminated = client.waitForEvent('terminated');
+    await assert.rejects(
+      client.launch({ type: 'modular2simple', request: 'launch', program: bad, roadPath }),
+      /esmini did not load the scenario/,
+    );
+    await terminated;
+    assert.ok(
+      outputs.some((output) => output.includes('bad-road.xosc:') && /no-such-road/.test(output)),
+      outputs.join(''),
+    );
+  });
+
+  it('names the build when the library is missing', async () => {
+    await client.initializeRequest();
+    await assert.rejects(
+      client.launch({
+        type: 'modular2simple',
+        request: 'launch',
+        program: cutIn,
+        esminiLibrary: path.join(temporaryFolder(), 'nothing-here'),
+      }),
+      /bash \.\.\/shared\/esmini\/build\.sh \.cache\/esmini/,
+    );
+  });
+});
