@@ -50,6 +50,14 @@ export function decodeOrUndefined(bytes: Uint8Array): string | undefined {
   }
 }
 
+/**
+ * A name read from a file's text, copied out of it: V8 keeps a slice of 13 characters or more as a view of
+ * the whole text, so a kept scenarioFileName held every indexed file's text in memory.
+ */
+function detached(name: string): string {
+  return (' ' + name).slice(1);
+}
+
 const ENTRY_NAME = /\sentryName\s*=\s*(?:"([^"]*)"|'([^']*)')/;
 const SCENARIO_FILE_NAME = /\sscenarioFileName\s*=\s*(?:"([^"]*)"|'([^']*)')/;
 const DISTRIBUTION_SCENARIO_FILE = /<ScenarioFile\b[^>]*?\sfilepath\s*=\s*(?:"([^"]*)"|'([^']*)')/;
@@ -74,13 +82,13 @@ export function scanScenario(
     if (match[0].startsWith('<!--')) continue;
     if (match[1] === 'CatalogReference') {
       const entryName = ENTRY_NAME.exec(match[0]);
-      entryNames.push(entryName ? (entryName[1] ?? entryName[2]) : '');
+      entryNames.push(entryName ? detached(entryName[1] ?? entryName[2]) : '');
       continue;
     }
     if (match[1] === 'ScenarioReference' || match[2]) {
       // A tag the scan cannot read whole (a quote left open) may still name a file for the parser: it may reach any.
       const fileName = match[2] ? null : SCENARIO_FILE_NAME.exec(match[0]);
-      if (fileName) scenarioNames?.push(fileName[1] ?? fileName[2]);
+      if (fileName) scenarioNames?.push(detached(fileName[1] ?? fileName[2]));
       else if (match[2]) scenarioNames = undefined;
       continue;
     }
