@@ -121,6 +121,30 @@ describe('cli: check --format sarif', () => {
     assert.deepEqual(log.runs[0].results, []);
   });
 
+  it('text, json and sarif count the same notes (information and hints): the text summary no longer leaves them out', () => {
+    // An unused parameter (a hint), and a 0.9 FileHeader where the fixture states a version (a note: checked against 1.0).
+    const text = scenario(simpleGroup('Go'))
+      .replace(/revMajor="1" revMinor="\d"/, 'revMajor="0" revMinor="9"')
+      .replace(
+        '<Entities>',
+        '<ParameterDeclarations><ParameterDeclaration name="unused" parameterType="double" value="1"/></ParameterDeclarations>\n  <Entities>',
+      );
+    const root = temporaryWorkspace({ 'old.xosc': text });
+    const json = JSON.parse(runCli(['check', 'old.xosc', '--format', 'json'], { cwd: root }).stdout) as {
+      errors: number;
+      warnings: number;
+      notes: number;
+      problems: { severity: string }[];
+    };
+    const notes = json.problems.filter((problem) => problem.severity === 'information' || problem.severity === 'hint').length;
+    assert.ok(notes >= 1, JSON.stringify(json.problems));
+    assert.equal(json.notes, notes);
+    const sarif = JSON.parse(runCli(['check', 'old.xosc', '--format', 'sarif'], { cwd: root }).stdout) as Log;
+    assert.equal(sarif.runs[0].results.filter((result) => result.level === 'note').length, notes);
+    const summary = runCli(['check', 'old.xosc'], { cwd: root }).stderr.trim().split('\n').pop() ?? '';
+    assert.match(summary, new RegExp(`^checked 1 file: ${json.errors} errors?, ${json.warnings} warnings?, ${notes} notes? \\(`));
+  });
+
   it("check --format json names each problem's rule; stats refuses sarif", () => {
     const root = temporaryWorkspace({ 'main.xosc': '<OpenSCENARIO>' });
     const run = runCli(['check', 'main.xosc', '--format', 'json'], { cwd: root });

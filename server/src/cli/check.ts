@@ -104,8 +104,10 @@ async function checkCommand(args: string[], io: CliOutput): Promise<number> {
   const problems = sortedByPlace(uniqueProblems(found));
   const errors = problems.filter((problem) => problem.severity === 'error').length;
   const warnings = problems.filter((problem) => problem.severity === 'warning').length;
+  // Notes: information and hints, as SARIF's level 'note' counts them; the text lists the information, the editor shows hints faded.
+  const notes = problems.length - errors - warnings;
   if (options.format === 'json') {
-    io.out(JSON.stringify({ files: files.length, errors, warnings, problems: problems.map(problemJson) }, null, 2));
+    io.out(JSON.stringify({ files: files.length, errors, warnings, notes, problems: problems.map(problemJson) }, null, 2));
   } else if (options.format === 'sarif') {
     const { sarifLog } = await import('./sarif');
     io.out(JSON.stringify(sarifLog(problems, process.cwd()), null, 2));
@@ -113,7 +115,8 @@ async function checkCommand(args: string[], io: CliOutput): Promise<number> {
     report(problems, io, options.quiet);
     if (!options.quiet)
       io.err(
-        `checked ${files.length} file${files.length === 1 ? '' : 's'}: ${errors} error${errors === 1 ? '' : 's'}, ${warnings} warning${warnings === 1 ? '' : 's'}`,
+        `checked ${files.length} file${files.length === 1 ? '' : 's'}: ${errors} error${errors === 1 ? '' : 's'}, ${warnings} warning${warnings === 1 ? '' : 's'}` +
+          (notes > 0 ? `, ${notes} note${notes === 1 ? '' : 's'} (hints among them are listed by --format json|sarif and the editor)` : ''),
       );
   }
   return errors > 0 ? ExitCode.problems : ExitCode.ok;
