@@ -20,6 +20,9 @@ export const OUTCOME_COLORS: Record<Outcome, string> = {
 /** The columns every results.csv starts with; the varied parameters follow. */
 export const RESULT_COLUMNS = ['index', 'status', 'collision', 'min_distance_m', 'min_ttc_s', 'end_time_s'] as const;
 
+/** The column `batch --fail-if` writes after the fixed ones: pass, fail, or empty. */
+export const VERDICT_COLUMN = 'verdict';
+
 export interface ResultRow {
   /** The concrete scenario's index (as esmini's --param_permutation). */
   index: string;
@@ -91,7 +94,9 @@ export function parseResultsCsv(text: string): ResultsTable {
     header.forEach((column, i) => (cells[column] = record[i]));
     rows.push({ index: cells.index, outcome: outcomeOf(cells.status, cells.collision), cells });
   }
-  return { columns: header, parameters: header.slice(RESULT_COLUMNS.length), rows };
+  // `batch --fail-if` adds a verdict column before the parameters.
+  const fixed = RESULT_COLUMNS.length + (header[RESULT_COLUMNS.length] === VERDICT_COLUMN ? 1 : 0);
+  return { columns: header, parameters: header.slice(fixed), rows };
 }
 
 export type SortDirection = 'ascending' | 'descending';
@@ -378,7 +383,10 @@ export function tableHtml(columns: readonly string[], rows: readonly ResultRow[]
 /** One line: how many runs, and how many of each outcome. */
 export function summaryText(rows: readonly ResultRow[]): string {
   const counts = outcomeCounts(rows);
-  return `${rows.length} run${rows.length === 1 ? '' : 's'}: ${OUTCOMES.map((outcome) => `${counts[outcome]} ${outcome}`).join(', ')}`;
+  const judged = rows.filter((row) => row.cells[VERDICT_COLUMN]);
+  const failed = judged.filter((row) => row.cells[VERDICT_COLUMN] === 'fail').length;
+  const verdicts = judged.length > 0 ? `; against the criteria ${judged.length - failed} pass, ${failed} fail` : '';
+  return `${rows.length} run${rows.length === 1 ? '' : 's'}: ${OUTCOMES.map((outcome) => `${counts[outcome]} ${outcome}`).join(', ')}${verdicts}`;
 }
 
 /**

@@ -2,6 +2,7 @@ import * as assert from 'node:assert/strict';
 import { spawn } from 'node:child_process';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
+import { XMLValidator } from 'fast-xml-parser';
 import { cliInTemporaryProject } from '../support/cliProject';
 import { esminiBinary, esminiRoads, requireEsmini } from '../support/esmini';
 import { runCli } from '../support/fixtures';
@@ -224,6 +225,43 @@ describe('cli: batch', function () {
     assert.ok(warning < limited.stderr.indexOf('[1/2]'), 'the warning comes before the runs');
     assert.match(limited.stderr, /^2 runs \(0 ok, 2 limit, 0 timeout, 0 error; /m);
     for (const cells of csvRows(cut).map((row) => row.split(','))) assert.deepEqual([cells[1], cells[5]], ['limit', '5.000']);
+  });
+
+  it('--fail-if criteria: a verdict column, exit 5 naming the failed runs (again on a resume), JUnit XML for CI', function () {
+    requireEsmini(this);
+    const root = folder();
+    const args = [...BATCH_ARGS, '--sample', '8', '--fail-if', 'collision', '--fail-if', 'min_distance_m < 30', '--junit', 'junit.xml'];
+    const run = runCli(args, { cwd: root });
+    const text = fs.readFileSync(path.join(root, 'results', 'results.csv'), 'utf8');
+    const [header, ...lines] = text.trim().split('\n');
+    assert.equal(header, 'index,status,collision,min_distance_m,min_ttc_s,end_time_s,verdict,EgoSpeed,LeadSpeed,LeadStartS');
+    const rows = lines.map((line) => line.split(','));
+    const failing = rows.filter((cells) => cells[2] === 'true' || Number(cells[3]) < 30);
+    for (const cells of rows) assert.equal(cells[6], failing.includes(cells) ? 'fail' : 'pass', cells.join(','));
+    assert.ok(failing.length > 0 && failing.length < 8, `some runs fail, some pass: ${failing.length}`);
+    assert.equal(run.status, 5, run.stderr);
+    const named = new RegExp(
+      `^modular2simple: ${failing.length} runs? failed the criteria \\(collision; min_distance_m < 30\\): #\\d+: `,
+      'm',
+    );
+    assert.match(run.stderr, named);
+    const junit = fs.readFileSync(path.join(root, 'junit.xml'), 'utf8');
+    assert.equal(XMLValidator.validate(junit), true);
+    assert.match(
+      junit,
+      new RegExp(`<testsuites name="modular2simple batch" tests="8" failures="${failing.length}" errors="0" skipped="0">`),
+    );
+    assert.equal((junit.match(/<testcase /g) ?? []).length, 8);
+    assert.match(junit, /<failure type="criteria" message="(collision|min_distance_m &lt; 30)/);
+    const again = runCli(args, { cwd: root });
+    assert.equal(again.status, 5, 'a resumed batch still fails for the runs of before');
+    assert.match(again.stderr, named);
+    const refused = runCli([...BATCH_ARGS, '--fail-if', 'min_ttc < 1'], { cwd: root });
+    assert.equal(refused.status, 2);
+    assert.match(
+      refused.stderr,
+      /--fail-if takes 'collision' or 'METRIC OP NUMBER' with METRIC one of min_ttc_s, min_distance_m, end_time_s/,
+    );
   });
 
   it('refuses bad input before running anything, leaving no results folder', () => {

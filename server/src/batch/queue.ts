@@ -5,7 +5,8 @@ import { Queue } from 'bullmq';
 import { Redis } from 'ioredis';
 import { BatchPlanView, concreteRun, filesNamed, namedPaths } from './plan';
 import { BatchOutput, Progress, Tally } from './progress';
-import { BatchIdentity, BatchRow, ResultsFolder } from './results';
+import { CRITERIA_FAILED_EXIT, Criterion } from './criteria';
+import { BatchIdentity, BatchRow, criteriaFailure, ResultsFolder } from './results';
 import type { RunSettings } from './runConcrete';
 
 /** The BullMQ queue every batch and worker use; a job's id names its batch, so batches can share it. */
@@ -117,7 +118,7 @@ export async function queueBatch(
   plan: BatchPlanView,
   identity: BatchIdentity,
   resultsFolder: string,
-  options: { quiet: boolean; io: BatchOutput; settings: RunSettings },
+  options: { quiet: boolean; io: BatchOutput; settings: RunSettings; criteria?: Criterion[]; junitFile?: string },
 ): Promise<number> {
   const { io, quiet, settings } = options;
   const client = await connect(url);
@@ -128,7 +129,7 @@ export async function queueBatch(
   process.on('SIGTERM', onSignal);
   let results: ResultsFolder | undefined;
   try {
-    results = await ResultsFolder.open(path.resolve(resultsFolder), plan.parameterNames, identity);
+    results = await ResultsFolder.open(path.resolve(resultsFolder), plan.parameterNames, identity, options.criteria, options.junitFile);
     const batchId = sha256(JSON.stringify(identity)).slice(0, 24);
     const already = plan.chosen.filter((index) => results!.done.has(index.toString())).length;
     const todo = plan.chosen.filter((index) => !results!.done.has(index.toString()));
@@ -256,7 +257,9 @@ export async function queueBatch(
     }
     await client.del(resultsKey(batchId));
     if (!quiet) io.err(`${summary}; results in ${results.csvFile} and ${results.jsonFile}`);
-    return 0;
+    const failedCriteria = criteriaFailure(results);
+    if (failedCriteria) io.err(`modular2simple: ${failedCriteria}`);
+    return failedCriteria ? CRITERIA_FAILED_EXIT : 0;
   } catch (error) {
     // Redis went away after the batch reached it: what arrived is written; the rest waits in Redis for a run again.
     if (client.status === 'ready' || error instanceof RedisUnreachableError) throw error;

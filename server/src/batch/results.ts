@@ -1,7 +1,9 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { writeFileAtomic } from '../../../common/src/atomic';
-import { parseResultsCsv, resultsReportHtml } from '../../../common/src/variationsReport';
+import { parseResultsCsv, resultsReportHtml, VERDICT_COLUMN } from '../../../common/src/variationsReport';
+import { Criterion, judge, Verdict } from './criteria';
+import { junitXml } from './junit';
 import type { Collision } from './metrics';
 
 /**
@@ -30,12 +32,16 @@ export interface BatchRow {
   message: string;
   /** esmini's errors and warnings. */
   messages: { level: 'error' | 'warn'; time: number | null; text: string }[];
+  /** Against the batch's --fail-if criteria (absent without any), and why it fails. */
+  verdict?: Verdict;
+  failed?: string[];
 }
 
 /** results.json is written again at most this often while a batch runs (it reads every row back), and at its end. */
 const JSON_INTERVAL_MS = 30_000;
 
 export const FIXED_COLUMNS = ['index', 'status', 'collision', 'min_distance_m', 'min_ttc_s', 'end_time_s'] as const;
+export { VERDICT_COLUMN } from '../../../common/src/variationsReport';
 
 /** What identifies a batch: resuming into a folder written by another one is refused rather than mixed. */
 export interface BatchIdentity {
@@ -47,6 +53,8 @@ export interface BatchIdentity {
   /** The limit the user set, in simulated seconds; null: each scenario's own end. */
   duration: number | null;
   esminiSeed: number;
+  /** The --fail-if criteria, joined by '; '; absent without any (so results written before them still resume). */
+  criteria?: string;
 }
 
 export class ResultsError extends Error {}
@@ -60,7 +68,7 @@ function number(value: number | null, digits: number): string {
   return value === null ? '' : value.toFixed(digits);
 }
 
-export function csvLine(row: BatchRow, parameterNames: string[]): string {
+export function csvLine(row: BatchRow, parameterNames: string[], withVerdict = false): string {
   const fixed = [
     row.index,
     row.status,
@@ -68,6 +76,7 @@ export function csvLine(row: BatchRow, parameterNames: string[]): string {
     number(row.min_distance_m, 3),
     number(row.min_ttc_s, 3),
     number(row.end_time_s, 3),
+    ...(withVerdict ? [row.verdict ?? ''] : []),
   ];
   return [...fixed, ...parameterNames.map((name) => row.parameters[name] ?? '')].map(csvField).join(',') + '\n';
 }
@@ -103,6 +112,10 @@ export class ResultsFolder {
     /** Indices whose rows are in results.csv. */
     readonly done: Set<string>,
     private readonly identity: BatchIdentity,
+    /** --fail-if: each row gets a verdict column. */
+    readonly criteria: Criterion[],
+    /** Where the JUnit XML goes at the end (--junit). */
+    readonly junitFile: string | undefined,
   ) {
     this.csvFile = path.join(folder, 'results.csv');
     this.jsonFile = path.join(folder, 'results.json');
@@ -112,17 +125,30 @@ export class ResultsFolder {
   }
 
   /** The header line of results.csv. */
-  static header(parameterNames: string[]): string {
-    return [...FIXED_COLUMNS, ...parameterNames].map(csvField).join(',') + '\n';
+  static header(parameterNames: string[], withVerdict = false): string {
+    return ResultsFolder.columns(parameterNames, withVerdict).map(csvField).join(',') + '\n';
   }
+
+  static columns(parameterNames: string[], withVerdict: boolean): string[] {
+    return [...FIXED_COLUMNS, ...(withVerdict ? [VERDICT_COLUMN] : []), ...parameterNames];
+  }
+
+  /** The rows whose verdict is fail: those appended, and on a resume those already in results.csv. */
+  readonly failedRows: BatchRow[] = [];
 
   /**
    * Opens (creating) the results folder. A folder holding another batch's results (other columns, another
    * distribution or sampling) is refused with ResultsError; nothing in it is changed then.
    */
-  static async open(folder: string, parameterNames: string[], identity: BatchIdentity): Promise<ResultsFolder> {
-    const results = new ResultsFolder(folder, parameterNames, new Set(), identity);
-    const header = ResultsFolder.header(parameterNames);
+  static async open(
+    folder: string,
+    parameterNames: string[],
+    identity: BatchIdentity,
+    criteria: Criterion[] = [],
+    junitFile?: string,
+  ): Promise<ResultsFolder> {
+    const results = new ResultsFolder(folder, parameterNames, new Set(), identity, criteria, junitFile);
+    const header = ResultsFolder.header(parameterNames, criteria.length > 0);
     let existing: string | undefined;
     try {
       existing = await fs.promises.readFile(results.csvFile, 'utf8');
@@ -148,6 +174,7 @@ export class ResultsFolder {
         );
       const whole = existing.slice(0, existing.lastIndexOf('\n') + 1);
       for (const index of indicesIn(whole)) results.done.add(index);
+      if (criteria.length > 0) results.failedRows.push(...(await results.readRows()).filter((row) => row.verdict === 'fail'));
       if (whole.length < existing.length) await fs.promises.truncate(results.csvFile, Buffer.byteLength(whole));
     }
     try {
@@ -167,14 +194,17 @@ export class ResultsFolder {
   }
 
   /** Appends a row and syncs it to disk; rows are written one at a time in the order they come. */
-  append(row: BatchRow): Promise<void> {
+  append(result: BatchRow): Promise<void> {
     const write = async () => {
-      if (this.done.has(row.index)) return;
+      if (this.done.has(result.index)) return;
+      const judged = this.criteria.length > 0 ? judge(result, this.criteria) : undefined;
+      const row = judged ? { ...result, verdict: judged.verdict, failed: judged.reasons } : result;
       await this.rows!.appendFile(JSON.stringify(row) + '\n');
       await this.rows!.datasync();
-      await this.csv!.appendFile(csvLine(row, this.parameterNames));
+      await this.csv!.appendFile(csvLine(row, this.parameterNames, this.criteria.length > 0));
       await this.csv!.datasync();
       this.done.add(row.index);
+      if (row.verdict === 'fail') this.failedRows.push(row);
       if (Date.now() - this.lastJson > JSON_INTERVAL_MS) await this.writeJson();
     };
     this.queue = this.queue.then(write);
@@ -182,8 +212,16 @@ export class ResultsFolder {
   }
 
   /** results.json from every row in results.csv, in index order, written atomically. */
-  async writeJson(): Promise<void> {
+  async writeJson(): Promise<BatchRow[]> {
     this.lastJson = Date.now();
+    const rows = await this.readRows();
+    const document = { ...this.identity, columns: ResultsFolder.columns(this.parameterNames, this.criteria.length > 0), rows };
+    await writeFileAtomic(this.jsonFile, JSON.stringify(document, null, 1) + '\n');
+    return rows;
+  }
+
+  /** The rows of every index in results.csv, from .rows.jsonl, in index order. */
+  private async readRows(): Promise<BatchRow[]> {
     const text = await fs.promises.readFile(this.rowsFile, 'utf8').catch(() => '');
     const byIndex = new Map<string, BatchRow>();
     for (const line of text.split('\n')) {
@@ -195,9 +233,7 @@ export class ResultsFolder {
         // A line cut short by a kill: its run is not in results.csv either and runs again.
       }
     }
-    const rows = [...byIndex.values()].sort((a, b) => (BigInt(a.index) < BigInt(b.index) ? -1 : 1));
-    const document = { ...this.identity, columns: [...FIXED_COLUMNS, ...this.parameterNames], rows };
-    await writeFileAtomic(this.jsonFile, JSON.stringify(document, null, 1) + '\n');
+    return [...byIndex.values()].sort((a, b) => (BigInt(a.index) < BigInt(b.index) ? -1 : 1));
   }
 
   /** results.html from results.csv as it is, written atomically. */
@@ -210,8 +246,13 @@ export class ResultsFolder {
   /** Waits for the rows in flight, writes results.json and results.html and closes the files. */
   async finish(): Promise<void> {
     await this.queue;
-    await this.writeJson();
+    const rows = await this.writeJson();
     await this.writeReport();
+    if (this.junitFile)
+      await writeFileAtomic(
+        this.junitFile,
+        junitXml(rows, this.parameterNames, path.basename(this.identity.distribution), this.identity.criteria),
+      );
     await this.close();
   }
 
@@ -221,4 +262,14 @@ export class ResultsFolder {
     this.csv = undefined;
     this.rows = undefined;
   }
+}
+
+/** What a batch says at its end when runs fail its criteria: how many, and the first few with why. */
+export function criteriaFailure(results: ResultsFolder): string | undefined {
+  const failed = results.failedRows;
+  if (failed.length === 0) return undefined;
+  const sorted = [...failed].sort((a, b) => (BigInt(a.index) < BigInt(b.index) ? -1 : 1));
+  const shown = sorted.slice(0, 5).map((row) => `#${row.index}: ${(row.failed ?? []).join('; ')}`);
+  const more = failed.length > shown.length ? `; ${failed.length - shown.length} more in ${results.csvFile}` : '';
+  return `${failed.length} run${failed.length === 1 ? '' : 's'} failed the criteria (${results.criteria.map((each) => each.text).join('; ')}): ${shown.join('; ')}${more}`;
 }

@@ -5,7 +5,8 @@ import * as path from 'node:path';
 import { BatchPlanView, concreteRun, limitWarning, searchPathOf, variedParameters } from '../batch/plan';
 import { Progress, Tally } from '../batch/progress';
 import { loadQueueModule, QueuePackagesMissingError } from '../batch/queuePackages';
-import { BatchIdentity, ResultsError, ResultsFolder } from '../batch/results';
+import { CriterionError, parseCriterion } from '../batch/criteria';
+import { BatchIdentity, criteriaFailure, ResultsError, ResultsFolder } from '../batch/results';
 import { NoEsminiError, runConcrete, RunSettings } from '../batch/runConcrete';
 import type { PackagedFile } from '../core/flatten/types';
 import { FileKind, nodeFileSystem, splitScenarioPath } from '../core/sources';
@@ -39,6 +40,11 @@ export const BATCH_HELP = `Run every concrete scenario of a distribution in esmi
   --max-combinations N      refuse more combinations than N before running anything, unless --sample (default 1000000)
   --keep-runs               keep each run's files in DIR/runs/INDEX/ (scenario.xosc, trajectories.csv, esmini.log),
                             so that the Variations view and results.html can open a run; local runs only
+  --fail-if CRITERION       a run fails when CRITERION holds: 'collision', or 'METRIC OP NUMBER' with METRIC one of
+                            min_ttc_s, min_distance_m, end_time_s and OP one of < <= > >= == != (such as
+                            --fail-if 'min_ttc_s < 1.5'); repeat it for several (a run fails when any holds). A run
+                            that did not complete (error, timeout) fails too. Adds the column verdict (pass, fail)
+  --junit OUT.xml           write the runs as JUnit XML for CI (a test case per run: failure, error or skipped)
   --queue redis://HOST:PORT put the runs on a BullMQ queue in Redis for 'modular2simple worker' and collect the results
   --esmini PATH, --road-path DIRS, --scenario-path DIRS   as for run
   results.csv: index, status (ok: the scenario ended by itself; limit: stopped at --duration before it ended;
@@ -108,8 +114,19 @@ async function runBatch(argv: string[], io: CliOutput): Promise<number> {
     'road-path': { type: 'string', multiple: true },
     'scenario-path': { type: 'string', multiple: true },
     quiet: { type: 'boolean', short: 'q', default: false },
+    'fail-if': { type: 'string', multiple: true },
+    junit: { type: 'string' },
   });
   if (positionals.length !== 1) throw new UsageError('batch takes one distribution file');
+  const criteria = (values['fail-if'] ?? []).map((text) => {
+    try {
+      return parseCriterion(text);
+    } catch (error) {
+      if (error instanceof CriterionError) throw new UsageError(error.message);
+      throw error;
+    }
+  });
+  const junitFile = values.junit === undefined ? undefined : path.resolve(values.junit);
   if (values.results === undefined) throw new UsageError('batch needs --results DIR');
   if (values.seed !== undefined && values.sample === undefined) throw new UsageError('--seed goes with --sample N');
   const jobs = jobsOption(values.jobs);
@@ -171,6 +188,7 @@ async function runBatch(argv: string[], io: CliOutput): Promise<number> {
     seed,
     duration: duration ?? null,
     esminiSeed: settings.seed,
+    ...(criteria.length > 0 ? { criteria: criteria.map((each) => each.text).join('; ') } : {}),
   };
   const parameterNames = variedParameters(variations);
   const scenarioFolder = scenarioFolderOf(variations.scenarioPath);
@@ -182,14 +200,14 @@ async function runBatch(argv: string[], io: CliOutput): Promise<number> {
   if (queue) {
     const { queueBatch, RedisUnreachableError } = await loadQueueModule(() => import('../batch/queue'));
     try {
-      return await queueBatch(queue, plan, identity, values.results, { quiet: values.quiet, io, settings });
+      return await queueBatch(queue, plan, identity, values.results, { quiet: values.quiet, io, settings, criteria, junitFile });
     } catch (error) {
       if (error instanceof RedisUnreachableError)
         throw new ResultsError(error.lostAfterStart ? error.message : `${error.message}; nothing was written`);
       throw error;
     }
   }
-  const results = await ResultsFolder.open(path.resolve(values.results), parameterNames, identity);
+  const results = await ResultsFolder.open(path.resolve(values.results), parameterNames, identity, criteria, junitFile);
   if (values['keep-runs']) {
     settings.keepRunsIn = path.join(results.folder, 'runs');
     // Runs are made beside where they are kept: keeping one is then a rename, never a copy across file systems.
@@ -284,5 +302,7 @@ async function runLocally(
     return ExitCode.interrupted;
   }
   if (!quiet) io.err(`${summary}; results in ${results.csvFile}, ${results.jsonFile} and ${results.htmlFile}`);
-  return ExitCode.ok;
+  const failed = criteriaFailure(results);
+  if (failed) io.err(`modular2simple: ${failed}`);
+  return failed ? ExitCode.criteria : ExitCode.ok;
 }

@@ -4,11 +4,12 @@ import { parseArgs, ParseArgsConfig } from 'node:util';
 import { isSameFile, writeFilesAtomicSync } from '../../../common/src/atomic';
 import { formatProblem, Problem, uniqueProblems } from '../core/problems';
 import { displayRef, SourceRef } from '../core/sources';
+import { CRITERIA_FAILED_EXIT } from '../batch/criteria';
 
 export const VERSION = '0.1.0';
 
 /** Exit codes of every command, as documented in docs/cli.md (130: batch interrupted, run it again to finish). */
-export const ExitCode = { ok: 0, problems: 1, usage: 2, io: 3, internal: 4, interrupted: 130 } as const;
+export const ExitCode = { ok: 0, problems: 1, usage: 2, io: 3, internal: 4, criteria: CRITERIA_FAILED_EXIT, interrupted: 130 } as const;
 
 /** Where a command prints: its result on `out`, problems and summaries on `err`. */
 export interface CliOutput {
