@@ -3,7 +3,10 @@ import * as path from 'node:path';
 import { writeFileAtomic } from '../../../common/src/atomic';
 import { Flattener } from '../core/flatten';
 import { formatProblem } from '../core/problems';
-import { displayRef, splitScenarioPath } from '../core/sources';
+import { displayRef, SourceRef, splitScenarioPath } from '../core/sources';
+import { prepareScenario, Simulation, SimulationLoadError, SimulationOptions } from '../debug/simulation';
+import { TraceRecord, traceToEnd } from '../debug/trace';
+import { EsminiLibraryError } from '../esmini/library';
 import { EsminiProblem } from '../esmini/messages';
 import { removeRunFolder, RUN_DEFAULTS, runScenario } from '../esmini/run';
 import { CliCommand, CliOutput, durationOption, ExitCode, InputError, parseCommandLine, UnavailableError, UsageError } from './common';
@@ -19,6 +22,10 @@ export const RUN_HELP = `Run in esmini (modular2simple run INPUT... [options]):
   --check                   exit 1 when esmini reports an error (for CI over a library)
   --force                   run whatever can be flattened despite the scenario's errors, listing them
   --csv OUT                 keep esmini's CSV log of the run (one input only)
+  --trace OUT.jsonl         also run it in esmini's library and write every storyboard transition and condition
+                            firing as one JSON object a line (time, element, type, state, file, line; a condition's
+                            rule, threshold and measured value); one input only (docs/debugging.md)
+  --esmini-library PATH     esmini's libesminiLib.so or its folder (default: .cache/esmini/lib, where npm start builds it)
   --scenario-path DIRS      as for flatten
   esmini's problems print as FILE:LINE:COL: error|warning: MESSAGE (esmini), on the source line they
   come from. Exit codes: 0 ran (with --check: and no error), 1 errors (or not flattened), 2 usage, 3 no esmini or it failed.`;
@@ -41,6 +48,29 @@ function csvUpTo(text: string, duration: number): string {
   return kept.join('\n');
 }
 
+/** The run again in esmini's library, every transition and condition firing as a trace record; undefined (said why) when it did not run. */
+async function traceRun(
+  flattener: Flattener,
+  main: SourceRef,
+  options: SimulationOptions,
+  io: CliOutput,
+): Promise<TraceRecord[] | undefined> {
+  let simulation: Simulation | undefined;
+  try {
+    simulation = new Simulation(await prepareScenario(flattener, main, options), options);
+    return traceToEnd(simulation, simulation.start(), process.cwd());
+  } catch (error) {
+    if (error instanceof EsminiLibraryError) throw new UnavailableError(error.message);
+    if (!(error instanceof SimulationLoadError)) throw error;
+    for (const problem of error.problems)
+      io.err('code' in problem ? formatProblem(problem, process.cwd()) : formatEsminiProblem(problem, process.cwd()));
+    io.err(`${displayRef(main, process.cwd())}: error: --trace: ${error.message}`);
+    return undefined;
+  } finally {
+    simulation?.close();
+  }
+}
+
 /** `modular2simple run`: flattens each input, runs it in esmini and prints esmini's problems on their source lines. */
 async function runCommand(args: string[], io: CliOutput): Promise<number> {
   const { values, positionals: inputs } = parseCommandLine(args, {
@@ -51,6 +81,8 @@ async function runCommand(args: string[], io: CliOutput): Promise<number> {
     check: { type: 'boolean', default: false },
     force: { type: 'boolean', default: false },
     csv: { type: 'string' },
+    trace: { type: 'string' },
+    'esmini-library': { type: 'string' },
     'scenario-path': { type: 'string', multiple: true },
     quiet: { type: 'boolean', short: 'q', default: false },
   });
@@ -59,6 +91,7 @@ async function runCommand(args: string[], io: CliOutput): Promise<number> {
   const seed = values.seed === undefined ? RUN_DEFAULTS.seed : Number(values.seed);
   if (!Number.isInteger(seed) || seed < 0) throw new UsageError(`--seed takes a whole number, not '${values.seed}'`);
   if (values.csv !== undefined && inputs.length > 1) throw new UsageError('--csv takes one input');
+  if (values.trace !== undefined && inputs.length > 1) throw new UsageError('--trace takes one input');
   for (const input of inputs) if (!fs.existsSync(input)) throw new InputError(`${input}: no such file or folder`);
   const roadPath = (values['road-path'] ?? []).flatMap(splitScenarioPath);
   const flattener = new Flattener(storeForInputs((values['scenario-path'] ?? []).flatMap(splitScenarioPath), undefined, inputs));
@@ -96,6 +129,15 @@ async function runCommand(args: string[], io: CliOutput): Promise<number> {
       }
     } finally {
       removeRunFolder(result);
+    }
+    if (values.trace !== undefined && result.outcome !== 'not-flattened') {
+      const options = { duration, seed, roadPath, force: values.force, esminiLibrary: values['esmini-library'] };
+      const records = await traceRun(flattener, mainOf(input), options, io);
+      if (records === undefined) failed = true;
+      else {
+        await writeFileAtomic(path.resolve(values.trace), records.map((record) => JSON.stringify(record)).join('\n') + '\n');
+        if (!values.quiet) io.err(`wrote ${values.trace} (${records.length} transitions and condition firings)`);
+      }
     }
   }
   if (failed) return ExitCode.io;
