@@ -252,10 +252,26 @@ export function scatterModel(rows: readonly ResultRow[], xColumn: string, yColum
   return { x, y, points, omitted };
 }
 
-/** The two columns a scatter shows first: the first two parameters, else one against min_distance_m. */
+/**
+ * The two columns a scatter shows first: the first two parameters, else the measures, else the index; a column
+ * no row has a value in (min_ttc_s when no gap ever closes) is never one of them, so the first view is never empty.
+ */
 export function defaultAxes(table: ResultsTable): { x: string; y: string } {
-  const [first, second] = table.parameters;
-  return { x: first ?? 'index', y: second ?? 'min_distance_m' };
+  const filled = (column: string) => table.rows.some((row) => (row.cells[column] ?? '') !== '');
+  const candidates = [...table.parameters, 'min_distance_m', 'min_ttc_s', 'end_time_s', 'index'].filter(
+    (column, position, all) => all.indexOf(column) === position && (column === 'index' || filled(column)),
+  );
+  const [x, y] = candidates;
+  return { x, y: y ?? 'index' };
+}
+
+/** Characters a tick label shows at most; the whole label is its `<title>`. */
+const TICK_LABEL_CHARS = 18;
+/** Width of a character of the 11 px sans-serif labels, generously, to keep labels apart. */
+const CHAR_WIDTH = 6.5;
+
+function tickLabel(label: string): string {
+  return label.length <= TICK_LABEL_CHARS ? label : `…${label.slice(label.length - TICK_LABEL_CHARS + 1)}`;
 }
 
 export function escapeHtml(text: string): string {
@@ -288,17 +304,29 @@ export function scatterSvg(model: ScatterModel, style: ScatterStyle): string {
   parts.push(
     `<rect x="${margin.left}" y="${margin.top}" width="${plotWidth}" height="${plotHeight}" fill="none" stroke="${style.foreground}" stroke-opacity="0.5"/>`,
   );
+  // A label that would overlap the last one drawn is left out (its grid line stays): long category names do not run together.
+  let lastRight = -Infinity;
   for (const tick of model.x.ticks) {
     const x = round(sx(tick.at));
     parts.push(`<line x1="${x}" y1="${margin.top}" x2="${x}" y2="${margin.top + plotHeight}" stroke="${style.grid}"/>`);
+    const shown = tickLabel(tick.label);
+    const half = (shown.length * CHAR_WIDTH) / 2;
+    if (x - half < lastRight + 4) continue;
+    lastRight = x + half;
     parts.push(
-      `<text x="${x}" y="${margin.top + plotHeight + 14}" text-anchor="middle" fill="${style.foreground}">${escapeHtml(tick.label)}</text>`,
+      `<text x="${x}" y="${margin.top + plotHeight + 14}" text-anchor="middle" fill="${style.foreground}"><title>${escapeHtml(tick.label)}</title>${escapeHtml(shown)}</text>`,
     );
   }
+  let lastTop = Infinity;
   for (const tick of model.y.ticks) {
     const y = round(sy(tick.at));
     parts.push(`<line x1="${margin.left}" y1="${y}" x2="${margin.left + plotWidth}" y2="${y}" stroke="${style.grid}"/>`);
-    parts.push(`<text x="${margin.left - 6}" y="${y + 4}" text-anchor="end" fill="${style.foreground}">${escapeHtml(tick.label)}</text>`);
+    if (y + 6 > lastTop) continue;
+    lastTop = y - 6;
+    const shown = tick.label;
+    parts.push(
+      `<text x="${margin.left - 6}" y="${y + 4}" text-anchor="end" fill="${style.foreground}"><title>${escapeHtml(tick.label)}</title>${escapeHtml(shown)}</text>`,
+    );
   }
   parts.push(
     `<text class="axis-x" x="${margin.left + plotWidth / 2}" y="${style.height - 10}" text-anchor="middle" font-weight="bold" fill="${style.foreground}">${escapeHtml(model.x.column)}</text>`,

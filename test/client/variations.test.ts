@@ -134,6 +134,24 @@ describe('variations: the results table, its sorting, filtering and scatter', ()
     assert.match(tableHtml(['index', 'x'], [{ index: '0', outcome: 'ok', cells: { index: '0', x: '<b>&' } }]), /<td>&lt;b&gt;&amp;<\/td>/);
   });
 
+  it('the first axes are never an empty column, and long category labels do not overlap', () => {
+    const noTtc = parseResultsCsv(
+      `${HEADER},Road\n0,ok,false,,,40.000,./road_networks/alks_road_left_radius_250m.xodr\n1,ok,false,,,50.000,./road_networks/alks_road_right_radius_1000m.xodr\n2,ok,false,,,55.000,./road_networks/alks_road_straight.xodr\n`,
+    );
+    assert.deepEqual(defaultAxes(noTtc), { x: 'Road', y: 'end_time_s' }, 'min_distance_m and min_ttc_s are empty in every row');
+    const svg = scatterSvg(scatterModel(noTtc.rows, 'Road', 'end_time_s'), { ...STYLE, width: 360 });
+    const labels = [...svg.matchAll(/<text x="([\d.]+)" y="[\d.]+" text-anchor="middle"[^>]*><title>[^<]*<\/title>([^<]*)<\/text>/g)].map(
+      (match) => ({
+        x: Number(match[1]),
+        width: match[2].length * 6.5,
+      }),
+    );
+    assert.ok(labels.length >= 1);
+    for (let i = 1; i < labels.length; i++)
+      assert.ok(labels[i].x - labels[i].width / 2 >= labels[i - 1].x + labels[i - 1].width / 2, 'x labels apart');
+    assert.match(svg, /<title>\.\/road_networks\/alks_road_left_radius_250m\.xodr<\/title>/, 'the whole label in its title');
+  });
+
   it('the report: a whole document, every row, no script or outside resource', () => {
     const html = resultsReportHtml(table, 'Variations of d.xosc <1>');
     assert.equal(XMLValidator.validate(html.replace(/^<!DOCTYPE html>\n/, '')), true);
