@@ -1,7 +1,9 @@
 #!/usr/bin/env node
 // `npm run package [-- --out FILE.vsix]`: the minified bundles and the manifest's assets in a .vsix.
-// Everything runs from the bundles, so no node_modules go in (--no-dependencies); .vscodeignore lists what does.
+// Everything runs from the bundles but koffi (copied into dist/node_modules below), so no node_modules go in
+// (--no-dependencies); .vscodeignore lists what does.
 import { spawnSync } from 'node:child_process';
+import { cpSync, readdirSync, rmSync, statSync } from 'node:fs';
 import * as path from 'node:path';
 import { fileURLToPath } from 'node:url';
 
@@ -16,6 +18,18 @@ function run(args) {
 }
 
 run([path.join(root, 'scripts', 'build.mjs'), '--minify']);
+
+// The debug adapter calls esmini's library through koffi, a native module no bundle can hold: its JavaScript and the
+// platform's binary package go beside the bundles, where dist/debugAdapter.js's require('koffi') finds them.
+const shipped = path.join(root, 'dist', 'node_modules');
+rmSync(shipped, { recursive: true, force: true });
+const keep = /\.(c?js|json|node|txt|md)$/;
+cpSync(path.join(root, 'node_modules', 'koffi'), path.join(shipped, 'koffi'), {
+  recursive: true,
+  filter: (source) => !/[\\/](doc|vendor)$/.test(source) && (statSync(source).isDirectory() || keep.test(source)),
+});
+for (const name of readdirSync(path.join(root, 'node_modules', '@koromix')).filter((entry) => entry.startsWith('koffi-')))
+  cpSync(path.join(root, 'node_modules', '@koromix', name), path.join(shipped, '@koromix', name), { recursive: true });
 run([
   path.join(root, 'node_modules', '@vscode', 'vsce', 'vsce'),
   'package',

@@ -1,4 +1,5 @@
 import * as assert from 'node:assert/strict';
+import { spawnSync } from 'node:child_process';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import JSZip from 'jszip';
@@ -23,6 +24,7 @@ import {
   type Profile,
 } from './harness';
 import { repoRoot } from '../support/paths';
+import { temporaryFolder } from '../support/temporaryDirectory';
 import { HARNESS_ENV, INSIDE_TESTS } from './titles';
 import { BIRDS_EYE_FILES, prepareBirdsEye } from './birdsEyeSetup';
 import { prepareVariations } from './variationsSetup';
@@ -159,6 +161,7 @@ describe('the packaged extension in a real VS Code (code-server, headless Chromi
   /** Why the tests inside VS Code did not finish, when they stalled. */
   let stall: string | undefined;
   let vsixEntries: string[] = [];
+  let vsixFile: string | undefined;
   /** What the language server inside VS Code logged as errors (it appends them to a file the harness names). */
   let serverErrors = '';
 
@@ -188,6 +191,8 @@ describe('the packaged extension in a real VS Code (code-server, headless Chromi
       const vsix = packageExtension(profile.root);
       progress.step('packaging the extension');
       vsixEntries = Object.keys((await JSZip.loadAsync(fs.readFileSync(vsix))).files).filter((name) => !name.endsWith('/'));
+      vsixFile = path.join(temporaryFolder('m2s-vsix-'), 'modular2simple.vsix');
+      fs.copyFileSync(vsix, vsixFile);
       installExtension(profile, vsix);
       progress.step('installing the extension');
       runner = await buildInsideSuite(profile.root);
@@ -273,6 +278,8 @@ describe('the packaged extension in a real VS Code (code-server, headless Chromi
       'dist/cli.js',
       'dist/cli-main.js',
       'dist/variations.js',
+      // The debug adapter (issue 29), a process of its own.
+      'dist/debugAdapter.js',
       // The compiled OpenSCENARIO schemas the server reads, and the ASAM schemas with their licence note.
       'dist/openscenario-schemas.json',
       // The harness Check in CARLA ScenarioRunner runs with the user's Python.
@@ -297,9 +304,29 @@ describe('the packaged extension in a real VS Code (code-server, headless Chromi
     const unexpected = extensionFiles.filter(
       (file) =>
         !needed.includes(file) &&
-        !/^(package\.json|readme\.md|LICENSE(\.txt)?|client\/icons\/[\w-]+\.svg|dist\/cli-main\.js\.cache)$/i.test(file),
+        !/^(package\.json|readme\.md|LICENSE(\.txt)?|client\/icons\/[\w-]+\.svg|dist\/cli-main\.js\.cache|dist\/node_modules\/(koffi|@koromix\/koffi-[\w-]+)\/.+)$/i.test(
+          file,
+        ),
     );
     assert.deepEqual(unexpected, [], 'the .vsix holds files that do not run');
+  });
+
+  it('the debug adapter in the .vsix loads koffi, the native module it calls esmini through', async () => {
+    assert.ok(vsixFile, 'the .vsix was packaged');
+    const unpacked = temporaryFolder('m2s-vsix-');
+    const zip = await JSZip.loadAsync(fs.readFileSync(vsixFile));
+    for (const [name, entry] of Object.entries(zip.files)) {
+      if (entry.dir || !name.startsWith('extension/dist/')) continue;
+      const target = path.join(unpacked, name);
+      fs.mkdirSync(path.dirname(target), { recursive: true });
+      fs.writeFileSync(target, await entry.async('nodebuffer'));
+    }
+    const probe = spawnSync(process.execPath, ['-e', "process.stdout.write(typeof require('koffi').load)"], {
+      cwd: path.join(unpacked, 'extension', 'dist'),
+      encoding: 'utf8',
+      env: { ...process.env, NODE_PATH: '' },
+    });
+    assert.equal(probe.stdout, 'function', probe.stderr);
   });
 
   it('the language server logged no error', () => {
