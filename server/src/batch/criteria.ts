@@ -1,4 +1,5 @@
-import type { BatchRow } from './results';
+import type { BatchRow, Verdict } from './row';
+export type { Verdict } from './row';
 
 /** The measures of a row that a criterion may compare: the numeric columns of results.csv. */
 export const CRITERION_METRICS = ['min_ttc_s', 'min_distance_m', 'end_time_s'] as const;
@@ -47,7 +48,6 @@ function holds(operator: Operator, left: number, right: number): boolean {
 }
 
 /** `pass`, `fail`, or empty where no verdict applies (no criteria given; a discarded combination, which did not run). */
-export type Verdict = 'pass' | 'fail' | '';
 
 /**
  * A row's verdict against the criteria, and why it fails: each criterion that holds (with the measured value), or a

@@ -1,4 +1,4 @@
-import type { BatchRow } from './results';
+import type { BatchRow } from './row';
 
 /** Text for an XML attribute or element: the five characters XML reserves, and control characters it does not allow, replaced. */
 function xml(text: string): string {

@@ -270,7 +270,10 @@ export const esminiTests: InsideTests = {
         ...(lenses[1].command?.arguments ?? []),
       );
       assert.equal(forced?.outcome, 'ok', forced?.message);
-      assert.match(forced.message, /3\.00 s simulated .*\(run anyway despite 1 error in the scenario\)$/);
+      assert.match(
+        forced.message,
+        /3\.00 s simulated: stopped at the 3 s limit set for the run.*\(run anyway despite 1 error in the scenario\)$/,
+      );
       assert.ok(
         forced.flattenProblems.some((problem) => problem.severity === 'error' && /'fast' is not a double/.test(problem.message)),
         JSON.stringify(forced.flattenProblems),

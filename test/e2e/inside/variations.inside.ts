@@ -62,7 +62,7 @@ export function defineVariationsTests(): void {
       assert.ok(await clickText(`ok (${36 - collisions})`), 'no ok filter');
       const filtered = await waitFor('only the collisions left', () => (view.stats?.shown === collisions ? view.stats : undefined));
       assert.equal(filtered.points, collisions);
-      assert.deepEqual(filtered.outcomes.sort(), ['collision', 'discarded', 'error', 'timeout']);
+      assert.deepEqual(filtered.outcomes.sort(), ['collision', 'discarded', 'error', 'limit', 'timeout']);
       await screenshot('Variations view: collisions only, by smallest distance');
 
       // A click on a row's index opens that run in the bird's-eye view.

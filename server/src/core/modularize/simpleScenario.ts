@@ -3,17 +3,10 @@ import { applyEdits, reindent } from '../flatten/edits';
 import { indentationAt } from '../text';
 import { attributeValue, descendants, escapeAttributeValue, parseXml, XmlDocument, XmlElement } from '../xml';
 import { GroupOccurrence } from './shape';
-import { ParsedInput, RebasePaths } from './types';
+import { ParsedInput, PooledGroup, RebasePaths } from './types';
 import { coreMemo } from '../memos';
 
 /** One group of a simple scenario: its text as written there, its name, where it came from, its defaults. */
-export interface PooledGroup {
-  groupText: string;
-  groupName: string;
-  occurrences: GroupOccurrence[];
-  defaults: string[];
-}
-
 export interface SimpleScenarioParts {
   groupText: string;
   groupName: string;

@@ -1,7 +1,6 @@
 import { TextEdit } from '../flatten/edits';
 import { XmlDocument } from '../xml';
 import { GroupOccurrence, Slot } from './shape';
-import type { PooledGroup } from './simpleScenario';
 
 /** One scenario to modularize: where it is, where its main goes, its text. */
 export interface ModularizeInput {
@@ -81,4 +80,12 @@ export interface ParsedInput extends ModularizeInput {
   document: XmlDocument;
   /** The edits that rebase the input's file paths onto its main's folder. */
   pathEdits: TextEdit[];
+}
+
+/** One recurring group pooled with others into a shared simple scenario. */
+export interface PooledGroup {
+  groupText: string;
+  groupName: string;
+  occurrences: GroupOccurrence[];
+  defaults: string[];
 }
