@@ -8,7 +8,7 @@ import { cliPath } from '../support/paths';
 import { temporaryWorkspace } from '../support/workspace';
 
 describe('cli: inputs that are not regular files', function () {
-  this.timeout(60_000);
+  this.timeout(180_000);
 
   function withFifo(files: Record<string, string>, fifo: string): string {
     const root = temporaryWorkspace(files);
@@ -19,7 +19,7 @@ describe('cli: inputs that are not regular files', function () {
 
   it('flatten of a FIFO named main.xosc ends with a message', () => {
     const root = withFifo({}, 'pkg/main.xosc');
-    const run = runBounded(['flatten', 'pkg'], { cwd: root, timeoutMs: 10_000 });
+    const run = runBounded(['flatten', 'pkg'], { cwd: root, timeoutMs: 45_000 });
     assert.ok(!run.timedOut, 'did not hang on the FIFO');
     assert.equal(run.status, 1, run.stderr);
     assert.match(run.stderr, /is a FIFO, not a file/);
@@ -27,7 +27,7 @@ describe('cli: inputs that are not regular files', function () {
 
   it('check of a folder holding a FIFO ends with a message', () => {
     const root = withFifo({ 'ok.xosc': scenario(simpleGroup('Go')) }, 'lib/stuck.xosc');
-    const run = runBounded(['check', '.'], { cwd: root, timeoutMs: 10_000 });
+    const run = runBounded(['check', '.'], { cwd: root, timeoutMs: 45_000 });
     assert.ok(!run.timedOut, 'did not hang on the FIFO');
     assert.equal(run.status, 1, run.stderr);
     assert.match(run.stderr, /stuck\.xosc is a FIFO, not a file/);
@@ -39,7 +39,7 @@ describe('cli: inputs that are not regular files', function () {
       'lib/fifo/main.xosc',
     );
     fs.mkdirSync(path.join(root, 'lib/folder/main.xosc'), { recursive: true });
-    const run = runBounded(['stats', 'lib'], { cwd: root, timeoutMs: 10_000 });
+    const run = runBounded(['stats', 'lib'], { cwd: root, timeoutMs: 45_000 });
     assert.ok(!run.timedOut, 'did not hang on the FIFO');
     assert.equal(run.status, 1, run.stderr);
     assert.match(run.stderr, /fifo\/main\.xosc is a FIFO, not a file/);
@@ -57,8 +57,8 @@ describe('cli: inputs that are not regular files', function () {
     fs.symlinkSync('/dev/zero', path.join(root, 'zero.xosc'));
     fs.mkdirSync(path.join(root, 'pkg'));
     fs.symlinkSync('/dev/zero', path.join(root, 'pkg', 'main.xosc'));
-    const script = `mount -t tmpfs none /dev && mknod /dev/zero c 1 5 && cd "${root}" && for command in "flatten --schema-version=off pkg" "check --schema-version=off ." "flatten --schema-version=off zero.xosc"; do timeout -s KILL 10 "${process.execPath}" --max-old-space-size=128 "${cliPath}" $command; echo "exit $?"; done`;
-    const run = spawnSync('unshare', ['-m', '--propagation', 'private', 'sh', '-c', script], { encoding: 'utf8', timeout: 60_000 });
+    const script = `mount -t tmpfs none /dev && mknod /dev/zero c 1 5 && cd "${root}" && for command in "flatten --schema-version=off pkg" "check --schema-version=off ." "flatten --schema-version=off zero.xosc"; do timeout -s KILL 45 "${process.execPath}" --max-old-space-size=128 "${cliPath}" $command; echo "exit $?"; done`;
+    const run = spawnSync('unshare', ['-m', '--propagation', 'private', 'sh', '-c', script], { encoding: 'utf8', timeout: 170_000 });
     assert.deepEqual(run.stdout.match(/exit \d+/g), ['exit 1', 'exit 1', 'exit 1'], run.stderr);
     assert.match(run.stderr, /is a character device, not a file/);
   });

@@ -114,6 +114,6 @@ describe('cli: vary and batch on a modular ScenarioFile (flattened per concrete 
         .sort(),
       ['0', '1'],
     );
-    for (const line of lines.slice(1)) assert.match(line, /^\d,(ok|timeout),(true|false),[\d.]+,[\d.]*,1\.0\d0,(20|30)$/);
+    for (const line of lines.slice(1)) assert.match(line, /^\d,(ok|limit),(true|false),[\d.]+,[\d.]*,1\.0\d0,(20|30)$/);
   });
 });

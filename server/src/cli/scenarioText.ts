@@ -7,11 +7,14 @@ import { diskRef } from '../core/sources';
 import { loadVariations, ScenarioTextLoader } from '../core/variations';
 import { readScenarioParameters } from '../core/variations/concrete';
 import { distributionProblems, isDistributionText } from '../core/variations/problems';
+import { cliFileSystem } from './fileSystem';
 import { mainOf, storeForInputs } from './inputs';
 
 /** Reads a file as UTF-8 with its byte order mark kept, so that a concrete scenario is byte for byte the original but for its values. */
 export async function readUtf8Exactly(file: string): Promise<string> {
-  const bytes = await fs.promises.readFile(file);
+  // The CLI's reader, so that a FIFO or a device named like a scenario is refused instead of read without end.
+  const bytes = await cliFileSystem.readFile(file);
+  if (bytes === undefined) throw Object.assign(new Error('no such file'), { code: 'ENOENT' });
   try {
     return new TextDecoder('utf-8', { fatal: true, ignoreBOM: true }).decode(bytes);
   } catch {
