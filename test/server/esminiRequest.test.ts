@@ -106,7 +106,10 @@ describe('language server: the Run in esmini request over JSON-RPC', function ()
     const forced = await run(uri, { force: true });
     assert.equal(forced.outcome, 'ok', forced.message);
     assert.equal(forced.forcible, undefined);
-    assert.match(forced.message, /3\.00 s simulated: stopped at the 3 s limit set for the run.*\(run anyway despite 1 error in the scenario\)$/);
+    assert.match(
+      forced.message,
+      /3\.00 s simulated: stopped at the 3 s limit set for the run.*\(run anyway despite 1 error in the scenario\)$/,
+    );
     assert.deepEqual(
       forced.flattenProblems.filter((problem) => problem.severity === 'error'),
       [error],
