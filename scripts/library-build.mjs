@@ -17,36 +17,62 @@ const indent = (text, depth) =>
     .map((line) => (line ? ' '.repeat(depth) + line : line))
     .join('\n');
 
-const VEHICLE = (/** @type {string} */ name, /** @type {string} */ model) => `<ScenarioObject name="${name}">
-  <Vehicle name="${model}" vehicleCategory="car">
+/**
+ * @typedef {{ model: string, category: string, maxSpeed: string, maxAcceleration: string, maxDeceleration: string,
+ *   centerX: string, centerZ: string, width: string, length: string, height: string,
+ *   wheel: string, track: string, frontX: string, axleZ: string }} VehicleShape
+ */
+
+/** A Vehicle entity as every library file writes it: one layout, the values of its kind. @param {string} name @param {VehicleShape} v */
+const vehicleObject = (name, v) => `<ScenarioObject name="${name}">
+  <Vehicle name="${v.model}" vehicleCategory="${v.category}">
     <ParameterDeclarations/>
-    <Performance maxSpeed="69.444" maxAcceleration="10" maxDeceleration="10"/>
+    <Performance maxSpeed="${v.maxSpeed}" maxAcceleration="${v.maxAcceleration}" maxDeceleration="${v.maxDeceleration}"/>
     <BoundingBox>
-      <Center x="1.5" y="0" z="0.9"/>
-      <Dimensions width="2.0" length="4.5" height="1.5"/>
+      <Center x="${v.centerX}" y="0" z="${v.centerZ}"/>
+      <Dimensions width="${v.width}" length="${v.length}" height="${v.height}"/>
     </BoundingBox>
     <Axles>
-      <FrontAxle maxSteering="0.5" wheelDiameter="0.6" trackWidth="1.8" positionX="3.1" positionZ="0.3"/>
-      <RearAxle maxSteering="0" wheelDiameter="0.6" trackWidth="1.8" positionX="0" positionZ="0.3"/>
+      <FrontAxle maxSteering="0.5" wheelDiameter="${v.wheel}" trackWidth="${v.track}" positionX="${v.frontX}" positionZ="${v.axleZ}"/>
+      <RearAxle maxSteering="0" wheelDiameter="${v.wheel}" trackWidth="${v.track}" positionX="0" positionZ="${v.axleZ}"/>
     </Axles>
     <Properties/>
   </Vehicle>
 </ScenarioObject>`;
-export const BICYCLE = (/** @type {string} */ name) => `<ScenarioObject name="${name}">
-  <Vehicle name="vehicle.diamondback.century" vehicleCategory="bicycle">
-    <ParameterDeclarations/>
-    <Performance maxSpeed="15" maxAcceleration="3" maxDeceleration="6"/>
-    <BoundingBox>
-      <Center x="0.5" y="0" z="0.9"/>
-      <Dimensions width="0.6" length="1.8" height="1.8"/>
-    </BoundingBox>
-    <Axles>
-      <FrontAxle maxSteering="0.5" wheelDiameter="0.7" trackWidth="0.1" positionX="1.1" positionZ="0.35"/>
-      <RearAxle maxSteering="0" wheelDiameter="0.7" trackWidth="0.1" positionX="0" positionZ="0.35"/>
-    </Axles>
-    <Properties/>
-  </Vehicle>
-</ScenarioObject>`;
+const VEHICLE = (/** @type {string} */ name, /** @type {string} */ model) =>
+  vehicleObject(name, {
+    model,
+    category: 'car',
+    maxSpeed: '69.444',
+    maxAcceleration: '10',
+    maxDeceleration: '10',
+    centerX: '1.5',
+    centerZ: '0.9',
+    width: '2.0',
+    length: '4.5',
+    height: '1.5',
+    wheel: '0.6',
+    track: '1.8',
+    frontX: '3.1',
+    axleZ: '0.3',
+  });
+export const BICYCLE = (/** @type {string} */ name) =>
+  vehicleObject(name, {
+    model: 'vehicle.diamondback.century',
+    category: 'bicycle',
+    maxSpeed: '15',
+    maxAcceleration: '3',
+    maxDeceleration: '6',
+    centerX: '0.5',
+    centerZ: '0.9',
+    width: '0.6',
+    length: '1.8',
+    height: '1.8',
+    wheel: '0.7',
+    track: '0.1',
+    frontX: '1.1',
+    axleZ: '0.35',
+  });
 const PEDESTRIAN = (/** @type {string} */ name) => `<ScenarioObject name="${name}">
   <Pedestrian name="walker.pedestrian.0001" pedestrianCategory="pedestrian" mass="75" model3d="walker.pedestrian.0001">
     <ParameterDeclarations/>
@@ -57,21 +83,23 @@ const PEDESTRIAN = (/** @type {string} */ name) => `<ScenarioObject name="${name
     <Properties/>
   </Pedestrian>
 </ScenarioObject>`;
-export const OBSTRUCTION = (/** @type {string} */ name) => `<ScenarioObject name="${name}">
-  <Vehicle name="vehicle.carlamotors.carlacola" vehicleCategory="van">
-    <ParameterDeclarations/>
-    <Performance maxSpeed="30" maxAcceleration="3" maxDeceleration="8"/>
-    <BoundingBox>
-      <Center x="2.5" y="0" z="1.3"/>
-      <Dimensions width="2.2" length="6" height="2.6"/>
-    </BoundingBox>
-    <Axles>
-      <FrontAxle maxSteering="0.5" wheelDiameter="0.8" trackWidth="1.9" positionX="4" positionZ="0.4"/>
-      <RearAxle maxSteering="0" wheelDiameter="0.8" trackWidth="1.9" positionX="0" positionZ="0.4"/>
-    </Axles>
-    <Properties/>
-  </Vehicle>
-</ScenarioObject>`;
+export const OBSTRUCTION = (/** @type {string} */ name) =>
+  vehicleObject(name, {
+    model: 'vehicle.carlamotors.carlacola',
+    category: 'van',
+    maxSpeed: '30',
+    maxAcceleration: '3',
+    maxDeceleration: '8',
+    centerX: '2.5',
+    centerZ: '1.3',
+    width: '2.2',
+    length: '6',
+    height: '2.6',
+    wheel: '0.8',
+    track: '1.9',
+    frontX: '4',
+    axleZ: '0.4',
+  });
 
 /**
  * An entity's Init: where it stands on the library's road and its speed.
