@@ -6,7 +6,7 @@ import { typeByElementName } from '../../server/src/core/schema/query';
 import { checkSchema } from '../../server/src/core/schema/validate';
 import { SCHEMA_VERSIONS, SchemaVersion } from '../../server/src/core/schema/model';
 import { analyzeDocument, CatalogLoader, semanticProblems } from '../../server/src/core/semantics';
-import { rangeText, VALUE_RANGES, ValueRange } from '../../server/src/core/semantics/ranges';
+import { documentedBounds, inRange, rangeText, VALUE_RANGES, ValueRange } from '../../server/src/core/semantics/ranges';
 import { Simulator } from '../../server/src/core/profiles/simulators';
 import { diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { parseXml } from '../../server/src/core/xml';
@@ -55,7 +55,7 @@ function keeping(range: ValueRange): number[] {
 
 const CHECKED = VALUE_RANGES.filter((range) => !range.checkedBy);
 
-describe('value ranges (RA Consulting range checker rules, per version)', () => {
+describe("value ranges (the ASAM model's documented ranges, per version)", () => {
   it('writes each range as the standard does', () => {
     assert.equal(rangeText({ min: 0 }), '[0..inf[');
     assert.equal(rangeText({ min: 0, minOpen: true }), ']0..inf[');
@@ -65,7 +65,7 @@ describe('value ranges (RA Consulting range checker rules, per version)', () => 
     assert.equal(rangeText({ min: -Math.PI, max: Math.PI }), '[-PI..PI]');
   });
 
-  it("every rule names an element of its model class and an attribute of it in each version's schema, but the 1.3 additions RA Consulting lists for 1.2 too", () => {
+  it("every rule names an element of its model class and an attribute of it in each version's schema", () => {
     const missing: string[] = [];
     for (const range of VALUE_RANGES)
       for (const version of range.versions) {
@@ -74,18 +74,53 @@ describe('value ranges (RA Consulting range checker rules, per version)', () => 
         if (type !== (range.modelClass ?? range.element) || !index.attribute(type, range.attribute))
           missing.push(`${version} ${range.element}.${range.attribute}`);
       }
-    // RA Consulting's 1.2 rules hold the 1.3 ones; these three do not exist in the 1.2 schema, so no 1.2 file can break them.
-    assert.deepEqual(missing.sort(), [
-      '1.2 ColorCmyk.cyan',
-      '1.2 ColorCmyk.key',
-      '1.2 ColorCmyk.magenta',
-      '1.2 ColorCmyk.yellow',
-      '1.2 ColorRgb.blue',
-      '1.2 ColorRgb.green',
-      '1.2 ColorRgb.red',
-      '1.2 LightState.luminousIntensity',
-      '1.2 Sun.illuminance',
-    ]);
+    assert.deepEqual(missing, []);
+  });
+
+  it('reads a range as the model documents it', () => {
+    assert.deepEqual(documentedBounds('[0..inf['), { min: 0 });
+    assert.deepEqual(documentedBounds(']0..inf['), { min: 0, minOpen: true });
+    assert.deepEqual(documentedBounds('[0;PI]'), { min: 0, max: Math.PI });
+    assert.deepEqual(documentedBounds('[170...340]'), { min: 170, max: 340 });
+    assert.deepEqual(documentedBounds('[0..2*PI['), { min: 0, max: 2 * Math.PI, maxOpen: true });
+    assert.deepEqual(documentedBounds('[0...2 pi['), { min: 0, max: 2 * Math.PI, maxOpen: true });
+    assert.deepEqual(documentedBounds('[-PI/2..PI/2]'), { min: -Math.PI / 2, max: Math.PI / 2 });
+    assert.deepEqual(documentedBounds(']-inf..inf['), {});
+    assert.throws(() => documentedBounds('0 to 1'), /cannot read the documented range "0 to 1"/);
+    assert.throws(() => documentedBounds('[0..many]'), /cannot read the bound "many"/);
+  });
+
+  it("every range names its source, the model's documentation of its class and attribute, and checks the bounds quoted there (or says why not)", () => {
+    for (const range of VALUE_RANGES) {
+      const label = `${range.element}.${range.attribute}`;
+      const quoted = new RegExp(
+        `^ASAM OpenSCENARIO 1\\.\\d(-1\\.\\d)? model, ${range.modelClass ?? range.element}\\.${range.attribute}: Range: (\\S+)(; checked as (\\S+): .+)?$`,
+      ).exec(range.source);
+      assert.ok(quoted, `${label}: ${range.source}`);
+      const checked = documentedBounds(quoted[4] ?? quoted[2]);
+      assert.deepEqual(
+        { min: range.min, max: range.max, minOpen: range.minOpen ?? false, maxOpen: range.maxOpen ?? false },
+        { min: checked.min, max: checked.max, minOpen: checked.minOpen ?? false, maxOpen: checked.maxOpen ?? false },
+        label,
+      );
+    }
+    const longitude = VALUE_RANGES.find((range) => range.element === 'GeoPosition' && range.attribute === 'longitude');
+    assert.match(longitude?.source ?? '', /Range: \[-PI\/2\.\.PI\/2\]; checked as \[-PI\.\.PI\]: the model swaps/);
+    assert.ok(longitude && inRange(2, longitude), 'a longitude of 2 rad (115 degrees east) is kept');
+  });
+
+  it("ranges the model does not document are not checked, although RA Consulting's checker data has them", async () => {
+    for (const [element, attributeName, value] of [
+      ['LightState', 'luminousIntensity', '-1'],
+      ['LightState', 'flashingOnDuration', '-1'],
+      ['LightState', 'flashingOffDuration', '-1'],
+      ['AnimationAction', 'animationDuration', '-1'],
+      ['Clutch', 'maxRate', '101'],
+      ['SteeringWheel', 'maxRate', '101'],
+      ['SteeringWheel', 'maxTorque', '0'],
+    ])
+      assert.deepEqual(await outOfRange(bare('1.3', element, attributeName, value)), [], `${element} ${attributeName}`);
+    assert.equal(VALUE_RANGES.filter((range) => range.element === 'LightState' || range.attribute === 'maxTorque').length, 0);
   });
 
   it('a value beyond each bound of every rule is an error at the attribute, naming the range; the bounds themselves (closed) or just inside (open) are kept', async () => {
@@ -115,7 +150,7 @@ describe('value ranges (RA Consulting range checker rules, per version)', () => 
     }
   });
 
-  it('a rule holds only in the versions RA Consulting gives it for; a later version is read as 1.3', async () => {
+  it('a rule holds only in the versions whose model documents it; a later version is read as 1.3', async () => {
     const checkedIn = (range: ValueRange, version: SchemaVersion) => range.versions.includes(version);
     let scoped = 0;
     for (const range of CHECKED) {
@@ -135,10 +170,9 @@ describe('value ranges (RA Consulting range checker rules, per version)', () => 
     assert.deepEqual(await outOfRange(bare('1.1', 'RoadPosition', 's', '-1')), []);
     assert.equal((await outOfRange(bare('1.2', 'RoadPosition', 's', '-1'))).length, 1);
     assert.equal((await outOfRange(bare('1.4', 'RoadPosition', 's', '-1'))).length, 1);
-    // The element of the class AnimationAction is AnimationStateAction in 1.2 and AnimationAction in 1.3.
-    assert.equal((await outOfRange(bare('1.2', 'AnimationStateAction', 'animationDuration', '-1'))).length, 1);
-    assert.deepEqual(await outOfRange(bare('1.3', 'AnimationStateAction', 'animationDuration', '-1')), []);
-    assert.equal((await outOfRange(bare('1.3', 'AnimationAction', 'animationDuration', '-1'))).length, 1);
+    // Weather and Wind are documented since the 1.1 model; a 1.0 schema has neither.
+    assert.equal((await outOfRange(bare('1.1', 'Weather', 'atmosphericPressure', '10000'))).length, 1);
+    assert.deepEqual(await outOfRange(bare('1.0', 'Weather', 'atmosphericPressure', '10000')), []);
   });
 
   it('an attribute of the same name under another element is not checked (a BrakeInput value, a Brake of a force)', async () => {
@@ -149,7 +183,7 @@ describe('value ranges (RA Consulting range checker rules, per version)', () => 
     assert.match(problem.message, /class OverrideBrakeAction of the ASAM model/);
   });
 
-  it("a GeoPosition's longitudeDeg spans a longitude's [-180..180], not the latitude bounds RA Consulting's data gives it", async () => {
+  it("a GeoPosition's longitudeDeg spans a longitude's [-180..180], as the model documents it (RA Consulting's data gives it a latitude's)", async () => {
     assert.deepEqual(await outOfRange(bare('1.3', 'GeoPosition', 'longitudeDeg', '116.4')), []);
     assert.deepEqual(await outOfRange(bare('1.3', 'GeoPosition', 'longitudeDeg', '-180')), []);
     const [problem] = await outOfRange(bare('1.3', 'GeoPosition', 'longitudeDeg', '181'));
@@ -340,14 +374,6 @@ const FAMILIES: { family: string; from: string; to: string; at: string; range: s
     range: '[0..1]',
     warning: true,
   },
-  {
-    family: 'controller override rate',
-    from: 'maxRate="1" maxTorque="5"',
-    to: 'maxRate="101" maxTorque="5"',
-    at: '101',
-    range: ']0..100]',
-  },
-  { family: 'controller override torque', from: 'maxTorque="5"', to: 'maxTorque="0"', at: '0', range: ']0..inf[' },
   { family: 'road position', from: 's="10"', to: 's="-10"', at: '-10', range: '[0..inf[' },
   { family: 'geo position', from: 'latitudeDeg="48.1"', to: 'latitudeDeg="91"', at: '91', range: '[-90..90]' },
 ];

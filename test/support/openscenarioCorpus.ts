@@ -76,7 +76,7 @@ export const GENUINELY_WRONG: Record<string, { problems: string[]; reason: strin
   'scenario_runner/VehicleLateralDistance.xosc': {
     problems: ['163:out-of-range'],
     reason:
-      "LateralDistanceAction distance='-2.0': the distance is [0..inf[ (RA Consulting's range rules); a 1.0 file has no displacement to name the side. A warning: esmini uses the absolute value",
+      "LateralDistanceAction distance='-2.0': the distance is [0..inf[ (the ASAM model's documented range); a 1.0 file has no displacement to name the side. A warning: esmini uses the absolute value",
   },
 };
 
@@ -114,62 +114,62 @@ export const ESMINI_ACCEPTS: Record<string, { problems: string[]; reason: string
   'esmini/acc-test.xosc': {
     problems: ['262:duplicate-name', '168:out-of-range', '214:out-of-range'],
     reason:
-      "one Maneuver holds two Events named EgoSpeedEvent (ASAM QC reference_control.unique_element_names_on_same_level); esmini runs both. And a SpeedActionDynamics rate below zero, outside TransitionDynamics value [0..inf[ (RA Consulting's range rules); esmini takes its magnitude",
+      "one Maneuver holds two Events named EgoSpeedEvent (ASAM QC reference_control.unique_element_names_on_same_level); esmini runs both. And a SpeedActionDynamics rate below zero, outside TransitionDynamics value [0..inf[ (the ASAM model's documented range); esmini takes its magnitude",
   },
   'esmini/alks-test.xosc': {
     problems: ['167:out-of-range', '213:out-of-range'],
     reason:
-      "a SpeedActionDynamics rate below zero, outside TransitionDynamics value [0..inf[ (RA Consulting's range rules); esmini takes its magnitude",
+      "a SpeedActionDynamics rate below zero, outside TransitionDynamics value [0..inf[ (the ASAM model's documented range); esmini takes its magnitude",
   },
   'esmini/cut-in.xosc': {
     problems: ['152:out-of-range'],
     reason:
-      "a SpeedActionDynamics rate below zero, outside TransitionDynamics value [0..inf[ (RA Consulting's range rules); esmini takes its magnitude",
+      "a SpeedActionDynamics rate below zero, outside TransitionDynamics value [0..inf[ (the ASAM model's documented range); esmini takes its magnitude",
   },
   'esmini/cut-in_environment.xosc': {
     problems: ['306:out-of-range'],
     reason:
-      "a SpeedActionDynamics rate below zero, outside TransitionDynamics value [0..inf[ (RA Consulting's range rules); esmini takes its magnitude",
+      "a SpeedActionDynamics rate below zero, outside TransitionDynamics value [0..inf[ (the ASAM model's documented range); esmini takes its magnitude",
   },
   'esmini/cut-in_external.xosc': {
     problems: ['154:out-of-range'],
     reason:
-      "a SpeedActionDynamics rate below zero, outside TransitionDynamics value [0..inf[ (RA Consulting's range rules); esmini takes its magnitude",
+      "a SpeedActionDynamics rate below zero, outside TransitionDynamics value [0..inf[ (the ASAM model's documented range); esmini takes its magnitude",
   },
   'esmini/cut-in_interactive.xosc': {
     problems: ['168:out-of-range'],
     reason:
-      "a SpeedActionDynamics rate below zero, outside TransitionDynamics value [0..inf[ (RA Consulting's range rules); esmini takes its magnitude",
+      "a SpeedActionDynamics rate below zero, outside TransitionDynamics value [0..inf[ (the ASAM model's documented range); esmini takes its magnitude",
   },
   'esmini/cut-in_simple.xosc': {
     problems: ['127:out-of-range'],
     reason:
-      "a SpeedActionDynamics rate below zero, outside TransitionDynamics value [0..inf[ (RA Consulting's range rules); esmini takes its magnitude",
+      "a SpeedActionDynamics rate below zero, outside TransitionDynamics value [0..inf[ (the ASAM model's documented range); esmini takes its magnitude",
   },
   'esmini/cut-in_sloppy.xosc': {
     problems: ['171:out-of-range'],
     reason:
-      "a SpeedActionDynamics rate below zero, outside TransitionDynamics value [0..inf[ (RA Consulting's range rules); esmini takes its magnitude",
+      "a SpeedActionDynamics rate below zero, outside TransitionDynamics value [0..inf[ (the ASAM model's documented range); esmini takes its magnitude",
   },
   'esmini/cut-in_visibility.xosc': {
     problems: ['155:out-of-range'],
     reason:
-      "a SpeedActionDynamics rate below zero, outside TransitionDynamics value [0..inf[ (RA Consulting's range rules); esmini takes its magnitude",
+      "a SpeedActionDynamics rate below zero, outside TransitionDynamics value [0..inf[ (the ASAM model's documented range); esmini takes its magnitude",
   },
   'esmini/pedestrian.xosc': {
     problems: ['206:out-of-range'],
     reason:
-      "a SpeedActionDynamics rate below zero, outside TransitionDynamics value [0..inf[ (RA Consulting's range rules); esmini takes its magnitude",
+      "a SpeedActionDynamics rate below zero, outside TransitionDynamics value [0..inf[ (the ASAM model's documented range); esmini takes its magnitude",
   },
   'esmini/routing-test.xosc': {
     problems: ['108:out-of-range'],
     reason:
-      "a SpeedActionDynamics rate below zero, outside TransitionDynamics value [0..inf[ (RA Consulting's range rules); esmini takes its magnitude",
+      "a SpeedActionDynamics rate below zero, outside TransitionDynamics value [0..inf[ (the ASAM model's documented range); esmini takes its magnitude",
   },
   'esmini/slow-lead-vehicle.xosc': {
     problems: ['87:out-of-range'],
     reason:
-      "a SpeedActionDynamics rate below zero, outside TransitionDynamics value [0..inf[ (RA Consulting's range rules); esmini takes its magnitude",
+      "a SpeedActionDynamics rate below zero, outside TransitionDynamics value [0..inf[ (the ASAM model's documented range); esmini takes its magnitude",
   },
   'esmini/cut-in_sumo.xosc': {
     problems: ['28:out-of-range', '29:out-of-range'],
@@ -190,7 +190,7 @@ export const ESMINI_ACCEPTS: Record<string, { problems: string[]; reason: string
   'esmini/parking_demo.xosc': {
     problems: ['393:out-of-range', '813:out-of-range'],
     reason:
-      "Clothoid curvatureDot below zero, outside [0..inf[ (RA Consulting's range rules); esmini reads it as curvaturePrime, which has no bound",
+      "Clothoid curvatureDot below zero, outside [0..inf[ (the ASAM model's documented range); esmini reads it as curvaturePrime, which has no bound",
   },
 };
 

@@ -76,7 +76,7 @@ const OTHER_RULES: Record<Exclude<ProblemCode, DefinedCode>, Rule> = {
   },
   'out-of-range': {
     description:
-      "A value lies within the range RA Consulting's range checker rules give its attribute in the file's version (core/semantics/ranges.ts); a warning where esmini reads it with one meaning.",
+      "A value lies within the range the ASAM model documents for its attribute in the file's version (core/semantics/ranges.ts, each range with its source); a warning where esmini runs it with one meaning.",
   },
 };
 

@@ -2,17 +2,21 @@ import type { ProblemCode } from '../problems';
 import type { SchemaVersion } from '../schema/model';
 
 /**
- * The value ranges of numeric attributes, per OpenSCENARIO version. Source: the range checker rules of
- * RA Consulting's ASAM OpenSCENARIO API (RA-Consulting-GmbH/openscenario.api.test, the generator's input
- * `RangeCheckerRules_1.{0,1,2,3}.0.json`, derived from the ASAM UML model, and the rules generated from it,
- * `RangeCheckerRulesV1_{0,1,2,3}.cpp`), read once by hand and written here as our own table: nothing is
- * read from there at run time. Their rules name a class of the ASAM model (an XSD complexType); the XML
- * elements of that class were taken from the bundled XSDs (an `Axle` is a FrontAxle, RearAxle or
- * AdditionalAxle, an `OverrideThrottleAction` a Throttle). A rule holds for its class only, so an
+ * The value ranges of numeric attributes, per OpenSCENARIO version, each as the ASAM OpenSCENARIO model
+ * documents it: the class documentation of the standard's UML model gives many attributes a `Range:`
+ * (the bundled XSDs carry no annotations, so the model is the source). Read from the model's
+ * documentation as RA Consulting's ASAM OpenSCENARIO API generates it into its code
+ * (RA-Consulting-GmbH/openscenario.api.test, `cpp/openScenarioLib/generated/v1_{0,1,2,3}/api/ApiClassInterfacesV1_*.h`,
+ * "From OpenSCENARIO class model specification"; for 1.0 and 1.1 also the model itself,
+ * `OpenSCENARIO_Ea_1.{0,1}.0.xmi`), once by hand, and written here as our own table with each range's
+ * text quoted as its `source`: nothing is read from there at run time. The bounds are parsed from that
+ * text, so the table cannot say another range than its source. A range the model does not document is not
+ * checked, although RA Consulting's own checker data adds some (LightState luminousIntensity,
+ * the override maxRate and maxTorque, animationDuration). The model names a class (an XSD complexType); the
+ * XML elements of that class were taken from the bundled XSDs (an `Axle` is a FrontAxle, RearAxle or
+ * AdditionalAxle, an `OverrideThrottleAction` a Throttle). A range holds for its class only, so an
  * attribute that means something else under another element (a Brake `value` of BrakeInput, a force or a
- * percentage) is not checked. Their 1.0 and 1.1 rules are the same, and so are their 1.2 and 1.3 ones; a
- * file of a later version is read as 1.3 (core/schema/version.ts). Where their display of a bound differs
- * from the bound they check (DomeImage azimuthOffset shows `PI`, checks 2π), the checked bound is kept.
+ * percentage) is not checked. A file of a later version is read as 1.3 (core/schema/version.ts).
  * `[0..inf[` reads 0 to infinity; a square bracket turned outward leaves its bound out.
  */
 export interface ValueRange {
@@ -26,8 +30,10 @@ export interface ValueRange {
   /** The bound itself is outside the range. */
   minOpen?: boolean;
   maxOpen?: boolean;
-  /** The versions whose rules give the range. */
+  /** The versions whose model documents the range (and whose schema has the attribute). */
   versions: readonly SchemaVersion[];
+  /** Where the range is written: the model's documentation of the attribute, its range quoted; and why the check differs, where it does. */
+  source: string;
   /** A rule of its own checks this range, with a message of its own (core/semantics/networkChecks.ts). */
   checkedBy?: ProblemCode;
   /** How esmini reads a value outside the range with one clear meaning (read in its sources): a warning that says both (SPEC 12). */
@@ -44,26 +50,55 @@ export interface EsminiReading {
 type Bounds = Pick<ValueRange, 'min' | 'max' | 'minOpen' | 'maxOpen'>;
 
 const ALL: readonly SchemaVersion[] = ['1.0', '1.1', '1.2', '1.3'];
+const FROM_1_1: readonly SchemaVersion[] = ['1.1', '1.2', '1.3'];
 const FROM_1_2: readonly SchemaVersion[] = ['1.2', '1.3'];
+const ONLY_1_3: readonly SchemaVersion[] = ['1.3'];
 
-const NON_NEGATIVE: Bounds = { min: 0 };
-const POSITIVE: Bounds = { min: 0, minOpen: true };
-const FRACTION: Bounds = { min: 0, max: 1 };
-const AT_LEAST_ONE: Bounds = { min: 1 };
-const PLUS_MINUS_PI: Bounds = { min: -Math.PI, max: Math.PI };
-const FULL_TURN: Bounds = { min: 0, max: 2 * Math.PI };
-const RATE: Bounds = { min: 0, minOpen: true, max: 100 };
+/** One bound as the model writes it: a number, `inf`, `PI`, `2*PI`, `2PI`, `PI/2`, each with an optional sign. */
+function boundOf(text: string, range: string): number | undefined {
+  const compact = text.replace(/\s+/g, '');
+  if (/^[-+]?inf$/i.test(compact)) return undefined;
+  const pi = /^([-+]?)(\d+(?:\.\d+)?)?\*?pi(?:\/(\d+))?$/i.exec(compact);
+  if (pi) return (pi[1] === '-' ? -1 : 1) * Number(pi[2] ?? 1) * (Math.PI / Number(pi[3] ?? 1));
+  const number = Number(compact);
+  if (compact === '' || !Number.isFinite(number)) throw new Error(`ranges.ts: cannot read the bound "${text}" of the range "${range}"`);
+  return number;
+}
 
-/** The rules of one model class: the same bounds for each attribute, on each element of the class. */
+/** The bounds of a range as the model documents it: `[0..inf[`, `]0..inf[`, `[0..1]`, `[0;PI]`, `[170...340]`, `[0..2*PI[`. */
+export function documentedBounds(range: string): Bounds {
+  const parts = /^([[\]])(.+?)(?:\.{2,3}|;)(.+?)([[\]])$/.exec(range.trim());
+  if (!parts) throw new Error(`ranges.ts: cannot read the documented range "${range}"`);
+  const [, low, minText, maxText, high] = parts;
+  const min = boundOf(minText, range);
+  const max = boundOf(maxText, range);
+  return {
+    ...(min === undefined ? {} : { min, ...(low === ']' ? { minOpen: true } : {}) }),
+    ...(max === undefined ? {} : { max, ...(high === '[' ? { maxOpen: true } : {}) }),
+  };
+}
+
+function versionsText(versions: readonly SchemaVersion[]): string {
+  return versions.length > 1 ? `${versions[0]}-${versions[versions.length - 1]}` : versions[0];
+}
+
+interface RuleOptions extends Pick<ValueRange, 'checkedBy' | 'esmini'> {
+  /** Checked with other bounds than documented, and why. */
+  checked?: { range: string; why: string };
+}
+
+/** The rules of one model class: for each attribute the range its documentation gives (`documented`, quoted as the model writes it), on each element of the class. */
 function rules(
   modelClass: string | { modelClass: string; elements: string[] },
   attributes: string[],
-  bounds: Bounds,
+  documented: string,
   versions: readonly SchemaVersion[],
-  extra: Pick<ValueRange, 'checkedBy' | 'esmini'> = {},
+  options: RuleOptions = {},
 ): ValueRange[] {
   const className = typeof modelClass === 'string' ? modelClass : modelClass.modelClass;
   const elements = typeof modelClass === 'string' ? [modelClass] : modelClass.elements;
+  const { checked, ...extra } = options;
+  const bounds = documentedBounds(checked?.range ?? documented);
   return elements.flatMap((element) =>
     attributes.map((attributeName) => ({
       element,
@@ -71,6 +106,9 @@ function rules(
       attribute: attributeName,
       ...bounds,
       versions,
+      source:
+        `ASAM OpenSCENARIO ${versionsText(versions)} model, ${className}.${attributeName}: Range: ${documented}` +
+        (checked ? `; checked as ${checked.range}: ${checked.why}` : ''),
       ...extra,
     })),
   );
@@ -101,90 +139,90 @@ const TEMPERATURE_CLAMP: EsminiReading = {
 const AXLES = { modelClass: 'Axle', elements: ['FrontAxle', 'RearAxle', 'AdditionalAxle'] };
 const TRANSITION_DYNAMICS = { modelClass: 'TransitionDynamics', elements: ['LaneChangeActionDynamics', 'SpeedActionDynamics'] };
 
+// Each documented range is the model's text of the last version listed; older models write the same bounds as `[0;PI]`, `[0..2PI]`, `[170...340]`.
 export const VALUE_RANGES: readonly ValueRange[] = [
-  ...rules('AbsoluteSpeed', ['value'], NON_NEGATIVE, ALL),
-  // 1.2 names the element of the class AnimationAction AnimationStateAction; 1.3 names it AnimationAction.
-  ...rules({ modelClass: 'AnimationAction', elements: ['AnimationStateAction'] }, ['animationDuration'], NON_NEGATIVE, ['1.2']),
-  ...rules('AnimationAction', ['animationDuration'], NON_NEGATIVE, ['1.3']),
-  ...rules('AnimationFile', ['timeOffset'], NON_NEGATIVE, FROM_1_2),
-  ...rules('AnimationState', ['state'], FRACTION, FROM_1_2),
-  ...rules(AXLES, ['maxSteering'], { min: 0, max: Math.PI }, ALL, {
+  ...rules('AbsoluteSpeed', ['value'], '[0..inf[', ALL),
+  ...rules('AnimationFile', ['timeOffset'], '[0..inf[', FROM_1_2),
+  ...rules('AnimationState', ['state'], '[0..1]', FROM_1_2),
+  ...rules(AXLES, ['maxSteering'], '[0..PI]', ALL, {
     esmini: { reading: 'reads maxSteering and uses it nowhere (ScenarioReader.cpp), so the run is the same' },
   }),
-  ...rules(AXLES, ['positionX', 'positionZ', 'trackWidth'], NON_NEGATIVE, ALL),
-  ...rules(AXLES, ['wheelDiameter'], POSITIVE, ALL),
-  ...rules('Clothoid', ['curvatureDot'], NON_NEGATIVE, ALL, {
+  ...rules(AXLES, ['positionX', 'positionZ', 'trackWidth'], '[0..inf[', ALL),
+  ...rules(AXLES, ['wheelDiameter'], ']0..inf[', ALL),
+  ...rules('Clothoid', ['curvatureDot'], '[0..inf[', ALL, {
     esmini: { reading: 'reads curvatureDot as curvaturePrime, whose range has no bound (ScenarioReader.cpp)' },
   }),
-  ...rules('Clothoid', ['startTime'], NON_NEGATIVE, ALL),
-  ...rules('Clothoid', ['stopTime'], POSITIVE, ALL),
-  ...rules('ColorCmyk', ['cyan', 'magenta', 'yellow', 'key'], FRACTION, FROM_1_2),
-  ...rules('ColorRgb', ['red', 'green', 'blue'], FRACTION, FROM_1_2),
-  ...rules('Condition', ['delay'], NON_NEGATIVE, ALL),
-  ...rules('ControlPoint', ['time'], NON_NEGATIVE, ALL),
-  ...rules('ControllerDistributionEntry', ['weight'], POSITIVE, ALL),
-  ...rules('Dimensions', ['width', 'length', 'height'], NON_NEGATIVE, ALL),
-  ...rules('DirectionOfTravelDistribution', ['same', 'opposite'], NON_NEGATIVE, FROM_1_2),
-  ...rules('DistanceCondition', ['value'], NON_NEGATIVE, ALL),
-  ...rules('DomeImage', ['azimuthOffset'], FULL_TURN, FROM_1_2),
-  ...rules('DynamicConstraints', ['maxSpeed', 'maxAcceleration', 'maxDeceleration'], NON_NEGATIVE, ALL),
-  ...rules('DynamicConstraints', ['maxAccelerationRate', 'maxDecelerationRate'], NON_NEGATIVE, FROM_1_2),
-  ...rules('EndOfRoadCondition', ['duration'], NON_NEGATIVE, ALL),
-  ...rules('Event', ['maximumExecutionCount'], AT_LEAST_ONE, ALL),
-  ...rules('Fog', ['visualRange'], NON_NEGATIVE, ALL),
-  ...rules('GeoPosition', ['altitude'], NON_NEGATIVE, FROM_1_2),
-  ...rules('GeoPosition', ['latitude', 'longitude'], PLUS_MINUS_PI, FROM_1_2),
-  ...rules('GeoPosition', ['latitudeDeg'], { min: -90, max: 90 }, FROM_1_2),
-  // Their data gives longitudeDeg a latitude's [-90..90], which would refuse every place east of 90 degrees (Beijing, Tokyo).
-  ...rules('GeoPosition', ['longitudeDeg'], { min: -180, max: 180 }, FROM_1_2),
-  ...rules('LaneOffsetActionDynamics', ['maxLateralAcc'], NON_NEGATIVE, ALL),
-  ...rules('LanePosition', ['s'], NON_NEGATIVE, ALL),
-  ...rules('LateralDistanceAction', ['distance'], NON_NEGATIVE, ALL, { esmini: MAGNITUDE }),
-  ...rules('LightState', ['luminousIntensity', 'flashingOnDuration', 'flashingOffDuration'], NON_NEGATIVE, FROM_1_2),
-  ...rules('LightStateAction', ['transitionTime'], NON_NEGATIVE, FROM_1_2, { checkedBy: 'negative-transition-time' }),
-  ...rules('LongitudinalDistanceAction', ['distance', 'timeGap'], NON_NEGATIVE, ALL, { esmini: MAGNITUDE }),
-  ...rules('ManeuverGroup', ['maximumExecutionCount'], AT_LEAST_ONE, ALL),
-  ...rules('MiscObject', ['mass'], NON_NEGATIVE, ALL),
-  ...rules('Nurbs', ['order'], { min: 2 }, ALL),
-  ...rules('OffroadCondition', ['duration'], NON_NEGATIVE, ALL),
-  ...rules({ modelClass: 'OverrideBrakeAction', elements: ['Brake'] }, ['value'], FRACTION, ALL, { esmini: OVERRIDE_CLAMP }),
-  ...rules({ modelClass: 'OverrideClutchAction', elements: ['Clutch'] }, ['value'], FRACTION, ALL, { esmini: OVERRIDE_CLAMP }),
-  ...rules({ modelClass: 'OverrideClutchAction', elements: ['Clutch'] }, ['maxRate'], RATE, FROM_1_2),
-  ...rules({ modelClass: 'OverrideParkingBrakeAction', elements: ['ParkingBrake'] }, ['value'], FRACTION, ALL, { esmini: OVERRIDE_CLAMP }),
-  ...rules({ modelClass: 'OverrideSteeringWheelAction', elements: ['SteeringWheel'] }, ['maxRate'], RATE, FROM_1_2),
-  ...rules({ modelClass: 'OverrideSteeringWheelAction', elements: ['SteeringWheel'] }, ['maxTorque'], POSITIVE, FROM_1_2),
-  ...rules({ modelClass: 'OverrideThrottleAction', elements: ['Throttle'] }, ['value'], FRACTION, ALL, { esmini: OVERRIDE_CLAMP }),
-  ...rules('Performance', ['maxAcceleration', 'maxDeceleration'], NON_NEGATIVE, ALL),
-  ...rules('Performance', ['maxAccelerationRate', 'maxDecelerationRate'], NON_NEGATIVE, FROM_1_2),
-  ...rules('Phase', ['duration'], NON_NEGATIVE, ALL, { checkedBy: 'non-positive-phase-duration' }),
-  ...rules({ modelClass: 'PositionInLaneCoordinates', elements: ['FromLaneCoordinates'] }, ['pathS'], NON_NEGATIVE, ALL),
-  ...rules('Precipitation', ['intensity'], FRACTION, ALL),
-  ...rules('ReachPositionCondition', ['tolerance'], NON_NEGATIVE, ALL),
-  ...rules('RelativeClearanceCondition', ['distanceForward', 'distanceBackward'], NON_NEGATIVE, FROM_1_2),
-  ...rules('RelativeDistanceCondition', ['value'], NON_NEGATIVE, ALL),
-  ...rules('RoadCondition', ['frictionScaleFactor'], NON_NEGATIVE, ALL),
-  ...rules('RoadPosition', ['s'], NON_NEGATIVE, FROM_1_2),
-  ...rules('SpeedProfileEntry', ['time'], NON_NEGATIVE, FROM_1_2),
-  ...rules('StandStillCondition', ['duration'], NON_NEGATIVE, ALL),
-  ...rules('Sun', ['azimuth'], FULL_TURN, ALL),
-  ...rules('Sun', ['elevation'], PLUS_MINUS_PI, ALL),
-  ...rules('Sun', ['intensity'], NON_NEGATIVE, ALL),
-  ...rules('Sun', ['illuminance'], NON_NEGATIVE, FROM_1_2),
-  ...rules('TimeHeadwayCondition', ['value'], NON_NEGATIVE, ALL),
-  ...rules('TimeToCollisionCondition', ['value'], NON_NEGATIVE, ALL),
-  ...rules('Timing', ['scale'], POSITIVE, ALL),
-  ...rules('TrafficSignalController', ['delay'], NON_NEGATIVE, ALL),
-  ...rules('TrafficSinkAction', ['radius', 'rate'], NON_NEGATIVE, ALL),
-  ...rules('TrafficSourceAction', ['radius', 'rate', 'velocity'], NON_NEGATIVE, ALL),
-  ...rules('TrafficSwarmAction', ['innerRadius', 'semiMajorAxis', 'semiMinorAxis', 'velocity'], NON_NEGATIVE, ALL),
-  ...rules(TRANSITION_DYNAMICS, ['value'], NON_NEGATIVE, ALL, { esmini: RATE_MAGNITUDE }),
-  ...rules('TraveledDistanceCondition', ['value'], NON_NEGATIVE, ALL),
-  ...rules('VehicleCategoryDistributionEntry', ['weight'], NON_NEGATIVE, ALL),
-  ...rules('VehicleRoleDistributionEntry', ['weight'], NON_NEGATIVE, FROM_1_2),
-  ...rules('Weather', ['temperature'], { min: 170, max: 340 }, FROM_1_2, { esmini: TEMPERATURE_CLAMP }),
-  ...rules('Weather', ['atmosphericPressure'], { min: 80000, max: 120000 }, FROM_1_2, { esmini: PRESSURE_CLAMP }),
-  ...rules('Wind', ['direction'], { min: 0, max: 2 * Math.PI, maxOpen: true }, FROM_1_2),
-  ...rules('Wind', ['speed'], NON_NEGATIVE, FROM_1_2),
+  ...rules('Clothoid', ['startTime'], '[0..inf[', ALL),
+  ...rules('Clothoid', ['stopTime'], ']0..inf[', ALL),
+  // The 1.2 model documents the colours too, but only the 1.3 schema has them.
+  ...rules('ColorCmyk', ['cyan', 'magenta', 'yellow', 'key'], '[0..1]', ONLY_1_3),
+  ...rules('ColorRgb', ['red', 'green', 'blue'], '[0..1]', ONLY_1_3),
+  ...rules('Condition', ['delay'], '[0..inf[', ALL),
+  ...rules('ControlPoint', ['time'], '[0..inf[', ALL),
+  ...rules('ControllerDistributionEntry', ['weight'], ']0..inf[', ALL),
+  ...rules('Dimensions', ['width', 'length', 'height'], '[0..inf[', ALL),
+  ...rules('DirectionOfTravelDistribution', ['same', 'opposite'], '[0..inf[', FROM_1_2),
+  ...rules('DistanceCondition', ['value'], '[0..inf[', ALL),
+  ...rules('DomeImage', ['azimuthOffset'], '[0..2*PI]', FROM_1_2),
+  ...rules('DynamicConstraints', ['maxSpeed', 'maxAcceleration', 'maxDeceleration'], '[0..inf[', ALL),
+  ...rules('DynamicConstraints', ['maxAccelerationRate', 'maxDecelerationRate'], '[0..inf[', FROM_1_2),
+  ...rules('EndOfRoadCondition', ['duration'], '[0..inf[', ALL),
+  ...rules('Event', ['maximumExecutionCount'], '[1..inf[', ALL),
+  ...rules('Fog', ['visualRange'], '[0..inf[', ALL),
+  ...rules('GeoPosition', ['altitude'], '[0..inf[', FROM_1_2),
+  ...rules('GeoPosition', ['latitude'], '[-PI..PI]', FROM_1_1),
+  ...rules('GeoPosition', ['longitude'], '[-PI/2..PI/2]', FROM_1_1, {
+    checked: {
+      range: '[-PI..PI]',
+      why: "the model swaps latitude's and longitude's ranges; its GeoPosition.longitudeDeg is [-180..180], and [-PI/2..PI/2] would refuse every place east of 90 degrees (Beijing, Tokyo)",
+    },
+  }),
+  ...rules('GeoPosition', ['latitudeDeg'], '[-90..90]', FROM_1_2),
+  ...rules('GeoPosition', ['longitudeDeg'], '[-180..180]', FROM_1_2),
+  ...rules('LaneOffsetActionDynamics', ['maxLateralAcc'], '[0..inf[', ALL),
+  ...rules('LanePosition', ['s'], '[0..inf[', ALL),
+  ...rules('LateralDistanceAction', ['distance'], '[0..inf[', ALL, { esmini: MAGNITUDE }),
+  ...rules('LongitudinalDistanceAction', ['distance', 'timeGap'], '[0..inf[', ALL, { esmini: MAGNITUDE }),
+  ...rules('ManeuverGroup', ['maximumExecutionCount'], '[1..inf[', ALL),
+  ...rules('MiscObject', ['mass'], '[0..inf[', ALL),
+  ...rules('Nurbs', ['order'], '[2..inf[', ALL),
+  ...rules('OffroadCondition', ['duration'], '[0..inf[', ALL),
+  ...rules({ modelClass: 'OverrideBrakeAction', elements: ['Brake'] }, ['value'], '[0..1]', ALL, { esmini: OVERRIDE_CLAMP }),
+  ...rules({ modelClass: 'OverrideClutchAction', elements: ['Clutch'] }, ['value'], '[0..1]', ALL, { esmini: OVERRIDE_CLAMP }),
+  ...rules({ modelClass: 'OverrideParkingBrakeAction', elements: ['ParkingBrake'] }, ['value'], '[0..1]', ALL, { esmini: OVERRIDE_CLAMP }),
+  ...rules({ modelClass: 'OverrideThrottleAction', elements: ['Throttle'] }, ['value'], '[0..1]', ALL, { esmini: OVERRIDE_CLAMP }),
+  ...rules('Performance', ['maxAcceleration', 'maxDeceleration'], '[0..inf[', ALL),
+  ...rules('Performance', ['maxAccelerationRate', 'maxDecelerationRate'], '[0..inf[', FROM_1_2),
+  ...rules('Phase', ['duration'], '[0..inf[', ALL, { checkedBy: 'non-positive-phase-duration' }),
+  ...rules({ modelClass: 'PositionInLaneCoordinates', elements: ['FromLaneCoordinates'] }, ['pathS'], '[0..inf[', ALL),
+  ...rules('Precipitation', ['intensity'], '[0..1]', ALL),
+  ...rules('ReachPositionCondition', ['tolerance'], '[0..inf[', ALL),
+  ...rules('RelativeClearanceCondition', ['distanceForward', 'distanceBackward'], '[0..inf[', FROM_1_2),
+  ...rules('RelativeDistanceCondition', ['value'], '[0..inf[', ALL),
+  ...rules('RoadCondition', ['frictionScaleFactor'], '[0..inf[', ALL),
+  // The 1.0 and 1.1 models document RoadPosition s without a range.
+  ...rules('RoadPosition', ['s'], '[0..inf[', FROM_1_2),
+  ...rules('SpeedProfileEntry', ['time'], '[0..inf[', FROM_1_2),
+  ...rules('StandStillCondition', ['duration'], '[0..inf[', ALL),
+  ...rules('Sun', ['azimuth'], '[0..2*PI]', ALL),
+  ...rules('Sun', ['elevation'], '[-PI..PI]', ALL),
+  ...rules('Sun', ['intensity'], '[0..inf[', ALL),
+  ...rules('Sun', ['illuminance'], '[0..inf[', ONLY_1_3),
+  ...rules('TimeHeadwayCondition', ['value'], '[0..inf[', ALL),
+  ...rules('TimeToCollisionCondition', ['value'], '[0..inf[', ALL),
+  ...rules('Timing', ['scale'], ']0..inf[', ALL),
+  ...rules('TrafficSignalController', ['delay'], '[0..inf[', ALL),
+  ...rules('TrafficSinkAction', ['radius', 'rate'], '[0..inf[', ALL),
+  ...rules('TrafficSourceAction', ['radius', 'rate', 'velocity'], '[0..inf[', ALL),
+  ...rules('TrafficSwarmAction', ['innerRadius', 'semiMajorAxis', 'semiMinorAxis', 'velocity'], '[0..inf[', ALL),
+  ...rules(TRANSITION_DYNAMICS, ['value'], '[0..inf[', ALL, { esmini: RATE_MAGNITUDE }),
+  ...rules('TraveledDistanceCondition', ['value'], '[0..inf[', ALL),
+  ...rules('VehicleCategoryDistributionEntry', ['weight'], '[0..inf[', ALL),
+  ...rules('VehicleRoleDistributionEntry', ['weight'], '[0..inf[', FROM_1_2),
+  ...rules('Weather', ['temperature'], '[170..340]', FROM_1_1, { esmini: TEMPERATURE_CLAMP }),
+  ...rules('Weather', ['atmosphericPressure'], '[80000..120000]', FROM_1_1, { esmini: PRESSURE_CLAMP }),
+  ...rules('Wind', ['direction'], '[0..2*PI[', FROM_1_1),
+  ...rules('Wind', ['speed'], '[0..inf[', FROM_1_1),
 ];
 
 /** The ranges checked in a file of `version`, by element name. */
