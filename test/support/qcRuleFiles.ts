@@ -4,18 +4,7 @@
  */
 
 import { roadScenario, RoadScenarioParts } from './fixtures';
-
-/** A road file with one road and signal 101 on it. */
-const ROAD = `<?xml version="1.0"?>
-<OpenDRIVE>
-  <header revMajor="1" revMinor="6"/>
-  <road id="1" length="100" junction="-1">
-    <planView><geometry s="0" x="0" y="0" hdg="0" length="100"><line/></geometry></planView>
-    <lanes><laneSection s="0"><center><lane id="0" type="none"/></center></laneSection></lanes>
-    <signals><signal id="101" s="50" t="-3"/></signals>
-  </road>
-</OpenDRIVE>
-`;
+import { SIGNAL_ROAD as ROAD } from './roads';
 
 const HEADER = '<FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="rules" author="t"/>';
 

@@ -42,3 +42,15 @@ export function sceneScenario(roadFile: string, init: string, story = '', parame
 export function teleport(entity: string, position: string): string {
   return `<Private entityRef="${entity}"><PrivateAction><TeleportAction><Position>${position}</Position></TeleportAction></PrivateAction></Private>`;
 }
+
+/** A road file with one road and signal 101 on it. */
+export const SIGNAL_ROAD = `<?xml version="1.0"?>
+<OpenDRIVE>
+  <header revMajor="1" revMinor="6"/>
+  <road id="1" length="100" junction="-1">
+    <planView><geometry s="0" x="0" y="0" hdg="0" length="100"><line/></geometry></planView>
+    <lanes><laneSection s="0"><center><lane id="0" type="none"/></center></laneSection></lanes>
+    <signals><signal id="101" s="50" t="-3"/></signals>
+  </road>
+</OpenDRIVE>
+`;

@@ -57,27 +57,6 @@ const OTHER_RULES: Record<Exclude<ProblemCode, DefinedCode>, Rule> = {
   'simulator-value': { description: 'A value is the same in the standard and in the selected simulator.' },
   overflow: { description: "A number stays within its type's range (IEEE double, int, unsignedInt, unsignedShort)." },
   'file-path': { description: 'A file path of a written scenario names, from where it is written, the file its source named (SPEC 11.6).' },
-  'unknown-traffic-signal': {
-    description: "A TrafficSignalStateAction names a signal of the road network or of the scenario's signal controllers.",
-    qcRule: QC.signalId,
-  },
-  'unknown-traffic-signal-controller': {
-    description: 'A trafficSignalControllerRef names a TrafficSignalController of the scenario.',
-    qcRule: QC.signalController,
-  },
-  'no-actor': {
-    description: 'A ManeuverGroup with private actions names an actor (an EntityRef, or selectTriggeringEntities).',
-    qcRule: QC.privateActionActor,
-  },
-  'negative-transition-time': { description: 'A LightStateAction transitionTime is not negative.', qcRule: QC.transitionTime },
-  'non-positive-phase-duration': {
-    description: "A Phase duration is positive (zero: a warning, within the standard's range).",
-    qcRule: QC.phaseDuration,
-  },
-  'out-of-range': {
-    description:
-      "A value lies within the range the ASAM model documents for its attribute in the file's version (core/semantics/ranges.ts, each range with its source); a warning where esmini runs it with one meaning.",
-  },
 };
 
 /** Every code has an entry: a new code does not compile until it says what rule it is. */

@@ -1,6 +1,12 @@
+import * as fs from 'node:fs';
+import * as path from 'node:path';
 import { TextDocument } from 'vscode-languageserver-textdocument';
 import { FixContext, RelatedPlace } from '../../../server/src/core/diagnostics';
 import { parseXml } from '../../../server/src/core/xml';
+import { Problem } from '../../../server/src/core/problems';
+import { analyzeDocument, CatalogLoader, semanticProblems } from '../../../server/src/core/semantics';
+import { diskRef, ScenarioStore } from '../../../server/src/core/sources';
+import { temporaryWorkspace } from '../../support/workspace';
 
 export const RANGE = { start: { line: 0, character: 1 }, end: { line: 0, character: 4 } };
 
@@ -21,4 +27,25 @@ export function fixContext(data: unknown, related?: Partial<RelatedPlace>, text 
       ...related,
     },
   };
+}
+
+/** The problems of the document checks (core/semantics) for `scenario.xosc` of `text`, written beside `files` in a workspace of its own. */
+export async function semanticProblemsOf(text: string, files: Record<string, string> = {}): Promise<Problem[]> {
+  const root = temporaryWorkspace({ 'scenario.xosc': text, ...files });
+  try {
+    const semantics = await analyzeDocument(
+      diskRef(path.join(root, 'scenario.xosc')),
+      parseXml(text),
+      new CatalogLoader(new ScenarioStore({ scenarioPath: [], root })),
+      false,
+    );
+    return semanticProblems(semantics);
+  } finally {
+    fs.rmSync(root, { recursive: true, force: true });
+  }
+}
+
+/** What a problem says, apart from where: what a module's wording returns. */
+export function wordingOf({ severity, code, message, hint }: Problem): Pick<Problem, 'severity' | 'code' | 'message' | 'hint'> {
+  return hint === undefined ? { severity, code, message } : { severity, code, message, hint };
 }

@@ -21,6 +21,12 @@ import { CATALOG_DIRECTORY } from './catalogDirectory';
 import { CATALOG_LOCATION_CONFLICT } from './catalogLocationConflict';
 import { PARAMETER_CONFLICT } from './parameterConflict';
 import { TOO_LARGE } from './tooLarge';
+import { UNKNOWN_TRAFFIC_SIGNAL } from './unknownTrafficSignal';
+import { UNKNOWN_TRAFFIC_SIGNAL_CONTROLLER } from './unknownTrafficSignalController';
+import { NO_ACTOR } from './noActor';
+import { NEGATIVE_TRANSITION_TIME } from './negativeTransitionTime';
+import { NON_POSITIVE_PHASE_DURATION } from './nonPositivePhaseDuration';
+import { OUT_OF_RANGE } from './outOfRange';
 
 export * from './definition';
 export { QC, QC_RULE_DESCRIPTIONS } from './qcRules';
@@ -52,6 +58,12 @@ export const DIAGNOSTICS = [
   CATALOG_DIRECTORY,
   CATALOG_LOCATION_CONFLICT,
   PARAMETER_CONFLICT,
+  UNKNOWN_TRAFFIC_SIGNAL,
+  UNKNOWN_TRAFFIC_SIGNAL_CONTROLLER,
+  NO_ACTOR,
+  NEGATIVE_TRANSITION_TIME,
+  NON_POSITIVE_PHASE_DURATION,
+  OUT_OF_RANGE,
 ] as const;
 
 /** The codes whose diagnostic has its own module. */

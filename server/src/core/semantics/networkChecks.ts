@@ -1,4 +1,10 @@
 import { chooseVersion } from '../schema/version';
+import { NO_ACTOR_ACTION_NOTE, noActorWording } from '../diagnostics/noActor';
+import { negativeTransitionTimeWording } from '../diagnostics/negativeTransitionTime';
+import { nonPositivePhaseDurationWording } from '../diagnostics/nonPositivePhaseDuration';
+import { outOfRangeWording } from '../diagnostics/outOfRange';
+import { unknownTrafficSignalWording } from '../diagnostics/unknownTrafficSignal';
+import { unknownTrafficSignalControllerWording } from '../diagnostics/unknownTrafficSignalController';
 import { attribute, firstDescendant, XmlAttribute, XmlElement } from '../xml';
 import type { Finding, SemanticCheck, SemanticContext } from './checks/types';
 import { inRange, rangeText, valueRangesOf } from './ranges';
@@ -57,10 +63,7 @@ export const trafficSignalIds: SemanticCheck = (context) => {
     if (!id || known.has(id.text)) continue;
     findings.push({
       ...at(action, id.attr),
-      severity: 'error',
-      code: 'unknown-traffic-signal',
-      message: `traffic signal '${id.text}' is neither a signal of the road network ${road.file} nor one a TrafficSignalController of the scenario sets`,
-      hint: 'name the id of a <signal> of the OpenDRIVE file',
+      ...unknownTrafficSignalWording(id.text, road.file),
     });
   }
   return findings;
@@ -80,9 +83,7 @@ export const trafficSignalControllerRefs: SemanticCheck = (context) => {
       if (!ref || names.has(ref.text)) continue;
       findings.push({
         ...at(element, ref.attr),
-        severity: 'error',
-        code: 'unknown-traffic-signal-controller',
-        message: `'${ref.text}' is not a TrafficSignalController of this scenario's RoadNetwork${names.size > 0 ? ` (it has ${[...names].map((name) => `'${name}'`).join(', ')})` : ' (it declares none)'}`,
+        ...unknownTrafficSignalControllerWording(ref.text, [...names]),
       });
     }
   }
@@ -106,15 +107,12 @@ export const privateActionActors: SemanticCheck = (context) => {
     if (actors && textOf(context, actors, 'selectTriggeringEntities')?.text.trim() === 'true') continue;
     findings.push({
       ...at(actors ?? group, actors ? undefined : attribute(group, 'name')),
-      severity: 'warning',
-      code: 'no-actor',
-      message: `ManeuverGroup '${attribute(group, 'name')?.value ?? ''}' holds private actions but names no actor for them to act on (ASAM's Quality Checker reports it as an error; esmini runs it, the actions acting on no entity)`,
-      hint: 'add <EntityRef entityRef="..."/> to its <Actors>',
+      ...noActorWording(attribute(group, 'name')?.value ?? ''),
       related: [
         {
           source: context.ref,
           range: context.model.document.lines.range(privateAction.start, privateAction.nameEnd),
-          message: 'a private action of the group',
+          message: NO_ACTOR_ACTION_NOTE,
         },
       ],
     });
@@ -130,9 +128,7 @@ export const lightTransitionTimes: SemanticCheck = (context) =>
     return [
       {
         ...at(action, time.attr),
-        severity: 'error',
-        code: 'negative-transition-time',
-        message: `the transition time of a LightStateAction must not be negative; it is ${time.value} s`,
+        ...negativeTransitionTimeWording(time.value),
       },
     ];
   });
@@ -145,15 +141,10 @@ export const phaseDurations: SemanticCheck = (context) =>
   elementsNamed(context.model, 'Phase').flatMap((phase): Finding[] => {
     const duration = numberOf(context, phase, 'duration');
     if (!duration || duration.value > 0) return [];
-    const zero = duration.value === 0;
     return [
       {
         ...at(phase, duration.attr),
-        severity: zero ? 'warning' : 'error',
-        code: 'non-positive-phase-duration',
-        message: zero
-          ? "a Phase of duration 0 is within the standard's range [0..inf[, but ASAM's Quality Checker requires a positive duration"
-          : `the duration of a Phase must be positive; it is ${duration.value} s`,
+        ...nonPositivePhaseDurationWording(duration.value),
       },
     ];
   });
@@ -173,16 +164,21 @@ export const valueRanges: SemanticCheck = (context) => {
         if (range.checkedBy) continue;
         const value = numberOf(context, element, range.attribute);
         if (!value || inRange(value.value, range)) continue;
-        const written = value.attr.value.trim() === String(value.value) ? '' : ` (from ${value.attr.value.trim()})`;
-        const modelClass = range.modelClass ? ` (class ${range.modelClass} of the ASAM model)` : '';
+        const written = value.attr.value.trim() === String(value.value) ? undefined : value.attr.value.trim();
         const when = range.esmini?.when;
         const esmini =
           range.esmini && (!when || textOf(context, element, when.attribute)?.text.trim() === when.value) ? range.esmini : undefined;
         findings.push({
           ...at(element, value.attr),
-          severity: esmini ? 'warning' : 'error',
-          code: 'out-of-range',
-          message: `${range.element} ${range.attribute} ${value.value}${written} is outside the standard's range ${rangeText(range)}${modelClass}${esmini ? ` (RA Consulting's checker reports it as an error); esmini ${esmini.reading}` : ''}`,
+          ...outOfRangeWording({
+            element: range.element,
+            attribute: range.attribute,
+            value: value.value,
+            written,
+            range: rangeText(range),
+            modelClass: range.modelClass,
+            esminiReading: esmini?.reading,
+          }),
         });
       }
     }

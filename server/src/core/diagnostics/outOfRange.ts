@@ -1,0 +1,44 @@
+import { defineDiagnostic, ProblemWording } from './definition';
+
+/** What the range check found: the value, as written where that differs, the range and how esmini reads it where it runs it. */
+export interface OutOfRangeFacts {
+  element: string;
+  attribute: string;
+  value: number;
+  /** The text written, where it is not the number itself (a parameter, an expression). */
+  written?: string;
+  /** The range as the standard writes it (`[0..inf[`). */
+  range: string;
+  /** The class of the ASAM model that gives the range, where one does. */
+  modelClass?: string;
+  /** How esmini reads the value, where it reads it with one meaning: then a warning. */
+  esminiReading?: string;
+}
+
+export function outOfRangeWording({
+  element,
+  attribute,
+  value,
+  written,
+  range,
+  modelClass,
+  esminiReading,
+}: OutOfRangeFacts): ProblemWording<'out-of-range'> {
+  const from = written === undefined ? '' : ` (from ${written})`;
+  const model = modelClass ? ` (class ${modelClass} of the ASAM model)` : '';
+  const esmini = esminiReading === undefined ? '' : ` (RA Consulting's checker reports it as an error); esmini ${esminiReading}`;
+  return {
+    severity: esminiReading === undefined ? 'error' : 'warning',
+    code: 'out-of-range',
+    message: `${element} ${attribute} ${value}${from} is outside the standard's range ${range}${model}${esmini}`,
+  };
+}
+
+export const OUT_OF_RANGE = defineDiagnostic({
+  code: 'out-of-range',
+  rule: {
+    description:
+      "A value lies within the range the ASAM model documents for its attribute in the file's version (core/semantics/ranges.ts, each range with its source); a warning where esmini runs it with one meaning.",
+  },
+  severity: 'error',
+});
