@@ -118,6 +118,13 @@ export class CommandReporter {
     }
   }
 
+  /** `problems` without waiting for the user: the command goes on while the message stays; a failure to show it is logged. */
+  problemsWithoutWaiting(action: string, problems: ProblemSummary[]): void {
+    this.problems(action, problems).catch((error: unknown) =>
+      this.log(`${action}: its message could not be shown: ${(error as Error).stack ?? String(error)}`),
+    );
+  }
+
   async failure(action: string, error: unknown): Promise<void> {
     this.log(`${action} failed: ${(error as Error).stack ?? String(error)}`);
     const choice = await vscode.window.showErrorMessage(
@@ -421,6 +428,7 @@ export async function exportForCarlaCommand(
       });
     return written;
   }
-  await reporter.problems(action, result.problems);
+  // The command answers now, while its message (with Go to Problem) stays until the user dismisses it.
+  reporter.problemsWithoutWaiting(action, result.problems);
   return undefined;
 }

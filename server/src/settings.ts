@@ -21,6 +21,8 @@ export interface ServerSettings {
   formatMaxLineWidth: number;
   /** The OpenSCENARIO schema files are checked against (`modular2simple.schema.version`). */
   schemaVersion: SchemaVersionSetting | 'off';
+  /** Folders where a scenario's road file is looked for (`modular2simple.esmini.roadPath`, relative to the first workspace folder): Run in esmini's, and the export's. */
+  roadPath: string[];
 }
 
 export const DEFAULT_SETTINGS: ServerSettings = {
@@ -32,6 +34,7 @@ export const DEFAULT_SETTINGS: ServerSettings = {
   carlaRelease: DEFAULT_CARLA_RELEASE,
   formatMaxLineWidth: DEFAULT_FORMAT_OPTIONS.maxLineWidth,
   schemaVersion: 'auto',
+  roadPath: [],
 };
 
 /** Reads settings sent by a client, keeping defaults for anything missing or of the wrong type. */
@@ -61,6 +64,10 @@ export function readSettings(value: unknown): ServerSettings {
   const libraryFolders = Array.isArray(library.folders)
     ? library.folders.filter((entry): entry is string => typeof entry === 'string' && entry.trim().length > 0)
     : [];
+  const esmini = (record.esmini && typeof record.esmini === 'object' ? record.esmini : {}) as Record<string, unknown>;
+  const roadPath = Array.isArray(esmini.roadPath)
+    ? esmini.roadPath.filter((entry): entry is string => typeof entry === 'string' && entry.trim().length > 0)
+    : [];
   return {
     scenarioPath,
     libraryFolders,
@@ -70,5 +77,6 @@ export function readSettings(value: unknown): ServerSettings {
     carlaRelease,
     formatMaxLineWidth: width,
     schemaVersion,
+    roadPath,
   };
 }

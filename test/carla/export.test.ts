@@ -491,3 +491,48 @@ describe('export --target carla, bad input', () => {
     assert.doesNotMatch(fs.readFileSync(result.output, 'utf8'), /\$|CatalogReference/);
   });
 });
+
+describe('export --target carla, walker blueprints', () => {
+  let out: string;
+  beforeEach(() => {
+    out = temporaryFolder('m2s-carla-walker-');
+  });
+  afterEach(() => {
+    fs.rmSync(out, { recursive: true, force: true });
+  });
+  const crossing = path.join(__dirname, '..', '..', 'library', 'pedestrian-crossing.xosc');
+
+  /** The library's crossing with its Pedestrian element written as `pedestrian`, exported for 0.9.15. */
+  async function exportPedestrian(pedestrian: string): Promise<{ model: string | undefined; losses: Exported['report']['losses'] }> {
+    const input = path.join(out, 'in.xosc');
+    const text = fs.readFileSync(crossing, 'utf8');
+    const written = text.replace(/<Pedestrian name="walker\.pedestrian\.0001"[^>]*>/, pedestrian);
+    assert.notEqual(written, text, 'the library crossing no longer has its Pedestrian');
+    fs.writeFileSync(input, written);
+    const roads = path.join(path.dirname(crossing), 'roads');
+    const result = await exportFile(input, path.join(out, 'out.xosc'), ['--carla', '0.9.15', '--road-path', roads]);
+    assert.equal(result.code, 0, result.stderr);
+    const model = /<Pedestrian [^>]*model="([^"]*)"/.exec(fs.readFileSync(result.output, 'utf8'))?.[1];
+    return { model, losses: result.report.losses.filter((loss) => loss.element === 'Pedestrian') };
+  }
+
+  it('a walker blueprint as the name or model3d (1.2 has no model) is the walker spawned, with no loss', async () => {
+    const named = await exportPedestrian('<Pedestrian name="walker.pedestrian.0003" pedestrianCategory="pedestrian" mass="75">');
+    assert.equal(named.model, 'walker.pedestrian.0003');
+    assert.deepEqual(named.losses, []);
+    const model3d = await exportPedestrian(
+      '<Pedestrian name="crossing" pedestrianCategory="pedestrian" mass="75" model3d="walker.pedestrian.0012">',
+    );
+    assert.equal(model3d.model, 'walker.pedestrian.0012');
+    assert.deepEqual(model3d.losses, []);
+  });
+
+  it('a name that is no walker is reported, spawned as the default walker', async () => {
+    const other = await exportPedestrian('<Pedestrian name="pedestrian_adult" pedestrianCategory="pedestrian" mass="75" model="EPTa">');
+    assert.equal(other.model, 'walker.pedestrian.0001');
+    assert.deepEqual(
+      other.losses.map((loss) => loss.what),
+      ["'EPTa' is no CARLA walker: spawned as walker.pedestrian.0001"],
+    );
+  });
+});

@@ -98,3 +98,49 @@ describe('Export for CARLA over JSON-RPC: a refusal (ScenarioRunner 0.9.16)', fu
     );
   });
 });
+
+describe("Export for CARLA over JSON-RPC: roads from modular2simple.esmini.roadPath, as Run in esmini's", function () {
+  this.timeout(60_000);
+  let root = '';
+  let client: TestClient | undefined;
+  before(async function () {
+    // The library's crossing names roads/straight_1000m.xodr, which is not beside it here but in the workspace's myroads/.
+    root = temporaryWorkspace(
+      {
+        'scenarios/crossing.xosc': fs.readFileSync(path.join(repoRoot, 'library', 'pedestrian-crossing.xosc'), 'utf8'),
+        'myroads/straight_1000m.xodr': fs.readFileSync(path.join(repoRoot, 'library', 'roads', 'straight_1000m.xodr'), 'utf8'),
+      },
+      'm2s-carla-roadpath-',
+    );
+    client = await TestClient.start({ root, settings: { carla: { release: '0.9.15' } } });
+    await client.indexed();
+  });
+  after(async function () {
+    await client?.stop();
+    if (root) fs.rmSync(root, { recursive: true, force: true });
+  });
+
+  it('refuses the road without the setting, and with it writes the road relative to the export', async () => {
+    if (!client) throw new Error('the server has not started');
+    const uri = fileUri(path.join(root, 'scenarios', 'crossing.xosc'));
+    const output = path.join(root, 'out', 'crossing.carla.xosc');
+    fs.mkdirSync(path.dirname(output));
+    const refused = await client.send(ExportForCarlaRequest, { uri, outputPath: output });
+    assert.equal(refused.written, null);
+    assert.ok(
+      refused.problems.some((problem) =>
+        /straight_1000m\.xodr'?, which is neither a CARLA town nor a readable \.xodr/.test(problem.message),
+      ),
+      JSON.stringify(refused.problems, null, 1),
+    );
+    await client.settingsChanged({ carla: { release: '0.9.15' }, esmini: { roadPath: ['myroads'] } });
+    // The server pulls the new settings after the notification: asked again until they apply (a refusal writes nothing).
+    let result = await client.send(ExportForCarlaRequest, { uri, outputPath: output });
+    for (let attempt = 0; result.written === null && attempt < 100; attempt++) {
+      await new Promise((resolve) => setTimeout(resolve, 200));
+      result = await client.send(ExportForCarlaRequest, { uri, outputPath: output });
+    }
+    assert.equal(result.written, output, JSON.stringify(result.problems, null, 1));
+    assert.match(fs.readFileSync(output, 'utf8'), /<LogicFile filepath="\.\.\/myroads\/straight_1000m\.xodr"\/>/);
+  });
+});

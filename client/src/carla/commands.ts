@@ -154,7 +154,8 @@ export class CarlaCommands implements vscode.Disposable {
     const exported = await this.server.exportForCarla(target, exportFile, undefined, true);
     this.exportLosses.replace(exported.problems);
     if (exported.written === null) {
-      await this.reporter.problems(action, exported.problems);
+      // The command answers that nothing ran while the message waits for the user.
+      this.reporter.problemsWithoutWaiting(action, exported.problems);
       return { ran: false, message: `${action}: the export was refused; nothing was run.` };
     }
     const reach = await reachable(settings.host.trim(), settings.port, REACH_TIMEOUT_MS);

@@ -9,7 +9,7 @@ import { CARLA_TOWNS, CarlaExportOptionError, exportForCarla } from '../core/exp
 import type { Place } from '../core/export/tree';
 import { SourceRef } from '../core/sources';
 import { Workspace } from '../workspace';
-import { lossSummary } from './carlaExport';
+import { carlaExportOptions, lossSummary } from './carlaExport';
 import { invalidParams, refOf } from './commands';
 
 /** Seconds a check may take before it is stopped (ScenarioRunner imports in 2 to 5 s and builds a tree in under 1 s when idle). */
@@ -82,7 +82,7 @@ export async function checkInScenarioRunner(
     const exportFile = path.join(runFolder, name.replace(/\.(xosc|mosc)$/i, '') + '.carla.xosc');
     let exported;
     try {
-      exported = await exportForCarla(workspace.store, ref, { outputPath: exportFile, release: workspace.settings.carlaRelease });
+      exported = await exportForCarla(workspace.store, ref, carlaExportOptions(workspace, ref, exportFile));
     } catch (error) {
       if (error instanceof CarlaExportOptionError) return notRun('not-exported', `Check in CARLA ScenarioRunner: ${error.message}`);
       throw error;

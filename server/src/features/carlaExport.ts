@@ -1,10 +1,21 @@
 import * as path from 'node:path';
 import { isSameFile } from '../../../common/src/atomic';
 import { ProblemSummary, WriteResult } from '../../../common/src/protocol';
-import { CarlaExportOptionError, CarlaLoss, exportForCarla } from '../core/export/carla';
+import { CarlaExportOptionError, CarlaExportOptions, CarlaLoss, exportForCarla } from '../core/export/carla';
+import { roadFolders } from '../core/semantics/roadFiles';
+import type { SourceRef } from '../core/sources';
 import { filePathOf } from '../uris';
 import { Workspace } from '../workspace';
 import { insideFolders, invalidParams, outsideConfirmed, refOf, summarize, writeOutput } from './commands';
+
+/** The editor's export options: the output, the release of `modular2simple.carla.release`, the road folders of `modular2simple.esmini.roadPath` (as Run in esmini and `export --road-path`). */
+export function carlaExportOptions(workspace: Workspace, ref: SourceRef, outputPath: string): CarlaExportOptions {
+  return {
+    outputPath,
+    release: workspace.settings.carlaRelease,
+    roadFolders: roadFolders(workspace.settings.roadPath, workspace.folders[0] ?? path.dirname(ref.disk)),
+  };
+}
 
 /** A loss of the export as the editor lists it: a refusal is an error, what is dropped or approximated a warning. */
 export function lossSummary(workspace: Workspace, loss: CarlaLoss): ProblemSummary {
@@ -44,7 +55,7 @@ export async function exportForCarlaToFile(
     return refusal(`${output} lies outside the workspace; confirm to write it there`, { needsConfirmation: 'outsideWorkspace' });
   let result;
   try {
-    result = await exportForCarla(workspace.store, ref, { outputPath: output, release: workspace.settings.carlaRelease });
+    result = await exportForCarla(workspace.store, ref, carlaExportOptions(workspace, ref, output));
   } catch (error) {
     if (error instanceof CarlaExportOptionError) return refusal(error.message);
     throw error;

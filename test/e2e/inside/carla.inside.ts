@@ -97,15 +97,18 @@ export const carlaTests: InsideTests = {
       // A refused export writes nothing, and its refusal replaces the previous export's losses.
       const crossing = vscode.Uri.file(path.join(workspaceRoot(), 'crossing.xosc'));
       const refusedOutput = path.join(folder, 'crossing.carla.xosc');
-      // The command answers once its error message is dismissed (it offers Go to Problem): not awaited until then.
-      const answer = vscode.commands.executeCommand('modular2simple.exportForCarla', crossing, undefined, { output: refusedOutput });
+      // The command answers at once, while its error message (with Go to Problem) waits for the user.
+      const answer = await Promise.race([
+        vscode.commands.executeCommand('modular2simple.exportForCarla', crossing, undefined, { output: refusedOutput }),
+        new Promise((_resolve, reject) => setTimeout(() => reject(new Error('the refused export waits for its message')), 60_000)),
+      ]);
+      assert.equal(answer, undefined);
       const refusal = await waitFor('the refusal on crossing.xosc', () =>
         exportLosses(crossing).find((diagnostic) => diagnostic.severity === vscode.DiagnosticSeverity.Error),
       );
       assert.match(refusal.message, /AcquirePositionAction: crashes ScenarioRunner 0\.9\.16/);
       await waitFor('the refusal message', async () => (await pageShows('Export for CARLA failed: AcquirePositionAction')) || undefined);
       await vscode.commands.executeCommand('notifications.clearAll');
-      assert.equal(await answer, undefined);
       assert.equal(fs.existsSync(refusedOutput), false, 'a refused export writes nothing');
       assert.deepEqual(exportLosses(simple), [], 'the next export replaces the previous losses');
     } finally {

@@ -665,13 +665,13 @@ function mapBlueprints(tree: Node, options: CarlaExportOptions, sink: LossSink):
   for (const pedestrian of named(tree, 'Pedestrian')) {
     const model = attr(pedestrian, 'model') ?? '';
     const name = attr(pedestrian, 'name') ?? '';
-    const blueprint =
-      chosen(model) ??
-      chosen(name) ??
-      (isCarlaBlueprint(model) ? model : isCarlaBlueprint(name) && name.startsWith('walker.') ? name : DEFAULT_WALKER_BLUEPRINT);
+    // 1.2 deprecates `model` for `model3d`; a walker blueprint written there or as the name is the walker meant.
+    const model3d = attr(pedestrian, 'model3d') ?? '';
+    const walker = [model, model3d, name].find((each) => isCarlaBlueprint(each) && each.startsWith('walker.'));
+    const blueprint = chosen(model) ?? chosen(name) ?? (isCarlaBlueprint(model) ? model : (walker ?? DEFAULT_WALKER_BLUEPRINT));
     if (blueprint === model) continue;
     setAttr(pedestrian, 'model', blueprint);
-    if (chosen(model) === undefined && chosen(name) === undefined)
+    if (chosen(model) === undefined && chosen(name) === undefined && blueprint !== walker)
       sink.approximated(
         pedestrian,
         'Pedestrian',
