@@ -150,6 +150,16 @@ const byEntity = (triggering, condition) => `<ByEntityCondition>
   </EntityCondition>
 </ByEntityCondition>`;
 
+/** Starts `delay` seconds (a key: Condition.delay) after the event `after` of the same maneuver ends. @param {string} name @param {string} after @param {number} delay */
+const afterEvent = (name, after, delay) => `<StartTrigger>
+  <ConditionGroup>
+    <Condition parameterAttributes="delay" name="${name}" delay="${delay}" conditionEdge="none">
+      <ByValueCondition>
+        <StoryboardElementStateCondition storyboardElementType="event" storyboardElementRef="${after}" state="endTransition"/>
+      </ByValueCondition>
+    </Condition>
+  </ConditionGroup>
+</StartTrigger>`;
 /** @param {string} name @param {string} actions @param {string} start @param {string} [priority] */
 const event = (name, actions, start, priority = 'overwrite') => `<Event name="${name}" priority="${priority}">
 ${indent(actions, 2)}
@@ -170,15 +180,68 @@ const speedAction = (dynamics, target) => `<LongitudinalAction>
     </SpeedActionTarget>
   </SpeedAction>
 </LongitudinalAction>`;
-/** @param {string} dynamics @param {string} target */
-const laneChange = (dynamics, target) => `<LateralAction>
-  <LaneChangeAction>
+/** @param {string} dynamics @param {string} target @param {string} [attributes] of the LaneChangeAction */
+const laneChange = (dynamics, target, attributes = '') => `<LateralAction>
+  <LaneChangeAction${attributes}>
     ${dynamics}
     <LaneChangeTarget>
       ${target}
     </LaneChangeTarget>
   </LaneChangeAction>
 </LateralAction>`;
+/** A swerve within the lane to a target offset, as smooth as its largest lateral acceleration allows. @param {string} target */
+const laneOffset = (target) => `<LateralAction>
+  <LaneOffsetAction continuous="false">
+    <LaneOffsetActionDynamics parameterAttributes="maxLateralAcc" maxLateralAcc="2" dynamicsShape="sinusoidal"/>
+    <LaneOffsetTarget>
+      ${target}
+    </LaneOffsetTarget>
+  </LaneOffsetAction>
+</LateralAction>`;
+/** The overtaking vehicle changes back once its pull-out is over and it is the gap asked ahead of the ego. */
+const overtakenTrigger = () => `<StartTrigger>
+  <ConditionGroup>
+    <Condition name="OvertakingPulledOut" delay="0" conditionEdge="none">
+      <ByValueCondition>
+        <StoryboardElementStateCondition storyboardElementType="event" storyboardElementRef="OvertakingPullOut" state="completeState"/>
+      </ByValueCondition>
+    </Condition>
+    <Condition name="OvertakingAhead" delay="0" conditionEdge="none">
+${indent(
+  byEntity(
+    'overtaker',
+    '<RelativeDistanceCondition parameterAttributes="entityRef,value" entityRef="ego" relativeDistanceType="longitudinal" value="10" freespace="true" rule="greaterThan"/>',
+  ),
+  6,
+)}
+    </Condition>
+  </ConditionGroup>
+</StartTrigger>`;
+/** The lane-change time of every module that changes lane. @param {string} [about] @returns {Parameter} */
+const laneChangeTimeParameter = (about = 'how long the lane change takes') => ({
+  key: 'LaneChangeActionDynamics.value',
+  name: 'laneChangeTime',
+  unit: 's',
+  range: '0.5..10',
+  about,
+});
+/** A lane change's dynamics, its time a key. @param {number} time */
+const sinusoidalLaneChange = (time) =>
+  `<LaneChangeActionDynamics parameterAttributes="value" dynamicsShape="sinusoidal" value="${time}" dynamicsDimension="time"/>`;
+/** The actor takes a speed (a key) at once, from the start. @param {string} name @param {number} speed @param {string} triggerName */
+const speedFromStart = (name, speed, triggerName) =>
+  event(
+    name,
+    privateAction(
+      name,
+      speedAction(
+        '<SpeedActionDynamics dynamicsShape="step" value="0" dynamicsDimension="time"/>',
+        `<AbsoluteTargetSpeed parameterAttributes="value" value="${speed}"/>`,
+      ),
+    ),
+    trigger(triggerName, atTime(0)),
+    'parallel',
+  );
 /** A straight walk or ride from where the actor stands, `length` metres ahead of it. @param {string} actor @param {number} length */
 const crossing = (actor, length) => `<RoutingAction>
   <FollowTrajectoryAction>
@@ -240,39 +303,19 @@ export const MODULES = [
         range: '2..100',
         about: 'the gap (bumper to bumper, along the road) between the ego and the car when the lane change starts',
       },
-      {
-        key: 'LaneChangeActionDynamics.value',
-        name: 'laneChangeTime',
-        unit: 's',
-        range: '0.5..10',
-        about: 'how long the lane change takes',
-      },
+      laneChangeTimeParameter(),
       { key: 'RelativeDistanceCondition.entityRef', name: 'ego', about: 'the vehicle it cuts in ahead of' },
       { key: 'RelativeTargetLane.entityRef', name: 'egoLane', about: 'the vehicle whose lane it changes into (the ego)' },
       { key: 'EntityRef.entityRef', name: 'self', about: 'the cutting-in car itself (as in Actors): its gap triggers the lane change' },
     ],
     keys: {},
     maneuver: [
-      event(
-        'CutInSpeed',
-        privateAction(
-          'CutInSpeed',
-          speedAction(
-            '<SpeedActionDynamics dynamicsShape="step" value="0" dynamicsDimension="time"/>',
-            '<AbsoluteTargetSpeed parameterAttributes="value" value="17"/>',
-          ),
-        ),
-        trigger('CutInSpeedStart', atTime(0)),
-        'parallel',
-      ),
+      speedFromStart('CutInSpeed', 17, 'CutInSpeedStart'),
       event(
         'CutInLaneChange',
         privateAction(
           'CutInLaneChange',
-          laneChange(
-            '<LaneChangeActionDynamics parameterAttributes="value" dynamicsShape="sinusoidal" value="3" dynamicsDimension="time"/>',
-            '<RelativeTargetLane parameterAttributes="entityRef" entityRef="ego" value="0"/>',
-          ),
+          laneChange(sinusoidalLaneChange(3), '<RelativeTargetLane parameterAttributes="entityRef" entityRef="ego" value="0"/>'),
         ),
         trigger(
           'CutInGap',
@@ -349,18 +392,7 @@ export const MODULES = [
     stopAt: 6,
     parameters: [{ key: 'AbsoluteTargetSpeed.value', name: 'speed', unit: 'm/s', range: '0..40', about: 'its speed (0: stationary)' }],
     keys: {},
-    maneuver: event(
-      'SlowTargetSpeed',
-      privateAction(
-        'SlowTargetSpeed',
-        speedAction(
-          '<SpeedActionDynamics dynamicsShape="step" value="0" dynamicsDimension="time"/>',
-          '<AbsoluteTargetSpeed parameterAttributes="value" value="0"/>',
-        ),
-      ),
-      trigger('SlowTargetStart', atTime(0)),
-      'parallel',
-    ),
+    maneuver: speedFromStart('SlowTargetSpeed', 0, 'SlowTargetStart'),
   },
   {
     name: 'pedestrian-crossing',
@@ -436,13 +468,7 @@ export const MODULES = [
         range: '2..100',
         about: 'its gap to the vehicle ahead of it when the lane change starts',
       },
-      {
-        key: 'LaneChangeActionDynamics.value',
-        name: 'laneChangeTime',
-        unit: 's',
-        range: '0.5..10',
-        about: 'how long the lane change takes',
-      },
+      laneChangeTimeParameter(),
       {
         key: 'RelativeTargetLane.value',
         name: 'side',
@@ -463,10 +489,7 @@ export const MODULES = [
       'CutOutLaneChange',
       privateAction(
         'CutOutLaneChange',
-        laneChange(
-          '<LaneChangeActionDynamics parameterAttributes="value" dynamicsShape="sinusoidal" value="2" dynamicsDimension="time"/>',
-          '<RelativeTargetLane parameterAttributes="entityRef,value" entityRef="lead" value="-1"/>',
-        ),
+        laneChange(sinusoidalLaneChange(2), '<RelativeTargetLane parameterAttributes="entityRef,value" entityRef="lead" value="-1"/>'),
       ),
       trigger(
         'CutOutGap',
@@ -491,18 +514,7 @@ export const MODULES = [
     stopAt: 6,
     parameters: [{ key: 'AbsoluteTargetSpeed.value', name: 'speed', unit: 'm/s', range: '0..12', about: 'its riding speed' }],
     keys: {},
-    maneuver: event(
-      'CyclistSpeed',
-      privateAction(
-        'CyclistSpeed',
-        speedAction(
-          '<SpeedActionDynamics dynamicsShape="step" value="0" dynamicsDimension="time"/>',
-          '<AbsoluteTargetSpeed parameterAttributes="value" value="4"/>',
-        ),
-      ),
-      trigger('CyclistStart', atTime(0)),
-      'parallel',
-    ),
+    maneuver: speedFromStart('CyclistSpeed', 4, 'CyclistStart'),
   },
   {
     name: 'cyclist-crossing',
@@ -571,13 +583,7 @@ export const MODULES = [
     stopAt: 7,
     parameters: [
       { key: 'SimulationTimeCondition.value', name: 'startTime', unit: 's', range: '0..600', about: 'when the lane change starts' },
-      {
-        key: 'LaneChangeActionDynamics.value',
-        name: 'laneChangeTime',
-        unit: 's',
-        range: '0.5..10',
-        about: 'how long the lane change takes',
-      },
+      laneChangeTimeParameter(),
       {
         key: 'RelativeTargetLane.value',
         name: 'side',
@@ -592,14 +598,244 @@ export const MODULES = [
       'LaneChange',
       privateAction(
         'LaneChange',
-        laneChange(
-          '<LaneChangeActionDynamics parameterAttributes="value" dynamicsShape="sinusoidal" value="3" dynamicsDimension="time"/>',
-          '<RelativeTargetLane parameterAttributes="entityRef,value" entityRef="adversary" value="1"/>',
-        ),
+        laneChange(sinusoidalLaneChange(3), '<RelativeTargetLane parameterAttributes="entityRef,value" entityRef="adversary" value="1"/>'),
       ),
       trigger('LaneChangeStart', atTime(2, ' parameterAttributes="value"')),
       'parallel',
     ),
+  },
+  {
+    name: 'oncoming-vehicle',
+    title: 'Oncoming vehicle in the ego lane',
+    group: 'Vehicles oncoming',
+    summary:
+      "A vehicle in the lane of the other direction drives towards the ego at a set speed and, once the gap between them is below the one asked, moves over into the ego's lane, head-on, at a set lateral offset from its centre.",
+    actor: 'the oncoming vehicle, in the lane of the other direction',
+    actorName: 'oncoming',
+    groupName: 'OncomingVehicle',
+    entities: [VEHICLE('ego', 'vehicle.lincoln.mkz_2017'), VEHICLE('oncoming', 'vehicle.audi.tt')],
+    init: [placed('ego', -1, 50, 15), placed('oncoming', 1, 300, 15)],
+    stopAt: 7.5,
+    parameters: [
+      {
+        key: 'AbsoluteTargetSpeed.value',
+        name: 'speed',
+        unit: 'm/s',
+        range: '0..70',
+        about: "the oncoming vehicle's speed from the start",
+      },
+      {
+        key: 'RelativeDistanceCondition.value',
+        name: 'gap',
+        unit: 'm',
+        range: '5..300',
+        about: 'the gap (bumper to bumper, along the road) between it and the ego when it starts moving over',
+      },
+      laneChangeTimeParameter("how long moving over into the ego's lane takes"),
+      {
+        key: 'LaneChangeAction.targetLaneOffset',
+        name: 'offset',
+        unit: 'm',
+        range: '-1.75..1.75',
+        about:
+          "where it ends across the ego's lane: its offset from the lane's centre line, positive to the ego's left (0: head-on, full overlap)",
+      },
+      { key: 'RelativeDistanceCondition.entityRef', name: 'ego', about: 'the vehicle it drives towards' },
+      { key: 'RelativeTargetLane.entityRef', name: 'egoLane', about: 'the vehicle whose lane it moves into (the ego)' },
+      { key: 'EntityRef.entityRef', name: 'self', about: 'the oncoming vehicle itself (as in Actors): its gap triggers the move' },
+    ],
+    keys: {},
+    maneuver: [
+      speedFromStart('OncomingSpeed', 15, 'OncomingSpeedStart'),
+      event(
+        'OncomingIntoEgoLane',
+        privateAction(
+          'OncomingIntoEgoLane',
+          laneChange(
+            sinusoidalLaneChange(2),
+            '<RelativeTargetLane parameterAttributes="entityRef" entityRef="ego" value="0"/>',
+            ' parameterAttributes="targetLaneOffset" targetLaneOffset="0"',
+          ),
+        ),
+        trigger(
+          'OncomingGap',
+          byEntity(
+            'oncoming',
+            '<RelativeDistanceCondition parameterAttributes="entityRef,value" entityRef="ego" relativeDistanceType="longitudinal" value="100" freespace="true" rule="lessThan"/>',
+          ),
+        ),
+        'parallel',
+      ),
+    ].join('\n'),
+  },
+  {
+    name: 'double-lane-change',
+    title: 'Double lane change',
+    group: 'Vehicles ahead',
+    summary:
+      "The vehicle ahead in the ego's lane changes into the lane beside it (left or right) at a set time, stays there for a set time, and changes back into the ego's lane.",
+    actor: "the vehicle changing lane, ahead in the ego's lane",
+    actorName: 'lead',
+    groupName: 'DoubleLaneChange',
+    entities: [VEHICLE('ego', 'vehicle.lincoln.mkz_2017'), VEHICLE('lead', 'vehicle.audi.tt')],
+    init: [placed('ego', -1, 50, 15), placed('lead', -1, 80, 15)],
+    stopAt: 10,
+    parameters: [
+      { key: 'SimulationTimeCondition.value', name: 'startTime', unit: 's', range: '0..600', about: 'when the first lane change starts' },
+      laneChangeTimeParameter('how long each of the two lane changes takes'),
+      {
+        key: 'RelativeTargetLane.value',
+        name: 'side',
+        unit: 'lanes',
+        range: '-1..1',
+        about: "the lane it moves out to: 1 the lane left of the ego's, -1 the one right of it",
+      },
+      { key: 'Condition.delay', name: 'hold', unit: 's', range: '0..60', about: 'how long it stays in that lane before changing back' },
+      { key: 'RelativeTargetLane.entityRef', name: 'ego', about: 'the vehicle whose lane it leaves and comes back to (the ego)' },
+    ],
+    keys: {},
+    maneuver: [
+      event(
+        'DoubleLaneChangeOut',
+        privateAction(
+          'DoubleLaneChangeOut',
+          laneChange(sinusoidalLaneChange(2.5), '<RelativeTargetLane parameterAttributes="entityRef,value" entityRef="ego" value="1"/>'),
+        ),
+        trigger('DoubleLaneChangeStart', atTime(1, ' parameterAttributes="value"')),
+        'parallel',
+      ),
+      event(
+        'DoubleLaneChangeBack',
+        privateAction(
+          'DoubleLaneChangeBack',
+          laneChange(sinusoidalLaneChange(2.5), '<RelativeTargetLane parameterAttributes="entityRef" entityRef="ego" value="0"/>'),
+        ),
+        afterEvent('DoubleLaneChangeHold', 'DoubleLaneChangeOut', 2),
+        'parallel',
+      ),
+    ].join('\n'),
+  },
+  {
+    name: 'overtaking',
+    title: 'Overtaking',
+    group: 'Vehicles beside',
+    summary:
+      "A faster vehicle behind the ego in its lane pulls out into the lane beside it once its time headway to the ego is below the one asked, passes the ego, and changes back into the ego's lane once it is the gap asked ahead of it.",
+    actor: "the overtaking vehicle, behind the ego in the ego's lane",
+    actorName: 'overtaker',
+    groupName: 'Overtaking',
+    entities: [VEHICLE('ego', 'vehicle.lincoln.mkz_2017'), VEHICLE('overtaker', 'vehicle.audi.tt')],
+    init: [placed('ego', -2, 80, 15), placed('overtaker', -2, 30, 22)],
+    stopAt: 14,
+    parameters: [
+      {
+        key: 'AbsoluteTargetSpeed.value',
+        name: 'speed',
+        unit: 'm/s',
+        range: '0..70',
+        about: "the overtaking vehicle's speed from the start",
+      },
+      {
+        key: 'TimeHeadwayCondition.value',
+        name: 'headway',
+        unit: 's',
+        range: '0.2..10',
+        about: 'its time headway (gap / its speed) to the ego when it pulls out',
+      },
+      {
+        key: 'RelativeDistanceCondition.value',
+        name: 'gap',
+        unit: 'm',
+        range: '2..100',
+        about: "the gap (bumper to bumper, along the road) ahead of the ego when it changes back into the ego's lane",
+      },
+      laneChangeTimeParameter('how long each of the two lane changes takes'),
+      {
+        key: 'RelativeTargetLane.value',
+        name: 'side',
+        unit: 'lanes',
+        range: '-1..1',
+        about: "the lane it passes in: 1 the lane left of the ego's, -1 the one right of it",
+      },
+      { key: 'TimeHeadwayCondition.entityRef', name: 'ego', about: 'the vehicle it overtakes' },
+      { key: 'RelativeDistanceCondition.entityRef', name: 'egoGap', about: 'the vehicle it overtakes, whose gap counts for changing back' },
+      { key: 'RelativeTargetLane.entityRef', name: 'egoLane', about: 'the vehicle whose lane it leaves and comes back to (the ego)' },
+      { key: 'EntityRef.entityRef', name: 'self', about: 'the overtaking vehicle itself (as in Actors): its headway and gap count' },
+    ],
+    keys: {},
+    maneuver: [
+      speedFromStart('OvertakingSpeed', 22, 'OvertakingSpeedStart'),
+      event(
+        'OvertakingPullOut',
+        privateAction(
+          'OvertakingPullOut',
+          laneChange(sinusoidalLaneChange(2), '<RelativeTargetLane parameterAttributes="entityRef,value" entityRef="ego" value="1"/>'),
+        ),
+        trigger(
+          'OvertakingHeadway',
+          byEntity(
+            'overtaker',
+            '<TimeHeadwayCondition parameterAttributes="entityRef,value" entityRef="ego" value="1" freespace="true" coordinateSystem="road" relativeDistanceType="longitudinal" rule="lessThan"/>',
+          ),
+        ),
+        'parallel',
+      ),
+      event(
+        'OvertakingCutBack',
+        privateAction(
+          'OvertakingCutBack',
+          laneChange(sinusoidalLaneChange(2), '<RelativeTargetLane parameterAttributes="entityRef" entityRef="ego" value="0"/>'),
+        ),
+        overtakenTrigger(),
+        'parallel',
+      ),
+    ].join('\n'),
+  },
+  {
+    name: 'swerving-lead',
+    title: 'Swerving lead vehicle',
+    group: 'Vehicles ahead',
+    summary:
+      "The vehicle ahead in the ego's lane swerves sideways within the road to a set offset from its lane's centre at a set time, with a set lateral acceleration, stays there for a set time and swerves back to the centre.",
+    actor: "the swerving vehicle, ahead in the ego's lane",
+    actorName: 'lead',
+    groupName: 'SwervingLead',
+    entities: [VEHICLE('ego', 'vehicle.lincoln.mkz_2017'), VEHICLE('lead', 'vehicle.audi.tt')],
+    init: [placed('ego', -1, 50, 15), placed('lead', -1, 80, 15)],
+    stopAt: 8,
+    parameters: [
+      { key: 'SimulationTimeCondition.value', name: 'startTime', unit: 's', range: '0..600', about: 'when the swerve starts' },
+      {
+        key: 'AbsoluteTargetLaneOffset.value',
+        name: 'offset',
+        unit: 'm',
+        range: '-3.5..3.5',
+        about: "how far it swerves from its lane's centre line: positive to the left, negative to the right",
+      },
+      {
+        key: 'LaneOffsetActionDynamics.maxLateralAcc',
+        name: 'lateralAcceleration',
+        unit: 'm/s²',
+        range: '0.5..10',
+        about: 'the largest lateral acceleration of the swerve, out and back',
+      },
+      { key: 'Condition.delay', name: 'hold', unit: 's', range: '0..60', about: 'how long it stays at the offset before swerving back' },
+    ],
+    keys: {},
+    maneuver: [
+      event(
+        'SwerveOut',
+        privateAction('SwerveOut', laneOffset('<AbsoluteTargetLaneOffset parameterAttributes="value" value="1.5"/>')),
+        trigger('SwerveStart', atTime(1, ' parameterAttributes="value"')),
+        'parallel',
+      ),
+      event(
+        'SwerveBack',
+        privateAction('SwerveBack', laneOffset('<AbsoluteTargetLaneOffset value="0"/>')),
+        afterEvent('SwerveHold', 'SwerveOut', 1),
+        'parallel',
+      ),
+    ].join('\n'),
   },
 ];
 
