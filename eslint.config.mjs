@@ -75,7 +75,7 @@ export default tseslint.config(
     rules: { 'no-restricted-imports': ['error', { patterns: commonPatterns(editorModules) }] },
   },
   {
-    files: ['common/src/protocol.ts', 'common/src/sceneProtocol.ts'],
+    files: ['common/src/protocol.ts', 'common/src/sceneProtocol.ts', 'common/src/libraryProtocol.ts'],
     rules: {
       'no-restricted-imports': ['error', { patterns: commonPatterns([...editorModules, '!vscode-languageserver-protocol']) }],
     },

@@ -24,6 +24,7 @@ import { registerVariations } from './variations/commands';
 import type { VariationsView } from './variations/panel';
 import { extractGroupCommand } from './extractGroup';
 import { registerDebugging } from './debugging';
+import { registerLibrary, type LibraryApi } from './library/commands';
 
 /** What the extension hands to other extensions and to its own tests. */
 export interface Modular2SimpleApi {
@@ -43,6 +44,8 @@ export interface Modular2SimpleApi {
   /** The latest Run in esmini, and an event after each (for views of its trajectories). */
   readonly lastEsminiRun: () => EsminiRunEvent | undefined;
   readonly onDidRunEsmini: vscode.Event<EsminiRunEvent>;
+  /** The Scenario Library view and its module page. */
+  readonly library: LibraryApi;
 }
 
 let languageClient: LanguageClient | undefined;
@@ -183,6 +186,7 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
     }
   });
 
+  const library = registerLibrary(context, server, reporter);
   const birdsEye = registerBirdsEye(context, client, log);
   const variations = registerVariations(context, log);
   // A finished run goes straight into the picture: its trajectories beside the scenario.
@@ -206,6 +210,7 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
     variations,
     carla,
     carlaExportLosses: carlaLosses.collection,
+    library,
   };
 }
 

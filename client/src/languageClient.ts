@@ -23,6 +23,13 @@ import {
   type StructureNode,
   type WriteResult,
 } from '../../common/src/protocol';
+import {
+  LibraryInsertRequest,
+  LibraryModulesRequest,
+  type LibraryInsertParams,
+  type LibraryInsertResult,
+  type LibraryListingResult,
+} from '../../common/src/libraryProtocol';
 import { resolveScenarioPaths } from './configuration';
 import { whileRunning } from './requestGate';
 
@@ -152,5 +159,15 @@ export class ServerCommandClient {
   /** The text of a new main scenario at `scenario` with an ego on `roadNetwork`; the caller writes it. */
   async newScenario(scenario: vscode.Uri, roadNetwork: vscode.Uri): Promise<NewScenarioResult> {
     return (await this.started()).sendRequest(NewScenarioRequest, { scenario: scenario.toString(), roadNetwork: roadNetwork.toString() });
+  }
+
+  /** The modules of the scenario libraries (the user's folders, then the built-in one) and what could not be read. */
+  async libraryModules(): Promise<LibraryListingResult> {
+    return (await this.started()).sendRequest(LibraryModulesRequest, {});
+  }
+
+  /** Insert into main: the questions to ask, or the edit once they are answered. */
+  async libraryInsert(params: LibraryInsertParams): Promise<LibraryInsertResult> {
+    return (await this.started()).sendRequest(LibraryInsertRequest, params);
   }
 }

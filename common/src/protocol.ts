@@ -4,6 +4,7 @@
  */
 import { RequestType, WorkspaceEdit } from 'vscode-languageserver-protocol';
 import type { LineSegment } from './lineSegments';
+import { LibraryInsertRequest, LibraryModulesRequest } from './libraryProtocol';
 import { SceneRequest } from './sceneProtocol';
 
 export interface FlattenOptions {
@@ -179,6 +180,8 @@ export const CUSTOM_REQUESTS = [
   ExtractGroupRequest.method,
   ExportForCarlaRequest.method,
   CheckInScenarioRunnerRequest.method,
+  LibraryModulesRequest.method,
+  LibraryInsertRequest.method,
 ];
 
 /** URI scheme of files inside a `.mosc`: `mosc:/abs/path/pkg.mosc/inner.mosc/main.xosc`. */

@@ -10,6 +10,7 @@ import {
   RunEsminiRequest,
   StructureRequest,
 } from '../../../common/src/protocol';
+import { LibraryInsertRequest, LibraryModulesRequest } from '../../../common/src/libraryProtocol';
 import { SceneRequest } from '../../../common/src/sceneProtocol';
 import { SourceRef } from '../core/sources';
 import { OpenDocument } from '../documents';
@@ -23,6 +24,7 @@ import { distributionLenses } from '../features/distributions';
 import { documentLinks } from '../features/documentLinks';
 import { hover } from '../features/hover';
 import { expressionHints } from '../features/inlayHints';
+import { libraryInsert, libraryModules } from '../features/library';
 import { newScenario } from '../features/newScenario';
 import { packCommand } from '../features/pack';
 import { preview } from '../features/preview';
@@ -315,5 +317,17 @@ export const REQUESTS: Record<string, (context: ServerContext, method: string) =
     context.connection.onRequest(
       NewScenarioRequest,
       request(context, method, (params) => newScenario(context.workspace, params)),
+    ),
+  // The modules of the scenario libraries, for the Scenario Library view.
+  [LibraryModulesRequest.method]: (context, method) =>
+    context.connection.onRequest(
+      LibraryModulesRequest,
+      request(context, method, () => libraryModules(context.workspace)),
+    ),
+  // Insert into main: the questions, then the edit that writes a module's group into an Act.
+  [LibraryInsertRequest.method]: (context, method) =>
+    context.connection.onRequest(
+      LibraryInsertRequest,
+      request(context, method, (params) => libraryInsert(context.workspace, params)),
     ),
 };

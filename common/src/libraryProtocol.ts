@@ -1,0 +1,87 @@
+/**
+ * The Scenario Library view's requests (`modular2simple/libraryModules`, `modular2simple/libraryInsert`), typed
+ * for both sides (both bundles import this file).
+ */
+import { RequestType, WorkspaceEdit } from 'vscode-languageserver-protocol';
+
+export interface LibraryParameterSummary {
+  key: string;
+  name: string;
+  unit?: string;
+  range?: string;
+  about: string;
+  defaultValue?: string;
+  /** Whether the key's value names an entity (the main's entity that plays a role of the module). */
+  entity: boolean;
+}
+
+export interface LibraryModuleSummary {
+  /** What `library:NAME` names. */
+  name: string;
+  /** The module's file, a path. */
+  file: string;
+  /** The library folder it comes from, and whether it is the built-in one or the user's. */
+  library: string;
+  libraryLabel: string;
+  title: string;
+  group: string;
+  summary: string;
+  maneuverGroup: string;
+  actor: { name: string; about: string };
+  parameters: LibraryParameterSummary[];
+  example?: string;
+  picture?: string;
+  /** Files of later libraries' modules of the same name, which this one hides. */
+  hides: string[];
+}
+
+/** A library folder or file that could not be used; the rest of the library is listed. */
+export interface LibraryProblemSummary {
+  file: string;
+  /** One-based, when known. */
+  line?: number;
+  message: string;
+}
+
+export interface LibraryListingResult {
+  /** The folders searched, in order (the user's first, the built-in last). */
+  libraries: { folder: string; label: string }[];
+  modules: LibraryModuleSummary[];
+  problems: LibraryProblemSummary[];
+}
+
+export const LibraryModulesRequest = new RequestType<Record<string, never>, LibraryListingResult, void>('modular2simple/libraryModules');
+
+export interface LibraryInsertParams {
+  /** The main the group goes into, a `file:` or `mosc:` URI (its unsaved text is used). */
+  uri: string;
+  /** The module's name (`cut-in`). */
+  module: string;
+  /** `Story/Act`; the first Act when left out. */
+  act?: string;
+  /** For each role of the module (an entity it names), the main's entity that plays it; asked about when left out. */
+  players?: Record<string, string>;
+}
+
+export interface LibraryRoleSummary {
+  name: string;
+  about: string;
+  actor: boolean;
+  keys: string[];
+  /** The main's entity of the same name, when there is one. */
+  guess?: string;
+}
+
+export interface LibraryInsertResult {
+  /** The main's Acts (`Story/Act`) and entities, for the questions. */
+  acts: string[];
+  entities: string[];
+  roles: LibraryRoleSummary[];
+  /** Present when every question was answered: the edit that inserts the group, and its name. */
+  edit?: WorkspaceEdit;
+  groupName?: string;
+  /** Where the group starts once inserted, zero-based. */
+  line?: number;
+}
+
+export const LibraryInsertRequest = new RequestType<LibraryInsertParams, LibraryInsertResult, void>('modular2simple/libraryInsert');

@@ -1,0 +1,176 @@
+/**
+ * *Insert into main*: a library module's group written into a main file's Act as a `ManeuverGroup` holding its
+ * `ScenarioReference`, with every documented key at its default and the module's entities played by the main's
+ * (docs/library.md). The entities a module names are its *roles*: its actor and each entity an entity-valued key
+ * names by default (`ego` in the cut-in's `RelativeDistanceCondition.entityRef`).
+ */
+import type { LibraryModule } from './library';
+import { parseScenario } from './model';
+import { LIBRARY_PREFIX } from './sources';
+import { attributeValue, escapeAttributeValue, XmlElement } from './xml';
+
+/** An entity the module names, which an entity of the main plays. */
+export interface ModuleRole {
+  /** The entity's name in the module (the default of the keys that name it). */
+  name: string;
+  about: string;
+  /** Whether it is the group's actor (in `Actors`). */
+  actor: boolean;
+  /** The keys whose value names it. */
+  keys: string[];
+}
+
+/** An `Act` of the main the group may go into. */
+export interface ActChoice {
+  /** `Story/Act`, what a caller names to choose it. */
+  path: string;
+  story: string;
+  act: string;
+  /** The names of the ManeuverGroups the Act holds. */
+  groups: string[];
+}
+
+export interface MainShape {
+  acts: ActChoice[];
+  entities: string[];
+}
+
+export interface InsertedGroup {
+  /** Where the text goes (an offset of the main's text); nothing is replaced. */
+  offset: number;
+  text: string;
+  groupName: string;
+  act: string;
+}
+
+/** Whether a key's attribute names an entity (`entityRef`, `masterEntityRef`, ...): its value is one of the main's entities. */
+export function isEntityKey(key: string): boolean {
+  const attribute = key.split('.').pop() ?? key;
+  return /entityref$/i.test(attribute);
+}
+
+/** The module's roles: its actor first, then each other entity its entity-valued keys name by default. */
+export function moduleRoles(module: LibraryModule): ModuleRole[] {
+  const roles: ModuleRole[] = [{ name: module.actor.name, about: module.actor.about, actor: true, keys: [] }];
+  for (const parameter of module.parameters) {
+    if (!isEntityKey(parameter.key) || parameter.defaultValue === undefined) continue;
+    let role = roles.find((known) => known.name === parameter.defaultValue);
+    if (!role) {
+      role = { name: parameter.defaultValue, about: parameter.about, actor: false, keys: [] };
+      roles.push(role);
+    }
+    role.keys.push(parameter.key);
+  }
+  return roles;
+}
+
+function storyboardActs(root: XmlElement | undefined): { story: XmlElement; act: XmlElement }[] {
+  const storyboard = root?.children.find((child) => child.name === 'Storyboard');
+  const acts: { story: XmlElement; act: XmlElement }[] = [];
+  for (const story of storyboard?.children.filter((child) => child.name === 'Story') ?? [])
+    for (const act of story.children.filter((child) => child.name === 'Act')) acts.push({ story, act });
+  return acts;
+}
+
+/** The Acts and entities of a main's text, for the questions *Insert into main* asks. */
+export function mainShape(text: string): MainShape {
+  const model = parseScenario(text);
+  return {
+    acts: storyboardActs(model.document.root).map(({ story, act }) => {
+      const storyName = attributeValue(story, 'name') ?? '';
+      const actName = attributeValue(act, 'name') ?? '';
+      return {
+        path: `${storyName}/${actName}`,
+        story: storyName,
+        act: actName,
+        groups: act.children.filter((child) => child.name === 'ManeuverGroup').map((group) => attributeValue(group, 'name') ?? ''),
+      };
+    }),
+    entities: model.entities.map((entity) => entity.name).filter((name) => name.length > 0),
+  };
+}
+
+/** The entity of the main that most likely plays a role: the same name, else the same name ignoring case, else none. */
+export function guessPlayer(role: ModuleRole, entities: readonly string[]): string | undefined {
+  return entities.find((entity) => entity === role.name) ?? entities.find((entity) => entity.toLowerCase() === role.name.toLowerCase());
+}
+
+/** `base`, or `base2`, `base3`, ... : the first not among `taken`. */
+export function uniqueName(base: string, taken: readonly string[]): string {
+  if (!taken.includes(base)) return base;
+  for (let index = 2; ; index++) if (!taken.includes(`${base}${index}`)) return `${base}${index}`;
+}
+
+function lineStart(text: string, offset: number): number {
+  return text.lastIndexOf('\n', offset - 1) + 1;
+}
+
+function indentationAt(text: string, offset: number): string {
+  return /^[ \t]*/.exec(text.slice(lineStart(text, offset)))?.[0] ?? '';
+}
+
+/**
+ * The ManeuverGroup that imports the module's group, written into the chosen Act after its last ManeuverGroup
+ * (before its StartTrigger when it holds none). `players` maps each role to the main's entity; a role left out
+ * keeps the module's name, which `check` then reports as an entity the main does not declare.
+ */
+export function insertModuleGroup(
+  text: string,
+  module: LibraryModule,
+  choice: { act?: string; players: Readonly<Record<string, string>> },
+): InsertedGroup {
+  const model = parseScenario(text);
+  if (!model.document.root || model.document.problems.some((problem) => problem.severity === 'error'))
+    throw new Error('the main is not well-formed XML: fix it first (the Problems panel says where)');
+  const acts = storyboardActs(model.document.root);
+  if (acts.length === 0) throw new Error('the main has no Story with an Act to put the group in');
+  const found = choice.act
+    ? acts.find(({ story, act }) => `${attributeValue(story, 'name') ?? ''}/${attributeValue(act, 'name') ?? ''}` === choice.act)
+    : acts[0];
+  if (!found) throw new Error(`the main has no Act '${choice.act}' (Story/Act)`);
+  const { act } = found;
+  const unit = /^( +|\t)/m.exec(text.slice(0, 4000))?.[1] ?? '  ';
+  const actIndent = indentationAt(text, act.start);
+  const groupIndent = actIndent + unit;
+  const groupName = uniqueName(
+    module.maneuverGroup,
+    model.groups.map((group) => group.name),
+  );
+  const player = (role: string) => choice.players[role] ?? role;
+  const attributeText = (value: string) => escapeAttributeValue(value);
+  const actorPlayer = player(module.actor.name);
+  const roleOfDefault = new Map(moduleRoles(module).map((role) => [role.name, role]));
+  const parameterLines = module.parameters
+    .filter((parameter) => parameter.defaultValue !== undefined)
+    .map((parameter) => {
+      const value =
+        isEntityKey(parameter.key) && roleOfDefault.has(parameter.defaultValue ?? '')
+          ? player(parameter.defaultValue ?? '')
+          : (parameter.defaultValue ?? '');
+      return `${groupIndent}${unit.repeat(3)}<ParameterReference key="${attributeText(parameter.key)}" value="${attributeText(value)}"/>`;
+    });
+  const lines = [
+    `${groupIndent}<ManeuverGroup name="${attributeText(groupName)}" maximumExecutionCount="1">`,
+    `${groupIndent}${unit}<Actors selectTriggeringEntities="false">`,
+    `${groupIndent}${unit.repeat(2)}<EntityRef entityRef="${attributeText(actorPlayer)}"/>`,
+    `${groupIndent}${unit}</Actors>`,
+    `${groupIndent}${unit}<ScenarioReference scenarioFileName="${attributeText(`${LIBRARY_PREFIX}${module.name}`)}">`,
+    `${groupIndent}${unit.repeat(2)}<ManeuverGroupReference maneuverGroupName="${attributeText(module.maneuverGroup)}">`,
+    ...parameterLines,
+    `${groupIndent}${unit.repeat(2)}</ManeuverGroupReference>`,
+    `${groupIndent}${unit}</ScenarioReference>`,
+    `${groupIndent}</ManeuverGroup>`,
+  ];
+  const groups = act.children.filter((child) => child.name === 'ManeuverGroup');
+  const last = groups[groups.length - 1];
+  const block = lines.join('\n');
+  if (last) return { offset: last.end, text: `\n${block}`, groupName, act: attributeValue(act, 'name') ?? '' };
+  if (act.selfClosing) throw new Error(`the Act '${attributeValue(act, 'name') ?? ''}' is empty (<Act/>): give it a StartTrigger first`);
+  const next = act.children[0];
+  // Before the Act's first child (its StartTrigger), at the start of that child's line; else before </Act>.
+  const before = next ? lineStart(text, next.start) : lineStart(text, act.end - '</Act>'.length);
+  const atLineStart = text.slice(before, next ? next.start : act.end - '</Act>'.length).trim() === '';
+  if (atLineStart) return { offset: before, text: `${block}\n`, groupName, act: attributeValue(act, 'name') ?? '' };
+  const at = next ? next.start : act.end - '</Act>'.length;
+  return { offset: at, text: `\n${block}\n${actIndent}`, groupName, act: attributeValue(act, 'name') ?? '' };
+}

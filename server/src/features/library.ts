@@ -1,0 +1,78 @@
+import { WorkspaceEdit } from 'vscode-languageserver/node';
+import { LibraryInsertParams, LibraryInsertResult, LibraryListingResult, LibraryModuleSummary } from '../../../common/src/libraryProtocol';
+import { findModule, LibraryModule, listLibraries } from '../core/library';
+import { guessPlayer, insertModuleGroup, isEntityKey, mainShape, moduleRoles } from '../core/libraryInsert';
+import { LineIndex } from '../core/text';
+import { Workspace } from '../workspace';
+import { invalidParams, refOf } from './commands';
+
+function summary(module: LibraryModule): LibraryModuleSummary {
+  return {
+    name: module.name,
+    file: module.file,
+    library: module.library.folder,
+    libraryLabel: module.library.label,
+    title: module.title,
+    group: module.group,
+    summary: module.summary,
+    maneuverGroup: module.maneuverGroup,
+    actor: module.actor,
+    parameters: module.parameters.map((parameter) => ({
+      key: parameter.key,
+      name: parameter.name,
+      ...(parameter.unit ? { unit: parameter.unit } : {}),
+      ...(parameter.range ? { range: parameter.range } : {}),
+      about: parameter.about,
+      ...(parameter.defaultValue !== undefined ? { defaultValue: parameter.defaultValue } : {}),
+      entity: isEntityKey(parameter.key),
+    })),
+    ...(module.example ? { example: module.example } : {}),
+    ...(module.picture ? { picture: module.picture } : {}),
+    hides: module.hides,
+  };
+}
+
+/** The modules of the workspace's libraries (the user's folders, then the built-in one), and what could not be read. */
+export async function libraryModules(workspace: Workspace): Promise<LibraryListingResult> {
+  const libraries = workspace.store.libraries;
+  const listing = await listLibraries(workspace.store.host, libraries);
+  return {
+    libraries: libraries.map((library) => ({ folder: library.folder, label: library.label })),
+    modules: listing.modules.map(summary),
+    problems: listing.problems,
+  };
+}
+
+/**
+ * *Insert into main*: the questions (the main's Acts and entities, the module's roles with a guess each) and,
+ * once each role has a player, the edit that writes the group into the Act.
+ */
+export async function libraryInsert(workspace: Workspace, params: LibraryInsertParams): Promise<LibraryInsertResult> {
+  if (typeof params?.module !== 'string' || params.module === '') throw invalidParams('module: a library module name is required');
+  const ref = await refOf(workspace, params.uri);
+  const text = await workspace.store.readText(ref).catch((error: Error) => {
+    throw invalidParams(`the main could not be read: ${error.message}`);
+  });
+  const listing = await listLibraries(workspace.store.host, workspace.store.libraries);
+  const { module, suggestion } = findModule(listing, params.module);
+  if (!module) throw invalidParams(`no library module '${params.module}'${suggestion ? `: did you mean '${suggestion}'?` : ''}`);
+  const shape = mainShape(text);
+  const roles = moduleRoles(module).map((role) => {
+    const guess = guessPlayer(role, shape.entities);
+    return { ...role, ...(guess ? { guess } : {}) };
+  });
+  const result: LibraryInsertResult = { acts: shape.acts.map((act) => act.path), entities: shape.entities, roles };
+  const players = params.players ?? {};
+  if (roles.some((role) => typeof players[role.name] !== 'string')) return result;
+  let inserted;
+  try {
+    inserted = insertModuleGroup(text, module, { act: params.act, players });
+  } catch (error) {
+    throw invalidParams(`${module.name} cannot go into ${params.uri}: ${(error as Error).message}`);
+  }
+  const lines = new LineIndex(text);
+  const at = lines.positionAt(inserted.offset);
+  const edit: WorkspaceEdit = { changes: { [params.uri]: [{ range: { start: at, end: at }, newText: inserted.text }] } };
+  const line = at.line + (inserted.text.startsWith('\n') ? 1 : 0);
+  return { ...result, edit, groupName: inserted.groupName, line };
+}

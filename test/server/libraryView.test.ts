@@ -1,0 +1,226 @@
+import * as assert from 'node:assert/strict';
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import { TextEdit } from 'vscode-languageserver/node';
+import { LibraryInsertRequest, LibraryModulesRequest } from '../../common/src/libraryProtocol';
+import { main } from '../../server/src/cli';
+import { builtInLibraryFolder } from '../../server/src/libraries';
+import { requireEsmini, runEsmini } from '../support/esmini';
+import { temporaryWorkspace } from '../support/workspace';
+import { fileUri, TestClient } from './harness';
+
+const builtIn = builtInLibraryFolder() ?? '';
+
+/** The ScenarioObject named `name` in a library example main, renamed. */
+function entityOf(example: string, name: string, rename: string): string {
+  const text = fs.readFileSync(path.join(builtIn, 'examples', `${example}.xosc`), 'utf8');
+  const match = new RegExp(`\\n( *)<ScenarioObject name="${name}">[\\s\\S]*?</ScenarioObject>`).exec(text);
+  assert.ok(match, `${example} has no entity ${name}`);
+  return match[0].replace(`name="${name}"`, `name="${rename}"`);
+}
+
+function placed(entity: string, position: string, speed: number): string {
+  return `
+        <Private entityRef="${entity}">
+          <PrivateAction><TeleportAction><Position>${position}</Position></TeleportAction></PrivateAction>
+          <PrivateAction><LongitudinalAction><SpeedAction>
+            <SpeedActionDynamics dynamicsShape="step" value="0" dynamicsDimension="time"/>
+            <SpeedActionTarget><AbsoluteTargetSpeed value="${speed}"/></SpeedActionTarget>
+          </SpeedAction></LongitudinalAction></PrivateAction>
+        </Private>`;
+}
+
+/** A main with four entities placed on the library's road and one Act holding only the ego's empty group: what Insert into main starts from. */
+function compositionMain(road: string): string {
+  return `<?xml version="1.0" encoding="UTF-8"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="1" date="2026-11-27T00:00:00" description="composed from the library" author="test"/>
+  <ParameterDeclarations/>
+  <CatalogLocations/>
+  <RoadNetwork>
+    <LogicFile filepath="${road}"/>
+  </RoadNetwork>
+  <Entities>${entityOf('cut-in', 'ego', 'Ego')}${entityOf('cut-in', 'adversary', 'Cutter')}${entityOf('cut-in', 'adversary', 'Lead')}${entityOf('pedestrian-crossing', 'pedestrian', 'Walker')}
+  </Entities>
+  <Storyboard>
+    <Init>
+      <Actions>${placed('Ego', '<LanePosition roadId="0" laneId="-1" s="50" offset="0"/>', 20)}${placed('Cutter', '<LanePosition roadId="0" laneId="-2" s="85" offset="0"/>', 17)}${placed('Lead', '<LanePosition roadId="0" laneId="-1" s="150" offset="0"/>', 20)}${placed('Walker', '<LanePosition roadId="0" laneId="-4" s="200" offset="0.75"><Orientation type="relative" h="1.5708" p="0" r="0"/></LanePosition>', 0)}
+      </Actions>
+    </Init>
+    <Story name="Story">
+      <Act name="Act">
+        <ManeuverGroup name="EgoBehaviour" maximumExecutionCount="1">
+          <Actors selectTriggeringEntities="false">
+            <EntityRef entityRef="Ego"/>
+          </Actors>
+        </ManeuverGroup>
+        <StartTrigger>
+          <ConditionGroup>
+            <Condition name="ActStart" delay="0" conditionEdge="none">
+              <ByValueCondition>
+                <SimulationTimeCondition value="0" rule="greaterThan"/>
+              </ByValueCondition>
+            </Condition>
+          </ConditionGroup>
+        </StartTrigger>
+      </Act>
+    </Story>
+    <StopTrigger>
+      <ConditionGroup>
+        <Condition name="End" delay="0" conditionEdge="none">
+          <ByValueCondition>
+            <SimulationTimeCondition value="8" rule="greaterThan"/>
+          </ByValueCondition>
+        </Condition>
+      </ConditionGroup>
+    </StopTrigger>
+  </Storyboard>
+</OpenSCENARIO>
+`;
+}
+
+/** Applies the edits of one file, last first. */
+function applyEdits(text: string, edits: TextEdit[]): string {
+  const lines = text.split('\n');
+  const offset = (line: number, character: number) => lines.slice(0, line).reduce((sum, each) => sum + each.length + 1, 0) + character;
+  let result = text;
+  for (const edit of [...edits].sort(
+    (a, b) => offset(b.range.start.line, b.range.start.character) - offset(a.range.start.line, a.range.start.character),
+  ))
+    result =
+      result.slice(0, offset(edit.range.start.line, edit.range.start.character)) +
+      edit.newText +
+      result.slice(offset(edit.range.end.line, edit.range.end.character));
+  return result;
+}
+
+/** The Scenario Library view's requests (issue 28, item 2): the listing grouped and with its problems, and Insert into main. */
+describe('language server: the Scenario Library view and Insert into main (JSON-RPC)', function () {
+  this.timeout(180_000);
+  let root: string;
+  let client: TestClient;
+
+  before(async function () {
+    const mine = fs.readFileSync(path.join(builtIn, 'slow-target.xosc'), 'utf8').replace('name: slow-target', 'name: parked-car');
+    root = temporaryWorkspace({
+      'main.xosc': compositionMain(path.join(builtIn, 'roads', 'straight_1000m.xodr')),
+      'mine/parked-car.xosc': mine,
+      'mine/broken.xosc': '<?xml version="1.0"?>\n<!-- library module\nname: broken\ntitle: Broken\n-->\n<OpenSCENARIO>',
+      'mine/cut-in.xosc': fs.readFileSync(path.join(builtIn, 'cut-in.xosc'), 'utf8'),
+    });
+    client = await TestClient.start({ root, settings: { library: { folders: ['mine', 'missing'] } } });
+    await client.indexed();
+  });
+  after(() => client?.stop());
+
+  it("lists every built-in module with its doc, keys and picture, the user's folders first, each broken file and missing folder reported", async function () {
+    const listing = await client.send(LibraryModulesRequest, {});
+    assert.deepEqual(
+      listing.libraries.map((library) => library.label),
+      ['user', 'user', 'built-in'],
+    );
+    const builtInNames = fs
+      .readdirSync(builtIn)
+      .filter((entry) => entry.endsWith('.xosc'))
+      .map((entry) => entry.slice(0, -'.xosc'.length));
+    const names = listing.modules.map((module) => module.name);
+    for (const name of [...builtInNames, 'parked-car']) assert.ok(names.includes(name), `${name} is listed: ${names.join(', ')}`);
+    assert.equal(names.filter((name) => name === 'cut-in').length, 1, 'the user cut-in hides the built-in one');
+    const cutIn = listing.modules.find((module) => module.name === 'cut-in');
+    assert.equal(cutIn?.libraryLabel, 'user');
+    assert.deepEqual(cutIn?.hides, [path.join(builtIn, 'cut-in.xosc')]);
+    const leadBrake = listing.modules.find((module) => module.name === 'lead-brake');
+    assert.ok(leadBrake?.picture && fs.existsSync(leadBrake.picture), 'the picture exists');
+    const deceleration = leadBrake.parameters.find((parameter) => parameter.name === 'deceleration');
+    assert.equal(deceleration?.unit, 'm/s²');
+    assert.match(deceleration?.range ?? '', /\.\./);
+    assert.ok(deceleration?.defaultValue, 'a default');
+    assert.equal(leadBrake.parameters.find((parameter) => parameter.key === 'EntityRef.entityRef')?.entity, true);
+    const problems = listing.problems.map((problem) => `${path.relative(root, problem.file)}:${problem.line ?? ''} ${problem.message}`);
+    assert.ok(
+      problems.some((problem) => /^mine\/broken\.xosc:\d+ .*no 'maneuverGroup/.test(problem)),
+      problems.join('\n'),
+    );
+    assert.ok(
+      problems.some((problem) => /^missing: .*does not exist/.test(problem)),
+      problems.join('\n'),
+    );
+  });
+
+  it('Insert into main asks for the roles no entity of the main is named after, then writes three modules that check clean and run in esmini', async function () {
+    const file = path.join(root, 'main.xosc');
+    let text = fs.readFileSync(file, 'utf8');
+    const uri = await client.open(fileUri(file), text);
+    const questions = await client.send(LibraryInsertRequest, { uri, module: 'cut-in' });
+    assert.deepEqual(questions.acts, ['Story/Act']);
+    assert.deepEqual(questions.entities, ['Ego', 'Cutter', 'Lead', 'Walker']);
+    assert.deepEqual(
+      questions.roles.map((role) => [role.name, role.actor, role.guess]),
+      [
+        ['adversary', true, undefined],
+        ['ego', false, 'Ego'],
+      ],
+    );
+    assert.equal(questions.edit, undefined, 'no edit before every role has its entity');
+
+    const inserts: [string, Record<string, string>][] = [
+      ['cut-in', { adversary: 'Cutter', ego: 'Ego' }],
+      ['lead-brake', { lead: 'Lead', ego: 'Ego' }],
+      ['pedestrian-crossing', { pedestrian: 'Walker', ego: 'Ego' }],
+      ['cut-in', { adversary: 'Cutter', ego: 'Ego' }],
+    ];
+    const groupNames: string[] = [];
+    for (const [module, players] of inserts) {
+      const answer = await client.send(LibraryInsertRequest, { uri, module, players });
+      assert.ok(answer.edit?.changes?.[uri], `an edit of the main for ${module}`);
+      text = applyEdits(text, answer.edit.changes[uri]);
+      await client.close(uri);
+      await client.open(uri, text);
+      groupNames.push(answer.groupName ?? '');
+      assert.match(text.split('\n')[answer.line ?? -1], new RegExp(`<ManeuverGroup name="${answer.groupName}"`));
+    }
+    assert.deepEqual(groupNames, ['CutIn', 'LeadBrake', 'PedestrianCrossing', 'CutIn2'], 'a name unique in the Act');
+    assert.match(text, /<EntityRef entityRef="Cutter"\/>\s*<\/Actors>\s*<ScenarioReference scenarioFileName="library:cut-in">/);
+    assert.match(text, /key="RelativeDistanceCondition.entityRef" value="Ego"/);
+    assert.match(text, /key="RelativeObjectPosition.entityRef" value="Walker"/);
+    // The second cut-in is only there to show the unique name: taken out again, the three modules remain.
+    text = text.replace(/\n *<ManeuverGroup name="CutIn2"[\s\S]*?<\/ManeuverGroup>/, '');
+    await client.close(uri);
+    await client.open(uri, text);
+    assert.deepEqual(
+      (await client.diagnosticsOf(uri)).map((diagnostic) => diagnostic.message),
+      [],
+    );
+    fs.writeFileSync(file, text);
+    const errors: string[] = [];
+    const output: string[] = [];
+    const code = await main(['check', file, '--format', 'json'], { out: (line) => output.push(line), err: (line) => errors.push(line) });
+    assert.equal(code, 0, `${output.join('\n')}\n${errors.join('\n')}`);
+    assert.match(output.join('\n'), /"errors": 0/);
+
+    requireEsmini(this);
+    const flat = path.join(root, 'flat.xosc');
+    assert.equal(
+      await main(['flatten', file, '-o', flat, '-q'], { out: () => {}, err: (line) => errors.push(line) }),
+      0,
+      errors.join('\n'),
+    );
+    const steps = await runEsmini(flat, 8);
+    const last = steps[steps.length - 1];
+    assert.ok(last.time > 7, `esmini ran to ${last.time} s`);
+    const [egoY, cutterY] = [last.positions.Ego[1], last.positions.Cutter[1]];
+    assert.ok(Math.abs(egoY - cutterY) < 0.1, `the cutter ends in the ego's lane (y ${cutterY} against ${egoY})`);
+    const walker = steps.map((step) => step.positions.Walker[1]);
+    assert.ok(Math.abs(walker[walker.length - 1] - walker[0]) > 1, 'the pedestrian walked');
+  });
+
+  it('a misspelt module and a main without an Act are refused with a reason', async function () {
+    const uri = await client.open(fileUri(path.join(root, 'other.xosc')), '<OpenSCENARIO><Storyboard/></OpenSCENARIO>');
+    await assert.rejects(client.send(LibraryInsertRequest, { uri, module: 'cut-inn' }), /did you mean 'cut-in'/);
+    await assert.rejects(
+      client.send(LibraryInsertRequest, { uri, module: 'cut-in', players: { adversary: 'A', ego: 'B' } }),
+      /no Story with an Act/,
+    );
+    await client.close(uri);
+  });
+});
