@@ -186,18 +186,45 @@ export function suggestKey(key: string, targets: OverridableAttribute[]): string
   );
 }
 
+/** What one key reaches among a group's attributes: the same for every reference writing it. */
+interface KeyReach {
+  reached: OverridableAttribute[];
+  /** The key a key reaching nothing most likely meant. */
+  suggestion: string | undefined;
+  specificity: number;
+}
+
+/** Above this many keys a group's memo starts again (keys typed one character at a time are each a new key). */
+const MAX_REMEMBERED_KEYS = 512;
+
+// A group's attributes and their parse tree never change, so what a key reaches is found once per key, not per reference and edit.
+const keyReaches = coreMemo<readonly OverridableAttribute[], Map<string, KeyReach>>('keyReaches');
+
+function reachOf(key: string, targets: OverridableAttribute[]): KeyReach {
+  let known = keyReaches.get(targets);
+  if (!known || known.size >= MAX_REMEMBERED_KEYS) keyReaches.set(targets, (known = new Map()));
+  let reach = known.get(key);
+  if (!reach) {
+    const parts = key.split('.');
+    const reached = targets.filter((target) => partsMatch(parts, target));
+    reach = { reached, suggestion: reached.length === 0 ? suggestKey(key, targets) : undefined, specificity: specificity(key) };
+    known.set(key, reach);
+  }
+  return reach;
+}
+
 /** Decides which parameter sets which attribute: the longest matching key wins (on a tie, the one giving more positions), then the last one written. */
 export function planOverrides(targets: OverridableAttribute[], parameters: ParameterReferenceInfo[]): OverridePlan {
   const applied = new Map<OverridableAttribute, ParameterReferenceInfo>();
+  const appliedSpecificity = new Map<OverridableAttribute, number>();
   const matches: KeyMatch[] = [];
   const unknown: OverridePlan['unknown'] = [];
   const withoutDefault: OverridePlan['withoutDefault'] = [];
   for (const parameter of parameters) {
-    const parts = parameter.key.split('.');
-    const reached = targets.filter((target) => partsMatch(parts, target));
+    const { reached, suggestion, specificity: specific } = reachOf(parameter.key, targets);
     matches.push({ parameter, targets: reached });
     if (reached.length === 0) {
-      unknown.push({ parameter, suggestion: suggestKey(parameter.key, targets) });
+      unknown.push({ parameter, suggestion });
       continue;
     }
     for (const target of reached) {
@@ -205,8 +232,11 @@ export function planOverrides(targets: OverridableAttribute[], parameters: Param
         withoutDefault.push({ parameter, target });
         continue;
       }
-      const previous = applied.get(target);
-      if (!previous || specificity(previous.key) <= specificity(parameter.key)) applied.set(target, parameter);
+      const previous = appliedSpecificity.get(target);
+      if (previous === undefined || previous <= specific) {
+        applied.set(target, parameter);
+        appliedSpecificity.set(target, specific);
+      }
     }
   }
   return { applied, matches, unknown, withoutDefault };

@@ -43,6 +43,13 @@ export const CORE_MEMOS = {
     bound: { text: "the store's `packageCacheBytes`: 64 MiB in the server" },
     invalidated: '`ScenarioStore.invalidate` on a watched-file event; a new store on settings or workspace folder changes',
   },
+  resolutions: {
+    where: '`ScenarioStore.resolve` (`core/sources/store.ts`)',
+    key: 'the file writing a `scenarioFileName`, then the name',
+    holds: 'the file or package the name was found as (names not found, or not readable, are looked up again)',
+    bound: { entries: 4096, text: '4,096 names, then started again' },
+    invalidated: "when the store's kinds of files are forgotten (`KindCache.clear`: a watched-file event, `ScenarioStore.invalidate`)",
+  },
   overlays: {
     where: '`ScenarioStore.overlays`',
     key: 'an open file',
@@ -95,6 +102,14 @@ export const CORE_MEMOS = {
     invalidated:
       "never: an element's offsets, attributes and subtree never change (a value re-parse shares only subtrees wholly before the edit, re-pointing just their roots' `parent`; the rest are new elements)",
   },
+  keyReaches: {
+    where: '`planOverrides` (`core/keys.ts`)',
+    key: "a group's overridable attributes (`overridableAttributes`), then a key",
+    holds:
+      'the attributes the key reaches, its suggestion when it reaches none, and how specific it is, for every reference writing that key',
+    bound: { entries: 512, text: 'one entry per group; 512 keys each, then started again' },
+    invalidated: "never: a group's attributes and their elements never change (a new parse is a new group element, a new key)",
+  },
   lastScenarioModels: {
     where: '`core/model.ts`',
     key: 'a parse',
@@ -140,6 +155,14 @@ export const CORE_MEMOS = {
     bound: WITH_KEY,
     invalidated:
       "never: a new model is a new key; a model carried over an in-value edit takes the previous model's lists, each element its counterpart (a list wholly before the edit as it is)",
+  },
+  namedSiblings: {
+    where: '`namedSiblings` (`core/semantics/elementIndex.ts`)',
+    key: 'a semantic model',
+    holds: "each element's children that have a `name` attribute, where two or more do, for the check of names unique on each level",
+    bound: WITH_KEY,
+    invalidated:
+      "never: a new model is a new key; a model carried over an in-value edit takes the previous model's lists, each element its counterpart",
   },
   catalogFiles: {
     where: '`core/semantics/catalogs.ts`, per store',

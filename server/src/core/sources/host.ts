@@ -19,6 +19,8 @@ export interface FileSystemHost {
 /** Whether paths are files or folders, each asked once of a host and remembered until cleared. */
 export class KindCache {
   private readonly known = new Map<string, Promise<FileKind>>();
+  /** Grows with each `clear`: what was derived from the kinds of an older generation is stale. */
+  generation = 0;
 
   constructor(private readonly host: Pick<FileSystemHost, 'kind'>) {}
 
@@ -34,6 +36,7 @@ export class KindCache {
   /** Forgets every kind: a creation or deletion changes the kinds of folders too. */
   clear(): void {
     this.known.clear();
+    this.generation++;
   }
 }
 

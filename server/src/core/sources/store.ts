@@ -8,7 +8,8 @@ import { FileKind, FileSystemHost, KindCache, nodeFileSystem } from './host';
 import { DEFAULT_LIMITS, Limits } from './limits';
 import { Overlays } from './overlays';
 import { PackageCache } from './packages';
-import { childRef, diskRef, displayRef, SourceError, SourceRef } from './ref';
+import { childRef, diskRef, displayRef, refId, SourceError, SourceRef } from './ref';
+import { CORE_MEMOS } from '../memos';
 import { FolderOptions, isWithinFolder, LIBRARY_PREFIX, LibraryFolder, libraryFileName, LookupPlace, Resolution } from './resolution';
 
 export interface StoreOptions {
@@ -49,6 +50,9 @@ export class ScenarioStore {
   private readonly packages: PackageCache;
   private readonly overlays = new Overlays();
   private readonly kinds: KindCache;
+  /** Names found, by the file writing them, while the kinds they were found from hold (`resolutions` of core/memos.ts). */
+  private readonly resolutions = new Map<string, Resolution>();
+  private resolutionsGeneration = 0;
 
   constructor(options: StoreOptions = {}) {
     this.host = options.host ?? nodeFileSystem;
@@ -349,6 +353,24 @@ export class ScenarioStore {
 
   /** Resolves a `scenarioFileName` written in the file `from` (SPEC 3). */
   async resolve(name: string, from: SourceRef): Promise<Resolution> {
+    // A file found is found again while no kind changed (a package's contents change only with an invalidate, which clears the kinds).
+    const generation = this.kinds.generation;
+    if (generation !== this.resolutionsGeneration) {
+      this.resolutions.clear();
+      this.resolutionsGeneration = generation;
+    }
+    const key = `${refId(from)}\n${name}`;
+    const known = this.resolutions.get(key);
+    if (known) return known;
+    const resolution = await this.resolveAgain(name, from);
+    if ((resolution.kind === 'scenario' || resolution.kind === 'package') && this.kinds.generation === generation) {
+      if (this.resolutions.size >= CORE_MEMOS.resolutions.bound.entries) this.resolutions.clear();
+      this.resolutions.set(key, resolution);
+    }
+    return resolution;
+  }
+
+  private async resolveAgain(name: string, from: SourceRef): Promise<Resolution> {
     const trimmed = name.trim();
     if (!trimmed) return { kind: 'invalid', message: 'scenarioFileName is empty' };
     if (trimmed.startsWith(LIBRARY_PREFIX)) return this.resolveInLibraries(trimmed.slice(LIBRARY_PREFIX.length));

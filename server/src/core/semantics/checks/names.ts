@@ -1,4 +1,5 @@
-import { attribute, forEachElement, XmlElement } from '../../xml';
+import { attribute, XmlElement } from '../../xml';
+import { namedSiblings } from '../elementIndex';
 import type { Finding, SemanticCheck } from './types';
 import { at, relatedAt } from './support';
 
@@ -32,18 +33,23 @@ function holdsScenarioReference(element: XmlElement): boolean {
 export const duplicateNames: SemanticCheck = (context) => {
   const { model, evaluator } = context;
   const esmini = context.simulator === 'esmini';
-  const root = model.document.root;
-  if (!root) return [];
+  if (!model.document.root) return [];
   const findings: Finding[] = [];
-  const referenced = new Set(model.storyboardReferences.map((reference) => reference.refAttribute.value.split('::').pop()?.trim() ?? ''));
-  const referencedEntities = new Set(
-    model.entityReferences.map((reference) => evaluator.textOf(reference.element, reference.attribute) ?? reference.attribute.value),
-  );
-  // Every element of the tree is walked on each edit: the cheapest tests first.
-  forEachElement(root, (parent) => {
-    if (parent.children.length < 2) return;
+  // Read only once a name repeats: most files have no repeated name.
+  let referencedNames: Set<string> | undefined;
+  const referenced = () =>
+    (referencedNames ??= new Set(
+      model.storyboardReferences.map((reference) => reference.refAttribute.value.split('::').pop()?.trim() ?? ''),
+    ));
+  let referencedEntityNames: Set<string> | undefined;
+  const referencedEntities = () =>
+    (referencedEntityNames ??= new Set(
+      model.entityReferences.map((reference) => evaluator.textOf(reference.element, reference.attribute) ?? reference.attribute.value),
+    ));
+  // The elements with named siblings, not the whole tree: this runs on each edit.
+  for (const { parent, children } of namedSiblings(model)) {
     let first: Map<string, XmlElement> | undefined;
-    for (const child of parent.children) {
+    for (const child of children) {
       const nameAttribute = attribute(child, 'name');
       if (!nameAttribute || NAMES_CHECKED_ELSEWHERE.has(child.name) || holdsScenarioReference(child)) continue;
       const name = evaluator.textOf(child, nameAttribute);
@@ -54,9 +60,9 @@ export const duplicateNames: SemanticCheck = (context) => {
         first.set(name, child);
         continue;
       }
-      if (child.name === 'ManeuverGroup' && !referenced.has(name)) continue;
+      if (child.name === 'ManeuverGroup' && !referenced().has(name)) continue;
       const inCatalog = parent === model.catalog;
-      const ambiguous = inCatalog || (child.name === 'ScenarioObject' ? referencedEntities.has(name) : referenced.has(name));
+      const ambiguous = inCatalog || (child.name === 'ScenarioObject' ? referencedEntities().has(name) : referenced().has(name));
       const written = name !== nameAttribute.value ? ` (the value of ${nameAttribute.value})` : '';
       const earlierName = attribute(earlier, 'name');
       findings.push({
@@ -74,6 +80,6 @@ export const duplicateNames: SemanticCheck = (context) => {
         ],
       });
     }
-  });
+  }
   return findings;
 };
