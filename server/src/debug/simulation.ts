@@ -208,12 +208,25 @@ export class Simulation {
     }
     library.onStoryboardChange((name, type, state, fullPath) => this.transition(name, type, state, fullPath));
     library.onCondition((name, timestamp) => this.conditionFired(name, timestamp));
-    // Stories start during SE_Init, before a callback can be registered: reported here, at time 0.
+    // Stories start, and their Acts go to standby, during SE_Init, before a callback can be registered: reported here, at time 0.
     const started: StoryboardEvent[] = this.scenario.map.elements
-      .filter((element) => element.kind === 'Story')
-      .map((element) => ({ time: 0, element: element.path, name: element.name, type: 'Story', state: 'running', mapped: element }));
+      .filter((element) => element.kind === 'Story' || element.kind === 'Act')
+      .map((element) => ({
+        time: 0,
+        element: element.path,
+        name: element.name,
+        type: element.kind,
+        state: element.kind === 'Story' ? 'running' : 'standby',
+        mapped: element,
+      }));
     for (const event of started)
-      this.states.set(event.element, { state: 'running', since: 0, mapped: event.mapped, type: 'Story', name: event.name });
+      this.states.set(event.element, {
+        state: event.state as ElementState,
+        since: 0,
+        mapped: event.mapped,
+        type: event.type,
+        name: event.name,
+      });
     return started;
   }
 
@@ -267,12 +280,15 @@ export class Simulation {
    */
   private attributeConditions(events: StoryboardEvent[]): void {
     const started = new Set(events.filter((event) => event.state === 'running').map((event) => event.element));
+    // Two copies firing in one step are two firings: each takes a copy the other has not.
+    const taken = new Set<MappedElement>();
     for (const event of events) {
       if (event.type !== 'Condition') continue;
       const candidates = this.scenario.map.conditionsNamed(event.name);
       if (candidates.length < 2) continue;
-      const owned = candidates.find((candidate) => candidate.parent && started.has(candidate.parent.path));
+      const owned = candidates.find((candidate) => !taken.has(candidate) && candidate.parent && started.has(candidate.parent.path));
       if (owned) {
+        taken.add(owned);
         event.mapped = owned;
         event.element = owned.path;
       }

@@ -1,32 +1,31 @@
+import type { TraceCondition, TraceRecord } from '../../../common/src/trace';
+import type { MappedElement, StoryboardMap } from '../core/flatten/storyboardMap';
 import { displayRef } from '../core/sources';
 import { Simulation, StoryboardEvent } from './simulation';
 
-/** One line of `run --trace OUT.jsonl`: a storyboard transition or a condition firing (docs/debugging.md). */
-export interface TraceRecord {
-  /** Simulated seconds. */
-  time: number;
-  /** esmini's path of the element (`Story::Act::ManeuverGroup::Maneuver::Event`), flattened names. */
-  element: string;
-  type: string;
-  /** `standby`, `running`, `complete`; `true` for a condition that fired. */
-  state: string;
-  /** Where the element is written in the modular sources (the simple scenario for an imported group); 1-based line. */
-  file?: string;
-  line?: number;
-  /** For a condition: its kind and rule as written, the threshold and the value esmini measured (its log line for it). */
-  condition?: string;
-  rule?: string;
-  threshold?: number | string;
-  measured?: number;
-  quantity?: string;
-  esmini?: string;
+export type { TraceRecord };
+
+/** A condition as the flattened scenario writes it, for a `waitsFor`. */
+function writtenCondition(condition: MappedElement): TraceCondition {
+  const spec = condition.condition;
+  const written: TraceCondition = { name: condition.name };
+  if (spec?.type !== undefined) written.condition = spec.type;
+  if (spec?.rule !== undefined) written.rule = spec.rule;
+  if (spec?.value !== undefined)
+    written.threshold = Number.isFinite(Number(spec.value)) && spec.value.trim() !== '' ? Number(spec.value) : spec.value;
+  return written;
 }
 
-export function traceRecord(event: StoryboardEvent, base?: string): TraceRecord {
+/** The trace record of an event; with the scenario's map, a `standby` record says which conditions the element waits for. */
+export function traceRecord(event: StoryboardEvent, base?: string, map?: StoryboardMap): TraceRecord {
   const record: TraceRecord = { time: Number(event.time.toFixed(6)), element: event.element, type: event.type, state: event.state };
   if (event.mapped) {
     record.file = displayRef(event.mapped.source, base);
     record.line = event.mapped.range.start.line + 1;
+  }
+  if (event.state === 'standby' && event.mapped && map) {
+    const waitsFor = map.startConditions(event.mapped).map(writtenCondition);
+    if (waitsFor.length > 0) record.waitsFor = waitsFor;
   }
   if (event.type === 'Condition') {
     const spec = event.mapped?.condition;
@@ -51,7 +50,8 @@ export function describeEvent(event: StoryboardEvent): string {
 
 /** Runs a started simulation to its end, every event as a trace record. */
 export function traceToEnd(simulation: Simulation, started: StoryboardEvent[], base?: string): TraceRecord[] {
-  const records = started.map((event) => traceRecord(event, base));
-  while (!simulation.ended) for (const event of simulation.step()) records.push(traceRecord(event, base));
+  const map = simulation.scenario.map;
+  const records = started.map((event) => traceRecord(event, base, map));
+  while (!simulation.ended) for (const event of simulation.step()) records.push(traceRecord(event, base, map));
   return records;
 }

@@ -59,6 +59,8 @@ export interface MappedElement {
   /** The start tag's last line (a tag may spread its attributes over several). */
   lastTagLine: number;
   condition?: ConditionSpec;
+  /** For a condition: the trigger it is part of (a StartTrigger starts its owner, a StopTrigger ends it). */
+  trigger?: 'start' | 'stop';
 }
 
 function conditionSpec(condition: XmlElement): ConditionSpec {
@@ -116,13 +118,13 @@ export class StoryboardMap {
         visit(child, mapped);
         const trigger = child.children.find((candidate) => candidate.name === 'StartTrigger');
         const stop = child.children.find((candidate) => candidate.name === 'StopTrigger');
-        for (const condition of [...triggerConditions(trigger), ...triggerConditions(stop)])
-          this.add(condition, 'Condition', mapped, evaluateName);
+        for (const condition of triggerConditions(trigger)) this.add(condition, 'Condition', mapped, evaluateName).trigger = 'start';
+        for (const condition of triggerConditions(stop)) this.add(condition, 'Condition', mapped, evaluateName).trigger = 'stop';
       }
     };
     visit(storyboard, undefined);
     for (const condition of triggerConditions(storyboard.children.find((child) => child.name === 'StopTrigger')))
-      this.add(condition, 'Condition', undefined, evaluateName);
+      this.add(condition, 'Condition', undefined, evaluateName).trigger = 'stop';
   }
 
   private add(
@@ -150,6 +152,11 @@ export class StoryboardMap {
     }
     this.elements.push(mapped);
     return mapped;
+  }
+
+  /** The conditions of the element's StartTrigger (what it waits for in standby). */
+  startConditions(owner: MappedElement): MappedElement[] {
+    return this.elements.filter((element) => element.kind === 'Condition' && element.parent === owner && element.trigger === 'start');
   }
 
   /** The element esmini names by this full path (`A::B::C`). */

@@ -1,0 +1,134 @@
+import * as assert from 'node:assert/strict';
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import { describeCondition, describeFiring, storyboardTimeline, type TimelineRow } from '../../common/src/storyboardTimeline';
+import { parseTrace, TraceFormatError, type TraceRecord } from '../../common/src/trace';
+import { mainOf, storeForInputs } from '../../server/src/cli/inputs';
+import { Flattener } from '../../server/src/core/flatten';
+import { prepareScenario, Simulation } from '../../server/src/debug/simulation';
+import { traceToEnd } from '../../server/src/debug/trace';
+import { removeRunFolder, runScenario } from '../../server/src/esmini/run';
+import { esminiCatalogs, esminiRoads, requireEsmini } from '../support/esmini';
+import { requireEsminiLibrary } from '../support/esminiBinaries';
+import { writeTwoCutIns } from '../support/debugScenarios';
+import { temporaryFolder } from '../support/temporaryDirectory';
+
+const roadPath = [esminiRoads, path.join(esminiCatalogs, 'Vehicles')];
+
+async function traceOf(folder: string): Promise<TraceRecord[]> {
+  const prepared = await prepareScenario(new Flattener(storeForInputs([], undefined, [folder])), mainOf(folder), { roadPath, duration: 8 });
+  const simulation = new Simulation(prepared, { roadPath, duration: 8 });
+  try {
+    return traceToEnd(simulation, simulation.start(), folder);
+  } finally {
+    simulation.close();
+  }
+}
+
+/** esmini's own log of the same scenario (the program, not the library): `[2.350] [info] ChangeLane standbyState -> startTransition -> runningState`. */
+async function esminiStarts(folder: string, name: string): Promise<number[]> {
+  const result = await runScenario(new Flattener(storeForInputs([], undefined, [folder])), mainOf(folder), { roadPath, duration: 8 });
+  try {
+    assert.equal(result.outcome, 'ok', result.message);
+    const pattern = new RegExp(`^\\[([\\d.]+)\\] \\[info\\] ${name} standbyState -> startTransition -> runningState`, 'gm');
+    return [...result.log.matchAll(pattern)].map((match) => Number(match[1]));
+  } finally {
+    removeRunFolder(result);
+  }
+}
+
+const row = (rows: TimelineRow[], suffix: string) => {
+  const found = rows.find((candidate) => candidate.element.endsWith(suffix));
+  assert.ok(found, `a row ending ${suffix} among ${rows.map((candidate) => candidate.element).join(', ')}`);
+  return found;
+};
+
+describe('storyboard timeline of a real esmini run', function () {
+  this.timeout(120_000);
+  before(function () {
+    requireEsminiLibrary(this);
+    requireEsmini(this);
+  });
+
+  it('gives each copy of a reused group its own rows, at the times esmini logs, with the condition that fired each', async () => {
+    const folder = temporaryFolder();
+    writeTwoCutIns(folder);
+    const timeline = storyboardTimeline(await traceOf(folder));
+    const lead = row(timeline.rows, 'CutInLead.CutIn::CutInManeuver::ChangeLane');
+    const vehicle = row(timeline.rows, 'CutInVehicle.CutIn::CutInManeuver::ChangeLane');
+    // The program's log has the two starts, without saying which copy is which; the library's callbacks do.
+    assert.deepEqual(
+      await esminiStarts(folder, 'ChangeLane'),
+      [lead.spans[0].start, vehicle.spans[0].start].sort((a, b) => a - b),
+    );
+    assert.deepEqual(
+      { group: lead.group, file: lead.file, line: lead.line, spans: lead.spans.length, start: lead.spans[0].start, end: lead.spans[0].end },
+      { group: 'CutInLead.CutIn', file: 'lane_change.xosc', line: 116, spans: 1, start: 2.35, end: 3.8 },
+    );
+    assert.equal(describeFiring(lead.spans[0].cause!), 'RelativeDistanceCondition: rel_dist 30.12 > 30');
+    assert.equal(vehicle.group, 'CutInVehicle.CutIn');
+    assert.equal(vehicle.spans[0].start, 4.4);
+    assert.equal(describeFiring(vehicle.spans[0].cause!), 'RelativeDistanceCondition: rel_dist 12.81 > 12');
+    // Both copies' SpeedUp fire in one step: each has its own copy of the condition.
+    for (const group of ['CutInLead.CutIn', 'CutInVehicle.CutIn'])
+      assert.equal(row(timeline.rows, `${group}::CutInManeuver::SpeedUp`).spans[0].cause?.name, 'SpeedUpStart', group);
+    // Storyboard order: each row after its parent, the Action after its Event.
+    const order = timeline.rows.map((candidate) => candidate.element);
+    assert.ok(order.indexOf(lead.element) < order.indexOf(`${lead.element}::ChangeLane`));
+    assert.ok(order.indexOf(lead.element.replace('::CutInManeuver::ChangeLane', '')) < order.indexOf(lead.element));
+    assert.equal(timeline.rows[0].type, 'Story');
+  });
+
+  it('lists an element that never started with the condition that never became true', async () => {
+    const folder = temporaryFolder();
+    writeTwoCutIns(folder);
+    const main = path.join(folder, 'main.xosc');
+    fs.writeFileSync(
+      main,
+      fs
+        .readFileSync(main, 'utf8')
+        .replace('key="RelativeDistanceCondition.value" value="30"', 'key="RelativeDistanceCondition.value" value="500"'),
+    );
+    const timeline = storyboardTimeline(await traceOf(folder), 8);
+    const never = row(timeline.rows, 'CutInLead.CutIn::CutInManeuver::ChangeLane');
+    assert.equal(never.started, false);
+    assert.deepEqual(never.spans, []);
+    assert.deepEqual(never.waitsFor?.map(describeCondition), ['RelativeDistanceCondition greaterThan 500']);
+    assert.equal(row(timeline.rows, 'CutInVehicle.CutIn::CutInManeuver::ChangeLane').started, true);
+    assert.equal(timeline.end, 8);
+  });
+});
+
+describe('storyboard trace files', () => {
+  it('reads run --trace lines and names the line that is not a record', () => {
+    const records = parseTrace('{"time":0,"element":"S","type":"Story","state":"running"}\n\n', 'run.jsonl');
+    assert.equal(records.length, 1);
+    assert.throws(
+      () => parseTrace('{"time":0,"element":"S","type":"Story","state":"running"}\n{"time":', 'run.jsonl'),
+      (error: Error) => {
+        assert.ok(error instanceof TraceFormatError);
+        assert.match(error.message, /^run\.jsonl:2: not JSON/);
+        return true;
+      },
+    );
+    assert.throws(() => parseTrace('{"time":"0","element":"S"}', 'run.jsonl'), /run\.jsonl:1: not a trace record/);
+  });
+
+  it('a condition firing while its element runs (a StopTrigger) starts nothing; a restart is a second bar', () => {
+    const timeline = storyboardTimeline([
+      { time: 0, element: 'S', type: 'Story', state: 'running' },
+      { time: 0, element: 'S::A', type: 'Act', state: 'standby' },
+      { time: 1, element: 'S::A::Go', type: 'Condition', state: 'true', condition: 'SimulationTimeCondition', measured: 1, threshold: 1 },
+      { time: 1, element: 'S::A', type: 'Act', state: 'running' },
+      { time: 2, element: 'S::A::Halt', type: 'Condition', state: 'true' },
+      { time: 2, element: 'S::A', type: 'Act', state: 'complete' },
+      { time: 3, element: 'S::A', type: 'Act', state: 'running' },
+    ]);
+    const act = row(timeline.rows, 'S::A');
+    assert.deepEqual(act.spans, [
+      { start: 1, end: 2, cause: { name: 'Go', time: 1, condition: 'SimulationTimeCondition', measured: 1, threshold: 1 } },
+      { start: 3 },
+    ]);
+    assert.equal(timeline.end, 3);
+  });
+});
