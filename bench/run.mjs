@@ -85,6 +85,7 @@ for (const name of [
   'check.mjs',
   'refactorings.mjs',
   'carla.mjs',
+  'debugger.mjs',
 ]) {
   const bench = path.join(root, 'bench', name);
   if (!existsSync(bench)) continue;

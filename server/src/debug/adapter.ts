@@ -417,6 +417,8 @@ export class ScenarioDebugSession extends DebugSession {
             return this.stopWith({ reason: 'pause', description: `Paused at ${fixed(simulation.time)} s`, firings: [], breakpointIds: [] });
           if (simulation.ended) return this.finished(simulation);
           const events = simulation.step();
+          // Most steps report nothing: no breakpoint to weigh unless a time breakpoint is due (bench/debugger.mjs).
+          if (events.length === 0 && mode !== 'step' && !this.timeBreakpointDue(simulation)) continue;
           this.report(events);
           const stop = this.breakpointStop(simulation, events) ?? this.stepStop(simulation, events, mode, stepOutOf);
           if (stop) return this.stopWith(stop);
@@ -433,13 +435,25 @@ export class ScenarioDebugSession extends DebugSession {
     setImmediate(slice);
   }
 
+  private timeBreakpointDue(simulation: Simulation): boolean {
+    let time: number | undefined;
+    for (const breakpoint of this.functionBreakpoints)
+      if (breakpoint.time !== undefined && !breakpoint.done && (time ??= simulation.time) >= breakpoint.time - 1e-9) return true;
+    return false;
+  }
+
   private finished(simulation: Simulation): void {
     this.running = false;
     this.output(`The scenario ended at ${fixed(simulation.time)} s\n`);
     this.end();
   }
 
-  private stepStop(simulation: Simulation, events: StoryboardEvent[], mode: RunMode, stepOutOf: string | undefined): Stop | undefined {
+  private stepStop(
+    simulation: Simulation,
+    events: readonly StoryboardEvent[],
+    mode: RunMode,
+    stepOutOf: string | undefined,
+  ): Stop | undefined {
     const firings = events.filter((event) => event.type === 'Condition');
     if (mode === 'step') return { reason: 'step', description: `Stepped to ${fixed(simulation.time)} s`, firings, breakpointIds: [] };
     const transitions = events.filter((event) => event.type !== 'Condition');
@@ -499,7 +513,7 @@ export class ScenarioDebugSession extends DebugSession {
     }
   }
 
-  private breakpointStop(simulation: Simulation, events: StoryboardEvent[]): Stop | undefined {
+  private breakpointStop(simulation: Simulation, events: readonly StoryboardEvent[]): Stop | undefined {
     const firings = events.filter((event) => event.type === 'Condition');
     const ids: number[] = [];
     let stopEvent: StoryboardEvent | undefined;
@@ -560,8 +574,8 @@ export class ScenarioDebugSession extends DebugSession {
 
   // ---- output
 
-  private output(text: string, category = 'console', where?: { source: SourceRef; line: number }): void {
-    const event = new OutputEvent(text, category) as DebugProtocol.OutputEvent;
+  private output(text: string, category = 'console', where?: { source: SourceRef; line: number }, data?: unknown): void {
+    const event = new OutputEvent(text, category, data) as DebugProtocol.OutputEvent;
     if (where) {
       event.body.source = this.sourceOf(where.source);
       event.body.line = this.convertDebuggerLineToClient(where.line);
@@ -577,11 +591,15 @@ export class ScenarioDebugSession extends DebugSession {
     });
   }
 
-  /** A line in the Debug Console per transition and condition firing, with its time and source line. */
-  private report(events: StoryboardEvent[]): void {
+  /**
+   * A line in the Debug Console per transition and condition firing, with its time and source line; a condition's
+   * carries in `data` when esmini reported it (the monotonic clock's ms), from which a client measures the pause latency.
+   */
+  private report(events: readonly StoryboardEvent[]): void {
     for (const event of events) {
       const where = event.mapped ? { source: event.mapped.source, line: event.mapped.range.start.line } : undefined;
-      this.output(`[${fixed(event.time)}] ${describeEvent(event)}\n`, 'console', where);
+      const data = event.reportedAtMs === undefined ? undefined : { element: event.element, reportedAtMs: event.reportedAtMs };
+      this.output(`[${fixed(event.time)}] ${describeEvent(event)}\n`, 'console', where, data);
     }
   }
 

@@ -36,6 +36,8 @@ export interface ConditionReason {
   threshold?: number;
 }
 
+const NO_EVENTS: readonly StoryboardEvent[] = Object.freeze([]);
+
 /** One storyboard transition or condition firing, as esmini reported it. */
 export interface StoryboardEvent {
   time: number;
@@ -49,6 +51,8 @@ export interface StoryboardEvent {
   mapped: MappedElement | undefined;
   /** For a condition: the rule and threshold as the scenario writes them, and what esmini measured. */
   reason?: ConditionReason;
+  /** For a condition: when esmini's callback reported it, in ms of the system's monotonic clock (process.hrtime), for the pause latency (bench/debugger.mjs). */
+  reportedAtMs?: number;
 }
 
 export interface SimulationOptions {
@@ -163,6 +167,7 @@ export class Simulation {
     { state: ElementState; since: number; mapped: MappedElement | undefined; type: string; name: string }
   >();
   private closed = false;
+  private steps = 0;
   ended = false;
 
   constructor(
@@ -234,14 +239,21 @@ export class Simulation {
     return this.library.simulationTime();
   }
 
-  /** One step of `timeStep` seconds; what esmini reported during it. */
-  step(): StoryboardEvent[] {
-    if (this.ended || this.closed) return [];
+  /** One step of `timeStep` seconds; what esmini reported during it (most steps: nothing, the one shared empty list). */
+  step(): readonly StoryboardEvent[] {
+    if (this.ended || this.closed) return NO_EVENTS;
     this.library.stepDT(this.timeStep);
+    this.steps++;
+    // A step costs esmini microseconds, so each call counts: esmini's time is asked for only from a step before the end,
+    // its quit flag (the storyboard complete, which the callback reports) when something was reported, else every 64 steps.
+    const nearEnd = (this.steps + 1) * this.timeStep >= this.duration;
+    const quitMayBeSet = this.pending.length > 0 || this.steps % 64 === 0;
+    if ((quitMayBeSet && this.library.quitFlag() !== 0) || (nearEnd && this.library.simulationTime() >= this.duration - 1e-9))
+      this.ended = true;
+    if (this.pending.length === 0) return NO_EVENTS;
     const events = this.pending;
     this.pending = [];
     this.attributeConditions(events);
-    if (this.library.quitFlag() !== 0 || this.library.simulationTime() >= this.duration - 1e-9) this.ended = true;
     return events;
   }
 
@@ -271,6 +283,7 @@ export class Simulation {
       state: 'true',
       mapped: candidates[0],
       reason: detail === undefined ? undefined : conditionReason(detail),
+      reportedAtMs: Number(process.hrtime.bigint()) / 1e6,
     });
   }
 

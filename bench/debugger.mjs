@@ -1,0 +1,208 @@
+// Debugger benchmark (figures, not a timed test): simulation steps per second under the debug adapter with no
+// breakpoint hit against esmini's own headless run of the same scenario at the same step, and the pause latency from
+// a condition firing (esmini's callback, in the adapter) to the `stopped` event read by a DAP client.
+import { spawnSync } from 'node:child_process';
+import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { createRequire } from 'node:module';
+import { tmpdir } from 'node:os';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+const require = createRequire(import.meta.url);
+const { DebugClient } = require('@vscode/debugadapter-testsupport');
+
+const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
+const adapter = path.join(root, 'dist', 'debugAdapter.js');
+const esmini = path.join(root, '.cache', 'esmini', 'bin', 'esmini');
+const library = path.join(root, '.cache', 'esmini', 'lib', 'libesminiLib.so');
+const corpus = path.resolve(root, '..', 'shared', 'corpus', 'openscenario', 'esmini');
+const scenario = path.join(corpus, 'cut-in.xosc');
+const roadPath = [path.resolve(root, '..', 'shared', 'esmini', 'xodr'), path.join(corpus, 'Catalogs', 'Vehicles')];
+// A small step, so that the stepping outweighs the noise of start-up and load on a busy machine.
+const step = Number(process.env.BENCH_DEBUG_STEP ?? 0.001);
+const runs = Number(process.env.BENCH_RUNS ?? 7);
+/** The monotonic clock, in ms: the same clock as the adapter's process.hrtime on Linux (CLOCK_MONOTONIC). */
+const now = () => Number(process.hrtime.bigint()) / 1e6;
+
+for (const needed of [adapter, esmini, library, scenario, ...roadPath])
+  if (!existsSync(needed)) {
+    console.log(`(debugger benchmark skipped: ${needed} is absent; npm run build, bash ../shared/esmini/build.sh .cache/esmini)`);
+    process.exit(0);
+  }
+
+/** @param {number[]} values */
+function median(values) {
+  const sorted = [...values].sort((a, b) => a - b);
+  return sorted[Math.floor(sorted.length / 2)];
+}
+
+// The same scenario twice, beside each other: as written, and ending at its first step (esmini's start-up and load
+// alone, subtracted from the full run to give esmini's stepping time).
+const folder = mkdtempSync(path.join(tmpdir(), 'm2s-bench-debugger-'));
+const text = readFileSync(scenario, 'utf8').replace('../xodr/e6mini.xodr', path.join(roadPath[0], 'e6mini.xodr'));
+const full = path.join(folder, 'cut-in.xosc');
+const loadOnly = path.join(folder, 'cut-in-load-only.xosc');
+writeFileSync(full, text);
+const stopAtOnce =
+  '<StopTrigger><ConditionGroup><Condition name="Now" delay="0" conditionEdge="none"><ByValueCondition>' +
+  '<SimulationTimeCondition value="0" rule="greaterThan"/></ByValueCondition></Condition></ConditionGroup></StopTrigger>';
+writeFileSync(loadOnly, text.replace(/<StopTrigger>[\s\S]*<\/StopTrigger>/, stopAtOnce));
+
+/**
+ * esmini's own headless run: wall ms, CPU ms (bash's `times` for its children), and the simulated time it ended at
+ * (its log's last line).
+ * @param {string} file
+ */
+function esminiRun(file) {
+  const args = ['--headless', '--osc', file, '--fixed_timestep', String(step), '--disable_log'];
+  for (const folderOfPath of roadPath) args.push('--path', folderOfPath);
+  const log = path.join(folder, 'esmini.out');
+  const started = now();
+  const result = spawnSync('bash', ['-c', 'out=$1; shift; "$@" > "$out" || exit $?; times', 'bench', log, esmini, ...args], {
+    cwd: folder,
+    encoding: 'utf8',
+  });
+  const ms = now() - started;
+  const output = readFileSync(log, 'utf8');
+  if (result.status !== 0) throw new Error(`esmini failed on ${file}: ${output}${result.stderr}`);
+  const children = /^(\d+)m([\d.]+)s (\d+)m([\d.]+)s$/m.exec(result.stdout.trim().split('\n')[1] ?? '');
+  if (!children) throw new Error(`bash's times said ${result.stdout}`);
+  const cpuMs = (Number(children[1]) * 60 + Number(children[2]) + Number(children[3]) * 60 + Number(children[4])) * 1000;
+  const times = [...output.matchAll(/^\[([\d.]+)\]/gm)].map((match) => Number(match[1]));
+  return { ms, cpuMs, end: Math.max(...times) };
+}
+
+/**
+ * CPU ms of a process's main thread so far (Linux /proc schedstat, in ns): the adapter steps esmini on it.
+ * @param {number} pid
+ */
+function mainThreadCpuMs(pid) {
+  return Number(readFileSync(`/proc/${pid}/task/${pid}/schedstat`, 'utf8').split(' ')[0]) / 1e6;
+}
+
+/**
+ * One debug session through the protocol, as VS Code drives it: load (launch to initialized), then the run from
+ * configurationDone to terminated. With `breakOn`, a breakpoint on that line: the latency from the condition's firing
+ * (reported in the Output event's data) to the stopped event's arrival.
+ * @param {number | undefined} breakOn
+ * @param {string} [program]
+ * @returns {Promise<{ loadMs: number, runMs: number, runCpuMs: number, ended: number, latencyMs: number }>}
+ */
+async function debugRun(breakOn, program = full) {
+  const client = new DebugClient(process.execPath, adapter, 'modular2simple', { stdio: ['pipe', 'pipe', 'pipe'] });
+  client.defaultTimeout = 120_000;
+  await client.start();
+  const pid = /** @type {{ _adapterProcess: import('node:child_process').ChildProcess }} */ (/** @type {unknown} */ (client))
+    ._adapterProcess.pid;
+  if (pid === undefined) throw new Error('the adapter did not start');
+  try {
+    let ended = NaN;
+    /** @type {Map<string, number>} */
+    const firings = new Map();
+    let stoppedAt = NaN;
+    client.on('output', (/** @type {import('@vscode/debugprotocol').DebugProtocol.OutputEvent} */ event) => {
+      const reported = event.body.data?.reportedAtMs;
+      if (typeof reported === 'number') firings.set(event.body.data.element, reported);
+      const end = /The scenario ended at ([\d.]+) s/.exec(event.body.output);
+      if (end) ended = Number(end[1]);
+    });
+    client.on('stopped', () => (stoppedAt = now()));
+    await client.initializeRequest();
+    const started = now();
+    /** @type {import('@vscode/debugprotocol').DebugProtocol.LaunchRequestArguments & Record<string, unknown>} */
+    const launch = { program, roadPath, timeStep: step, duration: 120 };
+    const launched = client.launchRequest(launch);
+    await client.waitForEvent('initialized');
+    const loadMs = now() - started;
+    if (breakOn !== undefined) {
+      const set = await client.setBreakpointsRequest({ source: { path: full }, breakpoints: [{ line: breakOn }] });
+      if (!set.body.breakpoints[0].verified) throw new Error(`the breakpoint on line ${breakOn} is not verified`);
+    }
+    const done = client.waitForEvent(breakOn === undefined ? 'terminated' : 'stopped');
+    const running = now();
+    const cpuBefore = mainThreadCpuMs(pid);
+    await client.configurationDoneRequest();
+    await launched;
+    await done;
+    const runMs = now() - running;
+    const runCpuMs = mainThreadCpuMs(pid) - cpuBefore;
+    if (breakOn === undefined) return { loadMs, runMs, runCpuMs, ended, latencyMs: NaN };
+    const reported = [...firings.values()].at(-1);
+    if (reported === undefined) throw new Error('no condition firing was reported before the stop');
+    await client.terminateRequest();
+    return { loadMs, runMs, runCpuMs, ended, latencyMs: stoppedAt - reported };
+  } finally {
+    await client.stop();
+  }
+}
+
+try {
+  /** @typedef {{ wall: number[], cpu: number[] }} Samples */
+  /** @returns {Samples} */
+  const samples = () => ({ wall: [], cpu: [] });
+  const esminiFull = samples();
+  const esminiLoad = samples();
+  const debugRuns = samples();
+  const debugEmpty = samples();
+  /** @type {number[]} */
+  const debugLoad = [];
+  let esminiEnd = NaN;
+  let debugEnd = NaN;
+  // Interleaved, so that the machine's load weighs on both alike.
+  for (let i = 0; i < runs; i++) {
+    const run = esminiRun(full);
+    esminiFull.wall.push(run.ms);
+    esminiFull.cpu.push(run.cpuMs);
+    esminiEnd = run.end;
+    const load = esminiRun(loadOnly);
+    esminiLoad.wall.push(load.ms);
+    esminiLoad.cpu.push(load.cpuMs);
+    const debug = await debugRun(undefined);
+    debugLoad.push(debug.loadMs);
+    debugRuns.wall.push(debug.runMs);
+    debugRuns.cpu.push(debug.runCpuMs);
+    debugEnd = debug.ended;
+    const empty = await debugRun(undefined, loadOnly);
+    debugEmpty.wall.push(empty.runMs);
+    debugEmpty.cpu.push(empty.runCpuMs);
+  }
+  const conditionLine = text.split('\n').findIndex((line) => line.includes('<Condition name="CutInStartCondition"')) + 1;
+  /** @type {number[]} */
+  const latencies = [];
+  for (let i = 0; i < runs; i++) latencies.push((await debugRun(conditionLine)).latencyMs);
+
+  const esminiSteps = Math.round(esminiEnd / step);
+  const debugSteps = Math.round(debugEnd / step);
+  const fmt = (/** @type {number} */ n, digits = 1) => n.toFixed(digits).padStart(8);
+  const rate = (/** @type {number} */ steps, /** @type {number} */ ms) => steps / (ms / 1000);
+  console.log(`debugger benchmark: ${path.basename(scenario)}, step ${step} s, median of ${runs} runs each (node ${process.version})`);
+  console.log('                                                          wall ms     CPU ms');
+  console.log(
+    `  esmini --headless, whole run (${esminiSteps} steps to ${esminiEnd} s) ${fmt(median(esminiFull.wall))}   ${fmt(median(esminiFull.cpu))}`,
+  );
+  console.log(`  esmini --headless, start-up and load alone              ${fmt(median(esminiLoad.wall))}   ${fmt(median(esminiLoad.cpu))}`);
+  const esminiWall = median(esminiFull.wall) - median(esminiLoad.wall);
+  const esminiCpu = median(esminiFull.cpu) - median(esminiLoad.cpu);
+  console.log(`  esmini stepping (the difference)                        ${fmt(esminiWall)}   ${fmt(esminiCpu)}`);
+  console.log(`  debug adapter, launch to initialized (flatten, load)    ${fmt(median(debugLoad))}`);
+  console.log(`  debug adapter, configurationDone to terminated          ${fmt(median(debugRuns.wall))}   ${fmt(median(debugRuns.cpu))}`);
+  console.log(`  debug adapter, the same for the scenario ending at once ${fmt(median(debugEmpty.wall))}   ${fmt(median(debugEmpty.cpu))}`);
+  const debugWall = median(debugRuns.wall) - median(debugEmpty.wall);
+  const debugCpu = median(debugRuns.cpu) - median(debugEmpty.cpu);
+  console.log(`  debugger stepping (the difference; ${debugSteps} steps to ${debugEnd} s) ${fmt(debugWall)}   ${fmt(debugCpu)}`);
+  console.log(`    (no breakpoint hit; the adapter's CPU is its main thread's, which steps esmini)`);
+  const wallRatio = rate(debugSteps, debugWall) / rate(esminiSteps, esminiWall);
+  const cpuRatio = rate(debugSteps, debugCpu) / rate(esminiSteps, esminiCpu);
+  console.log(
+    `  steps/s: esmini ${fmt(rate(esminiSteps, esminiCpu), 0)} (CPU), ${fmt(rate(esminiSteps, esminiWall), 0)} (wall); debugger ${fmt(rate(debugSteps, debugCpu), 0)} (CPU), ${fmt(rate(debugSteps, debugWall), 0)} (wall)`,
+  );
+  console.log(
+    `  ratio debugger / esmini steps per second: ${cpuRatio.toFixed(2)}x by CPU time, ${wallRatio.toFixed(2)}x by wall time (goal >= 0.8x): ${cpuRatio >= 0.8 ? 'within' : 'BELOW'}`,
+  );
+  const sorted = [...latencies].sort((a, b) => a - b);
+  console.log(
+    `  pause latency, CutInStartCondition firing (esmini's callback) to the stopped event read by the client: median ${median(latencies).toFixed(2)} ms, max ${sorted[sorted.length - 1].toFixed(2)} ms`,
+  );
+} finally {
+  rmSync(folder, { recursive: true, force: true });
+}
