@@ -2,6 +2,18 @@ import * as path from 'node:path';
 import JSZip from 'jszip';
 import { rebasePaths, ResolvedPath } from './flatten/rebase';
 import { ProblemWording } from './diagnostics';
+import { badPackageWording } from './diagnostics/badPackage';
+import { reachesOutsidePackageWording } from './diagnostics/filePath';
+import {
+  duplicateInputWording,
+  entryClashWording,
+  invalidReferenceWording,
+  mainCountWording,
+  notPackableWording,
+  outsidePackageWording,
+} from './diagnostics/invalidReference';
+import { ioWording, notUnpackedPackageWording, packFolderWording } from './diagnostics/io';
+import { xmlWording } from './diagnostics/xml';
 import { packageCycleWording } from './diagnostics/cycle';
 import { leftOutOfPackageWording, missingFileWording } from './diagnostics/missingFile';
 import { fallbackPackageName, xoscFallbackWording } from './diagnostics/xoscFallback';
@@ -97,7 +109,7 @@ async function carryIntoPackage(place: PackPlace, resolved: ResolvedPath): Promi
       place.zip.file(file.entry, bytes, { date: ENTRY_DATE, createFolders: false });
       place.entries.push(file.entry);
     } catch (error) {
-      place.problems.push(fileProblem(diskRef(file.disk), 'io', (error as Error).message));
+      place.problems.push(fileProblem(diskRef(file.disk), ioWording((error as Error).message)));
     }
   }
   return name;
@@ -149,13 +161,13 @@ async function rebasedForPackage(
     place.problems.push({
       source: ref,
       range: document.lines.range(attribute.valueStart, attribute.valueEnd),
-      severity: 'warning',
-      code: 'file-path',
-      message: `the package reaches ${resolved.kind === 'directory' ? 'the folder' : 'the file'} ${resolved.disk} outside itself${resolved.rewritten !== undefined ? ` (written '${resolved.rewritten}', relative to the package's folder)` : ''}; the package does not run without it`,
-      // A path naming a parameter is never rewritten (SPEC 11.6), so not carried either.
-      hint: resolved.viaParameter
-        ? `'${attribute.value}' names a parameter, so it is left as written; write the path itself to have it rebased or carried`
-        : 'pack with --self-contained to store it inside the package',
+      ...reachesOutsidePackageWording({
+        kind: resolved.kind,
+        disk: resolved.disk,
+        rewritten: resolved.rewritten,
+        written: attribute.value,
+        viaParameter: resolved.viaParameter,
+      }),
     });
   }
   if (rebase.edits.length === 0) return bytes;
@@ -165,13 +177,7 @@ async function rebasedForPackage(
 // A fixed entry time makes two packings of the same files byte-identical.
 const ENTRY_DATE = new Date(Date.UTC(2000, 0, 1, 0, 0, 0));
 
-function fileProblem(
-  source: SourceRef,
-  code: ProblemCode,
-  message: string,
-  hint?: string,
-  severity: Problem['severity'] = 'error',
-): Problem {
+function fileProblem(source: SourceRef, { severity, code, message, hint }: ProblemWording): Problem {
   return { source, range: ZERO_RANGE, severity, code, message, hint };
 }
 
@@ -180,7 +186,7 @@ function decodeOrReport(ref: SourceRef, bytes: Uint8Array, problems: Problem[], 
   try {
     return decodeScenario(bytes);
   } catch (error) {
-    problems.push(fileProblem(ref, 'io', `${displayRef(ref, base)}: ${(error as Error).message}`));
+    problems.push(fileProblem(ref, ioWording(`${displayRef(ref, base)}: ${(error as Error).message}`)));
     return undefined;
   }
 }
@@ -193,9 +199,7 @@ function checkXml(ref: SourceRef, bytes: Uint8Array, problems: Problem[], base: 
     problems.push({
       source: ref,
       range: document.lines.range(problem.start, problem.end),
-      severity: problem.severity,
-      code: 'xml',
-      message: problem.message,
+      ...xmlWording(problem.severity, problem.message),
     });
   }
 }
@@ -216,43 +220,29 @@ export async function packFiles(inputs: string[], limits: Partial<Limits> = {}, 
     const name = path.basename(input);
     const lower = name.toLowerCase();
     if (!lower.endsWith('.xosc') && !lower.endsWith('.mosc')) {
-      problems.push(
-        fileProblem(
-          ref,
-          'invalid-reference',
-          `'${name}' is neither a .xosc scenario nor a .mosc package`,
-          'pack only .xosc and .mosc files',
-        ),
-      );
+      problems.push(fileProblem(ref, notPackableWording(name)));
       continue;
     }
     const previous = seen.get(name);
     if (previous) {
-      problems.push(
-        fileProblem(
-          ref,
-          'invalid-reference',
-          `two inputs are named '${name}' (the other is ${previous}); names must be unique in a package`,
-          'rename one of them',
-        ),
-      );
+      problems.push(fileProblem(ref, duplicateInputWording(name, previous)));
       continue;
     }
     seen.set(name, input);
     const kind = await nodeFileSystem.kind(ref.disk);
     if (kind === 'directory') {
-      problems.push(fileProblem(ref, 'io', `${input} is a folder; pack a folder with 'modular2simple pack FOLDER -o OUT.mosc'`));
+      problems.push(fileProblem(ref, packFolderWording(input)));
       continue;
     }
     let bytes: Uint8Array | undefined;
     try {
       bytes = await nodeFileSystem.readFile(ref.disk, limits.maxEntryBytes ?? DEFAULT_LIMITS.maxEntryBytes);
     } catch (error) {
-      problems.push(fileProblem(ref, 'io', (error as Error).message));
+      problems.push(fileProblem(ref, ioWording((error as Error).message)));
       continue;
     }
     if (!bytes) {
-      problems.push(fileProblem(ref, 'io', `cannot read ${input}: no such file`));
+      problems.push(fileProblem(ref, ioWording(`cannot read ${input}: no such file`)));
       continue;
     }
     if (lower.endsWith('.xosc')) {
@@ -267,16 +257,7 @@ export async function packFiles(inputs: string[], limits: Partial<Limits> = {}, 
   }
   const mains = inputs.filter((input) => path.basename(input) === 'main.xosc');
   if (mains.length !== 1) {
-    problems.push(
-      fileProblem(
-        diskRef(inputs[0] ?? '.'),
-        'invalid-reference',
-        mains.length === 0
-          ? 'a package needs exactly one input named main.xosc; none was given'
-          : `a package needs exactly one main.xosc; ${mains.length} were given`,
-        'name the modular main file main.xosc',
-      ),
-    );
+    problems.push(fileProblem(diskRef(inputs[0] ?? '.'), mainCountWording(mains.length)));
   }
   const failed = problems.some((problem) => problem.severity === 'error');
   return { bytes: failed ? undefined : await generate(zip), entries, problems, inputs: inputs.map((input) => diskRef(input)) };
@@ -304,14 +285,7 @@ async function packFolderInto(
 ): Promise<{ zip: JSZip; entries: string[] } | undefined> {
   const main = diskRef(path.join(folder, 'main.xosc'));
   if ((await store.kindOf(main.disk)) !== 'file') {
-    problems.push(
-      fileProblem(
-        diskRef(folder),
-        'io',
-        `${store.display(diskRef(folder))} holds no main.xosc, so it is not an unpacked package`,
-        'a package folder must hold main.xosc',
-      ),
-    );
+    problems.push(fileProblem(diskRef(folder), notUnpackedPackageWording(store.display(diskRef(folder)))));
     return undefined;
   }
   const zip = new JSZip();
@@ -321,10 +295,7 @@ async function packFolderInto(
   const add = (name: string, bytes: Uint8Array, origin: string) => {
     const existing = added.get(name);
     if (existing !== undefined) {
-      if (existing !== origin)
-        problems.push(
-          fileProblem(main, 'invalid-reference', `two different files would be stored as '${name}': ${existing} and ${origin}`),
-        );
+      if (existing !== origin) problems.push(fileProblem(main, entryClashWording(name, existing, origin)));
       return;
     }
     added.set(name, origin);
@@ -337,7 +308,7 @@ async function packFolderInto(
     try {
       bytes = await store.readBytes(ref);
     } catch (error) {
-      problems.push(fileProblem(ref, 'io', (error as Error).message));
+      problems.push(fileProblem(ref, ioWording((error as Error).message)));
       return;
     }
     inputs.push(ref);
@@ -366,11 +337,12 @@ async function packFolderInto(
         continue;
       }
       if (resolution.kind === 'invalid' || resolution.kind === 'unreadable' || name === undefined) {
-        report(
-          resolution.kind === 'unreadable' ? 'bad-package' : 'invalid-reference',
-          resolution.kind === 'invalid' || resolution.kind === 'unreadable'
-            ? resolution.message
-            : `'${reference.fileName}' points outside the package`,
+        reportWording(
+          resolution.kind === 'unreadable'
+            ? badPackageWording(resolution.message)
+            : resolution.kind === 'invalid'
+              ? invalidReferenceWording(resolution.message)
+              : outsidePackageWording(reference.fileName),
         );
         continue;
       }
@@ -403,7 +375,7 @@ async function packFolderInto(
         try {
           add(packageName, await store.readBytes(resolution.packageRef), refId(resolution.packageRef));
         } catch (error) {
-          report('io', (error as Error).message);
+          reportWording(ioWording((error as Error).message));
         }
       }
     }

@@ -6,11 +6,6 @@ export type { QcRuleUid, Rule };
 
 /** The rules of the codes without a module of their own in core/diagnostics/ (each of those names its rule there). */
 const OTHER_RULES: Record<Exclude<ProblemCode, DefinedCode>, Rule> = {
-  xml: { description: 'The file is well-formed XML.', qcRule: QC.validXml },
-  io: { description: 'The file can be read.' },
-  'bad-package': { description: 'A .mosc package is a readable ZIP archive holding main.xosc.' },
-  'invalid-reference': { description: 'A ScenarioReference is written as SPEC 2 says.' },
-  'missing-attribute': { description: 'A reference element has its required attributes.' },
   'undeclared-entity': { description: 'An entity reference names a declared entity.', qcRule: QC.entityReferences },
   'schema-unknown-element': { description: 'Every element is one the ASAM schema allows there.', qcRule: QC.validSchema },
   'schema-unknown-attribute': { description: 'Every attribute is one the ASAM schema allows on its element.', qcRule: QC.validSchema },
@@ -56,7 +51,6 @@ const OTHER_RULES: Record<Exclude<ProblemCode, DefinedCode>, Rule> = {
   'lenient-value': { description: "A value is written in the standard's form, not only in a form esmini also accepts (SPEC 12)." },
   'simulator-value': { description: 'A value is the same in the standard and in the selected simulator.' },
   overflow: { description: "A number stays within its type's range (IEEE double, int, unsignedInt, unsignedShort)." },
-  'file-path': { description: 'A file path of a written scenario names, from where it is written, the file its source named (SPEC 11.6).' },
 };
 
 /** Every code has an entry: a new code does not compile until it says what rule it is. */

@@ -3,6 +3,7 @@ import * as path from 'node:path';
 import { TextDocument } from 'vscode-languageserver-textdocument';
 import { FixContext, RelatedPlace } from '../../../server/src/core/diagnostics';
 import { parseXml } from '../../../server/src/core/xml';
+import { Flattener } from '../../../server/src/core/flatten';
 import { Problem } from '../../../server/src/core/problems';
 import { analyzeDocument, CatalogLoader, semanticProblems } from '../../../server/src/core/semantics';
 import { diskRef, ScenarioStore } from '../../../server/src/core/sources';
@@ -48,4 +49,14 @@ export async function semanticProblemsOf(text: string, files: Record<string, str
 /** What a problem says, apart from where: what a module's wording returns. */
 export function wordingOf({ severity, code, message, hint }: Problem): Pick<Problem, 'severity' | 'code' | 'message' | 'hint'> {
   return hint === undefined ? { severity, code, message } : { severity, code, message, hint };
+}
+
+/** The problems an analysis of `main` reports, its `files` written in a workspace of their own. */
+export async function analysisProblemsOf(files: Record<string, string>, main = 'main.xosc'): Promise<Problem[]> {
+  const root = temporaryWorkspace(files);
+  try {
+    return (await new Flattener(new ScenarioStore({ root })).analyze(diskRef(path.join(root, main)))).problems;
+  } finally {
+    fs.rmSync(root, { recursive: true, force: true });
+  }
 }

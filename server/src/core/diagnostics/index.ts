@@ -27,6 +27,12 @@ import { NO_ACTOR } from './noActor';
 import { NEGATIVE_TRANSITION_TIME } from './negativeTransitionTime';
 import { NON_POSITIVE_PHASE_DURATION } from './nonPositivePhaseDuration';
 import { OUT_OF_RANGE } from './outOfRange';
+import { XML } from './xml';
+import { IO } from './io';
+import { BAD_PACKAGE } from './badPackage';
+import { INVALID_REFERENCE } from './invalidReference';
+import { MISSING_ATTRIBUTE } from './missingAttribute';
+import { FILE_PATH } from './filePath';
 
 export * from './definition';
 export { QC, QC_RULE_DESCRIPTIONS } from './qcRules';
@@ -64,6 +70,12 @@ export const DIAGNOSTICS = [
   NEGATIVE_TRANSITION_TIME,
   NON_POSITIVE_PHASE_DURATION,
   OUT_OF_RANGE,
+  XML,
+  IO,
+  BAD_PACKAGE,
+  INVALID_REFERENCE,
+  MISSING_ATTRIBUTE,
+  FILE_PATH,
 ] as const;
 
 /** The codes whose diagnostic has its own module. */

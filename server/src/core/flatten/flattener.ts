@@ -2,6 +2,7 @@ import * as path from 'node:path';
 import { declareUtf8 } from '../encoding';
 import { buildModel, readModel, ScenarioModel } from '../model';
 import { Problem, uniqueProblems } from '../problems';
+import { xmlWording } from '../diagnostics/xml';
 import { CarlaRelease, DEFAULT_CARLA_RELEASE, Simulator } from '../profiles/simulators';
 import { parameterValueProblems } from '../semantics/parameterValues';
 import { SchemaCheckMemory, schemaProblems } from '../schema/problems';
@@ -175,9 +176,7 @@ export class Flattener {
           document,
           start: problem.start,
           end: problem.end,
-          severity: problem.severity,
-          code: 'xml',
-          message: problem.message,
+          ...xmlWording(problem.severity, problem.message),
         }),
       );
     }

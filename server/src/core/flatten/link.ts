@@ -5,6 +5,13 @@ import { keyMixedDefaultsNote, keyMixedDefaultsWording } from '../diagnostics/ke
 import { noActorsWording, noEntityRefAttributeWording } from '../diagnostics/noEntityRef';
 import { referenceOutsideGroupWording } from '../diagnostics/referenceOutsideGroup';
 import { tooDeepWording } from '../diagnostics/tooDeep';
+import { unreadablePackageWording } from '../diagnostics/badPackage';
+import { invalidReferenceWording } from '../diagnostics/invalidReference';
+import {
+  incompleteParameterReferenceWording,
+  missingGroupNameWording,
+  missingScenarioFileNameWording,
+} from '../diagnostics/missingAttribute';
 import { missingFileWording } from '../diagnostics/missingFile';
 import { sourceErrorsCause, sourceErrorsWording } from '../diagnostics/sourceErrors';
 import { unknownGroupData, unknownGroupWording } from '../diagnostics/unknownGroup';
@@ -62,10 +69,7 @@ export async function link(
     report({
       start: reference.element.start,
       end: reference.element.nameEnd,
-      severity: 'error',
-      code: 'missing-attribute',
-      message: 'ScenarioReference has no scenarioFileName attribute',
-      hint: 'add scenarioFileName="NAME.xosc" or "NAME.mosc"',
+      ...missingScenarioFileNameWording(),
     });
     return link;
   }
@@ -102,9 +106,7 @@ function checkReferenceChildren(reference: ScenarioReferenceInfo, report: Report
       report({
         start: groupReference.element.start,
         end: groupReference.element.nameEnd,
-        severity: 'error',
-        code: 'missing-attribute',
-        message: 'ManeuverGroupReference has no maneuverGroupName attribute',
+        ...missingGroupNameWording(),
       });
     }
     for (const parameter of groupReference.parameters) {
@@ -112,10 +114,7 @@ function checkReferenceChildren(reference: ScenarioReferenceInfo, report: Report
         report({
           start: parameter.element.start,
           end: parameter.element.nameEnd,
-          severity: 'error',
-          code: 'missing-attribute',
-          message: `ParameterReference needs both key and value attributes`,
-          hint: 'write <ParameterReference key="Element.attribute" value="..."/>',
+          ...incompleteParameterReferenceWording(),
         });
       }
     }
@@ -135,17 +134,14 @@ async function resolveTarget(
   const resolution = await context.store.resolve(reference.fileName, from);
   link.resolution = resolution;
   if (resolution.kind === 'invalid') {
-    report({ start, end, severity: 'error', code: 'invalid-reference', message: resolution.message });
+    report({ start, end, ...invalidReferenceWording(resolution.message) });
     return undefined;
   }
   if (resolution.kind === 'unreadable') {
     report({
       start,
       end,
-      severity: 'error',
-      code: 'bad-package',
-      message: `cannot look up '${reference.fileName}': ${resolution.message}`,
-      hint: resolution.hint,
+      ...unreadablePackageWording(reference.fileName, resolution.message, resolution.hint),
     });
     return undefined;
   }

@@ -2,6 +2,8 @@ import * as path from 'node:path';
 import { Evaluator, semanticModelOf } from '../semantics';
 import { ScenarioModel } from '../model';
 import { Problem, ZERO_RANGE } from '../problems';
+import { ProblemWording } from '../diagnostics';
+import { packagedPathOnStandardOutputWording, unrebasedPathWording } from '../diagnostics/filePath';
 import type { FileKind } from '../sources/host';
 import { normalizeEntryName, ScenarioStore, SourceRef } from '../sources';
 import { escapeAttributeValue, selfAndDescendants, XmlAttribute, XmlDocument, XmlElement } from '../xml';
@@ -223,17 +225,14 @@ export async function rebaseFlattened(
 ): Promise<{ edits: TextEdit[]; resolved: ResolvedPath[]; problems: Problem[]; files: PackagedFile[] }> {
   const flattenedHere = model === source.model;
   const originFor = (element: XmlElement) => (flattenedHere ? originOf(source, element) : { source, element });
-  const problemAtOrigin = (element: XmlElement, attributeName: string, message: string, hint: string): Problem => {
+  const problemAtOrigin = (element: XmlElement, attributeName: string, wording: ProblemWording<'file-path'>): Problem => {
     const origin = originFor(element);
     const document = (origin.source.original ?? origin.source.model)?.document;
     const written = origin.element.attributes.find((candidate) => candidate.name === attributeName);
     return {
       source: origin.source.ref,
       range: document && written ? document.lines.range(written.valueStart, written.valueEnd) : ZERO_RANGE,
-      severity: 'warning',
-      code: 'file-path',
-      message,
-      hint,
+      ...wording,
     };
   };
   const outputDirectory = outputPath === undefined ? undefined : path.dirname(path.resolve(outputPath));
@@ -249,12 +248,7 @@ export async function rebaseFlattened(
     inPackage.add(site.element);
     if (outputPath === undefined || outputDirectory === undefined) {
       problems.push(
-        problemAtOrigin(
-          site.element,
-          site.attribute.name,
-          `'${site.attribute.value}' names ${packaged.name} inside the package, which standard output cannot carry; it is left as written`,
-          "flatten to a file: the package's files are then written beside it",
-        ),
+        problemAtOrigin(site.element, site.attribute.name, packagedPathOnStandardOutputWording(site.attribute.value, packaged.name)),
       );
       continue;
     }
@@ -275,14 +269,7 @@ export async function rebaseFlattened(
     kindOf: (diskPath) => store.kindOf(diskPath),
   });
   for (const finding of rebase.findings) {
-    problems.push(
-      problemAtOrigin(
-        finding.site.element,
-        finding.site.attribute.name,
-        finding.message,
-        'declare the parameter with an absolute path, or write the output beside this file',
-      ),
-    );
+    problems.push(problemAtOrigin(finding.site.element, finding.site.attribute.name, unrebasedPathWording(finding.message)));
   }
   return {
     edits: [...edits, ...rebase.edits],

@@ -1,0 +1,59 @@
+import { defineDiagnostic, ProblemWording } from './definition';
+
+/** What pack found about a path of a packed file that reaches outside the package. */
+export interface OutsidePackageFacts {
+  kind: 'file' | 'directory';
+  /** The path on disk it reaches. */
+  disk: string;
+  /** The path as written in the package, relative to the package's folder, where pack rewrote it. */
+  rewritten?: string;
+  /** The path as written in the file. */
+  written: string;
+  /** Whether it names a parameter, so it is left as written (SPEC 11.6). */
+  viaParameter: boolean;
+}
+
+/** A path the package does not carry: pack warns, and the client offers to pack again storing it inside. */
+export function reachesOutsidePackageWording({
+  kind,
+  disk,
+  rewritten,
+  written,
+  viaParameter,
+}: OutsidePackageFacts): ProblemWording<'file-path'> {
+  return {
+    severity: 'warning',
+    code: 'file-path',
+    message: `the package reaches ${kind === 'directory' ? 'the folder' : 'the file'} ${disk} outside itself${rewritten !== undefined ? ` (written '${rewritten}', relative to the package's folder)` : ''}; the package does not run without it`,
+    // A path naming a parameter is never rewritten (SPEC 11.6), so not carried either.
+    hint: viaParameter
+      ? `'${written}' names a parameter, so it is left as written; write the path itself to have it rebased or carried`
+      : 'pack with --self-contained to store it inside the package',
+  };
+}
+
+/** A path of a flattened package naming `entry` inside it, which standard output cannot carry. */
+export function packagedPathOnStandardOutputWording(written: string, entry: string): ProblemWording<'file-path'> {
+  return {
+    severity: 'warning',
+    code: 'file-path',
+    message: `'${written}' names ${entry} inside the package, which standard output cannot carry; it is left as written`,
+    hint: "flatten to a file: the package's files are then written beside it",
+  };
+}
+
+/** A path the output cannot name from where it is written: `message` is the rebasing's finding. */
+export function unrebasedPathWording(message: string): ProblemWording<'file-path'> {
+  return {
+    severity: 'warning',
+    code: 'file-path',
+    message,
+    hint: 'declare the parameter with an absolute path, or write the output beside this file',
+  };
+}
+
+export const FILE_PATH = defineDiagnostic({
+  code: 'file-path',
+  rule: { description: 'A file path of a written scenario names, from where it is written, the file its source named (SPEC 11.6).' },
+  severity: 'warning',
+});

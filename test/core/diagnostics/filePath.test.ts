@@ -1,0 +1,41 @@
+import * as assert from 'node:assert/strict';
+import {
+  FILE_PATH,
+  packagedPathOnStandardOutputWording,
+  reachesOutsidePackageWording,
+  unrebasedPathWording,
+} from '../../../server/src/core/diagnostics/filePath';
+
+/** Where pack and flatten report these: test/core/rebase.test.ts, test/cli/outputPaths.test.ts, test/server/outputPaths.test.ts. */
+describe('diagnostics: file-path', () => {
+  it('says what a package reaches outside itself, and how to carry it or why it is left', () => {
+    const road = { kind: 'file', disk: '/w/road.xodr', written: 'road.xodr', viaParameter: false } as const;
+    assert.deepEqual(reachesOutsidePackageWording({ ...road, rewritten: '../road.xodr' }), {
+      severity: 'warning',
+      code: 'file-path',
+      message:
+        "the package reaches the file /w/road.xodr outside itself (written '../road.xodr', relative to the package's folder); the package does not run without it",
+      hint: 'pack with --self-contained to store it inside the package',
+    });
+    assert.deepEqual(reachesOutsidePackageWording({ ...road, kind: 'directory', written: '$Roads', viaParameter: true }), {
+      severity: 'warning',
+      code: 'file-path',
+      message: 'the package reaches the folder /w/road.xodr outside itself; the package does not run without it',
+      hint: "'$Roads' names a parameter, so it is left as written; write the path itself to have it rebased or carried",
+    });
+  });
+
+  it('says what a flattened output cannot name from where it is written', () => {
+    assert.deepEqual(packagedPathOnStandardOutputWording('road.xodr', 'roads/road.xodr'), {
+      severity: 'warning',
+      code: 'file-path',
+      message: "'road.xodr' names roads/road.xodr inside the package, which standard output cannot carry; it is left as written",
+      hint: "flatten to a file: the package's files are then written beside it",
+    });
+    assert.equal(
+      unrebasedPathWording('a finding').hint,
+      'declare the parameter with an absolute path, or write the output beside this file',
+    );
+    assert.equal(FILE_PATH.severity, 'warning');
+  });
+});
