@@ -275,7 +275,7 @@ const crossing = (actor, length) => `<RoutingAction>
  * @typedef {{ key: string, name: string, unit?: string, range?: string, about: string }} Parameter
  * @typedef {{
  *   name: string, title: string, group: string, summary: string, actor: string, groupName: string,
- *   entities: string[], init: string[], parameters: Parameter[], maneuver: string, stopAt: number,
+ *   entities: string[], init: string[], parameters: Parameter[], maneuver: string, stopAt: number, otherActors?: string[],
  *   actorName: string, keys: Record<string, string>,
  * }} Module
  */
@@ -837,6 +837,119 @@ export const MODULES = [
       ),
     ].join('\n'),
   },
+  {
+    name: 'traffic-jam-end',
+    title: 'End of a traffic jam',
+    group: 'Vehicles ahead',
+    summary:
+      "A queue of vehicles ahead, in the ego's lane and the one beside it, brakes together at a set deceleration down to the jam's speed once the ego's time headway to the last of them is below the one asked: the end of a traffic jam the ego comes up to.",
+    actor: "the last vehicle of the queue, ahead in the ego's lane (list the queue's other vehicles in Actors too: each brakes alike)",
+    actorName: 'jam1',
+    otherActors: ['jam2', 'jam3'],
+    groupName: 'TrafficJamEnd',
+    entities: [
+      VEHICLE('ego', 'vehicle.lincoln.mkz_2017'),
+      VEHICLE('jam1', 'vehicle.audi.tt'),
+      VEHICLE('jam2', 'vehicle.tesla.model3'),
+      VEHICLE('jam3', 'vehicle.audi.tt'),
+    ],
+    init: [placed('ego', -1, 20, 25), placed('jam1', -1, 150, 10), placed('jam2', -1, 160, 10), placed('jam3', -2, 154, 10)],
+    stopAt: 6.5,
+    parameters: [
+      { key: 'SpeedActionDynamics.value', name: 'deceleration', unit: 'm/s²', range: '0.5..10', about: 'how hard the queue brakes' },
+      {
+        key: 'AbsoluteTargetSpeed.value',
+        name: 'jamSpeed',
+        unit: 'm/s',
+        range: '0..30',
+        about: 'the speed the queue brakes down to (0: it comes to a stop)',
+      },
+      {
+        key: 'TimeHeadwayCondition.value',
+        name: 'headway',
+        unit: 's',
+        range: '0.2..20',
+        about: "the ego's time headway (gap / ego speed) to the last vehicle of the queue when the queue brakes",
+      },
+      {
+        key: 'TimeHeadwayCondition.entityRef',
+        name: 'last',
+        about: "the last vehicle of the queue in the ego's lane, the headway is measured to",
+      },
+      { key: 'EntityRef.entityRef', name: 'ego', about: 'the vehicle coming up to the queue, whose headway counts' },
+    ],
+    keys: {},
+    maneuver: event(
+      'TrafficJamBrake',
+      privateAction(
+        'TrafficJamBrake',
+        speedAction(
+          '<SpeedActionDynamics parameterAttributes="value" dynamicsShape="linear" value="4" dynamicsDimension="rate"/>',
+          '<AbsoluteTargetSpeed parameterAttributes="value" value="0"/>',
+        ),
+      ),
+      trigger(
+        'TrafficJamHeadway',
+        byEntity(
+          'ego',
+          '<TimeHeadwayCondition parameterAttributes="entityRef,value" entityRef="jam1" value="3" freespace="true" coordinateSystem="road" relativeDistanceType="longitudinal" rule="lessThan"/>',
+        ),
+      ),
+      'parallel',
+    ),
+  },
+  {
+    name: 'weather-light-change',
+    title: 'Weather and light change',
+    group: 'Environment',
+    summary:
+      'At a set time the environment changes for every entity: time of day, sun, cloud, fog, precipitation and road friction, as a test protocol varies light and weather.',
+    actor: 'ego: any entity of the scenario (the change is global; the group needs an actor to be a group)',
+    actorName: 'ego',
+    groupName: 'WeatherLightChange',
+    entities: [VEHICLE('ego', 'vehicle.lincoln.mkz_2017')],
+    init: [placed('ego', -1, 50, 15)],
+    stopAt: 4,
+    parameters: [
+      { key: 'SimulationTimeCondition.value', name: 'startTime', unit: 's', range: '0..600', about: 'when the environment changes' },
+      { key: 'TimeOfDay.dateTime', name: 'dateTime', unit: 'ISO 8601', about: 'the date and time of day after the change (local time)' },
+      { key: 'Weather.cloudState', name: 'clouds', range: 'free, cloudy, overcast, rainy, skyOff', about: 'the sky' },
+      { key: 'Sun.intensity', name: 'sunIntensity', unit: 'lx', range: '0..150000', about: "the sun's illuminance (dusk: about 400)" },
+      { key: 'Sun.elevation', name: 'sunElevation', unit: 'rad', range: '-1.571..1.571', about: "the sun's elevation above the horizon" },
+      { key: 'Sun.azimuth', name: 'sunAzimuth', unit: 'rad', range: '0..6.283', about: "the sun's azimuth (0 north, pi/2 east)" },
+      { key: 'Fog.visualRange', name: 'visibility', unit: 'm', range: '1..100000', about: 'how far one sees through the fog' },
+      { key: 'Precipitation.precipitationType', name: 'precipitation', range: 'dry, rain, snow', about: 'what falls' },
+      {
+        key: 'Precipitation.precipitationIntensity',
+        name: 'precipitationIntensity',
+        unit: 'mm/h',
+        range: '0..100',
+        about: 'how much falls',
+      },
+      { key: 'RoadCondition.frictionScaleFactor', name: 'friction', range: '0..1', about: "the road's friction, 1 dry asphalt" },
+    ],
+    keys: {},
+    maneuver: event(
+      'WeatherLightChange',
+      `<Action name="WeatherLightChange">
+  <GlobalAction>
+    <EnvironmentAction>
+      <Environment name="AfterChange">
+        <TimeOfDay parameterAttributes="dateTime" animation="false" dateTime="2026-11-27T17:30:00"/>
+        <Weather parameterAttributes="cloudState" cloudState="rainy">
+          <Sun parameterAttributes="intensity,elevation,azimuth" azimuth="4.2" elevation="0.05" intensity="400"/>
+          <Fog parameterAttributes="visualRange" visualRange="80"/>
+          <Precipitation parameterAttributes="precipitationType,precipitationIntensity" precipitationType="rain" precipitationIntensity="8"/>
+        </Weather>
+        <RoadCondition parameterAttributes="frictionScaleFactor" frictionScaleFactor="0.6"/>
+      </Environment>
+    </EnvironmentAction>
+  </GlobalAction>
+</Action>`,
+      trigger('WeatherLightChangeStart', atTime(1, ' parameterAttributes="value"')),
+      'parallel',
+    ),
+  },
 ];
 
 /** The doc block a library module opens with (read by server/src/library/modules.ts). @param {Module} module */
@@ -908,11 +1021,15 @@ function defaultOf(xml, key) {
   return found[1];
 }
 
+/** The group's Actors: its actor, then any others that act alike. @param {Module} module */
+const actorRefs = (module) =>
+  [module.actorName, ...(module.otherActors ?? [])].map((actor) => `    <EntityRef entityRef="${actor}"/>`).join('\n');
+
 /** @param {Module} module */
 export function moduleText(module) {
   const group = `<ManeuverGroup name="${module.groupName}" maximumExecutionCount="1">
   <Actors selectTriggeringEntities="false">
-    <EntityRef entityRef="${module.actorName}"/>
+${actorRefs(module)}
   </Actors>
   <Maneuver name="${module.groupName}Maneuver">
 ${indent(module.maneuver, 4)}
@@ -932,7 +1049,7 @@ export function exampleText(module) {
     .join('\n');
   const group = `<ManeuverGroup name="${module.groupName}" maximumExecutionCount="1">
   <Actors selectTriggeringEntities="false">
-    <EntityRef entityRef="${module.actorName}"/>
+${actorRefs(module)}
   </Actors>
   <ScenarioReference scenarioFileName="library:${module.name}">
     <ManeuverGroupReference maneuverGroupName="${module.groupName}">

@@ -18,15 +18,23 @@ import { builtInLibraryFolder, libraryFolders } from '../server/src/libraries';
 /** The step and seed every library run uses, so that a run, and its picture, repeat exactly. */
 export const LIBRARY_RUN_ARGS = ['--headless', '--fixed_timestep', '0.05', '--seed', '1', '--disable_log'];
 
-/** A module's example main flattened into `folder`, run in esmini, and drawn: esmini's log and the picture. */
-export async function runExample(module: LibraryModule, folder: string, esmini: string): Promise<{ run: EsminiRun; svg: string }> {
+/**
+ * A module's example main flattened into `folder`, run in esmini, and drawn: esmini's log and the picture; with
+ * `record`, esmini also writes its recording (`--record`) there, which carries what the log does not (the environment).
+ */
+export async function runExample(
+  module: LibraryModule,
+  folder: string,
+  esmini: string,
+  record?: string,
+): Promise<{ run: EsminiRun; svg: string }> {
   if (!module.example) throw new Error(`${module.name} has no example main`);
   const flat = path.join(folder, `${module.name}.xosc`);
   const csv = path.join(folder, `${module.name}.csv`);
   const errors: string[] = [];
   const code = await main(['flatten', module.example, '-o', flat, '-q'], { out: () => {}, err: (text) => errors.push(text) });
   if (code !== 0) throw new Error(`flatten ${module.example}: ${errors.join('\n')}`);
-  const result = spawnSync(esmini, [...LIBRARY_RUN_ARGS, '--osc', flat, '--csv_logger', csv], {
+  const result = spawnSync(esmini, [...LIBRARY_RUN_ARGS, '--osc', flat, '--csv_logger', csv, ...(record ? ['--record', record] : [])], {
     cwd: folder,
     encoding: 'utf8',
     timeout: 120_000,

@@ -10,6 +10,7 @@ import { harnessVerdicts, requireCarlaHarness } from '../support/carla';
 import { EsminiRun } from '../../common/src/esminiCsv';
 import { runExample } from '../../scripts/library-pictures';
 import { esminiBinary, requireEsmini } from '../support/esmini';
+import { RecordedEnvironment, recordedEnvironments } from '../support/esminiDat';
 import { repoRoot } from '../support/paths';
 import { temporaryFolder } from '../support/temporaryDirectory';
 
@@ -74,7 +75,7 @@ function lateralMoves(track: Track): { start: number; end: number }[] {
 const gapAhead = (behind: Track, ahead: Track, index: number) => ahead[index].x - REAR - (behind[index].x + FRONT);
 
 /** What each module's example must show in esmini, from the values its parameters give. */
-const BEHAVIOURS: Record<string, (module: LibraryModule, tracks: Map<string, Track>) => void> = {
+const BEHAVIOURS: Record<string, (module: LibraryModule, tracks: Map<string, Track>, environments: RecordedEnvironment[]) => void> = {
   'cut-in': (module, tracks) => {
     const [ego, car] = [trackOf(tracks, 'ego'), trackOf(tracks, 'adversary')];
     const speed = parameter(module, 'speed');
@@ -104,23 +105,7 @@ const BEHAVIOURS: Record<string, (module: LibraryModule, tracks: Map<string, Tra
       'the revealed target stands in the ego lane ahead',
     );
   },
-  'lead-brake': (module, tracks) => {
-    const [ego, lead] = [trackOf(tracks, 'ego'), trackOf(tracks, 'lead')];
-    const before = speedAt(lead, 0);
-    const start = lead.findIndex((_, index) => index < lead.length - 1 && speedAt(lead, index) < before - 0.01);
-    assert.ok(start > 0, 'the lead never brakes');
-    // The condition held at the step before the speed first drops.
-    const trigger = start - 1;
-    const headway = (lead[trigger].x - REAR - (ego[trigger].x + FRONT)) / speedAt(ego, trigger);
-    assert.ok(Math.abs(headway - parameter(module, 'headway')) <= STEP * 1.5, `the braking starts at a headway of ${headway.toFixed(3)} s`);
-    const deceleration = parameter(module, 'deceleration');
-    const after = parameter(module, 'speedAfter');
-    const middle = start + Math.floor((before - after) / deceleration / STEP / 2);
-    const measured = (speedAt(lead, middle - 4) - speedAt(lead, middle + 4)) / (8 * STEP);
-    assert.ok(Math.abs(measured - deceleration) < 0.1, `the lead decelerates at ${measured.toFixed(2)} m/s², not ${deceleration}`);
-    const last = lead.length - 2;
-    assert.ok(Math.abs(speedAt(lead, last) - after) < 0.05, `the lead ends at ${speedAt(lead, last)} m/s, not ${after}`);
-  },
+  'lead-brake': (module, tracks) => brakesAsAsked(module, trackOf(tracks, 'ego'), trackOf(tracks, 'lead'), 'speedAfter'),
   'slow-target': (module, tracks) => steadySpeed(module, trackOf(tracks, 'target')),
   'cyclist-ahead': (module, tracks) => steadySpeed(module, trackOf(tracks, 'cyclist')),
   'pedestrian-crossing': (module, tracks) => crossesAsTheEgoArrives(module, trackOf(tracks, 'ego'), trackOf(tracks, 'pedestrian')),
@@ -221,7 +206,50 @@ const BEHAVIOURS: Record<string, (module: LibraryModule, tracks: Map<string, Tra
     assert.ok(Math.abs(largest - asked) <= asked * 0.05, `its largest lateral acceleration is ${largest.toFixed(2)} m/s², not ${asked}`);
     assert.ok(Math.abs(lead[back.end].y - lead[0].y) < 0.01, 'it swerves back to its lane centre');
   },
+  'traffic-jam-end': (module, tracks) => {
+    const ego = trackOf(tracks, 'ego');
+    const start = brakesAsAsked(module, ego, trackOf(tracks, 'jam1'), 'jamSpeed');
+    for (const name of ['jam2', 'jam3']) {
+      const vehicle = trackOf(tracks, name);
+      const last = vehicle.length - 2;
+      const brakesFrom = vehicle.findIndex(
+        (_, index) => index < vehicle.length - 1 && speedAt(vehicle, index) < speedAt(vehicle, 0) - 0.01,
+      );
+      assert.equal(brakesFrom, start, `${name} brakes at step ${brakesFrom}, jam1 at ${start}`);
+      assert.ok(Math.abs(speedAt(vehicle, last) - parameter(module, 'jamSpeed')) < 0.05, `${name} ends at ${speedAt(vehicle, last)} m/s`);
+    }
+  },
+  'weather-light-change': (module, _tracks, environments) => {
+    assert.equal(environments.length, 1, `esmini recorded ${environments.length} environment changes, not 1`);
+    const [changed] = environments;
+    // The condition holds a step after the time asked (its log says the action ran then); the recording stamps it a step later.
+    assert.ok(Math.abs(changed.time - parameter(module, 'startTime')) <= STEP * 2.5, `the environment changes at ${changed.time} s`);
+    const visibility = parameter(module, 'visibility');
+    assert.equal(changed.visibilityRange, visibility, 'the fog');
+    assert.ok(Math.abs(changed.fogVisibilityRangeFactor - 1 / (visibility + 1)) < 1e-9, 'the fog factor');
+    assert.equal(changed.frictionScaleFactor, parameter(module, 'friction'), 'the road friction');
+    assert.ok(Math.abs(changed.sunIntensityFactor - parameter(module, 'sunIntensity') / 100_000) < 1e-9, 'the sun intensity');
+  },
 };
+
+/** The lead brakes once the ego's headway to it is the one asked, at the deceleration asked, down to the speed asked; returns the step it starts at. */
+function brakesAsAsked(module: LibraryModule, ego: Track, lead: Track, speedAfter: string): number {
+  const before = speedAt(lead, 0);
+  const start = lead.findIndex((_, index) => index < lead.length - 1 && speedAt(lead, index) < before - 0.01);
+  assert.ok(start > 0, 'the lead never brakes');
+  // The condition held at the step before the speed first drops.
+  const trigger = start - 1;
+  const headway = (lead[trigger].x - REAR - (ego[trigger].x + FRONT)) / speedAt(ego, trigger);
+  assert.ok(Math.abs(headway - parameter(module, 'headway')) <= STEP * 1.5, `the braking starts at a headway of ${headway.toFixed(3)} s`);
+  const deceleration = parameter(module, 'deceleration');
+  const after = parameter(module, speedAfter);
+  const middle = start + Math.floor((before - after) / deceleration / STEP / 2);
+  const measured = (speedAt(lead, middle - 4) - speedAt(lead, middle + 4)) / (8 * STEP);
+  assert.ok(Math.abs(measured - deceleration) < 0.1, `the lead decelerates at ${measured.toFixed(2)} m/s², not ${deceleration}`);
+  const last = lead.length - 2;
+  assert.ok(Math.abs(speedAt(lead, last) - after) < 0.05, `the lead ends at ${speedAt(lead, last)} m/s, not ${after}`);
+  return start;
+}
 
 /** The actor keeps the speed asked from the start. */
 function steadySpeed(module: LibraryModule, target: Track): void {
@@ -306,8 +334,11 @@ describe('library modules: each verified in esmini and CARLA (issue 28)', functi
   it('every example main flattens and runs in esmini, the behaviour happens as its parameters say, and its picture is drawn from that run', async function () {
     requireEsmini(this);
     for (const module of modules) {
-      const { run, svg } = await runExample(module, outputs, esminiBinary);
-      BEHAVIOURS[module.name](module, tracksOf(run));
+      const recording = path.join(outputs, `${module.name}.dat`);
+      const { run, svg } = await runExample(module, outputs, esminiBinary, recording);
+      const environments = recordedEnvironments(fs.readFileSync(recording));
+      fs.rmSync(recording);
+      BEHAVIOURS[module.name](module, tracksOf(run), environments);
       const picture = path.join(libraryFolder ?? '', 'pictures', `${module.name}.svg`);
       assert.ok(module.picture, `${module.name}: no picture (npx tsx scripts/library-pictures.ts draws them)`);
       assert.equal(
