@@ -5,6 +5,7 @@ import { SCHEMA_VERSIONS } from '../../server/src/core/schema/model';
 import { checkSchema } from '../../server/src/core/schema/validate';
 import { parseXml } from '../../server/src/core/xml';
 import { cursor } from '../support/cursor';
+import { scenario, simpleGroup } from '../support/fixtures';
 import { MAIN_OVERRIDES, PACKAGE_MAIN, SIMPLE, SIMPLE_EXPRESSION } from './fixtures/scenarios';
 import { fileUri, useServer } from './harness';
 
@@ -205,5 +206,57 @@ describe('language server: completion in an empty file, with schema support on (
       );
     }
     await server.client.settingsChanged({});
+  });
+});
+
+describe('language server: a ScenarioReference for a group already used in the Act (JSON-RPC)', function () {
+  // The imported group's actor is car; one key names that actor, one names ego.
+  const simple = scenario(
+    simpleGroup(
+      'CutIn',
+      `              <TriggeringEntities><EntityRef parameterAttributes="entityRef" entityRef="car"/></TriggeringEntities>\n`,
+    ),
+    ['ego', 'car'],
+  );
+  const server = useServer({ 'simple.xosc': simple }, 'simple.xosc');
+  const firstGroup = `<ManeuverGroup name="Cut" maximumExecutionCount="1"><Actors><EntityRef entityRef="car"/></Actors>
+  <ScenarioReference scenarioFileName="simple.xosc"><ManeuverGroupReference maneuverGroupName="CutIn"/></ScenarioReference>
+</ManeuverGroup>`;
+  const itemAt = async (marked: string) => {
+    const typed = cursor(marked);
+    const uri = await server.client.open(fileUri(path.join(server.root, 'typing.xosc')), typed.text);
+    const items = await server.client.request<CompletionItem[]>('textDocument/completion', server.client.at(uri, typed.position));
+    await server.client.close(uri);
+    const item = items.find((candidate) => candidate.label === 'ScenarioReference simple.xosc CutIn');
+    assert.ok(item, items.map((candidate) => candidate.label).join('\n'));
+    return { item, text: typed.text, inserted: expandSnippet((item.textEdit as TextEdit).newText) };
+  };
+
+  it("proposes a name unique in the Act for the group, and the group's own actor for keys that name the imported group's actor", async function () {
+    const { item, text, inserted } = await itemAt(`<OpenSCENARIO><Storyboard><Story name="S"><Act name="A">${firstGroup}
+<ManeuverGroup name="Cut" maximumExecutionCount="1"><Actors><EntityRef entityRef="truck"/></Actors>
+  <|`);
+    assert.match(inserted, /<ParameterReference key="TriggeringEntities\.EntityRef\.entityRef" value="truck"\/>/);
+    assert.match(inserted, /<ParameterReference key="Condition\.EntityRef\.entityRef" value="ego"\/>/);
+    assert.match(inserted, /<ParameterReference key="value" value="10"\/>/);
+    const [rename] = item.additionalTextEdits ?? [];
+    assert.equal(rename?.newText, 'Cut2');
+    const second = text.lastIndexOf('name="Cut"') + 'name="'.length;
+    assert.deepEqual(rename.range.start, { line: 3, character: second - text.lastIndexOf('\n', second) - 1 });
+    assert.equal(rename.range.end.character - rename.range.start.character, 'Cut'.length);
+    assert.match(item.detail ?? '', /keys naming its actor car name truck; renames this ManeuverGroup Cut2 \(Cut is taken in its Act\)/);
+  });
+
+  it('leaves a name of its own and the defaults of a group whose actor is the imported one', async function () {
+    const { item, inserted } = await itemAt(`<OpenSCENARIO><Storyboard><Story name="S"><Act name="A">${firstGroup}
+<ManeuverGroup name="Other" maximumExecutionCount="1"><Actors><EntityRef entityRef="car"/></Actors>
+  <|`);
+    assert.equal(item.additionalTextEdits, undefined);
+    assert.match(inserted, /key="TriggeringEntities\.EntityRef\.entityRef" value="car"/);
+    // Names are unique per Act: a group of another Act may have the same name.
+    const { item: elsewhere } = await itemAt(`<OpenSCENARIO><Storyboard><Story name="S"><Act name="A">${firstGroup}</Act><Act name="B">
+<ManeuverGroup name="Cut" maximumExecutionCount="1"><Actors><EntityRef entityRef="truck"/></Actors>
+  <|`);
+    assert.equal(elsewhere.additionalTextEdits, undefined);
   });
 });

@@ -4,12 +4,12 @@ import { CompletionItem, CompletionItemKind, InsertTextFormat, Range as LspRange
 import { TextDocument } from 'vscode-languageserver-textdocument';
 import { FlatSource } from '../core/flatten';
 import { keyMatches, OverridableAttribute, overridableAttributes } from '../core/keys';
-import { findGroup, PARAMETER_ATTRIBUTES } from '../core/model';
+import { findGroup, ManeuverGroupInfo, PARAMETER_ATTRIBUTES } from '../core/model';
 import { displayRef, LIBRARY_PREFIX, SourceRef } from '../core/sources';
 import { keyChoices, overridablePlace, sourceForFileName } from '../analysis';
 import { ancestor, elementsBetween, lastElementBefore, ValueContext } from '../core/cursor';
 import { indexFor } from '../core/schema/query';
-import { attribute, elementAt, XmlAttribute, XmlDocument } from '../core/xml';
+import { attribute, elementAt, XmlAttribute, XmlDocument, XmlElement } from '../core/xml';
 import { completionTargetAt, currentDocument } from '../target';
 import { Workspace } from '../workspace';
 import { scenarioSkeletonSnippet, schemaCompletion } from './schemaCompletion';
@@ -211,8 +211,55 @@ function parameterAttributeItems(document: TextDocument, context: ValueContext):
     }));
 }
 
-/** A whole ScenarioReference block for one group of a file, every key set to its default (tab stops on values). */
-export function referenceSnippet(fileName: string, groupName: string, targets: OverridableAttribute[], indent: string): string {
+/**
+ * What the ManeuverGroup a ScenarioReference goes into already says: its actor, whom the imported group's
+ * actor-valued keys should name (flattening gives the copy's Actors that entity, SPEC 4 step 2, but a key
+ * left at its default still names the simple scenario's actor), and a name for it where its own is
+ * taken in its Act (or empty): flattening names the copies `OUTER.INNER`, so two outer groups of one
+ * name in an Act give copies of one name.
+ */
+export interface OuterGroupFacts {
+  actor: string | undefined;
+  rename: { range: LspRange; taken: string; name: string } | undefined;
+}
+
+function outerGroupFacts(document: TextDocument, group: XmlElement | undefined, importedName: string): OuterGroupFacts {
+  const actors = group?.children.find((child) => child.name === 'Actors');
+  const actor = actors?.children.find((child) => child.name === 'EntityRef');
+  const actorName = actor ? attribute(actor, 'entityRef')?.value.trim() || undefined : undefined;
+  const nameAttribute = group ? attribute(group, 'name') : undefined;
+  const act = group?.parent?.name === 'Act' ? group.parent : undefined;
+  if (!group || !nameAttribute || !act) return { actor: actorName, rename: undefined };
+  const written = nameAttribute.value.trim();
+  const others = new Set(
+    act.children
+      .filter((child) => child.name === 'ManeuverGroup' && child !== group)
+      .map((child) => attribute(child, 'name')?.value.trim() ?? ''),
+  );
+  if (written !== '' && !others.has(written)) return { actor: actorName, rename: undefined };
+  const base = (written || importedName.split('.').pop() || 'Group').replace(/\d+$/, '') || 'Group';
+  let name = written === '' && !others.has(base) ? base : '';
+  for (let counter = 2; name === ''; counter++) if (!others.has(`${base}${counter}`)) name = `${base}${counter}`;
+  const range = replaceRange(document, nameAttribute.valueStart, nameAttribute.valueEnd);
+  return { actor: actorName, rename: { range, taken: written, name } };
+}
+
+/** The entity the group's Actors names in its own file: the value of its actor-valued keys' defaults. */
+function ownActor(group: ManeuverGroupInfo): string | undefined {
+  return (group.actor && attribute(group.actor, 'entityRef')?.value.trim()) || undefined;
+}
+
+/**
+ * A whole ScenarioReference block for one group of a file, every key set to its default (tab stops on
+ * values), but a key whose default is the group's own actor, which names `actor` (the outer group's).
+ */
+export function referenceSnippet(
+  fileName: string,
+  groupName: string,
+  targets: OverridableAttribute[],
+  indent: string,
+  actors?: { own: string | undefined; outer: string | undefined },
+): string {
   const escape = (value: string) => value.replace(/[$}\\]/g, (char) => `\\${char}`);
   const lines = [
     `<ScenarioReference scenarioFileName="${escape(fileName)}">`,
@@ -221,21 +268,32 @@ export function referenceSnippet(fileName: string, groupName: string, targets: O
   keyChoices(targets).forEach((choice, index) => {
     const defaultValue = choice.targets[0].defaultValue;
     if (defaultValue === undefined || choice.forms.length === 0) return;
-    lines.push(`${indent}${indent}<ParameterReference key="${escape(choice.forms[0])}" value="\${${index + 1}:${escape(defaultValue)}}"/>`);
+    const value = actors?.own && actors.outer && isActorValued(choice.targets, actors.own) ? actors.outer : defaultValue;
+    lines.push(`${indent}${indent}<ParameterReference key="${escape(choice.forms[0])}" value="\${${index + 1}:${escape(value)}}"/>`);
   });
   lines.push(`${indent}</ManeuverGroupReference>`, '</ScenarioReference>$0');
   return lines.join('\n');
 }
 
+/** Keys that name the group's own actor: an entity reference whose default is that entity. */
+function isActorValued(targets: OverridableAttribute[], ownActor: string): boolean {
+  return targets.every((target) => ENTITY_REFERENCE_ATTRIBUTES.has(target.attributeName) && target.defaultValue?.trim() === ownActor);
+}
+
+/** Attributes that name an entity (the ones a key of an imported group sets to an actor). */
+const ENTITY_REFERENCE_ATTRIBUTES: ReadonlySet<string> = new Set(['entityRef', 'masterEntityRef']);
+
 /**
  * ScenarioReference snippets for each group of each file a name resolves to. Simple scenarios (files
  * without references of their own, whose groups list attributes to override) come first, then the
- * other files in lookup order.
+ * other files in lookup order. Inside a group with an actor, keys that name the imported group's own
+ * actor name that actor; where the group's name is taken in its Act, the item renames it.
  */
 async function snippetItems(
   workspace: Workspace,
   ref: SourceRef,
   document: TextDocument,
+  outerGroup: XmlElement | undefined,
   start: number,
   offset: number,
 ): Promise<CompletionItem[]> {
@@ -252,15 +310,22 @@ async function snippetItems(
     for (const group of source.model.groups) {
       if (ranked.length >= MAX_SNIPPETS) break;
       const targets = overridableAttributes(source.model, group);
+      const outer = outerGroupFacts(document, outerGroup, group.name);
+      const own = ownActor(group);
+      const renamed = outer.rename
+        ? `; renames this ManeuverGroup ${outer.rename.name} (${outer.rename.taken ? `${outer.rename.taken} is taken in its Act` : 'it has no name'})`
+        : '';
+      const actorNote = outer.actor && own && outer.actor !== own ? `; keys naming its actor ${own} name ${outer.actor}` : '';
       ranked.push({
         rank: kind * 1_000_000 + fileIndex * 1000 + ranked.length,
         item: {
           label: `ScenarioReference ${candidate.name} ${group.name}`,
           kind: CompletionItemKind.Snippet,
-          detail: `${targets.length} keys with their defaults`,
+          detail: `${targets.length} keys with their defaults${actorNote}${renamed}`,
           filterText: `<ScenarioReference ${candidate.name} ${group.name}`,
           insertTextFormat: InsertTextFormat.Snippet,
-          textEdit: { range, newText: referenceSnippet(candidate.name, group.name, targets, indent) },
+          textEdit: { range, newText: referenceSnippet(candidate.name, group.name, targets, indent, { own, outer: outer.actor }) },
+          ...(outer.rename ? { additionalTextEdits: [{ range: outer.rename.range, newText: outer.rename.name }] } : {}),
         },
       });
     }
@@ -429,7 +494,7 @@ export async function complete(workspace: Workspace, ref: SourceRef, document: T
         return [...schemaItems, ...(await parameterReferenceItems(workspace, ref, document, parsed, target.start, offset))];
       // A ScenarioReference's parent is the ManeuverGroup it fills (SPEC), so it is offered nowhere else.
       if ('ScenarioReference'.toLowerCase().startsWith(target.prefix.toLowerCase()) && target.open?.name === 'ManeuverGroup') {
-        return [...schemaItems, ...(await snippetItems(workspace, ref, document, target.start, offset))];
+        return [...schemaItems, ...(await snippetItems(workspace, ref, document, target.open, target.start, offset))];
       }
       return schemaItems;
     }

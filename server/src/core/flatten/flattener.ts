@@ -11,7 +11,7 @@ import { refId, ScenarioStore, SourceError, SourceRef } from '../sources';
 import { isWellFormed, parseXml } from '../xml';
 import { checkDeclarations, checkOutput, entityProblems } from './checks';
 import { applyEdits, parameterAttributeSpans } from './edits';
-import { link } from './link';
+import { duplicateOuterGroupProblems, link } from './link';
 import { outputSchemaProblems, overrideValueProblems } from './outputSchema';
 import { problemAt } from './report';
 import { pathBaseOf, rebaseFlattened } from './rebase';
@@ -213,6 +213,7 @@ export class Flattener {
   private async linkAll(result: FlatSource, model: ScenarioModel, stack: SourceRef[]): Promise<void> {
     const childProblems: Problem[] = [];
     const dependencyIds = new Set([refId(result.ref)]);
+    result.problems.push(...duplicateOuterGroupProblems(model, result.ref));
     for (const reference of model.references) {
       const linked = await link(this, reference, result.ref, model, stack, result);
       result.links.push(linked);

@@ -1,6 +1,11 @@
 import { ambiguousGroupWording } from '../diagnostics/ambiguousGroup';
 import { cycleWording } from '../diagnostics/cycle';
-import { DUPLICATE_GROUP_FIRST_NOTE, duplicateGroupWording } from '../diagnostics/duplicateGroup';
+import {
+  DUPLICATE_GROUP_FIRST_NOTE,
+  DUPLICATE_OUTER_GROUP_FIRST_NOTE,
+  duplicateGroupWording,
+  duplicateOuterGroupWording,
+} from '../diagnostics/duplicateGroup';
 import { keyMixedDefaultsNote, keyMixedDefaultsWording } from '../diagnostics/keyMixedDefaults';
 import { noActorsWording, noEntityRefAttributeWording } from '../diagnostics/noEntityRef';
 import { referenceOutsideGroupWording } from '../diagnostics/referenceOutsideGroup';
@@ -23,7 +28,7 @@ import { findGroup, ManeuverGroupInfo, ManeuverGroupReferenceInfo, ScenarioModel
 import { Problem } from '../problems';
 import { displayRef, refId, ScenarioStore, SourceRef } from '../sources';
 import { closestMatch } from '../text';
-import { attribute } from '../xml';
+import { attribute, XmlElement } from '../xml';
 import { SCHEMA_PROBLEM_CODES } from '../schema/validate';
 import { declarationLocation, originOf } from './origin';
 import { describeChain, problemAt, ProblemWords, valueRange } from './report';
@@ -251,6 +256,45 @@ function duplicateGroupProblems(source: FlatSource, named: ManeuverGroupInfo[]):
       { source: first.ref, range: first.document.lines.range(first.start, first.end), message: DUPLICATE_GROUP_FIRST_NOTE },
     ];
     problems.push(problem);
+  }
+  return problems;
+}
+
+/**
+ * Warns on each ManeuverGroup of an Act that repeats the name of an earlier one of that Act where either
+ * imports groups (a group without ScenarioReference is left to duplicateNames, core/semantics/checks/names.ts).
+ */
+export function duplicateOuterGroupProblems(model: ScenarioModel, from: SourceRef): Problem[] {
+  const problems: Problem[] = [];
+  const acts = new Set(model.groups.map((group) => group.element.parent).filter((parent): parent is XmlElement => parent?.name === 'Act'));
+  const imported = (group: ManeuverGroupInfo) =>
+    group.references.flatMap((reference) => reference.groupReferences.map((inner) => inner.name));
+  for (const act of acts) {
+    const first = new Map<string, ManeuverGroupInfo>();
+    for (const group of model.groups) {
+      if (group.element.parent !== act || group.name === '') continue;
+      const earlier = first.get(group.name);
+      if (!earlier) {
+        first.set(group.name, group);
+        continue;
+      }
+      if (group.references.length === 0 && earlier.references.length === 0) continue;
+      const earlierCopies = new Set(imported(earlier));
+      const shared = [...new Set(imported(group).filter((inner) => earlierCopies.has(inner)))];
+      const [start, end] = valueRange(group.nameAttribute, group.element);
+      const [firstStart, firstEnd] = valueRange(earlier.nameAttribute, earlier.element);
+      const problem = problemAt({
+        source: from,
+        document: model.document,
+        start,
+        end,
+        ...duplicateOuterGroupWording(group.name, attribute(act, 'name')?.value ?? '', shared),
+      });
+      problem.related = [
+        { source: from, range: model.document.lines.range(firstStart, firstEnd), message: DUPLICATE_OUTER_GROUP_FIRST_NOTE },
+      ];
+      problems.push(problem);
+    }
   }
   return problems;
 }
