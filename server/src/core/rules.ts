@@ -7,17 +7,6 @@ export type { QcRuleUid, Rule };
 /** The rules of the codes without a module of their own in core/diagnostics/ (each of those names its rule there). */
 const OTHER_RULES: Record<Exclude<ProblemCode, DefinedCode>, Rule> = {
   'undeclared-entity': { description: 'An entity reference names a declared entity.', qcRule: QC.entityReferences },
-  'schema-unknown-element': { description: 'Every element is one the ASAM schema allows there.', qcRule: QC.validSchema },
-  'schema-unknown-attribute': { description: 'Every attribute is one the ASAM schema allows on its element.', qcRule: QC.validSchema },
-  'schema-missing-element': { description: 'Every element the ASAM schema requires is present.', qcRule: QC.validSchema },
-  'schema-missing-attribute': { description: 'Every attribute the ASAM schema requires is present.', qcRule: QC.validSchema },
-  'schema-order': { description: 'Child elements stand in the order the ASAM schema gives.', qcRule: QC.validSchema },
-  'schema-cardinality': { description: 'Child elements occur as often as the ASAM schema allows.', qcRule: QC.validSchema },
-  'schema-value': { description: "An attribute's value fits its ASAM schema type.", qcRule: QC.validSchema },
-  'schema-deprecated': {
-    description: 'No deprecated element, attribute or value is used (a warning, as in both official checkers); the replacement is named.',
-  },
-  'schema-version': { description: 'The FileHeader names an OpenSCENARIO version the project knows.' },
   'undeclared-parameter': { description: 'A $name names a declared parameter.' },
   'unused-parameter': { description: 'A declared parameter is used.' },
   'duplicate-parameter': { description: 'A parameter is declared once in its scope.' },

@@ -1,7 +1,9 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { TextDocument } from 'vscode-languageserver-textdocument';
-import { FixContext, RelatedPlace } from '../../../server/src/core/diagnostics';
+import { FixContext, RegisteredDiagnostic, RelatedPlace } from '../../../server/src/core/diagnostics';
+import { SchemaCheckMemory, schemaProblems } from '../../../server/src/core/schema/problems';
+import { applyEdits } from '../../support/textEdits';
 import { parseXml } from '../../../server/src/core/xml';
 import { Flattener } from '../../../server/src/core/flatten';
 import { Problem } from '../../../server/src/core/problems';
@@ -19,6 +21,7 @@ export function fixContext(data: unknown, related?: Partial<RelatedPlace>, text 
     document,
     range,
     parsed: async () => parseXml(document.getText()),
+    schemaVersion: 'auto',
     related: related && {
       range: RANGE,
       sameDocument: false,
@@ -59,4 +62,24 @@ export async function analysisProblemsOf(files: Record<string, string>, main = '
   } finally {
     fs.rmSync(root, { recursive: true, force: true });
   }
+}
+
+/** The schema check's problems of `text` (a file named main.xosc, the version its FileHeader names). */
+export function schemaProblemsOf(text: string): Problem[] {
+  return schemaProblems(diskRef('/virtual/main.xosc'), parseXml(text), new SchemaCheckMemory());
+}
+
+/** `text` after the first problem of `code` the schema check finds is fixed by `definition`'s first fix; undefined without one. */
+export async function schemaFixed(text: string, definition: RegisteredDiagnostic): Promise<{ title: string; text: string } | undefined> {
+  const problem = schemaProblemsOf(text).find((candidate) => candidate.code === definition.code);
+  if (!problem)
+    throw new Error(
+      `no ${definition.code} in ${schemaProblemsOf(text)
+        .map((found) => found.code)
+        .join(', ')}`,
+    );
+  const [fix] = (await definition.fixes?.(fixContext(problem.data, undefined, text, problem.range))) ?? [];
+  if (!fix) return undefined;
+  const edits = fix.edits.map((edit) => ({ range: edit.range, newText: edit.newText }));
+  return { title: fix.title, text: applyEdits(text, edits) };
 }

@@ -1,7 +1,8 @@
 import { Problem, ProblemCode, ProblemCodeWithData, ProblemDataByCode, Severity } from '../problems';
 import { Position, Range } from '../text';
 import { PARAMETER_ATTRIBUTES } from '../model';
-import { attribute, XmlDocument, XmlElement } from '../xml';
+import { attribute, elementAt, XmlDocument, XmlElement } from '../xml';
+import type { SchemaVersionSetting } from '../schema/version';
 import { Rule } from './qcRules';
 
 /** The data a problem of code `C` carries: the shape `ProblemDataByCode` names, none for a code without data. */
@@ -38,6 +39,8 @@ export interface FixContext<D> {
   /** The document's parse tree (parsed at most once per request). */
   parsed(): Promise<XmlDocument>;
   related: RelatedPlace | undefined;
+  /** The schema version the workspace checks against (its `schemaVersion` setting), for fixes that insert what the schema requires. */
+  schemaVersion: SchemaVersionSetting | 'off';
 }
 
 /** One replacement of a fix: in the problem's document, or in the file of its first related place. */
@@ -71,6 +74,8 @@ export interface DiagnosticBase<C extends ProblemCode> {
   readonly skippedByForce?: true;
   /** Shown struck through in the editor: what the problem names is kept only for compatibility. */
   readonly deprecated?: true;
+  /** Shown faded in the editor: what the problem names is not needed. */
+  readonly unnecessary?: true;
   readonly fixes?: (context: FixContext<DataOf<C>>) => CoreFix[] | Promise<CoreFix[]>;
 }
 
@@ -143,4 +148,10 @@ export function changeTo(range: Range, text: string, preferred = true): CoreFix 
 /** The fix of a code whose data names the closest valid text: change to it. */
 export function changeToSuggestion({ data, range }: FixContext<{ suggestion: string }>): CoreFix[] {
   return data?.suggestion ? [changeTo(range, data.suggestion)] : [];
+}
+
+/** The element whose start tag's name holds `offset` (where the schema places its findings about an element). */
+export function elementAtRange(document: XmlDocument, offset: number): XmlElement | undefined {
+  const found = elementAt(document, offset);
+  return found && found.start + 1 <= offset && offset <= found.nameEnd ? found : undefined;
 }

@@ -33,6 +33,15 @@ import { BAD_PACKAGE } from './badPackage';
 import { INVALID_REFERENCE } from './invalidReference';
 import { MISSING_ATTRIBUTE } from './missingAttribute';
 import { FILE_PATH } from './filePath';
+import { SCHEMA_UNKNOWN_ELEMENT } from './schemaUnknownElement';
+import { SCHEMA_UNKNOWN_ATTRIBUTE } from './schemaUnknownAttribute';
+import { SCHEMA_MISSING_ELEMENT } from './schemaMissingElement';
+import { SCHEMA_MISSING_ATTRIBUTE } from './schemaMissingAttribute';
+import { SCHEMA_ORDER } from './schemaOrder';
+import { SCHEMA_CARDINALITY } from './schemaCardinality';
+import { SCHEMA_VALUE } from './schemaValue';
+import { SCHEMA_DEPRECATED } from './schemaDeprecated';
+import { SCHEMA_VERSION } from './schemaVersion';
 
 export * from './definition';
 export { QC, QC_RULE_DESCRIPTIONS } from './qcRules';
@@ -76,6 +85,15 @@ export const DIAGNOSTICS = [
   INVALID_REFERENCE,
   MISSING_ATTRIBUTE,
   FILE_PATH,
+  SCHEMA_UNKNOWN_ELEMENT,
+  SCHEMA_UNKNOWN_ATTRIBUTE,
+  SCHEMA_MISSING_ELEMENT,
+  SCHEMA_MISSING_ATTRIBUTE,
+  SCHEMA_ORDER,
+  SCHEMA_CARDINALITY,
+  SCHEMA_VALUE,
+  SCHEMA_DEPRECATED,
+  SCHEMA_VERSION,
 ] as const;
 
 /** The codes whose diagnostic has its own module. */

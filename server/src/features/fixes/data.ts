@@ -1,4 +1,4 @@
-import { DefinedCode, DIAGNOSTICS, isOptionalString, isRecord, isString, isStringList, isSuggestion } from '../../core/diagnostics';
+import { DefinedCode, DIAGNOSTICS, isOptionalString, isRecord, isString, isSuggestion } from '../../core/diagnostics';
 import { PROBLEM_CODE_LIST, Problem, ProblemCode, ProblemCodeWithData, ProblemDataByCode } from '../../core/problems';
 
 /**
@@ -17,10 +17,6 @@ export function diagnosticDataOf(problem: Problem): { code: ProblemCode; data?: 
   return problem.data ? { code: problem.code, data: problem.data } : { code: problem.code };
 }
 
-function isMissingAttributes(value: unknown): value is ProblemDataByCode['schema-missing-attribute'] {
-  return isRecord(value) && isStringList(value.missing);
-}
-
 /** One check per code that carries data and has no module in core/diagnostics/ (whose modules check their own). */
 const OTHER_GUARDS: { [C in Exclude<ProblemCodeWithData, DefinedCode>]: (value: unknown) => value is ProblemDataByCode[C] } = {
   'undeclared-parameter': (value): value is ProblemDataByCode['undeclared-parameter'] => isRecord(value) && isString(value.parameter),
@@ -35,14 +31,6 @@ const OTHER_GUARDS: { [C in Exclude<ProblemCodeWithData, DefinedCode>]: (value: 
   'lenient-value': (value): value is ProblemDataByCode['lenient-value'] =>
     isSuggestion(value) || (isRecord(value) && isString(value.relatedReplacement)),
   'renamed-reference': isSuggestion,
-  'schema-unknown-element': isSuggestion,
-  'schema-unknown-attribute': isSuggestion,
-  'schema-value': isSuggestion,
-  'schema-deprecated': isSuggestion,
-  'schema-version': isSuggestion,
-  'schema-missing-attribute': isMissingAttributes,
-  'schema-missing-element': (value): value is ProblemDataByCode['schema-missing-element'] =>
-    isRecord(value) && isStringList(value.missing) && isString(value.parent) && isOptionalString(value.insertAt),
 };
 
 const PROBLEM_CODES: ReadonlySet<string> = new Set(PROBLEM_CODE_LIST);

@@ -73,6 +73,7 @@ export function definitionFix(definition: RegisteredDiagnostic): ProblemFix {
         range: target.diagnostic.range,
         parsed: target.parsed,
         related: relatedPlace(target, workspace, file),
+        schemaVersion: workspace.settings.schemaVersion,
       };
       const fixes = await definition.fixes(context);
       return Promise.all(fixes.map((fix) => codeAction(fix, target, file)));

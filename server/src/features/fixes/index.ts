@@ -2,10 +2,6 @@ import { DIAGNOSTICS } from '../../core/diagnostics';
 import { definitionFix } from './definitionFix';
 import { ProblemFix } from './fix';
 import { lenientValueFix } from './lenientValue';
-import { schemaMissingAttributeFix } from './schemaMissingAttribute';
-import { schemaMissingElementFix } from './schemaMissingElement';
-import { schemaSuggestionFix } from './schemaSuggestion';
-import { schemaUnknownElementFix } from './schemaUnknownElement';
 import { undeclaredParameterFix } from './undeclaredParameter';
 
 export type { DiagnosticData } from './data';
@@ -18,8 +14,4 @@ export const PROBLEM_FIXES: readonly ProblemFix[] = [
   ...DIAGNOSTICS.filter((definition) => definition.fixes).map(definitionFix),
   undeclaredParameterFix,
   lenientValueFix,
-  schemaSuggestionFix,
-  schemaUnknownElementFix,
-  schemaMissingAttributeFix,
-  schemaMissingElementFix,
 ];

@@ -1,18 +1,22 @@
-import { TextEdit } from 'vscode-languageserver/node';
-import { indexFor, typeByElementName, typeOfElement } from '../../core/schema/query';
-import { elementSkeleton, placeholderValue, skeletonText } from '../../core/schema/skeleton';
-import { indentOfLine } from '../../core/diagnostics';
-import { problemFix, quickFix } from './fix';
-import { elementAtRange } from './schema';
+import { ProblemDataByCode } from '../problems';
+import { indexFor, typeByElementName, typeOfElement } from '../schema/query';
+import { elementSkeleton, placeholderValue, skeletonText } from '../schema/skeleton';
+import { Range } from '../text';
+import { defineDiagnostic, elementAtRange, indentOfLine, isOptionalString, isRecord, isString, isStringList } from './definition';
+import { QC } from './qcRules';
 
 /** Required elements the element lacks: each inserted as a minimal valid skeleton, before the element they must precede or at the end. */
-export const schemaMissingElementFix = problemFix(
-  ['schema-missing-element'],
-  async (data, { uri, document: textDocument, diagnostic, parsed }, workspace) => {
+export const SCHEMA_MISSING_ELEMENT = defineDiagnostic({
+  code: 'schema-missing-element',
+  rule: { description: 'Every element the ASAM schema requires is present.', qcRule: QC.validSchema },
+  severity: 'error',
+  isData: (value): value is ProblemDataByCode['schema-missing-element'] =>
+    isRecord(value) && isStringList(value.missing) && isString(value.parent) && isOptionalString(value.insertAt),
+  fixes: async ({ data, document, range, parsed, schemaVersion }) => {
     const tree = await parsed();
-    const text = textDocument.getText();
-    const start = textDocument.offsetAt(diagnostic.range.start);
-    const index = indexFor(tree, workspace.settings.schemaVersion);
+    const text = document.getText();
+    const start = document.offsetAt(range.start);
+    const index = indexFor(tree, schemaVersion);
     if (!index || !data || data.missing.length === 0) return [];
     const names = data.missing;
     const anchor = elementAtRange(tree, start);
@@ -29,38 +33,39 @@ export const schemaMissingElementFix = problemFix(
         const skeleton = particle ? elementSkeleton(index, particle) : { name, type: '', attributes: [], children: [] };
         return skeletonText(skeleton, { indent, unit, eol: lineBreak }, (declaration) => placeholderValue(index, declaration.type));
       });
-    let edit: TextEdit;
+    const at = (offset: number): Range => ({ start: document.positionAt(offset), end: document.positionAt(offset) });
+    let edit: { range: Range; newText: string };
     if (data.insertAt !== undefined) {
-      const at = Number(data.insertAt);
-      edit = TextEdit.insert(
-        textDocument.positionAt(at),
-        blocksAt(indentOfLine(text, at), eol)
-          .map((block) => `${block}${eol}${indentOfLine(text, at)}`)
+      const offset = Number(data.insertAt);
+      edit = {
+        range: at(offset),
+        newText: blocksAt(indentOfLine(text, offset), eol)
+          .map((block) => `${block}${eol}${indentOfLine(text, offset)}`)
           .join(''),
-      );
+      };
     } else if (parent.selfClosing) {
       // `<Parent/>` becomes `<Parent>…</Parent>`.
       const slash = text.lastIndexOf('/', parent.end - 1);
-      edit = TextEdit.replace(
-        { start: textDocument.positionAt(slash), end: textDocument.positionAt(parent.end) },
-        `>${blocksAt(childIndent, eol)
+      edit = {
+        range: { start: document.positionAt(slash), end: document.positionAt(parent.end) },
+        newText: `>${blocksAt(childIndent, eol)
           .map((block) => `${eol}${childIndent}${block}`)
           .join('')}${eol}${indentOfLine(text, parent.start)}</${parent.name}>`,
-      );
+      };
     } else {
       const closing = text.lastIndexOf(`</${parent.name}`, parent.end);
       if (closing < 0) return [];
       const lineStart = text.lastIndexOf('\n', closing - 1) + 1;
       const onOwnLine = /^[ \t]*$/.test(text.slice(lineStart, closing));
       edit = onOwnLine
-        ? TextEdit.insert(
-            textDocument.positionAt(lineStart),
-            blocksAt(childIndent, eol)
+        ? {
+            range: at(lineStart),
+            newText: blocksAt(childIndent, eol)
               .map((block) => `${childIndent}${block}${eol}`)
               .join(''),
-          )
-        : TextEdit.insert(textDocument.positionAt(closing), blocksAt('', '').join(''));
+          }
+        : { range: at(closing), newText: blocksAt('', '').join('') };
     }
-    return [quickFix(`Insert ${names.map((name) => `<${name}>`).join(', ')}`, diagnostic, { changes: { [uri]: [edit] } }, true)];
+    return [{ title: `Insert ${names.map((name) => `<${name}>`).join(', ')}`, edits: [{ place: 'document', ...edit }], preferred: true }];
   },
-);
+});
