@@ -276,6 +276,7 @@ const crossing = (actor, length) => `<RoutingAction>
  * @typedef {{
  *   name: string, title: string, group: string, summary: string, actor: string, groupName: string,
  *   entities: string[], init: string[], parameters: Parameter[], maneuver: string, stopAt: number, otherActors?: string[],
+ *   road?: string,
  *   actorName: string, keys: Record<string, string>,
  * }} Module
  */
@@ -950,6 +951,71 @@ export const MODULES = [
       'parallel',
     ),
   },
+  {
+    name: 'highway-merge',
+    title: 'Highway merge',
+    group: 'Vehicles beside',
+    summary:
+      "On a motorway with an on-ramp (the library's road highway_merge_600m.xodr), a vehicle in the acceleration lane, right of the ego's lane, accelerates from its ramp speed at a set rate to a set speed and merges into the ego's lane ahead of it once the gap is below the one asked.",
+    actor: "the merging vehicle, in the acceleration lane right of the ego's",
+    actorName: 'merging',
+    groupName: 'HighwayMerge',
+    road: 'highway_merge_600m.xodr',
+    entities: [VEHICLE('ego', 'vehicle.lincoln.mkz_2017'), VEHICLE('merging', 'vehicle.audi.tt')],
+    init: [placed('ego', -2, 20, 25), placed('merging', -3, 60, 15)],
+    stopAt: 6,
+    parameters: [
+      {
+        key: 'SpeedActionDynamics.value',
+        name: 'acceleration',
+        unit: 'm/s²',
+        range: '0.5..6',
+        about: 'how hard it accelerates from its ramp speed',
+      },
+      { key: 'AbsoluteTargetSpeed.value', name: 'speed', unit: 'm/s', range: '0..70', about: 'the speed it accelerates to' },
+      {
+        key: 'RelativeDistanceCondition.value',
+        name: 'gap',
+        unit: 'm',
+        range: '2..100',
+        about: 'the gap (bumper to bumper, along the road) ahead of the ego when it starts merging',
+      },
+      laneChangeTimeParameter('how long the merge takes'),
+      { key: 'RelativeDistanceCondition.entityRef', name: 'ego', about: 'the vehicle it merges ahead of' },
+      { key: 'RelativeTargetLane.entityRef', name: 'egoLane', about: 'the vehicle whose lane it merges into (the ego)' },
+      { key: 'EntityRef.entityRef', name: 'self', about: 'the merging vehicle itself (as in Actors): its gap triggers the merge' },
+    ],
+    keys: {},
+    maneuver: [
+      event(
+        'MergeAccelerate',
+        privateAction(
+          'MergeAccelerate',
+          speedAction(
+            '<SpeedActionDynamics parameterAttributes="value" dynamicsShape="linear" value="2" dynamicsDimension="rate"/>',
+            '<AbsoluteTargetSpeed parameterAttributes="value" value="22"/>',
+          ),
+        ),
+        trigger('MergeAccelerateStart', atTime(0)),
+        'parallel',
+      ),
+      event(
+        'MergeLaneChange',
+        privateAction(
+          'MergeLaneChange',
+          laneChange(sinusoidalLaneChange(3), '<RelativeTargetLane parameterAttributes="entityRef" entityRef="ego" value="0"/>'),
+        ),
+        trigger(
+          'MergeGap',
+          byEntity(
+            'merging',
+            '<RelativeDistanceCondition parameterAttributes="entityRef,value" entityRef="ego" relativeDistanceType="longitudinal" value="20" freespace="true" rule="lessThan"/>',
+          ),
+        ),
+        'parallel',
+      ),
+    ].join('\n'),
+  },
 ];
 
 /** The doc block a library module opens with (read by server/src/library/modules.ts). @param {Module} module */
@@ -978,7 +1044,7 @@ ${comment}
   <ParameterDeclarations/>
   <CatalogLocations/>
   <RoadNetwork>
-    <LogicFile filepath="${roads}/${ROAD}"/>
+    <LogicFile filepath="${roads}/${module.road ?? ROAD}"/>
   </RoadNetwork>
   <Entities>
 ${indent(module.entities.join('\n'), 4)}

@@ -5,6 +5,7 @@ import * as path from 'node:path';
 import { main } from '../../server/src/cli';
 import { LibraryModule, listLibraries } from '../../server/src/core/library';
 import { nodeFileSystem } from '../../server/src/core/sources';
+import { parseOpenDrive } from '../../server/src/core/opendrive/road';
 import { builtInLibraryFolder, libraryFolders } from '../../server/src/libraries';
 import { harnessVerdicts, requireCarlaHarness } from '../support/carla';
 import { EsminiRun } from '../../common/src/esminiCsv';
@@ -140,19 +141,15 @@ const BEHAVIOURS: Record<string, (module: LibraryModule, tracks: Map<string, Tra
       `it ends at y ${oncoming[end].y}, not ${expected} (the ego lane and the offset)`,
     );
     assert.ok(oncoming[end].x - FRONT > ego[end].x + FRONT && speedAt(oncoming, end) < 0, 'it ends ahead of the ego, head-on');
+    takesTheTimeAsked(module, oncoming);
   },
   'double-lane-change': (module, tracks) => {
     const [ego, lead] = [trackOf(tracks, 'ego'), trackOf(tracks, 'lead')];
     const moves = lateralMoves(lead);
     assert.equal(moves.length, 2, `${moves.length} lane changes, not 2`);
     const [out, back] = moves;
-    const laneChangeTime = parameter(module, 'laneChangeTime');
     assert.ok(Math.abs(lead[out.start].time - parameter(module, 'startTime')) <= STEP * 1.5, `it starts out at ${lead[out.start].time} s`);
-    for (const move of moves)
-      assert.ok(
-        Math.abs(lead[move.end].time - lead[move.start].time - laneChangeTime) <= STEP * 2,
-        `a lane change takes ${(lead[move.end].time - lead[move.start].time).toFixed(2)} s, not ${laneChangeTime}`,
-      );
+    takesTheTimeAsked(module, lead);
     const beside = ego[out.end].y + parameter(module, 'side') * 3.5;
     assert.ok(Math.abs(lead[out.end].y - beside) < 0.05, `it moves out to y ${lead[out.end].y}, not ${beside}`);
     const held = lead[back.start].time - lead[out.end].time;
@@ -177,9 +174,7 @@ const BEHAVIOURS: Record<string, (module: LibraryModule, tracks: Map<string, Tra
       Math.abs(gap - parameter(module, 'gap')) <= closing + 0.05,
       `it changes back at a gap of ${gap.toFixed(2)} m ahead of the ego`,
     );
-    const laneChangeTime = parameter(module, 'laneChangeTime');
-    for (const move of moves)
-      assert.ok(Math.abs(car[move.end].time - car[move.start].time - laneChangeTime) <= STEP * 2, 'a lane change takes the time asked');
+    takesTheTimeAsked(module, car);
     assert.ok(
       Math.abs(car[back.end].y - ego[back.end].y) < 0.05 && gapAhead(ego, car, back.end) > 0,
       'it ends in the ego lane, ahead of it',
@@ -230,7 +225,49 @@ const BEHAVIOURS: Record<string, (module: LibraryModule, tracks: Map<string, Tra
     assert.equal(changed.frictionScaleFactor, parameter(module, 'friction'), 'the road friction');
     assert.ok(Math.abs(changed.sunIntensityFactor - parameter(module, 'sunIntensity') / 100_000) < 1e-9, 'the sun intensity');
   },
+  'highway-merge': (module, tracks) => {
+    const [ego, car] = [trackOf(tracks, 'ego'), trackOf(tracks, 'merging')];
+    const rampSpeed = speedAt(car, 0);
+    const [acceleration, speed] = [parameter(module, 'acceleration'), parameter(module, 'speed')];
+    const middle = Math.floor((speed - rampSpeed) / acceleration / STEP / 2);
+    const measured = (speedAt(car, middle + 4) - speedAt(car, middle - 4)) / (8 * STEP);
+    assert.ok(Math.abs(measured - acceleration) < 0.1, `it accelerates at ${measured.toFixed(2)} m/s², not ${acceleration}`);
+    assert.ok(Math.abs(speedAt(car, car.length - 2) - speed) < 0.05, `it ends at ${speedAt(car, car.length - 2)} m/s, not ${speed}`);
+    const start = lateralStart(car);
+    const gap = gapAhead(ego, car, start);
+    const closing = Math.abs(speedAt(ego, start) - speedAt(car, start)) * STEP;
+    assert.ok(Math.abs(gap - parameter(module, 'gap')) <= closing + 0.05, `it starts merging at a gap of ${gap.toFixed(2)} m`);
+    const end = sameTime(car, car[start].time + parameter(module, 'laneChangeTime') + 2 * STEP);
+    assert.ok(end > 0, 'the run ends before the merge does');
+    assert.ok(
+      Math.abs(car[end].y - ego[end].y) < 0.05 && gapAhead(ego, car, end) > 0,
+      `it ends at y ${car[end].y}, not ahead in the ego lane`,
+    );
+    assert.ok(car[end].x < accelerationLaneEnd(module), 'it merges before its acceleration lane starts narrowing');
+    takesTheTimeAsked(module, car);
+  },
 };
+
+/** Each lane change of the track takes the lane-change time asked (from the step before it moves to the first it stands still). */
+function takesTheTimeAsked(module: LibraryModule, track: Track): void {
+  const laneChangeTime = parameter(module, 'laneChangeTime');
+  for (const move of lateralMoves(track)) {
+    const took = track[move.end].time - track[move.start].time;
+    assert.ok(Math.abs(took - laneChangeTime) <= STEP * 2, `a lane change takes ${took.toFixed(2)} s, not ${laneChangeTime}`);
+  }
+}
+
+/** Where the acceleration lane (-3) of a module's road starts narrowing: the s of the section where its width is a cubic. */
+function accelerationLaneEnd(module: LibraryModule): number {
+  const text = fs.readFileSync(module.example ?? '', 'utf8');
+  const road = /<LogicFile\s+filepath="([^"]+)"/.exec(text)?.[1] ?? '';
+  const network = parseOpenDrive(fs.readFileSync(path.resolve(path.dirname(module.example ?? ''), road), 'utf8'));
+  const section = network.roads[0].laneSections.find((candidate) =>
+    candidate.lanes.some((lane) => lane.id === -3 && lane.widths.some((width) => width.c !== 0)),
+  );
+  assert.ok(section, `${road} has no narrowing acceleration lane`);
+  return section.s;
+}
 
 /** The lead brakes once the ego's headway to it is the one asked, at the deceleration asked, down to the speed asked; returns the step it starts at. */
 function brakesAsAsked(module: LibraryModule, ego: Track, lead: Track, speedAfter: string): number {
