@@ -266,7 +266,9 @@ export async function exportTextForCarla(
   const ego = markEgo(tree, options, sink);
   mapBlueprints(tree, options, sink);
   // Route positions are placed on the road they name: only then is the road file read.
-  const roads = road && 'file' in road && named(tree, 'RoutePosition').length > 0 ? await readRoads(store, road.file) : undefined;
+  // Route positions need road lengths, sampled trajectories the heading of a lane an actor starts on.
+  const needsRoads = named(tree, new Set(['RoutePosition', 'Clothoid', 'ClothoidSpline', 'Nurbs'])).length > 0;
+  const roads = road && 'file' in road && needsRoads ? await readRoads(store, road.file) : undefined;
   applyCarlaRules(tree, { release: options.release ?? '0.9.16', sink, roads });
   // The text the last schema check passed: nothing changes the tree after it.
   const checked = dropOutsideSchema(tree, sink);

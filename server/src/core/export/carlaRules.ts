@@ -24,6 +24,9 @@ import {
   replaceNode,
   setAttr,
 } from './tree';
+import { sampledShape, TrajectoryEnds } from './carlaTrajectories';
+import { actorsOf, fromInit } from './scenarioTree';
+import { SAMPLE_STEP } from './shapes';
 
 /** One thing of the input that the export does not keep as written. */
 export interface CarlaLoss {
@@ -353,16 +356,6 @@ function weather(tree: Node, context: RuleContext): void {
 }
 
 /** The first number `read` finds in the actor's Init actions (its Private), or undefined. */
-function fromInit(tree: Node, actor: string, read: (privateNode: Node) => number | undefined): number | undefined {
-  const init = named(tree, 'Init')[0];
-  const privates = init ? named(init, 'Private').filter((privateNode) => attr(privateNode, 'entityRef') === actor) : [];
-  for (const privateNode of privates) {
-    const found = read(privateNode);
-    if (found !== undefined) return found;
-  }
-  return undefined;
-}
-
 /** The actor's start lane, from its Init TeleportAction to a LanePosition: what a relative lane change counts from. */
 function startLaneOf(tree: Node, actor: string): number | undefined {
   return fromInit(tree, actor, (privateNode) => {
@@ -377,15 +370,6 @@ function startSpeedOf(tree: Node, actor: string): number | undefined {
     const target = named(privateNode, 'AbsoluteTargetSpeed')[0];
     return target ? Number(attr(target, 'value')) : undefined;
   });
-}
-
-/** The entities an action of a storyboard acts on: its ManeuverGroup's Actors, or the Private of an Init action. */
-function actorsOf(node: Node): string[] {
-  const privateNode = ancestor(node, 'Private');
-  if (privateNode) return [attr(privateNode, 'entityRef') ?? ''];
-  const group = ancestor(node, 'ManeuverGroup');
-  const actors = group ? child(group, 'Actors') : undefined;
-  return actors ? childrenNamed(actors, 'EntityRef').map((each) => attr(each, 'entityRef') ?? '') : [];
 }
 
 /**
@@ -463,8 +447,13 @@ function longitudinalTimeGap(tree: Node, context: RuleContext): void {
   }
 }
 
-/** The 1.1 TrajectoryRef wraps what 1.0 writes directly; Clothoid and Nurbs are refused (SR_PARSER get_trajectory: "Clothoid shapes are currently unsupported"). */
+/**
+ * The 1.1 TrajectoryRef wraps what 1.0 writes directly; Clothoid, ClothoidSpline and Nurbs, which ScenarioRunner
+ * refuses (SR_PARSER get_trajectory: "Clothoid shapes are currently unsupported"), are sampled into Polylines
+ * (carlaTrajectories.ts), or dropped naming why not.
+ */
 function trajectories(tree: Node, context: RuleContext): void {
+  const ends: TrajectoryEnds = new Map();
   for (const action of named(tree, 'FollowTrajectoryAction')) {
     const wrapper = child(action, 'TrajectoryRef');
     if (wrapper) {
@@ -489,13 +478,24 @@ function trajectories(tree: Node, context: RuleContext): void {
     else for (const extra of ['lateralControlStrategy']) removeAttr(mode, extra);
     const shape = allNodes(action).find((each) => each.name === 'Clothoid' || each.name === 'Nurbs' || each.name === 'ClothoidSpline');
     if (shape) {
-      dropUnit(
-        action,
-        context,
+      const carla = `ScenarioRunner follows polylines only and refuses a ${shape.name} (${SR_PARSER} get_trajectory)`;
+      const sampled = sampledShape(action, shape, tree, context.roads, ends);
+      if (typeof sampled === 'string') {
+        dropUnit(action, context, shape.name, `${carla}; the export cannot sample it: ${sampled}`);
+        continue;
+      }
+      replaceNode(shape, sampled.polyline);
+      const relative = sampled.relative;
+      context.sink.approximated(
+        sampled.polyline,
         shape.name,
-        `ScenarioRunner follows polylines only and refuses a ${shape.name} (${SR_PARSER} get_trajectory)`,
+        `sampled into a Polyline of ${sampled.vertices} vertices ${SAMPLE_STEP} m apart, as esmini samples it${
+          relative
+            ? `, placed from where '${relative.entity}' is when the action starts, assuming it heads ${Number(((relative.heading * 180) / Math.PI).toFixed(2))}° then (${relative.from})`
+            : ''
+        }`,
+        carla,
       );
-      continue;
     }
     const timing = ancestor(action, 'Event') ? child(child(action, 'TimeReference') ?? action, 'Timing') : undefined;
     for (const polyline of named(action, 'Polyline')) {

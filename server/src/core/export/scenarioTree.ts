@@ -1,0 +1,22 @@
+/** Where an action of the scenario tree acts: its actors, and what the Init sets for an actor. */
+import { ancestor, attr, child, childrenNamed, named, Node } from './tree';
+
+/** The first value `read` finds in the actor's Init Privates. */
+export function fromInit(tree: Node, actor: string, read: (privateNode: Node) => number | undefined): number | undefined {
+  const init = named(tree, 'Init')[0];
+  const privates = init ? named(init, 'Private').filter((privateNode) => attr(privateNode, 'entityRef') === actor) : [];
+  for (const privateNode of privates) {
+    const found = read(privateNode);
+    if (found !== undefined) return found;
+  }
+  return undefined;
+}
+
+/** The entities an action of a storyboard acts on: its ManeuverGroup's Actors, or the Private of an Init action. */
+export function actorsOf(node: Node): string[] {
+  const privateNode = ancestor(node, 'Private');
+  if (privateNode) return [attr(privateNode, 'entityRef') ?? ''];
+  const group = ancestor(node, 'ManeuverGroup');
+  const actors = group ? child(group, 'Actors') : undefined;
+  return actors ? childrenNamed(actors, 'EntityRef').map((each) => attr(each, 'entityRef') ?? '') : [];
+}
