@@ -118,6 +118,14 @@ const entries = [
     format: 'iife',
     target: 'es2022',
   },
+  // The storyboard timeline's page, likewise.
+  {
+    entryPoints: ['client/src/timeline/webview/main.ts'],
+    outfile: 'dist/timeline.js',
+    platform: 'browser',
+    format: 'iife',
+    target: 'es2022',
+  },
   // The Variations view's page (batch results: table and scatter), likewise.
   {
     entryPoints: ['client/src/variations/webview/main.ts'],

@@ -24,6 +24,7 @@ import { registerVariations } from './variations/commands';
 import type { VariationsView } from './variations/panel';
 import { extractGroupCommand } from './extractGroup';
 import { registerDebugging } from './debugging';
+import { registerTimeline, type TimelineView } from './timeline/panel';
 import { registerLibrary, type LibraryApi } from './library/commands';
 
 /** What the extension hands to other extensions and to its own tests. */
@@ -35,6 +36,8 @@ export interface Modular2SimpleApi {
   readonly serverCapabilities: () => ServerCapabilities | undefined;
   /** The bird's-eye view: what it shows and last drew. */
   readonly birdsEye: BirdsEyeView;
+  /** The storyboard timeline (issue 29): a run's or a debug session's storyboard transitions. */
+  readonly timeline: TimelineView;
   /** The Variations view (a batch's results): what it shows and last drew. */
   readonly variations: VariationsView;
   /** *Check in CARLA ScenarioRunner* and *Run in CARLA*: the last check's result and its diagnostics. */
@@ -188,6 +191,7 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
 
   const library = registerLibrary(context, server, reporter);
   const birdsEye = registerBirdsEye(context, client, log);
+  const timeline = registerTimeline(context, log, birdsEye);
   const variations = registerVariations(context, log);
   // A finished run goes straight into the picture: its trajectories beside the scenario.
   context.subscriptions.push(
@@ -207,6 +211,7 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
     lastEsminiRun: () => esmini.last,
     onDidRunEsmini: esmini.onDidRun,
     birdsEye,
+    timeline,
     variations,
     carla,
     carlaExportLosses: carlaLosses.collection,

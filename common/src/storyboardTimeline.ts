@@ -155,3 +155,15 @@ const SIGNS: Record<string, string> = {
 function ruleSign(rule: string | undefined): string {
   return rule === undefined ? 'vs' : (SIGNS[rule] ?? rule);
 }
+
+/** A row in words: `Event ChangeLane (CutInLead.CutIn): 2.35–3.80 s, RelativeDistanceCondition: rel_dist 30.12 > 30`. */
+export function describeRow(row: TimelineRow): string {
+  const head = `${row.type} ${row.name}${row.group && row.type !== 'ManeuverGroup' ? ` (${row.group})` : ''}`;
+  if (!row.started)
+    return `${head}: never started${row.waitsFor?.length ? `, waited for ${row.waitsFor.map(describeCondition).join(' or ')}` : ''}`;
+  const spans = row.spans.map(
+    (span) =>
+      `${span.start.toFixed(2)}–${span.end === undefined ? 'end' : `${span.end.toFixed(2)} s`}${span.cause ? `, ${describeFiring(span.cause)}` : ''}`,
+  );
+  return `${head}: ${spans.join('; ')}`;
+}

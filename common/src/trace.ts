@@ -39,6 +39,15 @@ export interface TraceRecord extends ConditionFiring {
   waitsFor?: TraceCondition[];
 }
 
+/** The debug adapter's custom DAP event: the trace records of a step (none on a stop), the simulation time, the run's limit. */
+export const STORYBOARD_EVENT = 'modular2simple.storyboard';
+
+export interface StoryboardEventBody {
+  records: TraceRecord[];
+  time: number;
+  duration?: number;
+}
+
 /** A trace file that is not one JSON trace record a line: names the line and what is wrong. */
 export class TraceFormatError extends Error {}
 

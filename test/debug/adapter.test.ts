@@ -3,6 +3,8 @@ import { DebugProtocol } from '@vscode/debugprotocol';
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
+import { storyboardTimeline } from '../../common/src/storyboardTimeline';
+import { STORYBOARD_EVENT, type StoryboardEventBody } from '../../common/src/trace';
 import { esminiBinary, esminiCatalogs, esminiRoads } from '../support/esmini';
 import { requireEsminiLibrary, requireEsminiProgram } from '../support/esminiBinaries';
 import { openscenarioDir } from '../support/openscenarioCorpus';
@@ -182,6 +184,9 @@ describe('debug adapter through the Debug Adapter Protocol', function () {
     const simple = path.join(folder, 'lane_change.xosc');
     const line = lineOf(simple, '<Event name="ChangeLane"');
     const main = path.join(folder, 'main.xosc');
+    // The timeline follows the session through the adapter's storyboard events.
+    const bodies: StoryboardEventBody[] = [];
+    client.on(STORYBOARD_EVENT, (event: DebugProtocol.Event) => bodies.push(event.body as StoryboardEventBody));
     const launched = client.launch({ type: 'modular2simple', request: 'launch', program: main, roadPath, duration: 30 });
     await client.waitForEvent('initialized');
     const set = await client.setBreakpointsRequest({ source: { path: simple }, breakpoints: [{ line }, { line: line + 3 }] });
@@ -208,6 +213,20 @@ describe('debug adapter through the Debug Adapter Protocol', function () {
       stops.join('\n'),
     );
     await next;
+    const rows = storyboardTimeline(bodies.flatMap((body) => body.records)).rows;
+    const changeLanes = rows.filter((row) => row.type === 'Event' && row.name === 'ChangeLane');
+    assert.deepEqual(
+      changeLanes.map((row) => [row.group, row.spans[0]?.start, row.file, row.line]),
+      [
+        ['CutInVehicle.CutIn', 4.4, simple, line],
+        ['CutInLead.CutIn', 2.35, simple, line],
+      ],
+    );
+    // Each stop tells the timeline the time of the stop (the end of the step that started the event).
+    assert.ok(
+      bodies.some((body) => body.records.length === 0 && Math.abs(body.time - 2.35) <= 0.05 + 1e-6),
+      JSON.stringify(bodies.map((body) => [body.time, body.records.length])),
+    );
   });
 
   it('keeps a conditional breakpoint that never holds from stopping, and stops at a time breakpoint', async () => {

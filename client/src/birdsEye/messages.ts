@@ -25,7 +25,9 @@ export type ToView =
   /** Asks for the picture as it is now; answered by a `save` with the same id. */
   | { type: 'export'; format: 'png' | 'svg'; id: number; width?: number; height?: number }
   /** Follows and plots an entity (undefined: none); for a command or a test. */
-  | { type: 'choose'; entity: string | undefined };
+  | { type: 'choose'; entity: string | undefined }
+  /** Shows the run at this time, s (the storyboard timeline's cursor was moved). */
+  | { type: 'time'; time: number };
 
 /** What the view reports after drawing: what it drew and how long it took. */
 export interface RenderStats {
@@ -63,7 +65,9 @@ export type FromView =
   | { type: 'save'; format: 'png' | 'svg'; data: string; id?: number }
   /** The Save buttons: the extension asks for the resolution, then sends an `export`. */
   | { type: 'saveAs'; format: 'png' | 'svg' }
-  | { type: 'rendered'; stats: RenderStats };
+  | { type: 'rendered'; stats: RenderStats }
+  /** The time shown changed (the slider, playing, a marker): the storyboard timeline's cursor follows. */
+  | { type: 'time'; time: number };
 
 export const isFromView = (value: unknown): value is FromView =>
   typeof value === 'object' && value !== null && typeof (value as { type?: unknown }).type === 'string';

@@ -36,6 +36,9 @@ export class BirdsEyeView implements vscode.Disposable {
   scene: SceneResult | undefined;
   private readonly renderedListeners: ((stats: RenderStats) => void)[] = [];
   private readonly exports = new Map<number, (data: string) => void>();
+  private readonly timeChanged = new vscode.EventEmitter<number>();
+  /** The time the view shows changed (the storyboard timeline's cursor follows it). */
+  readonly onDidChangeTime = this.timeChanged.event;
   private exportCount = 0;
 
   constructor(
@@ -147,6 +150,11 @@ export class BirdsEyeView implements vscode.Disposable {
     this.compareRun = undefined;
     this.compareWatcher?.dispose();
     this.compareWatcher = undefined;
+  }
+
+  /** Shows the run at this time, s (from the storyboard timeline). */
+  setTime(time: number): void {
+    this.post({ type: 'time', time });
   }
 
   /** Follows and plots an entity of the run (undefined: none). */
@@ -262,6 +270,9 @@ export class BirdsEyeView implements vscode.Disposable {
         } else await this.save(message.format, message.data);
         return;
       }
+      case 'time':
+        this.timeChanged.fire(message.time);
+        return;
       case 'rendered':
         this.stats = message.stats;
         for (const listener of this.renderedListeners.splice(0)) listener(message.stats);
@@ -318,6 +329,7 @@ export class BirdsEyeView implements vscode.Disposable {
 
   dispose(): void {
     clearTimeout(this.refreshTimer);
+    this.timeChanged.dispose();
     this.runWatcher?.dispose();
     this.compareWatcher?.dispose();
     this.panel?.dispose();

@@ -2,6 +2,7 @@ import {
   Breakpoint,
   BreakpointEvent,
   DebugSession,
+  Event,
   InitializedEvent,
   OutputEvent,
   Scope,
@@ -21,7 +22,8 @@ import { childRef, diskRef, displayRef, ScenarioStore, SourceRef, splitScenarioP
 import { EsminiLibraryError } from '../esmini/library';
 import { EsminiProblem } from '../esmini/messages';
 import { EntityState, prepareScenario, Simulation, SimulationLoadError, SimulationOptions, StoryboardEvent } from './simulation';
-import { describeEvent } from './trace';
+import { STORYBOARD_EVENT, type StoryboardEventBody } from '../../../common/src/trace';
+import { describeEvent, traceRecord } from './trace';
 import { evaluateWatch, hitConditionMet, timeBreakpoint, WatchContext, WatchError, WatchValue } from './watchExpression';
 
 /*
@@ -570,6 +572,8 @@ export class ScenarioDebugSession extends DebugSession {
     event.body.allThreadsStopped = true;
     if (stop.breakpointIds.length > 0) event.body.hitBreakpointIds = stop.breakpointIds;
     this.sendEvent(event);
+    // The timeline's cursor goes to the time of the stop.
+    this.sendStoryboard([]);
   }
 
   // ---- output
@@ -601,6 +605,17 @@ export class ScenarioDebugSession extends DebugSession {
       const data = event.reportedAtMs === undefined ? undefined : { element: event.element, reportedAtMs: event.reportedAtMs };
       this.output(`[${fixed(event.time)}] ${describeEvent(event)}\n`, 'console', where, data);
     }
+    // The storyboard timeline follows the session: the same records as run --trace, files as absolute paths.
+    if (events.length > 0) this.sendStoryboard(events);
+  }
+
+  private sendStoryboard(events: readonly StoryboardEvent[]): void {
+    const body: StoryboardEventBody = {
+      records: events.map((event) => traceRecord(event, undefined, this.simulation?.scenario.map)),
+      time: Number((this.simulation?.time ?? 0).toFixed(6)),
+      duration: this.simulation?.duration,
+    };
+    this.sendEvent(new Event(STORYBOARD_EVENT, body));
   }
 
   private sourceOf(ref: SourceRef): Source {

@@ -2,6 +2,7 @@
 import { entitiesBounds } from '../analysis';
 import { fitTransform, sceneBounds } from '../draw';
 import { followList, playButton, slider, timeLabel } from './dom';
+import { vscode } from './host';
 import { frameTimes, renderFrame, renderLayer, renderPlots, report } from './render';
 import { comparedBoxes, currentBoxes, duration, panes, size, state } from './state';
 
@@ -38,6 +39,20 @@ export function setTime(next: number): void {
   const cursor = document.getElementById('cursor');
   if (cursor) cursor.style.left = `${duration() > 0 ? (state.time / duration()) * 100 : 0}%`;
   renderFrame();
+  // Without a run the view has no time of its own to share.
+  if (state.run) shareTime();
+}
+
+let sharedAt = 0;
+let shareTimer: number | undefined;
+/** Tells the extension the time shown (for the storyboard timeline's cursor), at most about ten times a second. */
+function shareTime(): void {
+  const now = performance.now();
+  clearTimeout(shareTimer);
+  if (now - sharedAt >= 100) {
+    sharedAt = now;
+    vscode.postMessage({ type: 'time', time: state.time });
+  } else shareTimer = window.setTimeout(shareTime, 100 - (now - sharedAt));
 }
 
 function tick(now: number): void {

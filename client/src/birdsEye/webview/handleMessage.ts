@@ -34,6 +34,8 @@ export function handleMessage(message: ToView): void {
     // Half as wide a pane: framed anew.
     if (state.sideBySide) fit(true);
     else renderLayer();
+  } else if (message.type === 'time') {
+    setTime(message.time);
   } else if (message.type === 'choose') {
     choose(message.entity, message.entity !== undefined);
   } else if (message.type === 'export') {

@@ -1,0 +1,151 @@
+/**
+ * The storyboard timeline's page: one row per storyboard element, a bar per start (the condition that fired it
+ * written at its start), elements that never started with what they waited for, and the current time's cursor. A
+ * click on a row's name asks the extension to open its source; a click on the bars sets the time (the bird's-eye
+ * view follows).
+ */
+import { describeCondition, describeFiring, describeRow, type Timeline } from '../../../../common/src/storyboardTimeline';
+import type { FromView, ToView } from '../messages';
+
+declare function acquireVsCodeApi(): { postMessage(message: FromView): void };
+const vscode = acquireVsCodeApi();
+
+const rowsElement = document.getElementById('rows') as HTMLDivElement;
+const title = document.getElementById('title') as HTMLSpanElement;
+const timeLabel = document.getElementById('time') as HTMLSpanElement;
+
+let timeline: Timeline | undefined;
+let time = 0;
+/** The tracks' horizontal span: the rows' track elements share it. */
+let tracks: HTMLDivElement[] = [];
+
+const percent = (value: number) =>
+  `${timeline && timeline.end > 0 ? (Math.min(Math.max(value, 0), timeline.end) / timeline.end) * 100 : 0}%`;
+
+function render(label: string, live: boolean): void {
+  title.textContent = `${label}${live ? ' (running)' : ''}`;
+  rowsElement.replaceChildren();
+  tracks = [];
+  if (!timeline || timeline.rows.length === 0) {
+    rowsElement.append(Object.assign(document.createElement('div'), { id: 'empty', textContent: 'No storyboard transitions yet.' }));
+    report();
+    return;
+  }
+  for (const row of timeline.rows) {
+    const line = document.createElement('div');
+    line.className = 'row';
+    line.dataset.element = row.element;
+    const name = document.createElement('div');
+    name.className = 'label';
+    name.style.paddingLeft = `${row.depth * 12}px`;
+    name.title = `${row.element}${row.file ? `\n${row.file}${row.line ? `:${row.line}` : ''}` : ''}\n${describeRow(row)}`;
+    name.append(Object.assign(document.createElement('span'), { className: 'kind', textContent: row.type }), row.name);
+    if (row.group && row.type !== 'ManeuverGroup' && row.depth === 3)
+      name.append(Object.assign(document.createElement('span'), { className: 'group', textContent: `(${row.group})` }));
+    name.addEventListener('click', () => vscode.postMessage({ type: 'open', element: row.element }));
+    const track = document.createElement('div');
+    track.className = 'track';
+    track.addEventListener('click', (event) => {
+      const box = track.getBoundingClientRect();
+      if (timeline && box.width > 0) vscode.postMessage({ type: 'time', time: ((event.clientX - box.left) / box.width) * timeline.end });
+    });
+    for (const span of row.spans) {
+      const bar = document.createElement('div');
+      bar.className = `bar ${row.type}${span.end === undefined ? ' open' : ''}`;
+      bar.style.left = percent(span.start);
+      bar.style.width = `calc(${percent(span.end ?? timeline.end)} - ${percent(span.start)})`;
+      bar.title = `${row.type} ${row.name}: ${span.start.toFixed(2)} s to ${span.end === undefined ? 'the end' : `${span.end.toFixed(2)} s`}${span.cause ? `\nstarted by ${describeFiring(span.cause)}${span.cause.esmini ? `\nesmini: ${span.cause.esmini}` : ''}` : ''}`;
+      track.append(bar);
+      if (span.cause) {
+        const cause = document.createElement('div');
+        cause.className = 'cause';
+        cause.style.left = `calc(${percent(span.start)} + 4px)`;
+        cause.textContent = describeFiring(span.cause);
+        track.append(cause);
+      }
+    }
+    if (!row.started) {
+      const never = document.createElement('div');
+      never.className = 'never';
+      never.textContent = `never started${row.waitsFor?.length ? `: ${row.waitsFor.map(describeCondition).join(' or ')} never became true` : ''}`;
+      track.append(never);
+    }
+    tracks.push(track);
+    line.append(name, track);
+    rowsElement.append(line);
+  }
+  const axis = document.createElement('div');
+  axis.id = 'axis';
+  const spacer = document.createElement('div');
+  spacer.className = 'label';
+  spacer.style.cursor = 'default';
+  const labels = document.createElement('div');
+  labels.id = 'axisLabels';
+  const step = niceStep(timeline.end / 8);
+  for (let at = 0; at <= timeline.end + 1e-9; at += step)
+    labels.append(
+      Object.assign(document.createElement('span'), {
+        textContent: `${Number(at.toFixed(3))} s`,
+        style: `position:absolute;left:${percent(at)}`,
+      }),
+    );
+  axis.append(spacer, labels);
+  rowsElement.append(axis);
+  placeCursor();
+}
+
+function niceStep(rough: number): number {
+  if (!(rough > 0)) return 1;
+  const power = 10 ** Math.floor(Math.log10(rough));
+  return [1, 2, 5, 10].map((factor) => factor * power).find((candidate) => candidate >= rough) ?? 10 * power;
+}
+
+/** The cursor: one line over the tracks at the current time. */
+function placeCursor(): void {
+  timeLabel.textContent = timeline ? `t = ${time.toFixed(2)} s of ${timeline.end.toFixed(2)} s` : '';
+  document.getElementById('cursor')?.remove();
+  const first = tracks[0];
+  const last = tracks[tracks.length - 1];
+  if (!first || !last || !timeline) return report();
+  const cursor = document.createElement('div');
+  cursor.id = 'cursor';
+  const top = first.offsetTop;
+  cursor.style.top = `${top}px`;
+  cursor.style.bottom = 'auto';
+  cursor.style.height = `${last.offsetTop + last.offsetHeight - top}px`;
+  cursor.style.left = `calc(${first.offsetLeft}px + ${first.offsetWidth}px * ${timeline.end > 0 ? Math.min(Math.max(time / timeline.end, 0), 1) : 0})`;
+  rowsElement.append(cursor);
+  report();
+}
+
+function report(): void {
+  vscode.postMessage({
+    type: 'rendered',
+    stats: {
+      time,
+      rows: (timeline?.rows ?? []).map((row) => ({
+        element: row.element,
+        text: describeRow(row),
+        bars: row.spans.length,
+        started: row.started,
+      })),
+    },
+  });
+}
+
+let lastLabel = '';
+let lastLive = false;
+window.addEventListener('message', (event: MessageEvent<ToView>) => {
+  const message = event.data;
+  if (message.type === 'timeline') {
+    timeline = message.timeline;
+    lastLabel = message.label;
+    lastLive = message.live;
+    render(message.label, message.live);
+  } else if (message.type === 'time') {
+    time = message.time;
+    placeCursor();
+  }
+});
+window.addEventListener('resize', () => timeline && render(lastLabel, lastLive));
+vscode.postMessage({ type: 'ready' });
