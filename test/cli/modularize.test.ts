@@ -114,6 +114,62 @@ describe('cli: modularize', function () {
     assert.ok(!fs.existsSync(path.join(root, 'out')));
   });
 
+  it("stats counts modularize's own output: each main against its flattening, the simple scenario once, the totals of modularize's report", () => {
+    const root = temporaryWorkspace({
+      'lib/a.xosc': scenario(speedGroup('A.Go', '10')),
+      'lib/deep/b.xosc': scenario(speedGroup('B.Go', '20') + speedGroup('C.Go', '10')),
+    });
+    const made = runCli(['modularize', 'lib', '-o', 'out', '--format', 'json'], { cwd: root });
+    assert.equal(made.status, 0, made.stderr);
+    const report = JSON.parse(made.stdout) as { totals: { linesBefore: number; linesAfter: number } };
+    const run = runCli(['stats', 'out', '--format', 'json'], { cwd: root });
+    assert.equal(run.status, 0, run.stderr);
+    const stats = JSON.parse(run.stdout) as {
+      layout: string;
+      rows: { scenario: string; modularLines: number; flattenedLines: number }[];
+      shared: { file: string; lines: number }[];
+      totals: { modularLines: number; flattenedLines: number };
+    };
+    assert.equal(stats.layout, 'files');
+    assert.deepEqual(
+      stats.rows.map((row) => row.scenario),
+      ['a.xosc', path.join('deep', 'b.xosc')],
+    );
+    for (const row of stats.rows) {
+      assert.equal(
+        row.flattenedLines,
+        fs
+          .readFileSync(path.join(root, 'lib', row.scenario), 'utf8')
+          .trimEnd()
+          .split('\n').length,
+        row.scenario,
+      );
+      assert.ok(row.modularLines < row.flattenedLines, row.scenario);
+    }
+    assert.deepEqual(
+      stats.shared.map((item) => path.relative(root, item.file)),
+      [path.join('out', 'simple', 'speed.xosc')],
+    );
+    assert.deepEqual(stats.totals, { ...stats.totals, modularLines: report.totals.linesAfter, flattenedLines: report.totals.linesBefore });
+    const text = runCli(['stats', 'out'], { cwd: root });
+    assert.equal(text.status, 0, text.stderr);
+    assert.match(text.stdout, /\+ simple\/speed\.xosc/);
+    assert.doesNotMatch(text.stdout, /total +0 +0/);
+  });
+
+  it('stats says why it has nothing to count, and exits 1: an empty folder, a folder of plain scenarios', () => {
+    const root = temporaryWorkspace({ 'empty/readme.txt': 'nothing', 'plain/a.xosc': scenario(speedGroup('A.Go', '10')) });
+    const empty = runCli(['stats', 'empty'], { cwd: root });
+    assert.equal(empty.status, 1);
+    assert.match(
+      empty.stderr,
+      /holds no scenario: neither folders NAME\/ with a main\.xosc \(the paper's layout\) nor \.xosc scenario files/,
+    );
+    const plain = runCli(['stats', 'plain'], { cwd: root });
+    assert.equal(plain.status, 1);
+    assert.match(plain.stderr, /no scenario of .*plain imports groups \(no ScenarioReference\): there is nothing modular to count/);
+  });
+
   it('folders: catalogs and distributions are left alone, sub-folders keep their place, the mains resolve the simple scenarios', () => {
     const root = temporaryWorkspace({
       'lib/a.xosc': scenario(speedGroup('A.Go', '10')),

@@ -16,15 +16,15 @@ async function statsCommand(args: string[], io: CliOutput): Promise<number> {
   if (options.format === 'json') {
     io.out(JSON.stringify(stats, null, 2));
   } else {
-    const width = Math.max(8, ...stats.rows.map((row) => row.scenario.length));
+    const sharedNames = stats.shared.map((item) => `+ ${path.relative(path.resolve(library), item.file)}`);
+    const width = Math.max(8, ...stats.rows.map((row) => row.scenario.length), ...sharedNames.map((name) => name.length));
     io.out(`${'#'.padStart(3)}  ${'scenario'.padEnd(width)}  ${'modular'.padStart(8)}  ${'flattened'.padStart(9)}  reduction`);
     stats.rows.forEach((row, index) => {
       io.out(
         `${String(index + 1).padStart(3)}  ${row.scenario.padEnd(width)}  ${String(row.modularLines).padStart(8)}  ${String(row.flattenedLines).padStart(9)}  ${row.reduction.toFixed(1).padStart(8)} %`,
       );
     });
-    for (const item of stats.shared)
-      io.out(`     ${('+ ' + path.relative(path.resolve(library), item.file)).padEnd(width)}  ${String(item.lines).padStart(8)}`);
+    stats.shared.forEach((item, index) => io.out(`     ${sharedNames[index].padEnd(width)}  ${String(item.lines).padStart(8)}`));
     const { totals } = stats;
     io.out(
       `     ${'total'.padEnd(width)}  ${totals.modularLines.toLocaleString('en-US').padStart(8)}  ${totals.flattenedLines.toLocaleString('en-US').padStart(9)}  ${totals.reduction.toFixed(1).padStart(8)} %`,

@@ -1,8 +1,11 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { Flattener } from './flatten';
+import { buildModel } from './model';
+import { notAPlainScenario } from './modularize';
 import { Limits, ScenarioStore, diskRef, refId } from './sources';
 import { countEditorLines } from './text';
+import { parseXml } from './xml';
 
 export interface StatsRow {
   scenario: string;
@@ -15,6 +18,8 @@ export interface StatsRow {
 }
 
 export interface LibraryStats {
+  /** How the library is laid out: the paper's folders NAME/main.xosc, or scenario files side by side as modularize writes them. */
+  layout: 'folders' | 'files';
   rows: StatsRow[];
   /** Simple scenarios outside the scenario folders that the mains use, counted once each. */
   shared: { file: string; lines: number }[];
@@ -26,6 +31,82 @@ function reduction(modular: number, flattened: number): number {
   return flattened === 0 ? 0 : Math.round((1 - modular / flattened) * 1000) / 10;
 }
 
+/** The .xosc files below `root`, hidden folders left out, sorted by path. */
+function scenarioFilesBelow(root: string): string[] {
+  const files: string[] = [];
+  const walk = (folder: string) => {
+    for (const entry of fs.readdirSync(folder, { withFileTypes: true })) {
+      if (entry.name.startsWith('.')) continue;
+      const full = path.join(folder, entry.name);
+      if (entry.isDirectory()) walk(full);
+      else if (entry.isFile() && entry.name.toLowerCase().endsWith('.xosc')) files.push(full);
+    }
+  };
+  walk(root);
+  return files.sort();
+}
+
+/**
+ * Table 1 for scenario files side by side, as modularize writes them (DIR/rel.xosc beside DIR/simple/):
+ * each scenario is a row (a main: its lines against its flattening; a plain one: its lines, both
+ * sides), and each file a main imports is counted once among the shared simple scenarios. Catalogs and
+ * parameter distributions are neither.
+ */
+async function filesLayout(
+  root: string,
+  flattener: Flattener,
+  readText: (filePath: string) => Promise<string | undefined>,
+  problems: string[],
+): Promise<{ rows: StatsRow[]; shared: Map<string, number> }> {
+  const scenarios: { file: string; lines: number; main: boolean }[] = [];
+  for (const file of scenarioFilesBelow(root)) {
+    const text = await readText(file);
+    if (text === undefined) continue;
+    const document = parseXml(text);
+    const main = buildModel(document).references.length > 0;
+    if (main || notAPlainScenario(document) === undefined) scenarios.push({ file, lines: countEditorLines(text), main });
+  }
+  const counted = new Set(scenarios.map((scenario) => scenario.file));
+  const imported = new Set<string>();
+  const flattenedLines = new Map<string, number>();
+  for (const scenario of scenarios.filter((candidate) => candidate.main)) {
+    const flattened = await flattener.flatten(diskRef(scenario.file));
+    for (const dependency of flattened.source.dependencies) {
+      const id = refId(dependency);
+      if (dependency.entries.length === 0 && id !== scenario.file && counted.has(id)) imported.add(id);
+    }
+    if (flattened.text !== undefined) flattenedLines.set(scenario.file, countEditorLines(flattened.text));
+    else
+      problems.push(
+        `${path.relative(root, scenario.file)}: cannot be flattened (${flattened.problems.filter((p) => p.severity === 'error').length} errors; run 'modular2simple check')`,
+      );
+  }
+  if (!scenarios.some((scenario) => scenario.main))
+    problems.push(
+      scenarios.length === 0
+        ? `${root} holds no scenario: neither folders NAME/ with a main.xosc (the paper's layout) nor .xosc scenario files (as modularize writes them)`
+        : `no scenario of ${root} imports groups (no ScenarioReference): there is nothing modular to count`,
+    );
+  const rows: StatsRow[] = [];
+  const shared = new Map<string, number>();
+  for (const scenario of scenarios) {
+    if (imported.has(scenario.file)) {
+      shared.set(scenario.file, scenario.lines);
+      continue;
+    }
+    const flattened = scenario.main ? flattenedLines.get(scenario.file) : scenario.lines;
+    if (flattened === undefined) continue;
+    rows.push({
+      scenario: path.relative(root, scenario.file),
+      modularLines: scenario.lines,
+      flattenedLines: flattened,
+      reduction: reduction(scenario.lines, flattened),
+      flattenedFrom: 'flattened',
+    });
+  }
+  return { rows, shared };
+}
+
 /** The paper's Table 1 for a library of modular scenarios (SPEC 9); messages show paths relative to `workingDirectory`. */
 export async function libraryStats(library: string, limits: Partial<Limits> = {}, workingDirectory?: string): Promise<LibraryStats> {
   const root = path.resolve(library);
@@ -34,20 +115,29 @@ export async function libraryStats(library: string, limits: Partial<Limits> = {}
     .filter((entry) => entry.isDirectory() && fs.existsSync(path.join(root, entry.name, 'main.xosc')))
     .map((entry) => entry.name)
     .sort();
-  const store = new ScenarioStore({ root, scenarioPath: [root], limits, workingDirectory });
+  // The paper's mains name the shared simple scenarios beside their folders; modularize's name them by relative path (simple/NAME.xosc).
+  const store = new ScenarioStore({ root, scenarioPath: folders.length > 0 ? [root] : [], limits, workingDirectory });
   const flattener = new Flattener(store);
-  const rows: StatsRow[] = [];
-  const shared = new Map<string, number>();
   const problems: string[] = [];
   // Read through the store, which refuses folders, FIFOs, devices and files over the size bound.
-  const readLines = async (filePath: string): Promise<number | undefined> => {
+  const readText = async (filePath: string): Promise<string | undefined> => {
     try {
-      return countEditorLines(await store.readText(diskRef(filePath)));
+      return await store.readText(diskRef(filePath));
     } catch (error) {
       problems.push((error as Error).message);
       return undefined;
     }
   };
+  const readLines = async (filePath: string): Promise<number | undefined> => {
+    const text = await readText(filePath);
+    return text === undefined ? undefined : countEditorLines(text);
+  };
+  if (folders.length === 0) {
+    const { rows, shared } = await filesLayout(root, flattener, readText, problems);
+    return summary('files', rows, shared, problems);
+  }
+  const rows: StatsRow[] = [];
+  const shared = new Map<string, number>();
   for (const folder of folders) {
     const mainPath = path.join(root, folder, 'main.xosc');
     const resultPath = path.join(root, folder, 'result.xosc');
@@ -78,10 +168,16 @@ export async function libraryStats(library: string, limits: Partial<Limits> = {}
     }
     rows.push({ scenario: folder, modularLines, flattenedLines, reduction: reduction(modularLines, flattenedLines), flattenedFrom });
   }
+  return summary('folders', rows, shared, problems);
+}
+
+/** The table with its shared simple scenarios (counted once, on the modular side) and its totals. */
+function summary(layout: LibraryStats['layout'], rows: StatsRow[], shared: Map<string, number>, problems: string[]): LibraryStats {
   const sharedList = [...shared.entries()].sort(([a], [b]) => a.localeCompare(b)).map(([file, lines]) => ({ file, lines }));
   const modularLines = rows.reduce((sum, row) => sum + row.modularLines, 0) + sharedList.reduce((sum, item) => sum + item.lines, 0);
   const flattenedLines = rows.reduce((sum, row) => sum + row.flattenedLines, 0);
   return {
+    layout,
     rows,
     shared: sharedList,
     totals: { modularLines, flattenedLines, reduction: reduction(modularLines, flattenedLines) },
