@@ -216,7 +216,6 @@ function reachOf(key: string, targets: OverridableAttribute[]): KeyReach {
 /** Decides which parameter sets which attribute: the longest matching key wins (on a tie, the one giving more positions), then the last one written. */
 export function planOverrides(targets: OverridableAttribute[], parameters: ParameterReferenceInfo[]): OverridePlan {
   const applied = new Map<OverridableAttribute, ParameterReferenceInfo>();
-  const appliedSpecificity = new Map<OverridableAttribute, number>();
   const matches: KeyMatch[] = [];
   const unknown: OverridePlan['unknown'] = [];
   const withoutDefault: OverridePlan['withoutDefault'] = [];
@@ -232,11 +231,8 @@ export function planOverrides(targets: OverridableAttribute[], parameters: Param
         withoutDefault.push({ parameter, target });
         continue;
       }
-      const previous = appliedSpecificity.get(target);
-      if (previous === undefined || previous <= specific) {
-        applied.set(target, parameter);
-        appliedSpecificity.set(target, specific);
-      }
+      const previous = applied.get(target);
+      if (!previous || reachOf(previous.key, targets).specificity <= specific) applied.set(target, parameter);
     }
   }
   return { applied, matches, unknown, withoutDefault };

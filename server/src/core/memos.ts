@@ -110,6 +110,13 @@ export const CORE_MEMOS = {
     bound: { entries: 512, text: 'one entry per group; 512 keys each, then started again' },
     invalidated: "never: a group's attributes and their elements never change (a new parse is a new group element, a new key)",
   },
+  overrideValueChecks: {
+    where: '`overrideValueProblems` (`core/flatten/outputSchema.ts`)',
+    key: "a group's overridable attribute, then the schema version read and the value a ParameterReference gives it",
+    holds: "the schema's findings on that value in that attribute, placed at each ParameterReference giving it",
+    bound: { entries: 64, text: 'one entry per attribute; 64 values each, then started again' },
+    invalidated: 'never: an attribute, its element and the schemas never change (a new parse of the group is a new key)',
+  },
   lastScenarioModels: {
     where: '`core/model.ts`',
     key: 'a parse',

@@ -23,7 +23,7 @@ import { unknownGroupData, unknownGroupWording } from '../diagnostics/unknownGro
 import { fallbackPackageName, xoscFallbackWording } from '../diagnostics/xoscFallback';
 import { NO_DEFAULT_LISTED_NOTE, noDefaultWording } from '../diagnostics/noDefault';
 import { UNKNOWN_KEY_LISTED_NOTE, unknownKeyData, UnknownKeyFacts, unknownKeyWording } from '../diagnostics/unknownKey';
-import { overridableAttributes, OverridePlan, planOverrides } from '../keys';
+import { OverridableAttribute, overridableAttributes, OverridePlan, planOverrides } from '../keys';
 import { findGroup, ManeuverGroupInfo, ManeuverGroupReferenceInfo, ScenarioModel, ScenarioReferenceInfo } from '../model';
 import { Problem } from '../problems';
 import { displayRef, refId, ScenarioStore, SourceRef } from '../sources';
@@ -299,11 +299,22 @@ export function duplicateOuterGroupProblems(model: ScenarioModel, from: SourceRe
   return problems;
 }
 
+/** Whether two of the attributes have different defaults (asked for every key of every reference on each edit: no array or set made). */
+function defaultsDiffer(targets: readonly OverridableAttribute[]): boolean {
+  let first: string | undefined;
+  for (const target of targets) {
+    if (target.defaultValue === undefined) continue;
+    if (first === undefined) first = target.defaultValue;
+    else if (target.defaultValue !== first) return true;
+  }
+  return false;
+}
+
 /** A key that sets several attributes whose defaults differ probably sets one it was not written for. */
 function checkMixedDefaults(plan: OverridePlan, source: FlatSource, report: Report): void {
   for (const match of plan.matches) {
+    if (!defaultsDiffer(match.targets)) continue;
     const targets = match.targets.filter((target) => target.defaultValue !== undefined);
-    if (new Set(targets.map((target) => target.defaultValue)).size < 2) continue;
     const [start, end] = valueRange(match.parameter.keyAttribute, match.parameter.element);
     const counts = new Map<string, number>();
     for (const target of targets) counts.set(target.defaultValue as string, (counts.get(target.defaultValue as string) ?? 0) + 1);

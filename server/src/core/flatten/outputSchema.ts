@@ -1,12 +1,15 @@
 import { ParameterReferenceInfo } from '../model';
 import { Problem } from '../problems';
 import { refId } from '../sources';
-import { schemaIndex } from '../schema/index';
+import { SchemaIndex, schemaIndex } from '../schema/index';
 import { attributeType, siteTypeProblem } from '../semantics/parameterValues';
 import { PlacedFinding, SchemaCheckMemory, toProblem } from '../schema/problems';
 import { typeOfElement } from '../schema/query';
 import { checkAttribute, checkSchema, findingOffsets, SchemaCheckOptions, SchemaFinding, subjectOf } from '../schema/validate';
-import { chooseVersion } from '../schema/version';
+import { ChosenVersion, chooseVersion } from '../schema/version';
+import { OverridableAttribute } from '../keys';
+import { coreMemo } from '../memos';
+
 import { attribute, elementAt, XmlAttribute, XmlDocument, XmlElement } from '../xml';
 import { copiedFrom, originOf } from './origin';
 import { FlatSource } from './types';
@@ -96,6 +99,51 @@ function overrideOf(output: FlatSource, element: XmlElement, attributeName: stri
   return undefined;
 }
 
+/** Above this many values of one attribute its memo starts again (a value typed one character at a time is a new value each time). */
+const MAX_REMEMBERED_VALUES = 64;
+
+// A group's attributes and the schemas never change: each value an attribute is given is checked once, not on every edit of the main file.
+/** The values checked in one attribute, for one version read and type (messages and hints name the version read and the one stated). */
+interface OverrideChecks {
+  chosen: Pick<ChosenVersion, 'version' | 'stated' | 'fallback'>;
+  typeName: string;
+  findings: Map<string, SchemaFinding[]>;
+}
+
+const overrideChecks = coreMemo<OverridableAttribute, OverrideChecks>('overrideValueChecks');
+
+/** The findings of the value part of the attribute as the output will hold it: the override's value in place of the default. */
+function overrideFindings(
+  index: SchemaIndex,
+  chosen: ChosenVersion,
+  target: OverridableAttribute,
+  typeName: string,
+  written: XmlAttribute,
+  value: string,
+): SchemaFinding[] {
+  let known = overrideChecks.get(target);
+  if (
+    !known ||
+    known.chosen.version !== chosen.version ||
+    known.chosen.stated !== chosen.stated ||
+    known.chosen.fallback !== chosen.fallback ||
+    known.typeName !== typeName ||
+    known.findings.size >= MAX_REMEMBERED_VALUES
+  ) {
+    known = { chosen: { version: chosen.version, stated: chosen.stated, fallback: chosen.fallback }, typeName, findings: new Map() };
+    overrideChecks.set(target, known);
+  }
+  let findings = known.findings.get(value);
+  if (!findings) {
+    const found: SchemaFinding[] = [];
+    checkAttribute(index, chosen, target.element, typeName, { ...written, value }, (finding) => {
+      if (finding.part === 'value' && finding.severity !== 'information') found.push(finding);
+    });
+    known.findings.set(value, (findings = found));
+  }
+  return findings;
+}
+
 /**
  * Override values against the type of the attribute they set, without rendering the output (for the
  * editor): the same problems, at the same ParameterReference, as the strict check of the output.
@@ -113,10 +161,7 @@ export function overrideValueProblems(main: FlatSource, options: Omit<SchemaChec
         const typeName = valueAttribute ? typeOfElement(index, target.element) : undefined;
         const written = attribute(target.element, target.attributeName);
         if (!valueAttribute || !typeName || !written) continue;
-        // The attribute as the output will hold it: the override's value in place of the default.
-        const overridden: XmlAttribute = { ...written, value: parameter.value };
-        checkAttribute(index, chosen, target.element, typeName, overridden, (finding) => {
-          if (finding.part !== 'value' || finding.severity === 'information') return;
+        for (const finding of overrideFindings(index, chosen, target, typeName, written, parameter.value)) {
           problems.push(
             toProblem(
               main.ref,
@@ -131,7 +176,7 @@ export function overrideValueProblems(main: FlatSource, options: Omit<SchemaChec
               valueAttribute.valueEnd,
             ),
           );
-        });
+        }
         // An override `$name`: the main file's parameter must fit the attribute it sets.
         const site = main.semantics?.model.siteOf.get(valueAttribute);
         const attributeTypeOf = site ? attributeType(index, target.element, target.attributeName) : undefined;
