@@ -41,6 +41,8 @@ export const INSIDE_TESTS = {
   variations: "the Variations view shows a batch as a sortable, filterable table and scatter, and opens a run in the bird's-eye view",
   carlaExport:
     "Export for CARLA… from the palette writes the 1.0 file and puts its losses as diagnostics on the simple scenario's lines; a refused export writes nothing",
+  carlaCheck:
+    "Check in CARLA ScenarioRunner from the palette, with ScenarioRunner 0.9.16 set up, puts ScenarioRunner's error on the source line of the simple scenario",
   extractToSimple:
     'Extract to a simple scenario from the light bulb, with the pick list of attributes, replaces a group by a reference that flattens as before',
 } as const;

@@ -2,7 +2,7 @@ import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import * as vscode from 'vscode';
-import { ExportForCarlaRequest } from '../../../common/src/protocol';
+import { CheckInScenarioRunnerRequest, ExportForCarlaRequest } from '../../../common/src/protocol';
 import { HARNESS_ENV } from '../titles';
 import { pageShows, runFromPalette, screenshot, typeText } from './harnessClient';
 import {
@@ -40,8 +40,74 @@ function carlaExportFolder(): string | undefined {
   return folder;
 }
 
+/** The repository the harness runs from (its dist/cli.js is the CLI the harness names). */
+function repositoryRoot(): string {
+  return path.resolve(path.dirname(process.env[HARNESS_ENV.cli] ?? '.'), '..');
+}
+
+/**
+ * ScenarioRunner 0.9.16 as ../shared/carla's harness unpacks it into the repository's .cache/carla, and a Python
+ * with its requirements (py_trees 0.8.3 and the XSD libraries it pins on the path, as test/support/carla.ts does):
+ * what a user names in the settings. Undefined when the harness was not set up.
+ */
+function scenarioRunnerSetup(folder: string): { scenarioRunner: string; python: string } | undefined {
+  const cache = path.join(repositoryRoot(), '.cache', 'carla');
+  const scenarioRunner = path.join(cache, 'scenario_runner');
+  const libraries = ['py_trees-0.8.3', 'xmlschema-1.0.18', 'elementpath-1.3.3'].map((name) => path.join(cache, name));
+  if (![scenarioRunner, ...libraries].every((each) => fs.existsSync(each))) return undefined;
+  const python = path.join(folder, 'python-scenario-runner');
+  fs.writeFileSync(python, `#!/bin/sh\nPYTHONPATH='${libraries.join(':')}' exec /usr/bin/python3 "$@"\n`, { mode: 0o755 });
+  return { scenarioRunner, python };
+}
+
 /** *Export for CARLA…* from the palette: the file written, its losses as diagnostics on the simple scenario's lines. */
 export const carlaTests: InsideTests = {
+  carlaCheck: async function () {
+    this.timeout(120_000);
+    requireServerFeature(this, 'checkInScenarioRunner', offersRequest(CheckInScenarioRunnerRequest));
+    const folder = path.join(workspaceRoot(), '.carla-check');
+    fs.mkdirSync(folder, { recursive: true });
+    const setup = scenarioRunnerSetup(folder);
+    if (!setup) {
+      fs.rmSync(folder, { recursive: true, force: true });
+      assert.ok(!process.env.M2S_REQUIRE_CARLA, 'M2S_REQUIRE_CARLA is set, but .cache/carla holds no ScenarioRunner');
+      console.log('skipped: ScenarioRunner is not unpacked in .cache/carla (python3 ../shared/carla/check.py setup)');
+      this.skip();
+    }
+    const settings = vscode.workspace.getConfiguration('modular2simple.carla');
+    const global = vscode.ConfigurationTarget.Global;
+    try {
+      await settings.update('scenarioRunnerPath', setup.scenarioRunner, global);
+      await settings.update('python', setup.python, global);
+      await settings.update('timeLimit', 100, global);
+      // Under 0.9.15's facts the export keeps crossing.xosc's AcquirePositionAction, on which ScenarioRunner 0.9.16 crashes.
+      await settings.update('release', '0.9.15', global);
+      await open('main.xosc');
+      await runFromPalette('Modular2Simple: Check in CARLA ScenarioRunner');
+      const crossing = vscode.Uri.file(path.join(workspaceRoot(), 'crossing.xosc'));
+      const problem = await waitFor(
+        "ScenarioRunner's error on crossing.xosc",
+        () => vscode.languages.getDiagnostics(crossing).find((diagnostic) => diagnostic.source === 'ScenarioRunner'),
+        100_000,
+      );
+      const document = await vscode.workspace.openTextDocument(crossing);
+      // The position inside the AcquirePositionAction, the line after it, in the simple scenario main.xosc imports.
+      assert.equal(problem.range.start.line, positionOf(document, '<AcquirePositionAction').line + 1);
+      assert.equal(problem.severity, vscode.DiagnosticSeverity.Error);
+      assert.match(problem.message, /TypeError: object of type 'NoneType' has no len\(\)/);
+      await waitFor('the message of the check', async () => (await pageShows('ScenarioRunner')) || undefined);
+      const editor = await vscode.window.showTextDocument(document, { viewColumn: vscode.ViewColumn.One, preview: false });
+      editor.revealRange(problem.range, vscode.TextEditorRevealType.InCenter);
+      editor.selection = new vscode.Selection(problem.range.start, problem.range.start);
+      await vscode.commands.executeCommand('editor.action.marker.next');
+      await screenshot("Check in CARLA ScenarioRunner: ScenarioRunner's error on the source line");
+    } finally {
+      for (const key of ['scenarioRunnerPath', 'python', 'timeLimit', 'release']) await settings.update(key, undefined, global);
+      fs.rmSync(folder, { recursive: true, force: true });
+      await revertAndClose();
+    }
+  },
+
   carlaExport: async function () {
     this.timeout(120_000);
     requireServerFeature(this, 'exportForCarla', offersRequest(ExportForCarlaRequest));

@@ -70,6 +70,7 @@ const ORDER: InsideTestKey[] = [
   'distributionLens',
   'extractToSimple',
   'carlaExport',
+  'carlaCheck',
 ];
 
 /** The extension's tests inside VS Code, each feature's in its own file; the bird's-eye view's follow (birdsEye.inside.ts). */
