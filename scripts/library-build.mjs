@@ -103,11 +103,11 @@ export const OBSTRUCTION = (/** @type {string} */ name) =>
 
 /**
  * An entity's Init: where it stands on the library's road and its speed.
- * @param {string} entity @param {number} lane @param {number} s @param {number} speed @param {{ offset?: number, heading?: number }} [more]
+ * @param {string} entity @param {number} lane @param {number} s @param {number} speed @param {{ offset?: number, heading?: number, road?: number }} [more]
  */
 function placed(entity, lane, s, speed, more = {}) {
   const orientation = more.heading !== undefined ? `\n        <Orientation type="relative" h="${more.heading}" p="0" r="0"/>\n      ` : '';
-  const position = `<LanePosition roadId="0" laneId="${lane}" s="${s}" offset="${more.offset ?? 0}"${orientation ? `>${orientation}</LanePosition>` : '/>'}`;
+  const position = `<LanePosition roadId="${more.road ?? 0}" laneId="${lane}" s="${s}" offset="${more.offset ?? 0}"${orientation ? `>${orientation}</LanePosition>` : '/>'}`;
   return `<Private entityRef="${entity}">
   <PrivateAction>
     <TeleportAction>
@@ -608,7 +608,7 @@ export const MODULES = [
   {
     name: 'oncoming-vehicle',
     title: 'Oncoming vehicle in the ego lane',
-    group: 'Vehicles oncoming',
+    group: 'Vehicles oncoming or crossing',
     summary:
       "A vehicle in the lane of the other direction drives towards the ego at a set speed and, once the gap between them is below the one asked, moves over into the ego's lane, head-on, at a set lateral offset from its centre.",
     actor: 'the oncoming vehicle, in the lane of the other direction',
@@ -1015,6 +1015,58 @@ export const MODULES = [
         'parallel',
       ),
     ].join('\n'),
+  },
+  {
+    name: 'crossing-path',
+    title: 'Straight crossing path, synchronized arrival',
+    group: 'Vehicles oncoming or crossing',
+    summary:
+      "At the library's crossroads (crossroads.xodr), a vehicle from the road to the ego's right drives straight across the ego's path, adapting its speed so that it reaches the conflict point as the ego reaches a set point before it (or the conflict point itself: a collision course), arriving at a set speed.",
+    actor: "the crossing vehicle, on the arm right of the ego's",
+    actorName: 'crossing',
+    groupName: 'CrossingPath',
+    road: 'crossroads.xodr',
+    entities: [VEHICLE('ego', 'vehicle.lincoln.mkz_2017'), VEHICLE('crossing', 'vehicle.audi.tt')],
+    init: [placed('ego', -1, 150, 10, { road: 1 }), placed('crossing', -1, 150, 8, { road: 3 })],
+    stopAt: 7,
+    parameters: [
+      {
+        key: 'WorldPosition.x',
+        name: 'egoAt',
+        unit: 'm',
+        range: '-60..1.75',
+        about:
+          'where (x on the crossroads) the ego is when the crossing vehicle reaches the conflict point: 1.75 the conflict point itself (a collision course), less: the ego that far short of it',
+      },
+      {
+        key: 'AbsoluteSpeed.value',
+        name: 'arrivalSpeed',
+        unit: 'm/s',
+        range: '1..30',
+        about: 'the crossing vehicle’s speed at the conflict point',
+      },
+      { key: 'SynchronizeAction.masterEntityRef', name: 'ego', about: 'the vehicle whose arrival it synchronizes with' },
+    ],
+    keys: {},
+    maneuver: event(
+      'CrossingSynchronize',
+      privateAction(
+        'CrossingSynchronize',
+        `<SynchronizeAction parameterAttributes="masterEntityRef" masterEntityRef="ego">
+  <TargetPositionMaster>
+    <WorldPosition parameterAttributes="x" x="1.75" y="-1.75" z="0" h="0" p="0" r="0"/>
+  </TargetPositionMaster>
+  <TargetPosition>
+    <WorldPosition x="1.75" y="-1.75" z="0" h="1.5708" p="0" r="0"/>
+  </TargetPosition>
+  <FinalSpeed>
+    <AbsoluteSpeed parameterAttributes="value" value="8"/>
+  </FinalSpeed>
+</SynchronizeAction>`,
+      ),
+      trigger('CrossingStart', atTime(0)),
+      'parallel',
+    ),
   },
 ];
 

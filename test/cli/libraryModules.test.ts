@@ -246,6 +246,25 @@ const BEHAVIOURS: Record<string, (module: LibraryModule, tracks: Map<string, Tra
     assert.ok(car[end].x < accelerationLaneEnd(module), 'it merges before its acceleration lane starts narrowing');
     takesTheTimeAsked(module, car);
   },
+  'crossing-path': (module, tracks) => {
+    const [ego, crossing] = [trackOf(tracks, 'ego'), trackOf(tracks, 'crossing')];
+    // The conflict point is fixed by the crossroads: the ego's lane (y -1.75) across the crossing vehicle's (x 1.75).
+    const crosses = crossing.findIndex((point) => point.y >= -1.75);
+    const egoThere = ego.findIndex((point) => point.x >= parameter(module, 'egoAt'));
+    assert.ok(crosses > 0 && egoThere > 0, 'the crossing vehicle or the ego never arrives');
+    assert.ok(
+      Math.abs(crossing[crosses].time - ego[egoThere].time) <= STEP * 2,
+      `the crossing vehicle reaches the conflict point at ${crossing[crosses].time} s, the ego its point at ${ego[egoThere].time} s`,
+    );
+    const arrival = (crossing[crosses].y - crossing[crosses - 1].y) / STEP;
+    const asked = parameter(module, 'arrivalSpeed');
+    assert.ok(Math.abs(arrival - asked) < 0.1, `it arrives at ${arrival.toFixed(2)} m/s, not ${asked}`);
+    assert.ok(
+      crossing.every((point) => Math.abs(point.x - 1.75) < 0.01),
+      'it drives straight across, in its lane',
+    );
+    assert.ok(ego[ego.length - 1].x > 10, 'the ego drives on through the junction');
+  },
 };
 
 /** Each lane change of the track takes the lane-change time asked (from the step before it moves to the first it stands still). */
