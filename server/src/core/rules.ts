@@ -4,49 +4,10 @@ import { Problem, ProblemCode } from './problems';
 export { QC_RULE_DESCRIPTIONS };
 export type { QcRuleUid, Rule };
 
-/** The rules of the codes without a module of their own in core/diagnostics/ (each of those names its rule there). */
-const OTHER_RULES: Record<Exclude<ProblemCode, DefinedCode>, Rule> = {
-  'undeclared-entity': { description: 'An entity reference names a declared entity.', qcRule: QC.entityReferences },
-  'undeclared-parameter': { description: 'A $name names a declared parameter.' },
-  'unused-parameter': { description: 'A declared parameter is used.' },
-  'duplicate-parameter': { description: 'A parameter is declared once in its scope.' },
-  'expression-syntax': { description: "A ${...} expression follows the standard's grammar." },
-  'type-mismatch': { description: 'A value converts to the type that uses it.' },
-  'division-by-zero': { description: 'An expression does not divide by zero.' },
-  'nonstandard-expression': { description: 'An expression uses only what the standard defines.', qcRule: QC.allowedOperators },
-  'unknown-catalog': { description: 'A catalogName names a catalog found in the CatalogLocations.' },
-  'unknown-catalog-entry': { description: 'An entryName names an entry of its catalog.' },
-  'unknown-assigned-parameter': { description: 'A ParameterAssignment names a parameter the catalog entry declares.' },
-  'unknown-storyboard-element': { description: 'A storyboardElementRef names a storyboard element.', qcRule: QC.storyboardReference },
-  'ambiguous-reference': { description: 'A reference resolves to exactly one element.', qcRule: QC.uniqueEntityReferences },
-  'undeclared-variable': {
-    description:
-      'A variableRef names a declared variable (or a parameter, as ASAM QC accepts); a variable of a catalog entry is declared by each scenario that references the entry.',
-    qcRule: QC.variableReference,
-  },
-  'undeclared-catalog-parameter': { description: 'A catalog entry declares every parameter it uses.', qcRule: QC.catalogParameters },
-  'duplicate-name': {
-    description: 'The children of one element have unique names (Events of a Maneuver, Acts of a Story, entities, ...).',
-    qcRule: QC.uniqueNames,
-  },
-  'duplicate-catalog-entry': {
-    description: 'The entries of a catalog have unique names, so that a CatalogReference names exactly one.',
-    qcRule: QC.uniqueEntityReferences,
-  },
-  'value-constraint': {
-    description: "A parameter's value satisfies one of its declaration's ConstraintGroups (all the ValueConstraints of the group).",
-  },
-  'renamed-reference': { description: 'A reference to a group that flattening renames is updated.' },
-  'lenient-value': { description: "A value is written in the standard's form, not only in a form esmini also accepts (SPEC 12)." },
-  'simulator-value': { description: 'A value is the same in the standard and in the selected simulator.' },
-  overflow: { description: "A number stays within its type's range (IEEE double, int, unsignedInt, unsignedShort)." },
-};
-
 /** Every code has an entry: a new code does not compile until it says what rule it is. */
-export const RULES: Record<ProblemCode, Rule> = {
-  ...OTHER_RULES,
-  ...(Object.fromEntries(DIAGNOSTICS.map((definition) => [definition.code, definition.rule])) as Record<DefinedCode, Rule>),
-};
+export const RULES: Record<ProblemCode, Rule> = Object.fromEntries(
+  DIAGNOSTICS.map((definition) => [definition.code, definition.rule]),
+) as Record<DefinedCode, Rule>;
 
 /** What `ruleOf` reads of a problem: its code, and for the rules that depend on it, its data and subject. */
 export type RuledProblem = Pick<Problem, 'code' | 'data' | 'subject'>;

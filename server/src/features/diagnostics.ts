@@ -44,7 +44,7 @@ export function toDiagnostic(problem: Problem, workspace: Workspace): Diagnostic
   if (rule.helpUri) diagnostic.codeDescription = { href: rule.helpUri };
   if (related.length > 0) diagnostic.relatedInformation = related;
   if (diagnosticOf(problem.code)?.deprecated) diagnostic.tags = [DiagnosticTag.Deprecated];
-  if (problem.code === 'unused-parameter') diagnostic.tags = [DiagnosticTag.Unnecessary];
+  if (diagnosticOf(problem.code)?.unnecessary) diagnostic.tags = [DiagnosticTag.Unnecessary];
   return diagnostic;
 }
 

@@ -1,7 +1,8 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { DIAGNOSTICS, SKIPPED_BY_FORCE } from '../../../server/src/core/diagnostics';
+import { diagnosticOf, DIAGNOSTICS, SKIPPED_BY_FORCE } from '../../../server/src/core/diagnostics';
+import { PROBLEM_FIXES } from '../../../server/src/features/fixes';
 import { PROBLEM_CODE_LIST } from '../../../server/src/core/problems';
 import { RULES } from '../../../server/src/core/rules';
 import { repoRoot } from '../../support/paths';
@@ -33,6 +34,18 @@ describe('diagnostics: one module per diagnostic, registered in one list', () =>
       assert.equal(text.match(/defineDiagnostic\(/g)?.length, 1, `${definition.code}: one definition in its module`);
       assert.ok(text.includes(`code: '${definition.code}'`), `${definition.code}: defined in its own module`);
     }
+  });
+
+  it('lists every problem code: a code that problems.ts names, and a producer can report, has its module', () => {
+    assert.deepEqual(DIAGNOSTICS.map((definition) => definition.code).sort(), [...PROBLEM_CODE_LIST].sort());
+  });
+
+  it("fixes each code in one place: its module's fixes, or the editor's fix module that needs the file's analysis", () => {
+    const fixed = PROBLEM_FIXES.flatMap((fix) => fix.codes);
+    assert.deepEqual([...new Set(fixed)], fixed, 'a code fixed twice');
+    // The one fix that needs the analysis of the file (its scopes and the sources it imports) rather than its text.
+    const editorOnly = PROBLEM_FIXES.filter((fix) => fix.codes.some((code) => !diagnosticOf(code)?.fixes)).flatMap((fix) => fix.codes);
+    assert.deepEqual(editorOnly, ['undeclared-parameter', 'undeclared-catalog-parameter']);
   });
 
   it("names each listed code's rule from its module", () => {

@@ -42,14 +42,36 @@ import { SCHEMA_CARDINALITY } from './schemaCardinality';
 import { SCHEMA_VALUE } from './schemaValue';
 import { SCHEMA_DEPRECATED } from './schemaDeprecated';
 import { SCHEMA_VERSION } from './schemaVersion';
+import { UNDECLARED_ENTITY } from './undeclaredEntity';
+import { UNDECLARED_PARAMETER } from './undeclaredParameter';
+import { UNUSED_PARAMETER } from './unusedParameter';
+import { DUPLICATE_PARAMETER } from './duplicateParameter';
+import { EXPRESSION_SYNTAX } from './expressionSyntax';
+import { TYPE_MISMATCH } from './typeMismatch';
+import { DIVISION_BY_ZERO } from './divisionByZero';
+import { NONSTANDARD_EXPRESSION } from './nonstandardExpression';
+import { UNKNOWN_CATALOG } from './unknownCatalog';
+import { UNKNOWN_CATALOG_ENTRY } from './unknownCatalogEntry';
+import { UNKNOWN_ASSIGNED_PARAMETER } from './unknownAssignedParameter';
+import { UNKNOWN_STORYBOARD_ELEMENT } from './unknownStoryboardElement';
+import { AMBIGUOUS_REFERENCE } from './ambiguousReference';
+import { UNDECLARED_VARIABLE } from './undeclaredVariable';
+import { UNDECLARED_CATALOG_PARAMETER } from './undeclaredCatalogParameter';
+import { DUPLICATE_NAME } from './duplicateName';
+import { DUPLICATE_CATALOG_ENTRY } from './duplicateCatalogEntry';
+import { VALUE_CONSTRAINT } from './valueConstraint';
+import { RENAMED_REFERENCE } from './renamedReference';
+import { LENIENT_VALUE } from './lenientValue';
+import { SIMULATOR_VALUE } from './simulatorValue';
+import { OVERFLOW } from './overflow';
 
 export * from './definition';
 export { QC, QC_RULE_DESCRIPTIONS } from './qcRules';
 export type { QcRuleUid, Rule } from './qcRules';
 
 /**
- * Every diagnostic that has its own module (server/src/core/diagnostics/<code>.ts): one entry per code.
- * The codes not listed yet keep their rule in core/rules.ts and their fix in features/fixes/.
+ * Every diagnostic, each in its own module (server/src/core/diagnostics/<code>.ts): one entry per code of
+ * problems.ts (core/rules.ts does not compile while a code has none).
  */
 export const DIAGNOSTICS = [
   MISSING_FILE,
@@ -94,6 +116,28 @@ export const DIAGNOSTICS = [
   SCHEMA_VALUE,
   SCHEMA_DEPRECATED,
   SCHEMA_VERSION,
+  UNDECLARED_ENTITY,
+  UNDECLARED_PARAMETER,
+  UNUSED_PARAMETER,
+  DUPLICATE_PARAMETER,
+  EXPRESSION_SYNTAX,
+  TYPE_MISMATCH,
+  DIVISION_BY_ZERO,
+  NONSTANDARD_EXPRESSION,
+  UNKNOWN_CATALOG,
+  UNKNOWN_CATALOG_ENTRY,
+  UNKNOWN_ASSIGNED_PARAMETER,
+  UNKNOWN_STORYBOARD_ELEMENT,
+  AMBIGUOUS_REFERENCE,
+  UNDECLARED_VARIABLE,
+  UNDECLARED_CATALOG_PARAMETER,
+  DUPLICATE_NAME,
+  DUPLICATE_CATALOG_ENTRY,
+  VALUE_CONSTRAINT,
+  RENAMED_REFERENCE,
+  LENIENT_VALUE,
+  SIMULATOR_VALUE,
+  OVERFLOW,
 ] as const;
 
 /** The codes whose diagnostic has its own module. */

@@ -1,4 +1,4 @@
-import { DefinedCode, DIAGNOSTICS, isOptionalString, isRecord, isString, isSuggestion } from '../../core/diagnostics';
+import { DIAGNOSTICS, isRecord, isString } from '../../core/diagnostics';
 import { PROBLEM_CODE_LIST, Problem, ProblemCode, ProblemCodeWithData, ProblemDataByCode } from '../../core/problems';
 
 /**
@@ -17,33 +17,16 @@ export function diagnosticDataOf(problem: Problem): { code: ProblemCode; data?: 
   return problem.data ? { code: problem.code, data: problem.data } : { code: problem.code };
 }
 
-/** One check per code that carries data and has no module in core/diagnostics/ (whose modules check their own). */
-const OTHER_GUARDS: { [C in Exclude<ProblemCodeWithData, DefinedCode>]: (value: unknown) => value is ProblemDataByCode[C] } = {
-  'undeclared-parameter': (value): value is ProblemDataByCode['undeclared-parameter'] => isRecord(value) && isString(value.parameter),
-  'undeclared-catalog-parameter': (value): value is ProblemDataByCode['undeclared-catalog-parameter'] =>
-    isRecord(value) && isString(value.parameter),
-  'undeclared-entity': (value): value is ProblemDataByCode['undeclared-entity'] => isRecord(value) && isString(value.entity),
-  'undeclared-variable': (value): value is ProblemDataByCode['undeclared-variable'] =>
-    isRecord(value) && isString(value.variable) && isOptionalString(value.entry),
-  'unknown-catalog-entry': isSuggestion,
-  'unknown-assigned-parameter': isSuggestion,
-  'unknown-storyboard-element': isSuggestion,
-  'lenient-value': (value): value is ProblemDataByCode['lenient-value'] =>
-    isSuggestion(value) || (isRecord(value) && isString(value.relatedReplacement)),
-  'renamed-reference': isSuggestion,
-};
-
 const PROBLEM_CODES: ReadonlySet<string> = new Set(PROBLEM_CODE_LIST);
 
 function isProblemCode(value: unknown): value is ProblemCode {
   return isString(value) && PROBLEM_CODES.has(value);
 }
 
-/** The check of each code's data: its module's, else the one here. */
-const DATA_GUARDS: ReadonlyMap<ProblemCode, (value: unknown) => boolean> = new Map([
-  ...Object.entries<(value: unknown) => boolean>(OTHER_GUARDS).map(([code, guard]) => [code as ProblemCode, guard] as const),
-  ...DIAGNOSTICS.flatMap((definition) => (definition.isData ? [[definition.code, definition.isData] as const] : [])),
-]);
+/** The check of each code's data: its module's (core/diagnostics/). */
+const DATA_GUARDS: ReadonlyMap<ProblemCode, (value: unknown) => boolean> = new Map(
+  DIAGNOSTICS.flatMap((definition) => (definition.isData ? [[definition.code, definition.isData] as const] : [])),
+);
 
 /** Whether a diagnostic's data (as a client sent it back) is a known code with the data that code names, or none. */
 export function isDiagnosticData(value: unknown): value is DiagnosticData {

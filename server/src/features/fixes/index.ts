@@ -1,7 +1,6 @@
 import { DIAGNOSTICS } from '../../core/diagnostics';
 import { definitionFix } from './definitionFix';
 import { ProblemFix } from './fix';
-import { lenientValueFix } from './lenientValue';
 import { undeclaredParameterFix } from './undeclaredParameter';
 
 export type { DiagnosticData } from './data';
@@ -13,5 +12,4 @@ export { missingKeysAction } from './missingKeys';
 export const PROBLEM_FIXES: readonly ProblemFix[] = [
   ...DIAGNOSTICS.filter((definition) => definition.fixes).map(definitionFix),
   undeclaredParameterFix,
-  lenientValueFix,
 ];
