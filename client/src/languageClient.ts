@@ -26,6 +26,10 @@ import {
 import {
   LibraryInsertRequest,
   LibraryModulesRequest,
+  NewFromTemplateRequest,
+  TemplatesRequest,
+  type NewFromTemplateResult,
+  type TemplateSummary,
   type LibraryInsertParams,
   type LibraryInsertResult,
   type LibraryListingResult,
@@ -169,5 +173,15 @@ export class ServerCommandClient {
   /** Insert into main: the questions to ask, or the edit once they are answered. */
   async libraryInsert(params: LibraryInsertParams): Promise<LibraryInsertResult> {
     return (await this.started()).sendRequest(LibraryInsertRequest, params);
+  }
+
+  /** The built-in templates, for New Scenario from Template. */
+  async templates(): Promise<TemplateSummary[]> {
+    return (await this.started()).sendRequest(TemplatesRequest, {});
+  }
+
+  /** The files of a new scenario from a template; the caller writes them. */
+  async newFromTemplate(template: string, scenario: vscode.Uri): Promise<NewFromTemplateResult> {
+    return (await this.started()).sendRequest(NewFromTemplateRequest, { template, scenario: scenario.toString() });
   }
 }

@@ -26,10 +26,10 @@ export function flattenedName(target: vscode.Uri, isFolder = false): string {
   return `${packageNameOf(target, isFolder)}${FLATTENED_SUFFIX}`;
 }
 
-/** `main.xosc`, or `main-2.xosc`… when taken: a name that is free in the folder. */
-export function freeScenarioName(folder: string, exists: (file: string) => boolean = fs.existsSync): string {
+/** `main.xosc`, or `main-2.xosc`… when taken: a name that is free in the folder (`base` instead of `main` when given). */
+export function freeScenarioName(folder: string, exists: (file: string) => boolean = fs.existsSync, base = 'main'): string {
   for (let number = 1; ; number++) {
-    const name = number === 1 ? 'main.xosc' : `main-${number}.xosc`;
+    const name = number === 1 ? `${base}.xosc` : `${base}-${number}.xosc`;
     if (!exists(path.join(folder, name))) return name;
   }
 }

@@ -34,7 +34,7 @@ function isDirectory(filePath: string): boolean {
 }
 
 /** The folder the command was run on: the explorer's folder (or a file's folder), else the workspace's first. */
-async function targetFolder(clicked: unknown): Promise<string | undefined> {
+export async function targetFolder(clicked: unknown, title = TITLE): Promise<string | undefined> {
   if (clicked instanceof vscode.Uri && clicked.scheme === 'file')
     return isDirectory(clicked.fsPath) ? clicked.fsPath : path.dirname(clicked.fsPath);
   const folders = vscode.workspace.workspaceFolders?.filter((folder) => folder.uri.scheme === 'file') ?? [];
@@ -43,7 +43,7 @@ async function targetFolder(clicked: unknown): Promise<string | undefined> {
     canSelectFolders: true,
     canSelectFiles: false,
     openLabel: 'Create the scenario here',
-    title: `${TITLE}: the folder`,
+    title: `${title}: the folder`,
     defaultUri: folders[0]?.uri,
   });
   return chosen?.[0]?.fsPath;

@@ -85,3 +85,26 @@ export interface LibraryInsertResult {
 }
 
 export const LibraryInsertRequest = new RequestType<LibraryInsertParams, LibraryInsertResult, void>('modular2simple/libraryInsert');
+
+export interface TemplateSummary {
+  name: string;
+  title: string;
+  summary: string;
+  /** The distribution file that comes with it, when it has one. */
+  distribution?: string;
+}
+
+export const TemplatesRequest = new RequestType<Record<string, never>, TemplateSummary[], void>('modular2simple/templates');
+
+export interface NewFromTemplateParams {
+  template: string;
+  /** The new scenario: a `file:` URI or an absolute path, ending in .xosc. */
+  scenario: string;
+}
+
+/** The files to write (none exists yet): the scenario first, then its road and distribution where they come along. */
+export interface NewFromTemplateResult {
+  files: { path: string; text: string }[];
+}
+
+export const NewFromTemplateRequest = new RequestType<NewFromTemplateParams, NewFromTemplateResult, void>('modular2simple/newFromTemplate');

@@ -4,7 +4,7 @@
  */
 import { RequestType, WorkspaceEdit } from 'vscode-languageserver-protocol';
 import type { LineSegment } from './lineSegments';
-import { LibraryInsertRequest, LibraryModulesRequest } from './libraryProtocol';
+import { LibraryInsertRequest, LibraryModulesRequest, NewFromTemplateRequest, TemplatesRequest } from './libraryProtocol';
 import { SceneRequest } from './sceneProtocol';
 
 export interface FlattenOptions {
@@ -182,6 +182,8 @@ export const CUSTOM_REQUESTS = [
   CheckInScenarioRunnerRequest.method,
   LibraryModulesRequest.method,
   LibraryInsertRequest.method,
+  TemplatesRequest.method,
+  NewFromTemplateRequest.method,
 ];
 
 /** URI scheme of files inside a `.mosc`: `mosc:/abs/path/pkg.mosc/inner.mosc/main.xosc`. */

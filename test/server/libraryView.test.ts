@@ -2,7 +2,7 @@ import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { TextEdit } from 'vscode-languageserver/node';
-import { LibraryInsertRequest, LibraryModulesRequest } from '../../common/src/libraryProtocol';
+import { LibraryInsertRequest, LibraryModulesRequest, NewFromTemplateRequest, TemplatesRequest } from '../../common/src/libraryProtocol';
 import { main } from '../../server/src/cli';
 import { builtInLibraryFolder } from '../../server/src/libraries';
 import { requireEsmini, runEsmini } from '../support/esmini';
@@ -11,72 +11,19 @@ import { fileUri, TestClient } from './harness';
 
 const builtIn = builtInLibraryFolder() ?? '';
 
-/** The ScenarioObject named `name` in a library example main, renamed. */
-function entityOf(example: string, name: string, rename: string): string {
-  const text = fs.readFileSync(path.join(builtIn, 'examples', `${example}.xosc`), 'utf8');
-  const match = new RegExp(`\\n( *)<ScenarioObject name="${name}">[\\s\\S]*?</ScenarioObject>`).exec(text);
-  assert.ok(match, `${example} has no entity ${name}`);
-  return match[0].replace(`name="${name}"`, `name="${rename}"`);
-}
-
-function placed(entity: string, position: string, speed: number): string {
-  return `
-        <Private entityRef="${entity}">
-          <PrivateAction><TeleportAction><Position>${position}</Position></TeleportAction></PrivateAction>
-          <PrivateAction><LongitudinalAction><SpeedAction>
-            <SpeedActionDynamics dynamicsShape="step" value="0" dynamicsDimension="time"/>
-            <SpeedActionTarget><AbsoluteTargetSpeed value="${speed}"/></SpeedActionTarget>
-          </SpeedAction></LongitudinalAction></PrivateAction>
-        </Private>`;
-}
-
-/** A main with four entities placed on the library's road and one Act holding only the ego's empty group: what Insert into main starts from. */
-function compositionMain(road: string): string {
-  return `<?xml version="1.0" encoding="UTF-8"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="1" date="2026-11-27T00:00:00" description="composed from the library" author="test"/>
-  <ParameterDeclarations/>
-  <CatalogLocations/>
-  <RoadNetwork>
-    <LogicFile filepath="${road}"/>
-  </RoadNetwork>
-  <Entities>${entityOf('cut-in', 'ego', 'Ego')}${entityOf('cut-in', 'adversary', 'Cutter')}${entityOf('cut-in', 'adversary', 'Lead')}${entityOf('pedestrian-crossing', 'pedestrian', 'Walker')}
-  </Entities>
-  <Storyboard>
-    <Init>
-      <Actions>${placed('Ego', '<LanePosition roadId="0" laneId="-1" s="50" offset="0"/>', 20)}${placed('Cutter', '<LanePosition roadId="0" laneId="-2" s="85" offset="0"/>', 17)}${placed('Lead', '<LanePosition roadId="0" laneId="-1" s="150" offset="0"/>', 20)}${placed('Walker', '<LanePosition roadId="0" laneId="-4" s="200" offset="0.75"><Orientation type="relative" h="1.5708" p="0" r="0"/></LanePosition>', 0)}
-      </Actions>
-    </Init>
-    <Story name="Story">
-      <Act name="Act">
-        <ManeuverGroup name="EgoBehaviour" maximumExecutionCount="1">
-          <Actors selectTriggeringEntities="false">
-            <EntityRef entityRef="Ego"/>
-          </Actors>
-        </ManeuverGroup>
-        <StartTrigger>
-          <ConditionGroup>
-            <Condition name="ActStart" delay="0" conditionEdge="none">
-              <ByValueCondition>
-                <SimulationTimeCondition value="0" rule="greaterThan"/>
-              </ByValueCondition>
-            </Condition>
-          </ConditionGroup>
-        </StartTrigger>
-      </Act>
-    </Story>
-    <StopTrigger>
-      <ConditionGroup>
-        <Condition name="End" delay="0" conditionEdge="none">
-          <ByValueCondition>
-            <SimulationTimeCondition value="8" rule="greaterThan"/>
-          </ByValueCondition>
-        </Condition>
-      </ConditionGroup>
-    </StopTrigger>
-  </Storyboard>
-</OpenSCENARIO>
-`;
+/**
+ * The library's composition bench with its car renamed (no entity of the main is then named after the cut-in's actor,
+ * so Insert into main asks) and its road named by its absolute path: what Insert into main starts from.
+ */
+function compositionMain(): string {
+  const names: Record<string, string> = { adversary: 'Cutter', lead: 'Lead', pedestrian: 'Walker', ego: 'Ego' };
+  return fs
+    .readFileSync(path.join(builtIn, 'templates', 'composition-bench.xosc'), 'utf8')
+    .replace(
+      /(<ScenarioObject name|entityRef)="(adversary|lead|pedestrian|ego)"/g,
+      (_, attribute: string, name: string) => `${attribute}="${names[name]}"`,
+    )
+    .replace('filepath="../roads/', `filepath="${builtIn}/roads/`);
 }
 
 /** Applies the edits of one file, last first. */
@@ -103,7 +50,7 @@ describe('language server: the Scenario Library view and Insert into main (JSON-
   before(async function () {
     const mine = fs.readFileSync(path.join(builtIn, 'slow-target.xosc'), 'utf8').replace('name: slow-target', 'name: parked-car');
     root = temporaryWorkspace({
-      'main.xosc': compositionMain(path.join(builtIn, 'roads', 'straight_1000m.xodr')),
+      'main.xosc': compositionMain(),
       'mine/parked-car.xosc': mine,
       'mine/broken.xosc': '<?xml version="1.0"?>\n<!-- library module\nname: broken\ntitle: Broken\n-->\n<OpenSCENARIO>',
       'mine/cut-in.xosc': fs.readFileSync(path.join(builtIn, 'cut-in.xosc'), 'utf8'),
@@ -205,9 +152,9 @@ describe('language server: the Scenario Library view and Insert into main (JSON-
       0,
       errors.join('\n'),
     );
-    const steps = await runEsmini(flat, 8);
+    const steps = await runEsmini(flat, 12);
     const last = steps[steps.length - 1];
-    assert.ok(last.time > 7, `esmini ran to ${last.time} s`);
+    assert.ok(last.time > 11, `esmini ran to ${last.time} s`);
     const [egoY, cutterY] = [last.positions.Ego[1], last.positions.Cutter[1]];
     assert.ok(Math.abs(egoY - cutterY) < 0.1, `the cutter ends in the ego's lane (y ${cutterY} against ${egoY})`);
     const walker = steps.map((step) => step.positions.Walker[1]);
@@ -222,5 +169,27 @@ describe('language server: the Scenario Library view and Insert into main (JSON-
       /no Story with an Act/,
     );
     await client.close(uri);
+  });
+
+  it('New Scenario from Template: the templates, then the files to write (the road beside, the distribution naming the new file); an existing file refuses', async function () {
+    const templates = await client.send(TemplatesRequest, {});
+    for (const name of ['ncap-ccrb', 'ncap-cpna', 'alks-cut-in'])
+      assert.ok(
+        templates.some((template) => template.name === name),
+        name,
+      );
+    const scenario = path.join(root, 'alks.xosc');
+    const { files } = await client.send(NewFromTemplateRequest, { template: 'alks-cut-in', scenario: fileUri(scenario) });
+    assert.deepEqual(
+      files.map((file) => path.relative(root, file.path)),
+      ['alks.xosc', 'straight_1000m.xodr', 'alks.distribution.xosc'],
+    );
+    assert.match(files[0].text, /<LogicFile filepath="straight_1000m.xodr"\/>/);
+    assert.match(files[2].text, /<ScenarioFile filepath="alks.xosc"\/>/);
+    await assert.rejects(
+      client.send(NewFromTemplateRequest, { template: 'alks-cut-in', scenario: fileUri(path.join(root, 'main.xosc')) }),
+      /main.xosc exists/,
+    );
+    await assert.rejects(client.send(NewFromTemplateRequest, { template: 'nope', scenario: fileUri(scenario) }), /no template 'nope'/);
   });
 });

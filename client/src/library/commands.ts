@@ -4,6 +4,7 @@ import type { CommandReporter } from '../commands';
 import type { ServerCommandClient } from '../languageClient';
 import { LibraryDetail } from './detail';
 import { insertIntoMain, isInsertOptions, MainTracker } from './insert';
+import { newFromTemplateCommand } from './templates';
 import { LIBRARY_VIEW_ID, LibraryNode, LibraryTree } from './view';
 
 /** The Scenario Library in the editor: what it shows, for callers and tests. */
@@ -133,5 +134,8 @@ export function registerLibrary(context: vscode.ExtensionContext, server: Server
     if (module?.example) await vscode.window.showTextDocument(vscode.Uri.file(module.example));
     else if (module) void vscode.window.showInformationMessage(`library:${module.name} has no example main.`);
   });
+  register('modular2simple.newFromTemplate', (clicked?: unknown, ...rest: unknown[]) =>
+    newFromTemplateCommand(server, reporter, clicked, ...rest),
+  );
   return { tree, detail, refresh };
 }

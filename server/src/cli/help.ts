@@ -36,6 +36,8 @@ Usage:
   modular2simple library list|show NAME|path [--format json]
                                                    the scenario library: modules a main names as
                                                    scenarioFileName="library:NAME"
+  modular2simple library templates|new TEMPLATE -o FILE.xosc
+                                                   test scenarios composed from library modules
 ${FORMAT_HELP}
 
 Compatible with the original tool:

@@ -1,8 +1,19 @@
+import * as path from 'node:path';
 import { WorkspaceEdit } from 'vscode-languageserver/node';
-import { LibraryInsertParams, LibraryInsertResult, LibraryListingResult, LibraryModuleSummary } from '../../../common/src/libraryProtocol';
+import {
+  LibraryInsertParams,
+  LibraryInsertResult,
+  LibraryListingResult,
+  LibraryModuleSummary,
+  NewFromTemplateParams,
+  NewFromTemplateResult,
+  TemplateSummary,
+} from '../../../common/src/libraryProtocol';
 import { findModule, LibraryModule, listLibraries } from '../core/library';
 import { guessPlayer, insertModuleGroup, isEntityKey, mainShape, moduleRoles } from '../core/libraryInsert';
 import { LineIndex } from '../core/text';
+import { listTemplates, templateOutputs } from '../libraries';
+import { filePathOf } from '../uris';
 import { Workspace } from '../workspace';
 import { invalidParams, refOf } from './commands';
 
@@ -75,4 +86,29 @@ export async function libraryInsert(workspace: Workspace, params: LibraryInsertP
   const edit: WorkspaceEdit = { changes: { [params.uri]: [{ range: { start: at, end: at }, newText: inserted.text }] } };
   const line = at.line + (inserted.text.startsWith('\n') ? 1 : 0);
   return { ...result, edit, groupName: inserted.groupName, line };
+}
+
+/** The built-in library's templates, for *New Scenario from Template…*. */
+export async function templates(): Promise<TemplateSummary[]> {
+  return listTemplates().templates.map((template) => ({
+    name: template.name,
+    title: template.title,
+    summary: template.summary,
+    ...(template.distribution ? { distribution: template.distribution } : {}),
+  }));
+}
+
+/** The files of a new scenario from a template, none written: the client writes them, never over a file. */
+export async function newFromTemplate(params: NewFromTemplateParams): Promise<NewFromTemplateResult> {
+  const { templates: known } = listTemplates();
+  const template = known.find((candidate) => candidate.name === params?.template);
+  if (!template) throw invalidParams(`no template '${String(params?.template)}'`);
+  const scenario = typeof params.scenario === 'string' ? (filePathOf(params.scenario) ?? params.scenario) : '';
+  if (!path.isAbsolute(scenario) || !scenario.toLowerCase().endsWith('.xosc'))
+    throw invalidParams(`scenario: ${String(params.scenario)} is no absolute path or file: URI ending in .xosc`);
+  try {
+    return { files: templateOutputs(template, scenario).map((output) => ({ path: output.target, text: output.data })) };
+  } catch (error) {
+    throw invalidParams((error as Error).message);
+  }
 }

@@ -10,7 +10,7 @@ import {
   RunEsminiRequest,
   StructureRequest,
 } from '../../../common/src/protocol';
-import { LibraryInsertRequest, LibraryModulesRequest } from '../../../common/src/libraryProtocol';
+import { LibraryInsertRequest, LibraryModulesRequest, NewFromTemplateRequest, TemplatesRequest } from '../../../common/src/libraryProtocol';
 import { SceneRequest } from '../../../common/src/sceneProtocol';
 import { SourceRef } from '../core/sources';
 import { OpenDocument } from '../documents';
@@ -24,7 +24,7 @@ import { distributionLenses } from '../features/distributions';
 import { documentLinks } from '../features/documentLinks';
 import { hover } from '../features/hover';
 import { expressionHints } from '../features/inlayHints';
-import { libraryInsert, libraryModules } from '../features/library';
+import { libraryInsert, libraryModules, newFromTemplate, templates } from '../features/library';
 import { newScenario } from '../features/newScenario';
 import { packCommand } from '../features/pack';
 import { preview } from '../features/preview';
@@ -329,5 +329,16 @@ export const REQUESTS: Record<string, (context: ServerContext, method: string) =
     context.connection.onRequest(
       LibraryInsertRequest,
       request(context, method, (params) => libraryInsert(context.workspace, params)),
+    ),
+  // New Scenario from Template: the templates, then the files of a new scenario (the client writes them).
+  [TemplatesRequest.method]: (context, method) =>
+    context.connection.onRequest(
+      TemplatesRequest,
+      request(context, method, () => templates()),
+    ),
+  [NewFromTemplateRequest.method]: (context, method) =>
+    context.connection.onRequest(
+      NewFromTemplateRequest,
+      request(context, method, (params) => newFromTemplate(params)),
     ),
 };

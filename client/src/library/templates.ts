@@ -1,0 +1,93 @@
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import * as vscode from 'vscode';
+import type { CommandReporter } from '../commands';
+import type { ServerCommandClient } from '../languageClient';
+import { fileNameProblem, freeScenarioName } from '../naming';
+import { targetFolder } from '../newScenario';
+
+const TITLE = 'New Scenario from Template';
+
+/** What a caller (a test, a keybinding) may pass instead of being asked. */
+export interface TemplateOptions {
+  template?: string;
+  /** The new scenario's file name, in the folder. */
+  fileName?: string;
+}
+
+function isTemplateOptions(value: unknown): value is TemplateOptions {
+  if (typeof value !== 'object' || value === null || value instanceof vscode.Uri || Array.isArray(value)) return false;
+  const candidate = value as Record<string, unknown>;
+  return typeof candidate.template === 'string' || typeof candidate.fileName === 'string';
+}
+
+/**
+ * *New Scenario from Template…*: a template of the library (a test protocol composed from library modules), a folder
+ * and a file name; writes the scenario, its road beside it and its distribution when it has one, never over a file,
+ * and opens the scenario.
+ */
+export async function newFromTemplateCommand(
+  server: ServerCommandClient,
+  reporter: CommandReporter,
+  clicked: unknown,
+  ...rest: unknown[]
+): Promise<vscode.Uri | undefined> {
+  const options = [clicked, ...rest].find(isTemplateOptions) ?? {};
+  try {
+    let template = options.template;
+    if (!template) {
+      const templates = await server.templates();
+      const picked = await vscode.window.showQuickPick(
+        templates.map((each) => ({
+          label: each.title,
+          description: each.name + (each.distribution ? ' (with a distribution)' : ''),
+          detail: each.summary,
+          name: each.name,
+        })),
+        { title: TITLE, placeHolder: 'A test scenario composed from library modules', matchOnDescription: true, matchOnDetail: true },
+      );
+      if (!picked) return undefined;
+      template = picked.name;
+    }
+    const folder = await targetFolder(clicked, TITLE);
+    if (!folder) return undefined;
+    const fileName =
+      options.fileName ??
+      (
+        await vscode.window.showInputBox({
+          title: `${TITLE}: the file name`,
+          prompt: `The new scenario, in ${folder}`,
+          value: freeScenarioName(folder, fs.existsSync, template),
+          validateInput: (value) => fileNameProblem(folder, value),
+        })
+      )?.trim();
+    if (!fileName) return undefined;
+    const problem = fileNameProblem(folder, fileName);
+    if (problem) {
+      void vscode.window.showErrorMessage(`${TITLE}: ${problem}.`);
+      return undefined;
+    }
+    const target = path.join(folder, fileName);
+    const { files } = await server.newFromTemplate(template, vscode.Uri.file(target));
+    await fs.promises.mkdir(folder, { recursive: true });
+    const written: string[] = [];
+    try {
+      // 'wx': never over a file that appeared since the server looked.
+      for (const file of files) {
+        await fs.promises.writeFile(file.path, file.text, { encoding: 'utf8', flag: 'wx' });
+        written.push(file.path);
+      }
+    } catch (error) {
+      // What this command wrote goes again, so that a failure leaves the folder as it was.
+      for (const file of written) await fs.promises.rm(file, { force: true });
+      throw error;
+    }
+    reporter.log(`${TITLE}: ${template} wrote ${written.join(', ')}`);
+    const uri = vscode.Uri.file(target);
+    await vscode.window.showTextDocument(uri, { preview: false });
+    return uri;
+  } catch (error) {
+    void reporter.failure(TITLE, error);
+    return undefined;
+  }
+}
