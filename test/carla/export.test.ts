@@ -484,6 +484,54 @@ describe('export --target carla, Clothoid and Nurbs sampled into polylines', fun
   });
 });
 
+describe('export --target carla, a condition on a dropped element', function () {
+  this.timeout(300_000);
+  let out: string;
+  before(function () {
+    requireCorpus(this);
+  });
+  beforeEach(() => {
+    out = temporaryFolder('m2s-carla-dangling-');
+  });
+  afterEach(() => {
+    fs.rmSync(out, { recursive: true, force: true });
+  });
+
+  it('a StoryboardElementStateCondition waiting for a dropped event is named at its line as never true, and the export builds', async function () {
+    requireCarlaHarness(this);
+    const shapes = sampledShapesScenario(path.join(esminiRoads, 'straight_500m.xodr'));
+    // Ego's Nurbs becomes a Clothoid placed on a lane, which the export drops; Other's event waits for Ego's to start.
+    const original = shapes
+      .replace(
+        /<Nurbs order="3">[\s\S]*?<\/Nurbs>/,
+        '<Clothoid curvature="0.01" curvaturePrime="0" length="30"><Position><LanePosition roadId="1" laneId="-1" offset="0" s="40"/></Position></Clothoid>',
+      )
+      .replace(
+        '<SimulationTimeCondition value="1.5" rule="greaterThan"/>',
+        '<StoryboardElementStateCondition storyboardElementType="event" storyboardElementRef="EgoEvent" state="startTransition"/>',
+      );
+    assert.ok(original.includes('storyboardElementRef="EgoEvent"') && !original.includes('<Nurbs'), 'the fixture was not rewritten');
+    const input = path.join(out, 'waits.xosc');
+    fs.writeFileSync(input, original);
+    const exported = await exportFile(input, path.join(out, 'waits.carla.xosc'));
+    assert.equal(exported.code, 0, exported.stderr);
+    const conditionLine = original.split('\n').findIndex((line) => line.includes('storyboardElementRef="EgoEvent"')) + 1;
+    const waits = exported.report.losses.filter((loss) => loss.element === 'StoryboardElementStateCondition');
+    assert.deepEqual(
+      waits.map((loss) => [loss.kind, loss.line, loss.what]),
+      [
+        [
+          'approximated',
+          conditionLine,
+          "waits for the Event 'EgoEvent', which the export dropped: it never becomes true, and what waits for it never starts",
+        ],
+      ],
+    );
+    const verdicts = await harnessVerdicts([exported.output]);
+    assert.equal(verdicts.get(path.resolve(exported.output))?.status, 'OK', JSON.stringify(verdicts.get(path.resolve(exported.output))));
+  });
+});
+
 describe('export --target carla, bad input', () => {
   let out: string;
   const scenario = (): string => path.join(openscenarioDir, 'scenario_runner', 'FollowLeadingVehicle.xosc');

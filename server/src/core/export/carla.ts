@@ -269,9 +269,11 @@ export async function exportTextForCarla(
   // Route positions need road lengths, sampled trajectories the heading of a lane an actor starts on.
   const needsRoads = named(tree, new Set(['RoutePosition', 'Clothoid', 'ClothoidSpline', 'Nurbs'])).length > 0;
   const roads = road && 'file' in road && needsRoads ? await readRoads(store, road.file) : undefined;
+  const elementsBefore = storyboardElementKeys(tree);
   applyCarlaRules(tree, { release: options.release ?? '0.9.16', sink, roads });
   // The text the last schema check passed: nothing changes the tree after it.
   const checked = dropOutsideSchema(tree, sink);
+  reportStatesOfDroppedElements(tree, elementsBefore, sink);
 
   if (eventsBefore > 0 && named(tree, 'Event').length === 0)
     sink.refuse(
@@ -752,6 +754,37 @@ function dropOutsideSchema(tree: Node, sink: LossSink): string | undefined {
     tidyEmptyContainers(tree);
   }
   return undefined;
+}
+
+const STORYBOARD_ELEMENT_TYPES = ['Story', 'Act', 'ManeuverGroup', 'Maneuver', 'Event', 'Action'];
+
+function storyboardElementKeys(tree: Node): Set<string> {
+  const keys = new Set<string>();
+  for (const type of STORYBOARD_ELEMENT_TYPES)
+    for (const node of named(tree, type)) if (ancestor(node, 'Storyboard')) keys.add(`${type}:${attr(node, 'name') ?? ''}`);
+  return keys;
+}
+
+/**
+ * A StoryboardElementStateCondition waiting for an element the drops removed is kept (ScenarioRunner builds
+ * it) and named: it never becomes true there, so what waits for it never starts.
+ */
+function reportStatesOfDroppedElements(tree: Node, before: ReadonlySet<string>, sink: LossSink): void {
+  const after = storyboardElementKeys(tree);
+  for (const condition of named(tree, 'StoryboardElementStateCondition')) {
+    const written = attr(condition, 'storyboardElementType') ?? '';
+    // The attribute's values are the element names with a lower-case first letter (`maneuverGroup`).
+    const type = written.charAt(0).toUpperCase() + written.slice(1);
+    const name = attr(condition, 'storyboardElementRef') ?? '';
+    const key = `${type}:${name}`;
+    if (!before.has(key) || after.has(key)) continue;
+    sink.approximated(
+      condition,
+      'StoryboardElementStateCondition',
+      `waits for the ${type} '${name}', which the export dropped: it never becomes true, and what waits for it never starts`,
+      `ScenarioRunner waits for the blackboard entry the element writes when it starts or ends (srunner/scenariomanager/scenarioatomics/atomic_trigger_conditions.py OSCStartEndCondition); esmini refuses the file ("StoryboardElement ${name} not found")`,
+    );
+  }
 }
 
 const DROPPABLE = new Set([
