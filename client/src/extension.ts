@@ -196,6 +196,14 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
   // A finished run goes straight into the picture: its trajectories beside the scenario.
   context.subscriptions.push(
     esmini.onDidRun((event) => {
+      // Its storyboard transitions, read from esmini's log, for the timeline (shown at once when it is open).
+      if (event.result.trace?.length)
+        timeline.offer({
+          records: event.result.trace,
+          label: `run of ${path.posix.basename(event.source.path)}`,
+          end: event.result.simulatedTime,
+          bases: [],
+        });
       if (event.result.csvFile)
         void vscode.commands.executeCommand('modular2simple.birdsEye.showRun', event.result.csvFile, {
           logText: event.result.log,

@@ -6,6 +6,7 @@ import { RequestType, WorkspaceEdit } from 'vscode-languageserver-protocol';
 import type { LineSegment } from './lineSegments';
 import { LibraryInsertRequest, LibraryModulesRequest, NewFromTemplateRequest, TemplatesRequest } from './libraryProtocol';
 import { SceneRequest } from './sceneProtocol';
+import type { TraceRecord } from './trace';
 
 export interface FlattenOptions {
   /** Write (or show) the flattened scenario even when errors were found, skipping what cannot be resolved. */
@@ -269,6 +270,8 @@ export interface RunEsminiResult {
   forcible?: boolean;
   /** esmini's whole output. */
   log: string;
+  /** Every storyboard transition and condition firing esmini's log reports, as `run --trace` records (absolute paths). */
+  trace?: TraceRecord[];
   /**
    * esmini's CSV log (`--csv_logger`, on the server's disk): 6 header lines, the column line
    * (`Index [-], TimeStamp [s], #1 Entity_Name [-], ...`, 31 columns per entity), one row per step.

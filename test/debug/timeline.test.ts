@@ -25,17 +25,30 @@ async function traceOf(folder: string): Promise<TraceRecord[]> {
   }
 }
 
-/** esmini's own log of the same scenario (the program, not the library): `[2.350] [info] ChangeLane standbyState -> startTransition -> runningState`. */
-async function esminiStarts(folder: string, name: string): Promise<number[]> {
+/** esmini's program on the same scenario (Run in esmini): its log and the trace read from that log. */
+async function programRun(folder: string): Promise<{ log: string; trace: TraceRecord[] }> {
   const result = await runScenario(new Flattener(storeForInputs([], undefined, [folder])), mainOf(folder), { roadPath, duration: 8 });
   try {
     assert.equal(result.outcome, 'ok', result.message);
-    const pattern = new RegExp(`^\\[([\\d.]+)\\] \\[info\\] ${name} standbyState -> startTransition -> runningState`, 'gm');
-    return [...result.log.matchAll(pattern)].map((match) => Number(match[1]));
+    return { log: result.log, trace: result.trace ?? [] };
   } finally {
     removeRunFolder(result);
   }
 }
+
+/** `[2.350] [info] ChangeLane standbyState -> startTransition -> runningState` */
+function loggedStarts(log: string, name: string): number[] {
+  const pattern = new RegExp(`^\\[([\\d.]+)\\] \\[info\\] ${name} standbyState -> startTransition -> runningState`, 'gm');
+  return [...log.matchAll(pattern)].map((match) => Number(match[1]));
+}
+
+/** Each row's bars and causes, for comparing two timelines. */
+const bars = (rows: TimelineRow[]) =>
+  rows.map((candidate) => ({
+    element: candidate.element,
+    spans: candidate.spans.map((span) => [span.start, span.end, span.cause && describeFiring(span.cause)]),
+    started: candidate.started,
+  }));
 
 const row = (rows: TimelineRow[], suffix: string) => {
   const found = rows.find((candidate) => candidate.element.endsWith(suffix));
@@ -57,10 +70,13 @@ describe('storyboard timeline of a real esmini run', function () {
     const lead = row(timeline.rows, 'CutInLead.CutIn::CutInManeuver::ChangeLane');
     const vehicle = row(timeline.rows, 'CutInVehicle.CutIn::CutInManeuver::ChangeLane');
     // The program's log has the two starts, without saying which copy is which; the library's callbacks do.
+    const program = await programRun(folder);
     assert.deepEqual(
-      await esminiStarts(folder, 'ChangeLane'),
+      loggedStarts(program.log, 'ChangeLane'),
       [lead.spans[0].start, vehicle.spans[0].start].sort((a, b) => a - b),
     );
+    // Run in esmini's trace, read from the program's log, gives every copy the same bars as the library's callbacks.
+    assert.deepEqual(bars(storyboardTimeline(program.trace, 8).rows), bars(timeline.rows));
     assert.deepEqual(
       { group: lead.group, file: lead.file, line: lead.line, spans: lead.spans.length, start: lead.spans[0].start, end: lead.spans[0].end },
       { group: 'CutInLead.CutIn', file: 'lane_change.xosc', line: 116, spans: 1, start: 2.35, end: 3.8 },

@@ -4,16 +4,18 @@ import * as path from 'node:path';
 import { Flattener, FlatSource } from '../core/flatten';
 import { ESMINI_ELEMENT_TYPES, MappedElement, StoryboardMap } from '../core/flatten/storyboardMap';
 import { Problem } from '../core/problems';
-import { Evaluator, semanticModelOf } from '../core/semantics';
 import { logicFileOf, resolveRoadFile, roadFolders } from '../core/semantics/roadFiles';
 import { nodeFileSystem, SourceRef } from '../core/sources';
-import { attribute, parseXml } from '../core/xml';
+import { parseXml } from '../core/xml';
 import { EsminiLibrary, EsminiObjectState, loadEsminiLibrary } from '../esmini/library';
 import { readEsminiLog } from '../esmini/log';
 import { EsminiProblem, mapEsminiMessages } from '../esmini/messages';
 import { makeRunFolder } from '../esmini/process';
 import { catalogFolders, RUN_DEFAULTS, sourceFolderOf, withRoadFile } from '../esmini/run';
+import { CONDITION_LOG, ConditionReason, conditionReason, storyboardMapOf } from '../esmini/storyboardTrace';
 import { runLimit } from '../esmini/timeLimit';
+
+export { conditionReason, type ConditionReason };
 
 /*
  * A scenario run step by step in esmini's library, editor-free: the debug adapter (debug/adapter.ts) and the CLI's
@@ -23,18 +25,6 @@ import { runLimit } from '../esmini/timeLimit';
 
 export type ElementState = 'standby' | 'running' | 'complete';
 const STATES: Record<number, ElementState> = { 1: 'standby', 2: 'running', 3: 'complete' };
-
-/** Why a condition became true, from esmini's own log line for it (`HWT: 0.41 > 0.40`). */
-export interface ConditionReason {
-  /** esmini's words after `delay: D, ` (`HWT: 0.41 > 0.40, edge rising`). */
-  detail: string;
-  /** What esmini measured (`HWT`, `rel_dist`, `speed`, the time for a SimulationTimeCondition). */
-  quantity?: string;
-  measured?: number;
-  /** esmini's rule sign: `>`, `<`, `==`, `>=`, `<=`, `!=`. */
-  rule?: string;
-  threshold?: number;
-}
 
 const NO_EVENTS: readonly StoryboardEvent[] = Object.freeze([]);
 
@@ -116,9 +106,7 @@ export async function prepareScenario(flattener: Flattener, main: SourceRef, opt
   const logic = logicFileOf((flat.source.original ?? flat.source.model)?.document ?? parseXml(flat.text));
   const road = logic ? await resolveRoadFile(nodeFileSystem, logic.filepath, sourceFolder, folders) : undefined;
   const text = road?.resolved ? withRoadFile(flat.text, road.resolved) : flat.text;
-  const document = flat.source.model?.document;
-  const evaluator = document ? new Evaluator(semanticModelOf(document)) : undefined;
-  const map = new StoryboardMap(flat.source, (element) => evaluator?.textOf(element, attribute(element, 'name')));
+  const map = storyboardMapOf(flat.source);
   return {
     main,
     text,
@@ -126,24 +114,6 @@ export async function prepareScenario(flattener: Flattener, main: SourceRef, opt
     flat: flat.source,
     map,
     flattenProblems: flat.problems,
-  };
-}
-
-// esmini 3.6 OSCCondition::Log: `<name>: true, delay: <d>, <GetAdditionalLogInfo()>`.
-const CONDITION_LOG = /^\[[^\]]*\] \[info\] (.+?): true, delay: [-\d.]+, (.*)$/;
-// The additional info of the conditions that compare one measure with a value (OSCCondition.cpp): `HWT: 0.41 > 0.40, edge ...`.
-const MEASURE = /^(?:([A-Za-z_ ]+): )?(-?[\d.]+|Inf) (>=|<=|==|!=|>|<) (-?[\d.]+)/;
-
-/** Reads what esmini's log says about a condition it found true. */
-export function conditionReason(detail: string): ConditionReason {
-  const match = MEASURE.exec(detail);
-  if (!match) return { detail };
-  return {
-    detail,
-    quantity: match[1] ?? 'time',
-    measured: match[2] === 'Inf' ? Infinity : Number(match[2]),
-    rule: match[3],
-    threshold: Number(match[4]),
   };
 }
 

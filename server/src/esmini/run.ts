@@ -7,10 +7,12 @@ import { logicFileOf, resolveRoadFile, roadFolders, scenarioFolderOf } from '../
 import { nodeFileSystem, SourceRef } from '../core/sources';
 import { attribute, descendants, escapeAttributeValue, parseXml } from '../core/xml';
 import { parseEsminiLoadedRoad } from '../../../common/src/esminiCsv';
+import type { TraceRecord } from '../../../common/src/trace';
 import { locateEsmini } from './locate';
 import { EsminiLogMessage, EsminiRemark, readEsminiLog } from './log';
 import { EsminiProblem, mapEsminiMessages } from './messages';
 import { EsminiEnd, EsminiProcessResult, lastCsvTime, makeRunFolder, runEsminiProcess } from './process';
+import { storyboardMapOf, traceFromLog } from './storyboardTrace';
 import { LimitKind, NO_END_SECONDS, runLimit, RUNAWAY_SECONDS, withTimeLimit } from './timeLimit';
 
 export const RUN_DEFAULTS = {
@@ -75,6 +77,8 @@ export interface EsminiRunResult {
   csvFile?: string;
   /** esmini's stdout and stderr. */
   log: string;
+  /** Every storyboard transition and condition firing its log reports, as `run --trace` records (absolute file paths). */
+  trace?: TraceRecord[];
   end?: EsminiEnd;
   exitCode?: number | null;
   /** Simulated seconds covered by the CSV (its last TimeStamp, at most `duration`). */
@@ -243,6 +247,7 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
     });
   }
   const problems = mapEsminiMessages(log.messages, flat.source, main);
+  const trace = traceFromLog(storyboardMapOf(flat.source), ran.run.output);
   const errors = problems.filter((problem) => problem.severity === 'error').length;
   const outcome = outcomeOf(ran, errors, problems.length - errors, problems.find((problem) => problem.severity === 'error')?.message);
   const scenarioErrors = flattenProblems.filter((problem) => problem.severity === 'error').length;
@@ -255,6 +260,7 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
     flattenProblems,
     problems,
     remarks: log.remarks,
+    trace,
     roadFile,
     ...ran.common,
     duration,

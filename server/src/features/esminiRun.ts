@@ -83,6 +83,7 @@ export class EsminiRuns {
       flattenProblems: result.flattenProblems.map((problem) => summarize(workspace, problem)),
       ...(result.forcible ? { forcible: true } : {}),
       log: result.log,
+      ...(result.trace ? { trace: result.trace } : {}),
       csvFile: result.csvFile,
       scenarioFile: result.scenarioFile,
       duration: result.duration,
