@@ -117,6 +117,23 @@ describe('language server on its own fixtures (JSON-RPC)', function () {
       await client.close(uri);
     });
 
+    it('the second file of a cycle points each step at its reference, not at 1:1, and names the files as the first does', async function () {
+      const first = await client.openFile(path.join(root, 'cycleA.xosc'));
+      await client.diagnosticsOf(first);
+      const second = await client.openFile(path.join(root, 'cycleB.xosc'));
+      const [cycle] = await client.diagnosticsOf(second);
+      assert.equal(problemCodeOf(cycle), 'cycle');
+      assert.equal(textAt(cycleFile('B', 'cycleA.xosc'), cycle.range), 'cycleA.xosc');
+      assert.match(messageOf(cycle), /^reference cycle: cycleA\.xosc -> cycleB\.xosc -> cycleA\.xosc/);
+      const steps = cycle.relatedInformation?.map(
+        (item) =>
+          `${path.basename(item.location.uri)}:${textAt(cycleFile(path.basename(item.location.uri) === 'cycleA.xosc' ? 'A' : 'B', path.basename(item.location.uri) === 'cycleA.xosc' ? 'cycleB.xosc' : 'cycleA.xosc'), item.location.range)}`,
+      );
+      assert.deepEqual(steps, ['cycleA.xosc:cycleB.xosc', 'cycleB.xosc:cycleA.xosc']);
+      await client.close(second);
+      await client.close(first);
+    });
+
     it('reports malformed XML with a position, and recovers when it is fixed', async function () {
       const uri = fileUri(path.join(root, 'broken.xosc'));
       await client.open(uri, '<OpenSCENARIO>\n  <Storyboard>\n    <Story name="x">\n</OpenSCENARIO>\n');

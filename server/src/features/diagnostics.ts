@@ -1,6 +1,6 @@
 import { Connection, Diagnostic, DiagnosticRelatedInformation, DiagnosticSeverity, DiagnosticTag } from 'vscode-languageserver/node';
 import { FlatSource, LinkedReference } from '../core/flatten';
-import { Problem, ZERO_RANGE } from '../core/problems';
+import { Problem } from '../core/problems';
 import { diagnosticOf } from '../core/diagnostics';
 import { cycleMessage } from '../core/diagnostics/cycle';
 import { standsForCycleOnly } from '../core/diagnostics/sourceErrors';
@@ -54,6 +54,30 @@ function referencePlace(source: FlatSource, link: LinkedReference): Range | unde
   return lines && attributeNode ? lines.range(attributeNode.valueStart, attributeNode.valueEnd) : undefined;
 }
 
+/** Each step of a cycle as a related location: the reference in each member's file (`sourceOf` gives the file's analysis). */
+function cycleSteps(
+  workspace: Workspace,
+  cycle: SourceRef[],
+  sourceOf: (member: SourceRef) => FlatSource | undefined,
+): DiagnosticRelatedInformation[] {
+  const related: DiagnosticRelatedInformation[] = [];
+  for (let step = 0; step + 1 < cycle.length; step++) {
+    const from = sourceOf(cycle[step]);
+    const next = refId(cycle[step + 1]);
+    const stepLink = from?.links.find((candidate) => {
+      const target = resolvedTarget(candidate.resolution);
+      return target !== undefined && refId(target) === next;
+    });
+    const range = from && stepLink ? referencePlace(from, stepLink) : undefined;
+    if (from && range)
+      related.push({
+        location: { uri: workspace.uriOf(from.ref), range },
+        message: `${baseName(cycle[step])} references ${baseName(cycle[step + 1])}`,
+      });
+  }
+  return related;
+}
+
 /**
  * The core reports a cycle in the file that closes it; the file that starts it gets a cycle
  * diagnostic too, on its reference, with each step of the cycle as a related location.
@@ -73,21 +97,7 @@ function cycleDiagnostics(workspace: Workspace, root: FlatSource): Diagnostic[] 
     for (const link of source.links) {
       const cycle = link.cycle;
       if (!cycle || cycle.length < 2 || refId(cycle[0]) !== rootId || source === root) continue;
-      const related: DiagnosticRelatedInformation[] = [];
-      for (let step = 0; step + 1 < cycle.length; step++) {
-        const from = sources.get(refId(cycle[step]));
-        const next = refId(cycle[step + 1]);
-        const stepLink = from?.links.find((candidate) => {
-          const target = resolvedTarget(candidate.resolution);
-          return target !== undefined && refId(target) === next;
-        });
-        const range = from && stepLink ? referencePlace(from, stepLink) : undefined;
-        if (from && range)
-          related.push({
-            location: { uri: workspace.uriOf(from.ref), range },
-            message: `${baseName(cycle[step])} references ${baseName(cycle[step + 1])}`,
-          });
-      }
+      const related = cycleSteps(workspace, cycle, (member) => sources.get(refId(member)));
       const first = related[0];
       if (!first) continue;
       diagnostics.push({
@@ -125,10 +135,13 @@ export async function diagnose(workspace: Workspace, ref: SourceRef): Promise<{ 
         (candidate) => candidate.cycle && referencePlace(result.source, candidate)?.start.line === problem.range.start.line,
       );
       const members = link?.cycle ?? [];
-      diagnostic.relatedInformation = members.slice(0, -1).map((member, index) => ({
-        location: { uri: workspace.uriOf(member), range: ZERO_RANGE },
-        message: `${baseName(member)} references ${baseName(members[index + 1])}`,
-      }));
+      // Each member's own analysis holds its reference (this file's analysis may reach none of them: the cycle stopped there).
+      const analyses = new Map<string, FlatSource>([[id, result.source]]);
+      for (const member of members.slice(0, -1))
+        if (!analyses.has(refId(member))) analyses.set(refId(member), await workspace.source(member));
+      diagnostic.relatedInformation = cycleSteps(workspace, members, (member) => analyses.get(refId(member)));
+      if (members.length > 0)
+        diagnostic.message = `${cycleMessage(members.map((member) => displayRef(member, workspace.folders[0])))}${problem.hint ? `\n${problem.hint}` : ''}`;
     }
     if (problem.code === 'undeclared-variable') await addReferencingScenarios(workspace, ref, problem, diagnostic);
     diagnostics.push(diagnostic);
