@@ -1,5 +1,6 @@
 import * as path from 'node:path';
 import * as vscode from 'vscode';
+import { DEBUG_STATE_EVENT, type DebugState, isDebugState } from '../../common/src/debugState';
 import { PACKAGE_SCHEME } from '../../common/src/protocol';
 
 /** The launch configuration type (package.json `debuggers`); the adapter is server/src/debug/adapter.ts. */
@@ -45,6 +46,7 @@ class ScenarioConfigurations implements vscode.DebugConfigurationProvider {
     const resolve = (entries: string[]) => entries.map((entry) => (base ? path.resolve(base, entry) : entry));
     config.roadPath ??= resolve(settings.get<string[]>('esmini.roadPath') ?? []);
     config.scenarioPath ??= resolve(settings.get<string[]>('scenarioPath') ?? []);
+    config.esminiLibrary ??= libraryBesideEsmini(settings.get<string>('esmini.path'), base);
     if (base) config.cwd ??= base;
     return config;
   }
@@ -55,6 +57,57 @@ class ParameterExpressions implements vscode.EvaluatableExpressionProvider {
   provideEvaluatableExpression(document: vscode.TextDocument, position: vscode.Position): vscode.EvaluatableExpression | undefined {
     const range = document.getWordRangeAtPosition(position, /\$\{[^}]*\}|\$?[A-Za-z_][\w]*(\.[A-Za-z_]\w*)?/);
     return range ? new vscode.EvaluatableExpression(range, document.getText(range)) : undefined;
+  }
+}
+
+/** The folder `esminiLibrary` is looked for in from the esmini.path setting: `lib/` beside its `bin/esmini` (esmini's build layout). */
+function libraryBesideEsmini(esminiPath: string | undefined, base: string | undefined): string | undefined {
+  if (!esminiPath?.trim()) return undefined;
+  const resolved = base ? path.resolve(base, esminiPath.trim()) : esminiPath.trim();
+  const name = path.basename(resolved).toLowerCase();
+  if (name === 'esmini' || name === 'esmini.exe') return path.dirname(path.dirname(resolved));
+  return name === 'bin' ? path.dirname(resolved) : resolved;
+}
+
+/**
+ * Watches a session's adapter: when its process ends before it said the session ended (esmini crashed in it, or it was
+ * killed), says so with the scenario, the simulated time reached and how it ended; VS Code itself says only that
+ * the adapter terminated.
+ */
+class CrashReporter implements vscode.DebugAdapterTracker {
+  private ended = false;
+  private lastTime: string | undefined;
+
+  constructor(private readonly session: vscode.DebugSession) {}
+
+  /** Stop or Disconnect: the adapter may then be ended by the editor, which is no crash. */
+  onWillReceiveMessage(message: { type?: string; command?: string }): void {
+    if (message.type === 'request' && (message.command === 'disconnect' || message.command === 'terminate')) this.ended = true;
+  }
+
+  onDidSendMessage(message: { type?: string; event?: string; body?: { output?: string } }): void {
+    if (message.type !== 'event') return;
+    if (message.event === 'terminated' || message.event === 'exited') this.ended = true;
+    // The Debug Console's transition lines start with their simulated time: `[6.50] Event CutInEvent running`.
+    const time = message.event === 'output' ? /^\[([\d.]+)\]/.exec(message.body?.output ?? '') : null;
+    if (time) this.lastTime = time[1];
+  }
+
+  onExit(code: number | undefined, signal: string | undefined): void {
+    if (this.ended || (code === 0 && !signal)) return;
+    const program =
+      typeof this.session.configuration.program === 'string' ? path.basename(this.session.configuration.program) : 'the scenario';
+    // VS Code gives no signal for an executable adapter, and no code when a signal ended it.
+    const how = signal
+      ? `was killed by ${signal}`
+      : typeof code === 'number'
+        ? `exited with code ${code}`
+        : 'was killed by a signal (as a crash in esmini ends it)';
+    const when = this.lastTime === undefined ? 'before its first storyboard transition' : `after ${this.lastTime} s of simulated time`;
+    void vscode.window.showErrorMessage(
+      `The debug session of ${program} ended: esmini's process ${how} ${when}. The editor is unaffected; ` +
+        `the Debug Console keeps the run's last lines. Run in esmini runs the same scenario in esmini's own program, which says more when it fails.`,
+    );
   }
 }
 
@@ -69,5 +122,14 @@ export function registerDebugging(context: vscode.ExtensionContext): void {
     }),
     vscode.debug.registerDebugConfigurationProvider(DEBUG_TYPE, new ScenarioConfigurations()),
     vscode.languages.registerEvaluatableExpressionProvider({ language: 'xosc' }, new ParameterExpressions()),
+    vscode.debug.registerDebugAdapterTrackerFactory(DEBUG_TYPE, { createDebugAdapterTracker: (session) => new CrashReporter(session) }),
   );
+}
+
+/** The bird's-eye view follows every scenario debug session: the adapter's state events go to it (it draws them when open). */
+export function followDebugSessions(view: { followDebug(sessionId: string, state: DebugState): void }): vscode.Disposable {
+  return vscode.debug.onDidReceiveDebugSessionCustomEvent((event) => {
+    if (event.session.type === DEBUG_TYPE && event.event === DEBUG_STATE_EVENT && isDebugState(event.body))
+      view.followDebug(event.session.id, event.body);
+  });
 }

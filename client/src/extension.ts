@@ -23,7 +23,7 @@ import { RUN_VARIATIONS_COMMAND, VariationsRunner } from './runVariations';
 import { registerVariations } from './variations/commands';
 import type { VariationsView } from './variations/panel';
 import { extractGroupCommand } from './extractGroup';
-import { registerDebugging } from './debugging';
+import { followDebugSessions, registerDebugging } from './debugging';
 import { registerTimeline, type TimelineView } from './timeline/panel';
 import { registerLibrary, type LibraryApi } from './library/commands';
 
@@ -192,6 +192,7 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
   const library = registerLibrary(context, server, reporter);
   const birdsEye = registerBirdsEye(context, client, log);
   const timeline = registerTimeline(context, log, birdsEye);
+  context.subscriptions.push(followDebugSessions(birdsEye));
   const variations = registerVariations(context, log);
   // A finished run goes straight into the picture: its trajectories beside the scenario.
   context.subscriptions.push(

@@ -5,6 +5,7 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { storyboardTimeline } from '../../common/src/storyboardTimeline';
 import { STORYBOARD_EVENT, type StoryboardEventBody } from '../../common/src/trace';
+import { DEBUG_STATE_EVENT, type DebugState } from '../../common/src/debugState';
 import { esminiBinary, esminiCatalogs, esminiRoads } from '../support/esmini';
 import { requireEsminiLibrary, requireEsminiProgram } from '../support/esminiBinaries';
 import { openscenarioDir } from '../support/openscenarioCorpus';
@@ -120,6 +121,9 @@ describe('debug adapter through the Debug Adapter Protocol', function () {
     const esminiTime = Number(started[1]);
     const eventLine = lineOf(cutIn, '<Event name="CutInEvent"');
 
+    // The bird's-eye view's feed: the state the adapter publishes with each stop (common/src/debugState.ts).
+    const states: DebugState[] = [];
+    client.on(DEBUG_STATE_EVENT, (event: DebugProtocol.Event) => states.push(event.body as DebugState));
     await client.hitBreakpoint({ type: 'modular2simple', request: 'launch', program: cutIn, roadPath }, { path: cutIn, line: eventLine });
     const frames = (await client.stackTraceRequest({ threadId: 1 })).body.stackFrames;
     assert.equal(frames[0].name, 'Event CutInEvent (running)');
@@ -131,6 +135,15 @@ describe('debug adapter through the Debug Adapter Protocol', function () {
     const time = Number(await evaluate(client, 'time'));
     assert.ok(Math.abs(time - esminiTime) <= 0.05 + 1e-9, `stopped at ${time}, esmini's log starts it at ${esminiTime}`);
 
+    const published = states[states.length - 1];
+    assert.ok(published?.paused, 'a state published with the stop');
+    assert.ok(Math.abs(published.time - time) < 1e-6, `published at ${published.time}, stopped at ${time}`);
+    assert.ok(
+      published.running.some(
+        (element) => element.name === 'CutInEvent' && element.type === 'Event' && Math.abs(element.since - esminiTime) < 1e-6,
+      ),
+      JSON.stringify(published.running),
+    );
     const entities = await scope(client, 'Entities');
     for (const name of ['Ego', 'OverTaker']) {
       const entity = entities.find((variable) => variable.name === name);
@@ -144,6 +157,12 @@ describe('debug adapter through the Debug Adapter Protocol', function () {
       assert.ok(Math.abs(fields.speed - expected.speed) < 1e-3, `${name}.speed ${fields.speed} vs CSV ${expected.speed}`);
       assert.equal(fields.lane, expected.lane);
       for (const field of ['h', 'road', 's', 't', 'acceleration']) assert.ok(Number.isFinite(fields[field]), `${name}.${field}`);
+      const drawn = published.entities.find((candidate) => candidate.name === name);
+      assert.ok(
+        drawn && Math.abs(drawn.x - expected.x) < 1e-3 && Math.abs(drawn.y - expected.y) < 1e-3,
+        `${name} published at its CSV place`,
+      );
+      assert.ok(drawn.length > 0 && drawn.width > 0, `${name}'s box`);
     }
     // Why it fired: the condition that started the event, with esmini's measure and the threshold.
     const why = await scope(client, 'Why it fired');

@@ -22,6 +22,8 @@ export type ToView =
   /** A second run (another concrete scenario) to compare with the first, overlaid or side by side; undefined ends the comparison. */
   | { type: 'compare'; run: RunTracks | undefined; sideBySide?: boolean }
   | { type: 'error'; message: string }
+  /** A debug session's run so far, drawn at its last time; `running`: the storyboard elements running now (highlighted). */
+  | { type: 'live'; run: RunTracks; running: string[] }
   /** Asks for the picture as it is now; answered by a `save` with the same id. */
   | { type: 'export'; format: 'png' | 'svg'; id: number; width?: number; height?: number }
   /** Follows and plots an entity (undefined: none); for a command or a test. */

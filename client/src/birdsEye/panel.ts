@@ -2,8 +2,10 @@ import * as path from 'node:path';
 import * as vscode from 'vscode';
 import type { LanguageClient } from 'vscode-languageclient/node';
 import { writeFileAtomic } from '../../../common/src/atomic';
+import type { DebugState } from '../../../common/src/debugState';
 import { SceneRequest, type SceneResult } from '../../../common/src/sceneProtocol';
 import { parseResolution } from './analysis';
+import { appendDebugState } from './liveRun';
 import { isFromView, type FromView, type RenderStats, type RunTracks, type ToView } from './messages';
 import { birdsEyeHtml } from './page';
 import { loadRun, type RunSource } from './runData';
@@ -68,6 +70,19 @@ export class BirdsEyeView implements vscode.Disposable {
   nextRender(): Promise<RenderStats> {
     return new Promise((resolve) => this.renderedListeners.push(resolve));
   }
+
+  /**
+   * A debug session's state (the adapter's custom event): the view, when open, draws the session's run so far at its
+   * latest time, with the running elements highlighted. A new session starts a new run.
+   */
+  followDebug(sessionId: string, state: DebugState): void {
+    if (!this.panel) return;
+    const run = appendDebugState(this.live?.sessionId === sessionId ? this.live.run : undefined, state);
+    this.live = { sessionId, run };
+    this.run = run;
+    this.post({ type: 'live', run, running: state.running.map((element) => element.name) });
+  }
+  private live: { sessionId: string; run: RunTracks } | undefined;
 
   async show(source: vscode.Uri): Promise<void> {
     if (this.source?.toString() !== source.toString()) {

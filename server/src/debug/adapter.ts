@@ -15,6 +15,7 @@ import {
 import { DebugProtocol } from '@vscode/debugprotocol';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
+import { DEBUG_STATE_EVENT, DebugState } from '../../../common/src/debugState';
 import { Flattener } from '../core/flatten';
 import { MappedElement } from '../core/flatten/storyboardMap';
 import { Problem } from '../core/problems';
@@ -49,6 +50,8 @@ export interface ScenarioLaunchArguments extends DebugProtocol.LaunchRequestArgu
 }
 
 const THREAD_ID = 1;
+/** While running, the bird's-eye view gets the entities at most this often (wall ms): enough to watch them move. */
+const STATE_INTERVAL_MS = 100;
 const ELEMENT_KINDS = 'Story, Act, ManeuverGroup, Maneuver, Event, Action or Condition';
 
 interface LineBreakpoint {
@@ -126,6 +129,7 @@ export class ScenarioDebugSession extends DebugSession {
   private variableHandles = new Map<number, () => DebugProtocol.Variable[]>();
   private sourceTexts = new Map<number, string>();
   private terminated = false;
+  private lastStateAt = 0;
 
   constructor() {
     super();
@@ -425,6 +429,7 @@ export class ScenarioDebugSession extends DebugSession {
           const stop = this.breakpointStop(simulation, events) ?? this.stepStop(simulation, events, mode, stepOutOf);
           if (stop) return this.stopWith(stop);
         } while (Date.now() < until);
+        if (Date.now() - this.lastStateAt >= STATE_INTERVAL_MS) this.publishState(simulation, false);
         setImmediate(slice);
       } catch (error) {
         this.running = false;
@@ -444,8 +449,30 @@ export class ScenarioDebugSession extends DebugSession {
     return false;
   }
 
+  /** The entities and running elements now, for the bird's-eye view (common/src/debugState.ts). */
+  private publishState(simulation: Simulation, paused: boolean): void {
+    this.lastStateAt = Date.now();
+    const state: DebugState = {
+      time: simulation.time,
+      entities: simulation.entities().map((entity) => ({
+        name: entity.name,
+        x: entity.x,
+        y: entity.y,
+        h: entity.h,
+        speed: entity.speed,
+        length: entity.length,
+        width: entity.width,
+        centerX: entity.centerOffsetX,
+      })),
+      running: simulation.running().map((element) => ({ name: element.name, type: element.type, since: element.since })),
+      paused,
+    };
+    this.sendEvent(new Event(DEBUG_STATE_EVENT, state));
+  }
+
   private finished(simulation: Simulation): void {
     this.running = false;
+    this.publishState(simulation, true);
     this.output(`The scenario ended at ${fixed(simulation.time)} s\n`);
     this.end();
   }
@@ -565,6 +592,7 @@ export class ScenarioDebugSession extends DebugSession {
   private stopWith(stop: Stop): void {
     this.running = false;
     this.stopped = stop;
+    if (this.simulation) this.publishState(this.simulation, true);
     this.variableHandles.clear();
     const event = new StoppedEvent(stop.reason, THREAD_ID) as DebugProtocol.StoppedEvent;
     event.body.description = stop.description;
@@ -693,6 +721,13 @@ export class ScenarioDebugSession extends DebugSession {
       const simulation = this.simulation;
       const scopes: DebugProtocol.Scope[] = [];
       if (simulation) {
+        // Entities first: VS Code opens the first scope of a stop.
+        scopes.push(
+          new Scope(
+            'Entities',
+            this.handle(() => this.entityVariables(simulation)),
+          ),
+        );
         const why = this.whyItFired();
         if (why.length > 0)
           scopes.push(
@@ -701,12 +736,6 @@ export class ScenarioDebugSession extends DebugSession {
               this.handle(() => why),
             ),
           );
-        scopes.push(
-          new Scope(
-            'Entities',
-            this.handle(() => this.entityVariables(simulation)),
-          ),
-        );
         scopes.push(
           new Scope(
             'Parameters',

@@ -61,6 +61,7 @@ export interface EsminiObjectState {
   laneOffset: number;
   s: number;
   speed: number;
+  centerOffsetX: number;
   width: number;
   length: number;
 }

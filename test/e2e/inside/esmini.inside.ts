@@ -19,7 +19,7 @@ import {
 import { pageShows, screenshot } from './harnessClient';
 
 /** esmini as the test setup builds it beside the CLI under test, and the shared road files; skips the test without them. */
-function esminiOrSkip(context: Mocha.Context): { repository: string; esmini: string; roads: string } {
+export function esminiOrSkip(context: Mocha.Context): { repository: string; esmini: string; roads: string } {
   const repository = path.resolve(path.dirname(process.env[HARNESS_ENV.cli] ?? '.'), '..');
   const esmini = path.join(repository, '.cache', 'esmini', 'bin', 'esmini');
   const roads = path.resolve(repository, '..', 'shared', 'esmini', 'xodr');
@@ -32,7 +32,7 @@ function esminiOrSkip(context: Mocha.Context): { repository: string; esmini: str
 }
 
 /** esmini's cut-in.xosc laid out as esmini's own corpus is (xosc/ with its Catalogs beside xodr/), in the workspace's `folder`. */
-function esminiCutInFolder(repository: string, roads: string, folder: string): string {
+export function esminiCutInFolder(repository: string, roads: string, folder: string): string {
   const corpus = path.resolve(repository, '..', 'shared', 'corpus', 'openscenario', 'esmini');
   fs.mkdirSync(path.join(folder, 'xosc', 'Catalogs', 'Vehicles'), { recursive: true });
   fs.mkdirSync(path.join(folder, 'xodr'), { recursive: true });

@@ -16,6 +16,7 @@ import { ruleTests } from './rules.inside';
 import { structureTests } from './structure.inside';
 import { distributionTests } from './distributions.inside';
 import { carlaTests } from './carla.inside';
+import { debuggingTests } from './debugging.inside';
 
 const TESTS: InsideTests = {
   ...editingTests,
@@ -30,6 +31,7 @@ const TESTS: InsideTests = {
   ...refactoringTests,
   ...ruleTests,
   ...carlaTests,
+  ...debuggingTests,
 };
 
 /**
@@ -71,6 +73,7 @@ const ORDER: InsideTestKey[] = [
   'extractToSimple',
   'carlaExport',
   'carlaCheck',
+  'debugScenario',
 ];
 
 /** The extension's tests inside VS Code, each feature's in its own file; the bird's-eye view's follow (birdsEye.inside.ts). */

@@ -6,7 +6,7 @@ import { element } from './dom';
 import { vscode } from './host';
 import { renderPanel } from './panelDom';
 import { picture } from './picture';
-import { renderLayer } from './render';
+import { renderLayer, report } from './render';
 import { colorOf, state } from './state';
 
 export function handleMessage(message: ToView): void {
@@ -20,11 +20,22 @@ export function handleMessage(message: ToView): void {
     else renderLayer();
   } else if (message.type === 'run') {
     state.run = message.run;
+    state.running = undefined;
     state.compare = undefined;
     setPlaying(false);
     renderPanel();
     setTime(0);
     fit();
+  } else if (message.type === 'live') {
+    const first = state.running === undefined || state.run === undefined;
+    state.run = message.run;
+    state.compare = undefined;
+    state.running = new Set(message.running);
+    setPlaying(false);
+    renderPanel();
+    setTime(message.run.times[message.run.times.length - 1] ?? 0);
+    if (first) fit();
+    report();
   } else if (message.type === 'compare') {
     state.compare = message.run;
     state.sideBySide = message.sideBySide === true;

@@ -41,14 +41,18 @@ export function renderPanel(): void {
         ? `started ${started.toFixed(2)} s`
         : event.plannedTime !== undefined
           ? `planned ${event.plannedTime} s`
-          : state.run
-            ? 'did not start'
-            : 'start after a run';
+          : state.running
+            ? 'not started yet'
+            : state.run
+              ? 'did not start'
+              : 'start after a run';
     const item = document.createElement('li');
+    const running = state.running?.has(event.name) === true;
     item.append(
       button(event.name, `${event.act} / ${event.group} / ${event.maneuver}`, () => open(event.source), 'event'),
-      ` ${when} · ${event.trigger}`,
+      ` ${when}${running ? ' · running' : ''} · ${event.trigger}`,
     );
+    if (running) item.className = 'running';
     events.append(item);
     const at = started ?? event.plannedTime;
     if (at !== undefined && total > 0 && at <= total) {

@@ -20,6 +20,8 @@ interface ViewState {
   view: ViewTransform | undefined;
   time: number;
   playing: boolean;
+  /** Following a debug session: the storyboard elements running now (undefined: no session followed). */
+  running: Set<string> | undefined;
 }
 
 export const state: ViewState = {
@@ -33,6 +35,7 @@ export const state: ViewState = {
   view: undefined,
   time: 0,
   playing: false,
+  running: undefined,
 };
 
 const colors = new Map<string, string>();

@@ -1,0 +1,33 @@
+/**
+ * The debug adapter's custom DAP event for the bird's-eye view (server/src/debug/adapter.ts sends it, the extension
+ * forwards it to the view): the entities and the running storyboard elements at one simulated time.
+ */
+export const DEBUG_STATE_EVENT = 'modular2simple/state';
+
+export interface DebugStateEntity {
+  name: string;
+  x: number;
+  y: number;
+  /** Heading, rad. */
+  h: number;
+  /** m/s. */
+  speed: number;
+  length: number;
+  width: number;
+  /** The bounding box's centre ahead of the reference point, m. */
+  centerX: number;
+}
+
+export interface DebugState {
+  time: number;
+  entities: DebugStateEntity[];
+  /** The elements running now: esmini's name, kind, and the simulated time each started. */
+  running: { name: string; type: string; since: number }[];
+  /** The session paused (a stop) or ended; otherwise a sample while it runs. */
+  paused: boolean;
+}
+
+export function isDebugState(value: unknown): value is DebugState {
+  const state = value as Partial<DebugState> | undefined;
+  return typeof state?.time === 'number' && Array.isArray(state.entities) && Array.isArray(state.running);
+}

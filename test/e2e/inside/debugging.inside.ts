@@ -1,0 +1,113 @@
+import * as assert from 'node:assert/strict';
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import * as vscode from 'vscode';
+import { esminiCutInFolder, esminiOrSkip } from './esmini.inside';
+import { pageShows, pressKeys, screenshot } from './harnessClient';
+import { api, EXTENSION_ID, type InsideTests, open, positionOf, waitFor, workspaceRoot } from './helpers';
+
+/** The debug adapter processes of the extension under test (their command line names its dist/debugAdapter.js). */
+function adapterProcesses(): number[] {
+  const adapter = path.join(vscode.extensions.getExtension(EXTENSION_ID)?.extensionPath ?? '-', 'dist', 'debugAdapter.js');
+  return fs
+    .readdirSync('/proc')
+    .filter((name) => /^\d+$/.test(name))
+    .map(Number)
+    .filter((pid) => {
+      try {
+        return fs.readFileSync(`/proc/${pid}/cmdline`, 'utf8').split('\0').includes(adapter);
+      } catch {
+        return false;
+      }
+    });
+}
+
+interface StackFrameBody {
+  stackFrames: { name: string; line: number; source?: { path?: string } }[];
+}
+
+/** F5 on a scenario as a person does it: the stop on a breakpoint's line, the Variables view, then esmini crashing. */
+export const debuggingTests: InsideTests = {
+  debugScenario: async function () {
+    this.timeout(240_000);
+    const { repository, esmini, roads } = esminiOrSkip(this);
+    const scenario = esminiCutInFolder(repository, roads, path.join(workspaceRoot(), 'debugging'));
+    const settings = vscode.workspace.getConfiguration('modular2simple.esmini');
+    await settings.update('path', esmini, vscode.ConfigurationTarget.Workspace);
+    await settings.update('roadPath', [roads], vscode.ConfigurationTarget.Workspace);
+    const events: string[] = [];
+    const tracker = vscode.debug.registerDebugAdapterTrackerFactory('modular2simple', {
+      createDebugAdapterTracker: () => ({
+        onDidSendMessage: (message: { type?: string; event?: string }) => {
+          if (message.type === 'event' && message.event) events.push(message.event);
+        },
+      }),
+    });
+    const editor = await open(path.relative(workspaceRoot(), scenario));
+    const line = positionOf(editor.document, '<Event name="CutInEvent"').line;
+    const breakpoint = new vscode.SourceBreakpoint(new vscode.Location(editor.document.uri, new vscode.Position(line, 0)));
+    vscode.debug.addBreakpoints([breakpoint]);
+    // The bird's-eye view open beside it follows the session.
+    await vscode.commands.executeCommand('modular2simple.showBirdsEye', editor.document.uri);
+    const view = api().birdsEye;
+    await waitFor("the bird's-eye view", () => view.isOpen && view.stats !== undefined, 60_000);
+    await vscode.window.showTextDocument(editor.document, vscode.ViewColumn.One);
+    try {
+      // F5 with no launch.json: the active file, debugged with the folder's settings.
+      const stopOnTheEvent = async (): Promise<vscode.DebugSession> => {
+        events.length = 0;
+        await pressKeys(['F5']);
+        await waitFor('the stop on the breakpoint', () => events.includes('stopped') || events.includes('terminated'), 120_000);
+        assert.ok(!events.includes('terminated'), `the session ended without stopping: ${events.join(', ')}`);
+        // VS Code makes the session active once it has shown the stop, after the tracker saw it.
+        const session = await waitFor('the debug session', () => vscode.debug.activeDebugSession, 20_000);
+        const trace = (await session.customRequest('stackTrace', { threadId: 1 })) as StackFrameBody;
+        assert.equal(trace.stackFrames[0].name, 'Event CutInEvent (running)');
+        assert.equal(trace.stackFrames[0].line, line + 1);
+        // The path as the remote window names it (vscode-remote://host/path).
+        assert.ok(trace.stackFrames[0].source?.path?.endsWith(scenario), trace.stackFrames[0].source?.path);
+        return session;
+      };
+      const session = await stopOnTheEvent();
+      const stopTime = Number(
+        ((await session.customRequest('evaluate', { expression: 'time', context: 'watch' })) as { result: string }).result,
+      );
+      // The bird's-eye view at the stop's time, the running event highlighted in its list.
+      await waitFor(
+        "the bird's-eye view at the stop",
+        () => Math.abs((view.stats?.time ?? -1) - stopTime) < 1e-6 && view.stats?.trajectories === 2,
+        20_000,
+      );
+      await waitFor('the running event highlighted', () => pageShows('CutInEvent', '.running'), 20_000);
+      // What a person sees: the editor on the breakpoint's line, the call stack, the entities in the Variables view.
+      await waitFor('the editor on the stop line', () => vscode.window.activeTextEditor?.selection.active.line === line, 20_000);
+      await waitFor('the call stack', () => pageShows('Event CutInEvent (running)'), 20_000);
+      await waitFor('the entities in the Variables view', async () => (await pageShows('Ego')) && pageShows('OverTaker'), 20_000);
+      assert.ok(await pageShows('Why it fired'), 'the Why it fired scope is listed');
+      await screenshot("debug: stopped on the CutInEvent breakpoint, Variables view with the entities, the bird's-eye view at the stop");
+
+      // esmini crashing in the adapter's process (a segmentation fault, as a bad pointer in esmini gives).
+      const adapters = adapterProcesses();
+      assert.equal(adapters.length, 1, `one adapter process: ${adapters.join(', ')}`);
+      process.kill(adapters[0], 'SIGSEGV');
+      await waitFor('the session to end', () => vscode.debug.activeDebugSession === undefined, 30_000);
+      await waitFor('the message naming the crash', () => pageShows('The debug session of cut-in.xosc ended'), 30_000);
+      assert.ok(await pageShows("esmini's process was killed by"), 'the message says how the adapter ended');
+      await screenshot('debug: esmini crashed, the session ended with a message, the editor lives');
+
+      // The editor lives: the same F5 starts a new session, which stops on the same line.
+      await vscode.commands.executeCommand('notifications.clearAll');
+      await vscode.window.showTextDocument(editor.document);
+      const again = await stopOnTheEvent();
+      await vscode.debug.stopDebugging(again);
+      await waitFor('the second session to end', () => vscode.debug.activeDebugSession === undefined, 30_000);
+      assert.ok(!(await pageShows('The debug session of cut-in.xosc ended')), 'Stop is no crash');
+    } finally {
+      vscode.debug.removeBreakpoints([breakpoint]);
+      tracker.dispose();
+      if (vscode.debug.activeDebugSession) await vscode.debug.stopDebugging();
+      await settings.update('path', undefined, vscode.ConfigurationTarget.Workspace);
+      await settings.update('roadPath', undefined, vscode.ConfigurationTarget.Workspace);
+    }
+  },
+};
