@@ -1,8 +1,8 @@
 import { createHash } from 'node:crypto';
-import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { Queue } from 'bullmq';
 import { Redis } from 'ioredis';
+import { nodeFileSystem } from '../core/sources';
 import { BatchPlanView, concreteRun, filesNamed, namedPaths } from './plan';
 import { BatchOutput, Progress, Tally } from './progress';
 import { CRITERIA_FAILED_EXIT, Criterion } from './criteria';
@@ -160,9 +160,10 @@ export async function queueBatch(
       let files = filesByPaths.get(key);
       if (!files) {
         const onDisk = filesNamed(named, plan.scenarioFolder, plan.searchPath);
-        files = Promise.all(onDisk.map((file) => send(relativeTo(plan.scenarioFolder, file), () => fs.promises.readFile(file)))).then(
-          (found) => [...packaged, ...found.filter((file) => !packaged.some((each) => each.relative === file.relative))],
-        );
+        files = Promise.all(onDisk.map((file) => send(relativeTo(plan.scenarioFolder, file), () => readJobFile(file)))).then((found) => [
+          ...packaged,
+          ...found.filter((file) => !packaged.some((each) => each.relative === file.relative)),
+        ]);
         filesByPaths.set(key, files);
       }
       return files;
@@ -279,4 +280,11 @@ export async function queueBatch(
     // BullMQ's connection would try to reach a Redis that is gone for ever: the process ends once its output is written.
     if (!closed) setTimeout(() => process.exit(3), 1000).unref();
   }
+}
+
+/** A road or catalog a job carries, read within the bounds and with the refusals (FIFOs, devices, oversize) of every other read. */
+async function readJobFile(file: string): Promise<Uint8Array> {
+  const bytes = await nodeFileSystem.readFile(file);
+  if (!bytes) throw new Error(`${file}: vanished before the batch could send it to the workers; run the batch again`);
+  return bytes;
 }
