@@ -45,6 +45,8 @@ export const INSIDE_TESTS = {
     "Check in CARLA ScenarioRunner from the palette, with ScenarioRunner 0.9.16 set up, puts ScenarioRunner's error on the source line of the simple scenario",
   extractToSimple:
     'Extract to a simple scenario from the light bulb, with the pick list of attributes, replaces a group by a reference that flattens as before',
+  libraryCompose:
+    'a main composed from the Scenario Library view (a template, then a cut-in, a lead brake and a pedestrian inserted) in at most 5 steps checks clean',
   debugScenario:
     'F5 on a scenario stops on the breakpoint on its Event line with the entities in the Variables view; esmini crashing ends the session with a message and the editor lives',
 } as const;

@@ -278,6 +278,8 @@ describe('the packaged extension in a real VS Code (code-server, headless Chromi
       'dist/cli.js',
       'dist/cli-main.js',
       'dist/variations.js',
+      // The storyboard timeline's page (issue 29).
+      'dist/timeline.js',
       // The debug adapter (issue 29), a process of its own.
       'dist/debugAdapter.js',
       // The compiled OpenSCENARIO schemas the server reads, and the ASAM schemas with their licence note.

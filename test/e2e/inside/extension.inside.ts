@@ -17,6 +17,7 @@ import { structureTests } from './structure.inside';
 import { distributionTests } from './distributions.inside';
 import { carlaTests } from './carla.inside';
 import { debuggingTests } from './debugging.inside';
+import { libraryTests } from './library.inside';
 
 const TESTS: InsideTests = {
   ...editingTests,
@@ -32,6 +33,7 @@ const TESTS: InsideTests = {
   ...ruleTests,
   ...carlaTests,
   ...debuggingTests,
+  ...libraryTests,
 };
 
 /**
@@ -74,6 +76,7 @@ const ORDER: InsideTestKey[] = [
   'carlaExport',
   'carlaCheck',
   'debugScenario',
+  'libraryCompose',
 ];
 
 /** The extension's tests inside VS Code, each feature's in its own file; the bird's-eye view's follow (birdsEye.inside.ts). */
