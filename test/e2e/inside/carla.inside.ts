@@ -84,10 +84,16 @@ export const carlaTests: InsideTests = {
       await settings.update('release', '0.9.15', global);
       await open('main.xosc');
       await runFromPalette('Modular2Simple: Check in CARLA ScenarioRunner');
-      const crossing = vscode.Uri.file(path.join(workspaceRoot(), 'crossing.xosc'));
-      const problem = await waitFor(
+      // crossing.xosc is the file itself, or the copy inside pedestrian.mosc (a mosc: URI) once the suite's Pack test made main.xosc import the package.
+      const [crossing, problem] = await waitFor(
         "ScenarioRunner's error on crossing.xosc",
-        () => vscode.languages.getDiagnostics(crossing).find((diagnostic) => diagnostic.source === 'ScenarioRunner'),
+        () =>
+          vscode.languages
+            .getDiagnostics()
+            .filter(([uri]) => uri.path.endsWith('/crossing.xosc'))
+            .flatMap(([uri, diagnostics]) =>
+              diagnostics.filter((diagnostic) => diagnostic.source === 'ScenarioRunner').map((diagnostic) => [uri, diagnostic] as const),
+            )[0],
         100_000,
       );
       const document = await vscode.workspace.openTextDocument(crossing);
