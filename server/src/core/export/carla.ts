@@ -15,6 +15,7 @@ import type { FlatSource } from '../flatten/types';
 import { MAX_ROAD_FILE_BYTES, parseOpenDrive, RoadNetwork } from '../opendrive/road';
 import { formatProblem, Problem } from '../problems';
 import { logicFileOf, resolveRoadFile } from '../semantics/roadFiles';
+import { STORYBOARD_ELEMENT_NAMES, STORYBOARD_ELEMENT_TYPES } from '../semantics/storyboard';
 import { checkSchema } from '../schema/validate';
 import { assignmentsOf, CatalogLoader, DocumentSemantics, Evaluator, formatValue, semanticModelOf } from '../semantics';
 import { displayRef, ScenarioStore, SourceError, SourceRef } from '../sources';
@@ -756,12 +757,10 @@ function dropOutsideSchema(tree: Node, sink: LossSink): string | undefined {
   return undefined;
 }
 
-const STORYBOARD_ELEMENT_TYPES = ['Story', 'Act', 'ManeuverGroup', 'Maneuver', 'Event', 'Action'];
-
 function storyboardElementKeys(tree: Node): Set<string> {
   const keys = new Set<string>();
-  for (const type of STORYBOARD_ELEMENT_TYPES)
-    for (const node of named(tree, type)) if (ancestor(node, 'Storyboard')) keys.add(`${type}:${attr(node, 'name') ?? ''}`);
+  for (const node of named(tree, STORYBOARD_ELEMENT_NAMES))
+    if (ancestor(node, 'Storyboard')) keys.add(`${node.name}:${attr(node, 'name') ?? ''}`);
   return keys;
 }
 
@@ -772,9 +771,8 @@ function storyboardElementKeys(tree: Node): Set<string> {
 function reportStatesOfDroppedElements(tree: Node, before: ReadonlySet<string>, sink: LossSink): void {
   const after = storyboardElementKeys(tree);
   for (const condition of named(tree, 'StoryboardElementStateCondition')) {
-    const written = attr(condition, 'storyboardElementType') ?? '';
-    // The attribute's values are the element names with a lower-case first letter (`maneuverGroup`).
-    const type = written.charAt(0).toUpperCase() + written.slice(1);
+    const type = STORYBOARD_ELEMENT_TYPES[attr(condition, 'storyboardElementType') ?? ''];
+    if (!type) continue;
     const name = attr(condition, 'storyboardElementRef') ?? '';
     const key = `${type}:${name}`;
     if (!before.has(key) || after.has(key)) continue;
