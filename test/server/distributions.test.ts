@@ -408,3 +408,89 @@ describe('distribution files in the editor: renaming a root parameter', function
     );
   });
 });
+
+describe('distribution files in the editor: a file deleted on disk or closed leaves no stale problem (workspace pull)', function () {
+  const sped = distribution(`      <DeterministicSingleParameterDistribution parameterName="Sped">
+        <DistributionSet><Element value="20"/></DistributionSet>
+      </DeterministicSingleParameterDistribution>`);
+  const fixture = useServer({ 'plain.xosc': scenario, 'values.xosc': sped, 'other.xosc': sped }, 'plain.xosc', {
+    pullDiagnostics: true,
+  });
+  interface WorkspaceReport {
+    items: { uri: string; kind: string; resultId?: string; items?: Diagnostic[] }[];
+  }
+  // What VS Code's client keeps: the last full report of each file, and the result id it sends back.
+  const shown = new Map<string, Diagnostic[]>();
+  const resultIds = new Map<string, string>();
+  async function pull(): Promise<void> {
+    const report = await fixture.client.request<WorkspaceReport>('workspace/diagnostic', {
+      previousResultIds: [...resultIds].map(([uri, value]) => ({ uri, value })),
+    });
+    for (const item of report.items) {
+      if (item.kind === 'full') shown.set(item.uri, item.items ?? []);
+      if (item.resultId === undefined) resultIds.delete(item.uri);
+      else resultIds.set(item.uri, item.resultId);
+    }
+  }
+  const codes = (file: string) => (shown.get(fileUri(path.join(fixture.root, file))) ?? []).map((d) => problemCodeOf(d));
+  async function notify(file: string, type: 1 | 2 | 3): Promise<void> {
+    const before = fixture.client.refreshes;
+    await fixture.client.connection.sendNotification('workspace/didChangeWatchedFiles', {
+      changes: [{ uri: fileUri(path.join(fixture.root, file)), type }],
+    });
+    await fixture.client.until(() => fixture.client.refreshes > before || undefined, 'a workspace/diagnostic/refresh');
+  }
+
+  it('clears the problems of a distribution file deleted on disk, and shows them again when it comes back', async () => {
+    await pull();
+    assert.deepEqual(codes('values.xosc'), ['unknown-distribution-parameter']);
+    fs.rmSync(path.join(fixture.root, 'values.xosc'));
+    await notify('values.xosc', 3);
+    await pull();
+    assert.deepEqual(codes('values.xosc'), []);
+    assert.deepEqual(codes('other.xosc'), ['unknown-distribution-parameter'], 'another file keeps its problem');
+    await pull();
+    assert.deepEqual(codes('values.xosc'), [], 'nothing brings the deleted file back');
+    fs.writeFileSync(path.join(fixture.root, 'values.xosc'), sped);
+    await notify('values.xosc', 1);
+    await pull();
+    assert.deepEqual(codes('values.xosc'), ['unknown-distribution-parameter']);
+  });
+
+  it('clears the problems of an open distribution file once it is deleted and closed', async () => {
+    const file = path.join(fixture.root, 'values.xosc');
+    if (!fs.existsSync(file)) {
+      fs.writeFileSync(file, sped);
+      await notify('values.xosc', 1);
+    }
+    const uri = await fixture.client.openFile(file);
+    await pull();
+    assert.deepEqual(codes('values.xosc'), ['unknown-distribution-parameter']);
+    fs.rmSync(file);
+    await notify('values.xosc', 3);
+    await pull();
+    // Open, the editor's text still stands for it (VS Code keeps a deleted file's editor open).
+    assert.deepEqual(codes('values.xosc'), ['unknown-distribution-parameter']);
+    await fixture.client.close(uri);
+    const closed = await fixture.client.request<{ kind: string; items: Diagnostic[] }>('textDocument/diagnostic', {
+      textDocument: { uri },
+    });
+    assert.deepEqual(closed.items, []);
+    await pull();
+    assert.deepEqual(codes('values.xosc'), []);
+  });
+
+  it("recomputes a distribution's problems when its ScenarioFile is deleted and when it comes back", async () => {
+    await pull();
+    assert.deepEqual(codes('other.xosc'), ['unknown-distribution-parameter']);
+    const plain = path.join(fixture.root, 'plain.xosc');
+    fs.rmSync(plain);
+    await notify('plain.xosc', 3);
+    await pull();
+    assert.deepEqual(codes('other.xosc'), ['distribution'], 'the ScenarioFile that no longer resolves');
+    fs.writeFileSync(plain, scenario);
+    await notify('plain.xosc', 1);
+    await pull();
+    assert.deepEqual(codes('other.xosc'), ['unknown-distribution-parameter']);
+  });
+});

@@ -43,6 +43,11 @@ export function register(context: ServerContext): void {
         }
         checkCancelled(token, METHOD);
       }
+      // A file the client still shows that is no scenario file any more (deleted, renamed): VS Code leaves its
+      // problems up until told otherwise. No result id, so the client stops asking about it.
+      const reported = new Set(items.map((item) => item.uri));
+      for (const uri of previous.keys())
+        if (!reported.has(uri)) items.push({ kind: DocumentDiagnosticReportKind.Full, uri, version: null, items: [] });
       return { items };
     }),
   );
