@@ -1,8 +1,9 @@
 /**
  * The debug adapter's custom DAP event for the bird's-eye view (server/src/debug/adapter.ts sends it, the extension
- * forwards it to the view): the entities and the running storyboard elements at one simulated time.
+ * forwards it to the view): the entities and the running storyboard elements at one simulated time. Named as the
+ * adapter's other custom event (common/src/trace.ts STORYBOARD_EVENT): camelCase, the adapter's name first.
  */
-export const DEBUG_STATE_EVENT = 'modular2simple/state';
+export const DEBUG_STATE_EVENT = 'modular2simpleState';
 
 export interface DebugStateEntity {
   name: string;

@@ -39,8 +39,13 @@ export interface TraceRecord extends ConditionFiring {
   waitsFor?: TraceCondition[];
 }
 
-/** The debug adapter's custom DAP event: the trace records of a step (none on a stop), the simulation time, the run's limit. */
-export const STORYBOARD_EVENT = 'modular2simple.storyboard';
+/**
+ * The debug adapter's custom DAP event: the trace records of a step (none on a stop), the simulation time, the run's
+ * limit. Custom events are named as the protocol's own (`loadedSource`, `progressStart`) and other adapters' (debugpy's
+ * `debugpyAttach`, js-debug's `revealLocationRequested`): camelCase, here with the adapter's name first so that no
+ * future protocol event can clash; the bird's-eye view's is DEBUG_STATE_EVENT (common/src/debugState.ts).
+ */
+export const STORYBOARD_EVENT = 'modular2simpleStoryboard';
 
 export interface StoryboardEventBody {
   records: TraceRecord[];
