@@ -1,7 +1,8 @@
 import * as assert from 'node:assert/strict';
 import * as path from 'node:path';
 import { Problem } from '../../server/src/core/problems';
-import { SchemaCheckMemory, schemaProblems } from '../../server/src/core/schema/problems';
+import { schemaProblems } from '../../server/src/core/diagnostics/schemaFindings';
+import { SchemaCheckMemory } from '../../server/src/core/schema/problems';
 import { analyzeDocument, CatalogLoader, semanticProblems } from '../../server/src/core/semantics';
 import { diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { parseXml } from '../../server/src/core/xml';

@@ -1,6 +1,7 @@
 import * as assert from 'node:assert/strict';
 import { RuledProblem, ruleOf } from '../../server/src/core/rules';
-import { SchemaCheckMemory, schemaProblems } from '../../server/src/core/schema/problems';
+import { schemaProblems } from '../../server/src/core/diagnostics/schemaFindings';
+import { SchemaCheckMemory } from '../../server/src/core/schema/problems';
 import { diskRef } from '../../server/src/core/sources';
 import { parseXml } from '../../server/src/core/xml';
 

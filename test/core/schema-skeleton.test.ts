@@ -2,6 +2,7 @@ import * as assert from 'node:assert/strict';
 import { schemaIndex } from '../../server/src/core/schema/index';
 import { ElementParticle, SCHEMA_VERSIONS } from '../../server/src/core/schema/model';
 import { elementSkeleton, placeholderValue, SkeletonElement, SKELETON_DEPTH, skeletonText } from '../../server/src/core/schema/skeleton';
+import { schemaFindingWords } from '../../server/src/core/diagnostics/schemaFindings';
 import { checkSchema } from '../../server/src/core/schema/validate';
 import { parseXml } from '../../server/src/core/xml';
 
@@ -22,7 +23,7 @@ describe('core: minimal valid skeletons of schema elements (what the quick fix i
       assert.notEqual(stated, text, version);
       const findings = checkSchema(parseXml(stated), { modular: true }).findings;
       assert.deepEqual(
-        findings.map((finding) => `${finding.code} ${finding.message}`),
+        findings.map((finding) => `${finding.code} ${schemaFindingWords(finding).message}`),
         [],
         `${version}:\n${stated}`,
       );

@@ -3,6 +3,7 @@ import * as path from 'node:path';
 import { Problem } from '../../server/src/core/problems';
 import { schemaIndex } from '../../server/src/core/schema/index';
 import { typeByElementName } from '../../server/src/core/schema/query';
+import { schemaFindingWords } from '../../server/src/core/diagnostics/schemaFindings';
 import { checkSchema } from '../../server/src/core/schema/validate';
 import { SCHEMA_VERSIONS, SchemaVersion } from '../../server/src/core/schema/model';
 import { analyzeDocument, CatalogLoader, semanticProblems } from '../../server/src/core/semantics';
@@ -383,7 +384,7 @@ describe('value ranges in a schema-valid scenario', () => {
     const text = scenario();
     const schema = checkSchema(parseXml(text), { modular: false });
     assert.deepEqual(
-      schema.findings.filter((finding) => finding.severity === 'error').map((finding) => finding.message),
+      schema.findings.filter((finding) => finding.severity === 'error').map((finding) => schemaFindingWords(finding).message),
       [],
     );
     assert.deepEqual(await outOfRange(text), []);

@@ -6,6 +6,7 @@ import { NewScenarioRequest, RunEsminiRequest } from '../../common/src/protocol'
 import { newMainScenario } from '../../server/src/core/newScenario';
 import { laneCenterT, laneSectionIndexAt, parseOpenDrive, roadPoint } from '../../server/src/core/opendrive/road';
 import { SCHEMA_VERSIONS } from '../../server/src/core/schema/model';
+import { schemaFindingWords } from '../../server/src/core/diagnostics/schemaFindings';
 import { checkSchema } from '../../server/src/core/schema/validate';
 import { parseXml } from '../../server/src/core/xml';
 import { esminiBinary, esminiRoads, readEsminiCsv, requireEsmini } from '../support/esmini';
@@ -45,7 +46,7 @@ describe('language server: New Modular Scenario builds a main with an ego on a r
       assert.ok(result.text.includes(element), element);
     assert.doesNotMatch(result.text, /Catalog(Reference|Location )/, 'no catalog needed');
     assert.deepEqual(
-      checkSchema(parseXml(result.text), { modular: true }).findings.map((finding) => finding.message),
+      checkSchema(parseXml(result.text), { modular: true }).findings.map((finding) => schemaFindingWords(finding).message),
       [],
     );
 
@@ -97,7 +98,7 @@ describe('language server: New Modular Scenario builds a main with an ego on a r
       const text = newMainScenario({ version, roadFile: 'road.xodr', ego });
       assert.match(text, new RegExp(`revMajor="1" revMinor="${version.split('.')[1]}"`));
       assert.deepEqual(
-        checkSchema(parseXml(text), { modular: true }).findings.map((finding) => finding.message),
+        checkSchema(parseXml(text), { modular: true }).findings.map((finding) => schemaFindingWords(finding).message),
         [],
         version,
       );

@@ -8,6 +8,7 @@ import * as os from 'node:os';
 import * as path from 'node:path';
 import JSZip from 'jszip';
 import { Flattener } from '../../server/src/core/flatten';
+import { schemaFindingWords } from '../../server/src/core/diagnostics/schemaFindings';
 import { checkSchema } from '../../server/src/core/schema/validate';
 import { parameterValueProblems } from '../../server/src/core/semantics/parameterValues';
 import { analyzeDocument, CatalogLoader, OUTPUT_CHECKS, SEMANTIC_CHECKS, simulatorProfile } from '../../server/src/core/semantics';
@@ -143,7 +144,9 @@ async function checkTimes(size: number): Promise<Record<string, number>> {
       for (const { name, check } of OUTPUT_CHECKS) await time(`output: ${name}`, () => check(output));
       const schema = await time('schema', () => checkSchema(context.model.document, { version: 'auto', modular: false }));
       if (schema.findings.some((finding) => finding.severity === 'error'))
-        throw new Error(`not schema-valid: ${[...new Set(schema.findings.map((finding) => finding.message))].slice(0, 5).join('; ')}`);
+        throw new Error(
+          `not schema-valid: ${[...new Set(schema.findings.map((finding) => schemaFindingWords(finding).message))].slice(0, 5).join('; ')}`,
+        );
       await time('parameter values against the schema', () => parameterValueProblems(context, 'auto'));
     }
     return best;

@@ -9,7 +9,7 @@ import { repoRoot } from '../../support/paths';
 
 const MODULES = path.join(repoRoot, 'server/src/core/diagnostics');
 /** The files of the folder that are no diagnostic's module. */
-const SHARED = ['definition.ts', 'index.ts', 'qcRules.ts'];
+const SHARED = ['definition.ts', 'index.ts', 'qcRules.ts', 'schemaFindings.ts'];
 
 /** `unknown-key` -> `unknownKey`: the name of a code's module. */
 function moduleName(code: string): string {

@@ -11,6 +11,19 @@ export type DataOf<C extends ProblemCode> = C extends ProblemCodeWithData ? Prob
 /** What a problem says, apart from where: the part a diagnostic's module builds. */
 export type ProblemWording<C extends ProblemCode = ProblemCode> = Pick<Problem, 'severity' | 'message' | 'hint'> & { code: C };
 
+/** A problem's words alone, where its producer gives the code and severity with the facts (the schema check). */
+export type Words = Pick<Problem, 'message' | 'hint'>;
+
+/** A message about a value an override set, naming the ParameterReference that set it. */
+export function setByWords(message: string, key: string): string {
+  return `${message} (set by ParameterReference '${key}')`;
+}
+
+/** `did you mean 'x'?`, where there is a closest name. */
+export function didYouMean(suggestion: string | undefined): string | undefined {
+  return suggestion ? `did you mean '${suggestion}'?` : undefined;
+}
+
 /** A text with its line index, as a fix reads and places it (an LSP `TextDocument` is one). */
 export interface TextLines {
   getText(): string;

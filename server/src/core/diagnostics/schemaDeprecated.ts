@@ -1,5 +1,30 @@
 import { ProblemDataByCode } from '../problems';
-import { changeToSuggestion, defineDiagnostic, isSuggestion } from './definition';
+import { SchemaFactsByCode } from '../schema/facts';
+import { changeToSuggestion, defineDiagnostic, isSuggestion, Words } from './definition';
+
+export function schemaDeprecatedWording(facts: SchemaFactsByCode['schema-deprecated']): Words {
+  if (facts.kind === 'value') {
+    const { value, element, attribute, version, instead } = facts;
+    return {
+      message: `the value '${value}' of ${element}.${attribute} is deprecated in OpenSCENARIO ${version}${instead ? `; write '${instead}'` : ''}`,
+    };
+  }
+  const writeInstead = facts.instead !== undefined ? `; write ${facts.instead} instead` : '';
+  if (facts.kind === 'element') {
+    const { element, since, version } = facts;
+    return {
+      message: `<${element}> is deprecated${since ? ` since OpenSCENARIO ${since}` : ` in OpenSCENARIO ${version}`}${writeInstead}`,
+    };
+  }
+  const { element, attribute, together } = facts;
+  const since = facts.since ? ` since OpenSCENARIO ${facts.since}` : '';
+  return {
+    message:
+      together.length > 0
+        ? `${element}.${attribute} is deprecated${since} and written together with its replacement ${together.join(' and ')}: leave out ${attribute}`
+        : `${element}.${attribute} is deprecated${since}${writeInstead}`,
+  };
+}
 
 /** A deprecated element, attribute or value: a warning, struck through, whose fix writes the standard's replacement. */
 export const SCHEMA_DEPRECATED = defineDiagnostic({

@@ -1,7 +1,14 @@
 import { ProblemDataByCode } from '../problems';
+import { SchemaFactsByCode } from '../schema/facts';
 import { indexFor, typeOfElement } from '../schema/query';
 import { placeholderValue } from '../schema/skeleton';
-import { defineDiagnostic, elementAtRange, isRecord, isStringList } from './definition';
+import { defineDiagnostic, elementAtRange, isRecord, isStringList, Words } from './definition';
+
+export function schemaMissingAttributeWording({ element, missing }: SchemaFactsByCode['schema-missing-attribute']): Words {
+  return {
+    message: `<${element}> lacks the required attribute${missing.length > 1 ? 's' : ''} ${missing.map((name) => `'${name}'`).join(', ')}`,
+  };
+}
 import { QC } from './qcRules';
 
 /** Required attributes the element lacks: added after its last attribute, each with a placeholder of its type. */

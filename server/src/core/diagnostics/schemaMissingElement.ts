@@ -1,8 +1,20 @@
 import { ProblemDataByCode } from '../problems';
+import { SchemaFactsByCode } from '../schema/facts';
 import { indexFor, typeByElementName, typeOfElement } from '../schema/query';
 import { elementSkeleton, placeholderValue, skeletonText } from '../schema/skeleton';
 import { Range } from '../text';
-import { defineDiagnostic, elementAtRange, indentOfLine, isOptionalString, isRecord, isString, isStringList } from './definition';
+import { defineDiagnostic, elementAtRange, indentOfLine, isOptionalString, isRecord, isString, isStringList, Words } from './definition';
+
+/** Element names as the schema's messages write them: `<A>, <B>`. */
+export function elementList(names: readonly string[]): string {
+  return names.map((name) => `<${name}>`).join(', ');
+}
+
+export function schemaMissingElementWording({ parent, missing, before }: SchemaFactsByCode['schema-missing-element']): Words {
+  return {
+    message: `<${parent}> lacks the required element${missing.length > 1 ? 's' : ''} ${elementList(missing)}${before !== undefined ? ` before <${before}>` : ''}`,
+  };
+}
 import { QC } from './qcRules';
 
 /** Required elements the element lacks: each inserted as a minimal valid skeleton, before the element they must precede or at the end. */

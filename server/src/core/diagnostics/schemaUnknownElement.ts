@@ -1,6 +1,26 @@
 import { ProblemDataByCode } from '../problems';
-import { CoreFix, defineDiagnostic, elementAtRange, FixEdit, isSuggestion } from './definition';
+import { SchemaFactsByCode } from '../schema/facts';
+import { CoreFix, defineDiagnostic, elementAtRange, FixEdit, isSuggestion, Words } from './definition';
 import { QC } from './qcRules';
+import { otherVersionsWords } from './schemaVersion';
+
+export function schemaUnknownElementWording(facts: SchemaFactsByCode['schema-unknown-element']): Words {
+  if (facts.kind === 'root') return { message: `the root element must be <${facts.expected}>, not <${facts.found}>` };
+  const { parent, child, version, introducedIn, suggestion, children } = facts;
+  const orMeant = suggestion ? `; or did you mean <${suggestion}>?` : '';
+  return {
+    message: facts.holdsNoElements
+      ? `<${parent}> holds no elements in OpenSCENARIO ${version}, yet <${child}> stands in it`
+      : `<${parent}> has no child <${child}> in OpenSCENARIO ${version}`,
+    hint: introducedIn
+      ? otherVersionsWords(`<${child}>`, introducedIn) + orMeant
+      : suggestion
+        ? `did you mean <${suggestion}>?`
+        : children.length > 0
+          ? `its children: ${children.map((other) => `<${other}>`).join(', ')}`
+          : undefined,
+  };
+}
 
 /** An element the schema does not know here: the closest name, in the start tag and the end tag. */
 export const SCHEMA_UNKNOWN_ELEMENT = defineDiagnostic({

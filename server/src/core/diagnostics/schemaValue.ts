@@ -1,6 +1,23 @@
 import { ProblemDataByCode } from '../problems';
-import { changeToSuggestion, defineDiagnostic, isSuggestion } from './definition';
+import { SchemaFactsByCode } from '../schema/facts';
+import { changeToSuggestion, defineDiagnostic, didYouMean, isSuggestion, Words } from './definition';
 import { QC } from './qcRules';
+import { otherVersionsWords } from './schemaVersion';
+
+export function schemaValueWording({
+  element,
+  attribute,
+  value,
+  type,
+  expected,
+  validIn,
+  suggestion,
+}: SchemaFactsByCode['schema-value']): Words {
+  return {
+    message: `'${value}' is not a valid value of ${element}.${attribute} (${type}): expected ${expected}`,
+    hint: validIn ? otherVersionsWords(`'${value}'`, validIn, 'is a value of') : didYouMean(suggestion),
+  };
+}
 
 /** A value that does not fit its attribute's type: the closest value it allows, where one is near. */
 export const SCHEMA_VALUE = defineDiagnostic({

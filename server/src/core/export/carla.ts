@@ -16,6 +16,7 @@ import { MAX_ROAD_FILE_BYTES, parseOpenDrive, RoadNetwork } from '../opendrive/r
 import { formatProblem, Problem } from '../problems';
 import { logicFileOf, resolveRoadFile } from '../semantics/roadFiles';
 import { STORYBOARD_ELEMENT_NAMES, STORYBOARD_ELEMENT_TYPES } from '../semantics/storyboard';
+import { schemaFindingWords } from '../diagnostics/schemaFindings';
 import { checkSchema } from '../schema/validate';
 import { assignmentsOf, CatalogLoader, DocumentSemantics, Evaluator, formatValue, semanticModelOf } from '../semantics';
 import { displayRef, ScenarioStore, SourceError, SourceRef } from '../sources';
@@ -295,7 +296,7 @@ export async function exportTextForCarla(
     const first = schemaErrors[0];
     const line = outDocument.lines.positionAt(first.element.start).line + 1;
     return result(
-      `the export would not be valid OpenSCENARIO 1.0 (${SR_SCHEMA}): line ${line} of the export, <${first.element.name}>: ${first.message}`,
+      `the export would not be valid OpenSCENARIO 1.0 (${SR_SCHEMA}): line ${line} of the export, <${first.element.name}>: ${schemaFindingWords(first).message}`,
       undefined,
       { road, ego },
     );
@@ -746,7 +747,7 @@ function dropOutsideSchema(tree: Node, sink: LossSink): string | undefined {
       sink.refuse(
         node,
         node.name,
-        `cannot be written as OpenSCENARIO 1.0 (${finding.message})`,
+        `cannot be written as OpenSCENARIO 1.0 (${schemaFindingWords(finding).message})`,
         `ScenarioRunner's 1.0 schema (${SR_SCHEMA}) refuses the file`,
       );
       return undefined;

@@ -3,7 +3,8 @@ import { Problem } from '../problems';
 import { refId } from '../sources';
 import { SchemaIndex, schemaIndex } from '../schema/index';
 import { attributeType, siteTypeProblem } from '../semantics/parameterValues';
-import { PlacedFinding, SchemaCheckMemory, toProblem } from '../schema/problems';
+import { toProblem } from '../diagnostics/schemaFindings';
+import { PlacedFinding, SchemaCheckMemory } from '../schema/problems';
 import { typeOfElement } from '../schema/query';
 import { checkAttribute, checkSchema, findingOffsets, SchemaCheckOptions, SchemaFinding, subjectOf } from '../schema/validate';
 import { ChosenVersion, chooseVersion } from '../schema/version';
@@ -69,13 +70,7 @@ export function outputSchemaProblems(
       // The value came from a ParameterReference of this file: that is where it must be fixed.
       const [start, end] = [override.valueAttribute.valueStart, override.valueAttribute.valueEnd];
       problems.push(
-        toProblem(
-          output.ref,
-          output.original.document,
-          { ...finding, message: `${finding.message} (set by ParameterReference '${override.key}')`, data, subject: subjectOf(finding) },
-          start,
-          end,
-        ),
+        toProblem(output.ref, output.original.document, { ...finding, data, subject: subjectOf(finding) }, start, end, override.key),
       );
       continue;
     }
@@ -166,14 +161,10 @@ export function overrideValueProblems(main: FlatSource, options: Omit<SchemaChec
             toProblem(
               main.ref,
               document,
-              {
-                ...finding,
-                message: `${finding.message} (set by ParameterReference '${parameter.key}')`,
-                data: undefined,
-                subject: subjectOf(finding),
-              },
+              { ...finding, data: undefined, subject: subjectOf(finding) },
               valueAttribute.valueStart,
               valueAttribute.valueEnd,
+              parameter.key,
             ),
           );
         }

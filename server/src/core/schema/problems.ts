@@ -1,26 +1,11 @@
-import { Problem, ProblemSubject } from '../problems';
-import { refId, SizedCache, SourceRef } from '../sources';
+import { ProblemSubject } from '../problems';
+import { SizedCache } from '../sources';
 import { schemaIndex } from './index';
 import { typeOfElement } from './query';
 import { ChosenVersion } from './version';
 import { markupFreeEdit, XmlAttribute, XmlDocument, XmlElement } from '../xml';
 import { checkAttribute, checkSchema, findingOffsets, SchemaCheckOptions, SchemaFinding, subjectOf } from './validate';
 import { CORE_MEMOS } from '../memos';
-
-/** A finding as a problem at offsets of `document`. */
-export function toProblem(source: SourceRef, document: XmlDocument, finding: FindingWords, start: number, end: number): Problem {
-  const problem: Problem = {
-    source,
-    range: document.lines.range(start, end),
-    severity: finding.severity,
-    code: finding.code,
-    message: finding.message,
-  };
-  if (finding.hint) problem.hint = finding.hint;
-  if (finding.data) problem.data = finding.data;
-  if (finding.subject) problem.subject = finding.subject;
-  return problem;
-}
 
 /** A finding by offsets only, so that a remembered check holds no parse tree. */
 export interface PlacedFinding {
@@ -31,8 +16,11 @@ export interface PlacedFinding {
   finding: FindingWords;
 }
 
+/** `Omit` of each member of a union (a finding of each code keeps its own facts). */
+type OmitEach<T, K extends PropertyKey> = T extends unknown ? Omit<T, K> : never;
+
 /** A finding without its parse tree: the element and attribute only by name. */
-export type FindingWords = Omit<SchemaFinding, 'element' | 'attribute'> & { subject?: ProblemSubject };
+export type FindingWords = OmitEach<SchemaFinding, 'element' | 'attribute'> & { subject?: ProblemSubject };
 
 interface RememberedCheck {
   text: string;
@@ -133,16 +121,4 @@ export class SchemaCheckMemory {
     this.checks.set(key, check, rememberedSize(check));
     return check.placed;
   }
-}
-
-/** The schema's problems of one file as it is written (the modular extension allowed). */
-export function schemaProblems(
-  source: SourceRef,
-  document: XmlDocument,
-  memory: SchemaCheckMemory,
-  options: Omit<SchemaCheckOptions, 'modular'> = {},
-): Problem[] {
-  return memory
-    .check(refId(source), document, { ...options, modular: true })
-    .map((entry) => toProblem(source, document, entry.finding, entry.start, entry.end));
 }

@@ -1,4 +1,4 @@
-import { ProblemCode, ProblemSubject, SCHEMA_PROBLEM_CODE_LIST, SchemaFindingData, SchemaProblemCode, Severity } from '../problems';
+import { ProblemCode, ProblemSubject, SCHEMA_PROBLEM_CODE_LIST, SchemaFindingData, Severity } from '../problems';
 import { closestMatch } from '../text';
 import { XmlAttribute, XmlDocument, XmlElement } from '../xml';
 import { StateSet } from './automaton';
@@ -7,23 +7,27 @@ import { SchemaIndex, schemaIndex, versionsWith } from './index';
 import { ElementParticle, SCHEMA_VERSIONS } from './model';
 import { MODULAR_ATTRIBUTE, MODULAR_PLACEMENT, MODULAR_TYPES } from './modular';
 import { checkValue, describeType, enumerationValues } from './values';
+import { OtherVersions, SchemaFacts } from './facts';
 import { chooseVersion, ChosenVersion, SchemaVersionSetting } from './version';
 
 /** Problems the schema finds; `--force` writes a flattened output despite them. */
 export const SCHEMA_PROBLEM_CODES: ReadonlySet<ProblemCode> = new Set<ProblemCode>(SCHEMA_PROBLEM_CODE_LIST);
 
-/** A problem at an element's tag name, an attribute's name or an attribute's value (offsets of the document checked). */
-export interface SchemaFinding {
+/** Where a finding stands and what it is, apart from its facts. */
+interface FindingPlace {
   element: XmlElement;
   attribute?: XmlAttribute;
   part: 'tag' | 'attribute' | 'value';
   severity: Severity;
-  code: SchemaProblemCode;
-  message: string;
-  hint?: string;
   /** For quick fixes: the shape `ProblemDataByCode` names for the code. */
   data?: SchemaFindingData;
 }
+
+/**
+ * A problem at an element's tag name, an attribute's name or an attribute's value (offsets of the document
+ * checked): its code and facts, which the code's module (core/diagnostics/) words.
+ */
+export type SchemaFinding = FindingPlace & SchemaFacts;
 
 export interface SchemaCheckOptions {
   /** Accept the modular extension (SPEC 2): ScenarioReference in a ManeuverGroup. Off for flattened outputs. */
@@ -39,26 +43,18 @@ export interface SchemaCheck {
 /** At most this many findings per document: a broken file must not flood the editor. */
 const MAX_FINDINGS = 2000;
 
-function list(particles: ElementParticle[]): string {
-  return particles.map((particle) => `<${particle.name}>`).join(', ');
+function names(particles: ElementParticle[]): string[] {
+  return particles.map((particle) => particle.name);
 }
 
-function introducedHint(
-  typeName: string,
-  name: string,
-  kind: 'element' | 'attribute',
-  chosen: ChosenVersion,
-  others: string[],
-): string | undefined {
+/** The other versions of the schema whose type has an element or attribute of that name. */
+function introducedIn(typeName: string, name: string, kind: 'element' | 'attribute', chosen: ChosenVersion): OtherVersions | undefined {
   const versions = versionsWith(typeName, name, kind).filter((version) => version !== chosen.version);
-  if (versions.length === 0) return undefined;
-  const stated = chosen.stated ? `the FileHeader states ${chosen.stated}` : `the file is read as ${chosen.version}`;
-  const suggestion = closestMatch(name, others);
-  return `${kind === 'element' ? `<${name}>` : `'${name}'`} belongs to OpenSCENARIO ${versions.join(', ')}; ${stated} (revMinor)${suggestion ? `; or did you mean ${kind === 'element' ? `<${suggestion}>` : `'${suggestion}'`}?` : ''}`;
+  return versions.length === 0 ? undefined : { versions, version: chosen.version, stated: chosen.stated };
 }
 
 /** Where an attribute's value is valid in other versions of the schema: which, and the version the file is read as. */
-function valueIntroducedHint(typeName: string, attribute: XmlAttribute, chosen: ChosenVersion): string | undefined {
+function validIn(typeName: string, attribute: XmlAttribute, chosen: ChosenVersion): OtherVersions | undefined {
   const versions = SCHEMA_VERSIONS.filter((version) => {
     if (version === chosen.version) return false;
     const index = schemaIndex(version);
@@ -66,9 +62,7 @@ function valueIntroducedHint(typeName: string, attribute: XmlAttribute, chosen: 
     const simple = declaration ? index.simpleType(declaration.type) : undefined;
     return simple !== undefined && checkValue(simple, attribute.value).valid;
   });
-  if (versions.length === 0) return undefined;
-  const stated = chosen.stated ? `the FileHeader states ${chosen.stated}` : `the file is read as ${chosen.version}`;
-  return `'${attribute.value}' is a value of OpenSCENARIO ${versions.join(', ')}; ${stated} (revMinor)`;
+  return versions.length === 0 ? undefined : { versions, version: chosen.version, stated: chosen.stated };
 }
 
 /**
@@ -90,7 +84,7 @@ export function checkSchema(document: XmlDocument, options: SchemaCheckOptions):
       part: 'tag',
       severity: 'information',
       code: 'schema-version',
-      message: `${chosen.fallback}: checked against the OpenSCENARIO ${chosen.version} schema`,
+      facts: { kind: 'fallback', fallback: chosen.fallback, version: chosen.version },
     });
   }
   if (root.name !== index.schema.rootElement) {
@@ -99,7 +93,7 @@ export function checkSchema(document: XmlDocument, options: SchemaCheckOptions):
       part: 'tag',
       severity: 'error',
       code: 'schema-unknown-element',
-      message: `the root element must be <${index.schema.rootElement}>, not <${root.name}>`,
+      facts: { kind: 'root', expected: index.schema.rootElement, found: root.name },
       data: { suggestion: index.schema.rootElement },
     });
     return { chosen, findings };
@@ -142,10 +136,14 @@ export function checkAttribute(
       part: 'attribute',
       severity: 'error',
       code: 'schema-unknown-attribute',
-      message: `<${element.name}> has no attribute '${attribute.name}' in OpenSCENARIO ${chosen.version}`,
-      hint:
-        introducedHint(typeName, attribute.name, 'attribute', chosen, candidates) ??
-        (suggestion ? `did you mean '${suggestion}'?` : candidates.length > 0 ? `its attributes: ${candidates.join(', ')}` : undefined),
+      facts: {
+        element: element.name,
+        attribute: attribute.name,
+        version: chosen.version,
+        introducedIn: introducedIn(typeName, attribute.name, 'attribute', chosen),
+        suggestion,
+        candidates,
+      },
       data: suggestion ? { suggestion } : undefined,
     });
     return;
@@ -156,20 +154,32 @@ export function checkAttribute(
   if (!check.valid) {
     const values = enumerationValues(simple);
     // A value of a later version ('override', 1.2) is not misspelt: the closest value here may be the one that version deprecates ('overwrite').
-    const inVersions = check.expressionNotInVersion ? undefined : valueIntroducedHint(typeName, attribute, chosen);
+    const inVersions = check.expressionNotInVersion ? undefined : validIn(typeName, attribute, chosen);
     const suggestion = values.length > 0 && !inVersions ? closestMatch(attribute.value, values) : undefined;
-    report({
-      element,
-      attribute,
-      part: 'value',
-      severity: check.expressionNotInVersion ? 'warning' : 'error',
-      code: check.expressionNotInVersion ? 'schema-version' : 'schema-value',
-      message: check.expressionNotInVersion
-        ? `the expression '${attribute.value}' needs OpenSCENARIO 1.1 or later; this file is read as ${chosen.version}`
-        : `'${attribute.value}' is not a valid value of ${element.name}.${attribute.name} (${declaration.type}): expected ${describeType(simple)}`,
-      hint: inVersions ?? (suggestion ? `did you mean '${suggestion}'?` : undefined),
-      data: suggestion ? { suggestion } : undefined,
-    });
+    const place = { element, attribute, part: 'value', data: suggestion ? { suggestion } : undefined } as const;
+    report(
+      check.expressionNotInVersion
+        ? {
+            ...place,
+            severity: 'warning',
+            code: 'schema-version',
+            facts: { kind: 'expression', value: attribute.value, version: chosen.version, suggestion },
+          }
+        : {
+            ...place,
+            severity: 'error',
+            code: 'schema-value',
+            facts: {
+              element: element.name,
+              attribute: attribute.name,
+              value: attribute.value,
+              type: declaration.type,
+              expected: describeType(simple),
+              validIn: inVersions,
+              suggestion,
+            },
+          },
+    );
   } else if (check.deprecated) {
     const instead = valueReplacementOf(attribute.value.trim());
     report({
@@ -178,7 +188,7 @@ export function checkAttribute(
       part: 'value',
       severity: 'warning',
       code: 'schema-deprecated',
-      message: `the value '${attribute.value}' of ${element.name}.${attribute.name} is deprecated in OpenSCENARIO ${chosen.version}${instead ? `; write '${instead}'` : ''}`,
+      facts: { kind: 'value', element: element.name, attribute: attribute.name, value: attribute.value, version: chosen.version, instead },
       data: instead ? { suggestion: instead } : undefined,
     });
   }
@@ -188,17 +198,20 @@ export function checkAttribute(
       ...(replacement?.attributes?.filter((name) => element.attributes.some((other) => other.name === name)) ?? []),
       ...(replacement?.elements?.filter((name) => element.children.some((child) => child.name === name)).map((name) => `<${name}>`) ?? []),
     ];
-    const since = declaration.deprecatedSince ? ` since OpenSCENARIO ${declaration.deprecatedSince}` : '';
     report({
       element,
       attribute,
       part: 'attribute',
       severity: 'warning',
       code: 'schema-deprecated',
-      message:
-        together.length > 0
-          ? `${element.name}.${attribute.name} is deprecated${since} and written together with its replacement ${together.join(' and ')}: leave out ${attribute.name}`
-          : `${element.name}.${attribute.name} is deprecated${since}${replacement ? `; write ${replacement.instead} instead` : ''}`,
+      facts: {
+        kind: 'attribute',
+        element: element.name,
+        attribute: attribute.name,
+        since: declaration.deprecatedSince,
+        together,
+        instead: replacement?.instead,
+      },
       data: replacement?.rename && together.length === 0 ? { suggestion: replacement.rename } : undefined,
     });
   }
@@ -230,7 +243,7 @@ function checkAttributes(
       part: 'tag',
       severity: 'error',
       code: 'schema-missing-attribute',
-      message: `<${element.name}> lacks the required attribute${missing.length > 1 ? 's' : ''} ${missing.map((name) => `'${name}'`).join(', ')}`,
+      facts: { element: element.name, missing },
       data: { missing },
     });
   }
@@ -239,11 +252,6 @@ function checkAttributes(
 function isWritten(attributes: readonly XmlAttribute[], name: string): boolean {
   for (let i = 0; i < attributes.length; i++) if (attributes[i].name === name) return true;
   return false;
-}
-
-function deprecatedInstead(typeName: string, name: string): string {
-  const replacement = replacementOf(typeName, name);
-  return replacement ? `; write ${replacement.instead} instead` : '';
 }
 
 /** A child the content model knows: where the check descends, and what the order and number checks read. */
@@ -280,17 +288,16 @@ function checkChildren(
         part: 'tag',
         severity: 'error',
         code: 'schema-unknown-element',
-        message:
-          type.text || others.length === 0
-            ? `<${element.name}> holds no elements in OpenSCENARIO ${chosen.version}, yet <${child.name}> stands in it`
-            : `<${element.name}> has no child <${child.name}> in OpenSCENARIO ${chosen.version}`,
-        hint:
-          introducedHint(typeName, child.name, 'element', chosen, others) ??
-          (suggestion
-            ? `did you mean <${suggestion}>?`
-            : others.length > 0
-              ? `its children: ${others.map((other) => `<${other}>`).join(', ')}`
-              : undefined),
+        facts: {
+          kind: 'child',
+          parent: element.name,
+          child: child.name,
+          version: chosen.version,
+          holdsNoElements: Boolean(type.text) || others.length === 0,
+          introducedIn: introducedIn(typeName, child.name, 'element', chosen),
+          suggestion,
+          children: others,
+        },
         data: suggestion ? { suggestion } : undefined,
       });
       continue;
@@ -302,7 +309,13 @@ function checkChildren(
         part: 'tag',
         severity: 'warning',
         code: 'schema-deprecated',
-        message: `<${child.name}> is deprecated${particle.deprecatedSince ? ` since OpenSCENARIO ${particle.deprecatedSince}` : ` in OpenSCENARIO ${chosen.version}`}${deprecatedInstead(typeName, child.name)}`,
+        facts: {
+          kind: 'element',
+          element: child.name,
+          since: particle.deprecatedSince,
+          version: chosen.version,
+          instead: replacementOf(typeName, child.name)?.instead,
+        },
       });
     }
   }
@@ -321,7 +334,7 @@ function checkAll(items: ElementParticle[], element: XmlElement, known: KnownChi
         part: 'tag',
         severity: 'error',
         code: 'schema-cardinality',
-        message: `too many <${child.name}> in <${element.name}>: at most ${particle.max}`,
+        facts: { element: child.name, parent: element.name, max: particle.max },
       });
     }
   }
@@ -387,7 +400,7 @@ function checkSequence(
           part: 'tag',
           severity: 'error',
           code: 'schema-order',
-          message: `<${child.name}> is out of order in <${element.name}>: ${list(missing)} must come before it`,
+          facts: { kind: 'before', element: child.name, parent: element.name, before: names(missing) },
         });
       } else {
         reportMissing(element, missing, child, report);
@@ -409,7 +422,7 @@ function checkSequence(
         part: 'tag',
         severity: 'error',
         code: 'schema-cardinality',
-        message: `too many <${child.name}> in <${element.name}>: at most ${particle.max}`,
+        facts: { element: child.name, parent: element.name, max: particle.max },
       });
     } else if (!reportedOrder) {
       // One order problem per parent: after it, the position in the content model is a guess.
@@ -420,7 +433,7 @@ function checkSequence(
         part: 'tag',
         severity: 'error',
         code: 'schema-order',
-        message: `<${child.name}> is out of order in <${element.name}>: ${allowed.length > 0 ? `expected ${list(allowed)} here` : 'nothing more may follow here'}`,
+        facts: { kind: 'expected', element: child.name, parent: element.name, expected: names(allowed) },
       });
     }
   }
@@ -436,14 +449,14 @@ function reportMissing(
   before: XmlElement | undefined,
   report: (finding: SchemaFinding) => void,
 ): void {
-  const names = missing.map((particle) => particle.name);
+  const missingNames = names(missing);
   report({
     element: before ?? element,
     part: 'tag',
     severity: 'error',
     code: 'schema-missing-element',
-    message: `<${element.name}> lacks the required element${names.length > 1 ? 's' : ''} ${list(missing)}${before ? ` before <${before.name}>` : ''}`,
-    data: { missing: names, parent: element.name, ...(before ? { insertAt: String(before.start) } : {}) },
+    facts: { parent: element.name, missing: missingNames, before: before?.name },
+    data: { missing: missingNames, parent: element.name, ...(before ? { insertAt: String(before.start) } : {}) },
   });
 }
 

@@ -1,5 +1,6 @@
 import * as path from 'node:path';
 import { CARLA_TOWNS } from '../profiles/scenarioRunner';
+import { schemaFindingWords } from '../diagnostics/schemaFindings';
 import { checkSchema } from '../schema/validate';
 import { diskRef, ScenarioStore, SourceRef } from '../sources';
 import { XmlAttribute, XmlDocument, XmlElement } from '../xml';
@@ -54,7 +55,7 @@ function catalogSchemaErrors(file: CatalogFile): string[] {
     errors = checkSchema(document, { modular: false, version: '1.0' })
       .findings.filter((finding) => finding.severity === 'error')
       .slice(0, SCHEMA_ERRORS_KEPT)
-      .map((finding) => `line ${document.lines.positionAt(finding.element.start).line + 1}: ${finding.message}`);
+      .map((finding) => `line ${document.lines.positionAt(finding.element.start).line + 1}: ${schemaFindingWords(finding).message}`);
     schemaErrorsOf.set(file, errors);
   }
   return errors;
