@@ -242,6 +242,48 @@ const speedFromStart = (name, speed, triggerName) =>
     trigger(triggerName, atTime(0)),
     'parallel',
   );
+/**
+ * From the start, the actor adapts its speed to reach `target` (on the crossroads) as the ego reaches x `egoAt` on its
+ * lane's centre (y -1.75), arriving at `speed`; egoAt (WorldPosition.x) and speed (AbsoluteSpeed.value) are keys.
+ * @param {string} name @param {string} startName @param {number} egoAt @param {{ x: number, y: number, h: number }} target @param {number} speed
+ */
+const synchronizedArrival = (name, startName, egoAt, target, speed) =>
+  event(
+    name,
+    privateAction(
+      name,
+      `<SynchronizeAction parameterAttributes="masterEntityRef" masterEntityRef="ego">
+  <TargetPositionMaster>
+    <WorldPosition parameterAttributes="x" x="${egoAt}" y="-1.75" z="0" h="0" p="0" r="0"/>
+  </TargetPositionMaster>
+  <TargetPosition>
+    <WorldPosition x="${target.x}" y="${target.y}" z="0" h="${target.h}" p="0" r="0"/>
+  </TargetPosition>
+  <FinalSpeed>
+    <AbsoluteSpeed parameterAttributes="value" value="${speed}"/>
+  </FinalSpeed>
+</SynchronizeAction>`,
+    ),
+    trigger(startName, atTime(0)),
+    'parallel',
+  );
+/**
+ * The keys of a synchronizedArrival: where the ego is at the arrival (the conflict point at x `conflictX` by default),
+ * the speed of arrival, and the ego.
+ * @param {string} mover @param {number} conflictX @param {string} gapNote @param {{ name: string, range: string, about: string }} speed
+ * @returns {Parameter[]}
+ */
+const synchronizedParameters = (mover, conflictX, gapNote, speed) => [
+  {
+    key: 'WorldPosition.x',
+    name: 'egoAt',
+    unit: 'm',
+    range: `-60..${conflictX}`,
+    about: `where (x on the crossroads) the ego is when the ${mover} vehicle reaches the conflict point: ${conflictX} the conflict point itself (a collision course), less: the ego that far short of it${gapNote}`,
+  },
+  { key: 'AbsoluteSpeed.value', unit: 'm/s', ...speed },
+  { key: 'SynchronizeAction.masterEntityRef', name: 'ego', about: 'the vehicle whose arrival it synchronizes with' },
+];
 /** A straight walk or ride from where the actor stands, `length` metres ahead of it. @param {string} actor @param {number} length */
 const crossing = (actor, length) => `<RoutingAction>
   <FollowTrajectoryAction>
@@ -1029,44 +1071,37 @@ export const MODULES = [
     entities: [VEHICLE('ego', 'vehicle.lincoln.mkz_2017'), VEHICLE('crossing', 'vehicle.audi.tt')],
     init: [placed('ego', -1, 150, 10, { road: 1 }), placed('crossing', -1, 150, 8, { road: 3 })],
     stopAt: 7,
-    parameters: [
-      {
-        key: 'WorldPosition.x',
-        name: 'egoAt',
-        unit: 'm',
-        range: '-60..1.75',
-        about:
-          'where (x on the crossroads) the ego is when the crossing vehicle reaches the conflict point: 1.75 the conflict point itself (a collision course), less: the ego that far short of it',
-      },
-      {
-        key: 'AbsoluteSpeed.value',
-        name: 'arrivalSpeed',
-        unit: 'm/s',
-        range: '1..30',
-        about: 'the crossing vehicle’s speed at the conflict point',
-      },
-      { key: 'SynchronizeAction.masterEntityRef', name: 'ego', about: 'the vehicle whose arrival it synchronizes with' },
-    ],
+    parameters: synchronizedParameters('crossing', 1.75, '', {
+      name: 'arrivalSpeed',
+      range: '1..30',
+      about: 'the crossing vehicle’s speed at the conflict point',
+    }),
     keys: {},
-    maneuver: event(
-      'CrossingSynchronize',
-      privateAction(
-        'CrossingSynchronize',
-        `<SynchronizeAction parameterAttributes="masterEntityRef" masterEntityRef="ego">
-  <TargetPositionMaster>
-    <WorldPosition parameterAttributes="x" x="1.75" y="-1.75" z="0" h="0" p="0" r="0"/>
-  </TargetPositionMaster>
-  <TargetPosition>
-    <WorldPosition x="1.75" y="-1.75" z="0" h="1.5708" p="0" r="0"/>
-  </TargetPosition>
-  <FinalSpeed>
-    <AbsoluteSpeed parameterAttributes="value" value="8"/>
-  </FinalSpeed>
-</SynchronizeAction>`,
-      ),
-      trigger('CrossingStart', atTime(0)),
-      'parallel',
-    ),
+    maneuver: synchronizedArrival('CrossingSynchronize', 'CrossingStart', 1.75, { x: 1.75, y: -1.75, h: 1.5708 }, 8),
+  },
+  {
+    name: 'turn-across-path',
+    title: 'Turn across path at a junction, from the opposite direction',
+    group: 'Vehicles oncoming or crossing',
+    summary:
+      "At the library's crossroads (crossroads.xodr), a vehicle coming towards the ego from the opposite arm turns left across the ego's lane into the arm on the ego's right, adapting its speed so that it reaches the conflict point (its path across the ego's lane) as the ego reaches a set point before it (or the conflict point itself: a collision course), turning at a set speed. The time gap at the conflict point is the ego's distance short of it over the ego's speed, which the main sets.",
+    actor: "the turning vehicle, in the ego's opposite lane on the arm ahead of the ego",
+    actorName: 'turning',
+    groupName: 'TurnAcrossPath',
+    road: 'crossroads.xodr',
+    entities: [VEHICLE('ego', 'vehicle.lincoln.mkz_2017'), VEHICLE('turning', 'vehicle.audi.tt')],
+    init: [placed('ego', -1, 150, 10, { road: 1 }), placed('turning', 1, 40, 10, { road: 2 })],
+    stopAt: 9,
+    parameters: synchronizedParameters('turning', 1.63, ", a time gap of (1.63 - egoAt) / the ego's speed", {
+      name: 'turnSpeed',
+      range: '1..15',
+      about: 'the turning vehicle’s speed at the conflict point, which it keeps through the rest of the turn',
+    }),
+    keys: {},
+    // The conflict point: the turn's lane (-1 of road 103, an arc of radius 10 + 1.75 about (10, -10)) crosses the ego's
+    // lane centre (y -1.75) at x 1.63, heading 3.934 there. As a LanePosition on road 103 (s 7.924) esmini's
+    // synchronization arrived at 8.5 m/s and then jumped to the final speed; as this WorldPosition it arrives smoothly.
+    maneuver: synchronizedArrival('TurnSynchronize', 'TurnStart', 1.63, { x: 1.63, y: -1.75, h: 3.934 }, 6),
   },
 ];
 

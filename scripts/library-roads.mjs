@@ -151,14 +151,18 @@ const JUNCTION_HALF = 10;
 const ARM_LENGTH = 190;
 
 /**
- * A road of the crossroads: a line or an arc (curvature), one lane each way, linked as given.
- * @param {{ id: number, name: string, junction: number, x: number, y: number, hdg: number, length: number, curvature?: number, link: string }} road
+ * A road of the crossroads: a line or an arc (curvature), one lane each way, linked as given. `reversedLane`: the one lane
+ * of a connecting road that runs against the arms it joins, linked to their lane of the other sign (the left turn's
+ * lane -1 to lane 1 of both arms: without it esmini kept the id -1 at the turn's end and put the car on the south arm's
+ * northbound lane). Only that lane: linking lane 1 of the straight road too let esmini take it instead of the turn.
+ * @param {{ id: number, name: string, junction: number, x: number, y: number, hdg: number, length: number, curvature?: number, link: string, reversedLane?: number }} road
  */
 function crossroadsRoad(road) {
   const shape = road.curvature ? `<arc curvature="${road.curvature}"/>` : '<line/>';
+  const joined = (/** @type {number} */ id) => (road.reversedLane === id ? laneLink(-id) : '');
   return `${roadHead({ ...road, link: `<link>${road.link}</link>`, type: 'town', speed: 50, shape })}
     <lanes>
-${laneSection(0, [lane(1, 'driving', LANE_WIDTH, 'solid')], [lane(-1, 'driving', LANE_WIDTH, 'solid')])}
+${laneSection(0, [lane(1, 'driving', LANE_WIDTH, 'solid', joined(1))], [lane(-1, 'driving', LANE_WIDTH, 'solid', joined(-1))])}
     </lanes>
   </road>`;
 }
@@ -221,6 +225,7 @@ function crossroads() {
       length: turnLength,
       curvature: 1 / h,
       link: road('predecessor', 2, 'start') + road('successor', 3, 'end'),
+      reversedLane: -1,
     }),
   ];
   const connection = (

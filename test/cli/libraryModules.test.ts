@@ -265,7 +265,48 @@ const BEHAVIOURS: Record<string, (module: LibraryModule, tracks: Map<string, Tra
     );
     assert.ok(ego[ego.length - 1].x > 10, 'the ego drives on through the junction');
   },
+  'turn-across-path': (module, tracks) => turnsAcrossAsSynchronized(tracks, parameter(module, 'egoAt'), parameter(module, 'turnSpeed')),
 };
+
+/** The crossroads' left turn (road 103, lane -1): an arc of radius 10 + 1.75 about (10, -10), across the ego's lane (y -1.75). */
+const TURN_CENTRE = { x: 10, y: -10 };
+const TURN_RADIUS = 11.75;
+
+/**
+ * The turning vehicle comes from the opposite arm, follows the left turn into the south arm, and crosses the ego's lane
+ * centre as the ego's reference point reaches `egoAt`, at `turnSpeed`.
+ */
+function turnsAcrossAsSynchronized(tracks: Map<string, Track>, egoAt: number, turnSpeed: number): void {
+  const [ego, turning] = [trackOf(tracks, 'ego'), trackOf(tracks, 'turning')];
+  assert.ok(
+    Math.abs(turning[0].y - 1.75) < 0.01 && turning[1].x < turning[0].x,
+    "it starts in the ego's opposite lane, driving towards it",
+  );
+  const inJunction = turning.filter((point) => point.x < TURN_CENTRE.x && point.y > TURN_CENTRE.y);
+  assert.ok(inJunction.length > 5, 'it never drives through the junction');
+  for (const point of inJunction) {
+    const radius = Math.hypot(point.x - TURN_CENTRE.x, point.y - TURN_CENTRE.y);
+    assert.ok(
+      Math.abs(radius - TURN_RADIUS) < 0.05,
+      `at ${point.time} s it is ${radius.toFixed(2)} m from the turn's centre, off the turn`,
+    );
+  }
+  const last = turning[turning.length - 1];
+  assert.ok(
+    Math.abs(last.x + 1.75) < 0.01 && last.y < TURN_CENTRE.y - 5,
+    `it ends at (${last.x}, ${last.y}), not in the south arm's southbound lane`,
+  );
+  const crosses = turning.findIndex((point) => point.y <= -1.75);
+  const egoThere = ego.findIndex((point) => point.x >= egoAt);
+  assert.ok(crosses > 0 && egoThere > 0, "the turning vehicle never crosses the ego's lane, or the ego never arrives");
+  assert.ok(
+    Math.abs(turning[crosses].time - ego[egoThere].time) <= STEP * 2,
+    `it crosses the ego's lane at ${turning[crosses].time} s, the ego reaches x ${egoAt} at ${ego[egoThere].time} s`,
+  );
+  const speed = Math.hypot(turning[crosses].x - turning[crosses - 1].x, turning[crosses].y - turning[crosses - 1].y) / STEP;
+  assert.ok(Math.abs(speed - turnSpeed) < 0.1, `it crosses at ${speed.toFixed(2)} m/s, not ${turnSpeed}`);
+  assert.ok(ego[ego.length - 1].x > 10, 'the ego drives on through the junction');
+}
 
 /** Each lane change of the track takes the lane-change time asked (from the step before it moves to the first it stands still). */
 function takesTheTimeAsked(module: LibraryModule, track: Track): void {
@@ -403,6 +444,29 @@ describe('library modules: each verified in esmini and CARLA (issue 28)', functi
         `${module.name}: its picture is not what scripts/library-pictures.ts draws from this run`,
       );
     }
+  });
+
+  it("turn-across-path keeps its synchronization when the main changes the ego's speed and the time gap", async function () {
+    requireEsmini(this);
+    const module = modules.find((candidate) => candidate.name === 'turn-across-path');
+    assert.ok(module?.example, 'no turn-across-path module with an example');
+    // The ego at 14 m/s instead of 10, and 10 m short of the conflict point (x 1.63) as the turning vehicle arrives: a time gap of 0.83 s.
+    const [egoSpeed, egoAt] = [14, -10];
+    const text = fs.readFileSync(module.example, 'utf8');
+    const variant = text
+      .replace(/(<Private entityRef="ego">[\s\S]*?<AbsoluteTargetSpeed value=")[^"]*/, `$1${egoSpeed}`)
+      .replace(/(key="WorldPosition\.x" value=")[^"]*/, `$1${egoAt}`)
+      .replace(/filepath="\.\.\/roads\//, `filepath="${path.join(libraryFolder ?? '', 'roads')}/`);
+    assert.notEqual(variant, text);
+    // Beside the run's files, not among them: runExample writes the flattened main as NAME.xosc in the folder it is given.
+    const example = path.join(outputs, 'variant', 'turn-across-path.xosc');
+    fs.mkdirSync(path.dirname(example));
+    fs.writeFileSync(example, variant);
+    const { run } = await runExample({ ...module, example }, outputs, esminiBinary);
+    fs.rmSync(path.dirname(example), { recursive: true });
+    const tracks = tracksOf(run);
+    assert.ok(Math.abs(speedAt(trackOf(tracks, 'ego'), 1) - egoSpeed) < 0.01, "the variant did not change the ego's speed");
+    turnsAcrossAsSynchronized(tracks, egoAt, parameter(module, 'turnSpeed'));
   });
 
   it("every example main's CARLA export builds in ScenarioRunner's loader, and check --simulator carla finds no error in it", async function () {
