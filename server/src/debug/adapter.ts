@@ -486,16 +486,14 @@ export class ScenarioDebugSession extends DebugSession {
     const firings = events.filter((event) => event.type === 'Condition');
     if (mode === 'step') return { reason: 'step', description: `Stepped to ${fixed(simulation.time)} s`, firings, breakpointIds: [] };
     const transitions = events.filter((event) => event.type !== 'Condition');
-    if (mode === 'next' && transitions.length > 0) {
-      const first = transitions.find((event) => event.state === 'running') ?? transitions[0];
-      return { reason: 'step', description: describeEvent(first), element: first.mapped, event: first, firings, breakpointIds: [] };
-    }
-    if (mode === 'stepOut' && stepOutOf) {
-      const ended = transitions.find((event) => event.element === stepOutOf && event.state !== 'running');
-      if (ended)
-        return { reason: 'step', description: describeEvent(ended), element: ended.mapped, event: ended, firings, breakpointIds: [] };
-    }
-    return undefined;
+    let stopOn: StoryboardEvent | undefined;
+    if (mode === 'next' && transitions.length > 0) stopOn = transitions.find((event) => event.state === 'running') ?? transitions[0];
+    else if (mode === 'stepOut' && stepOutOf)
+      stopOn = transitions.find((event) => event.element === stepOutOf && event.state !== 'running');
+    if (!stopOn) return undefined;
+    // At the step's start, where esmini made the transition (Simulation.rewindLastStep).
+    simulation.rewindLastStep();
+    return { reason: 'step', description: describeEvent(stopOn), element: stopOn.mapped, event: stopOn, firings, breakpointIds: [] };
   }
 
   private watchContext(simulation: Simulation): WatchContext {
@@ -547,13 +545,7 @@ export class ScenarioDebugSession extends DebugSession {
     const ids: number[] = [];
     let stopEvent: StoryboardEvent | undefined;
     const notes: string[] = [];
-    const consider = (breakpoint: LineBreakpoint | FunctionBreakpoint, event: StoryboardEvent) => {
-      const verdict = this.shouldStop(simulation, breakpoint);
-      if (verdict.note) notes.push(verdict.note);
-      if (!verdict.stop) return;
-      ids.push(breakpoint.id);
-      stopEvent ??= event;
-    };
+    const hits: { breakpoint: LineBreakpoint | FunctionBreakpoint; event: StoryboardEvent }[] = [];
     for (const event of events) {
       if (event.state !== 'running' && event.state !== 'true') continue;
       const candidates = event.type === 'Condition' ? simulation.scenario.map.conditionsNamed(event.name) : [];
@@ -563,10 +555,23 @@ export class ScenarioDebugSession extends DebugSession {
           const hit =
             (event.mapped && breakpoint.elements.includes(event.mapped)) ||
             candidates.some((candidate) => breakpoint.elements.includes(candidate));
-          if (hit) consider(breakpoint, event);
+          if (hit) hits.push({ breakpoint, event });
         }
       for (const breakpoint of this.functionBreakpoints)
-        if (breakpoint.name !== undefined && breakpoint.name === event.name) consider(breakpoint, event);
+        if (breakpoint.name !== undefined && breakpoint.name === event.name) hits.push({ breakpoint, event });
+    }
+    if (hits.length > 0) {
+      // Conditions weighed, and the stop made, at the step's start, where esmini started the element (Simulation.rewindLastStep).
+      const rewound = simulation.rewindLastStep();
+      for (const { breakpoint, event } of hits) {
+        const verdict = this.shouldStop(simulation, breakpoint);
+        if (verdict.note) notes.push(verdict.note);
+        if (!verdict.stop) continue;
+        ids.push(breakpoint.id);
+        stopEvent ??= event;
+      }
+      // No stop: the step made again (its reports, already made, muted), as if it had not gone back.
+      if (ids.length === 0 && rewound) simulation.step();
     }
     for (const breakpoint of this.functionBreakpoints) {
       if (breakpoint.time === undefined || breakpoint.done || simulation.time < breakpoint.time - 1e-9) continue;

@@ -138,6 +138,10 @@ export class Simulation {
   >();
   private closed = false;
   private steps = 0;
+  /** Callbacks dropped: while a rewind replays the run, and in the step after it (rewindLastStep). */
+  private muted = false;
+  private muteNextStep = false;
+  private rewound = false;
   ended = false;
 
   constructor(
@@ -156,6 +160,31 @@ export class Simulation {
 
   /** Loads the scenario into esmini; throws SimulationLoadError with esmini's messages on their source lines when it refuses it. */
   start(): StoryboardEvent[] {
+    this.load();
+    // Stories start, and their Acts go to standby, during SE_Init, before a callback can be registered: reported here, at time 0.
+    const started: StoryboardEvent[] = this.scenario.map.elements
+      .filter((element) => element.kind === 'Story' || element.kind === 'Act')
+      .map((element) => ({
+        time: 0,
+        element: element.path,
+        name: element.name,
+        type: element.kind,
+        state: element.kind === 'Story' ? 'running' : 'standby',
+        mapped: element,
+      }));
+    for (const event of started)
+      this.states.set(event.element, {
+        state: event.state as ElementState,
+        since: 0,
+        mapped: event.mapped,
+        type: event.type,
+        name: event.name,
+      });
+    return started;
+  }
+
+  /** esmini's SE_Init on the scenario, the callbacks registered. */
+  private load(): void {
     const library = this.library;
     library.logToConsole(false);
     library.setLogFilePath(this.logFile);
@@ -183,26 +212,35 @@ export class Simulation {
     }
     library.onStoryboardChange((name, type, state, fullPath) => this.transition(name, type, state, fullPath));
     library.onCondition((name, timestamp) => this.conditionFired(name, timestamp));
-    // Stories start, and their Acts go to standby, during SE_Init, before a callback can be registered: reported here, at time 0.
-    const started: StoryboardEvent[] = this.scenario.map.elements
-      .filter((element) => element.kind === 'Story' || element.kind === 'Act')
-      .map((element) => ({
-        time: 0,
-        element: element.path,
-        name: element.name,
-        type: element.kind,
-        state: element.kind === 'Story' ? 'running' : 'standby',
-        mapped: element,
-      }));
-    for (const event of started)
-      this.states.set(event.element, {
-        state: event.state as ElementState,
-        since: 0,
-        mapped: event.mapped,
-        type: event.type,
-        name: event.name,
-      });
-    return started;
+  }
+
+  /**
+   * Takes esmini back to the start of the last step, where what that step reported happened. In a step esmini weighs
+   * the triggers and starts elements at the step's start time (the time its callbacks and its log give), then moves
+   * the entities one step on; it cannot go back, so the scenario is loaded again and run to that time with the
+   * callbacks muted (a fixed step and seed repeat a run exactly). The next step's reports, the same again, are dropped.
+   * Returns false when there is nothing to go back over (the last step was already rewound, or none was made).
+   */
+  rewindLastStep(): boolean {
+    if (this.closed || this.rewound || this.steps === 0) return false;
+    const replay = this.steps - 1;
+    this.library.close();
+    this.muted = true;
+    try {
+      this.load();
+      for (let step = 0; step < replay; step++) this.library.stepDT(this.timeStep);
+    } finally {
+      this.muted = false;
+    }
+    // The log of the replay repeats lines already read.
+    this.library.flushLog();
+    this.readLog();
+    this.pending = [];
+    this.steps = replay;
+    this.ended = false;
+    this.rewound = true;
+    this.muteNextStep = true;
+    return true;
   }
 
   get time(): number {
@@ -212,7 +250,16 @@ export class Simulation {
   /** One step of `timeStep` seconds; what esmini reported during it (most steps: nothing, the one shared empty list). */
   step(): readonly StoryboardEvent[] {
     if (this.ended || this.closed) return NO_EVENTS;
-    this.library.stepDT(this.timeStep);
+    this.rewound = false;
+    if (this.muteNextStep) {
+      this.muteNextStep = false;
+      this.muted = true;
+      try {
+        this.library.stepDT(this.timeStep);
+      } finally {
+        this.muted = false;
+      }
+    } else this.library.stepDT(this.timeStep);
     this.steps++;
     // A step costs esmini microseconds, so each call counts: esmini's time is asked for only from a step before the end,
     // its quit flag (the storyboard complete, which the callback reports) when something was reported, else every 64 steps.
@@ -228,6 +275,7 @@ export class Simulation {
   }
 
   private transition(name: string, type: number, state: number, fullPath: string): void {
+    if (this.muted) return;
     const kind = ESMINI_ELEMENT_TYPES[type] ?? `type ${type}`;
     const element = fullPath || name;
     const mapped = this.scenario.map.atPath(element);
@@ -238,6 +286,7 @@ export class Simulation {
   }
 
   private conditionFired(name: string, timestamp: number): void {
+    if (this.muted) return;
     this.library.flushLog();
     for (const line of this.readLog().split('\n')) {
       const match = CONDITION_LOG.exec(line);
