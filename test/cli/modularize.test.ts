@@ -4,42 +4,20 @@ import * as path from 'node:path';
 import { firstDifference } from '../../server/src/core/equivalence';
 import { esminiXodrDir } from '../support/esminiBinaries';
 import { requireEsmini, runEsmini } from '../support/esmini';
-import { assertNoTrace, runCli, scenario } from '../support/fixtures';
+import { assertNoTrace, maneuver, maneuverGroup, runCli, scenario, speedEvent } from '../support/fixtures';
 import { libraryDir, requireCorpus, sharedDir } from '../support/paths';
 import { listFiles, temporaryWorkspace } from '../support/workspace';
-
-/** An event that sets one speed. */
-function speedEvent(name: string, speed: string): string {
-  return `            <Event name="${name}" priority="overwrite">
-              <Action name="A">
-                <PrivateAction>
-                  <LongitudinalAction>
-                    <SpeedAction>
-                      <SpeedActionDynamics dynamicsShape="step" value="0" dynamicsDimension="time"/>
-                      <SpeedActionTarget>
-                        <AbsoluteTargetSpeed value="${speed}"/>
-                      </SpeedActionTarget>
-                    </SpeedAction>
-                  </LongitudinalAction>
-                </PrivateAction>
-              </Action>
-            </Event>
-`;
-}
 
 /**
  * A group that sets one speed, then three more always the same: the same structure whatever its values,
  * and large enough that two uses pay for the simple scenario (modularize extracts nothing that would not).
  */
 function speedGroup(name: string, speed: string): string {
-  return `        <ManeuverGroup maximumExecutionCount="1" name="${name}">
-          <Actors selectTriggeringEntities="false">
-            <EntityRef entityRef="car"/>
-          </Actors>
-          <Maneuver name="M">
-${speedEvent('E', speed)}${speedEvent('E2', '5')}${speedEvent('E3', '6')}${speedEvent('E4', '7')}          </Maneuver>
-        </ManeuverGroup>
-`;
+  return maneuverGroup(
+    name,
+    'car',
+    maneuver('M', speedEvent('E', speed) + speedEvent('E2', '5') + speedEvent('E3', '6') + speedEvent('E4', '7')),
+  );
 }
 
 /** Every file below a folder with its bytes, to show that nothing changed. */

@@ -1,7 +1,7 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { runCli } from '../support/fixtures';
+import { fileHeader, openScenarioFile, runCli } from '../support/fixtures';
 import { temporaryWorkspace } from '../support/workspace';
 
 /**
@@ -27,10 +27,7 @@ const VEHICLE = `<Vehicle name="car" vehicleCategory="car"><BoundingBox><Center 
 
 /** A schema-valid 1.2 scenario with `locations` as its CatalogLocations and `entity` as Ego's. */
 function scenarioWith(parts: { locations?: string; entity?: string; parameters?: string; header?: string }): string {
-  return `<?xml version="1.0" encoding="UTF-8"?>
-<OpenSCENARIO>
-  ${parts.header ?? '<FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="shape" author="t"/>'}
-  <ParameterDeclarations>${parts.parameters ?? ''}</ParameterDeclarations>
+  const body = `  <ParameterDeclarations>${parts.parameters ?? ''}</ParameterDeclarations>
   <CatalogLocations>${parts.locations ?? ''}</CatalogLocations>
   <RoadNetwork/>
   <Entities>
@@ -40,28 +37,26 @@ function scenarioWith(parts: { locations?: string; entity?: string; parameters?:
     <Init><Actions/></Init>
     <StopTrigger/>
   </Storyboard>
-</OpenSCENARIO>
 `;
+  return openScenarioFile(body, parts.header ?? fileHeader({ description: 'shape', author: 't' }));
 }
 
-const VEHICLE_CATALOG = `<?xml version="1.0" encoding="UTF-8"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="vehicles" author="t"/>
-  <Catalog name="VehicleCatalog">${VEHICLE}</Catalog>
-</OpenSCENARIO>
-`;
+const VEHICLE_CATALOG = openScenarioFile(
+  `  <Catalog name="VehicleCatalog">${VEHICLE}</Catalog>\n`,
+  fileHeader({ description: 'vehicles', author: 't' }),
+);
 
 /** A ParameterValueDistribution of scenario.xosc with `body` as its Deterministic's distributions. */
-const distributionOf = (body: string): string => `<?xml version="1.0" encoding="UTF-8"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="d" author="t"/>
-  <ParameterValueDistribution>
+const distributionOf = (body: string): string =>
+  openScenarioFile(
+    `  <ParameterValueDistribution>
     <ScenarioFile filepath="scenario.xosc"/>
     <Deterministic>${body}
     </Deterministic>
   </ParameterValueDistribution>
-</OpenSCENARIO>
-`;
+`,
+    fileHeader({ description: 'd', author: 't' }),
+  );
 
 describe('real file shapes: no false alarms (issue 27)', function () {
   this.timeout(60_000);

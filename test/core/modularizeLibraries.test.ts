@@ -5,34 +5,30 @@ import { Flattener } from '../../server/src/core/flatten';
 import { memoryHost, modularize, ModularizeInput, ModularizeResult } from '../../server/src/core/modularize';
 import { diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { figuresLine, modularizeLibrary, realLibraries } from '../support/modularizeLibrary';
-import { speedChangeGroup } from '../support/fixtures';
+import {
+  act,
+  catalogFile,
+  element,
+  EMPTY_INIT,
+  fileHeader,
+  scenarioDocument,
+  scenarioObjects,
+  speedChangeGroup,
+  story,
+} from '../support/fixtures';
 import { requireCorpus } from '../support/paths';
 import { temporaryWorkspace } from '../support/workspace';
 
-/** A plain OpenSCENARIO 1.2 scenario: `story` goes inside its Story, `head` after its ParameterDeclarations. */
-function scenarioWith(parts: { head?: string; storyDeclarations?: string; groups: string }): string {
-  return `<?xml version="1.0" encoding="UTF-8"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="test" author="test"/>
-  <ParameterDeclarations/>
-${parts.head ?? '  <CatalogLocations/>\n'}  <RoadNetwork/>
-  <Entities>
-    <ScenarioObject name="ego"/>
-    <ScenarioObject name="car"/>
-  </Entities>
-  <Storyboard>
-    <Init>
-      <Actions/>
-    </Init>
-    <Story name="S">
-${parts.storyDeclarations ?? ''}      <Act name="A">
-${parts.groups}        <StartTrigger/>
-      </Act>
-    </Story>
-    <StopTrigger/>
-  </Storyboard>
-</OpenSCENARIO>
-`;
+/** A plain OpenSCENARIO 1.2 scenario with entities ego and car; `storyDeclarations` are its Story's ParameterDeclarations (eight spaces in). */
+function scenarioWith(parts: { variables?: string; catalogLocations?: string; storyDeclarations?: string; groups: string }): string {
+  return scenarioDocument({
+    parameters: '',
+    variables: parts.variables,
+    catalogLocations: parts.catalogLocations ?? '',
+    roadNetwork: '',
+    entities: scenarioObjects(['ego', 'car']),
+    storyboard: EMPTY_INIT + story('S', act('A', parts.groups), parts.storyDeclarations) + '    <StopTrigger/>\n',
+  });
 }
 
 /** Each main flattened again from memory (catalogs from the disk), compared with its input. */
@@ -98,7 +94,7 @@ describe('core: modularize on real libraries (issue 28)', function () {
       path: `/virtual/in/s${index}.xosc`,
       output: `/virtual/out/s${index}.xosc`,
       text: scenarioWith({
-        storyDeclarations: `      <ParameterDeclarations>\n        <ParameterDeclaration parameterType="string" name="$owner" value="${owner}"/>\n      </ParameterDeclarations>\n`,
+        storyDeclarations: `        <ParameterDeclaration parameterType="string" name="$owner" value="${owner}"/>\n`,
         groups: speedChangeGroup(`G${index}.Go`, '$owner', String(10 + index), '$owner'),
       }),
     }));
@@ -111,11 +107,9 @@ describe('core: modularize on real libraries (issue 28)', function () {
 
   it("carries the variables a group's catalog entry uses (a catalog declares none): the extracted group flattens back", async () => {
     // As in Euro NCAP's scenarios: each group references a catalog maneuver that sets a variable of the scenario.
-    const catalog = `<?xml version="1.0" encoding="UTF-8"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="maneuvers" author="test"/>
-  <Catalog name="ManeuverCatalog">
-    <Maneuver name="Flag">
+    const catalog = catalogFile(
+      'ManeuverCatalog',
+      `    <Maneuver name="Flag">
       <Event name="SetFlag" priority="override">
         <Action name="Set">
           <GlobalAction>
@@ -135,24 +129,19 @@ describe('core: modularize on real libraries (issue 28)', function () {
         </StartTrigger>
       </Event>
     </Maneuver>
-  </Catalog>
-</OpenSCENARIO>
-`;
-    const head = `  <VariableDeclarations>
-    <VariableDeclaration name="done" variableType="boolean" value="false"/>
+`,
+      fileHeader({ description: 'maneuvers' }),
+    );
+    const variables = `    <VariableDeclaration name="done" variableType="boolean" value="false"/>
     <VariableDeclaration name="unused" variableType="double" value="0"/>
-  </VariableDeclarations>
-  <CatalogLocations>
-    <ManeuverCatalog>
-      <Directory path="Catalogs"/>
-    </ManeuverCatalog>
-  </CatalogLocations>
 `;
+    const catalogLocations = element('ManeuverCatalog', '      <Directory path="Catalogs"/>\n', 4);
     const reference = `          <CatalogReference catalogName="ManeuverCatalog" entryName="Flag"/>\n`;
     const files: Record<string, string> = { 'lib/Catalogs/ManeuverCatalog.xosc': catalog };
     ['car', 'ego', 'car', 'ego'].forEach((actor, index) => {
       files[`lib/s${index}.xosc`] = scenarioWith({
-        head,
+        variables,
+        catalogLocations,
         groups: speedChangeGroup(`G${index}.Go`, actor, String(10 + index), actor, reference),
       });
     });

@@ -2,21 +2,11 @@ import * as assert from 'node:assert/strict';
 import * as path from 'node:path';
 import { TextEdit } from 'vscode-languageserver/node';
 import { fileUri, TestClient } from './harness';
+import { applyEdits } from '../support/textEdits';
 import { temporaryWorkspace } from '../support/workspace';
 
 const MESSY =
   '<?xml version="1.0"?>\n<OpenSCENARIO>\n<FileHeader revMajor="1" revMinor="0" date="2026-01-01T00:00:00" description="formatting" author="test"/>\n<Entities>\n\n\n<ScenarioObject name="Ego"/>\n</Entities>\n</OpenSCENARIO>\n';
-
-function apply(text: string, edits: TextEdit[]): string {
-  const starts = [0];
-  for (let i = 0; i < text.length; i++) if (text[i] === '\n') starts.push(i + 1);
-  const offset = (position: { line: number; character: number }) => starts[position.line] + position.character;
-  let result = text;
-  for (const edit of [...edits].sort((a, b) => offset(b.range.start) - offset(a.range.start))) {
-    result = result.slice(0, offset(edit.range.start)) + edit.newText + result.slice(offset(edit.range.end));
-  }
-  return result;
-}
 
 describe('formatting over JSON-RPC', function () {
   let root: string;
@@ -48,12 +38,12 @@ describe('formatting over JSON-RPC', function () {
     });
     assert.ok(edits.length > 1, 'expected several small edits, not one replacement');
     for (const edit of edits) assert.match(edit.newText, /^\s*$/);
-    const formatted = apply(MESSY, edits);
+    const formatted = applyEdits(MESSY, edits);
     assert.equal(
       formatted,
       '<?xml version="1.0"?>\n<OpenSCENARIO>\n  <FileHeader\n    revMajor="1"\n    revMinor="0"\n    date="2026-01-01T00:00:00"\n    description="formatting"\n    author="test"/>\n  <Entities>\n    <ScenarioObject name="Ego"/>\n  </Entities>\n</OpenSCENARIO>\n',
     );
-    const tabs = apply(
+    const tabs = applyEdits(
       MESSY,
       await client.request<TextEdit[]>('textDocument/formatting', { textDocument: { uri }, options: { tabSize: 4, insertSpaces: false } }),
     );
@@ -68,7 +58,7 @@ describe('formatting over JSON-RPC', function () {
       range: { start: { line, character: 0 }, end: { line, character: 5 } },
       options: { tabSize: 2, insertSpaces: true },
     });
-    const formatted = apply(MESSY, edits);
+    const formatted = applyEdits(MESSY, edits);
     assert.ok(formatted.includes('\n    <ScenarioObject name="Ego"/>\n'));
     assert.ok(formatted.includes('\n<Entities>\n'), 'a line outside the selection changed');
     assert.ok(formatted.includes('\n<FileHeader revMajor'), 'a line outside the selection changed');

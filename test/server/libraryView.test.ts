@@ -1,11 +1,11 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { TextEdit } from 'vscode-languageserver/node';
 import { LibraryInsertRequest, LibraryModulesRequest, NewFromTemplateRequest, TemplatesRequest } from '../../common/src/libraryProtocol';
 import { main } from '../../server/src/cli';
 import { builtInLibraryFolder } from '../../server/src/libraries';
 import { requireEsmini, runEsmini } from '../support/esmini';
+import { applyEdits } from '../support/textEdits';
 import { temporaryWorkspace } from '../support/workspace';
 import { fileUri, TestClient } from './harness';
 
@@ -24,21 +24,6 @@ function compositionMain(): string {
       (_, attribute: string, name: string) => `${attribute}="${names[name]}"`,
     )
     .replace('filepath="../roads/', `filepath="${builtIn}/roads/`);
-}
-
-/** Applies the edits of one file, last first. */
-function applyEdits(text: string, edits: TextEdit[]): string {
-  const lines = text.split('\n');
-  const offset = (line: number, character: number) => lines.slice(0, line).reduce((sum, each) => sum + each.length + 1, 0) + character;
-  let result = text;
-  for (const edit of [...edits].sort(
-    (a, b) => offset(b.range.start.line, b.range.start.character) - offset(a.range.start.line, a.range.start.character),
-  ))
-    result =
-      result.slice(0, offset(edit.range.start.line, edit.range.start.character)) +
-      edit.newText +
-      result.slice(offset(edit.range.end.line, edit.range.end.character));
-  return result;
 }
 
 /** The Scenario Library view's requests (issue 28, item 2): the listing grouped and with its problems, and Insert into main. */

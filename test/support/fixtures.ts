@@ -12,13 +12,13 @@ export interface CliRun {
 /** Subcommands that check files against the OpenSCENARIO schemas. */
 const SCHEMA_CHECKING = new Set(['flatten', 'check', '-cmx', '--convert-mosc-to-xosc']);
 
-/** Runs the CLI; the schema check is off unless `schema` is set, since the fixtures below are minimal, not schema-valid. */
 /** The arguments with the schema check turned off unless asked for: the fixtures here are minimal, not schema-valid. */
 export function withoutSchema(args: string[], schema = false): string[] {
   const schemaOff = !schema && SCHEMA_CHECKING.has(args[0]) && !args.some((arg) => arg.startsWith('--schema-version'));
   return schemaOff ? [args[0], '--schema-version=off', ...args.slice(1)] : args;
 }
 
+/** Runs the CLI; the schema check is off unless `schema` is set, since the fixtures below are minimal, not schema-valid. */
 export function runCli(args: string[], options: { cwd?: string; env?: Record<string, string | undefined>; schema?: boolean } = {}): CliRun {
   const env = { ...process.env, SCENARIO_PATH: '', ...options.env };
   const result = spawnSync(process.execPath, [cliPath, ...withoutSchema(args, options.schema)], {
@@ -29,23 +29,97 @@ export function runCli(args: string[], options: { cwd?: string; env?: Record<str
   return { status: result.status ?? -1, stdout: result.stdout, stderr: result.stderr };
 }
 
-const HEADER = `<?xml version="1.0" encoding="UTF-8"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="0" date="2026-01-01T00:00:00" description="test" author="test"/>
-  <Entities>
-{ENTITIES}  </Entities>
-  <Storyboard>
-    <Story name="S">
-      <Act name="A">
-{GROUPS}      </Act>
-    </Story>
-  </Storyboard>
-</OpenSCENARIO>
-`;
+const XML_DECLARATION = '<?xml version="1.0" encoding="UTF-8"?>';
 
+/** The XML declaration without an encoding, as some fixtures write it. */
+export const BARE_XML_DECLARATION = '<?xml version="1.0"?>';
+
+export interface FileHeaderParts {
+  revMinor?: string;
+  date?: string;
+  description?: string;
+  author?: string;
+}
+
+/** A FileHeader of OpenSCENARIO 1.x: revision 1.2, dated 2026-01-01, "test" by "test" unless given. */
+export function fileHeader(parts: FileHeaderParts = {}): string {
+  const { revMinor = '2', date = '2026-01-01T00:00:00', description = 'test', author = 'test' } = parts;
+  return `<FileHeader revMajor="1" revMinor="${revMinor}" date="${date}" description="${description}" author="${author}"/>`;
+}
+
+/** An OpenSCENARIO file: the XML declaration, then the root holding `header` and `body` (the root's other children, indented and each ending its line). */
+export function openScenarioFile(body: string, header = fileHeader(), declaration = XML_DECLARATION): string {
+  return `${declaration}\n<OpenSCENARIO>\n  ${header}\n${body}</OpenSCENARIO>\n`;
+}
+
+/** An element `indent` spaces in: nothing when `body` is undefined, `<Name/>` when it is '', else holding `body` (its lines indented by the caller). */
+export function element(name: string, body: string | undefined, indent: number, attributes = ''): string {
+  if (body === undefined) return '';
+  const pad = ' '.repeat(indent);
+  return body === '' ? `${pad}<${name}${attributes}/>\n` : `${pad}<${name}${attributes}>\n${body}${pad}</${name}>\n`;
+}
+
+/** The children of each root element of a scenario file (indented by the caller); a part left out is not written. */
+export interface ScenarioDocumentParts {
+  header?: string;
+  declaration?: string;
+  parameters?: string;
+  variables?: string;
+  catalogLocations?: string;
+  roadNetwork?: string;
+  entities: string;
+  storyboard: string;
+}
+
+/** A scenario file, two spaces per level, its root's children in schema order. */
+export function scenarioDocument(parts: ScenarioDocumentParts): string {
+  const body =
+    element('ParameterDeclarations', parts.parameters, 2) +
+    element('VariableDeclarations', parts.variables, 2) +
+    element('CatalogLocations', parts.catalogLocations, 2) +
+    element('RoadNetwork', parts.roadNetwork, 2) +
+    element('Entities', parts.entities, 2) +
+    element('Storyboard', parts.storyboard, 2);
+  return openScenarioFile(body, parts.header, parts.declaration);
+}
+
+/** A catalog file holding `entries` (indented four spaces by the caller). */
+export function catalogFile(name: string, entries: string, header = fileHeader(), declaration = XML_DECLARATION): string {
+  return openScenarioFile(element('Catalog', entries, 2, ` name="${name}"`), header, declaration);
+}
+
+/** ParameterDeclaration lines, `indent` spaces in, of [name, type, value]. */
+export function parameterDeclarations(parameters: [string, string, string][], indent: number): string {
+  return parameters
+    .map(([name, type, value]) => `${' '.repeat(indent)}<ParameterDeclaration name="${name}" parameterType="${type}" value="${value}"/>\n`)
+    .join('');
+}
+
+/** Entities' children: one ScenarioObject without an object per name. */
+export function scenarioObjects(names: string[]): string {
+  return names.map((name) => `    <ScenarioObject name="${name}"/>\n`).join('');
+}
+
+/** A Storyboard's Init with no actions. */
+export const EMPTY_INIT = element('Init', element('Actions', '', 6), 4);
+
+/** A Story of the Storyboard holding `acts`, with its own ParameterDeclarations (lines eight spaces in) when given. */
+export function story(name: string, acts: string, declarations?: string): string {
+  return `    <Story name="${name}">\n${element('ParameterDeclarations', declarations, 6)}${acts}    </Story>\n`;
+}
+
+/** An Act holding `groups` (eight spaces in), then an empty StartTrigger unless `startTrigger` is false. */
+export function act(name: string, groups: string, startTrigger = true): string {
+  return `      <Act name="${name}">\n${groups}${startTrigger ? '        <StartTrigger/>\n' : ''}      </Act>\n`;
+}
+
+/** A minimal scenario (not schema-valid): the entities, then Story S with Act A holding `groups`. */
 export function scenario(groups: string, entities: string[] = ['ego', 'car']): string {
-  const declared = entities.map((name) => `    <ScenarioObject name="${name}"/>\n`).join('');
-  return HEADER.replace('{ENTITIES}', () => declared).replace('{GROUPS}', () => groups);
+  return scenarioDocument({
+    header: fileHeader({ revMinor: '0' }),
+    entities: scenarioObjects(entities),
+    storyboard: story('S', act('A', groups, false)),
+  });
 }
 
 /** The parts of a schema-valid OpenSCENARIO 1.2 scenario on a road file, one vehicle (Ego) in it, that a case puts in. */
@@ -61,10 +135,7 @@ export interface RoadScenarioParts {
 
 /** A schema-valid OpenSCENARIO 1.2 scenario on `road.xodr` (or `logicFile`) with one vehicle, Ego, and the parts a case puts in. */
 export function roadScenario(parts: RoadScenarioParts): string {
-  return `<?xml version="1.0"?>
-<OpenSCENARIO>
-  ${parts.header ?? '<FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="s" author="t"/>'}
-  <ParameterDeclarations>${parts.parameters ?? ''}</ParameterDeclarations>
+  const body = `  <ParameterDeclarations>${parts.parameters ?? ''}</ParameterDeclarations>
   <CatalogLocations/>
   <RoadNetwork>
     <LogicFile filepath="${parts.logicFile ?? 'road.xodr'}"/>
@@ -83,8 +154,8 @@ export function roadScenario(parts: RoadScenarioParts): string {
     </Story>
     <StopTrigger/>
   </Storyboard>
-</OpenSCENARIO>
 `;
+  return openScenarioFile(body, parts.header ?? fileHeader({ description: 's', author: 't' }), BARE_XML_DECLARATION);
 }
 
 /** A simple scenario's group with overridable attributes. */
@@ -117,12 +188,17 @@ export interface ReferenceSpec {
   groups: { name: string; parameters?: [string, string][] }[];
 }
 
-/** A main file's outer group holding references. */
-export function outerGroup(name: string, actor: string | undefined, references: ReferenceSpec[]): string {
+/** A ManeuverGroup, eight spaces in, with `actor` as its one actor (no Actors when undefined), then `body` (ten spaces in). */
+export function maneuverGroup(name: string, actor: string | undefined, body: string): string {
   const actors =
     actor === undefined
       ? ''
       : `          <Actors selectTriggeringEntities="false">\n            <EntityRef entityRef="${actor}"/>\n          </Actors>\n`;
+  return `        <ManeuverGroup maximumExecutionCount="1" name="${name}">\n${actors}${body}        </ManeuverGroup>\n`;
+}
+
+/** A main file's outer group holding references. */
+export function outerGroup(name: string, actor: string | undefined, references: ReferenceSpec[]): string {
   const body = references
     .map(
       (reference) =>
@@ -140,7 +216,7 @@ export function outerGroup(name: string, actor: string | undefined, references: 
         `          </ScenarioReference>\n`,
     )
     .join('');
-  return `        <ManeuverGroup maximumExecutionCount="1" name="${name}">\n${actors}${body}        </ManeuverGroup>\n`;
+  return maneuverGroup(name, actor, body);
 }
 
 /** Escapes a value for an attribute written by the fixtures above. */
@@ -167,25 +243,19 @@ export async function packageOf(files: Record<string, string>): Promise<Uint8Arr
 }
 
 /** A catalog of one maneuver, Flip, that sets variable Flag (declared by the scenarios that reference it). */
-export const MANEUVER_CATALOG = `<?xml version="1.0"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="maneuvers" author="t"/>
-  <Catalog name="ManeuverCatalog">
-    <Maneuver name="Flip">
+export const MANEUVER_CATALOG = catalogFile(
+  'ManeuverCatalog',
+  `    <Maneuver name="Flip">
       <Event name="E" priority="override"><Action name="A"><GlobalAction><VariableAction variableRef="Flag"><SetAction value="true"/></VariableAction></GlobalAction></Action></Event>
     </Maneuver>
-  </Catalog>
-</OpenSCENARIO>
-`;
+`,
+  fileHeader({ description: 'maneuvers', author: 't' }),
+  BARE_XML_DECLARATION,
+);
 
-/** A group doing one speed change after 5 m, its speed, actor, trigger entity and name as given; `extra` goes after its Actors. */
-export function speedChangeGroup(name: string, actor: string, speed: string, trigger = 'ego', extra = ''): string {
-  return `        <ManeuverGroup maximumExecutionCount="1" name="${name}">
-          <Actors selectTriggeringEntities="false">
-            <EntityRef entityRef="${actor}"/>
-          </Actors>
-${extra}          <Maneuver name="M">
-            <Event name="E" priority="overwrite">
+/** An event, twelve spaces in, that sets one speed at once; `startTrigger` (its lines sixteen spaces in) ends it. */
+export function speedEvent(name: string, speed: string, startTrigger = ''): string {
+  return `            <Event name="${name}" priority="overwrite">
               <Action name="A">
                 <PrivateAction>
                   <LongitudinalAction>
@@ -198,7 +268,18 @@ ${extra}          <Maneuver name="M">
                   </LongitudinalAction>
                 </PrivateAction>
               </Action>
-              <StartTrigger>
+${startTrigger}            </Event>
+`;
+}
+
+/** A Maneuver, ten spaces in, holding `events`. */
+export function maneuver(name: string, events: string): string {
+  return `          <Maneuver name="${name}">\n${events}          </Maneuver>\n`;
+}
+
+/** A group doing one speed change after 5 m, its speed, actor, trigger entity and name as given; `extra` goes after its Actors. */
+export function speedChangeGroup(name: string, actor: string, speed: string, trigger = 'ego', extra = ''): string {
+  const afterFiveMetres = `              <StartTrigger>
                 <ConditionGroup>
                   <Condition name="C" delay="0" conditionEdge="rising">
                     <ByEntityCondition>
@@ -212,8 +293,6 @@ ${extra}          <Maneuver name="M">
                   </Condition>
                 </ConditionGroup>
               </StartTrigger>
-            </Event>
-          </Maneuver>
-        </ManeuverGroup>
 `;
+  return maneuverGroup(name, actor, extra + maneuver('M', speedEvent('E', speed, afterFiveMetres)));
 }
