@@ -34,6 +34,13 @@ async function exportFile(input: string, output: string, extra: string[] = []): 
   return { input, output, code, stderr: errors.join('\n'), report: parsed as Exported['report'] };
 }
 
+/** Each test of the calling block in a new temporary folder (given to `use`), removed after it. */
+function inTemporaryFolderEach(prefix: string, use: (folder: string) => void): void {
+  let folder = '';
+  beforeEach(() => use((folder = temporaryFolder(prefix))));
+  afterEach(() => fs.rmSync(folder, { recursive: true, force: true }));
+}
+
 /** Each export is written and builds in ScenarioRunner, or is refused (exit 1, nothing written) with a reason: never a crash, never silent. */
 function assertBuiltOrRefused(
   results: Exported[],
@@ -146,12 +153,7 @@ describe('export --target carla, checked by ScenarioRunner (../shared/carla)', f
     requireCorpus(this);
     requireCarlaHarness(this);
   });
-  beforeEach(() => {
-    out = temporaryFolder('m2s-carla-export-');
-  });
-  afterEach(() => {
-    fs.rmSync(out, { recursive: true, force: true });
-  });
+  inTemporaryFolderEach('m2s-carla-export-', (folder) => (out = folder));
 
   it("esmini's samples: each export builds in ScenarioRunner 0.9.16 or is refused naming why", async () => {
     const esmini = path.join(openscenarioDir, 'esmini');
@@ -306,12 +308,7 @@ describe('export --target carla, round trip in esmini', function () {
     requireCorpus(this);
     requireEsmini(this);
   });
-  beforeEach(() => {
-    out = temporaryFolder('m2s-carla-roundtrip-');
-  });
-  afterEach(() => {
-    fs.rmSync(out, { recursive: true, force: true });
-  });
+  inTemporaryFolderEach('m2s-carla-roundtrip-', (folder) => (out = folder));
 
   // What the export reports but writes as esmini reads it: how ScenarioRunner runs the file differs, the file does not.
   const SCENARIO_RUNNER_ONLY = new Set([
@@ -399,6 +396,40 @@ const trajectoryEvent = (actor: string, time: number, shape: string): string => 
           </Maneuver>
         </ManeuverGroup>`;
 
+const ACT_STARTS = `<StartTrigger><ConditionGroup><Condition name="ActStarts" delay="0" conditionEdge="none">
+          <ByValueCondition><SimulationTimeCondition value="0" rule="greaterThan"/></ByValueCondition>
+        </Condition></ConditionGroup></StartTrigger>`;
+
+/** A scenario of the tests below: its entities, Init actions and Story on `road`, stopped after `stopAt` s. */
+function testScenario(parts: {
+  revMinor: number;
+  description: string;
+  road: string;
+  entities: string;
+  init: string;
+  story: string;
+  stopAt: number;
+}): string {
+  return `<?xml version="1.0" encoding="UTF-8"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="${parts.revMinor}" date="2026-11-27T00:00:00" description="${parts.description}" author="modular2simple tests"/>
+  <ParameterDeclarations/>
+  <CatalogLocations/>
+  <RoadNetwork><LogicFile filepath="${parts.road}"/></RoadNetwork>
+  <Entities>${parts.entities}
+  </Entities>
+  <Storyboard>
+    <Init><Actions>${parts.init}
+    </Actions></Init>
+    ${parts.story}
+    <StopTrigger><ConditionGroup><Condition name="End" delay="0" conditionEdge="none">
+      <ByValueCondition><SimulationTimeCondition value="${parts.stopAt}" rule="greaterThan"/></ByValueCondition>
+    </Condition></ConditionGroup></StopTrigger>
+  </Storyboard>
+</OpenSCENARIO>
+`;
+}
+
 /** A 1.2 scenario on esmini's straight_500m.xodr: a Nurbs of world control points, and a Clothoid from where a car is. */
 function sampledShapesScenario(road: string): string {
   const teleport = (entity: string, position: string, speed: number): string => `
@@ -415,31 +446,119 @@ function sampledShapesScenario(road: string): string {
     .map((value) => `<Knot value="${value}"/>`)
     .join('')}</Nurbs>`;
   const clothoid = `<Clothoid curvature="0.01" curvaturePrime="0.0005" length="30"><Position><RelativeObjectPosition entityRef="Other" dx="0" dy="0"/></Position></Clothoid>`;
-  return `<?xml version="1.0" encoding="UTF-8"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="2" date="2026-11-27T00:00:00" description="sampled shapes" author="modular2simple tests"/>
-  <ParameterDeclarations/>
-  <CatalogLocations/>
-  <RoadNetwork><LogicFile filepath="${road}"/></RoadNetwork>
-  <Entities>${vehicle('Ego', 'ego_vehicle')}${vehicle('Other', 'simulation')}
-  </Entities>
-  <Storyboard>
-    <Init><Actions>${teleport('Ego', '<LanePosition roadId="1" laneId="-1" offset="0" s="30"/>', 10)}${teleport('Other', '<WorldPosition x="20" y="-5" h="0.1"/>', 8)}
-    </Actions></Init>
-    <Story name="Shapes">
+  return testScenario({
+    revMinor: 2,
+    description: 'sampled shapes',
+    road,
+    entities: vehicle('Ego', 'ego_vehicle') + vehicle('Other', 'simulation'),
+    init:
+      teleport('Ego', '<LanePosition roadId="1" laneId="-1" offset="0" s="30"/>', 10) +
+      teleport('Other', '<WorldPosition x="20" y="-5" h="0.1"/>', 8),
+    story: `<Story name="Shapes">
       <Act name="Follow">${trajectoryEvent('Ego', 1, nurbs)}${trajectoryEvent('Other', 1.5, clothoid)}
-        <StartTrigger><ConditionGroup><Condition name="ActStarts" delay="0" conditionEdge="none">
-          <ByValueCondition><SimulationTimeCondition value="0" rule="greaterThan"/></ByValueCondition>
-        </Condition></ConditionGroup></StartTrigger>
+        ${ACT_STARTS}
       </Act>
-    </Story>
-    <StopTrigger><ConditionGroup><Condition name="End" delay="0" conditionEdge="none">
-      <ByValueCondition><SimulationTimeCondition value="8" rule="greaterThan"/></ByValueCondition>
-    </Condition></ConditionGroup></StopTrigger>
-  </Storyboard>
-</OpenSCENARIO>
-`;
+    </Story>`,
+    stopAt: 8,
+  });
 }
+
+/** esmini's left turn on fabriksgatan.xodr (road 2 lane -1 at s 100, through junction 4, to road 1 at s 5), inline. */
+const LEFT_TURN_ROUTE = `<Route name="LeftTurn" closed="false">
+              <Waypoint routeStrategy="shortest"><Position><LanePosition roadId="2" laneId="-1" offset="0" s="100"/></Position></Waypoint>
+              <Waypoint routeStrategy="shortest"><Position><LanePosition roadId="1" laneId="-1" offset="0" s="5"/></Position></Waypoint>
+            </Route>`;
+
+/** A 1.0 scenario on `road` whose entities are placed by RoutePositions (entity name, InRoutePosition content) along `route`. */
+function routePositionsScenario(road: string, route: string, placed: [string, string][]): string {
+  const teleport = ([entity, coordinates]: [string, string]): string => `
+        <Private entityRef="${entity}">
+          <PrivateAction><TeleportAction><Position><RoutePosition>
+            <RouteRef>${route}</RouteRef>
+            <InRoutePosition>${coordinates}</InRoutePosition>
+          </RoutePosition></Position></TeleportAction></PrivateAction>
+        </Private>`;
+  return testScenario({
+    revMinor: 0,
+    description: 'route positions',
+    road,
+    entities: placed.map(([entity], index) => vehicle(entity, index === 0 ? 'ego_vehicle' : 'simulation')).join(''),
+    init: placed.map(teleport).join(''),
+    story: `<Story name="Still">
+      <Act name="Nothing">
+        <ManeuverGroup maximumExecutionCount="1" name="Group"><Actors selectTriggeringEntities="false"/></ManeuverGroup>
+        ${ACT_STARTS}
+      </Act>
+    </Story>`,
+    stopAt: 0.5,
+  });
+}
+
+describe("export --target carla, RoutePositions past their route's first road", function () {
+  this.timeout(300_000);
+  let out: string;
+  before(function () {
+    requireCorpus(this);
+  });
+  inTemporaryFolderEach('m2s-carla-route-', (folder) => (out = folder));
+
+  it('are written as the Lane/RoadPositions esmini places them (within 0.1 m), and ScenarioRunner builds the export', async function () {
+    requireEsmini(this);
+    requireCarlaHarness(this);
+    const original = path.join(out, 'route.xosc');
+    fs.writeFileSync(
+      original,
+      routePositionsScenario(path.join(esminiRoads, 'fabriksgatan.xodr'), LEFT_TURN_ROUTE, [
+        ['Ego', '<FromLaneCoordinates pathS="150" laneId="-1"/>'],
+        ['InJunction', '<FromLaneCoordinates pathS="210" laneId="-1"/>'],
+        ['AfterJunction', '<FromLaneCoordinates pathS="222" laneId="-1" laneOffset="0.3"/>'],
+        ['ByRoad', '<FromRoadCoordinates pathS="212" t="-2"/>'],
+      ]),
+    );
+    const result = await exportFile(original, path.join(out, 'exported.xosc'));
+    assert.equal(result.code, 0, result.stderr);
+    const routed = result.report.losses.filter((loss) => loss.element === 'RoutePosition');
+    assert.deepEqual(
+      routed.map((loss) => loss.kind),
+      ['approximated', 'approximated', 'approximated', 'approximated'],
+    );
+    // The second road of the route is the junction's connecting road 15, the third road 1.
+    assert.match(routed[1].what, /road 15, lane -1, s 5\.80\d*, the route's road 2 \(2 > 15\)/);
+    assert.match(routed[2].what, /road 1, lane -1, s 2\.94\d*, offset 0\.3, the route's road 3 \(2 > 15 > 1\)/);
+    assert.match(routed[3].what, /RoadPosition it names \(road 15, s 7\.80\d*, t -2/);
+    const verdicts = await harnessVerdicts([result.output]);
+    assert.equal(verdicts.get(path.resolve(result.output))?.status, 'OK', JSON.stringify(verdicts.get(path.resolve(result.output))));
+    const tracks = await assertMovesAlike(original, result.output, 0.5);
+    assert.deepEqual([...tracks.keys()].sort(), ['AfterJunction', 'ByRoad', 'Ego', 'InJunction']);
+  });
+
+  it("a route with no way in its first lane's driving direction: refused at the RoutePosition's line, naming why", async () => {
+    const original = path.join(out, 'route.xosc');
+    // Lane 1 of road 2 drives towards its start, which links to nothing.
+    const backwards = LEFT_TURN_ROUTE.replace('roadId="2" laneId="-1"', 'roadId="2" laneId="1"');
+    const text = routePositionsScenario(path.join(esminiRoads, 'fabriksgatan.xodr'), backwards, [
+      ['Ego', '<FromLaneCoordinates pathS="0" laneId="-1"/>'],
+      ['Far', '<FromLaneCoordinates pathS="120" laneId="1"/>'],
+    ]);
+    fs.writeFileSync(original, text);
+    const result = await exportFile(original, path.join(out, 'exported.xosc'));
+    assert.equal(result.code, 1, result.stderr);
+    assert.equal(fs.existsSync(path.join(out, 'exported.xosc')), false);
+    const refused = result.report.losses.filter((loss) => loss.kind === 'refused');
+    const lines = text.split('\n');
+    const farIndex = lines.findIndex((line) => line.includes('pathS="120"'));
+    const routePositionLine =
+      lines
+        .slice(0, farIndex)
+        .map((line) => line.includes('<RoutePosition>'))
+        .lastIndexOf(true) + 1;
+    assert.deepEqual(
+      refused.map((loss) => [loss.element, loss.line]),
+      [['RoutePosition', routePositionLine]],
+    );
+    assert.match(refused[0].what, /road 2 ends without a link in the driving direction of lane 1/);
+  });
+});
 
 describe('export --target carla, Clothoid and Nurbs sampled into polylines', function () {
   this.timeout(300_000);
@@ -447,12 +566,7 @@ describe('export --target carla, Clothoid and Nurbs sampled into polylines', fun
   before(function () {
     requireCorpus(this);
   });
-  beforeEach(() => {
-    out = temporaryFolder('m2s-carla-shapes-');
-  });
-  afterEach(() => {
-    fs.rmSync(out, { recursive: true, force: true });
-  });
+  inTemporaryFolderEach('m2s-carla-shapes-', (folder) => (out = folder));
 
   it('writes them as polylines that ScenarioRunner builds and esmini runs as the shapes (within 0.1 m)', async function () {
     requireEsmini(this);
@@ -490,12 +604,7 @@ describe('export --target carla, a condition on a dropped element', function () 
   before(function () {
     requireCorpus(this);
   });
-  beforeEach(() => {
-    out = temporaryFolder('m2s-carla-dangling-');
-  });
-  afterEach(() => {
-    fs.rmSync(out, { recursive: true, force: true });
-  });
+  inTemporaryFolderEach('m2s-carla-dangling-', (folder) => (out = folder));
 
   it('a StoryboardElementStateCondition waiting for a dropped event is named at its line as never true, and the export builds', async function () {
     requireCarlaHarness(this);
@@ -538,12 +647,7 @@ describe('export --target carla, bad input', () => {
   before(function () {
     requireCorpus(this);
   });
-  beforeEach(() => {
-    out = temporaryFolder('m2s-carla-bad-');
-  });
-  afterEach(() => {
-    fs.rmSync(out, { recursive: true, force: true });
-  });
+  inTemporaryFolderEach('m2s-carla-bad-', (folder) => (out = folder));
 
   it('an unknown blueprint in the table: exit 1 naming it, nothing written', async () => {
     const table = path.join(out, 'blueprints.json');
@@ -599,7 +703,7 @@ describe('export --target carla, bad input', () => {
     assert.match(result.stderr, /in\.xosc:\d+: error: <LogicFile>/);
   });
 
-  it("a RoutePosition past the road of its route's first waypoint: refused once, naming why", async () => {
+  it("a RoutePosition past its route's end: refused once, naming why", async () => {
     const esmini = path.join(openscenarioDir, 'esmini');
     const input = path.join(out, 'ltap-far.xosc');
     fs.writeFileSync(
@@ -620,7 +724,8 @@ describe('export --target carla, bad input', () => {
       refused.map((loss) => [loss.element, loss.line]),
       [['RoutePosition', 98]],
     );
-    assert.match(refused[0].what, /past road 2 \(pathS 900 from s 100, the road is 304\.19 m long\)/);
+    // Road 2 from s 100 (204.19 m), connecting road 15 through the junction (14.87 m), road 1 up to s 5.
+    assert.match(refused[0].what, /pathS 900 lies past the route's end \(the route is 224\.06 m long from its first waypoint\)/);
     // The two others of the file lie on their first road and are written as LanePositions.
     assert.equal(result.report.losses.filter((loss) => loss.element === 'RoutePosition' && loss.kind === 'approximated').length, 2);
   });
@@ -673,12 +778,7 @@ describe('export --target carla, bad input', () => {
 
 describe('export --target carla, walker blueprints', () => {
   let out: string;
-  beforeEach(() => {
-    out = temporaryFolder('m2s-carla-walker-');
-  });
-  afterEach(() => {
-    fs.rmSync(out, { recursive: true, force: true });
-  });
+  inTemporaryFolderEach('m2s-carla-walker-', (folder) => (out = folder));
   const crossing = path.join(__dirname, '..', '..', 'library', 'pedestrian-crossing.xosc');
 
   /** The library's crossing with its Pedestrian element written as `pedestrian`, exported for 0.9.15. */

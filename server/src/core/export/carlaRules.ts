@@ -4,6 +4,7 @@
  * Every rule names the ScenarioRunner code it follows (revision SR_REVISION of carlaFacts.ts).
  */
 import type { RoadNetwork } from '../opendrive/road';
+import { pointAlongRoute, RouteWaypoint } from '../opendrive/route';
 import { SourceRef } from '../sources';
 import { Range } from '../text';
 import { CarlaRelease, SR_ATOMICS, SR_CONFIGURATION, SR_PARSER, SR_SCENARIO } from './carlaFacts';
@@ -528,19 +529,18 @@ function unconvertiblePosition(node: Node, name: string, context: RuleContext, w
 }
 
 /**
- * A RoutePosition whose point lies on the road of the route's first waypoint, written as the LanePosition
- * (FromLaneCoordinates) or RoadPosition (FromRoadCoordinates) it names: ScenarioRunner has no RoutePosition
- * (SR_PARSER convert_position_to_transform raises NotImplementedError) but converts both (same function).
- * Where the point is, as esmini computes it (RoadManager.cpp Route::SetPathS, Position::SetRouteLanePosition,
- * esmini 3.6): from the first waypoint, pathS metres along its road in the driving direction of its lane
- * (right-hand traffic: a negative lane drives towards growing s), on the lane the position names, with its
- * offset; the heading follows the lane as for a LanePosition (OSCPosition.cpp SetRouteRefLaneCoord). A point
- * past that road needs the route planned through the network, which the export does not do: named why.
+ * A RoutePosition written as the LanePosition (FromLaneCoordinates) or RoadPosition (FromRoadCoordinates) of
+ * the point it names: ScenarioRunner has no RoutePosition (SR_PARSER convert_position_to_transform raises
+ * NotImplementedError) but converts both (same function). The point is where esmini puts it
+ * (core/opendrive/route.ts: the roads between the waypoints planned as esmini's RoadPath plans them,
+ * then Route::SetPathS), on the lane and with the offset the position names; the heading follows the lane as
+ * for a LanePosition (OSCPosition.cpp SetRouteRefLaneCoord). A route esmini's planning leaves ambiguous, or
+ * that has no way through the network, is named why.
  */
 function routePositions(tree: Node, context: RuleContext): void {
   for (const position of named(tree, 'RoutePosition')) {
     if (!position.parent) continue;
-    const mapped = routePositionOnFirstRoad(position, context.roads);
+    const mapped = routePositionAsLane(position, context.roads);
     if (typeof mapped === 'string') {
       unconvertiblePosition(position, 'RoutePosition', context, `; the export cannot write it otherwise: ${mapped}`);
       continue;
@@ -549,39 +549,50 @@ function routePositions(tree: Node, context: RuleContext): void {
     context.sink.approximated(
       mapped.node,
       'RoutePosition',
-      `written as the ${mapped.node.name} it names on the route's first road (${mapped.summary})`,
-      `ScenarioRunner has no RoutePosition (${SR_PARSER} convert_position_to_transform) and converts a ${mapped.node.name}; the point is where esmini puts it (RoadManager.cpp Route::SetPathS)`,
+      `written as the ${mapped.node.name} it names (${mapped.summary})`,
+      `ScenarioRunner has no RoutePosition (${SR_PARSER} convert_position_to_transform) and converts a ${mapped.node.name}; the point is where esmini puts it (RoadManager.cpp RoadPath::Calculate, Route::SetPathS)`,
     );
   }
 }
 
-function routePositionOnFirstRoad(position: Node, roads: RoadNetwork | undefined): { node: Node; summary: string } | string {
+/** The route's waypoints as lane positions, or why one is not. */
+function routeWaypoints(route: Node): RouteWaypoint[] | string {
+  const waypoints: RouteWaypoint[] = [];
+  for (const [index, waypoint] of childrenNamed(route, 'Waypoint').entries()) {
+    const lane = child(child(waypoint, 'Position') ?? waypoint, 'LanePosition');
+    const kind = child(waypoint, 'Position')?.children[0]?.name ?? 'no position';
+    if (!lane) return `waypoint ${index + 1} of the route is a ${kind}, and the export plans routes between LanePositions only`;
+    const roadId = attr(lane, 'roadId') ?? '';
+    const laneId = Number(attr(lane, 'laneId'));
+    const s = Number(attr(lane, 's'));
+    if (!Number.isInteger(laneId) || laneId === 0 || !Number.isFinite(s)) return `waypoint ${index + 1}'s laneId or s is not a number`;
+    waypoints.push({ roadId, laneId, s });
+  }
+  return waypoints;
+}
+
+function routePositionAsLane(position: Node, roads: RoadNetwork | undefined): { node: Node; summary: string } | string {
   const route = child(child(position, 'RouteRef') ?? position, 'Route');
   if (!route) return 'its route is not written in the scenario or a catalog it loads';
-  const waypoints = childrenNamed(route, 'Waypoint');
-  const lanePositionOf = (waypoint: Node | undefined): Node | undefined =>
-    waypoint ? child(child(waypoint, 'Position') ?? waypoint, 'LanePosition') : undefined;
-  const first = lanePositionOf(waypoints[0]);
-  if (!first) return "the route's first waypoint is not a LanePosition";
+  const waypoints = routeWaypoints(route);
+  if (typeof waypoints === 'string') return waypoints;
+  if (waypoints.length === 0) return 'its route has no waypoint';
   const inRoute = child(position, 'InRoutePosition');
   const coordinates = inRoute?.children[0];
   if (!coordinates || (coordinates.name !== 'FromLaneCoordinates' && coordinates.name !== 'FromRoadCoordinates'))
     return `${coordinates?.name ?? 'an empty InRoutePosition'} is where the entity is when the scenario runs`;
-  const roadId = attr(first, 'roadId') ?? '';
-  const startS = Number(attr(first, 's'));
   const pathS = Number(attr(coordinates, 'pathS'));
-  if (!Number.isFinite(startS) || !Number.isFinite(pathS) || pathS < 0) return 'its pathS or the first waypoint s is not a number';
-  const direction = Number(attr(first, 'laneId')) < 0 ? 1 : -1;
-  const s = startS + direction * pathS;
+  if (!Number.isFinite(pathS) || pathS < 0) return 'its pathS is not a number of metres along the route';
+  let roadId = waypoints[0].roadId;
+  let s = waypoints[0].s;
+  let via = '';
   if (pathS > 0) {
-    const road = roads?.byId.get(roadId);
-    if (!road)
-      return roads ? `road ${roadId} is not in the road network` : 'the road is a CARLA town, whose road lengths the export cannot read';
-    if (s < 0 || s > road.length)
-      return `the point lies past road ${roadId} (pathS ${pathS} from s ${startS}, the road is ${Number(road.length.toFixed(2))} m long)`;
-    const next = lanePositionOf(waypoints[1]);
-    if (next && attr(next, 'roadId') === roadId && Math.abs(Number(attr(next, 's')) - startS) < pathS)
-      return "the point lies past the route's second waypoint";
+    if (!roads) return 'the road is a CARLA town, whose roads the export cannot read';
+    const point = pointAlongRoute(roads, waypoints, pathS);
+    if (typeof point === 'string') return point;
+    ({ roadId, s } = point);
+    const index = point.roads.indexOf(roadId);
+    if (index > 0) via = `, the route's road ${index + 1} (${point.roads.slice(0, index + 1).join(' > ')})`;
   }
   const written = String(Number(s.toFixed(6)));
   const orientation = child(position, 'Orientation');
@@ -599,7 +610,7 @@ function routePositionOnFirstRoad(position: Node, roads: RoadNetwork | undefined
         extra,
         position.place,
       ),
-      summary: `road ${roadId}, s ${written}, t ${t}`,
+      summary: `road ${roadId}, s ${written}, t ${t}${via}`,
     };
   }
   const laneId = attr(coordinates, 'laneId') ?? '';
@@ -616,7 +627,7 @@ function routePositionOnFirstRoad(position: Node, roads: RoadNetwork | undefined
       extra,
       position.place,
     ),
-    summary: `road ${roadId}, lane ${laneId}, s ${written}${offset !== '0' ? `, offset ${offset}` : ''}`,
+    summary: `road ${roadId}, lane ${laneId}, s ${written}${offset !== '0' ? `, offset ${offset}` : ''}${via}`,
   };
 }
 

@@ -19,6 +19,9 @@ export interface Lane {
   borders: Cubic[];
   /** Offsets of the `<lane>` element in the file, for messages. */
   start: number;
+  /** The lane ids its `<link>` names in the section (or road) before and after; undefined when it names none. */
+  predecessor?: number;
+  successor?: number;
 }
 
 export interface LaneSection {
@@ -27,6 +30,30 @@ export interface LaneSection {
   length: number;
   /** Lanes ordered as esmini and viewers list them: left lanes from the outside in, the center lane, right lanes from the inside out. */
   lanes: Lane[];
+}
+
+/** A road's `<link><predecessor|successor>`: the road or junction at that end. */
+export interface RoadLink {
+  elementType: 'road' | 'junction';
+  elementId: string;
+  /** Which end of the linked road touches this one (road links only). */
+  contactPoint?: 'start' | 'end';
+}
+
+/** A junction's `<connection>`: from the incoming road into the connecting road, entered at `contactPoint`. */
+export interface JunctionConnection {
+  incomingRoad: string;
+  connectingRoad: string;
+  contactPoint: 'start' | 'end';
+  /** [incoming lane, connecting lane] pairs. */
+  laneLinks: [number, number][];
+}
+
+export interface Junction {
+  id: string;
+  /** `default` or `direct` (OpenDRIVE 1.7 `type`). */
+  type: string;
+  connections: JunctionConnection[];
 }
 
 export interface Road {
@@ -38,11 +65,16 @@ export interface Road {
   laneOffsets: Cubic[];
   superelevations: Cubic[];
   laneSections: LaneSection[];
+  predecessor?: RoadLink;
+  successor?: RoadLink;
 }
 
 export interface RoadNetwork {
   roads: Road[];
   byId: Map<string, Road>;
+  junctions: Map<string, Junction>;
+  /** The `<header><geoReference>` text (a PROJ string), trimmed; undefined when the file has none. */
+  geoReference?: string;
   /** What could not be read, with the offset of the element. */
   problems: { message: string; offset: number }[];
   /** Every signal id the file declares (a road's `<signal id>`, a `<controller>`'s `<control signalId>`): what a TrafficSignalStateAction names. */
@@ -137,6 +169,44 @@ function laneOf(element: XmlElement): Lane {
       .map((border) => cubicOf(border, 'sOffset'))
       .sort(bySOffset),
     start: element.start,
+    ...laneLinksOf(childrenNamed(element, 'link')[0]),
+  };
+}
+
+function laneLinksOf(link: XmlElement | undefined): { predecessor?: number; successor?: number } {
+  const idOf = (name: string): number | undefined => {
+    const target = childrenNamed(link, name)[0];
+    const value = target ? Number(attributeValue(target, 'id')) : NaN;
+    return Number.isInteger(value) ? value : undefined;
+  };
+  return { predecessor: idOf('predecessor'), successor: idOf('successor') };
+}
+
+function roadLinkOf(link: XmlElement | undefined, name: string): RoadLink | undefined {
+  const target = childrenNamed(link, name)[0];
+  const elementId = target ? attributeValue(target, 'elementId') : undefined;
+  if (!target || elementId === undefined) return undefined;
+  const contactPoint = attributeValue(target, 'contactPoint');
+  return {
+    elementType: attributeValue(target, 'elementType') === 'junction' ? 'junction' : 'road',
+    elementId,
+    contactPoint: contactPoint === 'start' || contactPoint === 'end' ? contactPoint : undefined,
+  };
+}
+
+function junctionOf(element: XmlElement): Junction {
+  return {
+    id: attributeValue(element, 'id') ?? '',
+    type: attributeValue(element, 'type') ?? 'default',
+    connections: childrenNamed(element, 'connection').map((connection) => ({
+      incomingRoad: attributeValue(connection, 'incomingRoad') ?? '',
+      connectingRoad: attributeValue(connection, 'connectingRoad') ?? '',
+      contactPoint: attributeValue(connection, 'contactPoint') === 'end' ? 'end' : 'start',
+      laneLinks: childrenNamed(connection, 'laneLink').map((laneLink): [number, number] => [
+        Math.trunc(numberOf(laneLink, 'from')),
+        Math.trunc(numberOf(laneLink, 'to')),
+      ]),
+    })),
   };
 }
 
@@ -167,6 +237,7 @@ function roadOf(element: XmlElement, problems: RoadNetwork['problems']): Road {
   });
   sections.sort((a, b) => a.s - b.s);
   sections.forEach((section, index) => (section.length = (index + 1 < sections.length ? sections[index + 1].s : length) - section.s));
+  const link = childrenNamed(element, 'link')[0];
   return {
     id,
     name: attributeValue(element, 'name') ?? '',
@@ -180,7 +251,17 @@ function roadOf(element: XmlElement, problems: RoadNetwork['problems']): Road {
       .map((entry) => cubicOf(entry, 's'))
       .sort((a, b) => a.start - b.start),
     laneSections: sections,
+    predecessor: roadLinkOf(link, 'predecessor'),
+    successor: roadLinkOf(link, 'successor'),
   };
+}
+
+/** An element's text content, a CDATA section unwrapped and trimmed; undefined when empty or when it holds elements. */
+function textOf(text: string, element: XmlElement): string | undefined {
+  if (element.selfClosing || !element.closed || element.children.length > 0) return undefined;
+  const inner = text.slice(element.startTagEnd, text.lastIndexOf('</', element.end - 1)).trim();
+  const cdata = /^<!\[CDATA\[([\s\S]*)\]\]>$/.exec(inner);
+  return (cdata ? cdata[1] : inner).trim() || undefined;
 }
 
 /** Reads an OpenDRIVE file's roads. Problems are collected, never thrown: a partial network still draws. */
@@ -200,7 +281,18 @@ export function parseOpenDrive(text: string): RoadNetwork {
   for (const controller of childrenNamed(document.root, 'controller'))
     for (const control of childrenNamed(controller, 'control')) signalIds.add(attributeValue(control, 'signalId') ?? '');
   signalIds.delete('');
-  return { roads, byId: new Map(roads.map((road) => [road.id, road])), problems, signalIds };
+  const junctions = new Map(
+    childrenNamed(document.root, 'junction').map((element) => [attributeValue(element, 'id') ?? '', junctionOf(element)]),
+  );
+  const geoReference = childrenNamed(childrenNamed(document.root, 'header')[0], 'geoReference')[0];
+  return {
+    roads,
+    byId: new Map(roads.map((road) => [road.id, road])),
+    junctions,
+    geoReference: geoReference ? textOf(text, geoReference) : undefined,
+    problems,
+    signalIds,
+  };
 }
 
 /** The entry of a sorted list that applies at `s`: the last one starting at or before it (the first before all). */

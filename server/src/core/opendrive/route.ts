@@ -1,0 +1,267 @@
+/**
+ * Where a point `pathS` metres along an OpenSCENARIO Route lies, as esmini places it (esmini 3.6.0,
+ * RoadManager.cpp: Route::AddWaypoint, RoadPath::Calculate and CheckRoad, Route::SetPathS;
+ * Position::SetRouteLanePosition). esmini plans the roads between two waypoints with its own Dijkstra
+ * over road ends, forward from the earlier waypoint in its lane's driving direction, following lane links
+ * (through junctions by their connections' laneLinks), and stops at the first road end it takes whose next
+ * road is the target. Between the waypoints it adds one waypoint per road of the path; a point along the
+ * route lies on the road of the waypoint before it, or on the next waypoint's road when it runs past the
+ * end. Where that search could go two ways at equal distance, runs into a direct junction, or finds nothing,
+ * this answers why instead of a place: the export names it rather than guess.
+ */
+import { JunctionConnection, laneSectionIndexAt, Road, RoadLink, RoadNetwork } from './road';
+
+/** A route waypoint as a lane position (the only kind whose road and lane are known without the road's geometry inverted). */
+export interface RouteWaypoint {
+  roadId: string;
+  laneId: number;
+  s: number;
+}
+
+/** The point on the route: the road and its s, and how the route got there. */
+export interface RoutePoint {
+  roadId: string;
+  s: number;
+  /** The roads the route runs over, in order. */
+  roads: string[];
+}
+
+/** esmini's SMALL_NUMBER (CommonMini.hpp). */
+const SMALL = 1e-10;
+/** RoadPath::Calculate gives up after this many road ends. */
+const MAX_STEPS = 100;
+/** Route::AddWaypoint puts the waypoint it adds on each road between two given ones this far along the road (RoadManager.cpp). */
+const INTERMEDIATE_FRACTION = 0.33;
+
+type End = 'start' | 'end';
+
+/** A road end the search reaches: esmini's RoadPath::PathNode. */
+interface PathNode {
+  /** The road this node leaves, and at which end. */
+  road: Road;
+  exit: End;
+  link: RoadLink;
+  /** The lane it leaves by (0: none). */
+  laneId: number;
+  dist: number;
+  previous: PathNode | undefined;
+}
+
+/** Minimal waypoint of esmini's Route: position, direction along its road (1: growing s) and distance along the route. */
+interface Stop {
+  /** The waypoint the route names; undefined for those esmini adds between them. */
+  given?: RouteWaypoint;
+  road: Road;
+  s: number;
+  laneId: number;
+  direction: 1 | -1;
+  routeS: number;
+}
+
+const otherEnd = (end: End): End => (end === 'start' ? 'end' : 'start');
+const linkAt = (road: Road, end: End): RoadLink | undefined => (end === 'start' ? road.predecessor : road.successor);
+
+/** A lane followed through its road's lane sections from s `from` to the road's end `to` (esmini Road::GetConnectedLaneIdAtS). */
+function laneAtEnd(road: Road, laneId: number, from: number, to: End): number {
+  const sections = road.laneSections;
+  let index = laneSectionIndexAt(road, from);
+  let lane = laneId;
+  if (to === 'end') {
+    for (; lane !== 0 && index < sections.length - 1; index++)
+      lane = sections[index].lanes.find((each) => each.id === lane)?.successor ?? 0;
+  } else {
+    for (; lane !== 0 && index > 0; index--) lane = sections[index].lanes.find((each) => each.id === lane)?.predecessor ?? 0;
+  }
+  return lane;
+}
+
+/** The lane a road's lane at its end `end` continues in on the next road (esmini Road::GetConnectingLaneId, road links). */
+function laneLinkAt(road: Road, end: End, laneId: number): number {
+  const section = end === 'start' ? road.laneSections[0] : road.laneSections.at(-1);
+  const lane = section?.lanes.find((each) => each.id === laneId);
+  return (end === 'start' ? lane?.predecessor : lane?.successor) ?? 0;
+}
+
+/**
+ * The connections of a junction from an incoming road: those the file writes, then the counter connections
+ * esmini adds at load for a connecting road whose other end meets the road (RoadManager.cpp, the
+ * "Add missing junction counter connection" of OpenDrive::CheckConnectedRoad), lane links from its lanes' links.
+ */
+function connectionsFrom(network: RoadNetwork, junctionId: string, incoming: Road): JunctionConnection[] {
+  const junction = network.junctions.get(junctionId);
+  if (!junction) return [];
+  const written = junction.connections.filter((connection) => connection.incomingRoad === incoming.id);
+  const counter: JunctionConnection[] = [];
+  for (const connection of junction.connections) {
+    const connecting = network.byId.get(connection.connectingRoad);
+    if (!connecting || connection.incomingRoad === incoming.id) continue;
+    if (written.some((each) => each.connectingRoad === connecting.id) || counter.some((each) => each.connectingRoad === connecting.id))
+      continue;
+    const end: End | undefined =
+      connecting.predecessor?.elementType === 'road' && connecting.predecessor.elementId === incoming.id
+        ? 'start'
+        : connecting.successor?.elementType === 'road' && connecting.successor.elementId === incoming.id
+          ? 'end'
+          : undefined;
+    if (!end || connection.contactPoint === end) continue;
+    const section = end === 'start' ? connecting.laneSections[0] : connecting.laneSections.at(-1);
+    const laneLinks: [number, number][] = [];
+    for (const lane of section?.lanes ?? []) {
+      const to = end === 'start' ? lane.predecessor : lane.successor;
+      if (to !== undefined && lane.id !== 0) laneLinks.push([to, lane.id]);
+    }
+    if (laneLinks.length > 0) counter.push({ incomingRoad: incoming.id, connectingRoad: connecting.id, contactPoint: end, laneLinks });
+  }
+  return [...written, ...counter];
+}
+
+/**
+ * The road ends from `start` to the road of `target`, as esmini's RoadPath::Calculate(dist, false) finds them,
+ * with the distance from the start to the target along them; or why there is no single answer.
+ */
+function findPath(network: RoadNetwork, start: RouteWaypoint, target: RouteWaypoint): { nodes: PathNode[]; dist: number } | string {
+  const startRoad = network.byId.get(start.roadId);
+  const targetRoad = network.byId.get(target.roadId);
+  if (!startRoad) return `road ${start.roadId} is not in the road network`;
+  if (!targetRoad) return `road ${target.roadId} is not in the road network`;
+  // Forward in the lane's driving direction (right-hand traffic: a negative lane drives towards growing s).
+  const exit: End = start.laneId < 0 ? 'end' : 'start';
+  const firstLink = linkAt(startRoad, exit);
+  if (!firstLink) return `road ${startRoad.id} ends without a link in the driving direction of lane ${start.laneId}`;
+  const unvisited: PathNode[] = [
+    {
+      road: startRoad,
+      exit,
+      link: firstLink,
+      laneId: laneAtEnd(startRoad, start.laneId, start.s, exit),
+      dist: exit === 'start' ? start.s : startRoad.length - start.s,
+      previous: undefined,
+    },
+  ];
+  const visited: PathNode[] = [];
+  const visitedLinks = new Set<RoadLink>();
+  const offsetOnTarget = (entered: End): number => (entered === 'start' ? target.s : targetRoad.length - target.s);
+
+  // A road entered from `from` at its end `entered` in lane `laneId` (esmini RoadPath::CheckRoad).
+  const check = (road: Road, entered: End, laneId: number, from: PathNode): void => {
+    if (laneId === 0) return;
+    const exitEnd = otherEnd(entered);
+    const link = linkAt(road, exitEnd);
+    if (!link) return;
+    const lane = laneAtEnd(road, laneId, entered === 'start' ? 0 : road.length, exitEnd);
+    if (visitedLinks.has(link)) return;
+    const known = unvisited.find((node) => node.link === link);
+    // esmini keeps the earlier node's path and only lowers its distance.
+    if (known) known.dist = Math.min(known.dist, from.dist + road.length);
+    else unvisited.push({ road, exit: exitEnd, link, laneId: lane, dist: from.dist + road.length, previous: from });
+  };
+
+  for (let step = 0; step < MAX_STEPS && unvisited.length > 0; step++) {
+    let index = 0;
+    for (let each = 1; each < unvisited.length; each++) if (unvisited[each].dist < unvisited[index].dist) index = each;
+    const node = unvisited[index];
+    // esmini takes the first of equally near road ends; which one that is depends on its order of insertion, so name it.
+    const tie = unvisited.find((other) => other !== node && Math.abs(other.dist - node.dist) < 1e-6);
+    let found: number[] = [];
+    if (node.link.elementType === 'road') {
+      const next = network.byId.get(node.link.elementId);
+      if (!next) return `road ${node.road.id} links to road ${node.link.elementId}, which is not in the road network`;
+      const entered: End = node.link.contactPoint ?? 'start';
+      if (next === targetRoad) found = [node.dist + offsetOnTarget(entered)];
+      else check(next, entered, laneLinkAt(node.road, node.exit, node.laneId), node);
+    } else {
+      const junction = network.junctions.get(node.link.elementId);
+      if (!junction) return `road ${node.road.id} links to junction ${node.link.elementId}, which is not in the road network`;
+      if (junction.type === 'direct')
+        return `the route runs through direct junction ${junction.id}, which the export does not plan through`;
+      for (const connection of connectionsFrom(network, junction.id, node.road)) {
+        const next = network.byId.get(connection.connectingRoad);
+        if (!next) return `junction ${junction.id} connects road ${connection.connectingRoad}, which is not in the road network`;
+        if (next === targetRoad) found.push(node.dist + offsetOnTarget(connection.contactPoint));
+        else check(next, connection.contactPoint, connection.laneLinks.find(([from]) => from === node.laneId)?.[1] ?? 0, node);
+      }
+    }
+    visited.push(node);
+    visitedLinks.add(node.link);
+    unvisited.splice(index, 1);
+    if (found.length > 1) return `junction ${node.link.elementId} reaches road ${targetRoad.id} by ${found.length} connecting roads`;
+    if (found.length === 1) {
+      if (tie) return `two ways from road ${start.roadId} are equally near (road ends of roads ${node.road.id} and ${tie.road.id})`;
+      const nodes: PathNode[] = [];
+      for (let each: PathNode | undefined = node; each; each = each.previous) nodes.unshift(each);
+      return { nodes, dist: found[0] };
+    }
+  }
+  return `no way along lane links from road ${start.roadId} lane ${start.laneId} to road ${target.roadId} in its driving direction`;
+}
+
+/** Where `pathS` metres along the route lies: esmini's minimal waypoints (Route::AddWaypoint) walked as Route::SetPathS walks them. */
+export function pointAlongRoute(network: RoadNetwork, waypoints: RouteWaypoint[], pathS: number): RoutePoint | string {
+  if (waypoints.length < 2) return 'the route has fewer than two waypoints';
+  const stops: Stop[] = [];
+  const roadOf = (waypoint: RouteWaypoint): Road | undefined => network.byId.get(waypoint.roadId);
+  let length = 0;
+  for (const waypoint of waypoints) {
+    const road = roadOf(waypoint);
+    if (!road) return `road ${waypoint.roadId} of a waypoint is not in the road network`;
+    if (stops.length === 0) {
+      stops.push({ given: waypoint, road, s: waypoint.s, laneId: waypoint.laneId, direction: waypoint.laneId < 0 ? 1 : -1, routeS: 0 });
+      continue;
+    }
+    // esmini keeps the first waypoint and then the last one on each road.
+    if ((stops.length === 2 && stops[0].road === stops[1].road) || (stops.length > 1 && road === stops.at(-1)?.road)) {
+      stops.pop();
+      length = stops.at(-1)?.routeS ?? 0;
+    }
+    const previous = stops.at(-1) as Stop;
+    const from = previous.given;
+    // esmini would plan on from the waypoint it added on the road before, heading along that road: not a waypoint the route names.
+    if (!from)
+      return `two waypoints follow each other on road ${road.id} after other roads; esmini re-plans from a waypoint of its own there`;
+    if (previous.road === road) {
+      // On the road it starts on: the distance is the difference of s, and the route runs the lane's driving direction.
+      const direction = previous.direction;
+      if ((waypoint.s - previous.s) * direction < 0)
+        return `waypoint on road ${road.id} at s ${waypoint.s} lies behind the one before it in the driving direction`;
+      length += Math.abs(waypoint.s - previous.s);
+      stops.push({ given: waypoint, road, s: waypoint.s, laneId: waypoint.laneId, direction, routeS: length });
+      continue;
+    }
+    const path = findPath(network, from, waypoint);
+    if (typeof path === 'string') return path;
+    let along = length;
+    let at = previous;
+    for (const node of path.nodes.slice(1)) {
+      const entered = otherEnd(node.exit);
+      const s = node.road.length * INTERMEDIATE_FRACTION;
+      along += (at.direction === 1 ? at.road.length - at.s : at.s) + (entered === 'start' ? s : node.road.length - s);
+      at = { road: node.road, s, laneId: node.laneId, direction: entered === 'start' ? 1 : -1, routeS: along };
+      stops.push(at);
+    }
+    const lastNode = path.nodes.at(-1) as PathNode;
+    const lastLink = lastNode.link;
+    const entered: End =
+      lastLink.elementType === 'road'
+        ? (lastLink.contactPoint ?? 'start')
+        : (connectionsFrom(network, lastLink.elementId, lastNode.road).find((each) => each.connectingRoad === road.id)?.contactPoint ??
+          'start');
+    length += path.dist;
+    stops.push({ given: waypoint, road, s: waypoint.s, laneId: waypoint.laneId, direction: entered === 'start' ? 1 : -1, routeS: length });
+  }
+  if (stops.length > 1 && stops[0].road === stops[1].road) stops[0].direction = stops[1].s >= stops[0].s ? 1 : -1;
+  if (pathS < 0 || pathS > length + SMALL)
+    return `pathS ${pathS} lies past the route's end (the route is ${Number(length.toFixed(2))} m long from its first waypoint)`;
+  let index = 0;
+  while (index < stops.length && pathS > stops[index].routeS - SMALL) index++;
+  if (index > 0) index--;
+  const stop = stops[index];
+  const ds = pathS - stop.routeS;
+  const roads = [...new Set(stops.map((each) => each.road.id))];
+  const pastEnd = stop.direction === 1 ? index < stops.length - 1 && stop.s + ds > stop.road.length + SMALL : stop.s < ds + SMALL;
+  if (pastEnd && index + 1 < stops.length) {
+    const next = stops[index + 1];
+    const over = stop.direction === 1 ? stop.s + ds - stop.road.length : ds - stop.s;
+    return { roadId: next.road.id, s: next.direction === 1 ? over : next.road.length - over, roads };
+  }
+  return { roadId: stop.road.id, s: stop.s + stop.direction * ds, roads };
+}

@@ -1,0 +1,74 @@
+import { strict as assert } from 'node:assert';
+import { parseOpenDrive } from '../../server/src/core/opendrive/road';
+import { pointAlongRoute } from '../../server/src/core/opendrive/route';
+
+/** A straight road of one right lane (-1) along x from `x`, linked as given, lane -1 linked to lane -1 at both ends. */
+function road(id: string, x: number, length: number, links: string, junction = '-1'): string {
+  return `
+  <road id="${id}" length="${length}" junction="${junction}">
+    <link>${links}</link>
+    <planView><geometry s="0" x="${x}" y="0" hdg="0" length="${length}"><line/></geometry></planView>
+    <lanes><laneSection s="0">
+      <center><lane id="0" type="none"/></center>
+      <right><lane id="-1" type="driving"><link><predecessor id="-1"/><successor id="-1"/></link><width sOffset="0" a="3.5" b="0" c="0" d="0"/></lane></right>
+    </laneSection></lanes>
+  </road>`;
+}
+
+/** Road 1 (100 m) into junction 9, whose connecting roads 10 and 11 (both `lengths`) lead to road 2 (100 m). */
+function network(lengths: [number, number]): string {
+  return `<?xml version="1.0"?>
+<OpenDRIVE>
+  <header revMajor="1" revMinor="6"><geoReference><![CDATA[+proj=tmerc +lat_0=57 +lon_0=12]]></geoReference></header>
+  ${road('1', 0, 100, '<successor elementType="junction" elementId="9"/>')}
+  ${road('10', 100, lengths[0], '<predecessor elementType="road" elementId="1" contactPoint="end"/><successor elementType="road" elementId="2" contactPoint="start"/>', '9')}
+  ${road('11', 100, lengths[1], '<predecessor elementType="road" elementId="1" contactPoint="end"/><successor elementType="road" elementId="2" contactPoint="start"/>', '9')}
+  ${road('2', 120, 100, '<predecessor elementType="junction" elementId="9"/>')}
+  <junction id="9">
+    <connection id="0" incomingRoad="1" connectingRoad="10" contactPoint="start"><laneLink from="-1" to="-1"/></connection>
+    <connection id="1" incomingRoad="1" connectingRoad="11" contactPoint="start"><laneLink from="-1" to="-1"/></connection>
+  </junction>
+</OpenDRIVE>`;
+}
+
+describe('a point along a route, as esmini plans it (core/opendrive/route)', () => {
+  it('reads links, junction connections and the geoReference', () => {
+    const parsed = parseOpenDrive(network([20, 25]));
+    assert.deepEqual(parsed.byId.get('10')?.successor, { elementType: 'road', elementId: '2', contactPoint: 'start' });
+    assert.deepEqual(parsed.byId.get('1')?.successor, { elementType: 'junction', elementId: '9', contactPoint: undefined });
+    assert.equal(parsed.junctions.get('9')?.connections.length, 2);
+    assert.deepEqual(parsed.junctions.get('9')?.connections[1].laneLinks, [[-1, -1]]);
+    assert.equal(parsed.byId.get('2')?.laneSections[0].lanes.find((lane) => lane.id === -1)?.successor, -1);
+    assert.equal(parsed.geoReference, '+proj=tmerc +lat_0=57 +lon_0=12');
+  });
+
+  it('takes the nearer connecting road, and lands on the road where the distance ends', () => {
+    const roads = parseOpenDrive(network([20, 25]));
+    const waypoints = [
+      { roadId: '1', laneId: -1, s: 50 },
+      { roadId: '2', laneId: -1, s: 30 },
+    ];
+    assert.deepEqual(pointAlongRoute(roads, waypoints, 10), { roadId: '1', s: 60, roads: ['1', '10', '2'] });
+    assert.deepEqual(pointAlongRoute(roads, waypoints, 55), { roadId: '10', s: 5, roads: ['1', '10', '2'] });
+    const onLast = pointAlongRoute(roads, waypoints, 80);
+    assert.ok(typeof onLast !== 'string' && onLast.roadId === '2' && Math.abs(onLast.s - 10) < 1e-9, JSON.stringify(onLast));
+    assert.match(String(pointAlongRoute(roads, waypoints, 101)), /pathS 101 lies past the route's end \(the route is 100 m long/);
+  });
+
+  it('names an ambiguous way (two connecting roads equally long) and no way (against the driving direction)', () => {
+    const roads = parseOpenDrive(network([20, 20]));
+    const forward = [
+      { roadId: '1', laneId: -1, s: 50 },
+      { roadId: '2', laneId: -1, s: 30 },
+    ];
+    assert.match(String(pointAlongRoute(roads, forward, 60)), /equally near/);
+    const backward = [
+      { roadId: '2', laneId: -1, s: 30 },
+      { roadId: '1', laneId: -1, s: 50 },
+    ];
+    assert.match(
+      String(pointAlongRoute(parseOpenDrive(network([20, 25])), backward, 60)),
+      /road 2 ends without a link in the driving direction of lane -1/,
+    );
+  });
+});
