@@ -1,5 +1,15 @@
 import { ProblemDataByCode } from '../problems';
-import { defineDiagnostic, isRelatedReplacement, isSuggestion } from './definition';
+import { defineDiagnostic, isRelatedReplacement, isSuggestion, ProblemWording } from './definition';
+
+/** A parameter declared as `name="$X"`: `esminiReading` says how esmini reads it (core/semantics/esminiValues.ts). */
+export function dollarDeclarationWording(name: string, esminiReading: string): ProblemWording<'lenient-value'> {
+  return {
+    severity: 'warning',
+    code: 'lenient-value',
+    message: `the standard declares a parameter by its name without '$' ('${name}'); ${esminiReading}, so this declares '${name}'`,
+    hint: `write name="${name}"`,
+  };
+}
 
 /**
  * A form esmini accepts that the standard does not (SPEC 12): its fix writes the standard's form where the

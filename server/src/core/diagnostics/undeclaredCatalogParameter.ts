@@ -1,6 +1,17 @@
 import { ProblemDataByCode } from '../problems';
-import { defineDiagnostic, isRecord, isString } from './definition';
+import { defineDiagnostic, isRecord, isString, ProblemWording } from './definition';
+import { declareParameterHint } from './undeclaredParameter';
 import { QC } from './qcRules';
+
+/** A parameter a catalog entry uses without declaring it: a warning where esmini runs it (taking the value from the referencing scenario, SPEC 12). */
+export function undeclaredCatalogParameterWording(name: string, esmini: boolean): ProblemWording<'undeclared-catalog-parameter'> {
+  return {
+    severity: esmini ? 'warning' : 'error',
+    code: 'undeclared-catalog-parameter',
+    message: `parameter '${name}' is not declared in this catalog entry: the standard wants an entry to declare every parameter it uses (esmini takes an undeclared one from the scenario that references the entry)`,
+    hint: declareParameterHint(name, 'the entry'),
+  };
+}
 
 /** A parameter a catalog entry uses without declaring it. Its quick fix is undeclared-parameter's (features/fixes/undeclaredParameter.ts). */
 export const UNDECLARED_CATALOG_PARAMETER = defineDiagnostic({

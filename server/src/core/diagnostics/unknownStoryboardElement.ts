@@ -1,6 +1,24 @@
 import { ProblemDataByCode } from '../problems';
-import { defineDiagnostic, isSuggestion } from './definition';
+import { defineDiagnostic, didYouMean, isSuggestion, ProblemWording } from './definition';
 import { QC } from './qcRules';
+
+/**
+ * A storyboardElementRef naming no element (of type `elementType` where it says one): a warning in a file of
+ * its own (a simple scenario may name an element of the main it is composed into), an error in a flattened output.
+ */
+export function unknownStoryboardElementWording(
+  written: string,
+  elementType: string | undefined,
+  suggestion: string | undefined,
+  flattened: boolean,
+): ProblemWording<'unknown-storyboard-element'> {
+  return {
+    severity: flattened ? 'error' : 'warning',
+    code: 'unknown-storyboard-element',
+    message: `no ${elementType ?? 'storyboard element'} named '${written}'`,
+    hint: didYouMean(suggestion),
+  };
+}
 
 /** A storyboardElementRef naming no storyboard element: the closest one. */
 export const UNKNOWN_STORYBOARD_ELEMENT = defineDiagnostic({

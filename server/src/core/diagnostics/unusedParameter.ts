@@ -1,4 +1,8 @@
-import { defineDiagnostic } from './definition';
+import { defineDiagnostic, ProblemWording } from './definition';
+
+export function unusedParameterWording(name: string): ProblemWording<'unused-parameter'> {
+  return { severity: 'hint', code: 'unused-parameter', message: `parameter '${name}' is never used` };
+}
 
 /** A declared parameter nothing uses: shown faded. */
 export const UNUSED_PARAMETER = defineDiagnostic({

@@ -1,4 +1,5 @@
 import * as path from 'node:path';
+import { undeclaredImportedEntityWording } from '../diagnostics/undeclaredEntity';
 import { unknownParameterAttributeWording } from '../diagnostics/unknownParameterAttribute';
 import { PARAMETER_ATTRIBUTES, ScenarioModel } from '../model';
 import { Problem, ProblemCode, ZERO_RANGE } from '../problems';
@@ -110,10 +111,7 @@ export function entityProblems(source: FlatSource): Problem[] {
             document: original.document,
             start,
             end,
-            severity: 'error',
-            code: 'undeclared-entity',
-            message: `the imported group '${linked.info.name}' uses entity '${name}', which this file does not declare in <Entities>`,
-            hint: `declare a ScenarioObject named '${name}', or override the key that sets it (for example 'entityRef')`,
+            ...undeclaredImportedEntityWording(linked.info.name, name),
           }),
           data: { entity: name },
         });

@@ -173,9 +173,9 @@ export function overrideValueProblems(main: FlatSource, options: Omit<SchemaChec
         const attributeTypeOf = site ? attributeType(index, target.element, target.attributeName) : undefined;
         const mismatch =
           site && attributeTypeOf && main.semantics
-            ? siteTypeProblem(main.semantics, site, attributeTypeOf, `${target.element.name}.${target.attributeName}`)
+            ? siteTypeProblem(main.semantics, site, attributeTypeOf, `${target.element.name}.${target.attributeName}`, parameter.key)
             : undefined;
-        if (mismatch) problems.push({ ...mismatch, message: `${mismatch.message} (set by ParameterReference '${parameter.key}')` });
+        if (mismatch) problems.push(mismatch);
       }
     }
   }

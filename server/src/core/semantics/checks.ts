@@ -21,6 +21,18 @@ import {
   valueRanges,
 } from './networkChecks';
 import { catalogDirectoryWording } from '../diagnostics/catalogDirectory';
+import { ambiguousReferenceWording } from '../diagnostics/ambiguousReference';
+import { DUPLICATE_PARAMETER_FIRST_NOTE, duplicateParameterWording } from '../diagnostics/duplicateParameter';
+import { dollarDeclarationWording } from '../diagnostics/lenientValue';
+import { renamedReferenceWording } from '../diagnostics/renamedReference';
+import { undeclaredCatalogParameterWording } from '../diagnostics/undeclaredCatalogParameter';
+import { undeclaredEntityWording } from '../diagnostics/undeclaredEntity';
+import { undeclaredParameterWording } from '../diagnostics/undeclaredParameter';
+import { unknownAssignedParameterWording } from '../diagnostics/unknownAssignedParameter';
+import { catalogFoundByFileNameWording, unknownCatalogWording } from '../diagnostics/unknownCatalog';
+import { unknownCatalogEntryWording } from '../diagnostics/unknownCatalogEntry';
+import { unknownStoryboardElementWording } from '../diagnostics/unknownStoryboardElement';
+import { unusedParameterWording } from '../diagnostics/unusedParameter';
 import {
   Declaration,
   Evaluator,
@@ -63,12 +75,7 @@ export const undeclaredParameters: SemanticCheck = ({ model, simulator }) =>
         start: use.start,
         end: use.end,
         // esmini takes the value from the referencing scenario, where catalogReferences checks it (SPEC 12: a warning with esmini).
-        severity: inEntry && simulator === 'esmini' ? 'warning' : 'error',
-        code: inEntry ? 'undeclared-catalog-parameter' : 'undeclared-parameter',
-        message: inEntry
-          ? `parameter '${use.name}' is not declared in this catalog entry: the standard wants an entry to declare every parameter it uses (esmini takes an undeclared one from the scenario that references the entry)`
-          : `parameter '${use.name}' is not declared in this scope`,
-        hint: `declare <ParameterDeclaration name="${use.name}" parameterType="..." value="..."/> in the ParameterDeclarations of ${inEntry ? 'the entry' : 'the file or of an enclosing element'}`,
+        ...(inEntry ? undeclaredCatalogParameterWording(use.name, simulator === 'esmini') : undeclaredParameterWording(use.name)),
         data: { parameter: use.name },
       };
     });
@@ -93,10 +100,7 @@ export const dollarDeclarations: SemanticCheck = ({ model }) =>
         attribute: attr,
         start,
         end,
-        severity: 'warning',
-        code: 'lenient-value',
-        message: `the standard declares a parameter by its name without '$' ('${declaration.name}'); ${esminiRule('declarationName')}, so this declares '${declaration.name}'`,
-        hint: `write name="${declaration.name}"`,
+        ...dollarDeclarationWording(declaration.name, esminiRule('declarationName')),
         data: { suggestion: declaration.name },
       };
     });
@@ -108,9 +112,7 @@ export const unusedParameters: SemanticCheck = ({ model }) =>
     .filter((declaration) => declaration.scope.byName.get(declaration.name) === declaration)
     .map((declaration) => ({
       ...at(declaration.element, declaration.nameAttribute),
-      severity: 'hint',
-      code: 'unused-parameter',
-      message: `parameter '${declaration.name}' is never used`,
+      ...unusedParameterWording(declaration.name),
     }));
 
 /** Two declarations of one name in one scope. */
@@ -122,10 +124,8 @@ export const duplicateDeclarations: SemanticCheck = (context) => {
       if (first === declaration) continue;
       findings.push({
         ...at(declaration.element, declaration.nameAttribute),
-        severity: 'warning',
-        code: 'duplicate-parameter',
-        message: `parameter '${declaration.name}' is declared twice in <${scope.element.name}>; references use the first declaration`,
-        related: [relatedAt(context, first.element.start, first.element.nameEnd, 'the first declaration')],
+        ...duplicateParameterWording(declaration.name, scope.element.name),
+        related: [relatedAt(context, first.element.start, first.element.nameEnd, DUPLICATE_PARAMETER_FIRST_NOTE)],
       });
     }
   }
@@ -271,10 +271,10 @@ export const catalogReferences: SemanticCheck = (context) => {
     if (resolution.catalogs.length === 0) {
       findings.push({
         ...at(reference.element, reference.catalogNameAttribute),
-        severity: 'error',
-        code: 'unknown-catalog',
-        message: `no catalog named '${resolution.catalogName}' in the catalog directories of this file`,
-        hint: `the directories searched: ${context.catalogs.locations.flatMap((location) => location.directories.map((directory) => directory.directory || '(package root)')).join(', ')}`,
+        ...unknownCatalogWording(
+          resolution.catalogName,
+          context.catalogs.locations.flatMap((location) => location.directories.map((directory) => directory.directory)),
+        ),
       });
       continue;
     }
@@ -283,10 +283,7 @@ export const catalogReferences: SemanticCheck = (context) => {
       const suggestion = resolution.entryName ? closestMatch(resolution.entryName, names) : undefined;
       findings.push({
         ...at(reference.element, reference.entryNameAttribute),
-        severity: 'error',
-        code: 'unknown-catalog-entry',
-        message: `catalog '${resolution.catalogName}' has no entry named '${resolution.entryName ?? ''}'; it has: ${names.slice(0, 30).join(', ')}${names.length > 30 ? ', ...' : ''}`,
-        hint: suggestion ? `did you mean '${suggestion}'?` : undefined,
+        ...unknownCatalogEntryWording(resolution.catalogName, resolution.entryName ?? '', names, suggestion),
         data: suggestion ? { suggestion } : undefined,
       });
       continue;
@@ -294,10 +291,7 @@ export const catalogReferences: SemanticCheck = (context) => {
     if (resolution.foundByFileName) {
       findings.push({
         ...at(reference.element, reference.catalogNameAttribute),
-        severity: 'warning',
-        code: 'unknown-catalog',
-        message: `no Catalog is named '${resolution.catalogName}'; esmini takes the file ${resolution.catalogName}.xosc, whose Catalog is named '${resolution.catalogs[0].name}', and other simulators do not`,
-        hint: `name the Catalog in ${resolution.catalogName}.xosc '${resolution.catalogName}'`,
+        ...catalogFoundByFileNameWording(resolution.catalogName, resolution.catalogs[0].name),
       });
     }
     const entryModel = resolution.entry.file.model;
@@ -311,10 +305,7 @@ export const catalogReferences: SemanticCheck = (context) => {
       if (resolveName(referenceScope, name, undefined)) continue;
       findings.push({
         ...at(reference.element, reference.entryNameAttribute),
-        severity: 'error',
-        code: 'undeclared-parameter',
-        message: `catalog entry '${resolution.entry.name}' uses parameter '${name}', which neither the entry nor this file declares`,
-        hint: `declare '${name}' in this file, or in the entry's ParameterDeclarations`,
+        ...undeclaredParameterWording(name, resolution.entry.name),
         data: { parameter: name },
       });
     }
@@ -327,12 +318,7 @@ export const catalogReferences: SemanticCheck = (context) => {
       const suggestion = closestMatch(name, declared);
       findings.push({
         ...at(assignment.element, assignment.parameterRef),
-        severity: 'error',
-        code: 'unknown-assigned-parameter',
-        message:
-          `catalog entry '${resolution.entry.name}' declares no parameter '${name}'` +
-          (declared.length ? `; it declares: ${declared.join(', ')}` : '; it declares none'),
-        hint: suggestion ? `did you mean '${suggestion}'?` : undefined,
+        ...unknownAssignedParameterWording(resolution.entry.name, name, declared, suggestion),
         data: suggestion ? { suggestion } : undefined,
       });
     }
@@ -351,11 +337,7 @@ export const undeclaredEntities: SemanticCheck = ({ model, evaluator }) => {
     const suggestion = names.size <= 2000 ? closestMatch(value, names) : undefined;
     findings.push({
       ...at(element, attr),
-      // An error by SPEC 12 and ASAM QC alike: esmini stops at it ("Failed to find object").
-      severity: 'error',
-      code: 'undeclared-entity',
-      message: `entity '${value}'${value !== attr.value ? ` (the value of ${attr.value})` : ''} is not declared in <Entities>`,
-      hint: suggestion ? `did you mean '${suggestion}'?` : `declare a ScenarioObject named '${value}'`,
+      ...undeclaredEntityWording(value, attr.value, suggestion),
       data: { entity: value },
     });
   }
@@ -421,10 +403,7 @@ export const storyboardReferences: SemanticCheck = (context) => {
     findings.push({
       ...at(reference.element, reference.refAttribute),
       // A warning in a file of its own: a simple scenario may name an element of the main it is composed into; the flattened output's check (below) makes it an error where it still names nothing.
-      severity: 'warning',
-      code: 'unknown-storyboard-element',
-      message: `no ${elementName ?? 'storyboard element'} named '${written}'`,
-      hint: suggestion ? `did you mean '${suggestion}'?` : undefined,
+      ...unknownStoryboardElementWording(written, elementName, suggestion, false),
       data: suggestion ? { suggestion } : undefined,
     });
   }
@@ -449,10 +428,7 @@ export const flattenedStoryboardReferences: SemanticCheck = (context) => {
     if (targets.length > 1) {
       findings.push({
         ...at(reference.element, reference.refAttribute),
-        severity: 'warning',
-        code: 'ambiguous-reference',
-        message: `${targets.length} elements of the flattened scenario are named '${written}'${elementName ? ` (${elementName})` : ''}; a simulator takes one of them`,
-        hint: 'give the elements unique names, or qualify the reference with its ancestors (Story::Act::...)',
+        ...ambiguousReferenceWording(targets.length, written, elementName),
       });
       continue;
     }
@@ -467,19 +443,14 @@ export const flattenedStoryboardReferences: SemanticCheck = (context) => {
     if (renamed.length > 0) {
       findings.push({
         ...at(reference.element, reference.refAttribute),
-        severity: 'error',
-        code: 'renamed-reference',
-        message: `flattening renamed '${written}' to ${renamed.map((name) => `'${name}'`).join(', ')}, so this reference names nothing in the flattened scenario`,
-        hint: `refer to the imported group by its flattened name${renamed.length === 1 ? ` '${renamed[0]}'` : ''}`,
+        ...renamedReferenceWording(written, renamed),
         data: renamed.length === 1 ? { suggestion: renamed[0] } : undefined,
       });
       continue;
     }
     findings.push({
       ...at(reference.element, reference.refAttribute),
-      severity: 'error',
-      code: 'unknown-storyboard-element',
-      message: `no ${elementName ?? 'storyboard element'} named '${written}'`,
+      ...unknownStoryboardElementWording(written, elementName, undefined, true),
     });
   }
   return findings;

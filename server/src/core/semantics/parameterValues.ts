@@ -1,4 +1,5 @@
-import { Problem, Severity } from '../problems';
+import { parameterDeclaredNote, parameterSiteWording, ValueMismatch } from '../diagnostics/typeMismatch';
+import { Problem } from '../problems';
 import { SchemaIndex, schemaIndex } from '../schema/index';
 import { SimpleType } from '../schema/model';
 import { typeOfElement } from '../schema/query';
@@ -43,36 +44,26 @@ function wholeNumberText(text: string): number | undefined {
   return Number(trimmed);
 }
 
-interface Mismatch {
-  severity: Severity;
-  reason: string;
-  hint?: string;
-}
-
 /** Whether a parameter's value fits the attribute's type; what is wrong when it does not. */
 function mismatchOf(
   value: { value: string | number | boolean; type: ParameterType },
   attributeTypeName: string,
   type: SimpleType,
-): Mismatch | undefined {
+): ValueMismatch | undefined {
   const target = targetOf(type);
   if (target) {
     // Checked first: the lenient reading converts `5.0` to an integer, which is still a warning here.
     const whole = typeof value.value === 'string' && INTEGER_TYPES.has(target) ? wholeNumberText(value.value) : undefined;
     if (whole !== undefined && !('message' in convertValue({ value: String(whole), type: 'string' }, target))) {
-      return {
-        severity: 'warning',
-        reason: `is a number with a fraction of zero for the attribute's type ${target}: the standard wants an integer, esmini reads it as ${whole}`,
-        hint: `declare the parameter with the value ${whole}`,
-      };
+      return { kind: 'fraction', target, whole };
     }
     if (!('message' in convertValue(value, target))) return undefined;
-    return { severity: 'error', reason: `cannot be converted to the attribute's type ${target}` };
+    return { kind: 'conversion', target };
   }
   // Text, an enumeration or a pattern: the value's text must be one the type admits itself.
   const literalOnly: SimpleType = { ...type, parameter: false, expression: false };
   if (checkValue(literalOnly, formatValue(value.value)).valid) return undefined;
-  return { severity: 'error', reason: `cannot be converted to the attribute's type ${attributeTypeName} (${describeType(literalOnly)})` };
+  return { kind: 'text', type: attributeTypeName, expected: describeType(literalOnly) };
 }
 
 /** Whether a parameter's value converts to an attribute's type without a word (completion offers such parameters first). */
@@ -85,13 +76,15 @@ export function valueFits(
 
 /**
  * The problem of a `$name` site whose value does not fit an attribute's type, at the site, naming the
- * declaration; `attributeName` is how the message names the attribute (`LanePosition.s`).
+ * declaration; `attributeName` is how the message names the attribute (`LanePosition.s`); `setBy` the
+ * ParameterReference that sets the attribute to the parameter, where an override does.
  */
 export function siteTypeProblem(
   semantics: DocumentSemantics,
   site: ValueSite,
   target: { name: string; type: SimpleType },
   attributeName: string,
+  setBy?: string,
 ): Problem | undefined {
   if (site.form.kind !== 'parameter') return undefined;
   const declaration = resolveName(site.scope, site.form.name, site.declaration);
@@ -102,22 +95,25 @@ export function siteTypeProblem(
   const mismatch = mismatchOf({ value: result.value, type: result.type }, target.name, target.type);
   if (!mismatch) return undefined;
   const document = semantics.model.document;
-  const declared = declaration.writtenType ? `declared ${declaration.writtenType}` : 'declared without a type';
   const place = declaration.valueAttribute ?? declaration.nameAttribute;
   return {
     source: semantics.ref,
     range: document.lines.range(site.attribute.valueStart, site.attribute.valueEnd),
-    severity: mismatch.severity,
-    code: 'type-mismatch',
-    message: `'${formatValue(result.value)}', the value of parameter '${declaration.name}' (${declared}), ${mismatch.reason} (${attributeName})`,
-    hint: mismatch.hint ?? `use a parameter whose value is a ${targetOf(target.type) ?? target.name}, or write the value here`,
+    ...parameterSiteWording({
+      value: formatValue(result.value),
+      parameter: declaration.name,
+      writtenType: declaration.writtenType,
+      mismatch,
+      attribute: attributeName,
+      setBy,
+    }),
     related: [
       {
         source: semantics.ref,
         range: place
           ? document.lines.range(place.valueStart, place.valueEnd)
           : document.lines.range(declaration.element.start, declaration.element.nameEnd),
-        message: `'${declaration.name}' is declared here with the value '${declaration.value}'`,
+        message: parameterDeclaredNote(declaration.name, declaration.value),
       },
     ],
   };

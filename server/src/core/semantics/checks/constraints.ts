@@ -4,6 +4,7 @@ import type { Finding, SemanticCheck, SemanticContext } from './types';
 import { convertValue, formatValue, ParameterType, ParameterValue } from '../values';
 import { Declaration, Evaluator, referencedName } from '../model';
 import { at, relatedAt } from './support';
+import { brokenConstraintNote, ConstraintFacts, valueConstraintWording } from '../../diagnostics/valueConstraint';
 
 /*
  * A ParameterDeclaration's `ConstraintGroup`s (1.1 and later, `ValueConstraintGroup`): the value is valid
@@ -54,15 +55,6 @@ function holds(rule: ConstraintRule, left: number | string | boolean, right: num
   }
 }
 
-const RULE_WORDS: Record<ConstraintRule, string> = {
-  equalTo: '=',
-  notEqualTo: '≠',
-  lessThan: '<',
-  lessOrEqual: '≤',
-  greaterThan: '>',
-  greaterOrEqual: '≥',
-};
-
 /** The constraint groups of a declaration, each constraint read (a rule or value that cannot be read is reported). */
 function groupsOf(context: SemanticContext, declaration: Declaration, type: ParameterType, findings: Finding[]): Constraint[][] {
   const groups: Constraint[][] = [];
@@ -80,9 +72,7 @@ function groupsOf(context: SemanticContext, declaration: Declaration, type: Para
       if (EQUALITY_ONLY.has(type) && ruleText !== 'equalTo' && ruleText !== 'notEqualTo') {
         findings.push({
           ...at(element, ruleAttribute),
-          severity: 'error',
-          code: 'value-constraint',
-          message: `the rule '${ruleText}' does not apply to the ${type} parameter '${declaration.name}': a ${type} is only equalTo or notEqualTo a value`,
+          ...valueConstraintWording({ kind: 'rule', rule: ruleText, type, parameter: declaration.name }),
         });
         continue;
       }
@@ -90,9 +80,7 @@ function groupsOf(context: SemanticContext, declaration: Declaration, type: Para
       if ('message' in converted) {
         findings.push({
           ...at(element, valueAttribute),
-          severity: 'error',
-          code: 'value-constraint',
-          message: `the constraint's value '${valueText}' is not a value of the ${type} parameter '${declaration.name}': ${converted.message}`,
+          ...valueConstraintWording({ kind: 'value', value: valueText, type, parameter: declaration.name, reason: converted.message }),
         });
       }
       constraints.push({ element, rule: ruleText, value: 'message' in converted ? converted : converted.value });
@@ -113,11 +101,13 @@ function brokenConstraints(groups: Constraint[][], value: ParameterValue, type: 
   return broken.some((group) => group.length === 0) ? undefined : broken;
 }
 
-function describe(broken: Constraint[][]): string {
-  const groups = broken.map((group) =>
-    group.map((constraint) => `${RULE_WORDS[constraint.rule]} ${formatValue(constraint.value as ParameterValue)}`).join(' and '),
-  );
-  return groups.length === 1 ? `it is not ${groups[0]}` : `no constraint group holds (${groups.map((group) => `not ${group}`).join('; ')})`;
+/** A readable constraint as its diagnostic's wording takes it. */
+function factsOf(constraint: Constraint): ConstraintFacts {
+  return { rule: constraint.rule, value: formatValue(constraint.value as ParameterValue) };
+}
+
+function brokenFacts(broken: Constraint[][]): ConstraintFacts[][] {
+  return broken.map((group) => group.map(factsOf));
 }
 
 /**
@@ -145,18 +135,16 @@ export const valueConstraints: SemanticCheck = (context) => {
     if (!broken) continue;
     findings.push({
       ...at(declaration.element, declaration.valueAttribute),
-      severity: 'error',
-      code: 'value-constraint',
-      message: `the value ${formatValue(result.value)} of parameter '${declaration.name}' breaks its ConstraintGroup: ${describe(broken)}`,
+      ...valueConstraintWording({
+        kind: 'broken',
+        value: formatValue(result.value),
+        parameter: declaration.name,
+        broken: brokenFacts(broken),
+      }),
       related: broken
         .flat()
         .map((constraint) =>
-          relatedAt(
-            context,
-            constraint.element.start,
-            constraint.element.nameEnd,
-            `${constraint.rule} ${formatValue(constraint.value as ParameterValue)}`,
-          ),
+          relatedAt(context, constraint.element.start, constraint.element.nameEnd, brokenConstraintNote(factsOf(constraint))),
         ),
     });
   }
@@ -182,9 +170,13 @@ export const valueConstraints: SemanticCheck = (context) => {
       if (!broken) continue;
       findings.push({
         ...at(assignment.element, assignment.valueAttribute),
-        severity: 'error',
-        code: 'value-constraint',
-        message: `the value ${formatValue(result.value)} given to parameter '${declaration.name}' of catalog entry '${entry.name}' breaks the entry's ConstraintGroup: ${describe(broken)}`,
+        ...valueConstraintWording({
+          kind: 'broken',
+          value: formatValue(result.value),
+          parameter: declaration.name,
+          entry: entry.name,
+          broken: brokenFacts(broken),
+        }),
       });
     }
   }

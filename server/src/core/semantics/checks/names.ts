@@ -2,6 +2,8 @@ import { attribute, XmlElement } from '../../xml';
 import { namedSiblings } from '../elementIndex';
 import type { Finding, SemanticCheck } from './types';
 import { at, relatedAt } from './support';
+import { duplicateCatalogEntryWording } from '../../diagnostics/duplicateCatalogEntry';
+import { duplicateNameWording, firstOfNameNote } from '../../diagnostics/duplicateName';
 
 /**
  * Declarations have their own check (duplicateDeclarations) and the first one wins there; a Property is
@@ -63,20 +65,23 @@ export const duplicateNames: SemanticCheck = (context) => {
       if (child.name === 'ManeuverGroup' && !referenced().has(name)) continue;
       const inCatalog = parent === model.catalog;
       const ambiguous = inCatalog || (child.name === 'ScenarioObject' ? referencedEntities().has(name) : referenced().has(name));
-      const written = name !== nameAttribute.value ? ` (the value of ${nameAttribute.value})` : '';
+      const written = nameAttribute.value;
       const earlierName = attribute(earlier, 'name');
       findings.push({
         ...at(child, nameAttribute),
-        severity: esmini || !ambiguous ? 'warning' : 'error',
-        code: inCatalog ? 'duplicate-catalog-entry' : 'duplicate-name',
-        message: inCatalog
-          ? `catalog '${attribute(parent, 'name')?.value ?? ''}' has two entries named '${name}'${written}; a CatalogReference to '${name}' does not name one entry`
-          : `<${parent.name}> has two children named '${name}'${written} (<${earlier.name}> and <${child.name}>); the standard wants the names on each level unique, so that a reference names one element${
-              ambiguous ? '' : " (ASAM's Quality Checker reports it as an error; no reference of this file names it, and esmini runs both)"
-            }${esmini && ambiguous ? ' (esmini runs both and resolves a reference to the name to the first)' : ''}`,
-        hint: `rename one of them`,
+        ...(inCatalog
+          ? duplicateCatalogEntryWording(attribute(parent, 'name')?.value ?? '', name, written, esmini)
+          : duplicateNameWording({
+              parent: parent.name,
+              name,
+              written,
+              earlier: earlier.name,
+              child: child.name,
+              referenced: ambiguous,
+              esmini,
+            })),
         related: [
-          relatedAt(context, earlierName?.valueStart ?? earlier.start, earlierName?.valueEnd ?? earlier.nameEnd, `the first '${name}'`),
+          relatedAt(context, earlierName?.valueStart ?? earlier.start, earlierName?.valueEnd ?? earlier.nameEnd, firstOfNameNote(name)),
         ],
       });
     }

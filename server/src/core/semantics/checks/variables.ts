@@ -3,6 +3,12 @@ import type { Finding, SemanticCheck } from './types';
 import { convertValue } from '../values';
 import { Declaration, referencedName, resolveName, SemanticModel } from '../model';
 import { at } from './support';
+import { modifyNonNumberWording, variableValueWording } from '../../diagnostics/typeMismatch';
+import {
+  catalogEntryVariableWording,
+  undeclaredEntryVariableWording,
+  undeclaredVariableWording,
+} from '../../diagnostics/undeclaredVariable';
 
 /** The catalog entry (a child of the file's `Catalog`) that holds an element. */
 function entryOf(model: SemanticModel, element: XmlElement): XmlElement | undefined {
@@ -29,11 +35,7 @@ export const undeclaredVariables: SemanticCheck = ({ model }) => {
     const entryName = entry ? attribute(entry, 'name')?.value : undefined;
     findings.push({
       ...at(reference.element, reference.attribute),
-      severity: entry ? 'information' : 'error',
-      code: 'undeclared-variable',
-      message: entry
-        ? `variable '${name}' is declared by the scenarios that reference catalog entry '${entryName ?? ''}' (a catalog declares no variables); each of them must declare it, and one that does not gets an error at its CatalogReference`
-        : `variable '${reference.attribute.value}' is not declared in the VariableDeclarations of this file`,
+      ...(entry ? catalogEntryVariableWording(name, entryName) : undeclaredVariableWording(reference.attribute.value)),
       data: entryName !== undefined ? { variable: name, entry: entryName } : { variable: name },
     });
   }
@@ -83,7 +85,7 @@ export const variableValues: SemanticCheck = ({ model, evaluator }) => {
   for (const { element: target, declaration, name } of valueTargets(model)) {
     const type = declaration.type;
     if (!type) continue;
-    const what = `${declaration.kind} '${name}' (${declaration.writtenType})`;
+    const named = { kind: declaration.kind, name, writtenType: declaration.writtenType };
     const condition = target.name === 'VariableCondition' || target.name === 'ParameterCondition';
     const valued: XmlElement[] = condition ? [target] : target.children.filter((child) => child.name === 'SetAction');
     for (const element of valued) {
@@ -94,19 +96,14 @@ export const variableValues: SemanticCheck = ({ model, evaluator }) => {
       if (!('message' in converted)) continue;
       findings.push({
         ...at(element, valueAttribute),
-        severity: 'error',
-        code: 'type-mismatch',
-        message: `'${text}' is not a value of ${what}: ${converted.message}`,
+        ...variableValueWording(text, named, converted.message),
       });
     }
     const modify = target.children.find((child) => child.name === 'ModifyAction');
     if (modify && !NUMERIC.has(type)) {
       findings.push({
         ...at(modify, undefined),
-        severity: 'error',
-        code: 'type-mismatch',
-        message: `a ModifyAction adds to or multiplies a number; ${what} is not a number`,
-        hint: 'set it with a SetAction',
+        ...modifyNonNumberWording(named),
       });
     }
   }
@@ -134,10 +131,7 @@ export const catalogVariables: SemanticCheck = (context) => {
     for (const name of missing) {
       findings.push({
         ...at(resolution.reference.element, resolution.reference.entryNameAttribute),
-        severity: 'error',
-        code: 'undeclared-variable',
-        message: `catalog entry '${entry.name}' uses variable '${name}', which this file does not declare (a catalog declares no variables: the scenario that references the entry does)`,
-        hint: `declare <VariableDeclaration name="${name}" variableType="..." value="..."/> in the VariableDeclarations of this file`,
+        ...undeclaredEntryVariableWording(entry.name, name),
       });
     }
   }
