@@ -42,3 +42,59 @@ export function fileNameProblem(folder: string, name: string, exists: (file: str
   if (exists(path.join(folder, trimmed))) return `${trimmed} exists already; choose another name`;
   return undefined;
 }
+
+/** A file a command writes anew: its absolute path and its text. */
+export interface NewFile {
+  path: string;
+  text: string;
+}
+
+/** The folders `mkdir -p` of `folder` would create, the outermost first. */
+function missingFolders(folder: string): string[] {
+  const missing: string[] = [];
+  for (let current = folder; !fs.existsSync(current); current = path.dirname(current)) {
+    missing.unshift(current);
+    if (path.dirname(current) === current) break;
+  }
+  return missing;
+}
+
+/**
+ * Writes new files, making their folders, never over a file ('wx': not even one that appeared since its name was
+ * checked). When one cannot be written, the files and folders written before it are removed again, so the disk is
+ * left as it was, and the error names the file.
+ */
+export async function writeNewFiles(files: NewFile[]): Promise<string[]> {
+  const written: string[] = [];
+  const madeFolders: string[] = [];
+  let current: NewFile | undefined;
+  let writing = false;
+  try {
+    for (const file of files) {
+      current = file;
+      writing = false;
+      const folders = missingFolders(path.dirname(file.path));
+      await fs.promises.mkdir(path.dirname(file.path), { recursive: true });
+      madeFolders.push(...folders);
+      writing = true;
+      await fs.promises.writeFile(file.path, file.text, { encoding: 'utf8', flag: 'wx' });
+      written.push(file.path);
+    }
+    return written;
+  } catch (error) {
+    const leftBehind: string[] = [];
+    for (const file of written) await fs.promises.rm(file, { force: true }).catch(() => leftBehind.push(file));
+    // Innermost first, and only when empty: a folder that holds anything else is not ours to remove.
+    for (const folder of madeFolders.reverse()) await fs.promises.rmdir(folder).catch(() => leftBehind.push(folder));
+    const name = current?.path ?? '';
+    const exists = writing && (error as NodeJS.ErrnoException).code === 'EEXIST';
+    const why = exists ? `${name} exists already and is left as it was` : `could not write ${name}: ${(error as Error).message}`;
+    const undone =
+      written.length === 0
+        ? ''
+        : leftBehind.length === 0
+          ? `; removed again: ${written.join(', ')}`
+          : `; could not remove ${leftBehind.join(', ')}`;
+    throw new Error(why + undone, { cause: error });
+  }
+}

@@ -3,7 +3,7 @@ import * as path from 'node:path';
 import * as vscode from 'vscode';
 import type { CommandReporter } from './commands';
 import type { ServerCommandClient } from './languageClient';
-import { fileNameProblem, freeScenarioName } from './naming';
+import { fileNameProblem, freeScenarioName, writeNewFiles } from './naming';
 
 /** What a caller (a test, a keybinding) may pass instead of being asked. */
 export interface NewScenarioOptions {
@@ -151,9 +151,7 @@ export async function newScenarioCommand(
     }
     const target = path.join(folder, fileName);
     const result = await server.newScenario(vscode.Uri.file(target), vscode.Uri.file(path.resolve(folder, roadNetwork)));
-    await fs.promises.mkdir(folder, { recursive: true });
-    // 'wx': never over a file that appeared since the name was checked.
-    await fs.promises.writeFile(target, result.text, { encoding: 'utf8', flag: 'wx' });
+    await writeNewFiles([{ path: target, text: result.text }]);
     reporter.log(
       `${TITLE}: wrote ${target} (ego on road ${result.ego.roadId}, lane ${result.ego.laneId}, s ${result.ego.s} of ${result.roadFile})`,
     );

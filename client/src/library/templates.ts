@@ -3,7 +3,7 @@ import * as path from 'node:path';
 import * as vscode from 'vscode';
 import type { CommandReporter } from '../commands';
 import type { ServerCommandClient } from '../languageClient';
-import { fileNameProblem, freeScenarioName } from '../naming';
+import { fileNameProblem, freeScenarioName, writeNewFiles } from '../naming';
 import { targetFolder } from '../newScenario';
 
 const TITLE = 'New Scenario from Template';
@@ -69,19 +69,7 @@ export async function newFromTemplateCommand(
     }
     const target = path.join(folder, fileName);
     const { files } = await server.newFromTemplate(template, vscode.Uri.file(target));
-    await fs.promises.mkdir(folder, { recursive: true });
-    const written: string[] = [];
-    try {
-      // 'wx': never over a file that appeared since the server looked.
-      for (const file of files) {
-        await fs.promises.writeFile(file.path, file.text, { encoding: 'utf8', flag: 'wx' });
-        written.push(file.path);
-      }
-    } catch (error) {
-      // What this command wrote goes again, so that a failure leaves the folder as it was.
-      for (const file of written) await fs.promises.rm(file, { force: true });
-      throw error;
-    }
+    const written = await writeNewFiles(files);
     reporter.log(`${TITLE}: ${template} wrote ${written.join(', ')}`);
     const uri = vscode.Uri.file(target);
     await vscode.window.showTextDocument(uri, { preview: false });
