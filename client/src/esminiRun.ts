@@ -1,8 +1,8 @@
 import * as vscode from 'vscode';
-import type { LanguageClient } from 'vscode-languageclient/node';
 import { RunEsminiRequest, type RunEsminiResult } from '../../common/src/protocol';
 import { runAnywayQuestion, runLensTitles } from './anyway';
 import { commandTargets } from './commands';
+import type { ServerCommandClient } from './languageClient';
 
 export const RUN_ESMINI_COMMAND = 'modular2simple.runEsmini';
 /** *Run Anyway*: the run that `run --force` makes, for a scenario with errors. */
@@ -68,7 +68,7 @@ export class EsminiRunner implements vscode.Disposable {
   private readonly disposables: vscode.Disposable[] = [];
   last: EsminiRunEvent | undefined;
 
-  constructor(private readonly client: LanguageClient) {
+  constructor(private readonly server: ServerCommandClient) {
     const lenses = new RunLensProvider();
     this.disposables.push(
       this.diagnostics,
@@ -104,11 +104,11 @@ export class EsminiRunner implements vscode.Disposable {
       ...(force ? { force: true } : {}),
     };
     try {
-      if (!this.client.isRunning()) await this.client.start();
+      const client = await this.server.running();
       const name = source.path.split('/').pop();
       const result = await vscode.window.withProgress(
         { location: vscode.ProgressLocation.Notification, title: `Running ${name} in esmini`, cancellable: true },
-        (_progress, token) => this.client.sendRequest(RunEsminiRequest, params, token),
+        (_progress, token) => client.sendRequest(RunEsminiRequest, params, token),
       );
       this.show(source, result);
       const question = runAnywayQuestion(result);

@@ -2,7 +2,6 @@ import * as path from 'node:path';
 import * as vscode from 'vscode';
 import type { ServerCapabilities } from 'vscode-languageclient';
 import { DidChangeWatchedFilesNotification, FileChangeType } from 'vscode-languageclient';
-import type { LanguageClient } from 'vscode-languageclient/node';
 import { EXPORT_FOR_CARLA_COMMAND, EXTRACT_GROUP_COMMAND, PACKAGE_SCHEME, type StructureNode } from '../../common/src/protocol';
 import { registerBirdsEye } from './birdsEye/commands';
 import { CarlaCommands } from './carla/commands';
@@ -11,6 +10,7 @@ import type { BirdsEyeView } from './birdsEye/panel';
 import { CommandReporter, commandTargets, exportForCarlaCommand, flattenCommand, mainFileOf, packCommand } from './commands';
 import { ChangeFollower } from './followChanges';
 import { LANGUAGE_ID, ServerCommandClient, createLanguageClient } from './languageClient';
+import { ServerLifecycle } from './serverLifecycle';
 import { newScenarioCommand } from './newScenario';
 import { PackageFileSystem } from './packageFileSystem';
 import { PACKAGE_VIEW_TYPE, PackageViewProvider } from './packageView';
@@ -51,7 +51,7 @@ export interface Modular2SimpleApi {
   readonly library: LibraryApi;
 }
 
-let languageClient: LanguageClient | undefined;
+let serverLifecycle: ServerLifecycle | undefined;
 
 export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
   const output = vscode.window.createOutputChannel('Modular2Simple');
@@ -69,22 +69,36 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
   // Fired once the server has been sent an edit or a file event: the views that show its answers ask again.
   const serverHasChanges = new vscode.EventEmitter<void>();
   context.subscriptions.push(serverHasChanges);
-  const client = createLanguageClient(context, () => serverHasChanges.fire());
-  languageClient = client;
-  const server = new ServerCommandClient(client);
-  const serverReady = client.start().catch((error: unknown) => {
-    log(`the language server did not start: ${(error as Error).stack ?? String(error)}`);
-    void vscode.window
-      .showErrorMessage(
-        'Modular2Simple: the language server did not start; editing works, but checks, completion and preview do not. See the output for details.',
-        'Show Details',
-      )
-      .then((choice) => {
-        if (choice) output.show(true);
-      });
+  const client = createLanguageClient(
+    context,
+    () => serverHasChanges.fire(),
+    () => lifecycle.closing,
+  );
+  const lifecycle = new ServerLifecycle(client, {
+    failed: (error) => {
+      log(`the language server did not start: ${(error as Error).stack ?? String(error)}`);
+      void vscode.window
+        .showErrorMessage(
+          'Modular2Simple: the language server did not start; editing works, but checks, completion and preview do not. See the output for details.',
+          'Show Details',
+        )
+        .then((choice) => {
+          if (choice) output.show(true);
+        });
+    },
+    note: (message) => {
+      try {
+        log(message);
+      } catch {
+        // VS Code disposes the output channel right after calling deactivate: the note is dropped then.
+      }
+    },
   });
+  serverLifecycle = lifecycle;
+  const server = new ServerCommandClient(client, lifecycle);
+  const serverReady = lifecycle.startAtActivation();
 
-  const esmini = new EsminiRunner(client);
+  const esmini = new EsminiRunner(server);
   context.subscriptions.push(esmini);
   registerDebugging(context);
 
@@ -190,7 +204,7 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
   });
 
   const library = registerLibrary(context, server, reporter);
-  const birdsEye = registerBirdsEye(context, client, log);
+  const birdsEye = registerBirdsEye(context, server, log);
   const timeline = registerTimeline(context, log, birdsEye);
   context.subscriptions.push(followDebugSessions(birdsEye));
   const variations = registerVariations(context, log);
@@ -229,5 +243,5 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
 }
 
 export async function deactivate(): Promise<void> {
-  await languageClient?.stop();
+  await serverLifecycle?.close();
 }

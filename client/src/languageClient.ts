@@ -1,5 +1,12 @@
 import * as vscode from 'vscode';
-import { LanguageClient, TransportKind, type LanguageClientOptions, type ServerOptions } from 'vscode-languageclient/node';
+import {
+  CloseAction,
+  LanguageClient,
+  TransportKind,
+  type ErrorHandler,
+  type LanguageClientOptions,
+  type ServerOptions,
+} from 'vscode-languageclient/node';
 import type { WorkspaceEdit as LspWorkspaceEdit } from 'vscode-languageserver-protocol';
 import {
   CheckInScenarioRunnerRequest,
@@ -36,12 +43,20 @@ import {
 } from '../../common/src/libraryProtocol';
 import { resolveScenarioPaths } from './configuration';
 import { whileRunning } from './requestGate';
+import type { ServerLifecycle } from './serverLifecycle';
 
 export const LANGUAGE_ID = 'xosc';
 export const CONFIGURATION_SECTION = 'modular2simple';
 
-/** Starts the bundled language server (dist/server.js) over node IPC for `.xosc` files, on disk and inside packages. */
-export function createLanguageClient(context: vscode.ExtensionContext, afterChangeSent: () => void = () => undefined): LanguageClient {
+/**
+ * Starts the bundled language server (dist/server.js) over node IPC for `.xosc` files, on disk and inside packages.
+ * `closing`: whether the window is closing, when the connection ending is expected and the server is not restarted.
+ */
+export function createLanguageClient(
+  context: vscode.ExtensionContext,
+  afterChangeSent: () => void = () => undefined,
+  closing: () => boolean = () => false,
+): LanguageClient {
   const module = context.asAbsolutePath('dist/server.js');
   const serverOptions: ServerOptions = {
     run: { module, transport: TransportKind.ipc },
@@ -57,6 +72,11 @@ export function createLanguageClient(context: vscode.ExtensionContext, afterChan
     // Files inside packages open and save through the mosc: file system, so edits may reach them.
     // Extract to a simple scenario runs our command, which shows a pick list of attributes first.
     initializationOptions: { packageFileSystem: true, extractPicker: true },
+    // The client's own handler restarts a server whose connection closed; not while the window closes with it.
+    errorHandler: {
+      error: (error, message, count) => defaultHandler().error(error, message, count),
+      closed: () => (closing() ? { action: CloseAction.DoNotRestart, handled: true } : defaultHandler().closed()),
+    },
     middleware: {
       ...whileRunning(() => client.isRunning()),
       // Views that show the server's answers (the preview, the structure) ask again once the server has the edit.
@@ -83,25 +103,31 @@ export function createLanguageClient(context: vscode.ExtensionContext, afterChan
     },
   };
   const client = new LanguageClient(CONFIGURATION_SECTION, 'Modular2Simple Language Server', serverOptions, clientOptions);
+  let fallback: ErrorHandler | undefined;
+  const defaultHandler = (): ErrorHandler => (fallback ??= client.createDefaultErrorHandler());
   return client;
 }
 
 /** The server's custom requests (common/src/protocol.ts), starting the client first when needed. */
 export class ServerCommandClient {
-  constructor(private readonly client: LanguageClient) {}
+  constructor(
+    private readonly client: LanguageClient,
+    private readonly lifecycle: ServerLifecycle,
+  ) {}
 
-  private async started(): Promise<LanguageClient> {
-    if (!this.client.isRunning()) await this.client.start();
+  /** The client once its server runs (started again after a crash; refused while the window closes). */
+  async running(): Promise<LanguageClient> {
+    await this.lifecycle.running();
     return this.client;
   }
 
   async flattenToText(uri: vscode.Uri, options: FlattenOptions = {}): Promise<FlattenTextResult> {
-    return (await this.started()).sendRequest(FlattenToTextRequest, { uri: uri.toString(), options });
+    return (await this.running()).sendRequest(FlattenToTextRequest, { uri: uri.toString(), options });
   }
 
   /** The scenario exported and loaded by ScenarioRunner's own code (the harness shipped with the extension). */
   async checkInScenarioRunner(params: CheckInScenarioRunnerParams, token?: vscode.CancellationToken): Promise<CheckInScenarioRunnerResult> {
-    return (await this.started()).sendRequest(CheckInScenarioRunnerRequest, params, token);
+    return (await this.running()).sendRequest(CheckInScenarioRunnerRequest, params, token);
   }
 
   /** Writes the flattened scenario; an existing output is replaced (the caller asked the user first). */
@@ -112,7 +138,7 @@ export class ServerCommandClient {
     token?: vscode.CancellationToken,
     outsideWorkspace = false,
   ): Promise<WriteResult> {
-    return (await this.started()).sendRequest(
+    return (await this.running()).sendRequest(
       ExportForCarlaRequest,
       { uri: input.toString(), outputPath, ...(outsideWorkspace ? { outsideWorkspace } : {}) },
       token,
@@ -126,7 +152,7 @@ export class ServerCommandClient {
     token?: vscode.CancellationToken,
     outsideWorkspace = false,
   ): Promise<WriteResult> {
-    return (await this.started()).sendRequest(
+    return (await this.running()).sendRequest(
       FlattenToFileRequest,
       { uri: input.toString(), outputPath, options, ...(outsideWorkspace ? { outsideWorkspace } : {}) },
       token,
@@ -135,11 +161,11 @@ export class ServerCommandClient {
 
   /** The live preview's text and line map, from the server's flattener. */
   async preview(uri: vscode.Uri): Promise<PreviewResult> {
-    return (await this.started()).sendRequest(PreviewRequest, { uri: uri.toString() });
+    return (await this.running()).sendRequest(PreviewRequest, { uri: uri.toString() });
   }
 
   async pack(inputs: vscode.Uri[], outputPath: string, token?: vscode.CancellationToken, selfContained = false): Promise<WriteResult> {
-    return (await this.started()).sendRequest(
+    return (await this.running()).sendRequest(
       PackRequest,
       { inputs: inputs.map((input) => input.toString()), outputPath, ...(selfContained ? { selfContained } : {}) },
       token,
@@ -148,40 +174,40 @@ export class ServerCommandClient {
 
   /** Extract to a simple scenario with the attributes chosen: the edit to apply. */
   async extractGroup(params: ExtractGroupParams): Promise<ExtractGroupResult> {
-    return (await this.started()).sendRequest(ExtractGroupRequest, params);
+    return (await this.running()).sendRequest(ExtractGroupRequest, params);
   }
 
   /** A server's WorkspaceEdit as the editor's. */
   async workspaceEdit(edit: LspWorkspaceEdit): Promise<vscode.WorkspaceEdit> {
-    return (await this.started()).protocol2CodeConverter.asWorkspaceEdit(edit);
+    return (await this.running()).protocol2CodeConverter.asWorkspaceEdit(edit);
   }
 
   async structure(uri: vscode.Uri, token?: vscode.CancellationToken): Promise<StructureNode | null> {
-    return (await this.started()).sendRequest(StructureRequest, { uri: uri.toString() }, token);
+    return (await this.running()).sendRequest(StructureRequest, { uri: uri.toString() }, token);
   }
 
   /** The text of a new main scenario at `scenario` with an ego on `roadNetwork`; the caller writes it. */
   async newScenario(scenario: vscode.Uri, roadNetwork: vscode.Uri): Promise<NewScenarioResult> {
-    return (await this.started()).sendRequest(NewScenarioRequest, { scenario: scenario.toString(), roadNetwork: roadNetwork.toString() });
+    return (await this.running()).sendRequest(NewScenarioRequest, { scenario: scenario.toString(), roadNetwork: roadNetwork.toString() });
   }
 
   /** The modules of the scenario libraries (the user's folders, then the built-in one) and what could not be read. */
   async libraryModules(): Promise<LibraryListingResult> {
-    return (await this.started()).sendRequest(LibraryModulesRequest, {});
+    return (await this.running()).sendRequest(LibraryModulesRequest, {});
   }
 
   /** Insert into main: the questions to ask, or the edit once they are answered. */
   async libraryInsert(params: LibraryInsertParams): Promise<LibraryInsertResult> {
-    return (await this.started()).sendRequest(LibraryInsertRequest, params);
+    return (await this.running()).sendRequest(LibraryInsertRequest, params);
   }
 
   /** The built-in templates, for New Scenario from Template. */
   async templates(): Promise<TemplateSummary[]> {
-    return (await this.started()).sendRequest(TemplatesRequest, {});
+    return (await this.running()).sendRequest(TemplatesRequest, {});
   }
 
   /** The files of a new scenario from a template; the caller writes them. */
   async newFromTemplate(template: string, scenario: vscode.Uri): Promise<NewFromTemplateResult> {
-    return (await this.started()).sendRequest(NewFromTemplateRequest, { template, scenario: scenario.toString() });
+    return (await this.running()).sendRequest(NewFromTemplateRequest, { template, scenario: scenario.toString() });
   }
 }

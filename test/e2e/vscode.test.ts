@@ -243,6 +243,8 @@ describe('the packaged extension in a real VS Code (code-server, headless Chromi
       fs.writeFileSync(path.join(ARTIFACTS, 'code-server.log'), server?.log.join('') ?? '');
       const errorLog = path.join(profile.root, 'server-errors.log');
       serverErrors = fs.existsSync(errorLog) ? fs.readFileSync(errorLog, 'utf8') : '';
+      const logs = path.join(profile.userData, 'logs');
+      if (fs.existsSync(logs)) fs.cpSync(logs, path.join(ARTIFACTS, 'logs'), { recursive: true });
       fs.rmSync(profile.root, { recursive: true, force: true });
     }
     for (const result of endpoint.results) results.set(result.title, result);
@@ -333,6 +335,26 @@ describe('the packaged extension in a real VS Code (code-server, headless Chromi
 
   it('the language server logged no error', () => {
     assert.equal(serverErrors, '');
+  });
+
+  it('closing the window logs no error: no "Starting server failed", no failed deactivation', function () {
+    const logs = path.join(ARTIFACTS, 'logs');
+    if (!fs.existsSync(logs)) this.skip();
+    const alarming: string[] = [];
+    for (const entry of fs.readdirSync(logs, { recursive: true, withFileTypes: true })) {
+      if (!entry.isFile()) continue;
+      const file = path.join(entry.parentPath, entry.name);
+      const text = fs.readFileSync(file, 'utf8');
+      if (entry.name === 'Modular2Simple Language Server.log')
+        for (const line of text.split('\n')) if (/Starting server failed|\[error\]/.test(line)) alarming.push(`${entry.name}: ${line}`);
+      // The extension host's own log after the window asked it to end: what deactivating the extensions logged.
+      if (entry.name === 'remoteexthost.log') {
+        const closing = text.indexOf('Extension host terminating');
+        if (closing < 0) continue;
+        for (const line of text.slice(closing).split('\n')) if (/\[error\]/.test(line)) alarming.push(`${entry.name}: ${line}`);
+      }
+    }
+    assert.deepEqual(alarming, []);
   });
 
   it('nothing else failed inside VS Code', () => {

@@ -1,13 +1,17 @@
 import * as vscode from 'vscode';
-import type { LanguageClient } from 'vscode-languageclient/node';
+import type { ServerCommandClient } from '../languageClient';
 import { commandTargets } from '../commands';
 import { packageEntryUri } from '../packageFileSystem';
 import { BirdsEyeView } from './panel';
 import type { RunSource } from './runData';
 
 /** Registers the bird's-eye view and its commands; returns the view (for the extension's API). */
-export function registerBirdsEye(context: vscode.ExtensionContext, client: LanguageClient, log: (message: string) => void): BirdsEyeView {
-  const view = new BirdsEyeView(context.extensionUri, client, log);
+export function registerBirdsEye(
+  context: vscode.ExtensionContext,
+  server: ServerCommandClient,
+  log: (message: string) => void,
+): BirdsEyeView {
+  const view = new BirdsEyeView(context.extensionUri, server, log);
   context.subscriptions.push(
     view,
     vscode.commands.registerCommand('modular2simple.showBirdsEye', async (clicked: unknown) => {

@@ -1,6 +1,5 @@
 import * as path from 'node:path';
 import * as vscode from 'vscode';
-import type { LanguageClient } from 'vscode-languageclient/node';
 import { writeFileAtomic } from '../../../common/src/atomic';
 import type { DebugState } from '../../../common/src/debugState';
 import { SceneRequest, type SceneResult } from '../../../common/src/sceneProtocol';
@@ -9,6 +8,7 @@ import { appendDebugState } from './liveRun';
 import { isFromView, type FromView, type RenderStats, type RunTracks, type ToView } from './messages';
 import { birdsEyeHtml } from './page';
 import { loadRun, type RunSource } from './runData';
+import type { ServerCommandClient } from '../languageClient';
 
 export const BIRDS_EYE_VIEW_TYPE = 'modular2simple.birdsEye';
 const REFRESH_DELAY_MS = 300;
@@ -45,7 +45,7 @@ export class BirdsEyeView implements vscode.Disposable {
 
   constructor(
     private readonly extensionUri: vscode.Uri,
-    private readonly client: LanguageClient,
+    private readonly server: ServerCommandClient,
     private readonly log: (message: string) => void,
   ) {
     const refreshSoon = (document: vscode.TextDocument) => {
@@ -194,13 +194,13 @@ export class BirdsEyeView implements vscode.Disposable {
     const source = this.source;
     if (!source || !this.panel) return;
     try {
-      if (!this.client.isRunning()) await this.client.start();
+      const client = await this.server.running();
       const roadPath = vscode.workspace.getConfiguration('modular2simple', source).get<string[]>('esmini.roadPath', []);
       const folder = vscode.workspace.getWorkspaceFolder(source)?.uri.fsPath ?? vscode.workspace.workspaceFolders?.[0]?.uri.fsPath;
       const resolvedRoadPath = roadPath
         .filter((entry) => typeof entry === 'string' && entry)
         .map((entry) => (folder ? path.resolve(folder, entry) : entry));
-      const scene = await this.client.sendRequest(SceneRequest, { uri: source.toString(), roadPath: resolvedRoadPath });
+      const scene = await client.sendRequest(SceneRequest, { uri: source.toString(), roadPath: resolvedRoadPath });
       if (source !== this.source) return;
       this.scene = scene;
       this.post({ type: 'scene', scene });
