@@ -10,7 +10,8 @@ import { createProtocolConnection, StreamMessageReader, StreamMessageWriter } fr
 import { previewLatency } from './previewLatency.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
-const server = path.join(root, 'dist', 'server.js');
+// BENCH_SERVER: another build's server.js, to measure two builds side by side in the same minutes.
+const server = process.env.BENCH_SERVER ?? path.join(root, 'dist', 'server.js');
 const library = path.resolve(root, '..', 'shared', 'corpus', 'modular2simple', 'library');
 const samples = Number(process.env.BENCH_SAMPLES ?? 100);
 // BENCH_NODE_ARGS are given to the server's node (e.g. --require of a probe); BENCH_LSP_EDITS_ONLY=1 stops after part 1;
@@ -38,6 +39,16 @@ function residentMb(pid) {
   /** @param {string} field */
   const kb = (field) => Number(new RegExp(`${field}:\\s+(\\d+)`).exec(status)?.[1] ?? NaN);
   return { rss: kb('VmRSS') / 1024, peak: kb('VmHWM') / 1024 };
+}
+
+/**
+ * The CPU time a process has used, in ms (user and system, from /proc): on a shared machine an edit's
+ * wall time says more about the other processes than about the server.
+ * @param {number | undefined} pid
+ */
+function cpuMs(pid) {
+  const fields = readFileSync(`/proc/${pid}/stat`, 'utf8').split(') ')[1].split(' ');
+  return ((Number(fields[11]) + Number(fields[12])) * 1000) / 100;
 }
 
 /**
@@ -290,7 +301,9 @@ async function editLatency(filePath, text, label) {
   line(`open ${label} to diagnostics`, `${fmt(now() - started)} ms   (${first.length} diagnostics)`);
   const references = text.split('key="AbsoluteTargetSpeed.value" value="').length - 1;
   const times = [];
-  for (let i = 0; i < Math.min(samples, 60); i++) {
+  const edits = Math.min(samples, Number(process.env.BENCH_EDITS ?? 60));
+  const cpuBefore = cpuMs(session.child.pid);
+  for (let i = 0; i < edits; i++) {
     const position = positionAfter(text, 'key="AbsoluteTargetSpeed.value" value="', (i * 37) % references);
     version++;
     pending = session.diagnosticsFor(uri, version);
@@ -304,7 +317,9 @@ async function editLatency(filePath, text, label) {
     await pending;
     times.push(now() - started);
   }
+  const cpuPerEdit = (cpuMs(session.child.pid) - cpuBefore) / edits;
   row(`edit -> diagnostics, ${label}`, stats(times), 30);
+  line('  server CPU per edit (user + system, 10 ms ticks)', `${fmt(cpuPerEdit)} ms`);
   if (process.env.BENCH_TIMES) console.log(times.map((t) => t.toFixed(0)).join(' '));
   return { uri, version };
 }

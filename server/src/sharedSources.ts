@@ -18,7 +18,7 @@ export const SHARED_SOURCE_BYTES: number = SERVER_MEMOS.sharedSources.bound.byte
  * may go. A source let go is read again on demand.
  */
 export class SharedSources {
-  private readonly entries = new Map<string, { source: Promise<FlatSource>; size: number }>();
+  private readonly entries = new Map<string, { source: Promise<FlatSource>; size: number; settled?: FlatSource }>();
   /** Bytes of every source read, kept or not. */
   private total = 0;
 
@@ -40,13 +40,19 @@ export class SharedSources {
     return entry.source;
   }
 
+  /** The source of `id` once read (used as `get` is), or undefined while it is being read or not kept. */
+  settled(id: string): FlatSource | undefined {
+    return this.get(id) && this.entries.get(id)?.settled;
+  }
+
   set(id: string, source: Promise<FlatSource>): void {
     this.delete(id);
-    const entry = { source, size: 0 };
+    const entry: { source: Promise<FlatSource>; size: number; settled?: FlatSource } = { source, size: 0 };
     this.entries.set(id, entry);
     source.then(
       (flat) => {
         if (this.entries.get(id) !== entry) return;
+        entry.settled = flat;
         entry.size = SOURCE_BYTES_PER_CHARACTER * ((flat.original?.document.text.length ?? 0) + (flat.text?.length ?? 0));
         this.total += entry.size;
         this.trim();
@@ -109,6 +115,13 @@ export class ReusingFlattener extends Flattener {
     carlaRelease: CarlaRelease,
   ) {
     super(store, simulator, schema, schemaChecks, carlaRelease);
+  }
+
+  /** The source `source` would give now, read before (the same bookkeeping as `source`); undefined when it would read. */
+  override knownSource(ref: SourceRef, stack: SourceRef[]): FlatSource | undefined {
+    const id = refId(ref);
+    if (stack.length > 0) this.noteRead(refId(stack[0]), id);
+    return this.shared.settled(id);
   }
 
   override source(ref: SourceRef, stack: SourceRef[]): Promise<FlatSource> {

@@ -124,6 +124,15 @@ export const CORE_MEMOS = {
     bound: WITH_KEY,
     invalidated: 'never: a new parse is a new key',
   },
+  linksOfParse: {
+    where: '`Flattener.linkAll` (`core/flatten/carriedLinks.ts`)',
+    key: 'a parse of a file with references',
+    holds:
+      "the links its references were given (resolution, source read, groups, override plans) and the problems each reported, with the store and the files being read: after an edit inside one value, a reference outside the edited group whose file resolves to the same source read takes its link (a parse's own parameters planned again) and its problems (moved on the edited line) instead of being linked again",
+    bound: WITH_KEY,
+    invalidated:
+      'never: a new parse is a new key; a link is taken only while its resolution and source read are those `resolve` and `source` would give now',
+  },
   previousParseOfValueEdit: {
     where: '`valueEditOf` (`core/xml/reparse.ts`)',
     key: 'the new parse of an in-value edit',

@@ -9,7 +9,8 @@ import { schemaProblems } from '../diagnostics/schemaFindings';
 import { SchemaCheckMemory } from '../schema/problems';
 import { analyzeDocument, CatalogLoader, semanticProblems } from '../semantics';
 import { refId, ScenarioStore, SourceError, SourceRef } from '../sources';
-import { isWellFormed, parseXml } from '../xml';
+import { isWellFormed, parseXml, ValueEdit, valueEditOf } from '../xml';
+import { LinkCarry, linkProblems, rememberLinks } from './carriedLinks';
 import { checkDeclarations, checkOutput, entityProblems } from './checks';
 import { applyEdits, parameterAttributeSpans } from './edits';
 import { duplicateOuterGroupProblems, link } from './link';
@@ -17,7 +18,7 @@ import { outputSchemaProblems, overrideValueProblems } from './outputSchema';
 import { problemAt } from './report';
 import { pathBaseOf, rebaseFlattened } from './rebase';
 import { render } from './render';
-import { AnalysisResult, FlatSource, FlattenOptions, FlattenResult, PackagedFile, SchemaOptions } from './types';
+import { AnalysisResult, FlatSource, FlattenOptions, FlattenResult, LinkedReference, PackagedFile, SchemaOptions } from './types';
 
 /** The catalogs a file reaches (its own references first, then those of the files it imports from). */
 function catalogIndexOf(source: FlatSource): Map<string, { kind: string; directory: string }> {
@@ -122,6 +123,13 @@ export class Flattener {
     return pending;
   }
 
+  /** What `source` would give without reading: this flattener reads each file once and carries no links across edits. */
+  knownSource(ref: SourceRef, stack: SourceRef[]): FlatSource | undefined {
+    void ref;
+    void stack;
+    return undefined;
+  }
+
   /**
    * Renders the flattened text and model of a source on first use: only the sources whose groups
    * are imported, and the outputs, need them, so an editor analysing one file never renders it.
@@ -183,6 +191,8 @@ export class Flattener {
     }
     const schemaVersion = this.schema.version;
     if (schemaVersion !== 'off') result.problems.push(...schemaProblems(ref, document, this.schemaChecks, { version: schemaVersion }));
+    // Taken before the semantic model lets the previous parse go: the links of references the edit left alone carry over.
+    const valueEdit = valueEditOf(document);
     const model = readModel(document);
     result.original = model;
     checkDeclarations(result, model);
@@ -196,7 +206,7 @@ export class Flattener {
         if (!result.dependencies.some((known) => refId(known) === refId(file))) result.dependencies.push(file);
     }
     const wellFormed = isWellFormed(document);
-    await this.linkAll(result, model, stack);
+    await this.linkAll(result, model, stack, valueEdit);
     result.catalogIndex = catalogIndexOf(result);
 
     if (!wellFormed) return result;
@@ -211,12 +221,23 @@ export class Flattener {
   }
 
   /** Follows every reference of a file read, gathering the problems and dependencies of the files they read. */
-  private async linkAll(result: FlatSource, model: ScenarioModel, stack: SourceRef[]): Promise<void> {
+  private async linkAll(result: FlatSource, model: ScenarioModel, stack: SourceRef[], valueEdit: ValueEdit | undefined): Promise<void> {
     const childProblems: Problem[] = [];
     const dependencyIds = new Set([refId(result.ref)]);
     result.problems.push(...duplicateOuterGroupProblems(model, result.ref));
-    for (const reference of model.references) {
-      const linked = await link(this, reference, result.ref, model, stack, result);
+    const carry = LinkCarry.of(valueEdit, model.references.length, this, result.ref, stack);
+    const problemsOfLinks: Problem[][] = [];
+    for (const [index, reference] of model.references.entries()) {
+      const carried = carry?.carry(index, reference);
+      const firstProblem = result.problems.length;
+      let linked: LinkedReference;
+      if (carried) {
+        linked = carried.link;
+        result.problems.push(...carried.problems);
+      } else {
+        linked = await link(this, reference, result.ref, model, stack, result);
+      }
+      problemsOfLinks.push(linkProblems(result.problems, firstProblem, result.problems.length));
       result.links.push(linked);
       if (linked.source) {
         childProblems.push(...linked.source.allProblems);
@@ -230,5 +251,7 @@ export class Flattener {
       }
     }
     result.allProblems = uniqueProblems([...result.problems, ...childProblems]);
+    if (model.references.length > 0)
+      rememberLinks(model.document, { store: this.store, stack: stack.map(refId), links: result.links, problems: problemsOfLinks });
   }
 }

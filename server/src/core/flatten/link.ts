@@ -38,6 +38,8 @@ import { FlatSource, LinkedGroupReference, LinkedReference, OVERRIDE_PROBLEM_COD
 export interface LinkContext {
   readonly store: ScenarioStore;
   source(ref: SourceRef, stack: SourceRef[]): Promise<FlatSource>;
+  /** What `source` would give now, when it is already read; undefined when it would read (a flattener sharing no sources across edits). */
+  knownSource?(ref: SourceRef, stack: SourceRef[]): FlatSource | undefined;
   rendered(source: FlatSource): FlatSource;
 }
 

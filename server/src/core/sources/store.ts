@@ -351,17 +351,23 @@ export class ScenarioStore {
     };
   }
 
-  /** Resolves a `scenarioFileName` written in the file `from` (SPEC 3). */
-  async resolve(name: string, from: SourceRef): Promise<Resolution> {
+  /** The resolution `resolve` would give now without looking again: a file found while no kind changed; otherwise undefined. */
+  knownResolution(name: string, from: SourceRef): Resolution | undefined {
     // A file found is found again while no kind changed (a package's contents change only with an invalidate, which clears the kinds).
     const generation = this.kinds.generation;
     if (generation !== this.resolutionsGeneration) {
       this.resolutions.clear();
       this.resolutionsGeneration = generation;
     }
-    const key = `${refId(from)}\n${name}`;
-    const known = this.resolutions.get(key);
+    return this.resolutions.get(`${refId(from)}\n${name}`);
+  }
+
+  /** Resolves a `scenarioFileName` written in the file `from` (SPEC 3). */
+  async resolve(name: string, from: SourceRef): Promise<Resolution> {
+    const known = this.knownResolution(name, from);
     if (known) return known;
+    const generation = this.kinds.generation;
+    const key = `${refId(from)}\n${name}`;
     const resolution = await this.resolveAgain(name, from);
     if ((resolution.kind === 'scenario' || resolution.kind === 'package') && this.kinds.generation === generation) {
       if (this.resolutions.size >= CORE_MEMOS.resolutions.bound.entries) this.resolutions.clear();
