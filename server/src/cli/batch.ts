@@ -10,7 +10,7 @@ import { BatchIdentity, criteriaFailure, ResultsError, ResultsFolder } from '../
 import { NoEsminiError, runConcrete, RunSettings } from '../batch/runConcrete';
 import type { PackagedFile } from '../core/flatten/types';
 import { FileKind, nodeFileSystem, splitScenarioPath } from '../core/sources';
-import { formatVariationProblems, loadVariations, rebasedConcreteText, samplingProblem, SamplingError } from '../core/variations';
+import { loadVariations, rebasedConcreteText, samplingProblem, SamplingError } from '../core/variations';
 import { locateEsmini } from '../esmini/locate';
 import { RUN_DEFAULTS } from '../esmini/run';
 import {
@@ -25,7 +25,7 @@ import {
   wholeNumber,
 } from './common';
 import { flatteningScenarioLoader, readDistributionFile, scenarioFolderOf } from './scenarioText';
-import { sampleIndices } from './vary';
+import { chosenIndices, problemPrinter, samplingOptions } from './vary';
 
 export const BATCH_HELP = `Run every concrete scenario of a distribution in esmini (modular2simple batch FILE --results DIR ...):
   --results DIR             where results.csv and results.json go; run again into the same DIR, only what is
@@ -56,8 +56,6 @@ export const BATCH_HELP = `Run every concrete scenario of a distribution in esmi
   missing (bullmq and ioredis, for --queue), Redis unreachable or the results cannot be written, 4 internal error,
   130 interrupted (run it again to finish).`;
 
-const DEFAULT_MAX_COMBINATIONS = 1_000_000n;
-
 export function jobsOption(text: string | undefined): number {
   const jobs = wholeNumber(text, '--jobs');
   if (jobs === 0n) throw new UsageError('--jobs takes at least 1');
@@ -78,12 +76,6 @@ export function queueOption(text: string | undefined): URL | undefined {
 
 function sha256(text: string): string {
   return createHash('sha256').update(text).digest('hex');
-}
-
-function enumerate(count: bigint): bigint[] {
-  const all: bigint[] = [];
-  for (let i = 0n; i < count; i++) all.push(i);
-  return all;
 }
 
 /** `modular2simple batch`: runs the concrete scenarios of a distribution file and writes their results. */
@@ -128,14 +120,9 @@ async function runBatch(argv: string[], io: CliOutput): Promise<number> {
   });
   const junitFile = values.junit === undefined ? undefined : path.resolve(values.junit);
   if (values.results === undefined) throw new UsageError('batch needs --results DIR');
-  if (values.seed !== undefined && values.sample === undefined) throw new UsageError('--seed goes with --sample N');
+  const sampling = samplingOptions(values);
+  const { sample, seed } = sampling;
   const jobs = jobsOption(values.jobs);
-  const sample = wholeNumber(values.sample, '--sample');
-  const seed = values.seed === undefined ? 0 : Number(wholeNumber(values.seed, '--seed'));
-  const maxCombinations = wholeNumber(values['max-combinations'], '--max-combinations') ?? DEFAULT_MAX_COMBINATIONS;
-  if (sample === 0n) throw new UsageError('--sample takes at least 1');
-  if (sample !== undefined && sample > maxCombinations)
-    throw new UsageError(`--sample ${sample} is more than --max-combinations ${maxCombinations}`);
   const duration = durationOption(values.duration);
   const queue = queueOption(values.queue);
   if (queue && values['keep-runs']) throw new UsageError('--keep-runs keeps the runs of this machine: it does not go with --queue');
@@ -150,30 +137,14 @@ async function runBatch(argv: string[], io: CliOutput): Promise<number> {
     distributionPath,
     flatteningScenarioLoader((values['scenario-path'] ?? []).flatMap(splitScenarioPath), packagedFiles),
   );
-  const printProblems = (problems = loaded.problems): void => {
-    const shown = values.quiet ? problems.filter((problem) => problem.severity === 'error') : problems;
-    for (const line of formatVariationProblems(shown, loaded.lines, base)) io.err(line);
-  };
+  const printProblems = problemPrinter(loaded, values.quiet, io, base);
   printProblems();
   const variations = loaded.variations;
   if (!variations) return ExitCode.problems;
-  if (sample === undefined && variations.count > maxCombinations) {
-    throw new InputError(
-      `${positionals[0]}: ${variations.count} combinations are more than --max-combinations ${maxCombinations}; nothing was run (use --sample N, or raise --max-combinations)`,
-    );
-  }
-  const chosen = sample === undefined ? enumerate(variations.count) : sampleIndices(variations.count, sample, seed);
-  // Every draw is made before anything runs, so a Range that cannot be met leaves nothing behind.
-  if (variations.kind === 'stochastic') {
-    for (const index of chosen) {
-      try {
-        variations.assignmentAt(index);
-      } catch (error) {
-        if (!(error instanceof SamplingError)) throw error;
-        printProblems([samplingProblem(error, distributionPath)]);
-        return ExitCode.problems;
-      }
-    }
+  const chosen = chosenIndices(variations, sampling, positionals[0], 'nothing was run');
+  if (chosen instanceof SamplingError) {
+    printProblems([samplingProblem(chosen, distributionPath)]);
+    return ExitCode.problems;
   }
   const settings: RunSettings = { duration, seed: RUN_DEFAULTS.seed, esminiPath: values.esmini };
   if (!queue) {

@@ -4,11 +4,13 @@ import { CliCommand, CliOutput, ExitCode, failure, InputError, parseCommandLine,
 import { isSameFile, writeFileAtomic } from '../../../common/src/atomic';
 import {
   loadVariations,
+  LoadResult,
   formatVariationProblems,
   rebasedConcreteText,
   samplingProblem,
   SamplingError,
   ScenarioTextLoader,
+  VariationProblem,
   Variations,
 } from '../core/variations';
 import { seedBits, Xoshiro128StarStar } from '../core/variations/random';
@@ -40,11 +42,7 @@ export { readUtf8Exactly } from './scenarioText';
 
 /** N distinct indices below `count`, ascending, by Floyd's algorithm with the project's generator. */
 export function sampleIndices(count: bigint, wanted: bigint, seed: number): bigint[] {
-  if (wanted >= count) {
-    const all: bigint[] = [];
-    for (let i = 0n; i < count; i++) all.push(i);
-    return all;
-  }
+  if (wanted >= count) return enumerate(count);
   const random = new Xoshiro128StarStar(seedBits(seed));
   const chosen = new Set<bigint>();
   for (let j = count - wanted; j < count; j++) {
@@ -52,6 +50,66 @@ export function sampleIndices(count: bigint, wanted: bigint, seed: number): bigi
     chosen.add(chosen.has(candidate) ? j : candidate);
   }
   return [...chosen].sort((a, b) => (a < b ? -1 : a > b ? 1 : 0));
+}
+
+/** Every index below `count`. */
+export function enumerate(count: bigint): bigint[] {
+  const all: bigint[] = [];
+  for (let i = 0n; i < count; i++) all.push(i);
+  return all;
+}
+
+/** How many concrete scenarios vary and batch make: --sample, --seed and --max-combinations. */
+export interface Sampling {
+  sample: bigint | undefined;
+  seed: number;
+  maxCombinations: bigint;
+}
+
+/** Reads and checks --sample, --seed and --max-combinations, as vary and batch take them. */
+export function samplingOptions(values: { sample?: string; seed?: string; 'max-combinations'?: string }): Sampling {
+  if (values.seed !== undefined && values.sample === undefined) throw new UsageError('--seed goes with --sample N');
+  const sample = wholeNumber(values.sample, '--sample');
+  const seed = values.seed === undefined ? 0 : Number(wholeNumber(values.seed, '--seed'));
+  const maxCombinations = wholeNumber(values['max-combinations'], '--max-combinations') ?? DEFAULT_MAX_COMBINATIONS;
+  if (sample === 0n) throw new UsageError('--sample takes at least 1');
+  if (sample !== undefined && sample > maxCombinations)
+    throw new UsageError(`--sample ${sample} is more than --max-combinations ${maxCombinations}`);
+  return { sample, seed, maxCombinations };
+}
+
+/**
+ * The indices of the concrete scenarios to make: all of them or a sample; more than --max-combinations in all is
+ * refused (`where` names the distribution, `nothing` says what was not done). Every stochastic draw is made here,
+ * before anything runs or is written, so that a Range that cannot be met leaves nothing behind: its error is the answer.
+ */
+export function chosenIndices(variations: Variations, sampling: Sampling, where: string, nothing: string): bigint[] | SamplingError {
+  const { sample, seed, maxCombinations } = sampling;
+  if (sample === undefined && variations.count > maxCombinations) {
+    throw new InputError(
+      `${where}: ${variations.count} combinations are more than --max-combinations ${maxCombinations}; ${nothing} (use --sample N, or raise --max-combinations)`,
+    );
+  }
+  const chosen = sample === undefined ? enumerate(variations.count) : sampleIndices(variations.count, sample, seed);
+  if (variations.kind === 'stochastic') {
+    for (const index of chosen) {
+      try {
+        variations.assignmentAt(index);
+      } catch (error) {
+        if (!(error instanceof SamplingError)) throw error;
+        return error;
+      }
+    }
+  }
+  return chosen;
+}
+
+/** The distribution's problems, as vary and batch print them (errors only with --quiet). */
+export function problemPrinter(loaded: LoadResult, quiet: boolean, io: Output, base: string): (problems?: VariationProblem[]) => void {
+  return (problems = loaded.problems) => {
+    const shown = quiet ? problems.filter((problem) => problem.severity === 'error') : problems;
+    for (const line of formatVariationProblems(shown, loaded.lines, base)) io.err(line);
+  };
 }
 
 /**
@@ -93,14 +151,9 @@ async function varyScenarios(argv: string[], io: Output, givenLoader: ScenarioTe
     throw new UsageError('-o goes with --index I (use --out-dir DIR for many)');
   if ((values.sample !== undefined || values.seed !== undefined) && values['out-dir'] === undefined)
     throw new UsageError('--sample and --seed go with --out-dir DIR');
-  if (values.seed !== undefined && values.sample === undefined) throw new UsageError('--seed goes with --sample N');
+  const sampling = samplingOptions(values);
+  const { sample, seed, maxCombinations } = sampling;
   const index = wholeNumber(values.index, '--index');
-  const sample = wholeNumber(values.sample, '--sample');
-  const seed = values.seed === undefined ? 0 : Number(wholeNumber(values.seed, '--seed'));
-  const maxCombinations = wholeNumber(values['max-combinations'], '--max-combinations') ?? DEFAULT_MAX_COMBINATIONS;
-  if (sample === 0n) throw new UsageError('--sample takes at least 1');
-  if (sample !== undefined && sample > maxCombinations)
-    throw new UsageError(`--sample ${sample} is more than --max-combinations ${maxCombinations}`);
 
   const distribution = await readDistributionFile(positionals[0]);
   if ('problem' in distribution) throw new InputError(distribution.problem);
@@ -111,10 +164,7 @@ async function varyScenarios(argv: string[], io: Output, givenLoader: ScenarioTe
   const loadScenarioText =
     givenLoader ?? flatteningScenarioLoader((values['scenario-path'] ?? []).flatMap(splitScenarioPath), packagedFiles);
   const loaded = await loadVariations(distributionText, distributionPath, loadScenarioText);
-  const printProblems = (problems = loaded.problems): void => {
-    const shown = values.quiet ? problems.filter((problem) => problem.severity === 'error') : problems;
-    for (const line of formatVariationProblems(shown, loaded.lines, base)) io.err(line);
-  };
+  const printProblems = problemPrinter(loaded, values.quiet, io, base);
   printProblems();
   const variations = loaded.variations;
   if (!variations) return ExitCode.problems;
@@ -217,23 +267,10 @@ async function varyScenarios(argv: string[], io: Output, givenLoader: ScenarioTe
   }
 
   const outDir = values['out-dir'] as string;
-  if (sample === undefined && variations.count > maxCombinations) {
-    throw new InputError(
-      `${where(0)}: ${variations.count} combinations are more than --max-combinations ${maxCombinations}; nothing was written (use --sample N, or raise --max-combinations)`,
-    );
-  }
-  const chosen = sample === undefined ? enumerate(variations.count) : sampleIndices(variations.count, sample, seed);
-  // Every draw is made before anything is written, so a Range that cannot be met leaves no output behind.
-  if (variations.kind === 'stochastic') {
-    for (const chosenIndex of chosen) {
-      try {
-        variations.assignmentAt(chosenIndex);
-      } catch (error) {
-        if (!(error instanceof SamplingError)) throw error;
-        printProblems([samplingProblem(error, distributionPath)]);
-        return ExitCode.problems;
-      }
-    }
+  const chosen = chosenIndices(variations, sampling, where(0), 'nothing was written');
+  if (chosen instanceof SamplingError) {
+    printProblems([samplingProblem(chosen, distributionPath)]);
+    return ExitCode.problems;
   }
   try {
     await fs.promises.mkdir(outDir, { recursive: true });
@@ -270,12 +307,6 @@ async function varyScenarios(argv: string[], io: Output, givenLoader: ScenarioTe
         (sample !== undefined ? ` (a sample of ${chosen.length} of ${variations.count}, seed ${seed})` : ''),
     );
   return ExitCode.ok;
-}
-
-function enumerate(count: bigint): bigint[] {
-  const all: bigint[] = [];
-  for (let i = 0n; i < count; i++) all.push(i);
-  return all;
 }
 
 function concreteOrProblem(
