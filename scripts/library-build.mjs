@@ -886,7 +886,8 @@ export const MODULES = [
     group: 'Vehicles ahead',
     summary:
       "A queue of vehicles ahead, in the ego's lane and the one beside it, brakes together at a set deceleration down to the jam's speed once the ego's time headway to the last of them is below the one asked: the end of a traffic jam the ego comes up to.",
-    actor: "the last vehicle of the queue, ahead in the ego's lane (list the queue's other vehicles in Actors too: each brakes alike)",
+    actor:
+      "the last vehicle of the queue, ahead in the ego's lane (the queue's other vehicles, jam2 and jam3, are actors too: each brakes alike)",
     actorName: 'jam1',
     otherActors: ['jam2', 'jam3'],
     groupName: 'TrafficJamEnd',
@@ -919,9 +920,15 @@ export const MODULES = [
         name: 'last',
         about: "the last vehicle of the queue in the ego's lane, the headway is measured to",
       },
-      { key: 'EntityRef.entityRef', name: 'ego', about: 'the vehicle coming up to the queue, whose headway counts' },
+      { key: 'TriggeringEntities.EntityRef.entityRef', name: 'ego', about: 'the vehicle coming up to the queue, whose headway counts' },
+      { key: 'Actors.EntityRef[2].entityRef', name: 'jam2', about: 'the second vehicle of the queue, ahead of jam1 in the ego’s lane' },
+      { key: 'Actors.EntityRef[3].entityRef', name: 'jam3', about: 'the third vehicle of the queue, in the lane beside the ego’s' },
     ],
-    keys: {},
+    keys: {
+      'TriggeringEntities.EntityRef.entityRef': 'ego',
+      'Actors.EntityRef[2].entityRef': 'jam2',
+      'Actors.EntityRef[3].entityRef': 'jam3',
+    },
     maneuver: event(
       'TrafficJamBrake',
       privateAction(
@@ -1167,22 +1174,33 @@ function defaultOf(xml, key) {
   const parts = key.split('.');
   const attribute = parts[parts.length - 1];
   const element = parts[parts.length - 2];
-  const found = new RegExp(`<${element}\\b[^>]*\\bparameterAttributes="[^"]*\\b${attribute}\\b[^"]*"[^>]*\\s${attribute}="([^"]*)"`).exec(
-    xml,
-  );
-  if (!found) throw new Error(`no default for ${key}`);
-  return found[1];
+  const found = [
+    ...xml.matchAll(
+      new RegExp(`<${element}\\b[^>]*\\bparameterAttributes="[^"]*\\b${attribute}\\b[^"]*"[^>]*\\s${attribute}="([^"]*)"`, 'g'),
+    ),
+  ];
+  if (found.length === 0) throw new Error(`no default for ${key}`);
+  // Read by the last element name only: where elements of that name list the attribute with other values, the module's keys give the value.
+  if (found.some((other) => other[1] !== found[0][1]))
+    throw new Error(`${key}: ${element} elements that list ${attribute} differ in value; give its example value in the module's keys`);
+  return found[0][1];
 }
 
-/** The group's Actors: its actor, then any others that act alike. @param {Module} module */
-const actorRefs = (module) =>
-  [module.actorName, ...(module.otherActors ?? [])].map((actor) => `    <EntityRef entityRef="${actor}"/>`).join('\n');
+/**
+ * The group's Actors: its actor, then any others that act alike. In the module the others list entityRef (keys
+ * `Actors.EntityRef[2].entityRef`, ...): flattening sets only the first from the main's group (SPEC 4 step 2).
+ * @param {Module} module @param {boolean} inModule
+ */
+const actorRefs = (module, inModule) =>
+  [module.actorName, ...(module.otherActors ?? [])]
+    .map((actor, index) => `    <EntityRef${inModule && index > 0 ? ' parameterAttributes="entityRef"' : ''} entityRef="${actor}"/>`)
+    .join('\n');
 
 /** @param {Module} module */
 export function moduleText(module) {
   const group = `<ManeuverGroup name="${module.groupName}" maximumExecutionCount="1">
   <Actors selectTriggeringEntities="false">
-${actorRefs(module)}
+${actorRefs(module, true)}
   </Actors>
   <Maneuver name="${module.groupName}Maneuver">
 ${indent(module.maneuver, 4)}
@@ -1202,7 +1220,7 @@ export function exampleText(module) {
     .join('\n');
   const group = `<ManeuverGroup name="${module.groupName}" maximumExecutionCount="1">
   <Actors selectTriggeringEntities="false">
-${actorRefs(module)}
+${actorRefs(module, false)}
   </Actors>
   <ScenarioReference scenarioFileName="library:${module.name}">
     <ManeuverGroupReference maneuverGroupName="${module.groupName}">

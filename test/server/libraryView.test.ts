@@ -146,6 +146,67 @@ describe('language server: the Scenario Library view and Insert into main (JSON-
     assert.ok(Math.abs(walker[walker.length - 1] - walker[0]) > 1, 'the pedestrian walked');
   });
 
+  it('Insert into main of traffic-jam-end asks who plays each of its three actors, writes them all, and the whole queue brakes in esmini', async function () {
+    const names: Record<string, string> = { ego: 'Me', jam1: 'Q1', jam2: 'Q2', jam3: 'Q3' };
+    const file = path.join(root, 'jam.xosc');
+    // Its example main with the entities renamed and its group taken out: the Act holds only its StartTrigger.
+    let text = fs
+      .readFileSync(path.join(builtIn, 'examples', 'traffic-jam-end.xosc'), 'utf8')
+      .replace(/\n *<ManeuverGroup name="TrafficJamEnd"[\s\S]*?<\/ManeuverGroup>/, '')
+      .replace(
+        /(<ScenarioObject name|entityRef)="(ego|jam1|jam2|jam3)"/g,
+        (_, attribute: string, name: string) => `${attribute}="${names[name]}"`,
+      )
+      .replace('filepath="../roads/', `filepath="${builtIn}/roads/`);
+    assert.doesNotMatch(text, /TrafficJamEnd"|"jam[123]"/);
+    const uri = await client.open(fileUri(file), text);
+    const questions = await client.send(LibraryInsertRequest, { uri, module: 'traffic-jam-end' });
+    assert.deepEqual(
+      questions.roles.map((role) => [role.name, role.actor]),
+      [
+        ['jam1', true],
+        ['ego', false],
+        ['jam2', true],
+        ['jam3', true],
+      ],
+    );
+    const answer = await client.send(LibraryInsertRequest, { uri, module: 'traffic-jam-end', players: names });
+    assert.ok(answer.edit?.changes?.[uri], 'an edit of the main');
+    text = applyEdits(text, answer.edit.changes[uri]);
+    await client.close(uri);
+    await client.open(uri, text);
+    assert.deepEqual(
+      (await client.diagnosticsOf(uri)).map((diagnostic) => diagnostic.message),
+      [],
+    );
+    await client.close(uri);
+    fs.writeFileSync(file, text);
+    const errors: string[] = [];
+    const flat = path.join(root, 'jam-flat.xosc');
+    assert.equal(
+      await main(['flatten', file, '-o', flat, '-q'], { out: () => {}, err: (line) => errors.push(line) }),
+      0,
+      errors.join('\n'),
+    );
+    assert.match(
+      fs.readFileSync(flat, 'utf8'),
+      /<EntityRef entityRef="Q1"\/>\s*<EntityRef entityRef="Q2"\/>\s*<EntityRef entityRef="Q3"\/>/,
+    );
+
+    requireEsmini(this);
+    const steps = await runEsmini(flat, 6.5);
+    const speed = (name: string, index: number) =>
+      Math.hypot(
+        steps[index + 1].positions[name][0] - steps[index].positions[name][0],
+        steps[index + 1].positions[name][1] - steps[index].positions[name][1],
+      ) /
+      (steps[index + 1].time - steps[index].time);
+    for (const name of ['Q1', 'Q2', 'Q3']) {
+      assert.ok(speed(name, 0) > 9, `${name} drives at first (${speed(name, 0)} m/s)`);
+      assert.ok(speed(name, steps.length - 2) < 0.05, `${name} has braked to the jam's speed 0 (${speed(name, steps.length - 2)} m/s)`);
+    }
+  });
+
   it('a misspelt module and a main without an Act are refused with a reason', async function () {
     const uri = await client.open(fileUri(path.join(root, 'other.xosc')), '<OpenSCENARIO><Storyboard/></OpenSCENARIO>');
     await assert.rejects(client.send(LibraryInsertRequest, { uri, module: 'cut-inn' }), /did you mean 'cut-in'/);

@@ -1,5 +1,5 @@
 import { detectEol, LineIndex } from './text';
-import { attributeValue, isWellFormed, parseXml, XmlDocument, XmlElement } from './xml';
+import { attributeValue, endTagStart, isWellFormed, parseXml, XmlDocument, XmlElement } from './xml';
 
 export interface FormatOptions {
   /** Columns of one indentation level (and of a tab when measuring a line). */
@@ -90,11 +90,6 @@ function miscNodes(text: string, start: number, limit: number, into: Item[]): vo
     into.push({ kind, start: open, end });
     position = end;
   }
-}
-
-/** Offset of `</` of a closed element that is not self-closing. */
-function endTagStart(text: string, element: XmlElement): number {
-  return text.lastIndexOf('</', element.end - 1);
 }
 
 /**

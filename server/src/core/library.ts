@@ -18,7 +18,8 @@
  */
 import { decodeScenario } from './encoding';
 import { keyMatches, overridableAttributes } from './keys';
-import { findGroup, parseScenario } from './model';
+import { findGroup, ManeuverGroupInfo, parseScenario } from './model';
+import { attributeValue } from './xml';
 import { pathsFor } from './paths';
 import { FileSystemHost, LibraryFolder, LIBRARY_PREFIX } from './sources';
 import { closestMatch, LineIndex } from './text';
@@ -46,6 +47,11 @@ export interface LibraryModule {
   summary: string;
   maneuverGroup: string;
   actor: { name: string; about: string };
+  /**
+   * The entities the group's `Actors` names, in order (the first is the one a main's outer group sets, SPEC 4 step 2):
+   * a group whose actions apply alike to several (traffic-jam-end's queue) names them all.
+   */
+  actors: string[];
   parameters: ModuleParameter[];
   /** `examples/NAME.xosc` of the library, a main file that uses the module, when it exists. */
   example?: string;
@@ -70,6 +76,15 @@ export interface LibraryListing {
 
 const DOC_BLOCK = /<!--\s*library module\b([\s\S]*?)-->/;
 const PARAMETER_LINE = /^parameter\s+(\S+)\s*=\s*([^\s[(:]+)\s*(?:\[([^\]]*)\])?\s*(?:\(([^)]*)\))?\s*:\s*(.*)$/;
+
+/** The entityRefs of a group's own `Actors`, in order. */
+function groupActors(group: ManeuverGroupInfo | undefined): string[] {
+  const actors = group?.element.children.find((child) => child.name === 'Actors');
+  return (actors?.children ?? [])
+    .filter((child) => child.name === 'EntityRef')
+    .map((entityRef) => attributeValue(entityRef, 'entityRef') ?? '')
+    .filter((name) => name !== '');
+}
 
 /** The module a file's text describes, or the problems that keep it out of the library. */
 export function readModule(text: string, file: string, library: LibraryFolder): { module?: LibraryModule; problems: LibraryProblem[] } {
@@ -187,7 +202,7 @@ export function readModule(text: string, file: string, library: LibraryFolder): 
   }
   if (problems.length > 0) return { problems };
   return {
-    module: { name, file, library, title, group, summary, maneuverGroup, actor, parameters, hides: [] },
+    module: { name, file, library, title, group, summary, maneuverGroup, actor, actors: groupActors(groupInfo), parameters, hides: [] },
     problems,
   };
 }

@@ -7,7 +7,7 @@
 import type { LibraryModule } from './library';
 import { parseScenario } from './model';
 import { LIBRARY_PREFIX } from './sources';
-import { attributeValue, escapeAttributeValue, XmlElement } from './xml';
+import { attributeValue, endTagStart, escapeAttributeValue, XmlElement } from './xml';
 
 /** An entity the module names, which an entity of the main plays. */
 export interface ModuleRole {
@@ -49,14 +49,17 @@ export function isEntityKey(key: string): boolean {
   return /entityref$/i.test(attribute);
 }
 
-/** The module's roles: its actor first, then each other entity its entity-valued keys name by default. */
+/**
+ * The module's roles: its actor first, then each other entity its entity-valued keys name by default; such an entity
+ * that the group's Actors also names (traffic-jam-end's `jam2`, set by the key `Actors.EntityRef[2].entityRef`) is an actor.
+ */
 export function moduleRoles(module: LibraryModule): ModuleRole[] {
   const roles: ModuleRole[] = [{ name: module.actor.name, about: module.actor.about, actor: true, keys: [] }];
   for (const parameter of module.parameters) {
     if (!isEntityKey(parameter.key) || parameter.defaultValue === undefined) continue;
     let role = roles.find((known) => known.name === parameter.defaultValue);
     if (!role) {
-      role = { name: parameter.defaultValue, about: parameter.about, actor: false, keys: [] };
+      role = { name: parameter.defaultValue, about: parameter.about, actor: module.actors.includes(parameter.defaultValue), keys: [] };
       roles.push(role);
     }
     role.keys.push(parameter.key);
@@ -138,7 +141,9 @@ export function insertModuleGroup(
   );
   const player = (role: string) => choice.players[role] ?? role;
   const attributeText = (value: string) => escapeAttributeValue(value);
-  const actorPlayer = player(module.actor.name);
+  // Every entity of the module's Actors (only the first if it names none); flattening sets only the first from the
+  // outer group (SPEC 4 step 2), the others through their keys, so the main reads as it runs.
+  const actorPlayers = (module.actors.length > 0 ? module.actors : [module.actor.name]).map(player);
   const roleOfDefault = new Map(moduleRoles(module).map((role) => [role.name, role]));
   const parameterLines = module.parameters
     .filter((parameter) => parameter.defaultValue !== undefined)
@@ -152,7 +157,7 @@ export function insertModuleGroup(
   const lines = [
     `${groupIndent}<ManeuverGroup name="${attributeText(groupName)}" maximumExecutionCount="1">`,
     `${groupIndent}${unit}<Actors selectTriggeringEntities="false">`,
-    `${groupIndent}${unit.repeat(2)}<EntityRef entityRef="${attributeText(actorPlayer)}"/>`,
+    ...actorPlayers.map((actor) => `${groupIndent}${unit.repeat(2)}<EntityRef entityRef="${attributeText(actor)}"/>`),
     `${groupIndent}${unit}</Actors>`,
     `${groupIndent}${unit}<ScenarioReference scenarioFileName="${attributeText(`${LIBRARY_PREFIX}${module.name}`)}">`,
     `${groupIndent}${unit.repeat(2)}<ManeuverGroupReference maneuverGroupName="${attributeText(module.maneuverGroup)}">`,
@@ -167,10 +172,11 @@ export function insertModuleGroup(
   if (last) return { offset: last.end, text: `\n${block}`, groupName, act: attributeValue(act, 'name') ?? '' };
   if (act.selfClosing) throw new Error(`the Act '${attributeValue(act, 'name') ?? ''}' is empty (<Act/>): give it a StartTrigger first`);
   const next = act.children[0];
-  // Before the Act's first child (its StartTrigger), at the start of that child's line; else before </Act>.
-  const before = next ? lineStart(text, next.start) : lineStart(text, act.end - '</Act>'.length);
-  const atLineStart = text.slice(before, next ? next.start : act.end - '</Act>'.length).trim() === '';
-  if (atLineStart) return { offset: before, text: `${block}\n`, groupName, act: attributeValue(act, 'name') ?? '' };
-  const at = next ? next.start : act.end - '</Act>'.length;
+  // Before the Act's first child (its StartTrigger), at the start of that child's line; else before its end tag
+  // (which may hold whitespace: `</Act >`, `</Act\n>`).
+  const at = next ? next.start : endTagStart(text, act);
+  const before = lineStart(text, at);
+  if (text.slice(before, at).trim() === '')
+    return { offset: before, text: `${block}\n`, groupName, act: attributeValue(act, 'name') ?? '' };
   return { offset: at, text: `\n${block}\n${actIndent}`, groupName, act: attributeValue(act, 'name') ?? '' };
 }

@@ -11,6 +11,7 @@ export {
   forEachElement,
   elementAt,
   elementStartingAt,
+  endTagStart,
   escapeAttributeValue,
   firstDescendant,
   isWellFormed,

@@ -81,6 +81,11 @@ export function elementStartingAt(root: XmlElement | undefined, offset: number):
   return undefined;
 }
 
+/** Offset of the `</` of a closed element that is not self-closing (its end tag may hold whitespace: `</Act >`). */
+export function endTagStart(text: string, element: XmlElement): number {
+  return text.lastIndexOf('</', element.end - 1);
+}
+
 /** Whether `element` is `ancestor` or lies below it. */
 export function isWithin(element: XmlElement, ancestor: XmlElement): boolean {
   for (let current: XmlElement | undefined = element; current; current = current.parent) if (current === ancestor) return true;
