@@ -1,7 +1,7 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { TextDocument } from 'vscode-languageserver-textdocument';
-import { FixContext, RegisteredDiagnostic, RelatedPlace } from '../../../server/src/core/diagnostics';
+import { FixContext, ParameterScopes, RegisteredDiagnostic, RelatedPlace } from '../../../server/src/core/diagnostics';
 import { schemaProblems } from '../../../server/src/core/diagnostics/schemaFindings';
 import { SchemaCheckMemory } from '../../../server/src/core/schema/problems';
 import { applyEdits } from '../../support/textEdits';
@@ -14,8 +14,17 @@ import { temporaryWorkspace } from '../../support/workspace';
 
 export const RANGE = { start: { line: 0, character: 1 }, end: { line: 0, character: 4 } };
 
-/** What a module's fix is given: `data`, a document of `text` with the problem at `range`, and a related place where one is given. */
-export function fixContext(data: unknown, related?: Partial<RelatedPlace>, text = '<a/>', range = RANGE): FixContext<unknown> {
+/**
+ * What a module's fix is given: `data`, a document of `text` with the problem at `range`, a related place
+ * and the parameter scopes of the file's analysis where they are given.
+ */
+export function fixContext(
+  data: unknown,
+  related?: Partial<RelatedPlace>,
+  text = '<a/>',
+  range = RANGE,
+  parameters?: ParameterScopes,
+): FixContext<unknown> {
   const document = TextDocument.create('file:///main.xosc', 'xml', 0, text);
   return {
     data,
@@ -23,6 +32,7 @@ export function fixContext(data: unknown, related?: Partial<RelatedPlace>, text 
     range,
     parsed: async () => parseXml(document.getText()),
     schemaVersion: 'auto',
+    parameters: async () => parameters,
     related: related && {
       range: RANGE,
       sameDocument: false,

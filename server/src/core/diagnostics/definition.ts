@@ -54,6 +54,26 @@ export interface FixContext<D> {
   related: RelatedPlace | undefined;
   /** The schema version the workspace checks against (its `schemaVersion` setting), for fixes that insert what the schema requires. */
   schemaVersion: SchemaVersionSetting | 'off';
+  /** What the file's analysis knows of parameters around the problem, for a fix that declares one; undefined where the file has no analysis. */
+  parameters(): Promise<ParameterScopes | undefined>;
+}
+
+/** A parameter's declaration elsewhere, which a new declaration of its name may copy: its type, value and where it stands. */
+export interface ParameterTemplate {
+  type: string;
+  value: string;
+  /** Where it is declared, as a fix's title names it (a file, or `line 12`). */
+  from: string;
+}
+
+/** The parameter scopes around a problem, from the analysis of its file (the editor's adapter reads them). */
+export interface ParameterScopes {
+  /** The elements of the scopes that enclose the problem, innermost first (their parse is the document's text). */
+  scopes: readonly XmlElement[];
+  /** The document's root element. */
+  root: XmlElement | undefined;
+  /** The declaration of `name` in a simple scenario the file imports, else in another scope of the file. */
+  declarationOf(name: string): ParameterTemplate | undefined;
 }
 
 /** One replacement of a fix: in the problem's document, or in the file of its first related place. */

@@ -1,6 +1,6 @@
 import { ProblemDataByCode } from '../problems';
 import { defineDiagnostic, isRecord, isString, ProblemWording } from './definition';
-import { declareParameterHint } from './undeclaredParameter';
+import { declareParameterFixes, declareParameterHint } from './undeclaredParameter';
 import { QC } from './qcRules';
 
 /** A parameter a catalog entry uses without declaring it: a warning where esmini runs it (taking the value from the referencing scenario, SPEC 12). */
@@ -13,10 +13,11 @@ export function undeclaredCatalogParameterWording(name: string, esmini: boolean)
   };
 }
 
-/** A parameter a catalog entry uses without declaring it. Its quick fix is undeclared-parameter's (features/fixes/undeclaredParameter.ts). */
+/** A parameter a catalog entry uses without declaring it. Its quick fix is undeclared-parameter's: declare it in the entry. */
 export const UNDECLARED_CATALOG_PARAMETER = defineDiagnostic({
   code: 'undeclared-catalog-parameter',
   rule: { description: 'A catalog entry declares every parameter it uses.', qcRule: QC.catalogParameters },
   severity: 'error',
   isData: (value): value is ProblemDataByCode['undeclared-catalog-parameter'] => isRecord(value) && isString(value.parameter),
+  fixes: declareParameterFixes,
 });

@@ -1,5 +1,7 @@
 import { ProblemDataByCode } from '../problems';
-import { defineDiagnostic, isRecord, isString, ProblemWording } from './definition';
+import { indentationAt, Range } from '../text';
+import { escapeAttributeValue, XmlElement } from '../xml';
+import { CoreFix, defineDiagnostic, FixContext, isRecord, isString, ParameterScopes, ProblemWording, TextLines } from './definition';
 
 /** The hint of an undeclared parameter: a declaration to write, and where. */
 export function declareParameterHint(name: string, where: string): string {
@@ -26,10 +28,70 @@ export function undeclaredParameterWording(name: string, entry?: string): Proble
       };
 }
 
-/** A `$name` naming no declared parameter. Its quick fix (declare it, with the value of a source's declaration) needs the file's analysis: features/fixes/undeclaredParameter.ts. */
+function declarationsChild(element: XmlElement): XmlElement | undefined {
+  return element.children.find((child) => child.name === 'ParameterDeclarations');
+}
+
+function unitOf(text: string): string {
+  return /^( +|\t)/m.exec(text.slice(0, 4000))?.[1] ?? '  ';
+}
+
+/**
+ * Declare parameter `name` in the nearest enclosing ParameterDeclarations (one is created at the root, after
+ * the FileHeader, when no enclosing scope has any), with the type and value of its declaration elsewhere
+ * where there is one.
+ */
+function declareParameter(document: TextLines, { scopes, root, declarationOf }: ParameterScopes, name: string): CoreFix | undefined {
+  const text = document.getText();
+  const template = declarationOf(name);
+  const line = `<ParameterDeclaration name="${name}" parameterType="${escapeAttributeValue(template?.type ?? 'string')}" value="${escapeAttributeValue(template?.value ?? '')}"/>`;
+  const eol = text.includes('\r\n') ? '\r\n' : '\n';
+  const unit = unitOf(text);
+  const scope = scopes.find((element) => declarationsChild(element));
+  const holder = scope ? declarationsChild(scope) : undefined;
+  const insert = (offset: number, newText: string): { range: Range; newText: string } => {
+    const at = document.positionAt(offset);
+    return { range: { start: at, end: at }, newText };
+  };
+  let edit: { range: Range; newText: string };
+  if (holder && !holder.selfClosing && holder.closed) {
+    const close = text.lastIndexOf('</', holder.end - 1);
+    const closeLineStart = text.lastIndexOf('\n', close - 1) + 1;
+    const outer = indentationAt(text, holder.start);
+    const onOwnLine = /^[ \t]*$/.test(text.slice(closeLineStart, close));
+    edit = onOwnLine ? insert(closeLineStart, `${outer}${unit}${line}${eol}`) : insert(close, `${eol}${outer}${unit}${line}${eol}${outer}`);
+  } else if (holder) {
+    const outer = indentationAt(text, holder.start);
+    edit = {
+      range: { start: document.positionAt(holder.start), end: document.positionAt(holder.end) },
+      newText: `<ParameterDeclarations>${eol}${outer}${unit}${line}${eol}${outer}</ParameterDeclarations>`,
+    };
+  } else {
+    if (!root) return undefined;
+    // The standard's order puts ParameterDeclarations right after the FileHeader.
+    const header = root.children.find((child) => child.name === 'FileHeader');
+    const anchor = header ? header.end : root.startTagEnd;
+    const outer = header ? indentationAt(text, header.start) : indentationAt(text, root.start) + unit;
+    edit = insert(anchor, `${eol}${outer}<ParameterDeclarations>${eol}${outer}${unit}${line}${eol}${outer}</ParameterDeclarations>`);
+  }
+  const title = template?.from
+    ? `Declare parameter '${name}' (value ${template.value} from ${template.from})`
+    : `Declare parameter '${name}'`;
+  return { title, edits: [{ place: 'document', ...edit }], preferred: true };
+}
+
+/** The quick fix of an undeclared parameter (of this code and of undeclared-catalog-parameter): declare it, from the file's analysis. */
+export async function declareParameterFixes({ data, document, parameters }: FixContext<{ parameter: string }>): Promise<CoreFix[]> {
+  const scopes = data?.parameter ? await parameters() : undefined;
+  const fix = scopes && data ? declareParameter(document, scopes, data.parameter) : undefined;
+  return fix ? [fix] : [];
+}
+
+/** A `$name` naming no declared parameter: its fix declares it, with the value of a source's declaration where one has it. */
 export const UNDECLARED_PARAMETER = defineDiagnostic({
   code: 'undeclared-parameter',
   rule: { description: 'A $name names a declared parameter.' },
   severity: 'error',
   isData: (value): value is ProblemDataByCode['undeclared-parameter'] => isRecord(value) && isString(value.parameter),
+  fixes: declareParameterFixes,
 });

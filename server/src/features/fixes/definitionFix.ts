@@ -6,6 +6,7 @@ import { fileUri } from '../../uris';
 import { SourceRef } from '../../core/sources';
 import { Workspace } from '../../workspace';
 import { FixDocument, ProblemFix, quickFix } from './fix';
+import { parameterScopesOf } from './parameterScopes';
 
 /** The file of the diagnostic's first related location, where a fix may edit it: its ref and the URI edits name. */
 type EditableFile = { ref: SourceRef; uri: string } | undefined;
@@ -74,6 +75,7 @@ export function definitionFix(definition: RegisteredDiagnostic): ProblemFix {
         parsed: target.parsed,
         related: relatedPlace(target, workspace, file),
         schemaVersion: workspace.settings.schemaVersion,
+        parameters: () => parameterScopesOf(workspace, target),
       };
       const fixes = await definition.fixes(context);
       return Promise.all(fixes.map((fix) => codeAction(fix, target, file)));
