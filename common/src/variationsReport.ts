@@ -386,7 +386,14 @@ export function scatterSvg(model: ScatterModel, style: ScatterStyle): string {
  * The table as HTML: a header cell per column (with `data-column`, and the sort shown), a row per result with
  * `data-index`; `interactive` (the view) makes each header a sort button and each index a link that opens its run.
  */
-export function tableHtml(columns: readonly string[], rows: readonly ResultRow[], order?: SortOrder, interactive = false): string {
+export function tableHtml(
+  columns: readonly string[],
+  rows: readonly ResultRow[],
+  order?: SortOrder,
+  interactive = false,
+  /** The index of the run last opened, marked (class `selected`, `aria-selected`) so that the page can show it. */
+  selected?: string,
+): string {
   const head = columns
     .map((column) => {
       const sorted = order?.column === column ? order.direction : undefined;
@@ -402,7 +409,8 @@ export function tableHtml(columns: readonly string[], rows: readonly ResultRow[]
         const text = escapeHtml(row.cells[column] ?? '');
         return `<td>${interactive && column === 'index' ? `<a href="#" class="open" title="Open run ${text} in the bird's-eye view">#${text}</a>` : text}</td>`;
       });
-      return `<tr class="${row.outcome}" data-index="${escapeHtml(row.index)}">${cells.join('')}</tr>`;
+      const mark = selected !== undefined && row.index === selected ? ' selected" aria-selected="true' : '';
+      return `<tr class="${row.outcome}${mark}" data-index="${escapeHtml(row.index)}">${cells.join('')}</tr>`;
     })
     .join('\n');
   return `<table class="results"><thead><tr>${head}</tr></thead><tbody>\n${body}\n</tbody></table>`;

@@ -13,6 +13,7 @@ import {
   sortRows,
   tableHtml,
 } from '../../common/src/variationsReport';
+import { variationsHtml } from '../../client/src/variations/page';
 
 const HEADER = 'index,status,collision,min_distance_m,min_ttc_s,end_time_s';
 const CSV = [
@@ -132,6 +133,30 @@ describe('variations: the results table, its sorting, filtering and scatter', ()
     assert.match(html, /<a href="#" class="open"[^>]*>#3<\/a>/);
     assert.doesNotMatch(tableHtml(table.columns, rows), /<a |<button/);
     assert.match(tableHtml(['index', 'x'], [{ index: '0', outcome: 'ok', cells: { index: '0', x: '<b>&' } }]), /<td>&lt;b&gt;&amp;<\/td>/);
+  });
+
+  it('the table as HTML: the run last opened is marked selected, and only it, so the page can show it', () => {
+    const rows = sortRows(table.rows, { column: 'index', direction: 'ascending' });
+    const html = tableHtml(table.columns, rows, { column: 'index', direction: 'ascending' }, true, '10');
+    assert.equal(XMLValidator.validate(html), true);
+    assert.deepEqual(
+      [...html.matchAll(/<tr class="[\w ]*\bselected" aria-selected="true" data-index="(\d+)">/g)].map((match) => match[1]),
+      ['10'],
+    );
+    assert.equal([...html.matchAll(/selected/g)].length, 2, 'the class and aria-selected of one row');
+    assert.doesNotMatch(tableHtml(table.columns, rows, undefined, true), /selected/);
+    assert.doesNotMatch(tableHtml(table.columns, rows, undefined, true, '99'), /selected/, 'a run not in the table marks nothing');
+  });
+
+  it('the page shows the selected row while the pointer still rests on it (hover does not hide it)', () => {
+    const html = variationsHtml('csp', 'script.js', 'nonce');
+    const style = /<style>([\s\S]*)<\/style>/.exec(html)?.[1] ?? '';
+    const rule = /([^{}]*tr\.selected:hover[^{}]*)\{([^}]*)\}/.exec(style);
+    assert.ok(rule, 'a rule for the selected row under the pointer');
+    assert.match(rule[1], /tbody tr\.selected,/, 'the same rule as without the pointer');
+    assert.match(rule[2], /background:var\(--vscode-list-activeSelectionBackground,#[0-9a-f]+\)/, 'with a colour when the theme has none');
+    assert.match(rule[2], /outline:/);
+    assert.match(html, /<div id="notice" role="status"><\/div>/, 'a place for why a click opened nothing');
   });
 
   it('the first axes are never an empty column, and long category labels do not overlap', () => {

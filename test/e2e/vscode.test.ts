@@ -117,6 +117,21 @@ function servePage(endpoint: HarnessEndpoint, page: Page): void {
       return { visible, value: input ? input.value : '', title: title ? title.textContent : '' };
     })()`)) as { visible: boolean; value: string; title: string };
   });
+  endpoint.routes.set('/computedStyles', async (body) => {
+    const { selectors, property } = body as { selectors: string[]; property: string };
+    const values: (string | null)[] = selectors.map(() => null);
+    for (const frame of page.frames()) {
+      const found = (await frame
+        .evaluate(
+          `${JSON.stringify(selectors)}.map((selector) => { const element = document.querySelector(selector); return element ? getComputedStyle(element).getPropertyValue(${JSON.stringify(property)}) : null; })`,
+        )
+        .catch(() => [])) as (string | null)[];
+      found.forEach((value, index) => {
+        if (values[index] === null && value !== null && value !== undefined) values[index] = value;
+      });
+    }
+    return { values };
+  });
   endpoint.routes.set('/clickText', async (body) => {
     const { text } = body as { text: string };
     // Links and buttons in any frame: the package view is a webview, an iframe of its own.

@@ -3,7 +3,10 @@ import type { ResultsTable } from '../../../common/src/variationsReport';
 
 export type ToView =
   /** The results to show; `runs` says whether the batch kept its runs (batch --keep-runs), so rows can be opened. */
-  { type: 'results'; title: string; table: ResultsTable; runs: boolean } | { type: 'error'; message: string };
+  | { type: 'results'; title: string; table: ResultsTable; runs: boolean }
+  | { type: 'error'; message: string }
+  /** Why a click did not open a run, shown in the view until the next click or the next results (not a toast that outlives them). */
+  | { type: 'notice'; message: string };
 
 /** What the view reports after drawing, for tests and a status line. */
 export interface VariationsStats {

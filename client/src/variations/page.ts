@@ -16,13 +16,15 @@ th button.sort{background:none;color:inherit;font-weight:bold;padding:0;width:10
 #tableArea{flex:1;overflow:auto;padding:0 8px 8px}
 table.results{border-collapse:collapse} th,td{border:1px solid var(--vscode-panel-border);padding:1px 8px;text-align:right;white-space:nowrap}
 th{position:sticky;top:0;background:var(--vscode-editorWidget-background);cursor:pointer;user-select:none}
-tbody tr{cursor:pointer} tbody tr:hover{background:var(--vscode-list-hoverBackground)} tr.selected{background:var(--vscode-list-activeSelectionBackground);color:var(--vscode-list-activeSelectionForeground)}
+tbody tr{cursor:pointer} tbody tr:hover{background:var(--vscode-list-hoverBackground)}
+tbody tr.selected,tbody tr.selected:hover{background:var(--vscode-list-activeSelectionBackground,#04395e);color:var(--vscode-list-activeSelectionForeground,#ffffff);outline:2px solid var(--vscode-focusBorder,#007fd4);outline-offset:-2px}
+tbody tr.selected a.open{color:inherit;font-weight:bold}
 a.open{color:var(--vscode-textLink-foreground)}
-#note,#summary{opacity:.8} .error{color:var(--vscode-errorForeground)}
+#note,#summary{opacity:.8} .error,#notice{color:var(--vscode-errorForeground)}
 </style></head><body>
 <div id="toolbar"><span id="title">loading…</span><span id="filters"></span>
 <label>x <select id="xAxis"></select></label><label>y <select id="yAxis"></select></label></div>
-<div id="main"><div id="summary"></div><div id="plot"></div><div id="tableArea"><div id="note"></div><div id="table"></div></div></div>
+<div id="main"><div id="summary"></div><div id="notice" role="status"></div><div id="plot"></div><div id="tableArea"><div id="note"></div><div id="table"></div></div></div>
 <script nonce="${scriptNonce}" src="${scriptUri}"></script>
 </body></html>`;
 }

@@ -40,6 +40,8 @@ export class VariationsView implements vscode.Disposable {
   stats: VariationsStats | undefined;
   /** The run last opened from the view; for tests. */
   openedRun: string | undefined;
+  /** Why the last click opened no run, as the view shows it (cleared by the next results); for tests. */
+  lastNotice: string | undefined;
 
   constructor(
     private readonly extensionUri: vscode.Uri,
@@ -84,6 +86,7 @@ export class VariationsView implements vscode.Disposable {
     this.panel.title = `Variations: ${title}`;
     try {
       const table = parseResultsCsv(await fs.promises.readFile(csvFile, 'utf8'));
+      this.lastNotice = undefined;
       this.post({ type: 'results', title, table, runs: fs.existsSync(path.join(folder, 'runs')) });
     } catch (error) {
       const reason =
@@ -101,11 +104,16 @@ export class VariationsView implements vscode.Disposable {
     if (!this.folder) return;
     const run = keptRun(this.folder, index);
     if (!fs.existsSync(run.csvPath)) {
-      void vscode.window.showErrorMessage(
-        `Run ${index} was not kept: run the batch with --keep-runs to open its runs (${path.join(this.folder, 'runs', index)} does not exist).`,
-      );
+      // In the view, not a toast: a toast would stay up after the next run, which keeps its runs.
+      const notice: ToView = {
+        type: 'notice',
+        message: `Run ${index} was not kept: run the batch with --keep-runs (or the setting modular2simple.variations.keepRuns) to open its runs (${path.join(this.folder, 'runs', index)} does not exist).`,
+      };
+      this.lastNotice = notice.message;
+      if (this.panel && this.ready) void this.panel.webview.postMessage(notice);
       return;
     }
+    this.lastNotice = undefined;
     this.openedRun = index;
     await vscode.commands.executeCommand('modular2simple.birdsEye.showRun', run.csvPath, {
       logPath: run.logPath,

@@ -46,6 +46,11 @@ export async function pageShows(text: string, selector?: string): Promise<boolea
   return (await post<{ found: boolean }>('/findText', { text, selector })).found;
 }
 
+/** A computed style property of the first element matching each selector, in whichever frame has one (null: none). */
+export async function computedStyles(selectors: string[], property: string): Promise<(string | null)[]> {
+  return (await post<{ values: (string | null)[] }>('/computedStyles', { selectors, property })).values;
+}
+
 /** Clicks the link or button showing this text, in whichever frame shows it. */
 export async function clickText(text: string): Promise<boolean> {
   return (await post<{ clicked: boolean }>('/clickText', { text })).clicked;

@@ -6,7 +6,7 @@ import { BIRDS_EYE_FILES } from '../birdsEyeSetup';
 import { INSIDE_TESTS } from '../titles';
 import { VARIATIONS_FILES } from '../variationsSetup';
 import { api, waitFor, workspaceRoot } from './helpers';
-import { clickText, pageShows, screenshot } from './harnessClient';
+import { clickText, computedStyles, pageShows, screenshot } from './harnessClient';
 
 /** The Variations view tests; run after the bird's-eye tests, in the same VS Code. */
 export function defineVariationsTests(): void {
@@ -79,6 +79,42 @@ export function defineVariationsTests(): void {
         30_000,
       );
       await screenshot(`Variations view: run ${firstCollision} opened in the bird's-eye view`);
+
+      // The row opened stands out from the others, though the pointer still rests on it (the click left it there).
+      const [selectedBackground, otherBackground] = await computedStyles(
+        ['tbody tr.selected', 'tbody tr:not(.selected)'],
+        'background-color',
+      );
+      assert.ok(selectedBackground && otherBackground, 'the table is on the page');
+      assert.notEqual(selectedBackground, otherBackground, `the selected row is drawn as the others (${selectedBackground})`);
+      // The hover colour alone also differs from the others: the outline is what the selection adds in every theme.
+      const [outline] = await computedStyles(['tbody tr.selected'], 'outline-style');
+      assert.equal(outline, 'solid', 'the selected row is outlined');
+      await vscode.commands.executeCommand('workbench.action.focusFirstEditorGroup');
+      await screenshot(`Variations view: run ${firstCollision} selected`);
+
+      // A run that was not kept: said in the view (no toast that stays after the next run), gone with new results.
+      const other = fs
+        .readFileSync(csv, 'utf8')
+        .split('\n')
+        .find((line) => line.split(',')[2] === 'true' && line.split(',')[0] !== firstCollision)
+        ?.split(',')[0];
+      if (other !== undefined) {
+        const kept = path.join(path.dirname(csv), 'runs', other);
+        fs.renameSync(kept, `${kept}.away`);
+        try {
+          assert.ok(await clickText(`#${other}`), `no link to run ${other}`);
+          await waitFor('the view to say the run was not kept', () => view.lastNotice);
+          assert.ok(await pageShows(`Run ${other} was not kept`, '#notice'), 'the notice is on the page');
+          await screenshot(`Variations view: run ${other} not kept, said in the view`);
+        } finally {
+          fs.renameSync(`${kept}.away`, kept);
+        }
+        fs.appendFileSync(csv, '');
+        await vscode.commands.executeCommand('modular2simple.showVariations', vscode.Uri.file(csv));
+        await waitFor('the notice gone with the results shown again', () => (view.lastNotice === undefined ? true : undefined));
+        assert.ok(!(await pageShows(`Run ${other} was not kept`, '#notice')), 'the notice left the page');
+      }
       await vscode.commands.executeCommand('workbench.action.closeAllEditors');
     });
   });

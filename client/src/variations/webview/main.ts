@@ -38,6 +38,7 @@ const summaryElement = element<HTMLDivElement>('summary');
 const plotElement = element<HTMLDivElement>('plot');
 const tableElement = element<HTMLDivElement>('table');
 const noteElement = element<HTMLDivElement>('note');
+const noticeElement = element<HTMLDivElement>('notice');
 
 let table: ResultsTable | undefined;
 let runsKept = false;
@@ -91,7 +92,7 @@ function render(): void {
     drawnPlot = plotKey;
   }
   const visible = sorted.slice(0, MAX_TABLE_ROWS);
-  tableElement.innerHTML = tableHtml(table.columns, visible, order, runsKept);
+  tableElement.innerHTML = tableHtml(table.columns, visible, order, runsKept, selected);
   summaryElement.textContent = `${summaryText(table.rows)}; ${filtered.length} shown${runsKept ? '; click a row or a point to open its run' : '; the runs were not kept (batch --keep-runs), so they cannot be opened'}`;
   noteElement.textContent =
     sorted.length > visible.length ? `The first ${visible.length} of ${sorted.length} rows: sort or filter to see others.` : '';
@@ -111,13 +112,20 @@ function render(): void {
 }
 
 function markSelected(): void {
-  document.querySelectorAll('.selected').forEach((each) => each.classList.remove('selected'));
+  document.querySelectorAll('.selected').forEach((each) => {
+    each.classList.remove('selected');
+    each.removeAttribute('aria-selected');
+  });
   if (selected === undefined) return;
-  document.querySelectorAll(`[data-index="${CSS.escape(selected)}"]`).forEach((each) => each.classList.add('selected'));
+  document.querySelectorAll(`[data-index="${CSS.escape(selected)}"]`).forEach((each) => {
+    each.classList.add('selected');
+    if (each.tagName === 'TR') each.setAttribute('aria-selected', 'true');
+  });
 }
 
 function open(index: string): void {
   selected = index;
+  noticeElement.textContent = '';
   markSelected();
   vscode.postMessage({ type: 'openRun', index });
 }
@@ -172,6 +180,10 @@ window.addEventListener('resize', () => {
 
 window.addEventListener('message', (event: MessageEvent<ToView>) => {
   const message = event.data;
+  if (message.type === 'notice') {
+    noticeElement.textContent = message.message;
+    return;
+  }
   if (message.type === 'error') {
     titleElement.textContent = 'Variations';
     summaryElement.innerHTML = `<span class="error">${escapeHtml(message.message)}</span>`;
@@ -179,6 +191,8 @@ window.addEventListener('message', (event: MessageEvent<ToView>) => {
     tableElement.innerHTML = '';
     return;
   }
+  // New results (a new run of the batch): what was said about a click on the previous ones no longer holds.
+  noticeElement.textContent = '';
   const first = table === undefined || table.columns.join(',') !== message.table.columns.join(',');
   table = message.table;
   runsKept = message.runs;
