@@ -39,7 +39,8 @@ function valueRanges(text: string): { start: number; end: number }[] {
 }
 
 const typed = fc.string({ unit: fc.constantFrom('1', '0', '.', '-', 'x', 'e', 'G', 'v', 'a', 'l', 'u'), maxLength: 4 });
-const edit = fc.record({ which: fc.nat(), from: fc.nat(), length: fc.nat(3), inserted: typed });
+// One edit in six puts back what it removes: a change that leaves the text as it was reads the same parse again.
+const edit = fc.record({ which: fc.nat(), from: fc.nat(), length: fc.nat(3), inserted: typed, same: fc.nat(5) });
 
 describe('server: the links of references an edit inside one value leaves alone', () => {
   const folder = temporaryFolder('m2s-carried-links-');
@@ -68,11 +69,12 @@ describe('server: the links of references an edit inside one value leaves alone'
             `${code} in ${first.problems.map((problem) => problem.code).join(', ')}`,
           );
         let links: LinkedReference[] = first.source.links;
-        for (const { which, from, length, inserted } of edits) {
+        for (const { which, from, length, inserted: typedText, same } of edits) {
           const ranges = valueRanges(current);
           const range = ranges[which % ranges.length];
           const start = range.start + (from % (range.end - range.start + 1));
           const end = Math.min(range.end, start + length);
+          const inserted = same === 0 ? current.slice(start, end) : typedText;
           current = current.slice(0, start) + inserted + current.slice(end);
           store.setOverlay(ref, current);
           shared.delete(refId(ref));
@@ -104,5 +106,42 @@ describe('server: the links of references an edit inside one value leaves alone'
     );
     // References before the edit keep their link object: the carry is taken, not only allowed.
     assert.ok(reused > 100, `links carried over as they were: ${reused}`);
+  });
+
+  it('are linked again when the file they read changed', async () => {
+    const ref = diskRef(mainFile);
+    const simpleRef = diskRef(path.join(folder, 'simple.xosc'));
+    const store = new ScenarioStore({ scenarioPath: [], root: folder });
+    const shared = new SharedSources(64 * 1024 * 1024, () => new Set());
+    const generation = () =>
+      new ReusingFlattener(
+        store,
+        shared,
+        new Map(),
+        'asam',
+        { version: 'auto' },
+        new SchemaCheckMemory(),
+        () => undefined,
+        DEFAULT_CARLA_RELEASE,
+      );
+    store.setOverlay(ref, main);
+    const before = await generation().analyze(ref);
+    assert.ok(!before.problems.some((problem) => problem.message.includes("'WorldPosition.y'")));
+    // Edited in the editor: y is no longer listed. The main file's text stays (the same parse is read again) and
+    // its references resolve as they did; the file they read is another source.
+    const changed = simple.replace('parameterAttributes="x, y, h"', 'parameterAttributes="x, h"');
+    store.setOverlay(simpleRef, changed);
+    shared.delete(refId(simpleRef));
+    shared.delete(refId(ref));
+    // Read again first on its own (as its own diagnostics would), so the main file finds it among the shared sources.
+    const flattener = generation();
+    await flattener.source(simpleRef, []);
+    const after = await flattener.analyze(ref);
+    const freshStore = new ScenarioStore({ scenarioPath: [], root: folder });
+    freshStore.setOverlay(ref, main);
+    freshStore.setOverlay(simpleRef, changed);
+    const fresh = await new Flattener(freshStore, 'asam', { version: 'auto' }).analyze(ref);
+    assert.ok(after.problems.some((problem) => problem.code === 'unknown-key' && problem.message.includes("'WorldPosition.y'")));
+    assert.deepEqual(JSON.parse(JSON.stringify(after.problems)), JSON.parse(JSON.stringify(fresh.problems)));
   });
 });

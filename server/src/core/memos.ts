@@ -120,7 +120,8 @@ export const CORE_MEMOS = {
   lastScenarioModels: {
     where: '`core/model.ts`',
     key: 'a parse',
-    holds: 'the last modular model read from it, from which the model of the next parse after a value edit is carried',
+    holds:
+      'the modular model read from it, given again when the parse is read again (a change leaving the text as it was, a generation that changed another file) and from which the model of the next parse after a value edit is carried',
     bound: WITH_KEY,
     invalidated: 'never: a new parse is a new key',
   },
@@ -128,7 +129,7 @@ export const CORE_MEMOS = {
     where: '`Flattener.linkAll` (`core/flatten/carriedLinks.ts`)',
     key: 'a parse of a file with references',
     holds:
-      "the links its references were given (resolution, source read, groups, override plans) and the problems each reported, with the store and the files being read: after an edit inside one value, a reference outside the edited group whose file resolves to the same source read takes its link (a parse's own parameters planned again) and its problems (moved on the edited line) instead of being linked again",
+      "the links its references were given (resolution, source read, groups, override plans) and the problems each reported, with the store and the files being read: after an edit inside one value, a reference outside the edited group whose file resolves to the same source read takes its link (a parse's own parameters planned again) and its problems (moved on the edited line) instead of being linked again; so does every reference of the same parse read again",
     bound: WITH_KEY,
     invalidated:
       'never: a new parse is a new key; a link is taken only while its resolution and source read are those `resolve` and `source` would give now',

@@ -140,9 +140,13 @@ const lastModels = coreMemo<XmlDocument, ScenarioModel>('lastScenarioModels');
 
 /**
  * `buildModel`, carried over from the previous parse's model when `document` was re-parsed from it after an
- * edit inside one attribute value (the elements mapped, offsets moved, the edited element's entries read again).
+ * edit inside one attribute value (the elements mapped, offsets moved, the edited element's entries read again);
+ * the same model again for a parse already read.
  */
 export function readModel(document: XmlDocument): ScenarioModel {
+  // A parse read again (a change that left the text as it was, a generation that changed another file) has its model.
+  const known = lastModels.get(document);
+  if (known) return known;
   const edit = valueEditOf(document);
   const previous = edit && lastModels.get(edit.previous);
   const model = edit && previous ? carryModel(previous, edit, document) : buildModel(document);

@@ -27,7 +27,7 @@ export function rememberLinks(document: XmlDocument, links: ParseLinks): void {
   linksOfParses.set(document, links);
 }
 
-/** What the references of a file re-parsed after `edit` can take from the previous parse's links. */
+/** What the references of a file re-parsed after `edit` (or read again from the same parse: no edit) can take from the previous parse's links. */
 export class LinkCarry {
   /** Where the edit ends in the previous text, once a problem is moved (the previous parse's lines are not indexed otherwise). */
   private editEnd: Position | undefined;
@@ -35,7 +35,7 @@ export class LinkCarry {
 
   private constructor(
     private readonly previous: ParseLinks,
-    private readonly edit: ValueEdit,
+    private readonly edit: ValueEdit | undefined,
     private readonly context: LinkContext,
     private readonly from: SourceRef,
     private readonly stack: SourceRef[],
@@ -43,16 +43,21 @@ export class LinkCarry {
     this.fromId = refId(from);
   }
 
-  /** The carry from the previous parse's links, when `document` came from it by a value edit and they were made with the same store and stack. */
+  /**
+   * The carry from the previous parse's links, when `document` came from it by a value edit (or is that parse, read
+   * again: a generation that changed another file, or a change leaving the text as it was) and they were made with
+   * the same store and stack.
+   */
   static of(
+    document: XmlDocument,
     edit: ValueEdit | undefined,
     referenceCount: number,
     context: LinkContext,
     from: SourceRef,
     stack: SourceRef[],
   ): LinkCarry | undefined {
-    const previous = edit && linksOfParses.get(edit.previous);
-    if (!edit || !previous || previous.store !== context.store || previous.links.length !== referenceCount) return undefined;
+    const previous = linksOfParses.get(edit ? edit.previous : document);
+    if (!previous || previous.store !== context.store || previous.links.length !== referenceCount) return undefined;
     if (previous.stack.length !== stack.length || previous.stack.some((id, index) => id !== refId(stack[index]))) return undefined;
     return new LinkCarry(previous, edit, context, from, stack);
   }
@@ -67,8 +72,9 @@ export class LinkCarry {
     const info = before.info;
     const region = info.outerGroup?.element ?? info.element;
     const edit = this.edit;
-    if (region.start <= edit.prefix && edit.removedEnd <= region.end) return undefined;
-    if (reference.fileName !== info.fileName || reference.element.start !== edit.shift(info.element.start)) return undefined;
+    if (edit && region.start <= edit.prefix && edit.removedEnd <= region.end) return undefined;
+    if (reference.fileName !== info.fileName || reference.element.start !== (edit ? edit.shift(info.element.start) : info.element.start))
+      return undefined;
     if (!before.source || before.cycle || reference.groupReferences.length !== info.groupReferences.length) return undefined;
     if (this.context.store.knownResolution(reference.fileName, this.from) !== before.resolution) return undefined;
     const target =
@@ -115,9 +121,11 @@ export class LinkCarry {
   }
 
   private movedPosition(position: Position): Position {
-    this.editEnd ??= this.edit.previous.lines.positionAt(this.edit.removedEnd);
+    const edit = this.edit;
+    if (!edit) return { line: position.line, character: position.character };
+    this.editEnd ??= edit.previous.lines.positionAt(edit.removedEnd);
     return position.line === this.editEnd.line && position.character >= this.editEnd.character
-      ? { line: position.line, character: position.character + this.edit.delta }
+      ? { line: position.line, character: position.character + edit.delta }
       : { line: position.line, character: position.character };
   }
 }

@@ -225,7 +225,7 @@ export class Flattener {
     const childProblems: Problem[] = [];
     const dependencyIds = new Set([refId(result.ref)]);
     result.problems.push(...duplicateOuterGroupProblems(model, result.ref));
-    const carry = LinkCarry.of(valueEdit, model.references.length, this, result.ref, stack);
+    const carry = LinkCarry.of(model.document, valueEdit, model.references.length, this, result.ref, stack);
     const problemsOfLinks: Problem[][] = [];
     for (const [index, reference] of model.references.entries()) {
       const carried = carry?.carry(index, reference);
