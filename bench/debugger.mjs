@@ -2,7 +2,7 @@
 // breakpoint hit against esmini's own headless run of the same scenario at the same step, and the pause latency from
 // a condition firing (esmini's callback, in the adapter) to the `stopped` event read by a DAP client.
 import { spawnSync } from 'node:child_process';
-import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { existsSync, mkdtempSync, readdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { createRequire } from 'node:module';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
@@ -73,6 +73,24 @@ function esminiRun(file) {
 }
 
 /**
+ * The adapter's child that runs the session (its parent process is the adapter's): read from /proc.
+ * @param {number} adapterPid
+ */
+function sessionPid(adapterPid) {
+  for (const name of readdirSync('/proc')) {
+    if (!/^\d+$/.test(name)) continue;
+    try {
+      // The fields after the command's closing parenthesis: state, then the parent's pid.
+      const stat = readFileSync(`/proc/${name}/stat`, 'utf8');
+      if (Number(stat.slice(stat.lastIndexOf(')') + 2).split(' ')[1]) === adapterPid) return Number(name);
+    } catch {
+      // A process that ended meanwhile.
+    }
+  }
+  throw new Error(`the adapter (pid ${adapterPid}) runs no session process`);
+}
+
+/**
  * CPU ms of a process's main thread so far (Linux /proc schedstat, in ns): the adapter steps esmini on it.
  * @param {number} pid
  */
@@ -92,10 +110,13 @@ async function debugRun(breakOn, program = full) {
   const client = new DebugClient(process.execPath, adapter, 'modular2simple', { stdio: ['pipe', 'pipe', 'pipe'] });
   client.defaultTimeout = 120_000;
   await client.start();
-  const pid = /** @type {{ _adapterProcess: import('node:child_process').ChildProcess }} */ (/** @type {unknown} */ (client))
+  const adapterPid = /** @type {{ _adapterProcess: import('node:child_process').ChildProcess }} */ (/** @type {unknown} */ (client))
     ._adapterProcess.pid;
-  if (pid === undefined) throw new Error('the adapter did not start');
+  if (adapterPid === undefined) throw new Error('the adapter did not start');
   try {
+    await client.initializeRequest();
+    // The adapter runs the session, which steps esmini, in a child (server/src/debug/supervisor.ts): its CPU is counted.
+    const pid = sessionPid(adapterPid);
     let ended = NaN;
     /** @type {Map<string, number>} */
     const firings = new Map();
@@ -107,7 +128,6 @@ async function debugRun(breakOn, program = full) {
       if (end) ended = Number(end[1]);
     });
     client.on('stopped', () => (stoppedAt = now()));
-    await client.initializeRequest();
     const started = now();
     /** @type {import('@vscode/debugprotocol').DebugProtocol.LaunchRequestArguments & Record<string, unknown>} */
     const launch = { program, roadPath, timeStep: step, duration: 120 };
@@ -190,7 +210,7 @@ try {
   const debugWall = median(debugRuns.wall) - median(debugEmpty.wall);
   const debugCpu = median(debugRuns.cpu) - median(debugEmpty.cpu);
   console.log(`  debugger stepping (the difference; ${debugSteps} steps to ${debugEnd} s) ${fmt(debugWall)}   ${fmt(debugCpu)}`);
-  console.log(`    (no breakpoint hit; the adapter's CPU is its main thread's, which steps esmini)`);
+  console.log(`    (no breakpoint hit; the CPU is the main thread's of the adapter's session process, which steps esmini)`);
   const wallRatio = rate(debugSteps, debugWall) / rate(esminiSteps, esminiWall);
   const cpuRatio = rate(debugSteps, debugCpu) / rate(esminiSteps, esminiCpu);
   console.log(

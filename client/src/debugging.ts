@@ -70,9 +70,10 @@ function libraryBesideEsmini(esminiPath: string | undefined, base: string | unde
 }
 
 /**
- * Watches a session's adapter: when its process ends before it said the session ended (esmini crashed in it, or it was
- * killed), says so with the scenario, the simulated time reached and how it ended; VS Code itself says only that
- * the adapter terminated.
+ * Watches a session's adapter: when its process ends before it said the session ended, says so with the scenario, the
+ * simulated time reached and how it ended; VS Code itself says only that the adapter terminated. esmini crashing takes
+ * down only the adapter's child, and the adapter says so itself (server/src/debug/supervisor.ts): this is for the
+ * adapter's own process being killed.
  */
 class CrashReporter implements vscode.DebugAdapterTracker {
   private ended = false;

@@ -1,5 +1,10 @@
-// The debug adapter's process entry (dist/debugAdapter.js): the Debug Adapter Protocol over stdin and stdout.
+// The debug adapter's process entry (dist/debugAdapter.js): the Debug Adapter Protocol over stdin and stdout. As the
+// editor starts it, it supervises (debug/supervisor.ts); its child, started with SESSION_ARGUMENT, is the session.
 import { DebugSession } from '@vscode/debugadapter';
-import { ScenarioDebugSession } from './debug/adapter';
+import { reportProgressTo, ScenarioDebugSession } from './debug/adapter';
+import { progressWriter, SESSION_ARGUMENT, superviseSession } from './debug/supervisor';
 
-DebugSession.run(ScenarioDebugSession);
+if (process.argv.includes(SESSION_ARGUMENT)) {
+  reportProgressTo(progressWriter());
+  DebugSession.run(ScenarioDebugSession);
+} else superviseSession(process.argv[1]);

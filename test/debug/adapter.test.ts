@@ -1,6 +1,8 @@
 import { DebugClient } from '@vscode/debugadapter-testsupport';
 import { DebugProtocol } from '@vscode/debugprotocol';
 import * as assert from 'node:assert/strict';
+import { ChildProcess } from 'node:child_process';
+import { once } from 'node:events';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { storyboardTimeline } from '../../common/src/storyboardTimeline';
@@ -12,7 +14,7 @@ import { openscenarioDir } from '../support/openscenarioCorpus';
 import { repoRoot } from '../support/paths';
 import { runBounded } from '../support/processes';
 import { temporaryFolder } from '../support/temporaryDirectory';
-import { writeTwoCutIns } from '../support/debugScenarios';
+import { writeClearanceCrash, writeTwoCutIns } from '../support/debugScenarios';
 
 const cutIn = path.join(openscenarioDir, 'esmini', 'cut-in.xosc');
 const roadPath = [esminiRoads, path.join(esminiCatalogs, 'Vehicles')];
@@ -27,8 +29,11 @@ function lineOf(file: string, text: string): number {
   return index + 1;
 }
 
-/** The adapter as VS Code starts it: a process of its own speaking DAP on stdio (from the sources, through tsx). */
-async function startClient(): Promise<{ client: DebugClient; stderr: () => string }> {
+/**
+ * The adapter as VS Code starts it: a process of its own speaking DAP on stdio (from the sources, through tsx), which
+ * runs the session in a child (server/src/debug/supervisor.ts). `exited` settles when the adapter's process has ended.
+ */
+async function startClient(): Promise<{ client: DebugClient; stderr: () => string; exited: Promise<unknown> }> {
   const client = new DebugClient(process.execPath, adapterSource, 'modular2simple', {
     env: { ...process.env, NODE_OPTIONS: `${process.env.NODE_OPTIONS ?? ''} --import=tsx`.trim() },
     stdio: ['pipe', 'pipe', 'pipe'],
@@ -36,11 +41,14 @@ async function startClient(): Promise<{ client: DebugClient; stderr: () => strin
   client.defaultTimeout = 30_000;
   await client.start();
   let stderr = '';
+  const adapter = (client as unknown as { _adapterProcess?: ChildProcess })._adapterProcess;
+  assert.ok(adapter);
+  const exited = adapter.exitCode !== null ? Promise.resolve() : once(adapter, 'exit');
   // The adapter's stderr carries its logged exceptions: a test fails when there is one.
-  (client as unknown as { _adapterProcess?: { stderr?: NodeJS.ReadableStream } })._adapterProcess?.stderr?.on('data', (chunk: Buffer) => {
+  adapter.stderr?.on('data', (chunk: Buffer) => {
     stderr += chunk.toString();
   });
-  return { client, stderr: () => stderr };
+  return { client, stderr: () => stderr, exited };
 }
 
 async function variablesOf(client: DebugClient, reference: number): Promise<DebugProtocol.Variable[]> {
@@ -95,6 +103,11 @@ describe('debug adapter through the Debug Adapter Protocol', function () {
   this.timeout(180_000);
   let client: DebugClient;
   let stderr: () => string;
+  let exited: Promise<unknown>;
+  /** What a test expects on the adapter's stderr (esmini's own last words when it crashes); nothing otherwise. */
+  let expectedStderr: RegExp | undefined;
+  /** The test disconnected itself and saw the adapter exit (a request to it now would wait for ever). */
+  let disconnected: boolean;
 
   before(function () {
     requireEsminiLibrary(this);
@@ -106,12 +119,17 @@ describe('debug adapter through the Debug Adapter Protocol', function () {
   });
 
   beforeEach(async () => {
-    ({ client, stderr } = await startClient());
+    expectedStderr = undefined;
+    disconnected = false;
+    ({ client, stderr, exited } = await startClient());
   });
 
   afterEach(async () => {
-    await client.stop();
-    assert.equal(stderr(), '', 'the adapter logged an exception');
+    if (!disconnected) await client.stop();
+    // Its temporary files go with it: the run's check of the temporary folder counts what is left.
+    await exited;
+    if (expectedStderr) assert.match(stderr(), expectedStderr);
+    else assert.equal(stderr(), '', 'the adapter logged an exception');
   });
 
   it("stops on an Event of cut-in.xosc when esmini's log starts it, with the entities of esmini's CSV; step over; continue to the end", async () => {
@@ -313,5 +331,48 @@ describe('debug adapter through the Debug Adapter Protocol', function () {
       }),
       /bash \.\.\/shared\/esmini\/build\.sh \.cache\/esmini/,
     );
+  });
+
+  it("reports esmini aborting with the scenario, esmini's reason and the simulated time, and ends the session cleanly", async () => {
+    // A RelativeClearanceCondition whose lane range runs backwards (from 1 to -1): valid OpenSCENARIO, which esmini
+    // throws on while weighing it (OSCCondition.cpp, LOG_ERROR_AND_QUIT in TrigByRelativeClearance::CheckCondition),
+    // out of SE_StepDT, uncaught: std::terminate, SIGABRT. Its Act starts after 3 s, so the crash comes in mid-run.
+    const folder = temporaryFolder();
+    const scenario = path.join(folder, 'clearance-crash.xosc');
+    fs.writeFileSync(scenario, writeClearanceCrash(fs.readFileSync(cutIn, 'utf8')));
+    // esmini's own program dies the same way; its CSV's last row is the last step it finished.
+    const csvFile = path.join(folder, 'run.csv');
+    const args = ['--headless', '--osc', scenario, '--fixed_timestep', '0.05', '--disable_log', '--csv_logger', csvFile];
+    for (const folderOfPath of roadPath) args.push('--path', folderOfPath);
+    const esminiRun = await runBounded(esminiBinary, args, { cwd: folder }, 120_000);
+    assert.equal(esminiRun.code, null, `esmini ends by a signal, not an exit code: ${esminiRun.output.slice(-500)}`);
+    assert.match(esminiRun.output, /what\(\):.*Wrong from and to value in RelativeLaneRange element/);
+    const rows = fs.readFileSync(csvFile, 'utf8').trim().split('\n');
+    const esminiLast = Number(rows[rows.length - 1].split(',')[1]);
+    assert.ok(esminiLast > 3, `esmini crashed at ${esminiLast}, after the Act's start`);
+
+    expectedStderr = /Wrong from and to value in RelativeLaneRange element/;
+    const outputs: DebugProtocol.OutputEvent[] = [];
+    client.on('output', (event: DebugProtocol.OutputEvent) => outputs.push(event));
+    const terminated = client.waitForEvent('terminated');
+    const launched = client.launch({ type: 'modular2simple', request: 'launch', program: scenario, roadPath });
+    await client.waitForEvent('initialized');
+    await client.configurationDoneRequest();
+    await launched;
+    await terminated;
+    const important = outputs.filter((event) => event.body.category === 'important').map((event) => event.body.output);
+    assert.equal(important.length, 1, JSON.stringify(outputs.map((event) => event.body.output)));
+    const message = important[0];
+    assert.match(message, /^The debug session of clearance-crash\.xosc ended: esmini's process was killed by SIGABRT/);
+    assert.match(message, /esmini: QUITTING, Wrong from and to value in RelativeLaneRange element\./);
+    const reached = /at ([\d.]+) s of simulated time \(the last it reported: ([^)]*)\)/.exec(message);
+    assert.ok(reached, message);
+    assert.equal(Number(reached[1]), Number(esminiLast.toFixed(2)), `the time esmini's CSV ends at: ${message}`);
+    assert.equal(reached[2], 'Event E standby', 'the event whose condition esmini was weighing');
+    // The session ends cleanly: requests are answered, disconnect too, and the adapter's process exits.
+    await assert.rejects(client.threadsRequest(), /esmini crashed/);
+    await client.disconnectRequest();
+    await exited;
+    disconnected = true;
   });
 });

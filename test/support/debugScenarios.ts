@@ -1,5 +1,6 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
+import { speedChangeGroup } from './fixtures';
 import { repoRoot } from './paths';
 
 /** The examples' lane_change.xosc imported by two groups of one main file, for two adversaries. */
@@ -16,4 +17,31 @@ export function writeTwoCutIns(folder: string): void {
     .replaceAll('"adversary"', '"lead"')
     .replace('key="RelativeDistanceCondition.value" value="12"', 'key="RelativeDistanceCondition.value" value="30"');
   fs.writeFileSync(path.join(folder, 'main.xosc'), main.slice(0, second) + leadGroup + main.slice(startTrigger));
+}
+
+/**
+ * esmini's cut-in.xosc with an Act that starts after 3 s and waits on a RelativeClearanceCondition whose lane range
+ * runs backwards (`from="1" to="-1"`): the schema allows it, esmini throws on it when it first weighs the condition
+ * (OSCCondition.cpp, TrigByRelativeClearance::CheckCondition, LOG_ERROR_AND_QUIT), out of SE_StepDT: an abort.
+ * The group is speedChangeGroup's, its Event `E`.
+ */
+export function writeClearanceCrash(cutIn: string): string {
+  const clearance =
+    '<RelativeClearanceCondition distanceForward="10" distanceBackward="10" freeSpace="true" oppositeLanes="false">' +
+    '<RelativeLaneRange from="1" to="-1"/><EntityRef entityRef="OverTaker"/></RelativeClearanceCondition>';
+  const group = speedChangeGroup('ClearanceGroup', 'Ego', '10', 'Ego').replace('<TraveledDistanceCondition value="5"/>', clearance);
+  const act = `      <Act name="ClearanceAct">
+${group}        <StartTrigger>
+          <ConditionGroup>
+            <Condition name="ClearanceActStart" delay="0" conditionEdge="rising">
+              <ByValueCondition><SimulationTimeCondition value="3" rule="greaterThan"/></ByValueCondition>
+            </Condition>
+          </ConditionGroup>
+        </StartTrigger>
+      </Act>
+`;
+  const storyEnd = cutIn.indexOf('</Story>');
+  if (storyEnd < 0) throw new Error('cut-in.xosc has no </Story>');
+  const lineStart = cutIn.lastIndexOf('\n', storyEnd) + 1;
+  return cutIn.slice(0, lineStart) + act + cutIn.slice(lineStart);
 }

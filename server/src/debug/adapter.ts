@@ -25,6 +25,7 @@ import { EsminiProblem } from '../esmini/messages';
 import { EntityState, prepareScenario, Simulation, SimulationLoadError, SimulationOptions, StoryboardEvent } from './simulation';
 import { STORYBOARD_EVENT, type StoryboardEventBody } from '../../../common/src/trace';
 import { describeEvent, traceRecord } from './trace';
+import { type SessionProgress } from './supervisor';
 import { evaluateWatch, hitConditionMet, timeBreakpoint, WatchContext, WatchError, WatchValue } from './watchExpression';
 
 /*
@@ -50,6 +51,12 @@ export interface ScenarioLaunchArguments extends DebugProtocol.LaunchRequestArgu
 }
 
 const THREAD_ID = 1;
+
+/** Where the session says how far it got, for its supervisor to tell after a crash (supervisor.ts); nowhere by default. */
+let reportProgress: ((progress: SessionProgress) => void) | undefined;
+export function reportProgressTo(sink: ((progress: SessionProgress) => void) | undefined): void {
+  reportProgress = sink;
+}
 /** While running, the bird's-eye view gets the entities at most this often (wall ms): enough to watch them move. */
 const STATE_INTERVAL_MS = 100;
 const ELEMENT_KINDS = 'Story, Act, ManeuverGroup, Maneuver, Event, Action or Condition';
@@ -198,6 +205,7 @@ export class ScenarioDebugSession extends DebugSession {
       base,
       esminiLibrary: args.esminiLibrary,
       force: args.force,
+      onCallback: reportProgress && ((time, what) => reportProgress?.({ time, what })),
     };
     const store = new ScenarioStore({
       scenarioPath: [...(args.scenarioPath ?? []), ...splitScenarioPath(process.env.SCENARIO_PATH)],
@@ -205,6 +213,7 @@ export class ScenarioDebugSession extends DebugSession {
       workingDirectory: base,
     });
     try {
+      reportProgress?.({ time: 0, what: 'loading the scenario' });
       const prepared = await prepareScenario(new Flattener(store), mainRef(program), options);
       for (const problem of prepared.flattenProblems) if (problem.severity === 'error') this.problemOutput(problem);
       const simulation = new Simulation(prepared, options);
@@ -416,6 +425,7 @@ export class ScenarioDebugSession extends DebugSession {
     const slice = () => {
       if (!this.running || this.simulation !== simulation) return;
       try {
+        reportProgress?.({ time: simulation.time, what: 'stepping on from there' });
         // Steps in slices of a few milliseconds, so that a pause request is read between them.
         const until = Date.now() + 15;
         do {

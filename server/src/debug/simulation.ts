@@ -54,6 +54,8 @@ export interface SimulationOptions {
   base?: string;
   esminiLibrary?: string;
   force?: boolean;
+  /** Called inside esmini's callbacks, before its step goes on: how far the run got, should esmini crash in that step. */
+  onCallback?: (time: number, what: string) => void;
 }
 
 export interface EntityState extends EsminiObjectState {
@@ -281,12 +283,14 @@ export class Simulation {
     const mapped = this.scenario.map.atPath(element);
     const stateName = STATES[state] ?? 'standby';
     const time = this.library.simulationTime();
+    this.options.onCallback?.(time, `${kind} ${name} ${stateName}`);
     this.states.set(element, { state: stateName, since: time, mapped, type: kind, name });
     this.pending.push({ time, element, name, type: kind, state: stateName, mapped });
   }
 
   private conditionFired(name: string, timestamp: number): void {
     if (this.muted) return;
+    this.options.onCallback?.(timestamp, `Condition ${name} true`);
     this.library.flushLog();
     for (const line of this.readLog().split('\n')) {
       const match = CONDITION_LOG.exec(line);

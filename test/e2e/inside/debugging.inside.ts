@@ -2,11 +2,15 @@ import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import * as vscode from 'vscode';
+import { SESSION_ARGUMENT } from '../../../server/src/debug/supervisor';
 import { esminiCutInFolder, esminiOrSkip } from './esmini.inside';
 import { pageShows, pressKeys, screenshot } from './harnessClient';
 import { api, EXTENSION_ID, type InsideTests, open, positionOf, waitFor, workspaceRoot } from './helpers';
 
-/** The debug adapter processes of the extension under test (their command line names its dist/debugAdapter.js). */
+/**
+ * The debug adapter processes of the extension under test (their command line names its dist/debugAdapter.js): the
+ * one VS Code starts, and the session it runs esmini in, whose command line also has SESSION_ARGUMENT.
+ */
 function adapterProcesses(): number[] {
   const adapter = path.join(vscode.extensions.getExtension(EXTENSION_ID)?.extensionPath ?? '-', 'dist', 'debugAdapter.js');
   return fs
@@ -92,10 +96,13 @@ export const debuggingTests: InsideTests = {
       );
       await screenshot("debug: stopped on the CutInEvent breakpoint, Variables view with the entities, the bird's-eye view at the stop");
 
-      // esmini crashing in the adapter's process (a segmentation fault, as a bad pointer in esmini gives).
+      // esmini crashing in the session's process (a segmentation fault, as a bad pointer in esmini gives): the adapter's
+      // outer process says so (server/src/debug/supervisor.ts).
       const adapters = adapterProcesses();
-      assert.equal(adapters.length, 1, `one adapter process: ${adapters.join(', ')}`);
-      process.kill(adapters[0], 'SIGSEGV');
+      const sessions = adapters.filter((pid) => fs.readFileSync(`/proc/${pid}/cmdline`, 'utf8').split('\0').includes(SESSION_ARGUMENT));
+      assert.equal(adapters.length, 2, `the adapter and its session: ${adapters.join(', ')}`);
+      assert.equal(sessions.length, 1, `one session process: ${sessions.join(', ')}`);
+      process.kill(sessions[0], 'SIGSEGV');
       await waitFor('the session to end', () => vscode.debug.activeDebugSession === undefined, 30_000);
       await waitFor('the message naming the crash', () => pageShows('The debug session of cut-in.xosc ended'), 30_000);
       assert.ok(await pageShows("esmini's process was killed by"), 'the message says how the adapter ended');
