@@ -63,6 +63,28 @@ const builtinsRequired = {
 };
 
 /**
+ * proj4js (core/opendrive/geo.ts, a GeoPosition's projection; 300 KB) is a bundle of its own, dist/proj4.js, required
+ * only when an export meets a GeoPosition: in the CLI's bundles it would be read at every start. Its lazy
+ * `import('proj4')` becomes a require of that file beside the bundle (the CLI's vm.Script has no `import()`).
+ * @type {esbuild.Plugin}
+ */
+const proj4Beside = {
+  name: 'proj4-beside',
+  setup(build) {
+    build.onResolve({ filter: /^proj4$/ }, (args) =>
+      args.kind === 'dynamic-import' ? { path: 'proj4', namespace: 'proj4-beside' } : undefined,
+    );
+    build.onLoad({ filter: /.*/, namespace: 'proj4-beside' }, () => ({
+      contents: 'module.exports = require("./proj4.js");',
+      loader: 'js',
+    }));
+    build.onResolve({ filter: /^\.\/proj4\.js$/ }, (args) =>
+      args.namespace === 'proj4-beside' ? { path: args.path, external: true } : undefined,
+    );
+  },
+};
+
+/**
  * `import * as fs from 'node:fs'` in each of N files is, bundled, N copies of fs's hundred properties as
  * getters (esbuild's __toESM) at every start; through one module that re-exports the built-in they are
  * made once. For the CLI's bundles, whose start-up is most of a short run.
@@ -92,7 +114,9 @@ const commandFiles = [...new Set(Object.values(COMMAND_BUNDLES))];
 /** @type {esbuild.BuildOptions[]} */
 const entries = [
   { entryPoints: ['client/src/extension.ts'], outfile: 'dist/client.js', external: ['vscode'] },
-  { entryPoints: ['server/src/server.ts'], outfile: 'dist/server.js', banner: { js: '#!/usr/bin/env node' } },
+  { entryPoints: ['server/src/server.ts'], outfile: 'dist/server.js', banner: { js: '#!/usr/bin/env node' }, plugins: [proj4Beside] },
+  // proj4js on its own, required by the bundles above and below when a GeoPosition is exported (proj4Beside).
+  { entryPoints: ['proj4'], outfile: 'dist/proj4.js', minify: true },
   // The debug adapter, a process of its own (esmini crashing ends it, not the editor); koffi is native, loaded from node_modules.
   { entryPoints: ['server/src/debugAdapter.ts'], outfile: 'dist/debugAdapter.js', external: ['koffi'] },
   starter,
@@ -101,14 +125,14 @@ const entries = [
     entryPoints: ['server/src/cli.ts'],
     outfile: 'dist/cli-main.js',
     external: ['bullmq', 'ioredis', 'koffi'],
-    plugins: [builtinsRequired, sharedBuiltinNamespaces],
+    plugins: [builtinsRequired, sharedBuiltinNamespaces, proj4Beside],
   },
   // The short commands' own bundles.
   ...commandFiles.map((file) => ({
     entryPoints: ['server/src/cli.ts'],
     outfile: `dist/${commandBundle(file)}`,
     external: ['bullmq', 'ioredis', 'koffi'],
-    plugins: [onlyCommandFile(file), builtinsRequired, sharedBuiltinNamespaces],
+    plugins: [onlyCommandFile(file), builtinsRequired, sharedBuiltinNamespaces, proj4Beside],
   })),
   // The bird's-eye view's page: runs in the webview, everything bundled (no network, no CDN).
   {

@@ -2,12 +2,13 @@ import { strict as assert } from 'node:assert';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { main } from '../../server/src/cli';
-import { parseXml } from '../../server/src/core/xml';
+import { attributeValue, parseXml } from '../../server/src/core/xml';
 import type { XmlElement } from '../../server/src/core/xml';
-import { HarnessVerdict, harnessVerdicts, requireCarlaHarness } from '../support/carla';
+import { HarnessVerdict, harnessVerdicts, requireCarlaHarness, scenarioRunnerFolder } from '../support/carla';
 import { esminiCatalogs, esminiRoads, requireEsmini, runEsmini, tracksOf } from '../support/esmini';
 import { openscenarioDir } from '../support/openscenarioCorpus';
 import { caseStudyDir, libraryDir, requireCorpus } from '../support/paths';
+import { runBounded } from '../support/processes';
 import { temporaryFolder } from '../support/temporaryDirectory';
 
 interface Exported {
@@ -400,6 +401,14 @@ const ACT_STARTS = `<StartTrigger><ConditionGroup><Condition name="ActStarts" de
           <ByValueCondition><SimulationTimeCondition value="0" rule="greaterThan"/></ByValueCondition>
         </Condition></ConditionGroup></StartTrigger>`;
 
+/** A story in which nothing happens: the scenario only places its entities. */
+const STILL_STORY = `<Story name="Still">
+      <Act name="Nothing">
+        <ManeuverGroup maximumExecutionCount="1" name="Group"><Actors selectTriggeringEntities="false"/></ManeuverGroup>
+        ${ACT_STARTS}
+      </Act>
+    </Story>`;
+
 /** A scenario of the tests below: its entities, Init actions and Story on `road`, stopped after `stopAt` s. */
 function testScenario(parts: {
   revMinor: number;
@@ -484,12 +493,7 @@ function routePositionsScenario(road: string, route: string, placed: [string, st
     road,
     entities: placed.map(([entity], index) => vehicle(entity, index === 0 ? 'ego_vehicle' : 'simulation')).join(''),
     init: placed.map(teleport).join(''),
-    story: `<Story name="Still">
-      <Act name="Nothing">
-        <ManeuverGroup maximumExecutionCount="1" name="Group"><Actors selectTriggeringEntities="false"/></ManeuverGroup>
-        ${ACT_STARTS}
-      </Act>
-    </Story>`,
+    story: STILL_STORY,
     stopAt: 0.5,
   });
 }
@@ -557,6 +561,116 @@ describe("export --target carla, RoutePositions past their route's first road", 
       [['RoutePosition', routePositionLine]],
     );
     assert.match(refused[0].what, /road 2 ends without a link in the driving direction of lane 1/);
+  });
+});
+
+/** A 1.2 scenario on `road` whose ego is placed by `<GeoPosition ${geo}/>`. */
+function geoPositionScenario(road: string, geo: string): string {
+  return testScenario({
+    revMinor: 2,
+    description: 'a geo position',
+    road,
+    entities: vehicle('Ego', 'ego_vehicle'),
+    init: `
+        <Private entityRef="Ego">
+          <PrivateAction><TeleportAction><Position><GeoPosition ${geo}/></Position></TeleportAction></PrivateAction>
+        </Private>`,
+    story: STILL_STORY,
+    stopAt: 0.5,
+  });
+}
+
+/** The first element named `name` in document order. */
+function findElement(element: XmlElement | undefined, name: string): XmlElement | undefined {
+  if (!element || element.name === name) return element;
+  for (const each of element.children) {
+    const found = findElement(each, name);
+    if (found) return found;
+  }
+  return undefined;
+}
+
+/** ScenarioRunner's own `_location_to_gps` (srunner/tools/route_manipulation.py, CARLA's geolocation) on CARLA location (x, y): latitude and longitude. */
+async function scenarioRunnerGps(latRef: number, lonRef: number, x: number, y: number): Promise<{ lat: number; lon: number }> {
+  const source = path.join(scenarioRunnerFolder, 'srunner', 'tools', 'route_manipulation.py');
+  // The function alone, taken from ScenarioRunner's file: the module imports CARLA's agents, which this machine has not.
+  const program = `import ast, json, math, sys, types
+tree = ast.parse(open(sys.argv[1]).read())
+function = next(node for node in tree.body if isinstance(node, ast.FunctionDef) and node.name == '_location_to_gps')
+scope = {'math': math}
+exec(compile(ast.Module(body=[function], type_ignores=[]), sys.argv[1], 'exec'), scope)
+location = types.SimpleNamespace(x=float(sys.argv[4]), y=float(sys.argv[5]), z=0.0)
+print(json.dumps(scope['_location_to_gps'](float(sys.argv[2]), float(sys.argv[3]), location)))`;
+  const { code, output } = await runBounded('python3', ['-c', program, source, ...[latRef, lonRef, x, y].map(String)], {}, 60_000);
+  assert.equal(code, 0, output);
+  return JSON.parse(output) as { lat: number; lon: number };
+}
+
+describe('export --target carla, GeoPositions', function () {
+  this.timeout(300_000);
+  let out: string;
+  before(function () {
+    requireCorpus(this);
+  });
+  inTemporaryFolderEach('m2s-carla-geo-', (folder) => (out = folder));
+
+  /** The export of the ego placed by `<GeoPosition ${geo}/>` on `road`, and the WorldPosition written for it. */
+  async function exportGeo(road: string, geo: string): Promise<{ result: Exported; world: XmlElement | undefined }> {
+    const input = path.join(out, 'geo.xosc');
+    fs.writeFileSync(input, geoPositionScenario(road, geo));
+    const result = await exportFile(input, path.join(out, 'geo.carla.xosc'));
+    const world = result.code === 0 ? findElement(parseXml(fs.readFileSync(result.output, 'utf8')).root, 'WorldPosition') : undefined;
+    return { result, world };
+  }
+
+  it("on a CARLA town's .xodr (+lat_0/+lon_0, no +proj): the WorldPosition CARLA's own geolocation maps back to that latitude/longitude", async function () {
+    requireCarlaHarness(this);
+    const { result, world } = await exportGeo(
+      path.join(esminiRoads, 'Town05.xodr'),
+      'latitudeDeg="49.0004" longitudeDeg="7.9991" altitude="3"',
+    );
+    assert.equal(result.code, 0, result.stderr);
+    const loss = result.report.losses.find((each) => each.element === 'GeoPosition');
+    assert.equal(loss?.kind, 'approximated');
+    assert.match(loss?.what ?? '', /CARLA's reading of the geoReference .*; its altitude 3 is not kept/);
+    const x = Number(world && attributeValue(world, 'x'));
+    const y = Number(world && attributeValue(world, 'y'));
+    // ScenarioRunner negates y of a file without the CARLA: prefix: CARLA's location is (x, -y).
+    const gps = await scenarioRunnerGps(49, 8, x, -y);
+    assert.ok(Math.abs(gps.lat - 49.0004) < 1e-8 && Math.abs(gps.lon - 7.9991) < 1e-8, `${x}, ${y} is at ${JSON.stringify(gps)}`);
+    const verdict = (await harnessVerdicts([result.output])).get(path.resolve(result.output));
+    assert.equal(verdict?.status, 'OK', JSON.stringify(verdict));
+  });
+
+  it('on a +proj geoReference: placed by that projection, and where CARLA would put the same place named', async () => {
+    const road = path.join(out, 'tmerc.xodr');
+    const straight = fs.readFileSync(path.join(esminiRoads, 'straight_500m.xodr'), 'utf8');
+    const tmerc = straight.replace(
+      /<geoReference>[\s\S]*?<\/geoReference>/,
+      '<geoReference><![CDATA[+proj=tmerc +lat_0=57.7 +lon_0=11.9 +k=1 +x_0=100 +y_0=0 +ellps=WGS84 +units=m]]></geoReference>',
+    );
+    assert.notEqual(tmerc, straight, 'straight_500m.xodr has no geoReference to replace');
+    fs.writeFileSync(road, tmerc);
+    // The projection's origin is at its false easting and northing.
+    const { result, world } = await exportGeo(road, 'latitudeDeg="57.7" longitudeDeg="11.9"');
+    assert.equal(result.code, 0, result.stderr);
+    assert.equal(Number(world && attributeValue(world, 'x')), 100);
+    assert.equal(Number(world && attributeValue(world, 'y')), 0);
+    const loss = result.report.losses.find((each) => each.element === 'GeoPosition');
+    assert.match(loss?.what ?? '', /\+proj=tmerc .* \(computed with proj4js.*CARLA's own geolocation .* x 0, y 0, 100\.0 m away/);
+  });
+
+  it("refused where the geoReference does not describe the file's coordinates, or there is none", async () => {
+    // esmini's straight_500m.xodr: +proj=utm with +x_0=0: UTM's false easting of 500 km still applies, far from its roads.
+    const far = await exportGeo(path.join(esminiRoads, 'straight_500m.xodr'), 'latitudeDeg="37.3543" longitudeDeg="-122.0860"');
+    assert.equal(far.result.code, 1);
+    const refused = far.result.report.losses.find((each) => each.kind === 'refused');
+    assert.equal(refused?.element, 'GeoPosition');
+    assert.match(refused?.what ?? '', /km from every road: the geoReference does not describe the file's coordinates/);
+    const none = await exportGeo(path.join(esminiRoads, 'fabriksgatan.xodr'), 'latitudeDeg="57" longitudeDeg="12"');
+    assert.equal(none.result.code, 1);
+    assert.match(none.result.report.losses.find((each) => each.kind === 'refused')?.what ?? '', /the road file has no geoReference/);
+    assert.equal(fs.existsSync(path.join(out, 'geo.carla.xosc')), false);
   });
 });
 

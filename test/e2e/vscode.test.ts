@@ -294,6 +294,8 @@ describe('the packaged extension in a real VS Code (code-server, headless Chromi
       // The CLI, which Run Variations runs (batch).
       'dist/cli.js',
       'dist/cli-main.js',
+      // proj4js, required by the server and the CLI when an export meets a GeoPosition.
+      'dist/proj4.js',
       'dist/variations.js',
       // The storyboard timeline's page (issue 29).
       'dist/timeline.js',

@@ -12,6 +12,7 @@
 import * as path from 'node:path';
 import { Flattener, originOf, OVERRIDE_PROBLEM_CODES } from '../flatten';
 import type { FlatSource } from '../flatten/types';
+import { geoToRoad, RoadXY } from '../opendrive/geo';
 import { MAX_ROAD_FILE_BYTES, parseOpenDrive, RoadNetwork } from '../opendrive/road';
 import { formatProblem, Problem } from '../problems';
 import { logicFileOf, resolveRoadFile } from '../semantics/roadFiles';
@@ -31,7 +32,7 @@ import {
   SR_CONFIGURATION,
   SR_SCHEMA,
 } from './carlaFacts';
-import { applyCarlaRules, CarlaLoss, LossSink, tidyEmptyContainers } from './carlaRules';
+import { applyCarlaRules, CarlaLoss, geoPositionDegrees, LossSink, tidyEmptyContainers } from './carlaRules';
 import {
   allNodes,
   ancestor,
@@ -269,10 +270,15 @@ export async function exportTextForCarla(
   mapBlueprints(tree, options, sink);
   // Route positions are placed on the road they name: only then is the road file read.
   // Route positions need road lengths, sampled trajectories the heading of a lane an actor starts on.
-  const needsRoads = named(tree, new Set(['RoutePosition', 'Clothoid', 'ClothoidSpline', 'Nurbs'])).length > 0;
+  const needsRoads = named(tree, new Set(['RoutePosition', 'GeoPosition', 'Clothoid', 'ClothoidSpline', 'Nurbs'])).length > 0;
   const roads = road && 'file' in road && needsRoads ? await readRoads(store, road.file) : undefined;
+  const geoPlaces = new Map<Node, RoadXY | string>();
+  for (const position of named(tree, 'GeoPosition')) {
+    const degrees = geoPositionDegrees(position);
+    if (roads && degrees) geoPlaces.set(position, await geoToRoad(roads, degrees.latitude, degrees.longitude));
+  }
   const elementsBefore = storyboardElementKeys(tree);
-  applyCarlaRules(tree, { release: options.release ?? '0.9.16', sink, roads });
+  applyCarlaRules(tree, { release: options.release ?? '0.9.16', sink, roads, geoPlaces });
   // The text the last schema check passed: nothing changes the tree after it.
   const checked = dropOutsideSchema(tree, sink);
   reportStatesOfDroppedElements(tree, elementsBefore, sink);

@@ -4,6 +4,7 @@
  * Every rule names the ScenarioRunner code it follows (revision SR_REVISION of carlaFacts.ts).
  */
 import type { RoadNetwork } from '../opendrive/road';
+import type { RoadXY } from '../opendrive/geo';
 import { pointAlongRoute, RouteWaypoint } from '../opendrive/route';
 import { SourceRef } from '../sources';
 import { Range } from '../text';
@@ -57,6 +58,8 @@ export interface RuleContext {
   sink: LossSink;
   /** The scenario's OpenDRIVE roads when the road is an `.xodr` file the export read (route positions need their lengths). */
   roads?: RoadNetwork;
+  /** Each GeoPosition's x, y by the road's geoReference, or why there is none (computed before the rules: proj4js loads lazily). */
+  geoPlaces?: Map<Node, RoadXY | string>;
 }
 
 /** Drops the smallest unit of a storyboard holding `node` that ScenarioRunner can do without: its Condition, its Event's Action or its Init action. */
@@ -631,10 +634,61 @@ function routePositionAsLane(position: Node, roads: RoadNetwork | undefined): { 
   };
 }
 
-/** ScenarioRunner refuses these positions (SR_PARSER convert_position_to_transform); Geo and Trajectory positions are not 1.0. */
+/** A GeoPosition's latitude and longitude in degrees (1.2 `latitudeDeg`; 1.1 `latitude` in radians), or undefined when not numbers. */
+export function geoPositionDegrees(position: Node): { latitude: number; longitude: number } | undefined {
+  const degrees = (name: string, radians: string): number => {
+    const value = attr(position, name);
+    return value !== undefined ? Number(value) : (Number(attr(position, radians)) * 180) / Math.PI;
+  };
+  const latitude = degrees('latitudeDeg', 'latitude');
+  const longitude = degrees('longitudeDeg', 'longitude');
+  return Number.isFinite(latitude) && Number.isFinite(longitude) ? { latitude, longitude } : undefined;
+}
+
+/**
+ * A GeoPosition (1.1+) written as the WorldPosition its road's geoReference gives (core/opendrive/geo.ts). ScenarioRunner
+ * has none: its 1.0 schema has no GeoPosition and convert_position_to_transform raises "Unknown position"
+ * (SR_PARSER); its only geo code, srunner/tools/route_manipulation.py, turns locations into GPS for route scenarios.
+ * Its altitude is not kept (a WorldPosition's z is the height ScenarioRunner spawns at, not above the ellipsoid);
+ * an absolute Orientation becomes h, p, r; a relative one is relative to the road there, which the export does not compute.
+ */
+function geoPositions(tree: Node, context: RuleContext): void {
+  for (const position of named(tree, 'GeoPosition')) {
+    if (!position.parent) continue;
+    const orientation = child(position, 'Orientation');
+    let placed =
+      context.geoPlaces?.get(position) ??
+      (context.roads ? 'its latitude or longitude is not a number' : 'the road is not an .xodr file the export read');
+    if (typeof placed !== 'string' && orientation && attr(orientation, 'type') === 'relative')
+      placed = 'its Orientation is relative to the road at that point, which the export does not compute';
+    if (typeof placed === 'string') {
+      unconvertiblePosition(position, 'GeoPosition', context, `; the export cannot write it otherwise: ${placed}`);
+      continue;
+    }
+    const round = (value: number) => String(Number(value.toFixed(4)));
+    const angles = (['h', 'p', 'r'] as const).flatMap((name): [string, string][] => {
+      const value = orientation ? attr(orientation, name) : undefined;
+      return value !== undefined ? [[name, value]] : [];
+    });
+    const world = makeNode('WorldPosition', [['x', round(placed.x)], ['y', round(placed.y)], ...angles], [], position.place);
+    replaceNode(position, world);
+    const altitude = attr(position, 'altitude') ?? attr(position, 'height');
+    const carla = placed.carla
+      ? `; CARLA's own geolocation of this map (its GNSS; LibCarla GeoLocation with +lat_0/+lon_0 only) puts that latitude/longitude at x ${round(placed.carla.x)}, y ${round(placed.carla.y)}, ${Math.hypot(placed.carla.x - placed.x, placed.carla.y - placed.y).toFixed(1)} m away`
+      : '';
+    context.sink.approximated(
+      world,
+      'GeoPosition',
+      `written as WorldPosition x ${round(placed.x)}, y ${round(placed.y)} by ${placed.how}${altitude !== undefined ? `; its altitude ${altitude} is not kept` : ''}${carla}`,
+      `ScenarioRunner has no GeoPosition (not in its 1.0 schema; ${SR_PARSER} convert_position_to_transform raises "Unknown position") and converts a WorldPosition`,
+    );
+  }
+}
+
+/** ScenarioRunner refuses these positions (SR_PARSER convert_position_to_transform); Trajectory positions are not 1.0. */
 function unsupportedPositions(tree: Node, context: RuleContext): void {
-  // RoutePosition: the rule route-positions writes or names every one.
-  for (const name of ['GeoPosition', 'TrajectoryPosition', 'RoadRange']) {
+  // RoutePosition and GeoPosition: the rules route-positions and geo-positions write or name every one.
+  for (const name of ['TrajectoryPosition', 'RoadRange']) {
     for (const node of named(tree, name)) {
       if (!node.parent) continue;
       unconvertiblePosition(node, name, context);
@@ -1077,6 +1131,7 @@ export const CARLA_RULES: readonly { name: string; apply: (tree: Node, context: 
   { name: 'time-gap', apply: longitudinalTimeGap },
   { name: 'trajectories', apply: trajectories },
   { name: 'route-positions', apply: routePositions },
+  { name: 'geo-positions', apply: geoPositions },
   { name: 'positions', apply: unsupportedPositions },
   { name: 'refused-actions', apply: refusedActions },
   { name: 'route-crash', apply: routeActionCrash },

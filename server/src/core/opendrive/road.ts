@@ -75,6 +75,8 @@ export interface RoadNetwork {
   junctions: Map<string, Junction>;
   /** The `<header><geoReference>` text (a PROJ string), trimmed; undefined when the file has none. */
   geoReference?: string;
+  /** The `<header><offset>` (OpenDRIVE 1.6: projected coordinates shifted and turned) as written, when it is not all zero. */
+  geoOffset?: string;
   /** What could not be read, with the offset of the element. */
   problems: { message: string; offset: number }[];
   /** Every signal id the file declares (a road's `<signal id>`, a `<controller>`'s `<control signalId>`): what a TrafficSignalStateAction names. */
@@ -284,12 +286,16 @@ export function parseOpenDrive(text: string): RoadNetwork {
   const junctions = new Map(
     childrenNamed(document.root, 'junction').map((element) => [attributeValue(element, 'id') ?? '', junctionOf(element)]),
   );
-  const geoReference = childrenNamed(childrenNamed(document.root, 'header')[0], 'geoReference')[0];
+  const header = childrenNamed(document.root, 'header')[0];
+  const geoReference = childrenNamed(header, 'geoReference')[0];
+  const offset = childrenNamed(header, 'offset')[0];
+  const offsetTerms = offset ? ['x', 'y', 'z', 'hdg'].filter((name) => numberOf(offset, name) !== 0) : [];
   return {
     roads,
     byId: new Map(roads.map((road) => [road.id, road])),
     junctions,
     geoReference: geoReference ? textOf(text, geoReference) : undefined,
+    geoOffset: offset && offsetTerms.length > 0 ? offsetTerms.map((name) => `${name} ${numberOf(offset, name)}`).join(', ') : undefined,
     problems,
     signalIds,
   };
