@@ -1,7 +1,7 @@
 import { ESMINI_PROFILE } from '../profiles/esmini';
 import { ValueRule } from '../profiles/facts';
 import { ExpressionNode } from './expressionParser';
-import { ParameterType, ParameterValue } from './values';
+import { ParameterType, ParameterValue, SHARED_MATH_FUNCTIONS, SharedMathFunction } from './values';
 
 /**
  * Values as esmini (release 3.6.0) computes them. esmini keeps every parameter value as text; a
@@ -262,36 +262,17 @@ function applyEsminiFunction(name: string, args: number[], rules: ValueRule[]): 
     case 'round':
       if (roundHalfToEven(a) !== (a < 0 ? -Math.round(-a) : Math.round(a))) addRule(rules, 'round');
       return roundHalfToEven(a);
-    case 'floor':
-      return Math.floor(a);
-    case 'ceil':
-      return Math.ceil(a);
-    case 'sqrt':
-      return Math.sqrt(a);
-    case 'pow':
-      return Math.pow(a, b);
-    case 'sin':
-      return Math.sin(a);
-    case 'cos':
-      return Math.cos(a);
-    case 'tan':
-      return Math.tan(a);
-    case 'asin':
-      return Math.asin(a);
-    case 'acos':
-      return Math.acos(a);
-    case 'atan':
-      return Math.atan(a);
     case 'sign':
       if (a === 0) addRule(rules, 'sign');
       return a < 0 ? -1 : 1;
-    case 'abs':
-      return Math.abs(a);
     case 'max':
       return b > a ? b : a;
-    default:
+    case 'min':
       return b < a ? b : a;
   }
+  // Names esmini does not know are refused before evaluation (ESMINI_FUNCTIONS).
+  if (!Object.hasOwn(SHARED_MATH_FUNCTIONS, name)) throw new Error(`'${name}' is not a function esmini knows`);
+  return SHARED_MATH_FUNCTIONS[name as SharedMathFunction](a, b);
 }
 
 class ParseFailure extends Error {}

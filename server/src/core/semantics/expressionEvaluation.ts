@@ -1,7 +1,7 @@
 /** Evaluation of a parsed `${...}` expression: doubles, booleans and the standard's functions (./expressionParser.ts parses). */
 
 import { ExpressionError, ExpressionNode, FUNCTIONS, FunctionName } from './expressionParser';
-import { ParameterType, ParameterValue, readStringAsValue, roundHalfAwayFromZero, TypedValue } from './values';
+import { ParameterType, ParameterValue, readStringAsValue, roundHalfAwayFromZero, SHARED_MATH_FUNCTIONS, TypedValue } from './values';
 
 /** A parameter's value, with where its `parameterType` value is written (a string parameter read as a number is fixed there). */
 export type LookupResult = TypedValue & { retype?: { start: number; end: number } };
@@ -189,33 +189,13 @@ function applyFunction(name: FunctionName, args: number[]): number {
   switch (name) {
     case 'round':
       return roundHalfAwayFromZero(a);
-    case 'floor':
-      return Math.floor(a);
-    case 'ceil':
-      return Math.ceil(a);
-    case 'sqrt':
-      return Math.sqrt(a);
-    case 'pow':
-      return Math.pow(a, b);
-    case 'abs':
-      return Math.abs(a);
     case 'sign':
       return a > 0 ? 1 : a < 0 ? -1 : 0;
     case 'min':
       return Math.min(a, b);
     case 'max':
       return Math.max(a, b);
-    case 'sin':
-      return Math.sin(a);
-    case 'cos':
-      return Math.cos(a);
-    case 'tan':
-      return Math.tan(a);
-    case 'asin':
-      return Math.asin(a);
-    case 'acos':
-      return Math.acos(a);
-    case 'atan':
-      return Math.atan(a);
+    default:
+      return SHARED_MATH_FUNCTIONS[name](a, b);
   }
 }
