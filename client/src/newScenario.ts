@@ -19,10 +19,15 @@ const BROWSE = 'Browse…';
 const MAX_LISTED = 200;
 const ROAD_PATH_DEPTH = 3;
 
-function isNewScenarioOptions(value: unknown): value is NewScenarioOptions {
-  if (typeof value !== 'object' || value === null || value instanceof vscode.Uri || Array.isArray(value)) return false;
-  const candidate = value as Record<string, unknown>;
-  return typeof candidate.roadNetwork === 'string' || typeof candidate.fileName === 'string';
+/** The options object among a command's arguments: the one that sets one of `keys` to a string (not a Uri, not a list). */
+export function optionsAmong<Options extends object>(args: unknown[], keys: (keyof Options & string)[]): Partial<Options> {
+  const isOptions = (value: unknown): value is Partial<Options> =>
+    typeof value === 'object' &&
+    value !== null &&
+    !(value instanceof vscode.Uri) &&
+    !Array.isArray(value) &&
+    keys.some((key) => typeof (value as Record<string, unknown>)[key] === 'string');
+  return args.find(isOptions) ?? {};
 }
 
 function isDirectory(filePath: string): boolean {
@@ -115,15 +120,38 @@ async function askRoadNetwork(folder: string): Promise<string | undefined> {
   return browsed?.[0]?.fsPath;
 }
 
-async function askFileName(folder: string): Promise<string | undefined> {
-  const name = await vscode.window.showInputBox({
-    title: `${TITLE}: the file name`,
-    prompt: `The new main scenario, in ${folder}`,
-    value: freeScenarioName(folder),
-    valueSelection: [0, 'main'.length],
-    validateInput: (value) => fileNameProblem(folder, value),
-  });
-  return name?.trim();
+/** What the file name question says and proposes. */
+export interface FileNameQuestion {
+  title: string;
+  prompt: string;
+  proposed: string;
+  /** The part of the proposal selected, to be typed over (all of it when left out). */
+  selection?: [number, number];
+}
+
+/**
+ * The new file's path in the folder: the name given, or else the one the user types (checked as typed); undefined when
+ * the question is dismissed or the name will not do (said in an error message).
+ */
+export async function newFilePath(folder: string, given: string | undefined, question: FileNameQuestion): Promise<string | undefined> {
+  const fileName =
+    given ??
+    (
+      await vscode.window.showInputBox({
+        title: `${question.title}: the file name`,
+        prompt: question.prompt,
+        value: question.proposed,
+        valueSelection: question.selection,
+        validateInput: (value) => fileNameProblem(folder, value),
+      })
+    )?.trim();
+  if (!fileName) return undefined;
+  const problem = fileNameProblem(folder, fileName);
+  if (problem) {
+    void vscode.window.showErrorMessage(`${question.title}: ${problem}.`);
+    return undefined;
+  }
+  return path.join(folder, fileName);
 }
 
 /**
@@ -136,20 +164,19 @@ export async function newScenarioCommand(
   clicked: unknown,
   ...rest: unknown[]
 ): Promise<vscode.Uri | undefined> {
-  const options = [clicked, ...rest].find(isNewScenarioOptions) ?? {};
+  const options = optionsAmong<NewScenarioOptions>([clicked, ...rest], ['roadNetwork', 'fileName']);
   try {
     const folder = await targetFolder(clicked);
     if (!folder) return undefined;
     const roadNetwork = options.roadNetwork ?? (await askRoadNetwork(folder));
     if (!roadNetwork) return undefined;
-    const fileName = options.fileName ?? (await askFileName(folder));
-    if (!fileName) return undefined;
-    const problem = fileNameProblem(folder, fileName);
-    if (problem) {
-      void vscode.window.showErrorMessage(`${TITLE}: ${problem}.`);
-      return undefined;
-    }
-    const target = path.join(folder, fileName);
+    const target = await newFilePath(folder, options.fileName, {
+      title: TITLE,
+      prompt: `The new main scenario, in ${folder}`,
+      proposed: freeScenarioName(folder),
+      selection: [0, 'main'.length],
+    });
+    if (!target) return undefined;
     const result = await server.newScenario(vscode.Uri.file(target), vscode.Uri.file(path.resolve(folder, roadNetwork)));
     await writeNewFiles([{ path: target, text: result.text }]);
     reporter.log(

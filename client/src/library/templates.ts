@@ -1,10 +1,9 @@
 import * as fs from 'node:fs';
-import * as path from 'node:path';
 import * as vscode from 'vscode';
 import type { CommandReporter } from '../commands';
 import type { ServerCommandClient } from '../languageClient';
-import { fileNameProblem, freeScenarioName, writeNewFiles } from '../naming';
-import { targetFolder } from '../newScenario';
+import { freeScenarioName, writeNewFiles } from '../naming';
+import { newFilePath, optionsAmong, targetFolder } from '../newScenario';
 
 const TITLE = 'New Scenario from Template';
 
@@ -13,12 +12,6 @@ export interface TemplateOptions {
   template?: string;
   /** The new scenario's file name, in the folder. */
   fileName?: string;
-}
-
-function isTemplateOptions(value: unknown): value is TemplateOptions {
-  if (typeof value !== 'object' || value === null || value instanceof vscode.Uri || Array.isArray(value)) return false;
-  const candidate = value as Record<string, unknown>;
-  return typeof candidate.template === 'string' || typeof candidate.fileName === 'string';
 }
 
 /**
@@ -32,7 +25,7 @@ export async function newFromTemplateCommand(
   clicked: unknown,
   ...rest: unknown[]
 ): Promise<vscode.Uri | undefined> {
-  const options = [clicked, ...rest].find(isTemplateOptions) ?? {};
+  const options = optionsAmong<TemplateOptions>([clicked, ...rest], ['template', 'fileName']);
   try {
     let template = options.template;
     if (!template) {
@@ -51,23 +44,12 @@ export async function newFromTemplateCommand(
     }
     const folder = await targetFolder(clicked, TITLE);
     if (!folder) return undefined;
-    const fileName =
-      options.fileName ??
-      (
-        await vscode.window.showInputBox({
-          title: `${TITLE}: the file name`,
-          prompt: `The new scenario, in ${folder}`,
-          value: freeScenarioName(folder, fs.existsSync, template),
-          validateInput: (value) => fileNameProblem(folder, value),
-        })
-      )?.trim();
-    if (!fileName) return undefined;
-    const problem = fileNameProblem(folder, fileName);
-    if (problem) {
-      void vscode.window.showErrorMessage(`${TITLE}: ${problem}.`);
-      return undefined;
-    }
-    const target = path.join(folder, fileName);
+    const target = await newFilePath(folder, options.fileName, {
+      title: TITLE,
+      prompt: `The new scenario, in ${folder}`,
+      proposed: freeScenarioName(folder, fs.existsSync, template),
+    });
+    if (!target) return undefined;
     const { files } = await server.newFromTemplate(template, vscode.Uri.file(target));
     const written = await writeNewFiles(files);
     reporter.log(`${TITLE}: ${template} wrote ${written.join(', ')}`);
