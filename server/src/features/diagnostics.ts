@@ -2,7 +2,7 @@ import { Connection, Diagnostic, DiagnosticRelatedInformation, DiagnosticSeverit
 import { FlatSource, LinkedReference } from '../core/flatten';
 import { Problem } from '../core/problems';
 import { diagnosticOf } from '../core/diagnostics';
-import { cycleMessage } from '../core/diagnostics/cycle';
+import { cycleMessage, cycleStepNote } from '../core/diagnostics/cycle';
 import { standsForCycleOnly } from '../core/diagnostics/sourceErrors';
 import { ruleOf } from '../core/rules';
 import { Range } from '../core/text';
@@ -72,7 +72,7 @@ function cycleSteps(
     if (from && range)
       related.push({
         location: { uri: workspace.uriOf(from.ref), range },
-        message: `${baseName(cycle[step])} references ${baseName(cycle[step + 1])}`,
+        message: cycleStepNote(baseName(cycle[step]), baseName(cycle[step + 1])),
       });
   }
   return related;

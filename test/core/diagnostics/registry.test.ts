@@ -1,6 +1,7 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
+import * as ts from 'typescript';
 import { diagnosticOf, DIAGNOSTICS, SKIPPED_BY_FORCE } from '../../../server/src/core/diagnostics';
 import { PROBLEM_FIXES } from '../../../server/src/features/fixes';
 import { PROBLEM_CODE_LIST } from '../../../server/src/core/problems';
@@ -8,6 +9,59 @@ import { RULES } from '../../../server/src/core/rules';
 import { repoRoot } from '../../support/paths';
 
 const MODULES = path.join(repoRoot, 'server/src/core/diagnostics');
+
+/** Codes whose messages their producer still words: `simulator`'s, from the simulator profiles' facts (core/profiles/, semantics/checks/carla.ts). */
+const WORDED_BY_PRODUCER: readonly string[] = ['simulator'];
+
+/** The string literals an expression may be: `'a'`, or either side of `x ? 'a' : 'b'`. */
+function literalsOf(expression: ts.Expression): string[] {
+  if (ts.isStringLiteralLike(expression)) return [expression.text];
+  if (ts.isParenthesizedExpression(expression)) return literalsOf(expression.expression);
+  if (ts.isConditionalExpression(expression)) return [...literalsOf(expression.whenTrue), ...literalsOf(expression.whenFalse)];
+  return [];
+}
+
+/**
+ * The places of a source outside core/diagnostics/ that word a problem themselves: an object with a problem
+ * code written as a literal and a message that is not the call of a function imported from a diagnostic's module,
+ * or an object that spreads a module's wording (`...xWording()`) and then gives its own message.
+ */
+function ownWordings(file: string, text: string, codes: ReadonlySet<string>): string[] {
+  const source = ts.createSourceFile(file, text, ts.ScriptTarget.Latest, true);
+  const fromModules = new Set<string>();
+  for (const statement of source.statements) {
+    if (!ts.isImportDeclaration(statement) || !ts.isStringLiteral(statement.moduleSpecifier)) continue;
+    if (!/(^|\/)diagnostics(\/|$)/.test(statement.moduleSpecifier.text)) continue;
+    const bindings = statement.importClause?.namedBindings;
+    if (bindings && ts.isNamedImports(bindings)) for (const element of bindings.elements) fromModules.add(element.name.text);
+  }
+  const isModuleCall = (expression: ts.Expression) =>
+    ts.isCallExpression(expression) && ts.isIdentifier(expression.expression) && fromModules.has(expression.expression.text);
+  const found: string[] = [];
+  const visit = (node: ts.Node): void => {
+    if (ts.isObjectLiteralExpression(node)) {
+      const named = (name: string) =>
+        node.properties.find(
+          (property): property is ts.PropertyAssignment | ts.ShorthandPropertyAssignment =>
+            (ts.isPropertyAssignment(property) || ts.isShorthandPropertyAssignment(property)) &&
+            ts.isIdentifier(property.name) &&
+            property.name.text === name,
+        );
+      const message = named('message');
+      const code = named('code');
+      const worded = message && !(ts.isPropertyAssignment(message) && isModuleCall(message.initializer));
+      const literalCodes = code && ts.isPropertyAssignment(code) ? literalsOf(code.initializer).filter((name) => codes.has(name)) : [];
+      const spreadsWording = node.properties.some((property) => ts.isSpreadAssignment(property) && isModuleCall(property.expression));
+      const line = source.getLineAndCharacterOfPosition(node.getStart(source)).line + 1;
+      if (worded && literalCodes.some((name) => !WORDED_BY_PRODUCER.includes(name)))
+        found.push(`${file}:${line}: ${literalCodes.join(', ')} worded here`);
+      else if (message && spreadsWording) found.push(`${file}:${line}: a module's wording with a message of its own`);
+    }
+    ts.forEachChild(node, visit);
+  };
+  visit(source);
+  return found;
+}
 /** The files of the folder that are no diagnostic's module. */
 const SHARED = ['definition.ts', 'index.ts', 'qcRules.ts', 'schemaFindings.ts'];
 
@@ -80,6 +134,36 @@ describe('diagnostics: one module per diagnostic, registered in one list', () =>
     };
     ['server/src', 'client/src', 'common/src'].forEach(visit);
     assert.deepEqual(found, []);
+  });
+
+  it("leaves the wording to each code's module: no producer builds a message for a code itself", () => {
+    const codes = new Set<string>(PROBLEM_CODE_LIST);
+    const found: string[] = [];
+    const visit = (folder: string): void => {
+      for (const entry of fs.readdirSync(path.join(repoRoot, folder), { withFileTypes: true })) {
+        const relative = `${folder}/${entry.name}`;
+        if (entry.isDirectory()) {
+          if (relative !== 'server/src/core/diagnostics') visit(relative);
+        } else if (entry.name.endsWith('.ts'))
+          found.push(...ownWordings(relative, fs.readFileSync(path.join(repoRoot, relative), 'utf8'), codes));
+      }
+    };
+    ['server/src', 'client/src', 'common/src'].forEach(visit);
+    assert.deepEqual(found, []);
+    // What it finds: a message of its own beside a literal code, or after a module's wording; a module's message passes.
+    const producer = [
+      "import { noActorWording, cycleMessage } from '../diagnostics/noActor';",
+      "const a = { code: 'unknown-key', message: `key ${key}` };",
+      "const b = { severity: 'error', code: found ? 'no-actor' : 'cycle', message };",
+      "const c = { ...noActorWording(group), message: 'other words' };",
+      "const d = { code: 'cycle', message: cycleMessage(files) };",
+      "const e = { code: 'simulator', message: finding.message };",
+    ].join('\n');
+    assert.deepEqual(ownWordings('x.ts', producer, codes), [
+      'x.ts:2: unknown-key worded here',
+      'x.ts:3: no-actor, cycle worded here',
+      "x.ts:4: a module's wording with a message of its own",
+    ]);
   });
 
   it('skips under --force what the original tool ignored silently: the key and listing problems', () => {

@@ -5,6 +5,11 @@ export function cycleMessage(files: readonly string[]): string {
   return `reference cycle: ${files.join(' -> ')}`;
 }
 
+/** A related location's note: one step of the cycle, from a file to the file it references. */
+export function cycleStepNote(from: string, to: string): string {
+  return `${from} references ${to}`;
+}
+
 /** A reference that closes a chain of references back to a file on it. */
 export function cycleWording(files: readonly string[]): ProblemWording<'cycle'> {
   return { severity: 'error', code: 'cycle', message: cycleMessage(files), hint: 'remove one reference of the cycle' };
