@@ -4,6 +4,7 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { main } from '../../server/src/cli';
 import { LibraryModule, listLibraries } from '../../server/src/core/library';
+import { insertModuleGroup, moduleRoles } from '../../server/src/core/libraryInsert';
 import { nodeFileSystem } from '../../server/src/core/sources';
 import { parseOpenDrive } from '../../server/src/core/opendrive/road';
 import { builtInLibraryFolder, libraryFolders } from '../../server/src/libraries';
@@ -389,6 +390,45 @@ function crossesAsTheEgoArrives(module: LibraryModule, ego: Track, walker: Track
   );
 }
 
+/**
+ * A module's example main with a second actor (`ACTOR2`, 40 m further along its lane) whose copy of the group Insert into
+ * Main writes; where the module has them, the second copy starts 3 s later and holds a quarter as long.
+ */
+function twoCopies(
+  module: LibraryModule,
+  library: string,
+): { text: string; second: { actor: string; groupName: string; startTime: number; hold: number } } {
+  const actor = module.actor.name;
+  const second = `${actor}2`;
+  let text = fs.readFileSync(module.example ?? '', 'utf8').replace(/filepath="\.\.\/roads\//, `filepath="${path.join(library, 'roads')}/`);
+  const entity = new RegExp(`( *)<ScenarioObject name="${actor}">[\\s\\S]*?</ScenarioObject>\n`).exec(text)?.[0] ?? '';
+  const init = new RegExp(`( *)<Private entityRef="${actor}">[\\s\\S]*?</Private>\n`).exec(text)?.[0] ?? '';
+  assert.ok(entity && init, `${module.name}: its example has no entity or Init for ${actor}`);
+  text = text
+    .replace(entity, entity + entity.replace(`name="${actor}"`, `name="${second}"`))
+    .replace(
+      init,
+      init +
+        init.replace(`entityRef="${actor}"`, `entityRef="${second}"`).replace(/ s="([\d.]+)"/, (_, s: string) => ` s="${Number(s) + 40}"`),
+    )
+    .replace(
+      /(<Condition name="End"[\s\S]*?<SimulationTimeCondition value=")([\d.]+)/,
+      (_, head: string, time: string) => `${head}${Number(time) + 6}`,
+    );
+  const players = Object.fromEntries(moduleRoles(module).map((role) => [role.name, role.name === actor ? second : role.name]));
+  const has = (name: string) => module.parameters.some((candidate) => candidate.name === name);
+  const startTime = has('startTime') ? parameter(module, 'startTime') + 3 : NaN;
+  const hold = has('hold') ? parameter(module, 'hold') / 4 : NaN;
+  const inserted = insertModuleGroup(text, module, { players });
+  const group = inserted.text
+    .replace(/(key="SimulationTimeCondition\.value" value=")[^"]*/, `$1${startTime}`)
+    .replace(/(key="Condition\.delay" value=")[^"]*/, `$1${hold}`);
+  return {
+    text: text.slice(0, inserted.offset) + group + text.slice(inserted.offset),
+    second: { actor: second, groupName: inserted.groupName, startTime, hold },
+  };
+}
+
 describe('library modules: each verified in esmini and CARLA (issue 28)', function () {
   this.timeout(600_000);
   const libraryFolder = builtInLibraryFolder();
@@ -467,6 +507,62 @@ describe('library modules: each verified in esmini and CARLA (issue 28)', functi
     const tracks = tracksOf(run);
     assert.ok(Math.abs(speedAt(trackOf(tracks, 'ego'), 1) - egoSpeed) < 0.01, "the variant did not change the ego's speed");
     turnsAcrossAsSynchronized(tracks, egoAt, parameter(module, 'turnSpeed'));
+  });
+
+  it('modules whose later event waits for their earlier one by name: two copies in one main, each waits for its own (esmini)', async function () {
+    requireEsmini(this);
+    // Which modules those are is read from their files: a StoryboardElementStateCondition naming an element of the module's own group.
+    const waiting = modules.filter((module) => {
+      const text = fs.readFileSync(module.file, 'utf8');
+      return [...text.matchAll(/storyboardElementRef="([^"]+)"/g)].some((match) => text.includes(`name="${match[1]}"`));
+    });
+    assert.deepEqual(
+      waiting.map((module) => module.name),
+      ['double-lane-change', 'overtaking', 'swerving-lead'],
+    );
+    for (const module of waiting) {
+      const { text, second } = twoCopies(module, libraryFolder ?? '');
+      const flat = path.join(outputs, `${module.name}-twice.xosc`);
+      fs.writeFileSync(path.join(outputs, `${module.name}-twice.main.xosc`), text);
+      const errors: string[] = [];
+      const code = await main(['flatten', path.join(outputs, `${module.name}-twice.main.xosc`), '-o', flat, '-q'], {
+        out: () => {},
+        err: (line) => errors.push(line),
+      });
+      assert.equal(code, 0, errors.join('\n'));
+      // Each copy's condition names its own copy's event, which no other element is named.
+      const flatText = fs.readFileSync(flat, 'utf8');
+      for (const outer of [module.maneuverGroup, second.groupName]) {
+        const reference = new RegExp(`storyboardElementRef="(${outer.replace('.', '\\.')}\\.[^"]+)"`).exec(flatText)?.[1];
+        assert.ok(reference, `${module.name}: the copy ${outer} names no element of its own in its condition:\n${flatText}`);
+        assert.equal(flatText.split(`name="${reference}"`).length - 1, 1, `${module.name}: one element is named ${reference}`);
+      }
+      if (module.name === 'overtaking') continue;
+      const example = path.join(outputs, 'twice', `${module.name}.xosc`);
+      fs.mkdirSync(path.dirname(example), { recursive: true });
+      fs.writeFileSync(example, text);
+      const { run } = await runExample({ ...module, example }, outputs, esminiBinary);
+      fs.rmSync(path.dirname(example), { recursive: true });
+      const tracks = tracksOf(run);
+      for (const [actor, startTime, hold] of [
+        [module.actor.name, parameter(module, 'startTime'), parameter(module, 'hold')],
+        [second.actor, second.startTime, second.hold],
+      ] as const) {
+        const moves = lateralMoves(trackOf(tracks, actor));
+        const track = trackOf(tracks, actor);
+        assert.ok(moves.length >= 2, `${module.name} ${actor}: ${moves.length} sideways moves, not out and back`);
+        const [out, back] = moves;
+        assert.ok(
+          Math.abs(track[out.start].time - startTime) <= STEP * 2.5,
+          `${module.name} ${actor} moves out at ${track[out.start].time} s`,
+        );
+        const waited = track[back.start].time - track[out.end].time;
+        assert.ok(
+          Math.abs(waited - hold) <= STEP * 2.5,
+          `${module.name} ${actor} moves back ${waited.toFixed(2)} s after its own move out ended, not its hold ${hold} s`,
+        );
+      }
+    }
   });
 
   it("every example main's CARLA export builds in ScenarioRunner's loader, and check --simulator carla finds no error in it", async function () {

@@ -1,7 +1,8 @@
 import { ManeuverGroupInfo, ScenarioModel } from '../model';
 import { OverridePlan } from '../keys';
 import { indentationAt } from '../text';
-import { attribute, escapeAttributeValue, selfAndDescendants, XmlElement } from '../xml';
+import { attribute, attributeValue, escapeAttributeValue, selfAndDescendants, XmlElement } from '../xml';
+import { STORYBOARD_ELEMENT_NAMES, STORYBOARD_ELEMENT_TYPES } from '../semantics/storyboard';
 import { LinkedGroupReference } from './types';
 
 /** Moves a copied block from one indentation depth to another, line by line. */
@@ -105,6 +106,21 @@ export interface CopyPlace {
   actorEntity: string | undefined;
   indent: string;
   eol: string;
+  /**
+   * Storyboard elements the output holds more than once (`Event:Name`, see storyboardNameKey): a reference of the
+   * copy to its own element of such a name would reach another copy's, so both are renamed in the copy.
+   */
+  sharedNames: ReadonlySet<string>;
+}
+
+/** How a storyboard element's kind and name are counted across the output: `Event:Name`. */
+export const storyboardNameKey = (element: string, name: string): string => `${element}:${name}`;
+
+/** The storyboard elements below a group (not the group itself, which a copy renames), as storyboardNameKey gives them. */
+export function storyboardNamesBelow(group: XmlElement): string[] {
+  return selfAndDescendants(group)
+    .filter((element) => element !== group && STORYBOARD_ELEMENT_NAMES.has(element.name))
+    .map((element) => storyboardNameKey(element.name, attributeValue(element, 'name') ?? ''));
 }
 
 /** The text of one imported group as the output holds it: renamed, its actor and overrides set, re-indented. */
@@ -112,7 +128,7 @@ export function copyGroup(
   sourceText: string,
   sourceModel: ScenarioModel,
   linked: LinkedGroupReference,
-  { outerName, actorEntity, indent: targetIndent, eol }: CopyPlace,
+  { outerName, actorEntity, indent: targetIndent, eol, sharedNames }: CopyPlace,
 ): string {
   const target = linked.target as ManeuverGroupInfo;
   const edits = new Map<number, TextEdit>();
@@ -132,6 +148,21 @@ export function copyGroup(
   if (target.actor && actorEntity !== undefined) setAttribute(target.actor, 'entityRef', actorEntity);
   for (const [overridden, parameter] of (linked.plan as OverridePlan).applied) {
     setAttribute(overridden.element, overridden.attributeName, parameter.value);
+  }
+  // Two copies of a group whose second event waits for its first by name (double-lane-change) would both wait for the
+  // first copy's (esmini takes the first element of a name, ScenarioRunner one blackboard entry per name): each copy
+  // names its own element, and the condition it, OUTER.NAME as the group itself is named.
+  for (const condition of selfAndDescendants(target.element)) {
+    if (condition.name !== 'StoryboardElementStateCondition') continue;
+    const kind = STORYBOARD_ELEMENT_TYPES[attributeValue(condition, 'storyboardElementType') ?? ''];
+    const written = attributeValue(condition, 'storyboardElementRef') ?? '';
+    if (!kind || written.includes('::') || !sharedNames.has(storyboardNameKey(kind, written))) continue;
+    const own = selfAndDescendants(target.element).filter(
+      (element) => element !== target.element && element.name === kind && attributeValue(element, 'name') === written,
+    );
+    if (own.length !== 1) continue;
+    setAttribute(own[0], 'name', `${outerName}.${written}`);
+    setAttribute(condition, 'storyboardElementRef', `${outerName}.${written}`);
   }
   const entities = sourceModel.document.entities;
   if (entities) expandEntitiesInCopy(sourceText, target.element, entities, edits);

@@ -4,7 +4,8 @@ import { ScenarioStore, SourceRef } from '../sources';
 import { detectEol, indentationAt } from '../text';
 import { attribute, parseXml, XmlElement } from '../xml';
 import { carryEdits, planCarry } from './carry';
-import { copyGroup } from './edits';
+import { copyGroup, storyboardNameKey, storyboardNamesBelow } from './edits';
+import { STORYBOARD_ELEMENT_NAMES } from '../semantics/storyboard';
 import { originOf } from './origin';
 import { describeChain, problemAt, valueRange } from './report';
 import { Addition, CarryEdit, FlatSource, Insertion, LinkedGroupReference, LinkedReference } from './types';
@@ -59,12 +60,36 @@ export function render(store: ScenarioStore, result: FlatSource, model: Scenario
 }
 
 /**
+ * The storyboard elements (storyboardNameKey) the output holds more than once: the main's own, outside the groups
+ * that copies replace, and those below each copy.
+ */
+function namesHeldTwice(result: FlatSource, model: ScenarioModel): Set<string> {
+  const replaced = model.groups.filter((group) => group.references.length > 0).map((group) => group.element);
+  const names: string[] = [];
+  const visit = (element: XmlElement) => {
+    if (replaced.includes(element)) return;
+    if (STORYBOARD_ELEMENT_NAMES.has(element.name)) names.push(storyboardNameKey(element.name, attribute(element, 'name')?.value ?? ''));
+    element.children.forEach(visit);
+  };
+  if (model.document.root) visit(model.document.root);
+  for (const group of model.groups)
+    for (const reference of group.references)
+      for (const linked of result.links.find((candidate) => candidate.info === reference)?.groups ?? [])
+        if (linked.target) names.push(...storyboardNamesBelow(linked.target.element));
+  const seen = new Set<string>();
+  const twice = new Set<string>();
+  for (const name of names) (seen.has(name) ? twice : seen).add(name);
+  return twice;
+}
+
+/**
  * The copies of every outer group that holds references; undefined when one cannot be made (a copy
  * missing, or the output over the bound, which is reported).
  */
 function plannedReplacements(store: ScenarioStore, result: FlatSource, model: ScenarioModel, eol: string): Replacement[] | undefined {
   const text = model.document.text;
   const replacements: Replacement[] = [];
+  const sharedNames = namesHeldTwice(result, model);
   // Counted copy by copy, before the text is joined: a group imported twice at each of 20 levels must not fill memory.
   let projected = text.length;
   for (const group of model.groups) {
@@ -83,6 +108,7 @@ function plannedReplacements(store: ScenarioStore, result: FlatSource, model: Sc
           actorEntity,
           indent: targetIndent,
           eol,
+          sharedNames,
         });
         projected += copy.length + eol.length + targetIndent.length;
         if (projected > store.limits.maxFlattenedChars) {
