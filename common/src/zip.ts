@@ -1,5 +1,10 @@
-// Named imports: a bundled namespace import copies zlib's hundred-odd exports at each start of the CLI.
-import { crc32 as nativeCrc32, inflateRawSync } from 'node:zlib';
+import type * as Zlib from 'node:zlib';
+
+let zlibModule: typeof Zlib | undefined;
+/** node:zlib, loaded when a package is first read or written: loading it was 3% of a short CLI run that reads none. */
+function zlib(): typeof Zlib {
+  return (zlibModule ??= require('node:zlib') as typeof Zlib);
+}
 
 /**
  * A ZIP reader that reads the central directory itself, so that what a package holds is decided
@@ -132,6 +137,7 @@ let crcTable: Uint32Array | undefined;
 
 export function crc32(bytes: Uint8Array): number {
   // Node's own where it has one (20.15 on): this byte loop runs in V8's interpreter in a short CLI run, most of unpacking a package.
+  const { crc32: nativeCrc32 } = zlib();
   if (typeof nativeCrc32 === 'function') return nativeCrc32(bytes);
   if (!crcTable) {
     crcTable = new Uint32Array(256);
@@ -180,7 +186,7 @@ export function extractEntry(
   } else if (entry.method === 8) {
     try {
       // maxOutputLength must be positive; an empty entry may produce at most one byte, which is then refused.
-      content = inflateRawSync(raw, { maxOutputLength: Math.max(1, bound) });
+      content = zlib().inflateRawSync(raw, { maxOutputLength: Math.max(1, bound) });
     } catch (error) {
       if ((error as NodeJS.ErrnoException).code === 'ERR_BUFFER_TOO_LARGE') throw exceeded();
       throw new ZipFormatError(`${label} cannot be inflated (${(error as Error).message})`);

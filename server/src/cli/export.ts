@@ -3,11 +3,10 @@ import * as path from 'node:path';
 import { isSameFile } from '../../../common/src/atomic';
 import { CarlaExport, CarlaExportOptionError, CarlaExportOptions, exportForCarla, exportTextForCarla } from '../core/export/carla';
 import { diskRef, nodeFileSystem, splitScenarioPath } from '../core/sources';
-import { loadVariations, formatVariationProblems, rebasedConcreteText, SamplingError } from '../core/variations';
 import { CliCommand, CliOutput, ExitCode, InputError, parseCommandLine, UsageError, write } from './common';
 import { mainOf, storeForInputs } from './inputs';
 import { CARLA_OPTION, carlaOptionHelp, carlaReleaseOption } from './options';
-import { flatteningScenarioLoader, readUtf8Exactly } from './scenarioText';
+import { readUtf8Exactly } from './fileSystem';
 
 export const EXPORT_HELP = `Export for CARLA's ScenarioRunner (modular2simple export INPUT --target carla -o OUT.xosc):
   INPUT                     a .xosc, a modular main.xosc, an unpacked folder, a .mosc, or a
@@ -128,6 +127,9 @@ async function exportInput(args: ExportArguments, io: CliOutput): Promise<CarlaE
       throw new InputError(
         `${input}: a ParameterValueDistribution: choose its concrete scenario with --index I (modular2simple vary ${input} --count counts them)`,
       );
+    // Loaded here: a distribution's expansion needs the flattener and the variations, which a plain export does not.
+    const [{ loadVariations, formatVariationProblems, rebasedConcreteText, SamplingError }, { flatteningScenarioLoader }] =
+      await Promise.all([import('../core/variations'), import('./scenarioText')]);
     const loaded = await loadVariations(text, path.resolve(input), flatteningScenarioLoader(args.scenarioPath));
     for (const line of formatVariationProblems(loaded.problems, loaded.lines, process.cwd())) io.err(line);
     const variations = loaded.variations;

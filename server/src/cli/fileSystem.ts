@@ -50,3 +50,15 @@ export const cliFileSystem: FileSystemHost = {
     }
   },
 };
+
+/** Reads a file as UTF-8 with its byte order mark kept, so that a concrete scenario is byte for byte the original but for its values. */
+export async function readUtf8Exactly(file: string): Promise<string> {
+  // The CLI's reader, so that a FIFO or a device named like a scenario is refused instead of read without end.
+  const bytes = await cliFileSystem.readFile(file);
+  if (bytes === undefined) throw Object.assign(new Error('no such file'), { code: 'ENOENT' });
+  try {
+    return new TextDecoder('utf-8', { fatal: true, ignoreBOM: true }).decode(bytes);
+  } catch {
+    throw new Error('not UTF-8 text');
+  }
+}

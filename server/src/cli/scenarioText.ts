@@ -7,20 +7,10 @@ import { diskRef } from '../core/sources';
 import { loadVariations, ScenarioTextLoader } from '../core/variations';
 import { readScenarioParameters } from '../core/variations/concrete';
 import { distributionProblems, isDistributionText } from '../core/variations/problems';
-import { cliFileSystem } from './fileSystem';
-import { mainOf, storeForInputs } from './inputs';
+import { readUtf8Exactly } from './fileSystem';
 
-/** Reads a file as UTF-8 with its byte order mark kept, so that a concrete scenario is byte for byte the original but for its values. */
-export async function readUtf8Exactly(file: string): Promise<string> {
-  // The CLI's reader, so that a FIFO or a device named like a scenario is refused instead of read without end.
-  const bytes = await cliFileSystem.readFile(file);
-  if (bytes === undefined) throw Object.assign(new Error('no such file'), { code: 'ENOENT' });
-  try {
-    return new TextDecoder('utf-8', { fatal: true, ignoreBOM: true }).decode(bytes);
-  } catch {
-    throw new Error('not UTF-8 text');
-  }
-}
+export { readUtf8Exactly };
+import { mainOf, storeForInputs } from './inputs';
 
 /** The distribution file named on the command line, or what is wrong with it in a few words (`vary` and `batch` report it alike). */
 export async function readDistributionFile(given: string): Promise<{ path: string; text: string } | { problem: string }> {

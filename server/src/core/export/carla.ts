@@ -10,7 +10,6 @@
  * action) and reported; a file whose meaning would be lost entirely is refused.
  */
 import * as path from 'node:path';
-import { Flattener, originOf, OVERRIDE_PROBLEM_CODES } from '../flatten';
 import type { FlatSource } from '../flatten/types';
 import { geoToRoad, RoadXY } from '../opendrive/geo';
 import { MAX_ROAD_FILE_BYTES, parseOpenDrive, RoadNetwork } from '../opendrive/road';
@@ -19,7 +18,11 @@ import { logicFileOf, resolveRoadFile } from '../semantics/roadFiles';
 import { STORYBOARD_ELEMENT_NAMES, STORYBOARD_ELEMENT_TYPES } from '../semantics/storyboard';
 import { schemaFindingWords } from '../diagnostics/schemaFindings';
 import { checkSchema } from '../schema/validate';
-import { assignmentsOf, CatalogLoader, DocumentSemantics, Evaluator, formatValue, semanticModelOf } from '../semantics';
+import { assignmentsOf, CatalogLoader } from '../semantics/catalogs';
+import { Evaluator } from '../semantics/evaluator';
+import { semanticModelOf } from '../semantics/model';
+import type { SemanticContext as DocumentSemantics } from '../semantics/checks/types';
+import { formatValue } from '../semantics/values';
 import { displayRef, ScenarioStore, SourceError, SourceRef } from '../sources';
 import { decodeUtf8 } from '../text';
 import { parseXml, XmlDocument, XmlElement } from '../xml';
@@ -113,6 +116,8 @@ export async function exportForCarla(store: ScenarioStore, main: SourceRef, opti
     }
     if (!/<ScenarioReference\b/.test(text)) return exportTextForCarla(store, main, text, options);
   }
+  // Loaded here: a plain scenario (most exports) needs neither the flattener nor the semantic checks it imports.
+  const { Flattener, originOf, OVERRIDE_PROBLEM_CODES } = await import('../flatten');
   const flattened = await new Flattener(store, undefined, { version: 'off' }).flatten(main, { standardOutput: true, force: options.force });
   if (flattened.text === undefined) {
     const errors = flattened.problems.filter((problem) => problem.severity === 'error');
@@ -142,7 +147,7 @@ export async function exportForCarla(store: ScenarioStore, main: SourceRef, opti
   const source = flattened.source;
   const plain = source.insertions.length === 0 && source.additions.length === 0 && source.original?.document.text;
   const text = plain || flattened.text;
-  const exported = await exportTextForCarla(store, main, text, options, plain ? undefined : sourcePlaces(source));
+  const exported = await exportTextForCarla(store, main, text, options, plain ? undefined : sourcePlaces(source, originOf));
   // Forced past (--force), an override that cannot apply is one more thing the export does not keep.
   const skipped = flattened.problems.filter((problem) => problem.severity === 'error' && OVERRIDE_PROBLEM_CODES.has(problem.code));
   const skippedLosses = skipped.map((problem) =>
@@ -351,7 +356,7 @@ function pathOf(element: XmlElement): string {
 }
 
 /** Where each element of a rendered flattened text was written: its counterpart in the flattener's model, followed to the file it was copied from (originOf). */
-function sourcePlaces(source: FlatSource): (element: XmlElement) => Place | undefined {
+function sourcePlaces(source: FlatSource, originOf: typeof import('../flatten').originOf): (element: XmlElement) => Place | undefined {
   let byPath: Map<string, XmlElement> | undefined;
   return (element) => {
     if (!source.model) return undefined;
