@@ -132,6 +132,55 @@ describe('cli: usage and compatibility', () => {
   });
 });
 
+describe('cli: stats reads scenarios as check does', () => {
+  // The shared simple scenario lies outside the library, found only through the scenario path.
+  const files = {
+    'lib/cut/main.xosc': scenario(outerGroup('Car', 'car', [{ file: 'simple.xosc', groups: [{ name: 'Go' }] }])),
+    'shared/simple.xosc': scenario(simpleGroup('Go')),
+  };
+
+  it('--scenario-path and SCENARIO_PATH reach the references of the library, as check finds them', () => {
+    const root = temporaryWorkspace(files);
+    const without = runCli(['stats', 'lib'], { cwd: root, env: { SCENARIO_PATH: undefined } });
+    assert.equal(without.status, 1, without.stdout);
+    assert.match(without.stderr, /cut: cannot be flattened/);
+    assert.equal(runCli(['check', 'lib', '--scenario-path', 'shared'], { cwd: root }).status, 0);
+    const withOption = runCli(['stats', 'lib', '--scenario-path', 'shared', '--format', 'json'], {
+      cwd: root,
+      env: { SCENARIO_PATH: undefined },
+    });
+    assert.equal(withOption.status, 0, withOption.stderr);
+    const stats = JSON.parse(withOption.stdout) as { rows: { scenario: string }[]; shared: { file: string }[] };
+    assert.deepEqual(
+      stats.rows.map((row) => row.scenario),
+      ['cut'],
+    );
+    assert.deepEqual(
+      stats.shared.map((item) => path.relative(root, item.file)),
+      [path.join('shared', 'simple.xosc')],
+    );
+    const withEnvironment = runCli(['stats', 'lib'], { cwd: root, env: { SCENARIO_PATH: path.join(root, 'shared') } });
+    assert.equal(withEnvironment.status, 0, withEnvironment.stderr);
+    assert.match(withEnvironment.stdout, /^\s+1\s+cut\s/m);
+  });
+
+  it('--schema-version is refused with what to run instead (stats counts lines; check checks a schema)', () => {
+    const root = temporaryWorkspace(files);
+    for (const args of [
+      ['stats', 'lib', '--schema-version', '1.2'],
+      ['stats', 'lib', '--schema-version=off'],
+    ]) {
+      const run = runCli(args, { cwd: root });
+      assert.equal(run.status, 2, run.stdout);
+      assert.match(
+        run.stderr,
+        /stats counts lines and checks no schema, so --schema-version does not apply to it: run 'modular2simple check lib --schema-version V'/,
+      );
+    }
+    assert.doesNotMatch(runCli(['stats', '--help']).stdout, /--schema-version/);
+  });
+});
+
 describe('cli: every row of SPEC 7', () => {
   it('maneuverGroupName not in the source: error with file, line and the names that exist', () => {
     const root = temporaryWorkspace({

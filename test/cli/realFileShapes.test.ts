@@ -98,10 +98,44 @@ describe('real file shapes: no false alarms (issue 27)', function () {
         problems.filter((problem) => problem.code === 'catalog-directory').map((problem) => problem.message),
         ["the VehicleCatalog directory 'missing/vehicles' does not exist (relative to this file, or in SCENARIO_PATH)"],
       );
-      assert.ok(
-        problems.some((problem) => problem.code === 'unknown-catalog'),
-        JSON.stringify(problems),
+      assert.ok(!problems.some((problem) => problem.code === 'unknown-catalog'), 'the missing directory is the one problem');
+    });
+
+    // With a scenario path, esmini also searches each of its folders for the directory (and the folder itself):
+    // a directory missing beside the file is still that, not an unknown catalog at every reference.
+    const missingVehicles = scenarioWith({
+      locations: '<VehicleCatalog><Directory path="Catalogs/Vehicles"/></VehicleCatalog>',
+      entity: reference,
+    }).replace('</Entities>', `  <ScenarioObject name="Other">${reference}</ScenarioObject>\n  </Entities>`);
+
+    it('with --scenario-path whose folders hold no such catalog: the missing directory at its line, with what to do, still an error', () => {
+      folder = temporaryWorkspace({ 'main.xosc': missingVehicles, 'shared/README.md': 'no catalogs here' });
+      const problems = check(folder, 'main.xosc', '--scenario-path', 'shared');
+      assert.deepEqual(problems, [
+        {
+          code: 'catalog-directory',
+          severity: 'error',
+          line: missingVehicles.split('\n').findIndex((line) => line.includes('Catalogs/Vehicles')) + 1,
+          message: `the VehicleCatalog directory 'Catalogs/Vehicles' does not exist beside this file, and the SCENARIO_PATH folders searched for it (${path.join(folder, 'shared')}) hold no catalog its references name`,
+        },
+      ]);
+      const text = runCli(['check', 'main.xosc', '--scenario-path', 'shared'], { cwd: folder, schema: true });
+      assert.match(text.stderr, /hint: correct the path, or add the folder that holds the catalogs to SCENARIO_PATH \(--scenario-path/);
+      // The same through SCENARIO_PATH, as the editor's setting gives it.
+      const viaEnvironment = runCli(['check', 'main.xosc', '--format', 'json'], {
+        cwd: folder,
+        schema: true,
+        env: { SCENARIO_PATH: path.join(folder, 'shared') },
+      });
+      assert.deepEqual(
+        (JSON.parse(viaEnvironment.stdout) as { problems: Reported[] }).problems.map((problem) => problem.code),
+        ['catalog-directory'],
       );
+    });
+
+    it('with --scenario-path whose folder holds the catalog: found there as esmini finds it, nothing reported', () => {
+      folder = temporaryWorkspace({ 'main.xosc': missingVehicles, 'shared/Vehicles/VehicleCatalog.xosc': VEHICLE_CATALOG });
+      assert.deepEqual(check(folder, 'main.xosc', '--scenario-path', 'shared'), []);
     });
   });
 

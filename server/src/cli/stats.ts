@@ -1,8 +1,12 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
+import { splitScenarioPath } from '../core/sources';
 import { libraryStats } from '../core/stats';
 import { CliCommand, CliOutput, ExitCode, InputError, UsageError } from './common';
 import { parseOptions, READING_OPTIONS_HELP } from './options';
+
+/** The reading options stats takes: all but --schema-version (it counts lines; check checks a schema). */
+const STATS_READING_OPTIONS_HELP = READING_OPTIONS_HELP.replace(/\n {2}--schema-version[^\n]*\n[^\n]*/, '');
 
 /** `modular2simple stats LIBRARY [--format json]`: lines of code of a library (the paper's Table 1). */
 async function statsCommand(args: string[], io: CliOutput): Promise<number> {
@@ -10,8 +14,16 @@ async function statsCommand(args: string[], io: CliOutput): Promise<number> {
   if (options.positional.length !== 1) throw new UsageError('stats takes one library folder');
   const library = options.positional[0];
   if (options.format === 'sarif') throw new UsageError('stats writes text or json, not sarif');
+  // Lines are counted whatever a schema says; a schema check is check's (flattening here checks none).
+  if (args.some((arg) => arg === '--schema-version' || arg.startsWith('--schema-version=')))
+    throw new UsageError(
+      `stats counts lines and checks no schema, so --schema-version does not apply to it: run 'modular2simple check ${library} --schema-version V' to check the scenarios against a schema`,
+    );
   if (!fs.existsSync(library) || !fs.statSync(library).isDirectory()) throw new InputError(`${library}: no such folder`);
-  const stats = await libraryStats(library, options.limits, process.cwd());
+  const stats = await libraryStats(library, options.limits, process.cwd(), [
+    ...options.scenarioPath,
+    ...splitScenarioPath(process.env.SCENARIO_PATH),
+  ]);
   for (const problem of stats.problems) io.err(`${library}: error: ${problem}`);
   if (options.format === 'json') {
     io.out(JSON.stringify(stats, null, 2));
@@ -36,7 +48,7 @@ async function statsCommand(args: string[], io: CliOutput): Promise<number> {
 export const STATS: CliCommand = {
   help: `Lines of code of a library, modular and flattened (the paper's Table 1) (modular2simple stats LIBRARY [--format text|json]):
   --format text|json        a table (the default) or JSON, on standard output
-${READING_OPTIONS_HELP}
+${STATS_READING_OPTIONS_HELP}
   Exit codes: 0 done, 1 a scenario of the library could not be flattened or the folder is missing, 2 usage,
   4 internal error.`,
   run: statsCommand,

@@ -108,7 +108,13 @@ async function filesLayout(
 }
 
 /** The paper's Table 1 for a library of modular scenarios (SPEC 9); messages show paths relative to `workingDirectory`. */
-export async function libraryStats(library: string, limits: Partial<Limits> = {}, workingDirectory?: string): Promise<LibraryStats> {
+export async function libraryStats(
+  library: string,
+  limits: Partial<Limits> = {},
+  workingDirectory?: string,
+  /** Folders searched after the library's own (the CLI's --scenario-path, then SCENARIO_PATH), as `check` searches them. */
+  scenarioPath: readonly string[] = [],
+): Promise<LibraryStats> {
   const root = path.resolve(library);
   const folders = fs
     .readdirSync(root, { withFileTypes: true })
@@ -116,7 +122,12 @@ export async function libraryStats(library: string, limits: Partial<Limits> = {}
     .map((entry) => entry.name)
     .sort();
   // The paper's mains name the shared simple scenarios beside their folders; modularize's name them by relative path (simple/NAME.xosc).
-  const store = new ScenarioStore({ root, scenarioPath: folders.length > 0 ? [root] : [], limits, workingDirectory });
+  const store = new ScenarioStore({
+    root,
+    scenarioPath: [...(folders.length > 0 ? [root] : []), ...scenarioPath],
+    limits,
+    workingDirectory,
+  });
   const flattener = new Flattener(store);
   const problems: string[] = [];
   // Read through the store, which refuses folders, FIFOs, devices and files over the size bound.

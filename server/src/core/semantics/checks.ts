@@ -257,18 +257,29 @@ export const catalogReferences: SemanticCheck = (context) => {
     if (kinds) for (const kind of kinds) neededKinds.add(kind);
     else anyKindNeeded = true;
   }
+  // Kinds whose directory is missing beside the file: their references' unknown catalogs are that one problem.
+  const missingKinds = new Set<string>();
   for (const location of context.catalogs.locations) {
     if (!anyKindNeeded && !neededKinds.has(location.location.kind)) continue;
-    if (location.path === undefined || location.directories.length > 0) continue;
+    // Found beside the file: the catalog is missing from it, which the references say. Otherwise the directory is
+    // missing, though SCENARIO_PATH folders may stand for it (esmini searches them, and each folder itself).
+    if (location.path === undefined || location.directories.some((directory) => directory.via === 'file')) continue;
+    missingKinds.add(location.location.kind);
     findings.push({
       ...at(location.location.directory, location.location.pathAttribute),
-      ...catalogDirectoryWording(location.location.kind, location.path),
+      ...catalogDirectoryWording(
+        location.location.kind,
+        location.path,
+        location.directories.map((directory) => directory.directory),
+      ),
     });
   }
   for (const resolution of context.catalogs.references) {
     const { reference } = resolution;
     if (!resolution.searched || resolution.catalogName === undefined) continue;
     if (resolution.catalogs.length === 0) {
+      const kinds = CATALOG_KINDS_BY_PARENT[reference.element.parent?.name ?? ''];
+      if (kinds ? kinds.some((kind) => missingKinds.has(kind)) : missingKinds.size > 0) continue;
       findings.push({
         ...at(reference.element, reference.catalogNameAttribute),
         ...unknownCatalogWording(
