@@ -222,6 +222,7 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
       if (event.result.csvFile)
         void vscode.commands.executeCommand('modular2simple.birdsEye.showRun', event.result.csvFile, {
           logText: event.result.log,
+          trace: event.result.trace,
           scenario: event.source,
         });
     }),

@@ -22,8 +22,8 @@ export interface DebugStateEntity {
 export interface DebugState {
   time: number;
   entities: DebugStateEntity[];
-  /** The elements running now: esmini's name, kind, and the simulated time each started. */
-  running: { name: string; type: string; since: number }[];
+  /** The elements running now: esmini's name, its path (flattened names), kind, and the simulated time each started. */
+  running: { name: string; path: string; type: string; since: number }[];
   /** The session paused (a stop) or ended; otherwise a sample while it runs. */
   paused: boolean;
 }

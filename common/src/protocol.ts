@@ -5,7 +5,7 @@
 import { RequestType, WorkspaceEdit } from 'vscode-languageserver-protocol';
 import type { LineSegment } from './lineSegments';
 import { LibraryInsertRequest, LibraryModulesRequest, NewFromTemplateRequest, TemplatesRequest } from './libraryProtocol';
-import { SceneRequest } from './sceneProtocol';
+import { RunTraceRequest, SceneRequest } from './sceneProtocol';
 import type { TraceRecord } from './trace';
 
 export interface FlattenOptions {
@@ -175,6 +175,7 @@ export const CUSTOM_REQUESTS = [
   PackRequest.method,
   StructureRequest.method,
   SceneRequest.method,
+  RunTraceRequest.method,
   RunEsminiRequest.method,
   PreviewRequest.method,
   NewScenarioRequest.method,

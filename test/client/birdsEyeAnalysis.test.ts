@@ -227,7 +227,6 @@ describe("client: the bird's-eye view as a tool for analysing a run", () => {
       runTracks(
         { version: '', scenarioFile: '', times, truncated: false, entities: [{ ...track, speed: Float64Array.from([1.234, 2]) }] },
         'x',
-        new Map(),
       ).entities[0].speed,
       [1.23, 2],
     );
@@ -235,7 +234,6 @@ describe("client: the bird's-eye view as a tool for analysing a run", () => {
       runTracks(
         { version: '', scenarioFile: '', times, truncated: false, entities: [{ ...track, speed: Float64Array.from([NaN, NaN]) }] },
         'x',
-        new Map(),
       ).entities[0].speed,
       undefined,
     );

@@ -12,22 +12,35 @@ const state = (time: number, entities: DebugState['entities'], running: DebugSta
 
 describe("client: the bird's-eye view following a debug session", () => {
   it('grows one run from the states, keeping each running element from the time it started', () => {
-    let run = appendDebugState(undefined, state(0, [car('Ego', 0)], [{ name: 'CutInStory', type: 'Story', since: 0 }]));
-    run = appendDebugState(run, state(0.5, [car('Ego', 5), car('Lead', 50)], [{ name: 'CutInEvent', type: 'Event', since: 0.45 }]));
-    run = appendDebugState(run, state(1, [car('Ego', 10)], [{ name: 'CutInEvent', type: 'Event', since: 0.45 }]));
+    let run = appendDebugState(undefined, state(0, [car('Ego', 0)], [{ name: 'CutInStory', path: 'CutInStory', type: 'Story', since: 0 }]));
+    run = appendDebugState(
+      run,
+      state(
+        0.5,
+        [car('Ego', 5), car('Lead', 50)],
+        [{ name: 'CutInEvent', path: 'CutInStory::CutInAct::G::M::CutInEvent', type: 'Event', since: 0.45 }],
+      ),
+    );
+    run = appendDebugState(
+      run,
+      state(1, [car('Ego', 10)], [{ name: 'CutInEvent', path: 'CutInStory::CutInAct::G::M::CutInEvent', type: 'Event', since: 0.45 }]),
+    );
     assert.deepEqual(run.times, [0, 0.5, 1]);
     const ego = run.entities.find((track) => track.name === 'Ego');
     const lead = run.entities.find((track) => track.name === 'Lead');
     assert.deepEqual(ego?.x, [0, 5, 10]);
     // First seen at 0.5 s: there from the start; gone at 1 s: stays where it was last.
     assert.deepEqual(lead?.x, [50, 50, 50]);
-    assert.deepEqual(run.starts, { CutInStory: 0, CutInEvent: 0.45 });
+    assert.deepEqual(run.starts, { CutInStory: 0, 'CutInStory::CutInAct::G::M::CutInEvent': 0.45 });
     assert.equal(ego?.centerX, 1.4);
   });
 
   it('starts a new run when the session goes back in time (a restart)', () => {
     const first = appendDebugState(appendDebugState(undefined, state(0, [car('Ego', 0)])), state(3, [car('Ego', 30)]));
-    const restarted = appendDebugState(first, state(0, [car('Ego', 0)], [{ name: 'CutInStory', type: 'Story', since: 0 }]));
+    const restarted = appendDebugState(
+      first,
+      state(0, [car('Ego', 0)], [{ name: 'CutInStory', path: 'CutInStory', type: 'Story', since: 0 }]),
+    );
     assert.deepEqual(restarted.times, [0]);
     assert.deepEqual(restarted.entities[0].x, [0]);
     assert.deepEqual(restarted.starts, { CutInStory: 0 });

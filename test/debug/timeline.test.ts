@@ -1,19 +1,14 @@
 import * as assert from 'node:assert/strict';
-import * as fs from 'node:fs';
-import * as path from 'node:path';
 import { describeCondition, describeFiring, storyboardTimeline, type TimelineRow } from '../../common/src/storyboardTimeline';
 import { parseTrace, TraceFormatError, type TraceRecord } from '../../common/src/trace';
 import { mainOf, storeForInputs } from '../../server/src/cli/inputs';
 import { Flattener } from '../../server/src/core/flatten';
 import { prepareScenario, Simulation } from '../../server/src/debug/simulation';
 import { traceToEnd } from '../../server/src/debug/trace';
-import { removeRunFolder, runScenario } from '../../server/src/esmini/run';
-import { esminiCatalogs, esminiRoads, requireEsmini } from '../support/esmini';
+import { requireEsmini } from '../support/esmini';
 import { requireEsminiLibrary } from '../support/esminiBinaries';
-import { writeTwoCutIns } from '../support/debugScenarios';
+import { loggedStarts, programRun, TWO_CUT_INS_ROAD_PATH as roadPath, writeTwoCutIns } from '../support/debugScenarios';
 import { temporaryFolder } from '../support/temporaryDirectory';
-
-const roadPath = [esminiRoads, path.join(esminiCatalogs, 'Vehicles')];
 
 async function traceOf(folder: string): Promise<TraceRecord[]> {
   const prepared = await prepareScenario(new Flattener(storeForInputs([], undefined, [folder])), mainOf(folder), { roadPath, duration: 8 });
@@ -23,23 +18,6 @@ async function traceOf(folder: string): Promise<TraceRecord[]> {
   } finally {
     simulation.close();
   }
-}
-
-/** esmini's program on the same scenario (Run in esmini): its log and the trace read from that log. */
-async function programRun(folder: string): Promise<{ log: string; trace: TraceRecord[] }> {
-  const result = await runScenario(new Flattener(storeForInputs([], undefined, [folder])), mainOf(folder), { roadPath, duration: 8 });
-  try {
-    assert.equal(result.outcome, 'ok', result.message);
-    return { log: result.log, trace: result.trace ?? [] };
-  } finally {
-    removeRunFolder(result);
-  }
-}
-
-/** `[2.350] [info] ChangeLane standbyState -> startTransition -> runningState` */
-function loggedStarts(log: string, name: string): number[] {
-  const pattern = new RegExp(`^\\[([\\d.]+)\\] \\[info\\] ${name} standbyState -> startTransition -> runningState`, 'gm');
-  return [...log.matchAll(pattern)].map((match) => Number(match[1]));
 }
 
 /** Each row's bars and causes, for comparing two timelines. */
@@ -97,14 +75,7 @@ describe('storyboard timeline of a real esmini run', function () {
 
   it('lists an element that never started with the condition that never became true', async () => {
     const folder = temporaryFolder();
-    writeTwoCutIns(folder);
-    const main = path.join(folder, 'main.xosc');
-    fs.writeFileSync(
-      main,
-      fs
-        .readFileSync(main, 'utf8')
-        .replace('key="RelativeDistanceCondition.value" value="30"', 'key="RelativeDistanceCondition.value" value="500"'),
-    );
+    writeTwoCutIns(folder, 500);
     const timeline = storyboardTimeline(await traceOf(folder), 8);
     const never = row(timeline.rows, 'CutInLead.CutIn::CutInManeuver::ChangeLane');
     assert.equal(never.started, false);

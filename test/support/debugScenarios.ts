@@ -1,10 +1,42 @@
+import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
+import type { TraceRecord } from '../../common/src/trace';
+import { mainOf, storeForInputs } from '../../server/src/cli/inputs';
+import { Flattener } from '../../server/src/core/flatten';
+import { removeRunFolder, runScenario } from '../../server/src/esmini/run';
+import { esminiCatalogs, esminiRoads } from './esmini';
 import { speedChangeGroup } from './fixtures';
 import { repoRoot } from './paths';
 
-/** The examples' lane_change.xosc imported by two groups of one main file, for two adversaries. */
-export function writeTwoCutIns(folder: string): void {
+/** Where the two cut-ins' road and vehicle catalog are found. */
+export const TWO_CUT_INS_ROAD_PATH = [esminiRoads, path.join(esminiCatalogs, 'Vehicles')];
+
+/** esmini's program on the main file of `folder` (Run in esmini), 8 s: its log and the trace Run in esmini reads from that log. */
+export async function programRun(folder: string): Promise<{ log: string; trace: TraceRecord[] }> {
+  const result = await runScenario(new Flattener(storeForInputs([], undefined, [folder])), mainOf(folder), {
+    roadPath: TWO_CUT_INS_ROAD_PATH,
+    duration: 8,
+  });
+  try {
+    assert.equal(result.outcome, 'ok', result.message);
+    return { log: result.log, trace: result.trace ?? [] };
+  } finally {
+    removeRunFolder(result);
+  }
+}
+
+/** The times esmini's log starts an element of this name (`[2.350] [info] ChangeLane standbyState -> startTransition -> runningState`). */
+export function loggedStarts(log: string, name: string): number[] {
+  const pattern = new RegExp(`^\\[([\\d.]+)\\] \\[info\\] ${name} standbyState -> startTransition -> runningState`, 'gm');
+  return [...log.matchAll(pattern)].map((match) => Number(match[1]));
+}
+
+/**
+ * The examples' lane_change.xosc imported by two groups of one main file, for two adversaries; the lead cuts in at a
+ * relative distance of `leadGap` m (500: never, in the 8 s the tests run).
+ */
+export function writeTwoCutIns(folder: string, leadGap = 30): void {
   const examples = path.join(repoRoot, 'examples');
   fs.copyFileSync(path.join(examples, 'lane_change.xosc'), path.join(folder, 'lane_change.xosc'));
   const main = fs.readFileSync(path.join(examples, 'main.xosc'), 'utf8');
@@ -15,7 +47,7 @@ export function writeTwoCutIns(folder: string): void {
   const leadGroup = cutInGroup
     .replace('name="CutInVehicle"', 'name="CutInLead"')
     .replaceAll('"adversary"', '"lead"')
-    .replace('key="RelativeDistanceCondition.value" value="12"', 'key="RelativeDistanceCondition.value" value="30"');
+    .replace('key="RelativeDistanceCondition.value" value="12"', `key="RelativeDistanceCondition.value" value="${leadGap}"`);
   fs.writeFileSync(path.join(folder, 'main.xosc'), main.slice(0, second) + leadGroup + main.slice(startTrigger));
 }
 

@@ -3,6 +3,7 @@ import type { ServerCommandClient } from '../languageClient';
 import { commandTargets } from '../commands';
 import { packageEntryUri } from '../packageFileSystem';
 import { BirdsEyeView } from './panel';
+import type { TraceRecord } from '../../../common/src/trace';
 import type { RunSource } from './runData';
 
 /** Registers the bird's-eye view and its commands; returns the view (for the extension's API). */
@@ -24,7 +25,7 @@ export function registerBirdsEye(
       if (source.scheme === 'file' && source.path.toLowerCase().endsWith('.mosc')) source = packageEntryUri(source, 'main.xosc');
       await view.show(source);
     }),
-    // For the run command (args: csvPath, { logPath?, logText?, scenario?, compare? }) and for a person (picks a CSV);
+    // For the run command (args: csvPath, { logPath?, logText?, trace?, scenario?, compare? }) and for a person (picks a CSV);
     // `compare: true` or 'overlay' draws it over the run shown (dashed), 'side' beside it.
     vscode.commands.registerCommand('modular2simple.birdsEye.showRun', async (csvPath?: unknown, options?: unknown) => {
       let path = typeof csvPath === 'string' ? csvPath : csvPath instanceof vscode.Uri ? csvPath.fsPath : undefined;
@@ -40,12 +41,15 @@ export function registerBirdsEye(
       const given = (options && typeof options === 'object' ? options : {}) as {
         logPath?: unknown;
         logText?: unknown;
+        trace?: unknown;
         scenario?: unknown;
         compare?: unknown;
       };
       const run: RunSource = { csvPath: path };
       if (typeof given.logPath === 'string') run.logPath = given.logPath;
       if (typeof given.logText === 'string') run.logText = given.logText;
+      // Run in esmini's trace (common/src/trace.ts records), already placed on the flattened elements.
+      if (Array.isArray(given.trace)) run.trace = given.trace as TraceRecord[];
       const scenario =
         typeof given.scenario === 'string'
           ? vscode.Uri.parse(given.scenario)

@@ -4,7 +4,7 @@ import type { RunTracks } from './messages';
 
 /**
  * `run` with `state` appended (a new run when there is none or the state goes back in time: a restart). An entity
- * first seen late stands where it was first seen for the earlier times; each running element's start is kept.
+ * first seen late stands where it was first seen for the earlier times; each running element's first start is kept, by its path.
  */
 export function appendDebugState(run: RunTracks | undefined, state: DebugState): RunTracks {
   const last = run?.times[run.times.length - 1];
@@ -33,6 +33,6 @@ export function appendDebugState(run: RunTracks | undefined, state: DebugState):
       track.hdg.push(track.hdg[track.hdg.length - 1]);
       track.speed?.push(track.speed[track.speed.length - 1]);
     }
-  for (const element of state.running) grown.starts[element.name] ??= element.since;
+  for (const element of state.running) grown.starts[element.path] ??= element.since;
   return grown;
 }

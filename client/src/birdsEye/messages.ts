@@ -8,8 +8,13 @@ export interface RunTracks {
   times: number[];
   /** `speed`: esmini's Current_Speed, m/s, when the CSV has it (the plots otherwise derive it from the positions). */
   entities: { name: string; length: number; width: number; centerX: number; x: number[]; y: number[]; hdg: number[]; speed?: number[] }[];
-  /** Storyboard element name → simulation time it started (from esmini's log), when known. */
+  /**
+   * esmini's path of a storyboard element (`Story::Act::ManeuverGroup::Maneuver::Event`, flattened names: one per copy
+   * of a reused group) → the simulation time it first started, from the run's storyboard trace (eventList.ts).
+   */
   starts: Record<string, number>;
+  /** The same path → the condition that started it, in words, when the trace says what esmini measured. */
+  causes?: Record<string, string>;
   /** What was left out or could not be read. */
   notes: string[];
   /** The road file esmini's log says it loaded, when the log is known. */
@@ -22,7 +27,7 @@ export type ToView =
   /** A second run (another concrete scenario) to compare with the first, overlaid or side by side; undefined ends the comparison. */
   | { type: 'compare'; run: RunTracks | undefined; sideBySide?: boolean }
   | { type: 'error'; message: string }
-  /** A debug session's run so far, drawn at its last time; `running`: the storyboard elements running now (highlighted). */
+  /** A debug session's run so far, drawn at its last time; `running`: the paths of the storyboard elements running now (highlighted). */
   | { type: 'live'; run: RunTracks; running: string[] }
   /** Asks for the picture as it is now; answered by a `save` with the same id. */
   | { type: 'export'; format: 'png' | 'svg'; id: number; width?: number; height?: number }

@@ -15,7 +15,7 @@ button:disabled{opacity:.5;cursor:default} #slider{width:180px}
 #markers{position:relative;height:14px;background:var(--vscode-editorWidget-background);margin:4px 0}
 .marker{position:absolute;top:1px;width:10px;height:10px;margin-left:-5px;border-radius:5px;cursor:pointer} .started{background:#ffca28} .planned{border:2px solid #ffca28;box-sizing:border-box}
 #cursor{position:absolute;top:0;bottom:0;width:2px;background:var(--vscode-focusBorder)}
-.running{background:var(--vscode-editor-stackFrameHighlightBackground,rgba(255,202,40,.25));font-weight:bold}
+.never{opacity:.75} .running{background:var(--vscode-editor-stackFrameHighlightBackground,rgba(255,202,40,.25));font-weight:bold}
 ul{margin:0;padding-left:16px} #problems{color:var(--vscode-editorWarning-foreground)} .error{color:var(--vscode-errorForeground)}
 </style></head><body>
 <div id="toolbar"><span id="title">loading…</span>

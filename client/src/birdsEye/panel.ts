@@ -2,7 +2,8 @@ import * as path from 'node:path';
 import * as vscode from 'vscode';
 import { writeFileAtomic } from '../../../common/src/atomic';
 import type { DebugState } from '../../../common/src/debugState';
-import { SceneRequest, type SceneResult } from '../../../common/src/sceneProtocol';
+import { RunTraceRequest, SceneRequest, type SceneResult } from '../../../common/src/sceneProtocol';
+import { withTrace } from './eventList';
 import { parseResolution } from './analysis';
 import { appendDebugState } from './liveRun';
 import { isFromView, type FromView, type RenderStats, type RunTracks, type ToView } from './messages';
@@ -80,7 +81,7 @@ export class BirdsEyeView implements vscode.Disposable {
     const run = appendDebugState(this.live?.sessionId === sessionId ? this.live.run : undefined, state);
     this.live = { sessionId, run };
     this.run = run;
-    this.post({ type: 'live', run, running: state.running.map((element) => element.name) });
+    this.post({ type: 'live', run, running: state.running.map((element) => element.path) });
   }
   private live: { sessionId: string; run: RunTracks } | undefined;
 
@@ -144,7 +145,7 @@ export class BirdsEyeView implements vscode.Disposable {
   private async reloadComparison(): Promise<void> {
     if (!this.compareSource) return;
     try {
-      this.compareRun = this.withAbsoluteRoad(await loadRun(this.compareSource));
+      this.compareRun = await this.readRun(this.compareSource);
     } catch (error) {
       this.compareRun = undefined;
       this.post({ type: 'error', message: `the run ${this.compareSource.csvPath} could not be read: ${(error as Error).message}` });
@@ -152,6 +153,30 @@ export class BirdsEyeView implements vscode.Disposable {
       return;
     }
     this.post({ type: 'compare', run: this.compareRun, sideBySide: this.compareSideBySide });
+  }
+
+  /**
+   * A run as the view draws it: its CSV, the road file its log names, and when each storyboard element started: from
+   * the trace given (Run in esmini's), else from the log read by the language server on the scenario shown, which
+   * places every line on its flattened element (each copy of a reused group its own time). A log that cannot be read
+   * so leaves the run without event times, with a note saying why.
+   */
+  private async readRun(source: RunSource): Promise<RunTracks> {
+    const loaded = await loadRun(source);
+    const run = this.withAbsoluteRoad(loaded.tracks);
+    if (source.trace) return withTrace(run, source.trace);
+    const scenario = this.source;
+    if (loaded.log === undefined || !scenario) {
+      const why = loaded.log === undefined ? 'no esmini log was found beside the CSV' : 'no scenario is shown';
+      return { ...run, notes: [...run.notes, `the events' start times are not known: ${why}`] };
+    }
+    try {
+      const client = await this.server.running();
+      return withTrace(run, await client.sendRequest(RunTraceRequest, { uri: scenario.toString(), log: loaded.log }));
+    } catch (error) {
+      this.log(`bird's-eye view: reading the log of ${source.csvPath}: ${(error as Error).stack ?? String(error)}`);
+      return { ...run, notes: [...run.notes, `the events' start times could not be read from the log: ${(error as Error).message}`] };
+    }
   }
 
   /** esmini logs the road file as the scenario wrote it (`../xodr/x.xodr`): relative to the scenario's folder, as esmini reads it. */
@@ -180,7 +205,7 @@ export class BirdsEyeView implements vscode.Disposable {
   private async reloadRun(): Promise<void> {
     if (!this.runSource) return;
     try {
-      this.run = this.withAbsoluteRoad(await loadRun(this.runSource));
+      this.run = await this.readRun(this.runSource);
     } catch (error) {
       this.run = undefined;
       this.post({ type: 'error', message: `the run ${this.runSource.csvPath} could not be read: ${(error as Error).message}` });

@@ -1,6 +1,7 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { EsminiRun, parseEsminiCsv, parseEsminiLoadedRoad, parseEsminiStarts } from '../../../common/src/esminiCsv';
+import { EsminiRun, parseEsminiCsv, parseEsminiLoadedRoad } from '../../../common/src/esminiCsv';
+import type { TraceRecord } from '../../../common/src/trace';
 import type { RunTracks } from './messages';
 
 /** The view draws at most this many frames of a run; longer runs are evenly thinned. */
@@ -13,12 +14,20 @@ export interface RunSource {
   /** esmini's log (its stdout or log.txt), for when storyboard events started. */
   logPath?: string;
   logText?: string;
+  /** The run's storyboard trace when known (Run in esmini reads it from the log); else it is read from the log. */
+  trace?: TraceRecord[];
+}
+
+/** A run read: what the view draws (its event starts still empty) and esmini's log of it, when found. */
+export interface LoadedRun {
+  tracks: RunTracks;
+  log?: string;
 }
 
 const round = (value: number) => Math.round(value * 100) / 100;
 
-/** The run as the view needs it: thinned to MAX_FRAMES, rounded to centimetres. */
-export function runTracks(run: EsminiRun, label: string, starts: Map<string, number>): RunTracks {
+/** The run as the view needs it: thinned to MAX_FRAMES, rounded to centimetres; `starts` by element path (eventList.ts). */
+export function runTracks(run: EsminiRun, label: string, starts: Record<string, number> = {}): RunTracks {
   const every = Math.max(1, Math.ceil(run.times.length / MAX_FRAMES));
   const indices: number[] = [];
   for (let i = 0; i < run.times.length; i += every) indices.push(i);
@@ -39,13 +48,16 @@ export function runTracks(run: EsminiRun, label: string, starts: Map<string, num
       hdg: indices.map((i) => Math.round(track.hdg[i] * 1000) / 1000),
       ...(track.speed.some(Number.isFinite) ? { speed: indices.map((i) => round(track.speed[i])) } : {}),
     })),
-    starts: Object.fromEntries(starts),
+    starts,
     notes,
   };
 }
 
-/** Reads an esmini CSV (and its log, when given) into what the view draws. */
-export async function loadRun(source: RunSource): Promise<RunTracks> {
+/**
+ * Reads an esmini CSV into what the view draws, and its log (given, or found beside the CSV): the road file it
+ * loaded, and the text the event starts are read from (by the language server, which knows the flattened elements).
+ */
+export async function loadRun(source: RunSource): Promise<LoadedRun> {
   const stat = await fs.promises.stat(source.csvPath);
   if (stat.size > MAX_CSV_BYTES)
     throw new Error(
@@ -63,7 +75,7 @@ export async function loadRun(source: RunSource): Promise<RunTracks> {
       if (logText !== undefined) break;
     }
   }
-  const tracks = runTracks(run, path.basename(source.csvPath), logText ? parseEsminiStarts(logText) : new Map());
+  const tracks = runTracks(run, path.basename(source.csvPath));
   const roadFile = logText ? parseEsminiLoadedRoad(logText) : undefined;
-  return roadFile ? { ...tracks, roadFile } : tracks;
+  return { tracks: roadFile ? { ...tracks, roadFile } : tracks, ...(logText !== undefined ? { log: logText } : {}) };
 }

@@ -38,7 +38,11 @@ export interface StoryEvent {
   trigger: string;
   /** The simulation time of a plain SimulationTimeCondition trigger, when that is all it waits for. */
   plannedTime?: number;
+  /** The entities of its ManeuverGroup's Actors. */
+  actors: string[];
   element: XmlElement;
+  /** Its ManeuverGroup (for where an imported copy was written). */
+  groupElement: XmlElement;
 }
 
 export interface ScenarioScene {
@@ -448,6 +452,9 @@ export function scenarioScene(document: XmlDocument, network: RoadNetwork | unde
   for (const story of children(path(root, 'Storyboard'), 'Story')) {
     for (const act of children(story, 'Act')) {
       for (const group of children(act, 'ManeuverGroup')) {
+        const actors = children(path(group, 'Actors'), 'EntityRef')
+          .map((ref) => reader.text(ref, 'entityRef'))
+          .filter((name): name is string => name !== undefined && name !== '');
         for (const maneuver of children(group, 'Maneuver')) {
           for (const event of children(maneuver, 'Event')) {
             scene.events.push({
@@ -456,7 +463,9 @@ export function scenarioScene(document: XmlDocument, network: RoadNetwork | unde
               group: attributeValue(group, 'name') ?? '',
               act: attributeValue(act, 'name') ?? '',
               ...triggerText(reader, event),
+              actors,
               element: event,
+              groupElement: group,
             });
           }
         }

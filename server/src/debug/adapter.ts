@@ -474,7 +474,9 @@ export class ScenarioDebugSession extends DebugSession {
         width: entity.width,
         centerX: entity.centerOffsetX,
       })),
-      running: simulation.running().map((element) => ({ name: element.name, type: element.type, since: element.since })),
+      running: simulation
+        .running()
+        .map((element) => ({ name: element.name, path: element.path, type: element.type, since: element.since })),
       paused,
     };
     this.sendEvent(new Event(DEBUG_STATE_EVENT, state));

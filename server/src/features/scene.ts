@@ -8,8 +8,11 @@ import { scenarioScene } from '../core/scene';
 import { analyzeDocument } from '../core/semantics';
 import { baseName, displayRef, nodeFileSystem } from '../core/sources';
 import { decodeUtf8 } from '../core/text';
-import { XmlElement } from '../core/xml';
-import { SceneParams, SceneResult, SourceLocation } from '../../../common/src/sceneProtocol';
+import { attributeValue, XmlElement } from '../core/xml';
+import { RunTraceParams, SceneParams, SceneResult, SourceLocation } from '../../../common/src/sceneProtocol';
+import type { TraceRecord } from '../../../common/src/trace';
+import { originOf } from '../core/flatten';
+import { storyboardMapOf, traceFromLog } from '../esmini/storyboardTrace';
 import type { SectionPolylines } from '../../../common/src/sectionPolylines';
 import { Workspace } from '../workspace';
 import { SERVER_MEMOS } from '../database';
@@ -115,6 +118,9 @@ export async function buildScene(workspace: Workspace, roads: RoadNetworkCache, 
       ? source.semantics
       : await analyzeDocument(ref, model.document, workspace.flattener().catalogs, false);
   const scene = scenarioScene(model.document, network, semantics);
+  // esmini's path of each event (the key of its start in a trace: one per copy of a reused group), from the map Run in esmini reads its log with.
+  const map = source.model ? storyboardMapOf(source) : undefined;
+  const paths = new Map(map?.elements.filter((element) => element.kind === 'Event').map((element) => [element.element, element.path]));
   for (const entity of scene.entities) if (entity.problem) problems.push(`${entity.name}: ${entity.problem}`);
   return {
     uri: params.uri,
@@ -134,15 +140,36 @@ export async function buildScene(workspace: Workspace, roads: RoadNetworkCache, 
       problem: entity.problem,
       source: locationOf(workspace, source, entity.position ?? entity.declaration, entity.position ? 'none' : 'name'),
     })),
-    events: scene.events.map((event) => ({
-      name: event.name,
-      maneuver: event.maneuver,
-      group: event.group,
-      act: event.act,
-      trigger: event.trigger,
-      plannedTime: event.plannedTime,
-      source: locationOf(workspace, source, event.element),
-    })),
+    events: scene.events.map((event) => {
+      const origin = originOf(source, event.groupElement);
+      const copied = origin.source !== source;
+      return {
+        name: event.name,
+        maneuver: event.maneuver,
+        group: event.group,
+        act: event.act,
+        trigger: event.trigger,
+        plannedTime: event.plannedTime,
+        source: locationOf(workspace, source, event.element),
+        path: paths.get(event.element),
+        actors: event.actors,
+        ...(copied ? { sourceGroup: { name: attributeValue(origin.element, 'name') ?? '', file: baseName(origin.source.ref) } } : {}),
+      };
+    }),
     problems,
   };
+}
+
+/** The storyboard trace of a run of esmini's program on the scenario at `uri`, read from its log as Run in esmini reads it. */
+export async function runTrace(workspace: Workspace, params: RunTraceParams): Promise<TraceRecord[]> {
+  const ref = await workspace.uris.toRef(params.uri);
+  if (!ref) throw new ResponseError(-32602, `not a scenario URI: ${params.uri}`);
+  if (typeof params.log !== 'string') throw new ResponseError(-32602, "runTrace needs the run's log text");
+  const source = workspace.flattener().rendered(await workspace.source(ref));
+  if (!source.model)
+    throw new ResponseError(
+      -32602,
+      `${displayRef(ref, workspace.folders[0])} could not be flattened, so its run's log cannot be placed on its elements`,
+    );
+  return traceFromLog(storyboardMapOf(source), params.log);
 }

@@ -11,7 +11,7 @@ import {
   StructureRequest,
 } from '../../../common/src/protocol';
 import { LibraryInsertRequest, LibraryModulesRequest, NewFromTemplateRequest, TemplatesRequest } from '../../../common/src/libraryProtocol';
-import { SceneRequest } from '../../../common/src/sceneProtocol';
+import { RunTraceRequest, SceneRequest } from '../../../common/src/sceneProtocol';
 import { SourceRef } from '../core/sources';
 import { OpenDocument } from '../documents';
 import { checkInScenarioRunner } from '../features/carlaCheck';
@@ -29,7 +29,7 @@ import { newScenario } from '../features/newScenario';
 import { packCommand } from '../features/pack';
 import { preview } from '../features/preview';
 import { fileRenameEdits, placesToLocations, prepareRenameAt, referencesAt, renameAt } from '../features/references';
-import { buildScene } from '../features/scene';
+import { buildScene, runTrace } from '../features/scene';
 import { semanticTokens } from '../features/semanticTokens';
 import { codeLenses, documentSymbols, workspaceSymbols } from '../features/symbols';
 import { Workspace } from '../workspace';
@@ -305,6 +305,12 @@ export const REQUESTS: Record<string, (context: ServerContext, method: string) =
     context.connection.onRequest(
       SceneRequest,
       request(context, method, (params) => buildScene(context.workspace, context.roads, params)),
+    ),
+  // A run's log read as a storyboard trace of the scenario (the bird's-eye view's event times for a loaded run).
+  [RunTraceRequest.method]: (context, method) =>
+    context.connection.onRequest(
+      RunTraceRequest,
+      request(context, method, (params) => runTrace(context.workspace, params)),
     ),
   // Runs the editor's text of a scenario in esmini.
   [RunEsminiRequest.method]: (context, method) =>

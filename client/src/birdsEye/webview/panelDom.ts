@@ -4,6 +4,7 @@
  */
 import { setTime } from './controls';
 import { compareMode, element, followList, playButton, slider } from './dom';
+import { eventRows, eventRowText, groupText, type EventRow } from '../eventList';
 import { open } from './host';
 import { colorOf, duration, state } from './state';
 
@@ -14,6 +15,12 @@ function button(label: string, title: string, onClick: () => void, className = '
   result.className = className;
   result.addEventListener('click', onClick);
   return result;
+}
+
+/** The event list as the panel shows it (and a saved picture copies). */
+export function shownEventRows(): EventRow[] {
+  const phase = state.running ? 'live' : state.run ? 'finished' : 'none';
+  return eventRows(state.scene?.events ?? [], state.run, phase, state.running);
 }
 
 export function renderPanel(): void {
@@ -34,35 +41,24 @@ export function renderPanel(): void {
   events.replaceChildren();
   markers.replaceChildren();
   const total = duration();
-  for (const event of state.scene?.events ?? []) {
-    const started = state.run?.starts[event.name];
-    const when =
-      started !== undefined
-        ? `started ${started.toFixed(2)} s`
-        : event.plannedTime !== undefined
-          ? `planned ${event.plannedTime} s`
-          : state.running
-            ? 'not started yet'
-            : state.run
-              ? 'did not start'
-              : 'start after a run';
+  for (const row of shownEventRows()) {
     const item = document.createElement('li');
-    const running = state.running?.has(event.name) === true;
+    const title = `${row.path ?? row.name}\n${row.trigger}`;
     item.append(
-      button(event.name, `${event.act} / ${event.group} / ${event.maneuver}`, () => open(event.source), 'event'),
-      ` ${when}${running ? ' · running' : ''} · ${event.trigger}`,
+      button(row.name, title, () => open(row.source), 'event'),
+      ` ${eventRowText(row).slice(row.name.length + 1)}`,
     );
-    if (running) item.className = 'running';
+    item.className = [row.running ? 'running' : '', row.state === 'never' ? 'never' : ''].filter(Boolean).join(' ');
     events.append(item);
-    const at = started ?? event.plannedTime;
+    const at = row.start ?? row.plannedTime;
     if (at !== undefined && total > 0 && at <= total) {
       const marker = document.createElement('div');
-      marker.className = started !== undefined ? 'marker started' : 'marker planned';
+      marker.className = row.start !== undefined ? 'marker started' : 'marker planned';
       marker.style.left = `${(at / total) * 100}%`;
-      marker.title = `${event.name}: ${when}`;
+      marker.title = `${row.name} (${row.actor}, ${groupText(row)}): ${row.when}`;
       marker.addEventListener('click', () => {
         setTime(at);
-        open(event.source);
+        open(row.source);
       });
       markers.append(marker);
     }
