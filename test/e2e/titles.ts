@@ -49,6 +49,8 @@ export const INSIDE_TESTS = {
     'a main composed from the Scenario Library view (a template, then a cut-in, a lead brake and a pedestrian inserted) in at most 5 steps checks clean',
   debugScenario:
     'F5 on a scenario stops on the breakpoint on its Event line with the entities in the Variables view; esmini crashing ends the session with a message and the editor lives',
+  debugTimeline:
+    'the storyboard timeline opened on a run --trace file draws a row per element at the times esmini logs, and a click on a row opens its source line',
 } as const;
 
 export type InsideTestKey = keyof typeof INSIDE_TESTS;

@@ -144,6 +144,18 @@ function servePage(endpoint: HarnessEndpoint, page: Page): void {
     }
     return { clicked: false };
   });
+  endpoint.routes.set('/clickElement', async (body) => {
+    const { selector, text } = body as { selector: string; text: string };
+    // Any element, in any frame: a webview's rows are plain elements in an iframe of their own.
+    for (const frame of page.frames()) {
+      const target = frame.locator(selector).filter({ hasText: text }).first();
+      if ((await target.count().catch(() => 0)) > 0) {
+        await target.click({ timeout: 10_000 });
+        return { clicked: true };
+      }
+    }
+    return { clicked: false };
+  });
   endpoint.routes.set('/type', async (body) => {
     const { text } = body as { text: string };
     await page.keyboard.type(text, { delay: 20 });

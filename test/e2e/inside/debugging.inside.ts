@@ -1,11 +1,12 @@
 import * as assert from 'node:assert/strict';
+import { execFileSync } from 'node:child_process';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import * as vscode from 'vscode';
 import { SESSION_ARGUMENT } from '../../../server/src/debug/supervisor';
 import { esminiCutInFolder, esminiOrSkip } from './esmini.inside';
-import { pageShows, pressKeys, screenshot } from './harnessClient';
-import { api, EXTENSION_ID, type InsideTests, open, positionOf, waitFor, workspaceRoot } from './helpers';
+import { clickElement, pageShows, pressKeys, screenshot } from './harnessClient';
+import { api, cli, EXTENSION_ID, type InsideTests, open, positionOf, waitFor, workspaceRoot } from './helpers';
 
 /**
  * The debug adapter processes of the extension under test (their command line names its dist/debugAdapter.js): the
@@ -122,5 +123,80 @@ export const debuggingTests: InsideTests = {
       await settings.update('path', undefined, vscode.ConfigurationTarget.Workspace);
       await settings.update('roadPath', undefined, vscode.ConfigurationTarget.Workspace);
     }
+  },
+
+  debugTimeline: async function () {
+    this.timeout(240_000);
+    const { repository, esmini, roads } = esminiOrSkip(this);
+    // A folder of its own: nothing here depends on what earlier tests left.
+    const folder = path.join(workspaceRoot(), 'timeline');
+    const scenario = esminiCutInFolder(repository, roads, folder);
+    // esmini's own run: the times its log starts each Event at.
+    const log = path.join(folder, 'esmini-log.txt');
+    execFileSync(
+      esmini,
+      ['--headless', '--osc', scenario, '--fixed_timestep', '0.05', '--seed', '1', '--logfile_path', log, '--path', roads],
+      {
+        cwd: path.dirname(scenario),
+      },
+    );
+    const esminiStarts = [
+      ...fs.readFileSync(log, 'utf8').matchAll(/^\[([\d.]+)\] \[info\] (\w+Event) standbyState -> startTransition -> runningState/gm),
+    ].map((match) => ({ event: match[2], time: Number(match[1]) }));
+    assert.ok(
+      esminiStarts.some((start) => start.event === 'CutInEvent'),
+      `esmini's log starts CutInEvent: ${JSON.stringify(esminiStarts)}`,
+    );
+    // The trace as CI writes it, opened in the timeline as a person does from the palette's command with the file.
+    const trace = path.join(folder, 'cut-in.jsonl');
+    cli([
+      'run',
+      path.relative(workspaceRoot(), scenario),
+      '--trace',
+      path.relative(workspaceRoot(), trace),
+      '--road-path',
+      roads,
+      '--esmini',
+      esmini,
+    ]);
+    const view = api().timeline;
+    const rendered = view.nextRender();
+    assert.equal(await vscode.commands.executeCommand('modular2simple.showTimeline', trace), true);
+    await rendered;
+    const stats = await waitFor(
+      'the timeline drawn',
+      () => (view.isOpen && (view.stats?.rows.length ?? 0) > 0 ? view.stats : undefined),
+      30_000,
+    );
+    // A row per Event esmini started, its bar starting at the time esmini's log gives.
+    for (const start of esminiStarts) {
+      const row = stats.rows.find((candidate) => candidate.element.endsWith(`::${start.event}`));
+      assert.ok(row, `a row for ${start.event}: ${stats.rows.map((candidate) => candidate.element).join(', ')}`);
+      assert.ok(row.started && row.bars >= 1, `${start.event} drawn with a bar: ${row.text}`);
+      assert.ok(row.text.includes(`: ${start.time.toFixed(2)}–`), `${start.event} starts at esmini's ${start.time}: ${row.text}`);
+    }
+    await waitFor('the rows on the page', async () => (await pageShows('CutInEvent', '.row .label')) && pageShows('HWT', '.cause'), 20_000);
+    await screenshot("timeline: cut-in.xosc's run --trace, a row per storyboard element with its bars at esmini's times");
+    // A click on a row's name opens the element where it is written.
+    const eventLine = positionOf(await vscode.workspace.openTextDocument(scenario), '<Event name="CutInEvent"').line;
+    await vscode.commands.executeCommand('workbench.action.closeAllEditors');
+    await vscode.commands.executeCommand('modular2simple.showTimeline', trace);
+    await waitFor('the timeline open again', () => view.isOpen && pageShows('CutInEvent', '.row .label'), 30_000);
+    assert.ok(await clickElement('.row .label', 'CutInEvent'), "the CutInEvent row's name clicked");
+    const editor = await waitFor(
+      'cut-in.xosc opened on the Event line',
+      () => {
+        const active = vscode.window.activeTextEditor;
+        return active?.document.uri.fsPath === scenario && active.selection.active.line === eventLine ? active : undefined;
+      },
+      30_000,
+    );
+    assert.equal(view.opened?.fsPath, scenario);
+    assert.ok(
+      editor.visibleRanges.some((range) => range.contains(new vscode.Position(eventLine, 0))),
+      'the Event line in view',
+    );
+    await screenshot('timeline: a click on the CutInEvent row opened cut-in.xosc on its Event line');
+    await vscode.commands.executeCommand('workbench.action.closeAllEditors');
   },
 };

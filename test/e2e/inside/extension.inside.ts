@@ -77,6 +77,7 @@ const ORDER: InsideTestKey[] = [
   'carlaCheck',
   'debugScenario',
   'libraryCompose',
+  'debugTimeline',
 ];
 
 /** The extension's tests inside VS Code, each feature's in its own file; the bird's-eye view's follow (birdsEye.inside.ts). */

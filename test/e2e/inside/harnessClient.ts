@@ -56,6 +56,11 @@ export async function clickText(text: string): Promise<boolean> {
   return (await post<{ clicked: boolean }>('/clickText', { text })).clicked;
 }
 
+/** Clicks the first element matching `selector` that shows `text`, in whichever frame has one (a webview's page too). */
+export async function clickElement(selector: string, text: string): Promise<boolean> {
+  return (await post<{ clicked: boolean }>('/clickElement', { selector, text })).clicked;
+}
+
 export interface QuickInputState {
   visible: boolean;
   value: string;
