@@ -4,7 +4,7 @@
  */
 import { SourceRef } from '../sources';
 import { Range } from '../text';
-import { escapeAttributeValue, XmlDocument, XmlElement } from '../xml';
+import { endTagStart, escapeAttributeValue, XmlDocument, XmlElement } from '../xml';
 
 /** Where an element of the export was written in the sources (a catalog entry's file for an inlined entry). */
 export interface Place {
@@ -178,7 +178,7 @@ export function nodeFromXml(
     element.children.map((each) => nodeFromXml(document, each, placeOf, value)),
   );
   if (element.children.length === 0 && !element.selfClosing) {
-    const closeTag = document.text.lastIndexOf('</', element.end);
+    const closeTag = endTagStart(document.text, element);
     const raw = closeTag > element.startTagEnd ? document.text.slice(element.startTagEnd, closeTag) : '';
     const cdata = /^\s*<!\[CDATA\[([\s\S]*)\]\]>\s*$/.exec(raw);
     const text = cdata ? cdata[1] : decodeText(raw.replace(/<!--[\s\S]*?-->/g, ''));

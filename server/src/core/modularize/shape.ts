@@ -1,5 +1,5 @@
 import { ManeuverGroupInfo } from '../model';
-import { descendants, XmlDocument, XmlElement } from '../xml';
+import { descendants, endTagStart, XmlDocument, XmlElement } from '../xml';
 
 /** One attribute of a group, addressed by its element's place in document order and its name. */
 export interface Slot {
@@ -33,14 +33,14 @@ const COMMENT = /<!--[\s\S]*?-->/g;
 /** The character data of an element outside its children and comments, trimmed (text values are not parameters). */
 function ownText(text: string, element: XmlElement): string {
   if (element.selfClosing) return '';
-  const endTagStart = text.lastIndexOf('</', element.end);
+  const closeTag = endTagStart(text, element);
   let from = element.startTagEnd;
   let result = '';
   for (const child of element.children) {
     result += text.slice(from, child.start);
     from = child.end;
   }
-  result += text.slice(from, Math.max(from, endTagStart));
+  result += text.slice(from, Math.max(from, closeTag));
   return result.replace(COMMENT, '').trim();
 }
 
