@@ -26,7 +26,7 @@ import {
 } from '../../client/src/birdsEye/draw';
 import { type Bounds, overlaps, placeLabels } from '../../client/src/birdsEye/labels';
 import type { RunTracks } from '../../client/src/birdsEye/messages';
-import { drawPlots, plotSpecs, TTC_CEILING_S } from '../../client/src/birdsEye/plots';
+import { drawPlots, plotRange, plotSpecs, TTC_CEILING_S } from '../../client/src/birdsEye/plots';
 import { runTracks } from '../../client/src/birdsEye/runData';
 
 const car = (name: string, x: number, y: number, hdg = 0): PlacedBox => ({ name, x, y, hdg, length: 4.5, width: 1.8, centerX: 1.4 });
@@ -246,8 +246,9 @@ describe("client: the bird's-eye view as a tool for analysing a run", () => {
       specs.map((spec) => spec.unit),
       ['m/s', 'm', 's'],
     );
-    assert.equal(specs[0].high, 20);
-    assert.equal(specs[2].high, TTC_CEILING_S);
+    // Scaled to the data: the constant 20 m/s sits mid-axis, not at the top of 0..20.
+    assert.deepEqual([specs[0].low, specs[0].high], [19, 21]);
+    assert.ok(specs[2].high <= TTC_CEILING_S && specs[2].low <= 1.5, 'the TTC axis holds the threshold');
     const svg = new SvgPainter(900, 150, '#000');
     const areas = drawPlots(svg, specs, series.times, 2, 0, 0, 900, 150, () => '#4fc3f7');
     assert.equal(areas.length, 3);
@@ -255,10 +256,20 @@ describe("client: the bird's-eye view as a tool for analysing a run", () => {
     const text = svg.toString();
     assert.match(text, /speed of Ego \(m\/s\)/);
     assert.match(text, /time to collision with Ego \(s\)/);
+    assert.match(text, /fill="#ef5350"[^>]*>1\.5 s</, 'the threshold line is labelled with its value');
     // The time marked: a vertical white line in the middle of each plot (2 s of 4 s).
     const marks = [...text.matchAll(/<polyline points="([\d.]+),[\d.]+ ([\d.]+),[\d.]+" fill="none" stroke="#ffffff"/g)];
     assert.equal(marks.length, 3);
     for (const [index, mark] of marks.entries()) assert.ok(Math.abs(Number(mark[1]) - (areas[index].left + areas[index].right) / 2) < 0.1);
+  });
+
+  it('scales each plot to its data with a margin, 0 kept for values that never go below it', () => {
+    assert.deepEqual(plotRange([[3, 4, 6]], [0, 10]), [2, 7], 'a gap of a few metres fills the plot');
+    assert.deepEqual(plotRange([[3, 6, 500]], [0, 10], 200), [2, 7], 'values past the ceiling do not stretch it');
+    assert.deepEqual(plotRange([[0.2, 0.4]], [0, 10]), [0, 1], 'never below 0 when no value is');
+    assert.deepEqual(plotRange([[-2, 2]], [0, 10]), [-4, 4]);
+    assert.deepEqual(plotRange([[NaN]], [0, 10]), [0, 10], 'no value: the fallback');
+    assert.deepEqual(plotRange([[5, 8]], [0, 10], 10, 1.5), [0, 10], 'the threshold is included');
   });
 
   it('lays out an export at a chosen resolution with legend, time and scale bar', () => {

@@ -11,6 +11,12 @@ export const PLOT_COLORS = { background: '#1e1e1e', axis: '#9e9e9e', text: '#d4d
 /** Time-to-collision above this is not plotted (it says nothing about a near miss). */
 export const TTC_CEILING_S = 10;
 
+/** A time-to-collision below this is a near miss: its line is drawn and labelled on the TTC plot. */
+export const TTC_THRESHOLD_S = 1.5;
+
+/** Gaps beyond this say nothing about the interaction and would flatten the near ones. */
+export const GAP_CEILING_M = 200;
+
 export interface PlotSpec {
   title: string;
   unit: string;
@@ -22,52 +28,72 @@ export interface PlotSpec {
   threshold?: number;
 }
 
-function finiteMax(lists: number[][], fallback: number): number {
-  let most = -Infinity;
-  for (const list of lists) for (const value of list) if (Number.isFinite(value) && value > most) most = value;
-  return Number.isFinite(most) ? most : fallback;
-}
-
-/** A round upper bound: 1, 2 or 5 × 10^k at or above `value`. */
+/** A round step: 1, 2 or 5 × 10^k at or above `value`. */
 export function niceCeiling(value: number): number {
   if (!(value > 0)) return 1;
   const power = 10 ** Math.floor(Math.log10(value));
   return [1, 2, 5, 10].map((step) => step * power).find((candidate) => candidate >= value - 1e-9) ?? 10 * power;
 }
 
+/**
+ * The range a plot draws: its finite values up to `ceiling` (and `include`), with a margin, on round
+ * steps; never below 0 when no value is (a 10 m/s line would hug the top of a 0..20 axis, a gap of a
+ * few metres vanish on a 0..200 axis).
+ */
+export function plotRange(lists: number[][], fallback: [number, number], ceiling = Infinity, include?: number): [number, number] {
+  let least = include ?? Infinity;
+  let most = include ?? -Infinity;
+  for (const list of lists)
+    for (const value of list) {
+      if (!Number.isFinite(value) || value > ceiling) continue;
+      if (value < least) least = value;
+      if (value > most) most = value;
+    }
+  if (!(most >= least)) return fallback;
+  const margin = Math.max((most - least) * 0.1, Math.abs(most) * 0.05, 0.5);
+  const step = niceCeiling((most - least + 2 * margin) / 4);
+  const low = Math.floor((least - margin) / step) * step;
+  const high = Math.ceil((most + margin) / step) * step;
+  return [least >= 0 ? Math.max(0, low) : low, Math.min(high, Math.max(ceiling, most))];
+}
+
+/** An axis label: no float noise (0.30000000000000004). */
+export function tickLabel(value: number): string {
+  return String(Number(value.toPrecision(6)));
+}
+
 /** The three plots for a run's series: speed of the chosen entity, gap and TTC to each other. */
 export function plotSpecs(series: RunSeries): PlotSpec[] {
   const gaps = series.others.map((other) => ({ name: other.name, values: other.gap }));
+  const ttcs = series.others.map((other) => ({ name: other.name, values: other.ttc }));
+  const [speedLow, speedHigh] = plotRange([series.speed], [0, 1]);
+  const [gapLow, gapHigh] = plotRange(
+    gaps.map((gap) => gap.values),
+    [0, 10],
+    GAP_CEILING_M,
+  );
+  const [ttcLow, ttcHigh] = plotRange(
+    ttcs.map((ttc) => ttc.values),
+    [0, TTC_CEILING_S],
+    TTC_CEILING_S,
+    TTC_THRESHOLD_S,
+  );
   return [
     {
       title: `speed of ${series.chosen}`,
       unit: 'm/s',
       lines: [{ name: series.chosen, values: series.speed }],
-      low: 0,
-      high: niceCeiling(finiteMax([series.speed], 1)),
+      low: speedLow,
+      high: speedHigh,
     },
-    {
-      title: `gap from ${series.chosen}`,
-      unit: 'm',
-      lines: gaps,
-      low: 0,
-      high: niceCeiling(
-        Math.min(
-          finiteMax(
-            gaps.map((gap) => gap.values),
-            10,
-          ),
-          200,
-        ),
-      ),
-    },
+    { title: `gap from ${series.chosen}`, unit: 'm', lines: gaps, low: gapLow, high: gapHigh },
     {
       title: `time to collision with ${series.chosen}`,
       unit: 's',
-      lines: series.others.map((other) => ({ name: other.name, values: other.ttc })),
-      low: 0,
-      high: TTC_CEILING_S,
-      threshold: 1.5,
+      lines: ttcs,
+      low: ttcLow,
+      high: ttcHigh,
+      threshold: TTC_THRESHOLD_S,
     },
   ];
 }
@@ -123,12 +149,14 @@ export function drawPlots(
       bottom - ((Math.min(Math.max(value, spec.low), spec.high) - spec.low) / (spec.high - spec.low)) * (bottom - top);
     painter.text(left - 30, y + 13, `${spec.title} (${spec.unit})`, PLOT_COLORS.text, 11);
     painter.polyline([left, top, left, bottom, right, bottom], PLOT_COLORS.axis, 1);
-    painter.text(left - 28, top + 8, String(spec.high), PLOT_COLORS.axis, 10);
-    painter.text(left - 28, bottom, String(spec.low), PLOT_COLORS.axis, 10);
+    painter.text(left - 28, top + 8, tickLabel(spec.high), PLOT_COLORS.axis, 10);
+    painter.text(left - 28, bottom, tickLabel(spec.low), PLOT_COLORS.axis, 10);
     painter.text(left, bottom + 13, `${t0.toFixed(0)} s`, PLOT_COLORS.axis, 10);
     painter.text(right - 30, bottom + 13, `${t1.toFixed(0)} s`, PLOT_COLORS.axis, 10);
-    if (spec.threshold !== undefined)
+    if (spec.threshold !== undefined) {
       painter.polyline([left, sy(spec.threshold), right, sy(spec.threshold)], PLOT_COLORS.threshold, 1, [3, 3]);
+      painter.text(right - 48, sy(spec.threshold) - 3, `${tickLabel(spec.threshold)} ${spec.unit}`, PLOT_COLORS.threshold, 10);
+    }
     for (const line of spec.lines) {
       // A gap in the data (NaN: no TTC while not closing in) breaks the line.
       let run: number[] = [];
