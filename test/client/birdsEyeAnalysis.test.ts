@@ -298,6 +298,35 @@ describe("client: the bird's-eye view as a tool for analysing a run", () => {
     assert.match(text, />t = 3.00 s of 20.00 s</);
     assert.match(text, new RegExp(`>${layout.scale.text}<`));
     assert.match(text, /stroke-dasharray="3 2"/, 'the compared run is dashed in the legend');
+    // With plots and the event list: both below the map, above the band, the map keeping at least half.
+    const rows = [
+      { text: 'ChangeLane · lead · CutIn · started 2.35 s', dim: false },
+      { text: 'Brake · ego · Braking · never started · SimulationTimeCondition', dim: true },
+    ];
+    const full = exportLayout(1920, 1080, shown, 626, 688, ['Ego'], 't = 3.00 s', 1, { plots: true, events: rows });
+    assert.ok(full.plots && full.plots.y === full.map.height && full.plots.width === 1920);
+    assert.ok(full.map.height >= 540, 'the map keeps half the picture');
+    assert.deepEqual(
+      full.events.map((line) => line.text),
+      rows.map((row) => row.text),
+    );
+    const plotsBottom = full.plots.y + full.plots.height;
+    assert.ok(
+      full.events.every((line) => line.y > plotsBottom && line.y < full.time.y),
+      'events between the plots and the band',
+    );
+    assert.ok(full.time.y < 1080);
+    const withEvents = new SvgPainter(1920, 1080, '#000');
+    drawExportOverlay(withEvents, full, () => '#fff');
+    assert.match(withEvents.toString(), />ChangeLane · lead · CutIn · started 2.35 s</);
+    assert.match(withEvents.toString(), /fill="#9e9e9e"[^>]*>Brake · ego/, 'an event that never started is dimmed');
+    // More events than fit: the last line says how many were left out.
+    const many = Array.from({ length: 80 }, (_, index) => ({ text: `E${index} · started ${index}.00 s`, dim: false }));
+    const crowded = exportLayout(1920, 1080, shown, 626, 688, ['Ego'], 't', 1, { plots: true, events: many });
+    assert.ok(crowded.map.height >= 540 && crowded.events.length > 3 && crowded.events.length < 80);
+    const shownCount = crowded.events.length - 1;
+    assert.equal(crowded.events[crowded.events.length - 1].text, `… and ${80 - shownCount} more events`);
+    assert.equal(crowded.events[0].text, 'E0 · started 0.00 s');
     // A narrow picture drops legend items rather than writing them over the scale bar.
     const narrow = exportLayout(300, 200, shown, 626, 688, ['Ego', 'A1', 'A2', 'A3', 'A4', 'A5'], 't = 3.00 s');
     assert.ok(narrow.legend.length < 6);

@@ -25,7 +25,7 @@ export const INSIDE_TESTS = {
   birdsEyeRun: "after a run, the bird's-eye view plays the trajectories and shows when the events started",
   birdsEyePackage: "the bird's-eye view shows a scenario inside a .mosc",
   birdsEyeAnalysis:
-    "after a run of esmini's highway_merge, the bird's-eye view frames the cars now, follows one with its speed, gap and TTC plots, compares a second run and exports at 1600x900 with legend, time and scale",
+    "after a run of esmini's highway_merge, the bird's-eye view frames the cars now, follows one with its speed, gap and TTC plots, compares a second run and exports at 1600x900 with legend, time, scale, plots and events",
   runEsmini:
     "Run in esmini from the CodeLens puts esmini's error on the simple scenario's line; a clean run clears it and shows its trajectories",
   runEsminiClean:

@@ -208,16 +208,34 @@ export function exportLayout(
   entities: string[],
   timeText: string,
   panes = 1,
+  extras: ExportExtras = {},
 ): ExportLayout {
   const fontSize = Math.max(11, Math.round(Math.min(width, height) / 60));
   const band = Math.round(fontSize * 2.6);
-  const map = { x: 0, y: 0, width, height: Math.max(1, height - band) };
+  // Plots and events as the panel shows them below the map; the map keeps at least half the picture.
+  const plotsHeight = extras.plots ? Math.round(Math.max(90, height * 0.2)) : 0;
+  const lineHeight = Math.round(fontSize * 1.3);
+  const events = extras.events ?? [];
+  const roomForLines = Math.max(0, Math.floor((height * 0.5 - band - plotsHeight - fontSize) / lineHeight));
+  const lines = events.length <= roomForLines ? events.length : Math.max(0, roomForLines);
+  const eventsHeight = lines > 0 ? lines * lineHeight + Math.round(fontSize * 0.6) : 0;
+  const map = { x: 0, y: 0, width, height: Math.max(1, height - band - plotsHeight - eventsHeight) };
   // With runs side by side, each pane is a `panes`th of the map's width and shows what its pane showed.
   const paneWidth = map.width / panes;
   const [cx, cy] = toWorld(shown, shownWidth / 2, shownHeight / 2);
   const scale = Math.min(paneWidth / (shownWidth / shown.scale), map.height / (shownHeight / shown.scale));
   const view: ViewTransform = { scale, left: cx - paneWidth / 2 / scale, top: cy + map.height / 2 / scale };
-  const baseline = map.height + Math.round(band * 0.62);
+  const plots = plotsHeight > 0 ? { x: 0, y: map.height, width, height: plotsHeight } : undefined;
+  const eventLines: ExportLayout['events'] = [];
+  const eventsTop = map.height + plotsHeight;
+  for (let index = 0; index < lines; index++) {
+    const y = eventsTop + (index + 1) * lineHeight;
+    const omitted = events.length - lines;
+    if (index === lines - 1 && omitted > 0) eventLines.push({ x: fontSize, y, text: `… and ${omitted + 1} more events`, dim: true });
+    else eventLines.push({ x: fontSize, y, text: events[index].text, dim: events[index].dim });
+  }
+  const infoTop = eventsTop + eventsHeight;
+  const baseline = infoTop + Math.round(band * 0.62);
   const bar = scaleBar(scale, Math.min(width / 5, 240 * (fontSize / 12)));
   const barX = width - fontSize - bar.pixels;
   const time = { x: fontSize, y: baseline, text: timeText };
@@ -233,12 +251,20 @@ export function exportLayout(
     width,
     height,
     map,
+    ...(plots ? { plots } : {}),
+    events: eventLines,
     view,
     legend,
     time,
     scale: { x: barX, y: baseline, pixels: bar.pixels, text: bar.metres >= 1000 ? `${bar.metres / 1000} km` : `${bar.metres} m` },
     fontSize,
   };
+}
+
+/** What an exported picture shows besides the map: the plots (when an entity is followed) and the event list's lines. */
+export interface ExportExtras {
+  plots?: boolean;
+  events?: { text: string; dim: boolean }[];
 }
 
 /** `1920x1080` (or `1920 x 1080`, `1920*1080`) → [1920, 1080]; undefined when not a size from 16 to 16384 px. */

@@ -483,8 +483,12 @@ export class SvgPainter implements Painter {
 export interface ExportLayout {
   width: number;
   height: number;
-  /** The map's area on the picture; the band below it holds legend, time and scale bar. */
+  /** The map's area on the picture; below it the plots, the event list, then a band with legend, time and scale bar. */
   map: { x: number; y: number; width: number; height: number };
+  /** Where the chosen entity's plots go, when the picture has them. */
+  plots?: { x: number; y: number; width: number; height: number };
+  /** The event list's lines as the panel words them (the last may say how many more were left out). */
+  events: { x: number; y: number; text: string; dim: boolean }[];
   /** The view for the map (for each pane of it): the same centre as shown, scaled so that it shows at least what was shown. */
   view: ViewTransform;
   legend: { x: number; y: number; text: string }[];
@@ -502,6 +506,7 @@ export function drawExportOverlay(
 ): void {
   const { width, height, map, fontSize } = layout;
   painter.polygon([0, map.height, width, map.height, width, height, 0, height], '#1e1e1e');
+  for (const line of layout.events) painter.text(line.x, line.y, line.text, line.dim ? '#9e9e9e' : COLORS.label, fontSize * 0.9);
   painter.text(layout.time.x, layout.time.y, layout.time.text, COLORS.label, fontSize);
   for (const item of layout.legend) {
     const top = item.y - fontSize * 0.8;

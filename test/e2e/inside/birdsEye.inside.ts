@@ -183,7 +183,7 @@ export function defineBirdsEyeTests(): void {
       await waitFor('the runs side by side', () => (view.stats?.compared === 6 && view.stats.sideBySide ? true : undefined));
       await screenshot("bird's-eye view comparing two runs of highway_merge side by side");
 
-      // Exported at a chosen resolution, with the time, a legend and a scale bar.
+      // Exported at a chosen resolution, with the time, a legend, a scale bar, the plots and the events.
       const png = path.join(workspaceRoot(), 'birdsEye', 'highway_merge.png');
       const svg = path.join(workspaceRoot(), 'birdsEye', 'highway_merge.svg');
       await vscode.commands.executeCommand('modular2simple.birdsEye.save', 'png', png, { width: 1600, height: 900 });
@@ -195,6 +195,10 @@ export function defineBirdsEyeTests(): void {
       assert.match(drawing, />t = \d+\.\d\d s of 14\.\d\d s · highway_merge\.csv vs highway_merge_fast\.csv</);
       assert.match(drawing, />\d+ (k?m)<\/text>/, 'a scale bar');
       for (const name of ['Ego', 'A1', 'A5']) assert.match(drawing, new RegExp(`>${name}</text>`));
+      // The followed car's plots and the event list, as the panel shows them.
+      assert.match(drawing, />speed of Ego \(m\/s\)</, "Ego's plots");
+      assert.match(drawing, />time to collision with Ego \(s\)</);
+      assert.match(drawing, />EgoLaneChangeEvent · Ego · [^<]* · started \d+\.\d\d s/, 'the event list with its start time');
       await vscode.commands.executeCommand('workbench.action.closeAllEditors');
     });
 

@@ -1,13 +1,17 @@
 /** The map saved as a picture (PNG or SVG), drawn with the same functions as the page. */
-import { exportLayout } from '../analysis';
+import { exportLayout, runSeries } from '../analysis';
 import { COLORS, drawExportOverlay, fitTransform, Painter, sceneBounds, shiftedPainter, SvgPainter } from '../draw';
+import { eventRowText } from '../eventList';
+import { drawPlots, plotSpecs } from '../plots';
 import { canvasPainter } from './canvasPainter';
+import { shownEventRows } from './panelDom';
 import { drawPane, drawRoadLegend, drawStatic } from './render';
 import { colorOf, comparedBoxes, currentBoxes, duration, panes, panesOf, size, state } from './state';
 
 /**
- * The picture at `width` × `height` (the panel's size when not given): the map around what is shown,
- * and a band with the time, a legend and a scale bar; a PNG data URL or an SVG document.
+ * The picture at `width` × `height` (the panel's size when not given): the map around what is shown, the
+ * followed entity's plots, the event list as the panel words it, and a band with the time, a legend and a
+ * scale bar; a PNG data URL or an SVG document.
  */
 export function picture(format: 'png' | 'svg', width = size().width, height = size().height): string {
   const shownSize = size();
@@ -20,7 +24,12 @@ export function picture(format: 'png' | 'svg', width = size().width, height = si
     ...compared,
   ];
   const timeText = `${state.run ? `t = ${state.time.toFixed(2)} s of ${duration().toFixed(2)} s` : 'start positions'}${state.compare ? ` · ${state.run?.label} vs ${state.compare.label}${overlaid ? ' (dashed)' : ''}` : ''}`;
-  const layout = exportLayout(width, height, shown, shownPanes[0].width, shownSize.height, names, timeText, shownPanes.length);
+  const series = state.run && state.chosen ? runSeries(state.run, state.chosen) : undefined;
+  const events = shownEventRows().map((row) => ({ text: eventRowText(row), dim: row.state === 'never' }));
+  const layout = exportLayout(width, height, shown, shownPanes[0].width, shownSize.height, names, timeText, shownPanes.length, {
+    plots: series !== undefined,
+    events,
+  });
   const draw = (painter: Painter) => {
     const kept = state.view;
     state.view = layout.view;
@@ -39,6 +48,8 @@ export function picture(format: 'png' | 'svg', width = size().width, height = si
       state.view = kept;
     }
     drawExportOverlay(painter, layout, colorOf, compared);
+    const area = layout.plots;
+    if (series && area) drawPlots(painter, plotSpecs(series), series.times, state.time, area.x, area.y, area.width, area.height, colorOf);
   };
   if (format === 'svg') {
     const svg = new SvgPainter(width, height, COLORS.background);
