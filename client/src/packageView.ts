@@ -1,4 +1,5 @@
 import * as vscode from 'vscode';
+import { webviewNonce } from './webviewNonce';
 import * as archive from './packageArchive';
 import { packageEntryUri } from './packageFileSystem';
 
@@ -28,10 +29,6 @@ function escapeHtml(text: string): string {
   return text.replace(/[&<>"']/g, (character) => `&#${character.charCodeAt(0)};`);
 }
 
-function nonce(): string {
-  return Array.from({ length: 16 }, () => Math.floor(Math.random() * 36).toString(36)).join('');
-}
-
 /** Opening a `.mosc` shows the files inside it; each opens in place through the `mosc:` file system. */
 export class PackageViewProvider implements vscode.CustomReadonlyEditorProvider {
   constructor(private readonly log: (message: string) => void) {}
@@ -41,7 +38,7 @@ export class PackageViewProvider implements vscode.CustomReadonlyEditorProvider 
   }
 
   async resolveCustomEditor(document: vscode.CustomDocument, panel: vscode.WebviewPanel): Promise<void> {
-    const script = nonce();
+    const script = webviewNonce();
     panel.webview.options = { enableScripts: true, localResourceRoots: [] };
     const render = async (): Promise<void> => {
       panel.webview.html = await this.html(document.uri, script, panel.webview.cspSource);

@@ -1,6 +1,6 @@
 /** The road drawing the server samples for the bird's-eye view: plain data, so that the scene protocol can carry it. */
 
-/** One lane section drawn as its lane borders: polylines of x, y pairs (centimetres), left to right. */
+/** One lane section drawn as its lane borders: polylines of x, y pairs (metres, rounded to the centimetre), left to right. */
 export interface SectionPolylines {
   road: string;
   /** Index of the lane section in its road. */

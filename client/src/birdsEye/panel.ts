@@ -1,5 +1,6 @@
 import * as path from 'node:path';
 import * as vscode from 'vscode';
+import { webviewNonce } from '../webviewNonce';
 import { writeFileAtomic } from '../../../common/src/atomic';
 import type { DebugState } from '../../../common/src/debugState';
 import { RunTraceRequest, SceneRequest, type SceneResult } from '../../../common/src/sceneProtocol';
@@ -13,10 +14,6 @@ import type { ServerCommandClient } from '../languageClient';
 
 export const BIRDS_EYE_VIEW_TYPE = 'modular2simple.birdsEye';
 const REFRESH_DELAY_MS = 300;
-function nonce(): string {
-  return Array.from({ length: 24 }, () => Math.floor(Math.random() * 36).toString(36)).join('');
-}
-
 /** The webview beside the editor: one at a time, following the scenario it was opened on. */
 export class BirdsEyeView implements vscode.Disposable {
   private panel: vscode.WebviewPanel | undefined;
@@ -256,7 +253,7 @@ export class BirdsEyeView implements vscode.Disposable {
     panel.webview.html = birdsEyeHtml(
       panel.webview.cspSource,
       panel.webview.asWebviewUri(vscode.Uri.joinPath(scriptRoot, 'birdsEye.js')).toString(),
-      nonce(),
+      webviewNonce(),
     );
     panel.webview.onDidReceiveMessage((message: unknown) => {
       if (isFromView(message))

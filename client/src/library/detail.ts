@@ -1,4 +1,5 @@
 import * as vscode from 'vscode';
+import { webviewNonce } from '../webviewNonce';
 import type { LibraryModuleSummary } from '../../../common/src/libraryProtocol';
 import { pictureDataUri } from './view';
 
@@ -15,10 +16,6 @@ function parseMessage(value: unknown): DetailMessage | undefined {
 
 function escapeHtml(text: string): string {
   return text.replace(/[&<>"']/g, (character) => `&#${character.charCodeAt(0)};`);
-}
-
-function nonce(): string {
-  return Array.from({ length: 16 }, () => Math.floor(Math.random() * 36).toString(36)).join('');
 }
 
 /** The detail page of a module: its doc, its keys with units, ranges and defaults, and its picture. */
@@ -99,7 +96,7 @@ export class LibraryDetail implements vscode.Disposable {
       });
     }
     this.panel.title = `Library: ${module.title}`;
-    this.panel.webview.html = detailHtml(module, this.panel.webview.cspSource, nonce());
+    this.panel.webview.html = detailHtml(module, this.panel.webview.cspSource, webviewNonce());
     this.panel.reveal(undefined, true);
   }
 

@@ -1,6 +1,7 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import * as vscode from 'vscode';
+import { webviewNonce } from '../webviewNonce';
 import { storyboardTimeline, type Timeline } from '../../../common/src/storyboardTimeline';
 import { parseTrace, STORYBOARD_EVENT, type StoryboardEventBody, type TraceRecord } from '../../../common/src/trace';
 import { DEBUG_TYPE } from '../debugging';
@@ -11,10 +12,6 @@ import { timelineHtml } from './page';
 export const TIMELINE_VIEW_TYPE = 'modular2simple.timeline';
 /** A live session's timeline is redrawn at most this often. */
 const LIVE_REDRAW_MS = 150;
-
-function nonce(): string {
-  return Array.from({ length: 24 }, () => Math.floor(Math.random() * 36).toString(36)).join('');
-}
 
 /** Where a trace came from: its records, a label, the run's end, and the folder its relative file names start from. */
 export interface TraceSource {
@@ -174,7 +171,7 @@ export class TimelineView implements vscode.Disposable {
     panel.webview.html = timelineHtml(
       panel.webview.cspSource,
       panel.webview.asWebviewUri(vscode.Uri.joinPath(scriptRoot, 'timeline.js')).toString(),
-      nonce(),
+      webviewNonce(),
     );
     panel.webview.onDidReceiveMessage((message: unknown) => {
       if (isFromView(message))

@@ -1,16 +1,13 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import * as vscode from 'vscode';
+import { webviewNonce } from '../webviewNonce';
 import { parseResultsCsv, ResultsCsvError } from '../../../common/src/variationsReport';
 import { isFromView, type FromView, type ToView, type VariationsStats } from './messages';
 import { variationsHtml } from './page';
 
 export const VARIATIONS_VIEW_TYPE = 'modular2simple.variations';
 const RELOAD_DELAY_MS = 300;
-
-function nonce(): string {
-  return Array.from({ length: 24 }, () => Math.floor(Math.random() * 36).toString(36)).join('');
-}
 
 /** The files of one kept run (batch --keep-runs): DIR/runs/INDEX/. */
 export function keptRun(resultsFolder: string, index: string): { csvPath: string; logPath: string; scenario: string } {
@@ -138,7 +135,7 @@ export class VariationsView implements vscode.Disposable {
     panel.webview.html = variationsHtml(
       panel.webview.cspSource,
       panel.webview.asWebviewUri(vscode.Uri.joinPath(scriptRoot, 'variations.js')).toString(),
-      nonce(),
+      webviewNonce(),
     );
     panel.webview.onDidReceiveMessage((message: unknown) => {
       if (isFromView(message))
