@@ -105,7 +105,7 @@ export function defineVariationsTests(): void {
         try {
           assert.ok(await clickText(`#${other}`), `no link to run ${other}`);
           await waitFor('the view to say the run was not kept', () => view.lastNotice);
-          assert.ok(await pageShows(`Run ${other} was not kept`, '#notice'), 'the notice is on the page');
+          await waitFor('the notice on the page', () => pageShows(`Run ${other} was not kept`, '#notice'));
           await screenshot(`Variations view: run ${other} not kept, said in the view`);
         } finally {
           fs.renameSync(`${kept}.away`, kept);
@@ -113,7 +113,8 @@ export function defineVariationsTests(): void {
         fs.appendFileSync(csv, '');
         await vscode.commands.executeCommand('modular2simple.showVariations', vscode.Uri.file(csv));
         await waitFor('the notice gone with the results shown again', () => (view.lastNotice === undefined ? true : undefined));
-        assert.ok(!(await pageShows(`Run ${other} was not kept`, '#notice')), 'the notice left the page');
+        // The view state clears before the webview repaints: wait for the page, not the state.
+        await waitFor('the notice to leave the page', async () => !(await pageShows(`Run ${other} was not kept`, '#notice')));
       }
       await vscode.commands.executeCommand('workbench.action.closeAllEditors');
     });
