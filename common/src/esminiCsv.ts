@@ -126,20 +126,6 @@ export function parseEsminiCsv(text: string, options: { maxRows?: number } = {})
   return { version: headerValue('esmini GIT REV:'), scenarioFile: headerValue('Scenario File Name:'), times, entities, truncated };
 }
 
-/**
- * When each storyboard element started, from esmini's log lines
- * `[2.050] [info] CutInEvent standbyState -> startTransition -> runningState`: name → first start time.
- */
-export function parseEsminiStarts(log: string): Map<string, number> {
-  const starts = new Map<string, number>();
-  const pattern = /^\[(\d+(?:\.\d+)?)\]\s*\[info\]\s*(.+?) (?:standbyState|initState) -> startTransition -> runningState\s*$/gm;
-  for (let match = pattern.exec(log); match; match = pattern.exec(log)) {
-    const name = match[2].trim();
-    if (!starts.has(name)) starts.set(name, Number(match[1]));
-  }
-  return starts;
-}
-
 /** The road file esmini loaded, as its log says (`[] [info] Loaded OpenDRIVE: <path>`, ScenarioEngine.cpp); undefined when it loaded none. */
 export function parseEsminiLoadedRoad(log: string): string | undefined {
   return /^\[[^\]]*\]\s*\[info\]\s*Loaded OpenDRIVE: (.+?)\s*$/m.exec(log)?.[1];

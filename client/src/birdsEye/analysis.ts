@@ -217,7 +217,7 @@ export function exportLayout(
   const lineHeight = Math.round(fontSize * 1.3);
   const events = extras.events ?? [];
   const roomForLines = Math.max(0, Math.floor((height * 0.5 - band - plotsHeight - fontSize) / lineHeight));
-  const lines = events.length <= roomForLines ? events.length : Math.max(0, roomForLines);
+  const lines = Math.min(events.length, roomForLines);
   const eventsHeight = lines > 0 ? lines * lineHeight + Math.round(fontSize * 0.6) : 0;
   const map = { x: 0, y: 0, width, height: Math.max(1, height - band - plotsHeight - eventsHeight) };
   // With runs side by side, each pane is a `panes`th of the map's width and shows what its pane showed.

@@ -36,7 +36,7 @@ export function niceCeiling(value: number): number {
 }
 
 /**
- * The range a plot draws: its finite values up to `ceiling` (and `include`), with a margin, on round
+ * The range a plot draws: its finite values up to `ceiling` (and `include`, at most `ceiling`), with a margin, on round
  * steps; never below 0 when no value is (a 10 m/s line would hug the top of a 0..20 axis, a gap of a
  * few metres vanish on a 0..200 axis).
  */
@@ -54,7 +54,7 @@ export function plotRange(lists: number[][], fallback: [number, number], ceiling
   const step = niceCeiling((most - least + 2 * margin) / 4);
   const low = Math.floor((least - margin) / step) * step;
   const high = Math.ceil((most + margin) / step) * step;
-  return [least >= 0 ? Math.max(0, low) : low, Math.min(high, Math.max(ceiling, most))];
+  return [least >= 0 ? Math.max(0, low) : low, Math.min(high, ceiling)];
 }
 
 /** An axis label: no float noise (0.30000000000000004). */

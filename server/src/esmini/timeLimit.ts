@@ -1,6 +1,6 @@
 import { Evaluator, semanticModelOf } from '../core/semantics';
 import { detectEol } from '../core/text';
-import { attribute, parseXml, XmlElement } from '../core/xml';
+import { attribute, endTagStart, parseXml, XmlElement } from '../core/xml';
 
 /**
  * Simulated seconds after which a run with no limit set is stopped as a runaway although its StopTrigger has
@@ -58,11 +58,11 @@ export function withTimeLimit(text: string, seconds: number): string | undefined
   const group = limitGroup(seconds);
   const stop = child(storyboard, 'StopTrigger');
   if (!stop) {
-    const closing = text.lastIndexOf('</', storyboard.end - 1);
+    const closing = endTagStart(text, storyboard);
     return `${text.slice(0, closing)}  <StopTrigger>${group}</StopTrigger>${eol}  ${text.slice(closing)}`;
   }
   if (stop.selfClosing) return `${text.slice(0, stop.start)}<StopTrigger>${group}</StopTrigger>${text.slice(stop.end)}`;
-  const closing = text.lastIndexOf('</', stop.end - 1);
+  const closing = endTagStart(text, stop);
   return `${text.slice(0, closing)}${group}${text.slice(closing)}`;
 }
 

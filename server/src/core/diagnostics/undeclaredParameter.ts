@@ -1,6 +1,6 @@
 import { ProblemDataByCode } from '../problems';
 import { indentationAt, Range } from '../text';
-import { escapeAttributeValue, XmlElement } from '../xml';
+import { endTagStart, escapeAttributeValue, XmlElement } from '../xml';
 import { CoreFix, defineDiagnostic, FixContext, isRecord, isString, ParameterScopes, ProblemWording, TextLines } from './definition';
 
 /** The hint of an undeclared parameter: a declaration to write, and where. */
@@ -55,7 +55,7 @@ function declareParameter(document: TextLines, { scopes, root, declarationOf }: 
   };
   let edit: { range: Range; newText: string };
   if (holder && !holder.selfClosing && holder.closed) {
-    const close = text.lastIndexOf('</', holder.end - 1);
+    const close = endTagStart(text, holder);
     const closeLineStart = text.lastIndexOf('\n', close - 1) + 1;
     const outer = indentationAt(text, holder.start);
     const onOwnLine = /^[ \t]*$/.test(text.slice(closeLineStart, close));

@@ -1,7 +1,7 @@
 import { ManeuverGroupInfo, ScenarioModel } from '../model';
 import { OverridePlan } from '../keys';
 import { indentationAt } from '../text';
-import { attribute, attributeValue, escapeAttributeValue, selfAndDescendants, XmlElement } from '../xml';
+import { attribute, attributeValue, endTagStart, escapeAttributeValue, selfAndDescendants, XmlElement } from '../xml';
 import { STORYBOARD_ELEMENT_NAMES, STORYBOARD_ELEMENT_TYPES } from '../semantics/storyboard';
 import { LinkedGroupReference } from './types';
 
@@ -76,10 +76,10 @@ function expandEntitiesInCopy(text: string, group: XmlElement, entities: Readonl
     }
     if (element.selfClosing) continue;
     // Text runs: between the start tag, the children and the end tag.
-    const endTagStart = element.closed ? text.lastIndexOf('</', element.end) : element.end;
+    const textEnd = element.closed ? endTagStart(text, element) : element.end;
     let from = element.startTagEnd;
     for (const child of [...element.children, undefined]) {
-      const to = child ? child.start : Math.max(from, endTagStart);
+      const to = child ? child.start : Math.max(from, textEnd);
       ENTITY_REFERENCE.lastIndex = 0;
       const run = text.slice(from, to);
       for (let match = ENTITY_REFERENCE.exec(run); match; match = ENTITY_REFERENCE.exec(run)) {

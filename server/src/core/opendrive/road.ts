@@ -1,4 +1,4 @@
-import { attributeValue, parseXml, XmlElement } from '../xml';
+import { attributeValue, endTagStart, parseXml, XmlElement } from '../xml';
 import { evaluateGeometry, Geometry, Pose } from './geometry';
 
 /** A cubic a + b·ds + c·ds² + d·ds³ that starts at `start` (s of the road, or sOffset in a lane section). */
@@ -261,7 +261,7 @@ function roadOf(element: XmlElement, problems: RoadNetwork['problems']): Road {
 /** An element's text content, a CDATA section unwrapped and trimmed; undefined when empty or when it holds elements. */
 function textOf(text: string, element: XmlElement): string | undefined {
   if (element.selfClosing || !element.closed || element.children.length > 0) return undefined;
-  const inner = text.slice(element.startTagEnd, text.lastIndexOf('</', element.end - 1)).trim();
+  const inner = text.slice(element.startTagEnd, endTagStart(text, element)).trim();
   const cdata = /^<!\[CDATA\[([\s\S]*)\]\]>$/.exec(inner);
   return (cdata ? cdata[1] : inner).trim() || undefined;
 }

@@ -2,7 +2,7 @@ import * as path from 'node:path';
 import { reindent, TextEdit } from '../flatten/edits';
 import { detectEol, indentationAt } from '../text';
 import { RefactoringRefusal } from './refusal';
-import { attributeValue, escapeAttributeValue, parseXml, selfAndDescendants, XmlDocument, XmlElement } from '../xml';
+import { attributeValue, endTagStart, escapeAttributeValue, parseXml, selfAndDescendants, XmlDocument, XmlElement } from '../xml';
 
 /** The catalog kind (its `CatalogLocations` child) of each element that can move into a catalog, and the parent it must stand in. */
 const CATALOG_KINDS: Record<string, { kind: string; parent: string }> = {
@@ -221,7 +221,7 @@ export async function extractToCatalog(request: ExtractCatalogRequest): Promise<
         const step = inner.startsWith(outer) && inner.length > outer.length ? inner.slice(outer.length) : unit;
         const lines = passed.map(({ declaration }) => text.slice(declaration.start, declaration.end));
         if (declarations && !declarations.selfClosing) {
-          const at = lineStart(text, text.lastIndexOf('</', declarations.end - 1));
+          const at = lineStart(text, endTagStart(text, declarations));
           edits.push({ start: at, end: at, text: lines.map((line) => `${inner}${step}${line}${eol}`).join('') });
         } else if (declarations) {
           edits.push({
@@ -260,7 +260,7 @@ export async function extractToCatalog(request: ExtractCatalogRequest): Promise<
     if (chosen) {
       const catalogText = chosen.text;
       const catalogEol = detectEol(catalogText);
-      const close = catalogText.lastIndexOf('</', chosen.read.catalog.end - 1);
+      const close = endTagStart(catalogText, chosen.read.catalog);
       const catalogUnit = /^([ \t]+)</m.exec(catalogText)?.[1] ?? unit;
       if (chosen.read.catalog.selfClosing) throw new RefactoringRefusal(`the catalog ${chosen.path} is written as an empty element`);
       const entryIndent = childIndent(catalogText, chosen.read.catalog, catalogUnit);
@@ -341,7 +341,7 @@ export async function extractToCatalog(request: ExtractCatalogRequest): Promise<
       edits.push({ start: locations.start, end: locations.end, text: lines.join(eol) });
     } else {
       const inner = childIndent(text, locations, unit);
-      const close = text.lastIndexOf('</', locations.end - 1);
+      const close = endTagStart(text, locations);
       const at = lineStart(text, close);
       const lines = [`${inner}<${kind}>`, `${inner}${unit}<Directory path=${q(relative)}/>`, `${inner}</${kind}>`];
       // A closing tag that shares its line with other text gets the location before it, on lines of their own.
