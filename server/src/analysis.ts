@@ -1,5 +1,5 @@
 import { FlatSource, LinkedGroupReference, LinkedReference, originOf } from './core/flatten';
-import { KeyMatch, keyForms, keyMatches, OverridableAttribute } from './core/keys';
+import { KeyMatch, keyForms, keyMatches, OverridableAttribute, positionedKeyForms } from './core/keys';
 import { findGroup, listedName, ManeuverGroupInfo } from './core/model';
 import { Resolution, SourceRef } from './core/sources';
 import { Range } from './core/text';
@@ -125,16 +125,29 @@ function* conditionNames(trigger: XmlElement): Generator<string> {
   }
 }
 
+/** The shortest positioned key that sets `target` and nothing else of `targets`, if there is one. */
+function positionedChoice(target: OverridableAttribute, targets: OverridableAttribute[]): { target: OverridableAttribute; form: string }[] {
+  const form = positionedKeyForms(target).find((candidate) => targets.every((other) => other === target || !keyMatches(candidate, other)));
+  return form === undefined ? [] : [{ target, form }];
+}
+
 /** A key a main file can write: the attributes it sets together, and its forms from shortest to longest. */
 export interface KeyChoice {
   targets: OverridableAttribute[];
   /** Every form reaching exactly these attributes, shortest first; `forms[0]` is the one to write. */
   forms: string[];
+  /**
+   * Where the choice sets several attributes (their paths are equal: two Events of one Maneuver), the key
+   * that sets each one alone by position (`Event[2]....value`, the project's addition to SPEC 5), in the
+   * targets' order; empty for a choice of one attribute.
+   */
+  positioned: { target: OverridableAttribute; form: string }[];
 }
 
 /**
  * The keys of a group. Attributes whose full paths are equal (two conditions of one kind in one
- * event) can only be set together, so they form one choice instead of none.
+ * event) are set together by every plain key, so they form one choice instead of none; each one's
+ * positioned key sets it alone.
  */
 export function keyChoices(targets: OverridableAttribute[]): KeyChoice[] {
   const choices: KeyChoice[] = [];
@@ -150,7 +163,8 @@ export function keyChoices(targets: OverridableAttribute[]): KeyChoice[] {
       const reached = targets.filter((other) => keyMatches(form, other));
       return reached.length === together.length && reached.every((member) => together.includes(member));
     });
-    choices.push({ targets: together, forms: exact });
+    const positioned = together.length > 1 ? together.flatMap((member) => positionedChoice(member, targets)) : [];
+    choices.push({ targets: together, forms: exact, positioned });
   }
   return choices;
 }

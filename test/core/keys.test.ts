@@ -125,4 +125,35 @@ describe('core: override keys (SPEC 5)', () => {
       assert.deepEqual(plan.unknown, []);
     }
   });
+
+  it('gives two positions where one does not tell apart, before giving every position', () => {
+    // Two Events of one Maneuver, each with two Conditions: the condition's delay needs its Event and its Condition.
+    const condition = /( *<Condition parameterAttributes="delay"[\s\S]*?<\/Condition>\n)/;
+    const oneEvent = simpleGroup('T').replace(
+      condition,
+      (written: string) =>
+        `<StartTrigger><ConditionGroup>\n${written}${written.replace('name="Start"', 'name="Also"')}</ConditionGroup></StartTrigger>\n`,
+    );
+    const twice = parseScenario(
+      scenario(
+        oneEvent.replace(
+          /( *<Event name="Go"[\s\S]*?<\/Event>\n)/,
+          (event: string) => event + event.replace('name="Go" priority', 'name="Again" priority'),
+        ),
+      ),
+    );
+    const all = overridableAttributes(twice, findGroup(twice, 'T')!);
+    const delays = all.filter((t) => t.attributeName === 'delay');
+    assert.equal(delays.length, 4);
+    assert.deepEqual(
+      delays.map((delay) => shortestUnambiguousKey(delay, all)),
+      [1, 2].flatMap((event) => [1, 2].map((condition) => `Event[${event}].StartTrigger.ConditionGroup.Condition[${condition}].delay`)),
+    );
+    delays.forEach((delay, index) =>
+      assert.deepEqual(
+        delays.filter((other) => keyMatches(shortestUnambiguousKey(delay, all), other)),
+        [delays[index]],
+      ),
+    );
+  });
 });

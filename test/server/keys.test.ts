@@ -3,7 +3,7 @@ import * as path from 'node:path';
 import { CodeAction, CompletionItem, Diagnostic, Hover, Location, MarkupContent, TextEdit } from 'vscode-languageserver/node';
 import { problemCodeOf } from '../support/diagnostics';
 import { cursor, positionAfter } from '../support/cursor';
-import { DOTTED, MAIN, MAIN_OVERRIDES, SIMPLE_EXPRESSION } from './fixtures/scenarios';
+import { DOTTED, MAIN, MAIN_OVERRIDES, SIMPLE, SIMPLE_EXPRESSION } from './fixtures/scenarios';
 import { fileUri, useServer } from './harness';
 
 function lineOf(text: string, needle: string): number {
@@ -129,5 +129,82 @@ describe('language server: a simple scenario listing a dotted name in parameterA
       actions.some((action) => /missing key/.test(action.title)),
       actions.map((action) => action.title).join(', '),
     );
+  });
+});
+
+/** The fixtures' simple scenario with a second Event of the same shape in Brake's Maneuver (a speed of 12 at 4 s). */
+const TWO_EVENTS = (() => {
+  const start = SIMPLE.indexOf('            <Event name="SlowDown"');
+  const end = SIMPLE.indexOf('</Event>', start) + '</Event>\n'.length;
+  const event = SIMPLE.slice(start, end);
+  const again = event.replace('name="SlowDown"', 'name="SpeedUp"').replace('value="5"', 'value="12"').replace('value="2"', 'value="4"');
+  return SIMPLE.slice(0, end) + again + SIMPLE.slice(end);
+})();
+
+describe('language server: keys of two Events of one shape (JSON-RPC)', function () {
+  const server = useServer({ 'simple.xosc': TWO_EVENTS, 'main.xosc': MAIN }, 'main.xosc');
+  const speed = 'Action.PrivateAction.LongitudinalAction.SpeedAction.SpeedActionTarget.AbsoluteTargetSpeed.value';
+
+  async function keysOffered(given: string[]): Promise<CompletionItem[]> {
+    const uri = fileUri(path.join(server.root, 'typing.xosc'));
+    const typed =
+      cursor(`<OpenSCENARIO><Storyboard><Story name="S"><Act name="A"><ManeuverGroup name="G"><Actors><EntityRef entityRef="e"/></Actors>
+<ScenarioReference scenarioFileName="simple.xosc">
+  <ManeuverGroupReference maneuverGroupName="Brake">
+${given.map((key) => `    <ParameterReference key="${key}" value="1"/>\n`).join('')}    <ParameterReference key="|"`);
+    await server.client.open(uri, typed.text);
+    const items = await server.client.request<CompletionItem[]>('textDocument/completion', server.client.at(uri, typed.position));
+    await server.client.close(uri);
+    return items;
+  }
+
+  it('offers each Event its own positioned key after the key that sets both', async function () {
+    const items = await keysOffered([]);
+    const sorted = [...items].sort((a, b) => String(a.sortText).localeCompare(String(b.sortText)));
+    const labels = sorted.map((item) => item.label);
+    const both = labels.indexOf('AbsoluteTargetSpeed.value');
+    assert.ok(both >= 0, labels.join(', '));
+    assert.deepEqual(labels.slice(both, both + 3), ['AbsoluteTargetSpeed.value', `Event[1].${speed}`, `Event[2].${speed}`]);
+    const detailOf = (label: string) => sorted.find((item) => item.label === label)?.detail ?? '';
+    assert.match(detailOf('AbsoluteTargetSpeed.value'), /^default 5 \/ 12 — simple\.xosc:\d+ \(sets 2 attributes\)$/);
+    assert.match(detailOf(`Event[1].${speed}`), /^default 5 — simple\.xosc:\d+ \(this one alone of the 2 the plain key sets\)$/);
+    assert.match(detailOf(`Event[2].${speed}`), /^default 12 — /);
+    // The conditions of the two Events too, each with its own position.
+    assert.ok(
+      labels.includes('Event[2].StartTrigger.ConditionGroup.Condition.ByValueCondition.SimulationTimeCondition.value'),
+      labels.join(', '),
+    );
+  });
+
+  it('leaves out the Event a key already sets, and the key that would set both', async function () {
+    const labels = (await keysOffered([`Event[2].${speed}`])).map((item) => item.label);
+    assert.ok(labels.includes(`Event[1].${speed}`), labels.join(', '));
+    assert.ok(!labels.includes(`Event[2].${speed}`), labels.join(', '));
+    assert.ok(!labels.includes('AbsoluteTargetSpeed.value'), labels.join(', '));
+  });
+
+  it('a positioned key it offers sets that Event alone, with no problem reported', async function () {
+    for (const [position, defaultValue] of [
+      [1, '5'],
+      [2, '12'],
+    ] as const) {
+      const uri = fileUri(path.join(server.root, `positioned${position}.xosc`));
+      const text = MAIN_OVERRIDES.replace(
+        /<ParameterReference key="value" value="8"\/>\s*<ParameterReference key="SimulationTimeCondition.value" value="9"\/>/,
+        `<ParameterReference key="Event[${position}].${speed}" value="30"/>`,
+      );
+      assert.ok(text.includes(`Event[${position}]`));
+      await server.client.open(uri, text);
+      const diagnostics = await server.client.diagnosticsOf(uri);
+      assert.deepEqual(
+        diagnostics.map((diagnostic) => `${problemCodeOf(diagnostic)}: ${diagnostic.message}`),
+        [],
+      );
+      const hover = await server.client.request<Hover>('textDocument/hover', server.client.at(uri, positionAfter(text, 'key="Ev')));
+      const value = (hover.contents as MarkupContent).value;
+      assert.match(value, new RegExp(`^key \`Event\\[${position}\\]\\.[^\`]*\` sets 1 attribute:\\n`));
+      assert.ok(value.includes(`default \`${defaultValue}\``), value);
+      await server.client.close(uri);
+    }
   });
 });

@@ -117,8 +117,9 @@ export function keyForms(target: OverridableAttribute): string[] {
 
 /**
  * Keys that give positions (`Event[2].Action.name`), for attributes whose element paths are equal
- * (two Events of one Maneuver): shortest first, and among keys of one length those with one position
- * before the one with every segment positioned. The group element itself is never positioned.
+ * (two Events of one Maneuver): shortest first, and among keys of one length those with one position,
+ * then two (`Event[1].StartTrigger.ConditionGroup.Condition[2]....`), then every segment positioned.
+ * The group element itself is never positioned.
  */
 export function positionedKeyForms(target: OverridableAttribute): string[] {
   const chain: XmlElement[] = [];
@@ -130,10 +131,12 @@ export function positionedKeyForms(target: OverridableAttribute): string[] {
     const suffix = chain.slice(chain.length - length);
     // The group element (chain[0]) is named plainly: the key is read from the group down.
     const indexable = suffix.map((element) => element !== chain[0]);
-    for (let i = suffix.length - 1; i >= 0; i--) {
-      if (!indexable[i]) continue;
-      forms.push([...suffix.map((element, j) => (j === i ? positioned(element) : element.name)), target.attributeName].join('.'));
-    }
+    const keyWith = (positions: number[]) =>
+      [...suffix.map((element, j) => (positions.includes(j) ? positioned(element) : element.name)), target.attributeName].join('.');
+    for (let i = suffix.length - 1; i >= 0; i--) if (indexable[i]) forms.push(keyWith([i]));
+    for (let i = suffix.length - 1; i >= 0; i--)
+      for (let j = i - 1; j >= 0; j--)
+        if (indexable[i] && indexable[j] && indexable.filter(Boolean).length > 2) forms.push(keyWith([j, i]));
     if (indexable.filter(Boolean).length > 1)
       forms.push([...suffix.map((element, j) => (indexable[j] ? positioned(element) : element.name)), target.attributeName].join('.'));
   }

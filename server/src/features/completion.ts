@@ -160,23 +160,32 @@ async function keyItems(
     .map((key) => key.value.trim());
   const range = replaceRange(document, context.valueStart, context.valueEnd);
   const items: CompletionItem[] = [];
-  // One row per attribute (or per set of attributes only settable together), in its shortest unambiguous key.
-  keyChoices(targets).forEach((choice, index) => {
-    if (choice.targets.some((target) => coveredBy(given, target))) return;
-    const [first] = choice.targets;
-    const [form] = choice.forms;
+  const item = (form: string, chosen: OverridableAttribute[], note: string, sortText: string): CompletionItem => {
+    const [first] = chosen;
     const declared = overridablePlace(source, first);
     const where = declared ? `${displayRef(declared.ref, workspace.folders[0])}:${declared.range.start.line + 1}` : '';
-    const defaults = [...new Set(choice.targets.map((target) => target.defaultValue ?? '(none)'))].join(' / ');
-    const together = choice.targets.length > 1 ? ` (sets ${choice.targets.length} attributes)` : '';
-    items.push({
+    const defaults = [...new Set(chosen.map((target) => target.defaultValue ?? '(none)'))].join(' / ');
+    return {
       label: form,
       kind: CompletionItemKind.Property,
-      detail: `default ${defaults}${where ? ` — ${where}` : ''}${together}`,
+      detail: `default ${defaults}${where ? ` — ${where}` : ''}${note}`,
       documentation: `Overrides \`${first.attributeName}\` of <${first.element.name}> (${first.path.join(' › ')}) in group ${group.name}.`,
-      sortText: String(index).padStart(5, '0'),
+      sortText,
       filterText: form,
       textEdit: { range, newText: form },
+    };
+  };
+  // One row per attribute (or per set of attributes only a positioned key tells apart), in its shortest unambiguous key.
+  keyChoices(targets).forEach((choice, index) => {
+    const [form] = choice.forms;
+    const order = String(index).padStart(5, '0');
+    if (form !== undefined && !choice.targets.some((target) => coveredBy(given, target)))
+      items.push(item(form, choice.targets, choice.targets.length > 1 ? ` (sets ${choice.targets.length} attributes)` : '', order));
+    // Then each of them alone, by its position among its namesakes.
+    choice.positioned.forEach(({ target, form: positioned }, member) => {
+      if (coveredBy(given, target)) return;
+      const note = ` (this one alone of the ${choice.targets.length} the plain key sets)`;
+      items.push(item(positioned, [target], note, `${order}.${String(member + 1).padStart(3, '0')}`));
     });
   });
   return items;
@@ -391,18 +400,22 @@ async function parameterReferenceItems(
     .filter((child) => child.name === 'ParameterReference')
     .map((child) => attribute(child, 'key')?.value.trim() ?? '');
   const escape = (value: string) => value.replace(/[$}\\]/g, (char) => `\\${char}`);
+  const item = (form: string, defaultValue: string | undefined, sortText: string): CompletionItem => ({
+    label: `ParameterReference ${form}`,
+    kind: CompletionItemKind.Property,
+    detail: `default ${defaultValue ?? '(none)'}`,
+    sortText,
+    filterText: filter(`ParameterReference ${form}`),
+    insertTextFormat: InsertTextFormat.Snippet,
+    textEdit: { range, newText: `<ParameterReference key="${escape(form)}" value="\${1:${escape(defaultValue ?? '')}}"/>$0` },
+  });
   keyChoices(found.targets).forEach((choice, index) => {
     const [form] = choice.forms;
-    const defaultValue = choice.targets[0].defaultValue;
-    if (form === undefined || choice.targets.some((target) => coveredBy(given, target))) return;
-    items.push({
-      label: `ParameterReference ${form}`,
-      kind: CompletionItemKind.Property,
-      detail: `default ${defaultValue ?? '(none)'}`,
-      sortText: `0_${String(index + 1).padStart(3, '0')}`,
-      filterText: filter(`ParameterReference ${form}`),
-      insertTextFormat: InsertTextFormat.Snippet,
-      textEdit: { range, newText: `<ParameterReference key="${escape(form)}" value="\${1:${escape(defaultValue ?? '')}}"/>$0` },
+    const order = `0_${String(index + 1).padStart(3, '0')}`;
+    if (form !== undefined && !choice.targets.some((target) => coveredBy(given, target)))
+      items.push(item(form, choice.targets[0].defaultValue, order));
+    choice.positioned.forEach(({ target, form: positioned }, member) => {
+      if (!coveredBy(given, target)) items.push(item(positioned, target.defaultValue, `${order}.${String(member + 1).padStart(3, '0')}`));
     });
   });
   return items;
