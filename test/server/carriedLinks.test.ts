@@ -8,6 +8,7 @@ import { SchemaCheckMemory } from '../../server/src/core/schema/problems';
 import { diskRef, refId, ScenarioStore } from '../../server/src/core/sources';
 import { ReusingFlattener, SharedSources } from '../../server/src/sharedSources';
 import { outerGroup, scenario, simpleGroup } from '../support/fixtures';
+import { editorGenerations } from '../support/generations';
 import { temporaryFolder } from '../support/temporaryDirectory';
 
 // G lists h without writing it: a key setting h has no default.
@@ -53,14 +54,9 @@ describe('server: the links of references an edit inside one value leaves alone'
     await fc.assert(
       fc.asyncProperty(fc.array(edit, { minLength: 1, maxLength: 6 }), async (edits) => {
         const ref = diskRef(mainFile);
-        const store = new ScenarioStore({ scenarioPath: [], root: folder });
-        const shared = new SharedSources(64 * 1024 * 1024, () => new Set());
-        const memory = new SchemaCheckMemory();
-        // One flattener per generation, the edited file forgotten between them, as the server's database does.
-        const generation = () =>
-          new ReusingFlattener(store, shared, new Map(), 'asam', { version: 'auto' }, memory, () => undefined, DEFAULT_CARLA_RELEASE);
+        const { generation, edited, fresh: afresh } = editorGenerations(folder);
         let current = main;
-        store.setOverlay(ref, current);
+        edited(ref, current);
         const first = await generation().analyze(ref);
         // The problems to carry: those of references an edit leaves alone.
         for (const code of ['unknown-key', 'missing-file', 'unknown-group', 'no-default'])
@@ -76,14 +72,11 @@ describe('server: the links of references an edit inside one value leaves alone'
           const end = Math.min(range.end, start + length);
           const inserted = same === 0 ? current.slice(start, end) : typedText;
           current = current.slice(0, start) + inserted + current.slice(end);
-          store.setOverlay(ref, current);
-          shared.delete(refId(ref));
+          edited(ref, current);
           const incremental = await generation().analyze(ref);
           reused += incremental.source.links.filter((link) => links.includes(link)).length;
           links = incremental.source.links;
-          const freshStore = new ScenarioStore({ scenarioPath: [], root: folder });
-          freshStore.setOverlay(ref, current);
-          const fresh = await new Flattener(freshStore, 'asam', { version: 'auto' }).analyze(ref);
+          const fresh = await afresh(ref, current);
           assert.deepEqual(
             JSON.parse(JSON.stringify(incremental.problems)),
             JSON.parse(JSON.stringify(fresh.problems)),

@@ -129,7 +129,7 @@ export const CORE_MEMOS = {
     where: '`Flattener.linkAll` (`core/flatten/carriedLinks.ts`)',
     key: 'a parse of a file with references',
     holds:
-      "the links its references were given (resolution, source read, groups, override plans) and the problems each reported, with the store and the files being read: after an edit inside one value, a reference outside the edited group whose file resolves to the same source read takes its link (a parse's own parameters planned again) and its problems (moved on the edited line) instead of being linked again; so does every reference of the same parse read again",
+      "the links its references were given (resolution, source read, groups, override plans) and the problems each reported, with the store and the files being read: after an edit inside one value, a reference outside the edited group whose file resolves to the same source read takes its link (a parse's own parameters planned again) and its problems (moved on the edited line) instead of being linked again; so does every reference of the same parse read again. With them, the analysis's checks of each reference (`referenceChecks`: undeclared imported entities, override values against their attribute), taken by a carried reference when the entities declared and the schema version read are as they were and it read no parameter of the main file",
     bound: WITH_KEY,
     invalidated:
       'never: a new parse is a new key; a link is taken only while its resolution and source read are those `resolve` and `source` would give now',

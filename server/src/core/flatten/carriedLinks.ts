@@ -16,6 +16,23 @@ export interface ParseLinks {
   links: LinkedReference[];
   /** For each link, the problems linking it reported in the reading file (in the order reported). */
   problems: readonly Problem[][];
+  /** The analysis's checks of each reference (`referenceChecks`), carried with the links; undefined where not made or not carried. */
+  checks?: ParseChecks;
+}
+
+/** The problems the analysis found for one reference, apart from linking it. */
+export interface ReferenceCheckResults {
+  /** Entities its imported groups name that the main file does not declare. */
+  entity: readonly Problem[];
+  /** Its override values that do not fit the attributes they set. */
+  override: readonly Problem[];
+}
+
+/** The analysis's checks of a parse's references, made with what it read of the rest of the file (`context`). */
+export interface ParseChecks {
+  /** What the checks read outside the references: the entities declared, the schema version; another context checks all again. */
+  context: string;
+  results: (ReferenceCheckResults | undefined)[];
 }
 
 const linksOfParses = coreMemo<XmlDocument, ParseLinks>('linksOfParse');
@@ -25,6 +42,12 @@ const NO_PROBLEMS: Problem[] = [];
 /** Remembers what linking the references of `document` made. */
 export function rememberLinks(document: XmlDocument, links: ParseLinks): void {
   linksOfParses.set(document, links);
+}
+
+/** What linking the references of `document` last made, while `links` are still those links (a later linking of the same parse replaces them). */
+export function linksOfParse(document: XmlDocument, links: readonly LinkedReference[]): ParseLinks | undefined {
+  const known = linksOfParses.get(document);
+  return known?.links === links ? known : undefined;
 }
 
 /** What the references of a file re-parsed after `edit` (or read again from the same parse: no edit) can take from the previous parse's links. */
@@ -101,6 +124,22 @@ export class LinkCarry {
       return { info: groupReference, target: linked.target, overridable: linked.overridable, plan };
     });
     return { link: { info: reference, resolution: before.resolution, source: before.source, groups, cycle: undefined }, problems };
+  }
+
+  /** The context the previous parse's reference checks were made in; undefined when there are none to carry. */
+  get checksContext(): string | undefined {
+    return this.previous.checks?.context;
+  }
+
+  /** The checks of the `index`th reference, carried with its link (`carry` gave one), placed in the edited text. */
+  checksOf(index: number): ReferenceCheckResults | undefined {
+    const before = this.previous.checks?.results[index];
+    if (!before) return undefined;
+    return { entity: this.movedProblems(before.entity), override: this.movedProblems(before.override) };
+  }
+
+  private movedProblems(problems: readonly Problem[]): Problem[] {
+    return problems.length === 0 ? NO_PROBLEMS : problems.map((problem) => ({ ...problem, range: this.moved(problem.range) }));
   }
 
   /** The problems the previous link reported, placed in the edited text; undefined when one points into the reading file elsewhere (linked again). */

@@ -20,7 +20,7 @@ import { closestMatch } from '../text';
 import { attribute, selfAndDescendants, XmlAttribute, XmlElement } from '../xml';
 import { originOf } from './origin';
 import { problemAt, valueRange } from './report';
-import { FlatSource } from './types';
+import { FlatSource, LinkedReference } from './types';
 import { coreMemo } from '../memos';
 
 const entityRefCache = coreMemo<XmlElement, XmlElement[]>('entityReferences');
@@ -63,7 +63,6 @@ export function checkDeclarations(result: FlatSource, model: ScenarioModel): voi
   }
 }
 
-/** Warns where an imported group names an entity the outermost main file does not declare. */
 // An evaluator is a pure function of its model: one per imported file's model, not one per reference and edit.
 const standardEvaluators = coreMemo<SemanticModel, Evaluator>('standardEvaluators');
 
@@ -73,52 +72,84 @@ function standardEvaluatorOf(model: SemanticModel): Evaluator {
   return evaluator;
 }
 
-export function entityProblems(source: FlatSource): Problem[] {
+/** What the check of imported entities reads of the main file for every reference: the entities it declares. */
+export interface EntityContext {
+  /** The evaluator of the main file's values (`$name` entities and overrides). */
+  readonly main: Evaluator | undefined;
+  /** The names of the entities the main file declares, evaluated. */
+  readonly declared: ReadonlySet<string>;
+}
+
+/** A value as the file it is written in reads it; `parameters` learns when it read a parameter of that file. */
+function valueIn(
+  evaluator: Evaluator | undefined,
+  element: XmlElement,
+  attributeNode: XmlAttribute | undefined,
+  parameters?: { read: boolean },
+): string | undefined {
+  if (!attributeNode) return undefined;
+  if (parameters && evaluator?.model.siteOf.has(attributeNode)) parameters.read = true;
+  return evaluator?.textOf(element, attributeNode) ?? attributeNode.value;
+}
+
+/** The entities the main file declares, for `referenceEntityProblems`; undefined when it was not read. */
+export function entityContextOf(source: FlatSource): EntityContext | undefined {
   const original = source.original;
-  if (!original) return [];
+  if (!original) return undefined;
   // Names and references may be `$parameters`: each is read with the declarations of the file it is written in.
   const main = source.semantics?.evaluator;
-  const valueIn = (evaluator: Evaluator | undefined, element: XmlElement, attributeNode: XmlAttribute | undefined) =>
-    attributeNode ? (evaluator?.textOf(element, attributeNode) ?? attributeNode.value) : undefined;
-  const declared = new Set(original.entities.map((entity) => valueIn(main, entity.element, entity.nameAttribute) ?? entity.name));
+  return { main, declared: new Set(original.entities.map((entity) => valueIn(main, entity.element, entity.nameAttribute) ?? entity.name)) };
+}
+
+/**
+ * Where one reference's imported groups name an entity the main file does not declare; `readsParameters` when a value
+ * it read is a parameter of the main file (its problems then depend on declarations outside the reference).
+ */
+export function referenceEntityProblems(
+  source: FlatSource,
+  link: LinkedReference,
+  context: EntityContext,
+): { problems: Problem[]; readsParameters: boolean } {
   const problems: Problem[] = [];
-  for (const link of source.links) {
-    const actor = link.info.outerGroup?.actor;
-    const actorEntity = actor ? valueIn(main, actor, attribute(actor, 'entityRef')) : undefined;
-    const sourceEvaluator = link.source?.model ? standardEvaluatorOf(semanticModelOf(link.source.model.document)) : undefined;
-    for (const linked of link.groups) {
-      if (!linked.target || !linked.plan) continue;
-      // The entities the copy will name: overrides first, then the outer actor, then the source's own value.
-      const overridden = new Map<XmlElement, string>();
-      for (const [target, parameter] of linked.plan.applied) {
-        if (target.attributeName === 'entityRef')
-          overridden.set(target.element, valueIn(main, parameter.element, parameter.valueAttribute) ?? parameter.value);
-      }
-      const missing = new Set<string>();
-      for (const element of entityRefElements(linked.target.element)) {
-        const value =
-          overridden.get(element) ??
-          (element === linked.target.actor && actorEntity !== undefined
-            ? actorEntity
-            : valueIn(sourceEvaluator, element, attribute(element, 'entityRef')));
-        if (value !== undefined && !declared.has(value)) missing.add(value);
-      }
-      for (const name of missing) {
-        const [start, end] = valueRange(linked.info.nameAttribute, linked.info.element);
-        problems.push({
-          ...problemAt({
-            source: source.ref,
-            document: original.document,
-            start,
-            end,
-            ...undeclaredImportedEntityWording(linked.info.name, name),
-          }),
-          data: { entity: name },
-        });
-      }
+  const original = source.original;
+  if (!original) return { problems, readsParameters: false };
+  const { main, declared } = context;
+  const parameters = { read: false };
+  const actor = link.info.outerGroup?.actor;
+  const actorEntity = actor ? valueIn(main, actor, attribute(actor, 'entityRef'), parameters) : undefined;
+  const sourceEvaluator = link.source?.model ? standardEvaluatorOf(semanticModelOf(link.source.model.document)) : undefined;
+  for (const linked of link.groups) {
+    if (!linked.target || !linked.plan) continue;
+    // The entities the copy will name: overrides first, then the outer actor, then the source's own value.
+    const overridden = new Map<XmlElement, string>();
+    for (const [target, parameter] of linked.plan.applied) {
+      if (target.attributeName === 'entityRef')
+        overridden.set(target.element, valueIn(main, parameter.element, parameter.valueAttribute, parameters) ?? parameter.value);
+    }
+    const missing = new Set<string>();
+    for (const element of entityRefElements(linked.target.element)) {
+      const value =
+        overridden.get(element) ??
+        (element === linked.target.actor && actorEntity !== undefined
+          ? actorEntity
+          : valueIn(sourceEvaluator, element, attribute(element, 'entityRef')));
+      if (value !== undefined && !declared.has(value)) missing.add(value);
+    }
+    for (const name of missing) {
+      const [start, end] = valueRange(linked.info.nameAttribute, linked.info.element);
+      problems.push({
+        ...problemAt({
+          source: source.ref,
+          document: original.document,
+          start,
+          end,
+          ...undeclaredImportedEntityWording(linked.info.name, name),
+        }),
+        data: { entity: name },
+      });
     }
   }
-  return problems;
+  return { problems, readsParameters: parameters.read };
 }
 
 /** What the output check needs of the flattener: its catalogs and the simulator it checks for. */

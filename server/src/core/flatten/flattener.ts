@@ -10,11 +10,12 @@ import { SchemaCheckMemory } from '../schema/problems';
 import { analyzeDocument, CatalogLoader, semanticProblems } from '../semantics';
 import { refId, ScenarioStore, SourceError, SourceRef } from '../sources';
 import { isWellFormed, parseXml, ValueEdit, valueEditOf } from '../xml';
-import { LinkCarry, linkProblems, rememberLinks } from './carriedLinks';
-import { checkDeclarations, checkOutput, entityProblems } from './checks';
+import { LinkCarry, linkProblems, ReferenceCheckResults, rememberLinks } from './carriedLinks';
+import { checkDeclarations, checkOutput } from './checks';
 import { applyEdits, parameterAttributeSpans } from './edits';
 import { duplicateOuterGroupProblems, link } from './link';
-import { outputSchemaProblems, overrideValueProblems } from './outputSchema';
+import { outputSchemaProblems } from './outputSchema';
+import { referenceChecks } from './referenceChecks';
 import { problemAt } from './report';
 import { pathBaseOf, rebaseFlattened } from './rebase';
 import { render } from './render';
@@ -66,9 +67,8 @@ export class Flattener {
   /** Every problem of `main` and of what it uses, without writing its flattened text (for an editor). */
   async analyze(main: SourceRef): Promise<AnalysisResult> {
     const source = await this.source(main, []);
-    const schemaVersion = this.schema.version;
-    const overrides = schemaVersion === 'off' ? [] : overrideValueProblems(source, { version: schemaVersion });
-    return { problems: uniqueProblems([...source.allProblems, ...entityProblems(source), ...overrides]), source };
+    const { entity, override } = referenceChecks(source, this.schema.version);
+    return { problems: uniqueProblems([...source.allProblems, ...entity, ...override]), source };
   }
 
   /** Flattens the scenario `main` (a `main.xosc` on disk or inside a package) into plain OpenSCENARIO. */
@@ -227,10 +227,12 @@ export class Flattener {
     result.problems.push(...duplicateOuterGroupProblems(model, result.ref));
     const carry = LinkCarry.of(model.document, valueEdit, model.references.length, this, result.ref, stack);
     const problemsOfLinks: Problem[][] = [];
+    const carriedChecks: (ReferenceCheckResults | undefined)[] = [];
     for (const [index, reference] of model.references.entries()) {
       const carried = carry?.carry(index, reference);
       const firstProblem = result.problems.length;
       let linked: LinkedReference;
+      carriedChecks.push(carried ? carry?.checksOf(index) : undefined);
       if (carried) {
         linked = carried.link;
         result.problems.push(...carried.problems);
@@ -251,7 +253,15 @@ export class Flattener {
       }
     }
     result.allProblems = uniqueProblems([...result.problems, ...childProblems]);
-    if (model.references.length > 0)
-      rememberLinks(model.document, { store: this.store, stack: stack.map(refId), links: result.links, problems: problemsOfLinks });
+    if (model.references.length > 0) {
+      const checksContext = carry?.checksContext;
+      rememberLinks(model.document, {
+        store: this.store,
+        stack: stack.map(refId),
+        links: result.links,
+        problems: problemsOfLinks,
+        checks: checksContext === undefined ? undefined : { context: checksContext, results: carriedChecks },
+      });
+    }
   }
 }

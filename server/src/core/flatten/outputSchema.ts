@@ -13,7 +13,7 @@ import { coreMemo } from '../memos';
 
 import { attribute, elementAt, XmlAttribute, XmlDocument, XmlElement } from '../xml';
 import { copiedFrom, originOf } from './origin';
-import { FlatSource } from './types';
+import { FlatSource, LinkedReference } from './types';
 
 /*
  * The schema check of a flattened output: its findings placed where the source files wrote the
@@ -139,45 +139,70 @@ function overrideFindings(
   return findings;
 }
 
+/** What the check of override values reads of the main file for every reference: its tree and the schema it is read by. */
+export interface OverrideContext {
+  readonly document: XmlDocument;
+  readonly chosen: ChosenVersion;
+  readonly index: SchemaIndex;
+}
+
+/** The schema the main file's override values are checked by; undefined when it was not read. */
+export function overrideContextOf(main: FlatSource, options: Omit<SchemaCheckOptions, 'modular'> = {}): OverrideContext | undefined {
+  const document = main.original?.document;
+  if (!document) return undefined;
+  const chosen = chooseVersion(document, options.version ?? 'auto');
+  return { document, chosen, index: schemaIndex(chosen.version) };
+}
+
+/**
+ * One reference's override values against the type of the attribute they set; `readsParameters` when a value is a
+ * parameter of the main file (its problems then depend on declarations outside the reference).
+ */
+export function referenceOverrideProblems(
+  main: FlatSource,
+  link: LinkedReference,
+  context: OverrideContext,
+): { problems: Problem[]; readsParameters: boolean } {
+  const { document, chosen, index } = context;
+  const problems: Problem[] = [];
+  let readsParameters = false;
+  for (const group of link.groups) {
+    for (const [target, parameter] of group.plan?.applied ?? []) {
+      const valueAttribute = parameter.valueAttribute;
+      const typeName = valueAttribute ? typeOfElement(index, target.element) : undefined;
+      const written = attribute(target.element, target.attributeName);
+      if (!valueAttribute || !typeName || !written) continue;
+      for (const finding of overrideFindings(index, chosen, target, typeName, written, parameter.value)) {
+        problems.push(
+          toProblem(
+            main.ref,
+            document,
+            { ...finding, data: undefined, subject: subjectOf(finding) },
+            valueAttribute.valueStart,
+            valueAttribute.valueEnd,
+            parameter.key,
+          ),
+        );
+      }
+      // An override `$name`: the main file's parameter must fit the attribute it sets.
+      const site = main.semantics?.model.siteOf.get(valueAttribute);
+      if (site) readsParameters = true;
+      const attributeTypeOf = site ? attributeType(index, target.element, target.attributeName) : undefined;
+      const mismatch =
+        site && attributeTypeOf && main.semantics
+          ? siteTypeProblem(main.semantics, site, attributeTypeOf, `${target.element.name}.${target.attributeName}`, parameter.key)
+          : undefined;
+      if (mismatch) problems.push(mismatch);
+    }
+  }
+  return { problems, readsParameters };
+}
+
 /**
  * Override values against the type of the attribute they set, without rendering the output (for the
  * editor): the same problems, at the same ParameterReference, as the strict check of the output.
  */
 export function overrideValueProblems(main: FlatSource, options: Omit<SchemaCheckOptions, 'modular'> = {}): Problem[] {
-  const document = main.original?.document;
-  if (!document) return [];
-  const chosen = chooseVersion(document, options.version ?? 'auto');
-  const index = schemaIndex(chosen.version);
-  const problems: Problem[] = [];
-  for (const link of main.links) {
-    for (const group of link.groups) {
-      for (const [target, parameter] of group.plan?.applied ?? []) {
-        const valueAttribute = parameter.valueAttribute;
-        const typeName = valueAttribute ? typeOfElement(index, target.element) : undefined;
-        const written = attribute(target.element, target.attributeName);
-        if (!valueAttribute || !typeName || !written) continue;
-        for (const finding of overrideFindings(index, chosen, target, typeName, written, parameter.value)) {
-          problems.push(
-            toProblem(
-              main.ref,
-              document,
-              { ...finding, data: undefined, subject: subjectOf(finding) },
-              valueAttribute.valueStart,
-              valueAttribute.valueEnd,
-              parameter.key,
-            ),
-          );
-        }
-        // An override `$name`: the main file's parameter must fit the attribute it sets.
-        const site = main.semantics?.model.siteOf.get(valueAttribute);
-        const attributeTypeOf = site ? attributeType(index, target.element, target.attributeName) : undefined;
-        const mismatch =
-          site && attributeTypeOf && main.semantics
-            ? siteTypeProblem(main.semantics, site, attributeTypeOf, `${target.element.name}.${target.attributeName}`, parameter.key)
-            : undefined;
-        if (mismatch) problems.push(mismatch);
-      }
-    }
-  }
-  return problems;
+  const context = overrideContextOf(main, options);
+  return context ? main.links.flatMap((link) => referenceOverrideProblems(main, link, context).problems) : [];
 }
