@@ -1,6 +1,7 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
+import { simulatorWording } from '../../server/src/core/diagnostics/simulator';
 import { Flattener } from '../../server/src/core/flatten';
 import { CARLA_PROFILE } from '../../server/src/core/profiles/carla';
 import { simulatorFindings } from '../../server/src/core/profiles/checks';
@@ -56,7 +57,7 @@ const TIME_OF_DAY =
   '<GlobalAction/><StartTrigger><ConditionGroup><Condition name="c" delay="0" conditionEdge="none"><ByValueCondition><TimeOfDayCondition dateTime="2026-01-01T08:00:00" rule="greaterThan"/></ByValueCondition></Condition></ConditionGroup></StartTrigger>';
 
 function messages(simulator: Simulator, text: string, fileName = 'scenario.xosc'): string[] {
-  return simulatorFindings(simulator, parseXml(text), fileName).map((finding) => finding.message);
+  return simulatorFindings(simulator, parseXml(text), fileName).map((finding) => simulatorWording(finding).message);
 }
 
 describe('simulator profiles', () => {
@@ -105,7 +106,7 @@ describe('simulator profiles', () => {
       latest.map((finding) => [finding.severity, finding.element.name]),
       [['error', 'AcquirePositionAction']],
     );
-    assert.match(latest[0].message, /atomic_behaviors\.py:773/);
+    assert.match(simulatorWording(latest[0]).message, /atomic_behaviors\.py:773/);
     assert.deepEqual(simulatorFindings('carla', parseXml(text), 'scenario.xosc', '0.9.15'), []);
   });
 
@@ -132,7 +133,7 @@ describe('simulator profiles', () => {
       'a.xosc',
     );
     assert.equal(sinusoidal.length, 1);
-    assert.match(sinusoidal[0].message, /dynamicsShape="sinusoidal" on LaneChangeActionDynamics/);
+    assert.match(simulatorWording(sinusoidal[0]).message, /dynamicsShape="sinusoidal" on LaneChangeActionDynamics/);
     assert.equal(sinusoidal[0].severity, 'warning');
   });
 
@@ -259,7 +260,7 @@ describe('simulator profiles on the corpus files each simulator runs', function 
       for (const file of files) {
         // 0.9.15: the release before the route-action regression, which two of CARLA's examples hit in 0.9.16.
         for (const finding of simulatorFindings(simulator, parseXml(fs.readFileSync(file, 'utf8')), path.basename(file), '0.9.15')) {
-          found.push(`${path.relative(corpus, file)}: ${finding.message}`);
+          found.push(`${path.relative(corpus, file)}: ${simulatorWording(finding).message}`);
         }
       }
       // No exceptions are needed: SceneGraphFile, which CARLA ignores but which changes nothing the scenario
@@ -311,7 +312,9 @@ describe('simulator profiles on the corpus files each simulator runs', function 
   it('carla finds what CARLA does not run in esmini scenarios (the checks are not vacuous)', () => {
     const files = walk(path.join(corpus, 'esmini'));
     const messages = files.flatMap((file) =>
-      simulatorFindings('carla', parseXml(fs.readFileSync(file, 'utf8')), path.basename(file)).map((finding) => finding.message),
+      simulatorFindings('carla', parseXml(fs.readFileSync(file, 'utf8')), path.basename(file)).map(
+        (finding) => simulatorWording(finding).message,
+      ),
     );
     assert.ok(messages.some((message) => /accepts only OpenSCENARIO 1\.0; this file states 1\.[123]/.test(message)));
     assert.ok(messages.some((message) => /does not support RoutePosition/.test(message)));

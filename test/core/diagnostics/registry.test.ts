@@ -10,9 +10,6 @@ import { repoRoot } from '../../support/paths';
 
 const MODULES = path.join(repoRoot, 'server/src/core/diagnostics');
 
-/** Codes whose messages their producer still words: `simulator`'s, from the simulator profiles' facts (core/profiles/, semantics/checks/carla.ts). */
-const WORDED_BY_PRODUCER: readonly string[] = ['simulator'];
-
 /** The string literals an expression may be: `'a'`, or either side of `x ? 'a' : 'b'`. */
 function literalsOf(expression: ts.Expression): string[] {
   if (ts.isStringLiteralLike(expression)) return [expression.text];
@@ -53,8 +50,7 @@ function ownWordings(file: string, text: string, codes: ReadonlySet<string>): st
       const literalCodes = code && ts.isPropertyAssignment(code) ? literalsOf(code.initializer).filter((name) => codes.has(name)) : [];
       const spreadsWording = node.properties.some((property) => ts.isSpreadAssignment(property) && isModuleCall(property.expression));
       const line = source.getLineAndCharacterOfPosition(node.getStart(source)).line + 1;
-      if (worded && literalCodes.some((name) => !WORDED_BY_PRODUCER.includes(name)))
-        found.push(`${file}:${line}: ${literalCodes.join(', ')} worded here`);
+      if (worded && literalCodes.length > 0) found.push(`${file}:${line}: ${literalCodes.join(', ')} worded here`);
       else if (message && spreadsWording) found.push(`${file}:${line}: a module's wording with a message of its own`);
     }
     ts.forEachChild(node, visit);
@@ -163,6 +159,7 @@ describe('diagnostics: one module per diagnostic, registered in one list', () =>
       'x.ts:2: unknown-key worded here',
       'x.ts:3: no-actor, cycle worded here',
       "x.ts:4: a module's wording with a message of its own",
+      'x.ts:6: simulator worded here',
     ]);
   });
 

@@ -1,5 +1,47 @@
 import { ProblemDataByCode } from '../problems';
-import { defineDiagnostic, isOptionalString, isRecord, isString } from './definition';
+import { CARLA_FACTS, CARLA_PROFILE, CarlaFactName } from '../profiles/carla';
+import type { ProfileFacts } from '../profiles/checks';
+import type { ElementFact, FactSeverity } from '../profiles/facts';
+import { defineDiagnostic, isOptionalString, isRecord, isString, ProblemWording } from './definition';
+
+function describe(fact: ElementFact): string {
+  return fact.parent ? `${fact.element} in ${fact.parent}` : fact.element;
+}
+
+/** The words of what a simulator profile's check found (core/profiles/checks.ts), each naming its source. */
+function profileMessage(facts: ProfileFacts): string {
+  switch (facts.kind) {
+    case 'version':
+      return `${facts.profile} accepts only OpenSCENARIO ${facts.wanted.revMajor}.${facts.wanted.revMinor}; this file states ${facts.stated} (${facts.wanted.source})`;
+    case 'element': {
+      const { fact } = facts;
+      const where = fact.in === 'init' ? ' in the Init' : fact.in === 'story' ? ' in a Story' : '';
+      const note = fact.note ? `: ${fact.note}` : '';
+      const verb = fact.support === 'ignored' ? 'ignores' : 'does not support';
+      return `${facts.profile} ${verb} ${describe(fact)}${where}${note} (${fact.source})`;
+    }
+    case 'attribute': {
+      const { fact } = facts;
+      const what = fact.supportedValues?.length === 0 ? fact.attribute : `${fact.attribute}="${facts.value}"`;
+      return `${facts.profile} does not support ${what} on ${facts.element}: ${fact.note} (${fact.source})`;
+    }
+    case 'catalogType':
+      return `${facts.profile} reads no catalog of ${facts.type} entries; it reads ${facts.rule.types.map((name) => name + 'Catalog').join(', ')} (${facts.rule.source})`;
+    case 'catalogFileName':
+      return `${facts.profile} reads a catalog of ${facts.type} entries only from a file named ${facts.type}Catalog.xosc in the catalog directory; this file is ${facts.fileName} (${facts.source})`;
+  }
+}
+
+/** A simulator profile's finding (its severity is the fact's). */
+export function simulatorWording(finding: { severity: FactSeverity; facts: ProfileFacts }): ProblemWording<'simulator'> {
+  return { severity: finding.severity, code: 'simulator', message: profileMessage(finding.facts) };
+}
+
+/** What CARLA's ScenarioRunner does beyond one element or attribute (core/semantics/checks/carla.ts): the fact `name`, then `detail`, the case at hand. */
+export function carlaFactWording(name: CarlaFactName, detail: string): ProblemWording<'simulator'> {
+  const fact = CARLA_FACTS[name];
+  return { severity: fact.severity, code: 'simulator', message: `${CARLA_PROFILE.name} ${fact.does}: ${detail} (${fact.source})` };
+}
 
 function isSimulatorData(value: unknown): value is ProblemDataByCode['simulator'] {
   if (!isRecord(value) || !isOptionalString(value.suggestion)) return false;

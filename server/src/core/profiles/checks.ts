@@ -6,11 +6,24 @@ import { CarlaRelease, DEFAULT_CARLA_RELEASE, Simulator } from './simulators';
 
 export const PROFILES: Record<Exclude<Simulator, 'asam'>, SimulatorProfile> = { carla: CARLA_PROFILE, esmini: ESMINI_PROFILE };
 
+/** What a profile's check found, as facts: core/diagnostics/simulator.ts words them (`profile`: the simulator's name). */
+export type ProfileFacts =
+  /** The file states a version the simulator does not accept. */
+  | { kind: 'version'; profile: string; wanted: { revMajor: string; revMinor: string; source: string }; stated: string }
+  /** An element the simulator ignores or does not support (where `fact` says). */
+  | { kind: 'element'; profile: string; fact: ElementFact }
+  /** An attribute, or its `value`, the simulator does not support on `element`. */
+  | { kind: 'attribute'; profile: string; fact: AttributeFact; element: string; value: string }
+  /** A catalog of entries of `type`, which the simulator reads from no catalog. */
+  | { kind: 'catalogType'; profile: string; type: string; rule: { types: readonly string[]; source: string } }
+  /** A catalog of `type` entries in a file the simulator does not find by its name. */
+  | { kind: 'catalogFileName'; profile: string; type: string; fileName: string; source: string };
+
 /** Something a simulator will not run as written: on an element, or on one of its attributes. */
 export interface SimulatorFinding {
   element: XmlElement;
   attribute?: XmlAttribute;
-  message: string;
+  facts: ProfileFacts;
   severity: FactSeverity;
   /** The text to write over the attribute's value, where that one edit answers the finding. */
   suggestion?: string;
@@ -46,10 +59,6 @@ function placeOf(element: XmlElement): 'init' | 'story' | undefined {
   return undefined;
 }
 
-function describe(fact: ElementFact): string {
-  return fact.parent ? `${fact.element} in ${fact.parent}` : fact.element;
-}
-
 const versionCheck: ProfileCheck = ({ profile, document }) => {
   const wanted = profile.versions;
   const header = document.root?.children.find((child) => child.name === 'FileHeader');
@@ -64,7 +73,7 @@ const versionCheck: ProfileCheck = ({ profile, document }) => {
       element: header,
       attribute: onMinor ? minor : major,
       severity: wanted.severity ?? 'warning',
-      message: `${profile.name} accepts only OpenSCENARIO ${wanted.revMajor}.${wanted.revMinor}; this file states ${major.value}.${minor.value} (${wanted.source})`,
+      facts: { kind: 'version', profile: profile.name, wanted, stated: `${major.value}.${minor.value}` },
       suggestion: onMinor ? wanted.revMinor : wanted.revMajor,
     },
   ];
@@ -85,14 +94,7 @@ const elementCheck: ProfileCheck = ({ profile, elements, release }) => {
       if (fact.parent && element.parent?.name !== fact.parent) continue;
       const place = placeOf(element);
       if (fact.in && place !== fact.in) continue;
-      const where = fact.in === 'init' ? ' in the Init' : fact.in === 'story' ? ' in a Story' : '';
-      const note = fact.note ? `: ${fact.note}` : '';
-      const verb = fact.support === 'ignored' ? 'ignores' : 'does not support';
-      findings.push({
-        element,
-        severity: fact.severity ?? 'warning',
-        message: `${profile.name} ${verb} ${describe(fact)}${where}${note} (${fact.source})`,
-      });
+      findings.push({ element, severity: fact.severity ?? 'warning', facts: { kind: 'element', profile: profile.name, fact } });
     }
   }
   return findings;
@@ -113,12 +115,11 @@ const attributeCheck: ProfileCheck = ({ profile, elements }) => {
       if (fact.parent && element.parent?.name !== fact.parent) continue;
       const found = attribute(element, fact.attribute);
       if (!found || !breaks(fact, found.value)) continue;
-      const what = fact.supportedValues?.length === 0 ? fact.attribute : `${fact.attribute}="${found.value}"`;
       findings.push({
         element,
         attribute: found,
         severity: fact.severity ?? 'warning',
-        message: `${profile.name} does not support ${what} on ${element.name}: ${fact.note} (${fact.source})`,
+        facts: { kind: 'attribute', profile: profile.name, fact, element: element.name, value: found.value },
       });
     }
   }
@@ -135,7 +136,7 @@ const catalogNameCheck: ProfileCheck = ({ profile, document, fileName }) => {
       {
         element: catalog,
         severity: 'warning',
-        message: `${profile.name} reads no catalog of ${type} entries; it reads ${rule.types.map((name) => name + 'Catalog').join(', ')} (${rule.source})`,
+        facts: { kind: 'catalogType', profile: profile.name, type, rule },
       },
     ];
   const expected = `${type}Catalog.xosc`;
@@ -145,7 +146,7 @@ const catalogNameCheck: ProfileCheck = ({ profile, document, fileName }) => {
       element: catalog,
       attribute: attribute(catalog, 'name'),
       severity: 'warning',
-      message: `${profile.name} reads a catalog of ${type} entries only from a file named ${expected} in the catalog directory; this file is ${fileName} (${rule.source})`,
+      facts: { kind: 'catalogFileName', profile: profile.name, type, fileName, source: rule.source },
     },
   ];
 };

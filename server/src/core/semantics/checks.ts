@@ -33,6 +33,7 @@ import { catalogFoundByFileNameWording, unknownCatalogWording } from '../diagnos
 import { unknownCatalogEntryWording } from '../diagnostics/unknownCatalogEntry';
 import { unknownStoryboardElementWording } from '../diagnostics/unknownStoryboardElement';
 import { unusedParameterWording } from '../diagnostics/unusedParameter';
+import { simulatorWording } from '../diagnostics/simulator';
 import {
   Declaration,
   Evaluator,
@@ -471,9 +472,7 @@ export const flattenedStoryboardReferences: SemanticCheck = (context) => {
 export const simulatorProfile: SemanticCheck = (context) =>
   simulatorFindings(context.simulator ?? 'asam', context.model.document, baseName(context.ref), carlaReleaseOf(context)).map((finding) => ({
     ...at(finding.element, finding.attribute),
-    severity: finding.severity,
-    code: 'simulator',
-    message: finding.message,
+    ...simulatorWording(finding),
     ...(finding.suggestion !== undefined ? { data: { suggestion: finding.suggestion } } : {}),
   }));
 

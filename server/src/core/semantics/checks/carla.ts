@@ -1,6 +1,7 @@
 import * as path from 'node:path';
 import type { SimulatorFixData } from '../../problems';
-import { CARLA_FACTS, CARLA_PROFILE, CarlaFactName } from '../../profiles/carla';
+import { carlaFactWording } from '../../diagnostics/simulator';
+import { CarlaFactName } from '../../profiles/carla';
 import { DEFAULT_CARLA_RELEASE } from '../../profiles/simulators';
 import { schemaIndex } from '../../schema/index';
 import { typeOfElement } from '../../schema/query';
@@ -18,8 +19,6 @@ import type { Finding, SemanticCheck, SemanticContext } from './types';
  * finding states the fact's source line in ScenarioRunner.
  */
 
-const NAME = CARLA_PROFILE.name;
-
 function carlaFinding(
   name: CarlaFactName,
   element: XmlElement,
@@ -27,14 +26,7 @@ function carlaFinding(
   detail: string,
   data?: SimulatorFixData,
 ): Finding {
-  const fact = CARLA_FACTS[name];
-  return {
-    ...at(element, attr),
-    severity: fact.severity,
-    code: 'simulator',
-    message: `${NAME} ${fact.does}: ${detail} (${fact.source})`,
-    ...(data ? { data } : {}),
-  };
+  return { ...at(element, attr), ...carlaFactWording(name, detail), ...(data ? { data } : {}) };
 }
 
 function allElements(context: SemanticContext): XmlElement[] {
