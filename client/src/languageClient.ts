@@ -71,7 +71,7 @@ export function createLanguageClient(
     // No `synchronize`: the server registers for configuration changes and file events itself.
     // Files inside packages open and save through the mosc: file system, so edits may reach them.
     // Extract to a simple scenario runs our command, which shows a pick list of attributes first.
-    initializationOptions: { packageFileSystem: true, extractPicker: true },
+    initializationOptions: { packageFileSystem: true, extractPicker: true, libraryPicker: true },
     // The client's own handler restarts a server whose connection closed; not while the window closes with it.
     errorHandler: {
       error: (error, message, count) => defaultHandler().error(error, message, count),

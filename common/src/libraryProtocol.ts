@@ -59,6 +59,11 @@ export interface LibraryInsertParams {
   module: string;
   /** `Story/Act`; the first Act when left out. */
   act?: string;
+  /**
+   * *Insert library module here…*: the cursor the code action was asked at (zero-based, as LSP's); the group goes
+   * after the ManeuverGroup there (or before the cursor) in that Act, and `act` is not read.
+   */
+  position?: { line: number; character: number };
   /** For each role of the module (an entity it names), the main's entity that plays it; asked about when left out. */
   players?: Record<string, string>;
 }
@@ -85,6 +90,16 @@ export interface LibraryInsertResult {
 }
 
 export const LibraryInsertRequest = new RequestType<LibraryInsertParams, LibraryInsertResult, void>('modular2simple/libraryInsert');
+
+/** The client's command that inserts a library module (the Scenario Library's *Insert into Main*, the code action's). */
+export const INSERT_LIBRARY_MODULE_COMMAND = 'modular2simple.library.insert';
+
+/** What *Insert library module here…* passes to the command (after the module, which it leaves to be picked). */
+export interface InsertHereArguments {
+  /** The main's URI. */
+  main: string;
+  position: { line: number; character: number };
+}
 
 export interface TemplateSummary {
   name: string;

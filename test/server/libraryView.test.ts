@@ -5,6 +5,7 @@ import { LibraryInsertRequest, LibraryModulesRequest, NewFromTemplateRequest, Te
 import { main } from '../../server/src/cli';
 import { builtInLibraryFolder } from '../../server/src/libraries';
 import { requireEsmini, runEsmini } from '../support/esmini';
+import { checkCleanAndFlatten } from '../support/cliChecks';
 import { applyEdits } from '../support/textEdits';
 import { temporaryWorkspace } from '../support/workspace';
 import { fileUri, TestClient } from './harness';
@@ -124,19 +125,10 @@ describe('language server: the Scenario Library view and Insert into main (JSON-
       [],
     );
     fs.writeFileSync(file, text);
-    const errors: string[] = [];
-    const output: string[] = [];
-    const code = await main(['check', file, '--format', 'json'], { out: (line) => output.push(line), err: (line) => errors.push(line) });
-    assert.equal(code, 0, `${output.join('\n')}\n${errors.join('\n')}`);
-    assert.match(output.join('\n'), /"errors": 0/);
+    const flat = path.join(root, 'flat.xosc');
+    await checkCleanAndFlatten(file, flat);
 
     requireEsmini(this);
-    const flat = path.join(root, 'flat.xosc');
-    assert.equal(
-      await main(['flatten', file, '-o', flat, '-q'], { out: () => {}, err: (line) => errors.push(line) }),
-      0,
-      errors.join('\n'),
-    );
     const steps = await runEsmini(flat, 12);
     const last = steps[steps.length - 1];
     assert.ok(last.time > 11, `esmini ran to ${last.time} s`);

@@ -1,5 +1,5 @@
 import * as vscode from 'vscode';
-import type { LibraryModuleSummary } from '../../../common/src/libraryProtocol';
+import { INSERT_LIBRARY_MODULE_COMMAND, type LibraryModuleSummary } from '../../../common/src/libraryProtocol';
 import type { CommandReporter } from '../commands';
 import type { ServerCommandClient } from '../languageClient';
 import { LibraryDetail } from './detail';
@@ -120,7 +120,8 @@ export function registerLibrary(context: vscode.ExtensionContext, server: Server
     if (module) detail.show(module);
     return module?.name;
   });
-  register('modular2simple.library.insert', async (target?: unknown, ...rest: unknown[]) => {
+  // The view's Insert into Main, and the code action Insert library module here… (which passes InsertHereArguments, no module).
+  register(INSERT_LIBRARY_MODULE_COMMAND, async (target?: unknown, ...rest: unknown[]) => {
     await listed();
     const module = moduleOf(tree, target) ?? (await pickModule('Insert Library Module into Main'));
     return module ? insert(module, target, ...rest) : undefined;

@@ -12,6 +12,8 @@ export interface InsertOptions {
   main?: vscode.Uri | string;
   /** `Story/Act`; asked when the main has several. */
   act?: string;
+  /** *Insert library module here…*: the position in the main (its Act and the group the new one follows); no Act is asked. */
+  position?: { line: number; character: number };
   /** The main's entity for each role of the module; a role without one is asked (unless the main has an entity of its name). */
   players?: Record<string, string>;
 }
@@ -19,7 +21,12 @@ export interface InsertOptions {
 export function isInsertOptions(value: unknown): value is InsertOptions {
   if (typeof value !== 'object' || value === null || value instanceof vscode.Uri || Array.isArray(value)) return false;
   const candidate = value as Record<string, unknown>;
-  return candidate.main !== undefined || typeof candidate.act === 'string' || typeof candidate.players === 'object';
+  return (
+    candidate.main !== undefined ||
+    typeof candidate.act === 'string' ||
+    typeof candidate.players === 'object' ||
+    typeof candidate.position === 'object'
+  );
 }
 
 /** The scenario editor last active: clicking in the library view or its detail page leaves the main it is for. */
@@ -70,13 +77,14 @@ export async function insertIntoMain(
       return undefined;
     }
     const document = await vscode.workspace.openTextDocument(main);
-    const questions = await server.libraryInsert({ uri: main.toString(), module: module.name });
+    const position = options.position;
+    const questions = await server.libraryInsert({ uri: main.toString(), module: module.name, ...(position ? { position } : {}) });
     if (questions.acts.length === 0) {
       void vscode.window.showErrorMessage(`${TITLE}: ${path.posix.basename(main.path)} has no Story with an Act to put the group in.`);
       return undefined;
     }
     let act = options.act;
-    if (!act && questions.acts.length > 1) {
+    if (!act && !position && questions.acts.length > 1) {
       act = await vscode.window.showQuickPick(questions.acts, {
         title: `${TITLE}: ${module.title}`,
         placeHolder: 'The Act the group goes into',
@@ -105,7 +113,13 @@ export async function insertIntoMain(
       if (!picked) return undefined;
       players[role.name] = picked.label;
     }
-    const answer = await server.libraryInsert({ uri: main.toString(), module: module.name, act, players });
+    const answer = await server.libraryInsert({
+      uri: main.toString(),
+      module: module.name,
+      act,
+      players,
+      ...(position ? { position } : {}),
+    });
     if (!answer.edit) throw new Error('the language server gave no edit');
     const applied = await vscode.workspace.applyEdit(await server.workspaceEdit(answer.edit));
     if (!applied) throw new Error(`the editor refused the edit of ${main.toString()}`);

@@ -7,7 +7,7 @@
 import type { LibraryModule } from './library';
 import { parseScenario } from './model';
 import { LIBRARY_PREFIX } from './sources';
-import { attributeValue, endTagStart, escapeAttributeValue, XmlElement } from './xml';
+import { attributeValue, elementAt, endTagStart, escapeAttributeValue, XmlDocument, XmlElement } from './xml';
 
 /** An entity the module names, which an entity of the main plays. */
 export interface ModuleRole {
@@ -104,6 +104,28 @@ export function uniqueName(base: string, taken: readonly string[]): string {
   for (let index = 2; ; index++) if (!taken.includes(`${base}${index}`)) return `${base}${index}`;
 }
 
+/** Where *Insert library module here…* puts a group: an Act, and the ManeuverGroup of it the new one follows (none: first). */
+export interface InsertionPoint {
+  story: XmlElement;
+  act: XmlElement;
+  after: XmlElement | undefined;
+}
+
+/**
+ * The insertion point for a cursor at `offset`: on a ManeuverGroup of an Act (its tags or the space directly in it),
+ * after that group; in the space directly in an Act (between its groups, on its tags), after the group that ends
+ * before the cursor. Undefined anywhere else (inside an Actors, a Maneuver, a trigger, outside the Storyboard).
+ */
+export function insertionPointAt(document: XmlDocument, offset: number): InsertionPoint | undefined {
+  const element = elementAt(document, offset);
+  const group = element?.name === 'ManeuverGroup' && element.parent?.name === 'Act' ? element : undefined;
+  const act = group ? group.parent : element?.name === 'Act' ? element : undefined;
+  const story = act?.parent;
+  if (!act || story?.name !== 'Story' || story.parent?.name !== 'Storyboard') return undefined;
+  const after = group ?? act.children.filter((child) => child.name === 'ManeuverGroup' && child.end <= offset).pop();
+  return { story, act, after };
+}
+
 function lineStart(text: string, offset: number): number {
   return text.lastIndexOf('\n', offset - 1) + 1;
 }
@@ -114,22 +136,28 @@ function indentationAt(text: string, offset: number): string {
 
 /**
  * The ManeuverGroup that imports the module's group, written into the chosen Act after its last ManeuverGroup
- * (before its StartTrigger when it holds none). `players` maps each role to the main's entity; a role left out
- * keeps the module's name, which `check` then reports as an entity the main does not declare.
+ * (before its StartTrigger when it holds none), or, given `at` (an offset of the text), at that insertion point
+ * (insertionPointAt). `players` maps each role to the main's entity; a role left out keeps the module's name,
+ * which `check` then reports as an entity the main does not declare.
  */
 export function insertModuleGroup(
   text: string,
   module: LibraryModule,
-  choice: { act?: string; players: Readonly<Record<string, string>> },
+  choice: { act?: string; at?: number; players: Readonly<Record<string, string>> },
 ): InsertedGroup {
   const model = parseScenario(text);
   if (!model.document.root || model.document.problems.some((problem) => problem.severity === 'error'))
     throw new Error('the main is not well-formed XML: fix it first (the Problems panel says where)');
   const acts = storyboardActs(model.document.root);
   if (acts.length === 0) throw new Error('the main has no Story with an Act to put the group in');
-  const found = choice.act
-    ? acts.find(({ story, act }) => `${attributeValue(story, 'name') ?? ''}/${attributeValue(act, 'name') ?? ''}` === choice.act)
-    : acts[0];
+  const point = choice.at === undefined ? undefined : insertionPointAt(model.document, choice.at);
+  if (choice.at !== undefined && !point)
+    throw new Error('the position is not on an Act or on a ManeuverGroup of an Act (the text changed since it was asked?)');
+  const found =
+    point ??
+    (choice.act
+      ? acts.find(({ story, act }) => `${attributeValue(story, 'name') ?? ''}/${attributeValue(act, 'name') ?? ''}` === choice.act)
+      : acts[0]);
   if (!found) throw new Error(`the main has no Act '${choice.act}' (Story/Act)`);
   const { act } = found;
   const unit = /^( +|\t)/m.exec(text.slice(0, 4000))?.[1] ?? '  ';
@@ -167,7 +195,7 @@ export function insertModuleGroup(
     `${groupIndent}</ManeuverGroup>`,
   ];
   const groups = act.children.filter((child) => child.name === 'ManeuverGroup');
-  const last = groups[groups.length - 1];
+  const last = point ? point.after : groups[groups.length - 1];
   const block = lines.join('\n');
   if (last) return { offset: last.end, text: `\n${block}`, groupName, act: attributeValue(act, 'name') ?? '' };
   if (act.selfClosing) throw new Error(`the Act '${attributeValue(act, 'name') ?? ''}' is empty (<Act/>): give it a StartTrigger first`);

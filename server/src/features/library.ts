@@ -60,6 +60,9 @@ export async function libraryModules(workspace: Workspace): Promise<LibraryListi
  */
 export async function libraryInsert(workspace: Workspace, params: LibraryInsertParams): Promise<LibraryInsertResult> {
   if (typeof params?.module !== 'string' || params.module === '') throw invalidParams('module: a library module name is required');
+  const position = params.position;
+  if (position !== undefined && !(Number.isInteger(position?.line) && Number.isInteger(position?.character) && position.line >= 0))
+    throw invalidParams('position: { line, character }, zero-based integers, where the group goes');
   const ref = await refOf(workspace, params.uri);
   const text = await workspace.store.readText(ref).catch((error: Error) => {
     throw invalidParams(`the main could not be read: ${error.message}`);
@@ -75,13 +78,14 @@ export async function libraryInsert(workspace: Workspace, params: LibraryInsertP
   const result: LibraryInsertResult = { acts: shape.acts.map((act) => act.path), entities: shape.entities, roles };
   const players = params.players ?? {};
   if (roles.some((role) => typeof players[role.name] !== 'string')) return result;
+  const lines = new LineIndex(text);
   let inserted;
   try {
-    inserted = insertModuleGroup(text, module, { act: params.act, players });
+    const at = position ? lines.offsetAt(position) : undefined;
+    inserted = insertModuleGroup(text, module, { act: params.act, at, players });
   } catch (error) {
     throw invalidParams(`${module.name} cannot go into ${params.uri}: ${(error as Error).message}`);
   }
-  const lines = new LineIndex(text);
   const at = lines.positionAt(inserted.offset);
   const edit: WorkspaceEdit = { changes: { [params.uri]: [{ range: { start: at, end: at }, newText: inserted.text }] } };
   const line = at.line + (inserted.text.startsWith('\n') ? 1 : 0);

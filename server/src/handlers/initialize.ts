@@ -29,6 +29,7 @@ export function register(context: ServerContext): void {
       documentChanges: Boolean(workspaceEdit?.documentChanges),
       createFiles: Boolean(workspaceEdit?.resourceOperations?.includes(ResourceOperationKind.Create)),
       extractPicker: initializationOptions?.extractPicker === true,
+      libraryPicker: initializationOptions?.libraryPicker === true,
     };
     const folderUris = params.workspaceFolders?.map((folder) => folder.uri) ?? (params.rootUri ? [params.rootUri] : []);
     let folders = folderUris.map((uri) => filePathOf(uri)).filter((folder): folder is string => folder !== undefined);

@@ -1,6 +1,7 @@
 import { extractToCatalogRefactoring } from './extractToCatalog';
 import { extractToSimpleRefactoring } from './extractToSimple';
 import { inlineRefactoring } from './inline';
+import { insertLibraryModuleRefactoring } from './insertLibraryModule';
 import { makeOverridableRefactoring } from './makeOverridable';
 import { Refactoring } from './refactoring';
 
@@ -14,4 +15,5 @@ export const REFACTORINGS: readonly Refactoring[] = [
   extractToCatalogRefactoring,
   makeOverridableRefactoring,
   inlineRefactoring,
+  insertLibraryModuleRefactoring,
 ];

@@ -22,9 +22,11 @@ export interface ClientEdits {
   createFiles: boolean;
   /** The client shows a pick list of attributes before extracting a group (the VS Code extension). */
   extractPicker: boolean;
+  /** The client has INSERT_LIBRARY_MODULE_COMMAND, which picks a library module and asks for the edit (the VS Code extension). */
+  libraryPicker: boolean;
 }
 
-export const NO_CLIENT_EDITS: ClientEdits = { documentChanges: false, createFiles: false, extractPicker: false };
+export const NO_CLIENT_EDITS: ClientEdits = { documentChanges: false, createFiles: false, extractPicker: false, libraryPicker: false };
 
 /** The place a refactoring is asked about: one document, one range, its model as read. */
 export interface RefactoringTarget {
