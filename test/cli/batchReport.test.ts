@@ -4,7 +4,7 @@ import * as os from 'node:os';
 import * as path from 'node:path';
 import { XMLValidator } from 'fast-xml-parser';
 import { esminiBinary, esminiRoads, requireEsmini } from '../support/esmini';
-import { runCli } from '../support/fixtures';
+import { deterministic, distributionFile, fileHeader, runCli } from '../support/fixtures';
 import { repoRoot } from '../support/paths';
 import { temporaryFolder } from '../support/temporaryDirectory';
 
@@ -16,22 +16,17 @@ function reportFolder(): string {
   fs.copyFileSync(path.join(FIXTURES, 'follow.xosc'), path.join(folder, 'follow.xosc'));
   fs.writeFileSync(
     path.join(folder, 'd.xosc'),
-    `<?xml version="1.0" encoding="UTF-8"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="2" date="2024-01-01T00:00:00" description="report" author="test"/>
-  <ParameterValueDistribution>
-    <ScenarioFile filepath="follow.xosc"/>
-    <Deterministic>
-      <DeterministicSingleParameterDistribution parameterName="EgoSpeed">
+    distributionFile(
+      'follow.xosc',
+      deterministic(`      <DeterministicSingleParameterDistribution parameterName="EgoSpeed">
         <DistributionSet><Element value="10"/><Element value="20"/></DistributionSet>
       </DeterministicSingleParameterDistribution>
       <DeterministicSingleParameterDistribution parameterName="LeadSpeed">
         <DistributionSet><Element value="5"/><Element value="15"/></DistributionSet>
       </DeterministicSingleParameterDistribution>
-    </Deterministic>
-  </ParameterValueDistribution>
-</OpenSCENARIO>
-`,
+`),
+      fileHeader({ date: '2024-01-01T00:00:00', description: 'report', author: 'test' }),
+    ),
   );
   return folder;
 }

@@ -3,7 +3,7 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { esminiBinary, EsminiStep, readEsminiCsv, requireEsmini } from '../support/esmini';
 import JSZip from 'jszip';
-import { runCli, scenario, simpleGroup } from '../support/fixtures';
+import { deterministic, distributionFile, fileHeader, runCli, scenario, simpleGroup } from '../support/fixtures';
 import { assertSameRun, cutInWorkspace, esminiCorpus, namedPaths, runAlone } from '../support/outputPaths';
 import { temporaryFolder } from '../support/temporaryDirectory';
 import { temporaryWorkspace } from '../support/workspace';
@@ -128,19 +128,14 @@ function speedDistribution(ws: string, scenarioFile: string): string {
   const file = path.join(ws, 'xosc', `speeds-${path.basename(scenarioFile).replace(/\.[^.]*$/, '')}.xosc`);
   fs.writeFileSync(
     file,
-    `<?xml version="1.0" encoding="UTF-8"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="2" date="2026-11-24T00:00:00" description="speeds" author="m2s"/>
-  <ParameterValueDistribution>
-    <ScenarioFile filepath="${scenarioFile}"/>
-    <Deterministic>
-      <DeterministicSingleParameterDistribution parameterName="EgoSpeed">
+    distributionFile(
+      scenarioFile,
+      deterministic(`      <DeterministicSingleParameterDistribution parameterName="EgoSpeed">
         <DistributionSet><Element value="108"/><Element value="100"/></DistributionSet>
       </DeterministicSingleParameterDistribution>
-    </Deterministic>
-  </ParameterValueDistribution>
-</OpenSCENARIO>
-`,
+`),
+      fileHeader({ date: '2026-11-24T00:00:00', description: 'speeds', author: 'm2s' }),
+    ),
   );
   return file;
 }

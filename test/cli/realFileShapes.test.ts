@@ -1,7 +1,7 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { fileHeader, openScenarioFile, runCli } from '../support/fixtures';
+import { distributionFile, fileHeader, openScenarioFile, runCli } from '../support/fixtures';
 import { temporaryWorkspace } from '../support/workspace';
 
 /**
@@ -48,15 +48,7 @@ const VEHICLE_CATALOG = openScenarioFile(
 
 /** A ParameterValueDistribution of scenario.xosc with `body` as its Deterministic's distributions. */
 const distributionOf = (body: string): string =>
-  openScenarioFile(
-    `  <ParameterValueDistribution>
-    <ScenarioFile filepath="scenario.xosc"/>
-    <Deterministic>${body}
-    </Deterministic>
-  </ParameterValueDistribution>
-`,
-    fileHeader({ description: 'd', author: 't' }),
-  );
+  distributionFile('scenario.xosc', `    <Deterministic>${body}\n    </Deterministic>\n`, fileHeader({ description: 'd', author: 't' }));
 
 describe('real file shapes: no false alarms (issue 27)', function () {
   this.timeout(60_000);

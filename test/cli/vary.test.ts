@@ -2,7 +2,7 @@ import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { esminiBinary, esminiRoads, requireEsmini } from '../support/esmini';
-import { runCli } from '../support/fixtures';
+import { deterministic, distributionFile, fileHeader, runCli } from '../support/fixtures';
 import { repoRoot } from '../support/paths';
 import { temporaryFolder } from '../support/temporaryDirectory';
 
@@ -24,19 +24,14 @@ function examplesWithDistribution(scenarioFile: string): string {
   );
   fs.writeFileSync(
     path.join(root, 'd.xosc'),
-    `<?xml version="1.0" encoding="UTF-8"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="2" date="2026-11-24T00:00:00" description="d" author="m2s"/>
-  <ParameterValueDistribution>
-    <ScenarioFile filepath="${scenarioFile}"/>
-    <Deterministic>
-      <DeterministicSingleParameterDistribution parameterName="CutInSpeed">
+    distributionFile(
+      scenarioFile,
+      deterministic(`      <DeterministicSingleParameterDistribution parameterName="CutInSpeed">
         <DistributionSet><Element value="20"/><Element value="30"/></DistributionSet>
       </DeterministicSingleParameterDistribution>
-    </Deterministic>
-  </ParameterValueDistribution>
-</OpenSCENARIO>
-`,
+`),
+      fileHeader({ date: '2026-11-24T00:00:00', description: 'd', author: 'm2s' }),
+    ),
   );
   return root;
 }

@@ -13,6 +13,19 @@ import { diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { parseXml } from '../../server/src/core/xml';
 import { temporaryWorkspace } from '../support/workspace';
 import { textAt } from '../support/textEdits';
+import {
+  act,
+  BARE_XML_DECLARATION,
+  element,
+  fileHeader,
+  maneuver,
+  maneuverGroup,
+  openScenarioFile,
+  parameterDeclarations,
+  scenarioDocument,
+  story,
+  vehicleObject,
+} from '../support/fixtures';
 
 /** The out-of-range problems of a scenario (a file of its own in a fresh folder). */
 async function outOfRange(text: string, simulator?: Simulator): Promise<Problem[]> {
@@ -28,14 +41,13 @@ async function outOfRange(text: string, simulator?: Simulator): Promise<Problem[
 }
 
 /** A file of `version` holding one element with one attribute: the range check looks at elements by name, wherever they stand. */
-function bare(version: string, element: string, attributeName: string, value: string): string {
+function bare(version: string, elementName: string, attributeName: string, value: string): string {
   const [major, minor] = version.split('.');
-  return `<?xml version="1.0"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="${major}" revMinor="${minor}" date="2026-01-01T00:00:00" description="d" author="a"/>
-  <${element} ${attributeName}="${value}"/>
-</OpenSCENARIO>
-`;
+  return openScenarioFile(
+    `  <${elementName} ${attributeName}="${value}"/>\n`,
+    fileHeader({ revMajor: major, revMinor: minor, description: 'd', author: 'a' }),
+    BARE_XML_DECLARATION,
+  );
 }
 
 /** Values just outside the range, one per bound. */
@@ -198,33 +210,8 @@ describe("value ranges (the ASAM model's documented ranges, per version)", () =>
   });
 });
 
-/** A schema-valid 1.3 scenario in which each family of ranges has a value: weather, entity, storyboard, controller overrides, positions. */
-function scenario(version = '3'): string {
-  return `<?xml version="1.0"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="${version}" date="2026-01-01T00:00:00" description="ranges" author="t"/>
-  <ParameterDeclarations>
-    <ParameterDeclaration name="Rate" parameterType="double" value="4"/>
-  </ParameterDeclarations>
-  <CatalogLocations/>
-  <RoadNetwork/>
-  <Entities>
-    <ScenarioObject name="Ego">
-      <Vehicle name="car" vehicleCategory="car">
-        <BoundingBox><Center x="1.4" y="0" z="0.9"/><Dimensions width="2" length="4.5" height="1.5"/></BoundingBox>
-        <Performance maxSpeed="60" maxAcceleration="5" maxDeceleration="9"/>
-        <Axles>
-          <FrontAxle maxSteering="0.5" wheelDiameter="0.6" trackWidth="1.8" positionX="3" positionZ="0.3"/>
-          <RearAxle maxSteering="0" wheelDiameter="0.6" trackWidth="1.8" positionX="0" positionZ="0.3"/>
-        </Axles>
-        <Properties/>
-      </Vehicle>
-    </ScenarioObject>
-  </Entities>
-  <Storyboard>
-    <Init>
-      <Actions>
-        <GlobalAction>
+/** The Init's actions of scenario(): the weather, and Ego placed on the road (eight spaces in). */
+const RANGES_INIT = `        <GlobalAction>
           <EnvironmentAction>
             <Environment name="env">
               <TimeOfDay animation="false" dateTime="2026-01-01T12:00:00"/>
@@ -243,14 +230,10 @@ function scenario(version = '3'): string {
             <TeleportAction><Position><RoadPosition roadId="1" s="10" t="0"/></Position></TeleportAction>
           </PrivateAction>
         </Private>
-      </Actions>
-    </Init>
-    <Story name="S">
-      <Act name="A">
-        <ManeuverGroup name="G" maximumExecutionCount="1">
-          <Actors selectTriggeringEntities="false"><EntityRef entityRef="Ego"/></Actors>
-          <Maneuver name="M">
-            <Event name="E" priority="override" maximumExecutionCount="1">
+`;
+
+/** The Event of scenario(), twelve spaces in: a speed change, controller overrides and a GeoPosition. */
+const RANGES_EVENT = `            <Event name="E" priority="override" maximumExecutionCount="1">
               <Action name="Speed">
                 <PrivateAction>
                   <LongitudinalAction>
@@ -288,21 +271,30 @@ function scenario(version = '3'): string {
                 </ConditionGroup>
               </StartTrigger>
             </Event>
-          </Maneuver>
-        </ManeuverGroup>
-        <StartTrigger>
-          <ConditionGroup>
+`;
+
+/** The Act's StartTrigger of scenario() (ten spaces in): at once. */
+const RANGES_ACT_START = `          <ConditionGroup>
             <Condition name="Start" delay="0" conditionEdge="none">
               <ByValueCondition><SimulationTimeCondition value="0" rule="greaterThan"/></ByValueCondition>
             </Condition>
           </ConditionGroup>
-        </StartTrigger>
-      </Act>
-    </Story>
-    <StopTrigger/>
-  </Storyboard>
-</OpenSCENARIO>
 `;
+
+/** A schema-valid 1.3 scenario in which each family of ranges has a value: weather, entity, storyboard, controller overrides, positions. */
+function scenario(version = '3'): string {
+  return scenarioDocument({
+    declaration: BARE_XML_DECLARATION,
+    header: fileHeader({ revMinor: version, description: 'ranges', author: 't' }),
+    parameters: parameterDeclarations([['Rate', 'double', '4']], 4),
+    catalogLocations: '',
+    roadNetwork: '',
+    entities: vehicleObject('Ego', { centerX: '1.4', centerZ: '0.9', length: '4.5', maxSpeed: '60', maxDeceleration: '9' }),
+    storyboard:
+      element('Init', element('Actions', RANGES_INIT, 6), 4) +
+      story('S', act('A', maneuverGroup('G', 'Ego', maneuver('M', RANGES_EVENT)), RANGES_ACT_START)) +
+      '    <StopTrigger/>\n',
+  });
 }
 
 /** Each family: the written value replaced, the text the problem covers, and the range its message names. */
@@ -345,8 +337,8 @@ const FAMILIES: { family: string; from: string; to: string; at: string; range: s
   },
   {
     family: 'execution count',
-    from: 'name="G" maximumExecutionCount="1"',
-    to: 'name="G" maximumExecutionCount="0"',
+    from: 'maximumExecutionCount="1" name="G"',
+    to: 'maximumExecutionCount="0" name="G"',
     at: '0',
     range: '[1..inf[',
   },

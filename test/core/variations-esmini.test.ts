@@ -7,7 +7,16 @@ import { loadVariations, Variations } from '../../server/src/core/variations';
 import { esminiXodrDir, requireEsminiProgram } from '../support/esminiBinaries';
 import { sharedDir } from '../support/paths';
 import { temporaryFolder } from '../support/temporaryDirectory';
-import { runCli } from '../support/fixtures';
+import {
+  deterministic,
+  distributionFile,
+  element,
+  EMPTY_INIT,
+  fileHeader,
+  parameterDeclarations,
+  runCli,
+  scenarioDocument,
+} from '../support/fixtures';
 
 /**
  * The expansion against esmini itself: `--return_nr_permutations` for the count (read from its log line,
@@ -16,46 +25,39 @@ import { runCli } from '../support/fixtures';
  * is not used: esmini 3.6 then loops on the same permutation forever; the scenarios here stop at once.
  */
 
-const SCENARIO = (road: string): string => `<?xml version="1.0" encoding="UTF-8"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="variations against esmini" author="m2s"/>
-  <ParameterDeclarations>
-    <ParameterDeclaration name="Speed" parameterType="double" value="10"/>
-    <ParameterDeclaration name="Gap" parameterType="double" value="1"/>
-    <ParameterDeclaration name="Car" parameterType="string" value="car_white"/>
-    <ParameterDeclaration name="Lane" parameterType="int" value="-1"/>
-    <ParameterDeclaration name="Weather" parameterType="string" value="dry"/>
-  </ParameterDeclarations>
-  <CatalogLocations/>
-  <RoadNetwork>
-    <LogicFile filepath="${road}"/>
-  </RoadNetwork>
-  <Entities/>
-  <Storyboard>
-    <Init><Actions/></Init>
-    <StopTrigger>
-      <ConditionGroup>
+/** A scenario on `road` with the parameters the distributions vary, stopping at once. */
+const SCENARIO = (road: string): string =>
+  scenarioDocument({
+    header: fileHeader({ description: 'variations against esmini', author: 'm2s' }),
+    parameters: parameterDeclarations(
+      [
+        ['Speed', 'double', '10'],
+        ['Gap', 'double', '1'],
+        ['Car', 'string', 'car_white'],
+        ['Lane', 'int', '-1'],
+        ['Weather', 'string', 'dry'],
+      ],
+      4,
+    ),
+    catalogLocations: '',
+    roadNetwork: `    <LogicFile filepath="${road}"/>\n`,
+    entities: '',
+    storyboard:
+      EMPTY_INIT +
+      element(
+        'StopTrigger',
+        `      <ConditionGroup>
         <Condition name="stop" delay="0" conditionEdge="none">
           <ByValueCondition><SimulationTimeCondition value="0" rule="greaterThan"/></ByValueCondition>
         </Condition>
       </ConditionGroup>
-    </StopTrigger>
-  </Storyboard>
-</OpenSCENARIO>
-`;
+`,
+        4,
+      ),
+  });
 
 function distribution(body: string, scenarioFile = 'scenario.xosc'): string {
-  return `<?xml version="1.0" encoding="UTF-8"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="d" author="m2s"/>
-  <ParameterValueDistribution>
-    <ScenarioFile filepath="${scenarioFile}"/>
-    <Deterministic>
-${body}
-    </Deterministic>
-  </ParameterValueDistribution>
-</OpenSCENARIO>
-`;
+  return distributionFile(scenarioFile, deterministic(`${body}\n`), fileHeader({ description: 'd', author: 'm2s' }));
 }
 
 const single = (name: string, inner: string): string =>

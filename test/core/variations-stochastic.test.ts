@@ -6,6 +6,7 @@ import { loadVariations, Variations } from '../../server/src/core/variations';
 import { NumericRange, StochasticDistribution, StochasticSampler } from '../../server/src/core/variations/distribution';
 import { generatorForRun, Xoshiro128StarStar } from '../../server/src/core/variations/random';
 import { draw, SamplingError } from '../../server/src/core/variations/stochastic';
+import { BARE_XML_DECLARATION, distributionFile, fileHeader } from '../support/fixtures';
 import { temporaryFolder } from '../support/temporaryDirectory';
 
 const N = 20_000;
@@ -246,19 +247,18 @@ describe('core: variations, stochastic distribution files', () => {
   </ParameterDeclarations>
 </OpenSCENARIO>
 `;
-  const stochastic = (seed: string, extra = ''): string => `<?xml version="1.0"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="d" author="m2s"/>
-  <ParameterValueDistribution>
-    <ScenarioFile filepath="scenario.xosc"/>
-    <Stochastic numberOfTestRuns="50" ${seed}>
+  const stochastic = (seed: string, extra = ''): string =>
+    distributionFile(
+      'scenario.xosc',
+      `    <Stochastic numberOfTestRuns="50" ${seed}>
       <StochasticDistribution parameterName="Speed"><NormalDistribution expectedValue="30" variance="9"><Range lowerLimit="20" upperLimit="40"/></NormalDistribution></StochasticDistribution>
       <StochasticDistribution parameterName="Car"><ProbabilityDistributionSet><Element value="car_red" weight="1"/><Element value="van" weight="1"/></ProbabilityDistributionSet></StochasticDistribution>
       <StochasticDistribution parameterName="Count"><PoissonDistribution expectedValue="3"/></StochasticDistribution>${extra}
     </Stochastic>
-  </ParameterValueDistribution>
-</OpenSCENARIO>
-`;
+`,
+      fileHeader({ description: 'd', author: 'm2s' }),
+      BARE_XML_DECLARATION,
+    );
   beforeEach(() => {
     dir = temporaryFolder('m2s-vary-stochastic-');
     fs.writeFileSync(path.join(dir, 'scenario.xosc'), scenario);

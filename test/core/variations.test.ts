@@ -6,30 +6,28 @@ import { concreteScenarioText, readScenarioParameters } from '../../server/src/c
 import { assignmentAt, expandDeterministic, formatFixed6, rangeValues } from '../../server/src/core/variations/deterministic';
 import { parseDistribution } from '../../server/src/core/variations/distribution';
 import { formatVariationProblems, loadVariations } from '../../server/src/core/variations';
+import { distributionFile, element, fileHeader, openScenarioFile, parameterDeclarations } from '../support/fixtures';
 import { temporaryFolder } from '../support/temporaryDirectory';
 
-const SCENARIO = `<?xml version="1.0" encoding="UTF-8"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="variations" author="m2s"/>
-  <ParameterDeclarations>
-    <ParameterDeclaration name="Speed" parameterType="double" value="10"/>
-    <ParameterDeclaration name="Gap" parameterType="double" value="1"/>
-    <ParameterDeclaration name="Car" parameterType="string" value="car_white"/>
-  </ParameterDeclarations>
-  <Storyboard/>
-</OpenSCENARIO>
-`;
+const SCENARIO = openScenarioFile(
+  element(
+    'ParameterDeclarations',
+    parameterDeclarations(
+      [
+        ['Speed', 'double', '10'],
+        ['Gap', 'double', '1'],
+        ['Car', 'string', 'car_white'],
+      ],
+      4,
+    ),
+    2,
+  ) + '  <Storyboard/>\n',
+  fileHeader({ description: 'variations', author: 'm2s' }),
+);
 
+/** A distribution of `scenario`: `body` is what follows its ScenarioFile (four spaces in, not ending its line). */
 function distribution(body: string, scenario = 'scenario.xosc'): string {
-  return `<?xml version="1.0" encoding="UTF-8"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="d" author="m2s"/>
-  <ParameterValueDistribution>
-    <ScenarioFile filepath="${scenario}"/>
-${body}
-  </ParameterValueDistribution>
-</OpenSCENARIO>
-`;
+  return distributionFile(scenario, `${body}\n`, fileHeader({ description: 'd', author: 'm2s' }));
 }
 
 const RANGE_AND_SET = `    <Deterministic>

@@ -10,6 +10,7 @@ import { problemCodeOf } from '../support/diagnostics';
 import { cliPath, sharedDir } from '../support/paths';
 import { esminiBinary, esminiRoads, requireEsmini } from '../support/esmini';
 import { at } from '../support/cursor';
+import { deterministic, distributionFile, fileHeader } from '../support/fixtures';
 
 const esminiCorpus = path.join(sharedDir, 'corpus', 'openscenario', 'esmini');
 const distributionName = 'cut-in_parameter_set.xosc';
@@ -40,17 +41,11 @@ const scenario = `<?xml version="1.0" encoding="UTF-8"?>
 `;
 
 function distribution(body: string, scenarioFile = 'plain.xosc'): string {
-  return `<?xml version="1.0" encoding="UTF-8"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="2" date="2024-01-01T00:00:00" description="values" author="test"/>
-  <ParameterValueDistribution>
-    <ScenarioFile filepath="${scenarioFile}"/>
-    <Deterministic>
-${body}
-    </Deterministic>
-  </ParameterValueDistribution>
-</OpenSCENARIO>
-`;
+  return distributionFile(
+    scenarioFile,
+    deterministic(`${body}\n`),
+    fileHeader({ date: '2024-01-01T00:00:00', description: 'values', author: 'test' }),
+  );
 }
 
 const ranges = distribution(`      <DeterministicSingleParameterDistribution parameterName="Speed">
@@ -331,19 +326,16 @@ describe('distribution files in the editor: a modular main as the ScenarioFile',
 });
 
 describe('distribution files in the editor: stochastic', function () {
-  const stochastic = `<?xml version="1.0" encoding="UTF-8"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="2" date="2024-01-01T00:00:00" description="draws" author="test"/>
-  <ParameterValueDistribution>
-    <ScenarioFile filepath="plain.xosc"/>
-    <Stochastic numberOfTestRuns="40" randomSeed="7">
+  const stochastic = distributionFile(
+    'plain.xosc',
+    `    <Stochastic numberOfTestRuns="40" randomSeed="7">
       <StochasticDistribution parameterName="Speed">
         <UniformDistribution><Range lowerLimit="20" upperLimit="30"/></UniformDistribution>
       </StochasticDistribution>
     </Stochastic>
-  </ParameterValueDistribution>
-</OpenSCENARIO>
-`;
+`,
+    fileHeader({ date: '2024-01-01T00:00:00', description: 'draws', author: 'test' }),
+  );
   const fixture = useServer({ 'plain.xosc': scenario, 'draws.xosc': stochastic }, 'draws.xosc');
 
   it('counts the runs as vary --count and hovers the first draws', async () => {

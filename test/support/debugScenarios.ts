@@ -6,7 +6,7 @@ import { mainOf, storeForInputs } from '../../server/src/cli/inputs';
 import { Flattener } from '../../server/src/core/flatten';
 import { removeRunFolder, runScenario } from '../../server/src/esmini/run';
 import { esminiCatalogs, esminiRoads } from './esmini';
-import { speedChangeGroup } from './fixtures';
+import { act, speedChangeGroup } from './fixtures';
 import { repoRoot } from './paths';
 
 /** Where the two cut-ins' road and vehicle catalog are found. */
@@ -62,18 +62,14 @@ export function writeClearanceCrash(cutIn: string): string {
     '<RelativeClearanceCondition distanceForward="10" distanceBackward="10" freeSpace="true" oppositeLanes="false">' +
     '<RelativeLaneRange from="1" to="-1"/><EntityRef entityRef="OverTaker"/></RelativeClearanceCondition>';
   const group = speedChangeGroup('ClearanceGroup', 'Ego', '10', 'Ego').replace('<TraveledDistanceCondition value="5"/>', clearance);
-  const act = `      <Act name="ClearanceAct">
-${group}        <StartTrigger>
-          <ConditionGroup>
+  const afterThreeSeconds = `          <ConditionGroup>
             <Condition name="ClearanceActStart" delay="0" conditionEdge="rising">
               <ByValueCondition><SimulationTimeCondition value="3" rule="greaterThan"/></ByValueCondition>
             </Condition>
           </ConditionGroup>
-        </StartTrigger>
-      </Act>
 `;
   const storyEnd = cutIn.indexOf('</Story>');
   if (storyEnd < 0) throw new Error('cut-in.xosc has no </Story>');
   const lineStart = cutIn.lastIndexOf('\n', storyEnd) + 1;
-  return cutIn.slice(0, lineStart) + act + cutIn.slice(lineStart);
+  return cutIn.slice(0, lineStart) + act('ClearanceAct', group, afterThreeSeconds) + cutIn.slice(lineStart);
 }

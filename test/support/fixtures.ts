@@ -35,16 +35,17 @@ const XML_DECLARATION = '<?xml version="1.0" encoding="UTF-8"?>';
 export const BARE_XML_DECLARATION = '<?xml version="1.0"?>';
 
 export interface FileHeaderParts {
+  revMajor?: string;
   revMinor?: string;
   date?: string;
   description?: string;
   author?: string;
 }
 
-/** A FileHeader of OpenSCENARIO 1.x: revision 1.2, dated 2026-01-01, "test" by "test" unless given. */
+/** A FileHeader: revision 1.2, dated 2026-01-01, "test" by "test" unless given. */
 export function fileHeader(parts: FileHeaderParts = {}): string {
-  const { revMinor = '2', date = '2026-01-01T00:00:00', description = 'test', author = 'test' } = parts;
-  return `<FileHeader revMajor="1" revMinor="${revMinor}" date="${date}" description="${description}" author="${author}"/>`;
+  const { revMajor = '1', revMinor = '2', date = '2026-01-01T00:00:00', description = 'test', author = 'test' } = parts;
+  return `<FileHeader revMajor="${revMajor}" revMinor="${revMinor}" date="${date}" description="${description}" author="${author}"/>`;
 }
 
 /** An OpenSCENARIO file: the XML declaration, then the root holding `header` and `body` (the root's other children, indented and each ending its line). */
@@ -88,6 +89,25 @@ export function catalogFile(name: string, entries: string, header = fileHeader()
   return openScenarioFile(element('Catalog', entries, 2, ` name="${name}"`), header, declaration);
 }
 
+/** A parameter value distribution file of `scenarioFile`: `distributions` are its lines after the ScenarioFile (four spaces in, each ending its line). */
+export function distributionFile(
+  scenarioFile: string,
+  distributions: string,
+  header = fileHeader(),
+  declaration = XML_DECLARATION,
+): string {
+  return openScenarioFile(
+    element('ParameterValueDistribution', `    <ScenarioFile filepath="${scenarioFile}"/>\n${distributions}`, 2),
+    header,
+    declaration,
+  );
+}
+
+/** A Deterministic holding `distributions` (six spaces in, each ending its line). */
+export function deterministic(distributions: string): string {
+  return element('Deterministic', distributions, 4);
+}
+
 /** ParameterDeclaration lines, `indent` spaces in, of [name, type, value]. */
 export function parameterDeclarations(parameters: [string, string, string][], indent: number): string {
   return parameters
@@ -100,6 +120,32 @@ export function scenarioObjects(names: string[]): string {
   return names.map((name) => `    <ScenarioObject name="${name}"/>\n`).join('');
 }
 
+/** What a test sets of vehicleObject's car: where its bounding box's centre is, its length, top speed and deceleration. */
+export interface VehicleParts {
+  centerX?: string;
+  centerZ?: string;
+  length?: string;
+  maxSpeed?: string;
+  maxDeceleration?: string;
+}
+
+/** A ScenarioObject holding a schema-valid car named "car" (four spaces in): 4 m long, 50 m/s, 5 m/s² unless given. */
+export function vehicleObject(name: string, parts: VehicleParts = {}): string {
+  const { centerX = '0', centerZ = '0', length = '4', maxSpeed = '50', maxDeceleration = '5' } = parts;
+  return `    <ScenarioObject name="${name}">
+      <Vehicle name="car" vehicleCategory="car">
+        <BoundingBox><Center x="${centerX}" y="0" z="${centerZ}"/><Dimensions width="2" length="${length}" height="1.5"/></BoundingBox>
+        <Performance maxSpeed="${maxSpeed}" maxAcceleration="5" maxDeceleration="${maxDeceleration}"/>
+        <Axles>
+          <FrontAxle maxSteering="0.5" wheelDiameter="0.6" trackWidth="1.8" positionX="3" positionZ="0.3"/>
+          <RearAxle maxSteering="0" wheelDiameter="0.6" trackWidth="1.8" positionX="0" positionZ="0.3"/>
+        </Axles>
+        <Properties/>
+      </Vehicle>
+    </ScenarioObject>
+`;
+}
+
 /** A Storyboard's Init with no actions. */
 export const EMPTY_INIT = element('Init', element('Actions', '', 6), 4);
 
@@ -108,9 +154,14 @@ export function story(name: string, acts: string, declarations?: string): string
   return `    <Story name="${name}">\n${element('ParameterDeclarations', declarations, 6)}${acts}    </Story>\n`;
 }
 
-/** An Act holding `groups` (eight spaces in), then an empty StartTrigger unless `startTrigger` is false. */
-export function act(name: string, groups: string, startTrigger = true): string {
-  return `      <Act name="${name}">\n${groups}${startTrigger ? '        <StartTrigger/>\n' : ''}      </Act>\n`;
+/**
+ * An Act holding `groups` (eight spaces in), then its StartTrigger: empty when `startTrigger` is true, none when
+ * it is false, else holding `startTrigger` (its lines ten spaces in).
+ */
+export function act(name: string, groups: string, startTrigger: boolean | string = true): string {
+  const trigger =
+    typeof startTrigger === 'string' ? element('StartTrigger', startTrigger, 8) : startTrigger ? '        <StartTrigger/>\n' : '';
+  return `      <Act name="${name}">\n${groups}${trigger}      </Act>\n`;
 }
 
 /** A minimal scenario (not schema-valid): the entities, then Story S with Act A holding `groups`. */
