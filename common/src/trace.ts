@@ -40,8 +40,8 @@ export interface TraceRecord extends ConditionFiring {
 }
 
 /**
- * The debug adapter's custom DAP event: the trace records of a step (none on a stop), the simulation time, the run's
- * limit. Custom events are named as the protocol's own (`loadedSource`, `progressStart`) and other adapters' (debugpy's
+ * The debug adapter's custom DAP event: the trace records of a step (none on a stop, and none at the session's end,
+ * which sends the time the run reached), the simulation time. Custom events are named as the protocol's own (`loadedSource`, `progressStart`) and other adapters' (debugpy's
  * `debugpyAttach`, js-debug's `revealLocationRequested`): camelCase, here with the adapter's name first so that no
  * future protocol event can clash; the bird's-eye view's is DEBUG_STATE_EVENT (common/src/debugState.ts).
  */
@@ -50,7 +50,6 @@ export const STORYBOARD_EVENT = 'modular2simpleStoryboard';
 export interface StoryboardEventBody {
   records: TraceRecord[];
   time: number;
-  duration?: number;
 }
 
 /** A trace file that is not one JSON trace record a line: names the line and what is wrong. */

@@ -51,6 +51,8 @@ export const INSIDE_TESTS = {
     'F5 on a scenario stops on the breakpoint on its Event line with the entities in the Variables view; esmini crashing ends the session with a message and the editor lives',
   debugTimeline:
     'the storyboard timeline opened on a run --trace file draws a row per element at the times esmini logs, and a click on a row opens its source line',
+  debugTimelineSession:
+    "the storyboard timeline of a debug session, opened while it is stopped and again after it finished, draws its bars at esmini's times to the stop, then to the run's end",
 } as const;
 
 export type InsideTestKey = keyof typeof INSIDE_TESTS;

@@ -132,6 +132,19 @@ function servePage(endpoint: HarnessEndpoint, page: Page): void {
     }
     return { values };
   });
+  endpoint.routes.set('/boxes', async (body) => {
+    const { selector } = body as { selector: string };
+    // Where each matching element is drawn (CSS px of its frame) with its text, from the first frame that has one.
+    for (const frame of page.frames()) {
+      const boxes = (await frame
+        .evaluate(
+          `[...document.querySelectorAll(${JSON.stringify(selector)})].map((element) => { const box = element.getBoundingClientRect(); return { left: box.left, top: box.top, right: box.right, bottom: box.bottom, text: element.innerText }; })`,
+        )
+        .catch(() => [])) as unknown[];
+      if (boxes.length > 0) return { boxes };
+    }
+    return { boxes: [] };
+  });
   endpoint.routes.set('/clickText', async (body) => {
     const { text } = body as { text: string };
     // Links and buttons in any frame: the package view is a webview, an iframe of its own.

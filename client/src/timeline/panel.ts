@@ -36,6 +36,8 @@ export class TimelineView implements vscode.Disposable {
   private source: TraceSource | undefined;
   private timeline: Timeline | undefined;
   private live = false;
+  /** The debug session the timeline follows or last followed. */
+  private liveSession: string | undefined;
   private time = 0;
   private redrawTimer: NodeJS.Timeout | undefined;
   private readonly disposables: vscode.Disposable[] = [];
@@ -52,15 +54,21 @@ export class TimelineView implements vscode.Disposable {
   ) {
     if (shared) this.disposables.push(shared.onDidChangeTime((time) => this.setTime(time)));
     this.disposables.push(
+      // VS Code may deliver the session's first events (the Story's start at 0 s, sent while it launches) before it
+      // says the session started: whichever comes first starts the session's timeline, the other keeps it.
       vscode.debug.onDidStartDebugSession((session) => {
-        if (session.type === DEBUG_TYPE) this.startLive(session);
+        if (session.type === DEBUG_TYPE && session.id !== this.liveSession) this.startLive(session);
       }),
       vscode.debug.onDidReceiveDebugSessionCustomEvent((event) => {
-        if (event.session.type === DEBUG_TYPE && event.event === STORYBOARD_EVENT) this.liveEvent(event.body as StoryboardEventBody);
+        if (event.session.type !== DEBUG_TYPE || event.event !== STORYBOARD_EVENT) return;
+        if (event.session.id !== this.liveSession) this.startLive(event.session);
+        this.liveEvent(event.body as StoryboardEventBody);
       }),
       vscode.debug.onDidTerminateDebugSession((session) => {
-        if (session.type === DEBUG_TYPE && this.live) {
+        if (session.type === DEBUG_TYPE && session.id === this.liveSession && this.live) {
           this.live = false;
+          // The run ends where the session last said it was (the adapter sends that time as it ends), not at its limit.
+          if (this.source) this.source.end = this.time;
           this.redraw();
         }
       }),
@@ -124,6 +132,7 @@ export class TimelineView implements vscode.Disposable {
   private startLive(session: vscode.DebugSession): void {
     const program = typeof session.configuration.program === 'string' ? session.configuration.program : session.name;
     this.source = { records: [], label: `debugging ${path.basename(program)}`, bases: [] };
+    this.liveSession = session.id;
     this.live = true;
     this.timeline = storyboardTimeline([]);
     this.redraw();
@@ -132,7 +141,6 @@ export class TimelineView implements vscode.Disposable {
   private liveEvent(body: StoryboardEventBody): void {
     if (!this.source || !this.live || !Array.isArray(body?.records)) return;
     this.source.records.push(...body.records);
-    if (typeof body.duration === 'number') this.source.end = body.duration;
     if (typeof body.time === 'number') this.time = body.time;
     clearTimeout(this.redrawTimer);
     // Redrawn after a burst of steps, and at once when the session stops (no records).

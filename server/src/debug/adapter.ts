@@ -253,6 +253,8 @@ export class ScenarioDebugSession extends DebugSession {
     if (this.terminated) return;
     this.terminated = true;
     this.running = false;
+    // The timeline's last time: where the run ended (its bars drawn to there, not to the run's limit).
+    if (this.simulation) this.sendStoryboard([]);
     this.simulation?.close();
     this.simulation = undefined;
     this.sendEvent(new TerminatedEvent());
@@ -658,7 +660,6 @@ export class ScenarioDebugSession extends DebugSession {
     const body: StoryboardEventBody = {
       records: events.map((event) => traceRecord(event, undefined, this.simulation?.scenario.map)),
       time: Number((this.simulation?.time ?? 0).toFixed(6)),
-      duration: this.simulation?.duration,
     };
     this.sendEvent(new Event(STORYBOARD_EVENT, body));
   }

@@ -5,7 +5,7 @@ import * as path from 'node:path';
 import * as vscode from 'vscode';
 import { SESSION_ARGUMENT } from '../../../server/src/debug/supervisor';
 import { esminiCutInFolder, esminiOrSkip } from './esmini.inside';
-import { clickElement, pageShows, pressKeys, screenshot } from './harnessClient';
+import { clickElement, type PageBox, pageBoxes, pageShows, pressKeys, runFromPalette, screenshot } from './harnessClient';
 import { api, cli, EXTENSION_ID, type InsideTests, open, positionOf, waitFor, workspaceRoot } from './helpers';
 
 /**
@@ -27,6 +27,122 @@ function adapterProcesses(): number[] {
     });
 }
 
+/** esmini's own run of `scenario` at the debugger's default step: the times its log starts each Event at, and its last time. */
+function esminiRunOf(
+  esmini: string,
+  scenario: string,
+  roads: string,
+  folder: string,
+): { starts: { event: string; time: number }[]; end: number } {
+  const log = path.join(folder, 'esmini-log.txt');
+  execFileSync(
+    esmini,
+    ['--headless', '--osc', scenario, '--fixed_timestep', '0.05', '--seed', '1', '--logfile_path', log, '--path', roads],
+    { cwd: path.dirname(scenario) },
+  );
+  const text = fs.readFileSync(log, 'utf8');
+  const starts = [...text.matchAll(/^\[([\d.]+)\] \[info\] (\w+Event) standbyState -> startTransition -> runningState/gm)].map((match) => ({
+    event: match[2],
+    time: Number(match[1]),
+  }));
+  assert.ok(
+    starts.some((start) => start.event === 'CutInEvent'),
+    `esmini's log starts CutInEvent: ${JSON.stringify(starts)}`,
+  );
+  return { starts, end: Math.max(...[...text.matchAll(/^\[([\d.]+)\]/gm)].map((match) => Number(match[1]))) };
+}
+
+/** What the timeline's page shows now: its title, the time and the run's end in its header. */
+async function timelineHeader(): Promise<{ title: string; time: number; end: number } | undefined> {
+  const [title] = await pageBoxes('#title');
+  const [time] = await pageBoxes('#time');
+  const times = /t = ([\d.]+) s of ([\d.]+) s/.exec(time?.text ?? '');
+  return title && times ? { title: title.text, time: Number(times[1]), end: Number(times[2]) } : undefined;
+}
+
+/**
+ * The times at which the page draws the bars of the element whose path ends with `::name`: read from where they are
+ * drawn against the time axis (its labels span 0 to the run's end), as a person reads them; with the width of a pixel in s.
+ */
+async function drawnBars(name: string, end: number): Promise<{ starts: number[]; open: number; pixel: number }> {
+  const [axis] = await pageBoxes('#axisLabels');
+  assert.ok(axis && axis.right > axis.left, 'the time axis is drawn');
+  const pixel = end / (axis.right - axis.left);
+  // A Story's path is its name; any other element's ends with it.
+  const rows = [`.row[data-element="${name}"]`, `.row[data-element$="::${name}"]`];
+  const bars = await pageBoxes(rows.map((row) => `${row} .bar`).join(', '));
+  return {
+    starts: bars.map((bar) => (bar.left - axis.left) * pixel),
+    open: (await pageBoxes(rows.map((row) => `${row} .bar.open`).join(', '))).length,
+    pixel,
+  };
+}
+
+/** The firing conditions' words the timeline's page writes that cover a bar or one another (none should). */
+async function coveringLabels(): Promise<string[]> {
+  const labels = await pageBoxes('.row .cause');
+  const bars = await pageBoxes('.row .bar');
+  const overlap = (a: PageBox, b: PageBox) => a.left < b.right && b.left < a.right && a.top < b.bottom && b.top < a.bottom;
+  return labels.flatMap((label, index) => [
+    ...bars.filter((bar) => overlap(label, bar)).map(() => `'${label.text}' covers a bar`),
+    ...labels
+      .slice(index + 1)
+      .filter((other) => overlap(label, other))
+      .map((other) => `'${label.text}' covers '${other.text}'`),
+  ]);
+}
+
+/** Waits until the timeline's page draws a bar for each of esmini's Event starts at esmini's time (within a pixel). */
+async function barsAtEsminiTimes(starts: { event: string; time: number }[], what: string): Promise<string> {
+  let seen = '';
+  try {
+    return await waitFor(
+      what,
+      async () => {
+        const header = await timelineHeader();
+        if (!header) return false;
+        const drawn: string[] = [];
+        for (const start of starts) {
+          const bars = await drawnBars(start.event, header.end);
+          drawn.push(`${start.event} at ${bars.starts.map((time) => time.toFixed(3)).join(', ') || 'nothing'} (esmini ${start.time})`);
+          if (!bars.starts.some((time) => Math.abs(time - start.time) <= bars.pixel + 1e-3)) {
+            seen = `${header.title}, ${header.time} of ${header.end} s: ${drawn.join('; ')}`;
+            return false;
+          }
+        }
+        return drawn.join('; ');
+      },
+      30_000,
+    );
+  } catch (error) {
+    throw new Error(`${(error as Error).message}; the page last drew ${seen}`);
+  }
+}
+
+/** F5 as the folder's settings make it: esmini's program and roads set, the adapter's events recorded; `undo` resets both and ends a session left. */
+async function debugSetup(esmini: string, roads: string): Promise<{ events: string[]; undo(): Promise<void> }> {
+  const settings = vscode.workspace.getConfiguration('modular2simple.esmini');
+  await settings.update('path', esmini, vscode.ConfigurationTarget.Workspace);
+  await settings.update('roadPath', [roads], vscode.ConfigurationTarget.Workspace);
+  const events: string[] = [];
+  const tracker = vscode.debug.registerDebugAdapterTrackerFactory('modular2simple', {
+    createDebugAdapterTracker: () => ({
+      onDidSendMessage: (message: { type?: string; event?: string }) => {
+        if (message.type === 'event' && message.event) events.push(message.event);
+      },
+    }),
+  });
+  return {
+    events,
+    undo: async () => {
+      tracker.dispose();
+      if (vscode.debug.activeDebugSession) await vscode.debug.stopDebugging();
+      await settings.update('path', undefined, vscode.ConfigurationTarget.Workspace);
+      await settings.update('roadPath', undefined, vscode.ConfigurationTarget.Workspace);
+    },
+  };
+}
+
 interface StackFrameBody {
   stackFrames: { id: number; name: string; line: number; source?: { path?: string } }[];
 }
@@ -37,17 +153,7 @@ export const debuggingTests: InsideTests = {
     this.timeout(240_000);
     const { repository, esmini, roads } = esminiOrSkip(this);
     const scenario = esminiCutInFolder(repository, roads, path.join(workspaceRoot(), 'debugging'));
-    const settings = vscode.workspace.getConfiguration('modular2simple.esmini');
-    await settings.update('path', esmini, vscode.ConfigurationTarget.Workspace);
-    await settings.update('roadPath', [roads], vscode.ConfigurationTarget.Workspace);
-    const events: string[] = [];
-    const tracker = vscode.debug.registerDebugAdapterTrackerFactory('modular2simple', {
-      createDebugAdapterTracker: () => ({
-        onDidSendMessage: (message: { type?: string; event?: string }) => {
-          if (message.type === 'event' && message.event) events.push(message.event);
-        },
-      }),
-    });
+    const { events, undo } = await debugSetup(esmini, roads);
     const editor = await open(path.relative(workspaceRoot(), scenario));
     const line = positionOf(editor.document, '<Event name="CutInEvent"').line;
     const breakpoint = new vscode.SourceBreakpoint(new vscode.Location(editor.document.uri, new vscode.Position(line, 0)));
@@ -118,10 +224,7 @@ export const debuggingTests: InsideTests = {
       assert.ok(!(await pageShows('The debug session of cut-in.xosc ended')), 'Stop is no crash');
     } finally {
       vscode.debug.removeBreakpoints([breakpoint]);
-      tracker.dispose();
-      if (vscode.debug.activeDebugSession) await vscode.debug.stopDebugging();
-      await settings.update('path', undefined, vscode.ConfigurationTarget.Workspace);
-      await settings.update('roadPath', undefined, vscode.ConfigurationTarget.Workspace);
+      await undo();
     }
   },
 
@@ -131,22 +234,7 @@ export const debuggingTests: InsideTests = {
     // A folder of its own: nothing here depends on what earlier tests left.
     const folder = path.join(workspaceRoot(), 'timeline');
     const scenario = esminiCutInFolder(repository, roads, folder);
-    // esmini's own run: the times its log starts each Event at.
-    const log = path.join(folder, 'esmini-log.txt');
-    execFileSync(
-      esmini,
-      ['--headless', '--osc', scenario, '--fixed_timestep', '0.05', '--seed', '1', '--logfile_path', log, '--path', roads],
-      {
-        cwd: path.dirname(scenario),
-      },
-    );
-    const esminiStarts = [
-      ...fs.readFileSync(log, 'utf8').matchAll(/^\[([\d.]+)\] \[info\] (\w+Event) standbyState -> startTransition -> runningState/gm),
-    ].map((match) => ({ event: match[2], time: Number(match[1]) }));
-    assert.ok(
-      esminiStarts.some((start) => start.event === 'CutInEvent'),
-      `esmini's log starts CutInEvent: ${JSON.stringify(esminiStarts)}`,
-    );
+    const { starts: esminiStarts } = esminiRunOf(esmini, scenario, roads, folder);
     // The trace as CI writes it, opened in the timeline as a person does from the palette's command with the file.
     const trace = path.join(folder, 'cut-in.jsonl');
     cli([
@@ -176,6 +264,7 @@ export const debuggingTests: InsideTests = {
       assert.ok(row.text.includes(`: ${start.time.toFixed(2)}–`), `${start.event} starts at esmini's ${start.time}: ${row.text}`);
     }
     await waitFor('the rows on the page', async () => (await pageShows('CutInEvent', '.row .label')) && pageShows('HWT', '.cause'), 20_000);
+    assert.deepEqual(await coveringLabels(), [], 'no firing condition written over a bar or another');
     await screenshot("timeline: cut-in.xosc's run --trace, a row per storyboard element with its bars at esmini's times");
     // A click on a row's name opens the element where it is written.
     const eventLine = positionOf(await vscode.workspace.openTextDocument(scenario), '<Event name="CutInEvent"').line;
@@ -198,5 +287,85 @@ export const debuggingTests: InsideTests = {
     );
     await screenshot('timeline: a click on the CutInEvent row opened cut-in.xosc on its Event line');
     await vscode.commands.executeCommand('workbench.action.closeAllEditors');
+  },
+
+  debugTimelineSession: async function () {
+    this.timeout(300_000);
+    const { repository, esmini, roads } = esminiOrSkip(this);
+    // A folder of its own: nothing here depends on what earlier tests left.
+    const folder = path.join(workspaceRoot(), 'session-timeline');
+    const scenario = esminiCutInFolder(repository, roads, folder);
+    const esminiRun = esminiRunOf(esmini, scenario, roads, folder);
+    const { events, undo } = await debugSetup(esmini, roads);
+    const editor = await open(path.relative(workspaceRoot(), scenario));
+    const line = positionOf(editor.document, '<Event name="OvertakerBrakeEvent"').line;
+    const brake = esminiRun.starts.find((start) => start.event === 'OvertakerBrakeEvent');
+    assert.ok(brake, `esmini's log starts OvertakerBrakeEvent: ${JSON.stringify(esminiRun.starts)}`);
+    const breakpoint = new vscode.SourceBreakpoint(new vscode.Location(editor.document.uri, new vscode.Position(line, 0)));
+    vscode.debug.addBreakpoints([breakpoint]);
+    try {
+      await pressKeys(['F5']);
+      await waitFor('the stop on the breakpoint', () => events.includes('stopped') || events.includes('terminated'), 120_000);
+      assert.ok(!events.includes('terminated'), `the session ended without stopping: ${events.join(', ')}`);
+      // VS Code shows the stop (and moves the focus to the editor) after the adapter sent it: the palette only once it has.
+      await waitFor('the editor on the stop line', () => vscode.window.activeTextEditor?.selection.active.line === line, 30_000);
+      await waitFor('the call stack', () => pageShows('Event OvertakerBrakeEvent (running)'), 30_000);
+      // While the session is stopped, the timeline opened from the palette as a person does: the run so far, to the stop.
+      await runFromPalette('Modular2Simple: Show Storyboard Timeline');
+      await waitFor(
+        'the running session on the timeline page, at the stop',
+        async () => {
+          const header = await timelineHeader();
+          return (
+            header?.title === 'debugging cut-in.xosc (running)' && Math.abs(header.time - brake.time) < 1e-6 && header.end === header.time
+          );
+        },
+        60_000,
+      );
+      // The Story starts at 0 s, as the session launches: its bar too.
+      const story = { event: 'CutInAndBrakeStory', time: 0 };
+      const soFar = [story, ...esminiRun.starts.filter((start) => start.time <= brake.time)];
+      await barsAtEsminiTimes(soFar, "the bars of the session so far at esmini's times");
+      assert.equal((await drawnBars('OvertakerBrakeEvent', brake.time)).open, 1, 'the event stopped on runs on: its bar is open');
+      assert.ok(!(await pageShows('never started', '.row')), 'every row so far started');
+      assert.deepEqual(await coveringLabels(), [], 'no firing condition written over a bar or another');
+      await screenshot("timeline: the debug session of cut-in.xosc stopped on OvertakerBrakeEvent, its bars to the stop at esmini's times");
+
+      // On to the end: the timeline of the finished session ends where the run did, not at the run's limit (an hour).
+      await vscode.commands.executeCommand('workbench.action.debug.continue');
+      await waitFor('the session to end', () => vscode.debug.activeDebugSession === undefined, 120_000);
+      const finished = async (what: string): Promise<void> => {
+        await waitFor(
+          what,
+          async () => {
+            const header = await timelineHeader();
+            return header?.title === 'debugging cut-in.xosc' && Math.abs(header.end - esminiRun.end) <= 0.05 + 1e-6;
+          },
+          30_000,
+        );
+        await barsAtEsminiTimes([story, ...esminiRun.starts], "the finished session's bars at esmini's times");
+        for (const start of esminiRun.starts)
+          assert.equal((await drawnBars(start.event, esminiRun.end)).open, 0, `${start.event} ended before the run did: no open bar`);
+        assert.ok(!(await pageShows('never started', '.row')), 'every row started');
+        assert.deepEqual(await coveringLabels(), [], 'no firing condition written over a bar or another');
+        assert.ok(await pageShows('TimeHeadwayCondition: HWT 0.7 > 0.7', '.row .cause'), "OvertakerBrakeEvent's firing condition written");
+      };
+      await finished("the finished session on the timeline page, to esmini's end");
+      await screenshot("timeline: the finished debug session of cut-in.xosc, its bars at esmini's times to the run's end");
+
+      // Closed, then opened again from the palette: the finished session's timeline, as it was.
+      await vscode.commands.executeCommand('workbench.action.closeAllEditors');
+      await waitFor('the timeline closed', () => !api().timeline.isOpen, 20_000);
+      await runFromPalette('Modular2Simple: Show Storyboard Timeline');
+      await finished('the finished session on the timeline page opened again');
+    } finally {
+      // Keys meant for the palette that reached the editor change nothing on disk.
+      if (editor.document.isDirty) {
+        await vscode.window.showTextDocument(editor.document);
+        await vscode.commands.executeCommand('workbench.action.files.revert');
+      }
+      vscode.debug.removeBreakpoints([breakpoint]);
+      await undo();
+    }
   },
 };

@@ -78,6 +78,7 @@ const ORDER: InsideTestKey[] = [
   'debugScenario',
   'libraryCompose',
   'debugTimeline',
+  'debugTimelineSession',
 ];
 
 /** The extension's tests inside VS Code, each feature's in its own file; the bird's-eye view's follow (birdsEye.inside.ts). */

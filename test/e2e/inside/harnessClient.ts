@@ -51,6 +51,20 @@ export async function computedStyles(selectors: string[], property: string): Pro
   return (await post<{ values: (string | null)[] }>('/computedStyles', { selectors, property })).values;
 }
 
+/** Where an element is drawn: CSS px in its frame, with its text as shown. */
+export interface PageBox {
+  left: number;
+  top: number;
+  right: number;
+  bottom: number;
+  text: string;
+}
+
+/** Every element matching `selector` in the first frame that has one (a webview's page too), where it is drawn now. */
+export async function pageBoxes(selector: string): Promise<PageBox[]> {
+  return (await post<{ boxes: PageBox[] }>('/boxes', { selector })).boxes;
+}
+
 /** Clicks the link or button showing this text, in whichever frame shows it. */
 export async function clickText(text: string): Promise<boolean> {
   return (await post<{ clicked: boolean }>('/clickText', { text })).clicked;

@@ -4,7 +4,8 @@
  * click on a row's name asks the extension to open its source; a click on the bars sets the time (the bird's-eye
  * view follows).
  */
-import { describeCondition, describeFiring, describeRow, type Timeline } from '../../../../common/src/storyboardTimeline';
+import { describeCondition, describeFiring, describeRow, type Timeline, type TimelineRow } from '../../../../common/src/storyboardTimeline';
+import { labelTop, layoutRow, ROW_GEOMETRY, rowBars } from '../causeLayout';
 import type { FromView, ToView } from '../messages';
 
 declare function acquireVsCodeApi(): { postMessage(message: FromView): void };
@@ -31,6 +32,8 @@ function render(label: string, live: boolean): void {
     report();
     return;
   }
+  /** Each row with its line and track: the words of its firing conditions placed once the tracks' width is known. */
+  const placements: { line: HTMLDivElement; track: HTMLDivElement; row: TimelineRow }[] = [];
   for (const row of timeline.rows) {
     const line = document.createElement('div');
     line.className = 'row';
@@ -56,14 +59,8 @@ function render(label: string, live: boolean): void {
       bar.style.width = `calc(${percent(span.end ?? timeline.end)} - ${percent(span.start)})`;
       bar.title = `${row.type} ${row.name}: ${span.start.toFixed(2)} s to ${span.end === undefined ? 'the end' : `${span.end.toFixed(2)} s`}${span.cause ? `\nstarted by ${describeFiring(span.cause)}${span.cause.esmini ? `\nesmini: ${span.cause.esmini}` : ''}` : ''}`;
       track.append(bar);
-      if (span.cause) {
-        const cause = document.createElement('div');
-        cause.className = 'cause';
-        cause.style.left = `calc(${percent(span.start)} + 4px)`;
-        cause.textContent = describeFiring(span.cause);
-        track.append(cause);
-      }
     }
+    placements.push({ line, track, row });
     if (!row.started) {
       const never = document.createElement('div');
       never.className = 'never';
@@ -91,7 +88,48 @@ function render(label: string, live: boolean): void {
     );
   axis.append(spacer, labels);
   rowsElement.append(axis);
+  placeCauses(placements);
   placeCursor();
+}
+
+/** The firing conditions' words, each where causeLayout.ts puts it: beside its bar's start or on a line below, covering nothing. */
+function placeCauses(rows: { line: HTMLDivElement; track: HTMLDivElement; row: TimelineRow }[]): void {
+  const end = timeline?.end ?? 0;
+  const width = rows[0]?.track.getBoundingClientRect().width ?? 0;
+  if (!(end > 0) || !(width > 0)) return;
+  const measure = textMeasure(rows[0].track);
+  for (const { line, track, row } of rows) {
+    const bars = rowBars(row, end, width, measure);
+    const layout = layoutRow(bars, width);
+    line.style.height = `${layout.height}px`;
+    for (const placed of layout.labels) {
+      const cause = document.createElement('div');
+      cause.className = 'cause';
+      cause.textContent = bars[placed.bar].cause ?? '';
+      cause.title = cause.textContent;
+      cause.style.left = `${placed.x}px`;
+      cause.style.width = `${placed.width}px`;
+      cause.style.top = `${labelTop(placed.lane)}px`;
+      cause.style.height = `${placed.lane === 0 ? ROW_GEOMETRY.barHeight : ROW_GEOMETRY.laneHeight}px`;
+      cause.style.lineHeight = cause.style.height;
+      track.append(cause);
+    }
+  }
+}
+
+/** The width of a text in the font the page writes the firing conditions in, px. */
+function textMeasure(track: HTMLDivElement): (text: string) => number {
+  const probe = Object.assign(document.createElement('div'), { className: 'cause' });
+  track.append(probe);
+  const style = getComputedStyle(probe);
+  const font = `${style.fontStyle} ${style.fontWeight} ${style.fontSize} ${style.fontFamily}`;
+  const size = parseFloat(style.fontSize) || 10;
+  probe.remove();
+  const context = document.createElement('canvas').getContext('2d');
+  // No canvas: a width no text of that size exceeds (an average glyph is about half the size).
+  if (!context) return (text) => text.length * size * 0.7;
+  context.font = font;
+  return (text) => context.measureText(text).width;
 }
 
 function niceStep(rough: number): number {
