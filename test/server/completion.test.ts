@@ -7,6 +7,7 @@ import { checkSchema } from '../../server/src/core/schema/validate';
 import { parseXml } from '../../server/src/core/xml';
 import { cursor } from '../support/cursor';
 import { scenario, simpleGroup } from '../support/fixtures';
+import { SERVER_WAIT_MS } from '../support/wait';
 import { MAIN_OVERRIDES, PACKAGE_MAIN, SIMPLE, SIMPLE_EXPRESSION } from './fixtures/scenarios';
 import { fileUri, useServer } from './harness';
 
@@ -163,7 +164,7 @@ describe('language server: completion in an empty file, with schema support on (
     assert.ok(!items.some((item) => item.label.endsWith(' scenario')), 'no skeleton inside a scenario');
     await server.client.settingsChanged({ schema: { version: '1.0' } });
     let pinned: CompletionItem | undefined;
-    const deadline = Date.now() + 10_000;
+    const deadline = Date.now() + SERVER_WAIT_MS;
     while ((pinned = await skeletonAt('|'))?.label !== 'OpenSCENARIO 1.0 scenario' && Date.now() < deadline)
       await new Promise((resolve) => setTimeout(resolve, 50));
     assert.equal(pinned?.label, 'OpenSCENARIO 1.0 scenario');
@@ -183,7 +184,7 @@ describe('language server: completion in an empty file, with schema support on (
       };
       // The setting reaches the server asynchronously.
       let skeleton = await skeletonOffered();
-      for (const deadline = Date.now() + 10_000; !skeleton && Date.now() < deadline; skeleton = await skeletonOffered())
+      for (const deadline = Date.now() + SERVER_WAIT_MS; !skeleton && Date.now() < deadline; skeleton = await skeletonOffered())
         await new Promise((resolve) => setTimeout(resolve, 50));
       assert.ok(skeleton, version);
       const inserted = expandSnippet((skeleton.textEdit as TextEdit).newText);

@@ -21,6 +21,7 @@ import {
 import { startServer } from '../../server/src/languageServer';
 import { Workspace } from '../../server/src/workspace';
 import { repoRoot, serverBundle } from '../support/paths';
+import { SERVER_WAIT_MS } from '../support/wait';
 import { temporaryWorkspace } from '../support/workspace';
 
 export function fileUri(filePath: string): string {
@@ -196,7 +197,7 @@ export class TestClient {
   }
 
   /** Resolves when `check` holds, re-checking on each notification; rejects after `timeout` ms. */
-  async until<T>(check: () => T | undefined, what: string, timeout = 10_000): Promise<T> {
+  async until<T>(check: () => T | undefined, what: string, timeout = SERVER_WAIT_MS): Promise<T> {
     const deadline = Date.now() + timeout;
     for (;;) {
       const value = check();
@@ -220,7 +221,7 @@ export class TestClient {
   async diagnosticsOf(
     uri: string,
     predicate: (diagnostics: Diagnostic[]) => boolean = () => true,
-    timeout = 10_000,
+    timeout = SERVER_WAIT_MS,
   ): Promise<Diagnostic[]> {
     return this.until(
       () => {
@@ -291,7 +292,7 @@ export class TestClient {
         return found >= 0 ? found + 1 : undefined;
       },
       `a logged error matching ${pattern}`,
-      5_000,
+      SERVER_WAIT_MS,
     );
     return this.errors.splice(index - 1, 1)[0];
   }
