@@ -100,7 +100,7 @@ export const CORE_MEMOS = {
     holds: 'the attributes a group lists',
     bound: WITH_KEY,
     invalidated:
-      "never: an element's offsets, attributes and subtree never change (a value re-parse shares only subtrees wholly before the edit, re-pointing just their roots' `parent`; the rest are new elements)",
+      "never: an element's offsets, attributes and subtree never change (a value re-parse shares only subtrees not holding the edit whose offsets stay, those before it and, when the edit keeps the text's length, those after it, re-pointing just their roots' `parent`; the rest are new elements)",
   },
   keyReaches: {
     where: '`planOverrides` (`core/keys.ts`)',

@@ -59,9 +59,7 @@ export function carryElementIndex(previous: SemanticModel, model: SemanticModel,
   const known = elementIndex.get(previous);
   if (!known) return;
   const index = new Map<string, XmlElement[]>();
-  // In document order: when the last is shared, so is every one, and the list is the previous one.
-  for (const [name, elements] of known)
-    index.set(name, edit.shared(elements[elements.length - 1]) ? elements : elements.map(edit.elementOf));
+  for (const [name, elements] of known) index.set(name, counterparts(elements, edit));
   elementIndex.set(model, index);
 }
 
@@ -73,7 +71,12 @@ function carryNamedSiblings(previous: SemanticModel, model: SemanticModel, edit:
     model,
     known.map(({ parent, children }) => ({
       parent: edit.elementOf(parent),
-      children: edit.shared(children[children.length - 1]) ? children : children.map(edit.elementOf),
+      children: counterparts(children, edit),
     })),
   );
+}
+
+/** The counterparts of a list of elements of the previous tree: the list itself when the new tree shares every one. */
+function counterparts(elements: XmlElement[], edit: ValueEdit): XmlElement[] {
+  return elements.every(edit.shared) ? elements : elements.map(edit.elementOf);
 }

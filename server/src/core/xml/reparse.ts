@@ -9,7 +9,8 @@ import { coreMemo } from '../memos';
  * single attribute value and changes no markup, the tree is copied with shifted offsets instead of
  * scanning the text again (typing a value in a large file); otherwise this is `parseXml(text)`.
  * Subtrees wholly before the edit are not copied: the new tree shares them (their roots' `parent`
- * then names the new tree's element, so the previous tree is only read through `valueEditOf`).
+ * then names the new tree's element, so the previous tree is only read through `valueEditOf`); so are
+ * those wholly after it when the edit keeps the text's length (typing over characters moves no offset).
  */
 export function reparseXml(previous: XmlDocument, text: string): XmlDocument {
   return reparseValueEdit(previous, text) ?? parseXml(text);
@@ -56,7 +57,7 @@ export interface ValueEdit {
   attribute: XmlAttribute;
   /** The new tree's counterpart of an element of the previous tree. */
   elementOf(previous: XmlElement): XmlElement;
-  /** Whether an element of the previous tree is in the new one too (wholly before the edit): what refers only to it carries over as it is. */
+  /** Whether an element of the previous tree is in the new one too (not holding the edit, and before it unless nothing moved): what refers only to it carries over as it is. */
   shared(previous: XmlElement): boolean;
   /** The new tree's counterpart of an attribute of an element of the previous tree. */
   attributeOf(previousElement: XmlElement, previous: XmlAttribute): XmlAttribute;
@@ -117,6 +118,8 @@ export function reparseValueEdit(previous: XmlDocument, text: string): XmlDocume
   const raw = text.slice(edited.valueStart, edited.valueEnd + delta);
   if (!PLAIN_VALUE.test(raw)) return undefined;
   const shift = (offset: number) => (offset >= removedEnd && offset > prefix ? offset + delta : offset);
+  // Offsets after the edit move unless its length is kept (typing over characters): then only the elements holding it are copied.
+  const shared = (source: XmlElement) => source.end <= prefix || (delta === 0 && source.start >= removedEnd);
   const target = edited;
   const editedElement = element;
   let editedCopy: XmlAttribute | undefined;
@@ -127,7 +130,7 @@ export function reparseValueEdit(previous: XmlDocument, text: string): XmlDocume
     if (!moved) return attributes;
     return attributes.map((attribute) => {
       if (attribute === target) return (editedCopy = { ...attribute, value: raw, valueEnd: attribute.valueEnd + delta });
-      if (attribute.nameStart < removedEnd) return attribute;
+      if (attribute.nameStart < removedEnd || delta === 0) return attribute;
       return {
         name: attribute.name,
         value: attribute.value,
@@ -142,8 +145,8 @@ export function reparseValueEdit(previous: XmlDocument, text: string): XmlDocume
   // Each copied element's copy, for the models carried over: one lookup each (walking both trees by child index cost more, above all before V8 compiled it).
   const copies = new Map<XmlElement, XmlElement>();
   const copy = (source: XmlElement, parent: XmlElement | undefined): XmlElement => {
-    // A subtree wholly before the edit keeps its offsets and values: shared, only its root taking the new parent.
-    if (source.end <= prefix && parent) {
+    // A subtree not holding the edit, whose offsets do not move, keeps its values: shared, only its root taking the new parent.
+    if (parent && shared(source)) {
       source.parent = parent;
       return source;
     }
@@ -165,7 +168,7 @@ export function reparseValueEdit(previous: XmlDocument, text: string): XmlDocume
   };
   const root = copy(previous.root, undefined);
   const document = documentOf(text, root, previous.entities);
-  const elementOf = counterpartsIn(copies, prefix);
+  const elementOf = counterpartsIn(copies, shared);
   const newElement = elementOf(editedElement);
   valueEdits.delete(previous);
   valueEdits.set(document, {
@@ -178,9 +181,9 @@ export function reparseValueEdit(previous: XmlDocument, text: string): XmlDocume
     previousAttribute: target,
     attribute: editedCopy as XmlAttribute,
     elementOf,
-    shared: (source) => source.end <= prefix,
+    shared,
     attributeOf: (sourceElement, source) =>
-      source.nameStart < removedEnd && source !== target
+      (source.nameStart < removedEnd || delta === 0) && source !== target
         ? source
         : elementOf(sourceElement).attributes[sourceElement.attributes.indexOf(source)],
     shift,
@@ -203,10 +206,13 @@ function documentOf(text: string, root: XmlElement, entities: ReadonlyMap<string
   };
 }
 
-/** The counterpart of an element of the previous tree: itself when shared (wholly before the edit), else its copy. */
-function counterpartsIn(copies: ReadonlyMap<XmlElement, XmlElement>, prefix: number): (source: XmlElement) => XmlElement {
+/** The counterpart of an element of the previous tree: itself when shared (not holding the edit, its offsets kept), else its copy. */
+function counterpartsIn(
+  copies: ReadonlyMap<XmlElement, XmlElement>,
+  shared: (source: XmlElement) => boolean,
+): (source: XmlElement) => XmlElement {
   return (source) => {
-    if (source.end <= prefix) return source;
+    if (shared(source)) return source;
     const counterpart = copies.get(source);
     if (!counterpart) throw new Error(`no element at ${source.start} in the previous parse`);
     return counterpart;
