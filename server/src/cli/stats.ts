@@ -2,6 +2,7 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { splitScenarioPath } from '../core/sources';
 import { libraryStats } from '../core/stats';
+import { libraryFolders } from '../libraries';
 import { CliCommand, CliOutput, ExitCode, InputError, UsageError } from './common';
 import { parseOptions, READING_OPTIONS_HELP } from './options';
 
@@ -20,10 +21,13 @@ async function statsCommand(args: string[], io: CliOutput): Promise<number> {
       `stats counts lines and checks no schema, so --schema-version does not apply to it: run 'modular2simple check ${library} --schema-version V' to check the scenarios against a schema`,
     );
   if (!fs.existsSync(library) || !fs.statSync(library).isDirectory()) throw new InputError(`${library}: no such folder`);
-  const stats = await libraryStats(library, options.limits, process.cwd(), [
-    ...options.scenarioPath,
-    ...splitScenarioPath(process.env.SCENARIO_PATH),
-  ]);
+  const stats = await libraryStats(
+    library,
+    options.limits,
+    process.cwd(),
+    [...options.scenarioPath, ...splitScenarioPath(process.env.SCENARIO_PATH)],
+    libraryFolders([]),
+  );
   for (const problem of stats.problems) io.err(`${library}: error: ${problem}`);
   if (options.format === 'json') {
     io.out(JSON.stringify(stats, null, 2));
