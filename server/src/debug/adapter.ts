@@ -19,6 +19,7 @@ import { DEBUG_STATE_EVENT, DebugState } from '../../../common/src/debugState';
 import { Flattener } from '../core/flatten';
 import { MappedElement } from '../core/flatten/storyboardMap';
 import { Problem } from '../core/problems';
+import { roadFolders } from '../core/semantics/roadFiles';
 import { childRef, diskRef, displayRef, ScenarioStore, SourceRef, splitScenarioPath } from '../core/sources';
 import { EsminiLibraryError } from '../esmini/library';
 import { EsminiProblem } from '../esmini/messages';
@@ -209,6 +210,8 @@ export class ScenarioDebugSession extends DebugSession {
     };
     const store = new ScenarioStore({
       scenarioPath: [...(args.scenarioPath ?? []), ...splitScenarioPath(process.env.SCENARIO_PATH)],
+      // esmini is handed the road folders as --path, where it finds catalogs too: so does the check before the run.
+      catalogPath: roadFolders(args.roadPath, base),
       root: fs.statSync(program).isDirectory() ? program : path.dirname(program),
       workingDirectory: base,
     });
