@@ -75,6 +75,7 @@ const ORDER: InsideTestKey[] = [
   'extractToSimple',
   'carlaExport',
   'carlaCheck',
+  'carlaRun',
   'debugScenario',
   'libraryCompose',
   'debugTimeline',
