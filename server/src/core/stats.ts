@@ -127,6 +127,8 @@ export async function libraryStats(
   scenarioPath: readonly string[] = [],
   /** The scenario libraries `library:NAME` resolves in, as `check` has them; their modules a main uses count as shared. */
   libraries: LibraryFolder[] = [],
+  /** Where the mains' search upward stops (the CLI's --root); the library folder by default. */
+  searchRoot?: string,
 ): Promise<LibraryStats> {
   const root = path.resolve(library);
   const folders = fs
@@ -136,7 +138,7 @@ export async function libraryStats(
     .sort();
   // The paper's mains name the shared simple scenarios beside their folders; modularize's name them by relative path (simple/NAME.xosc).
   const store = new ScenarioStore({
-    root,
+    root: searchRoot === undefined ? root : path.resolve(searchRoot),
     scenarioPath: [...(folders.length > 0 ? [root] : []), ...scenarioPath],
     limits,
     workingDirectory,
