@@ -2,7 +2,8 @@ import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { esminiBinary, esminiRoads, requireEsmini } from '../support/esmini';
-import { distributionFile, fileHeader, openScenarioFile, runCli } from '../support/fixtures';
+import JSZip from 'jszip';
+import { distributionFile, fileHeader, openScenarioFile, outerGroup, runCli, scenario, simpleGroup } from '../support/fixtures';
 import { temporaryWorkspace } from '../support/workspace';
 
 /**
@@ -281,5 +282,41 @@ describe('real file shapes: no false alarms (issue 27)', function () {
       ),
     );
     assert.ok(problems.every((problem) => problem.severity === 'warning'));
+  });
+});
+
+describe('real file shapes: what a missing scenarioFileName says to do (issue 27)', function () {
+  this.timeout(60_000);
+  let folder: string;
+  afterEach(() => fs.rmSync(folder, { recursive: true, force: true }));
+
+  // The paper's result.mosc: a package holding only main.xosc, whose simple scenarios lie beside the library (SPEC 3:
+  // a package never searches its parent folders). It used to say "did you mean 'main.xosc'?", the file itself.
+  it("a package's main naming a file outside it: the SCENARIO_PATH hint, never the main itself; a misspelt name still gets its suggestion", async () => {
+    const main = scenario(outerGroup('Car', 'car', [{ file: 'simple_1.xosc', groups: [{ name: 'Go' }] }]));
+    const zip = new JSZip();
+    zip.file('main.xosc', main);
+    folder = temporaryWorkspace({
+      'simple_1.xosc': scenario(simpleGroup('Go')),
+      'misspelt/main.xosc': main.replace('simple_1.xosc', 'simple_l.xosc'),
+    });
+    fs.writeFileSync(path.join(folder, 'result.mosc'), await zip.generateAsync({ type: 'nodebuffer' }));
+    const line = main.split('\n').findIndex((text) => text.includes('simple_1.xosc')) + 1;
+    const packaged = check(folder, 'result.mosc').filter((problem) => problem.code === 'missing-file');
+    assert.deepEqual(
+      packaged.map(({ line }) => line),
+      [line],
+    );
+    const text = runCli(['check', 'result.mosc'], { cwd: folder });
+    assert.equal(text.status, 1, text.stderr);
+    assert.match(text.stderr, /result\.mosc\/main\.xosc:\d+:\d+: error: cannot find 'simple_1\.xosc'/);
+    assert.match(
+      text.stderr,
+      /hint: set SCENARIO_PATH \(--scenario-path, the modular2simple\.scenarioPath setting\) to the folder that holds it/,
+    );
+    assert.doesNotMatch(text.stderr, /did you mean 'main\.xosc'/);
+    assert.equal(runCli(['check', 'result.mosc', '--scenario-path', '.'], { cwd: folder }).status, 0);
+    const misspelt = runCli(['check', 'misspelt/main.xosc'], { cwd: folder });
+    assert.match(misspelt.stderr, /cannot find 'simple_l\.xosc'.*\n\s+hint: did you mean 'simple_1\.xosc'\?/);
   });
 });

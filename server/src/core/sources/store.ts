@@ -409,16 +409,19 @@ export class ScenarioStore {
       }
     }
     const searched = places.map((place) => this.describePlace(place));
-    const suggestion = closestMatch(
-      trimmed,
-      (await this.namesIn(places, trimmed)).filter((candidate) => candidate !== trimmed),
-    );
+    // Never the referencing file itself (a package's main.xosc is no 'simple_1.xosc'), and names compared without their
+    // extension, which every candidate shares and which made 'main.xosc' close enough to 'simple_1.xosc'.
+    const ownName = from.entries.length > 0 ? from.entries[from.entries.length - 1] : pathsFor(from.disk).basename(from.disk);
+    const stem = (file: string) => file.replace(/\.(xosc|mosc)$/i, '');
+    const candidates = (await this.namesIn(places, trimmed)).filter((candidate) => candidate !== trimmed && candidate !== ownName);
+    const closest = closestMatch(stem(trimmed), candidates.map(stem));
+    const suggestion = closest === undefined ? undefined : candidates.find((candidate) => stem(candidate) === closest);
     return {
       kind: 'missing',
       searched,
       hint:
         this.scenarioPath.length === 0
-          ? 'set SCENARIO_PATH (or the modular2simple.scenarioPath setting) to the folder that holds it'
+          ? 'set SCENARIO_PATH (--scenario-path, the modular2simple.scenarioPath setting) to the folder that holds it'
           : undefined,
       ...(suggestion ? { suggestion } : {}),
     };
