@@ -78,6 +78,7 @@ const ORDER: InsideTestKey[] = [
   'carlaRun',
   'debugScenario',
   'libraryCompose',
+  'libraryInsertHere',
   'debugTimeline',
   'debugTimelineSession',
 ];
