@@ -4,7 +4,7 @@ import * as path from 'node:path';
 import * as vscode from 'vscode';
 import { BIRDS_EYE_FILES, HIGHWAY_MERGE_FILES } from '../birdsEyeSetup';
 import { INSIDE_TESTS } from '../titles';
-import { api, open, packageUri, positionOf, replaceText, revertAndClose, waitFor, workspaceRoot } from './helpers';
+import { api, open, packageUri, positionOf, replaceText, revertAndClose, TEST_MS, waitFor, workspaceRoot } from './helpers';
 import { clickText, pageShows, runFromPalette, screenshot } from './harnessClient';
 
 function skipUnless(context: Mocha.Context, condition: boolean, why: string): void {
@@ -17,11 +17,11 @@ function skipUnless(context: Mocha.Context, condition: boolean, why: string): vo
 /** The bird's-eye view tests; run after the main suite, in the same VS Code. */
 export function defineBirdsEyeTests(): void {
   describe("the bird's-eye view in a real VS Code", function () {
-    this.timeout(60_000);
+    this.timeout(TEST_MS);
     const settings = () => vscode.workspace.getConfiguration('modular2simple');
 
     before(async function () {
-      await waitFor('the extension to activate', () => vscode.extensions.getExtension('modular2simple.modular2simple')?.isActive, 30_000);
+      await waitFor('the extension to activate', () => vscode.extensions.getExtension('modular2simple.modular2simple')?.isActive);
       await settings().update('esmini.roadPath', [BIRDS_EYE_FILES.roadFolder], vscode.ConfigurationTarget.Workspace);
     });
 
@@ -46,10 +46,8 @@ export function defineBirdsEyeTests(): void {
       const started = Date.now();
       await runFromPalette("Modular2Simple: Show Bird's-Eye View");
       const view = api().birdsEye;
-      const stats = await waitFor(
-        'the view to draw the road and the entities',
-        () => (view.stats && view.stats.lanes > 0 && view.stats.entities === 2 ? view.stats : undefined),
-        20_000,
+      const stats = await waitFor('the view to draw the road and the entities', () =>
+        view.stats && view.stats.lanes > 0 && view.stats.entities === 2 ? view.stats : undefined,
       );
       console.log(`command to picture: ${Date.now() - started} ms (roads drawn in ${stats.staticDrawMs.toFixed(1)} ms)`);
       assert.deepEqual(view.scene?.problems, []);

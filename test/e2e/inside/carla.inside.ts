@@ -14,6 +14,7 @@ import {
   positionOf,
   requireServerFeature,
   revertAndClose,
+  TEST_MS,
   waitFor,
   workspaceRoot,
 } from './helpers';
@@ -105,7 +106,7 @@ async function runInCarla(uri: vscode.Uri): Promise<{ ran: boolean; message: str
 /** *Export for CARLA…* from the palette: the file written, its losses as diagnostics on the simple scenario's lines. */
 export const carlaTests: InsideTests = {
   carlaCheck: async function () {
-    this.timeout(120_000);
+    this.timeout(2 * TEST_MS);
     requireServerFeature(this, 'checkInScenarioRunner', offersRequest(CheckInScenarioRunnerRequest));
     const folder = path.join(workspaceRoot(), '.carla-check');
     fs.mkdirSync(folder, { recursive: true });
@@ -251,7 +252,7 @@ export const carlaTests: InsideTests = {
   },
 
   carlaExport: async function () {
-    this.timeout(120_000);
+    this.timeout(2 * TEST_MS);
     requireServerFeature(this, 'exportForCarla', offersRequest(ExportForCarlaRequest));
     const folder = carlaExportFolder();
     if (!folder) {
@@ -265,7 +266,7 @@ export const carlaTests: InsideTests = {
       // Proposed as Flatten proposes, with .carla.xosc: beside the folder that stands for the package.
       const written = path.join(folder, 'xosc.carla.xosc');
       await acceptSaveDialog(path.basename(written));
-      await waitFor(path.basename(written), () => fs.existsSync(written) || undefined, 60_000);
+      await waitFor(path.basename(written), () => fs.existsSync(written) || undefined);
       const text = fs.readFileSync(written, 'utf8');
       assert.match(text, /<FileHeader [^>]*revMajor="1" revMinor="0"/);
       assert.match(text, /<Property name="type" value="ego_vehicle"\/>/);
@@ -295,7 +296,6 @@ export const carlaTests: InsideTests = {
         await waitFor(
           'the loss in the Problems panel',
           async () => (await pageShows('ScenarioRunner runs every event in parallel', '.markers-panel')) || undefined,
-          15_000,
         );
         await screenshot('Export for CARLA: the losses on the simple scenario');
       } finally {

@@ -22,10 +22,22 @@ export function workspaceRoot(): string {
   return root;
 }
 
+/**
+ * The longest a test waits for one thing by default. Generous: the suite must hold on a 2-core machine at a load
+ * of 25, where VS Code, its extension host, the language server and Chromium share what is left of the cores.
+ */
+export const WAIT_MS = 60_000;
+
+/**
+ * A test's own mocha limit inside VS Code (a backstop: each of its waits has its own), for a test that waits for a
+ * few things of WAIT_MS each; a test that runs a simulator or a batch on top has twice this.
+ */
+export const TEST_MS = 180_000;
+
 export async function waitFor<T>(
   what: string,
   probe: () => T | undefined | false | Promise<T | undefined | false>,
-  timeoutMs = 20_000,
+  timeoutMs = WAIT_MS,
 ): Promise<T> {
   const deadline = Date.now() + timeoutMs;
   let last: unknown;

@@ -4,7 +4,7 @@ import * as path from 'node:path';
 import * as vscode from 'vscode';
 import type { LibraryNode } from '../../../client/src/library/view';
 import { pageShows, pressKeys, quickInput, screenshot, typeText } from './harnessClient';
-import { api, cli, type InsideTests, positionOf, waitFor, workspaceRoot } from './helpers';
+import { api, cli, type InsideTests, positionOf, TEST_MS, waitFor, workspaceRoot } from './helpers';
 
 /** The module node the Scenario Library view shows for `name`, as its inline Insert button passes it. */
 function moduleNode(name: string): LibraryNode {
@@ -41,18 +41,18 @@ async function assertClean(document: vscode.TextDocument): Promise<void> {
 /** A main composed from the Scenario Library: a template, then three modules inserted from the view, then checked clean. */
 export const libraryTests: InsideTests = {
   libraryCompose: async function () {
-    this.timeout(180_000);
+    this.timeout(2 * TEST_MS);
     const steps: string[] = [];
     await vscode.commands.executeCommand('modular2simple.library.focus');
     const tree = api().library.tree;
-    await waitFor('the Scenario Library listing', () => (tree.current?.modules.length ?? 0) > 0, 60_000);
+    await waitFor('the Scenario Library listing', () => (tree.current?.modules.length ?? 0) > 0);
     assert.deepEqual(tree.current?.problems, [], 'the built-in library lists problems');
-    await waitFor('the view drawing its modules', () => pageShows('library:cut-in'), 30_000);
+    await waitFor('the view drawing its modules', () => pageShows('library:cut-in'));
     await screenshot('The Scenario Library view lists the modules by group');
 
     steps.push('New Scenario from Template… composition-bench');
     const main = await newBench('composed', 'composed.xosc');
-    await waitFor('the new main in the editor', () => vscode.window.activeTextEditor?.document.uri.fsPath === main, 30_000);
+    await waitFor('the new main in the editor', () => vscode.window.activeTextEditor?.document.uri.fsPath === main);
 
     const groups: string[] = [];
     for (const name of ['cut-in', 'lead-brake', 'pedestrian-crossing']) {
@@ -76,7 +76,6 @@ export const libraryTests: InsideTests = {
       async () =>
         ((await vscode.commands.executeCommand<unknown[]>('vscode.executeDocumentSymbolProvider', document.uri))?.length ?? 0) > 0 ||
         undefined,
-      60_000,
     );
     await assertClean(document);
     await screenshot('A main composed from three library modules, clean');
@@ -85,7 +84,7 @@ export const libraryTests: InsideTests = {
   },
 
   libraryInsertHere: async function () {
-    this.timeout(180_000);
+    this.timeout(2 * TEST_MS);
     const main = await newBench('insert-here', 'here.xosc');
     const editor = await waitFor('the new main in the editor', () =>
       vscode.window.activeTextEditor?.document.uri.fsPath === main ? vscode.window.activeTextEditor : undefined,

@@ -13,6 +13,7 @@ import {
   open,
   replaceText,
   requireServerFeature,
+  TEST_MS,
   waitFor,
   workspaceRoot,
   zipEntries,
@@ -55,7 +56,7 @@ export const packAndFlattenTests: InsideTests = {
   },
 
   flatten: async function () {
-    this.timeout(90_000);
+    this.timeout(TEST_MS);
     requireServerFeature(this, 'flattenToFile', offersRequest(FlattenToFileRequest));
     const root = workspaceRoot();
     await open('main.xosc');
@@ -102,7 +103,7 @@ export const packAndFlattenTests: InsideTests = {
   },
 
   packUnsaved: async function () {
-    this.timeout(60_000);
+    this.timeout(TEST_MS);
     requireServerFeature(this, 'pack', offersRequest(PackRequest));
     const root = workspaceRoot();
     const editor = await open('main.xosc');
@@ -126,13 +127,13 @@ export const packAndFlattenTests: InsideTests = {
     );
     assert.equal(packed.get('main.xosc'), editor.document.getText());
     assert.ok(!editor.document.isDirty, 'main.xosc was not saved');
-    await waitFor('the message naming the saved file', () => pageShows('saved main.xosc first'), 10_000);
+    await waitFor('the message naming the saved file', () => pageShows('saved main.xosc first'));
     await screenshot('pack saves unsaved files first');
     fs.rmSync(written);
   },
 
   flattenAnyway: async function () {
-    this.timeout(60_000);
+    this.timeout(TEST_MS);
     requireServerFeature(this, 'flattenToFile', offersRequest(FlattenToFileRequest));
     const root = workspaceRoot();
     const editor = await open('main.xosc');
@@ -145,7 +146,7 @@ export const packAndFlattenTests: InsideTests = {
       await runFromPalette('Modular2Simple: Flatten to .xosc');
       await acceptSaveDialog(path.basename(written));
       // Refused, with the offer that names what writing anyway skips.
-      await waitFor('the offer to write anyway', () => pageShows('Write Anyway'), 20_000);
+      await waitFor('the offer to write anyway', () => pageShows('Write Anyway'));
       assert.ok(await pageShows('LaneChangeActionDynamic.value'), 'the offer does not name the skipped key');
       assert.ok(!fs.existsSync(written), 'a refused flatten wrote its output');
       await screenshot('flatten refused offers to write anyway');

@@ -64,7 +64,7 @@ async function showRuleCodes(): Promise<void> {
   try {
     editor.revealRange(duplicate.range, vscode.TextEditorRevealType.InCenter);
     editor.selection = new vscode.Selection(duplicate.range.start, duplicate.range.start);
-    await waitFor('the rule uid in the Problems panel', async () => (await pageShows(UNIQUE_NAMES, '.markers-panel')) || undefined, 10_000);
+    await waitFor('the rule uid in the Problems panel', async () => (await pageShows(UNIQUE_NAMES, '.markers-panel')) || undefined);
     assert.ok(await pageShows(VALID_SCHEMA, '.markers-panel'), 'the Problems panel does not show the valid_schema rule');
     await screenshot('the Problems panel names each rule (ASAM QC uid)');
   } finally {
