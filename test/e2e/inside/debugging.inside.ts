@@ -6,7 +6,7 @@ import * as vscode from 'vscode';
 import { SESSION_ARGUMENT } from '../../../server/src/debug/supervisor';
 import { esminiCutInFolder, esminiOrSkip } from './esmini.inside';
 import { clickElement, type PageBox, pageBoxes, pageShows, pressKeys, runFromPalette, screenshot } from './harnessClient';
-import { api, cli, EXTENSION_ID, type InsideTests, open, positionOf, TEST_MS, waitFor, workspaceRoot } from './helpers';
+import { api, cli, EXTENSION_ID, type InsideTests, open, positionOf, TEST_MS, waitFor, waitForPage, workspaceRoot } from './helpers';
 
 /**
  * The debug adapter processes of the extension under test (their command line names its dist/debugAdapter.js): the
@@ -206,8 +206,9 @@ export const debuggingTests: InsideTests = {
       assert.equal(sessions.length, 1, `one session process: ${sessions.join(', ')}`);
       process.kill(sessions[0], 'SIGSEGV');
       await waitFor('the session to end', () => vscode.debug.activeDebugSession === undefined);
-      await waitFor('the message naming the crash', () => pageShows('The debug session of cut-in.xosc ended'));
-      assert.ok(await pageShows("esmini's process was killed by"), 'the message says how the adapter ended');
+      await waitForPage('The debug session of cut-in.xosc ended');
+      // The message says how the adapter ended.
+      await waitForPage("esmini's process was killed by");
       await screenshot('debug: esmini crashed, the session ended with a message, the editor lives');
 
       // The editor lives: the same F5 starts a new session, which stops on the same line.
@@ -216,6 +217,10 @@ export const debuggingTests: InsideTests = {
       const again = await stopOnTheEvent();
       await vscode.debug.stopDebugging(again);
       await waitFor('the second session to end', () => vscode.debug.activeDebugSession === undefined);
+      // What would report a crash has happened: the adapter's processes ended (the client's crash report follows their
+      // exit), and the page followed the session's end (its call stack is gone; the adapter's own report comes before).
+      await waitFor('the adapter processes to end', () => adapterProcesses().length === 0);
+      await waitFor('the call stack to clear', async () => !(await pageShows('Event CutInEvent (running)')));
       assert.ok(!(await pageShows('The debug session of cut-in.xosc ended')), 'Stop is no crash');
     } finally {
       vscode.debug.removeBreakpoints([breakpoint]);

@@ -7,7 +7,7 @@ import * as vscode from 'vscode';
 import type { Modular2SimpleApi } from '../../../client/src/extension';
 import type { StructureNode } from '../../../common/src/protocol';
 import { HARNESS_ENV, type InsideTestKey } from '../titles';
-import { pressKeys, quickInput } from './harnessClient';
+import { pageShows, pressKeys, quickInput } from './harnessClient';
 
 // What the tests inside VS Code share: where the workspace is, waiting, opening and editing files.
 
@@ -51,6 +51,15 @@ export async function waitFor<T>(
     await new Promise((resolve) => setTimeout(resolve, 100));
   }
   throw new Error(`timed out after ${timeoutMs} ms waiting for ${what}${last ? ` (last error: ${(last as Error).message})` : ''}`);
+}
+
+/**
+ * Waits until the page (any frame, or the elements matching `selector`) shows `text`. What the page shows follows the
+ * extension's state later (a webview's postMessage, a notification, a tree refresh are all asynchronous): a test that
+ * means "the page shows X" waits for the page, not for the state that leads to it.
+ */
+export async function waitForPage(text: string, selector?: string, timeoutMs = WAIT_MS): Promise<void> {
+  await waitFor(`the page to show "${text}"${selector ? ` in ${selector}` : ''}`, () => pageShows(text, selector), timeoutMs);
 }
 
 export function api(): Modular2SimpleApi {

@@ -12,6 +12,7 @@ import {
   requireServerFeature,
   revertAndClose,
   waitFor,
+  WAIT_MS,
   workspaceRoot,
 } from './helpers';
 import { pageShows, post, pressKeys, screenshot } from './harnessClient';
@@ -115,12 +116,20 @@ export const languageFeatureTests: InsideTests = {
       // The library lies outside the workspace, and still its files are watched: a file removed there is reported.
       // A new watcher starts in its own time: the file goes away and comes back until the removal is seen.
       const [present, away] = [path.join(library, 'shared_lane_change.xosc'), path.join(library, 'moved_away.xosc')];
-      await waitFor('the removed library file to be reported', async () => {
-        if (fs.existsSync(away)) fs.renameSync(away, present);
-        await new Promise((resolve) => setTimeout(resolve, 500));
-        fs.renameSync(present, away);
-        return await waitFor('the removal to be reported', onReference, 3_000).catch(() => undefined);
-      });
+      // Each try waits twice as long as the last: on a loaded machine the watcher's event and the new diagnostics take their time.
+      let patience = 3_000;
+      await waitFor(
+        'the removed library file to be reported',
+        async () => {
+          if (fs.existsSync(away)) fs.renameSync(away, present);
+          await new Promise((resolve) => setTimeout(resolve, 500));
+          fs.renameSync(present, away);
+          const reported = await waitFor('the removal to be reported', onReference, patience).catch(() => undefined);
+          patience = Math.min(2 * patience, WAIT_MS / 2);
+          return reported;
+        },
+        2 * WAIT_MS,
+      );
       fs.renameSync(path.join(library, 'moved_away.xosc'), path.join(library, 'shared_lane_change.xosc'));
       await waitFor('the restored library file to resolve', () => !onReference() || undefined);
     } finally {
