@@ -328,6 +328,8 @@ describe('debug adapter through the Debug Adapter Protocol', function () {
         type: 'modular2simple',
         request: 'launch',
         program: cutIn,
+        // Its catalogs found (a missing catalog directory is an error, refused before the library is looked for).
+        roadPath,
         esminiLibrary: path.join(temporaryFolder(), 'nothing-here'),
       }),
       /bash \.\.\/shared\/esmini\/build\.sh \.cache\/esmini/,
