@@ -78,6 +78,7 @@ function summarize(root: string, locations: Location[], texts: Record<string, st
 }
 
 describe('a catalog entry parameter across files: references and rename through ParameterAssignment (JSON-RPC)', function () {
+  this.timeout(30_000);
   let root: string;
   let client: TestClient;
   const uriOf = (relative: string) => fileUri(path.join(root, relative));
@@ -188,6 +189,7 @@ describe('a catalog entry parameter across files: references and rename through 
 });
 
 describe('a catalog entry parameter set from inside a .mosc package (JSON-RPC)', function () {
+  this.timeout(30_000);
   let root: string;
   let client: TestClient;
 

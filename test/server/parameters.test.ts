@@ -54,6 +54,7 @@ function decodeTokens(text: string, tokens: SemanticTokens): string[] {
 }
 
 describe('editor features on the semantic model: $name, ${...} and catalogs (JSON-RPC)', function () {
+  this.timeout(30_000);
   let root: string;
   let client: TestClient;
   let uri: string;
@@ -404,6 +405,7 @@ describe('editor features on the semantic model: $name, ${...} and catalogs (JSO
 });
 
 describe('editor features across a composition: provenance and the source value of a declaration', function () {
+  this.timeout(30_000);
   const fixtures = path.join(repoRoot, 'test', 'fixtures', 'semantics');
   let client: TestClient;
 

@@ -13,9 +13,7 @@ import {
   open,
   replaceText,
   requireServerFeature,
-  TEST_MS,
   waitFor,
-  waitForPage,
   workspaceRoot,
   zipEntries,
 } from './helpers';
@@ -57,7 +55,7 @@ export const packAndFlattenTests: InsideTests = {
   },
 
   flatten: async function () {
-    this.timeout(TEST_MS);
+    this.timeout(90_000);
     requireServerFeature(this, 'flattenToFile', offersRequest(FlattenToFileRequest));
     const root = workspaceRoot();
     await open('main.xosc');
@@ -104,7 +102,7 @@ export const packAndFlattenTests: InsideTests = {
   },
 
   packUnsaved: async function () {
-    this.timeout(TEST_MS);
+    this.timeout(60_000);
     requireServerFeature(this, 'pack', offersRequest(PackRequest));
     const root = workspaceRoot();
     const editor = await open('main.xosc');
@@ -128,13 +126,13 @@ export const packAndFlattenTests: InsideTests = {
     );
     assert.equal(packed.get('main.xosc'), editor.document.getText());
     assert.ok(!editor.document.isDirty, 'main.xosc was not saved');
-    await waitFor('the message naming the saved file', () => pageShows('saved main.xosc first'));
+    await waitFor('the message naming the saved file', () => pageShows('saved main.xosc first'), 10_000);
     await screenshot('pack saves unsaved files first');
     fs.rmSync(written);
   },
 
   flattenAnyway: async function () {
-    this.timeout(TEST_MS);
+    this.timeout(60_000);
     requireServerFeature(this, 'flattenToFile', offersRequest(FlattenToFileRequest));
     const root = workspaceRoot();
     const editor = await open('main.xosc');
@@ -147,9 +145,8 @@ export const packAndFlattenTests: InsideTests = {
       await runFromPalette('Modular2Simple: Flatten to .xosc');
       await acceptSaveDialog(path.basename(written));
       // Refused, with the offer that names what writing anyway skips.
-      await waitForPage('Write Anyway');
-      // The offer names the skipped key.
-      await waitForPage('LaneChangeActionDynamic.value');
+      await waitFor('the offer to write anyway', () => pageShows('Write Anyway'), 20_000);
+      assert.ok(await pageShows('LaneChangeActionDynamic.value'), 'the offer does not name the skipped key');
       assert.ok(!fs.existsSync(written), 'a refused flatten wrote its output');
       await screenshot('flatten refused offers to write anyway');
       assert.ok(await clickText('Write Anyway'), 'no Write Anyway button');
