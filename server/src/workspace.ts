@@ -14,6 +14,7 @@ import {
 } from './core/sources';
 import { OpenDocument, OpenDocuments } from './documents';
 import { libraryFolders } from './libraries';
+import { roadFolders } from './core/semantics/roadFiles';
 import { UriResolver, refToUri } from './uris';
 import { DEFAULT_SETTINGS, ServerSettings } from './settings';
 import { SHARED_SOURCE_BYTES } from './sharedSources';
@@ -155,6 +156,8 @@ export class Workspace {
     this.searchFolders = [...fromEnvironment, ...fromSettings, ...folders.flatMap((folder) => folder.scenarioPath)];
     const store = new ScenarioStore({
       scenarioPath: [...fromEnvironment, ...fromSettings],
+      // Run in esmini hands esmini these folders as --path, where it finds catalogs too: so do the checks.
+      catalogPath: roadFolders(this.settings.roadPath, this.folders[0] ?? process.cwd()),
       root: this.folders[0],
       folders,
       // Relative library folders are taken from the first workspace folder, as the window's scenarioPath is.

@@ -4,6 +4,7 @@ import * as path from 'node:path';
 import { exportSummary, placedByUri } from '../../client/src/placed';
 import { ExportForCarlaRequest, type ProblemSummary } from '../../common/src/protocol';
 import { fileUri, TestClient } from '../server/harness';
+import { SERVER_WAIT_MS } from '../support/wait';
 import { lineMatching } from '../support/carla';
 import { repoRoot } from '../support/paths';
 import { temporaryWorkspace } from '../support/workspace';
@@ -136,7 +137,7 @@ describe("Export for CARLA over JSON-RPC: roads from modular2simple.esmini.roadP
     await client.settingsChanged({ carla: { release: '0.9.15' }, esmini: { roadPath: ['myroads'] } });
     // The server pulls the new settings after the notification: asked again until they apply (a refusal writes nothing).
     let result = await client.send(ExportForCarlaRequest, { uri, outputPath: output });
-    for (let attempt = 0; result.written === null && attempt < 100; attempt++) {
+    for (const deadline = Date.now() + SERVER_WAIT_MS; result.written === null && Date.now() < deadline;) {
       await new Promise((resolve) => setTimeout(resolve, 200));
       result = await client.send(ExportForCarlaRequest, { uri, outputPath: output });
     }

@@ -11,6 +11,7 @@ import { esminiRoads } from '../support/esmini';
 import { openscenarioDir } from '../support/openscenarioCorpus';
 import { libraryDir, repoRoot, requireCorpus } from '../support/paths';
 import { temporaryFolder } from '../support/temporaryDirectory';
+import { SERVER_WAIT_MS, waitUntil } from '../support/wait';
 import { temporaryWorkspace } from '../support/workspace';
 
 /** esmini's samples exported as the CLI exports them (the written ones) and as they are (1.1-1.3: all refused). */
@@ -191,13 +192,14 @@ describe("Check in CARLA ScenarioRunner: the project's harness (server/python) a
       scenarioRunner: scenarioRunnerFolder,
       scenario: path.join(scenarioRunnerFolder, 'srunner', 'examples', 'FollowLeadingVehicle.xosc'),
       towns: CARLA_TOWNS,
-      timeLimitMs: 1500,
+      // Long enough for the stand-in to start its child and write both pids on a loaded machine, before the kill.
+      timeLimitMs: 5000,
     });
     assert.equal(run.kind, 'timeout');
     const started = fs.readFileSync(pids, 'utf8').trim().split('\n').map(Number);
     assert.equal(started.length, 2, 'the stand-in started its child');
     // The kill is asynchronous: wait (bounded) until both are reaped.
-    for (let round = 0; round < 100 && !started.every(processGone); round++) await new Promise((resolve) => setTimeout(resolve, 100));
+    await waitUntil(() => started.every(processGone), 'the processes of the check to end', SERVER_WAIT_MS, 100).catch(() => undefined);
     assert.deepEqual(
       started.filter((pid) => !processGone(pid)),
       [],

@@ -179,6 +179,52 @@ describe('cli: stats reads scenarios as check does', () => {
     }
     assert.doesNotMatch(runCli(['stats', '--help']).stdout, /--schema-version/);
   });
+
+  it('--root lets the mains search upward past the library, as check --root does; a missing folder is named', () => {
+    // The shared simple scenario beside the library, found by the upward search from lib/cut only when it may go there.
+    const root = temporaryWorkspace({ 'lib/cut/main.xosc': files['lib/cut/main.xosc'], 'simple.xosc': files['shared/simple.xosc'] });
+    const options = { cwd: root, env: { SCENARIO_PATH: undefined } };
+    const without = runCli(['stats', 'lib'], options);
+    assert.equal(without.status, 1, without.stdout);
+    assert.match(without.stderr, /cut: cannot be flattened/);
+    assert.equal(runCli(['check', 'lib', '--root', '.'], options).status, 0);
+    const withRoot = runCli(['stats', 'lib', '--root', '.', '--format', 'json'], options);
+    assert.equal(withRoot.status, 0, withRoot.stderr);
+    const stats = JSON.parse(withRoot.stdout) as { rows: { scenario: string }[]; shared: { file: string }[] };
+    assert.deepEqual(
+      stats.rows.map((row) => row.scenario),
+      ['cut'],
+    );
+    assert.deepEqual(
+      stats.shared.map((item) => path.relative(root, item.file)),
+      ['simple.xosc'],
+    );
+    const missing = runCli(['stats', 'lib', '--root', 'nowhere'], options);
+    assert.equal(missing.status, 1, missing.stdout);
+    assert.match(missing.stderr, /--root nowhere: no such folder/);
+    assert.match(runCli(['stats', '--help']).stdout, /--root DIR {16}where the search upward from a main's folder/);
+  });
+
+  it('--simulator, --carla and the writing options are refused with what to do instead, nothing printed on standard output', () => {
+    const root = temporaryWorkspace(files);
+    const refusals: [string[], RegExp][] = [
+      [['--simulator', 'carla'], /--simulator does not apply to it: run 'modular2simple check lib --simulator S'/],
+      [['--simulator=esmini'], /--simulator does not apply to it/],
+      [['--carla', '0.9.15'], /--carla does not apply to it: run 'modular2simple check lib --simulator carla --carla R'/],
+      [['-o', 'table.txt'], /stats writes no file, so -o\/--output does not apply to it: redirect its standard output/],
+      [['--out-dir', 'out'], /--out-dir does not apply to it/],
+      [['--force'], /--force does not apply to it/],
+      [['--self-contained'], /--self-contained is pack's/],
+      [['--include-scenario-path'], /--include-scenario-path is pack's/],
+    ];
+    for (const [options, message] of refusals) {
+      const run = runCli(['stats', 'lib', '--scenario-path', 'shared', ...options], { cwd: root });
+      assert.equal(run.status, 2, `${options.join(' ')}: ${run.stderr}`);
+      assert.match(run.stderr, message);
+      assert.equal(run.stdout, '', options.join(' '));
+    }
+    assert.deepEqual(fs.readdirSync(root).sort(), ['lib', 'shared']);
+  });
 });
 
 describe('cli: every row of SPEC 7', () => {

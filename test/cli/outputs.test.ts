@@ -86,7 +86,8 @@ describe('cli: outputs', function () {
       const root = temporaryWorkspace({ 'out.xosc': 'before' });
       const child = startScript(path.join(repoRoot, 'test', 'support', 'slowWrite.ts'), [path.join(root, 'out.xosc')]);
       const ready = await new Promise<boolean>((resolve) => {
-        const timer = setTimeout(() => resolve(false), 20_000);
+        // The writer is a tsx script: its start alone may take tens of seconds on a loaded machine.
+        const timer = setTimeout(() => resolve(false), 60_000);
         child.stdout.on('data', (chunk: Buffer) => {
           if (chunk.toString().includes('writing')) {
             clearTimeout(timer);
@@ -98,7 +99,7 @@ describe('cli: outputs', function () {
       assert.equal(fs.readdirSync(root).filter((name) => name.endsWith('.tmp')).length, 1, 'a temporary file exists while writing');
       const exited = new Promise<NodeJS.Signals | null>((resolve) => child.on('exit', (_code, received) => resolve(received)));
       child.kill(signal);
-      const watchdog = setTimeout(() => child.kill('SIGKILL'), 10_000);
+      const watchdog = setTimeout(() => child.kill('SIGKILL'), 60_000);
       assert.equal(await exited, signal);
       clearTimeout(watchdog);
       assert.deepEqual(fs.readdirSync(root), ['out.xosc']);

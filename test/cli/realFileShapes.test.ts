@@ -1,7 +1,9 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { distributionFile, fileHeader, openScenarioFile, runCli } from '../support/fixtures';
+import { esminiBinary, esminiRoads, requireEsmini } from '../support/esmini';
+import JSZip from 'jszip';
+import { distributionFile, fileHeader, openScenarioFile, outerGroup, runCli, scenario, simpleGroup } from '../support/fixtures';
 import { temporaryWorkspace } from '../support/workspace';
 
 /**
@@ -75,7 +77,7 @@ describe('real file shapes: no false alarms (issue 27)', function () {
       assert.deepEqual(check(folder, 'main.xosc'), []);
     });
 
-    it('a missing directory of the kind an unresolved reference needs is still reported, and only that one', () => {
+    it('a missing directory of the kind an unresolved reference needs is an error without a scenario path, and the one problem', () => {
       folder = temporaryWorkspace({
         'main.xosc': scenarioWith({
           locations: generated.replace(
@@ -86,9 +88,16 @@ describe('real file shapes: no false alarms (issue 27)', function () {
         }),
       });
       const problems = check(folder, 'main.xosc');
+      // An error as with a scenario path (SPEC 12: its references resolve nowhere; esmini refuses the file without --path too).
       assert.deepEqual(
-        problems.filter((problem) => problem.code === 'catalog-directory').map((problem) => problem.message),
-        ["the VehicleCatalog directory 'missing/vehicles' does not exist (relative to this file, or in SCENARIO_PATH)"],
+        problems.filter((problem) => problem.code === 'catalog-directory').map(({ severity, message }) => ({ severity, message })),
+        [
+          {
+            severity: 'error',
+            message:
+              "the VehicleCatalog directory 'missing/vehicles' does not exist beside this file nor in SCENARIO_PATH, so the catalog references that need it resolve nowhere",
+          },
+        ],
       );
       assert.ok(!problems.some((problem) => problem.code === 'unknown-catalog'), 'the missing directory is the one problem');
     });
@@ -125,9 +134,38 @@ describe('real file shapes: no false alarms (issue 27)', function () {
       );
     });
 
-    it('with --scenario-path whose folder holds the catalog: found there as esmini finds it, nothing reported', () => {
+    it('with --scenario-path whose folder holds the catalog: found there, nothing reported', () => {
       folder = temporaryWorkspace({ 'main.xosc': missingVehicles, 'shared/Vehicles/VehicleCatalog.xosc': VEHICLE_CATALOG });
       assert.deepEqual(check(folder, 'main.xosc', '--scenario-path', 'shared'), []);
+    });
+
+    // esmini 3.6 looks a catalog up as NAME.xosc in each --path folder itself, never in D/Vehicles: a run hands it the
+    // directory the check found, so what check accepts esmini loads, and what check refuses run does not start.
+    it('run: the catalog the check found through --scenario-path or --road-path is the one esmini loads; without either, nothing is run', function () {
+      requireEsmini(this);
+      const runnable = missingVehicles
+        .replace('<RoadNetwork/>', `<RoadNetwork><LogicFile filepath="${path.join(esminiRoads, 'straight_500m.xodr')}"/></RoadNetwork>`)
+        .replace(
+          '<Init><Actions/></Init>',
+          `<Init><Actions>${['Ego', 'Other']
+            .map(
+              (name, index) =>
+                `<Private entityRef="${name}"><PrivateAction><TeleportAction><Position><LanePosition roadId="1" laneId="-1" s="${20 + 30 * index}" offset="0"/></Position></TeleportAction></PrivateAction></Private>`,
+            )
+            .join('')}</Actions></Init>`,
+        );
+      folder = temporaryWorkspace({ 'main.xosc': runnable, 'shared/Vehicles/VehicleCatalog.xosc': VEHICLE_CATALOG });
+      const run = (...options: string[]) =>
+        runCli(['run', 'main.xosc', '--duration', '1', '--esmini', esminiBinary, ...options], { cwd: folder, schema: true });
+      for (const option of ['--scenario-path', '--road-path']) {
+        const ran = run(option, 'shared');
+        assert.equal(ran.status, 0, `${option}: ${ran.stderr}`);
+        assert.match(ran.stderr, /main\.xosc: esmini: 0 errors, /, `${option}: ${ran.stderr}`);
+      }
+      const refused = run();
+      assert.equal(refused.status, 1, refused.stderr);
+      assert.match(refused.stderr, /main\.xosc:\d+:\d+: error: the VehicleCatalog directory 'Catalogs\/Vehicles' does not exist/);
+      assert.match(refused.stderr, /main\.xosc: the scenario has 1 error; nothing was run/);
     });
   });
 
@@ -244,5 +282,41 @@ describe('real file shapes: no false alarms (issue 27)', function () {
       ),
     );
     assert.ok(problems.every((problem) => problem.severity === 'warning'));
+  });
+});
+
+describe('real file shapes: what a missing scenarioFileName says to do (issue 27)', function () {
+  this.timeout(60_000);
+  let folder: string;
+  afterEach(() => fs.rmSync(folder, { recursive: true, force: true }));
+
+  // The paper's result.mosc: a package holding only main.xosc, whose simple scenarios lie beside the library (SPEC 3:
+  // a package never searches its parent folders). It used to say "did you mean 'main.xosc'?", the file itself.
+  it("a package's main naming a file outside it: the SCENARIO_PATH hint, never the main itself; a misspelt name still gets its suggestion", async () => {
+    const main = scenario(outerGroup('Car', 'car', [{ file: 'simple_1.xosc', groups: [{ name: 'Go' }] }]));
+    const zip = new JSZip();
+    zip.file('main.xosc', main);
+    folder = temporaryWorkspace({
+      'simple_1.xosc': scenario(simpleGroup('Go')),
+      'misspelt/main.xosc': main.replace('simple_1.xosc', 'simple_l.xosc'),
+    });
+    fs.writeFileSync(path.join(folder, 'result.mosc'), await zip.generateAsync({ type: 'nodebuffer' }));
+    const line = main.split('\n').findIndex((text) => text.includes('simple_1.xosc')) + 1;
+    const packaged = check(folder, 'result.mosc').filter((problem) => problem.code === 'missing-file');
+    assert.deepEqual(
+      packaged.map(({ line }) => line),
+      [line],
+    );
+    const text = runCli(['check', 'result.mosc'], { cwd: folder });
+    assert.equal(text.status, 1, text.stderr);
+    assert.match(text.stderr, /result\.mosc\/main\.xosc:\d+:\d+: error: cannot find 'simple_1\.xosc'/);
+    assert.match(
+      text.stderr,
+      /hint: set SCENARIO_PATH \(--scenario-path, the modular2simple\.scenarioPath setting\) to the folder that holds it/,
+    );
+    assert.doesNotMatch(text.stderr, /did you mean 'main\.xosc'/);
+    assert.equal(runCli(['check', 'result.mosc', '--scenario-path', '.'], { cwd: folder }).status, 0);
+    const misspelt = runCli(['check', 'misspelt/main.xosc'], { cwd: folder });
+    assert.match(misspelt.stderr, /cannot find 'simple_l\.xosc'.*\n\s+hint: did you mean 'simple_1\.xosc'\?/);
   });
 });

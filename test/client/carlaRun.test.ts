@@ -1,7 +1,16 @@
 import * as assert from 'node:assert/strict';
+import * as fs from 'node:fs';
 import * as net from 'node:net';
 import * as path from 'node:path';
-import { missingRunSetting, reachable, runEndMessage, scenarioRunnerCommandLine, unreachableMessage } from '../../client/src/carla/run';
+import {
+  missingRunSetting,
+  reachable,
+  runEndMessage,
+  scenarioRunnerCommandLine,
+  startProblem,
+  unreachableMessage,
+} from '../../client/src/carla/run';
+import { temporaryFolder } from '../support/temporaryDirectory';
 
 const settings = { host: 'carla.local', port: 2000, scenarioRunner: '/opt/scenario_runner', python: '/usr/bin/python3' };
 
@@ -66,5 +75,28 @@ describe('client: Run in CARLA without a CARLA server', () => {
       assert.equal(end.ran, false);
       assert.match(end.message, /did not run to its end/);
     }
+  });
+
+  it('refuses to start a Python that is not there, or without scenario_runner.py, naming the setting: a task whose program cannot start never ends in VS Code', () => {
+    const folder = temporaryFolder();
+    const scenarioRunner = path.join(folder, 'scenario_runner');
+    fs.mkdirSync(scenarioRunner);
+    const bin = path.join(folder, 'bin');
+    fs.mkdirSync(bin);
+    const python = path.join(bin, 'python3');
+    fs.writeFileSync(python, '#!/bin/sh\n', { mode: 0o755 });
+    const at = { ...settings, scenarioRunner, python };
+    assert.match(startProblem(at, bin) ?? '', /no scenario_runner\.py in .*scenarioRunnerPath.*Nothing was run/);
+    fs.writeFileSync(path.join(scenarioRunner, 'scenario_runner.py'), '');
+    assert.equal(startProblem(at, bin), undefined);
+    assert.equal(startProblem({ ...at, python: 'python3' }, bin), undefined, 'a name found on PATH');
+    assert.match(
+      startProblem({ ...at, python: 'python3' }, scenarioRunner) ?? '',
+      /the Python python3 \(modular2simple\.carla\.python\) is not on PATH.*Nothing was run/,
+    );
+    const missing = path.join(folder, 'no-such-python');
+    assert.match(startProblem({ ...at, python: missing }, bin) ?? '', /is not an executable file.*Nothing was run/);
+    fs.writeFileSync(missing, '', { mode: 0o644 });
+    assert.match(startProblem({ ...at, python: missing }, bin) ?? '', /is not an executable file/, 'a file that cannot be executed');
   });
 });

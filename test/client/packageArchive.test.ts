@@ -92,7 +92,6 @@ describe('client: files inside .mosc packages (the mosc: file system)', () => {
   });
 
   it('dates each entry on its own, so saving one file leaves the others unchanged', async function () {
-    this.timeout(10_000);
     // ZIP dates have a resolution of two seconds.
     const simple = await archive.locate(`${outer}/inner.mosc/simple.xosc`);
     const shared = await archive.locate(`${outer}/lib/shared.xosc`);

@@ -51,7 +51,6 @@ describe('npm start: building esmini after the editor is open', () => {
   });
 
   it('reports the build as make goes, then where esmini is; a failed build is told and yields no program', async function () {
-    this.timeout(20_000);
     // Writes make's lines to DEST/build.log as it goes, then the program; make's 100 % comes right before it exits.
     const { dest, buildScript } = standInBuild(
       'set -e\nfor p in 5 25 26 60; do echo "[ $p%] Building CXX object x.o" >> "$1/build.log"; sleep 0.2; done\n' +
@@ -82,7 +81,6 @@ describe('npm start: building esmini after the editor is open', () => {
     }
   });
   it('stopping npm start stops the build with everything it started (make and the compilers run in its group)', async function () {
-    this.timeout(20_000);
     // Its "compiler" is a background sleep, as make's children are: it must end with the build.
     const { dest, buildScript } = standInBuild(
       'sleep 30 & echo $! > "$1/compiler.pid"\necho "[ 10%] Building CXX object x.o" >> "$1/build.log"\nwait\n',

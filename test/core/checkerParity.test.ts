@@ -220,9 +220,9 @@ describe("checker parity: RA Consulting's catalog loading", () => {
         reference ? '<CatalogReference catalogName="VehicleCatalog" entryName="car"/>' : '$&',
       );
 
-  it('a catalog directory that cannot be resolved is a warning at its path when a reference needs it, and no problem otherwise', async () => {
+  it('a catalog directory that cannot be resolved is an error at its path when a reference needs it, and no problem otherwise', async () => {
     const needed = await semanticsOf(withCatalog(true));
-    assert.ok(needed.includes('catalog-directory:warning:missing/vehicles'), needed.join('\n'));
+    assert.ok(needed.includes('catalog-directory:error:missing/vehicles'), needed.join('\n'));
     assert.deepEqual(await semanticsOf(withCatalog(false)), []);
   });
 });

@@ -15,20 +15,42 @@ function road(id: string, x: number, length: number, links: string, junction = '
   </road>`;
 }
 
-/** Road 1 (100 m) into junction 9, whose connecting roads 10 and 11 (both `lengths`) lead to road 2 (100 m). */
-function network(lengths: [number, number]): string {
+/** Road 1 (100 m) into junction 9, whose connecting roads (id, length, the road it leads to) follow it, in that order. */
+function junctionNetwork(branches: [string, number, string][]): string {
+  const ends = [...new Set(branches.map(([, , to]) => to))];
   return `<?xml version="1.0"?>
 <OpenDRIVE>
   <header revMajor="1" revMinor="6"><geoReference><![CDATA[+proj=tmerc +lat_0=57 +lon_0=12]]></geoReference></header>
   ${road('1', 0, 100, '<successor elementType="junction" elementId="9"/>')}
-  ${road('10', 100, lengths[0], '<predecessor elementType="road" elementId="1" contactPoint="end"/><successor elementType="road" elementId="2" contactPoint="start"/>', '9')}
-  ${road('11', 100, lengths[1], '<predecessor elementType="road" elementId="1" contactPoint="end"/><successor elementType="road" elementId="2" contactPoint="start"/>', '9')}
-  ${road('2', 120, 100, '<predecessor elementType="junction" elementId="9"/>')}
+  ${branches
+    .map(([id, length, to]) =>
+      road(
+        id,
+        100,
+        length,
+        `<predecessor elementType="road" elementId="1" contactPoint="end"/><successor elementType="road" elementId="${to}" contactPoint="start"/>`,
+        '9',
+      ),
+    )
+    .join('')}
+  ${ends.map((id) => road(id, 120, 100, '<predecessor elementType="junction" elementId="9"/>')).join('')}
   <junction id="9">
-    <connection id="0" incomingRoad="1" connectingRoad="10" contactPoint="start"><laneLink from="-1" to="-1"/></connection>
-    <connection id="1" incomingRoad="1" connectingRoad="11" contactPoint="start"><laneLink from="-1" to="-1"/></connection>
+    ${branches
+      .map(
+        ([id], index) =>
+          `<connection id="${index}" incomingRoad="1" connectingRoad="${id}" contactPoint="start"><laneLink from="-1" to="-1"/></connection>`,
+      )
+      .join('')}
   </junction>
 </OpenDRIVE>`;
+}
+
+/** Road 1 (100 m) into junction 9, whose connecting roads 10 and 11 (both `lengths`) lead to road 2 (100 m). */
+function network(lengths: [number, number]): string {
+  return junctionNetwork([
+    ['10', lengths[0], '2'],
+    ['11', lengths[1], '2'],
+  ]);
 }
 
 describe('a point along a route, as esmini plans it (core/opendrive/route)', () => {
@@ -61,7 +83,18 @@ describe('a point along a route, as esmini plans it (core/opendrive/route)', () 
       { roadId: '1', laneId: -1, s: 50 },
       { roadId: '2', laneId: -1, s: 30 },
     ];
-    assert.match(String(pointAlongRoute(roads, forward, 60)), /equally near/);
+    assert.equal(
+      pointAlongRoute(roads, forward, 60),
+      'from waypoint 1 to waypoint 2 two ways are equally short (roads 1 > 10 > 2, and 1 > 11 > 2) and the standard names no rule to choose (esmini takes the one its file lists first): add a Waypoint on road 10 or road 11 between them to say which',
+    );
+    const named = forward.map((waypoint, index) => ({ ...waypoint, name: `the Waypoint at route.xosc:${40 + index}` }));
+    assert.match(
+      String(pointAlongRoute(roads, named, 60)),
+      /^from the Waypoint at route\.xosc:40 to the Waypoint at route\.xosc:41 two ways/,
+    );
+    // The waypoint the message asks for settles it: the route through road 11.
+    const through11 = [forward[0], { roadId: '11', laneId: -1, s: 10 }, forward[1]];
+    assert.deepEqual(pointAlongRoute(roads, through11, 55), { roadId: '11', s: 5, roads: ['1', '11', '2'] });
     const backward = [
       { roadId: '2', laneId: -1, s: 30 },
       { roadId: '1', laneId: -1, s: 50 },
@@ -70,5 +103,19 @@ describe('a point along a route, as esmini plans it (core/opendrive/route)', () 
       String(pointAlongRoute(parseOpenDrive(network([20, 25])), backward, 60)),
       /road 2 ends without a link in the driving direction of lane -1/,
     );
+  });
+
+  it('takes a way that equally near road ends elsewhere do not change, whichever esmini takes first', () => {
+    // Road 1 into junction 9: connecting road 10 (20 m) leads to road 2, connecting road 12 (20 m) to road 3. The two
+    // road ends after the junction are equally near, but only one leads to road 2: every order gives 1 > 10 > 2.
+    const text = junctionNetwork([
+      ['10', 20, '2'],
+      ['12', 20, '3'],
+    ]);
+    const waypoints = [
+      { roadId: '1', laneId: -1, s: 50 },
+      { roadId: '2', laneId: -1, s: 30 },
+    ];
+    assert.deepEqual(pointAlongRoute(parseOpenDrive(text), waypoints, 55), { roadId: '10', s: 5, roads: ['1', '10', '2'] });
   });
 });

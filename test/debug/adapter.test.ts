@@ -43,7 +43,8 @@ async function startClient(): Promise<{ client: DebugClient; stderr: () => strin
   let stderr = '';
   const adapter = (client as unknown as { _adapterProcess?: ChildProcess })._adapterProcess;
   assert.ok(adapter);
-  const exited = adapter.exitCode !== null ? Promise.resolve() : once(adapter, 'exit');
+  // 'close', not 'exit': what the adapter wrote to stderr last may be read after its exit, and afterEach checks it.
+  const exited = adapter.exitCode !== null && adapter.stderr?.closed !== false ? Promise.resolve() : once(adapter, 'close');
   // The adapter's stderr carries its logged exceptions: a test fails when there is one.
   adapter.stderr?.on('data', (chunk: Buffer) => {
     stderr += chunk.toString();
@@ -327,6 +328,8 @@ describe('debug adapter through the Debug Adapter Protocol', function () {
         type: 'modular2simple',
         request: 'launch',
         program: cutIn,
+        // Its catalogs found (a missing catalog directory is an error, refused before the library is looked for).
+        roadPath,
         esminiLibrary: path.join(temporaryFolder(), 'nothing-here'),
       }),
       /bash \.\.\/shared\/esmini\/build\.sh \.cache\/esmini/,

@@ -15,7 +15,7 @@ const cutIn = path.join(openscenarioDir, 'esmini', 'cut-in.xosc');
 const roadPath = [esminiRoads, path.join(esminiCatalogs, 'Vehicles')];
 
 async function runAll(input: string): Promise<StoryboardEvent[]> {
-  const prepared = await prepareScenario(new Flattener(storeForInputs([], undefined, [input])), mainOf(input), { roadPath });
+  const prepared = await prepareScenario(new Flattener(storeForInputs([], undefined, [input], {}, roadPath)), mainOf(input), { roadPath });
   const simulation = new Simulation(prepared, { roadPath });
   try {
     const events = simulation.start();

@@ -2,6 +2,7 @@ import { spawnSync } from 'node:child_process';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { repoRoot } from '../support/paths';
+import { STALL_MS } from './limits';
 
 /** Where the bird's-eye tests find their scenario, road and run inside the e2e workspace. */
 export const BIRDS_EYE_FILES = {
@@ -27,8 +28,9 @@ export const HIGHWAY_MERGE_FILES = {
 /**
  * Puts the bird's-eye fixture into the workspace, with esmini's e6mini road in a folder that only the
  * road-path setting points at, and, when esmini is built, a run of it (CSV and log), as the runner would.
+ * `step` hears of each esmini run done, as the harness's progress: each run may take up to STALL_MS on a loaded machine.
  */
-export function prepareBirdsEye(workspace: string): void {
+export function prepareBirdsEye(workspace: string, step: (what: string) => void = () => undefined): void {
   const scenario = path.join(workspace, BIRDS_EYE_FILES.scenario);
   fs.mkdirSync(path.dirname(scenario), { recursive: true });
   fs.copyFileSync(path.join(repoRoot, 'test', 'fixtures', 'birdsEye', 'cut_in.xosc'), scenario);
@@ -58,15 +60,16 @@ export function prepareBirdsEye(workspace: string): void {
     {
       cwd: path.dirname(scenario),
       encoding: 'utf8',
-      timeout: 60_000,
+      timeout: STALL_MS,
     },
   );
   if (run.status !== 0) throw new Error(`esmini failed on the bird's-eye fixture (${run.status}):\n${run.stdout}\n${run.stderr}`);
   fs.writeFileSync(path.join(workspace, BIRDS_EYE_FILES.log), run.stdout);
-  prepareHighwayMerge(workspace, esmini, xodrFolder);
+  step(`running esmini on ${BIRDS_EYE_FILES.scenario}`);
+  prepareHighwayMerge(workspace, esmini, xodrFolder, step);
 }
 
-function prepareHighwayMerge(workspace: string, esmini: string, xodrFolder: string): void {
+function prepareHighwayMerge(workspace: string, esmini: string, xodrFolder: string, step: (what: string) => void): void {
   const original = path.resolve(repoRoot, '..', 'shared', 'corpus', 'openscenario', 'esmini', 'highway_merge.xosc');
   const catalog = path.resolve(repoRoot, '..', 'shared', 'esmini', 'Catalogs', 'Vehicles', 'VehicleCatalog.xosc');
   if (![original, catalog, path.join(xodrFolder, 'soderleden.xodr')].every((file) => fs.existsSync(file))) return;
@@ -103,9 +106,10 @@ function prepareHighwayMerge(workspace: string, esmini: string, xodrFolder: stri
         path.join(workspace, csv),
         '--disable_log',
       ],
-      { cwd: folder, encoding: 'utf8', timeout: 60_000 },
+      { cwd: folder, encoding: 'utf8', timeout: STALL_MS },
     );
     if (run.status !== 0) throw new Error(`esmini failed on ${scenario} (${run.status}):\n${run.stdout}\n${run.stderr}`);
     fs.writeFileSync(path.join(workspace, log), run.stdout);
+    step(`running esmini on ${scenario}`);
   }
 }

@@ -6,6 +6,7 @@ import * as os from 'node:os';
 import * as path from 'node:path';
 import type { Browser, Page } from 'playwright-core';
 import { repoRoot } from '../support/paths';
+import { STALL_MS } from './limits';
 
 /**
  * Runs the packaged extension inside a real VS Code: code-server 4.100.3 (installed by
@@ -18,13 +19,6 @@ export const CODE_SERVER =
 export const CHROMIUM = process.env.M2S_CHROMIUM ?? '/usr/bin/chromium';
 export const ARTIFACTS = path.join(repoRoot, 'test-results', 'e2e');
 const SETUP = 'scripts/e2e-setup.sh';
-
-/**
- * The longest the run may go without progress (a setup step done, a request from the tests inside VS Code),
- * rather than one limit for the whole run, which a busy machine overran: more than the longest limit an
- * inside test has of its own (120 s), so that a slow test fails there, by name, before the harness gives up.
- */
-export const STALL_MS = 180_000;
 
 /** Why the real-VS-Code tests cannot run here, or undefined when everything is installed. */
 export function missingTools(): string | undefined {

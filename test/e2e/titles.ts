@@ -43,10 +43,14 @@ export const INSIDE_TESTS = {
     "Export for CARLA… from the palette writes the 1.0 file and puts its losses as diagnostics on the simple scenario's lines; a refused export writes nothing",
   carlaCheck:
     "Check in CARLA ScenarioRunner from the palette, with ScenarioRunner 0.9.16 set up, puts ScenarioRunner's error on the source line of the simple scenario",
+  carlaRun:
+    "Run in CARLA starts scenario_runner.py on the 1.0 export with the host and port set, in ScenarioRunner's folder; a missing host, no server, an error exit or a Python that does not start is said and never called done",
   extractToSimple:
     'Extract to a simple scenario from the light bulb, with the pick list of attributes, replaces a group by a reference that flattens as before',
   libraryCompose:
     'a main composed from the Scenario Library view (a template, then a cut-in, a lead brake and a pedestrian inserted) in at most 5 steps checks clean',
+  libraryInsertHere:
+    'Insert library module here… from the light bulb on a ManeuverGroup picks a module in the quick pick and writes it after that group, clean',
   debugScenario:
     'F5 on a scenario stops on the breakpoint on its Event line with the entities in the Variables view; esmini crashing ends the session with a message and the editor lives',
   debugTimeline:

@@ -2,6 +2,7 @@ import { spawnSync } from 'node:child_process';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { repoRoot } from '../support/paths';
+import { STALL_MS } from './limits';
 
 /** Where the Variations test finds its batch inside the e2e workspace. */
 export const VARIATIONS_FILES = {
@@ -42,7 +43,8 @@ export function prepareVariations(workspace: string, roadFolder: string): void {
     {
       cwd: folder,
       encoding: 'utf8',
-      timeout: 120_000,
+      // 36 esmini runs two at a time: half a minute at a load of 20, more on a busier machine.
+      timeout: STALL_MS,
     },
   );
   if (run.status !== 0) throw new Error(`the batch for the Variations test failed (${run.status}):\n${run.stdout}\n${run.stderr}`);

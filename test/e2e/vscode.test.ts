@@ -8,7 +8,6 @@ import {
   ARTIFACTS,
   HarnessEndpoint,
   Progress,
-  STALL_MS,
   buildInsideSuite,
   copyFolder,
   createProfile,
@@ -23,6 +22,7 @@ import {
   type InsideResult,
   type Profile,
 } from './harness';
+import { PAGE_ACTION_MS, STALL_MS } from './limits';
 import { repoRoot } from '../support/paths';
 import { temporaryFolder } from '../support/temporaryDirectory';
 import { HARNESS_ENV, INSIDE_TESTS } from './titles';
@@ -30,7 +30,7 @@ import { BIRDS_EYE_FILES, prepareBirdsEye } from './birdsEyeSetup';
 import { prepareVariations } from './variationsSetup';
 
 /** The example workspace, plus two packages the tests need: one nested in another, one broken. */
-async function prepareWorkspace(profile: Profile): Promise<string> {
+async function prepareWorkspace(profile: Profile, progress: Progress): Promise<string> {
   const workspace = path.join(profile.root, 'examples');
   copyFolder(path.join(repoRoot, 'examples'), workspace);
   const braking = fs.readFileSync(path.join(workspace, 'braking.mosc'));
@@ -50,7 +50,7 @@ async function prepareWorkspace(profile: Profile): Promise<string> {
     path.join(workspace, 'broken.mosc'),
     Buffer.concat([Buffer.from('PK\x03\x04'), Buffer.from('this is not the rest of a ZIP archive\n'.repeat(8))]),
   );
-  prepareBirdsEye(workspace);
+  prepareBirdsEye(workspace, (what) => progress.step(what));
   prepareVariations(workspace, BIRDS_EYE_FILES.roadFolder);
   return workspace;
 }
@@ -91,13 +91,13 @@ function servePage(endpoint: HarnessEndpoint, page: Page): void {
     const { title } = body as { title: string };
     await page.keyboard.press('F1');
     const input = page.locator('.quick-input-widget input');
-    await input.waitFor({ state: 'visible', timeout: 10_000 });
+    await input.waitFor({ state: 'visible', timeout: PAGE_ACTION_MS });
     await input.fill(`>${title}`);
     // Enter runs the focused row: wait until the filter has put this command there.
     await page
       .locator('.quick-input-list .monaco-list-row.focused')
       .filter({ hasText: title.split(': ').pop() ?? title })
-      .waitFor({ timeout: 10_000 });
+      .waitFor({ timeout: PAGE_ACTION_MS });
     await page.keyboard.press('Enter');
     return {};
   });
@@ -151,7 +151,7 @@ function servePage(endpoint: HarnessEndpoint, page: Page): void {
     for (const frame of page.frames()) {
       const target = frame.locator('a, button').filter({ hasText: text }).first();
       if ((await target.count().catch(() => 0)) > 0) {
-        await target.click({ timeout: 10_000 });
+        await target.click({ timeout: PAGE_ACTION_MS });
         return { clicked: true };
       }
     }
@@ -163,7 +163,7 @@ function servePage(endpoint: HarnessEndpoint, page: Page): void {
     for (const frame of page.frames()) {
       const target = frame.locator(selector).filter({ hasText: text }).first();
       if ((await target.count().catch(() => 0)) > 0) {
-        await target.click({ timeout: 10_000 });
+        await target.click({ timeout: PAGE_ACTION_MS });
         return { clicked: true };
       }
     }
@@ -226,7 +226,7 @@ describe('the packaged extension in a real VS Code (code-server, headless Chromi
     let runner: { extensionPath: string; testsPath: string } | undefined;
     const automationLog: string[] = [];
     try {
-      const workspace = await prepareWorkspace(profile);
+      const workspace = await prepareWorkspace(profile, progress);
       progress.step('preparing the workspace');
       const vsix = packageExtension(profile.root);
       progress.step('packaging the extension');

@@ -78,7 +78,6 @@ function summarize(root: string, locations: Location[], texts: Record<string, st
 }
 
 describe('a catalog entry parameter across files: references and rename through ParameterAssignment (JSON-RPC)', function () {
-  this.timeout(30_000);
   let root: string;
   let client: TestClient;
   const uriOf = (relative: string) => fileUri(path.join(root, relative));
@@ -189,7 +188,6 @@ describe('a catalog entry parameter across files: references and rename through 
 });
 
 describe('a catalog entry parameter set from inside a .mosc package (JSON-RPC)', function () {
-  this.timeout(30_000);
   let root: string;
   let client: TestClient;
 

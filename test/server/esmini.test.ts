@@ -429,13 +429,11 @@ describe('esmini: runs (the simulator built by the test setup)', function () {
 
   it('stops a scenario whose own StopTrigger never fires at the time limit', async function () {
     requireEsmini(this);
-    const started = Date.now();
     const result = await run(new ScenarioStore({ root: examples }), path.join(examples, 'main.xosc'), { duration: 2.5 });
     assert.equal(result.end, 'exited');
     assert.equal(result.exitCode, 0);
     const last = lastCsvTime(result.csvFile as string) as number;
     assert.ok(last > 2.5 && last <= 2.5 + 0.05 + 1e-9, `last row at ${last} s`);
-    assert.ok(Date.now() - started < 30_000);
   });
 });
 

@@ -118,7 +118,7 @@ export class TestClient {
             child.kill('SIGKILL');
           },
           // Told to exit, the server removes what it keeps in the temporary directory; one that does not is killed.
-          exited: () => Promise.race([exited, new Promise<void>((resolve) => setTimeout(resolve, 10_000))]),
+          exited: () => Promise.race([exited, new Promise<void>((resolve) => setTimeout(resolve, SERVER_WAIT_MS))]),
         },
         undefined,
       );

@@ -54,7 +54,6 @@ function decodeTokens(text: string, tokens: SemanticTokens): string[] {
 }
 
 describe('editor features on the semantic model: $name, ${...} and catalogs (JSON-RPC)', function () {
-  this.timeout(30_000);
   let root: string;
   let client: TestClient;
   let uri: string;
@@ -405,7 +404,6 @@ describe('editor features on the semantic model: $name, ${...} and catalogs (JSO
 });
 
 describe('editor features across a composition: provenance and the source value of a declaration', function () {
-  this.timeout(30_000);
   const fixtures = path.join(repoRoot, 'test', 'fixtures', 'semantics');
   let client: TestClient;
 

@@ -73,6 +73,13 @@ async function flattened(client: TestClient, uri: string, force = false): Promis
   return result.text;
 }
 
+/** Whether the file's only errors are CatalogLocations directories found nowhere (esmini's samples name ../xosc/Catalogs, esmini's repository layout): then it is compared flattened with force, as modularize compares such inputs. */
+async function lacksOnlyCatalogs(client: TestClient, uri: string): Promise<boolean> {
+  const result = await client.send(FlattenToTextRequest, { uri, options: { force: false } });
+  const errors = result.problems.filter((problem) => problem.severity === 'error');
+  return result.text === null && errors.length > 0 && errors.every((problem) => problem.code === 'catalog-directory');
+}
+
 async function refactorings(client: TestClient, uri: string, text: string, offset: number, only: string[]): Promise<CodeAction[]> {
   const position = positionAt(text, offset);
   return client.request<CodeAction[]>('textDocument/codeAction', {
@@ -111,7 +118,8 @@ describe('refactorings over JSON-RPC on the corpus (issue 19)', function () {
       const model = buildModel(parseXml(text));
       if (model.groups.length === 0 || model.references.length > 0) continue;
       const uri = await client.openFile(file);
-      const before = await flattened(client, uri);
+      const force = await lacksOnlyCatalogs(client, uri);
+      const before = await flattened(client, uri, force);
       for (const group of model.groups) {
         const actions = await refactorings(client, uri, text, group.element.start + 3, ['refactor.extract']);
         const action = actions.find((candidate) => candidate.kind === 'refactor.extract.simpleScenario');
@@ -126,15 +134,15 @@ describe('refactorings over JSON-RPC on the corpus (issue 19)', function () {
         assert.equal(created.length, 1, `${name}: one simple scenario is created`);
         assert.match(fs.readFileSync(created[0], 'utf8'), /<Storyboard>/);
         assert.match(open.get(uri) as string, /<ScenarioReference scenarioFileName="[^"]+\.xosc">/);
-        const after = await flattened(client, uri);
+        const after = await flattened(client, uri, force);
         assert.equal(
           firstDifference(after, before),
           undefined,
           `${name}: group '${group.name}' extracted to ${path.basename(created[0])} flattens differently`,
         );
-        // The simple scenario stands on its own: it flattens (it is a plain scenario) with no error.
+        // The simple scenario stands on its own: it flattens (it is a plain scenario) with no error (forced as its source, whose catalogs are absent).
         const simpleUri = await client.openFile(created[0]);
-        await flattened(client, simpleUri);
+        await flattened(client, simpleUri, force);
         await client.close(simpleUri);
         // Back to the scenario as it was, for its next group.
         await client.change(uri, [{ text }]);
@@ -158,14 +166,15 @@ describe('refactorings over JSON-RPC on the corpus (issue 19)', function () {
     const text = fs.readFileSync(file, 'utf8');
     const uri = await client.openFile(file);
     const open = new Map([[uri, text]]);
-    const before = await flattened(client, uri);
+    const force = await lacksOnlyCatalogs(client, uri);
+    const before = await flattened(client, uri, force);
     const group = buildModel(parseXml(text)).groups[0];
     const position = positionAt(text, group.element.start + 1);
     const result = await client.send(ExtractGroupRequest, { uri, position, attributes: [] });
     // No attribute chosen: only the group's name, which the outer name alone cannot give, is listed.
     assert.deepEqual(result.parameters, ['ManeuverGroup.name']);
     await applyWorkspaceEdit(client, result.edit, open);
-    assert.equal(firstDifference(await flattened(client, uri), before), undefined);
+    assert.equal(firstDifference(await flattened(client, uri, force), before), undefined);
     await client.close(uri);
 
     const other = await TestClient.start({ root, workspaceEdit: { documentChanges: false } });

@@ -70,7 +70,6 @@ function itemsOf(items: CompletionItem[] | { items: CompletionItem[] } | null): 
 }
 
 describe('server: OpenSCENARIO schema completion, hover and validation (over JSON-RPC)', function () {
-  this.timeout(30_000);
   let client: TestClient;
   let root: string;
 

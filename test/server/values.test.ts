@@ -12,6 +12,7 @@ import {
   WorkspaceEdit,
 } from 'vscode-languageserver/node';
 import { TestClient } from './harness';
+import { SERVER_WAIT_MS } from '../support/wait';
 import { applyEdits, inside } from '../support/textEdits';
 import { problemCodeOf } from '../support/diagnostics';
 import { temporaryWorkspace } from '../support/workspace';
@@ -53,7 +54,6 @@ const VALUES = `<?xml version="1.0" encoding="UTF-8"?>
 const lineOf = (needle: string) => VALUES.slice(0, VALUES.indexOf(needle)).split('\n').length - 1;
 
 describe('values as the simulator computes them, and the severity policy (JSON-RPC)', function () {
-  this.timeout(30_000);
   let root: string;
   const clients: TestClient[] = [];
 
@@ -153,7 +153,7 @@ describe('values as the simulator computes them, and the severity policy (JSON-R
     // The settings arrive after the first analysis: ask again until the analysis under them answers.
     const range = { start: { line: 0, character: 0 }, end: { line: 100, character: 0 } };
     let label: InlayHint['label'] | undefined;
-    for (let attempt = 0; attempt < 100 && label !== '= -1 (standard 3)'; attempt++) {
+    for (let attempt = 0, deadline = Date.now() + SERVER_WAIT_MS; label !== '= -1 (standard 3)' && Date.now() < deadline; attempt++) {
       if (attempt > 0) await new Promise((resolve) => setTimeout(resolve, 100));
       const hints = await client.request<InlayHint[]>('textDocument/inlayHint', { textDocument: { uri }, range });
       label = hints.find((hint) => hint.position.line === lineOf('name="Mod"'))?.label;

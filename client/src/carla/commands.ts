@@ -7,7 +7,15 @@ import { commandTargets } from '../commands';
 import type { ServerCommandClient } from '../languageClient';
 import { PlacedDiagnostics } from '../placedDiagnostics';
 import { problemLine } from '../placed';
-import { missingRunSetting, reachable, runEndMessage, scenarioRunnerCommandLine, unreachableMessage, type CarlaRunSettings } from './run';
+import {
+  missingRunSetting,
+  reachable,
+  runEndMessage,
+  scenarioRunnerCommandLine,
+  startProblem,
+  unreachableMessage,
+  type CarlaRunSettings,
+} from './run';
 
 export const CHECK_IN_SCENARIO_RUNNER_COMMAND = 'modular2simple.checkInScenarioRunner';
 export const RUN_IN_CARLA_COMMAND = 'modular2simple.runInCarla';
@@ -147,6 +155,14 @@ export class CarlaCommands implements vscode.Disposable {
       });
       return { ran: false, message: missing };
     }
+    const cannotStart = startProblem(settings);
+    if (cannotStart) {
+      const setting = cannotStart.includes('scenario_runner.py') ? 'scenarioRunnerPath' : 'python';
+      void vscode.window.showErrorMessage(cannotStart, 'Open Settings').then((choice) => {
+        if (choice) openSettings(setting);
+      });
+      return { ran: false, message: cannotStart };
+    }
     const name = path.posix.basename(target.path).replace(/\.(xosc|mosc)$/i, '');
     const folder = path.join(this.storage.fsPath, 'carla-runs');
     fs.mkdirSync(folder, { recursive: true });
@@ -176,12 +192,20 @@ export class CarlaCommands implements vscode.Disposable {
       new vscode.ProcessExecution(line.program, line.args, { cwd: line.cwd }),
     );
     const execution = await vscode.tasks.executeTask(task);
+    // The process's end carries its exit code; the task's end alone (a process that never started) means no code.
     const end = await new Promise<number | undefined>((resolve) => {
-      const listener = vscode.tasks.onDidEndTaskProcess((event) => {
-        if (event.execution !== execution) return;
-        listener.dispose();
-        resolve(event.exitCode);
-      });
+      const listeners = [
+        vscode.tasks.onDidEndTaskProcess((event) => {
+          if (event.execution === execution) finish(event.exitCode);
+        }),
+        vscode.tasks.onDidEndTask((event) => {
+          if (event.execution === execution) finish(undefined);
+        }),
+      ];
+      const finish = (code: number | undefined): void => {
+        for (const listener of listeners) listener.dispose();
+        resolve(code);
+      };
     });
     const outcome = runEndMessage(name, end);
     this.output.appendLine(outcome.message);

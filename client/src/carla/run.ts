@@ -1,3 +1,4 @@
+import * as fs from 'node:fs';
 import * as net from 'node:net';
 import * as path from 'node:path';
 
@@ -32,6 +33,38 @@ export function missingRunSetting(settings: CarlaRunSettings): string | undefine
     return `Run in CARLA: modular2simple.carla.port is ${settings.port}, not a port (1 to 65535); nothing was run.`;
   if (!settings.scenarioRunner.trim())
     return 'Run in CARLA: set modular2simple.carla.scenarioRunnerPath to the folder of CARLA ScenarioRunner (the one holding scenario_runner.py); nothing was run.';
+  return undefined;
+}
+
+/** Whether `file` is a file this process may execute. */
+function executable(file: string): boolean {
+  try {
+    fs.accessSync(file, fs.constants.X_OK);
+    return fs.statSync(file).isFile();
+  } catch {
+    return false;
+  }
+}
+
+/**
+ * Why ScenarioRunner cannot be started with these settings: no scenario_runner.py in its folder, or a Python that is
+ * neither an executable file (a path) nor found on PATH (a name). A task whose program cannot start never reports
+ * an end in VS Code, so this is checked before the task is started. Undefined when both are there.
+ */
+export function startProblem(settings: CarlaRunSettings, searchPath = process.env.PATH ?? ''): string | undefined {
+  const script = path.join(settings.scenarioRunner, 'scenario_runner.py');
+  if (!fs.existsSync(script))
+    return `Run in CARLA: there is no scenario_runner.py in ${settings.scenarioRunner}; set modular2simple.carla.scenarioRunnerPath to the folder of CARLA ScenarioRunner that holds it. Nothing was run.`;
+  const python = settings.python.trim() || 'python3';
+  const found =
+    python.includes('/') || python.includes(path.sep)
+      ? executable(path.resolve(settings.scenarioRunner, python))
+      : searchPath
+          .split(path.delimiter)
+          .filter((folder) => folder)
+          .some((folder) => executable(path.join(folder, python)));
+  if (!found)
+    return `Run in CARLA: the Python ${python} (modular2simple.carla.python) ${python.includes('/') ? 'is not an executable file' : 'is not on PATH'}; set it to a Python 3 that has ScenarioRunner's requirements. Nothing was run.`;
   return undefined;
 }
 

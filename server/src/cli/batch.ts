@@ -2,7 +2,7 @@ import { createHash } from 'node:crypto';
 import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
-import { BatchPlanView, concreteRun, limitWarning, searchPathOf, variedParameters } from '../batch/plan';
+import { BatchPlanView, concreteRun, limitWarning, namedPaths, searchPathOf, variedParameters } from '../batch/plan';
 import { Progress, Tally } from '../batch/progress';
 import { loadQueueModule, QueuePackagesMissingError } from '../batch/queuePackages';
 import { CriterionError, parseCriterion } from '../batch/criteria';
@@ -12,7 +12,7 @@ import type { PackagedFile } from '../core/flatten/types';
 import { FileKind, nodeFileSystem, splitScenarioPath } from '../core/sources';
 import { loadVariations, rebasedConcreteText, samplingProblem, SamplingError } from '../core/variations';
 import { locateEsmini } from '../esmini/locate';
-import { RUN_DEFAULTS } from '../esmini/run';
+import { foundCatalogFolders, RUN_DEFAULTS } from '../esmini/run';
 import {
   CliCommand,
   CliOutput,
@@ -25,6 +25,7 @@ import {
   wholeNumber,
 } from './common';
 import { flatteningScenarioLoader, readDistributionFile, scenarioFolderOf } from './scenarioText';
+import { storeForInputs } from './inputs';
 import { chosenIndices, problemPrinter, samplingOptions } from './vary';
 
 export const BATCH_HELP = `Run every concrete scenario of a distribution in esmini (modular2simple batch FILE --results DIR ...):
@@ -132,11 +133,9 @@ async function runBatch(argv: string[], io: CliOutput): Promise<number> {
   const { path: distributionPath, text: distributionText } = distribution;
   const base = process.cwd();
   const packagedFiles: PackagedFile[] = [];
-  const loaded = await loadVariations(
-    distributionText,
-    distributionPath,
-    flatteningScenarioLoader((values['scenario-path'] ?? []).flatMap(splitScenarioPath), packagedFiles),
-  );
+  const scenarioPath = (values['scenario-path'] ?? []).flatMap(splitScenarioPath);
+  const roadPath = (values['road-path'] ?? []).flatMap(splitScenarioPath);
+  const loaded = await loadVariations(distributionText, distributionPath, flatteningScenarioLoader(scenarioPath, packagedFiles, roadPath));
   const printProblems = problemPrinter(loaded, values.quiet, io, base);
   printProblems();
   const variations = loaded.variations;
@@ -163,7 +162,10 @@ async function runBatch(argv: string[], io: CliOutput): Promise<number> {
   };
   const parameterNames = variedParameters(variations);
   const scenarioFolder = scenarioFolderOf(variations.scenarioPath);
-  const searchPath = searchPathOf(variations.scenario.text, scenarioFolder, (values['road-path'] ?? []).flatMap(splitScenarioPath));
+  // esmini gets the catalog directories the flattening found through the scenario path, as run does.
+  const catalogStore = storeForInputs(scenarioPath, undefined, [variations.scenarioPath], {}, roadPath);
+  const found = await foundCatalogFolders(catalogStore, scenarioFolder, namedPaths(variations.scenario.text).catalogFolders);
+  const searchPath = searchPathOf(variations.scenario.text, scenarioFolder, [...found, ...roadPath]);
   const plan: BatchPlanView = { variations, chosen, parameterNames, searchPath, scenarioFolder, packagedFiles };
   const warning = limitWarning(plan, duration);
   if (warning) io.err(`${positionals[0]}: warning: ${warning}`);

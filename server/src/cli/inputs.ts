@@ -22,6 +22,7 @@ export function storeForInputs(
   root: string | undefined,
   inputs: string[],
   limits: Partial<Limits> = {},
+  catalogPath: string[] = [],
 ): ScenarioStore {
   const cwd = process.cwd();
   const firstInput = inputs[0] ? path.resolve(inputs[0]) : cwd;
@@ -29,6 +30,7 @@ export function storeForInputs(
   const inputFolder = fs.existsSync(firstInput) && fs.statSync(firstInput).isDirectory() ? firstInput : path.dirname(firstInput);
   return new ScenarioStore({
     scenarioPath: [...scenarioPath, ...splitScenarioPath(process.env.SCENARIO_PATH)],
+    catalogPath: catalogPath.map((folder) => path.resolve(folder)),
     root: root ?? (insideCwd ? cwd : inputFolder),
     workingDirectory: cwd,
     limits,

@@ -94,7 +94,10 @@ async function runCommand(args: string[], io: CliOutput): Promise<number> {
   if (values.trace !== undefined && inputs.length > 1) throw new UsageError('--trace takes one input');
   for (const input of inputs) if (!fs.existsSync(input)) throw new InputError(`${input}: no such file or folder`);
   const roadPath = (values['road-path'] ?? []).flatMap(splitScenarioPath);
-  const flattener = new Flattener(storeForInputs((values['scenario-path'] ?? []).flatMap(splitScenarioPath), undefined, inputs));
+  // esmini searches the road folders for catalogs too (its --path): so does the check before the run.
+  const flattener = new Flattener(
+    storeForInputs((values['scenario-path'] ?? []).flatMap(splitScenarioPath), undefined, inputs, {}, roadPath),
+  );
   let failed = false;
   let notRun = false;
   let errors = 0;

@@ -33,7 +33,11 @@ const REFERENCE = /<ScenarioReference\b/;
  * then spliced into the flattened text. A scenario that cannot be flattened is refused with its problems.
  * `packagedFiles` receives the files of a self-contained package the text names beside its folder (`flattened.files/`).
  */
-export function flatteningScenarioLoader(scenarioPath: string[] = [], packagedFiles?: PackagedFile[]): ScenarioTextLoader {
+export function flatteningScenarioLoader(
+  scenarioPath: string[] = [],
+  packagedFiles?: PackagedFile[],
+  catalogPath: string[] = [],
+): ScenarioTextLoader {
   return async (file: string): Promise<string> => {
     const isFolder = fs.existsSync(file) && fs.statSync(file).isDirectory();
     if (!isFolder && !file.toLowerCase().endsWith('.mosc')) {
@@ -42,7 +46,7 @@ export function flatteningScenarioLoader(scenarioPath: string[] = [], packagedFi
     } else if (!fs.existsSync(file)) {
       throw Object.assign(new Error('no such file'), { code: 'ENOENT' });
     }
-    const flattener = new Flattener(storeForInputs(scenarioPath, undefined, [file]));
+    const flattener = new Flattener(storeForInputs(scenarioPath, undefined, [file], {}, catalogPath));
     const result = await flattener.flatten(mainOf(file));
     if (result.text !== undefined) {
       packagedFiles?.push(...result.files);

@@ -1,4 +1,4 @@
-import { editDistance } from './text';
+import { editDistance, ownString } from './text';
 import { ManeuverGroupInfo, ParameterAttributeName, ParameterReferenceInfo, ScenarioModel } from './model';
 import { XmlElement } from './xml';
 import { coreMemo } from './memos';
@@ -211,7 +211,7 @@ function reachOf(key: string, targets: OverridableAttribute[]): KeyReach {
     const parts = key.split('.');
     const reached = targets.filter((target) => partsMatch(parts, target));
     reach = { reached, suggestion: reached.length === 0 ? suggestKey(key, targets) : undefined, specificity: specificity(key) };
-    known.set(key, reach);
+    known.set(ownString(key), reach);
   }
   return reach;
 }

@@ -3,7 +3,7 @@ import * as path from 'node:path';
 import { Flattener } from './flatten';
 import { buildModel } from './model';
 import { notAPlainScenario } from './modularize';
-import { Limits, ScenarioStore, diskRef, refId } from './sources';
+import { LibraryFolder, Limits, ScenarioStore, diskRef, refId } from './sources';
 import { countEditorLines } from './text';
 import { parseXml } from './xml';
 
@@ -52,6 +52,10 @@ function scenarioFilesBelow(root: string): string[] {
  * sides), and each file a main imports is counted once among the shared simple scenarios. Catalogs and
  * parameter distributions are neither.
  */
+function isWithin(folder: string, file: string): boolean {
+  return file.startsWith(folder + path.sep);
+}
+
 async function filesLayout(
   root: string,
   flattener: Flattener,
@@ -68,12 +72,19 @@ async function filesLayout(
   }
   const counted = new Set(scenarios.map((scenario) => scenario.file));
   const imported = new Set<string>();
+  // Simple scenarios outside the folder (a library's modules, a scenario path's files): written once, counted once.
+  const outside = new Map<string, number>();
   const flattenedLines = new Map<string, number>();
   for (const scenario of scenarios.filter((candidate) => candidate.main)) {
     const flattened = await flattener.flatten(diskRef(scenario.file));
     for (const dependency of flattened.source.dependencies) {
       const id = refId(dependency);
-      if (dependency.entries.length === 0 && id !== scenario.file && counted.has(id)) imported.add(id);
+      if (dependency.entries.length > 0 || id === scenario.file) continue;
+      if (counted.has(id)) imported.add(id);
+      else if (!isWithin(root, id) && !outside.has(id)) {
+        const text = await readText(id);
+        if (text !== undefined) outside.set(id, countEditorLines(text));
+      }
     }
     if (flattened.text !== undefined) flattenedLines.set(scenario.file, countEditorLines(flattened.text));
     else
@@ -88,7 +99,7 @@ async function filesLayout(
         : `no scenario of ${root} imports groups (no ScenarioReference): there is nothing modular to count`,
     );
   const rows: StatsRow[] = [];
-  const shared = new Map<string, number>();
+  const shared = new Map<string, number>(outside);
   for (const scenario of scenarios) {
     if (imported.has(scenario.file)) {
       shared.set(scenario.file, scenario.lines);
@@ -114,6 +125,10 @@ export async function libraryStats(
   workingDirectory?: string,
   /** Folders searched after the library's own (the CLI's --scenario-path, then SCENARIO_PATH), as `check` searches them. */
   scenarioPath: readonly string[] = [],
+  /** The scenario libraries `library:NAME` resolves in, as `check` has them; their modules a main uses count as shared. */
+  libraries: LibraryFolder[] = [],
+  /** Where the mains' search upward stops (the CLI's --root); the library folder by default. */
+  searchRoot?: string,
 ): Promise<LibraryStats> {
   const root = path.resolve(library);
   const folders = fs
@@ -123,10 +138,11 @@ export async function libraryStats(
     .sort();
   // The paper's mains name the shared simple scenarios beside their folders; modularize's name them by relative path (simple/NAME.xosc).
   const store = new ScenarioStore({
-    root,
+    root: searchRoot === undefined ? root : path.resolve(searchRoot),
     scenarioPath: [...(folders.length > 0 ? [root] : []), ...scenarioPath],
     limits,
     workingDirectory,
+    libraries,
   });
   const flattener = new Flattener(store);
   const problems: string[] = [];

@@ -66,6 +66,16 @@ export class LineIndex {
   }
 }
 
+/**
+ * The same characters in a string of their own. A value read from a file is a slice of the file's text, and V8
+ * keeps a slice of 13 characters or more as a view that holds the whole text: a memo that outlives the parse
+ * (keyed by an imported group) would keep every version of the main file's text that wrote one of its keys.
+ */
+export function ownString(text: string): string {
+  // Read back from its JSON, a string is made anew (concatenating and slicing again gives V8 a view of the text once more).
+  return text.length < 13 ? text : (JSON.parse(JSON.stringify(text)) as string);
+}
+
 /** Lines as an editor shows them: a last line without a newline counts, an empty file has none. */
 export function countEditorLines(text: string): number {
   if (text.length === 0) return 0;

@@ -19,6 +19,7 @@ import { DEBUG_STATE_EVENT, DebugState } from '../../../common/src/debugState';
 import { Flattener } from '../core/flatten';
 import { MappedElement } from '../core/flatten/storyboardMap';
 import { Problem } from '../core/problems';
+import { roadFolders } from '../core/semantics/roadFiles';
 import { childRef, diskRef, displayRef, ScenarioStore, SourceRef, splitScenarioPath } from '../core/sources';
 import { EsminiLibraryError } from '../esmini/library';
 import { EsminiProblem } from '../esmini/messages';
@@ -59,6 +60,8 @@ export function reportProgressTo(sink: ((progress: SessionProgress) => void) | u
 }
 /** While running, the bird's-eye view gets the entities at most this often (wall ms): enough to watch them move. */
 const STATE_INTERVAL_MS = 100;
+/** Wall ms of stepping between two turns of the event loop, where requests (pause) are read. */
+const SLICE_MS = 15;
 const ELEMENT_KINDS = 'Story, Act, ManeuverGroup, Maneuver, Event, Action or Condition';
 
 interface LineBreakpoint {
@@ -209,6 +212,8 @@ export class ScenarioDebugSession extends DebugSession {
     };
     const store = new ScenarioStore({
       scenarioPath: [...(args.scenarioPath ?? []), ...splitScenarioPath(process.env.SCENARIO_PATH)],
+      // esmini is handed the road folders as --path, where it finds catalogs too: so does the check before the run.
+      catalogPath: roadFolders(args.roadPath, base),
       root: fs.statSync(program).isDirectory() ? program : path.dirname(program),
       workingDirectory: base,
     });
@@ -424,23 +429,30 @@ export class ScenarioDebugSession extends DebugSession {
     this.running = true;
     this.pauseRequested = false;
     this.stopped = undefined;
+    /** Steps between two reads of the clock in a slice. */
+    let stride = 1;
     const slice = () => {
       if (!this.running || this.simulation !== simulation) return;
       try {
         reportProgress?.({ time: simulation.time, what: 'stepping on from there' });
-        // Steps in slices of a few milliseconds, so that a pause request is read between them.
-        const until = Date.now() + 15;
+        // Steps in slices of a few milliseconds, so that a pause request (or a change of breakpoints) is read between them.
+        if (this.pauseRequested)
+          return this.stopWith({ reason: 'pause', description: `Paused at ${fixed(simulation.time)} s`, firings: [], breakpointIds: [] });
+        const timed = this.functionBreakpoints.some((breakpoint) => breakpoint.time !== undefined && !breakpoint.done);
+        const until = Date.now() + SLICE_MS;
+        let steps = 0;
         do {
-          if (this.pauseRequested)
-            return this.stopWith({ reason: 'pause', description: `Paused at ${fixed(simulation.time)} s`, firings: [], breakpointIds: [] });
           if (simulation.ended) return this.finished(simulation);
           const events = simulation.step();
+          steps++;
           // Most steps report nothing: no breakpoint to weigh unless a time breakpoint is due (bench/debugger.mjs).
-          if (events.length === 0 && mode !== 'step' && !this.timeBreakpointDue(simulation)) continue;
+          if (events.length === 0 && mode !== 'step' && !(timed && this.timeBreakpointDue(simulation))) continue;
           this.report(events);
           const stop = this.breakpointStop(simulation, events) ?? this.stepStop(simulation, events, mode, stepOutOf);
           if (stop) return this.stopWith(stop);
-        } while (Date.now() < until);
+        } while (steps % stride !== 0 || Date.now() < until);
+        // The clock read about a hundred times a slice: a read costs a twentieth of a small scenario's step (docs/benchmarks.md).
+        stride = Math.min(64, Math.max(1, Math.floor(steps / 100)));
         if (Date.now() - this.lastStateAt >= STATE_INTERVAL_MS) this.publishState(simulation, false);
         setImmediate(slice);
       } catch (error) {

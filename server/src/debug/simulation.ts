@@ -11,7 +11,7 @@ import { EsminiLibrary, EsminiObjectState, loadEsminiLibrary } from '../esmini/l
 import { readEsminiLog } from '../esmini/log';
 import { EsminiProblem, mapEsminiMessages } from '../esmini/messages';
 import { makeRunFolder } from '../esmini/process';
-import { catalogFolders, RUN_DEFAULTS, sourceFolderOf, withRoadFile } from '../esmini/run';
+import { esminiSearchPath, RUN_DEFAULTS, sourceFolderOf, withRoadFile } from '../esmini/run';
 import { CONDITION_LOG, ConditionReason, conditionReason, storyboardMapOf } from '../esmini/storyboardTrace';
 import { runLimit } from '../esmini/timeLimit';
 
@@ -112,7 +112,7 @@ export async function prepareScenario(flattener: Flattener, main: SourceRef, opt
   return {
     main,
     text,
-    searchPath: [...new Set([sourceFolder, ...catalogFolders(flat.source, sourceFolder), ...folders])],
+    searchPath: await esminiSearchPath(flattener, main, flat.source, folders),
     flat: flat.source,
     map,
     flattenProblems: flat.problems,

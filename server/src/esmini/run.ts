@@ -4,7 +4,8 @@ import * as path from 'node:path';
 import { Flattener, FlatSource } from '../core/flatten';
 import { Problem } from '../core/problems';
 import { logicFileOf, resolveRoadFile, roadFolders, scenarioFolderOf } from '../core/semantics/roadFiles';
-import { nodeFileSystem, SourceRef } from '../core/sources';
+import { diskRef, nodeFileSystem, ScenarioStore, SourceRef } from '../core/sources';
+import { CatalogLoader } from '../core/semantics/catalogs';
 import { attribute, descendants, escapeAttributeValue, parseXml } from '../core/xml';
 import { parseEsminiLoadedRoad } from '../../../common/src/esminiCsv';
 import type { TraceRecord } from '../../../common/src/trace';
@@ -130,8 +131,8 @@ export function withRoadFile(text: string, absolutePath: string): string {
   return `${text.slice(0, filepath.valueStart)}${escapeAttributeValue(absolutePath, filepath.quote)}${text.slice(filepath.valueEnd)}`;
 }
 
-/** Catalog folders that the scenario names, resolved against its source folder (esmini would use the temporary file's). */
-export function catalogFolders(source: FlatSource, sourceFolder: string): string[] {
+/** The catalog folders (`Directory path`) the scenario writes, as written. */
+function writtenCatalogFolders(source: FlatSource): string[] {
   const root = (source.model ?? source.original)?.document.root;
   const locations = root?.children.find((child) => child.name === 'CatalogLocations');
   if (!locations) return [];
@@ -139,9 +140,43 @@ export function catalogFolders(source: FlatSource, sourceFolder: string): string
   for (const element of descendants(locations)) {
     if (element.name !== 'Directory') continue;
     const value = attribute(element, 'path')?.value;
-    if (value && !value.includes('$')) folders.push(path.resolve(sourceFolder, value));
+    if (value) folders.push(value);
   }
   return folders;
+}
+
+/**
+ * Where the check found the catalog directories written in a scenario whose relative paths start at `scenarioFolder`:
+ * beside it, else in the store's scenario path and catalog path (core/semantics/catalogs.ts reads a SCENARIO_PATH folder
+ * D as D/path, D and D/last folder of path). esmini 3.6 looks a catalog up as NAME.xosc in each catalog directory and in
+ * each `--path` folder itself (CommonMini.cpp LocateFile, ScenarioReader.cpp LoadCatalog), so handing it these folders
+ * makes it load the catalogs the check found, wherever SCENARIO_PATH let the check find them.
+ */
+export async function foundCatalogFolders(store: ScenarioStore, scenarioFolder: string, written: readonly string[]): Promise<string[]> {
+  const loader = new CatalogLoader(store);
+  const from = diskRef(path.join(scenarioFolder, 'scenario.xosc'));
+  const found: string[] = [];
+  for (const entry of written) {
+    if (entry.includes('$')) continue;
+    for (const directory of await loader.directories(from, entry)) if (!directory.packageRef) found.push(directory.directory);
+  }
+  return unique(found);
+}
+
+/**
+ * The folders esmini is handed as `--path` for a run of `main`: the main file's folder, the catalog folders it names
+ * (as written, and where the check found them), then the road folders.
+ */
+export async function esminiSearchPath(flattener: Flattener, main: SourceRef, source: FlatSource, roads: string[]): Promise<string[]> {
+  const sourceFolder = sourceFolderOf(main);
+  const written = writtenCatalogFolders(source);
+  const found = await foundCatalogFolders(flattener.store, sourceFolder, written);
+  return unique([
+    sourceFolder,
+    ...written.filter((value) => !value.includes('$')).map((value) => path.resolve(sourceFolder, value)),
+    ...found,
+    ...roads,
+  ]);
 }
 
 function unique(items: string[]): string[] {
@@ -227,7 +262,7 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
     };
   }
 
-  const searchPath = unique([sourceFolder, ...catalogFolders(flat.source, sourceFolder), ...folders]);
+  const searchPath = await esminiSearchPath(flattener, main, flat.source, folders);
   const ran = await runLimitedText(location.program, limited, searchPath, options, timeStep, seed, limit, {
     runFolder,
     files: flat.files,

@@ -8,14 +8,24 @@ import { roadScenario } from '../../support/fixtures';
 import { temporaryWorkspace } from '../../support/workspace';
 
 describe('diagnostics: catalog-directory', () => {
-  it('names the kind and the path, and where it was looked for', () => {
+  it('names the kind and the path, and where it was looked for; an error with a scenario path and without one', () => {
+    const hint =
+      'correct the path, or add the folder that holds the catalogs to SCENARIO_PATH (--scenario-path, the modular2simple.scenarioPath setting)';
     assert.deepEqual(catalogDirectoryWording('ManeuverCatalog', 'missing'), {
-      severity: 'warning',
+      severity: 'error',
       code: 'catalog-directory',
-      message: "the ManeuverCatalog directory 'missing' does not exist (relative to this file, or in SCENARIO_PATH)",
-      hint: 'correct the path, or add the folder that holds the catalogs to SCENARIO_PATH (the modular2simple.scenarioPath setting)',
+      message:
+        "the ManeuverCatalog directory 'missing' does not exist beside this file nor in SCENARIO_PATH, so the catalog references that need it resolve nowhere",
+      hint,
     });
-    assert.equal(CATALOG_DIRECTORY.severity, 'warning');
+    assert.deepEqual(catalogDirectoryWording('ManeuverCatalog', 'missing', ['/shared']), {
+      severity: 'error',
+      code: 'catalog-directory',
+      message:
+        "the ManeuverCatalog directory 'missing' does not exist beside this file, and the SCENARIO_PATH folders searched for it (/shared) hold no catalog its references name",
+      hint,
+    });
+    assert.equal(CATALOG_DIRECTORY.severity, 'error');
   });
 
   it('is what an analysis reports on a needed location whose folder is not there', async () => {

@@ -3,8 +3,9 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import * as vscode from 'vscode';
 import { BIRDS_EYE_FILES, HIGHWAY_MERGE_FILES } from '../birdsEyeSetup';
+import type { BirdsEyeView } from '../../../client/src/birdsEye/panel';
 import { INSIDE_TESTS } from '../titles';
-import { api, open, packageUri, positionOf, replaceText, revertAndClose, waitFor, workspaceRoot } from './helpers';
+import { api, open, packageUri, positionOf, replaceText, revertAndClose, TEST_MS, waitFor, waitForPage, workspaceRoot } from './helpers';
 import { clickText, pageShows, runFromPalette, screenshot } from './harnessClient';
 
 function skipUnless(context: Mocha.Context, condition: boolean, why: string): void {
@@ -14,14 +15,35 @@ function skipUnless(context: Mocha.Context, condition: boolean, why: string): vo
   context.skip();
 }
 
+/**
+ * Plays the run from the view's Play button until the page shows `seconds` played: the time the page reports, not a
+ * fixed sleep, which a loaded machine's page may not have played through.
+ */
+async function playPast(view: BirdsEyeView, seconds: number): Promise<void> {
+  let shown = 0;
+  const listening = view.onDidChangeTime((time) => (shown = time));
+  try {
+    assert.ok(await clickText('Play run'), 'no Play button');
+    await waitFor(`the run played past ${seconds} s`, () => shown > seconds || undefined);
+  } finally {
+    listening.dispose();
+  }
+}
+
+/** Pauses the playback; a run that played to its end meanwhile (a slow click) has stopped by itself. */
+async function pause(): Promise<void> {
+  if (await clickText('Pause run')) return;
+  assert.ok(await pageShows('Play run'), 'neither a Pause button nor a run played to its end');
+}
+
 /** The bird's-eye view tests; run after the main suite, in the same VS Code. */
 export function defineBirdsEyeTests(): void {
   describe("the bird's-eye view in a real VS Code", function () {
-    this.timeout(60_000);
+    this.timeout(TEST_MS);
     const settings = () => vscode.workspace.getConfiguration('modular2simple');
 
     before(async function () {
-      await waitFor('the extension to activate', () => vscode.extensions.getExtension('modular2simple.modular2simple')?.isActive, 30_000);
+      await waitFor('the extension to activate', () => vscode.extensions.getExtension('modular2simple.modular2simple')?.isActive);
       await settings().update('esmini.roadPath', [BIRDS_EYE_FILES.roadFolder], vscode.ConfigurationTarget.Workspace);
     });
 
@@ -46,10 +68,8 @@ export function defineBirdsEyeTests(): void {
       const started = Date.now();
       await runFromPalette("Modular2Simple: Show Bird's-Eye View");
       const view = api().birdsEye;
-      const stats = await waitFor(
-        'the view to draw the road and the entities',
-        () => (view.stats && view.stats.lanes > 0 && view.stats.entities === 2 ? view.stats : undefined),
-        20_000,
+      const stats = await waitFor('the view to draw the road and the entities', () =>
+        view.stats && view.stats.lanes > 0 && view.stats.entities === 2 ? view.stats : undefined,
       );
       console.log(`command to picture: ${Date.now() - started} ms (roads drawn in ${stats.staticDrawMs.toFixed(1)} ms)`);
       assert.deepEqual(view.scene?.problems, []);
@@ -59,8 +79,9 @@ export function defineBirdsEyeTests(): void {
       // esmini puts them there (its first CSV row): within 1 cm.
       assert.ok(Math.abs((ego?.x ?? NaN) - 8.173369) < 0.01 && Math.abs((ego?.y ?? NaN) - 49.970175) < 0.01, `Ego at ${ego?.x}, ${ego?.y}`);
       assert.ok(stats.staticDrawMs < 1000, `drawing took ${stats.staticDrawMs} ms`);
-      await waitFor('the events listed', () => pageShows('CutInEvent'));
-      assert.ok(await pageShows('planned 2 s'), 'the planned start of CutInEvent is shown');
+      await waitForPage('CutInEvent');
+      // The planned start of CutInEvent.
+      await waitForPage('planned 2 s');
       await screenshot("bird's-eye view before a run");
 
       // Clicking an entity opens its TeleportAction.
@@ -94,16 +115,16 @@ export function defineBirdsEyeTests(): void {
       });
       await waitFor('the trajectories', () => (view.stats?.trajectories === 2 && view.stats.lanes > 0 ? true : undefined));
       console.log(`run handed over to trajectories drawn: ${Date.now() - started} ms`);
-      await waitFor('when CutInEvent started', () => pageShows('started 2.05 s'));
-      assert.ok(await pageShows('started 6.05 s'), 'BrakeEvent start is shown');
+      // When CutInEvent and BrakeEvent started.
+      await waitForPage('started 2.05 s');
+      await waitForPage('started 6.05 s');
       // Clicking an event opens it in the source.
       const eventLine = positionOf((await open(BIRDS_EYE_FILES.scenario)).document, '<Event name="BrakeEvent"').line;
       assert.ok(await clickText('BrakeEvent'), 'no BrakeEvent button in the view');
       await waitFor('BrakeEvent to open', () => (vscode.window.activeTextEditor?.selection.active.line === eventLine ? true : undefined));
-      assert.ok(await clickText('Play run'), 'no Play button');
-      await new Promise((resolve) => setTimeout(resolve, 2500));
+      await playPast(view, 1.5);
       await screenshot("bird's-eye view playing a run");
-      assert.ok(await clickText('Pause run'), 'no Pause button');
+      await pause();
       const played = await waitFor('the playback figures', () =>
         view.stats && !view.stats.playing && view.stats.frames > 0 ? view.stats : undefined,
       );
@@ -152,9 +173,8 @@ export function defineBirdsEyeTests(): void {
       // Following Ego: the plots of its speed, gap and time to collision appear under the map.
       view.choose('Ego');
       await waitFor('Ego chosen', () => (view.stats?.chosen === 'Ego' ? true : undefined));
-      assert.ok(await clickText('Play run'), 'no Play button');
-      await new Promise((resolve) => setTimeout(resolve, 3000));
-      assert.ok(await clickText('Pause run'), 'no Pause button');
+      await playPast(view, 1.5);
+      await pause();
       const played = await waitFor('the playback figures', () =>
         view.stats && !view.stats.playing && view.stats.frames > 0 ? view.stats : undefined,
       );
@@ -174,7 +194,8 @@ export function defineBirdsEyeTests(): void {
         view.stats?.compared === 6 && !view.stats.sideBySide ? view.stats : undefined,
       );
       assert.equal(overlaid.trajectories, 6, 'the first run stays');
-      assert.ok(await pageShows('compared with: highway_merge_fast.csv'), 'the title names the compared run');
+      // The title names the compared run.
+      await waitForPage('compared with: highway_merge_fast.csv');
       await screenshot("bird's-eye view comparing two runs of highway_merge, the second dashed");
       await vscode.commands.executeCommand('modular2simple.birdsEye.showRun', path.join(workspaceRoot(), HIGHWAY_MERGE_FILES.variantCsv), {
         logPath: path.join(workspaceRoot(), HIGHWAY_MERGE_FILES.variantLog),

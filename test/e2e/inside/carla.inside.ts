@@ -1,5 +1,6 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
+import * as net from 'node:net';
 import * as path from 'node:path';
 import * as vscode from 'vscode';
 import { CheckInScenarioRunnerRequest, ExportForCarlaRequest } from '../../../common/src/protocol';
@@ -13,6 +14,7 @@ import {
   positionOf,
   requireServerFeature,
   revertAndClose,
+  TEST_MS,
   waitFor,
   workspaceRoot,
 } from './helpers';
@@ -60,10 +62,51 @@ function scenarioRunnerSetup(folder: string): { scenarioRunner: string; python: 
   return { scenarioRunner, python };
 }
 
+/**
+ * A ScenarioRunner folder of the test's own: its scenario_runner.py appends its argv and working folder to
+ * runs.jsonl beside it and exits with the code written in exit-code (0 without one), so the test sees what
+ * *Run in CARLA* started and how it takes each end. No CARLA, no ScenarioRunner needed.
+ */
+function fakeScenarioRunner(folder: string): { runs: () => { argv: string[]; cwd: string }[]; exitWith: (code: number) => void } {
+  fs.mkdirSync(folder, { recursive: true });
+  fs.writeFileSync(
+    path.join(folder, 'scenario_runner.py'),
+    [
+      'import json, os, sys',
+      'here = os.path.dirname(os.path.abspath(__file__))',
+      "with open(os.path.join(here, 'runs.jsonl'), 'a') as runs:",
+      "    runs.write(json.dumps({'argv': sys.argv, 'cwd': os.getcwd()}) + '\\n')",
+      "code = os.path.join(here, 'exit-code')",
+      'sys.exit(int(open(code).read()) if os.path.exists(code) else 0)',
+      '',
+    ].join('\n'),
+  );
+  const log = path.join(folder, 'runs.jsonl');
+  return {
+    runs: () =>
+      fs.existsSync(log)
+        ? fs
+            .readFileSync(log, 'utf8')
+            .split('\n')
+            .filter((line) => line.trim())
+            .map((line) => JSON.parse(line) as { argv: string[]; cwd: string })
+        : [],
+    exitWith: (code) => fs.writeFileSync(path.join(folder, 'exit-code'), String(code)),
+  };
+}
+
+/** Runs *Run in CARLA* on a file and answers how it ended, within a time that fails the test instead of hanging it. */
+async function runInCarla(uri: vscode.Uri): Promise<{ ran: boolean; message: string } | undefined> {
+  return Promise.race([
+    vscode.commands.executeCommand<{ ran: boolean; message: string } | undefined>('modular2simple.runInCarla', uri),
+    new Promise<never>((_resolve, reject) => setTimeout(() => reject(new Error('Run in CARLA did not answer within 60 s')), 60_000)),
+  ]);
+}
+
 /** *Export for CARLA…* from the palette: the file written, its losses as diagnostics on the simple scenario's lines. */
 export const carlaTests: InsideTests = {
   carlaCheck: async function () {
-    this.timeout(120_000);
+    this.timeout(2 * TEST_MS);
     requireServerFeature(this, 'checkInScenarioRunner', offersRequest(CheckInScenarioRunnerRequest));
     const folder = path.join(workspaceRoot(), '.carla-check');
     fs.mkdirSync(folder, { recursive: true });
@@ -114,8 +157,102 @@ export const carlaTests: InsideTests = {
     }
   },
 
+  carlaRun: async function () {
+    this.timeout(240_000);
+    const folder = carlaExportFolder();
+    if (!folder || !fs.existsSync('/usr/bin/python3')) {
+      assert.ok(!process.env.M2S_REQUIRE_ESMINI, "M2S_REQUIRE_ESMINI is set, but esmini's e6mini.xodr is absent");
+      console.log("skipped: esmini's e6mini.xodr is not beside the repository, or there is no /usr/bin/python3");
+      this.skip();
+    }
+    const scenarioRunner = path.join(folder, 'fake-scenario-runner');
+    const fake = fakeScenarioRunner(scenarioRunner);
+    const main = vscode.Uri.file(path.join(folder, 'xosc', 'main.xosc'));
+    const settings = vscode.workspace.getConfiguration('modular2simple.carla');
+    const global = vscode.ConfigurationTarget.Global;
+    // What listens where the CARLA server would: Run in CARLA checks that something answers before it starts ScenarioRunner.
+    const server = net.createServer((socket) => socket.destroy());
+    await new Promise<void>((resolve) => server.listen(0, '127.0.0.1', resolve));
+    const port = (server.address() as net.AddressInfo).port;
+    try {
+      await settings.update('scenarioRunnerPath', scenarioRunner, global);
+      await settings.update('python', '/usr/bin/python3', global);
+
+      // No host: said, naming the setting, and nothing started.
+      await settings.update('host', undefined, global);
+      const noHost = await runInCarla(main);
+      assert.equal(noHost?.ran, false);
+      assert.match(noHost?.message ?? '', /set modular2simple\.carla\.host .*nothing was run/);
+      assert.deepEqual(fake.runs(), [], 'nothing started without a host');
+
+      // A host where nothing listens: said, nothing started.
+      const closed = net.createServer();
+      await new Promise<void>((resolve) => closed.listen(0, '127.0.0.1', resolve));
+      const closedPort = (closed.address() as net.AddressInfo).port;
+      await new Promise<void>((resolve) => closed.close(() => resolve()));
+      await settings.update('host', '127.0.0.1', global);
+      await settings.update('port', closedPort, global);
+      const unreachable = await runInCarla(main);
+      assert.equal(unreachable?.ran, false);
+      assert.match(unreachable?.message ?? '', new RegExp(`no CARLA server at 127\\.0\\.0\\.1:${closedPort} .*nothing was run`));
+      assert.deepEqual(fake.runs(), [], 'nothing started without a server');
+
+      // A server: scenario_runner.py started on the export, with its host and port, in ScenarioRunner's folder.
+      await settings.update('port', port, global);
+      const ran = await runInCarla(main);
+      assert.deepEqual(ran, {
+        ran: true,
+        message: 'Run in CARLA: ScenarioRunner ran main to its end (exit code 0); its verdict is in the terminal.',
+      });
+      const [run] = fake.runs();
+      assert.ok(run, 'scenario_runner.py was started');
+      assert.equal(fs.realpathSync(run.cwd), fs.realpathSync(scenarioRunner));
+      assert.equal(run.argv.length, 7, run.argv.join(' '));
+      const [script, openscenario, exported, host, hostValue, portFlag, portValue] = run.argv;
+      assert.equal(fs.realpathSync(script), fs.realpathSync(path.join(scenarioRunner, 'scenario_runner.py')));
+      assert.deepEqual(
+        [openscenario, host, hostValue, portFlag, portValue],
+        ['--openscenario', '--host', '127.0.0.1', '--port', String(port)],
+      );
+      assert.match(path.basename(exported), /^main\.carla\.xosc$/);
+      const text = fs.readFileSync(exported, 'utf8');
+      assert.match(text, /<FileHeader [^>]*revMajor="1" revMinor="0"/, 'ScenarioRunner is given the 1.0 export');
+      assert.match(text, /<Property name="type" value="ego_vehicle"\/>/);
+
+      // ScenarioRunner ending with an error: not done.
+      fake.exitWith(3);
+      const failed = await runInCarla(main);
+      assert.equal(failed?.ran, false);
+      assert.match(failed?.message ?? '', /ScenarioRunner exited with code 3: main did not run to its end/);
+      assert.equal(fake.runs().length, 2);
+
+      // A Python that does not exist: said before anything starts, never called done.
+      await settings.update('python', path.join(folder, 'no-such-python'), global);
+      const noPython = await runInCarla(main);
+      assert.equal(noPython?.ran, false);
+      assert.match(
+        noPython?.message ?? '',
+        /the Python .*no-such-python \(modular2simple\.carla\.python\) is not an executable file.*Nothing was run/,
+      );
+      // One that cannot start (its interpreter is missing): the task ends without a process, which is not done either.
+      const broken = path.join(scenarioRunner, 'broken-python');
+      fs.writeFileSync(broken, '#!/no/such/interpreter\n', { mode: 0o755 });
+      await settings.update('python', broken, global);
+      const notStarted = await runInCarla(main);
+      assert.equal(notStarted?.ran, false, notStarted?.message);
+      assert.equal(fake.runs().length, 2, 'nothing ran');
+    } finally {
+      await new Promise<void>((resolve) => server.close(() => resolve()));
+      for (const key of ['scenarioRunnerPath', 'python', 'host', 'port']) await settings.update(key, undefined, global);
+      // The runs' task terminals (workbench.action.terminal.killAll never answers in code-server).
+      for (const terminal of vscode.window.terminals) terminal.dispose();
+      fs.rmSync(scenarioRunner, { recursive: true, force: true });
+      await revertAndClose();
+    }
+  },
+
   carlaExport: async function () {
-    this.timeout(120_000);
+    this.timeout(2 * TEST_MS);
     requireServerFeature(this, 'exportForCarla', offersRequest(ExportForCarlaRequest));
     const folder = carlaExportFolder();
     if (!folder) {
@@ -129,7 +266,7 @@ export const carlaTests: InsideTests = {
       // Proposed as Flatten proposes, with .carla.xosc: beside the folder that stands for the package.
       const written = path.join(folder, 'xosc.carla.xosc');
       await acceptSaveDialog(path.basename(written));
-      await waitFor(path.basename(written), () => fs.existsSync(written) || undefined, 60_000);
+      await waitFor(path.basename(written), () => fs.existsSync(written) || undefined);
       const text = fs.readFileSync(written, 'utf8');
       assert.match(text, /<FileHeader [^>]*revMajor="1" revMinor="0"/);
       assert.match(text, /<Property name="type" value="ego_vehicle"\/>/);
@@ -159,7 +296,6 @@ export const carlaTests: InsideTests = {
         await waitFor(
           'the loss in the Problems panel',
           async () => (await pageShows('ScenarioRunner runs every event in parallel', '.markers-panel')) || undefined,
-          15_000,
         );
         await screenshot('Export for CARLA: the losses on the simple scenario');
       } finally {

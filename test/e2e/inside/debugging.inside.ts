@@ -6,7 +6,7 @@ import * as vscode from 'vscode';
 import { SESSION_ARGUMENT } from '../../../server/src/debug/supervisor';
 import { esminiCutInFolder, esminiOrSkip } from './esmini.inside';
 import { clickElement, type PageBox, pageBoxes, pageShows, pressKeys, runFromPalette, screenshot } from './harnessClient';
-import { api, cli, EXTENSION_ID, type InsideTests, open, positionOf, waitFor, workspaceRoot } from './helpers';
+import { api, cli, EXTENSION_ID, type InsideTests, open, positionOf, TEST_MS, waitFor, waitForPage, workspaceRoot } from './helpers';
 
 /**
  * The debug adapter processes of the extension under test (their command line names its dist/debugAdapter.js): the
@@ -96,24 +96,20 @@ async function coveringLabels(): Promise<string[]> {
 async function barsAtEsminiTimes(starts: { event: string; time: number }[], what: string): Promise<string> {
   let seen = '';
   try {
-    return await waitFor(
-      what,
-      async () => {
-        const header = await timelineHeader();
-        if (!header) return false;
-        const drawn: string[] = [];
-        for (const start of starts) {
-          const bars = await drawnBars(start.event, header.end);
-          drawn.push(`${start.event} at ${bars.starts.map((time) => time.toFixed(3)).join(', ') || 'nothing'} (esmini ${start.time})`);
-          if (!bars.starts.some((time) => Math.abs(time - start.time) <= bars.pixel + 1e-3)) {
-            seen = `${header.title}, ${header.time} of ${header.end} s: ${drawn.join('; ')}`;
-            return false;
-          }
+    return await waitFor(what, async () => {
+      const header = await timelineHeader();
+      if (!header) return false;
+      const drawn: string[] = [];
+      for (const start of starts) {
+        const bars = await drawnBars(start.event, header.end);
+        drawn.push(`${start.event} at ${bars.starts.map((time) => time.toFixed(3)).join(', ') || 'nothing'} (esmini ${start.time})`);
+        if (!bars.starts.some((time) => Math.abs(time - start.time) <= bars.pixel + 1e-3)) {
+          seen = `${header.title}, ${header.time} of ${header.end} s: ${drawn.join('; ')}`;
+          return false;
         }
-        return drawn.join('; ');
-      },
-      30_000,
-    );
+      }
+      return drawn.join('; ');
+    });
   } catch (error) {
     throw new Error(`${(error as Error).message}; the page last drew ${seen}`);
   }
@@ -150,7 +146,7 @@ interface StackFrameBody {
 /** F5 on a scenario as a person does it: the stop on a breakpoint's line, the Variables view, then esmini crashing. */
 export const debuggingTests: InsideTests = {
   debugScenario: async function () {
-    this.timeout(240_000);
+    this.timeout(2 * TEST_MS);
     const { repository, esmini, roads } = esminiOrSkip(this);
     const scenario = esminiCutInFolder(repository, roads, path.join(workspaceRoot(), 'debugging'));
     const { events, undo } = await debugSetup(esmini, roads);
@@ -161,7 +157,7 @@ export const debuggingTests: InsideTests = {
     // The bird's-eye view open beside it follows the session.
     await vscode.commands.executeCommand('modular2simple.showBirdsEye', editor.document.uri);
     const view = api().birdsEye;
-    await waitFor("the bird's-eye view", () => view.isOpen && view.stats !== undefined, 60_000);
+    await waitFor("the bird's-eye view", () => view.isOpen && view.stats !== undefined);
     await vscode.window.showTextDocument(editor.document, vscode.ViewColumn.One);
     try {
       // F5 with no launch.json: the active file, debugged with the folder's settings.
@@ -171,7 +167,7 @@ export const debuggingTests: InsideTests = {
         await waitFor('the stop on the breakpoint', () => events.includes('stopped') || events.includes('terminated'), 120_000);
         assert.ok(!events.includes('terminated'), `the session ended without stopping: ${events.join(', ')}`);
         // VS Code makes the session active once it has shown the stop, after the tracker saw it.
-        const session = await waitFor('the debug session', () => vscode.debug.activeDebugSession, 20_000);
+        const session = await waitFor('the debug session', () => vscode.debug.activeDebugSession);
         const trace = (await session.customRequest('stackTrace', { threadId: 1 })) as StackFrameBody;
         assert.equal(trace.stackFrames[0].name, 'Event CutInEvent (running)');
         assert.equal(trace.stackFrames[0].line, line + 1);
@@ -187,13 +183,12 @@ export const debuggingTests: InsideTests = {
       await waitFor(
         "the bird's-eye view at the stop",
         () => Math.abs((view.stats?.time ?? -1) - stopTime) < 1e-6 && view.stats?.trajectories === 2,
-        20_000,
       );
-      await waitFor('the running event highlighted', () => pageShows('CutInEvent', '.running'), 20_000);
+      await waitFor('the running event highlighted', () => pageShows('CutInEvent', '.running'));
       // What a person sees: the editor on the breakpoint's line, the call stack, the entities in the Variables view.
-      await waitFor('the editor on the stop line', () => vscode.window.activeTextEditor?.selection.active.line === line, 20_000);
-      await waitFor('the call stack', () => pageShows('Event CutInEvent (running)'), 20_000);
-      await waitFor('the entities in the Variables view', async () => (await pageShows('Ego')) && pageShows('OverTaker'), 20_000);
+      await waitFor('the editor on the stop line', () => vscode.window.activeTextEditor?.selection.active.line === line);
+      await waitFor('the call stack', () => pageShows('Event CutInEvent (running)'));
+      await waitFor('the entities in the Variables view', async () => (await pageShows('Ego')) && pageShows('OverTaker'));
       // The adapter lists the scope; whether its row is drawn depends on the panel's height, which earlier tests' views change.
       const frames = (await session.customRequest('stackTrace', { threadId: 1 })) as StackFrameBody;
       const scopes = (await session.customRequest('scopes', { frameId: frames.stackFrames[0].id })) as { scopes: { name: string }[] };
@@ -210,9 +205,10 @@ export const debuggingTests: InsideTests = {
       assert.equal(adapters.length, 2, `the adapter and its session: ${adapters.join(', ')}`);
       assert.equal(sessions.length, 1, `one session process: ${sessions.join(', ')}`);
       process.kill(sessions[0], 'SIGSEGV');
-      await waitFor('the session to end', () => vscode.debug.activeDebugSession === undefined, 30_000);
-      await waitFor('the message naming the crash', () => pageShows('The debug session of cut-in.xosc ended'), 30_000);
-      assert.ok(await pageShows("esmini's process was killed by"), 'the message says how the adapter ended');
+      await waitFor('the session to end', () => vscode.debug.activeDebugSession === undefined);
+      await waitForPage('The debug session of cut-in.xosc ended');
+      // The message says how the adapter ended.
+      await waitForPage("esmini's process was killed by");
       await screenshot('debug: esmini crashed, the session ended with a message, the editor lives');
 
       // The editor lives: the same F5 starts a new session, which stops on the same line.
@@ -220,7 +216,11 @@ export const debuggingTests: InsideTests = {
       await vscode.window.showTextDocument(editor.document);
       const again = await stopOnTheEvent();
       await vscode.debug.stopDebugging(again);
-      await waitFor('the second session to end', () => vscode.debug.activeDebugSession === undefined, 30_000);
+      await waitFor('the second session to end', () => vscode.debug.activeDebugSession === undefined);
+      // What would report a crash has happened: the adapter's processes ended (the client's crash report follows their
+      // exit), and the page followed the session's end (its call stack is gone; the adapter's own report comes before).
+      await waitFor('the adapter processes to end', () => adapterProcesses().length === 0);
+      await waitFor('the call stack to clear', async () => !(await pageShows('Event CutInEvent (running)')));
       assert.ok(!(await pageShows('The debug session of cut-in.xosc ended')), 'Stop is no crash');
     } finally {
       vscode.debug.removeBreakpoints([breakpoint]);
@@ -229,7 +229,7 @@ export const debuggingTests: InsideTests = {
   },
 
   debugTimeline: async function () {
-    this.timeout(240_000);
+    this.timeout(2 * TEST_MS);
     const { repository, esmini, roads } = esminiOrSkip(this);
     // A folder of its own: nothing here depends on what earlier tests left.
     const folder = path.join(workspaceRoot(), 'timeline');
@@ -251,11 +251,7 @@ export const debuggingTests: InsideTests = {
     const rendered = view.nextRender();
     assert.equal(await vscode.commands.executeCommand('modular2simple.showTimeline', trace), true);
     await rendered;
-    const stats = await waitFor(
-      'the timeline drawn',
-      () => (view.isOpen && (view.stats?.rows.length ?? 0) > 0 ? view.stats : undefined),
-      30_000,
-    );
+    const stats = await waitFor('the timeline drawn', () => (view.isOpen && (view.stats?.rows.length ?? 0) > 0 ? view.stats : undefined));
     // A row per Event esmini started, its bar starting at the time esmini's log gives.
     for (const start of esminiStarts) {
       const row = stats.rows.find((candidate) => candidate.element.endsWith(`::${start.event}`));
@@ -263,23 +259,19 @@ export const debuggingTests: InsideTests = {
       assert.ok(row.started && row.bars >= 1, `${start.event} drawn with a bar: ${row.text}`);
       assert.ok(row.text.includes(`: ${start.time.toFixed(2)}–`), `${start.event} starts at esmini's ${start.time}: ${row.text}`);
     }
-    await waitFor('the rows on the page', async () => (await pageShows('CutInEvent', '.row .label')) && pageShows('HWT', '.cause'), 20_000);
+    await waitFor('the rows on the page', async () => (await pageShows('CutInEvent', '.row .label')) && pageShows('HWT', '.cause'));
     assert.deepEqual(await coveringLabels(), [], 'no firing condition written over a bar or another');
     await screenshot("timeline: cut-in.xosc's run --trace, a row per storyboard element with its bars at esmini's times");
     // A click on a row's name opens the element where it is written.
     const eventLine = positionOf(await vscode.workspace.openTextDocument(scenario), '<Event name="CutInEvent"').line;
     await vscode.commands.executeCommand('workbench.action.closeAllEditors');
     await vscode.commands.executeCommand('modular2simple.showTimeline', trace);
-    await waitFor('the timeline open again', () => view.isOpen && pageShows('CutInEvent', '.row .label'), 30_000);
+    await waitFor('the timeline open again', () => view.isOpen && pageShows('CutInEvent', '.row .label'));
     assert.ok(await clickElement('.row .label', 'CutInEvent'), "the CutInEvent row's name clicked");
-    const editor = await waitFor(
-      'cut-in.xosc opened on the Event line',
-      () => {
-        const active = vscode.window.activeTextEditor;
-        return active?.document.uri.fsPath === scenario && active.selection.active.line === eventLine ? active : undefined;
-      },
-      30_000,
-    );
+    const editor = await waitFor('cut-in.xosc opened on the Event line', () => {
+      const active = vscode.window.activeTextEditor;
+      return active?.document.uri.fsPath === scenario && active.selection.active.line === eventLine ? active : undefined;
+    });
     assert.equal(view.opened?.fsPath, scenario);
     assert.ok(
       editor.visibleRanges.some((range) => range.contains(new vscode.Position(eventLine, 0))),
@@ -308,20 +300,16 @@ export const debuggingTests: InsideTests = {
       await waitFor('the stop on the breakpoint', () => events.includes('stopped') || events.includes('terminated'), 120_000);
       assert.ok(!events.includes('terminated'), `the session ended without stopping: ${events.join(', ')}`);
       // VS Code shows the stop (and moves the focus to the editor) after the adapter sent it: the palette only once it has.
-      await waitFor('the editor on the stop line', () => vscode.window.activeTextEditor?.selection.active.line === line, 30_000);
-      await waitFor('the call stack', () => pageShows('Event OvertakerBrakeEvent (running)'), 30_000);
+      await waitFor('the editor on the stop line', () => vscode.window.activeTextEditor?.selection.active.line === line);
+      await waitFor('the call stack', () => pageShows('Event OvertakerBrakeEvent (running)'));
       // While the session is stopped, the timeline opened from the palette as a person does: the run so far, to the stop.
       await runFromPalette('Modular2Simple: Show Storyboard Timeline');
-      await waitFor(
-        'the running session on the timeline page, at the stop',
-        async () => {
-          const header = await timelineHeader();
-          return (
-            header?.title === 'debugging cut-in.xosc (running)' && Math.abs(header.time - brake.time) < 1e-6 && header.end === header.time
-          );
-        },
-        60_000,
-      );
+      await waitFor('the running session on the timeline page, at the stop', async () => {
+        const header = await timelineHeader();
+        return (
+          header?.title === 'debugging cut-in.xosc (running)' && Math.abs(header.time - brake.time) < 1e-6 && header.end === header.time
+        );
+      });
       // The Story starts at 0 s, as the session launches: its bar too.
       const story = { event: 'CutInAndBrakeStory', time: 0 };
       const soFar = [story, ...esminiRun.starts.filter((start) => start.time <= brake.time)];
@@ -335,14 +323,10 @@ export const debuggingTests: InsideTests = {
       await vscode.commands.executeCommand('workbench.action.debug.continue');
       await waitFor('the session to end', () => vscode.debug.activeDebugSession === undefined, 120_000);
       const finished = async (what: string): Promise<void> => {
-        await waitFor(
-          what,
-          async () => {
-            const header = await timelineHeader();
-            return header?.title === 'debugging cut-in.xosc' && Math.abs(header.end - esminiRun.end) <= 0.05 + 1e-6;
-          },
-          30_000,
-        );
+        await waitFor(what, async () => {
+          const header = await timelineHeader();
+          return header?.title === 'debugging cut-in.xosc' && Math.abs(header.end - esminiRun.end) <= 0.05 + 1e-6;
+        });
         await barsAtEsminiTimes([story, ...esminiRun.starts], "the finished session's bars at esmini's times");
         for (const start of esminiRun.starts)
           assert.equal((await drawnBars(start.event, esminiRun.end)).open, 0, `${start.event} ended before the run did: no open bar`);
@@ -355,7 +339,7 @@ export const debuggingTests: InsideTests = {
 
       // Closed, then opened again from the palette: the finished session's timeline, as it was.
       await vscode.commands.executeCommand('workbench.action.closeAllEditors');
-      await waitFor('the timeline closed', () => !api().timeline.isOpen, 20_000);
+      await waitFor('the timeline closed', () => !api().timeline.isOpen);
       await runFromPalette('Modular2Simple: Show Storyboard Timeline');
       await finished('the finished session on the timeline page opened again');
     } finally {

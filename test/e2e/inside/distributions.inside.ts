@@ -5,7 +5,7 @@ import * as path from 'node:path';
 import * as vscode from 'vscode';
 import { HARNESS_ENV } from '../titles';
 import { screenshot } from './harnessClient';
-import { open, waitFor, workspaceRoot } from './helpers';
+import { open, TEST_MS, waitFor, workspaceRoot } from './helpers';
 import type { InsideTests } from './helpers';
 
 /** esmini's cut-in_parameter_set.xosc and what it needs, copied into the workspace's distributions/ (variations/ holds the Variations view's batch); skips the test without the shared corpus. */
@@ -26,7 +26,7 @@ function copyCutInDistribution(context: Mocha.Context): { repository: string; fo
 /** A distribution file (issue 20): the number of concrete scenarios above it, as `vary --count` gives it. */
 export const distributionTests: InsideTests = {
   distributionLens: async function () {
-    this.timeout(120_000);
+    this.timeout(2 * TEST_MS);
     const copied = copyCutInDistribution(this);
     const { folder } = copied;
     try {

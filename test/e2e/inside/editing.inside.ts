@@ -3,7 +3,7 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import * as vscode from 'vscode';
 import type { Modular2SimpleApi } from '../../../client/src/extension';
-import { EXTENSION_ID, type InsideTests, open, positionOf, revertAndClose, waitFor, workspaceRoot } from './helpers';
+import { EXTENSION_ID, type InsideTests, open, positionOf, revertAndClose, TEST_MS, waitFor, workspaceRoot } from './helpers';
 import { post, pressKeys, screenshot, typeText } from './harnessClient';
 
 /** Activation, the grammar's colours and typing in the editor. */
@@ -23,7 +23,7 @@ export const editingTests: InsideTests = {
 
   // A healthy server: switching windows, tabs and the preview asks for code actions, lenses and hints, and none fails.
   windowSwitch: async function () {
-    this.timeout(60_000);
+    this.timeout(TEST_MS);
     // The language client's log, which VS Code keeps in the profile beside the workspace.
     const logs = path.join(workspaceRoot(), '..', 'user-data', 'logs');
     const clientLogs = (): string[] => {
@@ -95,7 +95,6 @@ export const editingTests: InsideTests = {
     await waitFor(
       'the closing tag',
       () => editor.document.lineAt(1).text === '  <Actors selectTriggeringEntities="false"></Actors>' || undefined,
-      5_000,
     );
     assert.equal(
       editor.selection.active.character,
@@ -106,7 +105,6 @@ export const editingTests: InsideTests = {
     await waitFor(
       'the line to be commented out',
       () => editor.document.lineAt(1).text === '  <!-- <Actors selectTriggeringEntities="false"></Actors> -->' || undefined,
-      5_000,
     );
     await screenshot('typing closes tags and comments lines');
     await revertAndClose();

@@ -13,7 +13,9 @@ import {
   replaceText,
   requireServerFeature,
   revertAndClose,
+  TEST_MS,
   waitFor,
+  waitForPage,
   workspaceRoot,
 } from './helpers';
 import { pageShows, screenshot } from './harnessClient';
@@ -62,7 +64,7 @@ function ownDiagnostics(uri: vscode.Uri): vscode.Diagnostic[] {
 /** Run in esmini from the CodeLens: esmini's errors on the scenario's lines, the run in the bird's-eye view. */
 export const esminiTests: InsideTests = {
   runEsmini: async function () {
-    this.timeout(120_000);
+    this.timeout(2 * TEST_MS);
     requireServerFeature(this, 'runEsmini', offersRequest(RunEsminiRequest));
     const { esmini, roads } = esminiOrSkip(this);
     const settings = vscode.workspace.getConfiguration('modular2simple.esmini');
@@ -111,7 +113,7 @@ export const esminiTests: InsideTests = {
   },
 
   runEsminiClean: async function () {
-    this.timeout(120_000);
+    this.timeout(2 * TEST_MS);
     requireServerFeature(this, 'runEsmini', offersRequest(RunEsminiRequest));
     const { repository, esmini, roads } = esminiOrSkip(this);
     // test/fixtures/modularRun as users lay it out (xosc/ beside xodr/), and in roadPath a different road under e6mini's name.
@@ -149,19 +151,17 @@ export const esminiTests: InsideTests = {
         .flatMap(([, diagnostics]) => diagnostics.filter((diagnostic) => diagnostic.source === 'esmini'));
       assert.deepEqual(esminiDiagnostics, [], 'no esmini diagnostic anywhere');
       // What a person sees: the information toast, and no error toast.
-      await waitFor('the information toast', () => pageShows('esmini: 0 errors, 0 warnings', '.notifications-toasts'), 10_000);
+      await waitForPage('esmini: 0 errors, 0 warnings', '.notifications-toasts');
       assert.ok(!(await pageShows('Run in esmini:', '.notifications-toasts')), 'an error toast is shown');
       // The run and the picture: one road file, the one beside the scenario, drawn with the run's trajectories.
       assert.equal(result.roadFile?.loaded, road, `esmini loaded ${result.roadFile?.loaded}`);
       const view = api().birdsEye;
-      await waitFor(
-        "the run in the bird's-eye view",
-        () => (view.stats?.trajectories === 2 && view.scene?.uri === main.document.uri.toString() ? true : undefined),
-        30_000,
+      await waitFor("the run in the bird's-eye view", () =>
+        view.stats?.trajectories === 2 && view.scene?.uri === main.document.uri.toString() ? true : undefined,
       );
       assert.equal(view.scene?.roadFile?.resolved, road);
       assert.deepEqual(view.scene?.problems, [], 'every entity is on the road drawn');
-      await waitFor('the road file named in the view', () => pageShows(`road ${road}`));
+      await waitForPage(`road ${road}`);
       assert.ok(!(await pageShows('the run loaded the road file')), 'the view says the run loaded another road');
       await screenshot("the picture's road is the run's road");
     } finally {
@@ -171,7 +171,7 @@ export const esminiTests: InsideTests = {
     }
   },
   runEsminiCutIn: async function () {
-    this.timeout(120_000);
+    this.timeout(2 * TEST_MS);
     requireServerFeature(this, 'runEsmini', offersRequest(RunEsminiRequest));
     const { repository, esmini, roads } = esminiOrSkip(this);
     const folder = path.join(workspaceRoot(), 'esminiCutIn');
@@ -211,7 +211,7 @@ export const esminiTests: InsideTests = {
       );
       assert.equal(result.roadFile?.loaded, path.join(folder, 'xodr', 'e6mini.xodr'), `esmini loaded ${result.roadFile?.loaded}`);
       assert.ok(result.csvFile && fs.existsSync(result.csvFile));
-      await waitFor('the information toast', () => pageShows('esmini: 0 errors, 0 warnings', '.notifications-toasts'), 10_000);
+      await waitForPage('esmini: 0 errors, 0 warnings', '.notifications-toasts');
       assert.ok(!(await pageShows('Run in esmini:', '.notifications-toasts')), 'an error toast is shown');
       assert.ok(!(await pageShows('nothing was run', '.notifications-toasts')), 'a refusal is shown');
       await screenshot("esmini's cut-in.xosc run in esmini");
@@ -224,7 +224,7 @@ export const esminiTests: InsideTests = {
   },
 
   runEsminiAnyway: async function () {
-    this.timeout(120_000);
+    this.timeout(2 * TEST_MS);
     requireServerFeature(this, 'runEsmini', offersRequest(RunEsminiRequest));
     const { repository, esmini, roads } = esminiOrSkip(this);
     const folder = path.join(workspaceRoot(), 'esminiAnyway');
@@ -261,7 +261,7 @@ export const esminiTests: InsideTests = {
       );
       assert.equal(refused?.outcome, 'not-flattened', refused?.message);
       assert.equal(refused.forcible, true);
-      await waitFor('the Run Anyway question', () => pageShows('Run Anyway', '.notifications-toasts'), 10_000);
+      await waitForPage('Run Anyway', '.notifications-toasts');
       await screenshot('Run in esmini refused, offering Run Anyway');
       await vscode.commands.executeCommand('notifications.clearAll');
 
@@ -281,6 +281,8 @@ export const esminiTests: InsideTests = {
       assert.ok(forced.csvFile && fs.existsSync(forced.csvFile));
       // What the client reported to the user (the message its information toast shows, kept in the screenshot below).
       assert.match(api().lastEsminiRun()?.result.message ?? '', /\(run anyway despite 1 error in the scenario\)$/);
+      // The information toast first: the page has shown the run's outcome, so an error toast would be there by now.
+      await waitForPage('(run anyway despite 1 error in the scenario)', '.notifications-toasts');
       assert.ok(!(await pageShows('Run in esmini:', '.notifications-toasts')), 'an error toast is shown');
       await screenshot('Run Anyway ran the scenario despite its error');
     } finally {

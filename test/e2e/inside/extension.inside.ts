@@ -5,7 +5,7 @@ import { INSIDE_TESTS, type InsideTestKey } from '../titles';
 import { editingTests } from './editing.inside';
 import { esminiTests } from './esmini.inside';
 import { screenshot } from './harnessClient';
-import { EXTENSION_ID, type InsideTests, waitFor } from './helpers';
+import { EXTENSION_ID, type InsideTests, TEST_MS, waitFor } from './helpers';
 import { languageFeatureTests } from './languageFeatures.inside';
 import { newScenarioTests } from './newScenario.inside';
 import { packAndFlattenTests } from './packAndFlatten.inside';
@@ -75,8 +75,10 @@ const ORDER: InsideTestKey[] = [
   'extractToSimple',
   'carlaExport',
   'carlaCheck',
+  'carlaRun',
   'debugScenario',
   'libraryCompose',
+  'libraryInsertHere',
   'debugTimeline',
   'debugTimelineSession',
 ];
@@ -84,13 +86,13 @@ const ORDER: InsideTestKey[] = [
 /** The extension's tests inside VS Code, each feature's in its own file; the bird's-eye view's follow (birdsEye.inside.ts). */
 export function defineExtensionTests(): void {
   describe('Modular2Simple in a real VS Code', function () {
-    this.timeout(45_000);
+    this.timeout(TEST_MS);
 
     before(async function () {
-      this.timeout(60_000);
+      this.timeout(TEST_MS);
       const extension = vscode.extensions.getExtension<Modular2SimpleApi>(EXTENSION_ID);
       assert.ok(extension, `${EXTENSION_ID} is not installed`);
-      await waitFor('the extension to activate', () => extension.isActive, 30_000);
+      await waitFor('the extension to activate', () => extension.isActive);
       await extension.exports.serverReady;
     });
 

@@ -7,7 +7,7 @@ import * as vscode from 'vscode';
 import type { Modular2SimpleApi } from '../../../client/src/extension';
 import type { StructureNode } from '../../../common/src/protocol';
 import { HARNESS_ENV, type InsideTestKey } from '../titles';
-import { pressKeys, quickInput } from './harnessClient';
+import { pageShows, pressKeys, quickInput } from './harnessClient';
 
 // What the tests inside VS Code share: where the workspace is, waiting, opening and editing files.
 
@@ -22,10 +22,22 @@ export function workspaceRoot(): string {
   return root;
 }
 
+/**
+ * The longest a test waits for one thing by default. Generous: the suite must hold on a 2-core machine at a load
+ * of 25, where VS Code, its extension host, the language server and Chromium share what is left of the cores.
+ */
+export const WAIT_MS = 60_000;
+
+/**
+ * A test's own mocha limit inside VS Code (a backstop: each of its waits has its own), for a test that waits for a
+ * few things of WAIT_MS each; a test that runs a simulator or a batch on top has twice this.
+ */
+export const TEST_MS = 180_000;
+
 export async function waitFor<T>(
   what: string,
   probe: () => T | undefined | false | Promise<T | undefined | false>,
-  timeoutMs = 20_000,
+  timeoutMs = WAIT_MS,
 ): Promise<T> {
   const deadline = Date.now() + timeoutMs;
   let last: unknown;
@@ -39,6 +51,15 @@ export async function waitFor<T>(
     await new Promise((resolve) => setTimeout(resolve, 100));
   }
   throw new Error(`timed out after ${timeoutMs} ms waiting for ${what}${last ? ` (last error: ${(last as Error).message})` : ''}`);
+}
+
+/**
+ * Waits until the page (any frame, or the elements matching `selector`) shows `text`. What the page shows follows the
+ * extension's state later (a webview's postMessage, a notification, a tree refresh are all asynchronous): a test that
+ * means "the page shows X" waits for the page, not for the state that leads to it.
+ */
+export async function waitForPage(text: string, selector?: string, timeoutMs = WAIT_MS): Promise<void> {
+  await waitFor(`the page to show "${text}"${selector ? ` in ${selector}` : ''}`, () => pageShows(text, selector), timeoutMs);
 }
 
 export function api(): Modular2SimpleApi {

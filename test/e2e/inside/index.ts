@@ -1,6 +1,7 @@
 import Mocha from 'mocha';
 import { HARNESS_ENV } from '../titles';
 import { post } from './harnessClient';
+import { TEST_MS } from './helpers';
 import { defineBirdsEyeTests } from './birdsEye.inside';
 import { defineExtensionTests } from './extension.inside';
 import { defineVariationsTests } from './variations.inside';
@@ -8,7 +9,7 @@ import { defineVariationsTests } from './variations.inside';
 /** Entry point that VS Code calls in the extension host (extensionTestsPath). */
 export async function run(): Promise<void> {
   const grep = process.env[HARNESS_ENV.grep];
-  const mocha = new Mocha({ ui: 'bdd', timeout: 30_000, color: false, reporter: 'spec', ...(grep ? { grep } : {}) });
+  const mocha = new Mocha({ ui: 'bdd', timeout: TEST_MS, color: false, reporter: 'spec', ...(grep ? { grep } : {}) });
   mocha.suite.emit('pre-require', globalThis, 'extension.inside', mocha);
   defineExtensionTests();
   defineBirdsEyeTests();

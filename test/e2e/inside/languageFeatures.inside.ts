@@ -12,6 +12,7 @@ import {
   requireServerFeature,
   revertAndClose,
   waitFor,
+  WAIT_MS,
   workspaceRoot,
 } from './helpers';
 import { pageShows, post, pressKeys, screenshot } from './harnessClient';
@@ -69,7 +70,6 @@ export const languageFeatureTests: InsideTests = {
     await waitFor(
       'the suggest widget',
       async () => (await post<{ found: boolean }>('/findText', { text: 'dynamicsShape' })).found || undefined,
-      10_000,
     );
     await screenshot('completion offers the overridable keys (widget)');
     await revertAndClose();
@@ -116,18 +116,22 @@ export const languageFeatureTests: InsideTests = {
       // The library lies outside the workspace, and still its files are watched: a file removed there is reported.
       // A new watcher starts in its own time: the file goes away and comes back until the removal is seen.
       const [present, away] = [path.join(library, 'shared_lane_change.xosc'), path.join(library, 'moved_away.xosc')];
+      // Each try waits twice as long as the last: on a loaded machine the watcher's event and the new diagnostics take their time.
+      let patience = 3_000;
       await waitFor(
         'the removed library file to be reported',
         async () => {
           if (fs.existsSync(away)) fs.renameSync(away, present);
           await new Promise((resolve) => setTimeout(resolve, 500));
           fs.renameSync(present, away);
-          return await waitFor('the removal to be reported', onReference, 3_000).catch(() => undefined);
+          const reported = await waitFor('the removal to be reported', onReference, patience).catch(() => undefined);
+          patience = Math.min(2 * patience, WAIT_MS / 2);
+          return reported;
         },
-        20_000,
+        2 * WAIT_MS,
       );
       fs.renameSync(path.join(library, 'moved_away.xosc'), path.join(library, 'shared_lane_change.xosc'));
-      await waitFor('the restored library file to resolve', () => !onReference() || undefined, 15_000);
+      await waitFor('the restored library file to resolve', () => !onReference() || undefined);
     } finally {
       await settings.update('scenarioPath', undefined, vscode.ConfigurationTarget.Workspace);
       await revertAndClose();
@@ -177,7 +181,6 @@ export const languageFeatureTests: InsideTests = {
       'the suggest widget showing UserDefinedAction',
       async () =>
         (await post<{ found: boolean }>('/findText', { text: 'UserDefinedAction', selector: '.suggest-widget' })).found || undefined,
-      10_000,
     );
     await screenshot('schema completion of a child element (widget)');
     await vscode.commands.executeCommand('hideSuggestWidget');
@@ -211,7 +214,6 @@ export const languageFeatureTests: InsideTests = {
       async () =>
         (await post<{ found: boolean }>('/findText', { text: 'ActivateControllerAction', selector: '.squiggly-inline-deprecated' }))
           .found || undefined,
-      10_000,
     );
     editor.selection = new vscode.Selection(diagnostic.range.start, diagnostic.range.start);
     await vscode.commands.executeCommand('editor.action.showHover');

@@ -3,8 +3,8 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import * as vscode from 'vscode';
 import type { LibraryNode } from '../../../client/src/library/view';
-import { pageShows, screenshot } from './harnessClient';
-import { api, cli, type InsideTests, waitFor, workspaceRoot } from './helpers';
+import { pageShows, pressKeys, quickInput, screenshot, typeText } from './harnessClient';
+import { api, cli, type InsideTests, positionOf, TEST_MS, waitFor, workspaceRoot } from './helpers';
 
 /** The module node the Scenario Library view shows for `name`, as its inline Insert button passes it. */
 function moduleNode(name: string): LibraryNode {
@@ -14,29 +14,45 @@ function moduleNode(name: string): LibraryNode {
   assert.fail(`the Scenario Library view shows no module '${name}'`);
 }
 
+/** *New Scenario from Template…* composition-bench into a new folder of the workspace; the main's path. */
+async function newBench(folderName: string, fileName: string): Promise<string> {
+  const folder = path.join(workspaceRoot(), folderName);
+  fs.mkdirSync(folder, { recursive: true });
+  const created = await vscode.commands.executeCommand<vscode.Uri | undefined>('modular2simple.newFromTemplate', vscode.Uri.file(folder), {
+    template: 'composition-bench',
+    fileName,
+  });
+  const main = path.join(folder, fileName);
+  assert.equal(created?.fsPath, main);
+  return main;
+}
+
+/** No error and no warning on the saved main, in the editor (after the server's answer settles) and under the CLI's check. */
+async function assertClean(document: vscode.TextDocument): Promise<void> {
+  await new Promise((resolve) => setTimeout(resolve, 2_000));
+  const problems = vscode.languages
+    .getDiagnostics(document.uri)
+    .filter((diagnostic) => diagnostic.severity <= vscode.DiagnosticSeverity.Warning)
+    .map((diagnostic) => `${diagnostic.range.start.line + 1}: ${diagnostic.message}`);
+  assert.deepEqual(problems, []);
+  cli(['check', document.uri.fsPath]);
+}
+
 /** A main composed from the Scenario Library: a template, then three modules inserted from the view, then checked clean. */
 export const libraryTests: InsideTests = {
   libraryCompose: async function () {
-    this.timeout(180_000);
+    this.timeout(2 * TEST_MS);
     const steps: string[] = [];
     await vscode.commands.executeCommand('modular2simple.library.focus');
     const tree = api().library.tree;
-    await waitFor('the Scenario Library listing', () => (tree.current?.modules.length ?? 0) > 0, 60_000);
+    await waitFor('the Scenario Library listing', () => (tree.current?.modules.length ?? 0) > 0);
     assert.deepEqual(tree.current?.problems, [], 'the built-in library lists problems');
-    await waitFor('the view drawing its modules', () => pageShows('library:cut-in'), 30_000);
+    await waitFor('the view drawing its modules', () => pageShows('library:cut-in'));
     await screenshot('The Scenario Library view lists the modules by group');
 
-    const folder = path.join(workspaceRoot(), 'composed');
-    fs.mkdirSync(folder, { recursive: true });
     steps.push('New Scenario from Template… composition-bench');
-    const created = await vscode.commands.executeCommand<vscode.Uri | undefined>(
-      'modular2simple.newFromTemplate',
-      vscode.Uri.file(folder),
-      { template: 'composition-bench', fileName: 'composed.xosc' },
-    );
-    const main = path.join(folder, 'composed.xosc');
-    assert.equal(created?.fsPath, main);
-    await waitFor('the new main in the editor', () => vscode.window.activeTextEditor?.document.uri.fsPath === main, 30_000);
+    const main = await newBench('composed', 'composed.xosc');
+    await waitFor('the new main in the editor', () => vscode.window.activeTextEditor?.document.uri.fsPath === main);
 
     const groups: string[] = [];
     for (const name of ['cut-in', 'lead-brake', 'pedestrian-crossing']) {
@@ -60,17 +76,53 @@ export const libraryTests: InsideTests = {
       async () =>
         ((await vscode.commands.executeCommand<unknown[]>('vscode.executeDocumentSymbolProvider', document.uri))?.length ?? 0) > 0 ||
         undefined,
-      60_000,
     );
-    await new Promise((resolve) => setTimeout(resolve, 2_000));
-    const problems = vscode.languages
-      .getDiagnostics(document.uri)
-      .filter((diagnostic) => diagnostic.severity <= vscode.DiagnosticSeverity.Warning)
-      .map((diagnostic) => `${diagnostic.range.start.line + 1}: ${diagnostic.message}`);
-    assert.deepEqual(problems, []);
-    cli(['check', main]);
+    await assertClean(document);
     await screenshot('A main composed from three library modules, clean');
     assert.ok(steps.length <= 5, `composing took ${steps.length} steps: ${steps.join('; ')}`);
     console.log(`composed in ${steps.length} steps: ${steps.join('; ')}`);
+  },
+
+  libraryInsertHere: async function () {
+    this.timeout(2 * TEST_MS);
+    const main = await newBench('insert-here', 'here.xosc');
+    const editor = await waitFor('the new main in the editor', () =>
+      vscode.window.activeTextEditor?.document.uri.fsPath === main ? vscode.window.activeTextEditor : undefined,
+    );
+    const document = editor.document;
+    const onGroup = positionOf(document, '<ManeuverGroup name="EgoBehaviour"', 3);
+    editor.selection = new vscode.Selection(onGroup, onGroup);
+    // The light bulb's actions at the cursor, as VS Code asks for them.
+    const action = await waitFor('Insert library module here… among the code actions', async () =>
+      (
+        await vscode.commands.executeCommand<vscode.CodeAction[]>(
+          'vscode.executeCodeActionProvider',
+          document.uri,
+          new vscode.Range(onGroup, onGroup),
+        )
+      )?.find((candidate) => candidate.title === 'Insert library module here…'),
+    );
+    assert.ok(action.command, 'the action runs a command');
+    const running = vscode.commands.executeCommand<string | undefined>(action.command.command, ...(action.command.arguments ?? []));
+    await waitFor('the quick pick of library modules', async () => {
+      const shown = await quickInput();
+      return (shown.visible && /Insert Library Module/.test(shown.title)) || undefined;
+    });
+    await typeText('library:lead-brake');
+    await screenshot('Insert library module here… picks a module');
+    await pressKeys(['Enter']);
+    assert.equal(await running, 'LeadBrake');
+    const text = document.getText();
+    const [ego, lead, trigger] = ['<ManeuverGroup name="EgoBehaviour"', '<ManeuverGroup name="LeadBrake"', '<StartTrigger>'].map((tag) =>
+      text.indexOf(tag),
+    );
+    assert.ok(
+      ego > 0 && lead > ego && trigger > lead,
+      `LeadBrake after EgoBehaviour, before the Act's StartTrigger (${ego}, ${lead}, ${trigger})`,
+    );
+    assert.ok(text.includes('scenarioFileName="library:lead-brake"'));
+    assert.ok(await document.save(), 'the main was not saved');
+    await assertClean(document);
+    await screenshot('A library module inserted at the cursor, clean');
   },
 };

@@ -5,7 +5,7 @@ import * as vscode from 'vscode';
 import { NewScenarioRequest } from '../../../common/src/protocol';
 import { BIRDS_EYE_FILES } from '../birdsEyeSetup';
 import { pressKeys, quickInput, screenshot, typeText } from './harnessClient';
-import { type InsideTests, offersRequest, requireServerFeature, waitFor, workspaceRoot } from './helpers';
+import { type InsideTests, offersRequest, requireServerFeature, TEST_MS, waitFor, workspaceRoot } from './helpers';
 
 async function waitForQuickInput(what: string, matches: (shown: { title: string; value: string }) => boolean): Promise<void> {
   await waitFor(what, async () => {
@@ -17,7 +17,7 @@ async function waitForQuickInput(what: string, matches: (shown: { title: string;
 /** New Modular Scenario… from a folder's context menu, answered as a person answers its questions. */
 export const newScenarioTests: InsideTests = {
   newScenario: async function () {
-    this.timeout(60_000);
+    this.timeout(TEST_MS);
     requireServerFeature(this, 'newScenario', offersRequest(NewScenarioRequest));
     const root = workspaceRoot();
     const road = path.join(root, BIRDS_EYE_FILES.roadFolder, 'e6mini.xodr');

@@ -13,7 +13,9 @@ import {
   open,
   replaceText,
   requireServerFeature,
+  TEST_MS,
   waitFor,
+  waitForPage,
   workspaceRoot,
   zipEntries,
 } from './helpers';
@@ -55,7 +57,7 @@ export const packAndFlattenTests: InsideTests = {
   },
 
   flatten: async function () {
-    this.timeout(90_000);
+    this.timeout(TEST_MS);
     requireServerFeature(this, 'flattenToFile', offersRequest(FlattenToFileRequest));
     const root = workspaceRoot();
     await open('main.xosc');
@@ -102,7 +104,7 @@ export const packAndFlattenTests: InsideTests = {
   },
 
   packUnsaved: async function () {
-    this.timeout(60_000);
+    this.timeout(TEST_MS);
     requireServerFeature(this, 'pack', offersRequest(PackRequest));
     const root = workspaceRoot();
     const editor = await open('main.xosc');
@@ -126,13 +128,13 @@ export const packAndFlattenTests: InsideTests = {
     );
     assert.equal(packed.get('main.xosc'), editor.document.getText());
     assert.ok(!editor.document.isDirty, 'main.xosc was not saved');
-    await waitFor('the message naming the saved file', () => pageShows('saved main.xosc first'), 10_000);
+    await waitFor('the message naming the saved file', () => pageShows('saved main.xosc first'));
     await screenshot('pack saves unsaved files first');
     fs.rmSync(written);
   },
 
   flattenAnyway: async function () {
-    this.timeout(60_000);
+    this.timeout(TEST_MS);
     requireServerFeature(this, 'flattenToFile', offersRequest(FlattenToFileRequest));
     const root = workspaceRoot();
     const editor = await open('main.xosc');
@@ -145,8 +147,9 @@ export const packAndFlattenTests: InsideTests = {
       await runFromPalette('Modular2Simple: Flatten to .xosc');
       await acceptSaveDialog(path.basename(written));
       // Refused, with the offer that names what writing anyway skips.
-      await waitFor('the offer to write anyway', () => pageShows('Write Anyway'), 20_000);
-      assert.ok(await pageShows('LaneChangeActionDynamic.value'), 'the offer does not name the skipped key');
+      await waitForPage('Write Anyway');
+      // The offer names the skipped key.
+      await waitForPage('LaneChangeActionDynamic.value');
       assert.ok(!fs.existsSync(written), 'a refused flatten wrote its output');
       await screenshot('flatten refused offers to write anyway');
       assert.ok(await clickText('Write Anyway'), 'no Write Anyway button');

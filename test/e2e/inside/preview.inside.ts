@@ -9,6 +9,7 @@ import {
   replaceText,
   requireServerFeature,
   revertAndClose,
+  TEST_MS,
   waitFor,
   workspaceRoot,
 } from './helpers';
@@ -17,7 +18,7 @@ import { pageShows, post, runFromPalette, screenshot } from './harnessClient';
 /** The flattened preview: opened from a CodeLens and from the palette, following edits. */
 export const previewTests: InsideTests = {
   preview: async function () {
-    this.timeout(90_000);
+    this.timeout(TEST_MS);
     requireServerFeature(this, 'codeLens', !!api().serverCapabilities()?.codeLensProvider);
     const editor = await open('main.xosc');
     const previewOpen = () =>
@@ -43,11 +44,7 @@ export const previewTests: InsideTests = {
     assert.ok(!preview.getText().includes('ScenarioReference'), 'the preview still holds a ScenarioReference');
     const pedestrian = positionOf(preview, 'name="Pedestrian.Walker.Crossing"').line;
     const atLens = await waitFor('the preview editor', previewEditor);
-    await waitFor(
-      'the preview to open at the pedestrian group',
-      () => (shows(atLens, pedestrian) && !shows(atLens, 0)) || undefined,
-      10_000,
-    );
+    await waitFor('the preview to open at the pedestrian group', () => (shows(atLens, pedestrian) && !shows(atLens, 0)) || undefined);
     await screenshot('preview opens at the group of the CodeLens');
     await vscode.commands.executeCommand('workbench.action.closeEditorsInOtherGroups');
 
@@ -60,11 +57,7 @@ export const previewTests: InsideTests = {
     await runFromPalette('Modular2Simple: Open Flattened Preview');
     const atCursor = await waitFor('the preview editor', previewEditor);
     const cutIn = positionOf(atCursor.document, 'name="CutInVehicle.CutIn"').line;
-    await waitFor(
-      'the preview to open at the group of the cursor',
-      () => (shows(atCursor, cutIn) && !shows(atCursor, 0)) || undefined,
-      10_000,
-    );
+    await waitFor('the preview to open at the group of the cursor', () => (shows(atCursor, cutIn) && !shows(atCursor, 0)) || undefined);
     await screenshot('preview opens at the group of the cursor');
 
     // Each edit reaches the preview; the time from the edit to the new text is printed (a figure, not a limit).
@@ -95,8 +88,8 @@ export const previewTests: InsideTests = {
     const cursor = positionOf(editor.document, `value="${previous}"`);
     editor.selection = new vscode.Selection(cursor, cursor);
     editor.revealRange(new vscode.Range(cursor, cursor), vscode.TextEditorRevealType.InCenter);
-    await waitFor('the preview to scroll to the imported group', () => shows(atCursor, cutIn) || undefined, 10_000);
-    await waitFor('the preview to show the change', () => pageShows(previous, '.editor-group-container:not(.active) .view-lines'), 10_000);
+    await waitFor('the preview to scroll to the imported group', () => shows(atCursor, cutIn) || undefined);
+    await waitFor('the preview to show the change', () => pageShows(previous, '.editor-group-container:not(.active) .view-lines'));
     await screenshot('preview after an edit');
 
     // A simple scenario that breaks turns the preview into the few lines saying why: shown from its first line, not scrolled below them.
@@ -106,8 +99,8 @@ export const previewTests: InsideTests = {
       'the preview to say why it cannot flatten',
       () => atCursor.document.getText().includes('cannot be flattened') || undefined,
     );
-    await waitFor('the preview to show its first line', () => shows(atCursor, 0) || undefined, 10_000);
-    await waitFor('the explanation to be on screen', () => pageShows('error:', '.editor-group-container:not(.active) .view-lines'), 10_000);
+    await waitFor('the preview to show its first line', () => shows(atCursor, 0) || undefined);
+    await waitFor('the explanation to be on screen', () => pageShows('error:', '.editor-group-container:not(.active) .view-lines'));
     await screenshot('preview of a main whose simple scenario broke');
     await vscode.window.showTextDocument(simple, { viewColumn: vscode.ViewColumn.One, preview: false });
     await vscode.commands.executeCommand('workbench.action.files.revert');

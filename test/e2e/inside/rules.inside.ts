@@ -2,8 +2,8 @@ import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import * as vscode from 'vscode';
-import { api, type InsideTests, open, requireServerFeature, revertAndClose, waitFor, workspaceRoot } from './helpers';
-import { pageShows, screenshot } from './harnessClient';
+import { api, type InsideTests, open, requireServerFeature, revertAndClose, waitFor, waitForPage, workspaceRoot } from './helpers';
+import { screenshot } from './harnessClient';
 
 const UNIQUE_NAMES = 'asam.net:xosc:1.2.0:reference_control.unique_element_names_on_same_level';
 const VALID_SCHEMA = 'asam.net:xosc:1.0.0:xml.valid_schema';
@@ -64,8 +64,9 @@ async function showRuleCodes(): Promise<void> {
   try {
     editor.revealRange(duplicate.range, vscode.TextEditorRevealType.InCenter);
     editor.selection = new vscode.Selection(duplicate.range.start, duplicate.range.start);
-    await waitFor('the rule uid in the Problems panel', async () => (await pageShows(UNIQUE_NAMES, '.markers-panel')) || undefined, 10_000);
-    assert.ok(await pageShows(VALID_SCHEMA, '.markers-panel'), 'the Problems panel does not show the valid_schema rule');
+    // Both rows: the panel draws its rows as it gets to them, so one row shown says nothing of the other.
+    await waitForPage(UNIQUE_NAMES, '.markers-panel');
+    await waitForPage(VALID_SCHEMA, '.markers-panel');
     await screenshot('the Problems panel names each rule (ASAM QC uid)');
   } finally {
     await vscode.commands.executeCommand(TOGGLE_ACTIVE_FILE_ONLY);

@@ -5,17 +5,17 @@ import * as vscode from 'vscode';
 import { BIRDS_EYE_FILES } from '../birdsEyeSetup';
 import { INSIDE_TESTS } from '../titles';
 import { VARIATIONS_FILES } from '../variationsSetup';
-import { api, waitFor, workspaceRoot } from './helpers';
+import { api, TEST_MS, waitFor, workspaceRoot } from './helpers';
 import { clickText, computedStyles, pageShows, screenshot } from './harnessClient';
 
 /** The Variations view tests; run after the bird's-eye tests, in the same VS Code. */
 export function defineVariationsTests(): void {
   describe('the Variations view in a real VS Code', function () {
-    this.timeout(60_000);
+    this.timeout(TEST_MS);
     const settings = () => vscode.workspace.getConfiguration('modular2simple');
 
     before(async function () {
-      await waitFor('the extension to activate', () => vscode.extensions.getExtension('modular2simple.modular2simple')?.isActive, 30_000);
+      await waitFor('the extension to activate', () => vscode.extensions.getExtension('modular2simple.modular2simple')?.isActive);
       await settings().update('esmini.roadPath', [BIRDS_EYE_FILES.roadFolder], vscode.ConfigurationTarget.Workspace);
     });
 
@@ -73,10 +73,8 @@ export function defineVariationsTests(): void {
         .split(',')[0];
       assert.ok(await clickText(`#${firstCollision}`), `no link to run ${firstCollision}`);
       const birdsEye = api().birdsEye;
-      await waitFor(
-        "the run in the bird's-eye view",
-        () => (view.openedRun === firstCollision && birdsEye.stats?.trajectories === 2 ? true : undefined),
-        30_000,
+      await waitFor("the run in the bird's-eye view", () =>
+        view.openedRun === firstCollision && birdsEye.stats?.trajectories === 2 ? true : undefined,
       );
       await screenshot(`Variations view: run ${firstCollision} opened in the bird's-eye view`);
 

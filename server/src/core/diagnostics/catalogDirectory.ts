@@ -1,32 +1,38 @@
 import { defineDiagnostic, ProblemWording } from './definition';
 
 /**
- * A CatalogLocations directory of `kind`, written `written`, found neither beside the file nor in SCENARIO_PATH;
- * `searched`: the SCENARIO_PATH folders that stood for it and hold no catalog a reference of the file needs.
+ * A CatalogLocations directory of `kind`, written `written`, that a CatalogReference of the file needs, found neither
+ * beside the file nor in SCENARIO_PATH; `searched`: the SCENARIO_PATH folders that stood for it and hold no catalog a
+ * reference of the file needs (none without a scenario path).
+ *
+ * An error with a scenario path or without one (SPEC 12, an unresolvable reference): the references that need the
+ * directory resolve nowhere, and esmini 3.6 refuses the file either way ("Couldn't locate OpenSCENARIO file
+ * VehicleCatalog", exit code 255, run without `--path` and with a `--path` folder that lacks the catalog alike).
  */
 export function catalogDirectoryWording(
   kind: string,
   written: string,
   searched: readonly string[] = [],
 ): ProblemWording<'catalog-directory'> {
-  // An error: its references resolve nowhere (what unknown-catalog said at each of them before), so esmini refuses the file.
+  const hint =
+    'correct the path, or add the folder that holds the catalogs to SCENARIO_PATH (--scenario-path, the modular2simple.scenarioPath setting)';
   if (searched.length > 0)
     return {
       severity: 'error',
       code: 'catalog-directory',
       message: `the ${kind} directory '${written}' does not exist beside this file, and the SCENARIO_PATH folders searched for it (${searched.join(', ')}) hold no catalog its references name`,
-      hint: 'correct the path, or add the folder that holds the catalogs to SCENARIO_PATH (--scenario-path, the modular2simple.scenarioPath setting)',
+      hint,
     };
   return {
-    severity: 'warning',
+    severity: 'error',
     code: 'catalog-directory',
-    message: `the ${kind} directory '${written}' does not exist (relative to this file, or in SCENARIO_PATH)`,
-    hint: 'correct the path, or add the folder that holds the catalogs to SCENARIO_PATH (the modular2simple.scenarioPath setting)',
+    message: `the ${kind} directory '${written}' does not exist beside this file nor in SCENARIO_PATH, so the catalog references that need it resolve nowhere`,
+    hint,
   };
 }
 
 export const CATALOG_DIRECTORY = defineDiagnostic({
   code: 'catalog-directory',
-  rule: { description: 'A CatalogLocations directory exists.' },
-  severity: 'warning',
+  rule: { description: 'A CatalogLocations directory that a CatalogReference needs exists.' },
+  severity: 'error',
 });

@@ -6,7 +6,7 @@
 import type { RoadNetwork } from '../opendrive/road';
 import type { RoadXY } from '../opendrive/geo';
 import { pointAlongRoute, RouteWaypoint } from '../opendrive/route';
-import { SourceRef } from '../sources';
+import { baseName, SourceRef } from '../sources';
 import { Range } from '../text';
 import { CarlaRelease, SR_ATOMICS, SR_CONFIGURATION, SR_PARSER, SR_SCENARIO } from './carlaFacts';
 import {
@@ -569,7 +569,9 @@ function routeWaypoints(route: Node): RouteWaypoint[] | string {
     const laneId = Number(attr(lane, 'laneId'));
     const s = Number(attr(lane, 's'));
     if (!Number.isInteger(laneId) || laneId === 0 || !Number.isFinite(s)) return `waypoint ${index + 1}'s laneId or s is not a number`;
-    waypoints.push({ roadId, laneId, s });
+    // Named by where it is written, so that a message saying where to add a waypoint points at a line.
+    const name = waypoint.place ? `the Waypoint at ${baseName(waypoint.place.source)}:${waypoint.place.range.start.line + 1}` : undefined;
+    waypoints.push({ roadId, laneId, s, ...(name ? { name } : {}) });
   }
   return waypoints;
 }

@@ -35,8 +35,8 @@ function entityRefElements(group: XmlElement): XmlElement[] {
   return found;
 }
 
-/** Catalog problems, which the output check reports only for what flattening carried. */
-const CATALOG_CODES: ReadonlySet<ProblemCode> = new Set<ProblemCode>([
+/** Catalog problems, which the output check reports only for what flattening carried (and modularize's check takes as its input's own). */
+export const CATALOG_CODES: ReadonlySet<ProblemCode> = new Set<ProblemCode>([
   'catalog-directory',
   'unknown-catalog',
   'unknown-catalog-entry',

@@ -10,6 +10,7 @@ import { checkAttribute, checkSchema, findingOffsets, SchemaCheckOptions, Schema
 import { ChosenVersion, chooseVersion } from '../schema/version';
 import { OverridableAttribute } from '../keys';
 import { coreMemo } from '../memos';
+import { ownString } from '../text';
 
 import { attribute, elementAt, XmlAttribute, XmlDocument, XmlElement } from '../xml';
 import { copiedFrom, originOf } from './origin';
@@ -134,7 +135,7 @@ function overrideFindings(
     checkAttribute(index, chosen, target.element, typeName, { ...written, value }, (finding) => {
       if (finding.part === 'value' && finding.severity !== 'information') found.push(finding);
     });
-    known.findings.set(value, (findings = found));
+    known.findings.set(ownString(value), (findings = found));
   }
   return findings;
 }

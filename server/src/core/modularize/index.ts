@@ -10,9 +10,11 @@
 import * as path from 'node:path';
 import { firstDifference } from '../equivalence';
 import { Flattener } from '../flatten';
+import { CATALOG_CODES } from '../flatten/checks';
 import { applyEdits } from '../flatten/edits';
 import { buildModel } from '../model';
 import { diskRef, Limits, ScenarioStore } from '../sources';
+import { Problem } from '../problems';
 import { countEditorLines } from '../text';
 import { attributeValue, parseXml, XmlDocument } from '../xml';
 import { indentUnit, planBehaviour } from './behaviour';
@@ -250,7 +252,15 @@ async function verify(inputs: ParsedInput[], planned: Plan, limits: Partial<Limi
   const failures: ModularizeResult['failures'] = [];
   for (const [index, main] of planned.mains.entries()) {
     if (main.imports.length === 0) continue;
-    const result = await flattener.flatten(diskRef(path.resolve(main.output)), { outputPath: main.output });
+    const ref = diskRef(path.resolve(main.output));
+    let result = await flattener.flatten(ref, { outputPath: main.output });
+    // A main and its simple scenarios keep the input's catalog locations and references: their errors (a catalog
+    // directory absent here) are the input's own, no reason to keep its groups inline; any other error is.
+    const errors = result.problems.filter((problem) => problem.severity === 'error');
+    const inputsOwn = (problem: Problem) =>
+      CATALOG_CODES.has(problem.code) || (problem.code === 'source-errors' && CATALOG_CODES.has(problem.cause?.code ?? 'source-errors'));
+    if (result.text === undefined && errors.length > 0 && errors.every(inputsOwn))
+      result = await flattener.flatten(ref, { outputPath: main.output, force: true });
     if (result.text === undefined) {
       const error = result.problems.find((problem) => problem.severity === 'error');
       failures.push({ input: main.input, difference: `the main does not flatten: ${error?.message ?? 'no output'}` });

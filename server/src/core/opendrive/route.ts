@@ -6,8 +6,9 @@
  * (through junctions by their connections' laneLinks), and stops at the first road end it takes whose next
  * road is the target. Between the waypoints it adds one waypoint per road of the path; a point along the
  * route lies on the road of the waypoint before it, or on the next waypoint's road when it runs past the
- * end. Where that search could go two ways at equal distance, runs into a direct junction, or finds nothing,
- * this answers why instead of a place: the export names it rather than guess.
+ * end. Where that search could go two ways at equal distance (esmini then takes the one its file lists first),
+ * runs into a direct junction, or finds nothing, this answers why instead of a place: the export names it
+ * rather than guess. Equally near road ends that lead the same way whichever esmini takes are no ambiguity.
  */
 import { JunctionConnection, laneSectionIndexAt, Road, RoadLink, RoadNetwork } from './road';
 
@@ -16,6 +17,8 @@ export interface RouteWaypoint {
   roadId: string;
   laneId: number;
   s: number;
+  /** How a message names it (`the Waypoint at line 40`); `waypoint N` (its place in the route) when not given. */
+  name?: string;
 }
 
 /** The point on the route: the road and its s, and how the route got there. */
@@ -30,6 +33,10 @@ export interface RoutePoint {
 const SMALL = 1e-10;
 /** RoadPath::Calculate gives up after this many road ends. */
 const MAX_STEPS = 100;
+/** Equally near road ends whose order is tried, at most this many searches in all, before the route is called ambiguous unread. */
+const MAX_ORDERS = 64;
+/** Distances this close are equal: esmini takes whichever of them it inserted first. */
+const SAME_DISTANCE = 1e-6;
 /** Route::AddWaypoint puts the waypoint it adds on each road between two given ones this far along the road (RoadManager.cpp). */
 const INTERMEDIATE_FRACTION = 0.33;
 
@@ -115,11 +122,24 @@ function connectionsFrom(network: RoadNetwork, junctionId: string, incoming: Roa
   return [...written, ...counter];
 }
 
+interface FoundPath {
+  nodes: PathNode[];
+  dist: number;
+}
+
 /**
- * The road ends from `start` to the road of `target`, as esmini's RoadPath::Calculate(dist, false) finds them,
- * with the distance from the start to the target along them; or why there is no single answer.
+ * One run of esmini's RoadPath::Calculate(dist, false) from `start` to the road of `target`: the road ends it
+ * takes, with the distance from the start to the target along them, or why there is none. esmini takes the first
+ * of equally near road ends in the order it inserted them; `order[k]` says which of them this run takes at the
+ * k-th such choice (0 by default), and `ties` gets how many there were at each.
  */
-function findPath(network: RoadNetwork, start: RouteWaypoint, target: RouteWaypoint): { nodes: PathNode[]; dist: number } | string {
+function searchPath(
+  network: RoadNetwork,
+  start: RouteWaypoint,
+  target: RouteWaypoint,
+  order: number[],
+  ties: number[],
+): FoundPath | string {
   const startRoad = network.byId.get(start.roadId);
   const targetRoad = network.byId.get(target.roadId);
   if (!startRoad) return `road ${start.roadId} is not in the road network`;
@@ -157,11 +177,17 @@ function findPath(network: RoadNetwork, start: RouteWaypoint, target: RouteWaypo
   };
 
   for (let step = 0; step < MAX_STEPS && unvisited.length > 0; step++) {
-    let index = 0;
-    for (let each = 1; each < unvisited.length; each++) if (unvisited[each].dist < unvisited[index].dist) index = each;
+    let nearest = 0;
+    for (let each = 1; each < unvisited.length; each++) if (unvisited[each].dist < unvisited[nearest].dist) nearest = each;
+    const tied: number[] = [];
+    for (let each = 0; each < unvisited.length; each++)
+      if (Math.abs(unvisited[each].dist - unvisited[nearest].dist) < SAME_DISTANCE) tied.push(each);
+    let index = nearest;
+    if (tied.length > 1) {
+      index = tied[order[ties.length] ?? 0];
+      ties.push(tied.length);
+    }
     const node = unvisited[index];
-    // esmini takes the first of equally near road ends; which one that is depends on its order of insertion, so name it.
-    const tie = unvisited.find((other) => other !== node && Math.abs(other.dist - node.dist) < 1e-6);
     let found: number[] = [];
     if (node.link.elementType === 'road') {
       const next = network.byId.get(node.link.elementId);
@@ -186,13 +212,56 @@ function findPath(network: RoadNetwork, start: RouteWaypoint, target: RouteWaypo
     unvisited.splice(index, 1);
     if (found.length > 1) return `junction ${node.link.elementId} reaches road ${targetRoad.id} by ${found.length} connecting roads`;
     if (found.length === 1) {
-      if (tie) return `two ways from road ${start.roadId} are equally near (road ends of roads ${node.road.id} and ${tie.road.id})`;
       const nodes: PathNode[] = [];
       for (let each: PathNode | undefined = node; each; each = each.previous) nodes.unshift(each);
       return { nodes, dist: found[0] };
     }
   }
   return `no way along lane links from road ${start.roadId} lane ${start.laneId} to road ${target.roadId} in its driving direction`;
+}
+
+/** The roads a path runs over, from the start's road to the target's. */
+function pathRoads(path: FoundPath, target: RouteWaypoint): string[] {
+  return [...path.nodes.map((node) => node.road.id), target.roadId];
+}
+
+/**
+ * The road ends from `start` to the road of `target` as esmini finds them, with the distance along them; or why
+ * there is no single answer. Where road ends are equally near, esmini's answer depends on the order it inserted
+ * them, which the OpenSCENARIO standard does not settle (a Waypoint's routeStrategy names no tie rule): every
+ * order is tried, and the way is taken only when they all give it (a tie elsewhere in the network changes
+ * nothing). When two orders give two ways, the message names both and the waypoint that picks one.
+ */
+function findPath(network: RoadNetwork, start: RouteWaypoint, target: RouteWaypoint, between: string): FoundPath | string {
+  const orders: number[][] = [[]];
+  let first: FoundPath | string | undefined;
+  for (let tried = 0; orders.length > 0; tried++) {
+    const order = orders.pop() as number[];
+    const ties: number[] = [];
+    const answer = searchPath(network, start, target, order, ties);
+    // Each choice after those this order fixed, taken otherwise, is another order esmini may follow.
+    for (let at = order.length; at < ties.length; at++)
+      for (let other = 1; other < ties[at]; other++) orders.push([...order, ...new Array<number>(at - order.length).fill(0), other]);
+    if (first === undefined) {
+      first = answer;
+      if (ties.length === 0) return answer;
+    } else if (typeof answer === 'string' || typeof first === 'string') {
+      if (answer !== first)
+        return `from ${between} esmini's way depends on the order its file lists equally near roads (${typeof first === 'string' ? first : pathRoads(first, target).join(' > ')}; or ${typeof answer === 'string' ? answer : pathRoads(answer, target).join(' > ')})`;
+    } else {
+      const one = pathRoads(first, target);
+      const two = pathRoads(answer, target);
+      if (one.join(' ') !== two.join(' ') || Math.abs(first.dist - answer.dist) > SAME_DISTANCE) {
+        const onlyOne = one.find((road) => !two.includes(road));
+        const onlyTwo = two.find((road) => !one.includes(road));
+        const pick = onlyOne && onlyTwo ? `add a Waypoint on road ${onlyOne} or road ${onlyTwo} ` : 'add a Waypoint on the road to take ';
+        return `from ${between} two ways are equally short (roads ${one.join(' > ')}, and ${two.join(' > ')}) and the standard names no rule to choose (esmini takes the one its file lists first): ${pick}between them to say which`;
+      }
+    }
+    if (tried + 1 >= MAX_ORDERS && orders.length > 0)
+      return `from ${between} too many road ends are equally near for the export to tell whether esmini's way depends on the order of its file; add Waypoints on the roads the route takes`;
+  }
+  return first as FoundPath | string;
 }
 
 /** Where `pathS` metres along the route lies: esmini's minimal waypoints (Route::AddWaypoint) walked as Route::SetPathS walks them. */
@@ -227,7 +296,8 @@ export function pointAlongRoute(network: RoadNetwork, waypoints: RouteWaypoint[]
       stops.push({ given: waypoint, road, s: waypoint.s, laneId: waypoint.laneId, direction, routeS: length });
       continue;
     }
-    const path = findPath(network, from, waypoint);
+    const nameOf = (each: RouteWaypoint): string => each.name ?? `waypoint ${waypoints.indexOf(each) + 1}`;
+    const path = findPath(network, from, waypoint, `${nameOf(from)} to ${nameOf(waypoint)}`);
     if (typeof path === 'string') return path;
     let along = length;
     let at = previous;

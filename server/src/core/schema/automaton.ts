@@ -1,5 +1,6 @@
 import { ElementParticle, Particle } from './model';
 import { coreMemo } from '../memos';
+import { ownString } from '../text';
 
 interface Edge {
   particle: ElementParticle;
@@ -118,7 +119,7 @@ export class ContentAutomaton {
     const remembered = table.get(name);
     if (remembered !== undefined) return remembered ?? undefined;
     const computed = this.computeStep(states, name);
-    table.set(name, computed ?? null);
+    table.set(ownString(name), computed ?? null);
     return computed;
   }
 

@@ -15,9 +15,10 @@ import { CORE_MEMOS, coreMemo } from '../memos';
 /**
  * Catalogs (ASAM OpenSCENARIO 1.x section 9.4): a `CatalogLocations` `Directory path` is relative to
  * the file that names it; every `.xosc` in that directory whose root holds a `Catalog` of a name is
- * that catalog. Where the directory does not exist beside the file, the SCENARIO_PATH directories are
- * searched as esmini searches its `--path` folders (esmini 3.6 `ScenarioReader::LoadCatalog`):
- * `D/path`, `D` itself, and `D/<last folder of path>`.
+ * that catalog. Where the directory does not exist beside the file, the SCENARIO_PATH directories (then the
+ * store's catalogPath: the road folders a run also hands esmini) are searched as esmini searches its `--path`
+ * folders (esmini 3.6 `ScenarioReader::LoadCatalog`): `D/path`, `D` itself, and `D/<last folder of path>`.
+ * A run hands esmini the same folders (esmini/run.ts esminiSearchPath), so what is found here esmini finds.
  */
 
 export interface CatalogFile {
@@ -112,7 +113,7 @@ export class CatalogLoader {
       if ((await this.store.kindOf(candidate)) === 'directory') found.push({ packageRef: undefined, directory: candidate, via: 'file' });
     }
     if (found.length > 0) return found;
-    for (const base of this.store.scenarioPath) {
+    for (const base of new Set([...this.store.scenarioPathFor(from), ...this.store.catalogPath])) {
       for (const candidate of [path.resolve(base, pathText), base, path.join(base, path.basename(pathText))]) {
         if (found.some((known) => known.directory === candidate)) continue;
         if ((await this.store.kindOf(candidate)) === 'directory')

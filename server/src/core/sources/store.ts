@@ -15,6 +15,12 @@ import { FolderOptions, isWithinFolder, LIBRARY_PREFIX, LibraryFolder, libraryFi
 export interface StoreOptions {
   /** Directories searched after the package itself: SCENARIO_PATH first, then the editor's setting. */
   scenarioPath?: string[];
+  /**
+   * Folders a run hands esmini as `--path` besides the scenario path (`run --road-path`, the
+   * `modular2simple.esmini.roadPath` setting): esmini finds catalogs there too, so catalog directories are looked for in
+   * them after the scenario path. Not searched for scenario files.
+   */
+  catalogPath?: string[];
   /** The caller's environment; its SCENARIO_PATH is the scenario path when `scenarioPath` is not given. */
   environment?: Readonly<Record<string, string | undefined>>;
   /**
@@ -41,6 +47,7 @@ export interface StoreOptions {
 export class ScenarioStore {
   readonly host: FileSystemHost;
   readonly scenarioPath: string[];
+  readonly catalogPath: string[];
   readonly root: string | undefined;
   readonly folders: FolderOptions[];
   readonly libraries: LibraryFolder[];
@@ -58,6 +65,7 @@ export class ScenarioStore {
     this.host = options.host ?? nodeFileSystem;
     this.kinds = this.host.kinds ?? new KindCache(this.host);
     this.scenarioPath = options.scenarioPath ?? splitScenarioPath(options.environment?.SCENARIO_PATH);
+    this.catalogPath = options.catalogPath ?? [];
     this.workingDirectory = options.workingDirectory;
     this.root = options.root ? pathsFor(options.root).resolve(options.root) : undefined;
     // Innermost first, so a folder nested in another is found before it.
@@ -401,16 +409,19 @@ export class ScenarioStore {
       }
     }
     const searched = places.map((place) => this.describePlace(place));
-    const suggestion = closestMatch(
-      trimmed,
-      (await this.namesIn(places, trimmed)).filter((candidate) => candidate !== trimmed),
-    );
+    // Never the referencing file itself (a package's main.xosc is no 'simple_1.xosc'), and names compared without their
+    // extension, which every candidate shares and which made 'main.xosc' close enough to 'simple_1.xosc'.
+    const ownName = from.entries.length > 0 ? from.entries[from.entries.length - 1] : pathsFor(from.disk).basename(from.disk);
+    const stem = (file: string) => file.replace(/\.(xosc|mosc)$/i, '');
+    const candidates = (await this.namesIn(places, trimmed)).filter((candidate) => candidate !== trimmed && candidate !== ownName);
+    const closest = closestMatch(stem(trimmed), candidates.map(stem));
+    const suggestion = closest === undefined ? undefined : candidates.find((candidate) => stem(candidate) === closest);
     return {
       kind: 'missing',
       searched,
       hint:
         this.scenarioPath.length === 0
-          ? 'set SCENARIO_PATH (or the modular2simple.scenarioPath setting) to the folder that holds it'
+          ? 'set SCENARIO_PATH (--scenario-path, the modular2simple.scenarioPath setting) to the folder that holds it'
           : undefined,
       ...(suggestion ? { suggestion } : {}),
     };
