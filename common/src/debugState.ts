@@ -26,6 +26,8 @@ export interface DebugState {
   running: { name: string; path: string; type: string; since: number }[];
   /** The session paused (a stop) or ended; otherwise a sample while it runs. */
   paused: boolean;
+  /** Which run of the session (1 from the launch, one more at each restart; common/src/trace.ts StoryboardEventBody.run). */
+  run?: number;
 }
 
 export function isDebugState(value: unknown): value is DebugState {

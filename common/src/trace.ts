@@ -50,6 +50,32 @@ export const STORYBOARD_EVENT = 'modular2simpleStoryboard';
 export interface StoryboardEventBody {
   records: TraceRecord[];
   time: number;
+  /**
+   * Which run of the session the records belong to: 1 from the launch, one more at each restart. A restarted session
+   * keeps its id in the editor, and its new run starts again at 0 s: its records never join the last run's.
+   */
+  run: number;
+}
+
+/** A debug session's trace as its storyboard events build it: the records of its current run. */
+export interface LiveTrace {
+  run: number;
+  records: TraceRecord[];
+  /** The simulation time the session last gave, s. */
+  time: number;
+}
+
+/**
+ * The trace with one more storyboard event: the records added to the run they belong to, or, for an event of
+ * another run (the session restarted), that run's trace alone, the earlier run's records dropped. An event from an
+ * adapter that numbers no run belongs to the current run.
+ */
+export function followStoryboard(trace: LiveTrace | undefined, body: StoryboardEventBody): LiveTrace {
+  const run = typeof body.run === 'number' ? body.run : (trace?.run ?? 1);
+  const current = trace && trace.run === run ? trace : { run, records: [], time: 0 };
+  current.records.push(...body.records);
+  if (typeof body.time === 'number' && Number.isFinite(body.time)) current.time = body.time;
+  return current;
 }
 
 /** A trace file that is not one JSON trace record a line: names the line and what is wrong. */

@@ -45,4 +45,18 @@ describe("client: the bird's-eye view following a debug session", () => {
     assert.deepEqual(restarted.entities[0].x, [0]);
     assert.deepEqual(restarted.starts, { CutInStory: 0 });
   });
+
+  it('starts a new run for a restarted session whose first state comes later than the last run got', () => {
+    // The last run stopped at 0.5 s; the restarted run's first sample (about every 100 ms of wall time) is at 3 s.
+    const first = appendDebugState(appendDebugState(undefined, { ...state(0, [car('Ego', 0)]), run: 1 }), {
+      ...state(0.5, [car('Ego', 5)]),
+      run: 1,
+    });
+    const restarted = appendDebugState(first, { ...state(3, [car('Ego', 30)]), run: 2 });
+    assert.deepEqual(restarted.times, [3]);
+    assert.deepEqual(restarted.entities[0].x, [30]);
+    assert.equal(restarted.sessionRun, 2);
+    // The same run grows.
+    assert.deepEqual(appendDebugState(restarted, { ...state(3.5, [car('Ego', 35)]), run: 2 }).times, [3, 3.5]);
+  });
 });

@@ -6,7 +6,7 @@ import { once } from 'node:events';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { storyboardTimeline } from '../../common/src/storyboardTimeline';
-import { STORYBOARD_EVENT, type StoryboardEventBody } from '../../common/src/trace';
+import { followStoryboard, type LiveTrace, STORYBOARD_EVENT, type StoryboardEventBody } from '../../common/src/trace';
 import { DEBUG_STATE_EVENT, type DebugState } from '../../common/src/debugState';
 import { esminiBinary, esminiCatalogs, esminiRoads } from '../support/esmini';
 import { requireEsminiLibrary, requireEsminiProgram } from '../support/esminiBinaries';
@@ -284,6 +284,60 @@ describe('debug adapter through the Debug Adapter Protocol', function () {
       bodies.some((body) => body.records.length === 0 && Math.abs(body.time - 2.35) < 1e-6),
       JSON.stringify(bodies.map((body) => [body.time, body.records.length])),
     );
+  });
+
+  it("makes a restart a new run: the timeline's and the bird's-eye view's events number it, and the timeline shows it alone", async () => {
+    const eventLine = lineOf(cutIn, '<Event name="CutInEvent"');
+    const bodies: StoryboardEventBody[] = [];
+    client.on(STORYBOARD_EVENT, (event: DebugProtocol.Event) => bodies.push(event.body as StoryboardEventBody));
+    const states: DebugState[] = [];
+    client.on(DEBUG_STATE_EVENT, (event: DebugProtocol.Event) => states.push(event.body as DebugState));
+    const launch: DebugProtocol.LaunchRequestArguments & Record<string, unknown> = {
+      type: 'modular2simple',
+      request: 'launch',
+      program: cutIn,
+      roadPath,
+    };
+    await client.hitBreakpoint(launch, { path: cutIn, line: eventLine });
+    const firstRun = bodies.length;
+    assert.ok(firstRun > 0 && bodies.every((body) => body.run === 1), JSON.stringify(bodies.map((body) => body.run)));
+    // VS Code's restart button sends restart with the launch configuration; the session (and its id) stays.
+    const stopped = client.waitForEvent('stopped');
+    await client.restartRequest({ arguments: launch });
+    await stopped;
+    const restartTime = Number(await evaluate(client, 'time'));
+    assert.equal(restartTime, 6.5, 'the restarted run stops on the same breakpoint at the time esmini starts CutInEvent');
+    await Promise.all([client.continueRequest({ threadId: 1 }), client.waitForEvent('terminated')]);
+
+    const secondRun = bodies.slice(firstRun);
+    assert.ok(secondRun.length > 0 && secondRun.every((body) => body.run === 2), JSON.stringify(secondRun.map((body) => body.run)));
+    assert.equal(secondRun[0].time, 0, 'the new run starts at 0 s');
+    // The timeline's model over every event of the session keeps the second run's records alone.
+    let trace: LiveTrace | undefined;
+    for (const body of bodies) trace = followStoryboard(trace, body);
+    assert.ok(trace);
+    assert.equal(trace.run, 2);
+    assert.deepEqual(
+      trace.records,
+      secondRun.flatMap((body) => body.records),
+    );
+    const rows = storyboardTimeline(trace.records, trace.time).rows;
+    const cutInEvent = rows.find((row) => row.type === 'Event' && row.name === 'CutInEvent');
+    assert.deepEqual(
+      cutInEvent?.spans.map((span) => span.start),
+      [6.5],
+    );
+    assert.ok(cutInEvent?.spans[0].end !== undefined, 'CutInEvent ends in the run that went to the end');
+    const story = rows.find((row) => row.type === 'Story');
+    assert.deepEqual(
+      story?.spans.map((span) => span.start),
+      [0],
+    );
+    // Each element's records once: the first run's CutInEvent start is not among them.
+    assert.equal(trace.records.filter((record) => record.element.endsWith('::CutInEvent') && record.state === 'running').length, 1);
+    // The bird's-eye view's states say the run too.
+    const stateRuns = [...new Set(states.map((state) => state.run))];
+    assert.deepEqual(stateRuns, [1, 2]);
   });
 
   it('keeps a conditional breakpoint that never holds from stopping, and stops at a time breakpoint', async () => {

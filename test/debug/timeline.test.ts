@@ -1,6 +1,6 @@
 import * as assert from 'node:assert/strict';
 import { describeCondition, describeFiring, storyboardTimeline, type TimelineRow } from '../../common/src/storyboardTimeline';
-import { parseTrace, TraceFormatError, type TraceRecord } from '../../common/src/trace';
+import { followStoryboard, parseTrace, TraceFormatError, type TraceRecord } from '../../common/src/trace';
 import { mainOf, storeForInputs } from '../../server/src/cli/inputs';
 import { Flattener } from '../../server/src/core/flatten';
 import { prepareScenario, Simulation } from '../../server/src/debug/simulation';
@@ -117,5 +117,27 @@ describe('storyboard trace files', () => {
       { start: 3 },
     ]);
     assert.equal(timeline.end, 3);
+  });
+});
+
+describe("storyboard timeline of a debug session (the panel's model)", () => {
+  const record = (time: number, element: string, state: string): TraceRecord => ({ time, element, type: 'Event', state });
+
+  it('keeps a restarted run apart from the run before it, however their times compare', () => {
+    let trace = followStoryboard(undefined, { records: [record(0, 'S::A::G::M::E', 'standby')], time: 0, run: 1 });
+    trace = followStoryboard(trace, { records: [record(2, 'S::A::G::M::E', 'running')], time: 2, run: 1 });
+    assert.equal(trace.records.length, 2);
+    // The restart: its first event is later than the first run's last one; it still starts the trace again.
+    const restarted = followStoryboard(trace, { records: [record(3, 'S::A::G::M::E', 'running')], time: 3, run: 2 });
+    assert.deepEqual(restarted.records, [record(3, 'S::A::G::M::E', 'running')]);
+    assert.equal(restarted.run, 2);
+    const row = storyboardTimeline(restarted.records, restarted.time).rows[0];
+    assert.deepEqual(
+      row.spans.map((span) => span.start),
+      [3],
+    );
+    // A stop (no records) keeps the run and moves its time.
+    assert.equal(followStoryboard(restarted, { records: [], time: 4, run: 2 }).time, 4);
+    assert.equal(followStoryboard(restarted, { records: [], time: 4, run: 2 }).records.length, 1);
   });
 });

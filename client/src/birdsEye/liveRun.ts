@@ -3,13 +3,23 @@ import type { DebugState } from '../../../common/src/debugState';
 import type { RunTracks } from './messages';
 
 /**
- * `run` with `state` appended (a new run when there is none or the state goes back in time: a restart). An entity
+ * `run` with `state` appended (a new run when there is none, or the state is of another run of the session or goes
+ * back in time: a restart). An entity
  * first seen late stands where it was first seen for the earlier times; each running element's first start is kept, by its path.
  */
 export function appendDebugState(run: RunTracks | undefined, state: DebugState): RunTracks {
   const last = run?.times[run.times.length - 1];
-  const grown: RunTracks =
-    run && last !== undefined && state.time >= last ? run : { label: 'debug session', times: [], entities: [], starts: {}, notes: [] };
+  const sameRun = run && last !== undefined && state.time >= last && (state.run === undefined || state.run === run.sessionRun);
+  const grown: RunTracks = sameRun
+    ? run
+    : {
+        label: 'debug session',
+        times: [],
+        entities: [],
+        starts: {},
+        notes: [],
+        ...(state.run !== undefined ? { sessionRun: state.run } : {}),
+      };
   const index = grown.times.length;
   grown.times.push(state.time);
   for (const entity of state.entities) {

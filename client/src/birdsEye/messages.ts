@@ -17,6 +17,8 @@ export interface RunTracks {
   causes?: Record<string, string>;
   /** What was left out or could not be read. */
   notes: string[];
+  /** For a debug session's run: which run of the session (common/src/debugState.ts DebugState.run). */
+  sessionRun?: number;
   /** The road file esmini's log says it loaded, when the log is known. */
   roadFile?: string;
 }

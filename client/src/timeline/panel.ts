@@ -3,7 +3,14 @@ import * as path from 'node:path';
 import * as vscode from 'vscode';
 import { webviewNonce } from '../webviewNonce';
 import { storyboardTimeline, type Timeline } from '../../../common/src/storyboardTimeline';
-import { parseTrace, STORYBOARD_EVENT, type StoryboardEventBody, type TraceRecord } from '../../../common/src/trace';
+import {
+  followStoryboard,
+  type LiveTrace,
+  parseTrace,
+  STORYBOARD_EVENT,
+  type StoryboardEventBody,
+  type TraceRecord,
+} from '../../../common/src/trace';
 import { DEBUG_TYPE } from '../debugging';
 import { packageEntryUri } from '../packageFileSystem';
 import { isFromView, type FromView, type TimelineStats, type ToView } from './messages';
@@ -36,8 +43,10 @@ export class TimelineView implements vscode.Disposable {
   private source: TraceSource | undefined;
   private timeline: Timeline | undefined;
   private live = false;
-  /** The debug session the timeline follows or last followed. */
+  /** The debug session the timeline follows or last followed, and its current run's trace. */
   private liveSession: string | undefined;
+  private liveTrace: LiveTrace | undefined;
+  private liveProgram = '';
   private time = 0;
   private redrawTimer: NodeJS.Timeout | undefined;
   private readonly disposables: vscode.Disposable[] = [];
@@ -131,8 +140,10 @@ export class TimelineView implements vscode.Disposable {
 
   private startLive(session: vscode.DebugSession): void {
     const program = typeof session.configuration.program === 'string' ? session.configuration.program : session.name;
-    this.source = { records: [], label: `debugging ${path.basename(program)}`, bases: [] };
+    this.liveProgram = path.basename(program);
+    this.source = { records: [], label: `debugging ${this.liveProgram}`, bases: [] };
     this.liveSession = session.id;
+    this.liveTrace = undefined;
     this.live = true;
     this.timeline = storyboardTimeline([]);
     this.redraw();
@@ -140,11 +151,20 @@ export class TimelineView implements vscode.Disposable {
 
   private liveEvent(body: StoryboardEventBody): void {
     if (!this.source || !this.live || !Array.isArray(body?.records)) return;
-    this.source.records.push(...body.records);
-    if (typeof body.time === 'number') this.time = body.time;
+    const previous = this.liveTrace;
+    this.liveTrace = followStoryboard(previous, body);
+    // A restarted session: its new run alone, said in the title, never mixed with the run before.
+    const restarted = previous !== undefined && this.liveTrace !== previous;
+    if (restarted || !previous)
+      this.source = {
+        records: this.liveTrace.records,
+        label: `debugging ${this.liveProgram}${this.liveTrace.run > 1 ? `, run ${this.liveTrace.run} (restarted)` : ''}`,
+        bases: [],
+      };
+    this.time = this.liveTrace.time;
     clearTimeout(this.redrawTimer);
-    // Redrawn after a burst of steps, and at once when the session stops (no records).
-    if (body.records.length === 0) this.redraw();
+    // Redrawn after a burst of steps, and at once when the session stops (no records) or restarts.
+    if (body.records.length === 0 || restarted) this.redraw();
     else this.redrawTimer = setTimeout(() => this.redraw(), LIVE_REDRAW_MS);
   }
 

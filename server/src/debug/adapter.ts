@@ -140,6 +140,8 @@ export class ScenarioDebugSession extends DebugSession {
   private sourceTexts = new Map<number, string>();
   private terminated = false;
   private lastStateAt = 0;
+  /** The run of the scenario: 1 from the launch, one more at each restart (StoryboardEventBody.run). */
+  private runNumber = 0;
 
   constructor() {
     super();
@@ -176,8 +178,12 @@ export class ScenarioDebugSession extends DebugSession {
     });
   }
 
-  protected override restartRequest(response: DebugProtocol.RestartResponse): void {
+  /** Restart (VS Code's restart button too, the session keeping its id): a new run of the scenario, numbered for the views. */
+  protected override restartRequest(response: DebugProtocol.RestartResponse, args: DebugProtocol.RestartArguments): void {
     this.guard(response, async () => {
+      // VS Code sends the launch configuration as it reads it now: an edited launch.json applies to the new run.
+      const relaunch = args?.arguments as Partial<ScenarioLaunchArguments> | undefined;
+      if (relaunch && typeof relaunch.program === 'string') this.launchArgs = relaunch as ScenarioLaunchArguments;
       this.simulation?.close();
       this.simulation = undefined;
       this.running = false;
@@ -224,6 +230,7 @@ export class ScenarioDebugSession extends DebugSession {
       const simulation = new Simulation(prepared, options);
       const started = simulation.start();
       this.simulation = simulation;
+      this.runNumber++;
       for (const function_ of this.functionBreakpoints) ((function_.done = false), (function_.hits = 0));
       for (const list of this.lineBreakpoints.values()) for (const breakpoint of list) breakpoint.hits = 0;
       this.reverify();
@@ -492,6 +499,7 @@ export class ScenarioDebugSession extends DebugSession {
         .running()
         .map((element) => ({ name: element.name, path: element.path, type: element.type, since: element.since })),
       paused,
+      run: this.runNumber,
     };
     this.sendEvent(new Event(DEBUG_STATE_EVENT, state));
   }
@@ -672,6 +680,7 @@ export class ScenarioDebugSession extends DebugSession {
     const body: StoryboardEventBody = {
       records: events.map((event) => traceRecord(event, undefined, this.simulation?.scenario.map)),
       time: Number((this.simulation?.time ?? 0).toFixed(6)),
+      run: this.runNumber,
     };
     this.sendEvent(new Event(STORYBOARD_EVENT, body));
   }
