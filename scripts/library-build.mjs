@@ -1110,6 +1110,95 @@ export const MODULES = [
     // synchronization arrived at 8.5 m/s and then jumped to the final speed; as this WorldPosition it arrives smoothly.
     maneuver: synchronizedArrival('TurnSynchronize', 'TurnStart', 1.63, { x: 1.63, y: -1.75, h: 3.934 }, 6),
   },
+  {
+    name: 'arrive-leave-site',
+    title: 'Arrive at a site, stay, leave',
+    group: 'Incident site',
+    summary:
+      "A vehicle (police, ambulance, a tow truck) drives up to a site, a vehicle standing ahead in its lane (a breakdown, a crash), brakes evenly to a stand once the gap to it is below the one asked, over a set distance (so it stands at a gap of the first less the second), stays there a set time, then drives off at a set speed (accelerating at 2 m/s²), pulling out sideways by a set offset from its lane's centre to pass the site.",
+    actor: 'the arriving vehicle, behind the site in its lane',
+    actorName: 'responder',
+    groupName: 'ArriveLeaveSite',
+    entities: [VEHICLE('site', 'vehicle.tesla.model3'), VEHICLE('responder', 'vehicle.dodge.charger_police')],
+    init: [placed('site', -1, 200, 0), placed('responder', -1, 110, 14)],
+    stopAt: 16,
+    parameters: [
+      {
+        key: 'RelativeDistanceCondition.value',
+        name: 'brakeGap',
+        unit: 'm',
+        range: '5..200',
+        about: 'the gap (bumper to bumper, along the road) to the site when it starts braking',
+      },
+      {
+        key: 'SpeedActionDynamics.value',
+        name: 'brakingDistance',
+        unit: 'm',
+        range: '1..150',
+        about:
+          'how far it brakes, at an even deceleration, to a stand: it stands at a gap of brakeGap - brakingDistance behind the site (its speed² / (2 brakingDistance) must stay within its maxDeceleration)',
+      },
+      { key: 'Condition.delay', name: 'stay', unit: 's', range: '0..600', about: 'how long it stands at the site before it leaves' },
+      { key: 'AbsoluteTargetSpeed.value', name: 'leaveSpeed', unit: 'm/s', range: '0.5..70', about: 'the speed it drives off at' },
+      {
+        key: 'AbsoluteTargetLaneOffset.value',
+        name: 'passOffset',
+        unit: 'm',
+        range: '-7..7',
+        about:
+          "how far it pulls out from its lane's centre line as it leaves, to pass the site: positive to the left, negative to the right, 0 straight on",
+      },
+      {
+        key: 'LaneOffsetActionDynamics.maxLateralAcc',
+        name: 'lateralAcceleration',
+        unit: 'm/s²',
+        range: '0.5..10',
+        about: 'the largest lateral acceleration of the pull-out',
+      },
+      { key: 'RelativeDistanceCondition.entityRef', name: 'site', about: 'the vehicle at the site, standing ahead in its lane' },
+      {
+        key: 'EntityRef.entityRef',
+        name: 'self',
+        about: 'the arriving vehicle itself (as in Actors): its gap to the site triggers the braking',
+      },
+    ],
+    keys: {},
+    maneuver: [
+      event(
+        'SiteArrive',
+        privateAction(
+          'SiteArrive',
+          speedAction(
+            '<SpeedActionDynamics parameterAttributes="value" dynamicsShape="linear" value="25" dynamicsDimension="distance"/>',
+            '<AbsoluteTargetSpeed value="0"/>',
+          ),
+        ),
+        trigger(
+          'SiteGap',
+          byEntity(
+            'responder',
+            '<RelativeDistanceCondition parameterAttributes="entityRef,value" entityRef="site" relativeDistanceType="longitudinal" value="35" freespace="true" coordinateSystem="road" rule="lessThan"/>',
+          ),
+        ),
+        'parallel',
+      ),
+      event(
+        'SiteLeave',
+        [
+          privateAction(
+            'SiteLeaveSpeed',
+            speedAction(
+              '<SpeedActionDynamics dynamicsShape="linear" value="2" dynamicsDimension="rate"/>',
+              '<AbsoluteTargetSpeed parameterAttributes="value" value="10"/>',
+            ),
+          ),
+          privateAction('SiteLeavePullOut', laneOffset('<AbsoluteTargetLaneOffset parameterAttributes="value" value="3.5"/>')),
+        ].join('\n'),
+        afterEvent('SiteStay', 'SiteArrive', 3),
+        'parallel',
+      ),
+    ].join('\n'),
+  },
 ];
 
 /** The doc block a library module opens with (read by server/src/library/modules.ts). @param {Module} module */

@@ -8,10 +8,13 @@ import { repoRoot } from '../support/paths';
 import { temporaryFolder } from '../support/temporaryDirectory';
 
 const example = path.join(repoRoot, 'examples', 'case-study');
+/** The library's cars: the box's front is 3.75 m ahead of the reference point (the rear axle), its rear 0.75 m behind. */
+const FRONT = 3.75;
+const REAR = 0.75;
 
 /**
  * The paper's case study (a collision at an intersection, police and ambulance arriving at the site) composed from
- * the built-in library's modules (issue 28, item 4): examples/case-study/main.xosc, docs/case-study-from-library.md.
+ * the built-in library's modules (issue 28, item 4), with the leaving phase (arrive-leave-site): examples/case-study/main.xosc, docs/case-study-from-library.md.
  */
 describe('cli: the case study rebuilt from library modules', function () {
   this.timeout(120_000);
@@ -21,7 +24,7 @@ describe('cli: the case study rebuilt from library modules', function () {
   });
   after(() => fs.rmSync(folder, { recursive: true, force: true }));
 
-  it('checks clean, flattens, and in esmini the two cars collide and stop, police and ambulance stop behind them', async function () {
+  it('checks clean, flattens, and in esmini the two cars collide and stop, police and ambulance stop behind them and leave', async function () {
     const flat = path.join(folder, 'flat.xosc');
     const text = await checkCleanAndFlatten(path.join(example, 'main.xosc'), flat);
     assert.doesNotMatch(text, /ScenarioReference|parameterAttributes/);
@@ -30,18 +33,20 @@ describe('cli: the case study rebuilt from library modules', function () {
       'Collision.CrossingPath',
       'Vehicle0Stops.LeadBrake',
       'Vehicle1Stops.LeadBrake',
-      'PoliceArrives.LeadBrake',
-      'AmbulanceArrives.LeadBrake',
+      'PoliceAtSite.ArriveLeaveSite',
+      'AmbulanceAtSite.ArriveLeaveSite',
     ])
       assert.match(text, new RegExp(`<ManeuverGroup[^>]*name="${group.replace('.', '\\.')}"`), group);
 
     requireEsmini(this);
-    const steps = await runEsmini(flat, 20);
+    const steps = await runEsmini(flat, 30);
     const last = steps[steps.length - 1];
-    assert.ok(last.time > 19, `esmini ran to ${last.time} s`);
+    assert.ok(last.time > 29, `esmini ran to ${last.time} s`);
     const at = (time: number): EsminiStep => steps.find((step) => step.time >= time) ?? last;
     const distance = (step: EsminiStep, a: string, b: string) =>
       Math.hypot(step.positions[a][0] - step.positions[b][0], step.positions[a][1] - step.positions[b][1]);
+    const samePlace = (one: EsminiStep, other: EsminiStep, entity: string) =>
+      Math.hypot(one.positions[entity][0] - other.positions[entity][0], one.positions[entity][1] - other.positions[entity][1]) < 0.01;
     // The collision: crossing-path brings vehicle_1 to the conflict point as vehicle_0 gets there.
     const closest = steps.reduce((best, step) =>
       distance(step, 'vehicle_0', 'vehicle_1') < distance(best, 'vehicle_0', 'vehicle_1') ? step : best,
@@ -56,17 +61,18 @@ describe('cli: the case study rebuilt from library modules', function () {
       Math.abs(closest.positions.vehicle_0[0] - 1.75) < 4,
       `at the crossroads' conflict point (x ${closest.positions.vehicle_0[0]})`,
     );
-    // Then everyone stands still: the same place at 15 s and at the end.
+    // Then everyone stands still a while: the same place at 16 s and at 18 s, the crashed cars to the end.
     for (const entity of ['vehicle_0', 'vehicle_1', 'police', 'ambulance']) {
       const moved = Math.hypot(
-        at(15).positions[entity][0] - last.positions[entity][0],
-        at(15).positions[entity][1] - last.positions[entity][1],
+        at(16).positions[entity][0] - at(18).positions[entity][0],
+        at(16).positions[entity][1] - at(18).positions[entity][1],
       );
-      assert.ok(moved < 0.05, `${entity} stands still after 15 s (moved ${moved.toFixed(2)} m)`);
+      assert.ok(moved < 0.05, `${entity} stands still from 16 to 18 s (moved ${moved.toFixed(2)} m)`);
     }
+    for (const entity of ['vehicle_0', 'vehicle_1']) assert.ok(samePlace(at(16), last, entity), `${entity} stays where it crashed`);
     assert.ok(distance(last, 'vehicle_0', 'vehicle_1') < 6, 'the crashed cars stay together');
     // Police and ambulance arrive from the west behind vehicle_0, in its lane, without touching it or each other.
-    const [crash, police, ambulance] = [last.positions.vehicle_0, last.positions.police, last.positions.ambulance];
+    const [crash, police, ambulance] = [at(17).positions.vehicle_0, at(17).positions.police, at(17).positions.ambulance];
     assert.ok(
       police[0] < crash[0] - 5 && police[0] > crash[0] - 40,
       `the police stops behind the crash (x ${police[0]} against ${crash[0]})`,
@@ -76,6 +82,20 @@ describe('cli: the case study rebuilt from library modules', function () {
       `the ambulance stops behind the police (x ${ambulance[0]} against ${police[0]})`,
     );
     assert.ok(Math.abs(police[1] - crash[1]) < 0.1 && Math.abs(ambulance[1] - crash[1]) < 0.1, 'in vehicle_0 lane');
+    // Then they leave the site (arrive-leave-site): the police first, each pulled out 3.5 m into the lane beside to pass
+    // the crash, both past it by the end, the police ahead, and neither box ever over the crashed cars' (y below -0.62).
+    const leaves = (entity: string) => steps.find((step) => step.time > 17 && !samePlace(step, at(17), entity))?.time ?? Infinity;
+    assert.ok(leaves('police') < leaves('ambulance') && leaves('ambulance') < last.time, 'the police leaves, then the ambulance');
+    const wreckEnd = Math.max(last.positions.vehicle_0[0] + FRONT, last.positions.vehicle_1[0] + 1);
+    for (const entity of ['police', 'ambulance']) {
+      const [x, y] = last.positions[entity];
+      assert.ok(x - REAR > wreckEnd && Math.abs(y - (crash[1] + 3.5)) < 0.01, `${entity} ends past the crash, 3.5 m aside (${x}, ${y})`);
+      for (const step of steps) {
+        const [stepX, stepY] = step.positions[entity];
+        assert.ok(stepX + FRONT < -1.5 || stepY - 1 > -0.62, `${entity} at ${step.time} s (${stepX}, ${stepY}) is over the crash`);
+      }
+    }
+    assert.ok(last.positions.police[0] > last.positions.ambulance[0] + 10, 'the police ahead of the ambulance');
   });
 
   it('stats counts the main against its flattening and each library module it reuses once', async function () {
@@ -100,6 +120,7 @@ describe('cli: the case study rebuilt from library modules', function () {
       `the main (${row.modularLines} lines) is shorter than its flattening (${row.flattenedLines})`,
     );
     assert.deepEqual(stats.shared.map((item) => path.relative(repoRoot, item.file)).sort(), [
+      'library/arrive-leave-site.xosc',
       'library/crossing-path.xosc',
       'library/lead-brake.xosc',
     ]);

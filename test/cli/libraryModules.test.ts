@@ -267,7 +267,81 @@ const BEHAVIOURS: Record<string, (module: LibraryModule, tracks: Map<string, Tra
     assert.ok(ego[ego.length - 1].x > 10, 'the ego drives on through the junction');
   },
   'turn-across-path': (module, tracks) => turnsAcrossAsSynchronized(tracks, parameter(module, 'egoAt'), parameter(module, 'turnSpeed')),
+  'arrive-leave-site': (module, tracks) =>
+    arrivesStaysLeaves(tracks, {
+      brakeGap: parameter(module, 'brakeGap'),
+      brakingDistance: parameter(module, 'brakingDistance'),
+      stay: parameter(module, 'stay'),
+      leaveSpeed: parameter(module, 'leaveSpeed'),
+      passOffset: parameter(module, 'passOffset'),
+      lateralAcceleration: parameter(module, 'lateralAcceleration'),
+    }),
 };
+
+type SiteVisit = {
+  brakeGap: number;
+  brakingDistance: number;
+  stay: number;
+  leaveSpeed: number;
+  passOffset: number;
+  lateralAcceleration: number;
+};
+
+/**
+ * The responder brakes once its gap to the standing site vehicle is below brakeGap, evenly over brakingDistance to a
+ * stand, stands for `stay`, then drives off to leaveSpeed, pulled out by passOffset (with lateralAcceleration at its largest
+ * sideways), past the site without touching it.
+ */
+function arrivesStaysLeaves(tracks: Map<string, Track>, asked: SiteVisit): void {
+  const [site, responder] = [trackOf(tracks, 'site'), trackOf(tracks, 'responder')];
+  const approach = speedAt(responder, 0);
+  const start = responder.findIndex((_, index) => index < responder.length - 1 && speedAt(responder, index) < approach - 0.01);
+  assert.ok(start > 0, 'the responder never brakes');
+  // The condition holds at the step the braking starts from, sampled once a step: the gap is within a step's travel of the one asked.
+  const gap = gapAhead(responder, site, start);
+  assert.ok(
+    gap <= asked.brakeGap + 1e-6 && gap > asked.brakeGap - approach * STEP - 0.05,
+    `it starts braking at a gap of ${gap.toFixed(2)} m, not ${asked.brakeGap}`,
+  );
+  const stands = responder.findIndex((_, index) => index > start && index < responder.length - 1 && speedAt(responder, index) < 1e-6);
+  assert.ok(stands > 0, 'it never stands still');
+  const braked = responder[stands].x - responder[start].x;
+  assert.ok(
+    Math.abs(braked - asked.brakingDistance) <= (approach * STEP) / 2 + 0.05,
+    `it brakes over ${braked.toFixed(2)} m, not ${asked.brakingDistance}`,
+  );
+  const even = approach ** 2 / (2 * asked.brakingDistance);
+  const middle = start + Math.floor((stands - start) / 2);
+  const measured = (speedAt(responder, middle - 4) - speedAt(responder, middle + 4)) / (8 * STEP);
+  assert.ok(Math.abs(measured - even) < 0.1, `it decelerates at ${measured.toFixed(2)} m/s², not an even ${even.toFixed(2)}`);
+  const leaves = responder.findIndex((_, index) => index > stands && index < responder.length - 1 && speedAt(responder, index) > 1e-6);
+  assert.ok(leaves > 0, 'it never leaves');
+  const stood = responder[leaves].time - responder[stands].time;
+  assert.ok(Math.abs(stood - asked.stay) <= STEP * 2.5, `it stands at the site for ${stood.toFixed(2)} s, not ${asked.stay}`);
+  const last = responder.length - 2;
+  assert.ok(
+    Math.abs(speedAt(responder, last) - asked.leaveSpeed) < 0.05,
+    `it drives off at ${speedAt(responder, last).toFixed(2)} m/s, not ${asked.leaveSpeed}`,
+  );
+  const offset = responder[last].y - responder[stands].y;
+  assert.ok(Math.abs(offset - asked.passOffset) < 0.01, `it pulls out ${offset.toFixed(3)} m, not ${asked.passOffset}`);
+  let largest = 0;
+  for (let index = leaves; index < responder.length - 1; index++)
+    largest = Math.max(largest, Math.abs(responder[index + 1].y - 2 * responder[index].y + responder[index - 1].y) / STEP ** 2);
+  assert.ok(
+    Math.abs(largest - asked.lateralAcceleration) <= asked.lateralAcceleration * 0.05,
+    `its largest lateral acceleration is ${largest.toFixed(2)} m/s², not ${asked.lateralAcceleration}`,
+  );
+  // Past the site: its rear ahead of the site's front by the end, and never beside it closer than the boxes' width (2 m).
+  assert.ok(responder[last].x - REAR > site[last].x + FRONT, 'it ends past the site');
+  for (let index = 0; index < responder.length; index++) {
+    const alongside = responder[index].x + FRONT > site[index].x - REAR && responder[index].x - REAR < site[index].x + FRONT;
+    assert.ok(
+      !alongside || Math.abs(responder[index].y - site[index].y) >= 2,
+      `at ${responder[index].time} s it touches the site (${(responder[index].y - site[index].y).toFixed(2)} m aside)`,
+    );
+  }
+}
 
 /** The crossroads' left turn (road 103, lane -1): an arc of radius 10 + 1.75 about (10, -10), across the ego's lane (y -1.75). */
 const TURN_CENTRE = { x: 10, y: -10 };
@@ -486,6 +560,20 @@ describe('library modules: each verified in esmini and CARLA (issue 28)', functi
     }
   });
 
+  /** A module's example main changed to `variant` (its road path made absolute), flattened and run in esmini: its tracks. */
+  async function runVariant(module: LibraryModule, variant: string): Promise<Map<string, Track>> {
+    // Beside the run's files, not among them: runExample writes the flattened main as NAME.xosc in the folder it is given.
+    const example = path.join(outputs, 'variant', `${module.name}.xosc`);
+    fs.mkdirSync(path.dirname(example));
+    fs.writeFileSync(example, variant.replace(/filepath="\.\.\/roads\//, `filepath="${path.join(libraryFolder ?? '', 'roads')}/`));
+    try {
+      const { run } = await runExample({ ...module, example }, outputs, esminiBinary);
+      return tracksOf(run);
+    } finally {
+      fs.rmSync(path.dirname(example), { recursive: true });
+    }
+  }
+
   it("turn-across-path keeps its synchronization when the main changes the ego's speed and the time gap", async function () {
     requireEsmini(this);
     const module = modules.find((candidate) => candidate.name === 'turn-across-path');
@@ -495,18 +583,40 @@ describe('library modules: each verified in esmini and CARLA (issue 28)', functi
     const text = fs.readFileSync(module.example, 'utf8');
     const variant = text
       .replace(/(<Private entityRef="ego">[\s\S]*?<AbsoluteTargetSpeed value=")[^"]*/, `$1${egoSpeed}`)
-      .replace(/(key="WorldPosition\.x" value=")[^"]*/, `$1${egoAt}`)
-      .replace(/filepath="\.\.\/roads\//, `filepath="${path.join(libraryFolder ?? '', 'roads')}/`);
+      .replace(/(key="WorldPosition\.x" value=")[^"]*/, `$1${egoAt}`);
     assert.notEqual(variant, text);
-    // Beside the run's files, not among them: runExample writes the flattened main as NAME.xosc in the folder it is given.
-    const example = path.join(outputs, 'variant', 'turn-across-path.xosc');
-    fs.mkdirSync(path.dirname(example));
-    fs.writeFileSync(example, variant);
-    const { run } = await runExample({ ...module, example }, outputs, esminiBinary);
-    fs.rmSync(path.dirname(example), { recursive: true });
-    const tracks = tracksOf(run);
+    const tracks = await runVariant(module, variant);
     assert.ok(Math.abs(speedAt(trackOf(tracks, 'ego'), 1) - egoSpeed) < 0.01, "the variant did not change the ego's speed");
     turnsAcrossAsSynchronized(tracks, egoAt, parameter(module, 'turnSpeed'));
+  });
+
+  it('arrive-leave-site does what other keys ask, and what its defaults ask is not what that run shows (esmini)', async function () {
+    requireEsmini(this);
+    const module = modules.find((candidate) => candidate.name === 'arrive-leave-site');
+    assert.ok(module?.example, 'no arrive-leave-site module with an example');
+    const keys: Record<string, [keyof SiteVisit, number]> = {
+      'RelativeDistanceCondition.value': ['brakeGap', 50],
+      'SpeedActionDynamics.value': ['brakingDistance', 40],
+      'Condition.delay': ['stay', 1.5],
+      'AbsoluteTargetSpeed.value': ['leaveSpeed', 6],
+      'AbsoluteTargetLaneOffset.value': ['passOffset', -3.5],
+      'LaneOffsetActionDynamics.maxLateralAcc': ['lateralAcceleration', 1],
+    };
+    const text = fs.readFileSync(module.example, 'utf8');
+    let variant = text;
+    for (const [key, [, value]] of Object.entries(keys)) {
+      const before = variant;
+      variant = variant.replace(new RegExp(`(key="${key.replace(/\./g, '\\.')}" value=")[^"]*`), `$1${value}`);
+      assert.notEqual(variant, before, `the example sets no ${key}`);
+    }
+    const tracks = await runVariant(module, variant);
+    const asked = Object.fromEntries(Object.values(keys)) as SiteVisit;
+    arrivesStaysLeaves(tracks, asked);
+    // Each value is checked: the run fails the assertions with any one of them at its default instead.
+    for (const [name] of Object.values(keys)) {
+      const defaults = { ...asked, [name]: parameter(module, name) };
+      assert.throws(() => arrivesStaysLeaves(tracks, defaults), assert.AssertionError, `${name} at its default passes too`);
+    }
   });
 
   it('modules whose later event waits for their earlier one by name: two copies in one main, each waits for its own (esmini)', async function () {
@@ -518,7 +628,7 @@ describe('library modules: each verified in esmini and CARLA (issue 28)', functi
     });
     assert.deepEqual(
       waiting.map((module) => module.name),
-      ['double-lane-change', 'overtaking', 'swerving-lead'],
+      ['arrive-leave-site', 'double-lane-change', 'overtaking', 'swerving-lead'],
     );
     for (const module of waiting) {
       const { text, second } = twoCopies(module, libraryFolder ?? '');
@@ -537,7 +647,8 @@ describe('library modules: each verified in esmini and CARLA (issue 28)', functi
         assert.ok(reference, `${module.name}: the copy ${outer} names no element of its own in its condition:\n${flatText}`);
         assert.equal(flatText.split(`name="${reference}"`).length - 1, 1, `${module.name}: one element is named ${reference}`);
       }
-      if (module.name === 'overtaking') continue;
+      // Their own waits in esmini: overtaking's depends on the gap, arrive-leave-site's on the site (the test above runs it).
+      if (module.name === 'overtaking' || module.name === 'arrive-leave-site') continue;
       const example = path.join(outputs, 'twice', `${module.name}.xosc`);
       fs.mkdirSync(path.dirname(example), { recursive: true });
       fs.writeFileSync(example, text);
