@@ -2,6 +2,7 @@
  * What a bird's-eye view shows of a scenario before it runs: its road file, where each entity
  * starts (the Init's TeleportActions evaluated against the road), and the storyboard's events.
  */
+import { expressionMessage } from './diagnostics/expressionWords';
 import { laneById, laneCenterT, laneSectionIndexAt, Road, RoadNetwork, roadPoint } from './opendrive/road';
 import { normalizeAngle } from './opendrive/geometry';
 import { logicFileOf } from './semantics/roadFiles';
@@ -92,7 +93,10 @@ class Reader {
       throw new Error(`${element.name} has no ${name}`);
     }
     const result = this.evaluator.attributeValue(element, found);
-    if (!result.ok) throw new Error(`${element.name} ${name}="${found.value}": ${result.errors[0]?.message ?? 'cannot be evaluated'}`);
+    if (!result.ok)
+      throw new Error(
+        `${element.name} ${name}="${found.value}": ${result.errors[0] ? expressionMessage(result.errors[0]) : 'cannot be evaluated'}`,
+      );
     const parsed = typeof result.value === 'number' ? result.value : Number(result.value);
     if (String(result.value).trim() === '' || !Number.isFinite(parsed))
       throw new Error(`${element.name} ${name}="${found.value}" is not a number`);

@@ -1,3 +1,4 @@
+import { expressionMessage } from '../core/diagnostics/expressionWords';
 import { CompletionItem, CompletionItemKind, LSPErrorCodes, ResponseError, TextEdit, WorkspaceEdit } from 'vscode-languageserver/node';
 import { TextDocument } from 'vscode-languageserver-textdocument';
 import { composedValues } from '../core/flatten/carry';
@@ -111,7 +112,7 @@ export function renameParameter(
 export function describeValue(result: ValueResult): string {
   return result.ok
     ? `${formatValue(result.value)} (${result.type})${differenceNote(result)}`
-    : `cannot be evaluated: ${result.errors[0]?.message ?? 'unknown error'}`;
+    : `cannot be evaluated: ${result.errors[0] ? expressionMessage(result.errors[0]) : 'unknown error'}`;
 }
 
 /** Where esmini computes another value than the standard: both, and esmini's rules that make the difference (SPEC 12). */
@@ -251,7 +252,7 @@ export async function parameterHover(
         ? `\`${written}\` = **${result.ok ? formatValue(result.value) : '?'}**${result.ok ? ` (${result.type})${differenceNote(result)}` : ''}`
         : `**${written}** = ${describeValue(result)}`,
     );
-    if (!result.ok) for (const error of result.errors) lines.push(`- error: ${error.message}`);
+    if (!result.ok) for (const error of result.errors) lines.push(`- error: ${expressionMessage(error)}`);
     const provenance = provenanceLine(semantics, result.provenance);
     if (provenance) lines.push('', provenance);
     if (site.form.kind === 'expression') {

@@ -3,6 +3,7 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import * as ts from 'typescript';
 import { diagnosticOf, DIAGNOSTICS, SKIPPED_BY_FORCE } from '../../../server/src/core/diagnostics';
+import { EXPRESSION_CODES } from '../../../server/src/core/diagnostics/expressionWords';
 import { PROBLEM_FIXES } from '../../../server/src/features/fixes';
 import { PROBLEM_CODE_LIST } from '../../../server/src/core/problems';
 import { RULES } from '../../../server/src/core/rules';
@@ -18,10 +19,14 @@ function literalsOf(expression: ts.Expression): string[] {
   return [];
 }
 
+/** The kinds of an expression's facts (`kind: 'syntax'`), each a code's (EXPRESSION_CODES). */
+const EXPRESSION_KINDS: ReadonlySet<string> = new Set(Object.keys(EXPRESSION_CODES));
+
 /**
  * The places of a source outside core/diagnostics/ that word a problem themselves: an object with a problem
- * code written as a literal and a message that is not the call of a function imported from a diagnostic's module,
- * or an object that spreads a module's wording (`...xWording()`) and then gives its own message.
+ * code (or an expression fact's kind) written as a literal and a message that is not the call of a function
+ * imported from a diagnostic's module, or an object that spreads a module's wording (`...xWording()`) and then
+ * gives its own message.
  */
 function ownWordings(file: string, text: string, codes: ReadonlySet<string>): string[] {
   const source = ts.createSourceFile(file, text, ts.ScriptTarget.Latest, true);
@@ -46,8 +51,12 @@ function ownWordings(file: string, text: string, codes: ReadonlySet<string>): st
         );
       const message = named('message');
       const code = named('code');
+      const kind = named('kind');
       const worded = message && !(ts.isPropertyAssignment(message) && isModuleCall(message.initializer));
-      const literalCodes = code && ts.isPropertyAssignment(code) ? literalsOf(code.initializer).filter((name) => codes.has(name)) : [];
+      const literalCodes = [
+        ...(code && ts.isPropertyAssignment(code) ? literalsOf(code.initializer).filter((name) => codes.has(name)) : []),
+        ...(kind && ts.isPropertyAssignment(kind) ? literalsOf(kind.initializer).filter((name) => EXPRESSION_KINDS.has(name)) : []),
+      ];
       const spreadsWording = node.properties.some((property) => ts.isSpreadAssignment(property) && isModuleCall(property.expression));
       const line = source.getLineAndCharacterOfPosition(node.getStart(source)).line + 1;
       if (worded && literalCodes.length > 0) found.push(`${file}:${line}: ${literalCodes.join(', ')} worded here`);
@@ -59,7 +68,32 @@ function ownWordings(file: string, text: string, codes: ReadonlySet<string>): st
   return found;
 }
 /** The files of the folder that are no diagnostic's module. */
-const SHARED = ['definition.ts', 'index.ts', 'qcRules.ts', 'schemaFindings.ts'];
+const SHARED = ['definition.ts', 'expressionFacts.ts', 'expressionWords.ts', 'index.ts', 'qcRules.ts', 'schemaFindings.ts'];
+
+/** The expression's parser and evaluators, and the values they read: they report facts, which the codes' modules word. */
+const EXPRESSION_PRODUCERS = ['evaluator.ts', 'expressionEvaluation.ts', 'expressionParser.ts', 'esminiValues.ts', 'values.ts'].map(
+  (file) => `server/src/core/semantics/${file}`,
+);
+
+/** Every property or member named `message` a source declares or writes (`{ message: ... }`, `message: string`). */
+function messageSites(file: string, text: string): string[] {
+  const source = ts.createSourceFile(file, text, ts.ScriptTarget.Latest, true);
+  const found: string[] = [];
+  const visit = (node: ts.Node): void => {
+    if (
+      (ts.isPropertyAssignment(node) ||
+        ts.isShorthandPropertyAssignment(node) ||
+        ts.isPropertySignature(node) ||
+        ts.isPropertyDeclaration(node)) &&
+      ts.isIdentifier(node.name) &&
+      node.name.text === 'message'
+    )
+      found.push(`${file}:${source.getLineAndCharacterOfPosition(node.getStart(source)).line + 1}: a message worded here`);
+    ts.forEachChild(node, visit);
+  };
+  visit(source);
+  return found;
+}
 
 /** `unknown-key` -> `unknownKey`: the name of a code's module. */
 function moduleName(code: string): string {
@@ -110,7 +144,7 @@ describe('diagnostics: one module per diagnostic, registered in one list', () =>
   it('leaves no decision to the text of a message: no source tests, searches or compares one', () => {
     // `x.message.includes(...)`, `.startsWith(`, `.match(`..., `/re/.test(x.message)`, `x.message === ...`, a printed line searched for its severity.
     const decisions = [
-      /\.message\s*\.\s*(includes|startsWith|endsWith|match|matchAll|search|indexOf|lastIndexOf)\(/,
+      /\.message\s*\.\s*(includes|startsWith|endsWith|match|matchAll|search|indexOf|lastIndexOf|split)\(/,
       /\.(test|exec)\(\s*[\w.()]*\.message\b/,
       /\.message\s*[!=]==|[!=]==\s*[\w.]*\.message\b/,
       /\.includes\(': (error|warning): '\)/,
@@ -154,12 +188,34 @@ describe('diagnostics: one module per diagnostic, registered in one list', () =>
       "const c = { ...noActorWording(group), message: 'other words' };",
       "const d = { code: 'cycle', message: cycleMessage(files) };",
       "const e = { code: 'simulator', message: finding.message };",
+      "const f = { kind: 'division-by-zero', message: `division by zero` };",
+      "const g = { kind: 'binary', message: 'an expression node is no fact' };",
     ].join('\n');
     assert.deepEqual(ownWordings('x.ts', producer, codes), [
       'x.ts:2: unknown-key worded here',
       'x.ts:3: no-actor, cycle worded here',
       "x.ts:4: a module's wording with a message of its own",
       'x.ts:6: simulator worded here',
+      'x.ts:7: division-by-zero worded here',
+    ]);
+  });
+
+  it("leaves the wording of an expression's errors to the codes' modules: its parser and evaluators report facts", () => {
+    const found = EXPRESSION_PRODUCERS.flatMap((file) => messageSites(file, fs.readFileSync(path.join(repoRoot, file), 'utf8')));
+    assert.deepEqual(found, []);
+    // What it finds: a message written or declared, in an object, a type or a class.
+    const producer = [
+      "const a = { kind: 'overflow', message: 'too big' };",
+      'type B = { ok: false; message: string };',
+      'const c = { message };',
+      "class D { message = 'x'; }",
+      'const e = { kind: "overflow", fact: "result" };',
+    ].join('\n');
+    assert.deepEqual(messageSites('x.ts', producer), [
+      'x.ts:1: a message worded here',
+      'x.ts:2: a message worded here',
+      'x.ts:3: a message worded here',
+      'x.ts:4: a message worded here',
     ]);
   });
 

@@ -1,17 +1,84 @@
 import { defineDiagnostic, ProblemWording, setByWords } from './definition';
+import { ExpressionTypeFact, LiteralMismatch, NumberOperand } from './expressionFacts';
 
 /** A variable's or parameter's `kind`, name and type as written, as the messages name it: `variable 'v' (int)`. */
 function targetWords(target: { kind: string; name: string; writtenType: string | undefined }): string {
   return `${target.kind} '${target.name}' (${target.writtenType})`;
 }
 
-/** A value a SetAction or condition gives a variable (or parameter) that is no value of its type (`reason`: why not). */
+/** Why a value is no value of a type. */
+export function literalMismatchWords(mismatch: LiteralMismatch): string {
+  switch (mismatch.fact) {
+    case 'not-of-type':
+      switch (mismatch.type) {
+        case 'double':
+          return `'${mismatch.text}' is not a double`;
+        case 'boolean':
+          return `'${mismatch.text}' is not a boolean (true or false)`;
+        case 'dateTime':
+          return `'${mismatch.text}' is not a dateTime (YYYY-MM-DDThh:mm:ss)`;
+        default:
+          return `'${mismatch.text}' is not an ${mismatch.type}`;
+      }
+    case 'out-of-range':
+      switch (mismatch.type) {
+        case 'int':
+          return `${mismatch.value} is outside the range of an int`;
+        case 'unsignedInt':
+          return `${mismatch.value} is outside the range of an unsignedInt (0 to 4294967295)`;
+        case 'unsignedShort':
+          return `${mismatch.value} is outside the range of an unsignedShort (0 to 65535)`;
+      }
+      break;
+    case 'not-convertible':
+      return `a ${mismatch.from} value cannot be a ${mismatch.to}`;
+    case 'not-integral':
+      return `${mismatch.value} is not integral: the standard converts a double to an ${mismatch.type} only when it has no fraction`;
+  }
+}
+
+function operandWords(operand: NumberOperand): string {
+  switch (operand.role) {
+    case 'negation':
+      return `unary '-'`;
+    case 'operator':
+      return `'${operand.operator}'`;
+    case 'function':
+      return `${operand.name}()`;
+  }
+}
+
+/** The message of a value of the wrong type inside an expression, or of a declared or assigned value that is no value of its type. */
+export function expressionTypeMessage(fact: ExpressionTypeFact): string {
+  switch (fact.fact) {
+    case 'needs-number':
+      return `${operandWords(fact.operand)} needs a number, but this is the ${fact.type} ${JSON.stringify(fact.value)}`;
+    case 'needs-boolean':
+      return `'${fact.operator}' needs a boolean, but this is the ${fact.type} ${JSON.stringify(fact.value)}`;
+    case 'date-time-parameter':
+      return `the dateTime parameter '${fact.name}' cannot be used in an expression`;
+    case 'string-parameter':
+      return `the string parameter '${fact.name}' (${JSON.stringify(fact.value)}) cannot be used in an expression`;
+    case 'no-real-value':
+      return `${fact.name}(${fact.args.join(', ')}) has no real value`;
+    case 'assigned-value':
+      return literalMismatchWords(fact.mismatch);
+    case 'declared-value':
+      return `${literalMismatchWords(fact.mismatch)}, but '${fact.name}' is declared ${fact.writtenType ?? 'without a type'}`;
+  }
+}
+
+/** A value a SetAction or condition gives a variable (or parameter) that is no value of its type (`mismatch`: why not). */
 export function variableValueWording(
   text: string,
   target: { kind: string; name: string; writtenType: string | undefined },
-  reason: string,
+  mismatch: LiteralMismatch,
 ): ProblemWording<'type-mismatch'> {
-  return { severity: 'error', code: 'type-mismatch', message: `'${text}' is not a value of ${targetWords(target)}: ${reason}` };
+  return {
+    severity: 'error',
+    code: 'type-mismatch',
+    message: `'${text}' is not a value of ${targetWords(target)}: ${literalMismatchWords(mismatch)}`,
+  };
 }
 
 /** A ModifyAction of a variable (or parameter) that is no number. */
@@ -89,10 +156,7 @@ export function parameterDeclaredNote(parameter: string, value: string): string 
   return `'${parameter}' is declared here with the value '${value}'`;
 }
 
-/**
- * A value that does not convert to the type that uses it: a variable's value and a `$name` in an attribute are
- * worded here; a value in an expression or a declaration by the expression evaluator (core/semantics/).
- */
+/** A value that does not convert to the type that uses it: in an expression, a declaration, a variable's value, a `$name` in an attribute. */
 export const TYPE_MISMATCH = defineDiagnostic({
   code: 'type-mismatch',
   rule: { description: 'A value converts to the type that uses it.' },

@@ -1,7 +1,18 @@
 import { ProblemDataByCode } from '../problems';
 import { indentationAt, Range } from '../text';
 import { endTagStart, escapeAttributeValue, XmlElement } from '../xml';
+import { ExpressionFact, UnknownParameterFact } from './expressionFacts';
 import { CoreFix, defineDiagnostic, FixContext, isRecord, isString, ParameterScopes, ProblemWording, TextLines } from './definition';
+
+/** The message of a `$name` in an expression that no declaration resolves, or whose declaration has no valid value (`words`: its cause's message). */
+export function unknownParameterMessage(fact: UnknownParameterFact, words: (cause: ExpressionFact) => string): string {
+  if (fact.fact === 'undeclared') return undeclaredMessage(fact.name);
+  return `'${fact.name}' has no valid value (${fact.cause ? words(fact.cause) : 'see its declaration'})`;
+}
+
+function undeclaredMessage(name: string): string {
+  return `parameter '${name}' is not declared in this scope`;
+}
 
 /** The hint of an undeclared parameter: a declaration to write, and where. */
 export function declareParameterHint(name: string, where: string): string {
@@ -17,7 +28,7 @@ export function undeclaredParameterWording(name: string, entry?: string): Proble
     ? {
         severity: 'error',
         code: 'undeclared-parameter',
-        message: `parameter '${name}' is not declared in this scope`,
+        message: undeclaredMessage(name),
         hint: declareParameterHint(name, 'the file or of an enclosing element'),
       }
     : {

@@ -1,4 +1,6 @@
 import { defineDiagnostic, ProblemWording } from './definition';
+import { LiteralMismatch } from './expressionFacts';
+import { literalMismatchWords } from './typeMismatch';
 
 /** A ValueConstraint's rule and value, the value as a message writes it. */
 export interface ConstraintFacts {
@@ -31,7 +33,7 @@ export type ValueConstraintFacts =
   /** A rule other than equalTo and notEqualTo for a boolean or string parameter. */
   | { kind: 'rule'; rule: string; type: string; parameter: string }
   /** A constraint's value that is no value of the parameter's type (`reason`: why not). */
-  | { kind: 'value'; value: string; type: string; parameter: string; reason: string }
+  | { kind: 'value'; value: string; type: string; parameter: string; reason: LiteralMismatch }
   /** A declared value (`entry` unset) or a value a CatalogReference gives an entry's parameter, and the constraints it breaks. */
   | { kind: 'broken'; value: string; parameter: string; entry?: string; broken: ConstraintFacts[][] };
 
@@ -44,7 +46,7 @@ export function valueConstraintWording(facts: ValueConstraintFacts): ProblemWord
       );
     case 'value':
       return wording(
-        `the constraint's value '${facts.value}' is not a value of the ${facts.type} parameter '${facts.parameter}': ${facts.reason}`,
+        `the constraint's value '${facts.value}' is not a value of the ${facts.type} parameter '${facts.parameter}': ${literalMismatchWords(facts.reason)}`,
       );
     case 'broken':
       return wording(

@@ -9,6 +9,7 @@
  * folder. What is left outside the 1.0 schema is dropped at the smallest unit (an attribute, a condition, an
  * action) and reported; a file whose meaning would be lost entirely is refused.
  */
+import { expressionMessage } from '../diagnostics/expressionWords';
 import * as path from 'node:path';
 import type { FlatSource } from '../flatten/types';
 import { geoToRoad, RoadXY } from '../opendrive/geo';
@@ -431,11 +432,11 @@ function evaluatedValue(
   const esmini = evaluator.esminiSiteText(site);
   if (esmini.ok) {
     fellBack(
-      `${attribute.value} is written as esmini computes it, '${esmini.text}' (the standard gives no value: ${value.errors[0]?.message ?? 'an error'})`,
+      `${attribute.value} is written as esmini computes it, '${esmini.text}' (the standard gives no value: ${value.errors[0] ? expressionMessage(value.errors[0]) : 'an error'})`,
     );
     return esmini.text;
   }
-  failed(value.errors[0]?.message ?? 'unknown error');
+  failed(value.errors[0] ? expressionMessage(value.errors[0]) : 'unknown error');
   return attribute.value;
 }
 

@@ -1,9 +1,8 @@
-import { ProblemCode } from '../problems';
+import { expressionWording } from '../diagnostics/expressionWords';
 import { simulatorFindings } from '../profiles/checks';
 import { baseName } from '../sources';
 import { closestMatch } from '../text';
 import { attribute, descendants, XmlAttribute, XmlElement } from '../xml';
-import { esminiRule } from './esminiValues';
 import { ExpressionError } from './expressionParser';
 import { valueConstraints } from './checks/constraints';
 import { duplicateNames } from './checks/names';
@@ -23,7 +22,7 @@ import {
 import { catalogDirectoryWording } from '../diagnostics/catalogDirectory';
 import { ambiguousReferenceWording } from '../diagnostics/ambiguousReference';
 import { DUPLICATE_PARAMETER_FIRST_NOTE, duplicateParameterWording } from '../diagnostics/duplicateParameter';
-import { dollarDeclarationWording } from '../diagnostics/lenientValue';
+import { dollarDeclarationWording, retypeWords, writeStandardHint } from '../diagnostics/lenientValue';
 import { renamedReferenceWording } from '../diagnostics/renamedReference';
 import { undeclaredCatalogParameterWording } from '../diagnostics/undeclaredCatalogParameter';
 import { undeclaredEntityWording } from '../diagnostics/undeclaredEntity';
@@ -101,7 +100,7 @@ export const dollarDeclarations: SemanticCheck = ({ model }) =>
         attribute: attr,
         start,
         end,
-        ...dollarDeclarationWording(declaration.name, esminiRule('declarationName')),
+        ...dollarDeclarationWording(declaration.name),
         data: { suggestion: declaration.name },
       };
     });
@@ -133,19 +132,6 @@ export const duplicateDeclarations: SemanticCheck = (context) => {
   return findings;
 };
 
-const EXPRESSION_CODES: Record<Exclude<ExpressionError['kind'], 'unknown-parameter'>, ProblemCode> = {
-  syntax: 'expression-syntax',
-  'type-mismatch': 'type-mismatch',
-  'division-by-zero': 'division-by-zero',
-  nonstandard: 'nonstandard-expression',
-  lenient: 'lenient-value',
-  simulator: 'simulator-value',
-  overflow: 'overflow',
-};
-
-/** What SPEC 12 makes a warning: a form esmini accepts with one clear meaning, a value esmini computes otherwise. */
-const WARNING_KINDS: ReadonlySet<ExpressionError['kind']> = new Set(['nonstandard', 'lenient', 'simulator']);
-
 function expressionFinding(context: SemanticContext, element: XmlElement, attr: XmlAttribute, error: ExpressionError): Finding | undefined {
   // An unknown parameter is reported once by undeclaredParameters, or at the declaration that has no valid value.
   if (error.kind === 'unknown-parameter') return undefined;
@@ -157,19 +143,18 @@ function expressionFinding(context: SemanticContext, element: XmlElement, attr: 
     attribute: attr,
     start,
     end,
-    severity: WARNING_KINDS.has(error.kind) ? 'warning' : 'error',
-    code: EXPRESSION_CODES[error.kind],
-    message: error.message,
+    ...expressionWording(error),
   };
   const fix = error.fix;
   if (fix && fix.start === start && fix.end === end) {
     finding.data = { suggestion: fix.text };
-    finding.hint = `write '${fix.text}'`;
+    finding.hint = writeStandardHint(fix.text);
   } else if (fix) {
     // The standard's form is written elsewhere (a string parameter's parameterType).
-    finding.related = [relatedAt(context, fix.start, fix.end, `write '${fix.text}' here`)];
+    const { hint, note } = retypeWords(fix.text);
+    finding.related = [relatedAt(context, fix.start, fix.end, note)];
     finding.data = { relatedReplacement: fix.text };
-    finding.hint = `declare it parameterType="${fix.text}"`;
+    finding.hint = hint;
   }
   return finding;
 }
@@ -186,7 +171,7 @@ function siteErrors(evaluator: Evaluator, site: SemanticModel['sites'][number]):
 function declarationErrors(evaluator: Evaluator, declaration: Declaration): ExpressionError[] {
   const attr = declaration.valueAttribute;
   if (!attr || declaration.type === undefined) return NO_ERRORS;
-  const errors = evaluator.declarationWarnings(declaration).filter((warning) => warning.kind !== 'unknown-parameter');
+  const errors: ExpressionError[] = evaluator.declarationWarnings(declaration).filter((warning) => warning.kind !== 'unknown-parameter');
   const result = evaluator.declarationValue(declaration);
   if (!result.ok && result.provenance.kind === 'declaration') {
     // Errors inside the expression itself were reported at the site, with their column.

@@ -1,4 +1,4 @@
-import { ESMINI_PROFILE } from '../profiles/esmini';
+import { EsminiEvaluationFailure, EsminiStop } from '../diagnostics/expressionFacts';
 import { ValueRule } from '../profiles/facts';
 import { ExpressionNode } from './expressionParser';
 import { ParameterType, ParameterValue, SHARED_MATH_FUNCTIONS, SharedMathFunction } from './values';
@@ -19,16 +19,10 @@ export type EsminiText =
       rules: ValueRule[];
       /** The number the text reads as when esmini's tokenizer reads it as one number (kept to compute on trees). */ number?: number;
     }
-  | { ok: false; message: string; rules: ValueRule[] };
+  | { ok: false; stop: EsminiStop; rules: ValueRule[] };
 
 /** The text of a parameter as esmini holds it; undefined when esmini cannot find it (it stops). */
 export type EsminiParameterText = (name: string) => EsminiText | undefined;
-
-/** "esmini <does> (<source>)" for a rule of the profile. */
-export function esminiRule(rule: ValueRule): string {
-  const fact = ESMINI_PROFILE.valueRules?.[rule];
-  return fact ? `esmini ${fact.does} (${fact.source})` : `esmini (${rule})`;
-}
 
 const DELIMITERS = ' ({)}-+*/%^!|&<>=,';
 
@@ -37,7 +31,7 @@ function addRule(rules: ValueRule[], rule: ValueRule): void {
 }
 
 /** Replaces each `$name` by its text, as Parameters::ResolveParametersInString does. */
-function substitute(body: string, lookup: EsminiParameterText, rules: ValueRule[]): { text: string } | { message: string } {
+function substitute(body: string, lookup: EsminiParameterText, rules: ValueRule[]): { text: string } | { stop: EsminiStop } {
   let text = body;
   // A value that holds a `$` is substituted again; esmini would loop for ever on a value naming itself.
   for (let round = 0; round < 1000; round++) {
@@ -47,13 +41,13 @@ function substitute(body: string, lookup: EsminiParameterText, rules: ValueRule[
     while (end < text.length && !DELIMITERS.includes(text[end])) end++;
     const name = text.slice(found + 1, end);
     const value = lookup(name);
-    if (!value) return { message: `esmini stops: "Failed to resolve parameter $${name}"` };
-    if (!value.ok) return { message: value.message };
+    if (!value) return { stop: { stop: 'unresolved-parameter', name } };
+    if (!value.ok) return { stop: value.stop };
     for (const rule of value.rules) addRule(rules, rule);
     addRule(rules, 'substitution');
     text = text.slice(0, found) + value.text + text.slice(end);
   }
-  return { message: 'esmini stops: a parameter value names itself' };
+  return { stop: { stop: 'names-itself' } };
 }
 
 function replaceAll(text: string, search: string, replacement: string): string {
@@ -115,7 +109,7 @@ type Token =
   | { kind: 'close' }
   | { kind: 'operator'; text: string; unary: boolean };
 
-type Scan = { tokens: Token[] } | { text: true } | { failure: string };
+type Scan = { tokens: Token[] } | { text: true } | { failure: EsminiEvaluationFailure };
 
 const TOP = 1;
 const TOPEN = 2;
@@ -134,7 +128,7 @@ function scan(source: string): Scan {
     const word = pending;
     pending = undefined;
     if (next?.kind === 'open') {
-      if (ESMINI_FUNCTIONS[word] === undefined) return { failure: `'${word}' is not a function esmini knows` };
+      if (ESMINI_FUNCTIONS[word] === undefined) return { failure: { failure: 'unknown-function', word } };
       tokens.push({ kind: 'word', text: word });
       return undefined;
     }
@@ -156,7 +150,7 @@ function scan(source: string): Scan {
       continue;
     }
     if (isDigit(c)) {
-      if ((flags & TNUMBER) === 0) return { failure: `a number where an operator was expected, at '${source.slice(i)}'` };
+      if ((flags & TNUMBER) === 0) return { failure: { failure: 'number-where-operator', rest: source.slice(i) } };
       flags = TOP | TCLOSE;
       let end = i;
       while (end < source.length && (source[end] === '.' || isDigit(source[end]))) end++;
@@ -172,11 +166,11 @@ function scan(source: string): Scan {
     } else if (c === '(' || c === ')') {
       if (c === '(' && (flags & TOPEN) !== 0) flags = TNUMBER | TWORD | TOPEN | TCLOSE;
       else if (c === ')' && (flags & TCLOSE) !== 0) flags = TOP | TCLOSE;
-      else return { failure: `unexpected '${c}'` };
+      else return { failure: { failure: 'unexpected-character', character: c } };
       token = c === '(' ? { kind: 'open' } : { kind: 'close' };
       i++;
     } else if ((flags & TOP) === 0) {
-      if (c !== '-' && c !== '!' && c !== '^') return { failure: `'${c}' where an operand was expected` };
+      if (c !== '-' && c !== '!' && c !== '^') return { failure: { failure: 'operator-where-operand', character: c } };
       flags = TNUMBER | TWORD | TOPEN;
       token = { kind: 'operator', text: c, unary: true };
       i++;
@@ -188,7 +182,7 @@ function scan(source: string): Scan {
         else if (found) break;
         end++;
       }
-      if (!found) return { failure: `unknown operator '${source.slice(i, end)}'` };
+      if (!found) return { failure: { failure: 'unknown-operator', operator: source.slice(i, end) } };
       flags = TNUMBER | TWORD | TOPEN;
       token = { kind: 'operator', text: source.slice(i, end), unary: false };
       i = end;
@@ -275,20 +269,24 @@ function applyEsminiFunction(name: string, args: number[], rules: ValueRule[]): 
   return SHARED_MATH_FUNCTIONS[name as SharedMathFunction](a, b);
 }
 
-class ParseFailure extends Error {}
+class ParseFailure extends Error {
+  constructor(readonly failure: EsminiEvaluationFailure) {
+    super(failure.failure);
+  }
+}
 
 /** Evaluates the tokens with expr's precedence (a lower number binds tighter; unary operators tightest). */
 function evaluateTokens(tokens: Token[], rules: ValueRule[]): number {
   let index = 0;
-  const fail = (message: string): never => {
-    throw new ParseFailure(message);
+  const fail = (failure: EsminiEvaluationFailure): never => {
+    throw new ParseFailure(failure);
   };
   const operand = (): number => {
     const token = tokens[index++];
-    if (!token) return fail('the expression ends where an operand was expected');
+    if (!token) return fail({ failure: 'operand-missing' });
     if (token.kind === 'number') {
       const value = parseNumber(token.text);
-      if (Number.isNaN(value)) fail(`'${token.text}' is not a number`);
+      if (Number.isNaN(value)) fail({ failure: 'not-a-number', text: token.text });
       return value;
     }
     if (token.kind === 'operator' && token.unary) {
@@ -299,7 +297,7 @@ function evaluateTokens(tokens: Token[], rules: ValueRule[]): number {
     }
     if (token.kind === 'open') {
       const value = expression(12);
-      if (tokens[index++]?.kind !== 'close') fail("a '(' is not closed");
+      if (tokens[index++]?.kind !== 'close') fail({ failure: 'parenthesis-not-closed' });
       return value;
     }
     if (token.kind === 'word') {
@@ -313,11 +311,12 @@ function evaluateTokens(tokens: Token[], rules: ValueRule[]): number {
           args.push(expression(11));
         }
       }
-      if (tokens[index++]?.kind !== 'close') fail(`the arguments of ${token.text} are not closed`);
-      if (args.length < ESMINI_FUNCTIONS[token.text]) fail(`${token.text} needs ${ESMINI_FUNCTIONS[token.text]} arguments`);
+      if (tokens[index++]?.kind !== 'close') fail({ failure: 'arguments-not-closed', name: token.text });
+      if (args.length < ESMINI_FUNCTIONS[token.text])
+        fail({ failure: 'too-few-arguments', name: token.text, count: ESMINI_FUNCTIONS[token.text] });
       return applyEsminiFunction(token.text, args, rules);
     }
-    return fail('an operand was expected');
+    return fail({ failure: 'operand-expected' });
   };
   const expression = (limit: number): number => {
     let left = operand();
@@ -332,7 +331,7 @@ function evaluateTokens(tokens: Token[], rules: ValueRule[]): number {
     }
   };
   const value = expression(12);
-  if (index < tokens.length) fail('unexpected text after the expression');
+  if (index < tokens.length) fail({ failure: 'trailing-text' });
   return value;
 }
 
@@ -356,7 +355,7 @@ function binary(operator: string, a: number, b: number, rules: ValueRule[]): num
     case ',':
       return b;
     case '=':
-      throw new ParseFailure('an assignment');
+      throw new ParseFailure({ failure: 'assignment' });
   }
   addRule(rules, 'comparisons');
   switch (operator) {
@@ -404,7 +403,7 @@ export function esminiExpression(body: string, lookup: EsminiParameterText): Esm
   const rules: ValueRule[] = [];
   const closing = body.indexOf('}');
   const substituted = substitute(closing >= 0 ? body.slice(0, closing) : body, lookup, rules);
-  if ('message' in substituted) return { ok: false, message: substituted.message, rules };
+  if ('stop' in substituted) return { ok: false, stop: substituted.stop, rules };
   let text = substituted.text;
   for (const [search, replacement] of [
     ['not ', '!'],
@@ -423,19 +422,19 @@ export function esminiExpression(body: string, lookup: EsminiParameterText): Esm
     addRule(rules, 'textGluing');
     return { ok: true, text: glueText(text), rules };
   }
-  const failed = (why: string): EsminiText => ({
+  const failed = (failure: EsminiEvaluationFailure): EsminiText => ({
     ok: false,
-    message: `esmini stops: "Failed to evaluate the expression" (${why}: '${text}')`,
+    stop: { stop: 'evaluation', failure, text },
     rules: [...rules, 'failure'],
   });
   if ('failure' in scanned) return failed(scanned.failure);
   if (scanned.tokens.length === 0) return { ok: true, text: sixDecimals(0), rules };
   try {
     const value = evaluateTokens(scanned.tokens, rules);
-    if (Number.isNaN(value)) return failed('the result is not a number');
+    if (Number.isNaN(value)) return failed({ failure: 'result-not-a-number' });
     return { ok: true, text: sixDecimals(value), rules: [...rules, 'resultText'] };
   } catch (error) {
-    if (error instanceof ParseFailure) return failed(error.message);
+    if (error instanceof ParseFailure) return failed(error.failure);
     throw error;
   }
 }

@@ -1,6 +1,8 @@
 import { ValueRule } from '../profiles/facts';
 import { XmlAttribute, XmlElement } from '../xml';
-import { atof, esminiFromTree, EsminiText, esminiExpression, esminiRule, esminiTyped, plainNumber } from './esminiValues';
+import { ExpressionFact, GluedCause, LiteralMismatch, ValueDifference } from '../diagnostics/expressionFacts';
+import { esminiRule } from '../diagnostics/simulatorValue';
+import { atof, esminiFromTree, EsminiText, esminiExpression, esminiTyped, plainNumber } from './esminiValues';
 import { evaluateTree, LookupResult } from './expressionEvaluation';
 import { ExpressionError } from './expressionParser';
 import { convertValue, formatValue, integralConversionError, ParameterType, ParameterValue, parseLiteral, TypedValue } from './values';
@@ -21,12 +23,7 @@ export type Provenance =
  */
 export type Reading = 'standard' | 'esmini';
 
-/** A value the standard and esmini compute differently: both as text, and esmini's rules that make the difference. */
-export interface ValueDifference {
-  standard: string;
-  esmini: string;
-  reasons: string[];
-}
+export type { ValueDifference };
 
 export type ValueResult =
   | { ok: true; value: ParameterValue; type: ParameterType; provenance: Provenance; differs?: ValueDifference }
@@ -51,11 +48,23 @@ const NAMED_RULES: readonly ValueRule[] = [
   'failure',
 ];
 
-function reasonsOf(rules: readonly ValueRule[], conversion?: ValueRule): string[] {
+/** The rules of esmini's that make its value differ, as a message names them. */
+function namedRules(rules: readonly ValueRule[], conversion?: ValueRule): ValueRule[] {
   const named = NAMED_RULES.filter((rule) => rules.includes(rule));
   if (named.length === 0 && conversion) named.push(conversion);
   if (named.length === 0 && rules.includes('resultText')) named.push('resultText');
-  return named.map(esminiRule);
+  return named;
+}
+
+function reasonsOf(rules: readonly ValueRule[], conversion?: ValueRule): string[] {
+  return namedRules(rules, conversion).map(esminiRule);
+}
+
+/** The error a glued text stands for: an unknown bare word, or a string parameter, where a value was expected. */
+function gluedCause(error: ExpressionError | undefined): GluedCause | undefined {
+  if (error?.kind === 'syntax' && error.fact === 'unknown-name') return error;
+  if (error?.kind === 'type-mismatch' && error.fact === 'string-parameter') return error;
+  return undefined;
 }
 
 /** Whether two values differ beyond the six decimals esmini writes a number with. */
@@ -75,12 +84,13 @@ function readAs(esmini: EsminiText & { ok: true }, type: ParameterType): Paramet
   return esmini.text;
 }
 
+/** A declaration's value that is no value of its declared type. */
+function declaredValue(declaration: Declaration, mismatch: LiteralMismatch): ExpressionFact {
+  return { kind: 'type-mismatch', fact: 'declared-value', mismatch, name: declaration.name, writtenType: declaration.writtenType };
+}
+
 /** The parameter types esmini declares with an error and no type of its own (esmini 3.6 Parameters.cpp: "Type ... is not supported yet"). */
 const ESMINI_UNSUPPORTED_TYPES: ReadonlySet<ParameterType> = new Set<ParameterType>(['unsignedInt', 'unsignedShort', 'dateTime']);
-
-function differenceMessage(difference: ValueDifference): string {
-  return `esmini computes ${difference.esmini} where the standard gives ${difference.standard}${difference.reasons.length ? `: ${difference.reasons.join('; ')}` : ''}`;
-}
 
 /**
  * Evaluates declarations and value sites of one model, memoized. A declaration whose entry is
@@ -123,7 +133,10 @@ export class Evaluator {
         if (unsupported && typeAttribute && standard.provenance.kind === 'declaration') {
           this.warn(declaration, {
             kind: 'simulator',
-            message: `'${declaration.name}': esmini does not support parameters of type ${declaration.type}: it logs "Type ${declaration.type} is not supported yet" and keeps the value as text ('${esmini.text}'), which an attribute then reads as written (esmini 3.6 Parameters.cpp parseParameterDeclarations)`,
+            fact: 'unsupported-type',
+            name: declaration.name,
+            type: declaration.type as ParameterType,
+            text: esmini.text,
             start: typeAttribute.valueStart,
             end: typeAttribute.valueEnd,
           });
@@ -141,7 +154,9 @@ export class Evaluator {
           if (attr && standard.provenance.kind === 'declaration') {
             this.warn(declaration, {
               kind: 'simulator',
-              message: `'${declaration.name}': ${differenceMessage(differs)}`,
+              fact: 'declaration-differs',
+              name: declaration.name,
+              difference: differs,
               start: attr.valueStart,
               end: attr.valueEnd,
             });
@@ -154,7 +169,8 @@ export class Evaluator {
       ) {
         this.warn(declaration, {
           kind: 'simulator',
-          message: esmini.message,
+          fact: 'esmini-stops',
+          stop: esmini.stop,
           start: declaration.valueAttribute.valueStart,
           end: declaration.valueAttribute.valueEnd,
         });
@@ -184,7 +200,12 @@ export class Evaluator {
     const typed = esminiTyped(esmini.text, type);
     this.warn(declaration, {
       kind: 'simulator',
-      message: `${standard.errors[0].message}, so the standard refuses it; esmini runs it: ${[esminiRule('declarationText'), ...reasonsOf([], typed.rule)].join('; ')}: '${esmini.text}' where the text is used, ${formatValue(typed.value)} where a ${type} is`,
+      fact: 'refused-literal',
+      cause: standard.errors[0],
+      rules: typed.rule ? ['declarationText', typed.rule] : ['declarationText'],
+      text: esmini.text,
+      value: formatValue(typed.value),
+      type,
       start: attr.valueStart,
       end: attr.valueEnd,
     });
@@ -218,8 +239,18 @@ export class Evaluator {
     if (assigned?.value) {
       const provenance: Provenance = { kind: 'assignment', declaration, assignment: assigned.assignment };
       const converted = convertValue(assigned.value, type);
-      if ('message' in converted)
-        return { ok: false, errors: [this.errorAt(assigned.assignment.valueAttribute, 'type-mismatch', converted.message)], provenance };
+      if ('mismatch' in converted)
+        return {
+          ok: false,
+          errors: [
+            this.errorAt(assigned.assignment.valueAttribute, {
+              kind: 'type-mismatch',
+              fact: 'assigned-value',
+              mismatch: converted.mismatch,
+            }),
+          ],
+          provenance,
+        };
       return { ok: true, value: converted.value, type, provenance };
     }
     const provenance: Provenance = { kind: 'declaration', declaration };
@@ -227,32 +258,23 @@ export class Evaluator {
     if (!attr)
       return {
         ok: false,
-        errors: [this.errorAt(undefined, 'syntax', `the declaration of '${declaration.name}' has no value`, declaration.element)],
+        errors: [
+          this.errorAt(undefined, { kind: 'syntax', fact: 'declaration-without-value', name: declaration.name }, declaration.element),
+        ],
         provenance,
       };
     const site = this.model.siteOf.get(attr);
     if (!site) {
       const literal = parseLiteral(attr.value, type);
-      if ('message' in literal)
-        return {
-          ok: false,
-          errors: [
-            this.errorAt(
-              attr,
-              'type-mismatch',
-              `${literal.message}, but '${declaration.name}' is declared ${declaration.writtenType ?? 'without a type'}`,
-            ),
-          ],
-          provenance,
-        };
+      if ('mismatch' in literal)
+        return { ok: false, errors: [this.errorAt(attr, declaredValue(declaration, literal.mismatch))], provenance };
       if (literal.lenient) {
         const leading = attr.value.length - attr.value.trimStart().length;
         const exact = attr.value.length === attr.valueEnd - attr.valueStart;
         const start = exact ? attr.valueStart + leading : attr.valueStart;
         const end = exact ? attr.valueStart + attr.value.trimEnd().length : attr.valueEnd;
         this.warn(declaration, {
-          kind: 'lenient',
-          message: literal.lenient.message,
+          ...literal.lenient,
           start,
           end,
           fix: { start, end, text: literal.lenient.standard },
@@ -267,21 +289,10 @@ export class Evaluator {
     if (!evaluated.ok) return { ok: false, errors: evaluated.errors, provenance };
     const integral =
       site.form.kind === 'expression' ? integralConversionError({ value: evaluated.value, type: evaluated.type }, type) : undefined;
-    if (integral)
-      return {
-        ok: false,
-        errors: [this.errorAt(attr, 'type-mismatch', `${integral}, but '${declaration.name}' is declared ${declaration.writtenType}`)],
-        provenance,
-      };
+    if (integral) return { ok: false, errors: [this.errorAt(attr, declaredValue(declaration, integral))], provenance };
     const converted = convertValue({ value: evaluated.value, type: evaluated.type }, type);
-    if ('message' in converted)
-      return {
-        ok: false,
-        errors: [
-          this.errorAt(attr, 'type-mismatch', `${converted.message}, but '${declaration.name}' is declared ${declaration.writtenType}`),
-        ],
-        provenance,
-      };
+    if ('mismatch' in converted)
+      return { ok: false, errors: [this.errorAt(attr, declaredValue(declaration, converted.mismatch))], provenance };
     return { ok: true, value: converted.value, type, provenance };
   }
 
@@ -290,7 +301,7 @@ export class Evaluator {
     const known = this.esminiTexts.get(declaration);
     if (known) return known;
     // A declaration met again while its own text is computed names itself: esmini cannot resolve it.
-    this.esminiTexts.set(declaration, { ok: false, message: `esmini stops: '${declaration.name}' depends on itself`, rules: ['failure'] });
+    this.esminiTexts.set(declaration, { ok: false, stop: { stop: 'depends-on-itself', name: declaration.name }, rules: ['failure'] });
     const result = this.computeEsminiText(declaration);
     this.esminiTexts.set(declaration, result);
     return result;
@@ -328,7 +339,7 @@ export class Evaluator {
       return (
         this.esminiName(site.scope, site.form.name, site.declaration) ?? {
           ok: false,
-          message: `esmini stops: "Failed to resolve parameter $${site.form.name}"`,
+          stop: { stop: 'unresolved-parameter', name: site.form.name },
           rules: ['failure'],
         }
       );
@@ -352,8 +363,10 @@ export class Evaluator {
       if (!value.ok)
         return {
           error: {
-            kind: 'unknown-parameter' as const,
-            message: `'${name}' has no valid value (${value.errors[0]?.message ?? 'see its declaration'})`,
+            kind: 'unknown-parameter',
+            fact: 'no-valid-value',
+            name,
+            cause: value.errors[0],
             start,
             end,
           },
@@ -371,7 +384,8 @@ export class Evaluator {
           errors: [
             {
               kind: 'unknown-parameter',
-              message: `parameter '${site.form.name}' is not declared in this scope`,
+              fact: 'undeclared',
+              name: site.form.name,
               start: site.form.start,
               end: site.form.end,
             },
@@ -419,12 +433,14 @@ export class Evaluator {
   } {
     const standard = this.standardSite(site);
     const esmini = this.esminiSiteText(site);
-    const [first] = standard.ok ? [] : standard.errors;
-    if (!esmini.ok || !first?.text || !esmini.rules.includes('textGluing')) return { standard, esmini };
+    const cause = gluedCause(standard.ok ? undefined : standard.errors[0]);
+    if (!esmini.ok || !cause || !esmini.rules.includes('textGluing')) return { standard, esmini };
     const whole = { start: site.form.expression.start, end: site.form.expression.end };
     const warning: ExpressionError = {
       kind: 'lenient',
-      message: `the standard has no text in expressions (${first.message.split(':')[0]}); ${esminiRule('textGluing')}, which gives '${esmini.text}'`,
+      fact: 'glued-text',
+      cause,
+      text: esmini.text,
       ...whole,
       // A lone `${$name}` is the plain reference `$name`; anything else becomes the glued literal.
       fix: { ...whole, text: site.form.expression.tree?.kind === 'parameter' ? `$${site.form.expression.tree.name}` : esmini.text },
@@ -463,12 +479,7 @@ export class Evaluator {
     if (!standard.ok) {
       if (esmini.ok) {
         const errors = standard.errors.map((error, index) =>
-          index === 0
-            ? {
-                ...error,
-                message: `${error.message} (esmini computes ${esmini.text}: ${reasonsOf(esmini.rules).join('; ') || 'it reads the expression otherwise'})`,
-              }
-            : error,
+          index === 0 ? { ...error, esminiComputes: { text: esmini.text, rules: namedRules(esmini.rules) } } : error,
         );
         return { ...standard, errors, warnings };
       }
@@ -476,7 +487,13 @@ export class Evaluator {
     }
     if (!esmini.ok) {
       if (!site.declaration)
-        warnings.push({ kind: 'simulator', message: `${esmini.message}; the standard gives ${formatValue(standard.value)}`, ...whole });
+        warnings.push({
+          kind: 'simulator',
+          fact: 'esmini-stops-beside',
+          stop: esmini.stop,
+          standard: formatValue(standard.value),
+          ...whole,
+        });
       return { ...standard, warnings };
     }
     const esminiValue = readAs(esmini, standard.type);
@@ -487,7 +504,7 @@ export class Evaluator {
       esmini: formatValue(esminiValue),
       reasons: reasonsOf(esmini.rules),
     };
-    if (!site.declaration) warnings.push({ kind: 'simulator', message: differenceMessage(differs), ...whole });
+    if (!site.declaration) warnings.push({ kind: 'simulator', fact: 'differs', difference: differs, ...whole });
     return { ...standard, ...chosen, differs, warnings };
   }
 
@@ -508,8 +525,8 @@ export class Evaluator {
     return result.ok ? String(result.value) : undefined;
   }
 
-  private errorAt(attr: XmlAttribute | undefined, kind: ExpressionError['kind'], message: string, element?: XmlElement): ExpressionError {
-    if (attr) return { kind, message, start: attr.valueStart, end: attr.valueEnd };
-    return { kind, message, start: element?.start ?? 0, end: element?.nameEnd ?? 0 };
+  private errorAt(attr: XmlAttribute | undefined, fact: ExpressionFact, element?: XmlElement): ExpressionError {
+    if (attr) return { ...fact, start: attr.valueStart, end: attr.valueEnd };
+    return { ...fact, start: element?.start ?? 0, end: element?.nameEnd ?? 0 };
   }
 }

@@ -1,5 +1,6 @@
 /** Evaluation of a parsed `${...}` expression: doubles, booleans and the standard's functions (./expressionParser.ts parses). */
 
+import { NumberOperand } from '../diagnostics/expressionFacts';
 import { ExpressionError, ExpressionNode, FUNCTIONS, FunctionName } from './expressionParser';
 import { ParameterType, ParameterValue, readStringAsValue, roundHalfAwayFromZero, SHARED_MATH_FUNCTIONS, TypedValue } from './values';
 
@@ -9,19 +10,18 @@ export type LookupResult = TypedValue & { retype?: { start: number; end: number 
 /** Looks up `$name` (its offsets for messages); undefined when no declaration is in scope. */
 export type ParameterLookup = (name: string, start: number, end: number) => LookupResult | { error: ExpressionError } | undefined;
 
+const NEGATION: NumberOperand = { role: 'negation' };
+
 export type Evaluation = { ok: true; value: ParameterValue; type: ParameterType } | { ok: false; errors: ExpressionError[] };
 
 class EvaluationFailure extends Error {
   constructor(readonly error: ExpressionError) {
-    super(error.message);
+    super(error.kind);
   }
 }
 
-/** Why a constant is not standard here: `pi` came with OpenSCENARIO 1.4, after every version the project reads (1.0-1.3). */
-const CONSTANT_MESSAGES: Record<'pi' | 'e', string> = {
-  pi: "'pi' is a constant from OpenSCENARIO 1.4 on, not of 1.3 and the versions before it (esmini knows it); a simulator of an earlier version rejects it",
-  e: "'e' is an esmini constant, not part of the OpenSCENARIO standard; other simulators reject it",
-};
+/** The function names the standard knows, as an unknown name's fact lists them. */
+const FUNCTION_NAMES: readonly string[] = Object.keys(FUNCTIONS);
 
 /**
  * Evaluates a parsed expression. Numbers are doubles throughout (the result is converted to the
@@ -29,27 +29,40 @@ const CONSTANT_MESSAGES: Record<'pi' | 'e', string> = {
  * Non-standard constants are reported through `warnings` and still evaluated.
  */
 export function evaluateTree(tree: ExpressionNode, lookup: ParameterLookup, warnings: ExpressionError[] = []): Evaluation {
-  const mismatch = (node: ExpressionNode, message: string): never => {
-    throw new EvaluationFailure({ kind: 'type-mismatch', message, start: node.start, end: node.end });
-  };
-  const numberOf = (node: ExpressionNode, what: string): number => {
+  const numberOf = (node: ExpressionNode, operand: NumberOperand): number => {
     const result = visit(node);
     if (typeof result.value !== 'number')
-      mismatch(node, `${what} needs a number, but this is the ${result.type} ${JSON.stringify(result.value)}`);
-    return result.value as number;
+      throw new EvaluationFailure({
+        kind: 'type-mismatch',
+        fact: 'needs-number',
+        operand,
+        type: result.type,
+        value: result.value,
+        start: node.start,
+        end: node.end,
+      });
+    return result.value;
   };
   const booleanOf = (node: ExpressionNode, operator: string): boolean => {
     const result = visit(node);
     if (typeof result.value !== 'boolean')
-      mismatch(node, `'${operator}' needs a boolean, but this is the ${result.type} ${JSON.stringify(result.value)}`);
-    return result.value as boolean;
+      throw new EvaluationFailure({
+        kind: 'type-mismatch',
+        fact: 'needs-boolean',
+        operator,
+        type: result.type,
+        value: result.value,
+        start: node.start,
+        end: node.end,
+      });
+    return result.value;
   };
   const number = (value: number): TypedValue => ({ value, type: 'double' });
   const finite = (node: ExpressionNode, value: number, left: number, right = 0): TypedValue => {
     if (!Number.isFinite(value) && !Number.isNaN(value) && Number.isFinite(left) && Number.isFinite(right)) {
       throw new EvaluationFailure({
         kind: 'overflow',
-        message: `the result is beyond the range of a double (at most 1.7976931348623157E308)`,
+        fact: 'result',
         start: node.start,
         end: node.end,
       });
@@ -57,20 +70,32 @@ export function evaluateTree(tree: ExpressionNode, lookup: ParameterLookup, warn
     return number(value);
   };
   const parameterValue = (node: ExpressionNode & { name: string }, found: LookupResult): TypedValue => {
-    if (found.type === 'dateTime') mismatch(node, `the dateTime parameter '${node.name}' cannot be used in an expression`);
+    if (found.type === 'dateTime')
+      throw new EvaluationFailure({
+        kind: 'type-mismatch',
+        fact: 'date-time-parameter',
+        name: node.name,
+        start: node.start,
+        end: node.end,
+      });
     if (found.type !== 'string') return found;
     const read = readStringAsValue(String(found.value));
     if (!read)
       throw new EvaluationFailure({
         kind: 'type-mismatch',
-        message: `the string parameter '${node.name}' (${JSON.stringify(found.value)}) cannot be used in an expression`,
+        fact: 'string-parameter',
+        name: node.name,
+        value: found.value,
         start: node.start,
         end: node.end,
-        text: true,
       });
     warnings.push({
       kind: 'lenient',
-      message: `'${node.name}' is a string parameter: the standard allows no string in an expression; esmini and the ASAM OpenSCENARIO API read its text ${JSON.stringify(found.value)} as the ${read.type} ${String(read.value)}`,
+      fact: 'string-parameter',
+      name: node.name,
+      value: found.value,
+      type: read.type,
+      read: String(read.value),
       start: node.start,
       end: node.end,
       fix: found.retype ? { ...found.retype, text: read.type } : undefined,
@@ -83,7 +108,7 @@ export function evaluateTree(tree: ExpressionNode, lookup: ParameterLookup, warn
         if (!Number.isFinite(node.value)) {
           throw new EvaluationFailure({
             kind: 'overflow',
-            message: `this number is beyond the range of a double (at most 1.7976931348623157E308)`,
+            fact: 'number',
             start: node.start,
             end: node.end,
           });
@@ -92,23 +117,25 @@ export function evaluateTree(tree: ExpressionNode, lookup: ParameterLookup, warn
       case 'boolean':
         return { value: node.value, type: 'boolean' };
       case 'constant':
-        warnings.push({ kind: 'nonstandard', message: CONSTANT_MESSAGES[node.name], start: node.start, end: node.end });
+        warnings.push({ kind: 'nonstandard', constant: node.name, start: node.start, end: node.end });
         return number(node.name === 'pi' ? Math.PI : Math.E);
       case 'name': {
         const found = lookup(node.name, node.start, node.end);
         if (!found) {
           throw new EvaluationFailure({
             kind: 'syntax',
-            message: `unknown name '${node.name}': a parameter is written $${node.name}; the functions are ${Object.keys(FUNCTIONS).join(', ')}`,
+            fact: 'unknown-name',
+            name: node.name,
+            functions: FUNCTION_NAMES,
             start: node.start,
             end: node.end,
-            text: true,
           });
         }
         if ('error' in found) throw new EvaluationFailure(found.error);
         warnings.push({
           kind: 'lenient',
-          message: `'${node.name}' is the parameter $${node.name} written without '$': the standard names parameters in expressions only as $${node.name}; esmini reads the bare word as text`,
+          fact: 'bare-parameter',
+          name: node.name,
           start: node.start,
           end: node.end,
           fix: { start: node.start, end: node.end, text: `$${node.name}` },
@@ -120,7 +147,8 @@ export function evaluateTree(tree: ExpressionNode, lookup: ParameterLookup, warn
         if (!found)
           throw new EvaluationFailure({
             kind: 'unknown-parameter',
-            message: `parameter '${node.name}' is not declared in this scope`,
+            fact: 'undeclared',
+            name: node.name,
             start: node.start,
             end: node.end,
           });
@@ -128,7 +156,7 @@ export function evaluateTree(tree: ExpressionNode, lookup: ParameterLookup, warn
         return parameterValue(node, found);
       }
       case 'unary':
-        if (node.operator === '-') return number(-numberOf(node.operand, `unary '-'`));
+        if (node.operator === '-') return number(-numberOf(node.operand, NEGATION));
         return { value: !booleanOf(node.operand, 'not'), type: 'boolean' };
       case 'binary': {
         if (node.operator === 'and' || node.operator === 'or') {
@@ -136,8 +164,9 @@ export function evaluateTree(tree: ExpressionNode, lookup: ParameterLookup, warn
           const right = booleanOf(node.right, node.operator);
           return { value: node.operator === 'and' ? left && right : left || right, type: 'boolean' };
         }
-        const left = numberOf(node.left, `'${node.operator}'`);
-        const right = numberOf(node.right, `'${node.operator}'`);
+        const operand: NumberOperand = { role: 'operator', operator: node.operator };
+        const left = numberOf(node.left, operand);
+        const right = numberOf(node.right, operand);
         switch (node.operator) {
           case '+':
             return finite(node, left + right, left, right);
@@ -150,7 +179,7 @@ export function evaluateTree(tree: ExpressionNode, lookup: ParameterLookup, warn
             if (right === 0)
               throw new EvaluationFailure({
                 kind: 'division-by-zero',
-                message: `division by zero: the right side of '${node.operator}' is 0`,
+                operator: node.operator,
                 start: node.right.start,
                 end: node.right.end,
               });
@@ -159,13 +188,16 @@ export function evaluateTree(tree: ExpressionNode, lookup: ParameterLookup, warn
         break;
       }
       case 'call': {
-        const args = node.args.map((arg) => numberOf(arg, `${node.name}()`));
+        const operand: NumberOperand = { role: 'function', name: node.name };
+        const args = node.args.map((arg) => numberOf(arg, operand));
         const value = applyFunction(node.name, args);
         if (!Number.isNaN(value)) return finite(node, value, args.every(Number.isFinite) ? 0 : Infinity);
         if (!Number.isFinite(value)) {
           throw new EvaluationFailure({
             kind: 'type-mismatch',
-            message: `${node.name}(${args.join(', ')}) has no real value`,
+            fact: 'no-real-value',
+            name: node.name,
+            args,
             start: node.start,
             end: node.end,
           });

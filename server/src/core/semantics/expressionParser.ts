@@ -1,3 +1,5 @@
+import { EsminiComputes, ExpressionFact, ExpressionSyntaxFact, FoundToken } from '../diagnostics/expressionFacts';
+
 /**
  * ASAM OpenSCENARIO 1.x `${...}` expressions: parsing, with the offset of every part, and how an
  * attribute value is written (a literal, a `$name` or an expression). Evaluation is in
@@ -20,14 +22,6 @@
  * but reported as not standard.
  */
 
-/**
- * `lenient`: a form the standard does not allow with one clear meaning that esmini accepts (a warning,
- * SPEC 12); `simulator`: esmini computes another value than the standard (a warning); `overflow`: a
- * double beyond its range, an error by the standard's rules.
- */
-export type ExpressionErrorKind =
-  'syntax' | 'unknown-parameter' | 'type-mismatch' | 'division-by-zero' | 'nonstandard' | 'lenient' | 'overflow' | 'simulator';
-
 /** Text to write instead, at document offsets, to reach the standard's form. */
 export interface ExpressionFix {
   start: number;
@@ -35,16 +29,19 @@ export interface ExpressionFix {
   text: string;
 }
 
-/** An error at offsets of the document (or of the string given to the parser when its base is 0). */
-export interface ExpressionError {
-  kind: ExpressionErrorKind;
-  message: string;
+/**
+ * An error or warning at offsets of the document (or of the string given to the parser when its base is 0): a fact
+ * its code's module words (core/diagnostics/expressionWords.ts). `lenient`: a form the standard does not allow with
+ * one clear meaning that esmini accepts (a warning, SPEC 12); `simulator`: esmini computes another value than the
+ * standard (a warning); `overflow`: a double beyond its range, an error by the standard's rules.
+ */
+export type ExpressionError = ExpressionFact & {
   start: number;
   end: number;
   fix?: ExpressionFix;
-  /** Set on an error caused by text where a value was expected (a bare unknown word, a string parameter): esmini glues such an expression as text. */
-  text?: boolean;
-}
+  /** What esmini computes where the standard fails (on the first error of a value esmini computes). */
+  esminiComputes?: EsminiComputes;
+};
 
 export type ExpressionNode =
   | { kind: 'number'; value: number; start: number; end: number }
@@ -125,7 +122,7 @@ function tokenize(body: string, base: number, errors: ExpressionError[]): Token[
       NAME.lastIndex = i + 1;
       const name = NAME.exec(body);
       if (!name) {
-        errors.push({ kind: 'syntax', message: `'$' must be followed by a parameter name`, start: base + i, end: base + i + 1 });
+        errors.push({ kind: 'syntax', fact: 'dollar-without-name', start: base + i, end: base + i + 1 });
         i++;
         continue;
       }
@@ -145,7 +142,7 @@ function tokenize(body: string, base: number, errors: ExpressionError[]): Token[
       i++;
       continue;
     }
-    errors.push({ kind: 'syntax', message: `'${char}' is not allowed in an expression`, start: base + i, end: base + i + 1 });
+    errors.push({ kind: 'syntax', fact: 'character', character: char, start: base + i, end: base + i + 1 });
     i++;
   }
   tokens.push({ kind: 'end', start: base + body.length, end: base + body.length });
@@ -154,7 +151,7 @@ function tokenize(body: string, base: number, errors: ExpressionError[]): Token[
 
 class SyntaxFailure extends Error {
   constructor(readonly error: ExpressionError) {
-    super(error.message);
+    super(error.kind);
   }
 }
 
@@ -165,19 +162,19 @@ export function parseExpressionBody(body: string, base = 0): { tree: ExpressionN
   if (errors.length > 0) return { tree: undefined, errors };
   let index = 0;
   const peek = () => tokens[index];
-  const fail = (token: Token, message: string): never => {
-    throw new SyntaxFailure({ kind: 'syntax', message, start: token.start, end: Math.max(token.end, token.start + 1) });
+  const fail = (token: Token, fact: ExpressionSyntaxFact): never => {
+    throw new SyntaxFailure({ ...fact, start: token.start, end: Math.max(token.end, token.start + 1) });
   };
   const isWord = (token: Token, word: string) => token.kind === 'word' && token.word === word;
   const isSymbol = (token: Token, symbol: string) => token.kind === 'symbol' && token.symbol === symbol;
-  const describe = (token: Token) =>
+  const describe = (token: Token): FoundToken =>
     token.kind === 'end'
-      ? 'the end of the expression'
+      ? { kind: 'end' }
       : token.kind === 'symbol'
-        ? `'${token.symbol}'`
+        ? { kind: 'symbol', symbol: token.symbol }
         : token.kind === 'word'
-          ? `'${token.word}'`
-          : 'a value';
+          ? { kind: 'word', word: token.word }
+          : { kind: 'value' };
 
   const binaryLevel = (operators: BinaryOperator[], next: () => ExpressionNode) => (): ExpressionNode => {
     let left = next();
@@ -204,7 +201,8 @@ export function parseExpressionBody(body: string, base = 0): { tree: ExpressionN
       index++;
       const inner = orExpression();
       const close = peek();
-      if (!isSymbol(close, ')')) fail(close, `expected ')' to close the '(' at column ${token.start - base + 1}, found ${describe(close)}`);
+      if (!isSymbol(close, ')'))
+        fail(close, { kind: 'syntax', fact: 'unclosed-parenthesis', column: token.start - base + 1, found: describe(close) });
       index++;
       return { ...inner, start: token.start, end: close.end };
     }
@@ -215,7 +213,7 @@ export function parseExpressionBody(body: string, base = 0): { tree: ExpressionN
       if (token.word in FUNCTIONS) {
         const name = token.word as FunctionName;
         const open = peek();
-        if (!isSymbol(open, '(')) fail(open, `expected '(' after the function ${name}`);
+        if (!isSymbol(open, '(')) fail(open, { kind: 'syntax', fact: 'call-without-parenthesis', name });
         index++;
         const args: ExpressionNode[] = [];
         if (!isSymbol(peek(), ')')) {
@@ -226,13 +224,13 @@ export function parseExpressionBody(body: string, base = 0): { tree: ExpressionN
           }
         }
         const close = peek();
-        if (!isSymbol(close, ')')) fail(close, `expected ',' or ')' in the arguments of ${name}, found ${describe(close)}`);
+        if (!isSymbol(close, ')')) fail(close, { kind: 'syntax', fact: 'arguments-not-closed', name, found: describe(close) });
         index++;
         const arity = FUNCTIONS[name].arity;
         if (args.length !== arity) {
           fail(
             { kind: 'word', word: name, start: token.start, end: close.end },
-            `${name} takes ${arity} argument${arity === 1 ? '' : 's'}, not ${args.length}`,
+            { kind: 'syntax', fact: 'arity', name, arity, given: args.length },
           );
         }
         return { kind: 'call', name, args, start: token.start, end: close.end };
@@ -240,7 +238,7 @@ export function parseExpressionBody(body: string, base = 0): { tree: ExpressionN
       if (token.word === 'pi' || token.word === 'e') return { kind: 'constant', name: token.word, start: token.start, end: token.end };
       return { kind: 'name', name: token.word, start: token.start, end: token.end };
     }
-    return fail(token, `expected a number, a $parameter, a function or '(', found ${describe(token)}`);
+    return fail(token, { kind: 'syntax', fact: 'operand-expected', found: describe(token) });
   };
   const unary = (): ExpressionNode => {
     const token = peek();
@@ -267,7 +265,7 @@ export function parseExpressionBody(body: string, base = 0): { tree: ExpressionN
   try {
     const tree = orExpression();
     const rest = peek();
-    if (rest.kind !== 'end') fail(rest, `unexpected ${describe(rest)}: an operator or the end of the expression was expected`);
+    if (rest.kind !== 'end') fail(rest, { kind: 'syntax', fact: 'operator-expected', found: describe(rest) });
     return { tree, errors };
   } catch (error) {
     if (error instanceof SyntaxFailure) return { tree: undefined, errors: [error.error] };
@@ -348,7 +346,7 @@ export function valueForm(value: string, base = 0): ValueForm {
     if (!closed)
       parsed.errors.unshift({
         kind: 'syntax',
-        message: `an expression must end with '}'`,
+        fact: 'unclosed-expression',
         start: base + trimmed.length - 1,
         end: base + trimmed.length,
       });

@@ -94,12 +94,10 @@ function shiftedForm(form: ValueSite['form'], delta: number): ValueSite['form'] 
       bodyEnd: expression.bodyEnd + delta,
       tree: expression.tree && shiftedNode(expression.tree, delta),
       errors: expression.errors.map((error) => ({
-        kind: error.kind,
-        message: error.message,
+        ...error,
         start: error.start + delta,
         end: error.end + delta,
         ...(error.fix ? { fix: { start: error.fix.start + delta, end: error.fix.end + delta, text: error.fix.text } } : {}),
-        ...(error.text ? { text: error.text } : {}),
       })),
       parameters: expression.parameters.map((parameter) => ({
         name: parameter.name,

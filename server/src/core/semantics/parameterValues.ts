@@ -54,10 +54,10 @@ function mismatchOf(
   if (target) {
     // Checked first: the lenient reading converts `5.0` to an integer, which is still a warning here.
     const whole = typeof value.value === 'string' && INTEGER_TYPES.has(target) ? wholeNumberText(value.value) : undefined;
-    if (whole !== undefined && !('message' in convertValue({ value: String(whole), type: 'string' }, target))) {
+    if (whole !== undefined && !('mismatch' in convertValue({ value: String(whole), type: 'string' }, target))) {
       return { kind: 'fraction', target, whole };
     }
-    if (!('message' in convertValue(value, target))) return undefined;
+    if (!('mismatch' in convertValue(value, target))) return undefined;
     return { kind: 'conversion', target };
   }
   // Text, an enumeration or a pattern: the value's text must be one the type admits itself.

@@ -1,3 +1,5 @@
+import { LenientFact, LiteralMismatch } from '../diagnostics/expressionFacts';
+
 /**
  * ASAM OpenSCENARIO 1.x parameter values: the declared types, literals read in their XSD lexical
  * forms, and the conversion of a value (an expression's result) to a declared `parameterType`.
@@ -77,18 +79,21 @@ const DATE_TIME = /^-?[0-9]{4,}-[0-9]{2}-[0-9]{2}T[0-9]{2}:[0-9]{2}:[0-9]{2}(?:\
 
 const INTEGRAL_WITH_FRACTION = /^([+-]?[0-9]+)\.0*$/;
 
+/** Why a value does not fit a type (worded by core/diagnostics/typeMismatch.ts). */
+export type Mismatch = { mismatch: LiteralMismatch };
+
 /**
- * Reads a literal written for a parameter of `type` (XSD lexical forms); a message when it does not fit.
+ * Reads a literal written for a parameter of `type` (XSD lexical forms); why not when it does not fit.
  * `lenient` names a form the standard refuses that has one clear meaning (`-5.0` for an int).
  */
 export function parseLiteral(
   text: string,
   type: ParameterType,
-): { value: ParameterValue; lenient?: { message: string; standard: string } } | { message: string } {
+): { value: ParameterValue; lenient?: Extract<LenientFact, { fact: 'integral-fraction' }> } | Mismatch {
   const trimmed = text.trim();
   switch (type) {
     case 'double':
-      if (!DOUBLE.test(trimmed)) return { message: `'${text}' is not a double` };
+      if (!DOUBLE.test(trimmed)) return { mismatch: { fact: 'not-of-type', text, type } };
       return { value: trimmed.endsWith('INF') ? (trimmed.startsWith('-') ? -Infinity : Infinity) : Number(trimmed) };
     case 'int':
     case 'unsignedInt':
@@ -99,34 +104,29 @@ export function parseLiteral(
         const standard = String(value);
         const range = checkRange(value, type);
         if (range) return range;
-        return {
-          value,
-          lenient: {
-            standard,
-            message: `'${trimmed}' is not ${type === 'int' ? 'an int' : `an ${type}`} by the standard (no fraction is allowed, not even .0); esmini reads it as ${standard}`,
-          },
-        };
+        return { value, lenient: { kind: 'lenient', fact: 'integral-fraction', text: trimmed, type, standard } };
       }
-      if (!INTEGER.test(trimmed)) return { message: `'${text}' is not ${type === 'int' ? 'an int' : `an ${type}`}` };
+      if (!INTEGER.test(trimmed)) return { mismatch: { fact: 'not-of-type', text, type } };
       return checkRange(Number(trimmed), type) ?? { value: Number(trimmed) };
     }
     case 'boolean':
       if (trimmed === 'true' || trimmed === '1') return { value: true };
       if (trimmed === 'false' || trimmed === '0') return { value: false };
-      return { message: `'${text}' is not a boolean (true or false)` };
+      return { mismatch: { fact: 'not-of-type', text, type } };
     case 'dateTime':
-      return DATE_TIME.test(trimmed) ? { value: trimmed } : { message: `'${text}' is not a dateTime (YYYY-MM-DDThh:mm:ss)` };
+      return DATE_TIME.test(trimmed) ? { value: trimmed } : { mismatch: { fact: 'not-of-type', text, type } };
     case 'string':
       return { value: text };
   }
 }
 
-function checkRange(value: number, type: ParameterType): { message: string } | undefined {
-  if (type === 'int' && (value < -2147483648 || value > 2147483647)) return { message: `${value} is outside the range of an int` };
-  if (type === 'unsignedInt' && (value < 0 || value > 4294967295))
-    return { message: `${value} is outside the range of an unsignedInt (0 to 4294967295)` };
-  if (type === 'unsignedShort' && (value < 0 || value > 65535))
-    return { message: `${value} is outside the range of an unsignedShort (0 to 65535)` };
+function checkRange(value: number, type: ParameterType): Mismatch | undefined {
+  if (
+    (type === 'int' && (value < -2147483648 || value > 2147483647)) ||
+    (type === 'unsignedInt' && (value < 0 || value > 4294967295)) ||
+    (type === 'unsignedShort' && (value < 0 || value > 65535))
+  )
+    return { mismatch: { fact: 'out-of-range', value, type } };
   return undefined;
 }
 
@@ -135,7 +135,7 @@ function checkRange(value: number, type: ParameterType): { message: string } | u
  * away from zero (the standard converts expression results to the attribute's type; the rounding rule
  * is this project's choice, stated here). A string target takes the value's text.
  */
-export function convertValue(value: TypedValue, target: ParameterType): { value: ParameterValue } | { message: string } {
+export function convertValue(value: TypedValue, target: ParameterType): { value: ParameterValue } | Mismatch {
   if (target === 'string') return { value: String(value.value) };
   if (target === value.type) return { value: value.value };
   if (typeof value.value === 'number' && isNumeric(target)) {
@@ -143,14 +143,14 @@ export function convertValue(value: TypedValue, target: ParameterType): { value:
     return checkRange(converted, target) ?? { value: converted };
   }
   if (typeof value.value === 'string') return parseLiteral(value.value, target);
-  return { message: `a ${value.type} value cannot be a ${target}` };
+  return { mismatch: { fact: 'not-convertible', from: value.type, to: target } };
 }
 
 /** The standard's error for an expression value given to an integer type that is not integral (convertValue would round it). */
-export function integralConversionError(value: TypedValue, target: ParameterType): string | undefined {
+export function integralConversionError(value: TypedValue, target: ParameterType): LiteralMismatch | undefined {
   if (typeof value.value !== 'number' || (target !== 'int' && target !== 'unsignedInt' && target !== 'unsignedShort')) return undefined;
   if (Number.isInteger(value.value)) return undefined;
-  return `${formatValue(value.value)} is not integral: the standard converts a double to ${target === 'int' ? 'an int' : `an ${target}`} only when it has no fraction`;
+  return { fact: 'not-integral', value: formatValue(value.value), type: target };
 }
 
 /** A value as the simulator would write it back into the attribute (for hovers and inlay hints). */

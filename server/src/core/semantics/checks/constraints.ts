@@ -1,7 +1,7 @@
 import { attribute, XmlElement } from '../../xml';
 import { assignmentsOf } from '../catalogs';
 import type { Finding, SemanticCheck, SemanticContext } from './types';
-import { convertValue, formatValue, ParameterType, ParameterValue } from '../values';
+import { convertValue, formatValue, Mismatch, ParameterType, ParameterValue } from '../values';
 import { Declaration, Evaluator, referencedName } from '../model';
 import { at, relatedAt } from './support';
 import { brokenConstraintNote, ConstraintFacts, valueConstraintWording } from '../../diagnostics/valueConstraint';
@@ -21,8 +21,8 @@ const EQUALITY_ONLY: ReadonlySet<ParameterType> = new Set<ParameterType>(['boole
 interface Constraint {
   element: XmlElement;
   rule: ConstraintRule;
-  /** The constraint's value in the parameter's type; a message when it has none. */
-  value: ParameterValue | { message: string };
+  /** The constraint's value in the parameter's type; why not when it has none. */
+  value: ParameterValue | Mismatch;
 }
 
 function isRule(text: string): text is ConstraintRule {
@@ -77,13 +77,13 @@ function groupsOf(context: SemanticContext, declaration: Declaration, type: Para
         continue;
       }
       const converted = convertValue({ value: valueText, type: 'string' }, type);
-      if ('message' in converted) {
+      if ('mismatch' in converted) {
         findings.push({
           ...at(element, valueAttribute),
-          ...valueConstraintWording({ kind: 'value', value: valueText, type, parameter: declaration.name, reason: converted.message }),
+          ...valueConstraintWording({ kind: 'value', value: valueText, type, parameter: declaration.name, reason: converted.mismatch }),
         });
       }
-      constraints.push({ element, rule: ruleText, value: 'message' in converted ? converted : converted.value });
+      constraints.push({ element, rule: ruleText, value: 'mismatch' in converted ? converted : converted.value });
     }
     if (constraints.length > 0) groups.push(constraints);
   }

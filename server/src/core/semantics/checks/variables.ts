@@ -93,10 +93,10 @@ export const variableValues: SemanticCheck = ({ model, evaluator }) => {
       const text = evaluator.textOf(element, valueAttribute);
       if (text === undefined) continue;
       const converted = convertValue({ value: text, type: 'string' }, type);
-      if (!('message' in converted)) continue;
+      if (!('mismatch' in converted)) continue;
       findings.push({
         ...at(element, valueAttribute),
-        ...variableValueWording(text, named, converted.message),
+        ...variableValueWording(text, named, converted.mismatch),
       });
     }
     const modify = target.children.find((child) => child.name === 'ModifyAction');
