@@ -3,6 +3,7 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import * as vscode from 'vscode';
 import { commandTargets } from './commands';
+import { batchFailure } from './variations/batchFailure';
 
 export const RUN_VARIATIONS_COMMAND = 'modular2simple.runVariations';
 /** The Variations view's command (another part of the extension); results.csv opens instead when it is not there. */
@@ -19,6 +20,8 @@ export interface VariationsRun {
   exitCode: number | null;
   resultsFolder: string;
   cancelled: boolean;
+  /** Why it did not end well, as the CLI said it (runs esmini refused, with esmini's reason); shown in the notification. */
+  failure?: string;
 }
 
 // The CLI prints one line per finished run when its standard error is not a terminal: "[3/12] 2: ok".
@@ -82,6 +85,7 @@ export class VariationsRunner implements vscode.Disposable {
           let cancelled = false;
           let reported = 0;
           let pending = '';
+          const printed: string[] = [];
           const subscription = token.onCancellationRequested(() => {
             cancelled = true;
             // SIGTERM stops the batch cleanly: the rows written so far stay, a later run does the rest.
@@ -93,6 +97,7 @@ export class VariationsRunner implements vscode.Disposable {
             pending = lines.pop() ?? '';
             for (const line of lines) {
               this.output.appendLine(line);
+              printed.push(line);
               const counted = PROGRESS_LINE.exec(line);
               if (!counted) continue;
               const done = Number(counted[1]);
@@ -107,8 +112,11 @@ export class VariationsRunner implements vscode.Disposable {
           const finish = (exitCode: number | null): void => {
             subscription.dispose();
             this.running.delete(child);
-            if (pending) this.output.appendLine(pending);
-            resolve({ exitCode, resultsFolder, cancelled });
+            if (pending) {
+              this.output.appendLine(pending);
+              printed.push(pending);
+            }
+            resolve({ exitCode, resultsFolder, cancelled, failure: exitCode === 0 ? undefined : batchFailure(printed) });
           };
           child.on('error', (error) => {
             this.output.appendLine(`cannot start the CLI: ${error.stack ?? error.message}`);
@@ -123,12 +131,17 @@ export class VariationsRunner implements vscode.Disposable {
         `Run Variations stopped: the rows so far are in ${path.basename(resultsFolder)}/results.csv; run it again to run the rest.`,
       );
     } else if (outcome.exitCode !== 0) {
-      const choice = await vscode.window.showErrorMessage(
-        `Run Variations of ${name} failed (exit code ${outcome.exitCode}): see the output for why.`,
-        'Show Output',
-      );
-      if (choice === 'Show Output') this.output.show();
-      if (!fs.existsSync(csv)) return outcome;
+      // Not awaited: an error notification stays until dismissed, and the results (each run's reason) open meanwhile.
+      void vscode.window
+        .showErrorMessage(
+          outcome.failure
+            ? `Run Variations of ${name}: ${outcome.failure}`
+            : `Run Variations of ${name} failed (exit code ${outcome.exitCode}): see the output for why.`,
+          'Show Output',
+        )
+        .then((choice) => {
+          if (choice === 'Show Output') this.output.show();
+        });
     }
     if (!fs.existsSync(csv)) return outcome;
     const commands = await vscode.commands.getCommands(true);

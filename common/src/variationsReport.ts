@@ -23,6 +23,9 @@ export const RESULT_COLUMNS = ['index', 'status', 'collision', 'min_distance_m',
 /** The column `batch --fail-if` writes after the fixed ones: pass, fail, or empty. */
 export const VERDICT_COLUMN = 'verdict';
 
+/** The last column, after the parameters: why a run is not ok (esmini's reason for an error), empty when it is. */
+export const REASON_COLUMN = 'reason';
+
 export interface ResultRow {
   /** The concrete scenario's index (as esmini's --param_permutation). */
   index: string;
@@ -33,7 +36,7 @@ export interface ResultRow {
 
 export interface ResultsTable {
   columns: string[];
-  /** The columns after the fixed ones: one per varied parameter. */
+  /** The columns after the fixed ones (and before `reason`): one per varied parameter. */
   parameters: string[];
   rows: ResultRow[];
 }
@@ -94,9 +97,10 @@ export function parseResultsCsv(text: string): ResultsTable {
     header.forEach((column, i) => (cells[column] = record[i]));
     rows.push({ index: cells.index, outcome: outcomeOf(cells.status, cells.collision), cells });
   }
-  // `batch --fail-if` adds a verdict column before the parameters.
+  // `batch --fail-if` adds a verdict column before the parameters; the reason comes after them (results written before it have none).
   const fixed = RESULT_COLUMNS.length + (header[RESULT_COLUMNS.length] === VERDICT_COLUMN ? 1 : 0);
-  return { columns: header, parameters: header.slice(fixed), rows };
+  const end = header.length > fixed && header[header.length - 1] === REASON_COLUMN ? header.length - 1 : header.length;
+  return { columns: header, parameters: header.slice(fixed, end), rows };
 }
 
 export type SortDirection = 'ascending' | 'descending';

@@ -11,7 +11,7 @@ import { waitUntil } from '../support/wait';
 import { temporaryFolder } from '../support/temporaryDirectory';
 
 const FIXTURES = path.join(repoRoot, 'test', 'fixtures', 'variations');
-const COLUMNS = 'index,status,collision,min_distance_m,min_ttc_s,end_time_s,EgoSpeed,LeadSpeed,LeadStartS';
+const COLUMNS = 'index,status,collision,min_distance_m,min_ttc_s,end_time_s,EgoSpeed,LeadSpeed,LeadStartS,reason';
 
 /** A folder with follow.xosc (its runs lasting `stopTime` simulated seconds) and its 36-scenario distribution. */
 function batchFolder(stopTime = 3, distribution?: string): string {
@@ -94,7 +94,7 @@ describe('cli: batch', function () {
     const byIndex = new Map(rows.map((row) => [Number(row.split(',')[0]), row.split(',')]));
     // Index 0: ego 10 m/s, lead 5 m/s, 15 m apart: they touch at 3 s. Index 8: lead faster and 65 m ahead.
     assert.deepEqual(byIndex.get(0)?.slice(1, 5), ['ok', 'true', '0.000', '0.000']);
-    assert.deepEqual(byIndex.get(0)?.slice(6), ['10', '5.000000', '70']);
+    assert.deepEqual(byIndex.get(0)?.slice(6), ['10', '5.000000', '70', ''], 'an ok run has no reason');
     assert.equal(byIndex.get(8)?.[2], 'false');
     assert.ok(Number(byIndex.get(8)?.[3]) > 60);
     assert.equal(byIndex.get(8)?.[4], '', 'no time to collision when the gap never closes');
@@ -225,6 +225,8 @@ describe('cli: batch', function () {
     assert.ok(warning < limited.stderr.indexOf('[1/2]'), 'the warning comes before the runs');
     assert.match(limited.stderr, /^2 runs \(0 ok, 2 limit, 0 timeout, 0 error; /m);
     for (const cells of csvRows(cut).map((row) => row.split(','))) assert.deepEqual([cells[1], cells[5]], ['limit', '5.000']);
+    for (const row of csvRows(cut))
+      assert.ok(row.endsWith(',"stopped at the 5 s limit set for the run, before the scenario ended by itself"'), row);
   });
 
   it('--fail-if criteria: a verdict column, exit 5 naming the failed runs (again on a resume), JUnit XML for CI', function () {
@@ -234,7 +236,7 @@ describe('cli: batch', function () {
     const run = runCli(args, { cwd: root });
     const text = fs.readFileSync(path.join(root, 'results', 'results.csv'), 'utf8');
     const [header, ...lines] = text.trim().split('\n');
-    assert.equal(header, 'index,status,collision,min_distance_m,min_ttc_s,end_time_s,verdict,EgoSpeed,LeadSpeed,LeadStartS');
+    assert.equal(header, 'index,status,collision,min_distance_m,min_ttc_s,end_time_s,verdict,EgoSpeed,LeadSpeed,LeadStartS,reason');
     const rows = lines.map((line) => line.split(','));
     const failing = rows.filter((cells) => cells[2] === 'true' || Number(cells[3]) < 30);
     for (const cells of rows) assert.equal(cells[6], failing.includes(cells) ? 'fail' : 'pass', cells.join(','));
@@ -262,6 +264,46 @@ describe('cli: batch', function () {
       refused.stderr,
       /--fail-if takes 'collision' or 'METRIC OP NUMBER' with METRIC one of min_ttc_s, min_distance_m, end_time_s/,
     );
+  });
+
+  it("a batch whose runs esmini refuses is no batch done: each row has esmini's reason (progress, summary, CSV, JSON, JUnit), exit 3, again on a resume", function () {
+    requireEsmini(this);
+    const root = folder();
+    // Without --road-path esmini finds no e6mini.xodr and runs nothing; the scenario itself has no error.
+    const args = [...'batch d.xosc --results results --jobs 2 --sample 3 --junit junit.xml'.split(' '), '--esmini', esminiBinary];
+    const run = runCli(args, { cwd: root });
+    assert.equal(run.status, 3, run.stderr);
+    const reason = 'esmini did not run the scenario (exit code 255): Failed to locate OpenDRIVE file e6mini.xodr';
+    const rows = csvRows(root);
+    assert.equal(rows.length, 3);
+    for (const row of rows) assert.match(row, new RegExp(`^\\d+,error,false,,,,[^,]+,[^,]+,[^,]+,${reason.replace(/[().]/g, '\\$&')}$`));
+    const indices = indicesOf(rows).sort((a, b) => a - b);
+    const progress = run.stderr.split('\n').filter((line) => /^\[\d\/3\] /.test(line));
+    assert.equal(progress.length, 3);
+    for (const line of progress) assert.match(line, /^\[\d\/3\] \d+: error: esmini did not run the scenario .*e6mini\.xodr$/);
+    assert.match(run.stderr, /^3 runs \(0 ok, 0 limit, 0 timeout, 3 error; 0 with a collision\); results in /m);
+    const summary = `modular2simple: error: 3 of 3 runs failed in esmini (status error); the column reason of ${path.join(fs.realpathSync(root), 'results', 'results.csv')} says why for each:\n  ${indices.map((index) => `#${index}`).join(', ')}: ${reason}\n`;
+    assert.ok(run.stderr.endsWith(summary), run.stderr);
+    const json = JSON.parse(fs.readFileSync(path.join(root, 'results', 'results.json'), 'utf8')) as {
+      columns: string[];
+      rows: { status: string; reason: string; messages: { level: string; text: string }[] }[];
+    };
+    assert.equal(json.columns.at(-1), 'reason');
+    for (const row of json.rows) {
+      assert.deepEqual([row.status, row.reason], ['error', reason]);
+      assert.ok(
+        row.messages.some((message) => message.level === 'error' && message.text === 'Failed to locate OpenDRIVE file e6mini.xodr'),
+      );
+    }
+    const junit = fs.readFileSync(path.join(root, 'junit.xml'), 'utf8');
+    assert.match(junit, /tests="3" failures="0" errors="3" skipped="0"/);
+    assert.equal(junit.split(`<error type="error" message="${reason}"/>`).length, 4);
+    assert.match(fs.readFileSync(path.join(root, 'results', 'results.html'), 'utf8'), /Failed to locate OpenDRIVE file e6mini\.xodr/);
+    // Run again, nothing runs: the rows of before still make the batch one that did not happen.
+    const again = runCli(args, { cwd: root });
+    assert.equal(again.status, 3, again.stderr);
+    assert.match(again.stderr, /^0 runs .*, 3 already in /m);
+    assert.ok(again.stderr.endsWith(summary), again.stderr);
   });
 
   it('refuses bad input before running anything, leaving no results folder', () => {
@@ -352,7 +394,7 @@ describe('cli: batch', function () {
       .readFileSync(path.join(root, 'results', 'results.csv'), 'utf8')
       .trim()
       .split('\n');
-    assert.equal(lines[0], 'index,status,collision,min_distance_m,min_ttc_s,end_time_s,EgoSpeed,LeadSpeed');
+    assert.equal(lines[0], 'index,status,collision,min_distance_m,min_ttc_s,end_time_s,EgoSpeed,LeadSpeed,reason');
     assert.equal(lines.length, 7);
     for (const line of lines.slice(1)) {
       const cells = line.split(',');

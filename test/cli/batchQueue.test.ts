@@ -27,7 +27,7 @@ function batchFolder(stopTime: number): string {
  * parameter (filepath="$Road") naming files beside the scenario, a vehicle from a catalog folder of its own.
  * Six runs, stopped at 5 s by --duration (status limit), the fastest ego colliding before that.
  */
-function alksShapedFolder(): string {
+function alksShapedFolder(roads = ['./roads/e6mini.xodr', './roads/e6mini_copy.xodr']): string {
   const root = temporaryFolder('m2s-queue-alks-');
   const scenarios = path.join(root, 'scenarios');
   fs.mkdirSync(path.join(scenarios, 'roads'), { recursive: true });
@@ -62,7 +62,7 @@ function alksShapedFolder(): string {
     <ScenarioFile filepath="./scenarios/follow.xosc"/>
     <Deterministic>
       <DeterministicSingleParameterDistribution parameterName="Road">
-        <DistributionSet><Element value="./roads/e6mini.xodr"/><Element value="./roads/e6mini_copy.xodr"/></DistributionSet>
+        <DistributionSet>${roads.map((road) => `<Element value="${road}"/>`).join('')}</DistributionSet>
       </DeterministicSingleParameterDistribution>
       <DeterministicSingleParameterDistribution parameterName="EgoSpeed">
         <DistributionSet><Element value="10"/><Element value="20"/><Element value="30"/></DistributionSet>
@@ -90,6 +90,17 @@ function background(args: string[], cwd: string, env: NodeJS.ProcessEnv = {}): B
     child.on('close', (code, signal) => resolve({ code, signal, output })),
   );
   return { kill: (signal) => child.kill(signal), output: () => output, ended };
+}
+
+/** A CLI call in the background, for a test that runs something else meanwhile: its exit code and all it printed. */
+async function runCliAsync(args: string[], cwd: string): Promise<{ code: number | null; output: string }> {
+  const ended = await background(args, cwd).ended;
+  return { code: ended.code, output: ended.output };
+}
+
+/** results.csv's data lines in `folder`, sorted (the queue's rows come in the order the workers finish them). */
+function sortedRows(folder: string): string[] {
+  return fs.readFileSync(path.join(folder, 'results.csv'), 'utf8').split('\n').slice(1, -1).sort();
 }
 
 /** results.csv's data lines, checked to hold each of the 36 indices exactly once. */
@@ -187,18 +198,53 @@ describe('cli: batch through a Redis queue', function () {
     assert.equal(ended.code, 0, ended.output);
     const local = runCli([...args, '--results', 'local', '--jobs', '2'], { cwd: root });
     assert.equal(local.status, 0, local.stderr);
-    const rowsOf = (folder: string) =>
-      fs
-        .readFileSync(path.join(root, folder, 'results.csv'), 'utf8')
-        .split('\n')
-        .slice(1, -1)
-        .sort();
+    const rowsOf = (folder: string) => sortedRows(path.join(root, folder));
     const localRows = rowsOf('local');
     assert.equal(localRows.length, 6);
     // Every run found its road and its catalog: stopped at the limit, the fastest ego after hitting the lead.
     for (const row of localRows) assert.match(row, /^\d,limit,(true|false),[\d.]+,[\d.]*,5\.000,\.\/roads\/e6mini(_copy)?\.xodr,/);
     assert.ok(localRows.some((row) => row.split(',')[2] === 'true'));
     assert.deepEqual(rowsOf('queued'), localRows);
+  });
+
+  it("runs esmini refuses (a varied road that is not there) come back from a worker in an empty folder as error with esmini's reason, as locally; exit 3 naming it", async function () {
+    requireEsmini(this);
+    requireRedis(this);
+    redis = await startRedis();
+    const root = alksShapedFolder(['./roads/e6mini.xodr', './roads/gone.xodr']);
+    folders.push(root);
+    const empty = temporaryFolder('m2s-worker-');
+    folders.push(empty);
+    workers.push(background(['worker', '--queue', redis.url, '--jobs', '2', '--esmini', esminiBinary], empty));
+    const args = ['batch', 'd.xosc', '--duration', '5', '--esmini', esminiBinary];
+    const queued = runCliAsync([...args, '--results', 'queued', '--queue', redis.url], root);
+    const local = runCli([...args, '--results', 'local', '--jobs', '2'], { cwd: root });
+    const ended = await queued;
+    for (const [name, batch] of [
+      ['queued', ended],
+      ['local', { code: local.status, output: local.stderr }],
+    ] as const) {
+      assert.equal(batch.code, 3, `${name}: ${batch.output}`);
+      assert.match(batch.output, /^6 runs \(0 ok, 3 limit, 0 timeout, 3 error; /m, `${name}: ${batch.output}`);
+      assert.match(
+        batch.output,
+        new RegExp(
+          `^modular2simple: error: 3 of 6 runs failed in esmini \\(status error\\); the column reason of .*${name}.results\\.csv says why for each:\\n  #3, #4, #5: esmini did not run the scenario \\(exit code 255\\): Failed to locate OpenDRIVE file \\./roads/gone\\.xodr$`,
+          'm',
+        ),
+        `${name}: ${batch.output}`,
+      );
+    }
+    const rowsOf = (folder: string) => sortedRows(path.join(root, folder));
+    const localRows = rowsOf('local');
+    assert.deepEqual(
+      localRows.filter((row) => row.includes('gone.xodr')),
+      ['10', '20', '30'].map(
+        (speed, i) =>
+          `${i + 3},error,false,,,,./roads/gone.xodr,${speed},esmini did not run the scenario (exit code 255): Failed to locate OpenDRIVE file ./roads/gone.xodr`,
+      ),
+    );
+    assert.deepEqual(rowsOf('queued'), localRows, 'the same rows, status and reason included');
   });
 
   it('a batch interrupted while the workers run collects the rest when run again, nothing twice', async function () {

@@ -100,7 +100,7 @@ describe('batch: trajectory metrics and results files', () => {
   it('CSV rows quote what must be quoted; a folder with other columns or another batch is refused untouched', async () => {
     assert.equal(
       csvLine(row('3', { Car: 'a,b', Name: 'say "hi"', Speed: '1' }), ['Car', 'Name', 'Speed']),
-      '3,ok,false,1.235,,3.000,"a,b","say ""hi""",1\n',
+      '3,ok,false,1.235,,3.000,"a,b","say ""hi""",1,\n',
     );
     const folder = temporaryFolder('m2s-results-');
     try {
@@ -109,7 +109,7 @@ describe('batch: trajectory metrics and results files', () => {
       await results.append(row('0', { Speed: '1' }));
       await results.finish();
       const csv = fs.readFileSync(path.join(folder, 'results.csv'), 'utf8');
-      assert.equal(csv, 'index,status,collision,min_distance_m,min_ttc_s,end_time_s,Speed\n0,ok,false,1.235,,3.000,1\n');
+      assert.equal(csv, 'index,status,collision,min_distance_m,min_ttc_s,end_time_s,Speed,reason\n0,ok,false,1.235,,3.000,1,\n');
       await assert.rejects(
         ResultsFolder.open(folder, ['Gap'], IDENTITY),
         (error: Error) => error instanceof ResultsError && /holds another batch's results \(its columns/.test(error.message),

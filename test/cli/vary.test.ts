@@ -101,7 +101,7 @@ describe('cli: vary and batch on a modular ScenarioFile (flattened per concrete 
       .readFileSync(path.join(root, 'results', 'results.csv'), 'utf8')
       .trim()
       .split('\n');
-    assert.equal(lines[0], 'index,status,collision,min_distance_m,min_ttc_s,end_time_s,CutInSpeed');
+    assert.equal(lines[0], 'index,status,collision,min_distance_m,min_ttc_s,end_time_s,CutInSpeed,reason');
     assert.deepEqual(
       lines
         .slice(1)
@@ -109,6 +109,10 @@ describe('cli: vary and batch on a modular ScenarioFile (flattened per concrete 
         .sort(),
       ['0', '1'],
     );
-    for (const line of lines.slice(1)) assert.match(line, /^\d,(ok|limit),(true|false),[\d.]+,[\d.]*,1\.0\d0,(20|30)$/);
+    for (const line of lines.slice(1))
+      assert.match(
+        line,
+        /^\d,(ok|limit),(true|false),[\d.]+,[\d.]*,1\.0\d0,(20|30),("stopped at the 1 s limit set for the run, before the scenario ended by itself")?$/,
+      );
   });
 });

@@ -47,6 +47,18 @@ describe('variations: the results table, its sorting, filtering and scatter', ()
     );
     assert.equal(parseResultsCsv(CSV + '11,ok,fal').rows.length, 5, 'a row still being written is not read');
     assert.deepEqual(csvRecords('a,"b ""c""",d\r\n'), [['a', 'b "c"', 'd']]);
+    const withReason = parseResultsCsv(
+      `${HEADER},EgoSpeed,reason\n0,error,false,,,,10,"esmini did not run the scenario (exit code 255): Failed to locate OpenDRIVE file e6mini.xodr"\n`,
+    );
+    assert.deepEqual(withReason.parameters, ['EgoSpeed'], 'the reason column after the parameters is none of them');
+    assert.equal(
+      withReason.rows[0].cells.reason,
+      'esmini did not run the scenario (exit code 255): Failed to locate OpenDRIVE file e6mini.xodr',
+    );
+    assert.match(
+      tableHtml(withReason.columns, withReason.rows),
+      /<td[^>]*>esmini did not run the scenario \(exit code 255\): Failed to locate OpenDRIVE file e6mini\.xodr<\/td>/,
+    );
     assert.throws(() => parseResultsCsv('x,y\n1,2\n'), ResultsCsvError);
     assert.throws(() => parseResultsCsv(''), ResultsCsvError);
   });

@@ -15,7 +15,7 @@ function xml(text: string): string {
  * The batch as JUnit XML, the format CI tools (GitLab, Jenkins, GitHub test reporters) read: one test case per
  * concrete scenario, named by its index and values; a run that fails its criteria is a `failure` (each criterion that
  * held), one that did not complete (status error or timeout) an `error` with esmini's message, a discarded
- * combination `skipped`. Its `time` is the simulated seconds (esmini's fixed step makes wall time meaningless here).
+ * combination `skipped`, each with the row's reason. Its `time` is the simulated seconds (esmini's fixed step makes wall time meaningless here).
  */
 export function junitXml(rows: readonly BatchRow[], parameterNames: string[], suite: string, criteria: string | undefined): string {
   let failures = 0;
@@ -26,11 +26,11 @@ export function junitXml(rows: readonly BatchRow[], parameterNames: string[], su
     const open = `    <testcase classname="${xml(suite)}" name="${xml(`#${row.index}${values ? ` ${values}` : ''}`)}" time="${row.end_time_s ?? 0}"`;
     if (row.status === 'discarded') {
       skipped++;
-      return `${open}>\n      <skipped message="${xml(row.message)}"/>\n    </testcase>`;
+      return `${open}>\n      <skipped message="${xml(row.reason || row.message)}"/>\n    </testcase>`;
     }
     if (row.status === 'error' || row.status === 'timeout') {
       errors++;
-      return `${open}>\n      <error type="${row.status}" message="${xml(row.message)}"/>\n    </testcase>`;
+      return `${open}>\n      <error type="${row.status}" message="${xml(row.reason || row.message)}"/>\n    </testcase>`;
     }
     if (row.verdict === 'fail') {
       failures++;

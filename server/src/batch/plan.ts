@@ -143,6 +143,7 @@ function discardedRow(index: string, parameters: Record<string, string>, broken:
     ego: null,
     collisions: [],
     message: `discarded: parameter '${broken.parameter}' = '${broken.value}' breaks its ValueConstraintGroups`,
+    reason: `parameter '${broken.parameter}' = '${broken.value}' breaks its ValueConstraintGroups`,
     messages: [],
   };
 }

@@ -14,6 +14,12 @@ function clock(seconds: number): string {
   return hours > 0 ? `${hours}:${String(minutes).padStart(2, '0')}:${rest}` : `${minutes}:${rest}`;
 }
 
+/** A run as the progress and a worker print it: `7: ok, collision`, or with why it failed, `7: error: esmini did not run …`. */
+export function runLine(row: BatchRow): string {
+  const why = (row.status === 'error' || row.status === 'timeout') && row.reason ? `: ${row.reason}` : '';
+  return `${row.index}: ${row.status}${row.collision ? ', collision' : ''}${why}`;
+}
+
 /** A progress bar with the rate and the time left on a terminal; a plain line per run otherwise. */
 export class Progress {
   private done = 0;
@@ -30,7 +36,7 @@ export class Progress {
   tick(row: BatchRow): void {
     this.done++;
     if (!this.tty) {
-      this.line(`[${this.done}/${this.total}] ${row.index}: ${row.status}${row.collision ? ', collision' : ''}`);
+      this.line(`[${this.done}/${this.total}] ${runLine(row)}`);
       return;
     }
     if (this.done < this.total && Date.now() - this.lastDraw < 100) return;

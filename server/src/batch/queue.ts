@@ -5,8 +5,8 @@ import { Redis } from 'ioredis';
 import { nodeFileSystem } from '../core/sources';
 import { BatchPlanView, concreteRun, filesNamed, namedPaths } from './plan';
 import { BatchOutput, Progress, Tally } from './progress';
-import { CRITERIA_FAILED_EXIT, Criterion } from './criteria';
-import { BatchIdentity, BatchRow, criteriaFailure, ResultsFolder } from './results';
+import type { Criterion } from './criteria';
+import { BatchIdentity, BatchRow, ResultsFolder } from './results';
 import type { RunSettings } from './runConcrete';
 
 /** The BullMQ queue every batch and worker use; a job's id names its batch, so batches can share it. */
@@ -108,6 +108,10 @@ function relativeTo(folder: string, file: string): string {
   return path.relative(folder, file).split(path.sep).join('/');
 }
 
+/** How a queued batch ended: its rows all written (`done`), interrupted, or runs the workers failed on every try. */
+export type QueuedBatchEnd =
+  { ended: 'done'; results: ResultsFolder; summary: string } | { ended: 'interrupted' } | { ended: 'workers-failed' };
+
 /**
  * `batch --queue`: sends the files and the runs that results.csv lacks, then writes the rows the workers
  * report as they come. Jobs are named by batch and index, so a run again adds nothing twice; rows are
@@ -119,7 +123,7 @@ export async function queueBatch(
   identity: BatchIdentity,
   resultsFolder: string,
   options: { quiet: boolean; io: BatchOutput; settings: RunSettings; criteria?: Criterion[]; junitFile?: string },
-): Promise<number> {
+): Promise<QueuedBatchEnd> {
   const { io, quiet, settings } = options;
   const client = await connect(url);
   let queue: Queue | undefined;
@@ -247,20 +251,17 @@ export async function queueBatch(
     const summary = tally.summary(already, results.csvFile);
     if (stop.signal.aborted) {
       io.err(`interrupted after ${summary}; the rest stay on the queue: run the same command again to collect them`);
-      return 130;
+      return { ended: 'interrupted' };
     }
     if (failed.size > 0) {
       const [index, reason] = [...failed][0];
       io.err(
         `modular2simple: error: ${failed.size} run${failed.size === 1 ? '' : 's'} failed on the workers ${ATTEMPTS} times (index ${index}: ${reason}); ${summary}; run the same command again to try them again`,
       );
-      return 3;
+      return { ended: 'workers-failed' };
     }
     await client.del(resultsKey(batchId));
-    if (!quiet) io.err(`${summary}; results in ${results.csvFile} and ${results.jsonFile}`);
-    const failedCriteria = criteriaFailure(results);
-    if (failedCriteria) io.err(`modular2simple: ${failedCriteria}`);
-    return failedCriteria ? CRITERIA_FAILED_EXIT : 0;
+    return { ended: 'done', results, summary };
   } catch (error) {
     // Redis went away after the batch reached it: what arrived is written; the rest waits in Redis for a run again.
     if (client.status === 'ready' || error instanceof RedisUnreachableError) throw error;

@@ -1,7 +1,7 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { writeFileAtomic } from '../../../common/src/atomic';
-import { parseResultsCsv, resultsReportHtml, VERDICT_COLUMN } from '../../../common/src/variationsReport';
+import { parseResultsCsv, REASON_COLUMN, ResultRow, resultsReportHtml, VERDICT_COLUMN } from '../../../common/src/variationsReport';
 import { Criterion, judge } from './criteria';
 import { junitXml } from './junit';
 import { BatchRow } from './row';
@@ -11,7 +11,7 @@ export { BatchRow, RUN_STATUSES, RunStatus } from './row';
 const JSON_INTERVAL_MS = 30_000;
 
 export const FIXED_COLUMNS = ['index', 'status', 'collision', 'min_distance_m', 'min_ttc_s', 'end_time_s'] as const;
-export { VERDICT_COLUMN } from '../../../common/src/variationsReport';
+export { REASON_COLUMN, VERDICT_COLUMN } from '../../../common/src/variationsReport';
 
 /** What identifies a batch: resuming into a folder written by another one is refused rather than mixed. */
 export interface BatchIdentity {
@@ -48,7 +48,12 @@ export function csvLine(row: BatchRow, parameterNames: string[], withVerdict = f
     number(row.end_time_s, 3),
     ...(withVerdict ? [row.verdict ?? ''] : []),
   ];
-  return [...fixed, ...parameterNames.map((name) => row.parameters[name] ?? '')].map(csvField).join(',') + '\n';
+  return [...fixed, ...parameterNames.map((name) => row.parameters[name] ?? ''), reasonOf(row)].map(csvField).join(',') + '\n';
+}
+
+/** A row's reason; a worker older than the field sends none, and its message says why then. */
+function reasonOf(row: BatchRow): string {
+  return (row.reason ?? (row.status === 'ok' ? '' : (row.message ?? ''))).replace(/\s+/g, ' ');
 }
 
 /** The first field of each complete line after the header: the indices already in results.csv. */
@@ -100,11 +105,14 @@ export class ResultsFolder {
   }
 
   static columns(parameterNames: string[], withVerdict: boolean): string[] {
-    return [...FIXED_COLUMNS, ...(withVerdict ? [VERDICT_COLUMN] : []), ...parameterNames];
+    return [...FIXED_COLUMNS, ...(withVerdict ? [VERDICT_COLUMN] : []), ...parameterNames, REASON_COLUMN];
   }
 
   /** The rows whose verdict is fail: those appended, and on a resume those already in results.csv. */
   readonly failedRows: BatchRow[] = [];
+
+  /** Set by `finish` from the whole of results.csv (resumed rows too): what says that runs did not happen, and why. */
+  notDone: string | undefined;
 
   /**
    * Opens (creating) the results folder. A folder holding another batch's results (other columns, another
@@ -210,7 +218,9 @@ export class ResultsFolder {
   async writeReport(): Promise<void> {
     const csv = await fs.promises.readFile(this.csvFile, 'utf8');
     const title = `Variations of ${path.basename(this.identity.distribution)}`;
-    await writeFileAtomic(this.htmlFile, resultsReportHtml(parseResultsCsv(csv), title));
+    const table = parseResultsCsv(csv);
+    this.notDone = notDoneSummary(table.rows, this.csvFile);
+    await writeFileAtomic(this.htmlFile, resultsReportHtml(table, title));
   }
 
   /** Waits for the rows in flight, writes results.json and results.html and closes the files. */
@@ -232,6 +242,41 @@ export class ResultsFolder {
     this.csv = undefined;
     this.rows = undefined;
   }
+}
+
+/** Distinct reasons a batch's end names at most, each with the first few indices. */
+const REASONS_SHOWN = 5;
+const INDICES_SHOWN = 5;
+
+/**
+ * What a batch says at its end when runs did not happen (status error: esmini refused the scenario, could not be
+ * started, or reported an error): how many, and each distinct reason with the runs it holds for; undefined when none.
+ */
+export function notDoneSummary(rows: readonly ResultRow[], csvFile: string): string | undefined {
+  const byReason = new Map<string, string[]>();
+  let ran = 0;
+  for (const row of rows) {
+    if (row.cells.status !== 'discarded') ran++;
+    if (row.cells.status !== 'error') continue;
+    const reason = row.cells[REASON_COLUMN] || 'esmini reported an error (no reason recorded)';
+    const indices = byReason.get(reason);
+    if (indices) indices.push(row.index);
+    else byReason.set(reason, [row.index]);
+  }
+  if (byReason.size === 0) return undefined;
+  const count = [...byReason.values()].reduce((sum, indices) => sum + indices.length, 0);
+  const groups = [...byReason].sort((a, b) => b[1].length - a[1].length);
+  const lines = groups.slice(0, REASONS_SHOWN).map(([reason, indices]) => {
+    indices.sort((a, b) => (BigInt(a) < BigInt(b) ? -1 : BigInt(a) > BigInt(b) ? 1 : 0));
+    const shown = indices.slice(0, INDICES_SHOWN).map((index) => `#${index}`);
+    const more = indices.length > shown.length ? ` and ${indices.length - shown.length} more` : '';
+    return `\n  ${shown.join(', ')}${more}: ${reason}`;
+  });
+  const moreReasons = groups.length > REASONS_SHOWN ? `\n  (${groups.length - REASONS_SHOWN} other reasons)` : '';
+  return (
+    `${count} of ${ran} run${ran === 1 ? '' : 's'} failed in esmini (status error); the column ${REASON_COLUMN} of ${csvFile} ` +
+    `says why for each:${lines.join('')}${moreReasons}`
+  );
 }
 
 /** What a batch says at its end when runs fail its criteria: how many, and the first few with why. */

@@ -27,6 +27,12 @@ export interface BatchRow {
   collisions: Collision[];
   /** How the run ended, in one sentence. */
   message: string;
+  /**
+   * Why the run is not `ok`, in one sentence that is the same on every machine (no wall-clock figure): for `error`
+   * esmini's own reason (or why it could not run), for `timeout` and `limit` what stopped it, for `discarded` the
+   * constraint broken; empty when `ok`. The column `reason` of results.csv. Absent from rows of workers older than it.
+   */
+  reason?: string;
   /** esmini's errors and warnings. */
   messages: { level: 'error' | 'warn'; time: number | null; text: string }[];
   /** Against the batch's --fail-if criteria (absent without any), and why it fails. */

@@ -1,7 +1,7 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { EsminiCsvError, parseEsminiCsv } from '../../../common/src/esminiCsv';
-import { EsminiTextRunResult, removeRunFolder, runScenarioText } from '../esmini/run';
+import { EsminiTextRunResult, limitSentence, removeRunFolder, runScenarioText } from '../esmini/run';
 import { collisionsIn, trajectoryMetrics } from './metrics';
 import type { BatchRow, RunStatus } from './results';
 
@@ -76,6 +76,7 @@ export async function runConcrete(job: ConcreteRun, settings: RunSettings, cance
       ego: metrics.ego ?? null,
       collisions,
       message,
+      reason: reasonOf(status, result),
       messages: result.messages.map((each) => ({ level: each.level, time: each.time ?? null, text: each.text })),
     };
   } finally {
@@ -96,6 +97,25 @@ export function runStatusOf(result: EsminiTextRunResult): RunStatus {
   if (result.end === 'interrupted' && !result.reachedLimit) return 'timeout';
   if (result.reachedLimit) return result.limitKind === 'runaway' ? 'timeout' : 'limit';
   return 'ok';
+}
+
+/**
+ * Why a run of `status` is not `ok` (BatchRow.reason): esmini's first error when it reported some (a run it refused
+ * says so, with esmini's message), what stopped a run cut short, the limit that ended it; empty when ok.
+ */
+export function reasonOf(status: RunStatus, result: EsminiTextRunResult): string {
+  if (status === 'ok' || status === 'discarded') return '';
+  if (status === 'error' && result.outcome === 'errors') {
+    const errors = result.messages.filter((message) => message.level === 'error');
+    const first = errors[0];
+    const when = first?.time === undefined ? '' : ` at ${first.time} s`;
+    const count = errors.length === 1 ? 'an error' : `${errors.length} errors, the first`;
+    return `esmini reported ${count}${when}: ${first?.text ?? 'see its log'}`;
+  }
+  // esmini did not run it, could not be started, hung, or ended without saying why: the run's message says which.
+  if (result.outcome !== 'ok' && result.outcome !== 'errors') return result.message;
+  if (result.reachedLimit) return limitSentence({ seconds: result.duration, kind: result.limitKind });
+  return result.stopReason ? `esmini was stopped: ${result.stopReason}` : result.message;
 }
 
 /** Moves a run's folder to `target` (replacing a run kept there before), with esmini's log beside its CSV. */

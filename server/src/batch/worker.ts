@@ -6,7 +6,7 @@ import { nodeFileSystem } from '../core/sources';
 import { rebasedConcreteText } from '../core/variations';
 import { makeRunFolder } from '../esmini/process';
 import { connect, connectionOf, fileKey, LOCK_DURATION_MS, QUEUE_NAME, resultsKey, RunJob, STALLED_INTERVAL_MS } from './queue';
-import type { BatchOutput } from './progress';
+import { BatchOutput, runLine } from './progress';
 import { runConcrete } from './runConcrete';
 
 /** How long a stopping worker waits for its runs in flight and for Redis. */
@@ -95,7 +95,7 @@ export async function runWorker(url: URL, options: WorkerOptions): Promise<numbe
       if (!row || stopping.signal.aborted) throw new Error('the worker was stopped during the run');
       // Reported before the job completes: a worker that dies between the two has its job run again, and the batch keeps the first row.
       await client.rpush(resultsKey(data.batchId), JSON.stringify(row));
-      if (!options.quiet) options.io.err(`${data.batchId.slice(0, 8)} ${data.index}: ${row.status}${row.collision ? ', collision' : ''}`);
+      if (!options.quiet) options.io.err(`${data.batchId.slice(0, 8)} ${runLine(row)}`);
       return row.status;
     } finally {
       fs.rmSync(layout, { recursive: true, force: true });

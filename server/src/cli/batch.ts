@@ -51,11 +51,13 @@ export const BATCH_HELP = `Run every concrete scenario of a distribution in esmi
   results.csv: index, status (ok: the scenario ended by itself; limit: stopped at --duration before it ended;
   timeout: it hung or ran away; error: esmini reported an error or did not run it), collision (esmini's collision detection), min_distance_m and min_ttc_s (the ego, or the first entity,
   against every other: bounding-box gap, and gap over closing speed), end_time_s, then one column per varied
-  parameter. results.json: the same rows with esmini's messages. results.html: the table and a scatter of the
+  parameter, then reason (why the run is not ok: esmini's own reason for an error, what stopped a timeout or a
+  limit; empty when ok). results.json: the same rows with esmini's messages. results.html: the table and a scatter of the
   first two parameters coloured by outcome, self-contained (written at the end, and on every resume).
-  Exit codes: 0 every run done, 1 the input has errors (nothing run), 2 usage, 3 no esmini, the queue packages
-  missing (bullmq and ioredis, for --queue), Redis unreachable or the results cannot be written, 4 internal error,
-  130 interrupted (run it again to finish).`;
+  Exit codes: 0 every run done (with --fail-if: and passed), 1 the input has errors (nothing run), 2 usage, 3 a run
+  failed in esmini (status error: the summary and the column reason say why), no esmini, the queue packages missing
+  (bullmq and ioredis, for --queue), Redis unreachable or the results cannot be written, 4 internal error, 5 a run
+  failed its --fail-if criteria, 130 interrupted (run it again to finish).`;
 
 export function jobsOption(text: string | undefined): number {
   const jobs = wholeNumber(text, '--jobs');
@@ -173,7 +175,10 @@ async function runBatch(argv: string[], io: CliOutput): Promise<number> {
   if (queue) {
     const { queueBatch, RedisUnreachableError } = await loadQueueModule(() => import('../batch/queue'));
     try {
-      return await queueBatch(queue, plan, identity, values.results, { quiet: values.quiet, io, settings, criteria, junitFile });
+      const queued = await queueBatch(queue, plan, identity, values.results, { quiet: values.quiet, io, settings, criteria, junitFile });
+      if (queued.ended === 'interrupted') return ExitCode.interrupted;
+      if (queued.ended === 'workers-failed') return ExitCode.io;
+      return endOfBatch(queued.results, queued.summary, io, values.quiet);
     } catch (error) {
       if (error instanceof RedisUnreachableError)
         throw new ResultsError(error.lostAfterStart ? error.message : `${error.message}; nothing was written`);
@@ -274,8 +279,18 @@ async function runLocally(
     io.err(`interrupted after ${summary}; ${results.done.size} rows are in ${results.csvFile}: run the same command again to run the rest`);
     return ExitCode.interrupted;
   }
+  return endOfBatch(results, summary, io, quiet);
+}
+
+/**
+ * What a batch whose rows are all written says, local or queued alike, and its exit code: runs that failed in esmini
+ * (status error, each with its reason) are exit 3 as esmini failing is for `run`, before runs failing the criteria (5).
+ */
+function endOfBatch(results: ResultsFolder, summary: string, io: CliOutput, quiet: boolean): number {
   if (!quiet) io.err(`${summary}; results in ${results.csvFile}, ${results.jsonFile} and ${results.htmlFile}`);
+  if (results.notDone) io.err(`modular2simple: error: ${results.notDone}`);
   const failed = criteriaFailure(results);
   if (failed) io.err(`modular2simple: ${failed}`);
+  if (results.notDone) return ExitCode.io;
   return failed ? ExitCode.criteria : ExitCode.ok;
 }

@@ -89,6 +89,8 @@ export interface EsminiRunResult {
   limitKind: LimitKind;
   /** The added time limit ended the run: the scenario had not ended by itself by then. */
   reachedLimit?: boolean;
+  /** Why esmini was stopped before it ended by itself (hung, its CSV past the size bound), as the process runner says. */
+  stopReason?: string;
   timeStep: number;
   seed: number;
   wallMs: number;
@@ -361,7 +363,7 @@ interface LimitedRun {
   run: EsminiProcessResult;
   common: Pick<
     EsminiRunResult,
-    'args' | 'runFolder' | 'scenarioFile' | 'csvFile' | 'log' | 'end' | 'exitCode' | 'simulatedTime' | 'reachedLimit'
+    'args' | 'runFolder' | 'scenarioFile' | 'csvFile' | 'log' | 'end' | 'exitCode' | 'simulatedTime' | 'reachedLimit' | 'stopReason'
   >;
   /** The added time limit, in simulated seconds, and where it comes from. */
   limit: { seconds: number; kind: LimitKind };
@@ -413,6 +415,7 @@ async function runLimitedText(
     limit,
     common: {
       reachedLimit,
+      stopReason: run.reason,
       args: run.args,
       runFolder,
       scenarioFile,
@@ -442,16 +445,20 @@ function outcomeOf(ran: LimitedRun, errors: number, warnings: number, firstError
     const code = run.end === 'exited' && run.exitCode !== 0 ? ` (exit code ${run.exitCode})` : '';
     return { outcome: 'failed', message: `esmini did not run the scenario${code}: ${firstError ?? 'see its log'}` };
   }
-  const limit = {
-    user: `: stopped at the ${trimmed(ran.limit.seconds)} s limit set for the run, before the scenario ended by itself`,
-    'no-end': `: the scenario's StopTrigger has no condition, so it has no end of its own and runs ${trimmed(ran.limit.seconds)} s (set a duration to run longer)`,
-    runaway: `: its StopTrigger had not ended it after ${trimmed(ran.limit.seconds)} s simulated, so it was stopped as a runaway`,
-  }[ran.limit.kind];
   const covered =
     common.simulatedTime === undefined
       ? 'no trajectory: esmini placed no entity (each needs a position in Init, such as a TeleportAction)'
-      : `${common.simulatedTime.toFixed(2)} s simulated${common.reachedLimit ? limit : ''}`;
+      : `${common.simulatedTime.toFixed(2)} s simulated${common.reachedLimit ? `: ${limitSentence(ran.limit)}` : ''}`;
   return { outcome: errors > 0 ? 'errors' : 'ok', message: `esmini: ${counts}; ${covered} (${(run.wallMs / 1000).toFixed(2)} s)` };
+}
+
+/** Why the time limit added to a run ended it, in one sentence (the same on every machine: no wall-clock figure). */
+export function limitSentence(limit: { seconds: number; kind: LimitKind }): string {
+  return {
+    user: `stopped at the ${trimmed(limit.seconds)} s limit set for the run, before the scenario ended by itself`,
+    'no-end': `the scenario's StopTrigger has no condition, so it has no end of its own and runs ${trimmed(limit.seconds)} s (set a duration to run longer)`,
+    runaway: `its StopTrigger had not ended it after ${trimmed(limit.seconds)} s simulated, so it was stopped as a runaway`,
+  }[limit.kind];
 }
 
 function checkDuration(duration: number | undefined): void {

@@ -1,0 +1,30 @@
+import * as assert from 'node:assert/strict';
+import { batchFailure } from '../../client/src/variations/batchFailure';
+
+describe('Run Variations: why a batch did not end well, for its notification', () => {
+  it("names the runs esmini refused with esmini's reason, the criteria failed, or the problem that stopped the batch", () => {
+    const refused = [
+      '[1/3] 7: error: esmini did not run the scenario (exit code 255): Failed to locate OpenDRIVE file e6mini.xodr',
+      '3 runs (0 ok, 0 limit, 0 timeout, 3 error; 0 with a collision); results in /w/results/results.csv, …',
+      'modular2simple: error: 3 of 3 runs failed in esmini (status error); the column reason of /w/results/results.csv says why for each:',
+      '  #7, #14, #20: esmini did not run the scenario (exit code 255): Failed to locate OpenDRIVE file e6mini.xodr',
+    ];
+    assert.equal(
+      batchFailure(refused),
+      '3 of 3 runs failed in esmini (status error); the column reason of /w/results/results.csv says why for each: #7, #14, #20: esmini did not run the scenario (exit code 255): Failed to locate OpenDRIVE file e6mini.xodr',
+    );
+    assert.equal(
+      batchFailure(['8 runs (8 ok, …)', 'modular2simple: 2 runs failed the criteria (collision): #0: collision; #3: collision']),
+      '2 runs failed the criteria (collision): #0: collision; #3: collision',
+    );
+    assert.equal(
+      batchFailure([
+        "follow.xosc:26:27: error: the VehicleCatalog directory 'gone' does not exist beside this file nor in SCENARIO_PATH, so …",
+        '  hint: correct the path',
+      ]),
+      "follow.xosc:26:27: error: the VehicleCatalog directory 'gone' does not exist beside this file nor in SCENARIO_PATH, so …",
+    );
+    assert.equal(batchFailure(['modular2simple: error: esmini is not at /x: …']), 'esmini is not at /x: …');
+    assert.equal(batchFailure(['12 runs (12 ok, …)']), undefined);
+  });
+});
