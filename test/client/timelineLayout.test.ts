@@ -1,4 +1,5 @@
 import * as assert from 'node:assert/strict';
+import { axisEnd, axisLabels, LIVE_TIME_FRACTION } from '../../client/src/timeline/axisLayout';
 import { labelTop, layoutRow, ROW_GEOMETRY, rowBars, type RowLayout, type TrackBar } from '../../client/src/timeline/causeLayout';
 import { storyboardTimeline, type Timeline } from '../../common/src/storyboardTimeline';
 import type { TraceRecord } from '../../common/src/trace';
@@ -125,5 +126,58 @@ describe('storyboard timeline: where the firing conditions are written', () => {
     assert.deepEqual(wide.labels, [{ bar: 0, x: 0, width: 200, lane: 1 }]);
     assert.equal(wide.lanes, 1);
     assert.deepEqual(layoutRow([], 200), { labels: [], lanes: 0, height: ROW_GEOMETRY.rowHeight });
+  });
+});
+
+describe('storyboard timeline: the time axis', () => {
+  it("gives a running session's current time room after it, the bar just stopped on drawn before the axis's end", () => {
+    for (const now of [0.05, 1, 2.35, 6.5, 8, 9.99, 10, 37.2, 1234.5]) {
+      const end = axisEnd(now, true);
+      assert.ok(now / end <= LIVE_TIME_FRACTION + 1e-9, `${now} s on an axis to ${end} s`);
+      // Room, not a far-off end: the time stands at least half way along.
+      assert.ok(now / end >= 0.4, `${now} s on an axis to ${end} s`);
+    }
+    assert.equal(axisEnd(0, true), 1);
+    // cut-in.xosc stopped on CutInEvent at 6.5 s: its bar (open, to the current time) starts well before the track's end.
+    const records: TraceRecord[] = [
+      { time: 0, element: 'Story', type: 'Story', state: 'running' },
+      { time: 6.5, element: 'Story::Act::G::M::CutInEvent', type: 'Event', state: 'running' },
+    ];
+    const timeline = storyboardTimeline(records, 6.5);
+    const row = timeline.rows.find((candidate) => candidate.name === 'CutInEvent');
+    assert.ok(row);
+    const [bar] = rowBars(row, axisEnd(timeline.end, true), 600, measure, timeline.end);
+    assert.ok(bar.start <= 600 * LIVE_TIME_FRACTION && bar.start > 300, `the bar starts at ${bar.start} px of 600`);
+    assert.equal(bar.end, bar.start, 'a bar still running reaches the current time, not the axis end');
+    // A finished run's axis ends where the run did.
+    assert.equal(axisEnd(20.05, false), 20.05);
+  });
+
+  it('writes every axis label whole on the track, none over another, the first at 0 s, at any width and end', () => {
+    for (const width of [60, 150, 333, 600, 1400])
+      for (const end of [0.3, 1, 6.5, 8.125, 10, 20.05, 99.9, 3600]) {
+        for (const live of [false, true]) {
+          const axis = axisEnd(end, live);
+          const labels = axisLabels(axis, width, measure);
+          const where = `${width} px, axis to ${axis} s`;
+          assert.ok(labels.length >= 1, where);
+          assert.equal(labels[0].time, 0, where);
+          for (const [index, label] of labels.entries()) {
+            // Whole: as wide as its text (the page writes it without wrapping), unless the track is narrower.
+            assert.ok(label.width >= Math.min(measure(label.text), width), `${where}: '${label.text}' ${label.width} px`);
+            assert.ok(label.x >= 0 && label.x + label.width <= width + 1e-9, `${where}: '${label.text}' on the track`);
+            const next = labels[index + 1];
+            if (next) assert.ok(label.x + label.width < next.x, `${where}: '${label.text}' covers '${next.text}'`);
+            // At its tick, but the last, moved left to end on the track.
+            if (next) assert.ok(Math.abs(label.x - label.tick) < 1e-9, `${where}: '${label.text}' at its tick`);
+            assert.ok(label.time <= axis * (1 + 1e-9), where);
+          }
+        }
+      }
+    // A running session stopped at 8 s: the axis to 10 s, its label kept whole at the right end.
+    const labels = axisLabels(axisEnd(8, true), 600, measure);
+    const last = labels[labels.length - 1];
+    assert.equal(last.text, '10 s');
+    assert.equal(last.x + last.width, 600);
   });
 });

@@ -30,16 +30,17 @@ export interface CauseBar extends TrackBar {
 }
 
 /**
- * A timeline row's bars on a track `width` px wide spanning 0 to `end` s (a bar still running reaches the end), each
- * with the words of the condition that fired its start, `measure`d.
+ * A timeline row's bars on a track `width` px wide spanning 0 to `end` s (a bar still running reaches `now`, the
+ * trace's last time: the axis's end but in a running session, whose axis reaches further), each with the words of
+ * the condition that fired its start, `measure`d.
  */
-export function rowBars(row: TimelineRow, end: number, width: number, measure: (text: string) => number): CauseBar[] {
+export function rowBars(row: TimelineRow, end: number, width: number, measure: (text: string) => number, now = end): CauseBar[] {
   const pixels = (time: number) => (end > 0 ? (Math.min(Math.max(time, 0), end) / end) * width : 0);
   return row.spans.map((span) => {
     const cause = span.cause ? describeFiring(span.cause) : undefined;
     return {
       start: pixels(span.start),
-      end: pixels(span.end ?? end),
+      end: pixels(span.end ?? now),
       ...(cause ? { cause, labelWidth: Math.ceil(measure(cause)) + 1 } : {}),
     };
   });

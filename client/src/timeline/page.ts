@@ -17,6 +17,7 @@ body{margin:0;padding:0;font-family:var(--vscode-font-family);font-size:var(--vs
 .cause{position:absolute;font-size:10px;white-space:nowrap;overflow:hidden;text-overflow:ellipsis;box-sizing:border-box;color:var(--vscode-foreground);text-shadow:0 0 2px var(--vscode-editor-background)}
 .never{font-size:11px;line-height:22px;color:var(--vscode-editorWarning-foreground);padding-left:4px;white-space:nowrap;overflow:hidden;text-overflow:ellipsis}
 #axis{display:flex;height:18px;font-size:10px;opacity:.7} #axisLabels{position:relative;flex:1}
+.axisLabel{position:absolute;white-space:nowrap;overflow:hidden;font-size:10px}
 #cursor{position:absolute;top:0;bottom:0;width:2px;background:var(--vscode-focusBorder);pointer-events:none}
 #empty{padding:8px;opacity:.8}
 </style></head><body>

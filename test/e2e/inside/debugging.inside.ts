@@ -52,12 +52,24 @@ function esminiRunOf(
   return { starts, end: Math.max(...[...text.matchAll(/^\[([\d.]+)\]/gm)].map((match) => Number(match[1]))) };
 }
 
-/** What the timeline's page shows now: its title, the time and the run's end in its header. */
+/** What the timeline's page shows now: its title, the time and where its axis ends (the run's end, once it finished) in its header. */
 async function timelineHeader(): Promise<{ title: string; time: number; end: number } | undefined> {
   const [title] = await pageBoxes('#title');
   const [time] = await pageBoxes('#time');
-  const times = /t = ([\d.]+) s of ([\d.]+) s/.exec(time?.text ?? '');
+  const times = /t = ([\d.]+) s (?:of|so far, axis to) ([\d.]+) s/.exec(time?.text ?? '');
   return title && times ? { title: title.text, time: Number(times[1]), end: Number(times[2]) } : undefined;
+}
+
+/** The time axis's labels that wrap (taller than one line) or leave the axis (none should). */
+async function badAxisLabels(): Promise<string[]> {
+  const [axis] = await pageBoxes('#axisLabels');
+  const labels = await pageBoxes('#axisLabels .axisLabel');
+  if (!axis || labels.length === 0) return ['no axis labels drawn'];
+  const line = Math.min(...labels.map((label) => label.bottom - label.top));
+  return labels.flatMap((label) => [
+    ...(label.bottom - label.top > line * 1.5 ? [`'${label.text}' wraps`] : []),
+    ...(label.left < axis.left - 0.5 || label.right > axis.right + 0.5 ? [`'${label.text}' leaves the axis`] : []),
+  ]);
 }
 
 /**
@@ -306,10 +318,21 @@ export const debuggingTests: InsideTests = {
       await runFromPalette('Modular2Simple: Show Storyboard Timeline');
       await waitFor('the running session on the timeline page, at the stop', async () => {
         const header = await timelineHeader();
+        // The axis reaches past the stop: the bar just stopped on has room, not squeezed against the track's right end.
         return (
-          header?.title === 'debugging cut-in.xosc (running)' && Math.abs(header.time - brake.time) < 1e-6 && header.end === header.time
+          header?.title === 'debugging cut-in.xosc (running)' &&
+          Math.abs(header.time - brake.time) < 1e-6 &&
+          header.time <= header.end * 0.8 + 1e-6 &&
+          header.time >= header.end * 0.4
         );
       });
+      const stopBar = await pageBoxes(`.row[data-element$="::OvertakerBrakeEvent"] .bar`);
+      const [axisBox] = await pageBoxes('#axisLabels');
+      assert.ok(
+        stopBar.length === 1 && axisBox && stopBar[0].left < axisBox.right - (axisBox.right - axisBox.left) * 0.15,
+        `the bar stopped on stands clear of the track's right end: ${JSON.stringify(stopBar)}, axis ${JSON.stringify(axisBox)}`,
+      );
+      assert.deepEqual(await badAxisLabels(), [], 'every axis label whole on one line, on the axis');
       // The Story starts at 0 s, as the session launches: its bar too.
       const story = { event: 'CutInAndBrakeStory', time: 0 };
       const soFar = [story, ...esminiRun.starts.filter((start) => start.time <= brake.time)];
@@ -317,7 +340,9 @@ export const debuggingTests: InsideTests = {
       assert.equal((await drawnBars('OvertakerBrakeEvent', brake.time)).open, 1, 'the event stopped on runs on: its bar is open');
       assert.ok(!(await pageShows('never started', '.row')), 'every row so far started');
       assert.deepEqual(await coveringLabels(), [], 'no firing condition written over a bar or another');
-      await screenshot("timeline: the debug session of cut-in.xosc stopped on OvertakerBrakeEvent, its bars to the stop at esmini's times");
+      await screenshot(
+        "timeline: the debug session of cut-in.xosc stopped on OvertakerBrakeEvent, its bars to the stop at esmini's times, the axis reaching past it",
+      );
 
       // On to the end: the timeline of the finished session ends where the run did, not at the run's limit (an hour).
       await vscode.commands.executeCommand('workbench.action.debug.continue');
@@ -332,6 +357,7 @@ export const debuggingTests: InsideTests = {
           assert.equal((await drawnBars(start.event, esminiRun.end)).open, 0, `${start.event} ended before the run did: no open bar`);
         assert.ok(!(await pageShows('never started', '.row')), 'every row started');
         assert.deepEqual(await coveringLabels(), [], 'no firing condition written over a bar or another');
+        assert.deepEqual(await badAxisLabels(), [], 'every axis label whole on one line, on the axis');
         assert.ok(await pageShows('TimeHeadwayCondition: HWT 0.7 > 0.7', '.row .cause'), "OvertakerBrakeEvent's firing condition written");
       };
       await finished("the finished session on the timeline page, to esmini's end");

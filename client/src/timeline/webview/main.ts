@@ -5,6 +5,7 @@
  * view follows).
  */
 import { describeCondition, describeFiring, describeRow, type Timeline, type TimelineRow } from '../../../../common/src/storyboardTimeline';
+import { axisEnd, axisLabels } from '../axisLayout';
 import { labelTop, layoutRow, ROW_GEOMETRY, rowBars } from '../causeLayout';
 import type { FromView, ToView } from '../messages';
 
@@ -17,13 +18,15 @@ const timeLabel = document.getElementById('time') as HTMLSpanElement;
 
 let timeline: Timeline | undefined;
 let time = 0;
+/** The time the axis reaches: the run's end, or past the current time while a session runs (axisLayout.ts). */
+let end = 1;
+let live = false;
 /** The tracks' horizontal span: the rows' track elements share it. */
 let tracks: HTMLDivElement[] = [];
 
-const percent = (value: number) =>
-  `${timeline && timeline.end > 0 ? (Math.min(Math.max(value, 0), timeline.end) / timeline.end) * 100 : 0}%`;
+const percent = (value: number) => `${end > 0 ? (Math.min(Math.max(value, 0), end) / end) * 100 : 0}%`;
 
-function render(label: string, live: boolean): void {
+function render(label: string): void {
   title.textContent = `${label}${live ? ' (running)' : ''}`;
   rowsElement.replaceChildren();
   tracks = [];
@@ -50,7 +53,7 @@ function render(label: string, live: boolean): void {
     track.className = 'track';
     track.addEventListener('click', (event) => {
       const box = track.getBoundingClientRect();
-      if (timeline && box.width > 0) vscode.postMessage({ type: 'time', time: ((event.clientX - box.left) / box.width) * timeline.end });
+      if (box.width > 0) vscode.postMessage({ type: 'time', time: ((event.clientX - box.left) / box.width) * end });
     });
     for (const span of row.spans) {
       const bar = document.createElement('div');
@@ -78,28 +81,30 @@ function render(label: string, live: boolean): void {
   spacer.style.cursor = 'default';
   const labels = document.createElement('div');
   labels.id = 'axisLabels';
-  const step = niceStep(timeline.end / 8);
-  for (let at = 0; at <= timeline.end + 1e-9; at += step)
-    labels.append(
-      Object.assign(document.createElement('span'), {
-        textContent: `${Number(at.toFixed(3))} s`,
-        style: `position:absolute;left:${percent(at)}`,
-      }),
-    );
   axis.append(spacer, labels);
   rowsElement.append(axis);
+  const width = labels.getBoundingClientRect().width;
+  const measure = textMeasure(labels, 'axisLabel');
+  for (const placed of axisLabels(end, width, measure))
+    labels.append(
+      Object.assign(document.createElement('span'), {
+        className: 'axisLabel',
+        textContent: placed.text,
+        style: `left:${placed.x}px;width:${placed.width}px`,
+      }),
+    );
   placeCauses(placements);
   placeCursor();
 }
 
 /** The firing conditions' words, each where causeLayout.ts puts it: beside its bar's start or on a line below, covering nothing. */
 function placeCauses(rows: { line: HTMLDivElement; track: HTMLDivElement; row: TimelineRow }[]): void {
-  const end = timeline?.end ?? 0;
+  const now = timeline?.end ?? 0;
   const width = rows[0]?.track.getBoundingClientRect().width ?? 0;
   if (!(end > 0) || !(width > 0)) return;
-  const measure = textMeasure(rows[0].track);
+  const measure = textMeasure(rows[0].track, 'cause');
   for (const { line, track, row } of rows) {
-    const bars = rowBars(row, end, width, measure);
+    const bars = rowBars(row, end, width, measure, now);
     const layout = layoutRow(bars, width);
     line.style.height = `${layout.height}px`;
     for (const placed of layout.labels) {
@@ -117,10 +122,10 @@ function placeCauses(rows: { line: HTMLDivElement; track: HTMLDivElement; row: T
   }
 }
 
-/** The width of a text in the font the page writes the firing conditions in, px. */
-function textMeasure(track: HTMLDivElement): (text: string) => number {
-  const probe = Object.assign(document.createElement('div'), { className: 'cause' });
-  track.append(probe);
+/** The width of a text in the font the page writes elements of `className` in (inside `parent`), px. */
+function textMeasure(parent: HTMLDivElement, className: string): (text: string) => number {
+  const probe = Object.assign(document.createElement('div'), { className });
+  parent.append(probe);
   const style = getComputedStyle(probe);
   const font = `${style.fontStyle} ${style.fontWeight} ${style.fontSize} ${style.fontFamily}`;
   const size = parseFloat(style.fontSize) || 10;
@@ -132,15 +137,10 @@ function textMeasure(track: HTMLDivElement): (text: string) => number {
   return (text) => context.measureText(text).width;
 }
 
-function niceStep(rough: number): number {
-  if (!(rough > 0)) return 1;
-  const power = 10 ** Math.floor(Math.log10(rough));
-  return [1, 2, 5, 10].map((factor) => factor * power).find((candidate) => candidate >= rough) ?? 10 * power;
-}
-
 /** The cursor: one line over the tracks at the current time. */
 function placeCursor(): void {
-  timeLabel.textContent = timeline ? `t = ${time.toFixed(2)} s of ${timeline.end.toFixed(2)} s` : '';
+  // A running session's axis reaches past its time: the header says so rather than give it as the run's length.
+  timeLabel.textContent = timeline ? `t = ${time.toFixed(2)} s ${live ? 'so far, axis to' : 'of'} ${end.toFixed(2)} s` : '';
   document.getElementById('cursor')?.remove();
   const first = tracks[0];
   const last = tracks[tracks.length - 1];
@@ -151,7 +151,7 @@ function placeCursor(): void {
   cursor.style.top = `${top}px`;
   cursor.style.bottom = 'auto';
   cursor.style.height = `${last.offsetTop + last.offsetHeight - top}px`;
-  cursor.style.left = `calc(${first.offsetLeft}px + ${first.offsetWidth}px * ${timeline.end > 0 ? Math.min(Math.max(time / timeline.end, 0), 1) : 0})`;
+  cursor.style.left = `calc(${first.offsetLeft}px + ${first.offsetWidth}px * ${end > 0 ? Math.min(Math.max(time / end, 0), 1) : 0})`;
   rowsElement.append(cursor);
   report();
 }
@@ -172,18 +172,18 @@ function report(): void {
 }
 
 let lastLabel = '';
-let lastLive = false;
 window.addEventListener('message', (event: MessageEvent<ToView>) => {
   const message = event.data;
   if (message.type === 'timeline') {
     timeline = message.timeline;
     lastLabel = message.label;
-    lastLive = message.live;
-    render(message.label, message.live);
+    live = message.live;
+    end = axisEnd(timeline.end, live);
+    render(message.label);
   } else if (message.type === 'time') {
     time = message.time;
     placeCursor();
   }
 });
-window.addEventListener('resize', () => timeline && render(lastLabel, lastLive));
+window.addEventListener('resize', () => timeline && render(lastLabel));
 vscode.postMessage({ type: 'ready' });
