@@ -2,7 +2,7 @@
 // file with 1,000 parameters and 1,000 expressions, hover, definition, inlay hints, semantic tokens
 // and completion after `$`, and diagnostics after an edit. Figures, not a timed test.
 import { spawn } from 'node:child_process';
-import { existsSync, mkdtempSync, realpathSync, rmSync, writeFileSync } from 'node:fs';
+import { existsSync, mkdtempSync, readFileSync, realpathSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
@@ -13,7 +13,9 @@ const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 const server = path.join(root, 'dist', 'server.js');
 const samples = Number(process.env.BENCH_SAMPLES ?? 100);
 // BENCH_NODE_ARGS are given to the server's node (e.g. --cpu-prof), as in bench/lsp.mjs.
-const nodeArgs = (process.env.BENCH_NODE_ARGS ?? '').split(' ').filter(Boolean);
+// The server's node gets the extension's flags first (common/src/languageServerProcess.json), so a later one overrides them.
+const serverExecArgv = JSON.parse(readFileSync(path.join(root, 'common', 'src', 'languageServerProcess.json'), 'utf8')).execArgv;
+const nodeArgs = [...serverExecArgv, ...(process.env.BENCH_NODE_ARGS ?? '').split(' ').filter(Boolean)];
 if (!existsSync(server)) {
   console.error('dist/server.js is missing: run npm run build first');
   process.exit(1);

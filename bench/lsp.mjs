@@ -16,7 +16,9 @@ const library = path.resolve(root, '..', 'shared', 'corpus', 'modular2simple', '
 const samples = Number(process.env.BENCH_SAMPLES ?? 100);
 // BENCH_NODE_ARGS are given to the server's node (e.g. --require of a probe); BENCH_LSP_EDITS_ONLY=1 stops after part 1;
 // BENCH_TIMES=1 prints each edit's time in order.
-const nodeArgs = (process.env.BENCH_NODE_ARGS ?? '').split(' ').filter(Boolean);
+// The server's node gets the extension's flags first (common/src/languageServerProcess.json), so a later one overrides them.
+const serverExecArgv = JSON.parse(readFileSync(path.join(root, 'common', 'src', 'languageServerProcess.json'), 'utf8')).execArgv;
+const nodeArgs = [...serverExecArgv, ...(process.env.BENCH_NODE_ARGS ?? '').split(' ').filter(Boolean)];
 
 if (!existsSync(server)) {
   console.error('dist/server.js is missing: run npm run build first');

@@ -7,6 +7,7 @@ import {
   type LanguageClientOptions,
   type ServerOptions,
 } from 'vscode-languageclient/node';
+import serverProcess from '../../common/src/languageServerProcess.json';
 import type { WorkspaceEdit as LspWorkspaceEdit } from 'vscode-languageserver-protocol';
 import {
   CheckInScenarioRunnerRequest,
@@ -58,9 +59,12 @@ export function createLanguageClient(
   closing: () => boolean = () => false,
 ): LanguageClient {
   const module = context.asAbsolutePath('dist/server.js');
+  // V8's young generation capped at 4 MB per semi-space (16 by default): it never shrinks once grown, and at rest
+  // after big edits it was 32 of the server's 164 MB; edits cost no more CPU (docs/benchmarks.md). The benches read the same file.
+  const { execArgv } = serverProcess;
   const serverOptions: ServerOptions = {
-    run: { module, transport: TransportKind.ipc },
-    debug: { module, transport: TransportKind.ipc, options: { execArgv: ['--nolazy', '--inspect=6019'] } },
+    run: { module, transport: TransportKind.ipc, options: { execArgv } },
+    debug: { module, transport: TransportKind.ipc, options: { execArgv: [...execArgv, '--nolazy', '--inspect=6019'] } },
   };
   const clientOptions: LanguageClientOptions = {
     documentSelector: [
