@@ -15,6 +15,7 @@ import { repoRoot } from '../support/paths';
 import { runBounded } from '../support/processes';
 import { temporaryFolder } from '../support/temporaryDirectory';
 import { writeClearanceCrash, writeTwoCutIns } from '../support/debugScenarios';
+import { SESSION_ARGUMENT } from '../../server/src/debug/supervisor';
 
 const cutIn = path.join(openscenarioDir, 'esmini', 'cut-in.xosc');
 const roadPath = [esminiRoads, path.join(esminiCatalogs, 'Vehicles')];
@@ -33,7 +34,7 @@ function lineOf(file: string, text: string): number {
  * The adapter as VS Code starts it: a process of its own speaking DAP on stdio (from the sources, through tsx), which
  * runs the session in a child (server/src/debug/supervisor.ts). `exited` settles when the adapter's process has ended.
  */
-async function startClient(): Promise<{ client: DebugClient; stderr: () => string; exited: Promise<unknown> }> {
+async function startClient(): Promise<{ client: DebugClient; stderr: () => string; exited: Promise<unknown>; pid: number }> {
   const client = new DebugClient(process.execPath, adapterSource, 'modular2simple', {
     env: { ...process.env, NODE_OPTIONS: `${process.env.NODE_OPTIONS ?? ''} --import=tsx`.trim() },
     stdio: ['pipe', 'pipe', 'pipe'],
@@ -49,7 +50,15 @@ async function startClient(): Promise<{ client: DebugClient; stderr: () => strin
   adapter.stderr?.on('data', (chunk: Buffer) => {
     stderr += chunk.toString();
   });
-  return { client, stderr: () => stderr, exited };
+  return { client, stderr: () => stderr, exited, pid: adapter.pid ?? 0 };
+}
+
+/** The session's process: the adapter's child started with SESSION_ARGUMENT (server/src/debug/supervisor.ts). */
+function sessionProcess(adapter: number): number {
+  const children = fs.readFileSync(`/proc/${adapter}/task/${adapter}/children`, 'utf8').trim().split(/\s+/).filter(Boolean).map(Number);
+  const sessions = children.filter((pid) => fs.readFileSync(`/proc/${pid}/cmdline`, 'utf8').split('\0').includes(SESSION_ARGUMENT));
+  assert.equal(sessions.length, 1, `one session process among ${children.join(', ')}`);
+  return sessions[0];
 }
 
 async function variablesOf(client: DebugClient, reference: number): Promise<DebugProtocol.Variable[]> {
@@ -105,6 +114,7 @@ describe('debug adapter through the Debug Adapter Protocol', function () {
   let client: DebugClient;
   let stderr: () => string;
   let exited: Promise<unknown>;
+  let adapterPid: number;
   /** What a test expects on the adapter's stderr (esmini's own last words when it crashes); nothing otherwise. */
   let expectedStderr: RegExp | undefined;
   /** The test disconnected itself and saw the adapter exit (a request to it now would wait for ever). */
@@ -122,7 +132,7 @@ describe('debug adapter through the Debug Adapter Protocol', function () {
   beforeEach(async () => {
     expectedStderr = undefined;
     disconnected = false;
-    ({ client, stderr, exited } = await startClient());
+    ({ client, stderr, exited, pid: adapterPid } = await startClient());
   });
 
   afterEach(async () => {
@@ -428,6 +438,43 @@ describe('debug adapter through the Debug Adapter Protocol', function () {
     assert.equal(reached[2], 'Event E standby', 'the event whose condition esmini was weighing');
     // The session ends cleanly: requests are answered, disconnect too, and the adapter's process exits.
     await assert.rejects(client.threadsRequest(), /esmini crashed/);
+    await client.disconnectRequest();
+    await exited;
+    disconnected = true;
+  });
+
+  it('reports the simulated time exactly when the session dies in a step that reported nothing', async function () {
+    if (process.platform !== 'linux') {
+      console.log('    (skipped: the session process is found through /proc)');
+      this.skip();
+    }
+    // esmini's own crashes from valid input (the RelativeClearanceCondition above) happen while it weighs a condition,
+    // in a step whose storyboard callbacks already said the time; a crash in a step with no callback is a process
+    // killed there: at a time breakpoint, then three steps on, in which cut-in.xosc starts and ends nothing.
+    const outputs: DebugProtocol.OutputEvent[] = [];
+    client.on('output', (event: DebugProtocol.OutputEvent) => outputs.push(event));
+    const launched = client.launch({ type: 'modular2simple', request: 'launch', program: cutIn, roadPath });
+    await client.waitForEvent('initialized');
+    await client.setFunctionBreakpointsRequest({ breakpoints: [{ name: 't=5.0' }] });
+    const stop = client.waitForEvent('stopped');
+    await client.configurationDoneRequest();
+    await launched;
+    await stop;
+    const transitions = () => outputs.filter((event) => /^\[[\d.]+\] /.test(event.body.output)).length;
+    const before = transitions();
+    for (let step = 0; step < 3; step++) await Promise.all([client.stepInRequest({ threadId: 1 }), client.waitForEvent('stopped')]);
+    assert.equal(Number(await evaluate(client, 'time')).toFixed(2), '5.15');
+    assert.equal(transitions(), before, 'the steps reported nothing');
+    const terminated = client.waitForEvent('terminated');
+    process.kill(sessionProcess(adapterPid), 'SIGSEGV');
+    await terminated;
+    const important = outputs.filter((event) => event.body.category === 'important').map((event) => event.body.output);
+    assert.equal(important.length, 1, JSON.stringify(outputs.map((event) => event.body.output)));
+    // The time the steps reached (the progress page), not the last progress line's (the step's start, 5.10 s).
+    assert.match(
+      important[0],
+      /^The debug session of cut-in\.xosc ended: esmini's process was killed by SIGSEGV at 5\.15 s of simulated time/,
+    );
     await client.disconnectRequest();
     await exited;
     disconnected = true;

@@ -26,6 +26,7 @@ import { EsminiProblem } from '../esmini/messages';
 import { EntityState, prepareScenario, Simulation, SimulationLoadError, SimulationOptions, StoryboardEvent } from './simulation';
 import { STORYBOARD_EVENT, type StoryboardEventBody } from '../../../common/src/trace';
 import { describeEvent, traceRecord } from './trace';
+import { type StepCounter } from './progressPage';
 import { type SessionProgress } from './supervisor';
 import { evaluateWatch, hitConditionMet, timeBreakpoint, WatchContext, WatchError, WatchValue } from './watchExpression';
 
@@ -55,8 +56,11 @@ const THREAD_ID = 1;
 
 /** Where the session says how far it got, for its supervisor to tell after a crash (supervisor.ts); nowhere by default. */
 let reportProgress: ((progress: SessionProgress) => void) | undefined;
-export function reportProgressTo(sink: ((progress: SessionProgress) => void) | undefined): void {
+/** Where each step's count goes, for the same (progressPage.ts). */
+let stepCounter: StepCounter | undefined;
+export function reportProgressTo(sink: ((progress: SessionProgress) => void) | undefined, steps?: StepCounter): void {
   reportProgress = sink;
+  stepCounter = steps;
 }
 /** While running, the bird's-eye view gets the entities at most this often (wall ms): enough to watch them move. */
 const STATE_INTERVAL_MS = 100;
@@ -215,6 +219,7 @@ export class ScenarioDebugSession extends DebugSession {
       esminiLibrary: args.esminiLibrary,
       force: args.force,
       onCallback: reportProgress && ((time, what) => reportProgress?.({ time, what })),
+      stepCounter,
     };
     const store = new ScenarioStore({
       scenarioPath: [...(args.scenarioPath ?? []), ...splitScenarioPath(process.env.SCENARIO_PATH)],

@@ -14,6 +14,7 @@ import { makeRunFolder } from '../esmini/process';
 import { esminiSearchPath, RUN_DEFAULTS, sourceFolderOf, withRoadFile } from '../esmini/run';
 import { CONDITION_LOG, ConditionReason, conditionReason, storyboardMapOf } from '../esmini/storyboardTrace';
 import { runLimit } from '../esmini/timeLimit';
+import type { StepCounter } from './progressPage';
 
 export { conditionReason, type ConditionReason };
 
@@ -56,6 +57,8 @@ export interface SimulationOptions {
   force?: boolean;
   /** Called inside esmini's callbacks, before its step goes on: how far the run got, should esmini crash in that step. */
   onCallback?: (time: number, what: string) => void;
+  /** Told the steps esmini has made after each step: the time reached, should esmini crash in a step that reports nothing (progressPage.ts). */
+  stepCounter?: StepCounter;
 }
 
 export interface EntityState extends EsminiObjectState {
@@ -163,6 +166,7 @@ export class Simulation {
   /** Loads the scenario into esmini; throws SimulationLoadError with esmini's messages on their source lines when it refuses it. */
   start(): StoryboardEvent[] {
     this.load();
+    this.options.stepCounter?.start(this.timeStep);
     // Stories start, and their Acts go to standby, during SE_Init, before a callback can be registered: reported here, at time 0.
     const started: StoryboardEvent[] = this.scenario.map.elements
       .filter((element) => element.kind === 'Story' || element.kind === 'Act')
@@ -239,6 +243,7 @@ export class Simulation {
     this.readLog();
     this.pending = [];
     this.steps = replay;
+    this.options.stepCounter?.steps(replay);
     this.ended = false;
     this.rewound = true;
     this.muteNextStep = true;
@@ -263,6 +268,7 @@ export class Simulation {
       }
     } else this.library.stepDT(this.timeStep);
     this.steps++;
+    this.options.stepCounter?.steps(this.steps);
     // A step costs esmini microseconds, so each call counts: esmini's time is asked for only from a step before the end,
     // its quit flag (the storyboard complete, which the callback reports) when something was reported, else every 64 steps.
     const nearEnd = (this.steps + 1) * this.timeStep >= this.duration;

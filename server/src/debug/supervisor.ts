@@ -2,6 +2,7 @@ import { ChildProcess, spawn } from 'node:child_process';
 import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
+import { makeProgressPage, PROGRESS_PAGE_ENV, readProgressPage } from './progressPage';
 
 /*
  * The debug adapter's outer process (dist/debugAdapter.js as the editor starts it): it runs the session (adapter.ts),
@@ -78,18 +79,24 @@ export function esminiReason(stderr: string): string | undefined {
   return assertion?.[0];
 }
 
-/** The sentence the editor shows when the session's process ended by itself. */
+/**
+ * The sentence the editor shows when the session's process ended by itself. `reached`: the simulated time its
+ * progress page says it reached (progressPage.ts), exact even in a step that reported nothing; else the last progress line's.
+ */
 export function crashMessage(
   program: string | undefined,
   ended: { code: number | null; signal: NodeJS.Signals | null },
   progress: SessionProgress | undefined,
   reason: string | undefined,
+  reached?: number,
 ): string {
   const how = ended.signal ? `was killed by ${ended.signal}` : `exited with code ${ended.code}`;
-  const when =
+  const time = reached ?? progress?.time;
+  const last =
     progress === undefined
-      ? 'before its first simulation step'
-      : `at ${progress.time.toFixed(2)} s of simulated time (the last it reported: ${progress.what})`;
+      ? ''
+      : ` (the last it reported: ${progress.what}${reached !== undefined && progress.time.toFixed(2) !== reached.toFixed(2) ? ` at ${progress.time.toFixed(2)} s` : ''})`;
+  const when = time === undefined ? 'before its first simulation step' : `at ${time.toFixed(2)} s of simulated time${last}`;
   return (
     `The debug session of ${program ? path.basename(program) : 'the scenario'} ended: esmini's process ${how} ${when}.` +
     `${reason ? ` esmini: ${reason}.` : ''} The editor is unaffected; the Debug Console keeps the run's last lines.`
@@ -100,8 +107,11 @@ export function crashMessage(
 export function superviseSession(script: string): void {
   // The child's temporary files (esmini's run folder) in a folder of this process's own: gone even when the child is not.
   const temporary = fs.mkdtempSync(path.join(os.tmpdir(), 'modular2simple-debug-'));
+  // The page the child stores its step count in at every step, read here when it died (progressPage.ts).
+  const progressPage = path.join(temporary, 'progress-page');
+  makeProgressPage(progressPage);
   const child: ChildProcess = spawn(process.execPath, [script, SESSION_ARGUMENT], {
-    env: { ...process.env, TMPDIR: temporary, TMP: temporary, TEMP: temporary },
+    env: { ...process.env, TMPDIR: temporary, TMP: temporary, TEMP: temporary, [PROGRESS_PAGE_ENV]: progressPage },
     stdio: ['pipe', 'pipe', 'pipe', 'pipe'],
   });
   let program: string | undefined;
@@ -176,7 +186,7 @@ export function superviseSession(script: string): void {
   child.on('close', (code, signal) => {
     if ((code === 0 && !signal) || ending) return finish();
     crashed = true;
-    const message = crashMessage(program, { code, signal }, progress, esminiReason(stderrTail));
+    const message = crashMessage(program, { code, signal }, progress, esminiReason(stderrTail), readProgressPage(progressPage));
     // `important`: VS Code writes it in the Debug Console and shows it as a notification.
     send({ type: 'event', event: 'output', body: { category: 'important', output: `${message}\n` } });
     for (const [requestSeq, command] of pending) answer(requestSeq, command, message);

@@ -1,0 +1,79 @@
+import * as fs from 'node:fs';
+
+/*
+ * The simulated time a debug session has reached, kept where its supervisor can read it after the session's process
+ * died in the middle of a step (supervisor.ts). The session writes the number of steps esmini has made into a page of
+ * memory at every step: a file the supervisor made, mapped shared (libc's mmap through koffi, as esmini's library is
+ * called), so a write is a store to memory, not a system call; after the child dies, the supervisor reads the file,
+ * whose pages hold what the child last stored. A step costs esmini microseconds; a progress line written at every
+ * step (a system call) would cost about as much as the step.
+ */
+
+/** The environment variable naming the page's file, set by the supervisor for its child. */
+export const PROGRESS_PAGE_ENV = 'MODULAR2SIMPLE_PROGRESS_PAGE';
+/** The page's size, bytes: the file the supervisor makes and the child maps. */
+export const PROGRESS_PAGE_BYTES = 4096;
+
+/** The page's slots (Float64): the steps made in the run, its time step, and a mark that they were written. */
+const STEPS = 0;
+const TIME_STEP = 1;
+const WRITTEN = 2;
+/** Written into WRITTEN once the session set the time step: a page of zeros says nothing. */
+const MARK = 29.5;
+
+/** What the session writes: the run's time step once, then the steps esmini has made after each. */
+export interface StepCounter {
+  start(timeStep: number): void;
+  steps(count: number): void;
+}
+
+type KoffiModule = typeof import('koffi');
+
+/** Maps the page the supervisor made (its file in PROGRESS_PAGE_ENV); undefined where there is none or it cannot be mapped. */
+export function mapProgressPage(file = process.env[PROGRESS_PAGE_ENV]): StepCounter | undefined {
+  if (!file || process.platform === 'win32') return undefined;
+  // Required here: koffi is a native module, loaded only by the processes that run a scenario.
+  const koffi = require('koffi') as KoffiModule;
+  const libc = koffi.load(process.platform === 'darwin' ? 'libSystem.dylib' : 'libc.so.6');
+  const mmap = libc.func('void *mmap(void *addr, size_t length, int prot, int flags, int fd, long offset)');
+  const fd = fs.openSync(file, 'r+');
+  let pointer: unknown;
+  try {
+    // PROT_READ | PROT_WRITE, MAP_SHARED (the same values on Linux and macOS); the mapping outlives the descriptor.
+    pointer = mmap(null, PROGRESS_PAGE_BYTES, 1 | 2, 1, fd, 0);
+  } finally {
+    fs.closeSync(fd);
+  }
+  // MAP_FAILED is (void *)-1.
+  if (!pointer || koffi.address(pointer) === BigInt.asUintN(64, -1n)) return undefined;
+  const page = new Float64Array(koffi.view(pointer, PROGRESS_PAGE_BYTES));
+  return {
+    start(timeStep) {
+      page[STEPS] = 0;
+      page[TIME_STEP] = timeStep;
+      page[WRITTEN] = MARK;
+    },
+    steps(count) {
+      page[STEPS] = count;
+    },
+  };
+}
+
+/** The supervisor's side: a zeroed page file for the child to map. */
+export function makeProgressPage(file: string): void {
+  fs.writeFileSync(file, Buffer.alloc(PROGRESS_PAGE_BYTES));
+}
+
+/** The simulated time the page says the session reached (steps × time step: esmini's time after them), s; undefined when never written. */
+export function readProgressPage(file: string): number | undefined {
+  let bytes: Buffer;
+  try {
+    bytes = fs.readFileSync(file);
+  } catch {
+    return undefined;
+  }
+  if (bytes.length < 3 * 8) return undefined;
+  const page = new Float64Array(bytes.buffer, bytes.byteOffset, Math.floor(bytes.length / 8));
+  if (page[WRITTEN] !== MARK || !(page[TIME_STEP] > 0) || !(page[STEPS] >= 0)) return undefined;
+  return page[STEPS] * page[TIME_STEP];
+}
