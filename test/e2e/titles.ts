@@ -51,6 +51,8 @@ export const INSIDE_TESTS = {
     'a main composed from the Scenario Library view (a template, then a cut-in, a lead brake and a pedestrian inserted) in at most 5 steps checks clean',
   libraryInsertHere:
     'Insert library module here… from the light bulb on a ManeuverGroup picks a module in the quick pick and writes it after that group, clean',
+  libraryDrop:
+    'dragging a module from the Scenario Library view onto a ManeuverGroup of an open main writes it after that group, as Insert library module here… does, clean',
   debugScenario:
     'F5 on a scenario stops on the breakpoint on its Event line with the entities in the Variables view; esmini crashing ends the session with a message and the editor lives',
   debugTimeline:

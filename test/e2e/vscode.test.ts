@@ -169,6 +169,14 @@ function servePage(endpoint: HarnessEndpoint, page: Page): void {
     }
     return { clicked: false };
   });
+  endpoint.routes.set('/drag', async (body) => {
+    // A mouse drag from one element to another, as a person does it: Chromium's HTML drag and drop, with its data.
+    const { from, to } = body as { from: { selector: string; text: string }; to: { selector: string; text: string } };
+    const source = page.locator(from.selector).filter({ hasText: from.text }).first();
+    const target = page.locator(to.selector).filter({ hasText: to.text }).first();
+    await source.dragTo(target, { timeout: PAGE_ACTION_MS });
+    return {};
+  });
   endpoint.routes.set('/type', async (body) => {
     const { text } = body as { text: string };
     await page.keyboard.type(text, { delay: 20 });

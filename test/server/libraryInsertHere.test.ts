@@ -150,6 +150,12 @@ describe('language server: Insert library module here… (JSON-RPC)', function (
       }),
       /lead-brake cannot go into .*not on an Act or on a ManeuverGroup of an Act/,
     );
+    // The first request, the questions (a drop from the Scenario Library view asks it too), already says so, with the line.
+    const inActors = positionAfter(text, '<EntityRef entityRef="eg');
+    await assert.rejects(
+      client.send(LibraryInsertRequest, { uri, module: 'lead-brake', position: inActors }),
+      new RegExp(`lead-brake cannot go into .* at line ${inActors.line + 1}: that is not on an Act or on a ManeuverGroup of an Act`),
+    );
     await assert.rejects(
       client.send(LibraryInsertRequest, { uri, module: 'lead-brake', position: { line: -1, character: 'x' } as never }),
       /position: \{ line, character \}/,

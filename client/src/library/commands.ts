@@ -3,7 +3,9 @@ import { INSERT_LIBRARY_MODULE_COMMAND, type LibraryModuleSummary } from '../../
 import type { CommandReporter } from '../commands';
 import type { ServerCommandClient } from '../languageClient';
 import { LibraryDetail } from './detail';
+import { LibraryDragController, LibraryDropProvider } from './dragAndDrop';
 import { insertIntoMain, isInsertOptions, MainTracker } from './insert';
+import { LANGUAGE_ID } from '../languageClient';
 import { newFromTemplateCommand } from './templates';
 import { LIBRARY_VIEW_ID, LibraryNode, LibraryTree } from './view';
 
@@ -13,6 +15,9 @@ export interface LibraryApi {
   readonly detail: LibraryDetail;
   /** Reads the libraries again (the view's Refresh). */
   refresh(): Promise<void>;
+  /** Dragging a module from the view, and dropping it onto a main. */
+  readonly dragController: LibraryDragController;
+  readonly dropProvider: LibraryDropProvider;
 }
 
 /** A module named by a tree node, a module summary or its name (`cut-in`, `library:cut-in`). */
@@ -33,7 +38,12 @@ function moduleOf(tree: LibraryTree, target: unknown): LibraryModuleSummary | un
 export function registerLibrary(context: vscode.ExtensionContext, server: ServerCommandClient, reporter: CommandReporter): LibraryApi {
   const tree = new LibraryTree();
   const tracker = new MainTracker();
-  const view = vscode.window.createTreeView(LIBRARY_VIEW_ID, { treeDataProvider: tree, showCollapseAll: true });
+  const dragController = new LibraryDragController();
+  const view = vscode.window.createTreeView(LIBRARY_VIEW_ID, {
+    treeDataProvider: tree,
+    showCollapseAll: true,
+    dragAndDropController: dragController,
+  });
   const insert = (module: LibraryModuleSummary, ...rest: unknown[]) =>
     insertIntoMain(server, reporter, tracker, module, rest.find(isInsertOptions) ?? {});
   const detail = new LibraryDetail((module) => insert(module));
@@ -95,6 +105,15 @@ export function registerLibrary(context: vscode.ExtensionContext, server: Server
   );
   if (view.visible) void refresh();
 
+  const dropProvider = new LibraryDropProvider(server, reporter, tracker, async (name) => {
+    await listed();
+    return moduleOf(tree, name);
+  });
+  context.subscriptions.push(
+    // Every drop into a scenario asks it; it answers only for what carries LIBRARY_MODULE_MIME (the metadata naming it is newer than our engine).
+    vscode.languages.registerDocumentDropEditProvider({ language: LANGUAGE_ID }, dropProvider),
+  );
+
   register('modular2simple.library.refresh', () => refresh());
   register('modular2simple.library.filter', async (text?: unknown) => {
     const filter =
@@ -138,5 +157,5 @@ export function registerLibrary(context: vscode.ExtensionContext, server: Server
   register('modular2simple.newFromTemplate', (clicked?: unknown, ...rest: unknown[]) =>
     newFromTemplateCommand(server, reporter, clicked, ...rest),
   );
-  return { tree, detail, refresh };
+  return { tree, detail, refresh, dragController, dropProvider };
 }

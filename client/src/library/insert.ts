@@ -56,11 +56,98 @@ export class MainTracker implements vscode.Disposable {
   }
 }
 
+/** The edit that writes a module's group into a main, not yet applied, and what to say once it is. */
+export interface PreparedInsert {
+  main: vscode.Uri;
+  document: vscode.TextDocument;
+  edit: vscode.WorkspaceEdit;
+  groupName: string;
+  /** The new group's first line. */
+  line: number;
+  /** Who plays each role: `role = entity, ...`. */
+  cast: string;
+}
+
 /**
- * Writes the module's group into an Act of the main: a ManeuverGroup with the ScenarioReference, every key at its
- * default and the module's entities played by the main's (asked in a quick pick where the main has no entity of the
- * role's name). Returns the new group's name.
+ * The edit that writes the module's group into an Act of the main: a ManeuverGroup with the ScenarioReference, every
+ * key at its default and the module's entities played by the main's (asked in a quick pick where the main has no
+ * entity of the role's name). Undefined when the user cancels a question or the main cannot take it (said in a
+ * message); a failure of the server's is thrown.
  */
+export async function prepareInsert(
+  server: ServerCommandClient,
+  tracker: MainTracker,
+  module: LibraryModuleSummary,
+  options: InsertOptions,
+  title = TITLE,
+): Promise<PreparedInsert | undefined> {
+  const main = typeof options.main === 'string' ? vscode.Uri.parse(options.main) : (options.main ?? tracker.main);
+  if (!main) {
+    void vscode.window.showErrorMessage(`${title}: open the main scenario the module goes into first (New Modular Scenario… writes one).`);
+    return undefined;
+  }
+  const document = await vscode.workspace.openTextDocument(main);
+  const position = options.position;
+  const questions = await server.libraryInsert({ uri: main.toString(), module: module.name, ...(position ? { position } : {}) });
+  if (questions.acts.length === 0) {
+    void vscode.window.showErrorMessage(`${title}: ${path.posix.basename(main.path)} has no Story with an Act to put the group in.`);
+    return undefined;
+  }
+  let act = options.act;
+  if (!act && !position && questions.acts.length > 1) {
+    act = await vscode.window.showQuickPick(questions.acts, {
+      title: `${title}: ${module.title}`,
+      placeHolder: 'The Act the group goes into',
+    });
+    if (!act) return undefined;
+  }
+  const players: Record<string, string> = { ...options.players };
+  for (const role of questions.roles) {
+    if (players[role.name]) continue;
+    if (role.guess) {
+      players[role.name] = role.guess;
+      continue;
+    }
+    if (questions.entities.length === 0) {
+      void vscode.window.showErrorMessage(`${title}: ${path.posix.basename(main.path)} declares no entity to play '${role.name}'.`);
+      return undefined;
+    }
+    const taken = new Set(Object.values(players));
+    const items = [...questions.entities]
+      .sort((a, b) => Number(taken.has(a)) - Number(taken.has(b)))
+      .map((entity) => ({ label: entity, description: taken.has(entity) ? 'plays another role already' : undefined }));
+    const picked = await vscode.window.showQuickPick(items, {
+      title: `${title}: ${module.title}`,
+      placeHolder: `Which entity plays '${role.name}' (${role.about})?`,
+    });
+    if (!picked) return undefined;
+    players[role.name] = picked.label;
+  }
+  const answer = await server.libraryInsert({
+    uri: main.toString(),
+    module: module.name,
+    act,
+    players,
+    ...(position ? { position } : {}),
+  });
+  if (!answer.edit || !answer.groupName) throw new Error('the language server gave no edit');
+  return {
+    main,
+    document,
+    edit: await server.workspaceEdit(answer.edit),
+    groupName: answer.groupName,
+    line: answer.line ?? 0,
+    cast: questions.roles.map((role) => `${role.name} = ${players[role.name]}`).join(', '),
+  };
+}
+
+/** Logs and shows in the status bar what an insert wrote. */
+export function reportInserted(reporter: CommandReporter, title: string, module: LibraryModuleSummary, inserted: PreparedInsert): void {
+  reporter.log(`${title}: library:${module.name} as ${inserted.groupName} in ${inserted.main.toString()} (${inserted.cast})`);
+  void vscode.window.setStatusBarMessage(`Inserted library:${module.name} as ${inserted.groupName} (${inserted.cast})`, 8000);
+}
+
+/** Writes the module's group into an Act of the main (prepareInsert) and shows it. Returns the new group's name. */
 export async function insertIntoMain(
   server: ServerCommandClient,
   reporter: CommandReporter,
@@ -69,68 +156,15 @@ export async function insertIntoMain(
   options: InsertOptions = {},
 ): Promise<string | undefined> {
   try {
-    const main = typeof options.main === 'string' ? vscode.Uri.parse(options.main) : (options.main ?? tracker.main);
-    if (!main) {
-      void vscode.window.showErrorMessage(
-        `${TITLE}: open the main scenario the module goes into first (New Modular Scenario… writes one).`,
-      );
-      return undefined;
-    }
-    const document = await vscode.workspace.openTextDocument(main);
-    const position = options.position;
-    const questions = await server.libraryInsert({ uri: main.toString(), module: module.name, ...(position ? { position } : {}) });
-    if (questions.acts.length === 0) {
-      void vscode.window.showErrorMessage(`${TITLE}: ${path.posix.basename(main.path)} has no Story with an Act to put the group in.`);
-      return undefined;
-    }
-    let act = options.act;
-    if (!act && !position && questions.acts.length > 1) {
-      act = await vscode.window.showQuickPick(questions.acts, {
-        title: `${TITLE}: ${module.title}`,
-        placeHolder: 'The Act the group goes into',
-      });
-      if (!act) return undefined;
-    }
-    const players: Record<string, string> = { ...options.players };
-    for (const role of questions.roles) {
-      if (players[role.name]) continue;
-      if (role.guess) {
-        players[role.name] = role.guess;
-        continue;
-      }
-      if (questions.entities.length === 0) {
-        void vscode.window.showErrorMessage(`${TITLE}: ${path.posix.basename(main.path)} declares no entity to play '${role.name}'.`);
-        return undefined;
-      }
-      const taken = new Set(Object.values(players));
-      const items = [...questions.entities]
-        .sort((a, b) => Number(taken.has(a)) - Number(taken.has(b)))
-        .map((entity) => ({ label: entity, description: taken.has(entity) ? 'plays another role already' : undefined }));
-      const picked = await vscode.window.showQuickPick(items, {
-        title: `${TITLE}: ${module.title}`,
-        placeHolder: `Which entity plays '${role.name}' (${role.about})?`,
-      });
-      if (!picked) return undefined;
-      players[role.name] = picked.label;
-    }
-    const answer = await server.libraryInsert({
-      uri: main.toString(),
-      module: module.name,
-      act,
-      players,
-      ...(position ? { position } : {}),
-    });
-    if (!answer.edit) throw new Error('the language server gave no edit');
-    const applied = await vscode.workspace.applyEdit(await server.workspaceEdit(answer.edit));
-    if (!applied) throw new Error(`the editor refused the edit of ${main.toString()}`);
-    const editor = await vscode.window.showTextDocument(document, { viewColumn: vscode.ViewColumn.One, preserveFocus: false });
-    const line = answer.line ?? 0;
-    editor.revealRange(new vscode.Range(line, 0, line, 0), vscode.TextEditorRevealType.InCenter);
-    editor.selection = new vscode.Selection(line, 0, line, 0);
-    const cast = questions.roles.map((role) => `${role.name} = ${players[role.name]}`).join(', ');
-    reporter.log(`${TITLE}: library:${module.name} as ${answer.groupName} in ${main.toString()} (${cast})`);
-    void vscode.window.setStatusBarMessage(`Inserted library:${module.name} as ${answer.groupName} (${cast})`, 8000);
-    return answer.groupName;
+    const inserted = await prepareInsert(server, tracker, module, options);
+    if (!inserted) return undefined;
+    const applied = await vscode.workspace.applyEdit(inserted.edit);
+    if (!applied) throw new Error(`the editor refused the edit of ${inserted.main.toString()}`);
+    const editor = await vscode.window.showTextDocument(inserted.document, { viewColumn: vscode.ViewColumn.One, preserveFocus: false });
+    editor.revealRange(new vscode.Range(inserted.line, 0, inserted.line, 0), vscode.TextEditorRevealType.InCenter);
+    editor.selection = new vscode.Selection(inserted.line, 0, inserted.line, 0);
+    reportInserted(reporter, TITLE, module, inserted);
+    return inserted.groupName;
   } catch (error) {
     // Not awaited: the message waits for the user, the command's caller should not.
     void reporter.failure(TITLE, error);

@@ -33,6 +33,8 @@ export interface ActChoice {
 export interface MainShape {
   acts: ActChoice[];
   entities: string[];
+  /** Given an offset: whether a group can go there (insertionPointAt). */
+  insertsAt?: boolean;
 }
 
 export interface InsertedGroup {
@@ -75,10 +77,11 @@ function storyboardActs(root: XmlElement | undefined): { story: XmlElement; act:
   return acts;
 }
 
-/** The Acts and entities of a main's text, for the questions *Insert into main* asks. */
-export function mainShape(text: string): MainShape {
+/** The Acts and entities of a main's text, for the questions *Insert into main* asks; given `at`, whether a group can go there. */
+export function mainShape(text: string, at?: number): MainShape {
   const model = parseScenario(text);
   return {
+    ...(at !== undefined ? { insertsAt: insertionPointAt(model.document, at) !== undefined } : {}),
     acts: storyboardActs(model.document.root).map(({ story, act }) => {
       const storyName = attributeValue(story, 'name') ?? '';
       const actName = attributeValue(act, 'name') ?? '';

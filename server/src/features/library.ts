@@ -70,7 +70,13 @@ export async function libraryInsert(workspace: Workspace, params: LibraryInsertP
   const listing = await listLibraries(workspace.store.host, workspace.store.libraries);
   const { module, suggestion } = findModule(listing, params.module);
   if (!module) throw invalidParams(`no library module '${params.module}'${suggestion ? `: did you mean '${suggestion}'?` : ''}`);
-  const shape = mainShape(text);
+  const lines = new LineIndex(text);
+  const shape = mainShape(text, position ? lines.offsetAt(position) : undefined);
+  // Asked before any question: a drop or the light bulb's position that cannot take a group is said at once.
+  if (position && !shape.insertsAt)
+    throw invalidParams(
+      `${module.name} cannot go into ${params.uri} at line ${position.line + 1}: that is not on an Act or on a ManeuverGroup of an Act; put it on one (not inside its Actors, a Maneuver or a trigger)`,
+    );
   const roles = moduleRoles(module).map((role) => {
     const guess = guessPlayer(role, shape.entities);
     return { ...role, ...(guess ? { guess } : {}) };
@@ -78,7 +84,6 @@ export async function libraryInsert(workspace: Workspace, params: LibraryInsertP
   const result: LibraryInsertResult = { acts: shape.acts.map((act) => act.path), entities: shape.entities, roles };
   const players = params.players ?? {};
   if (roles.some((role) => typeof players[role.name] !== 'string')) return result;
-  const lines = new LineIndex(text);
   let inserted;
   try {
     const at = position ? lines.offsetAt(position) : undefined;

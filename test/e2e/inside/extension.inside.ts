@@ -79,6 +79,7 @@ const ORDER: InsideTestKey[] = [
   'debugScenario',
   'libraryCompose',
   'libraryInsertHere',
+  'libraryDrop',
   'debugTimeline',
   'debugTimelineSession',
 ];

@@ -85,3 +85,8 @@ export interface QuickInputState {
 export async function quickInput(): Promise<QuickInputState> {
   return post<QuickInputState>('/quickInput', {});
 }
+
+/** Drags the first element matching `from` (a selector and a text it shows) onto the first matching `to`, with the mouse. */
+export async function dragOnto(from: { selector: string; text: string }, to: { selector: string; text: string }): Promise<void> {
+  await post('/drag', { from, to });
+}

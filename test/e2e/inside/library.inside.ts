@@ -3,7 +3,7 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import * as vscode from 'vscode';
 import type { LibraryNode } from '../../../client/src/library/view';
-import { pageShows, pressKeys, quickInput, screenshot, typeText } from './harnessClient';
+import { dragOnto, pageShows, pressKeys, quickInput, screenshot, typeText } from './harnessClient';
 import { api, cli, type InsideTests, positionOf, TEST_MS, waitFor, workspaceRoot } from './helpers';
 
 /** The module node the Scenario Library view shows for `name`, as its inline Insert button passes it. */
@@ -25,6 +25,15 @@ async function newBench(folderName: string, fileName: string): Promise<string> {
   const main = path.join(folder, fileName);
   assert.equal(created?.fsPath, main);
   return main;
+}
+
+/** A new composition bench main in the editor, the line of its one ManeuverGroup. */
+async function benchWithGroup(folderName: string, fileName: string): Promise<{ editor: vscode.TextEditor; onGroup: vscode.Position }> {
+  const main = await newBench(folderName, fileName);
+  const editor = await waitFor('the new main in the editor', () =>
+    vscode.window.activeTextEditor?.document.uri.fsPath === main ? vscode.window.activeTextEditor : undefined,
+  );
+  return { editor, onGroup: positionOf(editor.document, '<ManeuverGroup name="EgoBehaviour"', 3) };
 }
 
 /** No error and no warning on the saved main, in the editor (after the server's answer settles) and under the CLI's check. */
@@ -85,12 +94,8 @@ export const libraryTests: InsideTests = {
 
   libraryInsertHere: async function () {
     this.timeout(2 * TEST_MS);
-    const main = await newBench('insert-here', 'here.xosc');
-    const editor = await waitFor('the new main in the editor', () =>
-      vscode.window.activeTextEditor?.document.uri.fsPath === main ? vscode.window.activeTextEditor : undefined,
-    );
+    const { editor, onGroup } = await benchWithGroup('insert-here', 'here.xosc');
     const document = editor.document;
-    const onGroup = positionOf(document, '<ManeuverGroup name="EgoBehaviour"', 3);
     editor.selection = new vscode.Selection(onGroup, onGroup);
     // The light bulb's actions at the cursor, as VS Code asks for them.
     const action = await waitFor('Insert library module here… among the code actions', async () =>
@@ -124,5 +129,51 @@ export const libraryTests: InsideTests = {
     assert.ok(await document.save(), 'the main was not saved');
     await assertClean(document);
     await screenshot('A library module inserted at the cursor, clean');
+  },
+
+  libraryDrop: async function () {
+    this.timeout(2 * TEST_MS);
+    const { editor, onGroup } = await benchWithGroup('drop', 'dropped.xosc');
+    const document = editor.document;
+    editor.revealRange(new vscode.Range(onGroup, onGroup), vscode.TextEditorRevealType.InCenter);
+    await vscode.commands.executeCommand('modular2simple.library.focus');
+    await waitFor('the Scenario Library listing', () => (api().library.tree.current?.modules.length ?? 0) > 0);
+    await waitFor('the view drawing its modules', () => pageShows('library:lead-brake'));
+    await waitFor('the editor drawing the group', () => pageShows('EgoBehaviour', '.monaco-editor .view-line'));
+    // Dropped inside the group's Actors, where no group can go: nothing written, and the message says where it can.
+    const before = document.getText();
+    await dragOnto(
+      { selector: '.monaco-list-row', text: 'library:lead-brake' },
+      { selector: '.monaco-editor .view-line', text: '</Actors>' },
+    );
+    await waitFor('the refusal of the drop', () => pageShows('not on an Act or on a ManeuverGroup of an Act', '.notifications-toasts'));
+    await screenshot('A library module dropped inside Actors is refused, saying where it can go');
+    assert.equal(document.getText(), before, 'a refused drop changed the main');
+    await vscode.commands.executeCommand('notifications.clearAll');
+    // The mouse: from the module's row in the view onto the line of the ManeuverGroup in the editor.
+    await dragOnto(
+      { selector: '.monaco-list-row', text: 'library:lead-brake' },
+      { selector: '.monaco-editor .view-line', text: 'EgoBehaviour' },
+    );
+    await waitFor(
+      'the dropped module in the main',
+      () => document.getText().includes('scenarioFileName="library:lead-brake"') || undefined,
+    );
+    const text = document.getText();
+    const [ego, lead, trigger] = ['<ManeuverGroup name="EgoBehaviour"', '<ManeuverGroup name="LeadBrake"', '<StartTrigger>'].map((tag) =>
+      text.indexOf(tag),
+    );
+    assert.ok(
+      ego > 0 && lead > ego && trigger > lead && text.indexOf('<StartTrigger>', ego) > lead,
+      `LeadBrake after EgoBehaviour, before the Act's StartTrigger (${ego}, ${lead}, ${trigger})`,
+    );
+    // The keys at their defaults and the roles played by the bench's entities of their names, as Insert into Main writes them.
+    for (const key of ['SpeedActionDynamics.value', 'AbsoluteTargetSpeed.value', 'TimeHeadwayCondition.value'])
+      assert.ok(text.includes(`key="${key}"`), `no ${key}`);
+    assert.ok(text.includes('<ParameterReference key="TimeHeadwayCondition.entityRef" value="lead"/>'));
+    assert.equal(text.split('scenarioFileName="library:lead-brake"').length, 2, 'one group dropped');
+    assert.ok(await document.save(), 'the main was not saved');
+    await assertClean(document);
+    await screenshot('A library module dragged from the view onto a ManeuverGroup, clean');
   },
 };
