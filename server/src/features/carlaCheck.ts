@@ -109,7 +109,7 @@ export async function checkInScenarioRunner(
       folder,
       python,
       timeLimitSeconds,
-      places: exported.places ?? [],
+      placeAt: exported.placeAt ?? (() => undefined),
       losses: exported.losses.length,
     });
   } finally {
@@ -123,7 +123,7 @@ interface RunContext {
   folder: string;
   python: string;
   timeLimitSeconds: number;
-  places: readonly (Place | undefined)[];
+  placeAt: (index: number) => Place | undefined;
   losses: number;
 }
 
@@ -200,7 +200,7 @@ function reportRun(workspace: Workspace, ref: SourceRef, run: HarnessRun, contex
     case 'refused': {
       const stage = verdict.stage ? STAGE_WORDS[verdict.stage] : 'loading it';
       const at = verdict.where ? ` (at ${verdict.where})` : '';
-      const place = placeOf(context.places, verdict.element?.index);
+      const place = placeOf(context.placeAt, verdict.element?.index);
       const element = verdict.element ? `<${verdict.element.tag}${verdict.element.name ? ` name="${verdict.element.name}"` : ''}>: ` : '';
       const problem: ProblemSummary = {
         uri: workspace.uriOf(place?.source ?? ref),
@@ -222,8 +222,8 @@ function reportRun(workspace: Workspace, ref: SourceRef, run: HarnessRun, contex
 }
 
 /** Where the export's element N came from; the root's place when ScenarioRunner named no element. */
-function placeOf(places: readonly (Place | undefined)[], index: number | null | undefined): Place | undefined {
-  return (index !== null && index !== undefined ? places[index] : undefined) ?? places[0];
+function placeOf(placeAt: (index: number) => Place | undefined, index: number | null | undefined): Place | undefined {
+  return (index !== null && index !== undefined ? placeAt(index) : undefined) ?? placeAt(0);
 }
 
 function lastLine(text: string): string {

@@ -44,12 +44,14 @@ import {
   attr,
   child,
   childrenNamed,
+  documentOf,
   makeNode,
   named,
   Node,
   nodeFromXml,
   Place,
   removeAttr,
+  removeChildren,
   removeNode,
   replaceNode,
   serialize,
@@ -94,10 +96,10 @@ export interface CarlaExport {
   /** The entity marked as ScenarioRunner's ego. */
   ego: string | undefined;
   /**
-   * Where each element of `text` was written in the sources, in document order (an element the export added
-   * stands at its nearest written ancestor): a message about the export's element N belongs at `places[N]`.
+   * Where element N of `text` (in document order) was written in the sources (an element the export added
+   * stands at its nearest written ancestor): a message about the export's element N belongs there.
    */
-  places?: readonly (Place | undefined)[];
+  placeAt?: (index: number) => Place | undefined;
 }
 
 /**
@@ -245,7 +247,7 @@ export async function exportTextForCarla(
 
   inlineCatalogs(semantics, elementNodes, sink);
   const catalogLocations = child(tree, 'CatalogLocations');
-  if (catalogLocations) catalogLocations.children = [];
+  if (catalogLocations) removeChildren(catalogLocations);
   for (const leftover of named(tree, 'CatalogReference')) {
     if (ancestor(leftover, 'Entities') && leftover.parent?.name !== 'ScenarioObject') {
       // A catalog entry's own reference (a trailer of a truck): a detail ScenarioRunner has no use for.
@@ -285,8 +287,8 @@ export async function exportTextForCarla(
   }
   const elementsBefore = storyboardElementKeys(tree);
   applyCarlaRules(tree, { release: options.release ?? '0.9.16', sink, roads, geoPlaces });
-  // The text the last schema check passed: nothing changes the tree after it.
-  const checked = dropOutsideSchema(tree, sink);
+  // Nothing changes the tree after the last schema check.
+  const valid = dropOutsideSchema(tree, sink);
   reportStatesOfDroppedElements(tree, elementsBefore, sink);
 
   if (eventsBefore > 0 && named(tree, 'Event').length === 0)
@@ -298,9 +300,9 @@ export async function exportTextForCarla(
     );
   const refusals = losses.filter((loss) => loss.kind === 'refused');
   if (refusals.length > 0) return result(refusalSentence(refusals), undefined, { road, ego });
-  const out = checked ?? serialize(tree);
+  const out = serialize(tree);
   // What is written must be 1.0 as ScenarioRunner's bundled schema reads it; anything left is a bug of a rule, not the user's.
-  const schemaErrors = checked
+  const schemaErrors = valid
     ? []
     : checkSchema(parseXml(out), { modular: false, version: '1.0' }).findings.filter((finding) => finding.severity === 'error');
   if (schemaErrors.length > 0) {
@@ -313,16 +315,20 @@ export async function exportTextForCarla(
       { road, ego },
     );
   }
-  return result(undefined, out, { road, ego, places: documentPlaces(tree) });
+  return result(undefined, out, { road, ego, placeAt: placeInDocument(tree) });
 }
 
-/** The place of each node in document order, which is the order `serialize` writes them in; an added node takes its ancestor's. */
-function documentPlaces(tree: Node): (Place | undefined)[] {
-  return allNodes(tree).map((node) => {
-    let at: Node | undefined = node;
+/**
+ * The place of the node N in document order, which is the order `serialize` writes them in; an added node takes
+ * its ancestor's. Worked out when asked (the editor asks for the few elements ScenarioRunner names).
+ */
+function placeInDocument(tree: Node): (index: number) => Place | undefined {
+  const nodes = allNodes(tree);
+  return (index) => {
+    let at: Node | undefined = nodes[index];
     while (at && !at.place) at = at.parent;
     return at?.place;
-  });
+  };
 }
 
 /** The road file's roads, or undefined when it cannot be read (the rules then name why a route position stays unconverted). */
@@ -417,7 +423,7 @@ function evaluatedValue(
   const attribute = element.attributes[index];
   const site = evaluator.model.siteOf.get(attribute);
   if (!site || site.element !== element) return attribute.value;
-  const value = evaluator.evaluateSite(site);
+  const value = evaluator.standardValue(site);
   if (value.ok) return formatValue(value.value);
   const global = scenario && site.form.kind === 'parameter' ? scenario.model.root?.byName.get(site.form.name) : undefined;
   if (scenario && global) {
@@ -520,7 +526,7 @@ function rewriteHeader(tree: Node, ref: SourceRef): void {
   setAttr(header, 'revMajor', '1');
   setAttr(header, 'revMinor', '0');
   // The 1.1+ License and Properties of a header carry no behaviour.
-  header.children = [];
+  removeChildren(header);
 }
 
 async function rewriteRoad(
@@ -717,15 +723,11 @@ function mapBlueprints(tree: Node, options: CarlaExportOptions, sink: LossSink):
  * element drops the smallest unit holding it (a condition, an action, an init action); anything else (a
  * missing part) is refused, never written.
  */
-function dropOutsideSchema(tree: Node, sink: LossSink): string | undefined {
+function dropOutsideSchema(tree: Node, sink: LossSink): boolean {
   for (let round = 0; round < 8; round++) {
-    const out = serialize(tree);
-    const outDocument = parseXml(out);
-    const findings = checkSchema(outDocument, { modular: false, version: '1.0' }).findings.filter(
-      (finding) => finding.severity === 'error',
-    );
-    if (findings.length === 0) return out;
-    const nodeAt = nodesByOffset(tree, outDocument);
+    const { document, nodeOf: nodeAt } = documentOf(tree);
+    const findings = checkSchema(document, { modular: false, version: '1.0' }).findings.filter((finding) => finding.severity === 'error');
+    if (findings.length === 0) return true;
     let changed = false;
     for (const finding of findings) {
       const node = nodeAt.get(finding.element);
@@ -762,12 +764,12 @@ function dropOutsideSchema(tree: Node, sink: LossSink): string | undefined {
         `cannot be written as OpenSCENARIO 1.0 (${schemaFindingWords(finding).message})`,
         `ScenarioRunner's 1.0 schema (${SR_SCHEMA}) refuses the file`,
       );
-      return undefined;
+      return false;
     }
-    if (!changed) return undefined;
+    if (!changed) return false;
     tidyEmptyContainers(tree);
   }
-  return undefined;
+  return false;
 }
 
 function storyboardElementKeys(tree: Node): Set<string> {
@@ -818,11 +820,4 @@ function droppableUnit(node: Node): Node | undefined {
     if (at.parent?.name === 'Private' || at.parent?.name === 'Actions') return at;
   }
   return undefined;
-}
-
-/** The serialized text's elements (a parse of `serialize(tree)`) mapped back to the nodes, by document order. */
-function nodesByOffset(tree: Node, document: XmlDocument): Map<XmlElement, Node> {
-  const map = new Map<XmlElement, Node>();
-  if (document.root) mapElements(document.root, tree, map);
-  return map;
 }

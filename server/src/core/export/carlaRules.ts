@@ -21,6 +21,7 @@ import {
   named,
   Node,
   removeAttr,
+  removeChildren,
   removeNode,
   renameAttr,
   replaceNode,
@@ -202,7 +203,7 @@ function controllerActionHalves(tree: Node, context: RuleContext): void {
     for (const [name, attributes] of parts) {
       const existing = child(override, name);
       if (existing) {
-        existing.children = [];
+        removeChildren(existing);
         for (const [key, value] of attributes) if (attr(existing, key) === undefined) setAttr(existing, key, value);
         existing.attributes = existing.attributes.filter(([key]) => attributes.some(([wanted]) => wanted === key));
       } else

@@ -216,7 +216,14 @@ export function sampledShape(
   const actors = actorsOf(action);
   if (actors.length !== 1) return `it is followed by ${actors.length} actors, each from where it is`;
   const actor = actors[0];
-  const sample = sampleOf(shape, (position) => place(position, actor, (entity) => headingAtStart(action, entity, tree, roads, ends)));
+  // Asked for each control point: the answer for an entity does not change while one shape is sampled.
+  const headings = new Map<string, Heading | string>();
+  const heading = (entity: string): Heading | string => {
+    let known = headings.get(entity);
+    if (known === undefined) headings.set(entity, (known = headingAtStart(action, entity, tree, roads, ends)));
+    return known;
+  };
+  const sample = sampleOf(shape, (position) => place(position, actor, heading));
   if (typeof sample === 'string') return sample;
   const { vertices, start } = sample;
   const relative =

@@ -1,9 +1,10 @@
 /** Where an action of the scenario tree acts: its actors, and what the Init sets for an actor. */
 import { ancestor, attr, child, childrenNamed, named, Node } from './tree';
 
-/** The first value `read` finds in the actor's Init Privates. */
+/** The first value `read` finds in the actor's Init Privates (the Storyboard's Init: the only place the schema has one). */
 export function fromInit(tree: Node, actor: string, read: (privateNode: Node) => number | undefined): number | undefined {
-  const init = named(tree, 'Init')[0];
+  const storyboard = child(tree, 'Storyboard');
+  const init = storyboard ? child(storyboard, 'Init') : undefined;
   const privates = init ? named(init, 'Private').filter((privateNode) => attr(privateNode, 'entityRef') === actor) : [];
   for (const privateNode of privates) {
     const found = read(privateNode);

@@ -3,8 +3,8 @@
  * an export moves, renames and drops elements. Each node remembers where it was written, for the loss report.
  */
 import { SourceRef } from '../sources';
-import { Range } from '../text';
-import { endTagStart, escapeAttributeValue, XmlDocument, XmlElement } from '../xml';
+import { LineIndex, Range } from '../text';
+import { endTagStart, escapeAttributeValue, XmlAttribute, XmlDocument, XmlElement } from '../xml';
 
 /** Where an element of the export was written in the sources (a catalog entry's file for an inlined entry). */
 export interface Place {
@@ -12,49 +12,107 @@ export interface Place {
   range: Range;
 }
 
+/**
+ * An element of the tree. Its structure (name, children, parent) changes only through the functions of this
+ * module, which keep each root's index of its nodes by name (`named`) up to date.
+ */
 export interface Node {
-  name: string;
+  readonly name: string;
   /** In the order written; a name at most once. */
   attributes: [string, string][];
-  children: Node[];
+  readonly children: readonly Node[];
   /** Character content of an element without children (a CustomCommandAction's command), decoded. */
   text?: string;
   parent: Node | undefined;
   place: Place | undefined;
 }
 
+/** The entry of an attribute; loops without callbacks, as these run for every node of an export, mostly before V8 optimizes them. */
+function entryOf(node: Node, name: string): [string, string] | undefined {
+  const attributes = node.attributes;
+  for (let i = 0; i < attributes.length; i++) if (attributes[i][0] === name) return attributes[i];
+  return undefined;
+}
+
 export function attr(node: Node, name: string): string | undefined {
-  return node.attributes.find(([key]) => key === name)?.[1];
+  return entryOf(node, name)?.[1];
 }
 
 export function setAttr(node: Node, name: string, value: string): void {
-  const found = node.attributes.find(([key]) => key === name);
+  const found = entryOf(node, name);
   if (found) found[1] = value;
   else node.attributes.push([name, value]);
 }
 
 export function removeAttr(node: Node, name: string): boolean {
-  const index = node.attributes.findIndex(([key]) => key === name);
-  if (index < 0) return false;
-  node.attributes.splice(index, 1);
-  return true;
+  const attributes = node.attributes;
+  for (let i = 0; i < attributes.length; i++) {
+    if (attributes[i][0] !== name) continue;
+    attributes.splice(i, 1);
+    return true;
+  }
+  return false;
 }
 
 export function renameAttr(node: Node, from: string, to: string): void {
-  const found = node.attributes.find(([key]) => key === from);
+  const found = entryOf(node, from);
   if (found) found[0] = to;
 }
 
 export function child(node: Node, name: string): Node | undefined {
-  return node.children.find((candidate) => candidate.name === name);
+  const children = node.children;
+  for (let i = 0; i < children.length; i++) if (children[i].name === name) return children[i];
+  return undefined;
 }
 
 export function childrenNamed(node: Node, name: string): Node[] {
-  return node.children.filter((candidate) => candidate.name === name);
+  const result: Node[] = [];
+  for (const each of node.children) if (each.name === name) result.push(each);
+  return result;
 }
 
-/** Every node below `node` (itself included) in document order. */
-export function allNodes(node: Node): Node[] {
+/**
+ * Each root's nodes in document order and by name, made on the first question after a change of structure below
+ * it (the functions below drop it). The rules ask for the nodes of a name dozens of times, mostly with nothing
+ * changed in between.
+ */
+interface NodeIndex {
+  all: Node[];
+  byName: Map<string, Node[]>;
+}
+
+const indexes = new WeakMap<Node, NodeIndex>();
+
+/** Drops the index of the tree `node` is in: its structure is about to change. */
+function changing(node: Node): void {
+  let top = node;
+  while (top.parent) top = top.parent;
+  indexes.delete(top);
+}
+
+/** A node becomes a child: an index of its own, made while it was a root, would not see later changes. */
+function adopted(node: Node): void {
+  indexes.delete(node);
+}
+
+function indexOf(root: Node): NodeIndex {
+  let index = indexes.get(root);
+  if (!index) {
+    const all = walk(root);
+    const byName = new Map<string, Node[]>();
+    for (const each of all) {
+      const same = byName.get(each.name);
+      if (same) same.push(each);
+      else byName.set(each.name, [each]);
+    }
+    index = { all, byName };
+    indexes.set(root, index);
+  }
+  return index;
+}
+
+/** Every node below `node` (itself included) in document order, walked. */
+function walk(node: Node): Node[] {
   const result: Node[] = [];
   const stack = [node];
   while (stack.length > 0) {
@@ -65,45 +123,69 @@ export function allNodes(node: Node): Node[] {
   return result;
 }
 
-/** Every node below `node` (itself included) of that name, or of one of those names, in document order. */
-export function named(node: Node, name: string | ReadonlySet<string>): Node[] {
-  const result: Node[] = [];
-  // The rules ask this of the whole tree dozens of times: one walk, no list of every node.
-  const visit = typeof name === 'string' ? (each: Node) => each.name === name : (each: Node) => name.has(each.name);
-  const walk = (at: Node): void => {
-    if (visit(at)) result.push(at);
-    for (const each of at.children) walk(each);
-  };
-  walk(node);
-  return result;
+/** Every node below `node` (itself included) in document order. */
+export function allNodes(node: Node): Node[] {
+  return node.parent ? walk(node) : indexOf(node).all.slice();
 }
 
+/** Every node below `node` (itself included) of that name, or of one of those names, in document order. */
+export function named(node: Node, name: string | ReadonlySet<string>): Node[] {
+  if (node.parent) {
+    const all = walk(node);
+    return typeof name === 'string' ? all.filter((each) => each.name === name) : all.filter((each) => name.has(each.name));
+  }
+  const index = indexOf(node);
+  if (typeof name === 'string') return index.byName.get(name)?.slice() ?? [];
+  return index.all.filter((each) => name.has(each.name));
+}
+
+/** A new node over `children` (a child still in a tree is moved out of it). */
 export function makeNode(name: string, attributes: [string, string][] = [], children: Node[] = [], place?: Place): Node {
   const node: Node = { name, attributes, children, parent: undefined, place };
-  for (const each of children) each.parent = node;
+  for (const each of children) {
+    removeNode(each);
+    adopted(each);
+    each.parent = node;
+  }
   return node;
 }
 
+/** The children list to change, for this module's functions alone (the index depends on it). */
+function mutableChildren(node: Node): Node[] {
+  changing(node);
+  return node.children as Node[];
+}
+
 export function appendChild(parent: Node, node: Node, before?: Node): Node {
+  const children = mutableChildren(parent);
+  adopted(node);
   node.parent = parent;
-  const index = before ? parent.children.indexOf(before) : -1;
-  if (index >= 0) parent.children.splice(index, 0, node);
-  else parent.children.push(node);
+  const index = before ? children.indexOf(before) : -1;
+  if (index >= 0) children.splice(index, 0, node);
+  else children.push(node);
   return node;
 }
 
 export function removeNode(node: Node): void {
   if (!node.parent) return;
-  const index = node.parent.children.indexOf(node);
-  if (index >= 0) node.parent.children.splice(index, 1);
+  const children = mutableChildren(node.parent);
+  const index = children.indexOf(node);
+  if (index >= 0) children.splice(index, 1);
   node.parent = undefined;
+}
+
+/** Removes every child of `node`. */
+export function removeChildren(node: Node): void {
+  for (const each of mutableChildren(node).splice(0)) each.parent = undefined;
 }
 
 export function replaceNode(old: Node, replacement: Node): void {
   const parent = old.parent;
   if (!parent) return;
-  const index = parent.children.indexOf(old);
-  parent.children[index] = replacement;
+  const children = mutableChildren(parent);
+  const index = children.indexOf(old);
+  children[index] = replacement;
+  adopted(replacement);
   replacement.parent = parent;
   old.parent = undefined;
 }
@@ -143,10 +225,11 @@ class ParsedNode implements Node {
   constructor(
     private readonly element: XmlElement,
     private readonly placeOf: (element: XmlElement) => Place | undefined,
-    public name: string,
+    readonly name: string,
     public attributes: [string, string][],
-    public children: Node[],
+    readonly children: Node[],
   ) {
+    // Its children are made for it, so none has an index of its own.
     for (const each of children) each.parent = this;
   }
 
@@ -211,4 +294,39 @@ export function serialize(root: Node): string {
   };
   write(root, 0);
   return lines.join('\n') + '\n';
+}
+
+/**
+ * The tree as the parser's elements, for a check that reads a parsed document (the schema's) without writing
+ * the tree out and reading it back. Offsets count the tags and attributes in document order, so findings sort
+ * as they would in `serialize`'s text; there is no text, so an offset names no line.
+ */
+export function documentOf(root: Node): { document: XmlDocument; nodeOf: Map<XmlElement, Node> } {
+  const nodeOf = new Map<XmlElement, Node>();
+  let offset = 0;
+  const view = (node: Node, parent: XmlElement | undefined): XmlElement => {
+    const start = offset++;
+    const attributes: XmlAttribute[] = node.attributes.map(([name, value]) => {
+      const nameStart = offset++;
+      const valueStart = offset++;
+      return { name, value, nameStart, nameEnd: nameStart, valueStart, valueEnd: valueStart, quote: '"' };
+    });
+    const element: XmlElement = {
+      name: node.name,
+      start,
+      nameEnd: start,
+      startTagEnd: offset++,
+      end: 0,
+      selfClosing: node.children.length === 0 && node.text === undefined,
+      closed: true,
+      attributes,
+      children: [],
+      parent,
+    };
+    nodeOf.set(element, node);
+    for (const each of node.children) element.children.push(view(each, element));
+    element.end = offset++;
+    return element;
+  };
+  return { document: { text: '', root: view(root, undefined), problems: [], lines: new LineIndex('') }, nodeOf };
 }

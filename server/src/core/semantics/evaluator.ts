@@ -457,6 +457,20 @@ export class Evaluator {
     };
   }
 
+  /**
+   * The value evaluateSite gives under the standard reading, without computing esmini's reading where the
+   * standard gives a value (an export writes the value and has no use for the differences).
+   */
+  standardValue(site: ValueSite): ValueResult {
+    if (this.reading !== 'standard') return this.evaluateSite(site);
+    let standard: ValueResult | undefined;
+    if (site.form.kind === 'parameter') {
+      const declaration = resolveName(site.scope, site.form.name, site.declaration);
+      if (declaration) standard = this.standardDeclaration(declaration);
+    } else if (site.form.expression.tree) standard = this.standardSite(site);
+    return standard?.ok ? standard : this.evaluateSite(site);
+  }
+
   evaluateSite(site: ValueSite): ValueResult & { warnings?: ExpressionError[] } {
     const known = this.siteValues.get(site);
     if (known) return known;

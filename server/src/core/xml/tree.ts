@@ -53,8 +53,12 @@ export function elementAt(document: XmlDocument, offset: number): XmlElement | u
   }
 }
 
+/** What escapeAttributeValue changes: most values have none of it, and are returned as they are without seven passes. */
+const ATTRIBUTE_SPECIALS = /[&<>"'\t\n\r]/;
+
 /** Escapes text for use inside an attribute value delimited by `quote`. */
 export function escapeAttributeValue(value: string, quote: '"' | "'" = '"'): string {
+  if (!ATTRIBUTE_SPECIALS.test(value)) return value;
   let escaped = value.replace(/&/g, '&amp;').replace(/</g, '&lt;').replace(/>/g, '&gt;');
   escaped = quote === '"' ? escaped.replace(/"/g, '&quot;') : escaped.replace(/'/g, '&apos;');
   return escaped.replace(/\t/g, '&#9;').replace(/\n/g, '&#10;').replace(/\r/g, '&#13;');
