@@ -306,6 +306,44 @@ describe('cli: batch', function () {
     assert.ok(again.stderr.endsWith(summary), again.stderr);
   });
 
+  it('checks a plain ScenarioFile as run does: one with errors is refused on its line with what to do, nothing run; --force runs it, esmini saying why each run failed', function () {
+    const root = folder();
+    // As esmini's own samples write it: a catalog folder of esmini's repository, absent here.
+    const scenarioFile = path.join(root, 'follow.xosc');
+    const follow = fs.readFileSync(scenarioFile, 'utf8');
+    const ego = /<Vehicle name="ego_car"[\s\S]*?<\/Vehicle>/.exec(follow)![0];
+    fs.writeFileSync(
+      scenarioFile,
+      follow
+        .replace(
+          '<CatalogLocations/>',
+          '<CatalogLocations><VehicleCatalog><Directory path="../xosc/Catalogs/Vehicles"/></VehicleCatalog></CatalogLocations>',
+        )
+        .replace(ego, '<CatalogReference catalogName="VehicleCatalog" entryName="car_white"/>'),
+    );
+    const args = [...BATCH_ARGS, '--sample', '2', '-q'];
+    const refused = runCli(args, { cwd: root });
+    assert.equal(refused.status, 1, refused.stderr);
+    assert.match(
+      refused.stderr,
+      /^follow\.xosc:11:\d+: error: the VehicleCatalog directory '\.\.\/xosc\/Catalogs\/Vehicles' does not exist beside this file.*\n {2}hint: .*--scenario-path/m,
+    );
+    assert.match(refused.stderr, /^follow\.xosc: the scenario has 1 error; nothing was run \(--force runs it anyway\)$/m);
+    assert.ok(!fs.existsSync(path.join(root, 'results')), 'nothing run, nothing written');
+    requireEsmini(this);
+    const forced = runCli([...args, '--force'], { cwd: root });
+    assert.equal(forced.status, 3, forced.stderr);
+    assert.match(forced.stderr, /^follow\.xosc: the scenario has 1 error; running anyway \(--force\)$/m);
+    const rows = csvRows(root);
+    assert.equal(rows.length, 2);
+    const reason = "esmini did not run the scenario (exit code 255): Couldn't locate OpenSCENARIO file VehicleCatalog";
+    for (const row of rows) assert.ok(row.startsWith(`${row.split(',')[0]},error,`) && row.endsWith(`,${reason}`), row);
+    assert.match(
+      forced.stderr,
+      /^modular2simple: error: 2 of 2 runs failed in esmini \(status error\); .*\n {2}#\d+, #\d+: esmini did not run the scenario .*VehicleCatalog$/m,
+    );
+  });
+
   it('refuses bad input before running anything, leaving no results folder', () => {
     const root = folder();
     const results = path.join(root, 'results');

@@ -9,7 +9,7 @@ import { CriterionError, parseCriterion } from '../batch/criteria';
 import { BatchIdentity, criteriaFailure, ResultsError, ResultsFolder } from '../batch/results';
 import { NoEsminiError, runConcrete, RunSettings } from '../batch/runConcrete';
 import type { PackagedFile } from '../core/flatten/types';
-import { FileKind, nodeFileSystem, splitScenarioPath } from '../core/sources';
+import { diskRef, displayRef, FileKind, nodeFileSystem, splitScenarioPath } from '../core/sources';
 import { loadVariations, rebasedConcreteText, samplingProblem, SamplingError } from '../core/variations';
 import { locateEsmini } from '../esmini/locate';
 import { foundCatalogFolders, RUN_DEFAULTS } from '../esmini/run';
@@ -24,7 +24,8 @@ import {
   UsageError,
   wholeNumber,
 } from './common';
-import { flatteningScenarioLoader, readDistributionFile, scenarioFolderOf } from './scenarioText';
+import { flatteningScenarioLoader, readDistributionFile, scenarioFolderOf, scenarioProblems } from './scenarioText';
+import { formatProblem } from '../core/problems';
 import { storeForInputs } from './inputs';
 import { chosenIndices, problemPrinter, samplingOptions } from './vary';
 
@@ -48,6 +49,8 @@ export const BATCH_HELP = `Run every concrete scenario of a distribution in esmi
   --junit OUT.xml           write the runs as JUnit XML for CI (a test case per run: failure, error or skipped)
   --queue redis://HOST:PORT put the runs on a BullMQ queue in Redis for 'modular2simple worker' and collect the results
   --esmini PATH, --road-path DIRS, --scenario-path DIRS   as for run
+  --force                   run despite the scenario's errors: its ScenarioFile is checked first as run checks
+                            it, and one with errors is refused (file, line, what to do) before anything runs
   results.csv: index, status (ok: the scenario ended by itself; limit: stopped at --duration before it ended;
   timeout: it hung or ran away; error: esmini reported an error or did not run it), collision (esmini's collision detection), min_distance_m and min_ttc_s (the ego, or the first entity,
   against every other: bounding-box gap, and gap over closing speed), end_time_s, then one column per varied
@@ -105,6 +108,7 @@ async function runBatch(argv: string[], io: CliOutput): Promise<number> {
     'max-combinations': { type: 'string' },
     queue: { type: 'string' },
     'keep-runs': { type: 'boolean', default: false },
+    force: { type: 'boolean', default: false },
     esmini: { type: 'string' },
     'road-path': { type: 'string', multiple: true },
     'scenario-path': { type: 'string', multiple: true },
@@ -137,11 +141,26 @@ async function runBatch(argv: string[], io: CliOutput): Promise<number> {
   const packagedFiles: PackagedFile[] = [];
   const scenarioPath = (values['scenario-path'] ?? []).flatMap(splitScenarioPath);
   const roadPath = (values['road-path'] ?? []).flatMap(splitScenarioPath);
-  const loaded = await loadVariations(distributionText, distributionPath, flatteningScenarioLoader(scenarioPath, packagedFiles, roadPath));
+  const loaded = await loadVariations(
+    distributionText,
+    distributionPath,
+    flatteningScenarioLoader(scenarioPath, packagedFiles, roadPath, values.force),
+  );
   const printProblems = problemPrinter(loaded, values.quiet, io, base);
   printProblems();
   const variations = loaded.variations;
   if (!variations) return ExitCode.problems;
+  // The check run makes, on the ScenarioFile as it is: what esmini would refuse in every run is said once, on its line.
+  const problems = await scenarioProblems(variations.scenarioPath, scenarioPath, roadPath);
+  for (const problem of problems) if (problem.severity === 'error' || !values.quiet) io.err(formatProblem(problem, base));
+  const errors = problems.filter((problem) => problem.severity === 'error').length;
+  const counted = `the scenario has ${errors} error${errors === 1 ? '' : 's'}`;
+  const shown = displayRef(diskRef(variations.scenarioPath), base);
+  if (errors > 0 && !values.force) {
+    io.err(`${shown}: ${counted}; nothing was run (--force runs it anyway)`);
+    return ExitCode.problems;
+  }
+  if (errors > 0) io.err(`${shown}: ${counted}; running anyway (--force)`);
   const chosen = chosenIndices(variations, sampling, positionals[0], 'nothing was run');
   if (chosen instanceof SamplingError) {
     printProblems([samplingProblem(chosen, distributionPath)]);

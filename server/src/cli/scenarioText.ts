@@ -37,6 +37,8 @@ export function flatteningScenarioLoader(
   scenarioPath: string[] = [],
   packagedFiles?: PackagedFile[],
   catalogPath: string[] = [],
+  /** Flatten a modular ScenarioFile despite its errors (`batch --force`), as `run --force` does. */
+  force = false,
 ): ScenarioTextLoader {
   return async (file: string): Promise<string> => {
     const isFolder = fs.existsSync(file) && fs.statSync(file).isDirectory();
@@ -47,7 +49,7 @@ export function flatteningScenarioLoader(
       throw Object.assign(new Error('no such file'), { code: 'ENOENT' });
     }
     const flattener = new Flattener(storeForInputs(scenarioPath, undefined, [file], {}, catalogPath));
-    const result = await flattener.flatten(mainOf(file));
+    const result = await flattener.flatten(mainOf(file), { force });
     if (result.text !== undefined) {
       packagedFiles?.push(...result.files);
       return result.text;
@@ -57,6 +59,15 @@ export function flatteningScenarioLoader(
     const more = errors.length > shown.length ? `\n  (${errors.length - shown.length} more)` : '';
     throw new Error(`cannot be flattened (${errors.length} error${errors.length === 1 ? '' : 's'}):${shown.join('')}${more}`);
   };
+}
+
+/**
+ * The check `run` makes before it runs a scenario: its problems as flattening it finds them, with the same scenario
+ * path and catalog folders. `batch` makes it on its ScenarioFile, plain or modular, before any run.
+ */
+export async function scenarioProblems(file: string, scenarioPath: string[], catalogPath: string[]): Promise<Problem[]> {
+  const flattener = new Flattener(storeForInputs(scenarioPath, undefined, [file], {}, catalogPath));
+  return (await flattener.flatten(mainOf(file))).problems;
 }
 
 /** The folder the ScenarioFile's relative paths (roads, catalogs) start from: its own folder, a package's, or the unpacked folder itself. */
