@@ -7,7 +7,7 @@ import type { XmlElement } from '../../server/src/core/xml';
 import { HarnessVerdict, harnessVerdicts, requireCarlaHarness, scenarioRunnerFolder } from '../support/carla';
 import { esminiCatalogs, esminiRoads, requireEsmini, runEsmini, tracksOf } from '../support/esmini';
 import { openscenarioDir } from '../support/openscenarioCorpus';
-import { caseStudyDir, libraryDir, requireCorpus } from '../support/paths';
+import { caseStudyDir, libraryDir, repoRoot, requireCorpus } from '../support/paths';
 import { runBounded } from '../support/processes';
 import { temporaryFolder } from '../support/temporaryDirectory';
 
@@ -283,6 +283,42 @@ describe('export --target carla, checked by ScenarioRunner (../shared/carla)', f
       }
       const skipped = results.at(-1)?.report.losses.filter((loss) => loss.element === 'ParameterReference') ?? [];
       assert.equal(skipped.length, 3, 'the three skipped keys of the case study are named');
+    }
+  });
+
+  it('the case study rebuilt from library modules (examples/case-study) builds under 0.9.16 and 0.9.15, each story element in the tree, nothing dropped', async () => {
+    const input = path.join(repoRoot, 'examples', 'case-study', 'main.xosc');
+    for (const release of ['0.9.16', '0.9.15']) {
+      const folder = path.join(out, release);
+      fs.mkdirSync(folder);
+      const result = await exportFile(input, path.join(folder, 'case-study.xosc'), ['--carla', release]);
+      assert.equal(result.code, 0, result.stderr);
+      // What it cannot keep is approximated and named at a line of the main or of a library module it composes: nothing dropped.
+      for (const loss of result.report.losses) {
+        assert.equal(loss.kind, 'approximated', `${loss.file}:${loss.line}: ${loss.element} ${loss.what}`);
+        assert.ok(
+          path.resolve(loss.file) === input || path.dirname(path.resolve(loss.file)) === path.join(repoRoot, 'library'),
+          `${loss.file}: a loss at a file the main does not compose`,
+        );
+        assert.ok(loss.line > 0, `${loss.file}: ${loss.element}`);
+      }
+      const verdicts = await harnessVerdicts([result.output], { fixSrBugs: release === '0.9.15', tree: true });
+      assertBuiltOrRefused([result], verdicts);
+      assertNoSilentDrop([result], verdicts);
+      const verdict = verdicts.get(path.resolve(result.output)) as HarnessVerdict & { others?: string[] };
+      // The library's crossroads, written relative to the export's folder, is the road ScenarioRunner loads.
+      assert.equal(verdict.town, 'crossroads.xodr');
+      assert.deepEqual(verdict.egos, ['vehicle_0']);
+      assert.deepEqual([...(verdict.others ?? [])].sort(), ['ambulance', 'police', 'vehicle_1']);
+      const text = fs.readFileSync(result.output, 'utf8');
+      const logicFile = /<LogicFile filepath="([^"]+)"/.exec(text)?.[1] ?? '';
+      assert.equal(path.resolve(folder, logicFile), path.join(repoRoot, 'library', 'roads', 'crossroads.xodr'));
+      // Each of the main's five module copies is a ManeuverGroup ScenarioRunner built.
+      for (const group of ['Collision', 'Vehicle0Stops', 'Vehicle1Stops', 'PoliceAtSite', 'AmbulanceAtSite'])
+        assert.ok(
+          verdict.tree?.some(([kind, name]) => kind === 'SCENE' && name.startsWith(`${group}.`)),
+          `${release}: no ManeuverGroup of ${group} in ScenarioRunner's tree`,
+        );
     }
   });
 });
