@@ -6,6 +6,7 @@ import { parseXml, XmlElement } from '../../server/src/core/xml';
 import { ExitCode } from '../../server/src/cli/common';
 import { cliPath } from '../support/paths';
 import { RULE_FILES } from '../support/qcRuleFiles';
+import { vehicleObject } from '../support/fixtures';
 import { temporaryWorkspace } from '../support/workspace';
 
 /**
@@ -91,8 +92,7 @@ const SCENARIO = `<?xml version="1.0"?>
   <CatalogLocations/>
   <RoadNetwork><LogicFile filepath="road.xodr"/></RoadNetwork>
   <Entities>
-    <ScenarioObject name="Ego"><Vehicle name="car" vehicleCategory="car"><BoundingBox><Center x="0" y="0" z="0"/><Dimensions width="2" length="4" height="1.5"/></BoundingBox><Performance maxSpeed="50" maxAcceleration="5" maxDeceleration="5"/><Axles><FrontAxle maxSteering="0.5" wheelDiameter="0.6" trackWidth="1.8" positionX="3" positionZ="0.3"/><RearAxle maxSteering="0" wheelDiameter="0.6" trackWidth="1.8" positionX="0" positionZ="0.3"/></Axles><Properties/></Vehicle></ScenarioObject>
-  </Entities>
+${vehicleObject('Ego')}  </Entities>
   <Storyboard>
     <Init><Actions><GlobalAction><InfrastructureAction><TrafficSignalAction><TrafficSignalStateAction name="999" state="off;on"/></TrafficSignalAction></InfrastructureAction></GlobalAction></Actions></Init>
     <Story name="S">

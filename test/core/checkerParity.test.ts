@@ -6,6 +6,7 @@ import { SchemaCheckMemory } from '../../server/src/core/schema/problems';
 import { analyzeDocument, CatalogLoader, semanticProblems } from '../../server/src/core/semantics';
 import { diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { parseXml } from '../../server/src/core/xml';
+import { vehicleObject } from '../support/fixtures';
 import { temporaryWorkspace } from '../support/workspace';
 
 /**
@@ -27,8 +28,7 @@ function scenario(action: string, declarations = '', revisions?: string): string
   <CatalogLocations/>
   <RoadNetwork/>
   <Entities>
-    <ScenarioObject name="Ego"><Vehicle name="car" vehicleCategory="car"><BoundingBox><Center x="0" y="0" z="0"/><Dimensions width="2" length="4" height="1.5"/></BoundingBox><Performance maxSpeed="50" maxAcceleration="5" maxDeceleration="5"/><Axles><FrontAxle maxSteering="0.5" wheelDiameter="0.6" trackWidth="1.8" positionX="3" positionZ="0.3"/><RearAxle maxSteering="0" wheelDiameter="0.6" trackWidth="1.8" positionX="0" positionZ="0.3"/></Axles><Properties/></Vehicle></ScenarioObject>
-  </Entities>
+${vehicleObject('Ego')}  </Entities>
   <Storyboard>
     <Init><Actions/></Init>
     <Story name="S">

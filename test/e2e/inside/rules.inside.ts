@@ -3,6 +3,7 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import * as vscode from 'vscode';
 import { api, type InsideTests, open, requireServerFeature, revertAndClose, waitFor, waitForPage, workspaceRoot } from './helpers';
+import { EMPTY_INIT, fileHeader, parameterDeclarations, scenarioDocument, story, vehicleObject } from '../../support/fixtures';
 import { screenshot } from './harnessClient';
 
 const UNIQUE_NAMES = 'asam.net:xosc:1.2.0:reference_control.unique_element_names_on_same_level';
@@ -89,37 +90,8 @@ async function showRuleCodes(): Promise<void> {
   );
 }
 
-/** One Maneuver with two Events named Event1, a parameter nothing uses and a conditionEdge misspelt; schema-valid otherwise. */
-const RULE_CODES = `<?xml version="1.0" encoding="UTF-8"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="rule codes" author="tests"/>
-  <ParameterDeclarations>
-    <ParameterDeclaration name="UnusedSpeed" parameterType="double" value="10"/>
-  </ParameterDeclarations>
-  <CatalogLocations/>
-  <RoadNetwork/>
-  <Entities>
-    <ScenarioObject name="Ego">
-      <Vehicle name="car" vehicleCategory="car">
-        <BoundingBox>
-          <Center x="1.5" y="0" z="0.9"/>
-          <Dimensions width="2" length="4.5" height="1.8"/>
-        </BoundingBox>
-        <Performance maxSpeed="50" maxAcceleration="5" maxDeceleration="10"/>
-        <Axles>
-          <FrontAxle maxSteering="0.5" wheelDiameter="0.6" trackWidth="1.8" positionX="3.1" positionZ="0.3"/>
-          <RearAxle maxSteering="0" wheelDiameter="0.6" trackWidth="1.8" positionX="0" positionZ="0.3"/>
-        </Axles>
-        <Properties/>
-      </Vehicle>
-    </ScenarioObject>
-  </Entities>
-  <Storyboard>
-    <Init>
-      <Actions/>
-    </Init>
-    <Story name="Story">
-      <Act name="Act">
+/** The Act: two Events named Event1 in one Maneuver, the first started by a conditionEdge misspelt. */
+const ACT = `      <Act name="Act">
         <ManeuverGroup name="Group" maximumExecutionCount="1">
           <Actors selectTriggeringEntities="false">
             <EntityRef entityRef="Ego"/>
@@ -160,8 +132,14 @@ const RULE_CODES = `<?xml version="1.0" encoding="UTF-8"?>
           </ConditionGroup>
         </StartTrigger>
       </Act>
-    </Story>
-    <StopTrigger/>
-  </Storyboard>
-</OpenSCENARIO>
 `;
+
+/** One Maneuver with two Events named Event1, a parameter nothing uses and a conditionEdge misspelt; schema-valid otherwise. */
+const RULE_CODES = scenarioDocument({
+  header: fileHeader({ description: 'rule codes', author: 'tests' }),
+  parameters: parameterDeclarations([['UnusedSpeed', 'double', '10']], 4),
+  catalogLocations: '',
+  roadNetwork: '',
+  entities: vehicleObject('Ego'),
+  storyboard: `${EMPTY_INIT}${story('Story', ACT)}    <StopTrigger/>\n`,
+});
