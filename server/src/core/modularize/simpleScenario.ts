@@ -141,6 +141,13 @@ export async function simpleScenarioText(parts: SimpleScenarioParts): Promise<st
       if (!needed.includes(match[1])) needed.push(match[1]);
   };
   for (const text of [groupText, ...entities, catalogText, roadText]) want(text);
+  // And those the catalog entries the group references read from its scenario.
+  for (const occurrence of groups.flatMap((group) => group.occurrences)) {
+    const fromCatalogs = inputs[occurrence.input].catalogParameters;
+    for (const element of fromCatalogs ? occurrence.elements : [])
+      for (const name of element.name === 'CatalogReference' ? (fromCatalogs?.get(element.start) ?? []) : [])
+        if (!needed.includes(name)) needed.push(name);
+  }
   const foundDeclarations: { document: XmlDocument; element: XmlElement }[] = [];
   for (let i = 0; i < needed.length; i++) {
     const found = findNamed(documents, ['ParameterDeclaration'], needed[i]);

@@ -11,6 +11,11 @@ export interface ModularizeInput {
   text: string;
   /** The text's parse, when the caller has it already. */
   document?: XmlDocument;
+  /**
+   * By a CatalogReference's start offset: the parameters its catalog entry uses without declaring them (esmini takes
+   * them from the scenario), which a simple scenario holding it must declare. Known to a caller that resolved the catalogs.
+   */
+  catalogParameters?: ReadonlyMap<number, readonly string[]>;
 }
 
 /** The edits that make the file paths of a scenario written in `fromDirectory` reach the same files from `toDirectory`. */

@@ -78,6 +78,8 @@ export interface ExtractGroupRequest {
   entityNames: ReadonlySet<string>;
   /** Whether a path is taken already (on disk or open in the editor). */
   exists(file: string): Promise<boolean>;
+  /** The parameters each CatalogReference's entry reads from the scenario (ModularizeInput.catalogParameters): declared in the simple scenario too. */
+  catalogParameters?: ReadonlyMap<number, readonly string[]>;
 }
 
 export interface ExtractedGroup {
@@ -119,7 +121,7 @@ export async function extractGroup(request: ExtractGroupRequest): Promise<Extrac
     if (wanted.has(attributeId(slot.element, slot.name))) chosen.add(index);
   });
   const simpleFile = await freeFile(path.dirname(file), fileStem(group.name), request.exists);
-  const input: ParsedInput = { path: file, output: file, text, document, pathEdits: [] };
+  const input: ParsedInput = { path: file, output: file, text, document, pathEdits: [], catalogParameters: request.catalogParameters };
   const rebase = pathRebaser();
   let planned = await planBehaviour(shape.key, shape.slots, [occurrence], [input], simpleFile, rebase, chosen);
   // Attributes that no key tells apart with different values cannot all be listed: those are left out.

@@ -9,6 +9,7 @@ import { duplicateNames } from './checks/names';
 import { carlaReleaseOf, carlaScenario } from './checks/carla';
 import { at, relatedAt } from './checks/support';
 import type { Finding, SemanticCheck, SemanticContext } from './checks/types';
+import type { CatalogReferenceResolution } from './catalogs';
 import { carriedExpressionErrors, rememberExpressionErrors } from './checks/carriedResults';
 import { catalogVariables, undeclaredVariables, variableValues } from './checks/variables';
 import {
@@ -57,6 +58,16 @@ export function catalogEntryOf(model: SemanticModel, element: XmlElement): XmlEl
     if (current.parent && current.parent === model.catalog) return current;
   }
   return undefined;
+}
+
+/** The parameters a resolved catalog entry uses and does not declare: esmini takes them from the referencing scenario. */
+export function entryFreeParameters(resolution: CatalogReferenceResolution): Set<string> {
+  const entry = resolution.entry;
+  if (!entry) return new Set();
+  const entryModel = entry.file.model;
+  return new Set(
+    entryModel.uses.filter((use) => !use.declaration && catalogEntryOf(entryModel, use.element) === entry.element).map((use) => use.name),
+  );
 }
 
 /**
@@ -293,12 +304,7 @@ export const catalogReferences: SemanticCheck = (context) => {
     }
     const entryModel = resolution.entry.file.model;
     const referenceScope = context.model.scopeOf(reference.element);
-    const free = new Set(
-      entryModel.uses
-        .filter((use) => !use.declaration && catalogEntryOf(entryModel, use.element) === resolution.entry?.element)
-        .map((use) => use.name),
-    );
-    for (const name of free) {
+    for (const name of entryFreeParameters(resolution)) {
       if (resolveName(referenceScope, name, undefined)) continue;
       findings.push({
         ...at(reference.element, reference.entryNameAttribute),
