@@ -6,7 +6,7 @@ import { parseXml, XmlElement } from '../../server/src/core/xml';
 import { ExitCode } from '../../server/src/cli/common';
 import { cliPath } from '../support/paths';
 import { RULE_FILES } from '../support/qcRuleFiles';
-import { vehicleObject } from '../support/fixtures';
+import { BARE_XML_DECLARATION, fileHeader, openScenarioFile, vehicleObject } from '../support/fixtures';
 import { temporaryWorkspace } from '../support/workspace';
 
 /**
@@ -85,10 +85,8 @@ const ROAD = `<?xml version="1.0"?>
 </OpenDRIVE>
 `;
 
-const SCENARIO = `<?xml version="1.0"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="s" author="t"/>
-  <ParameterDeclarations/>
+const SCENARIO = openScenarioFile(
+  `  <ParameterDeclarations/>
   <CatalogLocations/>
   <RoadNetwork><LogicFile filepath="road.xodr"/></RoadNetwork>
   <Entities>
@@ -111,8 +109,10 @@ ${vehicleObject('Ego')}  </Entities>
     </Story>
     <StopTrigger/>
   </Storyboard>
-</OpenSCENARIO>
-`;
+`,
+  fileHeader({ description: 's', author: 't' }),
+  BARE_XML_DECLARATION,
+);
 
 /** A configuration as the framework's runtime writes one (doc/manual/file_formats.md). */
 function config(inputFile: string, checkers: string[] = [], resultFile = 'modular2simple.xqar'): string {

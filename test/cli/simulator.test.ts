@@ -1,12 +1,10 @@
 import * as assert from 'node:assert/strict';
 import * as path from 'node:path';
-import { runCli } from '../support/fixtures';
+import { fileHeader, openScenarioFile, runCli } from '../support/fixtures';
 import { listFiles, temporaryWorkspace } from '../support/workspace';
 
-const SCENARIO = `<?xml version="1.0" encoding="UTF-8"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="simulator" author="test"/>
-  <Entities/>
+const SCENARIO = openScenarioFile(
+  `  <Entities/>
   <Storyboard>
     <Init><Actions/></Init>
     <Story name="s"><Act name="a"><ManeuverGroup name="g" maximumExecutionCount="1">
@@ -20,8 +18,9 @@ const SCENARIO = `<?xml version="1.0" encoding="UTF-8"?>
       </Event></Maneuver>
     </ManeuverGroup></Act></Story>
   </Storyboard>
-</OpenSCENARIO>
-`;
+`,
+  fileHeader({ description: 'simulator' }),
+);
 
 describe('cli: --simulator', () => {
   it('check reports what the chosen simulator refuses as errors at the source line (exit 1), what it runs otherwise as warnings', () => {

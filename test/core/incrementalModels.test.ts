@@ -20,6 +20,7 @@ import { buildModel, readModel, ScenarioModel } from '../../server/src/core/mode
 import { SchemaCheckMemory } from '../../server/src/core/schema/problems';
 import { diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { repoRoot, sharedDir } from '../support/paths';
+import { BARE_XML_DECLARATION, fileHeader, openScenarioFile } from '../support/fixtures';
 
 /** Everything the model holds, as plain data: elements by offset, attributes by name and offset, declarations and scopes by index. */
 function shape(model: SemanticModel): unknown {
@@ -124,10 +125,8 @@ function valueRanges(document: XmlDocument): { start: number; end: number; name:
 
 // Scopes at the root, in a story and in a catalog entry; `$name` and `${...}` values, declarations using earlier ones,
 // a ParameterCondition, variables, catalog locations and references, entities and storyboard references.
-const scenario = `<?xml version="1.0"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="d" author="a"/>
-  <ParameterDeclarations>
+const scenario = openScenarioFile(
+  `  <ParameterDeclarations>
     <ParameterDeclaration name="Speed" parameterType="double" value="10"/>
     <ParameterDeclaration name="Half" parameterType="double" value="\${$Speed / 2}"/>
     <ParameterDeclaration name="Ego" parameterType="string" value="hero"/>
@@ -175,8 +174,10 @@ const scenario = `<?xml version="1.0"?>
     </Story>
     <StopTrigger/>
   </Storyboard>
-</OpenSCENARIO>
-`;
+`,
+  fileHeader({ description: 'd', author: 'a' }),
+  BARE_XML_DECLARATION,
+);
 
 const corpusFiles = [
   'openscenario/esmini/Catalogs/Vehicles/VehicleCatalog.xosc',
@@ -369,10 +370,8 @@ describe('core: the analysis of a file being edited, value edit after value edit
 describe('core: the semantic checks after an edit inside one value', () => {
   // Chains of declarations over earlier ones (P1 over P0, P10 over P1, ...), names that hold others, a type
   // mismatch, an esmini difference, and a story that shadows a root parameter.
-  const chains = `<?xml version="1.0"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="d" author="a"/>
-  <ParameterDeclarations>
+  const chains = openScenarioFile(
+    `  <ParameterDeclarations>
     <ParameterDeclaration name="P0" parameterType="double" value="4"/>
     <ParameterDeclaration name="P1" parameterType="double" value="\${$P0 * 2 + 1}"/>
     <ParameterDeclaration name="P10" parameterType="int" value="\${$P1 / 3}"/>
@@ -399,15 +398,15 @@ describe('core: the semantic checks after an edit inside one value', () => {
     </Story>
     <StopTrigger/>
   </Storyboard>
-</OpenSCENARIO>
-`;
+`,
+    fileHeader({ description: 'd', author: 'a' }),
+    BARE_XML_DECLARATION,
+  );
   // The checks that walk the whole tree (names on each level, the element index of the network checks):
   // a name computed from a parameter, signal controllers and their references, actors, ranges; edits before
   // and after each part, so that subtrees shared with the previous tree and copied ones both occur.
-  const walked = `<?xml version="1.0"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="d" author="a"/>
-  <ParameterDeclarations>
+  const walked = openScenarioFile(
+    `  <ParameterDeclarations>
     <ParameterDeclaration name="P0" parameterType="string" value="E1"/>
     <ParameterDeclaration name="P1" parameterType="double" value="-1"/>
   </ParameterDeclarations>
@@ -432,8 +431,10 @@ describe('core: the semantic checks after an edit inside one value', () => {
     </Story>
     <StopTrigger/>
   </Storyboard>
-</OpenSCENARIO>
-`;
+`,
+    fileHeader({ description: 'd', author: 'a' }),
+    BARE_XML_DECLARATION,
+  );
   const typedInChains = fc.string({
     unit: fc.constantFrom('1', '0', '4', '.', '-', '+', '*', '/', ' ', '$', '{', '}', '(', ')', 'P', 'x', 'a'),
     maxLength: 5,

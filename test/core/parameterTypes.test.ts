@@ -10,12 +10,11 @@ import { Flattener } from '../../server/src/core/flatten';
 import { temporaryWorkspace } from '../support/workspace';
 import { corpusFiles, openscenarioDir } from '../support/openscenarioCorpus';
 import { corpusDir } from '../support/paths';
+import { fileHeader, openScenarioFile } from '../support/fixtures';
 
 /** A scenario valid against the 1.2 schema, `{DECLARATIONS}` at the root and `{POSITION}`/`{COUNT}`/`{RULE}` in its story. */
-const TEMPLATE = `<?xml version="1.0" encoding="UTF-8"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="types" author="test"/>
-  <ParameterDeclarations>
+const TEMPLATE = openScenarioFile(
+  `  <ParameterDeclarations>
 {DECLARATIONS}
   </ParameterDeclarations>
   <CatalogLocations/>
@@ -55,8 +54,9 @@ const TEMPLATE = `<?xml version="1.0" encoding="UTF-8"?>
     </Story>
     <StopTrigger/>
   </Storyboard>
-</OpenSCENARIO>
-`;
+`,
+  fileHeader({ description: 'types' }),
+);
 
 const DECLARATIONS = [
   ['Host', 'string', 'car_white'],

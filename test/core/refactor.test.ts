@@ -5,11 +5,10 @@ import { extractGroup, tunableAttributes } from '../../server/src/core/refactor/
 import { CatalogFileText, extractToCatalog } from '../../server/src/core/refactor/extractCatalog';
 import { makeOverridableEdit } from '../../server/src/core/refactor/makeOverridable';
 import { attribute, descendants, parseXml, XmlElement } from '../../server/src/core/xml';
+import { fileHeader, openScenarioFile } from '../support/fixtures';
 
-const SCENARIO = `<?xml version="1.0" encoding="UTF-8"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="test" author="test"/>
-  <ParameterDeclarations>
+const SCENARIO = openScenarioFile(
+  `  <ParameterDeclarations>
     <ParameterDeclaration name="Speed" parameterType="double" value="12"/>
   </ParameterDeclarations>
   <CatalogLocations/>
@@ -50,8 +49,9 @@ const SCENARIO = `<?xml version="1.0" encoding="UTF-8"?>
       </Act>
     </Story>
   </Storyboard>
-</OpenSCENARIO>
-`;
+`,
+  fileHeader(),
+);
 
 function named(root: XmlElement | undefined, element: string, name: string): XmlElement {
   const found =

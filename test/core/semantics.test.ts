@@ -20,11 +20,10 @@ import JSZip from 'jszip';
 import { childRef, diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { parseXml } from '../../server/src/core/xml';
 import { temporaryWorkspace } from '../support/workspace';
+import { BARE_XML_DECLARATION, fileHeader, openScenarioFile } from '../support/fixtures';
 
-const CATALOG = `<?xml version="1.0"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="c" author="t"/>
-  <Catalog name="VehicleCatalog">
+const CATALOG = openScenarioFile(
+  `  <Catalog name="VehicleCatalog">
     <Vehicle name="car" vehicleCategory="car">
       <ParameterDeclarations>
         <ParameterDeclaration name="Speed" parameterType="double" value="10"/>
@@ -33,14 +32,14 @@ const CATALOG = `<?xml version="1.0"?>
       <Performance maxSpeed="$Half" maxAcceleration="$Speed" maxDeceleration="10"/>
     </Vehicle>
   </Catalog>
-</OpenSCENARIO>
-`;
+`,
+  fileHeader({ description: 'c', author: 't' }),
+  BARE_XML_DECLARATION,
+);
 
 /** Speed is declared at the root, shadowed in Story S1 and again in its Maneuver M1; Story S2 sees the root's. */
-const SCENARIO = `<?xml version="1.0"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="s" author="t"/>
-  <ParameterDeclarations>
+const SCENARIO = openScenarioFile(
+  `  <ParameterDeclarations>
     <ParameterDeclaration name="Speed" parameterType="double" value="20"/>
     <ParameterDeclaration name="Twice" parameterType="double" value="\${2 * $Speed}"/>
     <ParameterDeclaration name="Count" parameterType="int" value="\${7 / 2}"/>
@@ -123,8 +122,10 @@ const SCENARIO = `<?xml version="1.0"?>
       </Act>
     </Story>
   </Storyboard>
-</OpenSCENARIO>
-`;
+`,
+  fileHeader({ description: 's', author: 't' }),
+  BARE_XML_DECLARATION,
+);
 
 async function analyze(): Promise<DocumentSemantics> {
   const root = temporaryWorkspace({ 'scenario.xosc': SCENARIO, 'catalogs/VehicleCatalog.xosc': CATALOG });

@@ -13,6 +13,7 @@ import { parseXml } from '../../server/src/core/xml';
 import { esminiBinary, requireEsmini } from '../support/esmini';
 import { sharedDir } from '../support/paths';
 import { temporaryFolder } from '../support/temporaryDirectory';
+import { fileHeader, openScenarioFile } from '../support/fixtures';
 
 /**
  * Values by the standard's rules and by esmini's (SPEC 12, issue 17). The esmini texts below are
@@ -51,10 +52,8 @@ function sameAsLogged(ours: string, logged: string): boolean {
   return ours === logged;
 }
 
-const SCENARIO = `<?xml version="1.0" encoding="UTF-8"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="values" author="test"/>
-  <ParameterDeclarations>
+const SCENARIO = openScenarioFile(
+  `  <ParameterDeclarations>
     <ParameterDeclaration name="Mod" parameterType="double" value="\${7 % 4}"/>
     <ParameterDeclaration name="Half" parameterType="double" value="\${round(2.5)}"/>
     <ParameterDeclaration name="Sign" parameterType="double" value="\${sign(0)}"/>
@@ -85,8 +84,9 @@ const SCENARIO = `<?xml version="1.0" encoding="UTF-8"?>
     <Init><Actions/></Init>
     <StopTrigger/>
   </Storyboard>
-</OpenSCENARIO>
-`;
+`,
+  fileHeader({ description: 'values' }),
+);
 
 async function analyze(simulator?: 'esmini'): Promise<DocumentSemantics> {
   const root = temporaryFolder('m2s-values-');

@@ -5,15 +5,13 @@ import { CodeAction, Diagnostic } from 'vscode-languageserver/node';
 import { QC_RULE_DESCRIPTIONS } from '../../server/src/core/rules';
 import { EXPECTED_RULES, qcRuleHref, RULE_FILES } from '../support/qcRuleFiles';
 import { problemCodeOf } from '../support/diagnostics';
-import { MANEUVER_CATALOG } from '../support/fixtures';
+import { BARE_XML_DECLARATION, MANEUVER_CATALOG, fileHeader, openScenarioFile } from '../support/fixtures';
 import { temporaryWorkspace } from '../support/workspace';
 import { fileUri, TestClient } from './harness';
 import { applyEdits } from '../support/textEdits';
 
-const SCENARIO = `<?xml version="1.0"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="links" author="t"/>
-  <Entities>
+const SCENARIO = openScenarioFile(
+  `  <Entities>
     <ScenarioObject name="Ego"><Vehicle name="car" vehicleCategory="car"/></ScenarioObject>
   </Entities>
   <Storyboard>
@@ -30,8 +28,10 @@ const SCENARIO = `<?xml version="1.0"?>
       </Act>
     </Story>
   </Storyboard>
-</OpenSCENARIO>
-`;
+`,
+  fileHeader({ description: 'links', author: 't' }),
+  BARE_XML_DECLARATION,
+);
 
 /** Each diagnostic names its rule: ASAM's Quality Checker uid, linked to its description, where that checker has the rule; the project's code otherwise (issue 18, item 2). */
 describe('language server: diagnostics link their ASAM Quality Checker rule', function () {

@@ -6,11 +6,10 @@ import * as fs from 'node:fs';
 import { fileUri, TestClient } from './harness';
 import { problemCodeOf } from '../support/diagnostics';
 import { temporaryWorkspace } from '../support/workspace';
+import { fileHeader, openScenarioFile } from '../support/fixtures';
 
-const SCENARIO = `<?xml version="1.0" encoding="UTF-8"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="1" date="2026-01-01T00:00:00" description="simulator" author="test"/>
-  <Entities/>
+const SCENARIO = openScenarioFile(
+  `  <Entities/>
   <Storyboard>
     <Init><Actions/></Init>
     <Story name="s"><Act name="a"><ManeuverGroup name="g" maximumExecutionCount="1">
@@ -20,8 +19,9 @@ const SCENARIO = `<?xml version="1.0" encoding="UTF-8"?>
       </Action></Event></Maneuver>
     </ManeuverGroup></Act></Story>
   </Storyboard>
-</OpenSCENARIO>
-`;
+`,
+  fileHeader({ revMinor: '1', description: 'simulator' }),
+);
 
 describe('simulator profile in the language server', function () {
   let client: TestClient;
@@ -64,24 +64,21 @@ describe('simulator profile in the language server', function () {
   });
 });
 
-const CATALOG = `<?xml version="1.0" encoding="UTF-8"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="0" date="2026-01-01T00:00:00" description="cars" author="test"/>
-  <Catalog name="cars"><Vehicle name="vehicle.tesla.model3" vehicleCategory="car">
+const CATALOG = openScenarioFile(
+  `  <Catalog name="cars"><Vehicle name="vehicle.tesla.model3" vehicleCategory="car">
     <BoundingBox><Center x="1" y="0" z="1"/><Dimensions width="2" length="4" height="1.5"/></BoundingBox>
     <Performance maxSpeed="50" maxAcceleration="5" maxDeceleration="9"/>
     <Axles><FrontAxle maxSteering="0.5" wheelDiameter="0.6" trackWidth="1.7" positionX="2.9" positionZ="0.3"/>
     <RearAxle maxSteering="0" wheelDiameter="0.6" trackWidth="1.7" positionX="0" positionZ="0.3"/></Axles>
     <Properties/>
   </Vehicle></Catalog>
-</OpenSCENARIO>
-`;
+`,
+  fileHeader({ revMinor: '0', description: 'cars' }),
+);
 
 /** A 1.1 scenario for CARLA: its version, a \${...} speed and a catalog ScenarioRunner does not find by its file name. */
-const FIXABLE = `<?xml version="1.0" encoding="UTF-8"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="1" date="2026-01-01T00:00:00" description="fixes" author="test"/>
-  <ParameterDeclarations><ParameterDeclaration name="Speed" parameterType="double" value="36"/></ParameterDeclarations>
+const FIXABLE = openScenarioFile(
+  `  <ParameterDeclarations><ParameterDeclaration name="Speed" parameterType="double" value="36"/></ParameterDeclarations>
   <CatalogLocations><VehicleCatalog><Directory path="catalogs"/></VehicleCatalog></CatalogLocations>
   <RoadNetwork><LogicFile filepath="Town05"/></RoadNetwork>
   <Entities>
@@ -94,8 +91,9 @@ const FIXABLE = `<?xml version="1.0" encoding="UTF-8"?>
     </SpeedAction></LongitudinalAction></PrivateAction></Private></Actions></Init>
     <StopTrigger/>
   </Storyboard>
-</OpenSCENARIO>
-`;
+`,
+  fileHeader({ revMinor: '1', description: 'fixes' }),
+);
 
 describe('CARLA findings offer their fixes over JSON-RPC', function () {
   let client: TestClient;

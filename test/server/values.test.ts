@@ -16,12 +16,11 @@ import { SERVER_WAIT_MS } from '../support/wait';
 import { applyEdits, inside } from '../support/textEdits';
 import { problemCodeOf } from '../support/diagnostics';
 import { temporaryWorkspace } from '../support/workspace';
+import { fileHeader, openScenarioFile } from '../support/fixtures';
 
 /** Values and severities by SPEC 12 (issue 17) over JSON-RPC: hover, inlay hints, diagnostics and their quick fixes. */
-const VALUES = `<?xml version="1.0" encoding="UTF-8"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="values" author="test"/>
-  <ParameterDeclarations>
+const VALUES = openScenarioFile(
+  `  <ParameterDeclarations>
     <ParameterDeclaration name="Mod" parameterType="double" value="\${7 % 4}"/>
     <ParameterDeclaration name="HeadwayTime_Brake" parameterType="double" value="0.7"/>
     <ParameterDeclaration name="RedLightDistance" parameterType="string" value="50"/>
@@ -48,8 +47,9 @@ const VALUES = `<?xml version="1.0" encoding="UTF-8"?>
     </Story>
     <StopTrigger/>
   </Storyboard>
-</OpenSCENARIO>
-`;
+`,
+  fileHeader({ description: 'values' }),
+);
 
 const lineOf = (needle: string) => VALUES.slice(0, VALUES.indexOf(needle)).split('\n').length - 1;
 
