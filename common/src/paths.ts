@@ -13,3 +13,15 @@ export function isWindowsPath(diskPath: string): boolean {
 export function pathsFor(diskPath: string): path.PlatformPath {
   return isWindowsPath(diskPath) ? path.win32 : path;
 }
+
+/**
+ * The Python that modular2simple.carla.python names, for *Check in CARLA ScenarioRunner* and *Run in CARLA*: a
+ * name (`python3`) is looked up on PATH when it starts; a path written relative (`venv/bin/python`) is one in
+ * ScenarioRunner's folder, made absolute here so that neither the language server's working directory nor how
+ * VS Code starts a task's program decides which file runs.
+ */
+export function carlaPython(written: string | undefined, scenarioRunner: string): string {
+  const python = written?.trim() || 'python3';
+  const isPath = python.includes('/') || python.includes(path.sep);
+  return isPath && !path.isAbsolute(python) && scenarioRunner ? path.resolve(scenarioRunner, python) : python;
+}

@@ -244,6 +244,21 @@ describe('Check in CARLA ScenarioRunner over JSON-RPC', function () {
     assert.ok(result.command?.includes('--scenario-runner'));
   });
 
+  it("takes a relative Python as one in ScenarioRunner's folder, not in the language server's working directory", async () => {
+    // A ScenarioRunner folder of its own (its code linked from the unpacked one) with the Python inside it, as a venv is.
+    const own = path.join(root, 'own-scenario-runner');
+    fs.mkdirSync(path.join(own, 'venv', 'bin'), { recursive: true });
+    for (const entry of ['scenario_runner.py', 'srunner', 'requirements.txt'])
+      fs.symlinkSync(path.join(scenarioRunnerFolder, entry), path.join(own, entry));
+    fs.renameSync(scenarioRunnerPython(path.join(own, 'venv', 'bin')), path.join(own, 'venv', 'bin', 'python'));
+    const result = await check('lane_change.xosc', { scenarioRunnerPath: own, python: 'venv/bin/python' });
+    assert.equal(result.outcome, 'built', result.message + '\n' + result.log);
+    assert.equal(result.command?.[0], path.join(own, 'venv', 'bin', 'python'));
+    // Relative to the workspace folder, where the setting's ScenarioRunner folder is resolved from.
+    const relative = await check('lane_change.xosc', { scenarioRunnerPath: 'own-scenario-runner', python: 'venv/bin/python' });
+    assert.equal(relative.outcome, 'built', relative.message + '\n' + relative.log);
+  });
+
   it("places ScenarioRunner's refusal at the source line of the element it failed on, in the simple scenario of an imported group", async () => {
     const result = await check('main.xosc');
     assert.equal(result.outcome, 'refused', result.message + '\n' + result.log);

@@ -1,4 +1,5 @@
 import * as assert from 'node:assert/strict';
+import { spawnSync } from 'node:child_process';
 import * as fs from 'node:fs';
 import * as net from 'node:net';
 import * as path from 'node:path';
@@ -98,5 +99,36 @@ describe('client: Run in CARLA without a CARLA server', () => {
     assert.match(startProblem({ ...at, python: missing }, bin) ?? '', /is not an executable file.*Nothing was run/);
     fs.writeFileSync(missing, '', { mode: 0o644 });
     assert.match(startProblem({ ...at, python: missing }, bin) ?? '', /is not an executable file/, 'a file that cannot be executed');
+  });
+
+  it("takes a relative Python as one in ScenarioRunner's folder, started by its absolute path from any working directory", () => {
+    const folder = temporaryFolder();
+    try {
+      const scenarioRunner = path.join(folder, 'scenario_runner');
+      fs.mkdirSync(path.join(scenarioRunner, 'venv', 'bin'), { recursive: true });
+      fs.writeFileSync(path.join(scenarioRunner, 'scenario_runner.py'), '');
+      const record = path.join(folder, 'started.txt');
+      // The venv's Python records where it was started and with what, as scenario_runner.py would be.
+      fs.writeFileSync(path.join(scenarioRunner, 'venv', 'bin', 'python'), `#!/bin/sh\necho "$0 $(pwd) $*" > '${record}'\n`, {
+        mode: 0o755,
+      });
+      const at = { ...settings, scenarioRunner, python: 'venv/bin/python' };
+      assert.equal(startProblem(at, ''), undefined);
+      const line = scenarioRunnerCommandLine(at, path.join(folder, 'cut-in.carla.xosc'));
+      assert.equal(line.program, path.join(scenarioRunner, 'venv', 'bin', 'python'));
+      // Started as a task starts it, and from elsewhere: the same file runs (nothing depends on how a relative program is looked up).
+      for (const cwd of [line.cwd, folder]) {
+        fs.rmSync(record, { force: true });
+        assert.equal(spawnSync(line.program, line.args, { cwd }).status, 0);
+        assert.match(fs.readFileSync(record, 'utf8'), new RegExp(`^${line.program} ${cwd} .*scenario_runner\\.py --openscenario`));
+      }
+      // Not there in ScenarioRunner's folder: said with the path looked at, nothing run.
+      assert.match(
+        startProblem({ ...at, python: 'env/bin/python' }, '') ?? '',
+        new RegExp(`the Python ${path.join(scenarioRunner, 'env', 'bin', 'python')} .*is not an executable file.*Nothing was run`),
+      );
+    } finally {
+      fs.rmSync(folder, { recursive: true, force: true });
+    }
   });
 });

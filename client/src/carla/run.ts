@@ -1,6 +1,7 @@
 import * as fs from 'node:fs';
 import * as net from 'node:net';
 import * as path from 'node:path';
+import { carlaPython } from '../../../common/src/paths';
 
 /*
  * *Run in CARLA*: the command line that starts ScenarioRunner on an export, and what is checked before it
@@ -14,7 +15,7 @@ export interface CarlaRunSettings {
   port: number;
   /** modular2simple.carla.scenarioRunnerPath, resolved. */
   scenarioRunner: string;
-  /** modular2simple.carla.python. */
+  /** modular2simple.carla.python as written: a name on PATH, or a path (a relative one is in ScenarioRunner's folder). */
   python: string;
 }
 
@@ -55,10 +56,10 @@ export function startProblem(settings: CarlaRunSettings, searchPath = process.en
   const script = path.join(settings.scenarioRunner, 'scenario_runner.py');
   if (!fs.existsSync(script))
     return `Run in CARLA: there is no scenario_runner.py in ${settings.scenarioRunner}; set modular2simple.carla.scenarioRunnerPath to the folder of CARLA ScenarioRunner that holds it. Nothing was run.`;
-  const python = settings.python.trim() || 'python3';
+  const python = carlaPython(settings.python, settings.scenarioRunner);
   const found =
     python.includes('/') || python.includes(path.sep)
-      ? executable(path.resolve(settings.scenarioRunner, python))
+      ? executable(python)
       : searchPath
           .split(path.delimiter)
           .filter((folder) => folder)
@@ -71,7 +72,7 @@ export function startProblem(settings: CarlaRunSettings, searchPath = process.en
 /** `python scenario_runner.py --openscenario EXPORT --host H --port P`, run in ScenarioRunner's folder. */
 export function scenarioRunnerCommandLine(settings: CarlaRunSettings, exportFile: string): CarlaCommandLine {
   return {
-    program: settings.python.trim() || 'python3',
+    program: carlaPython(settings.python, settings.scenarioRunner),
     args: [
       path.join(settings.scenarioRunner, 'scenario_runner.py'),
       '--openscenario',

@@ -3,6 +3,7 @@ import * as os from 'node:os';
 import * as path from 'node:path';
 import type { CancellationToken } from 'vscode-languageserver/node';
 import { writeFileAtomic } from '../../../common/src/atomic';
+import { carlaPython } from '../../../common/src/paths';
 import type { CheckInScenarioRunnerParams, CheckInScenarioRunnerResult, ProblemSummary } from '../../../common/src/protocol';
 import { HarnessRun, HarnessVerdict, runHarness } from '../carla/harness';
 import { CARLA_TOWNS, CarlaExportOptionError, exportForCarla } from '../core/export/carla';
@@ -54,8 +55,8 @@ export async function checkInScenarioRunner(
   const timeLimitSeconds = params?.timeLimitSeconds ?? DEFAULT_TIME_LIMIT_SECONDS;
   if (!(timeLimitSeconds > 0) || !Number.isFinite(timeLimitSeconds))
     throw invalidParams(`the time limit must be a positive number of seconds, not ${String(params?.timeLimitSeconds)}`);
-  const python = params?.python?.trim() || 'python3';
   const folder = scenarioRunnerFolder(workspace, params?.scenarioRunnerPath);
+  const python = carlaPython(params?.python, folder ?? '');
   const notRun = (outcome: CheckInScenarioRunnerResult['outcome'], message: string, extra: Partial<CheckInScenarioRunnerResult> = {}) => ({
     outcome,
     message,
