@@ -58,7 +58,7 @@ export const INSIDE_TESTS = {
   debugTimeline:
     'the storyboard timeline opened on a run --trace file draws a row per element at the times esmini logs, and a click on a row opens its source line',
   debugTimelineSession:
-    "the storyboard timeline of a debug session, opened while it is stopped and again after it finished, draws its bars at esmini's times to the stop, then to the run's end",
+    "the storyboard timeline of a debug session, opened while it is stopped, restarted and again after it finished, draws its bars at esmini's times to the stop, the restarted run alone, then to the run's end",
 } as const;
 
 export type InsideTestKey = keyof typeof INSIDE_TESTS;

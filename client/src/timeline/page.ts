@@ -5,7 +5,7 @@ export function timelineHtml(cspSource: string, scriptUri: string, scriptNonce: 
 <style>
 body{margin:0;padding:0;font-family:var(--vscode-font-family);font-size:var(--vscode-font-size);color:var(--vscode-foreground)}
 #header{display:flex;gap:8px;align-items:center;padding:4px 8px;border-bottom:1px solid var(--vscode-panel-border);position:sticky;top:0;background:var(--vscode-editor-background);z-index:2}
-#title{font-weight:bold;margin-right:auto} #time{font-variant-numeric:tabular-nums}
+#title{font-weight:bold;margin-right:auto;min-width:0;overflow:hidden;white-space:nowrap;text-overflow:ellipsis} #time{font-variant-numeric:tabular-nums;white-space:nowrap;flex:none}
 #rows{position:relative;padding:0 8px 8px 8px}
 .row{display:flex;align-items:flex-start;height:22px;border-bottom:1px solid var(--vscode-editorWidget-border,transparent)}
 .label{width:34%;min-width:180px;box-sizing:border-box;flex:none;line-height:22px;overflow:hidden;white-space:nowrap;text-overflow:ellipsis;cursor:pointer}

@@ -344,13 +344,41 @@ export const debuggingTests: InsideTests = {
         "timeline: the debug session of cut-in.xosc stopped on OvertakerBrakeEvent, its bars to the stop at esmini's times, the axis reaching past it",
       );
 
+      // VS Code's restart button: the same session (its id kept, the protocol's restart), a new run, which the
+      // timeline shows alone: each start once, not the first run's bars with the second's.
+      const sessionId = vscode.debug.activeDebugSession?.id;
+      const stopsBefore = events.filter((event) => event === 'stopped').length;
+      await vscode.commands.executeCommand('workbench.action.debug.restart');
+      await waitFor(
+        'the restarted run to stop on the breakpoint again',
+        () => events.filter((event) => event === 'stopped').length > stopsBefore,
+        120_000,
+      );
+      assert.equal(vscode.debug.activeDebugSession?.id, sessionId, 'a restart keeps the session');
+      const restarted = await waitFor('the restarted run on the timeline page, at the stop', async () => {
+        const header = await timelineHeader();
+        return header?.title === 'debugging cut-in.xosc, run 2 (restarted) (running)' && Math.abs(header.time - brake.time) < 1e-6
+          ? header
+          : undefined;
+      });
+      await barsAtEsminiTimes(soFar, "the restarted run's bars at esmini's times");
+      for (const start of soFar)
+        assert.equal(
+          (await drawnBars(start.event, restarted.end)).starts.length,
+          1,
+          `${start.event}: one bar, the first run's not mixed in`,
+        );
+      await screenshot(
+        "timeline: the same session restarted with VS Code's restart button, the new run alone, stopped on OvertakerBrakeEvent",
+      );
+
       // On to the end: the timeline of the finished session ends where the run did, not at the run's limit (an hour).
       await vscode.commands.executeCommand('workbench.action.debug.continue');
       await waitFor('the session to end', () => vscode.debug.activeDebugSession === undefined, 120_000);
       const finished = async (what: string): Promise<void> => {
         await waitFor(what, async () => {
           const header = await timelineHeader();
-          return header?.title === 'debugging cut-in.xosc' && Math.abs(header.end - esminiRun.end) <= 0.05 + 1e-6;
+          return header?.title === 'debugging cut-in.xosc, run 2 (restarted)' && Math.abs(header.end - esminiRun.end) <= 0.05 + 1e-6;
         });
         await barsAtEsminiTimes([story, ...esminiRun.starts], "the finished session's bars at esmini's times");
         for (const start of esminiRun.starts)

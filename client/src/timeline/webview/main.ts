@@ -28,6 +28,8 @@ const percent = (value: number) => `${end > 0 ? (Math.min(Math.max(value, 0), en
 
 function render(label: string): void {
   title.textContent = `${label}${live ? ' (running)' : ''}`;
+  // Cut with an ellipsis where the panel is narrow: the whole title on hover.
+  title.title = title.textContent;
   rowsElement.replaceChildren();
   tracks = [];
   if (!timeline || timeline.rows.length === 0) {
