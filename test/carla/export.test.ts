@@ -808,6 +808,67 @@ describe('export --target carla, bad input', () => {
     assert.deepEqual(fs.readdirSync(out), ['blueprints.json']);
   });
 
+  it('--ego: the vehicle named is the one marked; a name the scenario lacks, or a pedestrian, is refused naming it, nothing written', async () => {
+    const examples = path.join(openscenarioDir, 'scenario_runner');
+    const marked = await exportFile(scenario(), path.join(out, 'adversary.xosc'), ['--ego', 'adversary', '--scenario-path', examples]);
+    assert.equal(marked.code, 0, marked.stderr);
+    assert.equal((marked.report as Exported['report'] & { ego: string }).ego, 'adversary');
+    const objects =
+      parseXml(fs.readFileSync(marked.output, 'utf8')).root?.children.find((each) => each.name === 'Entities')?.children ?? [];
+    const egos = objects.filter((object) =>
+      /<Property name="type" value="ego_vehicle"\/>/.test(fs.readFileSync(marked.output, 'utf8').slice(object.start, object.end)),
+    );
+    assert.deepEqual(
+      egos.map((object) => attributeValue(object, 'name')),
+      ['adversary'],
+      'only the vehicle named carries the ego mark (hero had it)',
+    );
+    const unknown = await exportFile(scenario(), path.join(out, 'unknown.xosc'), ['--ego', 'nobody']);
+    assert.equal(unknown.code, 1);
+    assert.match(unknown.stderr, /--ego nobody: the scenario has no entity of that name \(it has hero, adversary\)/);
+    const walker = await exportFile(path.join(examples, 'PedestrianCrossingFront.xosc'), path.join(out, 'walker.xosc'), [
+      '--ego',
+      'adversary',
+      '--scenario-path',
+      examples,
+    ]);
+    assert.equal(walker.code, 1);
+    assert.match(walker.stderr, /--ego adversary: ScenarioRunner takes only a Vehicle as the ego/);
+    assert.deepEqual(fs.readdirSync(out).sort(), ['adversary.json', 'adversary.xosc']);
+  });
+
+  it('what is no scenario is refused naming what it is: a catalog, a file without a Storyboard, a distribution without --index', async () => {
+    const catalog = await exportFile(path.join(openscenarioDir, 'scenario_runner', 'VehicleCatalog.xosc'), path.join(out, 'catalog.xosc'));
+    assert.equal(catalog.code, 1);
+    assert.match(catalog.stderr, /export refused: the file is a catalog, not a scenario; nothing was written/);
+    const storyless = path.join(out, 'storyless.xosc');
+    fs.writeFileSync(
+      storyless,
+      '<?xml version="1.0"?>\n<OpenSCENARIO>\n  <FileHeader revMajor="1" revMinor="0" date="2024-01-01T00:00:00" description="x" author="y"/>\n</OpenSCENARIO>\n',
+    );
+    const noStory = await exportFile(storyless, path.join(out, 'no-story.xosc'));
+    assert.equal(noStory.code, 1);
+    assert.match(noStory.stderr, /export refused: the file has no Storyboard/);
+    const distribution = path.join(openscenarioDir, 'esmini', 'cut-in_parameter_set.xosc');
+    const unexpanded = await exportFile(distribution, path.join(out, 'distribution.xosc'));
+    assert.equal(unexpanded.code, 1);
+    assert.match(unexpanded.stderr, /a ParameterValueDistribution: choose its concrete scenario with --index I/);
+    assert.deepEqual(fs.readdirSync(out).sort(), ['catalog.json', 'no-story.json', 'storyless.xosc']);
+  });
+
+  it('an output that cannot be written: exit 3, naming it, and nothing half-written', async () => {
+    const blocker = path.join(out, 'not-a-folder');
+    fs.writeFileSync(blocker, '');
+    const said: string[] = [];
+    const code = await main(['export', scenario(), '--target', 'carla', '-o', path.join(blocker, 'out.xosc'), '-q'], {
+      out: () => {},
+      err: (text) => said.push(text),
+    });
+    assert.equal(code, 3, said.join('\n'));
+    assert.match(said.join('\n'), /not-a-folder/);
+    assert.deepEqual(fs.readdirSync(out), ['not-a-folder']);
+  });
+
   it('a blueprint table that is not JSON: exit 1 naming the file', async () => {
     const table = path.join(out, 'blueprints.json');
     fs.writeFileSync(table, '{car_white: vehicle.audi.tt}');
