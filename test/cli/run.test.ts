@@ -91,6 +91,45 @@ describe('cli: run in esmini', function () {
     );
   });
 
+  it('esmini loads the catalog the check found through SCENARIO_PATH, though an earlier SCENARIO_PATH folder holds another catalog of that name (esmini searches its last --path first)', function () {
+    requireEsmini(this);
+    // The corpus walk's shape: esmini's samples name ../xosc/Catalogs/..., found in esmini's Catalogs/Vehicles, while CARLA's folder holds its own VehicleCatalog.xosc.
+    const root = temporaryFolder('m2s-run-catalogs-');
+    try {
+      const follow = fs.readFileSync(path.join(repoRoot, 'test', 'fixtures', 'variations', 'follow.xosc'), 'utf8');
+      const ego = /<Vehicle name="ego_car"[\s\S]*?<\/Vehicle>/.exec(follow)![0];
+      const catalog = (name: string, entry: string) =>
+        `<?xml version="1.0" encoding="UTF-8"?>\n<OpenSCENARIO>\n  <FileHeader revMajor="1" revMinor="2" date="2026-11-28T00:00:00" description="vehicles" author="modular2simple tests"/>\n  <Catalog name="${name}">\n${entry}\n  </Catalog>\n</OpenSCENARIO>\n`;
+      for (const folder of ['scenarios', 'esmini/Catalogs/Vehicles', 'esmini/Catalogs/Controllers', 'carla'])
+        fs.mkdirSync(path.join(root, folder), { recursive: true });
+      fs.writeFileSync(path.join(root, 'esmini', 'Catalogs', 'Vehicles', 'VehicleCatalog.xosc'), catalog('VehicleCatalog', ego));
+      fs.writeFileSync(
+        path.join(root, 'carla', 'VehicleCatalog.xosc'),
+        catalog('VehicleCatalog', ego.replace('name="ego_car"', 'name="vehicle.tesla.model3"')),
+      );
+      fs.writeFileSync(
+        path.join(root, 'scenarios', 'follow.xosc'),
+        follow
+          .replace(
+            '<CatalogLocations/>',
+            '<CatalogLocations><VehicleCatalog><Directory path="../xosc/Catalogs/Vehicles"/></VehicleCatalog><ControllerCatalog><Directory path="../xosc/Catalogs/Controllers"/></ControllerCatalog></CatalogLocations>',
+          )
+          .replace(ego, '<CatalogReference catalogName="VehicleCatalog" entryName="ego_car"/>'),
+      );
+      const scenarioPath = ['--scenario-path', `${path.join(root, 'esmini', 'Catalogs')}${path.delimiter}${path.join(root, 'carla')}`];
+      const checked = runCli(['check', 'scenarios/follow.xosc', ...scenarioPath], { cwd: root });
+      assert.equal(checked.status, 0, checked.stderr);
+      const run = runCli(['run', 'scenarios/follow.xosc', ...scenarioPath, '--road-path', esminiRoads, '--esmini', esminiBinary], {
+        cwd: root,
+      });
+      assert.equal(run.status, 0, run.stderr);
+      assert.doesNotMatch(run.stderr, /Failed to look up entry/);
+      assert.match(run.stderr, /esmini: 0 errors, \d+ warnings?; 3\.0\d s simulated/);
+    } finally {
+      fs.rmSync(root, { recursive: true, force: true });
+    }
+  });
+
   it('a scenario that cannot be flattened is not run and exits 1', function () {
     requireEsmini(this);
     const root = examplesWith();

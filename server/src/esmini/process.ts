@@ -71,7 +71,8 @@ export function esminiArguments(
     '--disable_log',
   ];
   if (options.collision) args.push('--collision');
-  for (const folder of options.searchPath) args.push('--path', folder);
+  // esmini 3.6 gives the last --path priority (CommonMini.cpp SE_Options::SetOptionValue inserts each value first): reversed, it searches ours in order.
+  for (const folder of [...options.searchPath].reverse()) args.push('--path', folder);
   return args;
 }
 

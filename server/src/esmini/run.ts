@@ -174,11 +174,28 @@ export async function esminiSearchPath(flattener: Flattener, main: SourceRef, so
   const written = writtenCatalogFolders(source);
   const found = await foundCatalogFolders(flattener.store, sourceFolder, written);
   return unique([
+    ...resolvedCatalogFolders(source),
     sourceFolder,
     ...written.filter((value) => !value.includes('$')).map((value) => path.resolve(sourceFolder, value)),
     ...found,
     ...roads,
   ]);
+}
+
+/**
+ * The folders of the catalog files the check took each referenced entry from, in reference order. esmini takes the
+ * first NAME.xosc it finds along its search path (CommonMini.cpp LocateFile, ScenarioReader.cpp LoadCatalog), so these go
+ * first: otherwise a SCENARIO_PATH folder holding another catalog of that name (CARLA's VehicleCatalog.xosc beside
+ * esmini's Catalogs/Vehicles) is the one esmini loads, and the run fails on an entry the check found.
+ */
+export function resolvedCatalogFolders(source: FlatSource): string[] {
+  const folders: string[] = [];
+  for (const reference of source.semantics?.catalogs.references ?? []) {
+    const entry = reference.entry;
+    const file = entry && reference.catalogs.find((catalog) => catalog.entries.includes(entry));
+    if (file && file.ref.entries.length === 0) folders.push(path.dirname(file.ref.disk));
+  }
+  return unique(folders);
 }
 
 function unique(items: string[]): string[] {
