@@ -987,6 +987,44 @@ describe('export --target carla, bad input', () => {
   });
 });
 
+describe('export --target carla, distance conditions in road coordinates', () => {
+  let out: string;
+  before(function () {
+    requireCorpus(this);
+  });
+  inTemporaryFolderEach('m2s-carla-distance-', (folder) => (out = folder));
+
+  /** esmini's cut-in.xosc with its lane-change TimeHeadwayCondition measured as `distanceType`, exported: that condition's losses. */
+  async function headwayLosses(distanceType: string): Promise<Exported['report']['losses']> {
+    const text = fs.readFileSync(path.join(openscenarioDir, 'esmini', 'cut-in.xosc'), 'utf8');
+    const input = path.join(out, 'cut-in.xosc');
+    assert.ok(text.includes('relativeDistanceType="longitudinal"'), 'cut-in.xosc no longer measures its headway longitudinally');
+    fs.writeFileSync(input, text.replace('relativeDistanceType="longitudinal"', `relativeDistanceType="${distanceType}"`));
+    const result = await exportFile(input, path.join(out, 'exported.xosc'), [
+      '--road-path',
+      esminiRoads,
+      '--scenario-path',
+      path.join(openscenarioDir, 'esmini', 'Catalogs'),
+    ]);
+    assert.equal(result.code, 0, result.stderr);
+    assert.match(fs.readFileSync(result.output, 'utf8'), /<TimeHeadwayCondition [^>]*alongRoute="true"/);
+    // The first TimeHeadwayCondition is the one in road coordinates (the second, in entity coordinates, has its own loss).
+    const line = text.slice(0, text.indexOf('<TimeHeadwayCondition')).split('\n').length;
+    return result.report.losses.filter((loss) => loss.element.startsWith('TimeHeadwayCondition') && loss.line === line);
+  }
+
+  it('longitudinal is the distance along the road, kept without loss; lateral is named as changed, at its line', async () => {
+    assert.deepEqual(await headwayLosses('longitudinal'), []);
+    const lateral = await headwayLosses('lateral');
+    assert.equal(lateral.length, 1, JSON.stringify(lateral));
+    assert.equal(lateral[0].kind, 'approximated');
+    assert.match(
+      lateral[0].what,
+      /lateral in road coordinates has no 1\.0 form: written as alongRoute="true", the distance along the road/,
+    );
+  });
+});
+
 describe('export --target carla, walker blueprints', () => {
   let out: string;
   inTemporaryFolderEach('m2s-carla-walker-', (folder) => (out = folder));

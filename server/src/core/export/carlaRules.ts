@@ -814,6 +814,13 @@ function conditions(tree: Node, context: RuleContext): void {
             `${distanceType} in ${system ?? 'entity'} coordinates has no 1.0 form: written as alongRoute="false", the distance between the entities`,
             `${SR_PARSER} convert_condition_to_atomic reads alongRoute`,
           );
+        else if (alongRoute && distanceType === 'lateral')
+          context.sink.approximated(
+            node,
+            `${name}/@relativeDistanceType`,
+            `lateral in ${system} coordinates has no 1.0 form: written as alongRoute="true", the distance along the road, not across it`,
+            `${SR_PARSER} convert_condition_to_atomic reads alongRoute`,
+          );
       }
       if (attr(node, 'freespace') === undefined) setAttr(node, 'freespace', 'false');
       if (system && system !== 'entity' && name === 'RelativeDistanceCondition')
