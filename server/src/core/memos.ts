@@ -253,6 +253,13 @@ export const CORE_MEMOS = {
     bound: WITH_KEY,
     invalidated: 'never: built from bundled schemas',
   },
+  exportNodeIndexes: {
+    where: '`indexOf` (`core/export/tree.ts`), per tree the CARLA export rewrites',
+    key: "a tree's root node",
+    holds: 'its nodes in document order and by name, for the rules that ask for the nodes of a name dozens of times',
+    bound: WITH_KEY,
+    invalidated: "a change of the tree's structure through `core/export/tree.ts` (`changing`, `adopted`)",
+  },
 } as const satisfies Record<string, MemoDeclaration>;
 
 export type CoreMemoName = keyof typeof CORE_MEMOS;

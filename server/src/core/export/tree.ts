@@ -2,6 +2,7 @@
  * A small mutable element tree for rewriting a scenario: the parser's tree keeps offsets and never changes,
  * an export moves, renames and drops elements. Each node remembers where it was written, for the loss report.
  */
+import { coreMemo } from '../memos';
 import { SourceRef } from '../sources';
 import { LineIndex, Range } from '../text';
 import { endTagStart, escapeAttributeValue, XmlAttribute, XmlDocument, XmlElement } from '../xml';
@@ -81,7 +82,7 @@ interface NodeIndex {
   byName: Map<string, Node[]>;
 }
 
-const indexes = new WeakMap<Node, NodeIndex>();
+const indexes = coreMemo<Node, NodeIndex>('exportNodeIndexes');
 
 /** Drops the index of the tree `node` is in: its structure is about to change. */
 function changing(node: Node): void {
