@@ -807,18 +807,17 @@ function conditions(tree: Node, context: RuleContext): void {
         const alongRoute = system === 'road' || system === 'lane';
         setAttr(node, 'alongRoute', String(alongRoute));
         // 1.0 knows the distance along the road (alongRoute) or the straight one between the entities; not a longitudinal or lateral part of it.
-        if (!alongRoute && distanceType !== undefined && distanceType !== 'euclidianDistance' && distanceType !== 'cartesianDistance')
+        const changed = alongRoute
+          ? distanceType === 'lateral' && 'the distance along the road, not across it'
+          : distanceType !== undefined &&
+            distanceType !== 'euclidianDistance' &&
+            distanceType !== 'cartesianDistance' &&
+            'the distance between the entities';
+        if (changed)
           context.sink.approximated(
             node,
             `${name}/@relativeDistanceType`,
-            `${distanceType} in ${system ?? 'entity'} coordinates has no 1.0 form: written as alongRoute="false", the distance between the entities`,
-            `${SR_PARSER} convert_condition_to_atomic reads alongRoute`,
-          );
-        else if (alongRoute && distanceType === 'lateral')
-          context.sink.approximated(
-            node,
-            `${name}/@relativeDistanceType`,
-            `lateral in ${system} coordinates has no 1.0 form: written as alongRoute="true", the distance along the road, not across it`,
+            `${distanceType} in ${system ?? 'entity'} coordinates has no 1.0 form: written as alongRoute="${alongRoute}", ${changed}`,
             `${SR_PARSER} convert_condition_to_atomic reads alongRoute`,
           );
       }
