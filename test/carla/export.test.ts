@@ -23,8 +23,16 @@ interface Exported {
   };
 }
 
+/** What esmini's samples need to be read here: its roads, and its catalogs (their `../xosc/Catalogs` is esmini's repository layout). */
+const ESMINI_SAMPLE_OPTIONS: readonly string[] = [
+  '--road-path',
+  esminiRoads,
+  '--scenario-path',
+  path.join(openscenarioDir, 'esmini', 'Catalogs'),
+];
+
 /** `modular2simple export INPUT --target carla -o OUT --report OUT.json ...` in this process. */
-async function exportFile(input: string, output: string, extra: string[] = []): Promise<Exported> {
+async function exportFile(input: string, output: string, extra: readonly string[] = []): Promise<Exported> {
   const errors: string[] = [];
   const report = output.replace(/\.xosc$/, '.json');
   const code = await main(['export', input, '--target', 'carla', '-o', output, '--report', report, ...extra], {
@@ -161,7 +169,7 @@ describe('export --target carla, checked by ScenarioRunner (../shared/carla)', f
     const inputs = fs.readdirSync(esmini).filter((name) => name.endsWith('.xosc'));
     const results: Exported[] = [];
     for (const name of inputs) {
-      const extra = ['--road-path', esminiRoads, '--scenario-path', path.join(esmini, 'Catalogs')];
+      const extra = [...ESMINI_SAMPLE_OPTIONS];
       // The one distribution file is exported as its first concrete scenario.
       if (name === 'cut-in_parameter_set.xosc') extra.push('--index', '0');
       results.push(await exportFile(path.join(esmini, name), path.join(out, name), extra));
@@ -192,10 +200,7 @@ describe('export --target carla, checked by ScenarioRunner (../shared/carla)', f
         await exportFile(result.input, path.join(out, `0.9.15-${path.basename(result.input)}`), [
           '--carla',
           '0.9.15',
-          '--road-path',
-          esminiRoads,
-          '--scenario-path',
-          path.join(esmini, 'Catalogs'),
+          ...ESMINI_SAMPLE_OPTIONS,
         ]),
       );
     assert.deepEqual(
@@ -366,14 +371,13 @@ describe('export --target carla, round trip in esmini', function () {
     const compared: string[] = [];
     for (const name of fs.readdirSync(esmini).filter((each) => each.endsWith('.xosc'))) {
       const original = path.join(esmini, name);
-      const options = ['--road-path', esminiRoads, '--scenario-path', path.join(esmini, 'Catalogs')];
-      let exported = await exportFile(original, path.join(out, name), options);
+      let exported = await exportFile(original, path.join(out, name), ESMINI_SAMPLE_OPTIONS);
       // Refused for 0.9.16's route crash only: the 0.9.15 export, which writes the routes, is compared.
       if (
         exported.code !== 0 &&
         exported.report?.losses.every((loss) => loss.kind !== 'refused' || /crashes ScenarioRunner 0\.9\.16/.test(loss.what))
       )
-        exported = await exportFile(original, path.join(out, name), [...options, '--carla', '0.9.15']);
+        exported = await exportFile(original, path.join(out, name), [...ESMINI_SAMPLE_OPTIONS, '--carla', '0.9.15']);
       if (
         exported.code !== 0 ||
         exported.report.losses.some(
@@ -923,11 +927,7 @@ describe('export --target carla, bad input', () => {
         .readFileSync(path.join(esmini, 'ltap-od.xosc'), 'utf8')
         .replace('name="NPCStartPointS" parameterType="double" value="150"', 'name="NPCStartPointS" parameterType="double" value="900"'),
     );
-    const result = await exportFile(input, path.join(out, 'out.xosc'), [
-      '--carla',
-      '0.9.15',
-      ...['--road-path', esminiRoads, '--scenario-path', path.join(esmini, 'Catalogs')],
-    ]);
+    const result = await exportFile(input, path.join(out, 'out.xosc'), ['--carla', '0.9.15', ...ESMINI_SAMPLE_OPTIONS]);
     assert.equal(result.code, 1, result.stderr);
     assert.equal(fs.existsSync(path.join(out, 'out.xosc')), false);
     const refused = result.report.losses.filter((loss) => loss.kind === 'refused');
@@ -972,12 +972,7 @@ describe('export --target carla, bad input', () => {
     const deep = path.join(out, 'a', 'b');
     fs.mkdirSync(deep, { recursive: true });
     const input = path.join(openscenarioDir, 'esmini', 'cut-in.xosc');
-    const result = await exportFile(input, path.join(deep, 'cut-in.xosc'), [
-      '--road-path',
-      esminiRoads,
-      '--scenario-path',
-      path.join(openscenarioDir, 'esmini', 'Catalogs'),
-    ]);
+    const result = await exportFile(input, path.join(deep, 'cut-in.xosc'), ESMINI_SAMPLE_OPTIONS);
     assert.equal(result.code, 0, result.stderr);
     const logicFile = /<LogicFile filepath="([^"]+)"/.exec(fs.readFileSync(result.output, 'utf8'))?.[1] ?? '';
     assert.ok(!path.isAbsolute(logicFile), logicFile);
@@ -1000,12 +995,7 @@ describe('export --target carla, distance conditions in road coordinates', () =>
     const input = path.join(out, 'cut-in.xosc');
     assert.ok(text.includes('relativeDistanceType="longitudinal"'), 'cut-in.xosc no longer measures its headway longitudinally');
     fs.writeFileSync(input, text.replace('relativeDistanceType="longitudinal"', `relativeDistanceType="${distanceType}"`));
-    const result = await exportFile(input, path.join(out, 'exported.xosc'), [
-      '--road-path',
-      esminiRoads,
-      '--scenario-path',
-      path.join(openscenarioDir, 'esmini', 'Catalogs'),
-    ]);
+    const result = await exportFile(input, path.join(out, 'exported.xosc'), ESMINI_SAMPLE_OPTIONS);
     assert.equal(result.code, 0, result.stderr);
     assert.match(fs.readFileSync(result.output, 'utf8'), /<TimeHeadwayCondition [^>]*alongRoute="true"/);
     // The first TimeHeadwayCondition is the one in road coordinates (the second, in entity coordinates, has its own loss).
