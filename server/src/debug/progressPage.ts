@@ -1,4 +1,5 @@
 import * as fs from 'node:fs';
+import * as os from 'node:os';
 
 /*
  * The simulated time a debug session has reached, kept where its supervisor can read it after the session's process
@@ -73,7 +74,10 @@ export function readProgressPage(file: string): number | undefined {
     return undefined;
   }
   if (bytes.length < 3 * 8) return undefined;
-  const page = new Float64Array(bytes.buffer, bytes.byteOffset, Math.floor(bytes.length / 8));
-  if (page[WRITTEN] !== MARK || !(page[TIME_STEP] > 0) || !(page[STEPS] >= 0)) return undefined;
-  return page[STEPS] * page[TIME_STEP];
+  // Each slot read at its offset, in the machine's byte order (the child stores through a Float64Array): a Float64Array
+  // over readFileSync's buffer would need that buffer 8-byte aligned, which Node does not promise.
+  const slot = (index: number) => (os.endianness() === 'LE' ? bytes.readDoubleLE(index * 8) : bytes.readDoubleBE(index * 8));
+  const [steps, timeStep] = [slot(STEPS), slot(TIME_STEP)];
+  if (slot(WRITTEN) !== MARK || !(timeStep > 0) || !(steps >= 0)) return undefined;
+  return steps * timeStep;
 }
