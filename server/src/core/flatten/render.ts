@@ -1,4 +1,4 @@
-import { buildModel, ManeuverGroupInfo, ScenarioModel } from '../model';
+import { buildModel, ManeuverGroupInfo, ScenarioModel, ScenarioReferenceInfo } from '../model';
 import { RelatedProblemLocation, uniqueProblems } from '../problems';
 import { ScenarioStore, SourceRef } from '../sources';
 import { detectEol, indentationAt } from '../text';
@@ -59,23 +59,31 @@ export function render(store: ScenarioStore, result: FlatSource, model: Scenario
   result.model = buildModel(edits.length > 0 ? parseXml(written.out) : firstDocument);
 }
 
+type LinkOfReference = (reference: ScenarioReferenceInfo) => LinkedReference | undefined;
+
+/** The first link made for each reference, found in one lookup: a main with 400 references would otherwise search 400 links 400 times. */
+function linkLookup(result: FlatSource): LinkOfReference {
+  const byReference = new Map<ScenarioReferenceInfo, LinkedReference>();
+  for (const link of result.links) if (!byReference.has(link.info)) byReference.set(link.info, link);
+  return (reference) => byReference.get(reference);
+}
+
 /**
  * The storyboard elements (storyboardNameKey) the output holds more than once: the main's own, outside the groups
  * that copies replace, and those below each copy.
  */
-function namesHeldTwice(result: FlatSource, model: ScenarioModel): Set<string> {
-  const replaced = model.groups.filter((group) => group.references.length > 0).map((group) => group.element);
+function namesHeldTwice(model: ScenarioModel, linkOf: LinkOfReference): Set<string> {
+  const replaced = new Set(model.groups.filter((group) => group.references.length > 0).map((group) => group.element));
   const names: string[] = [];
   const visit = (element: XmlElement) => {
-    if (replaced.includes(element)) return;
+    if (replaced.has(element)) return;
     if (STORYBOARD_ELEMENT_NAMES.has(element.name)) names.push(storyboardNameKey(element.name, attribute(element, 'name')?.value ?? ''));
     element.children.forEach(visit);
   };
   if (model.document.root) visit(model.document.root);
   for (const group of model.groups)
     for (const reference of group.references)
-      for (const linked of result.links.find((candidate) => candidate.info === reference)?.groups ?? [])
-        if (linked.target) names.push(...storyboardNamesBelow(linked.target.element));
+      for (const linked of linkOf(reference)?.groups ?? []) if (linked.target) names.push(...storyboardNamesBelow(linked.target.element));
   const seen = new Set<string>();
   const twice = new Set<string>();
   for (const name of names) (seen.has(name) ? twice : seen).add(name);
@@ -89,7 +97,8 @@ function namesHeldTwice(result: FlatSource, model: ScenarioModel): Set<string> {
 function plannedReplacements(store: ScenarioStore, result: FlatSource, model: ScenarioModel, eol: string): Replacement[] | undefined {
   const text = model.document.text;
   const replacements: Replacement[] = [];
-  const sharedNames = namesHeldTwice(result, model);
+  const linkOf = linkLookup(result);
+  const sharedNames = namesHeldTwice(model, linkOf);
   // Counted copy by copy, before the text is joined: a group imported twice at each of 20 levels must not fill memory.
   let projected = text.length;
   for (const group of model.groups) {
@@ -99,7 +108,7 @@ function plannedReplacements(store: ScenarioStore, result: FlatSource, model: Sc
     const targetIndent = indentationAt(text, group.element.start);
     const copies: Copy[] = [];
     for (const reference of group.references) {
-      const link = result.links.find((candidate) => candidate.info === reference);
+      const link = linkOf(reference);
       if (!link?.source?.model || link.source.text === undefined) return undefined;
       for (const linked of link.groups) {
         if (!linked.target || !linked.plan) return undefined;
