@@ -4,7 +4,21 @@ import * as path from 'node:path';
 import { firstDifference } from '../../server/src/core/equivalence';
 import { esminiXodrDir } from '../support/esminiBinaries';
 import { requireEsmini, runEsmini } from '../support/esmini';
-import { assertNoTrace, maneuver, maneuverGroup, runCli, scenario, speedEvent } from '../support/fixtures';
+import {
+  act,
+  assertNoTrace,
+  catalogFile,
+  fileHeader,
+  maneuver,
+  maneuverGroup,
+  parameterDeclarations,
+  runCli,
+  scenario,
+  scenarioDocument,
+  speedEvent,
+  story,
+  vehicleObject,
+} from '../support/fixtures';
 import { libraryDir, requireCorpus, sharedDir } from '../support/paths';
 import { listFiles, temporaryWorkspace } from '../support/workspace';
 
@@ -18,6 +32,56 @@ function speedGroup(name: string, speed: string): string {
     'car',
     maneuver('M', speedEvent('E', speed) + speedEvent('E2', '5') + speedEvent('E3', '6') + speedEvent('E4', '7')),
   );
+}
+
+/**
+ * esmini's synchronize.xosc in small (issue 28): groups that only reference HWManeuvers' Synchronize_NPC, whose entry
+ * reads $AccRate without declaring it (esmini takes it from the referencing scenario). The group's text names no
+ * $AccRate; the scenario declares it (synchronizeScenario's accRate).
+ */
+const SYNCHRONIZE_CATALOG = catalogFile(
+  'HWManeuvers',
+  `    <Maneuver name="Synchronize_NPC">
+      <ParameterDeclarations>
+        <ParameterDeclaration name="NPCFreeSpeed" parameterType="double" value="30"/>
+        <ParameterDeclaration name="StartTime" parameterType="double" value="1"/>
+      </ParameterDeclarations>
+${speedEvent(
+  'Free_Speed_Event_NPC',
+  '$NPCFreeSpeed',
+  '              <StartTrigger><ConditionGroup><Condition name="Free_Speed_Condition_NPC" delay="0" conditionEdge="rising">' +
+    '<ByValueCondition><SimulationTimeCondition value="$StartTime" rule="greaterThan"/></ByValueCondition>' +
+    '</Condition></ConditionGroup></StartTrigger>\n',
+).replace(
+  'dynamicsShape="step" value="0" dynamicsDimension="time"',
+  'dynamicsShape="sinusoidal" value="$AccRate" dynamicsDimension="rate"',
+)}    </Maneuver>
+`,
+);
+
+/** A group referencing Synchronize_NPC, then speed events always the same: enough that its uses pay for a simple scenario. */
+function synchronizeGroup(npc: string, speed: string, startTime: string): string {
+  return maneuverGroup(
+    `Synchronize_${npc}_Sequence`,
+    npc,
+    `          <CatalogReference catalogName="HWManeuvers" entryName="Synchronize_NPC">
+            <ParameterAssignments>
+              <ParameterAssignment parameterRef="NPCFreeSpeed" value="${speed}"/>
+              <ParameterAssignment parameterRef="StartTime" value="${startTime}"/>
+            </ParameterAssignments>
+          </CatalogReference>
+` + maneuver('Keep', speedEvent('E', speed) + speedEvent('E2', '5') + speedEvent('E3', '6') + speedEvent('E4', '7')),
+  );
+}
+
+function synchronizeScenario(accRate: string, groups: string): string {
+  return scenarioDocument({
+    header: fileHeader({ revMinor: '1' }),
+    parameters: parameterDeclarations([['AccRate', 'double', accRate]], 4),
+    catalogLocations: '    <ManeuverCatalog>\n      <Directory path="Catalogs/Maneuvers"/>\n    </ManeuverCatalog>\n',
+    entities: ['NPC1', 'NPC2', 'NPC3'].map((name) => vehicleObject(name)).join(''),
+    storyboard: `    <Init>\n      <Actions/>\n    </Init>\n${story('S', act('Synchronize_Act', groups))}    <StopTrigger/>\n`,
+  });
 }
 
 /** Every file below a folder with its bytes, to show that nothing changed. */
@@ -191,6 +255,45 @@ describe('cli: modularize', function () {
       firstDifference(fs.readFileSync(path.join(root, 'lib/b.flat.xosc'), 'utf8'), fs.readFileSync(path.join(root, 'lib/b.xosc'), 'utf8')),
       undefined,
     );
+  });
+
+  it("a group whose catalog entry reads a parameter of its scenario: the simple scenario declares it, flattens alone, and the mains flatten back (esmini's synchronize.xosc)", () => {
+    const groups = (speeds: string[]) =>
+      speeds.map((speed, index) => synchronizeGroup(`NPC${index + 1}`, speed, String(index + 1))).join('');
+    const files = {
+      'lib/Catalogs/Maneuvers/HWManeuvers.xosc': SYNCHRONIZE_CATALOG,
+      'lib/synchronize.xosc': synchronizeScenario('3', groups(['30', '25', '20'])),
+      'lib/synchronize_slow.xosc': synchronizeScenario('3', groups(['15', '12'])),
+    };
+    const root = temporaryWorkspace(files);
+    // The source flattens (its catalog entry finds $AccRate in the scenario), and its groups name no $AccRate.
+    assert.doesNotMatch(synchronizeGroup('NPC1', '30', '1'), /AccRate/);
+    const run = runCli(['modularize', 'lib', '-o', 'out'], { cwd: root });
+    assert.equal(run.status, 0, run.stderr);
+    assertNoTrace(run.stderr);
+    assert.ok(fs.existsSync(path.join(root, 'out', 'simple')), `nothing extracted: ${run.stdout}`);
+    const simple = listFiles(path.join(root, 'out', 'simple'));
+    assert.ok(simple.length > 0, `nothing extracted: ${run.stdout}`);
+    for (const file of simple) {
+      const text = fs.readFileSync(path.join(root, 'out', 'simple', file), 'utf8');
+      assert.match(text, /<ParameterDeclaration name="AccRate" parameterType="double" value="3"\/>/, file);
+      const alone = runCli(['flatten', path.join('out', 'simple', file)], { cwd: root });
+      assert.equal(alone.status, 0, `${file} does not flatten on its own: ${alone.stderr}`);
+      assert.doesNotMatch(alone.stderr, /error/, file);
+    }
+    for (const name of ['synchronize.xosc', 'synchronize_slow.xosc']) {
+      const main = fs.readFileSync(path.join(root, 'out', name), 'utf8');
+      assert.match(main, /<ScenarioReference /, `${name} imports nothing`);
+      // Flattened beside its input, so that its catalog folder is written as the input writes it.
+      const flat = path.join('lib', name.replace('.xosc', '.flat.xosc'));
+      const flattened = runCli(['flatten', path.join('out', name), '-o', flat], { cwd: root });
+      assert.equal(flattened.status, 0, flattened.stderr);
+      assert.equal(
+        firstDifference(fs.readFileSync(path.join(root, flat), 'utf8'), files[`lib/${name}` as keyof typeof files]),
+        undefined,
+        name,
+      );
+    }
   });
 
   it('no recurring group: nothing extracted, said so, nothing written', () => {

@@ -18,6 +18,7 @@ import { Problem } from '../problems';
 import { countEditorLines } from '../text';
 import { attributeValue, parseXml, XmlDocument } from '../xml';
 import { indentUnit, planBehaviour } from './behaviour';
+import { catalogParametersOf } from './catalogParameters';
 import { simpleScenarioText } from './simpleScenario';
 import { mainText, referenceGroup } from './mainText';
 import { memoryHost } from './memoryHost';
@@ -287,9 +288,28 @@ export async function modularize(
 ): Promise<ModularizeResult> {
   const rebase = options.rebase ?? pathRebaser();
   const parsed: ParsedInput[] = [];
+  // The catalogs are read as check reads them, each input's own text in place of the disk's.
+  const catalogStore = new ScenarioStore({
+    host: memoryHost(new Map(inputs.map((input) => [path.resolve(input.path), input.text]))),
+    scenarioPath: [],
+    limits,
+  });
   for (const input of inputs) {
     const document = input.document ?? parseXml(input.text);
-    parsed.push({ ...input, document, pathEdits: await rebase(document, path.dirname(input.path), path.dirname(input.output)) });
+    const catalogParameters =
+      input.catalogParameters ??
+      (await catalogParametersOf(
+        catalogStore,
+        diskRef(path.resolve(input.path)),
+        document,
+        buildModel(document).groups.map((group) => group.element),
+      ));
+    parsed.push({
+      ...input,
+      document,
+      catalogParameters,
+      pathEdits: await rebase(document, path.dirname(input.path), path.dirname(input.output)),
+    });
   }
   const excluded = new Map<string, string>();
   let pooling = true;

@@ -4,10 +4,7 @@ import { EXTRACT_GROUP_COMMAND, ExtractGroupCommandArguments, ExtractGroupResult
 import { ManeuverGroupInfo } from '../../core/model';
 import { extractGroup, tunableAttributes } from '../../core/refactor/extractGroup';
 import { RefactoringRefusal } from '../../core/refactor/refusal';
-import { CatalogLoader } from '../../core/semantics/catalogs';
-import { entryFreeParameters } from '../../core/semantics/checks';
-import { Evaluator } from '../../core/semantics/evaluator';
-import { semanticModelOf } from '../../core/semantics/model';
+import { catalogParametersOf } from '../../core/modularize/catalogParameters';
 import { diskRef, nodeFileSystem, refId } from '../../core/sources';
 import { fileUri } from '../../uris';
 import { cannotCreateFiles, createAndEdit, Refactoring, RefactoringTarget } from './refactoring';
@@ -22,25 +19,6 @@ function groupAtStartTag(target: RefactoringTarget): ManeuverGroupInfo | undefin
 
 function entityNames(target: RefactoringTarget): Set<string> {
   return new Set(target.model.entities.map((entity) => entity.name));
-}
-
-/**
- * What the catalog entries the group references read from the scenario without declaring it (esmini's
- * synchronize.xosc: HWManeuvers' Synchronize_NPC reads $AccRate), by CatalogReference offset: the simple scenario
- * declares it too, or it would not load on its own.
- */
-async function catalogParametersOf(target: RefactoringTarget, group: ManeuverGroupInfo): Promise<Map<number, string[]>> {
-  const found = new Map<number, string[]>();
-  if (!/<CatalogReference\b/.test(target.model.document.text.slice(group.element.start, group.element.end))) return found;
-  const model = semanticModelOf(target.model.document);
-  const resolution = await new CatalogLoader(target.workspace.store).resolve(target.ref, model, new Evaluator(model));
-  for (const reference of resolution.references) {
-    const element = reference.reference.element;
-    if (element.start < group.element.start || element.end > group.element.end) continue;
-    const names = [...entryFreeParameters(reference)];
-    if (names.length > 0) found.set(element.start, names);
-  }
-  return found;
 }
 
 /** The edit of *Extract to a simple scenario* (the custom request's answer too); throws a ResponseError saying why not. */
@@ -60,7 +38,7 @@ export async function extractGroupEdit(target: RefactoringTarget, attributes: re
       chosen: attributes,
       entityNames: entityNames(target),
       exists: async (file) => (await nodeFileSystem.kind(file)) !== undefined || target.workspace.documents.has(refId(diskRef(file))),
-      catalogParameters: await catalogParametersOf(target, group),
+      catalogParameters: await catalogParametersOf(target.workspace.store, target.ref, target.model.document, [group.element]),
     });
   } catch (error) {
     if (error instanceof RefactoringRefusal)
