@@ -5,6 +5,7 @@ import { PACKAGE_SCHEME, type FlattenOptions, type ProblemSummary, type WriteRes
 import { problemPlace, writeAnywayQuestion, writtenAnywayNote } from './anyway';
 import { LANGUAGE_ID, type ServerCommandClient } from './languageClient';
 import { FLATTENED_SUFFIX, flattenedName } from './naming';
+import { withNotificationProgress } from './notificationProgress';
 import type { PlacedDiagnostics } from './placedDiagnostics';
 import { exportSummary, problemLine } from './placed';
 import { packageEntryUri } from './packageFileSystem';
@@ -177,10 +178,7 @@ async function withWriteProgress(
 ): Promise<WriteOutcome> {
   try {
     return {
-      result: await vscode.window.withProgress(
-        { location: vscode.ProgressLocation.Notification, title: `${action}: ${path.basename(output)}`, cancellable: true },
-        (_progress, token) => write(token),
-      ),
+      result: await withNotificationProgress(`${action}: ${path.basename(output)}`, (_progress, token) => write(token)),
     };
   } catch (error) {
     return { error };

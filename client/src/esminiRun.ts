@@ -3,6 +3,7 @@ import { RunEsminiRequest, type RunEsminiResult } from '../../common/src/protoco
 import { runAnywayQuestion, runLensTitles } from './anyway';
 import { commandTargets } from './commands';
 import type { ServerCommandClient } from './languageClient';
+import { withNotificationProgress } from './notificationProgress';
 
 export const RUN_ESMINI_COMMAND = 'modular2simple.runEsmini';
 /** *Run Anyway*: the run that `run --force` makes, for a scenario with errors. */
@@ -106,9 +107,8 @@ export class EsminiRunner implements vscode.Disposable {
     try {
       const client = await this.server.running();
       const name = source.path.split('/').pop();
-      const result = await vscode.window.withProgress(
-        { location: vscode.ProgressLocation.Notification, title: `Running ${name} in esmini`, cancellable: true },
-        (_progress, token) => client.sendRequest(RunEsminiRequest, params, token),
+      const result = await withNotificationProgress(`Running ${name} in esmini`, (_progress, token) =>
+        client.sendRequest(RunEsminiRequest, params, token),
       );
       this.show(source, result);
       const question = runAnywayQuestion(result);

@@ -3,6 +3,7 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import * as vscode from 'vscode';
 import { commandTargets } from './commands';
+import { withNotificationProgress } from './notificationProgress';
 import { batchFailure } from './variations/batchFailure';
 
 export const RUN_VARIATIONS_COMMAND = 'modular2simple.runVariations';
@@ -71,8 +72,8 @@ export class VariationsRunner implements vscode.Disposable {
 
     this.output.appendLine(`modular2simple ${args.join(' ')}`);
     const name = path.basename(file);
-    const outcome = await vscode.window.withProgress(
-      { location: vscode.ProgressLocation.Notification, title: `Running the variations of ${name}`, cancellable: true },
+    const outcome = await withNotificationProgress(
+      `Running the variations of ${name}`,
       (progress, token) =>
         new Promise<VariationsRun>((resolve) => {
           // In VS Code's desktop extension host, process.execPath is Electron: it runs the CLI as Node only when told to.

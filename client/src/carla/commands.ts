@@ -1,6 +1,7 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import * as vscode from 'vscode';
+import { withNotificationProgress } from '../notificationProgress';
 import { PACKAGE_SCHEME, type CheckInScenarioRunnerResult } from '../../../common/src/protocol';
 import type { CommandReporter } from '../commands';
 import { commandTargets } from '../commands';
@@ -92,18 +93,16 @@ export class CarlaCommands implements vscode.Disposable {
     let result: CheckInScenarioRunnerResult;
     try {
       const name = path.posix.basename(target.path);
-      result = await vscode.window.withProgress(
-        { location: vscode.ProgressLocation.Notification, title: `Checking ${name} in CARLA ScenarioRunner`, cancellable: true },
-        (_progress, token) =>
-          this.server.checkInScenarioRunner(
-            {
-              uri: target.toString(),
-              scenarioRunnerPath: settings.scenarioRunner,
-              python: settings.python,
-              timeLimitSeconds: settings.timeLimit,
-            },
-            token,
-          ),
+      result = await withNotificationProgress(`Checking ${name} in CARLA ScenarioRunner`, (_progress, token) =>
+        this.server.checkInScenarioRunner(
+          {
+            uri: target.toString(),
+            scenarioRunnerPath: settings.scenarioRunner,
+            python: settings.python,
+            timeLimitSeconds: settings.timeLimit,
+          },
+          token,
+        ),
       );
     } catch (error) {
       this.output.appendLine(`${action} failed: ${(error as Error).stack ?? String(error)}`);

@@ -18,7 +18,7 @@ import {
   waitForPage,
   workspaceRoot,
 } from './helpers';
-import { pageShows, screenshot } from './harnessClient';
+import { pageBoxes, pageShows, screenshot } from './harnessClient';
 
 /** esmini as the test setup builds it beside the CLI under test, and the shared road files; skips the test without them. */
 export function esminiOrSkip(context: Mocha.Context): { repository: string; esmini: string; roads: string } {
@@ -281,11 +281,18 @@ export const esminiTests: InsideTests = {
       assert.ok(forced.csvFile && fs.existsSync(forced.csvFile));
       // What the client reported to the user (the message its information toast shows, kept in the screenshot below).
       assert.match(api().lastEsminiRun()?.result.message ?? '', /\(run anyway despite 1 error in the scenario\)$/);
+      // The toasts as the result first shows among them, read at once: the run's progress (with its Cancel) has gone.
+      const toasts = await waitFor('the result among the toasts', async () => {
+        const shown = (await pageBoxes('.notifications-toasts')).map((box) => box.text).join('\n');
+        return shown.includes('(run anyway despite 1 error in the scenario)') ? shown : undefined;
+      });
+      assert.ok(!toasts.includes('Running anyway.xosc in esmini'), `the run's progress is still shown beside its result:\n${toasts}`);
       // The notification centre keeps what the toast showed: an information toast hides itself after a while, and on a
       // busy machine it had gone before the page was read.
       await vscode.commands.executeCommand('notifications.showList');
       try {
         await waitForPage('(run anyway despite 1 error in the scenario)', '.notifications-center');
+        assert.ok(!(await pageShows('Running anyway.xosc in esmini', '.notifications-center')), "the run's progress is still listed");
         assert.ok(!(await pageShows('Run in esmini:', '.notifications-center')), 'an error notification is shown');
         await screenshot('Run Anyway ran the scenario despite its error');
       } finally {
