@@ -53,6 +53,8 @@ export const INSIDE_TESTS = {
     'Insert library module here… from the light bulb on a ManeuverGroup picks a module in the quick pick and writes it after that group, clean',
   libraryDrop:
     'dragging a module from the Scenario Library view onto a ManeuverGroup of an open main writes it after that group, as Insert library module here… does, clean',
+  libraryDropAsks:
+    'dropping a module whose role no entity of the main is named after asks who plays it in a quick pick: cancelled, the main is unchanged; answered, the chosen entity plays it, clean',
   debugScenario:
     'F5 on a scenario stops on the breakpoint on its Event line with the entities in the Variables view; esmini crashing ends the session with a message and the editor lives',
   debugTimeline:

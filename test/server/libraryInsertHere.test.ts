@@ -138,6 +138,36 @@ describe('language server: Insert library module here… (JSON-RPC)', function (
     assert.ok(leadTravel < 200, `the lead braked (travelled ${leadTravel.toFixed(1)} m)`);
   });
 
+  it('at a position (a drop), a role no entity is named after has no guess, and the answer binds the entity chosen for it', async function () {
+    // The drop's first request: what the client asks in its quick pick (test/e2e libraryDropAsks drives the pick itself).
+    const text = bench().replace(/"lead"/g, '"frontCar"');
+    const uri = await client.open(fileUri(path.join(root, 'main.xosc')), text);
+    const position = positionAfter(text, '<ManeuverGroup name="Ego');
+    const questions = await client.send(LibraryInsertRequest, { uri, module: 'lead-brake', position });
+    assert.deepEqual(
+      questions.roles.map((role) => [role.name, role.guess]),
+      [
+        ['lead', undefined],
+        ['ego', 'ego'],
+      ],
+    );
+    assert.ok(questions.entities.includes('frontCar'));
+    assert.equal(questions.edit, undefined, 'no edit before every role has its entity');
+    const answer = await client.send(LibraryInsertRequest, {
+      uri,
+      module: 'lead-brake',
+      position,
+      players: { lead: 'frontCar', ego: 'ego' },
+    });
+    assert.ok(answer.edit?.changes?.[uri], 'an edit of the main');
+    const written = applyEdits(text, answer.edit.changes[uri]);
+    const group = /<ManeuverGroup name="LeadBrake"[\s\S]*?<\/ManeuverGroup>/.exec(written)?.[0] ?? '';
+    assert.match(group, /<Actors selectTriggeringEntities="false">\s*<EntityRef entityRef="frontCar"\/>/);
+    assert.match(group, /key="TimeHeadwayCondition.entityRef" value="frontCar"/);
+    assert.match(group, /key="EntityRef.entityRef" value="ego"/);
+    await client.close(uri);
+  });
+
   it('refuses a position that is no longer on an Act, saying so', async function () {
     const text = bench();
     const uri = await client.open(fileUri(path.join(root, 'main.xosc')), text);

@@ -80,6 +80,7 @@ const ORDER: InsideTestKey[] = [
   'libraryCompose',
   'libraryInsertHere',
   'libraryDrop',
+  'libraryDropAsks',
   'debugTimeline',
   'debugTimelineSession',
 ];

@@ -176,4 +176,61 @@ export const libraryTests: InsideTests = {
     await assertClean(document);
     await screenshot('A library module dragged from the view onto a ManeuverGroup, clean');
   },
+  libraryDropAsks: async function () {
+    this.timeout(2 * TEST_MS);
+    const { editor, onGroup } = await benchWithGroup('drop-asks', 'asks.xosc');
+    const document = editor.document;
+    // The lead car renamed: no entity of the main is named after lead-brake's role 'lead' (its 'ego' still is).
+    const renamed = new vscode.WorkspaceEdit();
+    renamed.replace(document.uri, new vscode.Range(0, 0, document.lineCount, 0), document.getText().replace(/"lead"/g, '"frontCar"'));
+    assert.ok(await vscode.workspace.applyEdit(renamed), 'the rename of the lead car was refused');
+    assert.ok(await document.save(), 'the main was not saved');
+    assert.ok(!document.getText().includes('"lead"'));
+    editor.revealRange(new vscode.Range(onGroup, onGroup), vscode.TextEditorRevealType.InCenter);
+    await vscode.commands.executeCommand('modular2simple.library.focus');
+    await waitFor('the Scenario Library listing', () => (api().library.tree.current?.modules.length ?? 0) > 0);
+    await waitFor('the view drawing its modules', () => pageShows('library:lead-brake'));
+    await waitFor('the editor drawing the group', () => pageShows('EgoBehaviour', '.monaco-editor .view-line'));
+    const drop = async () => {
+      await dragOnto(
+        { selector: '.monaco-list-row', text: 'library:lead-brake' },
+        { selector: '.monaco-editor .view-line', text: 'EgoBehaviour' },
+      );
+      await waitFor('the quick pick asking who plays the lead', async () => {
+        const shown = await quickInput();
+        return (shown.visible && shown.title.startsWith('Drop library module:') && shown.value === '') || undefined;
+      });
+    };
+
+    // Cancelled: the pick closes and the main is as it was, in the editor and on disk.
+    const before = document.getText();
+    await drop();
+    await screenshot('A library module dropped on a main with no entity of its role asks who plays it');
+    await pressKeys(['Escape']);
+    await waitFor('the quick pick to close', async () => !(await quickInput()).visible || undefined);
+    await new Promise((resolve) => setTimeout(resolve, 2_000));
+    assert.equal(document.getText(), before, 'a cancelled drop changed the main');
+    assert.ok(!document.isDirty, 'a cancelled drop left the main modified');
+    assert.equal(fs.readFileSync(document.uri.fsPath, 'utf8'), before, 'a cancelled drop changed the file');
+
+    // Answered: frontCar plays the lead; the ego is the main's entity of its name, not asked.
+    await drop();
+    await typeText('frontCar');
+    await pressKeys(['Enter']);
+    await waitFor(
+      'the dropped module in the main',
+      () => document.getText().includes('scenarioFileName="library:lead-brake"') || undefined,
+    );
+    assert.ok(!(await quickInput()).visible, 'a second question was asked (the ego has an entity of its name)');
+    const text = document.getText();
+    const group = /<ManeuverGroup name="LeadBrake"[\s\S]*?<\/ManeuverGroup>/.exec(text)?.[0];
+    assert.ok(group, 'no group LeadBrake in the main');
+    assert.match(group, /<Actors selectTriggeringEntities="false">\s*<EntityRef entityRef="frontCar"\/>\s*<\/Actors>/);
+    assert.match(group, /<ParameterReference key="TimeHeadwayCondition.entityRef" value="frontCar"\/>/);
+    assert.match(group, /<ParameterReference key="EntityRef.entityRef" value="ego"\/>/);
+    assert.equal(text.split('scenarioFileName="library:lead-brake"').length, 2, 'one group dropped');
+    assert.ok(await document.save(), 'the main was not saved');
+    await assertClean(document);
+    await screenshot('A library module dropped after choosing who plays its role, clean');
+  },
 };
