@@ -1,5 +1,6 @@
-// `export --target carla` (issue 26): the largest esmini sample exported under 1.5x a bare `node` start,
-// and, beside it, what ScenarioRunner's own loader (../shared/carla/check.py) takes for that one file.
+// `export --target carla` (issue 26): the largest esmini sample exported under 1.5x a bare `node` start (the
+// issue's figure) and under 1.5x a flatten of the same file (the mapping's cost over reading the file); beside
+// it, what ScenarioRunner's own loader (../shared/carla/check.py) takes for that one file.
 import { spawnSync } from 'node:child_process';
 import { existsSync, mkdtempSync, rmSync } from 'node:fs';
 import { loadavg, tmpdir } from 'node:os';
@@ -59,8 +60,19 @@ try {
     ...['--require', peak, '--require', cpu, cli, 'export', input, '--target', 'carla', '--carla', '0.9.15', '-o', output, '-q'],
     ...['--road-path', path.join(shared, 'esmini', 'xodr'), '--scenario-path', path.join(esmini, 'Catalogs')],
   ];
+  // flatten of the same file beside it: the export reads, models and checks it as flatten does, then maps and samples.
+  const flattenArgs = [
+    ...['--require', peak, '--require', cpu, cli, 'flatten', input, '-o', path.join(out, 'flat.xosc'), '-q'],
+    ...['--scenario-path', path.join(esmini, 'Catalogs')],
+  ];
   const bare = Array.from({ length: runs }, () => measure(process.execPath, ['--require', peak, '--require', cpu, '-e', '0']));
-  const exported = Array.from({ length: runs }, () => measure(process.execPath, exportArgs));
+  const exported = [];
+  const flattened = [];
+  // Alternated, so that a change of the machine's load falls on both alike.
+  for (let run = 0; run < runs; run++) {
+    exported.push(measure(process.execPath, exportArgs));
+    flattened.push(measure(process.execPath, flattenArgs));
+  }
   console.log(`CARLA export benchmark (${runs} runs each; node ${process.version}; load average ${loadavg()[0].toFixed(1)})`);
   console.log('                                              median ms   CPU ms   peak MB');
   const row = (/** @type {string} */ label, /** @type {{ ms: number, cpuMs: number, mb: number }[]} */ samples) =>
@@ -68,11 +80,16 @@ try {
       `  ${label.padEnd(43)}${fmt(median(samples))} ${fmt(median(samples, 'cpuMs'))}  ${fmt(Math.max(...samples.map((s) => s.mb)))}`,
     );
   row('node -e 0 (bare start)', bare);
+  row('flatten, parking_demo.xosc', flattened);
   row('export --target carla, parking_demo.xosc', exported);
   const ratio = median(exported) / median(bare);
   const cpuRatio = median(exported, 'cpuMs') / median(bare, 'cpuMs');
   console.log(
     `  ratio export / bare start: ${ratio.toFixed(2)}x wall, ${cpuRatio.toFixed(2)}x CPU (target <= 1.5x: ${ratio <= 1.5 ? 'within' : 'OVER'})`,
+  );
+  const flattenRatio = median(exported, 'cpuMs') / median(flattened, 'cpuMs');
+  console.log(
+    `  ratio export / flatten of the same file: ${(median(exported) / median(flattened)).toFixed(2)}x wall, ${flattenRatio.toFixed(2)}x CPU (target <= 1.5x: ${flattenRatio <= 1.5 ? 'within' : 'OVER'})`,
   );
   const harness = path.join(shared, 'carla', 'check.py');
   if (existsSync(harness) && existsSync(path.join(root, '.cache', 'carla', 'scenario_runner'))) {

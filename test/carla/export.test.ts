@@ -4,10 +4,10 @@ import * as path from 'node:path';
 import { main } from '../../server/src/cli';
 import { attributeValue, parseXml } from '../../server/src/core/xml';
 import type { XmlElement } from '../../server/src/core/xml';
-import { HarnessVerdict, harnessVerdicts, requireCarlaHarness, scenarioRunnerFolder } from '../support/carla';
+import { carlaCache, HarnessVerdict, harnessVerdicts, requireCarlaHarness, scenarioRunnerFolder } from '../support/carla';
 import { esminiCatalogs, esminiRoads, requireEsmini, runEsmini, tracksOf } from '../support/esmini';
 import { openscenarioDir } from '../support/openscenarioCorpus';
-import { caseStudyDir, libraryDir, repoRoot, requireCorpus } from '../support/paths';
+import { caseStudyDir, libraryDir, repoRoot, requireCorpus, sharedDir } from '../support/paths';
 import { runBounded } from '../support/processes';
 import { temporaryFolder } from '../support/temporaryDirectory';
 
@@ -749,6 +749,39 @@ describe('export --target carla, Clothoid and Nurbs sampled into polylines', fun
     }
     const verdicts = await harnessVerdicts([exported.output]);
     assert.equal(verdicts.get(path.resolve(exported.output))?.status, 'OK', JSON.stringify(verdicts.get(path.resolve(exported.output))));
+  });
+});
+
+describe('export --target carla, sampled polylines against the OpenSCENARIO 1.0 XSD', function () {
+  this.timeout(300_000);
+  let out: string;
+  before(function () {
+    requireCorpus(this);
+  });
+  inTemporaryFolderEach('m2s-carla-xsd-', (folder) => (out = folder));
+
+  // The export's own schema check reads two vertices of each Polyline it sampled (carla.ts dropOutsideSchema): the file written must still be 1.0, every vertex.
+  it("parking_demo.xosc (a Nurbs, Clothoids and ClothoidSplines sampled into ~370 vertices) is valid against ../shared/schemas' 1.0 XSD", async function () {
+    requireCarlaHarness(this);
+    const input = path.join(openscenarioDir, 'esmini', 'parking_demo.xosc');
+    const result = await exportFile(input, path.join(out, 'parking_demo.xosc'), ['--carla', '0.9.15', ...ESMINI_SAMPLE_OPTIONS]);
+    assert.equal(result.code, 0, result.stderr);
+    const text = fs.readFileSync(result.output, 'utf8');
+    assert.ok((text.match(/<Vertex /g) ?? []).length > 300, 'the sampled vertices are written');
+    // xmlschema 1.0.18, the release ScenarioRunner pins, as the harness unpacked it; the schema is the standard's own file.
+    const xsd = path.join(sharedDir, 'schemas', 'OpenSCENARIOv1.0.xsd');
+    const libraries = [path.join(carlaCache, 'xmlschema-1.0.18'), path.join(carlaCache, 'elementpath-1.3.3')];
+    const program = [
+      'import sys',
+      `sys.path[:0] = ${JSON.stringify(libraries)}`,
+      'import xmlschema',
+      'errors = list(xmlschema.XMLSchema(sys.argv[1]).iter_errors(sys.argv[2]))',
+      'print("errors", len(errors))',
+      'for error in errors[:5]: print(error.path, error.reason)',
+    ].join('\n');
+    const { code, output } = await runBounded('python3', ['-c', program, xsd, result.output], {}, 120_000);
+    assert.equal(code, 0, output);
+    assert.match(output, /^errors 0$/m, output);
   });
 });
 

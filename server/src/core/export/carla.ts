@@ -286,9 +286,10 @@ export async function exportTextForCarla(
     if (roads && degrees) geoPlaces.set(position, await geoToRoad(roads, degrees.latitude, degrees.longitude));
   }
   const elementsBefore = storyboardElementKeys(tree);
-  applyCarlaRules(tree, { release: options.release ?? '0.9.16', sink, roads, geoPlaces });
+  const sampledPolylines = new Set<Node>();
+  applyCarlaRules(tree, { release: options.release ?? '0.9.16', sink, roads, geoPlaces, sampledPolylines });
   // Nothing changes the tree after the last schema check.
-  const valid = dropOutsideSchema(tree, sink);
+  const valid = dropOutsideSchema(tree, sink, sampledPolylines);
   reportStatesOfDroppedElements(tree, elementsBefore, sink);
 
   if (eventsBefore > 0 && named(tree, 'Event').length === 0)
@@ -723,9 +724,10 @@ function mapBlueprints(tree: Node, options: CarlaExportOptions, sink: LossSink):
  * element drops the smallest unit holding it (a condition, an action, an init action); anything else (a
  * missing part) is refused, never written.
  */
-function dropOutsideSchema(tree: Node, sink: LossSink): boolean {
+function dropOutsideSchema(tree: Node, sink: LossSink, sampledPolylines: ReadonlySet<Node>): boolean {
   for (let round = 0; round < 8; round++) {
-    const { document, nodeOf: nodeAt } = documentOf(tree);
+    // A sampled Polyline's vertices are all of one make (vertexNode): its first two stand for the rest, as many as 1.0 requires.
+    const { document, nodeOf: nodeAt } = documentOf(tree, sampledPolylines);
     const findings = checkSchema(document, { modular: false, version: '1.0' }).findings.filter((finding) => finding.severity === 'error');
     if (findings.length === 0) return true;
     let changed = false;

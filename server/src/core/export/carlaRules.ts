@@ -61,6 +61,8 @@ export interface RuleContext {
   roads?: RoadNetwork;
   /** Each GeoPosition's x, y by the road's geoReference, or why there is none (computed before the rules: proj4js loads lazily). */
   geoPlaces?: Map<Node, RoadXY | string>;
+  /** Filled with the Polylines the rules sampled from a uniform shape (SampledShape.uniform), for the schema check. */
+  sampledPolylines?: Set<Node>;
 }
 
 /** Drops the smallest unit of a storyboard holding `node` that ScenarioRunner can do without: its Condition, its Event's Action or its Init action. */
@@ -490,6 +492,7 @@ function trajectories(tree: Node, context: RuleContext): void {
         continue;
       }
       replaceNode(shape, sampled.polyline);
+      if (sampled.uniform) context.sampledPolylines?.add(sampled.polyline);
       const relative = sampled.relative;
       context.sink.approximated(
         sampled.polyline,

@@ -19,6 +19,8 @@ export type TrajectoryEnds = Map<string, { entity: string; heading: number }>;
 export interface SampledShape {
   polyline: Node;
   vertices: number;
+  /** Every vertex of one make (vertexNode) with finite numbers: two of them stand for all in a schema check. */
+  uniform: boolean;
   /** The entity the vertices are relative to, and the heading assumed for it when the action starts (with why). */
   relative?: { entity: string; heading: number; from: string };
 }
@@ -239,5 +241,12 @@ export function sampledShape(
     const name = holder ? attr(holder, 'name') : undefined;
     if (name && last) ends.set(name, { entity: actor, heading: last.h });
   }
-  return { polyline, vertices: vertices.length, ...(relative ? { relative } : {}) };
+  const finite = (vertex: SampledVertex): boolean =>
+    Number.isFinite(vertex.x) &&
+    Number.isFinite(vertex.y) &&
+    Number.isFinite(vertex.h) &&
+    (vertex.time === undefined || Number.isFinite(vertex.time));
+  const timed = vertices[0]?.time !== undefined;
+  const uniform = vertices.every((vertex) => finite(vertex) && (vertex.time !== undefined) === timed);
+  return { polyline, vertices: vertices.length, uniform, ...(relative ? { relative } : {}) };
 }

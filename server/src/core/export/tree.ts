@@ -300,9 +300,10 @@ export function serialize(root: Node): string {
 /**
  * The tree as the parser's elements, for a check that reads a parsed document (the schema's) without writing
  * the tree out and reading it back. Offsets count the tags and attributes in document order, so findings sort
- * as they would in `serialize`'s text; there is no text, so an offset names no line.
+ * as they would in `serialize`'s text; there is no text, so an offset names no line. A node of `abridged`
+ * (children all of one make) shows its first two children only.
  */
-export function documentOf(root: Node): { document: XmlDocument; nodeOf: Map<XmlElement, Node> } {
+export function documentOf(root: Node, abridged?: ReadonlySet<Node>): { document: XmlDocument; nodeOf: Map<XmlElement, Node> } {
   const nodeOf = new Map<XmlElement, Node>();
   let offset = 0;
   const view = (node: Node, parent: XmlElement | undefined): XmlElement => {
@@ -325,7 +326,8 @@ export function documentOf(root: Node): { document: XmlDocument; nodeOf: Map<Xml
       parent,
     };
     nodeOf.set(element, node);
-    for (const each of node.children) element.children.push(view(each, element));
+    const shown = abridged?.has(node) ? Math.min(2, node.children.length) : node.children.length;
+    for (let i = 0; i < shown; i++) element.children.push(view(node.children[i], element));
     element.end = offset++;
     return element;
   };
