@@ -12,7 +12,8 @@ const require = createRequire(import.meta.url);
 const { DebugClient } = require('@vscode/debugadapter-testsupport');
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
-const adapter = path.join(root, 'dist', 'debugAdapter.js');
+// BENCH_DEBUG_ADAPTER names another build of the adapter (the one before a change) to compare.
+const adapter = path.resolve(process.env.BENCH_DEBUG_ADAPTER ?? path.join(root, 'dist', 'debugAdapter.js'));
 const esmini = path.join(root, '.cache', 'esmini', 'bin', 'esmini');
 const library = path.join(root, '.cache', 'esmini', 'lib', 'libesminiLib.so');
 const corpus = path.resolve(root, '..', 'shared', 'corpus', 'openscenario', 'esmini');
@@ -104,9 +105,10 @@ function mainThreadCpuMs(pid) {
  * (reported in the Output event's data) to the stopped event's arrival.
  * @param {number | undefined} breakOn
  * @param {string} [program]
+ * @param {number} [timeStep]
  * @returns {Promise<{ loadMs: number, runMs: number, runCpuMs: number, ended: number, latencyMs: number }>}
  */
-async function debugRun(breakOn, program = full) {
+async function debugRun(breakOn, program = full, timeStep = step) {
   const client = new DebugClient(process.execPath, adapter, 'modular2simple', { stdio: ['pipe', 'pipe', 'pipe'] });
   client.defaultTimeout = 120_000;
   await client.start();
@@ -130,7 +132,7 @@ async function debugRun(breakOn, program = full) {
     client.on('stopped', () => (stoppedAt = now()));
     const started = now();
     /** @type {import('@vscode/debugprotocol').DebugProtocol.LaunchRequestArguments & Record<string, unknown>} */
-    const launch = { program, roadPath, timeStep: step, duration: 120 };
+    const launch = { program, roadPath, timeStep, duration: 120 };
     const launched = client.launchRequest(launch);
     await client.waitForEvent('initialized');
     const loadMs = now() - started;
@@ -156,7 +158,74 @@ async function debugRun(breakOn, program = full) {
   }
 }
 
+/**
+ * A Pause request in the middle of a run, as VS Code's pause button sends it: ms from sending it to the stopped event,
+ * the simulated time the stop reports, and the time the run ends at after Continue (to compare with a run left alone).
+ * @param {number} afterMs wall ms of running before the pause
+ * @param {number} timeStep
+ * @returns {Promise<{ latencyMs: number, pausedAt: number, ended: number }>}
+ */
+async function pauseRun(afterMs, timeStep) {
+  const client = new DebugClient(process.execPath, adapter, 'modular2simple', { stdio: ['pipe', 'pipe', 'pipe'] });
+  client.defaultTimeout = 120_000;
+  await client.start();
+  try {
+    let ended = NaN;
+    client.on('output', (/** @type {import('@vscode/debugprotocol').DebugProtocol.OutputEvent} */ event) => {
+      const end = /The scenario ended at ([\d.]+) s/.exec(event.body.output);
+      if (end) ended = Number(end[1]);
+    });
+    let stoppedAt = NaN;
+    client.on('stopped', () => (stoppedAt = now()));
+    await client.initializeRequest();
+    const launched = client.launchRequest(
+      /** @type {import('@vscode/debugprotocol').DebugProtocol.LaunchRequestArguments & Record<string, unknown>} */ ({
+        program: full,
+        roadPath,
+        timeStep,
+        duration: 120,
+      }),
+    );
+    await client.waitForEvent('initialized');
+    await client.configurationDoneRequest();
+    await launched;
+    await new Promise((resolve) => setTimeout(resolve, afterMs));
+    const stopped = client.waitForEvent('stopped');
+    const sent = now();
+    await client.pauseRequest({ threadId: 1 });
+    await stopped;
+    const latencyMs = stoppedAt - sent;
+    const pausedAt = Number((await client.evaluateRequest({ expression: 'time', context: 'watch' })).body.result);
+    await Promise.all([client.continueRequest({ threadId: 1 }), client.waitForEvent('terminated')]);
+    return { latencyMs, pausedAt, ended };
+  } finally {
+    await client.stop();
+  }
+}
+
 try {
+  console.log(`debugger benchmark: ${path.basename(scenario)}, step ${step} s, median of ${runs} runs each (node ${process.version})`);
+  if (process.env.BENCH_DEBUG_LATENCY_ONLY !== '1') await speedAndBreakpointLatency();
+  // A fifth of the step, so that the run lasts long enough (about 110,000 steps) for a pause to land in it.
+  const pauseStep = step / 5;
+  const alone = await debugRun(undefined, full, pauseStep);
+  /** @type {number[]} */
+  const pauses = [];
+  for (let i = 0; i < runs; i++) {
+    const paused = await pauseRun(50 + 20 * i, pauseStep);
+    if (!(paused.pausedAt > 0) || paused.ended !== alone.ended)
+      throw new Error(`paused at ${paused.pausedAt} s, ended at ${paused.ended} s; alone it ends at ${alone.ended} s`);
+    pauses.push(paused.latencyMs);
+  }
+  const sortedPauses = [...pauses].sort((a, b) => a - b);
+  console.log(
+    `  pause latency, a pause request mid-run (step ${pauseStep} s) to the stopped event read by the client: median ${median(pauses).toFixed(2)} ms, max ${sortedPauses[sortedPauses.length - 1].toFixed(2)} ms (each run continued to ${alone.ended} s, as the run without a pause)`,
+  );
+} finally {
+  rmSync(folder, { recursive: true, force: true });
+}
+
+async function speedAndBreakpointLatency() {
   /** @typedef {{ wall: number[], cpu: number[] }} Samples */
   /** @returns {Samples} */
   const samples = () => ({ wall: [], cpu: [] });
@@ -195,7 +264,6 @@ try {
   const debugSteps = Math.round(debugEnd / step);
   const fmt = (/** @type {number} */ n, digits = 1) => n.toFixed(digits).padStart(8);
   const rate = (/** @type {number} */ steps, /** @type {number} */ ms) => steps / (ms / 1000);
-  console.log(`debugger benchmark: ${path.basename(scenario)}, step ${step} s, median of ${runs} runs each (node ${process.version})`);
   console.log('                                                          wall ms     CPU ms');
   console.log(
     `  esmini --headless, whole run (${esminiSteps} steps to ${esminiEnd} s) ${fmt(median(esminiFull.wall))}   ${fmt(median(esminiFull.cpu))}`,
@@ -223,6 +291,4 @@ try {
   console.log(
     `  pause latency, CutInStartCondition firing (esmini's callback) to the stopped event read by the client: median ${median(latencies).toFixed(2)} ms, max ${sorted[sorted.length - 1].toFixed(2)} ms`,
   );
-} finally {
-  rmSync(folder, { recursive: true, force: true });
 }

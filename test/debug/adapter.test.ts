@@ -164,7 +164,7 @@ describe('debug adapter through the Debug Adapter Protocol', function () {
       ['Maneuver CutInManeuver', 'ManeuverGroup CutInAndBrakeSequence', 'Act CutInAndBrakeAct', 'Story CutInAndBrakeStory'],
     );
     // The stop is at the time esmini's log starts the event, not one step later: esmini weighs the trigger and starts the
-    // event at a step's start, then moves the entities on (Simulation.rewindLastStep).
+    // event at a step's start, then moves the entities on (Simulation.holdStepStart).
     const time = Number(await evaluate(client, 'time'));
     assert.ok(esminiTime > 0.05 && Math.abs(time - esminiTime) < 1e-6, `stopped at ${time}, esmini's log starts it at ${esminiTime}`);
 
@@ -348,6 +348,85 @@ describe('debug adapter through the Debug Adapter Protocol', function () {
     // The bird's-eye view's states say the run too.
     const stateRuns = [...new Set(states.map((state) => state.run))];
     assert.deepEqual(stateRuns, [1, 2]);
+  });
+
+  it('pauses a run where it is, says that time, and continues from there to the outcome of a run left alone', async () => {
+    // A small step, so that the run lasts (about 217,000 steps) and the pause lands in it.
+    const launch = { type: 'modular2simple', request: 'launch', program: cutIn, roadPath, timeStep: 0.0001 };
+    /** The Debug Console's transition lines of a session, and the time it ended at. */
+    const follow = (session: DebugClient) => {
+      const transitions: string[] = [];
+      let ended: number | undefined;
+      session.on('output', (event: DebugProtocol.OutputEvent) => {
+        if (/^\[[\d.]+\] /.test(event.body.output)) transitions.push(event.body.output);
+        const end = /The scenario ended at ([\d.]+) s/.exec(event.body.output);
+        if (end) ended = Number(end[1]);
+      });
+      return { transitions, ended: () => ended };
+    };
+    const paused = follow(client);
+    const states: DebugState[] = [];
+    client.on(DEBUG_STATE_EVENT, (event: DebugProtocol.Event) => states.push(event.body as DebugState));
+    const running = new Promise<void>((resolve) =>
+      client.on(DEBUG_STATE_EVENT, (event: DebugProtocol.Event) => (event.body as DebugState).paused || resolve()),
+    );
+    const launched = client.launch(launch);
+    await client.waitForEvent('initialized');
+    await client.configurationDoneRequest();
+    await launched;
+    // Paused once the session says it is stepping (its state, published while running).
+    await running;
+    const stop = client.waitForEvent('stopped');
+    await client.pauseRequest({ threadId: 1 });
+    const stopped = (await stop) as DebugProtocol.StoppedEvent;
+    assert.equal(stopped.body.reason, 'pause');
+    const time = Number(await evaluate(client, 'time'));
+    assert.ok(time > 0, `paused at ${time}`);
+    assert.equal(stopped.body.description, `Paused at ${time.toFixed(2)} s`);
+    const published = states[states.length - 1];
+    assert.ok(published.paused && Math.abs(published.time - time) < 1e-9, `published at ${published.time}, paused at ${time}`);
+    // Still there after a look at the entities, and one step on is one step later.
+    await scope(client, 'Entities');
+    assert.equal(Number(await evaluate(client, 'time')), time);
+    await Promise.all([client.stepInRequest({ threadId: 1 }), client.waitForEvent('stopped')]);
+    const stepped = Number(await evaluate(client, 'time'));
+    assert.equal((stepped - time).toFixed(4), '0.0001');
+    const before = paused.transitions.length;
+    const afterPause = states.length;
+    await Promise.all([client.continueRequest({ threadId: 1 }), client.waitForEvent('terminated')]);
+    // Continued from there, not from 0: what it reported afterwards comes later than the pause.
+    const laterTimes = paused.transitions.slice(before).map((line) => Number(/^\[([\d.]+)\]/.exec(line)?.[1]));
+    assert.ok(
+      laterTimes.every((later) => later >= Number(stepped.toFixed(2))),
+      `after the pause at ${stepped}: ${laterTimes.join(', ')}`,
+    );
+    assert.ok(
+      states.slice(afterPause).every((state) => state.time >= stepped - 1e-9),
+      states
+        .slice(afterPause)
+        .map((state) => state.time)
+        .join(', '),
+    );
+
+    // The same scenario left alone: the same transitions at the same times, the same end.
+    const alone = await startClient();
+    try {
+      const unpaused = follow(alone.client);
+      const terminated = alone.client.waitForEvent('terminated');
+      const aloneLaunched = alone.client.launch(launch);
+      await alone.client.waitForEvent('initialized');
+      await alone.client.configurationDoneRequest();
+      await aloneLaunched;
+      await terminated;
+      assert.ok(paused.ended() !== undefined && paused.ended() === unpaused.ended(), `ended at ${paused.ended()} and ${unpaused.ended()}`);
+      assert.ok(paused.ended()! > time, `the pause at ${time} came before the end at ${paused.ended()}`);
+      assert.deepEqual(paused.transitions, unpaused.transitions);
+      assert.ok(unpaused.transitions.length > 20, unpaused.transitions.join(''));
+    } finally {
+      await alone.client.stop();
+      await alone.exited;
+    }
+    assert.equal(alone.stderr(), '', 'the second adapter logged an exception');
   });
 
   it('keeps a conditional breakpoint that never holds from stopping, and stops at a time breakpoint', async () => {

@@ -26,7 +26,7 @@ import { EsminiProblem } from '../esmini/messages';
 import { EntityState, prepareScenario, Simulation, SimulationLoadError, SimulationOptions, StoryboardEvent } from './simulation';
 import { STORYBOARD_EVENT, type StoryboardEventBody } from '../../../common/src/trace';
 import { describeEvent, traceRecord } from './trace';
-import { type StepCounter } from './progressPage';
+import { type SessionPage } from './progressPage';
 import { type SessionProgress } from './supervisor';
 import { evaluateWatch, hitConditionMet, timeBreakpoint, WatchContext, WatchError, WatchValue } from './watchExpression';
 
@@ -56,15 +56,15 @@ const THREAD_ID = 1;
 
 /** Where the session says how far it got, for its supervisor to tell after a crash (supervisor.ts); nowhere by default. */
 let reportProgress: ((progress: SessionProgress) => void) | undefined;
-/** Where each step's count goes, for the same (progressPage.ts). */
-let stepCounter: StepCounter | undefined;
-export function reportProgressTo(sink: ((progress: SessionProgress) => void) | undefined, steps?: StepCounter): void {
+/** The page shared with the supervisor: each step's count goes there for the same, and pause requests come from there (progressPage.ts). */
+let sessionPage: SessionPage | undefined;
+export function reportProgressTo(sink: ((progress: SessionProgress) => void) | undefined, page?: SessionPage): void {
   reportProgress = sink;
-  stepCounter = steps;
+  sessionPage = page;
 }
 /** While running, the bird's-eye view gets the entities at most this often (wall ms): enough to watch them move. */
 const STATE_INTERVAL_MS = 100;
-/** Wall ms of stepping between two turns of the event loop, where requests (pause) are read. */
+/** Wall ms of stepping between two turns of the event loop, where requests are read (a pause sooner, through the supervisor's page). */
 const SLICE_MS = 15;
 const ELEMENT_KINDS = 'Story, Act, ManeuverGroup, Maneuver, Event, Action or Condition';
 
@@ -219,7 +219,7 @@ export class ScenarioDebugSession extends DebugSession {
       esminiLibrary: args.esminiLibrary,
       force: args.force,
       onCallback: reportProgress && ((time, what) => reportProgress?.({ time, what })),
-      stepCounter,
+      stepCounter: sessionPage,
     };
     const store = new ScenarioStore({
       scenarioPath: [...(args.scenarioPath ?? []), ...splitScenarioPath(process.env.SCENARIO_PATH)],
@@ -441,16 +441,27 @@ export class ScenarioDebugSession extends DebugSession {
     this.running = true;
     this.pauseRequested = false;
     this.stopped = undefined;
+    // Stopped at a step's start (Simulation.holdStepStart): esmini has made that step already, so one step on is its end.
+    const stepEnded = simulation.holding;
+    simulation.release();
+    // Pause requests the supervisor counted before this run are answered (a pause while stopped does nothing).
+    const pausesBefore = sessionPage?.pauseRequests();
     /** Steps between two reads of the clock in a slice. */
     let stride = 1;
+    const pause = () =>
+      this.stopWith({ reason: 'pause', description: `Paused at ${fixed(simulation.time)} s`, firings: [], breakpointIds: [] });
     const slice = () => {
       if (!this.running || this.simulation !== simulation) return;
       try {
         reportProgress?.({ time: simulation.time, what: 'stepping on from there' });
-        // Steps in slices of a few milliseconds, so that a pause request (or a change of breakpoints) is read between them.
-        if (this.pauseRequested)
-          return this.stopWith({ reason: 'pause', description: `Paused at ${fixed(simulation.time)} s`, firings: [], breakpointIds: [] });
+        if (mode === 'step' && stepEnded)
+          return this.stopWith({ reason: 'step', description: `Stepped to ${fixed(simulation.time)} s`, firings: [], breakpointIds: [] });
+        // Steps in slices of a few milliseconds, so that requests (a change of breakpoints) are read between them; a pause
+        // is read after every step from the supervisor's page, else here.
+        if (this.pauseRequested) return pause();
         const timed = this.functionBreakpoints.some((breakpoint) => breakpoint.time !== undefined && !breakpoint.done);
+        // esmini's state at a step's start is kept only while a stop there may come: it costs esmini calls in each step that reports something.
+        simulation.keepStepStart = mode === 'next' || mode === 'stepOut' || this.breaksOnElements();
         const until = Date.now() + SLICE_MS;
         let steps = 0;
         do {
@@ -458,10 +469,12 @@ export class ScenarioDebugSession extends DebugSession {
           const events = simulation.step();
           steps++;
           // Most steps report nothing: no breakpoint to weigh unless a time breakpoint is due (bench/debugger.mjs).
-          if (events.length === 0 && mode !== 'step' && !(timed && this.timeBreakpointDue(simulation))) continue;
-          this.report(events);
-          const stop = this.breakpointStop(simulation, events) ?? this.stepStop(simulation, events, mode, stepOutOf);
-          if (stop) return this.stopWith(stop);
+          if (events.length > 0 || mode === 'step' || (timed && this.timeBreakpointDue(simulation))) {
+            this.report(events);
+            const stop = this.breakpointStop(simulation, events) ?? this.stepStop(simulation, events, mode, stepOutOf);
+            if (stop) return this.stopWith(stop);
+          }
+          if (sessionPage && sessionPage.pauseRequests() !== pausesBefore) return pause();
         } while (steps % stride !== 0 || Date.now() < until);
         // The clock read about a hundred times a slice: a read costs a twentieth of a small scenario's step (docs/benchmarks.md).
         stride = Math.min(64, Math.max(1, Math.floor(steps / 100)));
@@ -476,6 +489,12 @@ export class ScenarioDebugSession extends DebugSession {
       }
     };
     setImmediate(slice);
+  }
+
+  /** Whether a breakpoint may stop on an element's start or a condition (a line breakpoint on one, or an element's name). */
+  private breaksOnElements(): boolean {
+    for (const list of this.lineBreakpoints.values()) if (list.some((breakpoint) => breakpoint.elements.length > 0)) return true;
+    return this.functionBreakpoints.some((breakpoint) => breakpoint.name !== undefined);
   }
 
   private timeBreakpointDue(simulation: Simulation): boolean {
@@ -530,8 +549,8 @@ export class ScenarioDebugSession extends DebugSession {
     else if (mode === 'stepOut' && stepOutOf)
       stopOn = transitions.find((event) => event.element === stepOutOf && event.state !== 'running');
     if (!stopOn) return undefined;
-    // At the step's start, where esmini made the transition (Simulation.rewindLastStep).
-    simulation.rewindLastStep();
+    // At the step's start, where esmini made the transition (Simulation.holdStepStart).
+    simulation.holdStepStart();
     return { reason: 'step', description: describeEvent(stopOn), element: stopOn.mapped, event: stopOn, firings, breakpointIds: [] };
   }
 
@@ -600,8 +619,8 @@ export class ScenarioDebugSession extends DebugSession {
         if (breakpoint.name !== undefined && breakpoint.name === event.name) hits.push({ breakpoint, event });
     }
     if (hits.length > 0) {
-      // Conditions weighed, and the stop made, at the step's start, where esmini started the element (Simulation.rewindLastStep).
-      const rewound = simulation.rewindLastStep();
+      // Conditions weighed, and the stop made, at the step's start, where esmini started the element (Simulation.holdStepStart).
+      simulation.holdStepStart();
       for (const { breakpoint, event } of hits) {
         const verdict = this.shouldStop(simulation, breakpoint);
         if (verdict.note) notes.push(verdict.note);
@@ -609,8 +628,8 @@ export class ScenarioDebugSession extends DebugSession {
         ids.push(breakpoint.id);
         stopEvent ??= event;
       }
-      // No stop: the step made again (its reports, already made, muted), as if it had not gone back.
-      if (ids.length === 0 && rewound) simulation.step();
+      // No stop: esmini's state now again, the step's end.
+      if (ids.length === 0) simulation.release();
     }
     for (const breakpoint of this.functionBreakpoints) {
       if (breakpoint.time === undefined || breakpoint.done || simulation.time < breakpoint.time - 1e-9) continue;

@@ -2,12 +2,19 @@ import * as fs from 'node:fs';
 import * as os from 'node:os';
 
 /*
+ * A page of memory shared by a debug session's process and its supervisor (supervisor.ts), written by one side and read
+ * by the other without a system call on the reader's side.
+ *
  * The simulated time a debug session has reached, kept where its supervisor can read it after the session's process
- * died in the middle of a step (supervisor.ts). The session writes the number of steps esmini has made into a page of
+ * died in the middle of a step. The session writes the number of steps esmini has made into a page of
  * memory at every step: a file the supervisor made, mapped shared (libc's mmap through koffi, as esmini's library is
  * called), so a write is a store to memory, not a system call; after the child dies, the supervisor reads the file,
  * whose pages hold what the child last stored. A step costs esmini microseconds; a progress line written at every
  * step (a system call) would cost about as much as the step.
+ *
+ * The other way, the pause requests: the supervisor reads the editor's requests before the session does, and counts
+ * each pause into the page (a write to the file, which the session's shared mapping sees); the session, stepping esmini
+ * without returning to its event loop for milliseconds at a time, reads the count after every step and stops at once.
  */
 
 /** The environment variable naming the page's file, set by the supervisor for its child. */
@@ -15,10 +22,11 @@ export const PROGRESS_PAGE_ENV = 'MODULAR2SIMPLE_PROGRESS_PAGE';
 /** The page's size, bytes: the file the supervisor makes and the child maps. */
 export const PROGRESS_PAGE_BYTES = 4096;
 
-/** The page's slots (Float64): the steps made in the run, its time step, and a mark that they were written. */
+/** The page's slots (Float64): the steps made in the run, its time step, a mark that they were written (the session's), and the pause requests (the supervisor's). */
 const STEPS = 0;
 const TIME_STEP = 1;
 const WRITTEN = 2;
+const PAUSES = 3;
 /** Written into WRITTEN once the session set the time step: a page of zeros says nothing. */
 const MARK = 29.5;
 
@@ -28,10 +36,15 @@ export interface StepCounter {
   steps(count: number): void;
 }
 
+/** The session's side of the page: its step counter, and the pause requests its supervisor has counted so far. */
+export interface SessionPage extends StepCounter {
+  pauseRequests(): number;
+}
+
 type KoffiModule = typeof import('koffi');
 
 /** Maps the page the supervisor made (its file in PROGRESS_PAGE_ENV); undefined where there is none or it cannot be mapped. */
-export function mapProgressPage(file = process.env[PROGRESS_PAGE_ENV]): StepCounter | undefined {
+export function mapProgressPage(file = process.env[PROGRESS_PAGE_ENV]): SessionPage | undefined {
   if (!file || process.platform === 'win32') return undefined;
   // Required here: koffi is a native module, loaded only by the processes that run a scenario.
   const koffi = require('koffi') as KoffiModule;
@@ -57,12 +70,32 @@ export function mapProgressPage(file = process.env[PROGRESS_PAGE_ENV]): StepCoun
     steps(count) {
       page[STEPS] = count;
     },
+    pauseRequests() {
+      return page[PAUSES];
+    },
   };
 }
 
 /** The supervisor's side: a zeroed page file for the child to map. */
 export function makeProgressPage(file: string): void {
   fs.writeFileSync(file, Buffer.alloc(PROGRESS_PAGE_BYTES));
+}
+
+/** The supervisor's side: counts a pause request into the page (the file's slot, seen by the session's mapping). */
+export function pauseCounter(file: string): () => void {
+  let count = 0;
+  const slot = Buffer.alloc(8);
+  return () => {
+    count++;
+    if (os.endianness() === 'LE') slot.writeDoubleLE(count);
+    else slot.writeDoubleBE(count);
+    const fd = fs.openSync(file, 'r+');
+    try {
+      fs.writeSync(fd, slot, 0, 8, PAUSES * 8);
+    } finally {
+      fs.closeSync(fd);
+    }
+  };
 }
 
 /** The simulated time the page says the session reached (steps × time step: esmini's time after them), s; undefined when never written. */

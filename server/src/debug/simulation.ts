@@ -61,6 +61,20 @@ export interface SimulationOptions {
   stepCounter?: StepCounter;
 }
 
+/** What the debugger shows of a run at one moment, read from esmini then. */
+export interface SimulationView {
+  time: number;
+  entities: EntityState[];
+  pairs: EntityPair[];
+  parameters: NamedValue[];
+  variables: NamedValue[];
+}
+
+export interface NamedValue {
+  name: string;
+  value: string | number | boolean | undefined;
+}
+
 export interface EntityState extends EsminiObjectState {
   name: string;
   acceleration: number;
@@ -143,10 +157,15 @@ export class Simulation {
   >();
   private closed = false;
   private steps = 0;
-  /** Callbacks dropped: while a rewind replays the run, and in the step after it (rewindLastStep). */
-  private muted = false;
-  private muteNextStep = false;
-  private rewound = false;
+  /**
+   * Whether a step's start is read from esmini in its first callback (holdStepStart): set by the debugger while a
+   * stop at a transition may come (a breakpoint on an element, Step Over, Step Out), as it costs esmini calls.
+   */
+  keepStepStart = false;
+  /** The current step's start, read in its first callback when keepStepStart. */
+  private stepStart: SimulationView | undefined;
+  /** The moment shown instead of esmini's state now, while stopped at a step's start (holdStepStart). */
+  private held: SimulationView | undefined;
   ended = false;
 
   constructor(
@@ -221,52 +240,37 @@ export class Simulation {
   }
 
   /**
-   * Takes esmini back to the start of the last step, where what that step reported happened. In a step esmini weighs
-   * the triggers and starts elements at the step's start time (the time its callbacks and its log give), then moves
-   * the entities one step on; it cannot go back, so the scenario is loaded again and run to that time with the
-   * callbacks muted (a fixed step and seed repeat a run exactly). The next step's reports, the same again, are dropped.
-   * Returns false when there is nothing to go back over (the last step was already rewound, or none was made).
+   * Shows the run at the start of its last step, where what that step reported happened, until the next step or
+   * release. In a step esmini weighs the triggers and starts elements at the step's start time (the time its callbacks
+   * and its log give), then moves the entities one step on (ScenarioEngine::step); the state at the start is read in
+   * the step's first callback, before anything in the step changed it (keepStepStart). Returns false when there is
+   * none (the last step reported nothing, or keepStepStart was off).
    */
-  rewindLastStep(): boolean {
-    if (this.closed || this.rewound || this.steps === 0) return false;
-    const replay = this.steps - 1;
-    this.library.close();
-    this.muted = true;
-    try {
-      this.load();
-      for (let step = 0; step < replay; step++) this.library.stepDT(this.timeStep);
-    } finally {
-      this.muted = false;
-    }
-    // The log of the replay repeats lines already read.
-    this.library.flushLog();
-    this.readLog();
-    this.pending = [];
-    this.steps = replay;
-    this.options.stepCounter?.steps(replay);
-    this.ended = false;
-    this.rewound = true;
-    this.muteNextStep = true;
-    return true;
+  holdStepStart(): boolean {
+    this.held = this.stepStart;
+    return this.held !== undefined;
+  }
+
+  /** Back to esmini's state now (the end of the last step): what Continue goes on from. */
+  release(): void {
+    this.held = undefined;
+  }
+
+  /** Whether the run is shown at its last step's start (holdStepStart). */
+  get holding(): boolean {
+    return this.held !== undefined;
   }
 
   get time(): number {
-    return this.library.simulationTime();
+    return this.held?.time ?? this.library.simulationTime();
   }
 
   /** One step of `timeStep` seconds; what esmini reported during it (most steps: nothing, the one shared empty list). */
   step(): readonly StoryboardEvent[] {
     if (this.ended || this.closed) return NO_EVENTS;
-    this.rewound = false;
-    if (this.muteNextStep) {
-      this.muteNextStep = false;
-      this.muted = true;
-      try {
-        this.library.stepDT(this.timeStep);
-      } finally {
-        this.muted = false;
-      }
-    } else this.library.stepDT(this.timeStep);
+    this.held = undefined;
+    this.stepStart = undefined;
+    this.library.stepDT(this.timeStep);
     this.steps++;
     this.options.stepCounter?.steps(this.steps);
     // A step costs esmini microseconds, so each call counts: esmini's time is asked for only from a step before the end,
@@ -283,7 +287,7 @@ export class Simulation {
   }
 
   private transition(name: string, type: number, state: number, fullPath: string): void {
-    if (this.muted) return;
+    this.keepStepStartNow();
     const kind = ESMINI_ELEMENT_TYPES[type] ?? `type ${type}`;
     const element = fullPath || name;
     const mapped = this.scenario.map.atPath(element);
@@ -295,7 +299,7 @@ export class Simulation {
   }
 
   private conditionFired(name: string, timestamp: number): void {
-    if (this.muted) return;
+    this.keepStepStartNow();
     this.options.onCallback?.(timestamp, `Condition ${name} true`);
     this.library.flushLog();
     for (const line of this.readLog().split('\n')) {
@@ -314,6 +318,22 @@ export class Simulation {
       reason: detail === undefined ? undefined : conditionReason(detail),
       reportedAtMs: Number(process.hrtime.bigint()) / 1e6,
     });
+  }
+
+  /**
+   * In a step's first callback, the run as it is at the step's start: esmini calls back while it weighs the triggers,
+   * which it does before it steps any action or moves any entity (StoryBoardElement::EvalTriggers before Step).
+   */
+  private keepStepStartNow(): void {
+    if (!this.keepStepStart || this.stepStart) return;
+    const entities = this.liveEntities();
+    this.stepStart = {
+      time: this.library.simulationTime(),
+      entities,
+      pairs: this.livePairs(entities),
+      parameters: this.liveParameters(),
+      variables: this.liveVariables(),
+    };
   }
 
   /**
@@ -356,8 +376,12 @@ export class Simulation {
     }
   }
 
-  /** Every entity's state now. */
+  /** Every entity's state now (at the step's start while held). */
   entities(): EntityState[] {
+    return this.held ? this.held.entities : this.liveEntities();
+  }
+
+  private liveEntities(): EntityState[] {
     const entities: EntityState[] = [];
     const count = this.library.objectCount();
     for (let index = 0; index < count; index++) {
@@ -370,7 +394,11 @@ export class Simulation {
   }
 
   /** TTC and gap from each entity to each other. */
-  pairs(entities: EntityState[] = this.entities()): EntityPair[] {
+  pairs(entities?: EntityState[]): EntityPair[] {
+    return this.held ? this.held.pairs : this.livePairs(entities ?? this.liveEntities());
+  }
+
+  private livePairs(entities: EntityState[]): EntityPair[] {
     const pairs: EntityPair[] = [];
     for (const from of entities)
       for (const to of entities) {
@@ -385,11 +413,19 @@ export class Simulation {
     return pairs;
   }
 
-  parameters(): { name: string; value: string | number | boolean | undefined }[] {
+  parameters(): NamedValue[] {
+    return this.held ? this.held.parameters : this.liveParameters();
+  }
+
+  private liveParameters(): NamedValue[] {
     return this.library.parameterNames().map(({ name, type }) => ({ name, value: this.library.parameterValue(name, type) }));
   }
 
-  variables(): { name: string; value: string | number | boolean | undefined }[] {
+  variables(): NamedValue[] {
+    return this.held ? this.held.variables : this.liveVariables();
+  }
+
+  private liveVariables(): NamedValue[] {
     return this.library.variableNames().map(({ name, type }) => ({ name, value: this.library.variableValue(name, type) }));
   }
 

@@ -2,7 +2,7 @@ import { ChildProcess, spawn } from 'node:child_process';
 import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
-import { makeProgressPage, PROGRESS_PAGE_ENV, readProgressPage } from './progressPage';
+import { makeProgressPage, pauseCounter, PROGRESS_PAGE_ENV, readProgressPage } from './progressPage';
 
 /*
  * The debug adapter's outer process (dist/debugAdapter.js as the editor starts it): it runs the session (adapter.ts),
@@ -110,6 +110,7 @@ export function superviseSession(script: string): void {
   // The page the child stores its step count in at every step, read here when it died (progressPage.ts).
   const progressPage = path.join(temporary, 'progress-page');
   makeProgressPage(progressPage);
+  const countPause = pauseCounter(progressPage);
   const child: ChildProcess = spawn(process.execPath, [script, SESSION_ARGUMENT], {
     env: { ...process.env, TMPDIR: temporary, TMP: temporary, TEMP: temporary, [PROGRESS_PAGE_ENV]: progressPage },
     stdio: ['pipe', 'pipe', 'pipe', 'pipe'],
@@ -131,6 +132,8 @@ export function superviseSession(script: string): void {
     if (message.type !== 'request' || message.seq === undefined || !message.command) return;
     if (message.command === 'launch' && typeof message.arguments?.program === 'string') program = message.arguments.program;
     if (message.command === 'disconnect' || message.command === 'terminate') ending = true;
+    // Counted before the request goes on: the session, busy stepping, sees it after its current step (progressPage.ts).
+    if (message.command === 'pause' && !crashed) countPause();
     if (crashed) {
       answer(message.seq, message.command, message.command === 'disconnect' ? undefined : 'the debug session has ended: esmini crashed');
       if (message.command === 'disconnect') setImmediate(finish);
