@@ -400,6 +400,45 @@ describe('export --target carla, round trip in esmini', function () {
     for (const routed of ['routing-test.xosc', 'pedestrian_collision.xosc', 'ltap-od-relative-speed.xosc'])
       assert.ok(compared.includes(routed), `${routed} (a RoutePosition mapped) is not compared: ${compared.join(', ')}`);
   });
+
+  // docs/case-study-from-library.md says how far the case study's export runs from the flattened main in esmini: pinned here, both ways.
+  it("the rebuilt case study's export runs in esmini as its flattened main, but vehicle_1 brakes 0.2 s later (1.6 m at worst)", async () => {
+    const input = path.join(repoRoot, 'examples', 'case-study', 'main.xosc');
+    const flattened = path.join(out, 'case-study.flat.xosc');
+    const errors: string[] = [];
+    const code = await main(['flatten', input, '-o', flattened, '-q'], { out: () => {}, err: (text) => errors.push(text) });
+    assert.equal(code, 0, errors.join('\n'));
+    const exported = await exportFile(input, path.join(out, 'case-study.carla.xosc'));
+    assert.equal(exported.code, 0, exported.stderr);
+    const before = tracksOf(await runEsmini(flattened, 40));
+    const after = tracksOf(await runEsmini(exported.output, 40));
+    assert.deepEqual([...after.keys()].sort(), ['ambulance', 'police', 'vehicle_0', 'vehicle_1']);
+    const speeds = (track: { time: number; x: number; y: number }[]) =>
+      track.slice(1).map((point, index) => ({
+        time: point.time,
+        speed: Math.hypot(point.x - track[index].x, point.y - track[index].y) / (point.time - track[index].time),
+      }));
+    // lead-brake's 10 m/s² is 0.5 m/s a 0.05 s step; the SynchronizeAction before it changes the speed by 0.05 m/s a step.
+    const brakingStart = (track: { time: number; x: number; y: number }[]): number => {
+      const steps = speeds(track);
+      const index = steps.findIndex((step, i) => i > 0 && steps[i - 1].speed - step.speed > 0.3);
+      assert.ok(index > 0, 'never brakes');
+      return steps[index].time;
+    };
+    for (const [entity, track] of before) {
+      const other = after.get(entity) ?? [];
+      assert.equal(other.length, track.length, entity);
+      const worst = Math.max(...track.map((point, index) => Math.hypot(point.x - other[index].x, point.y - other[index].y)));
+      if (entity !== 'vehicle_1') {
+        assert.ok(worst <= 0.1, `${entity} is ${worst.toFixed(3)} m away at worst`);
+        continue;
+      }
+      // lead-brake's road-coordinate longitudinal headway is 1.0's alongRoute, which esmini 3.6 measures in road coordinates as a Euclidean distance.
+      assert.ok(worst > 0.1 && worst <= 1.6, `vehicle_1 is ${worst.toFixed(3)} m away at worst (docs/case-study-from-library.md: 1.6 m)`);
+      const later = brakingStart(other) - brakingStart(track);
+      assert.ok(Math.abs(later - 0.2) < 0.01, `vehicle_1 brakes ${later.toFixed(2)} s later (docs/case-study-from-library.md: 0.2 s)`);
+    }
+  });
 });
 
 /** A vehicle as ScenarioRunner's examples write one (1.0 needs every part). */
