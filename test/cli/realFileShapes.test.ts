@@ -2,8 +2,19 @@ import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { esminiBinary, esminiRoads, requireEsmini } from '../support/esmini';
+import { runBounded } from '../support/processes';
 import JSZip from 'jszip';
-import { distributionFile, fileHeader, openScenarioFile, outerGroup, runCli, scenario, simpleGroup } from '../support/fixtures';
+import {
+  distributionFile,
+  fileHeader,
+  openScenarioFile,
+  outerGroup,
+  roadScenario,
+  runCli,
+  scenario,
+  simpleGroup,
+} from '../support/fixtures';
+import { STRAIGHT_ROAD } from '../support/roads';
 import { temporaryWorkspace } from '../support/workspace';
 
 /**
@@ -318,5 +329,52 @@ describe('real file shapes: what a missing scenarioFileName says to do (issue 27
     assert.equal(runCli(['check', 'result.mosc', '--scenario-path', '.'], { cwd: folder }).status, 0);
     const misspelt = runCli(['check', 'misspelt/main.xosc'], { cwd: folder });
     assert.match(misspelt.stderr, /cannot find 'simple_l\.xosc'.*\n\s+hint: did you mean 'simple_1\.xosc'\?/);
+  });
+});
+
+describe('real file shapes: a road file esmini would not find (issue 27)', function () {
+  this.timeout(120_000);
+
+  /** A scenario on ../xodr/straight.xodr that ends after a second of simulated time. */
+  const SCENARIO = roadScenario({ logicFile: '../xodr/straight.xodr', groups: [] }).replace(
+    /<StopTrigger\/>(\s*<\/Storyboard>)/,
+    '<StopTrigger><ConditionGroup><Condition name="end" delay="0" conditionEdge="none"><ByValueCondition><SimulationTimeCondition value="1" rule="greaterThan"/></ByValueCondition></Condition></ConditionGroup></StopTrigger>$1',
+  );
+  /** esmini's own layout: the scenario in xosc/, its road named ../xodr/NAME, which here lies in roads/ instead. */
+  const layout = (road: string) => temporaryWorkspace({ 'xosc/s.xosc': SCENARIO, 'roads/straight.xodr': road });
+
+  it('check says so at the LogicFile: a warning, an error with --simulator esmini, nothing once --road-path names its folder', () => {
+    const folder = layout(STRAIGHT_ROAD);
+    const line = SCENARIO.split('\n').findIndex((text) => text.includes('<LogicFile')) + 1;
+    const plain = check(folder, 'xosc/s.xosc').filter((problem) => problem.code === 'road-file');
+    assert.deepEqual(
+      plain.map(({ severity, line }) => [severity, line]),
+      [['warning', line]],
+    );
+    assert.match(plain[0].message, /^road file '\.\.\/xodr\/straight\.xodr' is not found beside this file \(.*xosc\): esmini stops/);
+    const esmini = runCli(['check', 'xosc/s.xosc', '--simulator', 'esmini'], { cwd: folder });
+    assert.equal(esmini.status, 1, esmini.stderr);
+    assert.match(esmini.stderr, /s\.xosc:\d+:\d+: error: road file '\.\.\/xodr\/straight\.xodr' is not found/);
+    assert.deepEqual(
+      check(folder, 'xosc/s.xosc', '--road-path', 'roads', '--simulator', 'esmini').filter((problem) => problem.code === 'road-file'),
+      [],
+    );
+  });
+
+  it('agrees with esmini: without the folder esmini fails to locate the road, with it as --path esmini loads it', async function () {
+    requireEsmini(this);
+    const folder = layout(fs.readFileSync(path.join(esminiRoads, 'straight_500m.xodr'), 'utf8'));
+    const esmini = (...extra: string[]) =>
+      runBounded(
+        esminiBinary,
+        ['--headless', '--osc', 'xosc/s.xosc', '--fixed_timestep', '0.05', '--disable_log', ...extra],
+        { cwd: folder },
+        60_000,
+      );
+    assert.match((await esmini()).output, /Failed to locate OpenDRIVE file \.\.\/xodr\/straight\.xodr/);
+    assert.equal(check(folder, 'xosc/s.xosc').filter((problem) => problem.code === 'road-file').length, 1);
+    const found = await esmini('--path', path.join(folder, 'roads'));
+    assert.doesNotMatch(found.output, /Failed to locate OpenDRIVE file/);
+    assert.match(found.output, /Loaded OpenDRIVE: .*straight\.xodr/);
   });
 });

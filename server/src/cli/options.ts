@@ -17,6 +17,8 @@ import { storeForInputs } from './inputs';
 /** The --help lines of the options every command of the shared set reads, whatever it writes. */
 export const READING_OPTIONS_HELP = `  --scenario-path DIRS      folders searched after the package, before SCENARIO_PATH's own
                             (separated by ';' or ':')
+  --road-path DIRS          folders where esmini finds road files and catalogs, as for run (separated by
+                            ';' or ':'): the road file is looked for there too
   --root DIR                where the search upward from an unpacked folder stops (default: the
                             working directory, or the input's folder when it lies elsewhere)
   --schema-version V        the OpenSCENARIO schema files are checked against: auto (each file's
@@ -63,6 +65,8 @@ export interface Options {
   outDir?: string;
   force: boolean;
   scenarioPath: string[];
+  /** --road-path: the folders a run hands esmini as --path besides the scenario's own (the store's catalogPath). */
+  roadPath: string[];
   root?: string;
   includeScenarioPath: boolean;
   selfContained: boolean;
@@ -84,6 +88,7 @@ const SHARED_OPTIONS = {
   'out-dir': { type: 'string' },
   force: { type: 'boolean' },
   'scenario-path': { type: 'string' },
+  'road-path': { type: 'string' },
   root: { type: 'string' },
   'include-scenario-path': { type: 'boolean' },
   'self-contained': { type: 'boolean' },
@@ -165,6 +170,7 @@ export function parseOptions(args: string[]): Options {
     positional: [],
     force: false,
     scenarioPath: [],
+    roadPath: [],
     includeScenarioPath: false,
     selfContained: false,
     format: 'text',
@@ -204,6 +210,9 @@ export function parseOptions(args: string[]): Options {
         break;
       case 'scenario-path':
         options.scenarioPath.push(...splitScenarioPath(take()));
+        break;
+      case 'road-path':
+        options.roadPath.push(...splitScenarioPath(take()));
         break;
       case 'root':
         options.root = take();
@@ -261,5 +270,5 @@ export function parseOptions(args: string[]): Options {
 }
 
 export function makeStore(options: Options, inputs: string[]): ScenarioStore {
-  return storeForInputs(options.scenarioPath, options.root, inputs, options.limits);
+  return storeForInputs(options.scenarioPath, options.root, inputs, options.limits, options.roadPath);
 }

@@ -70,6 +70,7 @@ export const PROBLEM_CODE_LIST = [
   'renamed-reference',
   'simulator',
   'file-path',
+  'road-file',
   'unknown-traffic-signal',
   'unknown-traffic-signal-controller',
   'no-actor',

@@ -21,6 +21,7 @@ import { CATALOG_DIRECTORY } from './catalogDirectory';
 import { CATALOG_LOCATION_CONFLICT } from './catalogLocationConflict';
 import { PARAMETER_CONFLICT } from './parameterConflict';
 import { TOO_LARGE } from './tooLarge';
+import { ROAD_FILE } from './roadFile';
 import { UNKNOWN_TRAFFIC_SIGNAL } from './unknownTrafficSignal';
 import { UNKNOWN_TRAFFIC_SIGNAL_CONTROLLER } from './unknownTrafficSignalController';
 import { NO_ACTOR } from './noActor';
@@ -95,6 +96,7 @@ export const DIAGNOSTICS = [
   CATALOG_DIRECTORY,
   CATALOG_LOCATION_CONFLICT,
   PARAMETER_CONFLICT,
+  ROAD_FILE,
   UNKNOWN_TRAFFIC_SIGNAL,
   UNKNOWN_TRAFFIC_SIGNAL_CONTROLLER,
   NO_ACTOR,

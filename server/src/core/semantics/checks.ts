@@ -17,6 +17,7 @@ import {
   phaseDurations,
   privateActionActors,
   trafficSignalControllerRefs,
+  roadFileFound,
   trafficSignalIds,
   valueRanges,
 } from './networkChecks';
@@ -484,7 +485,8 @@ export const SEMANTIC_CHECKS: readonly { name: string; check: SemanticCheck }[] 
   { name: 'value constraints', check: valueConstraints },
   { name: 'simulator profile', check: simulatorProfile },
   { name: 'CARLA ScenarioRunner', check: carlaScenario },
-  // Traffic signals, actors and value ranges (./networkChecks.ts).
+  // The road file, traffic signals, actors and value ranges (./networkChecks.ts).
+  { name: 'road file', check: roadFileFound },
   { name: 'traffic signal id', check: trafficSignalIds },
   { name: 'traffic signal controller', check: trafficSignalControllerRefs },
   { name: 'private action actors', check: privateActionActors },

@@ -39,6 +39,7 @@ import { assignmentsOf, CatalogLoader, CatalogReferenceResolution, CatalogResolu
 import { Finding, runChecks, SemanticContext } from './checks';
 import { Reading } from './evaluator';
 import { roadSignalsOf } from './roadNetwork';
+import { locateRoadFile } from './roadFiles';
 import { Declaration, Evaluator, ParameterUse, Scope, SemanticModel, semanticModelOf, ValueResult, visibleDeclarations } from './model';
 
 export * from './values';
@@ -63,9 +64,14 @@ export async function analyzeDocument(
   const model = semanticModelOf(document);
   const evaluator = new Evaluator(model, undefined, readingOf(simulator));
   const catalogs: CatalogResolution = await loader.resolve(ref, model, evaluator);
-  const road = await roadSignalsOf(loader.store, ref, document, evaluator);
+  // A run hands esmini the scenario's catalog folders as --path too, where it finds a road by its file name.
+  const catalogFolders = catalogs.locations.flatMap((location) =>
+    location.directories.flatMap((directory) => (directory.packageRef ? [] : [directory.directory])),
+  );
+  const roadFile = await locateRoadFile(loader.store, ref, document, evaluator, catalogFolders);
+  const road = await roadSignalsOf(loader.store, roadFile);
   const carla = simulator === 'carla' ? await carlaSemantics(loader, ref, model, carlaRelease) : {};
-  return { ref, model, evaluator, catalogs, modular, simulator, ...carla, ...(road ? { road } : {}) };
+  return { ref, model, evaluator, catalogs, modular, simulator, ...carla, ...(roadFile ? { roadFile } : {}), ...(road ? { road } : {}) };
 }
 
 /** What the CARLA checks need beyond the document: the release, and the files ScenarioRunner reads beside it. */

@@ -3,6 +3,7 @@ import { NO_ACTOR_ACTION_NOTE, noActorWording } from '../diagnostics/noActor';
 import { negativeTransitionTimeWording } from '../diagnostics/negativeTransitionTime';
 import { nonPositivePhaseDurationWording } from '../diagnostics/nonPositivePhaseDuration';
 import { outOfRangeWording } from '../diagnostics/outOfRange';
+import { roadFileWording } from '../diagnostics/roadFile';
 import { unknownTrafficSignalWording } from '../diagnostics/unknownTrafficSignal';
 import { unknownTrafficSignalControllerWording } from '../diagnostics/unknownTrafficSignalController';
 import { attribute, firstDescendant, XmlAttribute, XmlElement } from '../xml';
@@ -47,6 +48,22 @@ function signalControllers(model: SemanticModel): XmlElement[] | undefined {
   const signals = network.children.find((child) => child.name === 'TrafficSignals');
   return signals ? signals.children.filter((child) => child.name === 'TrafficSignalController') : [];
 }
+
+/**
+ * The road file a LogicFile names is found where a run has esmini look for it (SemanticContext.roadFile). Said
+ * nothing of with simulator carla (its profile's own road rule), nor of a CARLA map's name unless esmini is the simulator.
+ */
+export const roadFileFound: SemanticCheck = ({ roadFile, simulator }) => {
+  if (!roadFile || roadFile.resolved || roadFile.packaged || simulator === 'carla') return [];
+  if (roadFile.carlaTown && simulator !== 'esmini') return [];
+  const { element } = roadFile.logic;
+  return [
+    {
+      ...at(element, roadFile.attribute),
+      ...roadFileWording(roadFile.logic.filepath, roadFile.folders, simulator === 'esmini' ? 'error' : 'warning', roadFile.carlaTown),
+    },
+  ];
+};
 
 /** A `TrafficSignalStateAction name` is a signal of the road file or of one of the scenario's controller phases. Skipped when the road file cannot be read. */
 export const trafficSignalIds: SemanticCheck = (context) => {

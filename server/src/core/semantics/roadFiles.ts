@@ -3,8 +3,9 @@
  * the bird's-eye view draws the file that Run in esmini loads.
  */
 import * as path from 'node:path';
-import { FileSystemHost, SourceRef } from '../sources';
-import { XmlDocument, XmlElement } from '../xml';
+import { CARLA_TOWNS } from '../profiles/scenarioRunner';
+import { FileSystemHost, normalizeEntryName, ScenarioStore, SourceRef } from '../sources';
+import { XmlAttribute, XmlDocument, XmlElement } from '../xml';
 // The model module, not the semantics index: the index runs the checks, whose road rules read road files through this one.
 import { Evaluator, semanticModelOf } from './model';
 
@@ -23,12 +24,19 @@ export interface RoadFileResolution {
   candidates: string[];
 }
 
-/** The document's `RoadNetwork/LogicFile` and its filepath as evaluated; undefined when it names none. */
-export function logicFileOf(document: XmlDocument, evaluator?: Evaluator): LogicFile | undefined {
+/** The document's `RoadNetwork/LogicFile` element and its `filepath` attribute, as written. */
+function logicFileElement(document: XmlDocument): { element: XmlElement; written: XmlAttribute } | undefined {
   const network = document.root?.children.find((child) => child.name === 'RoadNetwork');
   const element = network?.children.find((child) => child.name === 'LogicFile');
   const written = element?.attributes.find((attribute) => attribute.name === 'filepath');
-  if (!element || !written) return undefined;
+  return element && written ? { element, written } : undefined;
+}
+
+/** The document's `RoadNetwork/LogicFile` and its filepath as evaluated; undefined when it names none. */
+export function logicFileOf(document: XmlDocument, evaluator?: Evaluator): LogicFile | undefined {
+  const found = logicFileElement(document);
+  if (!found) return undefined;
+  const { element, written } = found;
   const filepath = (evaluator ?? new Evaluator(semanticModelOf(document))).textOf(element, written) ?? written.value;
   return filepath.trim() ? { filepath, element } : undefined;
 }
@@ -69,4 +77,68 @@ export async function resolveRoadFile(
   const candidates = roadFileCandidates(filepath, scenarioFolder, roadFolderList);
   for (const candidate of candidates) if ((await host.kind(candidate)) === 'file') return { filepath, resolved: candidate, candidates };
   return { filepath, candidates };
+}
+
+/** A scenario's road file looked for where a run has esmini look for it (`locateRoadFile`). */
+export interface RoadFileLookup {
+  /** The LogicFile, its filepath evaluated. */
+  logic: LogicFile;
+  attribute: XmlAttribute;
+  /** The first candidate that is a file, absolute; undefined when none is (or it is a file of the scenario's package). */
+  resolved?: string;
+  /** A file of the package that holds the scenario (a self-contained package's road): a run writes it beside the scenario. */
+  packaged: boolean;
+  /** The folders looked in, in order: the scenario's, the road folders, the catalog folders. */
+  folders: string[];
+  /** The filepath is the name of a CARLA map (profiles/scenarioRunner.ts CARLA_TOWNS), which ScenarioRunner loads by name. */
+  carlaTown: boolean;
+}
+
+/** Whether `filepath`, written in a file inside a package, names a file of that package. */
+async function inOwnPackage(store: ScenarioStore, ref: SourceRef, filepath: string): Promise<boolean> {
+  if (ref.entries.length === 0 || path.isAbsolute(filepath)) return false;
+  const entry = ref.entries[ref.entries.length - 1];
+  const folder = entry.includes('/') ? entry.slice(0, entry.lastIndexOf('/') + 1) : '';
+  const name = normalizeEntryName(`${folder}${filepath.replace(/\\/g, '/')}`);
+  if (!name) return false;
+  const contents = await store.readPackage({ disk: ref.disk, entries: ref.entries.slice(0, -1) }).catch(() => undefined);
+  return contents?.entries.has(name) ?? false;
+}
+
+/**
+ * The road file of a scenario, looked for as a run makes esmini 3.6 look for it (CommonMini.cpp `LocateFile`, called by
+ * ScenarioEngine.cpp with the scenario's folder): the path and its file name in the scenario's folder, then in each road
+ * folder (the store's catalogPath: `--road-path`, the `modular2simple.esmini.roadPath` setting), then in each catalog
+ * folder of the scenario, all of which a run hands esmini as `--path` (esmini/run.ts esminiSearchPath). esmini's own
+ * `<bin>/../resources/xodr` is not looked in: the esmini this project builds has none. Undefined when the document
+ * names no LogicFile, or its filepath names a parameter whose value is not known.
+ */
+export async function locateRoadFile(
+  store: ScenarioStore,
+  ref: SourceRef,
+  document: XmlDocument,
+  evaluator: Evaluator,
+  catalogFolders: readonly string[],
+): Promise<RoadFileLookup | undefined> {
+  const found = logicFileElement(document);
+  if (!found) return undefined;
+  const filepath = evaluator.textOf(found.element, found.written);
+  if (filepath === undefined || !filepath.trim()) return undefined;
+  const scenarioFolder = scenarioFolderOf(ref);
+  const folders = [...new Set([scenarioFolder, ...store.catalogPath, ...catalogFolders])];
+  const candidates = roadFileCandidates(filepath, scenarioFolder, folders.slice(1));
+  let resolved: string | undefined;
+  for (const candidate of candidates) {
+    if ((await store.kindOf(candidate)) !== 'file') continue;
+    resolved = candidate;
+    break;
+  }
+  return {
+    logic: { filepath, element: found.element },
+    attribute: found.written,
+    resolved,
+    packaged: resolved === undefined && (await inOwnPackage(store, ref, filepath)),
+    folders,
+    carlaTown: CARLA_TOWNS.includes(filepath.trim()),
+  };
 }

@@ -1,9 +1,7 @@
 import { MAX_ROAD_FILE_BYTES, parseOpenDrive } from '../opendrive/road';
-import { logicFileOf, resolveRoadFile, scenarioFolderOf } from './roadFiles';
-import { ScenarioStore, SourceRef } from '../sources';
+import { RoadFileLookup } from './roadFiles';
+import { ScenarioStore } from '../sources';
 import { decodeUtf8 } from '../text';
-import { XmlDocument } from '../xml';
-import { Evaluator } from './model';
 import { CORE_MEMOS, coreMemo } from '../memos';
 
 /** What the road-network rules need of the OpenDRIVE file a scenario names (its `RoadNetwork/LogicFile`). */
@@ -34,19 +32,11 @@ function memoryOf(store: ScenarioStore): RoadMemory {
 }
 
 /**
- * The signals of the road file a scenario names, resolved as Run in esmini and the bird's-eye view
- * resolve it (core/semantics/roadFiles.ts; the road folders are the store's scenario path, esmini's `--path`).
- * Undefined when the document names none or it cannot be found or read: the road rules then say nothing.
+ * The signals of the road file a scenario names, found where a run has esmini find it (`locateRoadFile`,
+ * core/semantics/roadFiles.ts). Undefined when the document names none or it cannot be found or read: the road rules then say nothing.
  */
-export async function roadSignalsOf(
-  store: ScenarioStore,
-  ref: SourceRef,
-  document: XmlDocument,
-  evaluator: Evaluator,
-): Promise<RoadSignals | undefined> {
-  const logic = logicFileOf(document, evaluator);
-  if (!logic) return undefined;
-  const { resolved } = await resolveRoadFile(store.host, logic.filepath, scenarioFolderOf(ref), store.scenarioPathFor(ref));
+export async function roadSignalsOf(store: ScenarioStore, road: RoadFileLookup | undefined): Promise<RoadSignals | undefined> {
+  const resolved = road?.resolved;
   if (!resolved) return undefined;
   const known = memoryOf(store).reads;
   const now = Date.now();

@@ -7,6 +7,7 @@ import type { XmlAttribute, XmlElement } from '../../xml';
 import type { CatalogResolution } from '../catalogs';
 import type { Evaluator, SemanticModel } from '../model';
 import type { RoadSignals } from '../roadNetwork';
+import type { RoadFileLookup } from '../roadFiles';
 
 export interface SemanticContext {
   ref: SourceRef;
@@ -24,6 +25,8 @@ export interface SemanticContext {
   carlaRelease?: CarlaRelease;
   /** With `simulator` = `carla`: the catalog and road files ScenarioRunner reads beside the scenario, as it finds them. */
   carlaFiles?: CarlaFiles;
+  /** The road file the document's LogicFile names, looked for where a run has esmini look; absent when it names none or a parameter of unknown value. */
+  roadFile?: RoadFileLookup;
   /** The signals of the road file the document names; absent when it names none or it cannot be read (the road rules are then skipped). */
   road?: RoadSignals;
 }

@@ -1,0 +1,42 @@
+import { defineDiagnostic, ProblemWording } from './definition';
+
+/** What esmini 3.6 does with a LogicFile it does not find (ScenarioEngine.cpp, after `LocateFile`): it stops, exit code 255. */
+export const ESMINI_ROAD_NOT_FOUND = 'esmini stops at such a scenario ("Failed to locate OpenDRIVE file")';
+
+/** The folders a message names besides the scenario's own; the others are counted. */
+const FOLDERS_NAMED = 3;
+
+/**
+ * A RoadNetwork LogicFile whose `filepath` (evaluated: `written`) is a file in none of `folders`, the scenario's folder
+ * first, where a run has esmini look (core/semantics/roadFiles.ts `locateRoadFile`). `carlaTown`: it names a CARLA map.
+ *
+ * An error with `simulator = esmini`: esmini refuses the scenario (SPEC 12, a simulator the user targets). A warning
+ * otherwise: the standard does not say where a simulator looks for the file, and a simulator's own search path (one
+ * the check is not told of) may hold it (SPEC 11.6 leaves such a path as written). Never reported with
+ * `simulator = carla`, whose own rule (profiles/carla.ts `roadFileMissing`) says where ScenarioRunner looks, and
+ * never for a CARLA map's name unless esmini is the simulator: ScenarioRunner loads it by name, it is no file.
+ */
+export function roadFileWording(
+  written: string,
+  folders: readonly string[],
+  severity: 'error' | 'warning',
+  carlaTown: boolean,
+): ProblemWording<'road-file'> {
+  const [own, ...all] = folders;
+  const others = all.length > FOLDERS_NAMED ? [...all.slice(0, FOLDERS_NAMED), `${all.length - FOLDERS_NAMED} more folders`] : all;
+  const where =
+    others.length > 0 ? `found neither beside this file (${own}) nor in ${others.join(', ')}` : `not found beside this file (${own})`;
+  const town = carlaTown ? `; '${written}' is a CARLA map, which esmini loads only from a file of that exact name` : '';
+  return {
+    severity,
+    code: 'road-file',
+    message: `road file '${written}' is ${where}${town}: ${ESMINI_ROAD_NOT_FOUND}`,
+    hint: 'correct the path, or add the folder that holds the file to the road path (--road-path, the modular2simple.esmini.roadPath setting)',
+  };
+}
+
+export const ROAD_FILE = defineDiagnostic({
+  code: 'road-file',
+  rule: { description: 'The road file a RoadNetwork LogicFile names is found where the simulator looks for it.' },
+  severity: 'warning',
+});

@@ -1,0 +1,144 @@
+import * as assert from 'node:assert/strict';
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import { ROAD_FILE, roadFileWording } from '../../../server/src/core/diagnostics/roadFile';
+import { Problem } from '../../../server/src/core/problems';
+import { Simulator } from '../../../server/src/core/profiles/simulators';
+import { ruleIdOf } from '../../../server/src/core/rules';
+import { analyzeDocument, CatalogLoader, semanticProblems } from '../../../server/src/core/semantics';
+import { childRef, diskRef, ScenarioStore } from '../../../server/src/core/sources';
+import JSZip from 'jszip';
+import { parseXml } from '../../../server/src/core/xml';
+import { roadScenario } from '../../support/fixtures';
+import { STRAIGHT_ROAD } from '../../support/roads';
+import { temporaryWorkspace } from '../../support/workspace';
+import { wordingOf } from './support';
+
+/**
+ * The road-file problems of `xosc/scenario.xosc` of `text`, written in a workspace of its own with `files`; `roadPath`:
+ * folders of the workspace handed as the road path (the store's catalogPath, as `--road-path` and the setting give it).
+ */
+async function roadProblems(
+  text: string,
+  files: Record<string, string> = {},
+  options: { simulator?: Simulator; roadPath?: string[] } = {},
+): Promise<{ problems: Problem[]; root: string }> {
+  const root = temporaryWorkspace({ 'xosc/scenario.xosc': text, ...files });
+  try {
+    const store = new ScenarioStore({
+      scenarioPath: [],
+      root,
+      catalogPath: (options.roadPath ?? []).map((folder) => path.join(root, folder)),
+    });
+    const semantics = await analyzeDocument(
+      diskRef(path.join(root, 'xosc', 'scenario.xosc')),
+      parseXml(text),
+      new CatalogLoader(store),
+      false,
+      options.simulator,
+    );
+    return { problems: semanticProblems(semantics).filter((problem) => problem.code === 'road-file'), root };
+  } finally {
+    fs.rmSync(root, { recursive: true, force: true });
+  }
+}
+
+const onRoad = (logicFile: string, parameters?: string) => roadScenario({ logicFile, parameters, groups: [] });
+
+describe('diagnostics: road-file', () => {
+  it('names the path, the folders looked in (the scenario first, at most three others) and what esmini does', () => {
+    assert.deepEqual(roadFileWording('../xodr/road.xodr', ['/s'], 'warning', false), {
+      severity: 'warning',
+      code: 'road-file',
+      message:
+        'road file \'../xodr/road.xodr\' is not found beside this file (/s): esmini stops at such a scenario ("Failed to locate OpenDRIVE file")',
+      hint: 'correct the path, or add the folder that holds the file to the road path (--road-path, the modular2simple.esmini.roadPath setting)',
+    });
+    assert.equal(
+      roadFileWording('Town05', ['/s', '/a', '/b', '/c', '/d', '/e'], 'error', true).message,
+      "road file 'Town05' is found neither beside this file (/s) nor in /a, /b, /c, 2 more folders; 'Town05' is a CARLA map, which esmini loads only from a file of that exact name: esmini stops at such a scenario (\"Failed to locate OpenDRIVE file\")",
+    );
+    assert.equal(ROAD_FILE.severity, 'warning');
+    assert.equal(ruleIdOf('road-file'), 'modular2simple:road-file');
+  });
+
+  it('reports a road found nowhere at its filepath: a warning by the standard, an error for esmini, nothing for CARLA', async () => {
+    const text = onRoad('../xodr/road.xodr');
+    const { problems, root } = await roadProblems(text);
+    const lines = text.split('\n');
+    const line = lines.findIndex((each) => each.includes('<LogicFile'));
+    assert.deepEqual(
+      problems.map((problem) => [problem.range.start.line, problem.range.start.character]),
+      [[line, lines[line].indexOf('../xodr')]],
+    );
+    assert.deepEqual(problems.map(wordingOf), [roadFileWording('../xodr/road.xodr', [path.join(root, 'xosc')], 'warning', false)]);
+    assert.deepEqual(
+      (await roadProblems(text, {}, { simulator: 'esmini' })).problems.map((problem) => problem.severity),
+      ['error'],
+    );
+    // ScenarioRunner looks beside the scenario only: its profile's own rule says so (profiles/carla.ts roadFileMissing).
+    assert.deepEqual((await roadProblems(text, {}, { simulator: 'carla' })).problems, []);
+  });
+
+  it('finds the road as esmini does: the path from the scenario, its file name there, in a road folder or a catalog folder', async () => {
+    // The path relative to the scenario's folder (esmini's rule), not to the working directory.
+    assert.deepEqual((await roadProblems(onRoad('../xodr/road.xodr'), { 'xodr/road.xodr': STRAIGHT_ROAD })).problems, []);
+    // The file name alone in the scenario's folder (esmini's LocateFile tries it after the path).
+    assert.deepEqual((await roadProblems(onRoad('C:/elsewhere/road.xodr'), { 'xosc/road.xodr': STRAIGHT_ROAD })).problems, []);
+    // A road folder: run hands it to esmini as --path.
+    assert.deepEqual(
+      (await roadProblems(onRoad('../xodr/road.xodr'), { 'roads/road.xodr': STRAIGHT_ROAD }, { roadPath: ['roads'] })).problems,
+      [],
+    );
+    // A catalog folder of the scenario: run hands it as --path too, and esmini finds the road there by its file name.
+    const withCatalogs = onRoad('../xodr/road.xodr').replace(
+      '<CatalogLocations/>',
+      '<CatalogLocations><VehicleCatalog><Directory path="../catalogs"/></VehicleCatalog></CatalogLocations>',
+    );
+    assert.deepEqual((await roadProblems(withCatalogs, { 'catalogs/road.xodr': STRAIGHT_ROAD })).problems, []);
+    // A folder of that name is no road file.
+    assert.equal((await roadProblems(onRoad('road.xodr'), { 'xosc/road.xodr/file.txt': 'x' })).problems.length, 1);
+  });
+
+  it('is silent on a CARLA map by the standard and for CARLA, and an error for esmini, which needs a file of that name', async () => {
+    for (const town of ['Town01', 'Town10HD_Opt', 'Town15']) assert.deepEqual((await roadProblems(onRoad(town))).problems, [], town);
+    const esmini = await roadProblems(onRoad('Town05'), {}, { simulator: 'esmini' });
+    assert.deepEqual(esmini.problems.map(wordingOf), [roadFileWording('Town05', [path.join(esmini.root, 'xosc')], 'error', true)]);
+    assert.deepEqual((await roadProblems(onRoad('Town05'), { 'xosc/Town05': STRAIGHT_ROAD }, { simulator: 'esmini' })).problems, []);
+    // Not a CARLA map: a road file like any other.
+    assert.equal((await roadProblems(onRoad('Town99'))).problems.length, 1);
+  });
+
+  it('reads a $parameter path through its value, and says nothing of one whose value is not known', async () => {
+    const declared = '<ParameterDeclaration name="Road" parameterType="string" value="gone.xodr"/>';
+    const { problems } = await roadProblems(onRoad('$Road', declared), { 'xosc/road.xodr': STRAIGHT_ROAD });
+    assert.match(problems[0]?.message ?? '', /^road file 'gone\.xodr' /);
+    const found = '<ParameterDeclaration name="Road" parameterType="string" value="road.xodr"/>';
+    assert.deepEqual((await roadProblems(onRoad('$Road', found), { 'xosc/road.xodr': STRAIGHT_ROAD })).problems, []);
+    assert.deepEqual((await roadProblems(onRoad('${$Folder + /road.xodr}'))).problems, []);
+    assert.deepEqual((await roadProblems(onRoad('$Undeclared'))).problems, []);
+  });
+
+  it("finds a road that the scenario's package holds (a self-contained package), as a run writes it beside the scenario", async () => {
+    const text = onRoad('roads/road.xodr');
+    const zip = new JSZip();
+    zip.file('main.xosc', text);
+    zip.file('roads/road.xodr', STRAIGHT_ROAD);
+    const root = temporaryWorkspace({ 'pkg.mosc': await zip.generateAsync({ type: 'uint8array' }) });
+    try {
+      const problemsOf = async (main: string) =>
+        semanticProblems(
+          await analyzeDocument(
+            childRef(diskRef(path.join(root, 'pkg.mosc')), main),
+            parseXml(main === 'main.xosc' ? text : onRoad('roads/gone.xodr')),
+            new CatalogLoader(new ScenarioStore({ root })),
+            false,
+          ),
+        ).filter((problem) => problem.code === 'road-file');
+      assert.deepEqual(await problemsOf('main.xosc'), []);
+      assert.equal((await problemsOf('other.xosc')).length, 1);
+    } finally {
+      fs.rmSync(root, { recursive: true, force: true });
+    }
+  });
+});
