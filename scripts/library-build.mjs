@@ -228,8 +228,11 @@ const laneChangeTimeParameter = (about = 'how long the lane change takes') => ({
 /** A lane change's dynamics, its time a key. @param {number} time */
 const sinusoidalLaneChange = (time) =>
   `<LaneChangeActionDynamics parameterAttributes="value" dynamicsShape="sinusoidal" value="${time}" dynamicsDimension="time"/>`;
-/** The actor takes a speed (a key) at once, from the start. @param {string} name @param {number} speed @param {string} triggerName */
-const speedFromStart = (name, speed, triggerName) =>
+/**
+ * The actor takes a speed (a key) at once, from the start or when `start` holds.
+ * @param {string} name @param {number} speed @param {string} triggerName @param {string} [start]
+ */
+const speedFromStart = (name, speed, triggerName, start = atTime(0)) =>
   event(
     name,
     privateAction(
@@ -239,7 +242,7 @@ const speedFromStart = (name, speed, triggerName) =>
         `<AbsoluteTargetSpeed parameterAttributes="value" value="${speed}"/>`,
       ),
     ),
-    trigger(triggerName, atTime(0)),
+    trigger(triggerName, start),
     'parallel',
   );
 /**
@@ -1195,6 +1198,50 @@ export const MODULES = [
           privateAction('SiteLeavePullOut', laneOffset('<AbsoluteTargetLaneOffset parameterAttributes="value" value="3.5"/>')),
         ].join('\n'),
         afterEvent('SiteStay', 'SiteArrive', 3),
+        'parallel',
+      ),
+    ].join('\n'),
+  },
+  {
+    name: 'rear-end-collision',
+    title: 'Rear-end collision',
+    group: 'Incident site',
+    summary:
+      "A vehicle runs into the one ahead of it in its lane: from a set time it drives at a set speed, never brakes for the vehicle ahead, and stops dead where its front meets the other's rear (a crash, without physics). Several in one lane, each into the one ahead, make a pile-up; its time to collision when it sets off is its gap over its speed (less the speed of the vehicle ahead).",
+    actor: 'the vehicle that runs into the one ahead, behind it in its lane',
+    actorName: 'follower',
+    groupName: 'RearEndCollision',
+    entities: [VEHICLE('ahead', 'vehicle.tesla.model3'), VEHICLE('follower', 'vehicle.audi.tt')],
+    init: [placed('ahead', -1, 200, 0), placed('follower', -1, 150, 0)],
+    stopAt: 8,
+    parameters: [
+      {
+        key: 'AbsoluteTargetSpeed.value',
+        name: 'speed',
+        unit: 'm/s',
+        range: '1..40',
+        about: 'the speed it drives at, taken at once, and hits the vehicle ahead at',
+      },
+      { key: 'SimulationTimeCondition.value', name: 'startTime', unit: 's', range: '0..600', about: 'when it sets off at that speed' },
+      { key: 'RelativeDistanceCondition.entityRef', name: 'ahead', about: 'the vehicle ahead in its lane that it runs into' },
+      { key: 'EntityRef.entityRef', name: 'self', about: 'the vehicle itself (as in Actors): its gap to the one ahead is what hits' },
+    ],
+    keys: {},
+    maneuver: [
+      speedFromStart('RearEndDrive', 12, 'RearEndStart', atTime(1, ' parameterAttributes="value"')),
+      event(
+        'RearEndImpact',
+        privateAction(
+          'RearEndImpact',
+          speedAction('<SpeedActionDynamics dynamicsShape="step" value="0" dynamicsDimension="time"/>', '<AbsoluteTargetSpeed value="0"/>'),
+        ),
+        trigger(
+          'RearEndContact',
+          byEntity(
+            'follower',
+            '<RelativeDistanceCondition parameterAttributes="entityRef" entityRef="ahead" relativeDistanceType="longitudinal" value="0.1" freespace="true" coordinateSystem="road" rule="lessThan"/>',
+          ),
+        ),
         'parallel',
       ),
     ].join('\n'),

@@ -313,13 +313,33 @@ describe('export --target carla, checked by ScenarioRunner (../shared/carla)', f
       const verdict = verdicts.get(path.resolve(result.output)) as HarnessVerdict & { others?: string[] };
       // The library's crossroads, written relative to the export's folder, is the road ScenarioRunner loads.
       assert.equal(verdict.town, 'crossroads.xodr');
-      assert.deepEqual(verdict.egos, ['vehicle_0']);
-      assert.deepEqual([...(verdict.others ?? [])].sort(), ['ambulance', 'police', 'vehicle_1']);
+      // The original's actors: its hero (the first vehicle) is the ego, the others as it names them.
+      assert.deepEqual(verdict.egos, ['hero']);
+      assert.deepEqual([...(verdict.others ?? [])].sort(), [
+        'ambulance',
+        'police',
+        'vehicle_0',
+        'vehicle_1',
+        'vehicle_11',
+        'vehicle_12',
+        'vehicle_13',
+        'vehicle_14',
+      ]);
       const text = fs.readFileSync(result.output, 'utf8');
       const logicFile = /<LogicFile filepath="([^"]+)"/.exec(text)?.[1] ?? '';
       assert.equal(path.resolve(folder, logicFile), path.join(repoRoot, 'library', 'roads', 'crossroads.xodr'));
-      // Each of the main's five module copies is a ManeuverGroup ScenarioRunner built.
-      for (const group of ['Collision', 'Vehicle0Stops', 'Vehicle1Stops', 'PoliceAtSite', 'AmbulanceAtSite'])
+      // Each of the main's nine module copies is a ManeuverGroup ScenarioRunner built.
+      for (const group of [
+        'Collision',
+        'Vehicle0Stops',
+        'Vehicle1Stops',
+        'Vehicle11PilesUp',
+        'Vehicle12PilesUp',
+        'Vehicle13PilesUp',
+        'Vehicle14PilesUp',
+        'PoliceAtSite',
+        'AmbulanceAtSite',
+      ])
         assert.ok(
           verdict.tree?.some(([kind, name]) => kind === 'SCENE' && name.startsWith(`${group}.`)),
           `${release}: no ManeuverGroup of ${group} in ScenarioRunner's tree`,

@@ -11,6 +11,8 @@ const example = path.join(repoRoot, 'examples', 'case-study');
 /** The library's cars: the box's front is 3.75 m ahead of the reference point (the rear axle), its rear 0.75 m behind. */
 const FRONT = 3.75;
 const REAR = 0.75;
+/** The original's four extra colliding cars, here a pile-up behind vehicle_1, each into the one ahead. */
+const PILE_UP = ['vehicle_11', 'vehicle_12', 'vehicle_13', 'vehicle_14'];
 
 /**
  * The paper's case study (a collision at an intersection, police and ambulance arriving at the site) composed from
@@ -24,7 +26,7 @@ describe('cli: the case study rebuilt from library modules', function () {
   });
   after(() => fs.rmSync(folder, { recursive: true, force: true }));
 
-  it('checks clean, flattens, and in esmini the two cars collide and stop, police and ambulance stop behind them and leave', async function () {
+  it('checks clean, flattens, and in esmini the two cars collide and stop, four more pile up behind one, police and ambulance stop behind the other and leave', async function () {
     const flat = path.join(folder, 'flat.xosc');
     const text = await checkCleanAndFlatten(path.join(example, 'main.xosc'), flat);
     assert.doesNotMatch(text, /ScenarioReference|parameterAttributes/);
@@ -35,6 +37,7 @@ describe('cli: the case study rebuilt from library modules', function () {
       'Vehicle1Stops.LeadBrake',
       'PoliceAtSite.ArriveLeaveSite',
       'AmbulanceAtSite.ArriveLeaveSite',
+      ...PILE_UP.map((vehicle) => `${vehicle.replace('vehicle_', 'Vehicle')}PilesUp.RearEndCollision`),
     ])
       assert.match(text, new RegExp(`<ManeuverGroup[^>]*name="${group.replace('.', '\\.')}"`), group);
 
@@ -62,14 +65,29 @@ describe('cli: the case study rebuilt from library modules', function () {
       `at the crossroads' conflict point (x ${closest.positions.vehicle_0[0]})`,
     );
     // Then everyone stands still a while: the same place at 16 s and at 18 s, the crashed cars to the end.
-    for (const entity of ['vehicle_0', 'vehicle_1', 'police', 'ambulance']) {
+    for (const entity of ['hero', 'vehicle_0', 'vehicle_1', ...PILE_UP, 'police', 'ambulance']) {
       const moved = Math.hypot(
         at(16).positions[entity][0] - at(18).positions[entity][0],
         at(16).positions[entity][1] - at(18).positions[entity][1],
       );
       assert.ok(moved < 0.05, `${entity} stands still from 16 to 18 s (moved ${moved.toFixed(2)} m)`);
     }
-    for (const entity of ['vehicle_0', 'vehicle_1']) assert.ok(samePlace(at(16), last, entity), `${entity} stays where it crashed`);
+    for (const entity of ['vehicle_0', 'vehicle_1', ...PILE_UP])
+      assert.ok(samePlace(at(16), last, entity), `${entity} stays where it crashed`);
+    // The pile-up (rear-end-collision): each of the four, set off at 6 s along the south arm, runs into the one ahead,
+    // vehicle_1 first, and stands with its front on the other's rear (boxes touching, less than a step's 0.5 m over).
+    PILE_UP.forEach((entity, index) => {
+      const ahead = index === 0 ? 'vehicle_1' : PILE_UP[index - 1];
+      const [x, y] = last.positions[entity];
+      const [aheadX, aheadY] = last.positions[ahead];
+      const gap = aheadY - REAR - (y + FRONT);
+      assert.ok(
+        Math.abs(x - aheadX) < 0.01 && gap <= 0.1 && gap > -0.55,
+        `${entity} stands ${gap.toFixed(2)} m from ${ahead}'s rear, in its lane`,
+      );
+      assert.ok(samePlace(at(5.9), steps[0], entity), `${entity} waits until 6 s`);
+    });
+    assert.ok(samePlace(steps[0], last, 'hero'), 'the hero stands where it starts (it is the ego, driven in CARLA)');
     assert.ok(distance(last, 'vehicle_0', 'vehicle_1') < 6, 'the crashed cars stay together');
     // Police and ambulance arrive from the west behind vehicle_0, in its lane, without touching it or each other.
     const [crash, police, ambulance] = [at(17).positions.vehicle_0, at(17).positions.police, at(17).positions.ambulance];
@@ -123,6 +141,7 @@ describe('cli: the case study rebuilt from library modules', function () {
       'library/arrive-leave-site.xosc',
       'library/crossing-path.xosc',
       'library/lead-brake.xosc',
+      'library/rear-end-collision.xosc',
     ]);
     for (const item of stats.shared) assert.equal(item.lines, fs.readFileSync(item.file, 'utf8').split('\n').length - 1, item.file);
   });

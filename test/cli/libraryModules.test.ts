@@ -276,7 +276,36 @@ const BEHAVIOURS: Record<string, (module: LibraryModule, tracks: Map<string, Tra
       passOffset: parameter(module, 'passOffset'),
       lateralAcceleration: parameter(module, 'lateralAcceleration'),
     }),
+  'rear-end-collision': (module, tracks) => runsIntoTheOneAhead(module, trackOf(tracks, 'follower'), trackOf(tracks, 'ahead')),
 };
+
+/**
+ * The follower sets off at startTime at the speed asked (at once), never slows before the vehicle ahead, and stops dead
+ * at the step its front reaches the other's rear: the boxes touch, overlapping by less than a step's travel.
+ */
+function runsIntoTheOneAhead(module: LibraryModule, follower: Track, ahead: Track): void {
+  const speed = parameter(module, 'speed');
+  const moving = follower.findIndex((_, index) => index < follower.length - 1 && speedAt(follower, index) > 1e-6);
+  assert.ok(moving >= 0, 'the follower never moves');
+  assert.ok(
+    Math.abs(follower[moving].time - parameter(module, 'startTime')) <= STEP * 1.5,
+    `it sets off at ${follower[moving].time} s, not ${parameter(module, 'startTime')}`,
+  );
+  const stops = follower.findIndex((_, index) => index > moving && index < follower.length - 1 && speedAt(follower, index) < 1e-6);
+  assert.ok(stops > 0, 'it never stops');
+  for (let index = moving; index < stops; index++)
+    assert.ok(
+      Math.abs(speedAt(follower, index) - speed) < 0.05,
+      `at ${follower[index].time} s it drives at ${speedAt(follower, index)}, not ${speed} m/s`,
+    );
+  const gap = gapAhead(follower, ahead, stops);
+  assert.ok(
+    gap <= 0.1 + 1e-6 && gap > 0.1 - speed * STEP - 0.05,
+    `it stops at a gap of ${gap.toFixed(2)} m to the vehicle ahead, not at its rear`,
+  );
+  const last = follower.length - 1;
+  assert.ok(Math.abs(follower[last].x - follower[stops].x) < 1e-6, 'it moves again after the impact');
+}
 
 type SiteVisit = {
   brakeGap: number;
