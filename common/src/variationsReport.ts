@@ -404,14 +404,15 @@ export function tableHtml(
       const arrow = sorted === 'ascending' ? ' ▲' : sorted === 'descending' ? ' ▼' : '';
       const label = `${escapeHtml(column)}${arrow}`;
       const content = interactive ? `<button class="sort" title="Sort by ${escapeHtml(column)}">${label}</button>` : label;
-      return `<th data-column="${escapeHtml(column)}"${sorted ? ` aria-sort="${sorted}"` : ''}>${content}</th>`;
+      return `<th data-column="${escapeHtml(column)}"${column === REASON_COLUMN ? ' class="reason"' : ''}${sorted ? ` aria-sort="${sorted}"` : ''}>${content}</th>`;
     })
     .join('');
   const body = rows
     .map((row) => {
       const cells = columns.map((column) => {
         const text = escapeHtml(row.cells[column] ?? '');
-        return `<td>${interactive && column === 'index' ? `<a href="#" class="open" title="Open run ${text} in the bird's-eye view">#${text}</a>` : text}</td>`;
+        // The reason is a sentence: read from its start and wrapped within the view (class reason), where the numbers align right.
+        return `<td${column === REASON_COLUMN ? ' class="reason"' : ''}>${interactive && column === 'index' ? `<a href="#" class="open" title="Open run ${text} in the bird's-eye view">#${text}</a>` : text}</td>`;
       });
       const mark = selected !== undefined && row.index === selected ? ' selected" aria-selected="true' : '';
       return `<tr class="${row.outcome}${mark}" data-index="${escapeHtml(row.index)}">${cells.join('')}</tr>`;
@@ -451,6 +452,7 @@ export function resultsReportHtml(table: ResultsTable, title: string): string {
 <style>
 body{font-family:sans-serif;font-size:13px;color:#222;margin:16px}
 h1{font-size:18px} table.results{border-collapse:collapse} th,td{border:1px solid #ccc;padding:2px 8px;text-align:right} th{background:#f0f0f0;position:sticky;top:0}
+th.reason,td.reason{text-align:left}
 ${rowStyles}
 </style></head><body>
 <h1>${escapeHtml(title)}</h1>

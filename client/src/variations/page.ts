@@ -15,6 +15,7 @@ th button.sort{background:none;color:inherit;font-weight:bold;padding:0;width:10
 #plot{flex:0 0 auto;padding:4px 8px} #plot circle.point{cursor:pointer} #plot circle.selected{stroke-width:3;stroke-opacity:1}
 #tableArea{flex:1;overflow:auto;padding:0 8px 8px}
 table.results{border-collapse:collapse} th,td{border:1px solid var(--vscode-panel-border);padding:1px 8px;text-align:right;white-space:nowrap}
+th.reason,td.reason{text-align:left;white-space:normal;min-width:16em} th.reason button.sort{text-align:left}
 th{position:sticky;top:0;background:var(--vscode-editorWidget-background);cursor:pointer;user-select:none}
 tbody tr{cursor:pointer} tbody tr:hover{background:var(--vscode-list-hoverBackground)}
 tbody tr.selected,tbody tr.selected:hover{background:var(--vscode-list-activeSelectionBackground,#04395e);color:var(--vscode-list-activeSelectionForeground,#ffffff);outline:2px solid var(--vscode-focusBorder,#007fd4);outline-offset:-2px}

@@ -5,8 +5,65 @@ import * as vscode from 'vscode';
 import { BIRDS_EYE_FILES } from '../birdsEyeSetup';
 import { INSIDE_TESTS } from '../titles';
 import { VARIATIONS_FILES } from '../variationsSetup';
-import { api, TEST_MS, waitFor, workspaceRoot } from './helpers';
-import { clickText, computedStyles, pageShows, screenshot } from './harnessClient';
+import { esminiOrSkip } from './esmini.inside';
+import { api, open, TEST_MS, waitFor, waitForPage, workspaceRoot } from './helpers';
+import { clickText, computedStyles, pageBoxes, pageShows, runFromPalette, screenshot } from './harnessClient';
+
+/** What the toasts show now, read at once. */
+async function toastsText(): Promise<string> {
+  return (await pageBoxes('.notifications-toasts')).map((box) => box.text).join('\n');
+}
+
+/** The Variations view's table as the page shows it: a record of cells by column name for each row. */
+async function shownRows(): Promise<Record<string, string>[]> {
+  const columns = (await pageBoxes('table.results thead th')).map((box) => box.text.replace(/ [▲▼]$/, '').trim());
+  const rows = await pageBoxes('table.results tbody tr');
+  return rows.map((row) => Object.fromEntries(row.text.split('\t').map((cell, i) => [columns[i], cell.trim()])));
+}
+
+/**
+ * follow.xosc in esmini's samples' layout (xosc/ beside xodr/), with its road a parameter, and a distribution of it
+ * beside it: the road e6mini or a file that is not there, times a StopTrigger at 2 s or at 40 s (past the 30 s that
+ * Run Variations cut every run at before).
+ */
+function reasonsFolder(repository: string, roads: string, distributions: string[]): string {
+  const folder = path.join(workspaceRoot(), 'variationsReasons');
+  fs.mkdirSync(path.join(folder, 'xosc'), { recursive: true });
+  fs.mkdirSync(path.join(folder, 'xodr'), { recursive: true });
+  fs.copyFileSync(path.join(roads, 'e6mini.xodr'), path.join(folder, 'xodr', 'e6mini.xodr'));
+  const follow = fs.readFileSync(path.join(repository, 'test', 'fixtures', 'variations', 'follow.xosc'), 'utf8');
+  const scenario = follow
+    .replace('<LogicFile filepath="e6mini.xodr"/>', '<LogicFile filepath="$Road"/>')
+    .replace(
+      '<ParameterDeclarations>',
+      '<ParameterDeclarations>\n    <ParameterDeclaration name="Road" parameterType="string" value="../xodr/e6mini.xodr"/>',
+    )
+    // Ego as fast as the lead: no collision, so that each row's colour is its status.
+    .replace('name="EgoSpeed" parameterType="double" value="20"', 'name="EgoSpeed" parameterType="double" value="10"');
+  assert.equal((scenario.match(/\$Road|name="Road"|name="EgoSpeed" parameterType="double" value="10"/g) ?? []).length, 3);
+  fs.writeFileSync(path.join(folder, 'xosc', 'follow.xosc'), scenario);
+  for (const name of distributions)
+    fs.writeFileSync(
+      path.join(folder, 'xosc', name),
+      `<?xml version="1.0" encoding="UTF-8"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="2" date="2026-11-28T00:00:00" description="a road that is there or not, an end at 2 s or 40 s" author="modular2simple tests"/>
+  <ParameterValueDistribution>
+    <ScenarioFile filepath="follow.xosc"/>
+    <Deterministic>
+      <DeterministicSingleParameterDistribution parameterName="Road">
+        <DistributionSet><Element value="../xodr/e6mini.xodr"/><Element value="../xodr/e6mini_gone.xodr"/></DistributionSet>
+      </DeterministicSingleParameterDistribution>
+      <DeterministicSingleParameterDistribution parameterName="StopTime">
+        <DistributionSet><Element value="2"/><Element value="40"/></DistributionSet>
+      </DeterministicSingleParameterDistribution>
+    </Deterministic>
+  </ParameterValueDistribution>
+</OpenSCENARIO>
+`,
+    );
+  return folder;
+}
 
 /** The Variations view tests; run after the bird's-eye tests, in the same VS Code. */
 export function defineVariationsTests(): void {
@@ -115,6 +172,94 @@ export function defineVariationsTests(): void {
         await waitFor('the notice to leave the page', async () => !(await pageShows(`Run ${other} was not kept`, '#notice')));
       }
       await vscode.commands.executeCommand('workbench.action.closeAllEditors');
+    });
+
+    it(INSIDE_TESTS.variationsReasons, async function () {
+      this.timeout(2 * TEST_MS);
+      const { repository, esmini, roads } = esminiOrSkip(this);
+      const folder = reasonsFolder(repository, roads, ['follow_to_end.xosc', 'follow_limit.xosc']);
+      const esminiSettings = vscode.workspace.getConfiguration('modular2simple.esmini');
+      await esminiSettings.update('path', esmini, vscode.ConfigurationTarget.Workspace);
+      const view = api().variations;
+      /** Opens the distribution, runs Run Variations from the palette as a person does, and waits for its 4 rows in the view. */
+      const runVariations = async (name: string): Promise<Record<string, string>[]> => {
+        await vscode.commands.executeCommand('workbench.action.closeAllEditors');
+        await vscode.commands.executeCommand('notifications.clearAll');
+        const distribution = await open(`variationsReasons/xosc/${name}`);
+        await waitFor('the Run Variations lens', async () => {
+          const lenses = await vscode.commands.executeCommand<vscode.CodeLens[]>(
+            'vscode.executeCodeLensProvider',
+            distribution.document.uri,
+            100,
+          );
+          return lenses.some((lens) => lens.command?.command === 'modular2simple.runVariations');
+        });
+        await runFromPalette('Modular2Simple: Run Variations');
+        // Two runs name a road that is not there: the batch ends with an error notification saying why.
+        const toasts = await waitFor(`the notification that Run Variations of ${name} ended`, async () => {
+          const shown = await toastsText();
+          return shown.includes(`Run Variations of ${name}`) ? shown : undefined;
+        });
+        const results = path.join(folder, 'xosc', name.replace(/\.xosc$/, '.results'));
+        await waitFor('the results in the Variations view', () => (view.folder === results && view.stats?.rows === 4 ? true : undefined));
+        assert.ok(!toasts.includes('Running the variations of'), `the batch's progress is still shown beside its result:\n${toasts}`);
+        assert.match(toasts, /2 of 4 runs failed in esmini/);
+        assert.match(toasts, /Failed to locate OpenDRIVE file \.\.\/xodr\/e6mini_gone\.xodr/);
+        await waitForPage('4 runs:');
+        // Each run's reason (the last column) is read in the view as it opens, without scrolling sideways.
+        const [area] = await pageBoxes('#tableArea');
+        const reasons = await pageBoxes('table.results tbody td:last-child');
+        assert.ok(area && reasons.length === 4, 'the table is on the page');
+        for (const reason of reasons)
+          assert.ok(
+            reason.left >= area.left && reason.right <= area.right,
+            `the reason "${reason.text}" is drawn at ${reason.left}-${reason.right}, beyond the view's ${area.left}-${area.right}`,
+          );
+        return shownRows();
+      };
+      const refusal = /^esmini did not run the scenario \(exit code \d+\): Failed to locate OpenDRIVE file \.\.\/xodr\/e6mini_gone\.xodr$/;
+      const REFUSED = "esmini's refusal, in its words";
+      /** Status, end time and reason of the runs of e6mini ending at 2 s and at 40 s, then of the road not there. */
+      const outcomes = (rows: Record<string, string>[]): string[][] =>
+        ['e6mini.xodr', 'e6mini_gone.xodr'].flatMap((road) =>
+          ['2', '40'].map((stopTime) => {
+            const found = rows.find((each) => each.Road === `../xodr/${road}` && each.StopTime === stopTime);
+            assert.ok(found, `no row of ${road} and StopTime ${stopTime} in ${JSON.stringify(rows)}`);
+            return [found.status, found.end_time_s, refusal.test(found.reason) ? REFUSED : found.reason];
+          }),
+        );
+      try {
+        // No duration set: each run goes to its StopTrigger, 40 s included; the runs esmini refused are errors, each with esmini's reason.
+        const toEnd = await runVariations('follow_to_end.xosc');
+        assert.deepEqual(
+          outcomes(toEnd),
+          [
+            ['ok', '2.050', ''],
+            ['ok', '40.050', ''],
+            ['error', '', REFUSED],
+            ['error', '', REFUSED],
+          ],
+          'each run esmini ran ended by its StopTrigger, the one at 40 s too',
+        );
+        assert.ok(await pageShows('4 runs: 2 ok, 0 limit, 0 collision, 0 timeout, 2 error, 0 discarded'), 'the summary');
+        await screenshot('Run Variations: runs to their StopTrigger, esmini refusals with their reason');
+
+        // The duration setting at 10 s: the run whose StopTrigger comes later stops there, as limit, and says so.
+        await esminiSettings.update('duration', 10, vscode.ConfigurationTarget.Workspace);
+        const limited = await runVariations('follow_limit.xosc');
+        assert.deepEqual(outcomes(limited), [
+          ['ok', '2.050', ''],
+          ['limit', '10.000', 'stopped at the 10 s limit set for the run, before the scenario ended by itself'],
+          ['error', '', REFUSED],
+          ['error', '', REFUSED],
+        ]);
+        assert.ok(await pageShows('4 runs: 1 ok, 1 limit, 0 collision, 0 timeout, 2 error, 0 discarded'), 'the summary');
+        await screenshot('Run Variations with a 10 s duration: ok, limit and error, each with its reason');
+      } finally {
+        for (const key of ['path', 'duration']) await esminiSettings.update(key, undefined, vscode.ConfigurationTarget.Workspace);
+        await vscode.commands.executeCommand('workbench.action.closeAllEditors');
+        fs.rmSync(folder, { recursive: true, force: true });
+      }
     });
   });
 }
