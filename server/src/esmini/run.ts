@@ -183,19 +183,23 @@ export async function esminiSearchPath(flattener: Flattener, main: SourceRef, so
 }
 
 /**
- * The folders of the catalog files the check took each referenced entry from, in reference order. esmini takes the
- * first NAME.xosc it finds along its search path (CommonMini.cpp LocateFile, ScenarioReader.cpp LoadCatalog), so these go
- * first: otherwise a SCENARIO_PATH folder holding another catalog of that name (CARLA's VehicleCatalog.xosc beside
- * esmini's Catalogs/Vehicles) is the one esmini loads, and the run fails on an entry the check found.
+ * The folders of the catalog files the check took the referenced entries from, in the order the check searched its
+ * catalog directories. esmini takes the first NAME.xosc it finds along its search path (CommonMini.cpp LocateFile,
+ * ScenarioReader.cpp LoadCatalog), so these go first: otherwise a SCENARIO_PATH folder holding another catalog of that
+ * name (CARLA's VehicleCatalog.xosc beside esmini's Catalogs/Vehicles) is the one esmini loads, and the run fails on an
+ * entry the check found. The check takes each catalog from one NAME.xosc (core/semantics/catalogs.ts loadedFirst): beside
+ * the scenario the first in this order, so a folder before another one here holds no NAME.xosc the check passed over.
  */
 export function resolvedCatalogFolders(source: FlatSource): string[] {
+  const catalogs = source.semantics?.catalogs;
+  const searched = (catalogs?.locations ?? []).flatMap((location) => location.directories.map((directory) => directory.directory));
+  const rank = (folder: string) => (searched.includes(folder) ? searched.indexOf(folder) : searched.length);
   const folders: string[] = [];
-  for (const reference of source.semantics?.catalogs.references ?? []) {
-    const entry = reference.entry;
-    const file = entry && reference.catalogs.find((catalog) => catalog.entries.includes(entry));
+  for (const reference of catalogs?.references ?? []) {
+    const file = reference.entry?.file;
     if (file && file.ref.entries.length === 0) folders.push(path.dirname(file.ref.disk));
   }
-  return unique(folders);
+  return unique(folders).sort((a, b) => rank(a) - rank(b));
 }
 
 function unique(items: string[]): string[] {

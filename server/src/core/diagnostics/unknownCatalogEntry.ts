@@ -4,19 +4,36 @@ import { defineDiagnostic, didYouMean, isSuggestion, ProblemWording } from './de
 /** The entries named in the message, at most. */
 const ENTRIES_NAMED = 30;
 
+/**
+ * The catalog `catalog` (`entries`: the entries of the file that is that catalog) has no entry `entry`. `shadowed`: another
+ * file holding a catalog of that name has it (`holder`), but the catalog is `loaded`, the first `catalog`.xosc esmini finds
+ * (core/semantics/catalogs.ts `loadedFirst`), and esmini looks entries up in that file alone.
+ */
 export function unknownCatalogEntryWording(
   catalog: string,
   entry: string,
   entries: readonly string[],
   suggestion: string | undefined,
+  shadowed?: { loaded: string; holder: string },
 ): ProblemWording<'unknown-catalog-entry'> {
+  const listed = `${entries.slice(0, ENTRIES_NAMED).join(', ')}${entries.length > ENTRIES_NAMED ? ', ...' : ''}`;
+  if (shadowed)
+    return {
+      severity: 'error',
+      code: 'unknown-catalog-entry',
+      message: `catalog '${catalog}' (${shadowed.loaded}, the first file of that catalog esmini finds, the only one it reads) has no entry named '${entry}'; ${shadowed.holder} has one, which esmini never reads; ${shadowed.loaded} has: ${listed}`,
+      hint: suggestion ? didYouMean(suggestion) : `move the entry into ${shadowed.loaded}, or give the other catalog another name`,
+    };
   return {
     severity: 'error',
     code: 'unknown-catalog-entry',
-    message: `catalog '${catalog}' has no entry named '${entry}'; it has: ${entries.slice(0, ENTRIES_NAMED).join(', ')}${entries.length > ENTRIES_NAMED ? ', ...' : ''}`,
+    message: `catalog '${catalog}' has no entry named '${entry}'; it has: ${listed}`,
     hint: didYouMean(suggestion),
   };
 }
+
+/** The note at the entry that a catalog of the same name, found first, hides from esmini. */
+export const SHADOWED_ENTRY_NOTE = 'the entry of that name, in a catalog file esmini does not read';
 
 /** An entryName naming no entry of its catalog: the closest entry. */
 export const UNKNOWN_CATALOG_ENTRY = defineDiagnostic({

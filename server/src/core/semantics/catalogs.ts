@@ -1,5 +1,5 @@
 import * as path from 'node:path';
-import { childRef, diskRef, normalizeEntryName, refId, ScenarioStore, SourceRef } from '../sources';
+import { baseName, childRef, diskRef, normalizeEntryName, refId, ScenarioStore, SourceRef } from '../sources';
 import { attribute, XmlElement } from '../xml';
 import {
   Assignments,
@@ -18,7 +18,8 @@ import { CORE_MEMOS, coreMemo } from '../memos';
  * that catalog. Where the directory does not exist beside the file, the SCENARIO_PATH directories (then the
  * store's catalogPath: the road folders a run also hands esmini) are searched as esmini searches its `--path`
  * folders (esmini 3.6 `ScenarioReader::LoadCatalog`): `D/path`, `D` itself, and `D/<last folder of path>`.
- * A run hands esmini the same folders (esmini/run.ts esminiSearchPath), so what is found here esmini finds.
+ * A run hands esmini the same folders (esmini/run.ts esminiSearchPath), so what is found here esmini finds. Of several
+ * files holding a catalog of one name, the catalog is the one esmini loads (`loadedFirst`): entries are looked up there.
  */
 
 export interface CatalogFile {
@@ -56,9 +57,15 @@ export interface CatalogReferenceResolution {
   reference: CatalogReferenceInfo;
   catalogName: string | undefined;
   entryName: string | undefined;
-  /** Every catalog file of that name found through the file's locations (the first one is used). */
+  /**
+   * Every catalog file of that name found through the file's locations, the one esmini loads first (`loadedFirst`):
+   * the entry is looked up in that one alone.
+   */
   catalogs: CatalogFile[];
+  /** The entry, in `catalogs[0]`; undefined when that catalog has none of the name. */
   entry: CatalogEntry | undefined;
+  /** When `entry` is undefined: the entry of that name in another catalog file of the name, which esmini never loads. */
+  shadowedEntry?: CatalogEntry;
   /** Whether any location of the file could be searched; without one, an unknown name is not an error. */
   searched: boolean;
   /**
@@ -213,17 +220,20 @@ export class CatalogLoader {
     const directories = locations.flatMap((location) => location.directories);
     const references: CatalogReferenceResolution[] = [];
     const files = new Map<string, SourceRef>();
+    // One file per catalog name, as esmini keeps the first it loads (Catalogs.hpp FindCatalogByName).
+    const loadedByName = new Map<string, CatalogFile>();
     for (const reference of model.catalogReferences) {
       const catalogName = evaluator.textOf(reference.element, reference.catalogNameAttribute)?.trim();
       const entryName = evaluator.textOf(reference.element, reference.entryNameAttribute)?.trim();
-      const catalogs: CatalogFile[] = [];
+      const found: FoundCatalog[] = [];
       if (catalogName) {
         for (const directory of directories) {
           for (const file of await this.catalogsIn(directory, catalogName)) {
-            if (!catalogs.some((known) => refId(known.ref) === refId(file.ref))) catalogs.push(file);
+            if (!found.some((known) => refId(known.file.ref) === refId(file.ref))) found.push({ file, via: directory.via });
           }
         }
       }
+      const catalogs = loadedFirst(found, catalogName ?? '', entryName, loadedByName);
       let foundByFileName = false;
       if (catalogName && catalogs.length === 0) {
         for (const directory of directories) {
@@ -237,12 +247,67 @@ export class CatalogLoader {
         }
       }
       for (const file of catalogs) files.set(refId(file.ref), file.ref);
-      const entry =
-        entryName === undefined ? undefined : catalogs.flatMap((file) => file.entries).find((candidate) => candidate.name === entryName);
-      references.push({ reference, catalogName, entryName, catalogs, entry, searched: directories.length > 0, foundByFileName });
+      const entryNamed = (file: CatalogFile | undefined) => file?.entries.find((candidate) => candidate.name === entryName);
+      const entry = entryName === undefined ? undefined : entryNamed(catalogs[0]);
+      const shadowedEntry =
+        entryName === undefined || entry
+          ? undefined
+          : catalogs
+              .slice(1)
+              .map(entryNamed)
+              .find((each) => each);
+      references.push({
+        reference,
+        catalogName,
+        entryName,
+        catalogs,
+        entry,
+        ...(shadowedEntry ? { shadowedEntry } : {}),
+        searched: directories.length > 0,
+        foundByFileName,
+      });
     }
     return { locations, references, files: [...files.values()] };
   }
+}
+
+/** A catalog file of the name a reference asks for, and how the directory it lies in was found. */
+interface FoundCatalog {
+  file: CatalogFile;
+  via: CatalogDirectory['via'];
+}
+
+/**
+ * The catalog files of a name, the one esmini 3.6 loads first: the entries of every reference to the name are looked up
+ * in it alone. esmini looks a catalog up by file name only, `NAME.xosc`, in its `--path` folders and then in each
+ * CatalogLocations directory in the order the file writes them, whatever their kind (ScenarioReader.cpp `LoadCatalog`,
+ * CommonMini.cpp `LocateFile`); it loads the first it finds, keeps it as the catalog of that name (Catalogs.hpp
+ * `FindCatalogByName`) and looks every entry up in it (`FindCatalogEntry`), never in another file. So:
+ * - beside the file (`via: 'file'`), the first `NAME.xosc` of its directories in the file's order: esmini searches them
+ *   itself, and a run hands them in that order;
+ * - else, among folders found through SCENARIO_PATH or the road folders, which esmini searches only as the `--path`
+ *   folders a run hands it, the first `NAME.xosc` holding the entry the first reference to the name asks for: a run
+ *   hands that folder first (esmini/run.ts resolvedCatalogFolders), so it is the one esmini loads;
+ * - a catalog of the name in a file of another name, which esmini never finds, only where no `NAME.xosc` holds one (the
+ *   standard finds catalogs by their name).
+ * `loadedByName` keeps the choice for the document's later references to the name.
+ */
+function loadedFirst(
+  found: FoundCatalog[],
+  name: string,
+  entryName: string | undefined,
+  loadedByName: Map<string, CatalogFile>,
+): CatalogFile[] {
+  const files = found.map((each) => each.file);
+  const byFileName = found.filter((each) => baseName(each.file.ref) === `${name}.xosc`);
+  const chosen =
+    loadedByName.get(name) ??
+    byFileName.find((each) => each.via === 'file')?.file ??
+    byFileName.find((each) => each.file.entries.some((entry) => entry.name === entryName))?.file ??
+    byFileName[0]?.file;
+  if (!chosen) return files;
+  loadedByName.set(name, chosen);
+  return [chosen, ...files.filter((file) => file !== chosen)];
 }
 
 /** The values a CatalogReference's assignments give to its entry's parameters, evaluated in the referencing file. */

@@ -1,6 +1,6 @@
 import { expressionWording } from '../diagnostics/expressionWords';
 import { simulatorFindings } from '../profiles/checks';
-import { baseName } from '../sources';
+import { baseName, displayRef } from '../sources';
 import { closestMatch } from '../text';
 import { attribute, descendants, XmlAttribute, XmlElement } from '../xml';
 import { ExpressionError } from './expressionParser';
@@ -31,7 +31,7 @@ import { undeclaredEntityWording } from '../diagnostics/undeclaredEntity';
 import { undeclaredParameterWording } from '../diagnostics/undeclaredParameter';
 import { unknownAssignedParameterWording } from '../diagnostics/unknownAssignedParameter';
 import { catalogFoundByFileNameWording, unknownCatalogWording } from '../diagnostics/unknownCatalog';
-import { unknownCatalogEntryWording } from '../diagnostics/unknownCatalogEntry';
+import { SHADOWED_ENTRY_NOTE, unknownCatalogEntryWording } from '../diagnostics/unknownCatalogEntry';
 import { unknownStoryboardElementWording } from '../diagnostics/unknownStoryboardElement';
 import { unusedParameterWording } from '../diagnostics/unusedParameter';
 import { simulatorWording } from '../diagnostics/simulator';
@@ -288,12 +288,32 @@ export const catalogReferences: SemanticCheck = (context) => {
       continue;
     }
     if (!resolution.entry) {
-      const names = resolution.catalogs.flatMap((file) => file.entries.map((entry) => entry.name));
+      // The catalog is the file esmini loads (core/semantics/catalogs.ts loadedFirst): its entries alone are there to name.
+      const loaded = resolution.catalogs[0];
+      const names = loaded.entries.map((entry) => entry.name);
       const suggestion = resolution.entryName ? closestMatch(resolution.entryName, names) : undefined;
+      const shadowed = resolution.shadowedEntry;
       findings.push({
         ...at(reference.element, reference.entryNameAttribute),
-        ...unknownCatalogEntryWording(resolution.catalogName, resolution.entryName ?? '', names, suggestion),
+        ...unknownCatalogEntryWording(
+          resolution.catalogName,
+          resolution.entryName ?? '',
+          names,
+          suggestion,
+          shadowed && { loaded: displayRef(loaded.ref, undefined), holder: displayRef(shadowed.file.ref, undefined) },
+        ),
         data: suggestion ? { suggestion } : undefined,
+        ...(shadowed
+          ? {
+              related: [
+                {
+                  source: shadowed.file.ref,
+                  range: shadowed.file.model.document.lines.range(shadowed.element.start, shadowed.element.nameEnd),
+                  message: SHADOWED_ENTRY_NOTE,
+                },
+              ],
+            }
+          : {}),
       });
       continue;
     }
