@@ -66,6 +66,8 @@ export class TestClient {
   readonly logs: string[] = [];
   /** How often the server asked this client to pull diagnostics again. */
   refreshes = 0;
+  /** What the server registered through `client/registerCapability`, in order. */
+  readonly registrations: { method: string; registerOptions?: unknown }[] = [];
   /** Errors the server logged during the running test that it has not claimed (yet). */
   readonly errors: string[] = [];
   /** Errors of finished tests, reported by `stop`. */
@@ -157,7 +159,10 @@ export class TestClient {
       }),
     );
     connection.onRequest('window/workDoneProgress/create', () => null);
-    connection.onRequest('client/registerCapability', () => null);
+    connection.onRequest('client/registerCapability', (params: { registrations: { method: string; registerOptions?: unknown }[] }) => {
+      client.registrations.push(...params.registrations);
+      return null;
+    });
     connection.onRequest('workspace/diagnostic/refresh', () => {
       client.refreshes++;
       client.notify();

@@ -25,7 +25,8 @@ export function register(context: ServerContext): void {
         await connection.client.register(DidChangeConfigurationNotification.type, { section: CONFIGURATION_SECTION });
       if (context.client.canWatch) {
         await connection.client.register(DidChangeWatchedFilesNotification.type, {
-          watchers: [{ globPattern: '**/*.xosc' }, { globPattern: '**/*.mosc' }],
+          // Road files too: the road-file check and the road-network rules read them.
+          watchers: [{ globPattern: '**/*.xosc' }, { globPattern: '**/*.mosc' }, { globPattern: '**/*.xodr' }],
         });
         // Files appearing and vanishing are reported from now on: the index keeps its list between walks.
         context.workspace.index.watched = true;
