@@ -4,7 +4,7 @@ import * as path from 'node:path';
 import * as vscode from 'vscode';
 import { commandTargets } from './commands';
 import { withNotificationProgress } from './notificationProgress';
-import { batchFailure } from './variations/batchFailure';
+import { batchFailure, otherBatchInResults } from './variations/batchFailure';
 
 export const RUN_VARIATIONS_COMMAND = 'modular2simple.runVariations';
 /** The Variations view's command (another part of the extension); results.csv opens instead when it is not there. */
@@ -23,6 +23,8 @@ export interface VariationsRun {
   cancelled: boolean;
   /** Why it did not end well, as the CLI said it (runs esmini refused, with esmini's reason); shown in the notification. */
   failure?: string;
+  /** How the batch whose results were in the folder differs from this one, when the CLI refused to mix them. */
+  otherBatch?: string;
 }
 
 // The CLI prints one line per finished run when its standard error is not a terminal: "[3/12] 2: ok".
@@ -31,7 +33,8 @@ const PROGRESS_LINE = /^\[(\d+)\/(\d+)\]/;
 /**
  * *Run Variations*: runs `modular2simple batch FILE --results <name>.results` (the bundled CLI) with a
  * cancellable progress notification, then opens the results: the Variations view when there is one,
- * else results.csv. Running it again completes an interrupted batch (the CLI resumes).
+ * else results.csv. Running it again completes an interrupted batch (the CLI resumes); when the folder holds the
+ * results of a batch that differs (another duration, an edited scenario), it asks before replacing them.
  */
 export class VariationsRunner implements vscode.Disposable {
   private readonly output = vscode.window.createOutputChannel('Modular2Simple Variations');
@@ -110,23 +113,45 @@ export class VariationsRunner implements vscode.Disposable {
           };
           child.stdout?.on('data', onText);
           child.stderr?.on('data', onText);
+          let finished = false;
           const finish = (exitCode: number | null): void => {
+            if (finished) return;
+            finished = true;
             subscription.dispose();
             this.running.delete(child);
             if (pending) {
               this.output.appendLine(pending);
               printed.push(pending);
             }
-            resolve({ exitCode, resultsFolder, cancelled, failure: exitCode === 0 ? undefined : batchFailure(printed) });
+            resolve({
+              exitCode,
+              resultsFolder,
+              cancelled,
+              failure: exitCode === 0 ? undefined : batchFailure(printed),
+              otherBatch: exitCode === 0 ? undefined : otherBatchInResults(printed),
+            });
           };
           child.on('error', (error) => {
             this.output.appendLine(`cannot start the CLI: ${error.stack ?? error.message}`);
             finish(null);
           });
-          child.on('exit', (code) => finish(code));
+          // 'close', not 'exit': the CLI's last lines (why it ended) may still be in its pipes when it exits.
+          child.on('close', (code) => finish(code));
         }),
     );
     const csv = path.join(resultsFolder, 'results.csv');
+    if (outcome.otherBatch !== undefined) {
+      // The CLI's way out (another --results folder) is not the editor's: it asks, and never shows the old results as this batch's.
+      const replace = 'Replace';
+      const choice = await vscode.window.showWarningMessage(
+        `Run Variations of ${name}: ${path.basename(resultsFolder)} holds the results of an earlier batch, and ${outcome.otherBatch}. Replace them (rows, reports and kept runs) with a new batch?`,
+        replace,
+      );
+      if (choice !== replace) return outcome;
+      this.output.appendLine(`removing ${resultsFolder}: it held another batch's results (${outcome.otherBatch})`);
+      await fs.promises.rm(resultsFolder, { recursive: true, force: true });
+      return this.run(source);
+    }
     if (outcome.cancelled) {
       void vscode.window.showInformationMessage(
         `Run Variations stopped: the rows so far are in ${path.basename(resultsFolder)}/results.csv; run it again to run the rest.`,

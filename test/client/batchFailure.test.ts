@@ -1,5 +1,5 @@
 import * as assert from 'node:assert/strict';
-import { batchFailure } from '../../client/src/variations/batchFailure';
+import { batchFailure, otherBatchInResults } from '../../client/src/variations/batchFailure';
 
 describe('Run Variations: why a batch did not end well, for its notification', () => {
   it("names the runs esmini refused with esmini's reason, the criteria failed, or the problem that stopped the batch", () => {
@@ -26,5 +26,24 @@ describe('Run Variations: why a batch did not end well, for its notification', (
     );
     assert.equal(batchFailure(['modular2simple: error: esmini is not at /x: …']), 'esmini is not at /x: …');
     assert.equal(batchFailure(['12 runs (12 ok, …)']), undefined);
+  });
+});
+
+describe('Run Variations: a results folder holding another batch, for the question whether to replace it', () => {
+  it('says how the batches differ in words, and nothing for any other end', () => {
+    assert.equal(
+      otherBatchInResults([
+        'd.xosc: warning: …',
+        "modular2simple: error: /w/d.results/results.csv holds another batch's results (it differs in scenarioSha256, duration); use another --results folder",
+      ]),
+      "it differs in the scenario's text, the duration limit",
+    );
+    assert.equal(
+      otherBatchInResults([
+        "modular2simple: error: /w/d.results/results.csv holds another batch's results (its columns are not index,status,…); use another --results folder",
+      ]),
+      'its columns differ',
+    );
+    assert.equal(otherBatchInResults(['modular2simple: error: 3 of 3 runs failed in esmini (status error); …']), undefined);
   });
 });

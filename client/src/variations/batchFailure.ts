@@ -17,3 +17,34 @@ export function batchFailure(lines: readonly string[]): string | undefined {
   const problem = lines.find((line) => /: error: /.test(line));
   return problem?.replace(/^modular2simple: error: /, '');
 }
+
+/** What `BatchIdentity`'s keys stand for, as the editor's question names them. */
+const IDENTITY_WORDS: Record<string, string> = {
+  scenarioSha256: "the scenario's text",
+  distributionSha256: "the distribution's text",
+  duration: 'the duration limit',
+  sample: 'the sampling',
+  seed: 'the sampling seed',
+  esminiSeed: "esmini's seed",
+  criteria: 'the criteria',
+  distribution: 'the distribution file',
+};
+
+/**
+ * When the CLI refused to write into a results folder holding another batch's results (`… holds another batch's
+ * results (it differs in duration, scenarioSha256); use another --results folder`): how they differ, in words
+ * ("it differs in the duration limit, the scenario's text"). Undefined when it did not refuse so.
+ */
+export function otherBatchInResults(lines: readonly string[]): string | undefined {
+  for (const line of lines) {
+    const refused = /holds another batch's results \((.*)\); use another --results folder$/.exec(line);
+    if (!refused) continue;
+    const differs = /^it differs in (.*)$/.exec(refused[1]);
+    if (!differs) return 'its columns differ';
+    return `it differs in ${differs[1]
+      .split(', ')
+      .map((key) => IDENTITY_WORDS[key] ?? key)
+      .join(', ')}`;
+  }
+  return undefined;
+}

@@ -7,7 +7,7 @@ import { INSIDE_TESTS } from '../titles';
 import { VARIATIONS_FILES } from '../variationsSetup';
 import { esminiOrSkip } from './esmini.inside';
 import { api, open, TEST_MS, waitFor, waitForPage, workspaceRoot } from './helpers';
-import { clickText, computedStyles, pageBoxes, pageShows, runFromPalette, screenshot } from './harnessClient';
+import { clickElement, clickText, computedStyles, pageBoxes, pageShows, runFromPalette, screenshot } from './harnessClient';
 
 /** What the toasts show now, read at once. */
 async function toastsText(): Promise<string> {
@@ -255,6 +255,30 @@ export function defineVariationsTests(): void {
         ]);
         assert.ok(await pageShows('4 runs: 1 ok, 1 limit, 0 collision, 0 timeout, 2 error, 0 discarded'), 'the summary');
         await screenshot('Run Variations with a 10 s duration: ok, limit and error, each with its reason');
+
+        // The duration at 5 s and Run Variations again: the folder holds the 10 s batch's results, which the CLI never
+        // mixes with another's; the editor asks before it replaces them, and shows the new batch, not the old one.
+        await esminiSettings.update('duration', 5, vscode.ConfigurationTarget.Workspace);
+        await vscode.commands.executeCommand('notifications.clearAll');
+        // Back in the distribution's editor: the palette offers Run Variations there, not over the view.
+        await open('variationsReasons/xosc/follow_limit.xosc');
+        await runFromPalette('Modular2Simple: Run Variations');
+        await waitForPage(
+          'Run Variations of follow_limit.xosc: follow_limit.results holds the results of an earlier batch, and it differs in the duration limit',
+        );
+        await screenshot('Run Variations asks before replacing the results of another batch');
+        assert.ok(await clickElement('.notifications-toasts .monaco-button', 'Replace'), 'no Replace button in the question');
+        const replaced = await waitFor('the new batch in the view', async () => {
+          const shown = outcomes(await shownRows());
+          return shown[1][1] === '5.000' ? shown : undefined;
+        });
+        assert.deepEqual(replaced, [
+          ['ok', '2.050', ''],
+          ['limit', '5.000', 'stopped at the 5 s limit set for the run, before the scenario ended by itself'],
+          ['error', '', REFUSED],
+          ['error', '', REFUSED],
+        ]);
+        await screenshot('Run Variations replaced the results of the 10 s batch by those of the 5 s batch');
       } finally {
         for (const key of ['path', 'duration']) await esminiSettings.update(key, undefined, vscode.ConfigurationTarget.Workspace);
         await vscode.commands.executeCommand('workbench.action.closeAllEditors');
