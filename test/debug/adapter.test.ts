@@ -14,7 +14,7 @@ import { openscenarioDir } from '../support/openscenarioCorpus';
 import { repoRoot } from '../support/paths';
 import { runBounded } from '../support/processes';
 import { temporaryFolder } from '../support/temporaryDirectory';
-import { writeClearanceCrash, writeTwoCutIns } from '../support/debugScenarios';
+import { writeAddedEntityCrash, writeClearanceCrash, writeTwoCutIns } from '../support/debugScenarios';
 import { SESSION_ARGUMENT } from '../../server/src/debug/supervisor';
 
 const cutIn = path.join(openscenarioDir, 'esmini', 'cut-in.xosc');
@@ -109,6 +109,27 @@ function csvEntity(csv: string[][], time: number, entity: string): { x: number; 
   };
 }
 
+/**
+ * cut-in.xosc made by `write` into a scenario esmini aborts on (RelativeLaneRange from 1 to -1), in a temporary folder:
+ * esmini's own program dies on it too, after 3 s; its CSV's last row is the last step it finished, the start of the one
+ * it died in.
+ */
+async function esminiAborts(name: string, write: (cutIn: string) => string): Promise<{ scenario: string; esminiLast: number }> {
+  const folder = temporaryFolder();
+  const scenario = path.join(folder, name);
+  fs.writeFileSync(scenario, write(fs.readFileSync(cutIn, 'utf8')));
+  const csvFile = path.join(folder, 'run.csv');
+  const args = ['--headless', '--osc', scenario, '--fixed_timestep', '0.05', '--disable_log', '--csv_logger', csvFile];
+  for (const folderOfPath of roadPath) args.push('--path', folderOfPath);
+  const esminiRun = await runBounded(esminiBinary, args, { cwd: folder }, 120_000);
+  assert.equal(esminiRun.code, null, `esmini ends by a signal, not an exit code: ${esminiRun.output.slice(-500)}`);
+  assert.match(esminiRun.output, /what\(\):.*Wrong from and to value in RelativeLaneRange element/);
+  const rows = fs.readFileSync(csvFile, 'utf8').trim().split('\n');
+  const esminiLast = Number(rows[rows.length - 1].split(',')[1]);
+  assert.ok(esminiLast > 3, `esmini died at ${esminiLast}, after 3 s`);
+  return { scenario, esminiLast };
+}
+
 describe('debug adapter through the Debug Adapter Protocol', function () {
   this.timeout(180_000);
   let client: DebugClient;
@@ -142,6 +163,19 @@ describe('debug adapter through the Debug Adapter Protocol', function () {
     if (expectedStderr) assert.match(stderr(), expectedStderr);
     else assert.equal(stderr(), '', 'the adapter logged an exception');
   });
+
+  /** A session of `scenario` run from its launch until the adapter says terminated: its output events. */
+  async function runToTheEnd(scenario: string): Promise<DebugProtocol.OutputEvent[]> {
+    const outputs: DebugProtocol.OutputEvent[] = [];
+    client.on('output', (event: DebugProtocol.OutputEvent) => outputs.push(event));
+    const terminated = client.waitForEvent('terminated');
+    const launched = client.launch({ type: 'modular2simple', request: 'launch', program: scenario, roadPath });
+    await client.waitForEvent('initialized');
+    await client.configurationDoneRequest();
+    await launched;
+    await terminated;
+    return outputs;
+  }
 
   it("stops on an Event of cut-in.xosc when esmini's log starts it, with the entities of esmini's CSV; step over; continue to the end", async () => {
     const reference = await esminiReference(cutIn);
@@ -483,29 +517,10 @@ describe('debug adapter through the Debug Adapter Protocol', function () {
     // A RelativeClearanceCondition whose lane range runs backwards (from 1 to -1): valid OpenSCENARIO, which esmini
     // throws on while weighing it (OSCCondition.cpp, LOG_ERROR_AND_QUIT in TrigByRelativeClearance::CheckCondition),
     // out of SE_StepDT, uncaught: std::terminate, SIGABRT. Its Act starts after 3 s, so the crash comes in mid-run.
-    const folder = temporaryFolder();
-    const scenario = path.join(folder, 'clearance-crash.xosc');
-    fs.writeFileSync(scenario, writeClearanceCrash(fs.readFileSync(cutIn, 'utf8')));
-    // esmini's own program dies the same way; its CSV's last row is the last step it finished.
-    const csvFile = path.join(folder, 'run.csv');
-    const args = ['--headless', '--osc', scenario, '--fixed_timestep', '0.05', '--disable_log', '--csv_logger', csvFile];
-    for (const folderOfPath of roadPath) args.push('--path', folderOfPath);
-    const esminiRun = await runBounded(esminiBinary, args, { cwd: folder }, 120_000);
-    assert.equal(esminiRun.code, null, `esmini ends by a signal, not an exit code: ${esminiRun.output.slice(-500)}`);
-    assert.match(esminiRun.output, /what\(\):.*Wrong from and to value in RelativeLaneRange element/);
-    const rows = fs.readFileSync(csvFile, 'utf8').trim().split('\n');
-    const esminiLast = Number(rows[rows.length - 1].split(',')[1]);
-    assert.ok(esminiLast > 3, `esmini crashed at ${esminiLast}, after the Act's start`);
+    const { scenario, esminiLast } = await esminiAborts('clearance-crash.xosc', writeClearanceCrash);
 
     expectedStderr = /Wrong from and to value in RelativeLaneRange element/;
-    const outputs: DebugProtocol.OutputEvent[] = [];
-    client.on('output', (event: DebugProtocol.OutputEvent) => outputs.push(event));
-    const terminated = client.waitForEvent('terminated');
-    const launched = client.launch({ type: 'modular2simple', request: 'launch', program: scenario, roadPath });
-    await client.waitForEvent('initialized');
-    await client.configurationDoneRequest();
-    await launched;
-    await terminated;
+    const outputs = await runToTheEnd(scenario);
     const important = outputs.filter((event) => event.body.category === 'important').map((event) => event.body.output);
     assert.equal(important.length, 1, JSON.stringify(outputs.map((event) => event.body.output)));
     const message = important[0];
@@ -522,14 +537,41 @@ describe('debug adapter through the Debug Adapter Protocol', function () {
     disconnected = true;
   });
 
+  it('reports the time of a real esmini abort in a step that reported nothing, from the progress page', async () => {
+    // OverTaker deleted in the Init and added back after 3 s; a RelativeClearanceCondition towards it with a backwards
+    // lane range throws once OverTaker is active, weighed before anything else in the next step (writeAddedEntityCrash).
+    const { scenario, esminiLast } = await esminiAborts('added-entity-crash.xosc', writeAddedEntityCrash);
+
+    expectedStderr = /Wrong from and to value in RelativeLaneRange element/;
+    const outputs = await runToTheEnd(scenario);
+    // The step esmini died in reported nothing: the last transition came a step earlier (OverTaker added).
+    const reported = outputs.map((event) => /^\[([\d.]+)\] (.*)/.exec(event.body.output)).filter((match) => match !== null);
+    const last = reported[reported.length - 1];
+    assert.ok(last, outputs.map((event) => event.body.output).join(''));
+    assert.equal((Number(last[1]) + 0.05).toFixed(2), esminiLast.toFixed(2), `the last transition: ${last[0]}`);
+    assert.ok(
+      reported.some((match) => /AddOverTaker running/.test(match[2])),
+      reported.map((match) => match[0]).join('\n'),
+    );
+    const important = outputs.filter((event) => event.body.category === 'important').map((event) => event.body.output);
+    assert.equal(important.length, 1, JSON.stringify(outputs.map((event) => event.body.output)));
+    assert.match(important[0], /^The debug session of added-entity-crash\.xosc ended: esmini's process was killed by SIGABRT/);
+    assert.match(important[0], /esmini: QUITTING, Wrong from and to value in RelativeLaneRange element\./);
+    const reached = /at ([\d.]+) s of simulated time/.exec(important[0]);
+    assert.ok(reached, important[0]);
+    assert.equal(reached[1], esminiLast.toFixed(2), `the time esmini's CSV ends at: ${important[0]}`);
+    await client.disconnectRequest();
+    await exited;
+    disconnected = true;
+  });
+
   it('reports the simulated time exactly when the session dies in a step that reported nothing', async function () {
     if (process.platform !== 'linux') {
       console.log('    (skipped: the session process is found through /proc)');
       this.skip();
     }
-    // esmini's own crashes from valid input (the RelativeClearanceCondition above) happen while it weighs a condition,
-    // in a step whose storyboard callbacks already said the time; a crash in a step with no callback is a process
-    // killed there: at a time breakpoint, then three steps on, in which cut-in.xosc starts and ends nothing.
+    // A fault (a signal, not esmini's throw as above) in a step with no callback: the session's process killed at a
+    // time breakpoint, then three steps on, in which cut-in.xosc starts and ends nothing.
     const outputs: DebugProtocol.OutputEvent[] = [];
     client.on('output', (event: DebugProtocol.OutputEvent) => outputs.push(event));
     const launched = client.launch({ type: 'modular2simple', request: 'launch', program: cutIn, roadPath });

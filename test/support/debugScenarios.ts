@@ -73,3 +73,77 @@ export function writeClearanceCrash(cutIn: string): string {
   const lineStart = cutIn.lastIndexOf('\n', storyEnd) + 1;
   return cutIn.slice(0, lineStart) + act('ClearanceAct', group, afterThreeSeconds) + cutIn.slice(lineStart);
 }
+
+/**
+ * esmini's cut-in.xosc made into a crash in a step where esmini calls nothing back: OverTaker is deleted in the Init
+ * (DeleteEntityAction), and a story of its own waits on a RelativeClearanceCondition with a backwards lane range
+ * (as writeClearanceCrash) towards OverTaker, with an Event after it that adds OverTaker back once the time is past
+ * 3 s (AddEntityAction). esmini weighs the condition at every step but throws only once OverTaker is among the active
+ * entities (TrigByRelativeClearance::CheckCondition reaches its from/to check only for an entity it finds), and it
+ * weighs it before the adding Event (storyboard order): it dies in the step after the one that added OverTaker, before
+ * anything in that step was reported. The cut-in story goes (its events act on OverTaker); the scenario ends when the
+ * clearance Event would.
+ */
+export function writeAddedEntityCrash(cutIn: string): string {
+  const actions = cutIn.indexOf('<Actions>', cutIn.indexOf('<Init>'));
+  const storyStart = cutIn.indexOf('<Story name="CutInAndBrakeStory">');
+  const storyEnd = cutIn.indexOf('</Story>');
+  const stopRef = 'storyboardElementRef="CutInManeuver"';
+  if (actions < 0 || storyStart < 0 || storyEnd < 0 || !cutIn.includes(stopRef)) throw new Error('cut-in.xosc is not as expected');
+  const deleteOverTaker = '<GlobalAction><EntityAction entityRef="OverTaker"><DeleteEntityAction/></EntityAction></GlobalAction>';
+  const clearance =
+    '<RelativeClearanceCondition distanceForward="10" distanceBackward="10" freeSpace="true" oppositeLanes="false">' +
+    '<RelativeLaneRange from="1" to="-1"/><EntityRef entityRef="OverTaker"/></RelativeClearanceCondition>';
+  const story = `<Story name="ClearanceStory">
+         <Act name="ClearanceAct">
+            <ManeuverGroup maximumExecutionCount="1" name="ClearanceGroup">
+               <Actors selectTriggeringEntities="false"><EntityRef entityRef="Ego"/></Actors>
+               <Maneuver name="ClearanceManeuver">
+                  <Event name="ClearanceEvent" priority="overwrite">
+                     <Action name="ClearanceSlowDown">
+                        <PrivateAction><LongitudinalAction><SpeedAction>
+                           <SpeedActionDynamics dynamicsShape="step" dynamicsDimension="time" value="0"/>
+                           <SpeedActionTarget><AbsoluteTargetSpeed value="10"/></SpeedActionTarget>
+                        </SpeedAction></LongitudinalAction></PrivateAction>
+                     </Action>
+                     <StartTrigger><ConditionGroup>
+                        <Condition name="ClearanceCondition" delay="0" conditionEdge="none">
+                           <ByEntityCondition>
+                              <TriggeringEntities triggeringEntitiesRule="any"><EntityRef entityRef="Ego"/></TriggeringEntities>
+                              <EntityCondition>${clearance}</EntityCondition>
+                           </ByEntityCondition>
+                        </Condition>
+                     </ConditionGroup></StartTrigger>
+                  </Event>
+                  <Event name="AddOverTaker" priority="parallel">
+                     <Action name="AddOverTakerAction">
+                        <GlobalAction><EntityAction entityRef="OverTaker"><AddEntityAction>
+                           <Position><LanePosition roadId="0" laneId="-2" offset="0" s="25"/></Position>
+                        </AddEntityAction></EntityAction></GlobalAction>
+                     </Action>
+                     <StartTrigger><ConditionGroup>
+                        <Condition name="AddAfterThreeSeconds" delay="0" conditionEdge="rising">
+                           <ByValueCondition><SimulationTimeCondition value="3" rule="greaterThan"/></ByValueCondition>
+                        </Condition>
+                     </ConditionGroup></StartTrigger>
+                  </Event>
+               </Maneuver>
+            </ManeuverGroup>
+            <StartTrigger><ConditionGroup>
+               <Condition name="ClearanceActStart" delay="0" conditionEdge="none">
+                  <ByValueCondition><SimulationTimeCondition value="-1" rule="greaterThan"/></ByValueCondition>
+               </Condition>
+            </ConditionGroup></StartTrigger>
+         </Act>
+      `;
+  return (
+    cutIn.slice(0, actions + '<Actions>'.length) +
+    deleteOverTaker +
+    cutIn.slice(actions + '<Actions>'.length, storyStart) +
+    story +
+    cutIn
+      .slice(storyEnd)
+      .replace('storyboardElementType="maneuver"', 'storyboardElementType="event"')
+      .replace(stopRef, 'storyboardElementRef="ClearanceEvent"')
+  );
+}
