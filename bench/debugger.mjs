@@ -14,8 +14,10 @@ const { DebugClient } = require('@vscode/debugadapter-testsupport');
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 // BENCH_DEBUG_ADAPTER names another build of the adapter (the one before a change) to compare.
 const adapter = path.resolve(process.env.BENCH_DEBUG_ADAPTER ?? path.join(root, 'dist', 'debugAdapter.js'));
-const esmini = path.join(root, '.cache', 'esmini', 'bin', 'esmini');
-const library = path.join(root, '.cache', 'esmini', 'lib', 'libesminiLib.so');
+// BENCH_ESMINI names another esmini build folder (bin/esmini, lib/libesminiLib.so), for a build with other flags.
+const esminiBuild = path.resolve(process.env.BENCH_ESMINI ?? path.join(root, '.cache', 'esmini'));
+const esmini = path.join(esminiBuild, 'bin', 'esmini');
+const library = path.join(esminiBuild, 'lib', 'libesminiLib.so');
 const corpus = path.resolve(root, '..', 'shared', 'corpus', 'openscenario', 'esmini');
 const scenario = path.join(corpus, 'cut-in.xosc');
 const roadPath = [path.resolve(root, '..', 'shared', 'esmini', 'xodr'), path.join(corpus, 'Catalogs', 'Vehicles')];
@@ -132,7 +134,7 @@ async function debugRun(breakOn, program = full, timeStep = step) {
     client.on('stopped', () => (stoppedAt = now()));
     const started = now();
     /** @type {import('@vscode/debugprotocol').DebugProtocol.LaunchRequestArguments & Record<string, unknown>} */
-    const launch = { program, roadPath, timeStep, duration: 120 };
+    const launch = { program, roadPath, timeStep, duration: 120, esminiLibrary: library };
     const launched = client.launchRequest(launch);
     await client.waitForEvent('initialized');
     const loadMs = now() - started;
@@ -184,6 +186,7 @@ async function pauseRun(afterMs, timeStep) {
         roadPath,
         timeStep,
         duration: 120,
+        esminiLibrary: library,
       }),
     );
     await client.waitForEvent('initialized');
