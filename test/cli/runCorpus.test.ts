@@ -4,7 +4,7 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { HARMLESS_MESSAGES, readEsminiLog } from '../../server/src/esmini/log';
 import { withTimeLimit } from '../../server/src/esmini/timeLimit';
-import { esminiBinary, esminiCatalogs, esminiRoads, requireEsmini } from '../support/esmini';
+import { esminiBinary, esminiCatalogs, esminiRoads, readEsminiCsv, requireEsmini } from '../support/esmini';
 import { runCli } from '../support/fixtures';
 import { sharedDir } from '../support/paths';
 import { temporaryFolder } from '../support/temporaryDirectory';
@@ -96,5 +96,57 @@ describe("cli: every scenario of esmini's own that esmini runs also runs through
       problemLines.filter((line) => HARMLESS_MESSAGES.some((pattern) => pattern.test(line.replace(/^\S+:\d+:\d+: (error|warning): /, '')))),
       [],
     );
+  });
+});
+
+describe("cli: run, with esmini's Catalogs as the scenario path, takes the road where esmini finds it (Catalogs/../xodr)", function () {
+  this.timeout(180_000);
+  // esmini's scenarios name ../xodr/NAME; beside /work/shared/esmini/Catalogs lies xodr/, which a run hands esmini as a --path folder.
+  const scenario = 'acc-test.xosc';
+  let folder: string;
+  beforeEach(function () {
+    requireEsmini(this);
+    if (!fs.existsSync(path.join(esminiScenarios, scenario))) {
+      console.log(`    (skipped: ${esminiScenarios} is absent)`);
+      this.skip();
+    }
+    folder = temporaryFolder('m2s-road-catalogs-');
+  });
+  afterEach(() => folder && fs.rmSync(folder, { recursive: true, force: true }));
+
+  const run = (scenarioPath: string) =>
+    runCli(
+      [
+        'run',
+        path.join(esminiScenarios, scenario),
+        '--scenario-path',
+        scenarioPath,
+        '--duration',
+        '2',
+        '--esmini',
+        esminiBinary,
+        '--csv',
+        'out.csv',
+      ],
+      { cwd: folder },
+    );
+
+  it('without a warning that the road was not found, and with the trajectory on that road', () => {
+    const ran = run(esminiCatalogs);
+    assert.equal(ran.status, 0, ran.stderr);
+    assert.doesNotMatch(ran.stderr, /found none|is the road esmini loaded|road file .* is found neither/, ran.stderr);
+    // The ego starts on road 0 of straight_500m.xodr and drives on it: positions a missing road could not give.
+    const steps = readEsminiCsv(path.join(folder, 'out.csv'));
+    assert.ok(steps.length > 10, `${steps.length} steps`);
+    const ego = steps[steps.length - 1].positions.Ego;
+    assert.ok(ego && ego[0] > steps[0].positions.Ego[0], JSON.stringify(ego));
+  });
+
+  it('with the warning still where no folder holds the road (the corpus has no xodr beside its Catalogs)', () => {
+    const ran = run(path.join(esminiScenarios, 'Catalogs'));
+    assert.equal(ran.status, 3, ran.stderr);
+    assert.match(ran.stderr, /warning: road file '\.\.\/xodr\/straight_500m\.xodr' is found neither beside this file/);
+    assert.match(ran.stderr, /Failed to locate OpenDRIVE file/);
+    assert.equal(fs.existsSync(path.join(folder, 'out.csv')), false, 'no CSV of a run that did not happen');
   });
 });

@@ -1,8 +1,9 @@
 import * as assert from 'node:assert/strict';
 import * as path from 'node:path';
 import { parseEsminiLoadedRoad } from '../../common/src/esminiCsv';
-import { logicFileOf, resolveRoadFile, roadFileCandidates, roadFolders } from '../../server/src/core/semantics/roadFiles';
-import { nodeFileSystem } from '../../server/src/core/sources';
+import { locateRoadFile, logicFileOf, roadFileCandidates, roadFolders } from '../../server/src/core/semantics/roadFiles';
+import { Evaluator, semanticModelOf } from '../../server/src/core/semantics/model';
+import { diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { parseXml } from '../../server/src/core/xml';
 import { readEsminiLog } from '../../server/src/esmini/log';
 import { withRoadFile } from '../../server/src/esmini/run';
@@ -30,11 +31,22 @@ describe("road files: one resolver for Run in esmini and the bird's-eye view", (
       'roads/xodr/e6mini.xodr': '<OpenDRIVE/>',
       'folder/e6mini.xodr/inside': '',
     });
-    const found = await resolveRoadFile(nodeFileSystem, '../xodr/e6mini.xodr', path.join(root, 'xosc'), [path.join(root, 'roads')]);
-    assert.equal(found.resolved, path.join(root, 'xosc', 'e6mini.xodr'));
-    const folderOnly = await resolveRoadFile(nodeFileSystem, 'e6mini.xodr', path.join(root, 'folder'), []);
-    assert.equal(folderOnly.resolved, undefined, 'a folder of that name is no road file');
-    assert.deepEqual(folderOnly.candidates, [path.join(root, 'folder', 'e6mini.xodr')]);
+    const store = new ScenarioStore({ root });
+    const locate = (filepath: string, folder: string, folders: string[]) => {
+      const document = parseXml(`<OpenSCENARIO><RoadNetwork><LogicFile filepath="${filepath}"/></RoadNetwork></OpenSCENARIO>`);
+      return locateRoadFile(
+        store,
+        diskRef(path.join(root, folder, 'main.xosc')),
+        document,
+        new Evaluator(semanticModelOf(document)),
+        folders,
+      );
+    };
+    const found = await locate('../xodr/e6mini.xodr', 'xosc', [path.join(root, 'roads')]);
+    assert.equal(found?.resolved, path.join(root, 'xosc', 'e6mini.xodr'));
+    const folderOnly = await locate('e6mini.xodr', 'folder', []);
+    assert.equal(folderOnly?.resolved, undefined, 'a folder of that name is no road file');
+    assert.deepEqual(folderOnly?.candidates, [path.join(root, 'folder', 'e6mini.xodr')]);
   });
 
   it('reads the LogicFile with its parameters evaluated, and hands esmini the resolved path in its place', () => {

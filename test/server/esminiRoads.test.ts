@@ -115,14 +115,31 @@ describe('language server: Run in esmini uses the road the picture draws, and re
     fs.rmSync(path.join(root, MODULAR_RUN.road));
     await sameRoad([esminiRoads], path.join(esminiRoads, 'e6mini.xodr'));
   });
+
+  it("a road esmini finds through a catalog folder (Catalogs/../xodr, as esmini's samples lie): both take it, with no warning", async function () {
+    requireEsmini(this);
+    const samples = path.join(root, 'samples');
+    fs.mkdirSync(path.join(samples, 'Catalogs'), { recursive: true });
+    fs.renameSync(path.join(root, 'xodr'), path.join(samples, 'xodr'));
+    const main = path.join(root, MODULAR_RUN.main);
+    const text = fs
+      .readFileSync(main, 'utf8')
+      .replace(
+        '<CatalogLocations/>',
+        '<CatalogLocations><VehicleCatalog><Directory path="../samples/Catalogs"/></VehicleCatalog></CatalogLocations>',
+      );
+    fs.writeFileSync(main, text);
+    await client.open(mainUri(), text);
+    const result = await sameRoad([], path.join(samples, 'xodr', 'e6mini.xodr'));
+    assert.deepEqual(result.problems, []);
+  });
 });
 
-describe('esmini: a road esmini finds where the picture does not look', function () {
+describe('esmini: a road found in a catalog folder (esmini searches its --path folders)', function () {
   this.timeout(120_000);
 
-  it('is a warning on the LogicFile naming both, never a silent difference', async function () {
+  it('is the road the run hands esmini and the one esmini loads: no warning that the picture found none', async function () {
     requireEsmini(this);
-    // esmini also searches catalog folders (its --path); the bird's-eye view does not.
     const root = modularRunWorkspace(temporaryWorkspace({}, 'm2s-road-elsewhere-'));
     const catalogs = path.join(root, 'xosc', 'cats');
     fs.mkdirSync(catalogs);
@@ -137,12 +154,9 @@ describe('esmini: a road esmini finds where the picture does not look', function
     );
     const result = await runScenario(new Flattener(new ScenarioStore({ root })), diskRef(file), { esminiPath: esminiBinary, duration: 2 });
     try {
-      assert.equal(result.roadFile?.resolved, undefined);
+      assert.equal(result.roadFile?.resolved, path.join(catalogs, 'e6mini.xodr'));
       assert.equal(result.roadFile?.loaded, path.join(catalogs, 'e6mini.xodr'));
-      const [warning] = result.problems;
-      assert.equal(warning?.severity, 'warning', JSON.stringify(result.problems));
-      assert.match(warning.message, /is the road esmini loaded; the bird's-eye view found none \(looked for .*xosc\/e6mini\.xodr\)/);
-      assert.match(fs.readFileSync(file, 'utf8').split('\n')[warning.range.start.line], /<LogicFile filepath="e6mini\.xodr"\/>/);
+      assert.deepEqual(result.problems, []);
     } finally {
       removeRunFolder(result);
       fs.rmSync(root, { recursive: true, force: true });

@@ -4,14 +4,13 @@ import * as path from 'node:path';
 import { Flattener, FlatSource } from '../core/flatten';
 import { ESMINI_ELEMENT_TYPES, MappedElement, StoryboardMap } from '../core/flatten/storyboardMap';
 import { Problem } from '../core/problems';
-import { logicFileOf, resolveRoadFile, roadFolders } from '../core/semantics/roadFiles';
-import { nodeFileSystem, SourceRef } from '../core/sources';
-import { parseXml } from '../core/xml';
+import { roadFolders } from '../core/semantics/roadFiles';
+import { SourceRef } from '../core/sources';
 import { EsminiLibrary, EsminiObjectState, loadEsminiLibrary } from '../esmini/library';
 import { readEsminiLog } from '../esmini/log';
 import { EsminiProblem, mapEsminiMessages } from '../esmini/messages';
 import { makeRunFolder } from '../esmini/process';
-import { esminiSearchPath, RUN_DEFAULTS, sourceFolderOf, withRoadFile } from '../esmini/run';
+import { esminiFolders, RUN_DEFAULTS, sourceFolderOf, withRoadFile } from '../esmini/run';
 import { CONDITION_LOG, ConditionReason, conditionReason, storyboardMapOf } from '../esmini/storyboardTrace';
 import { runLimit } from '../esmini/timeLimit';
 import type { StepCounter } from './progressPage';
@@ -122,14 +121,13 @@ export async function prepareScenario(flattener: Flattener, main: SourceRef, opt
     );
   }
   const folders = roadFolders(options.roadPath, options.base ?? process.cwd());
-  const logic = logicFileOf((flat.source.original ?? flat.source.model)?.document ?? parseXml(flat.text));
-  const road = logic ? await resolveRoadFile(nodeFileSystem, logic.filepath, sourceFolder, folders) : undefined;
+  const { searchPath, road } = await esminiFolders(flattener, main, flat.source, folders);
   const text = road?.resolved ? withRoadFile(flat.text, road.resolved) : flat.text;
   const map = storyboardMapOf(flat.source);
   return {
     main,
     text,
-    searchPath: await esminiSearchPath(flattener, main, flat.source, folders),
+    searchPath,
     flat: flat.source,
     map,
     flattenProblems: flat.problems,

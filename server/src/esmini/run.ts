@@ -3,7 +3,8 @@ import * as os from 'node:os';
 import * as path from 'node:path';
 import { Flattener, FlatSource } from '../core/flatten';
 import { Problem } from '../core/problems';
-import { logicFileOf, resolveRoadFile, roadFolders, scenarioFolderOf } from '../core/semantics/roadFiles';
+import { locateRoadFile, RoadFileLookup, roadFolders, scenarioFolderOf } from '../core/semantics/roadFiles';
+import { Evaluator, semanticModelOf } from '../core/semantics/model';
 import { diskRef, nodeFileSystem, ScenarioStore, SourceRef } from '../core/sources';
 import { CatalogLoader } from '../core/semantics/catalogs';
 import { attribute, descendants, escapeAttributeValue, parseXml } from '../core/xml';
@@ -182,6 +183,27 @@ export async function esminiSearchPath(flattener: Flattener, main: SourceRef, so
   ]);
 }
 
+/** What a run of a scenario hands esmini: its `--path` folders, and its road file as found there. */
+export interface EsminiFolders {
+  searchPath: string[];
+  /** Undefined when the scenario names no LogicFile (or one through a parameter of unknown value). */
+  road?: RoadFileLookup;
+}
+
+/**
+ * The `--path` folders of a run of `main` (`esminiSearchPath`) and its road file looked for in them by the check's own
+ * lookup (core/semantics/roadFiles.ts locateRoadFile), read from disk afresh: the run, the bird's-eye view and the check
+ * name one road, also when esmini finds it through a catalog folder (esmini/Catalogs/../xodr/NAME).
+ */
+export async function esminiFolders(flattener: Flattener, main: SourceRef, source: FlatSource, roads: string[]): Promise<EsminiFolders> {
+  const searchPath = await esminiSearchPath(flattener, main, source, roads);
+  // The LogicFile as the main file writes it, whatever the flattened text says.
+  const document = (source.original ?? source.model)?.document;
+  if (!document) return { searchPath };
+  const evaluator = source.semantics?.model.document === document ? source.semantics.evaluator : new Evaluator(semanticModelOf(document));
+  return { searchPath, road: await locateRoadFile(flattener.store, main, document, evaluator, searchPath, nodeFileSystem) };
+}
+
 /**
  * The folders of the catalog files the check took the referenced entries from, in the order the check searched its
  * catalog directories. esmini takes the first NAME.xosc it finds along its search path (CommonMini.cpp LocateFile,
@@ -263,13 +285,10 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
       wallMs: elapsed(),
     };
   }
-  const sourceFolder = sourceFolderOf(main);
   const folders = roadFolders(options.roadPath, options.base ?? process.cwd());
-  // The LogicFile as the main file writes it, resolved as the bird's-eye view resolves it, whatever the flattened text says.
-  const logic = logicFileOf((flat.source.original ?? flat.source.model)?.document ?? parseXml(flat.text));
-  const road = logic ? await resolveRoadFile(nodeFileSystem, logic.filepath, sourceFolder, folders) : undefined;
+  const { searchPath, road } = await esminiFolders(flattener, main, flat.source, folders);
   const roadFile: RunRoadFile | undefined = road
-    ? { filepath: road.filepath, resolved: road.resolved, candidates: road.candidates }
+    ? { filepath: road.logic.filepath, resolved: road.resolved, candidates: road.candidates }
     : undefined;
   const limit = runLimit(flat.text, options.duration);
   const duration = limit.seconds;
@@ -285,7 +304,6 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
     };
   }
 
-  const searchPath = await esminiSearchPath(flattener, main, flat.source, folders);
   const ran = await runLimitedText(location.program, limited, searchPath, options, timeStep, seed, limit, {
     runFolder,
     files: flat.files,

@@ -3,7 +3,7 @@ import { elementPlace } from '../analysis';
 import { FlatSource } from '../core/flatten';
 import { MAX_ROAD_FILE_BYTES, parseOpenDrive, RoadNetwork } from '../core/opendrive/road';
 import { sampleNetwork } from '../core/opendrive/sample';
-import { logicFileOf, resolveRoadFile, roadFolders, scenarioFolderOf } from '../core/semantics/roadFiles';
+import { logicFileOf, roadFolders, scenarioFolderOf } from '../core/semantics/roadFiles';
 import { scenarioScene } from '../core/scene';
 import { analyzeDocument } from '../core/semantics';
 import { baseName, displayRef, nodeFileSystem } from '../core/sources';
@@ -12,6 +12,7 @@ import { attributeValue, XmlElement } from '../core/xml';
 import { RunTraceParams, SceneParams, SceneResult, SourceLocation } from '../../../common/src/sceneProtocol';
 import type { TraceRecord } from '../../../common/src/trace';
 import { originOf } from '../core/flatten';
+import { esminiFolders } from '../esmini/run';
 import { storyboardMapOf, traceFromLog } from '../esmini/storyboardTrace';
 import type { SectionPolylines } from '../../../common/src/sectionPolylines';
 import { Workspace } from '../workspace';
@@ -71,22 +72,21 @@ export async function buildScene(workspace: Workspace, roads: RoadNetworkCache, 
   if (!source.model && source.original && source.links.length > 0)
     problems.push('the scenario could not be flattened; the view shows the file as written, without the groups it imports');
 
-  // The road file is needed before positions can be evaluated. It is resolved as Run in esmini resolves it (core/semantics/roadFiles.ts), from the file as written.
-  const logic = logicFileOf((source.original ?? model).document);
+  // The road file is needed before positions can be evaluated: the one Run in esmini hands esmini, in the folders it hands esmini (esmini/run.ts esminiFolders).
+  const folders = roadFolders(params.roadPath, workspace.folders[0] ?? scenarioFolderOf(ref));
+  const { road: logic } = await esminiFolders(workspace.flattener(), ref, source, folders);
   // Places are found from the document shown (the flattened one for a main file).
   const shownLogic = logicFileOf(model.document);
   let network: RoadNetwork | undefined;
   let sections: SectionPolylines[] = [];
   let roadFile: SceneResult['roadFile'];
   if (logic) {
-    const scenarioFolder = scenarioFolderOf(ref);
-    const folders = roadFolders(params.roadPath, workspace.folders[0] ?? scenarioFolder);
-    // Read from disk each time: the workspace's file cache follows scenario files only, and parsed roads are cached by content.
-    const { resolved, candidates } = await resolveRoadFile(nodeFileSystem, logic.filepath, scenarioFolder, folders);
-    roadFile = { filepath: logic.filepath, resolved, roadCount: 0, source: locationOf(workspace, source, shownLogic?.element, 'filepath') };
+    const { resolved, candidates } = logic;
+    const filepath = logic.logic.filepath;
+    roadFile = { filepath, resolved, roadCount: 0, source: locationOf(workspace, source, shownLogic?.element, 'filepath') };
     if (!resolved) {
       problems.push(
-        `road file "${logic.filepath}" not found; looked for ${candidates.join(', ')}. Add its folder to the setting modular2simple.esmini.roadPath.`,
+        `road file "${filepath}" not found; looked for ${candidates.join(', ')}. Add its folder to the setting modular2simple.esmini.roadPath.`,
       );
     } else {
       // Read fresh from disk (a road file may change), bounded, and refused when not a regular file (a FIFO, a device), so that a road file never hangs the server.

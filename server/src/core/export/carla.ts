@@ -15,7 +15,7 @@ import type { FlatSource } from '../flatten/types';
 import { geoToRoad, RoadXY } from '../opendrive/geo';
 import { MAX_ROAD_FILE_BYTES, parseOpenDrive, RoadNetwork } from '../opendrive/road';
 import { formatProblem, Problem } from '../problems';
-import { logicFileOf, resolveRoadFile } from '../semantics/roadFiles';
+import { locateRoadFile, logicFileOf } from '../semantics/roadFiles';
 import { STORYBOARD_ELEMENT_NAMES, STORYBOARD_ELEMENT_TYPES } from '../semantics/storyboard';
 import { schemaFindingWords } from '../diagnostics/schemaFindings';
 import { checkSchema } from '../schema/validate';
@@ -563,7 +563,10 @@ async function rewriteRoad(
     }
     if (CARLA_TOWNS.includes(written.filepath)) road = { town: written.filepath };
     else {
-      const found = await resolveRoadFile(store.host, written.filepath, path.dirname(ref.disk), options.roadFolders ?? []);
+      // Where run and check look (core/semantics/roadFiles.ts locateRoadFile): the road folders, then those the check searched (its catalog folders).
+      const folders = [...(options.roadFolders ?? []), ...(semantics.roadFile?.folders ?? [])];
+      const located = await locateRoadFile(store, ref, document, semantics.evaluator, folders, store.host);
+      const found = located ?? { resolved: undefined, candidates: [] };
       if (!found.resolved || !found.resolved.toLowerCase().endsWith('.xodr')) {
         sink.refuse(
           logic,

@@ -15,15 +15,6 @@ export interface LogicFile {
   element: XmlElement;
 }
 
-export interface RoadFileResolution {
-  /** As the scenario says. */
-  filepath: string;
-  /** The first candidate that is a file, absolute; undefined when none is. */
-  resolved?: string;
-  /** Every path looked at, in order. */
-  candidates: string[];
-}
-
 /** The document's `RoadNetwork/LogicFile` element and its `filepath` attribute, as written. */
 function logicFileElement(document: XmlDocument): { element: XmlElement; written: XmlAttribute } | undefined {
   const network = document.root?.children.find((child) => child.name === 'RoadNetwork');
@@ -67,18 +58,6 @@ export function roadFileCandidates(filepath: string, scenarioFolder: string, roa
   return [...new Set(candidates)];
 }
 
-/** The road file a scenario in `scenarioFolder` uses: the first candidate that is a regular file. */
-export async function resolveRoadFile(
-  host: FileSystemHost,
-  filepath: string,
-  scenarioFolder: string,
-  roadFolderList: readonly string[],
-): Promise<RoadFileResolution> {
-  const candidates = roadFileCandidates(filepath, scenarioFolder, roadFolderList);
-  for (const candidate of candidates) if ((await host.kind(candidate)) === 'file') return { filepath, resolved: candidate, candidates };
-  return { filepath, candidates };
-}
-
 /** A scenario's road file looked for where a run has esmini look for it (`locateRoadFile`). */
 export interface RoadFileLookup {
   /** The LogicFile, its filepath evaluated. */
@@ -90,6 +69,8 @@ export interface RoadFileLookup {
   packaged: boolean;
   /** The folders looked in, in order: the scenario's, the road folders, the catalog folders. */
   folders: string[];
+  /** Every path looked at, in order (`roadFileCandidates`). */
+  candidates: string[];
   /** The filepath is the name of a CARLA map (profiles/scenarioRunner.ts CARLA_TOWNS), which ScenarioRunner loads by name. */
   carlaTown: boolean;
 }
@@ -119,6 +100,8 @@ export async function locateRoadFile(
   document: XmlDocument,
   evaluator: Evaluator,
   catalogFolders: readonly string[],
+  // A run and the bird's-eye view read the disk afresh (nodeFileSystem): road folders outside the workspace are not watched.
+  files: Pick<FileSystemHost, 'kind'> = { kind: (filePath) => store.kindOf(filePath) },
 ): Promise<RoadFileLookup | undefined> {
   const found = logicFileElement(document);
   if (!found) return undefined;
@@ -129,7 +112,7 @@ export async function locateRoadFile(
   const candidates = roadFileCandidates(filepath, scenarioFolder, folders.slice(1));
   let resolved: string | undefined;
   for (const candidate of candidates) {
-    if ((await store.kindOf(candidate)) !== 'file') continue;
+    if ((await files.kind(candidate)) !== 'file') continue;
     resolved = candidate;
     break;
   }
@@ -139,6 +122,7 @@ export async function locateRoadFile(
     resolved,
     packaged: resolved === undefined && (await inOwnPackage(store, ref, filepath)),
     folders,
+    candidates,
     carlaTown: CARLA_TOWNS.includes(filepath.trim()),
   };
 }
