@@ -488,7 +488,10 @@ function outcomeOf(ran: LimitedRun, errors: number, warnings: number, firstError
     common.simulatedTime === undefined
       ? 'no trajectory: esmini placed no entity (each needs a position in Init, such as a TeleportAction)'
       : `${common.simulatedTime.toFixed(2)} s simulated${common.reachedLimit ? `: ${limitSentence(ran.limit)}` : ''}`;
-  return { outcome: errors > 0 ? 'errors' : 'ok', message: `esmini: ${counts}; ${covered} (${(run.wallMs / 1000).toFixed(2)} s)` };
+  return {
+    outcome: errors > 0 ? 'errors' : 'ok',
+    message: `esmini: ${counts}; ${covered} (the run took ${(run.wallMs / 1000).toFixed(2)} s)`,
+  };
 }
 
 /** Why the time limit added to a run ended it, in one sentence (the same on every machine: no wall-clock figure). */
