@@ -76,6 +76,11 @@ export function mapProgressPage(file = process.env[PROGRESS_PAGE_ENV]): SessionP
   };
 }
 
+// The child stores through a Float64Array, in the machine's byte order, which the supervisor reads and writes slots in too.
+const BYTE_ORDER = os.endianness();
+const slotIn = (bytes: Buffer, index: number): number => bytes[`readDouble${BYTE_ORDER}`](index * 8);
+const writeSlot = (bytes: Buffer, value: number): number => bytes[`writeDouble${BYTE_ORDER}`](value);
+
 /** The supervisor's side: a zeroed page file for the child to map. */
 export function makeProgressPage(file: string): void {
   fs.writeFileSync(file, Buffer.alloc(PROGRESS_PAGE_BYTES));
@@ -87,8 +92,7 @@ export function pauseCounter(file: string): () => void {
   const slot = Buffer.alloc(8);
   return () => {
     count++;
-    if (os.endianness() === 'LE') slot.writeDoubleLE(count);
-    else slot.writeDoubleBE(count);
+    writeSlot(slot, count);
     const fd = fs.openSync(file, 'r+');
     try {
       fs.writeSync(fd, slot, 0, 8, PAUSES * 8);
@@ -107,9 +111,8 @@ export function readProgressPage(file: string): number | undefined {
     return undefined;
   }
   if (bytes.length < 3 * 8) return undefined;
-  // Each slot read at its offset, in the machine's byte order (the child stores through a Float64Array): a Float64Array
-  // over readFileSync's buffer would need that buffer 8-byte aligned, which Node does not promise.
-  const slot = (index: number) => (os.endianness() === 'LE' ? bytes.readDoubleLE(index * 8) : bytes.readDoubleBE(index * 8));
+  // Each slot read at its offset: a Float64Array over readFileSync's buffer would need it 8-byte aligned, which Node does not promise.
+  const slot = (index: number) => slotIn(bytes, index);
   const [steps, timeStep] = [slot(STEPS), slot(TIME_STEP)];
   if (slot(WRITTEN) !== MARK || !(timeStep > 0) || !(steps >= 0)) return undefined;
   return steps * timeStep;
