@@ -75,6 +75,7 @@ export class VariationsRunner implements vscode.Disposable {
 
     this.output.appendLine(`modular2simple ${args.join(' ')}`);
     const name = path.basename(file);
+    const csv = path.join(resultsFolder, 'results.csv');
     const outcome = await withNotificationProgress(
       `Running the variations of ${name}`,
       (progress, token) =>
@@ -127,7 +128,7 @@ export class VariationsRunner implements vscode.Disposable {
               exitCode,
               resultsFolder,
               cancelled,
-              failure: exitCode === 0 ? undefined : batchFailure(printed),
+              failure: exitCode === 0 ? undefined : batchFailure(printed, { path: csv, name: vscode.workspace.asRelativePath(csv) }),
               otherBatch: exitCode === 0 ? undefined : otherBatchInResults(printed),
             });
           };
@@ -139,7 +140,6 @@ export class VariationsRunner implements vscode.Disposable {
           child.on('close', (code) => finish(code));
         }),
     );
-    const csv = path.join(resultsFolder, 'results.csv');
     if (outcome.otherBatch !== undefined) {
       // The CLI's way out (another --results folder) is not the editor's: it asks, and never shows the old results as this batch's.
       const replace = 'Replace';

@@ -146,7 +146,7 @@ describe('cli: --force writes and runs whatever can be produced, listing what wa
     assert.match(forced.stderr, /main\.xosc:\d+:\d+: error: 'fast' is not a double/, 'the errors are listed');
     assert.match(
       forced.stderr,
-      /main\.xosc: esmini: \d+ errors?, \d+ warnings?; 3\.00 s simulated: stopped at the 3 s limit set for the run.*\(run anyway despite \d+ errors? in the scenario\)/,
+      /main\.xosc: esmini: \d+ errors?, \d+ warnings?; 3\.00 s simulated: stopped at the 3 s limit set by --duration, before the scenario ended by itself.*\(run anyway despite \d+ errors? in the scenario\)/,
     );
     const rows = fs.readFileSync(csv, 'utf8').trim().split('\n').slice(7);
     assert.equal(Number(rows[rows.length - 1].split(',')[1]), 3);

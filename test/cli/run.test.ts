@@ -4,7 +4,7 @@ import * as os from 'node:os';
 import * as path from 'node:path';
 import { cliInTemporaryProject } from '../support/cliProject';
 import { esminiBinary, requireEsmini, esminiRoads } from '../support/esmini';
-import { runCli } from '../support/fixtures';
+import { roadScenario, runCli } from '../support/fixtures';
 import { libraryDir, repoRoot, requireCorpus } from '../support/paths';
 import { listFiles } from '../support/workspace';
 import { temporaryFolder } from '../support/temporaryDirectory';
@@ -64,11 +64,25 @@ describe('cli: run in esmini', function () {
     assert.equal(run.status, 0, run.stderr);
     assert.match(
       run.stderr,
-      /esmini: 0 errors, \d+ warnings?; 4\.00 s simulated: stopped at the 4 s limit set for the run, before the scenario ended by itself \(the run took \d+\.\d\d s\)/,
+      /esmini: 0 errors, \d+ warnings?; 4\.00 s simulated: stopped at the 4 s limit set by --duration, before the scenario ended by itself \(the run took \d+\.\d\d s\)/,
     );
     assert.deepEqual(listFiles(root), before);
     const rows = fs.readFileSync(out, 'utf8').trim().split('\n').slice(7);
     assert.equal(Number(rows[rows.length - 1].split(',')[1]), 4);
+  });
+
+  it('a scenario with no stop condition runs its default length, and the message says where to set a longer one', function () {
+    requireEsmini(this);
+    const root = temporaryFolder('m2s-run-no-end-');
+    const init =
+      '<Private entityRef="Ego"><PrivateAction><TeleportAction><Position><LanePosition roadId="0" laneId="-1" s="10" offset="0"/></Position></TeleportAction></PrivateAction></Private>';
+    fs.writeFileSync(path.join(root, 'no-end.xosc'), roadScenario({ logicFile: 'straight_500m.xodr', init, groups: [] }));
+    const run = runCli(['run', 'no-end.xosc', '--road-path', esminiRoads, '--esmini', esminiBinary], { cwd: root });
+    assert.equal(run.status, 0, run.stderr);
+    assert.match(
+      run.stderr,
+      /30\.00 s simulated: the scenario's StopTrigger has no condition, so it has no end of its own and runs 30 s \(set a duration with --duration to run longer\)/,
+    );
   });
 
   it("esmini's error printed on the simple scenario's line; one that stops esmini before it runs exits 3 (it did not run), with or without --check", function () {

@@ -14,6 +14,11 @@ describe('Run Variations: why a batch did not end well, for its notification', (
       '3 of 3 runs failed in esmini (status error); the column reason of /w/results/results.csv says why for each: #7, #14, #20: esmini did not run the scenario (exit code 255): Failed to locate OpenDRIVE file e6mini.xodr',
     );
     assert.equal(
+      batchFailure(refused, { path: '/w/results/results.csv', name: 'results/results.csv' }),
+      '3 of 3 runs failed in esmini (status error); the column reason of results/results.csv says why for each: #7, #14, #20: esmini did not run the scenario (exit code 255): Failed to locate OpenDRIVE file e6mini.xodr',
+      'the whole path gives way to the name the editor shows',
+    );
+    assert.equal(
       batchFailure(['8 runs (8 ok, …)', 'modular2simple: 2 runs failed the criteria (collision): #0: collision; #3: collision']),
       '2 runs failed the criteria (collision): #0: collision; #3: collision',
     );

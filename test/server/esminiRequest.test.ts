@@ -108,7 +108,7 @@ describe('language server: the Run in esmini request over JSON-RPC', function ()
     assert.equal(forced.forcible, undefined);
     assert.match(
       forced.message,
-      /3\.00 s simulated: stopped at the 3 s limit set for the run.*\(run anyway despite 1 error in the scenario\)$/,
+      /3\.00 s simulated: stopped at the 3 s limit set by the modular2simple\.esmini\.duration setting, before the scenario ended by itself.*\(run anyway despite 1 error in the scenario\)$/,
     );
     assert.deepEqual(
       forced.flattenProblems.filter((problem) => problem.severity === 'error'),

@@ -2,9 +2,15 @@
  * Why a batch the editor ran (`modular2simple batch`) did not end well, in one line for a notification, from what the
  * CLI printed: its closing `modular2simple: error: …` block (runs that failed in esmini, each reason under it), the
  * criteria the runs failed, or else the first problem that stopped it before any run (`FILE:LINE:COL: error: …`).
- * Undefined when it printed none of these.
+ * Undefined when it printed none of these. `resultsCsv`: the batch's results.csv, named by `name` (a notification is no
+ * place for a whole path).
  */
-export function batchFailure(lines: readonly string[]): string | undefined {
+export function batchFailure(lines: readonly string[], resultsCsv?: { path: string; name: string }): string | undefined {
+  const failure = firstFailure(lines);
+  return resultsCsv && failure !== undefined ? failure.split(resultsCsv.path).join(resultsCsv.name) : failure;
+}
+
+function firstFailure(lines: readonly string[]): string | undefined {
   const closing = lines.findIndex((line) => /^modular2simple: (error: |\d+ runs? failed the criteria)/.test(line));
   if (closing >= 0) {
     const block = [lines[closing].replace(/^modular2simple: (error: )?/, '')];

@@ -106,6 +106,7 @@ async function runCommand(args: string[], io: CliOutput): Promise<number> {
       esminiPath: values.esmini,
       roadPath,
       duration,
+      durationSetBy: '--duration',
       seed,
       force: values.force,
     });

@@ -38,6 +38,8 @@ export interface EsminiRunOptions {
   roadPath?: string[];
   /** Simulated seconds at most, set by the user; undefined: the scenario's own end (`runLimit`: the runaway guard, or the default length of a scenario with no stop condition). */
   duration?: number;
+  /** Where the user sets `duration` ('--duration', a setting's name): a run's message that a limit ended it names it. */
+  durationSetBy?: string;
   timeStep?: number;
   seed?: number;
   /** Wall-clock milliseconds without progress before the run is stopped as hung (`RUN_DEFAULTS.stallMs`). */
@@ -290,7 +292,7 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
   const roadFile: RunRoadFile | undefined = road
     ? { filepath: road.logic.filepath, resolved: road.resolved, candidates: road.candidates }
     : undefined;
-  const limit = runLimit(flat.text, options.duration);
+  const limit = { ...runLimit(flat.text, options.duration), setBy: options.durationSetBy };
   const duration = limit.seconds;
   const limited = withTimeLimit(road?.resolved ? withRoadFile(flat.text, road.resolved) : flat.text, duration);
   if (limited === undefined) {
@@ -361,7 +363,7 @@ export async function runScenarioText(text: string, searchPath: string[], option
   const timeStep = options.timeStep ?? RUN_DEFAULTS.timeStep;
   const seed = options.seed ?? RUN_DEFAULTS.seed;
   checkDuration(options.duration);
-  const limit = runLimit(text, options.duration);
+  const limit = { ...runLimit(text, options.duration), setBy: options.durationSetBy };
   const base = {
     log: '',
     duration: limit.seconds,
@@ -405,7 +407,7 @@ interface LimitedRun {
     'args' | 'runFolder' | 'scenarioFile' | 'csvFile' | 'log' | 'end' | 'exitCode' | 'simulatedTime' | 'reachedLimit' | 'stopReason'
   >;
   /** The added time limit, in simulated seconds, and where it comes from. */
-  limit: { seconds: number; kind: LimitKind };
+  limit: RunLimit;
 }
 
 /** Writes the time-limited text (and the files a self-contained package carries) to a private folder and runs esmini on it. */
@@ -416,7 +418,7 @@ async function runLimitedText(
   options: EsminiRunOptions,
   timeStep: number,
   seed: number,
-  limit: { seconds: number; kind: LimitKind },
+  limit: RunLimit,
   prepared: { runFolder?: string; files?: readonly { path: string; bytes: Uint8Array }[] } = {},
 ): Promise<LimitedRun> {
   const duration = limit.seconds;
@@ -494,11 +496,14 @@ function outcomeOf(ran: LimitedRun, errors: number, warnings: number, firstError
   };
 }
 
+/** A run's added time limit; `setBy` names where the user sets one (`EsminiRunOptions.durationSetBy`). */
+type RunLimit = { seconds: number; kind: LimitKind; setBy?: string };
+
 /** Why the time limit added to a run ended it, in one sentence (the same on every machine: no wall-clock figure). */
-export function limitSentence(limit: { seconds: number; kind: LimitKind }): string {
+export function limitSentence(limit: RunLimit): string {
   return {
-    user: `stopped at the ${trimmed(limit.seconds)} s limit set for the run, before the scenario ended by itself`,
-    'no-end': `the scenario's StopTrigger has no condition, so it has no end of its own and runs ${trimmed(limit.seconds)} s (set a duration to run longer)`,
+    user: `stopped at the ${trimmed(limit.seconds)} s limit ${limit.setBy ? `set by ${limit.setBy}` : 'set for the run'}, before the scenario ended by itself`,
+    'no-end': `the scenario's StopTrigger has no condition, so it has no end of its own and runs ${trimmed(limit.seconds)} s (set a duration${limit.setBy ? ` with ${limit.setBy}` : ''} to run longer)`,
     runaway: `its StopTrigger had not ended it after ${trimmed(limit.seconds)} s simulated, so it was stopped as a runaway`,
   }[limit.kind];
 }

@@ -53,6 +53,7 @@ export class EsminiRuns {
       roadPath: stringList(params.roadPath),
       base: workspace.folders[0],
       duration,
+      durationSetBy: 'the modular2simple.esmini.duration setting',
       cancel: cancel.signal,
       force: params.force === true,
     };

@@ -272,7 +272,7 @@ export const esminiTests: InsideTests = {
       assert.equal(forced?.outcome, 'ok', forced?.message);
       assert.match(
         forced.message,
-        /3\.00 s simulated: stopped at the 3 s limit set for the run.*\(run anyway despite 1 error in the scenario\)$/,
+        /3\.00 s simulated: stopped at the 3 s limit set by the modular2simple\.esmini\.duration setting, before the scenario ended by itself.*\(run anyway despite 1 error in the scenario\)$/,
       );
       assert.ok(
         forced.flattenProblems.some((problem) => problem.severity === 'error' && /'fast' is not a double/.test(problem.message)),

@@ -204,6 +204,10 @@ export function defineVariationsTests(): void {
         await waitFor('the results in the Variations view', () => (view.folder === results && view.stats?.rows === 4 ? true : undefined));
         assert.ok(!toasts.includes('Running the variations of'), `the batch's progress is still shown beside its result:\n${toasts}`);
         assert.match(toasts, /2 of 4 runs failed in esmini/);
+        assert.ok(
+          !toasts.includes(path.join(results, 'results.csv')) && toasts.includes(`${path.basename(results)}/results.csv`),
+          `the notification names results.csv by its path in the workspace, not the whole path:\n${toasts}`,
+        );
         assert.match(toasts, /Failed to locate OpenDRIVE file \.\.\/xodr\/e6mini_gone\.xodr/);
         await waitForPage('4 runs:');
         // Each run's reason (the last column) is read in the view as it opens, without scrolling sideways.
