@@ -2,14 +2,23 @@ import * as path from 'node:path';
 import * as vscode from 'vscode';
 import { splitScenarioPath } from '../../common/src/scenarioPath';
 
-const SCENARIO_GLOB = '**/*.{xosc,mosc}';
+// Road files too: the road-file check looks for a LogicFile's road in these folders (core/semantics/roadFiles.ts).
+const SCENARIO_GLOB = '**/*.{xosc,mosc,xodr}';
+/** The settings that name searched folders: scenarios and catalogs; road files and catalogs. */
+const FOLDER_SETTINGS = ['modular2simple.scenarioPath', 'modular2simple.esmini.roadPath'];
 
-/** The folders searched through SCENARIO_PATH and each workspace folder's `scenarioPath` setting (read for that folder, relative to it). */
+/**
+ * The folders searched through SCENARIO_PATH, each workspace folder's `scenarioPath` setting and its
+ * `esmini.roadPath` setting (read for that folder, relative to it).
+ */
 export function scenarioPathFolders(): string[] {
   const folders = new Set<string>(splitScenarioPath(process.env.SCENARIO_PATH));
   for (const folder of vscode.workspace.workspaceFolders ?? []) {
     if (folder.uri.scheme !== 'file') continue;
-    const entries = vscode.workspace.getConfiguration('modular2simple', folder.uri).get<string[]>('scenarioPath') ?? [];
+    const entries = FOLDER_SETTINGS.flatMap((setting) => {
+      const [section, key] = [setting.slice(0, setting.lastIndexOf('.')), setting.slice(setting.lastIndexOf('.') + 1)];
+      return vscode.workspace.getConfiguration(section, folder.uri).get<unknown[]>(key) ?? [];
+    });
     for (const entry of entries) if (typeof entry === 'string' && entry.trim()) folders.add(path.resolve(folder.uri.fsPath, entry));
   }
   return [...folders];
@@ -20,14 +29,14 @@ function inside(child: string, parent: string): boolean {
   return relative === '' || (!relative.startsWith('..') && !path.isAbsolute(relative));
 }
 
-/** The scenario-path folders that no workspace folder holds: the editor watches only the workspace, so these need watchers of their own. */
+/** The searched folders that no workspace folder holds: the editor watches only the workspace, so these need watchers of their own. */
 export function foldersOutsideWorkspace(folders: string[], workspaceFolders: string[]): string[] {
   return folders.filter((folder) => !workspaceFolders.some((root) => inside(folder, root)));
 }
 
 /**
- * One file system watcher per scenario-path folder outside the workspace, made again when the
- * setting or the workspace folders change; each event is handed on (to the language server).
+ * One file system watcher per searched folder (scenario path, road path) outside the workspace, made again when
+ * those settings or the workspace folders change; each event is handed on (to the language server).
  */
 export class ScenarioPathWatchers implements vscode.Disposable {
   private watchers: vscode.FileSystemWatcher[] = [];
@@ -37,7 +46,7 @@ export class ScenarioPathWatchers implements vscode.Disposable {
   constructor(private readonly onEvent: (uri: vscode.Uri, kind: 'created' | 'changed' | 'deleted') => void) {
     this.subscriptions.push(
       vscode.workspace.onDidChangeConfiguration((event) => {
-        if (event.affectsConfiguration('modular2simple.scenarioPath')) this.update();
+        if (FOLDER_SETTINGS.some((setting) => event.affectsConfiguration(setting))) this.update();
       }),
       vscode.workspace.onDidChangeWorkspaceFolders(() => this.update()),
     );

@@ -54,6 +54,7 @@ const ORDER: InsideTestKey[] = [
   'definition',
   'preview',
   'scenarioPath',
+  'roadPath',
   'pack',
   'flatten',
   'expression',

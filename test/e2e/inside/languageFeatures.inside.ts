@@ -17,6 +17,19 @@ import {
 } from './helpers';
 import { pageShows, post, pressKeys, screenshot } from './harnessClient';
 
+/** A one-road OpenDRIVE file: what the road-file check looks for is that it is there. */
+const OUTSIDE_ROAD = `<?xml version="1.0" encoding="UTF-8"?>
+<OpenDRIVE>
+  <header revMajor="1" revMinor="4" name="outside" version="1"/>
+  <road name="r" length="100" id="0" junction="-1">
+    <planView><geometry s="0" x="0" y="0" hdg="0" length="100"><line/></geometry></planView>
+    <lanes><laneSection s="0"><center><lane id="0" type="driving" level="false"/></center>
+      <right><lane id="-1" type="driving" level="false"><width sOffset="0" a="3.5" b="0" c="0" d="0"/></lane></right>
+    </laneSection></lanes>
+  </road>
+</OpenDRIVE>
+`;
+
 /** The language server's features as the editor shows them: diagnostics, completion, definition, the scenario path, expressions, the schema. */
 export const languageFeatureTests: InsideTests = {
   diagnostic: async function () {
@@ -136,6 +149,44 @@ export const languageFeatureTests: InsideTests = {
       await settings.update('scenarioPath', undefined, vscode.ConfigurationTarget.Workspace);
       await revertAndClose();
       fs.rmSync(library, { recursive: true, force: true });
+    }
+  },
+
+  roadPath: async function () {
+    requireServerFeature(this, 'diagnostics', !!api().serverCapabilities()?.textDocumentSync);
+    // A road folder outside the workspace, named only by the setting: the editor does not watch it by itself.
+    const roads = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-roads-'));
+    const road = path.join(roads, 'outside_road.xodr');
+    const editor = await open('main.xosc');
+    const uri = editor.document.uri;
+    await replaceText(editor.document, 'filepath="Town05"', 'filepath="outside_road.xodr"');
+    const roadFile = (): vscode.Diagnostic | undefined =>
+      vscode.languages
+        .getDiagnostics(uri)
+        .find((d) => (typeof d.code === 'object' ? String(d.code.value) : String(d.code)) === 'road-file');
+    const settings = vscode.workspace.getConfiguration('modular2simple.esmini');
+    await settings.update('roadPath', [roads], vscode.ConfigurationTarget.Workspace);
+    try {
+      // The server has looked in the folder and found nothing there: what it read of it stays until it hears otherwise.
+      await waitFor('the road-file warning naming the road folder', () => (roadFile()?.message.includes(roads) ? true : undefined));
+      // A new watcher starts in its own time: the road is written again until its creation is seen.
+      let patience = 3_000;
+      await waitFor(
+        'the road-file warning to go once the road appears in the road folder',
+        async () => {
+          fs.rmSync(road, { force: true });
+          await new Promise((resolve) => setTimeout(resolve, 500));
+          fs.writeFileSync(road, OUTSIDE_ROAD);
+          const gone = await waitFor('the new road to be seen', () => !roadFile() || undefined, patience).catch(() => undefined);
+          patience = Math.min(2 * patience, WAIT_MS / 2);
+          return gone;
+        },
+        2 * WAIT_MS,
+      );
+    } finally {
+      await settings.update('roadPath', undefined, vscode.ConfigurationTarget.Workspace);
+      await revertAndClose();
+      fs.rmSync(roads, { recursive: true, force: true });
     }
   },
 
