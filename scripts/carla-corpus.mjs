@@ -2,6 +2,8 @@
 // ScenarioRunner release (issue 26): esmini's samples, ScenarioRunner's examples, the paper's 31 library
 // scenarios and its case study. Needs `npm run build` and the harness (python3 ../shared/carla/check.py setup).
 //   node scripts/carla-corpus.mjs            prints the table, and each refusal's reason with -v
+//   node scripts/carla-corpus.mjs --check    instead compares `check --simulator carla` with ScenarioRunner's verdict
+//                                            on each file as written: a false alarm, or a refusal the check missed
 import { spawnSync } from 'node:child_process';
 import { existsSync, mkdirSync, mkdtempSync, readdirSync, readFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
@@ -14,10 +16,12 @@ const corpus = path.join(shared, 'corpus');
 const cli = path.join(root, 'dist', 'cli.js');
 const harness = path.join(shared, 'carla', 'check.py');
 const verbose = process.argv.includes('-v');
+const compareCheck = process.argv.includes('--check');
 
 /**
  * @typedef {{ input: string, extra: string[] }} Input
- * @typedef {{ name: string, inputs: Input[] }} Corpus
+ * @typedef {{ name: string, inputs: Input[], asWritten?: Input[] }} Corpus
+ * `asWritten`: the files ScenarioRunner reads as they are, when `inputs` are modular (the original tool's flattened output).
  */
 
 const esmini = path.join(corpus, 'openscenario', 'esmini');
@@ -51,6 +55,12 @@ const corpora = [
         .map((name) => ({ input: path.join(library, name, 'main.xosc'), extra: ['--scenario-path', library] })),
       { input: path.join(corpus, 'modular2simple', 'case-study'), extra: ['--force'] },
     ],
+    asWritten: [
+      ...readdirSync(library)
+        .filter((name) => existsSync(path.join(library, name, 'result.xosc')))
+        .map((name) => ({ input: path.join(library, name, 'result.xosc'), extra: [] })),
+      { input: path.join(corpus, 'modular2simple', 'case-study.expected.xosc'), extra: [] },
+    ],
   },
 ];
 
@@ -77,8 +87,81 @@ function verdicts(files, fixSrBugs) {
   return new Map(parsed.results.map((each) => [path.resolve(each.file), each]));
 }
 
+/** The folder options of an export's arguments, which check takes too (not --index, --force). */
+function searchPaths(/** @type {string[]} */ extra) {
+  return extra.flatMap((each, index) =>
+    ['--road-path', '--scenario-path'].includes(extra[index - 1] ?? '') || ['--road-path', '--scenario-path'].includes(each) ? [each] : [],
+  );
+}
+
+/**
+ * `check --simulator carla` on each file as written against ScenarioRunner's verdict on it, per release: the check's
+ * errors say ScenarioRunner refuses the file, so an error on a file it builds is a false alarm, and no error on a file
+ * it refuses a refusal missed.
+ */
+function checkAgainstScenarioRunner() {
+  console.log('check --simulator carla against ScenarioRunner on each file as written (../shared/carla/check.py; 0.9.15 = --fix-sr-bugs)');
+  /** @type {string[]} */
+  const disagreements = [];
+  for (const { name, inputs, asWritten } of corpora) {
+    const files = (asWritten ?? inputs).filter(({ input }) => input.endsWith('.xosc'));
+    for (const release of ['0.9.16', '0.9.15']) {
+      const built = verdicts(
+        files.map(({ input }) => input),
+        release === '0.9.15',
+      );
+      /** @type {Map<string, string[]>} */
+      const errors = new Map();
+      for (const { input, extra } of files) {
+        const result = spawnSync(
+          process.execPath,
+          [cli, 'check', input, '--simulator', 'carla', '--carla', release, '--format', 'json', ...searchPaths(extra)],
+          { encoding: 'utf8', timeout: 120_000, maxBuffer: 64 * 1024 * 1024 },
+        );
+        if (result.status !== 0 && result.status !== 1) throw new Error(`check ${input} exited ${result.status}: ${result.stderr}`);
+        /** @type {{ problems: { severity: string, code: string, message: string }[] }} */
+        const report = JSON.parse(result.stdout);
+        errors.set(
+          input,
+          report.problems.filter((each) => each.severity === 'error').map((each) => `${each.code}: ${each.message}`),
+        );
+      }
+      let [builds, refuses, falseAlarms, missed] = [0, 0, 0, 0];
+      for (const { input } of files) {
+        const verdict = built.get(path.resolve(input));
+        if (!verdict || verdict.status === 'SKIP') continue;
+        const said = errors.get(input) ?? [];
+        if (verdict.status === 'OK') {
+          builds++;
+          if (said.length > 0) {
+            falseAlarms++;
+            disagreements.push(`${release} false alarm: ${input}: ${said[0]}`);
+          }
+        } else {
+          refuses++;
+          if (said.length === 0) {
+            missed++;
+            disagreements.push(`${release} missed: ${input}: ScenarioRunner ${verdict.stage}: ${verdict.reason}`);
+          }
+        }
+      }
+      console.log(`  ${name}, ${release}: ${builds} build, ${refuses} refused; ${falseAlarms} false alarms, ${missed} refusals missed`);
+    }
+  }
+  if (disagreements.length > 0) console.log(`\n${disagreements.join('\n')}`);
+  return disagreements.length;
+}
+
 const out = mkdtempSync(path.join(tmpdir(), 'm2s-carla-corpus-'));
 try {
+  if (compareCheck) process.exitCode = checkAgainstScenarioRunner() > 0 ? 1 : 0;
+  else exportCorpus();
+} finally {
+  rmSync(out, { recursive: true, force: true });
+}
+
+/** Each corpus exported for both releases, and what ScenarioRunner builds of what was written. */
+function exportCorpus() {
   /** @type {string[][]} */
   const rows = [];
   /** @type {string[]} */
@@ -140,6 +223,4 @@ try {
   }
   if (notBuilt.length > 0) console.log(`\n${notBuilt.join('\n')}`);
   if (verbose) console.log(`\n${reasons.join('\n')}`);
-} finally {
-  rmSync(out, { recursive: true, force: true });
 }
