@@ -20,6 +20,31 @@ export function catalogFoundByFileNameWording(catalog: string, named: string): P
   };
 }
 
+/**
+ * The Catalog `catalog` is in `holder`, a file of another name, and esmini looks a catalog up as the file `catalog`.xosc
+ * alone (esmini 3.6 ScenarioReader.cpp LoadCatalog, which never reads the Catalog's name): it reads `esminiReads`, a
+ * Catalog of another name, or stops ("Couldn't locate OpenSCENARIO file"). An error with `simulator = esmini`, a warning
+ * otherwise: the standard finds a catalog by its name.
+ */
+export function catalogFileNameWording(
+  catalog: string,
+  holder: string,
+  esminiReads: { file: string; catalog: string } | undefined,
+  severity: 'error' | 'warning',
+): ProblemWording<'unknown-catalog'> {
+  const esmini = esminiReads
+    ? `esmini reads ${esminiReads.file} instead, whose Catalog is named '${esminiReads.catalog}'`
+    : `esmini stops at it ("Couldn't locate OpenSCENARIO file ${catalog}")`;
+  return {
+    severity,
+    code: 'unknown-catalog',
+    message: `the Catalog '${catalog}' is in ${holder}, but esmini looks a catalog up as the file ${catalog}.xosc: ${esmini}`,
+    hint: esminiReads
+      ? `rename ${holder} to ${catalog}.xosc, and ${esminiReads.file} to the name of its own Catalog`
+      : `rename ${holder} to ${catalog}.xosc`,
+  };
+}
+
 /** A catalogName naming no catalog of the CatalogLocations. */
 export const UNKNOWN_CATALOG = defineDiagnostic({
   code: 'unknown-catalog',

@@ -73,6 +73,11 @@ export interface CatalogReferenceResolution {
    * takes that file (it looks catalogs up by file name), the standard does not.
    */
   foundByFileName: boolean;
+  /**
+   * Set when the catalog is a Catalog of the name in a file of another name: esmini looks a catalog up as the file
+   * `NAME.xosc` alone (ScenarioReader.cpp LoadCatalog) and reads `esminiReads`, a Catalog of another name, or finds none.
+   */
+  fileNameMismatch?: { esminiReads: CatalogFile | undefined };
 }
 
 /** The catalogs a document reaches, resolved. */
@@ -204,6 +209,16 @@ export class CatalogLoader {
     return result;
   }
 
+  /** The first catalog file `name.xosc` of the directories, whatever its Catalog is named: the one esmini reads as `name`. */
+  private async fileNamed(directories: readonly CatalogDirectory[], name: string): Promise<CatalogFile | undefined> {
+    for (const directory of directories) {
+      const named = (await this.listing(directory)).find((entry) => path.basename(entry) === `${name}.xosc`);
+      const file = named ? await this.file(this.refIn(directory, named)) : undefined;
+      if (file) return file;
+    }
+    return undefined;
+  }
+
   /** Every catalog file in a directory (for completion of catalog names). */
   async allCatalogsIn(directory: CatalogDirectory): Promise<CatalogFile[]> {
     const files = await Promise.all((await this.listing(directory)).map((entry) => this.file(this.refIn(directory, entry))));
@@ -235,16 +250,15 @@ export class CatalogLoader {
       }
       const catalogs = loadedFirst(found, catalogName ?? '', entryName, loadedByName);
       let foundByFileName = false;
+      let fileNameMismatch: CatalogReferenceResolution['fileNameMismatch'];
       if (catalogName && catalogs.length === 0) {
-        for (const directory of directories) {
-          const named = (await this.listing(directory)).find((entry) => path.basename(entry) === `${catalogName}.xosc`);
-          const file = named ? await this.file(this.refIn(directory, named)) : undefined;
-          if (file) {
-            catalogs.push(file);
-            foundByFileName = true;
-            break;
-          }
+        const file = await this.fileNamed(directories, catalogName);
+        if (file) {
+          catalogs.push(file);
+          foundByFileName = true;
         }
+      } else if (catalogName && baseName(catalogs[0].ref) !== `${catalogName}.xosc`) {
+        fileNameMismatch = { esminiReads: await this.fileNamed(directories, catalogName) };
       }
       for (const file of catalogs) files.set(refId(file.ref), file.ref);
       const entryNamed = (file: CatalogFile | undefined) => file?.entries.find((candidate) => candidate.name === entryName);
@@ -265,6 +279,7 @@ export class CatalogLoader {
         ...(shadowedEntry ? { shadowedEntry } : {}),
         searched: directories.length > 0,
         foundByFileName,
+        ...(fileNameMismatch ? { fileNameMismatch } : {}),
       });
     }
     return { locations, references, files: [...files.values()] };

@@ -30,7 +30,7 @@ import { undeclaredCatalogParameterWording } from '../diagnostics/undeclaredCata
 import { undeclaredEntityWording } from '../diagnostics/undeclaredEntity';
 import { undeclaredParameterWording } from '../diagnostics/undeclaredParameter';
 import { unknownAssignedParameterWording } from '../diagnostics/unknownAssignedParameter';
-import { catalogFoundByFileNameWording, unknownCatalogWording } from '../diagnostics/unknownCatalog';
+import { catalogFileNameWording, catalogFoundByFileNameWording, unknownCatalogWording } from '../diagnostics/unknownCatalog';
 import { SHADOWED_ENTRY_NOTE, unknownCatalogEntryWording } from '../diagnostics/unknownCatalogEntry';
 import { unknownStoryboardElementWording } from '../diagnostics/unknownStoryboardElement';
 import { unusedParameterWording } from '../diagnostics/unusedParameter';
@@ -286,6 +286,33 @@ export const catalogReferences: SemanticCheck = (context) => {
         ),
       });
       continue;
+    }
+    const esminiReads = resolution.fileNameMismatch?.esminiReads;
+    if (resolution.fileNameMismatch) {
+      findings.push({
+        ...at(reference.element, reference.catalogNameAttribute),
+        ...catalogFileNameWording(
+          resolution.catalogName,
+          displayRef(resolution.catalogs[0].ref, undefined),
+          esminiReads && { file: displayRef(esminiReads.ref, undefined), catalog: esminiReads.name },
+          // esmini stops only where it finds no file of the name; one it reads instead may well hold the entry.
+          context.simulator === 'esmini' && !esminiReads ? 'error' : 'warning',
+        ),
+      });
+      // For esmini, the entry is looked up in the file it reads.
+      if (context.simulator === 'esmini' && esminiReads) {
+        const names = esminiReads.entries.map((entry) => entry.name);
+        const entryName = resolution.entryName ?? '';
+        if (!names.includes(entryName)) {
+          const suggestion = closestMatch(entryName, names);
+          findings.push({
+            ...at(reference.element, reference.entryNameAttribute),
+            ...unknownCatalogEntryWording(resolution.catalogName, entryName, names, suggestion, undefined),
+            data: suggestion ? { suggestion } : undefined,
+          });
+        }
+        continue;
+      }
     }
     if (!resolution.entry) {
       // The catalog is the file esmini loads (core/semantics/catalogs.ts loadedFirst): its entries alone are there to name.
