@@ -228,6 +228,17 @@ const laneChangeTimeParameter = (about = 'how long the lane change takes') => ({
 /** A lane change's dynamics, its time a key. @param {number} time */
 const sinusoidalLaneChange = (time) =>
   `<LaneChangeActionDynamics parameterAttributes="value" dynamicsShape="sinusoidal" value="${time}" dynamicsDimension="time"/>`;
+/** A braking at the deceleration the key `SpeedActionDynamics.value` gives (6 m/s² by default) down to `target`, started by `start`. */
+const brakeEvent = (/** @type {string} */ name, /** @type {string} */ target, /** @type {string} */ start) =>
+  event(
+    name,
+    privateAction(
+      name,
+      speedAction('<SpeedActionDynamics parameterAttributes="value" dynamicsShape="linear" value="6" dynamicsDimension="rate"/>', target),
+    ),
+    start,
+    'parallel',
+  );
 /**
  * The actor takes a speed (a key) at once, from the start or when `start` holds.
  * @param {string} name @param {number} speed @param {string} triggerName @param {string} [start]
@@ -406,15 +417,9 @@ export const MODULES = [
       { key: 'EntityRef.entityRef', name: 'ego', about: 'the vehicle following it, whose headway counts' },
     ],
     keys: {},
-    maneuver: event(
+    maneuver: brakeEvent(
       'LeadBrake',
-      privateAction(
-        'LeadBrake',
-        speedAction(
-          '<SpeedActionDynamics parameterAttributes="value" dynamicsShape="linear" value="6" dynamicsDimension="rate"/>',
-          '<AbsoluteTargetSpeed parameterAttributes="value" value="0"/>',
-        ),
-      ),
+      '<AbsoluteTargetSpeed parameterAttributes="value" value="0"/>',
       trigger(
         'LeadBrakeHeadway',
         byEntity(
@@ -422,7 +427,61 @@ export const MODULES = [
           '<TimeHeadwayCondition parameterAttributes="entityRef,value" entityRef="lead" value="1.5" freespace="true" coordinateSystem="road" relativeDistanceType="longitudinal" rule="lessThan"/>',
         ),
       ),
-      'parallel',
+    ),
+  },
+  {
+    name: 'ttc-brake',
+    title: 'Braking at a time to collision',
+    group: 'Vehicles ahead',
+    summary:
+      'A vehicle closing in on a standing or slower vehicle ahead in its lane brakes at a set deceleration to a stop once its time to collision with it (the gap between them over the speed it closes in at) is below the one asked: the late braking of a driver or an emergency-braking system, at the time to collision rear-end test protocols vary.',
+    actor: 'the vehicle that closes in and brakes, behind the other in its lane',
+    actorName: 'follower',
+    groupName: 'TtcBrake',
+    entities: [VEHICLE('ahead', 'vehicle.tesla.model3'), VEHICLE('follower', 'vehicle.audi.tt')],
+    init: [placed('ahead', -1, 300, 0), placed('follower', -1, 100, 20)],
+    stopAt: 11,
+    parameters: [
+      {
+        key: 'TimeToCollisionCondition.value',
+        name: 'ttc',
+        unit: 's',
+        range: '0.5..10',
+        about: 'its time to collision with the vehicle ahead (gap / closing speed) when the braking starts',
+      },
+      {
+        key: 'SpeedActionDynamics.value',
+        name: 'deceleration',
+        unit: 'm/s²',
+        range: '0.5..10',
+        about: 'how hard it brakes, down to a stop',
+      },
+      {
+        key: 'TimeToCollisionConditionTarget.EntityRef.entityRef',
+        name: 'ahead',
+        about: 'the vehicle ahead in its lane that it closes in on',
+      },
+      {
+        key: 'TriggeringEntities.EntityRef.entityRef',
+        name: 'self',
+        about: 'the vehicle itself (as in Actors): its time to collision counts',
+      },
+    ],
+    keys: { 'TimeToCollisionConditionTarget.EntityRef.entityRef': 'ahead', 'TriggeringEntities.EntityRef.entityRef': 'follower' },
+    maneuver: brakeEvent(
+      'TtcBrake',
+      '<AbsoluteTargetSpeed value="0"/>',
+      trigger(
+        'TtcBrakeTimeToCollision',
+        byEntity(
+          'follower',
+          `<TimeToCollisionCondition parameterAttributes="value" value="4" freespace="true" coordinateSystem="road" relativeDistanceType="longitudinal" rule="lessThan">
+      <TimeToCollisionConditionTarget>
+        <EntityRef parameterAttributes="entityRef" entityRef="ahead"/>
+      </TimeToCollisionConditionTarget>
+    </TimeToCollisionCondition>`,
+        ),
+      ),
     ),
   },
   {

@@ -107,7 +107,10 @@ const BEHAVIOURS: Record<string, (module: LibraryModule, tracks: Map<string, Tra
       'the revealed target stands in the ego lane ahead',
     );
   },
-  'lead-brake': (module, tracks) => brakesAsAsked(module, trackOf(tracks, 'ego'), trackOf(tracks, 'lead'), 'speedAfter'),
+  'lead-brake': (module, tracks) => {
+    const [ego, lead] = [trackOf(tracks, 'ego'), trackOf(tracks, 'lead')];
+    brakesAsAsked(module, lead, egoHeadway(ego, lead), parameter(module, 'speedAfter'));
+  },
   'slow-target': (module, tracks) => steadySpeed(module, trackOf(tracks, 'target')),
   'cyclist-ahead': (module, tracks) => steadySpeed(module, trackOf(tracks, 'cyclist')),
   'pedestrian-crossing': (module, tracks) => crossesAsTheEgoArrives(module, trackOf(tracks, 'ego'), trackOf(tracks, 'pedestrian')),
@@ -204,7 +207,8 @@ const BEHAVIOURS: Record<string, (module: LibraryModule, tracks: Map<string, Tra
   },
   'traffic-jam-end': (module, tracks) => {
     const ego = trackOf(tracks, 'ego');
-    const start = brakesAsAsked(module, ego, trackOf(tracks, 'jam1'), 'jamSpeed');
+    const jam1 = trackOf(tracks, 'jam1');
+    const start = brakesAsAsked(module, jam1, egoHeadway(ego, jam1), parameter(module, 'jamSpeed'));
     for (const name of ['jam2', 'jam3']) {
       const vehicle = trackOf(tracks, name);
       const last = vehicle.length - 2;
@@ -277,6 +281,15 @@ const BEHAVIOURS: Record<string, (module: LibraryModule, tracks: Map<string, Tra
       lateralAcceleration: parameter(module, 'lateralAcceleration'),
     }),
   'rear-end-collision': (module, tracks) => runsIntoTheOneAhead(module, trackOf(tracks, 'follower'), trackOf(tracks, 'ahead')),
+  'ttc-brake': (module, tracks) => {
+    const [follower, ahead] = [trackOf(tracks, 'follower'), trackOf(tracks, 'ahead')];
+    const timeToCollision = (index: number) => gapAhead(follower, ahead, index) / (speedAt(follower, index) - speedAt(ahead, index));
+    brakesAsAsked(module, follower, { name: 'time to collision', value: timeToCollision, asked: 'ttc' }, 0);
+    assert.ok(
+      follower.every((_, index) => gapAhead(follower, ahead, index) > 0),
+      'it stops short of the vehicle ahead',
+    );
+  },
 };
 
 /**
@@ -434,22 +447,32 @@ function accelerationLaneEnd(module: LibraryModule): number {
 }
 
 /** The lead brakes once the ego's headway to it is the one asked, at the deceleration asked, down to the speed asked; returns the step it starts at. */
-function brakesAsAsked(module: LibraryModule, ego: Track, lead: Track, speedAfter: string): number {
-  const before = speedAt(lead, 0);
-  const start = lead.findIndex((_, index) => index < lead.length - 1 && speedAt(lead, index) < before - 0.01);
-  assert.ok(start > 0, 'the lead never brakes');
+function brakesAsAsked(module: LibraryModule, braking: Track, condition: BrakeCondition, after: number): number {
+  const before = speedAt(braking, 0);
+  const start = braking.findIndex((_, index) => index < braking.length - 1 && speedAt(braking, index) < before - 0.01);
+  assert.ok(start > 0, 'it never brakes');
   // The condition held at the step before the speed first drops.
-  const trigger = start - 1;
-  const headway = (lead[trigger].x - REAR - (ego[trigger].x + FRONT)) / speedAt(ego, trigger);
-  assert.ok(Math.abs(headway - parameter(module, 'headway')) <= STEP * 1.5, `the braking starts at a headway of ${headway.toFixed(3)} s`);
+  const measured = condition.value(start - 1);
+  const asked = parameter(module, condition.asked);
+  assert.ok(
+    Math.abs(measured - asked) <= STEP * 1.5,
+    `the braking starts at a ${condition.name} of ${measured.toFixed(3)} s, not ${asked}`,
+  );
   const deceleration = parameter(module, 'deceleration');
-  const after = parameter(module, speedAfter);
   const middle = start + Math.floor((before - after) / deceleration / STEP / 2);
-  const measured = (speedAt(lead, middle - 4) - speedAt(lead, middle + 4)) / (8 * STEP);
-  assert.ok(Math.abs(measured - deceleration) < 0.1, `the lead decelerates at ${measured.toFixed(2)} m/s², not ${deceleration}`);
-  const last = lead.length - 2;
-  assert.ok(Math.abs(speedAt(lead, last) - after) < 0.05, `the lead ends at ${speedAt(lead, last)} m/s, not ${after}`);
+  const rate = (speedAt(braking, middle - 4) - speedAt(braking, middle + 4)) / (8 * STEP);
+  assert.ok(Math.abs(rate - deceleration) < 0.1, `it decelerates at ${rate.toFixed(2)} m/s², not ${deceleration}`);
+  const last = braking.length - 2;
+  assert.ok(Math.abs(speedAt(braking, last) - after) < 0.05, `it ends at ${speedAt(braking, last)} m/s, not ${after}`);
   return start;
+}
+
+/** What starts a braking, measured at a step, and the module's parameter that asks for it. */
+type BrakeCondition = { name: string; value: (index: number) => number; asked: string };
+
+/** The ego's time headway to the car ahead of it (gap / ego speed), against the module's `headway`. */
+function egoHeadway(ego: Track, lead: Track): BrakeCondition {
+  return { name: 'headway', value: (index) => gapAhead(ego, lead, index) / speedAt(ego, index), asked: 'headway' };
 }
 
 /** The actor keeps the speed asked from the start. */
