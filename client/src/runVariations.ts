@@ -4,7 +4,7 @@ import * as path from 'node:path';
 import * as vscode from 'vscode';
 import { commandTargets } from './commands';
 import { withNotificationProgress } from './notificationProgress';
-import { batchFailure, otherBatchInResults } from './variations/batchFailure';
+import { batchFailure, limitedRuns, otherBatchInResults } from './variations/batchFailure';
 
 export const RUN_VARIATIONS_COMMAND = 'modular2simple.runVariations';
 /** The Variations view's command (another part of the extension); results.csv opens instead when it is not there. */
@@ -25,7 +25,12 @@ export interface VariationsRun {
   failure?: string;
   /** How the batch whose results were in the folder differs from this one, when the CLI refused to mix them. */
   otherBatch?: string;
+  /** How many runs the time limit stopped before their scenario ended (status limit), as the CLI's summary counts them. */
+  limited?: number;
 }
+
+/** The setting that gives a run its time limit, named where a limit stopped runs. */
+const DURATION_SETTING = 'modular2simple.esmini.duration';
 
 // The CLI prints one line per finished run when its standard error is not a terminal: "[3/12] 2: ok".
 const PROGRESS_LINE = /^\[(\d+)\/(\d+)\]/;
@@ -130,6 +135,7 @@ export class VariationsRunner implements vscode.Disposable {
               cancelled,
               failure: exitCode === 0 ? undefined : batchFailure(printed, { path: csv, name: vscode.workspace.asRelativePath(csv) }),
               otherBatch: exitCode === 0 ? undefined : otherBatchInResults(printed),
+              limited: limitedRuns(printed),
             });
           };
           child.on('error', (error) => {
@@ -167,6 +173,18 @@ export class VariationsRunner implements vscode.Disposable {
         )
         .then((choice) => {
           if (choice === 'Show Output') this.output.show();
+        });
+    }
+    if (outcome.limited && typeof duration === 'number' && duration > 0) {
+      // The rows say "the limit set for the run" (the CLI wrote them); this says which setting set it, and opens it.
+      const open = 'Open Setting';
+      void vscode.window
+        .showInformationMessage(
+          `Run Variations of ${name}: ${outcome.limited} run${outcome.limited === 1 ? '' : 's'} stopped at the ${duration} s limit of the ${DURATION_SETTING} setting, before the scenario ended by itself.`,
+          open,
+        )
+        .then((choice) => {
+          if (choice === open) void vscode.commands.executeCommand('workbench.action.openSettings', DURATION_SETTING);
         });
     }
     if (!fs.existsSync(csv)) return outcome;

@@ -1,5 +1,5 @@
 import * as assert from 'node:assert/strict';
-import { batchFailure, otherBatchInResults } from '../../client/src/variations/batchFailure';
+import { batchFailure, limitedRuns, otherBatchInResults } from '../../client/src/variations/batchFailure';
 
 describe('Run Variations: why a batch did not end well, for its notification', () => {
   it("names the runs esmini refused with esmini's reason, the criteria failed, or the problem that stopped the batch", () => {
@@ -50,5 +50,15 @@ describe('Run Variations: a results folder holding another batch, for the questi
       'its columns differ',
     );
     assert.equal(otherBatchInResults(['modular2simple: error: 3 of 3 runs failed in esmini (status error); …']), undefined);
+  });
+});
+
+describe('Run Variations: how many runs the time limit stopped, for the notification naming its setting', () => {
+  it("reads the CLI's summary line, and nothing without one", () => {
+    const printed = ['[1/4] 0: ok', '4 runs (1 ok, 2 limit, 0 timeout, 1 error; 0 with a collision); results in /w/r/results.csv, …'];
+    assert.equal(limitedRuns(printed), 2);
+    assert.equal(limitedRuns(['1 run (0 ok, 1 limit, 0 timeout, 0 error; 0 with a collision)']), 1);
+    assert.equal(limitedRuns(['12 runs (12 ok, 0 limit, 0 timeout, 0 error; 0 with a collision)']), 0);
+    assert.equal(limitedRuns(['modular2simple: error: esmini is not at /x']), undefined);
   });
 });

@@ -24,6 +24,15 @@ function firstFailure(lines: readonly string[]): string | undefined {
   return problem?.replace(/^modular2simple: error: /, '');
 }
 
+/** How many runs of the batch the time limit stopped (status limit), from the CLI's summary line; undefined without one. */
+export function limitedRuns(lines: readonly string[]): number | undefined {
+  for (const line of lines) {
+    const counted = /^\d+ runs? \(\d+ ok, (\d+) limit,/.exec(line);
+    if (counted) return Number(counted[1]);
+  }
+  return undefined;
+}
+
 /** What `BatchIdentity`'s keys stand for, as the editor's question names them. */
 const IDENTITY_WORDS: Record<string, string> = {
   scenarioSha256: "the scenario's text",

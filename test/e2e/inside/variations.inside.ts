@@ -258,6 +258,14 @@ export function defineVariationsTests(): void {
           ['error', '', REFUSED],
         ]);
         assert.ok(await pageShows('4 runs: 1 ok, 1 limit, 0 collision, 0 timeout, 2 error, 0 discarded'), 'the summary');
+        // The rows say "the limit set for the run" (the CLI wrote them); a notification names the setting that set it.
+        await waitFor('a notification naming the duration setting', async () =>
+          (await toastsText()).includes(
+            'Run Variations of follow_limit.xosc: 1 run stopped at the 10 s limit of the modular2simple.esmini.duration setting',
+          )
+            ? true
+            : undefined,
+        );
         await screenshot('Run Variations with a 10 s duration: ok, limit and error, each with its reason');
 
         // The duration at 5 s and Run Variations again: the folder holds the 10 s batch's results, which the CLI never
