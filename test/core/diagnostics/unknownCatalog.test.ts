@@ -19,7 +19,7 @@ function catalogInAnotherFile(entry: string, second: (text: string) => string | 
   return files;
 }
 
-async function problemsOf(root: string, simulator?: 'esmini') {
+async function problemsOf(root: string, simulator?: 'esmini', more: string[] = []) {
   const file = path.join(root, 'scenario.xosc');
   const semantics = await analyzeDocument(
     diskRef(file),
@@ -28,7 +28,8 @@ async function problemsOf(root: string, simulator?: 'esmini') {
     false,
     simulator,
   );
-  return semanticProblems(semantics).filter((problem) => problem.code === 'unknown-catalog' || problem.code === 'unknown-catalog-entry');
+  const codes = ['unknown-catalog', 'unknown-catalog-entry', ...more];
+  return semanticProblems(semantics).filter((problem) => codes.includes(problem.code));
 }
 
 async function esminiRun(root: string) {
@@ -103,9 +104,23 @@ describe('diagnostics: unknown-catalog', () => {
       );
       const ran = await esminiRun(root);
       assert.equal(ran.code, 0, ran.output);
-      // An entry the file esmini reads lacks: esmini fails on it, and the check says so for esmini.
+      // The entry esmini reads is checked as any other: a value for a parameter it does not declare.
       const scenario = path.join(root, 'scenario.xosc');
-      fs.writeFileSync(scenario, fs.readFileSync(scenario, 'utf8').replace('entryName="car_red"', 'entryName="car_green"'));
+      const text = fs.readFileSync(scenario, 'utf8');
+      fs.writeFileSync(
+        scenario,
+        text.replace(
+          '<CatalogReference catalogName="VehicleCatalog" entryName="car_red"/>',
+          '<CatalogReference catalogName="VehicleCatalog" entryName="car_red"><ParameterAssignments><ParameterAssignment parameterRef="Colour" value="red"/></ParameterAssignments></CatalogReference>',
+        ),
+      );
+      assert.deepEqual(
+        (await problemsOf(root, 'esmini', ['unknown-assigned-parameter'])).map((problem) => problem.code),
+        ['unknown-catalog', 'unknown-assigned-parameter'],
+      );
+      fs.writeFileSync(scenario, text);
+      // An entry the file esmini reads lacks: esmini fails on it, and the check says so for esmini.
+      fs.writeFileSync(scenario, text.replace('entryName="car_red"', 'entryName="car_green"'));
       assert.deepEqual(
         (await problemsOf(root, 'esmini')).map((problem) => [problem.code, problem.severity, problem.message]),
         [

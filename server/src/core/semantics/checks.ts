@@ -9,7 +9,7 @@ import { duplicateNames } from './checks/names';
 import { carlaReleaseOf, carlaScenario } from './checks/carla';
 import { at, relatedAt } from './checks/support';
 import type { Finding, SemanticCheck, SemanticContext } from './checks/types';
-import type { CatalogReferenceResolution } from './catalogs';
+import type { CatalogFile, CatalogReferenceResolution } from './catalogs';
 import { carriedExpressionErrors, rememberExpressionErrors } from './checks/carriedResults';
 import { catalogVariables, undeclaredVariables, variableValues } from './checks/variables';
 import {
@@ -240,6 +240,12 @@ const CATALOG_KINDS_BY_PARENT: Readonly<Record<string, readonly string[]>> = {
   TrajectoryRef: ['TrajectoryCatalog'],
 };
 
+/** A reference resolved in the catalog file esmini reads (`fileNameMismatch.esminiReads`) instead of the standard's. */
+function readByEsmini(resolution: CatalogReferenceResolution, file: CatalogFile): CatalogReferenceResolution {
+  const entry = file.entries.find((candidate) => candidate.name === resolution.entryName);
+  return { ...resolution, catalogs: [file], entry, shadowedEntry: undefined, foundByFileName: false };
+}
+
 /**
  * Unknown catalogs, entries and assigned parameters; directories that do not exist where a reference
  * needs them: a catalog kind with a reference that found no catalog. A directory no reference needs is
@@ -299,32 +305,20 @@ export const catalogReferences: SemanticCheck = (context) => {
           context.simulator === 'esmini' && !esminiReads ? 'error' : 'warning',
         ),
       });
-      // For esmini, the entry is looked up in the file it reads.
-      if (context.simulator === 'esmini' && esminiReads) {
-        const names = esminiReads.entries.map((entry) => entry.name);
-        const entryName = resolution.entryName ?? '';
-        if (!names.includes(entryName)) {
-          const suggestion = closestMatch(entryName, names);
-          findings.push({
-            ...at(reference.element, reference.entryNameAttribute),
-            ...unknownCatalogEntryWording(resolution.catalogName, entryName, names, suggestion, undefined),
-            data: suggestion ? { suggestion } : undefined,
-          });
-        }
-        continue;
-      }
     }
-    if (!resolution.entry) {
+    // For esmini, the entries are those of the file it reads.
+    const checked = context.simulator === 'esmini' && esminiReads ? readByEsmini(resolution, esminiReads) : resolution;
+    if (!checked.entry) {
       // The catalog is the file esmini loads (core/semantics/catalogs.ts loadedFirst): its entries alone are there to name.
-      const loaded = resolution.catalogs[0];
+      const loaded = checked.catalogs[0];
       const names = loaded.entries.map((entry) => entry.name);
-      const suggestion = resolution.entryName ? closestMatch(resolution.entryName, names) : undefined;
-      const shadowed = resolution.shadowedEntry;
+      const suggestion = checked.entryName ? closestMatch(checked.entryName, names) : undefined;
+      const shadowed = checked.shadowedEntry;
       findings.push({
         ...at(reference.element, reference.entryNameAttribute),
         ...unknownCatalogEntryWording(
           resolution.catalogName,
-          resolution.entryName ?? '',
+          checked.entryName ?? '',
           names,
           suggestion,
           shadowed && { loaded: displayRef(loaded.ref, undefined), holder: displayRef(shadowed.file.ref, undefined) },
@@ -344,32 +338,32 @@ export const catalogReferences: SemanticCheck = (context) => {
       });
       continue;
     }
-    if (resolution.foundByFileName) {
+    if (checked.foundByFileName) {
       findings.push({
         ...at(reference.element, reference.catalogNameAttribute),
-        ...catalogFoundByFileNameWording(resolution.catalogName, resolution.catalogs[0].name),
+        ...catalogFoundByFileNameWording(resolution.catalogName, checked.catalogs[0].name),
       });
     }
-    const entryModel = resolution.entry.file.model;
+    const entryModel = checked.entry.file.model;
     const referenceScope = context.model.scopeOf(reference.element);
-    for (const name of entryFreeParameters(resolution)) {
+    for (const name of entryFreeParameters(checked)) {
       if (resolveName(referenceScope, name, undefined)) continue;
       findings.push({
         ...at(reference.element, reference.entryNameAttribute),
-        ...undeclaredParameterWording(name, resolution.entry.name),
+        ...undeclaredParameterWording(name, checked.entry.name),
         data: { parameter: name },
       });
     }
-    const entryScope = entryModel.scopeOf(resolution.entry.element);
+    const entryScope = entryModel.scopeOf(checked.entry.element);
     const declared =
-      entryScope && entryScope.element === resolution.entry.element ? entryScope.declarations.map((declaration) => declaration.name) : [];
+      entryScope && entryScope.element === checked.entry.element ? entryScope.declarations.map((declaration) => declaration.name) : [];
     for (const assignment of reference.assignments) {
       const name = assignment.parameterRef ? referencedName(assignment.parameterRef).name : undefined;
       if (name === undefined || declared.includes(name)) continue;
       const suggestion = closestMatch(name, declared);
       findings.push({
         ...at(assignment.element, assignment.parameterRef),
-        ...unknownAssignedParameterWording(resolution.entry.name, name, declared, suggestion),
+        ...unknownAssignedParameterWording(checked.entry.name, name, declared, suggestion),
         data: suggestion ? { suggestion } : undefined,
       });
     }
