@@ -259,7 +259,9 @@ const speedFromStart = (name, speed, triggerName, start = atTime(0)) =>
 /**
  * From the start, the actor adapts its speed to reach `target` (on the crossroads) as the ego reaches x `egoAt` on its
  * lane's centre (y -1.75), arriving at `speed`; egoAt (WorldPosition.x) and speed (AbsoluteSpeed.value) are keys.
- * @param {string} name @param {string} startName @param {number} egoAt @param {{ x: number, y: number, h: number }} target @param {number} speed
+ * `target` is a lane position on the actor's connecting road: esmini 3.6 puts a WorldPosition on the first road of the
+ * file that covers it (RoadManager.cpp XYZ2TrackPos, heading disregarded), and in the junction that is road 101, the ego's.
+ * @param {string} name @param {string} startName @param {number} egoAt @param {{ road: number, lane: number, s: number }} target @param {number} speed
  */
 const synchronizedArrival = (name, startName, egoAt, target, speed) =>
   event(
@@ -271,7 +273,7 @@ const synchronizedArrival = (name, startName, egoAt, target, speed) =>
     <WorldPosition parameterAttributes="x" x="${egoAt}" y="-1.75" z="0" h="0" p="0" r="0"/>
   </TargetPositionMaster>
   <TargetPosition>
-    <WorldPosition x="${target.x}" y="${target.y}" z="0" h="${target.h}" p="0" r="0"/>
+    <LanePosition roadId="${target.road}" laneId="${target.lane}" s="${target.s}" offset="0"/>
   </TargetPosition>
   <FinalSpeed>
     <AbsoluteSpeed parameterAttributes="value" value="${speed}"/>
@@ -1146,7 +1148,8 @@ export const MODULES = [
       about: 'the crossing vehicle’s speed at the conflict point',
     }),
     keys: {},
-    maneuver: synchronizedArrival('CrossingSynchronize', 'CrossingStart', 1.75, { x: 1.75, y: -1.75, h: 1.5708 }, 8),
+    // The conflict point: the crossing lane (-1 of road 102, x 1.75, from y -10) across the ego's lane centre (y -1.75).
+    maneuver: synchronizedArrival('CrossingSynchronize', 'CrossingStart', 1.75, { road: 102, lane: -1, s: 8.25 }, 8),
   },
   {
     name: 'turn-across-path',
@@ -1167,10 +1170,9 @@ export const MODULES = [
       about: 'the turning vehicle’s speed at the conflict point, which it keeps through the rest of the turn',
     }),
     keys: {},
-    // The conflict point: the turn's lane (-1 of road 103, an arc of radius 10 + 1.75 about (10, -10)) crosses the ego's
-    // lane centre (y -1.75) at x 1.63, heading 3.934 there. As a LanePosition on road 103 (s 7.924) esmini's
-    // synchronization arrived at 8.5 m/s and then jumped to the final speed; as this WorldPosition it arrives smoothly.
-    maneuver: synchronizedArrival('TurnSynchronize', 'TurnStart', 1.63, { x: 1.63, y: -1.75, h: 3.934 }, 6),
+    // The conflict point: the turn's lane (-1 of road 103, on its reference line, an arc of radius 11.75 about (10, -10)
+    // from (10, 1.75)) crosses the ego's lane centre (y -1.75) at x 10 - √70 = 1.63, 11.75 · 0.7924 = 9.311 m into the turn.
+    maneuver: synchronizedArrival('TurnSynchronize', 'TurnStart', 1.63, { road: 103, lane: -1, s: 9.311 }, 6),
   },
   {
     name: 'arrive-leave-site',

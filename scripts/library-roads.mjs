@@ -151,17 +151,24 @@ const JUNCTION_HALF = 10;
 const ARM_LENGTH = 190;
 
 /**
- * A road of the crossroads: a line or an arc (curvature), one lane each way, linked as given. `reversedLane`: the one lane
- * of a connecting road that runs against the arms it joins, linked to their lane of the other sign (the left turn's
- * lane -1 to lane 1 of both arms: without it esmini kept the id -1 at the turn's end and put the car on the south arm's
- * northbound lane). Only that lane: linking lane 1 of the straight road too let esmini take it instead of the turn.
- * @param {{ id: number, name: string, junction: number, x: number, y: number, hdg: number, length: number, curvature?: number, link: string, reversedLane?: number }} road
+ * A road of the crossroads: a line or an arc (curvature), one lane each way, linked as given. A connecting road's lanes
+ * that a junction laneLink names are linked to the arms' lanes: `straightLanes` to the lane of the same id (without it
+ * esmini warned "No connection from rid 101 lid -1 -> rid 2" at the junction's end and moved the car to the closest
+ * lane), `reversedLane` to the lane of the other sign (the left turn's lane -1 to lane 1 of both arms: without it esmini
+ * kept the id -1 at the turn's end and put the car on the south arm's northbound lane). Only those lanes: linking lane 1
+ * of the west-east road, which no connection names, let esmini take it instead of the turn. `laneOffset`: the lanes'
+ * shift left of the reference line; the turn's lane -1 lies on it (the arc drawn through the lane's centre), because
+ * esmini measures a synchronization's distances in road s: with the lane 1.75 m outside an arc of radius 10, the
+ * turning car drove 17.5 % further than it measured and arrived at 8.5 m/s, not the 6 asked.
+ * @param {{ id: number, name: string, junction: number, x: number, y: number, hdg: number, length: number, curvature?: number, laneOffset?: number, link: string, straightLanes?: number[], reversedLane?: number }} road
  */
 function crossroadsRoad(road) {
   const shape = road.curvature ? `<arc curvature="${road.curvature}"/>` : '<line/>';
-  const joined = (/** @type {number} */ id) => (road.reversedLane === id ? laneLink(-id) : '');
+  const joined = (/** @type {number} */ id) =>
+    road.reversedLane === id ? laneLink(-id) : road.straightLanes?.includes(id) ? laneLink(id) : '';
+  const offset = road.laneOffset ? `\n      <laneOffset s="0" a="${road.laneOffset}" b="0" c="0" d="0"/>` : '';
   return `${roadHead({ ...road, link: `<link>${road.link}</link>`, type: 'town', speed: 50, shape })}
-    <lanes>
+    <lanes>${offset}
 ${laneSection(0, [lane(1, 'driving', LANE_WIDTH, 'solid', joined(1))], [lane(-1, 'driving', LANE_WIDTH, 'solid', joined(-1))])}
     </lanes>
   </road>`;
@@ -180,7 +187,8 @@ function crossroads() {
     `<${side} elementType="junction" elementId="100"${contact ? ` contactPoint="${contact}"` : ''}/>`;
   const road = (/** @type {string} */ side, /** @type {number} */ id, /** @type {string} */ contact) =>
     `<${side} elementType="road" elementId="${id}" contactPoint="${contact}"/>`;
-  const turnLength = (Math.PI / 2) * h;
+  const turnRadius = h + LANE_WIDTH / 2;
+  const turnLength = (Math.PI / 2) * turnRadius;
   const roads = [
     crossroadsRoad({ id: 1, name: 'west', junction: -1, x: -h - arm, y: 0, hdg: 0, length: arm, link: junction('successor', '') }),
     crossroadsRoad({ id: 2, name: 'east', junction: -1, x: h, y: 0, hdg: 0, length: arm, link: junction('predecessor', '') }),
@@ -204,6 +212,7 @@ function crossroads() {
       hdg: 0,
       length: 2 * h,
       link: road('predecessor', 1, 'end') + road('successor', 2, 'start'),
+      straightLanes: [-1],
     }),
     crossroadsRoad({
       id: 102,
@@ -214,16 +223,18 @@ function crossroads() {
       hdg: Math.PI / 2,
       length: 2 * h,
       link: road('predecessor', 3, 'end') + road('successor', 4, 'start'),
+      straightLanes: [-1, 1],
     }),
     crossroadsRoad({
       id: 103,
       name: 'east-left-south',
       junction: 100,
       x: h,
-      y: 0,
+      y: turnRadius - h,
       hdg: Math.PI,
       length: turnLength,
-      curvature: 1 / h,
+      curvature: 1 / turnRadius,
+      laneOffset: LANE_WIDTH / 2,
       link: road('predecessor', 2, 'start') + road('successor', 3, 'end'),
       reversedLane: -1,
     }),

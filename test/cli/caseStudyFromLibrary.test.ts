@@ -4,6 +4,7 @@ import * as path from 'node:path';
 import { main } from '../../server/src/cli';
 import { checkCleanAndFlatten } from '../support/cliChecks';
 import { EsminiStep, requireEsmini, runEsmini } from '../support/esmini';
+import { runCli } from '../support/fixtures';
 import { repoRoot } from '../support/paths';
 import { temporaryFolder } from '../support/temporaryDirectory';
 
@@ -114,6 +115,23 @@ describe('cli: the case study rebuilt from library modules', function () {
       }
     }
     assert.ok(last.positions.police[0] > last.positions.ambulance[0] + 10, 'the police ahead of the ambulance');
+  });
+
+  it("esmini follows the crossroads without a missing lane connection (library/roads/crossroads.xodr links its connecting roads' lanes)", function () {
+    requireEsmini(this);
+    // Before the connecting roads' lanes were linked, esmini warned "No connection from rid 101 lid -1 -> rid 2" in all
+    // three (crossing-path also "rid 102 lid -1 -> rid 4") and moved the car to the closest lane.
+    for (const scenario of [
+      path.join(example, 'main.xosc'),
+      path.join(repoRoot, 'library', 'examples', 'crossing-path.xosc'),
+      path.join(repoRoot, 'library', 'examples', 'turn-across-path.xosc'),
+    ]) {
+      const run = runCli(['run', scenario, '--duration', '30']);
+      const log = run.stdout + run.stderr;
+      assert.equal(run.status, 0, log);
+      assert.match(log, /esmini: 0 errors, \d+ warnings?; \d+\.\d+ s simulated/, log);
+      assert.doesNotMatch(log, /No connection/, log);
+    }
   });
 
   it('stats counts the main against its flattening and each library module it reuses once', async function () {

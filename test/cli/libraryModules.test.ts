@@ -626,20 +626,27 @@ describe('library modules: each verified in esmini and CARLA (issue 28)', functi
     }
   }
 
-  it("turn-across-path keeps its synchronization when the main changes the ego's speed and the time gap", async function () {
+  it("turn-across-path keeps its synchronization when the main changes the ego's speed, the time gap and the turning speed", async function () {
     requireEsmini(this);
     const module = modules.find((candidate) => candidate.name === 'turn-across-path');
     assert.ok(module?.example, 'no turn-across-path module with an example');
-    // The ego at 14 m/s instead of 10, and 10 m short of the conflict point (x 1.63) as the turning vehicle arrives: a time gap of 0.83 s.
-    const [egoSpeed, egoAt] = [14, -10];
     const text = fs.readFileSync(module.example, 'utf8');
-    const variant = text
-      .replace(/(<Private entityRef="ego">[\s\S]*?<AbsoluteTargetSpeed value=")[^"]*/, `$1${egoSpeed}`)
-      .replace(/(key="WorldPosition\.x" value=")[^"]*/, `$1${egoAt}`);
-    assert.notEqual(variant, text);
-    const tracks = await runVariant(module, variant);
-    assert.ok(Math.abs(speedAt(trackOf(tracks, 'ego'), 1) - egoSpeed) < 0.01, "the variant did not change the ego's speed");
-    turnsAcrossAsSynchronized(tracks, egoAt, parameter(module, 'turnSpeed'));
+    for (const [egoSpeed, egoAt, turnSpeed] of [
+      // The ego at 14 m/s instead of 10, and 10 m short of the conflict point (x 1.63) as the turning vehicle arrives: a time gap of 0.83 s.
+      [14, -10, parameter(module, 'turnSpeed')],
+      // The ego at 12 m/s and 7.63 m short (0.64 s), the turning vehicle crossing at 4 m/s (with its target resolved on the
+      // ego's road 101, esmini ended the synchronization as the turn began and it crossed 1.2 s late).
+      [12, -6, 4],
+    ]) {
+      const variant = text
+        .replace(/(<Private entityRef="ego">[\s\S]*?<AbsoluteTargetSpeed value=")[^"]*/, `$1${egoSpeed}`)
+        .replace(/(key="WorldPosition\.x" value=")[^"]*/, `$1${egoAt}`)
+        .replace(/(key="AbsoluteSpeed\.value" value=")[^"]*/, `$1${turnSpeed}`);
+      assert.notEqual(variant, text);
+      const tracks = await runVariant(module, variant);
+      assert.ok(Math.abs(speedAt(trackOf(tracks, 'ego'), 1) - egoSpeed) < 0.01, "the variant did not change the ego's speed");
+      turnsAcrossAsSynchronized(tracks, egoAt, turnSpeed);
+    }
   });
 
   it('arrive-leave-site does what other keys ask, and what its defaults ask is not what that run shows (esmini)', async function () {
