@@ -15,7 +15,7 @@ import { EsminiLogMessage, EsminiRemark, readEsminiLog } from './log';
 import { EsminiProblem, mapEsminiMessages } from './messages';
 import { EsminiEnd, EsminiProcessResult, lastCsvTime, makeRunFolder, runEsminiProcess } from './process';
 import { storyboardMapOf, traceFromLog } from './storyboardTrace';
-import { LimitKind, NO_END_SECONDS, runLimit, RUNAWAY_SECONDS, withTimeLimit } from './timeLimit';
+import { LimitKind, NO_END_SECONDS, runLimit, RunLimit, RUNAWAY_SECONDS, withTimeLimit } from './timeLimit';
 
 export const RUN_DEFAULTS = {
   runawaySeconds: RUNAWAY_SECONDS,
@@ -292,7 +292,7 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
   const roadFile: RunRoadFile | undefined = road
     ? { filepath: road.logic.filepath, resolved: road.resolved, candidates: road.candidates }
     : undefined;
-  const limit = { ...runLimit(flat.text, options.duration), setBy: options.durationSetBy };
+  const limit = runLimit(flat.text, options.duration, options.durationSetBy);
   const duration = limit.seconds;
   const limited = withTimeLimit(road?.resolved ? withRoadFile(flat.text, road.resolved) : flat.text, duration);
   if (limited === undefined) {
@@ -363,7 +363,7 @@ export async function runScenarioText(text: string, searchPath: string[], option
   const timeStep = options.timeStep ?? RUN_DEFAULTS.timeStep;
   const seed = options.seed ?? RUN_DEFAULTS.seed;
   checkDuration(options.duration);
-  const limit = { ...runLimit(text, options.duration), setBy: options.durationSetBy };
+  const limit = runLimit(text, options.duration, options.durationSetBy);
   const base = {
     log: '',
     duration: limit.seconds,
@@ -495,9 +495,6 @@ function outcomeOf(ran: LimitedRun, errors: number, warnings: number, firstError
     message: `esmini: ${counts}; ${covered} (the run took ${(run.wallMs / 1000).toFixed(2)} s)`,
   };
 }
-
-/** A run's added time limit; `setBy` names where the user sets one (`EsminiRunOptions.durationSetBy`). */
-type RunLimit = { seconds: number; kind: LimitKind; setBy?: string };
 
 /** Why the time limit added to a run ended it, in one sentence (the same on every machine: no wall-clock figure). */
 export function limitSentence(limit: RunLimit): string {

@@ -17,13 +17,16 @@ export const NO_END_SECONDS = 30;
  */
 export type LimitKind = 'user' | 'no-end' | 'runaway';
 
-export function runLimit(text: string, duration: number | undefined): { seconds: number; kind: LimitKind } {
-  if (duration !== undefined) return { seconds: duration, kind: 'user' };
+/** A run's added time limit; `setBy` names where the user sets one (`EsminiRunOptions.durationSetBy`). */
+export type RunLimit = { seconds: number; kind: LimitKind; setBy?: string };
+
+export function runLimit(text: string, duration: number | undefined, setBy?: string): RunLimit {
+  if (duration !== undefined) return { seconds: duration, kind: 'user', setBy };
   const stop = child(child(parseXml(text).root, 'Storyboard'), 'StopTrigger');
   const conditions = stop?.children.some(
     (group) => group.name === 'ConditionGroup' && group.children.some((each) => each.name === 'Condition'),
   );
-  return conditions ? { seconds: RUNAWAY_SECONDS, kind: 'runaway' } : { seconds: NO_END_SECONDS, kind: 'no-end' };
+  return conditions ? { seconds: RUNAWAY_SECONDS, kind: 'runaway', setBy } : { seconds: NO_END_SECONDS, kind: 'no-end', setBy };
 }
 
 /** The condition name the runner adds; a run whose last step passes the limit was ended by it. */

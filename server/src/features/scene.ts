@@ -74,15 +74,15 @@ export async function buildScene(workspace: Workspace, roads: RoadNetworkCache, 
 
   // The road file is needed before positions can be evaluated: the one Run in esmini hands esmini, in the folders it hands esmini (esmini/run.ts esminiFolders).
   const folders = roadFolders(params.roadPath, workspace.folders[0] ?? scenarioFolderOf(ref));
-  const { road: logic } = await esminiFolders(workspace.flattener(), ref, source, folders);
+  const { road } = await esminiFolders(workspace.flattener(), ref, source, folders);
   // Places are found from the document shown (the flattened one for a main file).
   const shownLogic = logicFileOf(model.document);
   let network: RoadNetwork | undefined;
   let sections: SectionPolylines[] = [];
   let roadFile: SceneResult['roadFile'];
-  if (logic) {
-    const { resolved, candidates } = logic;
-    const filepath = logic.logic.filepath;
+  if (road) {
+    const { resolved, candidates } = road;
+    const filepath = road.logic.filepath;
     roadFile = { filepath, resolved, roadCount: 0, source: locationOf(workspace, source, shownLogic?.element, 'filepath') };
     if (!resolved) {
       problems.push(
