@@ -137,6 +137,15 @@ export class Workspace {
     return this.storeInstance;
   }
 
+  /**
+   * Folders already watched: the workspace folders (the server's registration), the searched and road folders (the
+   * client's, client/src/scenarioPathWatchers.ts), and the libraries (shipped, not edited).
+   */
+  get watchedRoots(): string[] {
+    const store = this.storeInstance;
+    return [...this.folders, ...this.searchFolders, ...store.catalogPath, ...store.libraries.map((library) => library.folder)];
+  }
+
   /** Grows with every change that can alter an analysis: equal versions give equal diagnostics. */
   get version(): number {
     return this.database.version;

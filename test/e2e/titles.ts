@@ -15,6 +15,7 @@ export const INSIDE_TESTS = {
   expression: 'a ${...} shows its value as an inlay hint and in the hover, with the declarations it reads',
   scenarioPath: 'the modular2simple.scenarioPath setting reaches the server',
   roadPath: 'a road appearing in a modular2simple.esmini.roadPath folder outside the workspace clears the road-file warning',
+  catalogDirectory: "a catalog appearing in a scenario's catalog Directory outside the workspace clears the catalog error",
   pack: "Pack from the command palette writes a package equivalent to the CLI's",
   flatten: "Flatten from the command palette writes a file equivalent to the CLI's",
   structure: 'Show Structure lists the main file, packages, scenarios and groups',

@@ -7,6 +7,7 @@ import { positionAt } from '../support/cursor';
 import { STRAIGHT_ROAD } from '../support/roads';
 import { twoCatalogs } from '../support/twoCatalogs';
 import { temporaryWorkspace } from '../support/workspace';
+import { foldersToWatch } from '../../server/src/features/outsideFolderWatchers';
 import { fileUri, TestClient } from './harness';
 
 describe('language server: two catalog files of one name, as esmini reads them (issue 27)', function () {
@@ -80,5 +81,74 @@ describe('language server: a road file appearing on disk (issue 27)', function (
       await client.stop();
       fs.rmSync(root, { recursive: true, force: true });
     }
+  });
+});
+
+describe('language server: a catalog Directory outside the workspace is watched (issue 27)', function () {
+  this.timeout(60_000);
+
+  it('registers a watcher for the folder, drops the catalog error once a catalog appears there, and lets the watcher go on close', async () => {
+    const files = twoCatalogs('car_blue');
+    // The workspace is project/; its scenario's VehicleCatalog lies in ../shared-catalogs, which nothing else watches.
+    const parent = temporaryWorkspace({
+      'project/scenario.xosc': files['scenario.xosc'].replace(
+        /<CatalogLocations>.*<\/CatalogLocations>/,
+        '<CatalogLocations><VehicleCatalog><Directory path="../shared-catalogs"/></VehicleCatalog></CatalogLocations>',
+      ),
+      'project/straight.xodr': STRAIGHT_ROAD,
+      'shared-catalogs/README.txt': 'catalogs shared by several projects\n',
+    });
+    const root = path.join(parent, 'project');
+    const outside = path.join(parent, 'shared-catalogs');
+    const client = await TestClient.start({ root });
+    try {
+      const uri = await client.openFile(path.join(root, 'scenario.xosc'));
+      const code = (each: { data?: unknown }) => (each.data as { code?: string } | undefined)?.code;
+      const before = await client.diagnosticsOf(uri, (list) => list.some((each) => code(each) === 'unknown-catalog'));
+      assert.ok(
+        before.some((each) => code(each) === 'unknown-catalog'),
+        JSON.stringify(before.map((each) => each.message)),
+      );
+      const watchersOf = (registration: { registerOptions?: unknown }) =>
+        (registration.registerOptions as { watchers: { globPattern: string | { baseUri: string; pattern: string } }[] }).watchers;
+      const outsideRegistration = await client.until(
+        () =>
+          client.registrations.find(
+            (registration) =>
+              registration.method === 'workspace/didChangeWatchedFiles' &&
+              watchersOf(registration).some((watcher) => typeof watcher.globPattern !== 'string'),
+          ),
+        'a watcher for the folder outside the workspace',
+      );
+      assert.deepEqual(
+        watchersOf(outsideRegistration).map((watcher) => watcher.globPattern),
+        [{ baseUri: fileUri(outside), pattern: '*.{xosc,mosc,xodr}' }],
+        'only the folder outside the workspace, not the project folder the workspace registration covers',
+      );
+
+      const catalog = twoCatalogs('car_blue')['second/VehicleCatalog.xosc'];
+      fs.writeFileSync(path.join(outside, 'VehicleCatalog.xosc'), catalog);
+      await client.connection.sendNotification('workspace/didChangeWatchedFiles', {
+        changes: [{ uri: fileUri(path.join(outside, 'VehicleCatalog.xosc')), type: 1 }],
+      });
+      const after = await client.diagnosticsOf(uri, (list) => !list.some((each) => /^unknown-catalog/.test(code(each) ?? '')));
+      assert.ok(!after.some((each) => /^unknown-catalog/.test(code(each) ?? '')), JSON.stringify(after.map((each) => each.message)));
+
+      await client.connection.sendNotification('textDocument/didClose', { textDocument: { uri } });
+      await client.until(() => client.unregistrations.includes(outsideRegistration.id), 'the watcher let go once no open file reads there');
+    } finally {
+      await client.stop();
+    }
+  });
+});
+
+describe('the folders outside the workspace that get watchers', () => {
+  it('are those no watched root holds, each once, sorted and bounded', () => {
+    const roots = ['/work/project', '/shared/scenarios'];
+    const read = ['/work/project/catalogs', '/work/project', '/opt/catalogs', '/shared/scenarios/deep/er', '/opt/catalogs', '/a/roads'];
+    assert.deepEqual(foldersToWatch(read, roots), ['/a/roads', '/opt/catalogs']);
+    assert.deepEqual(foldersToWatch(read, roots, 1), ['/a/roads']);
+    // A sibling whose name starts like a root is not inside it.
+    assert.deepEqual(foldersToWatch(['/work/project-old'], roots), ['/work/project-old']);
   });
 });

@@ -67,7 +67,9 @@ export class TestClient {
   /** How often the server asked this client to pull diagnostics again. */
   refreshes = 0;
   /** What the server registered through `client/registerCapability`, in order. */
-  readonly registrations: { method: string; registerOptions?: unknown }[] = [];
+  readonly registrations: { id: string; method: string; registerOptions?: unknown }[] = [];
+  /** The ids the server unregistered through `client/unregisterCapability`, in order. */
+  readonly unregistrations: string[] = [];
   /** Errors the server logged during the running test that it has not claimed (yet). */
   readonly errors: string[] = [];
   /** Errors of finished tests, reported by `stop`. */
@@ -159,8 +161,18 @@ export class TestClient {
       }),
     );
     connection.onRequest('window/workDoneProgress/create', () => null);
-    connection.onRequest('client/registerCapability', (params: { registrations: { method: string; registerOptions?: unknown }[] }) => {
-      client.registrations.push(...params.registrations);
+    connection.onRequest(
+      'client/registerCapability',
+      (params: { registrations: { id: string; method: string; registerOptions?: unknown }[] }) => {
+        client.registrations.push(...params.registrations);
+        client.notify();
+        return null;
+      },
+    );
+    // The protocol's field is misspelled `unregisterations`.
+    connection.onRequest('client/unregisterCapability', (params: { unregisterations: { id: string }[] }) => {
+      client.unregistrations.push(...params.unregisterations.map((each) => each.id));
+      client.notify();
       return null;
     });
     connection.onRequest('workspace/diagnostic/refresh', () => {
@@ -179,7 +191,7 @@ export class TestClient {
       capabilities: {
         workspace: {
           configuration: options.progress !== false,
-          didChangeWatchedFiles: { dynamicRegistration: true },
+          didChangeWatchedFiles: { dynamicRegistration: true, relativePatternSupport: true },
           workspaceEdit: options.workspaceEdit ?? { documentChanges: false },
           workspaceFolders: true,
           ...(options.pullDiagnostics ? { diagnostics: { refreshSupport: true } } : {}),

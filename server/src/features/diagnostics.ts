@@ -171,6 +171,8 @@ export class DiagnosticsScheduler {
   private readonly pending = new Set<string>();
   private timer: NodeJS.Timeout | undefined;
   private running: Promise<void> | undefined;
+  /** Called after each pass that published diagnostics. */
+  onPassDone: (() => void) | undefined;
   /** `push`: publish; `refresh`: ask the pulling client to pull again; `pull`: the pulling client cannot be asked. */
   mode: 'push' | 'refresh' | 'pull' = 'push';
 
@@ -248,6 +250,7 @@ export class DiagnosticsScheduler {
     })();
     await this.running;
     this.running = undefined;
+    this.onPassDone?.();
     if (this.pending.size > 0 && !this.timer) this.arm();
   }
 }

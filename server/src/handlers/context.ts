@@ -5,6 +5,7 @@ import { EsminiRuns } from '../features/esminiRun';
 import { ClientEdits } from '../features/refactorings';
 import { RoadNetworkCache } from '../features/scene';
 import { IdleCollector } from '../idleCollector';
+import { OutsideFolderWatchers } from '../features/outsideFolderWatchers';
 import { Workspace } from '../workspace';
 
 /** What every handler module shares: the workspace and its services, created once per connection. */
@@ -13,6 +14,8 @@ export interface ServerContext {
   readonly workspace: Workspace;
   readonly diagnostics: DiagnosticsScheduler;
   readonly idle: IdleCollector;
+  /** Watchers for the folders outside the workspace that open documents read from. */
+  readonly outsideWatchers: OutsideFolderWatchers;
   /** The sampled road networks the bird's-eye view drew last. */
   readonly roads: RoadNetworkCache;
   /** This server's esmini runs, whose folders it removes. */

@@ -18,7 +18,9 @@ export function register(context: ServerContext): void {
       checkCancelled(token, METHOD);
       const placed = (await problemsByFile(workspace, mains, token)).get(refId(open.ref))?.problems ?? [];
       checkCancelled(token, METHOD);
-      return { kind: DocumentDiagnosticReportKind.Full, resultId: version, items: await fileDiagnostics(workspace, open.ref, placed) };
+      const items = await fileDiagnostics(workspace, open.ref, placed);
+      context.outsideWatchers.schedule();
+      return { kind: DocumentDiagnosticReportKind.Full, resultId: version, items };
     }),
   );
 }

@@ -10,5 +10,6 @@ export function register(context: ServerContext): void {
     if (!closed) return;
     diagnostics.closed(closed.ref, textDocument.uri);
     diagnostics.changed([refId(closed.ref)]);
+    context.outsideWatchers.schedule();
   });
 }

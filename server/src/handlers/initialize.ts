@@ -19,6 +19,8 @@ export function register(context: ServerContext): void {
     const capabilities = params.capabilities;
     context.client.canConfigure = Boolean(capabilities.workspace?.configuration);
     context.client.canWatch = Boolean(capabilities.workspace?.didChangeWatchedFiles?.dynamicRegistration);
+    context.outsideWatchers.supported =
+      context.client.canWatch && Boolean(capabilities.workspace?.didChangeWatchedFiles?.relativePatternSupport);
     context.client.foldersChange = Boolean(capabilities.workspace?.workspaceFolders);
     // A client that pulls diagnostics gets them for the whole workspace and none pushed, so nothing shows twice.
     const pulls = Boolean(capabilities.textDocument?.diagnostic);

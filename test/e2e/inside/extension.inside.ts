@@ -55,6 +55,7 @@ const ORDER: InsideTestKey[] = [
   'preview',
   'scenarioPath',
   'roadPath',
+  'catalogDirectory',
   'pack',
   'flatten',
   'expression',

@@ -15,6 +15,7 @@ import {
   WAIT_MS,
   workspaceRoot,
 } from './helpers';
+import { catalogFile, vehicleObject } from '../../support/fixtures';
 import { pageShows, post, pressKeys, screenshot } from './harnessClient';
 
 /** A one-road OpenDRIVE file: what the road-file check looks for is that it is there. */
@@ -29,6 +30,14 @@ const OUTSIDE_ROAD = `<?xml version="1.0" encoding="UTF-8"?>
   </road>
 </OpenDRIVE>
 `;
+
+/** A vehicle catalog holding `car_outside`: the fixtures' car, out of its ScenarioObject. */
+const OUTSIDE_CATALOG = catalogFile(
+  'VehicleCatalog',
+  vehicleObject('unused')
+    .replace(/ *<\/?ScenarioObject[^>]*>\n/g, '')
+    .replace('name="car"', 'name="car_outside"'),
+);
 
 /** The language server's features as the editor shows them: diagnostics, completion, definition, the scenario path, expressions, the schema. */
 export const languageFeatureTests: InsideTests = {
@@ -187,6 +196,49 @@ export const languageFeatureTests: InsideTests = {
       await settings.update('roadPath', undefined, vscode.ConfigurationTarget.Workspace);
       await revertAndClose();
       fs.rmSync(roads, { recursive: true, force: true });
+    }
+  },
+
+  catalogDirectory: async function () {
+    requireServerFeature(this, 'diagnostics', !!api().serverCapabilities()?.textDocumentSync);
+    // A catalog folder outside the workspace, named only by the scenario's Directory: neither the editor nor a setting watches it.
+    const catalogs = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-catalogs-'));
+    const catalog = path.join(catalogs, 'VehicleCatalog.xosc');
+    const editor = await open('main.xosc');
+    const uri = editor.document.uri;
+    await replaceText(
+      editor.document,
+      '<CatalogLocations/>',
+      `<CatalogLocations><VehicleCatalog><Directory path="${catalogs}"/></VehicleCatalog></CatalogLocations>`,
+    );
+    await replaceText(
+      editor.document,
+      '<ScenarioObject name="adversary">',
+      '<ScenarioObject name="shared"><CatalogReference catalogName="VehicleCatalog" entryName="car_outside"/></ScenarioObject><ScenarioObject name="adversary">',
+    );
+    const unknownCatalog = (): vscode.Diagnostic | undefined =>
+      vscode.languages
+        .getDiagnostics(uri)
+        .find((d) => /^unknown-catalog/.test(typeof d.code === 'object' ? String(d.code.value) : String(d.code)));
+    try {
+      await waitFor('the catalog error: the folder holds no VehicleCatalog yet', () => unknownCatalog() ?? undefined);
+      // The server registers the folder's watcher once it has read there; a new watcher starts in its own time.
+      let patience = 3_000;
+      await waitFor(
+        'the catalog error to go once the catalog appears in the folder outside the workspace',
+        async () => {
+          fs.rmSync(catalog, { force: true });
+          await new Promise((resolve) => setTimeout(resolve, 500));
+          fs.writeFileSync(catalog, OUTSIDE_CATALOG);
+          const gone = await waitFor('the new catalog to be seen', () => !unknownCatalog() || undefined, patience).catch(() => undefined);
+          patience = Math.min(2 * patience, WAIT_MS / 2);
+          return gone;
+        },
+        2 * WAIT_MS,
+      );
+    } finally {
+      await revertAndClose();
+      fs.rmSync(catalogs, { recursive: true, force: true });
     }
   },
 
