@@ -39,6 +39,26 @@ const OUTSIDE_CATALOG = catalogFile(
     .replace('name="car"', 'name="car_outside"'),
 );
 
+/**
+ * Writes `file` outside the workspace until `seen` holds: a new watcher starts in its own time, so a creation made
+ * before it started goes unseen, and the file is removed and written again, waiting longer each time.
+ */
+async function writeUntilSeen(what: string, file: string, content: string, seen: () => boolean): Promise<void> {
+  let patience = 3_000;
+  await waitFor(
+    what,
+    async () => {
+      fs.rmSync(file, { force: true });
+      await new Promise((resolve) => setTimeout(resolve, 500));
+      fs.writeFileSync(file, content);
+      const found = await waitFor(`${path.basename(file)} to be seen`, () => seen() || undefined, patience).catch(() => undefined);
+      patience = Math.min(2 * patience, WAIT_MS / 2);
+      return found;
+    },
+    2 * WAIT_MS,
+  );
+}
+
 /** The language server's features as the editor shows them: diagnostics, completion, definition, the scenario path, expressions, the schema. */
 export const languageFeatureTests: InsideTests = {
   diagnostic: async function () {
@@ -178,20 +198,7 @@ export const languageFeatureTests: InsideTests = {
     try {
       // The server has looked in the folder and found nothing there: what it read of it stays until it hears otherwise.
       await waitFor('the road-file warning naming the road folder', () => (roadFile()?.message.includes(roads) ? true : undefined));
-      // A new watcher starts in its own time: the road is written again until its creation is seen.
-      let patience = 3_000;
-      await waitFor(
-        'the road-file warning to go once the road appears in the road folder',
-        async () => {
-          fs.rmSync(road, { force: true });
-          await new Promise((resolve) => setTimeout(resolve, 500));
-          fs.writeFileSync(road, OUTSIDE_ROAD);
-          const gone = await waitFor('the new road to be seen', () => !roadFile() || undefined, patience).catch(() => undefined);
-          patience = Math.min(2 * patience, WAIT_MS / 2);
-          return gone;
-        },
-        2 * WAIT_MS,
-      );
+      await writeUntilSeen('the road-file warning to go once the road appears in the road folder', road, OUTSIDE_ROAD, () => !roadFile());
     } finally {
       await settings.update('roadPath', undefined, vscode.ConfigurationTarget.Workspace);
       await revertAndClose();
@@ -222,19 +229,12 @@ export const languageFeatureTests: InsideTests = {
         .find((d) => /^unknown-catalog/.test(typeof d.code === 'object' ? String(d.code.value) : String(d.code)));
     try {
       await waitFor('the catalog error: the folder holds no VehicleCatalog yet', () => unknownCatalog() ?? undefined);
-      // The server registers the folder's watcher once it has read there; a new watcher starts in its own time.
-      let patience = 3_000;
-      await waitFor(
+      // The server registers the folder's watcher once it has read there.
+      await writeUntilSeen(
         'the catalog error to go once the catalog appears in the folder outside the workspace',
-        async () => {
-          fs.rmSync(catalog, { force: true });
-          await new Promise((resolve) => setTimeout(resolve, 500));
-          fs.writeFileSync(catalog, OUTSIDE_CATALOG);
-          const gone = await waitFor('the new catalog to be seen', () => !unknownCatalog() || undefined, patience).catch(() => undefined);
-          patience = Math.min(2 * patience, WAIT_MS / 2);
-          return gone;
-        },
-        2 * WAIT_MS,
+        catalog,
+        OUTSIDE_CATALOG,
+        () => !unknownCatalog(),
       );
     } finally {
       await revertAndClose();
