@@ -73,7 +73,9 @@ export class AnalysisDatabase {
       this.sourceDependencies.clear();
       return;
     }
-    const touches = (id: string) => changedIds.some((changed) => id === changed || id.startsWith(changed + '/'));
+    // The folders' prefixes made once: this runs over every shared source on each keystroke.
+    const folders = changedIds.map((changed) => changed + '/');
+    const touches = (id: string) => changedIds.includes(id) || folders.some((folder) => id.startsWith(folder));
     for (const id of [...this.analysisResults.keys()]) if (touches(id)) this.analysisResults.delete(id);
     for (const id of this.sharedSources.keys()) {
       const dependencies = this.sourceDependencies.get(id);

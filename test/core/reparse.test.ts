@@ -126,6 +126,20 @@ describe('core: re-parsing after an edit', () => {
           `shared exactly when wholly before the edit, or after it with the length kept: ${index}`,
         );
       });
+      // An index in document order (all elements, those of one name, the few before the edit) maps as elementOf does, kept as it is when every one is shared.
+      const byName = new Map<string, XmlElement[]>();
+      for (const element of before) byName.set(element.name, [...(byName.get(element.name) ?? []), element]);
+      for (const list of [before, ...byName.values(), before.filter((element) => element.end <= value.start)]) {
+        const counterparts = edit.counterparts(list);
+        assert.deepEqual(
+          counterparts.map((element) => after.indexOf(element)),
+          list.map((element) => after.indexOf(edit.elementOf(element))),
+        );
+        assert.equal(
+          counterparts === list,
+          list.every((element) => edit.elementOf(element) === element),
+        );
+      }
     }
   });
 

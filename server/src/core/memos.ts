@@ -218,6 +218,29 @@ export const CORE_MEMOS = {
     bound: WITH_KEY,
     invalidated: 'never: an element never changes',
   },
+  firstPrivateActions: {
+    where: '`privateActionActors` (`core/semantics/networkChecks.ts`)',
+    key: 'a ManeuverGroup element',
+    holds: 'the first PrivateAction below it (none: null), so the check of actors does not walk every group on each edit',
+    bound: WITH_KEY,
+    invalidated: 'never: an element never changes',
+  },
+  listsWithinRanges: {
+    where: '`valueRanges` (`core/semantics/networkChecks.ts`)',
+    key: 'a list of the elements of one name (`elementIndex`)',
+    holds:
+      'the ranges of the schema version read when every value they constrain in the list is written without `$` and lies within them, so the check skips the list while a value edit elsewhere keeps it',
+    bound: WITH_KEY,
+    invalidated: 'never: a list is carried as it is only while every element in it is; an edit of one makes a new list',
+  },
+  distinctLiteralNames: {
+    where: '`duplicateNames` (`core/semantics/checks/names.ts`)',
+    key: "a list of an element's children with names (`namedSiblings`)",
+    holds:
+      'that their names are written without `$` and all differ, so no name repeats there whatever the parameters: the check skips the list',
+    bound: WITH_KEY,
+    invalidated: 'never: a list is carried as it is only while every element in it is; an edit of one makes a new list',
+  },
   reachesOutside: {
     where: '`core/flatten/carry.ts`',
     key: 'an element a carried declaration targets',

@@ -1,5 +1,6 @@
 import { Addition, FlatSource, Insertion, parameterAttributeSpans } from './flatten';
 import type { LineSegment } from '../../../common/src/lineSegments';
+import { partitionPoint } from './text';
 
 /** An outer group of the original text and the copies that replaced it in the flattened text. */
 interface ReplacedRegion {
@@ -67,14 +68,8 @@ export function previewLineMap(source: FlatSource): LineSegment[] {
   const removedBefore: number[] = [0];
   for (const span of spans) removedBefore.push(removedBefore[removedBefore.length - 1] + countNewlines(outText, span.start, span.end));
   const previewLineAt = (offset: number): number => {
-    let low = 0;
-    let high = spans.length;
-    while (low < high) {
-      const middle = (low + high) >> 1;
-      if (spans[middle].end <= offset) low = middle + 1;
-      else high = middle;
-    }
-    return outLines.positionAt(offset).line - removedBefore[low];
+    const spansBefore = partitionPoint(spans.length, (index) => spans[index].end <= offset);
+    return outLines.positionAt(offset).line - removedBefore[spansBefore];
   };
   const regions = model === original ? [] : replacedRegions(source.insertions, source.additions);
   const lineOf = (offset: number): number => inLines.positionAt(offset).line;

@@ -71,6 +71,18 @@ export class LineIndex {
  * keeps a slice of 13 characters or more as a view that holds the whole text: a memo that outlives the parse
  * (keyed by an imported group) would keep every version of the main file's text that wrote one of its keys.
  */
+/** The first index of `[0, count)` at which `before` turns false, by halves (`before` holds for a run of indexes from 0, then never). */
+export function partitionPoint(count: number, before: (index: number) => boolean): number {
+  let low = 0;
+  let high = count;
+  while (low < high) {
+    const middle = (low + high) >> 1;
+    if (before(middle)) low = middle + 1;
+    else high = middle;
+  }
+  return low;
+}
+
 export function ownString(text: string): string {
   // Read back from its JSON, a string is made anew (concatenating and slicing again gives V8 a view of the text once more).
   return text.length < 13 ? text : (JSON.parse(JSON.stringify(text)) as string);

@@ -1,6 +1,7 @@
 import { InlayHint, InlayHintKind } from 'vscode-languageserver/node';
 import { DocumentSemantics, formatValue } from '../core/semantics';
 import { serverMemo } from '../database';
+import { partitionPoint } from '../core/text';
 
 interface ExpressionHint {
   /** Offset of the attribute value's end (the hint goes after its closing quote). */
@@ -51,14 +52,8 @@ function allHints(semantics: DocumentSemantics): ExpressionHint[] {
 export function expressionHints(semantics: DocumentSemantics, start: number, end: number): InlayHint[] {
   const hints = allHints(semantics);
   // The first hint at or after `start`, by binary search: an editor asks for one screen at a time.
-  let low = 0;
-  let high = hints.length;
-  while (low < high) {
-    const middle = (low + high) >> 1;
-    if (hints[middle].offset < start) low = middle + 1;
-    else high = middle;
-  }
+  const first = partitionPoint(hints.length, (index) => hints[index].offset < start);
   const result: InlayHint[] = [];
-  for (let index = low; index < hints.length && hints[index].offset <= end; index++) result.push(hints[index].hint);
+  for (let index = first; index < hints.length && hints[index].offset <= end; index++) result.push(hints[index].hint);
   return result;
 }

@@ -59,7 +59,7 @@ export function carryElementIndex(previous: SemanticModel, model: SemanticModel,
   const known = elementIndex.get(previous);
   if (!known) return;
   const index = new Map<string, XmlElement[]>();
-  for (const [name, elements] of known) index.set(name, counterparts(elements, edit));
+  for (const [name, elements] of known) index.set(name, edit.counterparts(elements));
   elementIndex.set(model, index);
 }
 
@@ -71,12 +71,7 @@ function carryNamedSiblings(previous: SemanticModel, model: SemanticModel, edit:
     model,
     known.map(({ parent, children }) => ({
       parent: edit.elementOf(parent),
-      children: counterparts(children, edit),
+      children: edit.counterparts(children),
     })),
   );
-}
-
-/** The counterparts of a list of elements of the previous tree: the list itself when the new tree shares every one. */
-function counterparts(elements: XmlElement[], edit: ValueEdit): XmlElement[] {
-  return elements.every(edit.shared) ? elements : elements.map(edit.elementOf);
 }

@@ -8,9 +8,10 @@ import { unknownTrafficSignalWording } from '../diagnostics/unknownTrafficSignal
 import { unknownTrafficSignalControllerWording } from '../diagnostics/unknownTrafficSignalController';
 import { attribute, firstDescendant, XmlAttribute, XmlElement } from '../xml';
 import type { Finding, SemanticCheck, SemanticContext } from './checks/types';
-import { inRange, rangeText, valueRangesOf } from './ranges';
+import { inRange, rangeText, ValueRange, valueRangesOf } from './ranges';
 import { SemanticModel } from './types';
 import { elementsNamed } from './elementIndex';
+import { coreMemo } from '../memos';
 
 /**
  * The rules about traffic signals, actors and value ranges (ASAM Quality Checker rules
@@ -117,7 +118,7 @@ export const trafficSignalControllerRefs: SemanticCheck = (context) => {
 export const privateActionActors: SemanticCheck = (context) => {
   const findings: Finding[] = [];
   for (const group of elementsNamed(context.model, 'ManeuverGroup')) {
-    const privateAction = firstDescendant(group, 'PrivateAction');
+    const privateAction = firstPrivateAction(group);
     if (!privateAction) continue;
     const actors = group.children.find((child) => child.name === 'Actors');
     if (actors?.children.some((child) => child.name === 'EntityRef')) continue;
@@ -136,6 +137,15 @@ export const privateActionActors: SemanticCheck = (context) => {
   }
   return findings;
 };
+
+const firstPrivateActions = coreMemo<XmlElement, XmlElement | null>('firstPrivateActions');
+
+/** The first PrivateAction below a group: its subtree never changes, and a value edit shares the groups it does not hold with the previous tree. */
+function firstPrivateAction(group: XmlElement): XmlElement | undefined {
+  let found = firstPrivateActions.get(group);
+  if (found === undefined) firstPrivateActions.set(group, (found = firstDescendant(group, 'PrivateAction') ?? null));
+  return found ?? undefined;
+}
 
 /** `LightStateAction transitionTime` is not negative. */
 export const lightTransitionTimes: SemanticCheck = (context) =>
@@ -166,6 +176,11 @@ export const phaseDurations: SemanticCheck = (context) =>
     ];
   });
 
+const DOLLAR = 36;
+
+/** Lists of elements of one name (`elementsNamed`: a value edit elsewhere keeps the list) whose values are literals within these ranges. */
+const withinRanges = coreMemo<readonly XmlElement[], readonly ValueRange[]>('listsWithinRanges');
+
 /**
  * Values within the ranges the standard gives for the file's version (core/semantics/ranges.ts),
  * evaluated after `$parameter`/`${...}` resolution: an error, as in RA Consulting's checker. Where esmini
@@ -176,11 +191,17 @@ export const valueRanges: SemanticCheck = (context) => {
   const findings: Finding[] = [];
   const { version } = chooseVersion(context.model.document);
   for (const [elementName, ranges] of valueRangesOf(version)) {
-    for (const element of elementsNamed(context.model, elementName)) {
+    const elements = elementsNamed(context.model, elementName);
+    if (withinRanges.get(elements) === ranges) continue;
+    let within = true;
+    for (const element of elements) {
       for (const range of ranges) {
         if (range.checkedBy) continue;
+        // A `$` value is evaluated with the file's parameters, which an edit may change: the list is checked again next time.
+        if (attribute(element, range.attribute)?.value.charCodeAt(0) === DOLLAR) within = false;
         const value = numberOf(context, element, range.attribute);
         if (!value || inRange(value.value, range)) continue;
+        within = false;
         const written = value.attr.value.trim() === String(value.value) ? undefined : value.attr.value.trim();
         const when = range.esmini?.when;
         const esmini =
@@ -199,6 +220,7 @@ export const valueRanges: SemanticCheck = (context) => {
         });
       }
     }
+    if (within && elements.length > 0) withinRanges.set(elements, ranges);
   }
   return findings;
 };

@@ -58,7 +58,9 @@ export class ScenarioStore {
   private readonly overlays = new Overlays();
   private readonly kinds: KindCache;
   /** Names found, by the file writing them, while the kinds they were found from hold (`resolutions` of core/memos.ts). */
-  private readonly resolutions = new Map<string, Resolution>();
+  private readonly resolutions = new Map<string, Map<string, Resolution>>();
+  /** The names in `resolutions`, all files together (its bound). */
+  private resolutionCount = 0;
   private resolutionsGeneration = 0;
 
   constructor(options: StoreOptions = {}) {
@@ -364,10 +366,16 @@ export class ScenarioStore {
     // A file found is found again while no kind changed (a package's contents change only with an invalidate, which clears the kinds).
     const generation = this.kinds.generation;
     if (generation !== this.resolutionsGeneration) {
-      this.resolutions.clear();
+      this.clearResolutions();
       this.resolutionsGeneration = generation;
     }
-    return this.resolutions.get(`${refId(from)}\n${name}`);
+    // By file, then name: no key string is made for each of a main file's references on each edit.
+    return this.resolutions.get(refId(from))?.get(name);
+  }
+
+  private clearResolutions(): void {
+    this.resolutions.clear();
+    this.resolutionCount = 0;
   }
 
   /** Resolves a `scenarioFileName` written in the file `from` (SPEC 3). */
@@ -375,11 +383,14 @@ export class ScenarioStore {
     const known = this.knownResolution(name, from);
     if (known) return known;
     const generation = this.kinds.generation;
-    const key = `${refId(from)}\n${name}`;
     const resolution = await this.resolveAgain(name, from);
     if ((resolution.kind === 'scenario' || resolution.kind === 'package') && this.kinds.generation === generation) {
-      if (this.resolutions.size >= CORE_MEMOS.resolutions.bound.entries) this.resolutions.clear();
-      this.resolutions.set(key, resolution);
+      if (this.resolutionCount >= CORE_MEMOS.resolutions.bound.entries) this.clearResolutions();
+      const fromId = refId(from);
+      let names = this.resolutions.get(fromId);
+      if (!names) this.resolutions.set(fromId, (names = new Map()));
+      if (!names.has(name)) this.resolutionCount++;
+      names.set(name, resolution);
     }
     return resolution;
   }

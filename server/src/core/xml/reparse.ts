@@ -1,4 +1,4 @@
-import { LineIndex } from '../text';
+import { LineIndex, partitionPoint } from '../text';
 import { PLAIN_VALUE } from './characters';
 import { parseXml } from './scanner';
 import { XmlAttribute, XmlDocument, XmlElement } from './types';
@@ -59,6 +59,12 @@ export interface ValueEdit {
   elementOf(previous: XmlElement): XmlElement;
   /** Whether an element of the previous tree is in the new one too (not holding the edit, and before it unless nothing moved): what refers only to it carries over as it is. */
   shared(previous: XmlElement): boolean;
+  /**
+   * The counterparts of elements of the previous tree listed in document order (an index of the tree):
+   * the list itself when the new tree shares every one. Only the elements holding the edit, and those
+   * after it when it moved them, are looked at: a keystroke does not walk every element of a large index.
+   */
+  counterparts(elements: XmlElement[]): XmlElement[];
   /** The new tree's counterpart of an attribute of an element of the previous tree. */
   attributeOf(previousElement: XmlElement, previous: XmlAttribute): XmlAttribute;
   /** An offset of the previous text in the new text. */
@@ -104,7 +110,10 @@ export function reparseValueEdit(previous: XmlDocument, text: string): XmlDocume
   // The attribute whose value holds the whole edit (its ends may touch the quotes, not cross them).
   let element: XmlElement | undefined = previous.root;
   let edited: XmlAttribute | undefined;
+  // The elements holding the edit, outermost first: the only ones copied when nothing moves.
+  const holding: XmlElement[] = [];
   while (element && !edited) {
+    holding.push(element);
     edited = element.attributes.find((candidate) => candidate.valueStart <= prefix && removedEnd <= candidate.valueEnd);
     if (edited) break;
     if (prefix < element.startTagEnd) return undefined;
@@ -182,6 +191,7 @@ export function reparseValueEdit(previous: XmlDocument, text: string): XmlDocume
     attribute: editedCopy as XmlAttribute,
     elementOf,
     shared,
+    counterparts: (elements) => counterpartsInOrder(elements, holding, delta === 0 ? undefined : removedEnd, elementOf),
     attributeOf: (sourceElement, source) =>
       (source.nameStart < removedEnd || delta === 0) && source !== target
         ? source
@@ -204,6 +214,33 @@ function documentOf(text: string, root: XmlElement, entities: ReadonlyMap<string
       return lines;
     },
   };
+}
+
+/** The index of the first of `elements` (in document order) starting at or after `offset`. */
+function firstStartingAt(elements: readonly XmlElement[], offset: number): number {
+  return partitionPoint(elements.length, (index) => elements[index].start < offset);
+}
+
+/**
+ * `elements` (of the previous tree, in document order) with each one not shared replaced by its
+ * counterpart: those of `holding` (the elements holding the edit), and every one starting at or after
+ * `movedFrom` when the edit moved them. Found by halves, as an element's start is unique and grows in document order.
+ */
+function counterpartsInOrder(
+  elements: XmlElement[],
+  holding: readonly XmlElement[],
+  movedFrom: number | undefined,
+  elementOf: (source: XmlElement) => XmlElement,
+): XmlElement[] {
+  let result: XmlElement[] | undefined;
+  for (const element of holding) {
+    const index = firstStartingAt(elements, element.start);
+    if (elements[index] === element) (result ??= elements.slice())[index] = elementOf(element);
+  }
+  if (movedFrom !== undefined)
+    for (let index = firstStartingAt(elements, movedFrom); index < elements.length; index++)
+      (result ??= elements.slice())[index] = elementOf(elements[index]);
+  return result ?? elements;
 }
 
 /** The counterpart of an element of the previous tree: itself when shared (not holding the edit, its offsets kept), else its copy. */

@@ -1,5 +1,6 @@
 import { attribute, XmlElement } from '../../xml';
 import { namedSiblings } from '../elementIndex';
+import { coreMemo } from '../../memos';
 import type { Finding, SemanticCheck } from './types';
 import { at, relatedAt } from './support';
 import { duplicateCatalogEntryWording } from '../../diagnostics/duplicateCatalogEntry';
@@ -15,6 +16,11 @@ const NAMES_CHECKED_ELSEWHERE: ReadonlySet<string> = new Set(['ParameterDeclarat
 function holdsScenarioReference(element: XmlElement): boolean {
   return element.children.some((child) => child.name === 'ScenarioReference');
 }
+
+const DOLLAR = 36;
+
+/** Children lists of `namedSiblings` (kept as they are by a value edit elsewhere) whose names are literals, all different. */
+const distinctLiteralNames = coreMemo<readonly XmlElement[], true>('distinctLiteralNames');
 
 /**
  * ManeuverGroups of one name are common in plain scenarios, and SPEC's policy reports them only where a
@@ -50,9 +56,13 @@ export const duplicateNames: SemanticCheck = (context) => {
     ));
   // The elements with named siblings, not the whole tree: this runs on each edit.
   for (const { parent, children } of namedSiblings(model)) {
+    if (distinctLiteralNames.get(children)) continue;
     let first: Map<string, XmlElement> | undefined;
+    // Names written without `$` and all different repeat under no parameters, whatever else the file holds.
+    let distinctLiterals = true;
     for (const child of children) {
       const nameAttribute = attribute(child, 'name');
+      if (nameAttribute && nameAttribute.value.charCodeAt(0) === DOLLAR) distinctLiterals = false;
       if (!nameAttribute || NAMES_CHECKED_ELSEWHERE.has(child.name) || holdsScenarioReference(child)) continue;
       const name = evaluator.textOf(child, nameAttribute);
       if (name === undefined || name === '') continue;
@@ -62,6 +72,7 @@ export const duplicateNames: SemanticCheck = (context) => {
         first.set(name, child);
         continue;
       }
+      distinctLiterals = false;
       if (child.name === 'ManeuverGroup' && !referenced().has(name)) continue;
       const inCatalog = parent === model.catalog;
       const ambiguous = inCatalog || (child.name === 'ScenarioObject' ? referencedEntities().has(name) : referenced().has(name));
@@ -85,6 +96,7 @@ export const duplicateNames: SemanticCheck = (context) => {
         ],
       });
     }
+    if (distinctLiterals) distinctLiteralNames.set(children, true);
   }
   return findings;
 };
