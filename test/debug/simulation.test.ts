@@ -14,13 +14,23 @@ import { writeTwoCutIns } from '../support/debugScenarios';
 const cutIn = path.join(openscenarioDir, 'esmini', 'cut-in.xosc');
 const roadPath = [esminiRoads, path.join(esminiCatalogs, 'Vehicles')];
 
-async function runAll(input: string): Promise<StoryboardEvent[]> {
+/** Every event of a run, with the steps made when each came; `stepMany` steps by `stepMany(count, () => false)` calls. */
+async function runAll(input: string, stepMany?: number): Promise<StoryboardEvent[]> {
+  return (await runCounted(input, stepMany)).events;
+}
+
+async function runCounted(input: string, stepMany?: number): Promise<{ events: StoryboardEvent[]; stepsAt: number[]; steps: number }> {
   const prepared = await prepareScenario(new Flattener(storeForInputs([], undefined, [input], {}, roadPath)), mainOf(input), { roadPath });
   const simulation = new Simulation(prepared, { roadPath });
   try {
     const events = simulation.start();
-    while (!simulation.ended) events.push(...simulation.step());
-    return events;
+    const stepsAt = events.map(() => 0);
+    while (!simulation.ended) {
+      const reported = stepMany === undefined ? simulation.step() : simulation.stepMany(stepMany, () => false);
+      events.push(...reported);
+      stepsAt.push(...reported.map(() => simulation.stepsMade));
+    }
+    return { events, stepsAt, steps: simulation.stepsMade };
   } finally {
     simulation.close();
   }
@@ -56,6 +66,36 @@ describe('debug: a scenario run step by step in esmini library', () => {
     assert.equal(events.find((event) => event.name === 'BrakeCondition_HWT_0.7')?.mapped?.range.start.line, 161);
     assert.equal(events.at(-1)?.type, 'Storyboard');
     assert.equal(events.at(-1)?.state, 'complete');
+  });
+
+  it('steps many steps a call as one a call: the same events after the same steps, and it ends at the step that reported', async () => {
+    const one = await runCounted(cutIn);
+    const many = await runCounted(cutIn, 500);
+    const described = (run: typeof one) =>
+      run.events.map((event, index) => `${run.stepsAt[index]} ${event.time} ${event.element} ${event.state}`);
+    assert.deepEqual(described(many), described(one));
+    assert.equal(many.steps, one.steps);
+    assert.ok(one.events.length > 20, 'cut-in.xosc reports its transitions');
+  });
+
+  it('stops stepping many at once when told it is interrupted, after the step it was told in', async () => {
+    const prepared = await prepareScenario(new Flattener(storeForInputs([], undefined, [cutIn], {}, roadPath)), mainOf(cutIn), {
+      roadPath,
+    });
+    const simulation = new Simulation(prepared, { roadPath, timeStep: 0.05 });
+    try {
+      simulation.start();
+      // To 1 s, past the transitions of the run's start: nothing is reported from there to the cut-in at 6.5 s.
+      while (simulation.stepsMade < 20) simulation.step();
+      let asked = 0;
+      assert.equal(simulation.stepMany(40, () => ++asked === 3).length, 0);
+      assert.equal(simulation.stepsMade, 23);
+      assert.equal(simulation.time.toFixed(2), '1.15');
+      assert.equal(simulation.stepMany(40, () => false).length, 0, 'nothing reported from 1.15 s to 3.15 s');
+      assert.equal(simulation.stepsMade, 63);
+    } finally {
+      simulation.close();
+    }
   });
 
   it('reaches every flattened copy of a group imported twice, each on the simple scenario line', async () => {

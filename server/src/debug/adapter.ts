@@ -450,6 +450,9 @@ export class ScenarioDebugSession extends DebugSession {
     let stride = 1;
     const pause = () =>
       this.stopWith({ reason: 'pause', description: `Paused at ${fixed(simulation.time)} s`, firings: [], breakpointIds: [] });
+    // A pause is read after every step from the supervisor's page.
+    const page = sessionPage;
+    const pauseCounted = page ? () => page.pauseRequests() !== pausesBefore : () => false;
     const slice = () => {
       if (!this.running || this.simulation !== simulation) return;
       try {
@@ -463,21 +466,22 @@ export class ScenarioDebugSession extends DebugSession {
         // esmini's state at a step's start is kept only while a stop there may come: it costs esmini calls in each step that reports something.
         simulation.keepStepStart = mode === 'next' || mode === 'stepOut' || this.breaksOnElements();
         const until = Date.now() + SLICE_MS;
-        let steps = 0;
+        const stepsBefore = simulation.stepsMade;
+        // One step at a time while each step may stop (Step Into, a time breakpoint), else up to a stride of steps.
+        const perCall = mode === 'step' || timed ? 1 : stride;
         do {
           if (simulation.ended) return this.finished(simulation);
-          const events = simulation.step();
-          steps++;
+          const events = simulation.stepMany(perCall, pauseCounted);
           // Most steps report nothing: no breakpoint to weigh unless a time breakpoint is due (bench/debugger.mjs).
           if (events.length > 0 || mode === 'step' || (timed && this.timeBreakpointDue(simulation))) {
             this.report(events);
             const stop = this.breakpointStop(simulation, events) ?? this.stepStop(simulation, events, mode, stepOutOf);
             if (stop) return this.stopWith(stop);
           }
-          if (sessionPage && sessionPage.pauseRequests() !== pausesBefore) return pause();
-        } while (steps % stride !== 0 || Date.now() < until);
+          if (pauseCounted()) return pause();
+        } while (Date.now() < until);
         // The clock read about a hundred times a slice: a read costs a twentieth of a small scenario's step (docs/benchmarks.md).
-        stride = Math.min(64, Math.max(1, Math.floor(steps / 100)));
+        stride = Math.min(64, Math.max(1, Math.floor((simulation.stepsMade - stepsBefore) / 100)));
         if (Date.now() - this.lastStateAt >= STATE_INTERVAL_MS) this.publishState(simulation, false);
         setImmediate(slice);
       } catch (error) {
