@@ -489,28 +489,60 @@ describe('core: the semantic checks after an edit inside one value', () => {
   }
 
   // The checks skip an index list an edit left as it was when its values could not change (literal names all
-  // different, literal values within their ranges): a `$` name or value must be read again when its parameter changes (values
-  // of the same length, so that the lists after the edit are kept).
-  it('read a name or a ranged value written with $ again when the parameter it names is edited back and forth', () => {
-    let document = parseXml(walked);
-    problemsOf(document, 'standard');
-    const edits: [string, string][] = [
-      ['P0', 'E9'],
-      ['P0', 'E1'],
-      ['P1', '10'],
-      ['P1', '-1'],
-    ];
-    for (const [parameter, value] of edits) {
-      const declaration = [...document.text.matchAll(/<ParameterDeclaration name="(\w+)" parameterType="\w+" value="([^"]*)"/g)].find(
-        (match) => match[1] === parameter,
-      );
-      assert.ok(declaration?.index !== undefined);
-      const start = declaration.index + declaration[0].length - declaration[2].length - 1;
-      const editedText = document.text.slice(0, start) + value + document.text.slice(start + declaration[2].length);
-      const next = reparseXml(document, editedText);
-      assert.ok(valueEditOf(next), 'the edit takes the incremental path');
-      assert.deepEqual(problemsOf(next, 'standard'), problemsOf(parseXml(editedText), 'standard'), `${parameter} = ${value}`);
-      document = next;
-    }
-  });
+  // different, literal values within their ranges, literal entity references declared): a `$` name, value or
+  // entity reference must be read again when its parameter changes (values of the same length, so that the
+  // lists after the edit are kept).
+  const entityReferences = openScenarioFile(
+    `  <ParameterDeclarations>
+    <ParameterDeclaration name="P2" parameterType="string" value="Ego"/>
+  </ParameterDeclarations>
+  <Entities><ScenarioObject name="Ego"/></Entities>
+  <Storyboard>
+    <Init><Actions><Private entityRef="$P2"><PrivateAction><TeleportAction><Position><WorldPosition x="0" y="0"/></Position></TeleportAction></PrivateAction></Private></Actions></Init>
+    <Story name="S">
+      <Act name="A"><ManeuverGroup name="G" maximumExecutionCount="1"><Actors selectTriggeringEntities="false"><EntityRef entityRef="Ego"/></Actors></ManeuverGroup><StartTrigger/></Act>
+    </Story>
+    <StopTrigger/>
+  </Storyboard>
+`,
+    fileHeader({ description: 'd', author: 'a' }),
+    BARE_XML_DECLARATION,
+  );
+  for (const [name, text, edits] of [
+    [
+      'names and ranges',
+      walked,
+      [
+        ['P0', 'E9'],
+        ['P0', 'E1'],
+        ['P1', '10'],
+        ['P1', '-1'],
+      ],
+    ],
+    [
+      'entity references',
+      entityReferences,
+      [
+        ['P2', 'Eg2'],
+        ['P2', 'Ego'],
+        ['P2', 'Eg3'],
+      ],
+    ],
+  ] as const)
+    it(`read a $ value again when the parameter it names is edited back and forth: ${name}`, () => {
+      let document = parseXml(text);
+      problemsOf(document, 'standard');
+      for (const [parameter, value] of edits) {
+        const declaration = [...document.text.matchAll(/<ParameterDeclaration name="(\w+)" parameterType="\w+" value="([^"]*)"/g)].find(
+          (match) => match[1] === parameter,
+        );
+        assert.ok(declaration?.index !== undefined);
+        const start = declaration.index + declaration[0].length - declaration[2].length - 1;
+        const editedText = document.text.slice(0, start) + value + document.text.slice(start + declaration[2].length);
+        const next = reparseXml(document, editedText);
+        assert.ok(valueEditOf(next), 'the edit takes the incremental path');
+        assert.deepEqual(problemsOf(next, 'standard'), problemsOf(parseXml(editedText), 'standard'), `${parameter} = ${value}`);
+        document = next;
+      }
+    });
 });

@@ -241,6 +241,14 @@ export const CORE_MEMOS = {
     bound: WITH_KEY,
     invalidated: 'never: a list is carried as it is only while every element in it is; an edit of one makes a new list',
   },
+  declaredEntityReferences: {
+    where: '`undeclaredEntities` (`core/semantics/checks.ts`)',
+    key: "a semantic model's list of entity references",
+    holds:
+      'the names they use when every one is written without `$` and declared, so the check skips the list while those names stay declared (a value edit leaving the references alone keeps the list: `carriedEntries`)',
+    bound: WITH_KEY,
+    invalidated: 'never: a list is carried as it is only while every reference in it is; an edit of one makes a new list',
+  },
   reachesOutside: {
     where: '`core/flatten/carry.ts`',
     key: 'an element a carried declaration targets',

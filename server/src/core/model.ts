@@ -191,9 +191,8 @@ function carryModel(previous: ScenarioModel, edit: ValueEdit, document: XmlDocum
   const references = new Map<ScenarioReferenceInfo, ScenarioReferenceInfo>();
   for (const group of previous.groups) {
     if (shared(group.element)) {
-      // Its references lie inside it: shared too.
+      // Its references lie inside it: shared too, each taken as it is by carryReference below.
       groups.set(group, group);
-      for (const reference of group.references) references.set(reference, reference);
       continue;
     }
     const nameAttribute = attributeOf(group.element, group.nameAttribute);

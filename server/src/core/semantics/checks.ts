@@ -2,6 +2,7 @@ import { expressionWording } from '../diagnostics/expressionWords';
 import { simulatorFindings } from '../profiles/checks';
 import { baseName, displayRef } from '../sources';
 import { closestMatch } from '../text';
+import { coreMemo } from '../memos';
 import { attribute, descendants, XmlAttribute, XmlElement } from '../xml';
 import { ExpressionError } from './expressionParser';
 import { valueConstraints } from './checks/constraints';
@@ -372,13 +373,30 @@ export const catalogReferences: SemanticCheck = (context) => {
 };
 
 /** Entity names, with `$parameters` evaluated; only in files that declare Entities (not in catalogs). */
+const DOLLAR = 36;
+
+/**
+ * A model's entity references (a value edit leaving them alone keeps the list, incremental.ts) that are all
+ * written without `$` and declared: the names they use, so the check skips the list while those stay declared.
+ */
+const declaredEntityReferences = coreMemo<readonly { element: XmlElement; attribute: XmlAttribute }[], readonly string[]>(
+  'declaredEntityReferences',
+);
+
 export const undeclaredEntities: SemanticCheck = ({ model, evaluator }) => {
   if (!model.hasEntities || model.catalog || !model.document.root) return [];
   const names = new Set(model.entities.map((entity) => evaluator.textOf(entity.element, entity.nameAttribute) ?? entity.name));
+  const known = declaredEntityReferences.get(model.entityReferences);
+  if (known && known.every((name) => names.has(name))) return [];
   const findings: Finding[] = [];
+  // The names written without `$`, each once, while every reference is one of them and declared.
+  let literals: Set<string> | undefined = new Set();
   for (const { element, attribute: attr } of model.entityReferences) {
+    if (attr.value.charCodeAt(0) === DOLLAR) literals = undefined;
     const value = evaluator.textOf(element, attr);
+    if (value !== undefined) literals?.add(value);
     if (value === undefined || names.has(value)) continue;
+    literals = undefined;
     const suggestion = names.size <= 2000 ? closestMatch(value, names) : undefined;
     findings.push({
       ...at(element, attr),
@@ -386,6 +404,7 @@ export const undeclaredEntities: SemanticCheck = ({ model, evaluator }) => {
       data: { entity: value },
     });
   }
+  if (literals && model.entityReferences.length > 0) declaredEntityReferences.set(model.entityReferences, [...literals]);
   return findings;
 };
 

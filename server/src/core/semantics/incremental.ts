@@ -225,13 +225,14 @@ export function carrySemanticModel(previous: SemanticModel, edit: ValueEdit, doc
           },
     ),
     variableReferences: [],
-    entityReferences: previous.entityReferences.map((reference) =>
-      shared(reference.element)
-        ? reference
-        : {
-            element: elementOf(reference.element),
-            attribute: attributeOf(reference.element, reference.attribute) as XmlAttribute,
-          },
+    // Kept as it is when the edit leaves every one alone: the check of entities skips a list it found declared (checks.ts).
+    entityReferences: edit.carriedEntries(
+      previous.entityReferences,
+      (reference) => reference.element,
+      (reference) => ({
+        element: elementOf(reference.element),
+        attribute: attributeOf(reference.element, reference.attribute) as XmlAttribute,
+      }),
     ),
     scopeOf,
   };
@@ -244,17 +245,23 @@ export function carrySemanticModel(previous: SemanticModel, edit: ValueEdit, doc
           nameAttribute: attributeOf(entry.element, entry.nameAttribute),
         };
   model.entities = previous.entities.map(named);
-  const storyboard = new Map<NamedElement, NamedElement>();
-  for (const entry of previous.storyboardElements) {
+  // Only the entries of elements the new tree does not share are copied, and looked up by halves (lists in document order).
+  const copiedEntries = new Map<NamedElement, NamedElement>();
+  const copyEntry = (entry: NamedElement) => {
     const copy = named(entry);
-    storyboard.set(entry, copy);
-    model.storyboardElements.push(copy);
-  }
+    copiedEntries.set(entry, copy);
+    return copy;
+  };
+  model.storyboardElements = edit.carriedEntries(previous.storyboardElements, (entry) => entry.element, copyEntry);
   for (const [name, entries] of previous.storyboardByName)
     model.storyboardByName.set(
       name,
       // Entries taken as they are keep their list (it is only read once built).
-      entries.every((entry) => storyboard.get(entry) === entry) ? entries : entries.map((entry) => storyboard.get(entry) as NamedElement),
+      edit.carriedEntries(
+        entries,
+        (entry) => entry.element,
+        (entry) => copiedEntries.get(entry) as NamedElement,
+      ),
     );
 
   // Declarations, in the order they were made; the edited one (its value) is read again.

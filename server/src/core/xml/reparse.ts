@@ -65,6 +65,11 @@ export interface ValueEdit {
    * after it when it moved them, are looked at: a keystroke does not walk every element of a large index.
    */
   counterparts(elements: XmlElement[]): XmlElement[];
+  /**
+   * The same for an index whose entries name an element each, in document order of their elements (several
+   * entries may name one): each entry naming an element not shared replaced by `carry(entry)`, the list itself when none is.
+   */
+  carriedEntries<T>(entries: T[], elementOfEntry: (entry: T) => XmlElement, carry: (entry: T) => T): T[];
   /** The new tree's counterpart of an attribute of an element of the previous tree. */
   attributeOf(previousElement: XmlElement, previous: XmlAttribute): XmlAttribute;
   /** An offset of the previous text in the new text. */
@@ -176,6 +181,7 @@ export function reparseValueEdit(previous: XmlDocument, text: string): XmlDocume
     return result;
   };
   const root = copy(previous.root, undefined);
+  const movedFrom = delta === 0 ? undefined : removedEnd;
   const document = documentOf(text, root, previous.entities);
   const elementOf = counterpartsIn(copies, shared);
   const newElement = elementOf(editedElement);
@@ -191,7 +197,8 @@ export function reparseValueEdit(previous: XmlDocument, text: string): XmlDocume
     attribute: editedCopy as XmlAttribute,
     elementOf,
     shared,
-    counterparts: (elements) => counterpartsInOrder(elements, holding, delta === 0 ? undefined : removedEnd, elementOf),
+    counterparts: (elements) => carriedInOrder(elements, (element) => element, elementOf, holding, movedFrom),
+    carriedEntries: (entries, elementOfEntry, carry) => carriedInOrder(entries, elementOfEntry, carry, holding, movedFrom),
     attributeOf: (sourceElement, source) =>
       (source.nameStart < removedEnd || delta === 0) && source !== target
         ? source
@@ -216,31 +223,27 @@ function documentOf(text: string, root: XmlElement, entities: ReadonlyMap<string
   };
 }
 
-/** The index of the first of `elements` (in document order) starting at or after `offset`. */
-function firstStartingAt(elements: readonly XmlElement[], offset: number): number {
-  return partitionPoint(elements.length, (index) => elements[index].start < offset);
-}
-
 /**
- * `elements` (of the previous tree, in document order) with each one not shared replaced by its
- * counterpart: those of `holding` (the elements holding the edit), and every one starting at or after
- * `movedFrom` when the edit moved them. Found by halves, as an element's start is unique and grows in document order.
+ * `entries` (naming elements of the previous tree, in document order) with each one naming an element not
+ * shared replaced by `carry(entry)`: an element of `holding` (those holding the edit), or one starting at or
+ * after `movedFrom` when the edit moved them. Found by halves, as an element's start is unique and grows in document order.
  */
-function counterpartsInOrder(
-  elements: XmlElement[],
+function carriedInOrder<T>(
+  entries: T[],
+  elementOfEntry: (entry: T) => XmlElement,
+  carry: (entry: T) => T,
   holding: readonly XmlElement[],
   movedFrom: number | undefined,
-  elementOf: (source: XmlElement) => XmlElement,
-): XmlElement[] {
-  let result: XmlElement[] | undefined;
-  for (const element of holding) {
-    const index = firstStartingAt(elements, element.start);
-    if (elements[index] === element) (result ??= elements.slice())[index] = elementOf(element);
-  }
+): T[] {
+  let result: T[] | undefined;
+  const firstStartingAt = (offset: number) => partitionPoint(entries.length, (index) => elementOfEntry(entries[index]).start < offset);
+  for (const element of holding)
+    for (let index = firstStartingAt(element.start); index < entries.length && elementOfEntry(entries[index]) === element; index++)
+      (result ??= entries.slice())[index] = carry(entries[index]);
   if (movedFrom !== undefined)
-    for (let index = firstStartingAt(elements, movedFrom); index < elements.length; index++)
-      (result ??= elements.slice())[index] = elementOf(elements[index]);
-  return result ?? elements;
+    for (let index = firstStartingAt(movedFrom); index < entries.length; index++)
+      (result ??= entries.slice())[index] = carry(entries[index]);
+  return result ?? entries;
 }
 
 /** The counterpart of an element of the previous tree: itself when shared (not holding the edit, its offsets kept), else its copy. */
