@@ -228,7 +228,9 @@ export class Flattener {
     const carry = LinkCarry.of(model.document, valueEdit, model.references.length, this, result.ref, stack);
     const problemsOfLinks: Problem[][] = [];
     const carriedChecks: (ReferenceCheckResults | undefined)[] = [];
-    for (const [index, reference] of model.references.entries()) {
+    // By index: an entries() iterator makes a pair for each reference on each edit.
+    for (let index = 0; index < model.references.length; index++) {
+      const reference = model.references[index];
       const carried = carry?.carry(index, reference);
       const firstProblem = result.problems.length;
       let linked: LinkedReference;

@@ -253,16 +253,20 @@ export function carrySemanticModel(previous: SemanticModel, edit: ValueEdit, doc
     return copy;
   };
   model.storyboardElements = edit.carriedEntries(previous.storyboardElements, (entry) => entry.element, copyEntry);
-  for (const [name, entries] of previous.storyboardByName)
-    model.storyboardByName.set(
-      name,
-      // Entries taken as they are keep their list (it is only read once built).
-      edit.carriedEntries(
-        entries,
-        (entry) => entry.element,
-        (entry) => copiedEntries.get(entry) as NamedElement,
-      ),
-    );
+  // Only the lists by name holding a copied entry change; the others are taken as they are (a file may name hundreds).
+  model.storyboardByName = new Map(previous.storyboardByName);
+  for (const { name } of copiedEntries.keys()) {
+    const entries = previous.storyboardByName.get(name);
+    if (entries)
+      model.storyboardByName.set(
+        name,
+        edit.carriedEntries(
+          entries,
+          (entry) => entry.element,
+          (entry) => copiedEntries.get(entry) as NamedElement,
+        ),
+      );
+  }
 
   // Declarations, in the order they were made; the edited one (its value) is read again.
   const declarations = new Map<Declaration, Declaration>();
