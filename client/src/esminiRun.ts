@@ -160,7 +160,9 @@ export class EsminiRunner implements vscode.Disposable {
     if (result.esmini) this.output.appendLine(`${result.esmini} ${(result.args ?? []).join(' ')}`);
     if (result.csvFile) this.output.appendLine(`CSV: ${result.csvFile}`);
     if (result.roadFile)
-      this.output.appendLine(`Road: ${result.roadFile.filepath} -> ${result.roadFile.loaded ?? result.roadFile.resolved ?? 'not found'}`);
+      this.output.appendLine(
+        `Road: ${result.roadFile.filepath} -> ${result.roadFile.loaded ?? result.roadFile.resolved ?? 'not found'}${result.roadFile.packaged ? ` (a copy of ${result.roadFile.packaged})` : ''}`,
+      );
     for (const remark of result.remarks ?? [])
       this.output.appendLine(
         `info: ${remark.message}${remark.count > 1 ? ` (${remark.count} times)` : ''}: esmini's remark about its own files, not the scenario (${remark.why}; ${remark.origin})`,

@@ -290,8 +290,11 @@ export interface RunEsminiResult {
   args?: string[];
   /** What esmini said about its own road files and 3D models (the esmini source that prints it, and why it is harmless): information only. */
   remarks?: EsminiRemarkSummary[];
-  /** The road file: as written, the file given to esmini (the one the bird's-eye view draws), and the one esmini's log says it loaded. */
-  roadFile?: { filepath: string; resolved?: string; loaded?: string };
+  /**
+   * The road file: as written, the file given to esmini (the one the bird's-eye view draws) or the package entry whose copy
+   * it was given (a road packed with the scenario), and the one esmini's log says it loaded.
+   */
+  roadFile?: { filepath: string; resolved?: string; packaged?: string; loaded?: string };
 }
 
 /** A message esmini prints about its own files, never about the scenario (server/src/esmini/log.ts). */

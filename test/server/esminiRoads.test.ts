@@ -9,6 +9,7 @@ import { removeRunFolder, runScenario } from '../../server/src/esmini/run';
 import { esminiBinary, esminiRoads, requireEsmini } from '../support/esmini';
 import { decoyRoad, MODULAR_RUN, modularRunWorkspace } from '../support/modularRun';
 import { repoRoot } from '../support/paths';
+import { packageOf } from '../support/fixtures';
 import { temporaryWorkspace } from '../support/workspace';
 import { fileUri, TestClient } from './harness';
 
@@ -192,4 +193,62 @@ describe('esmini: the bundled examples run without a warning', function () {
       }
     }
   });
+});
+
+describe("language server: a road packed in the scenario's .mosc (a self-contained package)", function () {
+  this.timeout(120_000);
+  let root: string;
+  let client: TestClient;
+
+  beforeEach(async () => {
+    // The package holds its scenario (esmini's cut-in on e6mini) and the road beside it; beside the package on disk lies a
+    // decoy of that name (a straight road, on which the cut-in's positions fail), which flattening never reaches.
+    const scenario = fs
+      .readFileSync(path.join(repoRoot, 'test', 'fixtures', 'modularRun', MODULAR_RUN.simple), 'utf8')
+      .replace('<LogicFile filepath="../xodr/e6mini.xodr"/>', '<LogicFile filepath="e6mini.xodr"/>');
+    assert.match(scenario, /<LogicFile filepath="e6mini\.xodr"\/>/);
+    root = temporaryWorkspace(
+      {
+        'pkg.mosc': await packageOf({
+          'main.xosc': scenario,
+          'e6mini.xodr': fs.readFileSync(path.join(esminiRoads, 'e6mini.xodr'), 'utf8'),
+        }),
+      },
+      'm2s-server-packed-road-',
+    );
+    client = await TestClient.start({ root });
+    await client.indexed();
+  });
+  afterEach(async () => {
+    await client.stop();
+    fs.rmSync(root, { recursive: true, force: true });
+  });
+
+  const uri = () => `mosc:${path.join(root, 'pkg.mosc')}/main.xosc`;
+  const packagedRoad = () => `${path.join(root, 'pkg.mosc')}/e6mini.xodr`;
+
+  for (const decoy of [false, true])
+    it(`the picture draws the package's road and Run in esmini loads its copy, with no warning${decoy ? ' (a same-named road beside the package is not taken)' : ''}`, async function () {
+      requireEsmini(this);
+      if (decoy) decoyRoad(root);
+      const picture = (await client.connection.sendRequest(SceneRequest, { uri: uri(), roadPath: [] })) as SceneResult;
+      assert.deepEqual(picture.problems, [], 'the picture places every entity on the road it draws');
+      assert.equal(picture.roadFile?.resolved, packagedRoad());
+      assert.equal(picture.roadFile?.roadCount, 1);
+      assert.ok(picture.sections.length > 0, 'the road is drawn');
+      const result = (await client.send(RunEsminiRequest, {
+        uri: uri(),
+        esminiPath: esminiBinary,
+        roadPath: [],
+        duration: 4,
+      })) as RunEsminiResult;
+      assert.equal(result.outcome, 'ok', `${result.message}\n${JSON.stringify(result.problems, null, 1)}`);
+      assert.deepEqual(
+        result.problems.map((problem) => problem.message),
+        [],
+      );
+      assert.match(result.message, /^esmini: 0 errors, 0 warnings; 4\.00 s simulated/);
+      assert.match(result.roadFile?.loaded ?? '', /scenario\.files\/e6mini\.xodr$/);
+      assert.equal(result.roadFile?.packaged, packagedRoad());
+    });
 });

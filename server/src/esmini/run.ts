@@ -3,7 +3,7 @@ import * as os from 'node:os';
 import * as path from 'node:path';
 import { Flattener, FlatSource } from '../core/flatten';
 import { Problem } from '../core/problems';
-import { locateRoadFile, RoadFileLookup, roadFolders, scenarioFolderOf } from '../core/semantics/roadFiles';
+import { foundRoadName, locateRoadFile, logicFileOf, RoadFileLookup, roadFolders, scenarioFolderOf } from '../core/semantics/roadFiles';
 import { Evaluator, semanticModelOf } from '../core/semantics/model';
 import { diskRef, nodeFileSystem, ScenarioStore, SourceRef } from '../core/sources';
 import { CatalogLoader } from '../core/semantics/catalogs';
@@ -112,6 +112,8 @@ export interface RunRoadFile {
   filepath: string;
   /** Absolute: the file the bird's-eye view draws too (core/semantics/roadFiles.ts); undefined when not found. */
   resolved?: string;
+  /** The package entry holding the road (`/w/pkg.mosc/road.xodr`), which the run writes beside the scenario and the bird's-eye view draws. */
+  packaged?: string;
   /** Every path looked at, in order. */
   candidates: string[];
   /** From esmini's log (`Loaded OpenDRIVE:`): the file it read. */
@@ -290,8 +292,16 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
   const folders = roadFolders(options.roadPath, options.base ?? process.cwd());
   const { searchPath, road } = await esminiFolders(flattener, main, flat.source, folders);
   const roadFile: RunRoadFile | undefined = road
-    ? { filepath: road.logic.filepath, resolved: road.resolved, candidates: road.candidates }
+    ? {
+        filepath: road.logic.filepath,
+        resolved: road.resolved,
+        ...(road.packaged ? { packaged: foundRoadName(road) } : {}),
+        candidates: road.candidates,
+      }
     : undefined;
+  // What esmini is handed: the file found on disk, or the copy of the package's road that the flattened text names in the run folder.
+  const copied = road?.packaged ? logicFileOf(parseXml(flat.text))?.filepath : undefined;
+  const handed = road?.resolved ?? (copied === undefined ? undefined : path.resolve(runFolder, copied));
   const limit = runLimit(flat.text, options.duration, options.durationSetBy);
   const duration = limit.seconds;
   const limited = withTimeLimit(road?.resolved ? withRoadFile(flat.text, road.resolved) : flat.text, duration);
@@ -313,9 +323,10 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
   const log = readEsminiLog(ran.run.output);
   if (roadFile) roadFile.loaded = parseEsminiLoadedRoad(ran.run.output);
   // Handed an absolute path, esmini loads that file; should it load another (none was found here), the run and the picture differ: said on the LogicFile.
-  if (roadFile?.loaded && path.resolve(runFolder, roadFile.loaded) !== roadFile.resolved) {
-    const drawn = roadFile.resolved
-      ? `the bird's-eye view draws ${roadFile.resolved}`
+  if (roadFile?.loaded && path.resolve(runFolder, roadFile.loaded) !== handed) {
+    const shown = roadFile.resolved ?? roadFile.packaged;
+    const drawn = shown
+      ? `the bird's-eye view draws ${shown}`
       : `the bird's-eye view found none (looked for ${roadFile.candidates.join(', ')})`;
     log.messages.unshift({
       level: 'warn',

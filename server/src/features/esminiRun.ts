@@ -96,7 +96,14 @@ export class EsminiRuns {
       args: result.args,
       remarks: result.remarks.map((remark) => ({ message: remark.text, count: remark.count, origin: remark.origin, why: remark.why })),
       ...(result.roadFile
-        ? { roadFile: { filepath: result.roadFile.filepath, resolved: result.roadFile.resolved, loaded: result.roadFile.loaded } }
+        ? {
+            roadFile: {
+              filepath: result.roadFile.filepath,
+              resolved: result.roadFile.resolved,
+              ...(result.roadFile.packaged ? { packaged: result.roadFile.packaged } : {}),
+              loaded: result.roadFile.loaded,
+            },
+          }
         : {}),
     };
   }

@@ -3,7 +3,7 @@ import { elementPlace } from '../analysis';
 import { FlatSource } from '../core/flatten';
 import { MAX_ROAD_FILE_BYTES, parseOpenDrive, RoadNetwork } from '../core/opendrive/road';
 import { sampleNetwork } from '../core/opendrive/sample';
-import { logicFileOf, roadFolders, scenarioFolderOf } from '../core/semantics/roadFiles';
+import { foundRoadName, logicFileOf, readFoundRoad, roadFolders, scenarioFolderOf } from '../core/semantics/roadFiles';
 import { scenarioScene } from '../core/scene';
 import { analyzeDocument } from '../core/semantics';
 import { baseName, displayRef, nodeFileSystem } from '../core/sources';
@@ -81,16 +81,17 @@ export async function buildScene(workspace: Workspace, roads: RoadNetworkCache, 
   let sections: SectionPolylines[] = [];
   let roadFile: SceneResult['roadFile'];
   if (road) {
-    const { resolved, candidates } = road;
+    // A file on disk, or the entry of the scenario's package that a run writes beside the flattened scenario.
+    const resolved = foundRoadName(road);
     const filepath = road.logic.filepath;
     roadFile = { filepath, resolved, roadCount: 0, source: locationOf(workspace, source, shownLogic?.element, 'filepath') };
     if (!resolved) {
       problems.push(
-        `road file "${filepath}" not found; looked for ${candidates.join(', ')}. Add its folder to the setting modular2simple.esmini.roadPath.`,
+        `road file "${filepath}" not found; looked for ${road.candidates.join(', ')}. Add its folder to the setting modular2simple.esmini.roadPath.`,
       );
     } else {
       // Read fresh from disk (a road file may change), bounded, and refused when not a regular file (a FIFO, a device), so that a road file never hangs the server.
-      const read = await nodeFileSystem.readFile(resolved, MAX_ROAD_FILE_BYTES + 1).then(
+      const read = await readFoundRoad(workspace.store, road, MAX_ROAD_FILE_BYTES, nodeFileSystem).then(
         (bytes) => ({ bytes, error: undefined }),
         (error: Error) => ({ bytes: undefined, error: error.message }),
       );

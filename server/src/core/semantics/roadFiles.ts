@@ -4,7 +4,7 @@
  */
 import * as path from 'node:path';
 import { CARLA_TOWNS } from '../profiles/scenarioRunner';
-import { FileSystemHost, normalizeEntryName, ScenarioStore, SourceRef } from '../sources';
+import { childRef, displayRef, FileSystemHost, normalizeEntryName, ScenarioStore, SourceRef } from '../sources';
 import { XmlAttribute, XmlDocument, XmlElement } from '../xml';
 // The model module, not the semantics index: the index runs the checks, whose road rules read road files through this one.
 import { Evaluator, semanticModelOf } from './model';
@@ -63,10 +63,13 @@ export interface RoadFileLookup {
   /** The LogicFile, its filepath evaluated. */
   logic: LogicFile;
   attribute: XmlAttribute;
-  /** The first candidate that is a file, absolute; undefined when none is (or it is a file of the scenario's package). */
+  /** The first candidate that is a file, absolute; undefined when none is, or when the scenario's package holds the road (`packaged`). */
   resolved?: string;
-  /** A file of the package that holds the scenario (a self-contained package's road): a run writes it beside the scenario. */
-  packaged: boolean;
+  /**
+   * The road as an entry of the package that holds the scenario (a self-contained package's road), looked at before the disk as
+   * flattening does (flatten/rebase.ts): a flattened output and a run get its copy beside them, the bird's-eye view reads it there.
+   */
+  packaged?: SourceRef;
   /** The folders looked in, in order: the scenario's, the road folders, the catalog folders. */
   folders: string[];
   /** Every path looked at, in order (`roadFileCandidates`). */
@@ -75,15 +78,36 @@ export interface RoadFileLookup {
   carlaTown: boolean;
 }
 
-/** Whether `filepath`, written in a file inside a package, names a file of that package. */
-async function inOwnPackage(store: ScenarioStore, ref: SourceRef, filepath: string): Promise<boolean> {
-  if (ref.entries.length === 0 || path.isAbsolute(filepath)) return false;
+/** The entry of the package holding the file `ref` that `filepath`, written in that file, names; undefined when it names none. */
+async function inOwnPackage(store: ScenarioStore, ref: SourceRef, filepath: string): Promise<SourceRef | undefined> {
+  if (ref.entries.length === 0 || path.isAbsolute(filepath)) return undefined;
   const entry = ref.entries[ref.entries.length - 1];
   const folder = entry.includes('/') ? entry.slice(0, entry.lastIndexOf('/') + 1) : '';
   const name = normalizeEntryName(`${folder}${filepath.replace(/\\/g, '/')}`);
-  if (!name) return false;
-  const contents = await store.readPackage({ disk: ref.disk, entries: ref.entries.slice(0, -1) }).catch(() => undefined);
-  return contents?.entries.has(name) ?? false;
+  if (!name) return undefined;
+  const packageRef: SourceRef = { disk: ref.disk, entries: ref.entries.slice(0, -1) };
+  const contents = await store.readPackage(packageRef).catch(() => undefined);
+  return contents?.entries.has(name) ? childRef(packageRef, name) : undefined;
+}
+
+/** The road a lookup found as messages name it: the file, or the package entry (`/w/pkg.mosc/road.xodr`); undefined when none was found. */
+export function foundRoadName(road: Pick<RoadFileLookup, 'resolved' | 'packaged'>): string | undefined {
+  return road.resolved ?? (road.packaged ? displayRef(road.packaged, undefined) : undefined);
+}
+
+/**
+ * The bytes of the road a lookup found, read afresh (a road file may change), at most `maxBytes + 1` so that the caller can
+ * tell a file too large; undefined when none was found. A file on disk is read through `files` (the bird's-eye view reads
+ * the disk, not the store's cache); a package entry through the store. Throws when the file cannot be read.
+ */
+export async function readFoundRoad(
+  store: ScenarioStore,
+  road: Pick<RoadFileLookup, 'resolved' | 'packaged'>,
+  maxBytes: number,
+  files: Pick<FileSystemHost, 'readFile'> = store.host,
+): Promise<Uint8Array | undefined> {
+  if (road.resolved) return files.readFile(road.resolved, maxBytes + 1);
+  return road.packaged ? store.readBytes(road.packaged) : undefined;
 }
 
 /**
@@ -110,8 +134,9 @@ export async function locateRoadFile(
   const scenarioFolder = scenarioFolderOf(ref);
   const folders = [...new Set([scenarioFolder, ...store.catalogPath, ...catalogFolders])];
   const candidates = roadFileCandidates(filepath, scenarioFolder, folders.slice(1));
+  const packaged = await inOwnPackage(store, ref, filepath);
   let resolved: string | undefined;
-  for (const candidate of candidates) {
+  for (const candidate of packaged ? [] : candidates) {
     if ((await files.kind(candidate)) !== 'file') continue;
     resolved = candidate;
     break;
@@ -120,7 +145,7 @@ export async function locateRoadFile(
     logic: { filepath, element: found.element },
     attribute: found.written,
     resolved,
-    packaged: resolved === undefined && (await inOwnPackage(store, ref, filepath)),
+    ...(packaged ? { packaged } : {}),
     folders,
     candidates,
     carlaTown: CARLA_TOWNS.includes(filepath.trim()),

@@ -1,12 +1,12 @@
 import { MAX_ROAD_FILE_BYTES, parseOpenDrive } from '../opendrive/road';
-import { RoadFileLookup } from './roadFiles';
+import { foundRoadName, readFoundRoad, RoadFileLookup } from './roadFiles';
 import { ScenarioStore } from '../sources';
 import { decodeUtf8 } from '../text';
 import { CORE_MEMOS, coreMemo } from '../memos';
 
 /** What the road-network rules need of the OpenDRIVE file a scenario names (its `RoadNetwork/LogicFile`). */
 export interface RoadSignals {
-  /** The road file, absolute. */
+  /** The road file, absolute, or the package entry that holds it (`foundRoadName`). */
   file: string;
   signalIds: ReadonlySet<string>;
 }
@@ -36,21 +36,21 @@ function memoryOf(store: ScenarioStore): RoadMemory {
  * core/semantics/roadFiles.ts). Undefined when the document names none or it cannot be found or read: the road rules then say nothing.
  */
 export async function roadSignalsOf(store: ScenarioStore, road: RoadFileLookup | undefined): Promise<RoadSignals | undefined> {
-  const resolved = road?.resolved;
-  if (!resolved) return undefined;
+  const file = road && foundRoadName(road);
+  if (!road || !file) return undefined;
   const known = memoryOf(store).reads;
   const now = Date.now();
-  let entry = known.get(resolved);
+  let entry = known.get(file);
   if (!entry || now - entry.readAt > FRESH_MS) {
-    entry = { readAt: now, pending: readRoadSignals(store, resolved) };
-    known.set(resolved, entry);
+    entry = { readAt: now, pending: readRoadSignals(store, road, file) };
+    known.set(file, entry);
   }
   return entry.pending;
 }
 
-async function readRoadSignals(store: ScenarioStore, file: string): Promise<RoadSignals | undefined> {
+async function readRoadSignals(store: ScenarioStore, road: RoadFileLookup, file: string): Promise<RoadSignals | undefined> {
   // Unreadable (too large, not a regular file, gone): not a problem of these rules.
-  const bytes = await store.host.readFile(file, MAX_ROAD_FILE_BYTES + 1).catch(() => undefined);
+  const bytes = await readFoundRoad(store, road, MAX_ROAD_FILE_BYTES).catch(() => undefined);
   if (!bytes || bytes.byteLength > MAX_ROAD_FILE_BYTES) return undefined;
   // Loaded here, not with the module: a run that reads no road file (most CLI runs) does not pay for Node's crypto.
   const { createHash } = await import('node:crypto');
