@@ -135,6 +135,8 @@ export class LinkCarry {
   checksOf(index: number): ReferenceCheckResults | undefined {
     const before = this.previous.checks?.results[index];
     if (!before) return undefined;
+    // Nothing to move (most references): the same results, not a new object per reference and edit.
+    if (before.entity.length === 0 && before.override.length === 0) return before;
     return { entity: this.movedProblems(before.entity), override: this.movedProblems(before.override) };
   }
 

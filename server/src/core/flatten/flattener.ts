@@ -244,7 +244,7 @@ export class Flattener {
       problemsOfLinks.push(linkProblems(result.problems, firstProblem, result.problems.length));
       result.links.push(linked);
       if (linked.source) {
-        childProblems.push(...linked.source.allProblems);
+        if (linked.source.allProblems.length > 0) childProblems.push(...linked.source.allProblems);
         for (const dependency of linked.source.dependencies) {
           const id = refId(dependency);
           if (!dependencyIds.has(id)) {
