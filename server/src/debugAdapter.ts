@@ -6,6 +6,8 @@ import { mapProgressPage } from './debug/progressPage';
 import { progressWriter, SESSION_ARGUMENT, superviseSession } from './debug/supervisor';
 
 if (process.argv.includes(SESSION_ARGUMENT)) {
-  reportProgressTo(progressWriter(), mapProgressPage());
+  const page = mapProgressPage();
+  // The progress into the page shared with the supervisor where there is one (a store), else as lines to its pipe.
+  reportProgressTo(page ? (progress) => page.progress(progress) : progressWriter(), page);
   DebugSession.run(ScenarioDebugSession);
 } else superviseSession(process.argv[1]);

@@ -6,6 +6,7 @@ import {
   mapProgressPage,
   pauseCounter,
   PROGRESS_PAGE_BYTES,
+  readPageProgress,
   readProgressPage,
 } from '../../server/src/debug/progressPage';
 import { temporaryFolder } from '../support/temporaryDirectory';
@@ -26,6 +27,26 @@ describe('debug session progress page', () => {
     counter.steps(104);
     assert.equal(readProgressPage(file)?.toFixed(2), '5.20');
     assert.equal(readProgressPage(path.join(path.dirname(file), 'absent')), undefined);
+  });
+
+  it('gives the supervisor the last progress the session stored, its text whole or cut at a character', function () {
+    if (process.platform === 'win32') this.skip();
+    const file = path.join(temporaryFolder(), 'progress-page');
+    makeProgressPage(file);
+    assert.equal(readPageProgress(file), undefined, 'a page of zeros says nothing');
+    const session = mapProgressPage(file);
+    assert.ok(session);
+    session.start(0.05);
+    session.steps(60);
+    session.progress({ time: 3.05, what: 'Event ÜberholEvent standby' });
+    assert.deepEqual(readPageProgress(file), { time: 3.05, what: 'Event ÜberholEvent standby' });
+    session.progress({ time: 3.1, what: 'Act A running' });
+    assert.deepEqual(readPageProgress(file), { time: 3.1, what: 'Act A running' }, 'a shorter text after a longer one');
+    assert.equal(readProgressPage(file)?.toFixed(2), '3.00', 'the step count is left alone');
+    // Longer than the page holds: cut before the character that does not fit whole (ü is two bytes).
+    session.progress({ time: 4, what: `${'x'.repeat(PROGRESS_PAGE_BYTES - 64 - 1)}ü` });
+    assert.equal(readPageProgress(file)?.what, 'x'.repeat(PROGRESS_PAGE_BYTES - 64 - 1));
+    assert.equal(readPageProgress(path.join(path.dirname(file), 'absent')), undefined);
   });
 
   it("shows the session each pause request the supervisor counts into the file, through the session's mapping", function () {

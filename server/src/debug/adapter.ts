@@ -15,6 +15,7 @@ import {
 import { DebugProtocol } from '@vscode/debugprotocol';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
+import type { Writable } from 'node:stream';
 import { DEBUG_STATE_EVENT, DebugState } from '../../../common/src/debugState';
 import { Flattener } from '../core/flatten';
 import { MappedElement } from '../core/flatten/storyboardMap';
@@ -146,6 +147,13 @@ export class ScenarioDebugSession extends DebugSession {
   private lastStateAt = 0;
   /** The run of the scenario: 1 from the launch, one more at each restart (StoryboardEventBody.run). */
   private runNumber = 0;
+  /** The stream the protocol is written to (stdout, a pipe, as the editor or the supervisor starts the session). */
+  private protocolOut: Partial<Pick<Writable, 'cork' | 'uncork'>> | undefined;
+
+  override start(inStream: NodeJS.ReadableStream, outStream: NodeJS.WritableStream): void {
+    this.protocolOut = outStream as Partial<Writable>;
+    super.start(inStream, outStream);
+  }
 
   constructor() {
     super();
@@ -446,7 +454,10 @@ export class ScenarioDebugSession extends DebugSession {
     simulation.release();
     // Pause requests the supervisor counted before this run are answered (a pause while stopped does nothing).
     const pausesBefore = sessionPage?.pauseRequests();
-    /** Steps between two reads of the clock in a slice. */
+    /**
+     * Steps between two reads of the clock in a slice: doubled while a read finds the millisecond of the read before, halved
+     * when more than one passed, so about one read a millisecond from the run's first slice on.
+     */
     let stride = 1;
     const pause = () =>
       this.stopWith({ reason: 'pause', description: `Paused at ${fixed(simulation.time)} s`, firings: [], breakpointIds: [] });
@@ -465,13 +476,14 @@ export class ScenarioDebugSession extends DebugSession {
         const timed = this.functionBreakpoints.some((breakpoint) => breakpoint.time !== undefined && !breakpoint.done);
         // esmini's state at a step's start is kept only while a stop there may come: it costs esmini calls in each step that reports something.
         simulation.keepStepStart = mode === 'next' || mode === 'stepOut' || this.breaksOnElements();
-        const until = Date.now() + SLICE_MS;
-        const stepsBefore = simulation.stepsMade;
-        // One step at a time while each step may stop (Step Into, a time breakpoint), else up to a stride of steps.
-        const perCall = mode === 'step' || timed ? 1 : stride;
+        let clock = Date.now();
+        const until = clock + SLICE_MS;
+        let clockAt = simulation.stepsMade + stride;
+        // One step a call while each step may stop (Step Into, a time breakpoint), else a stride of steps.
+        const oneByOne = mode === 'step' || timed;
         do {
           if (simulation.ended) return this.finished(simulation);
-          const events = simulation.stepMany(perCall, pauseCounted);
+          const events = simulation.stepMany(oneByOne ? 1 : stride, pauseCounted);
           // Most steps report nothing: no breakpoint to weigh unless a time breakpoint is due (bench/debugger.mjs).
           if (events.length > 0 || mode === 'step' || (timed && this.timeBreakpointDue(simulation))) {
             this.report(events);
@@ -479,9 +491,14 @@ export class ScenarioDebugSession extends DebugSession {
             if (stop) return this.stopWith(stop);
           }
           if (pauseCounted()) return pause();
-        } while (Date.now() < until);
-        // The clock read about a hundred times a slice: a read costs a twentieth of a small scenario's step (docs/benchmarks.md).
-        stride = Math.min(64, Math.max(1, Math.floor((simulation.stepsMade - stepsBefore) / 100)));
+          if (simulation.stepsMade < clockAt) continue;
+          // A read of the clock costs a twentieth of a small scenario's step (docs/benchmarks.md).
+          const now = Date.now();
+          if (now === clock) stride = Math.min(64, stride * 2);
+          else if (now - clock > 1) stride = Math.max(1, stride >> 1);
+          clock = now;
+          clockAt = simulation.stepsMade + stride;
+        } while (clock < until);
         if (Date.now() - this.lastStateAt >= STATE_INTERVAL_MS) this.publishState(simulation, false);
         setImmediate(slice);
       } catch (error) {
@@ -695,13 +712,20 @@ export class ScenarioDebugSession extends DebugSession {
    * carries in `data` when esmini reported it (the monotonic clock's ms), from which a client measures the pause latency.
    */
   private report(events: readonly StoryboardEvent[]): void {
-    for (const event of events) {
-      const where = event.mapped ? { source: event.mapped.source, line: event.mapped.range.start.line } : undefined;
-      const data = event.reportedAtMs === undefined ? undefined : { element: event.element, reportedAtMs: event.reportedAtMs };
-      this.output(`[${fixed(event.time)}] ${describeEvent(event)}\n`, 'console', where, data);
+    if (events.length === 0) return;
+    // A step's messages in one write, not one each: a write to the pipe is a system call that wakes the reader.
+    this.protocolOut?.cork?.();
+    try {
+      for (const event of events) {
+        const where = event.mapped ? { source: event.mapped.source, line: event.mapped.range.start.line } : undefined;
+        const data = event.reportedAtMs === undefined ? undefined : { element: event.element, reportedAtMs: event.reportedAtMs };
+        this.output(`[${fixed(event.time)}] ${describeEvent(event)}\n`, 'console', where, data);
+      }
+      // The storyboard timeline follows the session: the same records as run --trace, files as absolute paths.
+      this.sendStoryboard(events);
+    } finally {
+      this.protocolOut?.uncork?.();
     }
-    // The storyboard timeline follows the session: the same records as run --trace, files as absolute paths.
-    if (events.length > 0) this.sendStoryboard(events);
   }
 
   private sendStoryboard(events: readonly StoryboardEvent[]): void {

@@ -1,5 +1,6 @@
 import * as fs from 'node:fs';
 import * as os from 'node:os';
+import type { SessionProgress } from './supervisor';
 
 /*
  * A page of memory shared by a debug session's process and its supervisor (supervisor.ts), written by one side and read
@@ -12,6 +13,9 @@ import * as os from 'node:os';
  * whose pages hold what the child last stored. A step costs esmini microseconds; a progress line written at every
  * step (a system call) would cost about as much as the step.
  *
+ * The session's progress (the last storyboard transition or condition it reported, and its time) goes there too, at
+ * each of esmini's callbacks: a store, where a line to the supervisor's pipe was a system call and woke the supervisor.
+ *
  * The other way, the pause requests: the supervisor reads the editor's requests before the session does, and counts
  * each pause into the page (a write to the file, which the session's shared mapping sees); the session, stepping esmini
  * without returning to its event loop for milliseconds at a time, reads the count after every step and stops at once.
@@ -22,11 +26,18 @@ export const PROGRESS_PAGE_ENV = 'MODULAR2SIMPLE_PROGRESS_PAGE';
 /** The page's size, bytes: the file the supervisor makes and the child maps. */
 export const PROGRESS_PAGE_BYTES = 4096;
 
-/** The page's slots (Float64): the steps made in the run, its time step, a mark that they were written (the session's), and the pause requests (the supervisor's). */
+/**
+ * The page's slots (Float64): the steps made in the run, its time step, a mark that they were written (the session's),
+ * the pause requests (the supervisor's), the progress's time and the length of its text (the session's); the text's
+ * UTF-8 bytes from PROGRESS_TEXT on.
+ */
 const STEPS = 0;
 const TIME_STEP = 1;
 const WRITTEN = 2;
 const PAUSES = 3;
+const PROGRESS_TIME = 4;
+const PROGRESS_LENGTH = 5;
+const PROGRESS_TEXT = 64;
 /** Written into WRITTEN once the session set the time step: a page of zeros says nothing. */
 const MARK = 29.5;
 
@@ -36,9 +47,10 @@ export interface StepCounter {
   steps(count: number): void;
 }
 
-/** The session's side of the page: its step counter, and the pause requests its supervisor has counted so far. */
+/** The session's side of the page: its step counter, its progress, and the pause requests its supervisor has counted so far. */
 export interface SessionPage extends StepCounter {
   pauseRequests(): number;
+  progress(value: SessionProgress): void;
 }
 
 type KoffiModule = typeof import('koffi');
@@ -60,7 +72,10 @@ export function mapProgressPage(file = process.env[PROGRESS_PAGE_ENV]): SessionP
   }
   // MAP_FAILED is (void *)-1.
   if (!pointer || koffi.address(pointer) === BigInt.asUintN(64, -1n)) return undefined;
-  const page = new Float64Array(koffi.view(pointer, PROGRESS_PAGE_BYTES));
+  const memory = koffi.view(pointer, PROGRESS_PAGE_BYTES);
+  const page = new Float64Array(memory);
+  const text = new Uint8Array(memory, PROGRESS_TEXT);
+  const encoder = new TextEncoder();
   return {
     start(timeStep) {
       page[STEPS] = 0;
@@ -72,6 +87,12 @@ export function mapProgressPage(file = process.env[PROGRESS_PAGE_ENV]): SessionP
     },
     pauseRequests() {
       return page[PAUSES];
+    },
+    progress({ time, what }) {
+      // The text first, its length last: a length always measures text written (a longer text is cut at a character).
+      const { written } = encoder.encodeInto(what, text);
+      page[PROGRESS_TIME] = time;
+      page[PROGRESS_LENGTH] = written;
     },
   };
 }
@@ -102,15 +123,28 @@ export function pauseCounter(file: string): () => void {
   };
 }
 
-/** The simulated time the page says the session reached (steps × time step: esmini's time after them), s; undefined when never written. */
-export function readProgressPage(file: string): number | undefined {
-  let bytes: Buffer;
+/** The page file's bytes, as the session left them; undefined when there is none. */
+function pageBytes(file: string): Buffer | undefined {
   try {
-    bytes = fs.readFileSync(file);
+    return fs.readFileSync(file);
   } catch {
     return undefined;
   }
-  if (bytes.length < 3 * 8) return undefined;
+}
+
+/** The progress the session last stored in the page (SessionPage.progress); undefined when it stored none. */
+export function readPageProgress(file: string): SessionProgress | undefined {
+  const bytes = pageBytes(file);
+  if (bytes?.length !== PROGRESS_PAGE_BYTES) return undefined;
+  const length = slotIn(bytes, PROGRESS_LENGTH);
+  if (!(length > 0 && length <= PROGRESS_PAGE_BYTES - PROGRESS_TEXT && Number.isInteger(length))) return undefined;
+  return { time: slotIn(bytes, PROGRESS_TIME), what: bytes.toString('utf8', PROGRESS_TEXT, PROGRESS_TEXT + length) };
+}
+
+/** The simulated time the page says the session reached (steps × time step: esmini's time after them), s; undefined when never written. */
+export function readProgressPage(file: string): number | undefined {
+  const bytes = pageBytes(file);
+  if (bytes === undefined || bytes.length < 3 * 8) return undefined;
   // Each slot read at its offset: a Float64Array over readFileSync's buffer would need it 8-byte aligned, which Node does not promise.
   const slot = (index: number) => slotIn(bytes, index);
   const [steps, timeStep] = [slot(STEPS), slot(TIME_STEP)];

@@ -233,6 +233,9 @@ export class Simulation {
       const errors = problems.filter((problem) => problem.severity === 'error');
       throw new SimulationLoadError(`esmini did not load the scenario: ${errors[0]?.message ?? 'see its log'}`, errors);
     }
+    // The conditions' lines come after what esmini logged loading the scenario: their first read starts there.
+    library.flushLog();
+    this.logOffset = fileSize(this.logFile);
     library.onStoryboardChange((name, type, state, fullPath) => this.transition(name, type, state, fullPath));
     library.onCondition((name, timestamp) => this.conditionFired(name, timestamp));
   }
@@ -463,5 +466,13 @@ export class Simulation {
 
   private removeFolder(): void {
     fs.rmSync(this.folder, { recursive: true, force: true });
+  }
+}
+
+function fileSize(file: string): number {
+  try {
+    return fs.statSync(file).size;
+  } catch {
+    return 0;
   }
 }

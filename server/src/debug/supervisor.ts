@@ -2,7 +2,7 @@ import { ChildProcess, spawn } from 'node:child_process';
 import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
-import { makeProgressPage, pauseCounter, PROGRESS_PAGE_ENV, readProgressPage } from './progressPage';
+import { makeProgressPage, pauseCounter, PROGRESS_PAGE_ENV, readPageProgress, readProgressPage } from './progressPage';
 
 /*
  * The debug adapter's outer process (dist/debugAdapter.js as the editor starts it): it runs the session (adapter.ts),
@@ -189,7 +189,9 @@ export function superviseSession(script: string): void {
   child.on('close', (code, signal) => {
     if ((code === 0 && !signal) || ending) return finish();
     crashed = true;
-    const message = crashMessage(program, { code, signal }, progress, esminiReason(stderrTail), readProgressPage(progressPage));
+    // The session stores its progress in the page when it mapped one, else writes it as lines to PROGRESS_FD.
+    const reported = readPageProgress(progressPage) ?? progress;
+    const message = crashMessage(program, { code, signal }, reported, esminiReason(stderrTail), readProgressPage(progressPage));
     // `important`: VS Code writes it in the Debug Console and shows it as a notification.
     send({ type: 'event', event: 'output', body: { category: 'important', output: `${message}\n` } });
     for (const [requestSeq, command] of pending) answer(requestSeq, command, message);

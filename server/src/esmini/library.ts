@@ -87,7 +87,7 @@ export interface EsminiLibrary {
   logToConsole(on: boolean): void;
   setSeed(seed: number): void;
   initWithString(xml: string): number;
-  stepDT(dt: number): number;
+  stepDT(dt: number): void;
   close(): void;
   simulationTime(): number;
   quitFlag(): number;
@@ -189,7 +189,8 @@ function bind(koffi: KoffiModule, lib: ReturnType<KoffiModule['load']>, file: st
     logToConsole: lib.func('void SE_LogToConsole(bool mode)'),
     setSeed: lib.func('void SE_SetSeed(unsigned int seed)'),
     initWithString: lib.func('int SE_InitWithString(const char *xml, int disable_ctrls, int use_viewer, int threads, int record)'),
-    stepDT: lib.func('int SE_StepDT(double dt)'),
+    // Its result (-1 with no scenario loaded) is not read: declared void, so that no JavaScript value is made for it at each step.
+    stepDT: lib.func('void SE_StepDT(double dt)'),
     close: lib.func('void SE_Close()'),
     simulationTime: lib.func('double SE_GetSimulationTime()'),
     quitFlag: lib.func('int SE_GetQuitFlag()'),
@@ -248,7 +249,7 @@ function bind(koffi: KoffiModule, lib: ReturnType<KoffiModule['load']>, file: st
     logToConsole: (on) => void f.logToConsole(on),
     setSeed: (seed) => void f.setSeed(seed),
     initWithString: (xml) => f.initWithString(xml, 0, 0, 0, 0) as number,
-    stepDT: (dt) => f.stepDT(dt) as number,
+    stepDT: (dt) => void f.stepDT(dt),
     close: () => {
       f.close();
       for (const handle of [storyboardHandle, conditionHandle]) if (handle) koffi.unregister(handle as never);
