@@ -171,7 +171,7 @@ export const CORE_MEMOS = {
     holds: "the document's elements by name, for the network checks",
     bound: WITH_KEY,
     invalidated:
-      "never: a new model is a new key; a model carried over an in-value edit takes the previous model's lists, each element its counterpart (a list wholly before the edit as it is)",
+      "never: a new model is a new key; a model carried over an in-value edit takes the previous model's lists, each element its counterpart (`ValueEdit.counterparts`: only the elements holding the edit, and those after it when it moved them, looked up by halves; a list holding none of them as it is)",
   },
   namedSiblings: {
     where: '`namedSiblings` (`core/semantics/elementIndex.ts`)',
