@@ -6,6 +6,8 @@ import { ExportForCarlaRequest, type ProblemSummary } from '../../common/src/pro
 import { fileUri, TestClient } from '../server/harness';
 import { SERVER_WAIT_MS } from '../support/wait';
 import { lineMatching } from '../support/carla';
+import { esminiRoads } from '../support/esmini';
+import { drivingScenario, packageOf } from '../support/fixtures';
 import { repoRoot } from '../support/paths';
 import { temporaryWorkspace } from '../support/workspace';
 
@@ -143,5 +145,30 @@ describe("Export for CARLA over JSON-RPC: roads from modular2simple.esmini.roadP
     }
     assert.equal(result.written, output, JSON.stringify(result.problems, null, 1));
     assert.match(fs.readFileSync(output, 'utf8'), /<LogicFile filepath="\.\.\/myroads\/straight_1000m\.xodr"\/>/);
+  });
+});
+
+describe("Export for CARLA over JSON-RPC: a road packed in the scenario's .mosc (issue 27)", function () {
+  this.timeout(60_000);
+
+  it("writes the package's road beside the export, which names it; before, the export was refused as naming no road", async () => {
+    const road = fs.readFileSync(path.join(esminiRoads, 'straight_500m.xodr'));
+    const scenario = drivingScenario('roads/straight_500m.xodr', 'Drive');
+    const root = temporaryWorkspace({
+      'pkg.mosc': await packageOf({ 'main.xosc': scenario, 'roads/straight_500m.xodr': road.toString('utf8') }),
+    });
+    const client = await TestClient.start({ root });
+    try {
+      await client.indexed();
+      const output = path.join(root, 'out', 'pkg.carla.xosc');
+      fs.mkdirSync(path.dirname(output));
+      const result = await client.send(ExportForCarlaRequest, { uri: `mosc:${path.join(root, 'pkg.mosc')}/main.xosc`, outputPath: output });
+      assert.equal(result.written, output, JSON.stringify(result.problems, null, 1));
+      assert.match(fs.readFileSync(output, 'utf8'), /<LogicFile filepath="pkg\.carla\.files\/roads\/straight_500m\.xodr"\/>/);
+      assert.deepEqual(fs.readFileSync(path.join(root, 'out', 'pkg.carla.files', 'roads', 'straight_500m.xodr')), road);
+    } finally {
+      await client.stop();
+      fs.rmSync(root, { recursive: true, force: true });
+    }
   });
 });

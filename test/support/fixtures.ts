@@ -209,6 +209,23 @@ export function roadScenario(parts: RoadScenarioParts): string {
   return openScenarioFile(body, parts.header ?? fileHeader({ description: 's', author: 't' }), BARE_XML_DECLARATION);
 }
 
+/**
+ * A scenario on `logicFile` (esmini's straight_500m.xodr): Ego on lane -1 of road 1 at s 10, `group` in its Act (or, for 'Drive',
+ * a group Drive that sets Ego's speed at once, overridable, default 10 m/s); it stops at 8 s.
+ */
+export function drivingScenario(logicFile: string, group: string): string {
+  const drive = `<ManeuverGroup name="Drive" maximumExecutionCount="1"><Actors selectTriggeringEntities="false"><EntityRef entityRef="Ego"/></Actors><Maneuver name="M"><Event name="E" priority="override"><Action name="A"><PrivateAction><LongitudinalAction><SpeedAction><SpeedActionDynamics dynamicsShape="step" value="0" dynamicsDimension="time"/><SpeedActionTarget><AbsoluteTargetSpeed parameterAttributes="value" value="10"/></SpeedActionTarget></SpeedAction></LongitudinalAction></PrivateAction></Action><StartTrigger><ConditionGroup><Condition name="C" delay="0" conditionEdge="none"><ByValueCondition><SimulationTimeCondition value="0" rule="greaterThan"/></ByValueCondition></Condition></ConditionGroup></StartTrigger></Event></Maneuver></ManeuverGroup>`;
+  const text = roadScenario({
+    logicFile,
+    init: '<Private entityRef="Ego"><PrivateAction><TeleportAction><Position><LanePosition roadId="1" laneId="-1" s="10" offset="0"/></Position></TeleportAction></PrivateAction></Private>',
+    groups: [group === 'Drive' ? drive : group],
+  });
+  const stop =
+    '<StopTrigger><ConditionGroup><Condition name="End" delay="0" conditionEdge="rising"><ByValueCondition><SimulationTimeCondition value="8" rule="greaterThan"/></ByValueCondition></Condition></ConditionGroup></StopTrigger>\n  </Storyboard>';
+  assert.match(text, /<StopTrigger\/>\n {2}<\/Storyboard>/);
+  return text.replace(/<StopTrigger\/>\n {2}<\/Storyboard>/, stop);
+}
+
 /** A simple scenario's group with overridable attributes. */
 export function simpleGroup(name: string, body = ''): string {
   return `        <ManeuverGroup name="${name}" maximumExecutionCount="1">

@@ -204,8 +204,16 @@ async function exportCommand(argv: string[], io: CliOutput): Promise<number> {
   }
   const counts =
     result.losses.length === 0 ? 'nothing lost' : `${result.losses.length} loss${result.losses.length === 1 ? '' : 'es'} listed above`;
+  // A road packed with the scenario goes beside the export that names it, as flatten writes it.
+  const files = result.files ?? [];
+  for (const file of files) fs.mkdirSync(path.dirname(file.path), { recursive: true });
   return write(
     [
+      ...files.map((file) => ({
+        target: file.path,
+        data: file.bytes,
+        summary: `wrote ${path.relative(path.dirname(path.resolve(args.output)), file.path)} (a file of the package the export names)`,
+      })),
       {
         target: args.output,
         data: result.text,

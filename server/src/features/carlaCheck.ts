@@ -96,6 +96,10 @@ export async function checkInScenarioRunner(
           problems: exported.losses.filter((loss) => loss.kind === 'refused').map((loss) => lossSummary(workspace, loss)),
         },
       );
+    for (const file of exported.files ?? []) {
+      await fs.promises.mkdir(path.dirname(file.path), { recursive: true });
+      await writeFileAtomic(file.path, file.bytes);
+    }
     await writeFileAtomic(exportFile, exported.text);
     const run = await runHarness({
       python,

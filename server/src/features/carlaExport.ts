@@ -6,7 +6,7 @@ import { roadFolders } from '../core/semantics/roadFiles';
 import type { SourceRef } from '../core/sources';
 import { filePathOf } from '../uris';
 import { Workspace } from '../workspace';
-import { insideFolders, invalidParams, outsideConfirmed, refOf, summarize, writeOutput } from './commands';
+import { insideFolders, invalidParams, outsideConfirmed, refOf, summarize, writeOutput, writePackagedFiles } from './commands';
 
 /** The editor's export options: the output, the release of `modular2simple.carla.release`, the road folders of `modular2simple.esmini.roadPath` (as Run in esmini and `export --road-path`). */
 export function carlaExportOptions(workspace: Workspace, ref: SourceRef, outputPath: string): CarlaExportOptions {
@@ -66,5 +66,8 @@ export async function exportForCarlaToFile(
   ];
   if (result.text === undefined)
     return { written: null, problems: [...problems, ...refusal(`not exported: ${result.refused ?? 'refused'}`).problems] };
-  return writeOutput(workspace, output, result.text, problems, ref);
+  // A road packed with the scenario goes beside the export that names it, as flatten writes it.
+  return (
+    (await writePackagedFiles(workspace, result.files ?? [], problems, ref)) ?? writeOutput(workspace, output, result.text, problems, ref)
+  );
 }

@@ -1,7 +1,7 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { ErrorCodes, ResponseError } from 'vscode-languageserver/node';
-import { Flattener, FlatSource } from '../core/flatten';
+import { Flattener, FlatSource, PackagedFile } from '../core/flatten';
 import { isSameFile, OutputError, writeFileAtomic } from '../../../common/src/atomic';
 import { Problem } from '../core/problems';
 import { baseName, childRef, diskRef, displayRef, refId, SourceRef } from '../core/sources';
@@ -107,12 +107,22 @@ export async function flattenToFile(workspace: Workspace, uri: unknown, outputPa
     };
   if (result.text === undefined) return { written: null, problems };
   // A self-contained package's roads and catalogs go beside the output that names them.
-  for (const file of result.files) {
+  return (await writePackagedFiles(workspace, result.files, problems, ref)) ?? writeOutput(workspace, output, result.text, problems, ref);
+}
+
+/** Writes the package files an output names beside it (each atomically, its folder made); the first refusal of the writer, else undefined. */
+export async function writePackagedFiles(
+  workspace: Workspace,
+  files: readonly PackagedFile[],
+  problems: ProblemSummary[],
+  ref: SourceRef,
+): Promise<WriteResult | undefined> {
+  for (const file of files) {
     await fs.promises.mkdir(path.dirname(file.path), { recursive: true });
     const written = await writeOutput(workspace, file.path, file.bytes, problems, ref);
     if (written.written === null) return written;
   }
-  return writeOutput(workspace, output, result.text, problems, ref);
+  return undefined;
 }
 
 /** Writes an output atomically; a refusal of the writer (read-only, a folder) is a problem, not an exception. */

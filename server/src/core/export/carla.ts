@@ -11,7 +11,7 @@
  */
 import { expressionMessage } from '../diagnostics/expressionWords';
 import * as path from 'node:path';
-import type { FlatSource } from '../flatten/types';
+import type { FlatSource, PackagedFile } from '../flatten/types';
 import { geoToRoad, RoadXY } from '../opendrive/geo';
 import { MAX_ROAD_FILE_BYTES, parseOpenDrive, RoadNetwork } from '../opendrive/road';
 import { formatProblem, Problem } from '../problems';
@@ -91,8 +91,10 @@ export interface CarlaExport {
   refused: string | undefined;
   /** Errors that stopped flattening the input (a modular main whose references are broken). */
   problems: Problem[];
-  /** The road the export names: a CARLA town, or the `.xodr` file on disk (absolute). */
+  /** The road the export names: a CARLA town, or the `.xodr` file on disk (absolute; for a packaged road its copy in `files`). */
   road: { town: string } | { file: string } | undefined;
+  /** Files to write beside the export, which names them: the copy of a road packed with the scenario, in `<output name>.files/` as flatten writes it. */
+  files?: PackagedFile[];
   /** The entity marked as ScenarioRunner's ego. */
   ego: string | undefined;
   /**
@@ -136,16 +138,6 @@ export async function exportForCarla(store: ScenarioStore, main: SourceRef, opti
       ego: undefined,
     };
   }
-  if (flattened.files.length > 0)
-    return {
-      text: undefined,
-      losses: [],
-      refused:
-        'the package names roads or catalogs stored inside it; unpack it first (modular2simple flatten --self-contained) and export the folder',
-      problems: [],
-      road: undefined,
-      ego: undefined,
-    };
   // A plain scenario is exported as written: its relative paths resolve from its folder as esmini and the checks resolve them.
   const source = flattened.source;
   const plain = source.insertions.length === 0 && source.additions.length === 0 && source.original?.document.text;
@@ -273,13 +265,14 @@ export async function exportTextForCarla(
   // A simple scenario exported as it is: `parameterAttributes` marks what a main may override (SPEC), its values are
   // the defaults; ScenarioRunner's 1.0 schema refuses the attribute, and flattening removes it the same way.
   for (const node of allNodes(tree)) removeAttr(node, 'parameterAttributes');
-  const road = await rewriteRoad(store, tree, ref, document, semantics, options, sink);
+  const { road, copy } = (await rewriteRoad(store, tree, ref, document, semantics, options, sink)) ?? {};
+  const files = copy ? [copy] : [];
   const ego = markEgo(tree, options, sink);
   mapBlueprints(tree, options, sink);
   // Route positions are placed on the road they name: only then is the road file read.
   // Route positions need road lengths, sampled trajectories the heading of a lane an actor starts on.
   const needsRoads = named(tree, new Set(['RoutePosition', 'GeoPosition', 'Clothoid', 'ClothoidSpline', 'Nurbs'])).length > 0;
-  const roads = road && 'file' in road && needsRoads ? await readRoads(store, road.file) : undefined;
+  const roads = road && 'file' in road && needsRoads ? await readRoads(copy?.bytes ?? road.file, store) : undefined;
   const geoPlaces = new Map<Node, RoadXY | string>();
   for (const position of named(tree, 'GeoPosition')) {
     const degrees = geoPositionDegrees(position);
@@ -300,7 +293,7 @@ export async function exportTextForCarla(
       'ScenarioRunner would run nothing of the story',
     );
   const refusals = losses.filter((loss) => loss.kind === 'refused');
-  if (refusals.length > 0) return result(refusalSentence(refusals), undefined, { road, ego });
+  if (refusals.length > 0) return result(refusalSentence(refusals), undefined, { road, ego, files });
   const out = serialize(tree);
   // What is written must be 1.0 as ScenarioRunner's bundled schema reads it; anything left is a bug of a rule, not the user's.
   const schemaErrors = valid
@@ -313,10 +306,10 @@ export async function exportTextForCarla(
     return result(
       `the export would not be valid OpenSCENARIO 1.0 (${SR_SCHEMA}): line ${line} of the export, <${first.element.name}>: ${schemaFindingWords(first).message}`,
       undefined,
-      { road, ego },
+      { road, ego, files },
     );
   }
-  return result(undefined, out, { road, ego, placeAt: placeInDocument(tree) });
+  return result(undefined, out, { road, ego, files, placeAt: placeInDocument(tree) });
 }
 
 /**
@@ -332,9 +325,9 @@ function placeInDocument(tree: Node): (index: number) => Place | undefined {
   };
 }
 
-/** The road file's roads, or undefined when it cannot be read (the rules then name why a route position stays unconverted). */
-async function readRoads(store: ScenarioStore, file: string): Promise<RoadNetwork | undefined> {
-  const bytes = await store.host.readFile(file, MAX_ROAD_FILE_BYTES + 1).catch(() => undefined);
+/** The road file's roads (from disk, or the bytes of a packaged road's copy), or undefined when it cannot be read (the rules then name why a route position stays unconverted). */
+async function readRoads(road: string | Uint8Array, store: ScenarioStore): Promise<RoadNetwork | undefined> {
+  const bytes = typeof road === 'string' ? await store.host.readFile(road, MAX_ROAD_FILE_BYTES + 1).catch(() => undefined) : road;
   if (!bytes || bytes.byteLength > MAX_ROAD_FILE_BYTES) return undefined;
   const network = parseOpenDrive(decodeUtf8(bytes));
   return network.roads.length > 0 ? network : undefined;
@@ -538,11 +531,12 @@ async function rewriteRoad(
   semantics: DocumentSemantics,
   options: CarlaExportOptions,
   sink: LossSink,
-): Promise<CarlaExport['road']> {
+): Promise<{ road: CarlaExport['road']; copy?: PackagedFile } | undefined> {
   const network = child(tree, 'RoadNetwork');
   const logic = network ? child(network, 'LogicFile') : undefined;
   const header = child(tree, 'FileHeader');
   let road: CarlaExport['road'];
+  let copy: PackagedFile | undefined;
   if (options.road !== undefined) {
     if (CARLA_TOWNS.includes(options.road)) road = { town: options.road };
     else {
@@ -566,8 +560,9 @@ async function rewriteRoad(
       // Where run and check look (core/semantics/roadFiles.ts locateRoadFile): the road folders, then those the check searched (its catalog folders).
       const folders = [...(options.roadFolders ?? []), ...(semantics.roadFile?.folders ?? [])];
       const located = await locateRoadFile(store, ref, document, semantics.evaluator, folders, store.host);
-      const found = located ?? { resolved: undefined, candidates: [] };
-      if (!found.resolved || !found.resolved.toLowerCase().endsWith('.xodr')) {
+      const found = located ?? { resolved: undefined, packaged: undefined, candidates: [] };
+      const name = found.resolved ?? found.packaged?.entries.at(-1);
+      if (!name || !name.toLowerCase().endsWith('.xodr')) {
         sink.refuse(
           logic,
           'LogicFile',
@@ -576,7 +571,14 @@ async function rewriteRoad(
         );
         return undefined;
       }
-      road = { file: found.resolved };
+      if (found.packaged) {
+        // A road packed with the scenario: its copy goes beside the export, where flatten puts it (flatten/rebase.ts).
+        const { packagedFilesFolder } = await import('../flatten/rebase');
+        const bytes = await store.readBytes(found.packaged);
+        const file = path.join(path.dirname(options.outputPath), packagedFilesFolder(options.outputPath), ...name.split('/'));
+        copy = { path: file, bytes };
+        road = { file };
+      } else road = { file: name };
     }
   }
   if (!network || !logic) {
@@ -603,7 +605,7 @@ async function rewriteRoad(
       `with the prefix ScenarioRunner would read positions in CARLA's left-handed coordinates (${SR_CONFIGURATION} _set_scenario_name)`,
     );
   }
-  return road;
+  return { road, copy };
 }
 
 const EGO_NAMES = /^(ego|hero|ego_vehicle|egovehicle)$/i;

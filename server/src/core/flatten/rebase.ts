@@ -179,6 +179,11 @@ export async function rebasePaths(request: RebaseRequest): Promise<PathRebase> {
   return result;
 }
 
+/** The folder beside an output (`flat.files` for `flat.xosc`) that the copies of the package files it names are written to. */
+export function packagedFilesFolder(outputPath: string): string {
+  return `${path.basename(outputPath).replace(/\.xosc$/i, '')}.files`;
+}
+
 /** The folder the relative paths of a file resolve from: its own folder, or for a packaged file the package's folder on disk. */
 export function pathBaseOf(ref: SourceRef): string {
   return path.dirname(ref.disk);
@@ -252,7 +257,7 @@ export async function rebaseFlattened(
       );
       continue;
     }
-    const folder = `${path.basename(outputPath).replace(/\.xosc$/i, '')}.files`;
+    const folder = packagedFilesFolder(outputPath);
     for (const [entry, bytes] of packaged.files) files.set(path.join(outputDirectory, folder, ...entry.split('/')), bytes);
     const text = written(packaged.name ? `${folder}/${packaged.name}` : folder, site.attribute.value);
     if (text !== site.attribute.value)

@@ -1,0 +1,101 @@
+import * as assert from 'node:assert/strict';
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import { harnessVerdicts, requireCarlaHarness } from '../support/carla';
+import { esminiBinary, esminiRoads, EsminiStep, readEsminiCsv, requireEsmini } from '../support/esmini';
+import { drivingScenario, outerGroup, runCli } from '../support/fixtures';
+import { assertSameRun, namedPaths, runAlone } from '../support/outputPaths';
+import { temporaryFolder } from '../support/temporaryDirectory';
+
+/**
+ * A new user's path (issue 27): a package holding a scenario and the road it drives on, packed with `pack
+ * --self-contained`, and a main outside the package that imports the package's group. Each command is run as a user
+ * runs it, from a working folder of its own; esmini and ScenarioRunner's loader judge the outputs.
+ */
+
+/** Ego's x at the last step. */
+function lastX(steps: EsminiStep[]): number {
+  return steps[steps.length - 1].positions.Ego[0];
+}
+
+describe('cli: a road packed in a .mosc beside the scenario that uses it, and a main outside the package (issue 27)', function () {
+  let root: string;
+  let road: Buffer;
+
+  before(function () {
+    requireEsmini(this);
+    root = temporaryFolder('m2s-packed-road-');
+    road = fs.readFileSync(path.join(esminiRoads, 'straight_500m.xodr'));
+    fs.mkdirSync(path.join(root, 'drive'));
+    fs.mkdirSync(path.join(root, 'app'));
+    fs.mkdirSync(path.join(root, 'roads'));
+    fs.writeFileSync(path.join(root, 'drive', 'main.xosc'), drivingScenario('straight_500m.xodr', 'Drive'));
+    fs.writeFileSync(path.join(root, 'drive', 'straight_500m.xodr'), road);
+    fs.writeFileSync(path.join(root, 'roads', 'straight_500m.xodr'), road);
+    const outer = outerGroup('Car', 'Ego', [{ file: 'drive.mosc', groups: [{ name: 'Drive', parameters: [['value', '15']] }] }]);
+    fs.writeFileSync(path.join(root, 'app', 'main.xosc'), drivingScenario('../roads/straight_500m.xodr', outer));
+    const pack = runCli(['pack', 'drive', '-o', 'app/drive.mosc', '--self-contained'], { cwd: root });
+    assert.equal(pack.status, 0, pack.stderr);
+    assert.match(pack.stderr, /wrote app\/drive\.mosc \(straight_500m\.xodr, main\.xosc\)/);
+  });
+
+  const elsewhere = () => temporaryFolder('m2s-packed-road-cwd-');
+
+  it('check: no false alarm about the packed road, for esmini and by the standard; the main outside is clean too', () => {
+    for (const simulator of ['asam', 'esmini']) {
+      const check = runCli(['check', path.join(root, 'app', 'drive.mosc'), '--simulator', simulator], { cwd: elsewhere() });
+      assert.equal(check.status, 0, check.stderr);
+      assert.match(check.stderr, /checked 1 file: 0 errors, 0 warnings/, simulator);
+      const outer = runCli(['check', path.join(root, 'app', 'main.xosc'), '--simulator', simulator], { cwd: elsewhere() });
+      assert.equal(outer.status, 0, outer.stderr);
+      assert.match(outer.stderr, /0 errors, 0 warnings/, simulator);
+    }
+  });
+
+  it('run: esmini runs the package on its own road, with no warning, as its flattened file runs from another folder', async () => {
+    const cwd = elsewhere();
+    const run = runCli(['run', path.join(root, 'app', 'drive.mosc'), '--esmini', esminiBinary, '--check', '--csv', 'run.csv'], { cwd });
+    assert.equal(run.status, 0, run.stderr);
+    assert.doesNotMatch(run.stderr, /: warning:/, 'no warning that the picture found no road');
+    assert.match(run.stderr, /esmini: 0 errors, 0 warnings; 8\.\d\d s simulated/);
+    const ran = readEsminiCsv(path.join(cwd, 'run.csv'));
+    assert.ok(Math.abs(lastX(ran) - 90) < 2, `Ego drove 8 s at 10 m/s from x 10: ${lastX(ran)}`);
+    // flatten to another folder: the road's copy goes beside the output, which esmini runs from an unrelated folder.
+    const flat = path.join(elsewhere(), 'deep', 'flat.xosc');
+    fs.mkdirSync(path.dirname(flat));
+    const flatten = runCli(['flatten', path.join(root, 'app', 'drive.mosc'), '-o', flat], { cwd: elsewhere() });
+    assert.equal(flatten.status, 0, flatten.stderr);
+    assert.deepEqual(namedPaths(flat), [path.join(path.dirname(flat), 'flat.files', 'straight_500m.xodr')]);
+    assert.deepEqual(fs.readFileSync(namedPaths(flat)[0]), road);
+    assertSameRun((await runAlone(flat)).steps, ran, 'the flattened package');
+  });
+
+  it("the main outside the package: flattened anywhere it names its own road, runs the package's group with its override", async () => {
+    const flat = path.join(elsewhere(), 'flat.xosc');
+    const flatten = runCli(['flatten', path.join(root, 'app', 'main.xosc'), '-o', flat], { cwd: elsewhere() });
+    assert.equal(flatten.status, 0, flatten.stderr);
+    assert.deepEqual(namedPaths(flat), [path.join(root, 'roads', 'straight_500m.xodr')]);
+    const alone = (await runAlone(flat)).steps;
+    assert.ok(Math.abs(lastX(alone) - 130) < 2, `Ego drove 8 s at the overriding 15 m/s from x 10: ${lastX(alone)}`);
+    const cwd = elsewhere();
+    const run = runCli(['run', path.join(root, 'app', 'main.xosc'), '--esmini', esminiBinary, '--check', '--csv', 'run.csv'], { cwd });
+    assert.equal(run.status, 0, run.stderr);
+    assert.doesNotMatch(run.stderr, /: warning:/);
+    assertSameRun(readEsminiCsv(path.join(cwd, 'run.csv')), alone, 'the main outside the package, run');
+  });
+
+  it("export --target carla: the package's road is written beside the export, which names it (before: refused, road not found)", async function () {
+    const out = path.join(elsewhere(), 'carla', 'drive.xosc');
+    fs.mkdirSync(path.dirname(out));
+    const exported = runCli(['export', path.join(root, 'app', 'drive.mosc'), '--target', 'carla', '-o', out], {
+      cwd: elsewhere(),
+    });
+    assert.equal(exported.status, 0, exported.stderr);
+    assert.match(exported.stderr, /wrote drive\.files\/straight_500m\.xodr \(a file of the package the export names\)/);
+    assert.match(fs.readFileSync(out, 'utf8'), /<LogicFile filepath="drive\.files\/straight_500m\.xodr"\/>/);
+    assert.deepEqual(fs.readFileSync(path.join(path.dirname(out), 'drive.files', 'straight_500m.xodr')), road);
+    requireCarlaHarness(this);
+    const verdict = (await harnessVerdicts([out])).get(out);
+    assert.equal(verdict?.status, 'OK', JSON.stringify(verdict));
+  });
+});
