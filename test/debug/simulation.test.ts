@@ -10,18 +10,25 @@ import { requireEsminiLibrary } from '../support/esminiBinaries';
 import { openscenarioDir } from '../support/openscenarioCorpus';
 import { temporaryFolder } from '../support/temporaryDirectory';
 import { writeTwoCutIns } from '../support/debugScenarios';
+import { drivingScenario, packageOf } from '../support/fixtures';
 
 const cutIn = path.join(openscenarioDir, 'esmini', 'cut-in.xosc');
 const roadPath = [esminiRoads, path.join(esminiCatalogs, 'Vehicles')];
 
 /** Every event of a run, with the steps made when each came; `stepMany` steps by `stepMany(count, () => false)` calls. */
-async function runAll(input: string, stepMany?: number): Promise<StoryboardEvent[]> {
-  return (await runCounted(input, stepMany)).events;
+async function runAll(input: string, stepMany?: number, roads = roadPath): Promise<StoryboardEvent[]> {
+  return (await runCounted(input, stepMany, roads)).events;
 }
 
-async function runCounted(input: string, stepMany?: number): Promise<{ events: StoryboardEvent[]; stepsAt: number[]; steps: number }> {
-  const prepared = await prepareScenario(new Flattener(storeForInputs([], undefined, [input], {}, roadPath)), mainOf(input), { roadPath });
-  const simulation = new Simulation(prepared, { roadPath });
+async function runCounted(
+  input: string,
+  stepMany?: number,
+  roads = roadPath,
+): Promise<{ events: StoryboardEvent[]; stepsAt: number[]; steps: number }> {
+  const prepared = await prepareScenario(new Flattener(storeForInputs([], undefined, [input], {}, roads)), mainOf(input), {
+    roadPath: roads,
+  });
+  const simulation = new Simulation(prepared, { roadPath: roads });
   try {
     const events = simulation.start();
     const stepsAt = events.map(() => 0);
@@ -133,6 +140,28 @@ describe('debug: a scenario run step by step in esmini library', () => {
       assert.ok(error.problems.length > 0);
       return true;
     });
+  });
+
+  it("runs a package whose road it holds (issue 27): the road is written into the run's own folder, not looked for beside the package", async () => {
+    const folder = temporaryFolder();
+    const input = path.join(folder, 'drive.mosc');
+    fs.writeFileSync(
+      input,
+      await packageOf({
+        'main.xosc': drivingScenario('straight_500m.xodr', 'Drive'),
+        'straight_500m.xodr': fs.readFileSync(path.join(esminiRoads, 'straight_500m.xodr'), 'utf8'),
+      }),
+    );
+    // No road folder, as a user's package needs none. Before: "Failed to locate OpenDRIVE file .modular2simple-debug.files/straight_500m.xodr".
+    const events = await runAll(input, undefined, []);
+    assert.ok(
+      events.some((event) => event.name === 'E' && event.state === 'running'),
+      events.map((event) => `${event.time} ${event.name} ${event.state}`).join('\n'),
+    );
+    assert.equal(events.at(-1)?.type, 'Storyboard');
+    assert.equal(events.at(-1)?.state, 'complete');
+    assert.ok((events.at(-1)?.time ?? 0) >= 8, 'it ran to its own end at 8 s');
+    assert.deepEqual(fs.readdirSync(folder), ['drive.mosc'], 'nothing written beside the package');
   });
 
   it('names the build when the library is missing', () => {

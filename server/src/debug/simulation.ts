@@ -10,7 +10,7 @@ import { EsminiLibrary, EsminiObjectState, loadEsminiLibrary } from '../esmini/l
 import { readEsminiLog } from '../esmini/log';
 import { EsminiProblem, mapEsminiMessages } from '../esmini/messages';
 import { makeRunFolder } from '../esmini/process';
-import { esminiFolders, RUN_DEFAULTS, sourceFolderOf, withRoadFile } from '../esmini/run';
+import { esminiFolders, packagedRoadCopy, RUN_DEFAULTS, sourceFolderOf, withRoadFile } from '../esmini/run';
 import { CONDITION_LOG, ConditionReason, conditionReason, storyboardMapOf } from '../esmini/storyboardTrace';
 import { runLimit } from '../esmini/timeLimit';
 import type { StepCounter } from './progressPage';
@@ -103,6 +103,8 @@ export interface PreparedScenario {
   main: SourceRef;
   text: string;
   searchPath: string[];
+  /** A road packed with the scenario (its file name and bytes): the simulation writes it into its private folder and hands esmini that copy. */
+  packagedRoad?: { name: string; bytes: Uint8Array };
   flat: FlatSource;
   map: StoryboardMap;
   flattenProblems: Problem[];
@@ -124,10 +126,12 @@ export async function prepareScenario(flattener: Flattener, main: SourceRef, opt
   const { searchPath, road } = await esminiFolders(flattener, main, flat.source, folders);
   const text = road?.resolved ? withRoadFile(flat.text, road.resolved) : flat.text;
   const map = storyboardMapOf(flat.source);
+  const packagedRoad = packagedRoadCopy(flat.text, flat.files, sourceFolder, road);
   return {
     main,
     text,
     searchPath,
+    ...(packagedRoad ? { packagedRoad: { name: path.basename(packagedRoad.path), bytes: packagedRoad.bytes } } : {}),
     flat: flat.source,
     map,
     flattenProblems: flat.problems,
@@ -206,6 +210,16 @@ export class Simulation {
     return started;
   }
 
+  /** The scenario's text, a road packed with it written into the private folder and named there by its absolute path (as Run in esmini does). */
+  private textToLoad(): string {
+    const road = this.scenario.packagedRoad;
+    if (!road) return this.scenario.text;
+    const file = path.join(this.folder, 'road', road.name);
+    fs.mkdirSync(path.dirname(file), { recursive: true });
+    fs.writeFileSync(file, road.bytes);
+    return withRoadFile(this.scenario.text, file);
+  }
+
   /** esmini's SE_Init on the scenario, the callbacks registered. */
   private load(): void {
     const library = this.library;
@@ -219,7 +233,7 @@ export class Simulation {
     let result: number;
     try {
       process.chdir(this.scenario.searchPath[0]);
-      result = library.initWithString(this.scenario.text);
+      result = library.initWithString(this.textToLoad());
     } finally {
       process.chdir(previous);
     }

@@ -1,7 +1,7 @@
 import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
-import { Flattener, FlatSource } from '../core/flatten';
+import { Flattener, FlatSource, PackagedFile } from '../core/flatten';
 import { Problem } from '../core/problems';
 import { foundRoadName, locateRoadFile, logicFileOf, RoadFileLookup, roadFolders, scenarioFolderOf } from '../core/semantics/roadFiles';
 import { Evaluator, semanticModelOf } from '../core/semantics/model';
@@ -136,6 +136,20 @@ export function withRoadFile(text: string, absolutePath: string): string {
     ?.attributes.find((candidate) => candidate.name === 'filepath');
   if (!filepath) return text;
   return `${text.slice(0, filepath.valueStart)}${escapeAttributeValue(absolutePath, filepath.quote)}${text.slice(filepath.valueEnd)}`;
+}
+
+/**
+ * The copy of a road packed with the scenario (`road.packaged`) among the files a flattening carries beside its output
+ * (`files`, the output written in `outputFolder`): the one its flattened `text`'s LogicFile names. Undefined for a road on disk.
+ */
+export function packagedRoadCopy(
+  text: string,
+  files: readonly PackagedFile[],
+  outputFolder: string,
+  road: Pick<RoadFileLookup, 'packaged'> | undefined,
+): PackagedFile | undefined {
+  const copied = road?.packaged ? logicFileOf(parseXml(text))?.filepath : undefined;
+  return copied === undefined ? undefined : files.find((file) => file.path === path.resolve(outputFolder, copied));
 }
 
 /** The catalog folders (`Directory path`) the scenario writes, as written. */
@@ -300,8 +314,7 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
       }
     : undefined;
   // What esmini is handed: the file found on disk, or the copy of the package's road that the flattened text names in the run folder.
-  const copied = road?.packaged ? logicFileOf(parseXml(flat.text))?.filepath : undefined;
-  const handed = road?.resolved ?? (copied === undefined ? undefined : path.resolve(runFolder, copied));
+  const handed = road?.resolved ?? packagedRoadCopy(flat.text, flat.files, runFolder, road)?.path;
   const limit = runLimit(flat.text, options.duration, options.durationSetBy);
   const duration = limit.seconds;
   const limited = withTimeLimit(road?.resolved ? withRoadFile(flat.text, road.resolved) : flat.text, duration);
