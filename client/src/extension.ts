@@ -224,6 +224,8 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
           logText: event.result.log,
           trace: event.result.trace,
           scenario: event.source,
+          // A road packed with the scenario: esmini loaded its copy in the run folder; the view names the package entry it draws.
+          ...(event.result.roadFile?.packaged ? { roadFile: event.result.roadFile.packaged } : {}),
         });
     }),
   );

@@ -146,6 +146,13 @@ describe("client: the bird's-eye view's drawing", () => {
       });
       assert.equal(run.roadFile, '/roads/e6mini.xodr');
       assert.equal((await loadRun({ csvPath: path.join(folder, 'out.csv'), logText: '' })).tracks.roadFile, undefined);
+      // Run in esmini on a road packed in the .mosc names the package entry the picture draws, not the copy in its run folder.
+      const packed = await loadRun({
+        csvPath: path.join(folder, 'out.csv'),
+        logText: '[] [info] Loaded OpenDRIVE: scenario.files/e6mini.xodr\n',
+        roadFile: '/w/pkg.mosc/e6mini.xodr',
+      });
+      assert.equal(packed.tracks.roadFile, '/w/pkg.mosc/e6mini.xodr');
     } finally {
       fs.rmSync(folder, { recursive: true, force: true });
     }

@@ -25,7 +25,7 @@ export function registerBirdsEye(
       if (source.scheme === 'file' && source.path.toLowerCase().endsWith('.mosc')) source = packageEntryUri(source, 'main.xosc');
       await view.show(source);
     }),
-    // For the run command (args: csvPath, { logPath?, logText?, trace?, scenario?, compare? }) and for a person (picks a CSV);
+    // For the run command (args: csvPath, { logPath?, logText?, trace?, scenario?, compare?, roadFile? }) and for a person (picks a CSV);
     // `compare: true` or 'overlay' draws it over the run shown (dashed), 'side' beside it.
     vscode.commands.registerCommand('modular2simple.birdsEye.showRun', async (csvPath?: unknown, options?: unknown) => {
       let path = typeof csvPath === 'string' ? csvPath : csvPath instanceof vscode.Uri ? csvPath.fsPath : undefined;
@@ -44,8 +44,10 @@ export function registerBirdsEye(
         trace?: unknown;
         scenario?: unknown;
         compare?: unknown;
+        roadFile?: unknown;
       };
       const run: RunSource = { csvPath: path };
+      if (typeof given.roadFile === 'string') run.roadFile = given.roadFile;
       if (typeof given.logPath === 'string') run.logPath = given.logPath;
       if (typeof given.logText === 'string') run.logText = given.logText;
       // Run in esmini's trace (common/src/trace.ts records), already placed on the flattened elements.

@@ -16,6 +16,11 @@ export interface RunSource {
   logText?: string;
   /** The run's storyboard trace when known (Run in esmini reads it from the log); else it is read from the log. */
   trace?: TraceRecord[];
+  /**
+   * The road the run loaded as the view names it, where the runner knows better than the log: Run in esmini on a road packed
+   * in the scenario's .mosc names the package entry (`/w/pkg.mosc/road.xodr`), whose copy esmini loaded from the run's folder.
+   */
+  roadFile?: string;
 }
 
 /** A run read: what the view draws (its event starts still empty) and esmini's log of it, when found. */
@@ -76,6 +81,6 @@ export async function loadRun(source: RunSource): Promise<LoadedRun> {
     }
   }
   const tracks = runTracks(run, path.basename(source.csvPath));
-  const roadFile = logText ? parseEsminiLoadedRoad(logText) : undefined;
+  const roadFile = source.roadFile ?? (logText ? parseEsminiLoadedRoad(logText) : undefined);
   return { tracks: roadFile ? { ...tracks, roadFile } : tracks, ...(logText !== undefined ? { log: logText } : {}) };
 }
