@@ -3,7 +3,7 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { harnessVerdicts, requireCarlaHarness } from '../support/carla';
 import { esminiBinary, esminiRoads, EsminiStep, readEsminiCsv, requireEsmini } from '../support/esmini';
-import { drivingScenario, outerGroup, runCli } from '../support/fixtures';
+import { drivingScenario, outerGroup, packageOf, runCli } from '../support/fixtures';
 import { assertSameRun, namedPaths, runAlone } from '../support/outputPaths';
 import { temporaryFolder } from '../support/temporaryDirectory';
 
@@ -82,6 +82,23 @@ describe('cli: a road packed in a .mosc beside the scenario that uses it, and a 
     assert.equal(run.status, 0, run.stderr);
     assert.doesNotMatch(run.stderr, /: warning:/);
     assertSameRun(readEsminiCsv(path.join(cwd, 'run.csv')), alone, 'the main outside the package, run');
+  });
+
+  it('run: a road the LogicFile names through a $parameter is found in the package too (before: esmini failed to locate it, exit 3)', async () => {
+    const folder = elsewhere();
+    const scenario = drivingScenario('$Road', 'Drive').replace(
+      '<ParameterDeclarations></ParameterDeclarations>',
+      '<ParameterDeclarations><ParameterDeclaration name="Road" parameterType="string" value="straight_500m.xodr"/></ParameterDeclarations>',
+    );
+    assert.match(scenario, /name="Road"/);
+    fs.writeFileSync(path.join(folder, 'p.mosc'), await packageOf({ 'main.xosc': scenario, 'straight_500m.xodr': road.toString('utf8') }));
+    const check = runCli(['check', 'p.mosc', '--simulator', 'esmini'], { cwd: folder });
+    assert.match(check.stderr, /0 errors, 0 warnings/);
+    const cwd = elsewhere();
+    const run = runCli(['run', path.join(folder, 'p.mosc'), '--esmini', esminiBinary, '--check', '--csv', 'run.csv'], { cwd });
+    assert.equal(run.status, 0, run.stderr);
+    assert.match(run.stderr, /esmini: 0 errors, 0 warnings; 8\.\d\d s simulated/);
+    assert.ok(Math.abs(lastX(readEsminiCsv(path.join(cwd, 'run.csv'))) - 90) < 2);
   });
 
   it("export --target carla: the package's road is written beside the export, which names it (before: refused, road not found)", async function () {

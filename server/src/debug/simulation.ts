@@ -10,7 +10,7 @@ import { EsminiLibrary, EsminiObjectState, loadEsminiLibrary } from '../esmini/l
 import { readEsminiLog } from '../esmini/log';
 import { EsminiProblem, mapEsminiMessages } from '../esmini/messages';
 import { makeRunFolder } from '../esmini/process';
-import { esminiFolders, packagedRoadCopy, RUN_DEFAULTS, sourceFolderOf, withRoadFile } from '../esmini/run';
+import { esminiFolders, RUN_DEFAULTS, sourceFolderOf, withRoadFile, writePackagedRoad } from '../esmini/run';
 import { CONDITION_LOG, ConditionReason, conditionReason, storyboardMapOf } from '../esmini/storyboardTrace';
 import { runLimit } from '../esmini/timeLimit';
 import type { StepCounter } from './progressPage';
@@ -126,12 +126,15 @@ export async function prepareScenario(flattener: Flattener, main: SourceRef, opt
   const { searchPath, road } = await esminiFolders(flattener, main, flat.source, folders);
   const text = road?.resolved ? withRoadFile(flat.text, road.resolved) : flat.text;
   const map = storyboardMapOf(flat.source);
-  const packagedRoad = packagedRoadCopy(flat.text, flat.files, sourceFolder, road);
+  const packagedRoad = road?.packaged && {
+    name: road.packaged.entries.at(-1) ?? '',
+    bytes: await flattener.store.readBytes(road.packaged),
+  };
   return {
     main,
     text,
     searchPath,
-    ...(packagedRoad ? { packagedRoad: { name: path.basename(packagedRoad.path), bytes: packagedRoad.bytes } } : {}),
+    ...(packagedRoad ? { packagedRoad } : {}),
     flat: flat.source,
     map,
     flattenProblems: flat.problems,
@@ -213,11 +216,7 @@ export class Simulation {
   /** The scenario's text, a road packed with it written into the private folder and named there by its absolute path (as Run in esmini does). */
   private textToLoad(): string {
     const road = this.scenario.packagedRoad;
-    if (!road) return this.scenario.text;
-    const file = path.join(this.folder, 'road', road.name);
-    fs.mkdirSync(path.dirname(file), { recursive: true });
-    fs.writeFileSync(file, road.bytes);
-    return withRoadFile(this.scenario.text, file);
+    return road ? withRoadFile(this.scenario.text, writePackagedRoad(this.folder, road.name, road.bytes)) : this.scenario.text;
   }
 
   /** esmini's SE_Init on the scenario, the callbacks registered. */

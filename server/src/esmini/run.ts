@@ -1,9 +1,9 @@
 import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
-import { Flattener, FlatSource, PackagedFile } from '../core/flatten';
+import { Flattener, FlatSource } from '../core/flatten';
 import { Problem } from '../core/problems';
-import { foundRoadName, locateRoadFile, logicFileOf, RoadFileLookup, roadFolders, scenarioFolderOf } from '../core/semantics/roadFiles';
+import { foundRoadName, locateRoadFile, RoadFileLookup, roadFolders, scenarioFolderOf } from '../core/semantics/roadFiles';
 import { Evaluator, semanticModelOf } from '../core/semantics/model';
 import { diskRef, nodeFileSystem, ScenarioStore, SourceRef } from '../core/sources';
 import { CatalogLoader } from '../core/semantics/catalogs';
@@ -139,17 +139,16 @@ export function withRoadFile(text: string, absolutePath: string): string {
 }
 
 /**
- * The copy of a road packed with the scenario (`road.packaged`) among the files a flattening carries beside its output
- * (`files`, the output written in `outputFolder`): the one its flattened `text`'s LogicFile names. Undefined for a road on disk.
+ * Writes the bytes of a road packed with the scenario into a run's private `folder` (`road/NAME`) and returns that file's
+ * absolute path, which esmini is handed as a road found on disk is: the copy a flattened text names may be none (a
+ * LogicFile that names a `$parameter` is left as written), and by file name esmini would first take a same-named road
+ * beside the package.
  */
-export function packagedRoadCopy(
-  text: string,
-  files: readonly PackagedFile[],
-  outputFolder: string,
-  road: Pick<RoadFileLookup, 'packaged'> | undefined,
-): PackagedFile | undefined {
-  const copied = road?.packaged ? logicFileOf(parseXml(text))?.filepath : undefined;
-  return copied === undefined ? undefined : files.find((file) => file.path === path.resolve(outputFolder, copied));
+export function writePackagedRoad(folder: string, name: string, bytes: Uint8Array): string {
+  const file = path.join(folder, 'road', path.basename(name));
+  fs.mkdirSync(path.dirname(file), { recursive: true });
+  fs.writeFileSync(file, bytes);
+  return file;
 }
 
 /** The catalog folders (`Directory path`) the scenario writes, as written. */
@@ -313,11 +312,15 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
         candidates: road.candidates,
       }
     : undefined;
-  // What esmini is handed: the file found on disk, or the copy of the package's road that the flattened text names in the run folder.
-  const handed = road?.resolved ?? packagedRoadCopy(flat.text, flat.files, runFolder, road)?.path;
+  // What esmini is handed: the file found on disk, or a copy of the package's road in the run folder.
+  const handed =
+    road?.resolved ??
+    (road?.packaged
+      ? writePackagedRoad(runFolder, road.packaged.entries.at(-1) ?? '', await flattener.store.readBytes(road.packaged))
+      : undefined);
   const limit = runLimit(flat.text, options.duration, options.durationSetBy);
   const duration = limit.seconds;
-  const limited = withTimeLimit(road?.resolved ? withRoadFile(flat.text, road.resolved) : flat.text, duration);
+  const limited = withTimeLimit(handed ? withRoadFile(flat.text, handed) : flat.text, duration);
   if (limited === undefined) {
     return {
       ...base,
