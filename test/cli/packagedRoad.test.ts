@@ -41,6 +41,22 @@ describe('cli: a road packed in a .mosc beside the scenario that uses it, and a 
 
   const elsewhere = () => temporaryFolder('m2s-packed-road-cwd-');
 
+  it('pack FILE... refuses the road as an input and says how to store it; following the hint gives a package that runs', () => {
+    const out = path.join(elsewhere(), 'files.mosc');
+    const refused = runCli(['pack', 'drive/main.xosc', 'drive/straight_500m.xodr', '-o', out], { cwd: root });
+    assert.equal(refused.status, 1, refused.stderr);
+    assert.match(
+      refused.stderr,
+      /'straight_500m\.xodr' is neither a \.xosc scenario nor a \.mosc package\n\s*hint: .*with --self-contained, pack stores the road files/,
+    );
+    assert.equal(fs.existsSync(out), false);
+    const pack = runCli(['pack', 'drive/main.xosc', '-o', out, '--self-contained'], { cwd: root });
+    assert.equal(pack.status, 0, pack.stderr);
+    const run = runCli(['run', out, '--esmini', esminiBinary, '--check'], { cwd: elsewhere() });
+    assert.equal(run.status, 0, run.stderr);
+    assert.match(run.stderr, /esmini: 0 errors, 0 warnings; 8\.\d\d s simulated/);
+  });
+
   it('check: no false alarm about the packed road, for esmini and by the standard; the main outside is clean too', () => {
     for (const simulator of ['asam', 'esmini']) {
       const check = runCli(['check', path.join(root, 'app', 'drive.mosc'), '--simulator', simulator], { cwd: elsewhere() });

@@ -16,7 +16,7 @@ describe('diagnostics: invalid-reference', () => {
       severity: 'error',
       code: 'invalid-reference',
       message: "'notes.txt' is neither a .xosc scenario nor a .mosc package",
-      hint: 'pack only .xosc and .mosc files',
+      hint: 'pack only .xosc and .mosc files; with --self-contained, pack stores the road files, catalogs and other files the scenarios name inside the package',
     });
     assert.equal(
       duplicateInputWording('a.xosc', 'x/a.xosc').message,

@@ -5,9 +5,12 @@ export function invalidReferenceWording(message: string, hint?: string): Problem
   return { severity: 'error', code: 'invalid-reference', message, hint };
 }
 
-/** An input of pack that is neither a scenario nor a package. */
+/** An input of pack that is neither a scenario nor a package (a road file, most often: --self-contained is how to store it). */
 export function notPackableWording(name: string): ProblemWording<'invalid-reference'> {
-  return invalidReferenceWording(`'${name}' is neither a .xosc scenario nor a .mosc package`, 'pack only .xosc and .mosc files');
+  return invalidReferenceWording(
+    `'${name}' is neither a .xosc scenario nor a .mosc package`,
+    'pack only .xosc and .mosc files; with --self-contained, pack stores the road files, catalogs and other files the scenarios name inside the package',
+  );
 }
 
 /** Two inputs of pack of one name. */
