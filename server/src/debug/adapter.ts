@@ -27,8 +27,7 @@ import { EsminiProblem } from '../esmini/messages';
 import { EntityState, prepareScenario, Simulation, SimulationLoadError, SimulationOptions, StoryboardEvent } from './simulation';
 import { STORYBOARD_EVENT, type StoryboardEventBody } from '../../../common/src/trace';
 import { describeEvent, traceRecord } from './trace';
-import { type SessionPage } from './progressPage';
-import { type SessionProgress } from './supervisor';
+import { type SessionPage, type SessionProgress } from './progressPage';
 import { evaluateWatch, hitConditionMet, timeBreakpoint, WatchContext, WatchError, WatchValue } from './watchExpression';
 
 /*

@@ -1,6 +1,5 @@
 import * as fs from 'node:fs';
 import * as os from 'node:os';
-import type { SessionProgress } from './supervisor';
 
 /*
  * A page of memory shared by a debug session's process and its supervisor (supervisor.ts), written by one side and read
@@ -20,6 +19,14 @@ import type { SessionProgress } from './supervisor';
  * each pause into the page (a write to the file, which the session's shared mapping sees); the session, stepping esmini
  * without returning to its event loop for milliseconds at a time, reads the count after every step and stops at once.
  */
+
+/** What the session last reported reaching: written synchronously, so that it outlives a crash in the very next call. */
+export interface SessionProgress {
+  /** Simulated seconds. */
+  time: number;
+  /** What happened then: `Act ClearanceAct running`, `stepping`. */
+  what: string;
+}
 
 /** The environment variable naming the page's file, set by the supervisor for its child. */
 export const PROGRESS_PAGE_ENV = 'MODULAR2SIMPLE_PROGRESS_PAGE';

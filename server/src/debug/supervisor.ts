@@ -2,7 +2,14 @@ import { ChildProcess, spawn } from 'node:child_process';
 import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
-import { makeProgressPage, pauseCounter, PROGRESS_PAGE_ENV, readPageProgress, readProgressPage } from './progressPage';
+import {
+  makeProgressPage,
+  pauseCounter,
+  PROGRESS_PAGE_ENV,
+  readPageProgress,
+  readProgressPage,
+  type SessionProgress,
+} from './progressPage';
 
 /*
  * The debug adapter's outer process (dist/debugAdapter.js as the editor starts it): it runs the session (adapter.ts),
@@ -17,14 +24,6 @@ import { makeProgressPage, pauseCounter, PROGRESS_PAGE_ENV, readPageProgress, re
 export const SESSION_ARGUMENT = '--modular2simple-session';
 /** The child's file descriptor for its progress lines (one JSON object a line: SessionProgress). */
 export const PROGRESS_FD = 3;
-
-/** What the session last reported reaching: written synchronously, so that it outlives a crash in the very next call. */
-export interface SessionProgress {
-  /** Simulated seconds. */
-  time: number;
-  /** What happened then: `Act ClearanceAct running`, `stepping`. */
-  what: string;
-}
 
 interface ProtocolMessage {
   seq?: number;
