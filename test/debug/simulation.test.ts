@@ -4,13 +4,21 @@ import * as path from 'node:path';
 import { Flattener } from '../../server/src/core/flatten';
 import { mainOf, storeForInputs } from '../../server/src/cli/inputs';
 import { ESMINI_LIBRARY_MISSING_HELP, locateEsminiLibrary } from '../../server/src/esmini/library';
-import { conditionReason, prepareScenario, Simulation, SimulationLoadError, StoryboardEvent } from '../../server/src/debug/simulation';
+import {
+  conditionReason,
+  prepareScenario,
+  Simulation,
+  SimulationLoadError,
+  StoryboardEvent,
+  withPackagedFilesIn,
+} from '../../server/src/debug/simulation';
 import { esminiCatalogs, esminiRoads } from '../support/esmini';
 import { requireEsminiLibrary } from '../support/esminiBinaries';
 import { openscenarioDir } from '../support/openscenarioCorpus';
 import { temporaryFolder } from '../support/temporaryDirectory';
 import { writeTwoCutIns } from '../support/debugScenarios';
 import { drivingScenario, packageOf } from '../support/fixtures';
+import { twoCatalogs } from '../support/twoCatalogs';
 
 const cutIn = path.join(openscenarioDir, 'esmini', 'cut-in.xosc');
 const roadPath = [esminiRoads, path.join(esminiCatalogs, 'Vehicles')];
@@ -162,6 +170,45 @@ describe('debug: a scenario run step by step in esmini library', () => {
     assert.equal(events.at(-1)?.state, 'complete');
     assert.ok((events.at(-1)?.time ?? 0) >= 8, 'it ran to its own end at 8 s');
     assert.deepEqual(fs.readdirSync(folder), ['drive.mosc'], 'nothing written beside the package');
+  });
+
+  it("runs a package holding its catalogs and road (issue 27): both are written into the run's own folder and named there", async () => {
+    const folder = temporaryFolder();
+    const input = path.join(folder, 'drive.mosc');
+    const main = drivingScenario('straight_500m.xodr', 'Drive')
+      .replace(
+        '<CatalogLocations/>',
+        '<CatalogLocations><VehicleCatalog><Directory path="Catalogs/Vehicles"/></VehicleCatalog></CatalogLocations>',
+      )
+      .replace(
+        /<ScenarioObject name="Ego">.*?<\/ScenarioObject>/s,
+        '<ScenarioObject name="Ego"><CatalogReference catalogName="VehicleCatalog" entryName="car_red"/></ScenarioObject>',
+      );
+    assert.match(main, /entryName="car_red"/);
+    fs.writeFileSync(
+      input,
+      await packageOf({
+        'main.xosc': main,
+        'Catalogs/Vehicles/VehicleCatalog.xosc': twoCatalogs('car_red')['second/VehicleCatalog.xosc'],
+        'straight_500m.xodr': fs.readFileSync(path.join(esminiRoads, 'straight_500m.xodr'), 'utf8'),
+      }),
+    );
+    // Before: esmini was told to read the catalog from .modular2simple-debug.files/Catalogs/Vehicles, which nobody wrote.
+    const events = await runAll(input, undefined, []);
+    assert.ok(
+      events.some((event) => event.name === 'E' && event.state === 'running'),
+      events.map((event) => `${event.time} ${event.name} ${event.state}`).join('\n'),
+    );
+    assert.equal(events.at(-1)?.state, 'complete');
+    assert.deepEqual(fs.readdirSync(folder), ['drive.mosc'], 'nothing written beside the package');
+  });
+
+  it('names the packaged files by their copies in the private folder, and nothing else', () => {
+    const text = `<Directory path=".modular2simple-debug.files/Catalogs/Vehicles"/><LogicFile filepath='.modular2simple-debug.files'/><File filepath="my.modular2simple-debug.files.xosc"/>`;
+    assert.equal(
+      withPackagedFilesIn(text, '/run/a&b'),
+      `<Directory path="/run/a&amp;b/.modular2simple-debug.files/Catalogs/Vehicles"/><LogicFile filepath='/run/a&amp;b/.modular2simple-debug.files'/><File filepath="my.modular2simple-debug.files.xosc"/>`,
+    );
   });
 
   it('names the build when the library is missing', () => {

@@ -2,10 +2,12 @@ import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
 import { Flattener, FlatSource } from '../core/flatten';
+import { packagedFilesFolder } from '../core/flatten/rebase';
 import { ESMINI_ELEMENT_TYPES, MappedElement, StoryboardMap } from '../core/flatten/storyboardMap';
 import { Problem } from '../core/problems';
 import { roadFolders } from '../core/semantics/roadFiles';
 import { SourceRef } from '../core/sources';
+import { escapeAttributeValue } from '../core/xml';
 import { EsminiLibrary, EsminiObjectState, loadEsminiLibrary } from '../esmini/library';
 import { readEsminiLog } from '../esmini/log';
 import { EsminiProblem, mapEsminiMessages } from '../esmini/messages';
@@ -105,16 +107,37 @@ export interface PreparedScenario {
   searchPath: string[];
   /** A road packed with the scenario (its file name and bytes): the simulation writes it into its private folder and hands esmini that copy. */
   packagedRoad?: { name: string; bytes: Uint8Array };
+  /**
+   * The package files the text names (a self-contained package's catalogs and road), each by its path relative to the
+   * main file's folder (`.modular2simple-debug.files/…`): the simulation writes them into its private folder, never
+   * beside the user's files, and names them there.
+   */
+  packagedFiles: { name: string; bytes: Uint8Array }[];
   flat: FlatSource;
   map: StoryboardMap;
   flattenProblems: Problem[];
+}
+
+/** The name the scenario is flattened to, beside the main file (never written): its packaged files are named in `<name>.files/`. */
+const DEBUG_OUTPUT_NAME = '.modular2simple-debug.xosc';
+
+/**
+ * The text with every path into `<DEBUG_OUTPUT_NAME>.files` (written by the flattener, relative to the main file's
+ * folder) made absolute in `folder`, where the simulation writes those files.
+ */
+export function withPackagedFilesIn(text: string, folder: string): string {
+  const written = packagedFilesFolder(DEBUG_OUTPUT_NAME);
+  // The flattener writes the name at a value's start, followed by `/` or the value's end.
+  const pattern = new RegExp(`(["'])${written.replace(/\./g, '\\.')}(?=[/"'])`, 'g');
+  const absolute = path.join(folder, written);
+  return text.replace(pattern, (_whole, quote: '"' | "'") => `${quote}${escapeAttributeValue(absolute, quote)}`);
 }
 
 /** Flattens `main` and finds its road and catalog folders as Run in esmini does (esmini/run.ts). */
 export async function prepareScenario(flattener: Flattener, main: SourceRef, options: SimulationOptions): Promise<PreparedScenario> {
   const sourceFolder = sourceFolderOf(main);
   // Flattened as if written beside the main file, so that its relative file paths name the files the sources name.
-  const flat = await flattener.flatten(main, { outputPath: path.join(sourceFolder, '.modular2simple-debug.xosc'), force: options.force });
+  const flat = await flattener.flatten(main, { outputPath: path.join(sourceFolder, DEBUG_OUTPUT_NAME), force: options.force });
   if (flat.text === undefined) {
     const errors = flat.problems.filter((problem) => problem.severity === 'error');
     throw new SimulationLoadError(
@@ -135,6 +158,7 @@ export async function prepareScenario(flattener: Flattener, main: SourceRef, opt
     text,
     searchPath,
     ...(packagedRoad ? { packagedRoad } : {}),
+    packagedFiles: flat.files.map((file) => ({ name: path.relative(sourceFolder, file.path), bytes: file.bytes })),
     flat: flat.source,
     map,
     flattenProblems: flat.problems,
@@ -216,7 +240,16 @@ export class Simulation {
   /** The scenario's text, a road packed with it written into the private folder and named there by its absolute path (as Run in esmini does). */
   private textToLoad(): string {
     const road = this.scenario.packagedRoad;
-    return road ? withRoadFile(this.scenario.text, writePackagedRoad(this.folder, road.name, road.bytes)) : this.scenario.text;
+    let text = road ? withRoadFile(this.scenario.text, writePackagedRoad(this.folder, road.name, road.bytes)) : this.scenario.text;
+    if (this.scenario.packagedFiles.length > 0) {
+      for (const file of this.scenario.packagedFiles) {
+        const target = path.join(this.folder, file.name);
+        fs.mkdirSync(path.dirname(target), { recursive: true });
+        fs.writeFileSync(target, file.bytes);
+      }
+      text = withPackagedFilesIn(text, this.folder);
+    }
+    return text;
   }
 
   /** esmini's SE_Init on the scenario, the callbacks registered. */
