@@ -372,7 +372,6 @@ export const catalogReferences: SemanticCheck = (context) => {
   return findings;
 };
 
-/** Entity names, with `$parameters` evaluated; only in files that declare Entities (not in catalogs). */
 const DOLLAR = 36;
 
 /**
@@ -383,6 +382,7 @@ const declaredEntityReferences = coreMemo<readonly { element: XmlElement; attrib
   'declaredEntityReferences',
 );
 
+/** Entity names, with `$parameters` evaluated; only in files that declare Entities (not in catalogs). */
 export const undeclaredEntities: SemanticCheck = ({ model, evaluator }) => {
   if (!model.hasEntities || model.catalog || !model.document.root) return [];
   const names = new Set(model.entities.map((entity) => evaluator.textOf(entity.element, entity.nameAttribute) ?? entity.name));
