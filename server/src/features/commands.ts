@@ -38,7 +38,7 @@ export function outsideConfirmed(options: unknown): boolean {
   return Boolean(options && typeof options === 'object' && (options as { outsideWorkspace?: unknown }).outsideWorkspace === true);
 }
 
-export function insideFolders(filePath: string, folders: string[]): boolean {
+export function insideFolders(filePath: string, folders: readonly string[]): boolean {
   return folders.some((folder) => filePath === folder || filePath.startsWith(folder.endsWith(path.sep) ? folder : folder + path.sep));
 }
 

@@ -3,6 +3,7 @@ import { Connection, DidChangeWatchedFilesNotification, Disposable, FileSystemWa
 import { URI } from 'vscode-uri';
 import { FlatSource } from '../core/flatten';
 import { Workspace } from '../workspace';
+import { insideFolders } from './commands';
 
 /** At most this many folders outside the workspace get watchers: a scenario reading from thousands of folders must not flood the client. */
 export const MAX_OUTSIDE_FOLDERS = 256;
@@ -20,15 +21,10 @@ export function foldersRead(source: FlatSource): string[] {
   return [...folders];
 }
 
-function inside(child: string, parent: string): boolean {
-  const relative = path.relative(parent, child);
-  return relative === '' || (!relative.startsWith('..') && !path.isAbsolute(relative));
-}
-
 /** The folders read that no watched root holds, sorted, at most `limit` of them. */
 export function foldersToWatch(read: Iterable<string>, roots: readonly string[], limit = MAX_OUTSIDE_FOLDERS): string[] {
   const outside = new Set<string>();
-  for (const folder of read) if (!roots.some((root) => inside(folder, root))) outside.add(folder);
+  for (const folder of read) if (!insideFolders(folder, roots)) outside.add(folder);
   return [...outside].sort().slice(0, limit);
 }
 
