@@ -1,5 +1,6 @@
 import * as path from 'node:path';
 import * as vscode from 'vscode';
+import { insideFolders } from '../../common/src/paths';
 import { splitScenarioPath } from '../../common/src/scenarioPath';
 
 // Road files too: the road-file check looks for a LogicFile's road in these folders (core/semantics/roadFiles.ts).
@@ -24,14 +25,9 @@ export function scenarioPathFolders(): string[] {
   return [...folders];
 }
 
-function inside(child: string, parent: string): boolean {
-  const relative = path.relative(parent, child);
-  return relative === '' || (!relative.startsWith('..') && !path.isAbsolute(relative));
-}
-
 /** The searched folders that no workspace folder holds: the editor watches only the workspace, so these need watchers of their own. */
 export function foldersOutsideWorkspace(folders: string[], workspaceFolders: string[]): string[] {
-  return folders.filter((folder) => !workspaceFolders.some((root) => inside(folder, root)));
+  return folders.filter((folder) => !insideFolders(folder, workspaceFolders));
 }
 
 /**

@@ -15,6 +15,21 @@ export function pathsFor(diskPath: string): path.PlatformPath {
 }
 
 /**
+ * Whether `child` is `folder` or lies under it, by the rules of `folder`'s own path form (case-insensitive for
+ * Windows paths, where the editor writes `c:` and Node `C:`). Both are absolute.
+ */
+export function isInsideFolder(child: string, folder: string): boolean {
+  const paths = pathsFor(folder);
+  const relative = paths.relative(folder, child);
+  return relative === '' || (relative !== '..' && !relative.startsWith('..' + paths.sep) && !paths.isAbsolute(relative));
+}
+
+/** Whether `child` is one of `folders` or lies under one of them. */
+export function insideFolders(child: string, folders: readonly string[]): boolean {
+  return folders.some((folder) => isInsideFolder(child, folder));
+}
+
+/**
  * The Python that modular2simple.carla.python names, for *Check in CARLA ScenarioRunner* and *Run in CARLA*: a
  * name (`python3`) is looked up on PATH when it starts; a path written relative (`venv/bin/python`) is one in
  * ScenarioRunner's folder, made absolute here so that neither the language server's working directory nor how

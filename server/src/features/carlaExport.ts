@@ -1,12 +1,13 @@
 import * as path from 'node:path';
 import { isSameFile } from '../../../common/src/atomic';
+import { insideFolders } from '../../../common/src/paths';
 import { ProblemSummary, WriteResult } from '../../../common/src/protocol';
 import { CarlaExportOptionError, CarlaExportOptions, CarlaLoss, exportForCarla } from '../core/export/carla';
 import { roadFolders } from '../core/semantics/roadFiles';
 import type { SourceRef } from '../core/sources';
 import { filePathOf } from '../uris';
 import { Workspace } from '../workspace';
-import { insideFolders, invalidParams, outsideConfirmed, refOf, summarize, writeOutput, writePackagedFiles } from './commands';
+import { invalidParams, outsideConfirmed, refOf, summarize, writeOutput, writePackagedFiles } from './commands';
 
 /** The editor's export options: the output, the release of `modular2simple.carla.release`, the road folders of `modular2simple.esmini.roadPath` (as Run in esmini and `export --road-path`). */
 export function carlaExportOptions(workspace: Workspace, ref: SourceRef, outputPath: string): CarlaExportOptions {

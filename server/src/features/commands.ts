@@ -3,6 +3,7 @@ import * as path from 'node:path';
 import { ErrorCodes, ResponseError } from 'vscode-languageserver/node';
 import { Flattener, FlatSource, PackagedFile } from '../core/flatten';
 import { isSameFile, OutputError, writeFileAtomic } from '../../../common/src/atomic';
+import { insideFolders } from '../../../common/src/paths';
 import { Problem } from '../core/problems';
 import { baseName, childRef, diskRef, displayRef, refId, SourceRef } from '../core/sources';
 import { FlattenTextResult, ProblemSummary, StructureNode, WriteResult } from '../../../common/src/protocol';
@@ -36,10 +37,6 @@ function forceOf(options: unknown): boolean {
 /** Whether the client asked the user and was told to write outside the workspace. */
 export function outsideConfirmed(options: unknown): boolean {
   return Boolean(options && typeof options === 'object' && (options as { outsideWorkspace?: unknown }).outsideWorkspace === true);
-}
-
-export function insideFolders(filePath: string, folders: readonly string[]): boolean {
-  return folders.some((folder) => filePath === folder || filePath.startsWith(folder.endsWith(path.sep) ? folder : folder + path.sep));
 }
 
 export async function refOf(workspace: Workspace, uri: unknown): Promise<SourceRef> {

@@ -3,7 +3,7 @@ import { Connection, DidChangeWatchedFilesNotification, Disposable, FileSystemWa
 import { URI } from 'vscode-uri';
 import { FlatSource } from '../core/flatten';
 import { Workspace } from '../workspace';
-import { insideFolders } from './commands';
+import { insideFolders } from '../../../common/src/paths';
 
 /** At most this many folders outside the workspace get watchers: a scenario reading from thousands of folders must not flood the client. */
 export const MAX_OUTSIDE_FOLDERS = 256;
