@@ -11,8 +11,6 @@ import * as path from 'node:path';
 export const outerTemporaryDirectory = os.tmpdir();
 export const runTemporaryDirectory = fs.mkdtempSync(path.join(outerTemporaryDirectory, 'm2s-run-'));
 process.env.TMPDIR = runTemporaryDirectory;
-// tsx's compile cache (in os.tmpdir()) outlives a run by design: the tests' children started with tsx keep theirs in memory.
-process.env.TSX_DISABLE_CACHE = '1';
 
 /** Folders made by temporaryFolder while a suite runs: they go when its top-level suite ends. */
 const madeFolders: string[] = [];
