@@ -23,6 +23,18 @@ import { twoCatalogs } from '../support/twoCatalogs';
 const cutIn = path.join(openscenarioDir, 'esmini', 'cut-in.xosc');
 const roadPath = [esminiRoads, path.join(esminiCatalogs, 'Vehicles')];
 
+/** Every event of a run of the package `input` with no road folder (as a user's package needs none), which starts its Event E, completes, and writes nothing beside the package. */
+async function runsPackageToItsEnd(input: string): Promise<StoryboardEvent[]> {
+  const events = await runAll(input, undefined, []);
+  assert.ok(
+    events.some((event) => event.name === 'E' && event.state === 'running'),
+    events.map((event) => `${event.time} ${event.name} ${event.state}`).join('\n'),
+  );
+  assert.equal(events.at(-1)?.state, 'complete');
+  assert.deepEqual(fs.readdirSync(path.dirname(input)), [path.basename(input)], 'nothing written beside the package');
+  return events;
+}
+
 /** Every event of a run, with the steps made when each came; `stepMany` steps by `stepMany(count, () => false)` calls. */
 async function runAll(input: string, stepMany?: number, roads = roadPath): Promise<StoryboardEvent[]> {
   return (await runCounted(input, stepMany, roads)).events;
@@ -161,15 +173,34 @@ describe('debug: a scenario run step by step in esmini library', () => {
       }),
     );
     // No road folder, as a user's package needs none. Before: "Failed to locate OpenDRIVE file .modular2simple-debug.files/straight_500m.xodr".
-    const events = await runAll(input, undefined, []);
-    assert.ok(
-      events.some((event) => event.name === 'E' && event.state === 'running'),
-      events.map((event) => `${event.time} ${event.name} ${event.state}`).join('\n'),
-    );
+    const events = await runsPackageToItsEnd(input);
     assert.equal(events.at(-1)?.type, 'Storyboard');
-    assert.equal(events.at(-1)?.state, 'complete');
     assert.ok((events.at(-1)?.time ?? 0) >= 8, 'it ran to its own end at 8 s');
-    assert.deepEqual(fs.readdirSync(folder), ['drive.mosc'], 'nothing written beside the package');
+    // The flattened text names the road's copy among the package files: that copy is the one esmini is handed, none written besides.
+    const prepared = await prepareScenario(new Flattener(storeForInputs([], undefined, [input], {}, [])), mainOf(input), { roadPath: [] });
+    assert.deepEqual(prepared.packagedRoad, { copy: path.join('.modular2simple-debug.files', 'straight_500m.xodr') });
+    assert.deepEqual(
+      prepared.packagedFiles.map((file) => file.path),
+      [path.join('.modular2simple-debug.files', 'straight_500m.xodr')],
+    );
+  });
+
+  it('runs a package whose road its LogicFile names through a parameter: the road is written for esmini, which the flattened text does not name', async () => {
+    const folder = temporaryFolder();
+    const input = path.join(folder, 'drive.mosc');
+    const main = drivingScenario('$Road', 'Drive').replace(
+      '<ParameterDeclarations></ParameterDeclarations>',
+      '<ParameterDeclarations><ParameterDeclaration name="Road" parameterType="string" value="straight_500m.xodr"/></ParameterDeclarations>',
+    );
+    assert.match(main, /name="Road"/);
+    fs.writeFileSync(
+      input,
+      await packageOf({ 'main.xosc': main, 'straight_500m.xodr': fs.readFileSync(path.join(esminiRoads, 'straight_500m.xodr'), 'utf8') }),
+    );
+    const prepared = await prepareScenario(new Flattener(storeForInputs([], undefined, [input], {}, [])), mainOf(input), { roadPath: [] });
+    assert.deepEqual(prepared.packagedFiles, []);
+    assert.equal(prepared.packagedRoad && 'name' in prepared.packagedRoad && prepared.packagedRoad.name, 'straight_500m.xodr');
+    await runsPackageToItsEnd(input);
   });
 
   it("runs a package holding its catalogs and road (issue 27): both are written into the run's own folder and named there", async () => {
@@ -194,13 +225,7 @@ describe('debug: a scenario run step by step in esmini library', () => {
       }),
     );
     // Before: esmini was told to read the catalog from .modular2simple-debug.files/Catalogs/Vehicles, which nobody wrote.
-    const events = await runAll(input, undefined, []);
-    assert.ok(
-      events.some((event) => event.name === 'E' && event.state === 'running'),
-      events.map((event) => `${event.time} ${event.name} ${event.state}`).join('\n'),
-    );
-    assert.equal(events.at(-1)?.state, 'complete');
-    assert.deepEqual(fs.readdirSync(folder), ['drive.mosc'], 'nothing written beside the package');
+    await runsPackageToItsEnd(input);
   });
 
   it('names the packaged files by their copies in the private folder, and nothing else', () => {

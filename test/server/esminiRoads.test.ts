@@ -248,7 +248,11 @@ describe("language server: a road packed in the scenario's .mosc (a self-contain
         [],
       );
       assert.match(result.message, /^esmini: 0 errors, 0 warnings; 4\.00 s simulated/);
-      assert.match(result.roadFile?.loaded ?? '', /^\/.*\/road\/e6mini\.xodr$/, 'the copy in the run folder, by its absolute path');
+      assert.match(
+        result.roadFile?.loaded ?? '',
+        /^\/.*\/scenario\.files\/e6mini\.xodr$/,
+        "the package's copy the flattened text names, in the run folder, by its absolute path",
+      );
       assert.equal(result.roadFile?.packaged, packagedRoad());
     });
 });

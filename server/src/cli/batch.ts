@@ -12,7 +12,7 @@ import type { PackagedFile } from '../core/flatten/types';
 import { diskRef, displayRef, FileKind, nodeFileSystem, splitScenarioPath } from '../core/sources';
 import { loadVariations, rebasedConcreteText, samplingProblem, SamplingError } from '../core/variations';
 import { locateEsmini } from '../esmini/locate';
-import { foundCatalogFolders, RUN_DEFAULTS } from '../esmini/run';
+import { foundCatalogFolders, RUN_DEFAULTS, writePackagedFiles } from '../esmini/run';
 import {
   CliCommand,
   CliOutput,
@@ -213,11 +213,11 @@ async function runBatch(argv: string[], io: CliOutput): Promise<number> {
   // The roads and catalogs a self-contained package ScenarioFile holds, laid out as its flattened text names them from its folder.
   const packagedFolder = packagedFiles.length > 0 ? await fs.promises.mkdtemp(path.join(os.tmpdir(), 'modular2simple-batch-')) : undefined;
   try {
-    for (const file of packagedFiles) {
-      const target = path.join(packagedFolder as string, path.relative(scenarioFolder, file.path));
-      await fs.promises.mkdir(path.dirname(target), { recursive: true });
-      await fs.promises.writeFile(target, file.bytes);
-    }
+    if (packagedFolder)
+      writePackagedFiles(
+        packagedFiles.map((file) => ({ path: path.relative(scenarioFolder, file.path), bytes: file.bytes })),
+        packagedFolder,
+      );
     return await runLocally({ ...plan, packagedFolder }, results, settings, jobs, io, values.quiet);
   } finally {
     if (packagedFolder) await fs.promises.rm(packagedFolder, { recursive: true, force: true });

@@ -12,7 +12,15 @@ import { EsminiLibrary, EsminiObjectState, loadEsminiLibrary } from '../esmini/l
 import { readEsminiLog } from '../esmini/log';
 import { EsminiProblem, mapEsminiMessages } from '../esmini/messages';
 import { makeRunFolder } from '../esmini/process';
-import { esminiFolders, RUN_DEFAULTS, sourceFolderOf, withRoadFile, writePackagedRoad } from '../esmini/run';
+import {
+  esminiFolders,
+  packagedRoadCopy,
+  RUN_DEFAULTS,
+  sourceFolderOf,
+  withRoadFile,
+  writePackagedFiles,
+  writePackagedRoad,
+} from '../esmini/run';
 import { CONDITION_LOG, ConditionReason, conditionReason, storyboardMapOf } from '../esmini/storyboardTrace';
 import { runLimit } from '../esmini/timeLimit';
 import type { StepCounter } from './progressPage';
@@ -105,14 +113,17 @@ export interface PreparedScenario {
   main: SourceRef;
   text: string;
   searchPath: string[];
-  /** A road packed with the scenario (its file name and bytes): the simulation writes it into its private folder and hands esmini that copy. */
-  packagedRoad?: { name: string; bytes: Uint8Array };
+  /**
+   * A road packed with the scenario, which the simulation hands esmini as a copy in its private folder: its copy among
+   * `packagedFiles` when the flattened text names it (`copy`), else one it writes (its file name and bytes).
+   */
+  packagedRoad?: { copy: string } | { name: string; bytes: Uint8Array };
   /**
    * The package files the text names (a self-contained package's catalogs and road), each by its path relative to the
    * main file's folder (`.modular2simple-debug.files/…`): the simulation writes them into its private folder, never
    * beside the user's files, and names them there.
    */
-  packagedFiles: { name: string; bytes: Uint8Array }[];
+  packagedFiles: { path: string; bytes: Uint8Array }[];
   flat: FlatSource;
   map: StoryboardMap;
   flattenProblems: Problem[];
@@ -137,7 +148,8 @@ export function withPackagedFilesIn(text: string, folder: string): string {
 export async function prepareScenario(flattener: Flattener, main: SourceRef, options: SimulationOptions): Promise<PreparedScenario> {
   const sourceFolder = sourceFolderOf(main);
   // Flattened as if written beside the main file, so that its relative file paths name the files the sources name.
-  const flat = await flattener.flatten(main, { outputPath: path.join(sourceFolder, DEBUG_OUTPUT_NAME), force: options.force });
+  const outputPath = path.join(sourceFolder, DEBUG_OUTPUT_NAME);
+  const flat = await flattener.flatten(main, { outputPath, force: options.force });
   if (flat.text === undefined) {
     const errors = flat.problems.filter((problem) => problem.severity === 'error');
     throw new SimulationLoadError(
@@ -149,16 +161,19 @@ export async function prepareScenario(flattener: Flattener, main: SourceRef, opt
   const { searchPath, road } = await esminiFolders(flattener, main, flat.source, folders);
   const text = road?.resolved ? withRoadFile(flat.text, road.resolved) : flat.text;
   const map = storyboardMapOf(flat.source);
-  const packagedRoad = road?.packaged && {
-    name: road.packaged.entries.at(-1) ?? '',
-    bytes: await flattener.store.readBytes(road.packaged),
-  };
+  const roadEntry = road?.packaged?.entries.at(-1) ?? '';
+  const roadCopy = road?.packaged && packagedRoadCopy(flat.files, outputPath, roadEntry);
+  const packagedRoad =
+    road?.packaged &&
+    (roadCopy
+      ? { copy: path.relative(sourceFolder, roadCopy) }
+      : { name: roadEntry, bytes: await flattener.store.readBytes(road.packaged) });
   return {
     main,
     text,
     searchPath,
     ...(packagedRoad ? { packagedRoad } : {}),
-    packagedFiles: flat.files.map((file) => ({ name: path.relative(sourceFolder, file.path), bytes: file.bytes })),
+    packagedFiles: flat.files.map((file) => ({ path: path.relative(sourceFolder, file.path), bytes: file.bytes })),
     flat: flat.source,
     map,
     flattenProblems: flat.problems,
@@ -237,19 +252,16 @@ export class Simulation {
     return started;
   }
 
-  /** The scenario's text, a road packed with it written into the private folder and named there by its absolute path (as Run in esmini does). */
+  /**
+   * The scenario's text, the package files it names written into the private folder and named there, and a road packed
+   * with it named there by its absolute path (as Run in esmini does), written once.
+   */
   private textToLoad(): string {
-    const road = this.scenario.packagedRoad;
-    let text = road ? withRoadFile(this.scenario.text, writePackagedRoad(this.folder, road.name, road.bytes)) : this.scenario.text;
-    if (this.scenario.packagedFiles.length > 0) {
-      for (const file of this.scenario.packagedFiles) {
-        const target = path.join(this.folder, file.name);
-        fs.mkdirSync(path.dirname(target), { recursive: true });
-        fs.writeFileSync(target, file.bytes);
-      }
-      text = withPackagedFilesIn(text, this.folder);
-    }
-    return text;
+    const { packagedRoad: road, packagedFiles } = this.scenario;
+    writePackagedFiles(packagedFiles, this.folder);
+    const roadFile = road && ('copy' in road ? path.join(this.folder, road.copy) : writePackagedRoad(this.folder, road.name, road.bytes));
+    const text = roadFile ? withRoadFile(this.scenario.text, roadFile) : this.scenario.text;
+    return packagedFiles.length > 0 ? withPackagedFilesIn(text, this.folder) : text;
   }
 
   /** esmini's SE_Init on the scenario, the callbacks registered. */

@@ -2,6 +2,7 @@ import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
 import { Flattener, FlatSource } from '../core/flatten';
+import { packagedFilesFolder } from '../core/flatten/rebase';
 import { Problem } from '../core/problems';
 import { foundRoadName, locateRoadFile, RoadFileLookup, roadFolders, scenarioFolderOf } from '../core/semantics/roadFiles';
 import { Evaluator, semanticModelOf } from '../core/semantics/model';
@@ -146,9 +147,29 @@ export function withRoadFile(text: string, absolutePath: string): string {
  */
 export function writePackagedRoad(folder: string, name: string, bytes: Uint8Array): string {
   const file = path.join(folder, 'road', path.basename(name));
-  fs.mkdirSync(path.dirname(file), { recursive: true });
-  fs.writeFileSync(file, bytes);
+  writePackagedFiles([{ path: file, bytes }], folder);
   return file;
+}
+
+/**
+ * Writes the files a self-contained package carries (its catalogs and road, as the flattener returns them) into a run's
+ * private `folder`, each at its path (a relative one from `folder`), with the folders they need.
+ */
+export function writePackagedFiles(files: readonly { path: string; bytes: Uint8Array }[], folder: string): void {
+  for (const file of files) {
+    const target = path.resolve(folder, file.path);
+    fs.mkdirSync(path.dirname(target), { recursive: true });
+    fs.writeFileSync(target, file.bytes);
+  }
+}
+
+/**
+ * The copy of a packed road (`entry`, its name in the package) among the files flattened for `outputPath`, when the
+ * flattened text named the road: the flattener writes the package files a text names in `<name>.files/`.
+ */
+export function packagedRoadCopy(files: readonly { path: string }[], outputPath: string, entry: string): string | undefined {
+  const copy = path.join(path.dirname(outputPath), packagedFilesFolder(outputPath), ...entry.split('/'));
+  return files.find((file) => file.path === copy)?.path;
 }
 
 /** The catalog folders (`Directory path`) the scenario writes, as written. */
@@ -312,11 +333,12 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
         candidates: road.candidates,
       }
     : undefined;
-  // What esmini is handed: the file found on disk, or a copy of the package's road in the run folder.
+  // What esmini is handed: the file found on disk, or a copy of the package's road in the run folder (the flattened one, written with the package's files, when the text names it).
   const handed =
     road?.resolved ??
     (road?.packaged
-      ? writePackagedRoad(runFolder, road.packaged.entries.at(-1) ?? '', await flattener.store.readBytes(road.packaged))
+      ? (packagedRoadCopy(flat.files, scenarioFile, road.packaged.entries.at(-1) ?? '') ??
+        writePackagedRoad(runFolder, road.packaged.entries.at(-1) ?? '', await flattener.store.readBytes(road.packaged)))
       : undefined);
   const limit = runLimit(flat.text, options.duration, options.durationSetBy);
   const duration = limit.seconds;
@@ -453,10 +475,7 @@ async function runLimitedText(
   const scenarioFile = path.join(runFolder, 'scenario.xosc');
   const csvFile = path.join(runFolder, 'trajectories.csv');
   fs.writeFileSync(scenarioFile, limited);
-  for (const file of prepared.files ?? []) {
-    fs.mkdirSync(path.dirname(file.path), { recursive: true });
-    fs.writeFileSync(file.path, file.bytes);
-  }
+  writePackagedFiles(prepared.files ?? [], runFolder);
   const run = await runEsminiProcess({
     program,
     scenarioFile,
