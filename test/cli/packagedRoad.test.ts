@@ -3,7 +3,7 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { harnessVerdicts, requireCarlaHarness } from '../support/carla';
 import { esminiBinary, esminiRoads, EsminiStep, readEsminiCsv, requireEsmini } from '../support/esmini';
-import { drivingScenario, outerGroup, packageOf, runCli } from '../support/fixtures';
+import { deterministic, distributionFile, drivingScenario, outerGroup, packageOf, runCli } from '../support/fixtures';
 import { assertSameRun, namedPaths, runAlone } from '../support/outputPaths';
 import { temporaryFolder } from '../support/temporaryDirectory';
 
@@ -115,6 +115,63 @@ describe('cli: a road packed in a .mosc beside the scenario that uses it, and a 
     assert.equal(run.status, 0, run.stderr);
     assert.match(run.stderr, /esmini: 0 errors, 0 warnings; 8\.\d\d s simulated/);
     assert.ok(Math.abs(lastX(readEsminiCsv(path.join(cwd, 'run.csv'))) - 90) < 2);
+  });
+
+  /** A package whose main.xosc names the packed road through `$Road` and drives at `$Speed`, and a distribution of two speeds over it. */
+  async function roadParameterPackage(folder: string): Promise<void> {
+    const scenario = drivingScenario('$Road', 'Drive')
+      .replace(
+        '<ParameterDeclarations></ParameterDeclarations>',
+        '<ParameterDeclarations><ParameterDeclaration name="Road" parameterType="string" value="straight_500m.xodr"/><ParameterDeclaration name="Speed" parameterType="double" value="10"/></ParameterDeclarations>',
+      )
+      .replace('parameterAttributes="value" value="10"', 'value="$Speed"');
+    assert.match(scenario, /value="\$Speed"/);
+    fs.writeFileSync(path.join(folder, 'p.mosc'), await packageOf({ 'main.xosc': scenario, 'straight_500m.xodr': road.toString('utf8') }));
+    const speeds = deterministic(
+      '      <DeterministicSingleParameterDistribution parameterName="Speed">\n' +
+        '        <DistributionSet><Element value="5"/><Element value="12"/></DistributionSet>\n' +
+        '      </DeterministicSingleParameterDistribution>\n',
+    );
+    fs.writeFileSync(path.join(folder, 'speeds.xosc'), distributionFile('p.mosc', speeds));
+  }
+
+  it('flatten, vary and batch of a package whose $Road names its packed road: each written scenario runs from its folder (before: none found the road)', async () => {
+    const folder = elsewhere();
+    await roadParameterPackage(folder);
+    // flatten: $Road stays as written (SPEC 11.6); the road's copy goes where its value names it from the output.
+    const out = path.join(elsewhere(), 'flat.xosc');
+    const flatten = runCli(['flatten', path.join(folder, 'p.mosc'), '-o', out], { cwd: elsewhere() });
+    assert.equal(flatten.status, 0, flatten.stderr);
+    assert.match(fs.readFileSync(out, 'utf8'), /<LogicFile filepath="\$Road"\/>/);
+    assert.deepEqual(fs.readFileSync(path.join(path.dirname(out), 'straight_500m.xodr')), road);
+    assert.ok(Math.abs(lastX((await runAlone(out)).steps) - 90) < 2);
+    // A file of that name already beside the output is never replaced, and the warning says the output reaches it.
+    const taken = elsewhere();
+    fs.writeFileSync(path.join(taken, 'straight_500m.xodr'), 'another road');
+    const refused = runCli(['flatten', path.join(folder, 'p.mosc'), '-o', path.join(taken, 'flat.xosc')], { cwd: taken });
+    assert.equal(refused.status, 0, refused.stderr);
+    assert.match(
+      refused.stderr,
+      /warning: '\$Road' names a file of the package, whose copy would go to .*straight_500m\.xodr, which holds another file/,
+    );
+    assert.equal(fs.readFileSync(path.join(taken, 'straight_500m.xodr'), 'utf8'), 'another road');
+    // vary: every concrete scenario runs from the folder it was written to, at its own speed.
+    const outDir = path.join(elsewhere(), 'concrete');
+    const vary = runCli(['vary', path.join(folder, 'speeds.xosc'), '--out-dir', outDir], { cwd: elsewhere() });
+    assert.equal(vary.status, 0, vary.stderr);
+    assert.deepEqual(fs.readFileSync(path.join(outDir, 'straight_500m.xodr')), road);
+    assert.ok(Math.abs(lastX((await runAlone(path.join(outDir, 'p_0.xosc'))).steps) - 50) < 2, 'Ego drove 8 s at 5 m/s from x 10');
+    assert.ok(Math.abs(lastX((await runAlone(path.join(outDir, 'p_1.xosc'))).steps) - 106) < 2, 'Ego drove 8 s at 12 m/s from x 10');
+    // batch: every run esmini ran on the packed road, to the scenario's end.
+    const results = path.join(elsewhere(), 'results');
+    const batch = runCli(['batch', path.join(folder, 'speeds.xosc'), '--results', results, '--esmini', esminiBinary, '--keep-runs'], {
+      cwd: elsewhere(),
+    });
+    assert.equal(batch.status, 0, batch.stderr);
+    const rows = fs.readFileSync(path.join(results, 'results.csv'), 'utf8').trim().split('\n').slice(1).sort();
+    assert.deepEqual(rows, ['0,ok,false,,,8.050,5,', '1,ok,false,,,8.050,12,']);
+    for (const index of ['0', '1'])
+      assert.match(fs.readFileSync(path.join(results, 'runs', index, 'esmini.log'), 'utf8'), /Loaded OpenDRIVE: .*straight_500m\.xodr/);
   });
 
   it("export --target carla: the package's road is written beside the export, which names it (before: refused, road not found)", async function () {

@@ -6,6 +6,7 @@ import { applyEdits } from '../../server/src/core/flatten/edits';
 import { elementParticles, schemaFor, SCHEMA_VERSIONS } from '../../server/src/core/schema/model';
 import { diskRef, nodeFileSystem, ScenarioStore } from '../../server/src/core/sources';
 import { parseXml } from '../../server/src/core/xml';
+import { packageOf } from '../support/fixtures';
 import { temporaryWorkspace } from '../support/workspace';
 
 const SCENARIO = (declarations: string, body: string) => `<?xml version="1.0" encoding="UTF-8"?>
@@ -163,5 +164,40 @@ describe('core: Flattener.flatten rebases for its output (SPEC 11.6)', () => {
     assert.equal(warning.range.start.line, 5, 'the LogicFile line of parameter.xosc');
     const beside = await flattener.flatten(diskRef(path.join(root, 'xosc', 'parameter.xosc')));
     assert.equal(beside.problems.filter((problem) => problem.code === 'file-path').length, 0);
+  });
+
+  it("keeps a $parameter path naming a file of the main's package as written and puts its copy where the value names it from the output", async () => {
+    const root = workspace();
+    const scenario = main('$Road').replace('value="../xodr/road.xodr"', 'value="roads/packed.xodr"');
+    fs.writeFileSync(path.join(root, 'p.mosc'), await packageOf({ 'main.xosc': scenario, 'roads/packed.xodr': '<OpenDRIVE packed="1"/>' }));
+    const flattener = new Flattener(new ScenarioStore({ scenarioPath: [], root }));
+    const ref = { disk: path.join(root, 'p.mosc'), entries: ['main.xosc'] };
+    const written = await flattener.flatten(ref, { outputPath: path.join(root, 'out', 'flat.xosc') });
+    assert.match(written.text ?? '', /<LogicFile filepath="\$Road"\/>/);
+    assert.deepEqual(
+      written.files.map((file) => [file.path, Buffer.from(file.bytes).toString('utf8')]),
+      [[path.join(root, 'out', 'roads', 'packed.xodr'), '<OpenDRIVE packed="1"/>']],
+    );
+    assert.deepEqual(written.problems, []);
+    const printed = await flattener.flatten(ref, { standardOutput: true });
+    assert.deepEqual(printed.files, []);
+    assert.match(
+      printed.problems.map((problem) => problem.message).join('\n'),
+      /'\$Road' names roads\/packed\.xodr inside the package, which standard output cannot carry/,
+    );
+    // Where another file already lies, nothing is replaced and the warning names that file.
+    fs.mkdirSync(path.join(root, 'taken', 'roads'), { recursive: true });
+    fs.writeFileSync(path.join(root, 'taken', 'roads', 'packed.xodr'), '<OpenDRIVE other="1"/>');
+    const taken = await new Flattener(new ScenarioStore({ scenarioPath: [], root })).flatten(ref, {
+      outputPath: path.join(root, 'taken', 'flat.xosc'),
+    });
+    assert.deepEqual(taken.files, []);
+    assert.match(taken.problems.map((problem) => problem.message).join('\n'), /would go to .*packed\.xodr, which holds another file/);
+    // The same bytes there already: nothing to warn about.
+    fs.writeFileSync(path.join(root, 'taken', 'roads', 'packed.xodr'), '<OpenDRIVE packed="1"/>');
+    const same = await new Flattener(new ScenarioStore({ scenarioPath: [], root })).flatten(ref, {
+      outputPath: path.join(root, 'taken', 'flat.xosc'),
+    });
+    assert.deepEqual(same.problems, []);
   });
 });

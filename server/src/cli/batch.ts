@@ -269,7 +269,9 @@ async function runLocally(
       }
       let text = (await rebasedConcreteText(run.text, plan.scenarioFolder, undefined, kindOf)).text;
       if (plan.packagedFolder) text = (await rebasedConcreteText(text, plan.packagedFolder, undefined, kindOf)).text;
-      const row = await runConcrete({ ...run, text }, settings, stop.signal);
+      // A `$parameter` LogicFile naming a packaged road stays as written (SPEC 11.6): esmini finds the copy by its name there, first.
+      const searchPath = plan.packagedFolder ? [plan.packagedFolder, ...run.searchPath] : run.searchPath;
+      const row = await runConcrete({ ...run, text, searchPath }, settings, stop.signal);
       // Ctrl-C on a terminal reaches esmini too, which then ends early as if by itself: such a run is not a result.
       if (!row || stop.signal.aborted) continue;
       await results.append(row);

@@ -3,7 +3,7 @@ import { Evaluator, semanticModelOf } from '../semantics';
 import { ScenarioModel } from '../model';
 import { Problem, ZERO_RANGE } from '../problems';
 import { ProblemWording } from '../diagnostics';
-import { packagedPathOnStandardOutputWording, unrebasedPathWording } from '../diagnostics/filePath';
+import { packagedPathOnStandardOutputWording, packagedPathTakenWording, unrebasedPathWording } from '../diagnostics/filePath';
 import type { FileKind } from '../sources/host';
 import { normalizeEntryName, ScenarioStore, SourceRef } from '../sources';
 import { escapeAttributeValue, selfAndDescendants, XmlAttribute, XmlDocument, XmlElement } from '../xml';
@@ -214,6 +214,34 @@ async function packagedEntries(
   return files.length > 0 ? { name, files } : undefined;
 }
 
+function sameBytes(a: Uint8Array, b: Uint8Array): boolean {
+  return a.length === b.length && a.every((byte, index) => byte === b[index]);
+}
+
+/**
+ * Puts the copies of the package files a `$parameter` path names (`packaged`) where its value names them from the output
+ * (`target`: the file, or the folder whose direct files they are) into `files`. A file already there with other bytes is
+ * never overwritten: its path is returned, which the output then reaches instead of the package's file.
+ */
+async function placeParameterPackaged(
+  store: ScenarioStore,
+  packaged: { name: string; files: [string, Uint8Array][] },
+  target: string,
+  files: Map<string, Uint8Array>,
+): Promise<string | undefined> {
+  const placed = packaged.files.map(([entry, bytes]): [string, Uint8Array] => [
+    entry === packaged.name ? target : path.join(target, entry.slice(entry.lastIndexOf('/') + 1)),
+    bytes,
+  ]);
+  for (const [filePath, bytes] of placed) {
+    if ((await store.kindOf(filePath)) === undefined) continue;
+    const there = await store.host.readFile(filePath, bytes.length + 1).catch(() => undefined);
+    if (!there || !sameBytes(there, bytes)) return filePath;
+  }
+  for (const [filePath, bytes] of placed) files.set(filePath, bytes);
+  return undefined;
+}
+
 /**
  * The rebasing of a flattened output (`model`: the rendered text of `source`): each element's paths
  * resolve from the folder of the file it was written in (carried catalog locations are written
@@ -246,15 +274,29 @@ export async function rebaseFlattened(
   const files = new Map<string, Uint8Array>();
   // Paths into the package a file was read from: its copies beside the output.
   const inPackage = new Set<XmlElement>();
+  let evaluator: Evaluator | undefined;
   for (const site of filePathSites(model.document.root)) {
     const ref = originFor(site.element).source.ref;
-    const packaged = await packagedEntries(store, ref, site.attribute.value);
+    let packaged = await packagedEntries(store, ref, site.attribute.value);
+    // A `$parameter` path is left as written (SPEC 11.6): the package file its value names is copied where that value names it from the output.
+    let parameterValue: string | undefined;
+    if (!packaged && ref.entries.length > 0 && namesParameter(site.attribute.value)) {
+      evaluator ??= new Evaluator(semanticModelOf(model.document));
+      parameterValue = evaluator.textOf(site.element, site.attribute);
+      packaged = parameterValue === undefined ? undefined : await packagedEntries(store, ref, parameterValue);
+    }
     if (!packaged) continue;
     inPackage.add(site.element);
     if (outputPath === undefined || outputDirectory === undefined) {
       problems.push(
         problemAtOrigin(site.element, site.attribute.name, packagedPathOnStandardOutputWording(site.attribute.value, packaged.name)),
       );
+      continue;
+    }
+    if (parameterValue !== undefined) {
+      const problem = await placeParameterPackaged(store, packaged, path.resolve(outputDirectory, parameterValue), files);
+      if (problem)
+        problems.push(problemAtOrigin(site.element, site.attribute.name, packagedPathTakenWording(site.attribute.value, problem)));
       continue;
     }
     const folder = packagedFilesFolder(outputPath);
