@@ -6,6 +6,7 @@ import { SERVER_MEMOS } from './database';
 import { OpenDocuments } from './documents';
 import { ServerSettings } from './settings';
 import { ReusingFlattener, SHARED_SOURCE_BYTES, SharedSources } from './sharedSources';
+import { SourceDependencies } from './sourceDependencies';
 
 /** An analysis of one generation: whole while pending or for an open document, else its problems only. */
 interface CachedAnalysis {
@@ -34,7 +35,8 @@ export class AnalysisDatabase {
   private currentFlattener: Flattener | undefined;
   /** Sources read so far, kept across generations until a file they depend on changes. */
   private readonly sharedSources: SharedSources;
-  private readonly sourceDependencies = new Map<string, string[]>();
+  /** What each shared source depends on, and the reverse: the sources a change makes stale. */
+  private readonly sourceDependencies = new SourceDependencies();
   /**
    * The files each open document's source read, as last known (kept in memory while it is open): the
    * dependencies of its last read (`from`), and the files a read still running has asked for since.
@@ -66,24 +68,21 @@ export class AnalysisDatabase {
   changed(changedIds?: string[]): void {
     this.generation++;
     // Remembers what open documents read before their dependencies are forgotten below.
-    this.keptSources();
+    this.rememberOpenReads();
     if (!changedIds) {
       this.analysisResults.clear();
       this.sharedSources.clear();
       this.sourceDependencies.clear();
       return;
     }
-    // The folders' prefixes made once: this runs over every shared source on each keystroke.
     const folders = changedIds.map((changed) => changed + '/');
     const touches = (id: string) => changedIds.includes(id) || folders.some((folder) => id.startsWith(folder));
+    // At most the bound's entries (an open document's and a few more); older generations' are stale anyway.
     for (const id of [...this.analysisResults.keys()]) if (touches(id)) this.analysisResults.delete(id);
-    for (const id of this.sharedSources.keys()) {
-      const dependencies = this.sourceDependencies.get(id);
-      // A source still being read has unknown dependencies, so it goes too.
-      if (!dependencies || touches(id) || dependencies.some(touches)) {
-        this.sharedSources.delete(id);
-        this.sourceDependencies.delete(id);
-      }
+    // From the reverse index: a keystroke does not walk every shared source (400 for a main with 400 references).
+    for (const id of this.sourceDependencies.staleAfter(changedIds)) {
+      this.sharedSources.delete(id);
+      this.sourceDependencies.delete(id);
     }
   }
 
@@ -94,23 +93,27 @@ export class AnalysisDatabase {
 
   /** Open documents and every file their sources read: what each edit of an open file reads again. */
   private keptSources(): Set<string> {
+    this.rememberOpenReads();
     const kept = new Set<string>();
+    for (const [id, reads] of this.openDocumentReads) {
+      kept.add(id);
+      for (const dependency of reads.ids) kept.add(dependency);
+    }
+    return kept;
+  }
+
+  /** Brings `openDocumentReads` up to date: an entry per open document, the files its last read depended on. */
+  private rememberOpenReads(): void {
     const open = new Set<string>();
     for (const document of this.inputs.documents.values()) {
       const id = refId(document.ref);
       open.add(id);
-      kept.add(id);
       // An edit forgets the file's dependencies until it is read again: what it read last time stays meanwhile.
       const known = this.sourceDependencies.get(id);
-      let reads = this.openDocumentReads.get(id);
-      if (!reads || (known && reads.from !== known)) {
-        reads = { ids: new Set(known), from: known };
-        this.openDocumentReads.set(id, reads);
-      }
-      for (const dependency of reads.ids) kept.add(dependency);
+      const reads = this.openDocumentReads.get(id);
+      if (!reads || (known && reads.from !== known)) this.openDocumentReads.set(id, { ids: new Set(known), from: known });
     }
     for (const id of [...this.openDocumentReads.keys()]) if (!open.has(id)) this.openDocumentReads.delete(id);
-    return kept;
   }
 
   /**
@@ -119,7 +122,7 @@ export class AnalysisDatabase {
    * and the next edit read them all again (144 of 400 for a main file with 400 references).
    */
   private noteRead(reader: string, id: string): void {
-    if (!this.inputs.documents.get(reader) || this.sourceDependencies.has(reader)) return;
+    if (!this.inputs.documents.get(reader) || this.sourceDependencies.get(reader)) return;
     const reads = this.openDocumentReads.get(reader);
     if (reads) reads.ids.add(id);
     else this.openDocumentReads.set(reader, { ids: new Set([id]), from: undefined });

@@ -26,6 +26,17 @@ export const SERVER_MEMOS = {
     invalidated:
       '`AnalysisDatabase.changed(ids)`: the file and everything depending on it; all on settings or a file appearing or vanishing',
   },
+  sourceDependencies: {
+    where: '`AnalysisDatabase.sourceDependencies` (`analysisDatabase.ts`; `SourceDependencies`, `sourceDependencies.ts`)',
+    key: 'a file id',
+    holds:
+      'the files each source read depends on (itself, and the files its references and catalogs read, transitively), and the reverse index: the sources depending on each file, and how many files lie below each folder or package path, so `AnalysisDatabase.changed` finds the sources a change makes stale without walking every shared source; the sources still being read (any change makes them stale)',
+    bound: {
+      text: 'one entry per file read since it last changed (kept when the shared sources let its source go past their bound): its dependencies as ids, each in the reverse index',
+    },
+    invalidated:
+      'an entry goes with its shared source in `AnalysisDatabase.changed` (the file or a dependency changed) and is replaced when the source is read again; all on settings or a file appearing or vanishing',
+  },
   analyses: {
     where: '`AnalysisDatabase.analysisResults` (`analysisDatabase.ts`)',
     key: 'a file id, per generation',

@@ -3,6 +3,7 @@ import { SchemaCheckMemory } from './core/schema/problems';
 import { refId, ScenarioStore, SourceRef } from './core/sources';
 import { CarlaRelease, Simulator } from './core/profiles/simulators';
 import { SERVER_MEMOS } from './database';
+import { SourceDependencies } from './sourceDependencies';
 
 /** Heap bytes a read source takes per character of its text, about (its parse tree, models and evaluated values). */
 const SOURCE_BYTES_PER_CHARACTER = 30;
@@ -106,7 +107,7 @@ export class ReusingFlattener extends Flattener {
   constructor(
     store: ScenarioStore,
     private readonly shared: SharedSources,
-    private readonly dependencies: Map<string, string[]>,
+    private readonly dependencies: SourceDependencies,
     simulator: Simulator,
     schema: SchemaOptions,
     schemaChecks: SchemaCheckMemory,
@@ -132,6 +133,7 @@ export class ReusingFlattener extends Flattener {
     // Only the shared sources hold it (not this generation's own cache too), so their bound holds within a generation.
     const created = this.build(ref, [...stack, ref]);
     this.shared.set(id, created);
+    this.dependencies.readStarted(id);
     created.then(
       (source) => {
         if (this.shared.get(id) === created)
@@ -140,7 +142,10 @@ export class ReusingFlattener extends Flattener {
             source.dependencies.map((dependency) => refId(dependency)),
           );
       },
-      () => this.shared.delete(id),
+      () => {
+        this.shared.delete(id);
+        this.dependencies.readFailed(id);
+      },
     );
     return created;
   }

@@ -3,10 +3,7 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import fc from 'fast-check';
 import { Flattener, LinkedReference } from '../../server/src/core/flatten';
-import { DEFAULT_CARLA_RELEASE } from '../../server/src/core/profiles/simulators';
-import { SchemaCheckMemory } from '../../server/src/core/schema/problems';
-import { diskRef, refId, ScenarioStore } from '../../server/src/core/sources';
-import { ReusingFlattener, SharedSources } from '../../server/src/sharedSources';
+import { diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { outerGroup, scenario, simpleGroup } from '../support/fixtures';
 import { editorGenerations } from '../support/generations';
 import { temporaryFolder } from '../support/temporaryDirectory';
@@ -104,28 +101,15 @@ describe('server: the links of references an edit inside one value leaves alone'
   it('are linked again when the file they read changed', async () => {
     const ref = diskRef(mainFile);
     const simpleRef = diskRef(path.join(folder, 'simple.xosc'));
-    const store = new ScenarioStore({ scenarioPath: [], root: folder });
-    const shared = new SharedSources(64 * 1024 * 1024, () => new Set());
-    const generation = () =>
-      new ReusingFlattener(
-        store,
-        shared,
-        new Map(),
-        'asam',
-        { version: 'auto' },
-        new SchemaCheckMemory(),
-        () => undefined,
-        DEFAULT_CARLA_RELEASE,
-      );
+    const { store, generation, edited } = editorGenerations(folder);
     store.setOverlay(ref, main);
     const before = await generation().analyze(ref);
     assert.ok(!before.problems.some((problem) => problem.message.includes("'WorldPosition.y'")));
     // Edited in the editor: y is no longer listed. The main file's text stays (the same parse is read again) and
     // its references resolve as they did; the file they read is another source.
     const changed = simple.replace('parameterAttributes="x, y, h"', 'parameterAttributes="x, h"');
-    store.setOverlay(simpleRef, changed);
-    shared.delete(refId(simpleRef));
-    shared.delete(refId(ref));
+    edited(simpleRef, changed);
+    edited(ref, main);
     // Read again first on its own (as its own diagnostics would), so the main file finds it among the shared sources.
     const flattener = generation();
     await flattener.source(simpleRef, []);

@@ -3,6 +3,7 @@ import { DEFAULT_CARLA_RELEASE } from '../../server/src/core/profiles/simulators
 import { SchemaCheckMemory } from '../../server/src/core/schema/problems';
 import { refId, ScenarioStore, SourceRef } from '../../server/src/core/sources';
 import { ReusingFlattener, SharedSources } from '../../server/src/sharedSources';
+import { SourceDependencies } from '../../server/src/sourceDependencies';
 
 /**
  * A folder analysed as the server's database does across edits: one store, one flattener per generation reusing
@@ -15,7 +16,16 @@ export function editorGenerations(root: string) {
   return {
     store,
     generation: () =>
-      new ReusingFlattener(store, shared, new Map(), 'asam', { version: 'auto' }, memory, () => undefined, DEFAULT_CARLA_RELEASE),
+      new ReusingFlattener(
+        store,
+        shared,
+        new SourceDependencies(),
+        'asam',
+        { version: 'auto' },
+        memory,
+        () => undefined,
+        DEFAULT_CARLA_RELEASE,
+      ),
     /** The editor's text of a file, read by the next generation. */
     edited(ref: SourceRef, text: string): void {
       store.setOverlay(ref, text);
