@@ -897,6 +897,31 @@ describe('export --target carla, a condition on a dropped element', function () 
   });
 });
 
+describe('export --target carla, what it prints', () => {
+  let out: string;
+  before(function () {
+    requireCorpus(this);
+  });
+  inTemporaryFolderEach('m2s-carla-print-', (folder) => (out = folder));
+
+  it("lists the losses by file, then line, as a compiler does (esmini's highway_merge.xosc and its vehicle catalog)", async () => {
+    const result = await exportFile(
+      path.join(openscenarioDir, 'esmini', 'highway_merge.xosc'),
+      path.join(out, 'out.xosc'),
+      ESMINI_SAMPLE_OPTIONS,
+    );
+    assert.equal(result.code, 0, result.stderr);
+    const listed = [...result.stderr.matchAll(/^(.+):(\d+): (?:warning|error): /gm)].map((match) => ({
+      file: match[1],
+      line: Number(match[2]),
+    }));
+    assert.equal(listed.length, result.report.losses.length, result.stderr);
+    assert.ok(new Set(listed.map((loss) => loss.file)).size >= 2, `losses in the scenario and its catalog: ${result.stderr}`);
+    const sorted = [...listed].sort((a, b) => (a.file === b.file ? a.line - b.line : a.file < b.file ? -1 : 1));
+    assert.deepEqual(listed, sorted);
+  });
+});
+
 describe('export --target carla, bad input', () => {
   let out: string;
   const scenario = (): string => path.join(openscenarioDir, 'scenario_runner', 'FollowLeadingVehicle.xosc');

@@ -170,7 +170,9 @@ async function exportCommand(argv: string[], io: CliOutput): Promise<number> {
     if (error instanceof CarlaExportOptionError) throw new InputError(error.message);
     throw error;
   }
-  for (const loss of result.losses) if (!args.quiet || loss.kind === 'refused') io.err(lossLine(loss));
+  // As a compiler lists its findings: by file, then line (the export finds them in the order it rewrites the tree).
+  const listed = [...result.losses].sort((a, b) => (a.file === b.file ? a.line - b.line : a.file < b.file ? -1 : 1));
+  for (const loss of listed) if (!args.quiet || loss.kind === 'refused') io.err(lossLine(loss));
   const report = {
     input: path.resolve(args.input),
     output: path.resolve(args.output),
