@@ -162,6 +162,13 @@ describe('cli: a road packed in a .mosc beside the scenario that uses it, and a 
     assert.deepEqual(fs.readFileSync(path.join(outDir, 'straight_500m.xodr')), road);
     assert.ok(Math.abs(lastX((await runAlone(path.join(outDir, 'p_0.xosc'))).steps) - 50) < 2, 'Ego drove 8 s at 5 m/s from x 10');
     assert.ok(Math.abs(lastX((await runAlone(path.join(outDir, 'p_1.xosc'))).steps) - 106) < 2, 'Ego drove 8 s at 12 m/s from x 10');
+    // A road of that name already in the folder vary writes to is kept, and said once.
+    const kept = elsewhere();
+    fs.writeFileSync(path.join(kept, 'straight_500m.xodr'), 'another road');
+    const varyKept = runCli(['vary', path.join(folder, 'speeds.xosc'), '--out-dir', kept], { cwd: elsewhere() });
+    assert.equal(varyKept.status, 0, varyKept.stderr);
+    assert.equal(varyKept.stderr.match(/which holds another file/g)?.length, 1, varyKept.stderr);
+    assert.equal(fs.readFileSync(path.join(kept, 'straight_500m.xodr'), 'utf8'), 'another road');
     // batch: every run esmini ran on the packed road, to the scenario's end.
     const results = path.join(elsewhere(), 'results');
     const batch = runCli(['batch', path.join(folder, 'speeds.xosc'), '--results', results, '--esmini', esminiBinary, '--keep-runs'], {

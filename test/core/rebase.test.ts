@@ -1,7 +1,7 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { FILE_PATH_ELEMENTS, filePathSites, Flattener, rebasePaths } from '../../server/src/core/flatten';
+import { besideOutputWritable, FILE_PATH_ELEMENTS, filePathSites, Flattener, rebasePaths } from '../../server/src/core/flatten';
 import { applyEdits } from '../../server/src/core/flatten/edits';
 import { elementParticles, schemaFor, SCHEMA_VERSIONS } from '../../server/src/core/schema/model';
 import { diskRef, nodeFileSystem, ScenarioStore } from '../../server/src/core/sources';
@@ -175,8 +175,8 @@ describe('core: Flattener.flatten rebases for its output (SPEC 11.6)', () => {
     const written = await flattener.flatten(ref, { outputPath: path.join(root, 'out', 'flat.xosc') });
     assert.match(written.text ?? '', /<LogicFile filepath="\$Road"\/>/);
     assert.deepEqual(
-      written.files.map((file) => [file.path, Buffer.from(file.bytes).toString('utf8')]),
-      [[path.join(root, 'out', 'roads', 'packed.xodr'), '<OpenDRIVE packed="1"/>']],
+      written.files.map((file) => [file.path, Buffer.from(file.bytes).toString('utf8'), file.namedBy]),
+      [[path.join(root, 'out', 'roads', 'packed.xodr'), '<OpenDRIVE packed="1"/>', '$Road']],
     );
     assert.deepEqual(written.problems, []);
     const printed = await flattener.flatten(ref, { standardOutput: true });
@@ -185,19 +185,16 @@ describe('core: Flattener.flatten rebases for its output (SPEC 11.6)', () => {
       printed.problems.map((problem) => problem.message).join('\n'),
       /'\$Road' names roads\/packed\.xodr inside the package, which standard output cannot carry/,
     );
-    // Where another file already lies, nothing is replaced and the warning names that file.
-    fs.mkdirSync(path.join(root, 'taken', 'roads'), { recursive: true });
-    fs.writeFileSync(path.join(root, 'taken', 'roads', 'packed.xodr'), '<OpenDRIVE other="1"/>');
-    const taken = await new Flattener(new ScenarioStore({ scenarioPath: [], root })).flatten(ref, {
-      outputPath: path.join(root, 'taken', 'flat.xosc'),
-    });
+    // A writer never replaces another file lying where the copy goes: the warning names that file; the same bytes are fine.
+    fs.mkdirSync(path.join(root, 'out', 'roads'), { recursive: true });
+    fs.writeFileSync(path.join(root, 'out', 'roads', 'packed.xodr'), '<OpenDRIVE other="1"/>');
+    const taken = await besideOutputWritable(written.files, nodeFileSystem);
     assert.deepEqual(taken.files, []);
-    assert.match(taken.problems.map((problem) => problem.message).join('\n'), /would go to .*packed\.xodr, which holds another file/);
-    // The same bytes there already: nothing to warn about.
-    fs.writeFileSync(path.join(root, 'taken', 'roads', 'packed.xodr'), '<OpenDRIVE packed="1"/>');
-    const same = await new Flattener(new ScenarioStore({ scenarioPath: [], root })).flatten(ref, {
-      outputPath: path.join(root, 'taken', 'flat.xosc'),
-    });
-    assert.deepEqual(same.problems, []);
+    assert.match(
+      taken.warnings.join('\n'),
+      /'\$Road' names a file of the package, whose copy would go to .*packed\.xodr, which holds another file/,
+    );
+    fs.writeFileSync(path.join(root, 'out', 'roads', 'packed.xodr'), '<OpenDRIVE packed="1"/>');
+    assert.deepEqual(await besideOutputWritable(written.files, nodeFileSystem), { files: written.files, warnings: [] });
   });
 });

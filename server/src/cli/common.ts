@@ -3,7 +3,9 @@ import * as path from 'node:path';
 import { parseArgs, ParseArgsConfig } from 'node:util';
 import { isSameFile, writeFilesAtomicSync } from '../../../common/src/atomic';
 import { formatProblem, Problem, uniqueProblems } from '../core/problems';
-import { displayRef, SourceRef } from '../core/sources';
+import { displayRef, nodeFileSystem, SourceRef } from '../core/sources';
+import { besideOutputWritable } from '../core/flatten';
+import type { PackagedFile } from '../core/flatten/types';
 import { CRITERIA_FAILED_EXIT } from '../batch/criteria';
 
 export const VERSION = '0.1.0';
@@ -125,6 +127,19 @@ export function checkNotAnInput(output: string, inputs: SourceRef[]): void {
 }
 
 /** Writes every output or none; `-` is standard output. */
+/** The package files a flattening returns that may be written where `at` puts them (besideOutputWritable), its warnings printed after `label`. */
+export async function writablePackagedFiles<File extends PackagedFile>(
+  files: readonly File[],
+  label: string,
+  io: CliOutput,
+  quiet: boolean,
+  at?: (file: File) => string,
+): Promise<File[]> {
+  const { files: writable, warnings } = await besideOutputWritable(files, nodeFileSystem, at);
+  if (!quiet) for (const warning of warnings) io.err(`${label}: warning: ${warning}`);
+  return writable;
+}
+
 export async function write(
   outputs: { target: string; data: string | Uint8Array; summary: string }[],
   io: CliOutput,

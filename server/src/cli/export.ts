@@ -3,7 +3,7 @@ import * as path from 'node:path';
 import { isSameFile } from '../../../common/src/atomic';
 import { CarlaExport, CarlaExportOptionError, CarlaExportOptions, exportForCarla, exportTextForCarla } from '../core/export/carla';
 import { diskRef, nodeFileSystem, splitScenarioPath } from '../core/sources';
-import { CliCommand, CliOutput, ExitCode, InputError, parseCommandLine, UsageError, write } from './common';
+import { CliCommand, CliOutput, ExitCode, InputError, parseCommandLine, UsageError, writablePackagedFiles, write } from './common';
 import { mainOf, storeForInputs } from './inputs';
 import { CARLA_OPTION, carlaOptionHelp, carlaReleaseOption } from './options';
 import { readUtf8Exactly } from './fileSystem';
@@ -207,7 +207,7 @@ async function exportCommand(argv: string[], io: CliOutput): Promise<number> {
   const counts =
     result.losses.length === 0 ? 'nothing lost' : `${result.losses.length} loss${result.losses.length === 1 ? '' : 'es'} listed above`;
   // A road packed with the scenario goes beside the export that names it, as flatten writes it.
-  const files = result.files ?? [];
+  const files = await writablePackagedFiles(result.files ?? [], args.output, io, args.quiet);
   for (const file of files) fs.mkdirSync(path.dirname(file.path), { recursive: true });
   return write(
     [

@@ -3,7 +3,19 @@ import * as path from 'node:path';
 import { Flattener, OVERRIDE_PROBLEM_CODES } from '../core/flatten';
 import { Problem } from '../core/problems';
 import { countEditorLines } from '../core/text';
-import { checkInputExists, checkNotAnInput, CliCommand, CliOutput, ExitCode, InputError, report, UsageError, write } from './common';
+import type { PackagedFile } from '../core/flatten/types';
+import {
+  checkInputExists,
+  checkNotAnInput,
+  CliCommand,
+  CliOutput,
+  ExitCode,
+  InputError,
+  report,
+  UsageError,
+  writablePackagedFiles,
+  write,
+} from './common';
 import { mainOf } from './inputs';
 import { makeStore, Options, parseOptions, READING_OPTIONS_HELP, SIMULATOR_OPTION_HELP, WRITING_EXIT_CODES_HELP } from './options';
 
@@ -51,7 +63,9 @@ async function flattenInputs(inputs: string[], outputs: string[] | undefined, op
   }
   for (let i = 0; i < results.length; i++) if (outputs[i] !== '-') checkNotAnInput(outputs[i], results[i].source.dependencies);
   // A self-contained package's roads and catalogs go beside the output that names them.
-  for (const file of results.flatMap((result) => result.files)) fs.mkdirSync(path.dirname(file.path), { recursive: true });
+  const files: PackagedFile[][] = [];
+  for (const [i, result] of results.entries()) files.push(await writablePackagedFiles(result.files, outputs[i], io, options.quiet));
+  for (const file of files.flat()) fs.mkdirSync(path.dirname(file.path), { recursive: true });
   return write(
     results.flatMap((result, i) => [
       {
@@ -59,7 +73,7 @@ async function flattenInputs(inputs: string[], outputs: string[] | undefined, op
         data: result.text as string,
         summary: `wrote ${outputs[i]} (${countEditorLines(result.text as string)} lines)`,
       },
-      ...result.files.map((file) => ({
+      ...files[i].map((file) => ({
         target: file.path,
         data: file.bytes,
         summary: `wrote ${path.relative(path.dirname(path.resolve(outputs[i])), file.path)} (a file of the package the output names)`,

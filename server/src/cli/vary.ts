@@ -1,6 +1,16 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { CliCommand, CliOutput, ExitCode, failure, InputError, parseCommandLine, UsageError, wholeNumber } from './common';
+import {
+  CliCommand,
+  CliOutput,
+  ExitCode,
+  failure,
+  InputError,
+  parseCommandLine,
+  UsageError,
+  wholeNumber,
+  writablePackagedFiles,
+} from './common';
 import { isSameFile, writeFileAtomic } from '../../../common/src/atomic';
 import {
   loadVariations,
@@ -226,9 +236,14 @@ async function varyScenarios(argv: string[], io: Output, givenLoader: ScenarioTe
   };
   const writtenPackaged = new Set<string>();
   const writePackagedBeside = async (outputDirectory: string): Promise<void> => {
-    for (const file of packagedFiles) {
-      const target = path.join(path.resolve(outputDirectory), path.relative(scenarioFolder, file.path));
-      if (writtenPackaged.has(target)) continue;
+    const at = (file: PackagedFile) => path.join(path.resolve(outputDirectory), path.relative(scenarioFolder, file.path));
+    const label = path.relative(base, variations.scenarioPath) || variations.scenarioPath;
+    const pending = packagedFiles.filter((file) => !writtenPackaged.has(at(file)));
+    const writable = await writablePackagedFiles(pending, label, io, values.quiet ?? false, at);
+    // One left where another file lies is told once.
+    for (const file of pending) if (!writable.includes(file)) writtenPackaged.add(at(file));
+    for (const file of writable) {
+      const target = at(file);
       await fs.promises.mkdir(path.dirname(target), { recursive: true });
       await writeFileAtomic(target, file.bytes);
       writtenPackaged.add(target);

@@ -1,11 +1,11 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { ErrorCodes, ResponseError } from 'vscode-languageserver/node';
-import { Flattener, FlatSource, PackagedFile } from '../core/flatten';
+import { besideOutputWritable, Flattener, FlatSource, PackagedFile } from '../core/flatten';
 import { isSameFile, OutputError, writeFileAtomic } from '../../../common/src/atomic';
 import { insideFolders } from '../../../common/src/paths';
 import { Problem } from '../core/problems';
-import { baseName, childRef, diskRef, displayRef, refId, SourceRef } from '../core/sources';
+import { baseName, childRef, diskRef, displayRef, nodeFileSystem, refId, SourceRef } from '../core/sources';
 import { FlattenTextResult, ProblemSummary, StructureNode, WriteResult } from '../../../common/src/protocol';
 import { elementPlace, resolvedTarget } from '../analysis';
 import { filePathOf } from '../uris';
@@ -114,7 +114,9 @@ export async function writePackagedFiles(
   problems: ProblemSummary[],
   ref: SourceRef,
 ): Promise<WriteResult | undefined> {
-  for (const file of files) {
+  const writable = await besideOutputWritable(files, nodeFileSystem);
+  for (const message of writable.warnings) problems.push({ ...outputProblem(workspace, ref, message), severity: 'warning' });
+  for (const file of writable.files) {
     await fs.promises.mkdir(path.dirname(file.path), { recursive: true });
     const written = await writeOutput(workspace, file.path, file.bytes, problems, ref);
     if (written.written === null) return written;

@@ -42,14 +42,12 @@ export function packagedPathOnStandardOutputWording(written: string, entry: stri
   };
 }
 
-/** A `$parameter` path naming a package file whose copy beside the output would replace another file (`taken`), which the output then reaches. */
-export function packagedPathTakenWording(written: string, taken: string): ProblemWording<'file-path'> {
-  return {
-    severity: 'warning',
-    code: 'file-path',
-    message: `'${written}' names a file of the package, whose copy would go to ${taken}, which holds another file: it is not replaced, so the output reaches that file instead`,
-    hint: 'write the output to another folder, or move that file away and write it again',
-  };
+/** A `$parameter` path (`written`) naming a package file whose copy beside the output would replace another file (`taken`), which the output then reaches. */
+export function packagedPathTakenMessage(written: string, taken: string): string {
+  return (
+    `'${written}' names a file of the package, whose copy would go to ${taken}, which holds another file: it is not replaced, so ` +
+    'the output reaches that file instead (write the output to another folder, or move that file away and write it again)'
+  );
 }
 
 /** A path the output cannot name from where it is written: `message` is the rebasing's finding. */

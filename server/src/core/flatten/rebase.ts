@@ -3,8 +3,8 @@ import { Evaluator, semanticModelOf } from '../semantics';
 import { ScenarioModel } from '../model';
 import { Problem, ZERO_RANGE } from '../problems';
 import { ProblemWording } from '../diagnostics';
-import { packagedPathOnStandardOutputWording, packagedPathTakenWording, unrebasedPathWording } from '../diagnostics/filePath';
-import type { FileKind } from '../sources/host';
+import { packagedPathOnStandardOutputWording, packagedPathTakenMessage, unrebasedPathWording } from '../diagnostics/filePath';
+import type { FileKind, FileSystemHost } from '../sources/host';
 import { normalizeEntryName, ScenarioStore, SourceRef } from '../sources';
 import { escapeAttributeValue, selfAndDescendants, XmlAttribute, XmlDocument, XmlElement } from '../xml';
 import type { TextEdit } from './edits';
@@ -219,27 +219,29 @@ function sameBytes(a: Uint8Array, b: Uint8Array): boolean {
 }
 
 /**
- * Puts the copies of the package files a `$parameter` path names (`packaged`) where its value names them from the output
- * (`target`: the file, or the folder whose direct files they are) into `files`. A file already there with other bytes is
- * never overwritten: its path is returned, which the output then reaches instead of the package's file.
+ * Of the files a flattening returns, those a writer may write where they are to go (`at`: their path there, by default
+ * their own): a copy named through a `$parameter` (`PackagedFile.namedBy`) is left out where another file already lies,
+ * never replaced, with a warning saying the output reaches that file instead.
  */
-async function placeParameterPackaged(
-  store: ScenarioStore,
-  packaged: { name: string; files: [string, Uint8Array][] },
-  target: string,
-  files: Map<string, Uint8Array>,
-): Promise<string | undefined> {
-  const placed = packaged.files.map(([entry, bytes]): [string, Uint8Array] => [
-    entry === packaged.name ? target : path.join(target, entry.slice(entry.lastIndexOf('/') + 1)),
-    bytes,
-  ]);
-  for (const [filePath, bytes] of placed) {
-    if ((await store.kindOf(filePath)) === undefined) continue;
-    const there = await store.host.readFile(filePath, bytes.length + 1).catch(() => undefined);
-    if (!there || !sameBytes(there, bytes)) return filePath;
+export async function besideOutputWritable<File extends PackagedFile>(
+  files: readonly File[],
+  host: Pick<FileSystemHost, 'kind' | 'readFile'>,
+  at: (file: File) => string = (file) => file.path,
+): Promise<{ files: File[]; warnings: string[] }> {
+  const writable: File[] = [];
+  const warnings: string[] = [];
+  for (const file of files) {
+    const target = at(file);
+    if (file.namedBy !== undefined && (await host.kind(target)) !== undefined) {
+      const there = await host.readFile(target, file.bytes.length + 1).catch(() => undefined);
+      if (!there || !sameBytes(there, file.bytes)) {
+        warnings.push(packagedPathTakenMessage(file.namedBy, target));
+        continue;
+      }
+    }
+    writable.push(file);
   }
-  for (const [filePath, bytes] of placed) files.set(filePath, bytes);
-  return undefined;
+  return { files: writable, warnings };
 }
 
 /**
@@ -272,6 +274,7 @@ export async function rebaseFlattened(
   const problems: Problem[] = [];
   const edits: TextEdit[] = [];
   const files = new Map<string, Uint8Array>();
+  const namedBy = new Map<string, string>();
   // Paths into the package a file was read from: its copies beside the output.
   const inPackage = new Set<XmlElement>();
   let evaluator: Evaluator | undefined;
@@ -294,9 +297,12 @@ export async function rebaseFlattened(
       continue;
     }
     if (parameterValue !== undefined) {
-      const problem = await placeParameterPackaged(store, packaged, path.resolve(outputDirectory, parameterValue), files);
-      if (problem)
-        problems.push(problemAtOrigin(site.element, site.attribute.name, packagedPathTakenWording(site.attribute.value, problem)));
+      const target = path.resolve(outputDirectory, parameterValue);
+      for (const [entry, bytes] of packaged.files) {
+        const at = entry === packaged.name ? target : path.join(target, entry.slice(entry.lastIndexOf('/') + 1));
+        namedBy.set(at, site.attribute.value);
+        files.set(at, bytes);
+      }
       continue;
     }
     const folder = packagedFilesFolder(outputPath);
@@ -322,6 +328,9 @@ export async function rebaseFlattened(
     edits: [...edits, ...rebase.edits],
     resolved: rebase.resolved,
     problems,
-    files: [...files].map(([filePath, bytes]) => ({ path: filePath, bytes })),
+    files: [...files].map(([filePath, bytes]) => {
+      const by = namedBy.get(filePath);
+      return by === undefined ? { path: filePath, bytes } : { path: filePath, bytes, namedBy: by };
+    }),
   };
 }

@@ -142,6 +142,11 @@ export interface PackagedFile {
   /** Where it is written, absolute. */
   path: string;
   bytes: Uint8Array;
+  /**
+   * The `$parameter` path (as written) whose value names this file from the output: its copy lies beside the output, not in
+   * the flattener's own `NAME.files/`, so another file already there is never replaced (`besideOutputWritable`).
+   */
+  namedBy?: string;
 }
 
 export interface FlattenResult {
