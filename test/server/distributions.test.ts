@@ -279,6 +279,29 @@ describe('distribution files in the editor: checks, counts and fixes', function 
     assert.match(messageOf(diagnostics[0]), /^the value 'two' for int parameter 'Lanes' /);
   });
 
+  it('checks a file an edit makes a distribution file, after value edits, and stops once an edit makes it a scenario again', async () => {
+    const file = path.join(fixture.root, 'becoming.xosc');
+    fs.writeFileSync(file, scenario);
+    const uri = await fixture.client.openFile(file);
+    assert.deepEqual(own(await fixture.client.diagnosticsOf(uri)), []);
+    // A value edit first: the answer 'no distribution' is carried over it, and must not be over the edits after it.
+    await fixture.client.change(uri, [{ text: scenario.replace('value="30"', 'value="31"') }]);
+    const unknown = distribution(`      <DeterministicSingleParameterDistribution parameterName="Sped">
+        <DistributionSet><Element value="20"/></DistributionSet>
+      </DeterministicSingleParameterDistribution>`);
+    await fixture.client.change(uri, [{ text: unknown }]);
+    const named = (name: string) => (diagnostics: Diagnostic[]) =>
+      own(diagnostics).length === 1 && messageOf(own(diagnostics)[0]).includes(`'${name}'`);
+    await fixture.client.diagnosticsOf(uri, named('Sped'));
+    await fixture.client.change(uri, [{ text: unknown.replace('parameterName="Sped"', 'parameterName="Spd"') }]);
+    await fixture.client.diagnosticsOf(uri, named('Spd'));
+    await fixture.client.change(uri, [{ text: scenario.replace('value="30"', 'value="32"') }]);
+    await fixture.client.diagnosticsOf(uri, (diagnostics) => own(diagnostics).length === 0);
+    const lenses = (await fixture.client.connection.sendRequest('textDocument/codeLens', { textDocument: { uri } })) as CodeLens[];
+    assert.deepEqual(lensTitles(lenses), []);
+    await fixture.client.close(uri);
+  });
+
   it('checks again when the scenario changes', async () => {
     const uri = await fixture.client.openFile(path.join(fixture.root, 'unknown.xosc'));
     const scenarioUri = await fixture.client.openFile(path.join(fixture.root, 'plain.xosc'));

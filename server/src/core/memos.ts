@@ -141,6 +141,14 @@ export const CORE_MEMOS = {
     bound: { text: 'at most one previous tree per edited file' },
     invalidated: "once the new parse's semantic model is built (`forgetValueEdit`), or when the next edit re-parses it",
   },
+  textSearches: {
+    where: '`parseTextMatches` (`core/xml/textSearch.ts`)',
+    key: 'a parse, then a search of its whole text (`TextSearch`)',
+    holds:
+      "whether the text holds a match (the scan for a distribution file's `<ParameterValueDistribution`, on each diagnostics pass of an open file); the parse after an edit inside one value takes the previous parse's answers when neither text has a match within the search's span of the edit (`carryTextSearches`, from the re-parse), instead of scanning the new text",
+    bound: WITH_KEY,
+    invalidated: 'never: a new parse is a new key (a parse not made by a value edit, or with a match near the edit, is scanned when asked)',
+  },
   semanticModels: {
     where: '`semanticModelOf` (`core/semantics/model.ts`)',
     key: 'a parse',

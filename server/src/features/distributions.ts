@@ -3,7 +3,7 @@ import { CodeLens, CompletionItem, CompletionItemKind, Hover, MarkupKind, TextEd
 import { valueContextAt } from '../core/cursor';
 import { childRef, diskRef, refId, SourceRef } from '../core/sources';
 import { loadVariations, SamplingError, Variations } from '../core/variations';
-import { DistributionRead, distributionProblems, isDistributionText } from '../core/variations/problems';
+import { DistributionRead, distributionProblems, isDistributionParse, isDistributionText } from '../core/variations/problems';
 import { LineIndex } from '../core/text';
 import { readScenarioParameters } from '../core/variations/concrete';
 import { expandDeterministic } from '../core/variations/deterministic';
@@ -55,6 +55,12 @@ export function distributionAnalysis(workspace: Workspace, ref: SourceRef): Prom
   return analysis;
 }
 
+/** Whether the file's text is a distribution's: an open file's parse of this text (its analysis made it) answers once, and carries the answer over a value edit. */
+function isDistribution(workspace: Workspace, ref: SourceRef, text: string): boolean {
+  const parse = workspace.store.lastParse(ref, text);
+  return parse ? isDistributionParse(parse) : isDistributionText(text);
+}
+
 async function analyze(
   workspace: Workspace,
   ref: SourceRef,
@@ -63,7 +69,7 @@ async function analyze(
   // A distribution inside a package has no folder of its own for the ScenarioFile to resolve from.
   if (ref.entries.length > 0) return undefined;
   const text = await workspace.text(ref);
-  if (text === undefined || !isDistributionText(text)) return undefined;
+  if (text === undefined || !isDistribution(workspace, ref, text)) return undefined;
   const file = ref.disk;
   let scenarioText: string | undefined;
   let scenarioRef: SourceRef | undefined;
@@ -240,7 +246,7 @@ export async function distributionCompletion(
   text: string,
   offset: number,
 ): Promise<CompletionItem[] | undefined> {
-  if (!isDistributionText(text)) return undefined;
+  if (!isDistribution(workspace, ref, text)) return undefined;
   const at = parameterNameAt(text, offset);
   if (!at) return undefined;
   const analysis = await distributionAnalysis(workspace, ref);

@@ -30,6 +30,12 @@ export class Overlays {
     return this.parseEdited(this.editedParses, ref, text);
   }
 
+  /** The last parse of a file being edited when it is of `text`; nothing is parsed. */
+  lastParse(ref: SourceRef, text: string): XmlDocument | undefined {
+    const last = this.editedParses.get(refId(ref));
+    return last?.text === text ? last : undefined;
+  }
+
   parseFlattened(ref: SourceRef, text: string): XmlDocument {
     return this.parseEdited(this.flattenedParses, ref, text);
   }

@@ -104,6 +104,11 @@ export class ScenarioStore {
     return this.overlays.parse(ref, text);
   }
 
+  /** The parse `parse` last gave of a file being edited, when it is of `text` (nothing is parsed); undefined otherwise. */
+  lastParse(ref: SourceRef, text: string): XmlDocument | undefined {
+    return this.overlays.lastParse(ref, text);
+  }
+
   /**
    * Parses the flattened text of a file being edited, from its previous flattened parse where it
    * can be: an edit inside one value of the file changes one value of its flattened text too.

@@ -4,6 +4,7 @@ import { unknownDistributionParameterWording } from '../diagnostics/unknownDistr
 import { Problem } from '../problems';
 import { SourceRef } from '../sources';
 import { closestMatch, LineIndex, Range } from '../text';
+import { parseTextMatches, TextSearch, textMatches, XmlDocument } from '../xml';
 import type { DeclaredParameter } from './concrete';
 import type { VariationProblem } from './distribution';
 import type { LoadResult } from './index';
@@ -11,10 +12,17 @@ import type { LoadResult } from './index';
 /** A distribution file's root element, as a quick scan finds it. */
 const DISTRIBUTION_ELEMENT = /<ParameterValueDistribution\b/;
 
+/** The scan for it: a match and its `\b` look at 28 characters. */
+const DISTRIBUTION_SEARCH: TextSearch = { pattern: DISTRIBUTION_ELEMENT, literal: '<ParameterValueDistribution', span: 28 };
+
 /** Whether a text is a ParameterValueDistribution file (a quick scan, before any parse). */
 export function isDistributionText(text: string): boolean {
-  // The plain search first: a large file that is no distribution is not run through the regular expression.
-  return text.includes('<ParameterValueDistribution') && DISTRIBUTION_ELEMENT.test(text);
+  return textMatches(text, DISTRIBUTION_SEARCH);
+}
+
+/** `isDistributionText` of a parse's text, scanned once per parse and carried over an edit inside one value (a keystroke in a large scenario). */
+export function isDistributionParse(document: XmlDocument): boolean {
+  return parseTextMatches(document, DISTRIBUTION_SEARCH);
 }
 
 /** A distribution file read with its ScenarioFile, as the editor and `check` read it (the engine's `vary` reading). */

@@ -4,6 +4,8 @@ export { isXmlChar } from './characters';
 export { parseXml } from './scanner';
 export { forgetValueEdit, markupFreeEdit, reparseValueEdit, reparseXml, valueEditOf } from './reparse';
 export type { ValueEdit } from './reparse';
+export { parseTextMatches, textMatches } from './textSearch';
+export type { TextSearch } from './textSearch';
 export {
   attribute,
   attributeValue,

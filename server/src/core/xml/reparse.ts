@@ -3,6 +3,7 @@ import { PLAIN_VALUE } from './characters';
 import { parseXml } from './scanner';
 import { XmlAttribute, XmlDocument, XmlElement } from './types';
 import { coreMemo } from '../memos';
+import { carryTextSearches } from './textSearch';
 
 /**
  * Parses `text` knowing `previous`, the same document before one edit. When the edit lies inside a
@@ -205,6 +206,7 @@ export function reparseValueEdit(previous: XmlDocument, text: string): XmlDocume
         : elementOf(sourceElement).attributes[sourceElement.attributes.indexOf(source)],
     shift,
   });
+  carryTextSearches(previous, document, prefix, removedEnd, insertedEnd);
   return document;
 }
 
