@@ -3,7 +3,7 @@ import { spawn } from 'node:child_process';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { esminiBinary, esminiRoads, requireEsmini } from '../support/esmini';
-import { runCli } from '../support/fixtures';
+import { roadParameterPackage, runCli } from '../support/fixtures';
 import { cliPath, repoRoot } from '../support/paths';
 import { freePort, RedisServer, requireRedis, startRedis } from '../support/redis';
 import { waitUntil } from '../support/wait';
@@ -245,6 +245,31 @@ describe('cli: batch through a Redis queue', function () {
       ),
     );
     assert.deepEqual(rowsOf('queued'), localRows, 'the same rows, status and reason included');
+  });
+
+  it('a package holding two roads, its $Road varied over both: a worker in an empty folder runs each on its own road, as locally', async function () {
+    requireEsmini(this);
+    requireRedis(this);
+    redis = await startRedis();
+    const root = temporaryFolder('m2s-queue-package-');
+    folders.push(root);
+    const roads = ['straight_500m.xodr', 'straight_500m_signs.xodr'];
+    await roadParameterPackage(
+      root,
+      Object.fromEntries(roads.map((name) => [name, fs.readFileSync(path.join(esminiRoads, name))])),
+      'Road',
+      roads,
+    );
+    const empty = temporaryFolder('m2s-worker-');
+    folders.push(empty);
+    workers.push(background(['worker', '--queue', redis.url, '--jobs', '2', '--esmini', esminiBinary], empty));
+    const queued = await runCliAsync(['batch', 'speeds.xosc', '--esmini', esminiBinary, '--results', 'queued', '--queue', redis.url], root);
+    assert.equal(queued.code, 0, queued.output);
+    const expected = ['0,ok,false,,,8.050,straight_500m.xodr,', '1,ok,false,,,8.050,straight_500m_signs.xodr,'];
+    assert.deepEqual(sortedRows(path.join(root, 'queued')), expected);
+    const local = runCli(['batch', 'speeds.xosc', '--esmini', esminiBinary, '--results', 'local'], { cwd: root });
+    assert.equal(local.status, 0, local.stderr);
+    assert.deepEqual(sortedRows(path.join(root, 'local')), expected);
   });
 
   it('a batch interrupted while the workers run collects the rest when run again, nothing twice', async function () {

@@ -3,7 +3,7 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { harnessVerdicts, requireCarlaHarness } from '../support/carla';
 import { esminiBinary, esminiRoads, EsminiStep, readEsminiCsv, requireEsmini } from '../support/esmini';
-import { deterministic, distributionFile, drivingScenario, outerGroup, packageOf, runCli } from '../support/fixtures';
+import { drivingScenario, outerGroup, packageOf, roadParameterPackage, runCli } from '../support/fixtures';
 import { assertSameRun, namedPaths, runAlone } from '../support/outputPaths';
 import { temporaryFolder } from '../support/temporaryDirectory';
 
@@ -117,27 +117,17 @@ describe('cli: a road packed in a .mosc beside the scenario that uses it, and a 
     assert.ok(Math.abs(lastX(readEsminiCsv(path.join(cwd, 'run.csv'))) - 90) < 2);
   });
 
-  /** A package whose main.xosc names the packed road through `$Road` and drives at `$Speed`, and a distribution of two speeds over it. */
-  async function roadParameterPackage(folder: string): Promise<void> {
-    const scenario = drivingScenario('$Road', 'Drive')
-      .replace(
-        '<ParameterDeclarations></ParameterDeclarations>',
-        '<ParameterDeclarations><ParameterDeclaration name="Road" parameterType="string" value="straight_500m.xodr"/><ParameterDeclaration name="Speed" parameterType="double" value="10"/></ParameterDeclarations>',
-      )
-      .replace('parameterAttributes="value" value="10"', 'value="$Speed"');
-    assert.match(scenario, /value="\$Speed"/);
-    fs.writeFileSync(path.join(folder, 'p.mosc'), await packageOf({ 'main.xosc': scenario, 'straight_500m.xodr': road.toString('utf8') }));
-    const speeds = deterministic(
-      '      <DeterministicSingleParameterDistribution parameterName="Speed">\n' +
-        '        <DistributionSet><Element value="5"/><Element value="12"/></DistributionSet>\n' +
-        '      </DeterministicSingleParameterDistribution>\n',
-    );
-    fs.writeFileSync(path.join(folder, 'speeds.xosc'), distributionFile('p.mosc', speeds));
+  /** `batch DISTRIBUTION --keep-runs` from a folder of its own, which must end with exit 0: its results folder and sorted rows. */
+  function batchOf(distribution: string): { results: string; rows: string[] } {
+    const results = path.join(elsewhere(), 'results');
+    const batch = runCli(['batch', distribution, '--results', results, '--esmini', esminiBinary, '--keep-runs'], { cwd: elsewhere() });
+    assert.equal(batch.status, 0, batch.stderr);
+    return { results, rows: fs.readFileSync(path.join(results, 'results.csv'), 'utf8').trim().split('\n').slice(1).sort() };
   }
 
   it('flatten, vary and batch of a package whose $Road names its packed road: each written scenario runs from its folder (before: none found the road)', async () => {
     const folder = elsewhere();
-    await roadParameterPackage(folder);
+    await roadParameterPackage(folder, { 'straight_500m.xodr': road }, 'Speed', ['5', '12']);
     // flatten: $Road stays as written (SPEC 11.6); the road's copy goes where its value names it from the output.
     const out = path.join(elsewhere(), 'flat.xosc');
     const flatten = runCli(['flatten', path.join(folder, 'p.mosc'), '-o', out], { cwd: elsewhere() });
@@ -170,15 +160,28 @@ describe('cli: a road packed in a .mosc beside the scenario that uses it, and a 
     assert.equal(varyKept.stderr.match(/which holds another file/g)?.length, 1, varyKept.stderr);
     assert.equal(fs.readFileSync(path.join(kept, 'straight_500m.xodr'), 'utf8'), 'another road');
     // batch: every run esmini ran on the packed road, to the scenario's end.
-    const results = path.join(elsewhere(), 'results');
-    const batch = runCli(['batch', path.join(folder, 'speeds.xosc'), '--results', results, '--esmini', esminiBinary, '--keep-runs'], {
-      cwd: elsewhere(),
-    });
-    assert.equal(batch.status, 0, batch.stderr);
-    const rows = fs.readFileSync(path.join(results, 'results.csv'), 'utf8').trim().split('\n').slice(1).sort();
+    const { results, rows } = batchOf(path.join(folder, 'speeds.xosc'));
     assert.deepEqual(rows, ['0,ok,false,,,8.050,5,', '1,ok,false,,,8.050,12,']);
     for (const index of ['0', '1'])
       assert.match(fs.readFileSync(path.join(results, 'runs', index, 'esmini.log'), 'utf8'), /Loaded OpenDRIVE: .*straight_500m\.xodr/);
+  });
+
+  it('vary and batch of a varied $Road over two roads the package holds: each concrete scenario gets its own road (before: only the first was found)', async () => {
+    const folder = elsewhere();
+    const signs = fs.readFileSync(path.join(esminiRoads, 'straight_500m_signs.xodr'));
+    await roadParameterPackage(folder, { 'straight_500m.xodr': road, 'straight_500m_signs.xodr': signs }, 'Road', [
+      'straight_500m.xodr',
+      'straight_500m_signs.xodr',
+    ]);
+    const outDir = path.join(elsewhere(), 'concrete');
+    const vary = runCli(['vary', path.join(folder, 'speeds.xosc'), '--out-dir', outDir], { cwd: elsewhere() });
+    assert.equal(vary.status, 0, vary.stderr);
+    assert.deepEqual(fs.readFileSync(path.join(outDir, 'straight_500m_signs.xodr')), signs);
+    for (const [index, name] of ['straight_500m.xodr', 'straight_500m_signs.xodr'].entries())
+      assert.match((await runAlone(path.join(outDir, `p_${index}.xosc`))).log, new RegExp(`Loaded OpenDRIVE: ${outDir}/${name}`));
+    const { results, rows } = batchOf(path.join(folder, 'speeds.xosc'));
+    assert.deepEqual(rows, ['0,ok,false,,,8.050,straight_500m.xodr,', '1,ok,false,,,8.050,straight_500m_signs.xodr,']);
+    assert.match(fs.readFileSync(path.join(results, 'runs', '1', 'esmini.log'), 'utf8'), /Loaded OpenDRIVE: .*\/straight_500m_signs\.xodr/);
   });
 
   it("export --target carla: the package's road is written beside the export, which names it (before: refused, road not found)", async function () {

@@ -1,5 +1,7 @@
 import * as assert from 'node:assert/strict';
 import { spawnSync } from 'node:child_process';
+import * as fs from 'node:fs';
+import * as path from 'node:path';
 import JSZip from 'jszip';
 import { cliPath } from './paths';
 
@@ -363,4 +365,33 @@ export function speedChangeGroup(name: string, actor: string, speed: string, tri
               </StartTrigger>
 `;
   return maneuverGroup(name, actor, extra + maneuver('M', speedEvent('E', speed, afterFiveMetres)));
+}
+
+/**
+ * `folder/p.mosc`: a main.xosc (drivingScenario) that names its road through `$Road` (the first of `roads`) and drives at
+ * `$Speed` (10), with `roads` packed beside it; and `folder/speeds.xosc`, a distribution of `values` for `parameter` over it.
+ */
+export async function roadParameterPackage(
+  folder: string,
+  roads: Record<string, Uint8Array>,
+  parameter: 'Road' | 'Speed',
+  values: string[],
+): Promise<void> {
+  const scenario = drivingScenario('$Road', 'Drive')
+    .replace(
+      '<ParameterDeclarations></ParameterDeclarations>',
+      `<ParameterDeclarations><ParameterDeclaration name="Road" parameterType="string" value="${Object.keys(roads)[0]}"/><ParameterDeclaration name="Speed" parameterType="double" value="10"/></ParameterDeclarations>`,
+    )
+    .replace('parameterAttributes="value" value="10"', 'value="$Speed"');
+  assert.match(scenario, /value="\$Speed"/);
+  const zip = new JSZip();
+  zip.file('main.xosc', scenario);
+  for (const [name, bytes] of Object.entries(roads)) zip.file(name, bytes);
+  fs.writeFileSync(path.join(folder, 'p.mosc'), await zip.generateAsync({ type: 'uint8array', compression: 'DEFLATE' }));
+  const distribution = deterministic(
+    `      <DeterministicSingleParameterDistribution parameterName="${parameter}">\n` +
+      `        <DistributionSet>${values.map((value) => `<Element value="${value}"/>`).join('')}</DistributionSet>\n` +
+      '      </DeterministicSingleParameterDistribution>\n',
+  );
+  fs.writeFileSync(path.join(folder, 'speeds.xosc'), distributionFile('p.mosc', distribution));
 }

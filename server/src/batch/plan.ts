@@ -18,8 +18,10 @@ export interface BatchPlanView {
   scenarioFolder: string;
   /** Files of a self-contained package ScenarioFile that its flattened text names (`flattened.files/`), relative to `scenarioFolder`. */
   packagedFiles: PackagedFile[];
-  /** Where a local batch wrote `packagedFiles`, in the same layout. */
+  /** Where a local batch wrote `packagedFiles`, in the same layout, and those `packagedOf` names. */
   packagedFolder?: string;
+  /** The package files a concrete scenario's text names through a `$parameter` (a varied road), placed as `packagedFiles` are. */
+  packagedOf?: (text: string) => Promise<PackagedFile[]>;
 }
 
 /** The varied parameters, in the order the distribution names them first: the columns after the fixed ones. */

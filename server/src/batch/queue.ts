@@ -164,10 +164,17 @@ export async function queueBatch(
       let files = filesByPaths.get(key);
       if (!files) {
         const onDisk = filesNamed(named, plan.scenarioFolder, plan.searchPath);
-        files = Promise.all(onDisk.map((file) => send(relativeTo(plan.scenarioFolder, file), () => readJobFile(file)))).then((found) => [
-          ...packaged,
-          ...found.filter((file) => !packaged.some((each) => each.relative === file.relative)),
-        ]);
+        files = (async () => {
+          // The package's own files first (a varied `$Road` may name another of them), then what the text names on disk.
+          const named = await Promise.all(
+            ((await plan.packagedOf?.(text)) ?? []).map((file) =>
+              send(relativeTo(plan.scenarioFolder, file.path), () => Promise.resolve(file.bytes)),
+            ),
+          );
+          const own = [...packaged, ...named.filter((file) => !packaged.some((each) => each.relative === file.relative))];
+          const found = await Promise.all(onDisk.map((file) => send(relativeTo(plan.scenarioFolder, file), () => readJobFile(file))));
+          return [...own, ...found.filter((file) => !own.some((each) => each.relative === file.relative))];
+        })();
         filesByPaths.set(key, files);
       }
       return files;

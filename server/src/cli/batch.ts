@@ -24,9 +24,9 @@ import {
   UsageError,
   wholeNumber,
 } from './common';
-import { flatteningScenarioLoader, readDistributionFile, scenarioFolderOf, scenarioProblems } from './scenarioText';
+import { concretePackagedFiles, flatteningScenarioLoader, readDistributionFile, scenarioFolderOf, scenarioProblems } from './scenarioText';
 import { formatProblem } from '../core/problems';
-import { storeForInputs } from './inputs';
+import { mainOf, storeForInputs } from './inputs';
 import { chosenIndices, problemPrinter, samplingOptions } from './vary';
 
 export const BATCH_HELP = `Run every concrete scenario of a distribution in esmini (modular2simple batch FILE --results DIR ...):
@@ -187,7 +187,8 @@ async function runBatch(argv: string[], io: CliOutput): Promise<number> {
   const catalogStore = storeForInputs(scenarioPath, undefined, [variations.scenarioPath], {}, roadPath);
   const found = await foundCatalogFolders(catalogStore, scenarioFolder, namedPaths(variations.scenario.text).catalogFolders);
   const searchPath = searchPathOf(variations.scenario.text, scenarioFolder, [...found, ...roadPath]);
-  const plan: BatchPlanView = { variations, chosen, parameterNames, searchPath, scenarioFolder, packagedFiles };
+  const packagedOf = concretePackagedFiles(variations.scenarioPath, scenarioPath, roadPath);
+  const plan: BatchPlanView = { variations, chosen, parameterNames, searchPath, scenarioFolder, packagedFiles, packagedOf };
   const warning = limitWarning(plan, duration);
   if (warning) io.err(`${positionals[0]}: warning: ${warning}`);
 
@@ -211,7 +212,10 @@ async function runBatch(argv: string[], io: CliOutput): Promise<number> {
     settings.runsFolder = path.join(settings.keepRunsIn, '.running');
   }
   // The roads and catalogs a self-contained package ScenarioFile holds, laid out as its flattened text names them from its folder.
-  const packagedFolder = packagedFiles.length > 0 ? await fs.promises.mkdtemp(path.join(os.tmpdir(), 'modular2simple-batch-')) : undefined;
+  const packagedFolder =
+    packagedFiles.length > 0 || mainOf(variations.scenarioPath).entries.length > 0
+      ? await fs.promises.mkdtemp(path.join(os.tmpdir(), 'modular2simple-batch-'))
+      : undefined;
   try {
     if (packagedFolder)
       writePackagedFiles(
@@ -257,6 +261,21 @@ async function runLocally(
     if (!known) kinds.set(diskPath, (known = nodeFileSystem.kind(diskPath)));
     return known;
   };
+  // Each package file a concrete scenario names through a `$parameter` is written once, before the first run that needs it.
+  const namedWritten = new Map<string, Promise<void>>(
+    plan.packagedFiles.map((file) => [path.relative(plan.scenarioFolder, file.path), Promise.resolve()]),
+  );
+  const writeNamedPackaged = async (files: PackagedFile[]): Promise<void> => {
+    for (const file of files) {
+      const relative = path.relative(plan.scenarioFolder, file.path);
+      if (!namedWritten.has(relative))
+        namedWritten.set(
+          relative,
+          Promise.resolve().then(() => writePackagedFiles([{ path: relative, bytes: file.bytes }], plan.packagedFolder as string)),
+        );
+      await namedWritten.get(relative);
+    }
+  };
   const work = async (): Promise<void> => {
     while (!stop.signal.aborted && next < todo.length) {
       const index = todo[next++];
@@ -267,6 +286,7 @@ async function runLocally(
         progress.tick(run.discarded);
         continue;
       }
+      if (plan.packagedFolder && plan.packagedOf) await writeNamedPackaged(await plan.packagedOf(run.text));
       let text = (await rebasedConcreteText(run.text, plan.scenarioFolder, undefined, kindOf)).text;
       if (plan.packagedFolder) text = (await rebasedConcreteText(text, plan.packagedFolder, undefined, kindOf)).text;
       // A `$parameter` LogicFile naming a packaged road stays as written (SPEC 11.6): esmini finds the copy by its name there, first.

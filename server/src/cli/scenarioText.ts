@@ -1,6 +1,6 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { Flattener } from '../core/flatten';
+import { Flattener, parameterPackagedFiles } from '../core/flatten';
 import type { PackagedFile } from '../core/flatten/types';
 import { formatProblem, Problem } from '../core/problems';
 import { diskRef } from '../core/sources';
@@ -59,6 +59,21 @@ export function flatteningScenarioLoader(
     const more = errors.length > shown.length ? `\n  (${errors.length - shown.length} more)` : '';
     throw new Error(`cannot be flattened (${errors.length} error${errors.length === 1 ? '' : 's'}):${shown.join('')}${more}`);
   };
+}
+
+/**
+ * For a ScenarioFile inside a package: the package files a concrete scenario's text names through a `$parameter` (a varied
+ * road), placed from the ScenarioFile's folder as the flattening places the files it carries; none for a file on disk.
+ */
+export function concretePackagedFiles(
+  file: string,
+  scenarioPath: string[],
+  catalogPath: string[] = [],
+): (text: string) => Promise<PackagedFile[]> {
+  const main = mainOf(file);
+  if (main.entries.length === 0) return () => Promise.resolve([]);
+  const store = storeForInputs(scenarioPath, undefined, [file], {}, catalogPath);
+  return (text) => parameterPackagedFiles(text, main, scenarioFolderOf(file), store);
 }
 
 /**

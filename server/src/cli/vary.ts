@@ -24,7 +24,7 @@ import {
   Variations,
 } from '../core/variations';
 import { seedBits, Xoshiro128StarStar } from '../core/variations/random';
-import { flatteningScenarioLoader, readDistributionFile, scenarioFolderOf } from './scenarioText';
+import { concretePackagedFiles, flatteningScenarioLoader, readDistributionFile, scenarioFolderOf } from './scenarioText';
 import { FileKind, nodeFileSystem, splitScenarioPath } from '../core/sources';
 import type { PackagedFile } from '../core/flatten/types';
 
@@ -171,8 +171,8 @@ async function varyScenarios(argv: string[], io: Output, givenLoader: ScenarioTe
   const base = process.cwd();
   // The roads and catalogs a self-contained package ScenarioFile holds: written beside each concrete scenario, where it names them.
   const packagedFiles: PackagedFile[] = [];
-  const loadScenarioText =
-    givenLoader ?? flatteningScenarioLoader((values['scenario-path'] ?? []).flatMap(splitScenarioPath), packagedFiles);
+  const scenarioPathList = (values['scenario-path'] ?? []).flatMap(splitScenarioPath);
+  const loadScenarioText = givenLoader ?? flatteningScenarioLoader(scenarioPathList, packagedFiles);
   const loaded = await loadVariations(distributionText, distributionPath, loadScenarioText);
   const printProblems = problemPrinter(loaded, values.quiet, io, base);
   printProblems();
@@ -235,10 +235,15 @@ async function varyScenarios(argv: string[], io: Output, givenLoader: ScenarioTe
     return result.text;
   };
   const writtenPackaged = new Set<string>();
-  const writePackagedBeside = async (outputDirectory: string): Promise<void> => {
+  // A concrete scenario's `$parameter` road may be another file of the package than the one the flattening carried.
+  const packagedOf = concretePackagedFiles(variations.scenarioPath, scenarioPathList);
+  const writePackagedBeside = async (outputDirectory: string, concreteText: string): Promise<void> => {
     const at = (file: PackagedFile) => path.join(path.resolve(outputDirectory), path.relative(scenarioFolder, file.path));
     const label = path.relative(base, variations.scenarioPath) || variations.scenarioPath;
-    const pending = packagedFiles.filter((file) => !writtenPackaged.has(at(file)));
+    const named = [...packagedFiles, ...(await packagedOf(concreteText))];
+    const pending = named.filter(
+      (file, index) => !writtenPackaged.has(at(file)) && named.findIndex((other) => at(other) === at(file)) === index,
+    );
     const writable = await writablePackagedFiles(pending, label, io, values.quiet ?? false, at);
     // One left where another file lies is told once.
     for (const file of pending) if (!writable.includes(file)) writtenPackaged.add(at(file));
@@ -262,9 +267,10 @@ async function varyScenarios(argv: string[], io: Output, givenLoader: ScenarioTe
       );
     if (values.output === undefined) {
       io.out(await rebased(concrete.text, undefined));
-      if (packagedFiles.length > 0 && !values.quiet)
+      const stored = new Set([...packagedFiles, ...(await packagedOf(concrete.text))].map((file) => file.path)).size;
+      if (stored > 0 && !values.quiet)
         io.err(
-          `${path.relative(base, variations.scenarioPath) || variations.scenarioPath}: warning: the scenario names ${packagedFiles.length} file${packagedFiles.length === 1 ? '' : 's'} stored in the package, which standard output cannot carry; write it with -o`,
+          `${path.relative(base, variations.scenarioPath) || variations.scenarioPath}: warning: the scenario names ${stored} file${stored === 1 ? '' : 's'} stored in the package, which standard output cannot carry; write it with -o`,
         );
       return ExitCode.ok;
     }
@@ -272,7 +278,7 @@ async function varyScenarios(argv: string[], io: Output, givenLoader: ScenarioTe
       throw new UsageError(`-o ${values.output} is an input; it is never overwritten`);
     const text = await rebased(concrete.text, path.dirname(values.output));
     try {
-      await writePackagedBeside(path.dirname(values.output));
+      await writePackagedBeside(path.dirname(values.output), concrete.text);
       await writeFileAtomic(values.output, text);
     } catch (error) {
       io.err(`modular2simple: cannot write ${values.output}: ${(error as Error).message}`);
@@ -307,7 +313,7 @@ async function varyScenarios(argv: string[], io: Output, givenLoader: ScenarioTe
     if (inputs.some((input) => isSameFile(input, target))) throw new UsageError(`${target} is an input; it is never overwritten`);
     const text = await rebased(concrete.text, outDir);
     try {
-      await writePackagedBeside(outDir);
+      await writePackagedBeside(outDir, concrete.text);
       await writeFileAtomic(target, text);
     } catch (error) {
       io.err(`modular2simple: cannot write ${target}: ${(error as Error).message} (${written} concrete scenarios were written before it)`);

@@ -17,7 +17,15 @@ export { Flattener } from './flattener';
 export { copiedFrom, declarationLocation, originOf } from './origin';
 export { describeChain } from './report';
 export { parameterAttributeSpans, reindent, stripParameterAttributes } from './edits';
-export { besideOutputWritable, FILE_PATH_ELEMENTS, filePathSites, pathBaseOf, rebaseFlattened, rebasePaths } from './rebase';
+export {
+  besideOutputWritable,
+  FILE_PATH_ELEMENTS,
+  filePathSites,
+  parameterPackagedFiles,
+  pathBaseOf,
+  rebaseFlattened,
+  rebasePaths,
+} from './rebase';
 export type { FilePathSite, PathRebase, RebaseFinding, RebaseRequest, ResolvedPath } from './rebase';
 export { outputSchemaProblems, overrideValueProblems } from './outputSchema';
 export { OVERRIDE_PROBLEM_CODES } from './types';

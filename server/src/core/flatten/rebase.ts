@@ -6,7 +6,7 @@ import { ProblemWording } from '../diagnostics';
 import { packagedPathOnStandardOutputWording, packagedPathTakenMessage, unrebasedPathWording } from '../diagnostics/filePath';
 import type { FileKind, FileSystemHost } from '../sources/host';
 import { normalizeEntryName, ScenarioStore, SourceRef } from '../sources';
-import { escapeAttributeValue, selfAndDescendants, XmlAttribute, XmlDocument, XmlElement } from '../xml';
+import { escapeAttributeValue, parseXml, selfAndDescendants, XmlAttribute, XmlDocument, XmlElement } from '../xml';
 import type { TextEdit } from './edits';
 import { originOf } from './origin';
 import type { FlatSource, PackagedFile } from './types';
@@ -218,6 +218,41 @@ function sameBytes(a: Uint8Array, b: Uint8Array): boolean {
   return a.length === b.length && a.every((byte, index) => byte === b[index]);
 }
 
+/** The copies of `packaged` that a `$parameter` path (`namedBy`, as written) names at `target`: the file, or the folder whose direct files they are. */
+function placedCopies(packaged: { name: string; files: [string, Uint8Array][] }, target: string, namedBy: string): PackagedFile[] {
+  return packaged.files.map(([entry, bytes]) => ({
+    path: entry === packaged.name ? target : path.join(target, entry.slice(entry.lastIndexOf('/') + 1)),
+    bytes,
+    namedBy,
+  }));
+}
+
+/**
+ * The package files that the `$parameter` paths of a plain scenario `text` name through their values, looked up in the
+ * package of `main` (the packaged file the text was flattened from), each placed where its value names it from
+ * `outputDirectory`. For a concrete scenario of a packaged ScenarioFile, whose values (a varied road) may differ from
+ * those its flattening carried.
+ */
+export async function parameterPackagedFiles(
+  text: string,
+  main: SourceRef,
+  outputDirectory: string,
+  store: ScenarioStore,
+): Promise<PackagedFile[]> {
+  if (main.entries.length === 0) return [];
+  const document = parseXml(text);
+  let evaluator: Evaluator | undefined;
+  const files: PackagedFile[] = [];
+  for (const site of filePathSites(document.root)) {
+    if (!namesParameter(site.attribute.value)) continue;
+    evaluator ??= new Evaluator(semanticModelOf(document));
+    const value = evaluator.textOf(site.element, site.attribute);
+    const packaged = value === undefined ? undefined : await packagedEntries(store, main, value);
+    if (packaged) files.push(...placedCopies(packaged, path.resolve(outputDirectory, value as string), site.attribute.value));
+  }
+  return files;
+}
+
 /**
  * Of the files a flattening returns, those a writer may write where they are to go (`at`: their path there, by default
  * their own): a copy named through a `$parameter` (`PackagedFile.namedBy`) is left out where another file already lies,
@@ -297,11 +332,9 @@ export async function rebaseFlattened(
       continue;
     }
     if (parameterValue !== undefined) {
-      const target = path.resolve(outputDirectory, parameterValue);
-      for (const [entry, bytes] of packaged.files) {
-        const at = entry === packaged.name ? target : path.join(target, entry.slice(entry.lastIndexOf('/') + 1));
-        namedBy.set(at, site.attribute.value);
-        files.set(at, bytes);
+      for (const copy of placedCopies(packaged, path.resolve(outputDirectory, parameterValue), site.attribute.value)) {
+        namedBy.set(copy.path, site.attribute.value);
+        files.set(copy.path, copy.bytes);
       }
       continue;
     }
