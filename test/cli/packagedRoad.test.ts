@@ -184,6 +184,36 @@ describe('cli: a road packed in a .mosc beside the scenario that uses it, and a 
     assert.match(fs.readFileSync(path.join(results, 'runs', '1', 'esmini.log'), 'utf8'), /Loaded OpenDRIVE: .*\/straight_500m_signs\.xodr/);
   });
 
+  it('pack --self-contained stores a road named through $Road where its value names it, so the package runs; a value outside the folder is left, with the warning', () => {
+    const folder = elsewhere();
+    fs.mkdirSync(path.join(folder, 'drive', 'roads'), { recursive: true });
+    fs.writeFileSync(path.join(folder, 'drive', 'roads', 'straight_500m.xodr'), road);
+    const scenario = (value: string) =>
+      drivingScenario('$Road', 'Drive').replace(
+        '<ParameterDeclarations></ParameterDeclarations>',
+        `<ParameterDeclarations><ParameterDeclaration name="Road" parameterType="string" value="${value}"/></ParameterDeclarations>`,
+      );
+    fs.writeFileSync(path.join(folder, 'drive', 'main.xosc'), scenario('roads/straight_500m.xodr'));
+    for (const input of ['drive', 'drive/main.xosc']) {
+      const pack = runCli(['pack', input, '-o', 'p.mosc', '--self-contained'], { cwd: folder });
+      assert.equal(pack.status, 0, pack.stderr);
+      assert.match(pack.stderr, /wrote p\.mosc \(roads\/straight_500m\.xodr, main\.xosc\)/, input);
+      assert.doesNotMatch(pack.stderr, /warning/, input);
+      const run = runCli(['run', path.join(folder, 'p.mosc'), '--esmini', esminiBinary, '--check'], { cwd: elsewhere() });
+      assert.equal(run.status, 0, run.stderr);
+      assert.match(run.stderr, /esmini: 0 errors, 0 warnings; 8\.\d\d s simulated/);
+    }
+    fs.mkdirSync(path.join(folder, 'inner'));
+    fs.writeFileSync(path.join(folder, 'inner', 'main.xosc'), scenario('../drive/roads/straight_500m.xodr'));
+    const outside = runCli(['pack', 'inner', '-o', 'q.mosc', '--self-contained'], { cwd: folder });
+    assert.equal(outside.status, 0, outside.stderr);
+    assert.match(outside.stderr, /wrote q\.mosc \(main\.xosc\)/);
+    assert.match(
+      outside.stderr,
+      /warning: the package reaches the file .*straight_500m\.xodr outside itself[\s\S]*--self-contained stores the file only where/,
+    );
+  });
+
   it("export --target carla: the package's road is written beside the export, which names it (before: refused, road not found)", async function () {
     const out = path.join(elsewhere(), 'carla', 'drive.xosc');
     fs.mkdirSync(path.dirname(out));

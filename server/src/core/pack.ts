@@ -86,11 +86,14 @@ function carriedEntryName(place: PackPlace, disk: string): string {
   return name;
 }
 
-/** Stores a file or a folder's files (not its subfolders) in the package once; the entry name it has there. */
-async function carryIntoPackage(place: PackPlace, resolved: ResolvedPath): Promise<string | undefined> {
+/** Stores a file or a folder's files (not its subfolders) in the package once, as `name` unless carried before; the entry name it has there. */
+async function carryIntoPackage(
+  place: PackPlace,
+  resolved: ResolvedPath,
+  name = carriedEntryName(place, resolved.disk),
+): Promise<string | undefined> {
   const known = place.carried.get(resolved.disk);
   if (known !== undefined) return known;
-  const name = carriedEntryName(place, resolved.disk);
   const files: { entry: string; disk: string }[] = [];
   if (resolved.kind === 'file') files.push({ entry: name, disk: resolved.disk });
   else {
@@ -140,7 +143,15 @@ async function rebasedForPackage(
       kindOf: (diskPath) => nodeFileSystem.kind(diskPath),
     });
     for (const resolved of probe.resolved) {
-      if (resolved.viaParameter) continue;
+      if (resolved.viaParameter) {
+        // Left as written (SPEC 11.6): carried only where its value names it from inside the package, so that it still reaches it.
+        const wanted = normalizeEntryName(path.posix.join(entryFolder, resolved.written.replace(/\\/g, '/')));
+        const free = wanted !== undefined && !place.entries.includes(wanted) && ![...place.carried.values()].includes(wanted);
+        const known = place.carried.get(resolved.disk);
+        if (wanted !== undefined && !path.isAbsolute(resolved.written) && (known === wanted || (known === undefined && free)))
+          if ((await carryIntoPackage(place, resolved, wanted)) === wanted) carried.set(resolved, resolved.site.attribute.value);
+        continue;
+      }
       const name = await carryIntoPackage(place, resolved);
       if (name !== undefined) carried.set(resolved, posixRelative(entryFolder, name));
     }

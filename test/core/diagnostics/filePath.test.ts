@@ -21,7 +21,7 @@ describe('diagnostics: file-path', () => {
       severity: 'warning',
       code: 'file-path',
       message: 'the package reaches the folder /w/road.xodr outside itself; the package does not run without it',
-      hint: "'$Roads' names a parameter, so it is left as written; write the path itself to have it rebased or carried",
+      hint: "'$Roads' names a parameter, so it is left as written: --self-contained stores the file only where the parameter's value names it inside the package (no '..', not absolute); otherwise write the path itself",
     });
   });
 

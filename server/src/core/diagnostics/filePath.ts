@@ -27,7 +27,7 @@ export function reachesOutsidePackageWording({
     message: `the package reaches ${kind === 'directory' ? 'the folder' : 'the file'} ${disk} outside itself${rewritten !== undefined ? ` (written '${rewritten}', relative to the package's folder)` : ''}; the package does not run without it`,
     // A path naming a parameter is never rewritten (SPEC 11.6), so not carried either.
     hint: viaParameter
-      ? `'${written}' names a parameter, so it is left as written; write the path itself to have it rebased or carried`
+      ? `'${written}' names a parameter, so it is left as written: --self-contained stores the file only where the parameter's value names it inside the package (no '..', not absolute); otherwise write the path itself`
       : 'pack with --self-contained to store it inside the package',
   };
 }
