@@ -1,6 +1,7 @@
 // Debugger benchmark (figures, not a timed test): simulation steps per second under the debug adapter with no
-// breakpoint hit against esmini's own headless run of the same scenario at the same step, and the pause latency from
-// a condition firing (esmini's callback, in the adapter) to the `stopped` event read by a DAP client.
+// breakpoint hit against esmini's own headless run of the same scenario at the same step, the pause latency from
+// a condition firing (esmini's callback, in the adapter) to the `stopped` event read by a DAP client, and F5's first
+// launch: the adapter's process started to the stop on a breakpoint (BENCH_DEBUG_LAUNCH_ONLY=1: that alone).
 import { spawnSync } from 'node:child_process';
 import { existsSync, mkdtempSync, readdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { createRequire } from 'node:module';
@@ -206,9 +207,96 @@ async function pauseRun(afterMs, timeStep) {
   }
 }
 
+/**
+ * F5 as VS Code does it, from a new adapter process each time: its process started to the initialize response (the
+ * adapter's two processes starting), the launch request to `initialized` (flattening, esmini loading the scenario),
+ * configurationDone to the `stopped` event on a breakpoint on CutInEvent (6.5 s in, at the default step), and the
+ * adapter's processes' CPU (every thread of both) until then. The first of a series is the first start of this
+ * bench; the machine's file cache is not dropped.
+ * @returns {Promise<{ startMs: number, loadMs: number, stopMs: number, totalMs: number, cpuMs: number }>}
+ */
+async function firstLaunch() {
+  const eventLine = text.split('\n').findIndex((line) => line.includes('<Event name="CutInEvent"')) + 1;
+  const started = now();
+  const client = new DebugClient(process.execPath, adapter, 'modular2simple', { stdio: ['pipe', 'pipe', 'pipe'] });
+  client.defaultTimeout = 120_000;
+  await client.start();
+  const adapterPid = /** @type {{ _adapterProcess: import('node:child_process').ChildProcess }} */ (/** @type {unknown} */ (client))
+    ._adapterProcess.pid;
+  if (adapterPid === undefined) throw new Error('the adapter did not start');
+  try {
+    await client.initializeRequest();
+    const initialized = now();
+    const launched = client.launchRequest(
+      /** @type {import('@vscode/debugprotocol').DebugProtocol.LaunchRequestArguments & Record<string, unknown>} */ ({
+        program: full,
+        roadPath,
+        esminiLibrary: library,
+      }),
+    );
+    await client.waitForEvent('initialized');
+    const loaded = now();
+    const set = await client.setBreakpointsRequest({ source: { path: full }, breakpoints: [{ line: eventLine }] });
+    if (!set.body.breakpoints[0].verified) throw new Error(`the breakpoint on line ${eventLine} is not verified`);
+    const stopped = client.waitForEvent('stopped');
+    await client.configurationDoneRequest();
+    await launched;
+    await stopped;
+    const stoppedAt = now();
+    const cpuMs = processCpuMs(adapterPid) + processCpuMs(sessionPid(adapterPid));
+    await client.terminateRequest();
+    return {
+      startMs: initialized - started,
+      loadMs: loaded - initialized,
+      stopMs: stoppedAt - loaded,
+      totalMs: stoppedAt - started,
+      cpuMs,
+    };
+  } finally {
+    await client.stop();
+  }
+}
+
+/**
+ * CPU ms of every thread of a process so far (Linux /proc schedstat, in ns).
+ * @param {number} pid
+ */
+function processCpuMs(pid) {
+  let ns = 0;
+  for (const thread of readdirSync(`/proc/${pid}/task`))
+    ns += Number(readFileSync(`/proc/${pid}/task/${thread}/schedstat`, 'utf8').split(' ')[0]);
+  return ns / 1e6;
+}
+
+async function launchFigures() {
+  /** @type {Awaited<ReturnType<typeof firstLaunch>>[]} */
+  const launches = [];
+  for (let i = 0; i < runs; i++) launches.push(await firstLaunch());
+  const [first, ...rest] = launches;
+  const fmt = (/** @type {number} */ n) => n.toFixed(1).padStart(7);
+  /** @param {(launch: typeof first) => number} pick */
+  const later = (pick) => (rest.length > 0 ? fmt(median(rest.map(pick))) : '      -');
+  console.log('  F5 to the first stop (a breakpoint on CutInEvent), ms:       first  later (median)');
+  console.log(`    adapter started to its initialize response          ${fmt(first.startMs)}  ${later((launch) => launch.startMs)}`);
+  console.log(`    launch to initialized (flatten, esmini's load)      ${fmt(first.loadMs)}  ${later((launch) => launch.loadMs)}`);
+  console.log(`    configurationDone to stopped (6.5 s simulated)      ${fmt(first.stopMs)}  ${later((launch) => launch.stopMs)}`);
+  console.log(`    in all (wall)                                       ${fmt(first.totalMs)}  ${later((launch) => launch.totalMs)}`);
+  console.log(`    CPU of the adapter's two processes until the stop   ${fmt(first.cpuMs)}  ${later((launch) => launch.cpuMs)}`);
+}
+
 try {
   console.log(`debugger benchmark: ${path.basename(scenario)}, step ${step} s, median of ${runs} runs each (node ${process.version})`);
-  if (process.env.BENCH_DEBUG_LATENCY_ONLY !== '1') await speedAndBreakpointLatency();
+  // First, so that its first launch is the first start of the adapter in this bench.
+  await launchFigures();
+  if (process.env.BENCH_DEBUG_LAUNCH_ONLY !== '1') {
+    if (process.env.BENCH_DEBUG_LATENCY_ONLY !== '1') await speedAndBreakpointLatency();
+    await pauseLatency();
+  }
+} finally {
+  rmSync(folder, { recursive: true, force: true });
+}
+
+async function pauseLatency() {
   // A fifth of the step, so that the run lasts long enough (about 110,000 steps) for a pause to land in it.
   const pauseStep = step / 5;
   const alone = await debugRun(undefined, full, pauseStep);
@@ -224,8 +312,6 @@ try {
   console.log(
     `  pause latency, a pause request mid-run (step ${pauseStep} s) to the stopped event read by the client: median ${median(pauses).toFixed(2)} ms, max ${sortedPauses[sortedPauses.length - 1].toFixed(2)} ms (each run continued to ${alone.ended} s, as the run without a pause)`,
   );
-} finally {
-  rmSync(folder, { recursive: true, force: true });
 }
 
 async function speedAndBreakpointLatency() {
