@@ -85,6 +85,21 @@ const proj4Beside = {
 };
 
 /**
+ * The debug adapter's entry (dist/debugAdapter.js) requires the session (server/src/debugSession.ts) only in its child:
+ * the session is a bundle of its own beside it, dist/debugSession.js, so that the supervising process neither reads
+ * nor runs it.
+ * @type {esbuild.Plugin}
+ */
+const debugSessionBeside = {
+  name: 'debug-session-beside',
+  setup(build) {
+    build.onResolve({ filter: /^\.\/debugSession$/ }, (args) =>
+      args.kind === 'require-call' ? { path: './debugSession.js', external: true } : undefined,
+    );
+  },
+};
+
+/**
  * `import * as fs from 'node:fs'` in each of N files is, bundled, N copies of fs's hundred properties as
  * getters (esbuild's __toESM) at every start; through one module that re-exports the built-in they are
  * made once. For the CLI's bundles, whose start-up is most of a short run.
@@ -117,8 +132,10 @@ const entries = [
   { entryPoints: ['server/src/server.ts'], outfile: 'dist/server.js', banner: { js: '#!/usr/bin/env node' }, plugins: [proj4Beside] },
   // proj4js on its own, required by the bundles above and below when a GeoPosition is exported (proj4Beside).
   { entryPoints: ['proj4'], outfile: 'dist/proj4.js', minify: true },
-  // The debug adapter, a process of its own (esmini crashing ends it, not the editor); koffi is native, loaded from node_modules.
-  { entryPoints: ['server/src/debugAdapter.ts'], outfile: 'dist/debugAdapter.js', external: ['koffi'] },
+  // The debug adapter, a process of its own (esmini crashing ends it, not the editor), and the session its child runs
+  // (dist/debugSession.js, required by the first only in the child); koffi is native, loaded from node_modules.
+  { entryPoints: ['server/src/debugAdapter.ts'], outfile: 'dist/debugAdapter.js', external: ['koffi'], plugins: [debugSessionBeside] },
+  { entryPoints: ['server/src/debugSession.ts'], outfile: 'dist/debugSession.js', external: ['koffi'] },
   starter,
   // The whole CLI. The Redis queue's client (batch --queue, worker) is loaded from node_modules only when used: start-up stays small.
   {

@@ -20,7 +20,7 @@ function run(args) {
 run([path.join(root, 'scripts', 'build.mjs'), '--minify']);
 
 // The debug adapter calls esmini's library through koffi, a native module no bundle can hold: its JavaScript and the
-// platform's binary package go beside the bundles, where dist/debugAdapter.js's require('koffi') finds them.
+// platform's binary package go beside the bundles, where dist/debugSession.js's require('koffi') finds them.
 const shipped = path.join(root, 'dist', 'node_modules');
 rmSync(shipped, { recursive: true, force: true });
 const keep = /\.(c?js|json|node|txt|md)$/;

@@ -332,8 +332,9 @@ describe('the packaged extension in a real VS Code (code-server, headless Chromi
       'dist/variations.js',
       // The storyboard timeline's page (issue 29).
       'dist/timeline.js',
-      // The debug adapter (issue 29), a process of its own.
+      // The debug adapter (issue 29), a process of its own, and the session its child runs.
       'dist/debugAdapter.js',
+      'dist/debugSession.js',
       // The compiled OpenSCENARIO schemas the server reads, and the ASAM schemas with their licence note.
       'dist/openscenario-schemas.json',
       // The harness Check in CARLA ScenarioRunner runs with the user's Python.
