@@ -185,9 +185,8 @@ describe('debug: a scenario run step by step in esmini library', () => {
     );
   });
 
-  it('runs a package whose road its LogicFile names through a parameter: the road is written for esmini, which the flattened text does not name', async () => {
-    const folder = temporaryFolder();
-    const input = path.join(folder, 'drive.mosc');
+  it('runs a package whose road its LogicFile names through a parameter: the copy the flattening returns is the one handed, none written besides', async () => {
+    const input = path.join(temporaryFolder(), 'drive.mosc');
     const main = drivingScenario('$Road', 'Drive').replace(
       '<ParameterDeclarations></ParameterDeclarations>',
       '<ParameterDeclarations><ParameterDeclaration name="Road" parameterType="string" value="straight_500m.xodr"/></ParameterDeclarations>',
@@ -198,9 +197,32 @@ describe('debug: a scenario run step by step in esmini library', () => {
       await packageOf({ 'main.xosc': main, 'straight_500m.xodr': fs.readFileSync(path.join(esminiRoads, 'straight_500m.xodr'), 'utf8') }),
     );
     const prepared = await prepareScenario(new Flattener(storeForInputs([], undefined, [input], {}, [])), mainOf(input), { roadPath: [] });
-    assert.deepEqual(prepared.packagedFiles, []);
-    assert.equal(prepared.packagedRoad && 'name' in prepared.packagedRoad && prepared.packagedRoad.name, 'straight_500m.xodr');
+    assert.deepEqual(
+      prepared.packagedFiles.map((file) => file.path),
+      ['straight_500m.xodr'],
+    );
+    assert.deepEqual(prepared.packagedRoad, { copy: 'straight_500m.xodr' });
     await runsPackageToItsEnd(input);
+  });
+
+  it("writes a packed road the flattened text names no copy of into the run's folder and hands esmini that", async () => {
+    const input = path.join(temporaryFolder(), 'drive.mosc');
+    const road = fs.readFileSync(path.join(esminiRoads, 'straight_500m.xodr'));
+    fs.writeFileSync(
+      input,
+      await packageOf({ 'main.xosc': drivingScenario('straight_500m.xodr', 'Drive'), 'straight_500m.xodr': road.toString('utf8') }),
+    );
+    const prepared = await prepareScenario(new Flattener(storeForInputs([], undefined, [input], {}, [])), mainOf(input), { roadPath: [] });
+    // As if the flattening had returned no copy (a LogicFile it leaves as written): the road's bytes are all there is.
+    const alone = { ...prepared, packagedFiles: [], packagedRoad: { name: 'straight_500m.xodr', bytes: road } };
+    const simulation = new Simulation(alone, { roadPath: [] });
+    try {
+      simulation.start();
+      while (!simulation.ended) simulation.stepMany(500, () => false);
+      assert.ok(simulation.time >= 8, `it ran to its own end at 8 s, not ${simulation.time}`);
+    } finally {
+      simulation.close();
+    }
   });
 
   it("runs a package holding its catalogs and road (issue 27): both are written into the run's own folder and named there", async () => {

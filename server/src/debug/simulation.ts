@@ -148,8 +148,7 @@ export function withPackagedFilesIn(text: string, folder: string): string {
 export async function prepareScenario(flattener: Flattener, main: SourceRef, options: SimulationOptions): Promise<PreparedScenario> {
   const sourceFolder = sourceFolderOf(main);
   // Flattened as if written beside the main file, so that its relative file paths name the files the sources name.
-  const outputPath = path.join(sourceFolder, DEBUG_OUTPUT_NAME);
-  const flat = await flattener.flatten(main, { outputPath, force: options.force });
+  const flat = await flattener.flatten(main, { outputPath: path.join(sourceFolder, DEBUG_OUTPUT_NAME), force: options.force });
   if (flat.text === undefined) {
     const errors = flat.problems.filter((problem) => problem.severity === 'error');
     throw new SimulationLoadError(
@@ -161,13 +160,12 @@ export async function prepareScenario(flattener: Flattener, main: SourceRef, opt
   const { searchPath, road } = await esminiFolders(flattener, main, flat.source, folders);
   const text = road?.resolved ? withRoadFile(flat.text, road.resolved) : flat.text;
   const map = storyboardMapOf(flat.source);
-  const roadEntry = road?.packaged?.entries.at(-1) ?? '';
-  const roadCopy = road?.packaged && packagedRoadCopy(flat.files, outputPath, roadEntry);
+  const roadBytes = road?.packaged && (await flattener.store.readBytes(road.packaged));
+  const roadCopy = roadBytes && packagedRoadCopy(flat.files, roadBytes);
   const packagedRoad =
     road?.packaged &&
-    (roadCopy
-      ? { copy: path.relative(sourceFolder, roadCopy) }
-      : { name: roadEntry, bytes: await flattener.store.readBytes(road.packaged) });
+    roadBytes &&
+    (roadCopy ? { copy: path.relative(sourceFolder, roadCopy) } : { name: road.packaged.entries.at(-1) ?? '', bytes: roadBytes });
   return {
     main,
     text,

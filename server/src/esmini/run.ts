@@ -2,7 +2,6 @@ import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
 import { Flattener, FlatSource } from '../core/flatten';
-import { packagedFilesFolder } from '../core/flatten/rebase';
 import { Problem } from '../core/problems';
 import { foundRoadName, locateRoadFile, RoadFileLookup, roadFolders, scenarioFolderOf } from '../core/semantics/roadFiles';
 import { Evaluator, semanticModelOf } from '../core/semantics/model';
@@ -164,12 +163,13 @@ export function writePackagedFiles(files: readonly { path: string; bytes: Uint8A
 }
 
 /**
- * The copy of a packed road (`entry`, its name in the package) among the files flattened for `outputPath`, when the
- * flattened text named the road: the flattener writes the package files a text names in `<name>.files/`.
+ * The copy of a packed road (its `bytes`) among the files a flattening returns, when the flattened text names one: the
+ * package files it names are copied in `<name>.files/`, or, through a `$parameter` path, where its value names them.
+ * Found by its bytes, so that the road is written once, whichever way the text names it.
  */
-export function packagedRoadCopy(files: readonly { path: string }[], outputPath: string, entry: string): string | undefined {
-  const copy = path.join(path.dirname(outputPath), packagedFilesFolder(outputPath), ...entry.split('/'));
-  return files.find((file) => file.path === copy)?.path;
+export function packagedRoadCopy(files: readonly { path: string; bytes: Uint8Array }[], bytes: Uint8Array): string | undefined {
+  const road = Buffer.from(bytes.buffer, bytes.byteOffset, bytes.byteLength);
+  return files.find((file) => file.bytes.byteLength === road.byteLength && road.equals(file.bytes))?.path;
 }
 
 /** The catalog folders (`Directory path`) the scenario writes, as written. */
@@ -334,11 +334,11 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
       }
     : undefined;
   // What esmini is handed: the file found on disk, or a copy of the package's road in the run folder (the flattened one, written with the package's files, when the text names it).
+  const packedRoad = !road?.resolved && road?.packaged ? await flattener.store.readBytes(road.packaged) : undefined;
   const handed =
     road?.resolved ??
-    (road?.packaged
-      ? (packagedRoadCopy(flat.files, scenarioFile, road.packaged.entries.at(-1) ?? '') ??
-        writePackagedRoad(runFolder, road.packaged.entries.at(-1) ?? '', await flattener.store.readBytes(road.packaged)))
+    (road?.packaged && packedRoad
+      ? (packagedRoadCopy(flat.files, packedRoad) ?? writePackagedRoad(runFolder, road.packaged.entries.at(-1) ?? '', packedRoad))
       : undefined);
   const limit = runLimit(flat.text, options.duration, options.durationSetBy);
   const duration = limit.seconds;
