@@ -7,7 +7,7 @@ import { PACKAGE_SCHEME } from '../../common/src/protocol';
 export const DEBUG_TYPE = 'modular2simple';
 
 /** The scenario file a document stands for: a .xosc on disk, or the .mosc on disk holding a package entry. */
-function programOf(uri: vscode.Uri): string | undefined {
+export function programOf(uri: vscode.Uri): string | undefined {
   if (uri.scheme === 'file') return uri.fsPath;
   if (uri.scheme === PACKAGE_SCHEME) {
     const index = uri.path.toLowerCase().indexOf('.mosc');
@@ -128,9 +128,12 @@ export function registerDebugging(context: vscode.ExtensionContext): void {
 }
 
 /** The bird's-eye view follows every scenario debug session: the adapter's state events go to it (it draws them when open). */
-export function followDebugSessions(view: { followDebug(sessionId: string, state: DebugState): void }): vscode.Disposable {
+export function followDebugSessions(view: {
+  followDebug(sessionId: string, state: DebugState, program?: string): void;
+}): vscode.Disposable {
   return vscode.debug.onDidReceiveDebugSessionCustomEvent((event) => {
-    if (event.session.type === DEBUG_TYPE && event.event === DEBUG_STATE_EVENT && isDebugState(event.body))
-      view.followDebug(event.session.id, event.body);
+    if (event.session.type !== DEBUG_TYPE || event.event !== DEBUG_STATE_EVENT || !isDebugState(event.body)) return;
+    const program: unknown = event.session.configuration.program;
+    view.followDebug(event.session.id, event.body, typeof program === 'string' && path.isAbsolute(program) ? program : undefined);
   });
 }

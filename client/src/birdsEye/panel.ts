@@ -6,11 +6,19 @@ import type { DebugState } from '../../../common/src/debugState';
 import { RunTraceRequest, SceneRequest, type SceneResult } from '../../../common/src/sceneProtocol';
 import { withTrace } from './eventList';
 import { parseResolution } from './analysis';
+import { programOf } from '../debugging';
+import { packageEntryUri } from '../packageFileSystem';
 import { appendDebugState } from './liveRun';
 import { isFromView, type FromView, type RenderStats, type RunTracks, type ToView } from './messages';
 import { birdsEyeHtml } from './page';
 import { loadRun, type RunSource } from './runData';
 import type { ServerCommandClient } from '../languageClient';
+
+/** The scenario a debug session runs: its file, or the main.xosc of the .mosc package it names. */
+function scenarioOfProgram(program: string): vscode.Uri {
+  const file = vscode.Uri.file(program);
+  return /\.mosc$/i.test(program) ? packageEntryUri(file, 'main.xosc') : file;
+}
 
 export const BIRDS_EYE_VIEW_TYPE = 'modular2simple.birdsEye';
 const REFRESH_DELAY_MS = 300;
@@ -73,14 +81,28 @@ export class BirdsEyeView implements vscode.Disposable {
    * A debug session's state (the adapter's custom event): the view, when open, draws the session's run so far at its
    * latest time, with the running elements highlighted. A new session starts a new run.
    */
-  followDebug(sessionId: string, state: DebugState): void {
+  followDebug(sessionId: string, state: DebugState, program?: string): void {
     if (!this.panel) return;
+    const shown = this.source && programOf(this.source);
+    let elsewhere = program !== undefined && (!shown || path.normalize(shown) !== path.normalize(program));
+    // A new session of another scenario than the one shown turns the view to it: its run drawn on its own roads and events.
+    if (program !== undefined && elsewhere && this.live?.sessionId !== sessionId) {
+      this.turning = this.show(scenarioOfProgram(program)).catch((error: unknown) =>
+        this.log(`bird's-eye view of ${program}: ${(error as Error).stack ?? String(error)}`),
+      );
+      elsewhere = false;
+    }
     const run = appendDebugState(this.live?.sessionId === sessionId ? this.live.run : undefined, state);
     this.live = { sessionId, run };
+    // Turned to another scenario since: the session's run is not drawn on that one's roads.
+    if (elsewhere) return;
     this.run = run;
-    this.post({ type: 'live', run, running: state.running.map((element) => element.path) });
+    const message: ToView = { type: 'live', run, running: state.running.map((element) => element.path) };
+    // After the turn's scene, in the order the states came.
+    void this.turning.then(() => this.post(message));
   }
   private live: { sessionId: string; run: RunTracks } | undefined;
+  private turning: Promise<void> = Promise.resolve();
 
   async show(source: vscode.Uri): Promise<void> {
     if (this.source?.toString() !== source.toString()) {

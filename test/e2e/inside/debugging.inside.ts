@@ -151,6 +151,26 @@ async function debugSetup(esmini: string, roads: string): Promise<{ events: stri
   };
 }
 
+/** esmini's cut-in.xosc in the workspace's `folder`, with esmini and its roads set for debugging (`undo` resets them). */
+export async function cutInToDebug(
+  context: Mocha.Context,
+  folder: string,
+): Promise<{ scenario: string; esmini: string; roads: string; events: string[]; undo(): Promise<void> }> {
+  const { repository, esmini, roads } = esminiOrSkip(context);
+  const scenario = esminiCutInFolder(repository, roads, path.join(workspaceRoot(), folder));
+  return { scenario, esmini, roads, ...(await debugSetup(esmini, roads)) };
+}
+
+/** F5 as a person presses it, on the active editor, until the session stops (one that ends without stopping fails). */
+export async function pressF5UntilStop(events: string[]): Promise<vscode.DebugSession> {
+  events.length = 0;
+  await pressKeys(['F5']);
+  await waitFor('the stop on the breakpoint', () => events.includes('stopped') || events.includes('terminated'), 120_000);
+  assert.ok(!events.includes('terminated'), `the session ended without stopping: ${events.join(', ')}`);
+  // VS Code makes the session active once it has shown the stop, after the tracker saw it.
+  return waitFor('the debug session', () => vscode.debug.activeDebugSession);
+}
+
 interface StackFrameBody {
   stackFrames: { id: number; name: string; line: number; source?: { path?: string } }[];
 }
@@ -159,9 +179,7 @@ interface StackFrameBody {
 export const debuggingTests: InsideTests = {
   debugScenario: async function () {
     this.timeout(2 * TEST_MS);
-    const { repository, esmini, roads } = esminiOrSkip(this);
-    const scenario = esminiCutInFolder(repository, roads, path.join(workspaceRoot(), 'debugging'));
-    const { events, undo } = await debugSetup(esmini, roads);
+    const { scenario, events, undo } = await cutInToDebug(this, 'debugging');
     const editor = await open(path.relative(workspaceRoot(), scenario));
     const line = positionOf(editor.document, '<Event name="CutInEvent"').line;
     const breakpoint = new vscode.SourceBreakpoint(new vscode.Location(editor.document.uri, new vscode.Position(line, 0)));
@@ -174,12 +192,7 @@ export const debuggingTests: InsideTests = {
     try {
       // F5 with no launch.json: the active file, debugged with the folder's settings.
       const stopOnTheEvent = async (): Promise<vscode.DebugSession> => {
-        events.length = 0;
-        await pressKeys(['F5']);
-        await waitFor('the stop on the breakpoint', () => events.includes('stopped') || events.includes('terminated'), 120_000);
-        assert.ok(!events.includes('terminated'), `the session ended without stopping: ${events.join(', ')}`);
-        // VS Code makes the session active once it has shown the stop, after the tracker saw it.
-        const session = await waitFor('the debug session', () => vscode.debug.activeDebugSession);
+        const session = await pressF5UntilStop(events);
         const trace = (await session.customRequest('stackTrace', { threadId: 1 })) as StackFrameBody;
         assert.equal(trace.stackFrames[0].name, 'Event CutInEvent (running)');
         assert.equal(trace.stackFrames[0].line, line + 1);

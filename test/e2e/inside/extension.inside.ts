@@ -17,6 +17,7 @@ import { structureTests } from './structure.inside';
 import { distributionTests } from './distributions.inside';
 import { carlaTests } from './carla.inside';
 import { debuggingTests } from './debugging.inside';
+import { birdsEyeDebugTests } from './birdsEyeDebug.inside';
 import { libraryTests } from './library.inside';
 
 const TESTS: InsideTests = {
@@ -33,6 +34,7 @@ const TESTS: InsideTests = {
   ...ruleTests,
   ...carlaTests,
   ...debuggingTests,
+  ...birdsEyeDebugTests,
   ...libraryTests,
 };
 
@@ -79,6 +81,7 @@ const ORDER: InsideTestKey[] = [
   'carlaCheck',
   'carlaRun',
   'debugScenario',
+  'debugBirdsEyeTurns',
   'libraryCompose',
   'libraryInsertHere',
   'libraryDrop',
