@@ -9,7 +9,7 @@ import { analyzeDocument, CatalogLoader, semanticProblems } from '../../../serve
 import { childRef, diskRef, ScenarioStore } from '../../../server/src/core/sources';
 import JSZip from 'jszip';
 import { parseXml } from '../../../server/src/core/xml';
-import { roadScenario } from '../../support/fixtures';
+import { outerGroup, roadScenario } from '../../support/fixtures';
 import { STRAIGHT_ROAD } from '../../support/roads';
 import { temporaryWorkspace } from '../../support/workspace';
 import { wordingOf } from './support';
@@ -137,6 +137,44 @@ describe('diagnostics: road-file', () => {
         ).filter((problem) => problem.code === 'road-file');
       assert.deepEqual(await problemsOf('main.xosc'), []);
       assert.equal((await problemsOf('other.xosc')).length, 1);
+    } finally {
+      fs.rmSync(root, { recursive: true, force: true });
+    }
+  });
+
+  it('names, in its hint, a file of that name that a package the scenario references holds, and how to extract it (issue 27)', async () => {
+    const zip = new JSZip();
+    zip.file('main.xosc', onRoad('roads/road.xodr'));
+    zip.file('roads/road.xodr', STRAIGHT_ROAD);
+    const root = temporaryWorkspace({ 'app/drive.mosc': await zip.generateAsync({ type: 'uint8array' }) });
+    try {
+      const outside = (logicFile: string) =>
+        roadScenario({ logicFile, groups: [outerGroup('Car', 'Ego', [{ file: 'drive.mosc', groups: [{ name: 'Drive' }] }])] });
+      const problemsOf = async (logicFile: string) =>
+        semanticProblems(
+          await analyzeDocument(
+            diskRef(path.join(root, 'app', 'main.xosc')),
+            parseXml(outside(logicFile)),
+            new CatalogLoader(new ScenarioStore({ root })),
+            true,
+            'esmini',
+          ),
+        ).filter((problem) => problem.code === 'road-file');
+      const app = path.join(root, 'app');
+      const held = [{ packageFile: path.join(app, 'drive.mosc'), entry: 'roads/road.xodr' }];
+      // By its path from the package's root, or by its file name anywhere in the package.
+      for (const logicFile of ['roads/road.xodr', 'road.xodr']) {
+        const problems = await problemsOf(logicFile);
+        assert.deepEqual(problems.map(wordingOf), [roadFileWording(logicFile, [app], 'error', false, held)], logicFile);
+        assert.match(
+          problems[0].hint ?? '',
+          new RegExp(
+            `holds roads/road\\.xodr, .*: unzip -j ${path.join(app, 'drive.mosc').replace(/[.\\/]/g, '\\$&')} roads/road\\.xodr -d `,
+          ),
+        );
+      }
+      // A file the package does not hold: the usual hint.
+      assert.match((await problemsOf('other.xodr'))[0].hint ?? '', /^correct the path, or add the folder/);
     } finally {
       fs.rmSync(root, { recursive: true, force: true });
     }

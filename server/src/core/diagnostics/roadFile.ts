@@ -21,6 +21,8 @@ export function roadFileWording(
   folders: readonly string[],
   severity: 'error' | 'warning',
   carlaTown: boolean,
+  /** Packages this file references that hold such a file: the package on disk and the entry (`RoadFileLookup.heldByReferencedPackages`). */
+  heldBy: readonly { packageFile: string; entry: string }[] = [],
 ): ProblemWording<'road-file'> {
   const [own, ...all] = folders;
   const others = all.length > FOLDERS_NAMED ? [...all.slice(0, FOLDERS_NAMED), `${all.length - FOLDERS_NAMED} more folders`] : all;
@@ -31,7 +33,10 @@ export function roadFileWording(
     severity,
     code: 'road-file',
     message: `road file '${written}' is ${where}${town}: ${ESMINI_ROAD_NOT_FOUND}`,
-    hint: 'correct the path, or add the folder that holds the file to the road path (--road-path, the modular2simple.esmini.roadPath setting)',
+    hint:
+      heldBy.length > 0
+        ? `the package ${heldBy[0].packageFile} this file references holds ${heldBy[0].entry}, but a file outside a package does not reach the files inside it: extract it into ${own} (a .mosc is a ZIP archive: unzip -j ${heldBy[0].packageFile} ${heldBy[0].entry} -d ${own}), or correct the path`
+        : 'correct the path, or add the folder that holds the file to the road path (--road-path, the modular2simple.esmini.roadPath setting)',
   };
 }
 

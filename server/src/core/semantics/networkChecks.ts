@@ -61,7 +61,13 @@ export const roadFileFound: SemanticCheck = ({ roadFile, simulator }) => {
   return [
     {
       ...at(element, roadFile.attribute),
-      ...roadFileWording(roadFile.logic.filepath, roadFile.folders, simulator === 'esmini' ? 'error' : 'warning', roadFile.carlaTown),
+      ...roadFileWording(
+        roadFile.logic.filepath,
+        roadFile.folders,
+        simulator === 'esmini' ? 'error' : 'warning',
+        roadFile.carlaTown,
+        (roadFile.heldByReferencedPackages ?? []).map((held) => ({ packageFile: held.disk, entry: held.entries.join('/') })),
+      ),
     },
   ];
 };

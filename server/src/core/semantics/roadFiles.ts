@@ -4,8 +4,8 @@
  */
 import * as path from 'node:path';
 import { CARLA_TOWNS } from '../profiles/scenarioRunner';
-import { childRef, displayRef, FileSystemHost, normalizeEntryName, ScenarioStore, SourceRef } from '../sources';
-import { XmlAttribute, XmlDocument, XmlElement } from '../xml';
+import { childRef, displayRef, FileSystemHost, normalizeEntryName, refId, ScenarioStore, SourceRef } from '../sources';
+import { attribute, descendants, XmlAttribute, XmlDocument, XmlElement } from '../xml';
 // The model module, not the semantics index: the index runs the checks, whose road rules read road files through this one.
 import { Evaluator, semanticModelOf } from './model';
 
@@ -76,6 +76,40 @@ export interface RoadFileLookup {
   candidates: string[];
   /** The filepath is the name of a CARLA map (profiles/scenarioRunner.ts CARLA_TOWNS), which ScenarioRunner loads by name. */
   carlaTown: boolean;
+  /**
+   * When the road was found nowhere: entries of the packages (`.mosc`) the scenario's ScenarioReferences name that hold
+   * a file at that path or of that name, which esmini does not look inside for a file outside them.
+   */
+  heldByReferencedPackages?: SourceRef[];
+}
+
+/**
+ * The entries of the `.mosc` packages `document`'s ScenarioReferences name (literal names only) that hold `filepath`: at
+ * that path from the package's root, else a file of that name anywhere in it.
+ */
+async function inReferencedPackages(store: ScenarioStore, ref: SourceRef, document: XmlDocument, filepath: string): Promise<SourceRef[]> {
+  const wanted = normalizeEntryName(filepath.replace(/\\/g, '/'));
+  const name = path.basename(filepath.replace(/\\/g, '/'));
+  const found: SourceRef[] = [];
+  const names = new Set(
+    (document.root ? descendants(document.root) : [])
+      .filter((element) => element.name === 'ScenarioReference')
+      .map((element) => attribute(element, 'scenarioFileName')?.value ?? '')
+      .filter((fileName) => fileName.trim() !== '' && !fileName.includes('$')),
+  );
+  for (const fileName of names) {
+    const resolution = await store.resolve(fileName, ref).catch(() => undefined);
+    if (resolution?.kind !== 'package' || resolution.folder) continue;
+    const contents = await store.readPackage(resolution.packageRef).catch(() => undefined);
+    if (!contents) continue;
+    const entries = [...contents.entries.keys()];
+    const entry =
+      (wanted !== undefined && contents.entries.has(wanted) ? wanted : undefined) ??
+      entries.find((candidate) => candidate.slice(candidate.lastIndexOf('/') + 1) === name);
+    if (entry !== undefined && !found.some((known) => refId(known) === refId(childRef(resolution.packageRef, entry))))
+      found.push(childRef(resolution.packageRef, entry));
+  }
+  return found;
 }
 
 /** The entry of the package holding the file `ref` that `filepath`, written in that file, names; undefined when it names none. */
@@ -141,6 +175,7 @@ export async function locateRoadFile(
     resolved = candidate;
     break;
   }
+  const held = resolved || packaged ? [] : await inReferencedPackages(store, ref, document, filepath);
   return {
     logic: { filepath, element: found.element },
     attribute: found.written,
@@ -149,5 +184,6 @@ export async function locateRoadFile(
     folders,
     candidates,
     carlaTown: CARLA_TOWNS.includes(filepath.trim()),
+    ...(held.length > 0 ? { heldByReferencedPackages: held } : {}),
   };
 }
