@@ -6,7 +6,7 @@ import { replacementOf, valueReplacementOf } from './deprecations';
 import { SchemaIndex, schemaIndex, versionsWith } from './index';
 import { ElementParticle, SCHEMA_VERSIONS } from './model';
 import { MODULAR_ATTRIBUTE, MODULAR_PLACEMENT, MODULAR_TYPES } from './modular';
-import { checkValue, describeType, enumerationValues } from './values';
+import { checkValue, describeType, enumerationValues, repairedValue } from './values';
 import { OtherVersions, SchemaFacts } from './facts';
 import { chooseVersion, ChosenVersion, SchemaVersionSetting } from './version';
 
@@ -155,7 +155,11 @@ export function checkAttribute(
     const values = enumerationValues(simple);
     // A value of a later version ('override', 1.2) is not misspelt: the closest value here may be the one that version deprecates ('overwrite').
     const inVersions = check.expressionNotInVersion ? undefined : validIn(typeName, attribute, chosen);
-    const suggestion = values.length > 0 && !inVersions ? closestMatch(attribute.value, values) : undefined;
+    const suggestion = inVersions
+      ? undefined
+      : values.length > 0
+        ? closestMatch(attribute.value, values)
+        : repairedValue(simple, attribute.value);
     const place = { element, attribute, part: 'value', data: suggestion ? { suggestion } : undefined } as const;
     report(
       check.expressionNotInVersion

@@ -79,6 +79,21 @@ export function checkValue(type: SimpleType, value: string): ValueCheck {
   return INVALID;
 }
 
+/**
+ * The value a person meant, written as the type wants it, where the slip is one of form: a date without its time
+ * (`2020-02-17`, the ScenarioRunner examples' FileHeader), a blank for the `T`, `True` for `true`, a decimal comma.
+ */
+export function repairedValue(type: SimpleType, value: string): string | undefined {
+  const text = value.trim();
+  const candidates = [
+    /^-?\d{4,}-\d\d-\d\d$/.test(text) ? `${text}T00:00:00` : undefined,
+    /^-?\d{4,}-\d\d-\d\d +\d\d:\d\d:\d\d/.test(text) ? text.replace(/ +/, 'T') : undefined,
+    /^(true|false)$/i.test(text) ? text.toLowerCase() : undefined,
+    /^[+-]?\d+,\d+$/.test(text) ? text.replace(',', '.') : undefined,
+  ];
+  return candidates.find((candidate) => candidate !== undefined && candidate !== value && checkValue(type, candidate).valid);
+}
+
 export function enumerationValues(type: SimpleType): string[] {
   return type.alternatives.flatMap((alternative) => alternative.enumeration ?? []);
 }
