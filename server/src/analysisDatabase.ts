@@ -122,7 +122,7 @@ export class AnalysisDatabase {
    * and the next edit read them all again (144 of 400 for a main file with 400 references).
    */
   private noteRead(reader: string, id: string): void {
-    if (!this.inputs.documents.get(reader) || this.sourceDependencies.get(reader)) return;
+    if (!this.inputs.documents.get(reader) || this.sourceDependencies.has(reader)) return;
     const reads = this.openDocumentReads.get(reader);
     if (reads) reads.ids.add(id);
     else this.openDocumentReads.set(reader, { ids: new Set([id]), from: undefined });

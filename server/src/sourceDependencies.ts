@@ -18,6 +18,11 @@ export class SourceDependencies {
     return this.ofSource.get(id);
   }
 
+  /** Whether the read of `id` ended and its dependencies are known. */
+  has(id: string): boolean {
+    return this.ofSource.has(id);
+  }
+
   /** A read of `id` began: its dependencies are unknown until `set`. */
   readStarted(id: string): void {
     this.reading.add(id);
