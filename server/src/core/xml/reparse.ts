@@ -20,18 +20,36 @@ export function reparseXml(previous: XmlDocument, text: string): XmlDocument {
 const MARKUP = /["'<>&\r\n]/;
 const COMPARED_CHUNK = 1024;
 
+/**
+ * How far from 0 the spans `same(from, size)` compares stay equal, up to `limit`: at most COMPARED_CHUNK short of
+ * the first difference. Spans double while equal and halve after a difference, so a keystroke in a large text
+ * compares a few dozen spans, not one per KiB (each span compared is two slices allocated).
+ */
+function equalRun(limit: number, same: (from: number, size: number) => boolean): number {
+  let done = 0;
+  let size = COMPARED_CHUNK;
+  while (done + size <= limit && same(done, size)) {
+    done += size;
+    size *= 2;
+  }
+  // The difference (or the limit) lies in [done, done + size): halves of it that are equal are passed.
+  while (size > COMPARED_CHUNK) {
+    size /= 2;
+    if (done + size <= limit && same(done, size)) done += size;
+  }
+  return done;
+}
+
 /** The one region in which two texts differ (`[prefix, removedEnd)` of the old, `[prefix, insertedEnd)` of the new), when it holds no markup. */
 export function markupFreeEdit(old: string, text: string): { prefix: number; removedEnd: number; insertedEnd: number } | undefined {
   const shorter = Math.min(old.length, text.length);
-  // Equal chunks are skipped by the engine's string comparison, far faster than a loop over characters.
-  let prefix = 0;
-  while (prefix + COMPARED_CHUNK <= shorter && old.slice(prefix, prefix + COMPARED_CHUNK) === text.slice(prefix, prefix + COMPARED_CHUNK))
-    prefix += COMPARED_CHUNK;
+  // Equal spans are skipped by the engine's string comparison, far faster than a loop over characters.
+  let prefix = equalRun(shorter, (from, size) => old.slice(from, from + size) === text.slice(from, from + size));
   while (prefix < shorter && old.charCodeAt(prefix) === text.charCodeAt(prefix)) prefix++;
-  let suffix = 0;
-  const sameChunkBefore = (end: number) =>
-    old.slice(old.length - end - COMPARED_CHUNK, old.length - end) === text.slice(text.length - end - COMPARED_CHUNK, text.length - end);
-  while (suffix + COMPARED_CHUNK <= shorter - prefix && sameChunkBefore(suffix)) suffix += COMPARED_CHUNK;
+  let suffix = equalRun(
+    shorter - prefix,
+    (from, size) => old.slice(old.length - from - size, old.length - from) === text.slice(text.length - from - size, text.length - from),
+  );
   while (suffix < shorter - prefix && old.charCodeAt(old.length - 1 - suffix) === text.charCodeAt(text.length - 1 - suffix)) suffix++;
   const removedEnd = old.length - suffix;
   const insertedEnd = text.length - suffix;
