@@ -2,6 +2,7 @@ import * as path from 'node:path';
 import * as vscode from 'vscode';
 import { DEBUG_STATE_EVENT, type DebugState, isDebugState } from '../../common/src/debugState';
 import { PACKAGE_SCHEME } from '../../common/src/protocol';
+import { STORYBOARD_EVENT, type StoryboardEventBody } from '../../common/src/trace';
 
 /** The launch configuration type (package.json `debuggers`); the adapter is server/src/debug/adapter.ts. */
 export const DEBUG_TYPE = 'modular2simple';
@@ -127,12 +128,15 @@ export function registerDebugging(context: vscode.ExtensionContext): void {
   );
 }
 
-/** The bird's-eye view follows every scenario debug session: the adapter's state events go to it (it draws them when open). */
+/** The bird's-eye view follows every scenario debug session: the adapter's state and storyboard events go to it (it draws them when open). */
 export function followDebugSessions(view: {
   followDebug(sessionId: string, state: DebugState, program?: string): void;
+  followStoryboard(sessionId: string, body: StoryboardEventBody): void;
 }): vscode.Disposable {
   return vscode.debug.onDidReceiveDebugSessionCustomEvent((event) => {
-    if (event.session.type !== DEBUG_TYPE || event.event !== DEBUG_STATE_EVENT || !isDebugState(event.body)) return;
+    if (event.session.type !== DEBUG_TYPE) return;
+    if (event.event === STORYBOARD_EVENT) view.followStoryboard(event.session.id, event.body as StoryboardEventBody);
+    if (event.event !== DEBUG_STATE_EVENT || !isDebugState(event.body)) return;
     const program: unknown = event.session.configuration.program;
     view.followDebug(event.session.id, event.body, typeof program === 'string' && path.isAbsolute(program) ? program : undefined);
   });

@@ -1,6 +1,7 @@
 import * as assert from 'node:assert/strict';
 import type { DebugState } from '../../common/src/debugState';
-import { appendDebugState } from '../../client/src/birdsEye/liveRun';
+import { appendDebugState, withSessionTrace } from '../../client/src/birdsEye/liveRun';
+import type { TraceRecord } from '../../common/src/trace';
 
 const car = (name: string, x: number) => ({ name, x, y: -1.5, h: 0, speed: 10, length: 4.5, width: 2, centerX: 1.4 });
 const state = (time: number, entities: DebugState['entities'], running: DebugState['running'] = []): DebugState => ({
@@ -58,5 +59,25 @@ describe("client: the bird's-eye view following a debug session", () => {
     assert.equal(restarted.sessionRun, 2);
     // The same run grows.
     assert.deepEqual(appendDebugState(restarted, { ...state(3.5, [car('Ego', 35)]), run: 2 }).times, [3, 3.5]);
+  });
+
+  it("takes the starts of the session's storyboard trace: an event that started and ended between two states is started, not 'not started yet'", () => {
+    const event = (name: string) => `S::A::G::M::${name}`;
+    const states = {
+      ...state(6.5, [car('Ego', 65)], [{ name: 'CutInEvent', path: event('CutInEvent'), type: 'Event', since: 6.5 }]),
+      run: 1,
+    };
+    const run = appendDebugState(appendDebugState(undefined, { ...state(0, [car('Ego', 0)]), run: 1 }), states);
+    assert.equal(run.starts[event('SpeedEvent')], undefined);
+    const records: TraceRecord[] = [
+      { time: 0.05, element: event('SpeedEvent'), type: 'Event', state: 'running' },
+      { time: 6.5, element: event('SpeedEvent'), type: 'Event', state: 'complete' },
+      { time: 6.5, element: event('CutInEvent'), type: 'Event', state: 'running' },
+    ];
+    const traced = withSessionTrace(run, { run: 1, records, time: 6.5 });
+    assert.equal(traced.starts[event('SpeedEvent')], 0.05);
+    assert.equal(traced.starts[event('CutInEvent')], 6.5);
+    // A restarted session's trace (run 2) says nothing of run 1.
+    assert.equal(withSessionTrace(run, { run: 2, records, time: 6.5 }).starts[event('SpeedEvent')], undefined);
   });
 });

@@ -62,7 +62,7 @@ export const INSIDE_TESTS = {
   debugScenario:
     'F5 on a scenario stops on the breakpoint on its Event line with the entities in the Variables view; esmini crashing ends the session with a message and the editor lives',
   debugBirdsEyeTurns:
-    "F5 on a scenario while the bird's-eye view shows another turns the view to the debugged scenario: its road and its entities at the stop",
+    "F5 on a scenario while the bird's-eye view shows another turns the view to the debugged scenario: its road and its entities at the stop, an event that started and ended before it listed as started",
   debugTimeline:
     'the storyboard timeline opened on a run --trace file draws a row per element at the times esmini logs, and a click on a row opens its source line',
   debugTimelineSession:

@@ -1,5 +1,7 @@
 /** A debug session's run as the bird's-eye view draws it, grown from the adapter's state events (editor-free). */
 import type { DebugState } from '../../../common/src/debugState';
+import type { LiveTrace } from '../../../common/src/trace';
+import { startsOfTrace } from './eventList';
 import type { RunTracks } from './messages';
 
 /**
@@ -45,4 +47,14 @@ export function appendDebugState(run: RunTracks | undefined, state: DebugState):
     }
   for (const element of state.running) grown.starts[element.path] ??= element.since;
   return grown;
+}
+
+/**
+ * `run` with the starts and causes of the session's storyboard trace (its transitions, each step's), which knows the
+ * elements that started and ended between two states (sent about ten times a second); a trace of another run is left out.
+ */
+export function withSessionTrace(run: RunTracks, trace: LiveTrace | undefined): RunTracks {
+  if (!trace || trace.run !== (run.sessionRun ?? trace.run)) return run;
+  const traced = startsOfTrace(trace.records);
+  return { ...run, starts: { ...run.starts, ...traced.starts }, causes: { ...run.causes, ...traced.causes } };
 }

@@ -3,12 +3,13 @@ import * as vscode from 'vscode';
 import { webviewNonce } from '../webviewNonce';
 import { writeFileAtomic } from '../../../common/src/atomic';
 import type { DebugState } from '../../../common/src/debugState';
+import { followStoryboard, type LiveTrace, type StoryboardEventBody } from '../../../common/src/trace';
 import { RunTraceRequest, SceneRequest, type SceneResult } from '../../../common/src/sceneProtocol';
 import { withTrace } from './eventList';
 import { parseResolution } from './analysis';
 import { programOf } from '../debugging';
 import { packageEntryUri } from '../packageFileSystem';
-import { appendDebugState } from './liveRun';
+import { appendDebugState, withSessionTrace } from './liveRun';
 import { isFromView, type FromView, type RenderStats, type RunTracks, type ToView } from './messages';
 import { birdsEyeHtml } from './page';
 import { loadRun, type RunSource } from './runData';
@@ -93,15 +94,30 @@ export class BirdsEyeView implements vscode.Disposable {
       elsewhere = false;
     }
     const run = appendDebugState(this.live?.sessionId === sessionId ? this.live.run : undefined, state);
-    this.live = { sessionId, run };
+    this.live = { sessionId, run, running: state.running.map((element) => element.path), drawn: !elsewhere };
     // Turned to another scenario since: the session's run is not drawn on that one's roads.
-    if (elsewhere) return;
+    if (!elsewhere) this.postLive();
+  }
+
+  /** A debug session's storyboard transitions (the adapter's other custom event), kept for the starts of the events it shows. */
+  followStoryboard(sessionId: string, body: StoryboardEventBody): void {
+    if (!Array.isArray(body?.records)) return;
+    const trace = followStoryboard(this.sessionTrace?.sessionId === sessionId ? this.sessionTrace.trace : undefined, body);
+    this.sessionTrace = { sessionId, trace };
+    if (body.records.length > 0 && this.panel && this.live?.sessionId === sessionId && this.live.drawn) this.postLive();
+  }
+
+  private postLive(): void {
+    if (!this.live) return;
+    const trace = this.sessionTrace?.sessionId === this.live.sessionId ? this.sessionTrace.trace : undefined;
+    const run = withSessionTrace(this.live.run, trace);
     this.run = run;
-    const message: ToView = { type: 'live', run, running: state.running.map((element) => element.path) };
+    const message: ToView = { type: 'live', run, running: this.live.running };
     // After the turn's scene, in the order the states came.
     void this.turning.then(() => this.post(message));
   }
-  private live: { sessionId: string; run: RunTracks } | undefined;
+  private live: { sessionId: string; run: RunTracks; running: string[]; drawn: boolean } | undefined;
+  private sessionTrace: { sessionId: string; trace: LiveTrace } | undefined;
   private turning: Promise<void> = Promise.resolve();
 
   async show(source: vscode.Uri): Promise<void> {

@@ -2,7 +2,7 @@ import * as assert from 'node:assert/strict';
 import * as path from 'node:path';
 import * as vscode from 'vscode';
 import { cutInToDebug, pressF5UntilStop } from './debugging.inside';
-import { screenshot } from './harnessClient';
+import { pageShows, screenshot } from './harnessClient';
 import { api, type InsideTests, open, positionOf, TEST_MS, waitFor, workspaceRoot } from './helpers';
 
 /** The bird's-eye view and F5 on another scenario than the one it shows (issue 27, a new user's walk). */
@@ -37,6 +37,8 @@ export const birdsEyeDebugTests: InsideTests = {
         ['Ego', 'OverTaker'],
         "the scene's entities are cut-in.xosc's",
       );
+      // An event that started at 0.05 s and ended at the stop's step, between two of the session's states, is listed as started.
+      await waitFor('OverTakerStartSpeedEvent listed as started at 0.05 s', () => pageShows('started 0.05 s'));
       await screenshot("debug: F5 on cut-in.xosc turned the bird's-eye view from main.xosc to cut-in.xosc, at the stop");
     } finally {
       vscode.debug.removeBreakpoints([breakpoint]);
