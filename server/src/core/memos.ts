@@ -297,7 +297,8 @@ export const CORE_MEMOS = {
     key: "a tree's root node",
     holds: 'its nodes in document order and by name, for the rules that ask for the nodes of a name dozens of times',
     bound: WITH_KEY,
-    invalidated: "a change of the tree's structure through `core/export/tree.ts` (`changing`, `adopted`)",
+    invalidated:
+      'kept up to date by the structural changes of `core/export/tree.ts` (`reindex`, `unindex`); dropped when a root is adopted or many nodes changed (`adopted`, `liveIndex`)',
   },
 } as const satisfies Record<string, MemoDeclaration>;
 

@@ -73,22 +73,34 @@ export function childrenNamed(node: Node, name: string): Node[] {
 }
 
 /**
- * Each root's nodes in document order and by name, made on the first question after a change of structure below
- * it (the functions below drop it). The rules ask for the nodes of a name dozens of times, mostly with nothing
- * changed in between.
+ * Each root's nodes in document order and by name, made on the first question and then kept up to date by the
+ * functions below as nodes are added, moved and removed (the rules ask for the nodes of a name dozens of times,
+ * each between the previous rule's changes; making it again after each cost more than the export's mapping).
  */
 interface NodeIndex {
   all: Node[];
   byName: Map<string, Node[]>;
+  /** Nodes added or removed since the last question: past a share of the tree, making it again on the next question is cheaper. */
+  edited: number;
 }
 
 const indexes = coreMemo<Node, NodeIndex>('exportNodeIndexes');
 
-/** Drops the index of the tree `node` is in: its structure is about to change. */
-function changing(node: Node): void {
+function rootOf(node: Node): Node {
   let top = node;
   while (top.parent) top = top.parent;
-  indexes.delete(top);
+  return top;
+}
+
+/** The index of the tree `node` is in, if one was made and is still worth keeping up to date. */
+function liveIndex(node: Node): NodeIndex | undefined {
+  const root = rootOf(node);
+  const index = indexes.get(root);
+  if (index && index.edited > index.all.length / 2) {
+    indexes.delete(root);
+    return undefined;
+  }
+  return index;
 }
 
 /** A node becomes a child: an index of its own, made while it was a root, would not see later changes. */
@@ -106,10 +118,73 @@ function indexOf(root: Node): NodeIndex {
       if (same) same.push(each);
       else byName.set(each.name, [each]);
     }
-    index = { all, byName };
+    index = { all, byName, edited: 0 };
     indexes.set(root, index);
   }
+  index.edited = 0;
   return index;
+}
+
+/** Takes `node` and the nodes below it (still in the tree, a run of `all`) out of the index of their tree. */
+function unindex(index: NodeIndex, root: Node, node: Node): void {
+  const start = index.all.indexOf(node);
+  if (start < 0) {
+    indexes.delete(root);
+    return;
+  }
+  const nodes = walk(node);
+  index.all.splice(start, nodes.length);
+  for (const each of nodes) {
+    const same = index.byName.get(each.name) as Node[];
+    same.splice(same.indexOf(each), 1);
+  }
+  index.edited += nodes.length;
+}
+
+/** The first node after `node` and the nodes below it in document order. */
+function following(node: Node): Node | undefined {
+  for (let at = node; at.parent; at = at.parent) {
+    const siblings = at.parent.children;
+    const position = siblings.indexOf(at);
+    if (position + 1 < siblings.length) return siblings[position + 1];
+  }
+  return undefined;
+}
+
+/** Puts `node`, just placed in the tree, and the nodes below it into the index of their tree, in document order. */
+function reindex(index: NodeIndex, root: Node, node: Node): void {
+  const nodes = walk(node);
+  const next = following(node);
+  const at = next ? index.all.indexOf(next) : index.all.length;
+  // A large subtree (spread as arguments below) is indexed by making the index again.
+  if (at < 0 || nodes.length > index.all.length / 2) {
+    indexes.delete(root);
+    return;
+  }
+  index.all.splice(at, 0, ...nodes);
+  // The nodes of one name in the new run go in together, after those of that name that come before the run.
+  const byName = new Map<string, Node[]>();
+  for (const each of nodes) {
+    const same = byName.get(each.name);
+    if (same) same.push(each);
+    else byName.set(each.name, [each]);
+  }
+  for (const [name, added] of byName) {
+    const same = index.byName.get(name);
+    if (!same) {
+      index.byName.set(name, added);
+      continue;
+    }
+    let low = 0;
+    let high = same.length;
+    while (low < high) {
+      const middle = (low + high) >> 1;
+      if (index.all.indexOf(same[middle]) < at) low = middle + 1;
+      else high = middle;
+    }
+    same.splice(low, 0, ...added);
+  }
+  index.edited += nodes.length;
 }
 
 /** Every node below `node` (itself included) in document order, walked. */
@@ -151,44 +226,63 @@ export function makeNode(name: string, attributes: [string, string][] = [], chil
   return node;
 }
 
-/** The children list to change, for this module's functions alone (the index depends on it). */
-function mutableChildren(node: Node): Node[] {
-  changing(node);
-  return node.children as Node[];
+/**
+ * A node that comes into a tree: a root (an index of its own would no longer see its changes); one still in a
+ * tree stays in that tree's list of children too, as before, so neither tree's index can be kept.
+ */
+function entering(node: Node, index: NodeIndex | undefined, root: Node): NodeIndex | undefined {
+  adopted(node);
+  if (!node.parent) return index;
+  indexes.delete(rootOf(node));
+  indexes.delete(root);
+  return undefined;
 }
 
 export function appendChild(parent: Node, node: Node, before?: Node): Node {
-  const children = mutableChildren(parent);
-  adopted(node);
+  const root = rootOf(parent);
+  const index = entering(node, liveIndex(root), root);
+  const children = parent.children as Node[];
   node.parent = parent;
-  const index = before ? children.indexOf(before) : -1;
-  if (index >= 0) children.splice(index, 0, node);
+  const position = before ? children.indexOf(before) : -1;
+  if (position >= 0) children.splice(position, 0, node);
   else children.push(node);
+  if (index) reindex(index, root, node);
   return node;
 }
 
 export function removeNode(node: Node): void {
   if (!node.parent) return;
-  const children = mutableChildren(node.parent);
-  const index = children.indexOf(node);
-  if (index >= 0) children.splice(index, 1);
+  const root = rootOf(node);
+  const index = liveIndex(root);
+  if (index) unindex(index, root, node);
+  const children = node.parent.children as Node[];
+  const position = children.indexOf(node);
+  if (position >= 0) children.splice(position, 1);
   node.parent = undefined;
 }
 
 /** Removes every child of `node`. */
 export function removeChildren(node: Node): void {
-  for (const each of mutableChildren(node).splice(0)) each.parent = undefined;
+  const root = rootOf(node);
+  const index = liveIndex(root);
+  const children = node.children as Node[];
+  if (index) for (const each of children) unindex(index, root, each);
+  for (const each of children.splice(0)) each.parent = undefined;
 }
 
 export function replaceNode(old: Node, replacement: Node): void {
   const parent = old.parent;
   if (!parent) return;
-  const children = mutableChildren(parent);
-  const index = children.indexOf(old);
-  children[index] = replacement;
-  adopted(replacement);
+  const root = rootOf(parent);
+  let index = liveIndex(root);
+  if (index) unindex(index, root, old);
+  index = entering(replacement, indexes.get(root), root);
+  const children = parent.children as Node[];
+  const position = children.indexOf(old);
+  children[position] = replacement;
   replacement.parent = parent;
   old.parent = undefined;
+  if (index) reindex(index, root, replacement);
 }
 
 export function ancestor(node: Node, name: string): Node | undefined {
