@@ -89,7 +89,8 @@ export class VariationsRunner implements vscode.Disposable {
           const child = fork(this.cliPath, args, {
             cwd: path.dirname(file),
             stdio: ['ignore', 'pipe', 'pipe', 'ipc'],
-            env: { ...process.env, ELECTRON_RUN_AS_NODE: '1' },
+            // The rows' reasons then name the setting that set the time limit, not the --duration it is passed as.
+            env: { ...process.env, ELECTRON_RUN_AS_NODE: '1', MODULAR2SIMPLE_DURATION_SET_BY: `the ${DURATION_SETTING} setting` },
           });
           this.running.add(child);
           let cancelled = false;
@@ -176,7 +177,7 @@ export class VariationsRunner implements vscode.Disposable {
         });
     }
     if (outcome.limited && typeof duration === 'number' && duration > 0) {
-      // The rows say "the limit set for the run" (the CLI wrote them); this says which setting set it, and opens it.
+      // The rows name the setting too; this tells it without opening the view, and opens the setting.
       const open = 'Open Setting';
       void vscode.window
         .showInformationMessage(

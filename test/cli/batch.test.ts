@@ -226,7 +226,7 @@ describe('cli: batch', function () {
     assert.match(limited.stderr, /^2 runs \(0 ok, 2 limit, 0 timeout, 0 error; /m);
     for (const cells of csvRows(cut).map((row) => row.split(','))) assert.deepEqual([cells[1], cells[5]], ['limit', '5.000']);
     for (const row of csvRows(cut))
-      assert.ok(row.endsWith(',"stopped at the 5 s limit set for the run, before the scenario ended by itself"'), row);
+      assert.ok(row.endsWith(',"stopped at the 5 s limit set by --duration, before the scenario ended by itself"'), row);
   });
 
   it('--fail-if criteria: a verdict column, exit 5 naming the failed runs (again on a resume), JUnit XML for CI', function () {

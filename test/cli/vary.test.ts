@@ -112,7 +112,7 @@ describe('cli: vary and batch on a modular ScenarioFile (flattened per concrete 
     for (const line of lines.slice(1))
       assert.match(
         line,
-        /^\d,(ok|limit),(true|false),[\d.]+,[\d.]*,1\.0\d0,(20|30),("stopped at the 1 s limit set for the run, before the scenario ended by itself")?$/,
+        /^\d,(ok|limit),(true|false),[\d.]+,[\d.]*,1\.0\d0,(20|30),("stopped at the 1 s limit set by --duration, before the scenario ended by itself")?$/,
       );
   });
 });

@@ -41,6 +41,8 @@ export interface RunJob {
   searchPath: string[];
   /** The limit the user set; null: the scenario's own end. */
   duration: number | null;
+  /** Where the user sets the limit, as the rows' reasons name it (RunSettings.durationSetBy); absent from an older batch. */
+  durationSetBy?: string;
   seed: number;
 }
 
@@ -211,6 +213,7 @@ export async function queueBatch(
           files: await filesOf(run.text),
           searchPath,
           duration: settings.duration ?? null,
+          ...(settings.durationSetBy ? { durationSetBy: settings.durationSetBy } : {}),
           seed: settings.seed,
         },
         opts: { jobId, attempts: ATTEMPTS, removeOnComplete: true, removeOnFail: false },

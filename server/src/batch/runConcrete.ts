@@ -19,6 +19,8 @@ export interface ConcreteRun {
 export interface RunSettings {
   /** Simulated seconds at most, as the user set it; undefined: each scenario's own end. */
   duration?: number;
+  /** Where the user sets `duration` ('--duration', an editor setting), which a row's reason names (EsminiRunOptions.durationSetBy). */
+  durationSetBy?: string;
   /** esmini's seed. */
   seed: number;
   esminiPath?: string;
@@ -41,6 +43,7 @@ export async function runConcrete(job: ConcreteRun, settings: RunSettings, cance
   const result = await runScenarioText(job.text, job.searchPath, {
     esminiPath: settings.esminiPath,
     duration: settings.duration,
+    durationSetBy: settings.durationSetBy,
     seed: settings.seed,
     collision: true,
     runsFolder: settings.runsFolder,
@@ -76,7 +79,7 @@ export async function runConcrete(job: ConcreteRun, settings: RunSettings, cance
       ego: metrics.ego ?? null,
       collisions,
       message,
-      reason: reasonOf(status, result),
+      reason: reasonOf(status, result, settings.durationSetBy),
       messages: result.messages.map((each) => ({ level: each.level, time: each.time ?? null, text: each.text })),
     };
   } finally {
@@ -103,7 +106,7 @@ export function runStatusOf(result: EsminiTextRunResult): RunStatus {
  * Why a run of `status` is not `ok` (BatchRow.reason): esmini's first error when it reported some (a run it refused
  * says so, with esmini's message), what stopped a run cut short, the limit that ended it; empty when ok.
  */
-export function reasonOf(status: RunStatus, result: EsminiTextRunResult): string {
+export function reasonOf(status: RunStatus, result: EsminiTextRunResult, durationSetBy?: string): string {
   if (status === 'ok' || status === 'discarded') return '';
   if (status === 'error' && result.outcome === 'errors') {
     const errors = result.messages.filter((message) => message.level === 'error');
@@ -114,7 +117,7 @@ export function reasonOf(status: RunStatus, result: EsminiTextRunResult): string
   }
   // esmini did not run it, could not be started, hung, or ended without saying why: the run's message says which.
   if (result.outcome !== 'ok' && result.outcome !== 'errors') return result.message;
-  if (result.reachedLimit) return limitSentence({ seconds: result.duration, kind: result.limitKind });
+  if (result.reachedLimit) return limitSentence({ seconds: result.duration, kind: result.limitKind, setBy: durationSetBy });
   return result.stopReason ? `esmini was stopped: ${result.stopReason}` : result.message;
 }
 

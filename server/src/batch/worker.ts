@@ -88,7 +88,13 @@ export async function runWorker(url: URL, options: WorkerOptions): Promise<numbe
       const text = (await rebasedConcreteText(data.text, scenarioFolder, undefined, (file) => nodeFileSystem.kind(file))).text;
       const row = await runConcrete(
         { index: data.index, text, parameters: data.parameters, searchPath },
-        { duration: data.duration ?? undefined, seed: data.seed, esminiPath: options.esminiPath, runsFolder: layout },
+        {
+          duration: data.duration ?? undefined,
+          durationSetBy: data.durationSetBy,
+          seed: data.seed,
+          esminiPath: options.esminiPath,
+          runsFolder: layout,
+        },
         stopping.signal,
       );
       // Ctrl-C on a terminal reaches esmini too, which then ends early as if by itself: the job runs again elsewhere.

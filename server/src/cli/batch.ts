@@ -166,7 +166,13 @@ async function runBatch(argv: string[], io: CliOutput): Promise<number> {
     printProblems([samplingProblem(chosen, distributionPath)]);
     return ExitCode.problems;
   }
-  const settings: RunSettings = { duration, seed: RUN_DEFAULTS.seed, esminiPath: values.esmini };
+  const settings: RunSettings = {
+    duration,
+    // Run Variations runs this command with its setting as --duration, and says so here, for the rows' reasons.
+    durationSetBy: process.env.MODULAR2SIMPLE_DURATION_SET_BY || '--duration',
+    seed: RUN_DEFAULTS.seed,
+    esminiPath: values.esmini,
+  };
   if (!queue) {
     const location = locateEsmini(values.esmini);
     if (!location.found) throw new NoEsminiError(location.message);

@@ -253,12 +253,16 @@ export function defineVariationsTests(): void {
         const limited = await runVariations('follow_limit.xosc');
         assert.deepEqual(outcomes(limited), [
           ['ok', '2.050', ''],
-          ['limit', '10.000', 'stopped at the 10 s limit set for the run, before the scenario ended by itself'],
+          [
+            'limit',
+            '10.000',
+            'stopped at the 10 s limit set by the modular2simple.esmini.duration setting, before the scenario ended by itself',
+          ],
           ['error', '', REFUSED],
           ['error', '', REFUSED],
         ]);
         assert.ok(await pageShows('4 runs: 1 ok, 1 limit, 0 collision, 0 timeout, 2 error, 0 discarded'), 'the summary');
-        // The rows say "the limit set for the run" (the CLI wrote them); a notification names the setting that set it.
+        // The rows name the setting that set the limit (the editor tells the CLI it), and so does a notification.
         await waitFor('a notification naming the duration setting', async () =>
           (await toastsText()).includes(
             'Run Variations of follow_limit.xosc: 1 run stopped at the 10 s limit of the modular2simple.esmini.duration setting',
@@ -286,7 +290,11 @@ export function defineVariationsTests(): void {
         });
         assert.deepEqual(replaced, [
           ['ok', '2.050', ''],
-          ['limit', '5.000', 'stopped at the 5 s limit set for the run, before the scenario ended by itself'],
+          [
+            'limit',
+            '5.000',
+            'stopped at the 5 s limit set by the modular2simple.esmini.duration setting, before the scenario ended by itself',
+          ],
           ['error', '', REFUSED],
           ['error', '', REFUSED],
         ]);
