@@ -158,6 +158,32 @@ describe('cli: run in esmini', function () {
     assert.match(run.stderr, /cannot be flattened; nothing was run/);
   });
 
+  it('a distribution file or a catalog is not run as a scenario: exit 1, saying what it is and what runs it', function () {
+    const root = temporaryFolder('m2s-run-kind-');
+    try {
+      fs.copyFileSync(path.join(repoRoot, 'test/fixtures/variations/follow.xosc'), path.join(root, 'follow.xosc'));
+      fs.copyFileSync(path.join(repoRoot, 'test/fixtures/variations/follow_distribution.xosc'), path.join(root, 'distribution.xosc'));
+      fs.writeFileSync(
+        path.join(root, 'cars.xosc'),
+        '<?xml version="1.0"?>\n<OpenSCENARIO>\n  <FileHeader revMajor="1" revMinor="1" date="2024-01-01T00:00:00" description="" author=""/>\n' +
+          '  <Catalog name="Cars"/>\n</OpenSCENARIO>\n',
+      );
+      const distribution = runCli(['run', 'distribution.xosc', '--esmini', esminiBinary], { cwd: root });
+      assert.equal(distribution.status, 1, distribution.stderr);
+      assert.match(
+        distribution.stderr,
+        /^distribution\.xosc: error: a ParameterValueDistribution, not a scenario: nothing was run\. Run its concrete scenarios with 'batch distribution\.xosc --results DIR', or write one with 'vary distribution\.xosc --index I -o OUT\.xosc'/m,
+      );
+      assert.doesNotMatch(distribution.stderr, /Storyboard/);
+      const catalog = runCli(['run', 'cars.xosc', '--esmini', esminiBinary], { cwd: root });
+      assert.equal(catalog.status, 1, catalog.stderr);
+      assert.match(catalog.stderr, /^cars\.xosc: error: a catalog \('Cars'\), not a scenario: nothing was run/m);
+      assert.deepEqual(fs.readdirSync(root).sort(), ['cars.xosc', 'distribution.xosc', 'follow.xosc']);
+    } finally {
+      fs.rmSync(root, { recursive: true, force: true });
+    }
+  });
+
   it("a scenario esmini refuses (a 0.9 FileHeader) did not run: esmini's message and exit 3, with or without --check (issue 27)", function () {
     requireEsmini(this);
     const root = examplesWith();

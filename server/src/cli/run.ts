@@ -3,6 +3,7 @@ import * as path from 'node:path';
 import { writeFileAtomic } from '../../../common/src/atomic';
 import { Flattener } from '../core/flatten';
 import { formatProblem } from '../core/problems';
+import { isDistributionText } from '../core/variations/problems';
 import { displayRef, SourceRef, splitScenarioPath } from '../core/sources';
 import { prepareScenario, Simulation, SimulationLoadError, SimulationOptions } from '../debug/simulation';
 import { TraceRecord, traceToEnd } from '../debug/trace';
@@ -71,6 +72,24 @@ async function traceRun(
   }
 }
 
+/**
+ * Why a .xosc input is no scenario esmini could run, with what to do instead: a ParameterValueDistribution (which the
+ * editor's Run in esmini runs as its concrete scenario 0) or a catalog; undefined for anything else.
+ */
+function notAScenario(input: string): string | undefined {
+  if (!/\.xosc$/i.test(input) || !fs.statSync(input).isFile()) return undefined;
+  const text = fs.readFileSync(input, 'utf8');
+  if (isDistributionText(text))
+    return (
+      `a ParameterValueDistribution, not a scenario: nothing was run. Run its concrete scenarios with ` +
+      `'batch ${input} --results DIR', or write one with 'vary ${input} --index I -o OUT.xosc' and run that`
+    );
+  const catalog = /<Catalog\b[^>]*\bname\s*=\s*["']([^"']*)["']/.exec(text);
+  if (catalog && !/<Storyboard\b/.test(text))
+    return `a catalog ('${catalog[1]}'), not a scenario: nothing was run; run a scenario that references its entries`;
+  return undefined;
+}
+
 /** `modular2simple run`: flattens each input, runs it in esmini and prints esmini's problems on their source lines. */
 async function runCommand(args: string[], io: CliOutput): Promise<number> {
   const { values, positionals: inputs } = parseCommandLine(args, {
@@ -102,6 +121,12 @@ async function runCommand(args: string[], io: CliOutput): Promise<number> {
   let notRun = false;
   let errors = 0;
   for (const input of inputs) {
+    const instead = notAScenario(input);
+    if (instead !== undefined) {
+      io.err(`${input}: error: ${instead}`);
+      notRun = true;
+      continue;
+    }
     const result = await runScenario(flattener, mainOf(input), {
       esminiPath: values.esmini,
       roadPath,
