@@ -30,12 +30,12 @@ export const SERVER_MEMOS = {
     where: '`AnalysisDatabase.sourceDependencies` (`analysisDatabase.ts`; `SourceDependencies`, `sourceDependencies.ts`)',
     key: 'a file id',
     holds:
-      'the files each source read depends on (itself, and the files its references and catalogs read, transitively), and the reverse index: the sources depending on each file, and how many files lie below each folder or package path, so `AnalysisDatabase.changed` finds the sources a change makes stale without walking every shared source; the sources still being read (any change makes them stale)',
+      'the files each source read depends on (itself, and the files its references and catalogs read, transitively), and the reverse index: the sources depending on each file, and how many files lie below each folder or package path, so `AnalysisDatabase.changed` finds the sources a change makes stale without walking every shared source; the sources still being read (any change makes them stale). A source made stale keeps its links, left out of every answer, until it is read again: when that read finds the same files (a keystroke in a value of the main file), they are taken as they were',
     bound: {
-      text: 'one entry per file read since it last changed (kept when the shared sources let its source go past their bound): its dependencies as ids, each in the reverse index',
+      text: 'one entry per file read: its dependencies as ids, each in the reverse index (kept, with its links, when the shared sources let its source go or a change makes it stale, until it is read again)',
     },
     invalidated:
-      'an entry goes with its shared source in `AnalysisDatabase.changed` (the file or a dependency changed) and is replaced when the source is read again; all on settings or a file appearing or vanishing',
+      'made stale with its shared source in `AnalysisDatabase.changed` (the file or a dependency changed): out of every answer, its links kept until the source is read again, which replaces it; all on settings or a file appearing or vanishing',
   },
   analyses: {
     where: '`AnalysisDatabase.analysisResults` (`analysisDatabase.ts`)',

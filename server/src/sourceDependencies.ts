@@ -12,6 +12,12 @@ export class SourceDependencies {
   /** How many files of `dependents` lie below each folder or package path: a change of a path with none below it walks nothing. */
   private readonly filesBelow = new Map<string, number>();
   private readonly reading = new Set<string>();
+  /**
+   * Sources forgotten (made stale) whose links stay in `dependents`, left out of every answer, until they are
+   * read again: the main file read again after each keystroke mostly depends on the same files, and linking
+   * its 400 dependencies again would cost more than the walk of every source the index replaces.
+   */
+  private readonly forgotten = new Map<string, string[]>();
 
   /** The files a source read depends on, as recorded when its read ended. */
   get(id: string): string[] | undefined {
@@ -34,8 +40,15 @@ export class SourceDependencies {
   }
 
   set(id: string, dependencies: string[]): void {
-    this.delete(id);
+    this.reading.delete(id);
+    const linked = this.ofSource.get(id) ?? this.forgotten.get(id);
+    this.forgotten.delete(id);
     this.ofSource.set(id, dependencies);
+    if (linked && sameIds(linked, dependencies)) return;
+    if (linked) {
+      this.unlink(id, id);
+      for (const dependency of linked) this.unlink(dependency, id);
+    }
     this.link(id, id);
     for (const dependency of dependencies) this.link(dependency, id);
   }
@@ -45,12 +58,12 @@ export class SourceDependencies {
     const dependencies = this.ofSource.get(id);
     if (!dependencies) return;
     this.ofSource.delete(id);
-    this.unlink(id, id);
-    for (const dependency of dependencies) this.unlink(dependency, id);
+    this.forgotten.set(id, dependencies);
   }
 
   clear(): void {
     this.ofSource.clear();
+    this.forgotten.clear();
     this.dependents.clear();
     this.filesBelow.clear();
     this.reading.clear();
@@ -66,7 +79,7 @@ export class SourceDependencies {
     const add = (file: string) => {
       stale.add(file);
       const dependents = this.dependents.get(file);
-      if (dependents) for (const dependent of dependents) stale.add(dependent);
+      if (dependents) for (const dependent of dependents) if (!this.forgotten.has(dependent)) stale.add(dependent);
     };
     for (const changed of changedIds) {
       add(changed);
@@ -102,4 +115,10 @@ export class SourceDependencies {
 /** The paths `id` lies below, as `AnalysisDatabase.changed` names folders: each prefix ending before a `/`. */
 function* foldersOf(id: string): Generator<string> {
   for (let slash = id.lastIndexOf('/'); slash > 0; slash = id.lastIndexOf('/', slash - 1)) yield id.slice(0, slash);
+}
+
+function sameIds(a: string[], b: string[]): boolean {
+  if (a.length !== b.length) return false;
+  for (let index = 0; index < a.length; index++) if (a[index] !== b[index]) return false;
+  return true;
 }

@@ -35,6 +35,24 @@ describe('server: the reverse index of source dependencies', () => {
     assert.equal(dependencies.get('/w/main.xosc'), undefined);
   });
 
+  it('a source forgotten and read again depends on what its new read found, whether or not it is what it found before', () => {
+    const dependencies = new SourceDependencies();
+    dependencies.set('/w/main.xosc', ['/w/main.xosc', '/w/a.xosc']);
+    dependencies.delete('/w/main.xosc');
+    assert.deepEqual(sorted(dependencies.staleAfter(['/w/a.xosc'])), ['/w/a.xosc']);
+    // Read again to the same files (a keystroke in a value): its links are taken as they were.
+    dependencies.readStarted('/w/main.xosc');
+    dependencies.set('/w/main.xosc', ['/w/main.xosc', '/w/a.xosc']);
+    assert.deepEqual(sorted(dependencies.staleAfter(['/w/a.xosc'])), ['/w/a.xosc', '/w/main.xosc']);
+    assert.deepEqual(sorted(dependencies.staleAfter(['/w/b.xosc'])), ['/w/b.xosc']);
+    // Forgotten, then read again to other files: the file it no longer reads makes it stale no more.
+    dependencies.delete('/w/main.xosc');
+    dependencies.set('/w/main.xosc', ['/w/main.xosc', '/w/b.xosc']);
+    assert.deepEqual(sorted(dependencies.staleAfter(['/w/a.xosc'])), ['/w/a.xosc']);
+    assert.deepEqual(sorted(dependencies.staleAfter(['/w/b.xosc'])), ['/w/b.xosc', '/w/main.xosc']);
+    assert.deepEqual(sorted(dependencies.staleAfter(['/w/main.xosc'])), ['/w/main.xosc']);
+  });
+
   it('a folder or package changed makes stale the sources depending on a file below it, and only below it', () => {
     const dependencies = new SourceDependencies();
     dependencies.set('/w/main.xosc', ['/w/main.xosc', '/w/lib.mosc/simple.xosc']);
@@ -49,9 +67,9 @@ describe('server: the reverse index of source dependencies', () => {
       '/w/lib.mosc/simple.xosc',
       '/w/main.xosc',
     ]);
-    // Once nothing depends on a file below it, the package's path is a file like any other.
+    // A source forgotten is stale no more: the package's path and the file below it are named, no source.
     dependencies.delete('/w/main.xosc');
-    assert.deepEqual(sorted(dependencies.staleAfter(['/w/lib.mosc'])), ['/w/lib.mosc']);
+    assert.deepEqual(sorted(dependencies.staleAfter(['/w/lib.mosc'])), ['/w/lib.mosc', '/w/lib.mosc/simple.xosc']);
   });
 
   it('a source still being read is stale after any change, until its dependencies are known', () => {

@@ -183,14 +183,21 @@ export class DiagnosticsScheduler {
 
   /** Schedules the open documents affected by a change of `changedIds` (file ids or disk paths). */
   changed(changedIds: string[]): void {
+    const folders = changedIds.map((changed) => changed + '/');
+    const touched = (dependency: string) => changedIds.includes(dependency) || folders.some((folder) => dependency.startsWith(folder));
     for (const [id] of this.workspace.documents) {
+      if (changedIds.includes(id)) {
+        this.pending.add(id);
+        continue;
+      }
+      // Walked in place: a main file with 400 references has 400 dependencies, on every keystroke.
       const dependencies = this.dependencies.get(id);
-      const affected = changedIds.some(
-        (changed) =>
-          changed === id ||
-          (dependencies && [...dependencies].some((dependency) => dependency === changed || dependency.startsWith(changed + '/'))),
-      );
-      if (affected) this.pending.add(id);
+      if (dependencies)
+        for (const dependency of dependencies)
+          if (touched(dependency)) {
+            this.pending.add(id);
+            break;
+          }
     }
     this.arm();
   }
