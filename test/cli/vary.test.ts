@@ -59,6 +59,17 @@ describe('cli: vary and batch on a modular ScenarioFile (flattened per concrete 
     assert.equal(concrete.stdout, flat.stdout.replace(DECLARED, DECLARED.replace('27.5', '30')));
   });
 
+  it('--index I -o FILE says what it wrote, with the values it set (as --out-dir says its count); -q says nothing', () => {
+    const root = examples('main.xosc');
+    const written = runCli(['vary', 'd.xosc', '--index', '1', '-o', 'one.xosc'], { cwd: root });
+    assert.equal(written.status, 0, written.stderr);
+    assert.equal(written.stderr, 'wrote one.xosc (concrete scenario 1 of 2: CutInSpeed = 30)\n');
+    assert.ok(fs.readFileSync(path.join(root, 'one.xosc'), 'utf8').includes(DECLARED.replace('27.5', '30')));
+    const quiet = runCli(['vary', 'd.xosc', '--index', '0', '-o', 'zero.xosc', '-q'], { cwd: root });
+    assert.equal(quiet.status, 0, quiet.stderr);
+    assert.equal(quiet.stderr, '');
+  });
+
   it('a .mosc and an unpacked folder as ScenarioFile are flattened too', () => {
     const root = examples('encounter.mosc');
     const packed = runCli(['pack', '.', '-o', 'encounter.mosc'], { cwd: root });

@@ -284,6 +284,11 @@ async function varyScenarios(argv: string[], io: Output, givenLoader: ScenarioTe
       io.err(`modular2simple: cannot write ${values.output}: ${(error as Error).message}`);
       return ExitCode.io;
     }
+    // As --out-dir and the other commands say what they wrote; the values, as the editor's Run in esmini names them.
+    if (!values.quiet) {
+      const assigned = concrete.assignments.map((assignment) => `${assignment.parameter} = ${assignment.value}`).join(', ');
+      io.err(`wrote ${values.output} (concrete scenario ${index} of ${variations.count}: ${assigned})`);
+    }
     return ExitCode.ok;
   }
 
