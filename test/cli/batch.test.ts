@@ -266,6 +266,30 @@ describe('cli: batch', function () {
     );
   });
 
+  it("a colour esmini logs as an error and skips (CARLA's 'R,G,B') is no failed run, as run counts it (before: every row error, exit 3)", function () {
+    requireEsmini(this);
+    const root = folder();
+    const scenario = fs.readFileSync(path.join(root, 'follow.xosc'), 'utf8');
+    const coloured = scenario.replace('<Properties/>', '<Properties><Property name="color" value="255,0,0"/></Properties>');
+    assert.notEqual(coloured, scenario);
+    fs.writeFileSync(path.join(root, 'follow.xosc'), coloured);
+    const run = runCli(['run', 'follow.xosc', '--road-path', esminiRoads, '--esmini', esminiBinary, '--check'], { cwd: root });
+    assert.equal(run.status, 0, run.stderr);
+    assert.match(run.stderr, /warning: Property: color format invalid, shall be #RRGGBB, skipping \(esmini\)/);
+    const batch = runCli([...BATCH_ARGS, '--sample', '4'], { cwd: root });
+    assert.equal(batch.status, 0, batch.stderr);
+    assert.match(batch.stderr, /^4 runs \(4 ok, 0 limit, 0 timeout, 0 error; /m);
+    const messages = (
+      JSON.parse(fs.readFileSync(path.join(root, 'results', 'results.json'), 'utf8')) as {
+        rows: { messages: { level: string; text: string }[] }[];
+      }
+    ).rows[0].messages;
+    assert.ok(
+      messages.some((message) => message.level === 'error' && /color format invalid/.test(message.text)),
+      "esmini's own level is kept",
+    );
+  });
+
   it("a batch whose runs esmini refuses is no batch done: each row has esmini's reason (progress, summary, CSV, JSON, JUnit), exit 3, again on a resume", function () {
     requireEsmini(this);
     const root = folder();

@@ -2,6 +2,7 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { EsminiCsvError, parseEsminiCsv } from '../../../common/src/esminiCsv';
 import { EsminiTextRunResult, limitSentence, removeRunFolder, runScenarioText } from '../esmini/run';
+import { esminiMessageSeverity } from '../esmini/messages';
 import { collisionsIn, trajectoryMetrics } from './metrics';
 import type { BatchRow, RunStatus } from './results';
 
@@ -109,7 +110,7 @@ export function runStatusOf(result: EsminiTextRunResult): RunStatus {
 export function reasonOf(status: RunStatus, result: EsminiTextRunResult, durationSetBy?: string): string {
   if (status === 'ok' || status === 'discarded') return '';
   if (status === 'error' && result.outcome === 'errors') {
-    const errors = result.messages.filter((message) => message.level === 'error');
+    const errors = result.messages.filter((message) => esminiMessageSeverity(message) === 'error');
     const first = errors[0];
     const when = first?.time === undefined ? '' : ` at ${first.time} s`;
     const count = errors.length === 1 ? 'an error' : `${errors.length} errors, the first`;

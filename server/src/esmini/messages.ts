@@ -226,6 +226,15 @@ function rangeOf(source: FlatSource, target: Target): { source: SourceRef; range
  * about (by a rule for messages that name nothing, else by a name or value they quote), followed
  * back through the flattener's provenance. Repeats of one message are counted once per place.
  */
+/**
+ * How a message of esmini's log counts: its rule's severity where one is set (esmini logs a colour it skips as an error,
+ * and runs on), else esmini's own level. One answer for `run`, which places the message, and for a batch's rows, which do not.
+ */
+export function esminiMessageSeverity(message: Pick<EsminiLogMessage, 'level' | 'text'>): 'error' | 'warning' {
+  const rule = RULES.find((candidate) => candidate.pattern.test(message.text));
+  return rule?.severity ?? (message.level === 'error' ? 'error' : 'warning');
+}
+
 export function mapEsminiMessages(messages: EsminiLogMessage[], source: FlatSource, main: SourceRef): EsminiProblem[] {
   const document = (source.model ?? source.original)?.document;
   const root = document?.root;
@@ -254,7 +263,7 @@ export function mapEsminiMessages(messages: EsminiLogMessage[], source: FlatSour
     }
     const target = targets.length > 0 ? targets[Math.min(occurrence, targets.length - 1)] : undefined;
     const place = target ? rangeOf(source, target) : undefined;
-    const severity = rule?.severity ?? (message.level === 'error' ? 'error' : 'warning');
+    const severity = esminiMessageSeverity(message);
     const problem: EsminiProblem = {
       source: place?.source ?? main,
       range: place?.range ?? { start: { line: 0, character: 0 }, end: { line: 0, character: 0 } },

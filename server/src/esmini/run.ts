@@ -12,7 +12,7 @@ import { parseEsminiLoadedRoad } from '../../../common/src/esminiCsv';
 import type { TraceRecord } from '../../../common/src/trace';
 import { locateEsmini } from './locate';
 import { EsminiLogMessage, EsminiRemark, readEsminiLog } from './log';
-import { EsminiProblem, mapEsminiMessages } from './messages';
+import { esminiMessageSeverity, EsminiProblem, mapEsminiMessages } from './messages';
 import { EsminiEnd, EsminiProcessResult, lastCsvTime, makeRunFolder, runEsminiProcess } from './process';
 import { storyboardMapOf, traceFromLog } from './storyboardTrace';
 import { LimitKind, NO_END_SECONDS, runLimit, RunLimit, RUNAWAY_SECONDS, withTimeLimit } from './timeLimit';
@@ -437,7 +437,9 @@ export async function runScenarioText(text: string, searchPath: string[], option
   const roadPath = (options.roadPath ?? []).map((folder) => path.resolve(options.base ?? process.cwd(), folder));
   const ran = await runLimitedText(location.program, limited, unique([...searchPath, ...roadPath]), options, timeStep, seed, limit);
   const { messages, remarks } = readEsminiLog(ran.run.output);
-  const errors = messages.filter((message) => message.level === 'error').length;
+  // As run counts them (its messages placed by mapEsminiMessages): a colour esmini skips is no failed run.
+  const failing = messages.filter((message) => esminiMessageSeverity(message) === 'error');
+  const errors = failing.length;
   return {
     ...base,
     messages,
@@ -445,7 +447,7 @@ export async function runScenarioText(text: string, searchPath: string[], option
     ...ran.common,
     esmini: location.program,
     wallMs: elapsed(),
-    ...outcomeOf(ran, errors, messages.length - errors, messages.find((message) => message.level === 'error')?.text),
+    ...outcomeOf(ran, errors, messages.length - errors, failing[0]?.text),
   };
 }
 
