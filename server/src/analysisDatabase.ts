@@ -39,9 +39,10 @@ export class AnalysisDatabase {
   private readonly sourceDependencies = new SourceDependencies();
   /**
    * The files each open document's source read, as last known (kept in memory while it is open): the
-   * dependencies of its last read (`from`), and the files a read still running has asked for since.
+   * dependencies of its last read (`from`), and the files a read still running has asked for since (`grew` once it
+   * asked for one not among them).
    */
-  private readonly openDocumentReads = new Map<string, { ids: Set<string>; from: string[] | undefined }>();
+  private readonly openDocumentReads = new Map<string, { ids: Set<string>; from: string[] | undefined; grew: boolean }>();
   /** The last schema check of each file, shared by every generation's flattener. */
   private readonly schemaChecks = new SchemaCheckMemory();
   /** Analyses of the current generation; one of a file not open keeps only its problems, its source staying in the shared sources. */
@@ -111,7 +112,9 @@ export class AnalysisDatabase {
       // An edit forgets the file's dependencies until it is read again: what it read last time stays meanwhile.
       const known = this.sourceDependencies.get(id);
       const reads = this.openDocumentReads.get(id);
-      if (!reads || (known && reads.from !== known)) this.openDocumentReads.set(id, { ids: new Set(known), from: known });
+      // Made again only when the dependencies or the files noted since differ: a keystroke mostly leaves both as they were.
+      if (!reads || (known && (reads.from !== known || reads.grew)))
+        this.openDocumentReads.set(id, { ids: new Set(known), from: known, grew: false });
     }
     for (const id of [...this.openDocumentReads.keys()]) if (!open.has(id)) this.openDocumentReads.delete(id);
   }
@@ -124,8 +127,11 @@ export class AnalysisDatabase {
   private noteRead(reader: string, id: string): void {
     if (!this.inputs.documents.get(reader) || this.sourceDependencies.has(reader)) return;
     const reads = this.openDocumentReads.get(reader);
-    if (reads) reads.ids.add(id);
-    else this.openDocumentReads.set(reader, { ids: new Set([id]), from: undefined });
+    if (!reads) this.openDocumentReads.set(reader, { ids: new Set([id]), from: undefined, grew: true });
+    else if (!reads.ids.has(id)) {
+      reads.ids.add(id);
+      reads.grew = true;
+    }
   }
 
   flattener(): Flattener {

@@ -43,8 +43,12 @@ export class SourceDependencies {
     this.reading.delete(id);
     const linked = this.ofSource.get(id) ?? this.forgotten.get(id);
     this.forgotten.delete(id);
+    if (linked && sameIds(linked, dependencies)) {
+      // The same list as before, so those who compare lists by identity (`AnalysisDatabase.rememberOpenReads`) see no change.
+      this.ofSource.set(id, linked);
+      return;
+    }
     this.ofSource.set(id, dependencies);
-    if (linked && sameIds(linked, dependencies)) return;
     if (linked) {
       this.unlink(id, id);
       for (const dependency of linked) this.unlink(dependency, id);
