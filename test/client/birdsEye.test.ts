@@ -16,7 +16,7 @@ import {
   toScreen,
 } from '../../client/src/birdsEye/draw';
 import type { RunTracks } from '../../client/src/birdsEye/messages';
-import { loadRun, runTracks } from '../../client/src/birdsEye/runData';
+import { keptRunName, loadRun, runTracks } from '../../client/src/birdsEye/runData';
 import { parseOpenDrive } from '../../server/src/core/opendrive/road';
 import { sampleNetwork } from '../../server/src/core/opendrive/sample';
 import type { SceneResult } from '../../common/src/sceneProtocol';
@@ -133,6 +133,23 @@ describe("client: the bird's-eye view's drawing", () => {
     const small = runTracks({ version: '', scenarioFile: '', times: Float64Array.from([0, 1]), entities: [], truncated: true }, 'x');
     assert.deepEqual(small.times, [0, 1]);
     assert.match(small.notes.join(), /end is left out/);
+  });
+
+  it("names a batch's kept run as the Variations view lists it (#I of RESULTS), any other run by its file", async () => {
+    const csv =
+      'esmini GIT REV: v3.6.0\nesmini GIT TAG: \nesmini GIT BRANCH: x\nesmini BUILD VERSION: x\nScenario File Name: s.xosc\nNumber of Vehicles: 1\n' +
+      'Index [-], TimeStamp [s], #1 Entity_Name [-], #1 World_Position_X [m], #1 World_Position_Y [m], #1 World_Heading_Angle [rad], \n0, 0.00, car, 0, 0, 0, \n';
+    ('Index [-], TimeStamp [s], #1 Entity_Name [-], #1 World_Position_X [m], #1 World_Position_Y [m], #1 World_Heading_Angle [rad], \n0, 0.00, car, 0, 0, 0, \n');
+    const folder = temporaryWorkspace({ 'cut-in.results/runs/3/trajectories.csv': csv, 'elsewhere/trajectories.csv': csv });
+    try {
+      const kept = await loadRun({ csvPath: path.join(folder, 'cut-in.results', 'runs', '3', 'trajectories.csv') });
+      assert.equal(kept.tracks.label, '#3 of cut-in.results');
+      assert.equal(keptRunName(path.join(folder, 'cut-in.results', 'runs', '3', 'scenario.xosc')), '#3 of cut-in.results');
+      assert.equal((await loadRun({ csvPath: path.join(folder, 'elsewhere', 'trajectories.csv') })).tracks.label, 'trajectories.csv');
+      assert.equal(keptRunName(path.join(folder, 'runs', 'latest', 'trajectories.csv')), undefined);
+    } finally {
+      fs.rmSync(folder, { recursive: true, force: true });
+    }
   });
 
   it("names the road file the run loaded, from esmini's log, so that the view can tell a run on another road", async () => {

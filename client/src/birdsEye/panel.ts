@@ -12,7 +12,7 @@ import { packageEntryUri } from '../packageFileSystem';
 import { appendDebugState, withSessionTrace } from './liveRun';
 import { isFromView, type FromView, type RenderStats, type RunTracks, type ToView } from './messages';
 import { birdsEyeHtml } from './page';
-import { loadRun, type RunSource } from './runData';
+import { keptRunName, loadRun, type RunSource } from './runData';
 import type { ServerCommandClient } from '../languageClient';
 
 /** The scenario a debug session runs: its file, or the main.xosc of the .mosc package it names. */
@@ -138,7 +138,7 @@ export class BirdsEyeView implements vscode.Disposable {
     }
     if (!this.panel) this.createPanel();
     else this.panel.reveal(vscode.ViewColumn.Beside, true);
-    this.panel!.title = `Bird's-Eye: ${path.posix.basename(source.path)}`;
+    this.panel!.title = `Bird's-Eye: ${(source.scheme === 'file' && keptRunName(source.fsPath)) || path.posix.basename(source.path)}`;
     await this.refresh();
   }
 

@@ -9,6 +9,17 @@ const MAX_FRAMES = 6000;
 /** A CSV larger than this is not read whole (esmini writes some 70 MB per simulated second when unbounded). */
 const MAX_CSV_BYTES = 256 * 1024 * 1024;
 
+/**
+ * A file of a batch's kept run (RESULTS/runs/I/, variations/panel.ts keptRun) named as the Variations view lists the run,
+ * `#I of RESULTS`: each of them is a trajectories.csv beside a scenario.xosc, which says nothing of which run it is.
+ */
+export function keptRunName(file: string): string | undefined {
+  const runFolder = path.dirname(file);
+  const runs = path.dirname(runFolder);
+  if (path.basename(runs) !== 'runs' || !/^\d+$/.test(path.basename(runFolder))) return undefined;
+  return `#${path.basename(runFolder)} of ${path.basename(path.dirname(runs))}`;
+}
+
 export interface RunSource {
   csvPath: string;
   /** esmini's log (its stdout or log.txt), for when storyboard events started. */
@@ -80,7 +91,7 @@ export async function loadRun(source: RunSource): Promise<LoadedRun> {
       if (logText !== undefined) break;
     }
   }
-  const tracks = runTracks(run, path.basename(source.csvPath));
+  const tracks = runTracks(run, keptRunName(source.csvPath) ?? path.basename(source.csvPath));
   const roadFile = source.roadFile ?? (logText ? parseEsminiLoadedRoad(logText) : undefined);
   return { tracks: roadFile ? { ...tracks, roadFile } : tracks, ...(logText !== undefined ? { log: logText } : {}) };
 }

@@ -133,6 +133,8 @@ export function defineVariationsTests(): void {
       await waitFor("the run in the bird's-eye view", () =>
         view.openedRun === firstCollision && birdsEye.stats?.trajectories === 2 ? true : undefined,
       );
+      // Named as the table lists it, not by its file (every kept run is a trajectories.csv beside a scenario.xosc).
+      await waitFor('the run named by its index', () => pageShows(`run: #${firstCollision} of `));
       await screenshot(`Variations view: run ${firstCollision} opened in the bird's-eye view`);
 
       // The row opened stands out from the others, though the pointer still rests on it (the click left it there).
