@@ -214,6 +214,27 @@ describe('cli: a road packed in a .mosc beside the scenario that uses it, and a 
     );
   });
 
+  it("a group imported from a file whose own road esmini would not find: the main is clean for esmini and flattens (before: 'source-errors', nothing written)", async () => {
+    const folder = elsewhere();
+    fs.mkdirSync(path.join(folder, 'groups'));
+    fs.mkdirSync(path.join(folder, 'app'));
+    // As the paper's library writes its simple scenarios: a CARLA map's name, which esmini needs as a file.
+    fs.writeFileSync(path.join(folder, 'groups', 'drive.xosc'), drivingScenario('Town05', 'Drive'));
+    fs.writeFileSync(path.join(folder, 'app', 'straight_500m.xodr'), road);
+    const outer = outerGroup('Car', 'Ego', [{ file: '../groups/drive.xosc', groups: [{ name: 'Drive' }] }]);
+    fs.writeFileSync(path.join(folder, 'app', 'main.xosc'), drivingScenario('straight_500m.xodr', outer));
+    const own = runCli(['check', 'groups/drive.xosc', '--simulator', 'esmini'], { cwd: folder });
+    assert.equal(own.status, 1, own.stderr);
+    assert.match(own.stderr, /groups\/drive\.xosc:\d+:\d+: error: road file 'Town05' is not found/, 'the file itself still says it');
+    const check = runCli(['check', 'app/main.xosc', '--simulator', 'esmini'], { cwd: folder });
+    assert.equal(check.status, 0, check.stderr);
+    assert.match(check.stderr, /checked 1 file: 0 errors, 0 warnings/);
+    const flat = path.join(elsewhere(), 'flat.xosc');
+    const flatten = runCli(['flatten', 'app/main.xosc', '-o', flat, '--simulator', 'esmini'], { cwd: folder });
+    assert.equal(flatten.status, 0, flatten.stderr);
+    assert.ok(Math.abs(lastX((await runAlone(flat)).steps) - 90) < 2);
+  });
+
   it("export --target carla: the package's road is written beside the export, which names it (before: refused, road not found)", async function () {
     const out = path.join(elsewhere(), 'carla', 'drive.xosc');
     fs.mkdirSync(path.dirname(out));

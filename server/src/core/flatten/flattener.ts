@@ -19,7 +19,16 @@ import { referenceChecks } from './referenceChecks';
 import { problemAt } from './report';
 import { pathBaseOf, rebaseFlattened } from './rebase';
 import { render } from './render';
-import { AnalysisResult, FlatSource, FlattenOptions, FlattenResult, LinkedReference, PackagedFile, SchemaOptions } from './types';
+import {
+  AnalysisResult,
+  FlatSource,
+  FlattenOptions,
+  FlattenResult,
+  LinkedReference,
+  PackagedFile,
+  SchemaOptions,
+  SOURCE_ONLY_PROBLEM_CODES,
+} from './types';
 
 /** The catalogs a file reaches (its own references first, then those of the files it imports from). */
 function catalogIndexOf(source: FlatSource): Map<string, { kind: string; directory: string }> {
@@ -244,7 +253,7 @@ export class Flattener {
       problemsOfLinks.push(linkProblems(result.problems, firstProblem, result.problems.length));
       result.links.push(linked);
       if (linked.source) {
-        if (linked.source.allProblems.length > 0) childProblems.push(...linked.source.allProblems);
+        for (const problem of linked.source.allProblems) if (!SOURCE_ONLY_PROBLEM_CODES.has(problem.code)) childProblems.push(problem);
         for (const dependency of linked.source.dependencies) {
           const id = refId(dependency);
           if (!dependencyIds.has(id)) {

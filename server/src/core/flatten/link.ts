@@ -32,7 +32,7 @@ import { attribute, XmlElement } from '../xml';
 import { SCHEMA_PROBLEM_CODES } from '../schema/validate';
 import { declarationLocation, originOf } from './origin';
 import { describeChain, problemAt, ProblemWords, valueRange } from './report';
-import { FlatSource, LinkedGroupReference, LinkedReference, OVERRIDE_PROBLEM_CODES } from './types';
+import { FlatSource, LinkedGroupReference, LinkedReference, OVERRIDE_PROBLEM_CODES, SOURCE_ONLY_PROBLEM_CODES } from './types';
 
 /** What linking needs of the flattener: the store, and the (cached) reading and rendering of referenced files. */
 export interface LinkContext {
@@ -180,10 +180,17 @@ async function resolveTarget(
   return target;
 }
 
-/** Errors in the referenced file stop flattening; schema problems do not (they are reported in their own file and checked again in the output). */
+/**
+ * Errors in the referenced file stop flattening; schema problems do not (they are reported in their own file and checked
+ * again in the output), nor does a road file the source names but no run of the output reads (SOURCE_ONLY_PROBLEM_CODES).
+ */
 function reportSourceErrors(reference: ScenarioReferenceInfo, source: FlatSource, report: Report): void {
   const sourceErrors = source.allProblems.filter(
-    (problem) => problem.severity === 'error' && !OVERRIDE_PROBLEM_CODES.has(problem.code) && !SCHEMA_PROBLEM_CODES.has(problem.code),
+    (problem) =>
+      problem.severity === 'error' &&
+      !SOURCE_ONLY_PROBLEM_CODES.has(problem.code) &&
+      !OVERRIDE_PROBLEM_CODES.has(problem.code) &&
+      !SCHEMA_PROBLEM_CODES.has(problem.code),
   );
   if (sourceErrors.length === 0) return;
   const [start, end] = valueRange(reference.fileAttribute, reference.element);

@@ -10,6 +10,13 @@ import { XmlElement } from '../xml';
 /** Problems that the original tool ignored silently: what `--force` skips (reported as skipped, not as errors). */
 export const OVERRIDE_PROBLEM_CODES: ReadonlySet<ProblemCode> = SKIPPED_BY_FORCE;
 
+/**
+ * Problems of a referenced file that concern that file alone and not a scenario importing its groups: its own road file
+ * (`road-file`), since an imported group never carries its source's RoadNetwork and the output runs on the main file's.
+ * Reported when that file is checked itself; they neither stop a flattening nor count among the main's problems.
+ */
+export const SOURCE_ONLY_PROBLEM_CODES: ReadonlySet<ProblemCode> = new Set<ProblemCode>(['road-file']);
+
 export interface LinkedGroupReference {
   info: ManeuverGroupReferenceInfo;
   /** The group in the source (the flattened package for a `.mosc`) that the name selects. */
