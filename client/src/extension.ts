@@ -223,7 +223,8 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
         void vscode.commands.executeCommand('modular2simple.birdsEye.showRun', event.result.csvFile, {
           logText: event.result.log,
           trace: event.result.trace,
-          scenario: event.source,
+          // A distribution file's run is drawn on its ScenarioFile: the distribution has no roads or entities.
+          scenario: event.result.scenarioOf ? vscode.Uri.parse(event.result.scenarioOf) : event.source,
           // A road packed with the scenario: esmini loaded its copy in the run folder; the view names the package entry it draws.
           ...(event.result.roadFile?.packaged ? { roadFile: event.result.roadFile.packaged } : {}),
         });

@@ -281,6 +281,8 @@ export interface RunEsminiResult {
   csvFile?: string;
   /** The flattened scenario as handed to esmini (with the added time limit). */
   scenarioFile?: string;
+  /** For a distribution file: the ScenarioFile (a .xosc) its concrete scenario was made from, whose roads the run is drawn on. */
+  scenarioOf?: string;
   duration: number;
   timeStep: number;
   seed: number;

@@ -39,7 +39,8 @@ export const INSIDE_TESTS = {
   ruleCodes:
     "a diagnostic's code is its rule: the ASAM Quality Checker uid linked to its description, shown in the Problems panel, or the project's code; a quick fix still applies",
   newScenario: 'New Modular Scenario… on a folder writes a main with an ego on the chosen road, opens it clean, and never overwrites',
-  distributionLens: 'a distribution file shows its number of concrete scenarios (as vary --count) and Run Variations in a CodeLens',
+  distributionLens:
+    "a distribution file shows its number of concrete scenarios (as vary --count) and Run Variations in a CodeLens; its Run in esmini draws concrete scenario 0 on the ScenarioFile's road",
   variations:
     "the Variations view shows a batch as a sortable, filterable table and scatter, and opens a run in the bird's-eye view, named by its index",
   variationsReasons:

@@ -175,6 +175,8 @@ describe("distribution files in the editor: esmini's cut-in_parameter_set.xosc",
     );
     assert.equal(result.outcome, 'ok', result.log);
     assert.ok(result.csvFile && fs.existsSync(result.csvFile));
+    // The file the run is drawn on: the ScenarioFile, which has the roads and entities the distribution lacks.
+    assert.equal(result.scenarioOf, fileUri(path.join(fixture.root, 'xosc', 'cut-in.xosc')));
   });
 });
 

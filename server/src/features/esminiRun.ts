@@ -2,7 +2,7 @@ import type { CancellationToken } from 'vscode-languageserver/node';
 import * as path from 'node:path';
 import { Flattener } from '../core/flatten';
 import { Problem } from '../core/problems';
-import { refId } from '../core/sources';
+import { diskRef, refId } from '../core/sources';
 import { SamplingError } from '../core/variations';
 import { EsminiRunOptions, EsminiRunResult, removeRunFolder, runScenario, runScenarioText } from '../esmini/run';
 import { searchPathOf } from '../batch/plan';
@@ -87,6 +87,10 @@ export class EsminiRuns {
       ...(result.trace ? { trace: result.trace } : {}),
       csvFile: result.csvFile,
       scenarioFile: result.scenarioFile,
+      // A distribution file has no roads or entities of its own: the view draws its concrete scenario's on its ScenarioFile.
+      ...(distribution?.loaded.variations && /\.xosc$/i.test(distribution.loaded.variations.scenarioPath)
+        ? { scenarioOf: workspace.uriOf(diskRef(distribution.loaded.variations.scenarioPath)) }
+        : {}),
       duration: result.duration,
       timeStep: result.timeStep,
       seed: result.seed,

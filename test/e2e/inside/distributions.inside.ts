@@ -5,7 +5,7 @@ import * as path from 'node:path';
 import * as vscode from 'vscode';
 import { HARNESS_ENV } from '../titles';
 import { screenshot } from './harnessClient';
-import { open, TEST_MS, waitFor, workspaceRoot } from './helpers';
+import { api, open, TEST_MS, waitFor, workspaceRoot } from './helpers';
 import type { InsideTests } from './helpers';
 
 /** esmini's cut-in_parameter_set.xosc and what it needs, copied into the workspace's distributions/ (variations/ holds the Variations view's batch); skips the test without the shared corpus. */
@@ -84,6 +84,15 @@ export const distributionTests: InsideTests = {
           ),
         );
         await screenshot('Run Variations showed its results');
+
+        // ▶ Run in esmini on the distribution runs its concrete scenario 0, drawn in the bird's-eye view on the ScenarioFile's road.
+        const runLens = lenses.find((lens) => lens.command?.title === '▶ Run in esmini');
+        await vscode.commands.executeCommand(runLens?.command?.command ?? '', ...(runLens?.command?.arguments ?? []));
+        const view = api().birdsEye;
+        await waitFor("the run of concrete scenario 0 on cut-in.xosc's road", () =>
+          /e6mini\.xodr$/.test(view.scene?.roadFile?.resolved ?? '') && (view.stats?.trajectories ?? 0) === 2 ? true : undefined,
+        );
+        await screenshot("Run in esmini on a distribution: its concrete scenario 0 on the ScenarioFile's road");
       } finally {
         for (const key of ['path', 'roadPath', 'duration']) await settings.update(key, undefined, vscode.ConfigurationTarget.Workspace);
       }
