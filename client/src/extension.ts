@@ -223,6 +223,8 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
         void vscode.commands.executeCommand('modular2simple.birdsEye.showRun', event.result.csvFile, {
           logText: event.result.log,
           trace: event.result.trace,
+          // Named by what ran and when: two runs compared are told apart (each is a trajectories.csv).
+          label: `esmini run of ${path.posix.basename(event.source.path)}, ${new Date().toTimeString().slice(0, 8)}`,
           // A distribution file's run is drawn on its ScenarioFile: the distribution has no roads or entities.
           scenario: event.result.scenarioOf ? vscode.Uri.parse(event.result.scenarioOf) : event.source,
           // A road packed with the scenario: esmini loaded its copy in the run folder; the view names the package entry it draws.

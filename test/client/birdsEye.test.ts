@@ -147,6 +147,9 @@ describe("client: the bird's-eye view's drawing", () => {
       assert.equal(keptRunName(path.join(folder, 'cut-in.results', 'runs', '3', 'scenario.xosc')), '#3 of cut-in.results');
       assert.equal((await loadRun({ csvPath: path.join(folder, 'elsewhere', 'trajectories.csv') })).tracks.label, 'trajectories.csv');
       assert.equal(keptRunName(path.join(folder, 'runs', 'latest', 'trajectories.csv')), undefined);
+      // A name given (Run in esmini's) wins.
+      const named = await loadRun({ csvPath: path.join(folder, 'elsewhere', 'trajectories.csv'), label: 'esmini run of x.xosc, 10:00:00' });
+      assert.equal(named.tracks.label, 'esmini run of x.xosc, 10:00:00');
     } finally {
       fs.rmSync(folder, { recursive: true, force: true });
     }

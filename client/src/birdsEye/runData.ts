@@ -32,6 +32,8 @@ export interface RunSource {
    * in the scenario's .mosc names the package entry (`/w/pkg.mosc/road.xodr`), whose copy esmini loaded from the run's folder.
    */
   roadFile?: string;
+  /** How the view names the run, where its file's name says nothing (Run in esmini's trajectories.csv in a temporary folder). */
+  label?: string;
 }
 
 /** A run read: what the view draws (its event starts still empty) and esmini's log of it, when found. */
@@ -91,7 +93,7 @@ export async function loadRun(source: RunSource): Promise<LoadedRun> {
       if (logText !== undefined) break;
     }
   }
-  const tracks = runTracks(run, keptRunName(source.csvPath) ?? path.basename(source.csvPath));
+  const tracks = runTracks(run, source.label ?? keptRunName(source.csvPath) ?? path.basename(source.csvPath));
   const roadFile = source.roadFile ?? (logText ? parseEsminiLoadedRoad(logText) : undefined);
   return { tracks: roadFile ? { ...tracks, roadFile } : tracks, ...(logText !== undefined ? { log: logText } : {}) };
 }

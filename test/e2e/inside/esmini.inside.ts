@@ -163,6 +163,8 @@ export const esminiTests: InsideTests = {
       assert.deepEqual(view.scene?.problems, [], 'every entity is on the road drawn');
       await waitForPage(`road ${road}`);
       assert.ok(!(await pageShows('the run loaded the road file')), 'the view says the run loaded another road');
+      // The run named by what ran, not by its file (trajectories.csv).
+      await waitForPage('run: esmini run of main.xosc, ');
       await screenshot("the picture's road is the run's road");
     } finally {
       for (const key of ['path', 'roadPath', 'duration']) await settings.update(key, undefined, vscode.ConfigurationTarget.Workspace);
