@@ -150,6 +150,12 @@ describe("client: the bird's-eye view's drawing", () => {
       // A name given (Run in esmini's) wins.
       const named = await loadRun({ csvPath: path.join(folder, 'elsewhere', 'trajectories.csv'), label: 'esmini run of x.xosc, 10:00:00' });
       assert.equal(named.tracks.label, 'esmini run of x.xosc, 10:00:00');
+      // Cut at the run's limit: esmini logs the step after it too.
+      fs.appendFileSync(path.join(folder, 'elsewhere', 'trajectories.csv'), '1, 0.05, car, 1, 0, 0, \n2, 0.10, car, 2, 0, 0, \n');
+      const cut = await loadRun({ csvPath: path.join(folder, 'elsewhere', 'trajectories.csv'), until: 0.05 });
+      assert.deepEqual(cut.tracks.times, [0, 0.05]);
+      assert.deepEqual(cut.tracks.entities[0].x, [0, 1]);
+      assert.deepEqual((await loadRun({ csvPath: path.join(folder, 'elsewhere', 'trajectories.csv') })).tracks.times, [0, 0.05, 0.1]);
     } finally {
       fs.rmSync(folder, { recursive: true, force: true });
     }

@@ -31,7 +31,7 @@ export const INSIDE_TESTS = {
   runEsmini:
     "Run in esmini from the CodeLens puts esmini's error on the simple scenario's line; a clean run clears it and shows its trajectories",
   runEsminiClean:
-    "Run in esmini on a clean modular scenario on e6mini shows no error, and the bird's-eye view draws the road the run loaded, the run named by what ran",
+    "Run in esmini on a clean modular scenario on e6mini shows no error, and the bird's-eye view draws the road the run loaded, the run named by what ran and ending at its limit",
   runEsminiCutIn: "Run in esmini on esmini's cut-in.xosc runs it: no refusal, no error toast, its lenient forms shown as warnings",
   runEsminiAnyway: 'Run Anyway on a scenario with an error runs it in esmini and says it ran despite the error',
   schemaCompletion: 'schema completion offers the child elements the OpenSCENARIO schema allows',

@@ -46,10 +46,12 @@ export function registerBirdsEye(
         compare?: unknown;
         roadFile?: unknown;
         label?: unknown;
+        until?: unknown;
       };
       const run: RunSource = { csvPath: path };
       if (typeof given.roadFile === 'string') run.roadFile = given.roadFile;
       if (typeof given.label === 'string') run.label = given.label;
+      if (typeof given.until === 'number' && Number.isFinite(given.until)) run.until = given.until;
       if (typeof given.logPath === 'string') run.logPath = given.logPath;
       if (typeof given.logText === 'string') run.logText = given.logText;
       // Run in esmini's trace (common/src/trace.ts records), already placed on the flattened elements.

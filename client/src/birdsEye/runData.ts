@@ -34,6 +34,8 @@ export interface RunSource {
   roadFile?: string;
   /** How the view names the run, where its file's name says nothing (Run in esmini's trajectories.csv in a temporary folder). */
   label?: string;
+  /** The run's time limit, s: rows after it (esmini logs one more step) are left out. */
+  until?: number;
 }
 
 /** A run read: what the view draws (its event starts still empty) and esmini's log of it, when found. */
@@ -81,7 +83,10 @@ export async function loadRun(source: RunSource): Promise<LoadedRun> {
     throw new Error(
       `${source.csvPath} is ${Math.round(stat.size / 1024 / 1024)} MB; the view reads runs up to ${MAX_CSV_BYTES / 1024 / 1024} MB`,
     );
-  const run = parseEsminiCsv(await fs.promises.readFile(source.csvPath, 'utf8'));
+  const parsed = parseEsminiCsv(await fs.promises.readFile(source.csvPath, 'utf8'));
+  // esmini logs the step after the limit too: the run ends where the run's message says (protocol.ts RunEsminiResult.csvFile).
+  const kept = source.until === undefined ? parsed.times.length : parsed.times.findIndex((time) => time > source.until! + 1e-9);
+  const run = kept < 0 || kept === parsed.times.length ? parsed : { ...parsed, times: parsed.times.subarray(0, kept) };
   let logText = source.logText;
   if (logText === undefined) {
     // esmini writes log.txt beside where it ran unless told otherwise; a CSV's sibling is the usual place.

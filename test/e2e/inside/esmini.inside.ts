@@ -165,6 +165,9 @@ export const esminiTests: InsideTests = {
       assert.ok(!(await pageShows('the run loaded the road file')), 'the view says the run loaded another road');
       // The run named by what ran, not by its file (trajectories.csv).
       await waitForPage('run: esmini run of main.xosc, ');
+      // The run ends at its limit, as the message says (esmini logs the step after it too).
+      await waitForPage(`/ ${result.duration.toFixed(2)} s`);
+      assert.ok(!(await pageShows(`/ ${(result.duration + result.timeStep).toFixed(2)} s`)), 'the view runs past the limit');
       await screenshot("the picture's road is the run's road");
     } finally {
       for (const key of ['path', 'roadPath', 'duration']) await settings.update(key, undefined, vscode.ConfigurationTarget.Workspace);
