@@ -330,6 +330,25 @@ describe('debug adapter through the Debug Adapter Protocol', function () {
     );
   });
 
+  it("stops on the main's ManeuverGroup line that imports a group, when the group's copy starts", async () => {
+    const folder = temporaryFolder();
+    writeTwoCutIns(folder);
+    const main = path.join(folder, 'main.xosc');
+    const line = lineOf(main, '<ManeuverGroup maximumExecutionCount="1" name="CutInVehicle">');
+    const launched = client.launch({ type: 'modular2simple', request: 'launch', program: main, roadPath, duration: 30 });
+    await client.waitForEvent('initialized');
+    const set = await client.setBreakpointsRequest({ source: { path: main }, breakpoints: [{ line }] });
+    assert.equal(set.body.breakpoints[0].verified, true, set.body.breakpoints[0].message);
+    assert.match(set.body.breakpoints[0].message ?? '', /^ManeuverGroup CutInVehicle\.CutIn$/);
+    const stop = client.waitForEvent('stopped');
+    await client.configurationDoneRequest();
+    await launched;
+    assert.equal(((await stop) as DebugProtocol.StoppedEvent).body.reason, 'breakpoint');
+    const frames = (await client.stackTraceRequest({ threadId: 1 })).body.stackFrames;
+    assert.match(frames[0].name, /^ManeuverGroup CutInVehicle\.CutIn /);
+    await Promise.all([client.continueRequest({ threadId: 1 }), client.waitForEvent('terminated')]);
+  });
+
   it("makes a restart a new run: the timeline's and the bird's-eye view's events number it, and the timeline shows it alone", async () => {
     const eventLine = lineOf(cutIn, '<Event name="CutInEvent"');
     const bodies: StoryboardEventBody[] = [];

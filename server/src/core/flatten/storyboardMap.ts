@@ -58,6 +58,8 @@ export interface MappedElement {
   range: Range;
   /** The start tag's last line (a tag may spread its attributes over several). */
   lastTagLine: number;
+  /** For a copy of an imported group: the outer ManeuverGroup of the scenario debugged that imports it. */
+  importedAt?: { source: SourceRef; range: Range; lastTagLine: number };
   condition?: ConditionSpec;
   /** For a condition: the trigger it is part of (a StartTrigger starts its owner, a StopTrigger ends it). */
   trigger?: 'start' | 'stop';
@@ -142,6 +144,7 @@ export class StoryboardMap {
     const range = document ? document.lines.range(origin.element.start, origin.element.nameEnd) : ZERO_RANGE;
     const lastTagLine = document ? document.lines.range(origin.element.startTagEnd - 1, origin.element.startTagEnd - 1).start.line : 0;
     const mapped: MappedElement = { kind, name, path, element, parent, source: origin.source.ref, range, lastTagLine };
+    if (kind === 'ManeuverGroup') mapped.importedAt = this.outerGroupOf(element);
     if (kind === 'Condition') {
       mapped.condition = conditionSpec(element);
       const sameName = this.conditionsByName.get(name);
@@ -152,6 +155,19 @@ export class StoryboardMap {
     }
     this.elements.push(mapped);
     return mapped;
+  }
+
+  /** Where the scenario debugged writes the ManeuverGroup whose ScenarioReference made this copy, if one did. */
+  private outerGroupOf(copy: XmlElement): MappedElement['importedAt'] {
+    const insertion = this.flat.insertions.find((candidate) => candidate.start === copy.start);
+    const document = this.flat.original?.document;
+    if (!insertion || !document) return undefined;
+    const outer = insertion.outerGroup.element;
+    return {
+      source: this.flat.ref,
+      range: document.lines.range(outer.start, outer.nameEnd),
+      lastTagLine: document.lines.range(outer.startTagEnd - 1, outer.startTagEnd - 1).start.line,
+    };
   }
 
   /** The conditions of the element's StartTrigger (what it waits for in standby). */
@@ -174,9 +190,14 @@ export class StoryboardMap {
     return this.texts.get(refKey(ref));
   }
 
-  /** Every flattened element whose start tag, in the file `isFile` accepts, covers the 0-based line. */
+  /**
+   * Every flattened element whose start tag, in the file `isFile` accepts, covers the 0-based line; a ManeuverGroup
+   * holding a ScenarioReference stands for the copies it imports.
+   */
   atLine(isFile: (ref: SourceRef) => boolean, line: number): MappedElement[] {
-    return this.elements.filter((element) => line >= element.range.start.line && line <= element.lastTagLine && isFile(element.source));
+    const covers = (place: { source: SourceRef; range: Range; lastTagLine: number }) =>
+      line >= place.range.start.line && line <= place.lastTagLine && isFile(place.source);
+    return this.elements.filter((element) => covers(element) || (element.importedAt !== undefined && covers(element.importedAt)));
   }
 }
 
