@@ -911,14 +911,20 @@ describe('export --target carla, what it prints', () => {
       ESMINI_SAMPLE_OPTIONS,
     );
     assert.equal(result.code, 0, result.stderr);
-    const listed = [...result.stderr.matchAll(/^(.+):(\d+): (?:warning|error): /gm)].map((match) => ({
+    const listed = [...result.stderr.matchAll(/^(.+?):(\d+):(\d+): (?:warning|error): /gm)].map((match) => ({
       file: match[1],
       line: Number(match[2]),
+      column: Number(match[3]),
     }));
     assert.equal(listed.length, result.report.losses.length, result.stderr);
     assert.ok(new Set(listed.map((loss) => loss.file)).size >= 2, `losses in the scenario and its catalog: ${result.stderr}`);
-    const sorted = [...listed].sort((a, b) => (a.file === b.file ? a.line - b.line : a.file < b.file ? -1 : 1));
+    const sorted = [...listed].sort((a, b) => (a.file !== b.file ? (a.file < b.file ? -1 : 1) : a.line - b.line || a.column - b.column));
     assert.deepEqual(listed, sorted);
+    // As check prints a problem: with a column.
+    assert.ok(
+      listed.every((loss) => loss.column >= 1),
+      result.stderr,
+    );
   });
 });
 
@@ -1042,7 +1048,7 @@ describe('export --target carla, bad input', () => {
     assert.equal(fs.existsSync(path.join(out, 'out.xosc')), false);
     const loss = result.report.losses.find((each) => each.kind === 'refused');
     assert.equal(loss?.element, 'LogicFile');
-    assert.match(result.stderr, /in\.xosc:\d+: error: <LogicFile>/);
+    assert.match(result.stderr, /in\.xosc:\d+:\d+: error: <LogicFile>/);
   });
 
   it("a RoutePosition past its route's end: refused once, naming why", async () => {

@@ -2,7 +2,7 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { isSameFile } from '../../../common/src/atomic';
 import { CarlaExport, CarlaExportOptionError, CarlaExportOptions, exportForCarla, exportTextForCarla } from '../core/export/carla';
-import { diskRef, nodeFileSystem, splitScenarioPath } from '../core/sources';
+import { diskRef, displayRef, nodeFileSystem, splitScenarioPath } from '../core/sources';
 import { CliCommand, CliOutput, ExitCode, InputError, parseCommandLine, UsageError, writablePackagedFiles, write } from './common';
 import { mainOf, storeForInputs } from './inputs';
 import { CARLA_OPTION, carlaOptionHelp, carlaReleaseOption } from './options';
@@ -154,8 +154,12 @@ async function exportInput(args: ExportArguments, io: CliOutput): Promise<CarlaE
   return exportForCarla(store, mainOf(input), args.options);
 }
 
-function lossLine(loss: CarlaExport['losses'][number]): string {
-  return `${loss.file}:${loss.line}: ${loss.kind === 'refused' ? 'error' : 'warning'}: <${loss.element}> ${loss.what} [${loss.kind}; CARLA: ${loss.carla}]`;
+type CarlaLossEntry = CarlaExport['losses'][number];
+
+/** A loss as `check` prints a problem: the file relative to the working directory, line and column. */
+function lossLine(loss: CarlaLossEntry, file: string): string {
+  const where = `${file}:${loss.line}:${loss.range.start.character + 1}`;
+  return `${where}: ${loss.kind === 'refused' ? 'error' : 'warning'}: <${loss.element}> ${loss.what} [${loss.kind}; CARLA: ${loss.carla}]`;
 }
 
 /** `modular2simple export INPUT --target carla -o OUT.xosc [--report LOSSES.json] [--carla 0.9.15|0.9.16]`. */
@@ -171,8 +175,16 @@ async function exportCommand(argv: string[], io: CliOutput): Promise<number> {
     throw error;
   }
   // As a compiler lists its findings: by file, then line (the export finds them in the order it rewrites the tree).
-  const listed = [...result.losses].sort((a, b) => (a.file === b.file ? a.line - b.line : a.file < b.file ? -1 : 1));
-  for (const loss of listed) if (!args.quiet || loss.kind === 'refused') io.err(lossLine(loss));
+  const listed = result.losses
+    .map((loss) => ({ loss, file: displayRef(loss.source, process.cwd()) }))
+    .sort((a, b) =>
+      a.file !== b.file
+        ? a.file < b.file
+          ? -1
+          : 1
+        : a.loss.line - b.loss.line || a.loss.range.start.character - b.loss.range.start.character,
+    );
+  for (const { loss, file } of listed) if (!args.quiet || loss.kind === 'refused') io.err(lossLine(loss, file));
   const report = {
     input: path.resolve(args.input),
     output: path.resolve(args.output),
