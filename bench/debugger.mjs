@@ -103,6 +103,20 @@ function mainThreadCpuMs(pid) {
 }
 
 /**
+ * A new adapter process, as VS Code starts one, with its process id (the session it runs is a child of it).
+ * @returns {Promise<{ client: DebugClient, adapterPid: number }>}
+ */
+async function startAdapter() {
+  const client = new DebugClient(process.execPath, adapter, 'modular2simple', { stdio: ['pipe', 'pipe', 'pipe'] });
+  client.defaultTimeout = 120_000;
+  await client.start();
+  const adapterPid = /** @type {{ _adapterProcess: import('node:child_process').ChildProcess }} */ (/** @type {unknown} */ (client))
+    ._adapterProcess.pid;
+  if (adapterPid === undefined) throw new Error('the adapter did not start');
+  return { client, adapterPid };
+}
+
+/**
  * One debug session through the protocol, as VS Code drives it: load (launch to initialized), then the run from
  * configurationDone to terminated. With `breakOn`, a breakpoint on that line: the latency from the condition's firing
  * (reported in the Output event's data) to the stopped event's arrival.
@@ -112,12 +126,7 @@ function mainThreadCpuMs(pid) {
  * @returns {Promise<{ loadMs: number, runMs: number, runCpuMs: number, ended: number, latencyMs: number }>}
  */
 async function debugRun(breakOn, program = full, timeStep = step) {
-  const client = new DebugClient(process.execPath, adapter, 'modular2simple', { stdio: ['pipe', 'pipe', 'pipe'] });
-  client.defaultTimeout = 120_000;
-  await client.start();
-  const adapterPid = /** @type {{ _adapterProcess: import('node:child_process').ChildProcess }} */ (/** @type {unknown} */ (client))
-    ._adapterProcess.pid;
-  if (adapterPid === undefined) throw new Error('the adapter did not start');
+  const { client, adapterPid } = await startAdapter();
   try {
     await client.initializeRequest();
     // The adapter runs the session, which steps esmini, in a child (server/src/debug/supervisor.ts): its CPU is counted.
@@ -218,12 +227,7 @@ async function pauseRun(afterMs, timeStep) {
 async function firstLaunch() {
   const eventLine = text.split('\n').findIndex((line) => line.includes('<Event name="CutInEvent"')) + 1;
   const started = now();
-  const client = new DebugClient(process.execPath, adapter, 'modular2simple', { stdio: ['pipe', 'pipe', 'pipe'] });
-  client.defaultTimeout = 120_000;
-  await client.start();
-  const adapterPid = /** @type {{ _adapterProcess: import('node:child_process').ChildProcess }} */ (/** @type {unknown} */ (client))
-    ._adapterProcess.pid;
-  if (adapterPid === undefined) throw new Error('the adapter did not start');
+  const { client, adapterPid } = await startAdapter();
   try {
     await client.initializeRequest();
     const initialized = now();
