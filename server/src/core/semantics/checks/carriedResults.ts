@@ -27,10 +27,17 @@ const MAX_CHANGED_NAMES = 64;
 
 const WORD = /[A-Za-z0-9_]/;
 
+/** A `$` that no name character follows: esmini reads it as the parameter named '' (a declaration may have that name). */
+const BARE_DOLLAR = /\$(?![A-Za-z0-9_])/;
+
 /** Whether `text` names one of `names` (not followed by a name character, as both readings end a name). */
 function mentions(text: string, names: ReadonlySet<string>): boolean {
   if (!text.includes('$')) return false;
   for (const name of names) {
+    if (name === '') {
+      if (BARE_DOLLAR.test(text)) return true;
+      continue;
+    }
     for (let at = text.indexOf(name); at >= 0; at = text.indexOf(name, at + 1)) {
       if (at + name.length >= text.length || !WORD.test(text[at + name.length])) return true;
     }
@@ -58,7 +65,7 @@ export function carriedExpressionErrors(model: SemanticModel, evaluator: Evaluat
   const previous = carry && results.get(carry.previous)?.get(evaluator.reading);
   if (!carry || !previous) return undefined;
   const changed = new Set<string>();
-  for (const declaration of carry.editedDeclarations) if (declaration.name) changed.add(declaration.name);
+  for (const declaration of carry.editedDeclarations) changed.add(declaration.name);
   const dependent = (text: string | undefined) => text !== undefined && changed.size > 0 && mentions(text, changed);
   const changedDeclarations = new Set(carry.editedDeclarations);
   for (let grown = changed.size > 0; grown;) {
@@ -66,7 +73,7 @@ export function carriedExpressionErrors(model: SemanticModel, evaluator: Evaluat
     for (const declaration of model.declarations) {
       if (changedDeclarations.has(declaration) || !dependent(declaration.valueAttribute?.value)) continue;
       changedDeclarations.add(declaration);
-      if (declaration.name && !changed.has(declaration.name)) {
+      if (!changed.has(declaration.name)) {
         changed.add(declaration.name);
         grown = true;
       }
