@@ -427,7 +427,12 @@ export function summaryText(rows: readonly ResultRow[]): string {
   const judged = rows.filter((row) => row.cells[VERDICT_COLUMN]);
   const failed = judged.filter((row) => row.cells[VERDICT_COLUMN] === 'fail').length;
   const verdicts = judged.length > 0 ? `; against the criteria ${judged.length - failed} pass, ${failed} fail` : '';
-  return `${rows.length} run${rows.length === 1 ? '' : 's'}: ${OUTCOMES.map((outcome) => `${counts[outcome]} ${outcome}`).join(', ')}${verdicts}`;
+  // A collision outranks the status the row shows ('ok', 'limit'): say so, or '0 ok' beside rows that say ok reads as a contradiction.
+  const counted = (outcome: Outcome) =>
+    outcome === 'collision' && counts.collision > 0
+      ? `${counts.collision} collision (esmini logged one; the status column says how each run ended)`
+      : `${counts[outcome]} ${outcome}`;
+  return `${rows.length} run${rows.length === 1 ? '' : 's'}: ${OUTCOMES.map(counted).join(', ')}${verdicts}`;
 }
 
 /**
