@@ -240,6 +240,32 @@ describe('cli: concrete scenarios of vary and batch, and the outputs of modulari
     assertSameRun((await runAlone(flat)).steps, original, 'modularized and flattened');
   });
 
+  it('vary of a ScenarioFile whose catalogs only --scenario-path finds keeps the path as written and warns naming the --path esmini needs, with which the output runs as the original', async () => {
+    const own = cutInWorkspace();
+    const catalogs = path.join(own, 'lib', 'Catalogs');
+    fs.mkdirSync(path.dirname(catalogs));
+    fs.renameSync(path.join(own, 'xosc', 'Catalogs'), catalogs);
+    const distribution = speedDistribution(own, 'cut-in.xosc');
+    const outDir = path.join(temporaryFolder('m2s-paths-out-'), 'a');
+    const run = runCli(['vary', distribution, '--out-dir', outDir, '--scenario-path', catalogs], {
+      cwd: temporaryFolder('m2s-paths-cli-'),
+    });
+    assert.equal(run.status, 0, run.stderr);
+    const vehicles = path.join(catalogs, 'Vehicles');
+    const warnings = run.stderr.split('\n').filter((line) => /warning: catalog folder/.test(line));
+    assert.equal(warnings.length, 1, run.stderr);
+    assert.match(
+      warnings[0],
+      new RegExp(
+        `warning: catalog folder '\\.\\./xosc/Catalogs/Vehicles' does not resolve from ${escapeRegExp(path.join(own, 'xosc'))}; it was found only through the scenario path \\(${escapeRegExp(vehicles)}\\)\\. .* only when run with --path ${escapeRegExp(vehicles)} \\(`,
+      ),
+    );
+    const written = path.join(outDir, 'cut-in_0.xosc');
+    assert.match(fs.readFileSync(written, 'utf8'), /<Directory path="\.\.\/xosc\/Catalogs\/Vehicles"\/>/);
+    await assert.rejects(runAlone(written), /Couldn't locate OpenSCENARIO file VehicleCatalog/);
+    assertSameRun((await runAlone(written, ['--path', vehicles])).steps, original, 'vary with the --path its warning names');
+  });
+
   it("batch with no road path runs each concrete scenario on the ScenarioFile's road and catalogs", () => {
     const distribution = speedDistribution(ws, 'cut-in.xosc');
     const results = path.join(temporaryFolder('m2s-paths-batch-'), 'results');

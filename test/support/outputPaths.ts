@@ -47,11 +47,23 @@ export function cutInWorkspace(): string {
   return ws;
 }
 
-/** Runs esmini on a scenario headless, fixed step 0.05, seed 1, from an unrelated working folder and with no --path. */
-export async function runAlone(scenario: string): Promise<{ steps: EsminiStep[]; log: string }> {
+/** Runs esmini on a scenario headless, fixed step 0.05, seed 1, from an unrelated working folder and with no --path but those `extraArgs` name. */
+export async function runAlone(scenario: string, extraArgs: string[] = []): Promise<{ steps: EsminiStep[]; log: string }> {
   const cwd = temporaryFolder('m2s-paths-cwd-');
   const csv = path.join(cwd, 'run.csv');
-  const args = ['--headless', '--osc', scenario, '--fixed_timestep', '0.05', '--seed', '1', '--csv_logger', csv, '--disable_log'];
+  const args = [
+    '--headless',
+    '--osc',
+    scenario,
+    '--fixed_timestep',
+    '0.05',
+    '--seed',
+    '1',
+    '--csv_logger',
+    csv,
+    '--disable_log',
+    ...extraArgs,
+  ];
   const { code, output } = await runBounded(esminiBinary, args, { cwd }, 120_000);
   const log = output;
   assert.ok(code === 0 && fs.existsSync(csv), `esmini failed on ${scenario} (exit ${code}):\n${log.slice(-2000)}`);

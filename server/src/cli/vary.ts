@@ -25,7 +25,9 @@ import {
 } from '../core/variations';
 import { seedBits, Xoshiro128StarStar } from '../core/variations/random';
 import { concretePackagedFiles, flatteningScenarioLoader, readDistributionFile, scenarioFolderOf } from './scenarioText';
-import { FileKind, nodeFileSystem, splitScenarioPath } from '../core/sources';
+import { diskRef, FileKind, nodeFileSystem, splitScenarioPath } from '../core/sources';
+import { CatalogLoader } from '../core/semantics/catalogs';
+import { storeForInputs } from './inputs';
 import type { PackagedFile } from '../core/flatten/types';
 
 export const VARY_HELP = `Concrete scenarios of a ParameterValueDistribution (modular2simple vary FILE ...):
@@ -40,7 +42,8 @@ export const VARY_HELP = `Concrete scenarios of a ParameterValueDistribution (mo
   -q, --quiet               print errors only
   A concrete scenario is the ScenarioFile with its root parameter values replaced and its file paths (roads,
   catalogs) rebased onto the folder it is written to (absolute on standard output), every other byte kept,
-  so that it runs from wherever it is written. A ScenarioFile that is a modular
+  so that it runs from wherever it is written; a catalog folder found only through --scenario-path is written
+  as it stands, with a warning naming the --path esmini then needs. A ScenarioFile that is a modular
   main.xosc, an unpacked folder or a .mosc is flattened first (as flatten does), then its values replaced.
   Exit codes: 0 done, 1 the input has errors (nothing written), 2 usage, 3 an output could not be written, 4 internal error.`;
 
@@ -219,6 +222,19 @@ async function varyScenarios(argv: string[], io: Output, givenLoader: ScenarioTe
     if (!known) kinds.set(diskPath, (known = nodeFileSystem.kind(diskPath)));
     return known;
   };
+  // A catalog folder found only through --scenario-path is written as it stands: the warning names the --path esmini then needs.
+  const catalogs = new CatalogLoader(storeForInputs(scenarioPathList, undefined, [variations.scenarioPath]));
+  const catalogsFrom = diskRef(path.join(scenarioFolder, path.basename(variations.scenarioPath)));
+  const holdsCatalogFiles = async (folder: string): Promise<boolean> =>
+    (await fs.promises.readdir(folder).catch(() => [] as string[])).some((name) => name.toLowerCase().endsWith('.xosc'));
+  const foundThroughSearchPath = async (written: string): Promise<string[]> => {
+    const found = (await catalogs.directories(catalogsFrom, written)).filter(
+      (directory) => directory.via === 'scenarioPath' && !directory.packageRef,
+    );
+    const folders: string[] = [];
+    for (const directory of found) if (await holdsCatalogFiles(directory.directory)) folders.push(directory.directory);
+    return folders;
+  };
   const warned = new Set<string>();
   const rebased = async (text: string, outputDirectory: string | undefined): Promise<string> => {
     const result = await rebasedConcreteText(
@@ -226,6 +242,7 @@ async function varyScenarios(argv: string[], io: Output, givenLoader: ScenarioTe
       scenarioFolder,
       outputDirectory === undefined ? undefined : path.resolve(outputDirectory),
       kindOf,
+      foundThroughSearchPath,
     );
     for (const warning of result.warnings) {
       if (!values.quiet && !warned.has(warning))

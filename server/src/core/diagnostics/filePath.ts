@@ -50,6 +50,18 @@ export function packagedPathTakenMessage(written: string, taken: string): string
   );
 }
 
+/**
+ * A catalog folder (`written`) that does not resolve from `from` and was found in `folders` through the scenario path: it is
+ * written as it stands (SPEC 11.6), and esmini looks a catalog up as NAME.xosc in each `--path` folder (CommonMini.cpp LocateFile).
+ */
+export function catalogFoundThroughSearchPathMessage(written: string, from: string, folders: readonly string[]): string {
+  return (
+    `catalog folder '${written}' does not resolve from ${from}; it was found only through the scenario path (${folders.join(', ')}). ` +
+    'A path found through a search path is written as it stands (SPEC 11.6), so esmini loads its catalogs only when run with ' +
+    `${folders.map((folder) => `--path ${folder}`).join(' ')} (or write the path so that it resolves from the ScenarioFile's folder)`
+  );
+}
+
 /** A path the output cannot name from where it is written: `message` is the rebasing's finding. */
 export function unrebasedPathWording(message: string): ProblemWording<'file-path'> {
   return {

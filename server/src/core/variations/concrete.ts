@@ -1,6 +1,7 @@
 import { attribute, escapeAttributeValue, parseXml, XmlAttribute } from '../xml';
 import { applyEdits } from '../flatten/edits';
 import { rebasePaths } from '../flatten/rebase';
+import { catalogFoundThroughSearchPathMessage } from '../diagnostics/filePath';
 import type { FileKind } from '../sources/host';
 import { LineIndex } from '../text';
 import { ParameterValue, VariationProblem } from './distribution';
@@ -132,23 +133,32 @@ export function concreteScenarioText(scenario: ScenarioParameters, assignments: 
   return result + scenario.text.slice(at);
 }
 
+/** The folders a catalog `Directory path` that does not resolve from the ScenarioFile's folder was found in through the scenario path. */
+export type SearchPathCatalogFolders = (written: string) => Promise<string[]>;
+
 /**
  * A concrete scenario as written to `toDirectory` (SPEC 11.6): each file path it names (roads, catalogs),
  * which resolves from `fromDirectory` (the ScenarioFile's folder), rewritten to name the same file from
  * there; absolute when `toDirectory` is undefined (standard output, a run's private folder). Unchanged
- * when written beside the ScenarioFile. `warnings`: paths naming a parameter, which stay as written.
+ * when written beside the ScenarioFile. `warnings`: paths naming a parameter, which stay as written, and,
+ * with `foundThroughSearchPath`, catalog folders found only through the scenario path, which stay as written too.
  */
 export async function rebasedConcreteText(
   text: string,
   fromDirectory: string,
   toDirectory: string | undefined,
   kindOf: (diskPath: string) => Promise<FileKind>,
+  foundThroughSearchPath?: SearchPathCatalogFolders,
 ): Promise<{ text: string; warnings: string[] }> {
   const rebase = await rebasePaths({ document: parseXml(text), baseOf: () => fromDirectory, outputDirectory: toDirectory, kindOf });
-  return {
-    text: rebase.edits.length === 0 ? text : applyEdits(text, rebase.edits),
-    warnings: rebase.findings.map((finding) => finding.message),
-  };
+  const warnings = rebase.findings.map((finding) => finding.message);
+  for (const site of foundThroughSearchPath ? rebase.unresolved : []) {
+    const written = site.attribute.value;
+    if (site.kind !== 'directory' || written.includes('$')) continue;
+    const folders = await (foundThroughSearchPath as SearchPathCatalogFolders)(written);
+    if (folders.length > 0) warnings.push(catalogFoundThroughSearchPathMessage(written, fromDirectory, folders));
+  }
+  return { text: rebase.edits.length === 0 ? text : applyEdits(text, rebase.edits), warnings };
 }
 
 /** Whether the scenario declares any ValueConstraintGroup at its root. */
