@@ -3,8 +3,9 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { harnessVerdicts, requireCarlaHarness } from '../support/carla';
 import { esminiBinary, esminiRoads, EsminiStep, readEsminiCsv, requireEsmini } from '../support/esmini';
-import { drivingScenario, outerGroup, packageOf, roadParameterPackage, runCli } from '../support/fixtures';
+import { deterministic, distributionFile, drivingScenario, outerGroup, packageOf, roadParameterPackage, runCli } from '../support/fixtures';
 import { assertSameRun, namedPaths, runAlone } from '../support/outputPaths';
+import { keptBesideRun } from '../../server/src/batch/runConcrete';
 import { temporaryFolder } from '../support/temporaryDirectory';
 
 /**
@@ -166,7 +167,7 @@ describe('cli: a road packed in a .mosc beside the scenario that uses it, and a 
       assert.match(fs.readFileSync(path.join(results, 'runs', index, 'esmini.log'), 'utf8'), /Loaded OpenDRIVE: .*straight_500m\.xodr/);
   });
 
-  it('vary and batch of a varied $Road over two roads the package holds: each concrete scenario gets its own road (before: only the first was found)', async () => {
+  it('vary and batch --keep-runs of a varied $Road over two roads the package holds: each concrete scenario gets its own road (before: only the first was found), and each kept run holds it beside its scenario and reruns by itself (before: esmini failed to locate it)', async () => {
     const folder = elsewhere();
     const signs = fs.readFileSync(path.join(esminiRoads, 'straight_500m_signs.xodr'));
     await roadParameterPackage(folder, { 'straight_500m.xodr': road, 'straight_500m_signs.xodr': signs }, 'Road', [
@@ -181,7 +182,43 @@ describe('cli: a road packed in a .mosc beside the scenario that uses it, and a 
       assert.match((await runAlone(path.join(outDir, `p_${index}.xosc`))).log, new RegExp(`Loaded OpenDRIVE: ${outDir}/${name}`));
     const { results, rows } = batchOf(path.join(folder, 'speeds.xosc'));
     assert.deepEqual(rows, ['0,ok,false,,,8.050,straight_500m.xodr,', '1,ok,false,,,8.050,straight_500m_signs.xodr,']);
-    assert.match(fs.readFileSync(path.join(results, 'runs', '1', 'esmini.log'), 'utf8'), /Loaded OpenDRIVE: .*\/straight_500m_signs\.xodr/);
+    for (const [index, name] of ['straight_500m.xodr', 'straight_500m_signs.xodr'].entries()) {
+      const kept = path.join(results, 'runs', String(index));
+      assert.match(fs.readFileSync(path.join(kept, 'esmini.log'), 'utf8'), new RegExp(`Loaded OpenDRIVE: (.*/)?${name}\\n`));
+      assert.match(fs.readFileSync(path.join(kept, 'scenario.xosc'), 'utf8'), /<LogicFile filepath="\$Road"\/>/);
+      assert.deepEqual(fs.readdirSync(kept).sort(), ['esmini.log', 'scenario.xosc', name, 'trajectories.csv'].sort());
+      assert.deepEqual(fs.readFileSync(path.join(kept, name)), index === 0 ? road : signs);
+      const rerun = await runAlone(path.join(kept, 'scenario.xosc'));
+      assert.match(rerun.log, new RegExp(`Loaded OpenDRIVE: ${kept}/${name}`));
+      assert.ok(Math.abs(lastX(rerun.steps) - 90) < 2, `kept run ${index} drove as in the batch`);
+    }
+  });
+
+  it("batch --keep-runs of a package whose main names its packed road as it is: each kept run holds the road where its scenario names it, and reruns by itself (before: it named the batch's temporary copy, removed at its end)", async () => {
+    const literal = elsewhere();
+    const scenario = drivingScenario('straight_500m.xodr', 'Drive')
+      .replace(
+        '<ParameterDeclarations></ParameterDeclarations>',
+        '<ParameterDeclarations><ParameterDeclaration name="Speed" parameterType="double" value="10"/></ParameterDeclarations>',
+      )
+      .replace('parameterAttributes="value" value="10"', 'value="$Speed"');
+    fs.writeFileSync(path.join(literal, 'p.mosc'), await packageOf({ 'main.xosc': scenario, 'straight_500m.xodr': road.toString('utf8') }));
+    fs.writeFileSync(
+      path.join(literal, 'speeds.xosc'),
+      distributionFile(
+        'p.mosc',
+        deterministic(
+          '      <DeterministicSingleParameterDistribution parameterName="Speed">\n        <DistributionSet><Element value="12"/></DistributionSet>\n      </DeterministicSingleParameterDistribution>\n',
+        ),
+      ),
+    );
+    const { results, rows } = batchOf(path.join(literal, 'speeds.xosc'));
+    assert.deepEqual(rows, ['0,ok,false,,,8.050,12,']);
+    const kept = path.join(results, 'runs', '0');
+    const named = /<LogicFile filepath="([^"]*)"\/>/.exec(fs.readFileSync(path.join(kept, 'scenario.xosc'), 'utf8'))?.[1] ?? '';
+    assert.ok(!path.isAbsolute(named), named);
+    assert.deepEqual(fs.readFileSync(path.join(kept, named)), road);
+    assert.ok(Math.abs(lastX((await runAlone(path.join(kept, 'scenario.xosc'))).steps) - 106) < 2, 'the kept run drove 8 s at 12 m/s');
   });
 
   it('pack --self-contained stores a road named through $Road where its value names it, so the package runs; a value outside the folder is left, with the warning', () => {
@@ -248,5 +285,27 @@ describe('cli: a road packed in a .mosc beside the scenario that uses it, and a 
     requireCarlaHarness(this);
     const verdict = (await harnessVerdicts([out])).get(out);
     assert.equal(verdict?.status, 'OK', JSON.stringify(verdict));
+  });
+});
+
+describe('batch --keep-runs: which package files a kept run holds beside its scenario', () => {
+  it("never one that would replace the run's own files or lie outside its folder", () => {
+    const bytes = new Uint8Array([1]);
+    const { files, left } = keptBesideRun(
+      [
+        'straight_500m.xodr',
+        'p.files/Catalogs/VehicleCatalog.xosc',
+        'scenario.xosc',
+        'esmini.log',
+        'trajectories.csv',
+        '../road.xodr',
+        'a/../straight_500m.xodr',
+      ].map((file) => ({ path: file, bytes })),
+    );
+    assert.deepEqual(
+      files.map((file) => file.path),
+      ['straight_500m.xodr', path.join('p.files', 'Catalogs', 'VehicleCatalog.xosc')],
+    );
+    assert.deepEqual(left, ['scenario.xosc', 'esmini.log', 'trajectories.csv', '../road.xodr']);
   });
 });

@@ -15,6 +15,8 @@ export interface ConcreteRun {
   parameters: Record<string, string>;
   /** Absolute folders for road files and catalogs, in order. */
   searchPath: string[];
+  /** Files written beside the scenario in its run folder, at paths relative to it (the package files a kept run names). */
+  files?: readonly { path: string; bytes: Uint8Array }[];
 }
 
 export interface RunSettings {
@@ -49,6 +51,7 @@ export async function runConcrete(job: ConcreteRun, settings: RunSettings, cance
     collision: true,
     runsFolder: settings.runsFolder,
     cancel,
+    files: job.files,
   });
   try {
     if (result.outcome === 'no-esmini') throw new NoEsminiError(result.message);
@@ -120,6 +123,29 @@ export function reasonOf(status: RunStatus, result: EsminiTextRunResult, duratio
   if (result.outcome !== 'ok' && result.outcome !== 'errors') return result.message;
   if (result.reachedLimit) return limitSentence({ seconds: result.duration, kind: result.limitKind, setBy: durationSetBy });
   return result.stopReason ? `esmini was stopped: ${result.stopReason}` : result.message;
+}
+
+/** The files of a kept run's folder (keepRunFolder) that no package file may replace. */
+const KEPT_RUN_OWN_FILES = new Set(['scenario.xosc', 'trajectories.csv', 'esmini.log']);
+
+/**
+ * Of package files at paths relative to the scenario's folder, those a kept run's folder can hold beside its scenario, so that
+ * the kept run names them there and reruns by itself; `left`: those that would replace one of the run's own files or lie
+ * outside its folder.
+ */
+export function keptBesideRun(files: readonly { path: string; bytes: Uint8Array }[]): {
+  files: { path: string; bytes: Uint8Array }[];
+  left: string[];
+} {
+  const beside: { path: string; bytes: Uint8Array }[] = [];
+  const left: string[] = [];
+  for (const file of files) {
+    const relative = path.normalize(file.path);
+    const outside = path.isAbsolute(relative) || relative === '..' || relative.startsWith(`..${path.sep}`);
+    if (outside || KEPT_RUN_OWN_FILES.has(relative)) left.push(file.path);
+    else if (!beside.some((known) => known.path === relative)) beside.push({ path: relative, bytes: file.bytes });
+  }
+  return { files: beside, left };
 }
 
 /** Moves a run's folder to `target` (replacing a run kept there before), with esmini's log beside its CSV. */

@@ -7,7 +7,7 @@ import { Progress, Tally } from '../batch/progress';
 import { loadQueueModule, QueuePackagesMissingError } from '../batch/queuePackages';
 import { CriterionError, parseCriterion } from '../batch/criteria';
 import { BatchIdentity, criteriaFailure, ResultsError, ResultsFolder } from '../batch/results';
-import { NoEsminiError, runConcrete, RunSettings } from '../batch/runConcrete';
+import { keptBesideRun, NoEsminiError, runConcrete, RunSettings } from '../batch/runConcrete';
 import type { PackagedFile } from '../core/flatten/types';
 import { diskRef, displayRef, FileKind, nodeFileSystem, splitScenarioPath } from '../core/sources';
 import { loadVariations, rebasedConcreteText, samplingProblem, SamplingError } from '../core/variations';
@@ -282,6 +282,27 @@ async function runLocally(
       await namedWritten.get(relative);
     }
   };
+  const unkept = new Set<string>();
+  /** The package files run `index` names, laid out beside its scenario; undefined (told once per file) when one cannot lie there. */
+  const keptPackagedFiles = (
+    view: BatchPlanView,
+    named: PackagedFile[],
+    index: string,
+  ): { path: string; bytes: Uint8Array }[] | undefined => {
+    // The flattening's copies named through a `$parameter` are those of its default value; `named` holds this run's.
+    const needed = [...view.packagedFiles.filter((file) => file.namedBy === undefined), ...named].map((file) => ({
+      path: path.relative(view.scenarioFolder, file.path),
+      bytes: file.bytes,
+    }));
+    const { files, left } = keptBesideRun(needed);
+    for (const file of left.filter((each) => !unkept.has(each))) {
+      unkept.add(file);
+      io.err(
+        `modular2simple: warning: the package file ${file} cannot be kept beside a run's scenario.xosc (it would replace the run's own file or lie outside its folder); run ${index} and those naming it are kept naming the batch's temporary copy, so they do not rerun by themselves`,
+      );
+    }
+    return left.length === 0 ? files : undefined;
+  };
   const work = async (): Promise<void> => {
     while (!stop.signal.aborted && next < todo.length) {
       const index = todo[next++];
@@ -292,12 +313,15 @@ async function runLocally(
         progress.tick(run.discarded);
         continue;
       }
-      if (plan.packagedFolder && plan.packagedOf) await writeNamedPackaged(await plan.packagedOf(run.text));
+      const named = plan.packagedFolder && plan.packagedOf ? await plan.packagedOf(run.text) : [];
+      await writeNamedPackaged(named);
       let text = (await rebasedConcreteText(run.text, plan.scenarioFolder, undefined, kindOf)).text;
-      if (plan.packagedFolder) text = (await rebasedConcreteText(text, plan.packagedFolder, undefined, kindOf)).text;
+      // A kept run holds the package files it names beside its scenario, which names them there as from the ScenarioFile's folder, so that it reruns by itself.
+      const kept = plan.packagedFolder && settings.keepRunsIn ? keptPackagedFiles(plan, named, run.index) : undefined;
+      if (plan.packagedFolder && !kept) text = (await rebasedConcreteText(text, plan.packagedFolder, undefined, kindOf)).text;
       // A `$parameter` LogicFile naming a packaged road stays as written (SPEC 11.6): esmini finds the copy by its name there, first.
       const searchPath = plan.packagedFolder ? [plan.packagedFolder, ...run.searchPath] : run.searchPath;
-      const row = await runConcrete({ ...run, text, searchPath }, settings, stop.signal);
+      const row = await runConcrete({ ...run, text, searchPath, files: kept }, settings, stop.signal);
       // Ctrl-C on a terminal reaches esmini too, which then ends early as if by itself: such a run is not a result.
       if (!row || stop.signal.aborted) continue;
       await results.append(row);

@@ -52,6 +52,8 @@ export interface EsminiRunOptions {
   cancel?: AbortSignal;
   /** Run whatever can be flattened despite the scenario's errors (*Run Anyway*, `run --force`); they are listed in `flattenProblems`. */
   force?: boolean;
+  /** `runScenarioText`: files written beside the scenario in its run folder, each at its path relative to that folder (a kept run's package files). */
+  files?: readonly { path: string; bytes: Uint8Array }[];
 }
 
 /**
@@ -435,7 +437,9 @@ export async function runScenarioText(text: string, searchPath: string[], option
       wallMs: elapsed(),
     };
   const roadPath = (options.roadPath ?? []).map((folder) => path.resolve(options.base ?? process.cwd(), folder));
-  const ran = await runLimitedText(location.program, limited, unique([...searchPath, ...roadPath]), options, timeStep, seed, limit);
+  const ran = await runLimitedText(location.program, limited, unique([...searchPath, ...roadPath]), options, timeStep, seed, limit, {
+    files: options.files,
+  });
   const { messages, remarks } = readEsminiLog(ran.run.output);
   // As run counts them (its messages placed by mapEsminiMessages): a colour esmini skips is no failed run.
   const failing = messages.filter((message) => esminiMessageSeverity(message) === 'error');
@@ -477,7 +481,12 @@ async function runLimitedText(
   const scenarioFile = path.join(runFolder, 'scenario.xosc');
   const csvFile = path.join(runFolder, 'trajectories.csv');
   fs.writeFileSync(scenarioFile, limited);
-  writePackagedFiles(prepared.files ?? [], runFolder);
+  // A package file never replaces the run's own scenario or log.
+  const own = new Set([scenarioFile, csvFile]);
+  writePackagedFiles(
+    (prepared.files ?? []).filter((file) => !own.has(path.resolve(runFolder, file.path))),
+    runFolder,
+  );
   const run = await runEsminiProcess({
     program,
     scenarioFile,
