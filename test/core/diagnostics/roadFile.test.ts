@@ -1,4 +1,5 @@
 import * as assert from 'node:assert/strict';
+import { spawnSync } from 'node:child_process';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { ROAD_FILE, roadFileWording } from '../../../server/src/core/diagnostics/roadFile';
@@ -161,7 +162,7 @@ describe('diagnostics: road-file', () => {
           ),
         ).filter((problem) => problem.code === 'road-file');
       const app = path.join(root, 'app');
-      const held = [{ packageFile: path.join(app, 'drive.mosc'), entry: 'roads/road.xodr' }];
+      const held = [{ packageFile: path.join(app, 'drive.mosc'), entries: ['roads/road.xodr'] }];
       // By its path from the package's root, or by its file name anywhere in the package.
       for (const logicFile of ['roads/road.xodr', 'road.xodr']) {
         const problems = await problemsOf(logicFile);
@@ -175,6 +176,64 @@ describe('diagnostics: road-file', () => {
       }
       // A file the package does not hold: the usual hint.
       assert.match((await problemsOf('other.xodr'))[0].hint ?? '', /^correct the path, or add the folder/);
+    } finally {
+      fs.rmSync(root, { recursive: true, force: true });
+    }
+  });
+
+  it('for a road in a package stored inside another package, a hint whose commands, run as written, extract the road where esmini finds it (issue 27: unzip cannot read the inner package)', async function () {
+    const zipped = async (files: Record<string, string | Uint8Array>) => {
+      const zip = new JSZip();
+      for (const [name, contents] of Object.entries(files)) zip.file(name, contents);
+      return zip.generateAsync({ type: 'uint8array' });
+    };
+    const importing = roadScenario({
+      logicFile: 'road.xodr',
+      groups: [outerGroup('Car', 'Ego', [{ file: 'inner.mosc', groups: [{ name: 'Drive' }] }])],
+    });
+    const inner = await zipped({ 'main.xosc': onRoad('road.xodr'), 'road.xodr': STRAIGHT_ROAD });
+    // One level (outer.mosc holds main.xosc and inner.mosc), and two (main.xosc and inner.mosc inside mid.mosc inside outer.mosc).
+    const one = await zipped({ 'main.xosc': importing, 'inner.mosc': inner });
+    const two = await zipped({
+      'main.xosc': onRoad('road.xodr'),
+      'sub/mid.mosc': await zipped({ 'main.xosc': importing, 'inner.mosc': inner }),
+    });
+    const root = temporaryWorkspace({ 'one/o u.mosc': one, 'two/outer.mosc': two });
+    const unzip = spawnSync('unzip', ['-v']).status === 0;
+    try {
+      for (const [folder, main, stored] of [
+        [
+          'one',
+          childRef(diskRef(path.join(root, 'one', 'o u.mosc')), 'main.xosc'),
+          `'inner.mosc' this file references, stored inside ${path.join(root, 'one', 'o u.mosc')}`,
+        ],
+        [
+          'two',
+          childRef(childRef(diskRef(path.join(root, 'two', 'outer.mosc')), 'sub/mid.mosc'), 'main.xosc'),
+          `'inner.mosc' inside 'sub/mid.mosc' this file references, stored inside ${path.join(root, 'two', 'outer.mosc')}`,
+        ],
+      ] as const) {
+        const problemsOf = async () =>
+          semanticProblems(
+            await analyzeDocument(main, parseXml(importing), new CatalogLoader(new ScenarioStore({ root })), true, 'esmini'),
+          ).filter((problem) => problem.code === 'road-file');
+        const [problem] = await problemsOf();
+        const hint = problem?.hint ?? '';
+        assert.ok(hint.startsWith(`the package ${stored}, holds road.xodr, `), hint);
+        const command = /\((?:[^(]*?): (cd .*)\), or correct the path$/.exec(hint)?.[1];
+        assert.match(command ?? '', /&& unzip -j \d\/inner\.mosc road\.xodr -d /, hint);
+        if (!unzip) continue;
+        // mktemp -d makes its folder in TMPDIR: the workspace's, removed with it.
+        fs.mkdirSync(path.join(root, 'tmp'), { recursive: true });
+        const ran = spawnSync('sh', ['-c', command as string], {
+          encoding: 'utf8',
+          env: { ...process.env, TMPDIR: path.join(root, 'tmp') },
+        });
+        assert.equal(ran.status, 0, ran.stderr);
+        assert.equal(fs.readFileSync(path.join(root, folder, 'road.xodr'), 'utf8'), STRAIGHT_ROAD);
+        assert.deepEqual(await problemsOf(), [], `${folder}: the hint followed, the road is found`);
+      }
+      if (!unzip) this.skip();
     } finally {
       fs.rmSync(root, { recursive: true, force: true });
     }

@@ -21,8 +21,11 @@ export function roadFileWording(
   folders: readonly string[],
   severity: 'error' | 'warning',
   carlaTown: boolean,
-  /** Packages this file references that hold such a file: the package on disk and the entry (`RoadFileLookup.heldByReferencedPackages`). */
-  heldBy: readonly { packageFile: string; entry: string }[] = [],
+  /**
+   * Packages this file references that hold such a file (`RoadFileLookup.heldByReferencedPackages`): the package on disk
+   * and the entries down to the file, a package stored inside it first when the package this file references is one.
+   */
+  heldBy: readonly { packageFile: string; entries: readonly string[] }[] = [],
 ): ProblemWording<'road-file'> {
   const [own, ...all] = folders;
   const others = all.length > FOLDERS_NAMED ? [...all.slice(0, FOLDERS_NAMED), `${all.length - FOLDERS_NAMED} more folders`] : all;
@@ -35,9 +38,43 @@ export function roadFileWording(
     message: `road file '${written}' is ${where}${town}: ${ESMINI_ROAD_NOT_FOUND}`,
     hint:
       heldBy.length > 0
-        ? `the package ${heldBy[0].packageFile} this file references holds ${heldBy[0].entry}, but a file outside a package does not reach the files inside it: extract it into ${own} (a .mosc is a ZIP archive: unzip -j ${heldBy[0].packageFile} ${heldBy[0].entry} -d ${own}), or correct the path`
+        ? heldInPackageHint(heldBy[0].packageFile, heldBy[0].entries, own)
         : 'correct the path, or add the folder that holds the file to the road path (--road-path, the modular2simple.esmini.roadPath setting)',
   };
+}
+
+/** A path or entry name as one word of a POSIX shell command: quoted when it holds anything but safe characters. */
+function shellWord(text: string): string {
+  return /^[\w@%+=:,./-]+$/.test(text) ? text : `'${text.replace(/'/g, `'\\''`)}'`;
+}
+
+/**
+ * How to extract `entries`' last (a road file) from `packageFile` into `folder`. unzip reads no archive inside an archive, so
+ * a package stored inside another (`entries` longer than one) is extracted first, each into a numbered folder of a new
+ * temporary folder, so that no file of the user's is replaced; `-j` because esmini tries the path, then the file name.
+ */
+function heldInPackageHint(packageFile: string, entries: readonly string[], folder: string): string {
+  const file = entries[entries.length - 1];
+  const packages = entries.slice(0, -1);
+  const outside = 'but a file outside a package does not reach the files inside it';
+  if (packages.length === 0)
+    return `the package ${packageFile} this file references holds ${file}, ${outside}: extract it into ${folder} (a .mosc is a ZIP archive: unzip -j ${shellWord(packageFile)} ${shellWord(file)} -d ${shellWord(folder)}), or correct the path`;
+  const steps: string[] = [];
+  let archive = shellWord(packageFile);
+  packages.forEach((inner, level) => {
+    steps.push(`unzip -j ${archive} ${shellWord(inner)} -d ${level + 1}`);
+    archive = shellWord(`${level + 1}/${inner.slice(inner.lastIndexOf('/') + 1)}`);
+  });
+  steps.push(`unzip -j ${archive} ${shellWord(file)} -d ${shellWord(folder)}`);
+  const stored = [...packages]
+    .reverse()
+    .map((inner) => `'${inner}'`)
+    .join(' inside ');
+  return (
+    `the package ${stored} this file references, stored inside ${packageFile}, holds ${file}, ${outside}: extract it into ${folder} ` +
+    `(a .mosc is a ZIP archive, and unzip does not read one stored inside another, so extract the inner package first: ` +
+    `cd "$(mktemp -d)" && ${steps.join(' && ')}), or correct the path`
+  );
 }
 
 export const ROAD_FILE = defineDiagnostic({

@@ -66,7 +66,7 @@ export const roadFileFound: SemanticCheck = ({ roadFile, simulator }) => {
         roadFile.folders,
         simulator === 'esmini' ? 'error' : 'warning',
         roadFile.carlaTown,
-        (roadFile.heldByReferencedPackages ?? []).map((held) => ({ packageFile: held.disk, entry: held.entries.join('/') })),
+        (roadFile.heldByReferencedPackages ?? []).map((held) => ({ packageFile: held.disk, entries: held.entries })),
       ),
     },
   ];
