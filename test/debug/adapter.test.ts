@@ -14,7 +14,7 @@ import { openscenarioDir } from '../support/openscenarioCorpus';
 import { repoRoot } from '../support/paths';
 import { runBounded } from '../support/processes';
 import { temporaryFolder } from '../support/temporaryDirectory';
-import { writeAddedEntityCrash, writeClearanceCrash, writeTwoCutIns } from '../support/debugScenarios';
+import { writeAddedEntityCrash, writeClearanceCrash, writeNestedCutIn, writeTwoCutIns } from '../support/debugScenarios';
 import { SESSION_ARGUMENT } from '../../server/src/debug/supervisor';
 
 const cutIn = path.join(openscenarioDir, 'esmini', 'cut-in.xosc');
@@ -346,6 +346,24 @@ describe('debug adapter through the Debug Adapter Protocol', function () {
     assert.equal(((await stop) as DebugProtocol.StoppedEvent).body.reason, 'breakpoint');
     const frames = (await client.stackTraceRequest({ threadId: 1 })).body.stackFrames;
     assert.match(frames[0].name, /^ManeuverGroup CutInVehicle\.CutIn /);
+    await Promise.all([client.continueRequest({ threadId: 1 }), client.waitForEvent('terminated')]);
+  });
+
+  it("stops on an intermediate main's ManeuverGroup line that imports a group, when the top main's copy of it starts", async () => {
+    const folder = temporaryFolder();
+    const { top, inner } = writeNestedCutIn(folder);
+    const line = lineOf(inner, '<ManeuverGroup maximumExecutionCount="1" name="CutInVehicle">');
+    const launched = client.launch({ type: 'modular2simple', request: 'launch', program: top, roadPath, duration: 30 });
+    await client.waitForEvent('initialized');
+    const set = await client.setBreakpointsRequest({ source: { path: inner }, breakpoints: [{ line }] });
+    assert.equal(set.body.breakpoints[0].verified, true, set.body.breakpoints[0].message);
+    assert.equal(set.body.breakpoints[0].message, 'ManeuverGroup Outer.CutInVehicle.CutIn');
+    const stop = client.waitForEvent('stopped');
+    await client.configurationDoneRequest();
+    await launched;
+    assert.equal(((await stop) as DebugProtocol.StoppedEvent).body.reason, 'breakpoint');
+    const frames = (await client.stackTraceRequest({ threadId: 1 })).body.stackFrames;
+    assert.match(frames[0].name, /^ManeuverGroup Outer\.CutInVehicle\.CutIn /);
     await Promise.all([client.continueRequest({ threadId: 1 }), client.waitForEvent('terminated')]);
   });
 

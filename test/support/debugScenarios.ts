@@ -147,3 +147,29 @@ export function writeAddedEntityCrash(cutIn: string): string {
       .replace(stopRef, 'storyboardElementRef="ClearanceEvent"')
   );
 }
+
+/**
+ * writeTwoCutIns' main as an intermediate main in `inner/`, imported by a top main in `folder` (main.xosc's copy) whose
+ * group `Outer` takes `CutInVehicle.CutIn` from it through a ScenarioReference: two levels of nesting. Returns the files.
+ */
+export function writeNestedCutIn(folder: string): { top: string; inner: string; simple: string } {
+  const innerFolder = path.join(folder, 'inner');
+  fs.mkdirSync(innerFolder);
+  writeTwoCutIns(innerFolder);
+  const inner = path.join(innerFolder, 'main.xosc');
+  const text = fs.readFileSync(inner, 'utf8');
+  const first = text.indexOf('        <ManeuverGroup maximumExecutionCount="1" name="CutInVehicle">');
+  const second = text.indexOf('        <ManeuverGroup maximumExecutionCount="1" name="CutInLead">');
+  const startTrigger = text.indexOf('        <StartTrigger>', second);
+  const reference = text.indexOf('          <ScenarioReference', first);
+  const referenceEnd = text.indexOf('</ScenarioReference>', reference) + '</ScenarioReference>'.length;
+  const outer =
+    text.slice(first, reference).replace('name="CutInVehicle"', 'name="Outer"') +
+    '          <ScenarioReference scenarioFileName="inner/main.xosc">\n' +
+    '            <ManeuverGroupReference maneuverGroupName="CutInVehicle.CutIn"/>\n' +
+    '          </ScenarioReference>' +
+    text.slice(referenceEnd, second);
+  const top = path.join(folder, 'main.xosc');
+  fs.writeFileSync(top, text.slice(0, first) + outer + text.slice(startTrigger));
+  return { top, inner, simple: path.join(innerFolder, 'lane_change.xosc') };
+}

@@ -345,7 +345,7 @@ export class ScenarioDebugSession extends DebugSession {
     result.id = breakpoint.id;
     if (!map) result.message = 'the scenario is not loaded yet';
     else if (breakpoint.elements.length === 0) {
-      const inScenario = map.elements.some((element) => this.sourceKey(element.source) === key);
+      const inScenario = map.writesIn((ref) => this.sourceKey(ref) === key);
       result.message = inScenario
         ? `no storyboard element starts on this line: a breakpoint stops on the line of a ${ELEMENT_KINDS}`
         : 'this file is not part of the scenario being debugged';

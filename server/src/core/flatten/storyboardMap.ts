@@ -2,7 +2,7 @@ import { ZERO_RANGE } from '../problems';
 import { Range } from '../text';
 import { displayRef, SourceRef } from '../sources';
 import { attribute, XmlElement } from '../xml';
-import { originOf } from './origin';
+import { copiedFrom, originOf } from './origin';
 import { FlatSource } from './types';
 
 /** The storyboard elements esmini reports transitions of, and the condition it reports firing. */
@@ -43,6 +43,15 @@ export interface ConditionSpec {
   delay: string | undefined;
 }
 
+/** Where a ManeuverGroup holding a ScenarioReference is written: its start tag's lines. */
+export interface ImportPlace {
+  /** The importing group's name as written there. */
+  name: string;
+  source: SourceRef;
+  range: Range;
+  lastTagLine: number;
+}
+
 /** One storyboard element of the flattened scenario with the place in the modular sources it was written. */
 export interface MappedElement {
   kind: StoryboardKind;
@@ -58,8 +67,11 @@ export interface MappedElement {
   range: Range;
   /** The start tag's last line (a tag may spread its attributes over several). */
   lastTagLine: number;
-  /** For a copy of an imported group: the outer ManeuverGroup of the scenario debugged that imports it. */
-  importedAt?: { source: SourceRef; range: Range; lastTagLine: number };
+  /**
+   * For a copy of an imported group: each ManeuverGroup whose ScenarioReference imports it, the nearest first (an
+   * intermediate main's, ...) and the scenario debugged's last.
+   */
+  importedAt?: ImportPlace[];
   condition?: ConditionSpec;
   /** For a condition: the trigger it is part of (a StartTrigger starts its owner, a StopTrigger ends it). */
   trigger?: 'start' | 'stop';
@@ -144,7 +156,7 @@ export class StoryboardMap {
     const range = document ? document.lines.range(origin.element.start, origin.element.nameEnd) : ZERO_RANGE;
     const lastTagLine = document ? document.lines.range(origin.element.startTagEnd - 1, origin.element.startTagEnd - 1).start.line : 0;
     const mapped: MappedElement = { kind, name, path, element, parent, source: origin.source.ref, range, lastTagLine };
-    if (kind === 'ManeuverGroup') mapped.importedAt = this.outerGroupOf(element);
+    if (kind === 'ManeuverGroup') mapped.importedAt = this.outerGroupsOf(element);
     if (kind === 'Condition') {
       mapped.condition = conditionSpec(element);
       const sameName = this.conditionsByName.get(name);
@@ -157,17 +169,31 @@ export class StoryboardMap {
     return mapped;
   }
 
-  /** Where the scenario debugged writes the ManeuverGroup whose ScenarioReference made this copy, if one did. */
-  private outerGroupOf(copy: XmlElement): MappedElement['importedAt'] {
-    const insertion = this.flat.insertions.find((candidate) => candidate.start === copy.start);
-    const document = this.flat.original?.document;
-    if (!insertion || !document) return undefined;
-    const outer = insertion.outerGroup.element;
-    return {
-      source: this.flat.ref,
-      range: document.lines.range(outer.start, outer.nameEnd),
-      lastTagLine: document.lines.range(outer.startTagEnd - 1, outer.startTagEnd - 1).start.line,
-    };
+  /**
+   * The ManeuverGroups whose ScenarioReferences made this copy: the scenario debugged's outer group and, while the group
+   * it imports is itself a copy in an intermediate main, that main's, and so on; listed the nearest to the copy first.
+   */
+  private outerGroupsOf(copy: XmlElement): ImportPlace[] | undefined {
+    const places: ImportPlace[] = [];
+    let source: FlatSource | undefined = this.flat;
+    let element: XmlElement | undefined = copy;
+    while (source && element) {
+      const at: XmlElement = element;
+      const insertion = source.insertions.find((candidate) => candidate.start === at.start);
+      const document = source.original?.document;
+      if (!insertion || !document) break;
+      const outer = insertion.outerGroup.element;
+      places.unshift({
+        name: attribute(outer, 'name')?.value ?? '',
+        source: source.ref,
+        range: document.lines.range(outer.start, outer.nameEnd),
+        lastTagLine: document.lines.range(outer.startTagEnd - 1, outer.startTagEnd - 1).start.line,
+      });
+      const copied = copiedFrom(source, insertion, element);
+      source = copied?.source;
+      element = copied?.element;
+    }
+    return places.length > 0 ? places : undefined;
   }
 
   /** The conditions of the element's StartTrigger (what it waits for in standby). */
@@ -195,9 +221,22 @@ export class StoryboardMap {
    * holding a ScenarioReference stands for the copies it imports.
    */
   atLine(isFile: (ref: SourceRef) => boolean, line: number): MappedElement[] {
+    return this.elements.filter((element) => this.placeAtLine(element, isFile, line) !== undefined);
+  }
+
+  /**
+   * Where the element covers the 0-based line in the file `isFile` accepts: the element as written, or, for a copy of
+   * an imported group, the importing group that writes its ScenarioReference there.
+   */
+  placeAtLine(element: MappedElement, isFile: (ref: SourceRef) => boolean, line: number): MappedElement | ImportPlace | undefined {
     const covers = (place: { source: SourceRef; range: Range; lastTagLine: number }) =>
       line >= place.range.start.line && line <= place.lastTagLine && isFile(place.source);
-    return this.elements.filter((element) => covers(element) || (element.importedAt !== undefined && covers(element.importedAt)));
+    return covers(element) ? element : element.importedAt?.find(covers);
+  }
+
+  /** Whether an element is written in, or a ManeuverGroup there imports one into the scenario from, the file `isFile` accepts. */
+  writesIn(isFile: (ref: SourceRef) => boolean): boolean {
+    return this.elements.some((element) => isFile(element.source) || (element.importedAt ?? []).some((place) => isFile(place.source)));
   }
 }
 
