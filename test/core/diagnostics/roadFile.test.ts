@@ -181,6 +181,50 @@ describe('diagnostics: road-file', () => {
     }
   });
 
+  it('says, in its hint, that a package the scenario references could not be read, with its line and why, and nothing of a readable one (issue 27: it was taken for a package holding nothing)', async () => {
+    const zip = new JSZip();
+    zip.file('main.xosc', onRoad('road.xodr'));
+    const root = temporaryWorkspace({
+      'app/broken.mosc': 'PK\u0003\u0004 not a ZIP archive',
+      'app/drive.mosc': await zip.generateAsync({ type: 'uint8array' }),
+    });
+    try {
+      const app = path.join(root, 'app');
+      const problemsOf = async (packageName: string, files: Record<string, string> = {}) => {
+        for (const [name, text] of Object.entries(files)) fs.writeFileSync(path.join(app, name), text);
+        const text = roadScenario({
+          logicFile: 'road.xodr',
+          groups: [outerGroup('Car', 'Ego', [{ file: packageName, groups: [{ name: 'Drive' }] }])],
+        });
+        const line = text.slice(0, text.indexOf('<ScenarioReference')).split('\n').length;
+        const problems = semanticProblems(
+          await analyzeDocument(
+            diskRef(path.join(app, 'main.xosc')),
+            parseXml(text),
+            new CatalogLoader(new ScenarioStore({ root })),
+            true,
+            'esmini',
+          ),
+        ).filter((problem) => problem.code === 'road-file');
+        return { problems, line };
+      };
+      const broken = await problemsOf('broken.mosc');
+      assert.equal(broken.problems.length, 1);
+      assert.match(
+        broken.problems[0].hint ?? '',
+        new RegExp(
+          `; the package ${path.join(app, 'broken.mosc').replace(/[.\/]/g, '\\$&')} this file references on line ${broken.line} could not be read \\(.*broken\\.mosc is not a readable ZIP archive .*\\), so whether it holds 'road\\.xodr' is not known: repair it and check again$`,
+        ),
+      );
+      // A readable package without the road: the usual hint alone.
+      assert.equal((await problemsOf('drive.mosc')).problems[0].hint, roadFileWording('road.xodr', [app], 'error', false).hint);
+      // The road found: nothing, whatever the package.
+      assert.deepEqual((await problemsOf('broken.mosc', { 'road.xodr': STRAIGHT_ROAD })).problems, []);
+    } finally {
+      fs.rmSync(root, { recursive: true, force: true });
+    }
+  });
+
   it('for a road in a package stored inside another package, a hint whose commands, run as written, extract the road where esmini finds it (issue 27: unzip cannot read the inner package)', async function () {
     const zipped = async (files: Record<string, string | Uint8Array>) => {
       const zip = new JSZip();

@@ -26,6 +26,8 @@ export function roadFileWording(
    * and the entries down to the file, a package stored inside it first when the package this file references is one.
    */
   heldBy: readonly { packageFile: string; entries: readonly string[] }[] = [],
+  /** Packages this file references (on `line`, one-based) that could not be read, which may hold it (`RoadFileLookup.unreadReferencedPackages`). */
+  unread: readonly { packageFile: string; line: number; reason: string }[] = [],
 ): ProblemWording<'road-file'> {
   const [own, ...all] = folders;
   const others = all.length > FOLDERS_NAMED ? [...all.slice(0, FOLDERS_NAMED), `${all.length - FOLDERS_NAMED} more folders`] : all;
@@ -39,7 +41,13 @@ export function roadFileWording(
     hint:
       heldBy.length > 0
         ? heldInPackageHint(heldBy[0].packageFile, heldBy[0].entries, own)
-        : 'correct the path, or add the folder that holds the file to the road path (--road-path, the modular2simple.esmini.roadPath setting)',
+        : 'correct the path, or add the folder that holds the file to the road path (--road-path, the modular2simple.esmini.roadPath setting)' +
+          unread
+            .map(
+              ({ packageFile, line, reason }) =>
+                `; the package ${packageFile} this file references on line ${line} could not be read (${reason}), so whether it holds '${written}' is not known: repair it and check again`,
+            )
+            .join(''),
   };
 }
 

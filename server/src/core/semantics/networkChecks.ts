@@ -54,7 +54,7 @@ function signalControllers(model: SemanticModel): XmlElement[] | undefined {
  * The road file a LogicFile names is found where a run has esmini look for it (SemanticContext.roadFile). Said
  * nothing of with simulator carla (its profile's own road rule), nor of a CARLA map's name unless esmini is the simulator.
  */
-export const roadFileFound: SemanticCheck = ({ roadFile, simulator }) => {
+export const roadFileFound: SemanticCheck = ({ roadFile, simulator, model }) => {
   if (!roadFile || roadFile.resolved || roadFile.packaged || simulator === 'carla') return [];
   if (roadFile.carlaTown && simulator !== 'esmini') return [];
   const { element } = roadFile.logic;
@@ -67,6 +67,11 @@ export const roadFileFound: SemanticCheck = ({ roadFile, simulator }) => {
         simulator === 'esmini' ? 'error' : 'warning',
         roadFile.carlaTown,
         (roadFile.heldByReferencedPackages ?? []).map((held) => ({ packageFile: held.disk, entries: held.entries })),
+        (roadFile.unreadReferencedPackages ?? []).map((unread) => ({
+          packageFile: unread.packageFile,
+          line: model.document.lines.positionAt(unread.reference.start).line + 1,
+          reason: unread.reason,
+        })),
       ),
     },
   ];

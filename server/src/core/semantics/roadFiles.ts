@@ -4,7 +4,17 @@
  */
 import * as path from 'node:path';
 import { CARLA_TOWNS } from '../profiles/scenarioRunner';
-import { childRef, displayRef, FileSystemHost, normalizeEntryName, refId, ScenarioStore, SourceRef } from '../sources';
+import {
+  childRef,
+  displayRef,
+  FileReadError,
+  FileSystemHost,
+  normalizeEntryName,
+  refId,
+  ScenarioStore,
+  SourceError,
+  SourceRef,
+} from '../sources';
 import { attribute, descendants, XmlAttribute, XmlDocument, XmlElement } from '../xml';
 // The model module, not the semantics index: the index runs the checks, whose road rules read road files through this one.
 import { Evaluator, semanticModelOf } from './model';
@@ -81,26 +91,56 @@ export interface RoadFileLookup {
    * a file at that path or of that name, which esmini does not look inside for a file outside them.
    */
   heldByReferencedPackages?: SourceRef[];
+  /**
+   * When the road was found nowhere: the packages the scenario's ScenarioReferences name that could not be read (not a ZIP
+   * archive, unreadable), so that whether they hold it is not known; `reference` is the first ScenarioReference naming each.
+   */
+  unreadReferencedPackages?: UnreadPackage[];
+}
+
+/** A package a ScenarioReference names that could not be read (RoadFileLookup.unreadReferencedPackages). */
+export interface UnreadPackage {
+  reference: XmlElement;
+  /** The package on disk, or the name as written when it could not be resolved. */
+  packageFile: string;
+  reason: string;
+}
+
+/** Whether `error` is a file or package that cannot be read (said on the reference), not a fault of the program (thrown on). */
+function isReadFailure(error: unknown): error is Error {
+  const errno = error instanceof Error && 'code' in error && typeof error.code === 'string' && /^E[A-Z]+$/.test(error.code);
+  return error instanceof SourceError || error instanceof FileReadError || errno;
 }
 
 /**
  * The entries of the `.mosc` packages `document`'s ScenarioReferences name (literal names only) that hold `filepath`: at
  * that path from the package's root, else a file of that name anywhere in it.
  */
-async function inReferencedPackages(store: ScenarioStore, ref: SourceRef, document: XmlDocument, filepath: string): Promise<SourceRef[]> {
+async function inReferencedPackages(
+  store: ScenarioStore,
+  ref: SourceRef,
+  document: XmlDocument,
+  filepath: string,
+): Promise<{ held: SourceRef[]; unread: UnreadPackage[] }> {
   const wanted = normalizeEntryName(filepath.replace(/\\/g, '/'));
   const name = path.basename(filepath.replace(/\\/g, '/'));
   const found: SourceRef[] = [];
-  const names = new Set(
-    (document.root ? descendants(document.root) : [])
-      .filter((element) => element.name === 'ScenarioReference')
-      .map((element) => attribute(element, 'scenarioFileName')?.value ?? '')
-      .filter((fileName) => fileName.trim() !== '' && !fileName.includes('$')),
-  );
-  for (const fileName of names) {
-    const resolution = await store.resolve(fileName, ref).catch(() => undefined);
+  const unread: UnreadPackage[] = [];
+  const references = new Map<string, XmlElement>();
+  for (const element of document.root ? descendants(document.root) : []) {
+    const fileName = element.name === 'ScenarioReference' ? (attribute(element, 'scenarioFileName')?.value ?? '') : '';
+    if (fileName.trim() !== '' && !fileName.includes('$') && !references.has(fileName)) references.set(fileName, element);
+  }
+  // A package that cannot be read may hold the road: said, never taken for one that holds nothing; any other failure is thrown.
+  const failed = (reference: XmlElement, packageFile: string) => (error: unknown) => {
+    if (!isReadFailure(error)) throw error;
+    unread.push({ reference, packageFile, reason: error.message });
+    return undefined;
+  };
+  for (const [fileName, reference] of references) {
+    const resolution = await store.resolve(fileName, ref).catch(failed(reference, fileName));
     if (resolution?.kind !== 'package' || resolution.folder) continue;
-    const contents = await store.readPackage(resolution.packageRef).catch(() => undefined);
+    const contents = await store.readPackage(resolution.packageRef).catch(failed(reference, displayRef(resolution.packageRef, undefined)));
     if (!contents) continue;
     const entries = [...contents.entries.keys()];
     const entry =
@@ -109,7 +149,7 @@ async function inReferencedPackages(store: ScenarioStore, ref: SourceRef, docume
     if (entry !== undefined && !found.some((known) => refId(known) === refId(childRef(resolution.packageRef, entry))))
       found.push(childRef(resolution.packageRef, entry));
   }
-  return found;
+  return { held: found, unread };
 }
 
 /** The entry of the package holding the file `ref` that `filepath`, written in that file, names; undefined when it names none. */
@@ -175,7 +215,7 @@ export async function locateRoadFile(
     resolved = candidate;
     break;
   }
-  const held = resolved || packaged ? [] : await inReferencedPackages(store, ref, document, filepath);
+  const { held, unread } = resolved || packaged ? { held: [], unread: [] } : await inReferencedPackages(store, ref, document, filepath);
   return {
     logic: { filepath, element: found.element },
     attribute: found.written,
@@ -185,5 +225,6 @@ export async function locateRoadFile(
     candidates,
     carlaTown: CARLA_TOWNS.includes(filepath.trim()),
     ...(held.length > 0 ? { heldByReferencedPackages: held } : {}),
+    ...(unread.length > 0 ? { unreadReferencedPackages: unread } : {}),
   };
 }
