@@ -345,13 +345,25 @@ describe('debug adapter through the Debug Adapter Protocol', function () {
     await launched;
     assert.equal(((await stop) as DebugProtocol.StoppedEvent).body.reason, 'breakpoint');
     const frames = (await client.stackTraceRequest({ threadId: 1 })).body.stackFrames;
-    assert.match(frames[0].name, /^ManeuverGroup CutInVehicle\.CutIn /);
+    // VS Code shows the first frame of a breakpoint's stop: the line the breakpoint is on.
+    assert.deepEqual([frames[0].name, frames[0].source?.path, frames[0].line], ['ManeuverGroup CutInVehicle.CutIn (running)', main, line]);
+    assert.deepEqual(
+      frames.slice(1, 3).map((frame) => [frame.name, frame.source?.path]),
+      [
+        ['Act EncounterAct', main],
+        ['Story EncounterStory', main],
+      ],
+    );
+    // The copy, where the simple scenario writes it, is among the running elements.
+    const simple = path.join(folder, 'lane_change.xosc');
+    const copy = frames.find((frame) => frame.name.startsWith('ManeuverGroup CutInVehicle.CutIn (running since '));
+    assert.deepEqual([copy?.source?.path, copy?.line], [simple, lineOf(simple, '<ManeuverGroup name="CutIn"')]);
     await Promise.all([client.continueRequest({ threadId: 1 }), client.waitForEvent('terminated')]);
   });
 
   it("stops on an intermediate main's ManeuverGroup line that imports a group, when the top main's copy of it starts", async () => {
     const folder = temporaryFolder();
-    const { top, inner } = writeNestedCutIn(folder);
+    const { top, inner, simple } = writeNestedCutIn(folder);
     const line = lineOf(inner, '<ManeuverGroup maximumExecutionCount="1" name="CutInVehicle">');
     const launched = client.launch({ type: 'modular2simple', request: 'launch', program: top, roadPath, duration: 30 });
     await client.waitForEvent('initialized');
@@ -363,7 +375,36 @@ describe('debug adapter through the Debug Adapter Protocol', function () {
     await launched;
     assert.equal(((await stop) as DebugProtocol.StoppedEvent).body.reason, 'breakpoint');
     const frames = (await client.stackTraceRequest({ threadId: 1 })).body.stackFrames;
-    assert.match(frames[0].name, /^ManeuverGroup Outer\.CutInVehicle\.CutIn /);
+    // The breakpoint's line first, then the top main's group that imports from the intermediate main.
+    assert.deepEqual(
+      frames.slice(0, 4).map((frame) => [frame.name, frame.source?.path, frame.line]),
+      [
+        ['ManeuverGroup Outer.CutInVehicle.CutIn (running)', inner, line],
+        ['ManeuverGroup Outer (imports CutInVehicle.CutIn from inner/main.xosc)', top, lineOf(top, 'name="Outer"')],
+        ['Act EncounterAct', top, lineOf(top, '<Act name="EncounterAct"')],
+        ['Story EncounterStory', top, lineOf(top, '<Story name="EncounterStory"')],
+      ],
+    );
+    const copy = frames.find((frame) => frame.name.startsWith('ManeuverGroup Outer.CutInVehicle.CutIn (running since '));
+    assert.deepEqual([copy?.source?.path, copy?.line], [simple, lineOf(simple, '<ManeuverGroup name="CutIn"')]);
+    // A stop inside the copy: its stack climbs from the simple scenario through each group that imports it.
+    const eventLine = lineOf(simple, '<Event name="ChangeLane"');
+    const next = client.waitForEvent('stopped');
+    await client.setBreakpointsRequest({ source: { path: simple }, breakpoints: [{ line: eventLine }] });
+    await client.continueRequest({ threadId: 1 });
+    await next;
+    const inside = (await client.stackTraceRequest({ threadId: 1 })).body.stackFrames;
+    assert.deepEqual(
+      inside.slice(0, 6).map((frame) => [frame.name, frame.source?.path, frame.line]),
+      [
+        ['Event ChangeLane (running)', simple, eventLine],
+        ['Maneuver CutInManeuver', simple, lineOf(simple, '<Maneuver name="CutInManeuver"')],
+        ['ManeuverGroup Outer.CutInVehicle.CutIn', simple, lineOf(simple, '<ManeuverGroup name="CutIn"')],
+        ['ManeuverGroup CutInVehicle (imports CutIn from lane_change.xosc)', inner, line],
+        ['ManeuverGroup Outer (imports CutInVehicle.CutIn from inner/main.xosc)', top, lineOf(top, 'name="Outer"')],
+        ['Act EncounterAct', top, lineOf(top, '<Act name="EncounterAct"')],
+      ],
+    );
     await Promise.all([client.continueRequest({ threadId: 1 }), client.waitForEvent('terminated')]);
   });
 

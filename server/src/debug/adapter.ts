@@ -18,7 +18,7 @@ import * as path from 'node:path';
 import type { Writable } from 'node:stream';
 import { DEBUG_STATE_EVENT, DebugState } from '../../../common/src/debugState';
 import { Flattener } from '../core/flatten';
-import { MappedElement } from '../core/flatten/storyboardMap';
+import { ImportPlace, MappedElement } from '../core/flatten/storyboardMap';
 import { Problem } from '../core/problems';
 import { roadFolders } from '../core/semantics/roadFiles';
 import { childRef, diskRef, displayRef, ScenarioStore, SourceRef, splitScenarioPath } from '../core/sources';
@@ -95,6 +95,8 @@ interface Stop {
   description: string;
   /** The element the stop is about: frame 0. */
   element?: MappedElement;
+  /** For a breakpoint on a ManeuverGroup that imports the element: that group, shown as frame 0 (the breakpoint's line). */
+  importedAt?: ImportPlace;
   event?: StoryboardEvent;
   /** Conditions that fired in the stopping step, for "why it fired". */
   firings: StoryboardEvent[];
@@ -139,7 +141,7 @@ export class ScenarioDebugSession extends DebugSession {
   private pauseRequested = false;
   private running = false;
   private stopped: Stop | undefined;
-  private frames: { element: MappedElement | undefined; label: string }[] = [];
+  private frames: { place: Pick<MappedElement, 'source' | 'range'> | undefined; label: string }[] = [];
   private variableHandles = new Map<number, () => DebugProtocol.Variable[]>();
   private sourceTexts = new Map<number, string>();
   private terminated = false;
@@ -622,18 +624,23 @@ export class ScenarioDebugSession extends DebugSession {
     const firings = events.filter((event) => event.type === 'Condition');
     const ids: number[] = [];
     let stopEvent: StoryboardEvent | undefined;
+    let stopImportedAt: ImportPlace | undefined;
     const notes: string[] = [];
-    const hits: { breakpoint: LineBreakpoint | FunctionBreakpoint; event: StoryboardEvent }[] = [];
+    const hits: { breakpoint: LineBreakpoint | FunctionBreakpoint; event: StoryboardEvent; importedAt?: ImportPlace }[] = [];
+    const map = simulation.scenario.map;
     for (const event of events) {
       if (event.state !== 'running' && event.state !== 'true') continue;
-      const candidates = event.type === 'Condition' ? simulation.scenario.map.conditionsNamed(event.name) : [];
-      for (const list of this.lineBreakpoints.values())
+      const candidates = event.type === 'Condition' ? map.conditionsNamed(event.name) : [];
+      for (const [key, list] of this.lineBreakpoints)
         for (const breakpoint of list) {
-          // A condition esmini names only by name: any copy of it on the breakpoint's line.
-          const hit =
-            (event.mapped && breakpoint.elements.includes(event.mapped)) ||
-            candidates.some((candidate) => breakpoint.elements.includes(candidate));
-          if (hit) hits.push({ breakpoint, event });
+          const mapped = event.mapped;
+          if (mapped && breakpoint.elements.includes(mapped)) {
+            const place = map.placeAtLine(mapped, (ref) => this.sourceKey(ref) === key, breakpoint.line);
+            hits.push({ breakpoint, event, importedAt: place && place !== mapped ? (place as ImportPlace) : undefined });
+          } else if (candidates.some((candidate) => breakpoint.elements.includes(candidate))) {
+            // A condition esmini names only by name: any copy of it on the breakpoint's line.
+            hits.push({ breakpoint, event });
+          }
         }
       for (const breakpoint of this.functionBreakpoints)
         if (breakpoint.name !== undefined && breakpoint.name === event.name) hits.push({ breakpoint, event });
@@ -641,12 +648,14 @@ export class ScenarioDebugSession extends DebugSession {
     if (hits.length > 0) {
       // Conditions weighed, and the stop made, at the step's start, where esmini started the element (Simulation.holdStepStart).
       simulation.holdStepStart();
-      for (const { breakpoint, event } of hits) {
+      for (const { breakpoint, event, importedAt } of hits) {
         const verdict = this.shouldStop(simulation, breakpoint);
         if (verdict.note) notes.push(verdict.note);
         if (!verdict.stop) continue;
         ids.push(breakpoint.id);
-        stopEvent ??= event;
+        if (stopEvent) continue;
+        stopEvent = event;
+        stopImportedAt = importedAt;
       }
       // No stop: esmini's state now again, the step's end.
       if (ids.length === 0) simulation.release();
@@ -666,6 +675,7 @@ export class ScenarioDebugSession extends DebugSession {
       reason: 'breakpoint',
       description: `${describeEvent(stopEvent)}${note}`,
       element: stopEvent.mapped,
+      importedAt: stopImportedAt,
       event: stopEvent,
       firings,
       breakpointIds: ids,
@@ -770,17 +780,27 @@ export class ScenarioDebugSession extends DebugSession {
       const simulation = this.simulation;
       this.frames = [];
       const seen = new Set<string>();
-      const push = (element: MappedElement | undefined, label: string, key: string) => {
+      const push = (place: Pick<MappedElement, 'source' | 'range'> | undefined, label: string, key: string) => {
         if (seen.has(key)) return;
         seen.add(key);
-        this.frames.push({ element, label });
+        this.frames.push({ place, label });
       };
-      for (let element = this.stopped?.element; element; element = element.parent)
-        push(
-          element,
-          `${element.kind} ${element.name}${element === this.stopped?.element && this.stopped.event ? ` (${this.stopped.event.state})` : ''}`,
-          element.path,
-        );
+      const stopped = this.stopped;
+      const label = (element: MappedElement) =>
+        `${element.kind} ${element.name}${element === stopped?.element && stopped.event ? ` (${stopped.event.state})` : ''}`;
+      // A stop on the line of a group that imports the element shows that line first, as its breakpoint is there; the
+      // copy itself, where its source writes it, is then among the running elements.
+      const shownLevel = stopped?.importedAt ? (stopped.element?.importedAt ?? []).indexOf(stopped.importedAt) : -1;
+      for (let element = stopped?.element; element; element = element.parent) {
+        const fromLevel = element === stopped?.element && shownLevel >= 0 ? shownLevel : -1;
+        if (fromLevel < 0) push(element, label(element), element.path);
+        // A copy of an imported group: each group whose ScenarioReference imports it, as a call's callers.
+        (element.importedAt ?? []).forEach((place, level) => {
+          const key = `${element.path} imported at ${level}`;
+          if (level === fromLevel) push(place, label(element), key);
+          else if (level > fromLevel) push(place, `ManeuverGroup ${place.name} (imports ${place.imports})`, key);
+        });
+      }
       if (simulation) {
         // Then every other running element, the deepest first: the storyboard path of what runs.
         const running = simulation
@@ -788,11 +808,11 @@ export class ScenarioDebugSession extends DebugSession {
           .sort((a, b) => b.path.split('::').length - a.path.split('::').length || a.path.localeCompare(b.path));
         for (const item of running) push(item.mapped, `${item.type} ${item.name} (running since ${fixed(item.since)} s)`, item.path);
       }
-      if (this.frames.length === 0) this.frames.push({ element: undefined, label: `Storyboard at ${fixed(simulation?.time)} s` });
+      if (this.frames.length === 0) this.frames.push({ place: undefined, label: `Storyboard at ${fixed(simulation?.time)} s` });
       const frames = this.frames.map((frame, index) => {
-        const source = frame.element ? this.sourceOf(frame.element.source) : undefined;
-        const line = frame.element ? this.convertDebuggerLineToClient(frame.element.range.start.line) : 0;
-        const column = frame.element ? this.convertDebuggerColumnToClient(frame.element.range.start.character) : 0;
+        const source = frame.place ? this.sourceOf(frame.place.source) : undefined;
+        const line = frame.place ? this.convertDebuggerLineToClient(frame.place.range.start.line) : 0;
+        const column = frame.place ? this.convertDebuggerColumnToClient(frame.place.range.start.character) : 0;
         return new StackFrame(index, frame.label, source, line, column);
       });
       response.body = { stackFrames: frames, totalFrames: frames.length };

@@ -47,6 +47,8 @@ export interface ConditionSpec {
 export interface ImportPlace {
   /** The importing group's name as written there. */
   name: string;
+  /** What its reference imports: `CutIn from lane_change.xosc`. */
+  imports: string;
   source: SourceRef;
   range: Range;
   lastTagLine: number;
@@ -185,6 +187,7 @@ export class StoryboardMap {
       const outer = insertion.outerGroup.element;
       places.unshift({
         name: attribute(outer, 'name')?.value ?? '',
+        imports: `${insertion.reference.name} from ${insertion.link.info.fileName}`,
         source: source.ref,
         range: document.lines.range(outer.start, outer.nameEnd),
         lastTagLine: document.lines.range(outer.startTagEnd - 1, outer.startTagEnd - 1).start.line,
