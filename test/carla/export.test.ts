@@ -375,6 +375,7 @@ describe('export --target carla, round trip in esmini', function () {
     'Event/@maximumExecutionCount',
     'Condition/@conditionEdge',
     'Storyboard/StopTrigger',
+    'SpeedActionDynamics/@dynamicsDimension',
     'Vehicle',
     'Pedestrian',
     'ScenarioObject',
@@ -924,6 +925,54 @@ describe('export --target carla, what it prints', () => {
     assert.ok(
       listed.every((loss) => loss.column >= 1),
       result.stderr,
+    );
+  });
+});
+
+describe('export --target carla, a SpeedAction rate', () => {
+  let out: string;
+  before(function () {
+    requireCorpus(this);
+  });
+  inTemporaryFolderEach('m2s-carla-rate-', (folder) => (out = folder));
+
+  it("is listed as a loss: ScenarioRunner reads it as a duration, so esmini's cut-in.xosc's negative rate ends its action at the first tick (issue 27)", async () => {
+    const original = path.join(openscenarioDir, 'esmini', 'cut-in.xosc');
+    const negative = await exportFile(original, path.join(out, 'negative.xosc'), ESMINI_SAMPLE_OPTIONS);
+    assert.equal(negative.code, 0, negative.stderr);
+    const rates = (result: Exported) => result.report.losses.filter((loss) => loss.element === 'SpeedActionDynamics/@dynamicsDimension');
+    const line =
+      fs
+        .readFileSync(original, 'utf8')
+        .split('\n')
+        .findIndex((text) => text.includes('value="-4" dynamicsDimension="rate"')) + 1;
+    assert.ok(line > 0);
+    assert.deepEqual(
+      rates(negative).map(({ kind, line: at, what }) => ({ kind, line: at, what })),
+      [
+        {
+          kind: 'approximated',
+          line,
+          what: 'the rate -4 is kept as written, but runs as a duration of -4 s: the action ends at its first tick (a negative rate)',
+        },
+      ],
+    );
+    assert.match(
+      rates(negative)[0].carla,
+      /^ScenarioRunner reads a SpeedAction's rate as a duration in seconds: .* \(srunner\/tools\/openscenario_parser\.py:1314-1320, srunner\/scenariomanager\/scenarioatomics\/atomic_behaviors\.py:516, 560\)$/,
+    );
+    assert.match(negative.stderr, /cut-in\.xosc:\d+:\d+: warning: <SpeedActionDynamics\/@dynamicsDimension> the rate -4 /);
+    // A positive rate is read as a duration too; the times stay as they are.
+    const positive = path.join(out, 'cut-in.xosc');
+    fs.writeFileSync(
+      positive,
+      fs.readFileSync(original, 'utf8').replace('value="-4" dynamicsDimension="rate"', 'value="4" dynamicsDimension="rate"'),
+    );
+    const exported = await exportFile(positive, path.join(out, 'positive.xosc'), ESMINI_SAMPLE_OPTIONS);
+    assert.equal(exported.code, 0, exported.stderr);
+    assert.deepEqual(
+      rates(exported).map((loss) => loss.what),
+      ['the rate 4 is kept as written, but runs as a duration of 4 s'],
     );
   });
 });

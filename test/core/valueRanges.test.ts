@@ -410,6 +410,24 @@ describe('value ranges in a schema-valid scenario', () => {
     assert.doesNotMatch(timed.message, /esmini/);
   });
 
+  it("with the simulator carla, a negative speed rate is worded for ScenarioRunner, which reads it as a duration (issue 27: it was esmini's reading); a lane change's, whose reading is not recorded, says so", async () => {
+    const negative = scenario().replace('value="4"/>', 'value="-4"/>');
+    const [speed] = await outOfRange(negative, 'carla');
+    assert.equal(speed.severity, 'warning');
+    assert.match(
+      speed.message,
+      /\(RA Consulting's checker reports it as an error\); CARLA ScenarioRunner reads a SpeedAction's rate as a duration in seconds: .* ends the action when that many seconds have passed, at its first tick for a negative rate \(srunner\/tools\/openscenario_parser\.py:1314-1320, srunner\/scenariomanager\/scenarioatomics\/atomic_behaviors\.py:516, 560\)$/,
+    );
+    assert.doesNotMatch(speed.message, /esmini/);
+    const laneChange = bare('1.0', 'LaneChangeActionDynamics', 'value', '-4').replace(
+      'value="-4"',
+      'dynamicsShape="linear" value="-4" dynamicsDimension="rate"',
+    );
+    const [lane] = await outOfRange(laneChange, 'carla');
+    assert.equal(lane?.severity, 'warning', JSON.stringify(lane));
+    assert.match(lane.message, /; what CARLA ScenarioRunner does with it is not recorded here; esmini takes the rate's magnitude/);
+  });
+
   it('a maxSteering in degrees (esmini uses it nowhere) and a negative lateral distance (esmini takes its magnitude) are warnings', async () => {
     const degrees = scenario().replace('maxSteering="0.5"', 'maxSteering="30"');
     const [steering] = await outOfRange(degrees);

@@ -20,7 +20,7 @@ describe('diagnostics: out-of-range', () => {
         value: -1,
         range: '[0..inf[',
         modelClass: 'Dist',
-        esminiReading: 'uses its magnitude',
+        reading: { by: 'esmini', text: 'uses its magnitude' },
       }),
       {
         severity: 'warning',

@@ -11,8 +11,10 @@ export interface OutOfRangeFacts {
   range: string;
   /** The class of the ASAM model that gives the range, where one does. */
   modelClass?: string;
-  /** How esmini reads the value, where it reads it with one meaning: then a warning. */
-  esminiReading?: string;
+  /** How the simulator checked reads the value (`by`: esmini, CARLA ScenarioRunner), where it runs it with one meaning: then a warning. */
+  reading?: { by: string; text: string };
+  /** The simulator checked when what it does with the value is not recorded: `reading` is then another's (esmini's), said as such. */
+  notRecordedFor?: string;
 }
 
 export function outOfRangeWording({
@@ -22,15 +24,17 @@ export function outOfRangeWording({
   written,
   range,
   modelClass,
-  esminiReading,
+  reading,
+  notRecordedFor,
 }: OutOfRangeFacts): ProblemWording<'out-of-range'> {
   const from = written === undefined ? '' : ` (from ${written})`;
   const model = modelClass ? ` (class ${modelClass} of the ASAM model)` : '';
-  const esmini = esminiReading === undefined ? '' : ` (RA Consulting's checker reports it as an error); esmini ${esminiReading}`;
+  const unknown = notRecordedFor === undefined ? '' : `what ${notRecordedFor} does with it is not recorded here; `;
+  const runs = reading === undefined ? '' : ` (RA Consulting's checker reports it as an error); ${unknown}${reading.by} ${reading.text}`;
   return {
-    severity: esminiReading === undefined ? 'error' : 'warning',
+    severity: reading === undefined ? 'error' : 'warning',
     code: 'out-of-range',
-    message: `${element} ${attribute} ${value}${from} is outside the standard's range ${range}${model}${esmini}`,
+    message: `${element} ${attribute} ${value}${from} is outside the standard's range ${range}${model}${runs}`,
   };
 }
 

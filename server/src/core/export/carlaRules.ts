@@ -9,6 +9,7 @@ import { pointAlongRoute, RouteWaypoint } from '../opendrive/route';
 import { baseName, SourceRef } from '../sources';
 import { Range } from '../text';
 import { CarlaRelease, SR_ATOMICS, SR_CONFIGURATION, SR_PARSER, SR_SCENARIO } from './carlaFacts';
+import { CARLA_FACTS } from '../profiles/carla';
 import {
   allNodes,
   ancestor,
@@ -905,6 +906,22 @@ function ignoredSemantics(tree: Node, context: RuleContext): void {
   );
 }
 
+/** A SpeedAction's rate is kept as written, and reported: ScenarioRunner reads it as a duration (CARLA_FACTS.speedRateAsDuration). */
+function speedRates(tree: Node, context: RuleContext): void {
+  const fact = CARLA_FACTS.speedRateAsDuration;
+  for (const dynamics of named(tree, 'SpeedActionDynamics')) {
+    if (attr(dynamics, 'dynamicsDimension') !== 'rate') continue;
+    const value = attr(dynamics, 'value') ?? '';
+    const negative = Number(value) < 0;
+    context.sink.approximated(
+      dynamics,
+      'SpeedActionDynamics/@dynamicsDimension',
+      `the rate ${value} is kept as written, but runs as a duration of ${value} s${negative ? ': the action ends at its first tick (a negative rate)' : ''}`,
+      `ScenarioRunner ${fact.does} (${fact.source})`,
+    );
+  }
+}
+
 /**
  * The Storyboard's StopTrigger is ignored but for `criteria_` conditions (SR_SCENARIO _create_test_criteria):
  * its groups are added to every Act's StopTrigger (ending every act ends the story), the original kept for criteria.
@@ -1150,6 +1167,7 @@ export const CARLA_RULES: readonly { name: string; apply: (tree: Node, context: 
   { name: 'traffic-signals', apply: trafficSignals },
   { name: 'conditions', apply: conditions },
   { name: 'ignored-semantics', apply: ignoredSemantics },
+  { name: 'speed-rates', apply: speedRates },
   { name: 'storyboard-stop', apply: storyboardStop },
   { name: 'renamed-values', apply: (tree) => renamedValues(tree) },
   { name: 'required-parts', apply: (tree) => requiredParts(tree) },

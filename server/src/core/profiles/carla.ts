@@ -275,6 +275,11 @@ export const CARLA_FACTS = {
     source: `${CONFIGURATION}:299, 321`,
     severity: 'warning',
   },
+  speedRateAsDuration: {
+    does: "reads a SpeedAction's rate as a duration in seconds: it hands the target speed to the actor's controller at once, which reaches it at its own pace, and ends the action when that many seconds have passed, at its first tick for a negative rate",
+    source: `${PARSER}:1314-1320, ${ATOMICS}:516, 560`,
+    severity: 'warning',
+  },
   noEgo: {
     does: 'runs the ScenarioObjects whose Property type is "ego_vehicle" as the ego; this scenario marks none',
     source: `${CONFIGURATION}:301-313, 420-421`,

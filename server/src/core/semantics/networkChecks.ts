@@ -214,9 +214,10 @@ export const valueRanges: SemanticCheck = (context) => {
         if (!value || inRange(value.value, range)) continue;
         within = false;
         const written = value.attr.value.trim() === String(value.value) ? undefined : value.attr.value.trim();
-        const when = range.esmini?.when;
-        const esmini =
-          range.esmini && (!when || textOf(context, element, when.attribute)?.text.trim() === when.value) ? range.esmini : undefined;
+        // Said for the simulator checked: ScenarioRunner's reading with carla where one is recorded, esmini's otherwise (named as such).
+        const carla = context.simulator === 'carla';
+        const known = carla && range.carla ? range.carla : range.esmini;
+        const applies = known && (!known.when || textOf(context, element, known.when.attribute)?.text.trim() === known.when.value);
         findings.push({
           ...at(element, value.attr),
           ...outOfRangeWording({
@@ -226,7 +227,12 @@ export const valueRanges: SemanticCheck = (context) => {
             written,
             range: rangeText(range),
             modelClass: range.modelClass,
-            esminiReading: esmini?.reading,
+            ...(applies && known
+              ? {
+                  reading: { by: known === range.carla ? 'CARLA ScenarioRunner' : 'esmini', text: known.reading },
+                  ...(carla && known !== range.carla ? { notRecordedFor: 'CARLA ScenarioRunner' } : {}),
+                }
+              : {}),
           }),
         });
       }

@@ -1,5 +1,6 @@
 import type { ProblemCode } from '../problems';
 import type { SchemaVersion } from '../schema/model';
+import { CARLA_FACTS } from '../profiles/carla';
 
 /**
  * The value ranges of numeric attributes, per OpenSCENARIO version, each as the ASAM OpenSCENARIO model
@@ -37,11 +38,13 @@ export interface ValueRange {
   /** A rule of its own checks this range, with a message of its own (core/semantics/networkChecks.ts). */
   checkedBy?: ProblemCode;
   /** How esmini reads a value outside the range with one clear meaning (read in its sources): a warning that says both (SPEC 12). */
-  esmini?: EsminiReading;
+  esmini?: SimulatorReading;
+  /** How CARLA's ScenarioRunner runs such a value (read in its sources), said instead of esmini's with the simulator carla. */
+  carla?: SimulatorReading;
 }
 
-export interface EsminiReading {
-  /** What esmini does with such a value, completing "esmini ...". */
+export interface SimulatorReading {
+  /** What the simulator does with such a value, completing "esmini ..." or "CARLA ScenarioRunner ...". */
   reading: string;
   /** Only when the element's attribute has this value. */
   when?: { attribute: string; value: string };
@@ -82,7 +85,7 @@ function versionsText(versions: readonly SchemaVersion[]): string {
   return versions.length > 1 ? `${versions[0]}-${versions[versions.length - 1]}` : versions[0];
 }
 
-interface RuleOptions extends Pick<ValueRange, 'checkedBy' | 'esmini'> {
+interface RuleOptions extends Pick<ValueRange, 'checkedBy' | 'esmini' | 'carla'> {
   /** Checked with other bounds than documented, and why. */
   checked?: { range: string; why: string };
 }
@@ -115,29 +118,36 @@ function rules(
 }
 
 // esmini 3.6 (EnvironmentSimulator/Modules/ScenarioEngine): ScenarioReader.cpp reads each of these, OSCPrivateAction.cpp runs them.
-const MAGNITUDE: EsminiReading = {
+const MAGNITUDE: SimulatorReading = {
   reading: 'uses the absolute value (ScenarioReader.cpp warns "Negative distance ... Using absolute value")',
 };
-const RATE_MAGNITUDE: EsminiReading = {
+const RATE_MAGNITUDE: SimulatorReading = {
   reading: "takes the rate's magnitude, its sign from the direction of the change (OSCPrivateAction.cpp TransitionDynamics::UpdateRate)",
+  when: { attribute: 'dynamicsDimension', value: 'rate' },
+};
+// ScenarioRunner 0.9.16 (../shared/carla): a dimension other than distance is a duration, which ChangeActorTargetSpeed compares with the time since it started.
+const SPEED_RATE_AS_DURATION: SimulatorReading = {
+  reading: `${CARLA_FACTS.speedRateAsDuration.does} (${CARLA_FACTS.speedRateAsDuration.source})`,
   when: { attribute: 'dynamicsDimension', value: 'rate' },
 };
 
 // esmini 3.6 clamps these into the standard's range when it reads them, and runs the scenario (SPEC 12: a warning that says so).
-const OVERRIDE_CLAMP: EsminiReading = {
+const OVERRIDE_CLAMP: SimulatorReading = {
   reading:
     'clamps it into [0..1] and runs (ScenarioReader.cpp OverrideControllerValueAction, OSCPrivateAction.cpp OverrideControlAction::RangeCheckAndErrorLog)',
 };
-const PRESSURE_CLAMP: EsminiReading = {
+const PRESSURE_CLAMP: SimulatorReading = {
   reading:
     'clamps it into [80000..120000] Pa, warning "Atmospheric pressure clamped", and runs (OSCEnvironment.cpp SetAtmosphericPressure)',
 };
-const TEMPERATURE_CLAMP: EsminiReading = {
+const TEMPERATURE_CLAMP: SimulatorReading = {
   reading: 'clamps it into [170..340] K, warning "Temperature clamped", and runs (OSCEnvironment.cpp SetTemperature)',
 };
 
 const AXLES = { modelClass: 'Axle', elements: ['FrontAxle', 'RearAxle', 'AdditionalAxle'] };
-const TRANSITION_DYNAMICS = { modelClass: 'TransitionDynamics', elements: ['LaneChangeActionDynamics', 'SpeedActionDynamics'] };
+// Each element of the class has its own simulator readings.
+const LANE_CHANGE_DYNAMICS = { modelClass: 'TransitionDynamics', elements: ['LaneChangeActionDynamics'] };
+const SPEED_DYNAMICS = { modelClass: 'TransitionDynamics', elements: ['SpeedActionDynamics'] };
 
 // Each documented range is the model's text of the last version listed; older models write the same bounds as `[0;PI]`, `[0..2PI]`, `[170...340]`.
 export const VALUE_RANGES: readonly ValueRange[] = [
@@ -215,7 +225,8 @@ export const VALUE_RANGES: readonly ValueRange[] = [
   ...rules('TrafficSinkAction', ['radius', 'rate'], '[0..inf[', ALL),
   ...rules('TrafficSourceAction', ['radius', 'rate', 'velocity'], '[0..inf[', ALL),
   ...rules('TrafficSwarmAction', ['innerRadius', 'semiMajorAxis', 'semiMinorAxis', 'velocity'], '[0..inf[', ALL),
-  ...rules(TRANSITION_DYNAMICS, ['value'], '[0..inf[', ALL, { esmini: RATE_MAGNITUDE }),
+  ...rules(LANE_CHANGE_DYNAMICS, ['value'], '[0..inf[', ALL, { esmini: RATE_MAGNITUDE }),
+  ...rules(SPEED_DYNAMICS, ['value'], '[0..inf[', ALL, { esmini: RATE_MAGNITUDE, carla: SPEED_RATE_AS_DURATION }),
   ...rules('TraveledDistanceCondition', ['value'], '[0..inf[', ALL),
   ...rules('VehicleCategoryDistributionEntry', ['weight'], '[0..inf[', ALL),
   ...rules('VehicleRoleDistributionEntry', ['weight'], '[0..inf[', FROM_1_2),
