@@ -2,6 +2,8 @@
 // breakpoint hit against esmini's own headless run of the same scenario at the same step, the pause latency from
 // a condition firing (esmini's callback, in the adapter) to the `stopped` event read by a DAP client, and F5's first
 // launch: the adapter's process started to the stop on a breakpoint (BENCH_DEBUG_LAUNCH_ONLY=1: that alone).
+// BENCH_DEBUG_ROAD=FILE: cut-in.xosc on that road instead of e6mini.xodr (the launch reads and checks it; on another
+// road CutInEvent may never start, so the launch's breakpoint is on OverTakerStartSpeedEvent, at 0.05 s).
 import { spawnSync } from 'node:child_process';
 import { existsSync, mkdtempSync, readdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { createRequire } from 'node:module';
@@ -43,7 +45,10 @@ function median(values) {
 // The same scenario twice, beside each other: as written, and ending at its first step (esmini's start-up and load
 // alone, subtracted from the full run to give esmini's stepping time).
 const folder = mkdtempSync(path.join(tmpdir(), 'm2s-bench-debugger-'));
-const text = readFileSync(scenario, 'utf8').replace('../xodr/e6mini.xodr', path.join(roadPath[0], 'e6mini.xodr'));
+const road = path.resolve(process.env.BENCH_DEBUG_ROAD ?? path.join(roadPath[0], 'e6mini.xodr'));
+if (!existsSync(road)) throw new Error(`BENCH_DEBUG_ROAD: ${road} is absent`);
+const text = readFileSync(scenario, 'utf8').replace('../xodr/e6mini.xodr', road);
+const launchEvent = process.env.BENCH_DEBUG_ROAD ? 'OverTakerStartSpeedEvent' : 'CutInEvent';
 const full = path.join(folder, 'cut-in.xosc');
 const loadOnly = path.join(folder, 'cut-in-load-only.xosc');
 writeFileSync(full, text);
@@ -225,7 +230,7 @@ async function pauseRun(afterMs, timeStep) {
  * @returns {Promise<{ startMs: number, loadMs: number, stopMs: number, totalMs: number, cpuMs: number }>}
  */
 async function firstLaunch() {
-  const eventLine = text.split('\n').findIndex((line) => line.includes('<Event name="CutInEvent"')) + 1;
+  const eventLine = text.split('\n').findIndex((line) => line.includes(`<Event name="${launchEvent}"`)) + 1;
   const started = now();
   const { client, adapterPid } = await startAdapter();
   try {
@@ -280,10 +285,10 @@ async function launchFigures() {
   const fmt = (/** @type {number} */ n) => n.toFixed(1).padStart(7);
   /** @param {(launch: typeof first) => number} pick */
   const later = (pick) => (rest.length > 0 ? fmt(median(rest.map(pick))) : '      -');
-  console.log('  F5 to the first stop (a breakpoint on CutInEvent), ms:       first  later (median)');
+  console.log(`  F5 to the first stop (a breakpoint on ${launchEvent}, road ${path.basename(road)}), ms:  first  later (median)`);
   console.log(`    adapter started to its initialize response          ${fmt(first.startMs)}  ${later((launch) => launch.startMs)}`);
   console.log(`    launch to initialized (flatten, esmini's load)      ${fmt(first.loadMs)}  ${later((launch) => launch.loadMs)}`);
-  console.log(`    configurationDone to stopped (6.5 s simulated)      ${fmt(first.stopMs)}  ${later((launch) => launch.stopMs)}`);
+  console.log(`    configurationDone to stopped                        ${fmt(first.stopMs)}  ${later((launch) => launch.stopMs)}`);
   console.log(`    in all (wall)                                       ${fmt(first.totalMs)}  ${later((launch) => launch.totalMs)}`);
   console.log(`    CPU of the adapter's two processes until the stop   ${fmt(first.cpuMs)}  ${later((launch) => launch.cpuMs)}`);
 }

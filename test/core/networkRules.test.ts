@@ -3,7 +3,7 @@ import * as path from 'node:path';
 import { Problem } from '../../server/src/core/problems';
 import { ruleIdOf } from '../../server/src/core/rules';
 import { analyzeDocument, CatalogLoader, semanticProblems } from '../../server/src/core/semantics';
-import { diskRef, ScenarioStore } from '../../server/src/core/sources';
+import { diskRef, nodeFileSystem, ScenarioStore } from '../../server/src/core/sources';
 import { parseXml } from '../../server/src/core/xml';
 import { roadScenario } from '../support/fixtures';
 import { temporaryWorkspace } from '../support/workspace';
@@ -115,6 +115,30 @@ describe('road-network and value-range rules', () => {
       );
       assert.deepEqual(problems, [], name);
     }
+  });
+
+  it("reads the road file's signals only for a scenario that sets a signal's state", async () => {
+    const analyze = async (text: string) => {
+      const root = temporaryWorkspace({ 'scenario.xosc': text, 'road.xodr': ROAD });
+      const reads: string[] = [];
+      const host = {
+        ...nodeFileSystem,
+        readFile: (file: string, maxBytes?: number) => (reads.push(file), nodeFileSystem.readFile(file, maxBytes)),
+      };
+      const store = new ScenarioStore({ scenarioPath: [], root, host });
+      const semantics = await analyzeDocument(diskRef(path.join(root, 'scenario.xosc')), parseXml(text), new CatalogLoader(store), false);
+      return { semantics, roadReads: reads.filter((file) => file.endsWith('road.xodr')).length };
+    };
+    const without = await analyze(scenario({}));
+    assert.equal(
+      without.semantics.roadFile?.resolved,
+      path.join(path.dirname(without.semantics.ref.disk), 'road.xodr'),
+      'the road is found',
+    );
+    assert.deepEqual([without.roadReads, without.semantics.road], [0, undefined], 'and not read');
+    const withAction = await analyze(scenario({ actions: signalAction('999') }));
+    assert.equal(withAction.roadReads, 1);
+    assert.deepEqual([...(withAction.semantics.road?.signalIds ?? [])].sort(), ['101', '102']);
   });
 
   it('no road file to read (missing, not OpenDRIVE): the signal rule says nothing', async () => {

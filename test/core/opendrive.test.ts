@@ -1,6 +1,16 @@
 import * as assert from 'node:assert/strict';
 import { evaluateGeometry, Geometry } from '../../server/src/core/opendrive/geometry';
-import { laneBorderPoint, laneCenterT, parseOpenDrive, referencePose, roadPoint } from '../../server/src/core/opendrive/road';
+import {
+  laneBorderPoint,
+  laneCenterT,
+  openDriveSignals,
+  parseOpenDrive,
+  referencePose,
+  roadPoint,
+} from '../../server/src/core/opendrive/road';
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import { esminiRoads } from '../support/esmini';
 
 const close = (actual: number, expected: number, tolerance = 1e-6, what = '') =>
   assert.ok(Math.abs(actual - expected) <= tolerance, `${what} ${actual} is not within ${tolerance} of ${expected}`);
@@ -188,5 +198,33 @@ describe('core: OpenDRIVE lanes', () => {
     assert.match(network.problems[0].message, /unsupported geometry <bogus>/);
     assert.match(parseOpenDrive('<OpenSCENARIO/>').problems[0].message, /not an OpenDRIVE file/);
     assert.ok(parseOpenDrive('<OpenDRIVE><road id="1"').problems.length > 0);
+  });
+});
+
+describe('core: OpenDRIVE signals read alone', () => {
+  /** What the signal rule took from parseOpenDrive before openDriveSignals: the same for every text. */
+  const fromWholeParse = (text: string) => {
+    const network = parseOpenDrive(text);
+    return { hasRoads: network.roads.length > 0, signalIds: network.signalIds };
+  };
+  const withSignals = `<?xml version="1.0"?><OpenDRIVE><header/>
+  <road id="1" length="10" junction="-1"><planView><geometry s="0" x="0" y="0" hdg="0" length="10"><line/></geometry></planView>
+    <signals><signal id="101" s="5" t="-3"/><signal id="" s="6"/><signal s="7"/></signals>
+    <objects><signal id="not-a-signal"/></objects></road>
+  <road id="2" length="10" junction="-1"><signals><signal id="&amp;7" s="1"/></signals><signals><signal id="second-list"/></signals></road>
+  <controller id="7"><control signalId="102"/><control signalId="101"/></controller>
+  <junction id="9"><controller id="7"/></junction>
+</OpenDRIVE>`;
+
+  it("gives parseOpenDrive's signal ids and whether it read roads, on esmini's roads and on broken or foreign texts", () => {
+    const roads = fs.existsSync(esminiRoads) ? fs.readdirSync(esminiRoads).filter((name) => name.endsWith('.xodr')) : [];
+    const texts = roads.map((name) => fs.readFileSync(path.join(esminiRoads, name), 'utf8'));
+    texts.push(withSignals, '<OpenSCENARIO><road id="1"/></OpenSCENARIO>', '<OpenDRIVE/>', '', 'not xml', '<OpenDRIVE><road id="1"');
+    // Cut anywhere, as a file being written: the tolerant parser's tree decides for both alike.
+    for (let end = 0; end < withSignals.length; end += 7) texts.push(withSignals.slice(0, end));
+    for (const text of texts) assert.deepEqual(openDriveSignals(text), fromWholeParse(text), text.slice(0, 200));
+    // A road's first <signals> list, as parseOpenDrive reads it; ids decoded; an empty id is none.
+    assert.deepEqual([...openDriveSignals(withSignals).signalIds].sort(), ['&7', '101', '102']);
+    assert.ok(texts.length > 20 && roads.length > 0, "esmini's roads were read");
   });
 });

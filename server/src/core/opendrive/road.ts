@@ -266,6 +266,26 @@ function textOf(text: string, element: XmlElement): string | undefined {
   return (cdata ? cdata[1] : inner).trim() || undefined;
 }
 
+/** Every signal id an OpenDRIVE root declares (RoadNetwork.signalIds). */
+function signalIdsOf(root: XmlElement | undefined): Set<string> {
+  const signalIds = new Set<string>();
+  for (const road of childrenNamed(root, 'road'))
+    for (const signal of childrenNamed(childrenNamed(road, 'signals')[0], 'signal')) signalIds.add(attributeValue(signal, 'id') ?? '');
+  for (const controller of childrenNamed(root, 'controller'))
+    for (const control of childrenNamed(controller, 'control')) signalIds.add(attributeValue(control, 'signalId') ?? '');
+  signalIds.delete('');
+  return signalIds;
+}
+
+/**
+ * What parseOpenDrive gives of a file's signals, without reading its roads' geometry and lanes (half its time on
+ * esmini's Town05.xodr): whether it is an OpenDRIVE file with roads, and its signal ids.
+ */
+export function openDriveSignals(text: string): { hasRoads: boolean; signalIds: Set<string> } {
+  const root = parseXml(text).root;
+  return { hasRoads: root?.name === 'OpenDRIVE' && childrenNamed(root, 'road').length > 0, signalIds: signalIdsOf(root) };
+}
+
 /** Reads an OpenDRIVE file's roads. Problems are collected, never thrown: a partial network still draws. */
 export function parseOpenDrive(text: string): RoadNetwork {
   const document = parseXml(text);
@@ -277,12 +297,7 @@ export function parseOpenDrive(text: string): RoadNetwork {
   if (document.root?.name !== 'OpenDRIVE')
     problems.push({ message: 'not an OpenDRIVE file: the root element is not <OpenDRIVE>', offset: document.root?.start ?? 0 });
   else for (const element of childrenNamed(document.root, 'road')) roads.push(roadOf(element, problems));
-  const signalIds = new Set<string>();
-  for (const road of childrenNamed(document.root, 'road'))
-    for (const signal of childrenNamed(childrenNamed(road, 'signals')[0], 'signal')) signalIds.add(attributeValue(signal, 'id') ?? '');
-  for (const controller of childrenNamed(document.root, 'controller'))
-    for (const control of childrenNamed(controller, 'control')) signalIds.add(attributeValue(control, 'signalId') ?? '');
-  signalIds.delete('');
+  const signalIds = signalIdsOf(document.root);
   const junctions = new Map(
     childrenNamed(document.root, 'junction').map((element) => [attributeValue(element, 'id') ?? '', junctionOf(element)]),
   );

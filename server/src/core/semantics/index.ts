@@ -38,6 +38,7 @@ import { carlaFilesOf } from './carlaFiles';
 import { assignmentsOf, CatalogLoader, CatalogReferenceResolution, CatalogResolution } from './catalogs';
 import { Finding, runChecks, SemanticContext } from './checks';
 import { Reading } from './evaluator';
+import { elementsNamed } from './elementIndex';
 import { roadSignalsOf } from './roadNetwork';
 import { locateRoadFile } from './roadFiles';
 import { Declaration, Evaluator, ParameterUse, Scope, SemanticModel, semanticModelOf, ValueResult, visibleDeclarations } from './model';
@@ -69,7 +70,9 @@ export async function analyzeDocument(
     location.directories.flatMap((directory) => (directory.packageRef ? [] : [directory.directory])),
   );
   const roadFile = await locateRoadFile(loader.store, ref, document, evaluator, catalogFolders);
-  const road = await roadSignalsOf(loader.store, roadFile);
+  // The road's signals serve the signal rule alone, which reads them for a TrafficSignalStateAction: a scenario that
+  // sets no signal's state does not parse its road (tens of ms for a town's, at every check and debug launch).
+  const road = elementsNamed(model, 'TrafficSignalStateAction').length > 0 ? await roadSignalsOf(loader.store, roadFile) : undefined;
   const carla = simulator === 'carla' ? await carlaSemantics(loader, ref, model, carlaRelease) : {};
   return { ref, model, evaluator, catalogs, modular, simulator, ...carla, ...(roadFile ? { roadFile } : {}), ...(road ? { road } : {}) };
 }

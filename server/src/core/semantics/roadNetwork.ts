@@ -1,4 +1,4 @@
-import { MAX_ROAD_FILE_BYTES, parseOpenDrive } from '../opendrive/road';
+import { MAX_ROAD_FILE_BYTES, openDriveSignals } from '../opendrive/road';
 import { foundRoadName, readFoundRoad, RoadFileLookup } from './roadFiles';
 import { ScenarioStore } from '../sources';
 import { decodeUtf8 } from '../text';
@@ -58,9 +58,9 @@ async function readRoadSignals(store: ScenarioStore, road: RoadFileLookup, file:
   const summaries = memoryOf(store).summaries;
   const cached = summaries.get(file);
   if (cached?.hash === hash) return cached.signals;
-  const network = parseOpenDrive(decodeUtf8(bytes));
+  const network = openDriveSignals(decodeUtf8(bytes));
   // Not an OpenDRIVE file, or one with no roads: nothing to resolve a signal against.
-  const signals = network.roads.length > 0 ? { file, signalIds: network.signalIds } : undefined;
+  const signals = network.hasRoads ? { file, signalIds: network.signalIds } : undefined;
   summaries.delete(file);
   if (signals) summaries.set(file, { hash, signals });
   while (summaries.size > SUMMARY_LIMIT) summaries.delete(summaries.keys().next().value as string);
