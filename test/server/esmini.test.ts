@@ -11,6 +11,7 @@ import { lastCsvTime, makeRunFolder, runEsminiProcess } from '../../server/src/e
 import { EsminiRunOptions, EsminiRunResult, removeRunFolder, runScenario } from '../../server/src/esmini/run';
 import { TIME_LIMIT_CONDITION, withTimeLimit } from '../../server/src/esmini/timeLimit';
 import { parseXml } from '../../server/src/core/xml';
+import { catalogFile } from '../support/fixtures';
 import { esminiBinary, tracksOf, readEsminiCsv, requireEsmini, esminiCatalogs, esminiRoads } from '../support/esmini';
 import { libraryDir, repoRoot, requireCorpus } from '../support/paths';
 import { listFiles } from '../support/workspace';
@@ -386,13 +387,12 @@ describe('esmini: runs (the simulator built by the test setup)', function () {
     assert.match(lineOf(simple.disk, error.range.start.line), /<LaneChangeActionDynamics /);
   });
 
-  it('finds roads and catalogs as the scenario names them, relative to its own folder', async function () {
-    requireEsmini(this);
-    const root = examplesCopy();
+  /** The examples' lane_change.xosc in `root` on roads/straight.xodr, its adversary a car_red of catalogs/vehicles, placed by lane positions. */
+  function plainLaneChange(root: string): string {
     fs.mkdirSync(path.join(root, 'roads'));
     fs.copyFileSync(path.join(esminiRoads, 'straight_500m.xodr'), path.join(root, 'roads', 'straight.xodr'));
     fs.cpSync(path.join(esminiCatalogs, 'Vehicles'), path.join(root, 'catalogs', 'vehicles'), { recursive: true });
-    const text = fs
+    return fs
       .readFileSync(path.join(root, 'lane_change.xosc'), 'utf8')
       .replace(
         '<CatalogLocations/>',
@@ -407,6 +407,12 @@ describe('esmini: runs (the simulator built by the test setup)', function () {
         /<Init>[\s\S]*?<\/Init>/,
         '<Init><Actions><Private entityRef="ego"><PrivateAction><TeleportAction><Position><LanePosition roadId="1" laneId="-1" s="50" offset="0"/></Position></TeleportAction></PrivateAction></Private><Private entityRef="adversary"><PrivateAction><TeleportAction><Position><LanePosition roadId="1" laneId="-1" s="20" offset="0"/></Position></TeleportAction></PrivateAction></Private></Actions></Init>',
       );
+  }
+
+  it('finds roads and catalogs as the scenario names them, relative to its own folder', async function () {
+    requireEsmini(this);
+    const root = examplesCopy();
+    const text = plainLaneChange(root);
     fs.writeFileSync(path.join(root, 'plain.xosc'), text);
     const result = await run(new ScenarioStore({ root }), path.join(root, 'plain.xosc'), { duration: 3, roadPath: [] });
     assert.equal(
@@ -425,6 +431,62 @@ describe('esmini: runs (the simulator built by the test setup)', function () {
     const [error] = errorsOf(wrong);
     assert.ok(error?.located, wrong.log);
     assert.match(lineOf(error.source.disk, error.range.start.line), /roadId="7"/);
+  });
+
+  it("places esmini's messages about a controller on the controller that the scenario gives, inline or from a catalog, and names no private folder (issue 27: esmini's cut-in_sumo.xosc, at 1:1, naming the run's folder)", async function () {
+    requireEsmini(this);
+    const root = examplesCopy();
+    const sumo =
+      '<Controller name="sumo"><ParameterDeclarations><ParameterDeclaration name="CfgFile" parameterType="string" value="../sumo_inputs/e6mini.sumocfg"/></ParameterDeclarations>' +
+      '<Properties><Property name="esminiController" value="SumoController"/><File filepath="$CfgFile"/></Properties></Controller>';
+    fs.mkdirSync(path.join(root, 'catalogs', 'controllers'), { recursive: true });
+    fs.writeFileSync(path.join(root, 'catalogs', 'controllers', 'ControllerCatalog.xosc'), catalogFile('ControllerCatalog', sumo));
+    const base = plainLaneChange(root).replace(
+      '<CatalogLocations><VehicleCatalog>',
+      '<CatalogLocations><ControllerCatalog><Directory path="catalogs/controllers"/></ControllerCatalog><VehicleCatalog>',
+    );
+    for (const [name, controller, attribute] of [
+      ['inline.xosc', sumo, 'name="sumo"'],
+      ['catalog.xosc', '<CatalogReference catalogName="ControllerCatalog" entryName="sumo"/>', 'entryName="sumo"'],
+    ]) {
+      const text = base.replace(
+        '<CatalogReference catalogName="VehicleCatalog" entryName="car_red"/>',
+        `<CatalogReference catalogName="VehicleCatalog" entryName="car_red"/><ObjectController>${controller}</ObjectController>`,
+      );
+      assert.notEqual(text, base);
+      fs.writeFileSync(path.join(root, name), text);
+      const result = await run(new ScenarioStore({ root }), path.join(root, name), { duration: 1, roadPath: [] });
+      const errors = errorsOf(result);
+      assert.deepEqual(
+        errors.map((error) => error.message),
+        [
+          `Failed to localize controller file ../sumo_inputs/e6mini.sumocfg, also tried ${path.join(path.dirname(root), 'sumo_inputs', 'e6mini.sumocfg')}`,
+          'Unsupported controller type: SumoController. Falling back to default controller',
+        ],
+        name,
+      );
+      for (const error of errors) {
+        assert.ok(error.located, `${name}: ${error.message}`);
+        assert.equal(error.source.disk, path.join(root, name));
+        const line = lineOf(error.source.disk, error.range.start.line);
+        assert.equal(line.slice(error.range.start.character - attribute.indexOf('"') - 1).startsWith(attribute), true, `${name}: ${line}`);
+      }
+    }
+    // Beside the scenario, the file is there: esmini, running a copy elsewhere, missed it, and the message says so.
+    fs.mkdirSync(path.join(path.dirname(root), 'sumo_inputs'), { recursive: true });
+    const config = path.join(path.dirname(root), 'sumo_inputs', 'e6mini.sumocfg');
+    fs.writeFileSync(config, '<configuration/>');
+    try {
+      const result = await run(new ScenarioStore({ root }), path.join(root, 'inline.xosc'), { duration: 1, roadPath: [] });
+      assert.match(
+        errorsOf(result)[0]?.message ?? '',
+        new RegExp(
+          `also tried ${config.replace(/[.\/]/g, '\\$&')} \\[${config.replace(/[.\/]/g, '\\$&')} exists: esmini ran a copy of the scenario in a private folder`,
+        ),
+      );
+    } finally {
+      fs.rmSync(path.dirname(config), { recursive: true, force: true });
+    }
   });
 
   it('stops a scenario whose own StopTrigger never fires at the time limit', async function () {

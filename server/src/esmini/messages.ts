@@ -1,3 +1,5 @@
+import * as fs from 'node:fs';
+import * as path from 'node:path';
 import { FlatSource, originOf } from '../core/flatten';
 import { PARAMETER_ATTRIBUTES } from '../core/model';
 import { Evaluator, semanticModelOf } from '../core/semantics';
@@ -34,10 +36,13 @@ interface Target {
 /** An attribute's value as esmini reads it: `$parameters` and `${...}` evaluated, else as written. */
 type ValueOf = (element: XmlElement, name: string) => string | undefined;
 
+/** The Controller an ObjectController's or AssignControllerAction's child stands for: itself inline, or the catalog entry a CatalogReference names. */
+type ControllerOf = (element: XmlElement) => XmlElement | undefined;
+
 interface MessageRule {
   pattern: RegExp;
   /** Every element the message can be about, in document order; the n-th message takes the n-th one. */
-  targets: (root: XmlElement, match: RegExpExecArray, valueOf: ValueOf) => Target[];
+  targets: (root: XmlElement, match: RegExpExecArray, valueOf: ValueOf, controllerOf: ControllerOf) => Target[];
   severity?: 'error' | 'warning';
   note?: string;
 }
@@ -64,8 +69,48 @@ function ancestorNamed(element: XmlElement, name: string): XmlElement | undefine
   return undefined;
 }
 
+/** Each controller the scenario gives an entity (ObjectController, AssignControllerAction), where it is written and the Controller it stands for. */
+function controllersOf(root: XmlElement, controllerOf: ControllerOf): { at: Target; controller: XmlElement | undefined }[] {
+  return allElements(root)
+    .filter((element) => element.name === 'ObjectController' || element.name === 'AssignControllerAction')
+    .flatMap((holder) => holder.children.filter((child) => child.name === 'Controller' || child.name === 'CatalogReference'))
+    .map((element) => ({
+      at: { element, attribute: element.name === 'CatalogReference' ? 'entryName' : 'name' },
+      controller: controllerOf(element),
+    }));
+}
+
+/** A Controller's Property of that name, as written. */
+function controllerProperty(controller: XmlElement | undefined, name: string): string | undefined {
+  const properties = controller?.children.find((child) => child.name === 'Properties');
+  const property = properties?.children.find((child) => child.name === 'Property' && attribute(child, 'name')?.value === name);
+  return property ? attribute(property, 'value')?.value : undefined;
+}
+
 /** Messages of esmini 3.6 that name no element, with what they are about (from its ScenarioReader.cpp and OSCPrivateAction.cpp). */
 const RULES: MessageRule[] = [
+  {
+    // ScenarioReader.cpp parseOSCController: a controller's Properties File found neither from the working folder nor the scenario's.
+    pattern: /^Failed to localize controller file /,
+    targets: (root, _match, _valueOf, controllerOf) =>
+      controllersOf(root, controllerOf)
+        .filter(({ controller }) =>
+          controller?.children.some((child) => child.name === 'Properties' && child.children.some((each) => each.name === 'File')),
+        )
+        .map(({ at }) => at),
+  },
+  {
+    // ScenarioReader.cpp parseOSCController: the controller's esminiController (else its name) is no controller this esmini has.
+    pattern: /^Unsupported controller type: (.+?)\. Falling back/,
+    targets: (root, match, _valueOf, controllerOf) =>
+      controllersOf(root, controllerOf)
+        .filter(
+          ({ controller }) =>
+            controller !== undefined &&
+            (controllerProperty(controller, 'esminiController') ?? attribute(controller, 'name')?.value) === match[1],
+        )
+        .map(({ at }) => at),
+  },
   {
     // Printed for each Event whose StartTrigger has such a condition, in document order.
     pattern: /simulationTime = 0 condition used with edge "(\w+)"/,
@@ -222,6 +267,36 @@ function rangeOf(source: FlatSource, target: Target): { source: SourceRef; range
 }
 
 /**
+ * esmini's words with the run's private folder (`runFolder`, where the run's copy of the scenario lies, removed after the
+ * run) named as what it stands for: a file `copies` names (the scenario's copy, a package file's copy) as that file, any other
+ * path in it as from `scenarioFolder`, the folder the scenario's own relative paths start from, where esmini run on the
+ * original would have looked.
+ */
+export function withoutRunFolder(
+  text: string,
+  runFolder: string,
+  scenarioFolder: string,
+  copies: ReadonlyMap<string, string>,
+  exists: (file: string) => boolean = fs.existsSync,
+): string {
+  if (!text.includes(runFolder)) return text;
+  const escaped = runFolder.replace(/[.*+?^${}()|[\]\\]/g, '\\$&');
+  const reached: string[] = [];
+  const said = text.replace(new RegExp(`${escaped}(?=$|[\\/\\s,;'"()])([\\/][^\\s,;'"()]*)?`, 'g'), (_found, rest: string | undefined) => {
+    const inside = path.resolve(runFolder, (rest ?? '').replace(/^[\\/]/, ''));
+    const copy = copies.get(inside);
+    if (copy !== undefined) return copy;
+    const original = path.resolve(scenarioFolder, path.relative(runFolder, inside));
+    if (inside !== path.resolve(runFolder) && exists(original)) reached.push(original);
+    return original;
+  });
+  // The run's copy lies elsewhere: a path esmini missed from there may be there beside the scenario itself.
+  return reached.length === 0
+    ? said
+    : `${said} [${reached.join(', ')} exists: esmini ran a copy of the scenario in a private folder and looked from there; esmini run on the scenario itself finds it]`;
+}
+
+/**
  * Places esmini's messages on the source lines they come from: the flattened element they are
  * about (by a rule for messages that name nothing, else by a name or value they quote), followed
  * back through the flattener's provenance. Repeats of one message are counted once per place.
@@ -243,6 +318,10 @@ export function mapEsminiMessages(messages: EsminiLogMessage[], source: FlatSour
     const found = attribute(element, name);
     return found ? (evaluator?.textOf(element, found) ?? found.value) : undefined;
   };
+  // A CatalogReference's entry, where the file's semantics were read from this document (a plain scenario's).
+  const references = source.semantics?.model.document === document ? (source.semantics?.catalogs.references ?? []) : [];
+  const controllerOf: ControllerOf = (element) =>
+    element.name === 'Controller' ? element : references.find((reference) => reference.reference.element === element)?.entry?.element;
   const seenText = new Map<string, number>();
   const problems = new Map<string, EsminiProblem>();
   for (const message of messages) {
@@ -255,7 +334,7 @@ export function mapEsminiMessages(messages: EsminiLogMessage[], source: FlatSour
         const match = candidate.pattern.exec(message.text);
         if (match) {
           rule = candidate;
-          targets = candidate.targets(root, match, valueOf);
+          targets = candidate.targets(root, match, valueOf, controllerOf);
           break;
         }
       }

@@ -2,17 +2,18 @@ import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
 import { Flattener, FlatSource } from '../core/flatten';
+import { packagedFilesFolder } from '../core/flatten/rebase';
 import { Problem } from '../core/problems';
 import { foundRoadName, locateRoadFile, RoadFileLookup, roadFolders, scenarioFolderOf } from '../core/semantics/roadFiles';
 import { Evaluator, semanticModelOf } from '../core/semantics/model';
-import { diskRef, nodeFileSystem, ScenarioStore, SourceRef } from '../core/sources';
+import { diskRef, displayRef, nodeFileSystem, ScenarioStore, SourceRef } from '../core/sources';
 import { CatalogLoader } from '../core/semantics/catalogs';
 import { attribute, descendants, escapeAttributeValue, parseXml } from '../core/xml';
 import { parseEsminiLoadedRoad } from '../../../common/src/esminiCsv';
 import type { TraceRecord } from '../../../common/src/trace';
 import { locateEsmini } from './locate';
 import { EsminiLogMessage, EsminiRemark, readEsminiLog } from './log';
-import { esminiMessageSeverity, EsminiProblem, mapEsminiMessages } from './messages';
+import { esminiMessageSeverity, EsminiProblem, mapEsminiMessages, withoutRunFolder } from './messages';
 import { EsminiEnd, EsminiProcessResult, lastCsvTime, makeRunFolder, runEsminiProcess } from './process';
 import { storyboardMapOf, traceFromLog } from './storyboardTrace';
 import { LimitKind, NO_END_SECONDS, runLimit, RunLimit, RUNAWAY_SECONDS, withTimeLimit } from './timeLimit';
@@ -375,7 +376,20 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
       logLine: 0,
     });
   }
-  const problems = mapEsminiMessages(log.messages, flat.source, main);
+  // esmini names the run's private folder where it resolves a path from the scenario's copy: said as the files it stands for.
+  const copies = new Map<string, string>([[scenarioFile, displayRef(main, undefined)]]);
+  if (handed && road && !road.resolved) copies.set(handed, foundRoadName(road) ?? handed);
+  const packageOfMain =
+    main.entries.length > 0 ? displayRef({ disk: main.disk, entries: main.entries.slice(0, -1) }, undefined) : undefined;
+  const filesFolder = path.join(runFolder, packagedFilesFolder(scenarioFile));
+  for (const file of flat.files)
+    if (packageOfMain && file.path.startsWith(filesFolder + path.sep))
+      copies.set(file.path, `${packageOfMain}/${path.relative(filesFolder, file.path).split(path.sep).join('/')}`);
+  const messages = log.messages.map((message) => ({
+    ...message,
+    text: withoutRunFolder(message.text, runFolder, sourceFolderOf(main), copies),
+  }));
+  const problems = mapEsminiMessages(messages, flat.source, main);
   const trace = traceFromLog(storyboardMapOf(flat.source), ran.run.output);
   const errors = problems.filter((problem) => problem.severity === 'error').length;
   const outcome = outcomeOf(ran, errors, problems.length - errors, problems.find((problem) => problem.severity === 'error')?.message);
