@@ -178,6 +178,8 @@ describe('esmini: time limit and log (no simulator needed)', () => {
       '[] [error] Lane id -1 does not exist on road 550 on laneSection 0',
       '[] [error] Position::Set Error: track 550 not available',
       '[] [error] Lane id -3 does not exist on road 550 on laneSection 0',
+      '[] [error] Invalid s value 10.00000 for road 550 of length 7.00000, truncating to 7.00',
+      '[] [error] Invalid s value 8.00000 for road 550 of length 7.00000, truncating to 7.00',
     ].join('\n');
     const problems = mapEsminiMessages(parseEsminiLog(log), flat.source, main);
     const at = (index: number) => {
@@ -192,6 +194,11 @@ describe('esmini: time limit and log (no simulator needed)', () => {
     // Road only, or a lane no position names: the first position on that road.
     assert.deepEqual(at(2), [true, 'main.xosc', '<LanePosition roadId="550" laneId="${-2 + 1}" s="5"/>', '550']);
     assert.deepEqual(at(3), [true, 'main.xosc', '<LanePosition roadId="550" laneId="${-2 + 1}" s="5"/>', '550']);
+    // An s past the road's end (issue 27: esmini's ltap-od-relative-speed.xosc, at 1:1): the position on that road with that s, else the first on it.
+    assert.deepEqual(at(4).slice(0, 2), [true, 'lane_change.xosc']);
+    assert.match(String(at(4)[2]), /<LanePosition parameterAttributes="laneId" roadId="550" laneId="-1" s="10" offset="0"\/>/);
+    assert.equal(at(4)[3], '10');
+    assert.deepEqual(at(5), [true, 'main.xosc', '<LanePosition roadId="550" laneId="${-2 + 1}" s="5"/>', '5']);
     fs.rmSync(root, { recursive: true, force: true });
   });
 

@@ -128,6 +128,15 @@ const RULES: MessageRule[] = [
     targets: (root) => elementsNamed(root, 'LogicFile').map((element) => ({ element, attribute: 'filepath' })),
   },
   {
+    // ScenarioReader.cpp CheckAndAdjustRoadSValue: a position's s past its road's end (or below 0), which esmini clamps; the positions on that road with that s, else any on it.
+    pattern: /^Invalid s value (\S+) for road (\S+) of length/,
+    targets: (root, match, valueOf) => {
+      const onRoad = allElements(root).filter((element) => valueOf(element, 'roadId') === match[2] && valueOf(element, 's') !== undefined);
+      const atS = onRoad.filter((element) => Math.abs(Number(valueOf(element, 's')) - Number(match[1])) < 1e-4);
+      return (atS.length > 0 ? atS : onRoad).map((element) => ({ element, attribute: 's' }));
+    },
+  },
+  {
     // ScenarioReader.cpp and RoadManager.cpp: a position on a road the road file does not have.
     pattern:
       /^(?:Error: )?(?:Failed to find road|No matching road with ID|Failed to resolve road id|Position::Set Error: track|OpenDrive::GetTrackIdxById Error: Road id|Failed to lookup road id|Invalid waypoint roadId|Invalid (?:startpos|targetpos) road ID:) (\S+)/,
