@@ -1,7 +1,8 @@
 // Debugger benchmark (figures, not a timed test): simulation steps per second under the debug adapter with no
 // breakpoint hit against esmini's own headless run of the same scenario at the same step, the pause latency from
 // a condition firing (esmini's callback, in the adapter) to the `stopped` event read by a DAP client, and F5's first
-// launch: the adapter's process started to the stop on a breakpoint (BENCH_DEBUG_LAUNCH_ONLY=1: that alone).
+// launch: the adapter's process started to the stop on a breakpoint (BENCH_DEBUG_LAUNCH_ONLY=1: that alone;
+// BENCH_DEBUG_CODE_CACHE=1: with the session's code cache, see below).
 // BENCH_DEBUG_ROAD=FILE: cut-in.xosc on that road instead of e6mini.xodr (the launch reads and checks it; on another
 // road CutInEvent may never start, so the launch's breakpoint is on OverTakerStartSpeedEvent, at 0.05 s).
 import { spawnSync } from 'node:child_process';
@@ -49,6 +50,10 @@ const road = path.resolve(process.env.BENCH_DEBUG_ROAD ?? path.join(roadPath[0],
 if (!existsSync(road)) throw new Error(`BENCH_DEBUG_ROAD: ${road} is absent`);
 const text = readFileSync(scenario, 'utf8').replace('../xodr/e6mini.xodr', road);
 const launchEvent = process.env.BENCH_DEBUG_ROAD ? 'OverTakerStartSpeedEvent' : 'CutInEvent';
+// BENCH_DEBUG_CODE_CACHE=1: the session's code cache in a folder of this bench's, as the extension names its storage
+// (server/src/debug/codeCache.ts): the first launch writes it as its session ends, the later ones read it.
+if (process.env.BENCH_DEBUG_CODE_CACHE === '1') process.env.M2S_DEBUG_CODE_CACHE = path.join(folder, 'code-cache');
+else delete process.env.M2S_DEBUG_CODE_CACHE;
 const full = path.join(folder, 'cut-in.xosc');
 const loadOnly = path.join(folder, 'cut-in-load-only.xosc');
 writeFileSync(full, text);

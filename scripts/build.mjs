@@ -135,7 +135,8 @@ const entries = [
   // The debug adapter, a process of its own (esmini crashing ends it, not the editor), and the session its child runs
   // (dist/debugSession.js, required by the first only in the child); koffi is native, loaded from node_modules.
   { entryPoints: ['server/src/debugAdapter.ts'], outfile: 'dist/debugAdapter.js', external: ['koffi'], plugins: [debugSessionBeside] },
-  { entryPoints: ['server/src/debugSession.ts'], outfile: 'dist/debugSession.js', external: ['koffi'] },
+  // The session may run in a vm.Script (server/src/debug/codeCache.ts), which has no import(): builtinsRequired.
+  { entryPoints: ['server/src/debugSession.ts'], outfile: 'dist/debugSession.js', external: ['koffi'], plugins: [builtinsRequired] },
   starter,
   // The whole CLI. The Redis queue's client (batch --queue, worker) is loaded from node_modules only when used: start-up stays small.
   {

@@ -1,6 +1,6 @@
 import * as path from 'node:path';
 import * as vscode from 'vscode';
-import { DEBUG_STATE_EVENT, type DebugState, isDebugState } from '../../common/src/debugState';
+import { DEBUG_CODE_CACHE_ENV, DEBUG_STATE_EVENT, type DebugState, isDebugState } from '../../common/src/debugState';
 import { PACKAGE_SCHEME } from '../../common/src/protocol';
 import { STORYBOARD_EVENT, type StoryboardEventBody } from '../../common/src/trace';
 
@@ -119,8 +119,11 @@ export function registerDebugging(context: vscode.ExtensionContext): void {
   context.subscriptions.push(
     vscode.debug.registerDebugAdapterDescriptorFactory(DEBUG_TYPE, {
       // The editor's own Node runtime (Electron's, run as Node), so that no Node on PATH is needed.
+      // The session keeps V8's code cache of its bundle for this runtime in the extension's storage (debug/codeCache.ts).
       createDebugAdapterDescriptor: () =>
-        new vscode.DebugAdapterExecutable(process.execPath, [adapter], { env: { ELECTRON_RUN_AS_NODE: '1' } }),
+        new vscode.DebugAdapterExecutable(process.execPath, [adapter], {
+          env: { ELECTRON_RUN_AS_NODE: '1', [DEBUG_CODE_CACHE_ENV]: path.join(context.globalStorageUri.fsPath, 'debug-code-cache') },
+        }),
     }),
     vscode.debug.registerDebugConfigurationProvider(DEBUG_TYPE, new ScenarioConfigurations()),
     vscode.languages.registerEvaluatableExpressionProvider({ language: 'xosc' }, new ParameterExpressions()),

@@ -5,6 +5,12 @@
  */
 export const DEBUG_STATE_EVENT = 'modular2simpleState';
 
+/**
+ * The environment variable the extension starts the debug adapter with: a folder of its storage where the session
+ * keeps V8's code cache of its bundle for the editor's runtime (server/src/debug/codeCache.ts).
+ */
+export const DEBUG_CODE_CACHE_ENV = 'M2S_DEBUG_CODE_CACHE';
+
 export interface DebugStateEntity {
   name: string;
   x: number;

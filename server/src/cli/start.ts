@@ -1,8 +1,7 @@
-import { isAscii } from 'node:buffer';
 // Named imports: a bundled namespace import copies every export of the module (fs has a hundred) at each start.
 import { existsSync, readFileSync, statSync } from 'node:fs';
 import { join } from 'node:path';
-import { Script } from 'node:vm';
+import { LoadedBundle, loadModuleBundle } from '../bundleLoader';
 import type { CliOutput } from './common';
 
 /**
@@ -49,43 +48,14 @@ export interface CliEntry {
   runFromCommandLine(): void;
 }
 
-export interface LoadedBundle {
-  exports: CliEntry;
-  script: Script;
-}
-
-/**
- * A bundle's text. An ASCII bundle (esbuild escapes what is not, but in comments) is read as Latin-1, the
- * same characters without UTF-8 decoding, which was a noticeable part of a short run's start-up.
- */
-function bundleSource(bytes: Buffer): string {
-  return typeof isAscii === 'function' && isAscii(bytes) ? bytes.toString('latin1') : bytes.toString('utf8');
-}
-
-/** Module.wrap's text, written out: loading node:module for it cost a quarter of a millisecond at each start. */
-function wrapAsModule(source: string): string {
-  return '(function (exports, require, module, __filename, __dirname) { ' + source + '\n});';
-}
-
-/** Compiles and runs a bundle as Node's CommonJS loader would, with the code cache when there is one. */
+/** Compiles and runs a bundle of the CLI, with the code cache when there is one. */
 export function loadBundle(
   folder: string,
   requireFn: NodeJS.Require,
   cachedData: Buffer | undefined,
   bundleFile: string = CLI_BUNDLE,
-): LoadedBundle {
-  const filename = join(folder, bundleFile);
-  const script = new Script(wrapAsModule(bundleSource(readFileSync(filename))), { filename, cachedData });
-  const bundle = { exports: {} as LoadedBundle['exports'], filename, id: filename, loaded: false };
-  const run = script.runInThisContext() as (
-    exports: unknown,
-    require: NodeJS.Require,
-    module: unknown,
-    filename: string,
-    dirname: string,
-  ) => void;
-  run.call(bundle.exports, bundle.exports, requireFn, bundle, filename, folder);
-  return { exports: bundle.exports, script };
+): LoadedBundle<CliEntry> {
+  return loadModuleBundle<CliEntry>(folder, requireFn, cachedData, bundleFile);
 }
 
 function readCache(folder: string, bundleFile: string): Buffer | undefined {
