@@ -240,7 +240,7 @@ describe('cli: concrete scenarios of vary and batch, and the outputs of modulari
     assertSameRun((await runAlone(flat)).steps, original, 'modularized and flattened');
   });
 
-  it('vary of a ScenarioFile whose catalogs only --scenario-path finds keeps the path as written and warns naming the --path esmini needs, with which the output runs as the original', async () => {
+  it('vary and flatten of a scenario whose catalogs only --scenario-path finds keep the path as written and warn naming the --path esmini needs, with which the output runs as the original', async () => {
     const own = cutInWorkspace();
     const catalogs = path.join(own, 'lib', 'Catalogs');
     fs.mkdirSync(path.dirname(catalogs));
@@ -264,6 +264,23 @@ describe('cli: concrete scenarios of vary and batch, and the outputs of modulari
     assert.match(fs.readFileSync(written, 'utf8'), /<Directory path="\.\.\/xosc\/Catalogs\/Vehicles"\/>/);
     await assert.rejects(runAlone(written), /Couldn't locate OpenSCENARIO file VehicleCatalog/);
     assertSameRun((await runAlone(written, ['--path', vehicles])).steps, original, 'vary with the --path its warning names');
+    // flatten writes the path as it stands too, and says so; -q says nothing.
+    const flat = path.join(outDir, 'flat.xosc');
+    const flatten = runCli(['flatten', path.join(own, 'xosc', 'cut-in.xosc'), '-o', flat, '--scenario-path', catalogs], {
+      cwd: temporaryFolder('m2s-paths-cli-'),
+    });
+    assert.equal(flatten.status, 0, flatten.stderr);
+    assert.match(
+      flatten.stderr,
+      new RegExp(
+        `warning: catalog folder '\\.\\./xosc/Catalogs/Vehicles' does not resolve from ${escapeRegExp(outDir)}; .* only when run with --path ${escapeRegExp(vehicles)} \\(`,
+      ),
+    );
+    assertSameRun((await runAlone(flat, ['--path', vehicles])).steps, original, 'flatten with the --path its warning names');
+    const quiet = runCli(['flatten', path.join(own, 'xosc', 'cut-in.xosc'), '-o', flat, '--scenario-path', catalogs, '-q'], {
+      cwd: temporaryFolder('m2s-paths-cli-'),
+    });
+    assert.equal(quiet.stderr, '');
   });
 
   it("batch with no road path runs each concrete scenario on the ScenarioFile's road and catalogs", () => {

@@ -1,6 +1,9 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { Flattener, OVERRIDE_PROBLEM_CODES } from '../core/flatten';
+import { pathBaseOf } from '../core/flatten/rebase';
+import { rebasedConcreteText } from '../core/variations';
+import { catalogFoldersThroughSearchPath } from './scenarioText';
 import { Problem } from '../core/problems';
 import { countEditorLines } from '../core/text';
 import type { PackagedFile } from '../core/flatten/types';
@@ -57,6 +60,22 @@ async function flattenInputs(inputs: string[], outputs: string[] | undefined, op
     return ExitCode.problems;
   }
   if (options.force && errors > 0) io.err(`${counted}; written anyway (--force)`);
+  // A catalog folder found only through the scenario path is written as it stands (SPEC 11.6): said, with the --path esmini then needs.
+  if (!options.quiet) {
+    for (const [index, result] of results.entries()) {
+      const main = mainOf(inputs[index]);
+      const output = outputs?.[index];
+      const folder = output === undefined || output === '-' ? pathBaseOf(main) : path.dirname(path.resolve(output));
+      const { warnings } = await rebasedConcreteText(
+        result.text as string,
+        folder,
+        folder,
+        (file) => store.kindOf(file),
+        catalogFoldersThroughSearchPath(store, main),
+      );
+      for (const warning of new Set(warnings)) io.err(`${inputs[index]}: warning: ${warning}`);
+    }
+  }
   if (!outputs) {
     for (const result of results) io.out(result.text as string);
     return ExitCode.ok;

@@ -3,8 +3,10 @@ import * as path from 'node:path';
 import { Flattener, parameterPackagedFiles } from '../core/flatten';
 import type { PackagedFile } from '../core/flatten/types';
 import { formatProblem, Problem } from '../core/problems';
-import { diskRef } from '../core/sources';
+import { diskRef, ScenarioStore, SourceRef } from '../core/sources';
+import { CatalogLoader } from '../core/semantics/catalogs';
 import { loadVariations, ScenarioTextLoader } from '../core/variations';
+import type { SearchPathCatalogFolders } from '../core/variations/concrete';
 import { readScenarioParameters } from '../core/variations/concrete';
 import { distributionProblems, isDistributionText } from '../core/variations/problems';
 import { readUtf8Exactly } from './fileSystem';
@@ -83,6 +85,24 @@ export function concretePackagedFiles(
 export async function scenarioProblems(file: string, scenarioPath: string[], catalogPath: string[]): Promise<Problem[]> {
   const flattener = new Flattener(storeForInputs(scenarioPath, undefined, [file], {}, catalogPath));
   return (await flattener.flatten(mainOf(file))).problems;
+}
+
+/**
+ * The folders holding catalog files that a `Directory path` written in `from` reaches only through the store's scenario path
+ * (not from its own folder): an output keeps such a path as written (SPEC 11.6), and esmini then needs them on `--path`.
+ */
+export function catalogFoldersThroughSearchPath(store: ScenarioStore, from: SourceRef): SearchPathCatalogFolders {
+  const catalogs = new CatalogLoader(store);
+  const holdsCatalogFiles = async (folder: string): Promise<boolean> =>
+    (await fs.promises.readdir(folder).catch(() => [] as string[])).some((name) => name.toLowerCase().endsWith('.xosc'));
+  return async (written) => {
+    const found = (await catalogs.directories(from, written)).filter(
+      (directory) => directory.via === 'scenarioPath' && !directory.packageRef,
+    );
+    const folders: string[] = [];
+    for (const directory of found) if (await holdsCatalogFiles(directory.directory)) folders.push(directory.directory);
+    return folders;
+  };
 }
 
 /** The folder the ScenarioFile's relative paths (roads, catalogs) start from: its own folder, a package's, or the unpacked folder itself. */

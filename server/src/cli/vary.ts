@@ -24,9 +24,14 @@ import {
   Variations,
 } from '../core/variations';
 import { seedBits, Xoshiro128StarStar } from '../core/variations/random';
-import { concretePackagedFiles, flatteningScenarioLoader, readDistributionFile, scenarioFolderOf } from './scenarioText';
+import {
+  catalogFoldersThroughSearchPath,
+  concretePackagedFiles,
+  flatteningScenarioLoader,
+  readDistributionFile,
+  scenarioFolderOf,
+} from './scenarioText';
 import { diskRef, FileKind, nodeFileSystem, splitScenarioPath } from '../core/sources';
-import { CatalogLoader } from '../core/semantics/catalogs';
 import { storeForInputs } from './inputs';
 import type { PackagedFile } from '../core/flatten/types';
 
@@ -223,18 +228,10 @@ async function varyScenarios(argv: string[], io: Output, givenLoader: ScenarioTe
     return known;
   };
   // A catalog folder found only through --scenario-path is written as it stands: the warning names the --path esmini then needs.
-  const catalogs = new CatalogLoader(storeForInputs(scenarioPathList, undefined, [variations.scenarioPath]));
-  const catalogsFrom = diskRef(path.join(scenarioFolder, path.basename(variations.scenarioPath)));
-  const holdsCatalogFiles = async (folder: string): Promise<boolean> =>
-    (await fs.promises.readdir(folder).catch(() => [] as string[])).some((name) => name.toLowerCase().endsWith('.xosc'));
-  const foundThroughSearchPath = async (written: string): Promise<string[]> => {
-    const found = (await catalogs.directories(catalogsFrom, written)).filter(
-      (directory) => directory.via === 'scenarioPath' && !directory.packageRef,
-    );
-    const folders: string[] = [];
-    for (const directory of found) if (await holdsCatalogFiles(directory.directory)) folders.push(directory.directory);
-    return folders;
-  };
+  const foundThroughSearchPath = catalogFoldersThroughSearchPath(
+    storeForInputs(scenarioPathList, undefined, [variations.scenarioPath]),
+    diskRef(path.join(scenarioFolder, path.basename(variations.scenarioPath))),
+  );
   const warned = new Set<string>();
   const rebased = async (text: string, outputDirectory: string | undefined): Promise<string> => {
     const result = await rebasedConcreteText(

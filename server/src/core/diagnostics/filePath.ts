@@ -58,7 +58,7 @@ export function catalogFoundThroughSearchPathMessage(written: string, from: stri
   return (
     `catalog folder '${written}' does not resolve from ${from}; it was found only through the scenario path (${folders.join(', ')}). ` +
     'A path found through a search path is written as it stands (SPEC 11.6), so esmini loads its catalogs only when run with ' +
-    `${folders.map((folder) => `--path ${folder}`).join(' ')} (or write the path so that it resolves from the ScenarioFile's folder)`
+    `${folders.map((folder) => `--path ${folder}`).join(' ')} (or write the path so that it resolves from the scenario's own folder)`
   );
 }
 
