@@ -290,6 +290,29 @@ describe('cli: batch', function () {
     );
   });
 
+  it("a row's reason and messages name no private run folder: a path esmini tried from there is said from the ScenarioFile's folder (issue 27)", function () {
+    requireEsmini(this);
+    const root = folder();
+    const scenario = fs.readFileSync(path.join(root, 'follow.xosc'), 'utf8');
+    const controlled = scenario.replace(
+      '</Vehicle>\n    </ScenarioObject>\n    <ScenarioObject name="Lead">',
+      '</Vehicle>\n      <ObjectController><Controller name="sumo"><Properties><Property name="esminiController" value="SumoController"/><File filepath="../sumo_inputs/e6mini.sumocfg"/></Properties></Controller></ObjectController>\n    </ScenarioObject>\n    <ScenarioObject name="Lead">',
+    );
+    assert.notEqual(controlled, scenario);
+    fs.writeFileSync(path.join(root, 'follow.xosc'), controlled);
+    for (const keep of [[], ['--keep-runs']]) {
+      fs.rmSync(path.join(root, 'results'), { recursive: true, force: true });
+      const batch = runCli([...BATCH_ARGS, '--sample', '1', ...keep], { cwd: root });
+      assert.equal(batch.status, 3, batch.stderr);
+      const [row] = csvRows(root);
+      const tried = path.join(path.dirname(root), 'sumo_inputs', 'e6mini.sumocfg');
+      assert.ok(row.includes(`Failed to localize controller file ../sumo_inputs/e6mini.sumocfg, also tried ${tried}`), row);
+      const json = fs.readFileSync(path.join(root, 'results', 'results.json'), 'utf8');
+      assert.ok(json.includes(`also tried ${tried}`), json.slice(0, 2000));
+      assert.doesNotMatch(`${row}\n${json}\n${batch.stderr}`, /esmini-run-|modular2simple-esmini|\.running/);
+    }
+  });
+
   it("a batch whose runs esmini refuses is no batch done: each row has esmini's reason (progress, summary, CSV, JSON, JUnit), exit 3, again on a resume", function () {
     requireEsmini(this);
     const root = folder();

@@ -2,7 +2,7 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { EsminiCsvError, parseEsminiCsv } from '../../../common/src/esminiCsv';
 import { EsminiTextRunResult, limitSentence, removeRunFolder, runScenarioText } from '../esmini/run';
-import { esminiMessageSeverity } from '../esmini/messages';
+import { esminiMessageSeverity, withoutRunFolder } from '../esmini/messages';
 import { collisionsIn, trajectoryMetrics } from './metrics';
 import type { BatchRow, RunStatus } from './results';
 
@@ -17,6 +17,8 @@ export interface ConcreteRun {
   searchPath: string[];
   /** Files written beside the scenario in its run folder, at paths relative to it (the package files a kept run names). */
   files?: readonly { path: string; bytes: Uint8Array }[];
+  /** The folder the ScenarioFile's relative paths start from: esmini's words naming the run's private folder are said from there. */
+  scenarioFolder?: string;
 }
 
 export interface RunSettings {
@@ -53,11 +55,25 @@ export async function runConcrete(job: ConcreteRun, settings: RunSettings, cance
     cancel,
     files: job.files,
   });
+  const kept =
+    settings.keepRunsIn && result.runFolder && result.outcome !== 'cancelled' ? path.join(settings.keepRunsIn, job.index) : undefined;
+  const runFolder = result.runFolder;
+  // esmini ran the text in a private folder, removed or moved after the run: its words name what that folder stood for.
+  const said = (text: string): string =>
+    !runFolder || !job.scenarioFolder
+      ? text
+      : withoutRunFolder(
+          text,
+          runFolder,
+          job.scenarioFolder,
+          new Map([[path.join(runFolder, 'scenario.xosc'), kept ? path.join(kept, 'scenario.xosc') : `concrete scenario ${job.index}`]]),
+        );
+  const words = { ...result, message: said(result.message), messages: result.messages.map((each) => ({ ...each, text: said(each.text) })) };
   try {
     if (result.outcome === 'no-esmini') throw new NoEsminiError(result.message);
     if (result.outcome === 'cancelled') return undefined;
     const status = runStatusOf(result);
-    let message = result.message;
+    let message = words.message;
     let metrics = {
       ego: undefined as string | undefined,
       minDistance: undefined as number | undefined,
@@ -83,12 +99,11 @@ export async function runConcrete(job: ConcreteRun, settings: RunSettings, cance
       ego: metrics.ego ?? null,
       collisions,
       message,
-      reason: reasonOf(status, result, settings.durationSetBy),
-      messages: result.messages.map((each) => ({ level: each.level, time: each.time ?? null, text: each.text })),
+      reason: reasonOf(status, words, settings.durationSetBy),
+      messages: words.messages.map((each) => ({ level: each.level, time: each.time ?? null, text: each.text })),
     };
   } finally {
-    if (settings.keepRunsIn && result.runFolder && result.outcome !== 'cancelled')
-      keepRunFolder(result.runFolder, result.log, path.join(settings.keepRunsIn, job.index));
+    if (kept && result.runFolder) keepRunFolder(result.runFolder, result.log, kept);
     else removeRunFolder(result);
   }
 }

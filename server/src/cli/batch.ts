@@ -321,7 +321,7 @@ async function runLocally(
       if (plan.packagedFolder && !kept) text = (await rebasedConcreteText(text, plan.packagedFolder, undefined, kindOf)).text;
       // A `$parameter` LogicFile naming a packaged road stays as written (SPEC 11.6): esmini finds the copy by its name there, first.
       const searchPath = plan.packagedFolder ? [plan.packagedFolder, ...run.searchPath] : run.searchPath;
-      const row = await runConcrete({ ...run, text, searchPath, files: kept }, settings, stop.signal);
+      const row = await runConcrete({ ...run, text, searchPath, files: kept, scenarioFolder: plan.scenarioFolder }, settings, stop.signal);
       // Ctrl-C on a terminal reaches esmini too, which then ends early as if by itself: such a run is not a result.
       if (!row || stop.signal.aborted) continue;
       await results.append(row);
