@@ -283,6 +283,7 @@ async function runLocally(
     }
   };
   const unkept = new Set<string>();
+  const keptWarned = new Set<string>();
   /** The package files run `index` names, laid out beside its scenario; undefined (told once per file) when one cannot lie there. */
   const keptPackagedFiles = (
     view: BatchPlanView,
@@ -316,6 +317,17 @@ async function runLocally(
       const named = plan.packagedFolder && plan.packagedOf ? await plan.packagedOf(run.text) : [];
       await writeNamedPackaged(named);
       let text = (await rebasedConcreteText(run.text, plan.scenarioFolder, undefined, kindOf)).text;
+      // A kept run names a `$parameter` path as written (SPEC 11.6): one relative to the ScenarioFile's folder is said, once.
+      if (settings.keepRunsIn && !plan.packagedFolder) {
+        for (const warning of (await rebasedConcreteText(run.text, plan.scenarioFolder, settings.keepRunsIn, kindOf)).warnings) {
+          if (keptWarned.has(warning)) continue;
+          keptWarned.add(warning);
+          if (!quiet)
+            io.err(
+              `modular2simple: warning: kept runs: ${warning}; the runs here found it through esmini's --path, so rerun a kept run with --path ${plan.scenarioFolder}`,
+            );
+        }
+      }
       // A kept run holds the package files it names beside its scenario, which names them there as from the ScenarioFile's folder, so that it reruns by itself.
       const kept = plan.packagedFolder && settings.keepRunsIn ? keptPackagedFiles(plan, named, run.index) : undefined;
       if (plan.packagedFolder && !kept) text = (await rebasedConcreteText(text, plan.packagedFolder, undefined, kindOf)).text;
