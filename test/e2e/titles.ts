@@ -63,6 +63,8 @@ export const INSIDE_TESTS = {
     'dropping a module whose role no entity of the main is named after asks who plays it in a quick pick: cancelled, the main is unchanged; answered, the chosen entity plays it, clean',
   debugScenario:
     'F5 on a scenario stops on the breakpoint on its Event line with the entities in the Variables view; esmini crashing ends the session with a message and the editor lives',
+  debugImportLine:
+    "F5 on a main with a breakpoint on a ManeuverGroup that imports a group stops when the copy starts, the editor on the breakpoint's line of the main, the copy in the simple scenario in the call stack",
   debugBirdsEyeTurns:
     "F5 on a scenario while the bird's-eye view shows another turns the view to the debugged scenario: its road and its entities at the stop, an event that started and ended before it listed as started",
   debugTimeline:

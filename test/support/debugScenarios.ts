@@ -34,10 +34,10 @@ export function loggedStarts(log: string, name: string): number[] {
 
 /**
  * The examples' lane_change.xosc imported by two groups of one main file, for two adversaries; the lead cuts in at a
- * relative distance of `leadGap` m (500: never, in the 8 s the tests run).
+ * relative distance of `leadGap` m (500: never, in the 8 s the tests run). `examples`: the repository's (inside VS Code,
+ * the tests' bundle lies elsewhere).
  */
-export function writeTwoCutIns(folder: string, leadGap = 30): void {
-  const examples = path.join(repoRoot, 'examples');
+export function writeTwoCutIns(folder: string, leadGap = 30, examples = path.join(repoRoot, 'examples')): void {
   fs.copyFileSync(path.join(examples, 'lane_change.xosc'), path.join(folder, 'lane_change.xosc'));
   const main = fs.readFileSync(path.join(examples, 'main.xosc'), 'utf8');
   const first = main.indexOf('        <ManeuverGroup maximumExecutionCount="1" name="CutInVehicle">');

@@ -3,7 +3,9 @@ import { execFileSync } from 'node:child_process';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import * as vscode from 'vscode';
+import { DEBUG_CODE_CACHE_ENV } from '../../../common/src/debugState';
 import { SESSION_ARGUMENT } from '../../../server/src/debug/supervisor';
+import { writeTwoCutIns } from '../../support/debugScenarios';
 import { esminiCutInFolder, esminiOrSkip } from './esmini.inside';
 import { clickElement, type PageBox, pageBoxes, pageShows, pressKeys, runFromPalette, screenshot } from './harnessClient';
 import { api, cli, EXTENSION_ID, type InsideTests, open, positionOf, TEST_MS, waitFor, waitForPage, workspaceRoot } from './helpers';
@@ -128,10 +130,10 @@ async function barsAtEsminiTimes(starts: { event: string; time: number }[], what
 }
 
 /** F5 as the folder's settings make it: esmini's program and roads set, the adapter's events recorded; `undo` resets both and ends a session left. */
-async function debugSetup(esmini: string, roads: string): Promise<{ events: string[]; undo(): Promise<void> }> {
+async function debugSetup(esmini: string, roads: string, moreFolders: string[] = []): Promise<{ events: string[]; undo(): Promise<void> }> {
   const settings = vscode.workspace.getConfiguration('modular2simple.esmini');
   await settings.update('path', esmini, vscode.ConfigurationTarget.Workspace);
-  await settings.update('roadPath', [roads], vscode.ConfigurationTarget.Workspace);
+  await settings.update('roadPath', [roads, ...moreFolders], vscode.ConfigurationTarget.Workspace);
   const events: string[] = [];
   const tracker = vscode.debug.registerDebugAdapterTrackerFactory('modular2simple', {
     createDebugAdapterTracker: () => ({
@@ -247,6 +249,59 @@ export const debuggingTests: InsideTests = {
       await waitFor('the adapter processes to end', () => adapterProcesses().length === 0);
       await waitFor('the call stack to clear', async () => !(await pageShows('Event CutInEvent (running)')));
       assert.ok(!(await pageShows('The debug session of cut-in.xosc ended')), 'Stop is no crash');
+    } finally {
+      vscode.debug.removeBreakpoints([breakpoint]);
+      await undo();
+    }
+  },
+
+  debugImportLine: async function () {
+    this.timeout(2 * TEST_MS);
+    const { repository, esmini, roads } = esminiOrSkip(this);
+    const folder = path.join(workspaceRoot(), 'importLine');
+    fs.mkdirSync(folder, { recursive: true });
+    writeTwoCutIns(folder, 30, path.join(repository, 'examples'));
+    const { events, undo } = await debugSetup(esmini, roads, [path.join(roads, '..', 'Catalogs', 'Vehicles')]);
+    const main = await open(path.relative(workspaceRoot(), path.join(folder, 'main.xosc')));
+    const line = positionOf(main.document, '<ManeuverGroup maximumExecutionCount="1" name="CutInVehicle">').line;
+    const breakpoint = new vscode.SourceBreakpoint(new vscode.Location(main.document.uri, new vscode.Position(line, 0)));
+    vscode.debug.addBreakpoints([breakpoint]);
+    try {
+      const session = await pressF5UntilStop(events);
+      const trace = (await session.customRequest('stackTrace', { threadId: 1 })) as StackFrameBody;
+      assert.equal(trace.stackFrames[0].name, 'ManeuverGroup CutInVehicle.CutIn (running)');
+      assert.equal(trace.stackFrames[0].line, line + 1);
+      // What a person sees: the editor on the main's line where the breakpoint is, the copy further down the stack.
+      await waitFor(
+        "the editor on the breakpoint's line of the main",
+        () =>
+          vscode.window.activeTextEditor?.document.uri.toString() === main.document.uri.toString() &&
+          vscode.window.activeTextEditor.selection.active.line === line,
+      );
+      await waitFor('the call stack', () => pageShows('ManeuverGroup CutInVehicle.CutIn (running)'));
+      // The stack path as the remote window names it (vscode-remote://host/path).
+      const copy = trace.stackFrames.find((frame) => frame.name.startsWith('ManeuverGroup CutInVehicle.CutIn (running since'));
+      assert.ok(copy?.source?.path?.endsWith(path.join(folder, 'lane_change.xosc')), JSON.stringify(trace.stackFrames));
+      await screenshot("debug: stopped on the main's ManeuverGroup that imports CutIn, the editor on that line");
+      // The session's process was given a folder of the extension's storage for V8's code cache of its bundle.
+      const [sessionPid] = adapterProcesses().filter((pid) =>
+        fs.readFileSync(`/proc/${pid}/cmdline`, 'utf8').split('\0').includes(SESSION_ARGUMENT),
+      );
+      const cacheFolder = fs
+        .readFileSync(`/proc/${sessionPid}/environ`, 'utf8')
+        .split('\0')
+        .find((entry) => entry.startsWith(`${DEBUG_CODE_CACHE_ENV}=`))
+        ?.slice(DEBUG_CODE_CACHE_ENV.length + 1);
+      assert.ok(
+        cacheFolder !== undefined && cacheFolder.includes('globalStorage'),
+        `the cache folder ${cacheFolder} is the extension's storage`,
+      );
+      await vscode.debug.stopDebugging(session);
+      await waitFor('the session to end', () => vscode.debug.activeDebugSession === undefined);
+      // It writes the cache as it exits, for the next F5 on this runtime.
+      await waitFor('the adapter processes to end', () => adapterProcesses().length === 0);
+      const written = fs.readdirSync(cacheFolder).filter((name) => name.startsWith('debugSession.js-') && name.endsWith('.cache'));
+      assert.equal(written.length, 1, `the session's code cache in ${cacheFolder}: ${written.join(', ')}`);
     } finally {
       vscode.debug.removeBreakpoints([breakpoint]);
       await undo();

@@ -81,6 +81,7 @@ const ORDER: InsideTestKey[] = [
   'carlaCheck',
   'carlaRun',
   'debugScenario',
+  'debugImportLine',
   'debugBirdsEyeTurns',
   'libraryCompose',
   'libraryInsertHere',
