@@ -277,6 +277,37 @@ describe('diagnostics: road-file', () => {
         assert.equal(fs.readFileSync(path.join(root, folder, 'road.xodr'), 'utf8'), STRAIGHT_ROAD);
         assert.deepEqual(await problemsOf(), [], `${folder}: the hint followed, the road is found`);
       }
+      // A main on disk whose referenced package holds the road in a package stored in it.
+      fs.mkdirSync(path.join(root, 'three'));
+      fs.writeFileSync(path.join(root, 'three', 'outer.mosc'), one);
+      const top = roadScenario({
+        logicFile: 'road.xodr',
+        groups: [outerGroup('Top', 'Ego', [{ file: 'outer.mosc', groups: [{ name: 'Car' }] }])],
+      });
+      const topProblems = async () =>
+        semanticProblems(
+          await analyzeDocument(
+            diskRef(path.join(root, 'three', 'top.xosc')),
+            parseXml(top),
+            new CatalogLoader(new ScenarioStore({ root })),
+            true,
+            'esmini',
+          ),
+        ).filter((problem) => problem.code === 'road-file');
+      const hint = (await topProblems())[0]?.hint ?? '';
+      assert.ok(
+        hint.startsWith(
+          `the package ${path.join(root, 'three', 'outer.mosc')} this file references holds road.xodr in its package 'inner.mosc', `,
+        ),
+        hint,
+      );
+      const command = /\((?:[^(]*?): (cd .*)\), or correct the path$/.exec(hint)?.[1] ?? '';
+      assert.match(command, /&& unzip -j 1\/inner\.mosc road\.xodr -d /, hint);
+      if (unzip) {
+        const ran = spawnSync('sh', ['-c', command], { encoding: 'utf8', env: { ...process.env, TMPDIR: path.join(root, 'tmp') } });
+        assert.equal(ran.status, 0, ran.stderr);
+        assert.deepEqual(await topProblems(), [], 'three: the hint followed, the road is found');
+      }
       if (!unzip) this.skip();
     } finally {
       fs.rmSync(root, { recursive: true, force: true });

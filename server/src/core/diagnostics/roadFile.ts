@@ -25,7 +25,7 @@ export function roadFileWording(
    * Packages this file references that hold such a file (`RoadFileLookup.heldByReferencedPackages`): the package on disk
    * and the entries down to the file, a package stored inside it first when the package this file references is one.
    */
-  heldBy: readonly { packageFile: string; entries: readonly string[] }[] = [],
+  heldBy: readonly { packageFile: string; entries: readonly string[]; referencedEntries?: number }[] = [],
   /** Packages this file references (on `line`, one-based) that could not be read, which may hold it (`RoadFileLookup.unreadReferencedPackages`). */
   unread: readonly { packageFile: string; line: number; reason: string }[] = [],
 ): ProblemWording<'road-file'> {
@@ -40,7 +40,7 @@ export function roadFileWording(
     message: `road file '${written}' is ${where}${town}: ${ESMINI_ROAD_NOT_FOUND}`,
     hint:
       heldBy.length > 0
-        ? heldInPackageHint(heldBy[0].packageFile, heldBy[0].entries, own)
+        ? heldInPackageHint(heldBy[0].packageFile, heldBy[0].entries, own, heldBy[0].referencedEntries ?? heldBy[0].entries.length - 1)
         : 'correct the path, or add the folder that holds the file to the road path (--road-path, the modular2simple.esmini.roadPath setting)' +
           unread
             .map(
@@ -61,7 +61,7 @@ function shellWord(text: string): string {
  * a package stored inside another (`entries` longer than one) is extracted first, each into a numbered folder of a new
  * temporary folder, so that no file of the user's is replaced; `-j` because esmini tries the path, then the file name.
  */
-function heldInPackageHint(packageFile: string, entries: readonly string[], folder: string): string {
+function heldInPackageHint(packageFile: string, entries: readonly string[], folder: string, referencedEntries: number): string {
   const file = entries[entries.length - 1];
   const packages = entries.slice(0, -1);
   const outside = 'but a file outside a package does not reach the files inside it';
@@ -74,12 +74,21 @@ function heldInPackageHint(packageFile: string, entries: readonly string[], fold
     archive = shellWord(`${level + 1}/${inner.slice(inner.lastIndexOf('/') + 1)}`);
   });
   steps.push(`unzip -j ${archive} ${shellWord(file)} -d ${shellWord(folder)}`);
-  const stored = [...packages]
-    .reverse()
-    .map((inner) => `'${inner}'`)
-    .join(' inside ');
+  // The package referenced (the one on disk, or one stored in it), then the packages stored in that one which hold the file.
+  const named = (inner: readonly string[]) =>
+    [...inner]
+      .reverse()
+      .map((each) => `'${each}'`)
+      .join(' inside ');
+  const referenced = packages.slice(0, referencedEntries);
+  const below = packages.slice(referencedEntries);
+  const which =
+    referenced.length === 0
+      ? `the package ${packageFile} this file references`
+      : `the package ${named(referenced)} this file references, stored inside ${packageFile},`;
+  const where = below.length === 0 ? `holds ${file}` : `holds ${file} in its package ${named(below)}`;
   return (
-    `the package ${stored} this file references, stored inside ${packageFile}, holds ${file}, ${outside}: extract it into ${folder} ` +
+    `${which} ${where}, ${outside}: extract it into ${folder} ` +
     `(a .mosc is a ZIP archive, and unzip does not read one stored inside another, so extract the inner package first: ` +
     `cd "$(mktemp -d)" && ${steps.join(' && ')}), or correct the path`
   );

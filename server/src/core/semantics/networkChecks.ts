@@ -66,7 +66,11 @@ export const roadFileFound: SemanticCheck = ({ roadFile, simulator, model }) => 
         roadFile.folders,
         simulator === 'esmini' ? 'error' : 'warning',
         roadFile.carlaTown,
-        (roadFile.heldByReferencedPackages ?? []).map((held) => ({ packageFile: held.disk, entries: held.entries })),
+        (roadFile.heldByReferencedPackages ?? []).map(({ held, referencedEntries }) => ({
+          packageFile: held.disk,
+          entries: held.entries,
+          referencedEntries,
+        })),
         (roadFile.unreadReferencedPackages ?? []).map((unread) => ({
           packageFile: unread.packageFile,
           line: model.document.lines.positionAt(unread.reference.start).line + 1,

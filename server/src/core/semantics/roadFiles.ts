@@ -90,12 +90,19 @@ export interface RoadFileLookup {
    * When the road was found nowhere: entries of the packages (`.mosc`) the scenario's ScenarioReferences name that hold
    * a file at that path or of that name, which esmini does not look inside for a file outside them.
    */
-  heldByReferencedPackages?: SourceRef[];
+  heldByReferencedPackages?: HeldRoad[];
   /**
    * When the road was found nowhere: the packages the scenario's ScenarioReferences name that could not be read (not a ZIP
    * archive, unreadable), so that whether they hold it is not known; `reference` is the first ScenarioReference naming each.
    */
   unreadReferencedPackages?: UnreadPackage[];
+}
+
+/** A package entry holding the road (RoadFileLookup.heldByReferencedPackages), in the package a ScenarioReference names or one stored in it. */
+export interface HeldRoad {
+  held: SourceRef;
+  /** How many of `held.entries` name the package referenced (0: the package on disk itself); the ones after it, before the file, are packages stored in it. */
+  referencedEntries: number;
 }
 
 /** A package a ScenarioReference names that could not be read (RoadFileLookup.unreadReferencedPackages). */
@@ -121,10 +128,10 @@ async function inReferencedPackages(
   ref: SourceRef,
   document: XmlDocument,
   filepath: string,
-): Promise<{ held: SourceRef[]; unread: UnreadPackage[] }> {
+): Promise<{ held: HeldRoad[]; unread: UnreadPackage[] }> {
   const wanted = normalizeEntryName(filepath.replace(/\\/g, '/'));
   const name = path.basename(filepath.replace(/\\/g, '/'));
-  const found: SourceRef[] = [];
+  const found: HeldRoad[] = [];
   const unread: UnreadPackage[] = [];
   const references = new Map<string, XmlElement>();
   for (const element of document.root ? descendants(document.root) : []) {
@@ -140,17 +147,37 @@ async function inReferencedPackages(
   for (const [fileName, reference] of references) {
     const resolution = await store.resolve(fileName, ref).catch(failed(reference, fileName));
     if (resolution?.kind !== 'package' || resolution.folder) continue;
-    const contents = await store.readPackage(resolution.packageRef).catch(failed(reference, displayRef(resolution.packageRef, undefined)));
-    if (!contents) continue;
-    const entries = [...contents.entries.keys()];
-    const entry =
-      (wanted !== undefined && contents.entries.has(wanted) ? wanted : undefined) ??
-      entries.find((candidate) => candidate.slice(candidate.lastIndexOf('/') + 1) === name);
-    if (entry !== undefined && !found.some((known) => refId(known) === refId(childRef(resolution.packageRef, entry))))
-      found.push(childRef(resolution.packageRef, entry));
+    // The package referenced, then the packages stored in it (a few levels down), until one holds the road.
+    let level = [resolution.packageRef];
+    for (let depth = 0; depth <= NESTED_PACKAGE_DEPTH && level.length > 0; depth++) {
+      const inner: SourceRef[] = [];
+      let held: SourceRef | undefined;
+      for (const packageRef of level) {
+        const contents = await store.readPackage(packageRef).catch(failed(reference, displayRef(packageRef, undefined)));
+        if (!contents) continue;
+        const entries = [...contents.entries.keys()];
+        const entry =
+          (wanted !== undefined && contents.entries.has(wanted) ? wanted : undefined) ??
+          entries.find((candidate) => candidate.slice(candidate.lastIndexOf('/') + 1) === name);
+        if (entry !== undefined) {
+          held = childRef(packageRef, entry);
+          break;
+        }
+        for (const candidate of entries) if (candidate.toLowerCase().endsWith('.mosc')) inner.push(childRef(packageRef, candidate));
+      }
+      if (held) {
+        if (!found.some((known) => refId(known.held) === refId(held as SourceRef)))
+          found.push({ held, referencedEntries: resolution.packageRef.entries.length });
+        break;
+      }
+      level = inner;
+    }
   }
   return { held: found, unread };
 }
+
+/** How many levels of packages stored inside a referenced package are looked in for a road. */
+const NESTED_PACKAGE_DEPTH = 3;
 
 /** The entry of the package holding the file `ref` that `filepath`, written in that file, names; undefined when it names none. */
 async function inOwnPackage(store: ScenarioStore, ref: SourceRef, filepath: string): Promise<SourceRef | undefined> {
