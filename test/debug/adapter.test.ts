@@ -367,9 +367,16 @@ describe('debug adapter through the Debug Adapter Protocol', function () {
     const line = lineOf(inner, '<ManeuverGroup maximumExecutionCount="1" name="CutInVehicle">');
     const launched = client.launch({ type: 'modular2simple', request: 'launch', program: top, roadPath, duration: 30 });
     await client.waitForEvent('initialized');
-    const set = await client.setBreakpointsRequest({ source: { path: inner }, breakpoints: [{ line }] });
+    const leadLine = lineOf(inner, '<ManeuverGroup maximumExecutionCount="1" name="CutInLead">');
+    const set = await client.setBreakpointsRequest({ source: { path: inner }, breakpoints: [{ line }, { line: leadLine }] });
     assert.equal(set.body.breakpoints[0].verified, true, set.body.breakpoints[0].message);
     assert.equal(set.body.breakpoints[0].message, 'ManeuverGroup Outer.CutInVehicle.CutIn');
+    // A group of the intermediate main that the top main does not import: no copy of it runs, and the breakpoint says why.
+    assert.equal(set.body.breakpoints[1].verified, false);
+    assert.equal(
+      set.body.breakpoints[1].message,
+      'ManeuverGroup CutInLead is not in the scenario being debugged: no reference of main.xosc imports it',
+    );
     const stop = client.waitForEvent('stopped');
     await client.configurationDoneRequest();
     await launched;

@@ -347,10 +347,13 @@ export class ScenarioDebugSession extends DebugSession {
     result.id = breakpoint.id;
     if (!map) result.message = 'the scenario is not loaded yet';
     else if (breakpoint.elements.length === 0) {
-      const inScenario = map.writesIn((ref) => this.sourceKey(ref) === key);
-      result.message = inScenario
-        ? `no storyboard element starts on this line: a breakpoint stops on the line of a ${ELEMENT_KINDS}`
-        : 'this file is not part of the scenario being debugged';
+      const isFile = (ref: SourceRef) => this.sourceKey(ref) === key;
+      const written = map.writtenAt(isFile, breakpoint.line);
+      result.message = written
+        ? `${written.kind} ${written.name} is not in the scenario being debugged: no reference of ${path.basename(displayRef(map.flat.ref, undefined))} imports it`
+        : map.writesIn(isFile)
+          ? `no storyboard element starts on this line: a breakpoint stops on the line of a ${ELEMENT_KINDS}`
+          : 'this file is not part of the scenario being debugged';
     } else {
       const first = breakpoint.elements[0];
       const copies = breakpoint.elements.length > 1 ? ` (${breakpoint.elements.length} flattened copies)` : '';

@@ -1,7 +1,7 @@
 import { ZERO_RANGE } from '../problems';
 import { Range } from '../text';
 import { displayRef, SourceRef } from '../sources';
-import { attribute, XmlElement } from '../xml';
+import { attribute, selfAndDescendants, XmlElement } from '../xml';
 import { copiedFrom, originOf } from './origin';
 import { FlatSource } from './types';
 
@@ -16,6 +16,16 @@ const NESTED_KINDS: Record<string, readonly StoryboardKind[]> = {
   Maneuver: ['Event'],
   Event: ['Action'],
 };
+
+const STORYBOARD_KINDS: ReadonlySet<string> = new Set<StoryboardKind>([
+  'Story',
+  'Act',
+  'ManeuverGroup',
+  'Maneuver',
+  'Event',
+  'Action',
+  'Condition',
+]);
 
 /** esmini's element type numbers (StoryboardElement.hpp, ElementType; the esminiLib.hpp callback passes them). */
 export const ESMINI_ELEMENT_TYPES: Record<number, StoryboardKind | 'Storyboard'> = {
@@ -235,6 +245,34 @@ export class StoryboardMap {
     const covers = (place: { source: SourceRef; range: Range; lastTagLine: number }) =>
       line >= place.range.start.line && line <= place.lastTagLine && isFile(place.source);
     return covers(element) ? element : element.importedAt?.find(covers);
+  }
+
+  /**
+   * The storyboard element a source of the scenario, in the file `isFile` accepts, starts on the 0-based line, whether
+   * or not a copy of it runs (a group no reference of the scenario imports has none): says why a breakpoint there stops nowhere.
+   */
+  writtenAt(isFile: (ref: SourceRef) => boolean, line: number): { kind: StoryboardKind; name: string } | undefined {
+    const seen = new Set<FlatSource>();
+    const visit = (source: FlatSource | undefined): { kind: StoryboardKind; name: string } | undefined => {
+      if (!source || seen.has(source)) return undefined;
+      seen.add(source);
+      const document = source.original?.document;
+      if (document?.root && isFile(source.ref)) {
+        const written = selfAndDescendants(document.root).find(
+          (element) =>
+            STORYBOARD_KINDS.has(element.name) &&
+            document.lines.positionAt(element.start).line <= line &&
+            line <= document.lines.positionAt(element.startTagEnd - 1).line,
+        );
+        if (written) return { kind: written.name as StoryboardKind, name: attribute(written, 'name')?.value ?? '' };
+      }
+      for (const link of source.links) {
+        const found = visit(link.source);
+        if (found) return found;
+      }
+      return undefined;
+    };
+    return visit(this.flat);
   }
 
   /** Whether an element is written in, or a ManeuverGroup there imports one into the scenario from, the file `isFile` accepts. */
