@@ -193,6 +193,41 @@ const typed = fc.string({
 });
 const edit = fc.record({ which: fc.nat(), from: fc.nat(), length: fc.nat(4), inserted: typed });
 
+/** One drawn edit inside an attribute value: which value (modulo their count), where in it, how much it replaces and by what. */
+type ValueEditDraw = { which: number; from: number; length: number; inserted: string };
+
+/**
+ * Applies `edits` one by one to `text`, re-parsing incrementally: after each, `carriedOf` the re-parsed document must
+ * equal `freshOf` the edited text parsed afresh. Returns how many edits took the incremental path.
+ */
+function editValuesChecked<T>(
+  text: string,
+  edits: readonly ValueEditDraw[],
+  carriedOf: (document: XmlDocument) => T,
+  freshOf: (document: XmlDocument) => T,
+  label = '',
+): number {
+  let carried = 0;
+  let document = parseXml(text);
+  carriedOf(document);
+  for (const { which, from, length, inserted } of edits) {
+    const ranges = valueRanges(document);
+    const range = ranges[which % ranges.length];
+    const start = range.start + (from % (range.end - range.start + 1));
+    const end = Math.min(range.end, start + length);
+    const editedText = document.text.slice(0, start) + inserted + document.text.slice(end);
+    const next = reparseXml(document, editedText);
+    if (valueEditOf(next)) carried++;
+    assert.deepEqual(
+      carriedOf(next),
+      freshOf(parseXml(editedText)),
+      `${label}after replacing [${start}, ${end}) of ${range.name} by '${inserted}'`,
+    );
+    document = next;
+  }
+  return carried;
+}
+
 /** Applies each edit inside one attribute value in turn, checking the carried model against a full build after each. */
 function checkEdits(text: string, edits: { which: number; from: number; length: number; inserted: string }[]): number {
   let document = parseXml(text);
@@ -296,23 +331,13 @@ describe('core: the modular structure after an edit inside one value', () => {
       let carried = 0;
       fc.assert(
         fc.property(fc.array(edit, { minLength: 1, maxLength: 6 }), (edits) => {
-          let document = parseXml(text);
-          readModel(document);
-          for (const { which, from, length, inserted } of edits) {
-            const ranges = valueRanges(document);
-            const range = ranges[which % ranges.length];
-            const start = range.start + (from % (range.end - range.start + 1));
-            const end = Math.min(range.end, start + length);
-            const editedText = document.text.slice(0, start) + inserted + document.text.slice(end);
-            const next = reparseXml(document, editedText);
-            if (valueEditOf(next)) carried++;
-            assert.deepEqual(
-              scenarioShape(readModel(next)),
-              scenarioShape(buildModel(parseXml(editedText))),
-              `${path.basename(file)}: after replacing [${start}, ${end}) of ${range.name} by '${inserted}'`,
-            );
-            document = next;
-          }
+          carried += editValuesChecked(
+            text,
+            edits,
+            (document) => scenarioShape(readModel(document)),
+            (document) => scenarioShape(buildModel(document)),
+            `${path.basename(file)}: `,
+          );
         }),
         { numRuns: 200 },
       );
@@ -440,7 +465,6 @@ describe('core: the semantic checks after an edit inside one value', () => {
     maxLength: 5,
   });
   const chainEdit = fc.record({ which: fc.nat(), from: fc.nat(), length: fc.nat(4), inserted: typedInChains });
-  type ChainEdit = { which: number; from: number; length: number; inserted: string };
   const ref = diskRef('/virtual/chains.xosc');
   const problemsOf = (document: XmlDocument, reading: Reading) => {
     const model = semanticModelOf(document);
@@ -455,32 +479,18 @@ describe('core: the semantic checks after an edit inside one value', () => {
   };
 
   /** Applies `edits` one by one, each checked carried over against the text read afresh; how many were carried. */
-  const carriedEdits = (text: string, reading: Reading, edits: readonly ChainEdit[]): number => {
-    let carried = 0;
-    let document = parseXml(text);
-    problemsOf(document, reading);
-    for (const { which, from, length, inserted } of edits) {
-      const ranges = valueRanges(document);
-      const range = ranges[which % ranges.length];
-      const start = range.start + (from % (range.end - range.start + 1));
-      const end = Math.min(range.end, start + length);
-      const editedText = document.text.slice(0, start) + inserted + document.text.slice(end);
-      const next = reparseXml(document, editedText);
-      if (valueEditOf(next)) carried++;
-      assert.deepEqual(
-        problemsOf(next, reading),
-        problemsOf(parseXml(editedText), reading),
-        `after replacing [${start}, ${end}) of ${range.name} by '${inserted}'`,
-      );
-      document = next;
-    }
-    return carried;
-  };
+  const carriedEdits = (text: string, reading: Reading, edits: readonly ValueEditDraw[]): number =>
+    editValuesChecked(
+      text,
+      edits,
+      (document) => problemsOf(document, reading),
+      (document) => problemsOf(document, reading),
+    );
 
   // Found by the property below in CI (seed -1025447475): esmini reads a `$` no name follows as the
   // parameter named '', so a value holding '$ P10' depends on a declaration whose name was emptied.
   it("a bare '$' depends on the parameter whose name was emptied, in esmini's reading", () => {
-    const edits: ChainEdit[] = [
+    const edits: ValueEditDraw[] = [
       { which: 1375743647, from: 275554096, length: 0, inserted: ' ' },
       { which: 461091048, from: 0, length: 2, inserted: '' },
       { which: 1742544501, from: 0, length: 0, inserted: '1' },
