@@ -9,6 +9,7 @@ import { parseXml } from '../../server/src/core/xml';
 import { repoRoot } from '../support/paths';
 import { esminiXodrDir, requireEsminiProgram } from '../support/esminiBinaries';
 import { temporaryFolder } from '../support/temporaryDirectory';
+import { repeatableRunArgs } from '../support/esmini';
 
 const fixture = path.join(repoRoot, 'test', 'fixtures', 'birdsEye', 'cut_in.xosc');
 
@@ -53,24 +54,11 @@ describe('core: esmini CSV log', function () {
     const folder = temporaryFolder('m2s-esmini-csv-');
     try {
       const csv = path.join(folder, 'out.csv');
-      const result = spawnSync(
-        esmini,
-        [
-          '--headless',
-          '--osc',
-          fixture,
-          '--fixed_timestep',
-          '0.05',
-          '--seed',
-          '1',
-          '--csv_logger',
-          csv,
-          '--disable_log',
-          '--path',
-          esminiXodrDir,
-        ],
-        { cwd: folder, encoding: 'utf8', timeout: 30_000 },
-      );
+      const result = spawnSync(esmini, repeatableRunArgs(fixture, csv, '--path', esminiXodrDir), {
+        cwd: folder,
+        encoding: 'utf8',
+        timeout: 30_000,
+      });
       assert.equal(result.status, 0, result.stdout + result.stderr);
       const run = parseEsminiCsv(fs.readFileSync(csv, 'utf8'));
       assert.match(run.version, /^v3\./);

@@ -14,6 +14,11 @@ export function requireEsmini(context: Mocha.Context): void {
   requireEsminiProgram(context, 'esmini');
 }
 
+/** esmini's arguments for a headless run that repeats exactly (a fixed step of 0.05 s, seed 1), its steps logged to `csv`. */
+export function repeatableRunArgs(scenario: string, csv: string, ...more: string[]): string[] {
+  return ['--headless', '--osc', scenario, '--fixed_timestep', '0.05', '--seed', '1', '--csv_logger', csv, '--disable_log', ...more];
+}
+
 /** One step of a run: simulated time and each entity's world position. */
 export interface EsminiStep {
   time: number;
@@ -29,20 +34,7 @@ export async function runEsmini(scenario: string, maxTime: number, wallLimitMs =
   const directory = path.dirname(scenario);
   const csv = path.join(directory, `${path.basename(scenario, '.xosc')}.esmini.csv`);
   fs.rmSync(csv, { force: true });
-  const args = [
-    '--headless',
-    '--osc',
-    scenario,
-    '--fixed_timestep',
-    '0.05',
-    '--seed',
-    '1',
-    '--csv_logger',
-    csv,
-    '--disable_log',
-    '--path',
-    esminiXodrDir,
-  ];
+  const args = repeatableRunArgs(scenario, csv, '--path', esminiXodrDir);
   const { code, output } = await runBounded(esminiBinary, args, { cwd: directory }, wallLimitMs);
   if (code !== 0 || !fs.existsSync(csv)) throw new Error(`esmini failed on ${scenario} (exit ${code}):\n${output.slice(-2000)}`);
   const steps = readEsminiCsv(csv, maxTime);

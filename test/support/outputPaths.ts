@@ -1,7 +1,7 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { esminiBinary, EsminiStep, readEsminiCsv } from './esmini';
+import { esminiBinary, EsminiStep, readEsminiCsv, repeatableRunArgs } from './esmini';
 import { esminiXodrDir } from './esminiBinaries';
 import { sharedDir } from './paths';
 import { runBounded } from './processes';
@@ -51,20 +51,7 @@ export function cutInWorkspace(): string {
 export async function runAlone(scenario: string, extraArgs: string[] = []): Promise<{ steps: EsminiStep[]; log: string }> {
   const cwd = temporaryFolder('m2s-paths-cwd-');
   const csv = path.join(cwd, 'run.csv');
-  const args = [
-    '--headless',
-    '--osc',
-    scenario,
-    '--fixed_timestep',
-    '0.05',
-    '--seed',
-    '1',
-    '--csv_logger',
-    csv,
-    '--disable_log',
-    ...extraArgs,
-  ];
-  const { code, output } = await runBounded(esminiBinary, args, { cwd }, 120_000);
+  const { code, output } = await runBounded(esminiBinary, repeatableRunArgs(scenario, csv, ...extraArgs), { cwd }, 120_000);
   const log = output;
   assert.ok(code === 0 && fs.existsSync(csv), `esmini failed on ${scenario} (exit ${code}):\n${log.slice(-2000)}`);
   return { steps: readEsminiCsv(csv), log };
