@@ -2,7 +2,7 @@ import { strict as assert } from 'node:assert';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { main } from '../../server/src/cli';
-import { attributeValue, parseXml } from '../../server/src/core/xml';
+import { attributeValue, forEachElement, parseXml } from '../../server/src/core/xml';
 import type { XmlElement } from '../../server/src/core/xml';
 import { carlaCache, HarnessVerdict, harnessVerdicts, requireCarlaHarness, scenarioRunnerFolder } from '../support/carla';
 import { esminiCatalogs, esminiRoads, requireEsmini, runEsmini, tracksOf } from '../support/esmini';
@@ -376,6 +376,7 @@ describe('export --target carla, round trip in esmini', function () {
     'Condition/@conditionEdge',
     'Storyboard/StopTrigger',
     'SpeedActionDynamics/@dynamicsDimension',
+    'SpeedActionDynamics/@dynamicsShape',
     'Vehicle',
     'Pedestrian',
     'ScenarioObject',
@@ -974,6 +975,96 @@ describe('export --target carla, a SpeedAction rate', () => {
       rates(exported).map((loss) => loss.what),
       ['the rate 4 is kept as written, but runs as a duration of 4 s'],
     );
+  });
+});
+
+/** A 1.0 scenario on Town01 whose SpeedActions have the shapes given: the first in the Init, the others in one event each. */
+function speedShapesScenario(initShape: string, storyShapes: readonly string[]): string {
+  const speed = (shape: string, value: number): string => `<LongitudinalAction><SpeedAction>
+            <SpeedActionDynamics dynamicsShape="${shape}" value="3" dynamicsDimension="time"/>
+            <SpeedActionTarget><AbsoluteTargetSpeed value="${value}"/></SpeedActionTarget>
+          </SpeedAction></LongitudinalAction>`;
+  const events = storyShapes
+    .map(
+      (shape, index) => `
+            <Event name="Speed${index}" priority="parallel">
+              <Action name="Speed${index}"><PrivateAction>${speed(shape, 5 + index)}</PrivateAction></Action>
+              <StartTrigger><ConditionGroup><Condition name="Speed${index}Starts" delay="0" conditionEdge="none">
+                <ByValueCondition><SimulationTimeCondition value="${1 + index}" rule="greaterThan"/></ByValueCondition>
+              </Condition></ConditionGroup></StartTrigger>
+            </Event>`,
+    )
+    .join('');
+  return testScenario({
+    revMinor: 0,
+    description: 'speed shapes',
+    road: 'Town01',
+    entities: vehicle('Ego', 'ego_vehicle'),
+    init: `
+        <Private entityRef="Ego">
+          <PrivateAction><TeleportAction><Position><WorldPosition x="100" y="-2" z="0" h="0"/></Position></TeleportAction></PrivateAction>
+          <PrivateAction>${speed(initShape, 4)}</PrivateAction>
+        </Private>`,
+    story: `<Story name="Speeds">
+      <Act name="Speeds">
+        <ManeuverGroup maximumExecutionCount="1" name="Group">
+          <Actors selectTriggeringEntities="false"><EntityRef entityRef="Ego"/></Actors>
+          <Maneuver name="Speeds">${events}
+          </Maneuver>
+        </ManeuverGroup>
+        ${ACT_STARTS}
+      </Act>
+    </Story>`,
+    stopAt: 10,
+  });
+}
+
+describe('export --target carla, a SpeedAction shape', function () {
+  this.timeout(120_000);
+  let out: string;
+  inTemporaryFolderEach('m2s-carla-speed-shape-', (folder) => (out = folder));
+
+  it('other than step is listed at its line as approximated (ScenarioRunner never reads it), kept as written; step is not listed (issue 26)', async () => {
+    const original = path.join(out, 'shapes.xosc');
+    const text = speedShapesScenario('cubic', ['linear', 'step', 'sinusoidal']);
+    fs.writeFileSync(original, text);
+    const result = await exportFile(original, path.join(out, 'exported.xosc'));
+    assert.equal(result.code, 0, result.stderr);
+    const lines = text.split('\n');
+    const lineOf = (shape: string): number => lines.findIndex((each) => each.includes(`dynamicsShape="${shape}"`)) + 1;
+    const shapes = result.report.losses.filter((loss) => loss.element === 'SpeedActionDynamics/@dynamicsShape');
+    assert.deepEqual(
+      shapes.map(({ kind, line, what }) => ({ kind, line, what })),
+      ['cubic', 'linear', 'sinusoidal'].map((shape) => ({
+        kind: 'approximated',
+        line: lineOf(shape),
+        what: `the ${shape} shape is kept as written, but not followed: the speed changes as the actor's controller drives`,
+      })),
+    );
+    for (const loss of shapes) {
+      assert.equal(path.resolve(loss.file), original);
+      assert.match(
+        loss.carla,
+        /^ScenarioRunner does not read a SpeedAction's dynamicsShape: .* \(srunner\/tools\/openscenario_parser\.py:1308-1320, srunner\/scenariomanager\/scenarioatomics\/atomic_behaviors\.py:516\)$/,
+      );
+    }
+    assert.match(result.stderr, /shapes\.xosc:\d+:\d+: warning: <SpeedActionDynamics\/@dynamicsShape> the linear shape /);
+    const written = parseXml(fs.readFileSync(result.output, 'utf8'));
+    const writtenShapes: string[] = [];
+    forEachElement(written.root as XmlElement, (element) => {
+      if (element.name === 'SpeedActionDynamics') writtenShapes.push(attributeValue(element, 'dynamicsShape') ?? '');
+    });
+    assert.deepEqual(writtenShapes, ['cubic', 'linear', 'step', 'sinusoidal']);
+  });
+
+  it('ScenarioRunner builds the export of shaped speeds', async function () {
+    requireCarlaHarness(this);
+    const original = path.join(out, 'shapes.xosc');
+    fs.writeFileSync(original, speedShapesScenario('linear', ['cubic', 'sinusoidal']));
+    const result = await exportFile(original, path.join(out, 'exported.xosc'));
+    assert.equal(result.code, 0, result.stderr);
+    const verdicts = await harnessVerdicts([result.output]);
+    assert.equal(verdicts.get(path.resolve(result.output))?.status, 'OK', JSON.stringify(verdicts.get(path.resolve(result.output))));
   });
 });
 

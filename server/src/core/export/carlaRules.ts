@@ -922,6 +922,21 @@ function speedRates(tree: Node, context: RuleContext): void {
   }
 }
 
+/** A SpeedAction's shape other than step is kept as written, and reported at its line: ScenarioRunner never reads it (CARLA_FACTS.speedShapeIgnored). */
+function speedShapes(tree: Node, context: RuleContext): void {
+  const fact = CARLA_FACTS.speedShapeIgnored;
+  for (const dynamics of named(tree, 'SpeedActionDynamics')) {
+    const shape = attr(dynamics, 'dynamicsShape');
+    if (shape === undefined || shape === 'step') continue;
+    context.sink.approximated(
+      dynamics,
+      'SpeedActionDynamics/@dynamicsShape',
+      `the ${shape} shape is kept as written, but not followed: the speed changes as the actor's controller drives`,
+      `ScenarioRunner ${fact.does} (${fact.source})`,
+    );
+  }
+}
+
 /**
  * The Storyboard's StopTrigger is ignored but for `criteria_` conditions (SR_SCENARIO _create_test_criteria):
  * its groups are added to every Act's StopTrigger (ending every act ends the story), the original kept for criteria.
@@ -1168,6 +1183,7 @@ export const CARLA_RULES: readonly { name: string; apply: (tree: Node, context: 
   { name: 'conditions', apply: conditions },
   { name: 'ignored-semantics', apply: ignoredSemantics },
   { name: 'speed-rates', apply: speedRates },
+  { name: 'speed-shapes', apply: speedShapes },
   { name: 'storyboard-stop', apply: storyboardStop },
   { name: 'renamed-values', apply: (tree) => renamedValues(tree) },
   { name: 'required-parts', apply: (tree) => requiredParts(tree) },

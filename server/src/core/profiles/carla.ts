@@ -280,6 +280,11 @@ export const CARLA_FACTS = {
     source: `${PARSER}:1314-1320, ${ATOMICS}:516, 560`,
     severity: 'warning',
   },
+  speedShapeIgnored: {
+    does: "does not read a SpeedAction's dynamicsShape: it hands the target speed to the actor's controller at once, which reaches it at its own pace",
+    source: `${PARSER}:1308-1320, ${ATOMICS}:516`,
+    severity: 'warning',
+  },
   noEgo: {
     does: 'runs the ScenarioObjects whose Property type is "ego_vehicle" as the ego; this scenario marks none',
     source: `${CONFIGURATION}:301-313, 420-421`,
