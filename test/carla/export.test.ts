@@ -377,6 +377,9 @@ describe('export --target carla, round trip in esmini', function () {
     'Storyboard/StopTrigger',
     'SpeedActionDynamics/@dynamicsDimension',
     'SpeedActionDynamics/@dynamicsShape',
+    'DistanceCondition/@freespace',
+    'LaneChangeActionDynamics/@dynamicsShape',
+    'LaneOffsetActionDynamics/@dynamicsShape',
     'Vehicle',
     'Pedestrian',
     'ScenarioObject',
@@ -978,44 +981,61 @@ describe('export --target carla, a SpeedAction rate', () => {
   });
 });
 
-/** A 1.0 scenario on Town01 whose SpeedActions have the shapes given: the first in the Init, the others in one event each. */
-function speedShapesScenario(initShape: string, storyShapes: readonly string[]): string {
-  const speed = (shape: string, value: number): string => `<LongitudinalAction><SpeedAction>
-            <SpeedActionDynamics dynamicsShape="${shape}" value="3" dynamicsDimension="time"/>
-            <SpeedActionTarget><AbsoluteTargetSpeed value="${value}"/></SpeedActionTarget>
-          </SpeedAction></LongitudinalAction>`;
-  const events = storyShapes
+/** A 1.0 scenario on Town01: Ego (and Other, 30 m ahead, with `other`), Ego's Init `initActions`, and one event of Ego's for each action and its condition. */
+function egoEventsScenario(parts: {
+  other: boolean;
+  initActions: string;
+  events: readonly { action: string; condition: string }[];
+}): string {
+  const body = parts.events
     .map(
-      (shape, index) => `
-            <Event name="Speed${index}" priority="parallel">
-              <Action name="Speed${index}"><PrivateAction>${speed(shape, 5 + index)}</PrivateAction></Action>
-              <StartTrigger><ConditionGroup><Condition name="Speed${index}Starts" delay="0" conditionEdge="none">
-                <ByValueCondition><SimulationTimeCondition value="${1 + index}" rule="greaterThan"/></ByValueCondition>
+      ({ action, condition }, index) => `
+            <Event name="Event${index}" priority="parallel">
+              <Action name="Action${index}"><PrivateAction>${action}</PrivateAction></Action>
+              <StartTrigger><ConditionGroup><Condition name="Starts${index}" delay="0" conditionEdge="none">
+                ${condition}
               </Condition></ConditionGroup></StartTrigger>
             </Event>`,
     )
     .join('');
+  const place = (entity: string, x: number, actions = ''): string => `
+        <Private entityRef="${entity}">
+          <PrivateAction><TeleportAction><Position><WorldPosition x="${x}" y="-2" z="0" h="0"/></Position></TeleportAction></PrivateAction>${actions}
+        </Private>`;
   return testScenario({
     revMinor: 0,
-    description: 'speed shapes',
+    description: 'ego events',
     road: 'Town01',
-    entities: vehicle('Ego', 'ego_vehicle'),
-    init: `
-        <Private entityRef="Ego">
-          <PrivateAction><TeleportAction><Position><WorldPosition x="100" y="-2" z="0" h="0"/></Position></TeleportAction></PrivateAction>
-          <PrivateAction>${speed(initShape, 4)}</PrivateAction>
-        </Private>`,
-    story: `<Story name="Speeds">
-      <Act name="Speeds">
+    entities: vehicle('Ego', 'ego_vehicle') + (parts.other ? vehicle('Other', 'simulation') : ''),
+    init: place('Ego', 100, parts.initActions) + (parts.other ? place('Other', 130) : ''),
+    story: `<Story name="Events">
+      <Act name="Events">
         <ManeuverGroup maximumExecutionCount="1" name="Group">
           <Actors selectTriggeringEntities="false"><EntityRef entityRef="Ego"/></Actors>
-          <Maneuver name="Speeds">${events}
+          <Maneuver name="Events">${body}
           </Maneuver>
         </ManeuverGroup>
         ${ACT_STARTS}
       </Act>
     </Story>`,
     stopAt: 10,
+  });
+}
+
+const atTime = (seconds: number): string =>
+  `<ByValueCondition><SimulationTimeCondition value="${seconds}" rule="greaterThan"/></ByValueCondition>`;
+
+/** Ego's SpeedActions with the shapes given: the first in the Init, the others in one event each. */
+function speedShapesScenario(initShape: string, storyShapes: readonly string[]): string {
+  const speed = (shape: string, value: number): string => `<LongitudinalAction><SpeedAction>
+            <SpeedActionDynamics dynamicsShape="${shape}" value="3" dynamicsDimension="time"/>
+            <SpeedActionTarget><AbsoluteTargetSpeed value="${value}"/></SpeedActionTarget>
+          </SpeedAction></LongitudinalAction>`;
+  return egoEventsScenario({
+    other: false,
+    initActions: `
+          <PrivateAction>${speed(initShape, 4)}</PrivateAction>`,
+    events: storyShapes.map((shape, index) => ({ action: speed(shape, 5 + index), condition: atTime(1 + index) })),
   });
 }
 
@@ -1061,6 +1081,86 @@ describe('export --target carla, a SpeedAction shape', function () {
     requireCarlaHarness(this);
     const original = path.join(out, 'shapes.xosc');
     fs.writeFileSync(original, speedShapesScenario('linear', ['cubic', 'sinusoidal']));
+    const result = await exportFile(original, path.join(out, 'exported.xosc'));
+    assert.equal(result.code, 0, result.stderr);
+    const verdicts = await harnessVerdicts([result.output]);
+    assert.equal(verdicts.get(path.resolve(result.output))?.status, 'OK', JSON.stringify(verdicts.get(path.resolve(result.output))));
+  });
+});
+
+/** Ego's lateral actions and distance conditions, Other the distance's reference. */
+function lateralScenario(events: readonly { action: string; condition: string }[]): string {
+  return egoEventsScenario({ other: true, initActions: '', events });
+}
+
+const laneChange = (shape: string): string =>
+  `<LateralAction><LaneChangeAction><LaneChangeActionDynamics dynamicsShape="${shape}" value="30" dynamicsDimension="distance"/><LaneChangeTarget><RelativeTargetLane entityRef="Ego" value="1"/></LaneChangeTarget></LaneChangeAction></LateralAction>`;
+const laneOffset = (shape: string): string =>
+  `<LateralAction><LaneOffsetAction continuous="false"><LaneOffsetActionDynamics dynamicsShape="${shape}" maxLateralAcc="0.5"/><LaneOffsetTarget><AbsoluteTargetLaneOffset value="0.5"/></LaneOffsetTarget></LaneOffsetAction></LateralAction>`;
+const distanceTo = (freespace: string): string =>
+  `<ByEntityCondition><TriggeringEntities triggeringEntitiesRule="any"><EntityRef entityRef="Ego"/></TriggeringEntities><EntityCondition><DistanceCondition value="20" freespace="${freespace}" alongRoute="false" rule="lessThan"><Position><RelativeObjectPosition entityRef="Other" dx="0" dy="0"/></Position></DistanceCondition></EntityCondition></ByEntityCondition>`;
+const SOME_TIME = atTime(1);
+
+describe('export --target carla, attributes ScenarioRunner does not follow', function () {
+  this.timeout(120_000);
+  let out: string;
+  inTemporaryFolderEach('m2s-carla-run-otherwise-', (folder) => (out = folder));
+  const events = [
+    { action: laneChange('sinusoidal'), condition: distanceTo('true') },
+    { action: laneChange('linear'), condition: distanceTo('false') },
+    { action: laneOffset('cubic'), condition: SOME_TIME },
+    { action: laneOffset('step'), condition: SOME_TIME },
+  ];
+
+  it("a DistanceCondition's freespace true, a lane change's shape other than linear, a lane offset's shape other than step: each listed at its line from its profile fact, kept as written (issue 26)", async () => {
+    const original = path.join(out, 'lateral.xosc');
+    const text = lateralScenario(events);
+    fs.writeFileSync(original, text);
+    const result = await exportFile(original, path.join(out, 'exported.xosc'));
+    assert.equal(result.code, 0, result.stderr);
+    const lines = text.split('\n');
+    const lineOf = (needle: string): number => lines.findIndex((each) => each.includes(needle)) + 1;
+    const named = ['DistanceCondition/@freespace', 'LaneChangeActionDynamics/@dynamicsShape', 'LaneOffsetActionDynamics/@dynamicsShape'];
+    assert.deepEqual(
+      result.report.losses
+        .filter((loss) => named.includes(loss.element))
+        .map(({ kind, line, element, what }) => ({ kind, line, element, what })),
+      [
+        {
+          kind: 'approximated',
+          line: lineOf('freespace="true"'),
+          element: 'DistanceCondition/@freespace',
+          what: 'freespace="true" is kept as written, but not followed',
+        },
+        {
+          kind: 'approximated',
+          line: lineOf('dynamicsShape="sinusoidal"'),
+          element: 'LaneChangeActionDynamics/@dynamicsShape',
+          what: 'dynamicsShape="sinusoidal" is kept as written, but not followed',
+        },
+        {
+          kind: 'approximated',
+          line: lineOf('dynamicsShape="cubic"'),
+          element: 'LaneOffsetActionDynamics/@dynamicsShape',
+          what: 'dynamicsShape="cubic" is kept as written, but not followed',
+        },
+      ].sort((a, b) => named.indexOf(a.element) - named.indexOf(b.element)),
+    );
+    const carla = (element: string): string => result.report.losses.find((loss) => loss.element === element)?.carla ?? '';
+    assert.match(carla('DistanceCondition/@freespace'), /never passed on.*\(srunner\/tools\/openscenario_parser\.py:1047, 1073-1075\)$/);
+    assert.match(carla('LaneChangeActionDynamics/@dynamicsShape'), /linear \(srunner\/tools\/openscenario_parser\.py:1380-1390\)$/);
+    assert.match(
+      carla('LaneOffsetActionDynamics/@dynamicsShape'),
+      /^ScenarioRunner does not read a LaneOffsetAction's dynamics .*\(srunner\/tools\/openscenario_parser\.py:1402-1404\)$/,
+    );
+    const written = fs.readFileSync(result.output, 'utf8');
+    for (const kept of ['freespace="true"', 'dynamicsShape="sinusoidal"', 'dynamicsShape="cubic"']) assert.ok(written.includes(kept), kept);
+  });
+
+  it('ScenarioRunner builds the export', async function () {
+    requireCarlaHarness(this);
+    const original = path.join(out, 'lateral.xosc');
+    fs.writeFileSync(original, lateralScenario(events));
     const result = await exportFile(original, path.join(out, 'exported.xosc'));
     assert.equal(result.code, 0, result.stderr);
     const verdicts = await harnessVerdicts([result.output]);

@@ -9,7 +9,8 @@ import { pointAlongRoute, RouteWaypoint } from '../opendrive/route';
 import { baseName, SourceRef } from '../sources';
 import { Range } from '../text';
 import { CarlaRelease, SR_ATOMICS, SR_CONFIGURATION, SR_PARSER, SR_SCENARIO } from './carlaFacts';
-import { CARLA_FACTS } from '../profiles/carla';
+import { CARLA_FACTS, CARLA_PROFILE } from '../profiles/carla';
+import { breaks } from '../profiles/checks';
 import {
   allNodes,
   ancestor,
@@ -937,6 +938,46 @@ function speedShapes(tree: Node, context: RuleContext): void {
   }
 }
 
+/** An attribute ScenarioRunner reads otherwise than written, the values it does not follow, and what it does instead (with its source). */
+interface AttributeRunOtherwise {
+  element: string;
+  attribute: string;
+  breaks: (value: string) => boolean;
+  carla: string;
+}
+
+/** From the profile fact (CARLA_PROFILE.attributes) of `element`'s `attribute`, which the editor reports too. */
+function fromProfile(element: string, attribute: string): AttributeRunOtherwise {
+  const fact = CARLA_PROFILE.attributes.find((each) => each.element === element && each.attribute === attribute);
+  if (!fact) throw new Error(`CARLA_PROFILE has no fact for ${element}/@${attribute}`);
+  return { element, attribute, breaks: (value) => breaks(fact, value), carla: `ScenarioRunner ignores it: ${fact.note} (${fact.source})` };
+}
+
+/** The attributes kept as written but not followed that no other rule reports; SR's own example of a linear lane offset keeps the editor's warning off it (CARLA_FACTS only). */
+function attributesRunOtherwiseList(): AttributeRunOtherwise[] {
+  const laneOffset = CARLA_FACTS.laneOffsetShapeIgnored;
+  return [
+    fromProfile('DistanceCondition', 'freespace'),
+    fromProfile('LaneChangeActionDynamics', 'dynamicsShape'),
+    {
+      element: 'LaneOffsetActionDynamics',
+      attribute: 'dynamicsShape',
+      breaks: (value) => value !== 'step',
+      carla: `ScenarioRunner ${laneOffset.does} (${laneOffset.source})`,
+    },
+  ];
+}
+
+/** Each attribute of attributesRunOtherwiseList with a value ScenarioRunner does not follow: kept as written, and reported at its line. */
+function attributesRunOtherwise(tree: Node, context: RuleContext): void {
+  for (const { element, attribute, breaks: notFollowed, carla } of attributesRunOtherwiseList())
+    for (const node of named(tree, element)) {
+      const value = attr(node, attribute);
+      if (value === undefined || !notFollowed(value)) continue;
+      context.sink.approximated(node, `${element}/@${attribute}`, `${attribute}="${value}" is kept as written, but not followed`, carla);
+    }
+}
+
 /**
  * The Storyboard's StopTrigger is ignored but for `criteria_` conditions (SR_SCENARIO _create_test_criteria):
  * its groups are added to every Act's StopTrigger (ending every act ends the story), the original kept for criteria.
@@ -1184,6 +1225,7 @@ export const CARLA_RULES: readonly { name: string; apply: (tree: Node, context: 
   { name: 'ignored-semantics', apply: ignoredSemantics },
   { name: 'speed-rates', apply: speedRates },
   { name: 'speed-shapes', apply: speedShapes },
+  { name: 'attributes-run-otherwise', apply: attributesRunOtherwise },
   { name: 'storyboard-stop', apply: storyboardStop },
   { name: 'renamed-values', apply: (tree) => renamedValues(tree) },
   { name: 'required-parts', apply: (tree) => requiredParts(tree) },

@@ -148,8 +148,8 @@ export const CARLA_PROFILE: SimulatorProfile = {
       element: 'DistanceCondition',
       attribute: 'freespace',
       supportedValues: ['false'],
-      source: `${PARSER}:1081-1096`,
-      note: 'the distance is measured between reference points',
+      source: `${PARSER}:1047, 1073-1075`,
+      note: 'the freespace it reads is never passed on: the distance is measured between reference points',
     },
     {
       element: 'LaneChangeActionDynamics',
@@ -283,6 +283,11 @@ export const CARLA_FACTS = {
   speedShapeIgnored: {
     does: "does not read a SpeedAction's dynamicsShape: it hands the target speed to the actor's controller at once, which reaches it at its own pace",
     source: `${PARSER}:1308-1320, ${ATOMICS}:516`,
+    severity: 'warning',
+  },
+  laneOffsetShapeIgnored: {
+    does: 'does not read a LaneOffsetAction\'s dynamics ("Parsing of the different Dynamic shapes is missing"): the offset is reached as the actor\'s controller drives, whatever the shape',
+    source: `${PARSER}:1402-1404`,
     severity: 'warning',
   },
   noEgo: {

@@ -100,7 +100,8 @@ const elementCheck: ProfileCheck = ({ profile, elements, release }) => {
   return findings;
 };
 
-function breaks(fact: AttributeFact, value: string): boolean {
+/** Whether `value` of the fact's attribute is one the simulator does not run as written (a $parameter is judged where it is resolved). */
+export function breaks(fact: AttributeFact, value: string): boolean {
   if (fact.supportedValues?.length === 0) return true;
   if (isParameterized(value)) return false;
   if (fact.supportedValues) return !fact.supportedValues.includes(value);
