@@ -375,6 +375,7 @@ describe('export --target carla, round trip in esmini', function () {
     'Event/@maximumExecutionCount',
     'Condition/@conditionEdge',
     'Storyboard/StopTrigger',
+    'Act/StopTrigger',
     'SpeedActionDynamics/@dynamicsDimension',
     'SpeedActionDynamics/@dynamicsShape',
     'DistanceCondition/@freespace',
@@ -986,6 +987,7 @@ function egoEventsScenario(parts: {
   other: boolean;
   initActions: string;
   events: readonly { action: string; condition: string }[];
+  actStop?: string;
 }): string {
   const body = parts.events
     .map(
@@ -1015,7 +1017,7 @@ function egoEventsScenario(parts: {
           <Maneuver name="Events">${body}
           </Maneuver>
         </ManeuverGroup>
-        ${ACT_STARTS}
+        ${ACT_STARTS}${parts.actStop ?? ''}
       </Act>
     </Story>`,
     stopAt: 10,
@@ -1161,6 +1163,54 @@ describe('export --target carla, attributes ScenarioRunner does not follow', fun
     requireCarlaHarness(this);
     const original = path.join(out, 'lateral.xosc');
     fs.writeFileSync(original, lateralScenario(events));
+    const result = await exportFile(original, path.join(out, 'exported.xosc'));
+    assert.equal(result.code, 0, result.stderr);
+    const verdicts = await harnessVerdicts([result.output]);
+    assert.equal(verdicts.get(path.resolve(result.output))?.status, 'OK', JSON.stringify(verdicts.get(path.resolve(result.output))));
+  });
+});
+
+describe("export --target carla, an Act's StopTrigger group of several conditions", function () {
+  this.timeout(120_000);
+  let out: string;
+  inTemporaryFolderEach('m2s-carla-act-stop-', (folder) => (out = folder));
+  const condition = (name: string, seconds: number): string =>
+    `<Condition name="${name}" delay="0" conditionEdge="none">${atTime(seconds)}</Condition>`;
+  const text = (): string =>
+    egoEventsScenario({
+      other: false,
+      initActions: '',
+      events: [{ action: laneOffset('step'), condition: atTime(1) }],
+      actStop: `
+        <StopTrigger>
+          <ConditionGroup>${condition('Late', 8)}${condition('Later', 9)}</ConditionGroup>
+          <ConditionGroup>${condition('Alone', 9.5)}</ConditionGroup>
+        </StopTrigger>`,
+    });
+
+  it('is listed at its line as approximated (ScenarioRunner ORs them), kept as written; a group of one is not (issue 26)', async () => {
+    const original = path.join(out, 'stop.xosc');
+    fs.writeFileSync(original, text());
+    const result = await exportFile(original, path.join(out, 'exported.xosc'));
+    assert.equal(result.code, 0, result.stderr);
+    const line =
+      text()
+        .split('\n')
+        .findIndex((each) => each.includes('name="Late"')) + 1;
+    const stops = result.report.losses.filter((loss) => loss.element === 'Act/StopTrigger');
+    assert.deepEqual(
+      stops.map(({ kind, line: at, what }) => ({ kind, line: at, what })),
+      [{ kind: 'approximated', line, what: "the act 'Events' stops when any one of this group's 2 conditions holds, not when all hold" }],
+    );
+    assert.match(stops[0].carla, /^ScenarioRunner OR-s the conditions .*\(srunner\/scenarios\/open_scenario\.py:492-496\)$/);
+    const written = fs.readFileSync(result.output, 'utf8');
+    assert.match(written, /name="Late"[^]*name="Later"[^]*<\/ConditionGroup>\s*<ConditionGroup>\s*<Condition name="Alone"/);
+  });
+
+  it('ScenarioRunner builds the export', async function () {
+    requireCarlaHarness(this);
+    const original = path.join(out, 'stop.xosc');
+    fs.writeFileSync(original, text());
     const result = await exportFile(original, path.join(out, 'exported.xosc'));
     assert.equal(result.code, 0, result.stderr);
     const verdicts = await harnessVerdicts([result.output]);

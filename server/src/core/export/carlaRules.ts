@@ -978,6 +978,25 @@ function attributesRunOtherwise(tree: Node, context: RuleContext): void {
     }
 }
 
+/** An Act's own StopTrigger group of several conditions is kept as written, and reported: ScenarioRunner ORs them (CARLA_FACTS.actStopTrigger); runs before storyboardStop adds the Storyboard's groups, which it reports itself. */
+function actStopGroups(tree: Node, context: RuleContext): void {
+  const fact = CARLA_FACTS.actStopTrigger;
+  for (const act of named(tree, 'Act')) {
+    const stop = child(act, 'StopTrigger');
+    if (!stop) continue;
+    for (const group of childrenNamed(stop, 'ConditionGroup')) {
+      const count = childrenNamed(group, 'Condition').length;
+      if (count < 2) continue;
+      context.sink.approximated(
+        group,
+        'Act/StopTrigger',
+        `the act '${attr(act, 'name') ?? ''}' stops when any one of this group's ${count} conditions holds, not when all hold`,
+        `ScenarioRunner ${fact.does} (${fact.source})`,
+      );
+    }
+  }
+}
+
 /**
  * The Storyboard's StopTrigger is ignored but for `criteria_` conditions (SR_SCENARIO _create_test_criteria):
  * its groups are added to every Act's StopTrigger (ending every act ends the story), the original kept for criteria.
@@ -1226,6 +1245,7 @@ export const CARLA_RULES: readonly { name: string; apply: (tree: Node, context: 
   { name: 'speed-rates', apply: speedRates },
   { name: 'speed-shapes', apply: speedShapes },
   { name: 'attributes-run-otherwise', apply: attributesRunOtherwise },
+  { name: 'act-stop-groups', apply: actStopGroups },
   { name: 'storyboard-stop', apply: storyboardStop },
   { name: 'renamed-values', apply: (tree) => renamedValues(tree) },
   { name: 'required-parts', apply: (tree) => requiredParts(tree) },
