@@ -745,6 +745,24 @@ function refusedActions(tree: Node, context: RuleContext): void {
   }
 }
 
+/** An Init action ScenarioRunner passes over (CARLA_PROFILE.elements, support 'ignored' in the Init) is kept as written, and reported; those dropped as refused above are gone by now. */
+function initActionsPassedOver(tree: Node, context: RuleContext): void {
+  const init = named(tree, 'Init')[0];
+  if (!init) return;
+  for (const fact of CARLA_PROFILE.elements) {
+    if (fact.support !== 'ignored' || fact.in !== 'init') continue;
+    for (const node of named(init, fact.element)) {
+      if (!node.parent) continue;
+      context.sink.approximated(
+        node,
+        `Init/${fact.element}`,
+        'is kept as written, but not run: ScenarioRunner passes over it in the Init',
+        `ScenarioRunner passes over it: ${fact.note ?? 'it is not run in the Init'} (${fact.source})`,
+      );
+    }
+  }
+}
+
 /** ScenarioRunner 0.9.16 builds every AssignRouteAction and AcquirePositionAction as ChangeActorWaypoints without times, which raises (SR_ATOMICS ChangeActorWaypoints.__init__, commit ab5996d7). */
 function routeActionCrash(tree: Node, context: RuleContext): void {
   if (context.release !== '0.9.16') return;
@@ -1239,6 +1257,7 @@ export const CARLA_RULES: readonly { name: string; apply: (tree: Node, context: 
   { name: 'positions', apply: unsupportedPositions },
   { name: 'refused-actions', apply: refusedActions },
   { name: 'route-crash', apply: routeActionCrash },
+  { name: 'init-actions-passed-over', apply: initActionsPassedOver },
   { name: 'traffic-signals', apply: trafficSignals },
   { name: 'conditions', apply: conditions },
   { name: 'ignored-semantics', apply: ignoredSemantics },
