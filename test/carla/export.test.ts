@@ -376,6 +376,7 @@ describe('export --target carla, round trip in esmini', function () {
     'Condition/@conditionEdge',
     'Storyboard/StopTrigger',
     'Act/StopTrigger',
+    'SceneGraphFile',
     'SpeedActionDynamics/@dynamicsDimension',
     'SpeedActionDynamics/@dynamicsShape',
     'DistanceCondition/@freespace',
@@ -1256,6 +1257,35 @@ describe('export --target carla, an Init action ScenarioRunner passes over', fun
   it('ScenarioRunner builds the export', async function () {
     requireCarlaHarness(this);
     await assertExportBuilds(path.join(out, 'init.xosc'), text());
+  });
+});
+
+describe('export --target carla, a SceneGraphFile', () => {
+  let out: string;
+  inTemporaryFolderEach('m2s-carla-scene-graph-', (folder) => (out = folder));
+
+  it('is listed at its line as dropped: ScenarioRunner never reads it (issue 26)', async () => {
+    const original = path.join(out, 'graph.xosc');
+    const text = speedShapesScenario('step', ['step']).replace(
+      '<LogicFile filepath="Town01"/>',
+      '<LogicFile filepath="Town01"/>\n    <SceneGraphFile filepath="Town01.osgb"/>',
+    );
+    fs.writeFileSync(original, text);
+    const result = await exportFile(original, path.join(out, 'exported.xosc'));
+    assert.equal(result.code, 0, result.stderr);
+    const line = text.split('\n').findIndex((each) => each.includes('<SceneGraphFile')) + 1;
+    assert.ok(line > 0);
+    assert.deepEqual(
+      result.report.losses
+        .filter((loss) => loss.element !== 'Storyboard/StopTrigger')
+        .map(({ kind, line: at, element, what }) => ({ kind, line: at, element, what })),
+      [{ kind: 'dropped', line, element: 'SceneGraphFile', what: 'is dropped' }],
+    );
+    assert.match(
+      result.report.losses.find((loss) => loss.element === 'SceneGraphFile')?.carla ?? '',
+      /\(srunner\/scenarioconfigs\/openscenario_configuration\.py:164-165\)/,
+    );
+    assert.doesNotMatch(fs.readFileSync(result.output, 'utf8'), /SceneGraphFile/);
   });
 });
 

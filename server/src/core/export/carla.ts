@@ -594,7 +594,15 @@ async function rewriteRoad(
   const networkNode = child(tree, 'RoadNetwork') as Node;
   const sceneGraph = child(networkNode, 'SceneGraphFile');
   // ScenarioRunner ignores the scene graph (it draws CARLA's own map); its path would not resolve from the output's folder.
-  if (sceneGraph) removeNode(sceneGraph);
+  if (sceneGraph) {
+    removeNode(sceneGraph);
+    sink.dropped(
+      sceneGraph,
+      'SceneGraphFile',
+      'is dropped',
+      `ScenarioRunner never reads it: it takes the road from RoadNetwork/LogicFile only (${SR_CONFIGURATION}:164-165) and draws CARLA's own map`,
+    );
+  }
   const description = header ? attr(header, 'description') : undefined;
   if (header && description?.startsWith('CARLA:') && 'file' in road) {
     setAttr(header, 'description', description.slice('CARLA:'.length).trimStart() || 'scenario');
