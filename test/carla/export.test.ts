@@ -1264,7 +1264,7 @@ describe('export --target carla, a SceneGraphFile', () => {
   let out: string;
   inTemporaryFolderEach('m2s-carla-scene-graph-', (folder) => (out = folder));
 
-  it('is listed at its line as dropped: ScenarioRunner never reads it (issue 26)', async () => {
+  it('naming a file is listed at its line as dropped (ScenarioRunner never reads it); an empty one is not (issue 26)', async () => {
     const original = path.join(out, 'graph.xosc');
     const text = speedShapesScenario('step', ['step']).replace(
       '<LogicFile filepath="Town01"/>',
@@ -1286,6 +1286,15 @@ describe('export --target carla, a SceneGraphFile', () => {
       /\(srunner\/scenarioconfigs\/openscenario_configuration\.py:164-165\)/,
     );
     assert.doesNotMatch(fs.readFileSync(result.output, 'utf8'), /SceneGraphFile/);
+    // An empty one, as ScenarioRunner's own examples write it, names nothing: removed without a loss.
+    fs.writeFileSync(original, text.replace('filepath="Town01.osgb"', 'filepath=""'));
+    const empty = await exportFile(original, path.join(out, 'empty.xosc'));
+    assert.equal(empty.code, 0, empty.stderr);
+    assert.deepEqual(
+      empty.report.losses.filter((loss) => loss.element === 'SceneGraphFile'),
+      [],
+    );
+    assert.doesNotMatch(fs.readFileSync(empty.output, 'utf8'), /SceneGraphFile/);
   });
 });
 

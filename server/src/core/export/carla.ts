@@ -594,8 +594,9 @@ async function rewriteRoad(
   const networkNode = child(tree, 'RoadNetwork') as Node;
   const sceneGraph = child(networkNode, 'SceneGraphFile');
   // ScenarioRunner ignores the scene graph (it draws CARLA's own map); its path would not resolve from the output's folder.
-  if (sceneGraph) {
-    removeNode(sceneGraph);
+  if (sceneGraph) removeNode(sceneGraph);
+  // An empty path (ScenarioRunner's own examples write one) names nothing to lose.
+  if (sceneGraph && attr(sceneGraph, 'filepath')) {
     sink.dropped(
       sceneGraph,
       'SceneGraphFile',
