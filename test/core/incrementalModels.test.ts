@@ -229,27 +229,13 @@ function editValuesChecked<T>(
 }
 
 /** Applies each edit inside one attribute value in turn, checking the carried model against a full build after each. */
-function checkEdits(text: string, edits: { which: number; from: number; length: number; inserted: string }[]): number {
-  let document = parseXml(text);
-  semanticModelOf(document);
-  let carried = 0;
-  for (const { which, from, length, inserted } of edits) {
-    const ranges = valueRanges(document);
-    const range = ranges[which % ranges.length];
-    const start = range.start + (from % (range.end - range.start + 1));
-    const end = Math.min(range.end, start + length);
-    const editedText = document.text.slice(0, start) + inserted + document.text.slice(end);
-    const next = reparseXml(document, editedText);
-    if (valueEditOf(next)) carried++;
-    const model = semanticModelOf(next);
-    assert.deepEqual(
-      shape(model),
-      shape(buildSemanticModel(parseXml(editedText))),
-      `after replacing [${start}, ${end}) of ${range.name} by '${inserted}'`,
-    );
-    document = next;
-  }
-  return carried;
+function checkEdits(text: string, edits: readonly ValueEditDraw[]): number {
+  return editValuesChecked(
+    text,
+    edits,
+    (document) => shape(semanticModelOf(document)),
+    (document) => shape(buildSemanticModel(document)),
+  );
 }
 
 describe('core: the semantic model after an edit inside one value', () => {
