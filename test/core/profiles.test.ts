@@ -84,6 +84,17 @@ describe('simulator profiles', () => {
     assert.deepEqual(messages('carla', scenarioText('0', '', LANE_CHANGE)), []);
   });
 
+  it("carla names where the Init's global actions are read (parameters and entities only), not the private actions' loop", () => {
+    const signal =
+      '<GlobalAction><InfrastructureAction><TrafficSignalAction><TrafficSignalStateAction name="1" state="on;off"/></TrafficSignalAction></InfrastructureAction></GlobalAction>';
+    const inInit = messages('carla', scenarioText('0', signal, ''));
+    assert.equal(inInit.length, 1);
+    assert.match(
+      inInit[0],
+      /^CARLA ScenarioRunner ignores TrafficSignalStateAction in the Init: .*\(srunner\/scenarios\/open_scenario\.py:201-215, 598-620\)$/,
+    );
+  });
+
   it('carla reports the finding at the source position (the revMinor value, the action tag), as an error with its one-edit fix', () => {
     const text = scenarioText('1', '', VISIBILITY);
     const document = parseXml(text);

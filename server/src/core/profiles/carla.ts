@@ -17,6 +17,9 @@ const ATOMICS = SR_ATOMICS;
 const INIT_NOTE =
   'the Init runs Speed, Teleport, Controller, LaneOffset, LateralDistance, routing and trajectory actions, the first EnvironmentAction, ParameterActions and entity actions only';
 
+/** Where the Init's GlobalActions are read: ParameterActions (_initialize_parameters) and EntityActions (_initialize_actors) only. */
+const GLOBAL_INIT_SOURCE = `${RUNNER}:201-215, 598-620`;
+
 export const CARLA_PROFILE: SimulatorProfile = {
   simulator: 'carla',
   name: 'CARLA ScenarioRunner',
@@ -98,11 +101,11 @@ export const CARLA_PROFILE: SimulatorProfile = {
       note: 'building ChangeActorWaypoints without times raises "object of type \'NoneType\' has no len()", a regression of commit ab5996d7 (0.9.15 runs it)',
     },
     // Run otherwise than written: the Init runs only some actions (FACTS.md) and passes over the rest.
-    { element: 'TrafficAction', support: 'ignored', in: 'init', source: `${RUNNER}:263-348`, note: INIT_NOTE },
+    { element: 'TrafficAction', support: 'ignored', in: 'init', source: GLOBAL_INIT_SOURCE, note: INIT_NOTE },
     { element: 'VisibilityAction', support: 'ignored', in: 'init', source: `${RUNNER}:263-348`, note: INIT_NOTE },
-    { element: 'TrafficSignalStateAction', support: 'ignored', in: 'init', source: `${RUNNER}:263-348`, note: INIT_NOTE },
-    { element: 'TrafficSignalControllerAction', support: 'ignored', in: 'init', source: `${RUNNER}:263-348`, note: INIT_NOTE },
-    { element: 'CustomCommandAction', support: 'ignored', in: 'init', source: `${RUNNER}:263-348`, note: INIT_NOTE },
+    { element: 'TrafficSignalStateAction', support: 'ignored', in: 'init', source: GLOBAL_INIT_SOURCE, note: INIT_NOTE },
+    { element: 'TrafficSignalControllerAction', support: 'ignored', in: 'init', source: GLOBAL_INIT_SOURCE, note: INIT_NOTE },
+    { element: 'CustomCommandAction', support: 'ignored', in: 'init', source: GLOBAL_INIT_SOURCE, note: INIT_NOTE },
     { element: 'ActivateControllerAction', support: 'ignored', in: 'init', source: `${RUNNER}:263-348`, note: INIT_NOTE },
     { element: 'LaneChangeAction', support: 'ignored', in: 'init', source: `${RUNNER}:263-348`, note: INIT_NOTE },
     { element: 'LongitudinalDistanceAction', support: 'ignored', in: 'init', source: `${RUNNER}:263-348`, note: INIT_NOTE },
