@@ -44,6 +44,11 @@ async function exportFile(input: string, output: string, extra: readonly string[
 }
 
 /** Each test of the calling block in a new temporary folder (given to `use`), removed after it. */
+/** The one-based number of the first line of `text` holding `needle` (0 when none does). */
+function lineHolding(text: string, needle: string): number {
+  return text.split('\n').findIndex((each) => each.includes(needle)) + 1;
+}
+
 function inTemporaryFolderEach(prefix: string, use: (folder: string) => void): void {
   let folder = '';
   beforeEach(() => use((folder = temporaryFolder(prefix))));
@@ -1065,8 +1070,7 @@ describe('export --target carla, a SpeedAction shape', function () {
     fs.writeFileSync(original, text);
     const result = await exportFile(original, path.join(out, 'exported.xosc'));
     assert.equal(result.code, 0, result.stderr);
-    const lines = text.split('\n');
-    const lineOf = (shape: string): number => lines.findIndex((each) => each.includes(`dynamicsShape="${shape}"`)) + 1;
+    const lineOf = (shape: string): number => lineHolding(text, `dynamicsShape="${shape}"`);
     const shapes = result.report.losses.filter((loss) => loss.element === 'SpeedActionDynamics/@dynamicsShape');
     assert.deepEqual(
       shapes.map(({ kind, line, what }) => ({ kind, line, what })),
@@ -1128,8 +1132,7 @@ describe('export --target carla, attributes ScenarioRunner does not follow', fun
     fs.writeFileSync(original, text);
     const result = await exportFile(original, path.join(out, 'exported.xosc'));
     assert.equal(result.code, 0, result.stderr);
-    const lines = text.split('\n');
-    const lineOf = (needle: string): number => lines.findIndex((each) => each.includes(needle)) + 1;
+    const lineOf = (needle: string): number => lineHolding(text, needle);
     const named = ['DistanceCondition/@freespace', 'LaneChangeActionDynamics/@dynamicsShape', 'LaneOffsetActionDynamics/@dynamicsShape'];
     assert.deepEqual(
       result.report.losses
@@ -1196,10 +1199,7 @@ describe("export --target carla, an Act's StopTrigger group of several condition
     fs.writeFileSync(original, text());
     const result = await exportFile(original, path.join(out, 'exported.xosc'));
     assert.equal(result.code, 0, result.stderr);
-    const line =
-      text()
-        .split('\n')
-        .findIndex((each) => each.includes('name="Late"')) + 1;
+    const line = lineHolding(text(), 'name="Late"');
     const stops = result.report.losses.filter((loss) => loss.element === 'Act/StopTrigger');
     assert.deepEqual(
       stops.map(({ kind, line: at, what }) => ({ kind, line: at, what })),
@@ -1234,10 +1234,7 @@ describe('export --target carla, an Init action ScenarioRunner passes over', fun
     fs.writeFileSync(original, text());
     const result = await exportFile(original, path.join(out, 'exported.xosc'));
     assert.equal(result.code, 0, result.stderr);
-    const line =
-      text()
-        .split('\n')
-        .findIndex((each) => each.includes('<LaneChangeAction>')) + 1;
+    const line = lineHolding(text(), '<LaneChangeAction>');
     const passed = result.report.losses.filter((loss) => loss.element.startsWith('Init/'));
     assert.deepEqual(
       passed.map(({ kind, line: at, element, what }) => ({ kind, line: at, element, what })),
@@ -1273,7 +1270,7 @@ describe('export --target carla, a SceneGraphFile', () => {
     fs.writeFileSync(original, text);
     const result = await exportFile(original, path.join(out, 'exported.xosc'));
     assert.equal(result.code, 0, result.stderr);
-    const line = text.split('\n').findIndex((each) => each.includes('<SceneGraphFile')) + 1;
+    const line = lineHolding(text, '<SceneGraphFile');
     assert.ok(line > 0);
     assert.deepEqual(
       result.report.losses
