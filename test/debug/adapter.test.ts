@@ -14,7 +14,13 @@ import { openscenarioDir } from '../support/openscenarioCorpus';
 import { repoRoot } from '../support/paths';
 import { runBounded } from '../support/processes';
 import { temporaryFolder } from '../support/temporaryDirectory';
-import { writeAddedEntityCrash, writeClearanceCrash, writeNestedCutIn, writeTwoCutIns } from '../support/debugScenarios';
+import {
+  writeAddedEntityCrash,
+  writeClearanceCrash,
+  writeNestedCutIn,
+  writeNestedCutInPackage,
+  writeTwoCutIns,
+} from '../support/debugScenarios';
 import { SESSION_ARGUMENT } from '../../server/src/debug/supervisor';
 
 const cutIn = path.join(openscenarioDir, 'esmini', 'cut-in.xosc');
@@ -149,6 +155,15 @@ describe('debug adapter through the Debug Adapter Protocol', function () {
       this.skip();
     }
   });
+
+  /** Ends the configuration of a launched session and waits for its first stop, on a breakpoint; returns its stack. */
+  async function firstStop(launched: Promise<unknown>): Promise<DebugProtocol.StackFrame[]> {
+    const stop = client.waitForEvent('stopped');
+    await client.configurationDoneRequest();
+    await launched;
+    assert.equal(((await stop) as DebugProtocol.StoppedEvent).body.reason, 'breakpoint');
+    return (await client.stackTraceRequest({ threadId: 1 })).body.stackFrames;
+  }
 
   beforeEach(async () => {
     expectedStderr = undefined;
@@ -340,11 +355,7 @@ describe('debug adapter through the Debug Adapter Protocol', function () {
     const set = await client.setBreakpointsRequest({ source: { path: main }, breakpoints: [{ line }] });
     assert.equal(set.body.breakpoints[0].verified, true, set.body.breakpoints[0].message);
     assert.match(set.body.breakpoints[0].message ?? '', /^ManeuverGroup CutInVehicle\.CutIn$/);
-    const stop = client.waitForEvent('stopped');
-    await client.configurationDoneRequest();
-    await launched;
-    assert.equal(((await stop) as DebugProtocol.StoppedEvent).body.reason, 'breakpoint');
-    const frames = (await client.stackTraceRequest({ threadId: 1 })).body.stackFrames;
+    const frames = await firstStop(launched);
     // VS Code shows the first frame of a breakpoint's stop: the line the breakpoint is on.
     assert.deepEqual([frames[0].name, frames[0].source?.path, frames[0].line], ['ManeuverGroup CutInVehicle.CutIn (running)', main, line]);
     assert.deepEqual(
@@ -377,11 +388,7 @@ describe('debug adapter through the Debug Adapter Protocol', function () {
       set.body.breakpoints[1].message,
       'ManeuverGroup CutInLead is not in the scenario being debugged: no reference of main.xosc imports it',
     );
-    const stop = client.waitForEvent('stopped');
-    await client.configurationDoneRequest();
-    await launched;
-    assert.equal(((await stop) as DebugProtocol.StoppedEvent).body.reason, 'breakpoint');
-    const frames = (await client.stackTraceRequest({ threadId: 1 })).body.stackFrames;
+    const frames = await firstStop(launched);
     // The breakpoint's line first, then the top main's group that imports from the intermediate main.
     assert.deepEqual(
       frames.slice(0, 4).map((frame) => [frame.name, frame.source?.path, frame.line]),
@@ -410,6 +417,60 @@ describe('debug adapter through the Debug Adapter Protocol', function () {
         ['ManeuverGroup CutInVehicle (imports CutIn from lane_change.xosc)', inner, line],
         ['ManeuverGroup Outer (imports CutInVehicle.CutIn from inner/main.xosc)', top, lineOf(top, 'name="Outer"')],
         ['Act EncounterAct', top, lineOf(top, '<Act name="EncounterAct"')],
+      ],
+    );
+    await Promise.all([client.continueRequest({ threadId: 1 }), client.waitForEvent('terminated')]);
+  });
+
+  it("stops on an importing ManeuverGroup line inside a .mosc package, and takes breakpoints set by the package file's source reference alone", async () => {
+    const folder = temporaryFolder();
+    const { top, pack, innerText } = await writeNestedCutInPackage(folder);
+    const lineIn = (text: string, needle: string) => text.split('\n').findIndex((line) => line.includes(needle)) + 1;
+    const line = lineIn(innerText, '<ManeuverGroup maximumExecutionCount="1" name="CutInVehicle">');
+    assert.ok(line > 0);
+    // The package's main as the adapter names it (the path of a stack frame's source), as VS Code sends it back.
+    const innerPath = path.join(pack, 'main.xosc');
+    const launched = client.launch({ type: 'modular2simple', request: 'launch', program: top, roadPath, duration: 30 });
+    await client.waitForEvent('initialized');
+    const set = await client.setBreakpointsRequest({ source: { path: innerPath }, breakpoints: [{ line }] });
+    assert.equal(set.body.breakpoints[0].verified, true, set.body.breakpoints[0].message);
+    assert.equal(set.body.breakpoints[0].message, 'ManeuverGroup Outer.CutInVehicle.CutIn');
+    const frames = await firstStop(launched);
+    assert.deepEqual(
+      frames.slice(0, 2).map((frame) => [frame.name, frame.source?.path, frame.line]),
+      [
+        ['ManeuverGroup Outer.CutInVehicle.CutIn (running)', innerPath, line],
+        ['ManeuverGroup Outer (imports CutInVehicle.CutIn from inner.mosc)', top, lineOf(top, 'name="Outer"')],
+      ],
+    );
+    // A file inside a package has no path on disk: the editor reads its text through the source request.
+    const reference = frames[0].source?.sourceReference ?? 0;
+    assert.ok(reference > 0, 'the package file has a source reference');
+    assert.equal((await client.sourceRequest({ sourceReference: reference })).body.content, innerText);
+    // The copy where the package's lane_change.xosc writes it; a breakpoint set by that source's reference alone.
+    const copy = frames.find((frame) => frame.name.startsWith('ManeuverGroup Outer.CutInVehicle.CutIn (running since '));
+    const simpleReference = copy?.source?.sourceReference ?? 0;
+    assert.equal(copy?.source?.path, path.join(pack, 'lane_change.xosc'));
+    assert.ok(simpleReference > 0);
+    const simpleText = (await client.sourceRequest({ sourceReference: simpleReference })).body.content;
+    const eventLine = lineIn(simpleText, '<Event name="ChangeLane"');
+    const byReference = await client.setBreakpointsRequest({
+      source: { sourceReference: simpleReference },
+      breakpoints: [{ line: eventLine }],
+    });
+    assert.equal(byReference.body.breakpoints[0].verified, true, byReference.body.breakpoints[0].message);
+    const next = client.waitForEvent('stopped');
+    await client.continueRequest({ threadId: 1 });
+    await next;
+    const inside = (await client.stackTraceRequest({ threadId: 1 })).body.stackFrames;
+    assert.deepEqual(
+      inside.slice(0, 5).map((frame) => [frame.name, frame.source?.path, frame.line]),
+      [
+        ['Event ChangeLane (running)', path.join(pack, 'lane_change.xosc'), eventLine],
+        ['Maneuver CutInManeuver', path.join(pack, 'lane_change.xosc'), lineIn(simpleText, '<Maneuver name="CutInManeuver"')],
+        ['ManeuverGroup Outer.CutInVehicle.CutIn', path.join(pack, 'lane_change.xosc'), lineIn(simpleText, '<ManeuverGroup name="CutIn"')],
+        ['ManeuverGroup CutInVehicle (imports CutIn from lane_change.xosc)', innerPath, line],
+        ['ManeuverGroup Outer (imports CutInVehicle.CutIn from inner.mosc)', top, lineOf(top, 'name="Outer"')],
       ],
     );
     await Promise.all([client.continueRequest({ threadId: 1 }), client.waitForEvent('terminated')]);

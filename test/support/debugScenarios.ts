@@ -6,7 +6,7 @@ import { mainOf, storeForInputs } from '../../server/src/cli/inputs';
 import { Flattener } from '../../server/src/core/flatten';
 import { removeRunFolder, runScenario } from '../../server/src/esmini/run';
 import { esminiCatalogs, esminiRoads } from './esmini';
-import { act, speedChangeGroup } from './fixtures';
+import { act, packageOf, speedChangeGroup } from './fixtures';
 import { repoRoot } from './paths';
 
 /** Where the two cut-ins' road and vehicle catalog are found. */
@@ -172,4 +172,20 @@ export function writeNestedCutIn(folder: string): { top: string; inner: string; 
   const top = path.join(folder, 'main.xosc');
   fs.writeFileSync(top, text.slice(0, first) + outer + text.slice(startTrigger));
   return { top, inner, simple: path.join(innerFolder, 'lane_change.xosc') };
+}
+
+/**
+ * writeNestedCutIn with the intermediate main packed: `inner.mosc` holds its main.xosc and lane_change.xosc, and the
+ * top main imports `CutInVehicle.CutIn` from the package. Returns the top main and the package's main text.
+ */
+export async function writeNestedCutInPackage(folder: string): Promise<{ top: string; pack: string; innerText: string }> {
+  const { top, inner, simple } = writeNestedCutIn(folder);
+  const innerText = fs.readFileSync(inner, 'utf8');
+  const pack = path.join(folder, 'inner.mosc');
+  fs.writeFileSync(pack, await packageOf({ 'main.xosc': innerText, 'lane_change.xosc': fs.readFileSync(simple, 'utf8') }));
+  fs.rmSync(path.dirname(inner), { recursive: true });
+  const text = fs.readFileSync(top, 'utf8');
+  assert.ok(text.includes('scenarioFileName="inner/main.xosc"'));
+  fs.writeFileSync(top, text.replace('scenarioFileName="inner/main.xosc"', 'scenarioFileName="inner.mosc"'));
+  return { top, pack, innerText };
 }

@@ -143,7 +143,8 @@ export class ScenarioDebugSession extends DebugSession {
   private stopped: Stop | undefined;
   private frames: { place: Pick<MappedElement, 'source' | 'range'> | undefined; label: string }[] = [];
   private variableHandles = new Map<number, () => DebugProtocol.Variable[]>();
-  private sourceTexts = new Map<number, string>();
+  /** The files inside a package that a frame or an output line named, by the source reference given each (1, 2, ...). */
+  private packagedSources = new Map<number, SourceRef>();
   private terminated = false;
   private lastStateAt = 0;
   /** The run of the scenario: 1 from the launch, one more at each restart (StoryboardEventBody.run). */
@@ -317,7 +318,13 @@ export class ScenarioDebugSession extends DebugSession {
     args: DebugProtocol.SetBreakpointsArguments,
   ): void {
     this.guard(response, () => {
-      const key = args.source.path ? path.resolve(args.source.path) : `#${args.source.sourceReference ?? 0}`;
+      // A file inside a package is named by its source reference alone by some clients (the path is optional in DAP).
+      const packaged = this.packagedSources.get(args.source.sourceReference ?? 0);
+      const key = args.source.path
+        ? path.resolve(args.source.path)
+        : packaged
+          ? this.sourceKey(packaged)
+          : `#${args.source.sourceReference ?? 0}`;
       const previous = this.lineBreakpoints.get(key) ?? [];
       const list = (args.breakpoints ?? []).map((requested): LineBreakpoint => {
         const line = this.convertClientLineToDebugger(requested.line);
@@ -753,20 +760,23 @@ export class ScenarioDebugSession extends DebugSession {
     if (ref.entries.length === 0) return new Source(path.basename(ref.disk), this.convertDebuggerPathToClient(ref.disk));
     // A file inside a .mosc: its text served by the adapter.
     const key = displayRef(ref, undefined);
-    let id = [...this.sourceTexts.keys()].find((candidate) => this.sourceKeys.get(candidate) === key);
+    let id = [...this.packagedSources].find(([, known]) => displayRef(known, undefined) === key)?.[0];
     if (id === undefined) {
-      id = this.sourceTexts.size + 1;
-      const text = this.simulation?.scenario.map.textOf(ref) ?? '';
-      this.sourceTexts.set(id, text);
-      this.sourceKeys.set(id, key);
+      id = this.packagedSources.size + 1;
+      this.packagedSources.set(id, ref);
     }
     return new Source(ref.entries[ref.entries.length - 1], key, id);
   }
-  private sourceKeys = new Map<number, string>();
 
   protected override sourceRequest(response: DebugProtocol.SourceResponse, args: DebugProtocol.SourceArguments): void {
-    const text = this.sourceTexts.get(args.sourceReference);
-    if (text === undefined) return this.sendErrorResponse(response, { id: 1003, format: 'no such source', showUser: false });
+    const ref = this.packagedSources.get(args.sourceReference);
+    const text = ref && this.simulation?.scenario.map.textOf(ref);
+    if (text === undefined) {
+      const format = ref
+        ? `the text of ${displayRef(ref, undefined)} is not known to this session: open the package's file from a stack frame of a running session`
+        : `no source has the reference ${args.sourceReference}`;
+      return this.sendErrorResponse(response, { id: 1003, format, showUser: true });
+    }
     response.body = { content: text, mimeType: 'text/xml' };
     this.sendResponse(response);
   }

@@ -125,7 +125,7 @@ export class StoryboardMap {
   readonly elements: MappedElement[] = [];
   private readonly byPath = new Map<string, MappedElement>();
   private readonly conditionsByName = new Map<string, MappedElement[]>();
-  /** The text of each file an element was written in, by its display key. */
+  /** The text of each file an element or an importing group was written in, by its display key. */
   private readonly texts = new Map<string, string>();
 
   constructor(
@@ -195,6 +195,8 @@ export class StoryboardMap {
       const document = source.original?.document;
       if (!insertion || !document) break;
       const outer = insertion.outerGroup.element;
+      // An importing group's file may write no element of its own that survives flattening (a main inside a package).
+      this.texts.set(refKey(source.ref), document.text);
       places.unshift({
         name: attribute(outer, 'name')?.value ?? '',
         imports: `${insertion.reference.name} from ${insertion.link.info.fileName}`,
