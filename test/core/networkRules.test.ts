@@ -158,14 +158,13 @@ describe('road-network and value-range rules', () => {
     assert.deepEqual(clean.problems, []);
   });
 
-  it('a ManeuverGroup with private actions and no actor is a warning at its Actors (an error to ASAM, run by esmini); selectTriggeringEntities names actors', async () => {
+  it('a ManeuverGroup with private actions and no actor is an error at its Actors (esmini refuses it too)', async () => {
     const bare = scenario({ actors: '' });
     const { problems, text } = await check(bare);
     assert.equal(problems.length, 1, JSON.stringify(problems));
     assert.equal(problems[0].code, 'no-actor');
-    assert.equal(problems[0].severity, 'warning');
+    assert.equal(problems[0].severity, 'error');
     assert.equal(firstLineAt(text, problems[0]), '<Actors');
-    assert.deepEqual((await check(bare.replace('selectTriggeringEntities="false"', 'selectTriggeringEntities="true"'))).problems, []);
     assert.deepEqual((await check(scenario({}))).problems, []);
   });
 

@@ -125,10 +125,10 @@ export const trafficSignalControllerRefs: SemanticCheck = (context) => {
 
 /**
  * A ManeuverGroup whose maneuvers hold private actions has actors to act on: an EntityRef, or
- * `selectTriggeringEntities="true"` (the standard then takes the triggering entities; ASAM's
- * Quality Checker counts only EntityRefs, so it reports that case too: here it is left alone). ASAM's
- * checker reports a group without actors as an error; esmini runs the scenario and the actions act on no
- * entity, so by SPEC 12 (never refuse what esmini runs) it is a warning that says both.
+ * `selectTriggeringEntities="true"` where its Act's StartTrigger has an entity condition to take the
+ * triggering entities from (ASAM's Quality Checker counts only EntityRefs, so it reports that case too:
+ * here it is left alone). Without either it is an error, as ASAM's checker says: esmini 3.6 quits on it
+ * ("PrivateAction ... missing actor(s)", ScenarioReader.cpp:5304-5310), with selectTriggeringEntities too.
  */
 export const privateActionActors: SemanticCheck = (context) => {
   const findings: Finding[] = [];
@@ -137,10 +137,11 @@ export const privateActionActors: SemanticCheck = (context) => {
     if (!privateAction) continue;
     const actors = group.children.find((child) => child.name === 'Actors');
     if (actors?.children.some((child) => child.name === 'EntityRef')) continue;
-    if (actors && textOf(context, actors, 'selectTriggeringEntities')?.text.trim() === 'true') continue;
+    const selectsTriggering = actors !== undefined && textOf(context, actors, 'selectTriggeringEntities')?.text.trim() === 'true';
+    if (selectsTriggering && actStartTriggeringEntities(group)) continue;
     findings.push({
       ...at(actors ?? group, actors ? undefined : attribute(group, 'name')),
-      ...noActorWording(attribute(group, 'name')?.value ?? ''),
+      ...noActorWording(attribute(group, 'name')?.value ?? '', selectsTriggering),
       related: [
         {
           source: context.ref,
@@ -152,6 +153,15 @@ export const privateActionActors: SemanticCheck = (context) => {
   }
   return findings;
 };
+
+/** Whether the StartTrigger of the Act holding `group` has an entity condition (its TriggeringEntities are what selectTriggeringEntities takes). */
+function actStartTriggeringEntities(group: XmlElement): boolean {
+  const act = group.parent?.name === 'Act' ? group.parent : undefined;
+  // A group outside an Act (a simple scenario's, composed into a main's Act): the Act it lands in is not known here.
+  if (!act) return true;
+  const trigger = act.children.find((child) => child.name === 'StartTrigger');
+  return trigger !== undefined && firstDescendant(trigger, 'TriggeringEntities') !== undefined;
+}
 
 const firstPrivateActions = coreMemo<XmlElement, XmlElement | null>('firstPrivateActions');
 
