@@ -56,6 +56,47 @@ export function esminiStopWords(stop: EsminiStop): string {
   }
 }
 
+/** Where a value is read by a comparison of a stored value (a parameter's, a variable's) or stored for one: any difference can flip it. */
+const STORED_COMPARISONS: ReadonlySet<string> = new Set([
+  'ParameterCondition',
+  'VariableCondition',
+  'UserDefinedValueCondition',
+  'ParameterSetAction',
+  'VariableSetAction',
+  'ParameterAddValueRule',
+  'ParameterMultiplyByValueRule',
+  'VariableAddValueRule',
+  'VariableMultiplyByValueRule',
+]);
+
+/**
+ * Whether the attribute `attribute` of an `element` is compared exactly: the `value` of a condition on a stored value (or of an
+ * action storing one), or of any condition whose `rule` (`ruleText`, evaluated) is equalTo or notEqualTo.
+ */
+export function comparedExactly(element: string, attribute: string, ruleText: string | undefined): boolean {
+  if (attribute !== 'value') return false;
+  return STORED_COMPARISONS.has(element) || ruleText === 'equalTo' || ruleText === 'notEqualTo';
+}
+
+/**
+ * The largest difference between esmini's number and the standard's, as a share of the value (absolute below 1), that no run
+ * shows where the value is a quantity (metres, seconds, m/s, radians): 1 cm on a position of 100 m, 10 ms on a time of 100 s
+ * (a fifth of esmini's 0.05 s step), while esmini's six decimals (resultText) carried through a chain of expressions make
+ * differences of 1e-8 to 1e-5 of the value (Euro NCAP's trajectory parameters).
+ */
+export const UNSEEN_DIFFERENCE = 1e-4;
+
+/**
+ * Whether esmini's value differs from the standard's in a way the scenario can show (SPEC 12's warning): any difference where
+ * the value is no double or is compared exactly (`exact`); for a quantity, one beyond UNSEEN_DIFFERENCE of it (e.g. 100.000002
+ * for a start position of 100 m is no warning, 0.01 for a time of 0.014 s is).
+ */
+export function differenceMatters(standard: number | string | boolean, esmini: number | string | boolean, exact: boolean): boolean {
+  if (typeof standard !== 'number' || typeof esmini !== 'number' || exact) return standard !== esmini;
+  if (!Number.isFinite(standard) || !Number.isFinite(esmini)) return !Object.is(standard, esmini);
+  return Math.abs(standard - esmini) > UNSEEN_DIFFERENCE * Math.max(1, Math.abs(standard));
+}
+
 /** The values of the standard and of esmini, and the rules that make them differ. */
 export function differenceWords(difference: ValueDifference): string {
   return `esmini computes ${difference.esmini} where the standard gives ${difference.standard}${difference.reasons.length ? `: ${difference.reasons.join('; ')}` : ''}`;

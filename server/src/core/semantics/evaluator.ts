@@ -1,7 +1,7 @@
 import { ValueRule } from '../profiles/facts';
-import { XmlAttribute, XmlElement } from '../xml';
+import { attribute, XmlAttribute, XmlElement } from '../xml';
 import { ExpressionFact, GluedCause, LiteralMismatch, ValueDifference } from '../diagnostics/expressionFacts';
-import { esminiRule } from '../diagnostics/simulatorValue';
+import { comparedExactly, differenceMatters, esminiRule } from '../diagnostics/simulatorValue';
 import { atof, esminiFromTree, EsminiText, esminiExpression, esminiTyped, plainNumber } from './esminiValues';
 import { evaluateTree, LookupResult } from './expressionEvaluation';
 import { ExpressionError } from './expressionParser';
@@ -151,7 +151,11 @@ export class Evaluator {
               ? { ok: true, value: typed.value, type, provenance: standard.provenance, differs }
               : { ...standard, differs };
           const attr = declaration.valueAttribute;
-          if (attr && standard.provenance.kind === 'declaration') {
+          if (
+            attr &&
+            standard.provenance.kind === 'declaration' &&
+            differenceMatters(standard.value, typed.value, declaration.type !== 'double' || this.readExactly(declaration))
+          ) {
             this.warn(declaration, {
               kind: 'simulator',
               fact: 'declaration-differs',
@@ -518,8 +522,29 @@ export class Evaluator {
       esmini: formatValue(esminiValue),
       reasons: reasonsOf(esmini.rules),
     };
-    if (!site.declaration) warnings.push({ kind: 'simulator', fact: 'differs', difference: differs, ...whole });
+    if (
+      !site.declaration &&
+      differenceMatters(standard.value, esminiValue, standard.type !== 'double' || this.comparedExactlyAt(site.element, site.attribute))
+    )
+      warnings.push({ kind: 'simulator', fact: 'differs', difference: differs, ...whole });
     return { ...standard, ...chosen, differs, warnings };
+  }
+
+  /** Whether an attribute's value is compared exactly where it is written (simulatorValue.ts comparedExactly). */
+  private comparedExactlyAt(element: XmlElement, attr: XmlAttribute): boolean {
+    return comparedExactly(element.name, attr.name, this.textOf(element, attribute(element, 'rule')));
+  }
+
+  /**
+   * Whether a declaration's value is compared exactly by one of its uses: a whole attribute so compared, or a parameterRef that
+   * reads or sets it (a use inside an expression is judged by that expression's own value).
+   */
+  private readExactly(declaration: Declaration): boolean {
+    return (this.model.usesOf.get(declaration) ?? []).some((use) =>
+      use.via === 'parameterRef'
+        ? use.element.name !== 'ParameterAssignment'
+        : use.via === 'value' && this.comparedExactlyAt(use.element, use.attribute),
+    );
   }
 
   /** The value an attribute takes: itself when literal, else its parameter's or expression's value. */
