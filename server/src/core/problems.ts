@@ -120,6 +120,8 @@ export interface ProblemSubject {
   root?: true;
   /** Of the children a schema-missing-element problem names, those the element has none of (the others stand out of order). */
   absent?: string[];
+  /** Of an expression-syntax problem: the operator, function or character the standard's expressions do not have. */
+  token?: string;
 }
 
 /** The name or value to write instead of the one written. */

@@ -33,13 +33,16 @@ function missingNames(problem: RuledProblem): readonly string[] {
 
 /**
  * ASAM's checker splits three schema rules off its valid_schema rule; a problem of one of them names
- * that rule instead of its code's: the root element, a missing FileHeader, the FileHeader's version.
+ * that rule instead of its code's: the root element, a missing FileHeader, the FileHeader's version. An
+ * expression-syntax problem about an operator the standard lacks names its allowed_operators rule.
  */
 function specificQcRule(problem: RuledProblem): QcRuleUid | undefined {
   const subject = problem.subject;
   if (!subject) return undefined;
   if (problem.code === 'schema-unknown-element' && subject.root) return QC.rootTag;
   if (problem.code === 'schema-missing-element' && subject.root && subject.absent?.includes('FileHeader')) return QC.fileHeader;
+  // An operator, function or character the standard's expressions lack: ASAM's checker's allowed_operators (allowed_operators.py:29-42).
+  if (problem.code === 'expression-syntax' && subject.token !== undefined) return QC.allowedOperators;
   // The schema allows a FileHeader only as the root's child: any FileHeader it reports on is that one.
   if (subject.element !== 'FileHeader') return undefined;
   if (problem.code === 'schema-missing-attribute' && missingNames(problem).some((name) => VERSION_ATTRIBUTES.includes(name)))

@@ -21,6 +21,10 @@ export type ExpressionSyntaxFact =
   | { kind: 'syntax'; fact: 'unclosed-expression' }
   /** A bare word that names no parameter (`functions`: the function names the standard knows). */
   | { kind: 'syntax'; fact: 'unknown-name'; name: string; functions: readonly string[] }
+  /** A word where an operator was expected, which is no operator of the standard (`1 xor 2`, `2_3`). */
+  | { kind: 'syntax'; fact: 'unknown-operator'; word: string }
+  /** A call of a function the standard does not have (`functions`: those it has). */
+  | { kind: 'syntax'; fact: 'unknown-function'; name: string; functions: readonly string[] }
   | { kind: 'syntax'; fact: 'declaration-without-value'; name: string };
 
 /** Why a value is no value of a type: a literal's text, a number's range, a conversion, a fraction. */

@@ -1,6 +1,9 @@
 import { defineDiagnostic } from './definition';
 import { ExpressionSyntaxFact, FoundToken } from './expressionFacts';
 
+/** The operators of the standard's expressions, as an unknown operator's message lists them. */
+const STANDARD_OPERATORS = '+, -, *, /, %, and, or, not';
+
 /** What the parser met, as its messages name it. */
 function foundWords(found: FoundToken): string {
   switch (found.kind) {
@@ -38,8 +41,31 @@ export function expressionSyntaxMessage(fact: ExpressionSyntaxFact): string {
       return `an expression must end with '}'`;
     case 'unknown-name':
       return `${unknownNameWords(fact.name)}: a parameter is written $${fact.name}; the functions are ${fact.functions.join(', ')}`;
+    case 'unknown-function':
+      return `unknown function '${fact.name}': the functions are ${fact.functions.join(', ')}`;
+    case 'unknown-operator':
+      return `unknown operator '${fact.word}': the operators are ${STANDARD_OPERATORS}`;
     case 'declaration-without-value':
       return `the declaration of '${fact.name}' has no value`;
+  }
+}
+
+/**
+ * The operator, function or character of a syntax error that the standard's expressions do not have (ASAM's
+ * Quality Checker reports each as data_type.allowed_operators, allowed_operators.py:29-42, 130-145); undefined
+ * for an error of how known parts are put together.
+ */
+export function nonstandardToken(fact: ExpressionSyntaxFact): string | undefined {
+  switch (fact.fact) {
+    case 'character':
+      return fact.character;
+    case 'unknown-name':
+    case 'unknown-function':
+      return fact.name;
+    case 'unknown-operator':
+      return fact.word;
+    default:
+      return undefined;
   }
 }
 

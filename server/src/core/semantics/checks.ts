@@ -1,4 +1,5 @@
 import { expressionWording } from '../diagnostics/expressionWords';
+import { nonstandardToken } from '../diagnostics/expressionSyntax';
 import { simulatorFindings } from '../profiles/checks';
 import { baseName, displayRef } from '../sources';
 import { closestMatch } from '../text';
@@ -158,6 +159,8 @@ function expressionFinding(context: SemanticContext, element: XmlElement, attr: 
     end,
     ...expressionWording(error),
   };
+  const token = error.kind === 'syntax' ? nonstandardToken(error) : undefined;
+  if (token !== undefined) finding.subject = { element: element.name, attribute: attr.name, token };
   const fix = error.fix;
   if (fix && fix.start === start && fix.end === end) {
     finding.data = { suggestion: fix.text };

@@ -1,7 +1,7 @@
 /** Evaluation of a parsed `${...}` expression: doubles, booleans and the standard's functions (./expressionParser.ts parses). */
 
 import { NumberOperand } from '../diagnostics/expressionFacts';
-import { ExpressionError, ExpressionNode, FUNCTIONS, FunctionName } from './expressionParser';
+import { ExpressionError, ExpressionNode, FUNCTION_NAMES, FunctionName } from './expressionParser';
 import { ParameterType, ParameterValue, readStringAsValue, roundHalfAwayFromZero, SHARED_MATH_FUNCTIONS, TypedValue } from './values';
 
 /** A parameter's value, with where its `parameterType` value is written (a string parameter read as a number is fixed there). */
@@ -19,9 +19,6 @@ class EvaluationFailure extends Error {
     super(error.kind);
   }
 }
-
-/** The function names the standard knows, as an unknown name's fact lists them. */
-const FUNCTION_NAMES: readonly string[] = Object.keys(FUNCTIONS);
 
 /**
  * Evaluates a parsed expression. Numbers are doubles throughout (the result is converted to the

@@ -77,6 +77,12 @@ export const FUNCTIONS = {
 
 export type FunctionName = keyof typeof FUNCTIONS;
 
+/** The function names the standard knows, as an unknown name's fact lists them. */
+export const FUNCTION_NAMES: readonly string[] = Object.keys(FUNCTIONS);
+
+/** Every word an expression may hold besides parameter names: operators, literals, functions, constants (pi, e: nonstandard-expression). */
+const KNOWN_WORDS: ReadonlySet<string> = new Set(['and', 'or', 'not', 'true', 'false', 'pi', 'e', ...FUNCTION_NAMES]);
+
 /** A `${...}` expression as parsed: its tree (absent after a syntax error) and its problems. */
 export interface ParsedExpression {
   /** Offsets of the whole `${...}` and of its body. */
@@ -166,6 +172,11 @@ export function parseExpressionBody(body: string, base = 0): { tree: ExpressionN
     throw new SyntaxFailure({ ...fact, start: token.start, end: Math.max(token.end, token.start + 1) });
   };
   const isWord = (token: Token, word: string) => token.kind === 'word' && token.word === word;
+  // Where an operator or a closing symbol was expected, a word the standard's expressions lack is an unknown operator.
+  const unexpected = (token: Token, fact: ExpressionSyntaxFact): never =>
+    token.kind === 'word' && !KNOWN_WORDS.has(token.word)
+      ? fail(token, { kind: 'syntax', fact: 'unknown-operator', word: token.word })
+      : fail(token, fact);
   const isSymbol = (token: Token, symbol: string) => token.kind === 'symbol' && token.symbol === symbol;
   const describe = (token: Token): FoundToken =>
     token.kind === 'end'
@@ -202,7 +213,7 @@ export function parseExpressionBody(body: string, base = 0): { tree: ExpressionN
       const inner = orExpression();
       const close = peek();
       if (!isSymbol(close, ')'))
-        fail(close, { kind: 'syntax', fact: 'unclosed-parenthesis', column: token.start - base + 1, found: describe(close) });
+        unexpected(close, { kind: 'syntax', fact: 'unclosed-parenthesis', column: token.start - base + 1, found: describe(close) });
       index++;
       return { ...inner, start: token.start, end: close.end };
     }
@@ -224,7 +235,7 @@ export function parseExpressionBody(body: string, base = 0): { tree: ExpressionN
           }
         }
         const close = peek();
-        if (!isSymbol(close, ')')) fail(close, { kind: 'syntax', fact: 'arguments-not-closed', name, found: describe(close) });
+        if (!isSymbol(close, ')')) unexpected(close, { kind: 'syntax', fact: 'arguments-not-closed', name, found: describe(close) });
         index++;
         const arity = FUNCTIONS[name].arity;
         if (args.length !== arity) {
@@ -236,6 +247,7 @@ export function parseExpressionBody(body: string, base = 0): { tree: ExpressionN
         return { kind: 'call', name, args, start: token.start, end: close.end };
       }
       if (token.word === 'pi' || token.word === 'e') return { kind: 'constant', name: token.word, start: token.start, end: token.end };
+      if (isSymbol(peek(), '(')) fail(token, { kind: 'syntax', fact: 'unknown-function', name: token.word, functions: FUNCTION_NAMES });
       return { kind: 'name', name: token.word, start: token.start, end: token.end };
     }
     return fail(token, { kind: 'syntax', fact: 'operand-expected', found: describe(token) });
@@ -265,7 +277,7 @@ export function parseExpressionBody(body: string, base = 0): { tree: ExpressionN
   try {
     const tree = orExpression();
     const rest = peek();
-    if (rest.kind !== 'end') fail(rest, { kind: 'syntax', fact: 'operator-expected', found: describe(rest) });
+    if (rest.kind !== 'end') unexpected(rest, { kind: 'syntax', fact: 'operator-expected', found: describe(rest) });
     return { tree, errors };
   } catch (error) {
     if (error instanceof SyntaxFailure) return { tree: undefined, errors: [error.error] };

@@ -99,6 +99,7 @@ export function problemOfFinding(finding: Finding, ref: SourceRef, range: Range)
   if (finding.hint) problem.hint = finding.hint;
   if (finding.related) problem.related = finding.related;
   if (finding.data) problem.data = finding.data;
+  if (finding.subject) problem.subject = finding.subject;
   return problem;
 }
 
