@@ -231,6 +231,19 @@ function resolverOf(scenario: ScenarioParameters, values: Map<string, string>): 
   return Object.assign(byName, { text });
 }
 
+/**
+ * Why a distribution's value does not fit its parameter's type, or undefined when it does. A `$name` or `${...}` value is
+ * checked by what it evaluates to over the scenario's values (esmini writes the text into the declaration, which evaluates it:
+ * ScenarioReader.cpp, "Parameter permutation"); one that cannot be evaluated is checked as written.
+ */
+export function assignedValueMismatch(scenario: ScenarioParameters, assignment: ParameterValue, type: string): string | undefined {
+  const evaluated =
+    valueForm(assignment.value.trim()).kind === 'literal'
+      ? undefined
+      : resolverOf(scenario, valuesAfter(scenario, [assignment])).text(assignment.value);
+  return typeMismatch(evaluated ?? assignment.value, type);
+}
+
 /** Numbers compare as numbers for numeric parameter types; everything else compares as text (dateTime in ISO form orders correctly). */
 function meets(value: string, bound: string, rule: ConstraintRule, numeric: boolean): boolean {
   let order: number;

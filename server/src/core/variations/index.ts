@@ -1,12 +1,12 @@
 import * as path from 'node:path';
 import { LineIndex } from '../text';
 import {
+  assignedValueMismatch,
   brokenConstraint,
   concreteScenarioText,
   hasConstraints,
   readScenarioParameters,
   ScenarioParameters,
-  typeMismatch,
   undeclaredParameters,
 } from './concrete';
 import { assignmentAt, DeterministicExpansion, expandDeterministic } from './deterministic';
@@ -165,7 +165,7 @@ function typeWarnings(
   const reported = new Set<string>();
   for (const assignment of deterministicValues) {
     const type = types.get(assignment.parameter) ?? 'string';
-    const mismatch = typeMismatch(assignment.value, type);
+    const mismatch = assignedValueMismatch(scenario, assignment, type);
     if (!mismatch || reported.has(assignment.parameter)) continue;
     reported.add(assignment.parameter);
     warnings.push({
