@@ -298,7 +298,7 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
   // Flattened for the private run folder, so its file paths name the files the sources name (SPEC 11.6).
   const runFolder = makeRunFolder(options.runsFolder ?? path.join(os.tmpdir(), 'modular2simple-esmini'));
   const scenarioFile = path.join(runFolder, 'scenario.xosc');
-  const flat = await flattener.flatten(main, { outputPath: scenarioFile, force: options.force });
+  const flat = await flattener.flatten(main, { outputPath: scenarioFile, force: options.force, roadHanded: true });
   const flattenProblems = flat.problems;
   if (flat.text === undefined || withTimeLimit(flat.text, base.duration) === undefined)
     fs.rmSync(runFolder, { recursive: true, force: true });

@@ -292,6 +292,7 @@ export async function rebaseFlattened(
   model: ScenarioModel,
   outputPath: string | undefined,
   store: ScenarioStore,
+  roadHanded = false,
 ): Promise<{ edits: TextEdit[]; resolved: ResolvedPath[]; problems: Problem[]; files: PackagedFile[] }> {
   const flattenedHere = model === source.model;
   const originFor = (element: XmlElement) => (flattenedHere ? originOf(source, element) : { source, element });
@@ -355,6 +356,7 @@ export async function rebaseFlattened(
     kindOf: (diskPath) => store.kindOf(diskPath),
   });
   for (const finding of rebase.findings) {
+    if (roadHanded && finding.site.element.name === 'LogicFile') continue;
     problems.push(problemAtOrigin(finding.site.element, finding.site.attribute.name, unrebasedPathWording(finding.message)));
   }
   return {

@@ -137,6 +137,11 @@ export interface FlattenOptions {
   outputPath?: string;
   /** The output goes to standard output: its file paths are written absolute. */
   standardOutput?: boolean;
+  /**
+   * The road file is handed to the simulator by its absolute path (a run: esmini/run.ts withRoadFile), so a LogicFile path
+   * through a parameter, left as written, is no warning that the output may reach another road.
+   */
+  roadHanded?: boolean;
 }
 
 export interface AnalysisResult {
