@@ -122,6 +122,8 @@ export interface ProblemSubject {
   absent?: string[];
   /** Of an expression-syntax problem: the operator, function or character the standard's expressions do not have. */
   token?: string;
+  /** Of a type-mismatch problem: a catalog entry's parameter declared with an empty value, which gives it no default. */
+  noCatalogDefault?: true;
 }
 
 /** The name or value to write instead of the one written. */

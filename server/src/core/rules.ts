@@ -43,6 +43,8 @@ function specificQcRule(problem: RuledProblem): QcRuleUid | undefined {
   if (problem.code === 'schema-missing-element' && subject.root && subject.absent?.includes('FileHeader')) return QC.fileHeader;
   // An operator, function or character the standard's expressions lack: ASAM's checker's allowed_operators (allowed_operators.py:29-42).
   if (problem.code === 'expression-syntax' && subject.token !== undefined) return QC.allowedOperators;
+  // A catalog entry's parameter without a default value: ASAM's checker's valid_parameter_declaration_in_catalogs.
+  if (problem.code === 'type-mismatch' && subject.noCatalogDefault) return QC.catalogParameters;
   // The schema allows a FileHeader only as the root's child: any FileHeader it reports on is that one.
   if (subject.element !== 'FileHeader') return undefined;
   if (problem.code === 'schema-missing-attribute' && missingNames(problem).some((name) => VERSION_ATTRIBUTES.includes(name)))

@@ -146,6 +146,14 @@ export const duplicateDeclarations: SemanticCheck = (context) => {
   return findings;
 };
 
+/** A catalog entry's parameter declared with an empty value of a type that has no empty value: it has no default (ASAM QC valid_parameter_declaration_in_catalogs.py:66-78, 94-98). */
+function isEmptyCatalogDefault(element: XmlElement, error: ExpressionError): boolean {
+  if (error.kind !== 'type-mismatch' || error.fact !== 'declared-value' || error.mismatch.fact !== 'not-of-type') return false;
+  if (error.mismatch.text.trim() !== '') return false;
+  for (let parent = element.parent; parent; parent = parent.parent) if (parent.name === 'Catalog') return true;
+  return false;
+}
+
 function expressionFinding(context: SemanticContext, element: XmlElement, attr: XmlAttribute, error: ExpressionError): Finding | undefined {
   // An unknown parameter is reported once by undeclaredParameters, or at the declaration that has no valid value.
   if (error.kind === 'unknown-parameter') return undefined;
@@ -161,6 +169,7 @@ function expressionFinding(context: SemanticContext, element: XmlElement, attr: 
   };
   const token = error.kind === 'syntax' ? nonstandardToken(error) : undefined;
   if (token !== undefined) finding.subject = { element: element.name, attribute: attr.name, token };
+  else if (isEmptyCatalogDefault(element, error)) finding.subject = { element: element.name, attribute: attr.name, noCatalogDefault: true };
   const fix = error.fix;
   if (fix && fix.start === start && fix.end === end) {
     finding.data = { suggestion: fix.text };
