@@ -228,6 +228,11 @@ export class Evaluator {
     this.warnings.set(declaration, list);
   }
 
+  /** A declaration's value by the standard's rules, whatever the reading (what a rule of the standard alone, such as a ConstraintGroup, is about). */
+  standardDeclarationValue(declaration: Declaration): ValueResult {
+    return this.reading === 'standard' ? this.declarationValue(declaration) : this.standardDeclaration(declaration);
+  }
+
   /** The value by the standard's rules alone. */
   private standardDeclaration(declaration: Declaration): ValueResult {
     const known = this.standardValues.get(declaration);

@@ -10,7 +10,9 @@ import { brokenConstraintNote, ConstraintFacts, valueConstraintWording } from '.
  * A ParameterDeclaration's `ConstraintGroup`s (1.1 and later, `ValueConstraintGroup`): the value is valid
  * when at least one group holds, and a group holds when all its `ValueConstraint`s do. Each constraint
  * compares the value (left) with the constraint's value (right), converted to the parameter's type;
- * booleans and strings know only equalTo and notEqualTo.
+ * booleans and strings know only equalTo and notEqualTo. The value is the standard's in every reading: esmini 3.6
+ * reads no ConstraintGroup (none of its sources names one), so its reading of a value (an unsignedInt kept as
+ * text, 'wrongDouble' read as 0) has no constraint to break.
  */
 
 const RULES = ['equalTo', 'notEqualTo', 'lessThan', 'lessOrEqual', 'greaterThan', 'greaterOrEqual'] as const;
@@ -129,7 +131,7 @@ export const valueConstraints: SemanticCheck = (context) => {
     if (declaration.kind !== 'parameter' || declaration.type === undefined) continue;
     if (!declaration.element.children.some((child) => child.name === 'ConstraintGroup')) continue;
     const groups = groupsOfDeclaration(declaration, declaration.type, true);
-    const result = context.evaluator.declarationValue(declaration);
+    const result = context.evaluator.standardDeclarationValue(declaration);
     if (!result.ok) continue;
     const broken = brokenConstraints(groups, result.value, declaration.type);
     if (!broken) continue;
@@ -163,7 +165,7 @@ export const valueConstraints: SemanticCheck = (context) => {
       const name = assignment.parameterRef ? referencedName(assignment.parameterRef).name : undefined;
       const declaration = constrained.find((candidate) => candidate.name === name);
       if (!declaration || !declaration.type || !assignment.valueAttribute) continue;
-      const result = entryEvaluator.declarationValue(declaration);
+      const result = entryEvaluator.standardDeclarationValue(declaration);
       if (!result.ok) continue;
       // The entry's own file reports what cannot be read in its constraints.
       const broken = brokenConstraints(groupsOf(context, declaration, declaration.type, []), result.value, declaration.type);
