@@ -4,11 +4,11 @@ import { fileHeader, openScenarioFile, runCli } from '../support/fixtures';
 import { listFiles, temporaryWorkspace } from '../support/workspace';
 
 const SCENARIO = openScenarioFile(
-  `  <Entities/>
+  `  <Entities><ScenarioObject name="Box"><MiscObject name="box" mass="1" miscObjectCategory="obstacle"><BoundingBox><Center x="0" y="0" z="0.5"/><Dimensions width="1" length="1" height="1"/></BoundingBox><Properties/></MiscObject></ScenarioObject></Entities>
   <Storyboard>
     <Init><Actions/></Init>
     <Story name="s"><Act name="a"><ManeuverGroup name="g" maximumExecutionCount="1">
-      <Actors selectTriggeringEntities="true"/>
+      <Actors selectTriggeringEntities="false"><EntityRef entityRef="Box"/></Actors>
       <Maneuver name="m"><Event name="e" priority="overwrite"><Action name="x">
         <PrivateAction><VisibilityAction graphics="false" traffic="true" sensors="true"/></PrivateAction>
       </Action>
