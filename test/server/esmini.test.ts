@@ -9,9 +9,9 @@ import { locateEsmini, projectEsminiFolder } from '../../server/src/esmini/locat
 import { mapEsminiMessages } from '../../server/src/esmini/messages';
 import { lastCsvTime, makeRunFolder, runEsminiProcess } from '../../server/src/esmini/process';
 import { EsminiRunOptions, EsminiRunResult, removeRunFolder, runScenario } from '../../server/src/esmini/run';
-import { TIME_LIMIT_CONDITION, withTimeLimit } from '../../server/src/esmini/timeLimit';
+import { runLimit, RUNAWAY_SECONDS, TIME_LIMIT_CONDITION, withTimeLimit } from '../../server/src/esmini/timeLimit';
 import { parseXml } from '../../server/src/core/xml';
-import { catalogFile } from '../support/fixtures';
+import { catalogFile, roadScenario } from '../support/fixtures';
 import { esminiBinary, tracksOf, readEsminiCsv, requireEsmini, esminiCatalogs, esminiRoads } from '../support/esmini';
 import { libraryDir, repoRoot, requireCorpus } from '../support/paths';
 import { listFiles } from '../support/workspace';
@@ -43,6 +43,14 @@ async function run(store: ScenarioStore, main: string, options: EsminiRunOptions
   return result;
 }
 
+/** A scenario on straight_500m.xodr, Ego driving 1.4 m/s, whose StopTrigger ends it when the simulation time reaches `seconds`. */
+function stoppingAt(seconds: string): string {
+  const init =
+    '<Private entityRef="Ego"><PrivateAction><TeleportAction><Position><LanePosition roadId="1" laneId="-1" s="10" offset="0"/></Position></TeleportAction></PrivateAction></Private>';
+  const stop = `<StopTrigger><ConditionGroup><Condition name="End" delay="0" conditionEdge="rising"><ByValueCondition><SimulationTimeCondition value="${seconds}" rule="greaterOrEqual"/></ByValueCondition></Condition></ConditionGroup></StopTrigger>`;
+  return roadScenario({ logicFile: 'straight_500m.xodr', init, groups: [] }).replace('<StopTrigger/>', stop);
+}
+
 const errorsOf = (result: EsminiRunResult) => result.problems.filter((problem) => problem.severity === 'error');
 
 describe('esmini: time limit and log (no simulator needed)', () => {
@@ -71,6 +79,14 @@ describe('esmini: time limit and log (no simulator needed)', () => {
       /<StopTrigger><ConditionGroup>.*<\/StopTrigger>\s*<\/Storyboard>/s,
     );
     assert.equal(withTimeLimit('<OpenSCENARIO/>', 3), undefined);
+  });
+
+  it('moves the runaway guard past a StopTrigger that ends the scenario by time at or after it (ALKS free driving at 5 km/h, issue 27)', () => {
+    assert.deepEqual(runLimit(stoppingAt('100'), undefined), { seconds: RUNAWAY_SECONDS, kind: 'runaway', setBy: undefined });
+    // The scenario ends at the step of 3600 s (esmini's 5000 / (5 / 3.6)), the guard a second later.
+    assert.deepEqual(runLimit(stoppingAt('${5000.0 / (5 / 3.6)}'), undefined), { seconds: 3601, kind: 'runaway', setBy: undefined });
+    assert.equal(runLimit(stoppingAt('1e9'), undefined).seconds, 24 * RUNAWAY_SECONDS);
+    assert.equal(runLimit(stoppingAt('5000'), 20).seconds, 20);
   });
 
   it('reads the last complete CSV row, ignoring a row being written', () => {
@@ -494,6 +510,16 @@ describe('esmini: runs (the simulator built by the test setup)', function () {
     } finally {
       fs.rmSync(path.dirname(config), { recursive: true, force: true });
     }
+  });
+
+  it('a scenario whose StopTrigger ends it at 3600 s ends by itself, not as a runaway (ALKS free driving at 5 km/h, issue 27)', async function () {
+    requireEsmini(this);
+    const root = temporaryFolder('m2s-esmini-hour-');
+    fs.writeFileSync(path.join(root, 'hour.xosc'), stoppingAt('${5000.0 / (5 / 3.6)}'));
+    const result = await run(new ScenarioStore({ root }), path.join(root, 'hour.xosc'));
+    assert.equal(result.outcome, 'ok', result.message);
+    assert.ok(!result.reachedLimit, result.message);
+    assert.match(result.message, /; 3600\.00 s simulated \(the run took/);
   });
 
   it('stops a scenario whose own StopTrigger never fires at the time limit', async function () {

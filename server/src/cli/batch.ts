@@ -36,7 +36,8 @@ export const BATCH_HELP = `Run every concrete scenario of a distribution in esmi
   --sample N --seed S       N concrete scenarios drawn at random (seed S, default 0) instead of all
   --duration S              stop each run at S simulated seconds if its scenario has not ended by then (status
                             limit; a warning before the batch says when the scenario's StopTrigger ends past it);
-                            default: each scenario's own end (one not ended after ${RUN_DEFAULTS.runawaySeconds} s, or that makes no
+                            default: each scenario's own end (one not ended after ${RUN_DEFAULTS.runawaySeconds} s, or a second after the
+                            time its StopTrigger ends it at when that is later, or that makes no
                             progress for ${RUN_DEFAULTS.stallMs / 1000} s, is stopped: status timeout; one whose StopTrigger has no
                             condition runs ${RUN_DEFAULTS.noEndSeconds} s: status limit); fixed step ${RUN_DEFAULTS.timeStep} s, seed ${RUN_DEFAULTS.seed}
   --max-combinations N      refuse more combinations than N before running anything, unless --sample (default 1000000)

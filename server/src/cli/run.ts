@@ -15,7 +15,8 @@ import { mainOf, storeForInputs } from './inputs';
 
 export const RUN_HELP = `Run in esmini (modular2simple run INPUT... [options]):
   --duration S              stop at S simulated seconds if the scenario has not ended by then (default: its own
-                            end, when its StopTrigger fires; one not ended after ${RUN_DEFAULTS.runawaySeconds} s is stopped, and one whose
+                            end, when its StopTrigger fires; one not ended after ${RUN_DEFAULTS.runawaySeconds} s, or a second after the time
+                            its StopTrigger ends it at when that is later, is stopped, and one whose
                             StopTrigger has no condition runs ${RUN_DEFAULTS.noEndSeconds} s); fixed step ${RUN_DEFAULTS.timeStep} s
   --seed N                  esmini's random seed (default ${RUN_DEFAULTS.seed})
   --road-path DIRS          extra folders for road files and catalogs (separated by ';' or ':')

@@ -26,8 +26,20 @@ export function runLimit(text: string, duration: number | undefined, setBy?: str
   const conditions = stop?.children.some(
     (group) => group.name === 'ConditionGroup' && group.children.some((each) => each.name === 'Condition'),
   );
-  return conditions ? { seconds: RUNAWAY_SECONDS, kind: 'runaway', setBy } : { seconds: NO_END_SECONDS, kind: 'no-end', setBy };
+  if (!conditions) return { seconds: NO_END_SECONDS, kind: 'no-end', setBy };
+  // A StopTrigger that ends the scenario by time at or past the guard (ALKS free driving at 5 km/h: 5000 m in 3600 s) is not a runaway until then.
+  const end = scenarioEnd(text)?.seconds;
+  const seconds =
+    end !== undefined && end + OWN_END_MARGIN_SECONDS > RUNAWAY_SECONDS
+      ? Math.min(end + OWN_END_MARGIN_SECONDS, LONGEST_OWN_END_SECONDS)
+      : RUNAWAY_SECONDS;
+  return { seconds, kind: 'runaway', setBy };
 }
+
+/** How far past a scenario's own time end the runaway guard lies, so that the step it ends at is its own and not the guard's. */
+const OWN_END_MARGIN_SECONDS = 1;
+/** The longest a scenario's own time end moves the runaway guard: a day of simulated time (a few seconds to minutes of esmini). */
+const LONGEST_OWN_END_SECONDS = 24 * RUNAWAY_SECONDS;
 
 /** The condition name the runner adds; a run whose last step passes the limit was ended by it. */
 export const TIME_LIMIT_CONDITION = 'modular2simple_time_limit';
