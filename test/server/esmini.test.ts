@@ -97,7 +97,7 @@ describe('esmini: time limit and log (no simulator needed)', () => {
     assert.equal(lastCsvTime(path.join(folder, 'missing.csv')), undefined);
   });
 
-  it('keeps [error] and [warn] lines, drops the harmless ones, and joins a fatal error with its exception', () => {
+  it('keeps [error] and [warn] lines, drops the harmless ones, joins a fatal error with its exception, and says a level once', () => {
     const messages = parseEsminiLog(
       [
         '[] [info] Loaded x.xosc',
@@ -106,6 +106,10 @@ describe('esmini: time limit and log (no simulator needed)', () => {
         '[] [error] Property: color format invalid, shall be #RRGGBB, skipping',
         '[2.600] [warn] Stopping object walker Walk on conflicting Longitudinal domain(s)',
         '[] [error] Exception: [] [error] Failed to locate OpenDRIVE file Town04',
+        // ALKS's ALKSController: the level once, not 'warning: Warning: ...'.
+        '[] [warn] Warning: Controller ALKSController operating domains: Longitudinal. Skipping activation on domain Lateral',
+        '[] [error] Error: Failed to find road 0',
+        '[] [warn] Error: a warning that says error keeps its word',
       ].join('\n'),
     );
     assert.deepEqual(
@@ -114,6 +118,9 @@ describe('esmini: time limit and log (no simulator needed)', () => {
         ['error', undefined, 'Property: color format invalid, shall be #RRGGBB, skipping'],
         ['warn', 2.6, 'Stopping object walker Walk on conflicting Longitudinal domain(s)'],
         ['error', undefined, 'Failed to locate OpenDRIVE file Town04'],
+        ['warn', undefined, 'Controller ALKSController operating domains: Longitudinal. Skipping activation on domain Lateral'],
+        ['error', undefined, 'Failed to find road 0'],
+        ['warn', undefined, 'Error: a warning that says error keeps its word'],
       ],
     );
   });

@@ -77,8 +77,12 @@ export function readEsminiLog(output: string): EsminiLog {
     const match = LOG_LINE.exec(lines[index]);
     if (!match) continue;
     // A fatal error comes as "Exception: <message>", after its own line when it had one ("Exception: [] [error] <message>").
-    const text = match[3].replace(/^Exception: (\[[^\]]*\] \[\w+\] )?/, '').trim();
     const level = match[2] as 'error' | 'warn';
+    // Some messages repeat their level ("[warn] Warning: Controller ... operating domains"): the severity says it once.
+    const text = match[3]
+      .replace(/^Exception: (\[[^\]]*\] \[\w+\] )?/, '')
+      .replace(level === 'warn' ? /^Warning: / : /^Error: /, '')
+      .trim();
     const remark = HARMLESS_REMARKS.find((kind) => kind.pattern.test(text));
     if (remark) {
       const known = remarks.get(text);
