@@ -199,10 +199,16 @@ describe('core: the OpenSCENARIO schemas, compiled at build time', () => {
       '0',
       '    <Init><Actions/></Init>\n    <Story name="s"><Act name="a">\n{GROUP}      <StartTrigger/></Act></Story>\n    <StopTrigger/>\n',
     );
-    const simple = valid.replace(
-      '{GROUP}',
-      `        <ManeuverGroup maximumExecutionCount="1" name="G"><Actors selectTriggeringEntities="false"/><Maneuver name="M"><Event name="E" priority="overwrite"><Action name="A"><PrivateAction><TeleportAction><Position><WorldPosition parameterAttributes="x" x="1" y="2"/></Position></TeleportAction></PrivateAction></Action><StartTrigger/></Event></Maneuver></ManeuverGroup>\n`,
-    );
+    // The simple group names its actor: flattening sets that EntityRef to the main's (a group without one has none, which esmini refuses).
+    const simple = valid
+      .replace(
+        '<Entities/>',
+        '<Entities><ScenarioObject name="ego"><MiscObject miscObjectCategory="obstacle" mass="1" name="box"><BoundingBox><Center x="0" y="0" z="0"/><Dimensions width="1" length="1" height="1"/></BoundingBox><Properties/></MiscObject></ScenarioObject></Entities>',
+      )
+      .replace(
+        '{GROUP}',
+        `        <ManeuverGroup maximumExecutionCount="1" name="G"><Actors selectTriggeringEntities="false"><EntityRef entityRef="ego"/></Actors><Maneuver name="M"><Event name="E" priority="overwrite"><Action name="A"><PrivateAction><TeleportAction><Position><WorldPosition parameterAttributes="x" x="1" y="2"/></Position></TeleportAction></PrivateAction></Action><StartTrigger/></Event></Maneuver></ManeuverGroup>\n`,
+      );
     // The main declares its actor on one line (an undeclared one is an error of its own), so the lines stay as they were.
     const main = valid
       .replace(
