@@ -20,6 +20,7 @@ import {
   ExitCode,
   InputError,
   parseCommandLine,
+  printed,
   UnavailableError,
   UsageError,
   wholeNumber,
@@ -153,7 +154,7 @@ async function runBatch(argv: string[], io: CliOutput): Promise<number> {
   if (!variations) return ExitCode.problems;
   // The check run makes, on the ScenarioFile as it is: what esmini would refuse in every run is said once, on its line.
   const problems = await scenarioProblems(variations.scenarioPath, scenarioPath, roadPath);
-  for (const problem of problems) if (problem.severity === 'error' || !values.quiet) io.err(formatProblem(problem, base));
+  for (const problem of problems) if (printed(problem, values.quiet)) io.err(formatProblem(problem, base));
   const errors = problems.filter((problem) => problem.severity === 'error').length;
   const counted = `the scenario has ${errors} error${errors === 1 ? '' : 's'}`;
   const shown = displayRef(diskRef(variations.scenarioPath), base);

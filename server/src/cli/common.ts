@@ -102,6 +102,11 @@ export function checkInputExists(input: string): void {
   }
 }
 
+/** Whether a command's text prints a problem: errors always, warnings and information unless quiet, hints (an unused parameter) never: they are for the editor, where they show faded. */
+export function printed(problem: Problem, quiet: boolean): boolean {
+  return problem.severity === 'error' || (!quiet && problem.severity !== 'hint');
+}
+
 /** Prints the problems (hints never, warnings unless quiet) and counts errors and warnings. */
 export function report(problems: Problem[], io: CliOutput, quiet: boolean): { errors: number; warnings: number } {
   let errors = 0;
@@ -109,10 +114,7 @@ export function report(problems: Problem[], io: CliOutput, quiet: boolean): { er
   for (const problem of uniqueProblems(problems)) {
     if (problem.severity === 'error') errors++;
     else if (problem.severity === 'warning') warnings++;
-    // Hints (an unused parameter) are for the editor, where they show faded.
-    if (problem.severity === 'hint') continue;
-    if (quiet && problem.severity !== 'error') continue;
-    io.err(formatProblem(problem, process.cwd()));
+    if (printed(problem, quiet)) io.err(formatProblem(problem, process.cwd()));
   }
   return { errors, warnings };
 }

@@ -10,7 +10,17 @@ import { TraceRecord, traceToEnd } from '../debug/trace';
 import { EsminiLibraryError } from '../esmini/library';
 import { EsminiProblem } from '../esmini/messages';
 import { removeRunFolder, RUN_DEFAULTS, runScenario } from '../esmini/run';
-import { CliCommand, CliOutput, durationOption, ExitCode, InputError, parseCommandLine, UnavailableError, UsageError } from './common';
+import {
+  CliCommand,
+  CliOutput,
+  durationOption,
+  ExitCode,
+  InputError,
+  parseCommandLine,
+  printed,
+  UnavailableError,
+  UsageError,
+} from './common';
 import { mainOf, storeForInputs } from './inputs';
 
 export const RUN_HELP = `Run in esmini (modular2simple run INPUT... [options]):
@@ -137,8 +147,7 @@ async function runCommand(args: string[], io: CliOutput): Promise<number> {
       force: values.force,
     });
     try {
-      for (const problem of result.flattenProblems)
-        if (problem.severity === 'error' || !values.quiet) io.err(formatProblem(problem, process.cwd()));
+      for (const problem of result.flattenProblems) if (printed(problem, values.quiet)) io.err(formatProblem(problem, process.cwd()));
       for (const problem of result.problems)
         if (problem.severity === 'error' || !values.quiet) io.err(formatEsminiProblem(problem, process.cwd()));
       if (result.outcome === 'no-esmini') throw new UnavailableError(result.message);
