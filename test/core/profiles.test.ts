@@ -181,6 +181,27 @@ describe('simulator profiles', () => {
     );
   });
 
+  // 76 of the ASAM OpenSCENARIO API's 158 test resources state 0.9; esmini 3.6 quits on each (exit 255).
+  it('esmini refuses a scenario that states a version before 1.0: an error at its revMajor; a 0.9 catalog, 1.x and asam are silent', () => {
+    const old = scenarioText('9', '', VISIBILITY).replace('revMajor="1"', 'revMajor="0"');
+    const findings = simulatorFindings('esmini', parseXml(old), 'scenario.xosc');
+    assert.deepEqual(
+      findings.map((finding) => [finding.severity, finding.attribute?.name, simulatorWording(finding).message]),
+      [
+        [
+          'error',
+          'revMajor',
+          'esmini runs OpenSCENARIO 1.0 or later; this file states 0.9, which it refuses ("OpenSCENARIO v0.9 not supported. Please migrate scenario to v1.0 or higher and try again.") (EnvironmentSimulator/Modules/ScenarioEngine/SourceFiles/ScenarioEngine.cpp:454-459)',
+        ],
+      ],
+    );
+    assert.deepEqual(messages('esmini', scenarioText('0', '', VISIBILITY)), []);
+    assert.deepEqual(messages('asam', old), []);
+    const catalog = `<?xml version="1.0"?>
+<OpenSCENARIO><FileHeader revMajor="0" revMinor="9" date="2026-01-01T00:00:00" description="c" author="t"/><Catalog name="C"/></OpenSCENARIO>`;
+    assert.deepEqual(messages('esmini', catalog), []);
+  });
+
   it('every fact names the file it was read from, and each profile names its revision', () => {
     for (const profile of [CARLA_PROFILE, ESMINI_PROFILE]) {
       assert.match(profile.revision, /^[0-9a-f]{40}$/);

@@ -13,6 +13,8 @@ function profileMessage(facts: ProfileFacts): string {
   switch (facts.kind) {
     case 'version':
       return `${facts.profile} accepts only OpenSCENARIO ${facts.wanted.revMajor}.${facts.wanted.revMinor}; this file states ${facts.stated} (${facts.wanted.source})`;
+    case 'oldVersion':
+      return `${facts.profile} runs OpenSCENARIO ${facts.oldest.revMajor}.0 or later; this file states ${facts.stated}, which it refuses ("${facts.oldest.refusal.replace('{stated}', facts.stated)}") (${facts.oldest.source})`;
     case 'element': {
       const { fact } = facts;
       const where = fact.in === 'init' ? ' in the Init' : fact.in === 'story' ? ' in a Story' : '';

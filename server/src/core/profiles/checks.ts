@@ -10,6 +10,8 @@ export const PROFILES: Record<Exclude<Simulator, 'asam'>, SimulatorProfile> = { 
 export type ProfileFacts =
   /** The file states a version the simulator does not accept. */
   | { kind: 'version'; profile: string; wanted: { revMajor: string; revMinor: string; source: string }; stated: string }
+  /** The file states a version older than the oldest the simulator runs. */
+  | { kind: 'oldVersion'; profile: string; oldest: { revMajor: number; source: string; refusal: string }; stated: string }
   /** An element the simulator ignores or does not support (where `fact` says). */
   | { kind: 'element'; profile: string; fact: ElementFact }
   /** An attribute, or its `value`, the simulator does not support on `element`. */
@@ -59,13 +61,18 @@ function placeOf(element: XmlElement): 'init' | 'story' | undefined {
   return undefined;
 }
 
+/** A scenario's FileHeader and its version attributes; undefined for a catalog: the simulator checks the version of the scenario it runs, not of the catalogs it reads. */
+function scenarioVersion(document: XmlDocument): { header: XmlElement; major?: XmlAttribute; minor?: XmlAttribute } | undefined {
+  const header = document.root?.children.find((child) => child.name === 'FileHeader');
+  if (!header || isCatalogFile(document)) return undefined;
+  return { header, major: attribute(header, 'revMajor'), minor: attribute(header, 'revMinor') };
+}
+
 const versionCheck: ProfileCheck = ({ profile, document }) => {
   const wanted = profile.versions;
-  const header = document.root?.children.find((child) => child.name === 'FileHeader');
-  // The simulator checks the version of the scenario it runs, not of the catalogs it reads.
-  if (!wanted || !header || isCatalogFile(document)) return [];
-  const major = attribute(header, 'revMajor');
-  const minor = attribute(header, 'revMinor');
+  const version = scenarioVersion(document);
+  if (!wanted || !version) return [];
+  const { header, major, minor } = version;
   if (!major || !minor || (major.value === wanted.revMajor && minor.value === wanted.revMinor)) return [];
   const onMinor = major.value === wanted.revMajor;
   return [
@@ -77,6 +84,17 @@ const versionCheck: ProfileCheck = ({ profile, document }) => {
       suggestion: onMinor ? wanted.revMinor : wanted.revMajor,
     },
   ];
+};
+
+const oldVersionCheck: ProfileCheck = ({ profile, document }) => {
+  const oldest = profile.oldestRevMajor;
+  const version = scenarioVersion(document);
+  if (!oldest || !version) return [];
+  const { header, major, minor } = version;
+  // A revMajor that is no number is the schema's to report.
+  if (!major || !/^\s*\d+\s*$/.test(major.value) || Number(major.value) >= oldest.revMajor) return [];
+  const stated = `${major.value.trim()}.${minor?.value.trim() ?? ''}`;
+  return [{ element: header, attribute: major, severity: 'error', facts: { kind: 'oldVersion', profile: profile.name, oldest, stated } }];
 };
 
 function holds(fact: { releases?: readonly CarlaRelease[] }, release: CarlaRelease): boolean {
@@ -153,7 +171,7 @@ const catalogNameCheck: ProfileCheck = ({ profile, document, fileName }) => {
 };
 
 /** The checks of every simulator profile, in the order their findings are listed. */
-export const PROFILE_CHECKS: readonly ProfileCheck[] = [versionCheck, elementCheck, attributeCheck, catalogNameCheck];
+export const PROFILE_CHECKS: readonly ProfileCheck[] = [versionCheck, oldVersionCheck, elementCheck, attributeCheck, catalogNameCheck];
 
 /** What `simulator` will not run in a document (none for `asam`, the standard alone). */
 export function simulatorFindings(

@@ -19,6 +19,11 @@ export const ESMINI_PROFILE: SimulatorProfile = {
   name: 'esmini',
   repository: 'esmini/esmini',
   revision: '77028d83e6d402de52f7187e5384d1b1c02b7d1f',
+  oldestRevMajor: {
+    revMajor: 1,
+    source: 'EnvironmentSimulator/Modules/ScenarioEngine/SourceFiles/ScenarioEngine.cpp:454-459',
+    refusal: 'OpenSCENARIO v{stated} not supported. Please migrate scenario to v1.0 or higher and try again.',
+  },
   elements: [
     {
       element: 'ModifyAction',

@@ -49,6 +49,8 @@ export interface SimulatorProfile {
   revision: string;
   /** The FileHeader versions a scenario may state; undefined when all standard versions are accepted. */
   versions?: { revMajor: string; revMinor: string; source: string; severity?: FactSeverity };
+  /** The oldest FileHeader revMajor the simulator runs (an error below it: it quits with `refusal`, `{stated}` the file's version); undefined when any is run. */
+  oldestRevMajor?: { revMajor: number; source: string; refusal: string };
   elements: ElementFact[];
   attributes: AttributeFact[];
   /** Catalog files are found by the name `<Type>Catalog.xosc` in their directory. */
