@@ -8,7 +8,11 @@ import {
 import { ruleIdOf } from '../../../server/src/core/rules';
 import { roadScenario } from '../../support/fixtures';
 import { group, speed, trigger } from './semanticSupport';
-import { semanticProblemsOf } from './support';
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import { Flattener } from '../../../server/src/core/flatten';
+import { diskRef, ScenarioStore } from '../../../server/src/core/sources';
+import { temporaryWorkspace } from '../../support/workspace';
 
 /** A ManeuverGroup whose one Event sets Ego's speed to `value` when `condition` (a ByValueCondition's content) holds. */
 const groupStartedBy = (value: string, condition: string): string => group(speed(value)).replace('<StartTrigger/>', trigger(condition));
@@ -32,13 +36,21 @@ const ROUNDING = roadScenario({
     groupStartedBy('${$Speed * 36}', '<SimulationTimeCondition value="${$Speed * 36}" rule="greaterThan"/>'),
     groupStartedBy('1', '<SimulationTimeCondition value="${$Speed * 72}" rule="equalTo"/>'),
     groupStartedBy('2', '<ParameterCondition parameterRef="Count" value="$Threshold" rule="greaterThan"/>'),
+    // maximumExecutionCount is an unsignedInt: esmini's 0.999999 for the standard's 1 runs the group 0 times to its atoi().
+    group(speed('3')).replace('maximumExecutionCount="1"', 'maximumExecutionCount="${$Third * 3}"'),
   ],
 });
 
 /** Where each simulator-value warning is: the declaration's name, or the text of its range. */
 async function warnedLines(text: string): Promise<string[]> {
   const lines = text.split('\n');
-  const problems = (await semanticProblemsOf(text)).filter((problem) => problem.code === 'simulator-value');
+  const root = temporaryWorkspace({ 'main.xosc': text });
+  // With the schema, as check reads it: the schema's attribute types say which attribute reads an integer.
+  const flattener = new Flattener(new ScenarioStore({ root }), 'asam', { version: 'auto' });
+  const analysis = await flattener
+    .analyze(diskRef(path.join(root, 'main.xosc')))
+    .finally(() => fs.rmSync(root, { recursive: true, force: true }));
+  const problems = analysis.problems.filter((problem) => problem.code === 'simulator-value');
   for (const problem of problems) assert.equal(problem.severity, SIMULATOR_VALUE.severity);
   return problems.map((problem) => {
     const line = lines[problem.range.start.line];
@@ -58,6 +70,8 @@ describe('diagnostics: simulator-value', () => {
     assert.deepEqual((await warnedLines(ROUNDING)).sort(), [
       // equalTo compares exactly.
       '${$Speed * 72}',
+      // An integer attribute reads the rounded double whole.
+      '${$Third * 3}',
       // Count is an int: the standard's 1/3*3 is 1, esmini's 0.333333*3 is 0.999999, which atoi() makes 0.
       'Count',
       // Gap: esmini's 0.000333 * 1000 is 0.333 where the standard gives 0.333333, a thousandth of it lost.

@@ -1,3 +1,5 @@
+import { expressionWording } from '../diagnostics/expressionWords';
+import { differenceMatters } from '../diagnostics/simulatorValue';
 import { parameterDeclaredNote, parameterSiteWording, ValueMismatch } from '../diagnostics/typeMismatch';
 import { Problem } from '../problems';
 import { SchemaIndex, schemaIndex } from '../schema/index';
@@ -120,6 +122,26 @@ export function siteTypeProblem(
 }
 
 /**
+ * esmini's six-decimal rounding of a double that an integer attribute reads (laneId="${$Third * 3}": the standard's 1,
+ * esmini's 0.999999, which its atoi() makes 0), at the attribute: the evaluator, which knows no attribute's schema type, judged
+ * the difference as a quantity's and let it pass (simulatorValue.ts differenceMatters).
+ */
+function integerReadProblem(semantics: DocumentSemantics, site: ValueSite, target: { type: SimpleType }): Problem | undefined {
+  const builtin = targetOf(target.type);
+  if (!builtin || !INTEGER_TYPES.has(builtin)) return undefined;
+  const result = semantics.evaluator.evaluateSite(site);
+  if (!result.ok || !result.differs) return undefined;
+  const standard = Number(result.differs.standard);
+  const esmini = Number(result.differs.esmini);
+  if (!Number.isInteger(standard) || Math.trunc(esmini) === standard || differenceMatters(standard, esmini, false)) return undefined;
+  return {
+    source: semantics.ref,
+    range: semantics.model.document.lines.range(site.attribute.valueStart, site.attribute.valueEnd),
+    ...expressionWording({ kind: 'simulator', fact: 'differs', difference: result.differs }),
+  };
+}
+
+/**
  * Every `$name` that is an attribute's whole value, checked against that attribute's type in the schema
  * of the file's version: an error (or, for `5.0` in an integer, a warning) at the use, naming the declaration.
  */
@@ -130,9 +152,13 @@ export function parameterValueProblems(semantics: DocumentSemantics, setting: Sc
   const problems: Problem[] = [];
   for (const site of semantics.model.sites) {
     // A declaration's own value is text to the schema; its type is checked against its parameterType.
-    if (site.form.kind !== 'parameter' || site.declaration || site.element.name === 'ParameterDeclaration') continue;
+    if (site.declaration || site.element.name === 'ParameterDeclaration') continue;
     const target = attributeType(index, site.element, site.attribute.name);
-    const problem = target ? siteTypeProblem(semantics, site, target, `${site.element.name}.${site.attribute.name}`) : undefined;
+    if (!target) continue;
+    const rounded = integerReadProblem(semantics, site, target);
+    if (rounded) problems.push(rounded);
+    if (site.form.kind !== 'parameter') continue;
+    const problem = siteTypeProblem(semantics, site, target, `${site.element.name}.${site.attribute.name}`);
     if (problem) problems.push(problem);
   }
   return problems;
