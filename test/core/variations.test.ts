@@ -172,13 +172,14 @@ describe('core: variations, files and problems', () => {
       '<Element value="a"/>',
       '<Element value="0.5"/>',
     );
-    assert.deepEqual(await problemsOf(body), ["d.xosc:10:64: warning: the value 'b' for double parameter 'Gap' is not a number"]);
-    // An expression is checked by its value, as esmini evaluates it in the declaration (Euro NCAP's CPRA: '${0.6/2-0.36}').
+    assert.deepEqual(await problemsOf(body), ["d.xosc:11:64: warning: the value 'b' for double parameter 'Gap' is not a number"]);
+    // An expression is checked by its value, as esmini evaluates it in the declaration (Euro NCAP's CPRA: '${0.6/2-0.36}');
+    // each warning is on the value's own Element, not on the distribution's parameterName.
     const expressions = RANGE_AND_SET.replace('parameterName="Car"', 'parameterName="Gap"')
       .replace('<Element value="a"/>', '<Element value="${0.6/2-0.36}"/>')
       .replace('<Element value="b"/>', '<Element value="${$Speed * 2}"/><Element value="${1 &lt; 2}"/>');
     assert.deepEqual(await problemsOf(expressions), [
-      "d.xosc:10:64: warning: the value '${1 < 2}' for double parameter 'Gap' is not a number",
+      "d.xosc:11:106: warning: the value '${1 < 2}' for double parameter 'Gap' is not a number",
     ]);
     const stochastic = `    <Stochastic numberOfTestRuns="3">
       <StochasticDistribution parameterName="Speed"><PoissonDistribution expectedValue="2"/></StochasticDistribution>

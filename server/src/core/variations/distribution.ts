@@ -19,6 +19,8 @@ export interface Located {
 export interface ParameterValue extends Located {
   parameter: string;
   value: string;
+  /** Where the value is written, when the file writes it (a DistributionSet's Element, a ParameterAssignment); `offset` is where the parameter is named. */
+  valueOffset?: number;
 }
 
 export interface NumericRange extends Located {
@@ -188,7 +190,8 @@ export function parseDistribution(
           for (const assignment of set.children.filter((c) => c.name === 'ParameterAssignment')) {
             const parameter = parameterName(assignment, 'parameterRef');
             const value = required(assignment, 'value');
-            if (parameter && value) assignments.push({ parameter: parameter.value, value: value.value, offset: parameter.offset });
+            if (parameter && value)
+              assignments.push({ parameter: parameter.value, value: value.value, offset: parameter.offset, valueOffset: value.offset });
           }
           if (assignments.length === 0) problem(set.start, 'this ParameterValueSet assigns no parameter');
           sets.push(assignments);
@@ -207,7 +210,7 @@ export function parseDistribution(
           const values: ParameterValue[] = [];
           for (const element of definition.children.filter((c) => c.name === 'Element')) {
             const value = required(element, 'value');
-            if (value) values.push({ parameter: parameter.value, value: value.value, offset: parameter.offset });
+            if (value) values.push({ parameter: parameter.value, value: value.value, offset: parameter.offset, valueOffset: value.offset });
           }
           if (values.length === 0) problem(definition.start, 'the DistributionSet has no Element');
           deterministic.push({ kind: 'set', parameter: parameter.value, offset: parameter.offset, values });

@@ -170,7 +170,7 @@ function typeWarnings(
     reported.add(assignment.parameter);
     warnings.push({
       file,
-      offset: assignment.offset,
+      offset: assignment.valueOffset ?? assignment.offset,
       severity: 'warning',
       message: `the value '${assignment.value}' for ${type} parameter '${assignment.parameter}' ${mismatch}`,
     });
