@@ -149,6 +149,37 @@ describe('esmini: time limit and log (no simulator needed)', () => {
     assert.deepEqual([problems[3].located, problems[3].range.start.line, path.basename(problems[3].source.disk)], [false, 0, 'main.xosc']);
   });
 
+  it('puts "No orientation type specified" on each Orientation without a type, in order (Euro NCAP, ALKS: at 1:1 before)', async () => {
+    const root = temporaryFolder('m2s-esmini-orientation-');
+    const position = (orientation: string) =>
+      `<Private entityRef="Ego"><PrivateAction><TeleportAction><Position><LanePosition roadId="1" laneId="-1" s="10" offset="0">${orientation}</LanePosition></Position></TeleportAction></PrivateAction></Private>`;
+    const init = [
+      position('<Orientation h="0.1" type="relative"/>'),
+      position('<Orientation h="0.2"/>'),
+      position('<Orientation h="0.3" type="sideways"/>'),
+    ];
+    const text = roadScenario({ logicFile: 'straight_500m.xodr', init: init.join('\n'), groups: [] });
+    fs.writeFileSync(path.join(root, 's.xosc'), text);
+    const main = diskRef(path.join(root, 's.xosc'));
+    const flat = await new Flattener(new ScenarioStore({ root })).flatten(main);
+    const log = [
+      '[] [warn] No orientation type specified - using relative (default for OSC version >= 1.3)',
+      '[] [warn] Invalid orientation type specified - using relative (default for OSC version >= 1.3)',
+    ].join('\n');
+    const problems = mapEsminiMessages(parseEsminiLog(log), flat.source, main);
+    const lines = text.split('\n');
+    assert.deepEqual(
+      problems.map((problem) => {
+        const line = lines[problem.range.start.line];
+        return [problem.located, line.slice(problem.range.start.character, problem.range.end.character), /h="([^"]+)"/.exec(line)?.[1]];
+      }),
+      [
+        [true, 'Orientation', '0.2'],
+        [true, 'sideways', '0.3'],
+      ],
+    );
+  });
+
   it('maps a value that an override set to the ParameterReference that set it, through a package too', async () => {
     const root = examplesCopy({
       file: 'main.xosc',

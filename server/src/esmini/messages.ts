@@ -185,6 +185,17 @@ const RULES: MessageRule[] = [
     note: 'esmini ignores the colour; CARLA accepts the "R,G,B" form',
   },
   {
+    // ScenarioReader.cpp parseOrientation: an Orientation with no type (or one esmini does not know), read as the file's version's default.
+    pattern: /^(No|Invalid) orientation type specified/,
+    targets: (root, match, valueOf) =>
+      elementsNamed(root, 'Orientation')
+        .filter((element) => {
+          const type = valueOf(element, 'type');
+          return match[1] === 'No' ? type === undefined || type === '' : type !== 'relative' && type !== 'absolute' && type !== undefined;
+        })
+        .map((element) => (match[1] === 'No' ? { element } : { element, attribute: 'type' })),
+  },
+  {
     pattern: /^(?:Invalid Dynamics shape: (\S+)|Dynamics shape (\S+) unexpected)/,
     targets: (root, match) =>
       allElements(root)
