@@ -1554,3 +1554,103 @@ describe('export --target carla, walker blueprints', () => {
     );
   });
 });
+
+/** Ego synchronized with Other to a TrajectoryPosition (s 5, t 1) on a polyline from (150, 2) to (150, -8), as Euro NCAP's VRU tests do. */
+function synchronizeScenario(steadyState: string): string {
+  const trajectory = `<Trajectory name="Crossing" closed="false"><ParameterDeclarations/><Shape><Polyline>
+                <Vertex><Position><WorldPosition x="150" y="2"/></Position></Vertex>
+                <Vertex><Position><WorldPosition x="150" y="-8"/></Position></Vertex>
+              </Polyline></Shape></Trajectory>`;
+  const synchronize = `<SynchronizeAction masterEntityRef="Other">
+              <TargetPositionMaster><WorldPosition x="200" y="-2" z="0" h="0"/></TargetPositionMaster>
+              <TargetPosition><TrajectoryPosition s="5" t="1"><TrajectoryRef>${trajectory}</TrajectoryRef></TrajectoryPosition></TargetPosition>
+              <FinalSpeed><AbsoluteSpeed value="5">${steadyState}</AbsoluteSpeed></FinalSpeed>
+            </SynchronizeAction>`;
+  return egoEventsScenario({ other: true, initActions: '', events: [{ action: synchronize, condition: atTime(1) }] }).replace(
+    'revMajor="1" revMinor="0"',
+    'revMajor="1" revMinor="2"',
+  );
+}
+
+describe("export --target carla, a SynchronizeAction to a TrajectoryPosition (Euro NCAP's crossing tests)", function () {
+  this.timeout(120_000);
+  let out: string;
+  inTemporaryFolderEach('m2s-carla-sync-', (folder) => (out = folder));
+  const text = (): string => synchronizeScenario('<TargetDistanceSteadyState distance="10"/>');
+
+  it('writes the position as the WorldPosition of its point on the polyline, and keeps the final speed without its steady state, each listed at its line (issue 26)', async () => {
+    const original = path.join(out, 'sync.xosc');
+    fs.writeFileSync(original, text());
+    const result = await exportFile(original, path.join(out, 'exported.xosc'));
+    assert.equal(result.code, 0, result.stderr);
+    const listed = result.report.losses.filter((loss) => /TrajectoryPosition|SteadyState/.test(loss.element));
+    assert.deepEqual(
+      listed.map(({ kind, line, element }) => ({ kind, line, element })),
+      [
+        { kind: 'approximated', line: lineHolding(text(), '<TrajectoryPosition'), element: 'TrajectoryPosition' },
+        {
+          kind: 'approximated',
+          line: lineHolding(text(), '<AbsoluteSpeed value="5">'),
+          element: 'SynchronizeAction/FinalSpeed/AbsoluteSpeed/TargetDistanceSteadyState',
+        },
+      ],
+    );
+    // 5 m along the heading -pi/2 from (150, 2) is (150, -3); 1 m to its left is +x.
+    assert.match(listed[0].what, /^written as WorldPosition x 151, y -3, h -1\.5708: the point s 5 along/);
+    const exported = fs.readFileSync(result.output, 'utf8');
+    assert.match(exported, /<TargetPosition>\s*<WorldPosition x="151" y="-3" h="-1\.5708"\/>\s*<\/TargetPosition>/);
+    assert.match(exported, /<FinalSpeed>\s*<AbsoluteSpeed value="5"\/>\s*<\/FinalSpeed>/);
+  });
+
+  it('a position beyond the polyline: its action is dropped at its line, naming why; nothing else left, the export is refused', async () => {
+    const beyond = text().replace('<TrajectoryPosition s="5"', '<TrajectoryPosition s="12"');
+    const original = path.join(out, 'sync.xosc');
+    fs.writeFileSync(original, beyond);
+    const result = await exportFile(original, path.join(out, 'exported.xosc'));
+    assert.equal(result.code, 1, result.stderr);
+    assert.equal(fs.existsSync(result.output), false);
+    const dropped = result.report.losses.filter((loss) => loss.element === 'TrajectoryPosition');
+    assert.deepEqual(
+      dropped.map(({ kind, line }) => [kind, line]),
+      [['dropped', lineHolding(beyond, '<TrajectoryPosition')]],
+    );
+    assert.match(dropped[0].carla, /the export cannot write it otherwise: its s 12 is beyond the polyline's length/);
+    assert.deepEqual(
+      result.report.losses.filter((loss) => loss.kind === 'refused').map((loss) => loss.element),
+      ['Storyboard'],
+    );
+  });
+
+  it('ScenarioRunner builds the export', async function () {
+    requireCarlaHarness(this);
+    await assertExportBuilds(path.join(out, 'sync.xosc'), text());
+  });
+});
+
+describe('export --target carla, a negative start speed', function () {
+  this.timeout(120_000);
+  let out: string;
+  inTemporaryFolderEach('m2s-carla-backwards-', (folder) => (out = folder));
+
+  it("is refused at its line (ScenarioRunner raises on it while loading, as on Euro NCAP's reverse tests), nothing written (issue 26)", async () => {
+    const speed = (value: number): string =>
+      `<PrivateAction><LongitudinalAction><SpeedAction><SpeedActionDynamics dynamicsShape="step" value="0" dynamicsDimension="time"/><SpeedActionTarget><AbsoluteTargetSpeed value="${value}"/></SpeedActionTarget></SpeedAction></LongitudinalAction></PrivateAction>`;
+    const text = egoEventsScenario({
+      other: false,
+      initActions: speed(-1.5),
+      events: [{ action: speed(2).slice('<PrivateAction>'.length, -'</PrivateAction>'.length), condition: atTime(1) }],
+    });
+    const original = path.join(out, 'backwards.xosc');
+    fs.writeFileSync(original, text);
+    const result = await exportFile(original, path.join(out, 'exported.xosc'));
+    assert.equal(result.code, 1, result.stderr);
+    assert.equal(fs.existsSync(result.output), false);
+    const refused = result.report.losses.filter((loss) => loss.kind === 'refused');
+    assert.deepEqual(
+      refused.map(({ line, element }) => [line, element]),
+      [[lineHolding(text, 'value="-1.5"'), 'Init/SpeedAction/AbsoluteTargetSpeed']],
+    );
+    assert.match(refused[0].what, /the start speed -1\.5 of Ego is negative/);
+    assert.match(refused[0].carla, /openscenario_configuration\.py:396-406/);
+  });
+});

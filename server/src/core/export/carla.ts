@@ -270,8 +270,9 @@ export async function exportTextForCarla(
   const ego = markEgo(tree, options, sink);
   mapBlueprints(tree, options, sink);
   // Route positions are placed on the road they name: only then is the road file read.
-  // Route positions need road lengths, sampled trajectories the heading of a lane an actor starts on.
-  const needsRoads = named(tree, new Set(['RoutePosition', 'GeoPosition', 'Clothoid', 'ClothoidSpline', 'Nurbs'])).length > 0;
+  // Route positions need road lengths, sampled trajectories the heading of a lane an actor starts on, trajectory positions the road their vertices are on.
+  const needsRoads =
+    named(tree, new Set(['RoutePosition', 'GeoPosition', 'Clothoid', 'ClothoidSpline', 'Nurbs', 'TrajectoryPosition'])).length > 0;
   const roads = road && 'file' in road && needsRoads ? await readRoads(copy?.bytes ?? road.file, store) : undefined;
   const geoPlaces = new Map<Node, RoadXY | string>();
   for (const position of named(tree, 'GeoPosition')) {

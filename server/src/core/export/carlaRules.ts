@@ -31,6 +31,7 @@ import {
 } from './tree';
 import { sampledShape, TrajectoryEnds } from './carlaTrajectories';
 import { actorsOf, fromInit } from './scenarioTree';
+import { trajectoryPoint } from './trajectoryPoint';
 import { SAMPLE_STEP } from './shapes';
 
 /** One thing of the input that the export does not keep as written. */
@@ -693,14 +694,92 @@ function geoPositions(tree: Node, context: RuleContext): void {
   }
 }
 
-/** ScenarioRunner refuses these positions (SR_PARSER convert_position_to_transform); Trajectory positions are not 1.0. */
-function unsupportedPositions(tree: Node, context: RuleContext): void {
-  // RoutePosition and GeoPosition: the rules route-positions and geo-positions write or name every one.
-  for (const name of ['TrajectoryPosition', 'RoadRange']) {
-    for (const node of named(tree, name)) {
-      if (!node.parent) continue;
-      unconvertiblePosition(node, name, context);
+/**
+ * A negative start speed (an Init SpeedAction's AbsoluteTargetSpeed: an actor driving backwards, as Euro NCAP's
+ * reverse tests start) is refused: ScenarioRunner reads each actor's start speed while loading and raises
+ * AttributeError on one below 0 (SR_CONFIGURATION _get_actor_speed), so nothing of the scenario would run.
+ */
+function negativeStartSpeeds(tree: Node, context: RuleContext): void {
+  const init = named(tree, 'Init')[0];
+  if (!init) return;
+  for (const target of named(init, 'AbsoluteTargetSpeed')) {
+    const value = Number(attr(target, 'value'));
+    const owner = ancestor(target, 'Private');
+    if (!target.parent || !owner || !(value < 0)) continue;
+    context.sink.refuse(
+      target,
+      'Init/SpeedAction/AbsoluteTargetSpeed',
+      `the start speed ${attr(target, 'value') ?? ''} of ${attr(owner, 'entityRef') ?? 'an actor'} is negative (backwards), which ScenarioRunner refuses while loading`,
+      `ScenarioRunner raises AttributeError "Speed value of actor ... must be positive" (${SR_CONFIGURATION}:396-406, _get_actor_speed)`,
+    );
+  }
+}
+
+/**
+ * A TrajectoryPosition written as the WorldPosition of its point (trajectoryPoint.ts): ScenarioRunner has no
+ * TrajectoryPosition (SR_PARSER convert_position_to_transform raises "Unknown position") but converts a
+ * WorldPosition. Euro NCAP's scenarios synchronize a VRU or a crossing car to such a point; one that has no point
+ * without running the scenario is dropped or refused, naming why.
+ */
+function trajectoryPositions(tree: Node, context: RuleContext): void {
+  for (const position of named(tree, 'TrajectoryPosition')) {
+    if (!position.parent) continue;
+    const point = trajectoryPoint(position, context.roads);
+    if (typeof point === 'string') {
+      unconvertiblePosition(position, 'TrajectoryPosition', context, `; the export cannot write it otherwise: ${point}`);
+      continue;
     }
+    const round = (value: number) => String(Number(value.toFixed(4)));
+    const world = makeNode(
+      'WorldPosition',
+      [
+        ['x', round(point.x)],
+        ['y', round(point.y)],
+        ['h', round(point.h)],
+      ],
+      [],
+      position.place,
+    );
+    replaceNode(position, world);
+    context.sink.approximated(
+      world,
+      'TrajectoryPosition',
+      `written as WorldPosition x ${round(point.x)}, y ${round(point.y)}, h ${round(point.h)}: the point s ${attr(position, 's') ?? '0'} along its trajectory's polyline, t ${attr(position, 't') ?? '0'} to the left; its height is ScenarioRunner's spawn height, not the road's`,
+      `ScenarioRunner has no TrajectoryPosition (${SR_PARSER} convert_position_to_transform) and converts a WorldPosition`,
+    );
+  }
+}
+
+/**
+ * A SynchronizeAction's FinalSpeed/AbsoluteSpeed with a steady state (1.1+: TargetDistanceSteadyState or
+ * TargetTimeSteadyState) keeps its AbsoluteSpeed: ScenarioRunner reads only its value (SR_PARSER
+ * convert_maneuver_to_atomic, SynchronizeAction: SyncArrivalOSC with final_speed), so the synchronized entity
+ * reaches the final speed at the target instead of holding it over the steady-state distance or time before.
+ */
+function synchronizeSteadyStates(tree: Node, context: RuleContext): void {
+  for (const name of ['TargetDistanceSteadyState', 'TargetTimeSteadyState']) {
+    for (const steady of named(tree, name)) {
+      const speed = steady.parent;
+      if (!speed || speed.name !== 'AbsoluteSpeed' || !ancestor(speed, 'SynchronizeAction')) continue;
+      const what =
+        name === 'TargetDistanceSteadyState' ? `distance ${attr(steady, 'distance') ?? ''} m` : `time ${attr(steady, 'time') ?? ''} s`;
+      context.sink.approximated(
+        speed,
+        `SynchronizeAction/FinalSpeed/AbsoluteSpeed/${name}`,
+        `the steady state (the final speed held over the last ${what} before the target) is dropped; the final speed ${attr(speed, 'value') ?? ''} is kept`,
+        `ScenarioRunner reads only AbsoluteSpeed's value and reaches it at the target (${SR_PARSER} convert_maneuver_to_atomic, SynchronizeAction: SyncArrivalOSC)`,
+      );
+      removeNode(steady);
+    }
+  }
+}
+
+/** ScenarioRunner refuses these positions (SR_PARSER convert_position_to_transform). */
+function unsupportedPositions(tree: Node, context: RuleContext): void {
+  // RoutePosition, GeoPosition and TrajectoryPosition: the rules route-positions, geo-positions and trajectory-positions write or name every one.
+  for (const node of named(tree, 'RoadRange')) {
+    if (!node.parent) continue;
+    unconvertiblePosition(node, 'RoadRange', context);
   }
   for (const position of named(tree, 'RelativeLanePosition')) {
     const dsLane = attr(position, 'dsLane');
@@ -1254,6 +1333,9 @@ export const CARLA_RULES: readonly { name: string; apply: (tree: Node, context: 
   { name: 'trajectories', apply: trajectories },
   { name: 'route-positions', apply: routePositions },
   { name: 'geo-positions', apply: geoPositions },
+  { name: 'negative-start-speeds', apply: negativeStartSpeeds },
+  { name: 'trajectory-positions', apply: trajectoryPositions },
+  { name: 'synchronize-steady-states', apply: synchronizeSteadyStates },
   { name: 'positions', apply: unsupportedPositions },
   { name: 'refused-actions', apply: refusedActions },
   { name: 'route-crash', apply: routeActionCrash },

@@ -1,0 +1,89 @@
+/**
+ * Where a TrajectoryPosition is, as world coordinates: the point `s` along its trajectory's Polyline and `t` to its
+ * left (OpenSCENARIO 1.1+: s along the trajectory, t lateral, positive to the left), heading along the segment there
+ * or as its Orientation says. The export writes it as the WorldPosition ScenarioRunner converts (it has no
+ * TrajectoryPosition). Only a Polyline whose vertices are World positions, or Lane and Road positions on the .xodr road
+ * the export read, has such a point without running the scenario; anything else is named why.
+ */
+import { normalizeAngle } from '../opendrive/geometry';
+import { laneById, laneCenterT, laneSectionIndexAt, roadPoint, type RoadNetwork } from '../opendrive/road';
+import { attr, child, childrenNamed, Node } from './tree';
+
+export interface TrajectoryPoint {
+  x: number;
+  y: number;
+  h: number;
+}
+
+const numberOf = (node: Node, name: string, fallback: number): number => {
+  const value = attr(node, name);
+  return value === undefined || value.trim() === '' ? fallback : Number(value);
+};
+
+/** A polyline vertex's position in world coordinates, or why it has none without running the scenario. */
+function vertexPoint(position: Node | undefined, roads: RoadNetwork | undefined): { x: number; y: number } | string {
+  if (!position) return 'a vertex has no position';
+  if (position.name === 'WorldPosition') return { x: numberOf(position, 'x', NaN), y: numberOf(position, 'y', NaN) };
+  if (position.name !== 'LanePosition' && position.name !== 'RoadPosition')
+    return `a vertex is placed by a ${position.name}, which the export does not turn into coordinates`;
+  if (!roads) return `a vertex is a ${position.name} and the road is not an .xodr file the export read`;
+  const road = roads.byId.get(attr(position, 'roadId') ?? '');
+  const s = numberOf(position, 's', NaN);
+  if (!road) return `a vertex names road '${attr(position, 'roadId') ?? ''}', which the road network does not have`;
+  if (!Number.isFinite(s) || s < 0 || s > road.length + 1e-6)
+    return `a vertex's s '${attr(position, 's') ?? ''}' is not on road ${road.id}`;
+  if (position.name === 'RoadPosition') {
+    const point = roadPoint(road, s, numberOf(position, 't', 0));
+    return { x: point.x, y: point.y };
+  }
+  const laneId = numberOf(position, 'laneId', NaN);
+  if (!Number.isInteger(laneId)) return `a vertex's laneId '${attr(position, 'laneId') ?? ''}' is not a lane number`;
+  const section = laneSectionIndexAt(road, s);
+  if (laneId !== 0 && !laneById(road.laneSections[section], laneId)) return `road ${road.id} has no lane ${laneId} at s ${s}`;
+  const point = roadPoint(road, s, laneCenterT(road, section, laneId, s, numberOf(position, 'offset', 0)));
+  return { x: point.x, y: point.y };
+}
+
+/** The point of a TrajectoryPosition whose trajectory is written inside it (catalogs inlined), or why there is none. */
+export function trajectoryPoint(position: Node, roads: RoadNetwork | undefined): TrajectoryPoint | string {
+  const reference = child(position, 'TrajectoryRef');
+  const trajectory = reference ? child(reference, 'Trajectory') : undefined;
+  if (!trajectory) return 'its trajectory is not written in the scenario';
+  const shape = child(trajectory, 'Shape')?.children[0];
+  if (!shape || shape.name !== 'Polyline') return `its trajectory is a ${shape?.name ?? 'shape of nothing'}, not a Polyline`;
+  const points: { x: number; y: number }[] = [];
+  for (const vertex of childrenNamed(shape, 'Vertex')) {
+    const point = vertexPoint(child(vertex, 'Position')?.children[0], roads);
+    if (typeof point === 'string') return point;
+    if (!Number.isFinite(point.x) || !Number.isFinite(point.y)) return 'a vertex has a coordinate that is not a number';
+    points.push(point);
+  }
+  if (points.length < 2) return 'its polyline has fewer than two vertices';
+  const s = numberOf(position, 's', NaN);
+  const t = numberOf(position, 't', 0);
+  if (!Number.isFinite(s) || s < 0 || !Number.isFinite(t))
+    return `its s '${attr(position, 's') ?? ''}' or t is not a number at or after the start`;
+  let along = s;
+  for (let index = 1; index < points.length; index++) {
+    const [from, to] = [points[index - 1], points[index]];
+    const length = Math.hypot(to.x - from.x, to.y - from.y);
+    if (along > length && index < points.length - 1) {
+      along -= length;
+      continue;
+    }
+    if (along > length + 1e-6) return `its s ${s} is beyond the polyline's length`;
+    if (length === 0) return 'its polyline has two vertices at one point';
+    const heading = Math.atan2(to.y - from.y, to.x - from.x);
+    const fraction = along / length;
+    const x = from.x + (to.x - from.x) * fraction - t * Math.sin(heading);
+    const y = from.y + (to.y - from.y) * fraction + t * Math.cos(heading);
+    const orientation = child(position, 'Orientation');
+    const h = !orientation
+      ? heading
+      : attr(orientation, 'type') === 'absolute'
+        ? numberOf(orientation, 'h', 0)
+        : heading + numberOf(orientation, 'h', 0);
+    return { x, y, h: normalizeAngle(h) };
+  }
+  return `its s ${s} is beyond the polyline's length`;
+}
