@@ -1357,7 +1357,32 @@ describe('export --target carla, bad input', () => {
     const unexpanded = await exportFile(distribution, path.join(out, 'distribution.xosc'));
     assert.equal(unexpanded.code, 1);
     assert.match(unexpanded.stderr, /a ParameterValueDistribution: choose its concrete scenario with --index I/);
-    assert.deepEqual(fs.readdirSync(out).sort(), ['catalog.json', 'no-story.json', 'storyless.xosc']);
+    assert.match(unexpanded.report.refused ?? '', /choose its concrete scenario with --index I/);
+    // A concrete scenario its ValueConstraintGroups discard (ALKS 4.3.1's index 0, say) is refused with its report too.
+    const header = '<FileHeader revMajor="1" revMinor="2" date="2024-01-01T00:00:00" description="x" author="y"/>';
+    fs.writeFileSync(
+      path.join(out, 'constrained.xosc'),
+      `<?xml version="1.0"?>\n<OpenSCENARIO>\n  ${header}\n  <ParameterDeclarations>\n    <ParameterDeclaration name="Speed" parameterType="double" value="10">\n      <ConstraintGroup><ValueConstraint rule="greaterThan" value="5"/></ConstraintGroup>\n    </ParameterDeclaration>\n  </ParameterDeclarations>\n  <CatalogLocations/>\n  <RoadNetwork><LogicFile filepath="Town01"/></RoadNetwork>\n  <Entities/>\n  <Storyboard><Init><Actions/></Init><StopTrigger/></Storyboard>\n</OpenSCENARIO>\n`,
+    );
+    fs.writeFileSync(
+      path.join(out, 'speeds.xosc'),
+      `<?xml version="1.0"?>\n<OpenSCENARIO>\n  ${header}\n  <ParameterValueDistribution>\n    <ScenarioFile filepath="constrained.xosc"/>\n    <Deterministic>\n      <DeterministicSingleParameterDistribution parameterName="Speed">\n        <DistributionSet><Element value="3"/><Element value="10"/></DistributionSet>\n      </DeterministicSingleParameterDistribution>\n    </Deterministic>\n  </ParameterValueDistribution>\n</OpenSCENARIO>\n`,
+    );
+    const discarded = await exportFile(path.join(out, 'speeds.xosc'), path.join(out, 'discarded.xosc'), ['--index', '0']);
+    assert.equal(discarded.code, 1);
+    assert.match(discarded.stderr, /concrete scenario 0 is discarded by its ValueConstraintGroups \('Speed' = '3'\)/);
+    assert.equal(discarded.report.written, false);
+    assert.match(discarded.report.refused ?? '', /concrete scenario 0 is discarded by its ValueConstraintGroups \('Speed' = '3'\)/);
+    assert.deepEqual(discarded.report.losses, []);
+    assert.deepEqual(fs.readdirSync(out).sort(), [
+      'catalog.json',
+      'constrained.xosc',
+      'discarded.json',
+      'distribution.json',
+      'no-story.json',
+      'speeds.xosc',
+      'storyless.xosc',
+    ]);
   });
 
   it('an output that cannot be written: exit 3, naming it, and nothing half-written', async () => {

@@ -162,6 +162,11 @@ function lossLine(loss: CarlaLossEntry, file: string): string {
   return `${where}: ${loss.kind === 'refused' ? 'error' : 'warning'}: <${loss.element}> ${loss.what} [${loss.kind}; CARLA: ${loss.carla}]`;
 }
 
+/** What every loss report starts with: the input, the output and the release. */
+function reportHeader(args: ExportArguments): { input: string; output: string; target: 'carla'; carla: string | undefined } {
+  return { input: path.resolve(args.input), output: path.resolve(args.output), target: 'carla', carla: args.options.release };
+}
+
 /** `modular2simple export INPUT --target carla -o OUT.xosc [--report LOSSES.json] [--carla 0.9.15|0.9.16]`. */
 async function exportCommand(argv: string[], io: CliOutput): Promise<number> {
   const args = parse(argv);
@@ -172,6 +177,22 @@ async function exportCommand(argv: string[], io: CliOutput): Promise<number> {
     result = await exportInput(args, io);
   } catch (error) {
     if (error instanceof CarlaExportOptionError) throw new InputError(error.message);
+    // The input refused before any export (a discarded concrete scenario, an unreadable distribution): --report still says why.
+    if (error instanceof InputError && args.report !== undefined) {
+      const report = { ...reportHeader(args), written: false, refused: error.message, road: null, ego: null, losses: [] };
+      const code = await write(
+        [
+          {
+            target: args.report,
+            data: JSON.stringify(report, null, 2) + '\n',
+            summary: `wrote the loss report ${args.report} (0 entries)`,
+          },
+        ],
+        io,
+        args.quiet,
+      );
+      if (code !== ExitCode.ok) return code;
+    }
     throw error;
   }
   // As a compiler lists its findings: by file, then line (the export finds them in the order it rewrites the tree).
@@ -186,10 +207,7 @@ async function exportCommand(argv: string[], io: CliOutput): Promise<number> {
     );
   for (const { loss, file } of listed) if (!args.quiet || loss.kind === 'refused') io.err(lossLine(loss, file));
   const report = {
-    input: path.resolve(args.input),
-    output: path.resolve(args.output),
-    target: 'carla',
-    carla: args.options.release,
+    ...reportHeader(args),
     written: result.text !== undefined,
     refused: result.refused ?? null,
     road: result.road ?? null,
