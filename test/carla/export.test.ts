@@ -1220,16 +1220,25 @@ describe('export --target carla, an Init action ScenarioRunner passes over', fun
   this.timeout(120_000);
   let out: string;
   inTemporaryFolderEach('m2s-carla-init-passed-', (folder) => (out = folder));
+  // With a TrafficAction and a VisibilityAction: refused in a story, but in the Init passed over (open_scenario.py:201-215, 263-348).
   const text = (): string =>
     egoEventsScenario({
       other: false,
       initActions: `
           <PrivateAction>${laneChange('linear')}</PrivateAction>
-          <PrivateAction>${laneOffset('step')}</PrivateAction>`,
+          <PrivateAction>${laneOffset('step')}</PrivateAction>
+          <PrivateAction><VisibilityAction graphics="false" traffic="true" sensors="true"/></PrivateAction>`,
       events: [{ action: laneOffset('step'), condition: atTime(1) }],
-    });
+    }).replace(
+      '<Private entityRef="Ego">',
+      `<GlobalAction><TrafficAction><TrafficSinkAction rate="1" radius="10"><Position><WorldPosition x="0" y="0"/></Position>
+          <TrafficDefinition name="Sink"><VehicleCategoryDistribution><VehicleCategoryDistributionEntry category="car" weight="1"/></VehicleCategoryDistribution>
+          <ControllerDistribution><ControllerDistributionEntry weight="1"><Controller name="Driver"><Properties/></Controller></ControllerDistributionEntry></ControllerDistribution>
+          </TrafficDefinition></TrafficSinkAction></TrafficAction></GlobalAction>
+        <Private entityRef="Ego">`,
+    );
 
-  it('is listed at its line as approximated, kept as written; an Init action it runs is not (issue 26)', async () => {
+  it('is listed at its line as approximated, kept as written; a TrafficAction or VisibilityAction dropped as passed over, not refused; an Init action it runs is not (issue 26)', async () => {
     const original = path.join(out, 'init.xosc');
     fs.writeFileSync(original, text());
     const result = await exportFile(original, path.join(out, 'exported.xosc'));
@@ -1248,6 +1257,32 @@ describe('export --target carla, an Init action ScenarioRunner passes over', fun
       ],
     );
     assert.match(passed[0].carla, /^ScenarioRunner passes over it: the Init runs .*\(srunner\/scenarios\/open_scenario\.py:263-348\)$/);
+    // Dropped (a 1.2 TrafficSwarmAction kept would fail the 1.0 schema), worded as passed over, never as refused.
+    const global = result.report.losses.filter((loss) => loss.element === 'TrafficAction' || loss.element === 'VisibilityAction');
+    assert.deepEqual(
+      global.map(({ kind, line: at, element, what }) => ({ kind, line: at, element, what })),
+      [
+        { kind: 'dropped', line: lineHolding(text(), '<TrafficAction>'), element: 'TrafficAction', what: 'the init action is dropped' },
+        {
+          kind: 'dropped',
+          line: lineHolding(text(), '<VisibilityAction'),
+          element: 'VisibilityAction',
+          what: 'the init action is dropped',
+        },
+      ],
+    );
+    assert.match(
+      global[0].carla,
+      /^ScenarioRunner passes over it in the Init: the Init runs .*\(srunner\/scenarios\/open_scenario\.py:201-215, 598-620\)$/,
+    );
+    assert.match(
+      global[1].carla,
+      /^ScenarioRunner passes over it in the Init: the Init runs .*\(srunner\/scenarios\/open_scenario\.py:263-348\)$/,
+    );
+    assert.deepEqual(
+      result.report.losses.filter((loss) => /refuses/.test(loss.carla)),
+      [],
+    );
     assert.match(fs.readFileSync(result.output, 'utf8'), /<Init>[^]*<LaneChangeAction>[^]*<\/Init>/);
   });
 

@@ -816,9 +816,22 @@ const REFUSED_ACTIONS: Record<string, string> = {
 
 const REFUSED_ACTION_NAMES: ReadonlySet<string> = new Set(Object.keys(REFUSED_ACTIONS));
 
+/** Of the refused actions, those the Init passes over rather than refuses (CARLA_PROFILE: support 'ignored' in the Init). */
+const PASSED_OVER_IN_INIT: ReadonlyMap<string, string> = new Map(
+  CARLA_PROFILE.elements
+    .filter((fact) => fact.support === 'ignored' && fact.in === 'init')
+    .map((fact) => [fact.element, `ScenarioRunner passes over it in the Init: ${fact.note ?? 'it is not run there'} (${fact.source})`]),
+);
+
 function refusedActions(tree: Node, context: RuleContext): void {
   for (const node of named(tree, REFUSED_ACTION_NAMES)) {
     if (!node.parent || !ancestor(node, 'OpenSCENARIO')) continue;
+    // Dropped all the same (a 1.2 TrafficSwarmAction kept would fail the 1.0 schema), but worded as what ScenarioRunner does there.
+    const passedOver = ancestor(node, 'Init') ? PASSED_OVER_IN_INIT.get(node.name) : undefined;
+    if (passedOver !== undefined) {
+      dropUnit(node, context, node.name, passedOver);
+      continue;
+    }
     if (node.name === 'UserDefinedAction' && child(node, 'CustomCommandAction')) continue;
     dropUnit(node, context, node.name, REFUSED_ACTIONS[node.name]);
   }
