@@ -386,6 +386,7 @@ describe('export --target carla, round trip in esmini', function () {
     'SpeedActionDynamics/@dynamicsShape',
     'DistanceCondition/@freespace',
     'LaneChangeActionDynamics/@dynamicsShape',
+    'LaneChangeActionDynamics/@dynamicsDimension',
     'LaneOffsetActionDynamics/@dynamicsShape',
     'Vehicle',
     'Pedestrian',
@@ -1107,8 +1108,8 @@ function lateralScenario(events: readonly { action: string; condition: string }[
   return egoEventsScenario({ other: true, initActions: '', events });
 }
 
-const laneChange = (shape: string): string =>
-  `<LateralAction><LaneChangeAction><LaneChangeActionDynamics dynamicsShape="${shape}" value="30" dynamicsDimension="distance"/><LaneChangeTarget><RelativeTargetLane entityRef="Ego" value="1"/></LaneChangeTarget></LaneChangeAction></LateralAction>`;
+const laneChange = (shape: string, dimension = 'distance'): string =>
+  `<LateralAction><LaneChangeAction><LaneChangeActionDynamics dynamicsShape="${shape}" value="30" dynamicsDimension="${dimension}"/><LaneChangeTarget><RelativeTargetLane entityRef="Ego" value="1"/></LaneChangeTarget></LaneChangeAction></LateralAction>`;
 const laneOffset = (shape: string): string =>
   `<LateralAction><LaneOffsetAction continuous="false"><LaneOffsetActionDynamics dynamicsShape="${shape}" maxLateralAcc="0.5"/><LaneOffsetTarget><AbsoluteTargetLaneOffset value="0.5"/></LaneOffsetTarget></LaneOffsetAction></LateralAction>`;
 const distanceTo = (freespace: string): string =>
@@ -1124,16 +1125,22 @@ describe('export --target carla, attributes ScenarioRunner does not follow', fun
     { action: laneChange('linear'), condition: distanceTo('false') },
     { action: laneOffset('cubic'), condition: SOME_TIME },
     { action: laneOffset('step'), condition: SOME_TIME },
+    { action: laneChange('linear', 'time'), condition: SOME_TIME },
   ];
 
-  it("a DistanceCondition's freespace true, a lane change's shape other than linear, a lane offset's shape other than step: each listed at its line from its profile fact, kept as written (issue 26)", async () => {
+  it("a DistanceCondition's freespace true, a lane change's shape other than linear or dimension other than distance, a lane offset's shape other than step: each listed at its line from its profile fact, kept as written (issue 26)", async () => {
     const original = path.join(out, 'lateral.xosc');
     const text = lateralScenario(events);
     fs.writeFileSync(original, text);
     const result = await exportFile(original, path.join(out, 'exported.xosc'));
     assert.equal(result.code, 0, result.stderr);
     const lineOf = (needle: string): number => lineHolding(text, needle);
-    const named = ['DistanceCondition/@freespace', 'LaneChangeActionDynamics/@dynamicsShape', 'LaneOffsetActionDynamics/@dynamicsShape'];
+    const named = [
+      'DistanceCondition/@freespace',
+      'LaneChangeActionDynamics/@dynamicsShape',
+      'LaneChangeActionDynamics/@dynamicsDimension',
+      'LaneOffsetActionDynamics/@dynamicsShape',
+    ];
     assert.deepEqual(
       result.report.losses
         .filter((loss) => named.includes(loss.element))
@@ -1153,6 +1160,12 @@ describe('export --target carla, attributes ScenarioRunner does not follow', fun
         },
         {
           kind: 'approximated',
+          line: lineOf('value="30" dynamicsDimension="time"'),
+          element: 'LaneChangeActionDynamics/@dynamicsDimension',
+          what: 'dynamicsDimension="time" is kept as written, but not followed',
+        },
+        {
+          kind: 'approximated',
           line: lineOf('dynamicsShape="cubic"'),
           element: 'LaneOffsetActionDynamics/@dynamicsShape',
           what: 'dynamicsShape="cubic" is kept as written, but not followed',
@@ -1162,6 +1175,10 @@ describe('export --target carla, attributes ScenarioRunner does not follow', fun
     const carla = (element: string): string => result.report.losses.find((loss) => loss.element === element)?.carla ?? '';
     assert.match(carla('DistanceCondition/@freespace'), /never passed on.*\(srunner\/tools\/openscenario_parser\.py:1047, 1073-1075\)$/);
     assert.match(carla('LaneChangeActionDynamics/@dynamicsShape'), /linear \(srunner\/tools\/openscenario_parser\.py:1380-1390\)$/);
+    assert.match(
+      carla('LaneChangeActionDynamics/@dynamicsDimension'),
+      /distance_lane_change=inf.*\(srunner\/tools\/openscenario_parser\.py:1386-1399\)$/,
+    );
     assert.match(
       carla('LaneOffsetActionDynamics/@dynamicsShape'),
       /^ScenarioRunner does not read a LaneOffsetAction's dynamics .*\(srunner\/tools\/openscenario_parser\.py:1402-1404\)$/,

@@ -134,10 +134,14 @@ describe('simulator profiles', () => {
 
   it('carla flags values it does not run, but not $parameters it resolves', () => {
     const story = `<PrivateAction><LateralAction><LaneChangeAction>
-      <LaneChangeActionDynamics dynamicsShape="$shape" value="2" dynamicsDimension="time"/>
+      <LaneChangeActionDynamics dynamicsShape="$shape" value="2" dynamicsDimension="distance"/>
       <LaneChangeTarget><RelativeTargetLane entityRef="ego" value="1"/></LaneChangeTarget>
     </LaneChangeAction></LateralAction></PrivateAction>`;
     assert.deepEqual(messages('carla', scenarioText('0', '', story)), []);
+    // By time, ScenarioRunner plans the lane change over an infinite distance (openscenario_parser.py:1386-1399).
+    assert.deepEqual(messages('carla', scenarioText('0', '', story.replace('"distance"', '"time"'))), [
+      'CARLA ScenarioRunner does not support dynamicsDimension="time" on LaneChangeActionDynamics: a lane change by time or rate is planned over an infinite distance (distance_lane_change=inf): the value is read as a duration that nothing uses (srunner/tools/openscenario_parser.py:1386-1399)',
+    ]);
     const sinusoidal = simulatorFindings(
       'carla',
       parseXml(scenarioText('0', '', LANE_CHANGE.replace('"linear"', '"sinusoidal"'))),

@@ -27,6 +27,8 @@ export function runCli(args: string[], options: { cwd?: string; env?: Record<str
     cwd: options.cwd,
     env,
     encoding: 'utf8',
+    // A check over a whole corpus answers with megabytes of JSON; spawnSync's default 1 MB cuts it (status null).
+    maxBuffer: 256 * 1024 * 1024,
   });
   return { status: result.status ?? -1, stdout: result.stdout, stderr: result.stderr };
 }

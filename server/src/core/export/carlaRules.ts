@@ -1069,6 +1069,7 @@ function attributesRunOtherwiseList(): AttributeRunOtherwise[] {
   return [
     fromProfile('DistanceCondition', 'freespace'),
     fromProfile('LaneChangeActionDynamics', 'dynamicsShape'),
+    fromProfile('LaneChangeActionDynamics', 'dynamicsDimension'),
     {
       element: 'LaneOffsetActionDynamics',
       attribute: 'dynamicsShape',

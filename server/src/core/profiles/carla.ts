@@ -162,6 +162,13 @@ export const CARLA_PROFILE: SimulatorProfile = {
       note: 'every lane change is linear',
     },
     {
+      element: 'LaneChangeActionDynamics',
+      attribute: 'dynamicsDimension',
+      supportedValues: ['distance'],
+      source: `${PARSER}:1386-1399`,
+      note: 'a lane change by time or rate is planned over an infinite distance (distance_lane_change=inf): the value is read as a duration that nothing uses',
+    },
+    {
       element: 'Condition',
       attribute: 'conditionEdge',
       unsupportedValues: ['falling', 'risingOrFalling'],
