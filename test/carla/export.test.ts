@@ -389,6 +389,7 @@ describe('export --target carla, round trip in esmini', function () {
     'LaneChangeActionDynamics/@dynamicsDimension',
     'LaneOffsetActionDynamics/@dynamicsShape',
     'Vehicle',
+    'Vehicle/BoundingBox',
     'Pedestrian',
     'ScenarioObject',
   ]);
@@ -1309,6 +1310,30 @@ describe('export --target carla, an Init action ScenarioRunner passes over', fun
   });
 });
 
+describe("export --target carla, vehicles' BoundingBox, Performance and Axles", () => {
+  let out: string;
+  inTemporaryFolderEach('m2s-carla-vehicle-shapes-', (folder) => (out = folder));
+
+  it('are named once per export, at the first vehicle, with every vehicle it holds; kept as written (issue 26)', async () => {
+    const text = egoEventsScenario({ other: true, initActions: '', events: [{ action: laneOffset('step'), condition: SOME_TIME }] });
+    const original = path.join(out, 'vehicles.xosc');
+    fs.writeFileSync(original, text);
+    const result = await exportFile(original, path.join(out, 'exported.xosc'));
+    assert.equal(result.code, 0, result.stderr);
+    const unused = result.report.losses.filter((loss) => loss.element.startsWith('Vehicle/'));
+    assert.deepEqual(
+      unused.map(({ kind, line, element }) => ({ kind, line, element })),
+      [{ kind: 'approximated', line: lineHolding(text, '<Vehicle '), element: 'Vehicle/BoundingBox' }],
+    );
+    assert.match(
+      unused[0].what,
+      /^the BoundingBox, Performance and Axles of the 2 vehicles \('[^']+', '[^']+'\) are kept as written, but not used$/,
+    );
+    assert.match(unused[0].carla, /\(srunner\/scenarioconfigs\/openscenario_configuration\.py:294-316\)$/);
+    assert.equal((fs.readFileSync(result.output, 'utf8').match(/<BoundingBox/g) ?? []).length, 2);
+  });
+});
+
 describe('export --target carla, a SceneGraphFile', () => {
   let out: string;
   inTemporaryFolderEach('m2s-carla-scene-graph-', (folder) => (out = folder));
@@ -1326,7 +1351,7 @@ describe('export --target carla, a SceneGraphFile', () => {
     assert.ok(line > 0);
     assert.deepEqual(
       result.report.losses
-        .filter((loss) => loss.element !== 'Storyboard/StopTrigger')
+        .filter((loss) => loss.element !== 'Storyboard/StopTrigger' && loss.element !== 'Vehicle/BoundingBox')
         .map(({ kind, line: at, element, what }) => ({ kind, line: at, element, what })),
       [{ kind: 'dropped', line, element: 'SceneGraphFile', what: 'is dropped' }],
     );

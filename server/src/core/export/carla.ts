@@ -682,11 +682,24 @@ function markEgo(tree: Node, options: CarlaExportOptions, sink: LossSink): strin
   return name;
 }
 
+/** A vehicle's BoundingBox, Performance and Axles are never read: named once per export, at the first vehicle, not once per vehicle. */
+function vehicleShapesUnused(vehicles: readonly Node[], sink: LossSink): void {
+  if (vehicles.length === 0) return;
+  const names = vehicles.map((vehicle) => `'${attr(vehicle, 'name') ?? ''}'`);
+  sink.approximated(
+    vehicles[0],
+    'Vehicle/BoundingBox',
+    `the BoundingBox, Performance and Axles of ${vehicles.length === 1 ? `the vehicle ${names[0]}` : `the ${vehicles.length} vehicles (${names.join(', ')})`} are kept as written, but not used`,
+    `ScenarioRunner reads a Vehicle's name, vehicleCategory and its type and color Properties only: CARLA spawns the blueprint with its own size, axles and performance (${SR_CONFIGURATION}:294-316)`,
+  );
+}
+
 /** Vehicle `name`s and Pedestrian `model`s as CARLA blueprints: the user's table, else kept when a blueprint, else by category. */
 function mapBlueprints(tree: Node, options: CarlaExportOptions, sink: LossSink): void {
   const table = options.blueprints ?? {};
   const chosen = (written: string | undefined): string | undefined =>
     written !== undefined && Object.hasOwn(table, written) ? table[written] : undefined;
+  vehicleShapesUnused(named(tree, 'Vehicle'), sink);
   for (const vehicle of named(tree, 'Vehicle')) {
     const name = attr(vehicle, 'name') ?? '';
     const category = attr(vehicle, 'vehicleCategory') ?? 'car';
