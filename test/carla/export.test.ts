@@ -388,6 +388,7 @@ describe('export --target carla, round trip in esmini', function () {
     'LaneChangeActionDynamics/@dynamicsShape',
     'LaneChangeActionDynamics/@dynamicsDimension',
     'LaneOffsetActionDynamics/@dynamicsShape',
+    'LaneOffsetActionDynamics/@maxLateralAcc',
     'Vehicle',
     'Vehicle/BoundingBox',
     'Pedestrian',
@@ -1183,6 +1184,19 @@ describe('export --target carla, attributes ScenarioRunner does not follow', fun
     assert.match(
       carla('LaneOffsetActionDynamics/@dynamicsShape'),
       /^ScenarioRunner does not read a LaneOffsetAction's dynamics .*\(srunner\/tools\/openscenario_parser\.py:1402-1404\)$/,
+    );
+    // A lane offset's maxLateralAcc is never read either: each named at its line (both offsets have one).
+    const accelerations = result.report.losses.filter((loss) => loss.element === 'LaneOffsetActionDynamics/@maxLateralAcc');
+    assert.deepEqual(
+      accelerations.map(({ line, what }) => ({ line, what })),
+      [lineOf('dynamicsShape="cubic"'), lineOf('dynamicsShape="step"')].map((line) => ({
+        line,
+        what: 'maxLateralAcc="0.5" is kept as written, but not followed',
+      })),
+    );
+    assert.match(
+      accelerations[0].carla,
+      /maxLateralAcc included.*\(srunner\/tools\/openscenario_parser\.py:1402-1404, srunner\/scenarios\/open_scenario\.py:279\)$/,
     );
     const written = fs.readFileSync(result.output, 'utf8');
     for (const kept of ['freespace="true"', 'dynamicsShape="sinusoidal"', 'dynamicsShape="cubic"']) assert.ok(written.includes(kept), kept);

@@ -1076,6 +1076,12 @@ function attributesRunOtherwiseList(): AttributeRunOtherwise[] {
       breaks: (value) => value !== 'step',
       carla: `ScenarioRunner ${laneOffset.does} (${laneOffset.source})`,
     },
+    {
+      element: 'LaneOffsetActionDynamics',
+      attribute: 'maxLateralAcc',
+      breaks: () => true,
+      carla: `ScenarioRunner ${CARLA_FACTS.laneOffsetMaxLateralAccIgnored.does} (${CARLA_FACTS.laneOffsetMaxLateralAccIgnored.source})`,
+    },
   ];
 }
 

@@ -300,6 +300,11 @@ export const CARLA_FACTS = {
     source: `${PARSER}:1402-1404`,
     severity: 'warning',
   },
+  laneOffsetMaxLateralAccIgnored: {
+    does: 'does not read a LaneOffsetAction\'s dynamics ("Parsing of the different Dynamic shapes is missing"), maxLateralAcc included: the offset is reached as the actor\'s controller drives, whatever the acceleration',
+    source: `${PARSER}:1402-1404, ${RUNNER}:279`,
+    severity: 'warning',
+  },
   noEgo: {
     does: 'runs the ScenarioObjects whose Property type is "ego_vehicle" as the ego; this scenario marks none',
     source: `${CONFIGURATION}:301-313, 420-421`,
