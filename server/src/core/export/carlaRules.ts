@@ -19,6 +19,7 @@ import {
   child,
   childrenNamed,
   cloneNode,
+  fourDecimals,
   makeNode,
   named,
   Node,
@@ -674,21 +675,20 @@ function geoPositions(tree: Node, context: RuleContext): void {
       unconvertiblePosition(position, 'GeoPosition', context, `; the export cannot write it otherwise: ${placed}`);
       continue;
     }
-    const round = (value: number) => String(Number(value.toFixed(4)));
     const angles = (['h', 'p', 'r'] as const).flatMap((name): [string, string][] => {
       const value = orientation ? attr(orientation, name) : undefined;
       return value !== undefined ? [[name, value]] : [];
     });
-    const world = makeNode('WorldPosition', [['x', round(placed.x)], ['y', round(placed.y)], ...angles], [], position.place);
+    const world = makeNode('WorldPosition', [['x', fourDecimals(placed.x)], ['y', fourDecimals(placed.y)], ...angles], [], position.place);
     replaceNode(position, world);
     const altitude = attr(position, 'altitude') ?? attr(position, 'height');
     const carla = placed.carla
-      ? `; CARLA's own geolocation of this map (its GNSS; LibCarla GeoLocation with +lat_0/+lon_0 only) puts that latitude/longitude at x ${round(placed.carla.x)}, y ${round(placed.carla.y)}, ${Math.hypot(placed.carla.x - placed.x, placed.carla.y - placed.y).toFixed(1)} m away`
+      ? `; CARLA's own geolocation of this map (its GNSS; LibCarla GeoLocation with +lat_0/+lon_0 only) puts that latitude/longitude at x ${fourDecimals(placed.carla.x)}, y ${fourDecimals(placed.carla.y)}, ${Math.hypot(placed.carla.x - placed.x, placed.carla.y - placed.y).toFixed(1)} m away`
       : '';
     context.sink.approximated(
       world,
       'GeoPosition',
-      `written as WorldPosition x ${round(placed.x)}, y ${round(placed.y)} by ${placed.how}${altitude !== undefined ? `; its altitude ${altitude} is not kept` : ''}${carla}`,
+      `written as WorldPosition x ${fourDecimals(placed.x)}, y ${fourDecimals(placed.y)} by ${placed.how}${altitude !== undefined ? `; its altitude ${altitude} is not kept` : ''}${carla}`,
       `ScenarioRunner has no GeoPosition (not in its 1.0 schema; ${SR_PARSER} convert_position_to_transform raises "Unknown position") and converts a WorldPosition`,
     );
   }
@@ -729,13 +729,12 @@ function trajectoryPositions(tree: Node, context: RuleContext): void {
       unconvertiblePosition(position, 'TrajectoryPosition', context, `; the export cannot write it otherwise: ${point}`);
       continue;
     }
-    const round = (value: number) => String(Number(value.toFixed(4)));
     const world = makeNode(
       'WorldPosition',
       [
-        ['x', round(point.x)],
-        ['y', round(point.y)],
-        ['h', round(point.h)],
+        ['x', fourDecimals(point.x)],
+        ['y', fourDecimals(point.y)],
+        ['h', fourDecimals(point.h)],
       ],
       [],
       position.place,
@@ -744,7 +743,7 @@ function trajectoryPositions(tree: Node, context: RuleContext): void {
     context.sink.approximated(
       world,
       'TrajectoryPosition',
-      `written as WorldPosition x ${round(point.x)}, y ${round(point.y)}, h ${round(point.h)}: the point s ${attr(position, 's') ?? '0'} along its trajectory's polyline, t ${attr(position, 't') ?? '0'} to the left; its height is ScenarioRunner's spawn height, not the road's`,
+      `written as WorldPosition x ${fourDecimals(point.x)}, y ${fourDecimals(point.y)}, h ${fourDecimals(point.h)}: the point s ${attr(position, 's') ?? '0'} along its trajectory's polyline, t ${attr(position, 't') ?? '0'} to the left; its height is ScenarioRunner's spawn height, not the road's`,
       `ScenarioRunner has no TrajectoryPosition (${SR_PARSER} convert_position_to_transform) and converts a WorldPosition`,
     );
   }

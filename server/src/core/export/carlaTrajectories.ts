@@ -11,7 +11,7 @@ import { normalizeAngle } from '../opendrive/geometry';
 import { laneById, laneSectionIndexAt, referencePose, type RoadNetwork } from '../opendrive/road';
 import { actorsOf, fromInit } from './scenarioTree';
 import { sampleClothoid, sampleClothoidSpline, sampleNurbs, type SampledVertex, type SplineSegment } from './shapes';
-import { ancestor, attr, child, childrenNamed, makeNode, named, Node } from './tree';
+import { ancestor, attr, child, childrenNamed, fourDecimals, makeNode, named, Node, numberAttr } from './tree';
 
 /** The heading an entity ends a sampled trajectory with, by the name of the Event (and Action) that followed it. */
 export type TrajectoryEnds = Map<string, { entity: string; heading: number }>;
@@ -38,11 +38,6 @@ interface Heading {
   from: string;
 }
 
-const number = (node: Node, name: string, fallback = 0): number => {
-  const value = attr(node, name);
-  return value === undefined || value.trim() === '' ? fallback : Number(value);
-};
-
 /** The heading of an entity in the Init (a WorldPosition's h, or the driving direction of a LanePosition's lane on an .xodr road). */
 function initHeading(tree: Node, entity: string, roads: RoadNetwork | undefined): number | undefined {
   return fromInit(tree, entity, (privateNode) => {
@@ -50,16 +45,16 @@ function initHeading(tree: Node, entity: string, roads: RoadNetwork | undefined)
     const position = teleport ? child(teleport, 'Position')?.children[0] : undefined;
     if (!position) return undefined;
     const orientation = child(position, 'Orientation');
-    if (position.name === 'WorldPosition') return number(position, 'h');
+    if (position.name === 'WorldPosition') return numberAttr(position, 'h');
     if (position.name !== 'LanePosition' || !roads) return undefined;
     const road = roads.byId.get(attr(position, 'roadId') ?? '');
-    const s = number(position, 's', NaN);
-    const laneId = number(position, 'laneId', NaN);
+    const s = numberAttr(position, 's', NaN);
+    const laneId = numberAttr(position, 'laneId', NaN);
     if (!road || !Number.isFinite(s) || !Number.isFinite(laneId)) return undefined;
     if (!laneById(road.laneSections[laneSectionIndexAt(road, s)], laneId)) return undefined;
-    if (orientation && attr(orientation, 'type') === 'absolute') return number(orientation, 'h');
+    if (orientation && attr(orientation, 'type') === 'absolute') return numberAttr(orientation, 'h');
     // esmini heads a LanePosition along its lane's driving direction (right-hand traffic: a left lane drives against s).
-    return referencePose(road, s).hdg + (laneId > 0 ? Math.PI : 0) + (orientation ? number(orientation, 'h') : 0);
+    return referencePose(road, s).hdg + (laneId > 0 ? Math.PI : 0) + (orientation ? numberAttr(orientation, 'h') : 0);
   });
 }
 
@@ -88,14 +83,14 @@ function place(
     const own = heading(actor);
     return typeof own === 'string' ? own : { x: 0, y: 0, h: own.value, entity: actor, assumed: own };
   }
-  if (inner.name === 'WorldPosition') return { x: number(inner, 'x'), y: number(inner, 'y'), h: number(inner, 'h') };
+  if (inner.name === 'WorldPosition') return { x: numberAttr(inner, 'x'), y: numberAttr(inner, 'y'), h: numberAttr(inner, 'h') };
   if (inner.name !== 'RelativeWorldPosition' && inner.name !== 'RelativeObjectPosition')
     return `it is placed by a ${inner.name}, which the export cannot turn into coordinates without running the scenario`;
   const entity = attr(inner, 'entityRef') ?? '';
   const orientation = child(inner, 'Orientation');
   const absolute = orientation !== undefined && attr(orientation, 'type') === 'absolute';
-  const dx = number(inner, 'dx');
-  const dy = number(inner, 'dy');
+  const dx = numberAttr(inner, 'dx');
+  const dy = numberAttr(inner, 'dy');
   const needsHeading = !absolute || inner.name === 'RelativeObjectPosition';
   const known = needsHeading ? heading(entity) : undefined;
   if (typeof known === 'string') return known;
@@ -105,11 +100,9 @@ function place(
     inner.name === 'RelativeObjectPosition'
       ? [dx * Math.cos(base) - dy * Math.sin(base), dx * Math.sin(base) + dy * Math.cos(base)]
       : [dx, dy];
-  const h = absolute ? number(orientation, 'h') : base + (orientation ? number(orientation, 'h') : 0);
+  const h = absolute ? numberAttr(orientation, 'h') : base + (orientation ? numberAttr(orientation, 'h') : 0);
   return { x, y, h, entity, ...(known ? { assumed: known } : {}) };
 }
-
-const written = (value: number): string => String(Number(value.toFixed(4)));
 
 function vertexNode(vertex: SampledVertex, relative: { entity: string; heading: number } | undefined, shape: Node): Node {
   const position = relative
@@ -117,22 +110,22 @@ function vertexNode(vertex: SampledVertex, relative: { entity: string; heading: 
         'RelativeWorldPosition',
         [
           ['entityRef', relative.entity],
-          ['dx', written(vertex.x)],
-          ['dy', written(vertex.y)],
+          ['dx', fourDecimals(vertex.x)],
+          ['dy', fourDecimals(vertex.y)],
         ],
         [
           makeNode('Orientation', [
             ['type', 'relative'],
-            ['h', written(normalizeAngle(vertex.h - relative.heading))],
+            ['h', fourDecimals(normalizeAngle(vertex.h - relative.heading))],
           ]),
         ],
       )
     : makeNode('WorldPosition', [
-        ['x', written(vertex.x)],
-        ['y', written(vertex.y)],
-        ['h', written(vertex.h)],
+        ['x', fourDecimals(vertex.x)],
+        ['y', fourDecimals(vertex.y)],
+        ['h', fourDecimals(vertex.h)],
       ]);
-  const attributes: [string, string][] = vertex.time !== undefined ? [['time', written(vertex.time)]] : [];
+  const attributes: [string, string][] = vertex.time !== undefined ? [['time', fourDecimals(vertex.time)]] : [];
   return makeNode('Vertex', attributes, [makeNode('Position', [], [position])], shape.place);
 }
 
@@ -156,7 +149,7 @@ function sampleOf(
     const start = placeAt(child(shape, 'Position'));
     if (typeof start === 'string') return start;
     const timed = attr(shape, 'startTime') !== undefined && attr(shape, 'stopTime') !== undefined;
-    const times = timed ? { start: number(shape, 'startTime'), stop: number(shape, 'stopTime') } : undefined;
+    const times = timed ? { start: numberAttr(shape, 'startTime'), stop: numberAttr(shape, 'stopTime') } : undefined;
     return { vertices: sampleClothoid({ x: start.x, y: start.y, hdg: start.h }, curvature, curvaturePrime, length, times), start };
   }
   if (shape.name === 'ClothoidSpline') {
@@ -168,14 +161,15 @@ function sampleOf(
     for (const segment of nodes) {
       const length = Number(attr(segment, 'length'));
       if (!(length > 0)) return `a segment's length '${attr(segment, 'length') ?? ''}' is not a positive number`;
-      const curvStart = attr(segment, 'curvatureStart') !== undefined ? number(segment, 'curvatureStart') : (segments.at(-1)?.curvEnd ?? 0);
-      const curvEnd = attr(segment, 'curvatureEnd') !== undefined ? number(segment, 'curvatureEnd') : curvStart;
-      const time = attr(segment, 'timeStart') !== undefined ? number(segment, 'timeStart') : undefined;
-      segments.push({ curvStart, curvEnd, length, hOffset: number(segment, 'hOffset'), ...(time !== undefined ? { time } : {}) });
+      const curvStart =
+        attr(segment, 'curvatureStart') !== undefined ? numberAttr(segment, 'curvatureStart') : (segments.at(-1)?.curvEnd ?? 0);
+      const curvEnd = attr(segment, 'curvatureEnd') !== undefined ? numberAttr(segment, 'curvatureEnd') : curvStart;
+      const time = attr(segment, 'timeStart') !== undefined ? numberAttr(segment, 'timeStart') : undefined;
+      segments.push({ curvStart, curvEnd, length, hOffset: numberAttr(segment, 'hOffset'), ...(time !== undefined ? { time } : {}) });
     }
     const start = placeAt(child(nodes[0], 'PositionStart'));
     if (typeof start === 'string') return start;
-    const timeEnd = attr(shape, 'timeEnd') !== undefined ? number(shape, 'timeEnd') : undefined;
+    const timeEnd = attr(shape, 'timeEnd') !== undefined ? numberAttr(shape, 'timeEnd') : undefined;
     return { vertices: sampleClothoidSpline({ x: start.x, y: start.y, hdg: start.h }, segments, timeEnd), start };
   }
   // Nurbs: every control point in one frame (all absolute, or all from one entity).
@@ -196,10 +190,10 @@ function sampleOf(
     points.map((point, index) => ({
       x: point.x,
       y: point.y,
-      weight: number(controlPoints[index], 'weight', 1),
-      ...(timed ? { time: number(controlPoints[index], 'time') } : {}),
+      weight: numberAttr(controlPoints[index], 'weight', 1),
+      ...(timed ? { time: numberAttr(controlPoints[index], 'time') } : {}),
     })),
-    childrenNamed(shape, 'Knot').map((knot) => number(knot, 'value', NaN)),
+    childrenNamed(shape, 'Knot').map((knot) => numberAttr(knot, 'value', NaN)),
   );
   return typeof sampled === 'string' ? sampled : { vertices: sampled, start: first };
 }

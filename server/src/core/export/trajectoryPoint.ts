@@ -7,7 +7,7 @@
  */
 import { normalizeAngle } from '../opendrive/geometry';
 import { laneById, laneCenterT, laneSectionIndexAt, roadPoint, type RoadNetwork } from '../opendrive/road';
-import { attr, child, childrenNamed, Node } from './tree';
+import { attr, child, childrenNamed, Node, numberAttr } from './tree';
 
 export interface TrajectoryPoint {
   x: number;
@@ -15,32 +15,27 @@ export interface TrajectoryPoint {
   h: number;
 }
 
-const numberOf = (node: Node, name: string, fallback: number): number => {
-  const value = attr(node, name);
-  return value === undefined || value.trim() === '' ? fallback : Number(value);
-};
-
 /** A polyline vertex's position in world coordinates, or why it has none without running the scenario. */
 function vertexPoint(position: Node | undefined, roads: RoadNetwork | undefined): { x: number; y: number } | string {
   if (!position) return 'a vertex has no position';
-  if (position.name === 'WorldPosition') return { x: numberOf(position, 'x', NaN), y: numberOf(position, 'y', NaN) };
+  if (position.name === 'WorldPosition') return { x: numberAttr(position, 'x', NaN), y: numberAttr(position, 'y', NaN) };
   if (position.name !== 'LanePosition' && position.name !== 'RoadPosition')
     return `a vertex is placed by a ${position.name}, which the export does not turn into coordinates`;
   if (!roads) return `a vertex is a ${position.name} and the road is not an .xodr file the export read`;
   const road = roads.byId.get(attr(position, 'roadId') ?? '');
-  const s = numberOf(position, 's', NaN);
+  const s = numberAttr(position, 's', NaN);
   if (!road) return `a vertex names road '${attr(position, 'roadId') ?? ''}', which the road network does not have`;
   if (!Number.isFinite(s) || s < 0 || s > road.length + 1e-6)
     return `a vertex's s '${attr(position, 's') ?? ''}' is not on road ${road.id}`;
   if (position.name === 'RoadPosition') {
-    const point = roadPoint(road, s, numberOf(position, 't', 0));
+    const point = roadPoint(road, s, numberAttr(position, 't', 0));
     return { x: point.x, y: point.y };
   }
-  const laneId = numberOf(position, 'laneId', NaN);
+  const laneId = numberAttr(position, 'laneId', NaN);
   if (!Number.isInteger(laneId)) return `a vertex's laneId '${attr(position, 'laneId') ?? ''}' is not a lane number`;
   const section = laneSectionIndexAt(road, s);
   if (laneId !== 0 && !laneById(road.laneSections[section], laneId)) return `road ${road.id} has no lane ${laneId} at s ${s}`;
-  const point = roadPoint(road, s, laneCenterT(road, section, laneId, s, numberOf(position, 'offset', 0)));
+  const point = roadPoint(road, s, laneCenterT(road, section, laneId, s, numberAttr(position, 'offset', 0)));
   return { x: point.x, y: point.y };
 }
 
@@ -59,31 +54,27 @@ export function trajectoryPoint(position: Node, roads: RoadNetwork | undefined):
     points.push(point);
   }
   if (points.length < 2) return 'its polyline has fewer than two vertices';
-  const s = numberOf(position, 's', NaN);
-  const t = numberOf(position, 't', 0);
+  const s = numberAttr(position, 's', NaN);
+  const t = numberAttr(position, 't', 0);
   if (!Number.isFinite(s) || s < 0 || !Number.isFinite(t))
     return `its s '${attr(position, 's') ?? ''}' or t is not a number at or after the start`;
+  const lengthOf = (index: number) => Math.hypot(points[index].x - points[index - 1].x, points[index].y - points[index - 1].y);
+  // The segment holding s: those before the last are passed over while s lies beyond them.
   let along = s;
-  for (let index = 1; index < points.length; index++) {
-    const [from, to] = [points[index - 1], points[index]];
-    const length = Math.hypot(to.x - from.x, to.y - from.y);
-    if (along > length && index < points.length - 1) {
-      along -= length;
-      continue;
-    }
-    if (along > length + 1e-6) return `its s ${s} is beyond the polyline's length`;
-    if (length === 0) return 'its polyline has two vertices at one point';
-    const heading = Math.atan2(to.y - from.y, to.x - from.x);
-    const fraction = along / length;
-    const x = from.x + (to.x - from.x) * fraction - t * Math.sin(heading);
-    const y = from.y + (to.y - from.y) * fraction + t * Math.cos(heading);
-    const orientation = child(position, 'Orientation');
-    const h = !orientation
-      ? heading
-      : attr(orientation, 'type') === 'absolute'
-        ? numberOf(orientation, 'h', 0)
-        : heading + numberOf(orientation, 'h', 0);
-    return { x, y, h: normalizeAngle(h) };
-  }
-  return `its s ${s} is beyond the polyline's length`;
+  let index = 1;
+  for (; index < points.length - 1 && along > lengthOf(index); index++) along -= lengthOf(index);
+  const [from, to, length] = [points[index - 1], points[index], lengthOf(index)];
+  if (along > length + 1e-6) return `its s ${s} is beyond the polyline's length`;
+  if (length === 0) return 'its polyline has two vertices at one point';
+  const heading = Math.atan2(to.y - from.y, to.x - from.x);
+  const fraction = along / length;
+  const x = from.x + (to.x - from.x) * fraction - t * Math.sin(heading);
+  const y = from.y + (to.y - from.y) * fraction + t * Math.cos(heading);
+  const orientation = child(position, 'Orientation');
+  const h = !orientation
+    ? heading
+    : attr(orientation, 'type') === 'absolute'
+      ? numberAttr(orientation, 'h', 0)
+      : heading + numberAttr(orientation, 'h', 0);
+  return { x, y, h: normalizeAngle(h) };
 }

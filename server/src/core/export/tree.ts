@@ -39,6 +39,17 @@ export function attr(node: Node, name: string): string | undefined {
   return entryOf(node, name)?.[1];
 }
 
+/** An attribute read as a number: `fallback` when it is absent or empty, NaN when it is no number. */
+export function numberAttr(node: Node, name: string, fallback = 0): number {
+  const value = attr(node, name);
+  return value === undefined || value.trim() === '' ? fallback : Number(value);
+}
+
+/** A coordinate, angle or time as the export writes it: four decimals, without trailing zeros. */
+export function fourDecimals(value: number): string {
+  return String(Number(value.toFixed(4)));
+}
+
 export function setAttr(node: Node, name: string, value: string): void {
   const found = entryOf(node, name);
   if (found) found[1] = value;
