@@ -1770,3 +1770,169 @@ describe('export --target carla, a negative start speed', function () {
     assert.match(refused[0].carla, /openscenario_configuration\.py:396-406/);
   });
 });
+
+/** The export builds in ScenarioRunner's loader; its conditions on parameters as they fare when ticked (HarnessVerdict.parameter_ticks). */
+async function parameterTicksOfBuilt(output: string): Promise<HarnessVerdict['parameter_ticks']> {
+  const verdict = (await harnessVerdicts([output], { tree: true })).get(path.resolve(output));
+  assert.equal(verdict?.status, 'OK', JSON.stringify(verdict));
+  return verdict?.parameter_ticks;
+}
+
+describe('export --target carla, variables and the parameters conditions compare', function () {
+  this.timeout(120_000);
+  let out: string;
+  inTemporaryFolderEach('m2s-carla-variables-', (folder) => (out = folder));
+  const globalEvent = (name: string, action: string, conditions: readonly string[]): string => `
+            <Event name="${name}" priority="parallel">
+              <Action name="${name}Action"><GlobalAction>${action}</GlobalAction></Action>
+              <StartTrigger><ConditionGroup>${conditions
+                .map(
+                  (condition, index) => `<Condition name="${name}Starts${index}" delay="0" conditionEdge="none">${condition}</Condition>`,
+                )
+                .join('')}</ConditionGroup></StartTrigger>
+            </Event>`;
+  const story = (events: string): string => `<Story name="Counting">
+      <Act name="Counting">
+        <ManeuverGroup maximumExecutionCount="1" name="Counter">
+          <Actors selectTriggeringEntities="false"/>
+          <Maneuver name="Counting">${events}
+          </Maneuver>
+        </ManeuverGroup>
+        ${ACT_STARTS}
+      </Act>
+    </Story>`;
+  const scenario = (revMinor: number, declarations: string, events: string): string =>
+    testScenario({
+      revMinor,
+      description: 'variables',
+      road: 'Town01',
+      entities: vehicle('Ego', 'ego_vehicle'),
+      init: `
+        <Private entityRef="Ego">
+          <PrivateAction><TeleportAction><Position><WorldPosition x="100" y="-2" z="0" h="0"/></Position></TeleportAction></PrivateAction>
+        </Private>`,
+      story: story(events),
+      stopAt: 10,
+    }).replace('<ParameterDeclarations/>', declarations);
+  const byVariable = (ref: string, rule: string, value: string): string =>
+    `<ByValueCondition><VariableCondition variableRef="${ref}" rule="${rule}" value="${value}"/></ByValueCondition>`;
+  const variablesText = (): string =>
+    scenario(
+      2,
+      `<ParameterDeclarations><ParameterDeclaration name="count" parameterType="double" value="7"/></ParameterDeclarations>
+  <VariableDeclarations>
+    <VariableDeclaration name="done" variableType="boolean" value="false"/>
+    <VariableDeclaration name="count" variableType="double" value="0"/>
+    <VariableDeclaration name="label" variableType="string" value="a"/>
+  </VariableDeclarations>`,
+      globalEvent('Done', '<VariableAction variableRef="done"><SetAction value="true"/></VariableAction>', [atTime(1)]) +
+        globalEvent(
+          'Count',
+          '<VariableAction variableRef="count"><ModifyAction><Rule><AddValue value="2"/></Rule></ModifyAction></VariableAction>',
+          [byVariable('done', 'notEqualTo', 'false')],
+        ) +
+        globalEvent('Label', '<VariableAction variableRef="label"><SetAction value="b"/></VariableAction>', [atTime(3)]) +
+        globalEvent('Five', '<VariableAction variableRef="count"><SetAction value="5"/></VariableAction>', [
+          byVariable('count', 'greaterThan', '1'),
+          byVariable('label', 'equalTo', 'b'),
+        ]),
+    );
+
+  it('are written as 1.0 parameters ScenarioRunner changes and compares, set in the Init; a text variable is dropped, named (issue 26)', async function () {
+    const text = variablesText();
+    const original = path.join(out, 'variables.xosc');
+    fs.writeFileSync(original, text);
+    const result = await exportFile(original, path.join(out, 'exported.xosc'));
+    assert.equal(result.code, 0, result.stderr);
+    const named = result.report.losses.filter((loss) => loss.element.startsWith('Variable'));
+    assert.deepEqual(
+      named.map(({ kind, line, element }) => [kind, line, element]),
+      [
+        ['approximated', lineHolding(text, 'name="done"'), 'VariableDeclaration'],
+        ['approximated', lineHolding(text, 'name="count" variableType'), 'VariableDeclaration'],
+        ['dropped', lineHolding(text, 'name="label"'), 'VariableDeclaration'],
+        ['dropped', lineHolding(text, 'variableRef="label"><SetAction'), 'VariableAction'],
+        ['dropped', lineHolding(text, 'variableRef="label" rule'), 'VariableCondition'],
+      ],
+    );
+    assert.match(named[0].what, /the variable 'done' is written as the parameter 'done' \(1 for true, 0 for false\), set in the Init/);
+    assert.match(named[1].what, /the variable 'count' is written as the parameter 'count_variable'/);
+    assert.match(named[0].carla, /atomic_trigger_conditions\.py:1459-1477 CheckParameter/);
+    assert.match(named[2].carla, /a value that is no number raises ValueError there \(srunner\/tools\/openscenario_parser\.py:143-147/);
+    const exported = fs.readFileSync(result.output, 'utf8');
+    assert.doesNotMatch(exported, /Variable/);
+    const document = parseXml(exported);
+    const attributesOf = (name: string): Record<string, string>[] => {
+      const found: Record<string, string>[] = [];
+      forEachElement(document.root as XmlElement, (element) => {
+        if (element.name === name) found.push(Object.fromEntries(element.attributes.map((each) => [each.name, each.value])));
+      });
+      return found;
+    };
+    assert.deepEqual(attributesOf('ParameterDeclaration'), [
+      { name: 'count', parameterType: 'double', value: '7' },
+      { name: 'done', parameterType: 'integer', value: '0' },
+      { name: 'count_variable', parameterType: 'double', value: '0' },
+    ]);
+    assert.deepEqual(
+      attributesOf('ParameterAction').map((each) => each.parameterRef),
+      ['done', 'count_variable', 'done', 'count_variable', 'count_variable'],
+    );
+    assert.deepEqual(attributesOf('SetAction'), [{ value: '0' }, { value: '0' }, { value: '1' }, { value: '5' }]);
+    assert.deepEqual(attributesOf('AddValue'), [{ value: '2' }]);
+    assert.deepEqual(attributesOf('ParameterCondition'), [
+      { parameterRef: 'done', value: '1', rule: 'equalTo' },
+      { parameterRef: 'count_variable', value: '1', rule: 'greaterThan' },
+    ]);
+    requireCarlaHarness(this);
+    // ScenarioRunner's own atomics, ticked: nothing raises; each holds once the story's actions have run.
+    assert.deepEqual(await parameterTicksOfBuilt(result.output), [
+      ['CountStarts0', 'RUNNING', 'SUCCESS'],
+      ['FiveStarts0', 'RUNNING', 'SUCCESS'],
+    ]);
+  });
+
+  it('a parameter a condition compares is set in the Init to its declared value, a boolean as 1 or 0, so that ScenarioRunner compares numbers (issue 26)', async function () {
+    const byParameter = (ref: string, rule: string, value: string): string =>
+      `<ByValueCondition><ParameterCondition parameterRef="${ref}" rule="${rule}" value="${value}"/></ByValueCondition>`;
+    const text = scenario(
+      0,
+      `<ParameterDeclarations>
+    <ParameterDeclaration name="braking" parameterType="boolean" value="true"/>
+    <ParameterDeclaration name="gap" parameterType="double" value="3"/>
+    <ParameterDeclaration name="name" parameterType="string" value="x"/>
+  </ParameterDeclarations>`,
+      globalEvent('Brakes', '<ParameterAction parameterRef="gap"><SetAction value="1"/></ParameterAction>', [
+        byParameter('braking', 'equalTo', 'true'),
+        byParameter('gap', 'greaterThan', '2'),
+        byParameter('name', 'equalTo', 'x'),
+      ]) +
+        globalEvent('Closer', '<ParameterAction parameterRef="braking"><SetAction value="false"/></ParameterAction>', [
+          byParameter('gap', 'lessThan', '2'),
+        ]),
+    );
+    const original = path.join(out, 'parameters.xosc');
+    fs.writeFileSync(original, text);
+    const result = await exportFile(original, path.join(out, 'exported.xosc'));
+    assert.equal(result.code, 0, result.stderr);
+    const named = result.report.losses.filter((loss) => loss.element.startsWith('Parameter'));
+    assert.deepEqual(
+      named.map(({ kind, line, element, what }) => [kind, line, element, what]),
+      [
+        ['approximated', lineHolding(text, 'name="braking"'), 'ParameterDeclaration', "'braking' is set to 1 in the Init"],
+        ['approximated', lineHolding(text, 'name="gap"'), 'ParameterDeclaration', "'gap' is set to 3 in the Init"],
+        ['dropped', lineHolding(text, 'parameterRef="name"'), 'ParameterCondition', "the condition 'BrakesStarts2' is dropped"],
+      ],
+    );
+    const exported = fs.readFileSync(result.output, 'utf8');
+    assert.match(exported, /<ParameterDeclaration name="braking" parameterType="integer" value="1"\/>/);
+    assert.match(exported, /<ParameterAction parameterRef="braking">\s*<SetAction value="0"\/>/);
+    requireCarlaHarness(this);
+    // Before, the first tick raised ValueError on 'true' and TypeError comparing the declared text '3' with 2.
+    assert.deepEqual(await parameterTicksOfBuilt(result.output), [
+      ['BrakesStarts0', 'SUCCESS', 'RUNNING'],
+      ['BrakesStarts1', 'SUCCESS', 'RUNNING'],
+      ['CloserStarts0', 'RUNNING', 'SUCCESS'],
+    ]);
+  });
+});

@@ -56,6 +56,11 @@ export interface HarnessVerdict {
    * behaviour's name, where conditions appear; CLASS, every behaviour's class), read by ./carlaTree.py.
    */
   tree?: [string, string][];
+  /**
+   * With `tree: true`: each CheckParameter of the built tree (a condition on a parameter) by its name, ticked
+   * after the Init's ChangeParameters and again after every other one: 'RUNNING', 'SUCCESS' or 'raises ...'.
+   */
+  parameter_ticks?: [string, string, string][];
 }
 
 /** ./carlaTree.py: check.py run unchanged, its results also listing each built tree's story elements. */

@@ -1,7 +1,8 @@
 """The CARLA harness (../shared/carla/check.py), run unchanged, with one addition of the tests': each OK
 file's result also lists the story elements of the behaviour tree ScenarioRunner built ("tree": the Acts,
 ManeuverGroups, Maneuvers, Events and Actions by their OpenSCENARIO names, and the names of the condition
-atomics), so a test can tell what of the exported storyboard reached the tree.
+atomics), so a test can tell what of the exported storyboard reached the tree; and how its conditions on
+parameters fare when ticked ("parameter_ticks", below).
 
     python3 carlaTree.py CHECK_PY [check.py's own options and files]
 
@@ -40,6 +41,33 @@ def story_elements(scenario):
     return sorted([kind, name] for kind, name in found)
 
 
+def parameter_ticks(scenario):
+    """ScenarioRunner's own parameter atomics of the built tree, ticked as its first tick would and then once
+    more: the Init's ChangeParameters (named InitParams_N, srunner/scenarios/open_scenario.py
+    _initialize_parameters), every CheckParameter (each condition on a parameter), every other ChangeParameter
+    (the stories' ParameterActions, in tree order), every CheckParameter again. Each CheckParameter's outcome,
+    'RUNNING', 'SUCCESS' or 'raises <error>', before and after: what the simulator's ticks would meet."""
+    nodes = list(scenario.scenario_tree.iterate())
+    changes = [node for node in nodes if type(node).__name__ == 'ChangeParameter']
+    checks = [node for node in nodes if type(node).__name__ == 'CheckParameter']
+
+    def tick(node):
+        try:
+            return str(node.update()).split('.')[-1]
+        except Exception as error:  # what ScenarioRunner would raise at that tick
+            return 'raises %s: %s' % (type(error).__name__, error)
+
+    for node in changes:
+        if node.name.startswith('InitParams'):
+            tick(node)
+    before = [tick(node) for node in checks]
+    for node in changes:
+        if not node.name.startswith('InitParams'):
+            tick(node)
+    after = [tick(node) for node in checks]
+    return [[node.name, first, then] for node, first, then in zip(checks, before, after)]
+
+
 def main():
     check_path = os.environ.get('M2S_CARLA_CHECK')
     argv = sys.argv[1:]
@@ -60,6 +88,7 @@ def main():
         def lazy_refs(scenario, parameter_ref):
             # Called once the tree is built (run_file, stage build): the moment to read it.
             built['tree'] = story_elements(scenario)
+            built['parameter_ticks'] = parameter_ticks(scenario)
             return original_lazy_refs(scenario, parameter_ref)
 
         check._lazy_refs = lazy_refs
@@ -67,6 +96,7 @@ def main():
         def emit_with_tree(kind, payload):
             if kind == 'RESULT' and 'tree' in built:
                 payload['tree'] = built['tree']
+                payload['parameter_ticks'] = built['parameter_ticks']
             emit(kind, payload)
 
         return original_run_file(env, path, opts, emit_with_tree)

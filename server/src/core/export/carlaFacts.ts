@@ -13,6 +13,7 @@ export {
   SR_REVISION,
   SR_SCENARIO,
   SR_SCHEMA,
+  SR_TRIGGER_CONDITIONS,
 } from '../profiles/scenarioRunner';
 export type { CarlaRelease } from '../profiles/scenarioRunner';
 

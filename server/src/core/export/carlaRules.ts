@@ -6,8 +6,7 @@
 import type { RoadNetwork } from '../opendrive/road';
 import type { RoadXY } from '../opendrive/geo';
 import { pointAlongRoute, RouteWaypoint } from '../opendrive/route';
-import { baseName, SourceRef } from '../sources';
-import { Range } from '../text';
+import { baseName } from '../sources';
 import { CarlaRelease, SR_ATOMICS, SR_CONFIGURATION, SR_PARSER, SR_SCENARIO } from './carlaFacts';
 import { CARLA_FACTS, CARLA_PROFILE } from '../profiles/carla';
 import { breaks } from '../profiles/checks';
@@ -31,32 +30,14 @@ import {
   setAttr,
 } from './tree';
 import { sampledShape, TrajectoryEnds } from './carlaTrajectories';
+import { dropUnit } from './carlaLosses';
+import type { CarlaLoss, LossSink } from './carlaLosses';
+import { variables } from './carlaVariables';
 import { actorsOf, fromInit } from './scenarioTree';
 import { trajectoryPoint } from './trajectoryPoint';
 import { SAMPLE_STEP } from './shapes';
 
-/** One thing of the input that the export does not keep as written. */
-export interface CarlaLoss {
-  /** dropped: not in the export; approximated: written otherwise, with a meaning close to the original; refused: nothing is written. */
-  kind: 'dropped' | 'approximated' | 'refused';
-  /** The file it was written in (as the user named it, or absolute) and its line, 1-based. */
-  file: string;
-  line: number;
-  /** The element, or `Element/@attribute`. */
-  element: string;
-  /** What happens to it in the export. */
-  what: string;
-  /** What ScenarioRunner does instead (or would do with the original), with its source. */
-  carla: string;
-  source: SourceRef;
-  range: Range;
-}
-
-export interface LossSink {
-  dropped(node: Node, element: string, what: string, carla: string): void;
-  approximated(node: Node, element: string, what: string, carla: string): void;
-  refuse(node: Node, element: string, what: string, carla: string): void;
-}
+export type { CarlaLoss, LossSink };
 
 export interface RuleContext {
   release: CarlaRelease;
@@ -67,25 +48,6 @@ export interface RuleContext {
   geoPlaces?: Map<Node, RoadXY | string>;
   /** Filled with the Polylines the rules sampled from a uniform shape (SampledShape.uniform), for the schema check. */
   sampledPolylines?: Set<Node>;
-}
-
-/** Drops the smallest unit of a storyboard holding `node` that ScenarioRunner can do without: its Condition, its Event's Action or its Init action. */
-function dropUnit(node: Node, context: RuleContext, element: string, carla: string): void {
-  const unit =
-    ancestorOrSelf(node, 'Condition') ??
-    (ancestor(node, 'Event') ? ancestorOrSelf(node, 'Action') : undefined) ??
-    (ancestor(node, 'Init') ? (ancestorOrSelf(node, 'PrivateAction') ?? ancestorOrSelf(node, 'GlobalAction')) : undefined);
-  if (!unit) {
-    context.sink.refuse(node, element, 'cannot be dropped without losing what holds it', carla);
-    return;
-  }
-  const where = unit.name === 'Condition' ? 'condition' : ancestor(unit, 'Init') ? 'init action' : 'action';
-  context.sink.dropped(node, element, `the ${where}${attr(unit, 'name') ? ` '${attr(unit, 'name')}'` : ''} is dropped`, carla);
-  removeNode(unit);
-}
-
-function ancestorOrSelf(node: Node, name: string): Node | undefined {
-  return node.name === name ? node : ancestor(node, name);
 }
 
 /** The 1.1 `ControllerAction/ActivateControllerAction` is the 1.0 `PrivateAction/ActivateControllerAction` (SR_PARSER convert_maneuver_to_atomic: ChangeAutoPilot). */
@@ -799,7 +761,6 @@ function unsupportedPositions(tree: Node, context: RuleContext): void {
 const REFUSED_ACTIONS: Record<string, string> = {
   TrafficAction: `ScenarioRunner refuses global traffic actions ("Global actions are not yet supported", ${SR_PARSER} convert_maneuver_to_atomic)`,
   VisibilityAction: `ScenarioRunner refuses it ("Visibility actions are not yet supported", ${SR_PARSER} convert_maneuver_to_atomic)`,
-  VariableAction: 'variables are not in 1.0',
   SetMonitorAction: 'monitors are not in 1.0',
   LightStateAction: 'vehicle lights are not in 1.0',
   AnimationAction: 'animations are not in 1.0',
@@ -885,7 +846,6 @@ function routeActionCrash(tree: Node, context: RuleContext): void {
 /** 1.1-1.3 conditions that are not 1.0, and the UserDefinedValueCondition SR refuses ("not yet supported", SR_PARSER convert_condition_to_atomic). */
 const REFUSED_CONDITIONS: Record<string, string> = {
   UserDefinedValueCondition: `ScenarioRunner refuses it ("ByValue UserDefinedValue conditions are not yet supported", ${SR_PARSER} convert_condition_to_atomic)`,
-  VariableCondition: 'variables are not in 1.0',
   AngleCondition: 'angle conditions are not in 1.0',
   RelativeAngleCondition: 'angle conditions are not in 1.0',
   RelativeClearanceCondition: 'clearance conditions are not in 1.0',
@@ -1190,19 +1150,10 @@ function entities(tree: Node, context: RuleContext): void {
 }
 
 /** Parameters are evaluated by the export; declarations stay for ParameterConditions and ParameterActions, in 1.0's types. */
-function parameters(tree: Node, context: RuleContext): void {
+function parameters(tree: Node): void {
   for (const declaration of named(tree, 'ParameterDeclaration')) {
     if (attr(declaration, 'parameterType') === 'int') setAttr(declaration, 'parameterType', 'integer');
     for (const constraint of childrenNamed(declaration, 'ConstraintGroup')) removeNode(constraint);
-  }
-  for (const declarations of named(tree, 'VariableDeclarations')) {
-    removeNode(declarations);
-    context.sink.dropped(
-      declarations,
-      'VariableDeclarations',
-      'are not in 1.0: dropped (their conditions and actions are dropped and named too)',
-      'ScenarioRunner has no variables',
-    );
   }
   for (const node of allNodes(tree)) {
     if (attr(node, 'parameterType') === 'int') setAttr(node, 'parameterType', 'integer');
@@ -1341,7 +1292,8 @@ function emptyActions(tree: Node, context: RuleContext): void {
 
 /** Every rule, in the order they apply. */
 export const CARLA_RULES: readonly { name: string; apply: (tree: Node, context: RuleContext) => void }[] = [
-  { name: 'parameters', apply: parameters },
+  { name: 'variables', apply: variables },
+  { name: 'parameters', apply: (tree) => parameters(tree) },
   { name: 'empty-actions', apply: emptyActions },
   { name: 'entities', apply: entities },
   { name: 'activate-controller', apply: activateControllerAction },

@@ -17,6 +17,7 @@ export const SR_PARSER = 'srunner/tools/openscenario_parser.py';
 export const SR_SCENARIO = 'srunner/scenarios/open_scenario.py';
 export const SR_CONFIGURATION = 'srunner/scenarioconfigs/openscenario_configuration.py';
 export const SR_ATOMICS = 'srunner/scenariomanager/scenarioatomics/atomic_behaviors.py';
+export const SR_TRIGGER_CONDITIONS = 'srunner/scenariomanager/scenarioatomics/atomic_trigger_conditions.py';
 export const SR_SCHEMA = 'srunner/openscenario/OpenSCENARIO.xsd';
 
 /**
