@@ -4,7 +4,14 @@ import * as path from 'node:path';
 import { main } from '../../server/src/cli';
 import { attributeValue, forEachElement, parseXml } from '../../server/src/core/xml';
 import type { XmlElement } from '../../server/src/core/xml';
-import { carlaCache, HarnessVerdict, harnessVerdicts, requireCarlaHarness, scenarioRunnerFolder } from '../support/carla';
+import {
+  carlaCache,
+  HarnessVerdict,
+  harnessVerdicts,
+  requireCarlaHarness,
+  scenarioRunnerFolder,
+  scenarioRunnerVehicle,
+} from '../support/carla';
 import { esminiCatalogs, esminiRoads, requireEsmini, runEsmini, tracksOf } from '../support/esmini';
 import { openscenarioDir } from '../support/openscenarioCorpus';
 import { caseStudyDir, libraryDir, repoRoot, requireCorpus, sharedDir } from '../support/paths';
@@ -489,20 +496,7 @@ describe('export --target carla, round trip in esmini', function () {
   });
 });
 
-/** A vehicle as ScenarioRunner's examples write one (1.0 needs every part). */
-const vehicle = (name: string, type: string): string => `
-    <ScenarioObject name="${name}">
-      <Vehicle name="vehicle.tesla.model3" vehicleCategory="car">
-        <ParameterDeclarations/>
-        <Performance maxSpeed="69.444" maxAcceleration="200" maxDeceleration="10.0"/>
-        <BoundingBox><Center x="1.5" y="0.0" z="0.9"/><Dimensions width="2.1" length="4.5" height="1.8"/></BoundingBox>
-        <Axles>
-          <FrontAxle maxSteering="0.5" wheelDiameter="0.6" trackWidth="1.8" positionX="3.1" positionZ="0.3"/>
-          <RearAxle maxSteering="0.0" wheelDiameter="0.6" trackWidth="1.8" positionX="0.0" positionZ="0.3"/>
-        </Axles>
-        <Properties><Property name="type" value="${type}"/></Properties>
-      </Vehicle>
-    </ScenarioObject>`;
+const vehicle = scenarioRunnerVehicle;
 
 /** One event at `time` s in which `actor` follows `shape` (a Trajectory's Shape content). */
 const trajectoryEvent = (actor: string, time: number, shape: string): string => `

@@ -2,7 +2,7 @@ import { strict as assert } from 'node:assert';
 import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
-import { harnessVerdicts, HarnessVerdict, requireCarlaHarness } from '../support/carla';
+import { harnessVerdicts, HarnessVerdict, requireCarlaHarness, scenarioRunnerVehicle } from '../support/carla';
 import { esminiCatalogs, esminiRoads } from '../support/esmini';
 import { runCli } from '../support/fixtures';
 import { openscenarioDir } from '../support/openscenarioCorpus';
@@ -95,5 +95,97 @@ describe('check --simulator carla agrees with ScenarioRunner', function () {
     const verdicts = new Map([...(await harnessVerdicts(files, { fixSrBugs: true }))].filter(([, verdict]) => verdict.status !== 'SKIP'));
     assert.ok([...verdicts.values()].filter((verdict) => verdict.status === 'OK').length >= 40);
     assert.deepEqual(disagreements(verdicts, checkForCarla([...verdicts.keys()], '0.9.15')), []);
+  });
+});
+
+describe("check --simulator carla on conditions over parameters agrees with ScenarioRunner's own ticks", function () {
+  this.timeout(120_000);
+  let folder: string;
+  before(function () {
+    requireCarlaHarness(this);
+    folder = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-carla-parameters-'));
+  });
+  after(() => {
+    if (folder) fs.rmSync(folder, { recursive: true, force: true });
+  });
+
+  const condition = (name: string, parameter: string, rule: string, value: string): string =>
+    `<Condition name="${name}" delay="0" conditionEdge="none"><ByValueCondition><ParameterCondition parameterRef="${parameter}" value="${value}" rule="${rule}"/></ByValueCondition></Condition>`;
+  /** A 1.0 scenario on Town01 whose one event sets 'set' and starts on the conditions given, each in a group of its own. */
+  const scenario = (conditions: string[]): string => `<?xml version="1.0" encoding="UTF-8"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="0" date="2026-11-29T00:00:00" description="parameters compared" author="modular2simple tests"/>
+  <ParameterDeclarations>
+    <ParameterDeclaration name="braking" parameterType="boolean" value="true"/>
+    <ParameterDeclaration name="gap" parameterType="double" value="3"/>
+    <ParameterDeclaration name="set" parameterType="double" value="0"/>
+  </ParameterDeclarations>
+  <CatalogLocations/>
+  <RoadNetwork><LogicFile filepath="Town01"/></RoadNetwork>
+  <Entities>
+${scenarioRunnerVehicle('Ego', 'ego_vehicle')}
+  </Entities>
+  <Storyboard>
+    <Init><Actions>
+      <GlobalAction><ParameterAction parameterRef="set"><SetAction value="1"/></ParameterAction></GlobalAction>
+      <Private entityRef="Ego"><PrivateAction><TeleportAction><Position><WorldPosition x="100" y="-2" z="0" h="0"/></Position></TeleportAction></PrivateAction></Private>
+    </Actions></Init>
+    <Story name="Compared">
+      <Act name="Compared">
+        <ManeuverGroup maximumExecutionCount="1" name="Group">
+          <Actors selectTriggeringEntities="false"/>
+          <Maneuver name="Compared">
+            <Event name="Compared" priority="parallel">
+              <Action name="Sets"><GlobalAction><ParameterAction parameterRef="set"><SetAction value="2"/></ParameterAction></GlobalAction></Action>
+              <StartTrigger>${conditions.map((each) => `<ConditionGroup>${each}</ConditionGroup>`).join('')}</StartTrigger>
+            </Event>
+          </Maneuver>
+        </ManeuverGroup>
+        <StartTrigger><ConditionGroup><Condition name="ActStarts" delay="0" conditionEdge="none">
+          <ByValueCondition><SimulationTimeCondition value="0" rule="greaterThan"/></ByValueCondition>
+        </Condition></ConditionGroup></StartTrigger>
+      </Act>
+    </Story>
+    <StopTrigger><ConditionGroup>
+      ${condition('criteria_RunningStopTest', '', 'lessThan', '')}
+      ${condition('NeverTicked', 'gap', 'greaterThan', '2')}
+    </ConditionGroup></StopTrigger>
+  </Storyboard>
+</OpenSCENARIO>
+`;
+
+  it('an error where a tick raises, a warning where it never holds, nothing on a parameter the Init sets, a criterion or the Storyboard StopTrigger (issue 26)', async () => {
+    const compared: [string, string, string, string][] = [
+      ['BrakingIsTrue', 'braking', 'equalTo', 'true'],
+      ['GapAbove', 'gap', 'greaterThan', '2'],
+      ['GapIs', 'gap', 'equalTo', '3'],
+      ['SetBelow', 'set', 'lessThan', '5'],
+    ];
+    const file = path.join(folder, 'compared.xosc');
+    const text = scenario(compared.map(([name, parameter, rule, value]) => condition(name, parameter, rule, value)));
+    fs.writeFileSync(file, text);
+    const run = runCli(['check', '--simulator', 'carla', '--format', 'json', file]);
+    const problems = (JSON.parse(run.stdout) as { problems: (CheckedProblem & { line: number })[] }).problems;
+    const findings = problems
+      .filter((problem) => /compares a parameter that no ParameterAction sets/.test(problem.message))
+      .map((problem) => [problem.line, problem.severity]);
+    const lineOf = (name: string): number => text.split('\n').findIndex((line) => line.includes(`name="${name}"`)) + 1;
+    assert.deepEqual(findings, [
+      [lineOf('BrakingIsTrue'), 'error'],
+      [lineOf('GapAbove'), 'error'],
+      [lineOf('GapIs'), 'warning'],
+    ]);
+    assert.deepEqual(
+      problems.filter((problem) => problem.severity === 'error' && !/compares a parameter/.test(problem.message)),
+      [],
+    );
+    // ScenarioRunner builds it; its own CheckParameters, ticked, raise exactly where check says error.
+    const verdict = (await harnessVerdicts([file], { tree: true })).get(path.resolve(file));
+    assert.equal(verdict?.status, 'OK', JSON.stringify(verdict));
+    const ticks = new Map((verdict?.parameter_ticks ?? []).map(([name, first, then]) => [name, [first, then]]));
+    assert.match(ticks.get('BrakingIsTrue')?.[0] ?? '', /^raises ValueError/);
+    assert.match(ticks.get('GapAbove')?.[0] ?? '', /^raises TypeError/);
+    assert.deepEqual(ticks.get('GapIs'), ['RUNNING', 'RUNNING']);
+    assert.deepEqual(ticks.get('SetBelow'), ['SUCCESS', 'SUCCESS']);
   });
 });

@@ -123,3 +123,18 @@ export function lineMatching(file: string, pattern: RegExp): number {
   if (index < 0) throw new Error(`${String(pattern)} is not in ${file}`);
   return index;
 }
+
+/** A vehicle as ScenarioRunner's examples write one (1.0 needs every part). */
+export const scenarioRunnerVehicle = (name: string, type: string): string => `
+    <ScenarioObject name="${name}">
+      <Vehicle name="vehicle.tesla.model3" vehicleCategory="car">
+        <ParameterDeclarations/>
+        <Performance maxSpeed="69.444" maxAcceleration="200" maxDeceleration="10.0"/>
+        <BoundingBox><Center x="1.5" y="0.0" z="0.9"/><Dimensions width="2.1" length="4.5" height="1.8"/></BoundingBox>
+        <Axles>
+          <FrontAxle maxSteering="0.5" wheelDiameter="0.6" trackWidth="1.8" positionX="3.1" positionZ="0.3"/>
+          <RearAxle maxSteering="0.0" wheelDiameter="0.6" trackWidth="1.8" positionX="0.0" positionZ="0.3"/>
+        </Axles>
+        <Properties><Property name="type" value="${type}"/></Properties>
+      </Vehicle>
+    </ScenarioObject>`;

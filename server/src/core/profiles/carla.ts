@@ -1,4 +1,4 @@
-import { SR_ATOMICS, SR_CONFIGURATION, SR_PARSER, SR_REVISION, SR_SCENARIO } from './scenarioRunner';
+import { SR_ATOMICS, SR_CONFIGURATION, SR_PARSER, SR_REVISION, SR_SCENARIO, SR_TRIGGER_CONDITIONS } from './scenarioRunner';
 import { CarlaRelease } from './simulators';
 import { SimulatorProfile } from './facts';
 
@@ -303,6 +303,16 @@ export const CARLA_FACTS = {
   laneOffsetMaxLateralAccIgnored: {
     does: 'does not read a LaneOffsetAction\'s dynamics ("Parsing of the different Dynamic shapes is missing"), maxLateralAcc included: the offset is reached as the actor\'s controller drives, whatever the acceleration',
     source: `${PARSER}:1402-1404, ${RUNNER}:279`,
+    severity: 'warning',
+  },
+  parameterComparedAsText: {
+    does: 'compares a parameter that no ParameterAction sets as its declared text against a number at every tick: lessThan and greaterThan raise TypeError, a value that is no number (true, false, text) raises ValueError, and the scenario stops there',
+    source: `${CONFIGURATION}:234, ${PARSER}:143-147, 189-214, ${SR_TRIGGER_CONDITIONS}:1459-1477`,
+    severity: 'error',
+  },
+  parameterNeverEqual: {
+    does: 'compares a parameter that no ParameterAction sets as its declared text against a number at every tick: equalTo never holds',
+    source: `${CONFIGURATION}:234, ${PARSER}:189-190, ${SR_TRIGGER_CONDITIONS}:1459-1477`,
     severity: 'warning',
   },
   noEgo: {
