@@ -50,6 +50,15 @@ async function exportFile(input: string, output: string, extra: readonly string[
   return { input, output, code, stderr: errors.join('\n'), report: parsed as Exported['report'] };
 }
 
+/** `text` written at `original` and exported: refused (exit 1), nothing written; its report. */
+async function refusedExport(original: string, text: string): Promise<Exported> {
+  fs.writeFileSync(original, text);
+  const result = await exportFile(original, path.join(path.dirname(original), 'exported.xosc'));
+  assert.equal(result.code, 1, result.stderr);
+  assert.equal(fs.existsSync(result.output), false);
+  return result;
+}
+
 /** Each test of the calling block in a new temporary folder (given to `use`), removed after it. */
 /** The one-based number of the first line of `text` holding `needle` (0 when none does). */
 function lineHolding(text: string, needle: string): number {
@@ -1714,11 +1723,7 @@ describe("export --target carla, a SynchronizeAction to a TrajectoryPosition (Eu
 
   it('a position beyond the polyline: its action is dropped at its line, naming why; nothing else left, the export is refused', async () => {
     const beyond = text().replace('<TrajectoryPosition s="5"', '<TrajectoryPosition s="12"');
-    const original = path.join(out, 'sync.xosc');
-    fs.writeFileSync(original, beyond);
-    const result = await exportFile(original, path.join(out, 'exported.xosc'));
-    assert.equal(result.code, 1, result.stderr);
-    assert.equal(fs.existsSync(result.output), false);
+    const result = await refusedExport(path.join(out, 'sync.xosc'), beyond);
     const dropped = result.report.losses.filter((loss) => loss.element === 'TrajectoryPosition');
     assert.deepEqual(
       dropped.map(({ kind, line }) => [kind, line]),
@@ -1750,11 +1755,7 @@ describe('export --target carla, a negative start speed', function () {
       initActions: speed(-1.5),
       events: [{ action: speed(2).slice('<PrivateAction>'.length, -'</PrivateAction>'.length), condition: atTime(1) }],
     });
-    const original = path.join(out, 'backwards.xosc');
-    fs.writeFileSync(original, text);
-    const result = await exportFile(original, path.join(out, 'exported.xosc'));
-    assert.equal(result.code, 1, result.stderr);
-    assert.equal(fs.existsSync(result.output), false);
+    const result = await refusedExport(path.join(out, 'backwards.xosc'), text);
     const refused = result.report.losses.filter((loss) => loss.kind === 'refused');
     assert.deepEqual(
       refused.map(({ line, element }) => [line, element]),
@@ -1928,5 +1929,120 @@ describe('export --target carla, variables and the parameters conditions compare
       ['BrakesStarts1', 'SUCCESS', 'RUNNING'],
       ['CloserStarts0', 'RUNNING', 'SUCCESS'],
     ]);
+  });
+});
+
+describe('export --target carla, where an actor with a trajectory in the Init starts', function () {
+  this.timeout(180_000);
+  let out: string;
+  inTemporaryFolderEach('m2s-carla-init-starts-', (folder) => (out = folder));
+  const vertex = (x: number): string => `<Vertex><Position><WorldPosition x="${x}" y="-1.75" h="0"/></Position></Vertex>`;
+  const follow = (offset: string): string => `<PrivateAction><RoutingAction><FollowTrajectoryAction${offset}>
+            <TrajectoryRef><Trajectory name="Along" closed="false"><Shape><Polyline>${vertex(100)}${vertex(120)}${vertex(140)}</Polyline></Shape></Trajectory></TrajectoryRef>
+            <TimeReference><None/></TimeReference>
+            <TrajectoryFollowingMode followingMode="follow"/>
+          </FollowTrajectoryAction></RoutingAction></PrivateAction>`;
+  const speed = `<PrivateAction><LongitudinalAction><SpeedAction><SpeedActionDynamics dynamicsShape="step" value="0" dynamicsDimension="time"/>
+            <SpeedActionTarget><AbsoluteTargetSpeed value="5"/></SpeedActionTarget></SpeedAction></LongitudinalAction></PrivateAction>`;
+  /** Ego on esmini's straight_500m.xodr: its Init actions as given, a story of nothing, 6 s. */
+  const scenario = (egoInit: string): string =>
+    testScenario({
+      revMinor: 2,
+      description: 'init trajectory',
+      road: path.join(esminiRoads, 'straight_500m.xodr'),
+      entities: vehicle('Ego', 'ego_vehicle'),
+      init: `
+        <Private entityRef="Ego">${egoInit}
+        </Private>`,
+      story: STILL_STORY,
+      stopAt: 6,
+    });
+  /** Where ScenarioRunner spawns each actor of the export (the harness's reading of its configuration). */
+  const spawnsOf = async (output: string): Promise<HarnessVerdict['spawns']> => {
+    const verdict = (await harnessVerdicts([output], { tree: true })).get(path.resolve(output));
+    assert.equal(verdict?.status, 'OK', JSON.stringify(verdict));
+    return verdict?.spawns;
+  };
+
+  it("is where its TeleportAction puts it, not at the trajectory's last vertex, which ScenarioRunner spawns it at when the teleport comes first (issue 26)", async function () {
+    const text = scenario(`
+          <PrivateAction><TeleportAction><Position><WorldPosition x="90" y="-1.75" h="0"/></Position></TeleportAction></PrivateAction>
+          ${follow('')}${speed}`);
+    const original = path.join(out, 'teleported.xosc');
+    fs.writeFileSync(original, text);
+    const result = await exportFile(original, path.join(out, 'exported.xosc'));
+    assert.equal(result.code, 0, result.stderr);
+    const exported = fs.readFileSync(result.output, 'utf8');
+    // The teleport now follows the trajectory, and goes no further: the speed action stays last.
+    assert.ok(exported.indexOf('<TeleportAction>') > exported.indexOf('</FollowTrajectoryAction>'), exported);
+    assert.ok(exported.indexOf('<TeleportAction>') < exported.indexOf('<SpeedAction>'), exported);
+    requireCarlaHarness(this);
+    // CARLA's y is OpenSCENARIO's negated (srunner/tools/openscenario_parser.py convert_position_to_transform).
+    assert.deepEqual((await spawnsOf(result.output))?.Ego?.slice(0, 2), [90, 1.75]);
+    requireEsmini(this);
+    await assertMovesAlike(original, result.output, 6);
+  });
+
+  it('is refused when the drops leave an actor no start position: ScenarioRunner would spawn it at the origin (issue 26)', async () => {
+    // A clothoid from a lane position on a CARLA town: the export reads no town's roads, so it cannot sample it.
+    const text = testScenario({
+      revMinor: 2,
+      description: 'init clothoid',
+      road: 'Town01',
+      entities: vehicle('Ego', 'ego_vehicle'),
+      init: `
+        <Private entityRef="Ego">
+          <PrivateAction><RoutingAction><FollowTrajectoryAction>
+            <TrajectoryRef><Trajectory name="Bend" closed="false"><Shape>
+              <Clothoid curvature="0.01" curvaturePrime="0" length="30"><Position><LanePosition roadId="1" laneId="-1" s="10"/></Position></Clothoid>
+            </Shape></Trajectory></TrajectoryRef>
+            <TimeReference><None/></TimeReference>
+            <TrajectoryFollowingMode followingMode="follow"/>
+          </FollowTrajectoryAction></RoutingAction></PrivateAction>
+        </Private>`,
+      story: STILL_STORY,
+      stopAt: 6,
+    });
+    const result = await refusedExport(path.join(out, 'unplaced.xosc'), text);
+    const refused = result.report.losses.filter((loss) => loss.kind === 'refused');
+    assert.deepEqual(
+      refused.map(({ line, element, what }) => [line, element, what]),
+      [[lineHolding(text, '<Private entityRef="Ego">'), 'Init/Private', "'Ego' has no start position left after the drops above"]],
+    );
+    assert.match(refused[0].carla, /would spawn it at \(0, 0, 0\) .*openscenario_configuration\.py:373-377/);
+  });
+
+  it('with initialDistanceOffset and no TeleportAction, is that far along its trajectory, where esmini starts it: the trajectory starts there (issue 26)', async function () {
+    const text = scenario(`
+          ${follow(' initialDistanceOffset="15"')}${speed}`);
+    const original = path.join(out, 'offset.xosc');
+    fs.writeFileSync(original, text);
+    const result = await exportFile(original, path.join(out, 'exported.xosc'));
+    assert.equal(result.code, 0, result.stderr);
+    const line = lineHolding(text, '<FollowTrajectoryAction');
+    assert.deepEqual(
+      result.report.losses.filter((loss) => loss.line === line).map(({ kind, element, what }) => [kind, element, what]),
+      [
+        [
+          'approximated',
+          'FollowTrajectoryAction/@initialDistanceOffset',
+          "is not in 1.0: 'Ego' follows the trajectory from 15 m along it, written as a first vertex there (x 115, y -1.75) in place of the 1 before it",
+        ],
+        [
+          'approximated',
+          'Init/FollowTrajectoryAction',
+          "'Ego' has no TeleportAction in the Init: it starts where its trajectory starts (as esmini places it), written as a TeleportAction after the trajectory",
+        ],
+      ],
+    );
+    const exported = fs.readFileSync(result.output, 'utf8');
+    assert.deepEqual(
+      [...exported.matchAll(/<WorldPosition x="([\d.]+)"/g)].map((match) => Number(match[1])),
+      [115, 120, 140, 115],
+    );
+    requireCarlaHarness(this);
+    assert.deepEqual((await spawnsOf(result.output))?.Ego?.slice(0, 2), [115, 1.75]);
+    requireEsmini(this);
+    await assertMovesAlike(original, result.output, 6);
   });
 });

@@ -61,6 +61,8 @@ export interface HarnessVerdict {
    * after the Init's ChangeParameters and again after every other one: 'RUNNING', 'SUCCESS' or 'raises ...'.
    */
   parameter_ticks?: [string, string, string][];
+  /** With `tree: true`: where ScenarioRunner spawns each actor, by role name: [x, y, z, yaw°] in CARLA's coordinates (y negated). */
+  spawns?: Record<string, [number, number, number, number]>;
 }
 
 /** ./carlaTree.py: check.py run unchanged, its results also listing each built tree's story elements. */

@@ -68,6 +68,17 @@ def parameter_ticks(scenario):
     return [[node.name, first, then] for node, first, then in zip(checks, before, after)]
 
 
+def spawns(scenario):
+    """Where ScenarioRunner spawns each actor: its configuration's transform (openscenario_configuration.py
+    _get_actor_transform), as {rolename: [x, y, z, yaw in degrees]}."""
+    config = scenario.config
+    placed = {}
+    for actor in list(config.ego_vehicles) + list(config.other_actors):
+        location, rotation = actor.transform.location, actor.transform.rotation
+        placed[actor.rolename] = [round(location.x, 4), round(location.y, 4), round(location.z, 4), round(rotation.yaw, 4)]
+    return placed
+
+
 def main():
     check_path = os.environ.get('M2S_CARLA_CHECK')
     argv = sys.argv[1:]
@@ -89,6 +100,7 @@ def main():
             # Called once the tree is built (run_file, stage build): the moment to read it.
             built['tree'] = story_elements(scenario)
             built['parameter_ticks'] = parameter_ticks(scenario)
+            built['spawns'] = spawns(scenario)
             return original_lazy_refs(scenario, parameter_ref)
 
         check._lazy_refs = lazy_refs
@@ -97,6 +109,7 @@ def main():
             if kind == 'RESULT' and 'tree' in built:
                 payload['tree'] = built['tree']
                 payload['parameter_ticks'] = built['parameter_ticks']
+                payload['spawns'] = built['spawns']
             emit(kind, payload)
 
         return original_run_file(env, path, opts, emit_with_tree)

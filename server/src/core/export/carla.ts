@@ -261,6 +261,7 @@ export async function exportTextForCarla(
   }
 
   const eventsBefore = named(tree, 'Event').length;
+  const placedBefore = placedEntities(tree);
   rewriteHeader(tree, ref);
   // A simple scenario exported as it is: `parameterAttributes` marks what a main may override (SPEC), its values are
   // the defaults; ScenarioRunner's 1.0 schema refuses the attribute, and flattening removes it the same way.
@@ -270,9 +271,10 @@ export async function exportTextForCarla(
   const ego = markEgo(tree, options, sink);
   mapBlueprints(tree, options, sink);
   // Route positions are placed on the road they name: only then is the road file read.
-  // Route positions need road lengths, sampled trajectories the heading of a lane an actor starts on, trajectory positions the road their vertices are on.
+  // Route positions need road lengths, sampled trajectories the heading of a lane an actor starts on, trajectory positions and an Init trajectory's offset the road their vertices are on.
   const needsRoads =
-    named(tree, new Set(['RoutePosition', 'GeoPosition', 'Clothoid', 'ClothoidSpline', 'Nurbs', 'TrajectoryPosition'])).length > 0;
+    named(tree, new Set(['RoutePosition', 'GeoPosition', 'Clothoid', 'ClothoidSpline', 'Nurbs', 'TrajectoryPosition'])).length > 0 ||
+    named(tree, 'FollowTrajectoryAction').some((action) => Number(attr(action, 'initialDistanceOffset') ?? 0) !== 0);
   const roads = road && 'file' in road && needsRoads ? await readRoads(copy?.bytes ?? road.file, store) : undefined;
   const geoPlaces = new Map<Node, RoadXY | string>();
   for (const position of named(tree, 'GeoPosition')) {
@@ -286,6 +288,15 @@ export async function exportTextForCarla(
   const valid = dropOutsideSchema(tree, sink, sampledPolylines);
   reportStatesOfDroppedElements(tree, elementsBefore, sink);
 
+  const placedAfter = placedEntities(tree);
+  for (const [entity, privateNode] of placedBefore)
+    if (!placedAfter.has(entity))
+      sink.refuse(
+        privateNode,
+        'Init/Private',
+        `'${entity}' has no start position left after the drops above`,
+        `ScenarioRunner would spawn it at (0, 0, 0) ("was not assigned an initial position", ${SR_CONFIGURATION}:373-377)`,
+      );
   if (eventsBefore > 0 && named(tree, 'Event').length === 0)
     sink.refuse(
       child(tree, 'Storyboard') ?? tree,
@@ -311,6 +322,18 @@ export async function exportTextForCarla(
     );
   }
   return result(undefined, out, { road, ego, files, placeAt: placeInDocument(tree) });
+}
+
+const PLACING: ReadonlySet<string> = new Set(['Position', 'PositionStart']);
+
+/** The entities whose Init Privates place them (a Position, or a ClothoidSpline's PositionStart), with the first such Private. */
+function placedEntities(tree: Node): Map<string, Node> {
+  const placed = new Map<string, Node>();
+  const init = named(tree, 'Init')[0];
+  for (const privateNode of init ? named(init, 'Private') : [])
+    if (named(privateNode, PLACING).length > 0 && !placed.has(attr(privateNode, 'entityRef') ?? ''))
+      placed.set(attr(privateNode, 'entityRef') ?? '', privateNode);
+  return placed;
 }
 
 /**

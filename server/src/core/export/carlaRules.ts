@@ -35,6 +35,7 @@ import type { CarlaLoss, LossSink } from './carlaLosses';
 import { variables } from './carlaVariables';
 import { actorsOf, fromInit } from './scenarioTree';
 import { trajectoryPoint } from './trajectoryPoint';
+import { initStarts } from './initStarts';
 import { SAMPLE_STEP } from './shapes';
 
 export type { CarlaLoss, LossSink };
@@ -435,7 +436,8 @@ function trajectories(tree: Node, context: RuleContext): void {
       else removeNode(wrapper);
     }
     const offset = attr(action, 'initialDistanceOffset');
-    if (offset !== undefined) {
+    // In the Init, init-starts starts the trajectory there once it is a Polyline.
+    if (offset !== undefined && !ancestor(action, 'Init')) {
       removeAttr(action, 'initialDistanceOffset');
       if (Number(offset) !== 0)
         context.sink.approximated(
@@ -1302,6 +1304,7 @@ export const CARLA_RULES: readonly { name: string; apply: (tree: Node, context: 
   { name: 'absolute-target-lane', apply: absoluteTargetLane },
   { name: 'time-gap', apply: longitudinalTimeGap },
   { name: 'trajectories', apply: trajectories },
+  { name: 'init-starts', apply: initStarts },
   { name: 'route-positions', apply: routePositions },
   { name: 'geo-positions', apply: geoPositions },
   { name: 'negative-start-speeds', apply: negativeStartSpeeds },

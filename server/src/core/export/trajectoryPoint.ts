@@ -39,6 +39,49 @@ function vertexPoint(position: Node | undefined, roads: RoadNetwork | undefined)
   return { x: point.x, y: point.y };
 }
 
+/** A Polyline's vertices in world coordinates, or why they have none without running the scenario. */
+export function polylinePoints(polyline: Node, roads: RoadNetwork | undefined): { x: number; y: number }[] | string {
+  const points: { x: number; y: number }[] = [];
+  for (const vertex of childrenNamed(polyline, 'Vertex')) {
+    const point = vertexPoint(child(vertex, 'Position')?.children[0], roads);
+    if (typeof point === 'string') return point;
+    if (!Number.isFinite(point.x) || !Number.isFinite(point.y)) return 'a vertex has a coordinate that is not a number';
+    points.push(point);
+  }
+  if (points.length < 2) return 'its polyline has fewer than two vertices';
+  return points;
+}
+
+/** Where `s` along the polyline through `points` lies: the segment holding it (1-based: from points[segment - 1]) and how far into it. */
+export function alongPolyline(
+  points: readonly { x: number; y: number }[],
+  s: number,
+): { segment: number; along: number; length: number } | string {
+  const lengthOf = (index: number) => Math.hypot(points[index].x - points[index - 1].x, points[index].y - points[index - 1].y);
+  // The segment holding s: those before the last are passed over while s lies beyond them.
+  let along = s;
+  let segment = 1;
+  for (; segment < points.length - 1 && along > lengthOf(segment); segment++) along -= lengthOf(segment);
+  const length = lengthOf(segment);
+  if (along > length + 1e-6) return `its s ${s} is beyond the polyline's length`;
+  if (length === 0) return 'its polyline has two vertices at one point';
+  return { segment, along, length };
+}
+
+/** The point `s` along the polyline through `points` and `t` to its left, heading along its segment. */
+export function pointAlong(points: readonly { x: number; y: number }[], s: number, t = 0): TrajectoryPoint | string {
+  const found = alongPolyline(points, s);
+  if (typeof found === 'string') return found;
+  const [from, to] = [points[found.segment - 1], points[found.segment]];
+  const heading = Math.atan2(to.y - from.y, to.x - from.x);
+  const fraction = found.along / found.length;
+  return {
+    x: from.x + (to.x - from.x) * fraction - t * Math.sin(heading),
+    y: from.y + (to.y - from.y) * fraction + t * Math.cos(heading),
+    h: normalizeAngle(heading),
+  };
+}
+
 /** The point of a TrajectoryPosition whose trajectory is written inside it (catalogs inlined), or why there is none. */
 export function trajectoryPoint(position: Node, roads: RoadNetwork | undefined): TrajectoryPoint | string {
   const reference = child(position, 'TrajectoryRef');
@@ -46,35 +89,19 @@ export function trajectoryPoint(position: Node, roads: RoadNetwork | undefined):
   if (!trajectory) return 'its trajectory is not written in the scenario';
   const shape = child(trajectory, 'Shape')?.children[0];
   if (!shape || shape.name !== 'Polyline') return `its trajectory is a ${shape?.name ?? 'shape of nothing'}, not a Polyline`;
-  const points: { x: number; y: number }[] = [];
-  for (const vertex of childrenNamed(shape, 'Vertex')) {
-    const point = vertexPoint(child(vertex, 'Position')?.children[0], roads);
-    if (typeof point === 'string') return point;
-    if (!Number.isFinite(point.x) || !Number.isFinite(point.y)) return 'a vertex has a coordinate that is not a number';
-    points.push(point);
-  }
-  if (points.length < 2) return 'its polyline has fewer than two vertices';
+  const points = polylinePoints(shape, roads);
+  if (typeof points === 'string') return points;
   const s = numberAttr(position, 's', NaN);
   const t = numberAttr(position, 't', 0);
   if (!Number.isFinite(s) || s < 0 || !Number.isFinite(t))
     return `its s '${attr(position, 's') ?? ''}' or t is not a number at or after the start`;
-  const lengthOf = (index: number) => Math.hypot(points[index].x - points[index - 1].x, points[index].y - points[index - 1].y);
-  // The segment holding s: those before the last are passed over while s lies beyond them.
-  let along = s;
-  let index = 1;
-  for (; index < points.length - 1 && along > lengthOf(index); index++) along -= lengthOf(index);
-  const [from, to, length] = [points[index - 1], points[index], lengthOf(index)];
-  if (along > length + 1e-6) return `its s ${s} is beyond the polyline's length`;
-  if (length === 0) return 'its polyline has two vertices at one point';
-  const heading = Math.atan2(to.y - from.y, to.x - from.x);
-  const fraction = along / length;
-  const x = from.x + (to.x - from.x) * fraction - t * Math.sin(heading);
-  const y = from.y + (to.y - from.y) * fraction + t * Math.cos(heading);
+  const point = pointAlong(points, s, t);
+  if (typeof point === 'string') return point;
   const orientation = child(position, 'Orientation');
   const h = !orientation
-    ? heading
+    ? point.h
     : attr(orientation, 'type') === 'absolute'
       ? numberAttr(orientation, 'h', 0)
-      : heading + numberAttr(orientation, 'h', 0);
-  return { x, y, h: normalizeAngle(h) };
+      : point.h + numberAttr(orientation, 'h', 0);
+  return { ...point, h: normalizeAngle(h) };
 }
