@@ -886,11 +886,11 @@ describe('export --target carla, a condition on a dropped element', function () 
   it('a StoryboardElementStateCondition waiting for a dropped event is named at its line as never true, and the export builds', async function () {
     requireCarlaHarness(this);
     const shapes = sampledShapesScenario(path.join(esminiRoads, 'straight_500m.xodr'));
-    // Ego's Nurbs becomes a Clothoid placed on a lane, which the export drops; Other's event waits for Ego's to start.
+    // Ego's Nurbs becomes a Clothoid placed from a lane relative to Other, which the export drops; Other's event waits for Ego's to start.
     const original = shapes
       .replace(
         /<Nurbs order="3">[\s\S]*?<\/Nurbs>/,
-        '<Clothoid curvature="0.01" curvaturePrime="0" length="30"><Position><LanePosition roadId="1" laneId="-1" offset="0" s="40"/></Position></Clothoid>',
+        '<Clothoid curvature="0.01" curvaturePrime="0" length="30"><Position><RelativeLanePosition entityRef="Other" dLane="0" ds="5"/></Position></Clothoid>',
       )
       .replace(
         '<SimulationTimeCondition value="1.5" rule="greaterThan"/>',
@@ -2042,6 +2042,90 @@ describe('export --target carla, where an actor with a trajectory in the Init st
     );
     requireCarlaHarness(this);
     assert.deepEqual((await spawnsOf(result.output))?.Ego?.slice(0, 2), [115, 1.75]);
+    requireEsmini(this);
+    await assertMovesAlike(original, result.output, 6);
+  });
+});
+
+describe('export --target carla, curves placed on the .xodr road', function () {
+  this.timeout(180_000);
+  let out: string;
+  inTemporaryFolderEach('m2s-carla-road-curves-', (folder) => (out = folder));
+  /** Ego on esmini's straight_500m.xodr, teleported to x 20; at 1 s, the action given. */
+  const scenario = (action: string): string =>
+    testScenario({
+      revMinor: 2,
+      description: 'road curves',
+      road: path.join(esminiRoads, 'straight_500m.xodr'),
+      entities: vehicle('Ego', 'ego_vehicle'),
+      init: `
+        <Private entityRef="Ego">
+          <PrivateAction><TeleportAction><Position><WorldPosition x="20" y="-1.5" h="0"/></Position></TeleportAction></PrivateAction>
+          <PrivateAction><LongitudinalAction><SpeedAction><SpeedActionDynamics dynamicsShape="step" value="0" dynamicsDimension="time"/>
+            <SpeedActionTarget><AbsoluteTargetSpeed value="8"/></SpeedActionTarget></SpeedAction></LongitudinalAction></PrivateAction>
+        </Private>`,
+      story: `<Story name="Curves">
+      <Act name="Curves">
+        <ManeuverGroup maximumExecutionCount="1" name="EgoGroup">
+          <Actors selectTriggeringEntities="false"><EntityRef entityRef="Ego"/></Actors>
+          <Maneuver name="EgoManeuver">
+            <Event name="EgoEvent" priority="parallel">
+              <Action name="EgoAction"><PrivateAction>${action}</PrivateAction></Action>
+              <StartTrigger><ConditionGroup><Condition name="EgoStarts" delay="0" conditionEdge="none">${atTime(1)}</Condition></ConditionGroup></StartTrigger>
+            </Event>
+          </Maneuver>
+        </ManeuverGroup>
+        ${ACT_STARTS}
+      </Act>
+    </Story>`,
+      stopAt: 6,
+    });
+  const clothoid = (s: number): string =>
+    `<Clothoid curvature="0.01" curvaturePrime="0" length="40"><Position><LanePosition roadId="1" laneId="-1" offset="0" s="${s}"/></Position></Clothoid>`;
+
+  it("a Clothoid that starts at a LanePosition is sampled from that lane's point and heading, as esmini places it (issue 26)", async function () {
+    const text = scenario(`<RoutingAction><FollowTrajectoryAction>
+              <TrajectoryRef><Trajectory name="Bend" closed="false"><Shape>${clothoid(40)}</Shape></Trajectory></TrajectoryRef>
+              <TimeReference><None/></TimeReference><TrajectoryFollowingMode followingMode="position"/>
+            </FollowTrajectoryAction></RoutingAction>`);
+    const original = path.join(out, 'bend.xosc');
+    fs.writeFileSync(original, text);
+    const result = await exportFile(original, path.join(out, 'exported.xosc'));
+    assert.equal(result.code, 0, result.stderr);
+    const sampled = result.report.losses.filter((loss) => loss.element === 'Clothoid');
+    assert.deepEqual(
+      sampled.map(({ kind, what }) => [kind, what]),
+      [['approximated', 'sampled into a Polyline of 41 vertices 1 m apart, as esmini samples it']],
+    );
+    assert.doesNotMatch(fs.readFileSync(result.output, 'utf8'), /<Clothoid|<LanePosition/);
+    requireCarlaHarness(this);
+    await assertExportBuilds(original, text);
+    requireEsmini(this);
+    await assertMovesAlike(original, result.output, 6);
+  });
+
+  it('a TrajectoryPosition on a Clothoid is the point that far along the curve esmini samples (issue 26)', async function () {
+    const text = scenario(`<TeleportAction><Position><TrajectoryPosition s="10">
+              <TrajectoryRef><Trajectory name="Bend" closed="false"><Shape>${clothoid(100)}</Shape></Trajectory></TrajectoryRef>
+            </TrajectoryPosition></Position></TeleportAction>`);
+    const original = path.join(out, 'onbend.xosc');
+    fs.writeFileSync(original, text);
+    const result = await exportFile(original, path.join(out, 'exported.xosc'));
+    assert.equal(result.code, 0, result.stderr);
+    const written = result.report.losses.filter((loss) => loss.element === 'TrajectoryPosition');
+    assert.equal(written.length, 1, JSON.stringify(result.report.losses));
+    assert.match(
+      written[0].what,
+      /^written as WorldPosition x ([\d.]+), y (-?[\d.]+), h ([\d.]+): the point s 10 along its trajectory \(a Clothoid, sampled as esmini samples it, 1 m apart\)/,
+    );
+    // 10 m along a bend of radius 100 from lane -1 (3.07 m wide: its centre y -1.535) at s 100, heading 0: 100 sin 0.1 on, 100 (1 - cos 0.1) to the left.
+    const [, x, y, h] = /x ([\d.]+), y (-?[\d.]+), h ([\d.]+)/.exec(written[0].what)?.map(Number) ?? [];
+    assert.ok(Math.abs(x - (100 + 100 * Math.sin(0.1))) < 0.01, written[0].what);
+    assert.ok(Math.abs(y - (-1.535 + 100 * (1 - Math.cos(0.1)))) < 0.01, written[0].what);
+    // The heading of the 1 m chord that starts there.
+    assert.ok(Math.abs(h - 0.105) < 0.001, written[0].what);
+    requireCarlaHarness(this);
+    await assertExportBuilds(original, text);
     requireEsmini(this);
     await assertMovesAlike(original, result.output, 6);
   });

@@ -29,7 +29,7 @@ import {
   replaceNode,
   setAttr,
 } from './tree';
-import { sampledShape, TrajectoryEnds } from './carlaTrajectories';
+import { sampledShape, sampledWorldPoints, TrajectoryEnds } from './carlaTrajectories';
 import { dropUnit } from './carlaLosses';
 import type { CarlaLoss, LossSink } from './carlaLosses';
 import { variables } from './carlaVariables';
@@ -685,10 +685,16 @@ function negativeStartSpeeds(tree: Node, context: RuleContext): void {
  * WorldPosition. Euro NCAP's scenarios synchronize a VRU or a crossing car to such a point; one that has no point
  * without running the scenario is dropped or refused, naming why.
  */
+/** How the trajectory of a TrajectoryPosition was read: its polyline, or the curve sampled as esmini samples it. */
+function sampledNote(position: Node): string {
+  const shape = child(child(child(position, 'TrajectoryRef') ?? position, 'Trajectory') ?? position, 'Shape')?.children[0];
+  return !shape || shape.name === 'Polyline' ? "'s polyline" : ` (a ${shape.name}, sampled as esmini samples it, ${SAMPLE_STEP} m apart)`;
+}
+
 function trajectoryPositions(tree: Node, context: RuleContext): void {
   for (const position of named(tree, 'TrajectoryPosition')) {
     if (!position.parent) continue;
-    const point = trajectoryPoint(position, context.roads);
+    const point = trajectoryPoint(position, context.roads, sampledWorldPoints);
     if (typeof point === 'string') {
       unconvertiblePosition(position, 'TrajectoryPosition', context, `; the export cannot write it otherwise: ${point}`);
       continue;
@@ -707,7 +713,7 @@ function trajectoryPositions(tree: Node, context: RuleContext): void {
     context.sink.approximated(
       world,
       'TrajectoryPosition',
-      `written as WorldPosition x ${fourDecimals(point.x)}, y ${fourDecimals(point.y)}, h ${fourDecimals(point.h)}: the point s ${attr(position, 's') ?? '0'} along its trajectory's polyline, t ${attr(position, 't') ?? '0'} to the left; its height is ScenarioRunner's spawn height, not the road's`,
+      `written as WorldPosition x ${fourDecimals(point.x)}, y ${fourDecimals(point.y)}, h ${fourDecimals(point.h)}: the point s ${attr(position, 's') ?? '0'} along its trajectory${sampledNote(position)}, t ${attr(position, 't') ?? '0'} to the left; its height is ScenarioRunner's spawn height, not the road's`,
       `ScenarioRunner has no TrajectoryPosition (${SR_PARSER} convert_position_to_transform) and converts a WorldPosition`,
     );
   }

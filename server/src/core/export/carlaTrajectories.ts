@@ -8,8 +8,9 @@
  * follows, else from the Init: named as an assumption.
  */
 import { normalizeAngle } from '../opendrive/geometry';
-import { laneById, laneSectionIndexAt, referencePose, type RoadNetwork } from '../opendrive/road';
+import type { RoadNetwork } from '../opendrive/road';
 import { actorsOf, fromInit } from './scenarioTree';
+import { roadPositionPose } from './trajectoryPoint';
 import { sampleClothoid, sampleClothoidSpline, sampleNurbs, type SampledVertex, type SplineSegment } from './shapes';
 import { ancestor, attr, child, childrenNamed, fourDecimals, makeNode, named, Node, numberAttr } from './tree';
 
@@ -44,17 +45,9 @@ function initHeading(tree: Node, entity: string, roads: RoadNetwork | undefined)
     const teleport = named(privateNode, 'TeleportAction')[0];
     const position = teleport ? child(teleport, 'Position')?.children[0] : undefined;
     if (!position) return undefined;
-    const orientation = child(position, 'Orientation');
     if (position.name === 'WorldPosition') return numberAttr(position, 'h');
-    if (position.name !== 'LanePosition' || !roads) return undefined;
-    const road = roads.byId.get(attr(position, 'roadId') ?? '');
-    const s = numberAttr(position, 's', NaN);
-    const laneId = numberAttr(position, 'laneId', NaN);
-    if (!road || !Number.isFinite(s) || !Number.isFinite(laneId)) return undefined;
-    if (!laneById(road.laneSections[laneSectionIndexAt(road, s)], laneId)) return undefined;
-    if (orientation && attr(orientation, 'type') === 'absolute') return numberAttr(orientation, 'h');
-    // esmini heads a LanePosition along its lane's driving direction (right-hand traffic: a left lane drives against s).
-    return referencePose(road, s).hdg + (laneId > 0 ? Math.PI : 0) + (orientation ? numberAttr(orientation, 'h') : 0);
+    const pose = roadPositionPose(position, roads);
+    return typeof pose === 'string' ? undefined : pose.h;
   });
 }
 
@@ -77,6 +70,7 @@ function place(
   position: Node | undefined,
   actor: string,
   heading: (entity: string) => Heading | string,
+  roads: RoadNetwork | undefined,
 ): (Placed & { assumed?: Heading }) | string {
   const inner = position?.children[0];
   if (!inner) {
@@ -84,6 +78,8 @@ function place(
     return typeof own === 'string' ? own : { x: 0, y: 0, h: own.value, entity: actor, assumed: own };
   }
   if (inner.name === 'WorldPosition') return { x: numberAttr(inner, 'x'), y: numberAttr(inner, 'y'), h: numberAttr(inner, 'h') };
+  // A lane or road point of the .xodr road the export read is a place in the world too, headed as esmini heads it.
+  if (inner.name === 'LanePosition' || inner.name === 'RoadPosition') return roadPositionPose(inner, roads, 'its start');
   if (inner.name !== 'RelativeWorldPosition' && inner.name !== 'RelativeObjectPosition')
     return `it is placed by a ${inner.name}, which the export cannot turn into coordinates without running the scenario`;
   const entity = attr(inner, 'entityRef') ?? '';
@@ -199,6 +195,20 @@ function sampleOf(
 }
 
 /**
+ * The points of a Clothoid, ClothoidSpline or Nurbs placed in the world (World, Lane or Road positions of the
+ * .xodr road), sampled as esmini samples them: the trajectory of a TrajectoryPosition, which no actor follows, so
+ * one placed from an entity has no place without running the scenario.
+ */
+export function sampledWorldPoints(shape: Node, roads: RoadNetwork | undefined): { x: number; y: number }[] | string {
+  const sample = sampleOf(shape, (position) =>
+    position?.children[0] && !position.children[0].name.startsWith('Relative')
+      ? place(position, '', () => 'unused', roads)
+      : `it is placed from an entity (a ${position?.children[0]?.name ?? 'shape without a position'}), which has no place without running the scenario`,
+  );
+  return typeof sample === 'string' ? sample : sample.vertices.map((vertex) => ({ x: vertex.x, y: vertex.y }));
+}
+
+/**
  * The Polyline that stands for a Clothoid, ClothoidSpline or Nurbs `shape` of a FollowTrajectoryAction, or
  * why it cannot be written (the reason, for the loss report). Records where the actor ends heading in `ends`.
  */
@@ -219,7 +229,7 @@ export function sampledShape(
     if (known === undefined) headings.set(entity, (known = headingAtStart(action, entity, tree, roads, ends)));
     return known;
   };
-  const sample = sampleOf(shape, (position) => place(position, actor, heading));
+  const sample = sampleOf(shape, (position) => place(position, actor, heading, roads));
   if (typeof sample === 'string') return sample;
   const { vertices, start } = sample;
   const relative =

@@ -1,12 +1,13 @@
 /**
- * Where a TrajectoryPosition is, as world coordinates: the point `s` along its trajectory's Polyline and `t` to its
+ * Where a TrajectoryPosition is, as world coordinates: the point `s` along its trajectory (a Polyline, or the points a
+ * curve is sampled into) and `t` to its
  * left (OpenSCENARIO 1.1+: s along the trajectory, t lateral, positive to the left), heading along the segment there
  * or as its Orientation says. The export writes it as the WorldPosition ScenarioRunner converts (it has no
  * TrajectoryPosition). Only a Polyline whose vertices are World positions, or Lane and Road positions on the .xodr road
  * the export read, has such a point without running the scenario; anything else is named why.
  */
 import { normalizeAngle } from '../opendrive/geometry';
-import { laneById, laneCenterT, laneSectionIndexAt, roadPoint, type RoadNetwork } from '../opendrive/road';
+import { laneById, laneCenterT, laneSectionIndexAt, referencePose, roadPoint, type RoadNetwork } from '../opendrive/road';
 import { attr, child, childrenNamed, Node, numberAttr } from './tree';
 
 export interface TrajectoryPoint {
@@ -15,28 +16,44 @@ export interface TrajectoryPoint {
   h: number;
 }
 
+/**
+ * Where a Lane or Road position of the .xodr road the export read is, in world coordinates, and its heading as
+ * esmini gives it: along the road, against it on a left lane (right-hand traffic), turned by a relative
+ * Orientation or set by an absolute one. Or why there is none.
+ */
+export function roadPositionPose(position: Node, roads: RoadNetwork | undefined, subject = 'it'): TrajectoryPoint | string {
+  if (position.name !== 'LanePosition' && position.name !== 'RoadPosition')
+    return `${subject} is placed by a ${position.name}, which the export does not turn into coordinates`;
+  if (!roads) return `${subject} is a ${position.name} and the road is not an .xodr file the export read`;
+  const road = roads.byId.get(attr(position, 'roadId') ?? '');
+  const s = numberAttr(position, 's', NaN);
+  if (!road) return `${subject} names road '${attr(position, 'roadId') ?? ''}', which the road network does not have`;
+  if (!Number.isFinite(s) || s < 0 || s > road.length + 1e-6)
+    return `${subject}'s s '${attr(position, 's') ?? ''}' is not on road ${road.id}`;
+  const orientation = child(position, 'Orientation');
+  const turned = (along: number): number =>
+    normalizeAngle(
+      orientation && attr(orientation, 'type') === 'absolute'
+        ? numberAttr(orientation, 'h')
+        : along + (orientation ? numberAttr(orientation, 'h') : 0),
+    );
+  if (position.name === 'RoadPosition') {
+    const point = roadPoint(road, s, numberAttr(position, 't', 0));
+    return { x: point.x, y: point.y, h: turned(referencePose(road, s).hdg) };
+  }
+  const laneId = numberAttr(position, 'laneId', NaN);
+  if (!Number.isInteger(laneId)) return `${subject}'s laneId '${attr(position, 'laneId') ?? ''}' is not a lane number`;
+  const section = laneSectionIndexAt(road, s);
+  if (laneId !== 0 && !laneById(road.laneSections[section], laneId)) return `road ${road.id} has no lane ${laneId} at s ${s}`;
+  const point = roadPoint(road, s, laneCenterT(road, section, laneId, s, numberAttr(position, 'offset', 0)));
+  return { x: point.x, y: point.y, h: turned(referencePose(road, s).hdg + (laneId > 0 ? Math.PI : 0)) };
+}
+
 /** A polyline vertex's position in world coordinates, or why it has none without running the scenario. */
 function vertexPoint(position: Node | undefined, roads: RoadNetwork | undefined): { x: number; y: number } | string {
   if (!position) return 'a vertex has no position';
   if (position.name === 'WorldPosition') return { x: numberAttr(position, 'x', NaN), y: numberAttr(position, 'y', NaN) };
-  if (position.name !== 'LanePosition' && position.name !== 'RoadPosition')
-    return `a vertex is placed by a ${position.name}, which the export does not turn into coordinates`;
-  if (!roads) return `a vertex is a ${position.name} and the road is not an .xodr file the export read`;
-  const road = roads.byId.get(attr(position, 'roadId') ?? '');
-  const s = numberAttr(position, 's', NaN);
-  if (!road) return `a vertex names road '${attr(position, 'roadId') ?? ''}', which the road network does not have`;
-  if (!Number.isFinite(s) || s < 0 || s > road.length + 1e-6)
-    return `a vertex's s '${attr(position, 's') ?? ''}' is not on road ${road.id}`;
-  if (position.name === 'RoadPosition') {
-    const point = roadPoint(road, s, numberAttr(position, 't', 0));
-    return { x: point.x, y: point.y };
-  }
-  const laneId = numberAttr(position, 'laneId', NaN);
-  if (!Number.isInteger(laneId)) return `a vertex's laneId '${attr(position, 'laneId') ?? ''}' is not a lane number`;
-  const section = laneSectionIndexAt(road, s);
-  if (laneId !== 0 && !laneById(road.laneSections[section], laneId)) return `road ${road.id} has no lane ${laneId} at s ${s}`;
-  const point = roadPoint(road, s, laneCenterT(road, section, laneId, s, numberAttr(position, 'offset', 0)));
-  return { x: point.x, y: point.y };
+  return roadPositionPose(position, roads, 'a vertex');
 }
 
 /** A Polyline's vertices in world coordinates, or why they have none without running the scenario. */
@@ -83,13 +100,18 @@ export function pointAlong(points: readonly { x: number; y: number }[], s: numbe
 }
 
 /** The point of a TrajectoryPosition whose trajectory is written inside it (catalogs inlined), or why there is none. */
-export function trajectoryPoint(position: Node, roads: RoadNetwork | undefined): TrajectoryPoint | string {
+export function trajectoryPoint(
+  position: Node,
+  roads: RoadNetwork | undefined,
+  sampled: (shape: Node, roads: RoadNetwork | undefined) => { x: number; y: number }[] | string,
+): TrajectoryPoint | string {
   const reference = child(position, 'TrajectoryRef');
   const trajectory = reference ? child(reference, 'Trajectory') : undefined;
   if (!trajectory) return 'its trajectory is not written in the scenario';
   const shape = child(trajectory, 'Shape')?.children[0];
-  if (!shape || shape.name !== 'Polyline') return `its trajectory is a ${shape?.name ?? 'shape of nothing'}, not a Polyline`;
-  const points = polylinePoints(shape, roads);
+  if (!shape) return 'its trajectory has no shape';
+  // A Clothoid, ClothoidSpline or Nurbs: the points esmini samples it into.
+  const points = shape.name === 'Polyline' ? polylinePoints(shape, roads) : sampled(shape, roads);
   if (typeof points === 'string') return points;
   const s = numberAttr(position, 's', NaN);
   const t = numberAttr(position, 't', 0);
