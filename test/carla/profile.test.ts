@@ -98,7 +98,7 @@ describe('check --simulator carla agrees with ScenarioRunner', function () {
   });
 });
 
-describe("check --simulator carla on conditions over parameters agrees with ScenarioRunner's own ticks", function () {
+describe("check --simulator carla agrees with ScenarioRunner's loader and its ticks on small scenarios", function () {
   this.timeout(120_000);
   let folder: string;
   before(function () {
@@ -153,6 +153,42 @@ ${scenarioRunnerVehicle('Ego', 'ego_vehicle')}
   </Storyboard>
 </OpenSCENARIO>
 `;
+
+  it("a negative start speed is an error at its value, as ScenarioRunner's loader refuses it; a positive one is nothing (issue 26)", async () => {
+    const speed = (value: string): string =>
+      `<PrivateAction><LongitudinalAction><SpeedAction><SpeedActionDynamics dynamicsShape="step" value="0" dynamicsDimension="time"/><SpeedActionTarget><AbsoluteTargetSpeed value="${value}"/></SpeedActionTarget></SpeedAction></LongitudinalAction></PrivateAction>`;
+    const withSpeed = (value: string): string =>
+      scenario([condition('GapIs', 'set', 'equalTo', '2')])
+        .replace('</TeleportAction></PrivateAction>', `</TeleportAction></PrivateAction>${speed(value)}`)
+        .replace(
+          '<ParameterDeclarations>',
+          '<ParameterDeclarations><ParameterDeclaration name="backwards" parameterType="double" value="-1.5"/>',
+        );
+    const files = { backwards: path.join(folder, 'backwards.xosc'), forwards: path.join(folder, 'forwards.xosc') };
+    fs.writeFileSync(files.backwards, withSpeed('$backwards'));
+    fs.writeFileSync(files.forwards, withSpeed('2'));
+    const checked = checkForCarla(Object.values(files), '0.9.16');
+    const speedErrors = (file: string) =>
+      (checked.get(path.resolve(file)) ?? [])
+        .filter((problem) => /must be positive/.test(problem.message))
+        .map((problem) => [problem.severity, (problem as CheckedProblem & { line: number }).line, problem.message.split(': ').pop()]);
+    const line =
+      withSpeed('$backwards')
+        .split('\n')
+        .findIndex((each) => each.includes('value="$backwards"')) + 1;
+    assert.deepEqual(speedErrors(files.backwards), [
+      [
+        'error',
+        line,
+        'the start speed -1.5 of Ego is negative (srunner/scenarioconfigs/openscenario_configuration.py:396-406 (_get_actor_speed))',
+      ],
+    ]);
+    assert.deepEqual(speedErrors(files.forwards), []);
+    const verdicts = await harnessVerdicts(Object.values(files));
+    assert.equal(verdicts.get(path.resolve(files.backwards))?.status, 'FAIL');
+    assert.match(verdicts.get(path.resolve(files.backwards))?.reason ?? '', /must be positive/);
+    assert.equal(verdicts.get(path.resolve(files.forwards))?.status, 'OK');
+  });
 
   it('an error where a tick raises, a warning where it never holds, nothing on a parameter the Init sets, a criterion or the Storyboard StopTrigger (issue 26)', async () => {
     const compared: [string, string, string, string][] = [

@@ -674,9 +674,15 @@ function negativeStartSpeeds(tree: Node, context: RuleContext): void {
       target,
       'Init/SpeedAction/AbsoluteTargetSpeed',
       `the start speed ${attr(target, 'value') ?? ''} of ${attr(owner, 'entityRef') ?? 'an actor'} is negative (backwards), which ScenarioRunner refuses while loading`,
-      `ScenarioRunner raises AttributeError "Speed value of actor ... must be positive" (${SR_CONFIGURATION}:396-406, _get_actor_speed)`,
+      `ScenarioRunner ${CARLA_FACTS.negativeStartSpeed.does} (${CARLA_FACTS.negativeStartSpeed.source})`,
     );
   }
+}
+
+/** How the trajectory of a TrajectoryPosition was read: its polyline, or the curve sampled as esmini samples it. */
+function sampledNote(position: Node): string {
+  const shape = child(child(child(position, 'TrajectoryRef') ?? position, 'Trajectory') ?? position, 'Shape')?.children[0];
+  return !shape || shape.name === 'Polyline' ? "'s polyline" : ` (a ${shape.name}, sampled as esmini samples it, ${SAMPLE_STEP} m apart)`;
 }
 
 /**
@@ -685,12 +691,6 @@ function negativeStartSpeeds(tree: Node, context: RuleContext): void {
  * WorldPosition. Euro NCAP's scenarios synchronize a VRU or a crossing car to such a point; one that has no point
  * without running the scenario is dropped or refused, naming why.
  */
-/** How the trajectory of a TrajectoryPosition was read: its polyline, or the curve sampled as esmini samples it. */
-function sampledNote(position: Node): string {
-  const shape = child(child(child(position, 'TrajectoryRef') ?? position, 'Trajectory') ?? position, 'Shape')?.children[0];
-  return !shape || shape.name === 'Polyline' ? "'s polyline" : ` (a ${shape.name}, sampled as esmini samples it, ${SAMPLE_STEP} m apart)`;
-}
-
 function trajectoryPositions(tree: Node, context: RuleContext): void {
   for (const position of named(tree, 'TrajectoryPosition')) {
     if (!position.parent) continue;

@@ -305,6 +305,11 @@ export const CARLA_FACTS = {
     source: `${PARSER}:1402-1404, ${RUNNER}:279`,
     severity: 'warning',
   },
+  negativeStartSpeed: {
+    does: 'raises AttributeError "Speed value of actor ... must be positive" while it loads a scenario whose Init gives an actor a negative AbsoluteTargetSpeed (a start backwards)',
+    source: `${CONFIGURATION}:396-406 (_get_actor_speed)`,
+    severity: 'error',
+  },
   parameterComparedAsText: {
     does: 'compares a parameter that no ParameterAction sets as its declared text against a number at every tick: lessThan and greaterThan raise TypeError, a value that is no number (true, false, text) raises ValueError, and the scenario stops there',
     source: `${CONFIGURATION}:234, ${PARSER}:143-147, 189-214, ${SR_TRIGGER_CONDITIONS}:1459-1477`,

@@ -322,6 +322,25 @@ const parametersComparedAsText = (context: SemanticContext, elements: XmlElement
   return findings;
 };
 
+/** A negative AbsoluteTargetSpeed in the Init: ScenarioRunner reads it as the actor's start speed and refuses it. */
+const negativeStartSpeeds = (context: SemanticContext, elements: XmlElement[]): Finding[] => {
+  const findings: Finding[] = [];
+  for (const element of elements) {
+    if (element.name !== 'AbsoluteTargetSpeed') continue;
+    const owner = element.parent?.parent?.parent?.parent?.parent;
+    const init = owner?.parent?.parent;
+    const value = attribute(element, 'value');
+    if (!value || owner?.name !== 'Private' || init?.name !== 'Init') continue;
+    const result = context.evaluator.attributeValue(element, value);
+    if (!result.ok || typeof result.value !== 'number' || !(result.value < 0)) continue;
+    const entity = attribute(owner, 'entityRef')?.value ?? 'an actor';
+    findings.push(
+      carlaFinding('negativeStartSpeed', element, value, `the start speed ${formatValue(result.value)} of ${entity} is negative`),
+    );
+  }
+  return findings;
+};
+
 /** Entities: blueprint names and the ego ScenarioRunner looks for. */
 const entities = (context: SemanticContext): Finding[] => {
   const root = context.model.document.root;
@@ -371,6 +390,7 @@ export const carlaScenario: SemanticCheck = (context) => {
     ...missingParts(elements),
     ...storyboard(elements),
     ...parametersComparedAsText(context, elements),
+    ...negativeStartSpeeds(context, elements),
     ...entities(context),
   ];
 };
