@@ -1,10 +1,7 @@
 import * as assert from 'node:assert/strict';
 import * as path from 'node:path';
-import { firstDifference } from '../../server/src/core/equivalence';
-import { Flattener } from '../../server/src/core/flatten';
-import { memoryHost, modularize, ModularizeInput, ModularizeResult } from '../../server/src/core/modularize';
-import { diskRef, ScenarioStore } from '../../server/src/core/sources';
-import { figuresLine, modularizeLibrary, realLibraries } from '../support/modularizeLibrary';
+import { modularize } from '../../server/src/core/modularize';
+import { assertFlattensBack, figuresLine, modularizeLibrary, realLibraries } from '../support/modularizeLibrary';
 import {
   act,
   catalogFile,
@@ -29,20 +26,6 @@ function scenarioWith(parts: { variables?: string; catalogLocations?: string; st
     entities: scenarioObjects(['ego', 'car']),
     storyboard: EMPTY_INIT + story('S', act('A', parts.groups), parts.storyDeclarations) + '    <StopTrigger/>\n',
   });
-}
-
-/** Each main flattened again from memory (catalogs from the disk), compared with its input. */
-async function assertFlattensBack(inputs: ModularizeInput[], result: ModularizeResult): Promise<void> {
-  assert.deepEqual(result.failures, []);
-  const files = new Map<string, string>();
-  for (const behaviour of result.behaviours) files.set(behaviour.file, behaviour.text);
-  for (const main of result.mains) files.set(main.output, main.text);
-  const flattener = new Flattener(new ScenarioStore({ host: memoryHost(files), scenarioPath: [] }));
-  for (const [index, main] of result.mains.entries()) {
-    const flattened = await flattener.flatten(diskRef(main.output), { outputPath: main.output });
-    assert.ok(flattened.text !== undefined, `${main.output}: ${flattened.problems.map((problem) => problem.message).join('; ')}`);
-    assert.equal(firstDifference(flattened.text, inputs[index].text), undefined, main.output);
-  }
 }
 
 describe('core: modularize on real libraries (issue 28)', function () {

@@ -2,12 +2,13 @@
  * A real library modularized in memory and flattened back, for the corpus test and bench/modularizeLibraries.ts:
  * the figures each prints (lines before and after, SPEC 9; how many mains flatten back equivalent, SPEC 8).
  */
+import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { firstDifference } from '../../server/src/core/equivalence';
 import { Flattener } from '../../server/src/core/flatten';
 import { buildModel } from '../../server/src/core/model';
-import { memoryHost, modularize, ModularizeResult, notAPlainScenario } from '../../server/src/core/modularize';
+import { memoryHost, modularize, ModularizeInput, ModularizeResult, notAPlainScenario } from '../../server/src/core/modularize';
 import { diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { parseXml } from '../../server/src/core/xml';
 import { repoRoot, sharedDir } from './paths';
@@ -140,4 +141,18 @@ export async function modularizeLibrary(library: RealLibrary): Promise<{ figures
 export function figuresLine(figures: LibraryFigures): string {
   const n = (value: number) => value.toLocaleString('en-US');
   return `${figures.name}: ${figures.scenarios} scenarios, ${n(figures.linesBefore)} -> ${n(figures.linesAfter)} lines (${figures.reduction} % saved), ${figures.equivalent}/${figures.scenarios} flatten back equivalent, ${figures.simpleScenarios} simple scenarios, ${figures.keptInline.length} recurring groups left inline; ${Math.round((figures.groupLines / Math.max(1, figures.linesBefore)) * 1000) / 10} % of the lines are inside ManeuverGroups`;
+}
+
+/** Each main flattened again from memory (catalogs from the disk), compared with its input. */
+export async function assertFlattensBack(inputs: ModularizeInput[], result: ModularizeResult): Promise<void> {
+  assert.deepEqual(result.failures, []);
+  const files = new Map<string, string>();
+  for (const behaviour of result.behaviours) files.set(behaviour.file, behaviour.text);
+  for (const main of result.mains) files.set(main.output, main.text);
+  const flattener = new Flattener(new ScenarioStore({ host: memoryHost(files), scenarioPath: [] }));
+  for (const [index, main] of result.mains.entries()) {
+    const flattened = await flattener.flatten(diskRef(main.output), { outputPath: main.output });
+    assert.ok(flattened.text !== undefined, `${main.output}: ${flattened.problems.map((problem) => problem.message).join('; ')}`);
+    assert.equal(firstDifference(flattened.text, inputs[index].text), undefined, main.output);
+  }
 }

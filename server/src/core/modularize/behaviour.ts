@@ -77,11 +77,13 @@ export async function planBehaviour(
   rebase: RebasePaths,
   /** Attributes (slot indices) listed whatever their values: an editor's *Extract to a simple scenario* lets the user choose. */
   chosen: ReadonlySet<number> = new Set(),
+  /** The group's name in the simple scenario, where the one its uses suggest is taken in a shared file. */
+  wantedGroupName?: string,
 ): Promise<BehaviourPlan> {
   const representative = occurrences[0];
   const nameSlot = slots.findIndex((slot) => slot.element === 0 && slot.name === 'name');
   const actorSlot = slots.findIndex((slot) => slot.element === representative.actorElement && slot.name === 'entityRef');
-  const groupName = innerName(occurrences.map((occurrence) => occurrence.values[nameSlot]));
+  const groupName = wantedGroupName ?? innerName(occurrences.map((occurrence) => occurrence.values[nameSlot]));
   const defaults = slots.map((_, index) => mostCommon(occurrences.map((occurrence) => occurrence.values[index])));
   defaults[nameSlot] = groupName;
   const outerNames = occurrences.map((occurrence) => {

@@ -71,21 +71,53 @@ function linesReplaced(behaviour: Behaviour, inputs: ParsedInput[]): number {
   return replaced;
 }
 
-/** What simple scenarios can share a file: the same version and catalog locations (as rebased there); the first one's road network serves. */
-function poolKey(behaviour: Behaviour): string {
+/** A simple scenario's OpenSCENARIO version and its catalog locations (as rebased there), each kind of catalog by its text. */
+function fileSettings(behaviour: Behaviour): { version: string; catalogs: Map<string, string>; parameters: Map<string, string> } {
   const root = parseXml(behaviour.text).root;
-  const part = (name: string) => {
-    const element = root?.children.find((child) => child.name === name);
-    return element ? behaviour.text.slice(element.start, element.end).replace(/\s+/g, ' ') : '';
-  };
   const header = root?.children.find((child) => child.name === 'FileHeader');
-  return [header ? `${attributeValue(header, 'revMajor')}.${attributeValue(header, 'revMinor')}` : '', part('CatalogLocations')].join('\n');
+  const catalogs = new Map<string, string>();
+  for (const catalog of root?.children.find((child) => child.name === 'CatalogLocations')?.children ?? [])
+    catalogs.set(catalog.name, behaviour.text.slice(catalog.start, catalog.end));
+  const parameters = new Map<string, string>();
+  for (const declaration of root?.children.find((child) => child.name === 'ParameterDeclarations')?.children ?? [])
+    parameters.set(attributeValue(declaration, 'name') ?? '', attributeValue(declaration, 'value') ?? '');
+  return { version: header ? `${attributeValue(header, 'revMajor')}.${attributeValue(header, 'revMinor')}` : '', catalogs, parameters };
+}
+
+/**
+ * Whether two simple scenarios can share a file: one version, every kind of catalog both use in the same
+ * place (and no `$` path), every parameter both declare of one value (else a main would be warned that its
+ * own declaration differs from the source's).
+ */
+function compatible(a: ReturnType<typeof fileSettings>, b: ReturnType<typeof fileSettings>): boolean {
+  if (a.version !== b.version) return false;
+  for (const [name, value] of a.parameters) if (b.parameters.has(name) && b.parameters.get(name) !== value) return false;
+  for (const [kind, text] of a.catalogs) {
+    const other = b.catalogs.get(kind);
+    if (text.includes('$') || (other !== undefined && other.replace(/\s+/g, ' ') !== text.replace(/\s+/g, ' '))) return false;
+  }
+  return ![...b.catalogs.values()].some((text) => text.includes('$'));
+}
+
+/** `text` (a shared simple scenario) with the catalog locations of all its members: each kind once. */
+function withCatalogsOf(text: string, members: Behaviour[], unit: string, eol: string): string {
+  const catalogs = new Map<string, string>();
+  for (const member of members)
+    for (const [kind, catalog] of fileSettings(member).catalogs) if (!catalogs.has(kind)) catalogs.set(kind, catalog);
+  const element = parseXml(text).root?.children.find((child) => child.name === 'CatalogLocations');
+  if (!element || catalogs.size === 0) return text;
+  const written = [
+    `<CatalogLocations>`,
+    ...[...catalogs.values()].map((catalog) => `${unit}${unit}${catalog}`),
+    `${unit}</CatalogLocations>`,
+  ];
+  return text.slice(0, element.start) + written.join(eol) + text.slice(element.end);
 }
 
 /**
  * The behaviours worth extracting, each with its simple scenario: behaviours that can share a file (see
- * poolKey; their group names differ) are written into one, which pays its declarations, catalogs, roads
- * and storyboard once. A file is kept only when its uses save more lines than it takes, dropping its
+ * compatible; a same-named group of another shape is renamed there) are written into one, which pays its
+ * declarations, catalogs, roads and storyboard once. A file is kept only when its uses save more lines than it takes, dropping its
  * least paying behaviours until it does; what is dropped is kept inline with the figures (never larger).
  */
 async function paying(
@@ -97,19 +129,45 @@ async function paying(
   pooling: boolean,
   keptInline: ModularizeResult['keptInline'],
 ): Promise<Behaviour[]> {
-  const pools = new Map<string, Behaviour[]>();
-  for (const [index, behaviour] of candidates.entries()) {
-    const key = pooling ? poolKey(behaviour) : String(index);
-    let n = 0;
-    while (pools.get(`${key}#${n}`)?.some((other) => other.groupName === behaviour.groupName)) n++;
-    pools.set(`${key}#${n}`, [...(pools.get(`${key}#${n}`) ?? []), behaviour]);
+  const pools: { settings: ReturnType<typeof fileSettings>; members: Behaviour[] }[] = [];
+  for (const candidate of candidates) {
+    const settings = fileSettings(candidate);
+    const pool = pooling ? pools.find((other) => compatible(other.settings, settings)) : undefined;
+    if (!pool) {
+      pools.push({ settings, members: [candidate] });
+      continue;
+    }
+    let behaviour = candidate;
+    // Groups of one name that differ in shape (Euro NCAP's Synchronization_CollisionDetection) share the file under distinct names.
+    if (pool.members.some((other) => other.groupName === candidate.groupName)) {
+      const names = new Set(pool.members.map((other) => other.groupName.toLowerCase()));
+      const wanted = uniqueName(candidate.groupName, names);
+      const renamed = await planBehaviour(
+        candidate.shapeKey,
+        candidate.slots,
+        candidate.part.occurrences,
+        inputs,
+        candidate.file,
+        rebase,
+        new Set(),
+        wanted,
+      );
+      if (!renamed.behaviour) {
+        pools.push({ settings, members: [candidate] });
+        continue;
+      }
+      behaviour = renamed.behaviour;
+    }
+    pool.members.push(behaviour);
+    for (const [kind, catalog] of settings.catalogs) if (!pool.settings.catalogs.has(kind)) pool.settings.catalogs.set(kind, catalog);
+    for (const [name, value] of settings.parameters) pool.settings.parameters.set(name, value);
   }
   const leaveInline = (behaviour: Behaviour, reason: string) => {
     for (const use of behaviour.uses)
       keptInline.push({ input: inputs[use.occurrence.input].path, group: use.occurrence.group.name, reason });
   };
   const result: Behaviour[] = [];
-  for (const members of pools.values()) {
+  for (const { members } of pools) {
     const replaced = new Map(members.map((member) => [member, linesReplaced(member, inputs)]));
     // What a member adds to a shared file: its group's lines; one that cannot pay even that stays inline.
     const own = (member: Behaviour) => member.part.groupText.split('\n').length;
@@ -125,15 +183,18 @@ async function paying(
     const build = async (chosen: Behaviour[]) => {
       if (chosen.length === 1) return { text: chosen[0].text, net: (replaced.get(chosen[0]) as number) - countEditorLines(chosen[0].text) };
       const representative = inputs[chosen[0].part.occurrences[0].input];
-      const text = await simpleScenarioText({
+      const unit = indentUnit(representative.text, representative.document.root?.children[0]?.start);
+      const eol = representative.text.includes('\r\n') ? '\r\n' : '\n';
+      const pooled = await simpleScenarioText({
         ...chosen[0].part,
         others: chosen.slice(1).map((member) => member.part),
         file: path.join(simpleFolder, 'behaviours.xosc'),
         inputs,
-        unit: indentUnit(representative.text, representative.document.root?.children[0]?.start),
-        eol: representative.text.includes('\r\n') ? '\r\n' : '\n',
+        unit,
+        eol,
         rebase,
       });
+      const text = withCatalogsOf(pooled, chosen, unit, eol);
       return { text, net: chosen.reduce((sum, member) => sum + (replaced.get(member) as number), 0) - countEditorLines(text) };
     };
     let current = kept.length > 0 ? await build(kept) : undefined;
