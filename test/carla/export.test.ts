@@ -1736,6 +1736,35 @@ describe("export --target carla, a SynchronizeAction to a TrajectoryPosition (Eu
     );
   });
 
+  /** The crossing's vertices as points on a helper trajectory from (100, 2) to (200, 2), as Euro NCAP's CPTA places its VRU path. */
+  const onHelper = (): string => {
+    const helper = (t: number): string =>
+      `<TrajectoryPosition s="50" t="${t}"><TrajectoryRef><Trajectory name="Helper" closed="false"><ParameterDeclarations/><Shape><Polyline><Vertex><Position><WorldPosition x="100" y="2"/></Position></Vertex><Vertex><Position><WorldPosition x="200" y="2"/></Position></Vertex></Polyline></Shape></Trajectory></TrajectoryRef></TrajectoryPosition>`;
+    return text().replace('<WorldPosition x="150" y="2"/>', helper(0)).replace('<WorldPosition x="150" y="-8"/>', helper(-10));
+  };
+
+  it("a trajectory whose vertices are TrajectoryPositions on another trajectory: the point is found through them (Euro NCAP's CPTA), and ScenarioRunner builds it (issue 26)", async function () {
+    const original = path.join(out, 'sync.xosc');
+    fs.writeFileSync(original, onHelper());
+    const result = await exportFile(original, path.join(out, 'exported.xosc'));
+    assert.equal(result.code, 0, result.stderr);
+    const listed = result.report.losses.filter((loss) => loss.element === 'TrajectoryPosition');
+    // The position, then its trajectory's two vertices (on the lines after it), each written as a WorldPosition.
+    const line = lineHolding(onHelper(), '<TrajectoryPosition s="5"');
+    assert.deepEqual(
+      listed.map(({ kind, line }) => [kind, line]),
+      [line, line + 1, line + 2].map((at) => ['approximated', at]),
+    );
+    // The vertices are (150, 2) and (150, -8): 5 m along from the first is (150, -3), 1 m to its left +x.
+    assert.match(listed[0].what, /^written as WorldPosition x 151, y -3, h -1\.5708: the point s 5 along/);
+    assert.match(
+      fs.readFileSync(result.output, 'utf8'),
+      /<TargetPosition>\s*<WorldPosition x="151" y="-3" h="-1\.5708"\/>\s*<\/TargetPosition>/,
+    );
+    requireCarlaHarness(this);
+    await assertExportBuilds(path.join(out, 'nested.xosc'), onHelper());
+  });
+
   it('ScenarioRunner builds the export', async function () {
     requireCarlaHarness(this);
     await assertExportBuilds(path.join(out, 'sync.xosc'), text());

@@ -49,18 +49,27 @@ export function roadPositionPose(position: Node, roads: RoadNetwork | undefined,
   return { x: point.x, y: point.y, h: turned(referencePose(road, s).hdg + (laneId > 0 ? Math.PI : 0)) };
 }
 
-/** A polyline vertex's position in world coordinates, or why it has none without running the scenario. */
-function vertexPoint(position: Node | undefined, roads: RoadNetwork | undefined): { x: number; y: number } | string {
+type Sampler = (shape: Node, roads: RoadNetwork | undefined) => { x: number; y: number }[] | string;
+
+/**
+ * A polyline vertex's position in world coordinates, or why it has none without running the scenario. A vertex on
+ * another trajectory (Euro NCAP's VRU paths lie on helper trajectories) is that trajectory's point, when a sampler is given.
+ */
+function vertexPoint(position: Node | undefined, roads: RoadNetwork | undefined, sampled?: Sampler): { x: number; y: number } | string {
   if (!position) return 'a vertex has no position';
   if (position.name === 'WorldPosition') return { x: numberAttr(position, 'x', NaN), y: numberAttr(position, 'y', NaN) };
+  if (position.name === 'TrajectoryPosition' && sampled) {
+    const point = trajectoryPoint(position, roads, sampled);
+    return typeof point === 'string' ? `a vertex is a TrajectoryPosition: ${point}` : point;
+  }
   return roadPositionPose(position, roads, 'a vertex');
 }
 
 /** A Polyline's vertices in world coordinates, or why they have none without running the scenario. */
-export function polylinePoints(polyline: Node, roads: RoadNetwork | undefined): { x: number; y: number }[] | string {
+export function polylinePoints(polyline: Node, roads: RoadNetwork | undefined, sampled?: Sampler): { x: number; y: number }[] | string {
   const points: { x: number; y: number }[] = [];
   for (const vertex of childrenNamed(polyline, 'Vertex')) {
-    const point = vertexPoint(child(vertex, 'Position')?.children[0], roads);
+    const point = vertexPoint(child(vertex, 'Position')?.children[0], roads, sampled);
     if (typeof point === 'string') return point;
     if (!Number.isFinite(point.x) || !Number.isFinite(point.y)) return 'a vertex has a coordinate that is not a number';
     points.push(point);
@@ -100,18 +109,14 @@ export function pointAlong(points: readonly { x: number; y: number }[], s: numbe
 }
 
 /** The point of a TrajectoryPosition whose trajectory is written inside it (catalogs inlined), or why there is none. */
-export function trajectoryPoint(
-  position: Node,
-  roads: RoadNetwork | undefined,
-  sampled: (shape: Node, roads: RoadNetwork | undefined) => { x: number; y: number }[] | string,
-): TrajectoryPoint | string {
+export function trajectoryPoint(position: Node, roads: RoadNetwork | undefined, sampled: Sampler): TrajectoryPoint | string {
   const reference = child(position, 'TrajectoryRef');
   const trajectory = reference ? child(reference, 'Trajectory') : undefined;
   if (!trajectory) return 'its trajectory is not written in the scenario';
   const shape = child(trajectory, 'Shape')?.children[0];
   if (!shape) return 'its trajectory has no shape';
   // A Clothoid, ClothoidSpline or Nurbs: the points esmini samples it into.
-  const points = shape.name === 'Polyline' ? polylinePoints(shape, roads) : sampled(shape, roads);
+  const points = shape.name === 'Polyline' ? polylinePoints(shape, roads, sampled) : sampled(shape, roads);
   if (typeof points === 'string') return points;
   const s = numberAttr(position, 's', NaN);
   const t = numberAttr(position, 't', 0);
