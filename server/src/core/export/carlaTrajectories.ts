@@ -10,7 +10,7 @@
 import { normalizeAngle } from '../opendrive/geometry';
 import type { RoadNetwork } from '../opendrive/road';
 import { actorsOf, fromInit } from './scenarioTree';
-import { roadPositionPose } from './trajectoryPoint';
+import { orientedHeading, roadPositionPose } from './trajectoryPoint';
 import { sampleClothoid, sampleClothoidSpline, sampleNurbs, type SampledVertex, type SplineSegment } from './shapes';
 import { ancestor, attr, child, childrenNamed, fourDecimals, makeNode, named, Node, numberAttr } from './tree';
 
@@ -96,7 +96,7 @@ function place(
     inner.name === 'RelativeObjectPosition'
       ? [dx * Math.cos(base) - dy * Math.sin(base), dx * Math.sin(base) + dy * Math.cos(base)]
       : [dx, dy];
-  const h = absolute ? numberAttr(orientation, 'h') : base + (orientation ? numberAttr(orientation, 'h') : 0);
+  const h = orientedHeading(base, orientation);
   return { x, y, h, entity, ...(known ? { assumed: known } : {}) };
 }
 

@@ -11,7 +11,7 @@ import type { RoadNetwork } from '../opendrive/road';
 import { ancestorOrSelf } from './carlaLosses';
 import type { LossSink } from './carlaLosses';
 import { SR_CONFIGURATION, SR_PARSER } from './carlaFacts';
-import { alongPolyline, pointAlong, polylinePoints } from './trajectoryPoint';
+import { alongPolyline, pointAt, polylinePoints } from './trajectoryPoint';
 import {
   appendChild,
   attr,
@@ -90,19 +90,23 @@ function startAtOffset(follow: Node, entity: string, context: { sink: LossSink; 
   if (offset === 0) return;
   const polyline = named(follow, 'Polyline')[0];
   const points = polyline ? polylinePoints(polyline, context.roads) : 'its trajectory is not a Polyline';
-  const found = typeof points === 'string' || !Number.isFinite(offset) || offset < 0 ? undefined : alongPolyline(points, offset);
-  const point = typeof points === 'string' || !found || typeof found === 'string' ? undefined : pointAlong(points, offset);
+  const found =
+    typeof points === 'string'
+      ? points
+      : Number.isFinite(offset) && offset > 0
+        ? alongPolyline(points, offset)
+        : 'the offset is not a distance';
   const carla = `1.0 has no initialDistanceOffset; ${SR_PARSER} get_trajectory reads the vertices only`;
-  if (!polyline || typeof point !== 'object' || typeof found !== 'object') {
-    const why = typeof points === 'string' ? points : typeof found === 'string' ? found : 'the offset is not a distance';
+  if (!polyline || typeof points === 'string' || typeof found === 'string') {
     context.sink.approximated(
       follow,
       'FollowTrajectoryAction/@initialDistanceOffset',
-      `is not in 1.0: the trajectory is followed from its start (the export cannot place ${offset} m along it: ${why})`,
+      `is not in 1.0: the trajectory is followed from its start (the export cannot place ${offset} m along it: ${found})`,
       carla,
     );
     return;
   }
+  const point = pointAt(points, found);
   const vertices = childrenNamed(polyline, 'Vertex');
   const passed = vertices.slice(0, found.segment);
   const [before, after] = [attr(vertices[found.segment - 1], 'time'), attr(vertices[found.segment], 'time')];

@@ -16,6 +16,12 @@ export interface TrajectoryPoint {
   h: number;
 }
 
+/** A heading as a position's Orientation leaves it: set by an absolute one, turned by a relative one (or none), not normalized. */
+export function orientedHeading(along: number, orientation: Node | undefined): number {
+  if (!orientation) return along;
+  return attr(orientation, 'type') === 'absolute' ? numberAttr(orientation, 'h') : along + numberAttr(orientation, 'h');
+}
+
 /**
  * Where a Lane or Road position of the .xodr road the export read is, in world coordinates, and its heading as
  * esmini gives it: along the road, against it on a left lane (right-hand traffic), turned by a relative
@@ -30,13 +36,7 @@ export function roadPositionPose(position: Node, roads: RoadNetwork | undefined,
   if (!road) return `${subject} names road '${attr(position, 'roadId') ?? ''}', which the road network does not have`;
   if (!Number.isFinite(s) || s < 0 || s > road.length + 1e-6)
     return `${subject}'s s '${attr(position, 's') ?? ''}' is not on road ${road.id}`;
-  const orientation = child(position, 'Orientation');
-  const turned = (along: number): number =>
-    normalizeAngle(
-      orientation && attr(orientation, 'type') === 'absolute'
-        ? numberAttr(orientation, 'h')
-        : along + (orientation ? numberAttr(orientation, 'h') : 0),
-    );
+  const turned = (along: number): number => normalizeAngle(orientedHeading(along, child(position, 'Orientation')));
   if (position.name === 'RoadPosition') {
     const point = roadPoint(road, s, numberAttr(position, 't', 0));
     return { x: point.x, y: point.y, h: turned(referencePose(road, s).hdg) };
@@ -97,7 +97,15 @@ export function alongPolyline(
 /** The point `s` along the polyline through `points` and `t` to its left, heading along its segment. */
 export function pointAlong(points: readonly { x: number; y: number }[], s: number, t = 0): TrajectoryPoint | string {
   const found = alongPolyline(points, s);
-  if (typeof found === 'string') return found;
+  return typeof found === 'string' ? found : pointAt(points, found, t);
+}
+
+/** The point `found` (alongPolyline's answer) names on the polyline through `points`, `t` to its left, heading along its segment. */
+export function pointAt(
+  points: readonly { x: number; y: number }[],
+  found: { segment: number; along: number; length: number },
+  t = 0,
+): TrajectoryPoint {
   const [from, to] = [points[found.segment - 1], points[found.segment]];
   const heading = Math.atan2(to.y - from.y, to.x - from.x);
   const fraction = found.along / found.length;
@@ -124,11 +132,5 @@ export function trajectoryPoint(position: Node, roads: RoadNetwork | undefined, 
     return `its s '${attr(position, 's') ?? ''}' or t is not a number at or after the start`;
   const point = pointAlong(points, s, t);
   if (typeof point === 'string') return point;
-  const orientation = child(position, 'Orientation');
-  const h = !orientation
-    ? point.h
-    : attr(orientation, 'type') === 'absolute'
-      ? numberAttr(orientation, 'h', 0)
-      : point.h + numberAttr(orientation, 'h', 0);
-  return { ...point, h: normalizeAngle(h) };
+  return { ...point, h: normalizeAngle(orientedHeading(point.h, child(position, 'Orientation'))) };
 }
