@@ -271,10 +271,12 @@ export async function exportTextForCarla(
   const ego = markEgo(tree, options, sink);
   mapBlueprints(tree, options, sink);
   // Route positions are placed on the road they name: only then is the road file read.
-  // Route positions need road lengths, sampled trajectories the heading of a lane an actor starts on, trajectory positions and an Init trajectory's offset the road their vertices are on.
+  // Route positions need road lengths, sampled trajectories the heading of a lane an actor starts on, trajectory positions and an Init trajectory's offset (the only one init-starts places) the road their vertices are on.
   const needsRoads =
     named(tree, new Set(['RoutePosition', 'GeoPosition', 'Clothoid', 'ClothoidSpline', 'Nurbs', 'TrajectoryPosition'])).length > 0 ||
-    named(tree, 'FollowTrajectoryAction').some((action) => Number(attr(action, 'initialDistanceOffset') ?? 0) !== 0);
+    named(tree, 'FollowTrajectoryAction').some(
+      (action) => Number(attr(action, 'initialDistanceOffset') ?? 0) !== 0 && ancestor(action, 'Init') !== undefined,
+    );
   const roads = road && 'file' in road && needsRoads ? await readRoads(copy?.bytes ?? road.file, store) : undefined;
   const geoPlaces = new Map<Node, RoadXY | string>();
   for (const position of named(tree, 'GeoPosition')) {
@@ -330,9 +332,10 @@ const PLACING: ReadonlySet<string> = new Set(['Position', 'PositionStart']);
 function placedEntities(tree: Node): Map<string, Node> {
   const placed = new Map<string, Node>();
   const init = named(tree, 'Init')[0];
-  for (const privateNode of init ? named(init, 'Private') : [])
-    if (named(privateNode, PLACING).length > 0 && !placed.has(attr(privateNode, 'entityRef') ?? ''))
-      placed.set(attr(privateNode, 'entityRef') ?? '', privateNode);
+  for (const privateNode of init ? named(init, 'Private') : []) {
+    const entity = attr(privateNode, 'entityRef') ?? '';
+    if (!placed.has(entity) && named(privateNode, PLACING).length > 0) placed.set(entity, privateNode);
+  }
   return placed;
 }
 

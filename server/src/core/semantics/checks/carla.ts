@@ -242,6 +242,14 @@ const missingParts = (elements: XmlElement[]): Finding[] => {
   return findings;
 };
 
+/** A Condition ScenarioRunner builds as one of its test criteria: a ParameterCondition named criteria_* (SR_SCENARIO _create_test_criteria, SR_PARSER convert_condition_to_atomic). */
+function isCriterion(condition: XmlElement): boolean {
+  return (
+    (attribute(condition, 'name')?.value ?? '').startsWith('criteria_') &&
+    descendants(condition).some((child) => child.name === 'ParameterCondition')
+  );
+}
+
 /** Storyboard rules ScenarioRunner does not follow: warnings where the scenario depends on them. */
 const storyboard = (elements: XmlElement[]): Finding[] => {
   const findings: Finding[] = [];
@@ -268,10 +276,15 @@ const storyboard = (elements: XmlElement[]): Finding[] => {
         findings.push(carlaFinding('actStopTrigger', element, undefined, `${conditions.length} conditions in one group`));
       if (owner === 'Storyboard')
         for (const condition of conditions) {
-          const name = attribute(condition, 'name')?.value ?? '';
-          const isCriterion = name.startsWith('criteria_') && descendants(condition).some((child) => child.name === 'ParameterCondition');
-          if (!isCriterion)
-            findings.push(carlaFinding('storyboardStopTrigger', condition, attribute(condition, 'name'), `condition '${name}'`));
+          if (!isCriterion(condition))
+            findings.push(
+              carlaFinding(
+                'storyboardStopTrigger',
+                condition,
+                attribute(condition, 'name'),
+                `condition '${attribute(condition, 'name')?.value ?? ''}'`,
+              ),
+            );
         }
     }
   }
@@ -301,7 +314,7 @@ const parametersComparedAsText = (context: SemanticContext, elements: XmlElement
   for (const element of elements) {
     if (element.name !== 'ParameterCondition') continue;
     const condition = element.parent?.parent;
-    if (condition?.name === 'Condition' && (attribute(condition, 'name')?.value ?? '').startsWith('criteria_')) continue;
+    if (condition?.name === 'Condition' && isCriterion(condition)) continue;
     // The Storyboard's StopTrigger is never ticked but for criteria_ (storyboardStopTrigger says so).
     if (condition?.parent?.parent?.name === 'StopTrigger' && condition.parent.parent.parent?.name === 'Storyboard') continue;
     const ref = attribute(element, 'parameterRef');
