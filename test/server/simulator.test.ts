@@ -127,12 +127,16 @@ describe('CARLA findings offer their fixes over JSON-RPC', function () {
 
   const editOf = (action: CodeAction | undefined): TextEdit | undefined => action?.edit?.changes?.[uri]?.[0];
 
-  it('the version: write revMinor="0"', async () => {
+  it('the version: write revMinor="0", or export for CARLA, which writes 1.0 and maps what 1.1 to 1.3 added', async () => {
     const version = await carlaDiagnostic(/accepts only OpenSCENARIO 1\.0/);
     const actions = await actionsFor(version);
     const write = actions.find((action) => action.title === "Write '0'");
     assert.equal(editOf(write)?.newText, '0');
     assert.deepEqual(editOf(write)?.range, version.range);
+    assert.equal(write?.isPreferred, true);
+    const exportAction = actions.find((action) => action.command?.command === EXPORT_FOR_CARLA_COMMAND);
+    assert.equal(exportAction?.title, 'Export for CARLA…');
+    assert.deepEqual(exportAction?.command?.arguments, [uri]);
   });
 
   it('a ${...} number: write its value, which the inlay hint shows, or export for CARLA', async () => {

@@ -25,7 +25,7 @@ export const CARLA_PROFILE: SimulatorProfile = {
   name: 'CARLA ScenarioRunner',
   repository: 'carla-simulator/scenario_runner',
   revision: SR_REVISION,
-  versions: { revMajor: '1', revMinor: '0', source: `${CONFIGURATION}:105`, severity: 'error' },
+  versions: { revMajor: '1', revMinor: '0', source: `${CONFIGURATION}:105`, severity: 'error', exportWrites: true },
   elements: [
     // Refused while the scenario is built: the file fails to load in ScenarioRunner.
     {

@@ -29,6 +29,8 @@ export interface SimulatorFinding {
   severity: FactSeverity;
   /** The text to write over the attribute's value, where that one edit answers the finding. */
   suggestion?: string;
+  /** The project's export for this simulator writes what the finding asks for. */
+  exportMaps?: boolean;
 }
 
 export interface ProfileCheckContext {
@@ -82,6 +84,7 @@ const versionCheck: ProfileCheck = ({ profile, document }) => {
       severity: wanted.severity ?? 'warning',
       facts: { kind: 'version', profile: profile.name, wanted, stated: `${major.value}.${minor.value}` },
       suggestion: onMinor ? wanted.revMinor : wanted.revMajor,
+      ...(wanted.exportWrites ? { exportMaps: true } : {}),
     },
   ];
 };

@@ -47,8 +47,8 @@ export interface SimulatorProfile {
   name: string;
   repository: string;
   revision: string;
-  /** The FileHeader versions a scenario may state; undefined when all standard versions are accepted. */
-  versions?: { revMajor: string; revMinor: string; source: string; severity?: FactSeverity };
+  /** The FileHeader versions a scenario may state, and whether the project's export for this simulator writes that version (its finding then offers the export); undefined when all standard versions are accepted. */
+  versions?: { revMajor: string; revMinor: string; source: string; severity?: FactSeverity; exportWrites?: boolean };
   /** The oldest FileHeader revMajor the simulator runs (an error below it: it quits with `refusal`, `{stated}` the file's version); undefined when any is run. */
   oldestRevMajor?: { revMajor: number; source: string; refusal: string };
   elements: ElementFact[];

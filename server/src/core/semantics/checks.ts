@@ -537,7 +537,9 @@ export const simulatorProfile: SemanticCheck = (context) =>
   simulatorFindings(context.simulator ?? 'asam', context.model.document, baseName(context.ref), carlaReleaseOf(context)).map((finding) => ({
     ...at(finding.element, finding.attribute),
     ...simulatorWording(finding),
-    ...(finding.suggestion !== undefined ? { data: { suggestion: finding.suggestion } } : {}),
+    ...(finding.suggestion !== undefined || finding.exportMaps
+      ? { data: { suggestion: finding.suggestion, exportMaps: finding.exportMaps } }
+      : {}),
   }));
 
 /** The checks of a document, in the order their problems are listed. */
