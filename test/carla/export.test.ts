@@ -842,6 +842,149 @@ describe('export --target carla, Clothoid and Nurbs sampled into polylines', fun
   });
 });
 
+/** A 1.2 scenario on esmini's straight_500m.xodr: Lead follows `profile` (a SpeedProfileAction) from 1 s on, its trigger delayed 0.5 s; `extra` is more of Lead's story. */
+function speedProfileScenario(road: string, profile: string, extra = ''): string {
+  const start = (entity: string, s: number): string => `
+        <Private entityRef="${entity}">
+          <PrivateAction><TeleportAction><Position><LanePosition roadId="1" laneId="-1" offset="0" s="${s}"/></Position></TeleportAction></PrivateAction>
+          <PrivateAction><LongitudinalAction><SpeedAction>
+            <SpeedActionDynamics dynamicsShape="step" value="0" dynamicsDimension="time"/>
+            <SpeedActionTarget><AbsoluteTargetSpeed value="10"/></SpeedActionTarget>
+          </SpeedAction></LongitudinalAction></PrivateAction>
+        </Private>`;
+  return testScenario({
+    revMinor: 2,
+    description: 'speed profile',
+    road,
+    entities: vehicle('Ego', 'ego_vehicle') + vehicle('Lead', 'simulation'),
+    init: start('Ego', 20) + start('Lead', 60),
+    story: `<Story name="Profile">
+      <Act name="Drive">
+        <ManeuverGroup maximumExecutionCount="1" name="LeadGroup">
+          <Actors selectTriggeringEntities="false"><EntityRef entityRef="Lead"/></Actors>
+          <Maneuver name="LeadManeuver">
+            <Event name="LeadEvent" priority="override">
+              <Action name="LeadProfile">
+                <PrivateAction><LongitudinalAction>${profile}</LongitudinalAction></PrivateAction>
+              </Action>
+              <StartTrigger><ConditionGroup><Condition name="After1s" delay="0.5" conditionEdge="none">
+                <ByValueCondition><SimulationTimeCondition value="1" rule="greaterThan"/></ByValueCondition>
+              </Condition></ConditionGroup></StartTrigger>
+            </Event>${extra}
+          </Maneuver>
+        </ManeuverGroup>
+        ${ACT_STARTS}
+      </Act>
+    </Story>`,
+    stopAt: 12,
+  });
+}
+
+/** Position mode from the Init speed: a ramp within the constraints, one too steep for them, one without a time. */
+const POSITION_PROFILE = `<SpeedProfileAction followingMode="position">
+                  <DynamicConstraints maxAcceleration="2" maxDeceleration="3" maxSpeed="50"/>
+                  <SpeedProfileEntry time="0" speed="10"/>
+                  <SpeedProfileEntry time="4" speed="14"/>
+                  <SpeedProfileEntry time="1" speed="8"/>
+                  <SpeedProfileEntry speed="12"/>
+                </SpeedProfileAction>`;
+
+describe('export --target carla, a SpeedProfileAction (1.2)', function () {
+  this.timeout(300_000);
+  let out: string;
+  before(function () {
+    requireCorpus(this);
+  });
+  inTemporaryFolderEach('m2s-carla-profile-', (folder) => (out = folder));
+
+  it("is written as a chain of linear SpeedActions, each next one in an Event of the profile's trigger delayed, which esmini runs as the profile (within 0.1 m) and ScenarioRunner builds", async function () {
+    requireEsmini(this);
+    requireCarlaHarness(this);
+    const original = path.join(out, 'profile.xosc');
+    fs.writeFileSync(original, speedProfileScenario(path.join(esminiRoads, 'straight_500m.xodr'), POSITION_PROFILE));
+    const exported = await exportFile(original, path.join(out, 'profile.carla.xosc'));
+    assert.equal(exported.code, 0, exported.stderr);
+    const profile = exported.report.losses.filter((loss) => loss.element === 'SpeedProfileAction');
+    assert.deepEqual(
+      profile.map((loss) => [loss.kind, loss.line]),
+      [['approximated', lineHolding(fs.readFileSync(original, 'utf8'), '<SpeedProfileAction')]],
+    );
+    assert.match(profile[0].what, /written as 3 linear SpeedActions \(14 m\/s in 4 s, 8 m\/s in 2 s, 12 m\/s in 2 s\)/);
+    assert.match(profile[0].what, /'LeadEvent_ramp2' after 4 s, 'LeadEvent_ramp3' after 6 s/);
+    assert.match(profile[0].what, /1 ramp lengthened to the DynamicConstraints' acceleration/);
+    assert.doesNotMatch(profile[0].what, /first entry's speed/);
+    const text = fs.readFileSync(exported.output, 'utf8');
+    assert.doesNotMatch(text, /SpeedProfile/);
+    const delays = [...text.matchAll(/<Condition name="After1s" delay="([^"]+)"/g)].map((match) => match[1]);
+    assert.deepEqual(delays, ['0.5', '4.5', '6.5']);
+    const tracks = await assertMovesAlike(original, exported.output, 12);
+    const lead = tracks.get('Lead') ?? [];
+    const moved = lead[lead.length - 1].x - lead[0].x;
+    // At a constant 10 m/s Lead would move 120 m; the profile makes it 14.5 m more.
+    assert.ok(Math.abs(moved - 134.5) < 1, `Lead moved ${moved.toFixed(2)} m`);
+    const verdicts = await harnessVerdicts([exported.output], { tree: true });
+    const verdict = verdicts.get(path.resolve(exported.output));
+    assert.equal(verdict?.status, 'OK', JSON.stringify(verdict));
+    for (const event of ['LeadEvent', 'LeadEvent_ramp2', 'LeadEvent_ramp3'])
+      assert.ok(
+        verdict?.tree?.some(([kind, name]) => kind === 'EVENT' && name === event),
+        `${event} is not in ScenarioRunner's tree`,
+      );
+  });
+
+  it('without a 1.0 form (speeds relative to another entity, an Event another condition waits for) is dropped, naming why', async () => {
+    const road = path.join(esminiRoads, 'straight_500m.xodr');
+    const relative = path.join(out, 'relative.xosc');
+    const cruise = `
+            <Event name="Cruise" priority="parallel">
+              <Action name="Faster">
+                <PrivateAction><LongitudinalAction><SpeedAction>
+                  <SpeedActionDynamics dynamicsShape="step" value="0" dynamicsDimension="time"/>
+                  <SpeedActionTarget><AbsoluteTargetSpeed value="12"/></SpeedActionTarget>
+                </SpeedAction></LongitudinalAction></PrivateAction>
+              </Action>
+              <StartTrigger><ConditionGroup><Condition name="After5s" delay="0" conditionEdge="none">
+                <ByValueCondition><SimulationTimeCondition value="5" rule="greaterThan"/></ByValueCondition>
+              </Condition></ConditionGroup></StartTrigger>
+            </Event>`;
+    fs.writeFileSync(
+      relative,
+      speedProfileScenario(road, POSITION_PROFILE.replace('followingMode="position"', 'followingMode="position" entityRef="Ego"'), cruise),
+    );
+    const waited = path.join(out, 'waited.xosc');
+    const waiting = `
+            <Event name="AfterProfile" priority="parallel">
+              <Action name="Stop">
+                <PrivateAction><LongitudinalAction><SpeedAction>
+                  <SpeedActionDynamics dynamicsShape="step" value="0" dynamicsDimension="time"/>
+                  <SpeedActionTarget><AbsoluteTargetSpeed value="0"/></SpeedActionTarget>
+                </SpeedAction></LongitudinalAction></PrivateAction>
+              </Action>
+              <StartTrigger><ConditionGroup><Condition name="ProfileEnds" delay="0" conditionEdge="none">
+                <ByValueCondition><StoryboardElementStateCondition storyboardElementType="event" storyboardElementRef="LeadEvent" state="endTransition"/></ByValueCondition>
+              </Condition></ConditionGroup></StartTrigger>
+            </Event>`;
+    fs.writeFileSync(waited, speedProfileScenario(road, POSITION_PROFILE, waiting));
+    const reasons: string[] = [];
+    for (const input of [relative, waited]) {
+      const exported = await exportFile(input, path.join(out, `${path.basename(input, '.xosc')}.carla.xosc`));
+      assert.equal(exported.code, 0, exported.stderr);
+      const dropped = exported.report.losses.filter((loss) => loss.element === 'SpeedProfileAction');
+      assert.deepEqual(
+        dropped.map((loss) => [loss.kind, loss.line, loss.what]),
+        [['dropped', lineHolding(fs.readFileSync(input, 'utf8'), '<SpeedProfileAction'), "the action 'LeadProfile' is dropped"]],
+      );
+      reasons.push(dropped[0].carla);
+      assert.doesNotMatch(fs.readFileSync(exported.output, 'utf8'), /SpeedProfile|LeadProfile/);
+    }
+    assert.match(reasons[0], /no 1\.0 form: its speeds are relative to another entity/);
+    assert.match(
+      reasons[1],
+      /no 1\.0 form: a StoryboardElementStateCondition waits for its event 'LeadEvent', which would end before the profile does/,
+    );
+  });
+});
+
 describe('export --target carla, sampled polylines against the OpenSCENARIO 1.0 XSD', function () {
   this.timeout(300_000);
   let out: string;

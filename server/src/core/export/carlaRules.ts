@@ -33,7 +33,8 @@ import { sampledShape, sampledWorldPoints, TrajectoryEnds } from './carlaTraject
 import { dropUnit } from './carlaLosses';
 import type { CarlaLoss, LossSink } from './carlaLosses';
 import { variables } from './carlaVariables';
-import { actorsOf, fromInit } from './scenarioTree';
+import { actorsOf, fromInit, startSpeedOf } from './scenarioTree';
+import { speedProfiles } from './speedProfiles';
 import { trajectoryPoint } from './trajectoryPoint';
 import { initStarts } from './initStarts';
 import { SAMPLE_STEP } from './shapes';
@@ -329,20 +330,11 @@ function weather(tree: Node, context: RuleContext): void {
   }
 }
 
-/** The first number `read` finds in the actor's Init actions (its Private), or undefined. */
 /** The actor's start lane, from its Init TeleportAction to a LanePosition: what a relative lane change counts from. */
 function startLaneOf(tree: Node, actor: string): number | undefined {
   return fromInit(tree, actor, (privateNode) => {
     const lane = named(privateNode, 'LanePosition').find((each) => ancestor(each, 'TeleportAction'));
     return lane ? Number(attr(lane, 'laneId')) : undefined;
-  });
-}
-
-/** The actor's speed set in Init (an absolute SpeedAction), the nominal speed of a time gap. */
-function startSpeedOf(tree: Node, actor: string): number | undefined {
-  return fromInit(tree, actor, (privateNode) => {
-    const target = named(privateNode, 'AbsoluteTargetSpeed')[0];
-    return target ? Number(attr(target, 'value')) : undefined;
   });
 }
 
@@ -1316,6 +1308,7 @@ export const CARLA_RULES: readonly { name: string; apply: (tree: Node, context: 
   { name: 'negative-start-speeds', apply: negativeStartSpeeds },
   { name: 'trajectory-positions', apply: trajectoryPositions },
   { name: 'synchronize-steady-states', apply: synchronizeSteadyStates },
+  { name: 'speed-profiles', apply: speedProfiles },
   { name: 'positions', apply: unsupportedPositions },
   { name: 'refused-actions', apply: refusedActions },
   { name: 'route-crash', apply: routeActionCrash },

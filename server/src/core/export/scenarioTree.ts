@@ -13,6 +13,14 @@ export function fromInit(tree: Node, actor: string, read: (privateNode: Node) =>
   return undefined;
 }
 
+/** The actor's speed set in its Init (an absolute SpeedAction): the nominal speed of a time gap, and where a speed profile starts. */
+export function startSpeedOf(tree: Node, actor: string): number | undefined {
+  return fromInit(tree, actor, (privateNode) => {
+    const target = named(privateNode, 'AbsoluteTargetSpeed')[0];
+    return target ? Number(attr(target, 'value')) : undefined;
+  });
+}
+
 /** The entities an action of a storyboard acts on: its ManeuverGroup's Actors, or the Private of an Init action. */
 export function actorsOf(node: Node): string[] {
   const privateNode = ancestor(node, 'Private');
