@@ -50,7 +50,11 @@ function limitOf(profile: Node, tree: Node, actor: string, which: 'maxAccelerati
 }
 
 /** The ramps of a profile in position mode, as esmini computes them, or why it has no 1.0 form. */
-function rampsOf(profile: Node, tree: Node, actor: string): { ramps: Ramp[]; lengthened: number; jumpTo?: number } | string {
+function rampsOf(
+  profile: Node,
+  tree: Node,
+  actor: string,
+): { ramps: Ramp[]; lengthened: number; jumpTo?: number; uncheckedFirst: boolean } | string {
   const entries = childrenNamed(profile, 'SpeedProfileEntry').map((entry) => {
     const time = attr(entry, 'time');
     return { entry, speed: Number(attr(entry, 'speed')), time: time === undefined ? undefined : Number(time) };
@@ -73,11 +77,13 @@ function rampsOf(profile: Node, tree: Node, actor: string): { ramps: Ramp[]; len
   }
   const ramps: Ramp[] = [];
   let lengthened = 0;
+  let uncheckedFirst = false;
   for (let index = from; index < entries.length; index++) {
     const { entry, speed, time } = entries[index];
     if (time === 0) return 'an entry after the first has time 0 (esmini replaces the entry before it)';
     if (previous === undefined) {
       if (time === undefined) return 'its first entry has no time, and the speed it starts from is not known before the run';
+      uncheckedFirst = Number.isFinite(acceleration) || Number.isFinite(deceleration);
       ramps.push({ speed, seconds: time, entry });
       previous = speed;
       continue;
@@ -95,7 +101,7 @@ function rampsOf(profile: Node, tree: Node, actor: string): { ramps: Ramp[]; len
     previous = speed;
   }
   if (ramps.length === 0) return 'no entry changes the speed';
-  return { ramps, lengthened, jumpTo };
+  return { ramps, lengthened, jumpTo, uncheckedFirst };
 }
 
 /** `<SpeedAction>` reaching `ramp.speed` linearly in `ramp.seconds`, placed at its entry's line. */
@@ -174,7 +180,7 @@ export function speedProfiles(tree: Node, context: { sink: LossSink }): void {
       dropUnit(profile, context, 'SpeedProfileAction', `${NOT_MAPPED}: ${found}`);
       continue;
     }
-    const { ramps, lengthened, jumpTo } = found;
+    const { ramps, lengthened, jumpTo, uncheckedFirst } = found;
     const names = storyboardNames(tree);
     const trigger = child(event, 'StartTrigger') as Node;
     const written: string[] = [];
@@ -208,6 +214,9 @@ export function speedProfiles(tree: Node, context: { sink: LossSink }): void {
     const notes = [
       attr(profile, 'followingMode') === 'follow'
         ? "followingMode follow's smooth, jerk-limited changes are written as straight ramps"
+        : '',
+      uncheckedFirst
+        ? 'the first ramp starts from the speed the actor has, which is known only in the run: esmini lengthens it if it is steeper than the DynamicConstraints allow, the export does not'
         : '',
       lengthened > 0
         ? `${lengthened} ramp${lengthened > 1 ? 's' : ''} lengthened to the DynamicConstraints' acceleration, as esmini does`
