@@ -296,6 +296,40 @@ describe('cli: modularize', function () {
     }
   });
 
+  it('scenarios that declare a parameter their common group reads with different values: one simple scenario reads its own copy, each main passes $Speed, check finds no warning', () => {
+    const withSpeed = (value: string) =>
+      scenarioDocument({
+        header: fileHeader({ revMinor: '0' }),
+        parameters: parameterDeclarations([['Speed', 'double', value]], 4),
+        entities: '    <ScenarioObject name="ego"/>\n    <ScenarioObject name="car"/>\n',
+        storyboard: story('S', act('A', speedGroup('Lead.Go', '$Speed') + speedGroup('Follow.Go', '$Speed'), false)),
+      });
+    const root = temporaryWorkspace({ 'lib/slow.xosc': withSpeed('10'), 'lib/fast.xosc': withSpeed('30') });
+    const run = runCli(['modularize', 'lib', '-o', 'out'], { cwd: root });
+    assert.equal(run.status, 0, run.stderr);
+    assertNoTrace(run.stderr);
+    assert.deepEqual(listFiles(path.join(root, 'out', 'simple')), ['speed.xosc']);
+    const simple = fs.readFileSync(path.join(root, 'out', 'simple', 'speed.xosc'), 'utf8');
+    // Declared as the first input (fast.xosc) declares Speed: only a default, each main passes its own.
+    assert.match(simple, /<ParameterDeclaration name="Speed_Go" parameterType="double" value="30"\/>/);
+    assert.match(simple, /<AbsoluteTargetSpeed parameterAttributes="value" value="\$Speed_Go"\/>/);
+    for (const name of ['slow.xosc', 'fast.xosc']) {
+      const main = fs.readFileSync(path.join(root, 'out', name), 'utf8');
+      assert.equal(main.match(/<ParameterReference key="[\w.]*value" value="\$Speed"\/>/g)?.length, 2, main);
+      const flattened = runCli(['flatten', path.join('out', name)], { cwd: root });
+      assert.equal(flattened.status, 0, flattened.stderr);
+      assert.equal(firstDifference(flattened.stdout, fs.readFileSync(path.join(root, 'lib', name), 'utf8')), undefined, name);
+    }
+    const check = runCli(['check', 'out', '--format', 'json'], { cwd: root });
+    const report = JSON.parse(check.stdout) as {
+      problems: { file: string; line: number; severity: string; code: string; message: string }[];
+    };
+    assert.deepEqual(
+      report.problems.filter((problem) => problem.severity !== 'info'),
+      [],
+    );
+  });
+
   it('no recurring group: nothing extracted, said so, nothing written', () => {
     const root = temporaryWorkspace({ 'lib/a.xosc': scenario(speedGroup('A', '10')), 'lib/b.xosc': scenario('') });
     const run = runCli(['modularize', 'lib', '-o', 'out'], { cwd: root });

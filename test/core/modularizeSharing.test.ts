@@ -29,6 +29,8 @@ async function run(texts: string[]): Promise<ModularizeResult> {
   return result;
 }
 
+const speed = (value: string) => `    <ParameterDeclaration name="Speed" parameterType="double" value="${value}"/>\n`;
+
 const files = (result: ModularizeResult) => [...new Set(result.behaviours.map((behaviour) => behaviour.file))];
 
 describe('core: modularize shares simple scenarios across sources', function () {
@@ -65,7 +67,7 @@ describe('core: modularize shares simple scenarios across sources', function () 
     assert.ok(names.includes('Go'), names.join(', '));
   });
 
-  it('never shares a file between catalogs of one kind in different places, nor between conflicting parameter values', async () => {
+  it('never shares a file between catalogs of one kind in different places', async () => {
     // Three uses each, so that each pays for a file of its own.
     const apart = await run([
       ...['Lead', 'Follow', 'Side'].map((outer) => sourced(speedChangeGroup(`${outer}.Go`, 'car', '10'), vehicles('catalogs/vehicles'))),
@@ -73,17 +75,40 @@ describe('core: modularize shares simple scenarios across sources', function () 
     ]);
     assert.equal(apart.behaviours.length, 2);
     assert.equal(files(apart).length, 2);
-    const speed = (value: string) => `    <ParameterDeclaration name="Speed" parameterType="double" value="${value}"/>\n`;
+  });
+
+  it('groups of scenarios that declare a parameter they read with different values share one file: the group reads its own copy, each main passes its own reading', async () => {
+    // Euro NCAP's Ego_speed_kph in small: 10 in the scenarios of one behaviour, 20 in those of the other.
     const conflicting = await run([
       ...['Lead', 'Follow', 'Side'].map((outer) => sourced(speedChangeGroup(`${outer}.Go`, 'car', '$Speed'), '', speed('10'))),
       ...['Lead', 'Follow', 'Side'].map((outer) => sourced(standStillGroup(`${outer}.Wait`, 'car', '$Speed'), '', speed('20'))),
     ]);
     assert.equal(conflicting.behaviours.length, 2);
-    assert.equal(files(conflicting).length, 2);
-    // Each simple scenario declares the value its own mains declare (else check warns: parameter-conflict).
-    assert.deepEqual(conflicting.behaviours.map((behaviour) => /name="Speed"[^>]*value="(\d+)"/.exec(behaviour.text)?.[1]).sort(), [
-      '10',
-      '20',
-    ]);
+    assert.equal(files(conflicting).length, 1);
+    const [text] = [conflicting.behaviours[0].text];
+    // The file declares Speed as the first scenarios do, and the other group's own copy as its scenarios do.
+    assert.match(text, /<ParameterDeclaration name="Speed" parameterType="double" value="10"\/>/);
+    assert.match(text, /<ParameterDeclaration name="Speed_Wait" parameterType="double" value="20"\/>/);
+    assert.match(text, /<AbsoluteTargetSpeed parameterAttributes="value" value="\$Speed_Wait"\/>/);
+    const wait = conflicting.behaviours.find((behaviour) => behaviour.groupName === 'Wait');
+    assert.deepEqual(wait?.parameters, ['AbsoluteTargetSpeed.value']);
+    for (const main of conflicting.mains.slice(3))
+      assert.match(main.text, /<ParameterReference key="(AbsoluteTargetSpeed\.)?value" value="\$Speed"\/>/);
+    for (const main of conflicting.mains.slice(0, 3)) assert.doesNotMatch(main.text, /<ParameterReference/);
+  });
+
+  it('a group used in scenarios that declare a parameter it reads with different values reads its own copy, each use passing its own reading', async () => {
+    // Two scenarios, two uses each of one group reading $Speed: 10 in one, 30 in the other.
+    const result = await run(
+      ['10', '30'].map((value) =>
+        sourced(speedChangeGroup('Lead.Go', 'car', '$Speed') + speedChangeGroup('Follow.Go', 'ego', '$Speed'), '', speed(value)),
+      ),
+    );
+    assert.equal(files(result).length, 1);
+    const [behaviour] = result.behaviours;
+    assert.match(behaviour.text, /<ParameterDeclaration name="Speed_Go" parameterType="double" value="10"\/>/);
+    assert.doesNotMatch(behaviour.text, /name="Speed"/);
+    for (const main of result.mains)
+      assert.equal(main.text.match(/<ParameterReference key="(AbsoluteTargetSpeed\.)?value" value="\$Speed"\/>/g)?.length, 2);
   });
 });

@@ -28,6 +28,8 @@ export interface LibraryFigures {
   reduction: number;
   /** Mains whose flattening, by the project's flattener, is equivalent to their input (SPEC 8). */
   equivalent: number;
+  /** Mains whose flattening warns that a parameter's value differs from its simple scenario's (parameter-conflict). */
+  conflicted: number;
   simpleScenarios: number;
   keptInline: ModularizeResult['keptInline'];
   /** Lines inside ManeuverGroups: all that extracting groups can ever take out of the mains. */
@@ -110,6 +112,7 @@ export async function modularizeLibrary(library: RealLibrary): Promise<{ figures
   const flattener = new Flattener(new ScenarioStore({ host: memoryHost(files), scenarioPath: [] }));
   const asWritten = new Flattener(new ScenarioStore({ scenarioPath: [] }));
   let equivalent = 0;
+  let conflicted = 0;
   let groupLines = 0;
   for (const [index, main] of result.mains.entries()) {
     // An input with errors of its own (a catalog folder its source did not ship) is compared as forced, as its main is.
@@ -117,6 +120,7 @@ export async function modularizeLibrary(library: RealLibrary): Promise<{ figures
     const force = input.problems.some((problem) => problem.severity === 'error');
     const flattened = await flattener.flatten(diskRef(main.output), { outputPath: main.output, force });
     if (flattened.text !== undefined && firstDifference(flattened.text, inputs[index].text) === undefined) equivalent++;
+    if (flattened.problems.some((problem) => problem.code === 'parameter-conflict')) conflicted++;
     const document = parseXml(inputs[index].text);
     for (const group of buildModel(document).groups)
       groupLines += document.text.slice(group.element.start, group.element.end).split('\n').length;
@@ -130,6 +134,7 @@ export async function modularizeLibrary(library: RealLibrary): Promise<{ figures
       linesAfter: result.totals.linesAfter,
       reduction: result.totals.reduction,
       equivalent,
+      conflicted,
       simpleScenarios: result.behaviours.length,
       keptInline: result.keptInline,
       groupLines,
@@ -140,10 +145,10 @@ export async function modularizeLibrary(library: RealLibrary): Promise<{ figures
 /** One line of figures: lines before and after, the share saved, the mains equivalent, the ceiling. */
 export function figuresLine(figures: LibraryFigures): string {
   const n = (value: number) => value.toLocaleString('en-US');
-  return `${figures.name}: ${figures.scenarios} scenarios, ${n(figures.linesBefore)} -> ${n(figures.linesAfter)} lines (${figures.reduction} % saved), ${figures.equivalent}/${figures.scenarios} flatten back equivalent, ${figures.simpleScenarios} simple scenarios, ${figures.keptInline.length} recurring groups left inline; ${Math.round((figures.groupLines / Math.max(1, figures.linesBefore)) * 1000) / 10} % of the lines are inside ManeuverGroups`;
+  return `${figures.name}: ${figures.scenarios} scenarios, ${n(figures.linesBefore)} -> ${n(figures.linesAfter)} lines (${figures.reduction} % saved), ${figures.equivalent}/${figures.scenarios} flatten back equivalent (${figures.conflicted} warned of a parameter conflict), ${figures.simpleScenarios} simple scenarios, ${figures.keptInline.length} recurring groups left inline; ${Math.round((figures.groupLines / Math.max(1, figures.linesBefore)) * 1000) / 10} % of the lines are inside ManeuverGroups`;
 }
 
-/** Each main flattened again from memory (catalogs from the disk), compared with its input. */
+/** Each main flattened again from memory (catalogs from the disk), compared with its input, and warned of no parameter conflict. */
 export async function assertFlattensBack(inputs: ModularizeInput[], result: ModularizeResult): Promise<void> {
   assert.deepEqual(result.failures, []);
   const files = new Map<string, string>();
@@ -154,5 +159,11 @@ export async function assertFlattensBack(inputs: ModularizeInput[], result: Modu
     const flattened = await flattener.flatten(diskRef(main.output), { outputPath: main.output });
     assert.ok(flattened.text !== undefined, `${main.output}: ${flattened.problems.map((problem) => problem.message).join('; ')}`);
     assert.equal(firstDifference(flattened.text, inputs[index].text), undefined, main.output);
+    // A main whose declaration differs from its simple scenario's would be warned (parameter-conflict).
+    assert.deepEqual(
+      flattened.problems.filter((problem) => problem.code === 'parameter-conflict').map((problem) => problem.message),
+      [],
+      main.output,
+    );
   }
 }

@@ -25,7 +25,8 @@ import {
 
 export type { CarriedDeclaration, CarriedLocation, CarryEdit, CarryPlan } from './types';
 
-function sameValue(a: Declaration, b: Declaration): boolean {
+/** Whether two declarations give a parameter one value: the same text and type. */
+export function sameValue(a: Declaration, b: Declaration): boolean {
   return a.value === b.value && (a.type ?? a.writtenType) === (b.type ?? b.writtenType);
 }
 

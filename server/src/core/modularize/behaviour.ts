@@ -3,9 +3,13 @@ import { parseScenario } from '../model';
 import { applyEdits, reindent, TextEdit } from '../flatten/edits';
 import { indentationAt } from '../text';
 import { attribute, escapeAttributeValue, selfAndDescendants } from '../xml';
+import { copyName, parameterConflicts, readingCopy } from './parameterCopies';
 import { GroupOccurrence, Slot } from './shape';
 import { simpleScenarioText } from './simpleScenario';
 import { Behaviour, Override, ParsedInput, RebasePaths, Use } from './types';
+
+/** The name a ParameterDeclaration declares (a `$` before it is the lenient form check and flatten accept). */
+const DECLARED_NAME = /<ParameterDeclaration\b[^>]*?\bname\s*=\s*["']\$?([^"']+)["']/g;
 
 /** The most common value, the earliest written on a tie. */
 function mostCommon(values: string[]): string {
@@ -79,6 +83,8 @@ export async function planBehaviour(
   chosen: ReadonlySet<number> = new Set(),
   /** The group's name in the simple scenario, where the one its uses suggest is taken in a shared file. */
   wantedGroupName?: string,
+  /** Parameters the group reads through copies of its own, each use passing its own reading (their values differ between its scenarios). */
+  copied: ReadonlySet<string> = new Set(),
 ): Promise<BehaviourPlan> {
   const representative = occurrences[0];
   const nameSlot = slots.findIndex((slot) => slot.element === 0 && slot.name === 'name');
@@ -86,6 +92,24 @@ export async function planBehaviour(
   const groupName = wantedGroupName ?? innerName(occurrences.map((occurrence) => occurrence.values[nameSlot]));
   const defaults = slots.map((_, index) => mostCommon(occurrences.map((occurrence) => occurrence.values[index])));
   defaults[nameSlot] = groupName;
+  const copies = new Map<string, string>();
+  const taken = new Set(
+    [...new Set(occurrences.map((occurrence) => inputs[occurrence.input].text))].flatMap((text) =>
+      [...text.matchAll(DECLARED_NAME)].map((match) => match[1].toLowerCase()),
+    ),
+  );
+  for (const name of [...copied].sort()) {
+    const copy = copyName(name, groupName, taken);
+    for (const index of slots.keys()) {
+      const reading = readingCopy(defaults[index], name, copy);
+      if (reading === defaults[index]) continue;
+      // The reference sets the actor (SPEC 4.2), so it may read the copy; the group's name is no place for a parameter.
+      if (index === nameSlot) return { reason: `its name reads '${name}', whose value differs between its scenarios` };
+      defaults[index] = reading;
+      copies.set(copy, name);
+    }
+    taken.add(copy.toLowerCase());
+  }
   const outerNames = occurrences.map((occurrence) => {
     const name = occurrence.values[nameSlot];
     return name.endsWith(`.${groupName}`) && name.length > groupName.length + 1 ? name.slice(0, -groupName.length - 1) : undefined;
@@ -104,7 +128,24 @@ export async function planBehaviour(
   const eol = representativeInput.text.includes('\r\n') ? '\r\n' : '\n';
   const unit = indentUnit(representativeInput.text, representativeInput.document.root?.children[0]?.start);
   const groupText = simpleGroupText(representative, slots, defaults, listed, unit.repeat(4), eol);
-  const text = await simpleScenarioText({ groupText, groupName, file, occurrences, inputs, defaults, unit, eol, rebase });
+  const text = await simpleScenarioText({ groupText, groupName, file, occurrences, inputs, defaults, copies, unit, eol, rebase });
+  // A parameter whose value differs between the group's scenarios (or from the one declared here): the group reads a copy of its own.
+  const differing = [...(parameterConflicts(text, [{ groupText, groupName, occurrences, defaults, copies }], inputs).get(0) ?? [])];
+  if (differing.some((name) => !copied.has(name))) {
+    const own = await planBehaviour(
+      shapeKey,
+      slots,
+      occurrences,
+      inputs,
+      file,
+      rebase,
+      chosen,
+      wantedGroupName,
+      new Set([...copied, ...differing]),
+    );
+    // One that cannot (its name reads it) is planned as before; modularize's flatten-back check decides.
+    if (own.behaviour) return own;
+  }
 
   // Keys are computed on the simple scenario as written, so they are what the flattener will match.
   const model = parseScenario(text);
@@ -148,7 +189,7 @@ export async function planBehaviour(
     return { occurrence, outerName: outerNames[position] ?? occurrence.values[nameSlot], overrides };
   });
   const parameters = [...keys.keys()].sort((a, b) => a - b).map((index) => `${elements[slots[index].element].name}.${slots[index].name}`);
-  const part = { groupText, groupName, occurrences, defaults };
+  const part = { groupText, groupName, occurrences, defaults, copies };
   return { behaviour: { shapeKey, file, groupName, slots, defaults, parameters: [...new Set(parameters)], uses, text, part } };
 }
 

@@ -4,6 +4,7 @@
  *   naming.ts         a file name that says what a group does
  *   behaviour.ts      one recurring group: defaults, overridable attributes, keys, each use's overrides
  *   simpleScenario.ts the valid scenario around an extracted group
+ *   parameterCopies.ts where a group's parameter values differ between its scenarios: a copy of its own to override
  *   mainText.ts       a main: the input with its recurring groups replaced by references
  *   memoryHost.ts     the outputs as files, for flattening them before anything is written
  */
@@ -19,6 +20,7 @@ import { countEditorLines } from '../text';
 import { attributeValue, parseXml, XmlDocument } from '../xml';
 import { indentUnit, planBehaviour } from './behaviour';
 import { catalogParametersOf } from './catalogParameters';
+import { parameterConflicts } from './parameterCopies';
 import { simpleScenarioText } from './simpleScenario';
 import { mainText, referenceGroup } from './mainText';
 import { memoryHost } from './memoryHost';
@@ -72,26 +74,27 @@ function linesReplaced(behaviour: Behaviour, inputs: ParsedInput[]): number {
 }
 
 /** A simple scenario's OpenSCENARIO version and its catalog locations (as rebased there), each kind of catalog by its text. */
-function fileSettings(behaviour: Behaviour): { version: string; catalogs: Map<string, string>; parameters: Map<string, string> } {
+interface FileSettings {
+  version: string;
+  catalogs: Map<string, string>;
+}
+
+function fileSettings(behaviour: Behaviour): FileSettings {
   const root = parseXml(behaviour.text).root;
   const header = root?.children.find((child) => child.name === 'FileHeader');
   const catalogs = new Map<string, string>();
   for (const catalog of root?.children.find((child) => child.name === 'CatalogLocations')?.children ?? [])
     catalogs.set(catalog.name, behaviour.text.slice(catalog.start, catalog.end));
-  const parameters = new Map<string, string>();
-  for (const declaration of root?.children.find((child) => child.name === 'ParameterDeclarations')?.children ?? [])
-    parameters.set(attributeValue(declaration, 'name') ?? '', attributeValue(declaration, 'value') ?? '');
-  return { version: header ? `${attributeValue(header, 'revMajor')}.${attributeValue(header, 'revMinor')}` : '', catalogs, parameters };
+  return { version: header ? `${attributeValue(header, 'revMajor')}.${attributeValue(header, 'revMinor')}` : '', catalogs };
 }
 
 /**
  * Whether two simple scenarios can share a file: one version, every kind of catalog both use in the same
- * place (and no `$` path), every parameter both declare of one value (else a main would be warned that its
- * own declaration differs from the source's).
+ * place (and no `$` path). A parameter both declare with different values is no obstacle: the group that
+ * reads it gets a copy of its own (see paying).
  */
-function compatible(a: ReturnType<typeof fileSettings>, b: ReturnType<typeof fileSettings>): boolean {
+function compatible(a: FileSettings, b: FileSettings): boolean {
   if (a.version !== b.version) return false;
-  for (const [name, value] of a.parameters) if (b.parameters.has(name) && b.parameters.get(name) !== value) return false;
   for (const [kind, text] of a.catalogs) {
     const other = b.catalogs.get(kind);
     if (text.includes('$') || (other !== undefined && other.replace(/\s+/g, ' ') !== text.replace(/\s+/g, ' '))) return false;
@@ -114,10 +117,21 @@ function withCatalogsOf(text: string, members: Behaviour[], unit: string, eol: s
   return text.slice(0, element.start) + written.join(eol) + text.slice(element.end);
 }
 
+/** A shared file as `build` makes it: its text, the lines it saves in all, the members whose parameters it could not copy. */
+interface PooledFile {
+  text: string;
+  net: number;
+  /** The members as the text holds them (with the copies it needs). */
+  members: Behaviour[];
+  stuck: Behaviour[];
+}
+
 /**
  * The behaviours worth extracting, each with its simple scenario: behaviours that can share a file (see
  * compatible; a same-named group of another shape is renamed there) are written into one, which pays its
- * declarations, catalogs, roads and storyboard once. A file is kept only when its uses save more lines than it takes, dropping its
+ * declarations, catalogs, roads and storyboard once. A group there that reads a parameter whose value differs
+ * in some use's scenario reads a copy of its own, which each use overrides with its own reading; one that
+ * cannot moves to a file of its own. A file is kept only when its uses save more lines than it takes, dropping its
  * least paying behaviours until it does; what is dropped is kept inline with the figures (never larger).
  */
 async function paying(
@@ -129,7 +143,7 @@ async function paying(
   pooling: boolean,
   keptInline: ModularizeResult['keptInline'],
 ): Promise<Behaviour[]> {
-  const pools: { settings: ReturnType<typeof fileSettings>; members: Behaviour[] }[] = [];
+  const pools: { settings: FileSettings; members: Behaviour[] }[] = [];
   for (const candidate of candidates) {
     const settings = fileSettings(candidate);
     const pool = pooling ? pools.find((other) => compatible(other.settings, settings)) : undefined;
@@ -151,6 +165,7 @@ async function paying(
         rebase,
         new Set(),
         wanted,
+        new Set(candidate.part.copies?.values()),
       );
       if (!renamed.behaviour) {
         pools.push({ settings, members: [candidate] });
@@ -160,47 +175,100 @@ async function paying(
     }
     pool.members.push(behaviour);
     for (const [kind, catalog] of settings.catalogs) if (!pool.settings.catalogs.has(kind)) pool.settings.catalogs.set(kind, catalog);
-    for (const [name, value] of settings.parameters) pool.settings.parameters.set(name, value);
   }
   const leaveInline = (behaviour: Behaviour, reason: string) => {
     for (const use of behaviour.uses)
       keptInline.push({ input: inputs[use.occurrence.input].path, group: use.occurrence.group.name, reason });
   };
   const result: Behaviour[] = [];
-  for (const { members } of pools) {
-    const replaced = new Map(members.map((member) => [member, linesReplaced(member, inputs)]));
+  // Pools grow while this runs: a member that cannot share a file's parameters moves to a pool of its own.
+  for (let index = 0; index < pools.length; index++) {
+    const { settings, members } = pools[index];
+    // Each member as the shared file needs it: with copies of the parameters it reads whose values differ there.
+    const variants = new Map<Behaviour, Behaviour>();
+    const variant = (member: Behaviour) => variants.get(member) ?? member;
+    const replacedLines = new Map<Behaviour, number>();
+    const replaced = (member: Behaviour): number => {
+      const planned = variant(member);
+      const known = replacedLines.get(planned) ?? linesReplaced(planned, inputs);
+      replacedLines.set(planned, known);
+      return known;
+    };
     // What a member adds to a shared file: its group's lines; one that cannot pay even that stays inline.
     const own = (member: Behaviour) => member.part.groupText.split('\n').length;
     let kept = members.filter((member) => {
-      if (members.length === 1 || (replaced.get(member) as number) > own(member)) return true;
+      if (members.length === 1 || replaced(member) > own(member)) return true;
       leaveInline(
         member,
-        `extracting it would not pay: its group alone takes ${own(member)} lines in a simple scenario, its ${member.uses.length} uses would save ${replaced.get(member)}`,
+        `extracting it would not pay: its group alone takes ${own(member)} lines in a simple scenario, its ${member.uses.length} uses would save ${replaced(member)}`,
       );
       return false;
     });
     /** The file `chosen` would share and the lines it saves in all (its uses' lines less its own). */
-    const build = async (chosen: Behaviour[]) => {
-      if (chosen.length === 1) return { text: chosen[0].text, net: (replaced.get(chosen[0]) as number) - countEditorLines(chosen[0].text) };
+    const build = async (chosen: Behaviour[]): Promise<PooledFile> => {
+      if (chosen.length === 1) {
+        const text = variant(chosen[0]).text;
+        return { text, net: replaced(chosen[0]) - countEditorLines(text), members: [variant(chosen[0])], stuck: [] };
+      }
       const representative = inputs[chosen[0].part.occurrences[0].input];
       const unit = indentUnit(representative.text, representative.document.root?.children[0]?.start);
       const eol = representative.text.includes('\r\n') ? '\r\n' : '\n';
-      const pooled = await simpleScenarioText({
-        ...chosen[0].part,
-        others: chosen.slice(1).map((member) => member.part),
-        file: path.join(simpleFolder, 'behaviours.xosc'),
-        inputs,
-        unit,
-        eol,
-        rebase,
-      });
-      const text = withCatalogsOf(pooled, chosen, unit, eol);
-      return { text, net: chosen.reduce((sum, member) => sum + (replaced.get(member) as number), 0) - countEditorLines(text) };
+      for (;;) {
+        const planned = chosen.map(variant);
+        const pooled = await simpleScenarioText({
+          ...planned[0].part,
+          others: planned.slice(1).map((member) => member.part),
+          file: path.join(simpleFolder, 'behaviours.xosc'),
+          inputs,
+          unit,
+          eol,
+          rebase,
+        });
+        const text = withCatalogsOf(pooled, planned, unit, eol);
+        const conflicts = parameterConflicts(
+          text,
+          planned.map((member) => member.part),
+          inputs,
+        );
+        const net = chosen.reduce((sum, member) => sum + replaced(member), 0) - countEditorLines(text);
+        if (conflicts.size === 0) return { text, net, members: planned, stuck: [] };
+        const stuck: Behaviour[] = [];
+        for (const [position, names] of conflicts) {
+          const member = chosen[position];
+          const copied = new Set(planned[position].part.copies?.values());
+          if ([...names].every((name) => copied.has(name))) {
+            stuck.push(member);
+            continue;
+          }
+          const copying = await planBehaviour(
+            member.shapeKey,
+            member.slots,
+            member.part.occurrences,
+            inputs,
+            member.file,
+            rebase,
+            new Set(),
+            member.groupName,
+            new Set([...copied, ...names]),
+          );
+          if (copying.behaviour) variants.set(member, copying.behaviour);
+          else stuck.push(member);
+        }
+        if (stuck.length > 0) return { text, net: -Infinity, members: planned, stuck };
+      }
     };
     let current = kept.length > 0 ? await build(kept) : undefined;
+    // Members whose parameters the file cannot copy share a file of their own, as separate sources did before.
+    while (current && current.stuck.length > 0) {
+      const stuck = current.stuck;
+      const moved = stuck.some((member) => member !== kept[0]) ? stuck.filter((member) => member !== kept[0]) : kept.slice(1);
+      kept = kept.filter((member) => !moved.includes(member));
+      pools.push({ settings, members: moved });
+      current = await build(kept);
+    }
     // A member whose leaving makes the file save more goes back inline (what it brings costs more than it saves).
     while (current && kept.length > 1) {
-      let best: { member: Behaviour; built: { text: string; net: number } } | undefined;
+      let best: { member: Behaviour; built: PooledFile } | undefined;
       for (const member of kept) {
         const built = await build(kept.filter((other) => other !== member));
         if (built.net > (best?.built.net ?? current.net)) best = { member, built };
@@ -218,13 +286,13 @@ async function paying(
       for (const member of kept)
         leaveInline(
           member,
-          `extracting it would not pay: its simple scenario (${countEditorLines(current.text)} lines) outweighs the ${replaced.get(member)} lines its ${member.uses.length} uses would save`,
+          `extracting it would not pay: its simple scenario (${countEditorLines(current.text)} lines) outweighs the ${replaced(member)} lines its ${member.uses.length} uses would save`,
         );
       continue;
     }
     const file = kept.length === 1 ? kept[0].file : path.join(simpleFolder, `${uniqueName('behaviours', taken)}.xosc`);
     const text = current.text;
-    for (const member of kept) result.push({ ...member, file, text });
+    for (const member of current.members) result.push({ ...member, file, text });
   }
   return result;
 }
@@ -303,7 +371,8 @@ async function plan(
 
 /**
  * Flattens every main that imports something, with the simple scenarios read from memory, and compares
- * it with its input rebased onto the main's folder (SPEC 8): the first difference of each that differs.
+ * it with its input rebased onto the main's folder (SPEC 8): the first difference of each that differs, or
+ * the parameter-conflict its flattening would warn of.
  */
 async function verify(inputs: ParsedInput[], planned: Plan, limits: Partial<Limits>): Promise<ModularizeResult['failures']> {
   const files = new Map<string, string>();
@@ -332,6 +401,9 @@ async function verify(inputs: ParsedInput[], planned: Plan, limits: Partial<Limi
     const expected = applyEdits(input.text, input.pathEdits);
     const difference = firstDifference(result.text, expected);
     if (difference) failures.push({ input: main.input, difference });
+    // Equivalent, but warned that a declaration of the main differs from its simple scenario's: not what the input said either.
+    const conflict = result.problems.find((problem) => problem.code === 'parameter-conflict');
+    if (!difference && conflict) failures.push({ input: main.input, difference: `its main would be warned: ${conflict.message}` });
   }
   return failures;
 }

@@ -16,6 +16,8 @@ export interface SimpleScenarioParts {
   inputs: ParsedInput[];
   /** The group's attribute values as the simple scenario holds them. */
   defaults: string[];
+  /** The group's own copies of parameters (PooledGroup.copies). */
+  copies?: ReadonlyMap<string, string>;
   /** More groups the same file holds (a pool of behaviours sharing its declarations, catalogs and roads). */
   others?: PooledGroup[];
   unit: string;
@@ -82,6 +84,12 @@ function findNamed(
   return undefined;
 }
 
+/** A declaration's text declaring `name` instead, where a group's own copy of a parameter is declared. */
+function named(declaration: string, name: string | undefined): string {
+  if (name === undefined) return declaration;
+  return declaration.replace(/(\bname\s*=\s*["'])[^"']*(["'])/, (_, open: string, close: string) => open + name + close);
+}
+
 /**
  * A valid scenario around one group, as the paper's simple_1 and simple_2 are: the declarations and
  * entities the group names (taken from the inputs it came from), the representative input's road
@@ -113,11 +121,21 @@ export async function simpleScenarioText(parts: SimpleScenarioParts): Promise<st
   ];
   lines.push(`${unit}<FileHeader ${headerAttributes.map(([name, value]) => `${name}="${escapeAttributeValue(value)}"`).join(' ')}/>`);
 
+  // A group's own copy of a parameter is declared as the parameter is in that group's scenarios, under the copy's name.
+  const copyOf = new Map<string, { original: string; documents: XmlDocument[] }>();
+  for (const group of groups)
+    for (const [copy, original] of group.copies ?? [])
+      copyOf.set(copy, { original, documents: [...new Set(group.occurrences.map((occurrence) => inputs[occurrence.input].document))] });
+  const declarationOf = (name: string) => {
+    const copy = copyOf.get(name);
+    return copy ? findNamed(copy.documents, ['ParameterDeclaration'], copy.original) : findNamed(documents, ['ParameterDeclaration'], name);
+  };
+
   // Every value of the group that names an entity of its inputs: the entity is declared here too.
   // A parameter's value may name an entity too (an `entityRef="$owner"`).
   const parameterValues: string[] = [];
   for (const match of groupText.matchAll(PARAMETER_USE)) {
-    const declared = findNamed(documents, ['ParameterDeclaration'], match[1]);
+    const declared = declarationOf(match[1]);
     const value = declared && attributeValue(declared.element, 'value');
     if (value !== undefined) parameterValues.push(value);
   }
@@ -148,16 +166,17 @@ export async function simpleScenarioText(parts: SimpleScenarioParts): Promise<st
       for (const name of element.name === 'CatalogReference' ? (fromCatalogs?.get(element.start) ?? []) : [])
         if (!needed.includes(name)) needed.push(name);
   }
-  const foundDeclarations: { document: XmlDocument; element: XmlElement }[] = [];
+  const foundDeclarations: { document: XmlDocument; element: XmlElement; copy?: string }[] = [];
   for (let i = 0; i < needed.length; i++) {
-    const found = findNamed(documents, ['ParameterDeclaration'], needed[i]);
+    const found = declarationOf(needed[i]);
     if (!found) continue;
-    foundDeclarations.push(found);
-    want(found.document.text.slice(found.element.start, found.element.end));
+    const copy = copyOf.has(needed[i]) ? needed[i] : undefined;
+    foundDeclarations.push({ ...found, copy });
+    want(named(found.document.text.slice(found.element.start, found.element.end), copy));
   }
   // In the order the inputs declare them: a value may only use parameters declared before it.
   foundDeclarations.sort((a, b) => documents.indexOf(a.document) - documents.indexOf(b.document) || a.element.start - b.element.start);
-  const declarations = foundDeclarations.map((found) => declarationText(found.document, found.element, unit, eol));
+  const declarations = foundDeclarations.map((found) => named(declarationText(found.document, found.element, unit, eol), found.copy));
   lines.push(
     declarations.length > 0
       ? [`${unit}<ParameterDeclarations>`, ...declarations, `${unit}</ParameterDeclarations>`].join(eol)

@@ -93,4 +93,6 @@ export interface PooledGroup {
   groupName: string;
   occurrences: GroupOccurrence[];
   defaults: string[];
+  /** The group's own copies of parameters whose value differs between its scenarios: copy's name to the parameter's. */
+  copies?: ReadonlyMap<string, string>;
 }
