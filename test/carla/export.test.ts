@@ -1983,6 +1983,8 @@ describe('export --target carla, variables and the parameters conditions compare
     }).replace('<ParameterDeclarations/>', declarations);
   const byVariable = (ref: string, rule: string, value: string): string =>
     `<ByValueCondition><VariableCondition variableRef="${ref}" rule="${rule}" value="${value}"/></ByValueCondition>`;
+  const byParameter = (ref: string, rule: string, value: string): string =>
+    `<ByValueCondition><ParameterCondition parameterRef="${ref}" rule="${rule}" value="${value}"/></ByValueCondition>`;
   const variablesText = (): string =>
     scenario(
       2,
@@ -2060,8 +2062,6 @@ describe('export --target carla, variables and the parameters conditions compare
   });
 
   it('a parameter a condition compares is set in the Init to its declared value, a boolean as 1 or 0, so that ScenarioRunner compares numbers (issue 26)', async function () {
-    const byParameter = (ref: string, rule: string, value: string): string =>
-      `<ByValueCondition><ParameterCondition parameterRef="${ref}" rule="${rule}" value="${value}"/></ByValueCondition>`;
     const text = scenario(
       0,
       `<ParameterDeclarations>
@@ -2101,6 +2101,48 @@ describe('export --target carla, variables and the parameters conditions compare
       ['BrakesStarts1', 'SUCCESS', 'RUNNING'],
       ['CloserStarts0', 'RUNNING', 'SUCCESS'],
     ]);
+  });
+  it("a parameter or variable only a later story event sets is set in the Init too: ScenarioRunner's ticks no longer raise at the condition ahead of it (issue 26)", async function () {
+    // esmini's lane_change.xosc: an event starts on 'gap' > 10, and a later event of the maneuver sets it, 3 s in.
+    const events = (set: string, compared: string): string =>
+      globalEvent('Checks', '<ParameterAction parameterRef="done"><SetAction value="1"/></ParameterAction>', [compared]) +
+      globalEvent('Sets', set, [atTime(3)]);
+    const done = '<ParameterDeclaration name="done" parameterType="double" value="0"/>';
+    const texts = {
+      parameter: scenario(
+        0,
+        `<ParameterDeclarations><ParameterDeclaration name="gap" parameterType="double" value="3"/>${done}</ParameterDeclarations>`,
+        events('<ParameterAction parameterRef="gap"><SetAction value="11"/></ParameterAction>', byParameter('gap', 'greaterThan', '10')),
+      ),
+      variable: scenario(
+        2,
+        `<ParameterDeclarations>${done}</ParameterDeclarations>
+  <VariableDeclarations><VariableDeclaration name="gap" variableType="double" value="3"/></VariableDeclarations>`,
+        events('<VariableAction variableRef="gap"><SetAction value="11"/></VariableAction>', byVariable('gap', 'greaterThan', '10')),
+      ),
+    };
+    const exported: string[] = [];
+    for (const [name, text] of Object.entries(texts)) {
+      const original = path.join(out, `${name}.xosc`);
+      fs.writeFileSync(original, text);
+      const result = await exportFile(original, path.join(out, `${name}-carla.xosc`));
+      assert.equal(result.code, 0, result.stderr);
+      assert.match(
+        fs.readFileSync(result.output, 'utf8'),
+        /<Init>\s*<Actions>\s*<GlobalAction>\s*<ParameterAction parameterRef="gap">\s*<SetAction value="3"\/>/,
+      );
+      exported.push(result.output);
+    }
+    requireCarlaHarness(this);
+    const verdicts = await harnessVerdicts([path.join(out, 'parameter.xosc'), ...exported], { tree: true, storyTicks: true });
+    // The 1.0 original raises where the event ahead is first ticked (check says so: test/carla/profile.test.ts).
+    assert.match(verdicts.get(path.join(out, 'parameter.xosc'))?.story_ticks ?? '', /^frame 2 raises TypeError/);
+    for (const output of exported) {
+      const verdict = verdicts.get(path.resolve(output));
+      assert.equal(verdict?.status, 'OK', JSON.stringify(verdict));
+      assert.equal(verdict?.story_ticks, null, output);
+      assert.deepEqual(verdict?.parameter_ticks, [['ChecksStarts0', 'RUNNING', 'SUCCESS']]);
+    }
   });
 });
 

@@ -3,6 +3,7 @@ import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
 import { harnessVerdicts, HarnessVerdict, requireCarlaHarness, scenarioRunnerVehicle } from '../support/carla';
+import { afterASecond, atOnce, parameterCondition, parameterStoryScenario, settingEvent, storyAct } from '../support/carlaStories';
 import { esminiCatalogs, esminiRoads } from '../support/esmini';
 import { runCli } from '../support/fixtures';
 import { openscenarioDir } from '../support/openscenarioCorpus';
@@ -223,5 +224,73 @@ ${scenarioRunnerVehicle('Ego', 'ego_vehicle')}
     assert.match(ticks.get('GapAbove')?.[0] ?? '', /^raises TypeError/);
     assert.deepEqual(ticks.get('GapIs'), ['RUNNING', 'RUNNING']);
     assert.deepEqual(ticks.get('SetBelow'), ['SUCCESS', 'SUCCESS']);
+  });
+});
+
+describe("check --simulator carla on a parameter only a story sets agrees with ScenarioRunner's ticks (issue 26)", function () {
+  this.timeout(120_000);
+  let folder: string;
+  before(function () {
+    requireCarlaHarness(this);
+    folder = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-carla-story-parameters-'));
+  });
+  after(() => {
+    if (folder) fs.rmSync(folder, { recursive: true, force: true });
+  });
+
+  it('an error where the stories, ticked, always raise at the condition; a warning where that depends on when the action runs', async () => {
+    const gapBelow = parameterCondition('GapBelow', 'lessThan', '2');
+    const checks = settingEvent('Checks', gapBelow);
+    const setsLater = settingEvent('Sets', afterASecond('SetsStarts'), 'gap');
+    const setsAtOnce = settingEvent('Sets', atOnce('SetsStarts'), 'gap');
+    const files: Record<string, { acts: string[]; check: string; raises: boolean }> = {
+      // esmini's lane_change.xosc: the condition starts an event ahead of the one that sets the parameter.
+      earlierEvent: { acts: [storyAct('A', [checks, setsAtOnce])], check: 'error', raises: true },
+      sameEvent: { acts: [storyAct('A', [settingEvent('Sets', gapBelow, 'gap')])], check: 'error', raises: true },
+      startsItsAct: { acts: [storyAct('A', [setsAtOnce], gapBelow)], check: 'error', raises: true },
+      startsEarlierAct: {
+        acts: [storyAct('A', [settingEvent('Other', atOnce('X'))], gapBelow), storyAct('B', [setsAtOnce])],
+        check: 'error',
+        raises: true,
+      },
+      // Ahead of the condition: it depends on when the action's event starts.
+      aheadAtOnce: { acts: [storyAct('A', [setsAtOnce, checks])], check: 'warning', raises: false },
+      aheadLater: { acts: [storyAct('A', [setsLater, checks])], check: 'warning', raises: true },
+      otherActBefore: { acts: [storyAct('B', [setsAtOnce]), storyAct('A', [checks])], check: 'warning', raises: false },
+      otherActAfter: { acts: [storyAct('A', [checks]), storyAct('B', [setsAtOnce])], check: 'warning', raises: true },
+      stopTrigger: {
+        acts: [storyAct('A', [setsAtOnce], undefined, `<StopTrigger><ConditionGroup>${gapBelow}</ConditionGroup></StopTrigger>`)],
+        check: 'warning',
+        raises: false,
+      },
+      equalTo: {
+        acts: [storyAct('A', [settingEvent('Checks', parameterCondition('GapIs', 'equalTo', '1')), setsAtOnce])],
+        check: 'none',
+        raises: false,
+      },
+    };
+    const written = Object.entries(files).map(([name, { acts }]) => {
+      const file = path.join(folder, `${name}.xosc`);
+      fs.writeFileSync(file, parameterStoryScenario(acts));
+      return file;
+    });
+    const checked = checkForCarla(written, '0.9.16');
+    const verdicts = await harnessVerdicts(written, { tree: true, storyTicks: true });
+    const seen = Object.keys(files).map((name) => {
+      const file = path.resolve(folder, `${name}.xosc`);
+      const problems = checked.get(file) ?? [];
+      const parameters = problems.filter((problem) => /ParameterAction|compares a parameter/.test(problem.message));
+      const verdict = verdicts.get(file);
+      assert.equal(verdict?.status, 'OK', JSON.stringify(verdict));
+      assert.deepEqual(
+        problems.filter((problem) => problem.severity === 'error' && !parameters.includes(problem)),
+        [],
+      );
+      return [name, parameters.map((problem) => problem.severity).join(',') || 'none', /raises TypeError/.test(verdict?.story_ticks ?? '')];
+    });
+    assert.deepEqual(
+      seen,
+      Object.entries(files).map(([name, { check, raises }]) => [name, check, raises]),
+    );
   });
 });

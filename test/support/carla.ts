@@ -61,6 +61,11 @@ export interface HarnessVerdict {
    * after the Init's ChangeParameters and again after every other one: 'RUNNING', 'SUCCESS' or 'raises ...'.
    */
   parameter_ticks?: [string, string, string][];
+  /**
+   * With `storyTicks: true`: the Init's parameters and the stories ticked as a run ticks them (10 frames of 0.05 s, from the
+   * parameters as declared): 'frame N raises ...' for the first exception, or null. Conditions that need the world never hold.
+   */
+  story_ticks?: string | null;
   /** With `tree: true`: where ScenarioRunner spawns each actor, by role name: [x, y, z, yaw°] in CARLA's coordinates (y negated). */
   spawns?: Record<string, [number, number, number, number]>;
 }
@@ -71,11 +76,12 @@ const treeScript = path.join(__dirname, 'carlaTree.py');
 /**
  * ScenarioRunner's verdict on each file, from one run of the harness over all of them (it imports
  * ScenarioRunner once and forks per file). `fixSrBugs` sets aside 0.9.16's route crash: 0.9.15's verdicts;
- * `tree` lists what of each storyboard reached the built tree.
+ * `tree` lists what of each storyboard reached the built tree; `storyTicks` (with `tree`) also ticks the stories, every
+ * action included (only for the tests' own scenarios: a CustomCommandAction would run its command).
  */
 export async function harnessVerdicts(
   files: string[],
-  options: { fixSrBugs?: boolean; timeoutSeconds?: number; tree?: boolean } = {},
+  options: { fixSrBugs?: boolean; timeoutSeconds?: number; tree?: boolean; storyTicks?: boolean } = {},
 ): Promise<Map<string, HarnessVerdict>> {
   const json = path.join(temporaryFolder('m2s-carla-'), 'verdicts.json');
   try {
@@ -87,7 +93,10 @@ export async function harnessVerdicts(
     const { code, output } = await runBounded(
       'python3',
       [...args, ...files],
-      { cwd: repoRoot, env: { ...process.env, CARLA_ORACLE_CACHE: carlaCache } },
+      {
+        cwd: repoRoot,
+        env: { ...process.env, CARLA_ORACLE_CACHE: carlaCache, ...(options.storyTicks ? { M2S_CARLA_STORY_TICKS: '1' } : {}) },
+      },
       (files.length * perFile * 1000) / 2 + 60_000,
     );
     if ((code !== 0 && code !== 1) || !fs.existsSync(json))

@@ -1,8 +1,9 @@
 """The CARLA harness (../shared/carla/check.py), run unchanged, with one addition of the tests': each OK
 file's result also lists the story elements of the behaviour tree ScenarioRunner built ("tree": the Acts,
 ManeuverGroups, Maneuvers, Events and Actions by their OpenSCENARIO names, and the names of the condition
-atomics), so a test can tell what of the exported storyboard reached the tree; and how its conditions on
-parameters fare when ticked ("parameter_ticks", below).
+atomics), so a test can tell what of the exported storyboard reached the tree; how its conditions on
+parameters fare when ticked ("parameter_ticks", below); and what the stories do when ticked as a run ticks
+them ("story_ticks", below, with M2S_CARLA_STORY_TICKS set).
 
     python3 carlaTree.py CHECK_PY [check.py's own options and files]
 
@@ -68,6 +69,36 @@ def parameter_ticks(scenario):
     return [[node.name, first, then] for node, first, then in zip(checks, before, after)]
 
 
+STORY_FRAMES = 10
+
+
+def story_ticks(scenario):
+    """The Init's parameters and the stories ticked as ScenarioManager ticks the tree, STORY_FRAMES frames of
+    0.05 s (GameTime advanced as on_carla_tick does: srunner/scenariomanager/timer.py): the first exception a
+    tick raises, as 'frame N raises <error>', or None. Only ParametersInit and OSCStories are ticked (the
+    actors' Init behaviours need a simulator), so only conditions that need no world (parameters, simulation
+    time, storyboard states) ever hold; the others stay RUNNING."""
+    from srunner.scenariomanager.timer import GameTime
+
+    class Timestamp:  # carla.Timestamp, as the world's on_tick hands it to GameTime
+        def __init__(self, frame):
+            self.frame = frame
+            self.delta_seconds = 0.05
+            self.elapsed_seconds = frame * 0.05
+
+    nodes = {node.name: node for node in scenario.scenario_tree.iterate()}
+    parts = [nodes[name] for name in ('ParametersInit', 'OSCStories') if name in nodes]
+    for frame in range(1, STORY_FRAMES + 1):
+        GameTime.on_carla_tick(Timestamp(frame))
+        for part in parts:
+            try:
+                for _ in part.tick():
+                    pass
+            except Exception as error:  # what ScenarioRunner would raise at that tick
+                return 'frame %d raises %s: %s' % (frame, type(error).__name__, error)
+    return None
+
+
 def spawns(scenario):
     """Where ScenarioRunner spawns each actor: its configuration's transform (openscenario_configuration.py
     _get_actor_transform), as {rolename: [x, y, z, yaw in degrees]}."""
@@ -99,7 +130,15 @@ def main():
         def lazy_refs(scenario, parameter_ref):
             # Called once the tree is built (run_file, stage build): the moment to read it.
             built['tree'] = story_elements(scenario)
+            from srunner.scenariomanager.carla_data_provider import CarlaDataProvider
+            declared = dict(CarlaDataProvider._global_osc_parameters)
             built['parameter_ticks'] = parameter_ticks(scenario)
+            # parameter_ticks ran the ParameterActions: the run starts from the parameters as declared.
+            CarlaDataProvider._global_osc_parameters.clear()
+            CarlaDataProvider._global_osc_parameters.update(declared)
+            # Opt-in: a run ticks every action, a CustomCommandAction's shell command included.
+            if os.environ.get('M2S_CARLA_STORY_TICKS'):
+                built['story_ticks'] = story_ticks(scenario)
             built['spawns'] = spawns(scenario)
             return original_lazy_refs(scenario, parameter_ref)
 
@@ -110,6 +149,8 @@ def main():
                 payload['tree'] = built['tree']
                 payload['parameter_ticks'] = built['parameter_ticks']
                 payload['spawns'] = built['spawns']
+                if 'story_ticks' in built:
+                    payload['story_ticks'] = built['story_ticks']
             emit(kind, payload)
 
         return original_run_file(env, path, opts, emit_with_tree)

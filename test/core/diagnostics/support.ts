@@ -8,6 +8,7 @@ import { applyEdits } from '../../support/textEdits';
 import { parseXml } from '../../../server/src/core/xml';
 import { Flattener } from '../../../server/src/core/flatten';
 import { Problem } from '../../../server/src/core/problems';
+import { Simulator } from '../../../server/src/core/profiles/simulators';
 import { analyzeDocument, CatalogLoader, semanticProblems } from '../../../server/src/core/semantics';
 import { diskRef, ScenarioStore } from '../../../server/src/core/sources';
 import { temporaryWorkspace } from '../../support/workspace';
@@ -44,8 +45,11 @@ export function fixContext(
   };
 }
 
-/** The problems of the document checks (core/semantics) for `scenario.xosc` of `text`, written beside `files` in a workspace of its own. */
-export async function semanticProblemsOf(text: string, files: Record<string, string> = {}): Promise<Problem[]> {
+/**
+ * The problems of the document checks (core/semantics) for `scenario.xosc` of `text`, written beside `files` in a workspace
+ * of its own; with `simulator`, that simulator's checks too.
+ */
+export async function semanticProblemsOf(text: string, files: Record<string, string> = {}, simulator?: Simulator): Promise<Problem[]> {
   const root = temporaryWorkspace({ 'scenario.xosc': text, ...files });
   try {
     const semantics = await analyzeDocument(
@@ -53,6 +57,7 @@ export async function semanticProblemsOf(text: string, files: Record<string, str
       parseXml(text),
       new CatalogLoader(new ScenarioStore({ scenarioPath: [], root })),
       false,
+      simulator,
     );
     return semanticProblems(semantics);
   } finally {

@@ -320,6 +320,21 @@ export const CARLA_FACTS = {
     source: `${CONFIGURATION}:234, ${PARSER}:189-190, ${SR_TRIGGER_CONDITIONS}:1459-1477`,
     severity: 'warning',
   },
+  parameterSetAfterCondition: {
+    does: "holds a parameter that only the stories' ParameterActions set as its declared text until one of them runs, and a lessThan or greaterThan ParameterCondition ticked before that raises TypeError; it ticks the stories in document order (an Act's StartTrigger before its maneuvers, an Event's StartTrigger before its actions), so none of them can run before this condition's first tick, and the scenario stops there",
+    source: `${CONFIGURATION}:234, ${PARSER}:189-214, ${SR_TRIGGER_CONDITIONS}:1459-1477, ${RUNNER}:369-385, 425-454, 482-503`,
+    severity: 'error',
+  },
+  parameterSetInStoryOrder: {
+    does: "holds a parameter that only the stories' ParameterActions set as its declared text until one of them runs, and a lessThan or greaterThan ParameterCondition ticked before that raises TypeError: whether one runs first depends on when its event starts and on the order it ticks the stories in (document order; an Act's StartTrigger before its maneuvers and its StopTrigger after them, an Event's StartTrigger before its actions)",
+    source: `${CONFIGURATION}:234, ${PARSER}:189-214, ${SR_TRIGGER_CONDITIONS}:1459-1477, ${RUNNER}:369-385, 425-454, 482-503`,
+    severity: 'warning',
+  },
+  parameterValueNotNumber: {
+    does: 'converts the value a ParameterCondition compares with to a number at every tick, and raises ValueError at the first tick where it is no number (true, false, text), whatever a ParameterAction set the parameter to',
+    source: `${PARSER}:1102, 143-147, 189-214, ${SR_TRIGGER_CONDITIONS}:1472-1477`,
+    severity: 'error',
+  },
   noEgo: {
     does: 'runs the ScenarioObjects whose Property type is "ego_vehicle" as the ego; this scenario marks none',
     source: `${CONFIGURATION}:301-313, 420-421`,

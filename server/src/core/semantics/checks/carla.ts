@@ -9,6 +9,7 @@ import { checkValue } from '../../schema/values';
 import { attribute, descendants, XmlAttribute, XmlElement } from '../../xml';
 import type { CarlaCatalogLocation } from '../carlaFiles';
 import { formatValue } from '../values';
+import { isCriterion, parametersComparedAsText } from './carlaParameters';
 import { at } from './support';
 import type { Finding, SemanticCheck, SemanticContext } from './types';
 
@@ -242,14 +243,6 @@ const missingParts = (elements: XmlElement[]): Finding[] => {
   return findings;
 };
 
-/** A Condition ScenarioRunner builds as one of its test criteria: a ParameterCondition named criteria_* (SR_SCENARIO _create_test_criteria, SR_PARSER convert_condition_to_atomic). */
-function isCriterion(condition: XmlElement): boolean {
-  return (
-    (attribute(condition, 'name')?.value ?? '').startsWith('criteria_') &&
-    descendants(condition).some((child) => child.name === 'ParameterCondition')
-  );
-}
-
 /** Storyboard rules ScenarioRunner does not follow: warnings where the scenario depends on them. */
 const storyboard = (elements: XmlElement[]): Finding[] => {
   const findings: Finding[] = [];
@@ -287,50 +280,6 @@ const storyboard = (elements: XmlElement[]): Finding[] => {
             );
         }
     }
-  }
-  return findings;
-};
-
-/**
- * A ParameterCondition on a declared parameter no ParameterAction sets: ScenarioRunner holds the declared value
- * as text and compares it with a number (criteria_ conditions name test criteria, not parameters).
- */
-const parametersComparedAsText = (context: SemanticContext, elements: XmlElement[]): Finding[] => {
-  const root = context.model.document.root;
-  const declarations = root?.children.find((child) => child.name === 'ParameterDeclarations');
-  if (!declarations) return [];
-  const declared = new Map(
-    declarations.children
-      .filter((child) => child.name === 'ParameterDeclaration')
-      .map((declaration) => [attribute(declaration, 'name')?.value ?? '', declaration]),
-  );
-  // Set anywhere, it may be a number by the time the condition is ticked: only a parameter nothing sets is certain to be text.
-  const set = new Set(
-    elements
-      .filter((element) => element.name === 'ParameterAction')
-      .map((action) => attribute(action, 'parameterRef')?.value.trim().replace(/^\$/, '')),
-  );
-  const findings: Finding[] = [];
-  for (const element of elements) {
-    if (element.name !== 'ParameterCondition') continue;
-    const condition = element.parent?.parent;
-    if (condition?.name === 'Condition' && isCriterion(condition)) continue;
-    // The Storyboard's StopTrigger is never ticked but for criteria_ (storyboardStopTrigger says so).
-    if (condition?.parent?.parent?.name === 'StopTrigger' && condition.parent.parent.parent?.name === 'Storyboard') continue;
-    const ref = attribute(element, 'parameterRef');
-    const name = ref?.value.trim().replace(/^\$/, '') ?? '';
-    const declaration = declared.get(name);
-    if (!ref || !declaration || set.has(name)) continue;
-    const value = attribute(element, 'value')?.value.trim() ?? '';
-    const rule = attribute(element, 'rule')?.value ?? '';
-    // equalTo a number (or a $parameter holding one) compares text with a float: false, not an exception.
-    const comparable = value.startsWith('$') || (value !== '' && Number.isFinite(Number(value)));
-    const detail = `'${name}' is declared as '${attribute(declaration, 'value')?.value ?? ''}' and compared ${rule} ${value}; a ParameterAction in the Init that sets it makes it a number`;
-    findings.push(
-      carlaFinding(rule === 'equalTo' && comparable ? 'parameterNeverEqual' : 'parameterComparedAsText', element, ref, detail, {
-        exportMaps: true,
-      }),
-    );
   }
   return findings;
 };
