@@ -1,6 +1,6 @@
 import * as assert from 'node:assert/strict';
 import * as path from 'node:path';
-import { modularize } from '../../server/src/core/modularize';
+import { modularize, ModularizeResult } from '../../server/src/core/modularize';
 import { assertFlattensBack, figuresLine, modularizeLibrary, realLibraries } from '../support/modularizeLibrary';
 import {
   act,
@@ -11,6 +11,7 @@ import {
   scenarioDocument,
   scenarioObjects,
   speedChangeGroup,
+  speedEvent,
   story,
 } from '../support/fixtures';
 import { requireCorpus } from '../support/paths';
@@ -26,6 +27,31 @@ function scenarioWith(parts: { variables?: string; catalogLocations?: string; st
     entities: scenarioObjects(['ego', 'car']),
     storyboard: EMPTY_INIT + story('S', act('A', parts.groups), parts.storyDeclarations) + '    <StopTrigger/>\n',
   });
+}
+
+/**
+ * Four scenarios in a temporary lib/ beside `catalog` (lib/Catalogs/ManeuverCatalog.xosc), each a speedChangeGroup holding
+ * `reference` and the parts `partsOf` gives it, modularized into out/.
+ */
+async function modularizeWithCatalog(
+  catalog: string,
+  reference: string,
+  partsOf: (index: number) => Omit<Parameters<typeof scenarioWith>[0], 'groups'>,
+): Promise<ModularizeResult> {
+  const files: Record<string, string> = { 'lib/Catalogs/ManeuverCatalog.xosc': catalog };
+  ['car', 'ego', 'car', 'ego'].forEach((actor, index) => {
+    files[`lib/s${index}.xosc`] = scenarioWith({
+      ...partsOf(index),
+      groups: speedChangeGroup(`G${index}.Go`, actor, String(10 + index), actor, reference),
+    });
+  });
+  const root = temporaryWorkspace(files);
+  const inputs = [0, 1, 2, 3].map((index) => ({
+    path: path.join(root, 'lib', `s${index}.xosc`),
+    output: path.join(root, 'out', `s${index}.xosc`),
+    text: files[`lib/s${index}.xosc`],
+  }));
+  return modularize(inputs, { simpleFolder: path.join(root, 'out', 'simple') });
 }
 
 describe('core: modularize on real libraries (issue 28)', function () {
@@ -122,25 +148,39 @@ describe('core: modularize on real libraries (issue 28)', function () {
 `;
     const catalogLocations = element('ManeuverCatalog', '      <Directory path="Catalogs"/>\n', 4);
     const reference = `          <CatalogReference catalogName="ManeuverCatalog" entryName="Flag"/>\n`;
-    const files: Record<string, string> = { 'lib/Catalogs/ManeuverCatalog.xosc': catalog };
-    ['car', 'ego', 'car', 'ego'].forEach((actor, index) => {
-      files[`lib/s${index}.xosc`] = scenarioWith({
-        variables,
-        catalogLocations,
-        groups: speedChangeGroup(`G${index}.Go`, actor, String(10 + index), actor, reference),
-      });
-    });
-    const root = temporaryWorkspace(files);
-    const inputs = [0, 1, 2, 3].map((index) => ({
-      path: path.join(root, 'lib', `s${index}.xosc`),
-      output: path.join(root, 'out', `s${index}.xosc`),
-      text: files[`lib/s${index}.xosc`],
-    }));
-    const result = await modularize(inputs, { simpleFolder: path.join(root, 'out', 'simple') });
+    const result = await modularizeWithCatalog(catalog, reference, () => ({ variables, catalogLocations }));
     assert.deepEqual(result.keptInline, []);
     assert.equal(result.behaviours.length, 1);
     assert.match(result.behaviours[0].text, /<VariableDeclaration name="done" variableType="boolean" value="false"\/>/);
     assert.deepEqual(result.failures, []);
     assert.ok(result.totals.linesAfter < result.totals.linesBefore);
+  });
+
+  it("declares no parameter of the scenario for a ParameterAssignment's parameterRef, which names the catalog entry's own", async () => {
+    // As in Euro NCAP's CPNA: a ParameterAssignment parameterRef="VRU_initS" while the scenario declares a VRU_initS of its own.
+    const catalog = catalogFile(
+      'ManeuverCatalog',
+      `    <Maneuver name="Wait">
+      <ParameterDeclarations>
+        <ParameterDeclaration name="Delay" parameterType="double" value="1"/>
+      </ParameterDeclarations>
+${speedEvent('Slow', '3', '              <StartTrigger><ConditionGroup><Condition name="After" delay="0" conditionEdge="none"><ByValueCondition><SimulationTimeCondition value="$Delay" rule="greaterThan"/></ByValueCondition></Condition></ConditionGroup></StartTrigger>\n')}    </Maneuver>
+`,
+    );
+    const reference = `          <CatalogReference catalogName="ManeuverCatalog" entryName="Wait">
+            <ParameterAssignments>
+              <ParameterAssignment parameterRef="Delay" value="2"/>
+            </ParameterAssignments>
+          </CatalogReference>
+`;
+    const result = await modularizeWithCatalog(catalog, reference, (index) => ({
+      catalogLocations: element('ManeuverCatalog', '      <Directory path="Catalogs"/>\n', 4),
+      storyDeclarations: `        <ParameterDeclaration name="Delay" parameterType="double" value="${5 + index}"/>\n`,
+    }));
+    assert.deepEqual(result.keptInline, []);
+    assert.equal(result.behaviours.length, 1);
+    assert.doesNotMatch(result.behaviours[0].text, /<ParameterDeclaration name="Delay/);
+    // modularize's own check: each main flattens back to its input rebased onto out/, unwarned.
+    assert.deepEqual(result.failures, []);
   });
 });

@@ -5,6 +5,7 @@ import { attributeValue, descendants, escapeAttributeValue, parseXml, XmlDocumen
 import { GroupOccurrence } from './shape';
 import { ParsedInput, PooledGroup, RebasePaths } from './types';
 import { coreMemo } from '../memos';
+import { PARAMETER_REF_ELEMENTS } from '../semantics/parameterUses';
 
 /** One group of a simple scenario: its text as written there, its name, where it came from, its defaults. */
 export interface SimpleScenarioParts {
@@ -26,8 +27,11 @@ export interface SimpleScenarioParts {
 }
 
 const PARAMETER_USE = /\$\{?([A-Za-z_][\w]*)/g;
-/** A ParameterCondition or ParameterAction names its parameter without a `$`. */
-const PARAMETER_REF = /\bparameterRef\s*=\s*["']\$?([A-Za-z_]\w*)["']/g;
+/** A ParameterCondition or ParameterAction names its parameter without a `$` (a ParameterAssignment's names its catalog entry's). */
+const PARAMETER_REF = new RegExp(
+  `<(?:${[...PARAMETER_REF_ELEMENTS].join('|')})\\b[^>]*?\\bparameterRef\\s*=\\s*["']\\$?([A-Za-z_]\\w*)["']`,
+  'g',
+);
 const VARIABLE_REF = /\bvariableRef\s*=\s*["']([^"']+)["']/g;
 
 /** An element's text moved to `depth` levels of `unit`. */

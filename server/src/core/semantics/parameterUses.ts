@@ -4,7 +4,7 @@ import { resolveName } from './scopes';
 import { Declaration, ParameterUse, Scope, SemanticModel, ValueSite } from './types';
 
 /** Elements whose `parameterRef` names a parameter of the enclosing scopes (1.0-1.1 parameter actions and conditions). */
-const PARAMETER_REF_ELEMENTS = new Set(['ParameterCondition', 'ParameterAction', 'ParameterSetAction', 'ParameterModifyAction']);
+export const PARAMETER_REF_ELEMENTS = new Set(['ParameterCondition', 'ParameterAction', 'ParameterSetAction', 'ParameterModifyAction']);
 /**
  * Attributes that name a parameter or variable rather than use its value; esmini accepts them with a leading `$`.
  * A distribution's `parameterName` names a root parameter of its ScenarioFile, not one of its own file.
