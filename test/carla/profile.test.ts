@@ -268,6 +268,12 @@ describe("check --simulator carla on a parameter only a story sets agrees with S
         check: 'none',
         raises: false,
       },
+      // The standard holds on the declared 3 at once; ScenarioRunner's tick compares the text '3' with 3.0 (below).
+      equalToDeclared: {
+        acts: [storyAct('A', [settingEvent('Checks', parameterCondition('GapIs', 'equalTo', '3')), setsLater])],
+        check: 'warning',
+        raises: false,
+      },
     };
     const written = Object.entries(files).map(([name, { acts }]) => {
       const file = path.join(folder, `${name}.xosc`);
@@ -292,5 +298,7 @@ describe("check --simulator carla on a parameter only a story sets agrees with S
       seen,
       Object.entries(files).map(([name, { check, raises }]) => [name, check, raises]),
     );
+    const declaredTicks = verdicts.get(path.resolve(folder, 'equalToDeclared.xosc'))?.parameter_ticks;
+    assert.deepEqual(declaredTicks, [['GapIs', 'RUNNING', 'RUNNING']]);
   });
 });

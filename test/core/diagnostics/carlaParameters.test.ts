@@ -1,4 +1,5 @@
 import * as assert from 'node:assert/strict';
+import * as path from 'node:path';
 import { CARLA_FACTS } from '../../../server/src/core/profiles/carla';
 import { Problem } from '../../../server/src/core/problems';
 import { semanticProblemsOf } from './support';
@@ -98,9 +99,48 @@ describe('diagnostics: simulator (carla), a parameter only a story sets (issue 2
     }
   });
 
+  it('is a warning where a ParameterAction in a catalog Maneuver sets it, whose place in the tick order the scenario does not show', async () => {
+    const catalog = `<?xml version="1.0" encoding="UTF-8"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="0" date="2026-11-29T00:00:00" description="maneuvers" author="modular2simple tests"/>
+  <Catalog name="Maneuvers">
+    <Maneuver name="SetsGap">${setsGap()}
+    </Maneuver>
+  </Catalog>
+</OpenSCENARIO>
+`;
+    const text = parameterStoryScenario([storyAct('A', [settingEvent('Checks', parameterCondition('GapBelow', 'lessThan', '2'))])])
+      .replace(
+        '<CatalogLocations/>',
+        '<CatalogLocations><ManeuverCatalog><Directory path="catalogs"/></ManeuverCatalog></CatalogLocations>',
+      )
+      .replace(
+        '<Actors selectTriggeringEntities="false"/>',
+        '<Actors selectTriggeringEntities="false"/><CatalogReference catalogName="Maneuvers" entryName="SetsGap"/>',
+      );
+    const problems = (await semanticProblemsOf(text, { 'catalogs/ManeuverCatalog.xosc': catalog }, 'carla')).filter((problem) =>
+      problem.message.includes(CARLA_FACTS.parameterSetInStoryOrder.does),
+    );
+    assert.deepEqual(
+      problems.map((problem) => problem.range.start.line + 1),
+      [lineOf(text, 'name="GapBelow"')],
+    );
+    const line = lineOf(catalog, 'name="SetsAction"');
+    assert.ok(problems[0].message.includes(`line ${line} of ManeuverCatalog.xosc is in a catalog entry;`), problems[0].message);
+    assert.deepEqual(
+      problems[0].related?.map((place) => [path.basename(place.source.disk), place.range.start.line + 1]),
+      [['ManeuverCatalog.xosc', line]],
+    );
+  });
+
   it('is nothing for equalTo a number (it holds once the action ran) or a parameter the Init sets; a value that is no number is an error whatever sets it', async () => {
     const equal = parameterStoryScenario([storyAct('A', [settingEvent('Checks', parameterCondition('GapIs', 'equalTo', '1')), setsGap()])]);
     assert.deepEqual(await verdicts(equal), []);
+    // On the declared value the standard holds at once, ScenarioRunner only once the story set it.
+    const asDeclared = parameterStoryScenario([
+      storyAct('A', [settingEvent('Checks', parameterCondition('GapIs', 'equalTo', '$gap')), setsGap()]),
+    ]);
+    assert.deepEqual(await verdicts(asDeclared), [[lineOf(asDeclared, 'name="GapIs"'), 'warning', 'parameterNotEqualAsDeclared']]);
     const initSets = parameterStoryScenario(
       [storyAct('A', [settingEvent('Checks', parameterCondition('GapBelow', 'lessThan', '2')), setsGap()])],
       '<GlobalAction><ParameterAction parameterRef="gap"><SetAction value="3"/></ParameterAction></GlobalAction>',
@@ -112,8 +152,17 @@ describe('diagnostics: simulator (carla), a parameter only a story sets (issue 2
     assert.deepEqual(await verdicts(text), [[lineOf(text, 'name="DoneTrue"'), 'error', 'parameterValueNotNumber']]);
   });
 
-  it('still names a parameter nothing sets as compared as text', async () => {
-    const text = parameterStoryScenario([storyAct('A', [settingEvent('Checks', parameterCondition('GapBelow', 'lessThan', '2'))])]);
-    assert.deepEqual(await verdicts(text), [[lineOf(text, 'name="GapBelow"'), 'error', 'parameterComparedAsText']]);
+  it('still names a parameter nothing sets as compared as text; equalTo only where the declared value is the one compared with', async () => {
+    const text = parameterStoryScenario([
+      storyAct('A', [
+        settingEvent('Checks', parameterCondition('GapBelow', 'lessThan', '2')),
+        settingEvent('Equal', parameterCondition('GapIs', 'equalTo', '3')),
+        settingEvent('Other', parameterCondition('GapIsNot', 'equalTo', '4')),
+      ]),
+    ]);
+    assert.deepEqual(await verdicts(text), [
+      [lineOf(text, 'name="GapBelow"'), 'error', 'parameterComparedAsText'],
+      [lineOf(text, 'name="GapIs"'), 'warning', 'parameterNeverEqual'],
+    ]);
   });
 });

@@ -330,6 +330,11 @@ export const CARLA_FACTS = {
     source: `${CONFIGURATION}:234, ${PARSER}:189-214, ${SR_TRIGGER_CONDITIONS}:1459-1477, ${RUNNER}:369-385, 425-454, 482-503`,
     severity: 'warning',
   },
+  parameterNotEqualAsDeclared: {
+    does: "holds a parameter that only the stories' ParameterActions set as its declared text until one of them runs, and equalTo a number does not hold on that text: a condition that holds on the declared value waits for one of them instead",
+    source: `${CONFIGURATION}:234, ${PARSER}:189-190, ${SR_TRIGGER_CONDITIONS}:1459-1477`,
+    severity: 'warning',
+  },
   parameterValueNotNumber: {
     does: 'converts the value a ParameterCondition compares with to a number at every tick, and raises ValueError at the first tick where it is no number (true, false, text), whatever a ParameterAction set the parameter to',
     source: `${PARSER}:1102, 143-147, 189-214, ${SR_TRIGGER_CONDITIONS}:1472-1477`,

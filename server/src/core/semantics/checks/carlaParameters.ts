@@ -1,8 +1,11 @@
-import type { SimulatorFixData } from '../../problems';
+import * as path from 'node:path';
+import type { RelatedProblemLocation, SimulatorFixData } from '../../problems';
 import { carlaFactWording } from '../../diagnostics/simulator';
 import type { CarlaFactName } from '../../profiles/carla';
+import type { SourceRef } from '../../sources';
+import type { LineIndex } from '../../text';
 import { attribute, descendants, XmlAttribute, XmlElement } from '../../xml';
-import { at, relatedAt } from './support';
+import { at } from './support';
 import type { Finding, SemanticContext } from './types';
 
 /*
@@ -83,25 +86,33 @@ interface Setter {
   action: XmlElement;
   /** Where it is ticked; undefined for one in a catalog entry, whose place in the tree this file does not show. */
   place: StoryPlace | undefined;
+  /** Where it is written, for the message ("line 12", "line 4 of ManeuverCatalog.xosc") and as a related place. */
+  where: string;
+  related: RelatedProblemLocation;
 }
 
 /** ParameterActions by the parameter they set: those of the Init, and those of the stories (also in the catalog entries the file uses). */
 function parameterSetters(context: SemanticContext, elements: XmlElement[]): { init: Set<string>; story: Map<string, Setter[]> } {
   const init = new Set<string>();
   const story = new Map<string, Setter[]>();
-  const add = (action: XmlElement, place: StoryPlace | undefined): void => {
+  const add = (action: XmlElement, place: StoryPlace | undefined, source: SourceRef, lines: LineIndex): void => {
     const name = parameterName(attribute(action, 'parameterRef'));
-    story.set(name, [...(story.get(name) ?? []), { action, place }]);
+    const line = lines.positionAt(action.start).line + 1;
+    const where = source === context.ref ? `line ${line}` : `line ${line} of ${path.basename(source.disk)}`;
+    const related = { source, range: lines.range(action.start, action.nameEnd), message: `this ParameterAction sets '${name}' in a story` };
+    story.set(name, [...(story.get(name) ?? []), { action, place, where, related }]);
   };
   for (const action of elements) {
     if (action.name !== 'ParameterAction') continue;
     const place = storyPlace(action);
-    if (place) add(action, place);
+    if (place) add(action, place, context.ref, context.model.document.lines);
     else init.add(parameterName(attribute(action, 'parameterRef')));
   }
-  for (const resolution of context.catalogs.references)
-    for (const action of resolution.entry ? descendants(resolution.entry.element) : [])
-      if (action.name === 'ParameterAction') add(action, undefined);
+  for (const resolution of context.catalogs.references) {
+    const entry = resolution.entry;
+    for (const action of entry ? descendants(entry.element) : [])
+      if (entry && action.name === 'ParameterAction') add(action, undefined, entry.file.ref, entry.file.model.document.lines);
+  }
   return { init, story };
 }
 
@@ -109,9 +120,20 @@ function parameterName(ref: XmlAttribute | undefined): string {
   return ref?.value.trim().replace(/^\$/, '') ?? '';
 }
 
-/** Line numbers as the editor shows them, for a message. */
-function lineOf(context: SemanticContext, element: XmlElement): number {
-  return context.model.document.lines.positionAt(element.start).line + 1;
+/** The value of an attribute as a number, if it has one (a $parameter or ${...} evaluated). */
+function numericValue(context: SemanticContext, element: XmlElement, name: string): number | undefined {
+  const attr = attribute(element, name);
+  const result = attr ? context.evaluator.attributeValue(element, attr) : undefined;
+  if (!result?.ok) return undefined;
+  const value = typeof result.value === 'number' ? result.value : Number(String(result.value).trim() || 'x');
+  return Number.isFinite(value) ? value : undefined;
+}
+
+/** Whether the standard's equalTo holds on the declared value: undefined where either is not known as a number. */
+function equalAsDeclared(context: SemanticContext, declaration: XmlElement, condition: XmlElement): boolean | undefined {
+  const declared = numericValue(context, declaration, 'value');
+  const compared = numericValue(context, condition, 'value');
+  return declared === undefined || compared === undefined ? undefined : declared === compared;
 }
 
 /**
@@ -152,19 +174,19 @@ export const parametersComparedAsText = (context: SemanticContext, elements: Xml
       ...at(element, ref),
       ...carlaFactWording(fact, detail),
       data,
-      ...(related.length > 0
-        ? {
-            related: related.map(({ action }) =>
-              relatedAt(context, action.start, action.nameEnd, `this ParameterAction sets '${name}' in a story`),
-            ),
-          }
-        : {}),
+      ...(related.length > 0 ? { related: related.map((setter) => setter.related) } : {}),
     });
     const compared = `'${name}' is declared as '${attribute(declaration, 'value')?.value ?? ''}' and compared ${rule} ${value}`;
     const initFix = 'a ParameterAction in the Init that sets it makes it a number';
+    const lines = (list: Setter[]): string => list.map((setter) => setter.where).join(', ');
+    // equalTo a number (or a $parameter holding one) compares text with a float: false, not an exception. That runs
+    // otherwise than written where the declared value is the one compared with: unless known to differ for a parameter
+    // nothing sets, where known equal for one a story sets.
+    const equalTo = rule === 'equalTo' && number;
+    const equality = equalTo ? equalAsDeclared(context, declaration, element) : undefined;
     if (!set) {
-      // equalTo a number (or a $parameter holding one) compares text with a float: false, not an exception.
-      findings.push(finding(rule === 'equalTo' && number ? 'parameterNeverEqual' : 'parameterComparedAsText', `${compared}; ${initFix}`));
+      if (!equalTo || equality !== false)
+        findings.push(finding(equalTo ? 'parameterNeverEqual' : 'parameterComparedAsText', `${compared}; ${initFix}`));
       continue;
     }
     if (!number) {
@@ -173,22 +195,25 @@ export const parametersComparedAsText = (context: SemanticContext, elements: Xml
       );
       continue;
     }
+    if (setters.init.has(name)) continue;
+    if (equality === true) {
+      findings.push(finding('parameterNotEqualAsDeclared', `${compared}, and set only at ${lines(inStories)}; ${initFix}`, inStories));
+      continue;
+    }
     // Text against a number: equalTo (and 1.1's notEqualTo) compare without raising, and hold once an action ran.
-    if (setters.init.has(name) || rule === 'equalTo' || rule === 'notEqualTo') continue;
+    if (rule === 'equalTo' || rule === 'notEqualTo') continue;
     const place = storyPlace(element);
     if (!place) continue;
     const mayRunFirst = inStories.filter((setter) => !setter.place || !tickedBeforeAction(place, setter.place));
-    const lines = (list: Setter[]): string =>
-      list.map(({ action, place: where }) => `line ${lineOf(context, action)}${where ? '' : ' (a catalog entry)'}`).join(', ');
     if (mayRunFirst.length === 0) {
       findings.push(finding('parameterSetAfterCondition', `${compared}, and set only at ${lines(inStories)}; ${initFix}`, inStories));
       continue;
     }
     const order = mayRunFirst
-      .map(({ action, place: where }) =>
-        !where
-          ? `line ${lineOf(context, action)} is in a catalog entry`
-          : `line ${lineOf(context, action)} comes ${tickedBefore(where, place) ? 'before' : 'after'} it in that order${where.act === place.act ? '' : ', in another Act'}`,
+      .map(({ place: setterPlace, where }) =>
+        !setterPlace
+          ? `${where} is in a catalog entry`
+          : `${where} comes ${tickedBefore(setterPlace, place) ? 'before' : 'after'} it in that order${setterPlace.act === place.act ? '' : ', in another Act'}`,
       )
       .join('; ');
     findings.push(
