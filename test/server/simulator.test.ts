@@ -4,6 +4,7 @@ import { CodeAction, Diagnostic, DiagnosticSeverity, RenameFile, TextEdit } from
 import { EXPORT_FOR_CARLA_COMMAND, ExportForCarlaRequest, WriteResult } from '../../common/src/protocol';
 import * as fs from 'node:fs';
 import { fileUri, TestClient } from './harness';
+import { afterASecond, parameterCondition, parameterStoryScenario, settingEvent, storyAct } from '../support/carlaStories';
 import { problemCodeOf } from '../support/diagnostics';
 import { temporaryWorkspace } from '../support/workspace';
 import { fileHeader, openScenarioFile } from '../support/fixtures';
@@ -172,5 +173,55 @@ describe('CARLA findings offer their fixes over JSON-RPC', function () {
     assert.equal(over.written, null);
     assert.match(over.problems[0].message, /refusing to overwrite .*scenario\.xosc, the scenario being exported/);
     assert.equal(fs.readFileSync(path.join(root, 'scenario.xosc'), 'utf8'), FIXABLE);
+  });
+});
+
+describe('CARLA: a ParameterCondition ticked before the story action that sets its parameter (issue 26)', function () {
+  let client: TestClient;
+  let root: string;
+  let uri: string;
+  // esmini's lane_change.xosc: an event starts on 'gap' < 2, and a later event of the maneuver sets it.
+  const text = parameterStoryScenario([
+    storyAct('A', [
+      settingEvent('Checks', parameterCondition('GapBelow', 'lessThan', '2')),
+      settingEvent('Sets', afterASecond('SetsStarts'), 'gap'),
+    ]),
+  ]);
+
+  before(async () => {
+    root = temporaryWorkspace({ 'scenario.xosc': text });
+    client = await TestClient.start({ root, settings: { simulator: 'carla' } });
+    uri = await client.open(fileUri(path.join(root, 'scenario.xosc')), text);
+  });
+
+  after(async () => {
+    await client.stop();
+  });
+
+  it('is an error at the condition, pointing at the action, with Export for CARLA as its fix', async () => {
+    const pattern = /only the stories' ParameterActions set/;
+    const diagnostics = await client.diagnosticsOf(uri, (list) => list.some((diagnostic) => pattern.test(String(diagnostic.message))));
+    const found = diagnostics.filter((diagnostic) => problemCodeOf(diagnostic) === 'simulator' && pattern.test(String(diagnostic.message)));
+    const lines = text.split('\n');
+    const conditionLine = lines.findIndex((line) => line.includes('name="GapBelow"'));
+    assert.deepEqual(
+      found.map((diagnostic) => [
+        diagnostic.severity,
+        diagnostic.range.start.line,
+        lines[conditionLine].slice(diagnostic.range.start.character, diagnostic.range.end.character),
+      ]),
+      [[DiagnosticSeverity.Error, conditionLine, 'gap']],
+    );
+    assert.deepEqual(
+      found[0].relatedInformation?.map((related) => [related.location.uri, related.location.range.start.line, related.message]),
+      [[uri, lines.findIndex((line) => line.includes('name="SetsAction"')), "this ParameterAction sets 'gap' in a story"]],
+    );
+    const actions = await client.request<CodeAction[]>('textDocument/codeAction', {
+      textDocument: { uri },
+      range: found[0].range,
+      context: { diagnostics: [found[0]] },
+    });
+    const exportAction = actions.find((action) => action.command?.command === EXPORT_FOR_CARLA_COMMAND);
+    assert.equal(exportAction?.title, 'Export for CARLA…');
   });
 });
