@@ -255,6 +255,17 @@ describe("check --simulator carla on a parameter only a story sets agrees with S
       },
       // Ahead of the condition: it depends on when the action's event starts.
       aheadAtOnce: { acts: [storyAct('A', [setsAtOnce, checks])], check: 'warning', raises: false },
+      // A ParameterModifyAction makes it a number too (ChangeParameter adds to float(text)).
+      modifyAheadAtOnce: {
+        acts: [
+          storyAct('A', [
+            setsAtOnce.replace('<SetAction value="1"/>', '<ModifyAction><Rule><AddValue value="-2"/></Rule></ModifyAction>'),
+            checks,
+          ]),
+        ],
+        check: 'warning',
+        raises: false,
+      },
       aheadLater: { acts: [storyAct('A', [setsLater, checks])], check: 'warning', raises: true },
       otherActBefore: { acts: [storyAct('B', [setsAtOnce]), storyAct('A', [checks])], check: 'warning', raises: false },
       otherActAfter: { acts: [storyAct('A', [checks]), storyAct('B', [setsAtOnce])], check: 'warning', raises: true },
