@@ -15,6 +15,7 @@ import {
   runCli,
   scenario,
   scenarioDocument,
+  scenarioObjects,
   speedEvent,
   story,
   vehicleObject,
@@ -197,6 +198,55 @@ describe('cli: modularize', function () {
     assert.equal(text.status, 0, text.stderr);
     assert.match(text.stdout, /\+ simple\/speed\.xosc/);
     assert.doesNotMatch(text.stdout, /total +0 +0/);
+  });
+
+  it("stats counts no catalog the mains read as a shared simple scenario, in either layout (esmini's samples' VehicleCatalog was counted as one)", () => {
+    const cars = catalogFile(
+      'VehicleCatalog',
+      vehicleObject('car')
+        .replace(/<\/?ScenarioObject[^>]*>/g, '')
+        .replace(/^\s*\n/gm, ''),
+    );
+    const withCatalog = (directory: string, groups: string): string =>
+      scenarioDocument({
+        header: fileHeader({ revMinor: '0' }),
+        catalogLocations: `    <VehicleCatalog><Directory path="${directory}"/></VehicleCatalog>\n`,
+        entities: `    <ScenarioObject name="ego"><CatalogReference catalogName="VehicleCatalog" entryName="car"/></ScenarioObject>\n${scenarioObjects(['car'])}`,
+        storyboard: story('S', act('A', groups, false)),
+      });
+    const root = temporaryWorkspace({
+      'catalogs/VehicleCatalog.xosc': cars,
+      'lib/a.xosc': withCatalog('../catalogs', speedGroup('A.Go', '10')),
+      'lib/b.xosc': withCatalog('../catalogs', speedGroup('B.Go', '20') + speedGroup('C.Go', '10')),
+      'paper/one/main.xosc': withCatalog('../../catalogs', ''),
+    });
+    const made = runCli(['modularize', 'lib', '-o', 'out', '--format', 'json'], { cwd: root });
+    assert.equal(made.status, 0, made.stderr);
+    const report = JSON.parse(made.stdout) as { totals: { linesBefore: number; linesAfter: number } };
+    const run = runCli(['stats', 'out', '--format', 'json'], { cwd: root });
+    assert.equal(run.status, 0, run.stderr);
+    const stats = JSON.parse(run.stdout) as { shared: { file: string }[]; totals: { modularLines: number; flattenedLines: number } };
+    assert.deepEqual(
+      stats.shared.map((item) => path.relative(root, item.file)),
+      [path.join('out', 'simple', 'speed.xosc')],
+    );
+    assert.deepEqual(stats.totals, { ...stats.totals, modularLines: report.totals.linesAfter, flattenedLines: report.totals.linesBefore });
+    fs.writeFileSync(
+      path.join(root, 'paper', 'one', 'main.xosc'),
+      fs
+        .readFileSync(path.join(root, 'out', 'a.xosc'), 'utf8')
+        .replace('"../catalogs"', '"../../catalogs"')
+        .replace('simple/speed.xosc', 'speed.xosc'),
+    );
+    fs.copyFileSync(path.join(root, 'out', 'simple', 'speed.xosc'), path.join(root, 'paper', 'speed.xosc'));
+    const paper = runCli(['stats', 'paper', '--format', 'json'], { cwd: root });
+    assert.equal(paper.status, 0, paper.stderr);
+    const paperStats = JSON.parse(paper.stdout) as { layout: string; shared: { file: string }[] };
+    assert.equal(paperStats.layout, 'folders');
+    assert.deepEqual(
+      paperStats.shared.map((item) => path.relative(root, item.file)),
+      [path.join('paper', 'speed.xosc')],
+    );
   });
 
   it('stats says why it has nothing to count, and exits 1: an empty folder, a folder of plain scenarios', () => {

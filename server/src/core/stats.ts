@@ -56,6 +56,12 @@ function isWithin(folder: string, file: string): boolean {
   return file.startsWith(folder + path.sep);
 }
 
+/** A file a main depends on that is no simple scenario: a catalog its references read, or a parameter distribution. */
+function isCatalogOrDistribution(text: string): boolean {
+  const kinds = parseXml(text).root?.children.map((child) => child.name) ?? [];
+  return kinds.includes('Catalog') || kinds.includes('ParameterValueDistribution');
+}
+
 async function filesLayout(
   root: string,
   flattener: Flattener,
@@ -83,7 +89,7 @@ async function filesLayout(
       if (counted.has(id)) imported.add(id);
       else if (!isWithin(root, id) && !outside.has(id)) {
         const text = await readText(id);
-        if (text !== undefined) outside.set(id, countEditorLines(text));
+        if (text !== undefined && !isCatalogOrDistribution(text)) outside.set(id, countEditorLines(text));
       }
     }
     if (flattened.text !== undefined) flattenedLines.set(scenario.file, countEditorLines(flattened.text));
@@ -174,8 +180,8 @@ export async function libraryStats(
     for (const dependency of flattened.source.dependencies) {
       const id = refId(dependency);
       if (dependency.entries.length === 0 && !id.startsWith(path.join(root, folder) + path.sep) && id !== mainPath) {
-        const lines = await readLines(id);
-        if (lines !== undefined) shared.set(id, lines);
+        const text = await readText(id);
+        if (text !== undefined && !isCatalogOrDistribution(text)) shared.set(id, countEditorLines(text));
       }
     }
     let flattenedLines: number;
