@@ -73,4 +73,18 @@ describe('cli: inputs that are not regular files', function () {
     assert.match(run.stderr, /big\.xosc is too large to read \(\d+ bytes; the limit is 2048/);
     assert.doesNotMatch(run.stderr, /no such file/);
   });
+
+  it('check and format of a folder that holds no scenario file say so and exit 1, not a clean pass (a mistyped CI folder)', () => {
+    const root = temporaryWorkspace({ 'scenarios/ok.xosc': scenario(simpleGroup('Go')), 'empty/notes.txt': 'not a scenario' });
+    for (const format of [[], ['--format', 'json'], ['--format', 'sarif']]) {
+      const run = runBounded(['check', 'scenarios', 'empty', ...format], { cwd: root });
+      assert.equal(run.status, 1, run.stderr);
+      assert.match(run.stderr, /empty: the folder holds no \.xosc or \.mosc file, so nothing was checked; name the folder/);
+    }
+    const formatted = runBounded(['format', '--check', 'empty'], { cwd: root });
+    assert.equal(formatted.status, 1, formatted.stderr);
+    assert.match(formatted.stderr, /empty: error: the folder holds no \.xosc file, so nothing was formatted/);
+    const clean = runBounded(['check', 'scenarios'], { cwd: root });
+    assert.equal(clean.status, 0, clean.stderr);
+  });
 });

@@ -76,18 +76,22 @@ async function checkCommand(args: string[], io: CliOutput): Promise<number> {
   const files: string[] = [];
   for (const input of inputs) {
     if (!fs.existsSync(input)) throw new InputError(`${input}: no such file or folder`);
-    if (fs.statSync(input).isDirectory())
-      files.push(
-        ...(await walkFiles([input], {
-          files: SCENARIO_FILE,
-          skipFolders: CHECKED_SKIPPED_FOLDERS,
-          skipDotFiles: true,
-          regularFilesOnly: false,
-          unreadable: 'throw',
-          sorted: true,
-        })),
-      );
-    else files.push(input);
+    if (fs.statSync(input).isDirectory()) {
+      const below = await walkFiles([input], {
+        files: SCENARIO_FILE,
+        skipFolders: CHECKED_SKIPPED_FOLDERS,
+        skipDotFiles: true,
+        regularFilesOnly: false,
+        unreadable: 'throw',
+        sorted: true,
+      });
+      // A folder with nothing to check passes nothing: a CI step on a mistyped or empty folder must not read as clean.
+      if (below.length === 0)
+        throw new InputError(
+          `${input}: the folder holds no .xosc or .mosc file, so nothing was checked; name the folder (or files) that hold the scenarios`,
+        );
+      files.push(...below);
+    } else files.push(input);
   }
   if (io.ownsProcess && files.length > 1) keepHeapSmallForManyFiles();
   const store = makeStore(options, inputs);
@@ -129,7 +133,7 @@ export const CHECK: CliCommand = {
                             on standard output
 ${SIMULATOR_OPTION_HELP}
 ${READING_OPTIONS_HELP}
-  Exit codes: 0 no error (warnings may have been printed), 1 errors found or an input cannot be read, 2 usage,
-  4 internal error.`,
+  Exit codes: 0 no error (warnings may have been printed), 1 errors found, an input cannot be read or a folder
+  holds no scenario file, 2 usage, 4 internal error.`,
   run: checkCommand,
 };

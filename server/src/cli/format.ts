@@ -74,8 +74,15 @@ async function formatCommand(args: string[], io: CliOutput): Promise<number> {
   for (const input of positionals) {
     const stat = fs.statSync(input, { throwIfNoEntry: false });
     if (!stat) problems.push(`${input}: error: no such file or folder`);
-    else if (stat.isDirectory()) files.push(...(await walkFiles([input], FORMATTED_FILES)));
-    else files.push(input);
+    else if (stat.isDirectory()) {
+      const below = await walkFiles([input], FORMATTED_FILES);
+      // As for check: a folder with nothing to format is named, so that --check on a mistyped folder does not pass.
+      if (below.length === 0)
+        problems.push(
+          `${input}: error: the folder holds no .xosc file, so nothing was formatted; name the folder (or files) that hold the scenarios`,
+        );
+      files.push(...below);
+    } else files.push(input);
   }
   const plans: Plan[] = [];
   for (const file of files) {
@@ -119,7 +126,7 @@ export const FORMAT: CliCommand = {
   --width N                 past N columns a start tag puts each attribute on its own line (default 120)
   --indent N|tab            the indentation (default: what the file uses, else 2 spaces)
   -q, --quiet               print errors only
-  Exit codes: 0 formatted (with --check: nothing would change), 1 a file could not be read or parsed (nothing
-  was written; with --check: or a file would change), 2 usage, 3 a file could not be written, 4 internal error.`,
+  Exit codes: 0 formatted (with --check: nothing would change), 1 a file could not be read or parsed, or a folder
+  holds no .xosc file (nothing was written; with --check: or a file would change), 2 usage, 3 a file could not be written, 4 internal error.`,
   run: formatCommand,
 };
