@@ -75,7 +75,7 @@ export const STATS: CliCommand = {
   help: `Lines of code of a library, modular and flattened (the paper's Table 1) (modular2simple stats LIBRARY [--format text|json]):
   --format text|json        a table (the default) or JSON, on standard output
 ${STATS_READING_OPTIONS_HELP}
-  Exit codes: 0 done, 1 a scenario of the library could not be flattened or the folder is missing, 2 usage,
-  4 internal error.`,
+  Exit codes: 0 done, 1 a scenario of the library could not be flattened, the folder is missing or it holds
+  nothing modular, 2 usage, 4 internal error.`,
   run: statsCommand,
 };
