@@ -180,6 +180,61 @@ describe('esmini: time limit and log (no simulator needed)', () => {
     );
   });
 
+  it("puts esmini's messages about a misplaced ActivateControllerAction, a deprecated attribute, dynamic constraints, a missing displacement and a road-less RoadNetwork on their elements (esmini's samples: at 1:1 before)", async () => {
+    const root = temporaryFolder('m2s-esmini-placed-');
+    const private_ = (action: string) => `<Private entityRef="Ego"><PrivateAction>${action}</PrivateAction></Private>`;
+    const distance = (extra: string, acceleration: string) =>
+      `<LongitudinalAction><LongitudinalDistanceAction entityRef="Ego" freespace="false" continuous="true" distance="5"${extra}><DynamicConstraints maxAcceleration="${acceleration}" maxDeceleration="3" maxSpeed="10"/></LongitudinalDistanceAction></LongitudinalAction>`;
+    const init = [
+      private_('<ControllerAction><ActivateControllerAction longitudinal="true" lateral="true"/></ControllerAction>'),
+      private_('<ActivateControllerAction longitudinal="true" lateral="false"/>'),
+      private_(distance(' displacement="any"', '3')),
+      private_(distance('', '$Max')),
+    ];
+    const group =
+      '<ManeuverGroup name="G" maximumExecutionCount="1"><Actors selectTriggeringEntities="false"><EntityRef entityRef="Ego"/></Actors><Maneuver name="M"><Event name="E" priority="override"><Action name="A"><PrivateAction><ActivateControllerAction longitudinal="false" lateral="true"/></PrivateAction></Action><StartTrigger><ConditionGroup><Condition name="C" delay="0" conditionEdge="rising"><ByEntityCondition><TriggeringEntities triggeringEntitiesRule="any"><EntityRef entityRef="Ego"/></TriggeringEntities><EntityCondition><TimeHeadwayCondition entityRef="Ego" value="1.5" freespace="false" alongRoute="false" rule="lessThan"/></EntityCondition></ByEntityCondition></Condition></ConditionGroup></StartTrigger></Event></Maneuver></ManeuverGroup>';
+    // No LogicFile, as esmini's trailer_connect.xosc and parking_lot.xosc (esmini runs them without roads).
+    const text = roadScenario({
+      logicFile: 'straight_500m.xodr',
+      parameters: '<ParameterDeclaration name="Max" parameterType="double" value="15"/>',
+      init: init.join('\n'),
+      groups: [group],
+    }).replace('<LogicFile filepath="straight_500m.xodr"/>', '');
+    fs.writeFileSync(path.join(root, 's.xosc'), text);
+    const main = diskRef(path.join(root, 's.xosc'));
+    const flat = await new Flattener(new ScenarioStore({ root })).flatten(main);
+    const log = [
+      '[] [warn] In OSC 1.1 ActivateControllerAction should be placed under ControllerAction. Accepting anyway.',
+      '[] [warn] In OSC 1.1 ActivateControllerAction should be placed under ControllerAction. Accepting anyway.',
+      '[] [warn] In OSC 1.0 ActivateControllerAction should be placed under PrivateAction. Accepting anyway.',
+      '[] [warn] alongRoute attribute is depricated from v1.1. Reading it anyway.',
+      '[] [warn] parseDynamicConstraints: maxAcceleration value 15.00 exceeds object performance value: 5.00, truncating',
+      '[] [warn] displacement attribute missing, setting default trailingReferencedEntity',
+      '[] [warn] No OpenDRIVE file specified, continue without',
+    ].join('\n');
+    const problems = mapEsminiMessages(parseEsminiLog(log), flat.source, main);
+    const lines = text.split('\n');
+    const placed = problems.map((problem) => {
+      const line = lines[problem.range.start.line];
+      const at = problem.range.start.character;
+      return [
+        problem.located,
+        line.slice(at, problem.range.end.character),
+        line.slice(line.lastIndexOf('<', at), line.indexOf('>', at) + 1),
+      ];
+    });
+    fs.rmSync(root, { recursive: true, force: true });
+    assert.deepEqual(placed, [
+      [true, 'ActivateControllerAction', '<ActivateControllerAction longitudinal="true" lateral="false"/>'],
+      [true, 'ActivateControllerAction', '<ActivateControllerAction longitudinal="false" lateral="true"/>'],
+      [true, 'ActivateControllerAction', '<ActivateControllerAction longitudinal="true" lateral="true"/>'],
+      [true, 'false', '<TimeHeadwayCondition entityRef="Ego" value="1.5" freespace="false" alongRoute="false" rule="lessThan"/>'],
+      [true, '$Max', '<DynamicConstraints maxAcceleration="$Max" maxDeceleration="3" maxSpeed="10"/>'],
+      [true, 'LongitudinalDistanceAction', '<LongitudinalDistanceAction entityRef="Ego" freespace="false" continuous="true" distance="5">'],
+      [true, 'RoadNetwork', '<RoadNetwork>'],
+    ]);
+  });
+
   it('maps a value that an override set to the ParameterReference that set it, through a package too', async () => {
     const root = examplesCopy({
       file: 'main.xosc',

@@ -124,6 +124,14 @@ const RULES: MessageRule[] = [
         .map((condition) => ({ element: condition, attribute: 'conditionEdge' })),
   },
   {
+    // ScenarioEngine.cpp: no road file named (esmini runs on without roads): an empty LogicFile, else the RoadNetwork. Before the next rule, which would take 'specified' for a file's name.
+    pattern: /^No OpenDRIVE file specified/,
+    targets: (root) => {
+      const logicFiles = elementsNamed(root, 'LogicFile').map((element): Target => ({ element, attribute: 'filepath' }));
+      return logicFiles.length > 0 ? logicFiles : elementsNamed(root, 'RoadNetwork').map((element) => ({ element }));
+    },
+  },
+  {
     pattern: /OpenDRIVE file (\S+)/,
     targets: (root) => elementsNamed(root, 'LogicFile').map((element) => ({ element, attribute: 'filepath' })),
   },
@@ -201,6 +209,43 @@ const RULES: MessageRule[] = [
       allElements(root)
         .filter((element) => attribute(element, 'dynamicsShape')?.value === (match[1] ?? match[2]))
         .map((element) => ({ element, attribute: 'dynamicsShape' })),
+  },
+  {
+    // ScenarioReader.cpp parseOSCPrivateAction / parseOSCControllerAction: an ActivateControllerAction where the file's version does not put it.
+    pattern: /^In OSC 1\.\d ActivateControllerAction should be placed under (ControllerAction|PrivateAction)/,
+    targets: (root, match) =>
+      elementsNamed(root, 'ActivateControllerAction')
+        .filter((element) => element.parent !== undefined && element.parent.name !== match[1])
+        .map((element) => ({ element })),
+  },
+  {
+    // ScenarioReader.cpp (TimeHeadwayCondition, TimeToCollisionCondition...): esmini's own spelling.
+    pattern: /^(\w+) attribute is depricated/,
+    targets: (root, match) =>
+      allElements(root)
+        .filter((element) => attribute(element, match[1]))
+        .map((element) => ({ element, attribute: match[1] })),
+  },
+  {
+    // ScenarioReader.cpp parseDynamicConstraints: a limit beyond the vehicle's Performance (or below a small number), which esmini replaces; the constraints with that value, else any with the attribute.
+    pattern:
+      /^parseDynamicConstraints: (?:(\w+) value (\S+) exceeds object performance value|Unexpected small (\w+) value: (\S+),|Ignoring unexpected attribute (\w+))/,
+    targets: (root, match, valueOf) => {
+      const name = match[1] ?? match[3] ?? match[5];
+      const written = elementsNamed(root, 'DynamicConstraints').filter((element) => attribute(element, name));
+      const value = match[2] ?? match[4];
+      const atValue =
+        value === undefined ? [] : written.filter((element) => Math.abs(Number(valueOf(element, name)) - Number(value)) < 0.01);
+      return (atValue.length > 0 ? atValue : written).map((element) => ({ element, attribute: name }));
+    },
+  },
+  {
+    // ScenarioReader.cpp: a LongitudinalDistanceAction (trailing) or LateralDistanceAction ('any') of a 1.1+ file without displacement.
+    pattern: /^displacement attribute missing, setting default (trailingReferencedEntity|'any')/,
+    targets: (root, match) =>
+      elementsNamed(root, match[1] === 'trailingReferencedEntity' ? 'LongitudinalDistanceAction' : 'LateralDistanceAction')
+        .filter((element) => !attribute(element, 'displacement'))
+        .map((element) => ({ element })),
   },
   {
     pattern:
