@@ -51,6 +51,24 @@ export function runAnywayQuestion(result: RunEsminiResult): string | undefined {
   return `Run in esmini: ${result.message}: ${namedErrors(result.flattenProblems)}. Run anyway, as run --force does?`;
 }
 
+/** A diagnostic of the file as the Run CodeLenses read it: an error or not, where it came from, its code. */
+export interface LensDiagnostic {
+  isError: boolean;
+  source?: string;
+  code?: string | number | { value: string | number };
+}
+
+/** What a simulator profile reports (core/diagnostics/simulator*.ts): a run in esmini flattens for the standard alone and is never refused for these. */
+const SIMULATOR_CODES: ReadonlySet<string> = new Set(['simulator', 'simulator-value']);
+
+/** The file's errors that refuse a run in esmini until forced: not esmini's own messages from a run, nor what the selected simulator (CARLA, say) would refuse. */
+export function runBlockingErrors(diagnostics: readonly LensDiagnostic[]): number {
+  return diagnostics.filter((diagnostic) => {
+    const code = typeof diagnostic.code === 'object' ? diagnostic.code.value : diagnostic.code;
+    return diagnostic.isError && diagnostic.source !== 'esmini' && !SIMULATOR_CODES.has(String(code));
+  }).length;
+}
+
 /** The titles of the Run CodeLenses of a file with `errors` errors of its own: *Run Anyway* joins *Run in esmini* when there are some. */
 export function runLensTitles(errors: number): { title: string; force: boolean }[] {
   const lenses = [{ title: '▶ Run in esmini', force: false }];

@@ -1,6 +1,6 @@
 import * as vscode from 'vscode';
 import { RunEsminiRequest, type RunEsminiResult } from '../../common/src/protocol';
-import { runAnywayQuestion, runLensTitles } from './anyway';
+import { runAnywayQuestion, runBlockingErrors, runLensTitles } from './anyway';
 import { commandTargets } from './commands';
 import type { ServerCommandClient } from './languageClient';
 import { withNotificationProgress } from './notificationProgress';
@@ -20,11 +20,15 @@ function toRange(range: RunEsminiResult['problems'][number]['range']): vscode.Ra
   return new vscode.Range(range.start.line, range.start.character, range.end.line, range.end.character);
 }
 
-/** The file's own errors as the language server reports them (esmini's messages from a run are not the scenario's). */
+/** The file's own errors as the language server reports them that a run in esmini is refused for (runBlockingErrors). */
 function scenarioErrors(uri: vscode.Uri): number {
-  return vscode.languages
-    .getDiagnostics(uri)
-    .filter((diagnostic) => diagnostic.severity === vscode.DiagnosticSeverity.Error && diagnostic.source !== 'esmini').length;
+  return runBlockingErrors(
+    vscode.languages.getDiagnostics(uri).map((diagnostic) => ({
+      isError: diagnostic.severity === vscode.DiagnosticSeverity.Error,
+      source: diagnostic.source,
+      code: diagnostic.code,
+    })),
+  );
 }
 
 /**

@@ -1,5 +1,12 @@
 import * as assert from 'node:assert/strict';
-import { namedErrors, runAnywayQuestion, runLensTitles, writeAnywayQuestion, writtenAnywayNote } from '../../client/src/anyway';
+import {
+  namedErrors,
+  runAnywayQuestion,
+  runBlockingErrors,
+  runLensTitles,
+  writeAnywayQuestion,
+  writtenAnywayNote,
+} from '../../client/src/anyway';
 import type { ProblemSummary, RunEsminiResult } from '../../common/src/protocol';
 
 const cutIn = 'file:///work/esmini/cut-in.xosc';
@@ -65,5 +72,26 @@ describe('client: Write Anyway and Run Anyway', () => {
       { title: '▶ Run in esmini', force: false },
       { title: '▶ Run Anyway (2 errors)', force: true },
     ]);
+  });
+
+  it("Run Anyway counts the errors a run in esmini is refused for: not esmini's own messages, nor what the selected simulator refuses (cut-in.xosc under CARLA: 1, not 6)", () => {
+    const carla = (value: string) => ({ isError: true, source: 'modular2simple', code: value });
+    const diagnostics = [
+      { isError: true, source: 'modular2simple', code: { value: 'catalog-directory', target: 'https://example.org' } },
+      carla('simulator'),
+      carla('simulator'),
+      carla('simulator'),
+      carla('simulator'),
+      carla('simulator'),
+      { isError: true, source: 'esmini', code: 'esmini' },
+      { isError: false, source: 'modular2simple', code: 'out-of-range' },
+      { isError: true, source: 'modular2simple', code: 'simulator-value' },
+    ];
+    assert.equal(runBlockingErrors(diagnostics), 1);
+    assert.deepEqual(
+      runLensTitles(runBlockingErrors(diagnostics)).map((lens) => lens.title),
+      ['▶ Run in esmini', '▶ Run Anyway (1 error)'],
+    );
+    assert.equal(runBlockingErrors(diagnostics.slice(1)), 0);
   });
 });
