@@ -61,6 +61,21 @@ describe('cli: usage and compatibility', () => {
     assert.deepEqual(fs.readdirSync(path.join(root, 'out')).sort(), [`${path.basename(root)}.xosc`, 'second.xosc']);
   });
 
+  it('an output folder that does not exist is exit 3 (the output cannot be written), for --out-dir as for -o, and nothing is written', () => {
+    const root = simpleWorkspace();
+    const before = listFiles(root);
+    const runs = [
+      runCli(['flatten', '.', '-o', 'nowhere/out.xosc'], { cwd: root }),
+      runCli(['flatten', '.', '--out-dir', 'nowhere'], { cwd: root }),
+      runCli(['modularize', 'main.xosc', '--out-dir', 'nowhere/out'], { cwd: root }),
+    ];
+    for (const run of runs) {
+      assert.equal(run.status, 3, run.stderr);
+      assert.match(run.stderr, /nowhere.*does not exist/);
+    }
+    assert.deepEqual(listFiles(root), before, 'nothing was written');
+  });
+
   it('check prints compiler-style lines and JSON for CI', () => {
     const root = simpleWorkspace({}, [['AbsoluteTargetSped.value', '1']]);
     const text = runCli(['check', '.'], { cwd: root });

@@ -13,8 +13,8 @@ import {
   CliCommand,
   CliOutput,
   ExitCode,
-  InputError,
   report,
+  UnavailableError,
   UsageError,
   writablePackagedFiles,
   write,
@@ -119,7 +119,7 @@ async function flattenCommand(args: string[], io: CliOutput): Promise<number> {
   if (options.outDir) {
     if (options.output) throw new UsageError('use either -o or --out-dir');
     if (!fs.existsSync(options.outDir) || !fs.statSync(options.outDir).isDirectory())
-      throw new InputError(`${options.outDir}: no such folder`);
+      throw new UnavailableError(`${options.outDir}: cannot write the outputs (the folder does not exist); nothing was changed`);
     let names = inputs.map(outputNameFor);
     // Inputs with a shared file name (lib/*/result.mosc) are told apart by their folders.
     names = names.map((name, index) =>

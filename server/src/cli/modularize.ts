@@ -4,7 +4,7 @@ import { writeFilesAtomic } from '../../../common/src/atomic';
 import { modularize, ModularizeInput, ModularizeResult, notAPlainScenario } from '../core/modularize';
 import { countEditorLines } from '../core/text';
 import { parseXml, XmlDocument } from '../core/xml';
-import { CliCommand, CliOutput, ExitCode, InputError, parseCommandLine, UsageError } from './common';
+import { CliCommand, CliOutput, ExitCode, InputError, parseCommandLine, UnavailableError, UsageError } from './common';
 
 export const MODULARIZE_HELP = `Modularize a library (modular2simple modularize INPUT... --out-dir DIR):
   Finds the ManeuverGroups that recur across the input scenarios (files, or folders searched for
@@ -224,7 +224,7 @@ async function modularizeCommand(args: string[], io: CliOutput): Promise<number>
   if (!options.dryRun && fs.existsSync(out) && !options.force)
     throw new InputError(`${shown(out)} exists; nothing was written (--force writes into it)`);
   if (!fs.existsSync(path.dirname(out)))
-    throw new InputError(`${shown(out)}: the folder ${shown(path.dirname(out))} does not exist; nothing was written`);
+    throw new UnavailableError(`${shown(out)}: the folder ${shown(path.dirname(out))} does not exist; nothing was written`);
 
   const scenarios: string[] = [];
   const texts = new Map<string, { text: string; document: XmlDocument }>();
