@@ -70,6 +70,11 @@ export function asksForHelp(args: readonly string[]): boolean {
   return (end < 0 ? args : args.slice(0, end)).some((arg) => arg === '--help' || arg === '-h');
 }
 
+/** An option followed by a value that begins with '-' (--duration -5, -o -x.xosc): which value, and how to give it. */
+export function dashValueMessage(flag: string, longFlag: string, value: string): string {
+  return `${flag} is followed by '${value}', which begins with '-' as an option does: if it is ${flag}'s value, write ${longFlag}=${value}; else give ${flag} its value`;
+}
+
 /**
  * The arguments read by node:util's parseArgs (strict, positionals allowed); a wrong one is a UsageError
  * worded as the shared options word it (`unknown option '--x'`, `--name needs a value`).
@@ -84,6 +89,11 @@ export function parseCommandLine<const T extends NonNullable<ParseArgsConfig['op
     const message = (error as Error).message;
     const unknown = /Unknown option '([^']+)'/.exec(message);
     const missing = /Option '(?:-\w, )?(--[\w-]+)/.exec(message);
+    const ambiguous = /Option '([^']+)' argument is ambiguous[\s\S]*use '(--[\w-]+)=-XYZ'/.exec(message);
+    if (ambiguous) {
+      // A value that begins with '-' (--duration -5, --index -1): node's first line alone says neither which value nor how to give it.
+      throw new UsageError(dashValueMessage(ambiguous[1], ambiguous[2], args[args.indexOf(ambiguous[1]) + 1] ?? ''));
+    }
     throw new UsageError(
       unknown
         ? `unknown option '${unknown[1]}'`

@@ -11,7 +11,7 @@ import {
   SIMULATORS,
 } from '../core/profiles/simulators';
 import { Limits, ScenarioStore, splitScenarioPath } from '../core/sources';
-import { UsageError } from './common';
+import { dashValueMessage, UsageError } from './common';
 import { storeForInputs } from './inputs';
 
 /** The --help lines of the options every command of the shared set reads, whatever it writes. */
@@ -194,8 +194,9 @@ export function parseOptions(args: string[]): Options {
     const flag = token.rawName;
     const take = (): string => {
       const value = token.value;
-      if (!token.inlineValue && (value === undefined || (value.startsWith('-') && value.length > 1)))
-        throw new UsageError(`${flag} needs a value`);
+      if (!token.inlineValue && value === undefined) throw new UsageError(`${flag} needs a value`);
+      if (!token.inlineValue && value !== undefined && value.startsWith('-') && value.length > 1)
+        throw new UsageError(dashValueMessage(flag, `--${name}`, value));
       return value as string;
     };
     switch (name) {

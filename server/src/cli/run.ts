@@ -28,7 +28,7 @@ export const RUN_HELP = `Run in esmini (modular2simple run INPUT... [options]):
                             end, when its StopTrigger fires; one not ended after ${RUN_DEFAULTS.runawaySeconds} s, or a second after the time
                             its StopTrigger ends it at when that is later, is stopped, and one whose
                             StopTrigger has no condition runs ${RUN_DEFAULTS.noEndSeconds} s); fixed step ${RUN_DEFAULTS.timeStep} s
-  --seed N                  esmini's random seed (default ${RUN_DEFAULTS.seed})
+  --seed N                  esmini's random seed, 0 to ${RUN_DEFAULTS.maxSeed} (default ${RUN_DEFAULTS.seed})
   --road-path DIRS          extra folders for road files and catalogs (separated by ';' or ':')
   --esmini PATH             the esmini program, or its folder (default: esmini on PATH, else the one npm start built)
   --check                   exit 1 when esmini reports an error (for CI over a library)
@@ -119,7 +119,10 @@ async function runCommand(args: string[], io: CliOutput): Promise<number> {
   if (inputs.length === 0) throw new UsageError('run needs a scenario: a .xosc, a .mosc or an unpacked folder');
   const duration = durationOption(values.duration);
   const seed = values.seed === undefined ? RUN_DEFAULTS.seed : Number(values.seed);
-  if (!Number.isInteger(seed) || seed < 0) throw new UsageError(`--seed takes a whole number, not '${values.seed}'`);
+  if (!Number.isInteger(seed) || seed < 0 || seed > RUN_DEFAULTS.maxSeed)
+    throw new UsageError(
+      `--seed takes a whole number from 0 to ${RUN_DEFAULTS.maxSeed} (esmini's seed is an unsigned int), not '${values.seed}'`,
+    );
   if (values.csv !== undefined && inputs.length > 1) throw new UsageError('--csv takes one input');
   if (values.trace !== undefined && inputs.length > 1) throw new UsageError('--trace takes one input');
   for (const input of inputs) if (!fs.existsSync(input)) throw new InputError(`${input}: no such file or folder`);

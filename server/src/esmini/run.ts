@@ -24,6 +24,8 @@ export const RUN_DEFAULTS = {
   /** Seconds per step, decoupled from the clock. */
   timeStep: 0.05,
   seed: 1,
+  /** The largest seed esmini keeps: it reads --seed with std::stoul into an unsigned int (playerbase.cpp:1807), so a larger one is cut or throws 'stoul'. */
+  maxSeed: 4_294_967_295,
   /** Wall-clock milliseconds without progress (its CSV neither grows nor advances) after which a run is stopped as hung. */
   stallMs: 60_000,
   maxCsvBytes: 200 * 1024 * 1024,
