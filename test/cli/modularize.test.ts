@@ -253,6 +253,7 @@ describe('cli: modularize', function () {
     const root = temporaryWorkspace({ 'empty/readme.txt': 'nothing', 'plain/a.xosc': scenario(speedGroup('A.Go', '10')) });
     const empty = runCli(['stats', 'empty'], { cwd: root });
     assert.equal(empty.status, 1);
+    assert.equal(empty.stdout, '', 'no table of zeros beside the error');
     assert.match(
       empty.stderr,
       /holds no scenario: neither folders NAME\/ with a main\.xosc \(the paper's layout\) nor \.xosc scenario files/,

@@ -53,7 +53,8 @@ async function statsCommand(args: string[], io: CliOutput): Promise<number> {
   for (const problem of stats.problems) io.err(`${library}: error: ${problem}`);
   if (options.format === 'json') {
     io.out(JSON.stringify(stats, null, 2));
-  } else {
+  } else if (stats.rows.length > 0) {
+    // With no scenario the error says why: a table of zeros beside it would read as a count.
     const sharedNames = stats.shared.map((item) => `+ ${path.relative(path.resolve(library), item.file)}`);
     const width = Math.max(8, ...stats.rows.map((row) => row.scenario.length), ...sharedNames.map((name) => name.length));
     io.out(`${'#'.padStart(3)}  ${'scenario'.padEnd(width)}  ${'modular'.padStart(8)}  ${'flattened'.padStart(9)}  reduction`);
