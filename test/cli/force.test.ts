@@ -2,9 +2,9 @@ import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { esminiBinary, esminiCatalogs, esminiRoads, requireEsmini } from '../support/esmini';
-import { runCli } from '../support/fixtures';
+import { runCli, scenario, simpleGroup } from '../support/fixtures';
 import { openscenarioDir } from '../support/openscenarioCorpus';
-import { listFiles } from '../support/workspace';
+import { listFiles, temporaryWorkspace } from '../support/workspace';
 import { temporaryFolder } from '../support/temporaryDirectory';
 
 const esminiScenarios = path.join(openscenarioDir, 'esmini');
@@ -130,6 +130,27 @@ describe('cli: --force writes and runs whatever can be produced, listing what wa
     assert.match(run.stderr, /has no ManeuverGroup named 'NoSuchGroup'/);
     assert.match(run.stderr, /nothing was written$/m);
     assert.ok(!fs.existsSync(path.join(folder, 'out.xosc')));
+  });
+
+  it('flatten --force onto its own input, or into a folder that does not exist, says only that it wrote nothing (it said "written anyway" first)', () => {
+    // Errors --force writes past: the fixture's group is no schema-valid OpenSCENARIO 1.0.
+    const text = scenario(simpleGroup('Go'));
+    const folder = temporaryWorkspace({ 'a.xosc': text });
+    for (const [output, status, said] of [
+      ['a.xosc', 1, /refusing to write a\.xosc: it is an input/],
+      ['missing/out.xosc', 3, /cannot write the output \(the folder .*missing does not exist\); nothing was changed/],
+    ] as const) {
+      const run = runCli(['flatten', 'a.xosc', '--force', '-o', output], { cwd: folder, schema: true });
+      assert.equal(run.status, status, run.stderr);
+      assert.match(run.stderr, /a\.xosc:\d+:\d+: error: /);
+      assert.match(run.stderr, said);
+      assert.doesNotMatch(run.stderr, /written anyway/);
+      assert.deepEqual(listFiles(folder), ['a.xosc']);
+      assert.equal(fs.readFileSync(path.join(folder, 'a.xosc'), 'utf8'), text);
+    }
+    const written = runCli(['flatten', 'a.xosc', '--force', '-o', 'out.xosc'], { cwd: folder, schema: true });
+    assert.equal(written.status, 0, written.stderr);
+    assert.match(written.stderr, /wrote out\.xosc \(\d+ lines\)\n\d+ errors?; written anyway \(--force\)/);
   });
 
   it('run refuses a composition with errors, saying --force runs it; run --force runs it in esmini', function () {

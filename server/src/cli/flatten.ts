@@ -59,7 +59,8 @@ async function flattenInputs(inputs: string[], outputs: string[] | undefined, op
     io.err(`${counted}; nothing was written` + (forcible ? ` (--force writes it anyway${skipping})` : ''));
     return ExitCode.problems;
   }
-  if (options.force && errors > 0) io.err(`${counted}; written anyway (--force)`);
+  // Said once the output is written: an output refused (over an input, unwritable) was not written anyway.
+  const forcedNote = options.force && errors > 0 ? `${counted}; written anyway (--force)` : undefined;
   // A catalog folder found only through the scenario path is written as it stands (SPEC 11.6): said, with the --path esmini then needs.
   if (!options.quiet) {
     for (const [index, result] of results.entries()) {
@@ -78,6 +79,7 @@ async function flattenInputs(inputs: string[], outputs: string[] | undefined, op
   }
   if (!outputs) {
     for (const result of results) io.out(result.text as string);
+    if (forcedNote) io.err(forcedNote);
     return ExitCode.ok;
   }
   for (let i = 0; i < results.length; i++) if (outputs[i] !== '-') checkNotAnInput(outputs[i], results[i].source.dependencies);
@@ -85,7 +87,7 @@ async function flattenInputs(inputs: string[], outputs: string[] | undefined, op
   const files: PackagedFile[][] = [];
   for (const [i, result] of results.entries()) files.push(await writablePackagedFiles(result.files, outputs[i], io, options.quiet));
   for (const file of files.flat()) fs.mkdirSync(path.dirname(file.path), { recursive: true });
-  return write(
+  const written = await write(
     results.flatMap((result, i) => [
       {
         target: outputs[i],
@@ -101,6 +103,8 @@ async function flattenInputs(inputs: string[], outputs: string[] | undefined, op
     io,
     options.quiet,
   );
+  if (written === ExitCode.ok && forcedNote) io.err(forcedNote);
+  return written;
 }
 
 function outputNameFor(input: string): string {
