@@ -276,7 +276,7 @@ async function paying(
       if (!best) break;
       leaveInline(
         best.member,
-        `extracting it would not pay: sharing a simple scenario with ${kept.length - 1} other behaviours it adds more lines than its ${best.member.uses.length} uses save`,
+        `extracting it would not pay: sharing a simple scenario with ${kept.length - 1} other behaviour${kept.length - 1 === 1 ? '' : 's'} it adds more lines than its ${best.member.uses.length} uses save`,
       );
       kept = kept.filter((member) => member !== best.member);
       current = best.built;
