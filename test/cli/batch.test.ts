@@ -119,6 +119,17 @@ describe('cli: batch', function () {
     assert.deepEqual(csvRows(root), rows, 'a finished batch run again changes nothing');
   });
 
+  it("--jobs past 10 (a machine with more cores) prints no node warning of a listener leak, only the batch's own lines", function () {
+    requireEsmini(this);
+    const root = folder();
+    const args = BATCH_ARGS.map((arg, index) => (BATCH_ARGS[index - 1] === '--jobs' ? '12' : arg));
+    const run = runCli([...args, '--sample', '12'], { cwd: root });
+    assert.equal(run.status, 0, run.stderr);
+    assert.doesNotMatch(run.stderr, /MaxListenersExceededWarning|memory leak|--trace-warnings/);
+    assert.match(run.stderr, /^12 runs \(12 ok/m);
+    assert.equal(csvRows(root).length, 12);
+  });
+
   for (const signal of ['SIGINT', 'SIGKILL'] as const) {
     it(`a batch stopped by ${signal} mid-way and run again: every index exactly once, the first rows kept`, async function () {
       requireEsmini(this);

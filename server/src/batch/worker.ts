@@ -1,3 +1,4 @@
+import { setMaxListeners } from 'node:events';
 import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
@@ -58,6 +59,8 @@ export async function runWorker(url: URL, options: WorkerOptions): Promise<numbe
     return pending;
   };
   const stopping = new AbortController();
+  // Each run in flight listens for the stop (as in a local batch): past node's default of 10 it warned of a leak.
+  setMaxListeners(options.jobs + 1, stopping.signal);
   let active = 0;
   let lastActivity = Date.now();
   const runJob = async (job: Job<RunJob>): Promise<string> => {

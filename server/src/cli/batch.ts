@@ -1,4 +1,5 @@
 import { createHash } from 'node:crypto';
+import { setMaxListeners } from 'node:events';
 import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
@@ -250,6 +251,8 @@ async function runLocally(
   const already = plan.chosen.filter((index) => results.done.has(index.toString())).length;
   const todo = plan.chosen.filter((index) => !results.done.has(index.toString()));
   const stop = new AbortController();
+  // Each run in flight listens for the stop: past node's default of 10 (--jobs 11, or a machine with more cores) it warned of a leak.
+  setMaxListeners(jobs + 1, stop.signal);
   // A second signal does not wait for the runs in flight to be stopped.
   const onSignal = () => (stop.signal.aborted ? process.exit(ExitCode.interrupted) : stop.abort());
   process.on('SIGINT', onSignal);
