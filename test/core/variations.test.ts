@@ -148,6 +148,19 @@ describe('core: variations, files and problems', () => {
     ]);
   });
 
+  it('a range of too many values says how many in a form one can read, and the stepWidth that would do (it printed 300 digits)', async () => {
+    const [huge] = await problemsOf(RANGE_AND_SET.replace('stepWidth="0.2"', 'stepWidth="1e-300"'));
+    assert.equal(
+      huge,
+      'd.xosc:8:47: error: this range has about 4.0e299 values at stepWidth 1e-300; at most 1,000,000 are expanded: widen stepWidth to 4.01e-7 or more, or narrow the range',
+    );
+    const [large] = await problemsOf(RANGE_AND_SET.replace('stepWidth="0.2"', 'stepWidth="0.0000001"'));
+    assert.match(large, /about 4,000,00[01] values at stepWidth 1e-7; .*widen stepWidth to 4\.01e-7 or more/);
+    // The step it names expands: at most a million values.
+    const [within] = await problemsOf(RANGE_AND_SET.replace('stepWidth="0.2"', 'stepWidth="4.01e-7"'));
+    assert.equal(within, undefined);
+  });
+
   it('reports bad input instead of failing: not XML, not a distribution, no distribution, not UTF-8', async () => {
     const file = path.join(dir, 'd.xosc');
     const cases: [string | Buffer, RegExp][] = [

@@ -18,6 +18,18 @@ const ESMINI_SMALL_NUMBER = 1e-6;
 /** More values than this in one range are refused: each is kept, and esmini would take hours. */
 export const MAX_RANGE_VALUES = 1_000_000;
 
+/** A count as a reader takes it in: digits with separators, else (past 10^15, where a stepWidth of 1e-300 takes it) a power of ten. */
+function aboutCount(count: number): string {
+  return count < 1e15 ? count.toLocaleString('en-US') : count.toExponential(1).replace('e+', 'e');
+}
+
+/** The stepWidth that gives a range of `width` at most MAX_RANGE_VALUES values, rounded up to three significant digits. */
+function smallestStep(width: number): number {
+  const exact = width / (MAX_RANGE_VALUES - 1);
+  const unit = 10 ** (Math.floor(Math.log10(exact)) - 2);
+  return Number((Math.ceil(exact / unit) * unit).toPrecision(3));
+}
+
 export interface DeterministicExpansion {
   /** Per factor, its alternatives; each alternative assigns one or more parameters. */
   factors: ParameterValue[][][];
@@ -47,7 +59,7 @@ export function expandDeterministic(
             file,
             offset: distribution.range.offset,
             severity: 'error',
-            message: `this range has about ${estimate.toLocaleString('en-US')} values at stepWidth ${distribution.step}; at most ${MAX_RANGE_VALUES.toLocaleString('en-US')} are expanded`,
+            message: `this range has about ${aboutCount(estimate)} values at stepWidth ${distribution.step}; at most ${MAX_RANGE_VALUES.toLocaleString('en-US')} are expanded: widen stepWidth to ${smallestStep(upper - lower)} or more, or narrow the range`,
           });
           factors.push([]);
           break;
