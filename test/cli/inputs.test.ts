@@ -87,4 +87,19 @@ describe('cli: inputs that are not regular files', function () {
     const clean = runBounded(['check', 'scenarios'], { cwd: root });
     assert.equal(clean.status, 0, clean.stderr);
   });
+
+  it('run and export of a folder without main.xosc say so, as flatten does, not that a main.xosc in it cannot be read at 1:1', () => {
+    const root = temporaryWorkspace({ 'pkg/notes.txt': 'not a scenario' });
+    for (const args of [
+      ['run', 'pkg'],
+      ['export', 'pkg', '--target', 'carla', '-o', 'out.xosc'],
+      ['flatten', 'pkg'],
+    ]) {
+      const run = runBounded(args, { cwd: root });
+      assert.equal(run.status, 1, run.stderr);
+      assert.match(run.stderr, /pkg: the folder holds no main\.xosc, so it is not an unpacked package/, args[0]);
+      assert.doesNotMatch(run.stderr, /cannot read|1:1/, args[0]);
+    }
+    assert.ok(!fs.existsSync(path.join(root, 'out.xosc')));
+  });
 });

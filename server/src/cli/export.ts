@@ -3,7 +3,17 @@ import * as path from 'node:path';
 import { isSameFile } from '../../../common/src/atomic';
 import { CarlaExport, CarlaExportOptionError, CarlaExportOptions, exportForCarla, exportTextForCarla } from '../core/export/carla';
 import { diskRef, displayRef, nodeFileSystem, splitScenarioPath } from '../core/sources';
-import { CliCommand, CliOutput, ExitCode, InputError, parseCommandLine, UsageError, writablePackagedFiles, write } from './common';
+import {
+  checkInputExists,
+  CliCommand,
+  CliOutput,
+  ExitCode,
+  InputError,
+  parseCommandLine,
+  UsageError,
+  writablePackagedFiles,
+  write,
+} from './common';
 import { mainOf, storeForInputs } from './inputs';
 import { CARLA_OPTION, carlaOptionHelp, carlaReleaseOption } from './options';
 import { readUtf8Exactly } from './fileSystem';
@@ -111,7 +121,7 @@ const DISTRIBUTION = /<ParameterValueDistribution\b/;
 /** The export of one input: a distribution's concrete scenario, or any scenario the flattener takes. */
 async function exportInput(args: ExportArguments, io: CliOutput): Promise<CarlaExport> {
   const input = args.input;
-  if (!fs.existsSync(input)) throw new InputError(`${input}: no such file or folder`);
+  checkInputExists(input);
   const store = storeForInputs(args.scenarioPath, undefined, [input]);
   const isFile = fs.statSync(input).isFile();
   let text: string | undefined;

@@ -11,11 +11,11 @@ import { EsminiLibraryError } from '../esmini/library';
 import { EsminiProblem } from '../esmini/messages';
 import { removeRunFolder, RUN_DEFAULTS, runScenario } from '../esmini/run';
 import {
+  checkInputExists,
   CliCommand,
   CliOutput,
   durationOption,
   ExitCode,
-  InputError,
   parseCommandLine,
   printed,
   UnavailableError,
@@ -125,7 +125,7 @@ async function runCommand(args: string[], io: CliOutput): Promise<number> {
     );
   if (values.csv !== undefined && inputs.length > 1) throw new UsageError('--csv takes one input');
   if (values.trace !== undefined && inputs.length > 1) throw new UsageError('--trace takes one input');
-  for (const input of inputs) if (!fs.existsSync(input)) throw new InputError(`${input}: no such file or folder`);
+  for (const input of inputs) checkInputExists(input);
   const roadPath = (values['road-path'] ?? []).flatMap(splitScenarioPath);
   // esmini searches the road folders for catalogs too (its --path): so does the check before the run.
   const flattener = new Flattener(
