@@ -1,11 +1,18 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { Flattener } from './flatten';
+import { Problem } from './problems';
 import { buildModel } from './model';
 import { notAPlainScenario } from './modularize';
 import { LibraryFolder, Limits, ScenarioStore, diskRef, refId } from './sources';
 import { countEditorLines } from './text';
 import { parseXml } from './xml';
+
+/** Why a scenario has no row: its errors counted, and the check that lists them (with the options stats was given). */
+function cannotBeFlattened(name: string, file: string, problems: readonly Problem[]): string {
+  const errors = problems.filter((problem) => problem.severity === 'error').length;
+  return `${name}: cannot be flattened (${errors} error${errors === 1 ? '' : 's'}; 'modular2simple check ${file}', with the options given here, lists ${errors === 1 ? 'it' : 'them'})`;
+}
 
 export interface StatsRow {
   scenario: string;
@@ -93,10 +100,7 @@ async function filesLayout(
       }
     }
     if (flattened.text !== undefined) flattenedLines.set(scenario.file, countEditorLines(flattened.text));
-    else
-      problems.push(
-        `${path.relative(root, scenario.file)}: cannot be flattened (${flattened.problems.filter((p) => p.severity === 'error').length} errors; run 'modular2simple check')`,
-      );
+    else problems.push(cannotBeFlattened(path.relative(root, scenario.file), scenario.file, flattened.problems));
   }
   if (!scenarios.some((scenario) => scenario.main))
     problems.push(
@@ -194,9 +198,7 @@ export async function libraryStats(
       flattenedLines = countEditorLines(flattened.text);
       flattenedFrom = 'flattened';
     } else {
-      problems.push(
-        `${folder}: cannot be flattened (${flattened.problems.filter((p) => p.severity === 'error').length} errors; run 'modular2simple check')`,
-      );
+      problems.push(cannotBeFlattened(folder, mainPath, flattened.problems));
       continue;
     }
     rows.push({ scenario: folder, modularLines, flattenedLines, reduction: reduction(modularLines, flattenedLines), flattenedFrom });
