@@ -67,8 +67,12 @@ describe('cli: run in esmini', function () {
       /esmini: 0 errors, \d+ warnings?; 4\.00 s simulated: stopped at the 4 s limit set by --duration, before the scenario ended by itself \(the run took \d+\.\d\d s\)/,
     );
     assert.deepEqual(listFiles(root), before);
-    const rows = fs.readFileSync(out, 'utf8').trim().split('\n').slice(7);
+    const csv = fs.readFileSync(out, 'utf8');
+    const rows = csv.trim().split('\n').slice(7);
     assert.equal(Number(rows[rows.length - 1].split(',')[1]), 4);
+    // The header named the run's private copy (/tmp/modular2simple-esmini/esmini-run-*/scenario.xosc), removed after the run.
+    assert.match(csv, new RegExp(`^Scenario File Name: ${root.replace(/[.*+?^${}()|[\]\\]/g, '\\$&')}$`, 'm'));
+    assert.doesNotMatch(csv, /esmini-run-/);
   });
 
   it('a scenario with no stop condition runs its default length, and the message says where to set a longer one', function () {

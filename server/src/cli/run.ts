@@ -50,9 +50,12 @@ export function formatEsminiProblem(problem: EsminiProblem, base?: string): stri
   return `${where}: ${problem.severity}: ${problem.message} (esmini)${repeats}${note}`;
 }
 
-/** Rows of esmini's CSV up to `duration`: header lines kept, later rows dropped. */
-function csvUpTo(text: string, duration: number): string {
-  const lines = text.split('\n');
+/**
+ * Rows of esmini's CSV up to `duration`: header lines kept, later rows dropped; its 'Scenario File Name' names `scenario`,
+ * the input, not the run's private copy (removed when the run ends).
+ */
+function csvUpTo(text: string, duration: number, scenario: string): string {
+  const lines = text.split('\n').map((line) => line.replace(/^(Scenario File Name: ).*?(\r?)$/, `$1${scenario}$2`));
   const kept = lines.filter((line) => {
     const time = Number(line.split(',')[1]);
     return !/^\s*\d/.test(line) || !Number.isFinite(time) || time <= duration + 1e-9;
@@ -166,7 +169,7 @@ async function runCommand(args: string[], io: CliOutput): Promise<number> {
         io.err(`${input}: ${result.message}${result.forcible ? ' (--force runs it anyway)' : ''}`);
       if (values.csv !== undefined && result.csvFile) {
         const output = path.resolve(values.csv);
-        await writeFileAtomic(output, csvUpTo(fs.readFileSync(result.csvFile, 'utf8'), result.duration));
+        await writeFileAtomic(output, csvUpTo(fs.readFileSync(result.csvFile, 'utf8'), result.duration, path.resolve(input)));
         if (!values.quiet) io.err(`wrote ${values.csv}`);
       }
     } finally {
