@@ -78,6 +78,11 @@ describe('cli: batch writes results.html and keeps runs', function () {
     for (const index of ['0', '1', '2', '3']) {
       for (const file of ['scenario.xosc', 'trajectories.csv', 'esmini.log'])
         assert.ok(fs.existsSync(path.join(root, 'results', 'runs', index, file)), `runs/${index}/${file}`);
+      // The CSV's header names the kept scenario, not the run's private folder (runs/.running/esmini-run-*/), gone after the run.
+      const header = /^Scenario File Name: (.*)$/m.exec(
+        fs.readFileSync(path.join(root, 'results', 'runs', index, 'trajectories.csv'), 'utf8'),
+      );
+      assert.equal(header?.[1], path.join(root, 'results', 'runs', index, 'scenario.xosc'));
     }
     assert.deepEqual(fs.readdirSync(path.join(root, 'results', 'runs')).sort(), ['0', '1', '2', '3'], 'nothing else in runs/');
     // Resumed with nothing to run: the report is written again, the same.

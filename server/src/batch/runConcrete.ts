@@ -3,6 +3,7 @@ import * as path from 'node:path';
 import { EsminiCsvError, parseEsminiCsv } from '../../../common/src/esminiCsv';
 import { EsminiTextRunResult, limitSentence, removeRunFolder, runScenarioText } from '../esmini/run';
 import { esminiMessageSeverity, withoutRunFolder } from '../esmini/messages';
+import { csvNamingScenario } from '../esmini/process';
 import { collisionsIn, trajectoryMetrics } from './metrics';
 import type { BatchRow, RunStatus } from './results';
 
@@ -166,6 +167,9 @@ export function keptBesideRun(files: readonly { path: string; bytes: Uint8Array 
 /** Moves a run's folder to `target` (replacing a run kept there before), with esmini's log beside its CSV. */
 function keepRunFolder(runFolder: string, log: string, target: string): void {
   fs.writeFileSync(path.join(runFolder, 'esmini.log'), log);
+  // The CSV's header named the run's private folder, which the rename removes: it names the kept scenario.
+  const csv = path.join(runFolder, 'trajectories.csv');
+  if (fs.existsSync(csv)) fs.writeFileSync(csv, csvNamingScenario(fs.readFileSync(csv, 'utf8'), path.join(target, 'scenario.xosc')));
   fs.rmSync(target, { recursive: true, force: true });
   fs.renameSync(runFolder, target);
 }

@@ -9,6 +9,7 @@ import { prepareScenario, Simulation, SimulationLoadError, SimulationOptions } f
 import { TraceRecord, traceToEnd } from '../debug/trace';
 import { EsminiLibraryError } from '../esmini/library';
 import { EsminiProblem } from '../esmini/messages';
+import { csvNamingScenario } from '../esmini/process';
 import { removeRunFolder, RUN_DEFAULTS, runScenario } from '../esmini/run';
 import {
   checkInputExists,
@@ -55,7 +56,7 @@ export function formatEsminiProblem(problem: EsminiProblem, base?: string): stri
  * the input, not the run's private copy (removed when the run ends).
  */
 function csvUpTo(text: string, duration: number, scenario: string): string {
-  const lines = text.split('\n').map((line) => line.replace(/^(Scenario File Name: ).*?(\r?)$/, `$1${scenario}$2`));
+  const lines = csvNamingScenario(text, scenario).split('\n');
   const kept = lines.filter((line) => {
     const time = Number(line.split(',')[1]);
     return !/^\s*\d/.test(line) || !Number.isFinite(time) || time <= duration + 1e-9;

@@ -76,6 +76,11 @@ export function esminiArguments(
   return args;
 }
 
+/** esmini's CSV with its 'Scenario File Name' header naming `scenario`: a run's private copy is removed or moved after the run. */
+export function csvNamingScenario(text: string, scenario: string): string {
+  return text.replace(/^(Scenario File Name: ).*?(\r?)$/m, (_line, label: string, end: string) => `${label}${scenario}${end}`);
+}
+
 /** The TimeStamp of the last complete row of esmini's CSV (its second column), read from the file's tail. */
 export function lastCsvTime(csvFile: string): number | undefined {
   let handle: number | undefined;
