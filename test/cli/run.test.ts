@@ -75,6 +75,19 @@ describe('cli: run in esmini', function () {
     assert.doesNotMatch(csv, /esmini-run-/);
   });
 
+  it("esmini's log shown when it fails names the places it looked as from the scenario, not the run's private folder", function () {
+    requireEsmini(this);
+    const root = temporaryFolder('m2s-run-no-road-');
+    fs.mkdirSync(path.join(root, 'scenarios'));
+    fs.writeFileSync(path.join(root, 'scenarios', 's.xosc'), roadScenario({ logicFile: '../roads/no-such-road.xodr', groups: [] }));
+    const run = runCli(['run', 'scenarios/s.xosc', '--esmini', esminiBinary], { cwd: root });
+    assert.equal(run.status, 3, run.stderr);
+    assert.match(run.stderr, /esmini did not run the scenario .*Failed to locate OpenDRIVE file/);
+    // It printed /tmp/modular2simple-esmini/esmini-run-*/../roads/no-such-road.xodr, a folder removed after the run.
+    assert.doesNotMatch(run.stderr, /esmini-run-/);
+    assert.ok(run.stderr.includes(path.join(root, 'roads', 'no-such-road.xodr')), run.stderr);
+  });
+
   it('a scenario with no stop condition runs its default length, and the message says where to set a longer one', function () {
     requireEsmini(this);
     const root = temporaryFolder('m2s-run-no-end-');

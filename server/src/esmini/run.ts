@@ -408,6 +408,8 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
     trace,
     roadFile,
     ...ran.common,
+    // The log's tail is shown when esmini fails: its paths name what the private folder stood for, as the messages do.
+    log: withoutRunFolder(ran.common.log, runFolder, sourceFolderOf(main), copies),
     duration,
     limitKind: limit.kind,
     esmini: location.program,
