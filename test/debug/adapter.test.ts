@@ -644,6 +644,14 @@ describe('debug adapter through the Debug Adapter Protocol', function () {
     );
   });
 
+  it('refuses a seed esmini cannot take, as run --seed does, before anything is loaded', async () => {
+    await client.initializeRequest();
+    await assert.rejects(
+      client.launch({ type: 'modular2simple', request: 'launch', program: cutIn, roadPath, seed: -1 }),
+      /the launch configuration's seed takes a whole number from 0 to 4294967295, not -1/,
+    );
+  });
+
   it('names the build when the library is missing', async () => {
     await client.initializeRequest();
     await assert.rejects(

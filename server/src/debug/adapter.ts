@@ -24,6 +24,7 @@ import { roadFolders } from '../core/semantics/roadFiles';
 import { childRef, diskRef, displayRef, ScenarioStore, SourceRef, splitScenarioPath } from '../core/sources';
 import { EsminiLibraryError } from '../esmini/library';
 import { EsminiProblem } from '../esmini/messages';
+import { RUN_DEFAULTS } from '../esmini/run';
 import { EntityState, prepareScenario, Simulation, SimulationLoadError, SimulationOptions, StoryboardEvent } from './simulation';
 import { STORYBOARD_EVENT, type StoryboardEventBody } from '../../../common/src/trace';
 import { describeEvent, traceRecord } from './trace';
@@ -218,6 +219,15 @@ export class ScenarioDebugSession extends DebugSession {
     const program = path.resolve(base, args.program);
     if (!fs.existsSync(program)) {
       this.fail(response, `${program}: no such file or folder`);
+      return false;
+    }
+    const seed: unknown = args.seed;
+    if (seed !== undefined && !(typeof seed === 'number' && Number.isInteger(seed) && seed >= 0 && seed <= RUN_DEFAULTS.maxSeed)) {
+      // As run --seed: esmini reads the seed into an unsigned int.
+      this.fail(
+        response,
+        `the launch configuration's seed takes a whole number from 0 to ${RUN_DEFAULTS.maxSeed}, not ${JSON.stringify(seed)}`,
+      );
       return false;
     }
     const options: SimulationOptions = {
