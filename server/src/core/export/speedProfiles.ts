@@ -162,6 +162,8 @@ function unrepeatable(event: Node, action: Node, tree: Node): string | undefined
 
 /** Every SpeedProfileAction of a story written as its chain of SpeedActions, or dropped naming why it has none. */
 export function speedProfiles(tree: Node, context: { sink: LossSink }): void {
+  // Read once, when a first profile is written; each name written joins it.
+  let names: Set<string> | undefined;
   for (const profile of named(tree, 'SpeedProfileAction')) {
     if (!profile.parent) continue;
     const action = ancestor(profile, 'Action');
@@ -181,7 +183,7 @@ export function speedProfiles(tree: Node, context: { sink: LossSink }): void {
       continue;
     }
     const { ramps, lengthened, jumpTo, uncheckedFirst } = found;
-    const names = storyboardNames(tree);
+    const taken = (names ??= storyboardNames(tree));
     const trigger = child(event, 'StartTrigger') as Node;
     const written: string[] = [];
     let offset = 0;
@@ -191,13 +193,13 @@ export function speedProfiles(tree: Node, context: { sink: LossSink }): void {
         replaceNode(profile, speedAction(ramp));
       } else {
         const copy = makeNode('Event', [], [], event.place);
-        setAttr(copy, 'name', freshName(`${attr(event, 'name') ?? 'Event'}_ramp${index + 1}`, names));
+        setAttr(copy, 'name', freshName(`${attr(event, 'name') ?? 'Event'}_ramp${index + 1}`, taken));
         setAttr(copy, 'priority', 'parallel');
         const count = attr(event, 'maximumExecutionCount');
         if (count !== undefined) setAttr(copy, 'maximumExecutionCount', count);
         const longitudinal = makeNode('LongitudinalAction', [], [speedAction(ramp)], ramp.entry.place);
         const rampAction = makeNode('Action', [], [makeNode('PrivateAction', [], [longitudinal], ramp.entry.place)], action.place);
-        setAttr(rampAction, 'name', freshName(`${attr(action, 'name') ?? 'Action'}_ramp${index + 1}`, names));
+        setAttr(rampAction, 'name', freshName(`${attr(action, 'name') ?? 'Action'}_ramp${index + 1}`, taken));
         appendChild(copy, rampAction);
         const delayed = cloneNode(trigger);
         for (const condition of named(delayed, 'Condition'))
