@@ -10,7 +10,7 @@ import { TraceRecord, traceToEnd } from '../debug/trace';
 import { EsminiLibraryError } from '../esmini/library';
 import { EsminiProblem } from '../esmini/messages';
 import { csvNamingScenario } from '../esmini/process';
-import { removeRunFolder, RUN_DEFAULTS, runScenario } from '../esmini/run';
+import { isEsminiSeed, removeRunFolder, RUN_DEFAULTS, runScenario } from '../esmini/run';
 import {
   checkInputExists,
   CliCommand,
@@ -123,7 +123,7 @@ async function runCommand(args: string[], io: CliOutput): Promise<number> {
   if (inputs.length === 0) throw new UsageError('run needs a scenario: a .xosc, a .mosc or an unpacked folder');
   const duration = durationOption(values.duration);
   const seed = values.seed === undefined ? RUN_DEFAULTS.seed : Number(values.seed);
-  if (!Number.isInteger(seed) || seed < 0 || seed > RUN_DEFAULTS.maxSeed)
+  if (!isEsminiSeed(seed))
     throw new UsageError(
       `--seed takes a whole number from 0 to ${RUN_DEFAULTS.maxSeed} (esmini's seed is an unsigned int), not '${values.seed}'`,
     );

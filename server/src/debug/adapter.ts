@@ -24,7 +24,7 @@ import { roadFolders } from '../core/semantics/roadFiles';
 import { childRef, diskRef, displayRef, ScenarioStore, SourceRef, splitScenarioPath } from '../core/sources';
 import { EsminiLibraryError } from '../esmini/library';
 import { EsminiProblem } from '../esmini/messages';
-import { RUN_DEFAULTS } from '../esmini/run';
+import { isEsminiSeed, RUN_DEFAULTS } from '../esmini/run';
 import { EntityState, prepareScenario, Simulation, SimulationLoadError, SimulationOptions, StoryboardEvent } from './simulation';
 import { STORYBOARD_EVENT, type StoryboardEventBody } from '../../../common/src/trace';
 import { describeEvent, traceRecord } from './trace';
@@ -222,7 +222,7 @@ export class ScenarioDebugSession extends DebugSession {
       return false;
     }
     const seed: unknown = args.seed;
-    if (seed !== undefined && !(typeof seed === 'number' && Number.isInteger(seed) && seed >= 0 && seed <= RUN_DEFAULTS.maxSeed)) {
+    if (seed !== undefined && !isEsminiSeed(seed)) {
       // As run --seed: esmini reads the seed into an unsigned int.
       this.fail(
         response,

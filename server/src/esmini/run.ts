@@ -32,6 +32,11 @@ export const RUN_DEFAULTS = {
   maxOutputChars: 8 * 1024 * 1024,
 } as const;
 
+/** Whether `value` is a seed esmini keeps (a whole number from 0 to RUN_DEFAULTS.maxSeed): `run --seed` and the debugger's launch configuration both hold to it. */
+export function isEsminiSeed(value: unknown): value is number {
+  return typeof value === 'number' && Number.isInteger(value) && value >= 0 && value <= RUN_DEFAULTS.maxSeed;
+}
+
 export interface EsminiRunOptions {
   /** The configured esmini (setting or --esmini); PATH when empty. */
   esminiPath?: string;
