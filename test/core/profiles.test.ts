@@ -150,6 +150,13 @@ describe('simulator profiles', () => {
     assert.equal(sinusoidal.length, 1);
     assert.match(simulatorWording(sinusoidal[0]).message, /dynamicsShape="sinusoidal" on LaneChangeActionDynamics/);
     assert.equal(sinusoidal[0].severity, 'warning');
+    // The export writes a time as the distance the actor drives in it (carlaRules.ts laneChangeTimes): the finding offers it; no export follows a shape.
+    const byTime = simulatorFindings('carla', parseXml(scenarioText('0', '', story.replace('"distance"', '"time"'))), 'a.xosc');
+    assert.deepEqual(
+      byTime.map((finding) => finding.exportMaps),
+      [true],
+    );
+    assert.equal(sinusoidal[0].exportMaps, undefined);
   });
 
   it('carla reads catalogs only from files named <Type>Catalog.xosc; the version of a catalog is not checked', () => {

@@ -33,7 +33,7 @@ import { sampledShape, sampledWorldPoints, TrajectoryEnds } from './carlaTraject
 import { dropUnit } from './carlaLosses';
 import type { CarlaLoss, LossSink } from './carlaLosses';
 import { variables } from './carlaVariables';
-import { actorsOf, fromInit, startSpeedOf } from './scenarioTree';
+import { actorsOf, constantSpeedOf, fromInit, startSpeedOf } from './scenarioTree';
 import { speedProfiles } from './speedProfiles';
 import { trajectoryPoint } from './trajectoryPoint';
 import { initStarts } from './initStarts';
@@ -976,12 +976,24 @@ function ignoredSemantics(tree: Node, context: RuleContext): void {
   );
 }
 
-/** A SpeedAction's rate is kept as written, and reported: ScenarioRunner reads it as a duration (CARLA_FACTS.speedRateAsDuration). */
+/** How long esmini's transition of `shape` takes for a change of `change` at a peak rate `rate` (esmini OSCPrivateAction.cpp EvaluatePrimPeak: the rate is the peak slope). */
+const RATE_DURATION_FACTOR: Readonly<Record<string, number>> = { linear: 1, sinusoidal: Math.PI / 2, cubic: 3 / 2 };
+
+/**
+ * A SpeedAction's rate (ScenarioRunner reads it as a duration, CARLA_FACTS.speedRateAsDuration) is written as the time the
+ * change takes where the speed it starts from is certain (scenarioTree constantSpeedOf); elsewhere it is kept as written, and reported.
+ */
 function speedRates(tree: Node, context: RuleContext): void {
   const fact = CARLA_FACTS.speedRateAsDuration;
   for (const dynamics of named(tree, 'SpeedActionDynamics')) {
     if (attr(dynamics, 'dynamicsDimension') !== 'rate') continue;
     const value = attr(dynamics, 'value') ?? '';
+    const seconds = rateAsSeconds(tree, dynamics, Number(value));
+    if (seconds !== undefined) {
+      setAttr(dynamics, 'dynamicsDimension', 'time');
+      setAttr(dynamics, 'value', fourDecimals(seconds));
+      continue;
+    }
     const negative = Number(value) < 0;
     context.sink.approximated(
       dynamics,
@@ -989,6 +1001,50 @@ function speedRates(tree: Node, context: RuleContext): void {
       `the rate ${value} is kept as written, but runs as a duration of ${value} s${negative ? ': the action ends at its first tick (a negative rate)' : ''}`,
       `ScenarioRunner ${fact.does} (${fact.source})`,
     );
+  }
+}
+
+/** The seconds a rate's change takes, where the speed it starts from is certain: one Event run, an absolute target, every actor at one constant speed before. */
+function rateAsSeconds(tree: Node, dynamics: Node, rate: number): number | undefined {
+  const action = ancestor(dynamics, 'SpeedAction');
+  const target = action ? named(action, 'AbsoluteTargetSpeed')[0] : undefined;
+  const factor = RATE_DURATION_FACTOR[attr(dynamics, 'dynamicsShape') ?? ''];
+  const event = action ? ancestor(action, 'Event') : undefined;
+  if (!action || !target || factor === undefined || !event || !(rate !== 0 && Number.isFinite(rate))) return undefined;
+  if (Number(attr(event, 'maximumExecutionCount') ?? 1) !== 1) return undefined;
+  const actors = actorsOf(action);
+  const starts = actors.map((actor) => constantSpeedOf(tree, actor, action));
+  const start = starts[0];
+  if (start === undefined || starts.some((each) => each !== start)) return undefined;
+  const change = Math.abs(Number(attr(target, 'value')) - start);
+  return Number.isFinite(change) && change > 0 ? (factor * change) / Math.abs(rate) : undefined;
+}
+
+/**
+ * A lane change by time is planned over an infinite distance (CARLA_PROFILE LaneChangeActionDynamics/@dynamicsDimension):
+ * written as the distance the actor drives in that time, exactly where its speed is certain, at its start speed elsewhere (reported).
+ */
+function laneChangeTimes(tree: Node, context: RuleContext): void {
+  for (const dynamics of named(tree, 'LaneChangeActionDynamics')) {
+    if (attr(dynamics, 'dynamicsDimension') !== 'time') continue;
+    const seconds = Number(attr(dynamics, 'value'));
+    const actors = actorsOf(dynamics);
+    if (actors.length === 0 || !(seconds > 0)) continue;
+    const constant = actors.map((actor) => constantSpeedOf(tree, actor));
+    const started = actors.map((actor) => startSpeedOf(tree, actor));
+    const certain = constant[0] !== undefined && constant.every((each) => each === constant[0]);
+    const speed = certain ? constant[0] : started[0];
+    if (speed === undefined || !(Math.abs(speed) > 0) || (!certain && started.some((each) => each !== speed))) continue;
+    const distance = fourDecimals(seconds * Math.abs(speed));
+    setAttr(dynamics, 'dynamicsDimension', 'distance');
+    setAttr(dynamics, 'value', distance);
+    if (!certain)
+      context.sink.approximated(
+        dynamics,
+        'LaneChangeActionDynamics/@value',
+        `${seconds} s is written as ${distance} m, at the actor's start speed ${speed} m/s: its speed may change before or during the lane change`,
+        `ScenarioRunner plans a lane change over a distance only; by time it plans it over an infinite distance (${SR_PARSER}:1386-1399)`,
+      );
   }
 }
 
@@ -1317,6 +1373,7 @@ export const CARLA_RULES: readonly { name: string; apply: (tree: Node, context: 
   { name: 'conditions', apply: conditions },
   { name: 'ignored-semantics', apply: ignoredSemantics },
   { name: 'speed-rates', apply: speedRates },
+  { name: 'lane-change-times', apply: laneChangeTimes },
   { name: 'speed-shapes', apply: speedShapes },
   { name: 'attributes-run-otherwise', apply: attributesRunOtherwise },
   { name: 'act-stop-groups', apply: actStopGroups },

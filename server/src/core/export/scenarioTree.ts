@@ -29,3 +29,46 @@ export function actorsOf(node: Node): string[] {
   const actors = group ? child(group, 'Actors') : undefined;
   return actors ? childrenNamed(actors, 'EntityRef').map((each) => attr(each, 'entityRef') ?? '') : [];
 }
+
+/** What can change an actor's speed once the story runs: longitudinal actions, trajectories with timing, synchronization and controllers. */
+const SPEED_CHANGING: ReadonlySet<string> = new Set([
+  'SpeedAction',
+  'SpeedProfileAction',
+  'LongitudinalDistanceAction',
+  'SynchronizeAction',
+  'FollowTrajectoryAction',
+  'ControllerAction',
+  'ActivateControllerAction',
+  'AssignControllerAction',
+  'OverrideControllerValueAction',
+]);
+
+/**
+ * The speed the actor keeps for the whole run, when that is certain: its Init sets it at once (a step) and nothing
+ * else can change it (no controller of its own, no other speed-changing action on it but `except`), else undefined.
+ */
+export function constantSpeedOf(tree: Node, actor: string, except?: Node): number | undefined {
+  const storyboard = child(tree, 'Storyboard');
+  const init = storyboard ? child(storyboard, 'Init') : undefined;
+  if (!storyboard || !init) return undefined;
+  const object = named(tree, 'ScenarioObject').find((each) => attr(each, 'name') === actor);
+  if (!object || child(object, 'ObjectController')) return undefined;
+  let speed: number | undefined;
+  for (const privateNode of named(init, 'Private').filter((each) => attr(each, 'entityRef') === actor))
+    for (const action of named(privateNode, SPEED_CHANGING)) {
+      const target = action.name === 'SpeedAction' ? named(action, 'AbsoluteTargetSpeed')[0] : undefined;
+      const dynamics = action.name === 'SpeedAction' ? named(action, 'SpeedActionDynamics')[0] : undefined;
+      if (!target || speed !== undefined || (dynamics && attr(dynamics, 'dynamicsShape') !== 'step')) return undefined;
+      speed = Number(attr(target, 'value'));
+    }
+  if (speed === undefined || !Number.isFinite(speed)) return undefined;
+  for (const story of childrenNamed(storyboard, 'Story'))
+    for (const action of named(story, SPEED_CHANGING)) {
+      if (action === except) continue;
+      const group = ancestor(action, 'ManeuverGroup');
+      const actors = group ? child(group, 'Actors') : undefined;
+      // Triggering entities are known only when the run decides them: any of them may be this actor.
+      if (!actors || attr(actors, 'selectTriggeringEntities') === 'true' || actorsOf(action).includes(actor)) return undefined;
+    }
+  return speed;
+}

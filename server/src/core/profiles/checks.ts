@@ -142,6 +142,7 @@ const attributeCheck: ProfileCheck = ({ profile, elements }) => {
         attribute: found,
         severity: fact.severity ?? 'warning',
         facts: { kind: 'attribute', profile: profile.name, fact, element: element.name, value: found.value },
+        ...(fact.exportWrites?.includes(found.value) ? { exportMaps: true } : {}),
       });
     }
   }

@@ -38,6 +38,8 @@ export interface AttributeFact {
   severity?: FactSeverity;
   note: string;
   source: string;
+  /** The values the project's export for this simulator writes in a form the simulator runs (the finding then offers the export). */
+  exportWrites?: readonly string[];
 }
 
 /** What one simulator accepts, read from its own repository at one revision. */
