@@ -3,9 +3,9 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { simulatorWording } from '../../server/src/core/diagnostics/simulator';
 import { Flattener } from '../../server/src/core/flatten';
-import { CARLA_PROFILE } from '../../server/src/core/profiles/carla';
+import { CARLA_FACTS, CARLA_PROFILE } from '../../server/src/core/profiles/carla';
 import { simulatorFindings } from '../../server/src/core/profiles/checks';
-import { ESMINI_PROFILE } from '../../server/src/core/profiles/esmini';
+import { ESMINI_FACTS, ESMINI_PROFILE } from '../../server/src/core/profiles/esmini';
 import { Simulator } from '../../server/src/core/profiles/simulators';
 import { diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { parseXml } from '../../server/src/core/xml';
@@ -219,6 +219,8 @@ describe('simulator profiles', () => {
       for (const fact of [...profile.elements, ...profile.attributes])
         assert.ok(fact.source.length > 0, `${profile.name}: ${JSON.stringify(fact)}`);
     }
+    for (const fact of [...Object.values(CARLA_FACTS), ...Object.values(ESMINI_FACTS)])
+      assert.ok(/\S/.test(fact.source), JSON.stringify(fact));
   });
 
   it('reports findings of an imported group in the file the group was written in, and none without a simulator', async () => {

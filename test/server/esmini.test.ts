@@ -11,7 +11,10 @@ import { lastCsvTime, makeRunFolder, runEsminiProcess } from '../../server/src/e
 import { EsminiRunOptions, EsminiRunResult, removeRunFolder, runScenario } from '../../server/src/esmini/run';
 import { runLimit, RUNAWAY_SECONDS, TIME_LIMIT_CONDITION, withTimeLimit } from '../../server/src/esmini/timeLimit';
 import { parseXml } from '../../server/src/core/xml';
-import { catalogFile, roadScenario } from '../support/fixtures';
+import { catalogFile, drivingScenario, roadScenario } from '../support/fixtures';
+import { SIMULATOR } from '../../server/src/core/diagnostics/simulator';
+import { applyEdits } from '../support/textEdits';
+import { fixContext } from '../core/diagnostics/support';
 import { esminiBinary, tracksOf, readEsminiCsv, requireEsmini, esminiCatalogs, esminiRoads } from '../support/esmini';
 import { libraryDir, repoRoot, requireCorpus } from '../support/paths';
 import { listFiles } from '../support/workspace';
@@ -488,6 +491,34 @@ describe('esmini: runs (the simulator built by the test setup)', function () {
     assert.equal(error.source.disk, path.join(root, 'lane_change.xosc'));
     assert.match(lineOf(error.source.disk, error.range.start.line), /<SpeedActionDynamics dynamicsShape="wobbly"/);
     assert.match(error.message, /wobbly/);
+  });
+
+  it('refuses selectTriggeringEntities alone, as check --simulator esmini says, and runs it with the EntityRef its fix adds', async function () {
+    requireEsmini(this);
+    const group = `<ManeuverGroup name="Follow" maximumExecutionCount="1"><Actors selectTriggeringEntities="true"/><Maneuver name="M"><Event name="E" priority="override"><Action name="Go"><PrivateAction><LongitudinalAction><SpeedAction><SpeedActionDynamics dynamicsShape="step" value="0" dynamicsDimension="time"/><SpeedActionTarget><AbsoluteTargetSpeed value="10"/></SpeedActionTarget></SpeedAction></LongitudinalAction></PrivateAction></Action><StartTrigger><ConditionGroup><Condition name="C" delay="0" conditionEdge="none"><ByValueCondition><SimulationTimeCondition value="0" rule="greaterThan"/></ByValueCondition></Condition></ConditionGroup></StartTrigger></Event></Maneuver></ManeuverGroup>`;
+    const trigger =
+      '<StartTrigger><ConditionGroup><Condition name="Still" delay="0" conditionEdge="none"><ByEntityCondition><TriggeringEntities triggeringEntitiesRule="any"><EntityRef entityRef="Ego"/></TriggeringEntities><EntityCondition><StandStillCondition duration="0.1"/></EntityCondition></ByEntityCondition></Condition></ConditionGroup></StartTrigger>\n      </Act>';
+    const text = drivingScenario('straight_500m.xodr', group).replace(/<StartTrigger\/>\n {6}<\/Act>/, trigger);
+    assert.match(text, /name="Still"/);
+    const root = temporaryFolder('m2s-esmini-actors-');
+    const main = path.join(root, 'main.xosc');
+    fs.writeFileSync(main, text);
+    const store = new ScenarioStore({ root });
+    const refused = await run(store, main, { duration: 3 });
+    assert.equal(refused.outcome, 'failed', refused.log);
+    assert.match(refused.message, /PrivateAction Go missing actor\(s\)\. SelectTriggeringEntities feature not supported yet/);
+    const [error] = (await new Flattener(store, 'esmini').analyze(diskRef(main))).problems.filter(
+      (problem) => problem.code === 'simulator',
+    );
+    assert.equal(error?.severity, 'error');
+    assert.match(error.message, /refuses to load a private action with none/);
+    const [fix] = (await SIMULATOR.fixes?.(fixContext(error.data, undefined, text, error.range))) ?? [];
+    fs.writeFileSync(main, applyEdits(text, fix.edits));
+    const ran = await run(new ScenarioStore({ root }), main, { duration: 3 });
+    assert.equal(ran.outcome, 'ok', `${ran.message}\n${ran.log.slice(-2000)}`);
+    const ego = tracksOf(readEsminiCsv(ran.csvFile as string)).get('Ego') ?? [];
+    assert.ok(ego[ego.length - 1].x - ego[0].x > 5, 'Ego, the added actor, drives');
+    fs.rmSync(root, { recursive: true, force: true });
   });
 
   it('runs the unsaved text: an editor overlay with a mistake is what esmini gets', async function () {

@@ -179,12 +179,14 @@ export interface MissingElementsData {
 
 /**
  * What answers a simulator finding: the text to write at its range where one edit does it, a catalog file
- * to rename (absolute paths), and whether the export for CARLA maps it.
+ * to rename (absolute paths), whether the export for CARLA maps it, and the actor an Actors lacks.
  */
 export interface SimulatorFixData {
   suggestion?: string;
   rename?: { from: string; to: string };
   exportMaps?: boolean;
+  /** The entity an EntityRef added to the Actors the problem stands on names (esmini takes actors only from EntityRefs). */
+  actor?: string;
 }
 
 /** The data each problem code carries (where it carries any). */

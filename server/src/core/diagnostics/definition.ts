@@ -167,6 +167,47 @@ export function indentOfLine(text: string, offset: number): string {
   return /^[ \t]*/.exec(text.slice(lineStart))?.[0] ?? '';
 }
 
+/** A text's line break and indentation unit, as an inserted block copies them. */
+export function layoutOf(text: string): { eol: string; unit: string } {
+  return { eol: text.includes('\r\n') ? '\r\n' : '\n', unit: /^( +|\t)/m.exec(text.slice(0, 4000))?.[1] ?? '  ' };
+}
+
+/**
+ * The edit (text offsets) that inserts children at the end of `parent`, each block `blocksAt` writes at an
+ * indentation and line break: `<Parent/>` becomes `<Parent>…</Parent>`; a closing tag on its own line gets
+ * the blocks on lines of their own above it, else they go right before it. Undefined when the closing tag is not found.
+ */
+export function childrenInsertion(
+  text: string,
+  parent: XmlElement,
+  blocksAt: (indent: string, lineBreak: string) => string[],
+): { start: number; end: number; newText: string } | undefined {
+  const { eol, unit } = layoutOf(text);
+  const childIndent = indentOfLine(text, parent.start) + unit;
+  if (parent.selfClosing) {
+    const slash = text.lastIndexOf('/', parent.end - 1);
+    return {
+      start: slash,
+      end: parent.end,
+      newText: `>${blocksAt(childIndent, eol)
+        .map((block) => `${eol}${childIndent}${block}`)
+        .join('')}${eol}${indentOfLine(text, parent.start)}</${parent.name}>`,
+    };
+  }
+  const closing = text.lastIndexOf(`</${parent.name}`, parent.end);
+  if (closing < 0) return undefined;
+  const lineStart = text.lastIndexOf('\n', closing - 1) + 1;
+  if (/^[ \t]*$/.test(text.slice(lineStart, closing)))
+    return {
+      start: lineStart,
+      end: lineStart,
+      newText: blocksAt(childIndent, eol)
+        .map((block) => `${childIndent}${block}${eol}`)
+        .join(''),
+    };
+  return { start: closing, end: closing, newText: blocksAt('', '').join('') };
+}
+
 /** The text offset where a new attribute goes: right after parameterAttributes, else after the element name. */
 export function attributeInsertOffset(element: XmlElement): number {
   const declaration = attribute(element, PARAMETER_ATTRIBUTES);

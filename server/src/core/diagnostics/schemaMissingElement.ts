@@ -3,7 +3,18 @@ import { SchemaFactsByCode } from '../schema/facts';
 import { indexFor, typeByElementName, typeOfElement } from '../schema/query';
 import { elementSkeleton, placeholderValue, skeletonText } from '../schema/skeleton';
 import { Range } from '../text';
-import { defineDiagnostic, elementAtRange, indentOfLine, isOptionalString, isRecord, isString, isStringList, Words } from './definition';
+import {
+  childrenInsertion,
+  defineDiagnostic,
+  elementAtRange,
+  indentOfLine,
+  isOptionalString,
+  isRecord,
+  isString,
+  isStringList,
+  layoutOf,
+  Words,
+} from './definition';
 
 /** Element names as the schema's messages write them: `<A>, <B>`. */
 export function elementList(names: readonly string[]): string {
@@ -35,9 +46,7 @@ export const SCHEMA_MISSING_ELEMENT = defineDiagnostic({
     const parent = data.insertAt !== undefined ? anchor?.parent : anchor;
     if (!parent) return [];
     const parentType = typeOfElement(index, parent) ?? typeByElementName(index, parent.name);
-    const eol = text.includes('\r\n') ? '\r\n' : '\n';
-    const unit = /^( +|\t)/m.exec(text.slice(0, 4000))?.[1] ?? '  ';
-    const childIndent = indentOfLine(text, parent.start) + unit;
+    const { eol, unit } = layoutOf(text);
     // Each missing element as a minimal valid skeleton: its required attributes and children, recursively.
     const blocksAt = (indent: string, lineBreak: string) =>
       names.map((name) => {
@@ -45,38 +54,19 @@ export const SCHEMA_MISSING_ELEMENT = defineDiagnostic({
         const skeleton = particle ? elementSkeleton(index, particle) : { name, type: '', attributes: [], children: [] };
         return skeletonText(skeleton, { indent, unit, eol: lineBreak }, (declaration) => placeholderValue(index, declaration.type));
       });
-    const at = (offset: number): Range => ({ start: document.positionAt(offset), end: document.positionAt(offset) });
     let edit: { range: Range; newText: string };
     if (data.insertAt !== undefined) {
       const offset = Number(data.insertAt);
       edit = {
-        range: at(offset),
+        range: { start: document.positionAt(offset), end: document.positionAt(offset) },
         newText: blocksAt(indentOfLine(text, offset), eol)
           .map((block) => `${block}${eol}${indentOfLine(text, offset)}`)
           .join(''),
       };
-    } else if (parent.selfClosing) {
-      // `<Parent/>` becomes `<Parent>…</Parent>`.
-      const slash = text.lastIndexOf('/', parent.end - 1);
-      edit = {
-        range: { start: document.positionAt(slash), end: document.positionAt(parent.end) },
-        newText: `>${blocksAt(childIndent, eol)
-          .map((block) => `${eol}${childIndent}${block}`)
-          .join('')}${eol}${indentOfLine(text, parent.start)}</${parent.name}>`,
-      };
     } else {
-      const closing = text.lastIndexOf(`</${parent.name}`, parent.end);
-      if (closing < 0) return [];
-      const lineStart = text.lastIndexOf('\n', closing - 1) + 1;
-      const onOwnLine = /^[ \t]*$/.test(text.slice(lineStart, closing));
-      edit = onOwnLine
-        ? {
-            range: at(lineStart),
-            newText: blocksAt(childIndent, eol)
-              .map((block) => `${childIndent}${block}${eol}`)
-              .join(''),
-          }
-        : { range: at(closing), newText: blocksAt('', '').join('') };
+      const inserted = childrenInsertion(text, parent, blocksAt);
+      if (!inserted) return [];
+      edit = { range: { start: document.positionAt(inserted.start), end: document.positionAt(inserted.end) }, newText: inserted.newText };
     }
     return [{ title: `Insert ${names.map((name) => `<${name}>`).join(', ')}`, edits: [{ place: 'document', ...edit }], preferred: true }];
   },

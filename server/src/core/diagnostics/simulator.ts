@@ -1,8 +1,20 @@
 import { ProblemDataByCode } from '../problems';
 import { CARLA_FACTS, CARLA_PROFILE, CarlaFactName } from '../profiles/carla';
 import type { ProfileFacts } from '../profiles/checks';
-import type { ElementFact, FactSeverity } from '../profiles/facts';
-import { defineDiagnostic, isOptionalString, isRecord, isString, ProblemWording } from './definition';
+import { ESMINI_FACTS, ESMINI_PROFILE, EsminiFactName } from '../profiles/esmini';
+import type { ElementFact, FactSeverity, SimulatorFact } from '../profiles/facts';
+import { Range } from '../text';
+import { elementAt, escapeAttributeValue, XmlDocument } from '../xml';
+import {
+  childrenInsertion,
+  CoreFix,
+  defineDiagnostic,
+  isOptionalString,
+  isRecord,
+  isString,
+  ProblemWording,
+  TextLines,
+} from './definition';
 
 function describe(fact: ElementFact): string {
   return fact.parent ? `${fact.element} in ${fact.parent}` : fact.element;
@@ -39,15 +51,25 @@ export function simulatorWording(finding: { severity: FactSeverity; facts: Profi
   return { severity: finding.severity, code: 'simulator', message: profileMessage(finding.facts) };
 }
 
+/** What a simulator does beyond one element or attribute: the `fact`, then `detail`, the case at hand, then the fact's source. */
+function factWording(simulator: string, fact: SimulatorFact, detail: string): ProblemWording<'simulator'> {
+  return { severity: fact.severity, code: 'simulator', message: `${simulator} ${fact.does}: ${detail} (${fact.source})` };
+}
+
 /** What CARLA's ScenarioRunner does beyond one element or attribute (core/semantics/checks/carla.ts): the fact `name`, then `detail`, the case at hand. */
 export function carlaFactWording(name: CarlaFactName, detail: string): ProblemWording<'simulator'> {
-  const fact = CARLA_FACTS[name];
-  return { severity: fact.severity, code: 'simulator', message: `${CARLA_PROFILE.name} ${fact.does}: ${detail} (${fact.source})` };
+  return factWording(CARLA_PROFILE.name, CARLA_FACTS[name], detail);
+}
+
+/** What esmini does beyond one element or attribute (core/profiles/esmini.ts ESMINI_FACTS): the fact `name`, then `detail`, the case at hand. */
+export function esminiFactWording(name: EsminiFactName, detail: string): ProblemWording<'simulator'> {
+  return factWording(ESMINI_PROFILE.name, ESMINI_FACTS[name], detail);
 }
 
 function isSimulatorData(value: unknown): value is ProblemDataByCode['simulator'] {
   if (!isRecord(value) || !isOptionalString(value.suggestion)) return false;
   if (value.exportMaps !== undefined && typeof value.exportMaps !== 'boolean') return false;
+  if (!isOptionalString(value.actor)) return false;
   return value.rename === undefined || (isRecord(value.rename) && isString(value.rename.from) && isString(value.rename.to));
 }
 
@@ -58,15 +80,15 @@ function baseName(file: string): string {
 /**
  * What the selected simulator does not run as written (core/profiles/, core/semantics/checks/carla.ts): an
  * error where it refuses the scenario, a warning where it runs it otherwise. Its fixes: the one edit that
- * answers it where there is one (the value of a `${...}`, revMinor="0"), the catalog file's rename, and
- * the export for CARLA where the export maps it.
+ * answers it where there is one (the value of a `${...}`, revMinor="0", the EntityRef an Actors lacks for esmini),
+ * the catalog file's rename, and the export for CARLA where the export maps it.
  */
 export const SIMULATOR = defineDiagnostic({
   code: 'simulator',
   rule: { description: 'The selected simulator runs what the file uses.' },
   severity: 'warning',
   isData: isSimulatorData,
-  fixes: ({ data, range }) => [
+  fixes: async ({ data, range, document, parsed }) => [
     ...(data?.suggestion !== undefined
       ? [{ title: `Write '${data.suggestion}'`, edits: [{ place: 'document' as const, range, newText: data.suggestion }], preferred: true }]
       : []),
@@ -74,5 +96,23 @@ export const SIMULATOR = defineDiagnostic({
       ? [{ title: `Rename ${baseName(data.rename.from)} to ${baseName(data.rename.to)}`, edits: [], rename: data.rename, preferred: true }]
       : []),
     ...(data?.exportMaps ? [{ title: 'Export for CARLA…', edits: [], command: 'export-for-carla' as const }] : []),
+    ...(data?.actor !== undefined ? await actorFix(data.actor, document, range, parsed) : []),
   ],
 });
+
+/** `<EntityRef entityRef="actor"/>` added to the Actors the problem stands on. */
+async function actorFix(actor: string, document: TextLines, range: Range, parsed: () => Promise<XmlDocument>): Promise<CoreFix[]> {
+  const actors = elementAt(await parsed(), document.offsetAt(range.start));
+  const text = document.getText();
+  const inserted =
+    actors?.name === 'Actors'
+      ? childrenInsertion(text, actors, () => [`<EntityRef entityRef="${escapeAttributeValue(actor)}"/>`])
+      : undefined;
+  if (!inserted) return [];
+  const edit = {
+    place: 'document' as const,
+    range: { start: document.positionAt(inserted.start), end: document.positionAt(inserted.end) },
+    newText: inserted.newText,
+  };
+  return [{ title: `Add <EntityRef entityRef="${actor}"/> to the Actors`, edits: [edit], preferred: true }];
+}

@@ -1,6 +1,6 @@
 import { SR_ATOMICS, SR_CONFIGURATION, SR_PARSER, SR_REVISION, SR_SCENARIO, SR_TRIGGER_CONDITIONS } from './scenarioRunner';
 import { CarlaRelease } from './simulators';
-import { SimulatorProfile } from './facts';
+import { SimulatorFact, SimulatorProfile } from './facts';
 
 /*
  * What CARLA's ScenarioRunner does with OpenSCENARIO, read from carla-simulator/scenario_runner at
@@ -185,12 +185,7 @@ export const CARLA_PROFILE: SimulatorProfile = {
 };
 
 /** A fact of ScenarioRunner that a check of its own applies (core/semantics/checks/carla.ts): what it does, where the code shows it. */
-export interface CarlaFact {
-  /** What ScenarioRunner does, completing "CARLA ScenarioRunner ...". */
-  does: string;
-  source: string;
-  /** `error`: it refuses to load or build the scenario; `warning`: it runs it otherwise than written. */
-  severity: 'error' | 'warning';
+export interface CarlaFact extends SimulatorFact {
   /** The releases the fact holds for; every release when absent. */
   releases?: readonly CarlaRelease[];
 }

@@ -1,4 +1,4 @@
-import { SimulatorProfile } from './facts';
+import { SimulatorFact, SimulatorProfile } from './facts';
 
 // Facts read from esmini/esmini at revision 77028d83e6d402de52f7187e5384d1b1c02b7d1f: the rows marked
 // "No" in osc_coverage.txt, kept only where release_notes.md does not announce later support and the
@@ -120,3 +120,14 @@ export const ESMINI_PROFILE: SimulatorProfile = {
     failure: { does: 'stops the scenario with "Failed to evaluate the expression"', source: `${PARAMETERS}:449-453` },
   },
 };
+
+/** What esmini does beyond one element or attribute at a time, read in the same revision. */
+export const ESMINI_FACTS = {
+  triggeringActors: {
+    does: 'takes a ManeuverGroup\'s actors only from the EntityRefs of its Actors, never from selectTriggeringEntities, and refuses to load a private action with none ("PrivateAction ... missing actor(s). SelectTriggeringEntities feature not supported yet")',
+    source: `${READER}:5424-5444, 5304-5310`,
+    severity: 'error',
+  },
+} as const satisfies Record<string, SimulatorFact>;
+
+export type EsminiFactName = keyof typeof ESMINI_FACTS;

@@ -9,6 +9,15 @@ export type Support = 'unsupported' | 'ignored';
  */
 export type FactSeverity = 'error' | 'warning';
 
+/** What a simulator does beyond one element or attribute at a time, with the lines of its source that show it. */
+export interface SimulatorFact {
+  /** What the simulator does, completing "<simulator's name> ...". */
+  does: string;
+  source: string;
+  /** `error`: it refuses to load or build the scenario; `warning`: it runs it otherwise than written. */
+  severity: FactSeverity;
+}
+
 /** An element a simulator does not run (anywhere, or in one place only). */
 export interface ElementFact {
   element: string;

@@ -1,12 +1,13 @@
 import { chooseVersion } from '../schema/version';
 import { NO_ACTOR_ACTION_NOTE, noActorWording } from '../diagnostics/noActor';
+import { esminiFactWording } from '../diagnostics/simulator';
 import { negativeTransitionTimeWording } from '../diagnostics/negativeTransitionTime';
 import { nonPositivePhaseDurationWording } from '../diagnostics/nonPositivePhaseDuration';
 import { outOfRangeWording } from '../diagnostics/outOfRange';
 import { roadFileWording } from '../diagnostics/roadFile';
 import { unknownTrafficSignalWording } from '../diagnostics/unknownTrafficSignal';
 import { unknownTrafficSignalControllerWording } from '../diagnostics/unknownTrafficSignalController';
-import { attribute, firstDescendant, XmlAttribute, XmlElement } from '../xml';
+import { attribute, descendants, firstDescendant, XmlAttribute, XmlElement } from '../xml';
 import type { Finding, SemanticCheck, SemanticContext } from './checks/types';
 import { inRange, rangeText, ValueRange, valueRangesOf } from './ranges';
 import { SemanticModel } from './types';
@@ -127,8 +128,9 @@ export const trafficSignalControllerRefs: SemanticCheck = (context) => {
  * A ManeuverGroup whose maneuvers hold private actions has actors to act on: an EntityRef, or
  * `selectTriggeringEntities="true"` where its Act's StartTrigger has an entity condition to take the
  * triggering entities from (ASAM's Quality Checker counts only EntityRefs, so it reports that case too:
- * here it is left alone). Without either it is an error, as ASAM's checker says: esmini 3.6 quits on it
- * ("PrivateAction ... missing actor(s)", ScenarioReader.cpp:5304-5310), with selectTriggeringEntities too.
+ * here it is left alone, but for esmini, which never reads selectTriggeringEntities and refuses it: ESMINI_FACTS).
+ * Without either it is an error, as ASAM's checker says: esmini 3.6 quits on it ("PrivateAction ... missing
+ * actor(s)", ScenarioReader.cpp:5304-5310).
  */
 export const privateActionActors: SemanticCheck = (context) => {
   const findings: Finding[] = [];
@@ -137,22 +139,57 @@ export const privateActionActors: SemanticCheck = (context) => {
     if (!privateAction) continue;
     const actors = group.children.find((child) => child.name === 'Actors');
     if (actors?.children.some((child) => child.name === 'EntityRef')) continue;
-    const selectsTriggering = actors !== undefined && textOf(context, actors, 'selectTriggeringEntities')?.text.trim() === 'true';
-    if (selectsTriggering && actStartTriggeringEntities(group)) continue;
+    const selects = actors && textOf(context, actors, 'selectTriggeringEntities');
+    const selectsTriggering = selects !== undefined && selects.text.trim() === 'true';
+    const related = [
+      {
+        source: context.ref,
+        range: context.model.document.lines.range(privateAction.start, privateAction.nameEnd),
+        message: NO_ACTOR_ACTION_NOTE,
+      },
+    ];
+    const name = attribute(group, 'name')?.value ?? '';
+    if (selectsTriggering && actStartTriggeringEntities(group)) {
+      if (context.simulator === 'esmini' && actors && selects)
+        findings.push(esminiTriggeringActors(group, name, actors, selects.attr, related));
+      continue;
+    }
     findings.push({
       ...at(actors ?? group, actors ? undefined : attribute(group, 'name')),
-      ...noActorWording(attribute(group, 'name')?.value ?? '', selectsTriggering),
-      related: [
-        {
-          source: context.ref,
-          range: context.model.document.lines.range(privateAction.start, privateAction.nameEnd),
-          message: NO_ACTOR_ACTION_NOTE,
-        },
-      ],
+      ...noActorWording(name, selectsTriggering),
+      related,
     });
   }
   return findings;
 };
+
+/** A group the standard gives the triggering entities as actors, which esmini refuses: its fix names the Act's one triggering entity, where there is one. */
+function esminiTriggeringActors(
+  group: XmlElement,
+  name: string,
+  actors: XmlElement,
+  selects: XmlAttribute,
+  related: Finding['related'],
+): Finding {
+  const trigger = group.parent?.name === 'Act' ? group.parent.children.find((child) => child.name === 'StartTrigger') : undefined;
+  const triggering = new Set(
+    (trigger ? descendants(trigger) : [])
+      .filter((element) => element.name === 'EntityRef' && element.parent?.name === 'TriggeringEntities')
+      .map((element) => attribute(element, 'entityRef')?.value)
+      .filter((entity): entity is string => entity !== undefined && entity !== ''),
+  );
+  const [actor] = triggering.size === 1 ? triggering : [];
+  return {
+    ...at(actors, selects),
+    ...esminiFactWording(
+      'triggeringActors',
+      `ManeuverGroup '${name}' holds private actions and takes its actors only from the triggering entities of its Act`,
+    ),
+    hint: `add <EntityRef entityRef="${actor ?? '...'}"/> to its <Actors>${actor ? ", the Act's triggering entity" : ''}`,
+    related,
+    ...(actor ? { data: { actor } } : {}),
+  };
+}
 
 /** Whether the StartTrigger of the Act holding `group` has an entity condition (its TriggeringEntities are what selectTriggeringEntities takes). */
 function actStartTriggeringEntities(group: XmlElement): boolean {
