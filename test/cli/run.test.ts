@@ -193,6 +193,25 @@ describe('cli: run in esmini', function () {
     assert.match(run.stderr, /cannot be flattened; nothing was run/);
   });
 
+  it('run takes the bounds --help lists (--max-file-size, --max-depth) and honours them for every file it reads (issue 27)', function () {
+    requireEsmini(this);
+    const root = examplesWith();
+    const simple = path.join(root, 'lane_change.xosc');
+    fs.appendFileSync(simple, `<!-- ${'x'.repeat(20_000)} -->\n`);
+    const tooLarge = runCli(['run', 'main.xosc', '--max-file-size', '16K', '--esmini', esminiBinary], { cwd: root });
+    assert.equal(tooLarge.status, 1, tooLarge.stderr);
+    assert.match(tooLarge.stderr, /lane_change\.xosc is too large to read \(\d+ bytes; the limit is 16384, raised with --max-file-size\)/);
+    assert.match(tooLarge.stderr, /cannot be flattened; nothing was run/);
+    const tooDeep = runCli(['run', 'main.xosc', '--max-depth', '1', '--esmini', esminiBinary], { cwd: root });
+    assert.equal(tooDeep.status, 1, tooDeep.stderr);
+    assert.match(tooDeep.stderr, /references nest deeper than 1 files: main\.xosc -> lane_change\.xosc/);
+    const wrong = runCli(['run', 'main.xosc', '--max-file-size', 'big'], { cwd: root });
+    assert.equal(wrong.status, 2);
+    assert.match(wrong.stderr, /--max-file-size takes a size such as 64M, not 'big'/);
+    assert.match(runCli(['--help']).stdout, /run takes --scenario-path, --road-path,\s+the four --max-\* bounds/);
+    assert.match(runCli(['run', '--help']).stdout, /--max-file-size SIZE/);
+  });
+
   it('a distribution file or a catalog is not run as a scenario: exit 1, saying what it is and what runs it', function () {
     const root = temporaryFolder('m2s-run-kind-');
     try {

@@ -62,6 +62,8 @@ ${SIMULATOR_OPTION_HELP} (check, flatten)
   --check                   format: list the files that would change and write nothing (exit 1 if any)
   --width N                 format: past N columns a start tag puts each attribute on its own line (120)
   --indent N|tab            format: the indentation (default: what the file uses, else 2 spaces)
+  The options below are flatten's, pack's, check's and stats'; run takes --scenario-path, --road-path,
+  the four --max-* bounds and -q too (each command's --help lists the options it takes):
 ${READING_OPTIONS_HELP}
   -h, --help                this help
   -v, --version             the version

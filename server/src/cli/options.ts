@@ -14,6 +14,53 @@ import { Limits, ScenarioStore, splitScenarioPath } from '../core/sources';
 import { dashValueMessage, UsageError } from './common';
 import { storeForInputs } from './inputs';
 
+/** The --help lines of the bounds on what a command reads: the shared set's, and run's. */
+export const LIMIT_OPTIONS_HELP = `  --max-file-size SIZE      largest scenario file or package entry read (default 32M)
+  --max-unpacked-size SIZE  bytes one run may unpack from packages, all together (default 128M)
+  --max-output-size SIZE    characters of one flattened result (default 8M)
+  --max-depth N             files in one chain of references, nested packages included (default 64)`;
+
+/** The bounds' options, one table for the shared set and the commands with tables of their own (run). */
+export const LIMIT_OPTIONS = {
+  'max-file-size': { type: 'string' },
+  'max-unpacked-size': { type: 'string' },
+  'max-output-size': { type: 'string' },
+  'max-depth': { type: 'string' },
+} as const;
+
+type LimitOptionName = keyof typeof LIMIT_OPTIONS;
+
+/** Sets the bound that option `name` (a key of LIMIT_OPTIONS) gives, from its value as typed after `flag`. */
+function setLimit(limits: Partial<Limits>, name: LimitOptionName, value: string, flag: string): void {
+  switch (name) {
+    case 'max-file-size':
+      limits.maxEntryBytes = parseSize(value, flag);
+      break;
+    case 'max-unpacked-size':
+      limits.maxTotalBytes = parseSize(value, flag);
+      break;
+    case 'max-output-size':
+      limits.maxFlattenedChars = parseSize(value, flag);
+      break;
+    case 'max-depth': {
+      const depth = Number(value);
+      if (!Number.isSafeInteger(depth) || depth < 1) throw new UsageError(`${flag} takes a positive whole number, not '${value}'`);
+      limits.maxDepth = depth;
+      break;
+    }
+  }
+}
+
+/** The bounds the LIMIT_OPTIONS of a command's parsed values set. */
+export function limitsOption(values: Partial<Record<LimitOptionName, string>>): Partial<Limits> {
+  const limits: Partial<Limits> = {};
+  for (const name of Object.keys(LIMIT_OPTIONS) as LimitOptionName[]) {
+    const value = values[name];
+    if (value !== undefined) setLimit(limits, name, value, `--${name}`);
+  }
+  return limits;
+}
+
 /** The --help lines of the options every command of the shared set reads, whatever it writes. */
 export const READING_OPTIONS_HELP = `  --scenario-path DIRS      folders searched after the package, before SCENARIO_PATH's own
                             (separated by ';' or ':')
@@ -23,10 +70,7 @@ export const READING_OPTIONS_HELP = `  --scenario-path DIRS      folders searche
                             working directory, or the input's folder when it lies elsewhere)
   --schema-version V        the OpenSCENARIO schema files are checked against: auto (each file's
                             FileHeader, the default), 1.0, 1.1, 1.2, 1.3, or off
-  --max-file-size SIZE      largest scenario file or package entry read (default 32M)
-  --max-unpacked-size SIZE  bytes one run may unpack from packages, all together (default 128M)
-  --max-output-size SIZE    characters of one flattened result (default 8M)
-  --max-depth N             files in one chain of references, nested packages included (default 64)
+${'$'}{LIMIT_OPTIONS_HELP}
   -q, --quiet               print errors only`;
 
 /**
@@ -97,10 +141,7 @@ const SHARED_OPTIONS = {
   ...CARLA_OPTION,
   'schema-version': { type: 'string' },
   quiet: { type: 'boolean', short: 'q' },
-  'max-file-size': { type: 'string' },
-  'max-unpacked-size': { type: 'string' },
-  'max-output-size': { type: 'string' },
-  'max-depth': { type: 'string' },
+  ...LIMIT_OPTIONS,
 } as const;
 
 type OptionName = keyof typeof SHARED_OPTIONS;
@@ -251,20 +292,11 @@ export function parseOptions(args: string[]): Options {
         options.quiet = true;
         break;
       case 'max-file-size':
-        options.limits.maxEntryBytes = parseSize(take(), flag);
-        break;
       case 'max-unpacked-size':
-        options.limits.maxTotalBytes = parseSize(take(), flag);
-        break;
       case 'max-output-size':
-        options.limits.maxFlattenedChars = parseSize(take(), flag);
+      case 'max-depth':
+        setLimit(options.limits, name, take(), flag);
         break;
-      case 'max-depth': {
-        const depth = Number(take());
-        if (!Number.isSafeInteger(depth) || depth < 1) throw new UsageError('--max-depth takes a positive whole number');
-        options.limits.maxDepth = depth;
-        break;
-      }
     }
   }
   return options;

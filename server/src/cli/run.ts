@@ -4,7 +4,7 @@ import { writeFileAtomic } from '../../../common/src/atomic';
 import { Flattener } from '../core/flatten';
 import { formatProblem } from '../core/problems';
 import { isDistributionText } from '../core/variations/problems';
-import { displayRef, SourceRef, splitScenarioPath } from '../core/sources';
+import { DEFAULT_LIMITS, displayRef, SourceRef, splitScenarioPath } from '../core/sources';
 import { prepareScenario, Simulation, SimulationLoadError, SimulationOptions } from '../debug/simulation';
 import { TraceRecord, traceToEnd } from '../debug/trace';
 import { EsminiLibraryError } from '../esmini/library';
@@ -23,6 +23,7 @@ import {
   UsageError,
 } from './common';
 import { mainOf, storeForInputs } from './inputs';
+import { LIMIT_OPTIONS, LIMIT_OPTIONS_HELP, limitsOption } from './options';
 
 export const RUN_HELP = `Run in esmini (modular2simple run INPUT... [options]):
   --duration S              stop at S simulated seconds if the scenario has not ended by then (default: its own
@@ -40,6 +41,7 @@ export const RUN_HELP = `Run in esmini (modular2simple run INPUT... [options]):
                             rule, threshold and measured value); one input only (docs/debugging.md)
   --esmini-library PATH     esmini's libesminiLib.so or its folder (default: .cache/esmini/lib, where npm start builds it)
   --scenario-path DIRS      as for flatten
+${LIMIT_OPTIONS_HELP}
   esmini's problems print as FILE:LINE:COL: error|warning: MESSAGE (esmini), on the source line they
   come from. Exit codes: 0 ran (with --check: and no error), 1 errors (or not flattened), 2 usage, 3 no esmini or it failed.`;
 
@@ -91,8 +93,9 @@ async function traceRun(
  * Why a .xosc input is no scenario esmini could run, with what to do instead: a ParameterValueDistribution (which the
  * editor's Run in esmini runs as its concrete scenario 0) or a catalog; undefined for anything else.
  */
-function notAScenario(input: string): string | undefined {
-  if (!/\.xosc$/i.test(input) || !fs.statSync(input).isFile()) return undefined;
+function notAScenario(input: string, maxFileBytes: number): string | undefined {
+  // A file past --max-file-size is not read here: the flattening reports it, naming the option.
+  if (!/\.xosc$/i.test(input) || !fs.statSync(input).isFile() || fs.statSync(input).size > maxFileBytes) return undefined;
   const text = fs.readFileSync(input, 'utf8');
   if (isDistributionText(text))
     return (
@@ -119,6 +122,7 @@ async function runCommand(args: string[], io: CliOutput): Promise<number> {
     'esmini-library': { type: 'string' },
     'scenario-path': { type: 'string', multiple: true },
     quiet: { type: 'boolean', short: 'q', default: false },
+    ...LIMIT_OPTIONS,
   });
   if (inputs.length === 0) throw new UsageError('run needs a scenario: a .xosc, a .mosc or an unpacked folder');
   const duration = durationOption(values.duration);
@@ -131,15 +135,16 @@ async function runCommand(args: string[], io: CliOutput): Promise<number> {
   if (values.trace !== undefined && inputs.length > 1) throw new UsageError('--trace takes one input');
   for (const input of inputs) checkInputExists(input);
   const roadPath = (values['road-path'] ?? []).flatMap(splitScenarioPath);
+  const limits = limitsOption(values);
   // esmini searches the road folders for catalogs too (its --path): so does the check before the run.
   const flattener = new Flattener(
-    storeForInputs((values['scenario-path'] ?? []).flatMap(splitScenarioPath), undefined, inputs, {}, roadPath),
+    storeForInputs((values['scenario-path'] ?? []).flatMap(splitScenarioPath), undefined, inputs, limits, roadPath),
   );
   let failed = false;
   let notRun = false;
   let errors = 0;
   for (const input of inputs) {
-    const instead = notAScenario(input);
+    const instead = notAScenario(input, limits.maxEntryBytes ?? DEFAULT_LIMITS.maxEntryBytes);
     if (instead !== undefined) {
       io.err(`${input}: error: ${instead}`);
       notRun = true;
