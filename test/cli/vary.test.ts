@@ -70,6 +70,23 @@ describe('cli: vary and batch on a modular ScenarioFile (flattened per concrete 
     assert.equal(quiet.stderr, '');
   });
 
+  it('vary and export: an --index past the count is a usage error (exit 2) naming the option, the file and the range, written nowhere (issue 27: was FILE:1:1, exit 1)', () => {
+    const root = examples('main.xosc');
+    const usage =
+      /^modular2simple: --index 2 is out of range: d\.xosc has 2 concrete scenarios, numbered 0\.\.1; give --index one of those\nRun 'modular2simple --help' for usage\.\n$/;
+    const vary = runCli(['vary', 'd.xosc', '--index', '2', '-o', 'two.xosc'], { cwd: root });
+    assert.equal(vary.status, 2, vary.stderr);
+    assert.match(vary.stderr, usage);
+    const exported = runCli(['export', 'd.xosc', '--target', 'carla', '--index', '2', '-o', 'two.xosc'], { cwd: root });
+    assert.equal(exported.status, 2, exported.stderr);
+    assert.match(exported.stderr, usage);
+    assert.ok(!fs.existsSync(path.join(root, 'two.xosc')));
+    assert.equal(
+      runCli(['export', 'd.xosc', '--target', 'carla', '--index', 'x', '-o', 'two.xosc'], { cwd: root }).stderr.split('\n')[0],
+      "modular2simple: --index takes a whole number, not 'x'",
+    );
+  });
+
   it('a .mosc and an unpacked folder as ScenarioFile are flattened too', () => {
     const root = examples('encounter.mosc');
     const packed = runCli(['pack', '.', '-o', 'encounter.mosc'], { cwd: root });

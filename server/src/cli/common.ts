@@ -55,7 +55,17 @@ export function wholeNumber(text: string | undefined, option: string): bigint | 
   return BigInt(text.trim());
 }
 
-/** Whether the arguments ask for the command's help: `--help` or `-h` before any `--`. */
+/**
+ * --index I of the distribution `file` (as the user typed it), which has `count` concrete scenarios: a usage error
+ * naming the option, the file and the range it takes when I lies outside, as every other wrong option value is.
+ */
+export function checkIndexInRange(index: bigint, count: bigint, file: string): void {
+  if (index < count) return;
+  if (count === 0n) throw new UsageError(`--index ${index} is out of range: ${file} has no concrete scenario`);
+  const scenarios = count === 1n ? '1 concrete scenario, numbered 0' : `${count} concrete scenarios, numbered 0..${count - 1n}`;
+  throw new UsageError(`--index ${index} is out of range: ${file} has ${scenarios}; give --index one of those`);
+}
+
 /** --duration's seconds: undefined when not given (each scenario's own end), a UsageError when not a positive number. */
 export function durationOption(text: string | undefined): number | undefined {
   if (text === undefined) return undefined;
@@ -65,6 +75,7 @@ export function durationOption(text: string | undefined): number | undefined {
   return duration;
 }
 
+/** Whether the arguments ask for the command's help: `--help` or `-h` before any `--`. */
 export function asksForHelp(args: readonly string[]): boolean {
   const end = args.indexOf('--');
   return (end < 0 ? args : args.slice(0, end)).some((arg) => arg === '--help' || arg === '-h');

@@ -4,6 +4,7 @@ import { isSameFile } from '../../../common/src/atomic';
 import { CarlaExport, CarlaExportOptionError, CarlaExportOptions, exportForCarla, exportTextForCarla } from '../core/export/carla';
 import { diskRef, displayRef, nodeFileSystem, splitScenarioPath } from '../core/sources';
 import {
+  checkIndexInRange,
   checkInputExists,
   CliCommand,
   CliOutput,
@@ -11,6 +12,7 @@ import {
   InputError,
   parseCommandLine,
   UsageError,
+  wholeNumber,
   writablePackagedFiles,
   write,
 } from './common';
@@ -70,13 +72,11 @@ function parse(argv: string[]): ExportArguments {
   if (values.target !== 'carla') throw new UsageError(`--target takes carla, not '${values.target}'`);
   if (values.output === undefined) throw new UsageError('export needs -o OUT.xosc');
   const release = carlaReleaseOption(values.carla);
-  if (values.index !== undefined && !/^\d+$/.test(values.index.trim()))
-    throw new UsageError(`--index takes a whole number, not '${values.index}'`);
   return {
     input: positionals[0],
     output: values.output,
     report: values.report,
-    index: values.index === undefined ? undefined : BigInt(values.index.trim()),
+    index: wholeNumber(values.index, '--index'),
     scenarioPath: (values['scenario-path'] ?? []).flatMap(splitScenarioPath),
     quiet: values.quiet ?? false,
     options: {
@@ -144,7 +144,7 @@ async function exportInput(args: ExportArguments, io: CliOutput): Promise<CarlaE
     for (const line of formatVariationProblems(loaded.problems, loaded.lines, process.cwd())) io.err(line);
     const variations = loaded.variations;
     if (!variations) throw new InputError(`${input}: the distribution cannot be read`);
-    if (args.index >= variations.count) throw new InputError(`${input}: index ${args.index} is out of range (0..${variations.count - 1n})`);
+    checkIndexInRange(args.index, variations.count, input);
     let concrete;
     try {
       concrete = variations.concreteAt(args.index);

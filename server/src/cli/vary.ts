@@ -1,6 +1,7 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import {
+  checkIndexInRange,
   CliCommand,
   CliOutput,
   ExitCode,
@@ -269,15 +270,12 @@ async function varyScenarios(argv: string[], io: Output, givenLoader: ScenarioTe
     }
   };
   if (index !== undefined) {
-    if (index >= variations.count)
-      throw new InputError(
-        `${where(0)}: index ${index} is out of range: the distribution has ${variations.count} combinations (0..${variations.count - 1n})`,
-      );
+    checkIndexInRange(index, variations.count, positionals[0]);
     const concrete = concreteOrProblem(variations, index, distributionPath, printProblems);
     if (!concrete) return ExitCode.problems;
     if ('broken' in concrete)
       throw new InputError(
-        `concrete scenario ${index} is discarded: parameter '${concrete.broken.parameter}' = '${concrete.broken.value}' breaks its ValueConstraintGroups`,
+        `${positionals[0]}: concrete scenario ${index} is discarded: parameter '${concrete.broken.parameter}' = '${concrete.broken.value}' breaks its ValueConstraintGroups; choose another --index ('vary ${positionals[0]} --count' says how many are kept)`,
       );
     if (values.output === undefined) {
       io.out(await rebased(concrete.text, undefined));
