@@ -6,7 +6,7 @@ import { Flattener } from '../../server/src/core/flatten';
 import { childRef, diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { parseEsminiLog } from '../../server/src/esmini/log';
 import { locateEsmini, projectEsminiFolder } from '../../server/src/esmini/locate';
-import { mapEsminiMessages } from '../../server/src/esmini/messages';
+import { mapEsminiMessages, UNPLACED_NOTE } from '../../server/src/esmini/messages';
 import { lastCsvTime, makeRunFolder, runEsminiProcess } from '../../server/src/esmini/process';
 import { EsminiRunOptions, EsminiRunResult, removeRunFolder, runScenario } from '../../server/src/esmini/run';
 import { runLimit, RUNAWAY_SECONDS, TIME_LIMIT_CONDITION, withTimeLimit } from '../../server/src/esmini/timeLimit';
@@ -235,6 +235,87 @@ describe('esmini: time limit and log (no simulator needed)', () => {
       [true, '$Max', '<DynamicConstraints maxAcceleration="$Max" maxDeceleration="3" maxSpeed="10"/>'],
       [true, 'LongitudinalDistanceAction', '<LongitudinalDistanceAction entityRef="Ego" freespace="false" continuous="true" distance="5">'],
       [true, 'RoadNetwork', '<RoadNetwork>'],
+    ]);
+  });
+
+  it("puts esmini's messages about catalog entries in the catalog file, on the entry's line, and says so where esmini names no place (at 1:1 before)", async () => {
+    const root = temporaryFolder('m2s-esmini-catalog-messages-');
+    const vehicle = (name: string, declarations: string) =>
+      `<Vehicle name="${name}" vehicleCategory="car"><ParameterDeclarations>${declarations}</ParameterDeclarations><BoundingBox><Center x="0" y="0" z="0"/><Dimensions width="2" length="4" height="1.5"/></BoundingBox><Performance maxSpeed="50" maxAcceleration="5" maxDeceleration="5"/><Axles><FrontAxle maxSteering="0.5" wheelDiameter="0.6" trackWidth="1.8" positionX="3" positionZ="0.3"/><RearAxle maxSteering="0" wheelDiameter="0.6" trackWidth="1.8" positionX="0" positionZ="0.3"/></Axles><Properties/></Vehicle>`;
+    const offset = '<ParameterDeclaration name="Offset" parameterType="double" value="0"/>';
+    fs.mkdirSync(path.join(root, 'catalogs'));
+    // `outline` declares Offset twice (esmini's car_white_with_outline); a TrafficSwarmAction would read it unreferenced.
+    fs.writeFileSync(
+      path.join(root, 'catalogs', 'VehicleCatalog.xosc'),
+      catalogFile('VehicleCatalog', [vehicle('plain', offset), vehicle('outline', offset + '\n' + offset)].join('\n')),
+    );
+    fs.writeFileSync(
+      path.join(root, 'catalogs', 'EnvironmentCatalog.xosc'),
+      catalogFile(
+        'EnvironmentCatalog',
+        '<Environment name="thin"><TimeOfDay animation="false" dateTime="2026-01-01T12:00:00"/><Weather atmosphericPressure="10000" temperature="280"/><RoadCondition frictionScaleFactor="1"/></Environment>',
+      ),
+    );
+    fs.writeFileSync(
+      path.join(root, 'catalogs', 'ManeuverCatalog.xosc'),
+      catalogFile(
+        'ManeuverCatalog',
+        '<Maneuver name="Wait"><Event name="Go" priority="override"><Action name="Speed"><PrivateAction><LongitudinalAction><SpeedAction><SpeedActionDynamics dynamicsShape="step" value="$Rate" dynamicsDimension="time"/><SpeedActionTarget><AbsoluteTargetSpeed value="10"/></SpeedActionTarget></SpeedAction></LongitudinalAction></PrivateAction></Action><StartTrigger><ConditionGroup><Condition name="After" delay="0" conditionEdge="none"><ByValueCondition><StoryboardElementStateCondition storyboardElementType="event" storyboardElementRef="Go" state="endTransition"/></ByValueCondition></Condition></ConditionGroup></StartTrigger></Event></Maneuver>',
+      ),
+    );
+    const locations =
+      '<CatalogLocations><VehicleCatalog><Directory path="catalogs"/></VehicleCatalog><EnvironmentCatalog><Directory path="catalogs"/></EnvironmentCatalog><ManeuverCatalog><Directory path="catalogs"/></ManeuverCatalog></CatalogLocations>';
+    const group = (name: string) =>
+      `<ManeuverGroup name="${name}" maximumExecutionCount="1"><Actors selectTriggeringEntities="false"><EntityRef entityRef="Ego"/></Actors><CatalogReference catalogName="ManeuverCatalog" entryName="Wait"/></ManeuverGroup>`;
+    const text = roadScenario({
+      logicFile: 'straight_500m.xodr',
+      init: '<GlobalAction><EnvironmentAction><CatalogReference catalogName="EnvironmentCatalog" entryName="thin"/></EnvironmentAction></GlobalAction>',
+      groups: [group('G1'), group('G2')],
+    })
+      .replace('<CatalogLocations/>', locations)
+      .replace(/<Vehicle name="car"[^]*?<\/Vehicle>/, '<CatalogReference catalogName="VehicleCatalog" entryName="plain"/>');
+    fs.writeFileSync(path.join(root, 's.xosc'), text);
+    const main = diskRef(path.join(root, 's.xosc'));
+    const flat = await new Flattener(new ScenarioStore({ root })).flatten(main, { force: true });
+    const log = [
+      '[] [warn] Parameter Offset redefined. Previous value 0 will be shadowed by 0',
+      '[] [warn] Atmospheric pressure clamped between 80000.0 and 120000.0 Pa',
+      '[] [warn] Warning: Non unique element name: Go, picking first occurrence',
+      '[] [error] Failed to resolve parameter $Rate',
+      '[2.000] [warn] Deactivating ctrl  conflicting on domain Longitudinal (< osc v1.3)',
+    ].join('\n');
+    const problems = mapEsminiMessages(parseEsminiLog(log), flat.source, main);
+    const placed = problems.map((problem) => {
+      const line = fs.readFileSync(problem.source.disk, 'utf8').split('\n')[problem.range.start.line];
+      return [
+        path.relative(root, problem.source.disk),
+        problem.located,
+        line.slice(problem.range.start.character, problem.range.end.character),
+        problem.located
+          ? line.slice(line.lastIndexOf('<', problem.range.start.character), line.indexOf('>', problem.range.start.character) + 1)
+          : '',
+        problem.note,
+      ];
+    });
+    fs.rmSync(root, { recursive: true, force: true });
+    assert.deepEqual(placed, [
+      ['catalogs/VehicleCatalog.xosc', true, 'Offset', offset, undefined],
+      ['catalogs/EnvironmentCatalog.xosc', true, '10000', '<Weather atmosphericPressure="10000" temperature="280"/>', undefined],
+      [
+        'catalogs/ManeuverCatalog.xosc',
+        true,
+        'Go',
+        '<StoryboardElementStateCondition storyboardElementType="event" storyboardElementRef="Go" state="endTransition"/>',
+        undefined,
+      ],
+      [
+        'catalogs/ManeuverCatalog.xosc',
+        true,
+        '$Rate',
+        '<SpeedActionDynamics dynamicsShape="step" value="$Rate" dynamicsDimension="time"/>',
+        undefined,
+      ],
+      ['s.xosc', false, '', '', UNPLACED_NOTE],
     ]);
   });
 
@@ -518,6 +599,31 @@ describe('esmini: runs (the simulator built by the test setup)', function () {
     assert.equal(ran.outcome, 'ok', `${ran.message}\n${ran.log.slice(-2000)}`);
     const ego = tracksOf(readEsminiCsv(ran.csvFile as string)).get('Ego') ?? [];
     assert.ok(ego[ego.length - 1].x - ego[0].x > 5, 'Ego, the added actor, drives');
+    fs.rmSync(root, { recursive: true, force: true });
+  });
+
+  it('places the error of a run that fails in a catalog entry on that entry, in its catalog file (at 1:1 before)', async function () {
+    requireEsmini(this);
+    const root = temporaryFolder('m2s-esmini-catalog-failure-');
+    fs.mkdirSync(path.join(root, 'catalogs'));
+    const maneuver =
+      '<Maneuver name="Drive"><Event name="Go" priority="override"><Action name="Speed"><PrivateAction><LongitudinalAction><SpeedAction><SpeedActionDynamics dynamicsShape="linear" value="$Rate" dynamicsDimension="time"/><SpeedActionTarget><AbsoluteTargetSpeed value="10"/></SpeedActionTarget></SpeedAction></LongitudinalAction></PrivateAction></Action><StartTrigger><ConditionGroup><Condition name="C" delay="0" conditionEdge="none"><ByValueCondition><SimulationTimeCondition value="0" rule="greaterThan"/></ByValueCondition></Condition></ConditionGroup></StartTrigger></Event></Maneuver>';
+    fs.writeFileSync(path.join(root, 'catalogs', 'ManeuverCatalog.xosc'), catalogFile('ManeuverCatalog', maneuver));
+    const group =
+      '<ManeuverGroup name="G" maximumExecutionCount="1"><Actors selectTriggeringEntities="false"><EntityRef entityRef="Ego"/></Actors><CatalogReference catalogName="ManeuverCatalog" entryName="Drive"/></ManeuverGroup>';
+    const text = drivingScenario('straight_500m.xodr', group).replace(
+      '<CatalogLocations/>',
+      '<CatalogLocations><ManeuverCatalog><Directory path="catalogs"/></ManeuverCatalog></CatalogLocations>',
+    );
+    fs.writeFileSync(path.join(root, 'main.xosc'), text);
+    // Forced: $Rate is declared nowhere, which the check reports too.
+    const result = await run(new ScenarioStore({ root }), path.join(root, 'main.xosc'), { duration: 2, force: true });
+    assert.equal(result.outcome, 'failed', result.log);
+    const error = errorsOf(result).find((problem) => /Failed to resolve parameter/.test(problem.message));
+    assert.ok(error?.located, JSON.stringify(result.problems));
+    assert.equal(error.source.disk, path.join(root, 'catalogs', 'ManeuverCatalog.xosc'));
+    const line = lineOf(error.source.disk, error.range.start.line);
+    assert.equal(line.slice(error.range.start.character, error.range.end.character), '$Rate');
     fs.rmSync(root, { recursive: true, force: true });
   });
 

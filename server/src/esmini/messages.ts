@@ -5,7 +5,7 @@ import { PARAMETER_ATTRIBUTES } from '../core/model';
 import { Evaluator, semanticModelOf } from '../core/semantics';
 import { SourceRef } from '../core/sources';
 import { Range } from '../core/text';
-import { attribute, descendants, XmlAttribute, XmlElement } from '../core/xml';
+import { attribute, descendants, XmlAttribute, XmlDocument, XmlElement } from '../core/xml';
 import { EsminiLogMessage } from './log';
 
 /** An esmini message placed on the line of the source file it is about. */
@@ -27,10 +27,18 @@ export interface EsminiProblem {
   note?: string;
 }
 
-/** Where a message points in the flattened scenario: an element, and one of its attributes when known. */
+/** Where a message points: an element of the flattened scenario (or, with `file`, of a catalog file a run does not flatten), and one of its attributes when known. */
 interface Target {
   element: XmlElement;
   attribute?: string;
+  /** The catalog file the element lies in. */
+  file?: { ref: SourceRef; document: XmlDocument };
+}
+
+/** A catalog entry esmini may read for the scenario (one a reference names, or another of its catalog), in the file it was read from. */
+interface UsedEntry {
+  entry: XmlElement;
+  file: { ref: SourceRef; document: XmlDocument };
 }
 
 /** An attribute's value as esmini reads it: `$parameters` and `${...}` evaluated, else as written. */
@@ -42,7 +50,13 @@ type ControllerOf = (element: XmlElement) => XmlElement | undefined;
 interface MessageRule {
   pattern: RegExp;
   /** Every element the message can be about, in document order; the n-th message takes the n-th one. */
-  targets: (root: XmlElement, match: RegExpExecArray, valueOf: ValueOf, controllerOf: ControllerOf) => Target[];
+  targets: (
+    root: XmlElement,
+    match: RegExpExecArray,
+    valueOf: ValueOf,
+    controllerOf: ControllerOf,
+    entries: readonly UsedEntry[],
+  ) => Target[];
   severity?: 'error' | 'warning';
   note?: string;
 }
@@ -85,6 +99,37 @@ function controllerProperty(controller: XmlElement | undefined, name: string): s
   const properties = controller?.children.find((child) => child.name === 'Properties');
   const property = properties?.children.find((child) => child.name === 'Property' && attribute(child, 'name')?.value === name);
   return property ? attribute(property, 'value')?.value : undefined;
+}
+
+/** The elements of each entry the scenario uses, each entry once, as targets in its catalog file. */
+function entryTargets(entries: readonly UsedEntry[], pick: (element: XmlElement) => Target | undefined): Target[] {
+  const seen = new Set<XmlElement>();
+  const targets: Target[] = [];
+  for (const { entry, file } of entries) {
+    if (seen.has(entry)) continue;
+    seen.add(entry);
+    for (const element of allElements(entry)) {
+      const target = pick(element);
+      if (target) targets.push({ ...target, file });
+    }
+  }
+  return targets;
+}
+
+/** The ParameterDeclarations of `name` that come after another of the name: in the scenario, then in the entries it uses (after the scenario's own, or the entry's earlier one), where esmini shadows the earlier value. */
+function redeclarations(root: XmlElement, entries: readonly UsedEntry[], name: string): Target[] {
+  const named = (element: XmlElement) => element.name === 'ParameterDeclaration' && attribute(element, 'name')?.value === name;
+  const inScenario = allElements(root).filter(named);
+  const targets: Target[] = inScenario.slice(1).map((element) => ({ element, attribute: 'name' }));
+  const global = root.children.find((child) => child.name === 'ParameterDeclarations')?.children.some(named) ?? false;
+  const seen = new Set<XmlElement>();
+  for (const { entry, file } of entries) {
+    if (seen.has(entry)) continue;
+    seen.add(entry);
+    const declarations = allElements(entry).filter(named);
+    for (const element of global ? declarations : declarations.slice(1)) targets.push({ element, attribute: 'name', file });
+  }
+  return targets;
 }
 
 /** Messages of esmini 3.6 that name no element, with what they are about (from its ScenarioReader.cpp and OSCPrivateAction.cpp). */
@@ -248,11 +293,65 @@ const RULES: MessageRule[] = [
         .map((element) => ({ element })),
   },
   {
+    // OSCEnvironment.cpp SetAtmosphericPressure: a Weather's pressure outside esmini's range, inline or in an Environment entry the scenario uses.
+    pattern: /^Atmospheric pressure clamped between/,
+    targets: (root, _match, valueOf, _controllerOf, entries) => {
+      const outside = (value: string | undefined) => value !== undefined && !(Number(value) >= 80000 && Number(value) <= 120000);
+      return [
+        ...elementsNamed(root, 'Weather')
+          .filter((element) => outside(valueOf(element, 'atmosphericPressure')))
+          .map((element) => ({ element, attribute: 'atmosphericPressure' })),
+        ...entryTargets(entries, (element) =>
+          element.name === 'Weather' && outside(attribute(element, 'atmosphericPressure')?.value)
+            ? { element, attribute: 'atmosphericPressure' }
+            : undefined,
+        ),
+      ];
+    },
+  },
+  {
+    // Parameters.cpp parseParameterDeclarations: a declaration of a name already declared (a catalog entry's of a scenario's parameter, or twice), whose value now shadows the earlier one.
+    pattern: /^Parameter (?:(\S+) redefined\. Previous value|value (\S+) updated from)/,
+    targets: (root, match, _valueOf, _controllerOf, entries) => redeclarations(root, entries, match[1] ?? match[2]),
+  },
+  {
+    // ScenarioReader.cpp (storyboard element triggers): a StoryboardElementStateCondition's name that several elements have (a catalog Maneuver used twice), resolved to the first.
+    pattern: /^Non unique element name: (.+), picking first occurrence/,
+    targets: (root, match, _valueOf, _controllerOf, entries) => {
+      const naming = (element: XmlElement) => attribute(element, 'storyboardElementRef')?.value === match[1];
+      const inScenario = allElements(root).filter(naming);
+      return inScenario.length > 0
+        ? inScenario.map((element) => ({ element, attribute: 'storyboardElementRef' }))
+        : entryTargets(entries, (element) => (naming(element) ? { element, attribute: 'storyboardElementRef' } : undefined));
+    },
+  },
+  {
+    // Parameters.cpp getParameter: a $name no declaration in scope gives, in the scenario or in a catalog entry it uses.
+    pattern: /^Failed to resolve parameter \$?(\S+)/,
+    targets: (root, match, _valueOf, _controllerOf, entries) => {
+      const use = new RegExp(`\\$${match[1].replace(/[.*+?^${}()|[\]\\]/g, '\\$&')}(?!\\w)`);
+      const using = (element: XmlElement) => element.attributes.find((each) => use.test(each.value))?.name;
+      const inScenario = allElements(root).flatMap((element) => {
+        const name = using(element);
+        return name ? [{ element, attribute: name }] : [];
+      });
+      return inScenario.length > 0
+        ? inScenario
+        : entryTargets(entries, (element) => {
+            const name = using(element);
+            return name ? { element, attribute: name } : undefined;
+          });
+    },
+  },
+  {
     pattern:
       /^(?:Unexpected XML element|Unsupported element type|Unexpected child element|Unsupported global action|Unsupported EnvironmentAction|Unexpected property element): (\w+)/,
     targets: (root, match) => elementsNamed(root, match[1]).map((element) => ({ element })),
   },
 ];
+
+/** What an unplaced message says of its place: esmini's words name no element or file of the scenario, so it stands at the file's start. */
+export const UNPLACED_NOTE = "esmini's message names no element or file of the scenario; shown at the start of the file run";
 
 /** Attributes whose values name things: a message quoting such a value is about that element. */
 const NAMING_ATTRIBUTES = ['name', 'entityRef', 'storyboardElementRef', 'masterEntityRef', 'catalogName', 'entryName'];
@@ -320,6 +419,11 @@ function valueOrigin(
 }
 
 function rangeOf(source: FlatSource, target: Target): { source: SourceRef; range: Range } | undefined {
+  if (target.file) {
+    const found = target.attribute ? attribute(target.element, target.attribute) : undefined;
+    const [start, end] = found ? [found.valueStart, found.valueEnd] : [target.element.start + 1, target.element.nameEnd];
+    return { source: target.file.ref, range: target.file.document.lines.range(start, end) };
+  }
   const origin = valueOrigin(source, target.element, target.attribute);
   const model = origin.source.original ?? origin.source.model;
   if (!model) return undefined;
@@ -387,6 +491,11 @@ export function mapEsminiMessages(messages: EsminiLogMessage[], source: FlatSour
   const references = source.semantics?.model.document === document ? (source.semantics?.catalogs.references ?? []) : [];
   const controllerOf: ControllerOf = (element) =>
     element.name === 'Controller' ? element : references.find((reference) => reference.reference.element === element)?.entry?.element;
+  // The entries the references use, then the other entries of their catalogs (a TrafficSwarmAction reads every vehicle).
+  const entries: UsedEntry[] = [
+    ...references.flatMap(({ entry }) => (entry ? [entry] : [])),
+    ...references.flatMap(({ catalogs }) => catalogs[0]?.entries ?? []),
+  ].map((entry) => ({ entry: entry.element, file: { ref: entry.file.ref, document: entry.file.model.document } }));
   const seenText = new Map<string, number>();
   const problems = new Map<string, EsminiProblem>();
   for (const message of messages) {
@@ -399,7 +508,7 @@ export function mapEsminiMessages(messages: EsminiLogMessage[], source: FlatSour
         const match = candidate.pattern.exec(message.text);
         if (match) {
           rule = candidate;
-          targets = candidate.targets(root, match, valueOf, controllerOf);
+          targets = candidate.targets(root, match, valueOf, controllerOf, entries);
           break;
         }
       }
@@ -417,7 +526,7 @@ export function mapEsminiMessages(messages: EsminiLogMessage[], source: FlatSour
       logLine: message.logLine,
       count: 1,
       located: place !== undefined,
-      ...(rule?.note ? { note: rule.note } : {}),
+      ...(rule?.note ? { note: rule.note } : place === undefined ? { note: UNPLACED_NOTE } : {}),
     };
     const key = `${problem.source.disk}|${problem.source.entries.join('/')}|${problem.range.start.line}|${problem.range.start.character}|${problem.message}`;
     const known = problems.get(key);
