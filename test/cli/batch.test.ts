@@ -152,7 +152,12 @@ describe('cli: batch', function () {
       assert.equal(progressLines.length, 36 - before.length, 'only the missing runs ran');
       const after = csvRows(root);
       assertEveryIndexOnce(after, 36);
-      assert.deepEqual(after.slice(0, before.length), before);
+      assert.deepEqual(
+        indicesOf(after),
+        [...indicesOf(after)].sort((a, b) => a - b),
+        'results.csv in index order',
+      );
+      for (const row of before) assert.ok(after.includes(row), `the row kept as it was: ${row}`);
       const json = JSON.parse(fs.readFileSync(path.join(root, 'results', 'results.json'), 'utf8')) as { rows: { index: string }[] };
       assert.deepEqual(
         json.rows.map((row) => Number(row.index)),
@@ -175,6 +180,32 @@ describe('cli: batch', function () {
     assert.match(resumed.stderr, /^1 run .*, 4 already in /m);
     assert.equal(csvRows(root).length, 5);
     assert.deepEqual(new Set(csvRows(root)), new Set(whole.split('\n').slice(1, -1)));
+  });
+
+  it('results.csv lists its rows in index order, as results.json, though runs end in another order (a resumed batch: issue 27)', function () {
+    requireEsmini(this);
+    const root = folder();
+    const args = [...BATCH_ARGS, '--sample', '5', '--seed', '3'];
+    assert.equal(runCli(args, { cwd: root }).status, 0);
+    const whole = csvRows(root);
+    const indices = indicesOf(whole);
+    assert.deepEqual(
+      indices,
+      [...indices].sort((a, b) => a - b),
+      'a whole batch: in index order',
+    );
+    // The two lowest indices not done: the batch runs them again after the three others were written.
+    const csv = path.join(root, 'results', 'results.csv');
+    fs.writeFileSync(csv, [COLUMNS, ...whole.slice(2)].join('\n') + '\n');
+    const resumed = runCli(args, { cwd: root });
+    assert.equal(resumed.status, 0, resumed.stderr);
+    assert.match(resumed.stderr, /^2 runs .*, 3 already in /m);
+    assert.deepEqual(csvRows(root), whole);
+    const json = JSON.parse(fs.readFileSync(path.join(root, 'results', 'results.json'), 'utf8')) as { rows: { index: string }[] };
+    assert.deepEqual(
+      json.rows.map((row) => Number(row.index)),
+      indices,
+    );
   });
 
   it("a combination that breaks the scenario's ValueConstraintGroups keeps its index: a row of status discarded, with its values, not run", function () {

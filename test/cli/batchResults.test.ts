@@ -3,7 +3,7 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import type { EntityTrack, EsminiRun } from '../../common/src/esminiCsv';
 import { collisionsIn, polygonGap, trajectoryMetrics } from '../../server/src/batch/metrics';
-import { BatchIdentity, BatchRow, csvLine, ResultsError, ResultsFolder } from '../../server/src/batch/results';
+import { BatchIdentity, BatchRow, csvInIndexOrder, csvLine, ResultsError, ResultsFolder } from '../../server/src/batch/results';
 import { temporaryFolder } from '../support/temporaryDirectory';
 
 function track(name: string, xs: number[], speed = 0): EntityTrack {
@@ -124,6 +124,35 @@ describe('batch: trajectory metrics and results files', () => {
         json.rows.map((each) => each.index),
         ['0'],
       );
+    } finally {
+      fs.rmSync(folder, { recursive: true, force: true });
+    }
+  });
+
+  it('rows appended as runs end are in index order once the batch finishes, each kept as written (issue 27)', async () => {
+    const folder = temporaryFolder('m2s-results-order-');
+    try {
+      const results = await ResultsFolder.open(folder, ['Name'], IDENTITY);
+      for (const [index, name] of [
+        ['10', 'ten'],
+        ['2', 'two\nlines, quoted'],
+        ['0', 'zero'],
+      ])
+        await results.append(row(index, { Name: name }));
+      await results.finish();
+      const csv = fs.readFileSync(path.join(folder, 'results.csv'), 'utf8');
+      assert.equal(
+        csv,
+        'index,status,collision,min_distance_m,min_ttc_s,end_time_s,Name,reason\n' +
+          '0,ok,false,1.235,,3.000,zero,\n2,ok,false,1.235,,3.000,"two\nlines, quoted",\n10,ok,false,1.235,,3.000,ten,\n',
+      );
+      const json = JSON.parse(fs.readFileSync(path.join(folder, 'results.json'), 'utf8')) as { rows: BatchRow[] };
+      assert.deepEqual(
+        json.rows.map((each) => each.index),
+        ['0', '2', '10'],
+      );
+      assert.equal(csvInIndexOrder(csv), csv, 'in order already: the same text');
+      assert.equal(csvInIndexOrder('h\n"5",x\n4,y\n'), 'h\n4,y\n"5",x\n');
     } finally {
       fs.rmSync(folder, { recursive: true, force: true });
     }

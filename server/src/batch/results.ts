@@ -63,11 +63,43 @@ function indicesIn(csv: string): string[] {
   return lines.slice(1).map((line) => (line.startsWith('"') ? line.slice(1, line.indexOf('"', 1)) : line.slice(0, line.indexOf(','))));
 }
 
+/** The records of a CSV text, each with its line end: a quoted field may hold a line break. */
+function csvRecords(csv: string): string[] {
+  const records: string[] = [];
+  let start = 0;
+  let quoted = false;
+  for (let at = 0; at < csv.length; at++) {
+    if (csv[at] === '"') quoted = !quoted;
+    else if (csv[at] === '\n' && !quoted) {
+      records.push(csv.slice(start, at + 1));
+      start = at + 1;
+    }
+  }
+  if (start < csv.length) records.push(csv.slice(start));
+  return records;
+}
+
+/** The index a record of results.csv begins with (its first field, unquoted). */
+function recordIndex(record: string): bigint {
+  const field = record.startsWith('"') ? record.slice(1, record.indexOf('"', 1)) : record.slice(0, record.indexOf(','));
+  return /^\d+$/.test(field) ? BigInt(field) : -1n;
+}
+
+/** results.csv's text with its rows in index order (the header first, each row as it was written). */
+export function csvInIndexOrder(csv: string): string {
+  const [header = '', ...rows] = csvRecords(csv);
+  const sorted = rows
+    .map((record) => ({ record, index: recordIndex(record) }))
+    .sort((a, b) => (a.index < b.index ? -1 : a.index > b.index ? 1 : 0));
+  return header + sorted.map((row) => row.record).join('');
+}
+
 /**
  * DIR/results.csv, DIR/results.json and what lets a batch resume. Every row is appended and synced to disk as
  * its run ends, first to DIR/.rows.jsonl (the rows with esmini's messages), then to results.csv, which says
  * what is done: a row cut short by a kill is dropped on the next start, so the CSV is always whole rows.
- * results.json is written from the rows, atomically, now and then and at the end.
+ * results.json is written from the rows, atomically, now and then and at the end; at the end (an interrupted
+ * batch's too) results.csv is written again, atomically, with its rows in index order as results.json has them.
  */
 export class ResultsFolder {
   readonly csvFile: string;
@@ -223,9 +255,15 @@ export class ResultsFolder {
     await writeFileAtomic(this.htmlFile, resultsReportHtml(table, title));
   }
 
-  /** Waits for the rows in flight, writes results.json and results.html and closes the files. */
+  /** Waits for the rows in flight, puts results.csv in index order, writes results.json and results.html and closes the files. */
   async finish(): Promise<void> {
     await this.queue;
+    await this.csv?.close();
+    this.csv = undefined;
+    // Rows were appended as runs ended, in any order: the finished file lists them by index (rows are kept as written).
+    const csv = await fs.promises.readFile(this.csvFile, 'utf8');
+    const ordered = csvInIndexOrder(csv);
+    if (ordered !== csv) await writeFileAtomic(this.csvFile, ordered);
     const rows = await this.writeJson();
     await this.writeReport();
     if (this.junitFile)

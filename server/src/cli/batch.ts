@@ -54,7 +54,7 @@ export const BATCH_HELP = `Run every concrete scenario of a distribution in esmi
   --esmini PATH, --road-path DIRS, --scenario-path DIRS   as for run
   --force                   run despite the scenario's errors: its ScenarioFile is checked first as run checks
                             it, and one with errors is refused (file, line, what to do) before anything runs
-  results.csv: index, status (ok: the scenario ended by itself; limit: stopped at --duration before it ended;
+  results.csv (one row per index, in index order once the batch ends): index, status (ok: the scenario ended by itself; limit: stopped at --duration before it ended;
   timeout: it hung or ran away; error: esmini reported an error or did not run it), collision (esmini's collision detection), min_distance_m and min_ttc_s (the ego, or the first entity,
   against every other: bounding-box gap, and gap over closing speed), end_time_s, then one column per varied
   parameter, then reason (why the run is not ok: esmini's own reason for an error, what stopped a timeout or a
