@@ -627,6 +627,32 @@ describe('esmini: runs (the simulator built by the test setup)', function () {
     fs.rmSync(root, { recursive: true, force: true });
   });
 
+  it('takes the last of two declarations of one name, as check --simulator esmini says', async function () {
+    requireEsmini(this);
+    const root = temporaryFolder('m2s-esmini-redeclared-');
+    const main = path.join(root, 'main.xosc');
+    const text = drivingScenario('straight_500m.xodr', 'Drive').replace(
+      '<ParameterDeclarations></ParameterDeclarations>',
+      '<ParameterDeclarations><ParameterDeclaration name="Speed" parameterType="double" value="5"/><ParameterDeclaration name="Speed" parameterType="double" value="15"/></ParameterDeclarations>',
+    );
+    assert.match(text, /name="Speed"/);
+    fs.writeFileSync(
+      main,
+      text.replace('<AbsoluteTargetSpeed parameterAttributes="value" value="10"/>', '<AbsoluteTargetSpeed value="$Speed"/>'),
+    );
+    const [warning] = (await new Flattener(new ScenarioStore({ root }), 'esmini').analyze(diskRef(main))).problems.filter(
+      (problem) => problem.code === 'duplicate-parameter',
+    );
+    assert.match(warning.message, /the first declaration \(value '5'\); esmini uses the last .*, here value '15'/);
+    const result = await run(new ScenarioStore({ root }), main, { duration: 3 });
+    assert.equal(result.outcome, 'ok', result.log.slice(-2000));
+    const ego = tracksOf(readEsminiCsv(result.csvFile as string)).get('Ego') ?? [];
+    const [a, b] = [ego.find((point) => point.time >= 1), ego.find((point) => point.time >= 2)];
+    assert.ok(a && b);
+    assert.ok(Math.abs((b.x - a.x) / (b.time - a.time) - 15) < 0.1, `Ego drives ${((b.x - a.x) / (b.time - a.time)).toFixed(2)} m/s`);
+    fs.rmSync(root, { recursive: true, force: true });
+  });
+
   it('runs the unsaved text: an editor overlay with a mistake is what esmini gets', async function () {
     requireEsmini(this);
     const root = examplesCopy();

@@ -117,6 +117,10 @@ export const ESMINI_PROFILE: SimulatorProfile = {
       does: "puts a parameter's text as written where $name is used (getParameter returns the declaration's value attribute)",
       source: `${PARAMETERS}:73-88`,
     },
+    redeclaration: {
+      does: 'uses the last of two declarations of one name: it puts each declaration before the earlier ones and looks a name up from the front ("Parameter X redefined. Previous value A will be shadowed by B")',
+      source: `${PARAMETERS}:566-582, 73-88`,
+    },
     failure: { does: 'stops the scenario with "Failed to evaluate the expression"', source: `${PARAMETERS}:449-453` },
   },
 };

@@ -87,6 +87,7 @@ export type ValueRule =
   | 'booleanConversion'
   | 'doubleConversion'
   | 'declarationText'
+  | 'redeclaration'
   | 'failure';
 
 export interface ValueRuleFact {

@@ -136,9 +136,15 @@ export const duplicateDeclarations: SemanticCheck = (context) => {
     for (const declaration of scope.declarations) {
       const first = scope.byName.get(declaration.name) as Declaration;
       if (first === declaration) continue;
+      const last = scope.declarations.filter((each) => each.name === declaration.name).at(-1) as Declaration;
+      const valueOf = (each: Declaration) => attribute(each.element, 'value')?.value ?? '';
       findings.push({
         ...at(declaration.element, declaration.nameAttribute),
-        ...duplicateParameterWording(declaration.name, scope.element.name),
+        ...duplicateParameterWording(
+          declaration.name,
+          scope.element.name,
+          context.simulator === 'esmini' ? { first: valueOf(first), last: valueOf(last) } : undefined,
+        ),
         related: [relatedAt(context, first.element.start, first.element.nameEnd, DUPLICATE_PARAMETER_FIRST_NOTE)],
       });
     }
