@@ -56,6 +56,16 @@ const LANE_CHANGE = `<PrivateAction><LateralAction><LaneChangeAction>
 const TIME_OF_DAY =
   '<GlobalAction/><StartTrigger><ConditionGroup><Condition name="c" delay="0" conditionEdge="none"><ByValueCondition><TimeOfDayCondition dateTime="2026-01-01T08:00:00" rule="greaterThan"/></ByValueCondition></Condition></ConditionGroup></StartTrigger>';
 
+/** A workspace whose main.xosc (1.0, a lane change of its own) imports the group Go of `simple` as simple.xosc, and a CARLA flattener for it. */
+function importingGo(simple: string): { root: string; flattener: Flattener } {
+  const main = scenarioText('0', '', LANE_CHANGE).replace(
+    /<ManeuverGroup name="group"[\s\S]*<\/ManeuverGroup>/,
+    '<ManeuverGroup name="outer" maximumExecutionCount="1"><Actors selectTriggeringEntities="false"><EntityRef entityRef="ego"/></Actors><ScenarioReference scenarioFileName="simple.xosc"><ManeuverGroupReference maneuverGroupName="Go"/></ScenarioReference></ManeuverGroup>',
+  );
+  const root = temporaryWorkspace({ 'simple.xosc': simple, 'main.xosc': main });
+  return { root, flattener: new Flattener(new ScenarioStore({ scenarioPath: [], root }), 'carla') };
+}
+
 function messages(simulator: Simulator, text: string, fileName = 'scenario.xosc'): string[] {
   return simulatorFindings(simulator, parseXml(text), fileName).map((finding) => simulatorWording(finding).message);
 }
@@ -225,12 +235,7 @@ describe('simulator profiles', () => {
 
   it('reports findings of an imported group in the file the group was written in, and none without a simulator', async () => {
     const simple = scenarioText('0', '', VISIBILITY).replace('name="group"', 'name="Go"');
-    const main = scenarioText('0', '', LANE_CHANGE).replace(
-      /<ManeuverGroup name="group"[\s\S]*<\/ManeuverGroup>/,
-      '<ManeuverGroup name="outer" maximumExecutionCount="1"><Actors selectTriggeringEntities="false"><EntityRef entityRef="ego"/></Actors><ScenarioReference scenarioFileName="simple.xosc"><ManeuverGroupReference maneuverGroupName="Go"/></ScenarioReference></ManeuverGroup>',
-    );
-    const root = temporaryWorkspace({ 'simple.xosc': simple, 'main.xosc': main });
-    const flattener = new Flattener(new ScenarioStore({ scenarioPath: [], root }), 'carla');
+    const { root, flattener } = importingGo(simple);
     // Forced: the scenario has no road, which ScenarioRunner refuses (an error that blocks a flatten otherwise).
     const result = await flattener.flatten(diskRef(path.join(root, 'main.xosc')), { force: true });
     assert.ok(result.text, JSON.stringify(result.problems.map((problem) => problem.message)));
@@ -251,6 +256,48 @@ describe('simulator profiles', () => {
       standard.problems.filter((problem) => problem.code === 'simulator'),
       [],
     );
+  });
+
+  it("a simulator's findings in an imported file outside the imported group are not the importer's (a library module's revMinor 1 under a 1.0 main)", async () => {
+    // The source states 1.1 and marks no ego (ScenarioRunner refuses and warns, for that file run alone); its group Other,
+    // not imported, holds a VisibilityAction; only the imported group's VisibilityAction reaches the main.
+    const simple = scenarioText('1', '', VISIBILITY)
+      .replace('name="group"', 'name="Go"')
+      .replace(
+        '</Act>',
+        `  <ManeuverGroup name="Other" maximumExecutionCount="1">
+          <Actors selectTriggeringEntities="false"><EntityRef entityRef="ego"/></Actors>
+          <Maneuver name="m2"><Event name="e2" priority="overwrite"><Action name="a2">${VISIBILITY}</Action></Event></Maneuver>
+        </ManeuverGroup>
+      </Act>`,
+      );
+    const { root, flattener } = importingGo(simple);
+    const alone = await flattener.flatten(diskRef(path.join(root, 'simple.xosc')), { force: true });
+    assert.ok(
+      alone.problems.some((problem) => /accepts only OpenSCENARIO 1\.0; this file states 1\.1/.test(problem.message)),
+      'the source run alone is refused for its version',
+    );
+    const result = await flattener.flatten(diskRef(path.join(root, 'main.xosc')), { force: true });
+    const messages = result.problems.map(
+      (problem) => `${path.basename(problem.source.disk)}:${problem.range.start.line + 1}: ${problem.message}`,
+    );
+    const sourceErrors = result.problems.filter((problem) => problem.code === 'source-errors');
+    // The one error that comes along: the imported group's VisibilityAction (not the version, the road or the other group's).
+    assert.deepEqual(
+      sourceErrors.map((problem) => problem.message.replace(/:.*/s, '')),
+      ["'simple.xosc' has 1 error"],
+      messages.join('\n'),
+    );
+    const inSource = result.problems.filter(
+      (problem) => problem.code === 'simulator' && path.basename(problem.source.disk) === 'simple.xosc',
+    );
+    const imported = simple.split('\n').findIndex((text) => text.includes('<VisibilityAction'));
+    assert.deepEqual(
+      inSource.map((problem) => problem.range.start.line),
+      [imported],
+      messages.join('\n'),
+    );
+    assert.equal(inSource[0].severity, 'error');
   });
 
   it('checks the flattened output too: a value set through a ParameterReference is reported where it is written', async () => {

@@ -27,7 +27,7 @@ import {
   LinkedReference,
   PackagedFile,
   SchemaOptions,
-  SOURCE_ONLY_PROBLEM_CODES,
+  concernsImporter,
 } from './types';
 
 /** The catalogs a file reaches (its own references first, then those of the files it imports from). */
@@ -253,7 +253,9 @@ export class Flattener {
       problemsOfLinks.push(linkProblems(result.problems, firstProblem, result.problems.length));
       result.links.push(linked);
       if (linked.source) {
-        for (const problem of linked.source.allProblems) if (!SOURCE_ONLY_PROBLEM_CODES.has(problem.code)) childProblems.push(problem);
+        const groupNames = reference.groupReferences.map((groupReference) => groupReference.name);
+        for (const problem of linked.source.allProblems)
+          if (concernsImporter(problem, linked.source, groupNames)) childProblems.push(problem);
         for (const dependency of linked.source.dependencies) {
           const id = refId(dependency);
           if (!dependencyIds.has(id)) {

@@ -32,7 +32,7 @@ import { attribute, XmlElement } from '../xml';
 import { SCHEMA_PROBLEM_CODES } from '../schema/validate';
 import { declarationLocation, originOf } from './origin';
 import { describeChain, problemAt, ProblemWords, valueRange } from './report';
-import { FlatSource, LinkedGroupReference, LinkedReference, OVERRIDE_PROBLEM_CODES, SOURCE_ONLY_PROBLEM_CODES } from './types';
+import { concernsImporter, FlatSource, LinkedGroupReference, LinkedReference, OVERRIDE_PROBLEM_CODES } from './types';
 
 /** What linking needs of the flattener: the store, and the (cached) reading and rendering of referenced files. */
 export interface LinkContext {
@@ -182,13 +182,15 @@ async function resolveTarget(
 
 /**
  * Errors in the referenced file stop flattening; schema problems do not (they are reported in their own file and checked
- * again in the output), nor does a road file the source names but no run of the output reads (SOURCE_ONLY_PROBLEM_CODES).
+ * again in the output), nor does what does not concern the importer (concernsImporter): a road file the source names but
+ * no run of the output reads, a simulator's finding outside the imported groups.
  */
 function reportSourceErrors(reference: ScenarioReferenceInfo, source: FlatSource, report: Report): void {
+  const groupNames = reference.groupReferences.map((groupReference) => groupReference.name);
   const sourceErrors = source.allProblems.filter(
     (problem) =>
       problem.severity === 'error' &&
-      !SOURCE_ONLY_PROBLEM_CODES.has(problem.code) &&
+      concernsImporter(problem, source, groupNames) &&
       !OVERRIDE_PROBLEM_CODES.has(problem.code) &&
       !SCHEMA_PROBLEM_CODES.has(problem.code),
   );

@@ -4,7 +4,7 @@ import { ManeuverGroupInfo, ManeuverGroupReferenceInfo, ScenarioModel, ScenarioR
 import { Problem, ProblemCode } from '../problems';
 import { SchemaVersionSetting } from '../schema/version';
 import { Declaration, DocumentSemantics } from '../semantics';
-import { Resolution, SourceRef } from '../sources';
+import { refId, Resolution, SourceRef } from '../sources';
 import { XmlElement } from '../xml';
 
 /** Problems that the original tool ignored silently: what `--force` skips (reported as skipped, not as errors). */
@@ -16,6 +16,21 @@ export const OVERRIDE_PROBLEM_CODES: ReadonlySet<ProblemCode> = SKIPPED_BY_FORCE
  * Reported when that file is checked itself; they neither stop a flattening nor count among the main's problems.
  */
 export const SOURCE_ONLY_PROBLEM_CODES: ReadonlySet<ProblemCode> = new Set<ProblemCode>(['road-file']);
+
+/**
+ * Whether a problem of a referenced file (`source`) concerns a scenario importing the groups `groupNames` from it. Not
+ * a SOURCE_ONLY_PROBLEM_CODES one, nor a simulator's finding in that file itself outside the imported groups: the
+ * simulator runs the importing scenario's FileHeader, road, entities and storyboard, never the source's (a library
+ * module's `revMinor="1"` is no CARLA error in a 1.0 main). Findings in its catalogs and the files it imports are
+ * judged where they are imported.
+ */
+export function concernsImporter(problem: Problem, source: FlatSource, groupNames: readonly string[]): boolean {
+  if (SOURCE_ONLY_PROBLEM_CODES.has(problem.code)) return false;
+  const original = source.original;
+  if (problem.code !== 'simulator' || !original || refId(problem.source) !== refId(source.ref)) return true;
+  const offset = original.document.lines.offsetAt(problem.range.start);
+  return original.groups.some((group) => groupNames.includes(group.name) && group.element.start <= offset && offset < group.element.end);
+}
 
 export interface LinkedGroupReference {
   info: ManeuverGroupReferenceInfo;
