@@ -1,6 +1,7 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import type * as vscode from 'vscode';
+import { missingFolders } from '../../common/src/atomic';
 
 /**
  * One naming convention for what flattening makes, used by Flatten to .xosc and by the preview
@@ -47,16 +48,6 @@ export function fileNameProblem(folder: string, name: string, exists: (file: str
 export interface NewFile {
   path: string;
   text: string;
-}
-
-/** The folders `mkdir -p` of `folder` would create, the outermost first. */
-function missingFolders(folder: string): string[] {
-  const missing: string[] = [];
-  for (let current = folder; !fs.existsSync(current); current = path.dirname(current)) {
-    missing.unshift(current);
-    if (path.dirname(current) === current) break;
-  }
-  return missing;
 }
 
 /**

@@ -220,6 +220,37 @@ export async function writeFileAtomic(target: string, data: OutputData): Promise
   await prepared.commit();
 }
 
+/** The folders `mkdir -p` of `folder` would create, the outermost first. */
+export function missingFolders(folder: string): string[] {
+  const missing: string[] = [];
+  for (let current = path.resolve(folder); !fs.existsSync(current); current = path.dirname(current)) {
+    missing.unshift(current);
+    if (path.dirname(current) === current) break;
+  }
+  return missing;
+}
+
+/**
+ * writeFileAtomic into a folder that may not exist yet, for an output the user chose in the editor's save dialog (which
+ * offers to create a missing folder, and leaves the creating to whoever writes, as VS Code's own Save As does): the
+ * missing folders are made first and removed again when the file cannot be written, so nothing is left behind.
+ */
+export async function writeFileAtomicMakingFolders(target: string, data: OutputData): Promise<void> {
+  const made = missingFolders(path.dirname(path.resolve(target)));
+  const innermost = made.at(-1);
+  if (innermost !== undefined)
+    await fs.promises.mkdir(innermost, { recursive: true }).catch((error: unknown) => {
+      throw new OutputError(`cannot create the folder ${innermost} for ${target} (${(error as NodeJS.ErrnoException).code ?? error})`);
+    });
+  try {
+    await writeFileAtomic(target, data);
+  } catch (error) {
+    // Innermost first, and only when empty: a folder that holds anything else is not ours to remove.
+    for (const folder of made.reverse()) await fs.promises.rmdir(folder).catch(() => undefined);
+    throw error;
+  }
+}
+
 export interface WriteAllResult {
   /** Targets written, in order. */
   written: string[];

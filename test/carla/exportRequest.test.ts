@@ -69,6 +69,22 @@ describe('Export for CARLA over JSON-RPC: the loss report at the modular sources
       fs.rmSync(output, { force: true });
     }
   });
+
+  it('writes into a folder that does not exist yet, as the save dialog offered to create it (was: ENOENT on a temporary file, nothing written)', async () => {
+    const root = examples.root();
+    const exports = path.join(root, 'exports');
+    const output = path.join(exports, 'carla', 'main.carla.xosc');
+    try {
+      const result = await examples
+        .client()
+        .send(ExportForCarlaRequest, { uri: fileUri(path.join(root, 'main.xosc')), outputPath: output });
+      assert.equal(result.written, output, JSON.stringify(result.problems.filter((problem) => problem.severity === 'error')));
+      assert.match(fs.readFileSync(output, 'utf8'), /revMajor="1" revMinor="0"/);
+      assert.deepEqual(fs.readdirSync(path.dirname(output)), ['main.carla.xosc'], 'no temporary file left');
+    } finally {
+      fs.rmSync(exports, { recursive: true, force: true });
+    }
+  });
 });
 
 describe('Export for CARLA over JSON-RPC: a refusal (ScenarioRunner 0.9.16)', function () {

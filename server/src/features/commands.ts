@@ -2,7 +2,7 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { ErrorCodes, ResponseError } from 'vscode-languageserver/node';
 import { besideOutputWritable, Flattener, FlatSource, PackagedFile } from '../core/flatten';
-import { isSameFile, OutputError, writeFileAtomic } from '../../../common/src/atomic';
+import { isSameFile, OutputError, writeFileAtomicMakingFolders } from '../../../common/src/atomic';
 import { insideFolders } from '../../../common/src/paths';
 import { Problem } from '../core/problems';
 import { baseName, childRef, diskRef, displayRef, nodeFileSystem, refId, SourceRef } from '../core/sources';
@@ -133,7 +133,8 @@ export async function writeOutput(
   ref: SourceRef,
 ): Promise<WriteResult> {
   try {
-    await writeFileAtomic(output, data);
+    // The output was chosen in a save dialog, which offers to create a missing folder: made here, as VS Code's Save As does.
+    await writeFileAtomicMakingFolders(output, data);
   } catch (error) {
     if (!(error instanceof OutputError)) throw error;
     return { written: null, problems: [...problems, outputProblem(workspace, ref, error.message)] };
