@@ -271,12 +271,14 @@ export async function exportTextForCarla(
   const ego = markEgo(tree, options, sink);
   mapBlueprints(tree, options, sink);
   // Route positions are placed on the road they name: only then is the road file read.
-  // Route positions need road lengths, sampled trajectories the heading of a lane an actor starts on, trajectory positions and an Init trajectory's offset (the only one init-starts places) the road their vertices are on.
+  // Route positions need road lengths, sampled trajectories the heading of a lane an actor starts on, trajectory positions and an Init trajectory's offset (the only one init-starts places) the road their vertices are on, lane changes by time or rate the lanes' widths.
   const needsRoads =
     named(tree, new Set(['RoutePosition', 'GeoPosition', 'Clothoid', 'ClothoidSpline', 'Nurbs', 'TrajectoryPosition'])).length > 0 ||
     named(tree, 'FollowTrajectoryAction').some(
       (action) => Number(attr(action, 'initialDistanceOffset') ?? 0) !== 0 && ancestor(action, 'Init') !== undefined,
-    );
+    ) ||
+    // How far a lane change moves across (laneChanges.ts): a rate needs it, a time is exact with it.
+    named(tree, 'LaneChangeActionDynamics').some((dynamics) => ['time', 'rate'].includes(attr(dynamics, 'dynamicsDimension') ?? ''));
   const roads = road && 'file' in road && needsRoads ? await readRoads(copy?.bytes ?? road.file, store) : undefined;
   const geoPlaces = new Map<Node, RoadXY | string>();
   for (const position of named(tree, 'GeoPosition')) {

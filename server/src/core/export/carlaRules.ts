@@ -33,8 +33,9 @@ import { sampledShape, sampledWorldPoints, TrajectoryEnds } from './carlaTraject
 import { dropUnit } from './carlaLosses';
 import type { CarlaLoss, LossSink } from './carlaLosses';
 import { variables } from './carlaVariables';
-import { actorsOf, constantSpeedOf, fromInit, startSpeedOf } from './scenarioTree';
+import { actorsOf, constantSpeedOf, startSpeedOf } from './scenarioTree';
 import { speedProfiles } from './speedProfiles';
+import { laneChangesByDistance, startLanePositionOf } from './laneChanges';
 import { trajectoryPoint } from './trajectoryPoint';
 import { initStarts } from './initStarts';
 import { SAMPLE_STEP } from './shapes';
@@ -330,14 +331,6 @@ function weather(tree: Node, context: RuleContext): void {
   }
 }
 
-/** The actor's start lane, from its Init TeleportAction to a LanePosition: what a relative lane change counts from. */
-function startLaneOf(tree: Node, actor: string): number | undefined {
-  return fromInit(tree, actor, (privateNode) => {
-    const lane = named(privateNode, 'LanePosition').find((each) => ancestor(each, 'TeleportAction'));
-    return lane ? Number(attr(lane, 'laneId')) : undefined;
-  });
-}
-
 /**
  * `AbsoluteTargetLane` crashes ScenarioRunner (SR_PARSER convert_maneuver_to_atomic reads `value` of a
  * RelativeTargetLane only): written as the relative change from the actor's start lane (same side of the road).
@@ -345,7 +338,7 @@ function startLaneOf(tree: Node, actor: string): number | undefined {
 function absoluteTargetLane(tree: Node, context: RuleContext): void {
   for (const target of named(tree, 'AbsoluteTargetLane')) {
     const actors = actorsOf(target);
-    const start = actors.length === 1 ? startLaneOf(tree, actors[0]) : undefined;
+    const start = actors.length === 1 ? startLanePositionOf(tree, actors[0])?.laneId : undefined;
     const wanted = Number(attr(target, 'value'));
     const carla = `ScenarioRunner changes lanes relative to the actor's lane only; an AbsoluteTargetLane crashes it (${SR_PARSER} convert_maneuver_to_atomic)`;
     if (start === undefined || !Number.isInteger(wanted) || Math.sign(start) !== Math.sign(wanted) || start === 0) {
@@ -381,9 +374,11 @@ function absoluteTargetLane(tree: Node, context: RuleContext): void {
 /** `timeGap` is refused (SR_PARSER: "LongitudinalDistanceAction: timeGap is not implemented"): a distance at the actor's start speed. */
 function longitudinalTimeGap(tree: Node, context: RuleContext): void {
   for (const action of named(tree, 'LongitudinalDistanceAction')) {
+    const displacement = attr(action, 'displacement');
     for (const extra of ['coordinateSystem', 'displacement']) {
       const value = attr(action, extra);
-      if (value !== undefined && removeAttr(action, extra) && !['entity', 'trailingReferencedEntity', 'any'].includes(value))
+      if (value === undefined || !removeAttr(action, extra)) continue;
+      if (!['entity', 'trailingReferencedEntity', 'any', 'leadingReferencedEntity'].includes(value))
         context.sink.approximated(
           action,
           `LongitudinalDistanceAction/@${extra}`,
@@ -392,25 +387,44 @@ function longitudinalTimeGap(tree: Node, context: RuleContext): void {
         );
     }
     const gap = attr(action, 'timeGap');
-    if (gap === undefined) continue;
-    const actors = actorsOf(action);
-    const speed =
-      actors.length === 1 ? (startSpeedOf(tree, attr(action, 'entityRef') ?? actors[0]) ?? startSpeedOf(tree, actors[0])) : undefined;
-    const carla = `ScenarioRunner refuses a time gap ("timeGap is not implemented", ${SR_PARSER} convert_maneuver_to_atomic)`;
-    if (speed === undefined || !(speed > 0)) {
-      dropUnit(action, context, 'LongitudinalDistanceAction/@timeGap', `${carla}; no start speed to turn it into a distance`);
-      continue;
+    if (gap !== undefined) {
+      const actors = actorsOf(action);
+      const speed =
+        actors.length === 1 ? (startSpeedOf(tree, attr(action, 'entityRef') ?? actors[0]) ?? startSpeedOf(tree, actors[0])) : undefined;
+      const carla = `ScenarioRunner refuses a time gap ("timeGap is not implemented", ${SR_PARSER} convert_maneuver_to_atomic)`;
+      if (speed === undefined || !(speed > 0)) {
+        dropUnit(action, context, 'LongitudinalDistanceAction/@timeGap', `${carla}; no start speed to turn it into a distance`);
+        continue;
+      }
+      const distance = Number((Number(gap) * speed).toFixed(3));
+      removeAttr(action, 'timeGap');
+      setAttr(action, 'distance', String(distance));
+      context.sink.approximated(
+        action,
+        'LongitudinalDistanceAction/@timeGap',
+        `${gap} s is written as ${distance} m (at the start speed ${speed} m/s)`,
+        carla,
+      );
     }
-    const distance = Number((Number(gap) * speed).toFixed(3));
-    removeAttr(action, 'timeGap');
-    setAttr(action, 'distance', String(distance));
-    context.sink.approximated(
-      action,
-      'LongitudinalDistanceAction/@timeGap',
-      `${gap} s is written as ${distance} m (at the start speed ${speed} m/s)`,
-      carla,
-    );
+    if (displacement === 'leadingReferencedEntity') leadingGap(action, context);
   }
+}
+
+/**
+ * 1.0 has no `displacement`: an actor that leads its reference is a negative distance there, as esmini reads a 1.0 file
+ * (OSCPrivateAction.cpp LongDistanceAction::Step: the requested distance keeps its sign before 1.1); ScenarioRunner keeps no such gap.
+ */
+function leadingGap(action: Node, context: RuleContext): void {
+  const distance = Number(attr(action, 'distance'));
+  if (!Number.isFinite(distance)) return;
+  setAttr(action, 'distance', fourDecimals(-Math.abs(distance)));
+  const fact = CARLA_FACTS.longitudinalGapBehindOnly;
+  context.sink.approximated(
+    action,
+    'LongitudinalDistanceAction/@displacement',
+    `leadingReferencedEntity is written as the distance ${fourDecimals(-Math.abs(distance))} m (1.0 has no displacement: a negative distance puts the actor ahead, as esmini reads 1.0)`,
+    `ScenarioRunner ${fact.does} (${fact.source})`,
+  );
 }
 
 /**
@@ -1020,34 +1034,6 @@ function rateAsSeconds(tree: Node, dynamics: Node, rate: number): number | undef
   return Number.isFinite(change) && change > 0 ? (factor * change) / Math.abs(rate) : undefined;
 }
 
-/**
- * A lane change by time is planned over an infinite distance (CARLA_PROFILE LaneChangeActionDynamics/@dynamicsDimension):
- * written as the distance the actor drives in that time, exactly where its speed is certain, at its start speed elsewhere (reported).
- */
-function laneChangeTimes(tree: Node, context: RuleContext): void {
-  for (const dynamics of named(tree, 'LaneChangeActionDynamics')) {
-    if (attr(dynamics, 'dynamicsDimension') !== 'time') continue;
-    const seconds = Number(attr(dynamics, 'value'));
-    const actors = actorsOf(dynamics);
-    if (actors.length === 0 || !(seconds > 0)) continue;
-    const constant = actors.map((actor) => constantSpeedOf(tree, actor));
-    const started = actors.map((actor) => startSpeedOf(tree, actor));
-    const certain = constant[0] !== undefined && constant.every((each) => each === constant[0]);
-    const speed = certain ? constant[0] : started[0];
-    if (speed === undefined || !(Math.abs(speed) > 0) || (!certain && started.some((each) => each !== speed))) continue;
-    const distance = fourDecimals(seconds * Math.abs(speed));
-    setAttr(dynamics, 'dynamicsDimension', 'distance');
-    setAttr(dynamics, 'value', distance);
-    if (!certain)
-      context.sink.approximated(
-        dynamics,
-        'LaneChangeActionDynamics/@value',
-        `${seconds} s is written as ${distance} m, at the actor's start speed ${speed} m/s: its speed may change before or during the lane change`,
-        `ScenarioRunner plans a lane change over a distance only; by time it plans it over an infinite distance (${SR_PARSER}:1386-1399)`,
-      );
-  }
-}
-
 /** A SpeedAction's shape other than step is kept as written, and reported at its line: ScenarioRunner never reads it (CARLA_FACTS.speedShapeIgnored). */
 function speedShapes(tree: Node, context: RuleContext): void {
   const fact = CARLA_FACTS.speedShapeIgnored;
@@ -1373,7 +1359,7 @@ export const CARLA_RULES: readonly { name: string; apply: (tree: Node, context: 
   { name: 'conditions', apply: conditions },
   { name: 'ignored-semantics', apply: ignoredSemantics },
   { name: 'speed-rates', apply: speedRates },
-  { name: 'lane-change-times', apply: laneChangeTimes },
+  { name: 'lane-changes-by-distance', apply: (tree, context) => laneChangesByDistance(tree, context.sink, context.roads) },
   { name: 'speed-shapes', apply: speedShapes },
   { name: 'attributes-run-otherwise', apply: attributesRunOtherwise },
   { name: 'act-stop-groups', apply: actStopGroups },

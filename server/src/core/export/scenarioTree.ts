@@ -14,10 +14,15 @@ export function fromInit(tree: Node, actor: string, read: (privateNode: Node) =>
 }
 
 /** The actor's speed set in its Init (an absolute SpeedAction): the nominal speed of a time gap, and where a speed profile starts. */
-export function startSpeedOf(tree: Node, actor: string): number | undefined {
+export function startSpeedOf(tree: Node, actor: string, through: ReadonlySet<string> = new Set()): number | undefined {
   return fromInit(tree, actor, (privateNode) => {
-    const target = named(privateNode, 'AbsoluteTargetSpeed')[0];
-    return target ? Number(attr(target, 'value')) : undefined;
+    const absolute = named(privateNode, 'AbsoluteTargetSpeed')[0];
+    if (absolute) return Number(attr(absolute, 'value'));
+    // esmini starts a speed relative to another entity from that entity's Init speed (ALKS's targets: the ego's less a delta).
+    const relative = named(privateNode, 'RelativeTargetSpeed')[0];
+    const reference = relative ? (attr(relative, 'entityRef') ?? '') : '';
+    const from = relative && !through.has(reference) ? startSpeedOf(tree, reference, new Set([...through, actor])) : undefined;
+    return relative && from !== undefined ? relativeSpeed(relative, from) : undefined;
   });
 }
 
@@ -47,7 +52,7 @@ const SPEED_CHANGING: ReadonlySet<string> = new Set([
  * The speed the actor keeps for the whole run, when that is certain: its Init sets it at once (a step) and nothing
  * else can change it (no controller of its own, no other speed-changing action on it but `except`), else undefined.
  */
-export function constantSpeedOf(tree: Node, actor: string, except?: Node): number | undefined {
+export function constantSpeedOf(tree: Node, actor: string, except?: Node, through: ReadonlySet<string> = new Set()): number | undefined {
   const storyboard = child(tree, 'Storyboard');
   const init = storyboard ? child(storyboard, 'Init') : undefined;
   if (!storyboard || !init) return undefined;
@@ -56,10 +61,10 @@ export function constantSpeedOf(tree: Node, actor: string, except?: Node): numbe
   let speed: number | undefined;
   for (const privateNode of named(init, 'Private').filter((each) => attr(each, 'entityRef') === actor))
     for (const action of named(privateNode, SPEED_CHANGING)) {
-      const target = action.name === 'SpeedAction' ? named(action, 'AbsoluteTargetSpeed')[0] : undefined;
       const dynamics = action.name === 'SpeedAction' ? named(action, 'SpeedActionDynamics')[0] : undefined;
-      if (!target || speed !== undefined || (dynamics && attr(dynamics, 'dynamicsShape') !== 'step')) return undefined;
-      speed = Number(attr(target, 'value'));
+      if (action.name !== 'SpeedAction' || speed !== undefined || (dynamics && attr(dynamics, 'dynamicsShape') !== 'step'))
+        return undefined;
+      speed = initTargetSpeed(tree, action, actor, through);
     }
   if (speed === undefined || !Number.isFinite(speed)) return undefined;
   for (const story of childrenNamed(storyboard, 'Story'))
@@ -71,4 +76,22 @@ export function constantSpeedOf(tree: Node, actor: string, except?: Node): numbe
       if (!actors || attr(actors, 'selectTriggeringEntities') === 'true' || actorsOf(action).includes(actor)) return undefined;
     }
   return speed;
+}
+
+/** An Init SpeedAction's target: absolute, or relative to an entity whose own speed is constant (esmini sets it once at the start). */
+function initTargetSpeed(tree: Node, action: Node, actor: string, through: ReadonlySet<string>): number | undefined {
+  const absolute = named(action, 'AbsoluteTargetSpeed')[0];
+  if (absolute) return Number(attr(absolute, 'value'));
+  const relative = named(action, 'RelativeTargetSpeed')[0];
+  const reference = relative ? (attr(relative, 'entityRef') ?? '') : '';
+  if (!relative || through.has(reference) || reference === actor) return undefined;
+  const from = constantSpeedOf(tree, reference, undefined, new Set([...through, actor]));
+  return from === undefined ? undefined : relativeSpeed(relative, from);
+}
+
+/** A RelativeTargetSpeed's speed from its entity's: a delta added or a factor applied. */
+function relativeSpeed(relative: Node, from: number): number | undefined {
+  const value = Number(attr(relative, 'value'));
+  if (!Number.isFinite(value)) return undefined;
+  return attr(relative, 'speedTargetValueType') === 'factor' ? from * value : from + value;
 }

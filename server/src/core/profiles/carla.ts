@@ -302,6 +302,11 @@ export const CARLA_FACTS = {
     source: `${PARSER}:1402-1404, ${RUNNER}:279`,
     severity: 'warning',
   },
+  longitudinalGapBehindOnly: {
+    does: "keeps a LongitudinalDistanceAction's gap only while the reference is ahead of the actor (KeepLongitudinalGap: is_within_distance of 0 to 90 degrees); an actor ahead of its reference is driven at its maximum speed instead",
+    source: `${ATOMICS}:4576-4592`,
+    severity: 'warning',
+  },
   negativeStartSpeed: {
     does: 'raises AttributeError "Speed value of actor ... must be positive" while it loads a scenario whose Init gives an actor a negative AbsoluteTargetSpeed (a start backwards)',
     source: `${CONFIGURATION}:396-406 (_get_actor_speed)`,
