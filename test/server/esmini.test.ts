@@ -751,18 +751,31 @@ describe('esmini: runs (the simulator built by the test setup)', function () {
         assert.equal(line.slice(error.range.start.character - attribute.indexOf('"') - 1).startsWith(attribute), true, `${name}: ${line}`);
       }
     }
-    // Beside the scenario, the file is there: esmini, running a copy elsewhere, missed it, and the message says so.
+    // Beside the scenario, the file is there: the run's copy, in a private folder, reaches it as the scenario does (SPEC 11.6),
+    // inline or from a catalog, the catalog's parameter assigned by the reference or not (issue 27: esmini missed it).
+    fs.writeFileSync(
+      path.join(root, 'assigned.xosc'),
+      fs
+        .readFileSync(path.join(root, 'catalog.xosc'), 'utf8')
+        .replace(
+          '<CatalogReference catalogName="ControllerCatalog" entryName="sumo"/>',
+          '<CatalogReference catalogName="ControllerCatalog" entryName="sumo"><ParameterAssignments><ParameterAssignment parameterRef="CfgFile" value="../sumo_inputs/e6mini.sumocfg"/></ParameterAssignments></CatalogReference>',
+        ),
+    );
     fs.mkdirSync(path.join(path.dirname(root), 'sumo_inputs'), { recursive: true });
     const config = path.join(path.dirname(root), 'sumo_inputs', 'e6mini.sumocfg');
     fs.writeFileSync(config, '<configuration/>');
     try {
-      const result = await run(new ScenarioStore({ root }), path.join(root, 'inline.xosc'), { duration: 1, roadPath: [] });
-      assert.match(
-        errorsOf(result)[0]?.message ?? '',
-        new RegExp(
-          `also tried ${config.replace(/[.\/]/g, '\\$&')} \\[${config.replace(/[.\/]/g, '\\$&')} exists: esmini ran a copy of the scenario in a private folder`,
-        ),
-      );
+      for (const name of ['inline.xosc', 'catalog.xosc', 'assigned.xosc']) {
+        const before = fs.readFileSync(path.join(root, name), 'utf8');
+        const result = await run(new ScenarioStore({ root }), path.join(root, name), { duration: 1, roadPath: [] });
+        assert.deepEqual(
+          errorsOf(result).map((error) => error.message),
+          ['Unsupported controller type: SumoController. Falling back to default controller'],
+          `${name}: ${result.log}`,
+        );
+        assert.equal(fs.readFileSync(path.join(root, name), 'utf8'), before, `${name} is left as it was`);
+      }
     } finally {
       fs.rmSync(path.dirname(config), { recursive: true, force: true });
     }

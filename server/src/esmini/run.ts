@@ -11,6 +11,7 @@ import { CatalogLoader } from '../core/semantics/catalogs';
 import { attribute, descendants, escapeAttributeValue, parseXml } from '../core/xml';
 import { parseEsminiLoadedRoad } from '../../../common/src/esminiCsv';
 import type { TraceRecord } from '../../../common/src/trace';
+import { withControllerFilesFrom } from './controllerFiles';
 import { locateEsmini } from './locate';
 import { EsminiLogMessage, EsminiRemark, readEsminiLog } from './log';
 import { esminiMessageSeverity, EsminiProblem, mapEsminiMessages, withoutRunFolder } from './messages';
@@ -305,7 +306,12 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
   // Flattened for the private run folder, so its file paths name the files the sources name (SPEC 11.6).
   const runFolder = makeRunFolder(options.runsFolder ?? path.join(os.tmpdir(), 'modular2simple-esmini'));
   const scenarioFile = path.join(runFolder, 'scenario.xosc');
-  const flat = await flattener.flatten(main, { outputPath: scenarioFile, force: options.force, roadHanded: true });
+  const flat = await flattener.flatten(main, {
+    outputPath: scenarioFile,
+    force: options.force,
+    roadHanded: true,
+    controllerFilesHanded: true,
+  });
   const flattenProblems = flat.problems;
   if (flat.text === undefined || withTimeLimit(flat.text, base.duration) === undefined)
     fs.rmSync(runFolder, { recursive: true, force: true });
@@ -364,7 +370,10 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
     };
   }
 
-  const ran = await runLimitedText(location.program, limited, searchPath, options, timeStep, seed, limit, {
+  // A controller's File esmini would miss from the private folder is handed as the file the scenario itself reaches.
+  const references = flat.source.semantics?.catalogs.references ?? [];
+  const handedText = withControllerFilesFrom(limited, sourceFolderOf(main), runFolder, references, fs.existsSync);
+  const ran = await runLimitedText(location.program, handedText, searchPath, options, timeStep, seed, limit, {
     runFolder,
     files: flat.files,
   });

@@ -108,7 +108,7 @@ export class Flattener {
     let files: PackagedFile[] = [];
     if (source.text !== undefined && blocking.length === 0) {
       const model = source.model ?? buildModel(parseXml(source.text));
-      const rebase = await rebaseFlattened(source, model, outputPath, this.store, options.roadHanded);
+      const rebase = await rebaseFlattened(source, model, outputPath, this.store, options);
       found.push(...rebase.problems);
       files = rebase.files;
       // Removing whole attributes and replacing path values keeps a well-formed text well-formed, so the rendered model is the check.

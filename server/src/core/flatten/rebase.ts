@@ -9,7 +9,7 @@ import { normalizeEntryName, ScenarioStore, SourceRef } from '../sources';
 import { escapeAttributeValue, parseXml, selfAndDescendants, XmlAttribute, XmlDocument, XmlElement } from '../xml';
 import type { TextEdit } from './edits';
 import { originOf } from './origin';
-import type { FlatSource, PackagedFile } from './types';
+import type { FlatSource, FlattenOptions, PackagedFile } from './types';
 
 /**
  * Rebasing the file paths of a written scenario (SPEC 11.6): each path the schema types as a file or a
@@ -61,6 +61,11 @@ export function filePathSites(root: XmlElement | undefined): FilePathSite[] {
     if (entry && attribute) sites.push({ element, attribute, kind: entry.kind });
   }
   return sites;
+}
+
+/** Whether `element` is a controller's `Properties/File`, which esmini looks up from the scenario's folder. */
+function isControllerFile(element: XmlElement): boolean {
+  return element.name === 'File' && element.parent?.name === 'Properties' && element.parent.parent?.name === 'Controller';
 }
 
 /** A path of the document that names a file or folder on disk. */
@@ -292,7 +297,7 @@ export async function rebaseFlattened(
   model: ScenarioModel,
   outputPath: string | undefined,
   store: ScenarioStore,
-  roadHanded = false,
+  handed: Pick<FlattenOptions, 'roadHanded' | 'controllerFilesHanded'> = {},
 ): Promise<{ edits: TextEdit[]; resolved: ResolvedPath[]; problems: Problem[]; files: PackagedFile[] }> {
   const flattenedHere = model === source.model;
   const originFor = (element: XmlElement) => (flattenedHere ? originOf(source, element) : { source, element });
@@ -356,7 +361,13 @@ export async function rebaseFlattened(
     kindOf: (diskPath) => store.kindOf(diskPath),
   });
   for (const finding of rebase.findings) {
-    if (roadHanded && finding.site.element.name === 'LogicFile') continue;
+    if (handed.roadHanded && finding.site.element.name === 'LogicFile') continue;
+    if (
+      handed.controllerFilesHanded &&
+      isControllerFile(finding.site.element) &&
+      pathBaseOf(originFor(finding.site.element).source.ref) === pathBaseOf(source.ref)
+    )
+      continue;
     problems.push(problemAtOrigin(finding.site.element, finding.site.attribute.name, unrebasedPathWording(finding.message)));
   }
   return {

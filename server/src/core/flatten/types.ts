@@ -157,6 +157,11 @@ export interface FlattenOptions {
    * through a parameter, left as written, is no warning that the output may reach another road.
    */
   roadHanded?: boolean;
+  /**
+   * A controller's `Properties/File` through a parameter that names a file from the main file's folder is handed to the
+   * simulator as that absolute file (a run: esmini/controllerFiles.ts), so leaving it as written is no warning either.
+   */
+  controllerFilesHanded?: boolean;
 }
 
 export interface AnalysisResult {

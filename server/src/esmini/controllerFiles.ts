@@ -1,0 +1,111 @@
+import * as path from 'node:path';
+import type { CatalogReferenceResolution } from '../core/semantics/catalogs';
+import { Evaluator, semanticModelOf } from '../core/semantics/model';
+import { attribute, descendants, escapeAttributeValue, parseXml, XmlElement } from '../core/xml';
+
+/**
+ * esmini 3.6 looks a controller's `Properties/File` up as written, from its working folder, then from the folder of the
+ * scenario it runs, for a catalog entry's controller too (ScenarioReader.cpp parseOSCObjectController). A run's scenario
+ * is a copy in a private folder, its working folder: a relative path the flattening left as written (one that names a
+ * `$parameter`, or one a catalog entry holds) reaches from there nothing that the scenario itself reaches (SPEC 11.6).
+ * `withControllerFilesFrom` gives such a path esmini as the absolute file it names from `scenarioFolder`, in the run's
+ * copy only: an inline controller's File takes that path; a catalog entry's File named by a parameter gets it through
+ * the CatalogReference's ParameterAssignment. A path that reaches a file from the run folder, or none from the scenario's
+ * folder, is left as written (esmini then says what it tried).
+ */
+export function withControllerFilesFrom(
+  text: string,
+  scenarioFolder: string,
+  runFolder: string,
+  references: readonly CatalogReferenceResolution[],
+  exists: (file: string) => boolean,
+): string {
+  const document = parseXml(text);
+  const root = document.root;
+  if (!root) return text;
+  const evaluator = new Evaluator(semanticModelOf(document));
+  /** The absolute file a path esmini misses from the run folder names from the scenario's folder; undefined when none. */
+  const reached = (written: string | undefined): string | undefined => {
+    if (!written || path.isAbsolute(written)) return undefined;
+    const original = path.resolve(scenarioFolder, written);
+    return !exists(path.resolve(runFolder, written)) && exists(original) ? original : undefined;
+  };
+  const edits: { start: number; end: number; text: string }[] = [];
+  for (const holder of [root, ...descendants(root)]) {
+    if (holder.name !== 'ObjectController' && holder.name !== 'AssignControllerAction') continue;
+    for (const child of holder.children) {
+      if (child.name === 'Controller') {
+        const filepath = fileOf(child);
+        const file =
+          filepath && filepath.attribute.value.trim().startsWith('$')
+            ? reached(evaluator.textOf(filepath.element, filepath.attribute))
+            : undefined;
+        if (filepath && file)
+          edits.push({
+            start: filepath.attribute.valueStart,
+            end: filepath.attribute.valueEnd,
+            text: escapeAttributeValue(file, filepath.attribute.quote),
+          });
+      } else if (child.name === 'CatalogReference') {
+        const edit = catalogReferenceEdit(child, evaluator, references, reached);
+        if (edit) edits.push(edit);
+      }
+    }
+  }
+  let result = text;
+  for (const edit of edits.sort((a, b) => b.start - a.start)) result = result.slice(0, edit.start) + edit.text + result.slice(edit.end);
+  return result;
+}
+
+/** A Controller's `Properties/File` element and its filepath attribute. */
+function fileOf(
+  controller: XmlElement | undefined,
+): { element: XmlElement; attribute: NonNullable<ReturnType<typeof attribute>> } | undefined {
+  const properties = controller?.children.find((child) => child.name === 'Properties');
+  const element = properties?.children.find((child) => child.name === 'File');
+  const filepath = element ? attribute(element, 'filepath') : undefined;
+  return element && filepath ? { element, attribute: filepath } : undefined;
+}
+
+/**
+ * The edit that assigns a catalog controller's File parameter the absolute file it names from the scenario's folder: the
+ * reference's own ParameterAssignment of it rewritten, else one added; undefined when the File needs none.
+ */
+function catalogReferenceEdit(
+  reference: XmlElement,
+  evaluator: Evaluator,
+  references: readonly CatalogReferenceResolution[],
+  reached: (written: string | undefined) => string | undefined,
+): { start: number; end: number; text: string } | undefined {
+  const catalogName = evaluator.textOf(reference, attribute(reference, 'catalogName'))?.trim();
+  const entryName = evaluator.textOf(reference, attribute(reference, 'entryName'))?.trim();
+  const entry = references.find((each) => each.catalogName === catalogName && each.entryName === entryName)?.entry?.element;
+  const filepath = entry?.name === 'Controller' ? fileOf(entry) : undefined;
+  const parameter = filepath ? /^\$([A-Za-z_][\w.]*)$/.exec(filepath.attribute.value.trim())?.[1] : undefined;
+  if (!entry || parameter === undefined) return undefined;
+  const assignments = reference.children.find((child) => child.name === 'ParameterAssignments');
+  const assignment = assignments?.children.find(
+    (child) => child.name === 'ParameterAssignment' && attribute(child, 'parameterRef')?.value === parameter,
+  );
+  const assigned = assignment ? attribute(assignment, 'value') : undefined;
+  const declarations = entry.children.find((child) => child.name === 'ParameterDeclarations');
+  const declaration = declarations?.children.find(
+    (child) => child.name === 'ParameterDeclaration' && attribute(child, 'name')?.value === parameter,
+  );
+  const fallback = declaration ? attribute(declaration, 'value')?.value : undefined;
+  const file = reached(assignment ? evaluator.textOf(assignment, assigned) : fallback?.startsWith('$') ? undefined : fallback);
+  if (!file) return undefined;
+  if (assigned) return { start: assigned.valueStart, end: assigned.valueEnd, text: escapeAttributeValue(file, assigned.quote) };
+  const added = `<ParameterAssignment parameterRef="${escapeAttributeValue(parameter, '"')}" value="${escapeAttributeValue(file, '"')}"/>`;
+  if (assignments && !assignments.selfClosing) {
+    const at = assignments.startTagEnd;
+    return { start: at, end: at, text: added };
+  }
+  if (assignments) return { start: assignments.start, end: assignments.end, text: `<ParameterAssignments>${added}</ParameterAssignments>` };
+  if (reference.selfClosing) {
+    // `<CatalogReference .../>`: opened, given the assignment, and closed.
+    const close = reference.end - 2;
+    return { start: close, end: reference.end, text: `><ParameterAssignments>${added}</ParameterAssignments></CatalogReference>` };
+  }
+  return { start: reference.startTagEnd, end: reference.startTagEnd, text: `<ParameterAssignments>${added}</ParameterAssignments>` };
+}
