@@ -202,6 +202,52 @@ describe('simulator profiles', () => {
     );
   });
 
+  // Each of the three quits esmini 3.6 at load (exit 255), as test/server/esmini.test.ts runs it; the standard allows each.
+  it('esmini refuses a RelativeAngleCondition, a LateralDistanceAction with displacement="any" written, a TrafficSwarmAction without velocity: errors there', () => {
+    const findings = (story: string, minor = '3') =>
+      simulatorFindings('esmini', parseXml(scenarioText(minor, '', story)), 'scenario.xosc').map((finding) => [
+        finding.severity,
+        finding.element.name,
+        finding.attribute?.name,
+        simulatorWording(finding).message,
+      ]);
+    const angle =
+      '<PrivateAction><VisibilityAction graphics="false" traffic="true" sensors="true"/></PrivateAction></Action><StartTrigger><ConditionGroup><Condition name="c" delay="0" conditionEdge="none"><ByEntityCondition><TriggeringEntities triggeringEntitiesRule="any"><EntityRef entityRef="ego"/></TriggeringEntities><EntityCondition><RelativeAngleCondition entityRef="ego" angleType="heading" angle="0" angleTolerance="0.1"/></EntityCondition></ByEntityCondition></Condition></ConditionGroup></StartTrigger><Action name="x">' +
+      VISIBILITY;
+    assert.deepEqual(findings(angle), [
+      [
+        'error',
+        'RelativeAngleCondition',
+        undefined,
+        'esmini does not support RelativeAngleCondition: it reads the entity conditions up to AngleCondition and refuses the scenario on this one ("Entity condition RelativeAngleCondition not supported") (EnvironmentSimulator/Modules/ScenarioEngine/SourceFiles/ScenarioReader.cpp:4615-5051)',
+      ],
+    ]);
+    const lateral = (displacement: string) =>
+      `<PrivateAction><LateralAction><LateralDistanceAction entityRef="ego" distance="1" freespace="false" continuous="false"${displacement}/></LateralAction></PrivateAction>`;
+    assert.deepEqual(findings(lateral(' displacement="any"')), [
+      [
+        'error',
+        'LateralDistanceAction',
+        'displacement',
+        `esmini does not support displacement="any" on LateralDistanceAction: it reads only leftToReferencedEntity and rightToReferencedEntity and refuses the scenario on any other value written ("Unsupported displacement type: any"); without the attribute it takes 'any' (EnvironmentSimulator/Modules/ScenarioEngine/SourceFiles/ScenarioReader.cpp:3130-3148)`,
+      ],
+    ]);
+    assert.deepEqual(findings(lateral('')), []);
+    assert.deepEqual(findings(lateral(' displacement="leftToReferencedEntity"')), []);
+    const swarm = (velocity: string) =>
+      `<GlobalAction><TrafficAction><TrafficSwarmAction innerRadius="10" semiMajorAxis="100" semiMinorAxis="50" numberOfVehicles="2" offset="0"${velocity}><CentralObject entityRef="ego"/></TrafficSwarmAction></TrafficAction></GlobalAction>`;
+    assert.deepEqual(findings(swarm('')), [
+      [
+        'error',
+        'TrafficSwarmAction',
+        undefined,
+        'esmini does not support TrafficSwarmAction without velocity: it reads velocity with std::stod, which stops it when the attribute is absent ("Exception: stod"); the standard makes it optional (deprecated from 1.2 on) (EnvironmentSimulator/Modules/ScenarioEngine/SourceFiles/ScenarioReader.cpp:2466-2467)',
+      ],
+    ]);
+    assert.deepEqual(findings(swarm(' velocity="30"')), []);
+    assert.deepEqual(messages('asam', scenarioText('3', '', swarm('') + lateral(' displacement="any"'))), []);
+  });
+
   // 76 of the ASAM OpenSCENARIO API's 158 test resources state 0.9; esmini 3.6 quits on each (exit 255).
   it('esmini refuses a scenario that states a version before 1.0: an error at its revMajor; a 0.9 catalog, 1.x and asam are silent', () => {
     const old = scenarioText('9', '', VISIBILITY).replace('revMajor="1"', 'revMajor="0"');

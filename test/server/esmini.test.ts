@@ -653,6 +653,63 @@ describe('esmini: runs (the simulator built by the test setup)', function () {
     fs.rmSync(root, { recursive: true, force: true });
   });
 
+  it('refuses what check --simulator esmini calls its refusals (RelativeAngleCondition, displacement="any", a swarm without velocity), and runs each written as esmini reads it', async function () {
+    requireEsmini(this);
+    const event = (action: string, condition: string) =>
+      `<ManeuverGroup name="W" maximumExecutionCount="1"><Actors selectTriggeringEntities="false"><EntityRef entityRef="Ego"/></Actors><Maneuver name="M2"><Event name="E2" priority="override"><Action name="A2">${action}</Action><StartTrigger><ConditionGroup><Condition name="C2" delay="0" conditionEdge="none">${condition}</Condition></ConditionGroup></StartTrigger></Event></Maneuver></ManeuverGroup>`;
+    const speed =
+      '<PrivateAction><LongitudinalAction><SpeedAction><SpeedActionDynamics dynamicsShape="step" value="0" dynamicsDimension="time"/><SpeedActionTarget><AbsoluteTargetSpeed value="5"/></SpeedActionTarget></SpeedAction></LongitudinalAction></PrivateAction>';
+    const atOne = '<ByValueCondition><SimulationTimeCondition value="1" rule="greaterThan"/></ByValueCondition>';
+    const angle = (name: string) =>
+      `<ByEntityCondition><TriggeringEntities triggeringEntitiesRule="any"><EntityRef entityRef="Ego"/></TriggeringEntities><EntityCondition><${name} entityRef="Ego" angleType="heading" angle="0" angleTolerance="0.1"/></EntityCondition></ByEntityCondition>`;
+    const lateral = (displacement: string) =>
+      `<PrivateAction><LateralAction><LateralDistanceAction entityRef="Ego" distance="1" freespace="false" continuous="false"${displacement}/></LateralAction></PrivateAction>`;
+    const swarm = (velocity: string) =>
+      `<GlobalAction><TrafficAction><TrafficSwarmAction innerRadius="10" semiMajorAxis="100" semiMinorAxis="50" numberOfVehicles="2" offset="0"${velocity}><CentralObject entityRef="Ego"/><TrafficDefinition name="t"><VehicleCategoryDistribution><VehicleCategoryDistributionEntry category="car" weight="1"/></VehicleCategoryDistribution><ControllerDistribution><ControllerDistributionEntry weight="1"><Controller name="c"><Properties/></Controller></ControllerDistributionEntry></ControllerDistribution></TrafficDefinition></TrafficSwarmAction></TrafficAction></GlobalAction>`;
+    const cases = [
+      {
+        refused: event(speed, angle('RelativeAngleCondition')),
+        runs: event(speed, angle('AngleCondition')),
+        says: /Entity condition RelativeAngleCondition not supported/,
+      },
+      {
+        refused: event(lateral(' displacement="any"'), atOne),
+        runs: event(lateral(''), atOne),
+        says: /Unsupported displacement type: any/,
+      },
+      { refused: event(swarm(''), atOne), runs: event(swarm(' velocity="10"'), atOne), says: /stod/ },
+    ];
+    const root = temporaryFolder('m2s-esmini-refusals-');
+    const main = path.join(root, 'main.xosc');
+    const write = (group: string) =>
+      fs.writeFileSync(
+        main,
+        drivingScenario('straight_500m.xodr', 'Drive')
+          .replace('revMinor="2"', 'revMinor="3"')
+          .replace('</ManeuverGroup>', `</ManeuverGroup>\n        ${group}`),
+      );
+    for (const { refused, runs, says } of cases) {
+      write(refused);
+      const errors = (await new Flattener(new ScenarioStore({ root }), 'esmini').analyze(diskRef(main))).problems.filter(
+        (problem) => problem.code === 'simulator' && problem.severity === 'error',
+      );
+      assert.equal(errors.length, 1, `${says}: ${JSON.stringify(errors.map((problem) => problem.message))}`);
+      const failed = await run(new ScenarioStore({ root }), main, { duration: 2 });
+      assert.equal(failed.outcome, 'failed', `${says}: ${failed.message}`);
+      assert.match(failed.log, says);
+      write(runs);
+      assert.deepEqual(
+        (await new Flattener(new ScenarioStore({ root }), 'esmini').analyze(diskRef(main))).problems.filter(
+          (problem) => problem.code === 'simulator',
+        ),
+        [],
+      );
+      const ran = await run(new ScenarioStore({ root }), main, { duration: 2 });
+      assert.equal(ran.outcome, 'ok', `${says}: ${ran.message}\n${ran.log.slice(-1500)}`);
+    }
+    fs.rmSync(root, { recursive: true, force: true });
+  });
+
   it('runs the unsaved text: an editor overlay with a mistake is what esmini gets', async function () {
     requireEsmini(this);
     const root = examplesCopy();

@@ -39,6 +39,8 @@ function profileMessage(facts: ProfileFacts): string {
       const what = fact.supportedValues?.length === 0 ? fact.attribute : `${fact.attribute}="${facts.value}"`;
       return `${facts.profile} does not support ${what} on ${facts.element}: ${fact.note} (${fact.source})`;
     }
+    case 'absentAttribute':
+      return `${facts.profile} does not support ${facts.element} without ${facts.fact.attribute}: ${facts.fact.note} (${facts.fact.source})`;
     case 'catalogType':
       return `${facts.profile} reads no catalog of ${facts.type} entries; it reads ${facts.rule.types.map((name) => name + 'Catalog').join(', ')} (${facts.rule.source})`;
     case 'catalogFileName':

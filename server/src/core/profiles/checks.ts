@@ -14,6 +14,8 @@ export type ProfileFacts =
   | { kind: 'oldVersion'; profile: string; oldest: { revMajor: number; source: string; refusal: string }; stated: string }
   /** An element the simulator ignores or does not support (where `fact` says). */
   | { kind: 'element'; profile: string; fact: ElementFact }
+  /** An attribute the simulator reads as if required, absent from `element`. */
+  | { kind: 'absentAttribute'; profile: string; fact: AttributeFact; element: string }
   /** An attribute, or its `value`, the simulator does not support on `element`. */
   | { kind: 'attribute'; profile: string; fact: AttributeFact; element: string; value: string }
   /** A catalog of entries of `type`, which the simulator reads from no catalog. */
@@ -136,6 +138,15 @@ const attributeCheck: ProfileCheck = ({ profile, elements }) => {
       if (fact.element !== '*' && fact.element !== element.name) continue;
       if (fact.parent && element.parent?.name !== fact.parent) continue;
       const found = attribute(element, fact.attribute);
+      if (fact.whenAbsent) {
+        if (!found)
+          findings.push({
+            element,
+            severity: fact.severity ?? 'warning',
+            facts: { kind: 'absentAttribute', profile: profile.name, fact, element: element.name },
+          });
+        continue;
+      }
       if (!found || !breaks(fact, found.value)) continue;
       findings.push({
         element,

@@ -50,6 +50,13 @@ export const ESMINI_PROFILE: SimulatorProfile = {
       note: 'only vehicle lights are implemented',
     },
     { element: 'SensorReferenceSet', support: 'ignored', source: COVERAGE },
+    {
+      element: 'RelativeAngleCondition',
+      support: 'unsupported',
+      severity: 'error',
+      source: `${READER}:4615-5051`,
+      note: 'it reads the entity conditions up to AngleCondition and refuses the scenario on this one ("Entity condition RelativeAngleCondition not supported")',
+    },
     { element: 'GeoPosition', support: 'unsupported', source: COVERAGE },
     { element: 'ExternalObjectReference', support: 'unsupported', source: COVERAGE },
     { element: 'EntitySelection', support: 'unsupported', source: COVERAGE },
@@ -68,6 +75,22 @@ export const ESMINI_PROFILE: SimulatorProfile = {
     { element: 'TrafficSignals', parent: 'RoadNetwork', support: 'ignored', source: COVERAGE },
   ],
   attributes: [
+    {
+      element: 'LateralDistanceAction',
+      attribute: 'displacement',
+      unsupportedValues: ['any'],
+      severity: 'error',
+      source: `${READER}:3130-3148`,
+      note: 'it reads only leftToReferencedEntity and rightToReferencedEntity and refuses the scenario on any other value written ("Unsupported displacement type: any"); without the attribute it takes \'any\'',
+    },
+    {
+      element: 'TrafficSwarmAction',
+      attribute: 'velocity',
+      whenAbsent: true,
+      severity: 'error',
+      source: `${READER}:2466-2467`,
+      note: 'it reads velocity with std::stod, which stops it when the attribute is absent ("Exception: stod"); the standard makes it optional (deprecated from 1.2 on)',
+    },
     { element: 'Route', attribute: 'closed', supportedValues: ['false'], source: COVERAGE, note: 'closed routes are not implemented' },
     {
       element: '*',

@@ -44,6 +44,8 @@ export interface AttributeFact {
   supportedValues?: string[];
   /** Values that do not work (when the working ones are too many to list). */
   unsupportedValues?: string[];
+  /** The attribute's absence is what the simulator does not run (an optional attribute it reads as if required). */
+  whenAbsent?: boolean;
   severity?: FactSeverity;
   note: string;
   source: string;
