@@ -2,7 +2,9 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { isSameFile } from '../../../common/src/atomic';
 import { CarlaExport, CarlaExportOptionError, CarlaExportOptions, exportForCarla, exportTextForCarla } from '../core/export/carla';
+import { unknownBlueprintProblem } from '../core/export/carlaFacts';
 import { diskRef, displayRef, nodeFileSystem, splitScenarioPath } from '../core/sources';
+import { LineIndex } from '../core/text';
 import {
   checkIndexInRange,
   checkInputExists,
@@ -91,6 +93,12 @@ function parse(argv: string[]): ExportArguments {
   };
 }
 
+/** `line L, column C` of an offset in a file's text, for a message a user can find the place by. */
+function placeInText(text: string, offset: number): string {
+  const { line, character } = new LineIndex(text).positionAt(offset);
+  return `line ${line + 1}, column ${character + 1}`;
+}
+
 function readBlueprints(file: string): Record<string, string> {
   let text: string;
   try {
@@ -102,7 +110,13 @@ function readBlueprints(file: string): Record<string, string> {
   try {
     table = JSON.parse(text);
   } catch (error) {
-    throw new InputError(`${file}: the blueprint table is not JSON (${(error as Error).message})`);
+    // Node names the offset ("at position 68"), newer releases its line and column too: given as a line and column.
+    const message = (error as Error).message;
+    const position = /\bat position (\d+)/.exec(message);
+    const what = message.replace(/\s*in JSON at position \d+(?: \(line \d+ column \d+\))?/, '');
+    throw new InputError(
+      `${file}: the blueprint table is not JSON (${position ? `${placeInText(text, Number(position[1]))}: ` : ''}${what})`,
+    );
   }
   if (
     typeof table !== 'object' ||
@@ -113,6 +127,12 @@ function readBlueprints(file: string): Record<string, string> {
     throw new InputError(
       `${file}: the blueprint table must be a JSON object of names to blueprint ids, such as {"car_white": "vehicle.audi.tt"}`,
     );
+  for (const [name, blueprint] of Object.entries(table as Record<string, string>)) {
+    const problem = unknownBlueprintProblem(name, blueprint);
+    if (!problem) continue;
+    const key = new RegExp(`${JSON.stringify(name).replace(/[.*+?^${}()|[\]\\]/g, '\\$&')}\\s*:\\s*`).exec(text);
+    throw new InputError(`${file}: ${problem}${key ? ` (${placeInText(text, key.index + key[0].length)})` : ''}`);
+  }
   return table as Record<string, string>;
 }
 

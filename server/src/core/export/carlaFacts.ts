@@ -3,6 +3,8 @@
  * the default blueprint for each kind of entity. The export (./carla.ts) and its checks read these.
  */
 
+import { closestMatch } from '../text';
+
 export {
   CARLA_RELEASES,
   CARLA_TOWNS,
@@ -71,6 +73,16 @@ export const CARLA_WALKER_BLUEPRINTS: readonly string[] = Array.from(
   { length: 49 },
   (_, index) => `walker.pedestrian.${String(index + 1).padStart(4, '0')}`,
 );
+
+/** Why a blueprint table's entry will not do (`name` mapped to what CARLA has no blueprint of, with the closest it has), or undefined. */
+export function unknownBlueprintProblem(name: string, blueprint: string): string | undefined {
+  if (isCarlaBlueprint(blueprint)) return undefined;
+  const closest = closestMatch(blueprint, [...CARLA_VEHICLE_BLUEPRINTS, ...CARLA_WALKER_BLUEPRINTS]);
+  return (
+    `the blueprint table maps '${name}' to '${blueprint}', which is no CARLA 0.9.15/0.9.16 blueprint (vehicle.*, walker.pedestrian.0001-0049 or static.prop.*)` +
+    (closest ? `; did you mean '${closest}'?` : '')
+  );
+}
 
 /** Whether CARLA has the blueprint; `static.prop.*` props are many and taken as they are written. */
 export function isCarlaBlueprint(name: string): boolean {
