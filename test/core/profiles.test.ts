@@ -248,6 +248,22 @@ describe('simulator profiles', () => {
     assert.deepEqual(messages('asam', scenarioText('3', '', swarm('') + lateral(' displacement="any"'))), []);
   });
 
+  // esmini 3.6 measures an AngleCondition in lane coordinates against the lane's driving direction (test/server/esmini.test.ts runs it).
+  it('esmini warns of coordinateSystem="lane" where it falls back to road coordinates, not on an AngleCondition nor a Euclidean distance', () => {
+    const condition = (inner: string) =>
+      `${VISIBILITY}</Action><StartTrigger><ConditionGroup><Condition name="c" delay="0" conditionEdge="none"><ByEntityCondition><TriggeringEntities triggeringEntitiesRule="any"><EntityRef entityRef="ego"/></TriggeringEntities><EntityCondition>${inner}</EntityCondition></ByEntityCondition></Condition></ConditionGroup></StartTrigger><Action name="x">${VISIBILITY}`;
+    const distance = (type: string) =>
+      condition(
+        `<RelativeDistanceCondition entityRef="ego" relativeDistanceType="${type}" value="5" freespace="false" rule="lessThan" coordinateSystem="lane"/>`,
+      );
+    assert.deepEqual(messages('esmini', scenarioText('3', '', distance('longitudinal'))), [
+      'esmini does not support coordinateSystem="lane" on RelativeDistanceCondition: it falls back to road coordinates for lateral and longitudinal distances ("Lane coordinateSystem not supported yet") (osc_coverage.txt, EnvironmentSimulator/Modules/RoadManager/RoadManager.cpp:11837-11843, 11932-11938)',
+    ]);
+    assert.deepEqual(messages('esmini', scenarioText('3', '', distance('euclidianDistance'))), []);
+    const angle = condition('<AngleCondition angleType="heading" angle="0" angleTolerance="0.1" coordinateSystem="lane"/>');
+    assert.deepEqual(messages('esmini', scenarioText('3', '', angle)), []);
+  });
+
   // 76 of the ASAM OpenSCENARIO API's 158 test resources state 0.9; esmini 3.6 quits on each (exit 255).
   it('esmini refuses a scenario that states a version before 1.0: an error at its revMajor; a 0.9 catalog, 1.x and asam are silent', () => {
     const old = scenarioText('9', '', VISIBILITY).replace('revMajor="1"', 'revMajor="0"');

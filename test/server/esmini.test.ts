@@ -710,6 +710,30 @@ describe('esmini: runs (the simulator built by the test setup)', function () {
     fs.rmSync(root, { recursive: true, force: true });
   });
 
+  it('measures an AngleCondition in lane coordinates along the lane (no fallback to road coordinates), which check --simulator esmini no longer warns of', async function () {
+    requireEsmini(this);
+    const root = temporaryFolder('m2s-esmini-lane-angle-');
+    const main = path.join(root, 'main.xosc');
+    // Ego in lane 1, heading along that lane's driving direction: 0 from the lane's heading, pi from the road's.
+    const started = async (system: string) => {
+      const group = `<ManeuverGroup name="W" maximumExecutionCount="1"><Actors selectTriggeringEntities="false"><EntityRef entityRef="Ego"/></Actors><Maneuver name="M2"><Event name="Along" priority="override"><Action name="A2"><PrivateAction><LongitudinalAction><SpeedAction><SpeedActionDynamics dynamicsShape="step" value="0" dynamicsDimension="time"/><SpeedActionTarget><AbsoluteTargetSpeed value="3"/></SpeedActionTarget></SpeedAction></LongitudinalAction></PrivateAction></Action><StartTrigger><ConditionGroup><Condition name="C2" delay="0" conditionEdge="none"><ByEntityCondition><TriggeringEntities triggeringEntitiesRule="any"><EntityRef entityRef="Ego"/></TriggeringEntities><EntityCondition><AngleCondition angleType="heading" angle="0" angleTolerance="0.1" coordinateSystem="${system}"/></EntityCondition></ByEntityCondition></Condition></ConditionGroup></StartTrigger></Event></Maneuver></ManeuverGroup>`;
+      fs.writeFileSync(
+        main,
+        drivingScenario('straight_500m.xodr', group).replace('revMinor="2"', 'revMinor="3"').replace('laneId="-1"', 'laneId="1"'),
+      );
+      const findings = (await new Flattener(new ScenarioStore({ root }), 'esmini').analyze(diskRef(main))).problems.filter(
+        (problem) => problem.code === 'simulator',
+      );
+      assert.deepEqual(findings, []);
+      const result = await run(new ScenarioStore({ root }), main, { duration: 2 });
+      assert.equal(result.outcome, 'ok', result.message);
+      return /Along standbyState -> startTransition -> runningState/.test(result.log);
+    };
+    assert.equal(await started('lane'), true, "lane: the heading is the lane's");
+    assert.equal(await started('road'), false, "road: the heading is pi from the road's");
+    fs.rmSync(root, { recursive: true, force: true });
+  });
+
   it('runs the unsaved text: an editor overlay with a mistake is what esmini gets', async function () {
     requireEsmini(this);
     const root = examplesCopy();

@@ -137,6 +137,9 @@ const attributeCheck: ProfileCheck = ({ profile, elements }) => {
     for (const fact of profile.attributes) {
       if (fact.element !== '*' && fact.element !== element.name) continue;
       if (fact.parent && element.parent?.name !== fact.parent) continue;
+      if (fact.notOn?.includes(element.name)) continue;
+      const other = fact.unlessAttribute && attribute(element, fact.unlessAttribute.attribute)?.value;
+      if (other !== undefined && fact.unlessAttribute?.values.includes(other)) continue;
       const found = attribute(element, fact.attribute);
       if (fact.whenAbsent) {
         if (!found)

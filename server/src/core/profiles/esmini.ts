@@ -96,8 +96,11 @@ export const ESMINI_PROFILE: SimulatorProfile = {
       element: '*',
       attribute: 'coordinateSystem',
       unsupportedValues: ['lane'],
-      source: COVERAGE,
-      note: 'it falls back to road coordinates',
+      // An AngleCondition measures against the lane's driving direction (OSCCondition.cpp TrigByAngle); a Euclidean distance has no coordinate system.
+      notOn: ['AngleCondition'],
+      unlessAttribute: { attribute: 'relativeDistanceType', values: ['euclidianDistance', 'cartesianDistance'] },
+      source: `${COVERAGE}, EnvironmentSimulator/Modules/RoadManager/RoadManager.cpp:11837-11843, 11932-11938`,
+      note: 'it falls back to road coordinates for lateral and longitudinal distances ("Lane coordinateSystem not supported yet")',
     },
   ],
   valueRules: {

@@ -44,6 +44,10 @@ export interface AttributeFact {
   supportedValues?: string[];
   /** Values that do not work (when the working ones are too many to list). */
   unsupportedValues?: string[];
+  /** With element '*': the elements it does not hold for. */
+  notOn?: string[];
+  /** It does not hold where this other attribute of the element has one of these values. */
+  unlessAttribute?: { attribute: string; values: string[] };
   /** The attribute's absence is what the simulator does not run (an optional attribute it reads as if required). */
   whenAbsent?: boolean;
   severity?: FactSeverity;
