@@ -442,11 +442,11 @@ describe('export --target carla, round trip in esmini', function () {
       await assertMovesAlike(copy, exported.output, 20);
       compared.push(name);
     }
-    // Measured: 25 of esmini's samples, the route positions mapped (written for 0.9.15); cut-in.xosc is not (its longitudinal time
+    // Measured: 26 of esmini's samples, the route positions mapped (written for 0.9.15); cut-in.xosc is not (its longitudinal time
     // headway has no 1.0 form), nor five whose lane change by time is written at a start speed the story may change
     // (LaneChangeActionDynamics/@value): of those, cut-in_simple's export still moves alike in esmini, acc-test's does not.
     // (Lane changes by time at a certain speed, three of them from a speed relative to another entity's, are compared.)
-    assert.ok(compared.length >= 25, `only ${compared.length} compared: ${compared.join(', ')}`);
+    assert.ok(compared.length >= 26, `only ${compared.length} compared: ${compared.join(', ')}`);
     assert.ok(compared.includes('alks_cut-in.xosc') && compared.includes('highway_driver.xosc'));
     // Its three Clothoids sampled into polylines relative to the car, the second and third from where the one before ends.
     assert.ok(compared.includes('lane-change_clothoid_based_trajectory.xosc'), compared.join(', '));
@@ -1165,6 +1165,38 @@ describe('export --target carla, lane changes by time and speed changes by rate'
     assert.ok(Number(distance) < 20 * Number(across[2]) && Number(distance) > 20 * Number(across[2]) - 0.5, distance);
     await assertMovesAlike(original, exported.output, 14);
     const verdict = (await harnessVerdicts([exported.output], { tree: true })).get(path.resolve(exported.output));
+    assert.equal(verdict?.status, 'OK', JSON.stringify(verdict));
+  });
+});
+
+describe('export --target carla, greaterOrEqual and lessOrEqual (not in 1.0)', function () {
+  this.timeout(300_000);
+  let out: string;
+  before(function () {
+    requireCorpus(this);
+  });
+  inTemporaryFolderEach('m2s-carla-rules-', (folder) => (out = folder));
+
+  it('a number condition is written as greaterThan or lessThan a threshold 2e-6 beyond, which esmini holds at the same step (within 0.1 m) and ScenarioRunner builds (issue 26)', async function () {
+    requireEsmini(this);
+    requireCarlaHarness(this);
+    const original = path.join(out, 'equal.xosc');
+    // Lead stops at once when the simulation time reaches 2 s: a step later it would have driven 1 m more (20 m/s, esmini's 0.05 s step).
+    const text = leadEventsScenario(leadEvent('Stop', 2, speedChange('step', 0, 'time', 0))).replace(
+      '<SimulationTimeCondition value="2" rule="greaterThan"/>',
+      '<SimulationTimeCondition value="2" rule="greaterOrEqual"/>',
+    );
+    assert.match(text, /value="2" rule="greaterOrEqual"/);
+    fs.writeFileSync(original, text.replace('revMinor="0"', 'revMinor="1"'));
+    const exported = await exportFile(original, path.join(out, 'equal.carla.xosc'));
+    assert.equal(exported.code, 0, exported.stderr);
+    assert.match(fs.readFileSync(exported.output, 'utf8'), /<SimulationTimeCondition value="1\.999998" rule="greaterThan"\/>/);
+    assert.deepEqual(
+      exported.report.losses.filter((loss) => loss.element.endsWith('/@rule')),
+      [],
+    );
+    await assertMovesAlike(original, exported.output, 6);
+    const verdict = (await harnessVerdicts([exported.output])).get(path.resolve(exported.output));
     assert.equal(verdict?.status, 'OK', JSON.stringify(verdict));
   });
 });

@@ -867,12 +867,41 @@ const REFUSED_CONDITIONS: Record<string, string> = {
 
 const RULE_VALUES: Record<string, string> = { greaterOrEqual: 'greaterThan', lessOrEqual: 'lessThan' };
 
+/** Conditions that compare a measured number with `value` (ParameterCondition may compare text; TimeOfDayCondition a date). */
+const NUMBER_CONDITIONS: ReadonlySet<string> = new Set([
+  'SimulationTimeCondition',
+  'SpeedCondition',
+  'RelativeSpeedCondition',
+  'AccelerationCondition',
+  'DistanceCondition',
+  'RelativeDistanceCondition',
+  'TimeHeadwayCondition',
+  'TimeToCollisionCondition',
+]);
+
+/** esmini compares a number within SMALL_NUMBER (CommonMini.hpp: 1e-6; OSCCondition.cpp EvaluateRule: a >= b - 1e-6, a > b + 1e-6). */
+const ESMINI_TOLERANCE = 1e-6;
+
+/**
+ * A number condition's `greaterOrEqual v` is 1.0's `greaterThan v - 2e-6` (and `lessOrEqual` the mirror): esmini holds the two at
+ * the same values, and ScenarioRunner (no tolerance) at v itself, where a simulation time lands exactly; returns whether it wrote one.
+ */
+function strictThreshold(node: Node, rule: string): boolean {
+  const value = Number(attr(node, 'value'));
+  if (!NUMBER_CONDITIONS.has(node.name) || attr(node, 'value') === undefined || !Number.isFinite(value)) return false;
+  const shift = 2 * ESMINI_TOLERANCE * (rule === 'greaterOrEqual' ? -1 : 1);
+  setAttr(node, 'rule', RULE_VALUES[rule]);
+  setAttr(node, 'value', String(Number((value + shift).toFixed(9))));
+  return true;
+}
+
 function conditions(tree: Node, context: RuleContext): void {
   for (const [name, carla] of Object.entries(REFUSED_CONDITIONS))
     for (const node of named(tree, name))
       if (node.parent) dropUnit(node, context, name, `${carla}; the condition group waits for its other conditions`);
   for (const node of allNodes(tree)) {
     const rule = attr(node, 'rule');
+    if (rule && RULE_VALUES[rule] && strictThreshold(node, rule)) continue;
     if (rule && RULE_VALUES[rule]) {
       setAttr(node, 'rule', RULE_VALUES[rule]);
       context.sink.approximated(
