@@ -176,6 +176,54 @@ describe('CARLA findings offer their fixes over JSON-RPC', function () {
   });
 });
 
+describe('CARLA: a town that does not exist, as a user misspells it (Town5)', function () {
+  const text = FIXABLE.replace('filepath="Town05"', 'filepath="Town5"');
+  let client: TestClient;
+  let root: string;
+  let uri: string;
+
+  before(async () => {
+    root = temporaryWorkspace({ 'scenario.xosc': text, 'catalogs/VehicleCatalog.xosc': CATALOG });
+    client = await TestClient.start({ root, settings: { simulator: 'carla' } });
+    uri = await client.open(fileUri(path.join(root, 'scenario.xosc')), text);
+  });
+
+  after(async () => {
+    await client.stop();
+  });
+
+  it('is an error naming the town meant, with the quick fix that writes it', async () => {
+    const diagnostics = await client.diagnosticsOf(uri, (list) =>
+      list.some((diagnostic) => /'Town5' is neither/.test(String(diagnostic.message))),
+    );
+    const town = diagnostics.find((diagnostic) =>
+      /'Town5' is neither a CARLA town nor an \.xodr path; did you mean 'Town05'\?/.test(String(diagnostic.message)),
+    );
+    assert.ok(town, diagnostics.map((diagnostic) => String(diagnostic.message)).join('\n'));
+    const actions = await client.request<CodeAction[]>('textDocument/codeAction', {
+      textDocument: { uri },
+      range: town.range,
+      context: { diagnostics: [town] },
+    });
+    const write = actions.find((action) => action.title === "Write 'Town05'");
+    assert.equal(write?.edit?.changes?.[uri]?.[0]?.newText, 'Town05', JSON.stringify(actions.map((action) => action.title)));
+  });
+
+  it('Export for CARLA is refused saying what to do in the editor too (it named only --road and --road-path), nothing written', async () => {
+    const output = path.join(root, 'scenario.carla.xosc');
+    const result = await client.request<WriteResult>(ExportForCarlaRequest.method, { uri, outputPath: output });
+    assert.equal(result.written, null);
+    const refusal = result.problems.find((problem) => problem.severity === 'error' && /names the road 'Town5'/.test(problem.message));
+    assert.ok(refusal, JSON.stringify(result.problems, null, 1));
+    assert.match(refusal.message, /did you mean the town 'Town05'\?/);
+    assert.match(
+      refusal.message,
+      /write a CARLA town .* in the LogicFile, or add the folder .* \(--road-path DIR, the modular2simple\.esmini\.roadPath setting\)/,
+    );
+    assert.equal(fs.existsSync(output), false);
+  });
+});
+
 describe('CARLA: a ParameterCondition ticked before the story action that sets its parameter (issue 26)', function () {
   let client: TestClient;
   let root: string;

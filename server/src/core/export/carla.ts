@@ -30,11 +30,13 @@ import { parseXml, XmlDocument, XmlElement } from '../xml';
 import {
   CarlaRelease,
   CARLA_TOWNS,
+  closestTown,
   DEFAULT_VEHICLE_BLUEPRINTS,
   DEFAULT_WALKER_BLUEPRINT,
   isCarlaBlueprint,
   SR_CONFIGURATION,
   SR_SCHEMA,
+  unknownBlueprintProblem,
 } from './carlaFacts';
 import { applyCarlaRules, CarlaLoss, geoPositionDegrees, LossSink, tidyEmptyContainers } from './carlaRules';
 import {
@@ -407,15 +409,24 @@ function sourcePlaces(source: FlatSource, originOf: typeof import('../flatten').
   };
 }
 
+/** What to do about a road the export cannot name, for the command line and the editor alike (the editor has no --road). */
+const ROAD_REMEDY =
+  `write a CARLA town (${CARLA_TOWNS[0]} ... ${CARLA_TOWNS.at(-1)}) or the path of an .xodr file in the LogicFile, or add the folder ` +
+  'that holds the .xodr to the road path (--road-path DIR, the modular2simple.esmini.roadPath setting); on the command line, ' +
+  '--road TOWN|FILE.xodr replaces the road';
+
 function checkOptions(options: CarlaExportOptions): void {
   for (const [name, blueprint] of Object.entries(options.blueprints ?? {})) {
-    if (!isCarlaBlueprint(blueprint))
-      throw new CarlaExportOptionError(
-        `the blueprint table maps '${name}' to '${blueprint}', which is no CARLA 0.9.15/0.9.16 blueprint (vehicle.*, walker.pedestrian.0001-0049 or static.prop.*)`,
-      );
+    const problem = unknownBlueprintProblem(name, blueprint);
+    if (problem) throw new CarlaExportOptionError(problem);
   }
-  if (options.road !== undefined && !options.road.toLowerCase().endsWith('.xodr') && !CARLA_TOWNS.includes(options.road))
-    throw new CarlaExportOptionError(`--road '${options.road}' is neither a CARLA town (${CARLA_TOWNS.join(', ')}) nor an .xodr file`);
+  if (options.road !== undefined && !options.road.toLowerCase().endsWith('.xodr') && !CARLA_TOWNS.includes(options.road)) {
+    const town = closestTown(options.road);
+    throw new CarlaExportOptionError(
+      `--road '${options.road}' is neither a CARLA town (${CARLA_TOWNS.join(', ')}) nor an .xodr file` +
+        (town ? `; did you mean '${town}'?` : ''),
+    );
+  }
 }
 
 function placeIn(ref: SourceRef, document: XmlDocument, element: XmlElement): Place {
@@ -580,7 +591,7 @@ async function rewriteRoad(
         network ?? tree,
         'RoadNetwork',
         'names no road (no LogicFile)',
-        `ScenarioRunner stops with "CARLA level not defined" (${SR_CONFIGURATION} _validate_result); give one with --road TOWN|FILE.xodr`,
+        `ScenarioRunner stops with "CARLA level not defined" (${SR_CONFIGURATION} _validate_result); ${ROAD_REMEDY}`,
       );
       return undefined;
     }
@@ -592,11 +603,13 @@ async function rewriteRoad(
       const found = located ?? { resolved: undefined, packaged: undefined, candidates: [] };
       const name = found.resolved ?? found.packaged?.entries.at(-1);
       if (!name || !name.toLowerCase().endsWith('.xodr')) {
+        const town = written.filepath.toLowerCase().endsWith('.xodr') ? undefined : closestTown(written.filepath);
         sink.refuse(
           logic,
           'LogicFile',
-          `names the road '${written.filepath}', which is neither a CARLA town nor a readable .xodr file (looked for at ${found.candidates.join(', ')})`,
-          `ScenarioRunner loads it as a CARLA map and fails (${SR_CONFIGURATION} _set_carla_town); give the road with --road TOWN|FILE.xodr or --road-path DIR`,
+          `names the road '${written.filepath}', which is neither a CARLA town nor a readable .xodr file (looked for at ${found.candidates.join(', ')})` +
+            (town ? `; did you mean the town '${town}'?` : ''),
+          `ScenarioRunner loads it as a CARLA map and fails (${SR_CONFIGURATION} _set_carla_town); ${ROAD_REMEDY}`,
         );
         return undefined;
       }

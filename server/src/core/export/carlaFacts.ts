@@ -8,6 +8,7 @@ import { closestMatch } from '../text';
 export {
   CARLA_RELEASES,
   CARLA_TOWNS,
+  closestTown,
   isCarlaRelease,
   SR_ATOMICS,
   SR_CONFIGURATION,

@@ -1,3 +1,5 @@
+import { closestMatch, editDistance } from '../text';
+
 /**
  * CARLA's ScenarioRunner as the profile (./carla.ts) and the export (../export/) know it: its releases, the
  * revision and files the facts were read from, and the maps CARLA loads by name.
@@ -47,3 +49,12 @@ export const CARLA_TOWNS: readonly string[] = [
   'Town13',
   'Town15',
 ];
+
+/**
+ * The CARLA town a road name was likely meant to be (`Town5`, `town05` for Town05), or undefined: one letter off at
+ * most, as every town is named TownNN and a looser match would offer one for any number (Town99 for Town01).
+ */
+export function closestTown(name: string): string | undefined {
+  const town = closestMatch(name, CARLA_TOWNS);
+  return town !== undefined && editDistance(name.toLowerCase(), town.toLowerCase()) <= 1 ? town : undefined;
+}

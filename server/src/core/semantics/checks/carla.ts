@@ -2,6 +2,7 @@ import * as path from 'node:path';
 import type { SimulatorFixData } from '../../problems';
 import { carlaFactWording } from '../../diagnostics/simulator';
 import { CarlaFactName } from '../../profiles/carla';
+import { closestTown } from '../../profiles/scenarioRunner';
 import { DEFAULT_CARLA_RELEASE } from '../../profiles/simulators';
 import { schemaIndex } from '../../schema/index';
 import { typeOfElement } from '../../schema/query';
@@ -93,10 +94,18 @@ const road = (context: SemanticContext): Finding[] => {
   if (found.attribute.value.trim().startsWith('$')) return [];
   if (found.xodr && !found.xodr.exists)
     return [carlaFinding('roadFileMissing', found.element, found.attribute, `${found.xodr.file} is not a file`, { exportMaps: true })];
-  if (found.town && !found.town.known)
+  if (found.town && !found.town.known) {
+    const town = closestTown(found.attribute.value);
     return [
-      carlaFinding('unknownTown', found.element, found.attribute, `'${found.attribute.value}' is neither a CARLA town nor an .xodr path`),
+      carlaFinding(
+        'unknownTown',
+        found.element,
+        found.attribute,
+        `'${found.attribute.value}' is neither a CARLA town nor an .xodr path${town ? `; did you mean '${town}'?` : ''}`,
+        town ? { suggestion: town } : undefined,
+      ),
     ];
+  }
   return [];
 };
 
