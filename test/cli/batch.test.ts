@@ -5,7 +5,7 @@ import * as path from 'node:path';
 import { XMLValidator } from 'fast-xml-parser';
 import { cliInTemporaryProject } from '../support/cliProject';
 import { esminiBinary, esminiRoads, requireEsmini } from '../support/esmini';
-import { runCli } from '../support/fixtures';
+import { addSumoControllerToEgo, runCli } from '../support/fixtures';
 import { cliPath, repoRoot } from '../support/paths';
 import { waitUntil } from '../support/wait';
 import { temporaryFolder } from '../support/temporaryDirectory';
@@ -346,13 +346,7 @@ describe('cli: batch', function () {
   it("a row's reason and messages name no private run folder: a path esmini tried from there is said from the ScenarioFile's folder (issue 27)", function () {
     requireEsmini(this);
     const root = folder();
-    const scenario = fs.readFileSync(path.join(root, 'follow.xosc'), 'utf8');
-    const controlled = scenario.replace(
-      '</Vehicle>\n    </ScenarioObject>\n    <ScenarioObject name="Lead">',
-      '</Vehicle>\n      <ObjectController><Controller name="sumo"><Properties><Property name="esminiController" value="SumoController"/><File filepath="../sumo_inputs/e6mini.sumocfg"/></Properties></Controller></ObjectController>\n    </ScenarioObject>\n    <ScenarioObject name="Lead">',
-    );
-    assert.notEqual(controlled, scenario);
-    fs.writeFileSync(path.join(root, 'follow.xosc'), controlled);
+    addSumoControllerToEgo(path.join(root, 'follow.xosc'));
     for (const keep of [[], ['--keep-runs']]) {
       fs.rmSync(path.join(root, 'results'), { recursive: true, force: true });
       const batch = runCli([...BATCH_ARGS, '--sample', '1', ...keep], { cwd: root });

@@ -3,7 +3,7 @@ import { spawn } from 'node:child_process';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { esminiBinary, esminiRoads, requireEsmini } from '../support/esmini';
-import { roadParameterPackage, runCli } from '../support/fixtures';
+import { addSumoControllerToEgo, roadParameterPackage, runCli } from '../support/fixtures';
 import { cliPath, repoRoot } from '../support/paths';
 import { freePort, RedisServer, requireRedis, startRedis } from '../support/redis';
 import { waitUntil } from '../support/wait';
@@ -245,6 +245,38 @@ describe('cli: batch through a Redis queue', function () {
       ),
     );
     assert.deepEqual(rowsOf('queued'), localRows, 'the same rows, status and reason included');
+  });
+
+  it("a worker's rows name the user's files, not the worker's private folders: the reason and messages as a local batch gives them (issue 27)", async function () {
+    requireEsmini(this);
+    requireRedis(this);
+    redis = await startRedis();
+    const root = batchFolder(3);
+    folders.push(root);
+    addSumoControllerToEgo(path.join(root, 'follow.xosc'));
+    const empty = temporaryFolder('m2s-worker-');
+    folders.push(empty);
+    workers.push(background(['worker', '--queue', redis.url, '--jobs', '2', '--esmini', esminiBinary], empty));
+    const args = ['batch', 'd.xosc', '--sample', '2', '--road-path', esminiRoads, '--esmini', esminiBinary];
+    const queued = await runCliAsync([...args, '--results', 'queued', '--queue', redis.url], root);
+    assert.equal(queued.code, 3, queued.output);
+    const local = runCli([...args, '--results', 'local'], { cwd: root });
+    assert.equal(local.status, 3, local.stderr);
+    const tried = path.join(path.dirname(root), 'sumo_inputs', 'e6mini.sumocfg');
+    const rows = sortedRows(path.join(root, 'queued'));
+    assert.equal(rows.length, 2);
+    for (const row of rows)
+      assert.ok(row.includes(`Failed to localize controller file ../sumo_inputs/e6mini.sumocfg, also tried ${tried}"`), row);
+    assert.deepEqual(rows, sortedRows(path.join(root, 'local')), 'the same rows, reason included');
+    const messagesOf = (folder: string) =>
+      (JSON.parse(fs.readFileSync(path.join(root, folder, 'results.json'), 'utf8')) as { rows: { messages: unknown }[] }).rows.map(
+        (row) => row.messages,
+      );
+    assert.deepEqual(messagesOf('queued'), messagesOf('local'));
+    assert.doesNotMatch(
+      queued.output + fs.readFileSync(path.join(root, 'queued', 'results.json'), 'utf8'),
+      /modular2simple-worker|job-|esmini-run-/,
+    );
   });
 
   it('a package holding two roads, its $Road varied over both: a worker in an empty folder runs each on its own road, as locally', async function () {

@@ -6,7 +6,7 @@ import { Flattener } from '../../server/src/core/flatten';
 import { childRef, diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { parseEsminiLog } from '../../server/src/esmini/log';
 import { locateEsmini, projectEsminiFolder } from '../../server/src/esmini/locate';
-import { mapEsminiMessages, UNPLACED_NOTE } from '../../server/src/esmini/messages';
+import { mapEsminiMessages, UNPLACED_NOTE, withoutRunFolder } from '../../server/src/esmini/messages';
 import { lastCsvTime, makeRunFolder, runEsminiProcess } from '../../server/src/esmini/process';
 import { EsminiRunOptions, EsminiRunResult, removeRunFolder, runScenario } from '../../server/src/esmini/run';
 import { runLimit, RUNAWAY_SECONDS, TIME_LIMIT_CONDITION, withTimeLimit } from '../../server/src/esmini/timeLimit';
@@ -90,6 +90,19 @@ describe('esmini: time limit and log (no simulator needed)', () => {
     assert.deepEqual(runLimit(stoppingAt('${5000.0 / (5 / 3.6)}'), undefined), { seconds: 3601, kind: 'runaway', setBy: undefined });
     assert.equal(runLimit(stoppingAt('1e9'), undefined).seconds, 24 * RUNAWAY_SECONDS);
     assert.equal(runLimit(stoppingAt('5000'), 20).seconds, 20);
+  });
+
+  it("says a path into a worker's job folder from the scenario's folder it stands for, the folders above it included (a queued batch, issue 27)", () => {
+    // A job lays the scenario's folder out as LAYOUT/d0 when its files reach one folder up (../catalogs).
+    const said = withoutRunFolder(
+      'Failed to load /w/job-1/d0/roads/x.xodr; see /w/job-1/catalogs/c.xosc, /w/job-1',
+      '/w/job-1',
+      '/home/u/proj/scenarios',
+      new Map(),
+      () => false,
+      '/w/job-1/d0',
+    );
+    assert.equal(said, 'Failed to load /home/u/proj/scenarios/roads/x.xodr; see /home/u/proj/catalogs/c.xosc, /home/u/proj');
   });
 
   it('reads the last complete CSV row, ignoring a row being written', () => {

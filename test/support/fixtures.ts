@@ -397,3 +397,17 @@ export async function roadParameterPackage(
   );
   fs.writeFileSync(path.join(folder, 'speeds.xosc'), distributionFile('p.mosc', distribution));
 }
+
+/**
+ * Puts esmini's SUMO controller on the ego of `file`, a copy of test/fixtures/variations/follow.xosc: its File
+ * `../sumo_inputs/e6mini.sumocfg` (as esmini's cut-in_sumo.xosc names it) lies in no test's folder, so esmini says where it looked.
+ */
+export function addSumoControllerToEgo(file: string): void {
+  const scenario = fs.readFileSync(file, 'utf8');
+  const controlled = scenario.replace(
+    '</Vehicle>\n    </ScenarioObject>\n    <ScenarioObject name="Lead">',
+    '</Vehicle>\n      <ObjectController><Controller name="sumo"><Properties><Property name="esminiController" value="SumoController"/><File filepath="../sumo_inputs/e6mini.sumocfg"/></Properties></Controller></ObjectController>\n    </ScenarioObject>\n    <ScenarioObject name="Lead">',
+  );
+  assert.notEqual(controlled, scenario, `${file} has the ego and Lead of follow.xosc`);
+  fs.writeFileSync(file, controlled);
+}

@@ -39,6 +39,11 @@ export interface RunJob {
   files: JobFile[];
   /** The search folders, relative to the scenario's folder. */
   searchPath: string[];
+  /**
+   * The scenario's folder where the batch was started, as its user names it: a row's words are said from there, not from
+   * the worker's private folders (absent from an older batch).
+   */
+  scenarioFolder?: string;
   /** The limit the user set; null: the scenario's own end. */
   duration: number | null;
   /** Where the user sets the limit, as the rows' reasons name it (RunSettings.durationSetBy); absent from an older batch. */
@@ -212,6 +217,7 @@ export async function queueBatch(
           parameters: run.parameters,
           files: await filesOf(run.text),
           searchPath,
+          scenarioFolder: plan.scenarioFolder,
           duration: settings.duration ?? null,
           ...(settings.durationSetBy ? { durationSetBy: settings.durationSetBy } : {}),
           seed: settings.seed,

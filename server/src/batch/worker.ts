@@ -5,9 +5,11 @@ import * as path from 'node:path';
 import { Job, Worker } from 'bullmq';
 import { nodeFileSystem } from '../core/sources';
 import { rebasedConcreteText } from '../core/variations';
+import { withoutRunFolder } from '../esmini/messages';
 import { makeRunFolder } from '../esmini/process';
 import { connect, connectionOf, fileKey, LOCK_DURATION_MS, QUEUE_NAME, resultsKey, RunJob, STALLED_INTERVAL_MS } from './queue';
 import { BatchOutput, runLine } from './progress';
+import type { BatchRow } from './row';
 import { runConcrete } from './runConcrete';
 
 /** How long a stopping worker waits for its runs in flight and for Redis. */
@@ -30,6 +32,20 @@ function depthOf(relative: string[]): number {
     return first < 0 ? parts.length : first;
   };
   return Math.max(0, ...relative.map(leadingUps));
+}
+
+/**
+ * A worker's row with the paths into its job's folder `layout` (where the files lie around `jobScenarioFolder`) said as the
+ * files they stand for around `userScenarioFolder`, the scenario's folder where the batch was started.
+ */
+function saidFrom(row: BatchRow, layout: string, jobScenarioFolder: string, userScenarioFolder: string): BatchRow {
+  const said = (text: string) => withoutRunFolder(text, layout, userScenarioFolder, new Map(), () => false, jobScenarioFolder);
+  return {
+    ...row,
+    message: said(row.message),
+    ...(row.reason === undefined ? {} : { reason: said(row.reason) }),
+    messages: row.messages.map((message) => ({ ...message, text: said(message.text) })),
+  };
 }
 
 /**
@@ -89,8 +105,8 @@ export async function runWorker(url: URL, options: WorkerOptions): Promise<numbe
       ];
       // As a local batch runs it: the paths it names made absolute from where its files now lie.
       const text = (await rebasedConcreteText(data.text, scenarioFolder, undefined, (file) => nodeFileSystem.kind(file))).text;
-      const row = await runConcrete(
-        { index: data.index, text, parameters: data.parameters, searchPath },
+      const ran = await runConcrete(
+        { index: data.index, text, parameters: data.parameters, searchPath, scenarioFolder: data.scenarioFolder },
         {
           duration: data.duration ?? undefined,
           durationSetBy: data.durationSetBy,
@@ -100,6 +116,8 @@ export async function runWorker(url: URL, options: WorkerOptions): Promise<numbe
         },
         stopping.signal,
       );
+      // The paths made absolute into this job's folder are said from the batch's scenario folder, as a local batch says them.
+      const row = ran && data.scenarioFolder !== undefined ? saidFrom(ran, layout, scenarioFolder, data.scenarioFolder) : ran;
       // Ctrl-C on a terminal reaches esmini too, which then ends early as if by itself: the job runs again elsewhere.
       if (!row || stopping.signal.aborted) throw new Error('the worker was stopped during the run');
       // Reported before the job completes: a worker that dies between the two has its job run again, and the batch keeps the first row.

@@ -447,6 +447,8 @@ export function withoutRunFolder(
   scenarioFolder: string,
   copies: ReadonlyMap<string, string>,
   exists: (file: string) => boolean = fs.existsSync,
+  /** The folder inside `runFolder` that stands for `scenarioFolder` (a worker's job lays the scenario's folder out deeper); `runFolder` itself by default. */
+  standsFor: string = runFolder,
 ): string {
   if (!text.includes(runFolder)) return text;
   const escaped = runFolder.replace(/[.*+?^${}()|[\]\\]/g, '\\$&');
@@ -455,7 +457,7 @@ export function withoutRunFolder(
     const inside = path.resolve(runFolder, (rest ?? '').replace(/^[\\/]/, ''));
     const copy = copies.get(inside);
     if (copy !== undefined) return copy;
-    const original = path.resolve(scenarioFolder, path.relative(runFolder, inside));
+    const original = path.resolve(scenarioFolder, path.relative(standsFor, inside));
     if (inside !== path.resolve(runFolder) && exists(original)) reached.push(original);
     return original;
   });
