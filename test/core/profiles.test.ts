@@ -202,8 +202,8 @@ describe('simulator profiles', () => {
     );
   });
 
-  // Each of the three quits esmini 3.6 at load (exit 255), as test/server/esmini.test.ts runs it; the standard allows each.
-  it('esmini refuses a RelativeAngleCondition, a LateralDistanceAction with displacement="any" written, a TrafficSwarmAction without velocity: errors there', () => {
+  // Each of the four quits esmini 3.6 at load (exit 255), as test/server/esmini.test.ts runs it; the standard allows each.
+  it('esmini refuses a RelativeAngleCondition, a LateralDistanceAction with displacement="any" written, a TrafficSwarmAction without velocity, a GeoPosition: errors there', () => {
     const findings = (story: string, minor = '3') =>
       simulatorFindings('esmini', parseXml(scenarioText(minor, '', story)), 'scenario.xosc').map((finding) => [
         finding.severity,
@@ -245,6 +245,17 @@ describe('simulator profiles', () => {
       ],
     ]);
     assert.deepEqual(findings(swarm(' velocity="30"')), []);
+    const teleport = (position: string) =>
+      `<PrivateAction><TeleportAction><Position>${position}</Position></TeleportAction></PrivateAction>`;
+    assert.deepEqual(findings(teleport('<GeoPosition latitudeDeg="0.001" longitudeDeg="0.001"/>')), [
+      [
+        'error',
+        'GeoPosition',
+        undefined,
+        'esmini does not support GeoPosition: its position reader has no GeoPosition and refuses the scenario ("Failed parse position in node Position") (EnvironmentSimulator/Modules/ScenarioEngine/SourceFiles/ScenarioReader.cpp:1854-2259)',
+      ],
+    ]);
+    assert.deepEqual(findings(teleport('<WorldPosition x="1" y="2"/>')), []);
     assert.deepEqual(messages('asam', scenarioText('3', '', swarm('') + lateral(' displacement="any"'))), []);
   });
 

@@ -666,7 +666,7 @@ describe('esmini: runs (the simulator built by the test setup)', function () {
     fs.rmSync(root, { recursive: true, force: true });
   });
 
-  it('refuses what check --simulator esmini calls its refusals (RelativeAngleCondition, displacement="any", a swarm without velocity), and runs each written as esmini reads it', async function () {
+  it('refuses what check --simulator esmini calls its refusals (RelativeAngleCondition, displacement="any", a swarm without velocity, a GeoPosition), and runs each written as esmini reads it', async function () {
     requireEsmini(this);
     const event = (action: string, condition: string) =>
       `<ManeuverGroup name="W" maximumExecutionCount="1"><Actors selectTriggeringEntities="false"><EntityRef entityRef="Ego"/></Actors><Maneuver name="M2"><Event name="E2" priority="override"><Action name="A2">${action}</Action><StartTrigger><ConditionGroup><Condition name="C2" delay="0" conditionEdge="none">${condition}</Condition></ConditionGroup></StartTrigger></Event></Maneuver></ManeuverGroup>`;
@@ -679,6 +679,8 @@ describe('esmini: runs (the simulator built by the test setup)', function () {
       `<PrivateAction><LateralAction><LateralDistanceAction entityRef="Ego" distance="1" freespace="false" continuous="false"${displacement}/></LateralAction></PrivateAction>`;
     const swarm = (velocity: string) =>
       `<GlobalAction><TrafficAction><TrafficSwarmAction innerRadius="10" semiMajorAxis="100" semiMinorAxis="50" numberOfVehicles="2" offset="0"${velocity}><CentralObject entityRef="Ego"/><TrafficDefinition name="t"><VehicleCategoryDistribution><VehicleCategoryDistributionEntry category="car" weight="1"/></VehicleCategoryDistribution><ControllerDistribution><ControllerDistributionEntry weight="1"><Controller name="c"><Properties/></Controller></ControllerDistributionEntry></ControllerDistribution></TrafficDefinition></TrafficSwarmAction></TrafficAction></GlobalAction>`;
+    const teleport = (position: string) =>
+      `<PrivateAction><TeleportAction><Position>${position}</Position></TeleportAction></PrivateAction>`;
     const cases = [
       {
         refused: event(speed, angle('RelativeAngleCondition')),
@@ -691,6 +693,11 @@ describe('esmini: runs (the simulator built by the test setup)', function () {
         says: /Unsupported displacement type: any/,
       },
       { refused: event(swarm(''), atOne), runs: event(swarm(' velocity="10"'), atOne), says: /stod/ },
+      {
+        refused: event(teleport('<GeoPosition latitudeDeg="0.0001" longitudeDeg="0.0001"/>'), atOne),
+        runs: event(teleport('<WorldPosition x="20" y="-1.5"/>'), atOne),
+        says: /Failed parse position in node Position/,
+      },
     ];
     const root = temporaryFolder('m2s-esmini-refusals-');
     const main = path.join(root, 'main.xosc');
