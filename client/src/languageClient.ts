@@ -82,7 +82,7 @@ export function createLanguageClient(
       closed: () => (closing() ? { action: CloseAction.DoNotRestart, handled: true } : defaultHandler().closed()),
     },
     middleware: {
-      ...whileRunning(() => client.isRunning()),
+      ...whileRunning(() => client.isRunning() && !closing()),
       // Views that show the server's answers (the preview, the structure) ask again once the server has the edit.
       didChange: async (event, next) => {
         await next(event);

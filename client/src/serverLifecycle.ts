@@ -71,6 +71,9 @@ export class ServerLifecycle {
   async close(): Promise<void> {
     this.closingWindow = true;
     await this.startup?.catch(() => undefined);
+    // Requests VS Code sent in the batch that closes the window are past sendRequest's check of the state, between its
+    // awaits: a stop now would fail each with "Starting server failed". A turn of the event loop lets them be sent.
+    await new Promise<void>((resolve) => setImmediate(resolve));
     if (!this.client.isRunning()) return;
     try {
       await this.client.stop();

@@ -14,6 +14,7 @@ class ClientWithContract implements StartableClient {
   private pending: { resolve: () => void; reject: (error: Error) => void; promise: Promise<void> } | undefined;
 
   start(): Promise<void> {
+    if (this.state === 'running') return Promise.resolve();
     if (this.pending) return this.pending.promise;
     this.starts++;
     this.state = 'starting';
@@ -49,6 +50,17 @@ class ClientWithContract implements StartableClient {
 
   isRunning(): boolean {
     return this.state === 'running';
+  }
+
+  /**
+   * sendRequest's checks: refused unless running, then the start joined (a resolved promise once running) through the
+   * awaits of its async helpers, then the connection taken, which a stop meanwhile has removed: "Starting server failed".
+   */
+  async sendRequest(): Promise<string> {
+    if (this.state !== 'running') throw new Error('Client is not running');
+    for (let hop = 0; hop < 6; hop++) await this.start();
+    if (this.state !== 'running') throw new Error('Starting server failed');
+    return 'answered';
   }
 }
 
@@ -129,6 +141,21 @@ describe('client: the language server at window close (no "Starting server faile
     await running;
     await lifecycle.running();
     assert.equal(client.starts, 1, 'a running server is not started again');
+  });
+
+  it('a request VS Code sent in the same batch as the close is answered, not failed with "Starting server failed" by the stop', async () => {
+    // Seen at every window reload in code-server: the extension host log's "provider FAILED ... Starting server failed".
+    const client = new ClientWithContract();
+    const { lifecycle, failures, notes } = lifecycleOn(client);
+    const started = lifecycle.startAtActivation();
+    client.finishStart();
+    await started;
+    const request = client.sendRequest();
+    const closed = lifecycle.close();
+    assert.equal(await request, 'answered');
+    await closed;
+    assert.equal(client.stops, 1);
+    assert.deepEqual([failures, notes], [[], []]);
   });
 
   it('a stop that fails as the window closes is one note, and closing still ends', async () => {
