@@ -11,6 +11,7 @@ import { diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { parseXml } from '../../server/src/core/xml';
 import { outerGroup, scenario, simpleGroup } from '../support/fixtures';
 import { sharedDir } from '../support/paths';
+import { semanticProblemsOf } from './diagnostics/support';
 import { temporaryWorkspace } from '../support/workspace';
 
 function scenarioText(minor: string, init: string, story: string): string {
@@ -273,6 +274,38 @@ describe('simulator profiles', () => {
     assert.deepEqual(messages('esmini', scenarioText('3', '', distance('euclidianDistance'))), []);
     const angle = condition('<AngleCondition angleType="heading" angle="0" angleTolerance="0.1" coordinateSystem="lane"/>');
     assert.deepEqual(messages('esmini', scenarioText('3', '', angle)), []);
+  });
+
+  it('esmini refuses a SynchronizeAction steady state to a final AbsoluteSpeed of 0 or less, also set by a parameter: an error on the value', async () => {
+    const synchronize = (speed: string, steady = '<TargetTimeSteadyState time="1"/>') =>
+      `<PrivateAction><SynchronizeAction masterEntityRef="ego"><TargetPositionMaster><WorldPosition x="10" y="0"/></TargetPositionMaster><TargetPosition><WorldPosition x="5" y="0"/></TargetPosition><FinalSpeed><AbsoluteSpeed value="${speed}">${steady}</AbsoluteSpeed></FinalSpeed></SynchronizeAction></PrivateAction>`;
+    const refusals = async (story: string, simulator: Simulator = 'esmini') =>
+      (
+        await semanticProblemsOf(
+          scenarioText('2', '', story).replace(
+            '<ParameterDeclarations/>',
+            '<ParameterDeclarations><ParameterDeclaration name="Stop" parameterType="double" value="0"/></ParameterDeclarations>',
+          ),
+          {},
+          simulator,
+        )
+      )
+        .filter((problem) => problem.code === 'simulator')
+        .map((problem) => [problem.severity, problem.range.start.line, problem.message]);
+    const line = scenarioText('2', '', synchronize('0'))
+      .split('\n')
+      .findIndex((text) => text.includes('<AbsoluteSpeed'));
+    assert.deepEqual(await refusals(synchronize('0')), [
+      [
+        'error',
+        line,
+        'esmini refuses a SynchronizeAction whose FinalSpeed is an AbsoluteSpeed of 0 or less with a steady state ("SynchronizeAction steady state with 0 or negative final speed is not supported"): a final speed of 0 with <TargetTimeSteadyState> (EnvironmentSimulator/Modules/ScenarioEngine/SourceFiles/ScenarioReader.cpp:3269-3282)',
+      ],
+    ]);
+    assert.equal((await refusals(synchronize('$Stop'))).length, 1);
+    assert.deepEqual(await refusals(synchronize('5')), []);
+    assert.deepEqual(await refusals(synchronize('0', '')), []);
+    assert.deepEqual(await refusals(synchronize('0'), 'asam'), []);
   });
 
   // 76 of the ASAM OpenSCENARIO API's 158 test resources state 0.9; esmini 3.6 quits on each (exit 255).

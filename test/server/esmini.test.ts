@@ -666,7 +666,7 @@ describe('esmini: runs (the simulator built by the test setup)', function () {
     fs.rmSync(root, { recursive: true, force: true });
   });
 
-  it('refuses what check --simulator esmini calls its refusals (RelativeAngleCondition, displacement="any", a swarm without velocity, a GeoPosition), and runs each written as esmini reads it', async function () {
+  it('refuses what check --simulator esmini calls its refusals (RelativeAngleCondition, displacement="any", a swarm without velocity, a GeoPosition, a steady state to a stop), and runs each written as esmini reads it', async function () {
     requireEsmini(this);
     const event = (action: string, condition: string) =>
       `<ManeuverGroup name="W" maximumExecutionCount="1"><Actors selectTriggeringEntities="false"><EntityRef entityRef="Ego"/></Actors><Maneuver name="M2"><Event name="E2" priority="override"><Action name="A2">${action}</Action><StartTrigger><ConditionGroup><Condition name="C2" delay="0" conditionEdge="none">${condition}</Condition></ConditionGroup></StartTrigger></Event></Maneuver></ManeuverGroup>`;
@@ -681,6 +681,8 @@ describe('esmini: runs (the simulator built by the test setup)', function () {
       `<GlobalAction><TrafficAction><TrafficSwarmAction innerRadius="10" semiMajorAxis="100" semiMinorAxis="50" numberOfVehicles="2" offset="0"${velocity}><CentralObject entityRef="Ego"/><TrafficDefinition name="t"><VehicleCategoryDistribution><VehicleCategoryDistributionEntry category="car" weight="1"/></VehicleCategoryDistribution><ControllerDistribution><ControllerDistributionEntry weight="1"><Controller name="c"><Properties/></Controller></ControllerDistributionEntry></ControllerDistribution></TrafficDefinition></TrafficSwarmAction></TrafficAction></GlobalAction>`;
     const teleport = (position: string) =>
       `<PrivateAction><TeleportAction><Position>${position}</Position></TeleportAction></PrivateAction>`;
+    const synchronize = (speed: string) =>
+      `<PrivateAction><SynchronizeAction masterEntityRef="Ego"><TargetPositionMaster><LanePosition roadId="1" laneId="-1" s="200" offset="0"/></TargetPositionMaster><TargetPosition><LanePosition roadId="1" laneId="-1" s="100" offset="0"/></TargetPosition><FinalSpeed><AbsoluteSpeed value="${speed}"><TargetTimeSteadyState time="1"/></AbsoluteSpeed></FinalSpeed></SynchronizeAction></PrivateAction>`;
     const cases = [
       {
         refused: event(speed, angle('RelativeAngleCondition')),
@@ -697,6 +699,11 @@ describe('esmini: runs (the simulator built by the test setup)', function () {
         refused: event(teleport('<GeoPosition latitudeDeg="0.0001" longitudeDeg="0.0001"/>'), atOne),
         runs: event(teleport('<WorldPosition x="20" y="-1.5"/>'), atOne),
         says: /Failed parse position in node Position/,
+      },
+      {
+        refused: event(synchronize('0'), atOne),
+        runs: event(synchronize('5'), atOne),
+        says: /steady state with 0 or negative final speed/,
       },
     ];
     const root = temporaryFolder('m2s-esmini-refusals-');

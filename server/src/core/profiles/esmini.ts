@@ -164,6 +164,11 @@ export const ESMINI_FACTS = {
     source: `${READER}:5424-5444, 5304-5310`,
     severity: 'error',
   },
+  steadyStateStop: {
+    does: 'refuses a SynchronizeAction whose FinalSpeed is an AbsoluteSpeed of 0 or less with a steady state ("SynchronizeAction steady state with 0 or negative final speed is not supported")',
+    source: `${READER}:3269-3282`,
+    severity: 'error',
+  },
 } as const satisfies Record<string, SimulatorFact>;
 
 export type EsminiFactName = keyof typeof ESMINI_FACTS;

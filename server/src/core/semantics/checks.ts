@@ -9,6 +9,7 @@ import { ExpressionError } from './expressionParser';
 import { valueConstraints } from './checks/constraints';
 import { duplicateNames } from './checks/names';
 import { carlaReleaseOf, carlaScenario } from './checks/carla';
+import { esminiScenario } from './checks/esmini';
 import { at, relatedAt } from './checks/support';
 import type { Finding, SemanticCheck, SemanticContext } from './checks/types';
 import type { CatalogFile, CatalogReferenceResolution } from './catalogs';
@@ -565,6 +566,7 @@ export const SEMANTIC_CHECKS: readonly { name: string; check: SemanticCheck }[] 
   { name: 'value constraints', check: valueConstraints },
   { name: 'simulator profile', check: simulatorProfile },
   { name: 'CARLA ScenarioRunner', check: carlaScenario },
+  { name: 'esmini', check: esminiScenario },
   // The road file, traffic signals, actors and value ranges (./networkChecks.ts).
   { name: 'road file', check: roadFileFound },
   { name: 'traffic signal id', check: trafficSignalIds },
@@ -585,6 +587,7 @@ export const OUTPUT_CHECKS: readonly { name: string; check: SemanticCheck }[] = 
   // What the simulator gets is the output: a value set through a ParameterReference is checked here.
   { name: 'simulator profile', check: simulatorProfile },
   { name: 'CARLA ScenarioRunner', check: carlaScenario },
+  { name: 'esmini', check: esminiScenario },
 ];
 
 export { undeclaredVariables };
