@@ -35,11 +35,17 @@ export function freeScenarioName(folder: string, exists: (file: string) => boole
   }
 }
 
-/** Why a file name will not do in the folder, or undefined when it will. */
+/** The file name a user typed, `.xosc` added when it has no extension at all (`encounter` for encounter.xosc). */
+export function scenarioFileName(typed: string): string {
+  const trimmed = typed.trim();
+  return trimmed && !/[\\/]/.test(trimmed) && path.extname(trimmed) === '' && !trimmed.startsWith('.') ? `${trimmed}.xosc` : trimmed;
+}
+
+/** Why a file name (as scenarioFileName reads it) will not do in the folder, or undefined when it will. */
 export function fileNameProblem(folder: string, name: string, exists: (file: string) => boolean = fs.existsSync): string | undefined {
-  const trimmed = name.trim();
-  if (!trimmed.toLowerCase().endsWith('.xosc') || trimmed.length <= '.xosc'.length) return 'The name must end in .xosc';
+  const trimmed = scenarioFileName(name);
   if (/[\\/]/.test(trimmed) || trimmed === '.' || trimmed === '..') return 'A file name, without folders';
+  if (!trimmed.toLowerCase().endsWith('.xosc') || trimmed.length <= '.xosc'.length) return 'The name must end in .xosc';
   if (exists(path.join(folder, trimmed))) return `${trimmed} exists already; choose another name`;
   return undefined;
 }

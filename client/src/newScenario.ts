@@ -3,7 +3,7 @@ import * as path from 'node:path';
 import * as vscode from 'vscode';
 import type { CommandReporter } from './commands';
 import type { ServerCommandClient } from './languageClient';
-import { fileNameProblem, freeScenarioName, writeNewFiles } from './naming';
+import { fileNameProblem, freeScenarioName, scenarioFileName, writeNewFiles } from './naming';
 
 /** What a caller (a test, a keybinding) may pass instead of being asked. */
 export interface NewScenarioOptions {
@@ -151,7 +151,7 @@ export async function newFilePath(folder: string, given: string | undefined, que
     void vscode.window.showErrorMessage(`${question.title}: ${problem}.`);
     return undefined;
   }
-  return path.join(folder, fileName);
+  return path.join(folder, scenarioFileName(fileName));
 }
 
 /**

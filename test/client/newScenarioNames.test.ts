@@ -1,6 +1,6 @@
 import * as assert from 'node:assert/strict';
 import * as path from 'node:path';
-import { fileNameProblem, freeScenarioName } from '../../client/src/naming';
+import { fileNameProblem, freeScenarioName, scenarioFileName } from '../../client/src/naming';
 
 describe('client: the file name New Modular Scenario proposes and accepts', () => {
   const folder = path.resolve('/work', 'scenarios');
@@ -21,5 +21,15 @@ describe('client: the file name New Modular Scenario proposes and accepts', () =
     assert.match(fileNameProblem(folder, 'main.xml', existing()) ?? '', /end in \.xosc/);
     assert.match(fileNameProblem(folder, '.xosc', existing()) ?? '', /end in \.xosc/);
     assert.match(fileNameProblem(folder, '../main.xosc', existing()) ?? '', /without folders/);
+  });
+
+  it('takes a name typed without an extension as NAME.xosc (it said "The name must end in .xosc")', () => {
+    assert.equal(scenarioFileName(' encounter '), 'encounter.xosc');
+    assert.equal(fileNameProblem(folder, 'encounter', existing()), undefined);
+    assert.match(fileNameProblem(folder, 'main', existing('main.xosc')) ?? '', /^main\.xosc exists already/);
+    assert.equal(scenarioFileName('cut-in.xosc'), 'cut-in.xosc');
+    assert.match(fileNameProblem(folder, 'main.xml', existing()) ?? '', /end in \.xosc/);
+    assert.match(fileNameProblem(folder, '.hidden', existing()) ?? '', /end in \.xosc/);
+    assert.match(fileNameProblem(folder, 'compose/encounter', existing()) ?? '', /without folders/);
   });
 });
