@@ -1169,6 +1169,71 @@ describe('export --target carla, lane changes by time and speed changes by rate'
   });
 });
 
+describe('export --target carla, an AbsoluteTargetLane (ScenarioRunner crashes on it)', function () {
+  this.timeout(300_000);
+  let out: string;
+  before(function () {
+    requireCorpus(this);
+  });
+  inTemporaryFolderEach('m2s-carla-absolute-lane-', (folder) => (out = folder));
+
+  const toLane = (lane: number): string =>
+    laneChangeByTime(3).replace('<RelativeTargetLane entityRef="Lead" value="1"/>', `<AbsoluteTargetLane value="${lane}"/>`);
+
+  it("one after another, each is counted from where the one before leaves the actor, to the driver's left: esmini runs the export alike (within 0.1 m), ScenarioRunner builds it (issue 26)", async function () {
+    requireEsmini(this);
+    requireCarlaHarness(this);
+    const original = path.join(out, 'back.xosc');
+    // Lead (lane -3, driving along s) moves to lane -2, then back to -3.
+    const text = leadEventsScenario(leadEvent('Out', 1, toLane(-2)) + leadEvent('Back', 6, toLane(-3)));
+    fs.writeFileSync(original, text);
+    const exported = await exportFile(original, path.join(out, 'back.carla.xosc'));
+    assert.equal(exported.code, 0, exported.stderr);
+    assert.deepEqual(
+      [...fs.readFileSync(exported.output, 'utf8').matchAll(/<RelativeTargetLane entityRef="Lead" value="(-?\d+)"\/>/g)].map(
+        (match) => match[1],
+      ),
+      ['1', '-1'],
+    );
+    const lines = [...text.matchAll(/<AbsoluteTargetLane/g)].map((match) => text.slice(0, match.index).split('\n').length);
+    assert.deepEqual(
+      exported.report.losses.filter((loss) => loss.element === 'AbsoluteTargetLane').map((loss) => [loss.line, loss.what]),
+      [
+        [lines[0], "lane -2 is written as a change of 1 to the driver's left from its start lane -3"],
+        [
+          lines[1],
+          `lane -3 is written as a change of -1 to the driver's left from lane -2, where its lane change at line ${lines[0]} leaves it (if that one ran first)`,
+        ],
+      ],
+    );
+    await assertMovesAlike(original, exported.output, 12);
+    const verdict = (await harnessVerdicts([exported.output])).get(path.resolve(exported.output));
+    assert.equal(verdict?.status, 'OK', JSON.stringify(verdict));
+  });
+
+  it('for an actor driving against s (a positive lane of a right-hand-traffic road), left is toward lane -1: esmini runs the export alike (within 0.1 m) (issue 26)', async function () {
+    requireEsmini(this);
+    const original = path.join(out, 'oncoming.xosc');
+    // straight_500m.xodr: lane 1 is driven against s; its driver's left is lane -1, across the centre line.
+    const text = leadEventsScenario(leadEvent('Over', 1, toLane(-1)))
+      .replace(path.join(esminiRoads, 'e6mini.xodr'), path.join(esminiRoads, 'straight_500m.xodr'))
+      .replace(/roadId="0" laneId="-3" offset="0" s="20"/, 'roadId="1" laneId="-1" offset="0" s="20"')
+      .replace(/roadId="0" laneId="-3" offset="0" s="60"/, 'roadId="1" laneId="1" offset="0" s="300"');
+    assert.match(text, /laneId="1" offset="0" s="300"/);
+    fs.writeFileSync(original, text);
+    const exported = await exportFile(original, path.join(out, 'oncoming.carla.xosc'));
+    assert.equal(exported.code, 0, exported.stderr);
+    assert.match(fs.readFileSync(exported.output, 'utf8'), /<RelativeTargetLane entityRef="Lead" value="1"\/>/);
+    const tracks = await assertMovesAlike(original, exported.output, 8);
+    const lead = tracks.get('Lead') ?? [];
+    // It drove against s, and crossed to the other side of the reference line (y = 0).
+    assert.ok(
+      lead[lead.length - 1].x < lead[0].x && lead[0].y > 0 && lead[lead.length - 1].y < 0,
+      JSON.stringify([lead[0], lead[lead.length - 1]]),
+    );
+  });
+});
+
 describe('export --target carla, greaterOrEqual and lessOrEqual (not in 1.0)', function () {
   this.timeout(300_000);
   let out: string;

@@ -280,7 +280,9 @@ export async function exportTextForCarla(
       (action) => Number(attr(action, 'initialDistanceOffset') ?? 0) !== 0 && ancestor(action, 'Init') !== undefined,
     ) ||
     // How far a lane change moves across (laneChanges.ts): a rate needs it, a time is exact with it.
-    named(tree, 'LaneChangeActionDynamics').some((dynamics) => ['time', 'rate'].includes(attr(dynamics, 'dynamicsDimension') ?? ''));
+    named(tree, 'LaneChangeActionDynamics').some((dynamics) => ['time', 'rate'].includes(attr(dynamics, 'dynamicsDimension') ?? '')) ||
+    // Which way is left for an absolute target lane: the road's traffic rule.
+    named(tree, 'AbsoluteTargetLane').length > 0;
   const roads = road && 'file' in road && needsRoads ? await readRoads(copy?.bytes ?? road.file, store) : undefined;
   const geoPlaces = new Map<Node, RoadXY | string>();
   for (const position of named(tree, 'GeoPosition')) {

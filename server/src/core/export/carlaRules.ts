@@ -35,7 +35,7 @@ import type { CarlaLoss, LossSink } from './carlaLosses';
 import { variables } from './carlaVariables';
 import { actorsOf, constantSpeedOf, startSpeedOf } from './scenarioTree';
 import { speedProfiles } from './speedProfiles';
-import { laneChangesByDistance, startLanePositionOf } from './laneChanges';
+import { absoluteTargetLanes, laneChangesByDistance } from './laneChanges';
 import { trajectoryPoint } from './trajectoryPoint';
 import { initStarts } from './initStarts';
 import { SAMPLE_STEP } from './shapes';
@@ -328,46 +328,6 @@ function weather(tree: Node, context: RuleContext): void {
     );
     if (attr(precipitation, 'intensity') === undefined) setAttr(precipitation, 'intensity', '0');
     // The 1.0 Weather is an xsd:all of Sun, Fog, Precipitation: any order is valid.
-  }
-}
-
-/**
- * `AbsoluteTargetLane` crashes ScenarioRunner (SR_PARSER convert_maneuver_to_atomic reads `value` of a
- * RelativeTargetLane only): written as the relative change from the actor's start lane (same side of the road).
- */
-function absoluteTargetLane(tree: Node, context: RuleContext): void {
-  for (const target of named(tree, 'AbsoluteTargetLane')) {
-    const actors = actorsOf(target);
-    const start = actors.length === 1 ? startLanePositionOf(tree, actors[0])?.laneId : undefined;
-    const wanted = Number(attr(target, 'value'));
-    const carla = `ScenarioRunner changes lanes relative to the actor's lane only; an AbsoluteTargetLane crashes it (${SR_PARSER} convert_maneuver_to_atomic)`;
-    if (start === undefined || !Number.isInteger(wanted) || Math.sign(start) !== Math.sign(wanted) || start === 0) {
-      dropUnit(
-        target,
-        context,
-        'AbsoluteTargetLane',
-        `${carla}; the actor's start lane is not known, so no relative change can be computed`,
-      );
-      continue;
-    }
-    // Lane ids grow to the driver's left on both sides of the reference line.
-    const relative = wanted - start;
-    const relativeNode = makeNode(
-      'RelativeTargetLane',
-      [
-        ['entityRef', actors[0]],
-        ['value', String(relative)],
-      ],
-      [],
-      target.place,
-    );
-    replaceNode(target, relativeNode);
-    context.sink.approximated(
-      relativeNode,
-      'AbsoluteTargetLane',
-      `lane ${wanted} is written as a change of ${relative} from the actor's start lane ${start} (right if the actor changed lanes before)`,
-      carla,
-    );
   }
 }
 
@@ -1370,7 +1330,7 @@ export const CARLA_RULES: readonly { name: string; apply: (tree: Node, context: 
   { name: 'activate-controller', apply: activateControllerAction },
   { name: 'controller-halves', apply: controllerActionHalves },
   { name: 'weather', apply: weather },
-  { name: 'absolute-target-lane', apply: absoluteTargetLane },
+  { name: 'absolute-target-lane', apply: (tree, context) => absoluteTargetLanes(tree, context.sink, context.roads) },
   { name: 'time-gap', apply: longitudinalTimeGap },
   { name: 'trajectories', apply: trajectories },
   { name: 'init-starts', apply: initStarts },

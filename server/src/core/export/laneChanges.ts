@@ -8,7 +8,8 @@ import { laneCenterT, laneSectionIndexAt } from '../opendrive/road';
 import { SR_PARSER } from './carlaFacts';
 import type { LossSink } from './carlaLosses';
 import { actorsOf, constantSpeedOf, fromInit, startSpeedOf } from './scenarioTree';
-import { ancestor, attr, fourDecimals, named, Node, setAttr } from './tree';
+import { ancestor, attr, fourDecimals, makeNode, named, Node, replaceNode, setAttr } from './tree';
+import { dropUnit } from './carlaLosses';
 
 /** Where the Init places an actor, when it is a LanePosition of its TeleportAction. */
 export interface StartLane {
@@ -75,10 +76,34 @@ function groundCovered(seconds: number, speed: number, shape: string, across: nu
   return total;
 }
 
-/** esmini's target lane of a RelativeTargetLane (LatLaneChangeAction::Start): counted in the reference's driving direction, skipping lane 0. */
-function relativeTargetLane(reference: number, value: number): number {
-  const target = reference + value * (reference < 0 ? 1 : -1);
+/**
+ * esmini's target lane of a RelativeTargetLane (LatLaneChangeAction::Start): counted to the left of the reference's driving
+ * direction, skipping lane 0; `forward` when the reference drives along s (its lane is negative on a right-hand-traffic road).
+ */
+export function relativeTargetLane(reference: number, value: number, forward = reference < 0): number {
+  const target = reference + value * (forward ? 1 : -1);
   return target === 0 || Math.sign(target) !== Math.sign(reference) ? Math.sign(target - reference) * (Math.abs(target) + 1) : target;
+}
+
+/** The RelativeTargetLane value that takes an actor from lane `from` to lane `to` (its inverse), if one of up to 8 lanes does. */
+function relativeValueTo(from: number, to: number, forward: boolean): number | undefined {
+  for (let value = -8; value <= 8; value++) if (relativeTargetLane(from, value, forward) === to) return value;
+  return undefined;
+}
+
+/** Whether the actor drives along s where the Init places it: by its lane's side and the road's traffic rule (esmini's default heading), unless a relative Orientation turns it round. */
+function drivesAlongS(tree: Node, actor: string, start: StartLane, roads: RoadNetwork | undefined): boolean {
+  const leftHand = roads?.byId.get(start.roadId)?.leftHandTraffic ?? false;
+  let turned = false;
+  fromInit(tree, actor, (privateNode) => {
+    const lane = named(privateNode, 'LanePosition').find((each) => ancestor(each, 'TeleportAction'));
+    const orientation = lane ? named(lane, 'Orientation')[0] : undefined;
+    if (!orientation) return undefined;
+    const heading = Number(attr(orientation, 'h') ?? 0);
+    turned = attr(orientation, 'type') === 'relative' && Math.cos(heading) < 0;
+    return 1;
+  });
+  return (start.laneId < 0 !== leftHand) !== turned;
 }
 
 /** How far the actor moves across, from where its Init places it to the target lane's centre there; undefined where the road or a lane is not known. */
@@ -106,7 +131,7 @@ function acrossOf(
   const reference = startLanePositionOf(tree, attr(relative, 'entityRef') ?? actor);
   const value = Number(attr(relative, 'value'));
   if (!reference || reference.roadId !== start.roadId || !Number.isInteger(value) || reference.laneId === 0) return undefined;
-  const target = relativeTargetLane(reference.laneId, value);
+  const target = relativeTargetLane(reference.laneId, value, drivesAlongS(tree, attr(relative, 'entityRef') ?? actor, reference, roads));
   const section = road.laneSections[laneSectionIndexAt(road, start.s)];
   if (!section?.lanes.some((lane) => lane.id === target) || !section.lanes.some((lane) => lane.id === start.laneId)) return undefined;
   const sectionIndex = laneSectionIndexAt(road, start.s);
@@ -152,5 +177,58 @@ export function laneChangesByDistance(tree: Node, sink: LossSink, roads: RoadNet
       );
     else if (constant === undefined)
       sink.approximated(dynamics, 'LaneChangeActionDynamics/@value', `${value} s is written as ${distance} m, ${atSpeed}`, carla);
+  }
+}
+
+/**
+ * `AbsoluteTargetLane` crashes ScenarioRunner (SR_PARSER convert_maneuver_to_atomic reads `value` of a RelativeTargetLane only):
+ * written as the RelativeTargetLane esmini and ScenarioRunner count to the driver's left, from the lane the actor's previous absolute
+ * lane change in document order leaves it in, else its Init lane.
+ */
+export function absoluteTargetLanes(tree: Node, sink: LossSink, roads: RoadNetwork | undefined): void {
+  const carla = `ScenarioRunner changes lanes relative to the actor's lane only; an AbsoluteTargetLane crashes it (${SR_PARSER} convert_maneuver_to_atomic)`;
+  const lastLane = new Map<string, { lane: number; line: number }>();
+  for (const target of named(tree, 'AbsoluteTargetLane')) {
+    const actors = actorsOf(target);
+    const actor = actors.length === 1 ? actors[0] : undefined;
+    const start = actor === undefined ? undefined : startLanePositionOf(tree, actor);
+    const wanted = Number(attr(target, 'value'));
+    const before = actor === undefined ? undefined : lastLane.get(actor);
+    const from = before?.lane ?? start?.laneId;
+    // esmini keeps an actor's heading along or against s through its lane changes (Position::SetHeadingRelativeRoadDirection): left is the Init's.
+    const forward = start && actor !== undefined ? drivesAlongS(tree, actor, start, roads) : undefined;
+    const value =
+      from !== undefined && forward !== undefined && Number.isInteger(wanted) && wanted !== 0 && from !== 0
+        ? relativeValueTo(from, wanted, forward)
+        : undefined;
+    if (value === undefined || actor === undefined) {
+      dropUnit(
+        target,
+        { sink },
+        'AbsoluteTargetLane',
+        `${carla}; the actor's start lane is not known, so no relative change can be computed`,
+      );
+      continue;
+    }
+    const relativeNode = makeNode(
+      'RelativeTargetLane',
+      [
+        ['entityRef', actor],
+        ['value', String(value)],
+      ],
+      [],
+      target.place,
+    );
+    replaceNode(target, relativeNode);
+    const origin = before
+      ? `lane ${from}, where its lane change at line ${before.line} leaves it (if that one ran first)`
+      : `its start lane ${from}`;
+    sink.approximated(
+      relativeNode,
+      'AbsoluteTargetLane',
+      `lane ${wanted} is written as a change of ${value} to the driver's left from ${origin}`,
+      carla,
+    );
+    lastLane.set(actor, { lane: wanted, line: (target.place?.range.start.line ?? -1) + 1 });
   }
 }

@@ -61,6 +61,8 @@ export interface Road {
   name: string;
   length: number;
   junction: string;
+  /** Left-hand traffic (`rule="LHT"`): its positive lanes are driven along s; otherwise its negative ones. */
+  leftHandTraffic: boolean;
   geometries: Geometry[];
   laneOffsets: Cubic[];
   superelevations: Cubic[];
@@ -245,6 +247,7 @@ function roadOf(element: XmlElement, problems: RoadNetwork['problems']): Road {
     name: attributeValue(element, 'name') ?? '',
     length,
     junction: attributeValue(element, 'junction') ?? '-1',
+    leftHandTraffic: attributeValue(element, 'rule') === 'LHT',
     geometries,
     laneOffsets: childrenNamed(lanesElement, 'laneOffset')
       .map((offset) => cubicOf(offset, 's'))
