@@ -162,11 +162,14 @@ describe('simulator profiles', () => {
     assert.match(simulatorWording(sinusoidal[0]).message, /dynamicsShape="sinusoidal" on LaneChangeActionDynamics/);
     assert.equal(sinusoidal[0].severity, 'warning');
     // The export writes a time as the distance the actor drives in it (carlaRules.ts laneChangeTimes): the finding offers it; no export follows a shape.
-    const byTime = simulatorFindings('carla', parseXml(scenarioText('0', '', story.replace('"distance"', '"time"'))), 'a.xosc');
-    assert.deepEqual(
-      byTime.map((finding) => finding.exportMaps),
-      [true],
-    );
+    for (const dimension of ['"time"', '"rate"']) {
+      const found = simulatorFindings('carla', parseXml(scenarioText('0', '', story.replace('"distance"', dimension))), 'a.xosc');
+      assert.deepEqual(
+        found.map((finding) => finding.exportMaps),
+        [true],
+        dimension,
+      );
+    }
     assert.equal(sinusoidal[0].exportMaps, undefined);
   });
 

@@ -167,8 +167,8 @@ export const CARLA_PROFILE: SimulatorProfile = {
       supportedValues: ['distance'],
       source: `${PARSER}:1386-1399`,
       note: 'a lane change by time or rate is planned over an infinite distance (distance_lane_change=inf): the value is read as a duration that nothing uses',
-      // carlaRules.ts laneChangeTimes: the distance the actor drives in that time.
-      exportWrites: ['time'],
+      // laneChanges.ts: the distance the actor covers while it moves across (a rate needs the .xodr road's lane widths).
+      exportWrites: ['time', 'rate'],
     },
     {
       element: 'Condition',
