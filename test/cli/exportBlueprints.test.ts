@@ -27,4 +27,16 @@ describe('cli: export --blueprints names the line and column of what is wrong in
     );
     assert.deepEqual(result.files, ['blueprints.json', 'scenario.xosc']);
   });
+
+  it('without a table, a vehicle named otherwise is spawned as its category says, and the loss says how to choose in the file itself', () => {
+    const root = temporaryWorkspace({ 'scenario.xosc': drivingScenario('Town05', 'Drive') });
+    const run = runCli(['export', 'scenario.xosc', '--target', 'carla', '-o', 'out.xosc'], { cwd: root });
+    assert.equal(run.status, 0, run.stderr);
+    // The editor's Export for CARLA… has no --blueprints: the remedy names what to write in the scenario first.
+    assert.match(
+      run.stderr,
+      /'car' is no CARLA blueprint: spawned as vehicle\.tesla\.model3 .*to spawn another, name the Vehicle after a CARLA blueprint, such as vehicle\.audi\.tt; on the command line, a table given with --blueprints FILE\.json/,
+    );
+    assert.match(run.stderr, /<Storyboard\/StopTrigger> its condition groups are added to the StopTrigger of the one act \[/);
+  });
 });

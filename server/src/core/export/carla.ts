@@ -755,7 +755,7 @@ function mapBlueprints(tree: Node, options: CarlaExportOptions, sink: LossSink):
         vehicle,
         'Vehicle',
         `'${name}' is no CARLA blueprint: spawned as ${blueprint} (its category ${category})`,
-        'ScenarioRunner spawns the vehicle named by the blueprint (a blueprint table with --blueprints FILE.json chooses another)',
+        'ScenarioRunner spawns the vehicle named by the blueprint (to spawn another, name the Vehicle after a CARLA blueprint, such as vehicle.audi.tt; on the command line, a table given with --blueprints FILE.json maps names to blueprints)',
       );
   }
   for (const pedestrian of named(tree, 'Pedestrian')) {
@@ -772,7 +772,7 @@ function mapBlueprints(tree: Node, options: CarlaExportOptions, sink: LossSink):
         pedestrian,
         'Pedestrian',
         `'${model || name}' is no CARLA walker: spawned as ${blueprint}`,
-        'ScenarioRunner spawns the walker its model names (a blueprint table with --blueprints FILE.json chooses another)',
+        'ScenarioRunner spawns the walker its model names (to spawn another, write a CARLA walker, such as walker.pedestrian.0001, as its model; on the command line, a table given with --blueprints FILE.json maps names to blueprints)',
       );
   }
   for (const misc of named(tree, 'MiscObject')) {

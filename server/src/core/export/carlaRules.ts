@@ -1130,7 +1130,7 @@ function storyboardStop(tree: Node, context: RuleContext): void {
   context.sink.approximated(
     stop,
     'Storyboard/StopTrigger',
-    `its condition groups are added to the StopTrigger of each of the ${acts.length} acts${anded ? ' (ScenarioRunner ORs the conditions inside an act stop group, where the standard ANDs them)' : ''}`,
+    `its condition groups are added to the StopTrigger of ${acts.length === 1 ? 'the one act' : `each of the ${acts.length} acts`}${anded ? ' (ScenarioRunner ORs the conditions inside an act stop group, where the standard ANDs them)' : ''}`,
     `ScenarioRunner ignores the Storyboard's StopTrigger but for criteria_ conditions (${SR_SCENARIO} _create_test_criteria); the scenario ends when its acts end`,
   );
 }
