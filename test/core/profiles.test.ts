@@ -311,6 +311,19 @@ describe('simulator profiles', () => {
     assert.deepEqual(await refusals(synchronize('0'), 'asam'), []);
   });
 
+  it('esmini reads no ScenarioObject after an ExternalObjectReference: an error on each one the scenario references, none before it', async () => {
+    const external = '<ScenarioObject name="far"><ExternalObjectReference name="elsewhere"/></ScenarioObject>';
+    const text = (entities: string) => scenarioText('2', '', VISIBILITY).replace('<ScenarioObject name="ego"/>', entities);
+    const found = async (entities: string) =>
+      (await semanticProblemsOf(text(entities), {}, 'esmini'))
+        .filter((problem) => problem.code === 'simulator' && problem.severity === 'error')
+        .map((problem) => problem.message);
+    assert.deepEqual(await found(`${external}<ScenarioObject name="ego"/><ScenarioObject name="idle"/>`), [
+      `esmini stops reading the Entities at an ExternalObjectReference (parseEntities returns there), so a ScenarioObject after it does not exist for esmini, which refuses a reference to it ("Failed to find object"): 'ego' comes after 'far', and the scenario references it (EnvironmentSimulator/Modules/ScenarioEngine/SourceFiles/ScenarioReader.cpp:1656-1660, 270-281)`,
+    ]);
+    assert.deepEqual(await found(`<ScenarioObject name="ego"/>${external}`), []);
+  });
+
   // 76 of the ASAM OpenSCENARIO API's 158 test resources state 0.9; esmini 3.6 quits on each (exit 255).
   it('esmini refuses a scenario that states a version before 1.0: an error at its revMajor; a 0.9 catalog, 1.x and asam are silent', () => {
     const old = scenarioText('9', '', VISIBILITY).replace('revMajor="1"', 'revMajor="0"');

@@ -666,7 +666,7 @@ describe('esmini: runs (the simulator built by the test setup)', function () {
     fs.rmSync(root, { recursive: true, force: true });
   });
 
-  it('refuses what check --simulator esmini calls its refusals (RelativeAngleCondition, displacement="any", a swarm without velocity, a GeoPosition, a steady state to a stop), and runs each written as esmini reads it', async function () {
+  it('refuses what check --simulator esmini calls its refusals (RelativeAngleCondition, displacement="any", a swarm without velocity, a GeoPosition, a steady state to a stop, an entity after an ExternalObjectReference), and runs each written as esmini reads it', async function () {
     requireEsmini(this);
     const event = (action: string, condition: string) =>
       `<ManeuverGroup name="W" maximumExecutionCount="1"><Actors selectTriggeringEntities="false"><EntityRef entityRef="Ego"/></Actors><Maneuver name="M2"><Event name="E2" priority="override"><Action name="A2">${action}</Action><StartTrigger><ConditionGroup><Condition name="C2" delay="0" conditionEdge="none">${condition}</Condition></ConditionGroup></StartTrigger></Event></Maneuver></ManeuverGroup>`;
@@ -683,7 +683,8 @@ describe('esmini: runs (the simulator built by the test setup)', function () {
       `<PrivateAction><TeleportAction><Position>${position}</Position></TeleportAction></PrivateAction>`;
     const synchronize = (speed: string) =>
       `<PrivateAction><SynchronizeAction masterEntityRef="Ego"><TargetPositionMaster><LanePosition roadId="1" laneId="-1" s="200" offset="0"/></TargetPositionMaster><TargetPosition><LanePosition roadId="1" laneId="-1" s="100" offset="0"/></TargetPosition><FinalSpeed><AbsoluteSpeed value="${speed}"><TargetTimeSteadyState time="1"/></AbsoluteSpeed></FinalSpeed></SynchronizeAction></PrivateAction>`;
-    const cases = [
+    const EXTERNAL = '<ScenarioObject name="Far"><ExternalObjectReference name="elsewhere"/></ScenarioObject>';
+    const cases: { refused: string; runs: string; says: RegExp; entities?: (text: string) => string }[] = [
       {
         refused: event(speed, angle('RelativeAngleCondition')),
         runs: event(speed, angle('AngleCondition')),
@@ -705,18 +706,26 @@ describe('esmini: runs (the simulator built by the test setup)', function () {
         runs: event(synchronize('5'), atOne),
         says: /steady state with 0 or negative final speed/,
       },
+      {
+        refused: event(speed, atOne),
+        runs: event(speed, atOne),
+        says: /Failed to find object/,
+        entities: (text: string) => text.replace('<Entities>', `<Entities>${EXTERNAL}`),
+      },
     ];
     const root = temporaryFolder('m2s-esmini-refusals-');
     const main = path.join(root, 'main.xosc');
-    const write = (group: string) =>
+    const write = (group: string, entities: (text: string) => string = (text) => text) =>
       fs.writeFileSync(
         main,
-        drivingScenario('straight_500m.xodr', 'Drive')
-          .replace('revMinor="2"', 'revMinor="3"')
-          .replace('</ManeuverGroup>', `</ManeuverGroup>\n        ${group}`),
+        entities(
+          drivingScenario('straight_500m.xodr', 'Drive')
+            .replace('revMinor="2"', 'revMinor="3"')
+            .replace('</ManeuverGroup>', `</ManeuverGroup>\n        ${group}`),
+        ),
       );
-    for (const { refused, runs, says } of cases) {
-      write(refused);
+    for (const { refused, runs, says, entities } of cases) {
+      write(refused, entities);
       const errors = (await new Flattener(new ScenarioStore({ root }), 'esmini').analyze(diskRef(main))).problems.filter(
         (problem) => problem.code === 'simulator' && problem.severity === 'error',
       );
@@ -724,15 +733,19 @@ describe('esmini: runs (the simulator built by the test setup)', function () {
       const failed = await run(new ScenarioStore({ root }), main, { duration: 2 });
       assert.equal(failed.outcome, 'failed', `${says}: ${failed.message}`);
       assert.match(failed.log, says);
-      write(runs);
+      // The ExternalObjectReference after every other ScenarioObject: esmini reads them all.
+      write(runs, entities && ((text) => text.replace('</Entities>', `${EXTERNAL}</Entities>`)));
+      // No error: the ExternalObjectReference itself stays a warning (esmini runs without it).
       assert.deepEqual(
         (await new Flattener(new ScenarioStore({ root }), 'esmini').analyze(diskRef(main))).problems.filter(
-          (problem) => problem.code === 'simulator',
+          (problem) => problem.code === 'simulator' && (entities === undefined || problem.severity === 'error'),
         ),
         [],
       );
       const ran = await run(new ScenarioStore({ root }), main, { duration: 2 });
-      assert.equal(ran.outcome, 'ok', `${says}: ${ran.message}\n${ran.log.slice(-1500)}`);
+      // esmini logs the ExternalObjectReference as an [error] and runs on.
+      assert.equal(ran.outcome, entities ? 'errors' : 'ok', `${says}: ${ran.message}\n${ran.log.slice(-1500)}`);
+      assert.equal(ran.simulatedTime, 2, `${says}: ${ran.message}`);
     }
     fs.rmSync(root, { recursive: true, force: true });
   });

@@ -64,7 +64,12 @@ export const ESMINI_PROFILE: SimulatorProfile = {
       source: `${READER}:1854-2259`,
       note: 'its position reader has no GeoPosition and refuses the scenario ("Failed parse position in node Position")',
     },
-    { element: 'ExternalObjectReference', support: 'unsupported', source: COVERAGE },
+    {
+      element: 'ExternalObjectReference',
+      support: 'unsupported',
+      source: `${COVERAGE}, ${READER}:1656-1660`,
+      note: 'it logs "ExternalObjectReference not supported yet" and reads no ScenarioObject after it',
+    },
     { element: 'EntitySelection', support: 'unsupported', source: COVERAGE },
     { element: 'TimeOfDayCondition', support: 'unsupported', source: COVERAGE, note: 'the condition is ignored' },
     { element: 'UserDefinedValueCondition', support: 'unsupported', source: COVERAGE, note: 'the condition is ignored' },
@@ -162,6 +167,11 @@ export const ESMINI_FACTS = {
   triggeringActors: {
     does: 'takes a ManeuverGroup\'s actors only from the EntityRefs of its Actors, never from selectTriggeringEntities, and refuses to load a private action with none ("PrivateAction ... missing actor(s). SelectTriggeringEntities feature not supported yet")',
     source: `${READER}:5424-5444, 5304-5310`,
+    severity: 'error',
+  },
+  entitiesAfterExternal: {
+    does: 'stops reading the Entities at an ExternalObjectReference (parseEntities returns there), so a ScenarioObject after it does not exist for esmini, which refuses a reference to it ("Failed to find object")',
+    source: `${READER}:1656-1660, 270-281`,
     severity: 'error',
   },
   steadyStateStop: {

@@ -1,18 +1,39 @@
 import { esminiFactWording } from '../../diagnostics/simulator';
-import { attribute, descendants } from '../../xml';
+import { attribute, descendants, XmlElement } from '../../xml';
 import { at } from './support';
-import type { Finding, SemanticCheck } from './types';
+import type { Finding, SemanticCheck, SemanticContext } from './types';
 
 /*
  * What esmini refuses (an error) or runs otherwise than written (a warning) beyond one element or attribute at a
  * time (those are the profile's tables, core/profiles/esmini.ts), each finding stating its fact's source lines.
  */
 
-/** A SynchronizeAction's final AbsoluteSpeed of 0 or less followed by a steady state: esmini refuses it at load. */
+/** The ScenarioObjects after an ExternalObjectReference that the document references: esmini never reads them, and refuses the reference. */
+function entitiesAfterExternal(context: SemanticContext, root: XmlElement): Finding[] {
+  const objects =
+    root.children.find((child) => child.name === 'Entities')?.children.filter((child) => child.name === 'ScenarioObject') ?? [];
+  const external = objects.findIndex((object) => object.children.some((child) => child.name === 'ExternalObjectReference'));
+  if (external < 0) return [];
+  const referenced = new Set(context.model.entityReferences.map((reference) => reference.attribute.value));
+  const externalName = attribute(objects[external], 'name')?.value ?? '';
+  return objects.slice(external + 1).flatMap((object) => {
+    const name = attribute(object, 'name');
+    if (!name || !referenced.has(name.value)) return [];
+    return [
+      {
+        ...at(object, name),
+        ...esminiFactWording('entitiesAfterExternal', `'${name.value}' comes after '${externalName}', and the scenario references it`),
+      },
+    ];
+  });
+}
+
+/** What esmini refuses at load: a ScenarioObject after an ExternalObjectReference that is referenced, a SynchronizeAction's steady state to a stop. */
 export const esminiScenario: SemanticCheck = (context) => {
   const root = context.model.document.root;
   if (context.simulator !== 'esmini' || !root) return [];
-  const findings: Finding[] = [];
+  const findings: Finding[] = [...entitiesAfterExternal(context, root)];
+  // A SynchronizeAction's final AbsoluteSpeed of 0 or less followed by a steady state.
   for (const speed of descendants(root)) {
     if (speed.name !== 'AbsoluteSpeed' || speed.parent?.name !== 'FinalSpeed' || speed.children.length === 0) continue;
     const value = attribute(speed, 'value');
