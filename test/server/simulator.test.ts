@@ -216,6 +216,11 @@ describe('CARLA: a town that does not exist, as a user misspells it (Town5)', fu
     const refusal = result.problems.find((problem) => problem.severity === 'error' && /names the road 'Town5'/.test(problem.message));
     assert.ok(refusal, JSON.stringify(result.problems, null, 1));
     assert.match(refusal.message, /did you mean the town 'Town05'\?/);
+    // One error for one refusal: no second 'not exported: ...' at the file's first line (both were in the Problems view).
+    assert.deepEqual(
+      result.problems.filter((problem) => problem.severity === 'error' && /Town5/.test(problem.message)).map((problem) => problem.line),
+      [text.split('\n').findIndex((line) => line.includes('filepath="Town5"'))],
+    );
     assert.match(
       refusal.message,
       /write a CARLA town .* in the LogicFile, or add the folder .* \(--road-path DIR, the modular2simple\.esmini\.roadPath setting\)/,

@@ -4,7 +4,7 @@ import { insideFolders } from '../../../common/src/paths';
 import { ProblemSummary, WriteResult } from '../../../common/src/protocol';
 import { CarlaExportOptionError, CarlaExportOptions, CarlaLoss, exportForCarla } from '../core/export/carla';
 import { roadFolders } from '../core/semantics/roadFiles';
-import type { SourceRef } from '../core/sources';
+import { refId, type SourceRef } from '../core/sources';
 import { filePathOf } from '../uris';
 import { Workspace } from '../workspace';
 import { invalidParams, outsideConfirmed, refOf, summarize, writeOutput, writePackagedFiles } from './commands';
@@ -65,8 +65,13 @@ export async function exportForCarlaToFile(
     ...result.problems.map((problem) => summarize(workspace, problem)),
     ...result.losses.map((loss) => lossSummary(workspace, loss)),
   ];
-  if (result.text === undefined)
-    return { written: null, problems: [...problems, ...refusal(`not exported: ${result.refused ?? 'refused'}`).problems] };
+  if (result.text === undefined) {
+    // A refusal placed in this file is its own error already; the sentence at its first line is for one placed elsewhere
+    // (in an imported simple scenario) or not placed at all, not a second error for the same cause.
+    const placedHere = result.losses.some((loss) => loss.kind === 'refused' && refId(loss.source) === refId(ref));
+    const sentence = placedHere ? [] : refusal(`not exported: ${result.refused ?? 'refused'}`).problems;
+    return { written: null, problems: [...problems, ...sentence] };
+  }
   // A road packed with the scenario goes beside the export that names it, as flatten writes it.
   return (
     (await writePackagedFiles(workspace, result.files ?? [], problems, ref)) ?? writeOutput(workspace, output, result.text, problems, ref)
