@@ -1169,6 +1169,51 @@ describe('export --target carla, lane changes by time and speed changes by rate'
   });
 });
 
+describe('export --target carla, a trajectory without timing', function () {
+  this.timeout(300_000);
+  let out: string;
+  before(function () {
+    requireCorpus(this);
+  });
+  inTemporaryFolderEach('m2s-carla-untimed-', (folder) => (out = folder));
+
+  it("gives a vehicle's vertices the times its speed reaches them in, which ScenarioRunner's controller drives by (it drove to time-0 vertices at full speed); esmini runs it alike (issue 26)", async function () {
+    requireEsmini(this);
+    requireCarlaHarness(this);
+    const original = path.join(out, 'untimed.xosc');
+    const vertex = (x: number, time?: number): string =>
+      `<Vertex${time === undefined ? '' : ` time="${time}"`}><Position><WorldPosition x="${x}" y="-1.75" h="0"/></Position></Vertex>`;
+    // Lead at 20 m/s from x 60 (straight_500m.xodr, lane -1) follows a polyline with no timing: 40 m then 60 m more.
+    const follow = `<RoutingAction><FollowTrajectoryAction>
+                <TrajectoryRef><Trajectory name="Line" closed="false"><Shape><Polyline>${vertex(60)}${vertex(100, 7)}${vertex(160)}</Polyline></Shape></Trajectory></TrajectoryRef>
+                <TimeReference><None/></TimeReference>
+                <TrajectoryFollowingMode followingMode="position"/>
+              </FollowTrajectoryAction></RoutingAction>`;
+    const text = leadEventsScenario(leadEvent('Follow', 0, follow))
+      .replace(path.join(esminiRoads, 'e6mini.xodr'), path.join(esminiRoads, 'straight_500m.xodr'))
+      .replace(/roadId="0" laneId="-3" offset="0" s="20"/, 'roadId="1" laneId="-1" offset="0" s="20"')
+      .replace(/roadId="0" laneId="-3" offset="0" s="60"/, 'roadId="1" laneId="-1" offset="0" s="60"')
+      .replace('revMinor="0"', 'revMinor="1"');
+    fs.writeFileSync(original, text);
+    const exported = await exportFile(original, path.join(out, 'untimed.carla.xosc'));
+    assert.equal(exported.code, 0, exported.stderr);
+    const times = [...fs.readFileSync(exported.output, 'utf8').matchAll(/<Vertex time="([^"]+)"/g)].map((match) => match[1]);
+    assert.deepEqual(times, ['0', '2', '5']);
+    assert.deepEqual(
+      exported.report.losses.filter((loss) => loss.element === 'Vertex/@time').map((loss) => [loss.line, loss.what]),
+      [
+        [
+          lineHolding(text, '<Polyline>'),
+          'the trajectory has no timing: its 3 vertices are given the times the actor reaches them in at its speed 20 m/s (the time written, which no timing reads, replaced)',
+        ],
+      ],
+    );
+    await assertMovesAlike(original, exported.output, 8);
+    const verdict = (await harnessVerdicts([exported.output])).get(path.resolve(exported.output));
+    assert.equal(verdict?.status, 'OK', JSON.stringify(verdict));
+  });
+});
+
 describe('export --target carla, an AbsoluteTargetLane (ScenarioRunner crashes on it)', function () {
   this.timeout(300_000);
   let out: string;

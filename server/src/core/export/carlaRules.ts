@@ -20,6 +20,7 @@ import {
   cloneNode,
   fourDecimals,
   makeNode,
+  numberAttr,
   named,
   Node,
   removeAttr,
@@ -36,7 +37,7 @@ import { variables } from './carlaVariables';
 import { actorsOf, constantSpeedOf, startSpeedOf } from './scenarioTree';
 import { speedProfiles } from './speedProfiles';
 import { absoluteTargetLanes, laneChangesByDistance } from './laneChanges';
-import { trajectoryPoint } from './trajectoryPoint';
+import { polylinePoints, trajectoryPoint } from './trajectoryPoint';
 import { initStarts } from './initStarts';
 import { SAMPLE_STEP } from './shapes';
 
@@ -439,8 +440,9 @@ function trajectories(tree: Node, context: RuleContext): void {
         carla,
       );
     }
-    const timing = ancestor(action, 'Event') ? child(child(action, 'TimeReference') ?? action, 'Timing') : undefined;
+    const timing = child(child(action, 'TimeReference') ?? action, 'Timing');
     for (const polyline of named(action, 'Polyline')) {
+      if (!timing && untimedVertices(tree, action, polyline, context)) continue;
       const vertices = childrenNamed(polyline, 'Vertex');
       const missing = vertices.filter((vertex) => attr(vertex, 'time') === undefined);
       if (missing.length === 0) continue;
@@ -449,10 +451,64 @@ function trajectories(tree: Node, context: RuleContext): void {
         polyline,
         'Vertex/@time',
         `${missing.length} vertices without a time are given time 0`,
-        `1.0 requires a vertex time; ScenarioRunner ${timing ? 'reads the times' : 'passes the times to the controller, which ignores them when the trajectory has no timing'} (${SR_PARSER} get_trajectory)`,
+        `1.0 requires a vertex time; ScenarioRunner ${timing ? 'reads the times' : untimedReading(tree, action)} (${SR_PARSER} get_trajectory)`,
       );
     }
   }
+}
+
+/**
+ * A trajectory without timing is followed at the actor's speed (the standard ignores its vertex times; so does esmini), but
+ * ScenarioRunner's vehicle controller drives to each vertex by its time (CARLA_FACTS.trajectoryTimesSetSpeed): a vehicle's
+ * vertices are given the times its speed reaches them in. Returns whether it wrote them.
+ */
+function untimedVertices(tree: Node, action: Node, polyline: Node, context: RuleContext): boolean {
+  const actors = actorsOf(action);
+  const object = named(tree, 'ScenarioObject').find((each) => attr(each, 'name') === actors[0]);
+  if (actors.length !== 1 || !object || !child(object, 'Vehicle')) return false;
+  const constant = constantSpeedOf(tree, actors[0], action);
+  const speed = Math.abs(constant ?? startSpeedOf(tree, actors[0]) ?? 0);
+  const points = speed > 0 ? vertexDistances(polyline, context.roads) : undefined;
+  if (!points) return false;
+  const vertices = childrenNamed(polyline, 'Vertex');
+  const written = vertices.filter((vertex) => attr(vertex, 'time') !== undefined).length;
+  vertices.forEach((vertex, index) => setAttr(vertex, 'time', fourDecimals(points[index] / speed)));
+  const fact = CARLA_FACTS.trajectoryTimesSetSpeed;
+  context.sink.approximated(
+    polyline,
+    'Vertex/@time',
+    `the trajectory has no timing: its ${vertices.length} vertices are given the times the actor reaches them in at ${
+      constant === undefined ? `its start speed ${speed} m/s (its speed may change before or on the way)` : `its speed ${speed} m/s`
+    }${written > 0 ? ` (${written === 1 ? 'the time' : `the ${written} times`} written, which no timing reads, replaced)` : ''}`,
+    `ScenarioRunner ${fact.does} (${fact.source})`,
+  );
+  return true;
+}
+
+/** What ScenarioRunner does with the times of a trajectory without timing: its vehicle controller drives by them, its pedestrian controller ignores them. */
+function untimedReading(tree: Node, action: Node): string {
+  const object = named(tree, 'ScenarioObject').find((each) => attr(each, 'name') === actorsOf(action)[0]);
+  if (object && !child(object, 'Vehicle'))
+    return 'passes the times on, and its pedestrian controller does not read them (pedestrian_control.py)';
+  return `${CARLA_FACTS.trajectoryTimesSetSpeed.does} (${CARLA_FACTS.trajectoryTimesSetSpeed.source})`;
+}
+
+/** How far along the polyline each vertex lies, where the places are known: world, lane or road positions, or offsets from one entity. */
+function vertexDistances(polyline: Node, roads: RoadNetwork | undefined): number[] | undefined {
+  const positions = childrenNamed(polyline, 'Vertex').map((vertex) => child(vertex, 'Position')?.children[0]);
+  let points: { x: number; y: number }[] | string;
+  const references = new Set(positions.map((position) => (position ? attr(position, 'entityRef') : undefined)));
+  if (
+    positions.every((position) => position?.name === 'RelativeWorldPosition' || position?.name === 'RelativeObjectPosition') &&
+    references.size === 1
+  )
+    points = positions.map((position) => ({ x: numberAttr(position as Node, 'dx', NaN), y: numberAttr(position as Node, 'dy', NaN) }));
+  else points = polylinePoints(polyline, roads);
+  if (typeof points === 'string' || points.some((point) => !Number.isFinite(point.x) || !Number.isFinite(point.y))) return undefined;
+  let along = 0;
+  return points.map(
+    (point, index) => (along += index === 0 ? 0 : Math.hypot(point.x - points[index - 1].x, point.y - points[index - 1].y)),
+  );
 }
 
 /** A position ScenarioRunner cannot convert: refused where it places an actor at the start, else its condition or action dropped. */

@@ -61,6 +61,7 @@ export function constantSpeedOf(tree: Node, actor: string, except?: Node, throug
   let speed: number | undefined;
   for (const privateNode of named(init, 'Private').filter((each) => attr(each, 'entityRef') === actor))
     for (const action of named(privateNode, SPEED_CHANGING)) {
+      if (!changesSpeed(action)) continue;
       const dynamics = action.name === 'SpeedAction' ? named(action, 'SpeedActionDynamics')[0] : undefined;
       if (action.name !== 'SpeedAction' || speed !== undefined || (dynamics && attr(dynamics, 'dynamicsShape') !== 'step'))
         return undefined;
@@ -69,13 +70,18 @@ export function constantSpeedOf(tree: Node, actor: string, except?: Node, throug
   if (speed === undefined || !Number.isFinite(speed)) return undefined;
   for (const story of childrenNamed(storyboard, 'Story'))
     for (const action of named(story, SPEED_CHANGING)) {
-      if (action === except) continue;
+      if (action === except || !changesSpeed(action)) continue;
       const group = ancestor(action, 'ManeuverGroup');
       const actors = group ? child(group, 'Actors') : undefined;
       // Triggering entities are known only when the run decides them: any of them may be this actor.
       if (!actors || attr(actors, 'selectTriggeringEntities') === 'true' || actorsOf(action).includes(actor)) return undefined;
     }
   return speed;
+}
+
+/** A trajectory without timing is followed at the speed the actor has (the standard ignores its vertex times): it changes no speed. */
+function changesSpeed(action: Node): boolean {
+  return action.name !== 'FollowTrajectoryAction' || child(child(action, 'TimeReference') ?? action, 'Timing') !== undefined;
 }
 
 /** An Init SpeedAction's target: absolute, or relative to an entity whose own speed is constant (esmini sets it once at the start). */

@@ -302,6 +302,11 @@ export const CARLA_FACTS = {
     source: `${PARSER}:1402-1404, ${RUNNER}:279`,
     severity: 'warning',
   },
+  trajectoryTimesSetSpeed: {
+    does: "drives a vehicle (NpcVehicleControl, its default controller) to each trajectory vertex at the speed its time asks, with or without timing; a time already past asks the vertex's distance in a thousandth of a second, full speed",
+    source: `srunner/scenariomanager/actorcontrols/npc_vehicle_control.py:103-113, ${PARSER}:1509-1513`,
+    severity: 'warning',
+  },
   longitudinalGapBehindOnly: {
     does: "keeps a LongitudinalDistanceAction's gap only while the reference is ahead of the actor (KeepLongitudinalGap: is_within_distance of 0 to 90 degrees); an actor ahead of its reference is driven at its maximum speed instead",
     source: `${ATOMICS}:4576-4592`,
