@@ -47,12 +47,13 @@ const TEMPLATES: Template[] = [
     name: 'composition-bench',
     title: 'Composition bench',
     summary:
-      'An ego driving at 20 m/s in the leftmost lane of this direction, with a car in the lane to its right, a lead car ahead in its lane and a pedestrian on the right sidewalk, none of them doing anything yet: Insert into Main gives them library behaviours (adversary, lead, pedestrian).',
+      'An ego driving at 20 m/s in the leftmost lane of this direction, with a car in the lane to its right, a slower lead car (12 m/s) ahead in its lane and a pedestrian on the right sidewalk, none of them doing anything yet: Insert into Main gives them library behaviours (adversary, lead, pedestrian).',
     parameters: [{ name: 'EgoSpeed', type: 'double', value: '20', about: 'the ego speed [m/s]' }],
     entities: [
       { entity: 'ego', from: ['cut-in', 'ego'], lane: -1, s: 50, speed: '$EgoSpeed' },
       { entity: 'adversary', from: ['cut-in', 'adversary'], lane: -2, s: 85, speed: '17' },
-      { entity: 'lead', from: ['lead-brake', 'lead'], lane: -1, s: 150, speed: '20' },
+      // Slower than the ego, so that the lead-brake module's default headway (1.5 s) comes within the bench's 12 s: at about 8 s.
+      { entity: 'lead', from: ['lead-brake', 'lead'], lane: -1, s: 150, speed: '12' },
       { entity: 'pedestrian', from: ['pedestrian-crossing', 'pedestrian'], lane: -4, s: 220, offset: 0.75, heading: 1.5708, speed: '0' },
     ],
     uses: [],

@@ -3,6 +3,8 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { main } from '../../server/src/cli';
 import { builtInLibraryFolder, listTemplates } from '../../server/src/libraries';
+import { readModule } from '../../server/src/core/library';
+import { insertModuleGroup } from '../../server/src/core/libraryInsert';
 import { templateFiles } from '../../scripts/library-templates';
 import { requireEsmini, runEsmini, tracksOf } from '../support/esmini';
 import { temporaryFolder } from '../support/temporaryDirectory';
@@ -137,6 +139,32 @@ describe('library templates: mains composed from library modules for test protoc
       const each = track(tracks, name);
       assert.ok(Math.abs(each[each.length - 1].y - each[0].y) < 1e-6, `${name} moved sideways`);
     }
+  });
+
+  it('the composition bench with a cut-in, a lead brake and a pedestrian crossing inserted at their defaults: each behaviour happens in its 12 s', async function () {
+    requireEsmini(this);
+    let text = fs.readFileSync(path.join(templatesFolder, 'composition-bench.xosc'), 'utf8');
+    // As Insert into Main does it: the bench's entities play the modules' roles, every key at its default.
+    for (const [name, players] of [
+      ['cut-in', { ego: 'ego', adversary: 'adversary' }],
+      ['lead-brake', { ego: 'ego', lead: 'lead' }],
+      ['pedestrian-crossing', { ego: 'ego', pedestrian: 'pedestrian' }],
+    ] as const) {
+      const file = path.join(library, `${name}.xosc`);
+      const { module } = readModule(fs.readFileSync(file, 'utf8'), file, { folder: library, label: 'built-in' });
+      assert.ok(module, name);
+      const group = insertModuleGroup(text, module, { players });
+      text = text.slice(0, group.offset) + group.text + text.slice(group.offset);
+    }
+    const composed = path.join(work, 'composed-bench.xosc');
+    // Written elsewhere than the template, its road named where it is.
+    fs.writeFileSync(composed, text.replace('../roads/straight_1000m.xodr', path.join(library, 'roads', 'straight_1000m.xodr')));
+    const tracks = await run(composed, work, 12);
+    const [adversary, lead, pedestrian, ego] = ['adversary', 'lead', 'pedestrian', 'ego'].map((name) => track(tracks, name));
+    assert.ok(Math.abs(adversary[adversary.length - 1].y - ego[0].y) < 0.05, 'the adversary never cut into the ego lane');
+    const leadSpeeds = lead.slice(0, -1).map((_, index) => speedAt(lead, index));
+    assert.ok(Math.min(...leadSpeeds) < leadSpeeds[0] - 2, `the lead never braked: ${leadSpeeds.map((each) => each.toFixed(1)).join(' ')}`);
+    assert.ok(Math.abs(pedestrian[pedestrian.length - 1].y - pedestrian[0].y) > 2, 'the pedestrian never crossed');
   });
 
   it('library new TEMPLATE -o FILE writes the scenario, its road and its distribution, clean under check; it never replaces a file', async function () {
