@@ -7,9 +7,9 @@ import type { RoadNetwork } from '../opendrive/road';
 import { laneCenterT, laneSectionIndexAt } from '../opendrive/road';
 import { SR_PARSER } from './carlaFacts';
 import type { LossSink } from './carlaLosses';
+import { dropUnit } from './carlaLosses';
 import { actorsOf, constantSpeedOf, fromInit, startSpeedOf } from './scenarioTree';
 import { ancestor, attr, fourDecimals, makeNode, named, Node, replaceNode, setAttr } from './tree';
-import { dropUnit } from './carlaLosses';
 
 /** Where the Init places an actor, when it is a LanePosition of its TeleportAction. */
 export interface StartLane {
@@ -21,33 +21,24 @@ export interface StartLane {
 
 /** The LanePosition the Init teleports the actor to, or a RelativeLanePosition from an entity it places so (esmini counts dLane as a lane change counts, ds along the reference's direction). */
 export function startLanePositionOf(tree: Node, actor: string, through: ReadonlySet<string> = new Set()): StartLane | undefined {
-  let found: StartLane | undefined;
-  fromInit(tree, actor, (privateNode) => {
+  return fromInit(tree, actor, (privateNode): StartLane | undefined => {
     const position = named(privateNode, new Set(['LanePosition', 'RelativeLanePosition'])).find((each) => ancestor(each, 'TeleportAction'));
     if (!position) return undefined;
+    const offset = Number(attr(position, 'offset') ?? 0);
     if (position.name === 'LanePosition')
-      found = {
-        roadId: attr(position, 'roadId') ?? '',
-        laneId: Number(attr(position, 'laneId')),
-        s: Number(attr(position, 's')),
-        offset: Number(attr(position, 'offset') ?? 0),
-      };
-    else {
-      const reference = attr(position, 'entityRef') ?? '';
-      const from = through.has(reference) ? undefined : startLanePositionOf(tree, reference, new Set([...through, actor]));
-      const dLane = Number(attr(position, 'dLane'));
-      const ds = Number(attr(position, 'ds') ?? 0);
-      if (from && Number.isInteger(dLane) && Number.isFinite(ds) && from.laneId !== 0)
-        found = {
-          roadId: from.roadId,
-          laneId: dLane === 0 ? from.laneId : relativeTargetLane(from.laneId, dLane),
-          s: from.s + (from.laneId < 0 ? ds : -ds),
-          offset: Number(attr(position, 'offset') ?? 0),
-        };
-    }
-    return 1;
+      return { roadId: attr(position, 'roadId') ?? '', laneId: Number(attr(position, 'laneId')), s: Number(attr(position, 's')), offset };
+    const reference = attr(position, 'entityRef') ?? '';
+    const from = through.has(reference) ? undefined : startLanePositionOf(tree, reference, new Set([...through, actor]));
+    const dLane = Number(attr(position, 'dLane'));
+    const ds = Number(attr(position, 'ds') ?? 0);
+    if (!from || !Number.isInteger(dLane) || !Number.isFinite(ds) || from.laneId === 0) return undefined;
+    return {
+      roadId: from.roadId,
+      laneId: dLane === 0 ? from.laneId : relativeTargetLane(from.laneId, dLane),
+      s: from.s + (from.laneId < 0 ? ds : -ds),
+      offset,
+    };
   });
-  return found;
 }
 
 /** The lateral speed of esmini's transition shapes at u in [0, 1] for a change `across` over `seconds` (OSCPrivateAction.cpp TransitionDynamics). */
@@ -94,15 +85,12 @@ function relativeValueTo(from: number, to: number, forward: boolean): number | u
 /** Whether the actor drives along s where the Init places it: by its lane's side and the road's traffic rule (esmini's default heading), unless a relative Orientation turns it round. */
 function drivesAlongS(tree: Node, actor: string, start: StartLane, roads: RoadNetwork | undefined): boolean {
   const leftHand = roads?.byId.get(start.roadId)?.leftHandTraffic ?? false;
-  let turned = false;
-  fromInit(tree, actor, (privateNode) => {
-    const lane = named(privateNode, 'LanePosition').find((each) => ancestor(each, 'TeleportAction'));
-    const orientation = lane ? named(lane, 'Orientation')[0] : undefined;
-    if (!orientation) return undefined;
-    const heading = Number(attr(orientation, 'h') ?? 0);
-    turned = attr(orientation, 'type') === 'relative' && Math.cos(heading) < 0;
-    return 1;
-  });
+  const turned =
+    fromInit(tree, actor, (privateNode) => {
+      const lane = named(privateNode, 'LanePosition').find((each) => ancestor(each, 'TeleportAction'));
+      const orientation = lane ? named(lane, 'Orientation')[0] : undefined;
+      return orientation ? attr(orientation, 'type') === 'relative' && Math.cos(Number(attr(orientation, 'h') ?? 0)) < 0 : undefined;
+    }) ?? false;
   return (start.laneId < 0 !== leftHand) !== turned;
 }
 

@@ -2,7 +2,7 @@
 import { ancestor, attr, child, childrenNamed, named, Node } from './tree';
 
 /** The first value `read` finds in the actor's Init Privates (the Storyboard's Init: the only place the schema has one). */
-export function fromInit(tree: Node, actor: string, read: (privateNode: Node) => number | undefined): number | undefined {
+export function fromInit<T>(tree: Node, actor: string, read: (privateNode: Node) => T | undefined): T | undefined {
   const storyboard = child(tree, 'Storyboard');
   const init = storyboard ? child(storyboard, 'Init') : undefined;
   const privates = init ? named(init, 'Private').filter((privateNode) => attr(privateNode, 'entityRef') === actor) : [];
