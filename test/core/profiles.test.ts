@@ -307,6 +307,9 @@ describe('simulator profiles', () => {
     ]);
     assert.equal((await refusals(synchronize('$Stop'))).length, 1);
     assert.deepEqual(await refusals(synchronize('5')), []);
+    // esmini's SMALL_NUMBER is 1e-6 (CommonMini.hpp): a final speed below it is a stop to esmini, one above it is not.
+    assert.equal((await refusals(synchronize('0.0000005'))).length, 1);
+    assert.deepEqual(await refusals(synchronize('0.000002')), []);
     assert.deepEqual(await refusals(synchronize('0', '')), []);
     assert.deepEqual(await refusals(synchronize('0'), 'asam'), []);
   });

@@ -30,7 +30,7 @@ export interface RoutePoint {
 }
 
 /** esmini's SMALL_NUMBER (CommonMini.hpp). */
-const SMALL = 1e-10;
+const SMALL = 1e-6;
 /** RoadPath::Calculate gives up after this many road ends. */
 const MAX_STEPS = 100;
 /** Equally near road ends whose order is tried, at most this many searches in all, before the route is called ambiguous unread. */

@@ -38,8 +38,8 @@ export const esminiScenario: SemanticCheck = (context) => {
     if (speed.name !== 'AbsoluteSpeed' || speed.parent?.name !== 'FinalSpeed' || speed.children.length === 0) continue;
     const value = attribute(speed, 'value');
     const text = value && context.evaluator.textOf(speed, value);
-    // esmini compares with SMALL_NUMBER (1e-10); a value it cannot read is another check's.
-    if (text === undefined || text.trim() === '' || !(Number(text) < 1e-10)) continue;
+    // esmini compares with SMALL_NUMBER (CommonMini.hpp: 1e-6); a value it cannot read is another check's.
+    if (text === undefined || text.trim() === '' || !(Number(text) < 1e-6)) continue;
     findings.push({
       ...at(speed, value),
       ...esminiFactWording('steadyStateStop', `a final speed of ${text.trim()} with <${speed.children[0].name}>`),
