@@ -9,6 +9,7 @@ import { pointAlongRoute, RouteWaypoint } from '../opendrive/route';
 import { baseName } from '../sources';
 import { CarlaRelease, SR_ATOMICS, SR_CONFIGURATION, SR_PARSER, SR_SCENARIO } from './carlaFacts';
 import { CARLA_FACTS, CARLA_PROFILE } from '../profiles/carla';
+import { ESMINI_SMALL_NUMBER } from '../profiles/esmini';
 import { breaks } from '../profiles/checks';
 import {
   allNodes,
@@ -34,9 +35,9 @@ import { sampledShape, sampledWorldPoints, TrajectoryEnds } from './carlaTraject
 import { dropUnit } from './carlaLosses';
 import type { CarlaLoss, LossSink } from './carlaLosses';
 import { variables } from './carlaVariables';
-import { actorsOf, constantSpeedOf, startSpeedOf } from './scenarioTree';
+import { actorsOf, constantSpeedOf, scenarioObjectOf, startSpeedOf } from './scenarioTree';
 import { speedProfiles } from './speedProfiles';
-import { absoluteTargetLanes, laneChangesByDistance } from './laneChanges';
+import { absoluteTargetLanes, laneChangesByDistance, PEAK_FACTOR } from './laneChanges';
 import { polylinePoints, trajectoryPoint } from './trajectoryPoint';
 import { initStarts } from './initStarts';
 import { SAMPLE_STEP } from './shapes';
@@ -464,8 +465,7 @@ function trajectories(tree: Node, context: RuleContext): void {
  */
 function untimedVertices(tree: Node, action: Node, polyline: Node, context: RuleContext): boolean {
   const actors = actorsOf(action);
-  const object = named(tree, 'ScenarioObject').find((each) => attr(each, 'name') === actors[0]);
-  if (actors.length !== 1 || !object || !child(object, 'Vehicle')) return false;
+  if (actors.length !== 1 || !isVehicle(tree, actors[0])) return false;
   const constant = constantSpeedOf(tree, actors[0], action);
   const speed = Math.abs(constant ?? startSpeedOf(tree, actors[0]) ?? 0);
   const points = speed > 0 ? vertexDistances(polyline, context.roads) : undefined;
@@ -487,10 +487,15 @@ function untimedVertices(tree: Node, action: Node, polyline: Node, context: Rule
 
 /** What ScenarioRunner does with the times of a trajectory without timing: its vehicle controller drives by them, its pedestrian controller ignores them. */
 function untimedReading(tree: Node, action: Node): string {
-  const object = named(tree, 'ScenarioObject').find((each) => attr(each, 'name') === actorsOf(action)[0]);
-  if (object && !child(object, 'Vehicle'))
+  if (scenarioObjectOf(tree, actorsOf(action)[0]) && !isVehicle(tree, actorsOf(action)[0]))
     return 'passes the times on, and its pedestrian controller does not read them (pedestrian_control.py)';
   return `${CARLA_FACTS.trajectoryTimesSetSpeed.does} (${CARLA_FACTS.trajectoryTimesSetSpeed.source})`;
+}
+
+/** Whether the entity is a Vehicle (a catalog entry is inlined by now). */
+function isVehicle(tree: Node, name: string): boolean {
+  const object = scenarioObjectOf(tree, name);
+  return object !== undefined && child(object, 'Vehicle') !== undefined;
 }
 
 /** How far along the polyline each vertex lies, where the places are known: world, lane or road positions, or offsets from one entity. */
@@ -895,9 +900,6 @@ const NUMBER_CONDITIONS: ReadonlySet<string> = new Set([
   'TimeToCollisionCondition',
 ]);
 
-/** esmini compares a number within SMALL_NUMBER (CommonMini.hpp: 1e-6; OSCCondition.cpp EvaluateRule: a >= b - 1e-6, a > b + 1e-6). */
-const ESMINI_TOLERANCE = 1e-6;
-
 /**
  * A number condition's `greaterOrEqual v` is 1.0's `greaterThan v - 2e-6` (and `lessOrEqual` the mirror): esmini holds the two at
  * the same values, and ScenarioRunner (no tolerance) at v itself, where a simulation time lands exactly; returns whether it wrote one.
@@ -905,7 +907,8 @@ const ESMINI_TOLERANCE = 1e-6;
 function strictThreshold(node: Node, rule: string): boolean {
   const value = Number(attr(node, 'value'));
   if (!NUMBER_CONDITIONS.has(node.name) || attr(node, 'value') === undefined || !Number.isFinite(value)) return false;
-  const shift = 2 * ESMINI_TOLERANCE * (rule === 'greaterOrEqual' ? -1 : 1);
+  // esmini compares within SMALL_NUMBER (OSCCondition.cpp EvaluateRule: a >= b - SMALL_NUMBER, a > b + SMALL_NUMBER).
+  const shift = 2 * ESMINI_SMALL_NUMBER * (rule === 'greaterOrEqual' ? -1 : 1);
   setAttr(node, 'rule', RULE_VALUES[rule]);
   setAttr(node, 'value', String(Number((value + shift).toFixed(9))));
   return true;
@@ -1035,9 +1038,6 @@ function ignoredSemantics(tree: Node, context: RuleContext): void {
   );
 }
 
-/** How long esmini's transition of `shape` takes for a change of `change` at a peak rate `rate` (esmini OSCPrivateAction.cpp EvaluatePrimPeak: the rate is the peak slope). */
-const RATE_DURATION_FACTOR: Readonly<Record<string, number>> = { linear: 1, sinusoidal: Math.PI / 2, cubic: 3 / 2 };
-
 /**
  * A SpeedAction's rate (ScenarioRunner reads it as a duration, CARLA_FACTS.speedRateAsDuration) is written as the time the
  * change takes where the speed it starts from is certain (scenarioTree constantSpeedOf); elsewhere it is kept as written, and reported.
@@ -1067,7 +1067,7 @@ function speedRates(tree: Node, context: RuleContext): void {
 function rateAsSeconds(tree: Node, dynamics: Node, rate: number): number | undefined {
   const action = ancestor(dynamics, 'SpeedAction');
   const target = action ? named(action, 'AbsoluteTargetSpeed')[0] : undefined;
-  const factor = RATE_DURATION_FACTOR[attr(dynamics, 'dynamicsShape') ?? ''];
+  const factor = PEAK_FACTOR[attr(dynamics, 'dynamicsShape') ?? ''];
   const event = action ? ancestor(action, 'Event') : undefined;
   if (!action || !target || factor === undefined || !event || !(rate !== 0 && Number.isFinite(rate))) return undefined;
   if (Number(attr(event, 'maximumExecutionCount') ?? 1) !== 1) return undefined;

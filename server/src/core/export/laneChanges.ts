@@ -48,8 +48,8 @@ const LATERAL_SPEED: Readonly<Record<string, (u: number, across: number, seconds
   cubic: (u, across, seconds) => (6 * across * u * (1 - u)) / seconds,
 };
 
-/** How long a change `across` takes at a peak lateral speed `rate`: esmini reads a rate as the shape's peak slope (EvaluatePrimPeak). */
-const PEAK_FACTOR: Readonly<Record<string, number>> = { linear: 1, sinusoidal: Math.PI / 2, cubic: 3 / 2 };
+/** How long a change takes at a peak rate, × change / rate: esmini reads a rate as the shape's peak slope (OSCPrivateAction.cpp EvaluatePrimPeak), of a speed change as of a lane change. */
+export const PEAK_FACTOR: Readonly<Record<string, number>> = { linear: 1, sinusoidal: Math.PI / 2, cubic: 3 / 2 };
 
 /**
  * The distance along the road covered in `seconds` at `speed` while moving `across` in `shape`: esmini's time dimension takes

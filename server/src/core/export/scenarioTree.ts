@@ -13,6 +13,12 @@ export function fromInit<T>(tree: Node, actor: string, read: (privateNode: Node)
   return undefined;
 }
 
+/** The entity of that name (a ScenarioObject of the Entities), if the scenario has one. */
+export function scenarioObjectOf(tree: Node, name: string): Node | undefined {
+  const entities = child(tree, 'Entities');
+  return entities ? childrenNamed(entities, 'ScenarioObject').find((each) => attr(each, 'name') === name) : undefined;
+}
+
 /** The actor's speed set in its Init (an absolute SpeedAction): the nominal speed of a time gap, and where a speed profile starts. */
 export function startSpeedOf(tree: Node, actor: string, through: ReadonlySet<string> = new Set()): number | undefined {
   return fromInit(tree, actor, (privateNode) => {
@@ -56,7 +62,7 @@ export function constantSpeedOf(tree: Node, actor: string, except?: Node, throug
   const storyboard = child(tree, 'Storyboard');
   const init = storyboard ? child(storyboard, 'Init') : undefined;
   if (!storyboard || !init) return undefined;
-  const object = named(tree, 'ScenarioObject').find((each) => attr(each, 'name') === actor);
+  const object = scenarioObjectOf(tree, actor);
   if (!object || child(object, 'ObjectController')) return undefined;
   let speed: number | undefined;
   for (const privateNode of named(init, 'Private').filter((each) => attr(each, 'entityRef') === actor))

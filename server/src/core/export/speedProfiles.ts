@@ -10,7 +10,7 @@
  */
 import { SR_ATOMICS, SR_PARSER } from './carlaFacts';
 import { dropUnit, type LossSink } from './carlaLosses';
-import { actorsOf, startSpeedOf } from './scenarioTree';
+import { actorsOf, scenarioObjectOf, startSpeedOf } from './scenarioTree';
 import {
   ancestor,
   appendChild,
@@ -42,8 +42,7 @@ function limitOf(profile: Node, tree: Node, actor: string, which: 'maxAccelerati
   const constraints = child(profile, 'DynamicConstraints');
   const given = constraints ? Number(attr(constraints, which)) : NaN;
   if (!(given > 0)) return Infinity;
-  const entities = child(tree, 'Entities');
-  const object = entities ? childrenNamed(entities, 'ScenarioObject').find((each) => attr(each, 'name') === actor) : undefined;
+  const object = scenarioObjectOf(tree, actor);
   const performance = object ? named(object, 'Performance')[0] : undefined;
   const capped = performance ? Number(attr(performance, which)) : NaN;
   return capped > 0 ? Math.min(given, capped) : given;

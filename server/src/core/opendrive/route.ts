@@ -29,7 +29,7 @@ export interface RoutePoint {
   roads: string[];
 }
 
-/** esmini's SMALL_NUMBER (CommonMini.hpp). */
+/** esmini's SMALL_NUMBER (CommonMini.hpp), as profiles/esmini.ts gives it: opendrive/ sits beside profiles/ and may not import it. */
 const SMALL = 1e-6;
 /** RoadPath::Calculate gives up after this many road ends. */
 const MAX_STEPS = 100;

@@ -5,6 +5,9 @@ import { SimulatorFact, SimulatorProfile } from './facts';
 // scenario reader (EnvironmentSimulator/Modules/ScenarioEngine/SourceFiles/ScenarioReader.cpp) does
 // not implement them either (it does implement VariableCondition, TrafficSignalCondition and
 // TrafficSignalStateAction, which osc_coverage.txt still lists as missing).
+/** esmini's SMALL_NUMBER (EnvironmentSimulator/Modules/CommonMini/CommonMini.hpp:52, its only definition): its tolerance when it compares numbers. */
+export const ESMINI_SMALL_NUMBER = 1e-6;
+
 const COVERAGE = 'osc_coverage.txt';
 const READER = 'EnvironmentSimulator/Modules/ScenarioEngine/SourceFiles/ScenarioReader.cpp';
 // How esmini computes values, read in the same revision (release 3.6.0): every parameter value is kept

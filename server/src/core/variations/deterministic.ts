@@ -1,3 +1,4 @@
+import { ESMINI_SMALL_NUMBER } from '../profiles/esmini';
 import { DeterministicDistribution, ParameterValue, VariationProblem } from './distribution';
 
 /**
@@ -11,9 +12,6 @@ import { DeterministicDistribution, ParameterValue, VariationProblem } from './d
  * Differences, on purpose: esmini refuses `UserDefinedDistribution` (here `type="list"` is expanded in order),
  * loops forever on a step <= 0 and counts in 32 bits (here: an error, and exact counts).
  */
-
-/** esmini's SMALL_NUMBER, added to a range's upper limit so that an accumulated value a hair above it still counts. */
-const ESMINI_SMALL_NUMBER = 1e-6;
 
 /** More values than this in one range are refused: each is kept, and esmini would take hours. */
 export const MAX_RANGE_VALUES = 1_000_000;
@@ -81,6 +79,7 @@ export function expandDeterministic(
 /** The values of a DistributionRange, exactly as esmini steps and prints them. */
 export function rangeValues(lower: number, upper: number, step: number): string[] {
   const values: string[] = [];
+  // esmini's SMALL_NUMBER, added to the upper limit so that an accumulated value a hair above it still counts.
   const end = upper + ESMINI_SMALL_NUMBER;
   for (let value = lower; value < end; value += step) values.push(formatFixed6(value));
   return values;

@@ -1,4 +1,5 @@
 import { esminiFactWording } from '../../diagnostics/simulator';
+import { ESMINI_SMALL_NUMBER } from '../../profiles/esmini';
 import { attribute, descendants, XmlElement } from '../../xml';
 import { at } from './support';
 import type { Finding, SemanticCheck, SemanticContext } from './types';
@@ -38,8 +39,8 @@ export const esminiScenario: SemanticCheck = (context) => {
     if (speed.name !== 'AbsoluteSpeed' || speed.parent?.name !== 'FinalSpeed' || speed.children.length === 0) continue;
     const value = attribute(speed, 'value');
     const text = value && context.evaluator.textOf(speed, value);
-    // esmini compares with SMALL_NUMBER (CommonMini.hpp: 1e-6); a value it cannot read is another check's.
-    if (text === undefined || text.trim() === '' || !(Number(text) < 1e-6)) continue;
+    // esmini compares with SMALL_NUMBER; a value it cannot read is another check's.
+    if (text === undefined || text.trim() === '' || !(Number(text) < ESMINI_SMALL_NUMBER)) continue;
     findings.push({
       ...at(speed, value),
       ...esminiFactWording('steadyStateStop', `a final speed of ${text.trim()} with <${speed.children[0].name}>`),
