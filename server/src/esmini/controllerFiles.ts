@@ -1,4 +1,5 @@
 import * as path from 'node:path';
+import { applyEdits, TextEdit } from '../core/flatten/edits';
 import type { CatalogReferenceResolution } from '../core/semantics/catalogs';
 import { Evaluator, semanticModelOf } from '../core/semantics/model';
 import { attribute, descendants, escapeAttributeValue, parseXml, XmlElement } from '../core/xml';
@@ -30,7 +31,7 @@ export function withControllerFilesFrom(
     const original = path.resolve(scenarioFolder, written);
     return !exists(path.resolve(runFolder, written)) && exists(original) ? original : undefined;
   };
-  const edits: { start: number; end: number; text: string }[] = [];
+  const edits: TextEdit[] = [];
   for (const holder of [root, ...descendants(root)]) {
     if (holder.name !== 'ObjectController' && holder.name !== 'AssignControllerAction') continue;
     for (const child of holder.children) {
@@ -52,9 +53,7 @@ export function withControllerFilesFrom(
       }
     }
   }
-  let result = text;
-  for (const edit of edits.sort((a, b) => b.start - a.start)) result = result.slice(0, edit.start) + edit.text + result.slice(edit.end);
-  return result;
+  return applyEdits(text, edits);
 }
 
 /** A Controller's `Properties/File` element and its filepath attribute. */
@@ -76,7 +75,7 @@ function catalogReferenceEdit(
   evaluator: Evaluator,
   references: readonly CatalogReferenceResolution[],
   reached: (written: string | undefined) => string | undefined,
-): { start: number; end: number; text: string } | undefined {
+): TextEdit | undefined {
   const catalogName = evaluator.textOf(reference, attribute(reference, 'catalogName'))?.trim();
   const entryName = evaluator.textOf(reference, attribute(reference, 'entryName'))?.trim();
   const entry = references.find((each) => each.catalogName === catalogName && each.entryName === entryName)?.entry?.element;
