@@ -263,6 +263,82 @@ describe('simulator profiles', () => {
     assert.deepEqual(messages('asam', scenarioText('3', '', swarm('') + lateral(' displacement="any"'))), []);
   });
 
+  // The pattern of esmini's own Catalogs/ (corpus): entries that no scenario of the folder references, flagged in the catalog before.
+  it('an element a simulator does not run in a catalog entry is flagged on the CatalogReference that uses the entry, not in the catalog, nor for an entry no scenario uses', async () => {
+    const route = (name: string, position: string) =>
+      `<Route name="${name}" closed="false"><Waypoint routeStrategy="shortest"><Position>${position}</Position></Waypoint><Waypoint routeStrategy="shortest"><Position><WorldPosition x="1" y="2"/></Position></Waypoint></Route>`;
+    const geo = '<GeoPosition latitudeDeg="0.001" longitudeDeg="0.001"/>';
+    const catalog = `<?xml version="1.0"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="3" date="2026-01-01T00:00:00" description="routes" author="test"/>
+  <Catalog name="routes">
+    ${route('used', geo)}
+    ${route('unused', geo)}
+    ${route('plain', '<WorldPosition x="0" y="0"/>')}
+  </Catalog>
+</OpenSCENARIO>
+`;
+    const assign = (entry: string) =>
+      `<Private entityRef="ego"><PrivateAction><RoutingAction><AssignRouteAction><CatalogReference catalogName="routes" entryName="${entry}"/></AssignRouteAction></RoutingAction></PrivateAction></Private>`;
+    const main = (entries: string[]) =>
+      scenarioText('3', entries.map(assign).join(''), VISIBILITY).replace(
+        '<CatalogLocations/>',
+        '<CatalogLocations><RouteCatalog><Directory path="Routes"/></RouteCatalog></CatalogLocations>',
+      );
+    const files = { 'Routes/routes.xosc': catalog };
+    const simulatorProblems = async (text: string) =>
+      (await semanticProblemsOf(text, files, 'esmini'))
+        .filter((problem) => problem.code === 'simulator')
+        .map((problem) => [problem.severity, problem.range.start.line, problem.message]);
+    // The catalog alone: no entry is used by it, so nothing is flagged there.
+    assert.deepEqual(await simulatorProblems(catalog), []);
+    const used = main(['used', 'plain']);
+    const referenceLine = used.split('\n').findIndex((line) => line.includes('entryName="used"'));
+    assert.deepEqual(await simulatorProblems(used), [
+      [
+        'error',
+        referenceLine,
+        `in catalog entry 'used' (routes.xosc:5): esmini does not support GeoPosition: its position reader has no GeoPosition and refuses the scenario ("Failed parse position in node Position") (EnvironmentSimulator/Modules/ScenarioEngine/SourceFiles/ScenarioReader.cpp:1854-2259)`,
+      ],
+    ]);
+    assert.deepEqual(await simulatorProblems(main(['plain'])), []);
+    assert.deepEqual(
+      (await semanticProblemsOf(used, files, 'asam')).filter((problem) => problem.code === 'simulator'),
+      [],
+    );
+  });
+
+  it("carla: a maneuver catalog entry's Event priority is flagged on the reference of a scenario that uses it, not in the catalog", async () => {
+    const event = (name: string) =>
+      `<Event name="${name}" priority="overwrite"><Action name="a${name}"><PrivateAction><TeleportAction><Position><WorldPosition x="0" y="0"/></Position></TeleportAction></PrivateAction></Action><StartTrigger><ConditionGroup><Condition name="c${name}" delay="0" conditionEdge="rising"><ByValueCondition><SimulationTimeCondition value="0" rule="greaterThan"/></ByValueCondition></Condition></ConditionGroup></StartTrigger></Event>`;
+    const catalog = `<?xml version="1.0"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="0" date="2026-01-01T00:00:00" description="maneuvers" author="test"/>
+  <Catalog name="ManeuverCatalog">
+    <Maneuver name="used">${event('e1')}${event('e2')}</Maneuver>
+    <Maneuver name="unused">${event('e3')}${event('e4')}</Maneuver>
+  </Catalog>
+</OpenSCENARIO>
+`;
+    const main = scenarioText('0', '', LANE_CHANGE)
+      .replace(
+        '<CatalogLocations/>',
+        '<CatalogLocations><ManeuverCatalog><Directory path="catalogs"/></ManeuverCatalog></CatalogLocations>',
+      )
+      .replace(/<Maneuver name="maneuver">[^]*<\/Maneuver>/, '<CatalogReference catalogName="ManeuverCatalog" entryName="used"/>');
+    const files = { 'catalogs/ManeuverCatalog.xosc': catalog };
+    const priority = async (text: string) =>
+      (await semanticProblemsOf(text, files, 'carla'))
+        .filter((problem) => problem.message.includes('ignores Event priority'))
+        .map((problem) => [problem.range.start.line, problem.message.replace(/: the events[^]*/, '')]);
+    assert.deepEqual(await priority(catalog), []);
+    const line = main.split('\n').findIndex((text) => text.includes('entryName="used"'));
+    assert.deepEqual(await priority(main), [
+      [line, "in catalog entry 'used' (ManeuverCatalog.xosc:5): CARLA ScenarioRunner ignores Event priority"],
+      [line, "in catalog entry 'used' (ManeuverCatalog.xosc:5): CARLA ScenarioRunner ignores Event priority"],
+    ]);
+  });
+
   // esmini 3.6 measures an AngleCondition in lane coordinates against the lane's driving direction (test/server/esmini.test.ts runs it).
   it('esmini warns of coordinateSystem="lane" where it falls back to road coordinates, not on an AngleCondition nor a Euclidean distance', () => {
     const condition = (inner: string) =>

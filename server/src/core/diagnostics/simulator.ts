@@ -53,6 +53,17 @@ export function simulatorWording(finding: { severity: FactSeverity; facts: Profi
   return { severity: finding.severity, code: 'simulator', message: profileMessage(finding.facts) };
 }
 
+/**
+ * A simulator's finding in a catalog entry, placed on the CatalogReference that uses the entry (`file`, `line`: where
+ * the finding stands in the catalog): a simulator reads an entry only where a scenario references it.
+ */
+export function inCatalogEntryWording(
+  wording: ProblemWording<'simulator'>,
+  entry: { name: string; file: string; line: number },
+): ProblemWording<'simulator'> {
+  return { ...wording, message: `in catalog entry '${entry.name}' (${entry.file}:${entry.line}): ${wording.message}` };
+}
+
 /** What a simulator does beyond one element or attribute: the `fact`, then `detail`, the case at hand, then the fact's source. */
 function factWording(simulator: string, fact: SimulatorFact, detail: string): ProblemWording<'simulator'> {
   return { severity: fact.severity, code: 'simulator', message: `${simulator} ${fact.does}: ${detail} (${fact.source})` };

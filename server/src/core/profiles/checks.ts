@@ -56,6 +56,13 @@ function isCatalogFile(document: XmlDocument): boolean {
   return document.root?.children.some((child) => child.name === 'Catalog') ?? false;
 }
 
+/** Whether an element lies in an entry of a catalog file (a child of its `Catalog`, or below one). */
+function inCatalogEntry(element: XmlElement): boolean {
+  for (let current = element.parent; current; current = current.parent)
+    if (current.name === 'Catalog' && current.parent?.parent === undefined) return true;
+  return false;
+}
+
 /** Where an action runs: in the Init, in a Story (or a catalog's Maneuver), or not known. */
 function placeOf(element: XmlElement): 'init' | 'story' | undefined {
   for (let current = element.parent; current; current = current.parent) {
@@ -191,7 +198,14 @@ const catalogNameCheck: ProfileCheck = ({ profile, document, fileName }) => {
 /** The checks of every simulator profile, in the order their findings are listed. */
 export const PROFILE_CHECKS: readonly ProfileCheck[] = [versionCheck, oldVersionCheck, elementCheck, attributeCheck, catalogNameCheck];
 
-/** What `simulator` will not run in a document (none for `asam`, the standard alone). */
+/** The checks of what a catalog entry holds, which a simulator reads only where a scenario references the entry. */
+const ENTRY_CHECKS: readonly ProfileCheck[] = [elementCheck, attributeCheck];
+
+/**
+ * What `simulator` will not run in a document (none for `asam`, the standard alone). In a catalog file the
+ * entries are left out: a simulator reads an entry only where a scenario references it, and `entryFindings`
+ * checks it there (an entry no scenario uses is no problem).
+ */
 export function simulatorFindings(
   simulator: Simulator,
   document: XmlDocument,
@@ -199,12 +213,32 @@ export function simulatorFindings(
   release: CarlaRelease = DEFAULT_CARLA_RELEASE,
 ): SimulatorFinding[] {
   if (simulator === 'asam' || !document.root) return [];
+  const all = [document.root, ...descendants(document.root)];
   const context: ProfileCheckContext = {
     profile: PROFILES[simulator],
     document,
     fileName,
-    elements: [document.root, ...descendants(document.root)],
+    elements: isCatalogFile(document) ? all.filter((element) => !inCatalogEntry(element)) : all,
     release,
   };
   return PROFILE_CHECKS.flatMap((check) => check(context));
+}
+
+/** What `simulator` will not run in a catalog entry (`entry`, a child of the `Catalog` of `document`), for the scenario that references it. */
+export function entryFindings(
+  simulator: Simulator,
+  document: XmlDocument,
+  fileName: string,
+  entry: XmlElement,
+  release: CarlaRelease = DEFAULT_CARLA_RELEASE,
+): SimulatorFinding[] {
+  if (simulator === 'asam') return [];
+  const context: ProfileCheckContext = {
+    profile: PROFILES[simulator],
+    document,
+    fileName,
+    elements: [entry, ...descendants(entry)],
+    release,
+  };
+  return ENTRY_CHECKS.flatMap((check) => check(context));
 }

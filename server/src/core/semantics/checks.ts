@@ -1,6 +1,6 @@
 import { expressionWording } from '../diagnostics/expressionWords';
 import { nonstandardToken } from '../diagnostics/expressionSyntax';
-import { simulatorFindings } from '../profiles/checks';
+import { entryFindings, SimulatorFinding, simulatorFindings } from '../profiles/checks';
 import { baseName, displayRef } from '../sources';
 import { closestMatch } from '../text';
 import { coreMemo } from '../memos';
@@ -10,7 +10,7 @@ import { valueConstraints } from './checks/constraints';
 import { duplicateNames } from './checks/names';
 import { carlaReleaseOf, carlaScenario } from './checks/carla';
 import { esminiScenario } from './checks/esmini';
-import { at, relatedAt } from './checks/support';
+import { at, onCatalogReferences, relatedAt } from './checks/support';
 import type { Finding, SemanticCheck, SemanticContext } from './checks/types';
 import type { CatalogFile, CatalogReferenceResolution } from './catalogs';
 import { carriedExpressionErrors, rememberExpressionErrors } from './checks/carriedResults';
@@ -539,15 +539,31 @@ export const flattenedStoryboardReferences: SemanticCheck = (context) => {
   return findings;
 };
 
-/** What the chosen simulator does not run, from facts read in its own sources (core/profiles/). */
-export const simulatorProfile: SemanticCheck = (context) =>
-  simulatorFindings(context.simulator ?? 'asam', context.model.document, baseName(context.ref), carlaReleaseOf(context)).map((finding) => ({
+/** A simulator profile's finding, with its one-edit suggestion and whether the export maps it. */
+function profileFinding(finding: SimulatorFinding): Finding {
+  return {
     ...at(finding.element, finding.attribute),
     ...simulatorWording(finding),
     ...(finding.suggestion !== undefined || finding.exportMaps
       ? { data: { suggestion: finding.suggestion, exportMaps: finding.exportMaps } }
       : {}),
-  }));
+  };
+}
+
+/**
+ * What the chosen simulator does not run, from facts read in its own sources (core/profiles/). What a catalog
+ * entry holds is reported on each CatalogReference that uses the entry, as the catalog problems are: the simulator
+ * reads an entry only there.
+ */
+export const simulatorProfile: SemanticCheck = (context) => {
+  const simulator = context.simulator ?? 'asam';
+  const release = carlaReleaseOf(context);
+  const own = simulatorFindings(simulator, context.model.document, baseName(context.ref), release).map(profileFinding);
+  const inEntries = onCatalogReferences(context, (entry) =>
+    entryFindings(simulator, entry.file.model.document, baseName(entry.file.ref), entry.element, release).map(profileFinding),
+  );
+  return [...own, ...inEntries];
+};
 
 /** The checks of a document, in the order their problems are listed. */
 export const SEMANTIC_CHECKS: readonly { name: string; check: SemanticCheck }[] = [

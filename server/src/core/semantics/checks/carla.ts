@@ -9,9 +9,10 @@ import { typeOfElement } from '../../schema/query';
 import { checkValue } from '../../schema/values';
 import { attribute, descendants, XmlAttribute, XmlElement } from '../../xml';
 import type { CarlaCatalogLocation } from '../carlaFiles';
+import type { CatalogEntry } from '../catalogs';
 import { formatValue } from '../values';
 import { isCriterion, parametersComparedAsText } from './carlaParameters';
-import { at } from './support';
+import { at, inCatalogEntry, onCatalogReferences } from './support';
 import type { Finding, SemanticCheck, SemanticContext } from './types';
 
 /*
@@ -352,14 +353,21 @@ const entities = (context: SemanticContext): Finding[] => {
 export const carlaScenario: SemanticCheck = (context) => {
   if (context.simulator !== 'carla') return [];
   const elements = allElements(context);
+  // ScenarioRunner validates a whole catalog file against its schema (expressions), but runs an entry only where a scenario references it.
+  const run = context.model.catalog ? elements.filter((element) => !inCatalogEntry(context, element)) : elements;
+  const inEntry = (entry: CatalogEntry) => {
+    const entryElements = [entry.element, ...descendants(entry.element)];
+    return [...unresolvedParameters(entryElements), ...missingParts(entryElements), ...storyboard(entryElements)];
+  };
   return [
     ...expressions(context, elements),
-    ...unresolvedParameters(elements),
+    ...unresolvedParameters(run),
     ...road(context),
     ...catalogs(context),
     ...entryEntityRefs(context),
-    ...missingParts(elements),
-    ...storyboard(elements),
+    ...missingParts(run),
+    ...storyboard(run),
+    ...onCatalogReferences(context, inEntry),
     ...parametersComparedAsText(context, elements),
     ...negativeStartSpeeds(context, elements),
     ...entities(context),

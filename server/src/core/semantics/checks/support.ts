@@ -1,5 +1,8 @@
+import { inCatalogEntryWording } from '../../diagnostics/simulator';
 import type { RelatedProblemLocation } from '../../problems';
+import { baseName } from '../../sources';
 import { XmlAttribute, XmlElement } from '../../xml';
+import type { CatalogEntry } from '../catalogs';
 import type { Finding, SemanticContext } from './types';
 
 /** A finding's place: an attribute's value, or the element's start tag name. */
@@ -11,4 +14,46 @@ export function at(element: XmlElement, attr: XmlAttribute | undefined): Pick<Fi
 
 export function relatedAt(context: SemanticContext, start: number, end: number, message: string): RelatedProblemLocation {
   return { source: context.ref, range: context.model.document.lines.range(start, end), message };
+}
+
+/** Whether an element lies in an entry of the document's own catalog (below a child of its `Catalog`). */
+export function inCatalogEntry(context: SemanticContext, element: XmlElement): boolean {
+  const catalog = context.model.catalog;
+  if (!catalog) return false;
+  for (let current = element.parent; current; current = current.parent) if (current === catalog) return true;
+  return false;
+}
+
+/**
+ * A simulator's findings (`code` 'simulator') in each catalog entry the document references, placed on the
+ * CatalogReference, the entry's file and line in the message: a simulator reads an entry only where a scenario
+ * uses it, so an entry no scenario references is no problem. A suggested edit would be in the catalog, not here.
+ */
+export function onCatalogReferences(context: SemanticContext, check: (entry: CatalogEntry) => Finding[]): Finding[] {
+  // Each entry is checked once, however many references use it.
+  const checked = new Map<XmlElement, Finding[]>();
+  return context.catalogs.references.flatMap((resolution) => {
+    const entry = resolution.entry;
+    if (!entry) return [];
+    const { reference } = resolution;
+    const lines = entry.file.model.document.lines;
+    let findings = checked.get(entry.element);
+    if (!findings) checked.set(entry.element, (findings = check(entry)));
+    return findings.flatMap((finding): Finding[] => {
+      if (finding.code !== 'simulator') return [];
+      const exportMaps = finding.data !== undefined && 'exportMaps' in finding.data && finding.data.exportMaps === true;
+      const wording = { severity: finding.severity, code: finding.code, message: finding.message, hint: finding.hint };
+      return [
+        {
+          ...at(reference.element, reference.entryNameAttribute),
+          ...inCatalogEntryWording(wording, {
+            name: entry.name,
+            file: baseName(entry.file.ref),
+            line: lines.positionAt(finding.start).line + 1,
+          }),
+          ...(exportMaps ? { data: { exportMaps: true } } : {}),
+        },
+      ];
+    });
+  });
 }
