@@ -80,6 +80,23 @@ describe('language server: the Scenario Library view and Insert into main (JSON-
     );
   });
 
+  it("Insert into main guesses the one entity of a role's kind that no role names (the main's only Pedestrian plays 'pedestrian'); of two cars, it asks", async function () {
+    const file = path.join(root, 'main.xosc');
+    const uri = await client.open(fileUri(file), fs.readFileSync(file, 'utf8'));
+    const crossing = await client.send(LibraryInsertRequest, { uri, module: 'pedestrian-crossing' });
+    assert.deepEqual(
+      crossing.roles.map((role) => [role.name, role.guess]),
+      [
+        ['pedestrian', 'Walker'],
+        ['ego', 'Ego'],
+      ],
+    );
+    // Cutter and Lead are both cars that no role names: which one cuts in is the user's to say.
+    const cutIn = await client.send(LibraryInsertRequest, { uri, module: 'cut-in' });
+    assert.equal(cutIn.roles.find((role) => role.name === 'adversary')?.guess, undefined);
+    await client.close(uri);
+  });
+
   it('Insert into main asks for the roles no entity of the main is named after, then writes three modules that check clean and run in esmini', async function () {
     const file = path.join(root, 'main.xosc');
     let text = fs.readFileSync(file, 'utf8');

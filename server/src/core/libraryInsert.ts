@@ -96,9 +96,38 @@ export function mainShape(text: string, at?: number): MainShape {
   };
 }
 
-/** The entity of the main that most likely plays a role: the same name, else the same name ignoring case, else none. */
-export function guessPlayer(role: ModuleRole, entities: readonly string[]): string | undefined {
+/** Each entity's kind (`Vehicle`, `Pedestrian`, `MiscObject`) where its ScenarioObject says it; a catalog entry's is not known here. */
+export function entityKinds(text: string): Map<string, string> {
+  const kinds = new Map<string, string>();
+  for (const entity of parseScenario(text).entities) {
+    const kind = entity.element.children.find((child) => ['Vehicle', 'Pedestrian', 'MiscObject'].includes(child.name))?.name;
+    if (entity.name && kind) kinds.set(entity.name, kind);
+  }
+  return kinds;
+}
+
+/** The entity of the main with the role's very name, else the same name ignoring case. */
+function namedPlayer(role: ModuleRole, entities: readonly string[]): string | undefined {
   return entities.find((entity) => entity === role.name) ?? entities.find((entity) => entity.toLowerCase() === role.name.toLowerCase());
+}
+
+/**
+ * The entity of the main that most likely plays a role: the same name, else the same name ignoring case; else, given
+ * the kinds of the module's and of the main's entities, the one entity of the role's kind (a Pedestrian for a
+ * pedestrian) that no role of the module names; else none (the user is asked).
+ */
+export function guessPlayer(
+  role: ModuleRole,
+  entities: readonly string[],
+  kinds?: { roles: readonly ModuleRole[]; module: ReadonlyMap<string, string>; main: ReadonlyMap<string, string> },
+): string | undefined {
+  const named = namedPlayer(role, entities);
+  if (named || !kinds) return named;
+  const kind = kinds.module.get(role.name);
+  if (!kind) return undefined;
+  const playingByName = new Set(kinds.roles.map((other) => namedPlayer(other, entities)));
+  const candidates = entities.filter((entity) => kinds.main.get(entity) === kind && !playingByName.has(entity));
+  return candidates.length === 1 ? candidates[0] : undefined;
 }
 
 /** `base`, or `base2`, `base3`, ... : the first not among `taken`. */

@@ -9,8 +9,9 @@ import {
   NewFromTemplateResult,
   TemplateSummary,
 } from '../../../common/src/libraryProtocol';
+import { decodeScenario } from '../core/encoding';
 import { findModule, LibraryModule, listLibraries } from '../core/library';
-import { guessPlayer, insertModuleGroup, isEntityKey, mainShape, moduleRoles } from '../core/libraryInsert';
+import { entityKinds, guessPlayer, insertModuleGroup, isEntityKey, mainShape, moduleRoles } from '../core/libraryInsert';
 import { LineIndex } from '../core/text';
 import { listTemplates, templateOutputs } from '../libraries';
 import { filePathOf } from '../uris';
@@ -77,8 +78,15 @@ export async function libraryInsert(workspace: Workspace, params: LibraryInsertP
     throw invalidParams(
       `${module.name} cannot go into ${params.uri} at line ${position.line + 1}: that is not on an Act or on a ManeuverGroup of an Act; put it on one (not inside its Actors, a Maneuver or a trigger)`,
     );
-  const roles = moduleRoles(module).map((role) => {
-    const guess = guessPlayer(role, shape.entities);
+  const moduleRolesOf = moduleRoles(module);
+  const moduleText = await workspace.store.host
+    .readFile(module.file)
+    .then((bytes) => (bytes ? decodeScenario(bytes) : ''))
+    // Read when listed a moment ago; unread now, the kinds are not known and the user is asked.
+    .catch(() => '');
+  const kinds = { roles: moduleRolesOf, module: entityKinds(moduleText), main: entityKinds(text) };
+  const roles = moduleRolesOf.map((role) => {
+    const guess = guessPlayer(role, shape.entities, kinds);
     return { ...role, ...(guess ? { guess } : {}) };
   });
   const result: LibraryInsertResult = { acts: shape.acts.map((act) => act.path), entities: shape.entities, roles };
