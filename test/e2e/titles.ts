@@ -54,7 +54,7 @@ export const INSIDE_TESTS = {
   extractToSimple:
     'Extract to a simple scenario from the light bulb, with the pick list of attributes, replaces a group by a reference that flattens as before',
   libraryCompose:
-    'a main composed from the Scenario Library view (a template, then a cut-in, a lead brake and a pedestrian inserted) in at most 5 steps checks clean',
+    'a main composed from the Scenario Library view with no main open (Insert on a cut-in offers a new composition bench first, then a lead brake and a pedestrian) in at most 5 steps checks clean',
   libraryInsertHere:
     'Insert library module here… from the light bulb on a ManeuverGroup picks a module in the quick pick and writes it after that group, clean',
   libraryDrop:

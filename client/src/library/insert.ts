@@ -1,10 +1,18 @@
+import * as fs from 'node:fs';
 import * as path from 'node:path';
 import * as vscode from 'vscode';
 import type { LibraryModuleSummary } from '../../../common/src/libraryProtocol';
 import type { CommandReporter } from '../commands';
 import { LANGUAGE_ID, type ServerCommandClient } from '../languageClient';
+import { freeScenarioName } from '../naming';
+import { targetFolder } from '../newScenario';
+import { newFromTemplateCommand } from './templates';
 
 const TITLE = 'Insert into Main';
+/** The template a new main is written from when none is open: its entities are named after the modules' roles. */
+const BENCH_TEMPLATE = 'composition-bench';
+/** Scenario files read to offer as mains: a picker, not an index. */
+const MAX_LISTED = 200;
 
 /** What a caller (a test, the code action) may pass instead of being asked. */
 export interface InsertOptions {
@@ -46,14 +54,69 @@ export class MainTracker implements vscode.Disposable {
   get main(): vscode.Uri | undefined {
     const active = vscode.window.activeTextEditor?.document;
     if (active?.languageId === LANGUAGE_ID) return active.uri;
-    return this.last && vscode.workspace.textDocuments.some((document) => document.uri.toString() === this.last?.toString())
-      ? this.last
-      : undefined;
+    // Open in a tab, as the user sees it: a closed editor's document may linger in textDocuments for minutes.
+    const last = this.last?.toString();
+    const open = vscode.window.tabGroups.all.some((group) =>
+      group.tabs.some((tab) => tab.input instanceof vscode.TabInputText && tab.input.uri.toString() === last),
+    );
+    return open ? this.last : undefined;
   }
 
   dispose(): void {
     this.subscription.dispose();
   }
+}
+
+/** How a workspace scenario serves as a main: 2 when it already references scenarios, 1 with an Act only, 0 not at all. */
+function mainRank(file: string): number {
+  try {
+    const text = fs.readFileSync(file, 'utf8');
+    if (!/<Story[\s>]/.test(text) || !/<Act[\s>]/.test(text)) return 0;
+    return /<ScenarioReference[\s>]/.test(text) ? 2 : 1;
+  } catch {
+    return 0;
+  }
+}
+
+/**
+ * No main open: asks which one in a quick pick, a new main from the composition bench first (written under a free name
+ * it shows, not asked: its entities play the modules' roles), then the workspace's scenarios with an Act, those that
+ * already reference scenarios first.
+ */
+async function chooseMain(
+  server: ServerCommandClient,
+  reporter: CommandReporter,
+  module: LibraryModuleSummary,
+): Promise<vscode.Uri | undefined> {
+  const folders = vscode.workspace.workspaceFolders?.filter((folder) => folder.uri.scheme === 'file') ?? [];
+  const newIn = folders.length === 1 ? folders[0] : undefined;
+  const bench = (await server.templates()).find((template) => template.name === BENCH_TEMPLATE);
+  const mains = (await vscode.workspace.findFiles('**/*.xosc', '**/node_modules/**', MAX_LISTED))
+    .filter((uri) => uri.scheme === 'file')
+    .map((uri) => ({ uri, rank: mainRank(uri.fsPath), label: vscode.workspace.asRelativePath(uri) }))
+    .filter((main) => main.rank > 0)
+    .sort((a, b) => b.rank - a.rank || a.label.localeCompare(b.label));
+  const newName = freeScenarioName(newIn?.uri.fsPath ?? '', (file) => newIn !== undefined && fs.existsSync(file), BENCH_TEMPLATE);
+  const items: (vscode.QuickPickItem & { main?: vscode.Uri })[] = [
+    { label: `$(new-file) New main ${newName}`, description: newIn ? `in ${newIn.name}` : undefined, detail: bench?.summary },
+    ...mains.map((main) => ({
+      label: `$(file) ${main.label}`,
+      description: main.rank === 2 ? 'references scenarios' : undefined,
+      main: main.uri,
+    })),
+  ];
+  const picked = await vscode.window.showQuickPick(items, {
+    title: `${TITLE}: ${module.title}`,
+    placeHolder: 'No main is open: the main the module goes into',
+  });
+  if (!picked) return undefined;
+  if (picked.main) return picked.main;
+  const folder = newIn?.uri.fsPath ?? (await targetFolder(undefined, TITLE));
+  if (!folder) return undefined;
+  return newFromTemplateCommand(server, reporter, vscode.Uri.file(folder), {
+    template: BENCH_TEMPLATE,
+    fileName: freeScenarioName(folder, fs.existsSync, BENCH_TEMPLATE),
+  });
 }
 
 /** The edit that writes a module's group into a main, not yet applied, and what to say once it is. */
@@ -83,7 +146,7 @@ export async function prepareInsert(
 ): Promise<PreparedInsert | undefined> {
   const main = typeof options.main === 'string' ? vscode.Uri.parse(options.main) : (options.main ?? tracker.main);
   if (!main) {
-    void vscode.window.showErrorMessage(`${title}: open the main scenario the module goes into first (New Modular Scenario… writes one).`);
+    void vscode.window.showErrorMessage(`${title}: open the main scenario the module goes into first.`);
     return undefined;
   }
   const document = await vscode.workspace.openTextDocument(main);
@@ -156,6 +219,11 @@ export async function insertIntoMain(
   options: InsertOptions = {},
 ): Promise<string | undefined> {
   try {
+    if (options.main === undefined && !tracker.main) {
+      const main = await chooseMain(server, reporter, module);
+      if (!main) return undefined;
+      options = { ...options, main };
+    }
     const inserted = await prepareInsert(server, tracker, module, options);
     if (!inserted) return undefined;
     const applied = await vscode.workspace.applyEdit(inserted.edit);

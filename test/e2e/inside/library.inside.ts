@@ -4,7 +4,7 @@ import * as path from 'node:path';
 import * as vscode from 'vscode';
 import type { LibraryNode } from '../../../client/src/library/view';
 import { dragOnto, pageShows, pressKeys, quickInput, screenshot, typeText } from './harnessClient';
-import { api, cli, type InsideTests, positionOf, TEST_MS, waitFor, workspaceRoot } from './helpers';
+import { api, cli, type InsideTests, positionOf, revertAndClose, TEST_MS, waitFor, workspaceRoot } from './helpers';
 
 /** The module node the Scenario Library view shows for `name`, as its inline Insert button passes it. */
 function moduleNode(name: string): LibraryNode {
@@ -51,45 +51,62 @@ async function assertClean(document: vscode.TextDocument): Promise<void> {
 export const libraryTests: InsideTests = {
   libraryCompose: async function () {
     this.timeout(2 * TEST_MS);
+    // A new user's walk: no main open, the Scenario Library view, Insert on three modules, Save.
+    await revertAndClose();
+    // Counted from the open view, as the issue counts: each click, key press and question answered.
     const steps: string[] = [];
     await vscode.commands.executeCommand('modular2simple.library.focus');
     const tree = api().library.tree;
     await waitFor('the Scenario Library listing', () => (tree.current?.modules.length ?? 0) > 0);
     assert.deepEqual(tree.current?.problems, [], 'the built-in library lists problems');
-    await waitFor('the view drawing its modules', () => pageShows('library:cut-in'));
+    // Every module in sight: the last group's last module is drawn without scrolling or filtering the view.
+    await waitFor('the view drawing its modules', () => pageShows('library:pedestrian-crossing'));
     await screenshot('The Scenario Library view lists the modules by group');
 
-    steps.push('New Scenario from Template… composition-bench');
-    const main = await newBench('composed', 'composed.xosc');
-    await waitFor('the new main in the editor', () => vscode.window.activeTextEditor?.document.uri.fsPath === main);
+    const main = path.join(workspaceRoot(), 'composition-bench.xosc');
+    const road = path.join(workspaceRoot(), 'straight_1000m.xodr');
+    assert.ok(!fs.existsSync(main) && !fs.existsSync(road), 'the workspace holds a composition bench already');
+    try {
+      steps.push('Insert into Main: cut-in');
+      const first = vscode.commands.executeCommand<string | undefined>('modular2simple.library.insert', moduleNode('cut-in'));
+      await waitFor('the quick pick of mains', async () => {
+        const shown = await quickInput();
+        return (shown.visible && /Insert into Main/.test(shown.title)) || undefined;
+      });
+      await waitFor('the new main offered first', () => pageShows('New main composition-bench.xosc', '.quick-input-list'));
+      await screenshot('No main open: Insert into Main offers a new main from the composition bench first');
+      steps.push('New main composition-bench.xosc');
+      await pressKeys(['Enter']);
+      const groups = [await first];
+      for (const name of ['lead-brake', 'pedestrian-crossing']) {
+        steps.push(`Insert into Main: ${name}`);
+        groups.push(await vscode.commands.executeCommand<string | undefined>('modular2simple.library.insert', moduleNode(name)));
+      }
+      assert.deepEqual(groups, ['CutIn', 'LeadBrake', 'PedestrianCrossing']);
+      const document = await waitFor('the main in the editor', () =>
+        vscode.window.activeTextEditor?.document.uri.fsPath === main ? vscode.window.activeTextEditor.document : undefined,
+      );
+      for (const name of ['cut-in', 'lead-brake', 'pedestrian-crossing'])
+        assert.ok(document.getText().includes(`scenarioFileName="library:${name}"`), `no reference to library:${name}`);
+      steps.push('Save');
+      assert.ok(await document.save(), 'the main was not saved');
 
-    const groups: string[] = [];
-    for (const name of ['cut-in', 'lead-brake', 'pedestrian-crossing']) {
-      steps.push(`Insert into Main: ${name}`);
-      const group = await vscode.commands.executeCommand<string | undefined>('modular2simple.library.insert', moduleNode(name));
-      assert.ok(group, `Insert into Main of ${name} wrote no group`);
-      groups.push(group);
+      // The server's view of the saved main: no error and no warning, as the CLI's check says too.
+      await waitFor(
+        'the server to analyse the composed main',
+        async () =>
+          ((await vscode.commands.executeCommand<unknown[]>('vscode.executeDocumentSymbolProvider', document.uri))?.length ?? 0) > 0 ||
+          undefined,
+      );
+      await assertClean(document);
+      await screenshot('A main composed from three library modules, clean');
+      assert.ok(steps.length <= 5, `composing took ${steps.length} steps: ${steps.join('; ')}`);
+      console.log(`composed in ${steps.length} steps: ${steps.join('; ')}`);
+    } finally {
+      await revertAndClose();
+      fs.rmSync(main, { force: true });
+      fs.rmSync(road, { force: true });
     }
-    assert.equal(new Set(groups).size, 3, `group names repeat: ${groups.join(', ')}`);
-    const document = await waitFor('the main in the editor', () =>
-      vscode.window.activeTextEditor?.document.uri.fsPath === main ? vscode.window.activeTextEditor.document : undefined,
-    );
-    for (const name of ['cut-in', 'lead-brake', 'pedestrian-crossing'])
-      assert.ok(document.getText().includes(`scenarioFileName="library:${name}"`), `no reference to library:${name}`);
-    steps.push('Save');
-    assert.ok(await document.save(), 'the main was not saved');
-
-    // The server's view of the saved main: no error and no warning, as the CLI's check says too.
-    await waitFor(
-      'the server to analyse the composed main',
-      async () =>
-        ((await vscode.commands.executeCommand<unknown[]>('vscode.executeDocumentSymbolProvider', document.uri))?.length ?? 0) > 0 ||
-        undefined,
-    );
-    await assertClean(document);
-    await screenshot('A main composed from three library modules, clean');
-    assert.ok(steps.length <= 5, `composing took ${steps.length} steps: ${steps.join('; ')}`);
-    console.log(`composed in ${steps.length} steps: ${steps.join('; ')}`);
   },
 
   libraryInsertHere: async function () {
