@@ -282,7 +282,9 @@ export async function exportTextForCarla(
     // How far a lane change moves across (laneChanges.ts): a rate needs it, a time is exact with it.
     named(tree, 'LaneChangeActionDynamics').some((dynamics) => ['time', 'rate'].includes(attr(dynamics, 'dynamicsDimension') ?? '')) ||
     // Which way is left for an absolute target lane: the road's traffic rule.
-    named(tree, 'AbsoluteTargetLane').length > 0;
+    named(tree, 'AbsoluteTargetLane').length > 0 ||
+    // A steady state's target moved back along its lane: the road's length and traffic rule.
+    named(tree, new Set(['TargetDistanceSteadyState', 'TargetTimeSteadyState'])).length > 0;
   const roads = road && 'file' in road && needsRoads ? await readRoads(copy?.bytes ?? road.file, store) : undefined;
   const geoPlaces = new Map<Node, RoadXY | string>();
   for (const position of named(tree, 'GeoPosition')) {

@@ -40,6 +40,7 @@ import { speedProfiles } from './speedProfiles';
 import { absoluteTargetLanes, laneChangesByDistance, PEAK_FACTOR } from './laneChanges';
 import { polylinePoints, trajectoryPoint } from './trajectoryPoint';
 import { initStarts } from './initStarts';
+import { synchronizeSteadyStates } from './steadyStates';
 import { SAMPLE_STEP } from './shapes';
 
 export type { CarlaLoss, LossSink };
@@ -746,30 +747,6 @@ function trajectoryPositions(tree: Node, context: RuleContext): void {
   }
 }
 
-/**
- * A SynchronizeAction's FinalSpeed/AbsoluteSpeed with a steady state (1.1+: TargetDistanceSteadyState or
- * TargetTimeSteadyState) keeps its AbsoluteSpeed: ScenarioRunner reads only its value (SR_PARSER
- * convert_maneuver_to_atomic, SynchronizeAction: SyncArrivalOSC with final_speed), so the synchronized entity
- * reaches the final speed at the target instead of holding it over the steady-state distance or time before.
- */
-function synchronizeSteadyStates(tree: Node, context: RuleContext): void {
-  for (const name of ['TargetDistanceSteadyState', 'TargetTimeSteadyState']) {
-    for (const steady of named(tree, name)) {
-      const speed = steady.parent;
-      if (!speed || speed.name !== 'AbsoluteSpeed' || !ancestor(speed, 'SynchronizeAction')) continue;
-      const what =
-        name === 'TargetDistanceSteadyState' ? `distance ${attr(steady, 'distance') ?? ''} m` : `time ${attr(steady, 'time') ?? ''} s`;
-      context.sink.approximated(
-        speed,
-        `SynchronizeAction/FinalSpeed/AbsoluteSpeed/${name}`,
-        `the steady state (the final speed held over the last ${what} before the target) is dropped; the final speed ${attr(speed, 'value') ?? ''} is kept`,
-        `ScenarioRunner reads only AbsoluteSpeed's value and reaches it at the target (${SR_PARSER} convert_maneuver_to_atomic, SynchronizeAction: SyncArrivalOSC)`,
-      );
-      removeNode(steady);
-    }
-  }
-}
-
 /** ScenarioRunner refuses these positions (SR_PARSER convert_position_to_transform). */
 function unsupportedPositions(tree: Node, context: RuleContext): void {
   // RoutePosition, GeoPosition and TrajectoryPosition: the rules route-positions, geo-positions and trajectory-positions write or name every one.
@@ -1388,13 +1365,14 @@ export const CARLA_RULES: readonly { name: string; apply: (tree: Node, context: 
   { name: 'weather', apply: weather },
   { name: 'absolute-target-lane', apply: (tree, context) => absoluteTargetLanes(tree, context.sink, context.roads) },
   { name: 'time-gap', apply: longitudinalTimeGap },
+  // Before any position is converted: it moves the targets back along their routes, trajectories and lanes.
+  { name: 'synchronize-steady-states', apply: (tree, context) => synchronizeSteadyStates(tree, context.sink, context.roads) },
   { name: 'trajectories', apply: trajectories },
   { name: 'init-starts', apply: initStarts },
   { name: 'route-positions', apply: routePositions },
   { name: 'geo-positions', apply: geoPositions },
   { name: 'negative-start-speeds', apply: negativeStartSpeeds },
   { name: 'trajectory-positions', apply: trajectoryPositions },
-  { name: 'synchronize-steady-states', apply: synchronizeSteadyStates },
   { name: 'speed-profiles', apply: speedProfiles },
   { name: 'positions', apply: unsupportedPositions },
   { name: 'refused-actions', apply: refusedActions },
