@@ -360,6 +360,43 @@ describe('cli: batch', function () {
     }
   });
 
+  it("a controller's File named through a parameter, inline or in a catalog entry, reaches the file beside the ScenarioFile, as in run (issue 27)", function () {
+    requireEsmini(this);
+    const root = folder();
+    const file = path.join(root, 'follow.xosc');
+    const controller = (name: string, cfg: string) =>
+      `<Controller name="${name}"><ParameterDeclarations><ParameterDeclaration name="CfgFile" parameterType="string" value="${cfg}"/></ParameterDeclarations>` +
+      '<Properties><Property name="esminiController" value="ACCController"/><File filepath="$CfgFile"/></Properties></Controller>';
+    const [before, ego, lead] = fs.readFileSync(file, 'utf8').split('</Vehicle>\n    </ScenarioObject>');
+    fs.writeFileSync(
+      file,
+      (
+        before +
+        `</Vehicle>\n      <ObjectController>${controller('acc', 'inputs/acc.cfg')}</ObjectController>\n    </ScenarioObject>` +
+        ego +
+        '</Vehicle>\n      <ObjectController><CatalogReference catalogName="ControllerCatalog" entryName="lead"/></ObjectController>\n    </ScenarioObject>' +
+        lead
+      ).replace(
+        '<CatalogLocations/>',
+        '<CatalogLocations><ControllerCatalog><Directory path="catalogs"/></ControllerCatalog></CatalogLocations>',
+      ),
+    );
+    fs.mkdirSync(path.join(root, 'catalogs'));
+    fs.writeFileSync(
+      path.join(root, 'catalogs', 'ControllerCatalog.xosc'),
+      '<?xml version="1.0"?>\n<OpenSCENARIO><FileHeader revMajor="1" revMinor="2" date="2026-11-24T00:00:00" description="c" author="t"/>' +
+        `<Catalog name="ControllerCatalog">${controller('lead', 'inputs/lead.cfg')}</Catalog></OpenSCENARIO>\n`,
+    );
+    fs.mkdirSync(path.join(root, 'inputs'));
+    for (const name of ['acc.cfg', 'lead.cfg']) fs.writeFileSync(path.join(root, 'inputs', name), '');
+    const batch = runCli([...BATCH_ARGS, '--sample', '2'], { cwd: root });
+    assert.equal(batch.status, 0, batch.stderr);
+    const rows = csvRows(root);
+    assert.equal(rows.length, 2);
+    for (const row of rows) assert.equal(row.split(',')[1], 'ok', row);
+    assert.doesNotMatch(batch.stderr, /controller file/);
+  });
+
   it("a batch whose runs esmini refuses is no batch done: each row has esmini's reason (progress, summary, CSV, JSON, JUnit), exit 3, again on a resume", function () {
     requireEsmini(this);
     const root = folder();

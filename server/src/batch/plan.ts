@@ -6,6 +6,7 @@ import { valuesAfter } from '../core/variations/concrete';
 import { Evaluator, semanticModelOf } from '../core/semantics';
 import { attribute, descendants, parseXml, XmlElement } from '../core/xml';
 import { scenarioEnd } from '../esmini/timeLimit';
+import type { ControllerFilesFrom } from '../esmini/controllerFiles';
 import type { ConcreteRun } from './runConcrete';
 import type { BatchRow } from './results';
 
@@ -22,6 +23,8 @@ export interface BatchPlanView {
   packagedFolder?: string;
   /** The package files a concrete scenario's text names through a `$parameter` (a varied road), placed as `packagedFiles` are. */
   packagedOf?: (text: string) => Promise<PackagedFile[]>;
+  /** Where a concrete scenario's controller Files named through a `$parameter` are looked up from, as `run` looks them up (esmini/controllerFiles.ts). */
+  controllerFilesOf?: (text: string) => Promise<ControllerFilesFrom>;
 }
 
 /** The varied parameters, in the order the distribution names them first: the columns after the fixed ones. */

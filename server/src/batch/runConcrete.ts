@@ -1,6 +1,7 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { EsminiCsvError, parseEsminiCsv } from '../../../common/src/esminiCsv';
+import type { ControllerFilesFrom } from '../esmini/controllerFiles';
 import { EsminiTextRunResult, limitSentence, removeRunFolder, runScenarioText } from '../esmini/run';
 import { esminiMessageSeverity, withoutRunFolder } from '../esmini/messages';
 import { csvNamingScenario } from '../esmini/process';
@@ -20,6 +21,8 @@ export interface ConcreteRun {
   files?: readonly { path: string; bytes: Uint8Array }[];
   /** The folder the ScenarioFile's relative paths start from: esmini's words naming the run's private folder are said from there. */
   scenarioFolder?: string;
+  /** A local run: its controller Files named through a `$parameter` are handed as the files they name from the ScenarioFile's folder, as `run` hands them. */
+  controllerFilesFrom?: ControllerFilesFrom;
 }
 
 export interface RunSettings {
@@ -55,6 +58,7 @@ export async function runConcrete(job: ConcreteRun, settings: RunSettings, cance
     runsFolder: settings.runsFolder,
     cancel,
     files: job.files,
+    controllerFilesFrom: job.controllerFilesFrom,
   });
   const kept =
     settings.keepRunsIn && result.runFolder && result.outcome !== 'cancelled' ? path.join(settings.keepRunsIn, job.index) : undefined;

@@ -10,9 +10,11 @@ import { CriterionError, parseCriterion } from '../batch/criteria';
 import { BatchIdentity, criteriaFailure, ResultsError, ResultsFolder } from '../batch/results';
 import { keptBesideRun, NoEsminiError, runConcrete, RunSettings } from '../batch/runConcrete';
 import type { PackagedFile } from '../core/flatten/types';
+import { CatalogLoader } from '../core/semantics/catalogs';
 import { diskRef, displayRef, FileKind, nodeFileSystem, splitScenarioPath } from '../core/sources';
 import { loadVariations, rebasedConcreteText, samplingProblem, SamplingError } from '../core/variations';
 import { locateEsmini } from '../esmini/locate';
+import { controllerFilesFrom } from '../esmini/controllerFiles';
 import { foundCatalogFolders, RUN_DEFAULTS, writePackagedFiles } from '../esmini/run';
 import {
   CliCommand,
@@ -197,7 +199,18 @@ async function runBatch(argv: string[], io: CliOutput): Promise<number> {
   const found = await foundCatalogFolders(catalogStore, scenarioFolder, namedPaths(variations.scenario.text).catalogFolders);
   const searchPath = searchPathOf(variations.scenario.text, scenarioFolder, [...found, ...roadPath]);
   const packagedOf = concretePackagedFiles(variations.scenarioPath, scenarioPath, roadPath);
-  const plan: BatchPlanView = { variations, chosen, parameterNames, searchPath, scenarioFolder, packagedFiles, packagedOf };
+  const catalogs = new CatalogLoader(catalogStore);
+  const controllerFilesOf = (text: string) => controllerFilesFrom(text, scenarioFolder, catalogs);
+  const plan: BatchPlanView = {
+    variations,
+    chosen,
+    parameterNames,
+    searchPath,
+    scenarioFolder,
+    packagedFiles,
+    packagedOf,
+    controllerFilesOf,
+  };
   const warning = limitWarning(plan, duration);
   if (warning) io.err(`${positionals[0]}: warning: ${warning}`);
 
@@ -338,7 +351,10 @@ async function runLocally(
       if (plan.packagedFolder && !kept) text = (await rebasedConcreteText(text, plan.packagedFolder, undefined, kindOf)).text;
       // A `$parameter` LogicFile naming a packaged road stays as written (SPEC 11.6): esmini finds the copy by its name there, first.
       const searchPath = plan.packagedFolder ? [plan.packagedFolder, ...run.searchPath] : run.searchPath;
-      const row = await runConcrete({ ...run, text, searchPath, files: kept, scenarioFolder: plan.scenarioFolder }, settings, stop.signal);
+      // Its controller Files named through a `$parameter`, looked up as `run` looks them up (from the ScenarioFile's folder).
+      const controllerFilesFrom = await plan.controllerFilesOf?.(run.text);
+      const job = { ...run, text, searchPath, files: kept, scenarioFolder: plan.scenarioFolder, controllerFilesFrom };
+      const row = await runConcrete(job, settings, stop.signal);
       // Ctrl-C on a terminal reaches esmini too, which then ends early as if by itself: such a run is not a result.
       if (!row || stop.signal.aborted) continue;
       await results.append(row);

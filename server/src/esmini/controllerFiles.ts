@@ -1,8 +1,25 @@
 import * as path from 'node:path';
 import { applyEdits, TextEdit } from '../core/flatten/edits';
-import type { CatalogReferenceResolution } from '../core/semantics/catalogs';
+import { diskRef } from '../core/sources';
+import type { CatalogLoader, CatalogReferenceResolution } from '../core/semantics/catalogs';
 import { Evaluator, semanticModelOf } from '../core/semantics/model';
 import { attribute, descendants, escapeAttributeValue, parseXml, XmlElement } from '../core/xml';
+
+/** Where a run's controller Files are looked up from: the scenario's own folder, and its catalog references resolved. */
+export interface ControllerFilesFrom {
+  scenarioFolder: string;
+  references: readonly CatalogReferenceResolution[];
+}
+
+/**
+ * A plain scenario's text (a batch's concrete scenario) read as a file in `scenarioFolder`, with its catalog references
+ * resolved there as the check resolves them: what `withControllerFilesFrom` needs to hand its controller Files.
+ */
+export async function controllerFilesFrom(text: string, scenarioFolder: string, catalogs: CatalogLoader): Promise<ControllerFilesFrom> {
+  const model = semanticModelOf(parseXml(text));
+  const resolution = await catalogs.resolve(diskRef(path.join(scenarioFolder, 'scenario.xosc')), model);
+  return { scenarioFolder, references: resolution.references };
+}
 
 /**
  * esmini 3.6 looks a controller's `Properties/File` up as written, from its working folder, then from the folder of the

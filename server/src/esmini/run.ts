@@ -11,7 +11,7 @@ import { CatalogLoader } from '../core/semantics/catalogs';
 import { attribute, descendants, escapeAttributeValue, parseXml } from '../core/xml';
 import { parseEsminiLoadedRoad } from '../../../common/src/esminiCsv';
 import type { TraceRecord } from '../../../common/src/trace';
-import { withControllerFilesFrom } from './controllerFiles';
+import { ControllerFilesFrom, withControllerFilesFrom } from './controllerFiles';
 import { locateEsmini } from './locate';
 import { EsminiLogMessage, EsminiRemark, readEsminiLog } from './log';
 import { esminiMessageSeverity, EsminiProblem, mapEsminiMessages, withoutRunFolder } from './messages';
@@ -63,6 +63,12 @@ export interface EsminiRunOptions {
   force?: boolean;
   /** `runScenarioText`: files written beside the scenario in its run folder, each at its path relative to that folder (a kept run's package files). */
   files?: readonly { path: string; bytes: Uint8Array }[];
+  /**
+   * The folder the scenario's own relative paths start from and its catalog references: a controller's File named through
+   * a `$parameter`, which esmini would miss from the private run folder, is handed as the file it names from there
+   * (controllerFiles.ts). `runScenario` sets it itself; `runScenarioText` (a batch's concrete scenario) is given it.
+   */
+  controllerFilesFrom?: ControllerFilesFrom;
 }
 
 /**
@@ -370,10 +376,8 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
     };
   }
 
-  // A controller's File esmini would miss from the private folder is handed as the file the scenario itself reaches.
-  const references = flat.source.semantics?.catalogs.references ?? [];
-  const handedText = withControllerFilesFrom(limited, sourceFolderOf(main), runFolder, references, fs.existsSync);
-  const ran = await runLimitedText(location.program, handedText, searchPath, options, timeStep, seed, limit, {
+  const controllerFilesFrom = { scenarioFolder: sourceFolderOf(main), references: flat.source.semantics?.catalogs.references ?? [] };
+  const ran = await runLimitedText(location.program, limited, searchPath, { ...options, controllerFilesFrom }, timeStep, seed, limit, {
     runFolder,
     files: flat.files,
   });
@@ -512,7 +516,12 @@ async function runLimitedText(
   const runFolder = prepared.runFolder ?? makeRunFolder(options.runsFolder ?? path.join(os.tmpdir(), 'modular2simple-esmini'));
   const scenarioFile = path.join(runFolder, 'scenario.xosc');
   const csvFile = path.join(runFolder, 'trajectories.csv');
-  fs.writeFileSync(scenarioFile, limited);
+  // A controller's File esmini would miss from the private folder is handed as the file the scenario itself reaches.
+  const from = options.controllerFilesFrom;
+  fs.writeFileSync(
+    scenarioFile,
+    from ? withControllerFilesFrom(limited, from.scenarioFolder, runFolder, from.references, fs.existsSync) : limited,
+  );
   // A package file never replaces the run's own scenario or log.
   const own = new Set([scenarioFile, csvFile]);
   writePackagedFiles(

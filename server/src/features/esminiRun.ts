@@ -6,6 +6,8 @@ import { diskRef, refId } from '../core/sources';
 import { SamplingError } from '../core/variations';
 import { EsminiRunOptions, EsminiRunResult, removeRunFolder, runScenario, runScenarioText } from '../esmini/run';
 import { searchPathOf } from '../batch/plan';
+import { CatalogLoader } from '../core/semantics/catalogs';
+import { controllerFilesFrom } from '../esmini/controllerFiles';
 import { DistributionAnalysis, distributionAnalysis, distributionProblems } from './distributions';
 import { RunEsminiParams, RunEsminiResult } from '../../../common/src/protocol';
 import { Workspace } from '../workspace';
@@ -59,7 +61,7 @@ export class EsminiRuns {
     };
     const distribution = await distributionAnalysis(workspace, ref);
     const result = distribution
-      ? await runFirstConcrete(distribution, options)
+      ? await runFirstConcrete(distribution, options, new CatalogLoader(workspace.store))
       : await runScenario(new Flattener(workspace.store), ref, options);
     const id = refId(ref);
     const earlier = this.previous.get(id);
@@ -117,7 +119,11 @@ export class EsminiRuns {
  * Run in esmini on a distribution file: its first concrete scenario that the ValueConstraintGroups keep,
  * run as `batch` runs it (from the ScenarioFile's folder), the message saying which index it was.
  */
-async function runFirstConcrete(analysis: DistributionAnalysis, options: EsminiRunOptions): Promise<EsminiRunResult> {
+async function runFirstConcrete(
+  analysis: DistributionAnalysis,
+  options: EsminiRunOptions,
+  catalogs: CatalogLoader,
+): Promise<EsminiRunResult> {
   const variations = analysis.loaded.variations;
   const notRun = (message: string, flattenProblems: Problem[] = []): EsminiRunResult => ({
     outcome: 'not-flattened',
@@ -159,7 +165,12 @@ async function runFirstConcrete(analysis: DistributionAnalysis, options: EsminiR
       `every one of the distribution's ${variations.count} combinations breaks the scenario's ValueConstraintGroups: nothing to run`,
     );
   const scenarioFolder = path.dirname(variations.scenarioPath);
-  const ran = await runScenarioText(chosen.text, searchPathOf(chosen.text, scenarioFolder, []), options);
+  // Its controller Files named through a `$parameter` are looked up as `run` looks them up, from the ScenarioFile's folder.
+  const controllerFiles = await controllerFilesFrom(chosen.text, scenarioFolder, catalogs);
+  const ran = await runScenarioText(chosen.text, searchPathOf(chosen.text, scenarioFolder, []), {
+    ...options,
+    controllerFilesFrom: controllerFiles,
+  });
   const which = `concrete scenario ${chosen.index} of ${variations.count} (${chosen.values})`;
   return { ...ran, message: `ran ${which}: ${ran.message}`, problems: [], flattenProblems: [] };
 }
