@@ -68,6 +68,8 @@ export interface HarnessVerdict {
   story_ticks?: string | null;
   /** With `tree: true`: where ScenarioRunner spawns each actor, by role name: [x, y, z, yaw°] in CARLA's coordinates (y negated). */
   spawns?: Record<string, [number, number, number, number]>;
+  /** With `tree: true`: each ChangeActorWaypoints built, as [its parent's name, its name, waypoints, times (null: none), the last time]. */
+  waypoints?: [string | null, string, number, number | null, number | null][];
 }
 
 /** ./carlaTree.py: check.py run unchanged, its results also listing each built tree's story elements. */

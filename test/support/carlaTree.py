@@ -42,6 +42,20 @@ def story_elements(scenario):
     return sorted([kind, name] for kind, name in found)
 
 
+def waypoint_atomics(scenario):
+    """Each ChangeActorWaypoints of the built tree (srunner/scenariomanager/scenarioatomics/atomic_behaviors.py), as
+    [its parent's name, its name, how many waypoints, how many times (None: built without), the last time]."""
+    found = []
+    for node in scenario.scenario_tree.iterate():
+        if type(node).__name__ != 'ChangeActorWaypoints':
+            continue
+        times = getattr(node, '_times', None)
+        parent = node.parent.name if node.parent is not None else None
+        found.append([parent, node.name, len(node._waypoints), None if times is None else len(times),
+                      None if not times else float(times[-1])])
+    return found
+
+
 def parameter_ticks(scenario):
     """ScenarioRunner's own parameter atomics of the built tree, ticked as its first tick would and then once
     more: the Init's ChangeParameters (named InitParams_N, srunner/scenarios/open_scenario.py
@@ -140,6 +154,7 @@ def main():
             if os.environ.get('M2S_CARLA_STORY_TICKS'):
                 built['story_ticks'] = story_ticks(scenario)
             built['spawns'] = spawns(scenario)
+            built['waypoints'] = waypoint_atomics(scenario)
             return original_lazy_refs(scenario, parameter_ref)
 
         check._lazy_refs = lazy_refs
@@ -149,6 +164,7 @@ def main():
                 payload['tree'] = built['tree']
                 payload['parameter_ticks'] = built['parameter_ticks']
                 payload['spawns'] = built['spawns']
+                payload['waypoints'] = built['waypoints']
                 if 'story_ticks' in built:
                     payload['story_ticks'] = built['story_ticks']
             emit(kind, payload)

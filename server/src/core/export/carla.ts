@@ -284,7 +284,9 @@ export async function exportTextForCarla(
     // Which way is left for an absolute target lane: the road's traffic rule.
     named(tree, 'AbsoluteTargetLane').length > 0 ||
     // A steady state's target moved back along its lane: the road's length and traffic rule.
-    named(tree, new Set(['TargetDistanceSteadyState', 'TargetTimeSteadyState'])).length > 0;
+    named(tree, new Set(['TargetDistanceSteadyState', 'TargetTimeSteadyState'])).length > 0 ||
+    // The lanes a route drives, written as a trajectory where 0.9.16 crashes on the route (routeTrajectories.ts).
+    ((options.release ?? '0.9.16') === '0.9.16' && named(tree, new Set(['AssignRouteAction', 'AcquirePositionAction'])).length > 0);
   const roads = road && 'file' in road && needsRoads ? await readRoads(copy?.bytes ?? road.file, store) : undefined;
   const geoPlaces = new Map<Node, RoadXY | string>();
   for (const position of named(tree, 'GeoPosition')) {

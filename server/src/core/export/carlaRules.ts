@@ -5,8 +5,7 @@
  */
 import type { RoadNetwork } from '../opendrive/road';
 import type { RoadXY } from '../opendrive/geo';
-import { pointAlongRoute, RouteWaypoint } from '../opendrive/route';
-import { baseName } from '../sources';
+import { pointAlongRoute } from '../opendrive/route';
 import { CarlaRelease, SR_ATOMICS, SR_CONFIGURATION, SR_PARSER, SR_SCENARIO } from './carlaFacts';
 import { CARLA_FACTS, CARLA_PROFILE } from '../profiles/carla';
 import { ESMINI_SMALL_NUMBER } from '../profiles/esmini';
@@ -42,6 +41,7 @@ import { polylinePoints, trajectoryPoint } from './trajectoryPoint';
 import { initStarts } from './initStarts';
 import { synchronizeSteadyStates } from './steadyStates';
 import { SAMPLE_STEP } from './shapes';
+import { routeTrajectory, routeWaypoints } from './routeTrajectories';
 
 export type { CarlaLoss, LossSink };
 
@@ -558,24 +558,6 @@ function routePositions(tree: Node, context: RuleContext): void {
   }
 }
 
-/** The route's waypoints as lane positions, or why one is not. */
-function routeWaypoints(route: Node): RouteWaypoint[] | string {
-  const waypoints: RouteWaypoint[] = [];
-  for (const [index, waypoint] of childrenNamed(route, 'Waypoint').entries()) {
-    const lane = child(child(waypoint, 'Position') ?? waypoint, 'LanePosition');
-    const kind = child(waypoint, 'Position')?.children[0]?.name ?? 'no position';
-    if (!lane) return `waypoint ${index + 1} of the route is a ${kind}, and the export plans routes between LanePositions only`;
-    const roadId = attr(lane, 'roadId') ?? '';
-    const laneId = Number(attr(lane, 'laneId'));
-    const s = Number(attr(lane, 's'));
-    if (!Number.isInteger(laneId) || laneId === 0 || !Number.isFinite(s)) return `waypoint ${index + 1}'s laneId or s is not a number`;
-    // Named by where it is written, so that a message saying where to add a waypoint points at a line.
-    const name = waypoint.place ? `the Waypoint at ${baseName(waypoint.place.source)}:${waypoint.place.range.start.line + 1}` : undefined;
-    waypoints.push({ roadId, laneId, s, ...(name ? { name } : {}) });
-  }
-  return waypoints;
-}
-
 function routePositionAsLane(position: Node, roads: RoadNetwork | undefined): { node: Node; summary: string } | string {
   const route = child(child(position, 'RouteRef') ?? position, 'Route');
   if (!route) return 'its route is not written in the scenario or a catalog it loads';
@@ -827,29 +809,30 @@ function initActionsPassedOver(tree: Node, context: RuleContext): void {
   }
 }
 
-/** ScenarioRunner 0.9.16 builds every AssignRouteAction and AcquirePositionAction as ChangeActorWaypoints without times, which raises (SR_ATOMICS ChangeActorWaypoints.__init__, commit ab5996d7). */
+/**
+ * ScenarioRunner 0.9.16 builds every AssignRouteAction and AcquirePositionAction as ChangeActorWaypoints without times, which
+ * raises (SR_ATOMICS ChangeActorWaypoints.__init__, commit ab5996d7): written as the FollowTrajectoryAction that drives the same
+ * lanes where the export can plan them (routeTrajectories.ts), else refused naming why not.
+ */
 function routeActionCrash(tree: Node, context: RuleContext): void {
   if (context.release !== '0.9.16') return;
+  const crash = `0.9.16 creates ChangeActorWaypoints without times for it, which raises "object of type 'NoneType' has no len()" (${SR_ATOMICS} ChangeActorWaypoints.__init__, a regression of commit ab5996d7)`;
+  const builds = `ScenarioRunner 0.9.16 crashes on it (${SR_ATOMICS} ChangeActorWaypoints.__init__, commit ab5996d7) but builds a FollowTrajectoryAction as ChangeActorWaypoints with times, straight lines between the vertices (${SR_PARSER}:1509-1513, ${SR_SCENARIO}:336-342), and drives to each vertex by its time (${CARLA_FACTS.trajectoryTimesSetSpeed.source})`;
   for (const name of ['AssignRouteAction', 'AcquirePositionAction']) {
     for (const node of named(tree, name)) {
-      if (!node.parent || ancestor(node, 'Init')) continue;
+      if (!node.parent) continue;
+      const written = routeTrajectory(tree, node, context.roads);
+      if (typeof written !== 'string') {
+        replaceNode(node, written.follow);
+        context.sink.approximated(written.follow, name, `written as a FollowTrajectoryAction along ${written.summary}`, builds);
+        continue;
+      }
+      const init = ancestor(node, 'Init') !== undefined;
       context.sink.refuse(
         node,
         name,
         'crashes ScenarioRunner 0.9.16 while it builds the scenario',
-        `0.9.16 creates ChangeActorWaypoints without times for it, which raises "object of type 'NoneType' has no len()" (${SR_ATOMICS} ChangeActorWaypoints.__init__, a regression of commit ab5996d7); no 1.0 form keeps a route's meaning without that atomic; export with --carla 0.9.15 for ScenarioRunner 0.9.15`,
-      );
-    }
-  }
-  const init = named(tree, 'Init')[0];
-  if (!init) return;
-  for (const name of ['AssignRouteAction', 'AcquirePositionAction']) {
-    for (const node of named(init, name)) {
-      context.sink.refuse(
-        node,
-        name,
-        'crashes ScenarioRunner 0.9.16 while it builds the scenario',
-        `the Init route is built as ChangeActorWaypoints without times, which raises (${SR_SCENARIO} _create_init_behavior, ${SR_ATOMICS} ChangeActorWaypoints.__init__, commit ab5996d7); export with --carla 0.9.15 for ScenarioRunner 0.9.15`,
+        `${init ? `the Init route is built as ChangeActorWaypoints without times, which raises (${SR_SCENARIO} _create_init_behavior, ${SR_ATOMICS} ChangeActorWaypoints.__init__, commit ab5996d7)` : crash}; the export cannot write it as a FollowTrajectoryAction: ${written}; export with --carla 0.9.15 for ScenarioRunner 0.9.15`,
       );
     }
   }

@@ -264,8 +264,8 @@ function findPath(network: RoadNetwork, start: RouteWaypoint, target: RouteWaypo
   return first as FoundPath | string;
 }
 
-/** Where `pathS` metres along the route lies: esmini's minimal waypoints (Route::AddWaypoint) walked as Route::SetPathS walks them. */
-export function pointAlongRoute(network: RoadNetwork, waypoints: RouteWaypoint[], pathS: number): RoutePoint | string {
+/** esmini's minimal waypoints of a route (Route::AddWaypoint), with the route's length from its first waypoint; or why there are none. */
+function planRoute(network: RoadNetwork, waypoints: RouteWaypoint[]): { stops: Stop[]; length: number } | string {
   if (waypoints.length < 2) return 'the route has fewer than two waypoints';
   const stops: Stop[] = [];
   const roadOf = (waypoint: RouteWaypoint): Road | undefined => network.byId.get(waypoint.roadId);
@@ -319,6 +319,14 @@ export function pointAlongRoute(network: RoadNetwork, waypoints: RouteWaypoint[]
     stops.push({ given: waypoint, road, s: waypoint.s, laneId: waypoint.laneId, direction: entered === 'start' ? 1 : -1, routeS: length });
   }
   if (stops.length > 1 && stops[0].road === stops[1].road) stops[0].direction = stops[1].s >= stops[0].s ? 1 : -1;
+  return { stops, length };
+}
+
+/** Where `pathS` metres along the route lies: esmini's minimal waypoints (Route::AddWaypoint) walked as Route::SetPathS walks them. */
+export function pointAlongRoute(network: RoadNetwork, waypoints: RouteWaypoint[], pathS: number): RoutePoint | string {
+  const plan = planRoute(network, waypoints);
+  if (typeof plan === 'string') return plan;
+  const { stops, length } = plan;
   if (pathS < 0 || pathS > length + SMALL)
     return `pathS ${pathS} lies past the route's end (the route is ${Number(length.toFixed(2))} m long from its first waypoint)`;
   let index = 0;
@@ -334,4 +342,83 @@ export function pointAlongRoute(network: RoadNetwork, waypoints: RouteWaypoint[]
     return { roadId: next.road.id, s: next.direction === 1 ? over : next.road.length - over, roads };
   }
   return { roadId: stop.road.id, s: stop.s + stop.direction * ds, roads };
+}
+
+/** A stretch of one lane of one road the route drives, from s `from` to s `to` (to < from: against s). */
+export interface LaneStretch {
+  roadId: string;
+  laneId: number;
+  from: number;
+  to: number;
+}
+
+/**
+ * The lanes an entity drives from `start` to the route's last waypoint, as esmini moves it along a route: in its own
+ * lane (no lane change), through each road in the lane's driving direction, from road to road by lane links and through
+ * junctions by the connection to the route's next road (esmini's default controller, Position::MoveAlongS with a Route);
+ * split where the lane continues as another lane id (lane sections, roads). Or why the entity cannot drive it so.
+ */
+export function routeLanes(network: RoadNetwork, waypoints: RouteWaypoint[], start: RouteWaypoint): LaneStretch[] | string {
+  const plan = planRoute(network, waypoints);
+  if (typeof plan === 'string') return plan;
+  const roads: Road[] = [];
+  for (const stop of plan.stops) if (roads.at(-1) !== stop.road) roads.push(stop.road);
+  const repeated = roads.find((road, index) => roads.indexOf(road) !== index);
+  if (repeated) return `the route runs over road ${repeated.id} twice`;
+  const first = roads.findIndex((road) => road.id === start.roadId);
+  if (first < 0)
+    return `${start.name ?? 'the start'} lies on road ${start.roadId}, which the route does not run over (${roads.map((road) => road.id).join(' > ')})`;
+  const last = waypoints[waypoints.length - 1];
+  const directionOn = (road: Road): 1 | -1 => (plan.stops.find((stop) => stop.road === road) as Stop).direction;
+  let direction = directionOn(roads[first]);
+  if ((start.laneId < 0 ? 1 : -1) !== direction)
+    return `lane ${start.laneId} of road ${start.roadId} drives against the route there (esmini keeps the lane, no U-turn)`;
+  const stretches: LaneStretch[] = [];
+  let laneId = start.laneId;
+  let s = start.s;
+  for (let index = first; index < roads.length; index++) {
+    const road = roads[index];
+    const end = index === roads.length - 1 ? last.s : direction === 1 ? road.length : 0;
+    if (end < 0 || end > road.length + SMALL)
+      return `${last.name ?? "the route's last waypoint"} (s ${last.s}) lies past the end of road ${road.id} (${Number(road.length.toFixed(3))} m)`;
+    if ((end - s) * direction < -SMALL)
+      return `${start.name ?? 'the start'} (road ${road.id}, s ${Number(s.toFixed(3))}) lies past the route's last waypoint (s ${last.s})`;
+    // Through the road's lane sections: the lane continues as its link names in the next one.
+    let section = laneSectionIndexAt(road, s);
+    for (;;) {
+      const sectionEnd = direction === 1 ? road.laneSections[section].s + road.laneSections[section].length : road.laneSections[section].s;
+      const reaches = direction === 1 ? sectionEnd >= end - SMALL : sectionEnd <= end + SMALL;
+      if (!road.laneSections[section].lanes.some((lane) => lane.id === laneId))
+        return `road ${road.id} has no lane ${laneId} at s ${Number(s.toFixed(3))}`;
+      stretches.push({ roadId: road.id, laneId, from: s, to: reaches ? end : sectionEnd });
+      if (reaches) break;
+      const lane = road.laneSections[section].lanes.find((each) => each.id === laneId);
+      const next = (direction === 1 ? lane?.successor : lane?.predecessor) ?? 0;
+      if (next === 0)
+        return `lane ${laneId} of road ${road.id} ends at s ${Number(sectionEnd.toFixed(3))} (no link into the next lane section)`;
+      laneId = next;
+      s = sectionEnd;
+      section += direction;
+    }
+    if (index === roads.length - 1) break;
+    const exit: End = direction === 1 ? 'end' : 'start';
+    const link = linkAt(road, exit);
+    const nextRoad = roads[index + 1];
+    let entered: End | undefined;
+    let nextLane = 0;
+    if (link?.elementType === 'road' && link.elementId === nextRoad.id) {
+      entered = link.contactPoint ?? 'start';
+      nextLane = laneLinkAt(road, exit, laneId);
+    } else if (link?.elementType === 'junction') {
+      const connection = connectionsFrom(network, link.elementId, road).find((each) => each.connectingRoad === nextRoad.id);
+      entered = connection?.contactPoint;
+      nextLane = connection?.laneLinks.find(([from]) => from === laneId)?.[1] ?? 0;
+    }
+    if (!entered) return `road ${road.id} does not lead into road ${nextRoad.id}, the route's next road`;
+    if (nextLane === 0) return `lane ${laneId} of road ${road.id} has no link into road ${nextRoad.id}, the route's next road`;
+    laneId = nextLane;
+    direction = entered === 'start' ? 1 : -1;
+    s = entered === 'start' ? 0 : nextRoad.length;
+  }
+  return stretches;
 }
