@@ -129,7 +129,15 @@ describe('simulator profiles', () => {
       [['error', 'AcquirePositionAction']],
     );
     assert.match(simulatorWording(latest[0]).message, /atomic_behaviors\.py:773/);
-    assert.deepEqual(simulatorFindings('carla', parseXml(text), 'scenario.xosc', '0.9.15'), []);
+    assert.deepEqual(simulatorFindings('carla', parseXml(text), 'scenario.xosc', '0.9.15'), []); // In a story the export refuses it too (where the actor is when it starts is known only as the scenario runs): no export offered.
+    assert.equal(latest[0].exportMaps, undefined);
+    // In the Init it may write it as a FollowTrajectoryAction along the route's lanes (export/routeTrajectories.ts): offered.
+    const init = `<Private entityRef="ego">${acquire}</Private>`;
+    const inInit = simulatorFindings('carla', parseXml(scenarioText('0', init, '')), 'scenario.xosc', '0.9.16');
+    assert.deepEqual(
+      inInit.map((finding) => [finding.severity, finding.element.name, finding.exportMaps]),
+      [['error', 'AcquirePositionAction', true]],
+    );
   });
 
   it('carla knows where an action may stand: a lane change runs in a Story, not in the Init', () => {

@@ -124,7 +124,12 @@ const elementCheck: ProfileCheck = ({ profile, elements, release }) => {
       if (fact.parent && element.parent?.name !== fact.parent) continue;
       const place = placeOf(element);
       if (fact.in && place !== fact.in) continue;
-      findings.push({ element, severity: fact.severity ?? 'warning', facts: { kind: 'element', profile: profile.name, fact } });
+      findings.push({
+        element,
+        severity: fact.severity ?? 'warning',
+        facts: { kind: 'element', profile: profile.name, fact },
+        ...(fact.exportWritesIn !== undefined && fact.exportWritesIn === place ? { exportMaps: true } : {}),
+      });
     }
   }
   return findings;
