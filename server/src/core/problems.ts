@@ -187,6 +187,8 @@ export interface SimulatorFixData {
   exportMaps?: boolean;
   /** The entity an EntityRef added to the Actors the problem stands on names (esmini takes actors only from EntityRefs). */
   actor?: string;
+  /** The Orientation the problem stands on is moved before its InRoutePosition (esmini reads a RoutePosition's children in order). */
+  orientationFirst?: boolean;
 }
 
 /** The data each problem code carries (where it carries any). */

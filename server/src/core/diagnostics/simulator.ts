@@ -83,6 +83,7 @@ function isSimulatorData(value: unknown): value is ProblemDataByCode['simulator'
   if (!isRecord(value) || !isOptionalString(value.suggestion)) return false;
   if (value.exportMaps !== undefined && typeof value.exportMaps !== 'boolean') return false;
   if (!isOptionalString(value.actor)) return false;
+  if (value.orientationFirst !== undefined && typeof value.orientationFirst !== 'boolean') return false;
   return value.rename === undefined || (isRecord(value.rename) && isString(value.rename.from) && isString(value.rename.to));
 }
 
@@ -110,8 +111,41 @@ export const SIMULATOR = defineDiagnostic({
       : []),
     ...(data?.exportMaps ? [{ title: 'Export for CARLA…', edits: [], command: 'export-for-carla' as const }] : []),
     ...(data?.actor !== undefined ? await actorFix(data.actor, document, range, parsed) : []),
+    ...(data?.orientationFirst ? await orientationFirstFix(document, range, parsed) : []),
   ],
 });
+
+/** The Orientation the problem stands on, moved (with its line) before its RoutePosition's InRoutePosition. */
+async function orientationFirstFix(document: TextLines, range: Range, parsed: () => Promise<XmlDocument>): Promise<CoreFix[]> {
+  const orientation = elementAt(await parsed(), document.offsetAt(range.start));
+  const position = orientation?.parent?.children.find((child) => child.name === 'InRoutePosition');
+  if (orientation?.name !== 'Orientation' || !position || position.start > orientation.start) return [];
+  const text = document.getText();
+  const lineStart = (offset: number): number => text.lastIndexOf('\n', offset - 1) + 1;
+  const indentBefore = (offset: number): string | undefined => {
+    const leading = text.slice(lineStart(offset), offset);
+    return /^[ \t]*$/.test(leading) ? leading : undefined;
+  };
+  const ownLine = indentBefore(orientation.start) !== undefined;
+  // Its whole line goes, line break included, when it stands alone on it.
+  const removeFrom = ownLine
+    ? Math.max(0, lineStart(orientation.start) - (text[lineStart(orientation.start) - 2] === '\r' ? 2 : 1))
+    : orientation.start;
+  const eol = text.includes('\r\n') ? '\r\n' : '\n';
+  const indent = indentBefore(position.start);
+  const moved = text.slice(orientation.start, orientation.end) + (indent !== undefined ? eol + indent : '');
+  const place = (start: number, end: number) => ({ start: document.positionAt(start), end: document.positionAt(end) });
+  return [
+    {
+      title: 'Move <Orientation> before <InRoutePosition>',
+      edits: [
+        { place: 'document' as const, range: place(position.start, position.start), newText: moved },
+        { place: 'document' as const, range: place(removeFrom, orientation.end), newText: '' },
+      ],
+      preferred: true,
+    },
+  ];
+}
 
 /** `<EntityRef entityRef="actor"/>` added to the Actors the problem stands on. */
 async function actorFix(actor: string, document: TextLines, range: Range, parsed: () => Promise<XmlDocument>): Promise<CoreFix[]> {

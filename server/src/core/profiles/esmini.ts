@@ -177,6 +177,11 @@ export const ESMINI_FACTS = {
     source: `${READER}:1656-1660, 270-281`,
     severity: 'error',
   },
+  routeOrientationOrder: {
+    does: "applies a RoutePosition's Orientation only to an InRoutePosition it reads after it (it reads the children in the order written; the standard lets them stand in any order), so an Orientation written after the InRoutePosition is dropped (the entity then faces along the route; in a lane of positive id, against it)",
+    source: `${READER}:2102-2212`,
+    severity: 'warning',
+  },
   steadyStateStop: {
     does: 'refuses a SynchronizeAction whose FinalSpeed is an AbsoluteSpeed of 0 or less with a steady state ("SynchronizeAction steady state with 0 or negative final speed is not supported")',
     source: `${READER}:3269-3282`,

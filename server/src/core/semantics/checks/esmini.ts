@@ -29,11 +29,29 @@ function entitiesAfterExternal(context: SemanticContext, root: XmlElement): Find
   });
 }
 
-/** What esmini refuses at load: a ScenarioObject after an ExternalObjectReference that is referenced, a SynchronizeAction's steady state to a stop. */
+/** A RoutePosition's Orientation after its InRoutePosition, which esmini drops (Euro NCAP's CBFA turns its obstruction so: the second one then stands 9 m away). */
+function routeOrientationsAfterPosition(root: XmlElement): Finding[] {
+  return descendants(root).flatMap((route) => {
+    if (route.name !== 'RoutePosition') return [];
+    const orientation = route.children.findIndex((child) => child.name === 'Orientation');
+    const position = route.children.findIndex((child) => child.name === 'InRoutePosition');
+    if (orientation < 0 || position < 0 || orientation < position) return [];
+    const element = route.children[orientation];
+    return [
+      {
+        ...at(element, undefined),
+        ...esminiFactWording('routeOrientationOrder', `this <Orientation> comes after <InRoutePosition>`),
+        data: { orientationFirst: true },
+      },
+    ];
+  });
+}
+
+/** What esmini refuses at load: a ScenarioObject after an ExternalObjectReference that is referenced, a SynchronizeAction's steady state to a stop; what it drops: a RoutePosition's Orientation after its position. */
 export const esminiScenario: SemanticCheck = (context) => {
   const root = context.model.document.root;
   if (context.simulator !== 'esmini' || !root) return [];
-  const findings: Finding[] = [...entitiesAfterExternal(context, root)];
+  const findings: Finding[] = [...entitiesAfterExternal(context, root), ...routeOrientationsAfterPosition(root)];
   // A SynchronizeAction's final AbsoluteSpeed of 0 or less followed by a steady state.
   for (const speed of descendants(root)) {
     if (speed.name !== 'AbsoluteSpeed' || speed.parent?.name !== 'FinalSpeed' || speed.children.length === 0) continue;
