@@ -933,6 +933,19 @@ describe('export --target carla, Init routes under 0.9.16 written as trajectorie
       result.report.losses.find((loss) => loss.kind === 'refused')?.carla ?? '',
       /the speed of 'Ego' is not certain over the route/,
     );
+    // A pedestrian: its walker controller reads no vertex times, and the Init sets its speed only after the trajectory ends.
+    const walking = initRoutesScenario().replace(
+      /(<ScenarioObject name="Follower">\s*)<Vehicle[\s\S]*?<\/Vehicle>/,
+      '$1<Pedestrian name="walker.pedestrian.0001" model="walker.pedestrian.0001" mass="80" pedestrianCategory="pedestrian"><ParameterDeclarations/><BoundingBox><Center x="0" y="0" z="0.9"/><Dimensions width="0.5" length="0.5" height="1.8"/></BoundingBox><Properties/></Pedestrian>',
+    );
+    assert.match(walking, /<Pedestrian /);
+    const walker = await refusedExport(path.join(out, 'walker.xosc'), walking);
+    const walkerRefusals = walker.report.losses.filter((loss) => loss.kind === 'refused');
+    assert.deepEqual(
+      walkerRefusals.map((loss) => [loss.element, loss.line]),
+      [['AcquirePositionAction', lineHolding(walking, '<AcquirePositionAction>')]],
+    );
+    assert.match(walkerRefusals[0].carla, /'Follower' is not a vehicle: ScenarioRunner's walker controller does not read vertex times/);
     // 0.9.15 builds the route itself: nothing to map.
     const older = await exportFile(original, path.join(out, 'older.xosc'), ['--carla', '0.9.15']);
     assert.equal(older.code, 0, older.stderr);

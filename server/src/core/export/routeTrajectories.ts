@@ -4,13 +4,15 @@
  * (SR_ATOMICS ChangeActorWaypoints.__init__, a regression of commit ab5996d7), but builds a FollowTrajectoryAction as
  * ChangeActorWaypoints with times and 'shortest' routing, straight lines between the vertices (SR_PARSER 1509-1513,
  * SR_SCENARIO 336-342), which its vehicle controller drives to reach each vertex at its time (npc_vehicle_control.py:103-113).
- * The lanes are those esmini drives the route in (core/opendrive/route.ts routeLanes), the vertices LanePositions
+ * Only a vehicle's: the Init sets an actor's speed after its routing action ends (SR_SCENARIO 352-357), and only the vehicle
+ * controller drives by the vertex times. The lanes are those esmini drives the route in (core/opendrive/route.ts routeLanes), the vertices LanePositions
  * (ScenarioRunner converts one with CARLA's own map, get_waypoint_xodr, SR_PARSER convert_position_to_transform) at most
  * ROUTE_STEP apart, timed at the actor's speed, which must be certain over the whole run (scenarioTree constantSpeedOf).
  */
 import type { RoadNetwork } from '../opendrive/road';
 import { routeLanes, RouteWaypoint } from '../opendrive/route';
 import { baseName } from '../sources';
+import { SR_SCENARIO } from './carlaFacts';
 import { roadPositionPose } from './trajectoryPoint';
 import { actorsOf, constantSpeedOf, scenarioObjectOf } from './scenarioTree';
 import { ancestor, attr, child, childrenNamed, fourDecimals, makeNode, named, Node, numberAttr } from './tree';
@@ -94,8 +96,8 @@ export function routeTrajectory(tree: Node, action: Node, roads: RoadNetwork | u
   if (!roads) return 'the road is a CARLA town (or no .xodr file the export read), whose lanes the export cannot plan';
   const actor = actorsOf(action)[0] ?? '';
   const object = scenarioObjectOf(tree, actor);
-  if (!object || !(child(object, 'Vehicle') || child(object, 'Pedestrian')))
-    return `'${actor}' is not a vehicle or a pedestrian that ScenarioRunner drives along a trajectory`;
+  if (!object || !child(object, 'Vehicle'))
+    return `'${actor}' is not a vehicle: ScenarioRunner's walker controller does not read vertex times (pedestrian_control.py), and the Init sets an actor's speed only after its trajectory ends (${SR_SCENARIO}:352-357), so it would stand at its start`;
   for (const story of named(tree, 'Story'))
     for (const moving of named(story, MOVING)) {
       const group = ancestor(moving, 'ManeuverGroup');
