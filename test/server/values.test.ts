@@ -18,6 +18,29 @@ import { problemCodeOf } from '../support/diagnostics';
 import { temporaryWorkspace } from '../support/workspace';
 import { fileHeader, openScenarioFile } from '../support/fixtures';
 
+/** A storyboard whose one Event `eventName` runs a CustomCommandAction of `type` holding `command`. */
+function storyboard(eventName: string, type: string, command: string): string {
+  return `  <Storyboard>
+    <Init><Actions/></Init>
+    <Story name="S">
+      <Act name="A">
+        <ManeuverGroup name="G" maximumExecutionCount="1">
+          <Actors selectTriggeringEntities="false"/>
+          <Maneuver name="M">
+            <Event name="${eventName}" priority="override">
+              <Action name="Act"><UserDefinedAction><CustomCommandAction type="${type}">${command}</CustomCommandAction></UserDefinedAction></Action>
+              <StartTrigger/>
+            </Event>
+          </Maneuver>
+        </ManeuverGroup>
+        <StartTrigger/>
+      </Act>
+    </Story>
+    <StopTrigger/>
+  </Storyboard>
+`;
+}
+
 /** Values and severities by SPEC 12 (issue 17) over JSON-RPC: hover, inlay hints, diagnostics and their quick fixes. */
 const VALUES = openScenarioFile(
   `  <ParameterDeclarations>
@@ -29,36 +52,29 @@ const VALUES = openScenarioFile(
     <ParameterDeclaration name="Stop" parameterType="double" value="\${$RedLightDistance - 6}"/>
     <ParameterDeclaration name="Brake" parameterType="double" value="\${$TargetBrakeDistance + $Minus + HeadwayTime_Brake}"/>
   </ParameterDeclarations>
-  <Storyboard>
-    <Init><Actions/></Init>
-    <Story name="S">
-      <Act name="A">
-        <ManeuverGroup name="G" maximumExecutionCount="1">
-          <Actors selectTriggeringEntities="false"/>
-          <Maneuver name="M">
-            <Event name="\${BrakeCondition_HWT + _ + $HeadwayTime_Brake}" priority="override">
-              <Action name="Act"><UserDefinedAction><CustomCommandAction type="x">\${round(2.5)}</CustomCommandAction></UserDefinedAction></Action>
-              <StartTrigger/>
-            </Event>
-          </Maneuver>
-        </ManeuverGroup>
-        <StartTrigger/>
-      </Act>
-    </Story>
-    <StopTrigger/>
-  </Storyboard>
-`,
+${storyboard('${BrakeCondition_HWT + _ + $HeadwayTime_Brake}', 'x', '${round(2.5)}')}`,
   fileHeader({ description: 'values' }),
 );
 
 const lineOf = (needle: string) => VALUES.slice(0, VALUES.indexOf(needle)).split('\n').length - 1;
+
+/** One name declared twice in one scope: the standard's references read the first, esmini the last (Parameters.cpp:566-582). */
+const TWICE = openScenarioFile(
+  `  <ParameterDeclarations>
+    <ParameterDeclaration name="Speed" parameterType="double" value="10"/>
+    <ParameterDeclaration name="Speed" parameterType="double" value="20"/>
+    <ParameterDeclaration name="Double" parameterType="double" value="\${$Speed * 2}"/>
+  </ParameterDeclarations>
+${storyboard('E', '$Speed', 'x')}`,
+  fileHeader({ description: 'declared twice' }),
+);
 
 describe('values as the simulator computes them, and the severity policy (JSON-RPC)', function () {
   let root: string;
   const clients: TestClient[] = [];
 
   before(() => {
-    root = temporaryWorkspace({ 'values.xosc': VALUES });
+    root = temporaryWorkspace({ 'values.xosc': VALUES, 'twice.xosc': TWICE });
   });
 
   after(async () => {
@@ -66,10 +82,10 @@ describe('values as the simulator computes them, and the severity policy (JSON-R
     if (root) fs.rmSync(root, { recursive: true, force: true });
   });
 
-  async function open(settings: Record<string, unknown>): Promise<{ client: TestClient; uri: string }> {
+  async function open(settings: Record<string, unknown>, file = 'values.xosc'): Promise<{ client: TestClient; uri: string }> {
     const client = await TestClient.start({ root, settings });
     clients.push(client);
-    return { client, uri: await client.openFile(path.join(root, 'values.xosc')) };
+    return { client, uri: await client.openFile(path.join(root, file)) };
   }
 
   it('publishes the lenient forms and the values esmini computes otherwise as warnings, with no error', async function () {
@@ -163,6 +179,41 @@ describe('values as the simulator computes them, and the severity policy (JSON-R
     assert.ok(
       !diagnostics.some((diagnostic) => diagnostic.severity === DiagnosticSeverity.Error),
       diagnostics.map((diagnostic) => diagnostic.message).join('\n'),
+    );
+  });
+
+  it("a parameter declared twice: hover and inlay hints show the last declaration's value with esmini, as esmini reads it, and name it beside the standard's", async function () {
+    const twiceLine = (needle: string) => TWICE.slice(0, TWICE.indexOf(needle)).split('\n').length - 1;
+    const range = { start: { line: 0, character: 0 }, end: { line: 100, character: 0 } };
+    const labelOf = async (client: TestClient, uri: string) =>
+      (await client.request<InlayHint[]>('textDocument/inlayHint', { textDocument: { uri }, range })).find(
+        (hint) => hint.position.line === twiceLine('name="Double"'),
+      )?.label;
+    const standard = await open({}, 'twice.xosc');
+    assert.equal(await labelOf(standard.client, standard.uri), '= 20 (esmini 40)');
+    const esmini = await open({ simulator: 'esmini' }, 'twice.xosc');
+    // The settings arrive after the first analysis: ask again until the analysis under them answers.
+    let label: InlayHint['label'] | undefined;
+    for (let attempt = 0, deadline = Date.now() + SERVER_WAIT_MS; label !== '= 40 (standard 20)' && Date.now() < deadline; attempt++) {
+      if (attempt > 0) await new Promise((resolve) => setTimeout(resolve, 100));
+      label = await labelOf(esmini.client, esmini.uri);
+    }
+    assert.equal(label, '= 40 (standard 20)');
+    const use = await esmini.client.request<Hover>('textDocument/hover', esmini.client.at(esmini.uri, inside(TWICE, 'type="$Speed"', 8)));
+    assert.match((use.contents as MarkupContent).value, /^\*\*\$Speed\*\* = 20 \(double\)/);
+    const inExpression = await esmini.client.request<Hover>(
+      'textDocument/hover',
+      esmini.client.at(esmini.uri, inside(TWICE, '$Speed * 2', 3)),
+    );
+    const hovered = (inExpression.contents as MarkupContent).value;
+    assert.match(
+      hovered,
+      /^`\$\{\$Speed \* 2\}` = \*\*40\*\* \(double\); by the standard 20, by esmini 40 \(esmini uses the last of two declarations of one name/,
+    );
+    // The declaration esmini reads: the second, on its line (1-based).
+    assert.ok(
+      hovered.includes(`- \`$Speed\` = 20 (double), declared in \`<OpenSCENARIO>\` on line ${twiceLine('value="20"') + 1}`),
+      hovered,
     );
   });
 });

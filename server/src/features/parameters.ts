@@ -264,11 +264,13 @@ export async function parameterHover(
           lines.push(`- \`$${candidate.name}\`: not declared in this scope`);
           continue;
         }
-        if (seen.has(candidate.declaration)) continue;
-        seen.add(candidate.declaration);
-        const value = semantics.evaluator.declarationValue(candidate.declaration);
+        // The declaration the selected reading reads: with esmini, the last of two in one scope.
+        const declaration = semantics.evaluator.declarationOf(site.scope, candidate.name, site.declaration) ?? candidate.declaration;
+        if (seen.has(declaration)) continue;
+        seen.add(declaration);
+        const value = semantics.evaluator.declarationValue(declaration);
         lines.push(
-          `- \`$${candidate.name}\` = ${describeValue(value)}, declared in ${scopeName(candidate.declaration)} on line ${lineOf(semantics, candidate.declaration.element.start)}`,
+          `- \`$${candidate.name}\` = ${describeValue(value)}, declared in ${scopeName(declaration)} on line ${lineOf(semantics, declaration.element.start)}`,
         );
       }
     }
@@ -279,7 +281,8 @@ export async function parameterHover(
   if (use) {
     // A parameterRef names a parameter without using its value in an expression.
     if (!use.declaration) return { markdown: `parameter **${use.name}** is not declared in this scope`, start: use.start, end: use.end };
-    const value = semantics.evaluator.declarationValue(use.declaration);
+    const declaration = semantics.evaluator.declarationOf(semantics.model.scopeOf(use.element), use.name) ?? use.declaration;
+    const value = semantics.evaluator.declarationValue(declaration);
     return {
       markdown: [`parameter **${use.name}** = ${describeValue(value)}`, '', provenanceLine(semantics, value.provenance) ?? ''].join('\n'),
       start: use.start,

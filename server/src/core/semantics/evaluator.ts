@@ -37,6 +37,7 @@ export type Assignments = Map<string, { value: TypedValue | undefined; assignmen
 
 /** esmini's rules worth naming in a message (substituting text and writing six decimals explain nothing alone). */
 const NAMED_RULES: readonly ValueRule[] = [
+  'redeclaration',
   'numbers',
   'textGluing',
   'keywords',
@@ -330,8 +331,17 @@ export class Evaluator {
   }
 
   private esminiName(scope: Scope, name: string, within: Declaration | undefined): EsminiText | undefined {
-    const declaration = resolveName(scope, name.startsWith('$') ? name.slice(1) : name, within);
-    return declaration ? this.esminiDeclarationText(declaration) : undefined;
+    const plain = name.startsWith('$') ? name.slice(1) : name;
+    const declaration = resolveName(scope, plain, within, true);
+    if (!declaration) return undefined;
+    const text = this.esminiDeclarationText(declaration);
+    // esmini reads the last of two declarations of the name, the standard's references the first.
+    return declaration === resolveName(scope, plain, within) ? text : { ...text, rules: [...text.rules, 'redeclaration'] };
+  }
+
+  /** The declaration `name` names from `scope` in this evaluator's reading: esmini's is the last of two in one scope. */
+  declarationOf(scope: Scope | undefined, name: string, within?: Declaration): Declaration | undefined {
+    return resolveName(scope, name, within, this.reading === 'esmini');
   }
 
   /** The text esmini makes of a `$name` or `${...}` attribute value. */
@@ -491,8 +501,19 @@ export class Evaluator {
   private computeSite(site: ValueSite): ValueResult & { warnings?: ExpressionError[] } {
     if (site.form.kind === 'parameter') {
       const declaration = resolveName(site.scope, site.form.name, site.declaration);
-      if (declaration) return this.declarationValue(declaration);
-      return this.standardSite(site);
+      if (!declaration) return this.standardSite(site);
+      const esminis = this.reading === 'esmini' ? resolveName(site.scope, site.form.name, site.declaration, true) : declaration;
+      if (!esminis || esminis === declaration) return this.declarationValue(declaration);
+      // Declared twice in one scope: esmini reads the last declaration (its value, where it was declared).
+      const esmini = this.declarationValue(esminis);
+      const standard = this.declarationValue(declaration);
+      if (!esmini.ok || !standard.ok || sameValue(esmini.value, standard.value)) return esmini;
+      const differs: ValueDifference = {
+        standard: formatValue(standard.value),
+        esmini: formatValue(esmini.value),
+        reasons: reasonsOf(['redeclaration']),
+      };
+      return { ...esmini, differs };
     }
     const expression = site.form.expression;
     if (!expression.tree) return this.standardSite(site);

@@ -170,6 +170,7 @@ export function carrySemanticModel(previous: SemanticModel, edit: ValueEdit, doc
       children: [],
       declarations: [],
       byName: new Map(),
+      lastByName: new Map(),
       catalogEntry: scope.catalogEntry,
     };
     copy.parent?.children.push(copy);
@@ -294,6 +295,7 @@ export function carrySemanticModel(previous: SemanticModel, edit: ValueEdit, doc
     if (copy.kind === 'parameter') {
       copy.scope.declarations.push(copy);
       if (!copy.scope.byName.has(copy.name)) copy.scope.byName.set(copy.name, copy);
+      copy.scope.lastByName.set(copy.name, copy);
       if (declaration.element === previousElement) ownDeclaration = copy;
     } else if (!model.variables.has(copy.name)) {
       model.variables.set(copy.name, copy);

@@ -46,6 +46,7 @@ export class ScopeCollector {
     if (kind === 'parameter') {
       scope.declarations.push(declaration);
       if (!scope.byName.has(declaration.name)) scope.byName.set(declaration.name, declaration);
+      scope.lastByName.set(declaration.name, declaration);
     } else if (!this.model.variables.has(declaration.name)) {
       this.model.variables.set(declaration.name, declaration);
     }
@@ -67,7 +68,15 @@ export class ScopeCollector {
     }
     const isCatalogEntry = element.parent !== undefined && element.parent.name === 'Catalog';
     if (!holdsDeclarations && element !== this.rootElement && !isCatalogEntry) return current;
-    const scope: Scope = { element, parent: current, children: [], declarations: [], byName: new Map(), catalogEntry: isCatalogEntry };
+    const scope: Scope = {
+      element,
+      parent: current,
+      children: [],
+      declarations: [],
+      byName: new Map(),
+      lastByName: new Map(),
+      catalogEntry: isCatalogEntry,
+    };
     current?.children.push(scope);
     this.model.scopes.push(scope);
     this.scopeByElement.set(element, scope);
@@ -85,17 +94,29 @@ export class ScopeCollector {
 /**
  * The declaration `name` resolves to from `scope`: the innermost scope that declares it wins. For the
  * value of a declaration, only the declarations before it in its own scope are visible (a value may
- * use earlier parameters, so no value can depend on itself).
+ * use earlier parameters, so no value can depend on itself). Of two declarations of the name in one scope the
+ * first is found, or with `lastWins` the last, as esmini reads them (core/profiles/esmini.ts valueRules.redeclaration).
  */
-export function resolveName(scope: Scope | undefined, name: string, within: Declaration | undefined): Declaration | undefined {
+export function resolveName(
+  scope: Scope | undefined,
+  name: string,
+  within: Declaration | undefined,
+  lastWins = false,
+): Declaration | undefined {
   for (let current = scope; current; current = current.parent) {
     if (within && current === within.scope) {
-      // The first declaration of the name is the one found, when it comes before the value being read.
+      // A declaration of the name is found only when it comes before the value being read.
       const first = current.byName.get(name);
-      if (first && first.index < within.index) return first;
-      continue;
+      if (!first || first.index >= within.index) continue;
+      if (!lastWins) return first;
+      const last = current.lastByName.get(name) as Declaration;
+      if (last.index < within.index) return last;
+      // esmini reads the declarations in order: the last of the name before the value being read.
+      for (let index = within.index - 1; index > first.index; index--)
+        if (current.declarations[index].name === name) return current.declarations[index];
+      return first;
     }
-    const found = current.byName.get(name);
+    const found = lastWins ? current.lastByName.get(name) : current.byName.get(name);
     if (found) return found;
   }
   return undefined;

@@ -37,6 +37,8 @@ export interface Scope {
   declarations: Declaration[];
   /** The first declaration of each name (a second one of a name in one scope is a problem). */
   byName: Map<string, Declaration>;
+  /** The last declaration of each name: the one esmini reads (core/profiles/esmini.ts valueRules.redeclaration). */
+  lastByName: Map<string, Declaration>;
   /** True for an entry of a `Catalog` (its parameters are set by a CatalogReference's assignments). */
   catalogEntry: boolean;
 }
