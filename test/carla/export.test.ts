@@ -1568,6 +1568,55 @@ describe('export --target carla, greaterOrEqual and lessOrEqual (not in 1.0)', f
   });
 });
 
+describe('export --target carla, a LateralDistanceAction with displacement (1.1)', function () {
+  this.timeout(300_000);
+  let out: string;
+  before(function () {
+    requireCorpus(this);
+  });
+  inTemporaryFolderEach('m2s-carla-lateral-', (folder) => (out = folder));
+
+  /** Lead keeps `distance` m to the `displacement` side of Ego, in road coordinates, from the start. */
+  const keepBeside = (displacement: string, distance: number): string => `
+            <Event name="Beside" priority="overwrite">
+              <Action name="KeepBeside"><PrivateAction><LateralAction>
+                <LateralDistanceAction entityRef="Ego" distance="${distance}" freespace="false" continuous="true" coordinateSystem="road" displacement="${displacement}"/>
+              </LateralAction></PrivateAction></Action>
+              ${ACT_STARTS}
+            </Event>`;
+
+  it('the side is written as the sign ScenarioRunner reads (left: negative), where it put the actor to the right whatever was written (issue 26)', async function () {
+    requireCarlaHarness(this);
+    const outputs: string[] = [];
+    for (const [displacement, written] of [
+      ['leftToReferencedEntity', '-3.5'],
+      ['rightToReferencedEntity', '3.5'],
+    ]) {
+      const original = path.join(out, `${displacement}.xosc`);
+      const text = leadEventsScenario(keepBeside(displacement, 3.5)).replace('revMinor="0"', 'revMinor="1"');
+      fs.writeFileSync(original, text);
+      const exported = await exportFile(original, path.join(out, `${displacement}.carla.xosc`));
+      assert.equal(exported.code, 0, exported.stderr);
+      assert.match(
+        fs.readFileSync(exported.output, 'utf8'),
+        new RegExp(`<LateralDistanceAction entityRef="Ego" distance="${written}" freespace="false" continuous="true"/>`),
+      );
+      const reported = exported.report.losses.filter((loss) => loss.element.startsWith('LateralDistanceAction'));
+      assert.deepEqual(
+        reported.map((loss) => [loss.kind, loss.line, loss.element]),
+        [['approximated', lineHolding(text, '<LateralDistanceAction'), 'LateralDistanceAction/@displacement']],
+      );
+      assert.match(reported[0].what, new RegExp(`^${displacement} is written as the distance ${written} m`));
+      outputs.push(exported.output);
+    }
+    const verdicts = await harnessVerdicts(outputs, { tree: true });
+    assert.deepEqual(
+      outputs.map((file) => verdicts.get(path.resolve(file))?.lateral_offsets),
+      [[['KeepBeside', -3.5]], [['KeepBeside', 3.5]]],
+    );
+  });
+});
+
 describe('export --target carla, a LongitudinalDistanceAction with displacement (1.1)', function () {
   this.timeout(300_000);
   let out: string;

@@ -70,6 +70,8 @@ export interface HarnessVerdict {
   spawns?: Record<string, [number, number, number, number]>;
   /** With `tree: true`: each ChangeActorWaypoints built, as [its parent's name, its name, waypoints, times (null: none), the last time]. */
   waypoints?: [string | null, string, number, number | null, number | null][];
+  /** With `tree: true`: each ChangeLateralDistance built, as [its name, its offset: positive to the right, negative to the left]. */
+  lateral_offsets?: [string, number][];
 }
 
 /** ./carlaTree.py: check.py run unchanged, its results also listing each built tree's story elements. */

@@ -56,6 +56,13 @@ def waypoint_atomics(scenario):
     return found
 
 
+def lateral_offsets(scenario):
+    """Each ChangeLateralDistance of the built tree (srunner/scenariomanager/scenarioatomics/atomic_behaviors.py), as
+    [its name, the offset it will keep from the reference: positive to the right, negative to the left]."""
+    return [[node.name, float(node._offset)] for node in scenario.scenario_tree.iterate()
+            if type(node).__name__ == 'ChangeLateralDistance']
+
+
 def parameter_ticks(scenario):
     """ScenarioRunner's own parameter atomics of the built tree, ticked as its first tick would and then once
     more: the Init's ChangeParameters (named InitParams_N, srunner/scenarios/open_scenario.py
@@ -155,6 +162,7 @@ def main():
                 built['story_ticks'] = story_ticks(scenario)
             built['spawns'] = spawns(scenario)
             built['waypoints'] = waypoint_atomics(scenario)
+            built['lateral_offsets'] = lateral_offsets(scenario)
             return original_lazy_refs(scenario, parameter_ref)
 
         check._lazy_refs = lazy_refs
@@ -165,6 +173,7 @@ def main():
                 payload['parameter_ticks'] = built['parameter_ticks']
                 payload['spawns'] = built['spawns']
                 payload['waypoints'] = built['waypoints']
+                payload['lateral_offsets'] = built['lateral_offsets']
                 if 'story_ticks' in built:
                     payload['story_ticks'] = built['story_ticks']
             emit(kind, payload)

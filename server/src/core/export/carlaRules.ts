@@ -40,6 +40,7 @@ import { absoluteTargetLanes, laneChangesByDistance, PEAK_FACTOR } from './laneC
 import { polylinePoints, trajectoryPoint } from './trajectoryPoint';
 import { initStarts } from './initStarts';
 import { synchronizeSteadyStates } from './steadyStates';
+import { lateralDistances } from './lateralDistances';
 import { SAMPLE_STEP } from './shapes';
 import { routeTrajectory, routeWaypoints } from './routeTrajectories';
 
@@ -1348,6 +1349,7 @@ export const CARLA_RULES: readonly { name: string; apply: (tree: Node, context: 
   { name: 'weather', apply: weather },
   { name: 'absolute-target-lane', apply: (tree, context) => absoluteTargetLanes(tree, context.sink, context.roads) },
   { name: 'time-gap', apply: longitudinalTimeGap },
+  { name: 'lateral-distances', apply: (tree, context) => lateralDistances(tree, context.sink) },
   // Before any position is converted: it moves the targets back along their routes, trajectories and lanes.
   { name: 'synchronize-steady-states', apply: (tree, context) => synchronizeSteadyStates(tree, context.sink, context.roads) },
   { name: 'trajectories', apply: trajectories },
