@@ -1,6 +1,6 @@
 import { strict as assert } from 'node:assert';
 import { parseOpenDrive } from '../../server/src/core/opendrive/road';
-import { pointAlongRoute } from '../../server/src/core/opendrive/route';
+import { pointAlongRoute, routeLanes } from '../../server/src/core/opendrive/route';
 
 /** A straight road of one right lane (-1) along x from `x`, linked as given, lane -1 linked to lane -1 at both ends. */
 function road(id: string, x: number, length: number, links: string, junction = '-1'): string {
@@ -117,5 +117,45 @@ describe('a point along a route, as esmini plans it (core/opendrive/route)', () 
       { roadId: '2', laneId: -1, s: 30 },
     ];
     assert.deepEqual(pointAlongRoute(parseOpenDrive(text), waypoints, 55), { roadId: '10', s: 5, roads: ['1', '10', '2'] });
+  });
+
+  it("the lanes an entity drives along a route: its own lane, through lane sections (a link, or the same id as esmini keeps), into the route's roads", () => {
+    // Road 1 of three lane sections: lane -2 links to nothing at 40 (esmini keeps the id), then becomes lane -1 at 70.
+    const shoulder = '<lane id="-1" type="shoulder"><width sOffset="0" a="1" b="0" c="0" d="0"/></lane>';
+    const sections = `<lanes>
+      <laneSection s="0"><center><lane id="0" type="none"/></center>
+        <right>${shoulder}<lane id="-2" type="driving"><width sOffset="0" a="3.5" b="0" c="0" d="0"/></lane></right></laneSection>
+      <laneSection s="40"><center><lane id="0" type="none"/></center>
+        <right>${shoulder}<lane id="-2" type="driving"><link><successor id="-1"/></link><width sOffset="0" a="3.5" b="0" c="0" d="0"/></lane></right></laneSection>
+      <laneSection s="70"><center><lane id="0" type="none"/></center>
+        <right><lane id="-1" type="driving"><link><predecessor id="-2"/><successor id="-1"/></link><width sOffset="0" a="3.5" b="0" c="0" d="0"/></lane></right></laneSection>
+    </lanes>`;
+    const text = network([20, 25]).replace(/(<road id="1"[\s\S]*?)<lanes>[\s\S]*?<\/lanes>/, (_, before: string) => `${before}${sections}`);
+    const roads = parseOpenDrive(text);
+    const waypoints = [
+      { roadId: '1', laneId: -2, s: 10 },
+      { roadId: '2', laneId: -1, s: 30 },
+    ];
+    assert.deepEqual(routeLanes(roads, waypoints, { roadId: '1', laneId: -2, s: 20 }), [
+      { roadId: '1', laneId: -2, from: 20, to: 40 },
+      { roadId: '1', laneId: -2, from: 40, to: 70 },
+      { roadId: '1', laneId: -1, from: 70, to: 100 },
+      { roadId: '10', laneId: -1, from: 0, to: 20 },
+      { roadId: '2', laneId: -1, from: 0, to: 30 },
+    ]);
+    // Off the route, against it, past its end: said, no lanes.
+    assert.match(
+      String(routeLanes(roads, waypoints, { roadId: '11', laneId: -1, s: 5 })),
+      /lies on road 11, which the route does not run over \(1 > 10 > 2\)/,
+    );
+    assert.match(String(routeLanes(roads, waypoints, { roadId: '1', laneId: 1, s: 5 })), /lane 1 of road 1 drives against the route/);
+    assert.match(
+      String(routeLanes(roads, [waypoints[0], { roadId: '1', laneId: -2, s: 30 }], { roadId: '1', laneId: -2, s: 50 })),
+      /lies past the route's last waypoint \(s 30\)/,
+    );
+    assert.match(
+      String(routeLanes(roads, [waypoints[0], { roadId: '2', laneId: -1, s: 130 }], { roadId: '1', laneId: -2, s: 50 })),
+      /\(s 130\) lies past the end of road 2 \(100 m\)/,
+    );
   });
 });

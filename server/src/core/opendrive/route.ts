@@ -68,16 +68,25 @@ interface Stop {
 const otherEnd = (end: End): End => (end === 'start' ? 'end' : 'start');
 const linkAt = (road: Road, end: End): RoadLink | undefined => (end === 'start' ? road.predecessor : road.successor);
 
+/**
+ * The lane a lane of section `index` continues as in the next section towards `direction` (esmini LaneSection::GetConnectingLaneId:
+ * its link, or the same id when it names none); 0 when the section has no such lane.
+ */
+function nextSectionLane(road: Road, index: number, laneId: number, direction: 1 | -1): number {
+  const lane = road.laneSections[index]?.lanes.find((each) => each.id === laneId);
+  if (!lane || laneId === 0) return 0;
+  return (direction === 1 ? lane.successor : lane.predecessor) ?? laneId;
+}
+
 /** A lane followed through its road's lane sections from s `from` to the road's end `to` (esmini Road::GetConnectedLaneIdAtS). */
 function laneAtEnd(road: Road, laneId: number, from: number, to: End): number {
   const sections = road.laneSections;
   let index = laneSectionIndexAt(road, from);
   let lane = laneId;
   if (to === 'end') {
-    for (; lane !== 0 && index < sections.length - 1; index++)
-      lane = sections[index].lanes.find((each) => each.id === lane)?.successor ?? 0;
+    for (; lane !== 0 && index < sections.length - 1; index++) lane = nextSectionLane(road, index, lane, 1);
   } else {
-    for (; lane !== 0 && index > 0; index--) lane = sections[index].lanes.find((each) => each.id === lane)?.predecessor ?? 0;
+    for (; lane !== 0 && index > 0; index--) lane = nextSectionLane(road, index, lane, -1);
   }
   return lane;
 }
@@ -392,10 +401,9 @@ export function routeLanes(network: RoadNetwork, waypoints: RouteWaypoint[], sta
         return `road ${road.id} has no lane ${laneId} at s ${Number(s.toFixed(3))}`;
       stretches.push({ roadId: road.id, laneId, from: s, to: reaches ? end : sectionEnd });
       if (reaches) break;
-      const lane = road.laneSections[section].lanes.find((each) => each.id === laneId);
-      const next = (direction === 1 ? lane?.successor : lane?.predecessor) ?? 0;
-      if (next === 0)
-        return `lane ${laneId} of road ${road.id} ends at s ${Number(sectionEnd.toFixed(3))} (no link into the next lane section)`;
+      const next = nextSectionLane(road, section, laneId, direction);
+      if (next === 0 || !road.laneSections[section + direction]?.lanes.some((each) => each.id === next))
+        return `lane ${laneId} of road ${road.id} continues in no lane of the next lane section at s ${Number(sectionEnd.toFixed(3))}`;
       laneId = next;
       s = sectionEnd;
       section += direction;
