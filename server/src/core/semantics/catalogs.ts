@@ -51,6 +51,11 @@ export interface LocationResolution {
   /** The path as evaluated (it may be a `$parameter`). */
   path: string | undefined;
   directories: CatalogDirectory[];
+  /**
+   * When the directory does not exist beside a file on disk: the first folder of its path that does not (`written`, the
+   * path as far as that folder; `folder`, absolute), where several directories of one missing folder are one problem.
+   */
+  missingFolder?: { written: string; folder: string };
 }
 
 export interface CatalogReferenceResolution {
@@ -133,6 +138,18 @@ export class CatalogLoader {
       }
     }
     return found;
+  }
+
+  /** The first folder of `written` (a path from a file on disk) that does not exist, and the path as far as it. */
+  private async missingFolder(from: SourceRef, written: string): Promise<{ written: string; folder: string } | undefined> {
+    const segments = (written.trim().replace(/\\/g, '/') || '.').split('/');
+    let folder = path.isAbsolute(written.trim()) ? path.parse(path.resolve(written.trim())).root : path.dirname(from.disk);
+    for (let index = 0; index < segments.length; index++) {
+      if (segments[index] === '' || segments[index] === '.') continue;
+      folder = path.resolve(folder, segments[index]);
+      if ((await this.store.kindOf(folder)) !== 'directory') return { written: segments.slice(0, index + 1).join('/'), folder };
+    }
+    return undefined;
   }
 
   /** The `.xosc` files of a directory (refs), sorted by name. */
@@ -230,7 +247,12 @@ export class CatalogLoader {
     const locations: LocationResolution[] = [];
     for (const location of model.catalogLocations) {
       const written = evaluator.textOf(location.directory, location.pathAttribute);
-      locations.push({ location, path: written, directories: written === undefined ? [] : await this.directories(ref, written) });
+      const directories = written === undefined ? [] : await this.directories(ref, written);
+      const missingFolder =
+        written !== undefined && ref.entries.length === 0 && !directories.some((directory) => directory.via === 'file')
+          ? await this.missingFolder(ref, written)
+          : undefined;
+      locations.push({ location, path: written, directories, ...(missingFolder ? { missingFolder } : {}) });
     }
     const directories = locations.flatMap((location) => location.directories);
     const references: CatalogReferenceResolution[] = [];

@@ -12,7 +12,7 @@ import { carlaReleaseOf, carlaScenario } from './checks/carla';
 import { esminiScenario } from './checks/esmini';
 import { at, onCatalogReferences, relatedAt } from './checks/support';
 import type { Finding, SemanticCheck, SemanticContext } from './checks/types';
-import type { CatalogFile, CatalogReferenceResolution } from './catalogs';
+import type { CatalogFile, CatalogReferenceResolution, LocationResolution } from './catalogs';
 import { carriedExpressionErrors, rememberExpressionErrors } from './checks/carriedResults';
 import { catalogVariables, undeclaredVariables, variableValues } from './checks/variables';
 import {
@@ -24,7 +24,7 @@ import {
   trafficSignalIds,
   valueRanges,
 } from './networkChecks';
-import { catalogDirectoryWording } from '../diagnostics/catalogDirectory';
+import { CATALOG_FOLDER_ALSO_NOTE, catalogDirectoryWording, catalogFolderWording } from '../diagnostics/catalogDirectory';
 import { ambiguousReferenceWording } from '../diagnostics/ambiguousReference';
 import { DUPLICATE_PARAMETER_FIRST_NOTE, duplicateParameterWording } from '../diagnostics/duplicateParameter';
 import { dollarDeclarationWording, retypeWords, writeStandardHint } from '../diagnostics/lenientValue';
@@ -283,19 +283,43 @@ export const catalogReferences: SemanticCheck = (context) => {
   }
   // Kinds whose directory is missing beside the file: their references' unknown catalogs are that one problem.
   const missingKinds = new Set<string>();
+  const missing: LocationResolution[] = [];
   for (const location of context.catalogs.locations) {
     if (!anyKindNeeded && !neededKinds.has(location.location.kind)) continue;
     // Found beside the file: the catalog is missing from it, which the references say. Otherwise the directory is
     // missing, though SCENARIO_PATH folders may stand for it (esmini searches them, and each folder itself).
     if (location.path === undefined || location.directories.some((directory) => directory.via === 'file')) continue;
     missingKinds.add(location.location.kind);
+    missing.push(location);
+  }
+  // Directories missing because one folder of their paths is (a Catalogs/ folder left behind): one problem for the folder.
+  const byFolder = new Map<string, LocationResolution[]>();
+  for (const location of missing) {
+    const key = location.missingFolder?.folder ?? `\0${byFolder.size}`;
+    byFolder.set(key, [...(byFolder.get(key) ?? []), location]);
+  }
+  for (const group of byFolder.values()) {
+    const [first, ...others] = group;
+    const searched = [...new Set(group.flatMap((location) => location.directories.map((directory) => directory.directory)))];
+    const kinds = [...new Set(group.map((location) => location.location.kind))];
     findings.push({
-      ...at(location.location.directory, location.location.pathAttribute),
-      ...catalogDirectoryWording(
-        location.location.kind,
-        location.path,
-        location.directories.map((directory) => directory.directory),
-      ),
+      ...at(first.location.directory, first.location.pathAttribute),
+      ...(kinds.length > 1 && first.missingFolder
+        ? catalogFolderWording(
+            first.missingFolder.written,
+            kinds,
+            group.every((location) => location.missingFolder?.written === location.path?.trim().replace(/\\/g, '/')),
+            searched,
+          )
+        : catalogDirectoryWording(first.location.kind, first.path as string, searched)),
+      ...(others.length > 0
+        ? {
+            related: others.map((location) => {
+              const place = at(location.location.directory, location.location.pathAttribute);
+              return relatedAt(context, place.start, place.end, `${CATALOG_FOLDER_ALSO_NOTE}: the ${location.location.kind} directory`);
+            }),
+          }
+        : {}),
     });
   }
   for (const resolution of context.catalogs.references) {
