@@ -337,6 +337,26 @@ describe('rules: deprecated elements, attributes and values are warnings naming 
     ]);
   });
 
+  // esmini15's finding: leaving velocity out, as 'leave out velocity' said, makes a file esmini refuses (ScenarioReader.cpp:2466-2467).
+  it('TrafficSwarmAction velocity, deprecated: the advice keeps it for esmini, which refuses the action without it, and says why', () => {
+    const swarm = (speedRange: string, velocity = ' velocity="10"') =>
+      scenario(
+        event(
+          'E',
+          `<GlobalAction><TrafficAction><TrafficSwarmAction innerRadius="10" semiMajorAxis="100" semiMinorAxis="50" numberOfVehicles="2" offset="0"${velocity}><CentralObject entityRef="Ego"/>${speedRange}</TrafficSwarmAction></TrafficAction></GlobalAction>`,
+        ),
+      );
+    const esmini =
+      'keep velocity while the scenario runs in esmini, which reads velocity alone and refuses the action without it (it reads velocity with std::stod, which stops it when the attribute is absent ("Exception: stod"); the standard makes it optional (deprecated from 1.2 on); EnvironmentSimulator/Modules/ScenarioEngine/SourceFiles/ScenarioReader.cpp:2466-2467)';
+    assert.deepEqual(deprecatedOf(swarm('<InitialSpeedRange lowerLimit="5" upperLimit="15"/>')), [
+      `warning: TrafficSwarmAction.velocity is deprecated since OpenSCENARIO 1.2 and written together with its replacement <InitialSpeedRange>: ${esmini}; leave it out only for a simulator that reads <InitialSpeedRange>`,
+    ]);
+    assert.deepEqual(deprecatedOf(swarm('')), [
+      `warning: TrafficSwarmAction.velocity is deprecated since OpenSCENARIO 1.2; write <InitialSpeedRange> as well, and ${esmini}`,
+    ]);
+    assert.deepEqual(deprecatedOf(swarm('<InitialSpeedRange lowerLimit="5" upperLimit="15"/>', '')), []);
+  });
+
   it('a deprecated value and a deprecated element', () => {
     const text = scenario(event('E')).replace('priority="override"', 'priority="overwrite"');
     assert.deepEqual(deprecatedOf(text), [

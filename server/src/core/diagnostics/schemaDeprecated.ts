@@ -16,8 +16,18 @@ export function schemaDeprecatedWording(facts: SchemaFactsByCode['schema-depreca
       message: `<${element}> is deprecated${since ? ` since OpenSCENARIO ${since}` : ` in OpenSCENARIO ${version}`}${writeInstead}`,
     };
   }
-  const { element, attribute, together } = facts;
+  const { element, attribute, together, keptFor } = facts;
   const since = facts.since ? ` since OpenSCENARIO ${facts.since}` : '';
+  if (keptFor) {
+    // Leaving it out makes a file that simulator refuses: the advice keeps it, and says why.
+    const needs = `keep ${attribute} while the scenario runs in ${keptFor.simulator}, which reads ${attribute} alone and refuses the action without it (${keptFor.note}; ${keptFor.source})`;
+    return {
+      message:
+        together.length > 0
+          ? `${element}.${attribute} is deprecated${since} and written together with its replacement ${together.join(' and ')}: ${needs}; leave it out only for a simulator that reads ${together.join(' and ')}`
+          : `${element}.${attribute} is deprecated${since}; write ${facts.instead ?? 'its replacement'} as well, and ${needs}`,
+    };
+  }
   return {
     message:
       together.length > 0

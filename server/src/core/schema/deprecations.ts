@@ -4,6 +4,8 @@
  * report a deprecated construct as a warning (SPEC 12); the message names the replacement.
  */
 
+import { ESMINI_PROFILE } from '../profiles/esmini';
+
 export interface Replacement {
   /** What to write instead, in words. */
   instead: string;
@@ -13,6 +15,15 @@ export interface Replacement {
   elements?: readonly string[];
   /** The attribute's new name when only the name changed (same unit and values): the quick fix renames it. */
   rename?: string;
+  /** A simulator that reads the deprecated attribute alone and refuses the scenario without it: it stays (`note`, `source`: the simulator's fact). */
+  keptFor?: { simulator: string; note: string; source: string };
+}
+
+/** esmini's fact that it refuses a TrafficSwarmAction without velocity (core/profiles/esmini.ts): it never reads <InitialSpeedRange>. */
+function esminiNeeds(element: string, attributeName: string): Replacement['keptFor'] {
+  const fact = ESMINI_PROFILE.attributes.find((each) => each.element === element && each.attribute === attributeName && each.whenAbsent);
+  if (!fact) throw new Error(`no esmini fact for ${element} without ${attributeName}`);
+  return { simulator: ESMINI_PROFILE.name, note: fact.note, source: fact.source };
 }
 
 /** `Type.attribute` and `Type.Element` (the element's parent type) keys. */
@@ -56,7 +67,11 @@ const REPLACEMENTS: Record<string, Replacement> = {
   'TrafficSourceAction.TrafficDefinition': { instead: '<TrafficDistribution>' },
   'TrafficSwarmAction.TrafficDefinition': { instead: '<TrafficDistribution>' },
   'TrafficSourceAction.velocity': { instead: 'speed', attributes: ['speed'], rename: 'speed' },
-  'TrafficSwarmAction.velocity': { instead: '<InitialSpeedRange>', elements: ['InitialSpeedRange'] },
+  'TrafficSwarmAction.velocity': {
+    instead: '<InitialSpeedRange>',
+    elements: ['InitialSpeedRange'],
+    keptFor: esminiNeeds('TrafficSwarmAction', 'velocity'),
+  },
   'Weather.cloudState': { instead: 'fractionalCloudCover', attributes: ['fractionalCloudCover'] },
 };
 

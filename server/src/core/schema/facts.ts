@@ -61,6 +61,8 @@ export interface SchemaFactsByCode {
         /** The replacements written beside it (attributes by name, elements as `<Name>`). */
         together: string[];
         instead: string | undefined;
+        /** A simulator that needs the deprecated attribute, with its fact: it stays (deprecations.ts keptFor). */
+        keptFor?: { simulator: string; note: string; source: string };
       }
     | { kind: 'element'; element: string; since: string | undefined; version: string; instead: string | undefined };
   'schema-missing-attribute': { element: string; missing: string[] };

@@ -215,6 +215,7 @@ export function checkAttribute(
         since: declaration.deprecatedSince,
         together,
         instead: replacement?.instead,
+        ...(replacement?.keptFor ? { keptFor: replacement.keptFor } : {}),
       },
       data: replacement?.rename && together.length === 0 ? { suggestion: replacement.rename } : undefined,
     });
