@@ -946,6 +946,23 @@ describe('export --target carla, Init routes under 0.9.16 written as trajectorie
       [['AcquirePositionAction', lineHolding(walking, '<AcquirePositionAction>')]],
     );
     assert.match(walkerRefusals[0].carla, /'Follower' is not a vehicle: ScenarioRunner's walker controller does not read vertex times/);
+    // A second atomic in Ego's Init: ScenarioRunner builds only the last of them (open_scenario.py:255-359).
+    const offset = initRoutesScenario().replace(
+      '</AssignRouteAction></RoutingAction></PrivateAction>',
+      `</AssignRouteAction></RoutingAction></PrivateAction>
+          <PrivateAction><LateralAction><LaneOffsetAction continuous="false">
+            <LaneOffsetActionDynamics dynamicsShape="step"/>
+            <LaneOffsetTarget><AbsoluteTargetLaneOffset value="0.5"/></LaneOffsetTarget>
+          </LaneOffsetAction></LateralAction></PrivateAction>`,
+    );
+    const offsetRefusals = (await refusedExport(path.join(out, 'offset.xosc'), offset)).report.losses.filter(
+      (loss) => loss.kind === 'refused',
+    );
+    assert.deepEqual(
+      offsetRefusals.map((loss) => [loss.element, loss.line]),
+      [['AssignRouteAction', lineHolding(offset, '<AssignRouteAction>')]],
+    );
+    assert.match(offsetRefusals[0].carla, /the Init of 'Ego' has a LaneOffsetAction too \(offset\.xosc:\d+\).*the last one written/);
     // 0.9.15 builds the route itself: nothing to map.
     const older = await exportFile(original, path.join(out, 'older.xosc'), ['--carla', '0.9.15']);
     assert.equal(older.code, 0, older.stderr);

@@ -4,15 +4,15 @@
  * (SR_ATOMICS ChangeActorWaypoints.__init__, a regression of commit ab5996d7), but builds a FollowTrajectoryAction as
  * ChangeActorWaypoints with times and 'shortest' routing, straight lines between the vertices (SR_PARSER 1509-1513,
  * SR_SCENARIO 336-342), which its vehicle controller drives to reach each vertex at its time (npc_vehicle_control.py:103-113).
- * Only a vehicle's: the Init sets an actor's speed after its routing action ends (SR_SCENARIO 352-357), and only the vehicle
- * controller drives by the vertex times. The lanes are those esmini drives the route in (core/opendrive/route.ts routeLanes), the vertices LanePositions
+ * Only a vehicle's, alone in its Init (CARLA_FACTS.initActorSequence: one routing or lateral atomic per actor, its start speed set
+ * after it ends; only the vehicle controller drives by the vertex times). The lanes are those esmini drives the route in (core/opendrive/route.ts routeLanes), the vertices LanePositions
  * (ScenarioRunner converts one with CARLA's own map, get_waypoint_xodr, SR_PARSER convert_position_to_transform) at most
  * ROUTE_STEP apart, timed at the actor's speed, which must be certain over the whole run (scenarioTree constantSpeedOf).
  */
 import type { RoadNetwork } from '../opendrive/road';
 import { routeLanes, RouteWaypoint } from '../opendrive/route';
 import { baseName } from '../sources';
-import { SR_SCENARIO } from './carlaFacts';
+import { CARLA_FACTS } from '../profiles/carla';
 import { roadPositionPose } from './trajectoryPoint';
 import { actorsOf, constantSpeedOf, scenarioObjectOf } from './scenarioTree';
 import { ancestor, attr, child, childrenNamed, fourDecimals, makeNode, named, Node, numberAttr } from './tree';
@@ -42,6 +42,15 @@ export function routeWaypoints(route: Node): RouteWaypoint[] | string {
   }
   return waypoints;
 }
+
+/** The Init actions ScenarioRunner builds as an actor's one Init atomic (CARLA_FACTS.initActorSequence). */
+const INIT_ATOMICS: ReadonlySet<string> = new Set([
+  'FollowTrajectoryAction',
+  'AssignRouteAction',
+  'AcquirePositionAction',
+  'LaneOffsetAction',
+  'LateralDistanceAction',
+]);
 
 /** Actions of a story that move an actor across or along other ways than its lane: while a trajectory runs, they would end it (ScenarioRunner) or fight it (esmini). */
 const MOVING: ReadonlySet<string> = new Set(['LateralAction', 'RoutingAction', 'TeleportAction']);
@@ -96,8 +105,13 @@ export function routeTrajectory(tree: Node, action: Node, roads: RoadNetwork | u
   if (!roads) return 'the road is a CARLA town (or no .xodr file the export read), whose lanes the export cannot plan';
   const actor = actorsOf(action)[0] ?? '';
   const object = scenarioObjectOf(tree, actor);
+  const sequence = CARLA_FACTS.initActorSequence;
   if (!object || !child(object, 'Vehicle'))
-    return `'${actor}' is not a vehicle: ScenarioRunner's walker controller does not read vertex times (pedestrian_control.py), and the Init sets an actor's speed only after its trajectory ends (${SR_SCENARIO}:352-357), so it would stand at its start`;
+    return `'${actor}' is not a vehicle: ScenarioRunner's walker controller does not read vertex times (pedestrian_control.py), and ScenarioRunner ${sequence.does} (${sequence.source}), so it would stand at its start`;
+  const init = ancestor(action, 'Init') as Node;
+  const other = named(init, INIT_ATOMICS).find((each) => each !== action && attr(ancestor(each, 'Private') ?? each, 'entityRef') === actor);
+  if (other)
+    return `the Init of '${actor}' has a ${other.name} too (${lineOf(other) || 'in the Init'}), and ScenarioRunner ${sequence.does} (${sequence.source})`;
   for (const story of named(tree, 'Story'))
     for (const moving of named(story, MOVING)) {
       const group = ancestor(moving, 'ManeuverGroup');

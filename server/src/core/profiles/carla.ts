@@ -306,6 +306,11 @@ export const CARLA_FACTS = {
     source: `${PARSER}:1402-1404, ${RUNNER}:279`,
     severity: 'warning',
   },
+  initActorSequence: {
+    does: "builds each actor's Init as one sequence: its controller, then one routing or lateral atomic (of a FollowTrajectory, AssignRoute, AcquirePosition, LaneOffset or LateralDistance action, the last one written; the others are not built), then its start speed (ChangeActorTargetSpeed), set only once that atomic has ended",
+    source: `${RUNNER}:255-359`,
+    severity: 'warning',
+  },
   trajectoryTimesSetSpeed: {
     does: "drives a vehicle (NpcVehicleControl, its default controller) to each trajectory vertex at the speed its time asks, with or without timing; a time already past asks the vertex's distance in a thousandth of a second, full speed",
     source: `srunner/scenariomanager/actorcontrols/npc_vehicle_control.py:103-113, ${PARSER}:1509-1513`,
