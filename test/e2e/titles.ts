@@ -49,6 +49,8 @@ export const INSIDE_TESTS = {
     "Export for CARLA… from the palette writes the 1.0 file and puts its losses as diagnostics on the simple scenario's lines; a refused export writes nothing",
   carlaCheck:
     "Check in CARLA ScenarioRunner from the palette, with ScenarioRunner 0.9.16 set up, puts ScenarioRunner's error on the source line of the simple scenario",
+  carlaSettingsAtOnce:
+    "Check in CARLA ScenarioRunner sees a ScenarioRunner folder and a Python written into the user's settings.json in the editor at once, and a second change too, without reloading the window",
   carlaRun:
     "Run in CARLA starts scenario_runner.py on the 1.0 export with the host and port set, in ScenarioRunner's folder; a missing host, no server, an error exit or a Python that does not start is said and never called done",
   extractToSimple:

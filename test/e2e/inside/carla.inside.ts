@@ -20,6 +20,7 @@ import {
 } from './helpers';
 
 const SOURCE = 'Export for CARLA';
+const CHECK_IN_SCENARIO_RUNNER = 'modular2simple.checkInScenarioRunner';
 
 function exportLosses(uri: vscode.Uri): vscode.Diagnostic[] {
   return vscode.languages.getDiagnostics(uri).filter((diagnostic) => diagnostic.source === SOURCE);
@@ -152,6 +153,57 @@ export const carlaTests: InsideTests = {
       await screenshot("Check in CARLA ScenarioRunner: ScenarioRunner's error on the source line");
     } finally {
       for (const key of ['scenarioRunnerPath', 'python', 'timeLimit', 'release']) await settings.update(key, undefined, global);
+      fs.rmSync(folder, { recursive: true, force: true });
+      await revertAndClose();
+    }
+  },
+
+  carlaSettingsAtOnce: async function () {
+    this.timeout(2 * TEST_MS);
+    const check = async (): Promise<string> =>
+      (await vscode.commands.executeCommand<{ message: string } | undefined>(CHECK_IN_SCENARIO_RUNNER, vscode.Uri.file(main)))?.message ??
+      'no answer';
+    /** Whether the check's answer names the folder; what it said instead, as the error waitFor gives when it times out. */
+    const checkNames = async (folder: string): Promise<true> => {
+      const said = await check();
+      if (!said.includes(folder)) throw new Error(`the check said: ${said}`);
+      return true;
+    };
+    const main = path.join(workspaceRoot(), 'main.xosc');
+    const folder = path.join(workspaceRoot(), '.carla-settings');
+    fs.mkdirSync(folder, { recursive: true });
+    // Where a user writes the settings: the user settings.json, opened and saved in the editor.
+    await vscode.commands.executeCommand('workbench.action.openSettingsJson');
+    const settingsFile = await waitFor('the user settings.json in the editor', () => {
+      const document = vscode.window.activeTextEditor?.document;
+      return document && /settings\.json$/.test(document.uri.path) ? document : undefined;
+    });
+    const settingsUri = settingsFile.uri;
+    const original = settingsFile.getText();
+    /**
+     * settings.json replaced by `text` and saved as the user does it, in the editor's own model (typed over all, then
+     * File: Save): an edit of its file: URI from here is a change on disk, which VS Code in a browser does not watch.
+     */
+    const replaceSettings = async (text: string): Promise<void> => {
+      await vscode.commands.executeCommand('workbench.action.openSettingsJson');
+      await vscode.commands.executeCommand('editor.action.selectAll');
+      // A snippet, not typing: no bracket or quote is closed twice ('$' and '\\' escaped, which a snippet reads otherwise).
+      await vscode.commands.executeCommand('editor.action.insertSnippet', { snippet: text.replace(/[$\\]/g, '\\$&') });
+      await vscode.commands.executeCommand('workbench.action.files.save');
+      await waitFor('settings.json saved as written', () => fs.readFileSync(settingsUri.fsPath, 'utf8') === text || undefined);
+    };
+    const write = (values: Record<string, string>): Promise<void> =>
+      replaceSettings(JSON.stringify({ ...(JSON.parse(original.trim() || '{}') as Record<string, unknown>), ...values }, null, 2) + '\n');
+    try {
+      const first = path.join(folder, 'scenario_runner-first');
+      await write({ 'modular2simple.carla.scenarioRunnerPath': first, 'modular2simple.carla.python': '/usr/bin/python3' });
+      await waitFor(`the check to name the folder just set in ${settingsUri.toString()}`, () => checkNames(first));
+      const second = path.join(folder, 'scenario_runner-second');
+      await write({ 'modular2simple.carla.scenarioRunnerPath': second, 'modular2simple.carla.python': '/usr/bin/python3' });
+      await waitFor('the check to name the folder set second', () => checkNames(second));
+      await screenshot('Check in CARLA ScenarioRunner names the ScenarioRunner folder just saved in settings.json');
+    } finally {
+      await replaceSettings(original);
       fs.rmSync(folder, { recursive: true, force: true });
       await revertAndClose();
     }

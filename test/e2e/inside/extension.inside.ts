@@ -79,6 +79,7 @@ const ORDER: InsideTestKey[] = [
   'extractToSimple',
   'carlaExport',
   'carlaCheck',
+  'carlaSettingsAtOnce',
   'carlaRun',
   'debugScenario',
   'debugImportLine',
