@@ -871,6 +871,7 @@ describe('export --target carla, Init routes under 0.9.16 written as trajectorie
     );
     assert.match(mapped[1].what, /roads 2 > 15 > 1, lane -1 from s 50, 281\.0\d* m\).*at its speed 14 m\/s/);
     assert.match(mapped[0].carla, /FollowTrajectoryAction as ChangeActorWaypoints with times/);
+    assert.doesNotMatch(mapped[0].what, /offset/);
     const written = fs.readFileSync(result.output, 'utf8');
     assert.equal(/<AssignRouteAction|<AcquirePositionAction/.test(written), false);
     const verdicts = await harnessVerdicts([result.output], { tree: true });
@@ -901,6 +902,25 @@ describe('export --target carla, Init routes under 0.9.16 written as trajectorie
     ]);
     // Spawned where the Init places them, not at their trajectories' ends.
     assert.ok(verdict?.spawns?.Ego && verdict.spawns.Follower, JSON.stringify(verdict?.spawns));
+    await assertMovesAlike(original, result.output, 18.5, 0.05);
+  });
+
+  it("an actor off its lane's centre: each vertex at its offset, as esmini keeps it (within 0.05 m); named, as ScenarioRunner drives lane centres", async function () {
+    requireEsmini(this);
+    const original = path.join(out, 'offset.xosc');
+    const text = initRoutesScenario().replace(
+      '<LanePosition roadId="2" laneId="-1" offset="0" s="150"/>',
+      '<LanePosition roadId="2" laneId="-1" offset="0.3" s="150"/>',
+    );
+    assert.match(text, /offset="0\.3"/);
+    fs.writeFileSync(original, text);
+    const result = await exportFile(original, path.join(out, 'exported.xosc'));
+    assert.equal(result.code, 0, result.stderr);
+    const mapped = result.report.losses.find((loss) => loss.element === 'AssignRouteAction');
+    assert.match(
+      mapped?.what ?? '',
+      /its offset 0\.3 m from the lane centre is written on each vertex, but ScenarioRunner's vehicle controller drives to each vertex's lane centre/,
+    );
     await assertMovesAlike(original, result.output, 18.5, 0.05);
   });
 
