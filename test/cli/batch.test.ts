@@ -5,7 +5,7 @@ import * as path from 'node:path';
 import { XMLValidator } from 'fast-xml-parser';
 import { cliInTemporaryProject } from '../support/cliProject';
 import { esminiBinary, esminiRoads, requireEsmini } from '../support/esmini';
-import { addSumoControllerToEgo, runCli } from '../support/fixtures';
+import { addParameterControllers, addSumoControllerToEgo, runCli } from '../support/fixtures';
 import { cliPath, repoRoot } from '../support/paths';
 import { waitUntil } from '../support/wait';
 import { temporaryFolder } from '../support/temporaryDirectory';
@@ -363,32 +363,7 @@ describe('cli: batch', function () {
   it("a controller's File named through a parameter, inline or in a catalog entry, reaches the file beside the ScenarioFile, as in run (issue 27)", function () {
     requireEsmini(this);
     const root = folder();
-    const file = path.join(root, 'follow.xosc');
-    const controller = (name: string, cfg: string) =>
-      `<Controller name="${name}"><ParameterDeclarations><ParameterDeclaration name="CfgFile" parameterType="string" value="${cfg}"/></ParameterDeclarations>` +
-      '<Properties><Property name="esminiController" value="ACCController"/><File filepath="$CfgFile"/></Properties></Controller>';
-    const [before, ego, lead] = fs.readFileSync(file, 'utf8').split('</Vehicle>\n    </ScenarioObject>');
-    fs.writeFileSync(
-      file,
-      (
-        before +
-        `</Vehicle>\n      <ObjectController>${controller('acc', 'inputs/acc.cfg')}</ObjectController>\n    </ScenarioObject>` +
-        ego +
-        '</Vehicle>\n      <ObjectController><CatalogReference catalogName="ControllerCatalog" entryName="lead"/></ObjectController>\n    </ScenarioObject>' +
-        lead
-      ).replace(
-        '<CatalogLocations/>',
-        '<CatalogLocations><ControllerCatalog><Directory path="catalogs"/></ControllerCatalog></CatalogLocations>',
-      ),
-    );
-    fs.mkdirSync(path.join(root, 'catalogs'));
-    fs.writeFileSync(
-      path.join(root, 'catalogs', 'ControllerCatalog.xosc'),
-      '<?xml version="1.0"?>\n<OpenSCENARIO><FileHeader revMajor="1" revMinor="2" date="2026-11-24T00:00:00" description="c" author="t"/>' +
-        `<Catalog name="ControllerCatalog">${controller('lead', 'inputs/lead.cfg')}</Catalog></OpenSCENARIO>\n`,
-    );
-    fs.mkdirSync(path.join(root, 'inputs'));
-    for (const name of ['acc.cfg', 'lead.cfg']) fs.writeFileSync(path.join(root, 'inputs', name), '');
+    addParameterControllers(root);
     const batch = runCli([...BATCH_ARGS, '--sample', '2'], { cwd: root });
     assert.equal(batch.status, 0, batch.stderr);
     const rows = csvRows(root);

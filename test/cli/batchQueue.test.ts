@@ -3,7 +3,7 @@ import { spawn } from 'node:child_process';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { esminiBinary, esminiRoads, requireEsmini } from '../support/esmini';
-import { addSumoControllerToEgo, roadParameterPackage, runCli } from '../support/fixtures';
+import { addParameterControllers, addSumoControllerToEgo, roadParameterPackage, runCli } from '../support/fixtures';
 import { cliPath, repoRoot } from '../support/paths';
 import { freePort, RedisServer, requireRedis, startRedis } from '../support/redis';
 import { waitUntil } from '../support/wait';
@@ -277,6 +277,27 @@ describe('cli: batch through a Redis queue', function () {
       queued.output + fs.readFileSync(path.join(root, 'queued', 'results.json'), 'utf8'),
       /modular2simple-worker|job-|esmini-run-/,
     );
+  });
+
+  it("a controller's File named through a parameter, inline or in a catalog entry, is sent with the job: a worker in an empty folder runs it as a local batch does (issue 27)", async function () {
+    requireEsmini(this);
+    requireRedis(this);
+    redis = await startRedis();
+    const root = batchFolder(3);
+    folders.push(root);
+    addParameterControllers(root);
+    const empty = temporaryFolder('m2s-worker-');
+    folders.push(empty);
+    workers.push(background(['worker', '--queue', redis.url, '--jobs', '2', '--esmini', esminiBinary], empty));
+    const args = ['batch', 'd.xosc', '--sample', '2', '--road-path', esminiRoads, '--esmini', esminiBinary];
+    const queued = await runCliAsync([...args, '--results', 'queued', '--queue', redis.url], root);
+    assert.equal(queued.code, 0, queued.output);
+    const local = runCli([...args, '--results', 'local'], { cwd: root });
+    assert.equal(local.status, 0, local.stderr);
+    const rows = sortedRows(path.join(root, 'queued'));
+    assert.equal(rows.length, 2);
+    for (const row of rows) assert.equal(row.split(',')[1], 'ok', row);
+    assert.deepEqual(rows, sortedRows(path.join(root, 'local')), 'the same rows, status included');
   });
 
   it('a package holding two roads, its $Road varied over both: a worker in an empty folder runs each on its own road, as locally', async function () {

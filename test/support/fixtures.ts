@@ -411,3 +411,38 @@ export function addSumoControllerToEgo(file: string): void {
   assert.notEqual(controlled, scenario, `${file} has the ego and Lead of follow.xosc`);
   fs.writeFileSync(file, controlled);
 }
+
+/**
+ * Puts esmini's ACCController on both vehicles of `root`/follow.xosc (a copy of test/fixtures/variations/follow.xosc), each
+ * File named through a `$CfgFile` parameter: the ego's inline (inputs/acc.cfg), the Lead's from a ControllerCatalog entry
+ * in catalogs/ (inputs/lead.cfg); both files lie beside the scenario, empty (the ACCController reads none).
+ */
+export function addParameterControllers(root: string): void {
+  const file = path.join(root, 'follow.xosc');
+  const controller = (name: string, cfg: string) =>
+    `<Controller name="${name}"><ParameterDeclarations><ParameterDeclaration name="CfgFile" parameterType="string" value="${cfg}"/></ParameterDeclarations>` +
+    '<Properties><Property name="esminiController" value="ACCController"/><File filepath="$CfgFile"/></Properties></Controller>';
+  const [before, ego, lead] = fs.readFileSync(file, 'utf8').split('</Vehicle>\n    </ScenarioObject>');
+  assert.ok(lead !== undefined, `${file} has the ego and Lead of follow.xosc`);
+  fs.writeFileSync(
+    file,
+    (
+      before +
+      `</Vehicle>\n      <ObjectController>${controller('acc', 'inputs/acc.cfg')}</ObjectController>\n    </ScenarioObject>` +
+      ego +
+      '</Vehicle>\n      <ObjectController><CatalogReference catalogName="ControllerCatalog" entryName="lead"/></ObjectController>\n    </ScenarioObject>' +
+      lead
+    ).replace(
+      '<CatalogLocations/>',
+      '<CatalogLocations><ControllerCatalog><Directory path="catalogs"/></ControllerCatalog></CatalogLocations>',
+    ),
+  );
+  fs.mkdirSync(path.join(root, 'catalogs'));
+  fs.writeFileSync(
+    path.join(root, 'catalogs', 'ControllerCatalog.xosc'),
+    '<?xml version="1.0"?>\n<OpenSCENARIO><FileHeader revMajor="1" revMinor="2" date="2026-11-24T00:00:00" description="c" author="t"/>' +
+      `<Catalog name="ControllerCatalog">${controller('lead', 'inputs/lead.cfg')}</Catalog></OpenSCENARIO>\n`,
+  );
+  fs.mkdirSync(path.join(root, 'inputs'));
+  for (const name of ['acc.cfg', 'lead.cfg']) fs.writeFileSync(path.join(root, 'inputs', name), '');
+}

@@ -1,8 +1,10 @@
 import { createHash } from 'node:crypto';
+import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { Queue } from 'bullmq';
 import { Redis } from 'ioredis';
 import { nodeFileSystem } from '../core/sources';
+import { controllerFilesNamed } from '../esmini/controllerFiles';
 import { BatchPlanView, concreteRun, filesNamed, namedPaths } from './plan';
 import { BatchOutput, Progress, Tally } from './progress';
 import type { Criterion } from './criteria';
@@ -187,6 +189,16 @@ export async function queueBatch(
       return files;
     };
     const searchPath = plan.searchPath.map((folder) => relativeTo(plan.scenarioFolder, folder) || '.');
+    // With them, the controller Files a run names from the scenario's folder (their values may vary), as a local batch hands them.
+    const jobFilesOf = async (text: string): Promise<JobFile[]> => {
+      const named = await filesOf(text);
+      const from = await plan.controllerFilesOf?.(text);
+      const controllers = from ? controllerFilesNamed(text, from, (file) => fs.existsSync(file) && fs.statSync(file).isFile()) : [];
+      const sentControllers = await Promise.all(
+        controllers.map((file) => send(relativeTo(plan.scenarioFolder, file), () => readJobFile(file))),
+      );
+      return [...named, ...sentControllers.filter((file) => !named.some((each) => each.relative === file.relative))];
+    };
 
     queue = new Queue(QUEUE_NAME, { connection: connectionOf(url) });
     queue.on('error', () => undefined);
@@ -215,7 +227,7 @@ export async function queueBatch(
           index: run.index,
           text: run.text,
           parameters: run.parameters,
-          files: await filesOf(run.text),
+          files: await jobFilesOf(run.text),
           searchPath,
           scenarioFolder: plan.scenarioFolder,
           duration: settings.duration ?? null,

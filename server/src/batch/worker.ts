@@ -3,8 +3,10 @@ import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
 import { Job, Worker } from 'bullmq';
-import { nodeFileSystem } from '../core/sources';
+import { CatalogLoader } from '../core/semantics/catalogs';
+import { nodeFileSystem, ScenarioStore } from '../core/sources';
 import { rebasedConcreteText } from '../core/variations';
+import { controllerFilesFrom } from '../esmini/controllerFiles';
 import { withoutRunFolder } from '../esmini/messages';
 import { makeRunFolder } from '../esmini/process';
 import { connect, connectionOf, fileKey, LOCK_DURATION_MS, QUEUE_NAME, resultsKey, RunJob, STALLED_INTERVAL_MS } from './queue';
@@ -105,8 +107,18 @@ export async function runWorker(url: URL, options: WorkerOptions): Promise<numbe
       ];
       // As a local batch runs it: the paths it names made absolute from where its files now lie.
       const text = (await rebasedConcreteText(data.text, scenarioFolder, undefined, (file) => nodeFileSystem.kind(file))).text;
+      // Its controller Files, sent beside the scenario, handed as a local batch hands them (its catalogs are laid out too).
+      const catalogs = new CatalogLoader(new ScenarioStore({ root: layout, scenarioPath: [] }));
+      const controllerFiles = await controllerFilesFrom(data.text, scenarioFolder, catalogs);
       const ran = await runConcrete(
-        { index: data.index, text, parameters: data.parameters, searchPath, scenarioFolder: data.scenarioFolder },
+        {
+          index: data.index,
+          text,
+          parameters: data.parameters,
+          searchPath,
+          scenarioFolder: data.scenarioFolder,
+          controllerFilesFrom: controllerFiles,
+        },
         {
           duration: data.duration ?? undefined,
           durationSetBy: data.durationSetBy,

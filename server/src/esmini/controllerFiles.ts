@@ -38,39 +38,68 @@ export function withControllerFilesFrom(
   references: readonly CatalogReferenceResolution[],
   exists: (file: string) => boolean,
 ): string {
-  const document = parseXml(text);
-  const root = document.root;
-  if (!root) return text;
-  const evaluator = new Evaluator(semanticModelOf(document));
   /** The absolute file a path esmini misses from the run folder names from the scenario's folder; undefined when none. */
-  const reached = (written: string | undefined): string | undefined => {
-    if (!written || path.isAbsolute(written)) return undefined;
+  const reached = (written: string | undefined, parameterized: boolean): string | undefined => {
+    if (!parameterized || !written || path.isAbsolute(written)) return undefined;
     const original = path.resolve(scenarioFolder, written);
     return !exists(path.resolve(runFolder, written)) && exists(original) ? original : undefined;
   };
+  return applyEdits(text, controllerFileEdits(text, references, reached));
+}
+
+/**
+ * The files on disk that the controller Files of a concrete scenario name from `from.scenarioFolder`, inline or in a
+ * catalog entry it references, written as they stand or through a `$parameter`: what a worker on another machine needs
+ * beside the scenario to run it as a local batch does.
+ */
+export function controllerFilesNamed(text: string, from: ControllerFilesFrom, exists: (file: string) => boolean): string[] {
+  const files = new Set<string>();
+  controllerFileEdits(text, from.references, (written) => {
+    const file = written && !path.isAbsolute(written) ? path.resolve(from.scenarioFolder, written) : undefined;
+    if (file && exists(file)) files.add(file);
+    return undefined;
+  });
+  return [...files];
+}
+
+/**
+ * Each controller File of the text shown to `handed` (the path it names, evaluated, and whether it is named through a
+ * `$parameter`), and the edits that write the absolute file `handed` returns for one named through a parameter.
+ */
+function controllerFileEdits(
+  text: string,
+  references: readonly CatalogReferenceResolution[],
+  handed: (written: string | undefined, parameterized: boolean) => string | undefined,
+): TextEdit[] {
+  const document = parseXml(text);
+  const root = document.root;
+  if (!root) return [];
+  const evaluator = new Evaluator(semanticModelOf(document));
   const edits: TextEdit[] = [];
   for (const holder of [root, ...descendants(root)]) {
     if (holder.name !== 'ObjectController' && holder.name !== 'AssignControllerAction') continue;
     for (const child of holder.children) {
       if (child.name === 'Controller') {
         const filepath = fileOf(child);
-        const file =
-          filepath && filepath.attribute.value.trim().startsWith('$')
-            ? reached(evaluator.textOf(filepath.element, filepath.attribute))
-            : undefined;
-        if (filepath && file)
+        if (!filepath) continue;
+        const parameterized = filepath.attribute.value.trim().startsWith('$');
+        const file = handed(
+          parameterized ? evaluator.textOf(filepath.element, filepath.attribute) : filepath.attribute.value.trim(),
+          parameterized,
+        );
+        if (parameterized && file)
           edits.push({
             start: filepath.attribute.valueStart,
             end: filepath.attribute.valueEnd,
             text: escapeAttributeValue(file, filepath.attribute.quote),
           });
       } else if (child.name === 'CatalogReference') {
-        const edit = catalogReferenceEdit(child, evaluator, references, reached);
+        const edit = catalogReferenceEdit(child, evaluator, references, handed);
         if (edit) edits.push(edit);
       }
     }
   }
-  return applyEdits(text, edits);
+  return edits;
 }
 
 /** A Controller's `Properties/File` element and its filepath attribute. */
@@ -91,14 +120,18 @@ function catalogReferenceEdit(
   reference: XmlElement,
   evaluator: Evaluator,
   references: readonly CatalogReferenceResolution[],
-  reached: (written: string | undefined) => string | undefined,
+  handed: (written: string | undefined, parameterized: boolean) => string | undefined,
 ): TextEdit | undefined {
   const catalogName = evaluator.textOf(reference, attribute(reference, 'catalogName'))?.trim();
   const entryName = evaluator.textOf(reference, attribute(reference, 'entryName'))?.trim();
   const entry = references.find((each) => each.catalogName === catalogName && each.entryName === entryName)?.entry?.element;
   const filepath = entry?.name === 'Controller' ? fileOf(entry) : undefined;
   const parameter = filepath ? /^\$([A-Za-z_][\w.]*)$/.exec(filepath.attribute.value.trim())?.[1] : undefined;
-  if (!entry || parameter === undefined) return undefined;
+  if (!entry || !filepath) return undefined;
+  if (parameter === undefined) {
+    handed(filepath.attribute.value.trim(), false);
+    return undefined;
+  }
   const assignments = reference.children.find((child) => child.name === 'ParameterAssignments');
   const assignment = assignments?.children.find(
     (child) => child.name === 'ParameterAssignment' && attribute(child, 'parameterRef')?.value === parameter,
@@ -109,7 +142,7 @@ function catalogReferenceEdit(
     (child) => child.name === 'ParameterDeclaration' && attribute(child, 'name')?.value === parameter,
   );
   const fallback = declaration ? attribute(declaration, 'value')?.value : undefined;
-  const file = reached(assignment ? evaluator.textOf(assignment, assigned) : fallback?.startsWith('$') ? undefined : fallback);
+  const file = handed(assignment ? evaluator.textOf(assignment, assigned) : fallback?.startsWith('$') ? undefined : fallback, true);
   if (!file) return undefined;
   if (assigned) return { start: assigned.valueStart, end: assigned.valueEnd, text: escapeAttributeValue(file, assigned.quote) };
   const added = `<ParameterAssignment parameterRef="${escapeAttributeValue(parameter, '"')}" value="${escapeAttributeValue(file, '"')}"/>`;
