@@ -189,7 +189,7 @@ export function routeTrajectory(tree: Node, action: Node, roads: RoadNetwork | u
   for (const stretch of stretches) if (roadIds.at(-1) !== stretch.roadId) roadIds.push(stretch.roadId);
   return {
     follow,
-    summary: `the lanes esmini drives it in from ${actor}'s start (roads ${roadIds.join(' > ')}, lane ${stretches[0].laneId} from s ${Number(start.s.toFixed(3))}, ${Number(along.toFixed(2))} m): ${vertices.length} LanePositions at most ${ROUTE_STEP} m apart, timed at its speed ${speed} m/s; past the last one it drives on in its lane, as past a route's end${
+    summary: `the lanes esmini drives it in from ${actor}'s start (roads ${roadIds.join(' > ')}, lane ${stretches[0].laneId} from s ${Number(start.s.toFixed(3))}, ${Number(along.toFixed(2))} m): ${vertices.length} LanePositions at most ${ROUTE_STEP} m apart, timed at its speed ${fourDecimals(speed)} m/s; past the last one it drives on in its lane, as past a route's end${
       start.offset !== 0
         ? `; its offset ${fourDecimals(start.offset)} m from the lane centre is written on each vertex, but ScenarioRunner's vehicle controller drives to each vertex's lane centre (npc_vehicle_control.py _update_plan: get_waypoint, project_to_road)`
         : ''
