@@ -363,6 +363,50 @@ describe('simulator profiles', () => {
     assert.deepEqual(messages('esmini', scenarioText('3', '', angle)), []);
   });
 
+  it("esmini: a catalog maneuver's steady state to a stop is an error on the reference that sets its final speed to 0, not in the catalog", async () => {
+    const maneuver = (name: string) =>
+      `<Maneuver name="${name}"><ParameterDeclarations><ParameterDeclaration name="Final" parameterType="double" value="0"/></ParameterDeclarations>` +
+      `<Event name="e${name}" priority="override"><Action name="a${name}"><PrivateAction><SynchronizeAction masterEntityRef="ego"><TargetPositionMaster><WorldPosition x="10" y="0"/></TargetPositionMaster><TargetPosition><WorldPosition x="5" y="0"/></TargetPosition><FinalSpeed><AbsoluteSpeed value="$Final"><TargetTimeSteadyState time="1"/></AbsoluteSpeed></FinalSpeed></SynchronizeAction></PrivateAction></Action>` +
+      '<StartTrigger><ConditionGroup><Condition name="c" delay="0" conditionEdge="rising"><ByValueCondition><SimulationTimeCondition value="0" rule="greaterThan"/></ByValueCondition></Condition></ConditionGroup></StartTrigger></Event></Maneuver>';
+    const catalog = `<?xml version="1.0"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" description="maneuvers" author="test"/>
+  <Catalog name="ManeuverCatalog">
+    ${maneuver('sync')}
+    ${maneuver('unused')}
+  </Catalog>
+</OpenSCENARIO>
+`;
+    const main = (assignment: string) =>
+      scenarioText('2', '', VISIBILITY)
+        .replace(
+          '<CatalogLocations/>',
+          '<CatalogLocations><ManeuverCatalog><Directory path="catalogs"/></ManeuverCatalog></CatalogLocations>',
+        )
+        .replace(
+          /<Maneuver name="maneuver">[^]*<\/Maneuver>/,
+          `<CatalogReference catalogName="ManeuverCatalog" entryName="sync">${assignment}</CatalogReference>`,
+        );
+    const files = { 'catalogs/ManeuverCatalog.xosc': catalog };
+    const refusals = async (text: string) =>
+      (await semanticProblemsOf(text, files, 'esmini'))
+        .filter((problem) => problem.code === 'simulator')
+        .map((problem) => [problem.range.start.line, problem.message]);
+    assert.deepEqual(await refusals(catalog), []);
+    const stopped = main('');
+    const line = stopped.split('\n').findIndex((text) => text.includes('entryName="sync"'));
+    assert.deepEqual(await refusals(stopped), [
+      [
+        line,
+        'in catalog entry \'sync\' (ManeuverCatalog.xosc:5): esmini refuses a SynchronizeAction whose FinalSpeed is an AbsoluteSpeed of 0 or less with a steady state ("SynchronizeAction steady state with 0 or negative final speed is not supported"): a final speed of 0 with <TargetTimeSteadyState> (EnvironmentSimulator/Modules/ScenarioEngine/SourceFiles/ScenarioReader.cpp:3269-3282)',
+      ],
+    ]);
+    assert.deepEqual(
+      await refusals(main('<ParameterAssignments><ParameterAssignment parameterRef="Final" value="5"/></ParameterAssignments>')),
+      [],
+    );
+  });
+
   it('esmini refuses a SynchronizeAction steady state to a final AbsoluteSpeed of 0 or less, also set by a parameter: an error on the value', async () => {
     const synchronize = (speed: string, steady = '<TargetTimeSteadyState time="1"/>') =>
       `<PrivateAction><SynchronizeAction masterEntityRef="ego"><TargetPositionMaster><WorldPosition x="10" y="0"/></TargetPositionMaster><TargetPosition><WorldPosition x="5" y="0"/></TargetPosition><FinalSpeed><AbsoluteSpeed value="${speed}">${steady}</AbsoluteSpeed></FinalSpeed></SynchronizeAction></PrivateAction>`;

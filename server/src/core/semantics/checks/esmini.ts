@@ -1,7 +1,9 @@
 import { esminiFactWording } from '../../diagnostics/simulator';
 import { ESMINI_SMALL_NUMBER } from '../../profiles/esmini';
-import { attribute, descendants, XmlElement } from '../../xml';
-import { at } from './support';
+import { attribute, descendants, XmlAttribute, XmlElement } from '../../xml';
+import { assignmentsOf } from '../catalogs';
+import { Evaluator } from '../model';
+import { at, inCatalogEntry, onCatalogReferences } from './support';
 import type { Finding, SemanticCheck, SemanticContext } from './types';
 
 /*
@@ -47,16 +49,16 @@ function routeOrientationsAfterPosition(root: XmlElement): Finding[] {
   });
 }
 
-/** What esmini refuses at load: a ScenarioObject after an ExternalObjectReference that is referenced, a SynchronizeAction's steady state to a stop; what it drops: a RoutePosition's Orientation after its position. */
-export const esminiScenario: SemanticCheck = (context) => {
-  const root = context.model.document.root;
-  if (context.simulator !== 'esmini' || !root) return [];
-  const findings: Finding[] = [...entitiesAfterExternal(context, root), ...routeOrientationsAfterPosition(root)];
-  // A SynchronizeAction's final AbsoluteSpeed of 0 or less followed by a steady state.
-  for (const speed of descendants(root)) {
+/** A SynchronizeAction's final AbsoluteSpeed of 0 or less followed by a steady state, among `elements`, read by `textOf`. */
+function steadyStateStops(
+  elements: readonly XmlElement[],
+  textOf: (element: XmlElement, value: XmlAttribute) => string | undefined,
+): Finding[] {
+  const findings: Finding[] = [];
+  for (const speed of elements) {
     if (speed.name !== 'AbsoluteSpeed' || speed.parent?.name !== 'FinalSpeed' || speed.children.length === 0) continue;
     const value = attribute(speed, 'value');
-    const text = value && context.evaluator.textOf(speed, value);
+    const text = value && textOf(speed, value);
     // esmini compares with SMALL_NUMBER; a value it cannot read is another check's.
     if (text === undefined || text.trim() === '' || !(Number(text) < ESMINI_SMALL_NUMBER)) continue;
     findings.push({
@@ -65,4 +67,25 @@ export const esminiScenario: SemanticCheck = (context) => {
     });
   }
   return findings;
+}
+
+/**
+ * What esmini refuses at load: a ScenarioObject after an ExternalObjectReference that is referenced, a SynchronizeAction's
+ * steady state to a stop (in a catalog entry: on each reference that uses the entry, with its values, as esmini reads it
+ * there); what it drops: a RoutePosition's Orientation after its position.
+ */
+export const esminiScenario: SemanticCheck = (context) => {
+  const root = context.model.document.root;
+  if (context.simulator !== 'esmini' || !root) return [];
+  const own = descendants(root).filter((element) => !inCatalogEntry(context, element));
+  const textOf = (evaluator: Evaluator) => (element: XmlElement, value: XmlAttribute) => evaluator.textOf(element, value);
+  return [
+    ...entitiesAfterExternal(context, root),
+    ...routeOrientationsAfterPosition(root),
+    ...steadyStateStops(own, textOf(context.evaluator)),
+    ...onCatalogReferences(context, (entry, resolution) => {
+      const evaluator = new Evaluator(entry.file.model, assignmentsOf(resolution.reference, context.evaluator), context.evaluator.reading);
+      return steadyStateStops([entry.element, ...descendants(entry.element)], textOf(evaluator));
+    }),
+  ];
 };

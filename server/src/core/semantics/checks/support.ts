@@ -2,7 +2,7 @@ import { inCatalogEntryWording } from '../../diagnostics/simulator';
 import type { RelatedProblemLocation } from '../../problems';
 import { baseName } from '../../sources';
 import { XmlAttribute, XmlElement } from '../../xml';
-import type { CatalogEntry } from '../catalogs';
+import type { CatalogEntry, CatalogReferenceResolution } from '../catalogs';
 import type { Finding, SemanticContext } from './types';
 
 /** A finding's place: an attribute's value, or the element's start tag name. */
@@ -29,7 +29,10 @@ export function inCatalogEntry(context: SemanticContext, element: XmlElement): b
  * CatalogReference, the entry's file and line in the message: a simulator reads an entry only where a scenario
  * uses it, so an entry no scenario references is no problem. A suggested edit would be in the catalog, not here.
  */
-export function onCatalogReferences(context: SemanticContext, check: (entry: CatalogEntry) => Finding[]): Finding[] {
+export function onCatalogReferences(
+  context: SemanticContext,
+  check: (entry: CatalogEntry, resolution: CatalogReferenceResolution) => Finding[],
+): Finding[] {
   // Each entry is checked once, however many references use it.
   const checked = new Map<XmlElement, Finding[]>();
   return context.catalogs.references.flatMap((resolution) => {
@@ -38,7 +41,7 @@ export function onCatalogReferences(context: SemanticContext, check: (entry: Cat
     const { reference } = resolution;
     const lines = entry.file.model.document.lines;
     let findings = checked.get(entry.element);
-    if (!findings) checked.set(entry.element, (findings = check(entry)));
+    if (!findings) checked.set(entry.element, (findings = check(entry, resolution)));
     return findings.flatMap((finding): Finding[] => {
       if (finding.code !== 'simulator') return [];
       const exportMaps = finding.data !== undefined && 'exportMaps' in finding.data && finding.data.exportMaps === true;
