@@ -20,6 +20,11 @@ import { ancestor, attr, child, childrenNamed, fourDecimals, makeNode, named, No
 /** The longest straight segment between two vertices: its sagitta on a 10 m radius (a tight junction turn) is 1.25 cm. */
 export const ROUTE_STEP = 1;
 
+/** An element's name after 'a' or 'an'. */
+function withArticle(name: string): string {
+  return `${/^[AEIOU]/.test(name) ? 'an' : 'a'} ${name}`;
+}
+
 /** Where a node was written (`file:line`), or '' when it was not. */
 function lineOf(node: Node): string {
   return node.place ? `${baseName(node.place.source)}:${node.place.range.start.line + 1}` : '';
@@ -111,13 +116,14 @@ export function routeTrajectory(tree: Node, action: Node, roads: RoadNetwork | u
   const init = ancestor(action, 'Init') as Node;
   const other = named(init, INIT_ATOMICS).find((each) => each !== action && attr(ancestor(each, 'Private') ?? each, 'entityRef') === actor);
   if (other)
-    return `the Init of '${actor}' has a ${other.name} too (${lineOf(other) || 'in the Init'}), and ScenarioRunner ${sequence.does} (${sequence.source})`;
+    return `the Init of '${actor}' has ${withArticle(other.name)} too (${lineOf(other) || 'in the Init'}), and ScenarioRunner ${sequence.does} (${sequence.source})`;
   for (const story of named(tree, 'Story'))
     for (const moving of named(story, MOVING)) {
       const group = ancestor(moving, 'ManeuverGroup');
       const actors = group ? child(group, 'Actors') : undefined;
-      if (!actors || attr(actors, 'selectTriggeringEntities') === 'true' || actorsOf(moving).includes(actor))
-        return `its story moves '${actor}' too (a ${moving.children[0]?.name ?? moving.name} at ${lineOf(moving) || 'a story line'}), which would end the trajectory in ScenarioRunner and fight it in esmini`;
+      if (!actors || attr(actors, 'selectTriggeringEntities') === 'true' || actorsOf(moving).includes(actor)) {
+        return `its story moves '${actor}' too (${withArticle(moving.children[0]?.name ?? moving.name)} at ${lineOf(moving) || 'a story line'}), which would end the trajectory in ScenarioRunner and fight it in esmini`;
+      }
     }
   const speed = constantSpeedOf(tree, actor, action);
   if (speed === undefined)
