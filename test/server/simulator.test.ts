@@ -6,6 +6,7 @@ import * as fs from 'node:fs';
 import { fileUri, TestClient } from './harness';
 import { afterASecond, parameterCondition, parameterStoryScenario, settingEvent, storyAct } from '../support/carlaStories';
 import { problemCodeOf } from '../support/diagnostics';
+import { applyEdits } from '../support/textEdits';
 import { temporaryWorkspace } from '../support/workspace';
 import { fileHeader, openScenarioFile } from '../support/fixtures';
 
@@ -173,6 +174,137 @@ describe('CARLA findings offer their fixes over JSON-RPC', function () {
     assert.equal(over.written, null);
     assert.match(over.problems[0].message, /refusing to overwrite .*scenario\.xosc, the scenario being exported/);
     assert.equal(fs.readFileSync(path.join(root, 'scenario.xosc'), 'utf8'), FIXABLE);
+  });
+});
+
+/** A vehicle written in the scenario: its name (the blueprint) and what its Properties hold. */
+function vehicle(properties: string): string {
+  return `<Vehicle name="vehicle.tesla.model3" vehicleCategory="car">
+      <BoundingBox><Center x="1" y="0" z="1"/><Dimensions width="2" length="4" height="1.5"/></BoundingBox>
+      <Performance maxSpeed="50" maxAcceleration="5" maxDeceleration="9"/>
+      <Axles><FrontAxle maxSteering="0.5" wheelDiameter="0.6" trackWidth="1.7" positionX="2.9" positionZ="0.3"/>
+      <RearAxle maxSteering="0" wheelDiameter="0.6" trackWidth="1.7" positionX="0" positionZ="0.3"/></Axles>
+      ${properties}
+    </Vehicle>`;
+}
+
+/** A 1.0 scenario on Town05 with two vehicles and no ego marked: the first is no ego by name, the second is. */
+const NO_EGO = openScenarioFile(
+  `  <CatalogLocations/>
+  <RoadNetwork><LogicFile filepath="Town05"/></RoadNetwork>
+  <Entities>
+    <ScenarioObject name="adversary">${vehicle('<Properties/>')}</ScenarioObject>
+    <ScenarioObject name="myEgoCar">${vehicle(`<Properties>
+        <Property name="color" value="0,0,255"/>
+        <File filepath="car.fbx"/>
+      </Properties>`)}</ScenarioObject>
+  </Entities>
+  <Storyboard>
+    <Init><Actions>
+      <Private entityRef="adversary"><PrivateAction><TeleportAction><Position><LanePosition roadId="1" laneId="-1" s="20" offset="0"/></Position></TeleportAction></PrivateAction></Private>
+      <Private entityRef="myEgoCar"><PrivateAction><TeleportAction><Position><LanePosition roadId="1" laneId="-1" s="5" offset="0"/></Position></TeleportAction></PrivateAction></Private>
+    </Actions></Init>
+    <StopTrigger/>
+  </Storyboard>
+`,
+  fileHeader({ revMinor: '0', description: 'no ego' }),
+);
+
+describe('CARLA: no ego marked, the quick fix marks the vehicle Export for CARLA marks, as it marks it', function () {
+  let client: TestClient;
+  let root: string;
+
+  before(async () => {
+    root = temporaryWorkspace({
+      'scenario.xosc': NO_EGO,
+      'catalogued.xosc': FIXABLE.replace('revMinor="1"', 'revMinor="0"').replace('value="${$Speed / 3.6}"', 'value="10"'),
+      'catalogs/VehicleCatalog.xosc': CATALOG,
+      'marked/scenario.xosc': FIXABLE.replace('revMinor="1"', 'revMinor="0"').replace('value="${$Speed / 3.6}"', 'value="10"'),
+      'marked/catalogs/VehicleCatalog.xosc': CATALOG.replace(
+        '<Properties/>',
+        '<Properties><Property name="type" value="ego_vehicle"/></Properties>',
+      ),
+    });
+    client = await TestClient.start({ root, settings: { simulator: 'carla' } });
+  });
+
+  after(async () => {
+    await client.stop();
+  });
+
+  const noEgoOf = async (uri: string): Promise<Diagnostic | undefined> =>
+    (await client.diagnosticsOf(uri, (list) => list.length > 0)).find((diagnostic) =>
+      /this scenario marks none/.test(String(diagnostic.message)),
+    );
+
+  it("offers one fix, Mark 'myEgoCar' as the ego, whose edit is the Property the export writes (before the File); after it, no warning", async () => {
+    const file = path.join(root, 'scenario.xosc');
+    const uri = await client.open(fileUri(file), NO_EGO);
+    const noEgo = await noEgoOf(uri);
+    assert.ok(noEgo, 'no warning that no ego is marked');
+    assert.match(String(noEgo.message), /'myEgoCar' is the vehicle Export for CARLA marks/);
+    const actions = await client.request<CodeAction[]>('textDocument/codeAction', {
+      textDocument: { uri },
+      range: noEgo.range,
+      context: { diagnostics: [noEgo] },
+    });
+    const mark = actions.filter((action) => action.edit);
+    assert.deepEqual(
+      mark.map((action) => action.title),
+      [`Mark 'myEgoCar' as the ego: <Property name="type" value="ego_vehicle"/>`],
+    );
+    assert.equal(mark[0].isPreferred, true);
+    const fixed = applyEdits(NO_EGO, mark[0].edit?.changes?.[uri] ?? []);
+    assert.match(
+      fixed,
+      /<Property name="color" value="0,0,255"\/>\n {8}<Property name="type" value="ego_vehicle"\/>\n {8}<File filepath="car.fbx"\/>/,
+    );
+
+    // The export of the scenario as it was marks the same vehicle with the same Property.
+    const output = path.join(root, 'out', 'scenario.carla.xosc');
+    fs.mkdirSync(path.dirname(output), { recursive: true });
+    const result = await client.request<WriteResult>(ExportForCarlaRequest.method, { uri, outputPath: output });
+    assert.equal(result.written, output, JSON.stringify(result.problems));
+    const exported = fs.readFileSync(output, 'utf8');
+    const egoObject = /<ScenarioObject name="myEgoCar">[\s\S]*?<\/ScenarioObject>/.exec(exported)?.[0] ?? '';
+    assert.match(egoObject, /<Property name="type" value="ego_vehicle"\/>/);
+    assert.equal(exported.split('value="ego_vehicle"').length, 2, 'one vehicle marked');
+
+    await client.close(uri);
+    const after = await client.open(uri, fixed);
+    const diagnostics = await client.diagnosticsOf(
+      after,
+      (list) => !list.some((diagnostic) => /marks none/.test(String(diagnostic.message))),
+    );
+    assert.deepEqual(
+      diagnostics.filter((diagnostic) => /marks none/.test(String(diagnostic.message))).map((diagnostic) => diagnostic.message),
+      [],
+    );
+    await client.close(after);
+  });
+
+  it('a vehicle from a catalog: no edit here (the entry is shared), Export for CARLA still offered; marked in the entry, no warning', async () => {
+    const catalogued = path.join(root, 'catalogued.xosc');
+    const uri = await client.open(fileUri(catalogued), fs.readFileSync(catalogued, 'utf8'));
+    const noEgo = await noEgoOf(uri);
+    assert.ok(noEgo, 'no warning that no ego is marked');
+    const actions = await client.request<CodeAction[]>('textDocument/codeAction', {
+      textDocument: { uri },
+      range: noEgo.range,
+      context: { diagnostics: [noEgo] },
+    });
+    assert.deepEqual(
+      actions.map((action) => action.title),
+      ['Export for CARLA…'],
+    );
+    await client.close(uri);
+    const marked = path.join(root, 'marked', 'scenario.xosc');
+    const markedUri = await client.open(fileUri(marked), fs.readFileSync(marked, 'utf8'));
+    const diagnostics = await client.diagnosticsOf(markedUri);
+    assert.deepEqual(
+      diagnostics.filter((diagnostic) => /marks none/.test(String(diagnostic.message))).map((diagnostic) => diagnostic.message),
+      [],
+    );
   });
 });
 

@@ -189,6 +189,8 @@ export interface SimulatorFixData {
   actor?: string;
   /** The Orientation the problem stands on is moved before its InRoutePosition (esmini reads a RoutePosition's children in order). */
   orientationFirst?: boolean;
+  /** The ScenarioObject whose Vehicle gets ScenarioRunner's ego Property (the one Export for CARLA marks). */
+  ego?: string;
 }
 
 /** The data each problem code carries (where it carries any). */

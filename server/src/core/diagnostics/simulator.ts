@@ -4,7 +4,8 @@ import type { ProfileFacts } from '../profiles/checks';
 import { ESMINI_FACTS, ESMINI_PROFILE, EsminiFactName } from '../profiles/esmini';
 import type { ElementFact, FactSeverity, SimulatorFact } from '../profiles/facts';
 import { Range } from '../text';
-import { elementAt, escapeAttributeValue, XmlDocument } from '../xml';
+import { EGO_PROPERTY } from '../profiles/scenarioRunner';
+import { attribute, elementAt, escapeAttributeValue, XmlDocument } from '../xml';
 import {
   childrenInsertion,
   CoreFix,
@@ -82,7 +83,7 @@ export function esminiFactWording(name: EsminiFactName, detail: string): Problem
 function isSimulatorData(value: unknown): value is ProblemDataByCode['simulator'] {
   if (!isRecord(value) || !isOptionalString(value.suggestion)) return false;
   if (value.exportMaps !== undefined && typeof value.exportMaps !== 'boolean') return false;
-  if (!isOptionalString(value.actor)) return false;
+  if (!isOptionalString(value.actor) || !isOptionalString(value.ego)) return false;
   if (value.orientationFirst !== undefined && typeof value.orientationFirst !== 'boolean') return false;
   return value.rename === undefined || (isRecord(value.rename) && isString(value.rename.from) && isString(value.rename.to));
 }
@@ -112,8 +113,42 @@ export const SIMULATOR = defineDiagnostic({
     ...(data?.exportMaps ? [{ title: 'Export for CARLA…', edits: [], command: 'export-for-carla' as const }] : []),
     ...(data?.actor !== undefined ? await actorFix(data.actor, document, range, parsed) : []),
     ...(data?.orientationFirst ? await orientationFirstFix(document, range, parsed) : []),
+    ...(data?.ego !== undefined ? await egoFix(data.ego, document, parsed) : []),
   ],
 });
+
+/**
+ * ScenarioRunner's ego Property added to the Properties of the named ScenarioObject's Vehicle: what Export for CARLA
+ * writes into its output (export/carla.ts markEgo), written into the scenario instead. Before a File, as the schema
+ * orders a Properties' children; a Vehicle without Properties gets them.
+ */
+async function egoFix(ego: string, document: TextLines, parsed: () => Promise<XmlDocument>): Promise<CoreFix[]> {
+  const object = (await parsed()).root?.children
+    .find((child) => child.name === 'Entities')
+    ?.children.find((child) => child.name === 'ScenarioObject' && attribute(child, 'name')?.value === ego);
+  const vehicle = object?.children.find((child) => child.name === 'Vehicle');
+  if (!vehicle) return [];
+  const text = document.getText();
+  const property = `<Property name="${EGO_PROPERTY.name}" value="${EGO_PROPERTY.value}"/>`;
+  const properties = vehicle.children.find((child) => child.name === 'Properties');
+  const file = properties?.children.find((child) => child.name === 'File');
+  const lineStart = file ? text.lastIndexOf('\n', file.start - 1) + 1 : 0;
+  const fileIndent = file ? text.slice(lineStart, file.start) : '';
+  const inserted = file
+    ? /^[ \t]*$/.test(fileIndent)
+      ? { start: lineStart, end: lineStart, newText: `${fileIndent}${property}${text.includes('\r\n') ? '\r\n' : '\n'}` }
+      : { start: file.start, end: file.start, newText: property }
+    : properties
+      ? childrenInsertion(text, properties, () => [property])
+      : childrenInsertion(text, vehicle, () => [`<Properties>${property}</Properties>`]);
+  if (!inserted) return [];
+  const edit = {
+    place: 'document' as const,
+    range: { start: document.positionAt(inserted.start), end: document.positionAt(inserted.end) },
+    newText: inserted.newText,
+  };
+  return [{ title: `Mark '${ego}' as the ego: ${property}`, edits: [edit], preferred: true }];
+}
 
 /** The Orientation the problem stands on, moved (with its line) before its RoutePosition's InRoutePosition. */
 async function orientationFirstFix(document: TextLines, range: Range, parsed: () => Promise<XmlDocument>): Promise<CoreFix[]> {

@@ -33,7 +33,10 @@ import {
   closestTown,
   DEFAULT_VEHICLE_BLUEPRINTS,
   DEFAULT_WALKER_BLUEPRINT,
+  EGO_PROPERTY,
+  egoByName,
   isCarlaBlueprint,
+  namedAsEgo,
   SR_CONFIGURATION,
   SR_SCHEMA,
   unknownBlueprintProblem,
@@ -665,11 +668,9 @@ async function rewriteRoad(
   return { road, copy };
 }
 
-const EGO_NAMES = /^(ego|hero|ego_vehicle|egovehicle)$/i;
-
 function egoProperty(properties: Node): boolean {
   return childrenNamed(properties, 'Property').some(
-    (property) => attr(property, 'name') === 'type' && attr(property, 'value') === 'ego_vehicle',
+    (property) => attr(property, 'name') === EGO_PROPERTY.name && attr(property, 'value') === EGO_PROPERTY.value,
   );
 }
 
@@ -688,12 +689,11 @@ function markEgo(tree: Node, options: CarlaExportOptions, sink: LossSink): strin
     if (!vehicleOf(chosen)) throw new CarlaExportOptionError(`--ego ${options.ego}: ScenarioRunner takes only a Vehicle as the ego`);
   }
   const already = vehicles.filter((object) => allNodes(object).some((each) => each.name === 'Properties' && egoProperty(each)));
+  const byName = egoByName(vehicles.map((object) => attr(object, 'name') ?? ''));
   const chosen =
     (options.ego !== undefined ? vehicles.find((object) => attr(object, 'name') === options.ego) : undefined) ??
     (already.length > 0 ? already[0] : undefined) ??
-    vehicles.find((object) => EGO_NAMES.test(attr(object, 'name') ?? '')) ??
-    vehicles.find((object) => /ego|hero/i.test(attr(object, 'name') ?? '')) ??
-    vehicles[0];
+    vehicles.find((object) => (attr(object, 'name') ?? '') === byName);
   if (!chosen) {
     sink.approximated(
       entities ?? tree,
@@ -704,7 +704,7 @@ function markEgo(tree: Node, options: CarlaExportOptions, sink: LossSink): strin
     return undefined;
   }
   const name = attr(chosen, 'name') as string;
-  if (already.length === 0 && !EGO_NAMES.test(name) && !/ego|hero/i.test(name) && options.ego === undefined)
+  if (already.length === 0 && !namedAsEgo(name) && options.ego === undefined)
     sink.approximated(
       chosen,
       'ScenarioObject',
@@ -715,13 +715,14 @@ function markEgo(tree: Node, options: CarlaExportOptions, sink: LossSink): strin
     const vehicle = vehicleOf(object) as Node;
     const properties = child(vehicle, 'Properties') ?? appendChild(vehicle, makeNode('Properties'));
     for (const property of childrenNamed(properties, 'Property'))
-      if (attr(property, 'name') === 'type' && attr(property, 'value') === 'ego_vehicle' && object !== chosen) removeNode(property);
+      if (attr(property, 'name') === EGO_PROPERTY.name && attr(property, 'value') === EGO_PROPERTY.value && object !== chosen)
+        removeNode(property);
     if (object === chosen && !egoProperty(properties))
       appendChild(
         properties,
         makeNode('Property', [
-          ['name', 'type'],
-          ['value', 'ego_vehicle'],
+          ['name', EGO_PROPERTY.name],
+          ['value', EGO_PROPERTY.value],
         ]),
         properties.children.find((each) => each.name === 'File'),
       );

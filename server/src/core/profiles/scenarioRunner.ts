@@ -58,3 +58,21 @@ export function closestTown(name: string): string | undefined {
   const town = closestMatch(name, CARLA_TOWNS);
   return town !== undefined && editDistance(name.toLowerCase(), town.toLowerCase()) <= 1 ? town : undefined;
 }
+
+/** The Property by which ScenarioRunner takes a vehicle as the ego (SR_CONFIGURATION `_extract_vehicle_information`). */
+export const EGO_PROPERTY = { name: 'type', value: 'ego_vehicle' } as const;
+
+const EGO_NAMES = /^(ego|hero|ego_vehicle|egovehicle)$/i;
+
+/** Whether a vehicle's name says it is the ego: ego, hero, ego_vehicle, or a name holding ego or hero. */
+export function namedAsEgo(name: string): boolean {
+  return EGO_NAMES.test(name) || /ego|hero/i.test(name);
+}
+
+/**
+ * The vehicle the CARLA export marks as the ego when the scenario marks none, of the scenario's vehicles in order:
+ * the one named ego or hero (or ego_vehicle), else one whose name holds ego or hero, else the first.
+ */
+export function egoByName(vehicles: readonly string[]): string | undefined {
+  return vehicles.find((name) => EGO_NAMES.test(name)) ?? vehicles.find((name) => /ego|hero/i.test(name)) ?? vehicles[0];
+}

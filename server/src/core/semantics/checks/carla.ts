@@ -2,7 +2,7 @@ import * as path from 'node:path';
 import type { SimulatorFixData } from '../../problems';
 import { carlaFactWording } from '../../diagnostics/simulator';
 import { CarlaFactName } from '../../profiles/carla';
-import { closestTown } from '../../profiles/scenarioRunner';
+import { closestTown, EGO_PROPERTY, egoByName } from '../../profiles/scenarioRunner';
 import { DEFAULT_CARLA_RELEASE } from '../../profiles/simulators';
 import { schemaIndex } from '../../schema/index';
 import { typeOfElement } from '../../schema/query';
@@ -313,16 +313,37 @@ const negativeStartSpeeds = (context: SemanticContext, elements: XmlElement[]): 
   return findings;
 };
 
-/** Entities: blueprint names and the ego ScenarioRunner looks for. */
+function marksEgo(holder: XmlElement): boolean {
+  return descendants(holder).some(
+    (property) =>
+      property.name === 'Property' &&
+      attribute(property, 'name')?.value === EGO_PROPERTY.name &&
+      attribute(property, 'value')?.value === EGO_PROPERTY.value,
+  );
+}
+
+/**
+ * Entities: blueprint names and the ego ScenarioRunner looks for (marked here or in a catalog entry a ScenarioObject
+ * uses). With none marked, the fix marks the vehicle the export marks (egoByName), where its Vehicle is in this file.
+ */
 const entities = (context: SemanticContext): Finding[] => {
   const root = context.model.document.root;
   const entitiesElement = root?.children.find((child) => child.name === 'Entities');
   if (!entitiesElement || context.model.catalog) return [];
   const findings: Finding[] = [];
   let ego = false;
-  for (const object of entitiesElement.children.filter((child) => child.name === 'ScenarioObject')) {
-    for (const property of descendants(object).filter((child) => child.name === 'Property'))
-      if (attribute(property, 'name')?.value === 'type' && attribute(property, 'value')?.value === 'ego_vehicle') ego = true;
+  /** The vehicles in order, with their Vehicle element where it is written in this file (not a catalog's). */
+  const vehicles: { name: string; inFile: XmlElement | undefined }[] = [];
+  const objects = entitiesElement.children.filter((child) => child.name === 'ScenarioObject');
+  for (const object of objects) {
+    const reference = object.children.find((child) => child.name === 'CatalogReference');
+    const entry = reference
+      ? context.catalogs.references.find((resolution) => resolution.reference.element === reference)?.entry
+      : undefined;
+    const catalogVehicle = entry?.element.name === 'Vehicle' ? entry.element : undefined;
+    if (marksEgo(object) || (catalogVehicle && marksEgo(catalogVehicle))) ego = true;
+    const vehicle = object.children.find((child) => child.name === 'Vehicle');
+    if (vehicle || catalogVehicle) vehicles.push({ name: attribute(object, 'name')?.value ?? '', inFile: vehicle });
     for (const entity of object.children) {
       const named =
         entity.name === 'Vehicle' ? attribute(entity, 'name') : entity.name === 'Pedestrian' ? attribute(entity, 'model') : undefined;
@@ -339,13 +360,22 @@ const entities = (context: SemanticContext): Finding[] => {
         );
     }
   }
-  const objects = entitiesElement.children.filter((child) => child.name === 'ScenarioObject');
-  if (!ego && objects.length > 0)
+  if (!ego && objects.length > 0) {
+    const chosen = egoByName(vehicles.map((vehicle) => vehicle.name));
+    const fixable = chosen !== undefined && vehicles.find((vehicle) => vehicle.name === chosen)?.inFile !== undefined;
+    const property = `<Property name="${EGO_PROPERTY.name}" value="${EGO_PROPERTY.value}"/>`;
     findings.push(
-      carlaFinding('noEgo', entitiesElement, undefined, 'add <Property name="type" value="ego_vehicle"/> to the ego\'s Properties', {
-        exportMaps: true,
-      }),
+      carlaFinding(
+        'noEgo',
+        entitiesElement,
+        undefined,
+        chosen !== undefined
+          ? `add ${property} to the Properties of the ego ('${chosen}' is the vehicle Export for CARLA marks)`
+          : `add ${property} to the ego's Properties`,
+        { exportMaps: true, ...(fixable ? { ego: chosen } : {}) },
+      ),
     );
+  }
   return findings;
 };
 
