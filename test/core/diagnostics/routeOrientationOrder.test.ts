@@ -3,7 +3,7 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { SIMULATOR } from '../../../server/src/core/diagnostics/simulator';
 import { esminiRoads, requireEsmini, runEsmini, tracksOf } from '../../support/esmini';
-import { element, fileHeader, scenarioDocument, vehicleObject } from '../../support/fixtures';
+import { catalogFile, element, fileHeader, scenarioDocument, vehicleObject } from '../../support/fixtures';
 import { temporaryFolder } from '../../support/temporaryDirectory';
 import { applyEdits } from '../../support/textEdits';
 import { fixContext, semanticProblemsOf } from './support';
@@ -79,6 +79,42 @@ describe("diagnostics: simulator (esmini), a RoutePosition's Orientation after i
       (await semanticProblemsOf(text, {})).filter((problem) => problem.code === 'simulator'),
       [],
     );
+  });
+
+  it('in a catalog entry, it is found on the CatalogReference that uses the entry (without the fix, which would be in the catalog), not in the catalog', async () => {
+    const route = `<RoutePosition><RouteRef><Route name="Along" closed="false"><Waypoint routeStrategy="shortest"><Position><LanePosition roadId="1" laneId="-1" s="10"/></Position></Waypoint><Waypoint routeStrategy="shortest"><Position><LanePosition roadId="1" laneId="-1" s="400"/></Position></Waypoint></Route></RouteRef><InRoutePosition><FromLaneCoordinates pathS="100" laneId="-1"/></InRoutePosition>${TURNED}</RoutePosition>`;
+    const maneuver = (name: string) =>
+      `<Maneuver name="${name}"><Event name="e${name}" priority="override"><Action name="a${name}"><PrivateAction><TeleportAction><Position>${route}</Position></TeleportAction></PrivateAction></Action>` +
+      '<StartTrigger><ConditionGroup><Condition name="c" delay="0" conditionEdge="none"><ByValueCondition><SimulationTimeCondition value="0" rule="greaterThan"/></ByValueCondition></Condition></ConditionGroup></StartTrigger></Event></Maneuver>';
+    const catalog = catalogFile('ManeuverCatalog', `    ${maneuver('turned')}\n    ${maneuver('unused')}\n`);
+    const group = `      <Act name="A">
+        <ManeuverGroup name="G" maximumExecutionCount="1">
+          <Actors selectTriggeringEntities="false"><EntityRef entityRef="Car"/></Actors>
+          <CatalogReference catalogName="ManeuverCatalog" entryName="turned"/>
+        </ManeuverGroup>
+        <StartTrigger/>
+      </Act>
+`;
+    const main = scenarioDocument({
+      header: fileHeader({ revMinor: '3' }),
+      parameters: '',
+      catalogLocations: '    <ManeuverCatalog><Directory path="catalogs"/></ManeuverCatalog>\n',
+      roadNetwork: `    <LogicFile filepath="${path.join(esminiRoads, 'straight_500m.xodr')}"/>\n`,
+      entities: vehicleObject('Car'),
+      storyboard: element('Init', element('Actions', '', 6), 4) + element('Story', group, 4, ' name="S"') + '    <StopTrigger/>\n',
+    });
+    const files = { 'catalogs/ManeuverCatalog.xosc': catalog };
+    const found = async (text: string) =>
+      (await semanticProblemsOf(text, files, 'esmini')).filter((problem) => problem.code === 'simulator');
+    assert.deepEqual(await found(catalog), []);
+    const [onReference, ...more] = await found(main);
+    assert.deepEqual(more, []);
+    assert.match(main.split('\n')[onReference.range.start.line], /<CatalogReference catalogName="ManeuverCatalog" entryName="turned"\/>/);
+    assert.match(
+      onReference.message,
+      /^in catalog entry 'turned' \(ManeuverCatalog\.xosc:\d+\): esmini applies a RoutePosition's Orientation only/,
+    );
+    assert.equal(onReference.data, undefined);
   });
 
   it('is what esmini does: the car written so drives along the route, the fixed one against it', async function () {

@@ -31,9 +31,9 @@ function entitiesAfterExternal(context: SemanticContext, root: XmlElement): Find
   });
 }
 
-/** A RoutePosition's Orientation after its InRoutePosition, which esmini drops (Euro NCAP's CBFA turns its obstruction so: the second one then stands 9 m away). */
-function routeOrientationsAfterPosition(root: XmlElement): Finding[] {
-  return descendants(root).flatMap((route) => {
+/** Each RoutePosition among `elements` whose Orientation comes after its InRoutePosition, which esmini drops (Euro NCAP's CBFA turns its obstruction so: the second one then stands 9 m away). */
+function routeOrientationsAfterPosition(elements: readonly XmlElement[]): Finding[] {
+  return elements.flatMap((route) => {
     if (route.name !== 'RoutePosition') return [];
     const orientation = route.children.findIndex((child) => child.name === 'Orientation');
     const position = route.children.findIndex((child) => child.name === 'InRoutePosition');
@@ -71,8 +71,8 @@ function steadyStateStops(
 
 /**
  * What esmini refuses at load: a ScenarioObject after an ExternalObjectReference that is referenced, a SynchronizeAction's
- * steady state to a stop (in a catalog entry: on each reference that uses the entry, with its values, as esmini reads it
- * there); what it drops: a RoutePosition's Orientation after its position.
+ * steady state to a stop; what it drops: a RoutePosition's Orientation after its position. In a catalog entry, each is
+ * found on each reference that uses the entry (with its values, as esmini reads it there), not in the catalog.
  */
 export const esminiScenario: SemanticCheck = (context) => {
   const root = context.model.document.root;
@@ -81,11 +81,12 @@ export const esminiScenario: SemanticCheck = (context) => {
   const textOf = (evaluator: Evaluator) => (element: XmlElement, value: XmlAttribute) => evaluator.textOf(element, value);
   return [
     ...entitiesAfterExternal(context, root),
-    ...routeOrientationsAfterPosition(root),
+    ...routeOrientationsAfterPosition(own),
     ...steadyStateStops(own, textOf(context.evaluator)),
     ...onCatalogReferences(context, (entry, resolution) => {
       const evaluator = new Evaluator(entry.file.model, assignmentsOf(resolution.reference, context.evaluator), context.evaluator.reading);
-      return steadyStateStops([entry.element, ...descendants(entry.element)], textOf(evaluator));
+      const elements = [entry.element, ...descendants(entry.element)];
+      return [...routeOrientationsAfterPosition(elements), ...steadyStateStops(elements, textOf(evaluator))];
     }),
   ];
 };
