@@ -646,7 +646,7 @@ describe('export --target carla, a SynchronizeAction with a steady state (1.1)',
       );
       assert.match(
         reported[0].what,
-        /^written as a synchronization to targets moved back \(the entity's s 300 → 270 on road 0, the master's s 240 → 200 on road 0\).*the condition waiting for its end waits? 2 s longer/,
+        /^written as a synchronization to targets moved back \(the entity's s 300 → 270 on road 0, the master's s 240 → 200 on road 0\).*the condition waiting for its end waits 2 s longer/,
       );
       const tracks = await assertMovesAlike(original, exported.output, 14);
       // The steady state happened: Lead drives at 15 m/s over its last 30 m before s 300 (x grows with s on e6mini's road 0 start).

@@ -16,7 +16,7 @@ import { ancestor, attr, child, fourDecimals, named, Node, removeNode, setAttr }
 
 const STEADY_STATES = ['TargetDistanceSteadyState', 'TargetTimeSteadyState'] as const;
 
-/** A target moved back along a path: the attribute to write and its new value, or why it cannot be moved. */
+/** A target moved back along a path: the attribute to write and its new value. */
 interface Move {
   node: Node;
   attribute: string;
@@ -49,7 +49,7 @@ export function synchronizeSteadyStates(tree: Node, sink: LossSink, roads: RoadN
       for (const condition of waiting) setAttr(condition, 'delay', fourDecimals(Number(attr(condition, 'delay') ?? 0) + seconds));
       const delayed =
         waiting.length > 0
-          ? `, and the ${waiting.length === 1 ? 'condition' : `${waiting.length} conditions`} waiting for its end wait ${fourDecimals(seconds)} s longer, as long as the steady state lasts`
+          ? `, and the ${waiting.length === 1 ? 'condition waiting for its end waits' : `${waiting.length} conditions waiting for its end wait`} ${fourDecimals(seconds)} s longer, as long as the steady state lasts`
           : '';
       sink.approximated(
         speed,
