@@ -150,6 +150,31 @@ describe('CARLA findings offer their fixes over JSON-RPC', function () {
     assert.deepEqual(exportAction?.command?.arguments, [uri]);
   });
 
+  it('a ${...} number edited in and Ctrl+. at once, before its diagnostic reached the client: the same two fixes (it offered none)', async () => {
+    const edited = FIXABLE.replace('value="${$Speed / 3.6}"', 'value="10"');
+    const other = await client.open(fileUri(path.join(root, 'edited.xosc')), edited);
+    const line = edited.split('\n').findIndex((text) => text.includes('<AbsoluteTargetSpeed value="10"'));
+    const character = edited.split('\n')[line].indexOf('"10"') + 1;
+    await client.change(other, [
+      { range: { start: { line, character }, end: { line, character: character + 2 } }, text: '${$Speed / 3.6}' },
+    ]);
+    // The cursor inside the new value; the client has no diagnostic there yet.
+    const cursor = { line, character: character + 3 };
+    const actions = await client.request<CodeAction[]>('textDocument/codeAction', {
+      textDocument: { uri: other },
+      range: { start: cursor, end: cursor },
+      context: { diagnostics: [] },
+    });
+    const write = actions.find((action) => action.title === "Write '10'");
+    assert.equal(write?.edit?.changes?.[other]?.[0]?.newText, '10', JSON.stringify(actions.map((action) => action.title)));
+    assert.deepEqual(write?.edit?.changes?.[other]?.[0]?.range, {
+      start: { line, character },
+      end: { line, character: character + '${$Speed / 3.6}'.length },
+    });
+    assert.ok(actions.some((action) => action.command?.command === EXPORT_FOR_CARLA_COMMAND));
+    await client.close(other);
+  });
+
   it('a catalog in a file of another name: rename it to the name ScenarioRunner reads', async () => {
     const catalog = await carlaDiagnostic(/reads the Vehicle catalog only from .*VehicleCatalog\.xosc, which does not exist/);
     const actions = await actionsFor(catalog);

@@ -17,6 +17,7 @@ import { OpenDocument } from '../documents';
 import { checkInScenarioRunner } from '../features/carlaCheck';
 import { exportForCarlaToFile } from '../features/carlaExport';
 import { codeActions } from '../features/codeActions';
+import { diagnose } from '../features/diagnostics';
 import { flattenToFile, flattenToText, structure } from '../features/commands';
 import { complete } from '../features/completion';
 import { definitionPlaces, toLocations } from '../features/definition';
@@ -175,6 +176,7 @@ export const REQUESTS: Record<string, (context: ServerContext, method: string) =
             params.context.diagnostics,
             params.context.only,
             context.client.edits,
+            async () => (await diagnose(context.workspace, open.ref)).diagnostics,
           ),
         ),
       ),
