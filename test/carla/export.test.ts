@@ -983,10 +983,23 @@ describe('export --target carla, Init routes under 0.9.16 written as trajectorie
       [['AssignRouteAction', lineHolding(offset, '<AssignRouteAction>')]],
     );
     assert.match(offsetRefusals[0].carla, /the Init of 'Ego' has a LaneOffsetAction too \(offset\.xosc:\d+\).*the last one written/);
-    // 0.9.15 builds the route itself: nothing to map.
+    // 0.9.15 builds the route itself: nothing to map; but the actor's Init sequence sets its start speed only after the route ends.
     const older = await exportFile(original, path.join(out, 'older.xosc'), ['--carla', '0.9.15']);
     assert.equal(older.code, 0, older.stderr);
     assert.match(fs.readFileSync(older.output, 'utf8'), /<AssignRouteAction>/);
+    const standing = older.report.losses.filter((loss) => loss.element.startsWith('Init/A'));
+    assert.deepEqual(
+      standing.map((loss) => [loss.kind, loss.element, loss.line]),
+      [
+        ['approximated', 'Init/AssignRouteAction', lineHolding(slower, '<AssignRouteAction>')],
+        ['approximated', 'Init/AcquirePositionAction', lineHolding(slower, '<AcquirePositionAction>')],
+      ],
+    );
+    assert.match(
+      standing[0].what,
+      /^is kept, but 'Ego' stands at its start in ScenarioRunner 0\.9\.15: its start speed 10 m\/s is set only once the route has ended/,
+    );
+    assert.match(standing[0].carla, /set only once that atomic has ended .*open_scenario\.py:255-359.*basic_control\.py:50/);
   });
 });
 

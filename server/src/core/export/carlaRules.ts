@@ -839,6 +839,37 @@ function routeActionCrash(tree: Node, context: RuleContext): void {
   }
 }
 
+/**
+ * Under 0.9.15 an Init route builds, but in the actor's Init sequence (CARLA_FACTS.initActorSequence): its controller,
+ * the route's ChangeActorWaypoints, then its start speed, which is set only once the route has ended. Until then the
+ * controller's target speed is 0 (SR_ACTOR_CONTROLS basic_control.py _target_speed), so an actor the Init starts at a
+ * speed stands at its start until a story action sets one.
+ */
+function initRoutesBeforeStartSpeed(tree: Node, context: RuleContext): void {
+  if (context.release !== '0.9.15') return;
+  const init = named(tree, 'Init')[0];
+  if (!init) return;
+  const fact = CARLA_FACTS.initActorSequence;
+  for (const name of ['AssignRouteAction', 'AcquirePositionAction']) {
+    for (const node of named(init, name)) {
+      const privateNode = ancestor(node, 'Private');
+      const actor = attr(privateNode ?? node, 'entityRef') ?? '';
+      const speed = startSpeedOf(tree, actor);
+      // A controller of its own (the entity's or the Init's) drives it, not the default one whose target speed this is about.
+      const object = scenarioObjectOf(tree, actor);
+      const ownController =
+        (object && child(object, 'ObjectController')) || (privateNode && named(privateNode, 'ControllerAction').length > 0);
+      if (speed === undefined || !(speed > 0) || ownController) continue;
+      context.sink.approximated(
+        node,
+        `Init/${name}`,
+        `is kept, but '${actor}' stands at its start in ScenarioRunner 0.9.15: its start speed ${fourDecimals(speed)} m/s is set only once the route has ended, and at speed 0 it does not move along it (a story SpeedAction starts it)`,
+        `ScenarioRunner ${fact.does} (${fact.source}); a controller's target speed is 0 until one is set (srunner/scenariomanager/actorcontrols/basic_control.py:50)`,
+      );
+    }
+  }
+}
+
 /** 1.1-1.3 conditions that are not 1.0, and the UserDefinedValueCondition SR refuses ("not yet supported", SR_PARSER convert_condition_to_atomic). */
 const REFUSED_CONDITIONS: Record<string, string> = {
   UserDefinedValueCondition: `ScenarioRunner refuses it ("ByValue UserDefinedValue conditions are not yet supported", ${SR_PARSER} convert_condition_to_atomic)`,
@@ -1362,6 +1393,7 @@ export const CARLA_RULES: readonly { name: string; apply: (tree: Node, context: 
   { name: 'positions', apply: unsupportedPositions },
   { name: 'refused-actions', apply: refusedActions },
   { name: 'route-crash', apply: routeActionCrash },
+  { name: 'init-routes-before-start-speed', apply: initRoutesBeforeStartSpeed },
   { name: 'init-actions-passed-over', apply: initActionsPassedOver },
   { name: 'traffic-signals', apply: trafficSignals },
   { name: 'conditions', apply: conditions },
