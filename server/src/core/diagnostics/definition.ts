@@ -172,6 +172,15 @@ export function layoutOf(text: string): { eol: string; unit: string } {
   return { eol: text.includes('\r\n') ? '\r\n' : '\n', unit: /^( +|\t)/m.exec(text.slice(0, 4000))?.[1] ?? '  ' };
 }
 
+/** The edit (text offsets) that puts `block` before `element`: on a line of its own at the element's indentation where the element starts its line, else right before it. */
+export function insertionBefore(text: string, element: XmlElement, block: string): { start: number; end: number; newText: string } {
+  const lineStart = text.lastIndexOf('\n', element.start - 1) + 1;
+  const indent = text.slice(lineStart, element.start);
+  return /^[ \t]*$/.test(indent)
+    ? { start: lineStart, end: lineStart, newText: `${indent}${block}${layoutOf(text).eol}` }
+    : { start: element.start, end: element.start, newText: block };
+}
+
 /**
  * The edit (text offsets) that inserts children at the end of `parent`, each block `blocksAt` writes at an
  * indentation and line break: `<Parent/>` becomes `<Parent>…</Parent>`; a closing tag on its own line gets

@@ -8,6 +8,7 @@ import { EGO_PROPERTY } from '../profiles/scenarioRunner';
 import { attribute, elementAt, escapeAttributeValue, XmlDocument } from '../xml';
 import {
   childrenInsertion,
+  insertionBefore,
   CoreFix,
   defineDiagnostic,
   isOptionalString,
@@ -132,12 +133,8 @@ async function egoFix(ego: string, document: TextLines, parsed: () => Promise<Xm
   const property = `<Property name="${EGO_PROPERTY.name}" value="${EGO_PROPERTY.value}"/>`;
   const properties = vehicle.children.find((child) => child.name === 'Properties');
   const file = properties?.children.find((child) => child.name === 'File');
-  const lineStart = file ? text.lastIndexOf('\n', file.start - 1) + 1 : 0;
-  const fileIndent = file ? text.slice(lineStart, file.start) : '';
   const inserted = file
-    ? /^[ \t]*$/.test(fileIndent)
-      ? { start: lineStart, end: lineStart, newText: `${fileIndent}${property}${text.includes('\r\n') ? '\r\n' : '\n'}` }
-      : { start: file.start, end: file.start, newText: property }
+    ? insertionBefore(text, file, property)
     : properties
       ? childrenInsertion(text, properties, () => [property])
       : childrenInsertion(text, vehicle, () => [`<Properties>${property}</Properties>`]);
@@ -156,25 +153,18 @@ async function orientationFirstFix(document: TextLines, range: Range, parsed: ()
   const position = orientation?.parent?.children.find((child) => child.name === 'InRoutePosition');
   if (orientation?.name !== 'Orientation' || !position || position.start > orientation.start) return [];
   const text = document.getText();
-  const lineStart = (offset: number): number => text.lastIndexOf('\n', offset - 1) + 1;
-  const indentBefore = (offset: number): string | undefined => {
-    const leading = text.slice(lineStart(offset), offset);
-    return /^[ \t]*$/.test(leading) ? leading : undefined;
-  };
-  const ownLine = indentBefore(orientation.start) !== undefined;
+  const lineStart = text.lastIndexOf('\n', orientation.start - 1) + 1;
   // Its whole line goes, line break included, when it stands alone on it.
-  const removeFrom = ownLine
-    ? Math.max(0, lineStart(orientation.start) - (text[lineStart(orientation.start) - 2] === '\r' ? 2 : 1))
+  const removeFrom = /^[ \t]*$/.test(text.slice(lineStart, orientation.start))
+    ? Math.max(0, lineStart - (text[lineStart - 2] === '\r' ? 2 : 1))
     : orientation.start;
-  const eol = text.includes('\r\n') ? '\r\n' : '\n';
-  const indent = indentBefore(position.start);
-  const moved = text.slice(orientation.start, orientation.end) + (indent !== undefined ? eol + indent : '');
+  const moved = insertionBefore(text, position, text.slice(orientation.start, orientation.end));
   const place = (start: number, end: number) => ({ start: document.positionAt(start), end: document.positionAt(end) });
   return [
     {
       title: 'Move <Orientation> before <InRoutePosition>',
       edits: [
-        { place: 'document' as const, range: place(position.start, position.start), newText: moved },
+        { place: 'document' as const, range: place(moved.start, moved.end), newText: moved.newText },
         { place: 'document' as const, range: place(removeFrom, orientation.end), newText: '' },
       ],
       preferred: true,
