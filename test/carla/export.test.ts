@@ -652,8 +652,7 @@ describe('export --target carla, a SynchronizeAction with a steady state (1.1)',
       // The steady state happened: Lead drives at 15 m/s over its last 30 m before s 300 (x grows with s on e6mini's road 0 start).
       const lead = tracks.get('Lead') ?? [];
       assert.ok(lead.length > 200, `Lead has ${lead.length} steps`);
-      const verdict = (await harnessVerdicts([exported.output])).get(path.resolve(exported.output));
-      assert.equal(verdict?.status, 'OK', JSON.stringify(verdict));
+      await assertBuilt(exported.output);
     });
 
   it("where the master's speed may change, the steady state is dropped naming why, the targets as written", async () => {
@@ -773,8 +772,7 @@ describe("export --target carla, RoutePositions past their route's first road", 
     assert.match(routed[1].what, /road 15, lane -1, s 5\.80\d*, the route's road 2 \(2 > 15\)/);
     assert.match(routed[2].what, /road 1, lane -1, s 2\.94\d*, offset 0\.3, the route's road 3 \(2 > 15 > 1\)/);
     assert.match(routed[3].what, /RoadPosition it names \(road 15, s 7\.80\d*, t -2/);
-    const verdicts = await harnessVerdicts([result.output]);
-    assert.equal(verdicts.get(path.resolve(result.output))?.status, 'OK', JSON.stringify(verdicts.get(path.resolve(result.output))));
+    await assertBuilt(result.output);
     const tracks = await assertMovesAlike(original, result.output, 0.5);
     assert.deepEqual([...tracks.keys()].sort(), ['AfterJunction', 'ByRoad', 'Ego', 'InJunction']);
   });
@@ -874,9 +872,7 @@ describe('export --target carla, Init routes under 0.9.16 written as trajectorie
     assert.doesNotMatch(mapped[0].what, /offset/);
     const written = fs.readFileSync(result.output, 'utf8');
     assert.equal(/<AssignRouteAction|<AcquirePositionAction/.test(written), false);
-    const verdicts = await harnessVerdicts([result.output], { tree: true });
-    const verdict = verdicts.get(path.resolve(result.output));
-    assert.equal(verdict?.status, 'OK', JSON.stringify(verdict));
+    const verdict = await assertBuilt(result.output, { tree: true });
     // Each actor's Init builds one ChangeActorWaypoints with a time for every vertex, the last at the route's length over its speed.
     const vertices = (entity: string): number => {
       const follow = parseXml(written).root;
@@ -1077,8 +1073,7 @@ describe('export --target carla, GeoPositions', function () {
     // ScenarioRunner negates y of a file without the CARLA: prefix: CARLA's location is (x, -y).
     const gps = await scenarioRunnerGps(49, 8, x, -y);
     assert.ok(Math.abs(gps.lat - 49.0004) < 1e-8 && Math.abs(gps.lon - 7.9991) < 1e-8, `${x}, ${y} is at ${JSON.stringify(gps)}`);
-    const verdict = (await harnessVerdicts([result.output])).get(path.resolve(result.output));
-    assert.equal(verdict?.status, 'OK', JSON.stringify(verdict));
+    await assertBuilt(result.output);
   });
 
   it('on a +proj geoReference: placed by that projection, and where CARLA would put the same place named', async () => {
@@ -1146,8 +1141,7 @@ describe('export --target carla, Clothoid and Nurbs sampled into polylines', fun
       const moved = Math.hypot(track[track.length - 1].x - track[0].x, track[track.length - 1].y - track[0].y);
       assert.ok(moved > 30, `${entity} moved only ${moved.toFixed(1)} m`);
     }
-    const verdicts = await harnessVerdicts([exported.output]);
-    assert.equal(verdicts.get(path.resolve(exported.output))?.status, 'OK', JSON.stringify(verdicts.get(path.resolve(exported.output))));
+    await assertBuilt(exported.output);
   });
 });
 
@@ -1231,9 +1225,7 @@ describe('export --target carla, a SpeedProfileAction (1.2)', function () {
     const moved = lead[lead.length - 1].x - lead[0].x;
     // At a constant 10 m/s Lead would move 120 m; the profile makes it 14.5 m more.
     assert.ok(Math.abs(moved - 134.5) < 1, `Lead moved ${moved.toFixed(2)} m`);
-    const verdicts = await harnessVerdicts([exported.output], { tree: true });
-    const verdict = verdicts.get(path.resolve(exported.output));
-    assert.equal(verdict?.status, 'OK', JSON.stringify(verdict));
+    const verdict = await assertBuilt(exported.output, { tree: true });
     for (const event of ['LeadEvent', 'LeadEvent_ramp2', 'LeadEvent_ramp3'])
       assert.ok(
         verdict?.tree?.some(([kind, name]) => kind === 'EVENT' && name === event),
@@ -1398,8 +1390,7 @@ describe('export --target carla, lane changes by time and speed changes by rate'
       changed[changed.length - 1].y - kept[kept.length - 1].y,
     );
     assert.ok(across > 3 && across < 4, `Lead ends ${across.toFixed(2)} m from where it ends without the lane change`);
-    const verdict = (await harnessVerdicts([exported.output], { tree: true })).get(path.resolve(exported.output));
-    assert.equal(verdict?.status, 'OK', JSON.stringify(verdict));
+    const verdict = await assertBuilt(exported.output, { tree: true });
     for (const event of ['Change', 'Slow'])
       assert.ok(
         verdict?.tree?.some(([kind, name]) => kind === 'EVENT' && name === event),
@@ -1471,8 +1462,7 @@ describe('export --target carla, lane changes by time and speed changes by rate'
     assert.ok(Math.abs(Number(across[2]) - ((Math.PI / 2) * Number(across[1])) / 1.5) < 1e-3, reported[0].what);
     assert.ok(Number(distance) < 20 * Number(across[2]) && Number(distance) > 20 * Number(across[2]) - 0.5, distance);
     await assertMovesAlike(original, exported.output, 14);
-    const verdict = (await harnessVerdicts([exported.output], { tree: true })).get(path.resolve(exported.output));
-    assert.equal(verdict?.status, 'OK', JSON.stringify(verdict));
+    await assertBuilt(exported.output, { tree: true });
   });
 });
 
@@ -1516,8 +1506,7 @@ describe('export --target carla, a trajectory without timing', function () {
       ],
     );
     await assertMovesAlike(original, exported.output, 8);
-    const verdict = (await harnessVerdicts([exported.output])).get(path.resolve(exported.output));
-    assert.equal(verdict?.status, 'OK', JSON.stringify(verdict));
+    await assertBuilt(exported.output);
   });
 });
 
@@ -1559,8 +1548,7 @@ describe('export --target carla, an AbsoluteTargetLane (ScenarioRunner crashes o
       ],
     );
     await assertMovesAlike(original, exported.output, 12);
-    const verdict = (await harnessVerdicts([exported.output])).get(path.resolve(exported.output));
-    assert.equal(verdict?.status, 'OK', JSON.stringify(verdict));
+    await assertBuilt(exported.output);
   });
 
   it('for an actor driving against s (a positive lane of a right-hand-traffic road), left is toward lane -1: esmini runs the export alike (within 0.1 m) (issue 26)', async function () {
@@ -1613,8 +1601,7 @@ describe('export --target carla, greaterOrEqual and lessOrEqual (not in 1.0)', f
       [],
     );
     await assertMovesAlike(original, exported.output, 6);
-    const verdict = (await harnessVerdicts([exported.output])).get(path.resolve(exported.output));
-    assert.equal(verdict?.status, 'OK', JSON.stringify(verdict));
+    await assertBuilt(exported.output);
   });
 });
 
@@ -1711,8 +1698,7 @@ describe('export --target carla, a LongitudinalDistanceAction with displacement 
     const [lead, ego] = [tracks.get('Lead') ?? [], tracks.get('Ego') ?? []];
     const ahead = Math.hypot(lead[lead.length - 1].x - ego[ego.length - 1].x, lead[lead.length - 1].y - ego[ego.length - 1].y);
     assert.ok(ahead > 15 && ahead < 35, `Lead ends ${ahead.toFixed(2)} m from Ego`);
-    const verdict = (await harnessVerdicts([exported.output])).get(path.resolve(exported.output));
-    assert.equal(verdict?.status, 'OK', JSON.stringify(verdict));
+    await assertBuilt(exported.output);
   });
 });
 
@@ -1787,8 +1773,7 @@ describe('export --target carla, a condition on a dropped element', function () 
         ],
       ],
     );
-    const verdicts = await harnessVerdicts([exported.output]);
-    assert.equal(verdicts.get(path.resolve(exported.output))?.status, 'OK', JSON.stringify(verdicts.get(path.resolve(exported.output))));
+    await assertBuilt(exported.output);
   });
 });
 
@@ -1872,12 +1857,18 @@ describe('export --target carla, a SpeedAction rate', () => {
 });
 
 /** `text` written at `original` exports (exit 0) and ScenarioRunner's loader builds the export (the harness says OK). */
+/** ScenarioRunner's verdict on one written file, which must be OK: it loaded the file and built its behaviour tree. */
+async function assertBuilt(output: string, options: { tree?: boolean } = {}): Promise<HarnessVerdict> {
+  const verdict = (await harnessVerdicts([output], options)).get(path.resolve(output));
+  assert.equal(verdict?.status, 'OK', JSON.stringify(verdict));
+  return verdict as HarnessVerdict;
+}
+
 async function assertExportBuilds(original: string, text: string): Promise<void> {
   fs.writeFileSync(original, text);
   const result = await exportFile(original, path.join(path.dirname(original), 'exported.xosc'));
   assert.equal(result.code, 0, result.stderr);
-  const verdicts = await harnessVerdicts([result.output]);
-  assert.equal(verdicts.get(path.resolve(result.output))?.status, 'OK', JSON.stringify(verdicts.get(path.resolve(result.output))));
+  await assertBuilt(result.output);
 }
 
 /** A 1.0 scenario on Town01: Ego (and Other, 30 m ahead, with `other`), Ego's Init `initActions`, and one event of Ego's for each action and its condition. */
@@ -2674,8 +2665,7 @@ describe('export --target carla, a negative start speed', function () {
 
 /** The export builds in ScenarioRunner's loader; its conditions on parameters as they fare when ticked (HarnessVerdict.parameter_ticks). */
 async function parameterTicksOfBuilt(output: string): Promise<HarnessVerdict['parameter_ticks']> {
-  const verdict = (await harnessVerdicts([output], { tree: true })).get(path.resolve(output));
-  assert.equal(verdict?.status, 'OK', JSON.stringify(verdict));
+  const verdict = await assertBuilt(output, { tree: true });
   return verdict?.parameter_ticks;
 }
 
@@ -2907,8 +2897,7 @@ describe('export --target carla, where an actor with a trajectory in the Init st
     });
   /** Where ScenarioRunner spawns each actor of the export (the harness's reading of its configuration). */
   const spawnsOf = async (output: string): Promise<HarnessVerdict['spawns']> => {
-    const verdict = (await harnessVerdicts([output], { tree: true })).get(path.resolve(output));
-    assert.equal(verdict?.status, 'OK', JSON.stringify(verdict));
+    const verdict = await assertBuilt(output, { tree: true });
     return verdict?.spawns;
   };
 
