@@ -2116,6 +2116,93 @@ describe("export --target carla, an Act's StopTrigger group of several condition
   });
 });
 
+describe("export --target carla, the Storyboard's StopTrigger", function () {
+  this.timeout(120_000);
+  let out: string;
+  inTemporaryFolderEach('m2s-carla-storyboard-stop-', (folder) => (out = folder));
+  const IGNORED = /ignores the Storyboard's StopTrigger/;
+
+  /** `check --simulator carla FILE`'s messages. */
+  async function carlaMessages(file: string): Promise<string[]> {
+    const printed: string[] = [];
+    await main(['check', file, '--simulator', 'carla', '--format', 'json'], { out: (text) => printed.push(text), err: () => {} });
+    return (JSON.parse(printed.join('\n')) as { problems: { message: string }[] }).problems.map((problem) => problem.message);
+  }
+
+  it("is copied into every Act's StopTrigger once: check --simulator carla does not warn of it in the output, nor does exporting the output copy it again", async () => {
+    const original = path.join(out, 'stop.xosc');
+    fs.writeFileSync(
+      original,
+      egoEventsScenario({ other: false, initActions: '', events: [{ action: laneOffset('step'), condition: atTime(1) }] }),
+    );
+    assert.equal((await carlaMessages(original)).filter((message) => IGNORED.test(message)).length, 1);
+    const first = await exportFile(original, path.join(out, 'exported.xosc'));
+    assert.equal(first.code, 0, first.stderr);
+    assert.deepEqual(
+      first.report.losses.filter((loss) => loss.element === 'Storyboard/StopTrigger').map((loss) => loss.what),
+      ['its condition groups are added to the StopTrigger of the one act'],
+    );
+    const messages = await carlaMessages(first.output);
+    assert.deepEqual(
+      messages.filter((message) => IGNORED.test(message)),
+      [],
+      messages.join('\n'),
+    );
+    const again = await exportFile(first.output, path.join(out, 'again.xosc'));
+    assert.equal(again.code, 0, again.stderr);
+    assert.deepEqual(
+      again.report.losses.filter((loss) => loss.element === 'Storyboard/StopTrigger'),
+      [],
+    );
+    const written = fs.readFileSync(again.output, 'utf8');
+    assert.equal(written.match(/<Condition name="End"/g)?.length, 2, written);
+  });
+
+  it('an Act that lacks the group is still warned of, on the Storyboard condition', async () => {
+    const original = path.join(out, 'stop.xosc');
+    fs.writeFileSync(
+      original,
+      egoEventsScenario({ other: false, initActions: '', events: [{ action: laneOffset('step'), condition: atTime(1) }] }),
+    );
+    const exported = await exportFile(original, path.join(out, 'exported.xosc'));
+    assert.equal(exported.code, 0, exported.stderr);
+    const second = fs
+      .readFileSync(exported.output, 'utf8')
+      .replace(
+        /(<\/Story>)/,
+        '$1<Story name="Second"><Act name="Second"><ManeuverGroup maximumExecutionCount="1" name="Second"><Actors selectTriggeringEntities="false"/></ManeuverGroup>' +
+          ACT_STARTS +
+          '</Act></Story>',
+      );
+    const edited = path.join(out, 'second.xosc');
+    fs.writeFileSync(edited, second);
+    assert.equal((await carlaMessages(edited)).filter((message) => IGNORED.test(message)).length, 1);
+  });
+
+  it('of an Init-only scenario is listed as not followed (the act added for 1.0 ends at once), and check still warns of it', async () => {
+    const original = path.join(out, 'still.xosc');
+    fs.writeFileSync(
+      original,
+      testScenario({
+        revMinor: 2,
+        description: 'init only',
+        road: 'Town01',
+        entities: vehicle('Ego', 'ego_vehicle'),
+        init: '',
+        story: '',
+        stopAt: 6,
+      }),
+    );
+    const exported = await exportFile(original, path.join(out, 'exported.xosc'));
+    assert.equal(exported.code, 0, exported.stderr);
+    assert.deepEqual(
+      exported.report.losses.filter((loss) => loss.element === 'Storyboard/StopTrigger').map((loss) => loss.what),
+      ['kept as written, but not followed: the scenario has no act to hold its conditions (the one added for 1.0 has nothing to do)'],
+    );
+    assert.equal((await carlaMessages(exported.output)).filter((message) => IGNORED.test(message)).length, 1);
+  });
+});
+
 describe('export --target carla, an Init action ScenarioRunner passes over', function () {
   this.timeout(120_000);
   let out: string;

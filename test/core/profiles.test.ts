@@ -316,6 +316,21 @@ describe('simulator profiles', () => {
     );
   });
 
+  it("carla: the Storyboard's StopTrigger is warned of unless every Act's StopTrigger holds its group, attributes in any order", async () => {
+    const group = (first: string, second: string) =>
+      `<ConditionGroup><Condition ${first} ${second} conditionEdge="none"><ByValueCondition><SimulationTimeCondition value="9" rule="greaterThan"/></ByValueCondition></Condition></ConditionGroup>`;
+    const withStops = (actStop: string) =>
+      scenarioText('0', '', LANE_CHANGE)
+        .replace('</Act>', `${actStop}</Act>`)
+        .replace('</Storyboard>', `<StopTrigger>${group('name="End"', 'delay="0"')}</StopTrigger></Storyboard>`);
+    const ignored = async (text: string) =>
+      (await semanticProblemsOf(text, {}, 'carla')).filter((problem) => problem.message.includes("ignores the Storyboard's StopTrigger"))
+        .length;
+    assert.equal(await ignored(withStops('')), 1);
+    assert.equal(await ignored(withStops(`<StopTrigger>${group('delay="0"', 'name="End"')}</StopTrigger>`)), 0);
+    assert.equal(await ignored(withStops(`<StopTrigger>${group('delay="1"', 'name="End"')}</StopTrigger>`)), 1);
+  });
+
   it("carla: a maneuver catalog entry's Event priority is flagged on the reference of a scenario that uses it, not in the catalog", async () => {
     const event = (name: string) =>
       `<Event name="${name}" priority="overwrite"><Action name="a${name}"><PrivateAction><TeleportAction><Position><WorldPosition x="0" y="0"/></Position></TeleportAction></PrivateAction></Action><StartTrigger><ConditionGroup><Condition name="c${name}" delay="0" conditionEdge="rising"><ByValueCondition><SimulationTimeCondition value="0" rule="greaterThan"/></ByValueCondition></Condition></ConditionGroup></StartTrigger></Event>`;

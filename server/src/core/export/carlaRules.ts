@@ -38,6 +38,7 @@ import { actorsOf, constantSpeedOf, scenarioObjectOf, startSpeedOf } from './sce
 import { speedProfiles } from './speedProfiles';
 import { absoluteTargetLanes, laneChangesByDistance, PEAK_FACTOR } from './laneChanges';
 import { polylinePoints, trajectoryPoint } from './trajectoryPoint';
+import { actsOf, ElementShape, storyboardStopGroups } from '../semantics/storyboardStop';
 import { initStarts } from './initStarts';
 import { synchronizeSteadyStates } from './steadyStates';
 import { lateralDistances } from './lateralDistances';
@@ -1152,9 +1153,17 @@ function actStopGroups(tree: Node, context: RuleContext): void {
   }
 }
 
+/** The export's element as the Storyboard stop check (semantics/storyboardStop.ts) reads it. */
+const NODE_SHAPE: ElementShape<Node> = {
+  name: (node) => node.name,
+  attributes: (node) => node.attributes,
+  children: (node) => node.children,
+};
+
 /**
  * The Storyboard's StopTrigger is ignored but for `criteria_` conditions (SR_SCENARIO _create_test_criteria):
  * its groups are added to every Act's StopTrigger (ending every act ends the story), the original kept for criteria.
+ * A group an Act's StopTrigger already holds (a file this export wrote) is not added to it again.
  */
 function storyboardStop(tree: Node, context: RuleContext): void {
   const storyboard = named(tree, 'Storyboard')[0];
@@ -1165,21 +1174,30 @@ function storyboardStop(tree: Node, context: RuleContext): void {
     removeNode(stop);
     appendChild(storyboard, stop);
   }
-  const groups = childrenNamed(stop, 'ConditionGroup').filter((group) =>
+  const acts = actsOf(storyboard, NODE_SHAPE);
+  const stopping = storyboardStopGroups(storyboard, NODE_SHAPE).filter(({ group }) =>
     childrenNamed(group, 'Condition').some((condition) => !(attr(condition, 'name') ?? '').startsWith('criteria_')),
   );
-  if (groups.length === 0) return;
-  const acts = named(storyboard, 'Act');
-  for (const act of acts) {
-    const actStop = child(act, 'StopTrigger') ?? appendChild(act, makeNode('StopTrigger'));
-    for (const group of groups) appendChild(actStop, cloneNode(group));
+  const carla = `ScenarioRunner ignores the Storyboard's StopTrigger but for criteria_ conditions (${SR_SCENARIO} _create_test_criteria); the scenario ends when its acts end`;
+  if (acts.length === 0 && stopping.length > 0) {
+    context.sink.approximated(
+      stop,
+      'Storyboard/StopTrigger',
+      'kept as written, but not followed: the scenario has no act to hold its conditions (the one added for 1.0 has nothing to do)',
+      carla,
+    );
+    return;
   }
-  const anded = groups.some((group) => childrenNamed(group, 'Condition').length > 1);
+  const added = stopping.filter(({ missingFrom }) => missingFrom.length > 0);
+  if (added.length === 0) return;
+  for (const { group, missingFrom } of added)
+    for (const act of missingFrom) appendChild(child(act, 'StopTrigger') ?? appendChild(act, makeNode('StopTrigger')), cloneNode(group));
+  const anded = added.some(({ group }) => childrenNamed(group, 'Condition').length > 1);
   context.sink.approximated(
     stop,
     'Storyboard/StopTrigger',
     `its condition groups are added to the StopTrigger of ${acts.length === 1 ? 'the one act' : `each of the ${acts.length} acts`}${anded ? ' (ScenarioRunner ORs the conditions inside an act stop group, where the standard ANDs them)' : ''}`,
-    `ScenarioRunner ignores the Storyboard's StopTrigger but for criteria_ conditions (${SR_SCENARIO} _create_test_criteria); the scenario ends when its acts end`,
+    carla,
   );
 }
 

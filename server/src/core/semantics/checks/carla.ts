@@ -10,6 +10,7 @@ import { checkValue } from '../../schema/values';
 import { attribute, descendants, XmlAttribute, XmlElement } from '../../xml';
 import type { CarlaCatalogLocation } from '../carlaFiles';
 import type { CatalogEntry } from '../catalogs';
+import { stopGroupsKeptInActs, XML_SHAPE } from '../storyboardStop';
 import { formatValue } from '../values';
 import { isCriterion, parametersComparedAsText } from './carlaParameters';
 import { at, inCatalogEntry, onCatalogReferences } from './support';
@@ -256,6 +257,12 @@ const missingParts = (elements: XmlElement[]): Finding[] => {
 /** Storyboard rules ScenarioRunner does not follow: warnings where the scenario depends on them. */
 const storyboard = (elements: XmlElement[]): Finding[] => {
   const findings: Finding[] = [];
+  const keptStopGroups = new Map<XmlElement, Set<XmlElement>>();
+  const keptInActs = (group: XmlElement, storyboard: XmlElement): boolean => {
+    let kept = keptStopGroups.get(storyboard);
+    if (!kept) keptStopGroups.set(storyboard, (kept = stopGroupsKeptInActs(storyboard, XML_SHAPE)));
+    return kept.has(group);
+  };
   for (const element of elements) {
     if (element.name === 'Event') {
       const priority = attribute(element, 'priority');
@@ -273,11 +280,13 @@ const storyboard = (elements: XmlElement[]): Finding[] => {
         findings.push(carlaFinding('triggeringEntitiesRule', element, rule, `triggeringEntitiesRule="all" over ${entities} entities`));
     }
     if (element.name === 'ConditionGroup' && element.parent?.name === 'StopTrigger') {
-      const owner = element.parent.parent?.name;
+      const holder = element.parent.parent;
+      const owner = holder?.name;
       const conditions = element.children.filter((child) => child.name === 'Condition');
       if (owner === 'Act' && conditions.length > 1)
         findings.push(carlaFinding('actStopTrigger', element, undefined, `${conditions.length} conditions in one group`));
-      if (owner === 'Storyboard')
+      // A group every Act's StopTrigger holds too (as the export writes it) still stops the scenario in ScenarioRunner.
+      if (holder && owner === 'Storyboard' && !keptInActs(element, holder))
         for (const condition of conditions) {
           if (!isCriterion(condition))
             findings.push(
