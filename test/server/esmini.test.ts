@@ -840,7 +840,13 @@ describe('esmini: runs (the simulator built by the test setup)', function () {
       '<Controller name="sumo"><ParameterDeclarations><ParameterDeclaration name="CfgFile" parameterType="string" value="../sumo_inputs/e6mini.sumocfg"/></ParameterDeclarations>' +
       '<Properties><Property name="esminiController" value="SumoController"/><File filepath="$CfgFile"/></Properties></Controller>';
     fs.mkdirSync(path.join(root, 'catalogs', 'controllers'), { recursive: true });
-    fs.writeFileSync(path.join(root, 'catalogs', 'controllers', 'ControllerCatalog.xosc'), catalogFile('ControllerCatalog', sumo));
+    // The same path written as it stands in another entry: esmini looks it up from the scenario's folder too, not the catalog's.
+    const literal =
+      '<Controller name="sumo_literal"><Properties><Property name="esminiController" value="SumoController"/><File filepath="../sumo_inputs/e6mini.sumocfg"/></Properties></Controller>';
+    fs.writeFileSync(
+      path.join(root, 'catalogs', 'controllers', 'ControllerCatalog.xosc'),
+      catalogFile('ControllerCatalog', sumo + literal),
+    );
     const base = plainLaneChange(root).replace(
       '<CatalogLocations><VehicleCatalog>',
       '<CatalogLocations><ControllerCatalog><Directory path="catalogs/controllers"/></ControllerCatalog><VehicleCatalog>',
@@ -848,6 +854,7 @@ describe('esmini: runs (the simulator built by the test setup)', function () {
     for (const [name, controller, attribute] of [
       ['inline.xosc', sumo, 'name="sumo"'],
       ['catalog.xosc', '<CatalogReference catalogName="ControllerCatalog" entryName="sumo"/>', 'entryName="sumo"'],
+      ['literal.xosc', '<CatalogReference catalogName="ControllerCatalog" entryName="sumo_literal"/>', 'entryName="sumo_literal"'],
     ]) {
       const text = base.replace(
         '<CatalogReference catalogName="VehicleCatalog" entryName="car_red"/>',
@@ -873,7 +880,8 @@ describe('esmini: runs (the simulator built by the test setup)', function () {
       }
     }
     // Beside the scenario, the file is there: the run's copy, in a private folder, reaches it as the scenario does (SPEC 11.6),
-    // inline or from a catalog, the catalog's parameter assigned by the reference or not (issue 27: esmini missed it).
+    // inline or from a catalog, the catalog's parameter assigned by the reference or not, or its path written in the entry
+    // (issue 27: esmini missed it).
     fs.writeFileSync(
       path.join(root, 'assigned.xosc'),
       fs
@@ -887,7 +895,7 @@ describe('esmini: runs (the simulator built by the test setup)', function () {
     const config = path.join(path.dirname(root), 'sumo_inputs', 'e6mini.sumocfg');
     fs.writeFileSync(config, '<configuration/>');
     try {
-      for (const name of ['inline.xosc', 'catalog.xosc', 'assigned.xosc']) {
+      for (const name of ['inline.xosc', 'catalog.xosc', 'assigned.xosc', 'literal.xosc']) {
         const before = fs.readFileSync(path.join(root, name), 'utf8');
         const result = await run(new ScenarioStore({ root }), path.join(root, name), { duration: 1, roadPath: [] });
         assert.deepEqual(

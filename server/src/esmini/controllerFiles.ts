@@ -3,7 +3,7 @@ import { applyEdits, TextEdit } from '../core/flatten/edits';
 import { diskRef } from '../core/sources';
 import type { CatalogLoader, CatalogReferenceResolution } from '../core/semantics/catalogs';
 import { Evaluator, semanticModelOf } from '../core/semantics/model';
-import { attribute, descendants, escapeAttributeValue, parseXml, XmlElement } from '../core/xml';
+import { attribute, descendants, escapeAttributeValue, parseXml, XmlAttribute, XmlElement } from '../core/xml';
 
 /** Where a run's controller Files are looked up from: the scenario's own folder, and its catalog references resolved. */
 export interface ControllerFilesFrom {
@@ -39,8 +39,8 @@ export function withControllerFilesFrom(
   exists: (file: string) => boolean,
 ): string {
   /** The absolute file a path esmini misses from the run folder names from the scenario's folder; undefined when none. */
-  const reached = (written: string | undefined, parameterized: boolean): string | undefined => {
-    if (!parameterized || !written || path.isAbsolute(written)) return undefined;
+  const reached = (written: string | undefined, handable: boolean): string | undefined => {
+    if (!handable || !written || path.isAbsolute(written)) return undefined;
     const original = path.resolve(scenarioFolder, written);
     return !exists(path.resolve(runFolder, written)) && exists(original) ? original : undefined;
   };
@@ -63,8 +63,9 @@ export function controllerFilesNamed(text: string, from: ControllerFilesFrom, ex
 }
 
 /**
- * Each controller File of the text shown to `handed` (the path it names, evaluated, and whether it is named through a
- * `$parameter`), and the edits that write the absolute file `handed` returns for one named through a parameter.
+ * Each controller File of the text shown to `handed` (the path it names, evaluated, and whether the run can hand it: one
+ * named through a `$parameter`, or any a catalog entry holds, which the flattening leaves as written), and the edits that
+ * write the absolute file `handed` returns.
  */
 function controllerFileEdits(
   text: string,
@@ -124,13 +125,17 @@ function catalogReferenceEdit(
 ): TextEdit | undefined {
   const catalogName = evaluator.textOf(reference, attribute(reference, 'catalogName'))?.trim();
   const entryName = evaluator.textOf(reference, attribute(reference, 'entryName'))?.trim();
-  const entry = references.find((each) => each.catalogName === catalogName && each.entryName === entryName)?.entry?.element;
+  const found = references.find((each) => each.catalogName === catalogName && each.entryName === entryName)?.entry;
+  const entry = found?.element;
   const filepath = entry?.name === 'Controller' ? fileOf(entry) : undefined;
   const parameter = filepath ? /^\$([A-Za-z_][\w.]*)$/.exec(filepath.attribute.value.trim())?.[1] : undefined;
   if (!entry || !filepath) return undefined;
   if (parameter === undefined) {
-    handed(filepath.attribute.value.trim(), false);
-    return undefined;
+    const literal = filepath.attribute.value.trim();
+    const file = handed(literal.includes('$') ? undefined : literal, true);
+    return file && found
+      ? inlinedEntryEdit(reference, found.file.model.document.text, entry, filepath.attribute, file, evaluator)
+      : undefined;
   }
   const assignments = reference.children.find((child) => child.name === 'ParameterAssignments');
   const assignment = assignments?.children.find(
@@ -157,4 +162,38 @@ function catalogReferenceEdit(
     return { start: close, end: reference.end, text: `><ParameterAssignments>${added}</ParameterAssignments></CatalogReference>` };
   }
   return { start: reference.startTagEnd, end: reference.startTagEnd, text: `<ParameterAssignments>${added}</ParameterAssignments>` };
+}
+
+/**
+ * The edit that replaces a CatalogReference with its controller entry written inline, its File the absolute `file`: a
+ * path written in the entry cannot be assigned through the reference. The entry's declarations take the values the
+ * reference assigns them (evaluated), as esmini would give them; on one line, so that the copy's lines stay the source's.
+ */
+function inlinedEntryEdit(
+  reference: XmlElement,
+  catalogText: string,
+  entry: XmlElement,
+  filepath: XmlAttribute,
+  file: string,
+  evaluator: Evaluator,
+): TextEdit {
+  const assignments = reference.children.find((child) => child.name === 'ParameterAssignments');
+  const assigned = new Map<string, string>();
+  for (const assignment of assignments?.children ?? []) {
+    const name = attribute(assignment, 'parameterRef')?.value.replace(/^\$/, '');
+    const value = evaluator.textOf(assignment, attribute(assignment, 'value'));
+    if (assignment.name === 'ParameterAssignment' && name !== undefined && value !== undefined) assigned.set(name, value);
+  }
+  const edits: TextEdit[] = [{ start: filepath.valueStart, end: filepath.valueEnd, text: escapeAttributeValue(file, filepath.quote) }];
+  const declarations = entry.children.find((child) => child.name === 'ParameterDeclarations');
+  for (const declaration of declarations?.children ?? []) {
+    const name = attribute(declaration, 'name')?.value;
+    const value = attribute(declaration, 'value');
+    const given = name === undefined ? undefined : assigned.get(name);
+    if (declaration.name === 'ParameterDeclaration' && value && given !== undefined)
+      edits.push({ start: value.valueStart, end: value.valueEnd, text: escapeAttributeValue(given, value.quote) });
+  }
+  const text = applyEdits(catalogText, edits, entry.start, entry.end);
+  // A line break between tags or inside a value (where XML reads it as a space) is a space here.
+  return { start: reference.start, end: reference.end, text: text.replace(/\r\n?|\n/g, ' ') };
 }
