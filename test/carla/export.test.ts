@@ -2,6 +2,7 @@ import { strict as assert } from 'node:assert';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { main } from '../../server/src/cli';
+import { laneCenterT, laneSectionIndexAt, parseOpenDrive, roadPoint } from '../../server/src/core/opendrive/road';
 import { attributeValue, forEachElement, parseXml } from '../../server/src/core/xml';
 import type { XmlElement } from '../../server/src/core/xml';
 import {
@@ -317,6 +318,57 @@ describe('export --target carla, checked by ScenarioRunner (../shared/carla)', f
       const skipped = results.at(-1)?.report.losses.filter((loss) => loss.element === 'ParameterReference') ?? [];
       assert.equal(skipped.length, 3, 'the three skipped keys of the case study are named');
     }
+  });
+
+  it("the paper's 31 library scenarios under 0.9.16 with --road-path to Town05's OpenDRIVE: the 15 without pedestrians are written and build, their story routes as trajectories; the others are refused naming why (issue 26)", async () => {
+    const names = fs.readdirSync(libraryDir).filter((name) => fs.existsSync(path.join(libraryDir, name, 'main.xosc')));
+    assert.equal(names.length, 31);
+    const results: Exported[] = [];
+    for (const name of names)
+      results.push(
+        await exportFile(path.join(libraryDir, name, 'main.xosc'), path.join(out, `${name}.xosc`), [
+          '--scenario-path',
+          libraryDir,
+          '--road-path',
+          esminiRoads,
+        ]),
+      );
+    const written = results.filter((result) => result.code === 0);
+    // Measured: none before story routes were written as trajectories; the 16 with pedestrians walk by a controller that reads no vertex times.
+    assert.deepEqual(
+      written.map((result) => path.basename(result.output, '.xosc')),
+      names.filter((name) => !name.includes('pedestrian')),
+    );
+    for (const result of results.filter((each) => each.code !== 0))
+      assert.match(
+        result.report.refused ?? '',
+        /'pedestrian_\d' is not a vehicle: ScenarioRunner's walker controller does not read vertex times/,
+      );
+    for (const result of written) {
+      const routes = result.report.losses.filter((loss) => loss.element === 'AcquirePositionAction');
+      assert.ok(routes.length > 0 && routes.every((loss) => loss.kind === 'approximated'), result.input);
+      assert.ok(
+        routes.every((loss) => /from where '\w+' is expected when the action starts, 5 m along its lane from its start/.test(loss.what)),
+      );
+      // The road stays the CARLA town ScenarioRunner loads; the file's 'CARLA:' frame with it.
+      assert.match(fs.readFileSync(result.output, 'utf8'), /<LogicFile filepath="Town05"\/>/);
+    }
+    const verdicts = await harnessVerdicts(
+      written.map((result) => result.output),
+      { tree: true },
+    );
+    assertBuiltOrRefused(results, verdicts);
+    assertNoSilentDrop(results, verdicts);
+    // Without the road path there are no lanes to plan on: refused, naming the way out.
+    const without = await exportFile(path.join(libraryDir, names[0], 'main.xosc'), path.join(out, 'without.xosc'), [
+      '--scenario-path',
+      libraryDir,
+    ]);
+    assert.equal(without.code, 1);
+    assert.match(
+      without.report.refused ?? '',
+      /the CARLA town Town05, and no OpenDRIVE file of that name was found .*--road-path DIR, the modular2simple\.esmini\.roadPath setting/,
+    );
   });
 
   it('the case study rebuilt from library modules (examples/case-study) builds under 0.9.16 and 0.9.15, each story element in the tree, nothing dropped', async () => {
@@ -997,6 +1049,117 @@ describe('export --target carla, Init routes under 0.9.16 written as trajectorie
     );
     assert.match(standing[0].carla, /set only once that atomic has ended .*open_scenario\.py:255-359.*basic_control\.py:50/);
   });
+});
+
+/**
+ * The paper's pattern (its library's simple_1.xosc) on fabriksgatan.xodr: each actor starts at an Init WorldPosition
+ * (the lane centre of `start`), a step SpeedAction of the story sets its speed, and an Event started by its own
+ * TraveledDistanceCondition (5 m) acquires a WorldPosition (the lane centre of `target`); or, at `story: 'time'`, the
+ * Init sets the speed and a SimulationTimeCondition (1 s) starts the route.
+ */
+function storyRoutesScenario(trigger: 'distance' | 'time' = 'distance'): string {
+  const network = parseOpenDrive(fs.readFileSync(path.join(esminiRoads, 'fabriksgatan.xodr'), 'utf8'));
+  const world = (roadId: string, s: number): string => {
+    const road = network.byId.get(roadId);
+    assert.ok(road, roadId);
+    const point = roadPoint(road, s, laneCenterT(road, laneSectionIndexAt(road, s), -1, s));
+    return `<WorldPosition x="${point.x.toFixed(4)}" y="${point.y.toFixed(4)}" z="0" h="${point.hdg.toFixed(4)}"/>`;
+  };
+  const speed = (value: number): string => `<PrivateAction>${speedChange('step', 0, 'time', value)}</PrivateAction>`;
+  const routeStarts =
+    trigger === 'distance'
+      ? (actor: string) => `<ByEntityCondition>
+                  <TriggeringEntities triggeringEntitiesRule="any"><EntityRef entityRef="${actor}"/></TriggeringEntities>
+                  <EntityCondition><TraveledDistanceCondition value="5"/></EntityCondition>
+                </ByEntityCondition>`
+      : () => '<ByValueCondition><SimulationTimeCondition value="1" rule="greaterThan"/></ByValueCondition>';
+  const group = (actor: string, value: number, target: string): string => `
+        <ManeuverGroup maximumExecutionCount="1" name="${actor}Group">
+          <Actors selectTriggeringEntities="false"><EntityRef entityRef="${actor}"/></Actors>
+          <Maneuver name="${actor}Maneuver">${
+            trigger === 'distance'
+              ? `
+            <Event name="${actor}Speed" priority="parallel">
+              <Action name="${actor}Speeds">${speed(value)}</Action>
+              <StartTrigger><ConditionGroup><Condition name="${actor}AtZero" delay="0" conditionEdge="none">
+                <ByValueCondition><SimulationTimeCondition value="0" rule="greaterThan"/></ByValueCondition>
+              </Condition></ConditionGroup></StartTrigger>
+            </Event>`
+              : ''
+          }
+            <Event name="${actor}Route" priority="parallel">
+              <Action name="${actor}Acquires"><PrivateAction><RoutingAction><AcquirePositionAction>
+                <Position>${target}</Position>
+              </AcquirePositionAction></RoutingAction></PrivateAction></Action>
+              <StartTrigger><ConditionGroup><Condition name="${actor}RouteStarts" delay="0" conditionEdge="none">
+                ${routeStarts(actor)}
+              </Condition></ConditionGroup></StartTrigger>
+            </Event>
+          </Maneuver>
+        </ManeuverGroup>`;
+  const start = (actor: string, at: string, value: number): string => `
+        <Private entityRef="${actor}">
+          <PrivateAction><TeleportAction><Position>${at}</Position></TeleportAction></PrivateAction>${
+            trigger === 'time'
+              ? `
+          ${speed(value)}`
+              : ''
+          }
+        </Private>`;
+  return testScenario({
+    revMinor: 0,
+    description: 'story routes',
+    road: path.join(esminiRoads, 'fabriksgatan.xodr'),
+    entities: vehicle('Ego', 'ego_vehicle') + vehicle('Follower', 'simulation'),
+    init: start('Ego', world('2', 150), 10) + start('Follower', world('2', 50), 14),
+    story: `<Story name="Routes">
+      <Act name="Drive">${group('Ego', 10, world('1', 12))}${group('Follower', 14, world('1', 8))}
+        ${ACT_STARTS}
+      </Act>
+    </Story>`,
+    stopAt: 14,
+  });
+}
+
+describe('export --target carla, story routes under 0.9.16 written as trajectories from where the actor is expected', function () {
+  this.timeout(300_000);
+  let out: string;
+  before(function () {
+    requireCorpus(this);
+  });
+  inTemporaryFolderEach('m2s-carla-story-route-', (folder) => (out = folder));
+
+  for (const trigger of ['distance', 'time'] as const)
+    it(`the paper's pattern (${trigger === 'distance' ? 'a story speed, its own TraveledDistanceCondition' : 'an Init speed, a SimulationTimeCondition'}, WorldPositions): ScenarioRunner builds the export, and esmini runs it as the original (issue 26)`, async function () {
+      requireEsmini(this);
+      requireCarlaHarness(this);
+      const original = path.join(out, 'routes.xosc');
+      const text = storyRoutesScenario(trigger);
+      fs.writeFileSync(original, text);
+      const result = await exportFile(original, path.join(out, 'exported.xosc'));
+      assert.equal(result.code, 0, result.stderr);
+      const mapped = result.report.losses.filter((loss) => loss.element === 'AcquirePositionAction');
+      assert.deepEqual(
+        mapped.map((loss) => [loss.kind, loss.line]),
+        [...text.matchAll(/<AcquirePositionAction>/g)].map((match) => ['approximated', text.slice(0, match.index).split('\n').length]),
+      );
+      const expected = trigger === 'distance' ? '5 m along its lane from its start' : '10 m along its lane from its start';
+      assert.match(
+        mapped[0].what,
+        new RegExp(`from where 'Ego' is expected when the action starts, ${expected}.*roads 2 > 15 > 1, lane -1 from s 1[56]\\d`),
+      );
+      assert.match(mapped[0].what, /catches up or waits if it is elsewhere/);
+      const written = fs.readFileSync(result.output, 'utf8');
+      assert.equal(/<AcquirePositionAction/.test(written), false);
+      const verdict = await assertBuilt(result.output, { tree: true });
+      // Each route built as ChangeActorWaypoints with a time for every vertex.
+      const built = verdict.waypoints ?? [];
+      assert.deepEqual(built.map(([, name]) => name).sort(), ['EgoAcquires', 'FollowerAcquires']);
+      for (const [, name, points, times] of built) assert.ok(points > 100 && points === times, `${name}: ${points} points, ${times} times`);
+      // esmini: the actor where the trajectory starts when its Event starts, then along the route's lanes; apart by one step's
+      // travel at most (0.05 s at 14 m/s), as esmini starts an Event the step after its condition holds.
+      await assertMovesAlike(original, result.output, 14, 0.71);
+    });
 });
 
 /** A 1.2 scenario on `road` whose ego is placed by `<GeoPosition ${geo}/>`. */

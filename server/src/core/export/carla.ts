@@ -271,7 +271,7 @@ export async function exportTextForCarla(
   // A simple scenario exported as it is: `parameterAttributes` marks what a main may override (SPEC), its values are
   // the defaults; ScenarioRunner's 1.0 schema refuses the attribute, and flattening removes it the same way.
   for (const node of allNodes(tree)) removeAttr(node, 'parameterAttributes');
-  const { road, copy } = (await rewriteRoad(store, tree, ref, document, semantics, options, sink)) ?? {};
+  const { road, copy, townFile } = (await rewriteRoad(store, tree, ref, document, semantics, options, sink)) ?? {};
   const files = copy ? [copy] : [];
   const ego = markEgo(tree, options, sink);
   mapBlueprints(tree, options, sink);
@@ -290,7 +290,8 @@ export async function exportTextForCarla(
     named(tree, new Set(['TargetDistanceSteadyState', 'TargetTimeSteadyState'])).length > 0 ||
     // The lanes a route drives, written as a trajectory where 0.9.16 crashes on the route (routeTrajectories.ts).
     ((options.release ?? '0.9.16') === '0.9.16' && named(tree, new Set(['AssignRouteAction', 'AcquirePositionAction'])).length > 0);
-  const roads = road && 'file' in road && needsRoads ? await readRoads(copy?.bytes ?? road.file, store) : undefined;
+  const roadFile = road && 'file' in road ? (copy?.bytes ?? road.file) : townFile;
+  const roads = roadFile !== undefined && needsRoads ? await readRoads(roadFile, store) : undefined;
   const geoPlaces = new Map<Node, RoadXY | string>();
   for (const position of named(tree, 'GeoPosition')) {
     const degrees = geoPositionDegrees(position);
@@ -298,7 +299,8 @@ export async function exportTextForCarla(
   }
   const elementsBefore = storyboardElementKeys(tree);
   const sampledPolylines = new Set<Node>();
-  applyCarlaRules(tree, { release: options.release ?? '0.9.16', sink, roads, geoPlaces, sampledPolylines });
+  const town = road && 'town' in road ? road.town : undefined;
+  applyCarlaRules(tree, { release: options.release ?? '0.9.16', sink, roads, town, geoPlaces, sampledPolylines });
   // Nothing changes the tree after the last schema check.
   const valid = dropOutsideSchema(tree, sink, sampledPolylines);
   reportStatesOfDroppedElements(tree, elementsBefore, sink);
@@ -580,12 +582,13 @@ async function rewriteRoad(
   semantics: DocumentSemantics,
   options: CarlaExportOptions,
   sink: LossSink,
-): Promise<{ road: CarlaExport['road']; copy?: PackagedFile } | undefined> {
+): Promise<{ road: CarlaExport['road']; copy?: PackagedFile; townFile?: string } | undefined> {
   const network = child(tree, 'RoadNetwork');
   const logic = network ? child(network, 'LogicFile') : undefined;
   const header = child(tree, 'FileHeader');
   let road: CarlaExport['road'];
   let copy: PackagedFile | undefined;
+  let townFile: string | undefined;
   if (options.road !== undefined) {
     if (CARLA_TOWNS.includes(options.road)) road = { town: options.road };
     else {
@@ -604,8 +607,13 @@ async function rewriteRoad(
       );
       return undefined;
     }
-    if (CARLA_TOWNS.includes(written.filepath)) road = { town: written.filepath };
-    else {
+    if (CARLA_TOWNS.includes(written.filepath)) {
+      road = { town: written.filepath };
+      // The town's OpenDRIVE where esmini finds it (a file of the town's name in the road path): its lanes, for the rules that plan on them.
+      const folders = [...(options.roadFolders ?? []), ...(semantics.roadFile?.folders ?? [])];
+      const located = await locateRoadFile(store, ref, document, semantics.evaluator, folders, store.host);
+      if (located?.resolved) townFile = located.resolved;
+    } else {
       // Where run and check look (core/semantics/roadFiles.ts locateRoadFile): the road folders, then those the check searched (its catalog folders).
       const folders = [...(options.roadFolders ?? []), ...(semantics.roadFile?.folders ?? [])];
       const located = await locateRoadFile(store, ref, document, semantics.evaluator, folders, store.host);
@@ -665,7 +673,7 @@ async function rewriteRoad(
       `with the prefix ScenarioRunner would read positions in CARLA's left-handed coordinates (${SR_CONFIGURATION} _set_scenario_name)`,
     );
   }
-  return { road, copy };
+  return { road, copy, townFile };
 }
 
 function egoProperty(properties: Node): boolean {

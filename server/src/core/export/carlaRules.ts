@@ -50,8 +50,10 @@ export type { CarlaLoss, LossSink };
 export interface RuleContext {
   release: CarlaRelease;
   sink: LossSink;
-  /** The scenario's OpenDRIVE roads when the road is an `.xodr` file the export read (route positions need their lengths). */
+  /** The scenario's OpenDRIVE roads when the road is an `.xodr` file the export read, or a CARLA town's found in the road path (route positions need their lengths). */
   roads?: RoadNetwork;
+  /** The CARLA town the export names as the road, when it names one: ScenarioRunner reads a 'CARLA:' file's positions in its frame there. */
+  town?: string;
   /** Each GeoPosition's x, y by the road's geoReference, or why there is none (computed before the rules: proj4js loads lazily). */
   geoPlaces?: Map<Node, RoadXY | string>;
   /** Filled with the Polylines the rules sampled from a uniform shape (SampledShape.uniform), for the schema check. */
@@ -820,10 +822,15 @@ function routeActionCrash(tree: Node, context: RuleContext): void {
   if (context.release !== '0.9.16') return;
   const crash = `0.9.16 creates ChangeActorWaypoints without times for it, which raises "object of type 'NoneType' has no len()" (${SR_ATOMICS} ChangeActorWaypoints.__init__, a regression of commit ab5996d7)`;
   const builds = `ScenarioRunner 0.9.16 crashes on it (${SR_ATOMICS} ChangeActorWaypoints.__init__, commit ab5996d7) but builds a FollowTrajectoryAction as ChangeActorWaypoints with times, straight lines between the vertices (${SR_PARSER}:1509-1513, ${SR_SCENARIO}:336-342), and drives to each vertex by its time (${CARLA_FACTS.trajectoryTimesSetSpeed.source})`;
+  const description = attr(child(tree, 'FileHeader') ?? tree, 'description') ?? '';
+  // A 'CARLA:' description keeps ScenarioRunner in CARLA's frame only on a town: on an .xodr file the export has removed it.
+  const road = context.roads
+    ? { roads: context.roads, carlaFrame: context.town !== undefined && description.startsWith('CARLA:') }
+    : undefined;
   for (const name of ['AssignRouteAction', 'AcquirePositionAction']) {
     for (const node of named(tree, name)) {
       if (!node.parent) continue;
-      const written = routeTrajectory(tree, node, context.roads);
+      const written = routeTrajectory(tree, node, { road, town: context.town });
       if (typeof written !== 'string') {
         replaceNode(node, written.follow);
         context.sink.approximated(written.follow, name, `written as a FollowTrajectoryAction along ${written.summary}`, builds);

@@ -9,12 +9,13 @@
  * (ScenarioRunner converts one with CARLA's own map, get_waypoint_xodr, SR_PARSER convert_position_to_transform) at most
  * ROUTE_STEP apart, timed at the actor's speed, which must be certain over the whole run (scenarioTree constantSpeedOf).
  */
-import type { RoadNetwork } from '../opendrive/road';
+import { isDrivingLane, type RoadNetwork } from '../opendrive/road';
+import { laneAtPoint } from '../opendrive/lanePosition';
 import { routeLanes, RouteWaypoint } from '../opendrive/route';
 import { baseName } from '../sources';
 import { CARLA_FACTS } from '../profiles/carla';
 import { roadPositionPose } from './trajectoryPoint';
-import { actorsOf, constantSpeedOf, scenarioObjectOf } from './scenarioTree';
+import { actorsOf, constantSpeedOf, scenarioObjectOf, storySpeedOf } from './scenarioTree';
 import { ancestor, attr, child, childrenNamed, fourDecimals, makeNode, named, Node, numberAttr } from './tree';
 
 /** The longest straight segment between two vertices: its sagitta on a 10 m radius (a tight junction turn) is 1.25 cm. */
@@ -60,8 +61,29 @@ const INIT_ATOMICS: ReadonlySet<string> = new Set([
 /** Actions of a story that move an actor across or along other ways than its lane: while a trajectory runs, they would end it (ScenarioRunner) or fight it (esmini). */
 const MOVING: ReadonlySet<string> = new Set(['LateralAction', 'RoutingAction', 'TeleportAction']);
 
-/** The actor's start: the LanePosition of its last Init TeleportAction (routePositions has written a RoutePosition as one by now). */
-function startOf(tree: Node, actor: string): (RouteWaypoint & { offset: number }) | string {
+/** How the road reads a WorldPosition: in CARLA's left-handed frame (y and heading negated from OpenDRIVE's) when the file says so and stays on a CARLA town. */
+export interface RouteRoad {
+  roads: RoadNetwork;
+  /** The FileHeader description starts with 'CARLA:' and the road is a CARLA town: ScenarioRunner reads positions in CARLA's coordinates. */
+  carlaFrame: boolean;
+}
+
+/** A WorldPosition's lane on the road (core/opendrive/lanePosition.ts), as ScenarioRunner places it, or why there is none. */
+function worldLane(position: Node, road: RouteRoad, what: string): (RouteWaypoint & { offset: number }) | string {
+  const x = numberAttr(position, 'x', NaN);
+  const y = numberAttr(position, 'y', NaN);
+  const h = numberAttr(position, 'h', 0);
+  if (![x, y, h].every(Number.isFinite)) return `${what} is a WorldPosition whose x, y or h is not a number`;
+  // ScenarioRunner negates y and the heading of a file not in CARLA's frame (SR_PARSER convert_position_to_transform).
+  const sign = road.carlaFrame ? -1 : 1;
+  const lane = laneAtPoint(road.roads, x, sign * y, sign * h, isDrivingLane);
+  if (typeof lane === 'string') return `${what} is a WorldPosition in no driving lane headed its way: ${lane}`;
+  // To the tenth of a millimetre, as written: down, so that a point at a road's end stays on it; a point within a millimetre of the centre on it.
+  return { ...lane, s: Math.floor(lane.s * 1e4) / 1e4, offset: Math.abs(lane.offset) < 1e-3 ? 0 : Number(lane.offset.toFixed(4)) };
+}
+
+/** The actor's start: the Lane or WorldPosition of its last Init TeleportAction (routePositions has written a RoutePosition as a LanePosition by now). */
+function startOf(tree: Node, actor: string, road: RouteRoad): (RouteWaypoint & { offset: number }) | string {
   const init = named(tree, 'Init')[0];
   const teleports = init
     ? named(init, 'TeleportAction').filter((each) => attr(ancestor(each, 'Private') ?? each, 'entityRef') === actor)
@@ -69,8 +91,12 @@ function startOf(tree: Node, actor: string): (RouteWaypoint & { offset: number }
   const teleport = teleports.at(-1);
   if (!teleport) return `'${actor}' has no TeleportAction in the Init to start the route from`;
   const placed = child(teleport, 'Position')?.children[0];
+  if (placed?.name === 'WorldPosition') {
+    const lane = worldLane(placed, road, `the start of '${actor}'`);
+    return typeof lane === 'string' ? lane : { ...lane, name: `${actor}'s start (${lineOf(placed)})` };
+  }
   if (placed?.name !== 'LanePosition')
-    return `'${actor}' starts at a ${placed?.name ?? 'Position'}, and the export plans a route from a LanePosition only`;
+    return `'${actor}' starts at a ${placed?.name ?? 'Position'}, and the export plans a route from a Lane or WorldPosition only`;
   if (child(placed, 'Orientation') && numberAttr(child(placed, 'Orientation') as Node, 'h', 0) !== 0)
     return `'${actor}' starts turned by an Orientation, and esmini plans its route from the way it faces`;
   const laneId = numberAttr(placed, 'laneId', NaN);
@@ -82,13 +108,18 @@ function startOf(tree: Node, actor: string): (RouteWaypoint & { offset: number }
 }
 
 /** The route action's waypoints: its Route's (AssignRouteAction), or from the start to its Position (AcquirePositionAction). */
-function waypointsOf(action: Node, start: RouteWaypoint): RouteWaypoint[] | string {
+function waypointsOf(action: Node, start: RouteWaypoint, road: RouteRoad): RouteWaypoint[] | string {
   if (action.name === 'AssignRouteAction') {
     const route = child(action, 'Route');
     return route ? routeWaypoints(route) : 'its route is not written in the scenario or a catalog it loads';
   }
   const target = child(action, 'Position')?.children[0];
-  if (target?.name !== 'LanePosition') return `its target is a ${target?.name ?? 'Position'}, and the export plans to a LanePosition only`;
+  if (target?.name === 'WorldPosition') {
+    const lane = worldLane(target, road, 'its target');
+    return typeof lane === 'string' ? lane : [start, { ...lane, name: `its target (${lineOf(target)})` }];
+  }
+  if (target?.name !== 'LanePosition')
+    return `its target is a ${target?.name ?? 'Position'}, and the export plans to a Lane or WorldPosition only`;
   const laneId = numberAttr(target, 'laneId', NaN);
   const s = numberAttr(target, 's', NaN);
   if (!Number.isInteger(laneId) || laneId === 0 || !Number.isFinite(s)) return "its target's laneId or s is not a number";
@@ -103,74 +134,89 @@ export interface RouteTrajectory {
   summary: string;
 }
 
+/** Where the route's road comes from, for a message: a CARLA town whose OpenDRIVE the export did not find, or no road read. */
+export interface RouteRoadSource {
+  road?: RouteRoad;
+  /** The CARLA town the scenario names, when its road is one. */
+  town?: string;
+}
+
 /** The route action as a FollowTrajectoryAction along the lanes esmini drives it, or why the export cannot write it so. */
-export function routeTrajectory(tree: Node, action: Node, roads: RoadNetwork | undefined): RouteTrajectory | string {
-  if (!ancestor(action, 'Init'))
-    return 'in a story, where the actor is when the action starts is known only as the scenario runs, so no trajectory can start there';
-  if (!roads) return 'the road is a CARLA town (or no .xodr file the export read), whose lanes the export cannot plan';
-  const actor = actorsOf(action)[0] ?? '';
+export function routeTrajectory(tree: Node, action: Node, source: RouteRoadSource): RouteTrajectory | string {
+  const road = source.road;
+  if (!road)
+    return source.town
+      ? `the road is the CARLA town ${source.town}, and no OpenDRIVE file of that name was found to plan its lanes on: add the folder that holds it to the road path (--road-path DIR, the modular2simple.esmini.roadPath setting)`
+      : 'the road is no .xodr file the export read, whose lanes the export could plan';
+  const roads = road.roads;
+  const inInit = ancestor(action, 'Init') !== undefined;
+  const actors = actorsOf(action);
+  if (actors.length !== 1) return `its ManeuverGroup acts on ${actors.length} actors, and a trajectory is planned for one`;
+  const actor = actors[0];
   const object = scenarioObjectOf(tree, actor);
   const sequence = CARLA_FACTS.initActorSequence;
   if (!object || !child(object, 'Vehicle'))
-    return `'${actor}' is not a vehicle: ScenarioRunner's walker controller does not read vertex times (pedestrian_control.py), and ScenarioRunner ${sequence.does} (${sequence.source}), so it would stand at its start`;
-  const init = ancestor(action, 'Init') as Node;
-  const other = named(init, INIT_ATOMICS).find((each) => each !== action && attr(ancestor(each, 'Private') ?? each, 'entityRef') === actor);
-  if (other)
-    return `the Init of '${actor}' has ${withArticle(other.name)} too (${lineOf(other) || 'in the Init'}), and ScenarioRunner ${sequence.does} (${sequence.source})`;
+    return `'${actor}' is not a vehicle: ScenarioRunner's walker controller does not read vertex times (pedestrian_control.py)${inInit ? `, and ScenarioRunner ${sequence.does} (${sequence.source}), so it would stand at its start` : ''}`;
+  if (inInit) {
+    const init = ancestor(action, 'Init') as Node;
+    const other = named(init, INIT_ATOMICS).find(
+      (each) => each !== action && attr(ancestor(each, 'Private') ?? each, 'entityRef') === actor,
+    );
+    if (other)
+      return `the Init of '${actor}' has ${withArticle(other.name)} too (${lineOf(other) || 'in the Init'}), and ScenarioRunner ${sequence.does} (${sequence.source})`;
+  }
   for (const story of named(tree, 'Story'))
     for (const moving of named(story, MOVING)) {
+      if (moving === action.parent) continue;
       const group = ancestor(moving, 'ManeuverGroup');
       const actors = group ? child(group, 'Actors') : undefined;
       if (!actors || attr(actors, 'selectTriggeringEntities') === 'true' || actorsOf(moving).includes(actor)) {
         return `its story moves '${actor}' too (${withArticle(moving.children[0]?.name ?? moving.name)} at ${lineOf(moving) || 'a story line'}), which would end the trajectory in ScenarioRunner and fight it in esmini`;
       }
     }
-  const speed = constantSpeedOf(tree, actor, action);
-  if (speed === undefined)
-    return `the speed of '${actor}' is not certain over the route (none set at once in the Init, a controller of its own, or an action of its story changes it), and ScenarioRunner would drive to the vertices by times computed at one speed`;
+  const starts = inInit ? initRouteStart(tree, actor, action) : storyRouteStart(tree, action, actor);
+  if (typeof starts === 'string') return starts;
+  const { speed, along } = starts;
   if (!(speed > 0)) return `'${actor}' keeps the speed ${speed}, and a trajectory at that speed has no times`;
-  const start = startOf(tree, actor);
+  const start = startOf(tree, actor, road);
   if (typeof start === 'string') return start;
-  const waypoints = waypointsOf(action, start);
+  const waypoints = waypointsOf(action, start, road);
   if (typeof waypoints === 'string') return waypoints;
   const stretches = routeLanes(roads, waypoints, start);
   if (typeof stretches === 'string') return stretches;
   // Each stretch sampled at most ROUTE_STEP apart, 1 mm inside its lane section so that its lane id is the one there.
-  const vertices: { roadId: string; laneId: number; s: number; x: number; y: number }[] = [];
+  const vertices: Vertex[] = [];
   for (const stretch of stretches) {
     const length = Math.abs(stretch.to - stretch.from);
     const count = Math.max(1, Math.ceil(length / ROUTE_STEP - 1e-9));
     const inward = Math.min(0.001, length / 2) * Math.sign(stretch.to - stretch.from);
     for (let index = 0; index <= count; index++) {
       const s = stretch.from + ((stretch.to - stretch.from) * index) / count + (index === 0 ? inward : index === count ? -inward : 0);
-      const position = makeNode('LanePosition', [
-        ['roadId', stretch.roadId],
-        ['laneId', String(stretch.laneId)],
-        ['offset', fourDecimals(start.offset)],
-        ['s', fourDecimals(s)],
-      ]);
-      const pose = roadPositionPose(position, roads);
-      if (typeof pose === 'string') return pose;
+      const vertex = vertexAt(stretch.roadId, stretch.laneId, s, start.offset, roads);
+      if (typeof vertex === 'string') return vertex;
       const previous = vertices.at(-1);
       // Where a stretch ends, the next begins: one vertex there.
-      if (previous && Math.hypot(pose.x - previous.x, pose.y - previous.y) < 0.01) continue;
-      vertices.push({ roadId: stretch.roadId, laneId: stretch.laneId, s: Number(fourDecimals(s)), x: pose.x, y: pose.y });
+      if (previous && Math.hypot(vertex.x - previous.x, vertex.y - previous.y) < 0.01) continue;
+      vertices.push(vertex);
     }
   }
-  if (vertices.length < 2) return `'${actor}' starts where its route ends`;
-  let along = 0;
+  const driven = along > 0 ? fromWhereExpected(vertices, along, start, actor, roads) : vertices;
+  if (typeof driven === 'string') return driven;
+  if (driven.length < 2) return `'${actor}' ${along > 0 ? 'is expected where' : 'starts where'} its route ends`;
+  let length = 0;
   const polyline = makeNode(
     'Polyline',
     [],
-    vertices.map((vertex, index) => {
-      if (index > 0) along += Math.hypot(vertex.x - vertices[index - 1].x, vertex.y - vertices[index - 1].y);
+    driven.map((vertex, index) => {
+      if (index > 0) length += Math.hypot(vertex.x - driven[index - 1].x, vertex.y - driven[index - 1].y);
       const lane = makeNode('LanePosition', [
         ['roadId', vertex.roadId],
         ['laneId', String(vertex.laneId)],
         ['offset', fourDecimals(start.offset)],
         ['s', String(vertex.s)],
       ]);
-      return makeNode('Vertex', [['time', fourDecimals(along / speed)]], [makeNode('Position', [], [lane])]);
+      // Times from the action's start: ScenarioRunner's controller counts them from the atomic's start (npc_vehicle_control.py run_step).
+      return makeNode('Vertex', [['time', fourDecimals(length / speed)]], [makeNode('Position', [], [lane])]);
     }),
   );
   const name = attr(child(action, 'Route') ?? action, 'name') ?? action.name;
@@ -192,13 +238,161 @@ export function routeTrajectory(tree: Node, action: Node, roads: RoadNetwork | u
     action.place,
   );
   const roadIds: string[] = [];
-  for (const stretch of stretches) if (roadIds.at(-1) !== stretch.roadId) roadIds.push(stretch.roadId);
+  for (const vertex of driven) if (roadIds.at(-1) !== vertex.roadId) roadIds.push(vertex.roadId);
+  const first = driven[0];
+  const from = inInit
+    ? `from ${actor}'s start (roads ${roadIds.join(' > ')}, lane ${first.laneId} from s ${Number(start.s.toFixed(3))}, ${Number(length.toFixed(2))} m)`
+    : `from where '${actor}' is expected when the action starts, ${starts.how} (roads ${roadIds.join(' > ')}, lane ${first.laneId} from s ${Number(first.s.toFixed(3))}, ${Number(length.toFixed(2))} m)`;
   return {
     follow,
-    summary: `the lanes esmini drives it in from ${actor}'s start (roads ${roadIds.join(' > ')}, lane ${stretches[0].laneId} from s ${Number(start.s.toFixed(3))}, ${Number(along.toFixed(2))} m): ${vertices.length} LanePositions at most ${ROUTE_STEP} m apart, timed at its speed ${fourDecimals(speed)} m/s; past the last one it drives on in its lane, as past a route's end${
+    summary: `the lanes esmini drives it in ${from}: ${driven.length} LanePositions at most ${ROUTE_STEP} m apart, timed at its speed ${fourDecimals(speed)} m/s${
+      inInit
+        ? ''
+        : " from the action's start; it reaches each vertex at its time from where it is expected when the action starts, and catches up or waits if it is elsewhere"
+    }; past the last one it drives on in its lane, as past a route's end${
       start.offset !== 0
         ? `; its offset ${fourDecimals(start.offset)} m from the lane centre is written on each vertex, but ScenarioRunner's vehicle controller drives to each vertex's lane centre (npc_vehicle_control.py _update_plan: get_waypoint, project_to_road)`
         : ''
     }`,
   };
+}
+
+interface Vertex {
+  roadId: string;
+  laneId: number;
+  s: number;
+  x: number;
+  y: number;
+}
+
+/** A vertex on a lane at s with the actor's offset, in world coordinates; or why the road has no such point. */
+function vertexAt(roadId: string, laneId: number, s: number, offset: number, roads: RoadNetwork): Vertex | string {
+  const position = makeNode('LanePosition', [
+    ['roadId', roadId],
+    ['laneId', String(laneId)],
+    ['offset', fourDecimals(offset)],
+    ['s', fourDecimals(s)],
+  ]);
+  const pose = roadPositionPose(position, roads);
+  return typeof pose === 'string' ? pose : { roadId, laneId, s: Number(fourDecimals(s)), x: pose.x, y: pose.y };
+}
+
+/**
+ * The route's vertices from the point `along` metres down it, where the actor is expected when a story action starts: it has
+ * driven its lane from its start so far. Refused where that stretch leaves its start's road for a junction: before the action
+ * the actor drives no route, and which way it takes through a junction is not known.
+ */
+function fromWhereExpected(
+  vertices: Vertex[],
+  along: number,
+  start: RouteWaypoint & { offset: number },
+  actor: string,
+  roads: RoadNetwork,
+): Vertex[] | string {
+  let covered = 0;
+  for (let index = 1; index < vertices.length; index++) {
+    const [before, after] = [vertices[index - 1], vertices[index]];
+    const step = Math.hypot(after.x - before.x, after.y - before.y);
+    if (after.roadId !== start.roadId) {
+      const junction = roads.byId.get(after.roadId)?.junction ?? '-1';
+      if (junction !== '-1')
+        return `'${actor}' is expected ${Number(along.toFixed(2))} m along its lane from its start when the action starts, past the end of road ${start.roadId} into junction ${junction}, where the way it drives before the action is not known`;
+    }
+    if (covered + step < along - 1e-9) {
+      covered += step;
+      continue;
+    }
+    const fraction = step > 0 ? (along - covered) / step : 0;
+    const rest = vertices.slice(index);
+    if (fraction >= 1 - 1e-6) return rest;
+    // The point itself, on the later vertex's lane: vertices 1 m apart lie on one lane stretch but where a stretch ends.
+    const s = before.roadId === after.roadId && before.laneId === after.laneId ? before.s + (after.s - before.s) * fraction : after.s;
+    const point = vertexAt(after.roadId, after.laneId, s, start.offset, roads);
+    if (typeof point === 'string') return point;
+    return [{ ...point, x: before.x + (after.x - before.x) * fraction, y: before.y + (after.y - before.y) * fraction }, ...rest];
+  }
+  return `'${actor}' is expected ${Number(along.toFixed(2))} m along its lane from its start when the action starts, past its route's end (${Number(covered.toFixed(2))} m)`;
+}
+
+/** An Init route starts where the actor starts, at the speed it keeps over the whole run. */
+function initRouteStart(tree: Node, actor: string, action: Node): { speed: number; along: number; how: string } | string {
+  const speed = constantSpeedOf(tree, actor, action);
+  if (speed === undefined)
+    return `the speed of '${actor}' is not certain over the route (none set at once in the Init, a controller of its own, or an action of its story changes it), and ScenarioRunner would drive to the vertices by times computed at one speed`;
+  return { speed, along: 0, how: 'its start' };
+}
+
+/** The rules a SimulationTimeCondition holds from its value on: once the time has come. */
+const FROM_TIME_ON: ReadonlySet<string> = new Set(['greaterThan', 'greaterOrEqual', 'equalTo']);
+
+/** Whether an Act starts at the run's start: its StartTrigger one SimulationTimeCondition at 0 without delay. */
+function startsAtZero(act: Node): boolean {
+  const trigger = child(act, 'StartTrigger');
+  const conditions = trigger ? childrenNamed(trigger, 'ConditionGroup').flatMap((group) => childrenNamed(group, 'Condition')) : [];
+  const time = conditions.length === 1 ? named(conditions[0], 'SimulationTimeCondition')[0] : undefined;
+  return (
+    time !== undefined &&
+    numberAttr(conditions[0], 'delay', 0) === 0 &&
+    numberAttr(time, 'value', NaN) === 0 &&
+    FROM_TIME_ON.has(attr(time, 'rule') ?? '')
+  );
+}
+
+/**
+ * Where a story route action finds its actor, as a distance driven along its lane from its start, and its speed then; or why
+ * that is known only as the scenario runs. Known for an Event started by one condition: the actor's own TraveledDistanceCondition
+ * (the actor standing until a step SpeedAction of the same Act sets its one speed, or keeping its Init speed from an Act that starts
+ * at the run's start), or a SimulationTimeCondition at a speed kept from the Init, in an Act that starts at the run's start:
+ * ScenarioRunner counts both from when the condition is first ticked (CARLA_FACTS.conditionsCountFromTheirStart), esmini from the run's.
+ */
+function storyRouteStart(tree: Node, action: Node, actor: string): { speed: number; along: number; how: string } | string {
+  const event = ancestor(action, 'Event');
+  const act = ancestor(action, 'Act');
+  const trigger = event ? child(event, 'StartTrigger') : undefined;
+  const conditions = trigger ? childrenNamed(trigger, 'ConditionGroup').flatMap((group) => childrenNamed(group, 'Condition')) : [];
+  const unknown = `where '${actor}' is when the action starts is known only as the scenario runs, so no trajectory can start there`;
+  if (!event || !act || conditions.length !== 1)
+    return `its Event starts on ${conditions.length === 0 ? 'no condition' : `${conditions.length} conditions`}: ${unknown}`;
+  const condition = conditions[0];
+  const kind = named(condition, new Set(['EntityCondition', 'ByValueCondition']))[0]?.children[0]?.name ?? 'a condition';
+  const delay = numberAttr(condition, 'delay', 0);
+  if (!Number.isFinite(delay) || delay < 0) return `its start condition's delay is not a number of seconds: ${unknown}`;
+  const counted = CARLA_FACTS.conditionsCountFromTheirStart;
+  const fromItsStart = `ScenarioRunner ${counted.does} (${counted.source}), esmini from the run's start, and its Act starts later or on another condition`;
+  const kept = constantSpeedOf(tree, actor, action);
+  if (kind === 'TraveledDistanceCondition') {
+    const traveled = named(condition, kind)[0];
+    const triggering = named(condition, 'EntityRef').map((each) => attr(each, 'entityRef') ?? '');
+    if (triggering.length !== 1 || triggering[0] !== actor)
+      return `its Event starts when ${triggering.join(', ') || 'no entity'} has traveled a distance, not '${actor}' alone: ${unknown}`;
+    const distance = numberAttr(traveled, 'value', NaN);
+    if (!(distance >= 0)) return `its TraveledDistanceCondition's value is not a distance: ${unknown}`;
+    const story = kept === undefined ? storySpeedOf(tree, actor, action) : undefined;
+    const speed = kept ?? (story && ancestor(story.action, 'Act') === act ? story.speed : undefined);
+    if (speed === undefined)
+      return `the speed of '${actor}' is not certain from the action's start (neither kept from the Init nor set once by a step SpeedAction of the same Act with the actor standing until then), and ScenarioRunner would drive to the vertices by times computed at one speed`;
+    if (kept !== undefined && !startsAtZero(act)) return `'${actor}' drives from the run's start and ${fromItsStart}: ${unknown}`;
+    const along = distance + speed * delay;
+    return {
+      speed,
+      along,
+      how: `${Number(along.toFixed(3))} m along its lane from its start (its TraveledDistanceCondition ${distance} m${delay > 0 ? ` and ${delay} s delay` : ''})`,
+    };
+  }
+  if (kind === 'SimulationTimeCondition') {
+    const time = named(condition, kind)[0];
+    const seconds = numberAttr(time, 'value', NaN);
+    if (!FROM_TIME_ON.has(attr(time, 'rule') ?? '') || !(seconds >= 0))
+      return `its SimulationTimeCondition does not name a time from which on it holds: ${unknown}`;
+    if (kept === undefined)
+      return `the speed of '${actor}' is not certain from the run's start to the action's (none set at once in the Init, a controller of its own, or an action of its story changes it): ${unknown}`;
+    if (!startsAtZero(act)) return `${fromItsStart}: ${unknown}`;
+    const along = kept * (seconds + delay);
+    return {
+      speed: kept,
+      along,
+      how: `${Number(along.toFixed(3))} m along its lane from its start (${seconds + delay} s at ${fourDecimals(kept)} m/s)`,
+    };
+  }
+  return `its Event starts on ${withArticle(kind)}: ${unknown}`;
 }

@@ -85,6 +85,34 @@ export function constantSpeedOf(tree: Node, actor: string, except?: Node, throug
   return speed;
 }
 
+/**
+ * The one speed the story gives an actor that stands until then: no speed-changing action in its Init, no controller of its
+ * own, and of its story's speed-changing actions (but `except`) only one, a step SpeedAction to an absolute speed; else undefined.
+ */
+export function storySpeedOf(tree: Node, actor: string, except?: Node): { speed: number; action: Node } | undefined {
+  const storyboard = child(tree, 'Storyboard');
+  const init = storyboard ? child(storyboard, 'Init') : undefined;
+  const object = scenarioObjectOf(tree, actor);
+  if (!storyboard || !object || child(object, 'ObjectController')) return undefined;
+  const inInit = init ? named(init, 'Private').filter((each) => attr(each, 'entityRef') === actor) : [];
+  if (inInit.some((privateNode) => named(privateNode, SPEED_CHANGING).some(changesSpeed))) return undefined;
+  const found: Node[] = [];
+  for (const story of childrenNamed(storyboard, 'Story'))
+    for (const action of named(story, SPEED_CHANGING)) {
+      if (action === except || !changesSpeed(action)) continue;
+      const group = ancestor(action, 'ManeuverGroup');
+      const actors = group ? child(group, 'Actors') : undefined;
+      if (!actors || attr(actors, 'selectTriggeringEntities') === 'true' || actorsOf(action).includes(actor)) found.push(action);
+    }
+  const [action] = found;
+  if (found.length !== 1 || action.name !== 'SpeedAction' || actorsOf(action).length !== 1) return undefined;
+  const dynamics = named(action, 'SpeedActionDynamics')[0];
+  const absolute = named(action, 'AbsoluteTargetSpeed')[0];
+  const speed = Number(absolute ? attr(absolute, 'value') : NaN);
+  if (!dynamics || attr(dynamics, 'dynamicsShape') !== 'step' || !Number.isFinite(speed)) return undefined;
+  return { speed, action };
+}
+
 /** A trajectory without timing is followed at the speed the actor has (the standard ignores its vertex times): it changes no speed. */
 function changesSpeed(action: Node): boolean {
   return action.name !== 'FollowTrajectoryAction' || child(child(action, 'TimeReference') ?? action, 'Timing') !== undefined;

@@ -316,6 +316,11 @@ export const CARLA_FACTS = {
     source: `srunner/scenariomanager/actorcontrols/npc_vehicle_control.py:103-113, ${PARSER}:1509-1513`,
     severity: 'warning',
   },
+  conditionsCountFromTheirStart: {
+    does: "counts a SimulationTimeCondition's time and a TraveledDistanceCondition's distance from when the condition is first ticked (its Act has started), not from the run's start",
+    source: `srunner/scenariomanager/timer.py:108-126 (SimulationTimeCondition.initialise, update), ${SR_TRIGGER_CONDITIONS}:1211-1228 (DriveDistance.initialise, update), ${PARSER}:1029-1032, 1124-1128`,
+    severity: 'warning',
+  },
   longitudinalGapBehindOnly: {
     does: "keeps a LongitudinalDistanceAction's gap only while the reference is ahead of the actor (KeepLongitudinalGap: is_within_distance of 0 to 90 degrees); an actor ahead of its reference is driven at its maximum speed instead",
     source: `${ATOMICS}:4576-4592`,
