@@ -4,7 +4,7 @@ import * as path from 'node:path';
 import JSZip from 'jszip';
 import { firstDifference } from '../../server/src/core/equivalence';
 import { isWellFormed, parseXml } from '../../server/src/core/xml';
-import { outerGroup, runCli, scenario, simpleGroup } from '../support/fixtures';
+import { outerGroup, overwritingManeuverCatalog, runCli, scenario, simpleGroup } from '../support/fixtures';
 import { libraryDir, repoRoot, requireCorpus } from '../support/paths';
 import { listFiles, temporaryWorkspace } from '../support/workspace';
 
@@ -127,6 +127,34 @@ describe('cli: usage and compatibility', () => {
       const sorted = [...listed].sort((x, y) => (x.file < y.file ? -1 : x.file > y.file ? 1 : 0) || x.line - y.line || x.column - y.column);
       assert.deepEqual(listed, sorted);
     }
+  });
+
+  it("check prints each finding of a catalog entry used by a reference on a line of its own, with the entry's file:line:column, two of one catalog line too", () => {
+    const catalog = overwritingManeuverCatalog({ used: ['e1', 'e2'] });
+    const main = scenario(
+      '<ManeuverGroup name="G" maximumExecutionCount="1"><Actors selectTriggeringEntities="false"/><CatalogReference catalogName="ManeuverCatalog" entryName="used"/></ManeuverGroup>',
+    ).replace(
+      '  <Entities>',
+      '  <CatalogLocations><ManeuverCatalog><Directory path="catalogs"/></ManeuverCatalog></CatalogLocations>\n  <Entities>',
+    );
+    const root = temporaryWorkspace({ 'main.xosc': main, 'catalogs/ManeuverCatalog.xosc': catalog });
+    const run = runCli(['check', 'main.xosc', '--simulator', 'carla'], { cwd: root });
+    const referenceLine = main.split('\n').findIndex((line) => line.includes('entryName="used"')) + 1;
+    const columns = [...catalog.split('\n')[4].matchAll(/priority=/g)].map((match) => (match.index ?? 0) + 'priority="'.length + 1);
+    const printed = run.stderr.split('\n');
+    const findings = printed.flatMap((line, index) =>
+      line.includes('ignores Event priority') ? [[line.slice(0, line.indexOf(': warning')), printed[index + 1]]] : [],
+    );
+    assert.deepEqual(
+      findings.map(([where]) => where.replace(/:\d+$/, '')),
+      [`main.xosc:${referenceLine}`, `main.xosc:${referenceLine}`],
+      run.stderr,
+    );
+    assert.deepEqual(
+      findings.map(([, note]) => note),
+      columns.map((column) => `  ${path.join('catalogs', 'ManeuverCatalog.xosc')}:5:${column}: note: here in the catalog entry`),
+      run.stderr,
+    );
   });
 
   it('the examples check clean and flatten', () => {

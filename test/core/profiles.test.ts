@@ -9,7 +9,7 @@ import { ESMINI_FACTS, ESMINI_PROFILE } from '../../server/src/core/profiles/esm
 import { Simulator } from '../../server/src/core/profiles/simulators';
 import { diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { parseXml } from '../../server/src/core/xml';
-import { outerGroup, scenario, simpleGroup } from '../support/fixtures';
+import { outerGroup, overwritingManeuverCatalog, scenario, simpleGroup } from '../support/fixtures';
 import { sharedDir } from '../support/paths';
 import { semanticProblemsOf } from './diagnostics/support';
 import { temporaryWorkspace } from '../support/workspace';
@@ -306,7 +306,7 @@ describe('simulator profiles', () => {
       [
         'error',
         referenceLine,
-        `in catalog entry 'used' (routes.xosc:5): esmini does not support GeoPosition: its position reader has no GeoPosition and refuses the scenario ("Failed parse position in node Position") (EnvironmentSimulator/Modules/ScenarioEngine/SourceFiles/ScenarioReader.cpp:1854-2259)`,
+        `in catalog entry 'used' (routes.xosc:5:84): esmini does not support GeoPosition: its position reader has no GeoPosition and refuses the scenario ("Failed parse position in node Position") (EnvironmentSimulator/Modules/ScenarioEngine/SourceFiles/ScenarioReader.cpp:1854-2259)`,
       ],
     ]);
     assert.deepEqual(await simulatorProblems(main(['plain'])), []);
@@ -332,17 +332,7 @@ describe('simulator profiles', () => {
   });
 
   it("carla: a maneuver catalog entry's Event priority is flagged on the reference of a scenario that uses it, not in the catalog", async () => {
-    const event = (name: string) =>
-      `<Event name="${name}" priority="overwrite"><Action name="a${name}"><PrivateAction><TeleportAction><Position><WorldPosition x="0" y="0"/></Position></TeleportAction></PrivateAction></Action><StartTrigger><ConditionGroup><Condition name="c${name}" delay="0" conditionEdge="rising"><ByValueCondition><SimulationTimeCondition value="0" rule="greaterThan"/></ByValueCondition></Condition></ConditionGroup></StartTrigger></Event>`;
-    const catalog = `<?xml version="1.0"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="0" date="2026-01-01T00:00:00" description="maneuvers" author="test"/>
-  <Catalog name="ManeuverCatalog">
-    <Maneuver name="used">${event('e1')}${event('e2')}</Maneuver>
-    <Maneuver name="unused">${event('e3')}${event('e4')}</Maneuver>
-  </Catalog>
-</OpenSCENARIO>
-`;
+    const catalog = overwritingManeuverCatalog({ used: ['e1', 'e2'], unused: ['e3', 'e4'] });
     const main = scenarioText('0', '', LANE_CHANGE)
       .replace(
         '<CatalogLocations/>',
@@ -357,8 +347,8 @@ describe('simulator profiles', () => {
     assert.deepEqual(await priority(catalog), []);
     const line = main.split('\n').findIndex((text) => text.includes('entryName="used"'));
     assert.deepEqual(await priority(main), [
-      [line, "in catalog entry 'used' (ManeuverCatalog.xosc:5): CARLA ScenarioRunner ignores Event priority"],
-      [line, "in catalog entry 'used' (ManeuverCatalog.xosc:5): CARLA ScenarioRunner ignores Event priority"],
+      [line, "in catalog entry 'used' (ManeuverCatalog.xosc:5:54): CARLA ScenarioRunner ignores Event priority"],
+      [line, "in catalog entry 'used' (ManeuverCatalog.xosc:5:460): CARLA ScenarioRunner ignores Event priority"],
     ]);
   });
 
@@ -413,7 +403,7 @@ describe('simulator profiles', () => {
     assert.deepEqual(await refusals(stopped), [
       [
         line,
-        'in catalog entry \'sync\' (ManeuverCatalog.xosc:5): esmini refuses a SynchronizeAction whose FinalSpeed is an AbsoluteSpeed of 0 or less with a steady state ("SynchronizeAction steady state with 0 or negative final speed is not supported"): a final speed of 0 with <TargetTimeSteadyState> (EnvironmentSimulator/Modules/ScenarioEngine/SourceFiles/ScenarioReader.cpp:3269-3282)',
+        'in catalog entry \'sync\' (ManeuverCatalog.xosc:5:429): esmini refuses a SynchronizeAction whose FinalSpeed is an AbsoluteSpeed of 0 or less with a steady state ("SynchronizeAction steady state with 0 or negative final speed is not supported"): a final speed of 0 with <TargetTimeSteadyState> (EnvironmentSimulator/Modules/ScenarioEngine/SourceFiles/ScenarioReader.cpp:3269-3282)',
       ],
     ]);
     assert.deepEqual(

@@ -446,3 +446,22 @@ export function addParameterControllers(root: string): void {
   fs.mkdirSync(path.join(root, 'inputs'));
   for (const name of ['acc.cfg', 'lead.cfg']) fs.writeFileSync(path.join(root, 'inputs', name), '');
 }
+
+/**
+ * A ManeuverCatalog file (1.0) with a Maneuver per name of `maneuvers`, its Events (the names given) all on the
+ * maneuver's one line, each with priority="overwrite" (which ScenarioRunner ignores); the first maneuver on line 5.
+ */
+export function overwritingManeuverCatalog(maneuvers: Record<string, string[]>): string {
+  const event = (name: string) =>
+    `<Event name="${name}" priority="overwrite"><Action name="a${name}"><PrivateAction><TeleportAction><Position><WorldPosition x="0" y="0"/></Position></TeleportAction></PrivateAction></Action><StartTrigger><ConditionGroup><Condition name="c${name}" delay="0" conditionEdge="none"><ByValueCondition><SimulationTimeCondition value="0" rule="greaterThan"/></ByValueCondition></Condition></ConditionGroup></StartTrigger></Event>`;
+  const lines = Object.entries(maneuvers).map(
+    ([name, events]) => `    <Maneuver name="${name}">${events.map(event).join('')}</Maneuver>\n`,
+  );
+  return `<?xml version="1.0"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="0" date="2026-01-01T00:00:00" description="maneuvers" author="test"/>
+  <Catalog name="ManeuverCatalog">
+${lines.join('')}  </Catalog>
+</OpenSCENARIO>
+`;
+}

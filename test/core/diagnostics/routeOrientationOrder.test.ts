@@ -112,7 +112,7 @@ describe("diagnostics: simulator (esmini), a RoutePosition's Orientation after i
     assert.match(main.split('\n')[onReference.range.start.line], /<CatalogReference catalogName="ManeuverCatalog" entryName="turned"\/>/);
     assert.match(
       onReference.message,
-      /^in catalog entry 'turned' \(ManeuverCatalog\.xosc:\d+\): esmini applies a RoutePosition's Orientation only/,
+      /^in catalog entry 'turned' \(ManeuverCatalog\.xosc:\d+:\d+\): esmini applies a RoutePosition's Orientation only/,
     );
     assert.equal(onReference.data, undefined);
   });

@@ -56,15 +56,19 @@ export function simulatorWording(finding: { severity: FactSeverity; facts: Profi
 }
 
 /**
- * A simulator's finding in a catalog entry, placed on the CatalogReference that uses the entry (`file`, `line`: where
- * the finding stands in the catalog): a simulator reads an entry only where a scenario references it.
+ * A simulator's finding in a catalog entry, placed on the CatalogReference that uses the entry (`file`, `line`, `column`:
+ * where the finding stands in the catalog, one-based, so that two findings of one line stay two): a simulator reads an
+ * entry only where a scenario references it.
  */
 export function inCatalogEntryWording(
   wording: ProblemWording<'simulator'>,
-  entry: { name: string; file: string; line: number },
+  entry: { name: string; file: string; line: number; column: number },
 ): ProblemWording<'simulator'> {
-  return { ...wording, message: `in catalog entry '${entry.name}' (${entry.file}:${entry.line}): ${wording.message}` };
+  return { ...wording, message: `in catalog entry '${entry.name}' (${entry.file}:${entry.line}:${entry.column}): ${wording.message}` };
 }
+
+/** The note of a finding placed on a CatalogReference, at the place in the catalog the finding stands. */
+export const IN_CATALOG_ENTRY_NOTE = 'here in the catalog entry';
 
 /** What a simulator does beyond one element or attribute: the `fact`, then `detail`, the case at hand, then the fact's source. */
 function factWording(simulator: string, fact: SimulatorFact, detail: string): ProblemWording<'simulator'> {

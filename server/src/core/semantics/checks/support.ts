@@ -1,4 +1,4 @@
-import { inCatalogEntryWording } from '../../diagnostics/simulator';
+import { IN_CATALOG_ENTRY_NOTE, inCatalogEntryWording } from '../../diagnostics/simulator';
 import type { RelatedProblemLocation } from '../../problems';
 import { baseName } from '../../sources';
 import { XmlAttribute, XmlElement } from '../../xml';
@@ -46,14 +46,21 @@ export function onCatalogReferences(
       if (finding.code !== 'simulator') return [];
       const exportMaps = finding.data !== undefined && 'exportMaps' in finding.data && finding.data.exportMaps === true;
       const wording = { severity: finding.severity, code: finding.code, message: finding.message, hint: finding.hint };
+      const place = lines.positionAt(finding.start);
       return [
         {
           ...at(reference.element, reference.entryNameAttribute),
           ...inCatalogEntryWording(wording, {
             name: entry.name,
             file: baseName(entry.file.ref),
-            line: lines.positionAt(finding.start).line + 1,
+            line: place.line + 1,
+            column: place.character + 1,
           }),
+          // Its own place in the catalog, which the command line prints on a line of its own and the editor links to.
+          related: [
+            { source: entry.file.ref, range: lines.range(finding.start, finding.end), message: IN_CATALOG_ENTRY_NOTE },
+            ...(finding.related ?? []),
+          ],
           ...(exportMaps ? { data: { exportMaps: true } } : {}),
         },
       ];
