@@ -71,8 +71,25 @@ function roadFilesBelow(folder: string, depth = ROAD_PATH_DEPTH, found: string[]
   return found;
 }
 
-/** The road networks to offer: those in the workspace, then those in the `modular2simple.esmini.roadPath` folders. */
-async function roadCandidates(folder: string): Promise<{ file: string; where: string }[]> {
+/** A road network offered; `copied`: a road of the built-in Scenario Library, copied beside the new main when picked. */
+interface RoadCandidate {
+  file: string;
+  where: string;
+  copied?: boolean;
+}
+
+/** The built-in Scenario Library's roads (its modules' examples drive on them): none when the server lists no built-in library. */
+async function libraryRoads(server: ServerCommandClient): Promise<string[]> {
+  const listing = await server.libraryModules();
+  const builtIn = listing.libraries.find((library) => library.label === 'built-in');
+  return builtIn ? roadFilesBelow(path.join(builtIn.folder, 'roads'), 1).sort() : [];
+}
+
+/**
+ * The road networks to offer: those in the workspace, then those in the `modular2simple.esmini.roadPath` folders,
+ * then the Scenario Library's (so that a new user in an empty folder has a road to start on).
+ */
+async function roadCandidates(folder: string, fromLibrary: string[]): Promise<RoadCandidate[]> {
   const inWorkspace = (await vscode.workspace.findFiles('**/*.xodr', '**/node_modules/**', MAX_LISTED))
     .filter((uri) => uri.scheme === 'file')
     .map((uri) => uri.fsPath);
@@ -80,24 +97,25 @@ async function roadCandidates(folder: string): Promise<{ file: string; where: st
   const base = (vscode.workspace.getWorkspaceFolder(scope) ?? vscode.workspace.workspaceFolders?.[0])?.uri.fsPath ?? folder;
   const roadPath = vscode.workspace.getConfiguration('modular2simple.esmini', scope).get<string[]>('roadPath') ?? [];
   const seen = new Set<string>();
-  const candidates: { file: string; where: string }[] = [];
-  const add = (file: string, where: string) => {
+  const candidates: RoadCandidate[] = [];
+  const add = (file: string, where: string, copied?: boolean) => {
     if (seen.has(file)) return;
     seen.add(file);
-    candidates.push({ file, where });
+    candidates.push({ file, where, ...(copied ? { copied } : {}) });
   };
   for (const file of inWorkspace.sort()) add(file, path.relative(folder, file).split(path.sep).join('/'));
   for (const entry of roadPath) {
     const directory = path.resolve(base, entry);
     for (const file of roadFilesBelow(directory).sort()) add(file, `roadPath ${entry}`);
   }
+  for (const file of fromLibrary) add(file, 'Scenario Library road, copied beside the new main', true);
   return candidates;
 }
 
-async function askRoadNetwork(folder: string): Promise<string | undefined> {
-  const candidates = await roadCandidates(folder);
-  const items: (vscode.QuickPickItem & { file?: string })[] = [
-    ...candidates.map((candidate) => ({ label: path.basename(candidate.file), description: candidate.where, file: candidate.file })),
+async function askRoadNetwork(folder: string, fromLibrary: string[]): Promise<RoadCandidate | undefined> {
+  const candidates = await roadCandidates(folder, fromLibrary);
+  const items: (vscode.QuickPickItem & { candidate?: RoadCandidate })[] = [
+    ...candidates.map((candidate) => ({ label: path.basename(candidate.file), description: candidate.where, candidate })),
     { label: BROWSE, description: 'an OpenDRIVE file anywhere' },
   ];
   const picked = await vscode.window.showQuickPick(items, {
@@ -109,7 +127,7 @@ async function askRoadNetwork(folder: string): Promise<string | undefined> {
     matchOnDescription: true,
   });
   if (!picked) return undefined;
-  if (picked.file) return picked.file;
+  if (picked.candidate) return picked.candidate;
   const browsed = await vscode.window.showOpenDialog({
     canSelectFiles: true,
     canSelectMany: false,
@@ -117,7 +135,21 @@ async function askRoadNetwork(folder: string): Promise<string | undefined> {
     title: `${TITLE}: the road network`,
     defaultUri: vscode.Uri.file(folder),
   });
-  return browsed?.[0]?.fsPath;
+  return browsed?.[0] ? { file: browsed[0].fsPath, where: '' } : undefined;
+}
+
+/**
+ * A library road copied into the folder, as a template's road is: the file beside the main, not written when a file of
+ * that name with the same content is there already (undefined returned for `written`); a different file of that name is
+ * an error naming it.
+ */
+async function copiedRoad(road: string, folder: string): Promise<{ file: string; written?: string }> {
+  const target = path.join(folder, path.basename(road));
+  const data = await fs.promises.readFile(road, 'utf8');
+  if (!fs.existsSync(target)) return { file: target, written: (await writeNewFiles([{ path: target, text: data }]))[0] };
+  if ((await fs.promises.readFile(target, 'utf8')) !== data)
+    throw new Error(`${target} exists and is not the Scenario Library's road: move it away, or create the scenario in another folder`);
+  return { file: target };
 }
 
 /** What the file name question says and proposes. */
@@ -168,8 +200,8 @@ export async function newScenarioCommand(
   try {
     const folder = await targetFolder(clicked);
     if (!folder) return undefined;
-    const roadNetwork = options.roadNetwork ?? (await askRoadNetwork(folder));
-    if (!roadNetwork) return undefined;
+    const road = options.roadNetwork ? { file: options.roadNetwork, where: '' } : await askRoadNetwork(folder, await libraryRoads(server));
+    if (!road) return undefined;
     const target = await newFilePath(folder, options.fileName, {
       title: TITLE,
       prompt: `The new main scenario, in ${folder}`,
@@ -177,11 +209,19 @@ export async function newScenarioCommand(
       selection: [0, 'main'.length],
     });
     if (!target) return undefined;
-    const result = await server.newScenario(vscode.Uri.file(target), vscode.Uri.file(path.resolve(folder, roadNetwork)));
-    await writeNewFiles([{ path: target, text: result.text }]);
-    reporter.log(
-      `${TITLE}: wrote ${target} (ego on road ${result.ego.roadId}, lane ${result.ego.laneId}, s ${result.ego.s} of ${result.roadFile})`,
-    );
+    const copied = road.copied ? await copiedRoad(road.file, folder) : undefined;
+    try {
+      const roadNetwork = copied?.file ?? path.resolve(folder, road.file);
+      const result = await server.newScenario(vscode.Uri.file(target), vscode.Uri.file(roadNetwork));
+      await writeNewFiles([{ path: target, text: result.text }]);
+      reporter.log(
+        `${TITLE}: wrote ${target} (ego on road ${result.ego.roadId}, lane ${result.ego.laneId}, s ${result.ego.s} of ${result.roadFile}${copied?.written ? `, copied from ${road.file}` : ''})`,
+      );
+    } catch (error) {
+      // The road copied for this main goes with it.
+      if (copied?.written) await fs.promises.rm(copied.written, { force: true });
+      throw error;
+    }
     const uri = vscode.Uri.file(target);
     await vscode.window.showTextDocument(uri, { preview: false });
     return uri;

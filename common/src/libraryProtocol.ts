@@ -66,6 +66,11 @@ export interface LibraryInsertParams {
   position?: { line: number; character: number };
   /** For each role of the module (an entity it names), the main's entity that plays it; asked about when left out. */
   players?: Record<string, string>;
+  /**
+   * The roles whose player (`players[role]`, a name the main does not declare) is a new entity, added to the main as
+   * the module's example main declares and places it (the role's `newEntity` offer), in the same edit.
+   */
+  create?: string[];
 }
 
 export interface LibraryRoleSummary {
@@ -75,6 +80,10 @@ export interface LibraryRoleSummary {
   keys: string[];
   /** The main's entity of the same name, when there is one. */
   guess?: string;
+  /** The name of a new entity for the role, free in the main, when the module's example main declares and places one to copy. */
+  newEntity?: string;
+  /** No entity of the main is free to play it (each plays another role or acts in a group): the new entity is the answer. */
+  newEntityOnly?: boolean;
 }
 
 export interface LibraryInsertResult {
@@ -87,6 +96,8 @@ export interface LibraryInsertResult {
   groupName?: string;
   /** Where the group starts once inserted, zero-based. */
   line?: number;
+  /** The new entities the edit adds, as the user reads them: `adversary (Vehicle, 35 m ahead of Ego, lane -2, 7 m/s)`. */
+  added?: string[];
 }
 
 export const LibraryInsertRequest = new RequestType<LibraryInsertParams, LibraryInsertResult, void>('modular2simple/libraryInsert');

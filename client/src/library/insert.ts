@@ -129,6 +129,8 @@ export interface PreparedInsert {
   line: number;
   /** Who plays each role: `role = entity, ...`. */
   cast: string;
+  /** The new entities the edit adds, as the user reads them. */
+  added: string[];
 }
 
 /**
@@ -165,32 +167,53 @@ export async function prepareInsert(
     if (!act) return undefined;
   }
   const players: Record<string, string> = { ...options.players };
+  const create: string[] = [];
   for (const role of questions.roles) {
     if (players[role.name]) continue;
     if (role.guess) {
       players[role.name] = role.guess;
       continue;
     }
-    if (questions.entities.length === 0) {
+    // No entity of the main is free to play it: the new one, as the example main has it, is the only answer.
+    if (role.newEntity && role.newEntityOnly) {
+      players[role.name] = role.newEntity;
+      create.push(role.name);
+      continue;
+    }
+    if (questions.entities.length === 0 && !role.newEntity) {
       void vscode.window.showErrorMessage(`${title}: ${path.posix.basename(main.path)} declares no entity to play '${role.name}'.`);
       return undefined;
     }
     const taken = new Set(Object.values(players));
-    const items = [...questions.entities]
-      .sort((a, b) => Number(taken.has(a)) - Number(taken.has(b)))
-      .map((entity) => ({ label: entity, description: taken.has(entity) ? 'plays another role already' : undefined }));
+    const items: (vscode.QuickPickItem & { entity: string; create?: boolean })[] = [
+      ...(role.newEntity
+        ? [
+            {
+              label: `$(add) New entity '${role.newEntity}'`,
+              description: `as the ${module.name} example main declares and places it`,
+              entity: role.newEntity,
+              create: true,
+            },
+          ]
+        : []),
+      ...[...questions.entities]
+        .sort((a, b) => Number(taken.has(a)) - Number(taken.has(b)))
+        .map((entity) => ({ label: entity, description: taken.has(entity) ? 'plays another role already' : undefined, entity })),
+    ];
     const picked = await vscode.window.showQuickPick(items, {
       title: `${title}: ${module.title}`,
       placeHolder: `Which entity plays '${role.name}' (${role.about})?`,
     });
     if (!picked) return undefined;
-    players[role.name] = picked.label;
+    players[role.name] = picked.entity;
+    if (picked.create) create.push(role.name);
   }
   const answer = await server.libraryInsert({
     uri: main.toString(),
     module: module.name,
     act,
     players,
+    ...(create.length > 0 ? { create } : {}),
     ...(position ? { position } : {}),
   });
   if (!answer.edit || !answer.groupName) throw new Error('the language server gave no edit');
@@ -200,13 +223,15 @@ export async function prepareInsert(
     edit: await server.workspaceEdit(answer.edit),
     groupName: answer.groupName,
     line: answer.line ?? 0,
-    cast: questions.roles.map((role) => `${role.name} = ${players[role.name]}`).join(', '),
+    cast: questions.roles.map((role) => `${role.name} = ${players[role.name]}${create.includes(role.name) ? ' (new)' : ''}`).join(', '),
+    added: answer.added ?? [],
   };
 }
 
 /** Logs and shows in the status bar what an insert wrote. */
 export function reportInserted(reporter: CommandReporter, title: string, module: LibraryModuleSummary, inserted: PreparedInsert): void {
-  reporter.log(`${title}: library:${module.name} as ${inserted.groupName} in ${inserted.main.toString()} (${inserted.cast})`);
+  const added = inserted.added.length > 0 ? `; added ${inserted.added.join(', ')}` : '';
+  reporter.log(`${title}: library:${module.name} as ${inserted.groupName} in ${inserted.main.toString()} (${inserted.cast})${added}`);
   void vscode.window.setStatusBarMessage(`Inserted library:${module.name} as ${inserted.groupName} (${inserted.cast})`, 8000);
 }
 
@@ -226,8 +251,12 @@ export async function insertIntoMain(
     }
     const inserted = await prepareInsert(server, tracker, module, options);
     if (!inserted) return undefined;
+    // From the view (no cursor position), a main saved before the insert is saved after it: composing needs no Save
+    // step, and the file on disk is the composition (Ctrl+Z still undoes it).
+    const wasSaved = !options.position && !inserted.document.isDirty && !inserted.document.isUntitled;
     const applied = await vscode.workspace.applyEdit(inserted.edit);
     if (!applied) throw new Error(`the editor refused the edit of ${inserted.main.toString()}`);
+    if (wasSaved && !(await inserted.document.save())) throw new Error(`the editor did not save ${inserted.main.toString()}`);
     const editor = await vscode.window.showTextDocument(inserted.document, { viewColumn: vscode.ViewColumn.One, preserveFocus: false });
     editor.revealRange(new vscode.Range(inserted.line, 0, inserted.line, 0), vscode.TextEditorRevealType.InCenter);
     editor.selection = new vscode.Selection(inserted.line, 0, inserted.line, 0);

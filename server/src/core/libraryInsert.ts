@@ -33,6 +33,8 @@ export interface ActChoice {
 export interface MainShape {
   acts: ActChoice[];
   entities: string[];
+  /** The entities an Actors of one of the main's ManeuverGroups names: each has a behaviour already. */
+  actors: string[];
   /** Given an offset: whether a group can go there (insertionPointAt). */
   insertsAt?: boolean;
 }
@@ -93,6 +95,15 @@ export function mainShape(text: string, at?: number): MainShape {
       };
     }),
     entities: model.entities.map((entity) => entity.name).filter((name) => name.length > 0),
+    actors: [
+      ...new Set(
+        model.groups.flatMap((group) =>
+          (group.element.children.find((child) => child.name === 'Actors')?.children ?? [])
+            .filter((child) => child.name === 'EntityRef')
+            .map((entityRef) => attributeValue(entityRef, 'entityRef') ?? ''),
+        ),
+      ),
+    ].filter((name) => name.length > 0),
   };
 }
 
@@ -114,20 +125,31 @@ function namedPlayer(role: ModuleRole, entities: readonly string[]): string | un
 /**
  * The entity of the main that most likely plays a role: the same name, else the same name ignoring case; else, given
  * the kinds of the module's and of the main's entities, the one entity of the role's kind (a Pedestrian for a
- * pedestrian) that no role of the module names; else none (the user is asked).
+ * pedestrian) that no role of the module names and that is no actor of a group of the main (`busy`: a car that cuts
+ * in already is no likely lead vehicle); else none (the user is asked).
  */
 export function guessPlayer(
   role: ModuleRole,
   entities: readonly string[],
-  kinds?: { roles: readonly ModuleRole[]; module: ReadonlyMap<string, string>; main: ReadonlyMap<string, string> },
+  kinds?: {
+    roles: readonly ModuleRole[];
+    module: ReadonlyMap<string, string>;
+    main: ReadonlyMap<string, string>;
+    busy?: readonly string[];
+  },
 ): string | undefined {
   const named = namedPlayer(role, entities);
   if (named || !kinds) return named;
   const kind = kinds.module.get(role.name);
   if (!kind) return undefined;
-  const playingByName = new Set(kinds.roles.map((other) => namedPlayer(other, entities)));
-  const candidates = entities.filter((entity) => kinds.main.get(entity) === kind && !playingByName.has(entity));
+  const candidates = freeEntities(entities, kinds.roles, kinds.busy ?? []).filter((entity) => kinds.main.get(entity) === kind);
   return candidates.length === 1 ? candidates[0] : undefined;
+}
+
+/** The main's entities that no role of the module names and that no group of the main has as an actor. */
+export function freeEntities(entities: readonly string[], roles: readonly ModuleRole[], busy: readonly string[]): string[] {
+  const playingByName = new Set(roles.map((other) => namedPlayer(other, entities)));
+  return entities.filter((entity) => !playingByName.has(entity) && !busy.includes(entity));
 }
 
 /** `base`, or `base2`, `base3`, ... : the first not among `taken`. */
@@ -175,7 +197,7 @@ function indentationAt(text: string, offset: number): string {
 export function insertModuleGroup(
   text: string,
   module: LibraryModule,
-  choice: { act?: string; at?: number; players: Readonly<Record<string, string>> },
+  choice: { act?: string; at?: number; players: Readonly<Record<string, string>>; values?: Readonly<Record<string, string>> },
 ): InsertedGroup {
   const model = parseScenario(text);
   if (!model.document.root || model.document.problems.some((problem) => problem.severity === 'error'))
@@ -211,7 +233,7 @@ export function insertModuleGroup(
       const value =
         isEntityKey(parameter.key) && roleOfDefault.has(parameter.defaultValue ?? '')
           ? player(parameter.defaultValue ?? '')
-          : (parameter.defaultValue ?? '');
+          : (choice.values?.[parameter.key] ?? parameter.defaultValue ?? '');
       return `${groupIndent}${unit.repeat(3)}<ParameterReference key="${attributeText(parameter.key)}" value="${attributeText(value)}"/>`;
     });
   const lines = [

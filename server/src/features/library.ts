@@ -11,7 +11,8 @@ import {
 } from '../../../common/src/libraryProtocol';
 import { decodeScenario } from '../core/encoding';
 import { findModule, LibraryModule, listLibraries } from '../core/library';
-import { entityKinds, guessPlayer, insertModuleGroup, isEntityKey, mainShape, moduleRoles } from '../core/libraryInsert';
+import { entityOffers, newEntityChanges } from '../core/libraryEntities';
+import { entityKinds, freeEntities, guessPlayer, insertModuleGroup, isEntityKey, mainShape, moduleRoles } from '../core/libraryInsert';
 import { LineIndex } from '../core/text';
 import { listTemplates, templateOutputs } from '../libraries';
 import { filePathOf } from '../uris';
@@ -79,30 +80,62 @@ export async function libraryInsert(workspace: Workspace, params: LibraryInsertP
       `${module.name} cannot go into ${params.uri} at line ${position.line + 1}: that is not on an Act or on a ManeuverGroup of an Act; put it on one (not inside its Actors, a Maneuver or a trigger)`,
     );
   const moduleRolesOf = moduleRoles(module);
-  const moduleText = await workspace.store.host
-    .readFile(module.file)
-    .then((bytes) => (bytes ? decodeScenario(bytes) : ''))
-    // Read when listed a moment ago; unread now, the kinds are not known and the user is asked.
-    .catch(() => '');
-  const kinds = { roles: moduleRolesOf, module: entityKinds(moduleText), main: entityKinds(text) };
+  const readText = (file: string) =>
+    workspace.store.host
+      .readFile(file)
+      .then((bytes) => (bytes ? decodeScenario(bytes) : ''))
+      // Read when listed a moment ago; unread now, the kinds are not known and the user is asked.
+      .catch(() => '');
+  const moduleText = await readText(module.file);
+  // The example main supplies new entities; unread, none is offered.
+  const exampleText = module.example ? await readText(module.example) : '';
+  const kinds = { roles: moduleRolesOf, module: entityKinds(moduleText), main: entityKinds(text), busy: shape.actors };
+  const offers = new Map(entityOffers(module, exampleText, shape.entities).map((offer) => [offer.role, offer.name]));
+  const free = freeEntities(shape.entities, moduleRolesOf, shape.actors);
   const roles = moduleRolesOf.map((role) => {
     const guess = guessPlayer(role, shape.entities, kinds);
-    return { ...role, ...(guess ? { guess } : {}) };
+    // Offered where the main has no entity of the role's name or kind to guess: the question is asked then.
+    const newEntity = guess ? undefined : offers.get(role.name);
+    return {
+      ...role,
+      ...(guess ? { guess } : {}),
+      ...(newEntity ? { newEntity, ...(free.length === 0 ? { newEntityOnly: true } : {}) } : {}),
+    };
   });
   const result: LibraryInsertResult = { acts: shape.acts.map((act) => act.path), entities: shape.entities, roles };
   const players = params.players ?? {};
   if (roles.some((role) => typeof players[role.name] !== 'string')) return result;
+  const create = params.create ?? [];
+  if (!Array.isArray(create) || create.some((role) => typeof role !== 'string' || !moduleRolesOf.some((known) => known.name === role)))
+    throw invalidParams(`create: the names of roles of ${module.name} (${moduleRolesOf.map((role) => role.name).join(', ')})`);
   let inserted;
+  let entities;
   try {
+    entities = newEntityChanges(text, module, exampleText, Object.fromEntries(create.map((role) => [role, players[role]])), players);
     const at = position ? lines.offsetAt(position) : undefined;
-    inserted = insertModuleGroup(text, module, { act: params.act, at, players });
+    inserted = insertModuleGroup(text, module, { act: params.act, at, players, values: entities.values });
   } catch (error) {
     throw invalidParams(`${module.name} cannot go into ${params.uri}: ${(error as Error).message}`);
   }
   const at = lines.positionAt(inserted.offset);
-  const edit: WorkspaceEdit = { changes: { [params.uri]: [{ range: { start: at, end: at }, newText: inserted.text }] } };
-  const line = at.line + (inserted.text.startsWith('\n') ? 1 : 0);
-  return { ...result, edit, groupName: inserted.groupName, line };
+  const changes = [
+    ...entities.changes.map((change) => ({
+      range: { start: lines.positionAt(change.start), end: lines.positionAt(change.end) },
+      newText: change.text,
+    })),
+    { range: { start: at, end: at }, newText: inserted.text },
+  ];
+  const edit: WorkspaceEdit = { changes: { [params.uri]: changes } };
+  // The group's first line once the entities' lines are in, which come before it.
+  const added = entities.changes
+    .filter((change) => change.start <= inserted.offset)
+    .reduce((sum, change) => sum + lineCount(change.text) - lineCount(text.slice(change.start, change.end)), 0);
+  const line = at.line + (inserted.text.startsWith('\n') ? 1 : 0) + added;
+  return { ...result, edit, groupName: inserted.groupName, line, ...(entities.added.length > 0 ? { added: entities.added } : {}) };
+}
+
+function lineCount(text: string): number {
+  return text.split('\n').length - 1;
 }
 
 /** The built-in library's templates, for *New Scenario from Template…*. */

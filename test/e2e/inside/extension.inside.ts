@@ -85,6 +85,7 @@ const ORDER: InsideTestKey[] = [
   'debugImportLine',
   'debugBirdsEyeTurns',
   'libraryCompose',
+  'libraryComposeFromNew',
   'libraryInsertHere',
   'libraryDrop',
   'libraryDropAsks',

@@ -1,0 +1,307 @@
+/**
+ * *Insert into main* with a new entity: a module's role that no entity of the main plays is added to the main as the
+ * module's example main declares it (its ScenarioObject, catalog reference as written) and places it in its Init (its
+ * TeleportAction and speed), moved so that it stands to the main's ego as it stands to the example's ego
+ * (docs/library.md). The edits go with the group's in one workspace edit.
+ */
+import type { LibraryModule } from './library';
+import { moduleRoles, type ModuleRole } from './libraryInsert';
+import { parseScenario } from './model';
+import { attribute, attributeValue, escapeAttributeValue, XmlAttribute, XmlElement } from './xml';
+
+/** A change of the main's text: `start`..`end` replaced by `text` (an insertion where they are equal). */
+export interface TextChange {
+  start: number;
+  end: number;
+  text: string;
+}
+
+/** A role the example main can supply: its entity's name in the example and the fresh name offered in the main. */
+export interface EntityOffer {
+  role: string;
+  name: string;
+}
+
+function child(element: XmlElement | undefined, name: string): XmlElement | undefined {
+  return element?.children.find((candidate) => candidate.name === name);
+}
+
+/** The Init's Private of an entity. */
+function privateOf(storyboard: XmlElement | undefined, entity: string): XmlElement | undefined {
+  const actions = child(child(storyboard, 'Init'), 'Actions');
+  return actions?.children.find((candidate) => candidate.name === 'Private' && attributeValue(candidate, 'entityRef') === entity);
+}
+
+/** `base`, or `base2`, `base3`, ...: the first that no name of `taken` equals, case aside (`ego` beside `Ego` would read as one). */
+function freshName(base: string, taken: readonly string[]): string {
+  const lower = new Set(taken.map((name) => name.toLowerCase()));
+  let name = base;
+  for (let index = 2; lower.has(name.toLowerCase()); index++) name = `${base}${index}`;
+  return name;
+}
+
+/** The roles of the module whose entity the example main declares and places in its Init, each with a name free in the main. */
+export function entityOffers(module: LibraryModule, exampleText: string, mainEntities: readonly string[]): EntityOffer[] {
+  const example = parseScenario(exampleText);
+  const storyboard = child(example.document.root, 'Storyboard');
+  const taken = [...mainEntities];
+  const offers: EntityOffer[] = [];
+  for (const role of moduleRoles(module)) {
+    if (!example.entities.some((entity) => entity.name === role.name) || !privateOf(storyboard, role.name)) continue;
+    const name = freshName(role.name, taken);
+    taken.push(name);
+    offers.push({ role: role.name, name });
+  }
+  return offers;
+}
+
+function valueOf(element: XmlElement | undefined, name: string): string | undefined {
+  return element && attributeValue(element, name);
+}
+
+/** A number the main gives, directly or through a parameter its ParameterDeclarations declare. */
+function numberIn(root: XmlElement | undefined, value: string | undefined): number | undefined {
+  if (value === undefined) return undefined;
+  let literal = value.trim();
+  if (literal.startsWith('$')) {
+    const name = literal.slice(1);
+    const declaration = child(root, 'ParameterDeclarations')?.children.find(
+      (candidate) => candidate.name === 'ParameterDeclaration' && attributeValue(candidate, 'name') === name,
+    );
+    literal = valueOf(declaration, 'value')?.trim() ?? '';
+  }
+  if (literal === '' || !/^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$/.test(literal)) return undefined;
+  return Number(literal);
+}
+
+interface Placement {
+  lanePosition: XmlElement | undefined;
+  speedTarget: XmlElement | undefined;
+}
+
+/** The LanePosition of a Private's TeleportAction and the AbsoluteTargetSpeed of its SpeedAction (each the first). */
+function placementOf(element: XmlElement | undefined): Placement {
+  let lanePosition: XmlElement | undefined;
+  let speedTarget: XmlElement | undefined;
+  for (const action of element?.children.filter((candidate) => candidate.name === 'PrivateAction') ?? []) {
+    lanePosition ??= child(child(child(action, 'TeleportAction'), 'Position'), 'LanePosition');
+    speedTarget ??= child(child(child(child(action, 'LongitudinalAction'), 'SpeedAction'), 'SpeedActionTarget'), 'AbsoluteTargetSpeed');
+  }
+  return { lanePosition, speedTarget };
+}
+
+/** Lane ids skip 0: as a count from the centre (…, -2, -1 | 0, 1, …), a lane further right is one less. */
+const laneIndex = (laneId: number) => (laneId > 0 ? laneId - 1 : laneId);
+const laneOfIndex = (index: number) => (index >= 0 ? index + 1 : index);
+const rounded = (value: number) => String(Math.round(value * 1000) / 1000);
+
+function lineStart(text: string, offset: number): number {
+  return text.lastIndexOf('\n', offset - 1) + 1;
+}
+
+function indentUnit(text: string): string {
+  return /^( +|\t)/m.exec(text.slice(0, 4000))?.[1] ?? '  ';
+}
+
+/**
+ * The element's text from the example with `replacements` (of attribute values) made, re-indented from the example's
+ * indentation and unit to `indent` and the main's unit.
+ */
+function transplant(
+  exampleText: string,
+  element: XmlElement,
+  replacements: { attribute: XmlAttribute; value: string }[],
+  indent: string,
+  unit: string,
+): string {
+  let text = exampleText.slice(element.start, element.end);
+  for (const { attribute: target, value } of [...replacements].sort((a, b) => b.attribute.valueStart - a.attribute.valueStart))
+    text =
+      text.slice(0, target.valueStart - element.start) +
+      escapeAttributeValue(value, target.quote) +
+      text.slice(target.valueEnd - element.start);
+  const exampleUnit = indentUnit(exampleText);
+  const base = exampleText.slice(lineStart(exampleText, element.start), element.start);
+  return text
+    .split('\n')
+    .map((line, index) => {
+      if (index === 0) return indent + line;
+      const rest = line.startsWith(base) ? line.slice(base.length) : line.trimStart();
+      const leading = /^[ \t]*/.exec(rest)?.[0] ?? '';
+      const depth = Math.round(leading.replace(/\t/g, exampleUnit).length / exampleUnit.length);
+      return indent + unit.repeat(depth) + rest.slice(leading.length);
+    })
+    .join('\n');
+}
+
+/** Text that appends `block` (already indented) as the last child of `parent`, which may be self-closing. */
+function appendChild(text: string, parent: XmlElement, block: string): TextChange {
+  const parentIndent = /^[ \t]*/.exec(text.slice(lineStart(text, parent.start)))?.[0] ?? '';
+  if (parent.selfClosing) {
+    const open = text.slice(parent.start, parent.end).replace(/\s*\/>$/, '>');
+    return { start: parent.start, end: parent.end, text: `${open}\n${block}\n${parentIndent}</${parent.name}>` };
+  }
+  const last = parent.children[parent.children.length - 1];
+  if (last) return { start: last.end, end: last.end, text: `\n${block}` };
+  const closing = text.lastIndexOf('</', parent.end);
+  const before = lineStart(text, closing);
+  if (text.slice(before, closing).trim() === '') return { start: before, end: before, text: `${block}\n` };
+  return { start: closing, end: closing, text: `\n${block}\n${parentIndent}` };
+}
+
+export interface NewEntities {
+  changes: TextChange[];
+  /** Key values of the group other than the module's defaults (a speed key moved with the actor's Init speed). */
+  values: Record<string, string>;
+  /** What was added, for the user: `adversary (Vehicle, 35 m ahead of Ego, lane -2, 7 m/s)`. */
+  added: string[];
+}
+
+/**
+ * The changes that add, for each role in `create` (role → the new entity's name, free in the main), the example's
+ * ScenarioObject and Init Private. Where the example places the role's entity and a reference role (the first other
+ * role the main already has a player for, `ego`) by LanePositions on one road, and the main places that player by a
+ * LanePosition on a lane of the same side, the new entity keeps the example's lane difference and distance along the
+ * road to it, and its speed keeps the example's difference to the reference's (a standing entity stays standing);
+ * a speed key whose default is that speed moves with it. Else the example's placement is written as it is.
+ * Throws with what to do where the main cannot take the entity.
+ */
+export function newEntityChanges(
+  mainText: string,
+  module: LibraryModule,
+  exampleText: string,
+  create: Readonly<Record<string, string>>,
+  players: Readonly<Record<string, string>>,
+): NewEntities {
+  const result: NewEntities = { changes: [], values: {}, added: [] };
+  const roles = moduleRoles(module).filter((role) => create[role.name] !== undefined);
+  if (roles.length === 0) return result;
+  const main = parseScenario(mainText);
+  const root = main.document.root;
+  if (!root || main.document.problems.some((problem) => problem.severity === 'error'))
+    throw new Error('the main is not well-formed XML: fix it first (the Problems panel says where)');
+  const entities = child(root, 'Entities');
+  if (!entities) throw new Error('the main has no Entities to add a new entity to: add <Entities/> after its RoadNetwork');
+  const storyboard = child(root, 'Storyboard');
+  if (!storyboard) throw new Error('the main has no Storyboard (with an Init) to place a new entity in');
+  const actions = child(child(storyboard, 'Init'), 'Actions');
+  if (!actions)
+    throw new Error(
+      "the main's Storyboard has no Init with Actions to place a new entity in: add <Init><Actions/></Init> as its first element",
+    );
+  const mainNames = main.entities.map((entity) => entity.name.toLowerCase());
+  const example = parseScenario(exampleText);
+  const exampleStoryboard = child(example.document.root, 'Storyboard');
+  const reference = moduleRoles(module).find(
+    (role: ModuleRole) => create[role.name] === undefined && players[role.name] !== undefined && privateOf(exampleStoryboard, role.name),
+  );
+  const unit = indentUnit(mainText);
+  const entitiesIndent = /^[ \t]*/.exec(mainText.slice(lineStart(mainText, entities.start)))?.[0] ?? '';
+  const actionsIndent = /^[ \t]*/.exec(mainText.slice(lineStart(mainText, actions.start)))?.[0] ?? '';
+  const objects: string[] = [];
+  const privates: string[] = [];
+  for (const role of roles) {
+    const name = create[role.name];
+    if (!/\S/.test(name)) throw new Error(`the new entity for '${role.name}' has no name`);
+    if (mainNames.includes(name.toLowerCase()))
+      throw new Error(
+        `the main already declares an entity '${name}': name the new one otherwise (${freshName(
+          name,
+          main.entities.map((entity) => entity.name),
+        )})`,
+      );
+    const object = example.entities.find((entity) => entity.name === role.name);
+    const placed = privateOf(exampleStoryboard, role.name);
+    if (!object || !placed)
+      throw new Error(
+        `the example main of ${module.name} declares and places no entity '${role.name}' to copy: pick an entity of the main to play it`,
+      );
+    objects.push(
+      transplant(
+        exampleText,
+        object.element,
+        object.nameAttribute ? [{ attribute: object.nameAttribute, value: name }] : [],
+        entitiesIndent + unit,
+        unit,
+      ),
+    );
+    const replacements: { attribute: XmlAttribute; value: string }[] = [];
+    const entityRef = attribute(placed, 'entityRef');
+    if (entityRef) replacements.push({ attribute: entityRef, value: name });
+    const own = placementOf(placed);
+    let where = 'placed as in the example';
+    if (reference) {
+      const exampleReference = placementOf(privateOf(exampleStoryboard, reference.name));
+      const player = players[reference.name];
+      const mainReference = placementOf(privateOf(storyboard, player));
+      const exampleRoot = example.document.root;
+      const [ownLane, ownS, refLane, refS] = [
+        numberIn(exampleRoot, valueOf(own.lanePosition, 'laneId')),
+        numberIn(exampleRoot, valueOf(own.lanePosition, 's')),
+        numberIn(exampleRoot, valueOf(exampleReference.lanePosition, 'laneId')),
+        numberIn(exampleRoot, valueOf(exampleReference.lanePosition, 's')),
+      ];
+      const sameRoad =
+        own.lanePosition &&
+        exampleReference.lanePosition &&
+        valueOf(own.lanePosition, 'roadId') === valueOf(exampleReference.lanePosition, 'roadId');
+      const mainPosition = mainReference.lanePosition;
+      const mainLane = numberIn(root, valueOf(mainPosition, 'laneId'));
+      const mainS = numberIn(root, valueOf(mainPosition, 's'));
+      const mainRoad = valueOf(mainPosition, 'roadId');
+      if (sameRoad && own.lanePosition && ownLane !== undefined && ownS !== undefined && refLane !== undefined && refS !== undefined) {
+        if (!privateOf(storyboard, player))
+          throw new Error(
+            `the main's Init does not place ${player}: '${name}' is placed relative to it as in the example of ${module.name}; place ${player} first, or pick an entity of the main to play '${role.name}'`,
+          );
+        if (!mainPosition || mainLane === undefined || mainS === undefined || mainRoad === undefined)
+          throw new Error(
+            `${player}'s Init places it by no LanePosition with a number for its laneId and s: '${name}' is placed relative to it as in the example of ${module.name}; place ${player} by a LanePosition, or pick an entity of the main to play '${role.name}'`,
+          );
+        if (Math.sign(mainLane) !== Math.sign(refLane))
+          throw new Error(
+            `${player} is on lane ${mainLane}, on the other side of the road from the example's ${reference.name} (lane ${refLane}): place '${name}' yourself, or pick an entity of the main to play '${role.name}'`,
+          );
+        const laneId = laneOfIndex(laneIndex(mainLane) + laneIndex(ownLane) - laneIndex(refLane));
+        const s = mainS + ownS - refS;
+        if (s < 0)
+          throw new Error(
+            `'${name}' would stand at s ${rounded(s)}, before the start of road ${mainRoad} (${rounded(refS - ownS)} m behind ${player} as in the example): move ${player} further along the road first`,
+          );
+        const roadAttribute = attribute(own.lanePosition, 'roadId');
+        const laneAttribute = attribute(own.lanePosition, 'laneId');
+        const sAttribute = attribute(own.lanePosition, 's');
+        if (roadAttribute) replacements.push({ attribute: roadAttribute, value: mainRoad });
+        if (laneAttribute) replacements.push({ attribute: laneAttribute, value: String(laneId) });
+        if (sAttribute) replacements.push({ attribute: sAttribute, value: rounded(s) });
+        const distance = ownS - refS;
+        where = `${rounded(Math.abs(distance))} m ${distance >= 0 ? 'ahead of' : 'behind'} ${player}, lane ${laneId}`;
+      }
+      const speedAttribute = own.speedTarget && attribute(own.speedTarget, 'value');
+      const ownSpeed = numberIn(exampleRoot, speedAttribute?.value);
+      const refSpeed = numberIn(exampleRoot, valueOf(exampleReference.speedTarget, 'value'));
+      const mainSpeed = numberIn(root, valueOf(mainReference.speedTarget, 'value'));
+      if (speedAttribute && ownSpeed !== undefined && ownSpeed > 0 && refSpeed !== undefined && mainSpeed !== undefined) {
+        const speed = rounded(Math.max(0, ownSpeed + mainSpeed - refSpeed));
+        replacements.push({ attribute: speedAttribute, value: speed });
+        where += `, ${speed} m/s`;
+        if (role.actor)
+          for (const parameter of module.parameters)
+            if (
+              /(^|\.)AbsoluteTargetSpeed\.value$/.test(parameter.key) &&
+              numberIn(undefined, parameter.defaultValue) === ownSpeed &&
+              result.values[parameter.key] === undefined
+            )
+              result.values[parameter.key] = speed;
+      }
+    }
+    privates.push(transplant(exampleText, placed, replacements, actionsIndent + unit, unit));
+    const kind = object.element.children.find((candidate) =>
+      ['Vehicle', 'Pedestrian', 'MiscObject', 'CatalogReference'].includes(candidate.name),
+    );
+    result.added.push(`${name} (${kind?.name ?? 'entity'}, ${where})`);
+  }
+  result.changes.push(appendChild(mainText, entities, objects.join('\n')));
+  result.changes.push(appendChild(mainText, actions, privates.join('\n')));
+  return result;
+}

@@ -1,0 +1,124 @@
+import * as assert from 'node:assert/strict';
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import { LibraryModule, readModule } from '../../server/src/core/library';
+import { entityOffers, newEntityChanges, TextChange } from '../../server/src/core/libraryEntities';
+import { newMainScenario } from '../../server/src/core/newScenario';
+import { parseXml } from '../../server/src/core/xml';
+import { repoRoot } from '../support/paths';
+
+const library = { folder: path.join(repoRoot, 'library'), label: 'built-in' };
+
+function builtIn(name: string): { module: LibraryModule; example: string } {
+  const file = path.join(library.folder, `${name}.xosc`);
+  const { module } = readModule(fs.readFileSync(file, 'utf8'), file, library);
+  assert.ok(module);
+  return { module, example: fs.readFileSync(path.join(library.folder, 'examples', `${name}.xosc`), 'utf8') };
+}
+
+const newMain = () => newMainScenario({ version: '1.3', roadFile: 'road.xodr', ego: { roadId: '0', laneId: -1, s: 10 } });
+
+function applied(text: string, changes: TextChange[]): string {
+  return [...changes]
+    .sort((a, b) => b.start - a.start)
+    .reduce((result, change) => result.slice(0, change.start) + change.text + result.slice(change.end), text);
+}
+
+/** Issue 28: a module's actor added to a main as its example main declares and places it (core/libraryEntities). */
+describe('Insert into main: a new entity as the example has it (core/libraryEntities)', () => {
+  it('offers each role the example declares and places, under a name no entity of the main has, case aside', () => {
+    const { module, example } = builtIn('cut-in');
+    assert.deepEqual(entityOffers(module, example, ['Ego']), [
+      { role: 'adversary', name: 'adversary' },
+      { role: 'ego', name: 'ego2' },
+    ]);
+    assert.deepEqual(
+      entityOffers(module, example, ['Adversary', 'adversary2']).map((offer) => offer.name),
+      ['adversary3', 'ego'],
+    );
+    // An example without the role's entity offers nothing for it.
+    assert.deepEqual(entityOffers(module, example.replace(/"adversary"/g, '"other"'), []), [{ role: 'ego', name: 'ego' }]);
+  });
+
+  it('keeps a main indented with tabs in tabs, and a self-closing Entities and Actions are opened; the result is well-formed', () => {
+    const { module, example } = builtIn('lead-brake');
+    const text = newMain()
+      .replace(/<Entities>[\s\S]*<\/Entities>/, '<Entities/>')
+      .replace(/<Actions>[\s\S]*<\/Actions>/, '<Actions/>');
+    assert.throws(
+      () => newEntityChanges(text, module, example, { lead: 'lead' }, { lead: 'lead', ego: 'Ego' }),
+      /the main's Init does not place Ego: 'lead' is placed relative to it as in the example of lead-brake; place Ego first/,
+    );
+    // With no player for the ego, nothing to place it relative to: the example's placement is written as it is.
+    const result = applied(text, newEntityChanges(text, module, example, { lead: 'lead' }, { lead: 'lead' }).changes);
+    assert.deepEqual(parseXml(result).problems, []);
+    assert.match(result, /\t<Entities>\n\t\t<ScenarioObject name="lead">\n\t\t\t<Vehicle name="vehicle\.audi\.tt"/);
+    assert.match(result, /\t\t\t<Actions>\n\t\t\t\t<Private entityRef="lead">[\s\S]*<LanePosition roadId="0" laneId="-1" s="84.5"/);
+  });
+
+  it('says what to do, and changes nothing, where the main cannot take the new entity', () => {
+    const { module, example } = builtIn('cut-in');
+    const players = { adversary: 'adversary', ego: 'Ego' };
+    const create = { adversary: 'adversary' };
+    const refused: [string, string, RegExp][] = [
+      ['no Storyboard', newMain().replace(/<Storyboard>[\s\S]*<\/Storyboard>/, ''), /the main has no Storyboard \(with an Init\)/],
+      [
+        'no Init',
+        newMain().replace(/<Init>[\s\S]*<\/Init>/, ''),
+        /has no Init with Actions to place a new entity in: add <Init><Actions\/><\/Init>/,
+      ],
+      ['no Entities', newMain().replace(/<Entities>[\s\S]*<\/Entities>/, ''), /the main has no Entities/],
+      [
+        'a name taken',
+        newMain().replace(/"Ego"/g, '"ADVERSARY"'),
+        /already declares an entity 'adversary': name the new one otherwise \(adversary2\)/,
+      ],
+      [
+        'the ego placed otherwise',
+        newMain().replace(/<LanePosition [^>]*\/>/, '<WorldPosition x="0" y="0"/>'),
+        /Ego's Init places it by no LanePosition .* pick an entity of the main to play 'adversary'/,
+      ],
+      [
+        'the ego on the left',
+        newMain().replace('laneId="-1"', 'laneId="1"'),
+        /Ego is on lane 1, on the other side of the road from the example's ego \(lane -1\)/,
+      ],
+      ['not well-formed', newMain().replace('</Entities>', ''), /not well-formed/],
+    ];
+    for (const [what, text, message] of refused)
+      assert.throws(() => newEntityChanges(text, module, example, create, players), message, what);
+    assert.throws(
+      () => newEntityChanges(newMain(), module, example.replace(/"adversary"/g, '"other"'), create, players),
+      /the example main of cut-in declares and places no entity 'adversary' to copy: pick an entity of the main to play it/,
+    );
+    // Behind the road's start: the lead-brake's lead would stand 34.5 m behind an ego at s 10 if the example had it behind.
+    const behind = builtIn('lead-brake');
+    assert.throws(
+      () =>
+        newEntityChanges(
+          newMain(),
+          behind.module,
+          behind.example.replace('s="84.5"', 's="5"'),
+          { lead: 'lead' },
+          { lead: 'lead', ego: 'Ego' },
+        ),
+      /'lead' would stand at s -35, before the start of road 0 \(45 m behind Ego as in the example\): move Ego further along the road first/,
+    );
+  });
+
+  it('a lane across the centre keeps its count from the ego (lane ids skip 0), and a parameter gives the ego its place', () => {
+    const { module, example } = builtIn('oncoming-vehicle');
+    const text = newMain()
+      .replace(
+        '<ParameterDeclaration name="EgoSpeed"',
+        '<ParameterDeclaration name="EgoS" parameterType="double" value="60"/>\n\t\t<ParameterDeclaration name="EgoSpeed"',
+      )
+      .replace('s="10"', 's="$EgoS"');
+    const result = applied(
+      text,
+      newEntityChanges(text, module, example, { oncoming: 'oncoming' }, { oncoming: 'oncoming', ego: 'Ego' }).changes,
+    );
+    // The example: ego on lane -1 at s 50, the oncoming car on lane 1 at s 300; here the ego at s 60.
+    assert.match(result, /<Private entityRef="oncoming">[\s\S]*?<LanePosition roadId="0" laneId="1" s="310"/);
+  });
+});

@@ -1,0 +1,167 @@
+import * as assert from 'node:assert/strict';
+import * as fs from 'node:fs';
+import * as path from 'node:path';
+import { LibraryInsertRequest, LibraryInsertResult } from '../../common/src/libraryProtocol';
+import { LibraryModule, readModule } from '../../server/src/core/library';
+import { newMainScenario } from '../../server/src/core/newScenario';
+import { builtInLibraryFolder } from '../../server/src/libraries';
+import { checkCleanAndFlatten } from '../support/cliChecks';
+import { requireEsmini, runEsmini, tracksOf } from '../support/esmini';
+import { BEHAVIOURS } from '../support/libraryBehaviours';
+import { applyEdits } from '../support/textEdits';
+import { temporaryWorkspace } from '../support/workspace';
+import { fileUri, TestClient } from './harness';
+
+const builtIn = builtInLibraryFolder() ?? '';
+
+/** What New Modular Scenario… writes on the library's straight road: an `Ego` alone, on lane -1 at s 10, at $EgoSpeed (10 m/s). */
+function newMain(): string {
+  return newMainScenario({
+    version: '1.3',
+    roadFile: path.join(builtIn, 'roads', 'straight_1000m.xodr'),
+    ego: { roadId: '0', laneId: -1, s: 10 },
+    now: new Date('2026-11-29T00:00:00Z'),
+  });
+}
+
+/** The module as the composed main sets it: its keys' defaults replaced by the values the main's group gives them. */
+function moduleAsComposed(name: string, composed: string): LibraryModule {
+  const file = path.join(builtIn, `${name}.xosc`);
+  const { module } = readModule(fs.readFileSync(file, 'utf8'), file, { folder: builtIn, label: 'built-in' });
+  assert.ok(module, name);
+  const group =
+    new RegExp(`<ScenarioReference scenarioFileName="library:${name}">[\\s\\S]*?</ScenarioReference>`).exec(composed)?.[0] ?? '';
+  assert.ok(group, `the composed main references library:${name}`);
+  const values = new Map([...group.matchAll(/<ParameterReference key="([^"]+)" value="([^"]*)"\/>/g)].map((match) => [match[1], match[2]]));
+  return {
+    ...module,
+    parameters: module.parameters.map((parameter) => ({ ...parameter, defaultValue: values.get(parameter.key) ?? parameter.defaultValue })),
+  };
+}
+
+const entitiesOf = (text: string) => [...text.matchAll(/<ScenarioObject name="([^"]+)"/g)].map((match) => match[1]);
+
+/** Issue 28: composing from a main New Modular Scenario… wrote, which has only its ego: each module's actor is added as its example main has it. */
+describe('language server: Insert into Main adds the entity a role lacks, as the example main has it (JSON-RPC)', function () {
+  this.timeout(180_000);
+  let root: string;
+  let client: TestClient;
+
+  before(async function () {
+    root = temporaryWorkspace({ 'main.xosc': newMain() });
+    client = await TestClient.start({ root, initializationOptions: { schema: { version: 'off' }, libraryPicker: true } });
+    await client.indexed();
+  });
+  after(() => client?.stop());
+
+  it('a cut-in, a lead brake and a pedestrian crossing into a main with only an ego: each adds its actor, placed as in its example; clean, and each behaves as in its example in esmini', async function () {
+    const file = path.join(root, 'main.xosc');
+    let text = newMain();
+    const uri = await client.open(fileUri(file), text);
+    const asked: LibraryInsertResult['roles'][] = [];
+    for (const module of ['cut-in', 'lead-brake', 'pedestrian-crossing']) {
+      const questions = await client.send(LibraryInsertRequest, { uri, module });
+      asked.push(questions.roles);
+      // As the client answers: a guess where there is one, else the new entity offered.
+      const players = Object.fromEntries(questions.roles.map((role) => [role.name, role.guess ?? role.newEntity ?? '']));
+      const create = questions.roles.filter((role) => !role.guess && role.newEntity).map((role) => role.name);
+      const answer = await client.send(LibraryInsertRequest, { uri, module, players, create });
+      assert.ok(answer.edit?.changes?.[uri], `an edit of the main for ${module}`);
+      text = applyEdits(text, answer.edit.changes[uri]);
+      assert.match(text.split('\n')[answer.line ?? -1] ?? '', /<ManeuverGroup name=/, `line ${answer.line} is the new group's first`);
+      await client.close(uri);
+      await client.open(uri, text);
+    }
+    // Ego plays `ego` (its name, case aside); each actor has no entity to play it: none is free (Ego plays the ego, the
+    // adversary acts in the cut-in already), so the new one is the only answer and no question is asked.
+    assert.deepEqual(
+      asked.map((roles) => roles.map((role) => [role.name, role.guess, role.newEntity, role.newEntityOnly])),
+      [
+        [
+          ['adversary', undefined, 'adversary', true],
+          ['ego', 'Ego', undefined, undefined],
+        ],
+        [
+          ['lead', undefined, 'lead', true],
+          ['ego', 'Ego', undefined, undefined],
+        ],
+        [
+          ['pedestrian', undefined, 'pedestrian', true],
+          ['ego', 'Ego', undefined, undefined],
+        ],
+      ],
+    );
+    assert.deepEqual(entitiesOf(text), ['Ego', 'adversary', 'lead', 'pedestrian']);
+    assert.deepEqual(
+      [
+        ...text.matchAll(
+          /<Private entityRef="([^"]+)">[\s\S]*?<LanePosition roadId="0" laneId="(-?\d+)" s="([\d.]+)"[\s\S]*?<AbsoluteTargetSpeed value="([^"]+)"/g,
+        ),
+      ].map((match) => match.slice(1)),
+      [
+        ['Ego', '-1', '10', '$EgoSpeed'],
+        // The cut-in's car 35 m ahead in the lane beside, 3 m/s slower than the ego (its example: 20 and 17 m/s).
+        ['adversary', '-2', '45', '7'],
+        // The lead 34.5 m ahead in the ego's lane, 2 m/s slower (its example: 16 and 14 m/s).
+        ['lead', '-1', '44.5', '8'],
+        // The pedestrian 80 m ahead on the sidewalk, standing (its example's ego drives at 10 m/s, as this one).
+        ['pedestrian', '-4', '90', '0'],
+      ],
+    );
+    assert.match(text, /<Vehicle name="vehicle\.audi\.tt"/, "the example's vehicle, as it writes it");
+    assert.match(text, /<Pedestrian name="walker\.pedestrian\.0001"/);
+    // The cut-in's speed key moves with its car's Init speed, so that the gap closes as in the example.
+    assert.match(
+      text,
+      /scenarioFileName="library:cut-in">\s*<ManeuverGroupReference maneuverGroupName="CutIn">\s*<ParameterReference key="AbsoluteTargetSpeed.value" value="7"\/>/,
+    );
+    for (const [name, actor] of [
+      ['CutIn', 'adversary'],
+      ['LeadBrake', 'lead'],
+      ['PedestrianCrossing', 'pedestrian'],
+    ])
+      assert.match(
+        text,
+        new RegExp(
+          `<ManeuverGroup name="${name}" maximumExecutionCount="1">\\s*<Actors selectTriggeringEntities="false">\\s*<EntityRef entityRef="${actor}"/>`,
+        ),
+      );
+    assert.deepEqual(
+      (await client.diagnosticsOf(uri)).map((diagnostic) => diagnostic.message),
+      [],
+    );
+    await client.close(uri);
+
+    fs.writeFileSync(file, text);
+    await checkCleanAndFlatten(file, path.join(root, 'flat.xosc'));
+    requireEsmini(this);
+    const tracks = tracksOf(await runEsmini(path.join(root, 'flat.xosc'), 14));
+    // The library's own assertions, on this main's values and names (its Ego plays `ego`).
+    tracks.set('ego', tracks.get('Ego') ?? []);
+    for (const module of ['cut-in', 'lead-brake', 'pedestrian-crossing']) BEHAVIOURS[module](moduleAsComposed(module, text), tracks, []);
+  });
+
+  it('an answer naming an existing entity as new is refused, saying which name is free; a role that is guessed has no offer', async function () {
+    const text = newMain()
+      .replace(/"Ego"/g, '"Adversary"')
+      .replace(/\$EgoSpeed/, '10');
+    const uri = await client.open(fileUri(path.join(root, 'main.xosc')), text);
+    const questions = await client.send(LibraryInsertRequest, { uri, module: 'cut-in' });
+    assert.deepEqual(
+      questions.roles.map((role) => [role.name, role.guess, role.newEntity]),
+      [
+        ['adversary', 'Adversary', undefined],
+        ['ego', undefined, 'ego'],
+      ],
+    );
+    await assert.rejects(
+      client.send(LibraryInsertRequest, { uri, module: 'cut-in', players: { adversary: 'Adversary', ego: 'adversary' }, create: ['ego'] }),
+      /cut-in cannot go into .*the main already declares an entity 'adversary': name the new one otherwise \(adversary2\)/,
+    );
+    await assert.rejects(
+      client.send(LibraryInsertRequest, { uri, module: 'cut-in', players: { adversary: 'x', ego: 'Adversary' }, create: ['nobody'] }),
+      /create: the names of roles of cut-in \(adversary, ego\)/,
+    );
+    await client.close(uri);
+  });
+});
