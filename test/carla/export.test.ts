@@ -6,9 +6,11 @@ import { laneCenterT, laneSectionIndexAt, parseOpenDrive, roadPoint } from '../.
 import { attributeValue, forEachElement, parseXml } from '../../server/src/core/xml';
 import type { XmlElement } from '../../server/src/core/xml';
 import {
+  asScenarioRunnerPlacesLanePositions,
   carlaCache,
   HarnessVerdict,
   harnessVerdicts,
+  lineMatching,
   requireCarlaHarness,
   scenarioRunnerFolder,
   scenarioRunnerVehicle,
@@ -423,6 +425,13 @@ describe('export --target carla, checked by ScenarioRunner (../shared/carla)', f
 });
 
 /** Runs both files in esmini for `seconds`: every entity of the original within 0.1 m of itself in the export at every step. */
+/** A copy of an exported file beside it whose LanePositions esmini places where ScenarioRunner places the export's (laneOffsets.ts writes them for ScenarioRunner). */
+function asScenarioRunnerReadsIt(exported: string): string {
+  const copy = exported.replace(/\.xosc$/, '.as-scenario-runner.xosc');
+  fs.writeFileSync(copy, asScenarioRunnerPlacesLanePositions(fs.readFileSync(exported, 'utf8')));
+  return copy;
+}
+
 async function assertMovesAlike(
   original: string,
   exported: string,
@@ -431,7 +440,7 @@ async function assertMovesAlike(
 ): Promise<ReturnType<typeof tracksOf>> {
   const name = path.basename(original);
   const before = tracksOf(await runEsmini(original, seconds));
-  const after = tracksOf(await runEsmini(exported, seconds));
+  const after = tracksOf(await runEsmini(asScenarioRunnerReadsIt(exported), seconds));
   assert.deepEqual([...after.keys()].sort(), [...before.keys()].sort(), name);
   for (const [entity, track] of before) {
     const other = after.get(entity) ?? [];
@@ -481,6 +490,9 @@ describe('export --target carla, round trip in esmini', function () {
     'Vertex/@time',
     'AssignRouteAction',
     'AcquirePositionAction',
+    // A LanePosition's offset written where ScenarioRunner puts it (esmini runs the export as ScenarioRunner reads it), or as a WorldPosition.
+    'LanePosition/@offset',
+    'LanePosition',
   ]);
 
   it("esmini's samples that map without loss move in esmini as the originals do (within 0.1 m)", async () => {
@@ -526,6 +538,8 @@ describe('export --target carla, round trip in esmini', function () {
     assert.ok(compared.includes('lane-change_clothoid_based_trajectory.xosc'), compared.join(', '));
     for (const routed of ['routing-test.xosc', 'pedestrian_collision.xosc', 'ltap-od-relative-speed.xosc'])
       assert.ok(compared.includes(routed), `${routed} (a RoutePosition mapped) is not compared: ${compared.join(', ')}`);
+    // Its two pedestrians' LanePosition offsets (lane -1) are written where ScenarioRunner puts them on the side the original means.
+    assert.ok(compared.includes('straight_500m_pedestrian.xosc'), compared.join(', '));
     // Its Ego's Init route (9 m/s, roads 0 > 9 > 2, 378 m) is the 0.9.16 export's trajectory: esmini drives it as the route.
     assert.deepEqual(routesAsTrajectories, ['pedestrian_collision.xosc']);
   });
@@ -540,7 +554,7 @@ describe('export --target carla, round trip in esmini', function () {
     const exported = await exportFile(input, path.join(out, 'case-study.carla.xosc'));
     assert.equal(exported.code, 0, exported.stderr);
     const before = tracksOf(await runEsmini(flattened, 40));
-    const after = tracksOf(await runEsmini(exported.output, 40));
+    const after = tracksOf(await runEsmini(asScenarioRunnerReadsIt(exported.output), 40));
     assert.deepEqual([...after.keys()].sort(), CASE_STUDY_ACTORS);
     const speeds = (track: { time: number; x: number; y: number }[]) =>
       track.slice(1).map((point, index) => ({
@@ -3315,5 +3329,69 @@ describe('export --target carla, curves placed on the .xodr road', function () {
     await assertExportBuilds(original, text);
     requireEsmini(this);
     await assertMovesAlike(original, result.output, 6);
+  });
+});
+
+describe("export --target carla, a LanePosition's offset (ScenarioRunner puts it to the right of the lane's heading)", function () {
+  this.timeout(180_000);
+  let out: string;
+  inTemporaryFolderEach('m2s-carla-lane-offsets-', (folder) => (out = folder));
+  const placed = (actor: string, lane: string): string => `
+        <Private entityRef="${actor}">
+          <PrivateAction><TeleportAction><Position>${lane}</Position></TeleportAction></PrivateAction>
+        </Private>`;
+  // On esmini's straight_500m.xodr (lanes -1 and 1 driving): each offset 1 m or 2 m.
+  const text = testScenario({
+    revMinor: 0,
+    description: 'lane offsets',
+    road: path.join(esminiRoads, 'straight_500m.xodr'),
+    entities: ['Along', 'Against', 'Reversed', 'Across']
+      .map((name, index) => vehicle(name, index === 0 ? 'ego_vehicle' : 'simulation'))
+      .join(''),
+    init: [
+      placed('Along', '<LanePosition roadId="1" laneId="-1" s="50" offset="1"/>'),
+      placed('Against', '<LanePosition roadId="1" laneId="1" s="80" offset="1"/>'),
+      placed(
+        'Reversed',
+        '<LanePosition roadId="1" laneId="-1" s="110" offset="1"><Orientation type="relative" h="3.14159"/></LanePosition>',
+      ),
+      placed('Across', '<LanePosition roadId="1" laneId="-1" s="140" offset="2"><Orientation type="relative" h="1.5708"/></LanePosition>'),
+    ].join(''),
+    story: STILL_STORY,
+    stopAt: 2,
+  });
+
+  it('is written where ScenarioRunner puts it on the side OpenSCENARIO means, or as the WorldPosition esmini gives it, each listed (issue 26)', async function () {
+    const original = path.join(out, 'offsets.xosc');
+    fs.writeFileSync(original, text);
+    const result = await exportFile(original, path.join(out, 'exported.xosc'));
+    assert.equal(result.code, 0, result.stderr);
+    const exported = fs.readFileSync(result.output, 'utf8');
+    const startOf = (actor: string): string => {
+      const from = exported.indexOf(`<Private entityRef="${actor}">`);
+      return exported.slice(from, exported.indexOf('</Private>', from));
+    };
+    // Along its right lane, ScenarioRunner's right is OpenSCENARIO's -t: 1 m to the left is written -1.
+    assert.match(startOf('Along'), /<LanePosition[^>]*laneId="-1"[^>]*offset="-1"/);
+    // A left lane heads against the road, and a lane turned round faces back: ScenarioRunner's right is +t there, as written.
+    assert.match(startOf('Against'), /<LanePosition[^>]*laneId="1"[^>]*offset="1"/);
+    assert.match(startOf('Reversed'), /<LanePosition[^>]*laneId="-1"[^>]*offset="1"/);
+    // Turned across the lane ScenarioRunner would move it along the road: where esmini places it (lane -1 is 3.07 m wide: its centre at t -1.535, +2).
+    assert.match(startOf('Across'), /<WorldPosition x="140" y="0.465" h="1.5708"/);
+    assert.deepEqual(
+      result.report.losses.filter((loss) => loss.element.startsWith('LanePosition')).map((loss) => [loss.element, loss.line, loss.kind]),
+      [
+        ['LanePosition/@offset', lineMatching(original, /laneId="-1" s="50"/) + 1, 'approximated'],
+        ['LanePosition', lineMatching(original, /offset="2"/) + 1, 'approximated'],
+      ],
+    );
+    requireCarlaHarness(this);
+    // The harness's map answers every waypoint at the origin with no heading (its forward vector is zero), so which side an
+    // offset lands on rests on the code read (laneOffsets.ts); the WorldPosition is spawned where esmini places the original.
+    const spawns = (await assertBuilt(result.output, { tree: true })).spawns;
+    assert.deepEqual(spawns?.Across?.slice(0, 2), [140, -0.465]);
+    requireEsmini(this);
+    // esmini runs the export as ScenarioRunner places it: where esmini runs the original.
+    await assertMovesAlike(original, result.output, 2);
   });
 });

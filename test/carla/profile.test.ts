@@ -313,3 +313,80 @@ describe("check --simulator carla on a parameter only a story sets agrees with S
     assert.deepEqual(declaredTicks, [['GapIs', 'RUNNING', 'RUNNING']]);
   });
 });
+
+describe("check --simulator carla on a LanePosition's offset, and on the export's (issue 26)", function () {
+  this.timeout(120_000);
+  let folder: string;
+  before(() => (folder = fs.mkdtempSync(path.join(os.tmpdir(), 'm2s-carla-lane-offsets-'))));
+  after(() => {
+    if (folder) fs.rmSync(folder, { recursive: true, force: true });
+  });
+  const teleport = (actor: string, position: string): string =>
+    `<Private entityRef="${actor}"><PrivateAction><TeleportAction><Position>${position}</Position></TeleportAction></PrivateAction></Private>`;
+  const placements: [string, string][] = [
+    ['Along', '<LanePosition roadId="1" laneId="-1" s="50" offset="1"/>'],
+    ['Against', '<LanePosition roadId="1" laneId="1" s="80" offset="1"/>'],
+    ['Reversed', '<LanePosition roadId="1" laneId="-1" s="110" offset="1"><Orientation type="relative" h="3.14159"/></LanePosition>'],
+    ['Across', '<LanePosition roadId="1" laneId="-1" s="140" offset="2"><Orientation type="relative" h="1.5708"/></LanePosition>'],
+  ];
+  const text = `<?xml version="1.0" encoding="UTF-8"?>
+<OpenSCENARIO>
+  <FileHeader revMajor="1" revMinor="0" date="2026-11-29T00:00:00" description="lane offsets" author="modular2simple tests"/>
+  <ParameterDeclarations/>
+  <CatalogLocations/>
+  <RoadNetwork><LogicFile filepath="straight_500m.xodr"/></RoadNetwork>
+  <Entities>
+${placements.map(([actor], index) => scenarioRunnerVehicle(actor, index === 0 ? 'ego_vehicle' : 'simulation')).join('\n')}
+  </Entities>
+  <Storyboard>
+    <Init><Actions>
+${placements.map(([actor, position]) => `      ${teleport(actor, position)}`).join('\n')}
+    </Actions></Init>
+    <Story name="Still"><Act name="Still">
+      <ManeuverGroup maximumExecutionCount="1" name="Group"><Actors selectTriggeringEntities="false"/></ManeuverGroup>
+      <StartTrigger><ConditionGroup><Condition name="ActStarts" delay="0" conditionEdge="none">
+        <ByValueCondition><SimulationTimeCondition value="0" rule="greaterThan"/></ByValueCondition>
+      </Condition></ConditionGroup></StartTrigger>
+    </Act></Story>
+    <StopTrigger/>
+  </Storyboard>
+</OpenSCENARIO>
+`;
+  const offsetFindings = (file: string): [number, string, string][] =>
+    (checkForCarla([file], '0.9.16').get(path.resolve(file)) ?? [])
+      .filter((problem) => /moves a LanePosition by its offset/.test(problem.message))
+      .map((problem) => [
+        (problem as CheckedProblem & { line: number }).line,
+        problem.severity,
+        problem.message.split(': ').pop()?.split(' (')[0] ?? '',
+      ]);
+
+  it("warns where ScenarioRunner puts the offset elsewhere than OpenSCENARIO; on the export's, ScenarioRunner puts it where the original means (issue 26)", async () => {
+    const file = path.join(folder, 'offsets.xosc');
+    fs.writeFileSync(file, text);
+    fs.copyFileSync(path.join(esminiRoads, 'straight_500m.xodr'), path.join(folder, 'straight_500m.xodr'));
+    const lineOf = (actor: string): number => text.split('\n').findIndex((line) => line.includes(`<Private entityRef="${actor}">`)) + 1;
+    // A left lane heads against the road and a lane turned round faces back: ScenarioRunner's right is OpenSCENARIO's left there.
+    assert.deepEqual(offsetFindings(file), [
+      [lineOf('Along'), 'warning', "this one lands 1 m to the right of lane -1's centre, where OpenSCENARIO puts it 1 m to the left"],
+      [
+        lineOf('Across'),
+        'warning',
+        "this one lands on lane -1's centre and 2 m on along the road, where OpenSCENARIO puts it 2 m to the left",
+      ],
+    ]);
+    const exported = path.join(folder, 'exported.xosc');
+    const run = runCli(['export', '--target', 'carla', file, '-o', exported, '-q']);
+    assert.equal(run.status, 0, run.stderr);
+    // The export writes the offset where ScenarioRunner puts it on the side the original means: read by the standard, the
+    // written file says the other side, and the profile's reading of it lands where the original's 1 m to the left is.
+    const exportedText = fs.readFileSync(exported, 'utf8');
+    assert.deepEqual(offsetFindings(exported), [
+      [
+        exportedText.split('\n').findIndex((line) => /laneId="-1"[^>]*offset="-1"/.test(line)) + 1,
+        'warning',
+        "this one lands 1 m to the left of lane -1's centre, where OpenSCENARIO puts it 1 m to the right",
+      ],
+    ]);
+  });
+});

@@ -153,3 +153,30 @@ export const scenarioRunnerVehicle = (name: string, type: string): string => `
         <Properties><Property name="type" value="${type}"/></Properties>
       </Vehicle>
     </ScenarioObject>`;
+
+/**
+ * An exported file as ScenarioRunner places its LanePositions, written back in OpenSCENARIO's reading, so that esmini
+ * runs what ScenarioRunner would: ScenarioRunner moves a LanePosition by `offset` to the right of CARLA's waypoint
+ * heading turned by the Orientation's h (srunner/tools/openscenario_parser.py convert_position_to_transform:
+ * (-forward.y, forward.x) in CARLA's left-handed frame), and that heading runs along the road on a negative lane,
+ * against it on a positive one (LibCarla road/Lane.cpp Lane::ComputeTransform); OpenSCENARIO's offset is along t. A
+ * point ScenarioRunner moves along the road (more than 1 cm) is left as it is: the tests compare no such file.
+ */
+export function asScenarioRunnerPlacesLanePositions(xml: string): string {
+  return xml.replace(
+    /<LanePosition\b([^>]*?)(\/>|>([\s\S]*?)<\/LanePosition>)/g,
+    (whole: string, attributes: string, _end: string, inner?: string) => {
+      const value = (source: string, name: string): number | undefined => {
+        const found = new RegExp(`\\b${name}="([^"]*)"`).exec(source);
+        return found ? Number(found[1]) : undefined;
+      };
+      const offset = value(attributes, 'offset') ?? 0;
+      const laneId = value(attributes, 'laneId') ?? 0;
+      const orientation = inner ? /<Orientation\b[^>]*>/.exec(inner)?.[0] : undefined;
+      const heading = (orientation ? (value(orientation, 'h') ?? 0) : 0) + (laneId > 0 ? Math.PI : 0);
+      if (offset === 0 || Math.abs(offset * Math.sin(heading)) > 0.01) return whole;
+      const alongT = -offset * Math.cos(heading);
+      return whole.replace(/\boffset="[^"]*"/, `offset="${Number(alongT.toFixed(6))}"`);
+    },
+  );
+}

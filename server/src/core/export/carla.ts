@@ -41,6 +41,7 @@ import {
   SR_SCHEMA,
   unknownBlueprintProblem,
 } from './carlaFacts';
+import { movedAlongByScenarioRunner } from './laneOffsets';
 import { applyCarlaRules, CarlaLoss, geoPositionDegrees, LossSink, tidyEmptyContainers } from './carlaRules';
 import {
   allNodes,
@@ -288,6 +289,8 @@ export async function exportTextForCarla(
     named(tree, 'AbsoluteTargetLane').length > 0 ||
     // A steady state's target moved back along its lane: the road's length and traffic rule.
     named(tree, new Set(['TargetDistanceSteadyState', 'TargetTimeSteadyState'])).length > 0 ||
+    // A LanePosition ScenarioRunner would move along the road, written as the WorldPosition esmini gives it (laneOffsets.ts).
+    named(tree, 'LanePosition').some(movedAlongByScenarioRunner) ||
     // The lanes a route drives, written as a trajectory where 0.9.16 crashes on the route (routeTrajectories.ts).
     ((options.release ?? '0.9.16') === '0.9.16' && named(tree, new Set(['AssignRouteAction', 'AcquirePositionAction'])).length > 0);
   const roadFile = road && 'file' in road ? (copy?.bytes ?? road.file) : townFile;

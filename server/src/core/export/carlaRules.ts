@@ -42,6 +42,7 @@ import { actsOf, ElementShape, storyboardStopGroups } from '../semantics/storybo
 import { initStarts } from './initStarts';
 import { synchronizeSteadyStates } from './steadyStates';
 import { lateralDistances } from './lateralDistances';
+import { laneOffsets } from './laneOffsets';
 import { SAMPLE_STEP } from './shapes';
 import { routeTrajectory, routeWaypoints } from './routeTrajectories';
 
@@ -1429,6 +1430,8 @@ export const CARLA_RULES: readonly { name: string; apply: (tree: Node, context: 
   { name: 'attributes-run-otherwise', apply: attributesRunOtherwise },
   { name: 'act-stop-groups', apply: actStopGroups },
   { name: 'storyboard-stop', apply: storyboardStop },
+  // Last of the position rules: every LanePosition written by those before is in esmini's reading until here.
+  { name: 'lane-offsets', apply: (tree, context) => laneOffsets(tree, context.sink, context.roads) },
   { name: 'renamed-values', apply: (tree) => renamedValues(tree) },
   { name: 'required-parts', apply: (tree) => requiredParts(tree) },
 ];

@@ -361,6 +361,11 @@ export const CARLA_FACTS = {
     source: `${PARSER}:1102, 143-147, 189-214, ${SR_TRIGGER_CONDITIONS}:1472-1477`,
     severity: 'error',
   },
+  laneOffsetSide: {
+    does: "moves a LanePosition by its offset to the right of the heading CARLA's waypoint has, turned by the Orientation's h (whatever its type), and that heading runs along the road on a right lane (negative id) and against it on a left lane, where OpenSCENARIO (and esmini) measure the offset along t, to the left of the road's reference line",
+    source: `${PARSER}:827-857 (LanePosition), LibCarla road/Lane.cpp Lane::ComputeTransform (yaw + 180 for a positive lane id)`,
+    severity: 'warning',
+  },
   noEgo: {
     does: 'runs the ScenarioObjects whose Property type is "ego_vehicle" as the ego; this scenario marks none',
     source: `${CONFIGURATION}:301-313, 420-421`,

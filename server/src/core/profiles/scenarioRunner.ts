@@ -76,3 +76,16 @@ export function namedAsEgo(name: string): boolean {
 export function egoByName(vehicles: readonly string[]): string | undefined {
   return vehicles.find((name) => EGO_NAMES.test(name)) ?? vehicles.find((name) => /ego|hero/i.test(name)) ?? vehicles[0];
 }
+
+/**
+ * Where ScenarioRunner moves a LanePosition by an offset of 1, in the road's s and t (CARLA_FACTS.laneOffsetSide): to the
+ * right of the lane's heading in CARLA (along s on a negative lane id, against it on a positive one) turned by `h`.
+ * OpenSCENARIO's own is { along: 0, across: 1 }.
+ */
+export function scenarioRunnerOffsetDirection(laneId: number, h: number): { along: number; across: number } {
+  const heading = h + (laneId > 0 ? Math.PI : 0);
+  return { along: Math.sin(heading), across: -Math.cos(heading) };
+}
+
+/** How far (m) ScenarioRunner may move a LanePosition along the road from where OpenSCENARIO puts it before it counts as elsewhere. */
+export const LANE_OFFSET_TOLERANCE = 0.01;
