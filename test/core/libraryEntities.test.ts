@@ -74,11 +74,6 @@ describe('Insert into main: a new entity as the example has it (core/libraryEnti
         /already declares an entity 'adversary': name the new one otherwise \(adversary2\)/,
       ],
       [
-        'the ego placed otherwise',
-        newMain().replace(/<LanePosition [^>]*\/>/, '<WorldPosition x="0" y="0"/>'),
-        /Ego's Init places it by no LanePosition .* pick an entity of the main to play 'adversary'/,
-      ],
-      [
         'the ego on the left',
         newMain().replace('laneId="-1"', 'laneId="1"'),
         /Ego is on lane 1, on the other side of the road from the example's ego \(lane -1\)/,

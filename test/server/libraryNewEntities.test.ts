@@ -54,15 +54,15 @@ describe('language server: Insert into Main adds the entity a role lacks, as the
   });
   after(() => client?.stop());
 
-  it('a cut-in, a lead brake and a pedestrian crossing into a main with only an ego: each adds its actor, placed as in its example; clean, and each behaves as in its example in esmini', async function () {
-    const file = path.join(root, 'main.xosc');
-    let text = newMain();
-    const uri = await client.open(fileUri(file), text);
+  const MODULES = ['cut-in', 'lead-brake', 'pedestrian-crossing'];
+
+  /** The three modules inserted into `text` as the client does it: a guess where there is one, else the new entity offered. */
+  async function compose(text: string): Promise<{ text: string; asked: LibraryInsertResult['roles'][]; uri: string }> {
+    const uri = await client.open(fileUri(path.join(root, 'main.xosc')), text);
     const asked: LibraryInsertResult['roles'][] = [];
-    for (const module of ['cut-in', 'lead-brake', 'pedestrian-crossing']) {
+    for (const module of MODULES) {
       const questions = await client.send(LibraryInsertRequest, { uri, module });
       asked.push(questions.roles);
-      // As the client answers: a guess where there is one, else the new entity offered.
       const players = Object.fromEntries(questions.roles.map((role) => [role.name, role.guess ?? role.newEntity ?? '']));
       const create = questions.roles.filter((role) => !role.guess && role.newEntity).map((role) => role.name);
       const answer = await client.send(LibraryInsertRequest, { uri, module, players, create });
@@ -72,6 +72,28 @@ describe('language server: Insert into Main adds the entity a role lacks, as the
       await client.close(uri);
       await client.open(uri, text);
     }
+    assert.deepEqual(
+      (await client.diagnosticsOf(uri)).map((diagnostic) => diagnostic.message),
+      [],
+    );
+    await client.close(uri);
+    return { text, asked, uri };
+  }
+
+  /** The composed main checked clean, run in esmini, and each module's behaviour asserted with the library's own assertions. */
+  async function behavesAsItsExamples(context: Mocha.Context, text: string): Promise<void> {
+    const file = path.join(root, 'main.xosc');
+    fs.writeFileSync(file, text);
+    await checkCleanAndFlatten(file, path.join(root, 'flat.xosc'));
+    requireEsmini(context);
+    const tracks = tracksOf(await runEsmini(path.join(root, 'flat.xosc'), 14));
+    // On this main's values and names (its Ego plays `ego`).
+    tracks.set('ego', tracks.get('Ego') ?? []);
+    for (const module of MODULES) BEHAVIOURS[module](moduleAsComposed(module, text), tracks, []);
+  }
+
+  it('a cut-in, a lead brake and a pedestrian crossing into a main with only an ego: each adds its actor, placed as in its example; clean, and each behaves as in its example in esmini', async function () {
+    const { text, asked } = await compose(newMain());
     // Ego plays `ego` (its name, case aside); each actor has no entity to play it: none is free (Ego plays the ego, the
     // adversary acts in the cut-in already), so the new one is the only answer and no question is asked.
     assert.deepEqual(
@@ -126,19 +148,27 @@ describe('language server: Insert into Main adds the entity a role lacks, as the
           `<ManeuverGroup name="${name}" maximumExecutionCount="1">\\s*<Actors selectTriggeringEntities="false">\\s*<EntityRef entityRef="${actor}"/>`,
         ),
       );
-    assert.deepEqual(
-      (await client.diagnosticsOf(uri)).map((diagnostic) => diagnostic.message),
-      [],
-    );
-    await client.close(uri);
+    await behavesAsItsExamples(this, text);
+  });
 
-    fs.writeFileSync(file, text);
-    await checkCleanAndFlatten(file, path.join(root, 'flat.xosc'));
-    requireEsmini(this);
-    const tracks = tracksOf(await runEsmini(path.join(root, 'flat.xosc'), 14));
-    // The library's own assertions, on this main's values and names (its Ego plays `ego`).
-    tracks.set('ego', tracks.get('Ego') ?? []);
-    for (const module of ['cut-in', 'lead-brake', 'pedestrian-crossing']) BEHAVIOURS[module](moduleAsComposed(module, text), tracks, []);
+  it('an ego placed by a WorldPosition (as many real scenarios place it): each actor is placed relative to it by a RelativeLanePosition; clean, and each behaves as in its example in esmini', async function () {
+    const { text } = await compose(newMain().replace(/<LanePosition [^>]*\/>/, '<WorldPosition x="10" y="-1.75" z="0" h="0"/>'));
+    assert.deepEqual(
+      [...text.matchAll(/<Private entityRef="([^"]+)">[\s\S]*?<(RelativeLanePosition|WorldPosition) ([^>]*?)\/?>/g)].map((match) =>
+        match.slice(1).join(' '),
+      ),
+      [
+        'Ego WorldPosition x="10" y="-1.75" z="0" h="0"',
+        'adversary RelativeLanePosition entityRef="Ego" dLane="-1" ds="35" offset="0"',
+        'lead RelativeLanePosition entityRef="Ego" dLane="0" ds="34.5" offset="0"',
+        'pedestrian RelativeLanePosition entityRef="Ego" dLane="-3" ds="80" offset="0.75"',
+      ],
+    );
+    assert.match(
+      text,
+      /<RelativeLanePosition entityRef="Ego" dLane="-3" ds="80" offset="0.75">\s*<Orientation type="relative" h="1.5708" p="0" r="0"\/>\s*<\/RelativeLanePosition>/,
+    );
+    await behavesAsItsExamples(this, text);
   });
 
   it('an answer naming an existing entity as new is refused, saying which name is free; a role that is guessed has no offer', async function () {

@@ -103,23 +103,26 @@ function indentUnit(text: string): string {
   return /^( +|\t)/m.exec(text.slice(0, 4000))?.[1] ?? '  ';
 }
 
+/** A part of the example's text replaced: an attribute's value (escaped), or a range of the text (as given). */
+type Replacement = { attribute: XmlAttribute; value: string } | { start: number; end: number; text: string };
+
 /**
- * The element's text from the example with `replacements` (of attribute values) made, re-indented from the example's
- * indentation and unit to `indent` and the main's unit.
+ * The element's text from the example with `replacements` made, re-indented from the example's indentation and unit
+ * to `indent` and the main's unit.
  */
-function transplant(
-  exampleText: string,
-  element: XmlElement,
-  replacements: { attribute: XmlAttribute; value: string }[],
-  indent: string,
-  unit: string,
-): string {
+function transplant(exampleText: string, element: XmlElement, replacements: Replacement[], indent: string, unit: string): string {
   let text = exampleText.slice(element.start, element.end);
-  for (const { attribute: target, value } of [...replacements].sort((a, b) => b.attribute.valueStart - a.attribute.valueStart))
-    text =
-      text.slice(0, target.valueStart - element.start) +
-      escapeAttributeValue(value, target.quote) +
-      text.slice(target.valueEnd - element.start);
+  const ranges = replacements.map((replacement) =>
+    'attribute' in replacement
+      ? {
+          start: replacement.attribute.valueStart,
+          end: replacement.attribute.valueEnd,
+          text: escapeAttributeValue(replacement.value, replacement.attribute.quote),
+        }
+      : replacement,
+  );
+  for (const range of ranges.sort((a, b) => b.start - a.start))
+    text = text.slice(0, range.start - element.start) + range.text + text.slice(range.end - element.start);
   const exampleUnit = indentUnit(exampleText);
   const base = exampleText.slice(lineStart(exampleText, element.start), element.start);
   return text
@@ -225,7 +228,7 @@ export function newEntityChanges(
         unit,
       ),
     );
-    const replacements: { attribute: XmlAttribute; value: string }[] = [];
+    const replacements: Replacement[] = [];
     const entityRef = attribute(placed, 'entityRef');
     if (entityRef) replacements.push({ attribute: entityRef, value: name });
     const own = placementOf(placed);
@@ -254,28 +257,41 @@ export function newEntityChanges(
           throw new Error(
             `the main's Init does not place ${player}: '${name}' is placed relative to it as in the example of ${module.name}; place ${player} first, or pick an entity of the main to play '${role.name}'`,
           );
-        if (!mainPosition || mainLane === undefined || mainS === undefined || mainRoad === undefined)
-          throw new Error(
-            `${player}'s Init places it by no LanePosition with a number for its laneId and s: '${name}' is placed relative to it as in the example of ${module.name}; place ${player} by a LanePosition, or pick an entity of the main to play '${role.name}'`,
-          );
-        if (Math.sign(mainLane) !== Math.sign(refLane))
-          throw new Error(
-            `${player} is on lane ${mainLane}, on the other side of the road from the example's ${reference.name} (lane ${refLane}): place '${name}' yourself, or pick an entity of the main to play '${role.name}'`,
-          );
-        const laneId = laneOfIndex(laneIndex(mainLane) + laneIndex(ownLane) - laneIndex(refLane));
-        const s = mainS + ownS - refS;
-        if (s < 0)
-          throw new Error(
-            `'${name}' would stand at s ${rounded(s)}, before the start of road ${mainRoad} (${rounded(refS - ownS)} m behind ${player} as in the example): move ${player} further along the road first`,
-          );
-        const roadAttribute = attribute(own.lanePosition, 'roadId');
-        const laneAttribute = attribute(own.lanePosition, 'laneId');
-        const sAttribute = attribute(own.lanePosition, 's');
-        if (roadAttribute) replacements.push({ attribute: roadAttribute, value: mainRoad });
-        if (laneAttribute) replacements.push({ attribute: laneAttribute, value: String(laneId) });
-        if (sAttribute) replacements.push({ attribute: sAttribute, value: rounded(s) });
+        const dLane = laneIndex(ownLane) - laneIndex(refLane);
         const distance = ownS - refS;
-        where = `${rounded(Math.abs(distance))} m ${distance >= 0 ? 'ahead of' : 'behind'} ${player}, lane ${laneId}`;
+        if (!mainPosition || mainLane === undefined || mainS === undefined || mainRoad === undefined) {
+          // The ego stands where its route, world or road position puts it: the entity is placed relative to it, in
+          // the lanes as counted from the ego's (right-hand side, as the example's), ds along the road.
+          const offset = valueOf(own.lanePosition, 'offset');
+          const open = `<RelativeLanePosition entityRef="${escapeAttributeValue(player)}" dLane="${dLane}" ds="${rounded(distance)}"${offset !== undefined ? ` offset="${escapeAttributeValue(offset)}"` : ''}`;
+          const inner = own.lanePosition.selfClosing
+            ? ''
+            : exampleText.slice(own.lanePosition.startTagEnd, exampleText.lastIndexOf('</', own.lanePosition.end));
+          replacements.push({
+            start: own.lanePosition.start,
+            end: own.lanePosition.end,
+            text: own.lanePosition.selfClosing ? `${open}/>` : `${open}>${inner}</RelativeLanePosition>`,
+          });
+          where = `${rounded(Math.abs(distance))} m ${distance >= 0 ? 'ahead of' : 'behind'} ${player}, ${dLane === 0 ? 'in its lane' : `${Math.abs(dLane)} lane${Math.abs(dLane) > 1 ? 's' : ''} ${dLane < 0 ? 'right' : 'left'} of it`} (RelativeLanePosition)`;
+        } else {
+          if (Math.sign(mainLane) !== Math.sign(refLane))
+            throw new Error(
+              `${player} is on lane ${mainLane}, on the other side of the road from the example's ${reference.name} (lane ${refLane}): place '${name}' yourself, or pick an entity of the main to play '${role.name}'`,
+            );
+          const laneId = laneOfIndex(laneIndex(mainLane) + laneIndex(ownLane) - laneIndex(refLane));
+          const s = mainS + ownS - refS;
+          if (s < 0)
+            throw new Error(
+              `'${name}' would stand at s ${rounded(s)}, before the start of road ${mainRoad} (${rounded(refS - ownS)} m behind ${player} as in the example): move ${player} further along the road first`,
+            );
+          const roadAttribute = attribute(own.lanePosition, 'roadId');
+          const laneAttribute = attribute(own.lanePosition, 'laneId');
+          const sAttribute = attribute(own.lanePosition, 's');
+          if (roadAttribute) replacements.push({ attribute: roadAttribute, value: mainRoad });
+          if (laneAttribute) replacements.push({ attribute: laneAttribute, value: String(laneId) });
+          if (sAttribute) replacements.push({ attribute: sAttribute, value: rounded(s) });
+          where = `${rounded(Math.abs(distance))} m ${distance >= 0 ? 'ahead of' : 'behind'} ${player}, lane ${laneId}`;
+        }
       }
       const speedAttribute = own.speedTarget && attribute(own.speedTarget, 'value');
       const ownSpeed = numberIn(exampleRoot, speedAttribute?.value);
