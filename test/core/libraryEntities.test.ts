@@ -5,7 +5,9 @@ import { LibraryModule, readModule } from '../../server/src/core/library';
 import { entityOffers, newEntityChanges, TextChange } from '../../server/src/core/libraryEntities';
 import { newMainScenario } from '../../server/src/core/newScenario';
 import { parseXml } from '../../server/src/core/xml';
+import { checkCleanAndFlatten } from '../support/cliChecks';
 import { repoRoot } from '../support/paths';
+import { temporaryFolder } from '../support/temporaryDirectory';
 
 const library = { folder: path.join(repoRoot, 'library'), label: 'built-in' };
 
@@ -115,5 +117,61 @@ describe('Insert into main: a new entity as the example has it (core/libraryEnti
     );
     // The example: ego on lane -1 at s 50, the oncoming car on lane 1 at s 300; here the ego at s 60.
     assert.match(result, /<Private entityRef="oncoming">[\s\S]*?<LanePosition roadId="0" laneId="1" s="310"/);
+  });
+
+  it("a new entity that the example writes as a catalog reference brings the example's catalog location, rebased to the main's folder: the main checks clean", async () => {
+    const { module, example } = builtIn('cut-in');
+    const work = temporaryFolder('m2s-entities-');
+    const vehicle = /<Vehicle name="vehicle\.audi\.tt"[\s\S]*?<\/Vehicle>/.exec(example)?.[0] ?? '';
+    assert.ok(vehicle);
+    // A user's library: the example's adversary is an entry of a vehicle catalog beside the library's examples.
+    fs.mkdirSync(path.join(work, 'lib', 'Catalogs', 'Vehicles'), { recursive: true });
+    fs.mkdirSync(path.join(work, 'lib', 'examples'));
+    fs.mkdirSync(path.join(work, 'scenarios'));
+    fs.writeFileSync(
+      path.join(work, 'lib', 'Catalogs', 'Vehicles', 'VehicleCatalog.xosc'),
+      `<?xml version="1.0" encoding="UTF-8"?>\n<OpenSCENARIO>\n  <FileHeader revMajor="1" revMinor="1" date="2026-11-29T00:00:00" description="cars" author="test"/>\n  <Catalog name="VehicleCatalog">\n    ${vehicle.replace('name="vehicle.audi.tt"', 'name="car_red"')}\n  </Catalog>\n</OpenSCENARIO>\n`,
+    );
+    const exampleFile = path.join(work, 'lib', 'examples', 'cut-in.xosc');
+    const withCatalog = example
+      .replace(
+        '<CatalogLocations/>',
+        '<CatalogLocations>\n    <VehicleCatalog>\n      <Directory path="../Catalogs/Vehicles"/>\n    </VehicleCatalog>\n  </CatalogLocations>',
+      )
+      .replace(vehicle, '<CatalogReference catalogName="VehicleCatalog" entryName="car_red"/>');
+    fs.writeFileSync(exampleFile, withCatalog);
+    const mainFile = path.join(work, 'scenarios', 'main.xosc');
+    const text = newMainScenario({
+      version: '1.3',
+      roadFile: path.join(library.folder, 'roads', 'straight_1000m.xodr'),
+      ego: { roadId: '0', laneId: -1, s: 10 },
+    });
+    const players = { adversary: 'adversary', ego: 'Ego' };
+    const entities = newEntityChanges(text, module, withCatalog, { adversary: 'adversary' }, players, {
+      main: mainFile,
+      example: exampleFile,
+    });
+    const result = applied(text, entities.changes);
+    assert.match(
+      result,
+      /<CatalogLocations>\n\t\t<VehicleCatalog>\n\t\t\t<Directory path="\.\.\/lib\/Catalogs\/Vehicles"\/>\n\t\t<\/VehicleCatalog>\n\t<\/CatalogLocations>/,
+    );
+    assert.match(
+      result,
+      /<ScenarioObject name="adversary">\s*<CatalogReference catalogName="VehicleCatalog" entryName="car_red"\/>\s*<\/ScenarioObject>/,
+    );
+    fs.writeFileSync(mainFile, result);
+    await checkCleanAndFlatten(mainFile, path.join(work, 'flat.xosc'));
+    // A main that locates its vehicle catalog already keeps its own.
+    const own = text.replace(
+      '<CatalogLocations/>',
+      '<CatalogLocations>\n\t\t<VehicleCatalog>\n\t\t\t<Directory path="cars"/>\n\t\t</VehicleCatalog>\n\t</CatalogLocations>',
+    );
+    const kept = applied(
+      own,
+      newEntityChanges(own, module, withCatalog, { adversary: 'adversary' }, players, { main: mainFile, example: exampleFile }).changes,
+    );
+    assert.equal((kept.match(/<VehicleCatalog>/g) ?? []).length, 1);
+    assert.match(kept, /<Directory path="cars"\/>/);
   });
 });

@@ -7,6 +7,7 @@
 import type { LibraryModule } from './library';
 import { moduleRoles, type ModuleRole } from './libraryInsert';
 import { parseScenario } from './model';
+import { pathsFor } from './paths';
 import { attribute, attributeValue, escapeAttributeValue, XmlAttribute, XmlElement } from './xml';
 
 /** A change of the main's text: `start`..`end` replaced by `text` (an insertion where they are equal). */
@@ -175,6 +176,7 @@ export function newEntityChanges(
   exampleText: string,
   create: Readonly<Record<string, string>>,
   players: Readonly<Record<string, string>>,
+  files?: { main: string; example: string },
 ): NewEntities {
   const result: NewEntities = { changes: [], values: {}, added: [] };
   const roles = moduleRoles(module).filter((role) => create[role.name] !== undefined);
@@ -317,7 +319,55 @@ export function newEntityChanges(
     );
     result.added.push(`${name} (${kind?.name ?? 'entity'}, ${where})`);
   }
+  const catalogs = catalogLocationsNeeded(root, example.document.root, roles, create, files);
+  if (catalogs.length > 0) {
+    const locations = child(root, 'CatalogLocations');
+    if (!locations)
+      throw new Error(
+        `the new entities are catalog references (as the example of ${module.name} writes them) and the main has no CatalogLocations to say where their catalogs are: add <CatalogLocations/> after its ParameterDeclarations`,
+      );
+    const indent = /^[ \t]*/.exec(mainText.slice(lineStart(mainText, locations.start)))?.[0] ?? '';
+    const block = catalogs.map(
+      (catalog) =>
+        `${indent}${unit}<${catalog.kind}>\n${indent}${unit}${unit}<Directory path="${escapeAttributeValue(catalog.path)}"/>\n${indent}${unit}</${catalog.kind}>`,
+    );
+    result.changes.push(appendChild(mainText, locations, block.join('\n')));
+  }
   result.changes.push(appendChild(mainText, entities, objects.join('\n')));
   result.changes.push(appendChild(mainText, actions, privates.join('\n')));
   return result;
+}
+
+/**
+ * The example's catalog locations the main lacks, where a new entity is a catalog reference: each kind of catalog the
+ * example locates and the main does not, its directory rebased from the example's folder to the main's (`files`; as
+ * written when they are not known or the path holds a parameter). A kind the main locates elsewhere is left to it.
+ */
+function catalogLocationsNeeded(
+  mainRoot: XmlElement,
+  exampleRoot: XmlElement | undefined,
+  roles: readonly ModuleRole[],
+  create: Readonly<Record<string, string>>,
+  files: { main: string; example: string } | undefined,
+): { kind: string; path: string }[] {
+  const references = roles.some((role) =>
+    child(exampleRoot, 'Entities')?.children.some(
+      (object) => attributeValue(object, 'name') === role.name && create[role.name] !== undefined && child(object, 'CatalogReference'),
+    ),
+  );
+  if (!references) return [];
+  const located = new Set(child(mainRoot, 'CatalogLocations')?.children.map((catalog) => catalog.name) ?? []);
+  const needed: { kind: string; path: string }[] = [];
+  for (const catalog of child(exampleRoot, 'CatalogLocations')?.children ?? []) {
+    const written = valueOf(child(catalog, 'Directory'), 'path');
+    if (located.has(catalog.name) || written === undefined) continue;
+    let rebased = written;
+    if (files && !written.includes('$')) {
+      const paths = pathsFor(files.main);
+      const absolute = paths.resolve(paths.dirname(files.example), written);
+      rebased = paths.relative(paths.dirname(files.main), absolute).split(paths.sep).join('/') || '.';
+    }
+    needed.push({ kind: catalog.name, path: rebased });
+  }
+  return needed;
 }

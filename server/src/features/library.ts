@@ -111,7 +111,15 @@ export async function libraryInsert(workspace: Workspace, params: LibraryInsertP
   let inserted;
   let entities;
   try {
-    entities = newEntityChanges(text, module, exampleText, Object.fromEntries(create.map((role) => [role, players[role]])), players);
+    const mainFile = filePathOf(params.uri);
+    entities = newEntityChanges(
+      text,
+      module,
+      exampleText,
+      Object.fromEntries(create.map((role) => [role, players[role]])),
+      players,
+      mainFile && module.example ? { main: mainFile, example: module.example } : undefined,
+    );
     const at = position ? lines.offsetAt(position) : undefined;
     inserted = insertModuleGroup(text, module, { act: params.act, at, players, values: entities.values });
   } catch (error) {
