@@ -140,6 +140,19 @@ function speedDistribution(ws: string, scenarioFile: string): string {
   return file;
 }
 
+/** The workspace's cut-in.xosc with its LogicFile named through a root parameter, `$Road`, of value ../xodr/e6mini.xodr. */
+function roadParameterCutIn(ws: string): string {
+  const text = fs
+    .readFileSync(path.join(ws, 'xosc', 'cut-in.xosc'), 'utf8')
+    .replace('<LogicFile filepath="../xodr/e6mini.xodr"/>', '<LogicFile filepath="$Road"/>')
+    .replace(
+      '<ParameterDeclarations>',
+      '<ParameterDeclarations>\n      <ParameterDeclaration name="Road" parameterType="string" value="../xodr/e6mini.xodr"/>',
+    );
+  assert.match(text, /<LogicFile filepath="\$Road"\/>/);
+  return text;
+}
+
 describe('cli: concrete scenarios of vary and batch, and the outputs of modularize, reach their files wherever they are written (SPEC 11.6), run in esmini', function () {
   let ws: string;
   let original: EsminiStep[];
@@ -173,6 +186,49 @@ describe('cli: concrete scenarios of vary and batch, and the outputs of modulari
     for (const file of fs.readdirSync(outDir)) assert.deepEqual(namedPaths(path.join(outDir, file)), expectedPaths, file);
     assert.match(fs.readFileSync(path.join(outDir, 'cut-in_1.xosc'), 'utf8'), /name="EgoSpeed" parameterType="double" value="100"/);
     assertSameRun((await runAlone(path.join(outDir, 'cut-in_0.xosc'))).steps, original, 'vary --out-dir');
+  });
+
+  it("vary --out-dir of a ScenarioFile whose LogicFile is a relative $Road: each concrete scenario's Road names the same road from where it is written, varied or not, and runs as the original", async () => {
+    fs.writeFileSync(path.join(ws, 'xosc', 'cut-in-road.xosc'), roadParameterCutIn(ws));
+    const roads = `      <DeterministicSingleParameterDistribution parameterName="Road">
+        <DistributionSet><Element value="../xodr/e6mini.xodr"/></DistributionSet>
+      </DeterministicSingleParameterDistribution>
+`;
+    for (const [name, varied] of [
+      ['speeds', ''],
+      ['roads', roads],
+    ]) {
+      const distribution = path.join(ws, 'xosc', `${name}-road.xosc`);
+      fs.writeFileSync(
+        distribution,
+        fs.readFileSync(speedDistribution(ws, 'cut-in-road.xosc'), 'utf8').replace('<Deterministic>\n', `<Deterministic>\n${varied}`),
+      );
+      const outDir = path.join(temporaryFolder('m2s-paths-out-'), 'a', 'b');
+      const run = runCli(['vary', distribution, '--out-dir', outDir], { cwd: temporaryFolder('m2s-paths-cli-') });
+      assert.equal(run.status, 0, run.stderr);
+      assert.doesNotMatch(run.stderr, /warning/, name);
+      for (const file of fs.readdirSync(outDir)) {
+        const road = /name="Road" parameterType="string" value="([^"]*)"/.exec(fs.readFileSync(path.join(outDir, file), 'utf8'))?.[1];
+        assert.equal(path.resolve(outDir, road ?? ''), path.join(ws, 'xodr', 'e6mini.xodr'), `${name}: ${file}`);
+      }
+      assertSameRun((await runAlone(path.join(outDir, 'cut-in-road_0.xosc'))).steps, original, `vary ${name} --out-dir`);
+    }
+  });
+
+  it('vary --out-dir leaves a $Road that is also used otherwise (here the description) as it is, and says so', () => {
+    const withRoad = roadParameterCutIn(ws).replace('description="Basic cut-in"', 'description="$Road"');
+    assert.match(withRoad, /description="\$Road"/);
+    fs.writeFileSync(path.join(ws, 'xosc', 'cut-in-road-used.xosc'), withRoad);
+    const outDir = temporaryFolder('m2s-paths-out-');
+    const run = runCli(['vary', speedDistribution(ws, 'cut-in-road-used.xosc'), '--out-dir', outDir], {
+      cwd: temporaryFolder('m2s-paths-cli-'),
+    });
+    assert.equal(run.status, 0, run.stderr);
+    assert.match(run.stderr, /warning: '\$Road' gives the relative path '..\/xodr\/e6mini.xodr'/);
+    assert.match(
+      fs.readFileSync(path.join(outDir, 'cut-in-road-used_0.xosc'), 'utf8'),
+      /name="Road" parameterType="string" value="..\/xodr\/e6mini.xodr"/,
+    );
   });
 
   it('vary beside the ScenarioFile changes no path; on standard output the paths are absolute', () => {

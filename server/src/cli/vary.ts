@@ -48,7 +48,8 @@ export const VARY_HELP = `Concrete scenarios of a ParameterValueDistribution (mo
   -q, --quiet               print errors only
   A concrete scenario is the ScenarioFile with its root parameter values replaced and its file paths (roads,
   catalogs) rebased onto the folder it is written to (absolute on standard output), every other byte kept,
-  so that it runs from wherever it is written; a catalog folder found only through --scenario-path is written
+  so that it runs from wherever it is written (a root parameter used only as a whole path, filepath="$Road",
+  has its relative value rebased instead); a catalog folder found only through --scenario-path is written
   as it stands, with a warning naming the --path esmini then needs. A ScenarioFile that is a modular
   main.xosc, an unpacked folder or a .mosc is flattened first (as flatten does), then its values replaced.
   Exit codes: 0 done, 1 the input has errors (nothing written), 2 usage, 3 an output could not be written, 4 internal error.`;

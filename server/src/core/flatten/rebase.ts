@@ -113,7 +113,7 @@ export interface PathRebase {
 }
 
 /** A path as written in an output: forward slashes, a trailing slash kept when the original had one. */
-function written(relativeOrAbsolute: string, like: string): string {
+export function written(relativeOrAbsolute: string, like: string): string {
   let text = relativeOrAbsolute.split(path.sep).join('/') || '.';
   if (/[\\/]$/.test(like) && !text.endsWith('/')) text += '/';
   return text;

@@ -1,6 +1,7 @@
-import { attribute, escapeAttributeValue, parseXml, XmlAttribute } from '../xml';
-import { applyEdits } from '../flatten/edits';
-import { rebasePaths } from '../flatten/rebase';
+import * as path from 'node:path';
+import { attribute, descendants, escapeAttributeValue, parseXml, XmlAttribute, XmlDocument } from '../xml';
+import { applyEdits, TextEdit } from '../flatten/edits';
+import { rebasePaths, ResolvedPath, written } from '../flatten/rebase';
 import { catalogFoundThroughSearchPathMessage } from '../diagnostics/filePath';
 import type { FileKind } from '../sources/host';
 import { LineIndex } from '../text';
@@ -150,15 +151,61 @@ export async function rebasedConcreteText(
   kindOf: (diskPath: string) => Promise<FileKind>,
   foundThroughSearchPath?: SearchPathCatalogFolders,
 ): Promise<{ text: string; warnings: string[] }> {
-  const rebase = await rebasePaths({ document: parseXml(text), baseOf: () => fromDirectory, outputDirectory: toDirectory, kindOf });
-  const warnings = rebase.findings.map((finding) => finding.message);
+  const document = parseXml(text);
+  const rebase = await rebasePaths({ document, baseOf: () => fromDirectory, outputDirectory: toDirectory, kindOf });
+  const handed = handedParameterPaths(document, rebase.resolved, fromDirectory, toDirectory);
+  const warnings = rebase.findings.filter((finding) => !handed.sites.has(finding.site.attribute)).map((finding) => finding.message);
   for (const site of foundThroughSearchPath ? rebase.unresolved : []) {
     const written = site.attribute.value;
     if (site.kind !== 'directory' || written.includes('$')) continue;
     const folders = await (foundThroughSearchPath as SearchPathCatalogFolders)(written);
     if (folders.length > 0) warnings.push(catalogFoundThroughSearchPathMessage(written, fromDirectory, folders));
   }
-  return { text: rebase.edits.length === 0 ? text : applyEdits(text, rebase.edits), warnings };
+  const edits = [...rebase.edits, ...handed.edits];
+  return { text: edits.length === 0 ? text : applyEdits(text, edits), warnings };
+}
+
+/**
+ * The root declarations of the parameters that serve only as whole file paths (`filepath="$Road"`, every use of `$Road` such
+ * a path), their relative value rewritten to name the same file from `toDirectory` (absolute when undefined): a concrete
+ * scenario is written elsewhere, and the value, not the `$Road` where it is used, is what names the file (SPEC 11.6 leaves
+ * the use as written). A parameter used otherwise too (in a string, an expression, an assignment) keeps its value.
+ */
+function handedParameterPaths(
+  document: XmlDocument,
+  resolved: readonly ResolvedPath[],
+  fromDirectory: string,
+  toDirectory: string | undefined,
+): { edits: TextEdit[]; sites: Set<XmlAttribute> } {
+  const none = { edits: [], sites: new Set<XmlAttribute>() };
+  const root = document.root;
+  const output = toDirectory === undefined ? undefined : path.resolve(toDirectory);
+  if (!root || output === path.resolve(fromDirectory)) return none;
+  const byName = new Map<string, ResolvedPath[]>();
+  for (const each of resolved) {
+    const name = /^\$([A-Za-z_][\w]*)$/.exec(each.site.attribute.value.trim())?.[1];
+    if (each.viaParameter && name !== undefined && !path.isAbsolute(each.written)) byName.set(name, [...(byName.get(name) ?? []), each]);
+  }
+  if (byName.size === 0) return none;
+  const elements = [root, ...descendants(root)];
+  const edits: TextEdit[] = [];
+  const sites = new Set<XmlAttribute>();
+  for (const [name, paths] of byName) {
+    const declarations = elements.filter(
+      (element) => element.name === 'ParameterDeclaration' && attribute(element, 'name')?.value === name,
+    );
+    const declaration = declarations[0];
+    const value = declaration && attribute(declaration, 'value');
+    if (declarations.length !== 1 || declaration.parent?.parent !== root || !value || value.value.includes('$')) continue;
+    const use = new RegExp(`\\$\\{?${name}(?![\\w.])`);
+    const uses = elements.flatMap((element) => element.attributes.filter((each) => use.test(each.value)));
+    const disk = path.resolve(fromDirectory, value.value.trim());
+    if (uses.length !== paths.length || paths.some((each) => each.disk !== disk)) continue;
+    const text = output === undefined ? written(disk, value.value) : written(path.relative(output, disk), value.value);
+    edits.push({ start: value.valueStart, end: value.valueEnd, text: escapeAttributeValue(text, value.quote) });
+    for (const each of paths) sites.add(each.site.attribute);
+  }
+  return { edits, sites };
 }
 
 /** Whether the scenario declares any ValueConstraintGroup at its root. */
