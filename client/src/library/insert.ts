@@ -232,7 +232,7 @@ export async function prepareInsert(
 export function reportInserted(reporter: CommandReporter, title: string, module: LibraryModuleSummary, inserted: PreparedInsert): void {
   const added = inserted.added.length > 0 ? `; added ${inserted.added.join(', ')}` : '';
   reporter.log(`${title}: library:${module.name} as ${inserted.groupName} in ${inserted.main.toString()} (${inserted.cast})${added}`);
-  void vscode.window.setStatusBarMessage(`Inserted library:${module.name} as ${inserted.groupName} (${inserted.cast})`, 8000);
+  void vscode.window.setStatusBarMessage(`Inserted library:${module.name} as ${inserted.groupName} (${inserted.cast})${added}`, 8000);
 }
 
 /** Writes the module's group into an Act of the main (prepareInsert) and shows it. Returns the new group's name. */

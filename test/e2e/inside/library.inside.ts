@@ -161,6 +161,11 @@ export const libraryTests: InsideTests = {
       for (const name of ['cut-in', 'lead-brake', 'pedestrian-crossing']) {
         steps.push(`Insert into Main: ${name}`);
         groups.push(await vscode.commands.executeCommand<string | undefined>('modular2simple.library.insert', moduleNode(name)));
+        // Asked nothing, the user is told what was added, in the status bar.
+        if (name === 'cut-in')
+          await waitFor('the status bar naming the new adversary', () =>
+            pageShows('added adversary (Vehicle, 35 m ahead of Ego, lane -2, 7 m/s)', '.statusbar'),
+          );
       }
       assert.deepEqual(groups, ['CutIn', 'LeadBrake', 'PedestrianCrossing']);
       const elapsed = (Date.now() - started) / 1000;
