@@ -191,6 +191,8 @@ export interface SimulatorFixData {
   orientationFirst?: boolean;
   /** The ScenarioObject whose Vehicle gets ScenarioRunner's ego Property (the one Export for CARLA marks). */
   ego?: string;
+  /** A SimulationTimeCondition esmini never fires: 'edge' writes its Condition's conditionEdge none; 'after-zero' its rule greaterThan (and the edge none). */
+  simulationTimeFix?: 'edge' | 'after-zero';
 }
 
 /** The data each problem code carries (where it carries any). */

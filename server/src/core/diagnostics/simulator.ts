@@ -90,6 +90,7 @@ function isSimulatorData(value: unknown): value is ProblemDataByCode['simulator'
   if (value.exportMaps !== undefined && typeof value.exportMaps !== 'boolean') return false;
   if (!isOptionalString(value.actor) || !isOptionalString(value.ego)) return false;
   if (value.orientationFirst !== undefined && typeof value.orientationFirst !== 'boolean') return false;
+  if (value.simulationTimeFix !== undefined && value.simulationTimeFix !== 'edge' && value.simulationTimeFix !== 'after-zero') return false;
   return value.rename === undefined || (isRecord(value.rename) && isString(value.rename.from) && isString(value.rename.to));
 }
 
@@ -119,8 +120,35 @@ export const SIMULATOR = defineDiagnostic({
     ...(data?.actor !== undefined ? await actorFix(data.actor, document, range, parsed) : []),
     ...(data?.orientationFirst ? await orientationFirstFix(document, range, parsed) : []),
     ...(data?.ego !== undefined ? await egoFix(data.ego, document, parsed) : []),
+    ...(data?.simulationTimeFix ? await simulationTimeFix(data.simulationTimeFix, document, range, parsed) : []),
   ],
 });
+
+/**
+ * A SimulationTimeCondition esmini never fires, made one it fires when its trigger is first evaluated: the Condition's
+ * conditionEdge none ('edge'); or, where that is after time 0, its rule greaterThan (0) and the edge none ('after-zero').
+ */
+async function simulationTimeFix(
+  fix: 'edge' | 'after-zero',
+  document: TextLines,
+  range: Range,
+  parsed: () => Promise<XmlDocument>,
+): Promise<CoreFix[]> {
+  const at = elementAt(await parsed(), document.offsetAt(range.start));
+  const time = fix === 'after-zero' ? at : undefined;
+  const condition = fix === 'edge' ? at : at?.parent?.parent;
+  if (condition?.name !== 'Condition' || (fix === 'after-zero' && time?.name !== 'SimulationTimeCondition')) return [];
+  const place = (start: number, end: number) => ({ start: document.positionAt(start), end: document.positionAt(end) });
+  const edits: CoreFix['edits'] = [];
+  const rule = time && attribute(time, 'rule');
+  if (rule) edits.push({ place: 'document' as const, range: place(rule.valueStart, rule.valueEnd), newText: 'greaterThan' });
+  const edge = attribute(condition, 'conditionEdge');
+  if (edge && edge.value !== 'none')
+    edits.push({ place: 'document' as const, range: place(edge.valueStart, edge.valueEnd), newText: 'none' });
+  if (edits.length === 0) return [];
+  const title = [rule ? 'rule="greaterThan"' : '', edge && edge.value !== 'none' ? 'conditionEdge="none"' : ''].filter(Boolean).join(', ');
+  return [{ title: `Write ${title}: esmini starts it when first evaluated`, edits, preferred: true }];
+}
 
 /**
  * ScenarioRunner's ego Property added to the Properties of the named ScenarioObject's Vehicle: what Export for CARLA

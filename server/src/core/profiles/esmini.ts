@@ -16,6 +16,9 @@ const PARAMETERS = 'EnvironmentSimulator/Modules/ScenarioEngine/SourceFiles/Para
 const SIMPLE_EXPR = 'EnvironmentSimulator/Modules/ScenarioEngine/SourceFiles/simple_expr.c';
 const EXPR = 'externals/expr/expr.h';
 const COMMON = 'EnvironmentSimulator/Modules/CommonMini/CommonMini.cpp';
+const OSC_CONDITION = 'EnvironmentSimulator/Modules/ScenarioEngine/OSCTypeDefs/OSCCondition.cpp';
+const STORYBOARD_ELEMENT = 'EnvironmentSimulator/Modules/ScenarioEngine/SourceFiles/StoryboardElement.cpp';
+const ENGINE = 'EnvironmentSimulator/Modules/ScenarioEngine/SourceFiles/ScenarioEngine.cpp';
 
 export const ESMINI_PROFILE: SimulatorProfile = {
   simulator: 'esmini',
@@ -180,6 +183,16 @@ export const ESMINI_FACTS = {
   routeOrientationOrder: {
     does: "applies a RoutePosition's Orientation only to an InRoutePosition it reads after it (it reads the children in the order written; the standard lets them stand in any order), so an Orientation written after the InRoutePosition is dropped (the entity then faces along the route; in a lane of positive id, against it)",
     source: `${READER}:2102-2212`,
+    severity: 'warning',
+  },
+  edgeAtFirstEvaluation: {
+    does: "checks a condition's edge only from its second evaluation (CheckEdge answers false until the condition has been evaluated once), and evaluates a Story's Act StartTriggers from time 0 and an Event's from the step its Act starts: a rising edge of a condition that already holds at its first evaluation, and never turns from false to true after it, never fires (esmini logs \"simulationTime = 0 condition used with edge rising which could be missed\" for an Event's)",
+    source: `${OSC_CONDITION}:205-238, 282-291, ${STORYBOARD_ELEMENT}:127-160, 174-204, ${ENGINE}:140-161, ${READER}:5334-5350`,
+    severity: 'warning',
+  },
+  simulationTimeZeroAfterStart: {
+    does: "evaluates an Event's StartTrigger from the step its Act starts, and holds SimulationTimeCondition equalTo within 1e-6 (SMALL_NUMBER): equalTo 0 in an Event whose Act starts after time 0 never holds",
+    source: `${STORYBOARD_ELEMENT}:127-160, 174-204, ${OSC_CONDITION}:56-88`,
     severity: 'warning',
   },
   steadyStateStop: {

@@ -2,6 +2,7 @@ import { esminiFactWording } from '../../diagnostics/simulator';
 import { ESMINI_SMALL_NUMBER } from '../../profiles/esmini';
 import { attribute, descendants, XmlAttribute, XmlElement } from '../../xml';
 import { assignmentsOf } from '../catalogs';
+import { formatValue } from '../values';
 import { Evaluator } from '../model';
 import { at, inCatalogEntry, onCatalogReferences } from './support';
 import type { Finding, SemanticCheck, SemanticContext } from './types';
@@ -69,6 +70,108 @@ function steadyStateStops(
   return findings;
 }
 
+type TextOf = (element: XmlElement, value: XmlAttribute) => string | undefined;
+
+/** A SimulationTimeCondition's rule and value as esmini reads them, or undefined when either cannot be read. */
+function simulationTimeRule(condition: XmlElement, textOf: TextOf): { rule: string; value: number } | undefined {
+  const rule = attribute(condition, 'rule');
+  const value = attribute(condition, 'value');
+  const ruleText = rule && textOf(condition, rule)?.trim();
+  const valueText = value && textOf(condition, value)?.trim();
+  if (!ruleText || !valueText || !Number.isFinite(Number(valueText))) return undefined;
+  return { rule: ruleText, value: Number(valueText) };
+}
+
+/** Whether SimulationTime 0 meets the rule, within esmini's SMALL_NUMBER (OSCCondition.cpp EvaluateRule). */
+function holdsAtZero({ rule, value }: { rule: string; value: number }): boolean {
+  switch (rule) {
+    case 'equalTo':
+      return Math.abs(value) < ESMINI_SMALL_NUMBER;
+    case 'notEqualTo':
+      return Math.abs(value) >= ESMINI_SMALL_NUMBER;
+    case 'greaterThan':
+      return 0 > value + ESMINI_SMALL_NUMBER;
+    case 'greaterOrEqual':
+      return 0 >= value - ESMINI_SMALL_NUMBER;
+    case 'lessThan':
+      return 0 < value - ESMINI_SMALL_NUMBER;
+    case 'lessOrEqual':
+      return 0 <= value + ESMINI_SMALL_NUMBER;
+    default:
+      return false;
+  }
+}
+
+/** A Condition's text attribute as esmini reads it ('none' for an absent conditionEdge, '0' for an absent delay). */
+function conditionText(condition: XmlElement, name: string, fallback: string, textOf: TextOf): string | undefined {
+  const written = attribute(condition, name);
+  return written ? textOf(condition, written)?.trim() : fallback;
+}
+
+/** Whether an Act starts at time 0 in esmini: no StartTrigger, or a group of SimulationTimeConditions that hold at 0, without edge or delay. */
+function actStartsAtZero(act: XmlElement, textOf: TextOf): boolean {
+  const trigger = act.children.find((child) => child.name === 'StartTrigger');
+  if (!trigger) return true;
+  return trigger.children.some(
+    (group) =>
+      group.name === 'ConditionGroup' &&
+      group.children.length > 0 &&
+      group.children.every((condition) => {
+        const time = descendants(condition).find((each) => each.name === 'SimulationTimeCondition');
+        const rule = time && simulationTimeRule(time, textOf);
+        return (
+          rule !== undefined &&
+          holdsAtZero(rule) &&
+          conditionText(condition, 'conditionEdge', 'none', textOf) === 'none' &&
+          Number(conditionText(condition, 'delay', '0', textOf)) === 0
+        );
+      }),
+  );
+}
+
+/**
+ * SimulationTimeConditions of StartTriggers that esmini never fires: a rising edge of one that holds when its trigger
+ * is first evaluated (a Story's Act at time 0, an Event of an Act that starts then) and never turns from false to true
+ * after it; an equalTo 0 in an Event whose Act starts later. The paper's library has both in every scenario, so in
+ * esmini nothing of it moves.
+ */
+function simulationTimesMissed(elements: readonly XmlElement[], textOf: TextOf): Finding[] {
+  const findings: Finding[] = [];
+  for (const time of elements) {
+    if (time.name !== 'SimulationTimeCondition') continue;
+    const condition = time.parent?.parent;
+    const trigger = condition?.parent?.parent;
+    const owner = trigger?.parent;
+    if (condition?.name !== 'Condition' || trigger?.name !== 'StartTrigger' || (owner?.name !== 'Act' && owner?.name !== 'Event')) continue;
+    const rule = simulationTimeRule(time, textOf);
+    const edge = conditionText(condition, 'conditionEdge', 'none', textOf);
+    if (!rule || edge === undefined) continue;
+    const act = owner.name === 'Act' ? owner : owner.parent?.parent?.parent;
+    const atZero = owner.name === 'Act' || (act?.name === 'Act' && actStartsAtZero(act, textOf));
+    const written = `SimulationTime ${rule.rule} ${formatValue(rule.value)}`;
+    if (atZero && edge === 'rising' && holdsAtZero(rule) && rule.rule !== 'notEqualTo') {
+      findings.push({
+        ...at(condition, attribute(condition, 'conditionEdge')),
+        ...esminiFactWording(
+          'edgeAtFirstEvaluation',
+          `${written} with edge rising already holds when this ${owner.name}'s StartTrigger is first evaluated, at time 0: the ${owner.name} never starts`,
+        ),
+        data: { simulationTimeFix: 'edge' },
+      });
+    } else if (!atZero && owner.name === 'Event' && rule.rule === 'equalTo' && Math.abs(rule.value) < ESMINI_SMALL_NUMBER) {
+      findings.push({
+        ...at(time, attribute(time, 'rule')),
+        ...esminiFactWording(
+          'simulationTimeZeroAfterStart',
+          `${written}: this Event's Act does not start at time 0, so the Event never starts`,
+        ),
+        data: { simulationTimeFix: 'after-zero' },
+      });
+    }
+  }
+  return findings;
+}
+
 /**
  * What esmini refuses at load: a ScenarioObject after an ExternalObjectReference that is referenced, a SynchronizeAction's
  * steady state to a stop; what it drops: a RoutePosition's Orientation after its position. In a catalog entry, each is
@@ -83,6 +186,7 @@ export const esminiScenario: SemanticCheck = (context) => {
     ...entitiesAfterExternal(context, root),
     ...routeOrientationsAfterPosition(own),
     ...steadyStateStops(own, textOf(context.evaluator)),
+    ...simulationTimesMissed(own, textOf(context.evaluator)),
     ...onCatalogReferences(context, (entry, resolution) => {
       const evaluator = new Evaluator(entry.file.model, assignmentsOf(resolution.reference, context.evaluator), context.evaluator.reading);
       const elements = [entry.element, ...descendants(entry.element)];
