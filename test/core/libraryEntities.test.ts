@@ -119,6 +119,25 @@ describe('Insert into main: a new entity as the example has it (core/libraryEnti
     assert.match(result, /<Private entityRef="oncoming">[\s\S]*?<LanePosition roadId="0" laneId="1" s="310"/);
   });
 
+  it("a module whose keys name no ego stands to the main's ego as to the example's; one the main's slower ego would leave standing says so", () => {
+    const swerving = builtIn('swerving-lead');
+    assert.ok(!swerving.module.parameters.some((parameter) => parameter.defaultValue === 'ego'), 'swerving-lead names no ego');
+    const text = newMain();
+    const lead = newEntityChanges(text, swerving.module, swerving.example, { lead: 'lead' }, { lead: 'lead' });
+    // Its example: the ego at s 50, the lead 30 m ahead, both at 15 m/s; this ego at s 10 and $EgoSpeed (10).
+    assert.match(
+      applied(text, lead.changes),
+      /<Private entityRef="lead">[\s\S]*?<LanePosition roadId="0" laneId="-1" s="40"[\s\S]*?<AbsoluteTargetSpeed value="10"\/>/,
+    );
+    assert.deepEqual(lead.added, ['lead (Vehicle, 30 m ahead of Ego, lane -1, 10 m/s)']);
+    const jam = builtIn('traffic-jam-end');
+    const queue = newEntityChanges(text, jam.module, jam.example, { jam1: 'jam1' }, { jam1: 'jam1', ego: 'Ego' });
+    assert.match(
+      queue.added[0],
+      /^jam1 \(Vehicle, 130 m ahead of Ego, lane -1, 0 m\/s \(standing: the example's ego drives 25 m\/s, Ego 10; a faster Ego gives the example's closing speed\)\)$/,
+    );
+  });
+
   it("a new entity that the example writes as a catalog reference brings the example's catalog location, rebased to the main's folder: the main checks clean", async () => {
     const { module, example } = builtIn('cut-in');
     const work = temporaryFolder('m2s-entities-');

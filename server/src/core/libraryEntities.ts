@@ -10,6 +10,9 @@ import { parseScenario } from './model';
 import { pathsFor } from './paths';
 import { attribute, attributeValue, escapeAttributeValue, XmlAttribute, XmlElement } from './xml';
 
+/** The entity the library's example mains name their ego. */
+const EGO = 'ego';
+
 /** A change of the main's text: `start`..`end` replaced by `text` (an insertion where they are equal). */
 export interface TextChange {
   start: number;
@@ -197,9 +200,17 @@ export function newEntityChanges(
   const mainNames = main.entities.map((entity) => entity.name.toLowerCase());
   const example = parseScenario(exampleText);
   const exampleStoryboard = child(example.document.root, 'Storyboard');
-  const reference = moduleRoles(module).find(
+  const roleReference = moduleRoles(module).find(
     (role: ModuleRole) => create[role.name] === undefined && players[role.name] !== undefined && privateOf(exampleStoryboard, role.name),
   );
+  // A module whose keys name no ego (a lead that swerves at a set time) still stands to the example's `ego` somewhere:
+  // the main's entity of that name, case aside, is the one it stands to.
+  const mainEgo = main.entities.find((entity) => entity.name.toLowerCase() === EGO);
+  const reference: { name: string; player: string } | undefined = roleReference
+    ? { name: roleReference.name, player: players[roleReference.name] }
+    : mainEgo && !Object.values(create).includes(mainEgo.name) && privateOf(exampleStoryboard, EGO)
+      ? { name: EGO, player: mainEgo.name }
+      : undefined;
   const unit = indentUnit(mainText);
   const entitiesIndent = /^[ \t]*/.exec(mainText.slice(lineStart(mainText, entities.start)))?.[0] ?? '';
   const actionsIndent = /^[ \t]*/.exec(mainText.slice(lineStart(mainText, actions.start)))?.[0] ?? '';
@@ -237,7 +248,7 @@ export function newEntityChanges(
     let where = 'placed as in the example';
     if (reference) {
       const exampleReference = placementOf(privateOf(exampleStoryboard, reference.name));
-      const player = players[reference.name];
+      const player = reference.player;
       const mainReference = placementOf(privateOf(storyboard, player));
       const exampleRoot = example.document.root;
       const [ownLane, ownS, refLane, refS] = [
@@ -303,6 +314,9 @@ export function newEntityChanges(
         const speed = rounded(Math.max(0, ownSpeed + mainSpeed - refSpeed));
         replacements.push({ attribute: speedAttribute, value: speed });
         where += `, ${speed} m/s`;
+        // Standing where the example's drives: the closing speed of the example is out of reach.
+        if (ownSpeed + mainSpeed - refSpeed <= 0)
+          where += ` (standing: the example's ${reference.name} drives ${rounded(refSpeed)} m/s, ${player} ${rounded(mainSpeed)}; a faster ${player} gives the example's closing speed)`;
         if (role.actor)
           for (const parameter of module.parameters)
             if (
