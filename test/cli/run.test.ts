@@ -231,6 +231,54 @@ describe('cli: run in esmini', function () {
     assert.match(found.stderr, /esmini: 0 errors/);
   });
 
+  it("a catalog entry's controller File written as it stands reaches the file beside the scenario in a run; flatten elsewhere warns at the reference, as esmini looks it up from the scenario's folder, not the catalog's", function () {
+    requireEsmini(this);
+    const root = examplesWith(
+      '</Vehicle>\n    </ScenarioObject>',
+      '</Vehicle>\n      <ObjectController><CatalogReference catalogName="ControllerCatalog" entryName="acc"/></ObjectController>\n    </ScenarioObject>',
+    );
+    const scenario = path.join(root, 'lane_change.xosc');
+    fs.writeFileSync(
+      scenario,
+      fs
+        .readFileSync(scenario, 'utf8')
+        .replace(
+          '<CatalogLocations/>',
+          '<CatalogLocations><ControllerCatalog><Directory path="catalogs/controllers"/></ControllerCatalog></CatalogLocations>',
+        ),
+    );
+    fs.mkdirSync(path.join(root, 'catalogs', 'controllers'), { recursive: true });
+    fs.writeFileSync(
+      path.join(root, 'catalogs', 'controllers', 'ControllerCatalog.xosc'),
+      '<?xml version="1.0"?>\n<OpenSCENARIO><FileHeader revMajor="1" revMinor="2" date="2026-11-29T00:00:00" description="c" author="t"/><Catalog name="ControllerCatalog">' +
+        '<Controller name="acc"><Properties><Property name="esminiController" value="ACCController"/><File filepath="inputs/acc.cfg"/></Properties></Controller></Catalog></OpenSCENARIO>\n',
+    );
+    fs.mkdirSync(path.join(root, 'inputs'));
+    fs.writeFileSync(path.join(root, 'inputs', 'acc.cfg'), '');
+    const run = runCli(['run', 'lane_change.xosc', '--check', '--duration', '1', '--road-path', esminiRoads, '--esmini', esminiBinary], {
+      cwd: root,
+    });
+    assert.equal(run.status, 0, run.stderr);
+    assert.doesNotMatch(run.stderr, /controller file|: warning:/);
+    const line =
+      fs
+        .readFileSync(scenario, 'utf8')
+        .split('\n')
+        .findIndex((text) => text.includes('entryName="acc"')) + 1;
+    fs.mkdirSync(path.join(root, 'out'));
+    const elsewhere = runCli(['flatten', 'lane_change.xosc', '-o', path.join('out', 'flat.xosc')], { cwd: root });
+    assert.equal(elsewhere.status, 0, elsewhere.stderr);
+    assert.match(
+      elsewhere.stderr,
+      new RegExp(
+        `lane_change\\.xosc:${line}:\\d+: warning: catalog entry 'acc' names its controller File 'inputs/acc\\.cfg', which esmini looks up .*\\(not the catalog's\\): from here it names ${path.join(root, 'inputs', 'acc.cfg')}; the output in ${path.join(root, 'out')} may reach another file or none`,
+      ),
+    );
+    const beside = runCli(['flatten', 'lane_change.xosc', '-o', 'flat.xosc'], { cwd: root });
+    assert.equal(beside.status, 0, beside.stderr);
+    assert.doesNotMatch(beside.stderr, /warning/);
+  });
+
   it('a distribution file or a catalog is not run as a scenario: exit 1, saying what it is and what runs it', function () {
     const root = temporaryFolder('m2s-run-kind-');
     try {

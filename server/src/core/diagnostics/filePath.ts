@@ -72,6 +72,27 @@ export function unrebasedPathWording(message: string): ProblemWording<'file-path
   };
 }
 
+/**
+ * A catalog controller entry's File written as a relative path (`written`), which esmini looks up from the folder of the
+ * scenario that uses the entry, where it names `disk`: the catalog is not part of the output, so nothing rebases it.
+ */
+export function catalogControllerFileWording(
+  entry: string,
+  written: string,
+  disk: string,
+  output: string | undefined,
+): ProblemWording<'file-path'> {
+  return {
+    severity: 'warning',
+    code: 'file-path',
+    message:
+      `catalog entry '${entry}' names its controller File '${written}', which esmini looks up from the working folder, then from ` +
+      `the folder of the scenario that uses the entry (not the catalog's): from here it names ${disk}; ` +
+      `${output === undefined ? 'the output on standard output' : `the output in ${output}`} may reach another file or none`,
+    hint: "write the File's path absolute in the catalog entry, or name it through a parameter this reference assigns, or write the output beside this file",
+  };
+}
+
 export const FILE_PATH = defineDiagnostic({
   code: 'file-path',
   rule: { description: 'A file path of a written scenario names, from where it is written, the file its source named (SPEC 11.6).' },

@@ -3,7 +3,12 @@ import { Evaluator, semanticModelOf } from '../semantics';
 import { ScenarioModel } from '../model';
 import { Problem, ZERO_RANGE } from '../problems';
 import { ProblemWording } from '../diagnostics';
-import { packagedPathOnStandardOutputWording, packagedPathTakenMessage, unrebasedPathWording } from '../diagnostics/filePath';
+import {
+  catalogControllerFileWording,
+  packagedPathOnStandardOutputWording,
+  packagedPathTakenMessage,
+  unrebasedPathWording,
+} from '../diagnostics/filePath';
 import type { FileKind, FileSystemHost } from '../sources/host';
 import { normalizeEntryName, ScenarioStore, SourceRef } from '../sources';
 import { escapeAttributeValue, parseXml, selfAndDescendants, XmlAttribute, XmlDocument, XmlElement } from '../xml';
@@ -182,6 +187,35 @@ export async function rebasePaths(request: RebaseRequest): Promise<PathRebase> {
     });
   }
   return result;
+}
+
+/**
+ * The controller entries the main's CatalogReferences use whose File is a relative path written as it stands: esmini looks it
+ * up from the folder of the scenario it runs (ScenarioReader.cpp parseOSCObjectController), never the catalog's, and the output
+ * written elsewhere keeps the reference, not the entry, so a file the path names from the main's folder is warned of at the
+ * reference. A run hands it (esmini/controllerFiles.ts).
+ */
+async function catalogControllerFileProblems(
+  source: FlatSource,
+  outputDirectory: string | undefined,
+  store: ScenarioStore,
+): Promise<Problem[]> {
+  const semantics = source.semantics;
+  const base = path.resolve(pathBaseOf(source.ref));
+  if (!semantics || outputDirectory === base) return [];
+  const problems: Problem[] = [];
+  for (const { reference, entry } of semantics.catalogs.references) {
+    if (entry?.element.name !== 'Controller') continue;
+    const file = entry.element.children.find((child) => child.name === 'Properties')?.children.find((child) => child.name === 'File');
+    const written = file?.attributes.find((each) => each.name === 'filepath')?.value.trim();
+    if (!written || written.includes('$') || path.isAbsolute(written)) continue;
+    const disk = path.resolve(base, written);
+    if ((await store.kindOf(disk)) !== 'file') continue;
+    const at = reference.entryNameAttribute;
+    const range = at ? semantics.model.document.lines.range(at.valueStart, at.valueEnd) : ZERO_RANGE;
+    problems.push({ source: source.ref, range, ...catalogControllerFileWording(entry.name, written, disk, outputDirectory) });
+  }
+  return problems;
 }
 
 /** The folder beside an output (`flat.files` for `flat.xosc`) that the copies of the package files it names are written to. */
@@ -370,6 +404,7 @@ export async function rebaseFlattened(
       continue;
     problems.push(problemAtOrigin(finding.site.element, finding.site.attribute.name, unrebasedPathWording(finding.message)));
   }
+  if (!handed.controllerFilesHanded) problems.push(...(await catalogControllerFileProblems(source, outputDirectory, store)));
   return {
     edits: [...edits, ...rebase.edits],
     resolved: rebase.resolved,
