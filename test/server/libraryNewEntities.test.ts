@@ -171,6 +171,20 @@ describe('language server: Insert into Main adds the entity a role lacks, as the
     await behavesAsItsExamples(this, text);
   });
 
+  it("an ego named otherwise, whose own group drives it, still plays the module's ego (by its kind); only the actor is new", async function () {
+    const text = newMain().replace(/"Ego"/g, '"Hero"');
+    const uri = await client.open(fileUri(path.join(root, 'main.xosc')), text);
+    const questions = await client.send(LibraryInsertRequest, { uri, module: 'cut-in' });
+    assert.deepEqual(
+      questions.roles.map((role) => [role.name, role.guess, role.newEntity, role.newEntityOnly]),
+      [
+        ['adversary', undefined, 'adversary', true],
+        ['ego', 'Hero', undefined, undefined],
+      ],
+    );
+    await client.close(uri);
+  });
+
   it('an answer naming an existing entity as new is refused, saying which name is free; a role that is guessed has no offer', async function () {
     const text = newMain()
       .replace(/"Ego"/g, '"Adversary"')

@@ -185,21 +185,23 @@ export async function prepareInsert(
       return undefined;
     }
     const taken = new Set(Object.values(players));
-    const items: (vscode.QuickPickItem & { entity: string; create?: boolean })[] = [
-      ...(role.newEntity
-        ? [
-            {
-              label: `$(add) New entity '${role.newEntity}'`,
-              description: `as the ${module.name} example main declares and places it`,
-              entity: role.newEntity,
-              create: true,
-            },
-          ]
-        : []),
-      ...[...questions.entities]
-        .sort((a, b) => Number(taken.has(a)) - Number(taken.has(b)))
-        .map((entity) => ({ label: entity, description: taken.has(entity) ? 'plays another role already' : undefined, entity })),
-    ];
+    const fresh = role.newEntity
+      ? [
+          {
+            label: `$(add) New entity '${role.newEntity}'`,
+            description: `as the ${module.name} example main declares and places it`,
+            entity: role.newEntity,
+            create: true,
+          },
+        ]
+      : [];
+    const existing = [...questions.entities]
+      .sort((a, b) => Number(taken.has(a)) - Number(taken.has(b)))
+      .map((entity) => ({ label: entity, description: taken.has(entity) ? 'plays another role already' : undefined, entity }));
+    // An actor (the module drives it) is most often new; another role (the ego a key names) most often the main's.
+    const items: (vscode.QuickPickItem & { entity: string; create?: boolean })[] = role.actor
+      ? [...fresh, ...existing]
+      : [...existing, ...fresh];
     const picked = await vscode.window.showQuickPick(items, {
       title: `${title}: ${module.title}`,
       placeHolder: `Which entity plays '${role.name}' (${role.about})?`,

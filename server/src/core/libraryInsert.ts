@@ -125,8 +125,9 @@ function namedPlayer(role: ModuleRole, entities: readonly string[]): string | un
 /**
  * The entity of the main that most likely plays a role: the same name, else the same name ignoring case; else, given
  * the kinds of the module's and of the main's entities, the one entity of the role's kind (a Pedestrian for a
- * pedestrian) that no role of the module names and that is no actor of a group of the main (`busy`: a car that cuts
- * in already is no likely lead vehicle); else none (the user is asked).
+ * pedestrian) that no role of the module names and, for a role the module drives (an actor), that is no actor of a
+ * group of the main (`busy`: a car that cuts in already is no likely lead vehicle; the ego its own group drives still
+ * is the ego a key names); else none (the user is asked).
  */
 export function guessPlayer(
   role: ModuleRole,
@@ -142,7 +143,9 @@ export function guessPlayer(
   if (named || !kinds) return named;
   const kind = kinds.module.get(role.name);
   if (!kind) return undefined;
-  const candidates = freeEntities(entities, kinds.roles, kinds.busy ?? []).filter((entity) => kinds.main.get(entity) === kind);
+  const candidates = freeEntities(entities, kinds.roles, role.actor ? (kinds.busy ?? []) : []).filter(
+    (entity) => kinds.main.get(entity) === kind,
+  );
   return candidates.length === 1 ? candidates[0] : undefined;
 }
 

@@ -91,7 +91,8 @@ export async function libraryInsert(workspace: Workspace, params: LibraryInsertP
   const exampleText = module.example ? await readText(module.example) : '';
   const kinds = { roles: moduleRolesOf, module: entityKinds(moduleText), main: entityKinds(text), busy: shape.actors };
   const offers = new Map(entityOffers(module, exampleText, shape.entities).map((offer) => [offer.role, offer.name]));
-  const free = freeEntities(shape.entities, moduleRolesOf, shape.actors);
+  // Free to play a role the module drives: no actor of a group of the main; any other role (the ego a key names): any.
+  const free = { actor: freeEntities(shape.entities, moduleRolesOf, shape.actors), other: freeEntities(shape.entities, moduleRolesOf, []) };
   const roles = moduleRolesOf.map((role) => {
     const guess = guessPlayer(role, shape.entities, kinds);
     // Offered where the main has no entity of the role's name or kind to guess: the question is asked then.
@@ -99,7 +100,7 @@ export async function libraryInsert(workspace: Workspace, params: LibraryInsertP
     return {
       ...role,
       ...(guess ? { guess } : {}),
-      ...(newEntity ? { newEntity, ...(free.length === 0 ? { newEntityOnly: true } : {}) } : {}),
+      ...(newEntity ? { newEntity, ...((role.actor ? free.actor : free.other).length === 0 ? { newEntityOnly: true } : {}) } : {}),
     };
   });
   const result: LibraryInsertResult = { acts: shape.acts.map((act) => act.path), entities: shape.entities, roles };
