@@ -253,11 +253,22 @@ describe('cli: run in esmini', function () {
       '<?xml version="1.0"?>\n<OpenSCENARIO><FileHeader revMajor="1" revMinor="2" date="2026-11-29T00:00:00" description="c" author="t"/><Catalog name="ControllerCatalog">' +
         '<Controller name="acc"><Properties><Property name="esminiController" value="ACCController"/><File filepath="inputs/acc.cfg"/></Properties></Controller></Catalog></OpenSCENARIO>\n',
     );
+    const args = ['run', 'lane_change.xosc', '--check', '--duration', '1', '--road-path', esminiRoads, '--esmini', esminiBinary];
+    // Beside the catalog, esmini does not find it (it never looks there): the message says so.
+    const besideCatalog = path.join(root, 'catalogs', 'controllers', 'inputs', 'acc.cfg');
+    fs.mkdirSync(path.dirname(besideCatalog));
+    fs.writeFileSync(besideCatalog, '');
+    const missed = runCli(args, { cwd: root });
+    assert.equal(missed.status, 1, missed.stderr);
+    assert.ok(
+      missed.stderr.includes(
+        `error: Failed to localize controller file inputs/acc.cfg, also tried ${path.join(root, 'inputs', 'acc.cfg')} [${besideCatalog} exists beside the catalog: esmini looks`,
+      ),
+      missed.stderr,
+    );
     fs.mkdirSync(path.join(root, 'inputs'));
     fs.writeFileSync(path.join(root, 'inputs', 'acc.cfg'), '');
-    const run = runCli(['run', 'lane_change.xosc', '--check', '--duration', '1', '--road-path', esminiRoads, '--esmini', esminiBinary], {
-      cwd: root,
-    });
+    const run = runCli(args, { cwd: root });
     assert.equal(run.status, 0, run.stderr);
     assert.doesNotMatch(run.stderr, /controller file|: warning:/);
     const line =

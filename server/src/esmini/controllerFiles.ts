@@ -197,3 +197,27 @@ function inlinedEntryEdit(
   // A line break between tags or inside a value (where XML reads it as a space) is a space here.
   return { start: reference.start, end: reference.end, text: text.replace(/\r\n?|\n/g, ' ') };
 }
+
+/**
+ * esmini's "Failed to localize controller file F, also tried ..." with what it missed where the user may have meant it: F
+ * beside the catalog of an entry the scenario uses whose File names F. esmini never looks there (only its working folder and
+ * the scenario's), so the message says so, and to write the path from the scenario's folder.
+ */
+export function withCatalogFolderNote(
+  text: string,
+  references: readonly CatalogReferenceResolution[],
+  exists: (file: string) => boolean,
+): string {
+  const missed = /^Failed to localize controller file (.+?), also tried /.exec(text)?.[1];
+  if (missed === undefined || path.isAbsolute(missed)) return text;
+  const beside = new Set<string>();
+  for (const { entry } of references) {
+    if (entry?.element.name !== 'Controller' || entry.file.ref.entries.length > 0) continue;
+    if (fileOf(entry.element)?.attribute.value.trim() !== missed) continue;
+    const file = path.resolve(path.dirname(entry.file.ref.disk), missed);
+    if (exists(file)) beside.add(file);
+  }
+  return beside.size === 0
+    ? text
+    : `${text} [${[...beside].join(', ')} exists beside the catalog: esmini looks a catalog entry's controller File up from its working folder and from the scenario's folder, not from the catalog's; write the path as it stands from the scenario's folder]`;
+}

@@ -11,7 +11,7 @@ import { CatalogLoader } from '../core/semantics/catalogs';
 import { attribute, descendants, escapeAttributeValue, parseXml } from '../core/xml';
 import { parseEsminiLoadedRoad } from '../../../common/src/esminiCsv';
 import type { TraceRecord } from '../../../common/src/trace';
-import { ControllerFilesFrom, withControllerFilesFrom } from './controllerFiles';
+import { ControllerFilesFrom, withCatalogFolderNote, withControllerFilesFrom } from './controllerFiles';
 import { locateEsmini } from './locate';
 import { EsminiLogMessage, EsminiRemark, readEsminiLog } from './log';
 import { esminiMessageSeverity, EsminiProblem, mapEsminiMessages, withoutRunFolder } from './messages';
@@ -407,7 +407,11 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
       copies.set(file.path, `${packageOfMain}/${path.relative(filesFolder, file.path).split(path.sep).join('/')}`);
   const messages = log.messages.map((message) => ({
     ...message,
-    text: withoutRunFolder(message.text, runFolder, sourceFolderOf(main), copies),
+    text: withCatalogFolderNote(
+      withoutRunFolder(message.text, runFolder, sourceFolderOf(main), copies),
+      controllerFilesFrom.references,
+      fs.existsSync,
+    ),
   }));
   const problems = mapEsminiMessages(messages, flat.source, main);
   const trace = traceFromLog(storyboardMapOf(flat.source), ran.run.output);
