@@ -4,7 +4,9 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { main } from '../../server/src/cli';
 import { LibraryModule, listLibraries } from '../../server/src/core/library';
-import { insertModuleGroup, moduleRoles } from '../../server/src/core/libraryInsert';
+import { entityOffers, newEntityChanges } from '../../server/src/core/libraryEntities';
+import { guessPlayer, insertModuleGroup, mainShape, moduleRoles } from '../../server/src/core/libraryInsert';
+import { newMainScenario } from '../../server/src/core/newScenario';
 import { nodeFileSystem } from '../../server/src/core/sources';
 import { builtInLibraryFolder, libraryFolders } from '../../server/src/libraries';
 import { harnessVerdicts, requireCarlaHarness } from '../support/carla';
@@ -250,6 +252,62 @@ describe('library modules: each verified in esmini and CARLA (issue 28)', functi
         );
       }
     }
+  });
+
+  it('every module inserted into a main with only an ego (as New Modular Scenario writes it, 10 m further on), its actors added by Insert into Main: clean, and it behaves as in its example in esmini', async function () {
+    requireEsmini(this);
+    const placed: string[] = [];
+    // The weather's behaviour is read from a recording, and its only role is the ego.
+    for (const module of modules.filter((candidate) => candidate.name !== 'weather-light-change')) {
+      const exampleText = fs.readFileSync(module.example ?? '', 'utf8');
+      const egoPosition = /<Private entityRef="ego">[\s\S]*?<LanePosition roadId="([^"]+)" laneId="(-?\d+)" s="([\d.]+)"/.exec(exampleText);
+      const egoSpeed = /<Private entityRef="ego">[\s\S]*?<AbsoluteTargetSpeed value="([^"]+)"/.exec(exampleText)?.[1];
+      const egoVehicle = /<ScenarioObject name="ego">\s*(<Vehicle[\s\S]*?<\/Vehicle>)/.exec(exampleText)?.[1];
+      const end = /<Condition name="End"[\s\S]*?<SimulationTimeCondition value="([^"]+)"/.exec(exampleText)?.[1];
+      // arrive-leave-site, rear-end-collision and ttc-brake have no ego: their actors stand where their examples say.
+      if (!egoPosition) continue;
+      assert.ok(egoSpeed && egoVehicle && end, `${module.name}: its example's ego has no speed, car or end`);
+      const road = path.resolve(path.dirname(module.example ?? ''), /<LogicFile filepath="([^"]+)"/.exec(exampleText)?.[1] ?? '');
+      // The ego drives as the example's (its car, its speed, its end), 10 m further along its lane.
+      let text = newMainScenario({
+        version: '1.1',
+        roadFile: road,
+        ego: { roadId: egoPosition[1], laneId: Number(egoPosition[2]), s: Number(egoPosition[3]) + 10 },
+      })
+        .replace(/<Vehicle name="car"[\s\S]*?<\/Vehicle>/, egoVehicle)
+        .replace('name="EgoSpeed" parameterType="double" value="10"', `name="EgoSpeed" parameterType="double" value="${egoSpeed}"`)
+        .replace('<SimulationTimeCondition value="20"', `<SimulationTimeCondition value="${end}"`);
+      const shape = mainShape(text);
+      const offers = entityOffers(module, exampleText, shape.entities);
+      const players: Record<string, string> = {};
+      const create: Record<string, string> = {};
+      for (const role of moduleRoles(module)) {
+        const offer = offers.find((candidate) => candidate.role === role.name);
+        players[role.name] = guessPlayer(role, shape.entities) ?? offer?.name ?? '';
+        if (players[role.name] === offer?.name) create[role.name] = offer.name;
+      }
+      const mainFile = path.join(outputs, 'composed', `${module.name}.xosc`);
+      const entities = newEntityChanges(text, module, exampleText, create, players, { main: mainFile, example: module.example ?? '' });
+      placed.push(...entities.added.map((added) => `${module.name}: ${added}`));
+      const group = insertModuleGroup(text, module, { players, values: entities.values });
+      for (const change of [...entities.changes, { start: group.offset, end: group.offset, text: group.text }].sort(
+        (a, b) => b.start - a.start,
+      ))
+        text = text.slice(0, change.start) + change.text + text.slice(change.end);
+      fs.mkdirSync(path.dirname(mainFile), { recursive: true });
+      fs.writeFileSync(mainFile, text);
+      const said: string[] = [];
+      const code = await main(['check', mainFile], { out: (line) => said.push(line), err: (line) => said.push(line) });
+      assert.equal(code, 0, said.join('\n'));
+      assert.match(said.join('\n'), /0 errors, 0 warnings/, `${module.name}:\n${said.join('\n')}`);
+      const { run } = await runExample({ ...module, example: mainFile }, outputs, esminiBinary);
+      const tracks = tracksOf(run);
+      tracks.set('ego', tracks.get('Ego') ?? []);
+      BEHAVIOURS[module.name](module, tracks, []);
+    }
+    fs.rmSync(path.join(outputs, 'composed'), { recursive: true, force: true });
+    // Each actor 10 m further on, as its example places it from the ego (those of modules that name no ego where it says).
+    assert.ok(placed.filter((added) => / m (ahead of|behind) Ego/.test(added)).length >= 14, placed.join('\n'));
   });
 
   it("every example main's CARLA export builds in ScenarioRunner's loader, and check --simulator carla finds no error in it", async function () {
