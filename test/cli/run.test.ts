@@ -288,6 +288,38 @@ describe('cli: run in esmini', function () {
     const beside = runCli(['flatten', 'lane_change.xosc', '-o', 'flat.xosc'], { cwd: root });
     assert.equal(beside.status, 0, beside.stderr);
     assert.doesNotMatch(beside.stderr, /warning/);
+    // The same path named through the entry's parameter, its default or the value the reference assigns: warned of alike.
+    const catalog = path.join(root, 'catalogs', 'controllers', 'ControllerCatalog.xosc');
+    fs.writeFileSync(
+      catalog,
+      fs
+        .readFileSync(catalog, 'utf8')
+        .replace(
+          '<Properties>',
+          '<ParameterDeclarations><ParameterDeclaration name="CfgFile" parameterType="string" value="inputs/acc.cfg"/></ParameterDeclarations><Properties>',
+        )
+        .replace('filepath="inputs/acc.cfg"', 'filepath="$CfgFile"'),
+    );
+    fs.writeFileSync(path.join(root, 'inputs', 'other.cfg'), '');
+    const assigning = fs
+      .readFileSync(scenario, 'utf8')
+      .replace(
+        '<CatalogReference catalogName="ControllerCatalog" entryName="acc"/>',
+        '<CatalogReference catalogName="ControllerCatalog" entryName="acc"><ParameterAssignments><ParameterAssignment parameterRef="CfgFile" value="inputs/other.cfg"/></ParameterAssignments></CatalogReference>',
+      );
+    for (const [text, value] of [
+      [fs.readFileSync(scenario, 'utf8'), 'inputs/acc.cfg'],
+      [assigning, 'inputs/other.cfg'],
+    ]) {
+      fs.writeFileSync(scenario, text);
+      const flattened = runCli(['flatten', 'lane_change.xosc', '-o', path.join('out', 'flat.xosc')], { cwd: root });
+      assert.equal(flattened.status, 0, flattened.stderr);
+      assert.ok(
+        flattened.stderr.includes(`names its controller File '$CfgFile' ('${value}'), which esmini looks up`) &&
+          flattened.stderr.includes(`from here it names ${path.join(root, ...value.split('/'))};`),
+        flattened.stderr,
+      );
+    }
   });
 
   it('a distribution file or a catalog is not run as a scenario: exit 1, saying what it is and what runs it', function () {

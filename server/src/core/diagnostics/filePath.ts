@@ -73,7 +73,7 @@ export function unrebasedPathWording(message: string): ProblemWording<'file-path
 }
 
 /**
- * A catalog controller entry's File written as a relative path (`written`), which esmini looks up from the folder of the
+ * A catalog controller entry's File written as a relative path (`written`, quoted, with the value a parameter gives it), which esmini looks up from the folder of the
  * scenario that uses the entry, where it names `disk`: the catalog is not part of the output, so nothing rebases it.
  */
 export function catalogControllerFileWording(
@@ -86,7 +86,7 @@ export function catalogControllerFileWording(
     severity: 'warning',
     code: 'file-path',
     message:
-      `catalog entry '${entry}' names its controller File '${written}', which esmini looks up from the working folder, then from ` +
+      `catalog entry '${entry}' names its controller File ${written}, which esmini looks up from the working folder, then from ` +
       `the folder of the scenario that uses the entry (not the catalog's): from here it names ${disk}; ` +
       `${output === undefined ? 'the output on standard output' : `the output in ${output}`} may reach another file or none`,
     hint: "write the File's path absolute in the catalog entry, or name it through a parameter this reference assigns, or write the output beside this file",

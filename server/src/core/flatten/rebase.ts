@@ -208,14 +208,33 @@ async function catalogControllerFileProblems(
     if (entry?.element.name !== 'Controller') continue;
     const file = entry.element.children.find((child) => child.name === 'Properties')?.children.find((child) => child.name === 'File');
     const written = file?.attributes.find((each) => each.name === 'filepath')?.value.trim();
-    if (!written || written.includes('$') || path.isAbsolute(written)) continue;
-    const disk = path.resolve(base, written);
+    // Named through the entry's parameter: the value the reference assigns, else the entry's default.
+    const parameter = written ? /^\$([A-Za-z_][\w.]*)$/.exec(written)?.[1] : undefined;
+    const assignment = reference.assignments.find((each) => each.parameterRef?.value.replace(/^\$/, '') === parameter);
+    const value =
+      parameter === undefined
+        ? written
+        : assignment
+          ? semantics.evaluator.textOf(assignment.element, assignment.valueAttribute)?.trim()
+          : declaredValue(entry.element, parameter);
+    if (!written || !value || value.includes('$') || path.isAbsolute(value)) continue;
+    const disk = path.resolve(base, value);
     if ((await store.kindOf(disk)) !== 'file') continue;
     const at = reference.entryNameAttribute;
     const range = at ? semantics.model.document.lines.range(at.valueStart, at.valueEnd) : ZERO_RANGE;
-    problems.push({ source: source.ref, range, ...catalogControllerFileWording(entry.name, written, disk, outputDirectory) });
+    const named = value === written ? `'${written}'` : `'${written}' ('${value}')`;
+    problems.push({ source: source.ref, range, ...catalogControllerFileWording(entry.name, named, disk, outputDirectory) });
   }
   return problems;
+}
+
+/** The value an element's own ParameterDeclaration of `name` gives, as written. */
+function declaredValue(element: XmlElement, name: string): string | undefined {
+  const declarations = element.children.find((child) => child.name === 'ParameterDeclarations');
+  const declaration = declarations?.children.find(
+    (child) => child.name === 'ParameterDeclaration' && child.attributes.some((each) => each.name === 'name' && each.value === name),
+  );
+  return declaration?.attributes.find((each) => each.name === 'value')?.value.trim();
 }
 
 /** The folder beside an output (`flat.files` for `flat.xosc`) that the copies of the package files it names are written to. */
