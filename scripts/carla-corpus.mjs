@@ -27,6 +27,8 @@ const compareCheck = process.argv.includes('--check');
 const esmini = path.join(corpus, 'openscenario', 'esmini');
 const examples = path.join(corpus, 'openscenario', 'scenario_runner');
 const library = path.join(corpus, 'modular2simple', 'library');
+// Town05's OpenDRIVE, as esmini finds it: the export plans the library's story routes on its lanes.
+const townRoad = ['--road-path', path.join(shared, 'esmini', 'xodr')];
 /** @type {Corpus[]} */
 const corpora = [
   {
@@ -52,8 +54,8 @@ const corpora = [
     inputs: [
       ...readdirSync(library)
         .filter((name) => existsSync(path.join(library, name, 'main.xosc')))
-        .map((name) => ({ input: path.join(library, name, 'main.xosc'), extra: ['--scenario-path', library] })),
-      { input: path.join(corpus, 'modular2simple', 'case-study'), extra: ['--force'] },
+        .map((name) => ({ input: path.join(library, name, 'main.xosc'), extra: ['--scenario-path', library, ...townRoad] })),
+      { input: path.join(corpus, 'modular2simple', 'case-study'), extra: ['--force', ...townRoad] },
     ],
     asWritten: [
       ...readdirSync(library)

@@ -1079,42 +1079,64 @@ function storyRoutesScenario(trigger: 'distance' | 'time' = 'distance'): string 
     const point = roadPoint(road, s, laneCenterT(road, laneSectionIndexAt(road, s), -1, s));
     return `<WorldPosition x="${point.x.toFixed(4)}" y="${point.y.toFixed(4)}" z="0" h="${point.hdg.toFixed(4)}"/>`;
   };
+  return storyRoutes({
+    road: 'fabriksgatan.xodr',
+    trigger,
+    actors: [
+      { name: 'Ego', start: world('2', 150), speed: 10, target: world('1', 12) },
+      { name: 'Follower', start: world('2', 50), speed: 14, target: world('1', 8) },
+    ],
+    stopAt: 25,
+  });
+}
+
+/**
+ * Story routes on esmini's `road`: each actor (the first the ego) starts at `start` and acquires `target` in an Event
+ * started by its own TraveledDistanceCondition (5 m) after a step SpeedAction of its story sets `speed`; or, at
+ * `trigger: 'time'`, its Init sets the speed and a SimulationTimeCondition (1 s) starts the route.
+ */
+function storyRoutes(parts: {
+  road: string;
+  trigger: 'distance' | 'time';
+  actors: { name: string; start: string; speed: number; target: string }[];
+  stopAt: number;
+}): string {
   const speed = (value: number): string => `<PrivateAction>${speedChange('step', 0, 'time', value)}</PrivateAction>`;
-  const routeStarts =
-    trigger === 'distance'
-      ? (actor: string) => `<ByEntityCondition>
+  const routeStarts = (actor: string): string =>
+    parts.trigger === 'distance'
+      ? `<ByEntityCondition>
                   <TriggeringEntities triggeringEntitiesRule="any"><EntityRef entityRef="${actor}"/></TriggeringEntities>
                   <EntityCondition><TraveledDistanceCondition value="5"/></EntityCondition>
                 </ByEntityCondition>`
-      : () => '<ByValueCondition><SimulationTimeCondition value="1" rule="greaterThan"/></ByValueCondition>';
-  const group = (actor: string, value: number, target: string): string => `
-        <ManeuverGroup maximumExecutionCount="1" name="${actor}Group">
-          <Actors selectTriggeringEntities="false"><EntityRef entityRef="${actor}"/></Actors>
-          <Maneuver name="${actor}Maneuver">${
-            trigger === 'distance'
+      : '<ByValueCondition><SimulationTimeCondition value="1" rule="greaterThan"/></ByValueCondition>';
+  const group = ({ name, speed: value, target }: (typeof parts.actors)[number]): string => `
+        <ManeuverGroup maximumExecutionCount="1" name="${name}Group">
+          <Actors selectTriggeringEntities="false"><EntityRef entityRef="${name}"/></Actors>
+          <Maneuver name="${name}Maneuver">${
+            parts.trigger === 'distance'
               ? `
-            <Event name="${actor}Speed" priority="parallel">
-              <Action name="${actor}Speeds">${speed(value)}</Action>
-              <StartTrigger><ConditionGroup><Condition name="${actor}AtZero" delay="0" conditionEdge="none">
+            <Event name="${name}Speed" priority="parallel">
+              <Action name="${name}Speeds">${speed(value)}</Action>
+              <StartTrigger><ConditionGroup><Condition name="${name}AtZero" delay="0" conditionEdge="none">
                 <ByValueCondition><SimulationTimeCondition value="0" rule="greaterThan"/></ByValueCondition>
               </Condition></ConditionGroup></StartTrigger>
             </Event>`
               : ''
           }
-            <Event name="${actor}Route" priority="parallel">
-              <Action name="${actor}Acquires"><PrivateAction><RoutingAction><AcquirePositionAction>
+            <Event name="${name}Route" priority="parallel">
+              <Action name="${name}Acquires"><PrivateAction><RoutingAction><AcquirePositionAction>
                 <Position>${target}</Position>
               </AcquirePositionAction></RoutingAction></PrivateAction></Action>
-              <StartTrigger><ConditionGroup><Condition name="${actor}RouteStarts" delay="0" conditionEdge="none">
-                ${routeStarts(actor)}
+              <StartTrigger><ConditionGroup><Condition name="${name}RouteStarts" delay="0" conditionEdge="none">
+                ${routeStarts(name)}
               </Condition></ConditionGroup></StartTrigger>
             </Event>
           </Maneuver>
         </ManeuverGroup>`;
-  const start = (actor: string, at: string, value: number): string => `
-        <Private entityRef="${actor}">
+  const start = ({ name, start: at, speed: value }: (typeof parts.actors)[number]): string => `
+        <Private entityRef="${name}">
           <PrivateAction><TeleportAction><Position>${at}</Position></TeleportAction></PrivateAction>${
-            trigger === 'time'
+            parts.trigger === 'time'
               ? `
           ${speed(value)}`
               : ''
@@ -1123,15 +1145,15 @@ function storyRoutesScenario(trigger: 'distance' | 'time' = 'distance'): string 
   return testScenario({
     revMinor: 0,
     description: 'story routes',
-    road: path.join(esminiRoads, 'fabriksgatan.xodr'),
-    entities: vehicle('Ego', 'ego_vehicle') + vehicle('Follower', 'simulation'),
-    init: start('Ego', world('2', 150), 10) + start('Follower', world('2', 50), 14),
+    road: path.join(esminiRoads, parts.road),
+    entities: parts.actors.map(({ name }, index) => vehicle(name, index === 0 ? 'ego_vehicle' : 'simulation')).join(''),
+    init: parts.actors.map(start).join(''),
     story: `<Story name="Routes">
-      <Act name="Drive">${group('Ego', 10, world('1', 12))}${group('Follower', 14, world('1', 8))}
+      <Act name="Drive">${parts.actors.map(group).join('')}
         ${ACT_STARTS}
       </Act>
     </Story>`,
-    stopAt: 14,
+    stopAt: parts.stopAt,
   });
 }
 
@@ -1172,8 +1194,71 @@ describe('export --target carla, story routes under 0.9.16 written as trajectori
       for (const [, name, points, times] of built) assert.ok(points > 100 && points === times, `${name}: ${points} points, ${times} times`);
       // esmini: the actor where the trajectory starts when its Event starts, then along the route's lanes; apart by one step's
       // travel at most (0.05 s at 14 m/s), as esmini starts an Event the step after its condition holds.
-      await assertMovesAlike(original, result.output, 14, 0.71);
+      await assertMovesAlike(original, result.output, 25, 0.71);
     });
+
+  it("a story route whose start is known only as the scenario runs: refused at the action's line, naming why (issue 26)", async () => {
+    const timed = storyRoutesScenario('time');
+    // Another trigger: where the actor is when another element ends is not known before the run.
+    const onState = timed.replaceAll(
+      '<SimulationTimeCondition value="1" rule="greaterThan"/>',
+      '<StoryboardElementStateCondition storyboardElementType="act" storyboardElementRef="Drive" state="startTransition"/>',
+    );
+    const refusedOnState = await refusedExport(path.join(out, 'state.xosc'), onState);
+    const stateLosses = refusedOnState.report.losses.filter((loss) => loss.kind === 'refused');
+    assert.deepEqual(
+      stateLosses.map((loss) => [loss.element, loss.line]),
+      [...onState.matchAll(/<AcquirePositionAction>/g)].map((match) => [
+        'AcquirePositionAction',
+        onState.slice(0, match.index).split('\n').length,
+      ]),
+    );
+    assert.match(
+      stateLosses[0].carla,
+      /its Event starts on a StoryboardElementStateCondition: where 'Ego' is when the action starts is known only as the scenario runs/,
+    );
+    // An Act that starts at 2 s: ScenarioRunner counts the condition's second from there, esmini from the run's start.
+    const later = timed.replace(
+      '<SimulationTimeCondition value="0" rule="greaterThan"/>',
+      '<SimulationTimeCondition value="2" rule="greaterThan"/>',
+    );
+    assert.notEqual(later, timed);
+    const refusedLater = await refusedExport(path.join(out, 'later.xosc'), later);
+    assert.match(
+      refusedLater.report.losses.find((loss) => loss.kind === 'refused')?.carla ?? '',
+      /ScenarioRunner counts a SimulationTimeCondition's time and a TraveledDistanceCondition's distance from when the condition is first ticked .*timer\.py.*esmini from the run's start/,
+    );
+  });
+
+  it("an actor off its lane's centre, through junctions where its lane runs against s (the paper's crossing vehicles on Town05): the offset kept to the same side of its way, as esmini keeps it (within one step's travel) (issue 26)", async function () {
+    requireEsmini(this);
+    const original = path.join(out, 'crossing.xosc');
+    // vehicle_right_1 of the paper's library in OpenDRIVE's frame: 0.34 m left of lane -1 of road 5, its route over roads 49 > 593 > 50 > 52, lane 1 there.
+    const text = storyRoutes({
+      road: 'Town05.xodr',
+      trigger: 'distance',
+      actors: [
+        {
+          name: 'Car',
+          start: '<WorldPosition x="-128" y="50" z="0" h="-1.57"/>',
+          speed: 8,
+          target: '<WorldPosition x="-128" y="-60" z="0" h="-1.57"/>',
+        },
+      ],
+      stopAt: 16,
+    });
+    fs.writeFileSync(original, text);
+    const result = await exportFile(original, path.join(out, 'exported.xosc'));
+    assert.equal(result.code, 0, result.stderr);
+    const route = result.report.losses.find((loss) => loss.element === 'AcquirePositionAction');
+    assert.match(route?.what ?? '', /roads 5 > 49 > 593 > 50 > 52, lane -1 from s 3[12]\.\d+/);
+    assert.match(route?.what ?? '', /its offset 0\.34\d* m from the lane centre is written on each vertex/);
+    const written = fs.readFileSync(result.output, 'utf8');
+    // Lane 1 of road 52 runs against s: 0.34 m to the left of the way the car drives is offset -0.34 there.
+    assert.match(written, /<LanePosition roadId="52" laneId="1" offset="-0\.34\d*"/);
+    // One step's travel at 8 m/s: esmini starts the route's Event the step after the car has traveled 5 m.
+    await assertMovesAlike(original, result.output, 16, 0.41);
+  });
 });
 
 /** A 1.2 scenario on `road` whose ego is placed by `<GeoPosition ${geo}/>`. */

@@ -129,8 +129,9 @@ describe('simulator profiles', () => {
       [['error', 'AcquirePositionAction']],
     );
     assert.match(simulatorWording(latest[0]).message, /atomic_behaviors\.py:773/);
-    assert.deepEqual(simulatorFindings('carla', parseXml(text), 'scenario.xosc', '0.9.15'), []); // In a story the export refuses it too (where the actor is when it starts is known only as the scenario runs): no export offered.
-    assert.equal(latest[0].exportMaps, undefined);
+    assert.deepEqual(simulatorFindings('carla', parseXml(text), 'scenario.xosc', '0.9.15'), []);
+    // In a story the export may write it as a trajectory from where the actor is expected when it starts (export/routeTrajectories.ts): offered.
+    assert.equal(latest[0].exportMaps, true);
     // In the Init it may write it as a FollowTrajectoryAction along the route's lanes (export/routeTrajectories.ts): offered.
     const init = `<Private entityRef="ego">${acquire}</Private>`;
     const inInit = simulatorFindings('carla', parseXml(scenarioText('0', init, '')), 'scenario.xosc', '0.9.16');

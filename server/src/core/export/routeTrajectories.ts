@@ -10,7 +10,7 @@
  * ROUTE_STEP apart, timed at the actor's speed, which must be certain over the whole run (scenarioTree constantSpeedOf).
  */
 import { isDrivingLane, type RoadNetwork } from '../opendrive/road';
-import { laneAtPoint } from '../opendrive/lanePosition';
+import { drivesAlongS, laneAtPoint } from '../opendrive/lanePosition';
 import { routeLanes, RouteWaypoint } from '../opendrive/route';
 import { baseName } from '../sources';
 import { CARLA_FACTS } from '../profiles/carla';
@@ -192,7 +192,10 @@ export function routeTrajectory(tree: Node, action: Node, source: RouteRoadSourc
     const inward = Math.min(0.001, length / 2) * Math.sign(stretch.to - stretch.from);
     for (let index = 0; index <= count; index++) {
       const s = stretch.from + ((stretch.to - stretch.from) * index) / count + (index === 0 ? inward : index === count ? -inward : 0);
-      const vertex = vertexAt(stretch.roadId, stretch.laneId, s, start.offset, roads);
+      // esmini keeps the offset to the same side of the way it drives: its sign turns where the lane runs against s and the start's did not.
+      const offset =
+        sideOf(roads, stretch.roadId, stretch.laneId) === sideOf(roads, start.roadId, start.laneId) ? start.offset : -start.offset;
+      const vertex = vertexAt(stretch.roadId, stretch.laneId, s, offset, roads);
       if (typeof vertex === 'string') return vertex;
       const previous = vertices.at(-1);
       // Where a stretch ends, the next begins: one vertex there.
@@ -212,7 +215,7 @@ export function routeTrajectory(tree: Node, action: Node, source: RouteRoadSourc
       const lane = makeNode('LanePosition', [
         ['roadId', vertex.roadId],
         ['laneId', String(vertex.laneId)],
-        ['offset', fourDecimals(start.offset)],
+        ['offset', fourDecimals(vertex.offset)],
         ['s', String(vertex.s)],
       ]);
       // Times from the action's start: ScenarioRunner's controller counts them from the atomic's start (npc_vehicle_control.py run_step).
@@ -261,8 +264,15 @@ interface Vertex {
   roadId: string;
   laneId: number;
   s: number;
+  offset: number;
   x: number;
   y: number;
+}
+
+/** Whether a road's lane is driven towards growing s (true where the road is unknown: routeLanes has named it then). */
+function sideOf(roads: RoadNetwork, roadId: string, laneId: number): boolean {
+  const road = roads.byId.get(roadId);
+  return road ? drivesAlongS(road, laneId) : true;
 }
 
 /** A vertex on a lane at s with the actor's offset, in world coordinates; or why the road has no such point. */
@@ -274,7 +284,7 @@ function vertexAt(roadId: string, laneId: number, s: number, offset: number, roa
     ['s', fourDecimals(s)],
   ]);
   const pose = roadPositionPose(position, roads);
-  return typeof pose === 'string' ? pose : { roadId, laneId, s: Number(fourDecimals(s)), x: pose.x, y: pose.y };
+  return typeof pose === 'string' ? pose : { roadId, laneId, s: Number(fourDecimals(s)), offset, x: pose.x, y: pose.y };
 }
 
 /**
@@ -282,13 +292,7 @@ function vertexAt(roadId: string, laneId: number, s: number, offset: number, roa
  * driven its lane from its start so far. Refused where that stretch leaves its start's road for a junction: before the action
  * the actor drives no route, and which way it takes through a junction is not known.
  */
-function fromWhereExpected(
-  vertices: Vertex[],
-  along: number,
-  start: RouteWaypoint & { offset: number },
-  actor: string,
-  roads: RoadNetwork,
-): Vertex[] | string {
+function fromWhereExpected(vertices: Vertex[], along: number, start: RouteWaypoint, actor: string, roads: RoadNetwork): Vertex[] | string {
   let covered = 0;
   for (let index = 1; index < vertices.length; index++) {
     const [before, after] = [vertices[index - 1], vertices[index]];
@@ -307,7 +311,7 @@ function fromWhereExpected(
     if (fraction >= 1 - 1e-6) return rest;
     // The point itself, on the later vertex's lane: vertices 1 m apart lie on one lane stretch but where a stretch ends.
     const s = before.roadId === after.roadId && before.laneId === after.laneId ? before.s + (after.s - before.s) * fraction : after.s;
-    const point = vertexAt(after.roadId, after.laneId, s, start.offset, roads);
+    const point = vertexAt(after.roadId, after.laneId, s, after.offset, roads);
     if (typeof point === 'string') return point;
     return [{ ...point, x: before.x + (after.x - before.x) * fraction, y: before.y + (after.y - before.y) * fraction }, ...rest];
   }

@@ -89,8 +89,8 @@ export const CARLA_PROFILE: SimulatorProfile = {
       support: 'unsupported',
       severity: 'error',
       releases: ['0.9.16'],
-      // Export for CARLA writes an Init one as a FollowTrajectoryAction along its lanes where it can (export/routeTrajectories.ts).
-      exportWritesIn: 'init',
+      // Export for CARLA writes it as a FollowTrajectoryAction along its lanes where it knows the start and speed, in a story too (export/routeTrajectories.ts).
+      exportWritesIn: ['init', 'story'],
       source: `${ATOMICS}:773 (${PARSER}:1508, ${RUNNER}:334)`,
       note: 'building ChangeActorWaypoints without times raises "object of type \'NoneType\' has no len()", a regression of commit ab5996d7 (0.9.15 runs it)',
     },
@@ -99,8 +99,8 @@ export const CARLA_PROFILE: SimulatorProfile = {
       support: 'unsupported',
       severity: 'error',
       releases: ['0.9.16'],
-      // Export for CARLA writes an Init one as a FollowTrajectoryAction along its lanes where it can (export/routeTrajectories.ts).
-      exportWritesIn: 'init',
+      // Export for CARLA writes it as a FollowTrajectoryAction along its lanes where it knows the start and speed, in a story too (export/routeTrajectories.ts).
+      exportWritesIn: ['init', 'story'],
       source: `${ATOMICS}:773 (${PARSER}:1518, ${RUNNER}:347)`,
       note: 'building ChangeActorWaypoints without times raises "object of type \'NoneType\' has no len()", a regression of commit ab5996d7 (0.9.15 runs it)',
     },

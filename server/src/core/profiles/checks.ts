@@ -128,7 +128,7 @@ const elementCheck: ProfileCheck = ({ profile, elements, release }) => {
         element,
         severity: fact.severity ?? 'warning',
         facts: { kind: 'element', profile: profile.name, fact },
-        ...(fact.exportWritesIn !== undefined && fact.exportWritesIn === place ? { exportMaps: true } : {}),
+        ...(place !== undefined && fact.exportWritesIn?.includes(place) ? { exportMaps: true } : {}),
       });
     }
   }

@@ -29,8 +29,8 @@ export interface ElementFact {
   severity?: FactSeverity;
   /** The releases of the simulator the fact holds for; all when absent. */
   releases?: readonly CarlaRelease[];
-  /** Where (Init or Story) the project's export for this simulator can write the element in a form the simulator runs: the finding there offers the export. */
-  exportWritesIn?: 'init' | 'story';
+  /** Where (Init, Story) the project's export for this simulator can write the element in a form the simulator runs: the finding there offers the export. */
+  exportWritesIn?: readonly ('init' | 'story')[];
   note?: string;
   /** The file (and lines) of the simulator's repository that state or show the fact. */
   source: string;
