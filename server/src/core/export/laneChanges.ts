@@ -4,7 +4,7 @@
  * along the road while esmini moves it across (OSCPrivateAction.cpp LatLaneChangeAction::Step).
  */
 import type { RoadNetwork } from '../opendrive/road';
-import { laneCenterT, laneSectionIndexAt } from '../opendrive/road';
+import { drivesAlongS, laneCenterT, laneSectionIndexAt } from '../opendrive/road';
 import { SR_PARSER } from './carlaFacts';
 import type { LossSink } from './carlaLosses';
 import { dropUnit } from './carlaLosses';
@@ -83,15 +83,15 @@ function relativeValueTo(from: number, to: number, forward: boolean): number | u
 }
 
 /** Whether the actor drives along s where the Init places it: by its lane's side and the road's traffic rule (esmini's default heading), unless a relative Orientation turns it round. */
-function drivesAlongS(tree: Node, actor: string, start: StartLane, roads: RoadNetwork | undefined): boolean {
-  const leftHand = roads?.byId.get(start.roadId)?.leftHandTraffic ?? false;
+function actorDrivesAlongS(tree: Node, actor: string, start: StartLane, roads: RoadNetwork | undefined): boolean {
   const turned =
     fromInit(tree, actor, (privateNode) => {
       const lane = named(privateNode, 'LanePosition').find((each) => ancestor(each, 'TeleportAction'));
       const orientation = lane ? named(lane, 'Orientation')[0] : undefined;
       return orientation ? attr(orientation, 'type') === 'relative' && Math.cos(Number(attr(orientation, 'h') ?? 0)) < 0 : undefined;
     }) ?? false;
-  return (start.laneId < 0 !== leftHand) !== turned;
+  const road = roads?.byId.get(start.roadId);
+  return (road ? drivesAlongS(road, start.laneId) : start.laneId < 0) !== turned;
 }
 
 /** How far the actor moves across, from where its Init places it to the target lane's centre there; undefined where the road or a lane is not known. */
@@ -119,7 +119,11 @@ function acrossOf(
   const reference = startLanePositionOf(tree, attr(relative, 'entityRef') ?? actor);
   const value = Number(attr(relative, 'value'));
   if (!reference || reference.roadId !== start.roadId || !Number.isInteger(value) || reference.laneId === 0) return undefined;
-  const target = relativeTargetLane(reference.laneId, value, drivesAlongS(tree, attr(relative, 'entityRef') ?? actor, reference, roads));
+  const target = relativeTargetLane(
+    reference.laneId,
+    value,
+    actorDrivesAlongS(tree, attr(relative, 'entityRef') ?? actor, reference, roads),
+  );
   const section = road.laneSections[laneSectionIndexAt(road, start.s)];
   if (!section?.lanes.some((lane) => lane.id === target) || !section.lanes.some((lane) => lane.id === start.laneId)) return undefined;
   const sectionIndex = laneSectionIndexAt(road, start.s);
@@ -184,7 +188,7 @@ export function absoluteTargetLanes(tree: Node, sink: LossSink, roads: RoadNetwo
     const before = actor === undefined ? undefined : lastLane.get(actor);
     const from = before?.lane ?? start?.laneId;
     // esmini keeps an actor's heading along or against s through its lane changes (Position::SetHeadingRelativeRoadDirection): left is the Init's.
-    const forward = start && actor !== undefined ? drivesAlongS(tree, actor, start, roads) : undefined;
+    const forward = start && actor !== undefined ? actorDrivesAlongS(tree, actor, start, roads) : undefined;
     const value =
       from !== undefined && forward !== undefined && Number.isInteger(wanted) && wanted !== 0 && from !== 0
         ? relativeValueTo(from, wanted, forward)

@@ -9,8 +9,8 @@
  * (ScenarioRunner converts one with CARLA's own map, get_waypoint_xodr, SR_PARSER convert_position_to_transform) at most
  * ROUTE_STEP apart, timed at the actor's speed, which must be certain over the whole run (scenarioTree constantSpeedOf).
  */
-import { isDrivingLane, type RoadNetwork } from '../opendrive/road';
-import { drivesAlongS, laneAtPoint } from '../opendrive/lanePosition';
+import { drivesAlongS, isDrivingLane, type RoadNetwork } from '../opendrive/road';
+import { laneAtPoint } from '../opendrive/lanePosition';
 import { routeLanes, RouteWaypoint } from '../opendrive/route';
 import { baseName } from '../sources';
 import { CARLA_FACTS } from '../profiles/carla';

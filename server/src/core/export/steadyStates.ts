@@ -9,6 +9,7 @@
  * atomic_behaviors.py SyncArrivalOSC.terminate), where with the steady state dropped it reached it at the target.
  */
 import type { Road, RoadNetwork } from '../opendrive/road';
+import { drivesAlongS } from '../opendrive/road';
 import { SR_PARSER } from './carlaFacts';
 import type { LossSink } from './carlaLosses';
 import { actorsOf, constantSpeedOf, fromInit } from './scenarioTree';
@@ -186,6 +187,5 @@ function travelDirection(tree: Node, entity: string, road: Road, laneId: number,
     return undefined;
   });
   if (startS !== undefined && Number.isFinite(startS) && startS !== targetS) return targetS > startS ? 1 : -1;
-  const alongS = road.leftHandTraffic ? laneId > 0 : laneId < 0;
-  return alongS ? 1 : -1;
+  return drivesAlongS(road, laneId) ? 1 : -1;
 }

@@ -7,7 +7,7 @@
  * is taken; a point in no lane of the kinds asked for, or only in lanes driven the other way, is answered why.
  */
 import { normalizeAngle } from './geometry';
-import { Lane, laneCenterT, laneSectionIndexAt, outerBorderT, referencePose, Road, RoadNetwork, roadCubicAt } from './road';
+import { drivesAlongS, Lane, laneCenterT, laneSectionIndexAt, outerBorderT, referencePose, Road, RoadNetwork, roadCubicAt } from './road';
 
 export interface PointLane {
   roadId: string;
@@ -64,11 +64,6 @@ function laneHolding(road: Road, sectionIndex: number, s: number, t: number): La
     if (Math.min(inner, outer) <= t && t <= Math.max(inner, outer) && inner !== outer) return lane;
   }
   return undefined;
-}
-
-/** Whether a lane is driven towards growing s (right-hand traffic: the negative lanes). */
-export function drivesAlongS(road: Road, laneId: number): boolean {
-  return road.leftHandTraffic ? laneId > 0 : laneId < 0;
 }
 
 /**

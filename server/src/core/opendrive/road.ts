@@ -336,6 +336,11 @@ function evaluateCubic(cubic: Cubic | undefined, ds: number): number {
   return cubic ? cubic.a + ds * (cubic.b + ds * (cubic.c + ds * cubic.d)) : 0;
 }
 
+/** Whether a lane is driven towards growing s: by its side and the road's traffic rule (right-hand traffic: the negative lanes). */
+export function drivesAlongS(road: Road, laneId: number): boolean {
+  return road.leftHandTraffic ? laneId > 0 : laneId < 0;
+}
+
 /** The value at road s of a road-level cubic list (laneOffset, superelevation). */
 export function roadCubicAt(entries: Cubic[], s: number): number {
   const entry = entryAt(entries, s);
