@@ -55,6 +55,36 @@ function columnName(header: string): { entity: number; field: string } | undefin
   return match ? { entity: Number(match[1]), field: match[2] } : undefined;
 }
 
+/**
+ * Whether any entity's world position changes between the rows of an esmini CSV log, read line by line (`lines` yields
+ * it in order; it may stop early): true at the first change, false when every entity stood still over two rows or more,
+ * undefined when there is no column line or fewer than two rows.
+ */
+export function anyEntityMoved(lines: Iterable<string>): boolean | undefined {
+  let positions: number[] | undefined;
+  let first: number[] | undefined;
+  let rows = 0;
+  for (const line of lines) {
+    if (!positions) {
+      if (!line.startsWith('Index')) continue;
+      const headers = line.split(',');
+      positions = headers.flatMap((header, index) =>
+        /^(World_Position_X|World_Position_Y)$/.test(columnName(header)?.field ?? '') ? [index] : [],
+      );
+      if (positions.length === 0) return undefined;
+      continue;
+    }
+    const fields = line.split(',');
+    if (fields.length <= Math.max(...positions)) continue;
+    const values = positions.map((index) => Number(fields[index]));
+    if (values.some((value) => !Number.isFinite(value))) continue;
+    rows++;
+    if (!first) first = values;
+    else if (values.some((value, index) => Math.abs(value - (first as number[])[index]) > 1e-6)) return true;
+  }
+  return rows >= 2 ? false : undefined;
+}
+
 /** Reads an esmini CSV log. Throws EsminiCsvError, naming the line, when it is not one. */
 export function parseEsminiCsv(text: string, options: { maxRows?: number } = {}): EsminiRun {
   const maxRows = options.maxRows ?? 1_000_000;

@@ -66,6 +66,8 @@ describe('cli: run in esmini', function () {
       run.stderr,
       /esmini: 0 errors, \d+ warnings?; 4\.00 s simulated: stopped at the 4 s limit set by --duration, before the scenario ended by itself \(the run took \d+\.\d\d s\)/,
     );
+    // The examples' vehicles drive: no word of standing still.
+    assert.doesNotMatch(run.stderr, /no entity moved/);
     assert.deepEqual(listFiles(root), before);
     const csv = fs.readFileSync(out, 'utf8');
     const rows = csv.trim().split('\n').slice(7);
@@ -100,6 +102,8 @@ describe('cli: run in esmini', function () {
       run.stderr,
       /30\.00 s simulated: the scenario's StopTrigger has no condition, so it has no end of its own and runs 30 s \(set a duration with --duration to run longer\)/,
     );
+    // Its Ego is placed and never driven: the run says so, and where to look.
+    assert.match(run.stderr, /\(the run took \d+\.\d\d s\); no entity moved: each stood where the Init placed it for the whole run/);
   });
 
   it('a road named through a parameter as a relative path runs with no warning that the run may reach another road, and no note of an unused parameter (Euro NCAP, issue 27)', function () {

@@ -2,7 +2,7 @@ import * as assert from 'node:assert/strict';
 import { spawnSync } from 'node:child_process';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { parseEsminiCsv } from '../../common/src/esminiCsv';
+import { anyEntityMoved, parseEsminiCsv } from '../../common/src/esminiCsv';
 import { parseOpenDrive } from '../../server/src/core/opendrive/road';
 import { scenarioScene } from '../../server/src/core/scene';
 import { parseXml } from '../../server/src/core/xml';
@@ -15,6 +15,25 @@ const fixture = path.join(repoRoot, 'test', 'fixtures', 'birdsEye', 'cut_in.xosc
 
 describe('core: esmini CSV log', function () {
   this.timeout(60_000);
+
+  it('tells a run in which no entity moved from one in which one did, reading no further than the first move', () => {
+    const columns =
+      'Index [-], TimeStamp [s], #1 Entity_Name [-], #1 World_Position_X [m], #1 World_Position_Y [m], #2 Entity_Name [-], #2 World_Position_X [m], #2 World_Position_Y [m]';
+    const row = (index: number, x1: number, y2: number) => `${index}, ${index * 0.05}, Ego, ${x1}, -1.5, Car, 20, ${y2}`;
+    const header = ['esmini GIT REV: v3.6.0', '', '', '', 'Scenario File Name: s.xosc', '', columns];
+    assert.equal(anyEntityMoved([...header, row(0, 10, 1.5), row(1, 10, 1.5), row(2, 10, 1.5)]), false);
+    // The second entity's y changes at the last row; a row cut short at the end is no move.
+    assert.equal(anyEntityMoved([...header, row(0, 10, 1.5), row(1, 10, 1.5), row(2, 10, 1.6)]), true);
+    assert.equal(anyEntityMoved([...header, row(0, 10, 1.5), row(1, 10, 1.5), '2, 0.1, Ego, 11']), false);
+    // Nothing to tell from: no column line, or a single row.
+    assert.equal(anyEntityMoved(['esmini GIT REV: v3.6.0', row(0, 10, 1.5)]), undefined);
+    assert.equal(anyEntityMoved([...header, row(0, 10, 1.5)]), undefined);
+    function* stopsAtTheMove(): Generator<string> {
+      yield* [...header, row(0, 10, 1.5), row(1, 10.5, 1.5)];
+      throw new Error('read past the first move');
+    }
+    assert.equal(anyEntityMoved(stopsAtTheMove()), true);
+  });
 
   it('reads rows per step and the columns of each entity; a row cut short at the end is dropped', () => {
     const header = [

@@ -104,6 +104,25 @@ export function lastCsvTime(csvFile: string): number | undefined {
   }
 }
 
+/** The lines of a file read in chunks, so that a reader stopping early never reads the rest (an esmini CSV may be 200 MB). */
+export function* fileLines(file: string, chunkBytes = 1 << 20): Generator<string> {
+  const handle = fs.openSync(file, 'r');
+  try {
+    const buffer = Buffer.alloc(chunkBytes);
+    let rest = '';
+    for (;;) {
+      const read = fs.readSync(handle, buffer, 0, chunkBytes, null);
+      if (read === 0) break;
+      const lines = (rest + buffer.toString('latin1', 0, read)).split('\n');
+      rest = lines.pop() ?? '';
+      yield* lines;
+    }
+    if (rest) yield rest;
+  } finally {
+    fs.closeSync(handle);
+  }
+}
+
 const POLL_MS = 25;
 const GRACE_AFTER_SIGINT_MS = 5000;
 

@@ -9,13 +9,13 @@ import { Evaluator, semanticModelOf } from '../core/semantics/model';
 import { diskRef, displayRef, nodeFileSystem, ScenarioStore, SourceRef } from '../core/sources';
 import { CatalogLoader } from '../core/semantics/catalogs';
 import { attribute, descendants, escapeAttributeValue, parseXml } from '../core/xml';
-import { parseEsminiLoadedRoad } from '../../../common/src/esminiCsv';
+import { anyEntityMoved, parseEsminiLoadedRoad } from '../../../common/src/esminiCsv';
 import type { TraceRecord } from '../../../common/src/trace';
 import { ControllerFilesFrom, withCatalogFolderNote, withControllerFilesFrom } from './controllerFiles';
 import { locateEsmini } from './locate';
 import { EsminiLogMessage, EsminiRemark, readEsminiLog } from './log';
 import { esminiMessageSeverity, EsminiProblem, mapEsminiMessages, withoutRunFolder } from './messages';
-import { EsminiEnd, EsminiProcessResult, lastCsvTime, makeRunFolder, runEsminiProcess } from './process';
+import { EsminiEnd, EsminiProcessResult, fileLines, lastCsvTime, makeRunFolder, runEsminiProcess } from './process';
 import { storyboardMapOf, traceFromLog } from './storyboardTrace';
 import { LimitKind, NO_END_SECONDS, runLimit, RunLimit, RUNAWAY_SECONDS, withTimeLimit } from './timeLimit';
 
@@ -592,9 +592,14 @@ function outcomeOf(ran: LimitedRun, errors: number, warnings: number, firstError
     common.simulatedTime === undefined
       ? 'no trajectory: esmini placed no entity (each needs a position in Init, such as a TeleportAction)'
       : `${common.simulatedTime.toFixed(2)} s simulated${common.reachedLimit ? `: ${limitSentence(ran.limit)}` : ''}`;
+  // A run in which nothing moved ran, but may not be the one the user meant (the paper's library in esmini): said.
+  const still =
+    common.csvFile && common.simulatedTime !== undefined && common.simulatedTime > 0 && anyEntityMoved(fileLines(common.csvFile)) === false
+      ? '; no entity moved: each stood where the Init placed it for the whole run (does an Act or Event never start? the check with the simulator set to esmini names such conditions)'
+      : '';
   return {
     outcome: errors > 0 ? 'errors' : 'ok',
-    message: `esmini: ${counts}; ${covered} (the run took ${(run.wallMs / 1000).toFixed(2)} s)`,
+    message: `esmini: ${counts}; ${covered} (the run took ${(run.wallMs / 1000).toFixed(2)} s)${still}`,
   };
 }
 
