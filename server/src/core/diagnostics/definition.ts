@@ -83,6 +83,11 @@ export interface FixEdit {
   newText: string;
 }
 
+/** A replacement of the problem's document from offset `start` to `end`. */
+export function documentEdit(document: Pick<TextLines, 'positionAt'>, start: number, end: number, newText: string): FixEdit {
+  return { place: 'document', range: { start: document.positionAt(start), end: document.positionAt(end) }, newText };
+}
+
 /** A quick fix of a problem, as text edits: the editor's adapter (server/src/features/fixes/) makes it a code action. */
 export interface CoreFix {
   title: string;

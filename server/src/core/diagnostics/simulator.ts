@@ -11,6 +11,7 @@ import {
   insertionBefore,
   CoreFix,
   defineDiagnostic,
+  documentEdit,
   isOptionalString,
   isRecord,
   isString,
@@ -138,15 +139,15 @@ async function simulationTimeFix(
   const time = fix === 'after-zero' ? at : undefined;
   const condition = fix === 'edge' ? at : at?.parent?.parent;
   if (condition?.name !== 'Condition' || (fix === 'after-zero' && time?.name !== 'SimulationTimeCondition')) return [];
-  const place = (start: number, end: number) => ({ start: document.positionAt(start), end: document.positionAt(end) });
-  const edits: CoreFix['edits'] = [];
   const rule = time && attribute(time, 'rule');
-  if (rule) edits.push({ place: 'document' as const, range: place(rule.valueStart, rule.valueEnd), newText: 'greaterThan' });
   const edge = attribute(condition, 'conditionEdge');
-  if (edge && edge.value !== 'none')
-    edits.push({ place: 'document' as const, range: place(edge.valueStart, edge.valueEnd), newText: 'none' });
+  const edgeToNone = edge && edge.value !== 'none' ? edge : undefined;
+  const edits = [
+    ...(rule ? [documentEdit(document, rule.valueStart, rule.valueEnd, 'greaterThan')] : []),
+    ...(edgeToNone ? [documentEdit(document, edgeToNone.valueStart, edgeToNone.valueEnd, 'none')] : []),
+  ];
   if (edits.length === 0) return [];
-  const title = [rule ? 'rule="greaterThan"' : '', edge && edge.value !== 'none' ? 'conditionEdge="none"' : ''].filter(Boolean).join(', ');
+  const title = [rule ? 'rule="greaterThan"' : '', edgeToNone ? 'conditionEdge="none"' : ''].filter(Boolean).join(', ');
   return [{ title: `Write ${title}: esmini starts it when first evaluated`, edits, preferred: true }];
 }
 
@@ -171,11 +172,7 @@ async function egoFix(ego: string, document: TextLines, parsed: () => Promise<Xm
       ? childrenInsertion(text, properties, () => [property])
       : childrenInsertion(text, vehicle, () => [`<Properties>${property}</Properties>`]);
   if (!inserted) return [];
-  const edit = {
-    place: 'document' as const,
-    range: { start: document.positionAt(inserted.start), end: document.positionAt(inserted.end) },
-    newText: inserted.newText,
-  };
+  const edit = documentEdit(document, inserted.start, inserted.end, inserted.newText);
   return [{ title: `Mark '${ego}' as the ego: ${property}`, edits: [edit], preferred: true }];
 }
 
@@ -191,14 +188,10 @@ async function orientationFirstFix(document: TextLines, range: Range, parsed: ()
     ? Math.max(0, lineStart - (text[lineStart - 2] === '\r' ? 2 : 1))
     : orientation.start;
   const moved = insertionBefore(text, position, text.slice(orientation.start, orientation.end));
-  const place = (start: number, end: number) => ({ start: document.positionAt(start), end: document.positionAt(end) });
   return [
     {
       title: 'Move <Orientation> before <InRoutePosition>',
-      edits: [
-        { place: 'document' as const, range: place(moved.start, moved.end), newText: moved.newText },
-        { place: 'document' as const, range: place(removeFrom, orientation.end), newText: '' },
-      ],
+      edits: [documentEdit(document, moved.start, moved.end, moved.newText), documentEdit(document, removeFrom, orientation.end, '')],
       preferred: true,
     },
   ];
@@ -213,10 +206,6 @@ async function actorFix(actor: string, document: TextLines, range: Range, parsed
       ? childrenInsertion(text, actors, () => [`<EntityRef entityRef="${escapeAttributeValue(actor)}"/>`])
       : undefined;
   if (!inserted) return [];
-  const edit = {
-    place: 'document' as const,
-    range: { start: document.positionAt(inserted.start), end: document.positionAt(inserted.end) },
-    newText: inserted.newText,
-  };
+  const edit = documentEdit(document, inserted.start, inserted.end, inserted.newText);
   return [{ title: `Add <EntityRef entityRef="${actor}"/> to the Actors`, edits: [edit], preferred: true }];
 }

@@ -7,7 +7,7 @@
  */
 import type { RoadNetwork } from '../opendrive/road';
 import { CARLA_FACTS } from '../profiles/carla';
-import { LANE_OFFSET_TOLERANCE, scenarioRunnerOffsetDirection } from '../profiles/scenarioRunner';
+import { scenarioRunnerOffsetPlace } from '../profiles/scenarioRunner';
 import type { LossSink } from './carlaLosses';
 import { roadPositionPose } from './trajectoryPoint';
 import { attr, child, fourDecimals, makeNode, named, Node, numberAttr, replaceNode, setAttr } from './tree';
@@ -16,10 +16,9 @@ const LANE_POSITION_SOURCES = CARLA_FACTS.laneOffsetSide.source;
 
 /** Whether ScenarioRunner would move the LanePosition along the road (turned across its lane, with an offset): written as a WorldPosition, which needs the road. */
 export function movedAlongByScenarioRunner(position: Node): boolean {
-  const offset = numberAttr(position, 'offset', 0);
   const orientation = child(position, 'Orientation');
-  const direction = scenarioRunnerOffsetDirection(numberAttr(position, 'laneId', 0), orientation ? numberAttr(orientation, 'h', 0) : 0);
-  return Math.abs(offset * direction.along) > LANE_OFFSET_TOLERANCE;
+  const h = orientation ? numberAttr(orientation, 'h', 0) : 0;
+  return scenarioRunnerOffsetPlace(numberAttr(position, 'laneId', 0), h, numberAttr(position, 'offset', 0)).place === 'along';
 }
 
 export function laneOffsets(tree: Node, sink: LossSink, roads: RoadNetwork | undefined): void {
@@ -29,10 +28,9 @@ export function laneOffsets(tree: Node, sink: LossSink, roads: RoadNetwork | und
     const orientation = child(position, 'Orientation');
     const h = orientation ? numberAttr(orientation, 'h', 0) : 0;
     if (offset === 0 || !Number.isFinite(offset) || !Number.isInteger(laneId) || laneId === 0 || !Number.isFinite(h)) continue;
-    const direction = scenarioRunnerOffsetDirection(laneId, h);
-    const along = offset * direction.along;
-    if (!movedAlongByScenarioRunner(position)) {
-      if (direction.across > 0) continue;
+    const { along, across, place } = scenarioRunnerOffsetPlace(laneId, h, offset);
+    if (place === 'as-written') continue;
+    if (place === 'mirrored') {
       setAttr(position, 'offset', fourDecimals(-offset));
       sink.approximated(
         position,
@@ -42,7 +40,6 @@ export function laneOffsets(tree: Node, sink: LossSink, roads: RoadNetwork | und
       );
       continue;
     }
-    const across = offset * direction.across;
     const scenarioRunnerPlace = `${fourDecimals(along)} m along the road and ${fourDecimals(Math.abs(across))} m to the ${across >= 0 ? 'left' : 'right'} of the lane's centre`;
     const carla = `ScenarioRunner puts an offset to the right of the lane's heading turned by the Orientation's h (${LANE_POSITION_SOURCES}): this one ${scenarioRunnerPlace}`;
     const pose = roadPositionPose(position, roads, 'the position');

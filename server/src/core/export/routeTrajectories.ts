@@ -15,7 +15,7 @@ import { routeLanes, RouteWaypoint } from '../opendrive/route';
 import { baseName } from '../sources';
 import { CARLA_FACTS } from '../profiles/carla';
 import { roadPositionPose } from './trajectoryPoint';
-import { actorsOf, constantSpeedOf, scenarioObjectOf, storySpeedOf } from './scenarioTree';
+import { actorsOf, constantSpeedOf, mayActOn, scenarioObjectOf, storySpeedOf } from './scenarioTree';
 import { ancestor, attr, child, childrenNamed, fourDecimals, makeNode, named, Node, numberAttr } from './tree';
 
 /** The longest straight segment between two vertices: its sagitta on a 10 m radius (a tight junction turn) is 1.25 cm. */
@@ -168,9 +168,7 @@ export function routeTrajectory(tree: Node, action: Node, source: RouteRoadSourc
   for (const story of named(tree, 'Story'))
     for (const moving of named(story, MOVING)) {
       if (moving === action.parent) continue;
-      const group = ancestor(moving, 'ManeuverGroup');
-      const actors = group ? child(group, 'Actors') : undefined;
-      if (!actors || attr(actors, 'selectTriggeringEntities') === 'true' || actorsOf(moving).includes(actor)) {
+      if (mayActOn(moving, actor)) {
         return `its story moves '${actor}' too (${withArticle(moving.children[0]?.name ?? moving.name)} at ${lineOf(moving) || 'a story line'}), which would end the trajectory in ScenarioRunner and fight it in esmini`;
       }
     }

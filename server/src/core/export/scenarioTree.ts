@@ -41,6 +41,16 @@ export function actorsOf(node: Node): string[] {
   return actors ? childrenNamed(actors, 'EntityRef').map((each) => attr(each, 'entityRef') ?? '') : [];
 }
 
+/**
+ * Whether a story action may act on `actor`: its ManeuverGroup names it, or names no actors, or takes them from the
+ * triggering entities, which are known only when the run decides them (any of them may be this actor).
+ */
+export function mayActOn(action: Node, actor: string): boolean {
+  const group = ancestor(action, 'ManeuverGroup');
+  const actors = group ? child(group, 'Actors') : undefined;
+  return !actors || attr(actors, 'selectTriggeringEntities') === 'true' || actorsOf(action).includes(actor);
+}
+
 /** What can change an actor's speed once the story runs: longitudinal actions, trajectories with timing, synchronization and controllers. */
 const SPEED_CHANGING: ReadonlySet<string> = new Set([
   'SpeedAction',
@@ -77,10 +87,7 @@ export function constantSpeedOf(tree: Node, actor: string, except?: Node, throug
   for (const story of childrenNamed(storyboard, 'Story'))
     for (const action of named(story, SPEED_CHANGING)) {
       if (action === except || !changesSpeed(action)) continue;
-      const group = ancestor(action, 'ManeuverGroup');
-      const actors = group ? child(group, 'Actors') : undefined;
-      // Triggering entities are known only when the run decides them: any of them may be this actor.
-      if (!actors || attr(actors, 'selectTriggeringEntities') === 'true' || actorsOf(action).includes(actor)) return undefined;
+      if (mayActOn(action, actor)) return undefined;
     }
   return speed;
 }
@@ -100,9 +107,7 @@ export function storySpeedOf(tree: Node, actor: string, except?: Node): { speed:
   for (const story of childrenNamed(storyboard, 'Story'))
     for (const action of named(story, SPEED_CHANGING)) {
       if (action === except || !changesSpeed(action)) continue;
-      const group = ancestor(action, 'ManeuverGroup');
-      const actors = group ? child(group, 'Actors') : undefined;
-      if (!actors || attr(actors, 'selectTriggeringEntities') === 'true' || actorsOf(action).includes(actor)) found.push(action);
+      if (mayActOn(action, actor)) found.push(action);
     }
   const [action] = found;
   if (found.length !== 1 || action.name !== 'SpeedAction' || actorsOf(action).length !== 1) return undefined;

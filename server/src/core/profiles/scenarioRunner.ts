@@ -77,15 +77,23 @@ export function egoByName(vehicles: readonly string[]): string | undefined {
   return vehicles.find((name) => EGO_NAMES.test(name)) ?? vehicles.find((name) => /ego|hero/i.test(name)) ?? vehicles[0];
 }
 
-/**
- * Where ScenarioRunner moves a LanePosition by an offset of 1, in the road's s and t (CARLA_FACTS.laneOffsetSide): to the
- * right of the lane's heading in CARLA (along s on a negative lane id, against it on a positive one) turned by `h`.
- * OpenSCENARIO's own is { along: 0, across: 1 }.
- */
-export function scenarioRunnerOffsetDirection(laneId: number, h: number): { along: number; across: number } {
-  const heading = h + (laneId > 0 ? Math.PI : 0);
-  return { along: Math.sin(heading), across: -Math.cos(heading) };
-}
-
 /** How far (m) ScenarioRunner may move a LanePosition along the road from where OpenSCENARIO puts it before it counts as elsewhere. */
-export const LANE_OFFSET_TOLERANCE = 0.01;
+const LANE_OFFSET_TOLERANCE = 0.01;
+
+/**
+ * Where ScenarioRunner puts a LanePosition moved by `offset` (CARLA_FACTS.laneOffsetSide): to the right of the lane's
+ * heading in CARLA (along s on a negative lane id, against it on a positive one) turned by `h`, as road s and t from the
+ * lane's centre, where OpenSCENARIO puts it at t = `offset`. `place`: there ('as-written'), on the other side of the
+ * lane's centre ('mirrored'), or moved along the road by more than LANE_OFFSET_TOLERANCE ('along').
+ */
+export function scenarioRunnerOffsetPlace(
+  laneId: number,
+  h: number,
+  offset: number,
+): { along: number; across: number; place: 'as-written' | 'mirrored' | 'along' } {
+  const heading = h + (laneId > 0 ? Math.PI : 0);
+  const along = offset * Math.sin(heading);
+  const across = -offset * Math.cos(heading);
+  const place = Math.abs(along) > LANE_OFFSET_TOLERANCE ? 'along' : across > 0 === offset > 0 ? 'as-written' : 'mirrored';
+  return { along, across, place };
+}

@@ -8,6 +8,7 @@ import { roadFileWording } from '../diagnostics/roadFile';
 import { unknownTrafficSignalWording } from '../diagnostics/unknownTrafficSignal';
 import { unknownTrafficSignalControllerWording } from '../diagnostics/unknownTrafficSignalController';
 import { attribute, descendants, firstDescendant, XmlAttribute, XmlElement } from '../xml';
+import { at, numberOf } from './checks/support';
 import type { Finding, SemanticCheck, SemanticContext } from './checks/types';
 import { inRange, rangeText, ValueRange, valueRangesOf } from './ranges';
 import { SemanticModel } from './types';
@@ -21,21 +22,6 @@ import { coreMemo } from '../memos';
  * `data_type.non_negative_transition_time_in_light_state_action`, `data_type.positive_duration_in_phase`,
  * and the ranges the standard gives). Each is one SemanticCheck registered in SEMANTIC_CHECKS.
  */
-
-function at(element: XmlElement, attr: XmlAttribute | undefined): Pick<Finding, 'element' | 'attribute' | 'start' | 'end'> {
-  return attr
-    ? { element, attribute: attr, start: attr.valueStart, end: attr.valueEnd }
-    : { element, attribute: undefined, start: element.start, end: element.nameEnd };
-}
-
-/** An attribute's value as a number after `$parameter`/`${...}` evaluation; undefined when it is absent or no number (other rules report that). */
-function numberOf(context: SemanticContext, element: XmlElement, name: string): { attr: XmlAttribute; value: number } | undefined {
-  const attr = attribute(element, name);
-  const text = context.evaluator.textOf(element, attr);
-  if (!attr || text === undefined || text.trim() === '') return undefined;
-  const value = Number(text);
-  return Number.isNaN(value) ? undefined : { attr, value };
-}
 
 function textOf(context: SemanticContext, element: XmlElement, name: string): { attr: XmlAttribute; text: string } | undefined {
   const attr = attribute(element, name);

@@ -2,7 +2,7 @@ import * as path from 'node:path';
 import type { SimulatorFixData } from '../../problems';
 import { carlaFactWording } from '../../diagnostics/simulator';
 import { CarlaFactName } from '../../profiles/carla';
-import { closestTown, EGO_PROPERTY, egoByName, LANE_OFFSET_TOLERANCE, scenarioRunnerOffsetDirection } from '../../profiles/scenarioRunner';
+import { closestTown, EGO_PROPERTY, egoByName, scenarioRunnerOffsetPlace } from '../../profiles/scenarioRunner';
 import { DEFAULT_CARLA_RELEASE } from '../../profiles/simulators';
 import { schemaIndex } from '../../schema/index';
 import { typeOfElement } from '../../schema/query';
@@ -13,7 +13,7 @@ import type { CatalogEntry } from '../catalogs';
 import { stopGroupsKeptInActs, XML_SHAPE } from '../storyboardStop';
 import { formatValue } from '../values';
 import { isCriterion, parametersComparedAsText } from './carlaParameters';
-import { at, inCatalogEntry, onCatalogReferences } from './support';
+import { at, inCatalogEntry, numberOf, onCatalogReferences } from './support';
 import type { Finding, SemanticCheck, SemanticContext } from './types';
 
 /*
@@ -325,26 +325,19 @@ const negativeStartSpeeds = (context: SemanticContext, elements: XmlElement[]): 
 /** A LanePosition's offset, which ScenarioRunner moves to the right of the lane's heading in CARLA (CARLA_FACTS.laneOffsetSide): where that is not to the left of the road's reference line. */
 const laneOffsets = (context: SemanticContext, elements: XmlElement[]): Finding[] => {
   const findings: Finding[] = [];
-  const numberOf = (element: XmlElement, name: string, fallback: number): number => {
-    const written = attribute(element, name);
-    if (!written) return fallback;
-    const text = context.evaluator.textOf(element, written);
-    return text === undefined || text.trim() === '' ? NaN : Number(text);
-  };
   for (const element of elements) {
     if (element.name !== 'LanePosition') continue;
-    const offset = numberOf(element, 'offset', 0);
-    const laneId = numberOf(element, 'laneId', NaN);
+    // Absent: an offset and h of 0; written but no number: none of this check's (other rules report it).
+    const offset = numberOf(context, element, 'offset')?.value ?? 0;
+    const laneId = numberOf(context, element, 'laneId')?.value ?? NaN;
     const orientation = element.children.find((child) => child.name === 'Orientation');
-    const h = orientation ? numberOf(orientation, 'h', 0) : 0;
+    const h = orientation && attribute(orientation, 'h') ? (numberOf(context, orientation, 'h')?.value ?? NaN) : 0;
     if (offset === 0 || !Number.isFinite(offset) || !Number.isInteger(laneId) || laneId === 0 || !Number.isFinite(h)) continue;
-    const direction = scenarioRunnerOffsetDirection(laneId, h);
-    const along = offset * direction.along;
-    const across = offset * direction.across;
-    if (Math.abs(along) <= LANE_OFFSET_TOLERANCE && across > 0 === offset > 0) continue;
+    const { along, across, place } = scenarioRunnerOffsetPlace(laneId, h, offset);
+    if (place === 'as-written') continue;
     const metres = (value: number) => `${Number(Math.abs(value).toFixed(2))} m`;
     const side = (value: number) => `${metres(value)} to the ${value > 0 ? 'left' : 'right'}`;
-    const alongWords = Math.abs(along) > LANE_OFFSET_TOLERANCE ? ` and ${metres(along)} ${along > 0 ? 'on' : 'back'} along the road` : '';
+    const alongWords = place === 'along' ? ` and ${metres(along)} ${along > 0 ? 'on' : 'back'} along the road` : '';
     findings.push(
       carlaFinding(
         'laneOffsetSide',

@@ -1,7 +1,7 @@
 import { IN_CATALOG_ENTRY_NOTE, inCatalogEntryWording } from '../../diagnostics/simulator';
 import type { RelatedProblemLocation } from '../../problems';
 import { baseName } from '../../sources';
-import { XmlAttribute, XmlElement } from '../../xml';
+import { attribute, XmlAttribute, XmlElement } from '../../xml';
 import type { CatalogEntry, CatalogReferenceResolution } from '../catalogs';
 import type { Finding, SemanticContext } from './types';
 
@@ -10,6 +10,15 @@ export function at(element: XmlElement, attr: XmlAttribute | undefined): Pick<Fi
   return attr
     ? { element, attribute: attr, start: attr.valueStart, end: attr.valueEnd }
     : { element, attribute: undefined, start: element.start, end: element.nameEnd };
+}
+
+/** An attribute's value as a number after `$parameter`/`${...}` evaluation; undefined when it is absent or no number (other rules report that). */
+export function numberOf(context: SemanticContext, element: XmlElement, name: string): { attr: XmlAttribute; value: number } | undefined {
+  const attr = attribute(element, name);
+  const text = context.evaluator.textOf(element, attr);
+  if (!attr || text === undefined || text.trim() === '') return undefined;
+  const value = Number(text);
+  return Number.isNaN(value) ? undefined : { attr, value };
 }
 
 export function relatedAt(context: SemanticContext, start: number, end: number, message: string): RelatedProblemLocation {
