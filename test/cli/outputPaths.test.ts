@@ -1,9 +1,9 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { esminiBinary, EsminiStep, readEsminiCsv, requireEsmini } from '../support/esmini';
+import { esminiBinary, esminiRoads, EsminiStep, readEsminiCsv, requireEsmini } from '../support/esmini';
 import JSZip from 'jszip';
-import { deterministic, distributionFile, fileHeader, runCli, scenario, simpleGroup } from '../support/fixtures';
+import { deterministic, distributionFile, fileHeader, importedCatalogController, runCli, scenario, simpleGroup } from '../support/fixtures';
 import { assertSameRun, cutInWorkspace, esminiCorpus, namedPaths, runAlone } from '../support/outputPaths';
 import { temporaryFolder } from '../support/temporaryDirectory';
 import { temporaryWorkspace } from '../support/workspace';
@@ -436,3 +436,34 @@ async function unzipped(file: string): Promise<Map<string, string>> {
   for (const [name, entry] of Object.entries(zip.files)) if (!entry.dir) entries.set(name, await entry.async('string'));
   return entries;
 }
+
+describe("cli: a catalog controller entry's File, used from a group a main imports, flattened elsewhere", () => {
+  it('is warned of at the reference in the imported file, naming the main it is read from; beside the main, nothing (issue 27)', () => {
+    const root = temporaryFolder('m2s-imported-controller-');
+    const { module } = importedCatalogController(root, path.join(esminiRoads, 'straight_500m.xodr'));
+    fs.mkdirSync(path.join(root, 'inputs'));
+    fs.writeFileSync(path.join(root, 'inputs', 'acc.cfg'), '');
+    const line =
+      fs
+        .readFileSync(module, 'utf8')
+        .split('\n')
+        .findIndex((text) => text.includes('entryName="acc"')) + 1;
+    fs.mkdirSync(path.join(root, 'out'));
+    const elsewhere = runCli(['flatten', 'main.xosc', '-o', path.join('out', 'flat.xosc')], { cwd: root });
+    assert.equal(elsewhere.status, 0, elsewhere.stderr);
+    const warnings = elsewhere.stderr.split('\n').filter((text) => text.includes(': warning:'));
+    assert.equal(warnings.length, 1, elsewhere.stderr);
+    assert.ok(
+      warnings[0].startsWith(
+        `control.xosc:${line}:${fs.readFileSync(module, 'utf8').split('\n')[line - 1].indexOf('acc"') + 1}: warning: catalog entry 'acc' names its controller File 'inputs/acc.cfg', which esmini looks up`,
+      ) &&
+        warnings[0].includes(
+          `from the folder of ${path.join(root, 'main.xosc')}, which imports this group, it names ${path.join(root, 'inputs', 'acc.cfg')}; the output in ${path.join(root, 'out')} may reach another file or none`,
+        ),
+      elsewhere.stderr,
+    );
+    const beside = runCli(['flatten', 'main.xosc', '-o', 'flat.xosc'], { cwd: root });
+    assert.equal(beside.status, 0, beside.stderr);
+    assert.doesNotMatch(beside.stderr, /warning/);
+  });
+});

@@ -465,3 +465,44 @@ ${lines.join('')}  </Catalog>
 </OpenSCENARIO>
 `;
 }
+
+/**
+ * A modular main (`root`/main.xosc) on `logicFile` whose group Controlled imports group Control of control.xosc, beside it:
+ * Control assigns Ego the ControllerCatalog entry 'acc' (catalogs/ControllerCatalog.xosc, esmini's ACCController), whose File
+ * is `inputs/acc.cfg` written as it stands, and sets Ego's speed. The main names no ControllerCatalog itself: the flattening
+ * carries control.xosc's. The File is left for the case to write (`root`/inputs/acc.cfg, beside the main, where esmini looks).
+ */
+export function importedCatalogController(root: string, logicFile: string): { main: string; module: string } {
+  const trigger =
+    '<StartTrigger><ConditionGroup><Condition name="At0" delay="0" conditionEdge="none"><ByValueCondition><SimulationTimeCondition value="0" rule="greaterThan"/></ByValueCondition></Condition></ConditionGroup></StartTrigger>';
+  const control =
+    '<ManeuverGroup name="Control" maximumExecutionCount="1"><Actors selectTriggeringEntities="false"><EntityRef entityRef="Ego"/></Actors><Maneuver name="CM">' +
+    `<Event name="Assign" priority="override"><Action name="AssignAcc"><PrivateAction><ControllerAction><AssignControllerAction>\n          <CatalogReference catalogName="ControllerCatalog" entryName="acc"/>\n        </AssignControllerAction></ControllerAction></PrivateAction></Action>${trigger}</Event>` +
+    `<Event name="Go" priority="parallel"><Action name="Speed"><PrivateAction><LongitudinalAction><SpeedAction><SpeedActionDynamics dynamicsShape="step" value="0" dynamicsDimension="time"/><SpeedActionTarget><AbsoluteTargetSpeed value="10"/></SpeedActionTarget></SpeedAction></LongitudinalAction></PrivateAction></Action>${trigger}</Event>` +
+    '</Maneuver></ManeuverGroup>';
+  const module = path.join(root, 'control.xosc');
+  fs.writeFileSync(
+    module,
+    drivingScenario(logicFile, control).replace(
+      '<CatalogLocations/>',
+      '<CatalogLocations><ControllerCatalog><Directory path="catalogs"/></ControllerCatalog></CatalogLocations>',
+    ),
+  );
+  const main = path.join(root, 'main.xosc');
+  fs.writeFileSync(
+    main,
+    drivingScenario(
+      logicFile,
+      '<ManeuverGroup name="Controlled" maximumExecutionCount="1"><Actors selectTriggeringEntities="false"><EntityRef entityRef="Ego"/></Actors><ScenarioReference scenarioFileName="control.xosc"><ManeuverGroupReference maneuverGroupName="Control"/></ScenarioReference></ManeuverGroup>',
+    ),
+  );
+  fs.mkdirSync(path.join(root, 'catalogs'), { recursive: true });
+  fs.writeFileSync(
+    path.join(root, 'catalogs', 'ControllerCatalog.xosc'),
+    catalogFile(
+      'ControllerCatalog',
+      '    <Controller name="acc"><Properties><Property name="esminiController" value="ACCController"/><File filepath="inputs/acc.cfg"/></Properties></Controller>\n',
+    ),
+  );
+  return { main, module };
+}

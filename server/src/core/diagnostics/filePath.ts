@@ -74,22 +74,24 @@ export function unrebasedPathWording(message: string): ProblemWording<'file-path
 
 /**
  * A catalog controller entry's File written as a relative path (`written`, quoted, with the value a parameter gives it), which esmini looks up from the folder of the
- * scenario that uses the entry, where it names `disk`: the catalog is not part of the output, so nothing rebases it.
+ * scenario that uses the entry, where it names `disk`: the catalog is not part of the output, so nothing rebases it. `main`: the
+ * main file that scenario is flattened from, when the reference lies in a group it imports from another file.
  */
 export function catalogControllerFileWording(
   entry: string,
   written: string,
   disk: string,
   output: string | undefined,
+  main?: string,
 ): ProblemWording<'file-path'> {
   return {
     severity: 'warning',
     code: 'file-path',
     message:
       `catalog entry '${entry}' names its controller File ${written}, which esmini looks up from the working folder, then from ` +
-      `the folder of the scenario that uses the entry (not the catalog's): from here it names ${disk}; ` +
+      `the folder of the scenario that uses the entry (not the catalog's): from ${main === undefined ? 'here' : `the folder of ${main}, which imports this group,`} it names ${disk}; ` +
       `${output === undefined ? 'the output on standard output' : `the output in ${output}`} may reach another file or none`,
-    hint: "write the File's path absolute in the catalog entry, or name it through a parameter this reference assigns, or write the output beside this file",
+    hint: `write the File's path absolute in the catalog entry, or name it through a parameter this reference assigns, or write the output beside ${main ?? 'this file'}`,
   };
 }
 

@@ -10,7 +10,7 @@ import {
   unrebasedPathWording,
 } from '../diagnostics/filePath';
 import type { FileKind, FileSystemHost } from '../sources/host';
-import { normalizeEntryName, ScenarioStore, SourceRef } from '../sources';
+import { displayRef, normalizeEntryName, ScenarioStore, SourceRef } from '../sources';
 import { escapeAttributeValue, parseXml, selfAndDescendants, XmlAttribute, XmlDocument, XmlElement } from '../xml';
 import type { TextEdit } from './edits';
 import { originOf } from './origin';
@@ -190,22 +190,34 @@ export async function rebasePaths(request: RebaseRequest): Promise<PathRebase> {
 }
 
 /**
- * The controller entries the main's CatalogReferences use whose File is a relative path written as it stands: esmini looks it
- * up from the folder of the scenario it runs (ScenarioReader.cpp parseOSCObjectController), never the catalog's, and the output
- * written elsewhere keeps the reference, not the entry, so a file the path names from the main's folder is warned of at the
- * reference. A run hands it (esmini/controllerFiles.ts).
+ * The controller entries the output's CatalogReferences use (the main's own and those of the groups it imports, each found
+ * where it was written) whose File is a relative path written as it stands or through the entry's parameter: esmini looks it
+ * up from the folder of the scenario it runs (ScenarioReader.cpp parseOSCObjectController), never the catalog's, and the
+ * output written elsewhere keeps the reference, not the entry, so a file the path names from the main's folder (where the
+ * output beside the main, and a run, reach it) is warned of at the reference. A run hands it (esmini/controllerFiles.ts).
  */
 async function catalogControllerFileProblems(
   source: FlatSource,
+  model: ScenarioModel,
+  originFor: (element: XmlElement) => { source: FlatSource; element: XmlElement },
   outputDirectory: string | undefined,
   store: ScenarioStore,
 ): Promise<Problem[]> {
-  const semantics = source.semantics;
   const base = path.resolve(pathBaseOf(source.ref));
-  if (!semantics || outputDirectory === base) return [];
+  if (!model.document.root || outputDirectory === base) return [];
   const problems: Problem[] = [];
-  for (const { reference, entry } of semantics.catalogs.references) {
-    if (entry?.element.name !== 'Controller') continue;
+  // A group imported twice is copied twice: its reference is warned of once.
+  const seen = new Set<XmlElement>();
+  for (const element of selfAndDescendants(model.document.root)) {
+    if (element.name !== 'CatalogReference') continue;
+    const origin = originFor(element);
+    if (seen.has(origin.element)) continue;
+    seen.add(origin.element);
+    const semantics = origin.source.semantics;
+    const resolution = semantics?.catalogs.references.find((each) => each.reference.element === origin.element);
+    const entry = resolution?.entry;
+    if (!semantics || !resolution || entry?.element.name !== 'Controller') continue;
+    const reference = resolution.reference;
     const file = entry.element.children.find((child) => child.name === 'Properties')?.children.find((child) => child.name === 'File');
     const written = file?.attributes.find((each) => each.name === 'filepath')?.value.trim();
     // Named through the entry's parameter: the value the reference assigns, else the entry's default.
@@ -223,7 +235,9 @@ async function catalogControllerFileProblems(
     const at = reference.entryNameAttribute;
     const range = at ? semantics.model.document.lines.range(at.valueStart, at.valueEnd) : ZERO_RANGE;
     const named = value === written ? `'${written}'` : `'${written}' ('${value}')`;
-    problems.push({ source: source.ref, range, ...catalogControllerFileWording(entry.name, named, disk, outputDirectory) });
+    // A group imported from another file: its reference is where to change it, the main's folder where the path is read from.
+    const from = origin.source === source ? undefined : displayRef(source.ref, undefined);
+    problems.push({ source: origin.source.ref, range, ...catalogControllerFileWording(entry.name, named, disk, outputDirectory, from) });
   }
   return problems;
 }
@@ -423,7 +437,8 @@ export async function rebaseFlattened(
       continue;
     problems.push(problemAtOrigin(finding.site.element, finding.site.attribute.name, unrebasedPathWording(finding.message)));
   }
-  if (!handed.controllerFilesHanded) problems.push(...(await catalogControllerFileProblems(source, outputDirectory, store)));
+  if (!handed.controllerFilesHanded)
+    problems.push(...(await catalogControllerFileProblems(source, model, originFor, outputDirectory, store)));
   return {
     edits: [...edits, ...rebase.edits],
     resolved: rebase.resolved,
