@@ -20,6 +20,7 @@ import { openscenarioDir } from '../support/openscenarioCorpus';
 import { caseStudyDir, libraryDir, repoRoot, requireCorpus, sharedDir } from '../support/paths';
 import { runBounded } from '../support/processes';
 import { temporaryFolder } from '../support/temporaryDirectory';
+import { addParameterControllers } from '../support/fixtures';
 
 interface Exported {
   input: string;
@@ -3478,5 +3479,44 @@ describe("export --target carla, a LanePosition's offset (ScenarioRunner puts it
     requireEsmini(this);
     // esmini runs the export as ScenarioRunner places it: where esmini runs the original.
     await assertMovesAlike(original, result.output, 2);
+  });
+});
+
+describe("export --target carla: a controller's File, inline or in an inlined catalog entry, from the output's folder (SPEC 11.6)", () => {
+  it('names from the output in another folder the file the scenario names, as esmini reads it from the scenario (issue 27)', async () => {
+    const root = temporaryFolder('m2s-carla-files-');
+    fs.copyFileSync(path.join(repoRoot, 'test', 'fixtures', 'variations', 'follow.xosc'), path.join(root, 'follow.xosc'));
+    // The ego's inline controller and the Lead's catalog entry each name their File through $CfgFile; a second entry writes it as it stands.
+    addParameterControllers(root);
+    const catalog = path.join(root, 'catalogs', 'ControllerCatalog.xosc');
+    const literal =
+      '<Controller name="literal"><Properties><Property name="esminiController" value="ACCController"/><File filepath="inputs/lead.cfg"/></Properties></Controller>';
+    fs.writeFileSync(catalog, fs.readFileSync(catalog, 'utf8').replace('</Catalog>', `${literal}</Catalog>`));
+    const scenario = path.join(root, 'follow.xosc');
+    const written = fs.readFileSync(scenario, 'utf8');
+    fs.writeFileSync(path.join(root, 'literal.xosc'), written.replace('entryName="lead"', 'entryName="literal"'));
+    fs.mkdirSync(path.join(root, 'out'));
+    for (const [input, files] of [
+      ['follow.xosc', ['inputs/acc.cfg', 'inputs/lead.cfg']],
+      ['literal.xosc', ['inputs/acc.cfg', 'inputs/lead.cfg']],
+    ] as const) {
+      const output = path.join(root, 'out', input);
+      const result = await exportFile(path.join(root, input), output, ['--road-path', esminiRoads]);
+      assert.equal(result.code, 0, result.stderr);
+      const named = [...fs.readFileSync(output, 'utf8').matchAll(/<File filepath="([^"]*)"\/>/g)].map((match) => match[1]);
+      assert.deepEqual(
+        named,
+        files.map((file) => `../${file}`),
+        input,
+      );
+      for (const file of named) assert.ok(fs.existsSync(path.resolve(path.dirname(output), file)), `${input}: ${file}`);
+      // Beside the scenario, as written.
+      const beside = path.join(root, `beside-${input}`);
+      assert.equal((await exportFile(path.join(root, input), beside, ['--road-path', esminiRoads])).code, 0);
+      assert.deepEqual(
+        [...fs.readFileSync(beside, 'utf8').matchAll(/<File filepath="([^"]*)"\/>/g)].map((match) => match[1]),
+        [...files],
+      );
+    }
   });
 });

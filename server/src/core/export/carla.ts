@@ -244,6 +244,7 @@ export async function exportTextForCarla(
     );
 
   inlineCatalogs(semantics, elementNodes, sink);
+  await rebasePropertyFiles(tree, ref, options.outputPath, store);
   const catalogLocations = child(tree, 'CatalogLocations');
   if (catalogLocations) removeChildren(catalogLocations);
   for (const leftover of named(tree, 'CatalogReference')) {
@@ -562,6 +563,23 @@ function inlineCatalogs(semantics: DocumentSemantics, nodes: Map<XmlElement, Nod
     );
     for (const declarations of childrenNamed(inlined, 'ParameterDeclarations')) removeNode(declarations);
     replaceNode(node, inlined);
+  }
+}
+
+/**
+ * Each relative `Properties/File` path (a controller's configuration, a model), an inlined catalog entry's too, written from
+ * the output's folder (SPEC 11.6). esmini reads one from the folder of the scenario it runs, a catalog entry's too, never the
+ * catalog's (ScenarioReader.cpp parseOSCObjectController): here `ref`'s. Only a path that names a file from there is rebased.
+ */
+async function rebasePropertyFiles(tree: Node, ref: SourceRef, outputPath: string, store: ScenarioStore): Promise<void> {
+  const from = path.dirname(ref.disk);
+  const to = path.dirname(path.resolve(outputPath));
+  if (from === to) return;
+  for (const file of named(tree, 'File')) {
+    const value = attr(file, 'filepath')?.trim();
+    if (file.parent?.name !== 'Properties' || !value || path.isAbsolute(value) || value.includes('$')) continue;
+    const disk = path.resolve(from, value);
+    if ((await store.host.kind(disk)) === 'file') setAttr(file, 'filepath', path.relative(to, disk).split(path.sep).join('/'));
   }
 }
 
