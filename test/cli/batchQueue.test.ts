@@ -279,13 +279,27 @@ describe('cli: batch through a Redis queue', function () {
     );
   });
 
-  it("a controller's File named through a parameter, inline or in a catalog entry, is sent with the job: a worker in an empty folder runs it as a local batch does (issue 27)", async function () {
+  it("a controller's File named through a parameter, inline or in a catalog entry, or written as it stands in an entry, is sent with the job: a worker in an empty folder runs it as a local batch does (issue 27)", async function () {
     requireEsmini(this);
     requireRedis(this);
     redis = await startRedis();
     const root = batchFolder(3);
     folders.push(root);
     addParameterControllers(root);
+    // A second entry writes its File as it stands, which no assignment reaches: the run writes that entry inline (issue 27).
+    const catalog = path.join(root, 'catalogs', 'ControllerCatalog.xosc');
+    fs.writeFileSync(
+      catalog,
+      fs
+        .readFileSync(catalog, 'utf8')
+        .replace(
+          '</Catalog>',
+          '<Controller name="literal"><Properties><Property name="esminiController" value="ACCController"/><File filepath="inputs/literal.cfg"/></Properties></Controller></Catalog>',
+        ),
+    );
+    fs.writeFileSync(path.join(root, 'inputs', 'literal.cfg'), '');
+    const scenario = path.join(root, 'follow.xosc');
+    fs.writeFileSync(scenario, fs.readFileSync(scenario, 'utf8').replace('entryName="lead"', 'entryName="literal"'));
     const empty = temporaryFolder('m2s-worker-');
     folders.push(empty);
     workers.push(background(['worker', '--queue', redis.url, '--jobs', '2', '--esmini', esminiBinary], empty));

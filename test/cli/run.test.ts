@@ -4,7 +4,7 @@ import * as os from 'node:os';
 import * as path from 'node:path';
 import { cliInTemporaryProject } from '../support/cliProject';
 import { esminiBinary, requireEsmini, esminiRoads } from '../support/esmini';
-import { roadScenario, runCli } from '../support/fixtures';
+import { importedCatalogController, roadScenario, runCli } from '../support/fixtures';
 import { libraryDir, repoRoot, requireCorpus } from '../support/paths';
 import { listFiles } from '../support/workspace';
 import { temporaryFolder } from '../support/temporaryDirectory';
@@ -324,6 +324,19 @@ describe('cli: run in esmini', function () {
         flattened.stderr,
       );
     }
+  });
+
+  it("a catalog entry's controller File used from a group the main imports reaches the file beside the main in a run, as the main's own does (issue 27)", function () {
+    requireEsmini(this);
+    const root = temporaryFolder('m2s-run-imported-controller-');
+    importedCatalogController(root, path.join(esminiRoads, 'straight_500m.xodr'));
+    fs.mkdirSync(path.join(root, 'inputs'));
+    fs.writeFileSync(path.join(root, 'inputs', 'acc.cfg'), '');
+    // Before: the run handed the main's own references' Files only, and esmini missed this one from the run's private folder.
+    const run = runCli(['run', 'main.xosc', '--check', '--duration', '1', '--esmini', esminiBinary], { cwd: root });
+    assert.equal(run.status, 0, run.stderr);
+    assert.doesNotMatch(run.stderr, /controller file|: warning:/);
+    assert.match(run.stderr, /esmini: 0 errors/);
   });
 
   it('a distribution file or a catalog is not run as a scenario: exit 1, saying what it is and what runs it', function () {

@@ -17,7 +17,8 @@ import { requireEsminiLibrary } from '../support/esminiBinaries';
 import { openscenarioDir } from '../support/openscenarioCorpus';
 import { temporaryFolder } from '../support/temporaryDirectory';
 import { writeTwoCutIns } from '../support/debugScenarios';
-import { drivingScenario, packageOf } from '../support/fixtures';
+import { addParameterControllers, drivingScenario, packageOf } from '../support/fixtures';
+import { repoRoot } from '../support/paths';
 import { twoCatalogs } from '../support/twoCatalogs';
 
 const cutIn = path.join(openscenarioDir, 'esmini', 'cut-in.xosc');
@@ -248,6 +249,39 @@ describe('debug: a scenario run step by step in esmini library', () => {
     );
     // Before: esmini was told to read the catalog from .modular2simple-debug.files/Catalogs/Vehicles, which nobody wrote.
     await runsPackageToItsEnd(input);
+  });
+
+  it("looks a controller's File up from the main file's folder, inline or from a catalog, as Run in esmini does, and reports what esmini missed loading it (issue 27)", async () => {
+    const root = temporaryFolder();
+    fs.copyFileSync(path.join(repoRoot, 'test', 'fixtures', 'variations', 'follow.xosc'), path.join(root, 'follow.xosc'));
+    // The ego's inline controller and the Lead's ControllerCatalog entry (in catalogs/) name inputs/*.cfg, beside follow.xosc, through $CfgFile.
+    addParameterControllers(root);
+    const input = path.join(root, 'follow.xosc');
+    const loaded = async () => {
+      const prepared = await prepareScenario(new Flattener(storeForInputs([], undefined, [input], {}, roadPath)), mainOf(input), {
+        roadPath,
+      });
+      const simulation = new Simulation(prepared, { roadPath });
+      try {
+        simulation.start();
+        return simulation.loadProblems.filter((problem) => problem.severity === 'error').map((problem) => problem.message);
+      } finally {
+        simulation.close();
+      }
+    };
+    // Before: esmini ran in the catalog's folder (the first of its search path), and missed both.
+    assert.deepEqual(await loaded(), []);
+    // Written as it stands in the entry and lying beside the catalog only, where esmini never looks: missed, and said so as a run says it.
+    const catalog = path.join(root, 'catalogs', 'ControllerCatalog.xosc');
+    fs.writeFileSync(catalog, fs.readFileSync(catalog, 'utf8').replace('filepath="$CfgFile"', 'filepath="lead.cfg"'));
+    fs.writeFileSync(path.join(root, 'catalogs', 'lead.cfg'), '');
+    const [missed, ...more] = await loaded();
+    assert.deepEqual(more, []);
+    assert.ok(
+      missed?.startsWith('Failed to localize controller file lead.cfg') &&
+        missed.includes(`[${path.join(root, 'catalogs', 'lead.cfg')} exists beside the catalog: esmini looks`),
+      missed,
+    );
   });
 
   it('names the packaged files by their copies in the private folder, and nothing else', () => {

@@ -254,6 +254,8 @@ export class ScenarioDebugSession extends DebugSession {
       for (const problem of prepared.flattenProblems) if (problem.severity === 'error') this.problemOutput(problem);
       const simulation = new Simulation(prepared, options);
       const started = simulation.start();
+      // What esmini said loading it (a controller File it missed): printed, as a run prints it.
+      for (const problem of simulation.loadProblems) this.problemOutput(problem);
       this.simulation = simulation;
       this.runNumber++;
       for (const function_ of this.functionBreakpoints) ((function_.done = false), (function_.hits = 0));

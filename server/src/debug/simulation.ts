@@ -11,6 +11,7 @@ import { escapeAttributeValue } from '../core/xml';
 import { EsminiLibrary, EsminiObjectState, loadEsminiLibrary } from '../esmini/library';
 import { readEsminiLog } from '../esmini/log';
 import { EsminiProblem, mapEsminiMessages } from '../esmini/messages';
+import { ControllerFilesFrom, controllerFilesOfFlattening, withCatalogFolderNote } from '../esmini/controllerFiles';
 import { makeRunFolder } from '../esmini/process';
 import {
   esminiFolders,
@@ -127,6 +128,11 @@ export interface PreparedScenario {
   flat: FlatSource;
   map: StoryboardMap;
   flattenProblems: Problem[];
+  /**
+   * The folder esmini runs in, the main file's (esmini given a text, not a file, looks a controller File up from its working
+   * folder alone), with the catalog references whose entries name controller Files: as Run in esmini takes them.
+   */
+  controllerFiles: ControllerFilesFrom;
 }
 
 /** The name the scenario is flattened to, beside the main file (never written): its packaged files are named in `<name>.files/`. */
@@ -175,6 +181,7 @@ export async function prepareScenario(flattener: Flattener, main: SourceRef, opt
     flat: flat.source,
     map,
     flattenProblems: flat.problems,
+    controllerFiles: controllerFilesOfFlattening(main, flat.source),
   };
 }
 
@@ -209,6 +216,8 @@ export class Simulation {
   /** The moment shown instead of esmini's state now, while stopped at a step's start (holdStepStart). */
   private held: SimulationView | undefined;
   ended = false;
+  /** What esmini reported while loading the scenario it then ran (errors and warnings, on their source lines), as a run reports them. */
+  loadProblems: EsminiProblem[] = [];
 
   constructor(
     readonly scenario: PreparedScenario,
@@ -270,27 +279,27 @@ export class Simulation {
     library.clearPaths();
     for (const folder of this.scenario.searchPath) library.addPath(folder);
     library.setSeed(this.options.seed ?? RUN_DEFAULTS.seed);
-    // esmini reads relative file names from its working folder first: the main file's folder, as for the process runs.
+    // esmini reads relative file names from its working folder: the main file's, where the text was flattened for (the search path starts with catalog folders).
     const previous = process.cwd();
     let result: number;
     try {
-      process.chdir(this.scenario.searchPath[0]);
+      process.chdir(this.scenario.controllerFiles.scenarioFolder);
       result = library.initWithString(this.textToLoad());
     } finally {
       process.chdir(previous);
     }
+    library.flushLog();
+    const problems = this.loadMessages(this.readLog());
     if (result !== 0) {
-      library.flushLog();
-      const log = this.readLog();
       library.close();
       this.closed = true;
       this.removeFolder();
-      const problems = mapEsminiMessages(readEsminiLog(log).messages, this.scenario.flat, this.scenario.main);
       const errors = problems.filter((problem) => problem.severity === 'error');
       throw new SimulationLoadError(`esmini did not load the scenario: ${errors[0]?.message ?? 'see its log'}`, errors);
     }
+    // Loaded despite them (a controller File esmini missed), as a run reports them.
+    this.loadProblems = problems;
     // The conditions' lines come after what esmini logged loading the scenario: their first read starts there.
-    library.flushLog();
     this.logOffset = fileSize(this.logFile);
     library.onStoryboardChange((name, type, state, fullPath) => this.transition(name, type, state, fullPath));
     library.onCondition((name, timestamp) => this.conditionFired(name, timestamp));
@@ -431,6 +440,15 @@ export class Simulation {
         event.element = owned.path;
       }
     }
+  }
+
+  /** esmini's messages in `log`, on their source lines; a controller File missed beside its catalog said so, as Run in esmini says it. */
+  private loadMessages(log: string): EsminiProblem[] {
+    const messages = readEsminiLog(log).messages.map((message) => ({
+      ...message,
+      text: withCatalogFolderNote(message.text, this.scenario.controllerFiles.references, fs.existsSync),
+    }));
+    return mapEsminiMessages(messages, this.scenario.flat, this.scenario.main);
   }
 
   private readLog(): string {

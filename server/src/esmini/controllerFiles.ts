@@ -1,6 +1,8 @@
 import * as path from 'node:path';
 import { applyEdits, TextEdit } from '../core/flatten/edits';
-import { diskRef } from '../core/sources';
+import type { FlatSource } from '../core/flatten/types';
+import { scenarioFolderOf } from '../core/semantics/roadFiles';
+import { diskRef, SourceRef } from '../core/sources';
 import type { CatalogLoader, CatalogReferenceResolution } from '../core/semantics/catalogs';
 import { Evaluator, semanticModelOf } from '../core/semantics/model';
 import { attribute, descendants, escapeAttributeValue, parseXml, XmlAttribute, XmlElement } from '../core/xml';
@@ -9,6 +11,24 @@ import { attribute, descendants, escapeAttributeValue, parseXml, XmlAttribute, X
 export interface ControllerFilesFrom {
   scenarioFolder: string;
   references: readonly CatalogReferenceResolution[];
+}
+
+/**
+ * Where a run of `main`'s flattening looks its controller Files up from: the main's folder (its package's, for a packaged
+ * one), with the catalog references of the main and of every file it imports groups from, whose CatalogReferences the
+ * flattened text keeps. Run in esmini and the debugger both hand esmini a flattening, so both take this one.
+ */
+export function controllerFilesOfFlattening(main: SourceRef, source: FlatSource): ControllerFilesFrom {
+  const references: CatalogReferenceResolution[] = [];
+  const seen = new Set<FlatSource>();
+  const gather = (each: FlatSource) => {
+    if (seen.has(each)) return;
+    seen.add(each);
+    references.push(...(each.semantics?.catalogs.references ?? []));
+    for (const link of each.links) if (link.source) gather(link.source);
+  };
+  gather(source);
+  return { scenarioFolder: scenarioFolderOf(main), references };
 }
 
 /**

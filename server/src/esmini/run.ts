@@ -11,7 +11,7 @@ import { CatalogLoader } from '../core/semantics/catalogs';
 import { attribute, descendants, escapeAttributeValue, parseXml } from '../core/xml';
 import { anyEntityMoved, parseEsminiLoadedRoad } from '../../../common/src/esminiCsv';
 import type { TraceRecord } from '../../../common/src/trace';
-import { ControllerFilesFrom, withCatalogFolderNote, withControllerFilesFrom } from './controllerFiles';
+import { ControllerFilesFrom, controllerFilesOfFlattening, withCatalogFolderNote, withControllerFilesFrom } from './controllerFiles';
 import { locateEsmini } from './locate';
 import { EsminiLogMessage, EsminiRemark, readEsminiLog } from './log';
 import { esminiMessageSeverity, EsminiProblem, mapEsminiMessages, withoutRunFolder } from './messages';
@@ -376,7 +376,7 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
     };
   }
 
-  const controllerFilesFrom = { scenarioFolder: sourceFolderOf(main), references: flat.source.semantics?.catalogs.references ?? [] };
+  const controllerFilesFrom = controllerFilesOfFlattening(main, flat.source);
   const ran = await runLimitedText(location.program, limited, searchPath, { ...options, controllerFilesFrom }, timeStep, seed, limit, {
     runFolder,
     files: flat.files,
