@@ -1,9 +1,10 @@
 import { ManeuverGroupInfo, ScenarioModel } from '../model';
 import { OverridePlan } from '../keys';
 import { indentationAt } from '../text';
-import { attribute, attributeValue, endTagStart, escapeAttributeValue, selfAndDescendants, XmlElement } from '../xml';
+import { attribute, attributeValue, endTagStart, escapeAttributeValue, selfAndDescendants, XmlAttribute, XmlElement } from '../xml';
 import { STORYBOARD_ELEMENT_NAMES, STORYBOARD_ELEMENT_TYPES } from '../semantics/storyboard';
 import { LinkedGroupReference } from './types';
+import { statedVersion, versionUpgrades } from './versionUpgrade';
 
 /** Moves a copied block from one indentation depth to another, line by line. */
 export function reindent(block: string, fromIndent: string, toIndent: string, eol: string): string {
@@ -111,6 +112,8 @@ export interface CopyPlace {
    * copy to its own element of such a name would reach another copy's, so both are renamed in the copy.
    */
   sharedNames: ReadonlySet<string>;
+  /** The OpenSCENARIO version the output states (1.3), for the attributes of an earlier source that it renames (versionUpgrade.ts). */
+  version?: number;
 }
 
 /** How a storyboard element's kind and name are counted across the output: `Event:Name`. */
@@ -128,7 +131,7 @@ export function copyGroup(
   sourceText: string,
   sourceModel: ScenarioModel,
   linked: LinkedGroupReference,
-  { outerName, actorEntity, indent: targetIndent, eol, sharedNames }: CopyPlace,
+  { outerName, actorEntity, indent: targetIndent, eol, sharedNames, version }: CopyPlace,
 ): string {
   const target = linked.target as ManeuverGroupInfo;
   const edits = new Map<number, TextEdit>();
@@ -146,8 +149,21 @@ export function copyGroup(
   };
   setAttribute(target.element, 'name', `${outerName}.${target.name}`);
   if (target.actor && actorEntity !== undefined) setAttribute(target.actor, 'entityRef', actorEntity);
+  const overrides = new Map<XmlAttribute, string>();
   for (const [overridden, parameter] of (linked.plan as OverridePlan).applied) {
     setAttribute(overridden.element, overridden.attributeName, parameter.value);
+    const written = attribute(overridden.element, overridden.attributeName);
+    if (written) overrides.set(written, parameter.value);
+  }
+  const valueOf = (_element: XmlElement, written: XmlAttribute) => overrides.get(written) ?? written.value;
+  for (const upgrade of versionUpgrades(target.element, statedVersion(sourceModel.document), version, valueOf)) {
+    const { nameStart, valueStart, valueEnd, quote } = upgrade.attribute;
+    edits.delete(valueStart);
+    edits.set(nameStart, {
+      start: nameStart,
+      end: valueEnd,
+      text: `${upgrade.name}=${quote}${escapeAttributeValue(upgrade.value, quote)}`,
+    });
   }
   // Two copies of a group whose second event waits for its first by name (double-lane-change) would both wait for the
   // first copy's (esmini takes the first element of a name, ScenarioRunner one blackboard entry per name): each copy

@@ -10,6 +10,7 @@ import { originOf } from './origin';
 import { describeChain, problemAt, valueRange } from './report';
 import { Addition, CarryEdit, FlatSource, Insertion, LinkedGroupReference, LinkedReference } from './types';
 import { tooLargeWording } from '../diagnostics/tooLarge';
+import { statedVersion } from './versionUpgrade';
 
 /** One imported group's text, ready to replace its outer group. */
 interface Copy {
@@ -99,6 +100,7 @@ function plannedReplacements(store: ScenarioStore, result: FlatSource, model: Sc
   const replacements: Replacement[] = [];
   const linkOf = linkLookup(result);
   const sharedNames = namesHeldTwice(model, linkOf);
+  const version = statedVersion(model.document);
   // Counted copy by copy, before the text is joined: a group imported twice at each of 20 levels must not fill memory.
   let projected = text.length;
   for (const group of model.groups) {
@@ -118,6 +120,7 @@ function plannedReplacements(store: ScenarioStore, result: FlatSource, model: Sc
           indent: targetIndent,
           eol,
           sharedNames,
+          version,
         });
         projected += copy.length + eol.length + targetIndent.length;
         if (projected > store.limits.maxFlattenedChars) {
