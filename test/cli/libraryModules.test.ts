@@ -74,6 +74,17 @@ function twoCopies(
   };
 }
 
+/** A road's left and right lanes swapped (ids negated): the other side of straight_1000m.xodr as its first. */
+function swappedSides(road: string): string {
+  const left = /<left>([\s\S]*?)<\/left>/.exec(road)?.[1] ?? '';
+  const right = /<right>([\s\S]*?)<\/right>/.exec(road)?.[1] ?? '';
+  assert.ok(left && right, 'the road has no left or right lanes');
+  const negated = (lanes: string) => lanes.replace(/<lane id="(-?\d+)"/g, (_, id: string) => `<lane id="${-Number(id)}"`);
+  // OpenDRIVE lists the left lanes outermost first, the right ones innermost first: reversed with the sides.
+  const reversed = (lanes: string) => (lanes.match(/ *<lane [\s\S]*?<\/lane>\n/g) ?? []).reverse().join('');
+  return road.replace(left, `\n${reversed(negated(right))}        `).replace(right, `\n${reversed(negated(left))}        `);
+}
+
 describe('library modules: each verified in esmini and CARLA (issue 28)', function () {
   this.timeout(600_000);
   const libraryFolder = builtInLibraryFolder();
@@ -254,9 +265,21 @@ describe('library modules: each verified in esmini and CARLA (issue 28)', functi
     }
   });
 
-  it('every module inserted into a main with only an ego (as New Modular Scenario writes it, 10 m further on), its actors added by Insert into Main: clean, and it behaves as in its example in esmini', async function () {
-    requireEsmini(this);
+  /**
+   * Each module whose example has an ego (but the weather's) inserted into a main with only an ego, as New Modular Scenario
+   * writes it, the ego the example's car and speed 10 m further along its lane, its actors added by Insert into Main; each
+   * main checks clean and behaves in esmini as its example. `turned`: the ego on the other side of the road (its lane id
+   * negated, on `straight_1000m.xodr` with its sides swapped, so that both have three lanes and a sidewalk), driving
+   * against s, and esmini's tracks turned back half round (x 1000 - x, y -y) for the example's assertions.
+   * What each new entity was told, as Insert into Main says it.
+   */
+  async function composedWithAnEgo(turned: boolean): Promise<string[]> {
     const placed: string[] = [];
+    const composed = path.join(outputs, 'composed');
+    fs.mkdirSync(composed, { recursive: true });
+    const straight = path.join(libraryFolder ?? '', 'roads', 'straight_1000m.xodr');
+    const swapped = path.join(composed, 'straight_1000m_swapped.xodr');
+    fs.writeFileSync(swapped, swappedSides(fs.readFileSync(straight, 'utf8')));
     // The weather's behaviour is read from a recording, and its only role is the ego.
     for (const module of modules.filter((candidate) => candidate.name !== 'weather-light-change')) {
       const exampleText = fs.readFileSync(module.example ?? '', 'utf8');
@@ -268,11 +291,14 @@ describe('library modules: each verified in esmini and CARLA (issue 28)', functi
       if (!egoPosition) continue;
       assert.ok(egoSpeed && egoVehicle && end, `${module.name}: its example's ego has no speed, car or end`);
       const road = path.resolve(path.dirname(module.example ?? ''), /<LogicFile filepath="([^"]+)"/.exec(exampleText)?.[1] ?? '');
+      // Turned round on the straight road only: the on-ramp and the crossroads have no other side to turn to.
+      if (turned && road !== straight) continue;
+      const [laneId, s] = [Number(egoPosition[2]), Number(egoPosition[3]) + 10];
       // The ego drives as the example's (its car, its speed, its end), 10 m further along its lane.
       let text = newMainScenario({
         version: '1.1',
-        roadFile: road,
-        ego: { roadId: egoPosition[1], laneId: Number(egoPosition[2]), s: Number(egoPosition[3]) + 10 },
+        roadFile: turned ? swapped : road,
+        ego: { roadId: egoPosition[1], laneId: turned ? -laneId : laneId, s: turned ? 1000 - s : s },
       })
         .replace(/<Vehicle name="car"[\s\S]*?<\/Vehicle>/, egoVehicle)
         .replace('name="EgoSpeed" parameterType="double" value="10"', `name="EgoSpeed" parameterType="double" value="${egoSpeed}"`)
@@ -286,7 +312,7 @@ describe('library modules: each verified in esmini and CARLA (issue 28)', functi
         players[role.name] = guessPlayer(role, shape.entities) ?? offer?.name ?? '';
         if (players[role.name] === offer?.name) create[role.name] = offer.name;
       }
-      const mainFile = path.join(outputs, 'composed', `${module.name}.xosc`);
+      const mainFile = path.join(composed, `${module.name}.xosc`);
       const entities = newEntityChanges(text, module, exampleText, create, players, { main: mainFile, example: module.example ?? '' });
       placed.push(...entities.added.map((added) => `${module.name}: ${added}`));
       const group = insertModuleGroup(text, module, { players, values: entities.values });
@@ -294,7 +320,6 @@ describe('library modules: each verified in esmini and CARLA (issue 28)', functi
         (a, b) => b.start - a.start,
       ))
         text = text.slice(0, change.start) + change.text + text.slice(change.end);
-      fs.mkdirSync(path.dirname(mainFile), { recursive: true });
       fs.writeFileSync(mainFile, text);
       const said: string[] = [];
       const code = await main(['check', mainFile], { out: (line) => said.push(line), err: (line) => said.push(line) });
@@ -303,11 +328,33 @@ describe('library modules: each verified in esmini and CARLA (issue 28)', functi
       const { run } = await runExample({ ...module, example: mainFile }, outputs, esminiBinary);
       const tracks = tracksOf(run);
       tracks.set('ego', tracks.get('Ego') ?? []);
-      BEHAVIOURS[module.name](module, tracks, []);
+      if (turned)
+        for (const [name, track] of tracks)
+          tracks.set(
+            name,
+            track.map((point) => ({ time: point.time, x: 1000 - point.x, y: -point.y })),
+          );
+      try {
+        BEHAVIOURS[module.name](module, tracks, []);
+      } catch (error) {
+        throw new Error(`${module.name}${turned ? ', the ego on the other side of the road' : ''}: ${(error as Error).message}`);
+      }
     }
-    fs.rmSync(path.join(outputs, 'composed'), { recursive: true, force: true });
+    fs.rmSync(composed, { recursive: true, force: true });
+    return placed;
+  }
+
+  it('every module inserted into a main with only an ego (as New Modular Scenario writes it, 10 m further on), its actors added by Insert into Main: clean, and it behaves as in its example in esmini', async function () {
+    requireEsmini(this);
+    const placed = await composedWithAnEgo(false);
     // Each actor 10 m further on, as its example places it from the ego (those of modules that name no ego where it says).
     assert.ok(placed.filter((added) => / m (ahead of|behind) Ego/.test(added)).length >= 14, placed.join('\n'));
+  });
+
+  it("the same with the ego on the other side of the road from the example's (a left lane): each placement turned half round, and it behaves as in its example in esmini", async function () {
+    requireEsmini(this);
+    const placed = await composedWithAnEgo(true);
+    assert.ok(placed.filter((added) => /the example's placement turned round/.test(added)).length >= 12, placed.join('\n'));
   });
 
   it("every example main's CARLA export builds in ScenarioRunner's loader, and check --simulator carla finds no error in it", async function () {

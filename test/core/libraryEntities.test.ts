@@ -75,11 +75,6 @@ describe('Insert into main: a new entity as the example has it (core/libraryEnti
         newMain().replace(/"Ego"/g, '"ADVERSARY"'),
         /already declares an entity 'adversary': name the new one otherwise \(adversary2\)/,
       ],
-      [
-        'the ego on the left',
-        newMain().replace('laneId="-1"', 'laneId="1"'),
-        /Ego is on lane 1, on the other side of the road from the example's ego \(lane -1\)/,
-      ],
       ['not well-formed', newMain().replace('</Entities>', ''), /not well-formed/],
     ];
     for (const [what, text, message] of refused)
@@ -100,6 +95,43 @@ describe('Insert into main: a new entity as the example has it (core/libraryEnti
           { lead: 'lead', ego: 'Ego' },
         ),
       /'lead' would stand at s -35, before the start of road 0 \(45 m behind Ego as in the example\): move Ego further along the road first/,
+    );
+  });
+
+  it("an ego on the other side of the road from the example's: the placement turned half round, lanes counted the other way and ahead against s", () => {
+    const onTheLeft = newMain().replace('laneId="-1"', 'laneId="1"').replace('s="10"', 's="500"');
+    const place = (name: string, role: string) => {
+      const { module, example } = builtIn(name);
+      const result = newEntityChanges(onTheLeft, module, example, { [role]: role }, { [role]: role, ego: 'Ego' });
+      return { text: applied(onTheLeft, result.changes), added: result.added };
+    };
+    // cut-in's example: the ego on lane -1 at s 50, the car on lane -2 (right of it) at s 85; here the ego on lane 1 at s 500.
+    const cutIn = place('cut-in', 'adversary');
+    assert.match(cutIn.text, /<Private entityRef="adversary">[\s\S]*?<LanePosition roadId="0" laneId="2" s="465"/);
+    assert.deepEqual(cutIn.added, [
+      "adversary (Vehicle, 35 m ahead of Ego, lane 2 (the example's placement turned round: Ego is on the other side of the road from the example's ego), 7 m/s)",
+    ]);
+    // Across the centre: oncoming-vehicle's car on lane 1 at s 300, 250 m ahead of an ego on lane -1: here on lane -1, at s 250.
+    assert.match(
+      place('oncoming-vehicle', 'oncoming').text,
+      /<Private entityRef="oncoming">[\s\S]*?<LanePosition roadId="0" laneId="-1" s="250"/,
+    );
+    // The pedestrian on the sidewalk (lane -4, three lanes right of the ego's, 0.75 m towards the road): lane 4, its offset
+    // negated, as esmini adds it along the road's t on either side.
+    assert.match(
+      place('pedestrian-crossing', 'pedestrian').text,
+      /<Private entityRef="pedestrian">[\s\S]*?<LanePosition roadId="0" laneId="4" s="420" offset="-0.75"/,
+    );
+    // An offset from the lane's centre that esmini takes along the road's t: the swerve's key is negated, to stay a swerve left.
+    const swerving = builtIn('swerving-lead');
+    const swerve = newEntityChanges(onTheLeft, swerving.module, swerving.example, { lead: 'lead' }, { lead: 'lead' });
+    assert.deepEqual(swerve.values, { 'AbsoluteTargetLaneOffset.value': '-1.5' });
+    assert.deepEqual(newEntityChanges(newMain(), swerving.module, swerving.example, { lead: 'lead' }, { lead: 'lead' }).values, {});
+    // Ahead against s runs towards the road's start.
+    const { module, example } = builtIn('lead-brake');
+    assert.throws(
+      () => newEntityChanges(onTheLeft.replace('s="500"', 's="20"'), module, example, { lead: 'lead' }, { lead: 'lead', ego: 'Ego' }),
+      /'lead' would stand at s -14.5, before the start of road 0 \(34.5 m ahead of Ego as in the example, Ego driving against the road's s on lane 1\): move Ego further from the road's start first/,
     );
   });
 

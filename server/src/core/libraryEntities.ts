@@ -94,6 +94,9 @@ function placementOf(element: XmlElement | undefined): Placement {
   return { lanePosition, speedTarget };
 }
 
+/** Keys of an offset from a lane's centre line that esmini takes along the road's t, not the entity's left (swerving-lead's, arrive-leave-site's, oncoming-vehicle's). */
+const LATERAL_OFFSET_KEY = /(^|\.)(AbsoluteTargetLaneOffset\.value|LaneChangeAction\.targetLaneOffset|targetLaneOffset)$/;
+
 /** Lane ids skip 0: as a count from the centre (…, -2, -1 | 0, 1, …), a lane further right is one less. */
 const laneIndex = (laneId: number) => (laneId > 0 ? laneId - 1 : laneId);
 const laneOfIndex = (index: number) => (index >= 0 ? index + 1 : index);
@@ -169,7 +172,8 @@ export interface NewEntities {
  * ScenarioObject and Init Private. Where the example places the role's entity and a reference role (the first other
  * role the main already has a player for, `ego`) by LanePositions on one road, and the main places that player by a
  * LanePosition on a lane of the same side, the new entity keeps the example's lane difference and distance along the
- * road to it, and its speed keeps the example's difference to the reference's (a standing entity stays standing);
+ * road to it (turned half round where that player is on the other side of the road from the example's: lanes counted
+ * the other way, ahead against s), and its speed keeps the example's difference to the reference's (a standing entity stays standing);
  * a speed key whose default is that speed moves with it. Else the example's placement is written as it is.
  * Throws with what to do where the main cannot take the entity.
  */
@@ -287,15 +291,16 @@ export function newEntityChanges(
           });
           where = `${rounded(Math.abs(distance))} m ${distance >= 0 ? 'ahead of' : 'behind'} ${player}, ${dLane === 0 ? 'in its lane' : `${Math.abs(dLane)} lane${Math.abs(dLane) > 1 ? 's' : ''} ${dLane < 0 ? 'right' : 'left'} of it`} (RelativeLanePosition)`;
         } else {
-          if (Math.sign(mainLane) !== Math.sign(refLane))
-            throw new Error(
-              `${player} is on lane ${mainLane}, on the other side of the road from the example's ${reference.name} (lane ${refLane}): place '${name}' yourself, or pick an entity of the main to play '${role.name}'`,
-            );
-          const laneId = laneOfIndex(laneIndex(mainLane) + laneIndex(ownLane) - laneIndex(refLane));
-          const s = mainS + ownS - refS;
+          // On the other side of the road the ego drives against s: the example's placement turned half round (lanes
+          // counted the other way across the centre line, ahead against s, the offset from the lane's centre negated) keeps right and left, as esmini reads the
+          // modules' lane changes and offsets relative to the entity's heading (OSCPrivateAction.cpp:895, 1087).
+          const turned = Math.sign(mainLane) !== Math.sign(refLane);
+          const along = turned ? -1 : 1;
+          const laneId = laneOfIndex(laneIndex(mainLane) + along * dLane);
+          const s = mainS + along * distance;
           if (s < 0)
             throw new Error(
-              `'${name}' would stand at s ${rounded(s)}, before the start of road ${mainRoad} (${rounded(refS - ownS)} m behind ${player} as in the example): move ${player} further along the road first`,
+              `'${name}' would stand at s ${rounded(s)}, before the start of road ${mainRoad} (${rounded(Math.abs(distance))} m ${distance >= 0 ? 'ahead of' : 'behind'} ${player} as in the example${turned ? `, ${player} driving against the road's s on lane ${mainLane}` : ''}): move ${player} further ${turned ? "from the road's start" : 'along the road'} first`,
             );
           const roadAttribute = attribute(own.lanePosition, 'roadId');
           const laneAttribute = attribute(own.lanePosition, 'laneId');
@@ -303,7 +308,19 @@ export function newEntityChanges(
           if (roadAttribute) replacements.push({ attribute: roadAttribute, value: mainRoad });
           if (laneAttribute) replacements.push({ attribute: laneAttribute, value: String(laneId) });
           if (sAttribute) replacements.push({ attribute: sAttribute, value: rounded(s) });
-          where = `${rounded(Math.abs(distance))} m ${distance >= 0 ? 'ahead of' : 'behind'} ${player}, lane ${laneId}`;
+          // esmini adds a LanePosition's offset along the road's t, whatever the lane's side (RoadManager.cpp:9746 Lane2Track).
+          const offsetAttribute = attribute(own.lanePosition, 'offset');
+          const offset = numberIn(exampleRoot, offsetAttribute?.value);
+          if (turned && offsetAttribute && offset !== undefined && offset !== 0)
+            replacements.push({ attribute: offsetAttribute, value: rounded(-offset) });
+          // So does it an absolute lane offset an action moves to (OSCPrivateAction.cpp:1078, 920): such a key's default is negated.
+          if (turned && role.actor)
+            for (const parameter of module.parameters) {
+              const lateral = numberIn(undefined, parameter.defaultValue);
+              if (LATERAL_OFFSET_KEY.test(parameter.key) && lateral !== undefined && lateral !== 0)
+                result.values[parameter.key] = rounded(-lateral);
+            }
+          where = `${rounded(Math.abs(distance))} m ${distance >= 0 ? 'ahead of' : 'behind'} ${player}, lane ${laneId}${turned ? ` (the example's placement turned round: ${player} is on the other side of the road from the example's ${reference.name})` : ''}`;
         }
       }
       const speedAttribute = own.speedTarget && attribute(own.speedTarget, 'value');
