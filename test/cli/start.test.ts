@@ -1,8 +1,10 @@
 import * as assert from 'node:assert/strict';
 import { spawnSync } from 'node:child_process';
+import { createRequire } from 'node:module';
+import { Script } from 'node:vm';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { bundleFor, CLI_BUNDLE, CODE_CACHE_SUFFIX, COMMAND_BUNDLES, commandBundle, loadBundle } from '../../server/src/cli/start';
+import { bundleFor, CLI_BUNDLE, CliEntry, CODE_CACHE_SUFFIX, COMMAND_BUNDLES, commandBundle, loadBundle } from '../../server/src/cli/start';
 import { repoRoot } from '../support/paths';
 import { temporaryFolder } from '../support/temporaryDirectory';
 
@@ -46,5 +48,33 @@ describe("cli: the program's entry runs a command's own bundle", function () {
     } finally {
       fs.rmSync(shipped, { recursive: true, force: true });
     }
+  });
+
+  it("a plain scenario's export starts none of the flattener's modules nor the semantic checks (their start-up is the export's)", async () => {
+    // esbuild's module wrapper (__esm) in the export bundle, made to note each module it starts.
+    const file = path.join(dist, commandBundle(COMMAND_BUNDLES.export));
+    const source = fs.readFileSync(file, 'latin1');
+    const wrapper = 'var __esm = (fn, res, err) => function __init() {';
+    assert.ok(source.includes(wrapper), "the bundle has esbuild's module wrapper as this test expects");
+    const started: string[] = [];
+    const noted = source.replace(wrapper, `${wrapper} if (fn) __started.push(Object.keys(fn)[0]);`);
+    const run = new Script(`(function (exports, require, module, __filename, __dirname, __started) { ${noted}\n})`).runInThisContext() as (
+      ...args: unknown[]
+    ) => void;
+    const bundle = { exports: {} as CliEntry };
+    run(bundle.exports, createRequire(file), bundle, file, dist, started);
+    const out = temporaryFolder('m2s-start-export-');
+    const quiet = { out: () => undefined, err: () => undefined };
+    const exportOf = (input: string) =>
+      bundle.exports.main(['export', input, '--target', 'carla', '--carla', '0.9.15', '-o', path.join(out, 'carla.xosc'), '-q'], quiet);
+    assert.equal(await exportOf(path.join(examples, 'crossing.xosc')), 0);
+    const unneeded = /^server\/src\/core\/(flatten\/(?!besideOutput\.ts)|semantics\/checks|semantics\/ranges|variations\/)/;
+    assert.deepEqual(
+      started.filter((module) => unneeded.test(module)),
+      [],
+    );
+    // A modular main does start the flattener: the notes above would have seen it.
+    assert.equal(await exportOf(path.join(examples, 'main.xosc')), 0);
+    assert.ok(started.includes('server/src/core/flatten/flattener.ts'), started.join(', '));
   });
 });

@@ -4,7 +4,7 @@ import { parseArgs, ParseArgsConfig } from 'node:util';
 import { isSameFile, writeFilesAtomicSync } from '../../../common/src/atomic';
 import { formatProblem, Problem, uniqueProblems } from '../core/problems';
 import { displayRef, nodeFileSystem, SourceRef } from '../core/sources';
-import { besideOutputWritable } from '../core/flatten';
+import { besideOutputWritable } from '../core/flatten/besideOutput';
 import type { PackagedFile } from '../core/flatten/types';
 import { CRITERIA_FAILED_EXIT } from '../batch/criteria';
 

@@ -3,13 +3,8 @@ import { Evaluator, semanticModelOf } from '../semantics';
 import { ScenarioModel } from '../model';
 import { Problem, ZERO_RANGE } from '../problems';
 import { ProblemWording } from '../diagnostics';
-import {
-  catalogControllerFileWording,
-  packagedPathOnStandardOutputWording,
-  packagedPathTakenMessage,
-  unrebasedPathWording,
-} from '../diagnostics/filePath';
-import type { FileKind, FileSystemHost } from '../sources/host';
+import { catalogControllerFileWording, packagedPathOnStandardOutputWording, unrebasedPathWording } from '../diagnostics/filePath';
+import type { FileKind } from '../sources/host';
 import { displayRef, normalizeEntryName, ScenarioStore, SourceRef } from '../sources';
 import { escapeAttributeValue, parseXml, selfAndDescendants, XmlAttribute, XmlDocument, XmlElement } from '../xml';
 import type { TextEdit } from './edits';
@@ -286,10 +281,6 @@ async function packagedEntries(
   return files.length > 0 ? { name, files } : undefined;
 }
 
-function sameBytes(a: Uint8Array, b: Uint8Array): boolean {
-  return a.length === b.length && a.every((byte, index) => byte === b[index]);
-}
-
 /** The copies of `packaged` that a `$parameter` path (`namedBy`, as written) names at `target`: the file, or the folder whose direct files they are. */
 function placedCopies(packaged: { name: string; files: [string, Uint8Array][] }, target: string, namedBy: string): PackagedFile[] {
   return packaged.files.map(([entry, bytes]) => ({
@@ -323,32 +314,6 @@ export async function parameterPackagedFiles(
     if (packaged) files.push(...placedCopies(packaged, path.resolve(outputDirectory, value as string), site.attribute.value));
   }
   return files;
-}
-
-/**
- * Of the files a flattening returns, those a writer may write where they are to go (`at`: their path there, by default
- * their own): a copy named through a `$parameter` (`PackagedFile.namedBy`) is left out where another file already lies,
- * never replaced, with a warning saying the output reaches that file instead.
- */
-export async function besideOutputWritable<File extends PackagedFile>(
-  files: readonly File[],
-  host: Pick<FileSystemHost, 'kind' | 'readFile'>,
-  at: (file: File) => string = (file) => file.path,
-): Promise<{ files: File[]; warnings: string[] }> {
-  const writable: File[] = [];
-  const warnings: string[] = [];
-  for (const file of files) {
-    const target = at(file);
-    if (file.namedBy !== undefined && (await host.kind(target)) !== undefined) {
-      const there = await host.readFile(target, file.bytes.length + 1).catch(() => undefined);
-      if (!there || !sameBytes(there, file.bytes)) {
-        warnings.push(packagedPathTakenMessage(file.namedBy, target));
-        continue;
-      }
-    }
-    writable.push(file);
-  }
-  return { files: writable, warnings };
 }
 
 /**
