@@ -323,7 +323,7 @@ describe('export --target carla, checked by ScenarioRunner (../shared/carla)', f
     }
   });
 
-  it("the paper's 31 library scenarios under 0.9.16 with --road-path to Town05's OpenDRIVE: the 15 without pedestrians are written and build, their story routes as trajectories; the others are refused naming why (issue 26)", async () => {
+  it("the paper's 31 library scenarios under 0.9.16 with --road-path to Town05's OpenDRIVE: the 15 without pedestrians are written and build, their story routes as trajectories; the others are refused naming why: their walkers pass junction 509 before their routes start (issue 26)", async () => {
     const names = fs.readdirSync(libraryDir).filter((name) => fs.existsSync(path.join(libraryDir, name, 'main.xosc')));
     assert.equal(names.length, 31);
     const results: Exported[] = [];
@@ -337,16 +337,26 @@ describe('export --target carla, checked by ScenarioRunner (../shared/carla)', f
         ]),
       );
     const written = results.filter((result) => result.code === 0);
-    // Measured: none before story routes were written as trajectories; the 16 with pedestrians walk by a controller that reads no vertex times.
+    // Measured: none before story routes were written as trajectories.
     assert.deepEqual(
       written.map((result) => path.basename(result.output, '.xosc')),
       names.filter((name) => !name.includes('pedestrian')),
     );
-    for (const result of results.filter((each) => each.code !== 0))
-      assert.match(
-        result.report.refused ?? '',
-        /'pedestrian_\d' is not a vehicle: ScenarioRunner's walker controller does not read vertex times/,
+    // A walker's route is written as a trajectory too, but these walk 20 m into the junction first, where esmini moves them by a connection of the driving lane it places them by (or stops them) and ScenarioRunner walks them straight ahead.
+    for (const result of results.filter((each) => each.code !== 0)) {
+      // Both walkers' routes come from one line of the library's module: one refusal there.
+      const refusals = result.report.losses.filter((loss) => loss.kind === 'refused');
+      assert.deepEqual(
+        refusals.map((loss) => loss.element),
+        ['AcquirePositionAction'],
+        result.input,
       );
+      for (const refusal of refusals)
+        assert.match(
+          refusal.carla,
+          /'pedestrian_\d' is expected 20 m along its lane from its start when the action starts, past the end of road 49 into junction 509, where the way it walks before the action is not known \(esmini moves it on by a connection of the driving lane it places it by, or stops it at the road's end where that lane has none; ScenarioRunner's walker walks straight ahead/,
+        );
+    }
     for (const result of written) {
       const routes = result.report.losses.filter((loss) => loss.element === 'AcquirePositionAction');
       assert.ok(routes.length > 0 && routes.every((loss) => loss.kind === 'approximated'), result.input);
@@ -599,6 +609,16 @@ describe('export --target carla, round trip in esmini', function () {
 });
 
 const vehicle = scenarioRunnerVehicle;
+
+/** A pedestrian as the paper's library writes one (a CARLA walker blueprint). */
+const scenarioRunnerPedestrian = (name: string): string => `
+    <ScenarioObject name="${name}">
+      <Pedestrian name="walker.pedestrian.0001" model="walker.pedestrian.0001" mass="90" pedestrianCategory="pedestrian">
+        <ParameterDeclarations/>
+        <BoundingBox><Center x="0" y="0" z="0.9"/><Dimensions width="0.5" length="0.5" height="1.8"/></BoundingBox>
+        <Properties/>
+      </Pedestrian>
+    </ScenarioObject>`;
 
 /** One event at `time` s in which `actor` follows `shape` (a Trajectory's Shape content). */
 const trajectoryEvent = (actor: string, time: number, shape: string): string => `
@@ -1016,7 +1036,7 @@ describe('export --target carla, Init routes under 0.9.16 written as trajectorie
       result.report.losses.find((loss) => loss.kind === 'refused')?.carla ?? '',
       /the speed of 'Ego' is not certain over the route/,
     );
-    // A pedestrian: its walker controller reads no vertex times, and the Init sets its speed only after the trajectory ends.
+    // A pedestrian: its walker controller walks at the speed set, which the Init sets only after the trajectory ends.
     const walking = initRoutesScenario().replace(
       /(<ScenarioObject name="Follower">\s*)<Vehicle[\s\S]*?<\/Vehicle>/,
       '$1<Pedestrian name="walker.pedestrian.0001" model="walker.pedestrian.0001" mass="80" pedestrianCategory="pedestrian"><ParameterDeclarations/><BoundingBox><Center x="0" y="0" z="0.9"/><Dimensions width="0.5" length="0.5" height="1.8"/></BoundingBox><Properties/></Pedestrian>',
@@ -1028,7 +1048,10 @@ describe('export --target carla, Init routes under 0.9.16 written as trajectorie
       walkerRefusals.map((loss) => [loss.element, loss.line]),
       [['AcquirePositionAction', lineHolding(walking, '<AcquirePositionAction>')]],
     );
-    assert.match(walkerRefusals[0].carla, /'Follower' is not a vehicle: ScenarioRunner's walker controller does not read vertex times/);
+    assert.match(
+      walkerRefusals[0].carla,
+      /'Follower' is a pedestrian: ScenarioRunner's walker controller walks to the vertices at the speed set, reading no vertex times \(.*pedestrian_control\.py:41-77.*\), and ScenarioRunner builds each actor's Init as one sequence.*so it would stand at its start/,
+    );
     // A second atomic in Ego's Init: ScenarioRunner builds only the last of them (open_scenario.py:255-359).
     const offset = initRoutesScenario().replace(
       '</AssignRouteAction></RoutingAction></PrivateAction>',
@@ -1099,18 +1122,19 @@ function storyRoutesScenario(trigger: 'distance' | 'time' = 'distance'): string 
 function storyRoutes(parts: {
   road: string;
   trigger: 'distance' | 'time';
-  actors: { name: string; start: string; speed: number; target: string }[];
+  /** A pedestrian (the paper's walkers) where `walker` is set; `traveled` its TraveledDistanceCondition (5 m by default). */
+  actors: { name: string; start: string; speed: number; target: string; walker?: boolean; traveled?: number }[];
   stopAt: number;
 }): string {
   const speed = (value: number): string => `<PrivateAction>${speedChange('step', 0, 'time', value)}</PrivateAction>`;
-  const routeStarts = (actor: string): string =>
+  const routeStarts = (actor: string, traveled = 5): string =>
     parts.trigger === 'distance'
       ? `<ByEntityCondition>
                   <TriggeringEntities triggeringEntitiesRule="any"><EntityRef entityRef="${actor}"/></TriggeringEntities>
-                  <EntityCondition><TraveledDistanceCondition value="5"/></EntityCondition>
+                  <EntityCondition><TraveledDistanceCondition value="${traveled}"/></EntityCondition>
                 </ByEntityCondition>`
       : '<ByValueCondition><SimulationTimeCondition value="1" rule="greaterThan"/></ByValueCondition>';
-  const group = ({ name, speed: value, target }: (typeof parts.actors)[number]): string => `
+  const group = ({ name, speed: value, target, traveled }: (typeof parts.actors)[number]): string => `
         <ManeuverGroup maximumExecutionCount="1" name="${name}Group">
           <Actors selectTriggeringEntities="false"><EntityRef entityRef="${name}"/></Actors>
           <Maneuver name="${name}Maneuver">${
@@ -1129,7 +1153,7 @@ function storyRoutes(parts: {
                 <Position>${target}</Position>
               </AcquirePositionAction></RoutingAction></PrivateAction></Action>
               <StartTrigger><ConditionGroup><Condition name="${name}RouteStarts" delay="0" conditionEdge="none">
-                ${routeStarts(name)}
+                ${routeStarts(name, traveled)}
               </Condition></ConditionGroup></StartTrigger>
             </Event>
           </Maneuver>
@@ -1147,7 +1171,11 @@ function storyRoutes(parts: {
     revMinor: 0,
     description: 'story routes',
     road: path.join(esminiRoads, parts.road),
-    entities: parts.actors.map(({ name }, index) => vehicle(name, index === 0 ? 'ego_vehicle' : 'simulation')).join(''),
+    entities: parts.actors
+      .map(({ name, walker }, index) =>
+        walker ? scenarioRunnerPedestrian(name) : vehicle(name, index === 0 ? 'ego_vehicle' : 'simulation'),
+      )
+      .join(''),
     init: parts.actors.map(start).join(''),
     story: `<Story name="Routes">
       <Act name="Drive">${parts.actors.map(group).join('')}
@@ -1259,6 +1287,80 @@ describe('export --target carla, story routes under 0.9.16 written as trajectori
     assert.match(written, /<LanePosition roadId="52" laneId="1" offset="-0\.34\d*"/);
     // One step's travel at 8 m/s: esmini starts the route's Event the step after the car has traveled 5 m.
     await assertMovesAlike(original, result.output, 16, 0.41);
+  });
+
+  /**
+   * On Town05 in OpenDRIVE's frame: the paper's hero (slower, so that its route lasts the run) and a walker on the south
+   * sidewalk of road 1 (its lane 5), facing west along the road, against the traffic of the driving lane nearest it (lane 2),
+   * that walks 5 m and then acquires a point on road 2's sidewalk beyond junction 509.
+   */
+  const walkerScenario = (heading = 3.14): string =>
+    storyRoutes({
+      road: 'Town05.xodr',
+      trigger: 'distance',
+      actors: [
+        {
+          name: 'Hero',
+          start: '<WorldPosition x="-70" y="1" z="0" h="-3.14"/>',
+          speed: 4,
+          target: '<WorldPosition x="-160" y="1" z="0" h="-3.14"/>',
+        },
+        {
+          name: 'Walker',
+          walker: true,
+          start: `<WorldPosition x="-100" y="-11" z="0.5" h="${heading}"/>`,
+          speed: 2,
+          target: '<WorldPosition x="-150" y="-11" z="0.5" h="3.14"/>',
+        },
+      ],
+      stopAt: 20,
+    });
+
+  it("a pedestrian's, on a sidewalk against its nearest lane's traffic: written as a FollowTrajectoryAction its walker walks at its story speed, from where esmini places it by that lane; ScenarioRunner builds it, and esmini runs it as the original (within one step's travel) (issue 26)", async function () {
+    requireEsmini(this);
+    requireCarlaHarness(this);
+    const original = path.join(out, 'walker.xosc');
+    const text = walkerScenario();
+    fs.writeFileSync(original, text);
+    const result = await exportFile(original, path.join(out, 'exported.xosc'));
+    assert.equal(result.code, 0, result.stderr);
+    const routes = result.report.losses.filter((loss) => loss.element === 'AcquirePositionAction');
+    assert.deepEqual(
+      routes.map((loss) => [loss.kind, loss.line]),
+      [...text.matchAll(/<AcquirePositionAction>/g)].map((match) => ['approximated', text.slice(0, match.index).split('\n').length]),
+    );
+    const walked = routes[1];
+    // esmini snaps the walker on the sidewalk (lane 5 of road 1) to the nearest driving lane, lane 2, and keeps its offset from it.
+    assert.match(
+      walked.what,
+      /^written as a FollowTrajectoryAction along the lanes esmini moves it in from where 'Walker' is expected when the action starts, 5 m straight ahead from its start .*\(roads 1 > \d+ > 2, lane 2 from s 4[34]\.\d+, .*each at its offset -?4\.\d+ m from the centre of the driving lane esmini places it by/,
+    );
+    assert.match(walked.what, /ScenarioRunner walks it to each vertex at the speed its story set, 2 m\/s, whatever the times/);
+    assert.match(walked.what, /esmini moves it along its lane, 0\.\d+ m off that line at most/);
+    assert.match(
+      walked.carla,
+      /walks a pedestrian \(PedestrianControl, its default controller\) .*reading no vertex times.*pedestrian_control\.py:41-77/,
+    );
+    assert.equal(/<AcquirePositionAction/.test(fs.readFileSync(result.output, 'utf8')), false);
+    const verdict = await assertBuilt(result.output, { tree: true });
+    assert.deepEqual((verdict.waypoints ?? []).map(([, name]) => name).sort(), ['HeroAcquires', 'WalkerAcquires']);
+    // One step's travel of the hero at 4 m/s, as its route's Event starts the step after it has traveled 5 m (the walker's is 0.1 m).
+    await assertMovesAlike(original, result.output, 20, 0.21);
+  });
+
+  it("a pedestrian whose lane turns away from the way it faces, or that passes a junction, before its route starts: refused at the action's line, naming why (ScenarioRunner walks it straight ahead) (issue 26)", async () => {
+    // Turned 0.3 rad from its road: esmini moves it along the road, ScenarioRunner straight ahead, 1.5 m apart after 5 m.
+    const text = walkerScenario(2.84);
+    const refused = await refusedExport(path.join(out, 'turned.xosc'), text);
+    const refusals = refused.report.losses.filter((loss) => loss.kind === 'refused');
+    assert.deepEqual(
+      refusals.map((loss) => [loss.element, loss.line]),
+      [['AcquirePositionAction', text.slice(0, text.lastIndexOf('<AcquirePositionAction>')).split('\n').length]],
+    );
+    assert.match(
+      refusals[0].carla,
+      /'Walker' is a pedestrian, which ScenarioRunner walks straight ahead until the action starts \(.*pedestrian_control\.py.*\), and esmini along its lane, which leaves that line by 1\.\d+ m by then, more than the 1 m ScenarioRunner's walker takes as reaching a vertex/,
+    );
   });
 });
 

@@ -1,4 +1,5 @@
 import { strict as assert } from 'node:assert';
+import { snappedLaneAtPoint } from '../../server/src/core/opendrive/lanePosition';
 import { parseOpenDrive } from '../../server/src/core/opendrive/road';
 import { pointAlongRoute, routeLanes } from '../../server/src/core/opendrive/route';
 
@@ -157,5 +158,42 @@ describe('a point along a route, as esmini plans it (core/opendrive/route)', () 
       String(routeLanes(roads, [waypoints[0], { roadId: '2', laneId: -1, s: 130 }], { roadId: '1', laneId: -2, s: 50 })),
       /\(s 130\) lies past the end of road 2 \(100 m\)/,
     );
+  });
+
+  it('a walker heads its own way, whichever way its lane is driven: its route planned from there, back through the junction (esmini RoadPath::Calculate reads the heading)', () => {
+    const roads = parseOpenDrive(network([20, 25]));
+    // On road 2's lane -1, heading against s: out of road 2's start, through the nearer connecting road backwards, into road 1.
+    const start = { roadId: '2', laneId: -1, s: 50, direction: -1 as const };
+    assert.deepEqual(routeLanes(roads, [start, { roadId: '1', laneId: -1, s: 60 }], start), [
+      { roadId: '2', laneId: -1, from: 50, to: 0 },
+      { roadId: '10', laneId: -1, from: 20, to: 0 },
+      { roadId: '1', laneId: -1, from: 100, to: 60 },
+    ]);
+    // Heading out of road 1's start, which links to nothing.
+    const back = { roadId: '1', laneId: -1, s: 50, direction: -1 as const };
+    assert.match(
+      String(routeLanes(roads, [back, { roadId: '2', laneId: -1, s: 30 }], back)),
+      /road 1 ends without a link the way the entity heads/,
+    );
+  });
+
+  it('places a point off the driving lanes (a walker on a sidewalk) in the nearest driving lane, as esmini snaps it, with the way it heads', () => {
+    const sidewalk = '<lane id="-2" type="sidewalk"><width sOffset="0" a="2" b="0" c="0" d="0"/></lane>';
+    const roads = parseOpenDrive(network([20, 25]).replace(/(<road id="1"[\s\S]*?<\/lane>)(<\/right>)/, `$1${sidewalk}$2`));
+    // Road 1 runs along x from 0: lane -1 from y -3.5 to 0 (centre -1.75), its sidewalk from -5.5 to -3.5.
+    const snapped = snappedLaneAtPoint(roads, 30, -4.5, Math.PI);
+    assert.ok(typeof snapped !== 'string', String(snapped));
+    assert.deepEqual(
+      { ...snapped, s: Number(snapped.s.toFixed(6)), offset: Number(snapped.offset.toFixed(6)) },
+      {
+        roadId: '1',
+        laneId: -1,
+        s: 30,
+        offset: -2.75,
+        direction: -1,
+      },
+    );
+    assert.equal((snappedLaneAtPoint(roads, 30, -4.5, 0.3) as { direction: number }).direction, 1);
+    assert.match(String(snappedLaneAtPoint(roads, 30, -9, 0)), /x 30, y -9 lies on no road/);
   });
 });

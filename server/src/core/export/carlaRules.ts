@@ -823,6 +823,8 @@ function routeActionCrash(tree: Node, context: RuleContext): void {
   if (context.release !== '0.9.16') return;
   const crash = `0.9.16 creates ChangeActorWaypoints without times for it, which raises "object of type 'NoneType' has no len()" (${SR_ATOMICS} ChangeActorWaypoints.__init__, a regression of commit ab5996d7)`;
   const builds = `ScenarioRunner 0.9.16 crashes on it (${SR_ATOMICS} ChangeActorWaypoints.__init__, commit ab5996d7) but builds a FollowTrajectoryAction as ChangeActorWaypoints with times, straight lines between the vertices (${SR_PARSER}:1509-1513, ${SR_SCENARIO}:336-342), and drives to each vertex by its time (${CARLA_FACTS.trajectoryTimesSetSpeed.source})`;
+  const walker = CARLA_FACTS.walkerWalksAtSetSpeed;
+  const walks = `ScenarioRunner 0.9.16 crashes on it (${SR_ATOMICS} ChangeActorWaypoints.__init__, commit ab5996d7) but builds a FollowTrajectoryAction as ChangeActorWaypoints, straight lines between the vertices (${SR_PARSER}:1509-1513, ${SR_SCENARIO}:336-342), and ${walker.does} (${walker.source})`;
   const description = attr(child(tree, 'FileHeader') ?? tree, 'description') ?? '';
   // A 'CARLA:' description keeps ScenarioRunner in CARLA's frame only on a town: on an .xodr file the export has removed it.
   const road = context.roads
@@ -834,7 +836,12 @@ function routeActionCrash(tree: Node, context: RuleContext): void {
       const written = routeTrajectory(tree, node, { road, town: context.town });
       if (typeof written !== 'string') {
         replaceNode(node, written.follow);
-        context.sink.approximated(written.follow, name, `written as a FollowTrajectoryAction along ${written.summary}`, builds);
+        context.sink.approximated(
+          written.follow,
+          name,
+          `written as a FollowTrajectoryAction along ${written.summary}`,
+          written.walker ? walks : builds,
+        );
         continue;
       }
       const init = ancestor(node, 'Init') !== undefined;

@@ -4,14 +4,15 @@
  * (SR_ATOMICS ChangeActorWaypoints.__init__, a regression of commit ab5996d7), but builds a FollowTrajectoryAction as
  * ChangeActorWaypoints with times and 'shortest' routing, straight lines between the vertices (SR_PARSER 1509-1513,
  * SR_SCENARIO 336-342), which its vehicle controller drives to reach each vertex at its time (npc_vehicle_control.py:103-113).
- * Only a vehicle's, alone in its Init (CARLA_FACTS.initActorSequence: one routing or lateral atomic per actor, its start speed set
- * after it ends; only the vehicle controller drives by the vertex times). The lanes are those esmini drives the route in (core/opendrive/route.ts routeLanes), the vertices LanePositions
+ * A vehicle's, alone in its Init (CARLA_FACTS.initActorSequence: one routing or lateral atomic per actor, its start speed set
+ * after it ends); a pedestrian's in a story only: its walker controller walks to the vertices at the speed its story set, reading
+ * no times (CARLA_FACTS.walkerWalksAtSetSpeed), on the driving lane esmini snaps it to from its sidewalk (snappedLaneAtPoint). The lanes are those esmini drives the route in (core/opendrive/route.ts routeLanes), the vertices LanePositions
  * (ScenarioRunner converts one with CARLA's own map, get_waypoint_xodr, SR_PARSER convert_position_to_transform) at most
  * ROUTE_STEP apart, timed at the actor's speed, which must be certain over the whole run (scenarioTree constantSpeedOf).
  */
-import { drivesAlongS, isDrivingLane, type RoadNetwork } from '../opendrive/road';
-import { laneAtPoint } from '../opendrive/lanePosition';
-import { routeLanes, RouteWaypoint } from '../opendrive/route';
+import { isDrivingLane, type RoadNetwork } from '../opendrive/road';
+import { laneAtPoint, snappedLaneAtPoint } from '../opendrive/lanePosition';
+import { LaneStretch, routeLanes, RouteWaypoint } from '../opendrive/route';
 import { baseName } from '../sources';
 import { CARLA_FACTS } from '../profiles/carla';
 import { roadPositionPose } from './trajectoryPoint';
@@ -68,31 +69,44 @@ export interface RouteRoad {
   carlaFrame: boolean;
 }
 
-/** A WorldPosition's lane on the road (core/opendrive/lanePosition.ts), as ScenarioRunner places it, or why there is none. */
-function worldLane(position: Node, road: RouteRoad, what: string): (RouteWaypoint & { offset: number }) | string {
-  const x = numberAttr(position, 'x', NaN);
-  const y = numberAttr(position, 'y', NaN);
-  const h = numberAttr(position, 'h', 0);
-  if (![x, y, h].every(Number.isFinite)) return `${what} is a WorldPosition whose x, y or h is not a number`;
+/** A WorldPosition in the road's frame: x, y and the heading. */
+function worldPoint(position: Node, road: RouteRoad): { x: number; y: number; h: number } {
   // ScenarioRunner negates y and the heading of a file not in CARLA's frame (SR_PARSER convert_position_to_transform).
   const sign = road.carlaFrame ? -1 : 1;
-  const lane = laneAtPoint(road.roads, x, sign * y, sign * h, isDrivingLane);
-  if (typeof lane === 'string') return `${what} is a WorldPosition in no driving lane headed its way: ${lane}`;
+  return { x: numberAttr(position, 'x', NaN), y: sign * numberAttr(position, 'y', NaN), h: sign * numberAttr(position, 'h', 0) };
+}
+
+/**
+ * A WorldPosition's lane on the road (core/opendrive/lanePosition.ts), as ScenarioRunner places it, or why there is none. A
+ * walker's is the driving lane esmini snaps it to, however far off (it walks on a sidewalk), with the way it heads.
+ */
+function worldLane(position: Node, road: RouteRoad, what: string, walker: boolean): (RouteWaypoint & { offset: number }) | string {
+  const { x, y, h } = worldPoint(position, road);
+  if (![x, y, h].every(Number.isFinite)) return `${what} is a WorldPosition whose x, y or h is not a number`;
+  const lane = walker ? snappedLaneAtPoint(road.roads, x, y, h) : laneAtPoint(road.roads, x, y, h, isDrivingLane);
+  if (typeof lane === 'string')
+    return `${what} is a WorldPosition in no ${walker ? 'road with a driving lane' : 'driving lane headed its way'}: ${lane}`;
   // To the tenth of a millimetre, as written: down, so that a point at a road's end stays on it; a point within a millimetre of the centre on it.
   return { ...lane, s: Math.floor(lane.s * 1e4) / 1e4, offset: Math.abs(lane.offset) < 1e-3 ? 0 : Number(lane.offset.toFixed(4)) };
 }
 
-/** The actor's start: the Lane or WorldPosition of its last Init TeleportAction (routePositions has written a RoutePosition as a LanePosition by now). */
-function startOf(tree: Node, actor: string, road: RouteRoad): (RouteWaypoint & { offset: number }) | string {
+/** The actor's last Init TeleportAction, where it starts. */
+function initTeleport(tree: Node, actor: string): Node | undefined {
   const init = named(tree, 'Init')[0];
-  const teleports = init
-    ? named(init, 'TeleportAction').filter((each) => attr(ancestor(each, 'Private') ?? each, 'entityRef') === actor)
-    : [];
-  const teleport = teleports.at(-1);
+  return init
+    ? named(init, 'TeleportAction')
+        .filter((each) => attr(ancestor(each, 'Private') ?? each, 'entityRef') === actor)
+        .at(-1)
+    : undefined;
+}
+
+/** The actor's start: the Lane or WorldPosition of its last Init TeleportAction (routePositions has written a RoutePosition as a LanePosition by now). */
+function startOf(tree: Node, actor: string, road: RouteRoad, walker: boolean): (RouteWaypoint & { offset: number }) | string {
+  const teleport = initTeleport(tree, actor);
   if (!teleport) return `'${actor}' has no TeleportAction in the Init to start the route from`;
   const placed = child(teleport, 'Position')?.children[0];
   if (placed?.name === 'WorldPosition') {
-    const lane = worldLane(placed, road, `the start of '${actor}'`);
+    const lane = worldLane(placed, road, `the start of '${actor}'`, walker);
     return typeof lane === 'string' ? lane : { ...lane, name: `${actor}'s start (${lineOf(placed)})` };
   }
   if (placed?.name !== 'LanePosition')
@@ -108,14 +122,14 @@ function startOf(tree: Node, actor: string, road: RouteRoad): (RouteWaypoint & {
 }
 
 /** The route action's waypoints: its Route's (AssignRouteAction), or from the start to its Position (AcquirePositionAction). */
-function waypointsOf(action: Node, start: RouteWaypoint, road: RouteRoad): RouteWaypoint[] | string {
+function waypointsOf(action: Node, start: RouteWaypoint, road: RouteRoad, walker: boolean): RouteWaypoint[] | string {
   if (action.name === 'AssignRouteAction') {
     const route = child(action, 'Route');
     return route ? routeWaypoints(route) : 'its route is not written in the scenario or a catalog it loads';
   }
   const target = child(action, 'Position')?.children[0];
   if (target?.name === 'WorldPosition') {
-    const lane = worldLane(target, road, 'its target');
+    const lane = worldLane(target, road, 'its target', walker);
     return typeof lane === 'string' ? lane : [start, { ...lane, name: `its target (${lineOf(target)})` }];
   }
   if (target?.name !== 'LanePosition')
@@ -130,6 +144,8 @@ function waypointsOf(action: Node, start: RouteWaypoint, road: RouteRoad): Route
 export interface RouteTrajectory {
   /** The FollowTrajectoryAction that replaces the route action. */
   follow: Node;
+  /** A pedestrian's: ScenarioRunner walks it to the vertices at the speed set (CARLA_FACTS.walkerWalksAtSetSpeed), not by their times. */
+  walker: boolean;
   /** What the report says it drives: roads, lanes, vertices, speed. */
   summary: string;
 }
@@ -155,8 +171,12 @@ export function routeTrajectory(tree: Node, action: Node, source: RouteRoadSourc
   const actor = actors[0];
   const object = scenarioObjectOf(tree, actor);
   const sequence = CARLA_FACTS.initActorSequence;
-  if (!object || !child(object, 'Vehicle'))
-    return `'${actor}' is not a vehicle: ScenarioRunner's walker controller does not read vertex times (pedestrian_control.py)${inInit ? `, and ScenarioRunner ${sequence.does} (${sequence.source}), so it would stand at its start` : ''}`;
+  const walker = object !== undefined && child(object, 'Pedestrian') !== undefined;
+  if (!object || !(child(object, 'Vehicle') || walker))
+    return `'${actor}' is neither a vehicle nor a pedestrian, which ScenarioRunner's controllers move along a trajectory`;
+  // The walker controller walks to the vertices at the speed set, reading no times; in the Init that speed comes only after the trajectory.
+  if (walker && inInit)
+    return `'${actor}' is a pedestrian: ScenarioRunner's walker controller walks to the vertices at the speed set, reading no vertex times (${CARLA_FACTS.walkerWalksAtSetSpeed.source}), and ScenarioRunner ${sequence.does} (${sequence.source}), so it would stand at its start`;
   if (inInit) {
     const init = ancestor(action, 'Init') as Node;
     const other = named(init, INIT_ATOMICS).find(
@@ -176,23 +196,25 @@ export function routeTrajectory(tree: Node, action: Node, source: RouteRoadSourc
   if (typeof starts === 'string') return starts;
   const { speed, along } = starts;
   if (!(speed > 0)) return `'${actor}' keeps the speed ${speed}, and a trajectory at that speed has no times`;
-  const start = startOf(tree, actor, road);
+  const start = startOf(tree, actor, road, walker);
   if (typeof start === 'string') return start;
-  const waypoints = waypointsOf(action, start, road);
+  const waypoints = waypointsOf(action, start, road, walker);
   if (typeof waypoints === 'string') return waypoints;
   const stretches = routeLanes(roads, waypoints, start);
   if (typeof stretches === 'string') return stretches;
   // Each stretch sampled at most ROUTE_STEP apart, 1 mm inside its lane section so that its lane id is the one there.
   const vertices: Vertex[] = [];
+  // esmini keeps the offset to the same side of the way the entity moves: its sign turns where it moves against s and did not at its start.
+  let alongS = stretchAlongS(stretches[0], start);
+  const startAlongS = alongS;
   for (const stretch of stretches) {
+    if (stretch.to !== stretch.from) alongS = stretch.to > stretch.from;
     const length = Math.abs(stretch.to - stretch.from);
     const count = Math.max(1, Math.ceil(length / ROUTE_STEP - 1e-9));
     const inward = Math.min(0.001, length / 2) * Math.sign(stretch.to - stretch.from);
     for (let index = 0; index <= count; index++) {
       const s = stretch.from + ((stretch.to - stretch.from) * index) / count + (index === 0 ? inward : index === count ? -inward : 0);
-      // esmini keeps the offset to the same side of the way it drives: its sign turns where the lane runs against s and the start's did not.
-      const offset =
-        sideOf(roads, stretch.roadId, stretch.laneId) === sideOf(roads, start.roadId, start.laneId) ? start.offset : -start.offset;
+      const offset = alongS === startAlongS ? start.offset : -start.offset;
       const vertex = vertexAt(stretch.roadId, stretch.laneId, s, offset, roads);
       if (typeof vertex === 'string') return vertex;
       const previous = vertices.at(-1);
@@ -201,8 +223,10 @@ export function routeTrajectory(tree: Node, action: Node, source: RouteRoadSourc
       vertices.push(vertex);
     }
   }
-  const driven = along > 0 ? fromWhereExpected(vertices, along, start, actor, roads) : vertices;
-  if (typeof driven === 'string') return driven;
+  const line = walker && vertices.length > 0 ? walkerLine(tree, actor, road, vertices) : undefined;
+  const expected = along > 0 ? fromWhereExpected(vertices, along, start, actor, roads, line) : { rest: vertices, strayed: 0 };
+  if (typeof expected === 'string') return expected;
+  const driven = expected.rest;
   if (driven.length < 2) return `'${actor}' ${along > 0 ? 'is expected where' : 'starts where'} its route ends`;
   let length = 0;
   const polyline = makeNode(
@@ -244,8 +268,19 @@ export function routeTrajectory(tree: Node, action: Node, source: RouteRoadSourc
   const from = inInit
     ? `from ${actor}'s start (roads ${roadIds.join(' > ')}, lane ${first.laneId} from s ${Number(start.s.toFixed(3))}, ${Number(length.toFixed(2))} m)`
     : `from where '${actor}' is expected when the action starts, ${starts.how} (roads ${roadIds.join(' > ')}, lane ${first.laneId} from s ${Number(first.s.toFixed(3))}, ${Number(length.toFixed(2))} m)`;
+  if (walker)
+    return {
+      follow,
+      walker,
+      summary: `the lanes esmini moves it in ${from.replace('along its lane', 'straight ahead')}: ${driven.length} LanePositions at most ${ROUTE_STEP} m apart, each at its offset ${fourDecimals(start.offset)} m from the centre of the driving lane esmini places it by (it walks off the driving lanes), timed at its speed ${fourDecimals(speed)} m/s for esmini; ScenarioRunner walks it to each vertex at the speed its story set, ${fourDecimals(speed)} m/s, whatever the times${
+        along > 0
+          ? `, from where it is when the action starts: it walks straight ahead until then, where esmini moves it along its lane, ${Number(expected.strayed.toFixed(2))} m off that line at most (ScenarioRunner takes a vertex within 1 m as reached)`
+          : ''
+      }; past the last one it walks on straight ahead (esmini: on in its lane, as past a route's end)`,
+    };
   return {
     follow,
+    walker,
     summary: `the lanes esmini drives it in ${from}: ${driven.length} LanePositions at most ${ROUTE_STEP} m apart, timed at its speed ${fourDecimals(speed)} m/s${
       inInit
         ? ''
@@ -267,11 +302,37 @@ interface Vertex {
   y: number;
 }
 
-/** Whether a road's lane is driven towards growing s (true where the road is unknown: routeLanes has named it then). */
-function sideOf(roads: RoadNetwork, roadId: string, laneId: number): boolean {
-  const road = roads.byId.get(roadId);
-  return road ? drivesAlongS(road, laneId) : true;
+/** Whether a stretch runs towards growing s; a stretch of no length runs the way the start heads (its lane's driving direction unless given). */
+function stretchAlongS(stretch: LaneStretch, start: RouteWaypoint): boolean {
+  if (stretch.to !== stretch.from) return stretch.to > stretch.from;
+  return start.direction === undefined ? start.laneId < 0 : start.direction === 1;
 }
+
+/**
+ * The line a pedestrian walks before a story route starts: from its start the way it faces, which ScenarioRunner's walker
+ * controller walks without waypoints (CARLA_FACTS.walkerWalksAtSetSpeed): a WorldPosition's heading, else (a LanePosition,
+ * where both simulators face it along its lane) the route's first stretch.
+ */
+function walkerLine(tree: Node, actor: string, road: RouteRoad, vertices: Vertex[]): WalkerLine {
+  const teleport = initTeleport(tree, actor);
+  const placed = teleport ? child(teleport, 'Position')?.children[0] : undefined;
+  if (placed?.name === 'WorldPosition') {
+    const { x, y, h } = worldPoint(placed, road);
+    if ([x, y, h].every(Number.isFinite)) return { x, y, h };
+  }
+  const [first, second] = vertices;
+  return { x: first.x, y: first.y, h: second ? Math.atan2(second.y - first.y, second.x - first.x) : 0 };
+}
+
+/** Where a walker starts and the way it faces, in the road's frame. */
+interface WalkerLine {
+  x: number;
+  y: number;
+  h: number;
+}
+
+/** ScenarioRunner's walker controller takes a waypoint within this distance as reached (pedestrian_control.py:71). */
+const WALKER_REACH = 1;
 
 /** A vertex on a lane at s with the actor's offset, in world coordinates; or why the road has no such point. */
 function vertexAt(roadId: string, laneId: number, s: number, offset: number, roads: RoadNetwork): Vertex | string {
@@ -290,15 +351,37 @@ function vertexAt(roadId: string, laneId: number, s: number, offset: number, roa
  * driven its lane from its start so far. Refused where that stretch leaves its start's road for a junction: before the action
  * the actor drives no route, and which way it takes through a junction is not known.
  */
-function fromWhereExpected(vertices: Vertex[], along: number, start: RouteWaypoint, actor: string, roads: RoadNetwork): Vertex[] | string {
+function fromWhereExpected(
+  vertices: Vertex[],
+  along: number,
+  start: RouteWaypoint,
+  actor: string,
+  roads: RoadNetwork,
+  line?: WalkerLine,
+): { rest: Vertex[]; strayed: number } | string {
   let covered = 0;
+  // How far esmini's way strays from the line a walker walks before the action (ScenarioRunner: straight ahead).
+  let strayed = 0;
+  const off = (x: number, y: number): number => (line ? Math.abs(-(x - line.x) * Math.sin(line.h) + (y - line.y) * Math.cos(line.h)) : 0);
+  const walked = (rest: Vertex[]): { rest: Vertex[]; strayed: number } | string => {
+    strayed = Math.max(strayed, off(rest[0].x, rest[0].y));
+    if (line && strayed >= WALKER_REACH)
+      return `'${actor}' is a pedestrian, which ScenarioRunner walks straight ahead until the action starts (${CARLA_FACTS.walkerWalksAtSetSpeed.source}), and esmini along its lane, which leaves that line by ${Number(strayed.toFixed(2))} m by then, more than the ${WALKER_REACH} m ScenarioRunner's walker takes as reaching a vertex`;
+    return { rest, strayed };
+  };
   for (let index = 1; index < vertices.length; index++) {
     const [before, after] = [vertices[index - 1], vertices[index]];
     const step = Math.hypot(after.x - before.x, after.y - before.y);
+    strayed = Math.max(strayed, off(before.x, before.y));
     if (after.roadId !== start.roadId) {
       const junction = roads.byId.get(after.roadId)?.junction ?? '-1';
+      // Without a route esmini takes a connection by its junction selector (Entities.cpp: SELECTOR_ANGLE), a walker too, where ScenarioRunner walks it straight ahead.
       if (junction !== '-1')
-        return `'${actor}' is expected ${Number(along.toFixed(2))} m along its lane from its start when the action starts, past the end of road ${start.roadId} into junction ${junction}, where the way it drives before the action is not known`;
+        return `'${actor}' is expected ${Number(along.toFixed(2))} m along its lane from its start when the action starts, past the end of road ${start.roadId} into junction ${junction}, where the way it ${
+          line
+            ? `walks before the action is not known (esmini moves it on by a connection of the driving lane it places it by, or stops it at the road's end where that lane has none; ScenarioRunner's walker walks straight ahead: ${CARLA_FACTS.walkerWalksAtSetSpeed.source})`
+            : 'drives before the action is not known'
+        }`;
     }
     if (covered + step < along - 1e-9) {
       covered += step;
@@ -306,12 +389,12 @@ function fromWhereExpected(vertices: Vertex[], along: number, start: RouteWaypoi
     }
     const fraction = step > 0 ? (along - covered) / step : 0;
     const rest = vertices.slice(index);
-    if (fraction >= 1 - 1e-6) return rest;
+    if (fraction >= 1 - 1e-6) return walked(rest);
     // The point itself, on the later vertex's lane: vertices 1 m apart lie on one lane stretch but where a stretch ends.
     const s = before.roadId === after.roadId && before.laneId === after.laneId ? before.s + (after.s - before.s) * fraction : after.s;
     const point = vertexAt(after.roadId, after.laneId, s, after.offset, roads);
     if (typeof point === 'string') return point;
-    return [{ ...point, x: before.x + (after.x - before.x) * fraction, y: before.y + (after.y - before.y) * fraction }, ...rest];
+    return walked([{ ...point, x: before.x + (after.x - before.x) * fraction, y: before.y + (after.y - before.y) * fraction }, ...rest]);
   }
   return `'${actor}' is expected ${Number(along.toFixed(2))} m along its lane from its start when the action starts, past its route's end (${Number(covered.toFixed(2))} m)`;
 }

@@ -7,7 +7,19 @@
  * is taken; a point in no lane of the kinds asked for, or only in lanes driven the other way, is answered why.
  */
 import { normalizeAngle } from './geometry';
-import { drivesAlongS, Lane, laneCenterT, laneSectionIndexAt, outerBorderT, referencePose, Road, RoadNetwork, roadCubicAt } from './road';
+import {
+  drivesAlongS,
+  isDrivingLane,
+  Lane,
+  laneCenterT,
+  laneSectionIndexAt,
+  laneWidth,
+  outerBorderT,
+  referencePose,
+  Road,
+  RoadNetwork,
+  roadCubicAt,
+} from './road';
 
 export interface PointLane {
   roadId: string;
@@ -66,6 +78,21 @@ function laneHolding(road: Road, sectionIndex: number, s: number, t: number): La
   return undefined;
 }
 
+/** Each road whose lanes hold world point (x, y): where the point projects on it, its lane section and the lane (any kind). */
+function* lanesHolding(
+  network: RoadNetwork,
+  x: number,
+  y: number,
+): Generator<{ road: Road; projected: { s: number; t: number }; sectionIndex: number; lane: Lane }> {
+  for (const road of network.roads) {
+    const projected = projectOnRoad(road, x, y);
+    if (!projected) continue;
+    const sectionIndex = laneSectionIndexAt(road, projected.s);
+    const lane = laneHolding(road, sectionIndex, projected.s, projected.t - roadCubicAt(road.laneOffsets, projected.s));
+    if (lane) yield { road, projected, sectionIndex, lane };
+  }
+}
+
 /**
  * The lane that holds world point (x, y), of a kind `accepts` takes, driven in the direction of `heading` (radians,
  * within a right angle), with the nearest centre where several roads hold the point; or why there is none.
@@ -79,13 +106,7 @@ export function laneAtPoint(
 ): PointLane | string {
   let found: (PointLane & { fromCentre: number }) | undefined;
   const passed: string[] = [];
-  for (const road of network.roads) {
-    const projected = projectOnRoad(road, x, y);
-    if (!projected) continue;
-    const sectionIndex = laneSectionIndexAt(road, projected.s);
-    const fromOffsetLine = projected.t - roadCubicAt(road.laneOffsets, projected.s);
-    const lane = laneHolding(road, sectionIndex, projected.s, fromOffsetLine);
-    if (!lane) continue;
+  for (const { road, projected, sectionIndex, lane } of lanesHolding(network, x, y)) {
     const where = `lane ${lane.id} of road ${road.id}`;
     if (!accepts(lane)) {
       passed.push(`${where} (a ${lane.type} lane)`);
@@ -103,4 +124,40 @@ export function laneAtPoint(
   if (found) return { roadId: found.roadId, laneId: found.laneId, s: found.s, offset: found.offset };
   const at = `x ${Number(x.toFixed(3))}, y ${Number(y.toFixed(3))}`;
   return passed.length > 0 ? `${at} lies in ${passed.join(', ')} only` : `${at} lies on no road`;
+}
+
+/** A point's lane as esmini snaps it, and the way its heading points along that road (1: growing s). */
+export interface SnappedLane extends PointLane {
+  direction: 1 | -1;
+}
+
+/**
+ * Where esmini places world point (x, y) of an entity off the driving lanes (a pedestrian on a sidewalk): on the road whose
+ * lanes hold it, in the driving lane of that road whose centre is nearest, however far (Position::XYZ2TrackPos snaps to
+ * LANE_TYPE_ANY_DRIVING by default, LaneSection::GetClosestLaneIdx), whichever way that lane is driven; with the way
+ * `heading` points along the road, which esmini moves it and plans its route in (Object::MoveAlongS, RoadPath::Calculate).
+ * Where several roads hold the point, the nearest such centre; a point on no road, or on a road without a driving lane there, is answered why.
+ */
+export function snappedLaneAtPoint(network: RoadNetwork, x: number, y: number, heading: number): SnappedLane | string {
+  let found: (SnappedLane & { fromCentre: number }) | undefined;
+  const passed: string[] = [];
+  for (const { road, projected, sectionIndex } of lanesHolding(network, x, y)) {
+    const section = road.laneSections[sectionIndex];
+    let nearest: { laneId: number; offset: number } | undefined;
+    for (const lane of section.lanes) {
+      if (!isDrivingLane(lane) || !(laneWidth(section, lane, projected.s) > 1e-6)) continue;
+      const offset = projected.t - laneCenterT(road, sectionIndex, lane.id, projected.s);
+      if (!nearest || Math.abs(offset) < Math.abs(nearest.offset)) nearest = { laneId: lane.id, offset };
+    }
+    if (!nearest) {
+      passed.push(`road ${road.id} (no driving lane at s ${Number(projected.s.toFixed(3))})`);
+      continue;
+    }
+    const direction = Math.abs(normalizeAngle(heading - referencePose(road, projected.s).hdg)) < Math.PI / 2 ? 1 : -1;
+    if (!found || Math.abs(nearest.offset) < found.fromCentre)
+      found = { roadId: road.id, ...nearest, s: projected.s, direction, fromCentre: Math.abs(nearest.offset) };
+  }
+  if (found) return { roadId: found.roadId, laneId: found.laneId, s: found.s, offset: found.offset, direction: found.direction };
+  const at = `x ${Number(x.toFixed(3))}, y ${Number(y.toFixed(3))}`;
+  return passed.length > 0 ? `${at} lies on ${passed.join(', ')} only` : `${at} lies on no road`;
 }

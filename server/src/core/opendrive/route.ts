@@ -2,7 +2,8 @@
  * Where a point `pathS` metres along an OpenSCENARIO Route lies, as esmini places it (esmini 3.6.0,
  * RoadManager.cpp: Route::AddWaypoint, RoadPath::Calculate and CheckRoad, Route::SetPathS;
  * Position::SetRouteLanePosition). esmini plans the roads between two waypoints with its own Dijkstra
- * over road ends, forward from the earlier waypoint in its lane's driving direction, following lane links
+ * over road ends, forward from the earlier waypoint the way the entity heads (its lane's driving direction unless
+ * given: a pedestrian walks either way), following lane links
  * (through junctions by their connections' laneLinks), and stops at the first road end it takes whose next
  * road is the target. Between the waypoints it adds one waypoint per road of the path; a point along the
  * route lies on the road of the waypoint before it, or on the next waypoint's road when it runs past the
@@ -19,7 +20,15 @@ export interface RouteWaypoint {
   s: number;
   /** How a message names it (`the Waypoint at line 40`); `waypoint N` (its place in the route) when not given. */
   name?: string;
+  /**
+   * The way the entity heads along the road there (1: growing s), which esmini plans from (RoadPath::Calculate reads the
+   * heading relative to the road); when not given, its lane's driving direction (right-hand traffic).
+   */
+  direction?: 1 | -1;
 }
+
+/** The way an entity at a waypoint heads along its road: as given, else its lane's driving direction. */
+const directionAt = (waypoint: RouteWaypoint): 1 | -1 => waypoint.direction ?? (waypoint.laneId < 0 ? 1 : -1);
 
 /** The point on the route: the road and its s, and how the route got there. */
 export interface RoutePoint {
@@ -153,10 +162,11 @@ function searchPath(
   const targetRoad = network.byId.get(target.roadId);
   if (!startRoad) return `road ${start.roadId} is not in the road network`;
   if (!targetRoad) return `road ${target.roadId} is not in the road network`;
-  // Forward in the lane's driving direction (right-hand traffic: a negative lane drives towards growing s).
-  const exit: End = start.laneId < 0 ? 'end' : 'start';
+  // Forward the way the entity heads (by default its lane's driving direction; right-hand traffic: a negative lane drives towards growing s).
+  const exit: End = directionAt(start) === 1 ? 'end' : 'start';
   const firstLink = linkAt(startRoad, exit);
-  if (!firstLink) return `road ${startRoad.id} ends without a link in the driving direction of lane ${start.laneId}`;
+  if (!firstLink)
+    return `road ${startRoad.id} ends without a link ${start.direction === undefined ? `in the driving direction of lane ${start.laneId}` : 'the way the entity heads'}`;
   const unvisited: PathNode[] = [
     {
       road: startRoad,
@@ -226,7 +236,7 @@ function searchPath(
       return { nodes, dist: found[0] };
     }
   }
-  return `no way along lane links from road ${start.roadId} lane ${start.laneId} to road ${target.roadId} in its driving direction`;
+  return `no way along lane links from road ${start.roadId} lane ${start.laneId} to road ${target.roadId} ${start.direction === undefined ? 'in its driving direction' : 'the way the entity heads'}`;
 }
 
 /** The roads a path runs over, from the start's road to the target's. */
@@ -283,7 +293,7 @@ function planRoute(network: RoadNetwork, waypoints: RouteWaypoint[]): { stops: S
     const road = roadOf(waypoint);
     if (!road) return `road ${waypoint.roadId} of a waypoint is not in the road network`;
     if (stops.length === 0) {
-      stops.push({ given: waypoint, road, s: waypoint.s, laneId: waypoint.laneId, direction: waypoint.laneId < 0 ? 1 : -1, routeS: 0 });
+      stops.push({ given: waypoint, road, s: waypoint.s, laneId: waypoint.laneId, direction: directionAt(waypoint), routeS: 0 });
       continue;
     }
     // esmini keeps the first waypoint and then the last one on each road.
@@ -363,7 +373,7 @@ export interface LaneStretch {
 
 /**
  * The lanes an entity drives from `start` to the route's last waypoint, as esmini moves it along a route: in its own
- * lane (no lane change), through each road in the lane's driving direction, from road to road by lane links and through
+ * lane (no lane change), through each road the way it heads (its lane's driving direction unless the start gives it), from road to road by lane links and through
  * junctions by the connection to the route's next road (esmini's default controller, Position::MoveAlongS with a Route);
  * split where the lane continues as another lane id (lane sections, roads). Or why the entity cannot drive it so.
  */
@@ -380,8 +390,8 @@ export function routeLanes(network: RoadNetwork, waypoints: RouteWaypoint[], sta
   const last = waypoints[waypoints.length - 1];
   const directionOn = (road: Road): 1 | -1 => (plan.stops.find((stop) => stop.road === road) as Stop).direction;
   let direction = directionOn(roads[first]);
-  if ((start.laneId < 0 ? 1 : -1) !== direction)
-    return `lane ${start.laneId} of road ${start.roadId} drives against the route there (esmini keeps the lane, no U-turn)`;
+  if (directionAt(start) !== direction)
+    return `${start.direction === undefined ? `lane ${start.laneId}` : `the entity in lane ${start.laneId}`} of road ${start.roadId} ${start.direction === undefined ? 'drives' : 'heads'} against the route there (esmini keeps the lane, no U-turn)`;
   const stretches: LaneStretch[] = [];
   let laneId = start.laneId;
   let s = start.s;

@@ -316,6 +316,12 @@ export const CARLA_FACTS = {
     source: `srunner/scenariomanager/actorcontrols/npc_vehicle_control.py:103-113, ${PARSER}:1509-1513`,
     severity: 'warning',
   },
+  walkerWalksAtSetSpeed: {
+    does: 'walks a pedestrian (PedestrianControl, its default controller) straight towards each trajectory vertex in turn at the speed its speed actions set, reading no vertex times, and heads for the next once within 1 m of one; with no vertex left, or none given, it walks straight ahead the way it faces',
+    source:
+      'srunner/scenariomanager/actorcontrols/pedestrian_control.py:41-77, srunner/scenariomanager/actorcontrols/actor_control.py:69-70',
+    severity: 'warning',
+  },
   conditionsCountFromTheirStart: {
     does: "counts a SimulationTimeCondition's time and a TraveledDistanceCondition's distance from when the condition is first ticked (its Act has started), not from the run's start",
     source: `srunner/scenariomanager/timer.py:108-126 (SimulationTimeCondition.initialise, update), ${SR_TRIGGER_CONDITIONS}:1211-1228 (DriveDistance.initialise, update), ${PARSER}:1029-1032, 1124-1128`,
