@@ -2523,6 +2523,49 @@ describe("export --target carla, the Storyboard's StopTrigger", function () {
     assert.equal(written.match(/<Condition name="End"/g)?.length, 2, written);
   });
 
+  it("is copied without its criteria_ conditions: ScenarioRunner builds each test criterion once, and the act's copy can stop it", async function () {
+    requireCarlaHarness(this);
+    const original = path.join(out, 'criteria.xosc');
+    // ScenarioRunner's own examples keep their criteria in one Storyboard group; a user adds the stop beside them.
+    fs.writeFileSync(
+      original,
+      egoEventsScenario({ other: false, initActions: '', events: [{ action: laneOffset('step'), condition: atTime(1) }] }).replace(
+        /(<StopTrigger><ConditionGroup>)(<Condition name="End")/,
+        `$1<Condition name="criteria_CollisionTest" delay="0" conditionEdge="rising">
+      <ByValueCondition><ParameterCondition parameterRef="" value="" rule="lessThan"/></ByValueCondition>
+    </Condition>$2`,
+      ),
+    );
+    const exported = await exportFile(original, path.join(out, 'exported.xosc'));
+    assert.equal(exported.code, 0, exported.stderr);
+    assert.deepEqual(
+      exported.report.losses.filter((loss) => loss.element === 'Storyboard/StopTrigger').map((loss) => loss.what),
+      [
+        "its condition groups are added to the StopTrigger of the one act, without their criteria_ conditions (ScenarioRunner makes one test criterion of each, from the Storyboard's)",
+      ],
+    );
+    const written = fs.readFileSync(exported.output, 'utf8');
+    assert.equal(written.match(/<Condition name="End"/g)?.length, 2, written);
+    assert.equal(written.match(/<Condition name="criteria_CollisionTest"/g)?.length, 1, written);
+    const verdict = (await harnessVerdicts([exported.output], { tree: true })).get(exported.output);
+    assert.equal(verdict?.status, 'OK', JSON.stringify(verdict));
+    const criteria = (verdict?.tree ?? []).filter(([kind, name]) => kind === 'CLASS' && name === 'CollisionTest');
+    assert.equal(criteria.length, 1, `ScenarioRunner built ${criteria.length} CollisionTest criteria`);
+    // Exporting the export adds nothing: the act already holds the group's stopping conditions.
+    const again = await exportFile(exported.output, path.join(out, 'again.xosc'));
+    assert.equal(again.code, 0, again.stderr);
+    assert.deepEqual(
+      again.report.losses.filter((loss) => loss.element === 'Storyboard/StopTrigger'),
+      [],
+    );
+    const messages = await carlaMessages(exported.output);
+    assert.deepEqual(
+      messages.filter((message) => IGNORED.test(message)),
+      [],
+      messages.join('\n'),
+    );
+  });
+
   it('an Act that lacks the group is still warned of, on the Storyboard condition', async () => {
     const original = path.join(out, 'stop.xosc');
     fs.writeFileSync(

@@ -27,8 +27,12 @@ export function requireCarlaHarness(context: Mocha.Context): void {
 
 function whyHarnessUnavailable(): string | undefined {
   if (!fs.existsSync(carlaCheckScript)) return `${carlaCheckScript} is absent`;
-  const python = spawnSync('python3', ['--version'], { encoding: 'utf8', timeout: 10_000 });
-  if (python.status !== 0) return 'python3 is not on the PATH';
+  // pyenv's shim alone took 3 s at a load of 12 on two cores: the bound is for a python3 that hangs, not a busy one.
+  const python = spawnSync('python3', ['--version'], { encoding: 'utf8', timeout: 120_000 });
+  if (python.status !== 0)
+    return python.signal
+      ? `python3 --version did not answer within 120 s (${python.signal})`
+      : `python3 --version failed: ${python.error?.message ?? (python.stderr || python.stdout).trim()}`;
   if (!fs.existsSync(path.join(carlaCache, 'scenario_runner', 'scenario_runner.py'))) {
     const setup = spawnSync('python3', [carlaCheckScript, 'setup'], {
       cwd: repoRoot,

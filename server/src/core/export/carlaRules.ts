@@ -1178,7 +1178,9 @@ const NODE_SHAPE: ElementShape<Node> = {
 /**
  * The Storyboard's StopTrigger is ignored but for `criteria_` conditions (SR_SCENARIO _create_test_criteria):
  * its groups are added to every Act's StopTrigger (ending every act ends the story), the original kept for criteria.
- * A group an Act's StopTrigger already holds (a file this export wrote) is not added to it again.
+ * The copies leave the criteria out: ScenarioRunner makes a criterion of one in any StopTrigger, and in an Act's it
+ * never succeeds, so its group would never stop the act. A group an Act's StopTrigger already holds (a file this
+ * export wrote) is not added to it again.
  */
 function storyboardStop(tree: Node, context: RuleContext): void {
   const storyboard = named(tree, 'Storyboard')[0];
@@ -1190,9 +1192,7 @@ function storyboardStop(tree: Node, context: RuleContext): void {
     appendChild(storyboard, stop);
   }
   const acts = actsOf(storyboard, NODE_SHAPE);
-  const stopping = storyboardStopGroups(storyboard, NODE_SHAPE).filter(({ group }) =>
-    childrenNamed(group, 'Condition').some((condition) => !(attr(condition, 'name') ?? '').startsWith('criteria_')),
-  );
+  const stopping = storyboardStopGroups(storyboard, NODE_SHAPE).filter(({ stopping }) => stopping.length > 0);
   const carla = `ScenarioRunner ignores the Storyboard's StopTrigger but for criteria_ conditions (${SR_SCENARIO} _create_test_criteria); the scenario ends when its acts end`;
   if (acts.length === 0 && stopping.length > 0) {
     context.sink.approximated(
@@ -1205,13 +1205,23 @@ function storyboardStop(tree: Node, context: RuleContext): void {
   }
   const added = stopping.filter(({ missingFrom }) => missingFrom.length > 0);
   if (added.length === 0) return;
-  for (const { group, missingFrom } of added)
-    for (const act of missingFrom) appendChild(child(act, 'StopTrigger') ?? appendChild(act, makeNode('StopTrigger')), cloneNode(group));
-  const anded = added.some(({ group }) => childrenNamed(group, 'Condition').length > 1);
+  for (const { group, stopping, missingFrom } of added)
+    for (const act of missingFrom)
+      appendChild(
+        child(act, 'StopTrigger') ?? appendChild(act, makeNode('StopTrigger')),
+        makeNode(
+          group.name,
+          group.attributes.map(([key, value]) => [key, value]),
+          stopping.map(cloneNode),
+          group.place,
+        ),
+      );
+  const anded = added.some(({ stopping }) => stopping.length > 1);
+  const criteriaLeft = added.some(({ group, stopping }) => stopping.length < group.children.length);
   context.sink.approximated(
     stop,
     'Storyboard/StopTrigger',
-    `its condition groups are added to the StopTrigger of ${acts.length === 1 ? 'the one act' : `each of the ${acts.length} acts`}${anded ? ' (ScenarioRunner ORs the conditions inside an act stop group, where the standard ANDs them)' : ''}`,
+    `its condition groups are added to the StopTrigger of ${acts.length === 1 ? 'the one act' : `each of the ${acts.length} acts`}${criteriaLeft ? ", without their criteria_ conditions (ScenarioRunner makes one test criterion of each, from the Storyboard's)" : ''}${anded ? ' (ScenarioRunner ORs the conditions inside an act stop group, where the standard ANDs them)' : ''}`,
     carla,
   );
 }

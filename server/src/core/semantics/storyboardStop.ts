@@ -21,9 +21,22 @@ export const XML_SHAPE: ElementShape<XmlElement> = {
 };
 
 /** An element as a text that two elements share exactly when they have the same name, attributes (in any order) and children. */
-function structureKey<E>(element: E, shape: ElementShape<E>): string {
+function structureKey<E>(element: E, shape: ElementShape<E>, children: readonly E[] = shape.children(element)): string {
   const attributes = [...shape.attributes(element)].map(([name, value]) => [name, value]).sort(([a], [b]) => (a < b ? -1 : a > b ? 1 : 0));
-  return JSON.stringify([shape.name(element), attributes, shape.children(element).map((child) => structureKey(child, shape))]);
+  return JSON.stringify([shape.name(element), attributes, children.map((child) => structureKey(child, shape))]);
+}
+
+/**
+ * A Condition ScenarioRunner builds as one of its test criteria: a ParameterCondition named criteria_*. It makes one
+ * of each in every StopTrigger of the Storyboard (open_scenario.py _create_test_criteria), and in an Act's StopTrigger
+ * one that never succeeds (openscenario_parser.py convert_condition_to_atomic).
+ */
+export function isTestCriterion<E>(condition: E, shape: ElementShape<E>): boolean {
+  if (shape.name(condition) !== 'Condition') return false;
+  const name = [...shape.attributes(condition)].find(([attribute]) => attribute === 'name')?.[1] ?? '';
+  const holdsParameterCondition = (element: E): boolean =>
+    shape.children(element).some((child) => shape.name(child) === 'ParameterCondition' || holdsParameterCondition(child));
+  return name.startsWith('criteria_') && holdsParameterCondition(condition);
 }
 
 function childrenNamed<E>(element: E, name: string, shape: ElementShape<E>): E[] {
@@ -35,13 +48,17 @@ export function actsOf<E>(storyboard: E, shape: ElementShape<E>): E[] {
   return childrenNamed(storyboard, 'Story', shape).flatMap((story) => childrenNamed(story, 'Act', shape));
 }
 
-/** A ConditionGroup of the Storyboard's StopTrigger and the Acts whose StopTrigger lacks a group of the same conditions. */
+/**
+ * A ConditionGroup of the Storyboard's StopTrigger, its conditions that stop the scenario (all but test criteria,
+ * which ScenarioRunner reads from the Storyboard's once) and the Acts whose StopTrigger lacks a group of those.
+ */
 export interface StoryboardStopGroup<E> {
   group: E;
+  stopping: E[];
   missingFrom: E[];
 }
 
-/** The ConditionGroups of the Storyboard's StopTrigger, each with the Acts whose StopTrigger does not hold it. */
+/** The ConditionGroups of the Storyboard's StopTrigger, each with the Acts whose StopTrigger does not hold its stopping conditions. */
 export function storyboardStopGroups<E>(storyboard: E, shape: ElementShape<E>): StoryboardStopGroup<E>[] {
   const stop = childrenNamed(storyboard, 'StopTrigger', shape)[0];
   if (!stop) return [];
@@ -54,14 +71,15 @@ export function storyboardStopGroups<E>(storyboard: E, shape: ElementShape<E>): 
     ),
   }));
   return childrenNamed(stop, 'ConditionGroup', shape).map((group) => {
-    const key = structureKey(group, shape);
-    return { group, missingFrom: acts.filter(({ groups }) => !groups.has(key)).map(({ act }) => act) };
+    const stopping = shape.children(group).filter((child) => !isTestCriterion(child, shape));
+    const key = structureKey(group, shape, stopping);
+    return { group, stopping, missingFrom: acts.filter(({ groups }) => !groups.has(key)).map(({ act }) => act) };
   });
 }
 
 /**
  * The ConditionGroups of the Storyboard's StopTrigger that the StopTrigger of every one of its Acts holds too (a
- * group of the same conditions): ScenarioRunner stops the scenario on them. None when it has no Act.
+ * group of the same conditions, test criteria aside): ScenarioRunner stops the scenario on them. None when it has no Act.
  */
 export function stopGroupsKeptInActs<E>(storyboard: E, shape: ElementShape<E>): Set<E> {
   if (actsOf(storyboard, shape).length === 0) return new Set();

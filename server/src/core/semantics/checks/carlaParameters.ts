@@ -5,6 +5,7 @@ import type { CarlaFactName } from '../../profiles/carla';
 import type { SourceRef } from '../../sources';
 import type { LineIndex } from '../../text';
 import { attribute, descendants, XmlAttribute, XmlElement } from '../../xml';
+import { isTestCriterion, XML_SHAPE } from '../storyboardStop';
 import { at } from './support';
 import type { Finding, SemanticContext } from './types';
 
@@ -18,12 +19,9 @@ import type { Finding, SemanticContext } from './types';
  * order (SR_SCENARIO:369-385, 425-454, 482-503); ../shared/carla's harness, ticking the built tree, shows it.
  */
 
-/** A Condition ScenarioRunner builds as one of its test criteria: a ParameterCondition named criteria_* (SR_SCENARIO _create_test_criteria, SR_PARSER convert_condition_to_atomic). */
+/** A Condition ScenarioRunner builds as one of its test criteria (semantics/storyboardStop.ts isTestCriterion). */
 export function isCriterion(condition: XmlElement): boolean {
-  return (
-    (attribute(condition, 'name')?.value ?? '').startsWith('criteria_') &&
-    descendants(condition).some((child) => child.name === 'ParameterCondition')
-  );
+  return isTestCriterion(condition, XML_SHAPE);
 }
 
 /** Where an element of an Act stands in ScenarioRunner's tick order. */
