@@ -157,6 +157,20 @@ export class EsminiRunner implements vscode.Disposable {
       list.push(diagnostic);
       byUri.set(problem.uri, list);
     }
+    // What esmini runs otherwise than written, in the Problems view beside esmini's messages (with the simulator setting esmini, the check shows them, with their fixes).
+    const checkedForEsmini = vscode.workspace.getConfiguration('modular2simple', source).get<string>('simulator') === 'esmini';
+    for (const finding of checkedForEsmini ? [] : result.esminiFindings) {
+      const end = finding.end ?? { line: finding.line, character: Number.MAX_SAFE_INTEGER };
+      const diagnostic = new vscode.Diagnostic(
+        new vscode.Range(finding.line, finding.character, end.line, end.character),
+        finding.message + (finding.hint ? ` (${finding.hint})` : ''),
+        finding.severity === 'error' ? vscode.DiagnosticSeverity.Error : vscode.DiagnosticSeverity.Warning,
+      );
+      diagnostic.source = 'esmini';
+      const list = byUri.get(finding.uri) ?? [];
+      list.push(diagnostic);
+      byUri.set(finding.uri, list);
+    }
     for (const [uri, list] of byUri) this.diagnostics.set(vscode.Uri.parse(uri), list);
 
     this.output.clear();
@@ -171,7 +185,7 @@ export class EsminiRunner implements vscode.Disposable {
       this.output.appendLine(
         `info: ${remark.message}${remark.count > 1 ? ` (${remark.count} times)` : ''}: esmini's remark about its own files, not the scenario (${remark.why}; ${remark.origin})`,
       );
-    for (const problem of result.flattenProblems)
+    for (const problem of [...result.flattenProblems, ...result.esminiFindings])
       this.output.appendLine(`${problem.uri}:${problem.line + 1}:${problem.character + 1}: ${problem.severity}: ${problem.message}`);
     this.output.append(result.log);
     this.last = { source, result };

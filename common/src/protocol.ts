@@ -267,6 +267,11 @@ export interface RunEsminiResult {
   uri: string;
   problems: EsminiProblemSummary[];
   flattenProblems: ProblemSummary[];
+  /**
+   * What esmini runs otherwise than written, by the esmini profile (a condition it never fires), whatever the simulator
+   * setting; empty when the flattening already checked for esmini (then they are among `flattenProblems`).
+   */
+  esminiFindings: ProblemSummary[];
   /** With outcome not-flattened: only the scenario's errors stopped it, so the same request with `force` runs it. */
   forcible?: boolean;
   /** esmini's whole output. */

@@ -22,6 +22,7 @@ function refused(fields: Partial<RunEsminiResult>): RunEsminiResult {
     uri: cutIn,
     problems: [],
     flattenProblems: [problem("unknown name 'BrakeCondition_HWT'", 161), problem('deprecated', 10, 'warning')],
+    esminiFindings: [],
     log: '',
     duration: 30,
     timeStep: 0.05,

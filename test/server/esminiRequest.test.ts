@@ -79,6 +79,27 @@ describe('language server: the Run in esmini request over JSON-RPC', function ()
     assert.ok(!fs.existsSync(clean.csvFile), "the previous run's files are removed by the next run of the same file");
   });
 
+  it('answers with what esmini runs otherwise than written (an Act it never starts), whatever the simulator setting (issue 27)', async function () {
+    requireEsmini(this);
+    const file = path.join(root, 'lane_change.xosc');
+    const text = fs.readFileSync(file, 'utf8');
+    // The paper's library's Act start: a rising edge of SimulationTime equalTo 0, which esmini never fires.
+    const paper = text.replace(
+      '<SimulationTimeCondition value="0" rule="greaterThan"/>',
+      '<SimulationTimeCondition value="0" rule="equalTo"/>',
+    );
+    assert.notEqual(paper, text);
+    fs.writeFileSync(file, paper);
+    const result = await run(fileUri(file));
+    assert.equal(result.outcome, 'ok', result.message);
+    const line = paper.split('\n').findIndex((each) => each.includes('name="ActStart"'));
+    assert.deepEqual(
+      result.esminiFindings.map((finding) => [finding.uri, finding.line, finding.severity, finding.hint]),
+      [[fileUri(file), line, 'warning', 'write conditionEdge="none" on this Condition: esmini then fires it when it is first evaluated']],
+    );
+    assert.match(result.esminiFindings[0].message, /^esmini checks a condition's edge only from its second evaluation/);
+  });
+
   it('refuses a scenario with errors as forcible; with force (Run Anyway) runs it, listing the errors', async function () {
     requireEsmini(this);
     const main = path.join(root, 'main.xosc');

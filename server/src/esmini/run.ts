@@ -120,6 +120,11 @@ export interface EsminiRunResult {
   /** The road file: as written, where it was found (what esmini is given), and what esmini's log says it loaded. */
   roadFile?: RunRoadFile;
   flattenProblems: Problem[];
+  /**
+   * What the esmini profile finds in the scenario run (core/profiles/esmini.ts: a condition esmini never fires, a position
+   * it drops), whatever the simulator the flattening checked for; those `flattenProblems` holds already are not repeated.
+   */
+  esminiFindings: Problem[];
   /** Not flattened only because of errors: forced (`force`), the same scenario would run. */
   forcible?: boolean;
 }
@@ -302,6 +307,7 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
     problems: [] as EsminiProblem[],
     remarks: [] as EsminiRemark[],
     flattenProblems: [] as Problem[],
+    esminiFindings: [] as Problem[],
   };
   const elapsed = () => Date.now() - started;
   checkDuration(options.duration);
@@ -376,6 +382,9 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
     };
   }
 
+  const findings = await esminiFindingsOf(flattener, main, flattenProblems);
+  // Those the flattening reported already are printed with its problems.
+  const esminiFindings = flattener.simulator === 'esmini' ? [] : findings;
   const controllerFilesFrom = controllerFilesOfFlattening(main, flat.source);
   const ran = await runLimitedText(location.program, limited, searchPath, { ...options, controllerFilesFrom }, timeStep, seed, limit, {
     runFolder,
@@ -416,7 +425,16 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
   const problems = mapEsminiMessages(messages, flat.source, main);
   const trace = traceFromLog(storyboardMapOf(flat.source), ran.run.output);
   const errors = problems.filter((problem) => problem.severity === 'error').length;
-  const outcome = outcomeOf(ran, errors, problems.length - errors, problems.find((problem) => problem.severity === 'error')?.message);
+  const outcome = outcomeOf(
+    ran,
+    errors,
+    problems.length - errors,
+    problems.find((problem) => problem.severity === 'error')?.message,
+    findings[0] && {
+      count: findings.length,
+      first: `${displayRef(findings[0].source, sourceFolderOf(main))}:${findings[0].range.start.line + 1}`,
+    },
+  );
   const scenarioErrors = flattenProblems.filter((problem) => problem.severity === 'error').length;
   const forced =
     scenarioErrors > 0 && (outcome.outcome === 'ok' || outcome.outcome === 'errors')
@@ -425,6 +443,7 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
   return {
     ...base,
     flattenProblems,
+    esminiFindings,
     problems,
     remarks: log.remarks,
     trace,
@@ -441,8 +460,20 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
   };
 }
 
+/**
+ * The esmini profile's findings (code `simulator`) of `main` and of the groups it imports, which a run in esmini names
+ * whatever simulator the flattening checked for: those of the flattening when it checked for esmini, else read again so.
+ */
+async function esminiFindingsOf(flattener: Flattener, main: SourceRef, flattenProblems: readonly Problem[]): Promise<Problem[]> {
+  const problems =
+    flattener.simulator === 'esmini' ? flattenProblems : (await new Flattener(flattener.store, 'esmini').analyze(main)).problems;
+  return problems.filter((problem) => problem.code === 'simulator');
+}
+
 /** A plain scenario's run (`runScenarioText`): esmini's messages as it printed them, placed on no source line. */
-export type EsminiTextRunResult = Omit<EsminiRunResult, 'problems' | 'flattenProblems'> & { messages: EsminiLogMessage[] };
+export type EsminiTextRunResult = Omit<EsminiRunResult, 'problems' | 'flattenProblems' | 'esminiFindings'> & {
+  messages: EsminiLogMessage[];
+};
 
 /**
  * Runs plain OpenSCENARIO text (already flat, such as a concrete scenario of a distribution) as `runScenario`
@@ -576,7 +607,13 @@ async function runLimitedText(
  * (`firstError`: the first one's text). A run that simulated nothing while esmini reported an error did not
  * happen: esmini refused the scenario (a 0.9 header, a controller it does not know), and says why.
  */
-function outcomeOf(ran: LimitedRun, errors: number, warnings: number, firstError?: string): Pick<EsminiRunResult, 'outcome' | 'message'> {
+function outcomeOf(
+  ran: LimitedRun,
+  errors: number,
+  warnings: number,
+  firstError?: string,
+  findings?: { count: number; first: string },
+): Pick<EsminiRunResult, 'outcome' | 'message'> {
   const { run, common } = ran;
   const counts = `${errors} error${errors === 1 ? '' : 's'}, ${warnings} warning${warnings === 1 ? '' : 's'}`;
   if (run.end === 'cancelled') return { outcome: 'cancelled', message: 'the run was cancelled' };
@@ -595,7 +632,11 @@ function outcomeOf(ran: LimitedRun, errors: number, warnings: number, firstError
   // A run in which nothing moved ran, but may not be the one the user meant (the paper's library in esmini): said.
   const still =
     common.csvFile && common.simulatedTime !== undefined && common.simulatedTime > 0 && anyEntityMoved(fileLines(common.csvFile)) === false
-      ? '; no entity moved: each stood where the Init placed it for the whole run (does an Act or Event never start? the check with the simulator set to esmini names such conditions)'
+      ? `; no entity moved: each stood where the Init placed it for the whole run (${
+          findings
+            ? `esmini runs it otherwise than written: ${findings.count === 1 ? 'the run names one esmini finding, at' : `the run names ${findings.count} esmini findings, the first at`} ${findings.first}`
+            : 'does an Act or Event never start? the check with the simulator set to esmini names such conditions'
+        })`
       : '';
   return {
     outcome: errors > 0 ? 'errors' : 'ok',

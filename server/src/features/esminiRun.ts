@@ -84,6 +84,7 @@ export class EsminiRuns {
         ...(problem.note ? { note: problem.note } : {}),
       })),
       flattenProblems: result.flattenProblems.map((problem) => summarize(workspace, problem)),
+      esminiFindings: result.esminiFindings.map((problem) => summarize(workspace, problem)),
       ...(result.forcible ? { forcible: true } : {}),
       log: result.log,
       ...(result.trace ? { trace: result.trace } : {}),
@@ -137,6 +138,7 @@ async function runFirstConcrete(
     problems: [],
     remarks: [],
     flattenProblems,
+    esminiFindings: [],
   });
   if (!variations) {
     const problems = distributionProblems(analysis).filter((problem) => problem.severity === 'error');
@@ -172,5 +174,5 @@ async function runFirstConcrete(
     controllerFilesFrom: controllerFiles,
   });
   const which = `concrete scenario ${chosen.index} of ${variations.count} (${chosen.values})`;
-  return { ...ran, message: `ran ${which}: ${ran.message}`, problems: [], flattenProblems: [] };
+  return { ...ran, message: `ran ${which}: ${ran.message}`, problems: [], flattenProblems: [], esminiFindings: [] };
 }

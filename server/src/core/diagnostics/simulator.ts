@@ -81,9 +81,24 @@ export function carlaFactWording(name: CarlaFactName, detail: string): ProblemWo
   return factWording(CARLA_PROFILE.name, CARLA_FACTS[name], detail);
 }
 
-/** What esmini does beyond one element or attribute (core/profiles/esmini.ts ESMINI_FACTS): the fact `name`, then `detail`, the case at hand. */
-export function esminiFactWording(name: EsminiFactName, detail: string): ProblemWording<'simulator'> {
-  return factWording(ESMINI_PROFILE.name, ESMINI_FACTS[name], detail);
+/** What to write so that esmini fires a SimulationTimeCondition it never fires (the quick fix simulationTimeFix makes, for `run` and `check` on the command line). */
+const SIMULATION_TIME_HINTS = {
+  edge: 'write conditionEdge="none" on this Condition: esmini then fires it when it is first evaluated',
+  'after-zero':
+    'write rule="greaterThan" here, and conditionEdge="none" on its Condition: esmini then starts the Event when its Act starts',
+} as const;
+
+/**
+ * What esmini does beyond one element or attribute (core/profiles/esmini.ts ESMINI_FACTS): the fact `name`, then `detail`,
+ * the case at hand; with `simulationTimeFix`, what to write so that esmini fires the condition.
+ */
+export function esminiFactWording(
+  name: EsminiFactName,
+  detail: string,
+  simulationTimeFix?: keyof typeof SIMULATION_TIME_HINTS,
+): ProblemWording<'simulator'> {
+  const wording = factWording(ESMINI_PROFILE.name, ESMINI_FACTS[name], detail);
+  return simulationTimeFix ? { ...wording, hint: SIMULATION_TIME_HINTS[simulationTimeFix] } : wording;
 }
 
 function isSimulatorData(value: unknown): value is ProblemDataByCode['simulator'] {

@@ -155,6 +155,7 @@ function simulationTimesMissed(elements: readonly XmlElement[], textOf: TextOf):
         ...esminiFactWording(
           'edgeAtFirstEvaluation',
           `${written} with edge rising already holds when this ${owner.name}'s StartTrigger is first evaluated, at time 0: the ${owner.name} never starts`,
+          'edge',
         ),
         data: { simulationTimeFix: 'edge' },
       });
@@ -164,6 +165,7 @@ function simulationTimesMissed(elements: readonly XmlElement[], textOf: TextOf):
         ...esminiFactWording(
           'simulationTimeZeroAfterStart',
           `${written}: this Event's Act does not start at time 0, so the Event never starts`,
+          'after-zero',
         ),
         data: { simulationTimeFix: 'after-zero' },
       });
