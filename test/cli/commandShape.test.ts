@@ -52,6 +52,8 @@ describe('cli: every command has one shape (help, options, exit codes)', functio
       assert.ok(help.stdout.includes(name), help.stdout);
       assert.doesNotMatch(help.stdout, /^Usage:/m);
       assert.match(help.stdout, /Exit codes: 0 /);
+      // Each help text is whole: no placeholder of a shared part left as written (check --help printed '${LIMIT_OPTIONS_HELP}').
+      assert.doesNotMatch(help.stdout, /\$\{[A-Z_]+\}/);
       assert.deepEqual(runCli([name, '-h'], { cwd: root }), help);
       assert.deepEqual(runCli([name, 'no-such-input.xosc', '--help'], { cwd: root }), help);
       assert.deepEqual(listFiles(root), ['distribution.xosc', 'follow.xosc'], 'help wrote nothing');

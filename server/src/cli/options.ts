@@ -70,7 +70,7 @@ export const READING_OPTIONS_HELP = `  --scenario-path DIRS      folders searche
                             working directory, or the input's folder when it lies elsewhere)
   --schema-version V        the OpenSCENARIO schema files are checked against: auto (each file's
                             FileHeader, the default), 1.0, 1.1, 1.2, 1.3, or off
-${'$'}{LIMIT_OPTIONS_HELP}
+${LIMIT_OPTIONS_HELP}
   -q, --quiet               print errors only`;
 
 /**
