@@ -226,6 +226,7 @@ export function activate(context: vscode.ExtensionContext): Modular2SimpleApi {
           // Named by what ran and when: two runs compared are told apart (each is a trajectories.csv).
           label: `esmini run of ${path.posix.basename(event.source.path)}, ${new Date().toTimeString().slice(0, 8)}`,
           until: event.result.duration,
+          ...(event.result.collisions ? { collisions: event.result.collisions } : {}),
           // A distribution file's run is drawn on its ScenarioFile: the distribution has no roads or entities.
           scenario: event.result.scenarioOf ? vscode.Uri.parse(event.result.scenarioOf) : event.source,
           // A road packed with the scenario: esmini loaded its copy in the run folder; the view names the package entry it draws.

@@ -284,6 +284,8 @@ export interface RunEsminiResult {
    * Drop rows whose TimeStamp exceeds `duration`. It stays until the next run of the same file.
    */
   csvFile?: string;
+  /** Where two entities' bounding boxes began to overlap (s; esmini's collision detection), but for the overlaps the scenario means. */
+  collisions?: { entities: [string, string]; time: number }[];
   /** The flattened scenario as handed to esmini (with the added time limit). */
   scenarioFile?: string;
   /** For a distribution file: the ScenarioFile (a .xosc) its concrete scenario was made from, whose roads the run is drawn on. */

@@ -2,7 +2,8 @@ import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import type { EntityTrack, EsminiRun } from '../../common/src/esminiCsv';
-import { collisionsIn, polygonGap, trajectoryMetrics } from '../../server/src/batch/metrics';
+import { polygonGap, trajectoryMetrics } from '../../server/src/batch/metrics';
+import { collisionsIn } from '../../server/src/esmini/log';
 import { BatchIdentity, BatchRow, csvInIndexOrder, csvLine, ResultsError, ResultsFolder } from '../../server/src/batch/results';
 import { temporaryFolder } from '../support/temporaryDirectory';
 

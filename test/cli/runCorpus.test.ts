@@ -13,6 +13,17 @@ const esminiScenarios = path.join(sharedDir, 'corpus', 'openscenario', 'esmini')
 
 const DURATION = 5;
 
+/** esmini's roads and every folder of its Catalogs, as its README has a run find them (one --path each). */
+function esminiSearchPath(): string[] {
+  return [
+    esminiRoads,
+    ...fs
+      .readdirSync(esminiCatalogs, { withFileTypes: true })
+      .filter((entry) => entry.isDirectory())
+      .map((entry) => path.join(esminiCatalogs, entry.name)),
+  ];
+}
+
 /** How esmini itself, run as its README says (every --path folder), does on a scenario. */
 interface DirectRun {
   /** Exit 0: it loaded the scenario and ran it. */
@@ -54,13 +65,7 @@ describe("cli: every scenario of esmini's own that esmini runs also runs through
       console.log(`    (skipped: ${esminiScenarios} is absent)`);
       this.skip();
     }
-    const searchPath = [
-      esminiRoads,
-      ...fs
-        .readdirSync(esminiCatalogs, { withFileTypes: true })
-        .filter((entry) => entry.isDirectory())
-        .map((entry) => path.join(esminiCatalogs, entry.name)),
-    ];
+    const searchPath = esminiSearchPath();
     const folder = temporaryFolder('m2s-esmini-corpus-');
     const files = fs
       .readdirSync(esminiScenarios)
@@ -148,5 +153,41 @@ describe("cli: run, with esmini's Catalogs as the scenario path, takes the road 
     assert.match(ran.stderr, /warning: road file '\.\.\/xodr\/straight_500m\.xodr' is found neither beside this file/);
     assert.match(ran.stderr, /Failed to locate OpenDRIVE file/);
     assert.equal(fs.existsSync(path.join(folder, 'out.csv')), false, 'no CSV of a run that did not happen');
+  });
+});
+
+describe("cli: run says where two entities collide in esmini's samples, and not where the scenario means them to overlap", function () {
+  this.timeout(180_000);
+
+  it('a pedestrian hit is said with its time and placed on the entity; trailers, a ghost and entities placed on each other are not', function () {
+    requireEsmini(this);
+    if (!fs.existsSync(esminiScenarios)) this.skip();
+    const searchPath = esminiSearchPath();
+    // Each with a collision esmini's detection logs at t=0 or along the run, and the ones the sample means.
+    const files = [
+      'pedestrian_collision.xosc',
+      'truck_with_rotating_axle.xosc',
+      'follow_reference.xosc',
+      'long_dist_action_with_jerk.xosc',
+    ];
+    const cli = runCli(['run', ...files, '--duration', '12', '--road-path', searchPath.join(path.delimiter), '--esmini', esminiBinary], {
+      cwd: esminiScenarios,
+    });
+    assert.equal(cli.status, 0, cli.stderr);
+    const outcome = (file: string) => new RegExp(`^${file.replace('.', '\\.')}: esmini: .*$`, 'm').exec(cli.stderr)?.[0] ?? '';
+    // The sample is named after it: the ego hits the pedestrian, and esmini drives on through it; each named where declared.
+    assert.match(
+      outcome('pedestrian_collision.xosc'),
+      /^pedestrian_collision\.xosc: esmini: 0 errors, \d+ warnings?; .*; Ego \(pedestrian_collision\.xosc:\d+\) and pedestrian_adult \(pedestrian_collision\.xosc:\d+\) collide at t=5\.45 s \(their bounding boxes overlap;/,
+    );
+    // No complaint of esmini's about the scenario: no warning of its own.
+    assert.doesNotMatch(cli.stderr, /warning: Collision between/);
+    // Two cars the Init puts on one spot are no collision; they are one where they meet again later, each keeping its distance.
+    assert.match(outcome('long_dist_action_with_jerk.xosc'), /; Ego \(\S+\) and ego jerk \(\S+\) collide at t=10\.45 s \(/);
+    // A truck and the trailers esmini makes of it (Truck+, Truck++), a car and the ghost it follows.
+    for (const file of files.slice(1, 3)) {
+      assert.match(outcome(file), /^\S+: esmini: /, `${file}: no outcome\n${cli.stderr}`);
+      assert.doesNotMatch(outcome(file), /collide/, file);
+    }
   });
 });

@@ -133,6 +133,13 @@ describe("client: the bird's-eye view's drawing", () => {
     const small = runTracks({ version: '', scenarioFile: '', times: Float64Array.from([0, 1]), entities: [], truncated: true }, 'x');
     assert.deepEqual(small.times, [0, 1]);
     assert.match(small.notes.join(), /end is left out/);
+    // Run in esmini hands the collisions its run said: the view lists them with the run's other notes.
+    const hit = runTracks({ version: '', scenarioFile: '', times: Float64Array.from([0, 1]), entities: [], truncated: false }, 'x', {}, [
+      { entities: ['adversary', 'lead'], time: 4.45 },
+    ]);
+    assert.deepEqual(hit.notes, [
+      'adversary and lead collide at t=4.45 s: their bounding boxes overlap (esmini drives on through each other)',
+    ]);
   });
 
   it("names a batch's kept run as the Variations view lists it (#I of RESULTS), any other run by its file", async () => {

@@ -4,7 +4,7 @@ import { commandTargets } from '../commands';
 import { packageEntryUri } from '../packageFileSystem';
 import { BirdsEyeView } from './panel';
 import type { TraceRecord } from '../../../common/src/trace';
-import type { RunSource } from './runData';
+import type { RunCollision, RunSource } from './runData';
 
 /** Registers the bird's-eye view and its commands; returns the view (for the extension's API). */
 export function registerBirdsEye(
@@ -47,6 +47,7 @@ export function registerBirdsEye(
         roadFile?: unknown;
         label?: unknown;
         until?: unknown;
+        collisions?: unknown;
       };
       const run: RunSource = { csvPath: path };
       if (typeof given.roadFile === 'string') run.roadFile = given.roadFile;
@@ -54,6 +55,7 @@ export function registerBirdsEye(
       if (typeof given.until === 'number' && Number.isFinite(given.until)) run.until = given.until;
       if (typeof given.logPath === 'string') run.logPath = given.logPath;
       if (typeof given.logText === 'string') run.logText = given.logText;
+      if (Array.isArray(given.collisions)) run.collisions = given.collisions as RunCollision[];
       // Run in esmini's trace (common/src/trace.ts records), already placed on the flattened elements.
       if (Array.isArray(given.trace)) run.trace = given.trace as TraceRecord[];
       const scenario =

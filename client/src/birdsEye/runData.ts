@@ -36,6 +36,14 @@ export interface RunSource {
   label?: string;
   /** The run's time limit, s: rows after it (esmini logs one more step) are left out. */
   until?: number;
+  /** Where two entities began to collide, as the run that made the CSV said (Run in esmini); a CSV alone says nothing of it. */
+  collisions?: RunCollision[];
+}
+
+/** Two entities whose bounding boxes begin to overlap at `time` (s). */
+export interface RunCollision {
+  entities: [string, string];
+  time: number;
 }
 
 /** A run read: what the view draws (its event starts still empty) and esmini's log of it, when found. */
@@ -47,7 +55,12 @@ export interface LoadedRun {
 const round = (value: number) => Math.round(value * 100) / 100;
 
 /** The run as the view needs it: thinned to MAX_FRAMES, rounded to centimetres; `starts` by element path (eventList.ts). */
-export function runTracks(run: EsminiRun, label: string, starts: Record<string, number> = {}): RunTracks {
+export function runTracks(
+  run: EsminiRun,
+  label: string,
+  starts: Record<string, number> = {},
+  collisions: readonly RunCollision[] = [],
+): RunTracks {
   const every = Math.max(1, Math.ceil(run.times.length / MAX_FRAMES));
   const indices: number[] = [];
   for (let i = 0; i < run.times.length; i += every) indices.push(i);
@@ -55,6 +68,10 @@ export function runTracks(run: EsminiRun, label: string, starts: Record<string, 
   const notes: string[] = [];
   if (run.truncated) notes.push('the run is longer than the view reads; its end is left out');
   if (every > 1) notes.push(`every ${every}th of ${run.times.length} steps is drawn`);
+  for (const { entities, time } of collisions)
+    notes.push(
+      `${entities[0]} and ${entities[1]} collide at t=${round(time)} s: their bounding boxes overlap (esmini drives on through each other)`,
+    );
   return {
     label,
     times: indices.map((i) => run.times[i]),
@@ -98,7 +115,7 @@ export async function loadRun(source: RunSource): Promise<LoadedRun> {
       if (logText !== undefined) break;
     }
   }
-  const tracks = runTracks(run, source.label ?? keptRunName(source.csvPath) ?? path.basename(source.csvPath));
+  const tracks = runTracks(run, source.label ?? keptRunName(source.csvPath) ?? path.basename(source.csvPath), {}, source.collisions);
   const roadFile = source.roadFile ?? (logText ? parseEsminiLoadedRoad(logText) : undefined);
   return { tracks: roadFile ? { ...tracks, roadFile } : tracks, ...(logText !== undefined ? { log: logText } : {}) };
 }

@@ -1,5 +1,4 @@
 import type { EntityTrack, EsminiRun } from '../../../common/src/esminiCsv';
-import type { EsminiLogMessage } from '../esmini/log';
 
 /** What a batch row says about one run's trajectories: the ego against every other entity. */
 export interface RunMetrics {
@@ -12,24 +11,6 @@ export interface RunMetrics {
    * rows (at least 1 cm/s), over every row where it closes; undefined when it never closes.
    */
   minTtc: number | undefined;
-}
-
-/** A collision esmini's global detection (`--collision`) logged: `Collision between A and B` (esmini 3.6, ScenarioEngine::DetectCollisions). */
-export interface Collision {
-  entities: [string, string];
-  time: number | undefined;
-}
-
-const COLLISION = /^Collision between (.+) and (.+?)$/;
-
-export function collisionsIn(messages: EsminiLogMessage[]): Collision[] {
-  const collisions: Collision[] = [];
-  for (const message of messages) {
-    if (message.text.endsWith(' dissolved')) continue;
-    const match = COLLISION.exec(message.text);
-    if (match) collisions.push({ entities: [match[1], match[2]], time: message.time });
-  }
-  return collisions;
 }
 
 type Point = [number, number];

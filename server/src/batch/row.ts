@@ -1,4 +1,4 @@
-import type { Collision } from './metrics';
+import type { Collision } from '../esmini/log';
 
 /**
  * `ok`: the scenario ended by itself and esmini reported no error; `limit`: the limit the user set (--duration)

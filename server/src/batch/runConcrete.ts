@@ -5,7 +5,8 @@ import type { ControllerFilesFrom } from '../esmini/controllerFiles';
 import { EsminiTextRunResult, limitSentence, removeRunFolder, runScenarioText } from '../esmini/run';
 import { esminiMessageSeverity, withoutRunFolder } from '../esmini/messages';
 import { csvNamingScenario } from '../esmini/process';
-import { collisionsIn, trajectoryMetrics } from './metrics';
+import { trajectoryMetrics } from './metrics';
+import { collisionsIn } from '../esmini/log';
 import type { BatchRow, RunStatus } from './results';
 
 /** One concrete scenario, as a batch runs it: everything a run needs, on this machine. */

@@ -99,3 +99,41 @@ export function readEsminiLog(output: string): EsminiLog {
 export function parseEsminiLog(output: string): EsminiLogMessage[] {
   return readEsminiLog(output).messages;
 }
+
+/** A collision esmini's global detection (`--collision`) logged: `Collision between A and B` (esmini 3.6, ScenarioEngine.cpp:1160 DetectCollisions). */
+export interface Collision {
+  entities: [string, string];
+  time: number | undefined;
+}
+
+const COLLISION = /^Collision between (.+) and (.+?)$/;
+
+/** The collision a log line says began (never the line saying that it `dissolved`, ScenarioEngine.cpp:1170). */
+export function collisionOf(message: Pick<EsminiLogMessage, 'text' | 'time'>): Collision | undefined {
+  if (isCollisionEnd(message.text)) return undefined;
+  const match = COLLISION.exec(message.text);
+  return match ? { entities: [match[1], match[2]], time: message.time } : undefined;
+}
+
+/** Each collision esmini logged as it began. */
+export function collisionsIn(messages: readonly EsminiLogMessage[]): Collision[] {
+  return messages.flatMap((message) => collisionOf(message) ?? []);
+}
+
+/** esmini's word that two entities' bounding boxes no longer overlap: the end of a collision, no problem of its own. */
+export function isCollisionEnd(text: string): boolean {
+  return text.startsWith('Collision between ') && text.endsWith(' dissolved');
+}
+
+/**
+ * Whether a collision esmini logged is one the scenario did not mean: two entities the Init placed on each other (at or
+ * before time 0: a load on a truck, two cars compared on one spot), a vehicle and the trailer esmini made of its
+ * Trailer (named NAME+, Entities.cpp:1553) or one the scenario hitches to it (`hitched`), or a ghost esmini made
+ * (NAME_ghost, ScenarioEngine.cpp:968), which nothing can hit.
+ */
+export function isMeantOverlap(collision: Collision, declared: ReadonlySet<string>, hitched: ReadonlySet<string>): boolean {
+  const [a, b] = collision.entities;
+  if (collision.time === undefined || collision.time <= 0) return true;
+  if (a === `${b}+` || b === `${a}+` || hitched.has(`${a}\u0000${b}`) || hitched.has(`${b}\u0000${a}`)) return true;
+  return [a, b].some((name) => name.endsWith('_ghost') && !declared.has(name));
+}

@@ -1,19 +1,19 @@
 import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
-import { Flattener, FlatSource } from '../core/flatten';
+import { Flattener, FlatSource, originOf } from '../core/flatten';
 import { packagedFilesFolder } from '../core/flatten/rebase';
 import { Problem } from '../core/problems';
 import { foundRoadName, locateRoadFile, RoadFileLookup, roadFolders, scenarioFolderOf } from '../core/semantics/roadFiles';
 import { Evaluator, semanticModelOf } from '../core/semantics/model';
 import { diskRef, displayRef, nodeFileSystem, ScenarioStore, SourceRef } from '../core/sources';
 import { CatalogLoader } from '../core/semantics/catalogs';
-import { attribute, descendants, escapeAttributeValue, parseXml } from '../core/xml';
+import { attribute, attributeValue, descendants, escapeAttributeValue, parseXml, XmlElement } from '../core/xml';
 import { anyEntityMoved, parseEsminiLoadedRoad } from '../../../common/src/esminiCsv';
 import type { TraceRecord } from '../../../common/src/trace';
 import { ControllerFilesFrom, controllerFilesOfFlattening, withCatalogFolderNote, withControllerFilesFrom } from './controllerFiles';
 import { locateEsmini } from './locate';
-import { EsminiLogMessage, EsminiRemark, readEsminiLog } from './log';
+import { Collision, collisionOf, collisionsIn, EsminiLogMessage, EsminiRemark, isCollisionEnd, isMeantOverlap, readEsminiLog } from './log';
 import { esminiMessageSeverity, EsminiProblem, mapEsminiMessages, withoutRunFolder } from './messages';
 import { EsminiEnd, EsminiProcessResult, fileLines, lastCsvTime, makeRunFolder, runEsminiProcess } from './process';
 import { storyboardMapOf, traceFromLog } from './storyboardTrace';
@@ -127,6 +127,8 @@ export interface EsminiRunResult {
   esminiFindings: Problem[];
   /** Not flattened only because of errors: forced (`force`), the same scenario would run. */
   forcible?: boolean;
+  /** Where two entities' bounding boxes began to overlap, as esmini's detection logged it, but for overlaps the scenario means (log.ts isMeantOverlap). */
+  collisions?: Collision[];
 }
 
 export interface RunRoadFile {
@@ -386,10 +388,18 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
   // Those the flattening reported already are printed with its problems.
   const esminiFindings = flattener.simulator === 'esmini' ? [] : findings;
   const controllerFilesFrom = controllerFilesOfFlattening(main, flat.source);
-  const ran = await runLimitedText(location.program, limited, searchPath, { ...options, controllerFilesFrom }, timeStep, seed, limit, {
-    runFolder,
-    files: flat.files,
-  });
+  // esmini drives entities through each other without a word unless asked (--collision): a run says where two collide.
+  const collision = options.collision ?? true;
+  const ran = await runLimitedText(
+    location.program,
+    limited,
+    searchPath,
+    { ...options, collision, controllerFilesFrom },
+    timeStep,
+    seed,
+    limit,
+    { runFolder, files: flat.files },
+  );
   const log = readEsminiLog(ran.run.output);
   if (roadFile) roadFile.loaded = parseEsminiLoadedRoad(ran.run.output);
   // Handed an absolute path, esmini loads that file; should it load another (none was found here), the run and the picture differ: said on the LogicFile.
@@ -422,7 +432,22 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
       fs.existsSync,
     ),
   }));
-  const problems = mapEsminiMessages(messages, flat.source, main);
+  // A collision is said where the scenario did not mean it: two entities the Init placed on each other, a vehicle and its trailer, a ghost.
+  const root = (flat.source.model ?? flat.source.original)?.document.root;
+  const declared = new Set((flat.source.model ?? flat.source.original)?.entities.map((entity) => entity.name) ?? []);
+  const hitched = root ? hitchedPairs(root) : new Set<string>();
+  const meant = (message: EsminiLogMessage) => {
+    const collision = collisionOf(message);
+    return isCollisionEnd(message.text) || (collision !== undefined && isMeantOverlap(collision, declared, hitched));
+  };
+  // A collision is no complaint of esmini's about the scenario: said after the run's figures, with where each entity is declared.
+  const collisions = collisionsIn(messages.filter((message) => !meant(message)));
+  const problems = mapEsminiMessages(
+    messages.filter((message) => !collisionOf(message) && !isCollisionEnd(message.text)),
+    flat.source,
+    main,
+  );
+  const declaredAt = (name: string) => entityPlace(flat.source, name, sourceFolderOf(main));
   const trace = traceFromLog(storyboardMapOf(flat.source), ran.run.output);
   const errors = problems.filter((problem) => problem.severity === 'error').length;
   const outcome = outcomeOf(
@@ -434,6 +459,8 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
       count: findings.length,
       first: `${displayRef(findings[0].source, sourceFolderOf(main))}:${findings[0].range.start.line + 1}`,
     },
+    collisions,
+    declaredAt,
   );
   const scenarioErrors = flattenProblems.filter((problem) => problem.severity === 'error').length;
   const forced =
@@ -457,6 +484,7 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
     wallMs: elapsed(),
     ...outcome,
     message: outcome.message + forced,
+    collisions,
   };
 }
 
@@ -613,6 +641,8 @@ function outcomeOf(
   warnings: number,
   firstError?: string,
   findings?: { count: number; first: string },
+  collisions: readonly Collision[] = [],
+  declaredAt: (entity: string) => string | undefined = () => undefined,
 ): Pick<EsminiRunResult, 'outcome' | 'message'> {
   const { run, common } = ran;
   const counts = `${errors} error${errors === 1 ? '' : 's'}, ${warnings} warning${warnings === 1 ? '' : 's'}`;
@@ -640,8 +670,72 @@ function outcomeOf(
       : '';
   return {
     outcome: errors > 0 ? 'errors' : 'ok',
-    message: `esmini: ${counts}; ${covered} (the run took ${(run.wallMs / 1000).toFixed(2)} s)${still}`,
+    message: `esmini: ${counts}; ${covered} (the run took ${(run.wallMs / 1000).toFixed(2)} s)${still}${collisionSentence(collisions, declaredAt)}`,
   };
+}
+
+/** `file:line` (from `base`, the main's folder) of the ScenarioObject declaring `name`, in the file it was written in; undefined when the scenario declares none (esmini's own). */
+function entityPlace(source: FlatSource, name: string, base: string): string | undefined {
+  const root = (source.model ?? source.original)?.document.root;
+  const element = root?.children
+    .find((child) => child.name === 'Entities')
+    ?.children.find((child) => child.name === 'ScenarioObject' && attributeValue(child, 'name') === name);
+  if (!element) return undefined;
+  const origin = originOf(source, element);
+  const document = (origin.source.original ?? origin.source.model)?.document;
+  return document
+    ? `${displayRef(origin.source.ref, base)}:${document.lines.range(origin.element.start, origin.element.start).start.line + 1}`
+    : undefined;
+}
+
+/**
+ * Each vehicle and trailer the scenario hitches together, `A\u0000B`: a ConnectTrailerAction's actors (its Private's entity
+ * or its group's) with its trailerRef, and a Vehicle's Trailer/TrailerRef with the entity declaring it.
+ */
+function hitchedPairs(root: XmlElement): Set<string> {
+  const pairs = new Set<string>();
+  const visit = (element: XmlElement, owners: readonly string[]) => {
+    let here = owners;
+    if (element.name === 'ScenarioObject' || element.name === 'Private')
+      here = [attributeValue(element, 'name') ?? attributeValue(element, 'entityRef') ?? ''];
+    if (element.name === 'ManeuverGroup')
+      here = element.children
+        .filter((child) => child.name === 'Actors')
+        .flatMap((actors) => actors.children.map((actor) => attributeValue(actor, 'entityRef') ?? ''));
+    const trailer =
+      element.name === 'ConnectTrailerAction'
+        ? attributeValue(element, 'trailerRef')
+        : element.name === 'TrailerRef'
+          ? attributeValue(element, 'entityRef')
+          : undefined;
+    if (trailer !== undefined) for (const owner of here) pairs.add(`${owner}\u0000${trailer}`);
+    for (const child of element.children) visit(child, here);
+  };
+  visit(root, []);
+  return pairs;
+}
+
+/** At most this many collisions are named in a run's message; the rest are counted (each is a warning of the run). */
+const NAMED_COLLISIONS = 3;
+
+/** `; A and B collide at t=9.35 s`, for each pair's first collision, as esmini's detection logged it; empty when none. */
+export function collisionSentence(
+  collisions: readonly Collision[],
+  declaredAt: (entity: string) => string | undefined = () => undefined,
+): string {
+  const first = new Map<string, Collision>();
+  for (const collision of collisions) {
+    const key = [...collision.entities].sort().join('\u0000');
+    if (!first.has(key)) first.set(key, collision);
+  }
+  if (first.size === 0) return '';
+  const said = [...first.values()].slice(0, NAMED_COLLISIONS).map(({ entities, time }) => {
+    const [a, b] = entities.map((name) => (declaredAt(name) ? `${name} (${declaredAt(name)})` : name));
+    return `${a} and ${b} collide${time === undefined ? ' at the start' : ` at t=${trimmed(time)} s`}`;
+  });
+  const more =
+    first.size > NAMED_COLLISIONS ? ` and ${first.size - NAMED_COLLISIONS} more pair${first.size - NAMED_COLLISIONS === 1 ? '' : 's'}` : '';
+  return `; ${said.join(', ')}${more} (their bounding boxes overlap; esmini drives on through each other)`;
 }
 
 /** Why the time limit added to a run ended it, in one sentence (the same on every machine: no wall-clock figure). */

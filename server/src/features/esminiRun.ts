@@ -89,6 +89,7 @@ export class EsminiRuns {
       log: result.log,
       ...(result.trace ? { trace: result.trace } : {}),
       csvFile: result.csvFile,
+      ...(result.collisions?.length ? { collisions: result.collisions.map(({ entities, time }) => ({ entities, time: time ?? 0 })) } : {}),
       scenarioFile: result.scenarioFile,
       // A distribution file has no roads or entities of its own: the view draws its concrete scenario's on its ScenarioFile.
       ...(distribution?.loaded.variations && /\.xosc$/i.test(distribution.loaded.variations.scenarioPath)
