@@ -37,7 +37,7 @@ export default tseslint.config(
       parser: tseslint.parser,
       parserOptions: {
         // The scripts with a declaration file of their own (.d.mts) are left out of test/tsconfig.json's program by it.
-        projectService: { allowDefaultProject: ['scripts/esminiBuild.mjs', 'scripts/startSettings.mjs'] },
+        projectService: { allowDefaultProject: ['scripts/esminiBuild.mjs', 'scripts/startSettings.mjs', 'scripts/cli-code-cache.mjs'] },
         tsconfigRootDir: import.meta.dirname,
       },
     },

@@ -4,7 +4,18 @@ import { createRequire } from 'node:module';
 import { Script } from 'node:vm';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { bundleFor, CLI_BUNDLE, CliEntry, CODE_CACHE_SUFFIX, COMMAND_BUNDLES, commandBundle, loadBundle } from '../../server/src/cli/start';
+import {
+  bundleFor,
+  cacheFileFor,
+  CLI_BUNDLE,
+  CliEntry,
+  CODE_CACHE_SUFFIX,
+  COMMAND_BUNDLES,
+  commandBundle,
+  loadBundle,
+  PLAIN_EXPORT_CACHE_SUFFIX,
+} from '../../server/src/cli/start';
+import { warmingRuns } from '../../scripts/cli-code-cache.mjs';
 import { repoRoot } from '../support/paths';
 import { temporaryFolder } from '../support/temporaryDirectory';
 
@@ -24,11 +35,33 @@ describe("cli: the program's entry runs a command's own bundle", function () {
   });
 
   it('the build wrote every command bundle with a code cache that V8 accepts', () => {
-    for (const file of [CLI_BUNDLE, ...new Set(Object.values(COMMAND_BUNDLES).map(commandBundle))]) {
-      const { script, exports } = loadBundle(dist, require, fs.readFileSync(path.join(dist, file + CODE_CACHE_SUFFIX)), file);
-      assert.equal(script.cachedDataRejected, false, `${file}'s code cache was rejected`);
+    const exportBundle = commandBundle(COMMAND_BUNDLES.export);
+    for (const [file, cache] of [
+      ...[CLI_BUNDLE, ...new Set(Object.values(COMMAND_BUNDLES).map(commandBundle))].map((each) => [each, each + CODE_CACHE_SUFFIX]),
+      [exportBundle, exportBundle + PLAIN_EXPORT_CACHE_SUFFIX],
+    ]) {
+      const { script, exports } = loadBundle(dist, require, fs.readFileSync(path.join(dist, cache)), file);
+      assert.equal(script.cachedDataRejected, false, `${cache} was rejected`);
       assert.equal(typeof exports.main, 'function', file);
     }
+  });
+
+  it("a plain .xosc's export reads the export bundle's cache without the flattener; a modular main's, anything else, the bundle's own", () => {
+    const exportBundle = commandBundle(COMMAND_BUNDLES.export);
+    const own = exportBundle + CODE_CACHE_SUFFIX;
+    const exportOf = (input: string, ...rest: string[]) => cacheFileFor(exportBundle, ['export', input, '--target', 'carla', ...rest]);
+    assert.equal(exportOf(path.join(examples, 'crossing.xosc'), '-o', 'out.xosc'), exportBundle + PLAIN_EXPORT_CACHE_SUFFIX);
+    assert.equal(exportOf(path.join(examples, 'crossing.xosc'), '--road-path', 'x.xosc', '-q'), exportBundle + PLAIN_EXPORT_CACHE_SUFFIX);
+    // A modular main, a package, a folder, a file not there, two inputs.
+    assert.equal(exportOf(path.join(examples, 'main.xosc'), '-o', 'out.xosc'), own);
+    assert.equal(exportOf(path.join(examples, 'braking.mosc'), '-o', 'out.xosc'), own);
+    assert.equal(exportOf(path.join(examples, 'pedestrian'), '-o', 'out.xosc'), own);
+    assert.equal(exportOf(path.join(examples, 'absent.xosc'), '-o', 'out.xosc'), own);
+    assert.equal(exportOf(path.join(examples, 'crossing.xosc'), path.join(examples, 'lane_change.xosc')), own);
+    assert.equal(
+      cacheFileFor(commandBundle(COMMAND_BUNDLES.flatten), ['flatten', path.join(examples, 'crossing.xosc')]),
+      'cli-flatten.js' + CODE_CACHE_SUFFIX,
+    );
   });
 
   it('without the command bundles (the .vsix ships only the whole CLI) the same command gives the same output', () => {
@@ -76,5 +109,19 @@ describe("cli: the program's entry runs a command's own bundle", function () {
     // A modular main does start the flattener: the notes above would have seen it.
     assert.equal(await exportOf(path.join(examples, 'main.xosc')), 0);
     assert.ok(started.includes('server/src/core/flatten/flattener.ts'), started.join(', '));
+  });
+
+  it("the export bundle's plain cache is written after a plain export that reads a road and samples every shape", async () => {
+    // A warm-up that failed would leave its code out of the cache silently: each of the build's export runs succeeds.
+    const out = temporaryFolder('m2s-start-warm-up-');
+    const runs = warmingRuns(examples, out).plainExport;
+    const { exports: cli } = loadBundle(dist, require, undefined, commandBundle(COMMAND_BUNDLES.export));
+    const messages: string[] = [];
+    const io = { out: (text: string) => messages.push(text), err: (text: string) => messages.push(text) };
+    for (const argv of runs) assert.equal(await cli.main(argv, io), 0, `${argv.join(' ')}: ${messages.join('\n')}`);
+    const plain = fs.readFileSync(path.join(out, 'plain.xosc'), 'utf8');
+    assert.match(plain, /<LogicFile filepath="[^"]*straight_1000m\.xodr"/);
+    assert.equal(plain.match(/<Polyline>/g)?.length, 3, 'the Clothoid, the ClothoidSpline and the Nurbs sampled');
+    assert.doesNotMatch(plain, /<CatalogReference/);
   });
 });

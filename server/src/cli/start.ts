@@ -58,9 +58,9 @@ export function loadBundle(
   return loadModuleBundle<CliEntry>(folder, requireFn, cachedData, bundleFile);
 }
 
-function readCache(folder: string, bundleFile: string): Buffer | undefined {
+function readCache(folder: string, bundleFile: string, cacheFile: string = bundleFile + CODE_CACHE_SUFFIX): Buffer | undefined {
   try {
-    const cache = join(folder, bundleFile + CODE_CACHE_SUFFIX);
+    const cache = join(folder, cacheFile);
     // V8 checks a cache against its source by length alone: a bundle rebuilt after its cache (watch mode) is compiled as usual.
     if (statSync(cache).mtimeMs < statSync(join(folder, bundleFile)).mtimeMs) return undefined;
     return readFileSync(cache);
@@ -79,6 +79,49 @@ export function bundleFor(folder: string, argv: readonly string[]): string {
 }
 
 /**
+ * The export bundle's second code cache, written after a plain scenario's export alone: V8 reads every function of a
+ * cache at each start, and a plain export (most of them) needs none of the flattener's, which the first holds for a
+ * modular main's export.
+ */
+export const PLAIN_EXPORT_CACHE_SUFFIX = '.plain' + CODE_CACHE_SUFFIX;
+
+/** Export's options that take a value: the word after them is no input. */
+const EXPORT_VALUE_OPTIONS: ReadonlySet<string> = new Set([
+  '--target',
+  '-o',
+  '--output',
+  '--report',
+  '--carla',
+  '--blueprints',
+  '--road',
+  '--road-path',
+  '--ego',
+  '--index',
+  '--scenario-path',
+]);
+
+/**
+ * The code cache file of a command line's bundle: for an export of a plain .xosc (no ScenarioReference, no
+ * distribution), the cache without the flattener. A wrong guess costs time only: any cache of the bundle runs it.
+ */
+export function cacheFileFor(bundleFile: string, argv: readonly string[]): string {
+  const own = bundleFile + CODE_CACHE_SUFFIX;
+  if (bundleFile !== commandBundle(COMMAND_BUNDLES.export)) return own;
+  const inputs = argv.slice(1).filter((arg, index, args) => !arg.startsWith('-') && !EXPORT_VALUE_OPTIONS.has(args[index - 1]));
+  if (inputs.length !== 1 || !inputs[0].toLowerCase().endsWith('.xosc')) return own;
+  try {
+    const text = readFileSync(inputs[0], 'latin1');
+    // Not a regular expression: the first one a process runs costs it about a megabyte.
+    return text.includes('<ScenarioReference') || text.includes('<ParameterValueDistribution')
+      ? own
+      : bundleFile + PLAIN_EXPORT_CACHE_SUFFIX;
+  } catch {
+    // Unreadable: the export says why, with either cache.
+    return own;
+  }
+}
+
+/**
  * V8 optimizes a function after a fixed amount of its bytecode has run; in a run of a few hundred
  * milliseconds most of that optimizing (on another thread) is never paid back: a 31-file flatten spent a
  * fifth of its CPU time on it. A command's own bundle waits eight times longer before optimizing, which
@@ -88,7 +131,10 @@ export const INTERRUPT_BUDGET_FLAG = '--interrupt-budget=540672';
 
 if (require.main === module) {
   const bundleFile = bundleFor(__dirname, process.argv.slice(2));
-  const { exports } = loadBundle(__dirname, require, readCache(__dirname, bundleFile), bundleFile);
+  const cacheFile = cacheFileFor(bundleFile, process.argv.slice(2));
+  // A build without the second cache: the bundle's own.
+  const cache = readCache(__dirname, bundleFile, cacheFile) ?? readCache(__dirname, bundleFile);
+  const { exports } = loadBundle(__dirname, require, cache, bundleFile);
   if (bundleFile !== CLI_BUNDLE) (require('node:v8') as typeof import('node:v8')).setFlagsFromString(INTERRUPT_BUDGET_FLAG);
   exports.runFromCommandLine();
 }
