@@ -3,7 +3,7 @@ import * as os from 'node:os';
 import * as path from 'node:path';
 import { Flattener, FlatSource, originOf } from '../core/flatten';
 import { packagedFilesFolder } from '../core/flatten/rebase';
-import { Problem } from '../core/problems';
+import { Problem, problemData } from '../core/problems';
 import { foundRoadName, locateRoadFile, RoadFileLookup, roadFolders, scenarioFolderOf } from '../core/semantics/roadFiles';
 import { Evaluator, semanticModelOf } from '../core/semantics/model';
 import { diskRef, displayRef, nodeFileSystem, ScenarioStore, SourceRef } from '../core/sources';
@@ -491,11 +491,15 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
 /**
  * The esmini profile's findings (code `simulator`) of `main` and of the groups it imports, which a run in esmini names
  * whatever simulator the flattening checked for: those of the flattening when it checked for esmini, else read again so.
+ * Those of a StartTrigger whose edge esmini never fires come first: an Act that never starts holds back its Events, whose
+ * own findings (an Act that does not start at time 0) follow from it.
  */
 async function esminiFindingsOf(flattener: Flattener, main: SourceRef, flattenProblems: readonly Problem[]): Promise<Problem[]> {
   const problems =
     flattener.simulator === 'esmini' ? flattenProblems : (await new Flattener(flattener.store, 'esmini').analyze(main)).problems;
-  return problems.filter((problem) => problem.code === 'simulator');
+  const findings = problems.filter((problem) => problem.code === 'simulator');
+  const neverFires = (problem: Problem) => problemData(problem, 'simulator')?.simulationTimeFix === 'edge';
+  return [...findings.filter(neverFires), ...findings.filter((problem) => !neverFires(problem))];
 }
 
 /** A plain scenario's run (`runScenarioText`): esmini's messages as it printed them, placed on no source line. */
