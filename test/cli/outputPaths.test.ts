@@ -467,3 +467,72 @@ describe("cli: a catalog controller entry's File, used from a group a main impor
     assert.doesNotMatch(beside.stderr, /warning/);
   });
 });
+
+describe("cli: a catalog controller entry's File lying only beside a group's file in another folder or package", () => {
+  const road = path.join(esminiRoads, 'straight_500m.xodr');
+  const warningsOf = (stderr: string) => stderr.split('\n').filter((text) => text.includes(': warning:'));
+  const referenceLine = (module: string) =>
+    fs
+      .readFileSync(module, 'utf8')
+      .split('\n')
+      .findIndex((text) => text.includes('entryName="acc"')) + 1;
+
+  it('is warned of at the reference, by flatten beside the main, check and run, naming where esmini looks; beside the main, nothing', () => {
+    const root = temporaryFolder('m2s-imported-controller-folder-');
+    const { module } = importedCatalogController(root, road, 'modules');
+    fs.mkdirSync(path.join(root, 'modules', 'inputs'));
+    fs.writeFileSync(path.join(root, 'modules', 'inputs', 'acc.cfg'), '');
+    const expected =
+      `${path.join('modules', 'control.xosc')}:${referenceLine(module)}:` +
+      `${fs.readFileSync(module, 'utf8').split('\n')[referenceLine(module) - 1].indexOf('acc"') + 1}: warning: ` +
+      `catalog entry 'acc' names its controller File 'inputs/acc.cfg', which esmini looks up from the working folder, then from the folder of ` +
+      `the scenario that uses the entry: from the folder of ${path.join(root, 'main.xosc')}, which imports this group, it names ` +
+      `${path.join(root, 'inputs', 'acc.cfg')}, which does not exist; the file lies beside this file (${path.join(root, 'modules', 'inputs', 'acc.cfg')})`;
+    for (const args of [
+      ['flatten', 'main.xosc', '-o', 'flat.xosc'],
+      ['check', 'main.xosc'],
+      ['run', 'main.xosc', '--esmini', esminiBinary, '--duration', '0.1'],
+    ]) {
+      const run = runCli(args, { cwd: root });
+      assert.equal(run.status, 0, `${args.join(' ')}: ${run.stderr}`);
+      const warnings = warningsOf(run.stderr);
+      assert.equal(warnings.length, 1, `${args.join(' ')}: ${run.stderr}`);
+      assert.ok(warnings[0].startsWith(expected), `${args.join(' ')}:\n${warnings[0]}\n${expected}`);
+    }
+    fs.mkdirSync(path.join(root, 'inputs'));
+    fs.copyFileSync(path.join(root, 'modules', 'inputs', 'acc.cfg'), path.join(root, 'inputs', 'acc.cfg'));
+    const beside = runCli(['flatten', 'main.xosc', '-o', 'flat.xosc'], { cwd: root });
+    assert.equal(beside.status, 0, beside.stderr);
+    assert.doesNotMatch(beside.stderr, /warning/);
+  });
+
+  it('is warned of for a File inside the package the group comes from, named inside it', async () => {
+    const root = temporaryFolder('m2s-imported-controller-package-');
+    const { module } = importedCatalogController(root, road, 'modules');
+    const zip = new JSZip();
+    zip.file('main.xosc', fs.readFileSync(module));
+    zip.file('catalogs/ControllerCatalog.xosc', fs.readFileSync(path.join(root, 'modules', 'catalogs', 'ControllerCatalog.xosc')));
+    zip.file('inputs/acc.cfg', '');
+    fs.writeFileSync(path.join(root, 'control.mosc'), await zip.generateAsync({ type: 'nodebuffer' }));
+    fs.rmSync(path.join(root, 'modules'), { recursive: true });
+    const main = path.join(root, 'main.xosc');
+    fs.writeFileSync(
+      main,
+      fs.readFileSync(main, 'utf8').replace('scenarioFileName="modules/control.xosc"', 'scenarioFileName="control.mosc"'),
+    );
+    const flatten = runCli(['flatten', 'main.xosc', '-o', 'flat.xosc'], { cwd: root });
+    assert.equal(flatten.status, 0, flatten.stderr);
+    const warnings = warningsOf(flatten.stderr);
+    assert.equal(warnings.length, 1, flatten.stderr);
+    assert.match(
+      warnings[0],
+      /^control\.mosc\/main\.xosc:\d+:\d+: warning: catalog entry 'acc' names its controller File 'inputs\/acc\.cfg'/,
+    );
+    assert.ok(
+      warnings[0].includes(
+        `it names ${path.join(root, 'inputs', 'acc.cfg')}, which does not exist; the file lies beside this file (${path.join(root, 'control.mosc')}/inputs/acc.cfg)`,
+      ),
+      warnings[0],
+    );
+  });
+});

@@ -471,8 +471,9 @@ ${lines.join('')}  </Catalog>
  * Control assigns Ego the ControllerCatalog entry 'acc' (catalogs/ControllerCatalog.xosc, esmini's ACCController), whose File
  * is `inputs/acc.cfg` written as it stands, and sets Ego's speed. The main names no ControllerCatalog itself: the flattening
  * carries control.xosc's. The File is left for the case to write (`root`/inputs/acc.cfg, beside the main, where esmini looks).
+ * `folder`: control.xosc and its catalogs lie in that sub-folder of `root` instead, which the main names.
  */
-export function importedCatalogController(root: string, logicFile: string): { main: string; module: string } {
+export function importedCatalogController(root: string, logicFile: string, folder = ''): { main: string; module: string } {
   const trigger =
     '<StartTrigger><ConditionGroup><Condition name="At0" delay="0" conditionEdge="none"><ByValueCondition><SimulationTimeCondition value="0" rule="greaterThan"/></ByValueCondition></Condition></ConditionGroup></StartTrigger>';
   const control =
@@ -480,7 +481,8 @@ export function importedCatalogController(root: string, logicFile: string): { ma
     `<Event name="Assign" priority="override"><Action name="AssignAcc"><PrivateAction><ControllerAction><AssignControllerAction>\n          <CatalogReference catalogName="ControllerCatalog" entryName="acc"/>\n        </AssignControllerAction></ControllerAction></PrivateAction></Action>${trigger}</Event>` +
     `<Event name="Go" priority="parallel"><Action name="Speed"><PrivateAction><LongitudinalAction><SpeedAction><SpeedActionDynamics dynamicsShape="step" value="0" dynamicsDimension="time"/><SpeedActionTarget><AbsoluteTargetSpeed value="10"/></SpeedActionTarget></SpeedAction></LongitudinalAction></PrivateAction></Action>${trigger}</Event>` +
     '</Maneuver></ManeuverGroup>';
-  const module = path.join(root, 'control.xosc');
+  fs.mkdirSync(path.join(root, folder), { recursive: true });
+  const module = path.join(root, folder, 'control.xosc');
   fs.writeFileSync(
     module,
     drivingScenario(logicFile, control).replace(
@@ -493,12 +495,12 @@ export function importedCatalogController(root: string, logicFile: string): { ma
     main,
     drivingScenario(
       logicFile,
-      '<ManeuverGroup name="Controlled" maximumExecutionCount="1"><Actors selectTriggeringEntities="false"><EntityRef entityRef="Ego"/></Actors><ScenarioReference scenarioFileName="control.xosc"><ManeuverGroupReference maneuverGroupName="Control"/></ScenarioReference></ManeuverGroup>',
+      `<ManeuverGroup name="Controlled" maximumExecutionCount="1"><Actors selectTriggeringEntities="false"><EntityRef entityRef="Ego"/></Actors><ScenarioReference scenarioFileName="${folder ? `${folder}/` : ''}control.xosc"><ManeuverGroupReference maneuverGroupName="Control"/></ScenarioReference></ManeuverGroup>`,
     ),
   );
-  fs.mkdirSync(path.join(root, 'catalogs'), { recursive: true });
+  fs.mkdirSync(path.join(root, folder, 'catalogs'), { recursive: true });
   fs.writeFileSync(
-    path.join(root, 'catalogs', 'ControllerCatalog.xosc'),
+    path.join(root, folder, 'catalogs', 'ControllerCatalog.xosc'),
     catalogFile(
       'ControllerCatalog',
       '    <Controller name="acc"><Properties><Property name="esminiController" value="ACCController"/><File filepath="inputs/acc.cfg"/></Properties></Controller>\n',

@@ -1,6 +1,7 @@
 import * as assert from 'node:assert/strict';
 import {
   FILE_PATH,
+  importedControllerFileWording,
   packagedPathOnStandardOutputWording,
   reachesOutsidePackageWording,
   unrebasedPathWording,
@@ -37,5 +38,20 @@ describe('diagnostics: file-path', () => {
       'declare the parameter with an absolute path, or write the output beside this file',
     );
     assert.equal(FILE_PATH.severity, 'warning');
+  });
+
+  it("says where esmini looks for an imported group's controller File that lies only beside the group's file, and what to do", () => {
+    assert.deepEqual(
+      importedControllerFileWording('acc', "'inputs/acc.cfg'", '/w/main.xosc', '/w/inputs/acc.cfg', '/w/modules/inputs/acc.cfg'),
+      {
+        severity: 'warning',
+        code: 'file-path',
+        message:
+          "catalog entry 'acc' names its controller File 'inputs/acc.cfg', which esmini looks up from the working folder, then from the folder of " +
+          'the scenario that uses the entry: from the folder of /w/main.xosc, which imports this group, it names /w/inputs/acc.cfg, which does ' +
+          "not exist; the file lies beside this file (/w/modules/inputs/acc.cfg), so the flattened scenario runs without the controller's File",
+        hint: "copy /w/modules/inputs/acc.cfg to /w/inputs/acc.cfg, or write the File's path absolute in the catalog entry",
+      },
+    );
   });
 });

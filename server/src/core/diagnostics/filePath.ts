@@ -72,6 +72,11 @@ export function unrebasedPathWording(message: string): ProblemWording<'file-path
   };
 }
 
+/** Where esmini looks a catalog entry's controller File up (ScenarioReader.cpp parseOSCObjectController): how both wordings start. */
+function controllerFileLookup(entry: string, written: string): string {
+  return `catalog entry '${entry}' names its controller File ${written}, which esmini looks up from the working folder, then from the folder of the scenario that uses the entry`;
+}
+
 /**
  * A catalog controller entry's File written as a relative path (`written`, quoted, with the value a parameter gives it), which esmini looks up from the folder of the
  * scenario that uses the entry, where it names `disk`: the catalog is not part of the output, so nothing rebases it. `main`: the
@@ -88,10 +93,31 @@ export function catalogControllerFileWording(
     severity: 'warning',
     code: 'file-path',
     message:
-      `catalog entry '${entry}' names its controller File ${written}, which esmini looks up from the working folder, then from ` +
-      `the folder of the scenario that uses the entry (not the catalog's): from ${main === undefined ? 'here' : `the folder of ${main}, which imports this group,`} it names ${disk}; ` +
+      `${controllerFileLookup(entry, written)} (not the catalog's): from ${main === undefined ? 'here' : `the folder of ${main}, which imports this group,`} it names ${disk}; ` +
       `${output === undefined ? 'the output on standard output' : `the output in ${output}`} may reach another file or none`,
     hint: `write the File's path absolute in the catalog entry, or name it through a parameter this reference assigns, or write the output beside ${main ?? 'this file'}`,
+  };
+}
+
+/**
+ * A catalog controller entry's relative File (`written`, quoted, with the value a parameter gives it) used from a group that
+ * `main` imports from a file in another folder or package: esmini reads it from the main's folder, where it names no file
+ * (`missing`), while the file lies beside the imported file (`beside`), so the flattened scenario runs without it.
+ */
+export function importedControllerFileWording(
+  entry: string,
+  written: string,
+  main: string,
+  missing: string,
+  beside: string,
+): ProblemWording<'file-path'> {
+  return {
+    severity: 'warning',
+    code: 'file-path',
+    message:
+      `${controllerFileLookup(entry, written)}: from the folder of ${main}, which imports this group, it names ${missing}, ` +
+      `which does not exist; the file lies beside this file (${beside}), so the flattened scenario runs without the controller's File`,
+    hint: `copy ${beside} to ${missing}, or write the File's path absolute in the catalog entry`,
   };
 }
 

@@ -3,7 +3,12 @@ import { Evaluator, semanticModelOf } from '../semantics';
 import { ScenarioModel } from '../model';
 import { Problem, ZERO_RANGE } from '../problems';
 import { ProblemWording } from '../diagnostics';
-import { catalogControllerFileWording, packagedPathOnStandardOutputWording, unrebasedPathWording } from '../diagnostics/filePath';
+import {
+  catalogControllerFileWording,
+  importedControllerFileWording,
+  packagedPathOnStandardOutputWording,
+  unrebasedPathWording,
+} from '../diagnostics/filePath';
 import type { FileKind } from '../sources/host';
 import { displayRef, normalizeEntryName, ScenarioStore, SourceRef } from '../sources';
 import { escapeAttributeValue, parseXml, selfAndDescendants, XmlAttribute, XmlDocument, XmlElement } from '../xml';
@@ -189,7 +194,9 @@ export async function rebasePaths(request: RebaseRequest): Promise<PathRebase> {
  * where it was written) whose File is a relative path written as it stands or through the entry's parameter: esmini looks it
  * up from the folder of the scenario it runs (ScenarioReader.cpp parseOSCObjectController), never the catalog's, and the
  * output written elsewhere keeps the reference, not the entry, so a file the path names from the main's folder (where the
- * output beside the main, and a run, reach it) is warned of at the reference. A run hands it (esmini/controllerFiles.ts).
+ * output beside the main, and a run, reach it) is warned of at the reference, unless a run hands it (`handed`:
+ * esmini/controllerFiles.ts). A file the path names only from the folder of the imported file that uses the entry is
+ * reached by no output nor run: that is warned of wherever the output goes.
  */
 async function catalogControllerFileProblems(
   source: FlatSource,
@@ -197,9 +204,11 @@ async function catalogControllerFileProblems(
   originFor: (element: XmlElement) => { source: FlatSource; element: XmlElement },
   outputDirectory: string | undefined,
   store: ScenarioStore,
+  handed: boolean,
 ): Promise<Problem[]> {
   const base = path.resolve(pathBaseOf(source.ref));
-  if (!model.document.root || outputDirectory === base) return [];
+  if (!model.document.root) return [];
+  const elsewhere = !handed && outputDirectory !== base;
   const problems: Problem[] = [];
   // A group imported twice is copied twice: its reference is warned of once.
   const seen = new Set<XmlElement>();
@@ -226,15 +235,34 @@ async function catalogControllerFileProblems(
           : declaredValue(entry.element, parameter);
     if (!written || !value || value.includes('$') || path.isAbsolute(value)) continue;
     const disk = path.resolve(base, value);
-    if ((await store.kindOf(disk)) !== 'file') continue;
+    const found = (await store.kindOf(disk)) === 'file';
+    // A group imported from another file: its reference is where to change it, the main's folder where the path is read from.
+    const from = origin.source === source ? undefined : displayRef(source.ref, undefined);
+    const beside = found || from === undefined ? undefined : await besideImportingFile(store, origin.source.ref, value);
+    if (!(found && elsewhere) && beside === undefined) continue;
     const at = reference.entryNameAttribute;
     const range = at ? semantics.model.document.lines.range(at.valueStart, at.valueEnd) : ZERO_RANGE;
     const named = value === written ? `'${written}'` : `'${written}' ('${value}')`;
-    // A group imported from another file: its reference is where to change it, the main's folder where the path is read from.
-    const from = origin.source === source ? undefined : displayRef(source.ref, undefined);
-    problems.push({ source: origin.source.ref, range, ...catalogControllerFileWording(entry.name, named, disk, outputDirectory, from) });
+    problems.push({
+      source: origin.source.ref,
+      range,
+      ...(beside !== undefined && from !== undefined
+        ? importedControllerFileWording(entry.name, named, from, disk, beside)
+        : catalogControllerFileWording(entry.name, named, disk, outputDirectory, from)),
+    });
   }
   return problems;
+}
+
+/** The file a relative path names from the folder of `ref` (inside its package, for a packaged file), when one lies there. */
+async function besideImportingFile(store: ScenarioStore, ref: SourceRef, value: string): Promise<string | undefined> {
+  if (ref.entries.length > 0) {
+    const packaged = await packagedEntries(store, ref, value);
+    const own = packaged?.files.find(([name]) => name === packaged.name);
+    return own ? displayRef({ disk: ref.disk, entries: [...ref.entries.slice(0, -1), own[0]] }, undefined) : undefined;
+  }
+  const file = path.resolve(pathBaseOf(ref), value);
+  return (await store.kindOf(file)) === 'file' ? file : undefined;
 }
 
 /** The value an element's own ParameterDeclaration of `name` gives, as written. */
@@ -402,8 +430,9 @@ export async function rebaseFlattened(
       continue;
     problems.push(problemAtOrigin(finding.site.element, finding.site.attribute.name, unrebasedPathWording(finding.message)));
   }
-  if (!handed.controllerFilesHanded)
-    problems.push(...(await catalogControllerFileProblems(source, model, originFor, outputDirectory, store)));
+  problems.push(
+    ...(await catalogControllerFileProblems(source, model, originFor, outputDirectory, store, handed.controllerFilesHanded === true)),
+  );
   return {
     edits: [...edits, ...rebase.edits],
     resolved: rebase.resolved,
